@@ -1,0 +1,136 @@
+//! Lookup tables as Webots' distance sensors define them: rows of (input, output, relative noise),
+//! interpolated linearly and clamped at both ends.
+
+use crate::error::{Error, Result};
+
+/// A piecewise-linear table with a relative noise column.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LookupTable {
+    inputs: Vec<f64>,
+    outputs: Vec<f64>,
+    noise: Vec<f64>,
+}
+
+impl LookupTable {
+    /// Builds a table from `(input, output, relative_sigma)` rows with strictly increasing inputs.
+    pub fn new(rows: &[[f64; 3]]) -> Result<Self> {
+        if rows.len() < 2 {
+            return Err(Error::InvalidArgument(format!(
+                "a lookup table needs at least 2 rows, found {}",
+                rows.len()
+            )));
+        }
+        for (i, w) in rows.windows(2).enumerate() {
+            if w[1][0] <= w[0][0] {
+                return Err(Error::InvalidArgument(format!(
+                    "lookup table inputs must increase strictly; row {} ({}) is not above row {} ({})",
+                    i + 1,
+                    w[1][0],
+                    i,
+                    w[0][0]
+                )));
+            }
+        }
+        if rows.iter().flatten().any(|v| !v.is_finite()) || rows.iter().any(|r| r[2] < 0.0) {
+            return Err(Error::InvalidArgument(
+                "lookup table values must be finite and noise non-negative".into(),
+            ));
+        }
+        Ok(Self {
+            inputs: rows.iter().map(|r| r[0]).collect(),
+            outputs: rows.iter().map(|r| r[1]).collect(),
+            noise: rows.iter().map(|r| r[2]).collect(),
+        })
+    }
+
+    /// Output and relative sigma at `x`, interpolated linearly, clamped outside the table.
+    pub fn eval(&self, x: f64) -> (f64, f64) {
+        let n = self.inputs.len();
+        if x.is_nan() || x <= self.inputs[0] {
+            return (self.outputs[0], self.noise[0]);
+        }
+        if x >= self.inputs[n - 1] {
+            return (self.outputs[n - 1], self.noise[n - 1]);
+        }
+        // Tables are short (a dozen rows): a linear scan beats a binary search here.
+        let mut i = 1;
+        while self.inputs[i] < x {
+            i += 1;
+        }
+        let (x0, x1) = (self.inputs[i - 1], self.inputs[i]);
+        let t = (x - x0) / (x1 - x0);
+        let lerp = |a: &[f64]| a[i - 1] + t * (a[i] - a[i - 1]);
+        (lerp(&self.outputs), lerp(&self.noise))
+    }
+
+    /// The largest input (the sensor's range).
+    pub fn max_input(&self) -> f64 {
+        self.inputs[self.inputs.len() - 1]
+    }
+
+    /// Inverts the table on its monotonic part: the input whose output is `y`, clamped.
+    /// Used to turn a Sharp reading in volts back into a distance.
+    pub fn invert(&self, y: f64) -> f64 {
+        let n = self.outputs.len();
+        let decreasing = self.outputs[n - 1] < self.outputs[0];
+        let (first, last) = (self.outputs[0], self.outputs[n - 1]);
+        let before_first = if decreasing { y >= first } else { y <= first };
+        let after_last = if decreasing { y <= last } else { y >= last };
+        if before_first {
+            return self.inputs[0];
+        }
+        if after_last {
+            return self.inputs[n - 1];
+        }
+        for i in 1..n {
+            let (y0, y1) = (self.outputs[i - 1], self.outputs[i]);
+            let inside = if decreasing {
+                y <= y0 && y >= y1
+            } else {
+                y >= y0 && y <= y1
+            };
+            if inside && y1 != y0 {
+                let t = (y - y0) / (y1 - y0);
+                return self.inputs[i - 1] + t * (self.inputs[i] - self.inputs[i - 1]);
+            }
+        }
+        self.inputs[n - 1]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn table() -> LookupTable {
+        LookupTable::new(&[[0.0, 100.0, 0.1], [1.0, 50.0, 0.2], [2.0, 0.0, 0.3]]).unwrap()
+    }
+
+    #[test]
+    fn interpolates_and_clamps() {
+        let t = table();
+        assert_eq!(t.eval(-1.0), (100.0, 0.1));
+        assert_eq!(t.eval(0.5), (75.0, 0.15000000000000002));
+        assert_eq!(t.eval(1.5).0, 25.0);
+        assert_eq!(t.eval(5.0), (0.0, 0.3));
+        assert_eq!(t.eval(f64::NAN).0, 100.0);
+    }
+
+    #[test]
+    fn inverts_monotonic_tables() {
+        let t = table();
+        for x in [0.0, 0.25, 1.0, 1.75, 2.0] {
+            let y = t.eval(x).0;
+            assert!((t.invert(y) - x).abs() < 1e-12);
+        }
+        assert_eq!(t.invert(1000.0), 0.0);
+        assert_eq!(t.invert(-5.0), 2.0);
+    }
+
+    #[test]
+    fn rejects_bad_tables() {
+        assert!(LookupTable::new(&[[0.0, 1.0, 0.0]]).is_err());
+        assert!(LookupTable::new(&[[0.0, 1.0, 0.0], [0.0, 2.0, 0.0]]).is_err());
+        assert!(LookupTable::new(&[[0.0, 1.0, -0.1], [1.0, 2.0, 0.0]]).is_err());
+    }
+}

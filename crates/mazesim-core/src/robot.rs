@@ -1,0 +1,283 @@
+//! Robot profiles as data: body, wheels, motors and sensors read from a TOML file.
+//! The built-in profiles (`e-puck`, `seed`, `alphabot2`) live in `robots/` and are embedded.
+
+use std::collections::BTreeMap;
+use std::sync::Arc;
+
+use serde::Deserialize;
+
+use crate::error::{Error, Result};
+use crate::lut::LookupTable;
+use crate::world::locate;
+use crate::world::values::{Finite, Positive};
+
+const BUILTIN: &[(&str, &str)] = &[
+    ("e-puck", include_str!("../../../robots/e-puck.toml")),
+    ("seed", include_str!("../../../robots/seed.toml")),
+    ("alphabot2", include_str!("../../../robots/alphabot2.toml")),
+];
+
+/// Names of the built-in robot profiles.
+pub fn robot_profile_names() -> Vec<String> {
+    BUILTIN.iter().map(|(n, _)| n.to_string()).collect()
+}
+
+/// What a sensor model measures.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SensorKind {
+    /// A ray cast to the walls, read through the Webots infra-red model.
+    Infrared,
+    /// A downward sensor reading the floor reflectance.
+    Ground,
+}
+
+/// A sensor model: its lookup table and how it looks at the world.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SensorModel {
+    /// Infra-red ray or ground sensor.
+    pub kind: SensorKind,
+    /// Unit of the output ("raw", "volts").
+    pub unit: String,
+    /// Distance (m) to output, with relative noise.
+    pub table: LookupTable,
+    /// Height above the floor (ground sensors).
+    pub height: f64,
+    /// Side of the square floor spot averaged (ground sensors).
+    pub footprint: f64,
+}
+
+/// A ray sensor on the robot.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DistanceSensor {
+    /// Device name, e.g. `ps0`.
+    pub name: String,
+    /// Position in the robot frame.
+    pub position: [f64; 2],
+    /// Direction in the robot frame, radians CCW from forward.
+    pub heading: f64,
+    /// Its model.
+    pub model: Arc<SensorModel>,
+}
+
+/// A downward floor sensor on the robot.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GroundSensor {
+    /// Device name, e.g. `gs0`.
+    pub name: String,
+    /// Position in the robot frame.
+    pub position: [f64; 2],
+    /// Its model.
+    pub model: Arc<SensorModel>,
+}
+
+/// A robot: body, wheels, motors, sensors.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RobotProfile {
+    /// Profile name.
+    pub name: String,
+    /// One line about it.
+    pub description: String,
+    /// Radius of the round body (collision shape).
+    pub body_radius: f64,
+    /// Wheel radius.
+    pub wheel_radius: f64,
+    /// Distance between the wheels.
+    pub axle_length: f64,
+    /// Motor limit in rad/s; faster commands are clamped.
+    pub max_wheel_speed: f64,
+    /// Position sensor resolution in radians (0 = exact).
+    pub encoder_resolution: f64,
+    /// Ray sensors in device order.
+    pub distance_sensors: Vec<DistanceSensor>,
+    /// Floor sensors in device order.
+    pub ground_sensors: Vec<GroundSensor>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ProfileFile {
+    name: String,
+    #[serde(default)]
+    description: String,
+    body_radius: Positive,
+    wheel_radius: Positive,
+    axle_length: Positive,
+    max_wheel_speed: Positive,
+    #[serde(default)]
+    encoder_resolution: Option<Positive>,
+    models: BTreeMap<String, ModelFile>,
+    #[serde(default)]
+    distance_sensors: Vec<SensorFile>,
+    #[serde(default)]
+    ground_sensors: Vec<SensorFile>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ModelFile {
+    kind: SensorKind,
+    unit: String,
+    table: Vec<[Finite; 3]>,
+    #[serde(default)]
+    height: Option<Positive>,
+    #[serde(default)]
+    footprint: Option<Positive>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SensorFile {
+    name: String,
+    position: [Finite; 2],
+    #[serde(default)]
+    heading: Option<Finite>,
+    model: String,
+}
+
+impl RobotProfile {
+    /// A built-in profile by name.
+    pub fn builtin(name: &str) -> Result<RobotProfile> {
+        let (_, text) =
+            BUILTIN
+                .iter()
+                .find(|(n, _)| *n == name)
+                .ok_or_else(|| Error::UnknownName {
+                    kind: "robot profile",
+                    name: name.to_string(),
+                    available: robot_profile_names(),
+                })?;
+        Self::from_toml(text, &format!("builtin-robot:{name}"))
+    }
+
+    /// Parses a profile file's text; `source` names it in errors.
+    pub fn from_toml(text: &str, source: &str) -> Result<RobotProfile> {
+        let file: ProfileFile =
+            toml::from_str(text).map_err(|e| locate::from_toml_error(source, text, &e))?;
+        let bad = |field: String, message: String| {
+            let key = field.rsplit('.').next().unwrap_or(&field).to_string();
+            let offset = text.find(&key).unwrap_or(0);
+            locate::format_error(source, text, offset, Some(&field), message)
+        };
+        let mut models: BTreeMap<String, Arc<SensorModel>> = BTreeMap::new();
+        for (name, m) in &file.models {
+            let rows: Vec<[f64; 3]> = m.table.iter().map(|r| [r[0].0, r[1].0, r[2].0]).collect();
+            let table = LookupTable::new(&rows)
+                .map_err(|e| bad(format!("models.{name}.table"), e.to_string()))?;
+            if m.kind == SensorKind::Ground && m.height.is_none() {
+                return Err(bad(
+                    format!("models.{name}.height"),
+                    "expected the height of a ground sensor above the floor, found none".into(),
+                ));
+            }
+            models.insert(
+                name.clone(),
+                Arc::new(SensorModel {
+                    kind: m.kind,
+                    unit: m.unit.clone(),
+                    table,
+                    height: m.height.map_or(0.0, |h| h.0),
+                    footprint: m.footprint.map_or(0.0, |f| f.0),
+                }),
+            );
+        }
+        let find =
+            |s: &SensorFile, kind: SensorKind, list: &str, i: usize| -> Result<Arc<SensorModel>> {
+                let m = models.get(&s.model).ok_or_else(|| {
+                    bad(
+                        format!("{list}[{i}].model"),
+                        format!(
+                            "expected one of the models {:?}, found {:?}",
+                            models.keys().collect::<Vec<_>>(),
+                            s.model
+                        ),
+                    )
+                })?;
+                if m.kind != kind {
+                    return Err(bad(
+                        format!("{list}[{i}].model"),
+                        format!(
+                            "expected a {kind:?} model for {list}, found {:?} of kind {:?}",
+                            s.model, m.kind
+                        ),
+                    ));
+                }
+                Ok(m.clone())
+            };
+        let mut distance_sensors = Vec::new();
+        for (i, s) in file.distance_sensors.iter().enumerate() {
+            distance_sensors.push(DistanceSensor {
+                name: s.name.clone(),
+                position: [s.position[0].0, s.position[1].0],
+                heading: s.heading.map_or(0.0, |h| h.0),
+                model: find(s, SensorKind::Infrared, "distance_sensors", i)?,
+            });
+        }
+        let mut ground_sensors = Vec::new();
+        for (i, s) in file.ground_sensors.iter().enumerate() {
+            ground_sensors.push(GroundSensor {
+                name: s.name.clone(),
+                position: [s.position[0].0, s.position[1].0],
+                model: find(s, SensorKind::Ground, "ground_sensors", i)?,
+            });
+        }
+        Ok(RobotProfile {
+            name: file.name,
+            description: file.description,
+            body_radius: file.body_radius.0,
+            wheel_radius: file.wheel_radius.0,
+            axle_length: file.axle_length.0,
+            max_wheel_speed: file.max_wheel_speed.0,
+            encoder_resolution: file.encoder_resolution.map_or(0.0, |r| r.0),
+            distance_sensors,
+            ground_sensors,
+        })
+    }
+
+    /// Unit of the distance sensors' readings ("raw" or "volts"), or "" without any.
+    pub fn distance_sensor_unit(&self) -> &str {
+        self.distance_sensors
+            .first()
+            .map_or("", |s| s.model.unit.as_str())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn builtin_profiles_load_with_their_sensors() {
+        let e = RobotProfile::builtin("e-puck").unwrap();
+        assert_eq!(e.distance_sensors.len(), 8);
+        assert_eq!(e.ground_sensors.len(), 3);
+        assert_eq!(e.distance_sensors[0].position, [0.03, -0.01]);
+        assert_eq!(e.distance_sensors[7].heading, 0.2992);
+        assert_eq!(e.distance_sensor_unit(), "raw");
+        let s = RobotProfile::builtin("seed").unwrap();
+        assert_eq!(s.distance_sensors.len(), 6);
+        assert_eq!(s.ground_sensors.len(), 1);
+        assert_eq!(s.distance_sensor_unit(), "volts");
+        let a = RobotProfile::builtin("alphabot2").unwrap();
+        assert_eq!(a.ground_sensors.len(), 5);
+        assert_eq!(a.wheel_radius, 0.021);
+    }
+
+    #[test]
+    fn unknown_profile_lists_the_known_ones() {
+        let err = RobotProfile::builtin("khepera").unwrap_err().to_string();
+        assert!(err.contains("e-puck") && err.contains("alphabot2"), "{err}");
+    }
+
+    #[test]
+    fn unknown_model_is_a_located_error() {
+        let text = "name = \"x\"\nbody_radius = 0.03\nwheel_radius = 0.02\naxle_length = 0.05\nmax_wheel_speed = 6\n[models]\n[[distance_sensors]]\nname = \"a\"\nposition = [0, 0]\nmodel = \"nope\"\n";
+        let err = RobotProfile::from_toml(text, "r.toml")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("distance_sensors[0].model") && err.contains("nope"),
+            "{err}"
+        );
+    }
+}

@@ -1,0 +1,128 @@
+//! Sensor models: Webots' infra-red distance sensor and the downward ground sensor.
+//!
+//! Infra-red (Webots `DistanceSensor` of type "infra-red"): the ray meets a wall at distance `d`;
+//! the wall's reflection factor `f` (1 white, 0.2 black) scales it, and the reading is
+//! `LUT(d / f) * (1 + sigma(d / f) * N(0, 1))`, the table interpolated linearly and clamped, `sigma`
+//! its relative-noise column. No hit within the ray reads the last row.
+//! Ground sensors look down from `height`; the floor's reflectance is averaged over a square spot
+//! of side `footprint` (so a reading over a bar edge lies between the two colours) and read as
+//! `LUT(height / f)`.
+
+use crate::rng::Rng;
+use crate::robot::SensorModel;
+use crate::world::{FloorPaint, WallIndex};
+
+/// Samples per side of the ground sensor's spot.
+const SPOT_SAMPLES: usize = 3;
+
+/// Applies the model's relative Gaussian noise to a table value.
+fn noisy(value: f64, sigma: f64, rng: Option<&mut Rng>) -> f32 {
+    let v = match rng {
+        Some(r) if sigma > 0.0 => value * (1.0 + sigma * r.normal()),
+        _ => value,
+    };
+    v.max(0.0) as f32
+}
+
+/// Reads an infra-red distance sensor whose ray starts at `origin` in the unit direction `dir`.
+pub fn read_infrared(
+    model: &SensorModel,
+    walls: &WallIndex,
+    origin: [f32; 2],
+    dir: [f32; 2],
+    rng: Option<&mut Rng>,
+) -> f32 {
+    let range = model.table.max_input();
+    let x = match walls.cast_ray(origin, dir, range as f32) {
+        Some(hit) => hit.distance as f64 / hit.reflectance as f64,
+        None => range,
+    };
+    let (value, sigma) = model.table.eval(x);
+    noisy(value, sigma, rng)
+}
+
+/// Mean floor reflectance over the sensor's square spot centred at `at`, aligned with `heading`.
+pub fn spot_reflectance(
+    model: &SensorModel,
+    floor: &FloorPaint,
+    at: [f64; 2],
+    heading: f64,
+) -> f64 {
+    if model.footprint <= 0.0 {
+        return floor.reflectance_at(at);
+    }
+    let (s, c) = heading.sin_cos();
+    let step = model.footprint / SPOT_SAMPLES as f64;
+    let first = -(model.footprint - step) / 2.0;
+    let mut sum = 0.0;
+    for i in 0..SPOT_SAMPLES {
+        let u = first + i as f64 * step;
+        for j in 0..SPOT_SAMPLES {
+            let v = first + j as f64 * step;
+            sum += floor.reflectance_at([at[0] + c * u - s * v, at[1] + s * u + c * v]);
+        }
+    }
+    sum / (SPOT_SAMPLES * SPOT_SAMPLES) as f64
+}
+
+/// Reads a ground sensor at floor point `at` on a robot heading `heading`.
+pub fn read_ground(
+    model: &SensorModel,
+    floor: &FloorPaint,
+    at: [f64; 2],
+    heading: f64,
+    rng: Option<&mut Rng>,
+) -> f32 {
+    let f = spot_reflectance(model, floor, at, heading);
+    let (value, sigma) = model.table.eval(model.height / f);
+    noisy(value, sigma, rng)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::robot::RobotProfile;
+    use crate::world::{PaintRegion, PaintShape, WallBox};
+
+    #[test]
+    fn ground_sensor_reads_white_black_and_edges_between() {
+        let e = RobotProfile::builtin("e-puck").unwrap();
+        let model = &e.ground_sensors[0].model;
+        let floor = FloorPaint::new(
+            1.0,
+            vec![PaintRegion {
+                shape: PaintShape::Rect {
+                    center: [1.0, 0.0],
+                    half: [0.5, 0.5],
+                    yaw: 0.0,
+                },
+                reflectance: 0.2,
+            }],
+        );
+        let white = read_ground(model, &floor, [0.0, 0.0], 0.0, None);
+        let black = read_ground(model, &floor, [1.0, 0.0], 0.0, None);
+        let edge = read_ground(model, &floor, [0.5, 0.0], 0.0, None);
+        assert!((white - 855.625).abs() < 0.01, "{white}");
+        assert!((black - 300.0).abs() < 1e-3, "{black}");
+        assert!(edge > black + 10.0 && edge < white - 10.0, "{edge}");
+    }
+
+    #[test]
+    fn infrared_free_space_reads_last_row() {
+        let e = RobotProfile::builtin("e-puck").unwrap();
+        let walls = WallIndex::new(&[WallBox {
+            center: [5.0, 0.0],
+            half: [0.1, 0.1],
+            yaw: 0.0,
+            reflectance: 1.0,
+        }]);
+        let v = read_infrared(
+            &e.distance_sensors[0].model,
+            &walls,
+            [0.0, 0.0],
+            [1.0, 0.0],
+            None,
+        );
+        assert_eq!(v, 67.19);
+    }
+}

@@ -1,0 +1,293 @@
+//! One robot in one world: physics, sensors, time and counters, stepped in control steps.
+
+use std::sync::Arc;
+
+use crate::error::{Error, Result};
+use crate::physics::Body;
+use crate::rng::Rng;
+use crate::robot::RobotProfile;
+use crate::sensors::{read_ground, read_infrared};
+use crate::world::World;
+
+/// A gap to a wall below this (metres) counts as touching it.
+pub const CONTACT_GAP: f32 = 2e-4;
+
+/// How a simulator is set up.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SimConfig {
+    /// Seed of the noise stream.
+    pub seed: u64,
+    /// Sensor noise on or off.
+    pub noise: bool,
+    /// Control step in seconds; `None` = the world's basic time step. Must be a whole number of
+    /// basic time steps.
+    pub control_step: Option<f64>,
+}
+
+impl Default for SimConfig {
+    fn default() -> Self {
+        Self {
+            seed: 0,
+            noise: true,
+            control_step: None,
+        }
+    }
+}
+
+/// A robot in a world.
+pub struct Simulator {
+    world: Arc<World>,
+    robot: Arc<RobotProfile>,
+    config: SimConfig,
+    physics_steps: u32,
+    dt: f64,
+    body: Body,
+    rng: Rng,
+    pose: [f32; 3],
+    time: f64,
+    steps: u64,
+    collisions: u64,
+    colliding: bool,
+    touching: bool,
+    clearance: f32,
+    distance_travelled: f64,
+    wheel_speeds: [f32; 2],
+    wheel_angles: [f64; 2],
+    distance_readings: Vec<f32>,
+    ground_readings: Vec<f32>,
+}
+
+impl Simulator {
+    /// A simulator reset to the world's start pose.
+    pub fn new(world: Arc<World>, robot: Arc<RobotProfile>, config: SimConfig) -> Result<Self> {
+        let dt = world.basic_time_step();
+        let control = config.control_step.unwrap_or(dt);
+        let ratio = control / dt;
+        if !(control.is_finite() && control > 0.0)
+            || (ratio - ratio.round()).abs() > 1e-6
+            || ratio.round() < 1.0
+        {
+            return Err(Error::InvalidArgument(format!(
+                "expected a control step that is a whole number of basic time steps ({} ms), found {} ms",
+                dt * 1000.0,
+                control * 1000.0
+            )));
+        }
+        let start = world.start();
+        let pose = [start[0] as f32, start[1] as f32, start[2] as f32];
+        let body = Body::new(world.walls(), robot.body_radius as f32, pose, dt as f32);
+        let mut sim = Simulator {
+            distance_readings: vec![0.0; robot.distance_sensors.len()],
+            ground_readings: vec![0.0; robot.ground_sensors.len()],
+            world,
+            robot,
+            config,
+            physics_steps: ratio.round() as u32,
+            dt,
+            body,
+            rng: Rng::new(config.seed),
+            pose,
+            time: 0.0,
+            steps: 0,
+            collisions: 0,
+            colliding: false,
+            touching: false,
+            clearance: 0.0,
+            distance_travelled: 0.0,
+            wheel_speeds: [0.0; 2],
+            wheel_angles: [0.0; 2],
+        };
+        sim.reset(None);
+        Ok(sim)
+    }
+
+    /// Back to the start pose with zeroed time and counters; a new seed if given.
+    pub fn reset(&mut self, seed: Option<u64>) {
+        if let Some(s) = seed {
+            self.config.seed = s;
+        }
+        let s = self.world.start();
+        self.place([s[0] as f32, s[1] as f32, s[2] as f32]);
+        self.rng = Rng::new(self.config.seed);
+        self.time = 0.0;
+        self.steps = 0;
+        self.collisions = 0;
+        self.distance_travelled = 0.0;
+        self.wheel_speeds = [0.0; 2];
+        self.wheel_angles = [0.0; 2];
+        self.read_sensors();
+    }
+
+    /// Moves the robot to a pose (x, y, yaw), at rest; sensors are read there. Time and counters go on.
+    pub fn set_pose(&mut self, x: f64, y: f64, yaw: f64) -> Result<()> {
+        if !(x.is_finite() && y.is_finite() && yaw.is_finite()) {
+            return Err(Error::InvalidArgument(format!(
+                "expected a finite pose, found ({x}, {y}, {yaw})"
+            )));
+        }
+        self.place([x as f32, y as f32, yaw as f32]);
+        self.read_sensors();
+        Ok(())
+    }
+
+    fn place(&mut self, pose: [f32; 3]) {
+        self.body = Body::new(
+            self.world.walls(),
+            self.robot.body_radius as f32,
+            pose,
+            self.dt as f32,
+        );
+        self.pose = self.body.pose();
+        self.update_contact();
+        self.colliding = self.touching;
+    }
+
+    fn update_contact(&mut self) {
+        let r = self.robot.body_radius as f32;
+        let gap = self
+            .world
+            .wall_index()
+            .signed_distance([self.pose[0], self.pose[1]], r + 0.01);
+        self.clearance = gap - r;
+        self.touching = self.clearance < CONTACT_GAP;
+    }
+
+    /// Clamps a wheel speed to the motor limit; NaN or infinite speeds are an error.
+    fn clamp_speed(&self, which: &str, w: f64) -> Result<f32> {
+        if !w.is_finite() {
+            return Err(Error::InvalidAction(format!(
+                "expected a finite {which} wheel speed in rad/s, found {w}"
+            )));
+        }
+        let m = self.robot.max_wheel_speed;
+        Ok(w.clamp(-m, m) as f32)
+    }
+
+    /// Advances one control step with wheel speeds in rad/s. Speeds beyond the motor limit are
+    /// clamped to it (as Webots does); NaN or infinite speeds raise `InvalidAction`.
+    pub fn step(&mut self, left: f64, right: f64) -> Result<()> {
+        let wl = self.clamp_speed("left", left)?;
+        let wr = self.clamp_speed("right", right)?;
+        self.wheel_speeds = [wl, wr];
+        let r = self.robot.wheel_radius as f32;
+        let linear = r * (wl + wr) / 2.0;
+        let angular = r * (wr - wl) / self.robot.axle_length as f32;
+        let mut any_contact = false;
+        for _ in 0..self.physics_steps {
+            let before = self.pose;
+            self.body.step(linear, angular);
+            self.pose = self.body.pose();
+            let dx = (self.pose[0] - before[0]) as f64;
+            let dy = (self.pose[1] - before[1]) as f64;
+            self.distance_travelled += (dx * dx + dy * dy).sqrt();
+            self.wheel_angles[0] += wl as f64 * self.dt;
+            self.wheel_angles[1] += wr as f64 * self.dt;
+            let was_touching = self.touching;
+            self.update_contact();
+            if self.touching && !was_touching {
+                self.collisions += 1;
+            }
+            any_contact |= self.touching;
+        }
+        self.colliding = any_contact;
+        self.steps += 1;
+        self.time = self.steps as f64 * self.physics_steps as f64 * self.dt;
+        self.read_sensors();
+        Ok(())
+    }
+
+    fn read_sensors(&mut self) {
+        let [x, y, yaw] = self.pose;
+        let (s, c) = yaw.sin_cos();
+        let noise = self.config.noise;
+        for (i, sensor) in self.robot.distance_sensors.iter().enumerate() {
+            let [px, py] = [sensor.position[0] as f32, sensor.position[1] as f32];
+            let origin = [x + c * px - s * py, y + s * px + c * py];
+            let heading = yaw + sensor.heading as f32;
+            let dir = [heading.cos(), heading.sin()];
+            let rng = noise.then_some(&mut self.rng);
+            self.distance_readings[i] =
+                read_infrared(&sensor.model, self.world.wall_index(), origin, dir, rng);
+        }
+        let (sd, cd) = (s as f64, c as f64);
+        for (i, sensor) in self.robot.ground_sensors.iter().enumerate() {
+            let [px, py] = sensor.position;
+            let at = [x as f64 + cd * px - sd * py, y as f64 + sd * px + cd * py];
+            let rng = noise.then_some(&mut self.rng);
+            self.ground_readings[i] =
+                read_ground(&sensor.model, self.world.floor(), at, yaw as f64, rng);
+        }
+    }
+
+    /// Distance sensor readings in device order (raw counts or volts, per the profile).
+    pub fn distance_sensors(&self) -> &[f32] {
+        &self.distance_readings
+    }
+
+    /// Ground sensor readings in device order.
+    pub fn ground_sensors(&self) -> &[f32] {
+        &self.ground_readings
+    }
+
+    /// Pose (x, y, yaw).
+    pub fn pose(&self) -> [f32; 3] {
+        self.pose
+    }
+
+    /// Simulated seconds since reset.
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// Control steps since reset.
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+
+    /// Bumps since reset: times the body came into contact with a wall.
+    pub fn collisions(&self) -> u64 {
+        self.collisions
+    }
+
+    /// Whether the body touched a wall during the last control step.
+    pub fn colliding(&self) -> bool {
+        self.colliding
+    }
+
+    /// Signed gap between the body and the nearest wall (negative: penetration), metres.
+    pub fn wall_clearance(&self) -> f32 {
+        self.clearance
+    }
+
+    /// Path length driven since reset, metres.
+    pub fn distance_travelled(&self) -> f64 {
+        self.distance_travelled
+    }
+
+    /// Wheel speeds applied in the last step (after clamping), rad/s.
+    pub fn wheel_speeds(&self) -> [f32; 2] {
+        self.wheel_speeds
+    }
+
+    /// Wheel position sensors (radians), quantised to the profile's encoder resolution.
+    pub fn encoders(&self) -> [f64; 2] {
+        let q = self.robot.encoder_resolution;
+        self.wheel_angles
+            .map(|a| if q > 0.0 { (a / q).round() * q } else { a })
+    }
+
+    /// Control step in seconds.
+    pub fn control_step(&self) -> f64 {
+        self.physics_steps as f64 * self.dt
+    }
+
+    /// The world.
+    pub fn world(&self) -> &Arc<World> {
+        &self.world
+    }
+
+    /// The robot profile.
+    pub fn robot(&self) -> &Arc<RobotProfile> {
+        &self.robot
+    }
+}

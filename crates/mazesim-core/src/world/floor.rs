@@ -1,0 +1,148 @@
+//! Floor paint: the reflectance of the floor at any point, for the ground sensors.
+//!
+//! Regions are drawn in order (a later region covers an earlier one). A coarse bin grid keeps a
+//! look-up to the few regions near the point.
+
+use super::geometry::{Bounds, PaintShape};
+
+/// One painted region.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PaintRegion {
+    /// Where.
+    pub shape: PaintShape,
+    /// Reflection factor f in (0, 1].
+    pub reflectance: f64,
+}
+
+/// Side of a look-up bin in metres.
+const BIN: f64 = 0.05;
+
+/// The painted floor of a world.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FloorPaint {
+    background: f64,
+    regions: Vec<PaintRegion>,
+    origin: [f64; 2],
+    cols: usize,
+    rows: usize,
+    /// Start of each bin's region list in `bin_regions` (CSR layout), `cols * rows + 1` entries.
+    bin_start: Vec<u32>,
+    /// Region indices per bin, highest (topmost) first.
+    bin_regions: Vec<u32>,
+}
+
+impl FloorPaint {
+    /// Indexes `regions` over a floor of `background` reflectance.
+    pub fn new(background: f64, regions: Vec<PaintRegion>) -> Self {
+        let bounds = regions
+            .iter()
+            .fold(Bounds::EMPTY, |b, r| b.union(r.shape.bounds()));
+        if bounds.is_empty() {
+            return Self {
+                background,
+                regions,
+                origin: [0.0, 0.0],
+                cols: 0,
+                rows: 0,
+                bin_start: vec![0],
+                bin_regions: Vec::new(),
+            };
+        }
+        let origin = bounds.min;
+        let cols = (((bounds.max[0] - origin[0]) / BIN).floor() as usize + 1).max(1);
+        let rows = (((bounds.max[1] - origin[1]) / BIN).floor() as usize + 1).max(1);
+        let mut bins: Vec<Vec<u32>> = vec![Vec::new(); cols * rows];
+        for (i, r) in regions.iter().enumerate().rev() {
+            let b = r.shape.bounds();
+            let c0 = ((b.min[0] - origin[0]) / BIN).floor().max(0.0) as usize;
+            let r0 = ((b.min[1] - origin[1]) / BIN).floor().max(0.0) as usize;
+            let c1 = (((b.max[0] - origin[0]) / BIN).floor() as usize).min(cols - 1);
+            let r1 = (((b.max[1] - origin[1]) / BIN).floor() as usize).min(rows - 1);
+            for row in r0..=r1 {
+                for col in c0..=c1 {
+                    bins[row * cols + col].push(i as u32);
+                }
+            }
+        }
+        let mut bin_start = Vec::with_capacity(bins.len() + 1);
+        let mut bin_regions = Vec::new();
+        bin_start.push(0);
+        for b in bins {
+            bin_regions.extend(b);
+            bin_start.push(bin_regions.len() as u32);
+        }
+        Self {
+            background,
+            regions,
+            origin,
+            cols,
+            rows,
+            bin_start,
+            bin_regions,
+        }
+    }
+
+    /// Background reflectance.
+    pub fn background(&self) -> f64 {
+        self.background
+    }
+
+    /// Regions in drawing order.
+    pub fn regions(&self) -> &[PaintRegion] {
+        &self.regions
+    }
+
+    /// Reflectance factor of the floor at `p`.
+    pub fn reflectance_at(&self, p: [f64; 2]) -> f64 {
+        let fx = (p[0] - self.origin[0]) / BIN;
+        let fy = (p[1] - self.origin[1]) / BIN;
+        if !(fx >= 0.0 && fy >= 0.0) {
+            return self.background;
+        }
+        let (col, row) = (fx as usize, fy as usize);
+        if col >= self.cols || row >= self.rows {
+            return self.background;
+        }
+        let bin = row * self.cols + col;
+        let (s, e) = (
+            self.bin_start[bin] as usize,
+            self.bin_start[bin + 1] as usize,
+        );
+        for &i in &self.bin_regions[s..e] {
+            let r = &self.regions[i as usize];
+            if r.shape.contains(p) {
+                return r.reflectance;
+            }
+        }
+        self.background
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn later_regions_cover_earlier_ones() {
+        let big = PaintRegion {
+            shape: PaintShape::Rect {
+                center: [0.0, 0.0],
+                half: [1.0, 1.0],
+                yaw: 0.0,
+            },
+            reflectance: 0.5,
+        };
+        let dot = PaintRegion {
+            shape: PaintShape::Circle {
+                center: [0.3, 0.3],
+                radius: 0.1,
+            },
+            reflectance: 0.2,
+        };
+        let floor = FloorPaint::new(1.0, vec![big, dot]);
+        assert_eq!(floor.reflectance_at([0.3, 0.3]), 0.2);
+        assert_eq!(floor.reflectance_at([-0.5, 0.0]), 0.5);
+        assert_eq!(floor.reflectance_at([3.0, 0.0]), 1.0);
+        assert_eq!(floor.reflectance_at([-3.0, -3.0]), 1.0);
+    }
+}

@@ -1,0 +1,286 @@
+//! The ASCII-grid shortcut for cell mazes (`[grid]` in a world file): parsing the drawing into
+//! cell walls, and turning cell walls into merged wall boxes.
+
+use super::geometry::WallBox;
+
+/// A cell maze: which cell edges carry a wall.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct CellMaze {
+    /// Number of cell rows (north to south in the drawing).
+    pub rows: usize,
+    /// Number of cell columns (west to east).
+    pub cols: usize,
+    /// `horizontal[k * cols + c]`: a wall on grid line k (0 = north edge) above cell column c;
+    /// `(rows + 1) * cols` entries.
+    pub horizontal: Vec<bool>,
+    /// `vertical[r * (cols + 1) + k]`: a wall on grid line k (0 = west edge) beside cell row r;
+    /// `rows * (cols + 1)` entries.
+    pub vertical: Vec<bool>,
+    /// Cell (column, row) marked `S`.
+    pub start: Option<(usize, usize)>,
+    /// Cell (column, row) marked `G`.
+    pub goal: Option<(usize, usize)>,
+}
+
+/// A problem in a drawing: its row within the drawing (0-based), column, and what is wrong.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct GridProblem {
+    /// Row of the drawing, 0-based.
+    pub row: usize,
+    /// Character column, 0-based.
+    pub column: usize,
+    /// What was expected and found.
+    pub message: String,
+}
+
+fn problem(row: usize, column: usize, message: impl Into<String>) -> GridProblem {
+    GridProblem {
+        row,
+        column,
+        message: message.into(),
+    }
+}
+
+impl CellMaze {
+    /// Parses a drawing (see `docs/world-format.md`). Blank leading and trailing lines are ignored.
+    pub fn parse(map: &str) -> Result<CellMaze, GridProblem> {
+        let lines: Vec<&str> = map.split('\n').map(|l| l.trim_end_matches('\r')).collect();
+        let first = lines.iter().position(|l| !l.trim().is_empty());
+        let last = lines.iter().rposition(|l| !l.trim().is_empty());
+        let (first, last) = match (first, last) {
+            (Some(f), Some(l)) => (f, l),
+            _ => return Err(problem(0, 0, "expected a maze drawing, found an empty map")),
+        };
+        let body = &lines[first..=last];
+        if body.len() < 3 || body.len() % 2 == 0 {
+            return Err(problem(
+                first,
+                0,
+                format!(
+                    "expected an odd number (at least 3) of rows alternating wall rows and cell rows, found {}",
+                    body.len()
+                ),
+            ));
+        }
+        let width = body
+            .iter()
+            .map(|l| l.trim_end().chars().count())
+            .max()
+            .unwrap_or(0);
+        if width < 4 || (width - 1) % 3 != 0 {
+            return Err(problem(
+                first,
+                width,
+                format!(
+                    "expected rows 3 * columns + 1 characters wide (\"+--+--+\"), found {width}"
+                ),
+            ));
+        }
+        let cols = (width - 1) / 3;
+        let rows = body.len() / 2;
+        let grid: Vec<Vec<char>> = body
+            .iter()
+            .map(|l| {
+                let mut v: Vec<char> = l.trim_end().chars().collect();
+                v.resize(width, ' ');
+                v
+            })
+            .collect();
+        let mut maze = CellMaze {
+            rows,
+            cols,
+            horizontal: vec![false; (rows + 1) * cols],
+            vertical: vec![false; rows * (cols + 1)],
+            start: None,
+            goal: None,
+        };
+        for (i, line) in grid.iter().enumerate() {
+            let at = first + i;
+            if i % 2 == 0 {
+                let k = i / 2;
+                for (x, &ch) in line.iter().enumerate() {
+                    let ok = if x % 3 == 0 {
+                        matches!(ch, '+' | ' ' | '-' | '|')
+                    } else {
+                        matches!(ch, '-' | ' ')
+                    };
+                    if !ok {
+                        return Err(problem(
+                            at,
+                            x,
+                            format!("expected '+', '-' or a space in a wall row, found {ch:?}"),
+                        ));
+                    }
+                }
+                for c in 0..cols {
+                    maze.horizontal[k * cols + c] =
+                        line[3 * c + 1] == '-' || line[3 * c + 2] == '-';
+                }
+            } else {
+                let r = i / 2;
+                for (x, &ch) in line.iter().enumerate() {
+                    if x % 3 == 0 {
+                        if !matches!(ch, '|' | ' ') {
+                            return Err(problem(
+                                at,
+                                x,
+                                format!("expected '|' or a space between cells, found {ch:?}"),
+                            ));
+                        }
+                        maze.vertical[r * (cols + 1) + x / 3] = ch == '|';
+                    } else {
+                        let cell = (x / 3, r);
+                        match ch {
+                            ' ' => {}
+                            'S' if maze.start.is_none() => maze.start = Some(cell),
+                            'G' if maze.goal.is_none() => maze.goal = Some(cell),
+                            'S' | 'G' => {
+                                return Err(problem(at, x, format!("a second {ch:?} marker: only one is allowed")))
+                            }
+                            _ => {
+                                return Err(problem(
+                                    at,
+                                    x,
+                                    format!("expected a space, 'S' (start) or 'G' (goal) inside a cell, found {ch:?}"),
+                                ))
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        Ok(maze)
+    }
+
+    /// Draws the maze back as text (the inverse of `parse`, markers included).
+    pub fn draw(&self) -> String {
+        let mut out = String::new();
+        for k in 0..=self.rows {
+            out.push('+');
+            for c in 0..self.cols {
+                out.push_str(if self.horizontal[k * self.cols + c] {
+                    "--+"
+                } else {
+                    "  +"
+                });
+            }
+            out.push('\n');
+            if k == self.rows {
+                break;
+            }
+            for kx in 0..=self.cols {
+                out.push(if self.vertical[k * (self.cols + 1) + kx] {
+                    '|'
+                } else {
+                    ' '
+                });
+                if kx < self.cols {
+                    let marker = if self.start == Some((kx, k)) {
+                        "S "
+                    } else if self.goal == Some((kx, k)) {
+                        "G "
+                    } else {
+                        "  "
+                    };
+                    out.push_str(marker);
+                }
+            }
+            out.push('\n');
+        }
+        out
+    }
+
+    /// Whether one can move from cell (c, r) to its neighbour in direction `dir`
+    /// (0 = east, 1 = north, 2 = west, 3 = south); false at the border.
+    pub fn open(&self, c: usize, r: usize, dir: usize) -> bool {
+        match dir {
+            0 => c + 1 < self.cols && !self.vertical[r * (self.cols + 1) + c + 1],
+            1 => r > 0 && !self.horizontal[r * self.cols + c],
+            2 => c > 0 && !self.vertical[r * (self.cols + 1) + c],
+            _ => r + 1 < self.rows && !self.horizontal[(r + 1) * self.cols + c],
+        }
+    }
+
+    /// Centre of cell (c, r) in world coordinates.
+    pub fn cell_center(&self, origin: [f64; 2], cell_size: f64, c: usize, r: usize) -> [f64; 2] {
+        [
+            origin[0] + (c as f64 + 0.5) * cell_size,
+            origin[1] + (self.rows as f64 - r as f64 - 0.5) * cell_size,
+        ]
+    }
+
+    /// Wall boxes of the maze, runs of adjacent walls merged into one box.
+    pub fn wall_boxes(&self, origin: [f64; 2], cell_size: f64, thickness: f64) -> Vec<WallBox> {
+        let mut out = Vec::new();
+        for k in 0..=self.rows {
+            let y = origin[1] + (self.rows - k) as f64 * cell_size;
+            let mut c = 0;
+            while c < self.cols {
+                if self.horizontal[k * self.cols + c] {
+                    let c0 = c;
+                    while c < self.cols && self.horizontal[k * self.cols + c] {
+                        c += 1;
+                    }
+                    let a = [origin[0] + c0 as f64 * cell_size, y];
+                    let b = [origin[0] + c as f64 * cell_size, y];
+                    out.push(WallBox::from_segment(a, b, thickness, 1.0));
+                } else {
+                    c += 1;
+                }
+            }
+        }
+        for k in 0..=self.cols {
+            let x = origin[0] + k as f64 * cell_size;
+            let mut r = 0;
+            while r < self.rows {
+                if self.vertical[r * (self.cols + 1) + k] {
+                    let r0 = r;
+                    while r < self.rows && self.vertical[r * (self.cols + 1) + k] {
+                        r += 1;
+                    }
+                    let a = [x, origin[1] + (self.rows - r0) as f64 * cell_size];
+                    let b = [x, origin[1] + (self.rows - r) as f64 * cell_size];
+                    out.push(WallBox::from_segment(b, a, thickness, 1.0));
+                } else {
+                    r += 1;
+                }
+            }
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const MAP: &str = "\n+--+--+\n|S    |\n+  +--+\n|   G |\n+--+--+\n";
+
+    #[test]
+    fn parses_walls_and_markers() {
+        let m = CellMaze::parse(MAP).unwrap();
+        assert_eq!((m.rows, m.cols), (2, 2));
+        assert_eq!(m.start, Some((0, 0)));
+        assert_eq!(m.goal, Some((1, 1)));
+        assert!(m.open(0, 0, 0) && m.open(0, 0, 3) && !m.open(1, 0, 3) && !m.open(0, 0, 1));
+        assert_eq!(m.draw().trim(), MAP.trim());
+    }
+
+    #[test]
+    fn merges_wall_runs() {
+        let m = CellMaze::parse(MAP).unwrap();
+        let boxes = m.wall_boxes([0.0, 0.0], 0.25, 0.01);
+        // north edge, middle half-line, south edge, west edge, east edge
+        assert_eq!(boxes.len(), 5);
+        let north = boxes[0];
+        assert!((north.half[0] - 0.255).abs() < 1e-12 && (north.center[1] - 0.5).abs() < 1e-12);
+    }
+
+    #[test]
+    fn reports_bad_characters_with_position() {
+        let err = CellMaze::parse("+--+\n|x |\n+--+").unwrap_err();
+        assert_eq!((err.row, err.column), (1, 1));
+        let err = CellMaze::parse("+--+\n|  |").unwrap_err();
+        assert!(err.message.contains("odd number"));
+    }
+}

@@ -1,0 +1,103 @@
+//! Turning a byte offset in a TOML text into a line, a column and the field that sits there.
+
+use crate::error::{Error, Location};
+
+/// 1-based line and column of byte `offset` in `text`.
+pub fn line_column(text: &str, offset: usize) -> (usize, usize) {
+    let offset = offset.min(text.len());
+    let before = &text[..offset];
+    let line = before.matches('\n').count() + 1;
+    let line_start = before.rfind('\n').map_or(0, |i| i + 1);
+    let column = before[line_start..].chars().count() + 1;
+    (line, column)
+}
+
+/// The dotted field path at `offset`: the enclosing `[table]` / `[[array]]` (with its index)
+/// and the key on that line, e.g. `walls[2].size`.
+pub fn field_at(text: &str, offset: usize) -> String {
+    let offset = offset.min(text.len());
+    let line_start = text[..offset].rfind('\n').map_or(0, |i| i + 1);
+    let line_end = text[offset..].find('\n').map_or(text.len(), |i| offset + i);
+    let line = &text[line_start..line_end];
+    let key = line
+        .split_once('=')
+        .map(|(k, _)| k.trim().trim_matches('"').to_string())
+        .filter(|k| !k.is_empty() && !k.starts_with('[') && !k.contains(' '));
+    let mut table: Option<String> = None;
+    let mut counts: std::collections::HashMap<String, usize> = Default::default();
+    for l in text[..line_start].lines() {
+        let t = l.trim();
+        if let Some(name) = t.strip_prefix("[[").and_then(|r| r.split("]]").next()) {
+            let name = name.trim().to_string();
+            let n = counts.entry(name.clone()).or_insert(0);
+            table = Some(format!("{name}[{n}]"));
+            *n += 1;
+        } else if let Some(name) = t.strip_prefix('[').and_then(|r| r.split(']').next()) {
+            table = Some(name.trim().to_string());
+        }
+    }
+    let header = line.trim();
+    if key.is_none() && header.starts_with('[') {
+        // The error points at a table header itself (a missing field of that table).
+        let name = header
+            .trim_matches(|c| c == '[' || c == ']')
+            .trim()
+            .to_string();
+        let n = counts.get(&name).copied().unwrap_or(0);
+        return if header.starts_with("[[") {
+            format!("{name}[{n}]")
+        } else {
+            name
+        };
+    }
+    match (table, key) {
+        (Some(t), Some(k)) => format!("{t}.{k}"),
+        (Some(t), None) => t,
+        (None, Some(k)) => k,
+        (None, None) => "(top level)".to_string(),
+    }
+}
+
+/// A format error at byte `offset` of `text` read from `source`.
+pub fn format_error(
+    source: &str,
+    text: &str,
+    offset: usize,
+    field: Option<&str>,
+    message: impl Into<String>,
+) -> Error {
+    let (line, column) = line_column(text, offset);
+    Error::Format {
+        location: Location {
+            source: source.to_string(),
+            line,
+            column,
+        },
+        field: field.map_or_else(|| field_at(text, offset), str::to_string),
+        message: message.into(),
+    }
+}
+
+/// Converts a TOML reader error into a located format error.
+pub fn from_toml_error(source: &str, text: &str, err: &toml::de::Error) -> Error {
+    let offset = err.span().map_or(0, |s| s.start);
+    let message = err.message().trim().to_string();
+    format_error(source, text, offset, None, message)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn finds_lines_columns_and_fields() {
+        let text = "a = 1\n[[walls]]\nsize = 2\n[[walls]]\ncenter = 3\n[goal]\nradius = 4\n";
+        assert_eq!(line_column(text, 0), (1, 1));
+        let off = text.find("center").unwrap();
+        assert_eq!(line_column(text, off + 2), (5, 3));
+        assert_eq!(field_at(text, off), "walls[1].center");
+        assert_eq!(field_at(text, text.find("size").unwrap()), "walls[0].size");
+        assert_eq!(field_at(text, text.find("radius").unwrap()), "goal.radius");
+        assert_eq!(field_at(text, 0), "a");
+    }
+}

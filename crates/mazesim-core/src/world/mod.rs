@@ -1,0 +1,434 @@
+//! Worlds: the file format (TOML, versioned), the compiled geometry the simulator uses, and the
+//! built-in worlds.
+
+mod builtin;
+pub mod floor;
+pub mod geometry;
+pub mod grid;
+pub mod locate;
+pub mod spec;
+pub mod values;
+pub mod walls;
+
+use std::path::Path;
+
+pub use builtin::{builtin_world_names, builtin_world_text};
+pub use floor::{FloorPaint, PaintRegion};
+pub use geometry::{Bounds, PaintShape, WallBox};
+pub use grid::CellMaze;
+pub use spec::WorldSpec;
+pub use walls::{RayHit, WallIndex};
+
+use crate::error::{Error, Result};
+use spec::{BarcodeSpec, PaintSpec};
+use values::xy;
+
+/// A barcode checkpoint on the floor.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Checkpoint {
+    /// Positive id.
+    pub id: u32,
+    /// Bits, first met first when travelling along `yaw`.
+    pub code: Vec<bool>,
+    /// Middle of the code.
+    pub center: [f64; 2],
+    /// Direction of travel in which the code reads as written.
+    pub yaw: f64,
+    /// Extent across the corridor.
+    pub width: f64,
+    /// Extent along the direction of travel (bars times bar length).
+    pub length: f64,
+}
+
+/// The goal region: a disc.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Goal {
+    /// Centre.
+    pub center: [f64; 2],
+    /// Radius.
+    pub radius: f64,
+}
+
+/// A cell maze with its placement in the world.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlacedMaze {
+    /// The cells.
+    pub maze: CellMaze,
+    /// South-west corner.
+    pub origin: [f64; 2],
+    /// Side of a cell.
+    pub cell_size: f64,
+}
+
+/// A loaded world: its description as written and the geometry compiled from it.
+#[derive(Debug, Clone)]
+pub struct World {
+    spec: WorldSpec,
+    source: String,
+    walls: Vec<WallBox>,
+    wall_index: WallIndex,
+    floor: FloorPaint,
+    checkpoints: Vec<Checkpoint>,
+    goal: Option<Goal>,
+    start: [f64; 3],
+    bounds: Bounds,
+    maze: Option<PlacedMaze>,
+}
+
+impl PartialEq for World {
+    /// Two worlds are equal when their descriptions are.
+    fn eq(&self, other: &Self) -> bool {
+        self.spec == other.spec
+    }
+}
+
+/// Byte offset of the `n`-th `[[name]]` header in `text` (0 when not found).
+fn table_offset(text: &str, name: &str, n: usize) -> usize {
+    let header = format!("[[{name}]]");
+    let mut seen = 0;
+    let mut offset = 0;
+    for line in text.split_inclusive('\n') {
+        if line.trim_start().starts_with(&header) {
+            if seen == n {
+                return offset + (line.len() - line.trim_start().len());
+            }
+            seen += 1;
+        }
+        offset += line.len();
+    }
+    0
+}
+
+impl World {
+    /// Parses a world file's text; `source` names it in error messages.
+    pub fn from_toml(text: &str, source: &str) -> Result<World> {
+        let spec: WorldSpec =
+            toml::from_str(text).map_err(|e| locate::from_toml_error(source, text, &e))?;
+        Self::compile(spec, source, text)
+    }
+
+    /// Reads a world file.
+    pub fn load(path: &Path) -> Result<World> {
+        let text = std::fs::read_to_string(path).map_err(|e| Error::Io {
+            path: path.display().to_string(),
+            message: format!("cannot read the world file: {e}"),
+        })?;
+        Self::from_toml(&text, &path.display().to_string())
+    }
+
+    /// A built-in world by name.
+    pub fn builtin(name: &str) -> Result<World> {
+        let text = builtin_world_text(name)?;
+        Self::from_toml(text, &format!("builtin:{name}"))
+    }
+
+    /// Compiles a description made in code (for example by a generator).
+    pub fn from_spec(spec: WorldSpec, source: &str) -> Result<World> {
+        // Round-trip through the text so that errors can point at lines and the world saves as built.
+        let text =
+            toml::to_string_pretty(&spec).map_err(|e| Error::InvalidArgument(e.to_string()))?;
+        Self::from_toml(&text, source)
+    }
+
+    fn compile(spec: WorldSpec, source: &str, text: &str) -> Result<World> {
+        let mut walls: Vec<WallBox> = Vec::new();
+        let mut maze = None;
+        let mut start = None;
+        let mut goal = None;
+        if let Some(g) = &spec.grid {
+            let parsed = CellMaze::parse(g.map.get_ref()).map_err(|p| {
+                // The drawing starts on the line after the opening quotes.
+                let (map_line, _) = locate::line_column(text, g.map.span().start);
+                let skip = usize::from(text[g.map.span().start..].starts_with("\"\"\"\n"));
+                let line_offset: usize = text
+                    .split_inclusive('\n')
+                    .take(map_line - 1 + skip + p.row)
+                    .map(str::len)
+                    .sum();
+                locate::format_error(
+                    source,
+                    text,
+                    line_offset + p.column,
+                    Some("grid.map"),
+                    p.message,
+                )
+            })?;
+            let origin = xy(&g.origin);
+            let cs = g.cell_size.get();
+            walls.extend(parsed.wall_boxes(origin, cs, g.wall_thickness.get()));
+            if let Some((c, r)) = parsed.start {
+                let p = parsed.cell_center(origin, cs, c, r);
+                start = Some([p[0], p[1], 0.0]);
+            }
+            if let Some((c, r)) = parsed.goal {
+                goal = Some(Goal {
+                    center: parsed.cell_center(origin, cs, c, r),
+                    radius: cs / 3.0,
+                });
+            }
+            maze = Some(PlacedMaze {
+                maze: parsed,
+                origin,
+                cell_size: cs,
+            });
+        }
+        for w in &spec.walls {
+            walls.push(WallBox {
+                center: xy(&w.center),
+                half: [w.size[0].get() / 2.0, w.size[1].get() / 2.0],
+                yaw: w.yaw.get(),
+                reflectance: w.reflectance.get(),
+            });
+        }
+        for s in &spec.segments {
+            walls.push(WallBox::from_segment(
+                xy(&s.from),
+                xy(&s.to),
+                s.thickness.get(),
+                s.reflectance.get(),
+            ));
+        }
+        let mut regions = Vec::new();
+        for (i, p) in spec.paint.iter().enumerate() {
+            match p {
+                PaintSpec::Rect {
+                    center,
+                    size,
+                    yaw,
+                    reflectance,
+                } => regions.push(PaintRegion {
+                    shape: PaintShape::Rect {
+                        center: xy(center),
+                        half: [size[0].get() / 2.0, size[1].get() / 2.0],
+                        yaw: yaw.get(),
+                    },
+                    reflectance: reflectance.get(),
+                }),
+                PaintSpec::Circle {
+                    center,
+                    radius,
+                    reflectance,
+                } => regions.push(PaintRegion {
+                    shape: PaintShape::Circle {
+                        center: xy(center),
+                        radius: radius.get(),
+                    },
+                    reflectance: reflectance.get(),
+                }),
+                PaintSpec::Polyline {
+                    points,
+                    width,
+                    closed,
+                    reflectance,
+                } => {
+                    if points.len() < 2 {
+                        return Err(locate::format_error(
+                            source,
+                            text,
+                            table_offset(text, "paint", i),
+                            Some(&format!("paint[{i}].points")),
+                            format!(
+                                "expected at least 2 points in a polyline, found {}",
+                                points.len()
+                            ),
+                        ));
+                    }
+                    let pts: Vec<[f64; 2]> = points.iter().map(xy).collect();
+                    let mut pairs: Vec<([f64; 2], [f64; 2])> =
+                        pts.windows(2).map(|w| (w[0], w[1])).collect();
+                    if *closed {
+                        pairs.push((pts[pts.len() - 1], pts[0]));
+                    }
+                    for (a, b) in pairs {
+                        regions.push(PaintRegion {
+                            shape: PaintShape::Capsule {
+                                a,
+                                b,
+                                radius: width.get() / 2.0,
+                            },
+                            reflectance: reflectance.get(),
+                        });
+                    }
+                }
+            }
+        }
+        let barcode = spec.barcode.clone().unwrap_or_default();
+        let mut checkpoints: Vec<Checkpoint> = Vec::new();
+        for (i, c) in spec.checkpoints.iter().enumerate() {
+            let at = || table_offset(text, "checkpoints", i);
+            if c.id == 0 {
+                return Err(locate::format_error(
+                    source,
+                    text,
+                    at(),
+                    Some(&format!("checkpoints[{i}].id")),
+                    "expected a positive checkpoint id, found 0",
+                ));
+            }
+            if checkpoints.iter().any(|k| k.id == c.id) {
+                return Err(locate::format_error(
+                    source,
+                    text,
+                    at(),
+                    Some(&format!("checkpoints[{i}].id")),
+                    format!(
+                        "expected a unique checkpoint id, found {} a second time",
+                        c.id
+                    ),
+                ));
+            }
+            let cp = checkpoint_from(c, &barcode);
+            regions.extend(barcode_bars(&cp, &barcode));
+            checkpoints.push(cp);
+        }
+        if let Some(s) = &spec.start {
+            start = Some([s.x.get(), s.y.get(), s.yaw.get()]);
+        }
+        if let Some(g) = &spec.goal {
+            goal = Some(Goal {
+                center: xy(&g.center),
+                radius: g.radius.get(),
+            });
+        }
+        let start = start.unwrap_or([0.0, 0.0, 0.0]);
+        let mut bounds = walls.iter().fold(Bounds::EMPTY, |b, w| b.union(w.bounds()));
+        bounds = regions
+            .iter()
+            .fold(bounds, |b, r| b.union(r.shape.bounds()));
+        bounds = bounds.union(Bounds {
+            min: [start[0], start[1]],
+            max: [start[0], start[1]],
+        });
+        if let Some(g) = goal {
+            bounds = bounds.union(Bounds {
+                min: [g.center[0] - g.radius, g.center[1] - g.radius],
+                max: [g.center[0] + g.radius, g.center[1] + g.radius],
+            });
+        }
+        let background = spec.floor.as_ref().map_or(1.0, |f| f.reflectance.get());
+        Ok(World {
+            wall_index: WallIndex::new(&walls),
+            floor: FloorPaint::new(background, regions),
+            spec,
+            source: source.to_string(),
+            walls,
+            checkpoints,
+            goal,
+            start,
+            bounds,
+            maze,
+        })
+    }
+
+    /// The description as written in a world file.
+    pub fn to_toml(&self) -> Result<String> {
+        toml::to_string_pretty(&self.spec)
+            .map_err(|e| Error::InvalidArgument(format!("cannot write the world: {e}")))
+    }
+
+    /// Writes the world file atomically (a temporary file in the same folder, then a rename).
+    pub fn save(&self, path: &Path) -> Result<()> {
+        crate::io::write_atomic(path, self.to_toml()?.as_bytes())
+    }
+
+    /// The description.
+    pub fn spec(&self) -> &WorldSpec {
+        &self.spec
+    }
+
+    /// Where it was read from.
+    pub fn source(&self) -> &str {
+        &self.source
+    }
+
+    /// The world's name.
+    pub fn name(&self) -> &str {
+        &self.spec.name
+    }
+
+    /// Physics step in seconds.
+    pub fn basic_time_step(&self) -> f64 {
+        self.spec.basic_time_step_ms.get() / 1000.0
+    }
+
+    /// Every wall as a box.
+    pub fn walls(&self) -> &[WallBox] {
+        &self.walls
+    }
+
+    /// The walls indexed for ray casts.
+    pub fn wall_index(&self) -> &WallIndex {
+        &self.wall_index
+    }
+
+    /// Floor paint, barcodes included.
+    pub fn floor(&self) -> &FloorPaint {
+        &self.floor
+    }
+
+    /// Checkpoints in file order.
+    pub fn checkpoints(&self) -> &[Checkpoint] {
+        &self.checkpoints
+    }
+
+    /// The goal disc, if any.
+    pub fn goal(&self) -> Option<Goal> {
+        self.goal
+    }
+
+    /// Start pose (x, y, yaw).
+    pub fn start(&self) -> [f64; 3] {
+        self.start
+    }
+
+    /// Bounds of walls, paint, start and goal.
+    pub fn bounds(&self) -> Bounds {
+        self.bounds
+    }
+
+    /// The cell maze, when the world has a `[grid]`.
+    pub fn maze(&self) -> Option<&PlacedMaze> {
+        self.maze.as_ref()
+    }
+}
+
+fn checkpoint_from(c: &spec::CheckpointSpec, barcode: &BarcodeSpec) -> Checkpoint {
+    let code = c.code.bits();
+    Checkpoint {
+        id: c.id,
+        length: code.len() as f64 * barcode.bar_length.get(),
+        code,
+        center: xy(&c.center),
+        yaw: c.yaw.get(),
+        width: c.width.get(),
+    }
+}
+
+/// The painted bars of a checkpoint, first bit first along its yaw.
+fn barcode_bars(cp: &Checkpoint, barcode: &BarcodeSpec) -> Vec<PaintRegion> {
+    let n = cp.code.len() as f64;
+    let bar = barcode.bar_length.get();
+    let (s, c) = cp.yaw.sin_cos();
+    cp.code
+        .iter()
+        .enumerate()
+        .map(|(i, &bit)| {
+            let along = (i as f64 - (n - 1.0) / 2.0) * bar;
+            PaintRegion {
+                shape: PaintShape::Rect {
+                    center: [cp.center[0] + c * along, cp.center[1] + s * along],
+                    half: [bar / 2.0, cp.width / 2.0],
+                    yaw: cp.yaw,
+                },
+                reflectance: if bit {
+                    barcode.white.get()
+                } else {
+                    barcode.black.get()
+                },
+            }
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests;

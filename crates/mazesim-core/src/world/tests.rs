@@ -1,0 +1,186 @@
+//! World files: round trips, located errors, built-in worlds.
+
+use super::*;
+use proptest::prelude::*;
+
+const HEADER: &str = "format = \"mazesim-world\"\nversion = 1\n";
+
+fn parse(body: &str) -> Result<World> {
+    World::from_toml(&format!("{HEADER}{body}"), "bad.toml")
+}
+
+fn format_error(body: &str) -> (usize, String, String) {
+    match parse(body) {
+        Err(Error::Format {
+            location,
+            field,
+            message,
+        }) => {
+            assert_eq!(location.source, "bad.toml");
+            (location.line, field, message)
+        }
+        other => panic!("expected a format error, found {other:?}"),
+    }
+}
+
+#[test]
+fn builtin_worlds_load_and_round_trip() {
+    for name in builtin_world_names() {
+        let w = World::builtin(&name).unwrap();
+        let again = World::from_toml(&w.to_toml().unwrap(), "again").unwrap();
+        assert_eq!(w, again, "{name}");
+        assert_eq!(w.walls(), again.walls());
+        assert_eq!(w.floor(), again.floor());
+    }
+    let seed = World::builtin("seed-maze").unwrap();
+    assert_eq!(seed.checkpoints().len(), 7);
+    assert!(seed.goal().is_some());
+    assert!(seed.maze().is_some());
+}
+
+#[test]
+fn unknown_builtin_lists_the_available_ones() {
+    let err = World::builtin("maze-of-doom").unwrap_err().to_string();
+    for name in ["seed-maze", "line-follow", "arena"] {
+        assert!(err.contains(name), "{err}");
+    }
+}
+
+#[test]
+fn a_bad_value_names_line_and_field() {
+    let (line, field, message) = format_error("[[walls]]\ncenter = [0, 0]\nsize = [0.1, 0.1]\n[[walls]]\ncenter = [1, 0]\nsize = [-0.1, 0.1]\n");
+    assert_eq!(line, 8);
+    assert_eq!(field, "walls[1].size");
+    assert!(
+        message.contains("above zero") && message.contains("-0.1"),
+        "{message}"
+    );
+}
+
+#[test]
+fn unknown_fields_missing_fields_and_wrong_versions_are_located() {
+    let (line, field, message) = format_error("[goal]\ncentre = [0, 0]\nradius = 0.1\n");
+    assert_eq!((line, field.as_str()), (4, "goal.centre"));
+    assert!(message.contains("centre"), "{message}");
+    let (_, _, message) = format_error("[goal]\nradius = 0.1\n");
+    assert!(message.contains("center"), "{message}");
+    let err = World::from_toml("format = \"mazesim-world\"\nversion = 7\n", "v.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("v.toml:2") && err.contains("version") && err.contains('7'),
+        "{err}"
+    );
+    let err = World::from_toml("format = \"webots\"\nversion = 1\n", "f.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("f.toml:1") && err.contains("mazesim-world"),
+        "{err}"
+    );
+    let (line, _, _) = format_error("[floor]\nreflectance = 1.5\n");
+    assert_eq!(line, 4);
+}
+
+#[test]
+fn grid_errors_point_into_the_drawing() {
+    let (line, field, message) = format_error("[grid]\ncell_size = 0.25\nwall_thickness = 0.01\nmap = \"\"\"\n+--+--+\n|  x  |\n+--+--+\n\"\"\"\n");
+    assert_eq!(field, "grid.map");
+    assert_eq!(line, 8, "{message}");
+    assert!(message.contains("'x'"), "{message}");
+}
+
+#[test]
+fn checkpoint_ids_are_positive_and_unique_and_codes_are_five_bits() {
+    let cp = |id: u32, code: &str| {
+        format!("[[checkpoints]]\nid = {id}\ncode = \"{code}\"\ncenter = [0, 0]\nyaw = 0\nwidth = 0.2\n")
+    };
+    let (_, field, message) = format_error(&format!("{}{}", cp(1, "10110"), cp(1, "11010")));
+    assert_eq!(field, "checkpoints[1].id");
+    assert!(message.contains("unique"), "{message}");
+    let (line, field, _) = format_error(&cp(3, "1011"));
+    assert_eq!((line, field.as_str()), (5, "checkpoints[0].code"));
+}
+
+#[test]
+fn barcode_bars_are_painted_first_bit_first_along_yaw() {
+    let w = parse("[floor]\nreflectance = 0.36\n[[checkpoints]]\nid = 1\ncode = \"10010\"\ncenter = [0, 0]\nyaw = 1.5707963267948966\nwidth = 0.2\n").unwrap();
+    let f = w.floor();
+    let along = |t: f64| f.reflectance_at([0.0, t]);
+    assert_eq!(along(-0.034), 1.0);
+    assert_eq!(along(-0.017), 0.2);
+    assert_eq!(along(0.0), 0.2);
+    assert_eq!(along(0.017), 1.0);
+    assert_eq!(along(0.034), 0.2);
+    assert_eq!(along(0.06), 0.36);
+}
+
+#[test]
+fn polylines_need_two_points() {
+    let (_, field, message) = format_error(
+        "[[paint]]\nshape = \"polyline\"\npoints = [[0, 0]]\nwidth = 0.01\nreflectance = 0.2\n",
+    );
+    assert_eq!(field, "paint[0].points");
+    assert!(message.contains("at least 2"), "{message}");
+}
+
+#[test]
+fn saving_is_atomic_and_round_trips() {
+    let dir = std::env::temp_dir().join(format!("mazesim-world-test-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("w.toml");
+    let w = World::builtin("seed-maze").unwrap();
+    w.save(&path).unwrap();
+    assert_eq!(World::load(&path).unwrap(), w);
+    let leftovers: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name().to_string_lossy().contains(".tmp"))
+        .collect();
+    assert!(leftovers.is_empty());
+    assert!(matches!(
+        World::load(&dir.join("missing.toml")),
+        Err(Error::Io { .. })
+    ));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+fn finite() -> impl Strategy<Value = f64> {
+    -10.0f64..10.0
+}
+fn positive() -> impl Strategy<Value = f64> {
+    0.001f64..2.0
+}
+fn reflectance() -> impl Strategy<Value = f64> {
+    0.01f64..=1.0
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+    #[test]
+    fn random_worlds_round_trip(
+        walls in prop::collection::vec((finite(), finite(), positive(), positive(), finite(), reflectance()), 0..6),
+        paint in prop::collection::vec((finite(), finite(), positive(), reflectance()), 0..6),
+        start in (finite(), finite(), finite()),
+        step in 1.0f64..64.0,
+    ) {
+        let mut text = format!("{HEADER}name = \"random\"\nbasic_time_step_ms = {step:?}\n[start]\nx = {:?}\ny = {:?}\nyaw = {:?}\n", start.0, start.1, start.2);
+        for (x, y, sx, sy, yaw, f) in &walls {
+            text += &format!("[[walls]]\ncenter = [{x:?}, {y:?}]\nsize = [{sx:?}, {sy:?}]\nyaw = {yaw:?}\nreflectance = {f:?}\n");
+        }
+        for (x, y, r, f) in &paint {
+            text += &format!("[[paint]]\nshape = \"circle\"\ncenter = [{x:?}, {y:?}]\nradius = {r:?}\nreflectance = {f:?}\n");
+        }
+        let w = World::from_toml(&text, "random").unwrap();
+        let again = World::from_toml(&w.to_toml().unwrap(), "again").unwrap();
+        prop_assert_eq!(&w, &again);
+        prop_assert_eq!(w.walls(), again.walls());
+        prop_assert_eq!(w.walls().len(), walls.len());
+    }
+
+    #[test]
+    fn arbitrary_text_never_panics(text in "\\PC{0,200}") {
+        let _ = World::from_toml(&text, "fuzz");
+        let _ = World::from_toml(&format!("{HEADER}{text}"), "fuzz");
+    }
+}

@@ -1,0 +1,242 @@
+//! Static walls indexed for the sensors: parry2d ray casts and distance queries against only the
+//! walls near the query, found through a uniform bin grid.
+
+use parry2d::math::{Pose, Vector};
+use parry2d::query::{PointQuery, Ray, RayCast};
+use parry2d::shape::Cuboid;
+
+use super::geometry::{Bounds, WallBox};
+
+/// Side of a look-up bin in metres (a few e-puck diameters).
+const BIN: f64 = 0.1;
+
+/// The walls of a world as parry2d shapes with a bin index.
+#[derive(Debug, Clone)]
+pub struct WallIndex {
+    shapes: Vec<(Cuboid, Pose)>,
+    reflectance: Vec<f32>,
+    origin: [f64; 2],
+    cols: usize,
+    rows: usize,
+    bin_start: Vec<u32>,
+    bin_walls: Vec<u32>,
+}
+
+/// What a ray hit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RayHit {
+    /// Distance along the ray in metres.
+    pub distance: f32,
+    /// Reflection factor of the wall hit.
+    pub reflectance: f32,
+}
+
+impl WallIndex {
+    /// Indexes `walls`.
+    pub fn new(walls: &[WallBox]) -> Self {
+        let shapes: Vec<(Cuboid, Pose)> = walls
+            .iter()
+            .map(|w| {
+                (
+                    Cuboid::new(Vector::new(w.half[0] as f32, w.half[1] as f32)),
+                    Pose::new(
+                        Vector::new(w.center[0] as f32, w.center[1] as f32),
+                        w.yaw as f32,
+                    ),
+                )
+            })
+            .collect();
+        let reflectance = walls.iter().map(|w| w.reflectance as f32).collect();
+        let bounds = walls.iter().fold(Bounds::EMPTY, |b, w| b.union(w.bounds()));
+        if bounds.is_empty() {
+            return Self {
+                shapes,
+                reflectance,
+                origin: [0.0, 0.0],
+                cols: 0,
+                rows: 0,
+                bin_start: vec![0],
+                bin_walls: Vec::new(),
+            };
+        }
+        let origin = bounds.min;
+        let cols = ((bounds.max[0] - origin[0]) / BIN).floor() as usize + 1;
+        let rows = ((bounds.max[1] - origin[1]) / BIN).floor() as usize + 1;
+        let mut bins: Vec<Vec<u32>> = vec![Vec::new(); cols * rows];
+        for (i, w) in walls.iter().enumerate() {
+            // Grow a little so that f32 rounding never drops a wall from a bin it touches.
+            let b = w.bounds().grown(1e-4);
+            let (c0, r0, c1, r1) = Self::bin_range_of(origin, cols, rows, b);
+            for row in r0..=r1 {
+                for col in c0..=c1 {
+                    bins[row * cols + col].push(i as u32);
+                }
+            }
+        }
+        let mut bin_start = vec![0u32];
+        let mut bin_walls = Vec::new();
+        for b in bins {
+            bin_walls.extend(b);
+            bin_start.push(bin_walls.len() as u32);
+        }
+        Self {
+            shapes,
+            reflectance,
+            origin,
+            cols,
+            rows,
+            bin_start,
+            bin_walls,
+        }
+    }
+
+    fn bin_range_of(
+        origin: [f64; 2],
+        cols: usize,
+        rows: usize,
+        b: Bounds,
+    ) -> (usize, usize, usize, usize) {
+        let clamp = |v: f64, n: usize| (v.floor().max(0.0) as usize).min(n - 1);
+        (
+            clamp((b.min[0] - origin[0]) / BIN, cols),
+            clamp((b.min[1] - origin[1]) / BIN, rows),
+            clamp((b.max[0] - origin[0]) / BIN, cols),
+            clamp((b.max[1] - origin[1]) / BIN, rows),
+        )
+    }
+
+    /// Calls `f` with the index of every wall whose bin meets `b` (a wall may come more than once).
+    fn for_each_near(&self, b: Bounds, mut f: impl FnMut(usize)) {
+        if self.cols == 0 {
+            return;
+        }
+        let far = b.max[0] < self.origin[0]
+            || b.max[1] < self.origin[1]
+            || b.min[0] > self.origin[0] + self.cols as f64 * BIN
+            || b.min[1] > self.origin[1] + self.rows as f64 * BIN;
+        if far {
+            return;
+        }
+        let (c0, r0, c1, r1) = Self::bin_range_of(self.origin, self.cols, self.rows, b);
+        for row in r0..=r1 {
+            for col in c0..=c1 {
+                let bin = row * self.cols + col;
+                let (s, e) = (
+                    self.bin_start[bin] as usize,
+                    self.bin_start[bin + 1] as usize,
+                );
+                for &i in &self.bin_walls[s..e] {
+                    f(i as usize);
+                }
+            }
+        }
+    }
+
+    /// Number of walls.
+    pub fn len(&self) -> usize {
+        self.shapes.len()
+    }
+
+    /// True when the world has no walls.
+    pub fn is_empty(&self) -> bool {
+        self.shapes.is_empty()
+    }
+
+    /// The nearest wall along the ray from `origin` in the unit direction `dir`, up to `max_distance`.
+    pub fn cast_ray(&self, origin: [f32; 2], dir: [f32; 2], max_distance: f32) -> Option<RayHit> {
+        let end = [
+            origin[0] + dir[0] * max_distance,
+            origin[1] + dir[1] * max_distance,
+        ];
+        let b = Bounds {
+            min: [origin[0].min(end[0]) as f64, origin[1].min(end[1]) as f64],
+            max: [origin[0].max(end[0]) as f64, origin[1].max(end[1]) as f64],
+        };
+        let ray = Ray::new(
+            Vector::new(origin[0], origin[1]),
+            Vector::new(dir[0], dir[1]),
+        );
+        let mut best: Option<RayHit> = None;
+        self.for_each_near(b, |i| {
+            let (shape, pose) = &self.shapes[i];
+            let limit = best.map_or(max_distance, |h| h.distance);
+            if let Some(toi) = shape.cast_ray(pose, &ray, limit, true) {
+                // Equal distances: the lower wall index wins, whatever the visiting order.
+                let better = match best {
+                    None => true,
+                    Some(h) => toi < h.distance,
+                };
+                if better {
+                    best = Some(RayHit {
+                        distance: toi,
+                        reflectance: self.reflectance[i],
+                    });
+                }
+            }
+        });
+        best
+    }
+
+    /// Signed distance from `p` to the nearest wall surface within `search` metres
+    /// (negative inside a wall); `search` when no wall is that close.
+    pub fn signed_distance(&self, p: [f32; 2], search: f32) -> f32 {
+        let b = Bounds {
+            min: [(p[0] - search) as f64, (p[1] - search) as f64],
+            max: [(p[0] + search) as f64, (p[1] + search) as f64],
+        };
+        let pt = Vector::new(p[0], p[1]);
+        let mut best = search;
+        self.for_each_near(b, |i| {
+            let (shape, pose) = &self.shapes[i];
+            let proj = shape.project_point(pose, pt, false);
+            let d = (proj.point - pt).length();
+            let signed = if proj.is_inside { -d } else { d };
+            if signed < best {
+                best = signed;
+            }
+        });
+        best
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn index() -> WallIndex {
+        WallIndex::new(&[
+            WallBox {
+                center: [1.0, 0.0],
+                half: [0.005, 0.5],
+                yaw: 0.0,
+                reflectance: 0.5,
+            },
+            WallBox {
+                center: [2.0, 0.0],
+                half: [0.005, 0.5],
+                yaw: 0.0,
+                reflectance: 1.0,
+            },
+        ])
+    }
+
+    #[test]
+    fn ray_hits_nearest_wall() {
+        let w = index();
+        let hit = w.cast_ray([0.0, 0.0], [1.0, 0.0], 3.0).unwrap();
+        assert!((hit.distance - 0.995).abs() < 1e-5);
+        assert_eq!(hit.reflectance, 0.5);
+        assert!(w.cast_ray([0.0, 0.0], [1.0, 0.0], 0.5).is_none());
+        assert!(w.cast_ray([0.0, 0.0], [-1.0, 0.0], 3.0).is_none());
+        let hit = w.cast_ray([1.5, 0.0], [1.0, 0.0], 3.0).unwrap();
+        assert_eq!(hit.reflectance, 1.0);
+    }
+
+    #[test]
+    fn signed_distance_is_negative_inside() {
+        let w = index();
+        assert!((w.signed_distance([0.9, 0.0], 0.5) - 0.095).abs() < 1e-5);
+        assert!(w.signed_distance([1.0, 0.0], 0.5) < 0.0);
+        assert_eq!(w.signed_distance([-3.0, 0.0], 0.2), 0.2);
+    }
+}

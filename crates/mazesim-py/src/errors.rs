@@ -1,0 +1,57 @@
+//! Maps the core's error to the exception tree of `mazesim.errors`.
+
+use mazesim_core::Error;
+use pyo3::exceptions::PyRuntimeError;
+use pyo3::prelude::*;
+
+/// Builds the Python exception for a core error.
+pub fn to_py(err: Error) -> PyErr {
+    Python::attach(|py| match build(py, &err) {
+        Ok(e) => e,
+        Err(import_failed) => PyRuntimeError::new_err(format!(
+            "{err} (and mazesim.errors could not be imported: {import_failed})"
+        )),
+    })
+}
+
+fn build(py: Python<'_>, err: &Error) -> PyResult<PyErr> {
+    let errors = py.import("mazesim.errors")?;
+    let class_name = match err {
+        Error::Format { .. } => "WorldFormatError",
+        Error::UnknownName { .. } => "UnknownNameError",
+        Error::InvalidAction(_) => "InvalidActionError",
+        Error::InvalidArgument(_) => "InvalidArgumentError",
+        Error::Io { .. } => "MazesimIOError",
+    };
+    let instance = errors.getattr(class_name)?.call1((err.to_string(),))?;
+    match err {
+        Error::Format {
+            location, field, ..
+        } => {
+            instance.setattr("source", &location.source)?;
+            instance.setattr("line", location.line)?;
+            instance.setattr("column", location.column)?;
+            instance.setattr("field", field)?;
+        }
+        Error::UnknownName { available, .. } => {
+            instance.setattr("available", available.clone())?;
+        }
+        Error::Io { path, .. } => {
+            instance.setattr("filename", path)?;
+        }
+        _ => {}
+    }
+    Ok(PyErr::from_value(instance))
+}
+
+/// Shorthand: a core result as a Python result.
+pub trait IntoPy<T> {
+    /// Maps the error.
+    fn py(self) -> PyResult<T>;
+}
+
+impl<T> IntoPy<T> for mazesim_core::Result<T> {
+    fn py(self) -> PyResult<T> {
+        self.map_err(to_py)
+    }
+}

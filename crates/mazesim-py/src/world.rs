@@ -1,0 +1,267 @@
+//! `World` and `RobotProfile` for Python.
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use mazesim_core::world::PaintShape;
+use mazesim_core::{RobotProfile, World};
+use numpy::{PyArray2, PyArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::errors::IntoPy;
+
+/// A maze world: walls, floor paint, checkpoints, goal and start pose.
+#[pyclass(name = "World", module = "mazesim._core", frozen)]
+pub struct PyWorld {
+    pub inner: Arc<World>,
+}
+
+fn rows_to_array<'py, const N: usize>(
+    py: Python<'py>,
+    rows: Vec<[f64; N]>,
+) -> Bound<'py, PyArray2<f64>> {
+    let flat: Vec<f64> = rows.iter().flatten().copied().collect();
+    numpy::PyArray1::from_vec(py, flat)
+        .reshape([rows.len(), N])
+        .expect("a flat array of rows * N reshapes to (rows, N)")
+}
+
+#[pymethods]
+impl PyWorld {
+    /// A built-in world by name (see `builtin_world_names()`).
+    #[staticmethod]
+    fn builtin(name: &str) -> PyResult<Self> {
+        Ok(Self {
+            inner: Arc::new(World::builtin(name).py()?),
+        })
+    }
+
+    /// Reads a world file.
+    #[staticmethod]
+    fn load(path: PathBuf) -> PyResult<Self> {
+        Ok(Self {
+            inner: Arc::new(World::load(&path).py()?),
+        })
+    }
+
+    /// Parses a world file's text; `source` names it in error messages.
+    #[staticmethod]
+    #[pyo3(signature = (text, source = "<string>"))]
+    fn from_toml(text: &str, source: &str) -> PyResult<Self> {
+        Ok(Self {
+            inner: Arc::new(World::from_toml(text, source).py()?),
+        })
+    }
+
+    /// The world file text.
+    fn to_toml(&self) -> PyResult<String> {
+        self.inner.to_toml().py()
+    }
+
+    /// Writes the world file atomically.
+    fn save(&self, path: PathBuf) -> PyResult<()> {
+        self.inner.save(&path).py()
+    }
+
+    #[getter]
+    fn name(&self) -> String {
+        self.inner.name().to_string()
+    }
+
+    #[getter]
+    fn basic_time_step_ms(&self) -> f64 {
+        self.inner.basic_time_step() * 1000.0
+    }
+
+    #[getter]
+    fn bounds(&self) -> (f64, f64, f64, f64) {
+        let b = self.inner.bounds();
+        (b.min[0], b.min[1], b.max[0], b.max[1])
+    }
+
+    #[getter]
+    fn start(&self) -> (f64, f64, f64) {
+        let s = self.inner.start();
+        (s[0], s[1], s[2])
+    }
+
+    #[getter]
+    fn goal(&self) -> Option<(f64, f64, f64)> {
+        self.inner
+            .goal()
+            .map(|g| (g.center[0], g.center[1], g.radius))
+    }
+
+    /// (N, 6) array: cx, cy, sx, sy, yaw, reflectance of every wall box.
+    fn wall_boxes<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        let rows = self
+            .inner
+            .walls()
+            .iter()
+            .map(|w| {
+                [
+                    w.center[0],
+                    w.center[1],
+                    2.0 * w.half[0],
+                    2.0 * w.half[1],
+                    w.yaw,
+                    w.reflectance,
+                ]
+            })
+            .collect();
+        rows_to_array(py, rows)
+    }
+
+    /// Floor paint regions in drawing order, as dicts.
+    fn paint_regions<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
+        let mut out = Vec::new();
+        for r in self.inner.floor().regions() {
+            let d = PyDict::new(py);
+            match r.shape {
+                PaintShape::Rect { center, half, yaw } => {
+                    d.set_item("shape", "rect")?;
+                    d.set_item("center", (center[0], center[1]))?;
+                    d.set_item("size", (2.0 * half[0], 2.0 * half[1]))?;
+                    d.set_item("yaw", yaw)?;
+                }
+                PaintShape::Circle { center, radius } => {
+                    d.set_item("shape", "circle")?;
+                    d.set_item("center", (center[0], center[1]))?;
+                    d.set_item("radius", radius)?;
+                }
+                PaintShape::Capsule { a, b, radius } => {
+                    d.set_item("shape", "capsule")?;
+                    d.set_item("a", (a[0], a[1]))?;
+                    d.set_item("b", (b[0], b[1]))?;
+                    d.set_item("radius", radius)?;
+                }
+            }
+            d.set_item("reflectance", r.reflectance)?;
+            out.push(d);
+        }
+        Ok(out)
+    }
+
+    /// Checkpoints as dicts: id, code, center, yaw, width.
+    fn checkpoints<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
+        let mut out = Vec::new();
+        for c in self.inner.checkpoints() {
+            let d = PyDict::new(py);
+            d.set_item("id", c.id)?;
+            let code: String = c.code.iter().map(|&b| if b { '1' } else { '0' }).collect();
+            d.set_item("code", code)?;
+            d.set_item("center", (c.center[0], c.center[1]))?;
+            d.set_item("yaw", c.yaw)?;
+            d.set_item("width", c.width)?;
+            out.push(d);
+        }
+        Ok(out)
+    }
+
+    /// Floor reflectance factor at (x, y).
+    fn floor_reflectance(&self, x: f64, y: f64) -> f64 {
+        self.inner.floor().reflectance_at([x, y])
+    }
+
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+        other
+            .cast::<PyWorld>()
+            .map(|o| *o.get().inner == *self.inner)
+            .unwrap_or(false)
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "World(name={:?}, walls={}, checkpoints={}, source={:?})",
+            self.inner.name(),
+            self.inner.walls().len(),
+            self.inner.checkpoints().len(),
+            self.inner.source()
+        )
+    }
+}
+
+/// A robot's body, wheels and sensors.
+#[pyclass(name = "RobotProfile", module = "mazesim._core", frozen)]
+pub struct PyRobotProfile {
+    pub inner: Arc<RobotProfile>,
+}
+
+#[pymethods]
+impl PyRobotProfile {
+    /// A built-in profile by name (see `robot_profile_names()`).
+    #[staticmethod]
+    pub fn builtin(name: &str) -> PyResult<Self> {
+        Ok(Self {
+            inner: Arc::new(RobotProfile::builtin(name).py()?),
+        })
+    }
+
+    #[getter]
+    fn name(&self) -> String {
+        self.inner.name.clone()
+    }
+    #[getter]
+    fn body_radius(&self) -> f64 {
+        self.inner.body_radius
+    }
+    #[getter]
+    fn wheel_radius(&self) -> f64 {
+        self.inner.wheel_radius
+    }
+    #[getter]
+    fn axle_length(&self) -> f64 {
+        self.inner.axle_length
+    }
+    #[getter]
+    fn max_wheel_speed(&self) -> f64 {
+        self.inner.max_wheel_speed
+    }
+    #[getter]
+    fn distance_sensor_names(&self) -> Vec<String> {
+        self.inner
+            .distance_sensors
+            .iter()
+            .map(|s| s.name.clone())
+            .collect()
+    }
+    #[getter]
+    fn distance_sensor_unit(&self) -> String {
+        self.inner.distance_sensor_unit().to_string()
+    }
+    #[getter]
+    fn ground_sensor_names(&self) -> Vec<String> {
+        self.inner
+            .ground_sensors
+            .iter()
+            .map(|s| s.name.clone())
+            .collect()
+    }
+
+    /// (N, 3) array: x, y, heading of each distance sensor in the robot frame.
+    fn distance_sensor_poses<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        let rows = self
+            .inner
+            .distance_sensors
+            .iter()
+            .map(|s| [s.position[0], s.position[1], s.heading])
+            .collect();
+        rows_to_array(py, rows)
+    }
+
+    /// (N, 2) array: x, y of each ground sensor in the robot frame.
+    fn ground_sensor_positions<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        let rows = self
+            .inner
+            .ground_sensors
+            .iter()
+            .map(|s| s.position)
+            .collect();
+        rows_to_array(py, rows)
+    }
+
+    fn __repr__(&self) -> String {
+        format!("RobotProfile(name={:?})", self.inner.name)
+    }
+}

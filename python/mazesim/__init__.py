@@ -1,0 +1,84 @@
+"""mazesim: a fast, deterministic simulator of a small differential-drive robot in mazes.
+
+The simulation runs in a compiled Rust core (:mod:`mazesim._core`); this package adds the world
+loader, the report's controllers, plots and the ``mazesim`` command line.
+
+Example:
+    >>> import mazesim
+    >>> world = mazesim.load_world("seed-maze")
+    >>> sim = mazesim.Simulator(world, robot="e-puck", seed=0)
+    >>> sim.step(3.14, 3.14)
+    >>> sim.distance_sensors().shape
+    (8,)
+"""
+
+from __future__ import annotations
+
+import os
+
+from mazesim._core import (
+    RobotProfile,
+    Simulator,
+    World,
+    __version__,
+    builtin_world_names,
+    robot_profile_names,
+    sharp_volts_to_cm,
+)
+from mazesim.errors import (
+    InvalidActionError,
+    InvalidArgumentError,
+    MazesimError,
+    MazesimIOError,
+    UnknownNameError,
+    WorldFormatError,
+)
+
+__all__ = [
+    "InvalidActionError",
+    "InvalidArgumentError",
+    "MazesimError",
+    "MazesimIOError",
+    "RobotProfile",
+    "Simulator",
+    "UnknownNameError",
+    "World",
+    "WorldFormatError",
+    "__version__",
+    "builtin_world_names",
+    "load_world",
+    "robot_profile_names",
+    "sharp_volts_to_cm",
+]
+
+
+def load_world(name_or_path: str | os.PathLike[str]) -> World:
+    """Loads a built-in world by name, or a world file by path.
+
+    A string that names a built-in world (see :func:`builtin_world_names`) wins over a file of
+    the same name in the current folder; anything else is read as a path to a ``.toml`` world file.
+
+    Args:
+        name_or_path: A built-in world name such as ``"seed-maze"``, or a path to a world file.
+
+    Returns:
+        The loaded world.
+
+    Raises:
+        UnknownNameError: It is neither a built-in world nor an existing file; the message and the
+            ``available`` attribute list the built-in names.
+        WorldFormatError: The file is not a valid world (the message names file, line and field).
+        MazesimIOError: The file exists but cannot be read.
+    """
+    if isinstance(name_or_path, str) and name_or_path in builtin_world_names():
+        return World.builtin(name_or_path)
+    path = os.fspath(name_or_path)
+    if os.path.isfile(path):
+        return World.load(path)
+    available = sorted(builtin_world_names())
+    error = UnknownNameError(
+        f"no built-in world named {path!r} and no such file; "
+        f"built-in worlds: {', '.join(available)}"
+    )
+    error.available = available
+    raise error

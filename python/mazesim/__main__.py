@@ -1,0 +1,5 @@
+"""Runs the ``mazesim`` command line: ``python -m mazesim``."""
+
+from mazesim.cli import main
+
+raise SystemExit(main())

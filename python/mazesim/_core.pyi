@@ -1,0 +1,119 @@
+"""Type stubs for the compiled core of mazesim (``mazesim._core``)."""
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+def builtin_world_names() -> list[str]:
+    """Names of the worlds embedded in the package."""
+
+def robot_profile_names() -> list[str]:
+    """Names of the robot profiles embedded in the package."""
+
+def sharp_volts_to_cm(volts: float) -> float:
+    """Converts a Sharp GP2Y0A41SK0F reading in volts to a distance in cm (inverted table)."""
+
+class World:
+    """A maze world: walls, floor paint, checkpoints, goal and start pose."""
+
+    @staticmethod
+    def builtin(name: str) -> World: ...
+    @staticmethod
+    def load(path: str) -> World: ...
+    @staticmethod
+    def from_toml(text: str, source: str = "<string>") -> World: ...
+    def to_toml(self) -> str: ...
+    def save(self, path: str) -> None: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def basic_time_step_ms(self) -> float: ...
+    @property
+    def bounds(self) -> tuple[float, float, float, float]:
+        """(xmin, ymin, xmax, ymax) of walls, paint and start."""
+    @property
+    def start(self) -> tuple[float, float, float]: ...
+    @property
+    def goal(self) -> tuple[float, float, float] | None:
+        """(x, y, radius) of the goal disc, or None."""
+    def wall_boxes(self) -> npt.NDArray[np.float64]:
+        """(N, 6) array: cx, cy, sx, sy, yaw, reflectance of every wall box."""
+    def paint_regions(self) -> list[dict[str, object]]:
+        """Floor paint in drawing order; each a dict with "shape" ("rect" | "circle" | "capsule"),
+        its geometry ("center", "size", "yaw" | "center", "radius" | "a", "b", "radius") and
+        "reflectance". Barcode bars are included as rects."""
+    def checkpoints(self) -> list[dict[str, object]]:
+        """Each checkpoint as a dict: "id", "code", "center", "yaw", "width"."""
+    def floor_reflectance(self, x: float, y: float) -> float: ...
+    def __eq__(self, other: object) -> bool: ...
+
+class RobotProfile:
+    """A robot's body, wheels and sensors, loaded from the embedded profile files."""
+
+    @staticmethod
+    def builtin(name: str) -> RobotProfile: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def body_radius(self) -> float: ...
+    @property
+    def wheel_radius(self) -> float: ...
+    @property
+    def axle_length(self) -> float: ...
+    @property
+    def max_wheel_speed(self) -> float: ...
+    @property
+    def distance_sensor_names(self) -> list[str]: ...
+    @property
+    def distance_sensor_unit(self) -> str:
+        """"raw" (e-puck counts) or "volts" (Sharp)."""
+    @property
+    def ground_sensor_names(self) -> list[str]: ...
+    def distance_sensor_poses(self) -> npt.NDArray[np.float64]:
+        """(N, 3) array: x, y, heading of each distance sensor in the robot frame."""
+    def ground_sensor_positions(self) -> npt.NDArray[np.float64]:
+        """(N, 2) array: x, y of each ground sensor in the robot frame."""
+
+class Simulator:
+    """One robot in one world, stepped in control steps."""
+
+    def __init__(
+        self,
+        world: World,
+        robot: str = "e-puck",
+        seed: int = 0,
+        noise: bool = True,
+        control_step_ms: float | None = None,
+    ) -> None: ...
+    def reset(self, seed: int | None = None) -> None: ...
+    def step(self, left: float, right: float) -> None:
+        """Advances one control step with wheel speeds in rad/s (clamped to the motor limit)."""
+    def set_pose(self, x: float, y: float, yaw: float) -> None: ...
+    def distance_sensors(self) -> npt.NDArray[np.float32]: ...
+    def ground_sensors(self) -> npt.NDArray[np.float32]: ...
+    @property
+    def pose(self) -> tuple[float, float, float]: ...
+    @property
+    def time(self) -> float: ...
+    @property
+    def steps(self) -> int: ...
+    @property
+    def collisions(self) -> int: ...
+    @property
+    def colliding(self) -> bool: ...
+    @property
+    def distance_travelled(self) -> float: ...
+    @property
+    def wheel_speeds(self) -> tuple[float, float]: ...
+    @property
+    def encoders(self) -> tuple[float, float]: ...
+    @property
+    def wall_clearance(self) -> float:
+        """Signed gap between the body and the nearest wall in metres (negative: penetration)."""
+    @property
+    def control_step_ms(self) -> float: ...
+    @property
+    def robot(self) -> RobotProfile: ...
+    @property
+    def world(self) -> World: ...

@@ -1,0 +1,277 @@
+"""The ``mazesim`` command line.
+
+``mazesim worlds`` lists the built-in worlds; ``mazesim demo`` drives the e-puck with the report's
+avoid-collision controller (Alg. 1) headless, prints a summary and writes a trajectory picture and
+a JSON summary. Errors are printed as one line, ``mazesim: error: <message>``, with exit code 2.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import sys
+import time
+from collections.abc import Sequence
+from typing import Any, TextIO
+
+import numpy as np
+
+import mazesim
+from mazesim._atomic import atomic_file
+from mazesim.controllers import AvoidCollision
+from mazesim.errors import InvalidArgumentError, MazesimError
+
+__all__ = ["main"]
+
+#: Exit code of a run that failed on an error of the user's input or of the file system.
+EXIT_ERROR = 2
+#: Exit code of a run stopped with Ctrl-C (128 + SIGINT), as shells report it.
+EXIT_INTERRUPTED = 130
+#: Wall-clock seconds after which a run starts showing its progress on a terminal.
+PROGRESS_AFTER_S = 1.0
+
+
+def _positive_seconds(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number of seconds, found {text!r}") from None
+    if not math.isfinite(value) or value <= 0.0:
+        raise argparse.ArgumentTypeError(f"expected a positive number of seconds, found {text!r}")
+    return value
+
+
+def _seed(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a whole number, found {text!r}") from None
+    if value < 0 or value >= 2**64:
+        raise argparse.ArgumentTypeError(f"expected a seed in [0, 2^64), found {text!r}")
+    return value
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """Builds the argument parser of the ``mazesim`` command."""
+    parser = argparse.ArgumentParser(
+        prog="mazesim",
+        description=(
+            "mazesim: a fast, deterministic simulator of the e-puck robot in mazes. "
+            "Run 'mazesim COMMAND --help' for the options of a command."
+        ),
+    )
+    parser.add_argument("--version", action="version", version=f"mazesim {mazesim.__version__}")
+    commands = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
+
+    commands.add_parser(
+        "worlds",
+        help="list the built-in worlds",
+        description="List the built-in worlds: name, size and number of barcode checkpoints.",
+    )
+
+    demo = commands.add_parser(
+        "demo",
+        help="drive the robot with the avoid-collision controller and plot its path",
+        description=(
+            "Drive the robot headless with the avoid-collision controller of the source report "
+            "(Alg. 1: turn away when a front proximity sensor reads above 80), print a summary, "
+            "and write DIR/trajectory.png and DIR/summary.json."
+        ),
+    )
+    demo.add_argument(
+        "--world",
+        default="seed-maze",
+        metavar="NAME|PATH",
+        help="a built-in world name or a world file (default: %(default)s)",
+    )
+    demo.add_argument(
+        "--seconds",
+        type=_positive_seconds,
+        default=60.0,
+        metavar="S",
+        help="simulated seconds to run (default: %(default)s)",
+    )
+    demo.add_argument(
+        "--seed",
+        type=_seed,
+        default=0,
+        metavar="N",
+        help="seed of the sensor noise (default: %(default)s)",
+    )
+    demo.add_argument(
+        "--out",
+        default="mazesim-demo",
+        metavar="DIR",
+        help="folder for trajectory.png and summary.json, created if missing "
+        "(default: %(default)s)",
+    )
+    demo.add_argument(
+        "--robot",
+        default="e-puck",
+        metavar="NAME",
+        help="robot profile; the controller needs the e-puck's 8 proximity sensors "
+        "(default: %(default)s)",
+    )
+    return parser
+
+
+def _one_line(message: str) -> str:
+    """Joins a possibly multi-line message into one line."""
+    parts = [line.strip() for line in message.splitlines() if line.strip()]
+    return "; ".join(parts) if parts else "unknown error"
+
+
+def run_worlds(out: TextIO) -> int:
+    """Prints one line per built-in world: name, size, checkpoints and goal."""
+    names = sorted(mazesim.builtin_world_names())
+    width = max((len(name) for name in names), default=0)
+    for name in names:
+        world = mazesim.World.builtin(name)
+        xmin, ymin, xmax, ymax = world.bounds
+        count = len(world.checkpoints())
+        noun = "checkpoint" if count == 1 else "checkpoints"
+        goal = ", goal" if world.goal is not None else ""
+        out.write(
+            f"{name:<{width}}  {xmax - xmin:.2f} x {ymax - ymin:.2f} m  {count} {noun}{goal}\n"
+        )
+    return 0
+
+
+class _Progress:
+    """A one-line progress indication on stderr, shown only on a terminal and for long runs."""
+
+    def __init__(self, total_seconds: float, stream: TextIO) -> None:
+        self.total_seconds = total_seconds
+        self.stream = stream
+        self.enabled = stream.isatty()
+        self.started = time.perf_counter()
+        self.next_update = self.started + PROGRESS_AFTER_S
+        self.shown = False
+
+    def update(self, simulated_seconds: float) -> None:
+        if not self.enabled:
+            return
+        now = time.perf_counter()
+        if now < self.next_update:
+            return
+        self.next_update = now + 0.2
+        percent = 100.0 * min(simulated_seconds / self.total_seconds, 1.0)
+        self.stream.write(
+            f"\rsimulating: {simulated_seconds:7.1f} / {self.total_seconds:.1f} s ({percent:3.0f}%)"
+        )
+        self.stream.flush()
+        self.shown = True
+
+    def close(self) -> None:
+        if self.shown:
+            self.stream.write("\r\033[K")
+            self.stream.flush()
+
+
+def run_demo(args: argparse.Namespace, out: TextIO) -> int:
+    """Runs the avoid-collision demo and writes its picture and summary."""
+    from mazesim.plotting import save_trajectory_png
+
+    world = mazesim.load_world(args.world)
+    simulator = mazesim.Simulator(world, robot=args.robot, seed=args.seed)
+    robot = simulator.robot
+    if robot.distance_sensor_unit != "raw" or len(robot.distance_sensor_names) != 8:
+        raise InvalidArgumentError(
+            f"the demo's avoid-collision controller needs the e-puck's 8 raw proximity sensors; "
+            f"robot {robot.name!r} has {len(robot.distance_sensor_names)} sensors "
+            f"in {robot.distance_sensor_unit!r}"
+        )
+    controller = AvoidCollision(max_speed=robot.max_wheel_speed)
+    steps = max(1, math.ceil(args.seconds * 1000.0 / simulator.control_step_ms - 1e-9))
+
+    xs = np.empty(steps + 1, dtype=np.float64)
+    ys = np.empty(steps + 1, dtype=np.float64)
+    xs[0], ys[0], _ = simulator.pose
+    progress = _Progress(args.seconds, sys.stderr)
+    started = time.perf_counter()
+    try:
+        for step in range(1, steps + 1):
+            left, right = controller(simulator.distance_sensors())
+            simulator.step(left, right)
+            xs[step], ys[step], _ = simulator.pose
+            progress.update(simulator.time)
+    finally:
+        progress.close()
+    wall_clock = time.perf_counter() - started
+
+    goal_reached: bool | None = None
+    if world.goal is not None:
+        goal_x, goal_y, radius = world.goal
+        goal_reached = bool(np.any(np.hypot(xs - goal_x, ys - goal_y) <= radius))
+    summary: dict[str, Any] = {
+        "world": world.name,
+        "robot": robot.name,
+        "seed": args.seed,
+        "controller": "avoid-collision",
+        "simulated_seconds": simulator.time,
+        "steps": simulator.steps,
+        "distance_m": simulator.distance_travelled,
+        "collisions": simulator.collisions,
+        "goal_reached": goal_reached,
+        "wall_clock_seconds": wall_clock,
+        "real_time_factor": simulator.time / wall_clock if wall_clock > 0 else None,
+        "mazesim_version": mazesim.__version__,
+    }
+
+    os.makedirs(args.out, exist_ok=True)
+    picture = os.path.join(args.out, "trajectory.png")
+    save_trajectory_png(
+        world,
+        xs,
+        ys,
+        picture,
+        title=f"{world.name}: avoid-collision, {simulator.time:.0f} s, seed {args.seed}",
+    )
+    summary_path = os.path.join(args.out, "summary.json")
+    with atomic_file(summary_path) as handle:
+        handle.write((json.dumps(summary, indent=2) + "\n").encode("utf-8"))
+
+    speed = "n/a" if summary["real_time_factor"] is None else f"{summary['real_time_factor']:.0f}x"
+    out.write(
+        f"world              {world.name} (robot {robot.name}, seed {args.seed})\n"
+        f"simulated time     {simulator.time:.2f} s ({simulator.steps} steps)\n"
+        f"distance travelled {simulator.distance_travelled:.2f} m\n"
+        f"collisions         {simulator.collisions}\n"
+    )
+    if goal_reached is not None:
+        out.write(f"goal reached       {'yes' if goal_reached else 'no'}\n")
+    out.write(
+        f"wall-clock time    {wall_clock:.3f} s ({speed} real time)\n"
+        f"wrote              {picture}, {summary_path}\n"
+    )
+    return 0
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Runs the ``mazesim`` command.
+
+    Args:
+        argv: The arguments after the program name; by default ``sys.argv[1:]``.
+
+    Returns:
+        The exit code: 0 on success, 2 on an error (printed as one line on stderr), 130 on Ctrl-C.
+    """
+    parser = build_parser()
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as exit_request:
+        # --help and --version exit with None (success); usage errors with 2.
+        code = exit_request.code
+        return code if isinstance(code, int) else (0 if code is None else EXIT_ERROR)
+    try:
+        if args.command == "worlds":
+            return run_worlds(sys.stdout)
+        return run_demo(args, sys.stdout)
+    except (MazesimError, OSError) as error:
+        print(f"mazesim: error: {_one_line(str(error))}", file=sys.stderr)
+        return EXIT_ERROR
+    except KeyboardInterrupt:
+        print("mazesim: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED

@@ -1,0 +1,77 @@
+"""The exceptions raised by mazesim.
+
+Every error that mazesim raises on purpose is a :class:`MazesimError`. Each subclass also derives
+from the built-in exception a Python user would expect (``ValueError``, ``LookupError``,
+``OSError``), so ``except ValueError`` keeps working.
+
+The compiled core raises these classes too: it calls a class with one message string and then
+sets the extra attributes, so every constructor takes a single positional message and every
+attribute defaults to ``None``.
+"""
+
+from __future__ import annotations
+
+__all__ = [
+    "InvalidActionError",
+    "InvalidArgumentError",
+    "MazesimError",
+    "MazesimIOError",
+    "UnknownNameError",
+    "WorldFormatError",
+]
+
+
+class MazesimError(Exception):
+    """The root of every exception that mazesim raises on purpose."""
+
+
+class WorldFormatError(MazesimError, ValueError):
+    """A world description is malformed.
+
+    The message names the file, the line and the field, and says what was expected.
+
+    Attributes:
+        source: The file name or ``"<string>"`` the text came from, if known.
+        line: The 1-based line of the error, if known.
+        column: The 1-based column of the error, if known.
+        field: The dotted name of the offending field (e.g. ``"walls[2].size"``), if known.
+    """
+
+    def __init__(
+        self,
+        message: str = "",
+        *,
+        source: str | None = None,
+        line: int | None = None,
+        column: int | None = None,
+        field: str | None = None,
+    ) -> None:
+        super().__init__(message)
+        self.source = source
+        self.line = line
+        self.column = column
+        self.field = field
+
+
+class UnknownNameError(MazesimError, LookupError):
+    """A name (a built-in world, a robot profile, a sensor) is not known.
+
+    Attributes:
+        available: The names that would have been accepted, if known.
+    """
+
+    def __init__(self, message: str = "", *, available: list[str] | None = None) -> None:
+        super().__init__(message)
+        self.available = available
+
+
+class InvalidActionError(MazesimError, ValueError):
+    """An action is not valid: NaN or infinite wheel speeds, or an unknown action code."""
+
+
+class InvalidArgumentError(MazesimError, ValueError):
+    """An argument is out of range or of the wrong shape or dtype."""
+
+
+class MazesimIOError(MazesimError, OSError):
+    """Reading or writing a file failed (the message names the file)."""

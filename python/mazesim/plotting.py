@@ -1,0 +1,248 @@
+"""Pictures of worlds and trajectories, drawn with matplotlib.
+
+:func:`plot_world` draws a world onto a matplotlib ``Axes``: floor paint in grey levels equal to
+its reflectance (black 0.2 ... white 1.0), walls, barcode checkpoints labelled by id, the goal and
+the start pose. :func:`save_trajectory_png` adds a robot's path and writes a PNG file atomically.
+Figures are rendered with the Agg backend and never touch pyplot's global state, so this module
+works headless and leaves the user's interactive backend alone.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, cast
+
+import numpy as np
+import numpy.typing as npt
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.collections import PolyCollection
+from matplotlib.figure import Figure
+from matplotlib.patches import Circle, FancyArrow, Patch, Polygon
+
+from mazesim._atomic import atomic_file
+from mazesim.errors import InvalidArgumentError
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+
+    from mazesim._core import World
+
+__all__ = ["plot_world", "save_trajectory_png"]
+
+WALL_COLOR = "#8c3b1f"
+GOAL_COLOR = "#2ca02c"
+START_COLOR = "#1f77b4"
+PATH_COLOR = "#d62728"
+
+
+def _rectangle_corners(
+    center_x: float, center_y: float, size_x: float, size_y: float, yaw: float
+) -> npt.NDArray[np.float64]:
+    """Corners (4, 2) of a box of the given size, centred and rotated by ``yaw``."""
+    half = (
+        np.array([[-size_x, -size_y], [size_x, -size_y], [size_x, size_y], [-size_x, size_y]]) * 0.5
+    )
+    cos_yaw, sin_yaw = math.cos(yaw), math.sin(yaw)
+    rotation = np.array([[cos_yaw, -sin_yaw], [sin_yaw, cos_yaw]])
+    return half @ rotation.T + np.array([center_x, center_y])
+
+
+def _capsule_outline(
+    a: tuple[float, float], b: tuple[float, float], radius: float, arc_points: int = 12
+) -> npt.NDArray[np.float64]:
+    """Outline (M, 2) of the points within ``radius`` of the segment a-b."""
+    ax_, ay = a
+    bx, by = b
+    heading = math.atan2(by - ay, bx - ax_)
+    # Around b from the right side to the left side, then around a back to the right side.
+    arc = np.linspace(-math.pi / 2, math.pi / 2, arc_points)
+    around_b = np.column_stack(
+        [bx + radius * np.cos(heading + arc), by + radius * np.sin(heading + arc)]
+    )
+    around_a = np.column_stack(
+        [
+            ax_ + radius * np.cos(heading + math.pi + arc),
+            ay + radius * np.sin(heading + math.pi + arc),
+        ]
+    )
+    return np.vstack([around_b, around_a])
+
+
+def _grey(reflectance: float) -> tuple[float, float, float]:
+    """The RGB grey that shows a reflectance factor (clamped to [0, 1])."""
+    level = min(max(float(reflectance), 0.0), 1.0)
+    return (level, level, level)
+
+
+def _background_reflectance(world: World) -> float:
+    """The reflectance of the bare floor, sampled well outside everything in the world."""
+    xmin, ymin, _, _ = world.bounds
+    return float(world.floor_reflectance(xmin - 1.0, ymin - 1.0))
+
+
+def _number(value: object) -> float:
+    """A number of a paint or checkpoint dict."""
+    return float(value)  # type: ignore[arg-type]
+
+
+def _pair(value: object) -> tuple[float, float]:
+    """An (x, y) pair of a paint or checkpoint dict."""
+    first, second = cast("Sequence[float]", value)
+    return float(first), float(second)
+
+
+def _paint_patch(region: dict[str, object], zorder: float) -> Patch | None:
+    """The patch that draws one paint region, or None for a shape this module does not know."""
+    color = _grey(_number(region["reflectance"]))
+    style = {"facecolor": color, "edgecolor": "none", "zorder": zorder}
+    shape = region["shape"]
+    if shape == "rect":
+        center_x, center_y = _pair(region["center"])
+        size_x, size_y = _pair(region["size"])
+        yaw = _number(region.get("yaw", 0.0))
+        corners = _rectangle_corners(center_x, center_y, size_x, size_y, yaw)
+        return Polygon(corners, closed=True, **style)
+    if shape == "circle":
+        return Circle(_pair(region["center"]), _number(region["radius"]), **style)
+    if shape == "capsule":
+        outline = _capsule_outline(
+            _pair(region["a"]), _pair(region["b"]), _number(region["radius"])
+        )
+        return Polygon(outline, closed=True, **style)
+    return None
+
+
+def _draw_paint(ax: Axes, world: World) -> None:
+    for order, region in enumerate(world.paint_regions()):
+        # Later regions cover earlier ones, all below walls and markers.
+        patch = _paint_patch(region, zorder=1.0 + order * 1e-6)
+        if patch is not None:
+            ax.add_patch(patch)
+
+
+def _draw_walls(ax: Axes, world: World) -> None:
+    boxes = np.asarray(world.wall_boxes(), dtype=np.float64).reshape(-1, 6)
+    if len(boxes) == 0:
+        return
+    outlines = [_rectangle_corners(*box[:5]) for box in boxes]
+    ax.add_collection(
+        PolyCollection(
+            outlines, facecolors=WALL_COLOR, edgecolors=WALL_COLOR, linewidths=0.3, zorder=3
+        )
+    )
+
+
+def _draw_markers(ax: Axes, world: World) -> None:
+    for checkpoint in world.checkpoints():
+        center_x, center_y = _pair(checkpoint["center"])
+        yaw = _number(checkpoint["yaw"])
+        # The label sits just past the code in its reading direction.
+        label_x = center_x + 0.075 * math.cos(yaw)
+        label_y = center_y + 0.075 * math.sin(yaw)
+        ax.text(
+            label_x,
+            label_y,
+            str(checkpoint["id"]),
+            ha="center",
+            va="center",
+            fontsize=7,
+            color="black",
+            zorder=5,
+            bbox={
+                "boxstyle": "circle,pad=0.2",
+                "facecolor": "#ffd92f",
+                "edgecolor": "black",
+                "lw": 0.5,
+            },
+        )
+    goal = world.goal
+    if goal is not None:
+        goal_x, goal_y, radius = goal
+        ax.add_patch(Circle((goal_x, goal_y), radius, facecolor=GOAL_COLOR, alpha=0.45, zorder=4))
+        ax.text(goal_x, goal_y, "GOAL", ha="center", va="center", fontsize=7, zorder=5)
+    start_x, start_y, start_yaw = world.start
+    ax.add_patch(
+        Circle((start_x, start_y), 0.037, facecolor="none", edgecolor=START_COLOR, lw=1.0, zorder=6)
+    )
+    ax.add_patch(
+        FancyArrow(
+            start_x,
+            start_y,
+            0.05 * math.cos(start_yaw),
+            0.05 * math.sin(start_yaw),
+            width=0.006,
+            head_width=0.02,
+            head_length=0.015,
+            length_includes_head=True,
+            color=START_COLOR,
+            zorder=6,
+        )
+    )
+
+
+def plot_world(ax: Axes, world: World) -> None:
+    """Draws a world onto matplotlib axes.
+
+    The bare floor and floor paint are grey levels equal to their reflectance, walls are solid
+    boxes, barcode checkpoints carry their id just past the code in its reading direction, the
+    goal is a green disc and the start pose a circle of the e-puck's size with an arrow.
+
+    Args:
+        ax: The axes to draw on; their aspect is set to equal and their limits to the world.
+        world: The world to draw.
+    """
+    xmin, ymin, xmax, ymax = world.bounds
+    margin = 0.03 * max(xmax - xmin, ymax - ymin, 1e-3)
+    ax.set_facecolor(_grey(_background_reflectance(world)))
+    _draw_paint(ax, world)
+    _draw_walls(ax, world)
+    _draw_markers(ax, world)
+    ax.set_xlim(xmin - margin, xmax + margin)
+    ax.set_ylim(ymin - margin, ymax + margin)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+
+
+def save_trajectory_png(
+    world: World,
+    xs: npt.ArrayLike,
+    ys: npt.ArrayLike,
+    path: str | os.PathLike[str],
+    title: str | None = None,
+) -> None:
+    """Draws a world with a robot's path on top and writes it as a PNG file.
+
+    The file is written atomically: to a temporary file in the same folder, renamed over ``path``.
+
+    Args:
+        world: The world the robot drove in.
+        xs: The x coordinates of the path in metres.
+        ys: The y coordinates of the path in metres, as many as ``xs``.
+        path: The PNG file to write; its folder must exist.
+        title: A title above the picture; by default the world's name.
+
+    Raises:
+        InvalidArgumentError: ``xs`` and ``ys`` differ in length.
+    """
+    path_x = np.asarray(xs, dtype=np.float64).ravel()
+    path_y = np.asarray(ys, dtype=np.float64).ravel()
+    if path_x.shape != path_y.shape:
+        raise InvalidArgumentError(
+            f"a trajectory needs as many x as y coordinates; found {path_x.size} and {path_y.size}"
+        )
+    xmin, ymin, xmax, ymax = world.bounds
+    aspect = (ymax - ymin) / max(xmax - xmin, 1e-3)
+    figure = Figure(figsize=(6.0, max(3.0, min(9.0, 6.0 * aspect + 0.6))), dpi=120)
+    FigureCanvasAgg(figure)
+    ax = figure.add_subplot()
+    plot_world(ax, world)
+    if path_x.size:
+        ax.plot(path_x, path_y, color=PATH_COLOR, linewidth=1.2, zorder=7, label="trajectory")
+        ax.plot(path_x[-1:], path_y[-1:], marker="o", markersize=4, color=PATH_COLOR, zorder=8)
+    ax.set_title(world.name if title is None else title)
+    figure.tight_layout()
+    with atomic_file(path) as handle:
+        figure.savefig(handle, format="png")

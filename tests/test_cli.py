@@ -1,0 +1,137 @@
+"""The ``mazesim`` command line, run as ``python -m mazesim`` in a subprocess."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from mazesim.cli import main
+
+PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
+BUILTIN_WORLDS = ("seed-maze", "line-follow", "arena")
+
+
+def mazesim_command(*args: str, cwd: Path) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(
+        [sys.executable, "-m", "mazesim", *args],
+        cwd=cwd,
+        capture_output=True,
+        text=True,
+        timeout=300,
+        check=False,
+    )
+
+
+def assert_one_line_error(result: subprocess.CompletedProcess[str]) -> str:
+    assert result.returncode == 2, result.stderr
+    assert "Traceback" not in result.stderr
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1, result.stderr
+    assert lines[0].startswith("mazesim: error: ")
+    return lines[0]
+
+
+def test_worlds_lists_each_builtin(tmp_path: Path) -> None:
+    result = mazesim_command("worlds", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    lines = result.stdout.strip().splitlines()
+    assert len(lines) == len(BUILTIN_WORLDS)
+    by_name = {line.split()[0]: line for line in lines}
+    assert set(by_name) == set(BUILTIN_WORLDS)
+    assert "7 checkpoints" in by_name["seed-maze"]
+    assert "0 checkpoints" in by_name["arena"]
+    assert " m " in by_name["arena"]
+
+
+def test_help_names_the_commands(tmp_path: Path) -> None:
+    result = mazesim_command("--help", cwd=tmp_path)
+    assert result.returncode == 0
+    assert "worlds" in result.stdout and "demo" in result.stdout
+    demo_help = mazesim_command("demo", "--help", cwd=tmp_path)
+    assert demo_help.returncode == 0
+    for option in ("--world", "--seconds", "--seed", "--out", "--robot"):
+        assert option in demo_help.stdout
+
+
+def test_demo_writes_picture_and_summary(tmp_path: Path) -> None:
+    result = mazesim_command("demo", "--seconds", "5", "--out", "tmp", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert "distance travelled" in result.stdout
+    out = tmp_path / "tmp"
+    assert sorted(p.name for p in out.iterdir()) == ["summary.json", "trajectory.png"]
+    picture = (out / "trajectory.png").read_bytes()
+    assert picture.startswith(PNG_MAGIC) and len(picture) > 10_000
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["world"] == "seed-maze"
+    assert summary["robot"] == "e-puck"
+    assert summary["seed"] == 0
+    assert 5.0 <= summary["simulated_seconds"] < 5.1
+    assert summary["steps"] == 157
+    assert 0.1 < summary["distance_m"] < 5.1 * 0.13
+    assert isinstance(summary["collisions"], int) and summary["collisions"] >= 0
+    assert summary["wall_clock_seconds"] > 0
+    assert summary["real_time_factor"] > 1
+    assert summary["goal_reached"] is False
+
+
+def test_demo_is_reproducible_from_its_seed(tmp_path: Path) -> None:
+    runs = []
+    for out in ("a", "b"):
+        code = main(
+            [
+                "demo",
+                "--world",
+                "arena",
+                "--seconds",
+                "3",
+                "--seed",
+                "5",
+                "--out",
+                str(tmp_path / out),
+            ]
+        )
+        assert code == 0
+        runs.append(json.loads((tmp_path / out / "summary.json").read_text()))
+    for field in ("distance_m", "collisions", "steps", "simulated_seconds"):
+        assert runs[0][field] == runs[1][field]
+
+
+def test_bad_world_path_is_a_one_line_error(tmp_path: Path) -> None:
+    result = mazesim_command(
+        "demo", "--world", "no/such/world.toml", "--seconds", "1", cwd=tmp_path
+    )
+    line = assert_one_line_error(result)
+    assert "no/such/world.toml" in line
+    for name in BUILTIN_WORLDS:
+        assert name in line
+    assert not (tmp_path / "mazesim-demo").exists()
+
+
+def test_malformed_world_file_is_a_one_line_error(tmp_path: Path) -> None:
+    (tmp_path / "broken.toml").write_text(
+        'format = "mazesim-world"\nversion = 1\n\n[floor]\nreflectance = "grey"\n'
+    )
+    result = mazesim_command("demo", "--world", "broken.toml", "--seconds", "1", cwd=tmp_path)
+    line = assert_one_line_error(result)
+    assert "broken.toml" in line and "reflectance" in line
+
+
+def test_unknown_robot_is_a_one_line_error(tmp_path: Path) -> None:
+    result = mazesim_command("demo", "--robot", "no-such-robot", "--seconds", "1", cwd=tmp_path)
+    line = assert_one_line_error(result)
+    assert "no-such-robot" in line and "e-puck" in line
+
+
+@pytest.mark.parametrize("seconds", ["0", "-3", "soon", "nan"])
+def test_bad_seconds_is_a_usage_error(seconds: str, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["demo", "--seconds", seconds]) == 2
+    assert "--seconds" in capsys.readouterr().err
+
+
+def test_missing_command_is_a_usage_error(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main([]) == 2
+    assert "usage: mazesim" in capsys.readouterr().err
