@@ -5,7 +5,7 @@ PYTHON ?= python3.11
 VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
-PY_PACKAGES := maturin numpy matplotlib pytest hypothesis ruff mypy
+PY_PACKAGES := maturin numpy matplotlib pytest hypothesis ruff mypy typing_extensions
 PY_SOURCES := python tests
 # The binding crate's build script asks this interpreter for its configuration.
 export PYO3_PYTHON := $(CURDIR)/$(BIN)/python
@@ -32,6 +32,7 @@ build: venv ## build the extension in release mode and install mazesim into .ven
 test: build ## run the Rust tests, then the Python tests
 	cargo test --workspace --exclude mazesim-py
 	$(BIN)/python -m pytest
+	$(BIN)/python -m mypy.stubtest mazesim._core
 
 demo: build ## run the avoid-collision demo in seed-maze; writes mazesim-demo/
 	$(BIN)/mazesim demo --out mazesim-demo

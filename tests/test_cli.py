@@ -126,6 +126,19 @@ def test_unknown_robot_is_a_one_line_error(tmp_path: Path) -> None:
     assert "no-such-robot" in line and "e-puck" in line
 
 
+def test_robot_without_eight_proximity_sensors_is_refused(tmp_path: Path) -> None:
+    result = mazesim_command("demo", "--robot", "seed", "--seconds", "1", cwd=tmp_path)
+    line = assert_one_line_error(result)
+    assert "8 raw proximity sensors" in line and "'seed'" in line
+
+
+def test_output_folder_that_is_a_file_is_a_one_line_error(tmp_path: Path) -> None:
+    (tmp_path / "taken").write_text("not a folder")
+    result = mazesim_command("demo", "--seconds", "1", "--out", "taken", cwd=tmp_path)
+    line = assert_one_line_error(result)
+    assert "taken" in line
+
+
 @pytest.mark.parametrize("seconds", ["0", "-3", "soon", "nan"])
 def test_bad_seconds_is_a_usage_error(seconds: str, capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["demo", "--seconds", seconds]) == 2

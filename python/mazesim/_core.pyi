@@ -1,8 +1,19 @@
 """Type stubs for the compiled core of mazesim (``mazesim._core``)."""
 
+from typing import ClassVar, final
+
 import numpy as np
 import numpy.typing as npt
 
+__all__ = [
+    "RobotProfile",
+    "Simulator",
+    "World",
+    "__version__",
+    "builtin_world_names",
+    "robot_profile_names",
+    "sharp_volts_to_cm",
+]
 __version__: str
 
 def builtin_world_names() -> list[str]:
@@ -14,6 +25,7 @@ def robot_profile_names() -> list[str]:
 def sharp_volts_to_cm(volts: float) -> float:
     """Converts a Sharp GP2Y0A41SK0F reading in volts to a distance in cm (inverted table)."""
 
+@final
 class World:
     """A maze world: walls, floor paint, checkpoints, goal and start pose."""
 
@@ -46,8 +58,10 @@ class World:
     def checkpoints(self) -> list[dict[str, object]]:
         """Each checkpoint as a dict: "id", "code", "center", "yaw", "width"."""
     def floor_reflectance(self, x: float, y: float) -> float: ...
-    def __eq__(self, other: object) -> bool: ...
+    def __eq__(self, other: object, /) -> bool: ...
+    __hash__: ClassVar[None]  # type: ignore[assignment]
 
+@final
 class RobotProfile:
     """A robot's body, wheels and sensors, loaded from the embedded profile files."""
 
@@ -67,7 +81,7 @@ class RobotProfile:
     def distance_sensor_names(self) -> list[str]: ...
     @property
     def distance_sensor_unit(self) -> str:
-        """"raw" (e-puck counts) or "volts" (Sharp)."""
+        """Unit of the readings: "raw" (e-puck counts) or "volts" (Sharp)."""
     @property
     def ground_sensor_names(self) -> list[str]: ...
     def distance_sensor_poses(self) -> npt.NDArray[np.float64]:
@@ -75,17 +89,18 @@ class RobotProfile:
     def ground_sensor_positions(self) -> npt.NDArray[np.float64]:
         """(N, 2) array: x, y of each ground sensor in the robot frame."""
 
+@final
 class Simulator:
     """One robot in one world, stepped in control steps."""
 
-    def __init__(
-        self,
+    def __new__(
+        cls,
         world: World,
         robot: str = "e-puck",
         seed: int = 0,
         noise: bool = True,
         control_step_ms: float | None = None,
-    ) -> None: ...
+    ) -> Simulator: ...
     def reset(self, seed: int | None = None) -> None: ...
     def step(self, left: float, right: float) -> None:
         """Advances one control step with wheel speeds in rad/s (clamped to the motor limit)."""

@@ -184,6 +184,8 @@ def run_demo(args: argparse.Namespace, out: TextIO) -> int:
             f"in {robot.distance_sensor_unit!r}"
         )
     controller = AvoidCollision(max_speed=robot.max_wheel_speed)
+    # Fail before the run, not after it, if the output folder cannot be made.
+    os.makedirs(args.out, exist_ok=True)
     steps = max(1, math.ceil(args.seconds * 1000.0 / simulator.control_step_ms - 1e-9))
 
     xs = np.empty(steps + 1, dtype=np.float64)
@@ -220,7 +222,6 @@ def run_demo(args: argparse.Namespace, out: TextIO) -> int:
         "mazesim_version": mazesim.__version__,
     }
 
-    os.makedirs(args.out, exist_ok=True)
     picture = os.path.join(args.out, "trajectory.png")
     save_trajectory_png(
         world,

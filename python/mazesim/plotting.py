@@ -53,18 +53,18 @@ def _capsule_outline(
     a: tuple[float, float], b: tuple[float, float], radius: float, arc_points: int = 12
 ) -> npt.NDArray[np.float64]:
     """Outline (M, 2) of the points within ``radius`` of the segment a-b."""
-    ax_, ay = a
-    bx, by = b
-    heading = math.atan2(by - ay, bx - ax_)
+    start_x, start_y = a
+    end_x, end_y = b
+    heading = math.atan2(end_y - start_y, end_x - start_x)
     # Around b from the right side to the left side, then around a back to the right side.
     arc = np.linspace(-math.pi / 2, math.pi / 2, arc_points)
     around_b = np.column_stack(
-        [bx + radius * np.cos(heading + arc), by + radius * np.sin(heading + arc)]
+        [end_x + radius * np.cos(heading + arc), end_y + radius * np.sin(heading + arc)]
     )
     around_a = np.column_stack(
         [
-            ax_ + radius * np.cos(heading + math.pi + arc),
-            ay + radius * np.sin(heading + math.pi + arc),
+            start_x + radius * np.cos(heading + math.pi + arc),
+            start_y + radius * np.sin(heading + math.pi + arc),
         ]
     )
     return np.vstack([around_b, around_a])

@@ -12,6 +12,10 @@ use crate::world::World;
 /// A gap to a wall below this (metres) counts as touching it.
 pub const CONTACT_GAP: f32 = 2e-4;
 
+/// How far beyond the body the nearest wall is looked for (metres); farther counts as this far.
+/// It exceeds the contact prediction distance plus a step's travel, so free flight is decided right.
+const CLEARANCE_SEARCH: f32 = 0.03;
+
 /// How a simulator is set up.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SimConfig {
@@ -147,7 +151,7 @@ impl Simulator {
         let gap = self
             .world
             .wall_index()
-            .signed_distance([self.pose[0], self.pose[1]], r + 0.01);
+            .signed_distance([self.pose[0], self.pose[1]], r + CLEARANCE_SEARCH);
         self.clearance = gap - r;
         self.touching = self.clearance < CONTACT_GAP;
     }
@@ -175,7 +179,7 @@ impl Simulator {
         let mut any_contact = false;
         for _ in 0..self.physics_steps {
             let before = self.pose;
-            self.body.step(linear, angular);
+            self.body.step(linear, angular, self.clearance);
             self.pose = self.body.pose();
             let dx = (self.pose[0] - before[0]) as f64;
             let dy = (self.pose[1] - before[1]) as f64;
