@@ -17,13 +17,17 @@ from __future__ import annotations
 import os
 
 from mazesim._core import (
+    BatchSimulator,
     RobotProfile,
     Simulator,
     World,
     __version__,
     builtin_world_names,
+    default_codes,
+    generate_maze,
     robot_profile_names,
     sharp_volts_to_cm,
+    validate_codes,
 )
 from mazesim.errors import (
     InvalidActionError,
@@ -35,6 +39,7 @@ from mazesim.errors import (
 )
 
 __all__ = [
+    "BatchSimulator",
     "InvalidActionError",
     "InvalidArgumentError",
     "MazesimError",
@@ -46,9 +51,12 @@ __all__ = [
     "WorldFormatError",
     "__version__",
     "builtin_world_names",
+    "default_codes",
+    "generate_maze",
     "load_world",
     "robot_profile_names",
     "sharp_volts_to_cm",
+    "validate_codes",
 ]
 
 

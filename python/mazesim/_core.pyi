@@ -1,18 +1,23 @@
 """Type stubs for the compiled core of mazesim (``mazesim._core``)."""
 
+from collections.abc import Sequence
 from typing import ClassVar, final
 
 import numpy as np
 import numpy.typing as npt
 
 __all__ = [
+    "BatchSimulator",
     "RobotProfile",
     "Simulator",
     "World",
     "__version__",
     "builtin_world_names",
+    "default_codes",
+    "generate_maze",
     "robot_profile_names",
     "sharp_volts_to_cm",
+    "validate_codes",
 ]
 __version__: str
 
@@ -24,6 +29,25 @@ def robot_profile_names() -> list[str]:
 
 def sharp_volts_to_cm(volts: float) -> float:
     """Converts a Sharp GP2Y0A41SK0F reading in volts to a distance in cm (inverted table)."""
+
+def generate_maze(
+    width: int = 5,
+    height: int = 5,
+    seed: int = 0,
+    cell_size: float = 0.25,
+    wall_thickness: float = 0.01,
+    loops: float = 0.0,
+    checkpoints: bool = True,
+    floor_reflectance: float = 0.36,
+) -> World:
+    """A seeded maze: perfect (loops=0) or with a share of extra openings, barcode checkpoints
+    before its junctions, the goal in the cell farthest from the start."""
+
+def default_codes() -> list[str]:
+    """The default five-bit barcode book (12 codes)."""
+
+def validate_codes(codes: list[str]) -> None:
+    """Raises InvalidArgumentError for a palindrome, a duplicate or a reverse clash."""
 
 @final
 class World:
@@ -127,8 +151,65 @@ class Simulator:
     def wall_clearance(self) -> float:
         """Signed gap between the body and the nearest wall in metres (negative: penetration)."""
     @property
+    def last_crossing(self) -> int:
+        """Barcode crossed in the last step: +id arriving (along its yaw), -id departing, 0 none."""
+    def crossings(self) -> list[dict[str, object]]:
+        """Crossings since reset: dicts of "checkpoint", "direction", "step", "time"."""
+    @property
     def control_step_ms(self) -> float: ...
     @property
     def robot(self) -> RobotProfile: ...
     @property
     def world(self) -> World: ...
+
+@final
+class BatchSimulator:
+    """N independent environments stepped in parallel into caller-owned numpy buffers."""
+
+    def __new__(
+        cls,
+        worlds: World | Sequence[World],
+        num_envs: int | None = None,
+        robot: str = "e-puck",
+        seeds: int | Sequence[int] | None = None,
+        noise: bool = True,
+        control_step_ms: float | None = None,
+        threads: int = 0,
+    ) -> BatchSimulator: ...
+    @property
+    def num_envs(self) -> int: ...
+    @property
+    def observation_width(self) -> int: ...
+    @property
+    def distance_width(self) -> int: ...
+    @property
+    def ground_width(self) -> int: ...
+    def step(
+        self,
+        actions: npt.NDArray[np.float32],
+        observations: npt.NDArray[np.float32],
+        poses: npt.NDArray[np.float32],
+        colliding: npt.NDArray[np.bool_],
+        crossings: npt.NDArray[np.int32],
+    ) -> None: ...
+    def reset(
+        self,
+        observations: npt.NDArray[np.float32],
+        poses: npt.NDArray[np.float32],
+        colliding: npt.NDArray[np.bool_],
+        crossings: npt.NDArray[np.int32],
+        mask: npt.NDArray[np.bool_] | None = None,
+        seeds: npt.NDArray[np.uint64] | None = None,
+    ) -> None: ...
+    def observe(
+        self,
+        observations: npt.NDArray[np.float32],
+        poses: npt.NDArray[np.float32],
+        colliding: npt.NDArray[np.bool_],
+        crossings: npt.NDArray[np.int32],
+    ) -> None: ...
+    def times(self) -> npt.NDArray[np.float64]: ...
+    def steps(self) -> npt.NDArray[np.uint64]: ...
+    def collisions(self) -> npt.NDArray[np.uint64]: ...
+    def distances_travelled(self) -> npt.NDArray[np.float64]: ...
+    def __len__(self) -> int: ...

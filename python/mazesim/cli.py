@@ -8,6 +8,7 @@ a JSON summary. Errors are printed as one line, ``mazesim: error: <message>``, w
 from __future__ import annotations
 
 import argparse
+import importlib
 import json
 import math
 import os
@@ -23,7 +24,11 @@ from mazesim._atomic import atomic_file
 from mazesim.controllers import AvoidCollision
 from mazesim.errors import InvalidArgumentError, MazesimError
 
-__all__ = ["main"]
+__all__ = ["main", "positive_seconds", "seed_argument"]
+
+#: Modules that add subcommands: each has ``register(commands)``, which adds its parser(s) to the
+#: ``argparse`` subparsers object and sets ``run=<function(args) -> int>`` as the parser default.
+COMMAND_MODULES: tuple[str, ...] = ()
 
 #: Exit code of a run that failed on an error of the user's input or of the file system.
 EXIT_ERROR = 2
@@ -33,7 +38,7 @@ EXIT_INTERRUPTED = 130
 PROGRESS_AFTER_S = 1.0
 
 
-def _positive_seconds(text: str) -> float:
+def positive_seconds(text: str) -> float:
     try:
         value = float(text)
     except ValueError:
@@ -43,7 +48,7 @@ def _positive_seconds(text: str) -> float:
     return value
 
 
-def _seed(text: str) -> int:
+def seed_argument(text: str) -> int:
     try:
         value = int(text)
     except ValueError:
@@ -65,11 +70,12 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--version", action="version", version=f"mazesim {mazesim.__version__}")
     commands = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
 
-    commands.add_parser(
+    worlds = commands.add_parser(
         "worlds",
         help="list the built-in worlds",
         description="List the built-in worlds: name, size and number of barcode checkpoints.",
     )
+    worlds.set_defaults(run=lambda args: run_worlds(sys.stdout))
 
     demo = commands.add_parser(
         "demo",
@@ -88,14 +94,14 @@ def build_parser() -> argparse.ArgumentParser:
     )
     demo.add_argument(
         "--seconds",
-        type=_positive_seconds,
+        type=positive_seconds,
         default=60.0,
         metavar="S",
         help="simulated seconds to run (default: %(default)s)",
     )
     demo.add_argument(
         "--seed",
-        type=_seed,
+        type=seed_argument,
         default=0,
         metavar="N",
         help="seed of the sensor noise (default: %(default)s)",
@@ -114,6 +120,9 @@ def build_parser() -> argparse.ArgumentParser:
         help="robot profile; the controller needs the e-puck's 8 proximity sensors "
         "(default: %(default)s)",
     )
+    demo.set_defaults(run=lambda args: run_demo(args, sys.stdout))
+    for module_name in COMMAND_MODULES:
+        importlib.import_module(module_name).register(commands)
     return parser
 
 
@@ -267,9 +276,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         code = exit_request.code
         return code if isinstance(code, int) else (0 if code is None else EXIT_ERROR)
     try:
-        if args.command == "worlds":
-            return run_worlds(sys.stdout)
-        return run_demo(args, sys.stdout)
+        return int(args.run(args))
     except (MazesimError, OSError) as error:
         print(f"mazesim: error: {_one_line(str(error))}", file=sys.stderr)
         return EXIT_ERROR

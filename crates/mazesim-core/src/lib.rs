@@ -16,7 +16,11 @@
 //! ```
 #![warn(missing_docs)]
 
+pub mod batch;
+pub mod codebook;
+pub mod crossing;
 pub mod error;
+pub mod generator;
 pub mod io;
 pub mod lut;
 pub mod physics;
@@ -26,6 +30,7 @@ pub mod sensors;
 pub mod simulator;
 pub mod world;
 
+pub use batch::{Batch, StepOutputs};
 pub use error::{Error, Location, Result};
 pub use robot::{robot_profile_names, RobotProfile};
 pub use simulator::{SimConfig, Simulator};

@@ -2,6 +2,7 @@
 
 use std::sync::Arc;
 
+use crate::crossing::{Crossing, CrossingTracker};
 use crate::error::{Error, Result};
 use crate::physics::Body;
 use crate::rng::Rng;
@@ -59,6 +60,11 @@ pub struct Simulator {
     wheel_angles: [f64; 2],
     distance_readings: Vec<f32>,
     ground_readings: Vec<f32>,
+    /// Index of the ground sensor that reads barcodes: the one nearest the centre line.
+    barcode_sensor: Option<usize>,
+    tracker: CrossingTracker,
+    crossings: Vec<Crossing>,
+    last_crossing: i32,
 }
 
 impl Simulator {
@@ -80,7 +86,16 @@ impl Simulator {
         let start = world.start();
         let pose = [start[0] as f32, start[1] as f32, start[2] as f32];
         let body = Body::new(world.walls(), robot.body_radius as f32, pose, dt as f32);
+        let barcode_sensor = (0..robot.ground_sensors.len()).min_by(|&a, &b| {
+            let ya = robot.ground_sensors[a].position[1].abs();
+            let yb = robot.ground_sensors[b].position[1].abs();
+            ya.total_cmp(&yb)
+        });
         let mut sim = Simulator {
+            barcode_sensor,
+            tracker: CrossingTracker::new(world.checkpoints().len()),
+            crossings: Vec::new(),
+            last_crossing: 0,
             distance_readings: vec![0.0; robot.distance_sensors.len()],
             ground_readings: vec![0.0; robot.ground_sensors.len()],
             world,
@@ -119,6 +134,8 @@ impl Simulator {
         self.distance_travelled = 0.0;
         self.wheel_speeds = [0.0; 2];
         self.wheel_angles = [0.0; 2];
+        self.crossings.clear();
+        self.last_crossing = 0;
         self.read_sensors();
     }
 
@@ -144,6 +161,18 @@ impl Simulator {
         self.pose = self.body.pose();
         self.update_contact();
         self.colliding = self.touching;
+        if let Some(at) = self.barcode_sensor_position() {
+            self.tracker.place(self.world.checkpoints(), at);
+        }
+    }
+
+    /// World position of the barcode-reading ground sensor.
+    fn barcode_sensor_position(&self) -> Option<[f64; 2]> {
+        let sensor = &self.robot.ground_sensors[self.barcode_sensor?];
+        let [x, y, yaw] = self.pose.map(|v| v as f64);
+        let (s, c) = yaw.sin_cos();
+        let [px, py] = sensor.position;
+        Some([x + c * px - s * py, y + s * px + c * py])
     }
 
     fn update_contact(&mut self) {
@@ -177,6 +206,7 @@ impl Simulator {
         let linear = r * (wl + wr) / 2.0;
         let angular = r * (wr - wl) / self.robot.axle_length as f32;
         let mut any_contact = false;
+        self.last_crossing = 0;
         for _ in 0..self.physics_steps {
             let before = self.pose;
             self.body.step(linear, angular, self.clearance);
@@ -192,6 +222,15 @@ impl Simulator {
                 self.collisions += 1;
             }
             any_contact |= self.touching;
+            if let Some(at) = self.barcode_sensor_position() {
+                if let Some(c) = self
+                    .tracker
+                    .update(self.world.checkpoints(), at, self.steps + 1)
+                {
+                    self.last_crossing = c.signed_id();
+                    self.crossings.push(c);
+                }
+            }
         }
         self.colliding = any_contact;
         self.steps += 1;
@@ -221,6 +260,22 @@ impl Simulator {
             self.ground_readings[i] =
                 read_ground(&sensor.model, self.world.floor(), at, yaw as f64, rng);
         }
+    }
+
+    /// Barcode crossings since reset, in order.
+    pub fn crossings(&self) -> &[Crossing] {
+        &self.crossings
+    }
+
+    /// The crossing completed in the last control step as a signed checkpoint id (+id along the
+    /// checkpoint's yaw, -id against it), 0 for none.
+    pub fn last_crossing(&self) -> i32 {
+        self.last_crossing
+    }
+
+    /// Index of the ground sensor whose crossings are tracked (nearest the robot's centre line).
+    pub fn barcode_sensor(&self) -> Option<usize> {
+        self.barcode_sensor
     }
 
     /// Distance sensor readings in device order (raw counts or volts, per the profile).

@@ -1,6 +1,8 @@
 //! The `mazesim._core` extension module: a thin pyo3 layer over `mazesim-core`
 //! (type conversion, numpy buffers, error mapping). No simulation logic lives here.
 
+mod batch;
+mod buffers;
 mod errors;
 mod simulator;
 mod world;
@@ -25,12 +27,57 @@ fn sharp_volts_to_cm(volts: f64) -> f64 {
     mazesim_core::sharp_volts_to_cm(volts)
 }
 
+/// A generated maze world (seeded; see mazesim-core's generator).
+#[pyfunction]
+#[pyo3(signature = (width = 5, height = 5, seed = 0, cell_size = 0.25, wall_thickness = 0.01, loops = 0.0, checkpoints = true, floor_reflectance = 0.36))]
+#[allow(clippy::too_many_arguments)]
+fn generate_maze(
+    width: usize,
+    height: usize,
+    seed: u64,
+    cell_size: f64,
+    wall_thickness: f64,
+    loops: f64,
+    checkpoints: bool,
+    floor_reflectance: f64,
+) -> PyResult<world::PyWorld> {
+    let params = mazesim_core::generator::MazeParams {
+        width,
+        height,
+        cell_size,
+        wall_thickness,
+        loops,
+        checkpoints,
+        floor_reflectance,
+    };
+    let w = mazesim_core::generator::generate(&params, seed).map_err(errors::to_py)?;
+    Ok(world::PyWorld {
+        inner: std::sync::Arc::new(w),
+    })
+}
+
+/// The default five-bit barcode book: 12 codes, none a palindrome or another's reverse.
+#[pyfunction]
+fn default_codes() -> Vec<String> {
+    mazesim_core::codebook::default_codes()
+}
+
+/// Checks a barcode book (no palindrome, duplicate or reverse clash); raises InvalidArgumentError.
+#[pyfunction]
+fn validate_codes(codes: Vec<String>) -> PyResult<()> {
+    mazesim_core::codebook::validate(&codes).map_err(errors::to_py)
+}
+
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_function(wrap_pyfunction!(builtin_world_names, m)?)?;
     m.add_function(wrap_pyfunction!(robot_profile_names, m)?)?;
     m.add_function(wrap_pyfunction!(sharp_volts_to_cm, m)?)?;
+    m.add_function(wrap_pyfunction!(generate_maze, m)?)?;
+    m.add_function(wrap_pyfunction!(default_codes, m)?)?;
+    m.add_function(wrap_pyfunction!(validate_codes, m)?)?;
+    m.add_class::<batch::PyBatch>()?;
     m.add_class::<world::PyWorld>()?;
     m.add_class::<world::PyRobotProfile>()?;
     m.add_class::<simulator::PySimulator>()?;

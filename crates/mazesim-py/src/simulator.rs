@@ -123,6 +123,29 @@ impl PySimulator {
     fn wall_clearance(&self) -> f64 {
         self.with(|s| s.wall_clearance() as f64)
     }
+    /// Barcode crossed in the last step: +id along the checkpoint's yaw (arrival), -id against it
+    /// (departure), 0 for none.
+    #[getter]
+    fn last_crossing(&self) -> i32 {
+        self.with(|s| s.last_crossing())
+    }
+
+    /// Barcode crossings since reset: dicts of checkpoint, direction ("arrival" along the
+    /// checkpoint's yaw, "departure" against it), step and time.
+    fn crossings<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, pyo3::types::PyDict>>> {
+        let (list, dt) = self.with(|s| (s.crossings().to_vec(), s.control_step()));
+        list.iter()
+            .map(|c| {
+                let d = pyo3::types::PyDict::new(py);
+                d.set_item("checkpoint", c.checkpoint)?;
+                d.set_item("direction", if c.forward { "arrival" } else { "departure" })?;
+                d.set_item("step", c.step)?;
+                d.set_item("time", c.step as f64 * dt)?;
+                Ok(d)
+            })
+            .collect()
+    }
+
     #[getter]
     fn control_step_ms(&self) -> f64 {
         self.with(|s| s.control_step() * 1000.0)

@@ -1,0 +1,275 @@
+//! Many independent environments stepped in parallel (rayon), writing into buffers the caller
+//! owns. Each environment has its own world, robot and random stream, so its results do not
+//! depend on the thread count, the batch size or its place in the batch.
+
+use std::sync::Arc;
+
+use rayon::prelude::*;
+
+use crate::error::{Error, Result};
+use crate::robot::RobotProfile;
+use crate::simulator::{SimConfig, Simulator};
+use crate::world::World;
+
+/// Environments per rayon task: enough to amortise scheduling, few enough to balance two cores.
+const MIN_ENVS_PER_TASK: usize = 32;
+
+/// Per-step outputs of a batch, one row per environment, in buffers the caller owns.
+pub struct StepOutputs<'a> {
+    /// `(n, observation_width)`: distance sensors then ground sensors.
+    pub observations: &'a mut [f32],
+    /// `(n, 3)`: x, y, yaw.
+    pub poses: &'a mut [f32],
+    /// `(n,)`: touched a wall during the step.
+    pub colliding: &'a mut [bool],
+    /// `(n,)`: barcode crossed in the step as a signed checkpoint id, 0 for none.
+    pub crossings: &'a mut [i32],
+}
+
+/// N environments stepped together.
+pub struct Batch {
+    envs: Vec<Simulator>,
+    distance_width: usize,
+    ground_width: usize,
+    pool: Option<rayon::ThreadPool>,
+}
+
+impl Batch {
+    /// One environment per world, all with `robot`; env i gets `seeds[i]`.
+    /// `threads`: 0 = rayon's global pool (all cores), otherwise a pool of that many threads.
+    pub fn new(
+        worlds: Vec<Arc<World>>,
+        robot: Arc<RobotProfile>,
+        seeds: &[u64],
+        noise: bool,
+        control_step: Option<f64>,
+        threads: usize,
+    ) -> Result<Batch> {
+        if worlds.is_empty() {
+            return Err(Error::InvalidArgument(
+                "expected at least one environment, found 0".into(),
+            ));
+        }
+        if seeds.len() != worlds.len() {
+            return Err(Error::InvalidArgument(format!(
+                "expected one seed per environment ({}), found {}",
+                worlds.len(),
+                seeds.len()
+            )));
+        }
+        if robot.distance_sensors.is_empty() && robot.ground_sensors.is_empty() {
+            return Err(Error::InvalidArgument(format!(
+                "robot profile {:?} has no sensors to observe",
+                robot.name
+            )));
+        }
+        let pool = if threads == 0 {
+            None
+        } else {
+            Some(
+                rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .map_err(|e| {
+                        Error::InvalidArgument(format!("cannot start {threads} threads: {e}"))
+                    })?,
+            )
+        };
+        let make = |(world, &seed): (Arc<World>, &u64)| {
+            Simulator::new(
+                world,
+                robot.clone(),
+                SimConfig {
+                    seed,
+                    noise,
+                    control_step,
+                },
+            )
+        };
+        let pairs: Vec<(Arc<World>, &u64)> = worlds.into_iter().zip(seeds).collect();
+        let envs: Result<Vec<Simulator>> = match &pool {
+            Some(p) => p.install(|| pairs.into_par_iter().map(make).collect()),
+            None => pairs.into_par_iter().map(make).collect(),
+        };
+        Ok(Batch {
+            envs: envs?,
+            distance_width: robot.distance_sensors.len(),
+            ground_width: robot.ground_sensors.len(),
+            pool,
+        })
+    }
+
+    /// Number of environments.
+    pub fn len(&self) -> usize {
+        self.envs.len()
+    }
+
+    /// Never true: a batch has at least one environment.
+    pub fn is_empty(&self) -> bool {
+        self.envs.is_empty()
+    }
+
+    /// Floats per observation row: distance sensors then ground sensors.
+    pub fn observation_width(&self) -> usize {
+        self.distance_width + self.ground_width
+    }
+
+    /// The environments.
+    pub fn envs(&self) -> &[Simulator] {
+        &self.envs
+    }
+
+    fn check_outputs(&self, out: &StepOutputs<'_>) -> Result<()> {
+        let n = self.envs.len();
+        let check = |name: &str, len: usize, width: usize| {
+            if len != n * width {
+                Err(Error::InvalidArgument(format!(
+                    "expected {name} to hold {n} x {width} values, found {len}"
+                )))
+            } else {
+                Ok(())
+            }
+        };
+        check(
+            "observations",
+            out.observations.len(),
+            self.observation_width(),
+        )?;
+        check("poses", out.poses.len(), 3)?;
+        check("colliding", out.colliding.len(), 1)?;
+        check("crossings", out.crossings.len(), 1)
+    }
+
+    fn run<F: Fn(usize, &mut Simulator, Row<'_>) + Sync + Send>(
+        &mut self,
+        out: StepOutputs<'_>,
+        f: F,
+    ) {
+        let width = self.observation_width();
+        let dw = self.distance_width;
+        let StepOutputs {
+            observations,
+            poses,
+            colliding,
+            crossings,
+        } = out;
+        let f = &f;
+        let mut work = move |envs: &mut [Simulator]| {
+            envs.par_iter_mut()
+                .zip(observations.par_chunks_mut(width))
+                .zip(poses.par_chunks_mut(3))
+                .zip(colliding.par_iter_mut())
+                .zip(crossings.par_iter_mut())
+                .enumerate()
+                .with_min_len(MIN_ENVS_PER_TASK)
+                .for_each(|(i, ((((env, obs), pose), colliding), crossing))| {
+                    f(
+                        i,
+                        env,
+                        Row {
+                            observation: obs,
+                            distance_width: dw,
+                            pose,
+                            colliding,
+                            crossing,
+                        },
+                    )
+                });
+        };
+        let envs = &mut self.envs;
+        match &self.pool {
+            Some(p) => p.install(move || work(envs)),
+            None => work(envs),
+        }
+    }
+
+    /// Steps every environment with `actions` (`(n, 2)` wheel speeds in rad/s, left then right)
+    /// and writes the results into `out`. NaN or infinite speeds are refused before any
+    /// environment moves; the error names the first bad environment.
+    pub fn step(&mut self, actions: &[f32], out: StepOutputs<'_>) -> Result<()> {
+        let n = self.envs.len();
+        if actions.len() != 2 * n {
+            return Err(Error::InvalidArgument(format!(
+                "expected actions of shape ({n}, 2), found {} values",
+                actions.len()
+            )));
+        }
+        if let Some(i) = actions.iter().position(|a| !a.is_finite()) {
+            return Err(Error::InvalidAction(format!(
+                "expected finite wheel speeds, found {} in environment {} ({} wheel)",
+                actions[i],
+                i / 2,
+                if i % 2 == 0 { "left" } else { "right" }
+            )));
+        }
+        self.check_outputs(&out)?;
+        // Actions are checked above, so a step cannot fail.
+        self.run(out, |i, env, row| {
+            let _ = env.step(actions[2 * i] as f64, actions[2 * i + 1] as f64);
+            row.write(env);
+        });
+        Ok(())
+    }
+
+    /// Resets the environments where `mask` is true (all without a mask), each with its new seed
+    /// from `seeds` when given, and writes their rows of `out` (other rows are left as they are).
+    pub fn reset(
+        &mut self,
+        mask: Option<&[bool]>,
+        seeds: Option<&[u64]>,
+        out: StepOutputs<'_>,
+    ) -> Result<()> {
+        let n = self.envs.len();
+        if let Some(m) = mask {
+            if m.len() != n {
+                return Err(Error::InvalidArgument(format!(
+                    "expected a reset mask of {n} values, found {}",
+                    m.len()
+                )));
+            }
+        }
+        if let Some(s) = seeds {
+            if s.len() != n {
+                return Err(Error::InvalidArgument(format!(
+                    "expected {n} reset seeds, found {}",
+                    s.len()
+                )));
+            }
+        }
+        self.check_outputs(&out)?;
+        self.run(out, |i, env, row| {
+            if mask.is_none_or(|m| m[i]) {
+                env.reset(seeds.map(|s| s[i]));
+                row.write(env);
+            }
+        });
+        Ok(())
+    }
+
+    /// Writes the current state of every environment into `out` without stepping.
+    pub fn observe(&mut self, out: StepOutputs<'_>) -> Result<()> {
+        self.check_outputs(&out)?;
+        self.run(out, |_, env, row| row.write(env));
+        Ok(())
+    }
+}
+
+/// One environment's rows of the outputs.
+struct Row<'a> {
+    observation: &'a mut [f32],
+    distance_width: usize,
+    pose: &'a mut [f32],
+    colliding: &'a mut bool,
+    crossing: &'a mut i32,
+}
+
+impl Row<'_> {
+    fn write(self, env: &Simulator) {
+        let (d, g) = self.observation.split_at_mut(self.distance_width);
+        d.copy_from_slice(env.distance_sensors());
+        g.copy_from_slice(env.ground_sensors());
+        self.pose.copy_from_slice(&env.pose());
+        *self.colliding = env.colliding();
+        *self.crossing = env.last_crossing();
+    }
+}

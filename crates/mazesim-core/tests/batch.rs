@@ -1,0 +1,148 @@
+//! The batch engine: env i of a batch equals a lone simulator with the same seed and actions,
+//! whatever the thread count or the batch size.
+
+use std::sync::Arc;
+
+use mazesim_core::{Batch, RobotProfile, SimConfig, Simulator, StepOutputs, World};
+
+const STEPS: usize = 300;
+
+fn action(env: usize, step: usize) -> [f32; 2] {
+    let t = step as f32 * 0.05 + env as f32;
+    [4.0 + 2.5 * t.sin(), 4.0 + 2.5 * (1.7 * t).cos()]
+}
+
+struct Buffers {
+    obs: Vec<f32>,
+    poses: Vec<f32>,
+    colliding: Vec<bool>,
+    crossings: Vec<i32>,
+}
+
+impl Buffers {
+    fn new(n: usize, width: usize) -> Self {
+        Self {
+            obs: vec![0.0; n * width],
+            poses: vec![0.0; n * 3],
+            colliding: vec![false; n],
+            crossings: vec![0; n],
+        }
+    }
+    fn out(&mut self) -> StepOutputs<'_> {
+        StepOutputs {
+            observations: &mut self.obs,
+            poses: &mut self.poses,
+            colliding: &mut self.colliding,
+            crossings: &mut self.crossings,
+        }
+    }
+}
+
+/// Observation and pose bits of env `watch` over the run, from a batch of `n` envs.
+fn batch_trace(n: usize, threads: usize, watch: usize) -> Vec<u32> {
+    let world = Arc::new(World::builtin("seed-maze").unwrap());
+    let robot = Arc::new(RobotProfile::builtin("e-puck").unwrap());
+    let seeds: Vec<u64> = (0..n as u64).map(|i| 1000 + i).collect();
+    let mut b = Batch::new(vec![world; n], robot, &seeds, true, None, threads).unwrap();
+    let w = b.observation_width();
+    let mut buf = Buffers::new(n, w);
+    b.reset(None, None, buf.out()).unwrap();
+    let mut trace = Vec::new();
+    for step in 0..STEPS {
+        let actions: Vec<f32> = (0..n).flat_map(|i| action(i, step)).collect();
+        b.step(&actions, buf.out()).unwrap();
+        trace.extend(
+            buf.obs[watch * w..(watch + 1) * w]
+                .iter()
+                .map(|v| v.to_bits()),
+        );
+        trace.extend(
+            buf.poses[watch * 3..watch * 3 + 3]
+                .iter()
+                .map(|v| v.to_bits()),
+        );
+    }
+    trace
+}
+
+fn lone_trace(env: usize) -> Vec<u32> {
+    let world = Arc::new(World::builtin("seed-maze").unwrap());
+    let robot = Arc::new(RobotProfile::builtin("e-puck").unwrap());
+    let mut s = Simulator::new(
+        world,
+        robot,
+        SimConfig {
+            seed: 1000 + env as u64,
+            noise: true,
+            control_step: None,
+        },
+    )
+    .unwrap();
+    let mut trace = Vec::new();
+    for step in 0..STEPS {
+        let [l, r] = action(env, step);
+        s.step(l as f64, r as f64).unwrap();
+        trace.extend(
+            s.distance_sensors()
+                .iter()
+                .chain(s.ground_sensors())
+                .map(|v| v.to_bits()),
+        );
+        trace.extend(s.pose().iter().map(|v| v.to_bits()));
+    }
+    trace
+}
+
+#[test]
+fn env_i_equals_a_lone_simulator_for_any_threads_and_batch_size() {
+    let lone0 = lone_trace(0);
+    for (n, threads) in [(1, 1), (7, 1), (7, 2), (64, 2), (64, 0)] {
+        assert_eq!(
+            batch_trace(n, threads, 0),
+            lone0,
+            "batch {n}, threads {threads}"
+        );
+    }
+    let lone6 = lone_trace(6);
+    assert_eq!(batch_trace(7, 1, 6), lone6);
+    assert_eq!(batch_trace(64, 2, 6), lone6);
+    assert_ne!(lone0, lone6);
+}
+
+#[test]
+fn bad_actions_and_masks_are_refused_before_anything_moves() {
+    let world = Arc::new(World::builtin("arena").unwrap());
+    let robot = Arc::new(RobotProfile::builtin("e-puck").unwrap());
+    let mut b = Batch::new(vec![world; 3], robot, &[1, 2, 3], false, None, 1).unwrap();
+    let mut buf = Buffers::new(3, b.observation_width());
+    let err = b
+        .step(&[1.0, 1.0, f32::NAN, 1.0, 1.0, 1.0], buf.out())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("environment 1") && err.contains("left"),
+        "{err}"
+    );
+    assert!(b.envs().iter().all(|e| e.steps() == 0));
+    assert!(b.step(&[1.0; 4], buf.out()).is_err());
+    assert!(b.reset(Some(&[true, false]), None, buf.out()).is_err());
+    assert!(b.reset(None, Some(&[1, 2]), buf.out()).is_err());
+    let mut short = Buffers::new(2, b.observation_width());
+    assert!(b.step(&[1.0; 6], short.out()).is_err());
+}
+
+#[test]
+fn masked_reset_touches_only_the_masked_envs() {
+    let world = Arc::new(World::builtin("arena").unwrap());
+    let robot = Arc::new(RobotProfile::builtin("e-puck").unwrap());
+    let mut b = Batch::new(vec![world; 3], robot, &[1, 2, 3], true, None, 0).unwrap();
+    let mut buf = Buffers::new(3, b.observation_width());
+    for _ in 0..10 {
+        b.step(&[5.0; 6], buf.out()).unwrap();
+    }
+    b.reset(Some(&[false, true, false]), Some(&[9, 9, 9]), buf.out())
+        .unwrap();
+    let steps: Vec<u64> = b.envs().iter().map(|e| e.steps()).collect();
+    assert_eq!(steps, vec![10, 0, 10]);
+    assert_eq!(buf.poses[3..6], b.envs()[1].pose());
+}
