@@ -246,6 +246,21 @@ impl Batch {
         Ok(())
     }
 
+    /// Puts environment `index` into another world, reset to its start with `seed`. Its rows of the
+    /// outputs change at the next `observe`, `step` or `reset`.
+    pub fn set_world(&mut self, index: usize, world: Arc<World>, seed: u64) -> Result<()> {
+        let n = self.envs.len();
+        let env = self.envs.get_mut(index).ok_or_else(|| {
+            Error::InvalidArgument(format!("expected an environment index below {n}, found {index}"))
+        })?;
+        let config = SimConfig {
+            seed,
+            ..env.config()
+        };
+        *env = Simulator::new(world, env.robot().clone(), config)?;
+        Ok(())
+    }
+
     /// Writes the current state of every environment into `out` without stepping.
     pub fn observe(&mut self, out: StepOutputs<'_>) -> Result<()> {
         self.check_outputs(&out)?;

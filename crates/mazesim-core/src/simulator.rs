@@ -335,6 +335,14 @@ impl Simulator {
             .map(|a| if q > 0.0 { (a / q).round() * q } else { a })
     }
 
+    /// The configuration (with the seed of the last reset).
+    pub fn config(&self) -> SimConfig {
+        SimConfig {
+            control_step: Some(self.control_step()),
+            ..self.config
+        }
+    }
+
     /// Control step in seconds.
     pub fn control_step(&self) -> f64 {
         self.physics_steps as f64 * self.dt

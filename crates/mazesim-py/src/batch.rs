@@ -214,6 +214,13 @@ impl PyBatch {
         py.detach(|| self.with(|b| b.observe(out))).py()
     }
 
+    /// Puts environment `index` into `world`, reset to its start with `seed`; its rows of the
+    /// buffers change at the next observe, step or reset.
+    fn set_world(&self, py: Python<'_>, index: usize, world: &PyWorld, seed: u64) -> PyResult<()> {
+        let w = world.inner.clone();
+        py.detach(|| self.with(|b| b.set_world(index, w, seed))).py()
+    }
+
     /// Simulated seconds of each environment since its reset.
     fn times<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         let v: Vec<f64> = self.with(|b| b.envs().iter().map(|e| e.time()).collect());

@@ -159,6 +159,35 @@ impl PyWorld {
         Ok(out)
     }
 
+    /// The cell maze of a `[grid]` world, or None: a dict of "rows", "cols", "cell_size",
+    /// "origin" and the wall arrays "horizontal" ((rows + 1, cols) bool: grid line k, 0 = north,
+    /// above cell column c) and "vertical" ((rows, cols + 1) bool: beside cell row r, line k,
+    /// 0 = west), plus "start" and "goal" cells (column, row) when marked.
+    fn cell_maze<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let Some(placed) = self.inner.maze() else {
+            return Ok(None);
+        };
+        let m = &placed.maze;
+        let d = PyDict::new(py);
+        d.set_item("rows", m.rows)?;
+        d.set_item("cols", m.cols)?;
+        d.set_item("cell_size", placed.cell_size)?;
+        d.set_item("origin", (placed.origin[0], placed.origin[1]))?;
+        let h = numpy::PyArray1::from_slice(py, &m.horizontal).reshape([m.rows + 1, m.cols])?;
+        let v = numpy::PyArray1::from_slice(py, &m.vertical).reshape([m.rows, m.cols + 1])?;
+        d.set_item("horizontal", h)?;
+        d.set_item("vertical", v)?;
+        d.set_item("start", m.start)?;
+        d.set_item("goal", m.goal)?;
+        Ok(Some(d))
+    }
+
+    /// Background floor reflectance (where nothing is painted).
+    #[getter]
+    fn floor_background(&self) -> f64 {
+        self.inner.floor().background()
+    }
+
     /// Floor reflectance factor at (x, y).
     fn floor_reflectance(&self, x: f64, y: f64) -> f64 {
         self.inner.floor().reflectance_at([x, y])
