@@ -37,7 +37,7 @@ fn env_step(c: &mut Criterion) {
 }
 
 criterion_group!(benches, ray_cast, env_step);
-criterion_main!(benches, physics_benches);
+criterion_main!(benches, physics_benches, batch_benches);
 
 fn body_step(c: &mut Criterion) {
     let world = common::world();
@@ -56,3 +56,38 @@ fn body_step(c: &mut Criterion) {
     g.finish();
 }
 criterion_group!(physics_benches, body_step);
+
+fn batch_step(c: &mut Criterion) {
+    use mazesim_core::{Batch, RobotProfile, StepOutputs};
+    use std::sync::Arc;
+    let robot = Arc::new(RobotProfile::builtin("e-puck").unwrap());
+    let mut g = c.benchmark_group("batch_step");
+    for n in [1usize, 64, 1024, 4096] {
+        let worlds = common::distinct_mazes(n);
+        let seeds: Vec<u64> = (0..n as u64).collect();
+        let mut b = Batch::new(worlds, robot.clone(), &seeds, true, None, 0).unwrap();
+        let w = b.observation_width();
+        let (mut obs, mut poses) = (vec![0f32; n * w], vec![0f32; n * 3]);
+        let (mut col, mut cr) = (vec![false; n], vec![0i32; n]);
+        let mut actions = vec![0f32; 2 * n];
+        g.throughput(Throughput::Elements(n as u64));
+        g.bench_function(format!("{n}_envs"), |bench| {
+            bench.iter(|| {
+                for i in 0..n {
+                    let (l, r) = common::braitenberg(&obs[i * w..i * w + 8]);
+                    actions[2 * i] = l as f32;
+                    actions[2 * i + 1] = r as f32;
+                }
+                let out = StepOutputs {
+                    observations: &mut obs,
+                    poses: &mut poses,
+                    colliding: &mut col,
+                    crossings: &mut cr,
+                };
+                b.step(&actions, out).unwrap();
+            })
+        });
+    }
+    g.finish();
+}
+criterion_group!(batch_benches, batch_step);

@@ -63,3 +63,15 @@ pub fn braitenberg(ps: &[f32]) -> (f64, f64) {
     let turn = 4.0 * (right_side - left_side) + 6.0 * front;
     (base - turn, base + turn)
 }
+
+/// `n` distinct generated 5 x 5 mazes (seeds 0..n, a tenth of the walls opened into loops).
+pub fn distinct_mazes(n: usize) -> Vec<Arc<World>> {
+    use mazesim_core::generator::{generate, MazeParams};
+    let p = MazeParams {
+        loops: 0.1,
+        ..Default::default()
+    };
+    (0..n as u64)
+        .map(|s| Arc::new(generate(&p, s).unwrap()))
+        .collect()
+}

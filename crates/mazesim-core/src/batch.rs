@@ -251,7 +251,9 @@ impl Batch {
     pub fn set_world(&mut self, index: usize, world: Arc<World>, seed: u64) -> Result<()> {
         let n = self.envs.len();
         let env = self.envs.get_mut(index).ok_or_else(|| {
-            Error::InvalidArgument(format!("expected an environment index below {n}, found {index}"))
+            Error::InvalidArgument(format!(
+                "expected an environment index below {n}, found {index}"
+            ))
         })?;
         let config = SimConfig {
             seed,

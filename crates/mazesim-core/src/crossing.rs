@@ -40,7 +40,7 @@ pub struct CrossingTracker {
 
 /// Where `p` lies in a checkpoint's frame: (along its yaw, across).
 fn local(cp: &Checkpoint, p: [f64; 2]) -> (f64, f64) {
-    let (s, c) = cp.yaw.sin_cos();
+    let [c, s] = cp.axis;
     let dx = p[0] - cp.center[0];
     let dy = p[1] - cp.center[1];
     (c * dx + s * dy, -s * dx + c * dy)
@@ -119,6 +119,7 @@ mod tests {
             yaw: 0.0,
             width: 0.2,
             length: 0.085,
+            axis: [1.0, 0.0],
         }
     }
 

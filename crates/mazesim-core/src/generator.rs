@@ -150,9 +150,8 @@ pub fn generate(params: &MazeParams, seed: u64) -> Result<World> {
             params.wall_thickness, params.cell_size
         )));
     }
-    if !(0.0..=1.0).contains(&params.loops)
-        || !(params.floor_reflectance > 0.0 && params.floor_reflectance <= 1.0)
-    {
+    let reflectance_ok = params.floor_reflectance > 0.0 && params.floor_reflectance <= 1.0;
+    if !(0.0..=1.0).contains(&params.loops) || !reflectance_ok {
         return Err(Error::InvalidArgument(format!(
             "expected loops in [0, 1] and floor reflectance in (0, 1], found {} and {}",
             params.loops, params.floor_reflectance

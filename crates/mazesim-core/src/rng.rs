@@ -7,6 +7,8 @@
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Rng {
     state: [u64; 4],
+    /// The second normal sample of the last polar draw, served by the next `normal` call.
+    spare_normal: Option<u64>,
 }
 
 fn splitmix64(x: &mut u64) -> u64 {
@@ -27,7 +29,10 @@ impl Rng {
             splitmix64(&mut x),
             splitmix64(&mut x),
         ];
-        Self { state }
+        Self {
+            state,
+            spare_normal: None,
+        }
     }
 
     /// Next 64 random bits.
@@ -54,15 +59,20 @@ impl Rng {
         lo + (hi - lo) * self.uniform()
     }
 
-    /// Standard normal sample (Marsaglia's polar method; one sample per call keeps the
-    /// stream position independent of how callers interleave draws).
+    /// Standard normal sample (Marsaglia's polar method: each accepted pair gives two samples,
+    /// the second kept for the next call).
     pub fn normal(&mut self) -> f64 {
+        if let Some(bits) = self.spare_normal.take() {
+            return f64::from_bits(bits);
+        }
         loop {
             let u = 2.0 * self.uniform() - 1.0;
             let v = 2.0 * self.uniform() - 1.0;
             let s = u * u + v * v;
             if s > 0.0 && s < 1.0 {
-                return u * (-2.0 * s.ln() / s).sqrt();
+                let k = (-2.0 * s.ln() / s).sqrt();
+                self.spare_normal = Some((v * k).to_bits());
+                return u * k;
             }
         }
     }

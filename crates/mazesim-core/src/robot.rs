@@ -170,6 +170,16 @@ impl RobotProfile {
                     "expected the height of a ground sensor above the floor, found none".into(),
                 ));
             }
+            let spot = m.footprint.map_or(0.0, |f| f.0);
+            if spot * std::f64::consts::FRAC_1_SQRT_2 > crate::world::floor::SPOT_MARGIN {
+                return Err(bad(
+                    format!("models.{name}.footprint"),
+                    format!(
+                        "expected a ground spot of at most {:.4} m a side, found {spot}",
+                        crate::world::floor::SPOT_MARGIN * std::f64::consts::SQRT_2
+                    ),
+                ));
+            }
             models.insert(
                 name.clone(),
                 Arc::new(SensorModel {

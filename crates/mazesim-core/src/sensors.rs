@@ -51,6 +51,13 @@ pub fn spot_reflectance(
     if model.footprint <= 0.0 {
         return floor.reflectance_at(at);
     }
+    let candidates = floor.regions_near(at);
+    if candidates.is_empty() {
+        return floor.background();
+    }
+    debug_assert!(
+        model.footprint * std::f64::consts::FRAC_1_SQRT_2 <= crate::world::floor::SPOT_MARGIN
+    );
     let (s, c) = heading.sin_cos();
     let step = model.footprint / SPOT_SAMPLES as f64;
     let first = -(model.footprint - step) / 2.0;
@@ -59,7 +66,8 @@ pub fn spot_reflectance(
         let u = first + i as f64 * step;
         for j in 0..SPOT_SAMPLES {
             let v = first + j as f64 * step;
-            sum += floor.reflectance_at([at[0] + c * u - s * v, at[1] + s * u + c * v]);
+            sum +=
+                floor.reflectance_among(candidates, [at[0] + c * u - s * v, at[1] + s * u + c * v]);
         }
     }
     sum / (SPOT_SAMPLES * SPOT_SAMPLES) as f64

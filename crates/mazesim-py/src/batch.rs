@@ -218,7 +218,8 @@ impl PyBatch {
     /// buffers change at the next observe, step or reset.
     fn set_world(&self, py: Python<'_>, index: usize, world: &PyWorld, seed: u64) -> PyResult<()> {
         let w = world.inner.clone();
-        py.detach(|| self.with(|b| b.set_world(index, w, seed))).py()
+        py.detach(|| self.with(|b| b.set_world(index, w, seed)))
+            .py()
     }
 
     /// Simulated seconds of each environment since its reset.

@@ -17,6 +17,10 @@ pub struct PaintRegion {
 /// Side of a look-up bin in metres.
 const BIN: f64 = 0.05;
 
+/// Regions are listed in every bin they come within this distance of (metres), so that a bin's
+/// list serves every point of a sensor spot centred in it (spots are a few millimetres wide).
+pub const SPOT_MARGIN: f64 = 0.005;
+
 /// The painted floor of a world.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FloorPaint {
@@ -53,7 +57,7 @@ impl FloorPaint {
         let rows = (((bounds.max[1] - origin[1]) / BIN).floor() as usize + 1).max(1);
         let mut bins: Vec<Vec<u32>> = vec![Vec::new(); cols * rows];
         for (i, r) in regions.iter().enumerate().rev() {
-            let b = r.shape.bounds();
+            let b = r.shape.bounds().grown(SPOT_MARGIN);
             let c0 = ((b.min[0] - origin[0]) / BIN).floor().max(0.0) as usize;
             let r0 = ((b.min[1] - origin[1]) / BIN).floor().max(0.0) as usize;
             let c1 = (((b.max[0] - origin[0]) / BIN).floor() as usize).min(cols - 1);
@@ -92,29 +96,40 @@ impl FloorPaint {
         &self.regions
     }
 
-    /// Reflectance factor of the floor at `p`.
-    pub fn reflectance_at(&self, p: [f64; 2]) -> f64 {
+    /// The regions that may paint points within `SPOT_MARGIN` of `p`, topmost first.
+    pub fn regions_near(&self, p: [f64; 2]) -> &[u32] {
         let fx = (p[0] - self.origin[0]) / BIN;
         let fy = (p[1] - self.origin[1]) / BIN;
         if !(fx >= 0.0 && fy >= 0.0) {
-            return self.background;
+            return &[];
         }
         let (col, row) = (fx as usize, fy as usize);
         if col >= self.cols || row >= self.rows {
-            return self.background;
+            return &[];
         }
         let bin = row * self.cols + col;
         let (s, e) = (
             self.bin_start[bin] as usize,
             self.bin_start[bin + 1] as usize,
         );
-        for &i in &self.bin_regions[s..e] {
+        &self.bin_regions[s..e]
+    }
+
+    /// Reflectance at `p` among `candidates` (from `regions_near` of a point within
+    /// `SPOT_MARGIN` of `p`).
+    pub fn reflectance_among(&self, candidates: &[u32], p: [f64; 2]) -> f64 {
+        for &i in candidates {
             let r = &self.regions[i as usize];
             if r.shape.contains(p) {
                 return r.reflectance;
             }
         }
         self.background
+    }
+
+    /// Reflectance factor of the floor at `p`.
+    pub fn reflectance_at(&self, p: [f64; 2]) -> f64 {
+        self.reflectance_among(self.regions_near(p), p)
     }
 }
 

@@ -38,6 +38,8 @@ pub struct Checkpoint {
     pub width: f64,
     /// Extent along the direction of travel (bars times bar length).
     pub length: f64,
+    /// Unit vector along `yaw` (cos, sin).
+    pub axis: [f64; 2],
 }
 
 /// The goal region: a disc.
@@ -400,6 +402,7 @@ fn checkpoint_from(c: &spec::CheckpointSpec, barcode: &BarcodeSpec) -> Checkpoin
         code,
         center: xy(&c.center),
         yaw: c.yaw.get(),
+        axis: [c.yaw.get().cos(), c.yaw.get().sin()],
         width: c.width.get(),
     }
 }

@@ -2,7 +2,7 @@
 //! walls near the query, found through a uniform bin grid.
 
 use parry2d::math::{Pose, Vector};
-use parry2d::query::{PointQuery, Ray, RayCast};
+use parry2d::query::{Ray, RayCast};
 use parry2d::shape::Cuboid;
 
 use super::geometry::{Bounds, WallBox};
@@ -14,6 +14,10 @@ const BIN: f64 = 0.1;
 #[derive(Debug, Clone)]
 pub struct WallIndex {
     shapes: Vec<(Cuboid, Pose)>,
+    /// Per wall: centre x, centre y, cos yaw, sin yaw, half x, half y (for distance queries).
+    frames: Vec<[f32; 6]>,
+    /// Per wall: its bounding box (min x, min y, max x, max y), to skip walls a ray cannot meet.
+    boxes: Vec<[f32; 4]>,
     reflectance: Vec<f32>,
     origin: [f64; 2],
     cols: usize,
@@ -47,10 +51,38 @@ impl WallIndex {
             })
             .collect();
         let reflectance = walls.iter().map(|w| w.reflectance as f32).collect();
+        let frames: Vec<[f32; 6]> = walls
+            .iter()
+            .map(|w| {
+                let (s, c) = w.yaw.sin_cos();
+                [
+                    w.center[0] as f32,
+                    w.center[1] as f32,
+                    c as f32,
+                    s as f32,
+                    w.half[0] as f32,
+                    w.half[1] as f32,
+                ]
+            })
+            .collect();
+        let boxes: Vec<[f32; 4]> = walls
+            .iter()
+            .map(|w| {
+                let b = w.bounds().grown(1e-4);
+                [
+                    b.min[0] as f32,
+                    b.min[1] as f32,
+                    b.max[0] as f32,
+                    b.max[1] as f32,
+                ]
+            })
+            .collect();
         let bounds = walls.iter().fold(Bounds::EMPTY, |b, w| b.union(w.bounds()));
         if bounds.is_empty() {
             return Self {
                 shapes,
+                frames,
+                boxes,
                 reflectance,
                 origin: [0.0, 0.0],
                 cols: 0,
@@ -81,6 +113,8 @@ impl WallIndex {
         }
         Self {
             shapes,
+            frames,
+            boxes,
             reflectance,
             origin,
             cols,
@@ -96,7 +130,8 @@ impl WallIndex {
         rows: usize,
         b: Bounds,
     ) -> (usize, usize, usize, usize) {
-        let clamp = |v: f64, n: usize| (v.floor().max(0.0) as usize).min(n - 1);
+        // Truncation of a non-negative number is its floor (and avoids a libm call).
+        let clamp = |v: f64, n: usize| (v.max(0.0) as usize).min(n - 1);
         (
             clamp((b.min[0] - origin[0]) / BIN, cols),
             clamp((b.min[1] - origin[1]) / BIN, rows),
@@ -105,7 +140,8 @@ impl WallIndex {
         )
     }
 
-    /// Calls `f` with the index of every wall whose bin meets `b` (a wall may come more than once).
+    /// Calls `f` with the index of every wall listed in a bin that meets `b` (a wall listed in
+    /// several of those bins comes more than once; callers' tests are cheap and idempotent).
     fn for_each_near(&self, b: Bounds, mut f: impl FnMut(usize)) {
         if self.cols == 0 {
             return;
@@ -119,15 +155,14 @@ impl WallIndex {
         }
         let (c0, r0, c1, r1) = Self::bin_range_of(self.origin, self.cols, self.rows, b);
         for row in r0..=r1 {
-            for col in c0..=c1 {
-                let bin = row * self.cols + col;
-                let (s, e) = (
-                    self.bin_start[bin] as usize,
-                    self.bin_start[bin + 1] as usize,
-                );
-                for &i in &self.bin_walls[s..e] {
-                    f(i as usize);
-                }
+            let first = row * self.cols;
+            let (s, e) = (
+                self.bin_start[first + c0] as usize,
+                self.bin_start[first + c1 + 1] as usize,
+            );
+            // Bins of a row are consecutive in the CSR layout: one slice covers c0..=c1.
+            for &i in &self.bin_walls[s..e] {
+                f(i as usize);
             }
         }
     }
@@ -157,7 +192,15 @@ impl WallIndex {
             Vector::new(dir[0], dir[1]),
         );
         let mut best: Option<RayHit> = None;
+        let (lo, hi) = (
+            [origin[0].min(end[0]), origin[1].min(end[1])],
+            [origin[0].max(end[0]), origin[1].max(end[1])],
+        );
         self.for_each_near(b, |i| {
+            let [x0, y0, x1, y1] = self.boxes[i];
+            if x0 > hi[0] || y0 > hi[1] || x1 < lo[0] || y1 < lo[1] {
+                return;
+            }
             let (shape, pose) = &self.shapes[i];
             let limit = best.map_or(max_distance, |h| h.distance);
             if let Some(toi) = shape.cast_ray(pose, &ray, limit, true) {
@@ -184,13 +227,14 @@ impl WallIndex {
             min: [(p[0] - search) as f64, (p[1] - search) as f64],
             max: [(p[0] + search) as f64, (p[1] + search) as f64],
         };
-        let pt = Vector::new(p[0], p[1]);
         let mut best = search;
         self.for_each_near(b, |i| {
-            let (shape, pose) = &self.shapes[i];
-            let proj = shape.project_point(pose, pt, false);
-            let d = (proj.point - pt).length();
-            let signed = if proj.is_inside { -d } else { d };
+            let [cx, cy, c, s, hx, hy] = self.frames[i];
+            let (dx, dy) = (p[0] - cx, p[1] - cy);
+            let qx = (c * dx + s * dy).abs() - hx;
+            let qy = (-s * dx + c * dy).abs() - hy;
+            let outside = (qx.max(0.0).powi(2) + qy.max(0.0).powi(2)).sqrt();
+            let signed = outside + qx.max(qy).min(0.0);
             if signed < best {
                 best = signed;
             }
