@@ -119,3 +119,25 @@ def test_generator_is_seeded_and_mazes_are_solvable() -> None:
     assert a.goal is not None
     with pytest.raises(InvalidArgumentError):
         mazesim.generate_maze(1, 5)
+
+
+def test_start_poses_encoders_and_ground_readings() -> None:
+    batch = BatchSimulator(mazesim.load_world("arena"), num_envs=2, noise=False)
+    batch.set_starts(np.array([[0.1, 0.1, 0.5], [0.2, -0.1, 1.0]]))
+    obs, poses, colliding, crossings = buffers(batch)
+    batch.reset(obs, poses, colliding, crossings)
+    assert np.allclose(poses, [[0.1, 0.1, 0.5], [0.2, -0.1, 1.0]])
+    batch.step(np.array([[1, 2], [3, 4]], np.float32), obs, poses, colliding, crossings)
+    lone = Simulator(mazesim.load_world("arena"), noise=False)
+    lone.set_start(0.2, -0.1, 1.0)
+    lone.reset()
+    lone.step(3.0, 4.0)
+    assert np.array_equal(batch.encoders()[1], lone.encoders)
+    assert np.array_equal(poses[1], np.float32(lone.pose))
+    with pytest.raises(InvalidArgumentError, match="finite"):
+        batch.set_starts(np.array([[0.0, 0.0, np.nan], [0.0, 0.0, 0.0]]))
+    profile = mazesim.RobotProfile.builtin("e-puck")
+    assert profile.ground_reading(1, 1.0) == pytest.approx(855.625)
+    assert profile.ground_reading(1, 0.2) == pytest.approx(300.0)
+    with pytest.raises(InvalidArgumentError):
+        profile.ground_reading(3, 0.5)

@@ -246,6 +246,16 @@ impl Batch {
         Ok(())
     }
 
+    /// Mutable access to one environment (to set its start pose, for example).
+    pub fn env_mut(&mut self, index: usize) -> Result<&mut Simulator> {
+        let n = self.envs.len();
+        self.envs.get_mut(index).ok_or_else(|| {
+            Error::InvalidArgument(format!(
+                "expected an environment index below {n}, found {index}"
+            ))
+        })
+    }
+
     /// Puts environment `index` into another world, reset to its start with `seed`. Its rows of the
     /// outputs change at the next `observe`, `step` or `reset`.
     pub fn set_world(&mut self, index: usize, world: Arc<World>, seed: u64) -> Result<()> {

@@ -65,6 +65,8 @@ pub struct Simulator {
     tracker: CrossingTracker,
     crossings: Vec<Crossing>,
     last_crossing: i32,
+    /// Start pose used by `reset` instead of the world's, when set.
+    start_override: Option<[f32; 3]>,
 }
 
 impl Simulator {
@@ -96,6 +98,7 @@ impl Simulator {
             tracker: CrossingTracker::new(world.checkpoints().len()),
             crossings: Vec::new(),
             last_crossing: 0,
+            start_override: None,
             distance_readings: vec![0.0; robot.distance_sensors.len()],
             ground_readings: vec![0.0; robot.ground_sensors.len()],
             world,
@@ -126,7 +129,10 @@ impl Simulator {
             self.config.seed = s;
         }
         let s = self.world.start();
-        self.place([s[0] as f32, s[1] as f32, s[2] as f32]);
+        let start = self
+            .start_override
+            .unwrap_or([s[0] as f32, s[1] as f32, s[2] as f32]);
+        self.place(start);
         self.rng = Rng::new(self.config.seed);
         self.time = 0.0;
         self.steps = 0;
@@ -137,6 +143,17 @@ impl Simulator {
         self.crossings.clear();
         self.last_crossing = 0;
         self.read_sensors();
+    }
+
+    /// Sets the pose every later `reset` starts from (instead of the world's start).
+    pub fn set_start(&mut self, x: f64, y: f64, yaw: f64) -> Result<()> {
+        if !(x.is_finite() && y.is_finite() && yaw.is_finite()) {
+            return Err(Error::InvalidArgument(format!(
+                "expected a finite start pose, found ({x}, {y}, {yaw})"
+            )));
+        }
+        self.start_override = Some([x as f32, y as f32, yaw as f32]);
+        Ok(())
     }
 
     /// Moves the robot to a pose (x, y, yaw), at rest; sensors are read there. Time and counters go on.

@@ -4,7 +4,7 @@
 use std::sync::{Arc, Mutex};
 
 use mazesim_core::{Batch, Error, RobotProfile, StepOutputs, World};
-use numpy::PyArray1;
+use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 
 use crate::buffers::{readable, writable};
@@ -220,6 +220,28 @@ impl PyBatch {
         let w = world.inner.clone();
         py.detach(|| self.with(|b| b.set_world(index, w, seed)))
             .py()
+    }
+
+    /// Sets the start pose of each environment for its later resets: an (N, 3) float64 array of
+    /// x, y, yaw (every value finite).
+    fn set_starts(&self, starts: &Bound<'_, PyAny>) -> PyResult<()> {
+        let starts = readable::<f64>(starts, "starts", "float64", &[self.n, 3])?;
+        let rows = starts.as_slice().expect("checked contiguous");
+        self.with(|b| {
+            for i in 0..rows.len() / 3 {
+                b.env_mut(i)?
+                    .set_start(rows[3 * i], rows[3 * i + 1], rows[3 * i + 2])?;
+            }
+            Ok(())
+        })
+        .py()
+    }
+
+    /// Wheel position sensors of each environment, (N, 2) float64 radians (left, right),
+    /// quantised to the profile's encoder resolution.
+    fn encoders<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
+        let v: Vec<f64> = self.with(|b| b.envs().iter().flat_map(|e| e.encoders()).collect());
+        Ok(PyArray1::from_vec(py, v).reshape([self.n, 2])?)
     }
 
     /// Simulated seconds of each environment since its reset.

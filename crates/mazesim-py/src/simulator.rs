@@ -69,6 +69,11 @@ impl PySimulator {
         self.with(|s| s.step(left, right)).py()
     }
 
+    /// Sets the pose every later reset starts from (instead of the world's start).
+    fn set_start(&self, x: f64, y: f64, yaw: f64) -> PyResult<()> {
+        self.with(|s| s.set_start(x, y, yaw)).py()
+    }
+
     /// Moves the robot to (x, y, yaw) at rest and reads the sensors there.
     fn set_pose(&self, x: f64, y: f64, yaw: f64) -> PyResult<()> {
         self.with(|s| s.set_pose(x, y, yaw)).py()

@@ -279,6 +279,22 @@ impl PyRobotProfile {
         rows_to_array(py, rows)
     }
 
+    /// Noise-free reading of ground sensor `index` over a floor of reflectance factor `f`.
+    fn ground_reading(&self, index: usize, reflectance: f64) -> PyResult<f64> {
+        let sensor = self.inner.ground_sensors.get(index).ok_or_else(|| {
+            crate::errors::to_py(mazesim_core::Error::InvalidArgument(format!(
+                "expected a ground sensor index below {}, found {index}",
+                self.inner.ground_sensors.len()
+            )))
+        })?;
+        if !(reflectance > 0.0 && reflectance <= 1.0) {
+            return Err(crate::errors::to_py(mazesim_core::Error::InvalidArgument(
+                format!("expected a reflectance factor in (0, 1], found {reflectance}"),
+            )));
+        }
+        Ok(sensor.model.table.eval(sensor.model.height / reflectance).0)
+    }
+
     /// (N, 2) array: x, y of each ground sensor in the robot frame.
     fn ground_sensor_positions<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         let rows = self
