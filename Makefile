@@ -5,14 +5,18 @@ PYTHON ?= python3.11
 VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
-PY_PACKAGES := maturin numpy matplotlib pytest hypothesis ruff mypy typing_extensions
+PY_PACKAGES := maturin numpy matplotlib pytest hypothesis ruff mypy typing_extensions gymnasium
 PY_SOURCES := python tests
+# Only `make bench-peers` needs these: the peers mazesim is measured against, and its
+# options (e.g. PEER_ARGS="--envs 64,1024 --json").
+PEER_PACKAGES := pymunk
+PEER_ARGS ?=
 # The binding crate's build script asks this interpreter for its configuration.
 export PYO3_PYTHON := $(CURDIR)/$(BIN)/python
 
 .DEFAULT_GOAL := help
 
-.PHONY: help venv build test demo lint typecheck fmt bench wheel clean
+.PHONY: help venv build test demo lint typecheck fmt bench wheel clean ros-deps ros-demo bench-peers
 
 help: ## list the targets
 	@echo "mazesim make targets:"
@@ -29,13 +33,32 @@ $(STAMP):
 build: venv ## build the extension in release mode and install mazesim into .venv
 	VIRTUAL_ENV=$(CURDIR)/$(VENV) $(BIN)/maturin develop --release --quiet
 
-test: build ## run the Rust tests, then the Python tests
+test: build ros-deps ## run the Rust tests, then the Python tests (ROS bridge tests included)
 	cargo test --workspace --exclude mazesim-py
 	$(BIN)/python -m pytest
 	$(BIN)/python -m mypy.stubtest mazesim._core
 
 demo: build ## run the avoid-collision demo in seed-maze; writes mazesim-demo/
 	$(BIN)/mazesim demo --out mazesim-demo
+
+# Debian's ROS 1 (DESIGN.md section 9): installed only when /usr/bin/python3 cannot import rospy.
+# The venv sees /usr/lib/python3/dist-packages through a .pth file, at the END of sys.path (first
+# would break rosbag).
+ROS_DEBS := python3-rosmaster python3-roslaunch python3-rospy python3-rostopic python3-std-msgs \
+	python3-rosgraph-msgs python3-rosbag rosout
+ROS_PTH = $$($(BIN)/python -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')/zz-debian-ros.pth
+
+ros-deps: venv ## install Debian's ROS 1 packages if missing; let .venv import them
+	@if /usr/bin/python3 -c 'import rospy' 2>/dev/null; then :; \
+	elif command -v apt-get >/dev/null; then \
+		sudo=; [ "$$(id -u)" -eq 0 ] || sudo=sudo; \
+		$$sudo apt-get update && $$sudo apt-get install -y --no-install-recommends $(ROS_DEBS); \
+	else echo "ros-deps: no apt-get; install ROS 1 yourself (the ROS tests are skipped without it)"; fi
+	@if [ -d /usr/lib/python3/dist-packages ]; then \
+		echo /usr/lib/python3/dist-packages > "$(ROS_PTH)"; fi
+
+ros-demo: build ros-deps ## bridge + avoid-collision over ROS in lockstep; records mazesim-ros-demo/maze.bag
+	$(BIN)/mazesim ros demo --out mazesim-ros-demo
 
 lint: venv ## rustfmt, clippy (warnings are errors), ruff check and ruff format
 	cargo fmt --all --check
@@ -55,11 +78,15 @@ fmt: venv ## format Rust and Python sources in place
 bench: ## run the criterion benches
 	cargo bench
 
+bench-peers: build ## mazesim against hand-written numpy and pymunk peers (installs pymunk)
+	$(BIN)/python -m pip install --quiet $(PEER_PACKAGES)
+	$(BIN)/python benches/bench_vs_peers.py $(PEER_ARGS)
+
 wheel: venv ## build a release wheel into dist/
 	$(BIN)/maturin build --release --out dist
 
 clean: ## remove build products, .venv, dist and demo output
 	cargo clean
-	rm -rf $(VENV) dist mazesim-demo .pytest_cache .ruff_cache .mypy_cache .hypothesis
+	rm -rf $(VENV) dist mazesim-demo mazesim-ros-demo .pytest_cache .ruff_cache .mypy_cache .hypothesis
 	find python tests -name __pycache__ -type d -prune -exec rm -rf {} +
 	rm -f python/mazesim/_core*.so python/mazesim/_core*.pyd

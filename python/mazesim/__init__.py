@@ -64,7 +64,8 @@ def load_world(name_or_path: str | os.PathLike[str]) -> World:
     """Loads a built-in world by name, or a world file by path.
 
     A string that names a built-in world (see :func:`builtin_world_names`) wins over a file of
-    the same name in the current folder; anything else is read as a path to a ``.toml`` world file.
+    the same name in the current folder; anything else is read as a path to a ``.toml`` world file,
+    or to a Webots ``.wbt`` world, which is imported (see :func:`mazesim.webots.import_wbt`).
 
     Args:
         name_or_path: A built-in world name such as ``"seed-maze"``, or a path to a world file.
@@ -82,6 +83,10 @@ def load_world(name_or_path: str | os.PathLike[str]) -> World:
         return World.builtin(name_or_path)
     path = os.fspath(name_or_path)
     if os.path.isfile(path):
+        if path.lower().endswith(".wbt"):
+            from mazesim.webots.importer import import_wbt
+
+            return import_wbt(path)[0]
         return World.load(path)
     available = sorted(builtin_world_names())
     error = UnknownNameError(
@@ -90,3 +95,13 @@ def load_world(name_or_path: str | os.PathLike[str]) -> World:
     )
     error.available = available
     raise error
+
+
+# gymnasium is optional (pip install "mazesim[gym]"): with it, importing mazesim registers
+# mazesim/EPuckMaze-v0 (see mazesim.envs).
+import importlib.util as _importlib_util  # noqa: E402
+
+if _importlib_util.find_spec("gymnasium") is not None:
+    from mazesim.envs import register_envs
+
+    register_envs()

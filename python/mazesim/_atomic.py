@@ -9,6 +9,13 @@ from collections.abc import Iterator
 from typing import IO
 
 
+def _umask() -> int:
+    """The process's file-creation mask (read by setting and restoring it)."""
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
+
+
 @contextlib.contextmanager
 def atomic_file(path: str | os.PathLike[str]) -> Iterator[IO[bytes]]:
     """Opens a temporary file that replaces ``path`` when the block ends without an error.
@@ -35,6 +42,8 @@ def atomic_file(path: str | os.PathLike[str]) -> Iterator[IO[bytes]]:
         with handle:
             yield handle
             handle.flush()
+            # A temporary file is private (0600); give the result the user's usual permissions.
+            os.fchmod(handle.fileno(), 0o666 & ~_umask())
             os.fsync(handle.fileno())
         os.replace(handle.name, target)
     except BaseException:

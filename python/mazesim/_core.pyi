@@ -1,7 +1,8 @@
 """Type stubs for the compiled core of mazesim (``mazesim._core``)."""
 
+import os
 from collections.abc import Sequence
-from typing import ClassVar, final
+from typing import Any, ClassVar, final
 
 import numpy as np
 import numpy.typing as npt
@@ -15,6 +16,8 @@ __all__ = [
     "builtin_world_names",
     "default_codes",
     "generate_maze",
+    "import_wbt",
+    "import_wbt_text",
     "robot_profile_names",
     "sharp_volts_to_cm",
     "validate_codes",
@@ -48,6 +51,13 @@ def default_codes() -> list[str]:
 
 def validate_codes(codes: list[str]) -> None:
     """Raises InvalidArgumentError for a palindrome, a duplicate or a reverse clash."""
+
+def import_wbt(path: str | os.PathLike[str]) -> tuple[World, dict[str, Any]]:
+    """Imports a Webots .wbt file: the mazesim World and the import report (obstacles, robot,
+    basic_time_step_ms, warnings)."""
+
+def import_wbt_text(text: str, source: str = "<string>") -> tuple[World, dict[str, Any]]:
+    """Imports the text of a .wbt file; `source` names it in error messages and names the world."""
 
 @final
 class World:
@@ -116,6 +126,8 @@ class RobotProfile:
     def ground_sensor_names(self) -> list[str]: ...
     def distance_sensor_poses(self) -> npt.NDArray[np.float64]:
         """(N, 3) array: x, y, heading of each distance sensor in the robot frame."""
+    def ground_reading(self, index: int, reflectance: float) -> float:
+        """Noise-free reading of ground sensor ``index`` over a floor of reflectance factor f."""
     def ground_sensor_positions(self) -> npt.NDArray[np.float64]:
         """(N, 2) array: x, y of each ground sensor in the robot frame."""
 
@@ -134,6 +146,8 @@ class Simulator:
     def reset(self, seed: int | None = None) -> None: ...
     def step(self, left: float, right: float) -> None:
         """Advances one control step with wheel speeds in rad/s (clamped to the motor limit)."""
+    def set_start(self, x: float, y: float, yaw: float) -> None:
+        """Sets the pose every later reset starts from (instead of the world's start)."""
     def set_pose(self, x: float, y: float, yaw: float) -> None: ...
     def distance_sensors(self) -> npt.NDArray[np.float32]: ...
     def ground_sensors(self) -> npt.NDArray[np.float32]: ...
@@ -215,6 +229,10 @@ class BatchSimulator:
         crossings: npt.NDArray[np.int32],
     ) -> None: ...
     def set_world(self, index: int, world: World, seed: int) -> None: ...
+    def set_starts(self, starts: npt.NDArray[np.float64]) -> None:
+        """Start poses ((N, 3) float64 x, y, yaw) of each env for its later resets."""
+    def encoders(self) -> npt.NDArray[np.float64]:
+        """(N, 2) wheel positions in radians (left, right)."""
     def times(self) -> npt.NDArray[np.float64]: ...
     def steps(self) -> npt.NDArray[np.uint64]: ...
     def collisions(self) -> npt.NDArray[np.uint64]: ...

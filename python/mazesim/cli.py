@@ -28,7 +28,12 @@ __all__ = ["main", "positive_seconds", "seed_argument"]
 
 #: Modules that add subcommands: each has ``register(commands)``, which adds its parser(s) to the
 #: ``argparse`` subparsers object and sets ``run=<function(args) -> int>`` as the parser default.
-COMMAND_MODULES: tuple[str, ...] = ()
+COMMAND_MODULES: tuple[str, ...] = (
+    "mazesim.bench",
+    "mazesim.ros.cli",
+    "mazesim.barcode.command",
+    "mazesim.webots.cli",
+)
 
 #: Exit code of a run that failed on an error of the user's input or of the file system.
 EXIT_ERROR = 2

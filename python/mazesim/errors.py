@@ -16,6 +16,7 @@ __all__ = [
     "InvalidArgumentError",
     "MazesimError",
     "MazesimIOError",
+    "MissingDependencyError",
     "UnknownNameError",
     "WorldFormatError",
 ]
@@ -75,3 +76,8 @@ class InvalidArgumentError(MazesimError, ValueError):
 
 class MazesimIOError(MazesimError, OSError):
     """Reading or writing a file failed (the message names the file)."""
+
+
+class MissingDependencyError(MazesimError, ImportError):
+    """An optional part of mazesim needs a package that is not installed (for example ROS 1's
+    ``rospy`` for :mod:`mazesim.ros`); the message names the package and how to install it."""

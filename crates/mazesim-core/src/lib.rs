@@ -28,6 +28,7 @@ pub mod rng;
 pub mod robot;
 pub mod sensors;
 pub mod simulator;
+pub mod wbt;
 pub mod world;
 
 pub use batch::{Batch, StepOutputs};

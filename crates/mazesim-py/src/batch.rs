@@ -241,7 +241,7 @@ impl PyBatch {
     /// quantised to the profile's encoder resolution.
     fn encoders<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
         let v: Vec<f64> = self.with(|b| b.envs().iter().flat_map(|e| e.encoders()).collect());
-        Ok(PyArray1::from_vec(py, v).reshape([self.n, 2])?)
+        PyArray1::from_vec(py, v).reshape([self.n, 2])
     }
 
     /// Simulated seconds of each environment since its reset.

@@ -1,10 +1,14 @@
 //! The `mazesim._core` extension module: a thin pyo3 layer over `mazesim-core`
 //! (type conversion, numpy buffers, error mapping). No simulation logic lives here.
 
+// Python functions take their keyword arguments as Rust parameters; many is normal here.
+#![allow(clippy::too_many_arguments)]
+
 mod batch;
 mod buffers;
 mod errors;
 mod simulator;
+mod wbt;
 mod world;
 
 use pyo3::prelude::*;
@@ -30,7 +34,6 @@ fn sharp_volts_to_cm(volts: f64) -> f64 {
 /// A generated maze world (seeded; see mazesim-core's generator).
 #[pyfunction]
 #[pyo3(signature = (width = 5, height = 5, seed = 0, cell_size = 0.25, wall_thickness = 0.01, loops = 0.0, checkpoints = true, floor_reflectance = 0.36))]
-#[allow(clippy::too_many_arguments)]
 fn generate_maze(
     width: usize,
     height: usize,
@@ -77,6 +80,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(generate_maze, m)?)?;
     m.add_function(wrap_pyfunction!(default_codes, m)?)?;
     m.add_function(wrap_pyfunction!(validate_codes, m)?)?;
+    m.add_function(wrap_pyfunction!(wbt::import_wbt, m)?)?;
+    m.add_function(wrap_pyfunction!(wbt::import_wbt_text, m)?)?;
     m.add_class::<batch::PyBatch>()?;
     m.add_class::<world::PyWorld>()?;
     m.add_class::<world::PyRobotProfile>()?;

@@ -17,6 +17,18 @@ pub struct PaintRegion {
 /// Side of a look-up bin in metres.
 const BIN: f64 = 0.05;
 
+/// At most this many bins: a world spread over kilometres gets coarser bins, not a huge grid.
+const MAX_BINS: f64 = 262_144.0;
+
+/// Side of the bins for a grid over `bounds`: `BIN`, or larger for very large worlds.
+fn bin_side(bounds: Bounds) -> f64 {
+    let w = bounds.max[0] - bounds.min[0];
+    let h = bounds.max[1] - bounds.min[1];
+    BIN.max((w * h / MAX_BINS).sqrt())
+        .max(w / 4096.0)
+        .max(h / 4096.0)
+}
+
 /// Regions are listed in every bin they come within this distance of (metres), so that a bin's
 /// list serves every point of a sensor spot centred in it (spots are a few millimetres wide).
 pub const SPOT_MARGIN: f64 = 0.005;
@@ -27,6 +39,8 @@ pub struct FloorPaint {
     background: f64,
     regions: Vec<PaintRegion>,
     origin: [f64; 2],
+    /// Side of a bin in metres.
+    bin: f64,
     cols: usize,
     rows: usize,
     /// Start of each bin's region list in `bin_regions` (CSR layout), `cols * rows + 1` entries.
@@ -46,6 +60,7 @@ impl FloorPaint {
                 background,
                 regions,
                 origin: [0.0, 0.0],
+                bin: BIN,
                 cols: 0,
                 rows: 0,
                 bin_start: vec![0],
@@ -53,15 +68,16 @@ impl FloorPaint {
             };
         }
         let origin = bounds.min;
-        let cols = (((bounds.max[0] - origin[0]) / BIN).floor() as usize + 1).max(1);
-        let rows = (((bounds.max[1] - origin[1]) / BIN).floor() as usize + 1).max(1);
+        let bin = bin_side(bounds);
+        let cols = ((bounds.max[0] - origin[0]) / bin) as usize + 1;
+        let rows = ((bounds.max[1] - origin[1]) / bin) as usize + 1;
         let mut bins: Vec<Vec<u32>> = vec![Vec::new(); cols * rows];
         for (i, r) in regions.iter().enumerate().rev() {
             let b = r.shape.bounds().grown(SPOT_MARGIN);
-            let c0 = ((b.min[0] - origin[0]) / BIN).floor().max(0.0) as usize;
-            let r0 = ((b.min[1] - origin[1]) / BIN).floor().max(0.0) as usize;
-            let c1 = (((b.max[0] - origin[0]) / BIN).floor() as usize).min(cols - 1);
-            let r1 = (((b.max[1] - origin[1]) / BIN).floor() as usize).min(rows - 1);
+            let c0 = ((b.min[0] - origin[0]) / bin).max(0.0) as usize;
+            let r0 = ((b.min[1] - origin[1]) / bin).max(0.0) as usize;
+            let c1 = (((b.max[0] - origin[0]) / bin).max(0.0) as usize).min(cols - 1);
+            let r1 = (((b.max[1] - origin[1]) / bin).max(0.0) as usize).min(rows - 1);
             for row in r0..=r1 {
                 for col in c0..=c1 {
                     bins[row * cols + col].push(i as u32);
@@ -79,6 +95,7 @@ impl FloorPaint {
             background,
             regions,
             origin,
+            bin,
             cols,
             rows,
             bin_start,
@@ -98,8 +115,8 @@ impl FloorPaint {
 
     /// The regions that may paint points within `SPOT_MARGIN` of `p`, topmost first.
     pub fn regions_near(&self, p: [f64; 2]) -> &[u32] {
-        let fx = (p[0] - self.origin[0]) / BIN;
-        let fy = (p[1] - self.origin[1]) / BIN;
+        let fx = (p[0] - self.origin[0]) / self.bin;
+        let fy = (p[1] - self.origin[1]) / self.bin;
         if !(fx >= 0.0 && fy >= 0.0) {
             return &[];
         }

@@ -184,3 +184,15 @@ proptest! {
         let _ = World::from_toml(&format!("{HEADER}{text}"), "fuzz");
     }
 }
+
+#[test]
+fn a_wall_a_kilometre_away_does_not_blow_up_the_index() {
+    let w = parse("[[walls]]\ncenter = [0, 0]\nsize = [0.1, 0.1]\n[[walls]]\ncenter = [1000, -1000]\nsize = [0.1, 0.1]\n[[paint]]\nshape = \"circle\"\ncenter = [-2000, 0]\nradius = 0.1\nreflectance = 0.2\n").unwrap();
+    let hit = w
+        .wall_index()
+        .cast_ray([-1.0, 0.0], [1.0, 0.0], 2.0)
+        .unwrap();
+    assert!((hit.distance - 0.95).abs() < 1e-4);
+    assert_eq!(w.floor().reflectance_at([-2000.0, 0.0]), 0.2);
+    assert_eq!(w.floor().reflectance_at([0.0, 0.0]), 1.0);
+}

@@ -10,6 +10,18 @@ use super::geometry::{Bounds, WallBox};
 /// Side of a look-up bin in metres (a few e-puck diameters).
 const BIN: f64 = 0.1;
 
+/// At most this many bins: a world spread over kilometres gets coarser bins, not a huge grid.
+const MAX_BINS: f64 = 262_144.0;
+
+/// Side of the bins for a grid over `bounds`: `BIN`, or larger for very large worlds.
+fn bin_side(bounds: Bounds) -> f64 {
+    let w = bounds.max[0] - bounds.min[0];
+    let h = bounds.max[1] - bounds.min[1];
+    BIN.max((w * h / MAX_BINS).sqrt())
+        .max(w / 4096.0)
+        .max(h / 4096.0)
+}
+
 /// The walls of a world as parry2d shapes with a bin index.
 #[derive(Debug, Clone)]
 pub struct WallIndex {
@@ -20,6 +32,8 @@ pub struct WallIndex {
     boxes: Vec<[f32; 4]>,
     reflectance: Vec<f32>,
     origin: [f64; 2],
+    /// Side of a bin in metres.
+    bin: f64,
     cols: usize,
     rows: usize,
     bin_start: Vec<u32>,
@@ -85,6 +99,7 @@ impl WallIndex {
                 boxes,
                 reflectance,
                 origin: [0.0, 0.0],
+                bin: BIN,
                 cols: 0,
                 rows: 0,
                 bin_start: vec![0],
@@ -92,13 +107,14 @@ impl WallIndex {
             };
         }
         let origin = bounds.min;
-        let cols = ((bounds.max[0] - origin[0]) / BIN).floor() as usize + 1;
-        let rows = ((bounds.max[1] - origin[1]) / BIN).floor() as usize + 1;
+        let bin = bin_side(bounds);
+        let cols = ((bounds.max[0] - origin[0]) / bin) as usize + 1;
+        let rows = ((bounds.max[1] - origin[1]) / bin) as usize + 1;
         let mut bins: Vec<Vec<u32>> = vec![Vec::new(); cols * rows];
         for (i, w) in walls.iter().enumerate() {
             // Grow a little so that f32 rounding never drops a wall from a bin it touches.
             let b = w.bounds().grown(1e-4);
-            let (c0, r0, c1, r1) = Self::bin_range_of(origin, cols, rows, b);
+            let (c0, r0, c1, r1) = Self::bin_range_of(origin, bin, cols, rows, b);
             for row in r0..=r1 {
                 for col in c0..=c1 {
                     bins[row * cols + col].push(i as u32);
@@ -117,6 +133,7 @@ impl WallIndex {
             boxes,
             reflectance,
             origin,
+            bin,
             cols,
             rows,
             bin_start,
@@ -126,6 +143,7 @@ impl WallIndex {
 
     fn bin_range_of(
         origin: [f64; 2],
+        bin: f64,
         cols: usize,
         rows: usize,
         b: Bounds,
@@ -133,10 +151,10 @@ impl WallIndex {
         // Truncation of a non-negative number is its floor (and avoids a libm call).
         let clamp = |v: f64, n: usize| (v.max(0.0) as usize).min(n - 1);
         (
-            clamp((b.min[0] - origin[0]) / BIN, cols),
-            clamp((b.min[1] - origin[1]) / BIN, rows),
-            clamp((b.max[0] - origin[0]) / BIN, cols),
-            clamp((b.max[1] - origin[1]) / BIN, rows),
+            clamp((b.min[0] - origin[0]) / bin, cols),
+            clamp((b.min[1] - origin[1]) / bin, rows),
+            clamp((b.max[0] - origin[0]) / bin, cols),
+            clamp((b.max[1] - origin[1]) / bin, rows),
         )
     }
 
@@ -148,12 +166,12 @@ impl WallIndex {
         }
         let far = b.max[0] < self.origin[0]
             || b.max[1] < self.origin[1]
-            || b.min[0] > self.origin[0] + self.cols as f64 * BIN
-            || b.min[1] > self.origin[1] + self.rows as f64 * BIN;
+            || b.min[0] > self.origin[0] + self.cols as f64 * self.bin
+            || b.min[1] > self.origin[1] + self.rows as f64 * self.bin;
         if far {
             return;
         }
-        let (c0, r0, c1, r1) = Self::bin_range_of(self.origin, self.cols, self.rows, b);
+        let (c0, r0, c1, r1) = Self::bin_range_of(self.origin, self.bin, self.cols, self.rows, b);
         for row in r0..=r1 {
             let first = row * self.cols;
             let (s, e) = (

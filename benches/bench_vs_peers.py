@@ -1,0 +1,422 @@
+"""mazesim against what a Python user could write instead, on the canonical workload.
+
+Not a test: run it by hand or with `make bench-peers` (which installs pymunk into .venv first).
+
+The workload is that of DESIGN.md section 11: per environment a distinct 5 x 5 maze of 0.25 m
+cells and 0.01 m walls (``generate_maze(seed=i, loops=0.1)``), the e-puck with ps0-ps7 and gs0-gs2
+read every step with noise, a 32 ms control step (= one physics step) and wheel speeds from the
+same Braitenberg rule (``peers.workload.braitenberg``). One env-step is one control step of one
+robot with all 11 sensors read. It runs three ways in this process:
+
+- mazesim: ``BatchSimulator`` stepping into preallocated buffers, the rule in numpy;
+- numpy: a tuned kinematic simulator in plain vectorised float32 numpy, worked in cache-sized
+  chunks of environments (``peers.numpy_peer``; chunk size from a quick sweep unless given);
+- pymunk: one Chipmunk space per environment, hand-built (``peers.pymunk_peer``).
+
+The runners are timed in interleaved rounds (mazesim, numpy, pymunk, mazesim, ...) so that any
+other load on the machine falls on all of them alike; each runs ``--steps`` control steps, or by
+default enough to take ``--seconds`` of wall time. mazesim uses every core (rayon) unless
+``--threads`` says otherwise; numpy and pymunk use one.
+
+    .venv/bin/python benches/bench_vs_peers.py [--envs 1024] [--steps K] [--json] [--check]
+
+``--check`` also runs the physical and sensor checks: robots stay inside their mazes, the deepest
+wall penetration over a run, and each peer's noise-free readings against mazesim's at the same
+poses.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import platform
+import sys
+import time
+from collections.abc import Callable, Sequence
+from typing import Any, Protocol
+
+import numpy as np
+
+import mazesim
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
+from peers import workload as wl  # noqa: E402
+from peers.numpy_peer import NumpyPeer  # noqa: E402
+
+PEERS = ("mazesim", "numpy", "pymunk")
+CHUNKS = (64, 128, 256, 512, 1024)
+# The issue's targets at 1024 envs: mazesim at least this many times each peer.
+TARGETS = {"numpy": 3.0, "pymunk": 25.0}
+
+
+class Runner(Protocol):
+    name: str
+
+    def reset(self) -> None: ...
+    def step(self) -> None: ...
+    def poses(self) -> np.ndarray: ...
+
+
+class MazesimRunner:
+    """``BatchSimulator`` with caller-owned buffers; the Braitenberg rule reads obs[:, :8]."""
+
+    name = "mazesim"
+
+    def __init__(
+        self, worlds: Sequence[mazesim.World], threads: int = 0, noise: bool = True
+    ) -> None:
+        n = len(worlds)
+        self.batch = mazesim.BatchSimulator(
+            list(worlds), robot="e-puck", seeds=0, noise=noise, threads=threads
+        )
+        self.obs = np.zeros((n, self.batch.observation_width), np.float32)
+        self.pose = np.zeros((n, 3), np.float32)
+        self.colliding = np.zeros(n, np.bool_)
+        self.crossings = np.zeros(n, np.int32)
+        self.actions = np.zeros((n, 2), np.float32)
+        self.scratch = np.zeros((8, n), np.float32)
+
+    def reset(self) -> None:
+        self.batch.reset(self.obs, self.pose, self.colliding, self.crossings)
+
+    def step(self) -> None:
+        wl.braitenberg(self.obs[:, :8].T, self.actions[:, 0], self.actions[:, 1], self.scratch)
+        self.batch.step(self.actions, self.obs, self.pose, self.colliding, self.crossings)
+
+    def poses(self) -> np.ndarray:
+        return self.pose
+
+
+def cpu_model() -> str:
+    try:
+        with open("/proc/cpuinfo", encoding="utf-8") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or platform.machine()
+
+
+def machine() -> dict[str, Any]:
+    cores = os.cpu_count() or 1
+    usable = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else cores
+    info: dict[str, Any] = {"cpu": cpu_model(), "cores": cores, "usable_cores": usable}
+    if hasattr(os, "getloadavg"):
+        info["load_average_1min"] = round(os.getloadavg()[0], 2)
+    return info
+
+
+def versions() -> dict[str, str]:
+    out = {
+        "python": platform.python_version(),
+        "mazesim": mazesim.__version__,
+        "numpy": np.__version__,
+    }
+    try:
+        import pymunk
+
+        out["pymunk"] = f"{pymunk.version} (Chipmunk {pymunk.chipmunk_version.split('-')[0]})"
+    except ImportError:
+        out["pymunk"] = "not installed"
+    return out
+
+
+def rate_of(runner: Runner, envs: int, seconds: float) -> float:
+    """A rough env-steps/s from at least `seconds` of stepping (for calibration)."""
+    steps, started = 0, time.perf_counter()
+    while True:
+        runner.step()
+        steps += 1
+        elapsed = time.perf_counter() - started
+        if elapsed >= seconds and steps >= 2:
+            return envs * steps / elapsed
+
+
+def sweep_chunks(
+    mazes: Sequence[wl.Maze], robot: wl.Robot, say: Callable[[str], None]
+) -> tuple[int, dict[int, float]]:
+    """The numpy peer's best chunk size: the best of five short bursts of each candidate, the
+    candidates taken in turn so that other load on the machine falls on all of them."""
+    envs = len(mazes)
+    peers = {c: NumpyPeer(mazes, robot, chunk=c) for c in sorted({min(c, envs) for c in CHUNKS})}
+    rates = dict.fromkeys(peers, 0.0)
+    for peer in peers.values():
+        peer.reset()
+        peer.step()
+    for _ in range(5):
+        for chunk, peer in peers.items():
+            rates[chunk] = max(rates[chunk], rate_of(peer, envs, 0.05))
+    best = max(rates, key=rates.__getitem__)
+    say(
+        "numpy chunk sweep (env-steps/s): "
+        + ", ".join(f"{c}: {r:,.0f}" for c, r in rates.items())
+        + f" -> chunk {best}"
+    )
+    return best, rates
+
+
+def make_runner(
+    name: str,
+    worlds: Sequence[mazesim.World],
+    mazes: Sequence[wl.Maze],
+    robot: wl.Robot,
+    chunk: int,
+    threads: int,
+    noise: bool = True,
+) -> Runner:
+    if name == "mazesim":
+        return MazesimRunner(worlds, threads=threads, noise=noise)
+    if name == "numpy":
+        return NumpyPeer(mazes, robot, chunk=chunk, noise=noise)
+    from peers.pymunk_peer import PymunkPeer
+
+    return PymunkPeer(mazes, robot, noise=noise)
+
+
+def measure(
+    envs: int,
+    peers: Sequence[str],
+    steps: int | None,
+    seconds: float,
+    rounds: int,
+    chunk: int | None,
+    threads: int,
+    say: Callable[[str], None],
+) -> dict[str, Any]:
+    worlds = wl.make_worlds(envs)
+    mazes = [wl.maze_of(w) for w in worlds]
+    robot = wl.epuck()
+    sanity = wl.Sanity(mazes, robot.body_radius)
+    sweep: dict[int, float] = {}
+    if "numpy" in peers and chunk is None:
+        chunk, sweep = sweep_chunks(mazes, robot, say)
+    chunk = chunk or 256
+
+    runners: list[Runner] = []
+    for name in peers:
+        runner = make_runner(name, worlds, mazes, robot, chunk, threads)
+        runner.reset()
+        runner.step()  # warm up
+        runners.append(runner)
+
+    # Steps per runner: as asked, or enough for `seconds` of wall time, in whole rounds.
+    per_round: dict[str, int] = {}
+    for runner in runners:
+        if steps is not None:
+            total = steps
+        else:
+            total = math.ceil(seconds * rate_of(runner, envs, min(0.3, seconds / 5)) / envs)
+        per_round[runner.name] = max(1, math.ceil(total / rounds))
+
+    elapsed = {r.name: 0.0 for r in runners}
+    best = {r.name: 0.0 for r in runners}
+    for _ in range(rounds):
+        for runner in runners:
+            k = per_round[runner.name]
+            started = time.perf_counter()
+            for _ in range(k):
+                runner.step()
+            dt = time.perf_counter() - started
+            elapsed[runner.name] += dt
+            best[runner.name] = max(best[runner.name], envs * k / dt)
+
+    results = []
+    for runner in runners:
+        total = per_round[runner.name] * rounds
+        results.append(
+            {
+                "envs": envs,
+                "peer": runner.name,
+                "env_steps_per_s": envs * total / elapsed[runner.name],
+                "best_round_env_steps_per_s": best[runner.name],
+                "steps": total,
+                "seconds": elapsed[runner.name],
+                "threads": (threads or os.cpu_count() or 1) if runner.name == "mazesim" else 1,
+                "sanity": sanity(runner.poses()),
+            }
+        )
+    out: dict[str, Any] = {"envs": envs, "results": results}
+    if "numpy" in peers:
+        out["numpy_chunk"] = chunk
+        if sweep:
+            out["numpy_chunk_sweep"] = {str(c): r for c, r in sweep.items()}
+    return out
+
+
+def ratios(results: Sequence[dict[str, Any]]) -> dict[str, float]:
+    by = {r["peer"]: r["env_steps_per_s"] for r in results}
+    if "mazesim" not in by:
+        return {}
+    return {f"mazesim/{p}": by["mazesim"] / by[p] for p in PEERS[1:] if p in by}
+
+
+def check(envs: int, steps: int, chunk: int, threads: int, peers: Sequence[str]) -> dict[str, Any]:
+    """Untimed checks: the sanity of each runner's robots over a run (every step), and each peer's
+    noise-free readings against mazesim's ``Simulator`` at poses mazesim's robots visited."""
+    worlds = wl.make_worlds(envs)
+    mazes = [wl.maze_of(w) for w in worlds]
+    robot = wl.epuck()
+    sanity = wl.Sanity(mazes, robot.body_radius)
+    report: dict[str, Any] = {"envs": envs, "steps": steps, "runs": {}, "sensors": {}}
+    visited: list[np.ndarray] = []
+    for name in peers:
+        runner = make_runner(name, worlds, mazes, robot, chunk, threads)
+        runner.reset()
+        deepest, inside = 0.0, 1.0
+        for k in range(steps):
+            runner.step()
+            s = sanity(runner.poses())
+            deepest = max(deepest, s["max_penetration_m"])
+            inside = min(inside, s["inside_share"])
+            if name == "mazesim" and k % 25 == 24:
+                visited.append(np.array(runner.poses(), copy=True))
+        report["runs"][name] = {
+            "min_inside_share": inside,
+            "max_penetration_m": deepest,
+            "mean_distance_from_start_m": s["mean_distance_from_start_m"],
+        }
+    if not visited:
+        return report
+    # Sensor models: noise off, poses from the mazesim run (many of them close to walls).
+    poses = np.concatenate(visited)[: 4 * envs].astype(np.float32)
+    env_of = np.arange(len(poses)) % envs
+    reference = np.empty((len(poses), 11), np.float32)
+    for k, (i, pose) in enumerate(zip(env_of, poses)):
+        sim = mazesim.Simulator(worlds[i], robot="e-puck", seed=0, noise=False)
+        sim.set_pose(*(float(v) for v in pose))
+        reference[k, :8] = sim.distance_sensors()
+        reference[k, 8:] = sim.ground_sensors()
+    for name in peers:
+        if name == "mazesim":
+            continue
+        maze_list = [mazes[i] for i in env_of]
+        runner = make_runner(name, [worlds[i] for i in env_of], maze_list, robot, chunk, 0, False)
+        runner.set_poses(poses)  # type: ignore[attr-defined]
+        obs = runner.observations()  # type: ignore[attr-defined]
+        ps_err = np.abs(obs[:, :8] - reference[:, :8])
+        gs_err = np.abs(obs[:, 8:] - reference[:, 8:])
+        report["sensors"][name] = {
+            "poses": len(poses),
+            "ps_max_abs_diff": float(ps_err.max()),
+            "ps_max_rel_diff": float((ps_err / np.maximum(reference[:, :8], 1.0)).max()),
+            "gs_share_within_1": float((gs_err <= 1.0).mean()),
+            "gs_max_abs_diff": float(gs_err.max()),
+        }
+    return report
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--envs", default="1024", help="environment counts, comma-separated")
+    parser.add_argument(
+        "--steps", type=int, help="control steps per runner (default: enough for --seconds)"
+    )
+    parser.add_argument("--seconds", type=float, default=2.0, help="wall time per runner")
+    parser.add_argument("--rounds", type=int, default=5, help="interleaved timing rounds")
+    parser.add_argument("--chunk", type=int, help="numpy peer's chunk size (default: sweep)")
+    parser.add_argument("--threads", type=int, default=0, help="mazesim threads (0: all cores)")
+    parser.add_argument("--peers", default=",".join(PEERS), help="runners, comma-separated")
+    parser.add_argument("--check", action="store_true", help="also run the physical checks")
+    parser.add_argument("--json", action="store_true", help="print one JSON object")
+    args = parser.parse_args(argv)
+
+    envs = [int(e) for e in args.envs.split(",")]
+    peers = [p.strip() for p in args.peers.split(",") if p.strip()]
+    unknown = set(peers) - set(PEERS)
+    if unknown or not peers or min(envs) < 1 or args.rounds < 1:
+        parser.error(f"runners are among {', '.join(PEERS)}; envs and rounds at least 1")
+
+    def say(line: str) -> None:
+        if not args.json:
+            print(line, flush=True)
+
+    info = machine()
+    vers = versions()
+    threads = args.threads or info["usable_cores"]
+    say(f"machine: {info['cpu']}, {info['cores']} cores (load {info.get('load_average_1min')})")
+    say("versions: " + ", ".join(f"{k} {v}" for k, v in vers.items()))
+    say(f"threads: mazesim {threads} (rayon), numpy 1 (elementwise ufuncs), pymunk 1 (Python loop)")
+
+    runs = []
+    for n in envs:
+        runs.append(
+            measure(n, peers, args.steps, args.seconds, args.rounds, args.chunk, threads, say)
+        )
+    results = [r for run in runs for r in run["results"]]
+
+    say("")
+    say(f"{'envs':>6}  {'peer':<8} {'env-steps/s':>12}  {'vs mazesim':>10}  {'steps':>6}  seconds")
+    for run in runs:
+        base = {r["peer"]: r["env_steps_per_s"] for r in run["results"]}.get("mazesim")
+        for r in run["results"]:
+            vs = f"{r['env_steps_per_s'] / base:.3f}" if base else "-"
+            say(
+                f"{r['envs']:>6}  {r['peer']:<8} {r['env_steps_per_s']:>12,.0f}  {vs:>10}  "
+                f"{r['steps']:>6}  {r['seconds']:.1f}"
+            )
+    for run in runs:
+        for key, value in ratios(run["results"]).items():
+            peer = key.split("/")[1]
+            say(
+                f"{run['envs']} envs: {key.replace('/', ' / ')} = {value:.2f}x"
+                f" (target >= {TARGETS[peer]:g}x)"
+            )
+        if "numpy_chunk" in run:
+            say(f"{run['envs']} envs: numpy peer chunk = {run['numpy_chunk']} envs")
+    for r in results:
+        s = r["sanity"]
+        say(
+            f"sanity {r['envs']} {r['peer']}: inside {s['inside_share']:.3f}, "
+            f"penetration {s['max_penetration_m'] * 1000:.2f} mm, "
+            f"{s['mean_distance_from_start_m']:.2f} m from start"
+        )
+
+    checks = None
+    if args.check:
+        chunk = runs[0].get("numpy_chunk") or args.chunk or 256
+        checks = check(min(envs[0], 256), 500, chunk, threads, peers)
+        say("")
+        say(f"checks over {checks['steps']} steps of {checks['envs']} envs (every step):")
+        for name, c in checks["runs"].items():
+            say(
+                f"  {name:<8} min inside share {c['min_inside_share']:.3f}, "
+                f"deepest penetration {c['max_penetration_m'] * 1000:.2f} mm, "
+                f"mean {c['mean_distance_from_start_m']:.2f} m from start"
+            )
+        for name, c in checks["sensors"].items():
+            say(
+                f"  {name:<8} vs mazesim, noise off, {c['poses']} poses: ps max |diff| "
+                f"{c['ps_max_abs_diff']:.3g} ({c['ps_max_rel_diff']:.2%}), gs within 1 count "
+                f"{c['gs_share_within_1']:.1%} (max |diff| {c['gs_max_abs_diff']:.0f}: mazesim "
+                f"averages a 3 mm spot, the peer samples a point)"
+            )
+
+    if args.json:
+        doc: dict[str, Any] = {
+            "workload": {
+                "maze": f"{wl.MAZE_CELLS} x {wl.MAZE_CELLS} cells of {wl.CELL_SIZE} m, "
+                f"{wl.WALL_THICKNESS} m walls, loops {wl.LOOPS}, env i = seed i",
+                "robot": "e-puck, ps0-ps7 and gs0-gs2 with noise",
+                "control_step_s": wl.CONTROL_STEP,
+                "controller": "braitenberg (peers/workload.py)",
+                "rounds": args.rounds,
+            },
+            "machine": info,
+            "versions": vers,
+            "threads": {"mazesim": threads, "numpy": 1, "pymunk": 1},
+            "results": results,
+            "ratios": {str(run["envs"]): ratios(run["results"]) for run in runs},
+            "numpy_chunk": {str(run["envs"]): run.get("numpy_chunk") for run in runs},
+        }
+        if checks is not None:
+            doc["checks"] = checks
+        print(json.dumps(doc, indent=2))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

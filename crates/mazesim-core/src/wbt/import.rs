@@ -1,0 +1,392 @@
+//! From the node tree to a 2D import: the scene walk (Solid, Pose, Transform, Group, joints),
+//! `WorldInfo`, the robot's start pose and the budget that keeps a hostile file bounded.
+//! Collision shapes are in `shapes.rs`, PROTO expansions in `protos.rs`.
+
+use super::frames::{axis_angle, tilt, Frame, Vec3, ENU_TO_NUE, IDENTITY, NUE_TO_ENU};
+use super::shapes::snap;
+use super::tree::{Document, Node, NodeId};
+use super::{Obstacle, WbtImport};
+
+/// Webots' default `WorldInfo.basicTimeStep` in milliseconds.
+pub const DEFAULT_BASIC_TIME_STEP_MS: f64 = 32.0;
+/// Node visits after which the walk stops (USE can make a small file expand exponentially).
+const MAX_VISITS: usize = 200_000;
+/// Deepest frame nesting the walk follows (chains of USE can nest deeper than the text).
+const MAX_WALK_DEPTH: usize = 200;
+/// A rotation that tips the vertical by more than this (radians) is reported as not vertical.
+pub const TILT_TOLERANCE: f64 = 0.01;
+/// Obstacles and robots farther than this from the origin (metres) are left out: mazesim's
+/// wall index is a uniform grid of 0.1 m bins over the world's bounds.
+pub const MAX_EXTENT: f64 = 50.0;
+
+/// Nodes that draw or light the scene and never collide.
+const VISUAL_NODES: &[&str] = &[
+    "Viewpoint",
+    "Background",
+    "TexturedBackground",
+    "TexturedBackgroundLight",
+    "DirectionalLight",
+    "PointLight",
+    "SpotLight",
+    "Fog",
+    "Shape",
+    "CadShape",
+    "Floor",
+];
+/// Robot base nodes: their bodies are the robot, not obstacles.
+const ROBOT_NODES: &[&str] = &["Robot", "DifferentialWheels", "Supervisor"];
+/// The e-puck PROTOs of Webots and webots_ros2.
+const EPUCK_PROTOS: &[&str] = &["E-puck", "E-puck_enu", "E-Puck_enu"];
+/// Nodes whose `endPoint` holds a Solid placed in the parent's frame.
+const JOINT_NODES: &[&str] = &[
+    "HingeJoint",
+    "Hinge2Joint",
+    "SliderJoint",
+    "BallJoint",
+    "Slot",
+];
+
+/// The state of one import.
+pub struct Importer<'d> {
+    pub doc: &'d Document,
+    /// PROTOs and primitives are Y-up (files before R2022a).
+    pub y_up: bool,
+    pub obstacles: Vec<Obstacle>,
+    pub robot: Option<[f64; 3]>,
+    pub warnings: Vec<String>,
+    visits: usize,
+    too_deep: bool,
+}
+
+/// Imports a parsed world.
+pub fn import(doc: &Document) -> WbtImport {
+    let mut importer = Importer {
+        doc,
+        y_up: !doc.version.has_z_up_protos(),
+        obstacles: Vec::new(),
+        robot: None,
+        warnings: doc.warnings.clone(),
+        visits: 0,
+        too_deep: false,
+    };
+    let (basic_time_step_ms, root) = importer.world_info();
+    for &id in &doc.roots {
+        importer.scene(id, &root, 0);
+    }
+    if importer.robot.is_none() {
+        importer
+            .warnings
+            .push("no e-puck in the world: the robot starts at (0, 0) facing +x".into());
+    }
+    WbtImport {
+        obstacles: importer.obstacles,
+        robot: importer.robot,
+        basic_time_step_ms,
+        warnings: importer.warnings,
+    }
+}
+
+impl<'d> Importer<'d> {
+    /// `line L: Type "name"` for messages.
+    pub fn label(&self, node: &Node) -> String {
+        let name = self
+            .strings(node, "name")
+            .first()
+            .cloned()
+            .or_else(|| node.def_name.clone());
+        match name {
+            Some(n) => format!("line {}: {} \"{}\"", node.line, node.type_name, n),
+            None => format!("line {}: {}", node.line, node.type_name),
+        }
+    }
+
+    pub fn warn(&mut self, message: String) {
+        self.warnings.push(message);
+    }
+
+    /// Counts a visit; false once the budget or the depth limit is exhausted.
+    pub fn enter(&mut self, depth: usize) -> bool {
+        self.visits += 1;
+        if self.visits == MAX_VISITS {
+            self.warn(format!(
+                "the world expands (through USE) to more than {MAX_VISITS} nodes; the rest is not imported"
+            ));
+        }
+        if depth == MAX_WALK_DEPTH && !self.too_deep {
+            self.too_deep = true;
+            self.warn(format!(
+                "nodes nest deeper than {MAX_WALK_DEPTH} levels (through USE); the deeper ones are not imported"
+            ));
+        }
+        self.visits < MAX_VISITS && depth < MAX_WALK_DEPTH
+    }
+
+    pub fn node(&self, id: NodeId) -> &'d Node {
+        self.doc.node(id)
+    }
+
+    /// The numbers of a field, if present.
+    pub fn numbers(&self, node: &'d Node, field: &str) -> Option<&'d [f64]> {
+        node.field(field).map(|f| f.value.numbers.as_slice())
+    }
+
+    pub fn strings(&self, node: &'d Node, field: &str) -> &'d [String] {
+        node.field(field)
+            .map_or(&[], |f| f.value.strings.as_slice())
+    }
+
+    pub fn nodes(&self, node: &'d Node, field: &str) -> &'d [NodeId] {
+        node.field(field).map_or(&[], |f| f.value.nodes.as_slice())
+    }
+
+    /// A field of `N` numbers, or `default` (with a warning when present but of another size).
+    pub fn vector<const N: usize>(
+        &mut self,
+        node: &'d Node,
+        field: &str,
+        default: [f64; N],
+    ) -> [f64; N] {
+        match self.numbers(node, field) {
+            None => default,
+            Some(values) => match <[f64; N]>::try_from(values) {
+                Ok(v) => v,
+                Err(_) => {
+                    let label = self.label(node);
+                    self.warn(format!(
+                        "{label}: field `{field}`: expected {N} numbers, found {}; used {default:?}",
+                        values.len()
+                    ));
+                    default
+                }
+            },
+        }
+    }
+
+    /// A single number field, or `default`.
+    pub fn number(&mut self, node: &'d Node, field: &str, default: f64) -> f64 {
+        self.vector::<1>(node, field, [default])[0]
+    }
+
+    /// The frame a node sets: `translation`, `rotation` (axis, angle) and `scale`.
+    pub fn local_frame(&mut self, node: &'d Node, default_translation: Vec3) -> Frame {
+        let translation = self.vector(node, "translation", default_translation);
+        let [x, y, z, angle] = self.vector(node, "rotation", [0.0, 0.0, 1.0, 0.0]);
+        let rotation = axis_angle([x, y, z], angle).unwrap_or_else(|| {
+            if angle != 0.0 {
+                let label = self.label(node);
+                self.warn(format!(
+                    "{label}: rotation axis ({x}, {y}, {z}) has no direction; rotation ignored"
+                ));
+            }
+            IDENTITY
+        });
+        let mut scale = self.vector(node, "scale", [1.0; 3]);
+        if scale.contains(&0.0) {
+            let label = self.label(node);
+            self.warn(format!(
+                "{label}: scale {scale:?} has a zero component; scale ignored"
+            ));
+            scale = [1.0; 3];
+        }
+        Frame::new(translation, rotation, scale)
+    }
+
+    /// The frame in which a Z-up definition (PROTO expansion, primitive) is written: for files
+    /// before R2022a, `frame` is Y-up and the definition is turned into it.
+    pub fn z_up(&self, frame: &Frame) -> Frame {
+        if self.y_up {
+            frame.then(&Frame::rotation(ENU_TO_NUE))
+        } else {
+            *frame
+        }
+    }
+
+    /// Reads `WorldInfo`: the basic time step and the frame of the whole world.
+    fn world_info(&mut self) -> (f64, Frame) {
+        let infos: Vec<NodeId> = self
+            .doc
+            .roots
+            .iter()
+            .copied()
+            .filter(|&id| self.node(id).type_name == "WorldInfo")
+            .collect();
+        if infos.len() > 1 {
+            let line = self.node(infos[1]).line;
+            self.warn(format!(
+                "line {line}: a second WorldInfo; only the first is read"
+            ));
+        }
+        let mut step = DEFAULT_BASIC_TIME_STEP_MS;
+        // Files before R2022a default to NUE, later ones to ENU.
+        let mut system = if self.y_up { "NUE" } else { "ENU" }.to_string();
+        if let Some(&id) = infos.first() {
+            let info = self.node(id);
+            let asked = self.number(info, "basicTimeStep", DEFAULT_BASIC_TIME_STEP_MS);
+            if asked > 0.0 && asked <= 1000.0 {
+                step = asked;
+            } else {
+                self.warn(format!(
+                    "line {}: basicTimeStep: expected a number of milliseconds in (0, 1000], found {asked}; used {DEFAULT_BASIC_TIME_STEP_MS}",
+                    info.line
+                ));
+            }
+            if let Some(s) = self.strings(info, "coordinateSystem").first() {
+                system = s.clone();
+            }
+        }
+        let frame = match system.as_str() {
+            "NUE" => Frame::rotation(NUE_TO_ENU),
+            "ENU" => Frame::IDENTITY,
+            other => {
+                self.warn(format!(
+                    "coordinateSystem \"{other}\": expected \"ENU\" or \"NUE\"; read as ENU"
+                ));
+                Frame::IDENTITY
+            }
+        };
+        (step, frame)
+    }
+
+    /// Walks a node of the scene (outside bounding objects).
+    pub fn scene(&mut self, id: NodeId, frame: &Frame, depth: usize) {
+        if !self.enter(depth) {
+            return;
+        }
+        let node = self.node(id);
+        let kind = node.type_name.as_str();
+        if kind == "WorldInfo" || VISUAL_NODES.contains(&kind) {
+            return;
+        }
+        if EPUCK_PROTOS.contains(&kind) {
+            self.epuck(node, frame);
+        } else if ROBOT_NODES.contains(&kind) {
+            if self.looks_like_epuck(node) {
+                self.epuck(node, frame);
+            } else {
+                let label = self.label(node);
+                self.warn(format!(
+                    "{label}: a robot that is not an e-puck: neither its body nor its pose is imported"
+                ));
+            }
+        } else if JOINT_NODES.contains(&kind) {
+            for &child in self.nodes(node, "endPoint") {
+                self.scene(child, frame, depth + 1);
+            }
+        } else if kind == "Group" {
+            self.scene_children(node, frame, depth);
+        } else if kind == "Pose" || kind == "Transform" {
+            let local = self.local_frame(node, [0.0; 3]);
+            self.scene_children(node, &frame.then(&local), depth);
+        } else if kind == "Solid" || kind == "Charger" {
+            self.solid(node, frame, depth);
+        } else if !self.expand_proto(node, frame) {
+            let label = self.label(node);
+            let what = if self.doc.declares_proto(kind) {
+                "an unknown PROTO"
+            } else {
+                "a node type mazesim does not import"
+            };
+            self.warn(format!(
+                "{label}: {what}: not imported (known PROTOs: RectangleArena, Floor, Wall, WoodenBox, CardboardBox, SolidBox, LegoTallWall, LegoTallInterval, E-puck)"
+            ));
+        }
+    }
+
+    fn scene_children(&mut self, node: &'d Node, frame: &Frame, depth: usize) {
+        for &child in self.nodes(node, "children") {
+            self.scene(child, frame, depth + 1);
+        }
+    }
+
+    /// Whether a Solid (or PROTO with a `physics` field) moves: it has a Physics node.
+    pub fn is_dynamic(&self, node: &'d Node) -> bool {
+        !self.nodes(node, "physics").is_empty()
+    }
+
+    fn solid(&mut self, node: &'d Node, frame: &Frame, depth: usize) {
+        let local = self.local_frame(node, [0.0; 3]);
+        let frame = frame.then(&local);
+        if self.is_dynamic(node) {
+            let label = self.label(node);
+            self.warn(format!(
+                "{label}: a dynamic object (it has physics): skipped, mazesim's obstacles are static"
+            ));
+            return;
+        }
+        for &shape in self.nodes(node, "boundingObject") {
+            let label = self.label(node);
+            self.bounding(shape, &frame, &label, depth + 1);
+        }
+        self.scene_children(node, &frame, depth);
+    }
+
+    /// A raw robot node counts as an e-puck when its name or model says so, or when it carries
+    /// the e-puck's proximity sensor `ps0`.
+    fn looks_like_epuck(&self, node: &'d Node) -> bool {
+        let says = |field: &str| {
+            self.strings(node, field).iter().any(|s| {
+                let s = s.to_ascii_lowercase();
+                s.contains("e-puck") || s.contains("epuck")
+            })
+        };
+        if says("name") || says("model") {
+            return true;
+        }
+        let mut stack: Vec<NodeId> = self.nodes(node, "children").to_vec();
+        let mut budget = 10_000usize;
+        while let (Some(id), true) = (stack.pop(), budget > 0) {
+            budget -= 1;
+            let n = self.node(id);
+            if n.type_name == "DistanceSensor" && self.strings(n, "name").iter().any(|s| s == "ps0")
+            {
+                return true;
+            }
+            for field in &n.fields {
+                stack.extend(field.value.nodes.iter().copied());
+            }
+        }
+        false
+    }
+
+    /// Takes the start pose from an e-puck: its origin and where its forward axis points.
+    fn epuck(&mut self, node: &'d Node, frame: &Frame) {
+        let label = self.label(node);
+        let local = self.local_frame(node, [0.0; 3]);
+        let body = self.z_up(&frame.then(&local));
+        if self.robot.is_some() {
+            self.warn(format!(
+                "{label}: a second e-puck: ignored, mazesim simulates one robot"
+            ));
+            return;
+        }
+        if self.strings(node, "version").iter().any(|v| v == "2") {
+            self.warn(format!(
+                "{label}: an e-puck2 (version \"2\"): mazesim's e-puck profile is the e-puck (max wheel speed 6.28 rad/s, not 7.536)"
+            ));
+        }
+        let up = body.vector([0.0, 0.0, 1.0]);
+        if tilt(up) > TILT_TOLERANCE {
+            self.warn(format!(
+                "{label}: the robot is tilted by {:.3} rad from upright; its heading is taken from its projected forward axis",
+                tilt(up)
+            ));
+        }
+        let forward = body.vector([1.0, 0.0, 0.0]);
+        let yaw = if forward[0].hypot(forward[1]) > 1e-9 {
+            forward[1].atan2(forward[0])
+        } else {
+            self.warn(format!(
+                "{label}: the robot faces straight up or down; heading 0 used"
+            ));
+            0.0
+        };
+        let [x, y, _] = body.origin;
+        if x.abs() > MAX_EXTENT || y.abs() > MAX_EXTENT {
+            self.warn(format!(
+                "{label}: the robot stands at ({x}, {y}), farther than {MAX_EXTENT} m from the origin; not imported"
+            ));
+            return;
+        }
+        self.robot = Some([snap(x), snap(y), snap(yaw)]);
+    }
+}

@@ -1,0 +1,122 @@
+//! Webots `.wbt` worlds: a reader of the file format and an import into a mazesim world.
+//!
+//! Reading ([`Document::parse`]) follows the VRML97 syntax Webots writes: the `#VRML_SIM` header
+//! of any version from V8.5 to R2025a, comments, commas as white space, `EXTERNPROTO`, `DEF` /
+//! `USE` (the most recent earlier DEF) and `hidden` lines (engine state, skipped). Malformed text
+//! is an [`Error::Format`](crate::Error::Format) with its line and column.
+//!
+//! Importing ([`WbtImport`]) walks the scene in 3D (Solid, Pose, Transform, Group, joints and the
+//! common PROTOs), keeps every collision shape (`boundingObject`) that meets the robot's height
+//! as a 2D obstacle in the world frame (z up, metres, radians), reads the e-puck's start pose
+//! and `WorldInfo.basicTimeStep`. Worlds before R2022a are converted from NUE as Webots' own
+//! converter does; later files that say `coordinateSystem "NUE"` are turned as a whole. Anything
+//! not understood (an unknown PROTO, a tilted shape, a mesh, a dynamic object) becomes a warning.
+//!
+//! ```
+//! use mazesim_core::wbt::{Obstacle, WbtImport};
+//!
+//! let text = "#VRML_SIM R2023b utf8\nWorldInfo { basicTimeStep 16 }\n\
+//!             WoodenBox { translation 0.3 0 0.05 size 0.1 0.1 0.1 }\n\
+//!             E-puck { rotation 0 0 1 1.57 }\n";
+//! let import = WbtImport::from_text(text, "boxes.wbt").unwrap();
+//! assert_eq!(import.basic_time_step_ms, 16.0);
+//! let [x, y, yaw] = import.robot.unwrap();
+//! assert!(x.abs() < 1e-12 && y.abs() < 1e-12 && (yaw - 1.57).abs() < 1e-12);
+//! let Obstacle::Box { center, size, .. } = import.obstacles[0] else { panic!("a box") };
+//! assert!((center[0] - 0.3).abs() < 1e-12 && (size[0] - 0.1).abs() < 1e-12);
+//! let world = import.to_world("boxes").unwrap();
+//! assert_eq!(world.walls().len(), 1);
+//! ```
+
+mod convert;
+mod frames;
+mod header;
+mod import;
+mod lexer;
+mod parser;
+mod protos;
+mod shapes;
+mod tree;
+
+use std::path::Path;
+
+use crate::error::{Error, Result};
+
+pub use header::WbtVersion;
+pub use tree::{Document, Field, Node, NodeId, Value};
+
+/// A 2D obstacle of an imported world, in metres and radians, world frame, z up.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Obstacle {
+    /// A box seen from above.
+    Box {
+        /// Centre.
+        center: [f64; 2],
+        /// Extent along the box's own x and y.
+        size: [f64; 2],
+        /// Rotation about z, in (-pi, pi].
+        yaw: f64,
+    },
+    /// A disc (an upright cylinder, capsule or sphere).
+    Circle {
+        /// Centre.
+        center: [f64; 2],
+        /// Radius.
+        radius: f64,
+    },
+}
+
+/// What a `.wbt` world holds for mazesim.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WbtImport {
+    /// The static obstacles, in file order.
+    pub obstacles: Vec<Obstacle>,
+    /// The e-puck's start pose (x, y, yaw), if the world has one.
+    pub robot: Option<[f64; 3]>,
+    /// `WorldInfo.basicTimeStep` (Webots' default 32 ms when absent).
+    pub basic_time_step_ms: f64,
+    /// Everything not imported or approximated, one sentence each, with its line.
+    pub warnings: Vec<String>,
+}
+
+impl WbtImport {
+    /// Imports a world file's text; `source` names it in error messages.
+    pub fn from_text(text: &str, source: &str) -> Result<WbtImport> {
+        let document = Document::parse(text, source)?;
+        Ok(import::import(&document))
+    }
+
+    /// Imports a world file's bytes, which must be UTF-8 text.
+    pub fn from_bytes(bytes: &[u8], source: &str) -> Result<WbtImport> {
+        match std::str::from_utf8(bytes) {
+            Ok(text) => Self::from_text(text, source),
+            Err(e) => {
+                let valid = std::str::from_utf8(&bytes[..e.valid_up_to()]).unwrap_or_default();
+                let line = valid.matches('\n').count() + 1;
+                let column = valid.rsplit('\n').next().unwrap_or("").chars().count() + 1;
+                Err(lexer::syntax_error(
+                    source,
+                    line,
+                    column,
+                    "(text)",
+                    format!(
+                        "expected UTF-8 text, found the byte 0x{:02X}",
+                        bytes[e.valid_up_to()]
+                    ),
+                ))
+            }
+        }
+    }
+
+    /// Reads and imports a `.wbt` file.
+    pub fn load(path: &Path) -> Result<WbtImport> {
+        let bytes = std::fs::read(path).map_err(|e| Error::Io {
+            path: path.display().to_string(),
+            message: format!("cannot read the Webots world: {e}"),
+        })?;
+        Self::from_bytes(&bytes, &path.display().to_string())
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,316 @@
+//! The importer on small hand-written worlds: conventions of each era, shapes, PROTOs, robots
+//! and the warnings for what is not imported.
+
+use std::f64::consts::{FRAC_PI_2, PI};
+
+use super::convert::polygon_sides;
+use super::{Document, Obstacle, WbtImport};
+use crate::error::Result;
+
+fn import(text: &str) -> WbtImport {
+    WbtImport::from_text(text, "test.wbt").unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() < 1e-9
+}
+
+fn the_box(o: &Obstacle) -> ([f64; 2], [f64; 2], f64) {
+    match *o {
+        Obstacle::Box { center, size, yaw } => (center, size, yaw),
+        Obstacle::Circle { .. } => panic!("expected a box, found {o:?}"),
+    }
+}
+
+fn warned(import: &WbtImport, words: &str) -> bool {
+    import.warnings.iter().any(|w| w.contains(words))
+}
+
+#[test]
+fn legacy_worlds_convert_protos_primitives_and_raw_robots() {
+    let w = import(
+        "#VRML_SIM V8.5 utf8\nWorldInfo { basicTimeStep 64 }\n\
+         Wall { translation 0 0 -1 rotation 0 1 0 1.5708 size 1 0.1 0.05 }\n\
+         Solid { translation 1 0.05 0 boundingObject Cylinder { radius 0.1 height 0.1 } }\n\
+         DifferentialWheels { translation 0 0 0.5 rotation 0 1 0 3.14159 children [\n\
+           DistanceSensor { name \"ps0\" } ] boundingObject Box { size 1 1 1 } }\n",
+    );
+    assert_eq!(w.basic_time_step_ms, 64.0);
+    // Wall at NUE (0, 0, -1) = ENU (1, 0); turned 90 degrees about up; 1 m long, 0.05 thick.
+    let (center, size, yaw) = the_box(&w.obstacles[0]);
+    assert!(close(center[0], 1.0) && close(center[1], 0.0), "{center:?}");
+    let long_along_y = close(size[0], 0.05) && close(size[1], 1.0);
+    assert!(long_along_y, "{size:?}");
+    assert!((yaw - FRAC_PI_2).abs() < 1e-4, "{yaw}");
+    // A Y-up cylinder stands upright: a circle at NUE (1, _, 0) = ENU (0, -1).
+    assert_eq!(
+        w.obstacles[1],
+        Obstacle::Circle {
+            center: [-0.0, -1.0],
+            radius: 0.1
+        }
+    );
+    // The raw robot faces NUE -z turned by pi about y: ENU -x, at NUE z 0.5 = ENU x -0.5.
+    let [x, y, heading] = w.robot.unwrap();
+    assert!(close(x, -0.5) && close(y, 0.0) && (heading.abs() - PI).abs() < 1e-4);
+    assert_eq!(w.obstacles.len(), 2, "the robot's own body is no obstacle");
+}
+
+#[test]
+fn new_files_saying_nue_are_turned_as_a_whole() {
+    let w = import(
+        "#VRML_SIM R2023b utf8\nWorldInfo { coordinateSystem \"NUE\" }\n\
+         Solid { translation 1 0.05 0 boundingObject Box { size 0.1 0.1 0.2 } }\n\
+         E-puck { rotation 1 0 0 -1.5707963 }\n",
+    );
+    let (center, size, _) = the_box(&w.obstacles[0]);
+    assert!(
+        close(center[0], 0.0) && close(center[1], -1.0),
+        "{center:?}"
+    );
+    // Box x (0.1) runs along ENU -y, box z (0.2) along ENU -x.
+    assert!(close(size[0].min(size[1]), 0.1) && close(size[0].max(size[1]), 0.2));
+    let [_, _, heading] = w.robot.unwrap();
+    assert!((heading + FRAC_PI_2).abs() < 1e-6, "{heading}");
+    assert!(!warned(&w, "tilted"), "{:?}", w.warnings);
+}
+
+#[test]
+fn shapes_nest_scale_and_reuse() {
+    let w = import(
+        "#VRML_SIM R2023b utf8\n\
+         DEF S Solid { translation 1 0 0 rotation 0 0 1 1.5708 boundingObject Group { children [\n\
+           Transform { translation 0.5 0 0.05 scale 2 1 1 children [ DEF B Shape { geometry Box { size 0.1 0.2 0.1 } } ] }\n\
+           Pose { translation 0 0 0.05 children [ USE B ] } ] } }\n\
+         Solid { translation 3 0 0 boundingObject USE B }\n",
+    );
+    assert_eq!(w.obstacles.len(), 3);
+    let (c0, s0, _) = the_box(&w.obstacles[0]);
+    assert!(
+        (c0[0] - 1.0).abs() < 1e-5 && (c0[1] - 0.5).abs() < 1e-5,
+        "{c0:?}"
+    );
+    assert!(
+        close(s0[0], 0.2) && close(s0[1], 0.2),
+        "scale doubles x: {s0:?}"
+    );
+    let (c2, s2, yaw2) = the_box(&w.obstacles[2]);
+    assert_eq!((c2, s2, yaw2), ([3.0, 0.0], [0.1, 0.2], 0.0));
+}
+
+#[test]
+fn what_is_not_understood_is_reported_not_fatal() {
+    let w = import(
+        "#VRML_SIM R2023b utf8\nEXTERNPROTO \"https://x/protos/Chair.proto\"\n\
+         Chair { }\nFancyNode { }\n\
+         Solid { rotation 1 0 0 0.5 translation 0 0 0.02 boundingObject Box { size 0.1 0.1 0.1 } }\n\
+         Solid { boundingObject Mesh { url \"x.obj\" } }\n\
+         Solid { translation 0 0 -0.05 boundingObject Box { size 9 9 0.1 } }\n\
+         Solid { translation 0 0 0.5 boundingObject Box { size 1 1 0.1 } }\n\
+         Solid { physics Physics { } boundingObject Box { } }\n\
+         WoodenBox { mass 2 }\nSolid { boundingObject USE NOPE }\n\
+         Robot { name \"pioneer\" }\n",
+    );
+    for words in [
+        "Chair: an unknown PROTO",
+        "FancyNode: a node type mazesim does not import",
+        "does not stand upright",
+        "a Mesh bounding object",
+        "passes over the robot",
+        "a dynamic object",
+        "a box with a mass",
+        "USE NOPE",
+        "\"pioneer\": a robot that is not an e-puck",
+        "no e-puck in the world",
+    ] {
+        assert!(
+            warned(&w, words),
+            "no warning with {words:?} in {:#?}",
+            w.warnings
+        );
+    }
+    // Only the tilted box stays (as its enclosing box); the floor slab is silently dropped.
+    assert_eq!(w.obstacles.len(), 1);
+    assert!(w.robot.is_none());
+}
+
+#[test]
+fn circles_become_polygons_in_the_world() {
+    let w = import(
+        "#VRML_SIM R2023b utf8\n\
+         Solid { translation 0.2 0.3 0.1 boundingObject Cylinder { radius 0.05 height 0.2 } }\n\
+         Solid { translation 0 0 0.05 rotation 1 0 0 1.5708 boundingObject Cylinder { radius 0.05 height 0.4 } }\n\
+         E-puck { }\n",
+    );
+    assert_eq!(
+        w.obstacles[0],
+        Obstacle::Circle {
+            center: [0.2, 0.3],
+            radius: 0.05
+        }
+    );
+    // A cylinder lying along y: its footprint is 0.1 x 0.4.
+    let (_, size, _) = the_box(&w.obstacles[1]);
+    assert!((size[0].min(size[1]) - 0.1).abs() < 1e-4 && (size[0].max(size[1]) - 0.4).abs() < 1e-4);
+    assert!(warned(&w, "kept as a circle"));
+    let world = w.to_world("round").unwrap();
+    assert_eq!(world.walls().len(), polygon_sides(0.05) + 1);
+}
+
+#[test]
+fn proto_defaults_and_arena_fields() {
+    let w = import(
+        "#VRML_SIM R2022a utf8\n\
+         RectangleArena { translation 1 1 0 floorSize 2 1 wallThickness 0.02 }\n\
+         Wall { }\nSolidBox { translation 0 0 0.05 size 0.1 0.2 0.1 }\n\
+         SolidBox { translation 0 0 0.05 enableBoundingObject FALSE }\n\
+         WoodenBox { translation 0 0 0.05 size 5 0.1 0.1 }\n",
+    );
+    let boxes: Vec<_> = w.obstacles.iter().map(the_box).collect();
+    assert_eq!(boxes.len(), 4 + 1 + 1 + 1);
+    let same = |a: [f64; 2], b: [f64; 2]| close(a[0], b[0]) && close(a[1], b[1]);
+    assert!(
+        same(boxes[0].0, [2.01, 1.0]) && same(boxes[0].1, [0.02, 1.0]),
+        "{boxes:?}"
+    );
+    assert!(
+        same(boxes[2].0, [1.0, 1.51]) && same(boxes[2].1, [2.04, 0.02]),
+        "{boxes:?}"
+    );
+    assert!(
+        same(boxes[4].1, [0.2, 1.0]),
+        "Wall's default size 0.2 1 2.4"
+    );
+    assert!(same(boxes[6].1, [3.0, 0.1]), "WoodenBox clamps to 3 m");
+    assert!(warned(&w, "clamped"));
+}
+
+#[test]
+fn a_use_explosion_stays_bounded() {
+    let mut text = String::from(
+        "#VRML_SIM R2023b utf8\nDEF L0 Solid { boundingObject Box { size 0.1 0.1 0.1 } }\n",
+    );
+    for level in 1..40 {
+        let prev = level - 1;
+        text.push_str(&format!(
+            "DEF L{level} Group {{ children [ USE L{prev} USE L{prev} ] }}\n"
+        ));
+    }
+    let started = std::time::Instant::now();
+    let w = import(&text);
+    assert!(started.elapsed().as_secs_f64() < 10.0);
+    assert!(warned(&w, "expands"), "{:?}", w.warnings.last());
+}
+
+#[test]
+fn bad_world_info_values_fall_back_with_a_warning() {
+    let w =
+        import("#VRML_SIM R2023b utf8\nWorldInfo { basicTimeStep -4 coordinateSystem \"EUN\" }\n");
+    assert_eq!(w.basic_time_step_ms, 32.0);
+    assert!(warned(&w, "basicTimeStep") && warned(&w, "EUN"));
+}
+
+#[test]
+fn invalid_utf8_is_a_located_error() {
+    let err = WbtImport::from_bytes(b"#VRML_SIM R2023b utf8\nSolid { name \"\xff\" }", "b.wbt")
+        .unwrap_err();
+    assert!(err.to_string().starts_with("b.wbt:2:15:"), "{err}");
+}
+
+// --- the reader ---
+
+const HEADER: &str = "#VRML_SIM R2023b utf8\n";
+
+fn parse(body: &str) -> Result<Document> {
+    Document::parse(&format!("{HEADER}{body}"), "t.wbt")
+}
+
+#[test]
+fn reads_nodes_fields_lists_def_and_use() {
+    let doc = parse(
+        "EXTERNPROTO \"webots://x/E-puck.proto\"\nIMPORTABLE EXTERNPROTO \"../W.proto\"\n\
+         DEF A Solid { translation 1 2 3 children [ DEF S Shape { geometry Box { size 1 1 1 } } ] \
+         boundingObject USE S name \"a\" locked TRUE hidden position_0_0 1 2\n }\n\
+         DEF A Group { children [ USE A NULL ] }\nE-puck { }",
+    )
+    .unwrap();
+    assert_eq!(doc.roots.len(), 3);
+    assert!(doc.declares_proto("E-puck") && doc.declares_proto("W"));
+    let solid = doc.node(doc.roots[0]);
+    assert_eq!(
+        solid.field("translation").unwrap().value.numbers,
+        vec![1.0, 2.0, 3.0]
+    );
+    assert!(
+        solid.field("position_0_0").is_none(),
+        "hidden lines are skipped"
+    );
+    let shape = solid.field("children").unwrap().value.nodes[0];
+    assert_eq!(
+        solid.field("boundingObject").unwrap().value.nodes,
+        vec![shape]
+    );
+    let group = doc.node(doc.roots[1]);
+    assert_eq!(
+        group.field("children").unwrap().value.nodes,
+        vec![doc.roots[0]]
+    );
+}
+
+#[test]
+fn use_refers_to_the_most_recent_earlier_def() {
+    let doc = parse("DEF X Box { } DEF X Sphere { } Group { children [ USE X ] }").unwrap();
+    let group = doc.node(doc.roots[2]);
+    let used = group.field("children").unwrap().value.nodes[0];
+    assert_eq!(doc.node(used).type_name, "Sphere");
+}
+
+#[test]
+fn errors_carry_line_column_and_field() {
+    let err = parse("Solid {\n  translation 1 2 3\n  children [ Shape { ] }\n").unwrap_err();
+    let text = err.to_string();
+    assert!(text.starts_with("t.wbt:4:22:"), "{text}");
+    assert!(text.contains("Solid.children.Shape"), "{text}");
+    assert!(parse("Solid { translation }").is_err());
+    assert!(parse("Solid {").is_err());
+    let deep = "Group { children [ ".repeat(60);
+    assert!(parse(&deep).unwrap_err().to_string().contains("levels"));
+}
+
+#[test]
+fn a_deep_use_chain_stays_bounded_and_warns_once() {
+    let mut text = String::from("#VRML_SIM R2023b utf8\nDEF L0 Pose { children [ ");
+    // 45 nested Poses per level: 90 levels of the text, 46 of the walk.
+    text.push_str(&"Pose { children [ ".repeat(45));
+    text.push_str("Solid { translation 0 0 0.05 boundingObject Box { size 0.1 0.1 0.1 } }");
+    text.push_str(&" ] }".repeat(46));
+    for level in 1..12 {
+        let prev = level - 1;
+        text.push_str(&format!(
+            "\nDEF L{level} Pose {{ children [ {} USE L{prev} {} ] }}",
+            "Pose { children [ ".repeat(45),
+            " ] }".repeat(45)
+        ));
+    }
+    let w = import(&text);
+    let deep = w
+        .warnings
+        .iter()
+        .filter(|m| m.contains("nest deeper"))
+        .count();
+    assert_eq!(deep, 1, "{:?}", w.warnings);
+    // L0..L3 reach their Solid within 200 levels (46 per level); L4 and later do not.
+    assert_eq!(w.obstacles.len(), 4);
+}
+
+#[test]
+fn a_legacy_arena_swaps_its_floor_size_like_the_converter() {
+    // The converter maps NUE x to ENU -y and NUE z to ENU -x: floorSize 3 1 spans 1 m in x, 3 m in y.
+    let w = import("#VRML_SIM R2021b utf8\nRectangleArena { floorSize 3 1 }\n");
+    let (center, size, _) = the_box(&w.obstacles[0]);
+    assert!(
+        close(center[0].abs(), 0.505) && close(center[1], 0.0),
+        "{center:?}"
+    );
+    assert!(close(size[0], 0.01) && close(size[1], 3.0), "{size:?}");
+}

@@ -1,0 +1,224 @@
+//! Fuzzing the `.wbt` reader and importer with mutated real worlds (byte flips, truncations,
+//! insertions of syntax, deletions, duplications): never a panic, never a hang, and every error
+//! is a format error with a line and a column inside the text.
+
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+use mazesim_core::wbt::WbtImport;
+use mazesim_core::Error;
+use proptest::prelude::*;
+use proptest::sample::Index;
+
+/// Time one mutated file may take to read, import and build (debug build, slow machine).
+const TIME_LIMIT: Duration = Duration::from_secs(5);
+
+/// Pieces of syntax that stress the reader when spliced in anywhere.
+const SNIPPETS: &[&str] = &[
+    "{",
+    "}",
+    "[",
+    "]",
+    "\"",
+    "#",
+    "\n",
+    ",",
+    "DEF A ",
+    "USE A ",
+    "USE WALL_SHAPE ",
+    "USE W008 ",
+    "NULL ",
+    "hidden ",
+    "hidden rotation_1 0 1 0 ",
+    "TRUE ",
+    "IS x ",
+    "1e999 ",
+    "-",
+    "0x",
+    ".",
+    "-.e5 ",
+    "PROTO P [ ] { } ",
+    "EXTERNPROTO ",
+    "ROUTE a.b TO c.d\n",
+    "Solid { boundingObject Box { size 1 1 1 } } ",
+    "Transform { scale 0 0 0 children [ ",
+    "Pose { rotation 0 0 0 1 children [ Box { } ] } ",
+    "E-puck { rotation 1 0 0 1 } ",
+    "WorldInfo { coordinateSystem \"NUE\" basicTimeStep 0 } ",
+    "Cylinder { radius -1 } ",
+    "translation 1e300 1e300 0 ",
+    "size 0 0 0 ",
+    "\u{0}",
+    "\u{feff}",
+    "é",
+    "\u{1F600}",
+];
+
+fn corpus() -> Vec<(String, Vec<u8>)> {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../tests/data/webots-worlds");
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap_or_else(|e| {
+            panic!(
+                "the Webots test corpus is missing at {}: {e}",
+                dir.display()
+            )
+        })
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "wbt"))
+        .collect();
+    files.sort();
+    assert_eq!(
+        files.len(),
+        6,
+        "expected the six corpus worlds in {}",
+        dir.display()
+    );
+    files
+        .into_iter()
+        .map(|p| (p.display().to_string(), std::fs::read(&p).unwrap()))
+        .collect()
+}
+
+/// Reads, imports and builds; checks the error or the result, and the time taken.
+fn check(bytes: &[u8], source: &str) {
+    let started = Instant::now();
+    match WbtImport::from_bytes(bytes, source) {
+        Ok(import) => {
+            for obstacle in &import.obstacles {
+                let text = format!("{obstacle:?}");
+                assert!(!text.contains("NaN") && !text.contains("inf"), "{text}");
+            }
+            assert!(import.basic_time_step_ms > 0.0);
+            import
+                .to_world("fuzz")
+                .unwrap_or_else(|e| panic!("an import that succeeded must build a world: {e}"));
+        }
+        Err(Error::Format { location, .. }) => {
+            let lines = bytes.iter().filter(|&&b| b == b'\n').count() + 1;
+            assert_eq!(location.source, source);
+            assert!(
+                location.line >= 1 && location.line <= lines,
+                "line {} of {lines}",
+                location.line
+            );
+            assert!(location.column >= 1, "column {}", location.column);
+        }
+        Err(other) => panic!("expected a format error, found {other:?}"),
+    }
+    let took = started.elapsed();
+    assert!(took < TIME_LIMIT, "{source}: took {took:?}");
+}
+
+#[derive(Debug, Clone)]
+enum Mutation {
+    Flip(Index, u8),
+    Truncate(Index),
+    Insert(Index, usize),
+    InsertBytes(Index, Vec<u8>),
+    Delete(Index, usize),
+    Duplicate(Index, usize, Index),
+}
+
+fn mutation() -> impl Strategy<Value = Mutation> {
+    prop_oneof![
+        (any::<Index>(), any::<u8>()).prop_map(|(i, b)| Mutation::Flip(i, b)),
+        any::<Index>().prop_map(Mutation::Truncate),
+        (any::<Index>(), 0..SNIPPETS.len()).prop_map(|(i, s)| Mutation::Insert(i, s)),
+        (any::<Index>(), prop::collection::vec(any::<u8>(), 1..8))
+            .prop_map(|(i, b)| Mutation::InsertBytes(i, b)),
+        (any::<Index>(), 1usize..64).prop_map(|(i, n)| Mutation::Delete(i, n)),
+        (any::<Index>(), 1usize..400, any::<Index>())
+            .prop_map(|(i, n, j)| Mutation::Duplicate(i, n, j)),
+    ]
+}
+
+fn apply(bytes: &mut Vec<u8>, m: &Mutation) {
+    let len = bytes.len();
+    let at = |i: &Index| if len == 0 { 0 } else { i.index(len + 1) };
+    match m {
+        Mutation::Flip(i, b) if len > 0 => {
+            let k = i.index(len);
+            bytes[k] ^= b | 1;
+        }
+        Mutation::Flip(..) => {}
+        Mutation::Truncate(i) => bytes.truncate(at(i)),
+        Mutation::Insert(i, s) => {
+            let k = at(i);
+            bytes.splice(k..k, SNIPPETS[*s].bytes());
+        }
+        Mutation::InsertBytes(i, b) => {
+            let k = at(i);
+            bytes.splice(k..k, b.iter().copied());
+        }
+        Mutation::Delete(i, n) => {
+            let k = at(i);
+            bytes.drain(k..(k + n).min(len));
+        }
+        Mutation::Duplicate(i, n, j) => {
+            let k = at(i);
+            let piece: Vec<u8> = bytes[k..(k + n).min(len)].to_vec();
+            let to = at(j);
+            bytes.splice(to..to, piece);
+        }
+    }
+}
+
+proptest! {
+    // 512 cases unless PROPTEST_CASES asks for another number (a longer fuzzing run).
+    #![proptest_config(ProptestConfig {
+        cases: std::env::var("PROPTEST_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(512),
+        ..ProptestConfig::default()
+    })]
+
+    #[test]
+    fn mutated_real_worlds_never_panic_or_hang(
+        file in any::<Index>(),
+        mutations in prop::collection::vec(mutation(), 1..8),
+    ) {
+        let corpus = corpus();
+        let (name, original) = &corpus[file.index(corpus.len())];
+        let mut bytes = original.clone();
+        for m in &mutations {
+            apply(&mut bytes, m);
+        }
+        check(&bytes, name);
+    }
+}
+
+#[test]
+fn every_truncation_of_every_world_is_handled() {
+    for (name, bytes) in corpus() {
+        for end in 0..=bytes.len() {
+            check(&bytes[..end], &name);
+        }
+    }
+}
+
+#[test]
+fn malformed_input_names_line_and_column() {
+    let cases: &[(&str, usize, usize)] = &[
+        (
+            "#VRML_SIM R2023b utf8\nSolid {\n  translation 1 2 3\n",
+            4,
+            1,
+        ),
+        (
+            "#VRML_SIM R2023b utf8\nSolid { translation 1 2 } ]\n",
+            2,
+            27,
+        ),
+        ("#VRML_SIM R2023b utf8\nSolid { name \"open\n", 2, 14),
+        ("#VRML_SIM R2023b utf8\nSolid { size 1..2 }\n", 2, 14),
+        ("#VRML_SIM R2023b utf8\n  Box size 1 }\n", 2, 7),
+        ("not a world\n", 1, 1),
+        ("#VRML_SIM R20x3b utf8\n", 1, 11),
+    ];
+    for &(text, line, column) in cases {
+        match WbtImport::from_text(text, "bad.wbt") {
+            Err(Error::Format { location, .. }) => {
+                assert_eq!((location.line, location.column), (line, column), "{text:?}");
+            }
+            other => panic!("expected a format error for {text:?}, found {other:?}"),
+        }
+    }
+}

@@ -1,0 +1,139 @@
+"""Barcode readers: a decoder wired to a simulator's ground sensor and wheel encoders.
+
+:class:`BarcodeReader` reads for one :class:`mazesim.Simulator`; :class:`BatchBarcodeReader`
+for the N robots of a :class:`mazesim.BatchSimulator` (one decoder per robot), touching in Python
+only the robots whose sensor is on a code, so a large batch costs little more than a small one.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+import numpy.typing as npt
+
+from mazesim._core import RobotProfile, Simulator
+from mazesim.barcode.decoders import Decoder, Reading
+from mazesim.barcode.odometry import Odometry, barcode_sensor_index
+from mazesim.errors import InvalidArgumentError
+
+__all__ = ["BarcodeReader", "BatchBarcodeReader"]
+
+
+class BarcodeReader:
+    """Feeds one simulator's barcode sensor and encoders to a decoder, one step at a time.
+
+    Args:
+        decoder: The decoder (its state is this reader's).
+        robot: The robot profile, to find the barcode sensor and for odometry.
+
+    Example:
+        >>> import mazesim
+        >>> from mazesim.barcode import BarcodeReader, CodeBook, RobustDecoder
+        >>> world = mazesim.load_world("seed-maze")
+        >>> sim = mazesim.Simulator(world, robot="seed", seed=0)
+        >>> reader = BarcodeReader(RobustDecoder(CodeBook.from_world(world)), sim.robot)
+        >>> reader.update(sim)  # call after each sim.step(...); None until a code ends
+    """
+
+    def __init__(self, decoder: Decoder, robot: RobotProfile) -> None:
+        self.decoder = decoder
+        self.sensor_index = barcode_sensor_index(robot)
+        self.odometry = Odometry(robot, 1, self.sensor_index)
+
+    def reset(self) -> None:
+        """Forgets the stream; call it after resetting or teleporting the simulator."""
+        self.decoder.reset()
+        self.odometry.reset()
+
+    def update(self, simulator: Simulator) -> Reading | None:
+        """Reads the simulator's barcode sensor and encoders after a step.
+
+        Returns:
+            The reading of a code the sensor just left, or None.
+        """
+        ground = float(simulator.ground_sensors()[self.sensor_index])
+        position = self.odometry.update(simulator.encoders)[0]
+        return self.decoder.update(ground, (float(position[0]), float(position[1])))
+
+
+class BatchBarcodeReader:
+    """One decoder per robot of a batch, fed from the batch's arrays.
+
+    Args:
+        decoders: One decoder per robot (N of them, all with the same floor band).
+        robot: The robot profile of the batch.
+
+    Raises:
+        InvalidArgumentError: No decoders, or decoders with different floor bands.
+    """
+
+    def __init__(self, decoders: Sequence[Decoder], robot: RobotProfile) -> None:
+        self.decoders = list(decoders)
+        if not self.decoders:
+            raise InvalidArgumentError("expected at least one decoder, found none")
+        bands = {(d.floor_low, d.floor_high) for d in self.decoders}
+        if len(bands) != 1:
+            raise InvalidArgumentError(
+                f"expected one floor band for all decoders of a batch, found {sorted(bands)}"
+            )
+        ((self.floor_low, self.floor_high),) = bands
+        self.num_envs = len(self.decoders)
+        self.sensor_index = barcode_sensor_index(robot)
+        self.needs_position = any(d.needs_position for d in self.decoders)
+        self.odometry = Odometry(robot, self.num_envs, self.sensor_index)
+        self._on_code = np.zeros(self.num_envs, dtype=bool)
+        self._previous: npt.NDArray[np.float64] | None = None
+
+    def reset(self, mask: npt.ArrayLike | None = None) -> None:
+        """Forgets the streams of the robots in ``mask`` (all by default)."""
+        flags = np.ones(self.num_envs, bool) if mask is None else np.asarray(mask, dtype=bool)
+        if flags.shape != (self.num_envs,):
+            raise InvalidArgumentError(
+                f"expected a mask of shape ({self.num_envs},), found {flags.shape}"
+            )
+        for index in np.flatnonzero(flags):
+            self.decoders[index].reset()
+        self._on_code[flags] = False
+        self.odometry.reset(flags)
+        if self._previous is not None:
+            self._previous[flags] = np.nan
+
+    def update(
+        self, ground: npt.ArrayLike, encoders: npt.ArrayLike | None = None
+    ) -> list[tuple[int, Reading]]:
+        """Feeds one step of every robot.
+
+        Args:
+            ground: (N,) barcode sensor readings (the batch's observation column of the sensor).
+            encoders: (N, 2) wheel angles in radians; needed when a decoder uses positions.
+
+        Returns:
+            (robot index, reading) for every robot whose sensor just left a code, in index order.
+        """
+        values = np.asarray(ground, dtype=np.float64).reshape(-1)
+        if values.shape != (self.num_envs,):
+            raise InvalidArgumentError(
+                f"expected ground readings of shape ({self.num_envs},), found {values.shape}"
+            )
+        positions: npt.NDArray[np.float64] | None = None
+        if encoders is not None:
+            positions = self.odometry.update(encoders)
+        elif self.needs_position:
+            raise InvalidArgumentError("the decoders need the wheel encoders each step")
+        off_floor = (values < self.floor_low) | (values > self.floor_high)
+        busy = np.flatnonzero(off_floor | self._on_code)
+        readings: list[tuple[int, Reading]] = []
+        for index in busy:
+            decoder = self.decoders[index]
+            position = None if positions is None else (positions[index, 0], positions[index, 1])
+            if not self._on_code[index] and self._previous is not None:
+                before = self._previous[index]
+                decoder.note_floor(None if np.isnan(before[0]) else (before[0], before[1]))
+            reading = decoder.update(values[index], position)
+            self._on_code[index] = decoder.on_code
+            if reading is not None:
+                readings.append((int(index), reading))
+        if positions is not None:
+            self._previous = positions
+        return readings

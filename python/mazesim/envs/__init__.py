@@ -1,0 +1,64 @@
+"""Gymnasium environments: ``mazesim/EPuckMaze-v0`` and its native vector env.
+
+``import mazesim`` registers the environment when gymnasium is installed
+(``pip install "mazesim[gym]"``)::
+
+    import gymnasium
+    import mazesim  # registers mazesim/EPuckMaze-v0
+
+    env = gymnasium.make("mazesim/EPuckMaze-v0", action_mode="discrete")
+    envs = gymnasium.make_vec("mazesim/EPuckMaze-v0", num_envs=1024)  # on the batch engine
+
+:class:`EPuckMazeEnv` is one robot in a maze, :class:`EPuckMazeVectorEnv` runs N of them in the
+batch engine and equals ``SyncVectorEnv`` bit for bit. The observation, action and reward are
+documented in :mod:`mazesim.envs.spaces` and :mod:`mazesim.envs.reward`, the pictures in
+:mod:`mazesim.envs.render`.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+
+from mazesim.errors import MissingDependencyError
+
+if importlib.util.find_spec("gymnasium") is None:
+    raise MissingDependencyError(
+        'mazesim.envs needs gymnasium (1.0 or newer): pip install "mazesim[gym]" '
+        "or pip install gymnasium"
+    )
+
+from mazesim.envs.maze_env import EPuckMazeEnv  # noqa: E402
+from mazesim.envs.options import DEFAULT_MAX_EPISODE_STEPS  # noqa: E402
+from mazesim.envs.render import TopDownRenderer  # noqa: E402
+from mazesim.envs.reward import RewardWeights  # noqa: E402
+from mazesim.envs.vector import EPuckMazeVectorEnv  # noqa: E402
+
+__all__ = [
+    "DEFAULT_MAX_EPISODE_STEPS",
+    "ENV_ID",
+    "EPuckMazeEnv",
+    "EPuckMazeVectorEnv",
+    "RewardWeights",
+    "TopDownRenderer",
+    "register_envs",
+]
+
+#: The id of the maze environment in gymnasium's registry.
+ENV_ID = "mazesim/EPuckMaze-v0"
+
+
+def register_envs() -> None:
+    """Registers ``mazesim/EPuckMaze-v0`` (single and vector entry points) with gymnasium.
+
+    ``import mazesim`` calls it; calling it again does nothing.
+    """
+    from gymnasium.envs.registration import register, registry
+
+    if ENV_ID in registry:
+        return
+    register(
+        id=ENV_ID,
+        entry_point="mazesim.envs.maze_env:EPuckMazeEnv",
+        vector_entry_point="mazesim.envs.vector:EPuckMazeVectorEnv",
+        max_episode_steps=DEFAULT_MAX_EPISODE_STEPS,
+    )

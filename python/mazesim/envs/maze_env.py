@@ -1,0 +1,228 @@
+"""``mazesim/EPuckMaze-v0``: one robot in a maze, as a gymnasium environment."""
+
+from __future__ import annotations
+
+from typing import Any, SupportsFloat
+
+import gymnasium
+import numpy as np
+import numpy.typing as npt
+from gymnasium.error import ResetNeeded
+
+from mazesim._core import Simulator, World
+from mazesim.envs.options import EnvOptions, WorldOption, draw_seed
+from mazesim.envs.render import TopDownRenderer
+from mazesim.envs.reward import GoalDistance, PathDistanceTable, step_reward
+from mazesim.envs.spaces import ActionConverter, ObservationLayout, sensor_ranges
+from mazesim.errors import InvalidArgumentError
+
+__all__ = ["RENDER_MODES", "EPuckMazeEnv", "check_render_mode", "step_length_ms"]
+
+#: The render modes of the maze environments.
+RENDER_MODES = ["rgb_array"]
+
+
+def step_length_ms(options: EnvOptions, world: World) -> float:
+    """The length of a control step in ms: the option, or the world's basic time step."""
+    return (
+        options.control_step_ms if options.control_step_ms is not None else world.basic_time_step_ms
+    )
+
+
+def check_render_mode(render_mode: str | None) -> None:
+    """Raises InvalidArgumentError unless ``render_mode`` is None or one of :data:`RENDER_MODES`."""
+    if render_mode is not None and render_mode not in RENDER_MODES:
+        raise InvalidArgumentError(
+            f"expected render_mode to be None or one of {', '.join(RENDER_MODES)}; "
+            f"found {render_mode!r}"
+        )
+
+
+class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
+    """A robot (the e-puck by default) that must drive to the goal of a maze.
+
+    Every step runs one control step of the simulator (the world's basic time step, 32 ms in the
+    built-in worlds) with the wheel speeds of the action, then reads the sensors.
+
+    Observation: the sensor readings as a float32 vector, distance sensors then ground sensors
+    (for the e-puck: ps0-ps7 raw counts, gs0-gs2 raw), with the pose appended when
+    ``include_pose`` is set; see :mod:`mazesim.envs.spaces` for each index and the bounds.
+
+    Action: ``"continuous"``, ``Box(-1, 1, (2,), float32)``, the left and right wheel speeds as
+    fractions of the motor limit; or ``"discrete"``, ``Discrete(12)``, the report's primitive
+    actions of :mod:`mazesim.actions` (``00`` forward, ``11``-``44`` right turns, ...).
+
+    Reward: ``progress * (metres gained along the shortest path to the goal)
+    - collision * (1 while touching a wall) + goal * (1 on reaching the goal)``, by default with
+    progress 10, collision 0.1 and goal 10; see :mod:`mazesim.envs.reward`.
+
+    Episode end: terminated when the robot's centre enters the goal disc; truncated by the time
+    limit (``max_episode_steps`` of the registration, 3000 steps, applied by ``gymnasium.make``).
+
+    Info (after reset and after every step): ``pose`` (float32 x, y, yaw), ``collisions`` (bumps
+    since the reset), ``colliding`` (touching a wall now), ``distance_to_goal`` (the shortest-path
+    distance in metres) and, only on a step that crossed a barcode checkpoint, ``checkpoint``: its
+    id, positive when crossed along the barcode's direction (arriving), negative when departing.
+
+    Seeding: ``reset(seed=s)`` seeds the env's RNG; each episode draws its simulator seed (and its
+    maze, with ``world="random"``) from that RNG, so the same seed and actions replay the same
+    episodes bit for bit.
+
+    Args:
+        render_mode: None or ``"rgb_array"`` (a top-down image, see :mod:`mazesim.envs.render`).
+        world: A built-in world name, a path to a world file, a ``World``, or ``"random"`` for a
+            fresh random maze at each reset (``maze_size`` cells, drawn from the env's RNG).
+        robot: The robot profile: ``"e-puck"``, ``"seed"`` or ``"alphabot2"``.
+        action_mode: ``"continuous"`` or ``"discrete"``.
+        noise: Whether the sensors are noisy (Webots' relative Gaussian noise).
+        include_pose: Whether the observation ends with x, y (metres) and yaw (radians).
+        control_step_ms: The control step in ms (a whole number of physics steps); None for the
+            world's basic time step.
+        maze_size: (width, height) in cells of the random mazes.
+        goal_reward: Bonus on reaching the goal.
+        collision_penalty: Penalty for every step spent touching a wall.
+        progress_reward: Reward per metre of progress along the shortest path.
+        render_size: Side of the rendered images in pixels, or (width, height).
+
+    Raises:
+        InvalidArgumentError: An option has a wrong type or value.
+        UnknownNameError: The world or robot profile does not exist.
+    """
+
+    metadata: dict[str, Any] = {"render_modes": RENDER_MODES, "render_fps": 31.25}
+
+    def __init__(
+        self,
+        render_mode: str | None = None,
+        world: WorldOption = "seed-maze",
+        robot: str = "e-puck",
+        action_mode: str = "continuous",
+        noise: bool = True,
+        include_pose: bool = False,
+        control_step_ms: float | None = None,
+        maze_size: tuple[int, int] = (5, 5),
+        goal_reward: float = 10.0,
+        collision_penalty: float = 0.1,
+        progress_reward: float = 10.0,
+        render_size: int | tuple[int, int] = 400,
+    ) -> None:
+        check_render_mode(render_mode)
+        self.render_mode = render_mode
+        self.options = EnvOptions.create(
+            world=world,
+            robot=robot,
+            action_mode=action_mode,
+            noise=noise,
+            include_pose=include_pose,
+            control_step_ms=control_step_ms,
+            maze_size=maze_size,
+            goal_reward=goal_reward,
+            collision_penalty=collision_penalty,
+            progress_reward=progress_reward,
+            render_size=render_size,
+        )
+        self.world = self.options.sample_world()
+        self.metadata = {
+            **type(self).metadata,
+            "render_fps": 1000.0 / step_length_ms(self.options, self.world),
+        }
+        self._layout = ObservationLayout(self.options.robot, self.world, include_pose)
+        self._actions = ActionConverter(action_mode, self.options.robot.max_wheel_speed)
+        self.observation_space = self._layout.space
+        self.action_space = self._actions.space
+        self._goal = GoalDistance(1, PathDistanceTable.of_world(self.world))
+        self._distance = np.zeros(1)
+        self._simulator: Simulator | None = None
+        self._renderer: TopDownRenderer | None = None
+
+    @property
+    def observation_names(self) -> list[str]:
+        """What each index of the observation holds (sensor names, then x, y, yaw)."""
+        return list(self._layout.names)
+
+    def reset(
+        self, *, seed: int | None = None, options: dict[str, Any] | None = None
+    ) -> tuple[npt.NDArray[np.float32], dict[str, Any]]:
+        """Starts a new episode; ``options`` are accepted and unused."""
+        super().reset(seed=seed)
+        world = self.options.next_world(self.np_random)
+        episode_seed = draw_seed(self.np_random)
+        if world is not None or self._simulator is None:
+            self.world = world if world is not None else self.world
+            self._simulator = Simulator(
+                self.world,
+                robot=self.options.robot.name,
+                seed=episode_seed,
+                noise=self.options.noise,
+                control_step_ms=self.options.control_step_ms,
+            )
+            self._goal.set(0, PathDistanceTable.of_world(self.world))
+            self._renderer = None
+        else:
+            self._simulator.reset(seed=episode_seed)
+        observation, pose = self._observe(self._simulator)
+        self._distance = self._goal.evaluate(pose)[0]
+        return observation, self._info(self._simulator, pose)
+
+    def step(
+        self, action: Any
+    ) -> tuple[npt.NDArray[np.float32], SupportsFloat, bool, bool, dict[str, Any]]:
+        """Runs one control step with ``action``.
+
+        Raises:
+            InvalidActionError: The action is not in the action space (shape, dtype, NaN, range).
+            ResetNeeded: :meth:`reset` has not been called since the env was made or closed.
+        """
+        simulator = self._simulator
+        if simulator is None:
+            raise ResetNeeded("call reset() before step() (and after close())")
+        left, right = self._actions.single(action)
+        simulator.step(left, right)
+        observation, pose = self._observe(simulator)
+        distance, reached = self._goal.evaluate(pose)
+        colliding = np.array([simulator.colliding])
+        reward = step_reward(self.options.reward, self._distance, distance, colliding, reached)
+        self._distance = distance
+        return observation, float(reward[0]), bool(reached[0]), False, self._info(simulator, pose)
+
+    def render(self) -> npt.NDArray[np.uint8] | None:
+        """A top-down (height, width, 3) uint8 image with ``render_mode="rgb_array"``."""
+        if self.render_mode is None:
+            gymnasium.logger.warn(
+                'render() needs a render mode: make the env with render_mode="rgb_array"'
+            )
+            return None
+        if self._renderer is None:
+            self._renderer = TopDownRenderer(
+                self.world,
+                self.options.robot,
+                self.options.render_size,
+                sensor_ranges(self.options.robot).ray_length,
+            )
+        if self._simulator is None:
+            return self._renderer.frame(self.world.start)
+        return self._renderer.frame(self._simulator.pose, self._simulator.colliding)
+
+    def close(self) -> None:
+        """Releases the simulator and the renderer; safe to call more than once."""
+        self._simulator = None
+        self._renderer = None
+
+    def _observe(
+        self, simulator: Simulator
+    ) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.float32]]:
+        """The observation (width,) and the pose as a (1, 3) float32 array."""
+        sensors = np.concatenate((simulator.distance_sensors(), simulator.ground_sensors()))
+        pose = np.array([simulator.pose], dtype=np.float32)
+        return self._layout.assemble(sensors[None, :], pose)[0], pose
+
+    def _info(self, simulator: Simulator, pose: npt.NDArray[np.float32]) -> dict[str, Any]:
+        info: dict[str, Any] = {
+            "pose": pose[0].copy(),
+            "collisions": int(simulator.collisions),
+            "colliding": bool(simulator.colliding),
+            "distance_to_goal": float(self._distance[0]),
+        }
+        if simulator.last_crossing != 0:
+            info["checkpoint"] = int(simulator.last_crossing)
+        return info

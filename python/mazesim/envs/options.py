@@ -1,0 +1,155 @@
+"""The options of the maze environments, checked once and shared by the single and vector envs."""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+from typing import Union
+
+import numpy as np
+
+import mazesim
+from mazesim._core import RobotProfile, World, generate_maze
+from mazesim.envs.reward import RewardWeights
+from mazesim.errors import InvalidArgumentError
+
+__all__ = ["ACTION_MODES", "DEFAULT_MAX_EPISODE_STEPS", "EnvOptions", "WorldOption", "draw_seed"]
+
+#: The accepted values of ``action_mode``.
+ACTION_MODES = ("continuous", "discrete")
+
+#: The registered time limit: 3000 control steps, 96 s of simulated time at 32 ms a step, which
+#: lets a robot at the report's cruise speed (0.064 m/s on the e-puck) drive 6 m, more than the
+#: longest shortest path of a 5 x 5 maze of 0.25 m cells.
+DEFAULT_MAX_EPISODE_STEPS = 3000
+
+#: What the ``world`` option accepts: a built-in name, a path, ``"random"`` or a World.
+WorldOption = Union[str, "os.PathLike[str]", World]
+
+
+def draw_seed(rng: np.random.Generator) -> int:
+    """Draws the seed of the next episode (or of the next random maze) from an env's RNG."""
+    return int(rng.integers(0, 2**63))
+
+
+@dataclass(frozen=True)
+class EnvOptions:
+    """The checked options of an environment (see :class:`~mazesim.envs.EPuckMazeEnv`).
+
+    Attributes:
+        world: The fixed world, or None when every episode draws a random maze.
+        maze_size: (width, height) in cells of the random mazes.
+        robot: The robot profile.
+        action_mode: ``"continuous"`` or ``"discrete"``.
+        noise: Whether the sensors are noisy.
+        include_pose: Whether the observation ends with the pose (x, y, yaw).
+        control_step_ms: The control step in ms, or None for the world's basic time step.
+        reward: The reward weights.
+        render_size: (width, height) of the rendered images in pixels.
+    """
+
+    world: World | None
+    maze_size: tuple[int, int]
+    robot: RobotProfile
+    action_mode: str
+    noise: bool
+    include_pose: bool
+    control_step_ms: float | None
+    reward: RewardWeights = field(default_factory=RewardWeights)
+    render_size: tuple[int, int] = (400, 400)
+
+    @classmethod
+    def create(
+        cls,
+        world: WorldOption = "seed-maze",
+        robot: str = "e-puck",
+        action_mode: str = "continuous",
+        noise: bool = True,
+        include_pose: bool = False,
+        control_step_ms: float | None = None,
+        maze_size: tuple[int, int] = (5, 5),
+        goal_reward: float = 10.0,
+        collision_penalty: float = 0.1,
+        progress_reward: float = 10.0,
+        render_size: int | tuple[int, int] = 400,
+    ) -> EnvOptions:
+        """Checks the keyword arguments of the environments and resolves the world and robot.
+
+        Raises:
+            InvalidArgumentError: An option has a wrong type or value.
+            UnknownNameError: The world or the robot profile does not exist.
+            WorldFormatError: The world file is malformed.
+        """
+        if action_mode not in ACTION_MODES:
+            raise InvalidArgumentError(
+                f"expected action_mode to be one of {', '.join(ACTION_MODES)}; "
+                f"found {action_mode!r}"
+            )
+        for name, flag in (("noise", noise), ("include_pose", include_pose)):
+            if not isinstance(flag, (bool, np.bool_)):
+                raise InvalidArgumentError(f"expected {name} to be True or False, found {flag!r}")
+        if control_step_ms is not None and not (
+            isinstance(control_step_ms, (int, float)) and control_step_ms > 0
+        ):
+            raise InvalidArgumentError(
+                f"expected control_step_ms to be a positive number of ms or None, "
+                f"found {control_step_ms!r}"
+            )
+        sizes = (maze_size,) if not isinstance(maze_size, (tuple, list)) else tuple(maze_size)
+        if len(sizes) != 2 or not all(isinstance(n, int) and n >= 2 for n in sizes):
+            raise InvalidArgumentError(
+                f"expected maze_size to be (width, height) of at least 2 cells each, "
+                f"found {maze_size!r}"
+            )
+        sides = (render_size, render_size) if isinstance(render_size, int) else render_size
+        if len(sides) != 2 or not all(isinstance(n, int) and 16 <= n <= 4096 for n in sides):
+            raise InvalidArgumentError(
+                f"expected render_size to be pixels (16 to 4096) or (width, height), "
+                f"found {render_size!r}"
+            )
+        resolved = None if _is_random(world) else _resolve_world(world)
+        return cls(
+            world=resolved,
+            maze_size=(sizes[0], sizes[1]),
+            robot=RobotProfile.builtin(robot),
+            action_mode=action_mode,
+            noise=bool(noise),
+            include_pose=bool(include_pose),
+            control_step_ms=None if control_step_ms is None else float(control_step_ms),
+            reward=RewardWeights(goal_reward, collision_penalty, progress_reward),
+            render_size=(int(sides[0]), int(sides[1])),
+        )
+
+    @property
+    def random_world(self) -> bool:
+        """Whether every episode draws a fresh random maze."""
+        return self.world is None
+
+    def sample_world(self) -> World:
+        """A world of the kind the episodes run in: the fixed world, or a random maze (seed 0)."""
+        return self.world if self.world is not None else self.random_maze(0)
+
+    def random_maze(self, seed: int) -> World:
+        """The random maze of one episode, generated from ``seed``."""
+        width, height = self.maze_size
+        return generate_maze(width, height, seed=seed)
+
+    def next_world(self, rng: np.random.Generator) -> World | None:
+        """The world of the next episode: a random maze drawn from ``rng``, or None to keep the
+        fixed world (and then nothing is drawn)."""
+        return None if self.world is not None else self.random_maze(draw_seed(rng))
+
+
+def _is_random(world: WorldOption) -> bool:
+    return isinstance(world, str) and world == "random"
+
+
+def _resolve_world(world: WorldOption) -> World:
+    if isinstance(world, World):
+        return world
+    if not isinstance(world, (str, os.PathLike)):
+        raise InvalidArgumentError(
+            f'expected world to be a built-in world name, a path, "random" or a World; '
+            f"found {world!r}"
+        )
+    return mazesim.load_world(world)

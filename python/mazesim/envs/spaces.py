@@ -1,0 +1,226 @@
+"""Observation and action spaces of the maze environments, and the checks of every action.
+
+Observation
+    A float32 vector of the robot's sensor readings, in the order of its profile: the distance
+    sensors, then the ground sensors, then (with ``include_pose=True``) the pose x, y in metres and
+    yaw in radians. For the e-puck (11 values):
+
+    =====  ========  ===================================================================
+    index  sensor    reading
+    =====  ========  ===================================================================
+    0-7    ps0-ps7   infra-red proximity, raw counts: about 67 with nothing within 7 cm,
+                     rising to 4095 at contact (ps0 front-right ... ps7 front-left)
+    8-10   gs0-gs2   ground sensors (left, centre, right), raw: 300 on black, about 856
+                     on white, 1000 at most
+    =====  ========  ===================================================================
+
+    The ``seed`` robot gives 7 values: Sharp distances in volts (front, back, left, right,
+    left-front, right-front; 0.31 V far ... 3.03 V at 3 cm and closer), then its centre ground
+    sensor. ``alphabot2`` gives 11: the same six Sharp sensors, then line sensors line0-line4
+    (10-bit, 1023 at most). The bounds of the space are 0 and 1.25 times the largest value of each
+    sensor's lookup table, so they hold every noisy reading (relative noise never exceeds 9 % at
+    the top of a table); observations are also clipped to the space, so they always lie inside it.
+
+Action
+    ``"continuous"``: ``Box(-1, 1, (2,), float32)``, the left and right wheel speeds as fractions
+    of the motor limit (6.28 rad/s on the e-puck). ``"discrete"``: ``Discrete(12)``, the report's
+    primitive actions of :mod:`mazesim.actions` (index ``i`` is ``ACTION_CODES[i]``).
+
+A bad action (wrong shape or dtype, NaN or infinite, outside the space) raises
+:class:`~mazesim.errors.InvalidActionError` saying what was expected and what was found.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+from gymnasium import spaces
+
+from mazesim._core import RobotProfile, World
+from mazesim.actions import ACTION_CODES, WHEEL_SPEED_FRACTIONS
+from mazesim.errors import InvalidActionError, InvalidArgumentError
+
+__all__ = [
+    "NOISE_MARGIN",
+    "SENSOR_RANGES",
+    "ActionConverter",
+    "ObservationLayout",
+    "SensorRanges",
+]
+
+
+@dataclass(frozen=True)
+class SensorRanges:
+    """The extremes of a robot profile's sensor tables.
+
+    Attributes:
+        distance_max: Largest distance-sensor reading (the table's first row: contact).
+        ray_length: Range of the distance sensors in metres (the table's last row).
+        ground_max: Largest ground-sensor reading (at contact with a white floor).
+    """
+
+    distance_max: float
+    ray_length: float
+    ground_max: float
+
+
+#: The sensor tables' extremes of each built-in robot profile (see ``robots/*.toml``).
+SENSOR_RANGES: dict[str, SensorRanges] = {
+    "e-puck": SensorRanges(distance_max=4095.0, ray_length=0.07, ground_max=1000.0),
+    "seed": SensorRanges(distance_max=3.03, ray_length=0.40, ground_max=1000.0),
+    "alphabot2": SensorRanges(distance_max=3.03, ray_length=0.40, ground_max=1023.0),
+}
+
+#: Upper bound of the observation space as a multiple of each table's largest value.
+NOISE_MARGIN = 1.25
+
+#: Margin in metres round the world's bounds for the pose in the observation.
+_POSE_MARGIN = 0.5
+_YAW_BOUND = float(np.float32(math.pi)) * 1.0001
+
+
+def sensor_ranges(robot: RobotProfile) -> SensorRanges:
+    """The sensor ranges of a built-in robot profile."""
+    try:
+        return SENSOR_RANGES[robot.name]
+    except KeyError:
+        raise InvalidArgumentError(
+            f"expected a robot profile with known sensor ranges "
+            f"({', '.join(SENSOR_RANGES)}), found {robot.name!r}"
+        ) from None
+
+
+class ObservationLayout:
+    """The names, bounds and space of an environment's observation vector.
+
+    Args:
+        robot: The robot profile.
+        world: A world of the kind the episodes run in (for the bounds of the pose).
+        include_pose: Whether the vector ends with x, y and yaw.
+    """
+
+    def __init__(self, robot: RobotProfile, world: World, include_pose: bool) -> None:
+        ranges = sensor_ranges(robot)
+        distance, ground = robot.distance_sensor_names, robot.ground_sensor_names
+        self.names: list[str] = [*distance, *ground]
+        low = [0.0] * (len(distance) + len(ground))
+        high = [ranges.distance_max * NOISE_MARGIN] * len(distance)
+        high += [ranges.ground_max * NOISE_MARGIN] * len(ground)
+        self.sensor_width = len(low)
+        if include_pose:
+            xmin, ymin, xmax, ymax = world.bounds
+            self.names += ["x", "y", "yaw"]
+            low += [xmin - _POSE_MARGIN, ymin - _POSE_MARGIN, -_YAW_BOUND]
+            high += [xmax + _POSE_MARGIN, ymax + _POSE_MARGIN, _YAW_BOUND]
+        self.include_pose = include_pose
+        self.low = np.array(low, dtype=np.float32)
+        self.high = np.array(high, dtype=np.float32)
+        self.space = spaces.Box(self.low, self.high, dtype=np.float32)
+
+    @property
+    def width(self) -> int:
+        """Number of values in one observation."""
+        return len(self.names)
+
+    def assemble(
+        self, sensors: npt.NDArray[np.float32], poses: npt.NDArray[np.float32]
+    ) -> npt.NDArray[np.float32]:
+        """A new (N, width) array of observations from (N, sensor_width) readings and (N, 3) poses,
+        clipped to the space."""
+        if self.include_pose:
+            out = np.concatenate((sensors, poses), axis=1)
+        else:
+            out = sensors.copy()
+        np.clip(out, self.low, self.high, out=out)
+        return out
+
+
+class ActionConverter:
+    """Checks actions and turns them into float32 wheel speeds in rad/s.
+
+    Args:
+        action_mode: ``"continuous"`` or ``"discrete"``.
+        max_speed: The motor limit in rad/s.
+    """
+
+    def __init__(self, action_mode: str, max_speed: float) -> None:
+        self.discrete = action_mode == "discrete"
+        self.max_speed = np.float32(max_speed)
+        self.table = (WHEEL_SPEED_FRACTIONS * max_speed).astype(np.float32)
+        self.space: spaces.Space[Any]
+        if self.discrete:
+            self.space = spaces.Discrete(len(ACTION_CODES))
+        else:
+            self.space = spaces.Box(-1.0, 1.0, shape=(2,), dtype=np.float32)
+
+    def single(self, action: Any) -> tuple[float, float]:
+        """The (left, right) wheel speeds in rad/s of one action."""
+        array = np.asarray(action)
+        if self.discrete:
+            if array.shape != () or array.dtype.kind not in "iu":
+                raise InvalidActionError(
+                    f"expected an integer action in 0..{len(ACTION_CODES) - 1}, "
+                    f"found {action!r} of type {type(action).__name__}"
+                )
+            index = int(array)
+            if not 0 <= index < len(ACTION_CODES):
+                raise InvalidActionError(
+                    f"expected an action in 0..{len(ACTION_CODES) - 1} (one of the codes "
+                    f"{', '.join(ACTION_CODES)}), found {index}"
+                )
+            left, right = self.table[index]
+        else:
+            _check_fractions(array, (2,), "")
+            left, right = array.astype(np.float32) * self.max_speed
+        return float(left), float(right)
+
+    def batch(self, actions: Any, num_envs: int) -> npt.NDArray[np.float32]:
+        """The (N, 2) float32 wheel speeds in rad/s of a batch of actions."""
+        array = np.asarray(actions)
+        if self.discrete:
+            if array.shape != (num_envs,) or array.dtype.kind not in "iu":
+                raise InvalidActionError(
+                    f"expected actions of shape ({num_envs},) with integers in "
+                    f"0..{len(ACTION_CODES) - 1}, found shape {array.shape} of {array.dtype}"
+                )
+            bad = np.flatnonzero((array < 0) | (array >= len(ACTION_CODES)))
+            if bad.size:
+                raise InvalidActionError(
+                    f"expected actions in 0..{len(ACTION_CODES) - 1}, "
+                    f"found {array[bad[0]]} in environment {bad[0]}"
+                )
+            return self.table[array]
+        _check_fractions(array, (num_envs, 2), " in environment {env}")
+        return array.astype(np.float32) * self.max_speed
+
+
+def _check_fractions(array: npt.NDArray[Any], shape: tuple[int, ...], where: str) -> None:
+    """Raises InvalidActionError unless ``array`` holds finite reals in [-1, 1] of ``shape``."""
+    if array.dtype.kind not in "fiu":
+        raise InvalidActionError(
+            f"expected real wheel speed fractions (float32), found dtype {array.dtype}"
+        )
+    if array.shape != shape:
+        raise InvalidActionError(
+            f"expected an action of shape {shape} (left, right wheel speed as fractions of the "
+            f"motor limit), found shape {array.shape}"
+        )
+    inside = np.abs(array) <= 1.0  # False for NaN too
+    if inside.all():
+        return
+    finite = np.isfinite(array)
+    flat = int(np.flatnonzero(~inside.reshape(-1))[0])
+    value = array.reshape(-1)[flat]
+    wheel = "left" if flat % 2 == 0 else "right"
+    place = where.format(env=flat // 2)
+    if not finite.reshape(-1)[flat]:
+        raise InvalidActionError(
+            f"expected finite wheel speeds, found {value} ({wheel} wheel{place})"
+        )
+    raise InvalidActionError(
+        f"expected wheel speed fractions in [-1, 1], found {value} ({wheel} wheel{place})"
+    )

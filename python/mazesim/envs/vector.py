@@ -1,0 +1,347 @@
+"""The native vector environment of ``mazesim/EPuckMaze-v0``, backed by the batch engine.
+
+``gymnasium.make_vec("mazesim/EPuckMaze-v0", num_envs=N)`` (the registration's
+``vector_entry_point``) builds it. All N environments step in one call of
+:class:`mazesim.BatchSimulator`, in parallel and without the GIL, into buffers allocated once; the
+Python work per step is a few numpy operations over all environments, whatever N is.
+
+It behaves exactly as ``SyncVectorEnv`` over N :class:`~mazesim.envs.EPuckMazeEnv` with the same
+seeds, bit for bit: environment ``i`` is seeded with ``seed + i`` and draws its episodes from its
+own RNG, episodes end in the same way (the time limit is ``max_episode_steps``), autoreset is
+NEXT_STEP (the step after an episode ends returns the first observation of the next one, with
+reward 0 and neither terminated nor truncated), and infos are dicts of arrays, each key ``k`` with
+a boolean mask ``_k`` of the environments that have it.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import gymnasium
+import numpy as np
+import numpy.typing as npt
+from gymnasium.error import ClosedEnvironmentError, ResetNeeded
+from gymnasium.utils import seeding
+from gymnasium.vector import AutoresetMode, VectorEnv
+from gymnasium.vector.utils import batch_space
+
+from mazesim._core import BatchSimulator, World
+from mazesim.envs.maze_env import RENDER_MODES, check_render_mode, step_length_ms
+from mazesim.envs.options import DEFAULT_MAX_EPISODE_STEPS, EnvOptions, WorldOption, draw_seed
+from mazesim.envs.render import TopDownRenderer
+from mazesim.envs.reward import GoalDistance, PathDistanceTable, step_reward
+from mazesim.envs.spaces import ActionConverter, ObservationLayout, sensor_ranges
+from mazesim.errors import InvalidArgumentError
+
+__all__ = ["EPuckMazeVectorEnv"]
+
+_INFO_KEYS = ("pose", "collisions", "colliding", "distance_to_goal")
+
+
+class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], npt.NDArray[Any]]):
+    """N maze environments stepped together by the batch engine.
+
+    Observations, actions, rewards, episode ends and infos are those of
+    :class:`~mazesim.envs.EPuckMazeEnv`, batched: observations (N, width) float32, actions
+    (N, 2) float32 in [-1, 1] or (N,) integers in 0..11, rewards (N,) float64, terminations and
+    truncations (N,) bool. ``info["checkpoint"]`` and its mask ``info["_checkpoint"]`` appear on
+    steps where at least one environment crossed a barcode.
+
+    ``reset(seed=s)`` seeds environment i with ``s + i`` (or takes a list of N seeds);
+    ``reset(options={"reset_mask": mask})`` resets only the environments where the (N,) bool
+    ``mask`` is true and leaves the others' observations as they were.
+
+    Args:
+        num_envs: Number of environments.
+        max_episode_steps: The time limit in steps (truncation); None for no limit.
+        render_mode: None or ``"rgb_array"``: :meth:`render` returns one image per environment.
+        threads: Worker threads of the batch engine (0: one per core). The results do not depend
+            on it.
+        world: As for :class:`~mazesim.envs.EPuckMazeEnv`; with ``"random"`` every environment
+            draws its own maze at each reset.
+        robot, action_mode, noise, include_pose, control_step_ms, maze_size, goal_reward,
+        collision_penalty, progress_reward, render_size: As for
+            :class:`~mazesim.envs.EPuckMazeEnv`.
+
+    Raises:
+        InvalidArgumentError: An option has a wrong type or value.
+        UnknownNameError: The world or robot profile does not exist.
+    """
+
+    metadata: dict[str, Any] = {
+        "render_modes": RENDER_MODES,
+        "render_fps": 31.25,
+        "autoreset_mode": AutoresetMode.NEXT_STEP,
+    }
+
+    def __init__(
+        self,
+        num_envs: int = 1,
+        max_episode_steps: int | None = DEFAULT_MAX_EPISODE_STEPS,
+        render_mode: str | None = None,
+        threads: int = 0,
+        world: WorldOption = "seed-maze",
+        robot: str = "e-puck",
+        action_mode: str = "continuous",
+        noise: bool = True,
+        include_pose: bool = False,
+        control_step_ms: float | None = None,
+        maze_size: tuple[int, int] = (5, 5),
+        goal_reward: float = 10.0,
+        collision_penalty: float = 0.1,
+        progress_reward: float = 10.0,
+        render_size: int | tuple[int, int] = 400,
+    ) -> None:
+        if not isinstance(num_envs, (int, np.integer)) or num_envs < 1:
+            raise InvalidArgumentError(f"expected num_envs to be at least 1, found {num_envs!r}")
+        if max_episode_steps is not None and (
+            not isinstance(max_episode_steps, (int, np.integer)) or max_episode_steps < 1
+        ):
+            raise InvalidArgumentError(
+                f"expected max_episode_steps to be at least 1 or None, found {max_episode_steps!r}"
+            )
+        check_render_mode(render_mode)
+        self.options = EnvOptions.create(
+            world=world,
+            robot=robot,
+            action_mode=action_mode,
+            noise=noise,
+            include_pose=include_pose,
+            control_step_ms=control_step_ms,
+            maze_size=maze_size,
+            goal_reward=goal_reward,
+            collision_penalty=collision_penalty,
+            progress_reward=progress_reward,
+            render_size=render_size,
+        )
+        self.num_envs = int(num_envs)
+        self.max_episode_steps = None if max_episode_steps is None else int(max_episode_steps)
+        self.render_mode = render_mode
+        first = self.options.sample_world()
+        self.metadata = {
+            **type(self).metadata,
+            "render_fps": 1000.0 / step_length_ms(self.options, first),
+        }
+        self._layout = ObservationLayout(self.options.robot, first, include_pose)
+        self._actions = ActionConverter(action_mode, self.options.robot.max_wheel_speed)
+        self.single_observation_space = self._layout.space
+        self.single_action_space = self._actions.space
+        self.observation_space = batch_space(self.single_observation_space, self.num_envs)
+        self.action_space = batch_space(self.single_action_space, self.num_envs)
+
+        n = self.num_envs
+        self._batch: BatchSimulator | None = BatchSimulator(
+            first,
+            n,
+            robot=self.options.robot.name,
+            seeds=0,
+            noise=self.options.noise,
+            control_step_ms=self.options.control_step_ms,
+            threads=threads,
+        )
+        self._sensors = np.zeros((n, self._layout.sensor_width), dtype=np.float32)
+        self._poses = np.zeros((n, 3), dtype=np.float32)
+        self._colliding = np.zeros(n, dtype=bool)
+        self._crossings = np.zeros(n, dtype=np.int32)
+        self._worlds: list[World] = [first] * n
+        self._renderers: list[TopDownRenderer | None] = [None] * n
+        self._goal = GoalDistance(n, PathDistanceTable.of_world(first))
+        self._rngs: list[np.random.Generator | None] = [None] * n
+        self._distance = np.zeros(n)
+        self._elapsed = np.zeros(n, dtype=np.int64)
+        self._autoreset = np.zeros(n, dtype=bool)
+        self._needs_reset = True
+
+    @property
+    def observation_names(self) -> list[str]:
+        """What each column of the observations holds (sensor names, then x, y, yaw)."""
+        return list(self._layout.names)
+
+    def reset(
+        self,
+        *,
+        seed: int | list[int | None] | None = None,
+        options: dict[str, Any] | None = None,
+    ) -> tuple[npt.NDArray[np.float32], dict[str, Any]]:
+        """Resets all environments, or those of ``options["reset_mask"]``.
+
+        Raises:
+            InvalidArgumentError: The seeds or the reset mask do not match ``num_envs``.
+            ClosedEnvironmentError: The env is closed.
+        """
+        batch = self._open_batch()
+        n = self.num_envs
+        seeds = self._seeds(seed)
+        super().reset(seed=seed if isinstance(seed, int) else None)
+        mask = self._reset_mask(dict(options or {}).get("reset_mask"))
+        envs = np.flatnonzero(mask) if mask is not None else np.arange(n)
+        for i in envs:
+            if seeds[i] is not None or self._rngs[i] is None:
+                self._rngs[i] = seeding.np_random(seeds[i])[0]
+        self._reset_envs(batch, envs)
+        self._distance[envs] = self._goal.evaluate(self._poses)[0][envs]
+        self._needs_reset = False
+        observations = self._layout.assemble(self._sensors, self._poses)
+        return observations, self._info(mask)
+
+    def step(
+        self, actions: npt.NDArray[Any]
+    ) -> tuple[
+        npt.NDArray[np.float32],
+        npt.NDArray[np.float64],
+        npt.NDArray[np.bool_],
+        npt.NDArray[np.bool_],
+        dict[str, Any],
+    ]:
+        """Steps every environment; those whose episode ended at the last step start a new one.
+
+        Raises:
+            InvalidActionError: The actions are not in the action space (shape, dtype, NaN,
+                range); the message names the environment.
+            ResetNeeded: :meth:`reset` has not been called yet.
+            ClosedEnvironmentError: The env is closed.
+        """
+        batch = self._open_batch()
+        if self._needs_reset:
+            raise ResetNeeded("call reset() before step()")
+        speeds = self._actions.batch(actions, self.num_envs)
+        batch.step(speeds, self._sensors, self._poses, self._colliding, self._crossings)
+        restarting = self._autoreset.copy()
+        any_restart = bool(restarting.any())
+        if any_restart:
+            # The ended environments took one more step above; resetting discards it.
+            self._reset_envs(batch, np.flatnonzero(restarting))
+        distance, reached = self._goal.evaluate(self._poses)
+        rewards = step_reward(
+            self.options.reward, self._distance, distance, self._colliding, reached
+        )
+        self._distance = distance
+        self._elapsed += 1
+        terminated = reached
+        if self.max_episode_steps is None:
+            truncated = np.zeros(self.num_envs, dtype=bool)
+        else:
+            truncated = self._elapsed >= self.max_episode_steps
+        if any_restart:
+            rewards[restarting] = 0.0
+            terminated[restarting] = False
+            truncated[restarting] = False
+            self._elapsed[restarting] = 0
+        self._autoreset = terminated | truncated
+        observations = self._layout.assemble(self._sensors, self._poses)
+        return observations, rewards, terminated, truncated, self._info(None)
+
+    def render(self) -> tuple[npt.NDArray[np.uint8], ...] | None:
+        """One top-down (height, width, 3) uint8 image per environment, with
+        ``render_mode="rgb_array"``."""
+        if self.render_mode is None:
+            gymnasium.logger.warn(
+                'render() needs a render mode: make the env with render_mode="rgb_array"'
+            )
+            return None
+        frames = []
+        for i in range(self.num_envs):
+            renderer = self._renderers[i]
+            if renderer is None:
+                renderer = self._renderer_for(self._worlds[i])
+                self._renderers[i] = renderer
+            pose = (float(v) for v in self._poses[i])
+            frames.append(renderer.frame(tuple(pose), bool(self._colliding[i])))  # type: ignore[arg-type]
+        return tuple(frames)
+
+    def close_extras(self, **kwargs: Any) -> None:
+        """Releases the batch engine and the renderers."""
+        self._batch = None
+        self._renderers = [None] * self.num_envs
+
+    # -- helpers -------------------------------------------------------------------------------
+
+    def _open_batch(self) -> BatchSimulator:
+        if self._batch is None:
+            raise ClosedEnvironmentError("the vector env is closed")
+        return self._batch
+
+    def _seeds(self, seed: int | list[int | None] | None) -> list[int | None]:
+        n = self.num_envs
+        if seed is None:
+            return [None] * n
+        if isinstance(seed, int):
+            return [seed + i for i in range(n)]
+        seeds = list(seed)
+        if len(seeds) != n:
+            raise InvalidArgumentError(f"expected {n} seeds (one per env), found {len(seeds)}")
+        return seeds
+
+    def _reset_mask(self, mask: Any) -> npt.NDArray[np.bool_] | None:
+        if mask is None:
+            return None
+        n = self.num_envs
+        if not isinstance(mask, np.ndarray) or mask.dtype != np.bool_ or mask.shape != (n,):
+            found = (
+                f"shape {mask.shape} of {mask.dtype}"
+                if isinstance(mask, np.ndarray)
+                else type(mask).__name__
+            )
+            raise InvalidArgumentError(
+                f'expected options["reset_mask"] to be a numpy bool array of shape ({n},), '
+                f"found {found}"
+            )
+        if not mask.any():
+            raise InvalidArgumentError('expected options["reset_mask"] to have a True value')
+        return mask.copy()
+
+    def _reset_envs(self, batch: BatchSimulator, envs: npt.NDArray[np.intp]) -> None:
+        """Starts the next episode of ``envs``, drawing mazes and seeds from their RNGs."""
+        mask = np.zeros(self.num_envs, dtype=bool)
+        mask[envs] = True
+        seeds = np.zeros(self.num_envs, dtype=np.uint64)
+        for i in envs:
+            rng = self._rngs[i]
+            if rng is None:
+                rng = self._rngs[i] = seeding.np_random()[0]
+            world = self.options.next_world(rng)
+            seeds[i] = episode_seed = draw_seed(rng)
+            if world is not None:
+                batch.set_world(int(i), world, episode_seed)
+                self._worlds[i] = world
+                self._renderers[i] = None
+                self._goal.set(int(i), PathDistanceTable.of_world(world))
+        batch.reset(self._sensors, self._poses, self._colliding, self._crossings, mask, seeds)
+        self._elapsed[envs] = 0
+        self._autoreset[envs] = False
+
+    def _info(self, mask: npt.NDArray[np.bool_] | None) -> dict[str, Any]:
+        """The infos of the envs in ``mask`` (all without one), laid out as ``SyncVectorEnv``
+        lays out those of single envs: values of the others are zero, masks ``_key``."""
+        batch = self._open_batch()
+        values: dict[str, npt.NDArray[Any]] = {
+            "pose": self._poses.copy(),
+            "collisions": batch.collisions().astype(np.int64),
+            "colliding": self._colliding.copy(),
+            "distance_to_goal": self._distance.copy(),
+        }
+        has = np.ones(self.num_envs, dtype=bool) if mask is None else mask
+        info: dict[str, Any] = {}
+        for key in _INFO_KEYS:
+            array = values[key]
+            if mask is not None:
+                array[~mask] = 0
+            info[key] = array
+            info[f"_{key}"] = has.copy()
+        crossed = (self._crossings != 0) & has
+        if crossed.any():
+            info["checkpoint"] = np.where(crossed, self._crossings, 0).astype(np.int64)
+            info["_checkpoint"] = crossed
+        return info
+
+    def _renderer_for(self, world: World) -> TopDownRenderer:
+        for i, other in enumerate(self._worlds):
+            renderer = self._renderers[i]
+            if renderer is not None and other is world:
+                return renderer
+        return TopDownRenderer(
+            world,
+            self.options.robot,
+            self.options.render_size,
+            sensor_ranges(self.options.robot).ray_length,
+        )

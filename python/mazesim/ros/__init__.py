@@ -1,0 +1,23 @@
+"""mazesim over ROS 1: the report's custom ROS controller (chapter 3), in lockstep.
+
+An optional part of mazesim: importing it, or :mod:`mazesim`, never needs ROS. The nodes import
+``rospy`` only when they start, and say how to install it if it is missing.
+
+- :mod:`mazesim.ros.bridge`: the bridge node, a simulator publishing ``sensors``, ``sensor_data``,
+  ``pose`` and ``/clock`` and stepping on ``motor`` or ``action`` commands, in ``lockstep`` or
+  ``realtime`` mode.
+- :mod:`mazesim.ros.avoid_collision`: the avoid-collision controller node (Listing 3.2).
+- :mod:`mazesim.ros.perform_learning`: the hierarchical policy node (Alg. 5), a hook that needs
+  :mod:`mazesim.hrl`.
+- :mod:`mazesim.ros.topics`: the topics and their layouts (the codes of the ``action`` topic and
+  their wheel speeds are :mod:`mazesim.actions`).
+- :mod:`mazesim.ros.local_master`: a private master on a free loopback port with the processes
+  started against it, for demos, benchmarks and tests.
+
+The nodes run with ``roslaunch`` (the ROS package ``ros/mazesim_ros`` of the repository) or as
+``mazesim ros bridge``, ``mazesim ros avoid-collision`` and ``mazesim ros perform-learning``.
+"""
+
+from __future__ import annotations
+
+__all__: list[str] = []

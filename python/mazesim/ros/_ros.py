@@ -1,0 +1,110 @@
+"""Lazy access to ROS 1's Python packages, and what every mazesim node does the same way.
+
+Nothing here imports ROS at module level: :func:`require_ros` does, and turns a missing package
+into a :class:`~mazesim.errors.MissingDependencyError` that says how to install it.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import threading
+import time
+import warnings
+from types import FrameType, SimpleNamespace
+from typing import Any
+
+from mazesim.errors import MazesimError, MissingDependencyError
+
+__all__ = ["install_shutdown_handlers", "publisher", "require_ros", "wait_for_master"]
+
+#: Debian's packages that give ``rospy``, the message types and the command-line tools.
+DEBIAN_PACKAGES = (
+    "python3-rosmaster python3-roslaunch python3-rospy python3-rostopic python3-std-msgs "
+    "python3-rosgraph-msgs python3-rosbag rosout"
+)
+
+
+def require_ros() -> Any:
+    """Imports ``rospy`` and the message classes the nodes use.
+
+    Returns:
+        A namespace with ``rospy``, ``rosgraph``, ``Float64MultiArray``, ``MultiArrayDimension``,
+        ``String`` and ``Clock``.
+
+    Raises:
+        MissingDependencyError: ROS 1's Python packages cannot be imported.
+    """
+    try:
+        import rosgraph
+        import rospy
+        from rosgraph_msgs.msg import Clock
+        from std_msgs.msg import Float64MultiArray, MultiArrayDimension, String
+    except ImportError as error:
+        raise MissingDependencyError(
+            f"mazesim.ros needs ROS 1's Python packages (import failed: {error}); on Debian or "
+            f"Ubuntu run 'make ros-deps', or 'apt-get install {DEBIAN_PACKAGES}', and make "
+            f"/usr/lib/python3/dist-packages importable (see the README's ROS bridge section)"
+        ) from error
+    return SimpleNamespace(
+        rospy=rospy,
+        rosgraph=rosgraph,
+        Float64MultiArray=Float64MultiArray,
+        MultiArrayDimension=MultiArrayDimension,
+        String=String,
+        Clock=Clock,
+    )
+
+
+def wait_for_master(ros: Any, timeout: float) -> None:
+    """Waits until the ROS master at ``ROS_MASTER_URI`` answers.
+
+    Args:
+        ros: The namespace from :func:`require_ros`.
+        timeout: Seconds to wait before giving up.
+
+    Raises:
+        MazesimError: No master answered within ``timeout`` seconds.
+    """
+    master = ros.rosgraph.Master("/mazesim")
+    deadline = time.monotonic() + timeout
+    while not master.is_online():
+        if time.monotonic() >= deadline:
+            uri = os.environ.get("ROS_MASTER_URI", "http://localhost:11311 (the default)")
+            raise MazesimError(
+                f"no ROS master answered at ROS_MASTER_URI={uri} within {timeout:g} s; "
+                f"start one with 'roscore' or set ROS_MASTER_URI"
+            )
+        time.sleep(0.1)
+
+
+def install_shutdown_handlers(stop: threading.Event) -> None:
+    """Makes SIGINT and SIGTERM set ``stop`` instead of raising in the main thread.
+
+    The nodes call ``rospy.init_node(..., disable_signals=True)``: rospy's own handler can hang a
+    node that is publishing when Ctrl-C arrives, so each node waits on ``stop`` and then shuts
+    rospy down itself.
+    """
+
+    def request_stop(signum: int, frame: FrameType | None) -> None:
+        stop.set()
+
+    signal.signal(signal.SIGINT, request_stop)
+    signal.signal(signal.SIGTERM, request_stop)
+
+
+def publisher(
+    ros: Any, topic: str, message_class: Any, synchronous: bool, latch: bool = False
+) -> Any:
+    """Creates a publisher, synchronous or queued.
+
+    A synchronous publisher (``queue_size=None``) writes to every subscriber inside ``publish``:
+    nothing is dropped, and a slow subscriber slows the publisher, which is what lockstep wants.
+    A queued one keeps the latest 10 messages per subscriber and drops older ones.
+    """
+    with warnings.catch_warnings():
+        # rospy warns about queue_size=None, which is how it spells synchronous publishing.
+        warnings.simplefilter("ignore", SyntaxWarning)
+        return ros.rospy.Publisher(
+            topic, message_class, queue_size=None if synchronous else 10, latch=latch
+        )

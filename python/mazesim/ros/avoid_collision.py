@@ -1,0 +1,140 @@
+"""The avoid-collision controller node (the report's Listing 3.2, Alg. 4).
+
+It subscribes ``sensors``, runs :class:`mazesim.controllers.AvoidCollision` (Alg. 1) on the first
+eight values (the e-puck's ``ps0`` .. ``ps7``) and publishes the wheel speeds on ``motor``, one
+command per reading, which is exactly what a lockstep bridge waits for. Before it subscribes it
+waits until the bridge listens on ``motor``, so its first command cannot be lost.
+
+Parameters (private; options of ``mazesim ros avoid-collision`` take precedence): ``threshold``
+(raw proximity reading that means an obstacle, default 80), ``max_speed`` (rad/s, 6.28) and
+``wait_for_subscribers`` (how many subscribers of ``motor`` to wait for before starting, default 1,
+the bridge; 2 when a recorder must not miss the first commands either).
+"""
+
+from __future__ import annotations
+
+import math
+import threading
+import time
+from typing import Any
+
+from mazesim.controllers import AvoidCollision
+from mazesim.errors import InvalidArgumentError
+from mazesim.ros import topics
+from mazesim.ros._ros import (
+    install_shutdown_handlers,
+    publisher,
+    require_ros,
+    wait_for_master,
+)
+
+__all__ = ["run_avoid_collision"]
+
+#: Seconds a node waits for the ROS master before giving up.
+MASTER_TIMEOUT_S = 10.0
+#: Seconds after which the node says it is still waiting for the bridge.
+WAITING_NOTICE_S = 5.0
+#: The names of the values the controller reads, first on ``sensors``.
+PS_NAMES = [f"ps{index}" for index in range(8)]
+
+
+def _positive(rospy: Any, name: str, option: float | None, default: float) -> float:
+    value = option if option is not None else rospy.get_param("~" + name, default)
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        number = math.nan
+    if not (math.isfinite(number) and number > 0.0):
+        raise InvalidArgumentError(f"expected parameter {name} > 0; found {value!r}")
+    return number
+
+
+def run_avoid_collision(
+    options: dict[str, Any], remappings: list[str], node_name: str = "avoid_collision"
+) -> int:
+    """Runs the avoid-collision node until it is stopped.
+
+    Args:
+        options: ``threshold`` and ``max_speed`` from the command line, or ``None`` to use the
+            private ROS parameters (then the defaults 80 and 6.28).
+        remappings: ROS remapping arguments such as ``motor:=/robot1/motor``.
+        node_name: The node's name unless a ``__name:=`` remapping overrides it.
+
+    Returns:
+        The exit code, 0 once the node has stopped.
+    """
+    ros = require_ros()
+    rospy = ros.rospy
+    wait_for_master(ros, MASTER_TIMEOUT_S)
+    rospy.init_node(
+        node_name, argv=["mazesim-ros-avoid-collision", *remappings], disable_signals=True
+    )
+    stop = threading.Event()
+    install_shutdown_handlers(stop)
+    try:
+        threshold = _positive(rospy, "threshold", options.get("threshold"), 80.0)
+        max_speed = _positive(
+            rospy, "max_speed", options.get("max_speed"), AvoidCollision.MAX_SPEED
+        )
+        subscribers = options.get("wait_for_subscribers")
+        if subscribers is None:
+            subscribers = rospy.get_param("~wait_for_subscribers", 1)
+        if not isinstance(subscribers, int) or subscribers < 1:
+            raise InvalidArgumentError(
+                f"expected parameter wait_for_subscribers to be a whole number >= 1; "
+                f"found {subscribers!r}"
+            )
+    except InvalidArgumentError as error:
+        rospy.signal_shutdown(f"bad parameters: {error}")
+        raise
+    controller = AvoidCollision(threshold=threshold, max_speed=max_speed)
+    # Synchronous: one command per reading, never dropped (see mazesim.ros._ros.publisher).
+    motor = publisher(ros, topics.MOTOR_TOPIC, ros.Float64MultiArray, synchronous=True)
+
+    def on_sensors(message: Any) -> None:
+        readings = message.data[:8]
+        # The bridge labels the values; a publisher that does not is taken at its word.
+        labels = message.layout.dim[0].label.split(",")[:8] if message.layout.dim else PS_NAMES
+        if (
+            labels != PS_NAMES
+            or len(readings) < 8
+            or not all(math.isfinite(value) for value in readings)
+        ):
+            rospy.logwarn_throttle(
+                5.0,
+                "ignored sensors data without the e-puck's ps0..ps7 as 8 finite numbers "
+                "(found %d values labelled %s); run the bridge with robot e-puck",
+                len(message.data),
+                ",".join(labels) or "(none)",
+            )
+            return
+        left, right = controller(readings)
+        motor.publish(ros.Float64MultiArray(data=[left, right]))
+
+    started = time.monotonic()
+    noticed = False
+    while motor.get_num_connections() < subscribers and not stop.is_set():
+        if not noticed and time.monotonic() - started > WAITING_NOTICE_S:
+            rospy.loginfo(
+                "waiting for %d subscriber(s) of %s (the bridge)", subscribers, motor.resolved_name
+            )
+            noticed = True
+        stop.wait(0.01)
+    rospy.Subscriber(
+        topics.SENSORS_TOPIC,
+        ros.Float64MultiArray,
+        on_sensors,
+        queue_size=1,
+        tcp_nodelay=True,
+    )
+    rospy.loginfo(
+        "avoid-collision: threshold %g, max speed %g rad/s; %s -> %s",
+        threshold,
+        max_speed,
+        rospy.resolve_name(topics.SENSORS_TOPIC),
+        motor.resolved_name,
+    )
+    while not stop.wait(0.1) and not rospy.is_shutdown():
+        pass
+    rospy.signal_shutdown("avoid-collision stopped")
+    return 0

@@ -1,0 +1,332 @@
+"""The bridge node: one mazesim simulator as the report's custom ROS controller (Listing 3.1).
+
+The bridge publishes ``sensors``, ``sensor_data`` (robots with Sharp sensors), ``pose`` and
+``/clock``, and takes wheel speeds from ``motor`` or primitive action codes from ``action``; see
+:mod:`mazesim.ros.topics` for the layouts. It runs in one of two modes:
+
+- ``lockstep`` (the default): the simulation advances exactly one control step for each command
+  received, then publishes the new state, as Webots does with ``--synchronize``. The controller
+  answers each ``sensors`` (or ``sensor_data``) message with one command, so no reading is ever
+  missed or stale whatever the load, and a run is as deterministic as the in-process simulator.
+  The state topics are latched: a controller that connects late still receives the state waiting
+  for its command. Run exactly one controller in this mode.
+- ``realtime``: the simulation steps on its own, ``speed`` times faster than the wall clock, with
+  the last commanded wheel speeds.
+
+Parameters (private, e.g. ``~world``; options of ``mazesim ros bridge`` take precedence):
+``world`` (built-in name or world file, default ``seed-maze``), ``robot`` (``e-puck``), ``seed``
+(0), ``mode`` (``lockstep``), ``speed`` (1.0), ``duration`` (simulated seconds after which the
+bridge stops, 0 for never), ``noise`` (true). The bridge sets ``/use_sim_time`` to true unless it
+is already set.
+
+Bad commands (not two finite numbers, unknown action codes) are logged and ignored: they do not
+advance the simulation.
+"""
+
+from __future__ import annotations
+
+import math
+import threading
+import time
+from dataclasses import dataclass, fields
+from typing import Any
+
+import mazesim
+from mazesim._core import Simulator
+from mazesim.actions import wheel_speeds
+from mazesim.errors import InvalidArgumentError, MazesimError
+from mazesim.ros import topics
+from mazesim.ros._ros import (
+    install_shutdown_handlers,
+    publisher,
+    require_ros,
+    wait_for_master,
+)
+
+__all__ = ["MODES", "Bridge", "BridgeSettings", "run_bridge"]
+
+#: The bridge's modes.
+MODES = ("lockstep", "realtime")
+#: Seconds a node waits for the ROS master before giving up.
+MASTER_TIMEOUT_S = 10.0
+#: Seconds without a command after which a lockstep bridge says it is waiting for one.
+IDLE_WARNING_S = 5.0
+#: How many control steps a real-time bridge may fall behind before it stops catching up.
+MAX_LAG_STEPS = 5
+
+
+@dataclass
+class BridgeSettings:
+    """What the bridge simulates and how; each field is also a private ROS parameter."""
+
+    world: str = "seed-maze"
+    robot: str = "e-puck"
+    seed: int = 0
+    mode: str = "lockstep"
+    speed: float = 1.0
+    duration: float = 0.0
+    noise: bool = True
+
+    def validate(self) -> None:
+        """Raises InvalidArgumentError naming the first parameter that is out of range."""
+        if self.mode not in MODES:
+            raise InvalidArgumentError(
+                f"expected parameter mode to be one of {', '.join(MODES)}; found {self.mode!r}"
+            )
+        if not (math.isfinite(self.speed) and self.speed > 0.0):
+            raise InvalidArgumentError(
+                f"expected parameter speed to be a positive factor; found {self.speed!r}"
+            )
+        if not (math.isfinite(self.duration) and self.duration >= 0.0):
+            raise InvalidArgumentError(
+                f"expected parameter duration to be seconds >= 0 (0: no limit); "
+                f"found {self.duration!r}"
+            )
+        if not 0 <= self.seed < 2**64:
+            raise InvalidArgumentError(f"expected parameter seed in [0, 2^64); found {self.seed!r}")
+
+
+def _convert(name: str, value: Any, kind: type) -> Any:
+    """Converts a parameter value read from the ROS parameter server to the field's type."""
+    try:
+        if kind is bool:
+            if isinstance(value, str):
+                if value.strip().lower() in ("true", "1", "yes"):
+                    return True
+                if value.strip().lower() in ("false", "0", "no"):
+                    return False
+                raise ValueError(value)
+            return bool(value)
+        if kind is int and isinstance(value, float) and not value.is_integer():
+            raise ValueError(value)
+        return kind(value)
+    except (TypeError, ValueError):
+        raise InvalidArgumentError(
+            f"expected parameter {name} to be a {kind.__name__}; found {value!r}"
+        ) from None
+
+
+def resolve_settings(rospy: Any, options: dict[str, Any]) -> BridgeSettings:
+    """Reads the settings: command-line options, else private ROS parameters, else defaults."""
+    defaults = BridgeSettings()
+    values: dict[str, Any] = {}
+    for field in fields(BridgeSettings):
+        value = options.get(field.name)
+        if value is None:
+            value = rospy.get_param("~" + field.name, getattr(defaults, field.name))
+        values[field.name] = _convert(field.name, value, type(getattr(defaults, field.name)))
+    settings = BridgeSettings(**values)
+    settings.validate()
+    return settings
+
+
+class Bridge:
+    """Publishes a simulator's state and steps it on commands; see the module's description."""
+
+    def __init__(
+        self, ros: Any, simulator: Simulator, settings: BridgeSettings, stop: threading.Event
+    ) -> None:
+        rospy = ros.rospy
+        self.ros = ros
+        self.simulator = simulator
+        self.settings = settings
+        self.stop = stop
+        self.lockstep = settings.mode == "lockstep"
+        self.max_wheel_speed = simulator.robot.max_wheel_speed
+        self.commands = 0
+        self.rejected = 0
+        self.wheel_speeds = (0.0, 0.0)
+        self.first_command_at: float | None = None
+        self._lock = threading.Lock()
+        self._sensors_layout = self._layout(topics.sensor_names(simulator))
+        self._pose_layout = self._layout(["x", "y", "yaw", "time"])
+        # Latched: a subscriber that connects late still receives the state awaiting a command
+        # (and a recorder on simulated time, which waits for a first /clock, can start).
+        self.clock_publisher = self._publisher(topics.CLOCK_TOPIC, ros.Clock)
+        self.pose_publisher = self._publisher(topics.POSE_TOPIC, ros.Float64MultiArray)
+        self.sensors_publisher = self._publisher(topics.SENSORS_TOPIC, ros.Float64MultiArray)
+        self.sensor_data_publisher = None
+        if topics.has_sharp_sensors(simulator):
+            names = [f"{name} cm" for name in simulator.robot.distance_sensor_names]
+            self._sensor_data_layout = self._layout([*names, "checkpoint"])
+            self.sensor_data_publisher = self._publisher(
+                topics.SENSOR_DATA_TOPIC, ros.Float64MultiArray
+            )
+        self.publish_state()
+        # No queue limit: in lockstep every command is one step and none may be dropped.
+        rospy.Subscriber(topics.MOTOR_TOPIC, ros.Float64MultiArray, self.on_motor, tcp_nodelay=True)
+        rospy.Subscriber(topics.ACTION_TOPIC, ros.String, self.on_action, tcp_nodelay=True)
+
+    def _publisher(self, topic: str, message_class: Any) -> Any:
+        # Synchronous in lockstep: every subscriber (a recorder too) gets every step before the
+        # next command is taken. Queued in real time: a slow subscriber loses old messages.
+        return publisher(self.ros, topic, message_class, synchronous=self.lockstep, latch=True)
+
+    def _layout(self, labels: list[str]) -> Any:
+        layout = self.ros.Float64MultiArray().layout
+        size = len(labels)
+        dimension = self.ros.MultiArrayDimension(label=",".join(labels), size=size, stride=size)
+        layout.dim = [dimension]
+        return layout
+
+    def _array(self, layout: Any, values: list[float]) -> Any:
+        return self.ros.Float64MultiArray(layout=layout, data=values)
+
+    def publish_state(self) -> None:
+        """Publishes ``/clock``, ``pose``, ``sensors`` and ``sensor_data`` for the current step."""
+        simulator = self.simulator
+        nanoseconds = round(simulator.time * 1e9)
+        clock_time = self.ros.rospy.Time(nanoseconds // 10**9, nanoseconds % 10**9)
+        self.clock_publisher.publish(self.ros.Clock(clock=clock_time))
+        self.pose_publisher.publish(self._array(self._pose_layout, topics.pose_values(simulator)))
+        self.sensors_publisher.publish(
+            self._array(self._sensors_layout, topics.sensors_values(simulator))
+        )
+        if self.sensor_data_publisher is not None:
+            self.sensor_data_publisher.publish(
+                self._array(self._sensor_data_layout, topics.sensor_data_values(simulator))
+            )
+
+    def _finished(self) -> bool:
+        duration = self.settings.duration
+        return duration > 0.0 and self.simulator.time >= duration - 1e-9
+
+    def on_motor(self, message: Any) -> None:
+        """Handles a ``motor`` message: ``[left, right]`` in rad/s."""
+        try:
+            left, right = topics.motor_command(message.data)
+        except MazesimError as error:
+            self._reject("motor", error)
+            return
+        self.command(left, right)
+
+    def on_action(self, message: Any) -> None:
+        """Handles an ``action`` message: a primitive action code."""
+        try:
+            left, right = wheel_speeds(message.data, self.max_wheel_speed)
+        except MazesimError as error:
+            self._reject("action", error)
+            return
+        self.command(left, right)
+
+    def _reject(self, topic: str, error: MazesimError) -> None:
+        with self._lock:
+            self.rejected += 1
+        self.ros.rospy.logwarn("ignored a bad %s message: %s", topic, error)
+
+    def command(self, left: float, right: float) -> None:
+        """Applies wheel speeds: in lockstep, steps once and publishes; else holds them."""
+        with self._lock:
+            if self.stop.is_set():
+                return
+            if self.first_command_at is None:
+                self.first_command_at = time.monotonic()
+            self.commands += 1
+            self.wheel_speeds = (left, right)
+            if not self.lockstep:
+                return
+            self.simulator.step(left, right)
+            self.publish_state()
+            if self._finished():
+                self.stop.set()
+
+    def finish(self) -> tuple[int, float]:
+        """Stops stepping (later commands are ignored) and returns the steps and simulated time."""
+        with self._lock:
+            self.stop.set()
+            return self.simulator.steps, self.simulator.time
+
+    def run(self) -> None:
+        """Runs until a signal, ROS shutdown or the end of ``duration``."""
+        rospy = self.ros.rospy
+        if self.lockstep:
+            started = time.monotonic()
+            while not self.stop.wait(0.1) and not rospy.is_shutdown():
+                if self.commands == 0 and time.monotonic() - started > IDLE_WARNING_S:
+                    rospy.logwarn(
+                        "lockstep: waiting for a command on %s or %s (one control step each)",
+                        rospy.resolve_name(topics.MOTOR_TOPIC),
+                        rospy.resolve_name(topics.ACTION_TOPIC),
+                    )
+                    started = math.inf
+            return
+        period = self.simulator.control_step_ms / 1000.0 / self.settings.speed
+        next_step = time.monotonic()
+        while not self.stop.is_set() and not rospy.is_shutdown():
+            with self._lock:
+                self.simulator.step(*self.wheel_speeds)
+                self.publish_state()
+                if self._finished():
+                    break
+            next_step += period
+            delay = next_step - time.monotonic()
+            if delay > 0.0:
+                self.stop.wait(delay)
+            elif delay < -MAX_LAG_STEPS * period:
+                next_step = time.monotonic()
+
+
+def run_bridge(
+    options: dict[str, Any], remappings: list[str], node_name: str = "mazesim_bridge"
+) -> int:
+    """Runs the bridge node until it is stopped.
+
+    Args:
+        options: Settings given on the command line (``None`` values fall back to the private
+            ROS parameters, then to the defaults of :class:`BridgeSettings`).
+        remappings: ROS remapping arguments such as ``sensors:=/robot1/sensors`` or ``_seed:=3``.
+        node_name: The node's name unless a ``__name:=`` remapping overrides it.
+
+    Returns:
+        The exit code, 0 once the bridge has stopped.
+    """
+    ros = require_ros()
+    rospy = ros.rospy
+    wait_for_master(ros, MASTER_TIMEOUT_S)
+    # The bridge is the time source: unless the launch decided otherwise, nodes started after it
+    # run on the simulated time.
+    if not rospy.has_param("/use_sim_time"):
+        rospy.set_param("/use_sim_time", True)
+    rospy.init_node(node_name, argv=["mazesim-ros-bridge", *remappings], disable_signals=True)
+    stop = threading.Event()
+    install_shutdown_handlers(stop)
+    try:
+        settings = resolve_settings(rospy, options)
+        for field in fields(BridgeSettings):
+            rospy.set_param("~" + field.name, getattr(settings, field.name))
+        world = mazesim.load_world(settings.world)
+        simulator = Simulator(world, robot=settings.robot, seed=settings.seed, noise=settings.noise)
+        bridge = Bridge(ros, simulator, settings, stop)
+    except MazesimError as error:
+        rospy.signal_shutdown(f"bad settings: {error}")
+        raise
+    robot = simulator.robot
+    rospy.loginfo(
+        "mazesim bridge: world %s, robot %s, seed %d, %s%s; sensors = %s",
+        world.name,
+        robot.name,
+        settings.seed,
+        settings.mode,
+        "" if bridge.lockstep else f" x{settings.speed:g}",
+        ", ".join(topics.sensor_names(simulator)),
+    )
+    started = time.monotonic()
+    try:
+        bridge.run()
+    finally:
+        steps, simulated = bridge.finish()
+        # Lockstep counts from the first command: the wait for a controller is not stepping.
+        since = bridge.first_command_at if bridge.lockstep else started
+        elapsed = time.monotonic() - since if since is not None else 0.0
+        rate = steps / elapsed if elapsed > 0 else 0.0
+        rospy.loginfo(
+            "mazesim bridge stopped: %d steps (%.2f s simulated) in %.2f s of stepping, "
+            "%.0f steps/s; %d bad messages ignored",
+            steps,
+            simulated,
+            elapsed,
+            rate,
+            bridge.rejected,
+        )
+        rospy.signal_shutdown("mazesim bridge stopped")
+    return 0

@@ -1,0 +1,242 @@
+"""The ``mazesim ros`` commands: the ROS nodes without roslaunch, and the bridge demo.
+
+``mazesim ros bridge``, ``mazesim ros avoid-collision`` and ``mazesim ros perform-learning`` run the
+nodes that the ROS package ``mazesim_ros`` launches; options take precedence over the nodes'
+private ROS parameters, and trailing ``NAME:=VALUE`` arguments are ROS remappings (``_seed:=3``
+sets a private parameter, ``__name:=bridge2`` renames the node). ``mazesim ros demo`` runs a whole
+graph on a private master. ROS is imported only when a command runs.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+from typing import Any
+
+from mazesim.cli import positive_seconds, seed_argument
+
+__all__ = ["register"]
+
+
+def _remapping(text: str) -> str:
+    if ":=" not in text:
+        raise argparse.ArgumentTypeError(
+            f"expected a ROS remapping NAME:=VALUE (e.g. sensors:=/robot1/sensors); found {text!r}"
+        )
+    return text
+
+
+def _positive_number(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number, found {text!r}") from None
+    if not math.isfinite(value) or value <= 0.0:
+        raise argparse.ArgumentTypeError(f"expected a positive number, found {text!r}")
+    return value
+
+
+def _whole_number(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a whole number, found {text!r}") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"expected a whole number >= 1, found {text!r}")
+    return value
+
+
+def _non_negative_seconds(text: str) -> float:
+    if text.strip() in ("0", "0.0"):
+        return 0.0
+    return positive_seconds(text)
+
+
+def _add_node_arguments(parser: argparse.ArgumentParser, default_name: str) -> None:
+    parser.add_argument(
+        "--name",
+        default=default_name,
+        help="the node's name, unless a __name:= remapping gives one (default: %(default)s)",
+    )
+    parser.add_argument(
+        "remappings",
+        nargs="*",
+        type=_remapping,
+        metavar="NAME:=VALUE",
+        help="ROS remapping arguments, e.g. sensors:=/robot1/sensors or _seed:=3",
+    )
+
+
+def _run_bridge(args: argparse.Namespace) -> int:
+    from mazesim.ros.bridge import run_bridge
+
+    options = {
+        "world": args.world,
+        "robot": args.robot,
+        "seed": args.seed,
+        "mode": args.mode,
+        "speed": args.speed,
+        "duration": args.duration,
+        "noise": False if args.no_noise else None,
+    }
+    return run_bridge(options, args.remappings, args.name)
+
+
+def _run_avoid_collision(args: argparse.Namespace) -> int:
+    from mazesim.ros.avoid_collision import run_avoid_collision
+
+    options = {
+        "threshold": args.threshold,
+        "max_speed": args.max_speed,
+        "wait_for_subscribers": args.wait_for_subscribers,
+    }
+    return run_avoid_collision(options, args.remappings, args.name)
+
+
+def _run_perform_learning(args: argparse.Namespace) -> int:
+    from mazesim.ros.perform_learning import run_perform_learning
+
+    return run_perform_learning({"policy": args.policy}, args.remappings, args.name)
+
+
+def _run_demo(args: argparse.Namespace) -> int:
+    import sys
+
+    from mazesim.ros.demo import run_demo
+
+    return run_demo(args, sys.stdout)
+
+
+def register(commands: Any) -> None:
+    """Adds ``mazesim ros ...`` to the ``mazesim`` command's subparsers."""
+    ros = commands.add_parser(
+        "ros",
+        help="run the ROS 1 bridge and controller nodes (needs ROS 1)",
+        description=(
+            "Run mazesim as ROS 1 nodes, as the report's custom ROS controller: the bridge "
+            "publishes sensors, sensor_data, pose and /clock and steps on motor or action "
+            "commands. ROS_MASTER_URI says which master to use. Needs ROS 1's Python packages "
+            "(on Debian: 'make ros-deps')."
+        ),
+    )
+    nodes = ros.add_subparsers(dest="ros_command", metavar="NODE", required=True)
+
+    bridge = nodes.add_parser(
+        "bridge",
+        help="the simulator node: publishes sensors, sensor_data, pose, /clock",
+        description=(
+            "Run a simulator as a ROS node. Publishes sensors (distance then ground sensors, "
+            "Float64MultiArray), sensor_data (Sharp distances in cm + checkpoint, robots with "
+            "Sharp sensors), pose ([x, y, yaw, time]) and /clock; subscribes motor ([left, right] "
+            "rad/s) and action (a primitive action code, String). In lockstep mode it advances "
+            "one control step per command received. Options left out fall back to the node's "
+            "private parameters (~world, ~robot, ...), then to the defaults shown."
+        ),
+    )
+    bridge.add_argument(
+        "--world", metavar="NAME|PATH", help="built-in world or world file (default: seed-maze)"
+    )
+    bridge.add_argument("--robot", metavar="NAME", help="robot profile (default: e-puck)")
+    bridge.add_argument(
+        "--seed", type=seed_argument, metavar="N", help="seed of the sensor noise (default: 0)"
+    )
+    bridge.add_argument(
+        "--mode",
+        choices=("lockstep", "realtime"),
+        help="lockstep: one control step per command; realtime: step on the clock "
+        "(default: lockstep)",
+    )
+    bridge.add_argument(
+        "--speed",
+        type=_positive_number,
+        metavar="FACTOR",
+        help="realtime mode: simulated seconds per wall-clock second (default: 1)",
+    )
+    bridge.add_argument(
+        "--duration",
+        type=_non_negative_seconds,
+        metavar="S",
+        help="stop after S simulated seconds; 0 runs until stopped (default: 0)",
+    )
+    bridge.add_argument("--no-noise", action="store_true", help="turn the sensor noise off")
+    _add_node_arguments(bridge, "mazesim_bridge")
+    bridge.set_defaults(run=_run_bridge)
+
+    avoid = nodes.add_parser(
+        "avoid-collision",
+        help="the report's avoid-collision controller node (Listing 3.2)",
+        description=(
+            "Subscribe sensors, run the avoid-collision rule (Alg. 1) on ps0..ps7 and publish "
+            "[left, right] on motor, one command per reading. Needs a bridge running the e-puck."
+        ),
+    )
+    avoid.add_argument(
+        "--threshold",
+        type=_positive_number,
+        metavar="RAW",
+        help="proximity reading that means an obstacle (default: ~threshold or 80)",
+    )
+    avoid.add_argument(
+        "--max-speed",
+        type=_positive_number,
+        metavar="RAD_S",
+        help="maximum wheel speed in rad/s (default: ~max_speed or 6.28)",
+    )
+    avoid.add_argument(
+        "--wait-for-subscribers",
+        type=_whole_number,
+        metavar="N",
+        help="subscribers of motor to wait for before starting: 1 (the bridge), 2 with a "
+        "recorder (default: ~wait_for_subscribers or 1)",
+    )
+    _add_node_arguments(avoid, "avoid_collision")
+    avoid.set_defaults(run=_run_avoid_collision)
+
+    learning = nodes.add_parser(
+        "perform-learning",
+        help="the hierarchical policy node (Alg. 5; needs mazesim.hrl)",
+        description=(
+            "Subscribe sensor_data, ask the hierarchical policy of mazesim.hrl for a primitive "
+            "action and publish its code on action. Needs a bridge running a robot with Sharp "
+            "sensors (--robot seed)."
+        ),
+    )
+    learning.add_argument(
+        "--policy", metavar="DIR", help="folder of trained tables (default: the shipped ones)"
+    )
+    _add_node_arguments(learning, "perform_learning")
+    learning.set_defaults(run=_run_perform_learning)
+
+    demo = nodes.add_parser(
+        "demo",
+        help="bridge + avoid-collision in lockstep on a private master, recorded in a bag",
+        description=(
+            "Start a ROS master on a free loopback port, the bridge in lockstep, the "
+            "avoid-collision node and 'rosbag record'; run for the given simulated time, stop "
+            "everything, then read the bag back and plot the trajectory. Writes DIR/maze.bag, "
+            "DIR/trajectory.png and DIR/logs/."
+        ),
+    )
+    demo.add_argument(
+        "--world",
+        default="seed-maze",
+        metavar="NAME|PATH",
+        help="built-in world or world file (default: %(default)s)",
+    )
+    demo.add_argument(
+        "--seed", type=seed_argument, default=0, metavar="N", help="noise seed (default: 0)"
+    )
+    demo.add_argument(
+        "--seconds",
+        type=positive_seconds,
+        default=60.0,
+        metavar="S",
+        help="simulated seconds to run (default: %(default)s)",
+    )
+    demo.add_argument(
+        "--out",
+        default="mazesim-ros-demo",
+        metavar="DIR",
+        help="output folder, created if missing (default: %(default)s)",
+    )
+    demo.set_defaults(run=_run_demo)

@@ -1,0 +1,317 @@
+"""A private ROS master on a free loopback port, and the processes started against it.
+
+:class:`LocalMaster` starts ``roscore -p PORT`` on a port the system picks, gives every process it
+starts the matching ``ROS_MASTER_URI`` (plus ``ROS_IP=127.0.0.1`` and a private ``ROS_HOME`` for
+logs) and, when closed, stops them all: nodes with SIGINT (then SIGTERM, then SIGKILL if they hang),
+the master with SIGTERM by its PID. Every process carries a tag in its environment, so what is
+left behind, children of children included, can be listed (:meth:`LocalMaster.leftovers`).
+
+It needs the ``roscore`` command but does not import ``rospy``, so one process can hold a master
+and still be (at most) one ROS node itself. The ``mazesim ros demo`` command, the ROS benchmark and
+the tests use it.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+import uuid
+import xmlrpc.client
+from collections.abc import Sequence
+from types import TracebackType
+from typing import Any
+
+from mazesim.errors import MazesimError, MissingDependencyError
+
+__all__ = ["LocalMaster", "free_loopback_port"]
+
+#: The environment variable whose value tags every process a LocalMaster starts.
+TAG_VARIABLE = "MAZESIM_ROS_GRAPH"
+#: The caller id this module gives the master's XML-RPC API.
+CALLER_ID = "/mazesim_local_master"
+
+
+def _xmlrpc(uri: str, method: str, *args: object) -> Any:
+    """Calls a ROS XML-RPC API method; returns ``[code, message, value]`` as the API defines."""
+    with xmlrpc.client.ServerProxy(uri) as proxy:
+        return getattr(proxy, method)(CALLER_ID, *args)
+
+
+def free_loopback_port() -> int:
+    """A TCP port on 127.0.0.1 that no one listens on (the system picks it)."""
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as probe:
+        probe.bind(("127.0.0.1", 0))
+        return int(probe.getsockname()[1])
+
+
+class LocalMaster:
+    """``roscore`` on a free loopback port, with the processes started against it.
+
+    Use it as a context manager::
+
+        with LocalMaster() as master:
+            bridge = master.spawn("bridge", ["mazesim", "ros", "bridge"])
+            ...
+        assert not master.leftovers()
+
+    Attributes:
+        port: The master's port on 127.0.0.1.
+        uri: The master's URI, ``http://127.0.0.1:PORT``.
+        home: The folder of the logs (``ROS_HOME``); each spawned process writes ``NAME.log`` here.
+        env: The environment of every process started (``ROS_MASTER_URI``, ``ROS_IP``,
+            ``ROS_HOME`` and the tag set; this Python's folder first on ``PATH``).
+    """
+
+    def __init__(self, home: str | None = None) -> None:
+        """Prepares the master; :meth:`start` (or ``with``) starts it.
+
+        Args:
+            home: The folder for logs; by default a new temporary folder.
+        """
+        self.port = free_loopback_port()
+        self.uri = f"http://127.0.0.1:{self.port}"
+        self.tag = uuid.uuid4().hex
+        self.home = home if home is not None else tempfile.mkdtemp(prefix="mazesim-ros-")
+        os.makedirs(self.home, exist_ok=True)
+        env = dict(os.environ)
+        env.pop("ROS_HOSTNAME", None)
+        python_folder = os.path.dirname(sys.executable)
+        env.update(
+            {
+                "ROS_MASTER_URI": self.uri,
+                "ROS_IP": "127.0.0.1",
+                "ROS_HOME": self.home,
+                "ROS_LOG_DIR": os.path.join(self.home, "log"),
+                "PATH": python_folder + os.pathsep + env.get("PATH", ""),
+                "PYTHONUNBUFFERED": "1",
+                TAG_VARIABLE: self.tag,
+            }
+        )
+        self.env = env
+        self.roscore: subprocess.Popen[bytes] | None = None
+        self.processes: list[tuple[str, subprocess.Popen[bytes]]] = []
+
+    def __enter__(self) -> LocalMaster:
+        self.start()
+        return self
+
+    def __exit__(
+        self,
+        kind: type[BaseException] | None,
+        error: BaseException | None,
+        traceback: TracebackType | None,
+    ) -> None:
+        self.close()
+
+    def log_path(self, name: str) -> str:
+        """The file that receives the standard output and error of the process ``name``."""
+        return os.path.join(self.home, f"{name}.log")
+
+    def start(self, timeout: float = 15.0) -> None:
+        """Starts ``roscore -p PORT`` and waits until the master answers.
+
+        Raises:
+            MissingDependencyError: There is no ``roscore`` command.
+            MazesimError: The master did not answer within ``timeout`` seconds.
+        """
+        if shutil.which("roscore", path=self.env["PATH"]) is None:
+            raise MissingDependencyError(
+                "no 'roscore' command: install ROS 1 (on Debian, 'make ros-deps' or "
+                "'apt-get install python3-roslaunch rosout')"
+            )
+        with open(self.log_path("roscore"), "wb") as log:
+            self.roscore = subprocess.Popen(
+                ["roscore", "-p", str(self.port)],
+                env=self.env,
+                stdin=subprocess.DEVNULL,
+                stdout=log,
+                stderr=subprocess.STDOUT,
+                start_new_session=True,
+            )
+        deadline = time.monotonic() + timeout
+        while not self.is_online():
+            if self.roscore.poll() is not None or time.monotonic() > deadline:
+                self.close()
+                raise MazesimError(
+                    f"roscore did not start on port {self.port} within {timeout:g} s; "
+                    f"see {self.log_path('roscore')}"
+                )
+            time.sleep(0.05)
+
+    def is_online(self) -> bool:
+        """Whether the master answers on its port."""
+        try:
+            with socket.create_connection(("127.0.0.1", self.port), timeout=0.5):
+                pass
+            code, _, _ = _xmlrpc(self.uri, "getPid")
+        except (OSError, xmlrpc.client.Error):
+            return False
+        return bool(code == 1)
+
+    def set_param(self, name: str, value: object) -> None:
+        """Sets a parameter on the master (an absolute name such as ``/use_sim_time``)."""
+        code, message, _ = _xmlrpc(self.uri, "setParam", name, value)
+        if code != 1:
+            raise MazesimError(f"the ROS master at {self.uri} refused to set {name}: {message}")
+
+    def system_state(self) -> tuple[Any, Any, Any]:
+        """The master's publishers, subscribers and services: ``[[topic, [node, ...]], ...]``."""
+        code, message, state = _xmlrpc(self.uri, "getSystemState")
+        if code != 1:
+            raise MazesimError(f"the ROS master at {self.uri} refused getSystemState: {message}")
+        publishers, subscribers, services = state
+        return publishers, subscribers, services
+
+    def wait_for_subscriber(self, topic: str, timeout: float = 15.0) -> None:
+        """Waits until some node subscribes ``topic`` (an absolute name such as ``/pose``)."""
+        deadline = time.monotonic() + timeout
+        while True:
+            _, subscribers, _ = self.system_state()
+            if any(name == topic and nodes for name, nodes in subscribers):
+                return
+            if time.monotonic() > deadline:
+                raise MazesimError(f"no node subscribed {topic} within {timeout:g} s")
+            time.sleep(0.05)
+
+    def connections(self, node: str) -> list[tuple[str, str, str]]:
+        """A node's open connections as ``(topic, peer node, direction)``; direction ``"o"`` is
+        outbound (the node publishes to the peer), ``"i"`` inbound. Empty if the node is unknown.
+        """
+        code, _, uri = _xmlrpc(self.uri, "lookupNode", node)
+        if code != 1:
+            return []
+        try:
+            code, _, info = _xmlrpc(uri, "getBusInfo")
+        except (OSError, xmlrpc.client.Error):
+            return []
+        if code != 1:
+            return []
+        return [(str(row[4]), str(row[1]), str(row[2])) for row in info]
+
+    def wait_for_connections(
+        self, publisher: str, topics: Sequence[str], subscriber: str, timeout: float = 15.0
+    ) -> None:
+        """Waits until node ``publisher`` is connected to node ``subscriber`` on every topic."""
+        deadline = time.monotonic() + timeout
+        wanted = set(topics)
+        while True:
+            connected = {
+                topic
+                for topic, peer, direction in self.connections(publisher)
+                if peer == subscriber and direction == "o"
+            }
+            if wanted <= connected:
+                return
+            if time.monotonic() > deadline:
+                missing = ", ".join(sorted(wanted - connected))
+                raise MazesimError(
+                    f"{publisher} did not connect to {subscriber} on {missing} "
+                    f"within {timeout:g} s; see the logs in {self.home}"
+                )
+            time.sleep(0.05)
+
+    def spawn(
+        self, name: str, argv: Sequence[str], env: dict[str, str] | None = None
+    ) -> subprocess.Popen[bytes]:
+        """Starts a process against this master; its output goes to :meth:`log_path`.
+
+        Args:
+            name: A short name for logs and errors (``"bridge"``).
+            argv: The command and its arguments.
+            env: Variables to add to :attr:`env` for this process.
+        """
+        with open(self.log_path(name), "wb") as log:
+            process = subprocess.Popen(
+                list(argv),
+                env={**self.env, **(env or {})},
+                stdin=subprocess.DEVNULL,
+                stdout=log,
+                stderr=subprocess.STDOUT,
+                start_new_session=True,
+            )
+        self.processes.append((name, process))
+        return process
+
+    @staticmethod
+    def stop_process(
+        process: subprocess.Popen[bytes], grace: float = 10.0, interrupted: bool = False
+    ) -> int:
+        """Stops one process: SIGINT, then SIGTERM and SIGKILL if it does not exit in time.
+
+        Args:
+            process: The process.
+            grace: Seconds it may take to exit after SIGINT.
+            interrupted: It was sent SIGINT already; only wait, then escalate.
+
+        Returns:
+            Its exit code.
+        """
+        steps: list[tuple[signal.Signals | None, float]] = [
+            (None if interrupted else signal.SIGINT, grace),
+            (signal.SIGTERM, 3.0),
+            (signal.SIGKILL, 3.0),
+        ]
+        for stop_signal, wait in steps:
+            if process.poll() is not None:
+                break
+            if stop_signal is not None:
+                process.send_signal(stop_signal)
+            try:
+                process.wait(timeout=wait)
+            except subprocess.TimeoutExpired:
+                continue
+        return process.wait()
+
+    def close(self) -> None:
+        """Stops the spawned processes, then the master.
+
+        Every process gets SIGINT at once (newest first), so they shut down in parallel; one that
+        has not exited after its grace time gets SIGTERM, then SIGKILL.
+        """
+        running = [process for _, process in reversed(self.processes) if process.poll() is None]
+        for process in running:
+            process.send_signal(signal.SIGINT)
+        for process in running:
+            self.stop_process(process, interrupted=True)
+        self.processes.clear()
+        if self.roscore is not None:
+            if self.roscore.poll() is None:
+                self.roscore.terminate()
+                try:
+                    self.roscore.wait(timeout=10.0)
+                except subprocess.TimeoutExpired:
+                    self.roscore.kill()
+                    self.roscore.wait()
+            self.roscore = None
+
+    def leftovers(self) -> list[tuple[int, str]]:
+        """Processes still running with this master's tag: ``(pid, command line)`` pairs.
+
+        Reads ``/proc``; elsewhere it returns an empty list.
+        """
+        marker = f"{TAG_VARIABLE}={self.tag}".encode()
+        found: list[tuple[int, str]] = []
+        if not os.path.isdir("/proc"):
+            return found
+        for entry in os.listdir("/proc"):
+            if not entry.isdigit():
+                continue
+            try:
+                with open(f"/proc/{entry}/environ", "rb") as environ:
+                    if marker not in environ.read().split(b"\0"):
+                        continue
+                with open(f"/proc/{entry}/stat", "rb") as stat:
+                    if stat.read().rsplit(b")", 1)[1].split()[0] == b"Z":
+                        continue  # a zombie: exited, waiting to be reaped
+                with open(f"/proc/{entry}/cmdline", "rb") as cmdline:
+                    command = cmdline.read().replace(b"\0", b" ").decode(errors="replace")
+            except OSError:
+                continue
+            found.append((int(entry), command.strip()))
+        return found

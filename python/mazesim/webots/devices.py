@@ -1,0 +1,299 @@
+"""The e-puck's devices as Webots' Python ``controller`` module presents them.
+
+Semantics follow Webots: a sensor reads NaN until it is enabled and one sampling period has
+passed, then refreshes every sampling period; a motor starts in position control at 0 and turns
+to velocity control with ``setPosition(float('inf'))``; a velocity beyond ``getMaxVelocity()`` is
+clamped with Webots' warning. Messages printed on stderr are Webots' own.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from typing import TYPE_CHECKING, ClassVar
+
+if TYPE_CHECKING:
+    from mazesim.webots.simulation import RobotSimulation
+
+__all__ = ["LED", "Device", "DistanceSensor", "Motor", "PositionSensor"]
+
+#: The proximity sensors' lookup table of Webots' E-puck PROTO: distance (m), value, noise.
+PROXIMITY_TABLE = (
+    (0.0, 4095.0, 0.002),
+    (0.005, 2133.33, 0.003),
+    (0.01, 1465.73, 0.007),
+    (0.015, 601.46, 0.0406),
+    (0.02, 383.84, 0.01472),
+    (0.03, 234.93, 0.0241),
+    (0.04, 158.03, 0.0287),
+    (0.05, 120.0, 0.04225),
+    (0.06, 104.09, 0.03065),
+    (0.07, 67.19, 0.04897),
+)
+#: The ground sensors' lookup table of Webots' E-puckGroundSensors PROTO.
+GROUND_TABLE = ((0.0, 1000.0, 0.002), (0.016, 300.0, 0.004))
+#: Proportional gain of Webots' motor position control (Motor.controlPID default 10 0 0).
+POSITION_GAIN = 10.0
+
+
+def _print_error(message: str) -> None:
+    print(message, file=sys.stderr)
+
+
+class Device:
+    """A device of the robot, found by its name."""
+
+    def __init__(self, name: str, simulation: RobotSimulation) -> None:
+        self._name = name
+        self._simulation = simulation
+
+    def getName(self) -> str:
+        """The device's name, e.g. ``"ps0"``."""
+        return self._name
+
+    def getModel(self) -> str:
+        """The device's model string (empty, as for the e-puck's devices in Webots)."""
+        return ""
+
+    def __repr__(self) -> str:
+        return f"{type(self).__name__}({self._name!r})"
+
+
+class _Sensor(Device):
+    """A sampled sensor: enable, disable, getSamplingPeriod, getValue."""
+
+    #: The C function names Webots' messages quote.
+    _api: ClassVar[str] = "wb_sensor"
+
+    def __init__(self, name: str, simulation: RobotSimulation) -> None:
+        super().__init__(name, simulation)
+        self._period_ms = 0
+        self._period_steps = 0
+        self._enabled_at = 0
+        self._value = math.nan
+        self._warned_disabled = False
+
+    def enable(self, samplingPeriod: int) -> None:
+        """Reads the sensor every ``samplingPeriod`` ms (rounded up to whole basic steps)."""
+        period = int(samplingPeriod)
+        if period < 0:
+            _print_error(f"Error: {self._api}_enable() called with negative sampling period.")
+            return
+        if period == 0:
+            self.disable()
+            return
+        basic = self._simulation.basic_time_step_ms
+        self._period_ms = period
+        self._period_steps = max(1, math.ceil(period / basic - 1e-9))
+        self._enabled_at = self._simulation.steps
+
+    def disable(self) -> None:
+        """Stops reading; ``getValue`` keeps the last reading."""
+        self._period_ms = 0
+        self._period_steps = 0
+
+    def getSamplingPeriod(self) -> int:
+        """The sampling period in ms, 0 when disabled."""
+        return self._period_ms
+
+    def getValue(self) -> float:
+        """The last reading; NaN before the first sampling period has passed."""
+        if self._period_ms == 0 and not self._warned_disabled:
+            self._warned_disabled = True
+            _print_error(
+                f"Error: {self._api}_get_value() called for a disabled device! "
+                f"Please use: {self._api}_enable()."
+            )
+        return self._value
+
+    def _after_step(self) -> None:
+        """Takes a reading when a sampling period ends at this step."""
+        if (
+            self._period_steps
+            and (self._simulation.steps - self._enabled_at) % self._period_steps == 0
+        ):
+            self._value = self._read()
+
+    def _read(self) -> float:
+        raise NotImplementedError
+
+
+class DistanceSensor(_Sensor):
+    """An infra-red sensor: a proximity sensor ``ps0``..``ps7`` or a ground sensor ``gs0``..``gs2``.
+
+    Readings are the raw values of Webots' e-puck model (about 4095 touching, 67 at 7 cm and
+    beyond; ground: about 856 on white, 300 on black).
+    """
+
+    GENERIC = 0
+    INFRA_RED = 1
+    SONAR = 2
+    LASER = 3
+    _api = "wb_distance_sensor"
+
+    def __init__(self, name: str, simulation: RobotSimulation, index: int, ground: bool) -> None:
+        super().__init__(name, simulation)
+        self._index = index
+        self._ground = ground
+        self._table = GROUND_TABLE if ground else PROXIMITY_TABLE
+
+    def _read(self) -> float:
+        readings = (
+            self._simulation.ground_readings()
+            if self._ground
+            else self._simulation.distance_readings()
+        )
+        return float(readings[self._index])
+
+    def getLookupTable(self) -> list[float]:
+        """The lookup table as Webots returns it: distance, value, noise, row after row."""
+        return [number for row in self._table for number in row]
+
+    def getMinValue(self) -> float:
+        """The smallest value the table gives."""
+        return min(row[1] for row in self._table)
+
+    def getMaxValue(self) -> float:
+        """The largest value the table gives."""
+        return max(row[1] for row in self._table)
+
+    def getType(self) -> int:
+        """:data:`INFRA_RED`."""
+        return self.INFRA_RED
+
+
+class PositionSensor(_Sensor):
+    """A wheel encoder: the wheel's angle in radians."""
+
+    ROTATIONAL = 0
+    LINEAR = 1
+    _api = "wb_position_sensor"
+
+    def __init__(self, name: str, simulation: RobotSimulation, side: int) -> None:
+        super().__init__(name, simulation)
+        self._side = side
+        self._motor: Motor | None = None
+
+    def _read(self) -> float:
+        return float(self._simulation.simulator.encoders[self._side])
+
+    def getType(self) -> int:
+        """:data:`ROTATIONAL`."""
+        return self.ROTATIONAL
+
+    def getMotor(self) -> Motor | None:
+        """The motor of the same wheel."""
+        return self._motor
+
+
+class Motor(Device):
+    """A wheel motor: position control by default, velocity control after ``setPosition(inf)``."""
+
+    ROTATIONAL = 0
+    LINEAR = 1
+
+    def __init__(
+        self, name: str, simulation: RobotSimulation, side: int, sensor: PositionSensor
+    ) -> None:
+        super().__init__(name, simulation)
+        self._side = side
+        self._sensor = sensor
+        self._max_velocity = float(simulation.simulator.robot.max_wheel_speed)
+        self._target_position = 0.0
+        # As in Webots, the velocity starts at maxVelocity (the speed of position control).
+        self._velocity = self._max_velocity
+        self._acceleration = -1.0
+        self._warned_clamp = False
+
+    def setPosition(self, position: float) -> None:
+        """Turns the wheel to ``position`` rad; ``float('inf')`` switches to velocity control."""
+        position = float(position)
+        if math.isnan(position):
+            _print_error(
+                "Error: wb_motor_set_position() called with an invalid 'position' argument (NaN)."
+            )
+            return
+        self._target_position = position
+
+    def setVelocity(self, velocity: float) -> None:
+        """Sets the wheel speed in rad/s (the speed limit of position control)."""
+        velocity = float(velocity)
+        if math.isnan(velocity):
+            _print_error(
+                "Error: wb_motor_set_velocity() called with an invalid 'velocity' argument.(NaN)"
+            )
+            return
+        if velocity < 0.0 and not math.isinf(self._target_position):
+            _print_error(
+                "Error: wb_motor_set_velocity() called with negative 'velocity' argument in "
+                f"position control mode ({self._target_position:g})."
+            )
+            return
+        if abs(velocity) > self._max_velocity and not self._warned_clamp:
+            self._warned_clamp = True
+            _print_error(
+                f'WARNING: RotationalMotor "{self._name}": The requested velocity {velocity:g} '
+                f"exceeds 'maxVelocity' = {self._max_velocity:g}."
+            )
+        self._velocity = velocity
+
+    def setAcceleration(self, acceleration: float) -> None:
+        """Stored for ``getAcceleration``; mazesim's motors reach their speed at once."""
+        self._acceleration = float(acceleration)
+
+    def getTargetPosition(self) -> float:
+        """The position set last (``inf`` in velocity control)."""
+        return self._target_position
+
+    def getVelocity(self) -> float:
+        """The velocity set last."""
+        return self._velocity
+
+    def getMaxVelocity(self) -> float:
+        """The motor's speed limit in rad/s (6.28 for the e-puck)."""
+        return self._max_velocity
+
+    def getAcceleration(self) -> float:
+        """The acceleration set last (-1: unlimited)."""
+        return self._acceleration
+
+    def getMinPosition(self) -> float:
+        """0: the wheel has no position limit."""
+        return 0.0
+
+    def getMaxPosition(self) -> float:
+        """0: the wheel has no position limit."""
+        return 0.0
+
+    def getType(self) -> int:
+        """:data:`ROTATIONAL`."""
+        return self.ROTATIONAL
+
+    def getPositionSensor(self) -> PositionSensor:
+        """The encoder of the same wheel."""
+        return self._sensor
+
+    def _wheel_speed(self, angle: float) -> float:
+        """The wheel speed (rad/s) for the next step, the wheel being at ``angle``."""
+        limit = min(abs(self._velocity), self._max_velocity)
+        if math.isinf(self._target_position):
+            speed = self._velocity if self._target_position > 0 else -self._velocity
+            return max(-self._max_velocity, min(self._max_velocity, speed))
+        error = self._target_position - angle
+        return max(-limit, min(limit, POSITION_GAIN * error))
+
+
+class LED(Device):
+    """An LED; mazesim draws no light, it only remembers the value."""
+
+    def __init__(self, name: str, simulation: RobotSimulation) -> None:
+        super().__init__(name, simulation)
+        self._value = 0
+
+    def set(self, value: int) -> None:
+        """Switches the LED on (non-zero) or off (0)."""
+        self._value = int(value)
+
+    def get(self) -> int:
+        """The value set last."""
+        return self._value

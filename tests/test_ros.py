@@ -1,0 +1,461 @@
+"""The ROS 1 bridge: its pure parts, and integration tests against a real master.
+
+The integration tests start ``roscore`` on a free loopback port for each test, run the nodes and
+``tests/ros_probe.py`` (rospy allows one node per process) as subprocesses, and check at the end
+that no process they started is left. This process never imports rospy.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+import uuid
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+import mazesim
+from mazesim.actions import wheel_speeds
+from mazesim.controllers import AvoidCollision
+from mazesim.errors import InvalidActionError, InvalidArgumentError
+from mazesim.ros import topics
+from mazesim.ros.bridge import BridgeSettings, resolve_settings
+from mazesim.ros.local_master import LocalMaster
+
+REPO = Path(__file__).resolve().parents[1]
+PROBE = Path(__file__).with_name("ros_probe.py")
+MAZESIM = (sys.executable, "-m", "mazesim")
+EPUCK_SENSORS = "ps0,ps1,ps2,ps3,ps4,ps5,ps6,ps7,gs0,gs1,gs2"
+STEP_S = 0.032
+
+
+def _ros_available() -> bool:
+    if shutil.which("roscore") is None or shutil.which("rosbag") is None:
+        return False
+    check = subprocess.run(
+        [sys.executable, "-c", "import rospy, rosbag, std_msgs.msg, rosgraph_msgs.msg"],
+        capture_output=True,
+        check=False,
+    )
+    return check.returncode == 0
+
+
+needs_ros = pytest.mark.skipif(
+    not _ros_available(), reason="ROS 1 is not installed (run 'make ros-deps')"
+)
+
+
+# --- the parts that need no ROS ------------------------------------------------------------------
+
+
+def test_motor_command_takes_two_finite_numbers() -> None:
+    assert topics.motor_command((1.5, -2.0)) == (1.5, -2.0)
+    for bad in ((), (1.0,), (1.0, 2.0, 3.0)):
+        with pytest.raises(InvalidActionError, match="2 values"):
+            topics.motor_command(bad)
+    for bad in ((math.nan, 1.0), (1.0, math.inf), (-math.inf, 0.0)):
+        with pytest.raises(InvalidActionError, match="finite"):
+            topics.motor_command(bad)
+
+
+def test_topic_layouts_per_robot() -> None:
+    world = mazesim.load_world("seed-maze")
+    epuck = mazesim.Simulator(world, robot="e-puck", seed=0)
+    assert ",".join(topics.sensor_names(epuck)) == EPUCK_SENSORS
+    assert len(topics.sensors_values(epuck)) == 11
+    assert not topics.has_sharp_sensors(epuck)
+    seed = mazesim.Simulator(world, robot="seed", seed=0)
+    assert topics.has_sharp_sensors(seed)
+    assert topics.sensor_names(seed) == [
+        *("front", "back", "left", "right", "left-front", "right-front"),
+        "gs",
+    ]
+    sensor_data = topics.sensor_data_values(seed)
+    assert len(sensor_data) == 7
+    assert all(3.0 <= distance <= 40.0 for distance in sensor_data[:6])
+    assert sensor_data[6] == float(topics.current_checkpoint(seed))
+    x, y, yaw = seed.pose
+    assert topics.pose_values(seed) == [x, y, yaw, 0.0]
+
+
+class _Parameters:
+    """Stands in for rospy's parameter server in settings tests."""
+
+    def __init__(self, **values: Any) -> None:
+        self.values = {"~" + name: value for name, value in values.items()}
+
+    def get_param(self, name: str, default: Any) -> Any:
+        return self.values.get(name, default)
+
+
+def test_bridge_settings_options_win_over_parameters() -> None:
+    rospy = _Parameters(world="arena", seed=4, noise="false", speed=2, mode="realtime")
+    settings = resolve_settings(rospy, {"seed": 9, "world": None})
+    assert settings == BridgeSettings(
+        world="arena", robot="e-puck", seed=9, mode="realtime", speed=2.0, noise=False
+    )
+
+
+@pytest.mark.parametrize(
+    ("name", "value"),
+    [("mode", "fast"), ("speed", 0), ("speed", "x"), ("duration", -1.0), ("seed", 1.5)],
+)
+def test_bad_bridge_parameter_is_named(name: str, value: Any) -> None:
+    with pytest.raises(InvalidArgumentError, match=f"parameter {name}"):
+        resolve_settings(_Parameters(**{name: value}), {})
+
+
+def test_mazesim_and_its_ros_commands_import_without_rospy() -> None:
+    code = (
+        "import sys\n"
+        "import mazesim, mazesim.cli, mazesim.ros.bridge, mazesim.ros.avoid_collision\n"
+        "import mazesim.ros.perform_learning, mazesim.ros.demo\n"
+        "mazesim.cli.build_parser()\n"
+        "assert 'rospy' not in sys.modules, 'rospy was imported'\n"
+    )
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert result.returncode == 0, result.stderr
+
+
+def test_ros_help_lists_the_nodes(capsys: pytest.CaptureFixture[str]) -> None:
+    from mazesim.cli import main
+
+    assert main(["ros", "--help"]) == 0
+    help_text = capsys.readouterr().out
+    for node in ("bridge", "avoid-collision", "perform-learning", "demo"):
+        assert node in help_text
+    assert main(["ros", "bridge", "--help"]) == 0
+    bridge_help = capsys.readouterr().out
+    for option in ("--world", "--robot", "--seed", "--mode", "--speed", "--duration"):
+        assert option in bridge_help
+
+
+def test_node_without_rospy_fails_with_one_clear_line() -> None:
+    code = (
+        "import sys\n"
+        "sys.modules['rospy'] = None\n"  # as if ROS were not installed
+        "from mazesim.cli import main\n"
+        "sys.exit(main(['ros', 'bridge']))\n"
+    )
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert result.returncode == 2
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("mazesim: error: "), result.stderr
+    assert "make ros-deps" in lines[0]
+
+
+# --- against a real master -----------------------------------------------------------------------
+
+
+@pytest.fixture
+def master(tmp_path: Path) -> Iterator[LocalMaster]:
+    """A ROS master on a free loopback port; every process started on it is gone afterwards."""
+    graph = LocalMaster(home=str(tmp_path / "ros"))
+    graph.start()
+    spawned: list[subprocess.Popen[bytes]] = []
+    try:
+        yield graph
+    finally:
+        spawned = [process for _, process in graph.processes]
+        graph.close()
+    assert all(process.returncode is not None for process in spawned)
+    assert graph.leftovers() == []
+
+
+def run_probe(master: LocalMaster, *args: str) -> dict[str, Any]:
+    result = subprocess.run(
+        [sys.executable, str(PROBE), *args],
+        env=master.env,
+        capture_output=True,
+        text=True,
+        timeout=60,
+        check=False,
+    )
+    assert result.returncode == 0, result.stdout + result.stderr
+    return dict(json.loads(result.stdout.strip().splitlines()[-1]))
+
+
+def spawn_bridge(master: LocalMaster, *options: str) -> subprocess.Popen[bytes]:
+    return master.spawn("bridge", [*MAZESIM, "ros", "bridge", *options])
+
+
+def drive(master: LocalMaster, tmp_path: Path, commands: list[dict[str, Any]]) -> dict[str, Any]:
+    path = tmp_path / "commands.json"
+    path.write_text(json.dumps(commands))
+    return run_probe(master, "drive", str(path))
+
+
+def replay(robot: str, seed: int, commands: list[dict[str, Any]]) -> dict[str, list[list[float]]]:
+    """What the in-process simulator publishes for the same commands."""
+    simulator = mazesim.Simulator(mazesim.load_world("seed-maze"), robot=robot, seed=seed)
+    states: dict[str, list[list[float]]] = {"pose": [], "sensors": [], "sensor_data": []}
+
+    def record() -> None:
+        states["pose"].append(topics.pose_values(simulator))
+        states["sensors"].append(topics.sensors_values(simulator))
+        if topics.has_sharp_sensors(simulator):
+            states["sensor_data"].append(topics.sensor_data_values(simulator))
+
+    record()
+    for command in commands:
+        if command["steps"] == 0:
+            continue
+        if command["topic"] == "motor":
+            simulator.step(*command["data"])
+        else:
+            simulator.step(*wheel_speeds(command["data"], simulator.robot.max_wheel_speed))
+        record()
+    return states
+
+
+def echoed_data(echo: str) -> list[float]:
+    """The ``data`` field of a message printed by ``rostopic echo``."""
+    match = re.search(r"^data: (\[.*\])$", echo, flags=re.MULTILINE)
+    assert match, echo
+    return list(json.loads(match.group(1)))
+
+
+def motor_commands(count: int, seed: int) -> list[dict[str, Any]]:
+    rng = np.random.default_rng(seed)
+    # Mostly forward, some turns, some speeds beyond the motor limit (clamped by the bridge).
+    speeds = rng.uniform(-3.0, 8.0, size=(count, 2))
+    return [{"topic": "motor", "data": [float(a), float(b)], "steps": 1} for a, b in speeds]
+
+
+@needs_ros
+def test_bridge_and_avoid_collision_move_the_robot(master: LocalMaster) -> None:
+    spawn_bridge(master, "--world", "seed-maze", "--seed", "3")
+    master.spawn("avoid-collision", [*MAZESIM, "ros", "avoid-collision"])
+    seen = run_probe(master, "count", "pose", "60")
+
+    clock = seen["clock"]
+    assert len(clock) >= 50 and clock[-1] > clock[0] and clock == sorted(clock)
+    poses = np.array(seen["data"]["pose"])
+    assert poses.shape[1] == 4
+    np.testing.assert_allclose(np.diff(poses[:, 3]), STEP_S, atol=1e-9)
+    assert math.hypot(*(poses[-1, :2] - poses[0, :2])) > 0.05  # the robot moves
+    assert seen["labels"]["pose"] == "x,y,yaw,time"
+
+    # rostopic, as a user would run it; the three calls run side by side to save time.
+    calls = {
+        "list": ["rostopic", "list", "-v"],
+        "sensors": ["rostopic", "echo", "-n", "1", "/sensors"],
+        "motor": ["rostopic", "echo", "-n", "1", "/motor"],
+    }
+    running = {
+        name: subprocess.Popen(
+            argv, env=master.env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
+        )
+        for name, argv in calls.items()
+    }
+    results = {}
+    try:
+        for name, process in running.items():
+            results[name] = process.communicate(timeout=30)
+    finally:
+        for process in running.values():
+            if process.poll() is None:
+                process.kill()
+                process.communicate()
+    for name, process in running.items():
+        assert process.returncode == 0, results[name][1]
+    output = {name: stdout for name, (stdout, _) in results.items()}
+
+    # "rostopic list -v": " * /topic [type] N publishers" under Published and Subscribed topics.
+    published, subscribed = output["list"].split("Subscribed topics:")
+    types = dict(re.findall(r"\* (/\w+) \[([\w/]+)\]", published))
+    assert types["/sensors"] == types["/pose"] == "std_msgs/Float64MultiArray"
+    assert types["/clock"] == "rosgraph_msgs/Clock"
+    assert types["/motor"] == "std_msgs/Float64MultiArray"  # the avoid-collision node's
+    assert "/sensor_data" not in types  # the e-puck has no Sharp sensors
+    assert "* /action [std_msgs/String]" in subscribed
+    sensors = output["sensors"]
+    assert f'label: "{EPUCK_SENSORS}"' in sensors
+    values = echoed_data(sensors)
+    assert len(values) == 11
+    assert all(0.0 <= value <= 4095.0 for value in values[:8])
+    assert all(250.0 <= value <= 1100.0 for value in values[8:])
+    left, right = echoed_data(output["motor"])
+    assert {left, right} <= {0.0, 3.14, 6.28}
+
+
+@needs_ros
+def test_lockstep_trajectory_equals_in_process_simulator(
+    master: LocalMaster, tmp_path: Path
+) -> None:
+    commands = motor_commands(150, seed=11)
+    spawn_bridge(master, "--seed", "11")
+    seen = drive(master, tmp_path, commands)
+    expected = replay("e-puck", 11, commands)
+    assert seen["data"]["pose"] == expected["pose"]  # bit for bit, step for step
+    assert seen["data"]["sensors"] == expected["sensors"]
+    assert seen["labels"]["sensors"] == EPUCK_SENSORS
+
+
+@needs_ros
+def test_lockstep_actions_drive_the_seed_robot(master: LocalMaster, tmp_path: Path) -> None:
+    codes = ["00"] * 20 + ["44"] * 10 + ["aa"] * 12 + ["00"] * 15 + ["88", "bb", "99", "11"] * 5
+    commands = [{"topic": "action", "data": code, "steps": 1} for code in codes]
+    commands[5:5] = motor_commands(5, seed=2)  # motor and action commands mix
+    spawn_bridge(master, "--robot", "seed", "--seed", "4")
+    seen = drive(master, tmp_path, commands)
+    expected = replay("seed", 4, commands)
+    assert seen["data"]["pose"] == expected["pose"]
+    assert seen["data"]["sensors"] == expected["sensors"]
+    assert seen["data"]["sensor_data"] == expected["sensor_data"]
+    assert seen["labels"]["sensors"] == "front,back,left,right,left-front,right-front,gs"
+    assert seen["labels"]["sensor_data"].endswith(",right-front cm,checkpoint")
+    assert all(len(row) == 7 for row in seen["data"]["sensor_data"])
+
+
+@needs_ros
+def test_bad_messages_are_logged_and_ignored(master: LocalMaster, tmp_path: Path) -> None:
+    bad = [
+        {"topic": "motor", "data": [1.0], "steps": 0},
+        {"topic": "motor", "data": [], "steps": 0},
+        {"topic": "motor", "data": [1.0, 2.0, 3.0], "steps": 0},
+        {"topic": "motor", "data": [math.nan, 1.0], "steps": 0},
+        {"topic": "motor", "data": [1.0, math.inf], "steps": 0},
+        {"topic": "action", "data": "zz", "steps": 0},
+        {"topic": "action", "data": "", "steps": 0},
+    ]
+    good = [
+        {"topic": "motor", "data": [2.0, 2.5], "steps": 1},
+        {"topic": "motor", "data": [100.0, -100.0], "steps": 1},  # clamped to the motor limit
+        {"topic": "action", "data": "00", "steps": 1},
+    ]
+    commands = [*bad, good[0], *bad, *good[1:]]
+    bridge = spawn_bridge(master, "--seed", "6")
+    seen = drive(master, tmp_path, commands)
+    assert bridge.poll() is None  # still running
+    expected = replay("e-puck", 6, commands)
+    assert seen["data"]["pose"] == expected["pose"]
+    assert [pose[3] for pose in seen["data"]["pose"]] == pytest.approx([0.0, 0.032, 0.064, 0.096])
+    log = Path(master.log_path("bridge")).read_text()
+    assert log.count("ignored a bad motor message") == 10
+    assert log.count("ignored a bad action message") == 4
+    assert "Traceback" not in log
+
+
+@needs_ros
+def test_realtime_mode_follows_the_wall_clock(master: LocalMaster) -> None:
+    spawn_bridge(master, "--mode", "realtime", "--speed", "4")
+    seen = run_probe(master, "count", "pose", "100")  # 3.2 simulated s, about 0.8 s of wall clock
+    poses = np.array(seen["data"]["pose"])
+    assert np.all(np.diff(poses[:, 3]) > 0)
+    assert np.all(poses[:, :3] == poses[0, :3])  # no command: the robot stays
+    wall = np.array(seen["wall"]["pose"])
+    factor = (poses[-1, 3] - poses[0, 3]) / (wall[-1] - wall[0])
+    assert 2.5 < factor < 5.0
+
+
+@needs_ros
+def test_launch_file_runs_and_stops_without_leftovers(master: LocalMaster) -> None:
+    tag = uuid.uuid4().hex
+    launch = master.spawn(
+        "roslaunch",
+        ["roslaunch", "mazesim_ros", "maze.launch", "world:=arena", "seed:=2"],
+        env={"ROS_PACKAGE_PATH": str(REPO / "ros"), "MAZESIM_TEST_LAUNCH": tag},
+    )
+    seen = run_probe(master, "count", "pose", "50")
+    poses = np.array(seen["data"]["pose"])
+    assert poses[-1, 3] > poses[0, 3]
+    assert math.hypot(*(poses[-1, :2] - poses[0, :2])) > 0.02
+
+    assert LocalMaster.stop_process(launch) == 0  # SIGINT, as Ctrl-C
+    assert _processes_with("MAZESIM_TEST_LAUNCH", tag) == []
+
+
+@needs_ros
+def test_recorded_run_plays_back_and_equals_in_process_run(tmp_path: Path) -> None:
+    out = tmp_path / "demo"
+    result = subprocess.run(
+        [*MAZESIM, "ros", "demo", "--seconds", "3", "--seed", "5", "--out", str(out)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=False,
+    )
+    assert result.returncode == 0, result.stderr
+    bag = out / "maze.bag"
+    assert str(bag) in result.stdout and (out / "trajectory.png").is_file()
+    steps = math.ceil(3.0 / STEP_S)
+
+    info = subprocess.run(["rosbag", "info", str(bag)], capture_output=True, text=True, timeout=60)
+    assert info.returncode == 0, info.stderr
+    counts = dict(re.findall(r"(/\w+)\s+(\d+) msgs", info.stdout))
+    assert int(counts["/pose"]) == int(counts["/sensors"]) == int(counts["/clock"]) == steps + 1
+    assert int(counts["/motor"]) >= steps
+
+    # The bridge with the avoid-collision node over ROS drove exactly as in process.
+    simulator = mazesim.Simulator(mazesim.load_world("seed-maze"), robot="e-puck", seed=5)
+    controller = AvoidCollision()
+    expected = [topics.pose_values(simulator)]
+    for _ in range(steps):
+        simulator.step(*controller(simulator.distance_sensors()))
+        expected.append(topics.pose_values(simulator))
+
+    with LocalMaster(home=str(tmp_path / "play")) as player:
+        probe = subprocess.Popen(
+            [sys.executable, str(PROBE), "count", "pose", str(steps + 1)],
+            env=player.env,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
+        try:
+            player.wait_for_subscriber("/pose")
+            play = subprocess.run(
+                [
+                    "rosbag",
+                    "play",
+                    "--quiet",
+                    "--wait-for-subscribers",
+                    str(bag),
+                    "--topics",
+                    "/pose",
+                ],
+                env=player.env,
+                capture_output=True,
+                text=True,
+                timeout=60,
+                check=False,
+            )
+            assert play.returncode == 0, play.stderr
+            stdout, stderr = probe.communicate(timeout=60)
+        finally:
+            if probe.poll() is None:
+                probe.kill()
+                probe.wait()
+        assert probe.returncode == 0, stderr
+    assert player.leftovers() == []
+    played = json.loads(stdout.strip().splitlines()[-1])["data"]["pose"]
+    assert played == expected
+
+
+def _processes_with(variable: str, value: str) -> list[int]:
+    """PIDs of running (not zombie) processes whose environment has variable=value."""
+    marker = f"{variable}={value}".encode()
+    found = []
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            with open(f"/proc/{entry}/environ", "rb") as environ:
+                if marker not in environ.read().split(b"\0"):
+                    continue
+            with open(f"/proc/{entry}/stat", "rb") as stat:
+                if stat.read().rsplit(b")", 1)[1].split()[0] == b"Z":
+                    continue
+        except OSError:
+            continue
+        found.append(int(entry))
+    return found
