@@ -160,13 +160,13 @@ def master(tmp_path: Path) -> Iterator[LocalMaster]:
     """A ROS master on a free loopback port; every process started on it is gone afterwards."""
     graph = LocalMaster(home=str(tmp_path / "ros"))
     graph.start()
-    spawned: list[subprocess.Popen[bytes]] = []
     try:
         yield graph
     finally:
         spawned = [process for _, process in graph.processes]
-        graph.close()
+        left_behind = graph.close()
     assert all(process.returncode is not None for process in spawned)
+    assert left_behind == []  # nothing had to be swept up after the orderly stop
     assert graph.leftovers() == []
 
 
@@ -302,9 +302,10 @@ def test_lockstep_trajectory_equals_in_process_simulator(
 
 @needs_ros
 def test_lockstep_actions_drive_the_seed_robot(master: LocalMaster, tmp_path: Path) -> None:
-    codes = ["00"] * 20 + ["44"] * 10 + ["aa"] * 12 + ["00"] * 15 + ["88", "bb", "99", "11"] * 5
+    # Straight on across the first barcode (about step 128), then turns, spins, backing up.
+    codes = ["00"] * 140 + ["44"] * 10 + ["aa"] * 12 + ["88", "bb", "99", "11"] * 5
     commands = [{"topic": "action", "data": code, "steps": 1} for code in codes]
-    commands[5:5] = motor_commands(5, seed=2)  # motor and action commands mix
+    commands += motor_commands(5, seed=2)  # motor and action commands mix
     spawn_bridge(master, "--robot", "seed", "--seed", "4")
     seen = drive(master, tmp_path, commands)
     expected = replay("seed", 4, commands)
@@ -314,6 +315,8 @@ def test_lockstep_actions_drive_the_seed_robot(master: LocalMaster, tmp_path: Pa
     assert seen["labels"]["sensors"] == "front,back,left,right,left-front,right-front,gs"
     assert seen["labels"]["sensor_data"].endswith(",right-front cm,checkpoint")
     assert all(len(row) == 7 for row in seen["data"]["sensor_data"])
+    checkpoints = [row[6] for row in seen["data"]["sensor_data"]]
+    assert 1.0 in checkpoints  # the crossing of checkpoint 1, arriving
 
 
 @needs_ros
@@ -387,6 +390,7 @@ def test_recorded_run_plays_back_and_equals_in_process_run(tmp_path: Path) -> No
     assert result.returncode == 0, result.stderr
     bag = out / "maze.bag"
     assert str(bag) in result.stdout and (out / "trajectory.png").is_file()
+    assert "left behind" not in result.stdout
     steps = math.ceil(3.0 / STEP_S)
 
     info = subprocess.run(["rosbag", "info", str(bag)], capture_output=True, text=True, timeout=60)
@@ -403,7 +407,9 @@ def test_recorded_run_plays_back_and_equals_in_process_run(tmp_path: Path) -> No
         simulator.step(*controller(simulator.distance_sensors()))
         expected.append(topics.pose_values(simulator))
 
-    with LocalMaster(home=str(tmp_path / "play")) as player:
+    player = LocalMaster(home=str(tmp_path / "play"))
+    player.start()
+    try:
         probe = subprocess.Popen(
             [sys.executable, str(PROBE), "count", "pose", str(steps + 1)],
             env=player.env,
@@ -436,7 +442,9 @@ def test_recorded_run_plays_back_and_equals_in_process_run(tmp_path: Path) -> No
                 probe.kill()
                 probe.wait()
         assert probe.returncode == 0, stderr
-    assert player.leftovers() == []
+    finally:
+        left_behind = player.close()
+    assert left_behind == [] and player.leftovers() == []
     played = json.loads(stdout.strip().splitlines()[-1])["data"]["pose"]
     assert played == expected
 

@@ -53,7 +53,9 @@ def run_demo(args: argparse.Namespace, out: TextIO) -> int:
         os.remove(bag_path)
     mazesim_command = [sys.executable, "-m", "mazesim", "ros"]
     started = time.monotonic()
-    with LocalMaster(home=os.path.join(out_dir, "logs")) as master:
+    master = LocalMaster(home=os.path.join(out_dir, "logs"))
+    master.start()
+    try:
         # The recorder stamps messages with the wall clock: on simulated time it would wait for a
         # valid (non-zero) /clock and miss the first steps of a lockstep run.
         master.set_param("/use_sim_time", False)
@@ -98,10 +100,11 @@ def run_demo(args: argparse.Namespace, out: TextIO) -> int:
             )
         time.sleep(0.3)  # let the recorder read the last messages off its sockets
         LocalMaster.stop_process(recorder)
+    finally:
+        left_behind = master.close()
     wall_clock = time.monotonic() - started
-    leftovers = master.leftovers()
-    if leftovers:
-        raise MazesimError(f"processes left behind: {leftovers}")
+    for pid, command in left_behind:
+        out.write(f"warning: ended a process left behind: {pid} {command}\n")
 
     poses = read_poses(bag_path)
     if len(poses) == 0:

@@ -4,7 +4,8 @@
 starts the matching ``ROS_MASTER_URI`` (plus ``ROS_IP=127.0.0.1`` and a private ``ROS_HOME`` for
 logs) and, when closed, stops them all: nodes with SIGINT (then SIGTERM, then SIGKILL if they hang),
 the master with SIGTERM by its PID. Every process carries a tag in its environment, so what is
-left behind, children of children included, can be listed (:meth:`LocalMaster.leftovers`).
+left behind, children of children included, can be listed (:meth:`LocalMaster.leftovers`); closing
+ends those too and reports them.
 
 It needs the ``roscore`` command but does not import ``rospy``, so one process can hold a master
 and still be (at most) one ROS node itself. The ``mazesim ros demo`` command, the ROS benchmark and
@@ -72,7 +73,7 @@ class LocalMaster:
         """Prepares the master; :meth:`start` (or ``with``) starts it.
 
         Args:
-            home: The folder for logs; by default a new temporary folder.
+            home: The folder for logs; by default a new temporary folder, kept for its logs.
         """
         self.port = free_loopback_port()
         self.uri = f"http://127.0.0.1:{self.port}"
@@ -118,7 +119,7 @@ class LocalMaster:
 
         Raises:
             MissingDependencyError: There is no ``roscore`` command.
-            MazesimError: The master did not answer within ``timeout`` seconds.
+            MazesimError: The master (and its rosout node) did not start within ``timeout`` seconds.
         """
         if shutil.which("roscore", path=self.env["PATH"]) is None:
             raise MissingDependencyError(
@@ -135,7 +136,9 @@ class LocalMaster:
                 start_new_session=True,
             )
         deadline = time.monotonic() + timeout
-        while not self.is_online():
+        # Ready once rosout, the last thing roscore starts, listens: a roscore stopped before
+        # that waits 10 s for a master it has already stopped.
+        while not (self.is_online() and self._rosout_listens()):
             if self.roscore.poll() is not None or time.monotonic() > deadline:
                 self.close()
                 raise MazesimError(
@@ -153,6 +156,13 @@ class LocalMaster:
         except (OSError, xmlrpc.client.Error):
             return False
         return bool(code == 1)
+
+    def _rosout_listens(self) -> bool:
+        try:
+            _, subscribers, _ = self.system_state()
+        except (OSError, xmlrpc.client.Error, MazesimError):
+            return False
+        return any(topic == "/rosout" and nodes for topic, nodes in subscribers)
 
     def set_param(self, name: str, value: object) -> None:
         """Sets a parameter on the master (an absolute name such as ``/use_sim_time``)."""
@@ -268,11 +278,16 @@ class LocalMaster:
                 continue
         return process.wait()
 
-    def close(self) -> None:
-        """Stops the spawned processes, then the master.
+    def close(self) -> list[tuple[int, str]]:
+        """Stops the spawned processes, then the master, then anything they left behind.
 
         Every process gets SIGINT at once (newest first), so they shut down in parallel; one that
-        has not exited after its grace time gets SIGTERM, then SIGKILL.
+        has not exited after its grace time gets SIGTERM, then SIGKILL. The master gets SIGTERM.
+
+        Returns:
+            The processes that were still running with this master's tag after that (children
+            of children that their parents did not stop) and were then ended: ``(pid, command
+            line)`` pairs; empty when everything stopped as it should.
         """
         running = [process for _, process in reversed(self.processes) if process.poll() is None]
         for process in running:
@@ -284,11 +299,22 @@ class LocalMaster:
             if self.roscore.poll() is None:
                 self.roscore.terminate()
                 try:
-                    self.roscore.wait(timeout=10.0)
+                    self.roscore.wait(timeout=15.0)
                 except subprocess.TimeoutExpired:
                     self.roscore.kill()
                     self.roscore.wait()
             self.roscore = None
+        left_behind = self.leftovers()
+        for stop_signal in (signal.SIGTERM, signal.SIGKILL):
+            for pid, _ in self.leftovers():
+                try:
+                    os.kill(pid, stop_signal)
+                except ProcessLookupError:
+                    pass
+            deadline = time.monotonic() + 3.0
+            while self.leftovers() and time.monotonic() < deadline:
+                time.sleep(0.05)
+        return left_behind
 
     def leftovers(self) -> list[tuple[int, str]]:
         """Processes still running with this master's tag: ``(pid, command line)`` pairs.
