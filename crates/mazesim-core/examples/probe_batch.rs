@@ -21,7 +21,10 @@ fn main() {
     let mut col = vec![false; n];
     let mut cr = vec![0i32; n];
     let mut actions = vec![0f32; n * 2];
-    let steps = 2_000_000 / n + 20;
+    let steps: usize = std::env::var("STEPS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(2_000_000 / n + 20);
     let t = std::time::Instant::now();
     for _ in 0..steps {
         for i in 0..n {

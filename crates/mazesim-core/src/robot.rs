@@ -56,6 +56,8 @@ pub struct DistanceSensor {
     pub position: [f64; 2],
     /// Direction in the robot frame, radians CCW from forward.
     pub heading: f64,
+    /// The same direction as a unit vector (cos, sin) in the robot frame.
+    pub direction: [f64; 2],
     /// Its model.
     pub model: Arc<SensorModel>,
 }
@@ -216,10 +218,12 @@ impl RobotProfile {
             };
         let mut distance_sensors = Vec::new();
         for (i, s) in file.distance_sensors.iter().enumerate() {
+            let heading = s.heading.map_or(0.0, |h| h.0);
             distance_sensors.push(DistanceSensor {
                 name: s.name.clone(),
                 position: [s.position[0].0, s.position[1].0],
-                heading: s.heading.map_or(0.0, |h| h.0),
+                heading,
+                direction: [heading.cos(), heading.sin()],
                 model: find(s, SensorKind::Infrared, "distance_sensors", i)?,
             });
         }

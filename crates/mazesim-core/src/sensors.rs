@@ -41,12 +41,13 @@ pub fn read_infrared(
     noisy(value, sigma, rng)
 }
 
-/// Mean floor reflectance over the sensor's square spot centred at `at`, aligned with `heading`.
+/// Mean floor reflectance over the sensor's square spot centred at `at`, aligned with the robot's
+/// unit forward vector `axis` (cos, sin of its heading).
 pub fn spot_reflectance(
     model: &SensorModel,
     floor: &FloorPaint,
     at: [f64; 2],
-    heading: f64,
+    axis: [f64; 2],
 ) -> f64 {
     if model.footprint <= 0.0 {
         return floor.reflectance_at(at);
@@ -58,7 +59,7 @@ pub fn spot_reflectance(
     debug_assert!(
         model.footprint * std::f64::consts::FRAC_1_SQRT_2 <= crate::world::floor::SPOT_MARGIN
     );
-    let (s, c) = heading.sin_cos();
+    let [c, s] = axis;
     let step = model.footprint / SPOT_SAMPLES as f64;
     let first = -(model.footprint - step) / 2.0;
     let mut sum = 0.0;
@@ -73,15 +74,15 @@ pub fn spot_reflectance(
     sum / (SPOT_SAMPLES * SPOT_SAMPLES) as f64
 }
 
-/// Reads a ground sensor at floor point `at` on a robot heading `heading`.
+/// Reads a ground sensor at floor point `at` on a robot whose unit forward vector is `axis`.
 pub fn read_ground(
     model: &SensorModel,
     floor: &FloorPaint,
     at: [f64; 2],
-    heading: f64,
+    axis: [f64; 2],
     rng: Option<&mut Rng>,
 ) -> f32 {
-    let f = spot_reflectance(model, floor, at, heading);
+    let f = spot_reflectance(model, floor, at, axis);
     let (value, sigma) = model.table.eval(model.height / f);
     noisy(value, sigma, rng)
 }
@@ -107,9 +108,9 @@ mod tests {
                 reflectance: 0.2,
             }],
         );
-        let white = read_ground(model, &floor, [0.0, 0.0], 0.0, None);
-        let black = read_ground(model, &floor, [1.0, 0.0], 0.0, None);
-        let edge = read_ground(model, &floor, [0.5, 0.0], 0.0, None);
+        let white = read_ground(model, &floor, [0.0, 0.0], [1.0, 0.0], None);
+        let black = read_ground(model, &floor, [1.0, 0.0], [1.0, 0.0], None);
+        let edge = read_ground(model, &floor, [0.5, 0.0], [1.0, 0.0], None);
         assert!((white - 855.625).abs() < 0.01, "{white}");
         assert!((black - 300.0).abs() < 1e-3, "{black}");
         assert!(edge > black + 10.0 && edge < white - 10.0, "{edge}");

@@ -263,8 +263,8 @@ impl Simulator {
         for (i, sensor) in self.robot.distance_sensors.iter().enumerate() {
             let [px, py] = [sensor.position[0] as f32, sensor.position[1] as f32];
             let origin = [x + c * px - s * py, y + s * px + c * py];
-            let heading = yaw + sensor.heading as f32;
-            let dir = [heading.cos(), heading.sin()];
+            let [dx, dy] = [sensor.direction[0] as f32, sensor.direction[1] as f32];
+            let dir = [c * dx - s * dy, s * dx + c * dy];
             let rng = noise.then_some(&mut self.rng);
             self.distance_readings[i] =
                 read_infrared(&sensor.model, self.world.wall_index(), origin, dir, rng);
@@ -275,7 +275,7 @@ impl Simulator {
             let at = [x as f64 + cd * px - sd * py, y as f64 + sd * px + cd * py];
             let rng = noise.then_some(&mut self.rng);
             self.ground_readings[i] =
-                read_ground(&sensor.model, self.world.floor(), at, yaw as f64, rng);
+                read_ground(&sensor.model, self.world.floor(), at, [cd, sd], rng);
         }
     }
 

@@ -1,6 +1,7 @@
 //! Static walls indexed for the sensors: parry2d ray casts and distance queries against only the
 //! walls near the query, found through a uniform bin grid.
 
+use parry2d::bounding_volume::Aabb;
 use parry2d::math::{Pose, Vector};
 use parry2d::query::{Ray, RayCast};
 use parry2d::shape::Cuboid;
@@ -30,6 +31,9 @@ pub struct WallIndex {
     frames: Vec<[f32; 6]>,
     /// Per wall: its bounding box (min x, min y, max x, max y), to skip walls a ray cannot meet.
     boxes: Vec<[f32; 4]>,
+    /// Per wall: the wall itself as an axis-aligned box when it is one (yaw a multiple of 90
+    /// degrees, as in every cell maze), cast against without a change of frame.
+    aligned: Vec<Option<Aabb>>,
     reflectance: Vec<f32>,
     origin: [f64; 2],
     /// Side of a bin in metres.
@@ -91,12 +95,31 @@ impl WallIndex {
                 ]
             })
             .collect();
+        let aligned: Vec<Option<Aabb>> = walls
+            .iter()
+            .map(|w| {
+                let quarter = w.yaw / std::f64::consts::FRAC_PI_2;
+                let k = quarter.round();
+                ((quarter - k).abs() < 1e-9).then(|| {
+                    let (hx, hy) = if (k as i64).rem_euclid(2) == 0 {
+                        (w.half[0], w.half[1])
+                    } else {
+                        (w.half[1], w.half[0])
+                    };
+                    Aabb::new(
+                        Vector::new((w.center[0] - hx) as f32, (w.center[1] - hy) as f32),
+                        Vector::new((w.center[0] + hx) as f32, (w.center[1] + hy) as f32),
+                    )
+                })
+            })
+            .collect();
         let bounds = walls.iter().fold(Bounds::EMPTY, |b, w| b.union(w.bounds()));
         if bounds.is_empty() {
             return Self {
                 shapes,
                 frames,
                 boxes,
+                aligned,
                 reflectance,
                 origin: [0.0, 0.0],
                 bin: BIN,
@@ -131,6 +154,7 @@ impl WallIndex {
             shapes,
             frames,
             boxes,
+            aligned,
             reflectance,
             origin,
             bin,
@@ -219,10 +243,16 @@ impl WallIndex {
             if x0 > hi[0] || y0 > hi[1] || x1 < lo[0] || y1 < lo[1] {
                 return;
             }
-            let (shape, pose) = &self.shapes[i];
             let limit = best.map_or(max_distance, |h| h.distance);
-            if let Some(toi) = shape.cast_ray(pose, &ray, limit, true) {
-                // Equal distances: the lower wall index wins, whatever the visiting order.
+            let hit = match &self.aligned[i] {
+                Some(aabb) => aabb.cast_local_ray(&ray, limit, true),
+                None => {
+                    let (shape, pose) = &self.shapes[i];
+                    shape.cast_ray(pose, &ray, limit, true)
+                }
+            };
+            if let Some(toi) = hit {
+                // Equal distances: the first wall visited wins (the visiting order is fixed).
                 let better = match best {
                     None => true,
                     Some(h) => toi < h.distance,
