@@ -5,7 +5,7 @@ PYTHON ?= python3.11
 VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
-PY_PACKAGES := maturin numpy matplotlib pytest hypothesis ruff mypy typing_extensions gymnasium
+PY_PACKAGES := maturin numpy matplotlib pytest hypothesis ruff mypy typing_extensions gymnasium ray
 PY_SOURCES := python tests
 # Only `make bench-peers` needs these: the peers mazesim is measured against, and its
 # options (e.g. PEER_ARGS="--envs 64,1024 --json").

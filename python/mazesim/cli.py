@@ -33,6 +33,7 @@ COMMAND_MODULES: tuple[str, ...] = (
     "mazesim.ros.cli",
     "mazesim.barcode.command",
     "mazesim.webots.cli",
+    "mazesim.distributed.command",
 )
 
 #: Exit code of a run that failed on an error of the user's input or of the file system.

@@ -1,0 +1,108 @@
+"""Connecting to Ray: an existing cluster by its address, or a local instance started for one run.
+
+Ray is optional (``pip install "mazesim[ray]"``); it is imported only here, when a sweep or an
+evaluation asks for it, so ``import mazesim`` and ``mazesim --help`` never need it.
+
+Without an address, :func:`ray_session` starts a local Ray instance with one CPU per core of this
+machine, no dashboard, listening on 127.0.0.1 only, and its session files in a fresh temporary
+folder that is removed when the session ends. With an address (``"auto"``, ``"HOST:6379"`` or
+``"ray://HOST:10001"``) it joins that cluster, whose machines must have the same mazesim
+installed. When Ray is already initialised in this process (a notebook, a test), the session
+uses it and leaves it running.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import logging
+import os
+import shutil
+import tempfile
+from collections.abc import Iterator
+from types import ModuleType
+
+from mazesim.errors import MissingDependencyError
+
+__all__ = ["import_ray", "local_cpus", "ray_session"]
+
+
+def import_ray() -> ModuleType:
+    """Imports Ray.
+
+    Raises:
+        MissingDependencyError: Ray is not installed.
+    """
+    try:
+        import ray
+    except ImportError:
+        raise MissingDependencyError(
+            "running on Ray needs the 'ray' package: pip install 'mazesim[ray]'"
+        ) from None
+    return ray
+
+
+def local_cpus() -> int:
+    """The cores this process may run on."""
+    if hasattr(os, "sched_getaffinity"):
+        return max(1, len(os.sched_getaffinity(0)))
+    return max(1, os.cpu_count() or 1)
+
+
+@contextlib.contextmanager
+def _on_loopback(ray: ModuleType) -> Iterator[None]:
+    """Makes a local instance started in the block listen on 127.0.0.1 only.
+
+    Ray gives a node the address other machines would reach it by, even for an instance that
+    only this machine uses; its own switch for single-machine platforms keeps it on the loopback
+    interface. Where a Ray version lacks the switch, Ray's default address is used.
+    """
+    constants = getattr(getattr(ray, "_private", None), "ray_constants", None)
+    if constants is None or not hasattr(constants, "ENABLE_RAY_CLUSTER"):
+        yield
+        return
+    saved = constants.ENABLE_RAY_CLUSTER
+    constants.ENABLE_RAY_CLUSTER = False
+    try:
+        yield
+    finally:
+        constants.ENABLE_RAY_CLUSTER = saved
+
+
+@contextlib.contextmanager
+def ray_session(address: str | None = None, cpus: int | None = None) -> Iterator[ModuleType]:
+    """Connects to Ray for the duration of a ``with`` block.
+
+    Args:
+        address: The cluster to join; ``None`` starts a local instance on this machine.
+        cpus: CPUs of a local instance (by default :func:`local_cpus`); ignored with an address.
+
+    Yields:
+        The ``ray`` module, initialised.
+
+    Raises:
+        MissingDependencyError: Ray is not installed.
+    """
+    ray = import_ray()
+    if ray.is_initialized():
+        yield ray
+        return
+    temporary = None
+    if address is None:
+        temporary = tempfile.mkdtemp(prefix="mazesim-ray-")
+        with _on_loopback(ray):
+            ray.init(
+                num_cpus=cpus or local_cpus(),
+                include_dashboard=False,
+                _temp_dir=temporary,
+                # Ray's notices about the instance it starts (its token, its ports) are no news.
+                logging_level=logging.ERROR,
+                log_to_driver=False,
+            )
+    else:
+        ray.init(address=address, logging_level=logging.WARNING, log_to_driver=False)
+    try:
+        yield ray
+    finally:
+        ray.shutdown()
+        if temporary is not None:
+            shutil.rmtree(temporary, ignore_errors=True)

@@ -1,0 +1,202 @@
+"""A sweep's task: train one setting, evaluate it, and hand back its result and its files.
+
+A task is a function ``task(setting, threads) -> TaskOutput``. It runs in a Ray worker, or in the
+calling process for the sequential runner, and writes nothing itself: its files (tables, curves,
+metadata) come back as bytes and the driver writes them into the sweep's output folder
+(:func:`mazesim.distributed.output.write_run_folder`), so workers on other machines need no
+shared file system.
+
+The default task, :func:`train_and_evaluate`, runs the setting's trainer. Trainers are looked up
+by name in :data:`TRAINERS`; ``"auto"`` picks the first of :data:`AUTO_ORDER` that this
+installation has. A trainer is a function ``trainer(setting, threads) -> dict`` returning
+``tables`` (name -> array), ``curves`` (name -> equal-length 1-D array), ``evaluation``
+(``success_rate``, ``mean_collisions``, ``mean_steps``), ``env_steps``, ``eval_env_steps``,
+``training_seconds`` and ``evaluation_seconds``; :func:`mazesim.distributed.flat_q.train` is the
+model.
+"""
+
+from __future__ import annotations
+
+import csv
+import importlib
+import io
+import json
+import math
+import socket
+import zipfile
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+import numpy.typing as npt
+
+from mazesim._core import __version__
+from mazesim.errors import InvalidArgumentError, UnknownNameError
+
+if TYPE_CHECKING:
+    from mazesim.distributed.config import Setting
+
+__all__ = [
+    "AUTO_ORDER",
+    "CURVES_FILE",
+    "RUN_FILE",
+    "TABLES_FILE",
+    "TRAINERS",
+    "Task",
+    "TaskOutput",
+    "curves_csv",
+    "execute_task",
+    "npz_bytes",
+    "resolve_trainer",
+    "train_and_evaluate",
+]
+
+#: Trainers by name: where each one's function lives, ``"module:function"``.
+TRAINERS: dict[str, str] = {
+    "flat-q": "mazesim.distributed.flat_q:train",
+}
+#: What ``trainer = "auto"`` picks: the first of these that is installed.
+AUTO_ORDER: tuple[str, ...] = ("hrl", "baseline", "flat-q")
+
+#: The trained tables of a run, an ``.npz`` archive (no pickled objects).
+TABLES_FILE = "tables.npz"
+#: The training curve of a run, a CSV table.
+CURVES_FILE = "curves.csv"
+#: The setting and result of a run, JSON.
+RUN_FILE = "run.json"
+#: Version of the run folder's layout, written into :data:`RUN_FILE`.
+RUN_FORMAT = 1
+
+
+@dataclass(frozen=True)
+class TaskOutput:
+    """What a task hands back to the driver.
+
+    Attributes:
+        result: JSON values: ``success_rate``, ``mean_collisions``, ``mean_steps``,
+            ``env_steps``, ``eval_env_steps``, ``training_seconds``, ``evaluation_seconds``,
+            ``trainer``, ``threads`` and ``host``.
+        files: The run's files by name (no folders), written into its folder by the driver.
+    """
+
+    result: dict[str, Any]
+    files: dict[str, bytes]
+
+
+Task = Callable[["Setting", int], TaskOutput]
+
+
+def _trainer_function(name: str) -> Callable[[Setting, int], dict[str, Any]] | None:
+    """The function registered as ``name``, or ``None`` if its module is not installed."""
+    module_name, _, function_name = TRAINERS[name].partition(":")
+    try:
+        module = importlib.import_module(module_name)
+    except ModuleNotFoundError:
+        return None
+    function = getattr(module, function_name, None)
+    return function if callable(function) else None
+
+
+def resolve_trainer(name: str) -> str:
+    """The registered trainer that ``name`` stands for (``"auto"``: see :data:`AUTO_ORDER`).
+
+    Raises:
+        UnknownNameError: No trainer has that name, or it is not installed.
+    """
+    if name == "auto":
+        for candidate in AUTO_ORDER:
+            if candidate in TRAINERS and _trainer_function(candidate) is not None:
+                return candidate
+    if name not in TRAINERS or _trainer_function(name) is None:
+        available = [n for n in TRAINERS if _trainer_function(n) is not None]
+        raise UnknownNameError(
+            f"expected a trainer among auto, {', '.join(available)}; found {name!r}",
+            available=["auto", *available],
+        )
+    return name
+
+
+def npz_bytes(arrays: Mapping[str, npt.ArrayLike]) -> bytes:
+    """An ``.npz`` archive of the arrays, the same bytes for the same arrays.
+
+    Unlike :func:`numpy.savez`, the archive's members carry a fixed date, so two runs that
+    produce equal arrays produce equal files. :func:`numpy.load` reads it.
+    """
+    buffer = io.BytesIO()
+    with zipfile.ZipFile(buffer, "w", compression=zipfile.ZIP_STORED) as archive:
+        for name, values in arrays.items():
+            member = zipfile.ZipInfo(f"{name}.npy", date_time=(1980, 1, 1, 0, 0, 0))
+            with archive.open(member, "w", force_zip64=True) as handle:
+                array = np.ascontiguousarray(values)
+                if array.dtype.hasobject:
+                    raise InvalidArgumentError(f"table {name!r}: expected numbers, found objects")
+                np.lib.format.write_array(handle, array, allow_pickle=False)
+    return buffer.getvalue()
+
+
+def curves_csv(curves: Mapping[str, npt.ArrayLike]) -> bytes:
+    """A CSV table of equal-length columns (floats written to round-trip exactly)."""
+    columns = {name: np.asarray(values).ravel() for name, values in curves.items()}
+    lengths = {values.size for values in columns.values()}
+    if len(lengths) > 1:
+        raise InvalidArgumentError(f"expected curves of one length, found lengths {lengths}")
+    text = io.StringIO()
+    writer = csv.writer(text, lineterminator="\n")
+    writer.writerow(columns)
+    for row in zip(*columns.values()):
+        writer.writerow([value.item() for value in row])
+    return text.getvalue().encode("utf-8")
+
+
+def _json_number(value: float) -> float | None:
+    return None if not math.isfinite(value) else value
+
+
+def train_and_evaluate(setting: Setting, threads: int = 1) -> TaskOutput:
+    """The default task: trains the setting with its trainer and evaluates the greedy policy.
+
+    Args:
+        setting: The setting to run.
+        threads: Batch-engine threads.
+
+    Returns:
+        The result and the files ``tables.npz``, ``curves.csv`` and ``run.json``.
+    """
+    name = str(setting.params["trainer"])
+    trainer = _trainer_function(name) if name in TRAINERS else None
+    if trainer is None:
+        raise UnknownNameError(f"trainer {name!r} is not installed on {socket.gethostname()}")
+    run = trainer(setting, threads)
+    evaluation = run["evaluation"]
+    result = {
+        "success_rate": _json_number(float(evaluation["success_rate"])),
+        "mean_collisions": _json_number(float(evaluation["mean_collisions"])),
+        "mean_steps": _json_number(float(evaluation["mean_steps"])),
+        "env_steps": int(run["env_steps"]),
+        "eval_env_steps": int(run["eval_env_steps"]),
+        "training_seconds": float(run["training_seconds"]),
+        "evaluation_seconds": float(run["evaluation_seconds"]),
+        "trainer": name,
+        "threads": threads,
+        "host": socket.gethostname(),
+    }
+    metadata = {
+        "format": RUN_FORMAT,
+        "mazesim_version": __version__,
+        "setting": setting.to_json(),
+        "tables": {key: list(np.shape(value)) for key, value in run["tables"].items()},
+        "result": result,
+    }
+    files = {
+        TABLES_FILE: npz_bytes(run["tables"]),
+        CURVES_FILE: curves_csv(run["curves"]),
+        RUN_FILE: (json.dumps(metadata, indent=2) + "\n").encode("utf-8"),
+    }
+    return TaskOutput(result=result, files=files)
+
+
+def execute_task(task: Task, setting: Setting, threads: int) -> TaskOutput:
+    """The body of a sweep's Ray task: runs ``task`` in the worker (a module-level function, so
+    that workers import only this module and what the task needs)."""
+    return task(setting, threads)
