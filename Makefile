@@ -24,7 +24,7 @@ help: ## list the targets
 
 venv: $(STAMP) ## create .venv (Python 3.11) with maturin, numpy, matplotlib and the dev tools
 
-$(STAMP):
+$(STAMP): Makefile
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 	$(BIN)/python -m pip install --quiet $(PY_PACKAGES)

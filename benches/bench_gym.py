@@ -2,7 +2,7 @@
 
 Not a test: run it by hand (gymnasium must be installed)::
 
-    .venv/bin/python benches/bench_gym.py [--envs 1024] [--steps 200] [--json]
+    .venv/bin/python benches/bench_gym.py [--envs 1024] [--steps 1000] [--json]
 
 Throughput: ``--envs`` environments, each in its own 5 x 5 maze of 0.25 m cells, the e-puck with
 all 11 sensors read with noise every 32 ms control step, and uniformly random actions (a pool
@@ -14,10 +14,12 @@ drawn beforehand, so the policy costs nothing). One env-step is one control step
   observations, rewards (shortest-path progress), time limits, autoreset and info arrays included;
 - sync (reference): ``SyncVectorEnv`` over the same number of single envs, for a few steps.
 
-Raw and vector env are timed in interleaved rounds, so other load on the machine falls on both
-alike; the best round of each is reported. Rendering: frames per second of ``env.render()`` of a
-single env made with ``render_mode="rgb_array"`` (400 x 400, through gymnasium's wrappers) and of
-the numpy rasteriser alone, in seed-maze.
+Raw and vector env step in turns, one step each, so that other load on the machine falls on both
+alike; the rate is from the median step time (the sustained rate, from the mean, is printed too).
+
+Rendering: frames per second of ``env.render()`` of a single env made with
+``render_mode="rgb_array"`` (400 x 400, through gymnasium's wrappers) and of the numpy rasteriser
+alone, in seed-maze.
 """
 
 from __future__ import annotations
@@ -32,9 +34,11 @@ from typing import Any
 
 import gymnasium
 import numpy as np
+from gymnasium.utils import seeding
 
 import mazesim
 from mazesim.envs import ENV_ID
+from mazesim.envs.options import draw_seed
 
 POOL = 16
 
@@ -46,8 +50,8 @@ def _rate(run: Callable[[], None], count: int) -> float:
     return count / (time.perf_counter() - start)
 
 
-def throughput(num_envs: int, steps: int, rounds: int, threads: int) -> dict[str, float]:
-    """Env-steps per second of the raw engine and of the vector env (best of ``rounds``)."""
+def throughput(num_envs: int, steps: int, threads: int) -> dict[str, float]:
+    """Env-steps per second of the raw engine and of the vector env (median and mean step)."""
     envs: Any = gymnasium.make_vec(
         ENV_ID,
         num_envs,
@@ -59,8 +63,15 @@ def throughput(num_envs: int, steps: int, rounds: int, threads: int) -> dict[str
     envs.action_space.seed(0)
     actions = [envs.action_space.sample() for _ in range(POOL)]
 
-    worlds = [mazesim.generate_maze(5, 5, seed=i) for i in range(num_envs)]
-    batch = mazesim.BatchSimulator(worlds, robot="e-puck", seeds=0, threads=threads)
+    # The raw engine runs the very episodes of the vector env: env i is seeded with 0 + i and
+    # draws its maze, then its simulator seed, from that RNG. So both step the same robots into
+    # the same walls (contacts cost more than free driving) and the comparison is like for like.
+    worlds, seeds = [], []
+    for i in range(num_envs):
+        rng = seeding.np_random(i)[0]
+        worlds.append(mazesim.generate_maze(5, 5, seed=draw_seed(rng)))
+        seeds.append(draw_seed(rng))
+    batch = mazesim.BatchSimulator(worlds, robot="e-puck", seeds=seeds, threads=threads)
     max_speed = np.float32(mazesim.RobotProfile.builtin("e-puck").max_wheel_speed)
     speeds = [a * max_speed for a in actions]
     observations = np.zeros((num_envs, batch.observation_width), dtype=np.float32)
@@ -69,21 +80,30 @@ def throughput(num_envs: int, steps: int, rounds: int, threads: int) -> dict[str
     crossings = np.zeros(num_envs, dtype=np.int32)
     batch.reset(observations, poses, colliding, crossings)
 
-    def raw() -> None:
-        for k in range(steps):
-            batch.step(speeds[k % POOL], observations, poses, colliding, crossings)
+    def raw(k: int) -> None:
+        batch.step(speeds[k % POOL], observations, poses, colliding, crossings)
 
-    def vector() -> None:
-        for k in range(steps):
-            envs.step(actions[k % POOL])
+    def vector(k: int) -> None:
+        envs.step(actions[k % POOL])
 
-    raw(), vector()  # warm up
-    best = {"raw": 0.0, "vector": 0.0}
-    for _ in range(rounds):
-        best["raw"] = max(best["raw"], _rate(raw, num_envs * steps))
-        best["vector"] = max(best["vector"], _rate(vector, num_envs * steps))
+    space = envs.single_observation_space
+    for k in range(20):  # warm up, and check that both run the same episodes
+        raw(k)
+        vector_observations = envs.step(actions[k % POOL])[0]
+    if not np.array_equal(vector_observations, np.clip(observations, space.low, space.high)):
+        raise RuntimeError("the raw engine and the vector env ran different episodes")
+    # Step by step in turns, so that other load on the machine falls on both alike; the median
+    # step time of each gives its rate, the mean the sustained rate.
+    times: dict[str, list[float]] = {"raw": [], "vector": []}
+    for k in range(steps):
+        for name, run in (("raw", raw), ("vector", vector)):
+            start = time.perf_counter()
+            run(k)
+            times[name].append(time.perf_counter() - start)
     envs.close()
-    return best
+    rates = {name: num_envs / float(np.median(ts)) for name, ts in times.items()}
+    rates.update({f"{name}_mean": num_envs / float(np.mean(ts)) for name, ts in times.items()})
+    return rates
 
 
 def sync_throughput(num_envs: int, steps: int) -> float:
@@ -131,8 +151,7 @@ def render_rates(frames: int) -> dict[str, float]:
 def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
     parser.add_argument("--envs", type=int, default=1024, help="number of environments")
-    parser.add_argument("--steps", type=int, default=200, help="control steps per round")
-    parser.add_argument("--rounds", type=int, default=5, help="interleaved timing rounds")
+    parser.add_argument("--steps", type=int, default=1000, help="control steps of each")
     parser.add_argument("--threads", type=int, default=0, help="engine threads (0: all cores)")
     parser.add_argument("--sync-steps", type=int, default=10, help="SyncVectorEnv steps (0: skip)")
     parser.add_argument("--frames", type=int, default=2000, help="frames to render")
@@ -143,10 +162,12 @@ def main(argv: Sequence[str] | None = None) -> int:
         "machine": f"{platform.machine()}, {os.cpu_count()} cores",
         "envs": args.envs,
     }
-    rates = throughput(args.envs, args.steps, args.rounds, args.threads)
+    rates = throughput(args.envs, args.steps, args.threads)
     result["raw_env_steps_per_s"] = rates["raw"]
     result["vector_env_steps_per_s"] = rates["vector"]
     result["vector_over_raw"] = rates["vector"] / rates["raw"]
+    result["raw_mean_env_steps_per_s"] = rates["raw_mean"]
+    result["vector_mean_env_steps_per_s"] = rates["vector_mean"]
     if args.sync_steps > 0:
         result["sync_env_steps_per_s"] = sync_throughput(args.envs, args.sync_steps)
     result.update(render_rates(args.frames))
@@ -159,6 +180,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     print(
         f"  native vector env       {result['vector_env_steps_per_s']:>12,.0f} env-steps/s"
         f"  ({100 * result['vector_over_raw']:.0f} % of raw)"
+    )
+    mean_ratio = result["vector_mean_env_steps_per_s"] / result["raw_mean_env_steps_per_s"]
+    print(
+        f"  (sustained: raw {result['raw_mean_env_steps_per_s']:,.0f}, vector env "
+        f"{result['vector_mean_env_steps_per_s']:,.0f}, {100 * mean_ratio:.0f} %)"
     )
     if "sync_env_steps_per_s" in result:
         print(f"  SyncVectorEnv           {result['sync_env_steps_per_s']:>12,.0f} env-steps/s")

@@ -391,12 +391,24 @@ def test_rgb_array_frames_show_the_robot() -> None:
     assert not np.array_equal(frames[0], frames[1])  # each env its own maze
 
 
-def test_readme_example_runs(tmp_path: Path) -> None:
-    envs = gymnasium.make_vec(ENV_ID, num_envs=16, vectorization_mode="vector_entry_point")
+def test_readme_examples_run(tmp_path: Path) -> None:
+    envs = gymnasium.make_vec(ENV_ID, num_envs=16, world="random")
+    assert isinstance(envs.unwrapped, EPuckMazeVectorEnv)  # the native vector env by default
     observations, infos = envs.reset(seed=0)
     for _ in range(10):
-        observations, rewards, terminations, truncations, infos = envs.step(
-            envs.action_space.sample()
-        )
+        actions = envs.action_space.sample()
+        observations, rewards, terminations, truncations, infos = envs.step(actions)
     assert observations.shape == (16, 11) and rewards.dtype == np.float64
     envs.close()
+
+    image_module = pytest.importorskip("PIL.Image")
+    env = gymnasium.make(ENV_ID, render_mode="rgb_array", action_mode="discrete")
+    env.reset(seed=0)
+    frames = [env.render()]
+    for _ in range(5):
+        *_, terminated, truncated, info = env.step(env.action_space.sample())
+        frames.append(env.render())
+    images = [image_module.fromarray(frame) for frame in frames]
+    path = tmp_path / "episode.gif"
+    images[0].save(path, save_all=True, append_images=images[1:], duration=32, loop=0)
+    assert path.read_bytes().startswith(b"GIF8")

@@ -258,7 +258,7 @@ class GoalDistance:
         u = x - (self._origin_x + (col + 0.5) * size)
         v = y - (self._origin_y + (up + 0.5) * size)
         cell = (self._last_row - up).astype(np.intp) * self._cols + col.astype(np.intp)
-        targets = self._targets[self._first_cell + cell]
+        targets = np.take(self._targets, self._first_cell + cell, axis=0)
         gaps = np.stack((half - v, half - u, half + v, half + u, to_goal), axis=1)
         weights = targets[:, _TARGETS:] / np.maximum(gaps, _NEAREST)
         terms = weights * targets[:, :_TARGETS]

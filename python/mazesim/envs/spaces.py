@@ -133,9 +133,10 @@ class ObservationLayout:
         clipped to the space."""
         if self.include_pose:
             out = np.concatenate((sensors, poses), axis=1)
+            np.maximum(out, self.low, out=out)
         else:
-            out = sensors.copy()
-        np.clip(out, self.low, self.high, out=out)
+            out = np.maximum(sensors, self.low)
+        np.minimum(out, self.high, out=out)
         return out
 
 

@@ -245,8 +245,8 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
             if renderer is None:
                 renderer = self._renderer_for(self._worlds[i])
                 self._renderers[i] = renderer
-            pose = (float(v) for v in self._poses[i])
-            frames.append(renderer.frame(tuple(pose), bool(self._colliding[i])))  # type: ignore[arg-type]
+            x, y, yaw = (float(v) for v in self._poses[i])
+            frames.append(renderer.frame((x, y, yaw), bool(self._colliding[i])))
         return tuple(frames)
 
     def close_extras(self, **kwargs: Any) -> None:
