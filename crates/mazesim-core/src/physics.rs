@@ -50,6 +50,9 @@ impl Body {
         world.gravity = Vector::ZERO;
         world.integration_parameters.dt = dt;
         world.integration_parameters.length_unit = LENGTH_UNIT;
+        // One ball against static boxes needs no more: the contact tests hold, a contact step
+        // costs about a fifth less than with rapier's default of 4.
+        world.integration_parameters.num_solver_iterations = 1;
         world.integration_parameters.normalized_prediction_distance =
             PREDICTION_DISTANCE / LENGTH_UNIT;
         for w in walls {
