@@ -38,8 +38,8 @@ test: build ros-deps ## run the Rust tests, then the Python tests (ROS bridge te
 	$(BIN)/python -m pytest
 	$(BIN)/python -m mypy.stubtest mazesim._core
 
-demo: build ## run the avoid-collision demo in seed-maze; writes mazesim-demo/
-	$(BIN)/mazesim demo --out mazesim-demo
+demo: build ## the shipped hierarchical navigator drives seed-maze to its goal; writes mazesim-demo/
+	$(BIN)/mazesim demo --controller hrl --out mazesim-demo
 
 # Debian's ROS 1 (DESIGN.md section 9): installed only when /usr/bin/python3 cannot import rospy.
 # The venv sees /usr/lib/python3/dist-packages through a .pth file, at the END of sys.path (first

@@ -34,6 +34,7 @@ COMMAND_MODULES: tuple[str, ...] = (
     "mazesim.barcode.command",
     "mazesim.webots.cli",
     "mazesim.distributed.command",
+    "mazesim.hrl.command",
 )
 
 #: Exit code of a run that failed on an error of the user's input or of the file system.
@@ -126,6 +127,14 @@ def build_parser() -> argparse.ArgumentParser:
         help="robot profile; the controller needs the e-puck's 8 proximity sensors "
         "(default: %(default)s)",
     )
+    demo.add_argument(
+        "--controller",
+        choices=("avoid-collision", "hrl"),
+        default="avoid-collision",
+        help="avoid-collision (Alg. 1), or hrl: the shipped hierarchical navigator (Alg. 5) "
+        "driving the report's seed robot to the goal, also writing DIR/trace.txt "
+        "(default: %(default)s)",
+    )
     demo.set_defaults(run=lambda args: run_demo(args, sys.stdout))
     for module_name in COMMAND_MODULES:
         importlib.import_module(module_name).register(commands)
@@ -188,6 +197,11 @@ class _Progress:
 def run_demo(args: argparse.Namespace, out: TextIO) -> int:
     """Runs the avoid-collision demo and writes its picture and summary."""
     from mazesim.plotting import save_trajectory_png
+
+    if getattr(args, "controller", "avoid-collision") == "hrl":
+        from mazesim.hrl.demo import run_hrl_demo
+
+        return run_hrl_demo(args, out)
 
     world = mazesim.load_world(args.world)
     simulator = mazesim.Simulator(world, robot=args.robot, seed=args.seed)

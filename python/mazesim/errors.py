@@ -17,6 +17,7 @@ __all__ = [
     "MazesimError",
     "MazesimIOError",
     "MissingDependencyError",
+    "PolicyFormatError",
     "UnknownNameError",
     "WorldFormatError",
 ]
@@ -81,3 +82,9 @@ class MazesimIOError(MazesimError, OSError):
 class MissingDependencyError(MazesimError, ImportError):
     """An optional part of mazesim needs a package that is not installed (for example ROS 1's
     ``rospy`` for :mod:`mazesim.ros`); the message names the package and how to install it."""
+
+
+class PolicyFormatError(MazesimError, ValueError):
+    """A saved navigator (Q-tables and their metadata, :mod:`mazesim.hrl.tables`) cannot be used:
+    the file is truncated or corrupt, of another format version, or made for another state or
+    action encoding or another world; the message names the file and says which."""

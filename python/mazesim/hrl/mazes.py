@@ -31,6 +31,7 @@ __all__ = [
     "WEST",
     "CellMaze",
     "DoorApproach",
+    "checkpoint_ids",
     "world_hash",
     "world_with_start",
 ]
@@ -38,6 +39,11 @@ __all__ = [
 EAST, NORTH, WEST, SOUTH = 0, 1, 2, 3
 #: (column, row) step of each direction (rows grow southwards).
 _STEP = {EAST: (1, 0), NORTH: (0, -1), WEST: (-1, 0), SOUTH: (0, 1)}
+
+
+def checkpoint_ids(world: World) -> list[int]:
+    """The ids of a world's checkpoints, in increasing order."""
+    return sorted(int(cast(int, checkpoint["id"])) for checkpoint in world.checkpoints())
 
 
 def world_hash(world: World) -> str:

@@ -5,8 +5,10 @@ transition ``(s, a, r, s')`` is
 
     Q[s, a] <- Q[s, a] + alpha * (r + bootstrap * max_b Q[s', b] - Q[s, a])
 
-where ``bootstrap`` is ``gamma`` for an ordinary step, ``gamma ** tau`` for a sub-task that lasted
-``tau`` steps (the higher level's SMDP update) and 0 when ``s'`` ends the episode.
+where ``bootstrap`` is ``gamma`` for an ordinary step, ``gamma ** tau`` for a decision that lasted
+``tau`` steps (an SMDP transition) and 0 when ``s'`` ends the episode. The learning rate of a
+pair's n-th update is ``max(floor, initial * (n + 1) ** -power)`` (:class:`LearningRate`): a table
+keeps the count of updates of each pair beside it.
 
 :func:`batch_update` applies the transitions of N environments stepped together. Its result
 equals this loop of scalar updates, in environment order::
@@ -14,14 +16,16 @@ equals this loop of scalar updates, in environment order::
     before = q.copy()
     for i in range(N):
         target = rewards[i] + bootstrap[i] * before[next_states[i]].max()
+        alpha = learning_rates(visits[states[i], actions[i]], rate)
         q[states[i], actions[i]] += alpha * (target - q[states[i], actions[i]])
+        visits[states[i], actions[i]] += 1
 
 up to floating-point rounding (relative differences of order 1e-15): the N transitions happen at
 the same time, so their targets read the table as it was before the batch, and when k
-environments hit the same state-action pair their updates are applied one after the other, as
-``Q <- (1 - alpha)^k Q + sum_j alpha (1 - alpha)^(k-1-j) target_j``. Summing the k increments
-instead (``np.add.at`` of ``alpha * td_error``) would move ``Q`` by k times a step when thousands
-of environments share a state, and diverge.
+environments hit the same state-action pair their updates are applied one after the other, in
+closed form (``Q <- prod(1 - alpha_j) Q + sum_j alpha_j prod_{i > j}(1 - alpha_i) target_j``).
+Summing the k increments instead (``np.add.at`` of ``alpha * td_error``) would move ``Q`` by k
+times a step when thousands of environments share a state, and diverge.
 
 Greedy choices break ties towards the lowest action index, so an untried state (all zeros) drives
 forward (action 0, ``00``).
@@ -29,21 +33,42 @@ forward (action 0, ``00``).
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 import numpy.typing as npt
 
 from mazesim.errors import InvalidArgumentError
 
 __all__ = [
+    "LearningRate",
     "batch_update",
     "epsilon_greedy",
     "greedy",
+    "learning_rates",
     "scalar_update",
     "td_targets",
 ]
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]
+
+
+@dataclass(frozen=True)
+class LearningRate:
+    """The learning rate of a pair's n-th update (n = 0, 1, ...):
+    ``max(floor, initial * (n + 1) ** -power)``; rare pairs learn fast, common ones average."""
+
+    initial: float = 0.5
+    floor: float = 0.02
+    power: float = 0.5
+
+    def __post_init__(self) -> None:
+        if not (0.0 < self.floor <= self.initial <= 0.5 and self.power >= 0.0):
+            raise InvalidArgumentError(
+                "expected 0 < floor <= initial <= 0.5 and power >= 0, found "
+                f"initial={self.initial}, floor={self.floor}, power={self.power}"
+            )
 
 
 def greedy(q: FloatArray, states: npt.ArrayLike) -> IntArray:
@@ -83,7 +108,7 @@ def scalar_update(
     bootstrap: float,
     alpha: float,
 ) -> None:
-    """One Q-learning update in place (see the module's formula)."""
+    """One Q-learning update in place (the module's formula) with learning rate ``alpha``."""
     target = reward + bootstrap * float(np.max(q[next_state])) if bootstrap else reward
     q[state, action] += alpha * (target - q[state, action])
 
@@ -105,26 +130,34 @@ def td_targets(
     return rewards_array + factors * best
 
 
+def learning_rates(visits: npt.ArrayLike, rate: LearningRate) -> FloatArray:
+    """The learning rate of the update that follows ``visits`` earlier updates of a pair."""
+    counts = np.asarray(visits, dtype=np.float64)
+    return np.maximum(rate.floor, rate.initial * (counts + 1.0) ** -rate.power)
+
+
 def batch_update(
     q: FloatArray,
+    visits: npt.NDArray[np.int64],
     states: npt.ArrayLike,
     actions: npt.ArrayLike,
     rewards: npt.ArrayLike,
     next_states: npt.ArrayLike,
     bootstrap: npt.ArrayLike,
-    alpha: float,
+    rate: LearningRate,
 ) -> None:
     """Applies N Q-learning updates in place, as the module describes.
 
     Args:
-        q: The Q-table, ``(states, actions)``, float64, updated in place.
+        q: The Q-table, ``(states, actions)``, float64, C-contiguous; updated in place.
+        visits: The table's update counts, same shape, int64; updated in place.
         states: (N,) states the actions were taken in.
         actions: (N,) actions taken.
         rewards: (N,) rewards received.
         next_states: (N,) states reached (ignored where ``bootstrap`` is 0).
         bootstrap: (N,) or scalar factor of ``max Q[s']``: ``gamma``, ``gamma ** tau``, or 0 at
             the end of an episode.
-        alpha: The learning rate in [0, 1].
+        rate: The learning-rate schedule.
 
     Raises:
         InvalidArgumentError: The arrays differ in length, or an index is out of the table.
@@ -137,6 +170,8 @@ def batch_update(
             f"expected as many actions and rewards as states ({count}), "
             f"found {action_array.size} and {np.size(rewards)}"
         )
+    if not (q.flags.c_contiguous and visits.flags.c_contiguous and visits.shape == q.shape):
+        raise InvalidArgumentError("expected C-contiguous Q and visit tables of one shape")
     if count == 0:
         return
     num_states, num_actions = q.shape
@@ -153,10 +188,18 @@ def batch_update(
     group = np.cumsum(starts_group) - 1
     group_start = np.flatnonzero(starts_group)
     group_size = np.diff(np.append(group_start, count))
-    position = np.arange(count) - group_start[group]
-    keep = 1.0 - alpha
-    weights = alpha * keep ** (group_size[group] - 1 - position)
-    moved = np.bincount(group, weights=weights * targets[order], minlength=group_start.size)
-    flat = q.reshape(-1)
     unique_keys = sorted_keys[group_start]
-    flat[unique_keys] = keep**group_size * flat[unique_keys] + moved
+    flat_q = q.reshape(-1)
+    flat_visits = visits.reshape(-1)
+    # The j-th update of a pair in the batch has the rate of its visit count then; the later
+    # updates of the pair shrink what it moved by their (1 - rate) each.
+    position = np.arange(count) - group_start[group]
+    alpha = learning_rates(flat_visits[unique_keys][group] + position, rate)
+    log_keep = np.log1p(-alpha)
+    through = np.cumsum(log_keep)
+    group_total = np.add.reduceat(log_keep, group_start)
+    before_group = through[group_start] - log_keep[group_start]
+    after = (before_group + group_total)[group] - through
+    moved = np.bincount(group, weights=alpha * np.exp(after) * targets[order])
+    flat_q[unique_keys] = np.exp(group_total) * flat_q[unique_keys] + moved
+    flat_visits[unique_keys] += group_size

@@ -1,0 +1,387 @@
+"""Evaluating a navigator: success, collisions, steps against the shortest path, decisions, and
+the report's pictures (trajectories, Fig. 4.6 / 4.8) and terminal trace (Fig. 4.7).
+
+An evaluation runs greedy episodes in a world with sensor noise and the start jitter of
+:class:`mazesim.hrl.navigation.StartJitter` (2 cm, 10 degrees). In the world the navigator's
+higher level learned, it uses that table; in any other world (a file, or the unseen generated
+mazes of ``--world random``) the lower-level tables are kept and only the higher level is trained
+there first, with at most :data:`ADAPT_EPISODES` episodes per maze: the transfer test.
+
+Measures (:class:`Summary`): the share of episodes that reached the goal; bumps (wall contacts
+the simulator counts) per episode, and the share of episodes without any; the control steps of
+the episodes that arrived, and their ratio to the steps of the shortest path at cruise speed
+(:func:`mazesim.hrl.navigation.shortest_path_steps`); and which sub-task the higher level chose
+at each checkpoint event.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections import Counter
+from collections.abc import Callable, Sequence
+from dataclasses import asdict, dataclass, field
+from typing import Any, TextIO
+
+import numpy as np
+import numpy.typing as npt
+
+from mazesim._core import World, generate_maze
+from mazesim.actions import ACTION_CODES, ACTIONS
+from mazesim.errors import InvalidArgumentError
+from mazesim.hrl.discretise import format_levels
+from mazesim.hrl.episodes import EpisodeResult, HigherTraining, run_episodes, train_higher
+from mazesim.hrl.higher import HigherLevel
+from mazesim.hrl.mazes import world_hash
+from mazesim.hrl.navigation import (
+    DEFAULT_MAX_STEPS,
+    NavigationBatch,
+    StartJitter,
+    shortest_path_steps,
+)
+from mazesim.hrl.policy import HierarchicalPolicy, StepRecord
+from mazesim.hrl.subtasks import CONTROL_STEP_MS, SUBTASK_CODES, SUBTASK_NAMES
+from mazesim.hrl.tables import TrainedPolicy
+
+__all__ = [
+    "ADAPT_EPISODES",
+    "Evaluation",
+    "Report",
+    "Summary",
+    "evaluate",
+    "evaluate_navigator",
+    "navigator_for",
+    "print_summary",
+    "unseen_mazes",
+    "write_trace",
+]
+
+#: Episodes the higher level may train in a world it has not seen, per maze.
+ADAPT_EPISODES = 200
+#: Robots stepped side by side in an evaluation (at most).
+EVALUATION_ENVS = 500
+
+
+@dataclass
+class Summary:
+    """What an evaluation measured."""
+
+    episodes: int
+    success_rate: float
+    mean_collisions: float
+    mean_steps: float | None
+    mean_path_ratio: float | None
+    collision_free_rate: float
+    events: str
+    decisions: dict[str, dict[str, int]] = field(default_factory=dict)
+
+    def as_json(self) -> dict[str, Any]:
+        """The summary as the ``--json`` output's values."""
+        values = asdict(self)
+        values.pop("decisions")
+        values.pop("events")
+        return values
+
+
+@dataclass
+class Evaluation:
+    """An evaluation's summary, its episodes, and what was recorded for pictures and traces."""
+
+    summary: Summary
+    results: list[EpisodeResult]
+    paths: dict[int, npt.NDArray[np.float64]] = field(default_factory=dict)
+    marks: dict[int, list[tuple[float, float, int, int]]] = field(default_factory=dict)
+    trace: list[str] = field(default_factory=list)
+
+
+def unseen_mazes(count: int, seed: int) -> list[World]:
+    """``count`` generated 5 x 5 perfect mazes for testing; their seeds derive from ``seed`` on a
+    stream no training run uses."""
+    maze_seeds = np.random.SeedSequence([seed, 0x7E577E57]).generate_state(count, np.uint64)
+    return [generate_maze(5, 5, seed=int(maze_seed)) for maze_seed in maze_seeds]
+
+
+def navigator_for(
+    policy: TrainedPolicy, worlds: Sequence[World], seed: int = 0, threads: int = 0
+) -> tuple[HigherLevel, bool]:
+    """The higher level to drive ``worlds`` with: the policy's own when it is the world it
+    learned, else one trained there for :data:`ADAPT_EPISODES` episodes per world.
+
+    Returns:
+        The higher level (one table per world) and whether it was trained here.
+    """
+    if policy.kind != "hierarchical" or policy.lower_q is None or policy.higher_q is None:
+        raise InvalidArgumentError("expected a hierarchical navigator")
+    if len(worlds) == 1 and world_hash(worlds[0]) == policy.world_sha256:
+        level = HigherLevel([policy.checkpoint_ids], q=policy.higher_q[None])
+        return level, False
+    settings = HigherTraining(episodes_per_world=ADAPT_EPISODES, seed=seed)
+    level, _ = train_higher(policy.lower_q, worlds, settings, threads=threads)
+    return level, True
+
+
+def _summarise(results: list[EpisodeResult], shortest: Sequence[float], events: str) -> Summary:
+    arrived = [r for r in results if r.arrived]
+    count = len(results)
+    decisions: dict[str, Counter[str]] = {}
+    for result in results:
+        for event, option in result.decisions:
+            key = f"{'+' if event > 0 else '-'}{abs(event)}"
+            decisions.setdefault(key, Counter())[SUBTASK_CODES[option]] += 1
+    return Summary(
+        episodes=count,
+        success_rate=len(arrived) / count if count else 0.0,
+        mean_collisions=float(np.mean([r.bumps for r in results])) if count else 0.0,
+        mean_steps=float(np.mean([r.steps for r in arrived])) if arrived else None,
+        mean_path_ratio=(
+            float(np.mean([r.steps / shortest[r.world] for r in arrived])) if arrived else None
+        ),
+        collision_free_rate=(sum(1 for r in results if r.bumps == 0) / count if count else 0.0),
+        events=events,
+        decisions={
+            key: dict(sorted(counts.items()))
+            for key, counts in sorted(
+                decisions.items(), key=lambda item: (abs(int(item[0])), item[0][0] == "-")
+            )
+        },
+    )
+
+
+NavigatorFactory = Callable[[npt.NDArray[np.int64]], Any]
+
+
+def evaluate(
+    make_navigator: NavigatorFactory,
+    worlds: Sequence[World],
+    episodes_per_world: int,
+    seed: int = 0,
+    events: str = "truth",
+    jitter: StartJitter | None = None,
+    max_steps: int = DEFAULT_MAX_STEPS,
+    record_paths: int = 0,
+    trace: bool = False,
+    threads: int = 0,
+) -> Evaluation:
+    """Runs greedy episodes of a navigator and measures them.
+
+    Args:
+        make_navigator: Builds the navigator of the robots from their world numbers (a
+            :class:`~mazesim.hrl.policy.HierarchicalPolicy` or a
+            :class:`~mazesim.hrl.baseline.FlatNavigator`).
+        worlds: The worlds.
+        episodes_per_world: Episodes in each world.
+        seed: Seed of the episodes' start jitter and sensor noise.
+        events: ``"truth"`` or ``"robust"`` (checkpoint events from the decoder).
+        jitter: Start jitter; the default :class:`StartJitter`.
+        max_steps: Control steps after which an episode fails.
+        record_paths: Record the trajectories of the first this many episodes of world 0.
+        trace: Record the per-step trace of episode 0.
+        threads: Worker threads of the batch.
+    """
+    per_world = max(1, min(episodes_per_world, EVALUATION_ENVS // max(1, len(worlds))))
+    world_of_env = np.repeat(np.arange(len(worlds)), per_world)
+    nav = NavigationBatch(
+        worlds,
+        world_of_env,
+        seed=seed,
+        jitter=jitter,
+        max_steps=max_steps,
+        events=events,
+        threads=threads,
+    )
+    navigator = make_navigator(world_of_env)
+    evaluation = Evaluation(summary=_summarise([], [1.0], events), results=[])
+    paths: dict[int, list[tuple[float, float]]] = {}
+    marks = evaluation.marks
+    lines = evaluation.trace
+
+    def watch(
+        batch: NavigationBatch,
+        actions: npt.NDArray[np.int64],
+        arrived: npt.NDArray[np.bool_],
+        out_of_time: npt.NDArray[np.bool_],
+    ) -> None:
+        record = navigator.record
+        for env in np.flatnonzero(batch.episode < record_paths):
+            episode = int(batch.episode[env])
+            x, y, _ = (float(v) for v in batch.poses[env])
+            paths.setdefault(episode, []).append((x, y))
+            if record.chosen[env] >= 0:
+                marks.setdefault(episode, []).append(
+                    (x, y, int(record.event[env]), int(record.chosen[env]))
+                )
+        if trace:
+            for env in np.flatnonzero(batch.episode == 0):
+                lines.append(_trace_line(batch, record, int(env)))
+                if arrived[env]:
+                    lines.append(f"# goal reached after {int(batch.episode_steps[env])} steps")
+                elif out_of_time[env]:
+                    lines.append(f"# out of time after {int(batch.episode_steps[env])} steps")
+
+    def decisions_of() -> tuple[npt.NDArray[np.int64], npt.NDArray[np.int64]]:
+        robots = np.flatnonzero(navigator.record.chosen >= 0)
+        return robots, navigator.record.chosen[robots]
+
+    results = run_episodes(nav, navigator, episodes_per_world, watch, None, decisions_of)
+    shortest = [shortest_path_steps(world) for world in worlds]
+    evaluation.summary = _summarise(results, shortest, events)
+    evaluation.results = results
+    evaluation.paths = {k: np.array(v) for k, v in paths.items()}
+    return evaluation
+
+
+@dataclass
+class Report:
+    """What :func:`evaluate_navigator` measured and wrote."""
+
+    summaries: dict[str, Summary]
+    evaluations: dict[str, Evaluation]
+    adapted: bool
+    written: list[str]
+
+
+def evaluate_navigator(
+    policy: TrainedPolicy,
+    worlds: Sequence[World],
+    episodes_per_world: int,
+    seed: int = 0,
+    sources: Sequence[str] = ("truth",),
+    max_steps: int = DEFAULT_MAX_STEPS,
+    trace_path: str | os.PathLike[str] | None = None,
+    plot_path: str | os.PathLike[str] | None = None,
+    plot_episodes: int = 3,
+    threads: int = 0,
+) -> Report:
+    """Evaluates a saved navigator with checkpoint events from each source, writing the trace
+    and the picture of the first source's episodes when asked.
+
+    Raises:
+        PolicyFormatError: A flat navigator asked to drive a world it did not learn.
+    """
+    adapted = False
+    make_navigator: NavigatorFactory
+    if policy.kind == "flat":
+        from mazesim.hrl.baseline import FlatNavigator
+
+        if len(worlds) != 1 or policy.flat_q is None:
+            raise InvalidArgumentError("the flat baseline drives the one world it learned")
+        policy.check_world(worlds[0])
+        flat_q = policy.flat_q
+
+        def make_navigator(world_of_env: npt.NDArray[np.int64]) -> Any:
+            return FlatNavigator(flat_q, policy.checkpoint_ids, world_of_env.size)
+
+    else:
+        level, adapted = navigator_for(policy, worlds, seed=seed, threads=threads)
+        lower_q = policy.lower_q
+        assert lower_q is not None
+
+        def make_navigator(world_of_env: npt.NDArray[np.int64]) -> Any:
+            return HierarchicalPolicy(lower_q, level, world_of_env)
+
+    summaries: dict[str, Summary] = {}
+    evaluations: dict[str, Evaluation] = {}
+    for place, source in enumerate(sources):
+        first = place == 0
+        evaluation = evaluate(
+            make_navigator,
+            worlds,
+            episodes_per_world,
+            seed=seed,
+            events=source,
+            max_steps=max_steps,
+            record_paths=plot_episodes if first and plot_path is not None else 0,
+            trace=first and trace_path is not None,
+            threads=threads,
+        )
+        summaries[source] = evaluation.summary
+        evaluations[source] = evaluation
+    written = []
+    first_source = sources[0]
+    if trace_path is not None:
+        write_trace(evaluations[first_source].trace, trace_path, worlds[0], seed, first_source)
+        written.append(str(trace_path))
+    if plot_path is not None:
+        from mazesim.hrl.figures import save_episodes_png
+
+        evaluation = evaluations[first_source]
+        arrived = {r.episode: r.arrived for r in evaluation.results}
+        summary = evaluation.summary
+        save_episodes_png(
+            worlds[0],
+            evaluation.paths,
+            evaluation.marks,
+            plot_path,
+            title=(
+                f"{worlds[0].name}: {policy.kind} navigator, seed {seed}; "
+                f"{100 * summary.success_rate:.0f}% of {summary.episodes} episodes reached the goal"
+            ),
+            arrived=arrived,
+        )
+        written.append(str(plot_path))
+    return Report(summaries, evaluations, adapted, written)
+
+
+def _trace_line(batch: NavigationBatch, record: StepRecord, env: int) -> str:
+    """One step of the trace, in the report's style (Fig. 4.7)."""
+    step = int(batch.episode_steps[env])
+    x, y, yaw = (float(v) for v in batch.poses[env])
+    action = ACTION_CODES[int(record.action[env])]
+    subtask = int(record.subtask[env])
+    line = (
+        f"{step:5d} {step * CONTROL_STEP_MS / 1000.0:7.2f}  {x:6.3f} {y:6.3f} "
+        f"{math.degrees(yaw):6.1f}  {format_levels(record.levels[env])}  "
+        f"{int(record.state[env]):4d}  {SUBTASK_CODES[subtask]:<2} {int(record.phase[env])}  "
+        f"{action}  {ACTIONS[action].description}"
+    )
+    event = int(record.event[env])
+    if event:
+        direction = "arrival" if event > 0 else "departure"
+        line += f"\n      checkpoint {event:+d} ({direction})"
+        chosen = int(record.chosen[env])
+        if chosen >= 0:
+            line += f" -> higher level: {SUBTASK_NAMES[chosen]!r}"
+    if record.ended[env]:
+        line += "\n      door sub-task ended -> 'Corridors and Corners'"
+    if batch.colliding[env]:
+        line += "  [contact]"
+    return line
+
+
+def write_trace(
+    lines: Sequence[str], path: str | os.PathLike[str], world: World, seed: int, events: str
+) -> None:
+    """Writes the trace of episode 0 (atomically)."""
+    from mazesim._atomic import atomic_file
+
+    header = [
+        f"# mazesim navigator trace: world {world.name}, episode 0 of seed {seed}, "
+        f"checkpoint events from the {'ground truth' if events == 'truth' else 'robust decoder'}",
+        "# levels: Table 4.1 levels of the sensors front, back, left, right, left-front, "
+        "right-front (0: < 7 cm, 1: < 13, 2: < 20, 3: farther)",
+        "# sub-task: CC Corridors and Corners, R / L right / left turn on a door, "
+        "F going forward on a door; then its phase",
+        "# step  time_s      x      y    yaw  levels              state  sub-task  action",
+    ]
+    with atomic_file(path) as handle:
+        handle.write(("\n".join([*header, *lines]) + "\n").encode("utf-8"))
+
+
+def print_summary(summary: Summary, out: TextIO, label: str) -> None:
+    """Writes a summary as text."""
+    ratio = "n/a" if summary.mean_path_ratio is None else f"{summary.mean_path_ratio:.2f}"
+    steps = "n/a" if summary.mean_steps is None else f"{summary.mean_steps:.0f}"
+    out.write(
+        f"{label}\n"
+        f"  episodes            {summary.episodes}\n"
+        f"  success rate        {100.0 * summary.success_rate:.1f}%\n"
+        f"  without collision   {100.0 * summary.collision_free_rate:.1f}%\n"
+        f"  mean collisions     {summary.mean_collisions:.3f}\n"
+        f"  mean steps          {steps} (arrived episodes; {CONTROL_STEP_MS:.0f} ms each)\n"
+        f"  mean path ratio     {ratio} (steps / shortest-path steps)\n"
+    )
+    if summary.decisions:
+        out.write("  decisions at checkpoint events (event: sub-task x times)\n")
+        for event, counts in summary.decisions.items():
+            chosen = ", ".join(f"{code} x{count}" for code, count in counts.items())
+            out.write(f"    {event:>4}: {chosen}\n")

@@ -1,0 +1,101 @@
+"""Issue 6: training is reproducible, improves, resumes exactly; the shipped navigator works."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import mazesim
+from mazesim.cli import main
+from mazesim.errors import PolicyFormatError
+from mazesim.hrl.evaluate import evaluate_navigator
+from mazesim.hrl.lower import LowerSettings, LowerTrainer
+from mazesim.hrl.tables import load_policy
+from mazesim.hrl.train import TrainSettings, train
+
+SHORT = LowerSettings(
+    num_envs=256, total_steps=256 * 300 * 4, round_steps=300, maze_pool=16, seed=5
+)
+
+
+def test_short_training_is_reproducible_and_improves() -> None:
+    first = LowerTrainer(SHORT, threads=1)
+    rates = [first.run_round(k).door_success_rate() for k in range(SHORT.rounds)]
+    second = LowerTrainer(SHORT, threads=2)
+    for k in range(SHORT.rounds):
+        second.run_round(k)
+    assert np.array_equal(first.tables.q, second.tables.q)
+    assert np.array_equal(first.tables.visits, second.tables.visits)
+    assert rates[-1] > rates[0] + 0.1, rates
+
+
+TINY = TrainSettings(
+    envs=64,
+    steps=64 * 500 * 3,
+    seed=11,
+    maze_pool=8,
+    higher_episodes=4,
+    higher_envs=2,
+    higher_max_steps=300,
+    checkpoint_seconds=1e9,
+)
+
+
+def test_interrupted_training_resumes_to_the_same_tables(tmp_path: Path) -> None:
+    whole = train(TINY, tmp_path / "whole", progress=None)
+    assert whole is not None
+    assert train(TINY, tmp_path / "parts", progress=None, stop_after_rounds=1) is None
+    assert (tmp_path / "parts" / "checkpoint.npz").exists()
+    assert not (tmp_path / "parts" / "tables.npz").exists()
+    with pytest.raises(PolicyFormatError, match="--resume"):
+        train(TINY, tmp_path / "parts", progress=None)
+    other = TrainSettings(**{**TINY.__dict__, "seed": 12})
+    with pytest.raises(PolicyFormatError, match="other settings"):
+        train(other, tmp_path / "parts", progress=None, resume=True)
+    assert train(TINY, tmp_path / "parts", progress=None, resume=True, stop_after_rounds=1) is None
+    resumed = train(TINY, tmp_path / "parts", progress=None, resume=True)
+    assert resumed is not None
+    first, second = load_policy(tmp_path / "whole"), load_policy(tmp_path / "parts")
+    assert first.lower_q is not None and second.lower_q is not None
+    assert np.array_equal(first.lower_q, second.lower_q)
+    assert first.higher_q is not None and second.higher_q is not None
+    assert np.array_equal(first.higher_q, second.higher_q)
+    assert first.training["history"] == second.training["history"]
+
+
+def test_shipped_navigator_reaches_the_goal_of_seed_maze() -> None:
+    policy = load_policy()
+    world = mazesim.load_world("seed-maze")
+    policy.check_world(world)
+    report = evaluate_navigator(policy, [world], 4, seed=3)
+    summary = report.summaries["truth"]
+    assert summary.episodes == 4
+    assert summary.success_rate == 1.0
+    assert summary.mean_path_ratio is not None and summary.mean_path_ratio < 2.0
+
+
+def test_eval_command_prints_json(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+    trace = tmp_path / "trace.txt"
+    code = main(["eval", "--episodes", "2", "--events", "truth", "--json", "--trace", str(trace)])
+    assert code == 0
+    values = json.loads(capsys.readouterr().out)
+    for key in ("episodes", "success_rate", "mean_collisions", "mean_steps", "mean_path_ratio"):
+        assert key in values
+    assert values["episodes"] == 2 and values["success_rate"] == 1.0
+    text = trace.read_text()
+    assert "checkpoint +1 (arrival) -> higher level:" in text
+    assert "# goal reached after" in text
+
+
+def test_train_and_eval_help_name_their_options(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["train", "--help"]) == 0
+    train_help = capsys.readouterr().out
+    for option in ("--world", "--envs", "--steps", "--seed", "--out", "--resume"):
+        assert option in train_help
+    assert main(["eval", "--help"]) == 0
+    eval_help = capsys.readouterr().out
+    for option in ("--policy", "--world", "--episodes", "--seed", "--json", "--trace", "--plot"):
+        assert option in eval_help
