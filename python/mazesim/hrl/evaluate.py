@@ -74,12 +74,13 @@ class Summary:
     collision_free_rate: float
     events: str
     decisions: dict[str, dict[str, int]] = field(default_factory=dict)
+    world_success: list[float] = field(default_factory=list)
 
     def as_json(self) -> dict[str, Any]:
         """The summary as the ``--json`` output's values."""
         values = asdict(self)
-        values.pop("decisions")
-        values.pop("events")
+        for private in ("decisions", "events", "world_success"):
+            values.pop(private)
         return values
 
 
@@ -128,7 +129,12 @@ def _summarise(results: list[EpisodeResult], shortest: Sequence[float], events: 
         for event, option in result.decisions:
             key = f"{'+' if event > 0 else '-'}{abs(event)}"
             decisions.setdefault(key, Counter())[SUBTASK_CODES[option]] += 1
+    worlds = max((r.world for r in results), default=-1) + 1
+    world_success = [
+        float(np.mean([r.arrived for r in results if r.world == world])) for world in range(worlds)
+    ]
     return Summary(
+        world_success=world_success,
         episodes=count,
         success_rate=len(arrived) / count if count else 0.0,
         mean_collisions=float(np.mean([r.bumps for r in results])) if count else 0.0,
@@ -323,29 +329,32 @@ def evaluate_navigator(
 
 
 def _trace_line(batch: NavigationBatch, record: StepRecord, env: int) -> str:
-    """One step of the trace, in the report's style (Fig. 4.7)."""
+    """One step of the trace, in the report's style (Fig. 4.7): what the robot sensed and did,
+    after a line for the checkpoint event and decision that came first, if any."""
     step = int(batch.episode_steps[env])
     x, y, yaw = (float(v) for v in batch.poses[env])
     action = ACTION_CODES[int(record.action[env])]
     subtask = int(record.subtask[env])
+    before = []
+    if record.ended[env]:
+        before.append("      door sub-task ended -> 'Corridors and Corners'")
+    event = int(record.event[env])
+    if event:
+        direction = "arrival" if event > 0 else "departure"
+        note = f"      checkpoint {event:+d} ({direction})"
+        chosen = int(record.chosen[env])
+        if chosen >= 0:
+            note += f" -> higher level: {SUBTASK_NAMES[chosen]!r}"
+        before.append(note)
     line = (
         f"{step:5d} {step * CONTROL_STEP_MS / 1000.0:7.2f}  {x:6.3f} {y:6.3f} "
         f"{math.degrees(yaw):6.1f}  {format_levels(record.levels[env])}  "
         f"{int(record.state[env]):4d}  {SUBTASK_CODES[subtask]:<2} {int(record.phase[env])}  "
         f"{action}  {ACTIONS[action].description}"
     )
-    event = int(record.event[env])
-    if event:
-        direction = "arrival" if event > 0 else "departure"
-        line += f"\n      checkpoint {event:+d} ({direction})"
-        chosen = int(record.chosen[env])
-        if chosen >= 0:
-            line += f" -> higher level: {SUBTASK_NAMES[chosen]!r}"
-    if record.ended[env]:
-        line += "\n      door sub-task ended -> 'Corridors and Corners'"
     if batch.colliding[env]:
         line += "  [contact]"
-    return line
+    return "\n".join([*before, line])
 
 
 def write_trace(
@@ -380,6 +389,13 @@ def print_summary(summary: Summary, out: TextIO, label: str) -> None:
         f"  mean steps          {steps} (arrived episodes; {CONTROL_STEP_MS:.0f} ms each)\n"
         f"  mean path ratio     {ratio} (steps / shortest-path steps)\n"
     )
+    if len(summary.world_success) > 1:
+        always = sum(1 for rate in summary.world_success if rate == 1.0)
+        never = sum(1 for rate in summary.world_success if rate == 0.0)
+        out.write(
+            f"  worlds              {len(summary.world_success)}: every episode reached the goal "
+            f"in {always}, none in {never}\n"
+        )
     if summary.decisions:
         out.write("  decisions at checkpoint events (event: sub-task x times)\n")
         for event, counts in summary.decisions.items():

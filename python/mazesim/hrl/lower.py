@@ -44,7 +44,7 @@ import numpy.typing as npt
 from mazesim._core import BatchSimulator, RobotProfile, World, generate_maze
 from mazesim.actions import ACTION_CODES, WHEEL_SPEED_FRACTIONS
 from mazesim.hrl import qlearning
-from mazesim.hrl.discretise import NUM_STATES, SENSOR_ORDER, observation_states
+from mazesim.hrl.discretise import NUM_STATES, observation_states
 from mazesim.hrl.mazes import CellMaze, DoorApproach, world_with_start
 from mazesim.hrl.subtasks import (
     COLLISION_PENALTY,
@@ -54,7 +54,6 @@ from mazesim.hrl.subtasks import (
     DOOR_STEP_REWARD,
     DOOR_SUCCESS_REWARD,
     HEADING_REWARD,
-    LEFT_WALL_REWARD,
     MAX_PHASES,
     NUM_SUBTASKS,
     PROGRESS_REWARD,
@@ -92,8 +91,6 @@ SUCCESS_PAST_CENTRE = 0.04
 SUCCESS_ACROSS = 0.08
 
 NUM_ACTIONS = len(ACTION_CODES)
-#: Place value of the left sensor's level in a distance state.
-LEFT_PLACE = 4 ** SENSOR_ORDER.index("left")
 
 
 def lower_table_shape() -> tuple[int, int, int]:
@@ -358,9 +355,7 @@ class LowerTrainer:
             self.episode_steps += 1
             done, gave_up = self.tracker.update(positions)
             out_of_steps = gave_up & self.tracker.out_of_steps
-            distance_state = observation_states(self.observations)
-            next_state = self.tracker.states(distance_state)
-            left_level = (distance_state // LEFT_PLACE) % 4
+            next_state = self.tracker.states(observation_states(self.observations))
 
             forward = (positions[:, 0] - before[:, 0]) * np.cos(before[:, 2]) + (
                 positions[:, 1] - before[:, 1]
@@ -369,9 +364,7 @@ class LowerTrainer:
             reward = np.where(
                 door,
                 PROGRESS_REWARD * (new_progress - progress) + DOOR_STEP_REWARD,
-                PROGRESS_REWARD * forward
-                + CORRIDOR_STEP_REWARD
-                + LEFT_WALL_REWARD * (left_level == 1),
+                PROGRESS_REWARD * forward + CORRIDOR_STEP_REWARD,
             )
             reward += COLLISION_PENALTY * self.colliding
             progress = new_progress

@@ -29,8 +29,8 @@ differ from it only when a wheel slips against a wall).
 
 - Corridors and Corners never ends by itself; a checkpoint event or the goal ends it.
 - Right / Left turn: done when the heading is within 10 degrees of 90 degrees to that side of the
-  heading at the start and the robot has driven :data:`TURN_EXIT_DISTANCE` (15 cm) towards the new
-  heading since it last entered phase 2 (out of the door, into the next cell).
+  heading at the start and the robot has driven :data:`TURN_EXIT_DISTANCE` (8 cm) towards the new
+  heading since it last entered phase 2.
 - Going forward: done when the robot is :data:`FORWARD_DISTANCE` (40 cm) ahead of where it began
   (through the door it was about to enter, just into the next cell) within 10 degrees of its
   heading.
@@ -42,12 +42,8 @@ A checkpoint event (a barcode crossed) ends whatever runs and asks the higher le
 **Rewards** (training only; they may read the maze, the robot never does):
 
 - Corridors and Corners: ``10 * (metres driven forward along the robot's heading)`` per step,
-  ``-0.02`` a step, ``+0.01`` a step with a wall 7-13 cm to the left (level 1 of the left sensor)
-  and ``-2`` per step in contact with a wall. Driving a corridor at cruise speed earns 0.03 a step;
-  turning on the spot or dithering between two states loses 0.02 a step. The left-wall term makes
-  it a left-hand wall follower where a corridor meets a door with no checkpoint (no higher level
-  decides there): it takes the first opening on its left, else goes straight on, else right; in a
-  maze without loops that visits every cell, so it finds the goal.
+  ``-0.02`` a step and ``-2`` per step in contact with a wall. Driving a corridor at cruise speed
+  earns 0.02 a step; turning on the spot or dithering between two states loses 0.02 a step.
 - Door sub-tasks: ``10 * (metres of progress along the door's path)`` per step, where the path runs
   from the start to the door's centre, then 25 cm into the target opening (progress along each leg
   is clipped to the leg); for Going forward also ``2 * (radians the heading error shrank)``;
@@ -82,7 +78,6 @@ __all__ = [
     "GIVE_UP_ANGLE",
     "HEADING_REWARD",
     "HEADING_TOLERANCE",
-    "LEFT_WALL_REWARD",
     "MAX_DOOR_STEPS",
     "MAX_PHASES",
     "NUM_PHASES",
@@ -134,9 +129,8 @@ TURN_PHASE_ANGLES = (math.radians(30.0), math.radians(60.0))
 FORWARD_PHASE_ANGLE = math.radians(5.0)
 #: Largest heading error (radians) at which a door sub-task may end.
 HEADING_TOLERANCE = math.radians(10.0)
-#: Metres driven towards the new heading after entering phase 2, to end a turn: the robot is then
-#: in the cell beyond the door, where Corridors and Corners sees that cell's walls, not the door's.
-TURN_EXIT_DISTANCE = 0.15
+#: Metres driven towards the new heading after entering phase 2, to end a turn.
+TURN_EXIT_DISTANCE = 0.08
 #: Metres ahead of its start at which "Going forward on a door" ends.
 FORWARD_DISTANCE = 0.40
 #: Control steps after which a door sub-task gives up.
@@ -147,8 +141,6 @@ GIVE_UP_ANGLE = math.radians(150.0)
 PROGRESS_REWARD = 10.0
 #: Reward of each control step spent in contact with a wall.
 COLLISION_PENALTY = -2.0
-#: Reward of a Corridors-and-Corners step with a wall at level 1 of the left sensor.
-LEFT_WALL_REWARD = 0.01
 #: Reward of each control step of Corridors and Corners, and of a door sub-task.
 CORRIDOR_STEP_REWARD = -0.02
 DOOR_STEP_REWARD = -0.03
