@@ -99,3 +99,27 @@ def test_train_and_eval_help_name_their_options(capsys: pytest.CaptureFixture[st
     eval_help = capsys.readouterr().out
     for option in ("--policy", "--world", "--episodes", "--seed", "--json", "--trace", "--plot"):
         assert option in eval_help
+
+
+def test_one_robot_driven_step_by_step_reaches_the_goal() -> None:
+    # The perform-learning node's hook: distances in cm and the checkpoint in, an action code out;
+    # the sub-tasks' odometry is dead-reckoned from the actions.
+    from mazesim.actions import wheel_speeds
+    from mazesim.hrl.discretise import volts_to_cm
+
+    policy = load_policy()
+    policy.reset(control_step_ms=64.0)
+    world = mazesim.load_world("seed-maze")
+    simulator = mazesim.Simulator(world, robot="seed", seed=4, control_step_ms=64.0)
+    goal_x, goal_y, radius = world.goal or (0.0, 0.0, 0.0)
+    checkpoint = 0
+    for _ in range(2000):
+        code = policy.act(volts_to_cm(simulator.distance_sensors()), checkpoint)
+        simulator.step(*wheel_speeds(code, simulator.robot.max_wheel_speed))
+        checkpoint = simulator.last_crossing
+        x, y, _ = simulator.pose
+        if np.hypot(x - goal_x, y - goal_y) <= radius:
+            break
+    else:
+        pytest.fail(f"the robot did not reach the goal; it is at {simulator.pose}")
+    assert simulator.collisions == 0
