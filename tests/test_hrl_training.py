@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from pathlib import Path
 
@@ -17,7 +18,7 @@ from mazesim.hrl.tables import load_policy
 from mazesim.hrl.train import TrainSettings, train
 
 SHORT = LowerSettings(
-    num_envs=256, total_steps=256 * 300 * 4, round_steps=300, maze_pool=16, seed=5
+    num_envs=192, total_steps=192 * 300 * 3, round_steps=300, maze_pool=16, seed=5
 )
 
 
@@ -52,7 +53,7 @@ def test_interrupted_training_resumes_to_the_same_tables(tmp_path: Path) -> None
     assert not (tmp_path / "parts" / "tables.npz").exists()
     with pytest.raises(PolicyFormatError, match="--resume"):
         train(TINY, tmp_path / "parts", progress=None)
-    other = TrainSettings(**{**TINY.__dict__, "seed": 12})
+    other = dataclasses.replace(TINY, seed=12)
     with pytest.raises(PolicyFormatError, match="other settings"):
         train(other, tmp_path / "parts", progress=None, resume=True)
     assert train(TINY, tmp_path / "parts", progress=None, resume=True, stop_after_rounds=1) is None
