@@ -1,8 +1,10 @@
 """The ``mazesim`` command line.
 
 ``mazesim worlds`` lists the built-in worlds; ``mazesim demo`` drives the e-puck with the report's
-avoid-collision controller (Alg. 1) headless, prints a summary and writes a trajectory picture and
-a JSON summary. Errors are printed as one line, ``mazesim: error: <message>``, with exit code 2.
+avoid-collision controller (Alg. 1), or the seed robot with the shipped hierarchical navigator
+(``--controller hrl``), headless, prints a summary and writes a trajectory picture and a JSON
+summary. The other commands come from the modules in :data:`COMMAND_MODULES`. Errors are printed
+as one line, ``mazesim: error: <message>``, with exit code 2.
 """
 
 from __future__ import annotations
@@ -86,7 +88,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     demo = commands.add_parser(
         "demo",
-        help="drive the robot with the avoid-collision controller and plot its path",
+        help="drive the robot (avoid-collision or the shipped navigator) and plot its path",
         description=(
             "Drive the robot headless with the avoid-collision controller of the source report "
             "(Alg. 1: turn away when a front proximity sensor reads above 80), print a summary, "
