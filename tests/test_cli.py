@@ -148,3 +148,19 @@ def test_bad_seconds_is_a_usage_error(seconds: str, capsys: pytest.CaptureFixtur
 def test_missing_command_is_a_usage_error(capsys: pytest.CaptureFixture[str]) -> None:
     assert main([]) == 2
     assert "usage: mazesim" in capsys.readouterr().err
+
+
+def test_make_demo_command_drives_seed_maze_to_the_goal(tmp_path: Path) -> None:
+    """`make demo` runs this: the shipped navigator reaches the goal and the picture is written."""
+    out = tmp_path / "demo"
+    done = subprocess.run(
+        [sys.executable, "-m", "mazesim", "demo", "--controller", "hrl", "--out", str(out)],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert done.returncode == 0, done.stderr
+    assert (out / "trajectory.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["goal_reached"] is True
+    assert summary["collisions"] == 0
