@@ -30,6 +30,16 @@ impl PyBatch {
         f(&mut guard)
     }
 
+    /// One value per environment as a numpy array.
+    fn per_env<'py, T: numpy::Element>(
+        &self,
+        py: Python<'py>,
+        value: impl Fn(&mazesim_core::Simulator) -> T,
+    ) -> Bound<'py, PyArray1<T>> {
+        let v: Vec<T> = self.with(|b| b.envs().iter().map(value).collect());
+        PyArray1::from_vec(py, v)
+    }
+
     fn width(&self) -> usize {
         self.distance_width + self.ground_width
     }
@@ -246,26 +256,22 @@ impl PyBatch {
 
     /// Simulated seconds of each environment since its reset.
     fn times<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        let v: Vec<f64> = self.with(|b| b.envs().iter().map(|e| e.time()).collect());
-        PyArray1::from_vec(py, v)
+        self.per_env(py, |e| e.time())
     }
 
     /// Control steps of each environment since its reset.
     fn steps<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<u64>> {
-        let v: Vec<u64> = self.with(|b| b.envs().iter().map(|e| e.steps()).collect());
-        PyArray1::from_vec(py, v)
+        self.per_env(py, |e| e.steps())
     }
 
     /// Bumps of each environment since its reset.
     fn collisions<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<u64>> {
-        let v: Vec<u64> = self.with(|b| b.envs().iter().map(|e| e.collisions()).collect());
-        PyArray1::from_vec(py, v)
+        self.per_env(py, |e| e.collisions())
     }
 
     /// Path length of each environment since its reset, metres.
     fn distances_travelled<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        let v: Vec<f64> = self.with(|b| b.envs().iter().map(|e| e.distance_travelled()).collect());
-        PyArray1::from_vec(py, v)
+        self.per_env(py, |e| e.distance_travelled())
     }
 
     fn __len__(&self) -> usize {
