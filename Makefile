@@ -57,8 +57,8 @@ ros-deps: venv ## install Debian's ROS 1 packages if missing; let .venv import t
 	@if [ -d /usr/lib/python3/dist-packages ]; then \
 		echo /usr/lib/python3/dist-packages > "$(ROS_PTH)"; fi
 
-ros-demo: build ros-deps ## bridge + avoid-collision over ROS in lockstep; records mazesim-ros-demo/maze.bag
-	$(BIN)/mazesim ros demo --out mazesim-ros-demo
+ros-demo: build ros-deps ## bridge + HRL node (perform-learning) over ROS in lockstep to seed-maze's goal; records mazesim-ros-demo/maze.bag
+	$(BIN)/mazesim ros demo --controller hrl --out mazesim-ros-demo
 
 lint: venv ## rustfmt, clippy (warnings are errors), ruff check and ruff format
 	cargo fmt --all --check

@@ -404,6 +404,23 @@ def test_batch_reader_equals_one_reader_per_simulator() -> None:
     }
 
 
+def test_batch_reader_mask_hides_the_sample_from_robots_outside_it() -> None:
+    robot = mazesim.RobotProfile.builtin("seed")
+    reader = BatchBarcodeReader([Alg7Decoder(DEFAULT_BOOK) for _ in range(2)], robot)
+    bits = "10110"
+    stream = [600.0] + [856.0 if b == "1" else 300.0 for b in bits for _ in range(4)]
+    stream += [600.0]
+    hidden = {5, 6, 7, 8}  # the second bar, all of it, never reaches robot 1
+    found: dict[int, list[str]] = {0: [], 1: []}
+    for index, value in enumerate(stream):
+        mask = np.array([True, index not in hidden])
+        for env, reading in reader.update(np.array([value, value]), None, mask):
+            found[env].append(reading.bits)
+    assert found == {0: [bits], 1: ["11110"]}  # 16 samples, 1111 1111 1111 0000
+    with pytest.raises(InvalidArgumentError, match=r"mask of shape \(2,\)"):
+        reader.update(np.zeros(2), None, np.ones(3, dtype=bool))
+
+
 def test_batch_reader_checks_shapes() -> None:
     robot = mazesim.RobotProfile.builtin("seed")
     reader = BatchBarcodeReader([RobustDecoder(DEFAULT_BOOK)] * 2, robot)

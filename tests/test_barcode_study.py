@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 import mazesim
+from mazesim.barcode.link import ROS_LINK_PERIODS, UnsyncedLink
 from mazesim.barcode.study import (
     DEFAULT_SPEED,
     DEFAULT_THRESHOLDS,
@@ -94,6 +95,50 @@ def test_json_object(study: StudyResult) -> None:
         assert row["right"] + row["wrong"] + row["missed"] == pytest.approx(1.0)
 
 
+@pytest.fixture(scope="module")
+def ros_study() -> StudyResult:
+    """Alg. 7 over the unsynchronised link of the report's ROS node, 200 readings a setting."""
+    return run_study(
+        readings=200,
+        thresholds=(1.2, 2.0),
+        speeds=(DEFAULT_SPEED / 2, DEFAULT_SPEED, TWICE_DEFAULT_SPEED),
+        decoders=("alg7",),
+        link="ros",
+    )
+
+
+def test_alg7_over_the_ros_link_reads_worse_at_every_higher_speed(ros_study: StudyResult) -> None:
+    # The report's Fig. 4.5: "with more speed the sensors do less reading".
+    rows = ros_study.by_speed
+    assert [t.speed for t in rows] == [DEFAULT_SPEED / 2, DEFAULT_SPEED, TWICE_DEFAULT_SPEED]
+    wrong = [t.wrong for t in rows]
+    right = [t.right for t in rows]
+    assert wrong[0] < wrong[1] < wrong[2], rows
+    assert right[0] > right[1] > right[2], rows
+    assert rows[-1].share(rows[-1].wrong) >= 0.08, rows[-1]
+
+
+def test_alg7_over_the_ros_link_reads_worse_at_a_higher_threshold(ros_study: StudyResult) -> None:
+    low, high = ros_study.by_threshold
+    assert (low.threshold_v, high.threshold_v) == (1.2, 2.0)
+    assert high.right < low.right and high.wrong >= low.wrong, (low, high)
+    assert ros_study.to_json()["link"] == "ros"
+
+
+def test_unsynced_link_wakes_each_node_after_one_to_three_steps() -> None:
+    link = UnsyncedLink(50, seed=7)
+    wakes = np.array([link.tick() for _ in range(300)])
+    assert wakes.shape == (300, 50)
+    for env in range(50):
+        gaps = set(np.diff(np.flatnonzero(wakes[:, env])).tolist())
+        assert gaps <= set(ROS_LINK_PERIODS) and len(gaps) > 1, gaps
+    assert 0.4 < wakes.mean() < 0.6  # one wake-up every 2 steps on average
+    again = UnsyncedLink(50, seed=7)
+    np.testing.assert_array_equal(np.array([again.tick() for _ in range(300)]), wakes)
+    with pytest.raises(InvalidArgumentError, match="at least one step"):
+        UnsyncedLink(3, seed=0, periods=(0, 1))
+
+
 def test_study_replays_from_its_seed() -> None:
     first = run_study(readings=20, thresholds=(1.6,), speeds=(), envs=8, seed=3)
     second = run_study(readings=20, thresholds=(1.6,), speeds=(), envs=8, seed=3)
@@ -119,6 +164,8 @@ def test_study_rejects_bad_arguments() -> None:
         run_study(readings=5, decoders=("alg8",))
     with pytest.raises(InvalidArgumentError, match="wheel speed"):
         run_study(readings=5, thresholds=(), speeds=(7.0,))
+    with pytest.raises(UnknownNameError, match="lockstep, ros"):
+        run_study(readings=5, link="udp")
     with pytest.raises(InvalidArgumentError, match="no barcode checkpoints"):
         run_study(mazesim.load_world("arena"), readings=5, thresholds=(1.4,), speeds=())
 
@@ -191,6 +238,7 @@ def test_cli_table(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
         ("--thresholds", "1.2,x", "comma-separated volts"),
         ("--decoders", "alg7,fast", "decoders among alg7, robust"),
         ("--readings", "0", "at least 1"),
+        ("--link", "udp", "invalid choice: 'udp'"),
     ],
 )
 def test_cli_rejects_bad_options(
@@ -210,7 +258,8 @@ def test_cli_help_in_a_subprocess(tmp_path: Path) -> None:
         check=False,
     )
     assert result.returncode == 0
-    for option in ("--readings", "--thresholds", "--speeds", "--decoders", "--out", "--json"):
+    options = ("--readings", "--thresholds", "--speeds", "--decoders", "--link", "--out", "--json")
+    for option in options:
         assert option in result.stdout
     assert (
         "barcode-study"

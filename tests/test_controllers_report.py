@@ -135,6 +135,19 @@ def test_explore_batch_keeps_a_state_per_robot() -> None:
         controller.batch(np.zeros((3, 8)))
 
 
+def test_explore_batch_mask_keeps_the_state_of_robots_that_do_not_act() -> None:
+    controller = Explore(threshold=1.4, speed=2.0, seed=0)
+    blocked_left = [1.6, 0.5, 2.0, 0.4, 1.3, 0.5]
+    blocked_right = [1.6, 0.5, 0.4, 2.0, 0.5, 1.3]
+    controller.batch(np.array([blocked_left, blocked_left]))  # both turn right (clockwise)
+    # Robot 1 does not act on a clear front: it is still turning when it acts next.
+    controller.batch(np.array([OPEN, OPEN]), np.array([True, False]))
+    after = controller.batch(np.array([blocked_right, blocked_right]))
+    np.testing.assert_allclose(after, [[-2.0, 2.0], [2.0, -2.0]])
+    with pytest.raises(InvalidArgumentError, match="mask of shape"):
+        controller.batch(np.array([OPEN, OPEN]), np.array([True]))
+
+
 @settings(max_examples=100, deadline=None)
 @given(
     arrays(

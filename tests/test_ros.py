@@ -26,9 +26,12 @@ import mazesim
 from mazesim.actions import wheel_speeds
 from mazesim.controllers import AvoidCollision
 from mazesim.errors import InvalidActionError, InvalidArgumentError
+from mazesim.hrl import load_policy
 from mazesim.ros import topics
 from mazesim.ros.bridge import BridgeSettings, resolve_settings
+from mazesim.ros.demo import goal_step
 from mazesim.ros.local_master import LocalMaster
+from mazesim.ros.perform_learning import control_step_value
 
 REPO = Path(__file__).resolve().parents[1]
 PROBE = Path(__file__).with_name("ros_probe.py")
@@ -106,11 +109,44 @@ def test_bridge_settings_options_win_over_parameters() -> None:
 
 @pytest.mark.parametrize(
     ("name", "value"),
-    [("mode", "fast"), ("speed", 0), ("speed", "x"), ("duration", -1.0), ("seed", 1.5)],
+    [
+        ("mode", "fast"),
+        ("speed", 0),
+        ("speed", "x"),
+        ("duration", -1.0),
+        ("seed", 1.5),
+        ("stop_at_goal", "maybe"),
+    ],
 )
 def test_bad_bridge_parameter_is_named(name: str, value: Any) -> None:
     with pytest.raises(InvalidArgumentError, match=f"parameter {name}"):
         resolve_settings(_Parameters(**{name: value}), {})
+
+
+def test_control_step_of_the_perform_learning_node_is_checked() -> None:
+    assert control_step_value("control_step_ms", 32, allow_zero=False) == 32.0
+    assert control_step_value("control_step_ms", "64.0", allow_zero=True) == 64.0
+    assert control_step_value("control_step_ms", 0, allow_zero=True) == 0.0
+    for bad in (0, -32, math.nan, math.inf, "fast", None, True):
+        with pytest.raises(InvalidArgumentError, match="parameter control_step_ms"):
+            control_step_value("control_step_ms", bad, allow_zero=False)
+
+
+def test_goal_step_is_the_first_pose_in_the_goal_disc() -> None:
+    world = mazesim.load_world("seed-maze")
+    assert world.goal is not None
+    goal_x, goal_y, radius = world.goal
+    poses = np.array(
+        [
+            [0.1, 0.1, 0.0, 0.0],
+            [goal_x + 1.01 * radius, goal_y, 0.0, 0.032],
+            [goal_x + 0.99 * radius, goal_y, 0.0, 0.064],
+            [goal_x, goal_y, 0.0, 0.096],
+        ]
+    )
+    assert goal_step(world, poses) == 2
+    assert goal_step(world, poses[:2]) is None
+    assert goal_step(mazesim.load_world("arena"), poses) is None  # no goal
 
 
 def test_mazesim_and_its_ros_commands_import_without_rospy() -> None:
@@ -136,6 +172,25 @@ def test_ros_help_lists_the_nodes(capsys: pytest.CaptureFixture[str]) -> None:
     bridge_help = capsys.readouterr().out
     for option in ("--world", "--robot", "--seed", "--mode", "--speed", "--duration"):
         assert option in bridge_help
+    assert "--stop-at-goal" in bridge_help
+    assert main(["ros", "perform-learning", "--help"]) == 0
+    learning_help = capsys.readouterr().out
+    for option in ("--policy", "--control-step-ms", "--wait-for-subscribers"):
+        assert option in learning_help
+    assert main(["ros", "demo", "--help"]) == 0
+    assert "--controller {hrl,avoid-collision}" in capsys.readouterr().out
+
+
+def test_hrl_demo_refuses_a_world_its_tables_do_not_know(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from mazesim.cli import main
+
+    out = tmp_path / "demo"
+    assert main(["ros", "demo", "--world", "arena", "--out", str(out)]) == 2
+    error = capsys.readouterr().err
+    assert "learned world 'seed-maze'" in error and "--controller avoid-collision" in error
+    assert not out.exists()  # refused before starting anything
 
 
 def test_node_without_rospy_fails_with_one_clear_line() -> None:
@@ -214,6 +269,38 @@ def replay(robot: str, seed: int, commands: list[dict[str, Any]]) -> dict[str, l
             simulator.step(*wheel_speeds(command["data"], simulator.robot.max_wheel_speed))
         record()
     return states
+
+
+def drive_in_process(
+    controller: str, seed: int, max_steps: int, stop_at_goal: bool
+) -> tuple[list[list[float]], int | None]:
+    """The poses of a run without ROS: the shipped hierarchical policy on the seed robot, fed
+    what ``sensor_data`` carries (``hrl``), or avoid-collision on the e-puck. Returns the poses
+    (``pose`` rows, the start included) and the step at which the robot reached the goal."""
+    world = mazesim.load_world("seed-maze")
+    assert world.goal is not None
+    goal_x, goal_y, radius = world.goal
+    robot = "seed" if controller == "hrl" else "e-puck"
+    simulator = mazesim.Simulator(world, robot=robot, seed=seed)
+    policy = load_policy()
+    policy.reset(control_step_ms=simulator.control_step_ms)
+    avoid = AvoidCollision()
+    poses = [topics.pose_values(simulator)]
+    reached = None
+    while simulator.steps < max_steps:
+        if controller == "hrl":
+            values = topics.sensor_data_values(simulator)
+            code = policy.act(np.asarray(values[:6]), int(values[6]))
+            simulator.step(*wheel_speeds(code, simulator.robot.max_wheel_speed))
+        else:
+            simulator.step(*avoid(simulator.distance_sensors()))
+        poses.append(topics.pose_values(simulator))
+        x, y, _ = simulator.pose
+        if reached is None and math.hypot(x - goal_x, y - goal_y) <= radius:
+            reached = simulator.steps
+            if stop_at_goal:
+                break
+    return poses, reached
 
 
 def echoed_data(echo: str) -> list[float]:
@@ -319,6 +406,58 @@ def test_lockstep_actions_drive_the_seed_robot(master: LocalMaster, tmp_path: Pa
     assert 1.0 in checkpoints  # the crossing of checkpoint 1, arriving
 
 
+GOAL_LINE = re.compile(
+    r"reached the goal of seed-maze at step (\d+) \(([\d.]+) s simulated\), "
+    r"at x ([-\d.]+) m, y ([-\d.]+) m"
+)
+
+
+@needs_ros
+def test_perform_learning_drives_the_seed_robot_to_the_goal(master: LocalMaster) -> None:
+    world = mazesim.load_world("seed-maze")
+    assert world.goal is not None
+    goal_x, goal_y, radius = world.goal
+    bridge = spawn_bridge(
+        master, "--robot", "seed", "--seed", "7", "--stop-at-goal", "--duration", "120"
+    )
+    master.spawn("perform-learning", [*MAZESIM, "ros", "perform-learning"])
+    assert bridge.wait(timeout=90) == 0  # it stops by itself, at the goal or after 120 s
+
+    # What the bridge reports: the goal reached, where, and that it stopped right there.
+    log = Path(master.log_path("bridge")).read_text()
+    assert "Traceback" not in log
+    found = GOAL_LINE.search(log)
+    assert found, log
+    steps, x, y = int(found[1]), float(found[3]), float(found[4])
+    assert float(found[2]) == pytest.approx(steps * STEP_S)
+    assert math.hypot(x - goal_x, y - goal_y) <= radius
+    assert steps < 120.0 / STEP_S
+    assert f"mazesim bridge stopped: {steps} steps" in log
+    assert f"goal reached at step {steps};" in log
+    node_log = Path(master.log_path("perform-learning")).read_text()
+    assert "actions of 32 ms" in node_log  # the bridge's control step, read from its parameter
+
+    # The node drove as the policy does in process on the same readings, step for step.
+    poses, reached = drive_in_process("hrl", seed=7, max_steps=steps, stop_at_goal=True)
+    assert reached == steps
+    assert (f"{poses[-1][0]:.4f}", f"{poses[-1][1]:.4f}") == (found[3], found[4])
+
+
+@needs_ros
+def test_perform_learning_with_unusable_tables_fails_clearly(
+    master: LocalMaster, tmp_path: Path
+) -> None:
+    node = master.spawn(
+        "perform-learning",
+        [*MAZESIM, "ros", "perform-learning", "--policy", str(tmp_path / "no-tables")],
+    )
+    assert node.wait(timeout=60) == 2
+    lines = Path(master.log_path("perform-learning")).read_text().strip().splitlines()
+    assert lines[-1].startswith("mazesim: error: "), lines
+    assert "policy.json: no such file" in lines[-1]
+    assert not any("Traceback" in line for line in lines)
+
+
 @needs_ros
 def test_bad_messages_are_logged_and_ignored(master: LocalMaster, tmp_path: Path) -> None:
     bad = [
@@ -378,34 +517,68 @@ def test_launch_file_runs_and_stops_without_leftovers(master: LocalMaster) -> No
 
 
 @needs_ros
-def test_recorded_run_plays_back_and_equals_in_process_run(tmp_path: Path) -> None:
-    out = tmp_path / "demo"
-    result = subprocess.run(
-        [*MAZESIM, "ros", "demo", "--seconds", "3", "--seed", "5", "--out", str(out)],
-        capture_output=True,
-        text=True,
-        timeout=120,
-        check=False,
+def test_learning_launch_stops_at_the_goal_without_leftovers(master: LocalMaster) -> None:
+    tag = uuid.uuid4().hex
+    launch = master.spawn(
+        "roslaunch",
+        ["roslaunch", "mazesim_ros", "learning.launch", "seed:=2"],
+        env={"ROS_PACKAGE_PATH": str(REPO / "ros"), "MAZESIM_TEST_LAUNCH": tag},
     )
+    # The bridge is required: it stops at the goal, and the launch with it.
+    assert launch.wait(timeout=90) == 0
+    log = Path(master.log_path("roslaunch")).read_text()
+    found = GOAL_LINE.search(log)
+    assert found, log
+    _, reached = drive_in_process("hrl", seed=2, max_steps=int(found[1]), stop_at_goal=True)
+    assert reached == int(found[1])
+    assert f"goal reached at step {found[1]};" in log
+    assert "Traceback" not in log
+    assert _processes_with("MAZESIM_TEST_LAUNCH", tag) == []
+
+
+@needs_ros
+@pytest.mark.parametrize(
+    ("controller", "seconds", "seed"),
+    [("hrl", 60.0, 0), ("avoid-collision", 3.0, 5)],  # hrl: what `make ros-demo` runs
+)
+def test_recorded_run_plays_back_and_equals_in_process_run(
+    tmp_path: Path, controller: str, seconds: float, seed: int
+) -> None:
+    out = tmp_path / "demo"
+    command = [*MAZESIM, "ros", "demo", "--controller", controller, "--out", str(out)]
+    command += ["--seconds", str(seconds), "--seed", str(seed)]
+    result = subprocess.run(command, capture_output=True, text=True, timeout=150, check=False)
     assert result.returncode == 0, result.stderr
     bag = out / "maze.bag"
     assert str(bag) in result.stdout and (out / "trajectory.png").is_file()
     assert "left behind" not in result.stdout
-    steps = math.ceil(3.0 / STEP_S)
+
+    # The bridge with the controller node over ROS drove exactly as in process (the hierarchical
+    # policy up to the goal, where the bridge stops).
+    hrl = controller == "hrl"
+    expected, reached = drive_in_process(
+        controller, seed, max_steps=math.ceil(seconds / STEP_S), stop_at_goal=hrl
+    )
+    steps = len(expected) - 1
+    if hrl:
+        assert reached == steps
+        assert f"reached at step {steps} " in result.stdout
+    else:
+        assert "goal               not reached" in result.stdout
 
     info = subprocess.run(["rosbag", "info", str(bag)], capture_output=True, text=True, timeout=60)
     assert info.returncode == 0, info.stderr
-    counts = dict(re.findall(r"(/\w+)\s+(\d+) msgs", info.stdout))
-    assert int(counts["/pose"]) == int(counts["/sensors"]) == int(counts["/clock"]) == steps + 1
-    assert int(counts["/motor"]) >= steps
-
-    # The bridge with the avoid-collision node over ROS drove exactly as in process.
-    simulator = mazesim.Simulator(mazesim.load_world("seed-maze"), robot="e-puck", seed=5)
-    controller = AvoidCollision()
-    expected = [topics.pose_values(simulator)]
-    for _ in range(steps):
-        simulator.step(*controller(simulator.distance_sensors()))
-        expected.append(topics.pose_values(simulator))
+    counts = {topic: int(n) for topic, n in re.findall(r"(/\w+)\s+(\d+) msgs", info.stdout)}
+    assert counts["/pose"] == counts["/sensors"] == counts["/clock"] == steps + 1
+    if hrl:
+        assert counts["/sensor_data"] == steps + 1
+        # Every step answers one command; the recorder may lose a few that are in flight when
+        # the run starts or stops (seen: 2 of 1,236 on a loaded machine).
+        assert steps - 5 <= counts["/action"] <= steps + 1, (counts, steps)
+        assert "/motor" not in counts
+    else:
+        assert counts["/motor"] >= steps
+        assert "/action" not in counts
 
     player = LocalMaster(home=str(tmp_path / "play"))
     player.start()

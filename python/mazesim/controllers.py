@@ -312,7 +312,9 @@ class Explore:
         wheel_speeds = self._wheel_speeds(readings.reshape(1, 6), self._single_spin)
         return float(wheel_speeds[0, 0]), float(wheel_speeds[0, 1])
 
-    def batch(self, distance_sensors: npt.ArrayLike) -> npt.NDArray[np.float32]:
+    def batch(
+        self, distance_sensors: npt.ArrayLike, mask: npt.ArrayLike | None = None
+    ) -> npt.NDArray[np.float32]:
         """Computes the wheel speeds for many robots at once, each with its own turning state.
 
         The states are kept between calls; a call with a different number of robots starts
@@ -320,17 +322,31 @@ class Explore:
 
         Args:
             distance_sensors: The Sharp readings of N robots in volts, shape (N, 6).
+            mask: (N,) the robots that act on these readings (all by default); the others'
+                turning states stay as they were (their rows are computed but not meant to
+                be used).
 
         Returns:
             A float32 array (N, 2) of left and right wheel speeds in rad/s.
 
         Raises:
-            InvalidArgumentError: The readings are not of shape (N, 6).
+            InvalidArgumentError: The readings are not of shape (N, 6), or a mask of another
+                shape.
         """
         readings = _rows(distance_sensors, 6, "Explore")
         if self._spin.shape[0] != readings.shape[0]:
             self._spin = np.zeros(readings.shape[0], dtype=np.int8)
-        return self._wheel_speeds(readings, self._spin).astype(np.float32)
+        if mask is None:
+            return self._wheel_speeds(readings, self._spin).astype(np.float32)
+        acting = np.asarray(mask, dtype=bool)
+        if acting.shape != self._spin.shape:
+            raise InvalidArgumentError(
+                f"expected a mask of shape {self._spin.shape}, found {acting.shape}"
+            )
+        spin = self._spin.copy()
+        wheel_speeds = self._wheel_speeds(readings, spin)
+        self._spin[acting] = spin[acting]
+        return wheel_speeds.astype(np.float32)
 
     def reset_robots(self, mask: npt.ArrayLike) -> None:
         """Forgets the turning state of the robots in ``mask`` (N,) of the last batch."""

@@ -128,14 +128,14 @@ def write_study_files(result: StudyResult, folder: str | os.PathLike[str]) -> li
             result.by_threshold,
             "threshold_v",
             f"Barcode readings by obstacle threshold ({result.readings} readings each, "
-            f"speed {result.default_speed:g} rad/s)",
+            f"speed {result.default_speed:g} rad/s, {result.link} link)",
         ),
         (
             "by_speed",
             result.by_speed,
             "speed",
             f"Barcode readings by wheel speed ({result.readings} readings each, "
-            f"threshold {result.default_threshold_v:g} V)",
+            f"threshold {result.default_threshold_v:g} V, {result.link} link)",
         ),
     )
     for stem, tallies, key, title in parts:

@@ -17,6 +17,7 @@ from typing import Any, TextIO
 
 import mazesim
 from mazesim.barcode.decoders import DECODERS
+from mazesim.barcode.link import LINKS
 from mazesim.barcode.study import (
     DEFAULT_ENVS,
     DEFAULT_READINGS,
@@ -153,6 +154,14 @@ def register(commands: Any) -> None:
         help="speed of the threshold study, rad/s (default: %(default)s)",
     )
     parser.add_argument(
+        "--link",
+        choices=LINKS,
+        default="lockstep",
+        help="how the controller and decoders see the simulator: lockstep = every control "
+        "step; ros = a node that wakes every 1-3 steps, as the report's unsynchronised ROS "
+        "node, and misses the samples in between (default: %(default)s)",
+    )
+    parser.add_argument(
         "--world",
         default="seed-maze",
         metavar="NAME|PATH",
@@ -250,6 +259,7 @@ def run_barcode_study(args: argparse.Namespace, out: TextIO, err: TextIO) -> int
             default_threshold_v=args.default_threshold,
             default_speed=args.default_speed,
             progress=progress,
+            link=args.link,
         )
     finally:
         progress.close()
@@ -261,7 +271,7 @@ def run_barcode_study(args: argparse.Namespace, out: TextIO, err: TextIO) -> int
     out.write(
         _table(
             f"by obstacle threshold (speed {result.default_speed:g} rad/s, "
-            f"{result.readings} readings each)",
+            f"{result.readings} readings each, {result.link} link)",
             "threshold_v",
             result.by_threshold,
         )
@@ -269,7 +279,7 @@ def run_barcode_study(args: argparse.Namespace, out: TextIO, err: TextIO) -> int
     out.write(
         _table(
             f"by wheel speed (threshold {result.default_threshold_v:g} V, "
-            f"{result.readings} readings each)",
+            f"{result.readings} readings each, {result.link} link)",
             "speed",
             result.by_speed,
         )

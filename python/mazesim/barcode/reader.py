@@ -100,13 +100,19 @@ class BatchBarcodeReader:
             self._previous[flags] = np.nan
 
     def update(
-        self, ground: npt.ArrayLike, encoders: npt.ArrayLike | None = None
+        self,
+        ground: npt.ArrayLike,
+        encoders: npt.ArrayLike | None = None,
+        mask: npt.ArrayLike | None = None,
     ) -> list[tuple[int, Reading]]:
-        """Feeds one step of every robot.
+        """Feeds one step of every robot, or of the robots in ``mask``.
 
         Args:
             ground: (N,) barcode sensor readings (the batch's observation column of the sensor).
             encoders: (N, 2) wheel angles in radians; needed when a decoder uses positions.
+                Odometry follows every robot whatever the mask.
+            mask: (N,) robots whose decoders get this sample (all by default); the others'
+                decoders do not see it, as if it were lost.
 
         Returns:
             (robot index, reading) for every robot whose sensor just left a code, in index order.
@@ -121,8 +127,13 @@ class BatchBarcodeReader:
             positions = self.odometry.update(encoders)
         elif self.needs_position:
             raise InvalidArgumentError("the decoders need the wheel encoders each step")
+        fed = np.ones(self.num_envs, dtype=bool) if mask is None else np.asarray(mask, bool)
+        if fed.shape != (self.num_envs,):
+            raise InvalidArgumentError(
+                f"expected a mask of shape ({self.num_envs},), found {fed.shape}"
+            )
         off_floor = (values < self.floor_low) | (values > self.floor_high)
-        busy = np.flatnonzero(off_floor | self._on_code)
+        busy = np.flatnonzero((off_floor | self._on_code) & fed)
         readings: list[tuple[int, Reading]] = []
         for index in busy:
             decoder = self.decoders[index]
@@ -135,5 +146,8 @@ class BatchBarcodeReader:
             if reading is not None:
                 readings.append((int(index), reading))
         if positions is not None:
-            self._previous = positions
+            if self._previous is None or mask is None:
+                self._previous = positions
+            else:
+                self._previous[fed] = positions[fed]
         return readings

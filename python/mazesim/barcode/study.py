@@ -16,6 +16,11 @@ speed (rad/s); :func:`run_study` runs each threshold at the default speed and ea
 default threshold, with the same seeds for every setting. Robots start in random open cells of
 the maze (never on a code) facing a random way, so the first N crossings spread over the
 maze's checkpoints and both directions.
+
+The controller and the decoders see the simulator over a *link* (:mod:`mazesim.barcode.link`):
+``lockstep``, every control step (mazesim's way, the default), or ``ros``, a node that wakes up
+every one to three steps as the report's unsynchronised ROS node did, losing the samples in
+between.
 """
 
 from __future__ import annotations
@@ -31,6 +36,7 @@ import mazesim
 from mazesim._core import BatchSimulator, RobotProfile, World
 from mazesim.barcode.codebook import CodeBook
 from mazesim.barcode.decoders import DECODERS, Reading, make_decoder
+from mazesim.barcode.link import UnsyncedLink, check_link
 from mazesim.barcode.odometry import WheelEncoders, barcode_sensor_index
 from mazesim.barcode.reader import BatchBarcodeReader
 from mazesim.controllers import Explore
@@ -63,7 +69,8 @@ DEFAULT_THRESHOLD = 1.4
 DEFAULT_SPEED = 3.14
 #: Robots wandering at once.
 DEFAULT_ENVS = 64
-#: Largest gap in control steps between a crossing and the read that answers it.
+#: Largest gap in control steps between a crossing and the read that answers it (over the
+#: ``ros`` link, plus the node's longest period: its decoder hears of the floor later).
 MATCH_STEPS = 4
 #: Simulated time per robot after which a setting gives up waiting for readings, seconds.
 MAX_SECONDS = 3600.0
@@ -125,6 +132,7 @@ class StudyResult:
     world: str = "seed-maze"
     default_threshold_v: float = DEFAULT_THRESHOLD
     default_speed: float = DEFAULT_SPEED
+    link: str = "lockstep"
 
     def to_json(self) -> dict[str, Any]:
         """The documented JSON object: shares in [0, 1] per decoder and setting."""
@@ -137,6 +145,7 @@ class StudyResult:
             "robot": "seed",
             "default_threshold_v": self.default_threshold_v,
             "default_speed": self.default_speed,
+            "link": self.link,
         }
 
 
@@ -211,8 +220,10 @@ def _judge(
     reads: list[tuple[int, int, Reading]],
     threshold_v: float,
     speed: float,
+    window: int = MATCH_STEPS,
 ) -> Tally:
-    """Matches a decoder's reads to the crossings, robot by robot, nearest in time first."""
+    """Matches a decoder's reads to the crossings, robot by robot, nearest in time first, at
+    most ``window`` control steps apart."""
     by_env: dict[int, list[tuple[int, int, Reading]]] = {}
     for order, (step, env, reading) in enumerate(reads):
         by_env.setdefault(env, []).append((step, order, reading))
@@ -222,7 +233,7 @@ def _judge(
         candidates = [
             (abs(read_step - step), order, reading)
             for read_step, order, reading in by_env.get(env, [])
-            if order not in used and abs(read_step - step) <= MATCH_STEPS
+            if order not in used and abs(read_step - step) <= window
         ]
         if not candidates:
             missed += 1
@@ -253,13 +264,16 @@ def run_setting(
     seed: int = 0,
     envs: int = DEFAULT_ENVS,
     progress: Callable[[int], None] | None = None,
+    link: str = "lockstep",
 ) -> list[Tally]:
     """Runs one setting until ``readings`` crossings are judged; one tally per decoder.
 
     Raises:
+        UnknownNameError: An unknown link.
         InvalidArgumentError: A bad count, threshold or speed, or a world without checkpoints.
         MazesimError: Fewer crossings than asked for within :data:`MAX_SECONDS` per robot.
     """
+    check_link(link)
     if readings < 1 or envs < 1:
         raise InvalidArgumentError(
             f"expected at least one reading and one robot, found {readings} and {envs}"
@@ -295,27 +309,45 @@ def run_setting(
     }
     for reader in readers.values():
         reader.update(observations[:, ground_column], encoders.values)
+    unsynced = UnsyncedLink(envs, seed) if link == "ros" else None
+    window = MATCH_STEPS + (unsynced.longest_period if unsynced is not None else 0)
+    actions = np.zeros((envs, 2), dtype=np.float32)
     truths: list[tuple[int, int, int]] = []
     reads: dict[str, list[tuple[int, int, Reading]]] = {name: [] for name in decoders}
     max_steps = math.ceil(MAX_SECONDS * 1000.0 / step_ms)
     step = 0
     while True:
         step += 1
-        actions = controller.batch(observations[:, :distance_width])
+        if unsynced is None:
+            actions = controller.batch(observations[:, :distance_width])
+        else:
+            # The nodes awake now read the sensors (their decoders get this sample) and send
+            # new wheel speeds; the others' motors keep the last ones.
+            awake = unsynced.tick()
+            for name, reader in readers.items():
+                reads[name].extend(
+                    (step, env, reading)
+                    for env, reading in reader.update(
+                        observations[:, ground_column], encoders.values, awake
+                    )
+                )
+            commands = controller.batch(observations[:, :distance_width], awake)
+            actions[awake] = commands[awake]
         batch.step(actions, observations, poses, colliding, crossings)
         encoders.step(actions)
-        wheel_angles = encoders.values
-        for name, reader in readers.items():
-            reads[name].extend(
-                (step, env, reading)
-                for env, reading in reader.update(observations[:, ground_column], wheel_angles)
-            )
+        if unsynced is None:
+            wheel_angles = encoders.values
+            for name, reader in readers.items():
+                reads[name].extend(
+                    (step, env, reading)
+                    for env, reading in reader.update(observations[:, ground_column], wheel_angles)
+                )
         for env in np.flatnonzero(crossings):
             if len(truths) < readings:
                 truths.append((step, int(env), int(crossings[env])))
                 if progress is not None:
                     progress(len(truths))
-        if len(truths) >= readings and step >= truths[-1][0] + MATCH_STEPS:
+        if len(truths) >= readings and step >= truths[-1][0] + window:
             break
         if step >= max_steps:
             raise MazesimError(
@@ -323,7 +355,7 @@ def run_setting(
                 f"of {envs} robots in {world.name!r} (threshold {threshold_v} V, "
                 f"speed {speed} rad/s)"
             )
-    return [_judge(name, truths, reads[name], threshold_v, speed) for name in decoders]
+    return [_judge(name, truths, reads[name], threshold_v, speed, window) for name in decoders]
 
 
 def run_study(
@@ -337,6 +369,7 @@ def run_study(
     default_threshold_v: float = DEFAULT_THRESHOLD,
     default_speed: float = DEFAULT_SPEED,
     progress: Progress | None = None,
+    link: str = "lockstep",
 ) -> StudyResult:
     """Runs the threshold study (at the default speed) and the speed study (at the default
     threshold); a setting in both is run once.
@@ -352,9 +385,11 @@ def run_study(
         default_threshold_v: The threshold of the speed study.
         default_speed: The speed of the threshold study.
         progress: Called with the readings gathered so far and the total.
+        link: How the controller and decoders see the simulator: ``lockstep`` or ``ros``
+            (see :mod:`mazesim.barcode.link`).
 
     Raises:
-        UnknownNameError: An unknown decoder name.
+        UnknownNameError: An unknown decoder name or link.
         InvalidArgumentError: Empty lists, bad values.
     """
     unknown = [name for name in decoders if name not in DECODERS]
@@ -364,6 +399,7 @@ def run_study(
             f"no decoder named {unknown[0]!r}; decoders: {', '.join(available)}",
             available=available,
         )
+    check_link(link)
     if not decoders or not (thresholds or speeds):
         raise InvalidArgumentError("expected at least one decoder and one threshold or speed")
     world = mazesim.load_world("seed-maze") if world is None else world
@@ -383,7 +419,7 @@ def run_study(
                 progress(base + count, total)
 
         tallies[(threshold, speed)] = run_setting(
-            world, threshold, speed, decoders, readings, seed, envs, report
+            world, threshold, speed, decoders, readings, seed, envs, report, link
         )
         done += readings
     result = StudyResult(
@@ -392,6 +428,7 @@ def run_study(
         world=world.name,
         default_threshold_v=float(default_threshold_v),
         default_speed=float(default_speed),
+        link=link,
     )
     for threshold in thresholds:
         result.by_threshold.extend(tallies[(float(threshold), float(default_speed))])

@@ -7,8 +7,10 @@ An optional part of mazesim: importing it, or :mod:`mazesim`, never needs ROS. T
   ``pose`` and ``/clock`` and stepping on ``motor`` or ``action`` commands, in ``lockstep`` or
   ``realtime`` mode.
 - :mod:`mazesim.ros.avoid_collision`: the avoid-collision controller node (Listing 3.2).
-- :mod:`mazesim.ros.perform_learning`: the hierarchical policy node (Alg. 5), a hook that needs
-  :mod:`mazesim.hrl`.
+- :mod:`mazesim.ros.perform_learning`: the perform-learning node (Alg. 5), the hierarchical policy
+  of :mod:`mazesim.hrl` answering ``sensor_data`` with ``action`` codes.
+- :mod:`mazesim.ros.demo`: ``mazesim ros demo``, bridge and a controller node on a private master,
+  recorded in a bag.
 - :mod:`mazesim.ros.topics`: the topics and their layouts (the codes of the ``action`` topic and
   their wheel speeds are :mod:`mazesim.actions`).
 - :mod:`mazesim.ros.local_master`: a private master on a free loopback port with the processes

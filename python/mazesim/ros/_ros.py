@@ -16,6 +16,9 @@ from typing import Any
 
 from mazesim.errors import MazesimError, MissingDependencyError
 
+#: Seconds after which a node says it is still waiting for the bridge.
+WAITING_NOTICE_S = 5.0
+
 __all__ = ["install_shutdown_handlers", "publisher", "require_ros", "wait_for_master"]
 
 #: Debian's packages that give ``rospy``, the message types and the command-line tools.
@@ -108,3 +111,22 @@ def publisher(
         return ros.rospy.Publisher(
             topic, message_class, queue_size=None if synchronous else 10, latch=latch
         )
+
+
+def wait_for_subscribers(
+    rospy: Any, topic_publisher: Any, count: int, stop: threading.Event
+) -> None:
+    """Waits until ``topic_publisher`` has ``count`` connected subscribers (the bridge, and a
+    recorder if there is one) or ``stop`` is set; says so in the log after
+    :data:`WAITING_NOTICE_S` seconds."""
+    started = time.monotonic()
+    noticed = False
+    while topic_publisher.get_num_connections() < count and not stop.is_set():
+        if not noticed and time.monotonic() - started > WAITING_NOTICE_S:
+            rospy.loginfo(
+                "waiting for %d subscriber(s) of %s (the bridge)",
+                count,
+                topic_publisher.resolved_name,
+            )
+            noticed = True
+        stop.wait(0.01)

@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import math
 import threading
-import time
 from typing import Any
 
 from mazesim.controllers import AvoidCollision
@@ -26,14 +25,13 @@ from mazesim.ros._ros import (
     publisher,
     require_ros,
     wait_for_master,
+    wait_for_subscribers,
 )
 
 __all__ = ["run_avoid_collision"]
 
 #: Seconds a node waits for the ROS master before giving up.
 MASTER_TIMEOUT_S = 10.0
-#: Seconds after which the node says it is still waiting for the bridge.
-WAITING_NOTICE_S = 5.0
 #: The names of the values the controller reads, first on ``sensors``.
 PS_NAMES = [f"ps{index}" for index in range(8)]
 
@@ -111,15 +109,7 @@ def run_avoid_collision(
         left, right = controller(readings)
         motor.publish(ros.Float64MultiArray(data=[left, right]))
 
-    started = time.monotonic()
-    noticed = False
-    while motor.get_num_connections() < subscribers and not stop.is_set():
-        if not noticed and time.monotonic() - started > WAITING_NOTICE_S:
-            rospy.loginfo(
-                "waiting for %d subscriber(s) of %s (the bridge)", subscribers, motor.resolved_name
-            )
-            noticed = True
-        stop.wait(0.01)
+    wait_for_subscribers(rospy, motor, subscribers, stop)
     rospy.Subscriber(
         topics.SENSORS_TOPIC,
         ros.Float64MultiArray,

@@ -16,8 +16,12 @@ The bridge publishes ``sensors``, ``sensor_data`` (robots with Sharp sensors), `
 Parameters (private, e.g. ``~world``; options of ``mazesim ros bridge`` take precedence):
 ``world`` (built-in name or world file, default ``seed-maze``), ``robot`` (``e-puck``), ``seed``
 (0), ``mode`` (``lockstep``), ``speed`` (1.0), ``duration`` (simulated seconds after which the
-bridge stops, 0 for never), ``noise`` (true). The bridge sets ``/use_sim_time`` to true unless it
-is already set.
+bridge stops, 0 for never), ``noise`` (true), ``stop_at_goal`` (false: stop after the step that
+brings the robot into the world's goal disc). The bridge sets ``/use_sim_time`` to true unless it
+is already set, and sets ``control_step_ms`` in its namespace (next to its topics, e.g.
+``/control_step_ms``) to the length of its control step before it listens for commands: the
+perform-learning node dead-reckons its sub-tasks with it. It logs the step at which the robot first
+reaches the goal, and says in its last log line whether it did.
 
 Bad commands (not two finite numbers, unknown action codes) are logged and ignored: they do not
 advance the simulation.
@@ -66,6 +70,7 @@ class BridgeSettings:
     speed: float = 1.0
     duration: float = 0.0
     noise: bool = True
+    stop_at_goal: bool = False
 
     def validate(self) -> None:
         """Raises InvalidArgumentError naming the first parameter that is out of range."""
@@ -137,6 +142,9 @@ class Bridge:
         self.rejected = 0
         self.wheel_speeds = (0.0, 0.0)
         self.first_command_at: float | None = None
+        self.goal = simulator.world.goal
+        #: The control step after which the robot was first inside the goal disc, if it was.
+        self.goal_step: int | None = None
         self._lock = threading.Lock()
         self._sensors_layout = self._layout(topics.sensor_names(simulator))
         self._pose_layout = self._layout(["x", "y", "yaw", "time"])
@@ -188,8 +196,25 @@ class Bridge:
             )
 
     def _finished(self) -> bool:
+        """Notes the goal after a step; whether the bridge is done (duration, or goal reached)."""
+        simulator = self.simulator
+        if self.goal is not None and self.goal_step is None:
+            x, y, _ = simulator.pose
+            goal_x, goal_y, radius = self.goal
+            if math.hypot(x - goal_x, y - goal_y) <= radius:
+                self.goal_step = simulator.steps
+                self.ros.rospy.loginfo(
+                    "reached the goal of %s at step %d (%.3f s simulated), at x %.4f m, y %.4f m",
+                    simulator.world.name,
+                    simulator.steps,
+                    simulator.time,
+                    x,
+                    y,
+                )
+        if self.settings.stop_at_goal and self.goal_step is not None:
+            return True
         duration = self.settings.duration
-        return duration > 0.0 and self.simulator.time >= duration - 1e-9
+        return duration > 0.0 and simulator.time >= duration - 1e-9
 
     def on_motor(self, message: Any) -> None:
         """Handles a ``motor`` message: ``[left, right]`` in rad/s."""
@@ -295,7 +320,13 @@ def run_bridge(
         for field in fields(BridgeSettings):
             rospy.set_param("~" + field.name, getattr(settings, field.name))
         world = mazesim.load_world(settings.world)
+        if settings.stop_at_goal and world.goal is None:
+            raise InvalidArgumentError(
+                f"parameter stop_at_goal is true but world {world.name!r} has no goal"
+            )
         simulator = Simulator(world, robot=settings.robot, seed=settings.seed, noise=settings.noise)
+        # Before the bridge listens for commands: a controller that sees it connected finds it.
+        rospy.set_param(topics.CONTROL_STEP_PARAM, simulator.control_step_ms)
         bridge = Bridge(ros, simulator, settings, stop)
     except MazesimError as error:
         rospy.signal_shutdown(f"bad settings: {error}")
@@ -319,13 +350,20 @@ def run_bridge(
         since = bridge.first_command_at if bridge.lockstep else started
         elapsed = time.monotonic() - since if since is not None else 0.0
         rate = steps / elapsed if elapsed > 0 else 0.0
+        if bridge.goal is None:
+            goal = "no goal in this world"
+        elif bridge.goal_step is None:
+            goal = "goal not reached"
+        else:
+            goal = f"goal reached at step {bridge.goal_step}"
         rospy.loginfo(
             "mazesim bridge stopped: %d steps (%.2f s simulated) in %.2f s of stepping, "
-            "%.0f steps/s; %d bad messages ignored",
+            "%.0f steps/s; %s; %d bad messages ignored",
             steps,
             simulated,
             elapsed,
             rate,
+            goal,
             bridge.rejected,
         )
         rospy.signal_shutdown("mazesim bridge stopped")

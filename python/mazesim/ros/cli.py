@@ -4,7 +4,8 @@
 nodes that the ROS package ``mazesim_ros`` launches; options take precedence over the nodes'
 private ROS parameters, and trailing ``NAME:=VALUE`` arguments are ROS remappings (``_seed:=3``
 sets a private parameter, ``__name:=bridge2`` renames the node). ``mazesim ros demo`` runs a whole
-graph on a private master. ROS is imported only when a command runs.
+graph (the bridge and the perform-learning or avoid-collision node, recorded) on a private master.
+ROS is imported only when a command runs.
 """
 
 from __future__ import annotations
@@ -78,6 +79,7 @@ def _run_bridge(args: argparse.Namespace) -> int:
         "speed": args.speed,
         "duration": args.duration,
         "noise": False if args.no_noise else None,
+        "stop_at_goal": True if args.stop_at_goal else None,
     }
     return run_bridge(options, args.remappings, args.name)
 
@@ -96,7 +98,12 @@ def _run_avoid_collision(args: argparse.Namespace) -> int:
 def _run_perform_learning(args: argparse.Namespace) -> int:
     from mazesim.ros.perform_learning import run_perform_learning
 
-    return run_perform_learning({"policy": args.policy}, args.remappings, args.name)
+    options = {
+        "policy": args.policy,
+        "control_step_ms": args.control_step_ms,
+        "wait_for_subscribers": args.wait_for_subscribers,
+    }
+    return run_perform_learning(options, args.remappings, args.name)
 
 
 def _run_demo(args: argparse.Namespace) -> int:
@@ -159,6 +166,11 @@ def register(commands: Any) -> None:
         help="stop after S simulated seconds; 0 runs until stopped (default: 0)",
     )
     bridge.add_argument("--no-noise", action="store_true", help="turn the sensor noise off")
+    bridge.add_argument(
+        "--stop-at-goal",
+        action="store_true",
+        help="stop after the step that brings the robot into the world's goal disc",
+    )
     _add_node_arguments(bridge, "mazesim_bridge")
     bridge.set_defaults(run=_run_bridge)
 
@@ -196,26 +208,54 @@ def register(commands: Any) -> None:
         "perform-learning",
         help="the hierarchical policy node (Alg. 5; needs mazesim.hrl)",
         description=(
-            "Subscribe sensor_data, ask the hierarchical policy of mazesim.hrl for a primitive "
-            "action and publish its code on action. Needs a bridge running a robot with Sharp "
-            "sensors (--robot seed)."
+            "Subscribe sensor_data, ask the hierarchical policy of mazesim.hrl (Alg. 5) for a "
+            "primitive action and publish its code on action, one action per reading. Needs a "
+            "bridge running a robot with Sharp sensors (--robot seed). The policy dead-reckons "
+            "its sub-tasks from its actions, each lasting one control step of the bridge (read "
+            "from the control_step_ms parameter the bridge sets)."
         ),
     )
     learning.add_argument(
-        "--policy", metavar="DIR", help="folder of trained tables (default: the shipped ones)"
+        "--policy",
+        metavar="DIR",
+        help="folder of trained tables (default: ~policy, else the ones shipped for seed-maze)",
+    )
+    learning.add_argument(
+        "--control-step-ms",
+        type=_positive_number,
+        metavar="MS",
+        help="how long each action runs (default: ~control_step_ms, else the bridge's "
+        "control_step_ms parameter)",
+    )
+    learning.add_argument(
+        "--wait-for-subscribers",
+        type=_whole_number,
+        metavar="N",
+        help="subscribers of action to wait for before starting: 1 (the bridge), 2 with a "
+        "recorder (default: ~wait_for_subscribers or 1)",
     )
     _add_node_arguments(learning, "perform_learning")
     learning.set_defaults(run=_run_perform_learning)
 
     demo = nodes.add_parser(
         "demo",
-        help="bridge + avoid-collision in lockstep on a private master, recorded in a bag",
+        help="bridge + the hierarchical policy node in lockstep on a private master, in a bag",
         description=(
-            "Start a ROS master on a free loopback port, the bridge in lockstep, the "
-            "avoid-collision node and 'rosbag record'; run for the given simulated time, stop "
-            "everything, then read the bag back and plot the trajectory. Writes DIR/maze.bag, "
+            "Start a ROS master on a free loopback port, the bridge in lockstep, a controller "
+            "node and 'rosbag record'; stop everything when the bridge stops, then read the bag "
+            "back and plot the trajectory. With --controller hrl (the default) the seed robot "
+            "runs the perform-learning node (the hierarchical policy shipped for seed-maze) and "
+            "the bridge stops at the goal, or after --seconds; with avoid-collision the e-puck "
+            "runs the avoid-collision node for --seconds. Writes DIR/maze.bag, "
             "DIR/trajectory.png and DIR/logs/."
         ),
+    )
+    demo.add_argument(
+        "--controller",
+        choices=("hrl", "avoid-collision"),
+        default="hrl",
+        help="the controller node: hrl (perform-learning, robot seed) or avoid-collision "
+        "(robot e-puck) (default: %(default)s)",
     )
     demo.add_argument(
         "--world",
@@ -231,7 +271,8 @@ def register(commands: Any) -> None:
         type=positive_seconds,
         default=60.0,
         metavar="S",
-        help="simulated seconds to run (default: %(default)s)",
+        help="simulated seconds to run at most; hrl stops at the goal before (default: "
+        "%(default)s)",
     )
     demo.add_argument(
         "--out",

@@ -1,14 +1,21 @@
-"""``mazesim ros demo``: bridge + avoid-collision in lockstep on a private master, in a bag.
+"""``mazesim ros demo``: bridge + a controller node in lockstep on a private master, in a bag.
 
 The demo starts a master on a free loopback port (so it never disturbs a running ROS system),
-``rosbag record``, the bridge in lockstep with a ``duration`` and the avoid-collision node; when the
-bridge has simulated that long it stops the graph, reads the bag back and plots the trajectory
+``rosbag record``, the bridge in lockstep with a ``duration`` and a controller node:
+
+- ``hrl`` (the default): the ``seed`` robot and the perform-learning node (the report's Alg. 5,
+  the hierarchical policy shipped for ``seed-maze``); the bridge stops at the goal, or after
+  ``duration`` if the robot does not get there;
+- ``avoid-collision``: the e-puck and the avoid-collision node (Listing 3.2), for ``duration``.
+
+When the bridge has stopped it stops the graph, reads the bag back and plots the trajectory
 recorded on ``pose``.
 """
 
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import sys
 import time
@@ -17,13 +24,23 @@ from typing import Any, TextIO
 import numpy as np
 
 import mazesim
-from mazesim.errors import MazesimError, MissingDependencyError
+from mazesim.errors import (
+    InvalidArgumentError,
+    MazesimError,
+    MissingDependencyError,
+    PolicyFormatError,
+)
 from mazesim.ros.local_master import LocalMaster
 
-__all__ = ["RECORDED_TOPICS", "read_poses", "run_demo"]
+__all__ = ["CONTROLLERS", "RECORDED_TOPICS", "goal_step", "read_poses", "run_demo"]
 
-#: The topics the demo records.
-RECORDED_TOPICS = ("/clock", "/pose", "/sensors", "/motor")
+#: The demo's controller nodes.
+CONTROLLERS = ("hrl", "avoid-collision")
+#: The topics the demo records, by controller.
+RECORDED_TOPICS = {
+    "hrl": ("/clock", "/pose", "/sensors", "/sensor_data", "/action"),
+    "avoid-collision": ("/clock", "/pose", "/sensors", "/motor"),
+}
 #: Wall-clock seconds the demo allows per simulated second before it gives up.
 WALL_SECONDS_PER_SIMULATED_SECOND = 2.0
 
@@ -41,11 +58,38 @@ def read_poses(bag_path: str) -> Any:
     return np.array(rows, dtype=np.float64).reshape(-1, 4)
 
 
+def goal_step(world: Any, poses: Any) -> int | None:
+    """The first row of ``poses`` (``[x, y, yaw, time]``) inside the world's goal disc, if any."""
+    if world.goal is None or len(poses) == 0:
+        return None
+    goal_x, goal_y, radius = world.goal
+    inside = np.flatnonzero(np.hypot(poses[:, 0] - goal_x, poses[:, 1] - goal_y) <= radius)
+    return int(inside[0]) if inside.size else None
+
+
 def run_demo(args: argparse.Namespace, out: TextIO) -> int:
-    """Runs the demo; see the module's description."""
+    """Runs the demo (``args``: controller, world, seed, seconds, out); see the module's text."""
     from mazesim.plotting import save_trajectory_png
 
+    controller = getattr(args, "controller", "hrl")
+    if controller not in CONTROLLERS:
+        raise InvalidArgumentError(
+            f"expected a controller in {', '.join(CONTROLLERS)}; found {controller!r}"
+        )
+    hrl = controller == "hrl"
     world = mazesim.load_world(args.world)  # fail early on a bad world
+    if hrl:
+        from mazesim.ros.perform_learning import load_policy
+
+        # The node drives with the shipped tables: their higher level knows one world only.
+        try:
+            load_policy(None).check_world(world)
+        except PolicyFormatError as error:
+            raise InvalidArgumentError(
+                f"{error}; the hrl demo drives with the tables shipped for seed-maze "
+                f"(or run --controller avoid-collision in {world.name!r})"
+            ) from None
+    robot = "seed" if hrl else "e-puck"
     out_dir = os.path.abspath(args.out)
     os.makedirs(out_dir, exist_ok=True)
     bag_path = os.path.join(out_dir, "maze.bag")
@@ -66,25 +110,29 @@ def run_demo(args: argparse.Namespace, out: TextIO) -> int:
                 "bridge",
                 "--world",
                 args.world,
+                "--robot",
+                robot,
                 "--seed",
                 str(args.seed),
                 "--mode",
                 "lockstep",
                 "--duration",
                 repr(args.seconds),
+                *(["--stop-at-goal"] if hrl else []),
                 "__name:=bridge",
             ],
         )
+        recorded = RECORDED_TOPICS[controller]
         recorder = master.spawn(
             "rosbag-record",
-            ["rosbag", "record", "--quiet", "-O", bag_path, *RECORDED_TOPICS, "__name:=recorder"],
+            ["rosbag", "record", "--quiet", "-O", bag_path, *recorded, "__name:=recorder"],
         )
         # Nothing moves before the recorder listens: the bridge steps on the controller's first
-        # command, and the controller waits for both the bridge and the recorder on /motor.
-        master.wait_for_connections("/bridge", ["/clock", "/pose", "/sensors"], "/recorder")
-        master.spawn(
-            "avoid-collision", [*mazesim_command, "avoid-collision", "--wait-for-subscribers", "2"]
-        )
+        # command, and the controller waits for both the bridge and the recorder on its topic.
+        state_topics = [topic for topic in recorded if topic not in ("/motor", "/action")]
+        master.wait_for_connections("/bridge", state_topics, "/recorder")
+        node = "perform-learning" if hrl else "avoid-collision"
+        master.spawn(node, [*mazesim_command, node, "--wait-for-subscribers", "2"])
         deadline = time.monotonic() + 30.0 + WALL_SECONDS_PER_SIMULATED_SECOND * args.seconds
         while bridge.poll() is None and time.monotonic() < deadline:
             time.sleep(0.05)
@@ -109,18 +157,33 @@ def run_demo(args: argparse.Namespace, out: TextIO) -> int:
     poses = read_poses(bag_path)
     if len(poses) == 0:
         raise MazesimError(f"the bag {bag_path} holds no /pose message")
+    steps = len(poses) - 1
+    arrived = goal_step(world, poses)
+    if world.goal is None:
+        goal = "none in this world"
+    elif arrived is None:
+        goal = f"not reached in {poses[-1, 3]:.2f} s"
+    else:
+        goal = f"reached at step {arrived} ({poses[arrived, 3]:.2f} s simulated)"
+    name = "hierarchical policy (perform-learning)" if hrl else "avoid-collision"
     picture = os.path.join(out_dir, "trajectory.png")
+    outcome = ""
+    if hrl:
+        outcome = ", goal reached" if arrived is not None else ", goal not reached"
     save_trajectory_png(
         world,
         poses[:, 0],
         poses[:, 1],
         picture,
-        title=f"{world.name} over ROS: avoid-collision in lockstep, {poses[-1, 3]:.0f} s",
+        title=f"{world.name} over ROS: {controller} in lockstep, {poses[-1, 3]:.1f} s{outcome}",
     )
-    steps = len(poses) - 1
+    step_ms = 1000.0 * poses[1, 3] if steps else math.nan
     out.write(
-        f"world              {world.name} (robot e-puck, seed {args.seed}, lockstep)\n"
-        f"simulated time     {poses[-1, 3]:.2f} s ({steps} control steps over ROS)\n"
+        f"world              {world.name} (robot {robot}, seed {args.seed}, lockstep)\n"
+        f"controller         {name}\n"
+        f"simulated time     {poses[-1, 3]:.2f} s ({steps} control steps of {step_ms:.0f} ms "
+        f"over ROS)\n"
+        f"goal               {goal}\n"
         f"wall-clock time    {wall_clock:.2f} s (master, nodes and recorder included)\n"
         f"bag                {bag_path} ({len(poses)} pose messages)\n"
         f"trajectory         {picture}\n"

@@ -28,6 +28,11 @@ Subscribed by the bridge:
 
 A command that is not exactly two finite numbers, or an unknown action code, is rejected with a
 :class:`~mazesim.errors.InvalidActionError`; the bridge logs it and carries on.
+
+Set by the bridge on the parameter server, relative to its namespace like its topics:
+
+- ``control_step_ms``: the length of one control step in milliseconds (32 for the e-puck and the
+  ``seed`` robot), set before the bridge subscribes ``motor`` and ``action``.
 """
 
 from __future__ import annotations
@@ -42,6 +47,7 @@ from mazesim.errors import InvalidActionError
 __all__ = [
     "ACTION_TOPIC",
     "CLOCK_TOPIC",
+    "CONTROL_STEP_PARAM",
     "MOTOR_TOPIC",
     "POSE_TOPIC",
     "SENSORS_TOPIC",
@@ -61,6 +67,8 @@ POSE_TOPIC = "pose"
 CLOCK_TOPIC = "/clock"
 MOTOR_TOPIC = "motor"
 ACTION_TOPIC = "action"
+#: The parameter holding the bridge's control step in ms.
+CONTROL_STEP_PARAM = "control_step_ms"
 
 
 def sensor_names(simulator: Simulator) -> list[str]:
