@@ -2,12 +2,15 @@
 
 Not a test: run it by hand (Ray must be installed)::
 
-    .venv/bin/python benches/bench_sweep.py [--runs 8] [--envs 64] [--steps 1500] [--json]
+    .venv/bin/python benches/bench_sweep.py [--trainer hrl] [--runs 8] [--envs 64] [--steps 1500]
+        [--higher-episodes 32] [--json]
 
-The sweep: ``--runs`` settings (seeds) of the flat Q-learning trainer on a generated 5 x 5 maze,
-``--envs`` envs for ``--steps`` training steps each, then 32 greedy evaluation episodes of at most
-600 steps. One env-step is one 32 ms control step of one robot; training and evaluation both
-count. Modes:
+The sweep: ``--runs`` settings (seeds) of a trainer on a generated 5 x 5 maze, ``--envs`` envs
+for ``--steps`` training steps each, then greedy evaluation episodes of at most 600 steps (32
+for ``flat-q``, 16 for ``hrl`` and ``baseline``). ``hrl`` trains its lower level with those envs
+and steps, then its higher level for ``--higher-episodes`` episodes of at most 600 steps. One
+env-step is one control step of one robot (32 ms for ``flat-q``, 64 ms for the navigators);
+training and evaluation both count. Modes:
 
 - single process, 1 thread: :func:`mazesim.distributed.run_sequential`, batch engine on 1 core;
 - single process, N threads: the same with the batch engine on every core;
@@ -36,17 +39,22 @@ from mazesim.distributed import SweepSummary, parse_sweep_config, run_sequential
 from mazesim.distributed.cluster import local_cpus, ray_session
 
 
-def sweep_text(runs: int, envs: int, steps: int) -> str:
+def sweep_text(trainer: str, runs: int, envs: int, steps: int, higher_episodes: int) -> str:
     seeds = ", ".join(str(seed) for seed in range(runs))
-    return (
+    text = (
         "[sweep]\nname = 'bench'\ncpus_per_task = 1\n\n[grid]\n"
-        f"seed = [{seeds}]\nmaze_size = 5\nenvs = {envs}\nsteps = {steps}\n"
-        "episode_steps = 600\neval_episodes = 32\n"
+        f"trainer = '{trainer}'\nseed = [{seeds}]\nmaze_size = 5\nenvs = {envs}\n"
+        f"steps = {steps}\nepisode_steps = 600\n"
     )
+    if trainer == "flat-q":
+        return text + "eval_episodes = 32\n"
+    if trainer == "hrl":
+        text += f"higher_episodes = {higher_episodes}\n"
+    return text + "eval_episodes = 16\n"
 
 
-def measure(runs: int, envs: int, steps: int) -> dict[str, Any]:
-    sweep = parse_sweep_config(sweep_text(runs, envs, steps))
+def measure(trainer: str, runs: int, envs: int, steps: int, higher_episodes: int) -> dict[str, Any]:
+    sweep = parse_sweep_config(sweep_text(trainer, runs, envs, steps, higher_episodes))
     cores = local_cpus()
     rates: dict[str, dict[str, float]] = {}
 
@@ -82,6 +90,7 @@ def measure(runs: int, envs: int, steps: int) -> dict[str, Any]:
     single = rates["single process, 1 thread(s)"]["env_steps_per_second"]
     warm = rates[f"ray, warm ({cores} CPUs)"]["env_steps_per_second"]
     return {
+        "trainer": trainer,
         "runs": runs,
         "envs": envs,
         "steps": steps,
@@ -94,13 +103,25 @@ def measure(runs: int, envs: int, steps: int) -> dict[str, Any]:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument(
+        "--trainer",
+        default="hrl",
+        choices=("hrl", "baseline", "flat-q"),
+        help="the sweep's trainer (default hrl)",
+    )
     parser.add_argument("--runs", type=int, default=8, help="settings of the sweep (default 8)")
     parser.add_argument("--envs", type=int, default=64, help="envs per run (default 64)")
     parser.add_argument("--steps", type=int, default=1500, help="training steps (default 1500)")
+    parser.add_argument(
+        "--higher-episodes",
+        type=int,
+        default=32,
+        help="hrl: higher-level training episodes (default 32)",
+    )
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     args = parser.parse_args()
     load_before = os.getloadavg()
-    report = measure(args.runs, args.envs, args.steps)
+    report = measure(args.trainer, args.runs, args.envs, args.steps, args.higher_episodes)
     report["load_average_before"] = load_before
     report["load_average_after"] = os.getloadavg()
     report["machine"] = f"{platform.machine()}, {os.cpu_count()} cores, {platform.python_version()}"
@@ -108,7 +129,8 @@ def main() -> None:
         print(json.dumps(report, indent=2))
         return
     print(
-        f"sweep of {args.runs} runs x {args.envs} envs x {args.steps} steps (+ evaluation) "
+        f"{args.trainer} sweep of {args.runs} runs x {args.envs} envs x {args.steps} steps "
+        f"(+ {'higher level and ' if args.trainer == 'hrl' else ''}evaluation) "
         f"on {report['machine']}"
     )
     print(f"load average before {load_before[0]:.2f}, after {report['load_average_after'][0]:.2f}")

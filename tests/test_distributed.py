@@ -39,6 +39,7 @@ name = "small"
 max_retries = 1
 
 [grid]
+trainer = "flat-q"
 seed = [0, 1]
 learning_rate = [0.1, 0.3]
 epsilon = [0.05, 0.3]
@@ -47,6 +48,24 @@ envs = 8
 steps = 150
 episode_steps = 120
 eval_episodes = 6
+"""
+
+#: The same grid for mazesim's hierarchical navigator, with budgets that only a test would use.
+HRL_SWEEP = """
+[sweep]
+name = "hrl-small"
+
+[grid]
+trainer = "hrl"
+seed = [0, 1]
+learning_rate = [0.1, 0.3]
+epsilon = [0.05, 0.3]
+maze_size = 3
+envs = 4
+steps = 40
+higher_episodes = 4
+episode_steps = 60
+eval_episodes = 3
 """
 
 
@@ -91,7 +110,18 @@ def test_ids_are_stable_whatever_the_order_of_keys_and_values() -> None:
         ("[grid]\nworld = 'no-such-world'\n", UnknownNameError, "no-such-world.*seed-maze"),
         ("[grid]\nworld = 'arena'\n", InvalidArgumentError, "with a goal"),
         ("[grid]\nworld = 'seed-maze'\nmaze_size = 4\n", InvalidArgumentError, "one"),
-        ("[grid]\ntrainer = 'deep-q'\n", UnknownNameError, "trainer.*flat-q"),
+        ("[grid]\ntrainer = 'deep-q'\n", UnknownNameError, "trainer.*hrl, baseline, flat-q"),
+        (
+            "[grid]\ntrainer = 'hrl'\ncollision_penalty = 1.0\n",
+            InvalidArgumentError,
+            r"grid.collision_penalty: trainer 'hrl' does not use it",
+        ),
+        (
+            "[grid]\ntrainer = ['flat-q', 'baseline']\nepsilon = 0.2\n",
+            InvalidArgumentError,
+            r"grid.epsilon: trainer 'baseline' does not use it",
+        ),
+        ("[grid]\ntrainer = 'hrl'\nnoise = false\n", InvalidArgumentError, "noise = true only"),
     ],
 )
 def test_config_errors_are_the_packages_own(text: str, error: type, match: str) -> None:
@@ -111,14 +141,23 @@ def test_missing_sweep_file_and_its_cli_error(tmp_path: Path, capsys: Any) -> No
     assert not (tmp_path / "out").exists()
 
 
-def test_help_does_not_import_ray() -> None:
+@pytest.mark.parametrize("command", ["sweep", "eval"])
+def test_help_does_not_import_ray(command: str) -> None:
     code = (
-        "import sys\nfrom mazesim.cli import main\n"
-        "assert main(['sweep', '--help']) == 0\nassert 'ray' not in sys.modules, 'ray imported'\n"
+        f"import sys\nfrom mazesim.cli import main\nassert main(['{command}', '--help']) == 0\n"
+        "assert 'ray' not in sys.modules, 'ray imported'\n"
     )
     result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert result.returncode == 0, result.stderr
-    assert "--address ADDR" in result.stdout and "learning_rate" in result.stdout
+    assert "--address ADDR" in result.stdout and "local" in result.stdout
+    if command == "sweep":
+        assert "learning_rate" in result.stdout
+
+
+def test_auto_trains_the_hierarchical_navigator_with_its_own_defaults() -> None:
+    setting = parse_sweep_config("[grid]\nseed = 3\n").settings[0]
+    assert setting.params["trainer"] == "hrl"
+    assert setting.params["learning_rate"] is None and setting.params["epsilon"] is None
 
 
 # --- tasks and the output folder, without Ray ----------------------------------------------
@@ -133,6 +172,29 @@ def test_a_task_is_the_same_with_1_or_2_threads() -> None:
     metadata = json.loads(one.files["run.json"])
     assert metadata["setting"]["id"] == setting.id
     assert metadata["tables"] == {"q": [4096, 12], "visits": [4096, 12]}
+
+
+@pytest.mark.parametrize("trainer", ["hrl", "baseline"])
+def test_navigator_trainers_are_the_same_with_1_or_2_threads(trainer: str) -> None:
+    text = HRL_SWEEP.replace('trainer = "hrl"', f'trainer = "{trainer}"')
+    if trainer == "baseline":
+        unused = ("learning_rate", "epsilon", "higher_episodes")  # baseline has its own schedule
+        text = "\n".join(line for line in text.splitlines() if not line.startswith(unused))
+    setting = parse_sweep_config(text).settings[0]
+    one, two = train_and_evaluate(setting, 1), train_and_evaluate(setting, 2)
+    assert one.files["tables.npz"] == two.files["tables.npz"]
+    assert one.files["curves.csv"] == two.files["curves.csv"]
+    assert one.result["eval_env_steps"] == 3 * 60  # no 3 x 3 maze is solved by so little training
+    tables = json.loads(one.files["run.json"])["tables"]
+    if trainer == "hrl":
+        assert tables["lower_q"] == [4, 12288, 12] and tables["higher_q"][1] == 4
+        # the lower level's 4 x 40 env-steps, then 4 higher-level episodes of at most 60 steps
+        assert 4 * 40 + 4 <= one.result["env_steps"] <= 4 * 40 + 4 * 60
+        curves = one.files["curves.csv"].decode().splitlines()
+        assert curves[0] == "stage,env_steps,success_rate,contact_share,corridor_speed"
+        assert [row[0] for row in curves[1:]] == ["1"] + ["2"] * 4
+    else:
+        assert set(tables) == {"flat_q", "checkpoint_ids"} and one.result["env_steps"] == 4 * 40
 
 
 def test_run_folders_appear_whole_and_replace_older_ones(tmp_path: Path) -> None:
@@ -186,6 +248,35 @@ def test_sweep_on_ray_gives_the_same_tables_as_one_by_one(local_ray: Any, tmp_pa
     # Run again into the same folder: every finished run is kept, none is trained again.
     again = run_sweep(sweep, tmp_path / "ray")
     assert all(run["reused"] for run in again.runs) and again.env_steps == 0
+
+
+def test_hrl_sweep_on_ray_gives_the_same_tables_as_one_by_one(
+    local_ray: Any, tmp_path: Path
+) -> None:
+    sweep = parse_sweep_config(HRL_SWEEP)
+    on_ray = run_sweep(sweep, tmp_path / "ray")
+    alone = run_sequential(sweep, tmp_path / "alone")
+    assert [run["status"] for run in on_ray.runs] == ["ok"] * 8
+    assert [run["status"] for run in alone.runs] == ["ok"] * 8
+    for setting in sweep.settings:
+        ray_folder = tmp_path / "ray" / RUNS_DIR / setting.id
+        alone_folder = tmp_path / "alone" / RUNS_DIR / setting.id
+        assert sorted(arrays_of(ray_folder)) == [
+            "checkpoint_ids",
+            "higher_q",
+            "higher_visits",
+            "lower_q",
+            "lower_visits",
+        ]
+        assert arrays_of(ray_folder) == arrays_of(alone_folder)
+        for name in ("tables.npz", "curves.csv"):
+            assert (ray_folder / name).read_bytes() == (alone_folder / name).read_bytes()
+    # The hyperparameters reach the learner: other rates and seeds, other tables.
+    first, other_seed, other_rate = (
+        arrays_of(tmp_path / "alone" / RUNS_DIR / sweep.settings[i].id)["lower_q"]
+        for i in (0, 1, 4)
+    )
+    assert first != other_seed and first != other_rate
 
 
 class FaultyTask:
@@ -251,3 +342,62 @@ def test_sweep_command_on_ray_and_without(local_ray: Any, tmp_path: Path, capsys
     for folder in ("ray", "seq"):
         results = json.loads((tmp_path / folder / "results.json").read_text())
         assert results["counts"]["ok"] == 4
+
+
+def test_eval_spread_over_ray_equals_eval_without(
+    local_ray: Any, capsys: Any, tmp_path: Path
+) -> None:
+    arguments = ["eval", "--episodes", "3", "--events", "both", "--json", "--seed", "4"]
+    outputs = []
+    for run, address in (("alone", []), ("ray", ["--address", "local"])):
+        files = ["--trace", str(tmp_path / f"{run}.txt"), "--plot", str(tmp_path / f"{run}.png")]
+        assert main([*arguments, *files, *address]) == 0
+        outputs.append(json.loads(capsys.readouterr().out))
+    alone, on_ray = outputs
+    assert on_ray == alone
+    assert alone["episodes"] == 3 and alone["robust_decoder"]["episodes"] == 3
+    for suffix in ("txt", "png"):
+        assert (tmp_path / f"ray.{suffix}").read_bytes() == (
+            tmp_path / f"alone.{suffix}"
+        ).read_bytes()
+
+
+def test_issue_9_trace_ends_with_its_episode(tmp_path: Path, capsys: Any) -> None:
+    # A robot whose episode ended waits, still stepped, while the others finish theirs; the trace
+    # of episode 0 used to follow it on after the goal, and so differed with the episode count.
+    traces = [tmp_path / "one.txt", tmp_path / "three.txt"]
+    for episodes, trace in zip(("1", "3"), traces):
+        assert (
+            main(["eval", "--episodes", episodes, "--events", "truth", "--trace", str(trace)]) == 0
+        )
+    capsys.readouterr()
+    assert traces[0].read_text() == traces[1].read_text()
+    assert traces[1].read_text().splitlines()[-1].startswith("# goal reached after")
+
+
+def test_eval_in_unseen_mazes_adapts_once_and_ships_the_tables(
+    local_ray: Any, monkeypatch: Any
+) -> None:
+    from mazesim.hrl import evaluate as hrl_evaluate
+    from mazesim.hrl.tables import load_policy
+
+    monkeypatch.setattr(hrl_evaluate, "ADAPT_EPISODES", 6)
+    trained: list[int] = []
+    train_higher = hrl_evaluate.train_higher
+
+    def counted(*args: Any, **kwargs: Any) -> Any:
+        trained.append(1)
+        return train_higher(*args, **kwargs)
+
+    monkeypatch.setattr(hrl_evaluate, "train_higher", counted)
+    policy = load_policy(None)
+    worlds = hrl_evaluate.unseen_mazes(3, seed=2)
+    options: dict[str, Any] = {"seed": 2, "sources": ("truth",), "max_steps": 800}
+    alone = hrl_evaluate.evaluate_navigator(policy, worlds, 2, **options)
+    on_ray = hrl_evaluate.evaluate_navigator(policy, worlds, 2, ray_address="local", **options)
+    assert trained == [1, 1] and alone.adapted and on_ray.adapted
+    assert on_ray.summaries == alone.summaries
+    assert on_ray.summaries["truth"].decisions  # the higher level chose sub-tasks on the way
+    assert [r.steps for r in on_ray.evaluations["truth"].results] == [
+        r.steps for r in alone.evaluations["truth"].results
+    ]

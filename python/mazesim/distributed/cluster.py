@@ -3,12 +3,12 @@
 Ray is optional (``pip install "mazesim[ray]"``); it is imported only here, when a sweep or an
 evaluation asks for it, so ``import mazesim`` and ``mazesim --help`` never need it.
 
-Without an address, :func:`ray_session` starts a local Ray instance with one CPU per core of this
-machine, no dashboard, listening on 127.0.0.1 only, and its session files in a fresh temporary
-folder that is removed when the session ends. With an address (``"auto"``, ``"HOST:6379"`` or
-``"ray://HOST:10001"``) it joins that cluster, whose machines must have the same mazesim
-installed. When Ray is already initialised in this process (a notebook, a test), the session
-uses it and leaves it running.
+Without an address (or with ``"local"``), :func:`ray_session` starts a local Ray instance with one
+CPU per core of this machine, no dashboard, listening on 127.0.0.1 only, and its session files in a
+fresh temporary folder that is removed when the session ends. With an address (``"auto"``,
+``"HOST:6379"`` or ``"ray://HOST:10001"``) it joins that cluster, whose machines must have the same
+mazesim installed. When Ray is already initialised in this process (a notebook, a test), the
+session uses it and leaves it running.
 """
 
 from __future__ import annotations
@@ -23,7 +23,10 @@ from types import ModuleType
 
 from mazesim.errors import MissingDependencyError
 
-__all__ = ["import_ray", "local_cpus", "ray_session"]
+__all__ = ["LOCAL", "import_ray", "local_cpus", "ray_session"]
+
+#: The address that asks for a local Ray instance, as no address does.
+LOCAL = "local"
 
 
 def import_ray() -> ModuleType:
@@ -73,7 +76,8 @@ def ray_session(address: str | None = None, cpus: int | None = None) -> Iterator
     """Connects to Ray for the duration of a ``with`` block.
 
     Args:
-        address: The cluster to join; ``None`` starts a local instance on this machine.
+        address: The cluster to join; ``None`` or ``"local"`` starts a local instance on this
+            machine.
         cpus: CPUs of a local instance (by default :func:`local_cpus`); ignored with an address.
 
     Yields:
@@ -87,7 +91,7 @@ def ray_session(address: str | None = None, cpus: int | None = None) -> Iterator
         yield ray
         return
     temporary = None
-    if address is None:
+    if address is None or address == LOCAL:
         temporary = tempfile.mkdtemp(prefix="mazesim-ray-")
         with _on_loopback(ray):
             ray.init(

@@ -13,7 +13,7 @@ import sys
 from collections.abc import Sequence
 from typing import Any, TextIO
 
-from mazesim.distributed.config import PARAMETERS, load_sweep_config
+from mazesim.distributed.config import PARAMETERS, TRAINER_DEFAULTS, load_sweep_config
 
 __all__ = ["positive_cpus", "register", "run_sweep_command"]
 
@@ -33,10 +33,14 @@ def positive_cpus(text: str) -> int:
 
 
 def _parameter_help() -> str:
-    def toml(value: Any) -> str:
+    def default(name: str, value: Any) -> str:
+        if name in TRAINER_DEFAULTS:
+            return "the trainer's"
         return "none" if value is None else json.dumps(value)
 
-    return "; ".join(f"{p.name} (default {toml(p.default)}): {p.help}" for p in PARAMETERS)
+    return "; ".join(
+        f"{p.name} (default {default(p.name, p.default)}): {p.help}" for p in PARAMETERS
+    )
 
 
 def register(commands: Any) -> None:
@@ -62,8 +66,8 @@ def register(commands: Any) -> None:
     parser.add_argument(
         "--address",
         metavar="ADDR",
-        help="a running Ray cluster: 'auto', HOST:6379 or ray://HOST:10001 "
-        "(default: start a local Ray instance)",
+        help="a running Ray cluster: 'auto', HOST:6379 or ray://HOST:10001; or 'local' "
+        "(the default: start a local Ray instance)",
     )
     parser.add_argument(
         "--out",

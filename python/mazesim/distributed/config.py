@@ -18,6 +18,11 @@ default (:data:`PARAMETERS`)::
     envs = 32
     steps = 1000
 
+The hyperparameters (``learning_rate``, ``epsilon``, ``discount``, ``collision_penalty``,
+``episode_steps``, ``higher_episodes``) default to ``None``: each trainer's own default. A
+parameter that the setting's trainer has no use for is refused
+(:func:`mazesim.distributed.tasks.check_parameters`).
+
 Settings are expanded in the order of :data:`PARAMETERS` (the seed varies fastest), whatever
 order the file lists them in. Each setting has a stable id, ``<group>-s<seed>``, where ``group``
 is a hash of its parameters other than the seed (and of the world file's text, for a world read
@@ -47,6 +52,7 @@ from mazesim.errors import (
 
 __all__ = [
     "PARAMETERS",
+    "TRAINER_DEFAULTS",
     "Parameter",
     "Setting",
     "SweepConfig",
@@ -62,7 +68,8 @@ class Parameter:
     Attributes:
         name: The key in ``[grid]``.
         kind: ``int``, ``float``, ``bool`` or ``str``.
-        default: The value when the file does not give one (``None``: none).
+        default: The value when the file does not give one (``None``: none, or for a
+            hyperparameter the trainer's own default).
         accepts: Whether a value of the right kind is in range.
         expected: What ``accepts`` wants, for error messages.
         help: What the parameter does.
@@ -83,7 +90,8 @@ def _count(low: int, high: int) -> Callable[[Any], bool]:
 #: The parameters of a setting, in expansion order (the last varies fastest).
 PARAMETERS: tuple[Parameter, ...] = (
     Parameter("trainer", str, "auto", lambda v: bool(v), "a trainer name", "who trains: "
-              "'auto' (mazesim's HRL, else its flat baseline, else the sweep's own 'flat-q')"),
+              "'hrl' (mazesim's hierarchical navigator), 'baseline' (its flat baseline), "
+              "'flat-q' (the sweep's own flat learner), or 'auto' (the first installed of these)"),
     Parameter("world", str, None, lambda v: bool(v), "a world name or path",
               "a built-in world or a .toml world file (relative to the sweep file); "
               "instead of a generated maze"),
@@ -93,27 +101,45 @@ PARAMETERS: tuple[Parameter, ...] = (
               "seed of the generated maze"),
     Parameter("loops", float, 0.0, lambda v: 0.0 <= v <= 1.0, "a share in [0, 1]",
               "share of extra openings of the generated maze (0: a perfect maze)"),
-    Parameter("noise", bool, True, lambda v: True, "true or false", "sensor noise on"),
+    Parameter("noise", bool, True, lambda v: True, "true or false",
+              "sensor noise on (hrl and baseline train with noise only)"),
     Parameter("envs", int, 32, _count(1, 65536), "a number of envs from 1 to 65536",
-              "environments stepped together in training"),
+              "environments stepped together in training (hrl: in its lower level)"),
     Parameter("steps", int, 1000, _count(1, 10**9), "a positive number of steps",
-              "training steps of the whole batch (env-steps = envs x steps)"),
-    Parameter("episode_steps", int, 1500, _count(1, 10**7), "a positive number of steps",
-              "control steps (32 ms) before an episode is cut off"),
-    Parameter("learning_rate", float, 0.2, lambda v: 0.0 < v <= 0.5, "a rate in (0, 0.5]",
-              "Q-learning rate (constant)"),
-    Parameter("epsilon", float, 0.1, lambda v: 0.0 <= v <= 1.0, "a rate in [0, 1]",
-              "exploration rate of epsilon-greedy training"),
-    Parameter("discount", float, 0.97, lambda v: 0.0 <= v < 1.0, "a factor in [0, 1)",
-              "discount factor gamma"),
-    Parameter("collision_penalty", float, 0.5, lambda v: v >= 0.0, "a number >= 0",
-              "reward subtracted per step in contact with a wall"),
+              "training steps of the whole batch (env-steps = envs x steps; hrl: of its "
+              "lower level, in rounds of at most 500 steps)"),
+    Parameter("episode_steps", int, None, _count(1, 10**7), "a positive number of steps",
+              "control steps before an episode is cut off (flat-q: 32 ms steps, default 1500; "
+              "hrl and baseline: 64 ms steps, default 4000, in evaluation and in hrl's "
+              "higher-level training)"),
+    Parameter("higher_episodes", int, None, _count(1, 10**7), "a positive number of episodes",
+              "hrl only: episodes the higher level trains on the world (default 400)"),
+    Parameter("learning_rate", float, None, lambda v: 0.0 < v <= 0.5, "a rate in (0, 0.5]",
+              "Q-learning rate (flat-q: constant, default 0.2; hrl: the lower level's first "
+              "rate of a state-action pair, falling with its updates, default 0.5)"),
+    Parameter("epsilon", float, None, lambda v: 0.0 <= v <= 1.0, "a rate in [0, 1]",
+              "exploration rate (flat-q: constant, default 0.1; hrl: the lower level's first "
+              "round, falling to 0, default 0.3)"),
+    Parameter("discount", float, None, lambda v: 0.0 <= v < 1.0, "a factor in [0, 1)",
+              "discount factor gamma (flat-q: default 0.97; hrl: the lower level's, "
+              "default 0.99)"),
+    Parameter("collision_penalty", float, None, lambda v: v >= 0.0, "a number >= 0",
+              "flat-q only: reward subtracted per step in contact with a wall (default 0.5)"),
     Parameter("eval_episodes", int, 32, _count(1, 10**6), "a positive number of episodes",
               "greedy episodes of the evaluation after training"),
     Parameter("seed", int, 0, _count(0, 2**63 - 1), "a seed in [0, 2^63)",
               "seed of the training run (exploration, sensor noise, evaluation)"),
 )  # fmt: skip
 _BY_NAME = {parameter.name: parameter for parameter in PARAMETERS}
+#: The parameters whose default is each trainer's own (``None`` in a setting that leaves them out).
+TRAINER_DEFAULTS: tuple[str, ...] = (
+    "episode_steps",
+    "higher_episodes",
+    "learning_rate",
+    "epsilon",
+    "discount",
+    "collision_penalty",
+)
 _SWEEP_KEYS = ("name", "cpus_per_task", "max_retries")
 
 
@@ -322,14 +348,15 @@ def parse_sweep_config(
         The sweep, with its settings.
 
     Raises:
-        InvalidArgumentError: The text is not TOML, or a value is of the wrong kind or range.
+        InvalidArgumentError: The text is not TOML, a value is of the wrong kind or range, or a
+            parameter is set that the setting's trainer does not use.
         UnknownNameError: A key, trainer or world name is not known.
         MazesimIOError: A world file cannot be read.
         WorldFormatError: A world file is not a valid world.
     """
-    if resolve_trainer is None:
-        from mazesim.distributed import tasks
+    from mazesim.distributed import tasks
 
+    if resolve_trainer is None:
         resolve_trainer = tasks.resolve_trainer
     document = _toml_loads(text, source)
     for key in document:
@@ -370,6 +397,7 @@ def parse_sweep_config(
     for combination in itertools.product(*values.values()):
         params = dict(zip(values, combination))
         world_toml = world_texts.get(params["world"])
+        tasks.check_parameters(params, f"{source}: grid")
         group = _hash({k: v for k, v in params.items() if k != "seed"}, world_toml)
         settings.append(
             Setting(

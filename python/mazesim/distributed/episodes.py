@@ -78,7 +78,8 @@ def evaluate_episodes(
             ``count``; it must be picklable (a module-level function or a
             :func:`functools.partial` of one).
         episodes: Number of episodes.
-        address: A Ray cluster to join; ``None`` starts a local Ray instance.
+        address: A Ray cluster to join; ``None`` or ``"local"`` starts a local Ray instance
+            (Ray already initialised in this process is used as it is).
         chunks: Number of tasks (by default two per CPU of the cluster).
         cpus_per_chunk: CPUs each task asks Ray for.
         max_retries: Times a task whose worker died is run again.

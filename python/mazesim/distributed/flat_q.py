@@ -46,6 +46,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "CURVE_POINTS",
+    "DEFAULTS",
     "GOAL_REWARD",
     "PROGRESS_REWARD",
     "ROBOT",
@@ -63,6 +64,14 @@ PROGRESS_REWARD = 10.0
 GOAL_REWARD = 5.0
 #: Points of the training curve (windows of equal length).
 CURVE_POINTS = 20
+#: The values of the hyperparameters a setting leaves to the trainer (``None`` in the setting).
+DEFAULTS: dict[str, int | float] = {
+    "episode_steps": 1500,
+    "learning_rate": 0.2,
+    "epsilon": 0.1,
+    "discount": 0.97,
+    "collision_penalty": 0.5,
+}
 #: Largest batch an evaluation steps at once.
 EVALUATION_BATCH = 256
 
@@ -140,6 +149,15 @@ def evaluation_seeds(seed: int, first: int, count: int) -> npt.NDArray[np.uint64
     )
 
 
+def hyperparameters(setting: Setting) -> dict[str, Any]:
+    """The setting's parameters with :data:`DEFAULTS` for those it leaves to the trainer."""
+    params = dict(setting.params)
+    for name, value in DEFAULTS.items():
+        if params.get(name) is None:
+            params[name] = value
+    return params
+
+
 def _buffers(batch: BatchSimulator) -> tuple[npt.NDArray[Any], ...]:
     n = batch.num_envs
     return (
@@ -163,7 +181,7 @@ def train(setting: Setting, threads: int = 1) -> dict[str, Any]:
         ``eval_env_steps``, ``training_seconds`` and ``evaluation_seconds``.
     """
     started = time.perf_counter()
-    params = setting.params
+    params = hyperparameters(setting)
     world = setting.world()
     to_go = GoalDistance(world)
     envs, steps, episode_steps = params["envs"], params["steps"], params["episode_steps"]
@@ -262,7 +280,7 @@ def evaluate(
     Returns:
         Per-episode arrays: ``reached`` (bool), ``steps`` (steps taken) and ``collisions``.
     """
-    params = setting.params
+    params = hyperparameters(setting)
     world = setting.world()
     to_go = GoalDistance(world)
     speeds = (WHEEL_SPEED_FRACTIONS * RobotProfile.builtin(ROBOT).max_wheel_speed).astype(

@@ -12,7 +12,8 @@ installation has. A trainer is a function ``trainer(setting, threads) -> dict`` 
 ``tables`` (name -> array), ``curves`` (name -> equal-length 1-D array), ``evaluation``
 (``success_rate``, ``mean_collisions``, ``mean_steps``), ``env_steps``, ``eval_env_steps``,
 ``training_seconds`` and ``evaluation_seconds``; :func:`mazesim.distributed.flat_q.train` is the
-model.
+model. ``hrl`` and ``baseline`` (:mod:`mazesim.distributed.hrl_trainers`) train mazesim's
+hierarchical navigator and its flat baseline.
 """
 
 from __future__ import annotations
@@ -43,8 +44,10 @@ __all__ = [
     "RUN_FILE",
     "TABLES_FILE",
     "TRAINERS",
+    "UNUSED_PARAMETERS",
     "Task",
     "TaskOutput",
+    "check_parameters",
     "curves_csv",
     "execute_task",
     "npz_bytes",
@@ -54,10 +57,24 @@ __all__ = [
 
 #: Trainers by name: where each one's function lives, ``"module:function"``.
 TRAINERS: dict[str, str] = {
+    "hrl": "mazesim.distributed.hrl_trainers:train_hrl",
+    "baseline": "mazesim.distributed.hrl_trainers:train_baseline",
     "flat-q": "mazesim.distributed.flat_q:train",
 }
 #: What ``trainer = "auto"`` picks: the first of these that is installed.
 AUTO_ORDER: tuple[str, ...] = ("hrl", "baseline", "flat-q")
+
+#: Parameters a trainer has no use for: a setting of that trainer must leave them out (``None``).
+UNUSED_PARAMETERS: dict[str, tuple[str, ...]] = {
+    "hrl": ("collision_penalty",),
+    "baseline": ("higher_episodes", "learning_rate", "epsilon", "discount", "collision_penalty"),
+    "flat-q": ("higher_episodes",),
+}
+#: Values a trainer cannot run without.
+_REQUIRED_VALUES: dict[str, dict[str, Any]] = {
+    "hrl": {"noise": True},
+    "baseline": {"noise": True},
+}
 
 #: The trained tables of a run, an ``.npz`` archive (no pickled objects).
 TABLES_FILE = "tables.npz"
@@ -117,6 +134,28 @@ def resolve_trainer(name: str) -> str:
     return name
 
 
+def check_parameters(params: Mapping[str, Any], where: str = "grid") -> None:
+    """Refuses a setting that sets a parameter its trainer has no use for, or a value it cannot
+    run with (see :data:`UNUSED_PARAMETERS`); trainers not listed there take any setting.
+
+    Raises:
+        InvalidArgumentError: Naming the parameter and the trainer.
+    """
+    trainer = str(params.get("trainer"))
+    for name in UNUSED_PARAMETERS.get(trainer, ()):
+        if params.get(name) is not None:
+            raise InvalidArgumentError(
+                f"{where}.{name}: trainer {trainer!r} does not use it; expected it left out, "
+                f"found {params[name]!r}"
+            )
+    for name, value in _REQUIRED_VALUES.get(trainer, {}).items():
+        if params.get(name) != value:
+            raise InvalidArgumentError(
+                f"{where}.{name}: trainer {trainer!r} runs with {name} = "
+                f"{json.dumps(value)} only, found {json.dumps(params.get(name))}"
+            )
+
+
 def npz_bytes(arrays: Mapping[str, npt.ArrayLike]) -> bytes:
     """An ``.npz`` archive of the arrays, the same bytes for the same arrays.
 
@@ -167,6 +206,7 @@ def train_and_evaluate(setting: Setting, threads: int = 1) -> TaskOutput:
     trainer = _trainer_function(name) if name in TRAINERS else None
     if trainer is None:
         raise UnknownNameError(f"trainer {name!r} is not installed on {socket.gethostname()}")
+    check_parameters(setting.params, f"setting {setting.id}")
     run = trainer(setting, threads)
     evaluation = run["evaluation"]
     result = {

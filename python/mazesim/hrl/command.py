@@ -4,12 +4,14 @@
 the navigator into ``--out``; ``--flat`` trains the flat baseline instead, for the same budget.
 ``mazesim eval`` drives greedy episodes with a saved navigator (by default the one shipped for
 seed-maze), prints what it measured (or, with ``--json``, one JSON object), and can write the
-per-step trace of the first episode (``--trace``) and its trajectories (``--plot``).
+per-step trace of the first episode (``--trace``) and its trajectories (``--plot``); with
+``--address`` it spreads the episodes over a Ray cluster, or a local Ray instance (``local``).
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import math
 import sys
@@ -201,6 +203,15 @@ def register(commands: Any) -> None:
         metavar="FILE",
         help="draw the first episodes' trajectories on the maze into a PNG (Fig. 4.6 / 4.8)",
     )
+    evaluate.add_argument(
+        "--address",
+        default=None,
+        metavar="ADDR",
+        help="spread the episodes over Ray: 'local' starts a Ray instance on this machine for "
+        "the evaluation; 'auto', HOST:6379 or ray://HOST:10001 joins a running cluster (every "
+        "machine needs the same mazesim and 'pip install mazesim[ray]'). The results are the "
+        "same as without it (default: no Ray, every episode in this process)",
+    )
     evaluate.set_defaults(run=lambda args: run_eval(args, sys.stdout))
 
 
@@ -258,16 +269,22 @@ def run_eval(args: argparse.Namespace, out: TextIO) -> int:
         per_world = args.episodes
         label = worlds[0].name
     sources = list(EVENT_SOURCES) if args.events == "both" else [args.events]
-    report = evaluate_navigator(
-        policy,
-        worlds,
-        per_world,
-        seed=args.seed,
-        sources=sources,
-        max_steps=args.max_steps,
-        trace_path=args.trace,
-        plot_path=args.plot,
-    )
+    with contextlib.ExitStack() as ray:
+        if args.address is not None:
+            from mazesim.distributed.cluster import ray_session
+
+            ray.enter_context(ray_session(args.address))  # one Ray session for every source
+        report = evaluate_navigator(
+            policy,
+            worlds,
+            per_world,
+            seed=args.seed,
+            sources=sources,
+            max_steps=args.max_steps,
+            trace_path=args.trace,
+            plot_path=args.plot,
+            ray_address=args.address,
+        )
     if args.json:
         first = report.summaries[sources[0]]
         values: dict[str, Any] = first.as_json()

@@ -12,10 +12,16 @@ the simulator counts) per episode, and the share of episodes without any; the co
 the episodes that arrived, and their ratio to the steps of the shortest path at cruise speed
 (:func:`mazesim.hrl.navigation.shortest_path_steps`); and which sub-task the higher level chose
 at each checkpoint event.
+
+With ``ray_address``, :func:`evaluate_navigator` spreads the episodes over Ray workers
+(:mod:`mazesim.distributed.hrl_episodes`): the higher level of an unseen world is trained once,
+here, and its tables shipped to the workers; every episode ends as it would here, so the summary
+is the same with Ray or without.
 """
 
 from __future__ import annotations
 
+import functools
 import math
 import os
 from collections import Counter
@@ -198,6 +204,7 @@ def evaluate(
     navigator = make_navigator(world_of_env)
     evaluation = Evaluation(summary=_summarise([], [1.0], events), results=[])
     paths: dict[int, list[tuple[float, float]]] = {}
+    ended: set[int] = set()
     marks = evaluation.marks
     lines = evaluation.trace
 
@@ -207,8 +214,12 @@ def evaluate(
         arrived: npt.NDArray[np.bool_],
         out_of_time: npt.NDArray[np.bool_],
     ) -> None:
+        if not record_paths and not trace:
+            return
         record = navigator.record
-        for env in np.flatnonzero(batch.episode < record_paths):
+        # A robot left without an episode is still stepped: record its episode's steps only.
+        running = ~np.isin(batch.episode, list(ended))
+        for env in np.flatnonzero(running & (batch.episode < record_paths)):
             episode = int(batch.episode[env])
             x, y, _ = (float(v) for v in batch.poses[env])
             paths.setdefault(episode, []).append((x, y))
@@ -217,12 +228,13 @@ def evaluate(
                     (x, y, int(record.event[env]), int(record.chosen[env]))
                 )
         if trace:
-            for env in np.flatnonzero(batch.episode == 0):
+            for env in np.flatnonzero(running & (batch.episode == 0)):
                 lines.append(_trace_line(batch, record, int(env)))
                 if arrived[env]:
                     lines.append(f"# goal reached after {int(batch.episode_steps[env])} steps")
                 elif out_of_time[env]:
                     lines.append(f"# out of time after {int(batch.episode_steps[env])} steps")
+        ended.update(int(episode) for episode in batch.episode[running & (arrived | out_of_time)])
 
     def decisions_of() -> tuple[npt.NDArray[np.int64], npt.NDArray[np.int64]]:
         robots = np.flatnonzero(navigator.record.chosen >= 0)
@@ -257,12 +269,22 @@ def evaluate_navigator(
     plot_path: str | os.PathLike[str] | None = None,
     plot_episodes: int = 3,
     threads: int = 0,
+    ray_address: str | None = None,
 ) -> Report:
     """Evaluates a saved navigator with checkpoint events from each source, writing the trace
     and the picture of the first source's episodes when asked.
 
+    Args:
+        ray_address: ``None``: run every episode in this process. ``"local"``: spread them over
+            a Ray instance started on this machine for the evaluation; any other value: over the
+            Ray cluster at that address (``"auto"``, ``"HOST:6379"``, ``"ray://HOST:10001"``).
+            The trace and the picture's episodes are run here as well. Each source starts
+            its own local instance unless Ray is up already (:func:`run_eval
+            <mazesim.hrl.command.run_eval>` keeps one up for all of them).
+
     Raises:
         PolicyFormatError: A flat navigator asked to drive a world it did not learn.
+        MissingDependencyError: ``ray_address`` without Ray installed.
     """
     adapted = False
     make_navigator: NavigatorFactory
@@ -287,9 +309,14 @@ def evaluate_navigator(
 
     summaries: dict[str, Summary] = {}
     evaluations: dict[str, Evaluation] = {}
+    run: Callable[..., Evaluation] = evaluate
+    if ray_address is not None:
+        run = functools.partial(
+            _evaluate_on_ray, ray_address, policy, None if policy.kind == "flat" else level
+        )
     for place, source in enumerate(sources):
         first = place == 0
-        evaluation = evaluate(
+        evaluation = run(
             make_navigator,
             worlds,
             episodes_per_world,
@@ -326,6 +353,46 @@ def evaluate_navigator(
         )
         written.append(str(plot_path))
     return Report(summaries, evaluations, adapted, written)
+
+
+def _evaluate_on_ray(
+    address: str,
+    policy: TrainedPolicy,
+    level: HigherLevel | None,
+    make_navigator: NavigatorFactory,
+    worlds: Sequence[World],
+    episodes_per_world: int,
+    **options: Any,
+) -> Evaluation:
+    """:func:`evaluate` with its episodes spread over Ray (the session that is up, else one at
+    ``address``); the episodes to record for the trace and the picture run here as well."""
+    from mazesim.distributed.episodes import evaluate_episodes
+    from mazesim.distributed.hrl_episodes import NavigatorEpisodes
+
+    if level is None:
+        ids: list[list[int]] = [list(policy.checkpoint_ids)]
+    else:
+        ids = level.checkpoint_ids
+    chunks = NavigatorEpisodes(
+        kind=policy.kind,
+        world_tomls=tuple(world.to_toml() for world in worlds),
+        episodes_per_world=episodes_per_world,
+        seed=options["seed"],
+        events=options["events"],
+        max_steps=options["max_steps"],
+        checkpoint_ids=tuple(tuple(world_ids) for world_ids in ids),
+        lower_q=policy.lower_q if level is not None else None,
+        higher_q=level.q if level is not None else None,
+        flat_q=policy.flat_q if level is None else None,
+    )
+    results = chunks.results(evaluate_episodes(chunks, chunks.episodes, address=address))
+    shortest = [shortest_path_steps(world) for world in worlds]
+    evaluation = Evaluation(_summarise(results, shortest, options["events"]), results)
+    recorded = max(options["record_paths"], 1 if options["trace"] else 0)
+    if recorded:
+        local = evaluate(make_navigator, worlds[:1], min(episodes_per_world, recorded), **options)
+        evaluation.paths, evaluation.marks, evaluation.trace = local.paths, local.marks, local.trace
+    return evaluation
 
 
 def _trace_line(batch: NavigationBatch, record: StepRecord, env: int) -> str:

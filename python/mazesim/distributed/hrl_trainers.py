@@ -1,0 +1,269 @@
+"""The sweep's trainers ``hrl`` and ``baseline``: mazesim's hierarchical navigator and its flat
+baseline, trained and evaluated for one setting.
+
+``hrl`` runs the two stages of :func:`mazesim.hrl.train.train` without its files and progress
+bar: the lower level's four sub-tasks on the pool of generated 5 x 5 mazes
+(:class:`mazesim.hrl.lower.LowerTrainer`), then the higher level on the setting's world
+(:func:`mazesim.hrl.episodes.train_higher`), then greedy episodes there
+(:func:`mazesim.hrl.evaluate.evaluate`). The setting maps onto it as follows:
+
+- ``world`` / ``maze_size``, ``maze_seed``, ``loops``: the world the higher level learns and the
+  navigator is evaluated in (it needs a cell maze and a goal);
+- ``envs``, ``steps``: the lower level's robots and control steps per robot, in rounds of at most
+  500 steps (:attr:`mazesim.hrl.lower.LowerSettings.round_steps`) of equal length, so the
+  budget is ``envs x steps`` env-steps rounded up to whole rounds;
+- ``learning_rate``, ``epsilon``, ``discount``: the lower level's first learning rate of a
+  state-action pair, first-round exploration and gamma (:data:`HRL_DEFAULTS` when left out);
+- ``higher_episodes``: the higher level's training episodes; ``episode_steps``: control steps
+  after which a higher-level or evaluation episode fails;
+- ``eval_episodes``: greedy evaluation episodes; ``seed``: everything random.
+
+``baseline`` trains :func:`mazesim.hrl.baseline.train_flat` on the setting's world for ``envs x
+steps`` env-steps with ``envs`` robots and evaluates it the same way; its own schedule fixes its
+learning rate, exploration and discount.
+
+Both are seeded: the tables depend on the setting alone, not on the thread count or the machine.
+Evaluation episodes draw their start jitter and sensor noise from :func:`evaluation_seed`, a
+stream of the seed that no training episode uses. ``mean_steps`` in the result is over all
+evaluation episodes (an episode that fails counts its ``episode_steps``), as for ``flat-q``.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+import numpy.typing as npt
+
+from mazesim._core import World
+from mazesim.errors import InvalidArgumentError
+from mazesim.hrl.episodes import EpisodeResult, HigherTraining, train_higher
+from mazesim.hrl.evaluate import evaluate
+from mazesim.hrl.lower import LowerSettings, LowerTrainer
+from mazesim.hrl.mazes import checkpoint_ids
+from mazesim.hrl.navigation import DEFAULT_MAX_STEPS
+from mazesim.hrl.qlearning import LearningRate
+from mazesim.hrl.train import TrainSettings
+
+if TYPE_CHECKING:
+    from mazesim.distributed.config import Setting
+
+__all__ = ["CURVE_POINTS", "HRL_DEFAULTS", "evaluation_seed", "train_baseline", "train_hrl"]
+
+_LOWER = LowerSettings()
+_TRAIN = TrainSettings()
+#: What ``hrl`` uses for the hyperparameters a setting leaves out (those of ``mazesim train``).
+HRL_DEFAULTS: dict[str, Any] = {
+    "learning_rate": _LOWER.rate.initial,
+    "epsilon": _LOWER.epsilon_start,
+    "discount": _LOWER.gamma,
+    "higher_episodes": _TRAIN.higher_episodes,
+    "episode_steps": DEFAULT_MAX_STEPS,
+}
+#: Points of a curve over training episodes (windows of nearly equal numbers of episodes).
+CURVE_POINTS = 20
+_STAGE_LOWER, _STAGE_HIGHER = 1, 2
+
+
+def evaluation_seed(seed: int) -> int:
+    """The seed of a setting's evaluation episodes: a stream of ``seed`` of its own."""
+    return int(np.random.SeedSequence([seed, 0x6576616C]).generate_state(1, np.uint64)[0])
+
+
+def _maze_world(setting: Setting, trainer: str) -> World:
+    world = setting.world()
+    if world.goal is None or world.cell_maze() is None:
+        raise InvalidArgumentError(
+            f"setting {setting.id}: trainer {trainer!r} needs a world with a [grid] maze and a "
+            f"goal; {world.name!r} has {'no goal' if world.goal is None else 'no cell maze'}"
+        )
+    return world
+
+
+def _value(setting: Setting, name: str) -> Any:
+    value = setting.params.get(name)
+    return HRL_DEFAULTS[name] if value is None else value
+
+
+def _lower_settings(setting: Setting) -> LowerSettings:
+    """The lower level's settings: ``steps`` in equal rounds of at most 500 steps."""
+    steps = int(setting.params["steps"])
+    rounds = math.ceil(steps / _LOWER.round_steps)
+    round_steps = math.ceil(steps / rounds)
+    envs = int(setting.params["envs"])
+    initial = float(_value(setting, "learning_rate"))
+    return LowerSettings(
+        num_envs=envs,
+        total_steps=rounds * round_steps * envs,
+        round_steps=round_steps,
+        seed=setting.seed,
+        gamma=float(_value(setting, "discount")),
+        epsilon_start=float(_value(setting, "epsilon")),
+        rate=LearningRate(
+            initial=initial, floor=min(_LOWER.rate.floor, initial), power=_LOWER.rate.power
+        ),
+    )
+
+
+def _evaluation(results: Sequence[EpisodeResult]) -> dict[str, float]:
+    return {
+        "success_rate": float(np.mean([r.arrived for r in results])),
+        "mean_collisions": float(np.mean([r.bumps for r in results])),
+        "mean_steps": float(np.mean([r.steps for r in results])),
+    }
+
+
+def _windows(count: int, points: int) -> list[tuple[int, int]]:
+    """Up to ``points`` consecutive windows of nearly equal length covering ``range(count)``."""
+    points = min(points, count)
+    bounds = [count * index // points for index in range(points + 1)] if points else [0]
+    return list(zip(bounds[:-1], bounds[1:]))
+
+
+def train_hrl(setting: Setting, threads: int = 1) -> dict[str, Any]:
+    """Trains the hierarchical navigator for one setting and evaluates it greedily.
+
+    Args:
+        setting: The setting (see the module for how its parameters are used).
+        threads: Threads of the batch engine (the result does not depend on them).
+
+    Returns:
+        A dict with ``tables`` (``lower_q`` and ``lower_visits``, stacked as
+        :class:`mazesim.hrl.lower.LowerTables`; ``higher_q``, ``higher_visits`` and the world's
+        ``checkpoint_ids``), ``curves`` (one row per lower-level round, ``stage`` 1, then one per
+        window of higher-level episodes, ``stage`` 2: cumulative ``env_steps``,
+        ``success_rate`` of the door sub-tasks or of reaching the goal, ``contact_share``, and
+        the lower level's ``corridor_speed``), ``evaluation``, ``env_steps`` (both stages),
+        ``eval_env_steps``, ``training_seconds`` and ``evaluation_seconds``.
+
+    Raises:
+        InvalidArgumentError: The world has no cell maze or no goal.
+    """
+    started = time.perf_counter()
+    world = _maze_world(setting, "hrl")
+    lower = _lower_settings(setting)
+    trainer = LowerTrainer(lower, threads=threads)
+    curve: dict[str, list[float]] = {
+        name: []
+        for name in ("stage", "env_steps", "success_rate", "contact_share", "corridor_speed")
+    }
+    env_steps = 0
+    for round_index in range(lower.rounds):
+        stats = trainer.run_round(round_index)
+        env_steps += stats.env_steps
+        curve["stage"].append(_STAGE_LOWER)
+        curve["env_steps"].append(env_steps)
+        curve["success_rate"].append(stats.door_success_rate())
+        curve["contact_share"].append(stats.contact_share)
+        curve["corridor_speed"].append(stats.corridor_speed)
+
+    episodes = int(_value(setting, "higher_episodes"))
+    max_steps = int(_value(setting, "episode_steps"))
+    higher = HigherTraining(
+        episodes_per_world=episodes,
+        envs_per_world=min(_TRAIN.higher_envs, episodes),
+        max_steps=max_steps,
+        seed=setting.seed,
+    )
+    lower_q = trainer.tables.q
+    level, results = train_higher(lower_q, [world], higher, threads=threads)
+    for first, end in _windows(len(results), CURVE_POINTS):
+        window = results[first:end]
+        steps = sum(r.steps for r in window)
+        env_steps += steps
+        curve["stage"].append(_STAGE_HIGHER)
+        curve["env_steps"].append(env_steps)
+        curve["success_rate"].append(float(np.mean([r.arrived for r in window])))
+        curve["contact_share"].append(sum(r.contact_steps for r in window) / max(1, steps))
+        curve["corridor_speed"].append(math.nan)
+    training_seconds = time.perf_counter() - started
+
+    started = time.perf_counter()
+    from mazesim.hrl.policy import HierarchicalPolicy
+
+    def make_navigator(world_of_env: npt.NDArray[np.int64]) -> HierarchicalPolicy:
+        return HierarchicalPolicy(lower_q, level, world_of_env)
+
+    evaluation = evaluate(
+        make_navigator,
+        [world],
+        int(setting.params["eval_episodes"]),
+        seed=evaluation_seed(setting.seed),
+        max_steps=max_steps,
+        threads=threads,
+    )
+    evaluation_seconds = time.perf_counter() - started
+    return {
+        "tables": {
+            "lower_q": lower_q,
+            "lower_visits": trainer.tables.visits,
+            "higher_q": level.q[0],
+            "higher_visits": level.visits[0],
+            "checkpoint_ids": np.array(level.checkpoint_ids[0], dtype=np.int64),
+        },
+        "curves": {name: np.asarray(values) for name, values in curve.items()},
+        "evaluation": _evaluation(evaluation.results),
+        "env_steps": env_steps,
+        "eval_env_steps": int(sum(r.steps for r in evaluation.results)),
+        "training_seconds": training_seconds,
+        "evaluation_seconds": evaluation_seconds,
+    }
+
+
+def train_baseline(setting: Setting, threads: int = 1) -> dict[str, Any]:
+    """Trains the flat baseline of :mod:`mazesim.hrl.baseline` for one setting and evaluates it.
+
+    Args:
+        setting: The setting: its world, ``envs``, ``steps`` (``envs x steps`` env-steps),
+            ``episode_steps`` (of the evaluation; training episodes last at most 4000 steps),
+            ``eval_episodes`` and ``seed``.
+        threads: Threads of the batch engine (the result does not depend on them).
+
+    Returns:
+        A dict with ``tables`` (``flat_q`` and the world's ``checkpoint_ids``), ``curves`` (per
+        window of finished training episodes: cumulative ``episodes`` and their
+        ``success_rate``), ``evaluation``, ``env_steps``, ``eval_env_steps``,
+        ``training_seconds`` and ``evaluation_seconds``.
+
+    Raises:
+        InvalidArgumentError: The world has no cell maze or no goal.
+    """
+    from mazesim.hrl.baseline import FlatNavigator, train_flat
+
+    started = time.perf_counter()
+    world = _maze_world(setting, "baseline")
+    envs, steps = int(setting.params["envs"]), int(setting.params["steps"])
+    q, outcomes = train_flat(world, envs * steps, num_envs=envs, seed=setting.seed, threads=threads)
+    curve: dict[str, list[float]] = {"episodes": [], "success_rate": []}
+    for first, end in _windows(len(outcomes), CURVE_POINTS):
+        curve["episodes"].append(end)
+        curve["success_rate"].append(float(np.mean(outcomes[first:end])))
+    training_seconds = time.perf_counter() - started
+
+    started = time.perf_counter()
+    ids = checkpoint_ids(world)
+
+    def make_navigator(world_of_env: npt.NDArray[np.int64]) -> FlatNavigator:
+        return FlatNavigator(q, ids, world_of_env.size)
+
+    evaluation = evaluate(
+        make_navigator,
+        [world],
+        int(setting.params["eval_episodes"]),
+        seed=evaluation_seed(setting.seed),
+        max_steps=int(_value(setting, "episode_steps")),
+        threads=threads,
+    )
+    evaluation_seconds = time.perf_counter() - started
+    return {
+        "tables": {"flat_q": q, "checkpoint_ids": np.array(sorted(ids), dtype=np.int64)},
+        "curves": {name: np.asarray(values) for name, values in curve.items()},
+        "evaluation": _evaluation(evaluation.results),
+        "env_steps": envs * steps,
+        "eval_env_steps": int(sum(r.steps for r in evaluation.results)),
+        "training_seconds": training_seconds,
+        "evaluation_seconds": evaluation_seconds,
+    }
