@@ -43,8 +43,9 @@ def generate_maze(
     checkpoints: bool = True,
     floor_reflectance: float = 0.36,
 ) -> World:
-    """A seeded maze: perfect (loops=0) or with a share of extra openings, barcode checkpoints
-    before its junctions, the goal in the cell farthest from the start."""
+    """A seeded maze: perfect (loops=0) or with a share of extra openings, a barcode checkpoint on
+    every way into its junctions (while the 12 codes last), the goal in the cell farthest from
+    the start."""
 
 def default_codes() -> list[str]:
     """The default five-bit barcode book (12 codes)."""

@@ -80,7 +80,9 @@ class DoorApproach:
         door: The door cell.
         heading: The direction from ``cell`` to ``door``.
         straight: ``cell`` is open only towards the door and straight behind (or a dead end), so
-            nothing opens on its sides: a checkpoint could be painted in it.
+            nothing opens on its sides: the generator paints this approach's checkpoint in its
+            middle (otherwise, after a corner or from a neighbouring door, across the edge
+            between ``cell`` and ``door``).
     """
 
     cell: tuple[int, int]
@@ -196,6 +198,16 @@ class CellMaze:
                 straight = set(open_sides) <= {heading, side}
                 approaches.append(DoorApproach(cell, door, heading, straight))
         return approaches
+
+    def code_centre(self, approach: DoorApproach) -> tuple[float, float]:
+        """Where the generator paints the middle of an approach's code: the middle of a straight
+        approach cell, else the middle of the edge between the cell and the door."""
+        x, y = self.center(approach.cell)
+        if approach.straight:
+            return x, y
+        shift = self.cell_size / 2.0
+        angle = self.heading_of(approach.heading)
+        return x + shift * round(math.cos(angle)), y + shift * round(math.sin(angle))
 
     def heading_of(self, direction: int) -> float:
         """The heading in radians of a direction number."""
