@@ -27,6 +27,8 @@ pub struct Body {
     world: PhysicsWorld,
     robot: RigidBodyHandle,
     pose: [f32; 3],
+    /// Sine and cosine of `pose[2]`.
+    heading: [f32; 2],
     dt: f32,
     /// The rapier body lags behind `pose` after free-flight steps.
     stale: bool,
@@ -84,10 +86,11 @@ impl Body {
             world,
             robot,
             pose,
+            heading: [0.0, 1.0],
             dt,
             stale: false,
         };
-        body.pose = body.rapier_pose();
+        body.set_pose(body.rapier_pose());
         body
     }
 
@@ -101,13 +104,13 @@ impl Body {
     /// `clearance` is the current gap between the body and the nearest wall.
     pub fn step(&mut self, linear: f32, angular: f32, clearance: f32) {
         let [x, y, yaw] = self.pose;
-        let (s, c) = yaw.sin_cos();
+        let [s, c] = self.heading;
         if !self.near_wall(linear, clearance) {
-            self.pose = [
+            self.set_pose([
                 x + c * linear * self.dt,
                 y + s * linear * self.dt,
                 wrap_angle(yaw + angular * self.dt),
-            ];
+            ]);
             self.stale = true;
             return;
         }
@@ -119,7 +122,13 @@ impl Body {
         body.set_linvel(Vector::new(c * linear, s * linear), true);
         body.set_angvel(angular, true);
         self.world.step();
-        self.pose = self.rapier_pose();
+        self.set_pose(self.rapier_pose());
+    }
+
+    fn set_pose(&mut self, pose: [f32; 3]) {
+        let (s, c) = pose[2].sin_cos();
+        self.pose = pose;
+        self.heading = [s, c];
     }
 
     fn rapier_pose(&self) -> [f32; 3] {
@@ -131,5 +140,10 @@ impl Body {
     /// Current pose (x, y, yaw in (-pi, pi]).
     pub fn pose(&self) -> [f32; 3] {
         self.pose
+    }
+
+    /// Sine and cosine of the current yaw (computed once per step, for every user of the pose).
+    pub fn heading(&self) -> [f32; 2] {
+        self.heading
     }
 }

@@ -10,12 +10,13 @@
 
 use crate::rng::Rng;
 use crate::robot::SensorModel;
-use crate::world::{FloorPaint, WallIndex};
+use crate::world::{FloorPaint, RayHit, WallIndex};
 
 /// Samples per side of the ground sensor's spot.
 const SPOT_SAMPLES: usize = 3;
 
 /// Applies the model's relative Gaussian noise to a table value.
+#[inline]
 fn noisy(value: f64, sigma: f64, rng: Option<&mut Rng>) -> f32 {
     let v = match rng {
         Some(r) if sigma > 0.0 => value * (1.0 + sigma * r.normal()),
@@ -32,10 +33,16 @@ pub fn read_infrared(
     dir: [f32; 2],
     rng: Option<&mut Rng>,
 ) -> f32 {
-    let range = model.table.max_input();
-    let x = match walls.cast_ray(origin, dir, range as f32) {
+    let hit = walls.cast_ray(origin, dir, model.table.max_input() as f32);
+    infrared_reading(model, hit, rng)
+}
+
+/// The infra-red reading for what the sensor's ray (of the table's range) met.
+#[inline]
+pub fn infrared_reading(model: &SensorModel, hit: Option<RayHit>, rng: Option<&mut Rng>) -> f32 {
+    let x = match hit {
         Some(hit) => hit.distance as f64 / hit.reflectance as f64,
-        None => range,
+        None => model.table.max_input(),
     };
     let (value, sigma) = model.table.eval(x);
     noisy(value, sigma, rng)
