@@ -7,7 +7,7 @@ use crate::error::{Error, Result};
 use crate::physics::Body;
 use crate::rng::Rng;
 use crate::robot::RobotProfile;
-use crate::sensors::{infrared_reading, read_ground};
+use crate::sensors::{ground_background, infrared_reading, read_ground_with};
 use crate::world::{NearbyWalls, World};
 
 /// A gap to a wall below this (metres) counts as touching it.
@@ -66,6 +66,8 @@ pub struct Simulator {
     ray_mounts: Vec<[f32; 5]>,
     /// How far from the robot's centre a sensor ray or the clearance search can reach, metres.
     reach: f32,
+    /// Per ground sensor: its table value and relative sigma over the bare floor of the world.
+    ground_background: Vec<(f64, f64)>,
     /// The walls near the robot at its last sensor reading (kept to reuse its storage).
     near: NearbyWalls,
     time: f64,
@@ -131,6 +133,11 @@ impl Simulator {
                 })
                 .collect(),
             near: NearbyWalls::default(),
+            ground_background: robot
+                .ground_sensors
+                .iter()
+                .map(|g| ground_background(&g.model, world.floor()))
+                .collect(),
             ground_readings: vec![0.0; robot.ground_sensors.len()],
             world,
             robot,
@@ -326,7 +333,9 @@ impl Simulator {
             let [px, py] = sensor.position;
             let at = [x as f64 + cd * px - sd * py, y as f64 + sd * px + cd * py];
             let rng = noise.then_some(&mut self.rng);
-            self.ground_readings[i] = read_ground(&sensor.model, world.floor(), at, [cd, sd], rng);
+            let background = self.ground_background[i];
+            self.ground_readings[i] =
+                read_ground_with(&sensor.model, world.floor(), at, [cd, sd], background, rng);
         }
     }
 
