@@ -16,6 +16,12 @@ const LENGTH_UNIT: f32 = 0.01;
 /// wall before the body reaches it; otherwise it only pushes the body out after it has sunk in.
 const PREDICTION_DISTANCE: f32 = 0.01;
 
+/// Rapier takes over from free flight in any step that could end within this gap of a wall
+/// (metres). It is below the prediction distance, so rapier's contact pipeline still meets every
+/// wall from further out than the body travels in a step; a step that cannot come this close is
+/// one in which no contact constraint could act, and free flight moves the body as rapier would.
+const FREE_FLIGHT_MARGIN: f32 = 0.002;
+
 /// The physical state of one robot among its walls.
 ///
 /// Far from every wall the body moves in free flight, integrated here exactly as rapier integrates
@@ -94,10 +100,10 @@ impl Body {
         body
     }
 
-    /// Whether a step of `linear` m/s could bring the body within the contact prediction distance
-    /// of a wall, given its current `clearance` (gap to the nearest wall).
+    /// Whether a step of `linear` m/s could bring the body within `FREE_FLIGHT_MARGIN` of a wall,
+    /// given its current `clearance` (gap to the nearest wall).
     fn near_wall(&self, linear: f32, clearance: f32) -> bool {
-        clearance - linear.abs() * self.dt <= PREDICTION_DISTANCE
+        clearance - linear.abs() * self.dt <= FREE_FLIGHT_MARGIN
     }
 
     /// Advances one physics step with the body driven at `linear` m/s forward and `angular` rad/s;
