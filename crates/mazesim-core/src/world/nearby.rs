@@ -38,22 +38,26 @@ impl Neighbourhoods {
         let rows = (h / side) as usize + 1;
         let origin = bounds.min;
         let mut cells: Vec<Vec<u32>> = vec![Vec::new(); cols * rows];
-        let cell = |v: f32, o: f64| ((v as f64 - o) / side).floor() as i64;
+        // A point's square meets the box only if the point's cell lies at most one cell beyond
+        // the cells the box spans; 1 mm more covers rounding (a wall too many costs a box test,
+        // one missing would be wrong).
+        let cell = |v: f64, o: f64| ((v - o) / side).floor() as i64;
+        let margin = 1e-3;
         for (i, b) in boxes.iter().enumerate() {
-            // Every cell whose 3 x 3 block meets the box, and a cell more on each side for
-            // rounding: extra walls cost a box test, missing ones would be wrong.
-            let c0 = (cell(b[0], origin[0]) - 2).max(0) as usize;
-            let r0 = (cell(b[1], origin[1]) - 2).max(0) as usize;
-            let c1 = ((cell(b[2], origin[0]) + 2).max(0) as usize).min(cols - 1);
-            let r1 = ((cell(b[3], origin[1]) + 2).max(0) as usize).min(rows - 1);
+            let [x0, y0, x1, y1] = b.map(|v| v as f64);
+            let c0 = (cell(x0 - margin, origin[0]) - 1).max(0) as usize;
+            let r0 = (cell(y0 - margin, origin[1]) - 1).max(0) as usize;
+            let c1 = ((cell(x1 + margin, origin[0]) + 1).max(0) as usize).min(cols - 1);
+            let r1 = ((cell(y1 + margin, origin[1]) + 1).max(0) as usize).min(rows - 1);
             for row in r0..=r1 {
                 for col in c0..=c1 {
                     cells[row * cols + col].push(i as u32);
                 }
             }
         }
-        let mut start = vec![0u32];
-        let mut walls = Vec::new();
+        let mut start = Vec::with_capacity(cells.len() + 1);
+        start.push(0u32);
+        let mut walls = Vec::with_capacity(cells.iter().map(Vec::len).sum());
         for c in cells {
             walls.extend(c);
             start.push(walls.len() as u32);
