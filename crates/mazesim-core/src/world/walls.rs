@@ -233,7 +233,8 @@ impl WallIndex {
         self.shapes.is_empty()
     }
 
-    /// The nearest wall along the ray from `origin` in the unit direction `dir`, up to `max_distance`.
+    /// The nearest wall along the ray from `origin` in the unit direction `dir`, up to `max_distance`
+    /// (of walls met at the same distance, the one of lowest index).
     pub fn cast_ray(&self, origin: [f32; 2], dir: [f32; 2], max_distance: f32) -> Option<RayHit> {
         let end = [
             origin[0] + dir[0] * max_distance,
