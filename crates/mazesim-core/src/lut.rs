@@ -44,6 +44,7 @@ impl LookupTable {
     }
 
     /// Output and relative sigma at `x`, interpolated linearly, clamped outside the table.
+    #[inline]
     pub fn eval(&self, x: f64) -> (f64, f64) {
         let n = self.inputs.len();
         if x.is_nan() || x <= self.inputs[0] {

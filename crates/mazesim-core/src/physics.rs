@@ -16,6 +16,12 @@ const LENGTH_UNIT: f32 = 0.01;
 /// wall before the body reaches it; otherwise it only pushes the body out after it has sunk in.
 const PREDICTION_DISTANCE: f32 = 0.01;
 
+/// Rapier takes over from free flight in any step that could end within this gap of a wall
+/// (metres). It is below the prediction distance, so rapier's contact pipeline still meets every
+/// wall from further out than the body travels in a step; a step that cannot come this close is
+/// one in which no contact constraint could act, and free flight moves the body as rapier would.
+const FREE_FLIGHT_MARGIN: f32 = 0.002;
+
 /// The physical state of one robot among its walls.
 ///
 /// Far from every wall the body moves in free flight, integrated here exactly as rapier integrates
@@ -27,6 +33,8 @@ pub struct Body {
     world: PhysicsWorld,
     robot: RigidBodyHandle,
     pose: [f32; 3],
+    /// Sine and cosine of `pose[2]`.
+    heading: [f32; 2],
     dt: f32,
     /// The rapier body lags behind `pose` after free-flight steps.
     stale: bool,
@@ -84,30 +92,31 @@ impl Body {
             world,
             robot,
             pose,
+            heading: [0.0, 1.0],
             dt,
             stale: false,
         };
-        body.pose = body.rapier_pose();
+        body.set_pose(body.rapier_pose());
         body
     }
 
-    /// Whether a step of `linear` m/s could bring the body within the contact prediction distance
-    /// of a wall, given its current `clearance` (gap to the nearest wall).
+    /// Whether a step of `linear` m/s could bring the body within `FREE_FLIGHT_MARGIN` of a wall,
+    /// given its current `clearance` (gap to the nearest wall).
     fn near_wall(&self, linear: f32, clearance: f32) -> bool {
-        clearance - linear.abs() * self.dt <= PREDICTION_DISTANCE
+        clearance - linear.abs() * self.dt <= FREE_FLIGHT_MARGIN
     }
 
     /// Advances one physics step with the body driven at `linear` m/s forward and `angular` rad/s;
     /// `clearance` is the current gap between the body and the nearest wall.
     pub fn step(&mut self, linear: f32, angular: f32, clearance: f32) {
         let [x, y, yaw] = self.pose;
-        let (s, c) = yaw.sin_cos();
+        let [s, c] = self.heading;
         if !self.near_wall(linear, clearance) {
-            self.pose = [
+            self.set_pose([
                 x + c * linear * self.dt,
                 y + s * linear * self.dt,
                 wrap_angle(yaw + angular * self.dt),
-            ];
+            ]);
             self.stale = true;
             return;
         }
@@ -119,7 +128,13 @@ impl Body {
         body.set_linvel(Vector::new(c * linear, s * linear), true);
         body.set_angvel(angular, true);
         self.world.step();
-        self.pose = self.rapier_pose();
+        self.set_pose(self.rapier_pose());
+    }
+
+    fn set_pose(&mut self, pose: [f32; 3]) {
+        let (s, c) = pose[2].sin_cos();
+        self.pose = pose;
+        self.heading = [s, c];
     }
 
     fn rapier_pose(&self) -> [f32; 3] {
@@ -131,5 +146,10 @@ impl Body {
     /// Current pose (x, y, yaw in (-pi, pi]).
     pub fn pose(&self) -> [f32; 3] {
         self.pose
+    }
+
+    /// Sine and cosine of the current yaw (computed once per step, for every user of the pose).
+    pub fn heading(&self) -> [f32; 2] {
+        self.heading
     }
 }

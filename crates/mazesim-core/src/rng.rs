@@ -61,10 +61,16 @@ impl Rng {
 
     /// Standard normal sample (Marsaglia's polar method: each accepted pair gives two samples,
     /// the second kept for the next call).
+    #[inline]
     pub fn normal(&mut self) -> f64 {
-        if let Some(bits) = self.spare_normal.take() {
-            return f64::from_bits(bits);
+        match self.spare_normal.take() {
+            Some(bits) => f64::from_bits(bits),
+            None => self.normal_pair(),
         }
+    }
+
+    /// Draws a pair of normal samples: returns the first, keeps the second.
+    fn normal_pair(&mut self) -> f64 {
         loop {
             let u = 2.0 * self.uniform() - 1.0;
             let v = 2.0 * self.uniform() - 1.0;

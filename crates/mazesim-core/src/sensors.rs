@@ -10,12 +10,13 @@
 
 use crate::rng::Rng;
 use crate::robot::SensorModel;
-use crate::world::{FloorPaint, WallIndex};
+use crate::world::{FloorPaint, RayHit, WallIndex};
 
 /// Samples per side of the ground sensor's spot.
 const SPOT_SAMPLES: usize = 3;
 
 /// Applies the model's relative Gaussian noise to a table value.
+#[inline]
 fn noisy(value: f64, sigma: f64, rng: Option<&mut Rng>) -> f32 {
     let v = match rng {
         Some(r) if sigma > 0.0 => value * (1.0 + sigma * r.normal()),
@@ -32,10 +33,16 @@ pub fn read_infrared(
     dir: [f32; 2],
     rng: Option<&mut Rng>,
 ) -> f32 {
-    let range = model.table.max_input();
-    let x = match walls.cast_ray(origin, dir, range as f32) {
+    let hit = walls.cast_ray(origin, dir, model.table.max_input() as f32);
+    infrared_reading(model, hit, rng)
+}
+
+/// The infra-red reading for what the sensor's ray (of the table's range) met.
+#[inline]
+pub fn infrared_reading(model: &SensorModel, hit: Option<RayHit>, rng: Option<&mut Rng>) -> f32 {
+    let x = match hit {
         Some(hit) => hit.distance as f64 / hit.reflectance as f64,
-        None => range,
+        None => model.table.max_input(),
     };
     let (value, sigma) = model.table.eval(x);
     noisy(value, sigma, rng)
@@ -87,6 +94,32 @@ pub fn read_ground(
     noisy(value, sigma, rng)
 }
 
+/// A ground sensor's table value and relative sigma over bare floor, for `read_ground_with`.
+pub fn ground_background(model: &SensorModel, floor: &FloorPaint) -> (f64, f64) {
+    model.table.eval(model.height / floor.background())
+}
+
+/// `read_ground`, with `background = ground_background(model, floor)` computed beforehand: where
+/// no paint is near, the reading needs no spot average and no table look-up.
+#[inline]
+pub fn read_ground_with(
+    model: &SensorModel,
+    floor: &FloorPaint,
+    at: [f64; 2],
+    axis: [f64; 2],
+    background: (f64, f64),
+    rng: Option<&mut Rng>,
+) -> f32 {
+    // With no region near `at`, every point of the spot reads the background.
+    let (value, sigma) = if floor.regions_near(at).is_empty() {
+        background
+    } else {
+        let f = spot_reflectance(model, floor, at, axis);
+        model.table.eval(model.height / f)
+    };
+    noisy(value, sigma, rng)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -114,6 +147,16 @@ mod tests {
         assert!((white - 855.625).abs() < 0.01, "{white}");
         assert!((black - 300.0).abs() < 1e-3, "{black}");
         assert!(edge > black + 10.0 && edge < white - 10.0, "{edge}");
+        let background = ground_background(model, &floor);
+        for k in 0..200 {
+            let at = [k as f64 * 0.01 - 0.5, 0.3 - k as f64 * 0.003];
+            let axis = [0.6, 0.8];
+            assert_eq!(
+                read_ground_with(model, &floor, at, axis, background, None),
+                read_ground(model, &floor, at, axis, None),
+                "at {at:?}"
+            );
+        }
     }
 
     #[test]

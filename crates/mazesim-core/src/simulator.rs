@@ -7,8 +7,8 @@ use crate::error::{Error, Result};
 use crate::physics::Body;
 use crate::rng::Rng;
 use crate::robot::RobotProfile;
-use crate::sensors::{read_ground, read_infrared};
-use crate::world::World;
+use crate::sensors::{ground_background, infrared_reading, read_ground_with};
+use crate::world::{NearbyWalls, World};
 
 /// A gap to a wall below this (metres) counts as touching it.
 pub const CONTACT_GAP: f32 = 2e-4;
@@ -16,6 +16,17 @@ pub const CONTACT_GAP: f32 = 2e-4;
 /// How far beyond the body the nearest wall is looked for (metres); farther counts as this far.
 /// It exceeds the contact prediction distance plus a step's travel, so free flight is decided right.
 const CLEARANCE_SEARCH: f32 = 0.03;
+
+/// How far from a robot's centre its sensor rays and the clearance search reach, metres, with a
+/// margin of 1 mm for rounding: the square of this half side around the robot holds them all.
+fn sensing_reach(robot: &RobotProfile) -> f32 {
+    let rays = robot.distance_sensors.iter().map(|d| {
+        let [px, py] = d.position;
+        (px * px + py * py).sqrt() + d.model.table.max_input()
+    });
+    let search = robot.body_radius + CLEARANCE_SEARCH as f64;
+    rays.fold(search, f64::max) as f32 + 1e-3
+}
 
 /// How a simulator is set up.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -49,6 +60,16 @@ pub struct Simulator {
     body: Body,
     rng: Rng,
     pose: [f32; 3],
+    /// Sine and cosine of the yaw.
+    heading: [f32; 2],
+    /// Per distance sensor: its ray in the robot frame (position, unit direction, length).
+    ray_mounts: Vec<[f32; 5]>,
+    /// How far from the robot's centre a sensor ray or the clearance search can reach, metres.
+    reach: f32,
+    /// Per ground sensor: its table value and relative sigma over the bare floor of the world.
+    ground_background: Vec<(f64, f64)>,
+    /// The walls near the robot at its last sensor reading (kept to reuse its storage).
+    near: NearbyWalls,
     time: f64,
     steps: u64,
     collisions: u64,
@@ -100,6 +121,23 @@ impl Simulator {
             last_crossing: 0,
             start_override: None,
             distance_readings: vec![0.0; robot.distance_sensors.len()],
+            reach: sensing_reach(&robot),
+            ray_mounts: robot
+                .distance_sensors
+                .iter()
+                .map(|d| {
+                    let [px, py] = d.position;
+                    let [dx, dy] = d.direction;
+                    let range = d.model.table.max_input();
+                    [px, py, dx, dy, range].map(|v| v as f32)
+                })
+                .collect(),
+            near: NearbyWalls::default(),
+            ground_background: robot
+                .ground_sensors
+                .iter()
+                .map(|g| ground_background(&g.model, world.floor()))
+                .collect(),
             ground_readings: vec![0.0; robot.ground_sensors.len()],
             world,
             robot,
@@ -109,6 +147,7 @@ impl Simulator {
             body,
             rng: Rng::new(config.seed),
             pose,
+            heading: [0.0, 1.0],
             time: 0.0,
             steps: 0,
             collisions: 0,
@@ -142,7 +181,7 @@ impl Simulator {
         self.wheel_angles = [0.0; 2];
         self.crossings.clear();
         self.last_crossing = 0;
-        self.read_sensors();
+        self.sense();
     }
 
     /// Sets the pose every later `reset` starts from (instead of the world's start).
@@ -164,7 +203,7 @@ impl Simulator {
             )));
         }
         self.place([x as f32, y as f32, yaw as f32]);
-        self.read_sensors();
+        self.sense();
         Ok(())
     }
 
@@ -176,6 +215,7 @@ impl Simulator {
             self.dt as f32,
         );
         self.pose = self.body.pose();
+        self.heading = self.body.heading();
         self.update_contact();
         self.colliding = self.touching;
         if let Some(at) = self.barcode_sensor_position() {
@@ -186,8 +226,8 @@ impl Simulator {
     /// World position of the barcode-reading ground sensor.
     fn barcode_sensor_position(&self) -> Option<[f64; 2]> {
         let sensor = &self.robot.ground_sensors[self.barcode_sensor?];
-        let [x, y, yaw] = self.pose.map(|v| v as f64);
-        let (s, c) = yaw.sin_cos();
+        let [x, y, _] = self.pose.map(|v| v as f64);
+        let [s, c] = self.heading.map(|v| v as f64);
         let [px, py] = sensor.position;
         Some([x + c * px - s * py, y + s * px + c * py])
     }
@@ -224,17 +264,23 @@ impl Simulator {
         let angular = r * (wr - wl) / self.robot.axle_length as f32;
         let mut any_contact = false;
         self.last_crossing = 0;
-        for _ in 0..self.physics_steps {
+        for k in 1..=self.physics_steps {
             let before = self.pose;
             self.body.step(linear, angular, self.clearance);
             self.pose = self.body.pose();
+            self.heading = self.body.heading();
             let dx = (self.pose[0] - before[0]) as f64;
             let dy = (self.pose[1] - before[1]) as f64;
             self.distance_travelled += (dx * dx + dy * dy).sqrt();
             self.wheel_angles[0] += wl as f64 * self.dt;
             self.wheel_angles[1] += wr as f64 * self.dt;
             let was_touching = self.touching;
-            self.update_contact();
+            if k < self.physics_steps {
+                self.update_contact();
+            } else {
+                // The last physics step: contact and every sensor together.
+                self.sense();
+            }
             if self.touching && !was_touching {
                 self.collisions += 1;
             }
@@ -252,30 +298,44 @@ impl Simulator {
         self.colliding = any_contact;
         self.steps += 1;
         self.time = self.steps as f64 * self.physics_steps as f64 * self.dt;
-        self.read_sensors();
         Ok(())
     }
 
-    fn read_sensors(&mut self) {
-        let [x, y, yaw] = self.pose;
-        let (s, c) = yaw.sin_cos();
+    /// Updates the clearance (as `update_contact`) and reads every sensor at the current pose. The
+    /// walls near the robot are gathered once, over a square holding every sensor ray and the
+    /// clearance search square, and all those queries run against them.
+    fn sense(&mut self) {
+        let [x, y, _] = self.pose;
+        let [s, c] = self.heading;
+        let robot = &*self.robot;
+        let world = &*self.world;
+        let r = robot.body_radius as f32;
+        let index = world.wall_index();
+        self.near.gather(index, [x, y], self.reach);
+        self.clearance = self
+            .near
+            .signed_distance(index, [x, y], r + CLEARANCE_SEARCH)
+            - r;
+        self.touching = self.clearance < CONTACT_GAP;
         let noise = self.config.noise;
-        for (i, sensor) in self.robot.distance_sensors.iter().enumerate() {
-            let [px, py] = [sensor.position[0] as f32, sensor.position[1] as f32];
+        let readings = self.distance_readings.iter_mut();
+        for ((reading, sensor), &[px, py, dx, dy, range]) in
+            readings.zip(&robot.distance_sensors).zip(&self.ray_mounts)
+        {
             let origin = [x + c * px - s * py, y + s * px + c * py];
-            let [dx, dy] = [sensor.direction[0] as f32, sensor.direction[1] as f32];
             let dir = [c * dx - s * dy, s * dx + c * dy];
+            let hit = self.near.cast_ray(index, origin, dir, range);
             let rng = noise.then_some(&mut self.rng);
-            self.distance_readings[i] =
-                read_infrared(&sensor.model, self.world.wall_index(), origin, dir, rng);
+            *reading = infrared_reading(&sensor.model, hit, rng);
         }
         let (sd, cd) = (s as f64, c as f64);
-        for (i, sensor) in self.robot.ground_sensors.iter().enumerate() {
+        for (i, sensor) in robot.ground_sensors.iter().enumerate() {
             let [px, py] = sensor.position;
             let at = [x as f64 + cd * px - sd * py, y as f64 + sd * px + cd * py];
             let rng = noise.then_some(&mut self.rng);
+            let background = self.ground_background[i];
             self.ground_readings[i] =
-                read_ground(&sensor.model, self.world.floor(), at, [cd, sd], rng);
+                read_ground_with(&sensor.model, world.floor(), at, [cd, sd], background, rng);
         }
     }
 

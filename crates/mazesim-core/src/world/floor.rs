@@ -38,6 +38,8 @@ pub const SPOT_MARGIN: f64 = 0.005;
 pub struct FloorPaint {
     background: f64,
     regions: Vec<PaintRegion>,
+    /// Per region: `shape.turn()`, so that a look-up computes no sine or cosine.
+    turns: Vec<[f64; 2]>,
     origin: [f64; 2],
     /// Side of a bin in metres.
     bin: f64,
@@ -52,6 +54,7 @@ pub struct FloorPaint {
 impl FloorPaint {
     /// Indexes `regions` over a floor of `background` reflectance.
     pub fn new(background: f64, regions: Vec<PaintRegion>) -> Self {
+        let turns = regions.iter().map(|r| r.shape.turn()).collect();
         let bounds = regions
             .iter()
             .fold(Bounds::EMPTY, |b, r| b.union(r.shape.bounds()));
@@ -59,6 +62,7 @@ impl FloorPaint {
             return Self {
                 background,
                 regions,
+                turns,
                 origin: [0.0, 0.0],
                 bin: BIN,
                 cols: 0,
@@ -94,6 +98,7 @@ impl FloorPaint {
         Self {
             background,
             regions,
+            turns,
             origin,
             bin,
             cols,
@@ -137,7 +142,7 @@ impl FloorPaint {
     pub fn reflectance_among(&self, candidates: &[u32], p: [f64; 2]) -> f64 {
         for &i in candidates {
             let r = &self.regions[i as usize];
-            if r.shape.contains(p) {
+            if r.shape.contains_turned(p, self.turns[i as usize]) {
                 return r.reflectance;
             }
         }

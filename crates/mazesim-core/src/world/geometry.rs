@@ -118,9 +118,26 @@ pub enum PaintShape {
 impl PaintShape {
     /// Whether the point is painted by this shape.
     pub fn contains(&self, p: [f64; 2]) -> bool {
+        self.contains_turned(p, self.turn())
+    }
+
+    /// Sine and cosine of a rectangle's yaw ((0, 1) for other shapes), for `contains_turned`.
+    pub fn turn(&self) -> [f64; 2] {
         match *self {
-            PaintShape::Rect { center, half, yaw } => {
+            PaintShape::Rect { yaw, .. } => {
                 let (s, c) = yaw.sin_cos();
+                [s, c]
+            }
+            _ => [0.0, 1.0],
+        }
+    }
+
+    /// `contains`, given `turn()` computed once beforehand.
+    #[inline]
+    pub fn contains_turned(&self, p: [f64; 2], turn: [f64; 2]) -> bool {
+        match *self {
+            PaintShape::Rect { center, half, .. } => {
+                let [s, c] = turn;
                 let dx = p[0] - center[0];
                 let dy = p[1] - center[1];
                 let lx = c * dx + s * dy;

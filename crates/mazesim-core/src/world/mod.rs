@@ -6,6 +6,7 @@ pub mod floor;
 pub mod geometry;
 pub mod grid;
 pub mod locate;
+pub mod nearby;
 pub mod spec;
 pub mod values;
 pub mod walls;
@@ -16,6 +17,7 @@ pub use builtin::{builtin_world_names, builtin_world_text};
 pub use floor::{FloorPaint, PaintRegion};
 pub use geometry::{Bounds, PaintShape, WallBox};
 pub use grid::CellMaze;
+pub use nearby::NearbyWalls;
 pub use spec::WorldSpec;
 pub use walls::{RayHit, WallIndex};
 

@@ -1,12 +1,13 @@
-//! Static walls indexed for the sensors: parry2d ray casts and distance queries against only the
-//! walls near the query, found through a uniform bin grid.
+//! Static walls indexed for the sensors: ray casts and distance queries against only the walls
+//! near the query, found through a uniform bin grid. Axis-aligned walls (every cell maze's) are
+//! cast against with a slab test here; rotated ones through parry2d.
 
-use parry2d::bounding_volume::Aabb;
 use parry2d::math::{Pose, Vector};
 use parry2d::query::{Ray, RayCast};
 use parry2d::shape::Cuboid;
 
 use super::geometry::{Bounds, WallBox};
+use super::nearby::Neighbourhoods;
 
 /// Side of a look-up bin in metres (a few e-puck diameters).
 const BIN: f64 = 0.1;
@@ -31,9 +32,9 @@ pub struct WallIndex {
     frames: Vec<[f32; 6]>,
     /// Per wall: its bounding box (min x, min y, max x, max y), to skip walls a ray cannot meet.
     boxes: Vec<[f32; 4]>,
-    /// Per wall: the wall itself as an axis-aligned box when it is one (yaw a multiple of 90
-    /// degrees, as in every cell maze), cast against without a change of frame.
-    aligned: Vec<Option<Aabb>>,
+    /// Per wall: the wall itself as an axis-aligned box (min x, min y, max x, max y) when it is
+    /// one (yaw a multiple of 90 degrees, as in every cell maze), cast against with `slab_hit`.
+    aligned: Vec<Option<[f32; 4]>>,
     reflectance: Vec<f32>,
     origin: [f64; 2],
     /// Side of a bin in metres.
@@ -42,6 +43,8 @@ pub struct WallIndex {
     rows: usize,
     bin_start: Vec<u32>,
     bin_walls: Vec<u32>,
+    /// Per coarser cell, the walls near it, for the sensors' once-per-step gathering.
+    around: Neighbourhoods,
 }
 
 /// What a ray hit.
@@ -95,7 +98,7 @@ impl WallIndex {
                 ]
             })
             .collect();
-        let aligned: Vec<Option<Aabb>> = walls
+        let aligned: Vec<Option<[f32; 4]>> = walls
             .iter()
             .map(|w| {
                 let quarter = w.yaw / std::f64::consts::FRAC_PI_2;
@@ -106,10 +109,12 @@ impl WallIndex {
                     } else {
                         (w.half[1], w.half[0])
                     };
-                    Aabb::new(
-                        Vector::new((w.center[0] - hx) as f32, (w.center[1] - hy) as f32),
-                        Vector::new((w.center[0] + hx) as f32, (w.center[1] + hy) as f32),
-                    )
+                    [
+                        (w.center[0] - hx) as f32,
+                        (w.center[1] - hy) as f32,
+                        (w.center[0] + hx) as f32,
+                        (w.center[1] + hy) as f32,
+                    ]
                 })
             })
             .collect();
@@ -127,6 +132,7 @@ impl WallIndex {
                 rows: 0,
                 bin_start: vec![0],
                 bin_walls: Vec::new(),
+                around: Neighbourhoods::default(),
             };
         }
         let origin = bounds.min;
@@ -150,6 +156,7 @@ impl WallIndex {
             bin_walls.extend(b);
             bin_start.push(bin_walls.len() as u32);
         }
+        let around = Neighbourhoods::new(&boxes, bounds);
         Self {
             shapes,
             frames,
@@ -162,7 +169,14 @@ impl WallIndex {
             rows,
             bin_start,
             bin_walls,
+            around,
         }
+    }
+
+    /// The walls whose bounding boxes may meet the square of half side `reach` around `p`, each
+    /// once and in index order, when a prepared list holds them all (`None`: use `for_each_near`).
+    pub(super) fn walls_around(&self, p: [f32; 2], reach: f32) -> Option<&[u32]> {
+        self.around.around(p, reach)
     }
 
     fn bin_range_of(
@@ -184,7 +198,7 @@ impl WallIndex {
 
     /// Calls `f` with the index of every wall listed in a bin that meets `b` (a wall listed in
     /// several of those bins comes more than once; callers' tests are cheap and idempotent).
-    fn for_each_near(&self, b: Bounds, mut f: impl FnMut(usize)) {
+    pub(super) fn for_each_near(&self, b: Bounds, mut f: impl FnMut(usize)) {
         if self.cols == 0 {
             return;
         }
@@ -219,7 +233,8 @@ impl WallIndex {
         self.shapes.is_empty()
     }
 
-    /// The nearest wall along the ray from `origin` in the unit direction `dir`, up to `max_distance`.
+    /// The nearest wall along the ray from `origin` in the unit direction `dir`, up to `max_distance`
+    /// (of walls met at the same distance, the one of lowest index).
     pub fn cast_ray(&self, origin: [f32; 2], dir: [f32; 2], max_distance: f32) -> Option<RayHit> {
         let end = [
             origin[0] + dir[0] * max_distance,
@@ -229,11 +244,8 @@ impl WallIndex {
             min: [origin[0].min(end[0]) as f64, origin[1].min(end[1]) as f64],
             max: [origin[0].max(end[0]) as f64, origin[1].max(end[1]) as f64],
         };
-        let ray = Ray::new(
-            Vector::new(origin[0], origin[1]),
-            Vector::new(dir[0], dir[1]),
-        );
-        let mut best: Option<RayHit> = None;
+        let slab = SlabRay::new(origin, dir);
+        let mut best = Nearest::new(max_distance);
         let (lo, hi) = (
             [origin[0].min(end[0]), origin[1].min(end[1])],
             [origin[0].max(end[0]), origin[1].max(end[1])],
@@ -243,29 +255,57 @@ impl WallIndex {
             if x0 > hi[0] || y0 > hi[1] || x1 < lo[0] || y1 < lo[1] {
                 return;
             }
-            let limit = best.map_or(max_distance, |h| h.distance);
-            let hit = match &self.aligned[i] {
-                Some(aabb) => aabb.cast_local_ray(&ray, limit, true),
-                None => {
-                    let (shape, pose) = &self.shapes[i];
-                    shape.cast_ray(pose, &ray, limit, true)
-                }
+            let toi = match &self.aligned[i] {
+                Some(aabb) => slab.hit(aabb, best.limit()),
+                None => self.cast_rotated(i, origin, dir, best.limit()),
             };
-            if let Some(toi) = hit {
-                // Equal distances: the first wall visited wins (the visiting order is fixed).
-                let better = match best {
-                    None => true,
-                    Some(h) => toi < h.distance,
-                };
-                if better {
-                    best = Some(RayHit {
-                        distance: toi,
-                        reflectance: self.reflectance[i],
-                    });
-                }
+            if let Some(t) = toi {
+                best.offer(t, i as u32, self.reflectance[i]);
             }
         });
-        best
+        best.hit()
+    }
+
+    /// Ray cast against wall `i` (any yaw) through parry2d.
+    pub(super) fn cast_rotated(
+        &self,
+        i: usize,
+        origin: [f32; 2],
+        dir: [f32; 2],
+        limit: f32,
+    ) -> Option<f32> {
+        let ray = Ray::new(
+            Vector::new(origin[0], origin[1]),
+            Vector::new(dir[0], dir[1]),
+        );
+        let (shape, pose) = &self.shapes[i];
+        shape.cast_ray(pose, &ray, limit, true)
+    }
+
+    /// Wall `i`'s axis-aligned box, when it is one.
+    pub(super) fn aligned_box(&self, i: usize) -> Option<[f32; 4]> {
+        self.aligned[i]
+    }
+
+    /// Wall `i`'s bounding box (min x, min y, max x, max y), grown by 0.1 mm.
+    pub(super) fn bounding_box(&self, i: usize) -> [f32; 4] {
+        self.boxes[i]
+    }
+
+    /// Wall `i`'s reflection factor.
+    pub(super) fn reflectance(&self, i: usize) -> f32 {
+        self.reflectance[i]
+    }
+
+    /// Signed distance from `p` to wall `i`'s surface (negative inside).
+    #[inline]
+    pub(super) fn wall_distance(&self, i: usize, p: [f32; 2]) -> f32 {
+        let [cx, cy, c, s, hx, hy] = self.frames[i];
+        let (dx, dy) = (p[0] - cx, p[1] - cy);
+        let qx = (c * dx + s * dy).abs() - hx;
+        let qy = (-s * dx + c * dy).abs() - hy;
+        let outside = (qx.max(0.0).powi(2) + qy.max(0.0).powi(2)).sqrt();
+        outside + qx.max(qy).min(0.0)
     }
 
     /// Signed distance from `p` to the nearest wall surface within `search` metres
@@ -277,17 +317,132 @@ impl WallIndex {
         };
         let mut best = search;
         self.for_each_near(b, |i| {
-            let [cx, cy, c, s, hx, hy] = self.frames[i];
-            let (dx, dy) = (p[0] - cx, p[1] - cy);
-            let qx = (c * dx + s * dy).abs() - hx;
-            let qy = (-s * dx + c * dy).abs() - hy;
-            let outside = (qx.max(0.0).powi(2) + qy.max(0.0).powi(2)).sqrt();
-            let signed = outside + qx.max(qy).min(0.0);
+            let signed = self.wall_distance(i, p);
             if signed < best {
                 best = signed;
             }
         });
         best
+    }
+}
+
+/// A ray prepared for slab tests against axis-aligned boxes: its origin, the reciprocals of its
+/// direction and, per axis, which side of a box it enters by (the classic slab method: the ray is
+/// inside the box between the largest entry and the smallest exit parameter over the two axes).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct SlabRay {
+    origin: [f32; 2],
+    inv: [f32; 2],
+    /// Per axis, whether the ray enters a box by its lower side (it runs towards +x, +y).
+    rising: [bool; 2],
+}
+
+/// The smaller of two numbers known not to be NaN (a plain comparison, cheaper than `f32::min`).
+#[inline]
+fn lesser(a: f32, b: f32) -> f32 {
+    if a < b {
+        a
+    } else {
+        b
+    }
+}
+
+/// The larger of two numbers known not to be NaN.
+#[inline]
+fn greater(a: f32, b: f32) -> f32 {
+    if a > b {
+        a
+    } else {
+        b
+    }
+}
+
+impl SlabRay {
+    /// The ray from `origin` along `dir`.
+    #[inline]
+    pub(super) fn new(origin: [f32; 2], dir: [f32; 2]) -> Self {
+        // A direction component of (almost) zero becomes a tiny one of the same sign: the slab
+        // parameters then stay finite (no 0 * infinity, no NaN) and mean "never crosses this
+        // slab".
+        let inv = dir.map(|d| {
+            let d = if d.abs() < 1e-20 {
+                1e-20f32.copysign(d)
+            } else {
+                d
+            };
+            1.0 / d
+        });
+        let rising = [inv[0] > 0.0, inv[1] > 0.0];
+        Self {
+            origin,
+            inv,
+            rising,
+        }
+    }
+
+    /// Distance along the ray to the box `[min x, min y, max x, max y]` if it is met within
+    /// `limit`; 0 when the origin lies inside (a solid box, as parry's `solid = true`).
+    #[inline]
+    pub(super) fn hit(&self, b: &[f32; 4], limit: f32) -> Option<f32> {
+        // (side - origin) * inv is monotonic in the side, so the side entered by gives the smaller
+        // parameter exactly as a min of both would.
+        let [x0, y0, x1, y1] = *b;
+        let (in_x, out_x) = if self.rising[0] { (x0, x1) } else { (x1, x0) };
+        let (in_y, out_y) = if self.rising[1] { (y0, y1) } else { (y1, y0) };
+        let enter_x = (in_x - self.origin[0]) * self.inv[0];
+        let leave_x = (out_x - self.origin[0]) * self.inv[0];
+        let enter_y = (in_y - self.origin[1]) * self.inv[1];
+        let leave_y = (out_y - self.origin[1]) * self.inv[1];
+        let near = greater(greater(enter_x, enter_y), 0.0);
+        let far = lesser(leave_x, leave_y);
+        (near <= far && near <= limit).then_some(near)
+    }
+}
+
+/// The nearest hit so far along a ray.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Nearest {
+    distance: f32,
+    reflectance: f32,
+    /// Index of the wall hit; `u32::MAX` before any hit.
+    wall: u32,
+}
+
+impl Nearest {
+    /// No hit yet; hits beyond `max_distance` do not count.
+    #[inline]
+    pub(super) fn new(max_distance: f32) -> Self {
+        Self {
+            distance: max_distance,
+            reflectance: 0.0,
+            wall: u32::MAX,
+        }
+    }
+
+    /// The farthest a hit may be and still count.
+    #[inline]
+    pub(super) fn limit(&self) -> f32 {
+        self.distance
+    }
+
+    /// Keeps a hit at `distance` (within `limit`) on wall `wall` if it is nearer than the best so
+    /// far; of equal distances the lowest wall index wins, whatever the order walls are offered in.
+    #[inline]
+    pub(super) fn offer(&mut self, distance: f32, wall: u32, reflectance: f32) {
+        if distance < self.distance || (distance == self.distance && wall < self.wall) {
+            self.distance = distance;
+            self.reflectance = reflectance;
+            self.wall = wall;
+        }
+    }
+
+    /// The hit, if any.
+    #[inline]
+    pub(super) fn hit(&self) -> Option<RayHit> {
+        (self.wall != u32::MAX).then_some(RayHit {
+            distance: self.distance,
+            reflectance: self.reflectance,
+        })
     }
 }
 
