@@ -72,12 +72,6 @@ def test_alg7_reads_worse_at_higher_thresholds(study: StudyResult) -> None:
     assert min(t.share(t.right) for t in rows[:2]) >= 0.9
 
 
-def test_alg7_reads_worse_at_twice_the_default_speed(study: StudyResult) -> None:
-    default, fast = tallies(study.by_speed, "alg7")
-    assert (default.speed, fast.speed) == (DEFAULT_SPEED, TWICE_DEFAULT_SPEED)
-    assert fast.wrong > default.wrong and fast.right < default.right
-
-
 def test_robust_beats_alg7_everywhere(study: StudyResult) -> None:
     rows = study.by_threshold + study.by_speed
     for alg7, robust in zip(tallies(rows, "alg7"), tallies(rows, "robust")):
