@@ -29,7 +29,7 @@ from mazesim.barcode.study import (
     Tally,
     run_study,
 )
-from mazesim.cli import seed_argument
+from mazesim.cli import positive_int, seed_argument
 
 __all__ = ["register", "run_barcode_study"]
 
@@ -77,17 +77,6 @@ def decoder_list(text: str) -> list[str]:
     return list(dict.fromkeys(names))
 
 
-def positive_count(text: str) -> int:
-    """A whole number of at least 1."""
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a whole number, found {text!r}") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"expected a number of at least 1, found {text!r}")
-    return value
-
-
 def register(commands: Any) -> None:
     """Adds ``barcode-study`` to the ``mazesim`` command's subparsers."""
     parser = commands.add_parser(
@@ -111,7 +100,7 @@ def register(commands: Any) -> None:
     )
     parser.add_argument(
         "--readings",
-        type=positive_count,
+        type=positive_int,
         default=DEFAULT_READINGS,
         metavar="N",
         help="barcode crossings judged per setting (default: %(default)s)",
@@ -169,7 +158,7 @@ def register(commands: Any) -> None:
     )
     parser.add_argument(
         "--envs",
-        type=positive_count,
+        type=positive_int,
         default=DEFAULT_ENVS,
         metavar="N",
         help="robots wandering at once in the batch engine (default: %(default)s)",

@@ -13,23 +13,13 @@ import sys
 from collections.abc import Sequence
 from typing import Any, TextIO
 
+from mazesim.cli import positive_int
 from mazesim.distributed.config import PARAMETERS, TRAINER_DEFAULTS, load_sweep_config
 
-__all__ = ["positive_cpus", "register", "run_sweep_command"]
+__all__ = ["register", "run_sweep_command"]
 
 #: Exit code of a sweep that finished with failed runs (the others are all written).
 EXIT_RUNS_FAILED = 1
-
-
-def positive_cpus(text: str) -> int:
-    """A number of CPUs, at least 1."""
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a whole number, found {text!r}") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"expected at least 1 CPU, found {text!r}")
-    return value
 
 
 def _parameter_help() -> str:
@@ -77,7 +67,7 @@ def register(commands: Any) -> None:
     )
     parser.add_argument(
         "--cpus",
-        type=positive_cpus,
+        type=positive_int,
         metavar="N",
         help="CPUs of the local Ray instance (default: this machine's cores)",
     )

@@ -20,7 +20,7 @@ from pathlib import Path
 from typing import Any, TextIO
 
 from mazesim import load_world
-from mazesim.cli import seed_argument
+from mazesim.cli import positive_int, seed_argument
 from mazesim.errors import InvalidArgumentError
 from mazesim.hrl.navigation import DEFAULT_MAX_STEPS, EVENT_SOURCES
 
@@ -46,17 +46,6 @@ def step_count(text: str) -> int:
     if not math.isfinite(value) or value < 1:
         raise argparse.ArgumentTypeError(f"expected at least one env-step, found {text!r}")
     return int(value)
-
-
-def positive_int(text: str) -> int:
-    """A whole number of at least 1."""
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a whole number, found {text!r}") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"expected a number of at least 1, found {text!r}")
-    return value
 
 
 def register(commands: Any) -> None:

@@ -11,10 +11,9 @@ ROS is imported only when a command runs.
 from __future__ import annotations
 
 import argparse
-import math
 from typing import Any
 
-from mazesim.cli import positive_seconds, seed_argument
+from mazesim.cli import positive_int, positive_number, positive_seconds, seed_argument
 
 __all__ = ["register"]
 
@@ -25,26 +24,6 @@ def _remapping(text: str) -> str:
             f"expected a ROS remapping NAME:=VALUE (e.g. sensors:=/robot1/sensors); found {text!r}"
         )
     return text
-
-
-def _positive_number(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number, found {text!r}") from None
-    if not math.isfinite(value) or value <= 0.0:
-        raise argparse.ArgumentTypeError(f"expected a positive number, found {text!r}")
-    return value
-
-
-def _whole_number(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a whole number, found {text!r}") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"expected a whole number >= 1, found {text!r}")
-    return value
 
 
 def _non_negative_seconds(text: str) -> float:
@@ -155,7 +134,7 @@ def register(commands: Any) -> None:
     )
     bridge.add_argument(
         "--speed",
-        type=_positive_number,
+        type=positive_number,
         metavar="FACTOR",
         help="realtime mode: simulated seconds per wall-clock second (default: 1)",
     )
@@ -184,19 +163,19 @@ def register(commands: Any) -> None:
     )
     avoid.add_argument(
         "--threshold",
-        type=_positive_number,
+        type=positive_number,
         metavar="RAW",
         help="proximity reading that means an obstacle (default: ~threshold or 80)",
     )
     avoid.add_argument(
         "--max-speed",
-        type=_positive_number,
+        type=positive_number,
         metavar="RAD_S",
         help="maximum wheel speed in rad/s (default: ~max_speed or 6.28)",
     )
     avoid.add_argument(
         "--wait-for-subscribers",
-        type=_whole_number,
+        type=positive_int,
         metavar="N",
         help="subscribers of motor to wait for before starting: 1 (the bridge), 2 with a "
         "recorder (default: ~wait_for_subscribers or 1)",
@@ -222,14 +201,14 @@ def register(commands: Any) -> None:
     )
     learning.add_argument(
         "--control-step-ms",
-        type=_positive_number,
+        type=positive_number,
         metavar="MS",
         help="how long each action runs (default: ~control_step_ms, else the bridge's "
         "control_step_ms parameter)",
     )
     learning.add_argument(
         "--wait-for-subscribers",
-        type=_whole_number,
+        type=positive_int,
         metavar="N",
         help="subscribers of action to wait for before starting: 1 (the bridge), 2 with a "
         "recorder (default: ~wait_for_subscribers or 1)",
