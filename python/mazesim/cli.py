@@ -47,14 +47,25 @@ EXIT_INTERRUPTED = 130
 PROGRESS_AFTER_S = 1.0
 
 
-def positive_seconds(text: str) -> float:
+def _positive_float(text: str, what: str) -> float:
+    """A finite number above 0; ``what`` names it in the message ("number of seconds")."""
     try:
         value = float(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number of seconds, found {text!r}") from None
+        raise argparse.ArgumentTypeError(f"expected a {what}, found {text!r}") from None
     if not math.isfinite(value) or value <= 0.0:
-        raise argparse.ArgumentTypeError(f"expected a positive number of seconds, found {text!r}")
+        raise argparse.ArgumentTypeError(f"expected a positive {what}, found {text!r}")
     return value
+
+
+def positive_seconds(text: str) -> float:
+    """A positive, finite number of seconds."""
+    return _positive_float(text, "number of seconds")
+
+
+def positive_number(text: str) -> float:
+    """A finite number above 0."""
+    return _positive_float(text, "number")
 
 
 def positive_int(text: str) -> int:
@@ -65,17 +76,6 @@ def positive_int(text: str) -> int:
         raise argparse.ArgumentTypeError(f"expected a whole number, found {text!r}") from None
     if value < 1:
         raise argparse.ArgumentTypeError(f"expected a whole number of at least 1, found {text!r}")
-    return value
-
-
-def positive_number(text: str) -> float:
-    """A finite number above 0."""
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number, found {text!r}") from None
-    if not math.isfinite(value) or value <= 0.0:
-        raise argparse.ArgumentTypeError(f"expected a positive number, found {text!r}")
     return value
 
 
