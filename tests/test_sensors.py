@@ -103,3 +103,21 @@ def test_every_profile_reads_all_its_sensors() -> None:
         assert sim.distance_sensors().shape == (len(profile.distance_sensor_names),)
         assert sim.ground_sensors().shape == (len(profile.ground_sensor_names),)
         assert np.all(np.isfinite(sim.distance_sensors()))
+
+
+@pytest.mark.parametrize(
+    ("name", "distance_max", "distance_range", "ground_max"),
+    [
+        ("e-puck", 4095.0, 0.07, 1000.0),
+        ("seed", 3.03, 0.40, 1000.0),
+        ("alphabot2", 3.03, 0.40, 1023.0),
+    ],
+)
+def test_profiles_report_their_sensor_tables_extremes(
+    name: str, distance_max: float, distance_range: float, ground_max: float
+) -> None:
+    # The datasheet / Webots numbers of robots/*.toml, as the gym spaces bound the observations.
+    robot = mazesim.RobotProfile.builtin(name)
+    assert robot.distance_sensor_max == pytest.approx(distance_max)
+    assert robot.distance_sensor_range == pytest.approx(distance_range)
+    assert robot.ground_sensor_max == pytest.approx(ground_max)

@@ -124,6 +124,15 @@ class RobotProfile:
     def distance_sensor_unit(self) -> str:
         """Unit of the readings: "raw" (e-puck counts) or "volts" (Sharp)."""
     @property
+    def distance_sensor_max(self) -> float:
+        """Largest noise-free reading of any distance sensor (its table's largest output)."""
+    @property
+    def distance_sensor_range(self) -> float:
+        """Range of the distance sensors in metres (the longest table's last input)."""
+    @property
+    def ground_sensor_max(self) -> float:
+        """Largest noise-free reading of any ground sensor (its table's largest output)."""
+    @property
     def ground_sensor_names(self) -> list[str]: ...
     def distance_sensor_poses(self) -> npt.NDArray[np.float64]:
         """(N, 3) array: x, y, heading of each distance sensor in the robot frame."""

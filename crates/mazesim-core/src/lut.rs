@@ -69,6 +69,14 @@ impl LookupTable {
         self.inputs[self.inputs.len() - 1]
     }
 
+    /// The largest output of the table (before noise).
+    pub fn max_output(&self) -> f64 {
+        self.outputs
+            .iter()
+            .copied()
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+
     /// Inverts the table on its monotonic part: the input whose output is `y`, clamped.
     /// Used to turn a Sharp reading in volts back into a distance.
     pub fn invert(&self, y: f64) -> f64 {

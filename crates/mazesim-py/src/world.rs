@@ -259,6 +259,24 @@ impl PyRobotProfile {
     fn distance_sensor_unit(&self) -> String {
         self.inner.distance_sensor_unit().to_string()
     }
+    /// Largest noise-free reading of any distance sensor (its table's largest output).
+    #[getter]
+    fn distance_sensor_max(&self) -> f64 {
+        let tables = self.inner.distance_sensors.iter().map(|s| &s.model.table);
+        tables.map(|t| t.max_output()).fold(0.0, f64::max)
+    }
+    /// Range of the distance sensors in metres (the longest table's last input).
+    #[getter]
+    fn distance_sensor_range(&self) -> f64 {
+        let tables = self.inner.distance_sensors.iter().map(|s| &s.model.table);
+        tables.map(|t| t.max_input()).fold(0.0, f64::max)
+    }
+    /// Largest noise-free reading of any ground sensor (its table's largest output).
+    #[getter]
+    fn ground_sensor_max(&self) -> f64 {
+        let tables = self.inner.ground_sensors.iter().map(|s| &s.model.table);
+        tables.map(|t| t.max_output()).fold(0.0, f64::max)
+    }
     #[getter]
     fn ground_sensor_names(&self) -> Vec<String> {
         self.inner

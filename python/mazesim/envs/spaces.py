@@ -42,11 +42,10 @@ from gymnasium import spaces
 
 from mazesim._core import RobotProfile, World
 from mazesim.actions import ACTION_CODES, WHEEL_SPEED_FRACTIONS
-from mazesim.errors import InvalidActionError, InvalidArgumentError
+from mazesim.errors import InvalidActionError
 
 __all__ = [
     "NOISE_MARGIN",
-    "SENSOR_RANGES",
     "ActionConverter",
     "ObservationLayout",
     "SensorRanges",
@@ -68,13 +67,6 @@ class SensorRanges:
     ground_max: float
 
 
-#: The sensor tables' extremes of each built-in robot profile (see ``robots/*.toml``).
-SENSOR_RANGES: dict[str, SensorRanges] = {
-    "e-puck": SensorRanges(distance_max=4095.0, ray_length=0.07, ground_max=1000.0),
-    "seed": SensorRanges(distance_max=3.03, ray_length=0.40, ground_max=1000.0),
-    "alphabot2": SensorRanges(distance_max=3.03, ray_length=0.40, ground_max=1023.0),
-}
-
 #: Upper bound of the observation space as a multiple of each table's largest value.
 NOISE_MARGIN = 1.25
 
@@ -84,14 +76,12 @@ _YAW_BOUND = float(np.float32(math.pi)) * 1.0001
 
 
 def sensor_ranges(robot: RobotProfile) -> SensorRanges:
-    """The sensor ranges of a built-in robot profile."""
-    try:
-        return SENSOR_RANGES[robot.name]
-    except KeyError:
-        raise InvalidArgumentError(
-            f"expected a robot profile with known sensor ranges "
-            f"({', '.join(SENSOR_RANGES)}), found {robot.name!r}"
-        ) from None
+    """The extremes of a robot profile's sensor tables (read from the profile itself)."""
+    return SensorRanges(
+        distance_max=robot.distance_sensor_max,
+        ray_length=robot.distance_sensor_range,
+        ground_max=robot.ground_sensor_max,
+    )
 
 
 class ObservationLayout:
