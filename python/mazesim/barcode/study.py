@@ -31,6 +31,7 @@ from dataclasses import dataclass, field
 from typing import Any, cast
 
 import numpy as np
+import numpy.typing as npt
 
 import mazesim
 from mazesim._core import BatchSimulator, RobotProfile, World
@@ -307,13 +308,23 @@ def run_setting(
         name: BatchBarcodeReader([make_decoder(name, book) for _ in range(envs)], robot)
         for name in decoders
     }
-    for reader in readers.values():
-        reader.update(observations[:, ground_column], encoders.values)
     unsynced = UnsyncedLink(envs, seed) if link == "ros" else None
     window = MATCH_STEPS + (unsynced.longest_period if unsynced is not None else 0)
     actions = np.zeros((envs, 2), dtype=np.float32)
     truths: list[tuple[int, int, int]] = []
     reads: dict[str, list[tuple[int, int, Reading]]] = {name: [] for name in decoders}
+
+    def feed(step: int, mask: npt.NDArray[np.bool_] | None = None) -> None:
+        """Gives the decoders (of the robots in ``mask``) the barcode sensor's sample."""
+        for name, reader in readers.items():
+            ground = observations[:, ground_column]
+            reads[name].extend(
+                (step, env, reading)
+                for env, reading in reader.update(ground, encoders.values, mask)
+            )
+
+    if unsynced is None:
+        feed(0)  # the start, off every code
     max_steps = math.ceil(MAX_SECONDS * 1000.0 / step_ms)
     step = 0
     while True:
@@ -324,24 +335,13 @@ def run_setting(
             # The nodes awake now read the sensors (their decoders get this sample) and send
             # new wheel speeds; the others' motors keep the last ones.
             awake = unsynced.tick()
-            for name, reader in readers.items():
-                reads[name].extend(
-                    (step, env, reading)
-                    for env, reading in reader.update(
-                        observations[:, ground_column], encoders.values, awake
-                    )
-                )
+            feed(step, awake)
             commands = controller.batch(observations[:, :distance_width], awake)
             actions[awake] = commands[awake]
         batch.step(actions, observations, poses, colliding, crossings)
         encoders.step(actions)
         if unsynced is None:
-            wheel_angles = encoders.values
-            for name, reader in readers.items():
-                reads[name].extend(
-                    (step, env, reading)
-                    for env, reading in reader.update(observations[:, ground_column], wheel_angles)
-                )
+            feed(step)
         for env in np.flatnonzero(crossings):
             if len(truths) < readings:
                 truths.append((step, int(env), int(crossings[env])))
