@@ -3,12 +3,20 @@
 
 use crate::error::{Error, Result};
 
+/// Cells of the guide that points `eval` at the right row without a scan from the top.
+const GUIDE_CELLS: usize = 64;
+
 /// A piecewise-linear table with a relative noise column.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LookupTable {
     inputs: Vec<f64>,
     outputs: Vec<f64>,
     noise: Vec<f64>,
+    /// `GUIDE_CELLS` equal cells over the inputs: `1 / cell width`.
+    guide_scale: f64,
+    /// Per cell, the first row whose input is at or above the cell's start (at least 1): where
+    /// `eval`'s search for the row above `x` may begin.
+    guide: [u8; GUIDE_CELLS],
 }
 
 impl LookupTable {
@@ -36,10 +44,33 @@ impl LookupTable {
                 "lookup table values must be finite and noise non-negative".into(),
             ));
         }
+        if rows.len() > u8::MAX as usize {
+            return Err(Error::InvalidArgument(format!(
+                "a lookup table has at most {} rows, found {}",
+                u8::MAX,
+                rows.len()
+            )));
+        }
+        let inputs: Vec<f64> = rows.iter().map(|r| r[0]).collect();
+        let (first, last) = (inputs[0], inputs[rows.len() - 1]);
+        let guide_scale = GUIDE_CELLS as f64 / (last - first);
+        let mut guide = [1u8; GUIDE_CELLS];
+        for (cell, g) in guide.iter_mut().enumerate() {
+            // A row below the cell's start (as `eval` computes cells) is never the one sought
+            // there; rounding only makes this start earlier, never later.
+            let start = first + (cell as f64 - 0.5).max(0.0) / guide_scale;
+            let row = inputs
+                .iter()
+                .position(|&x| x >= start)
+                .unwrap_or(rows.len() - 1);
+            *g = row.clamp(1, rows.len() - 1) as u8;
+        }
         Ok(Self {
-            inputs: rows.iter().map(|r| r[0]).collect(),
+            inputs,
             outputs: rows.iter().map(|r| r[1]).collect(),
             noise: rows.iter().map(|r| r[2]).collect(),
+            guide_scale,
+            guide,
         })
     }
 
@@ -53,8 +84,10 @@ impl LookupTable {
         if x >= self.inputs[n - 1] {
             return (self.outputs[n - 1], self.noise[n - 1]);
         }
-        // Tables are short (a dozen rows): a linear scan beats a binary search here.
-        let mut i = 1;
+        // The first row whose input is at or above x: the guide gives a row at or before it, a
+        // short scan finds it.
+        let cell = ((x - self.inputs[0]) * self.guide_scale) as usize;
+        let mut i = self.guide[cell.min(GUIDE_CELLS - 1)] as usize;
         while self.inputs[i] < x {
             i += 1;
         }
@@ -123,6 +156,49 @@ mod tests {
         assert_eq!(t.eval(1.5).0, 25.0);
         assert_eq!(t.eval(5.0), (0.0, 0.3));
         assert_eq!(t.eval(f64::NAN).0, 100.0);
+    }
+
+    /// `eval` as defined: the first row at or above `x` by a scan from the top.
+    fn eval_by_scan(t: &LookupTable, x: f64) -> (f64, f64) {
+        let n = t.inputs.len();
+        if x.is_nan() || x <= t.inputs[0] {
+            return (t.outputs[0], t.noise[0]);
+        }
+        if x >= t.inputs[n - 1] {
+            return (t.outputs[n - 1], t.noise[n - 1]);
+        }
+        let i = (1..n).find(|&i| t.inputs[i] >= x).unwrap();
+        let s = (x - t.inputs[i - 1]) / (t.inputs[i] - t.inputs[i - 1]);
+        let lerp = |a: &[f64]| a[i - 1] + s * (a[i] - a[i - 1]);
+        (lerp(&t.outputs), lerp(&t.noise))
+    }
+
+    #[test]
+    fn guided_search_finds_the_row_a_scan_finds() {
+        // Uneven rows (as the e-puck's), rows closer than a guide cell, and exact breakpoints.
+        let tables = [
+            vec![0.0, 0.005, 0.01, 0.015, 0.02, 0.03, 0.04, 0.05, 0.06, 0.07],
+            vec![-1.0, -0.999, -0.9989, 0.3, 0.30001, 2.0],
+            vec![0.1, 0.2],
+        ];
+        for inputs in tables {
+            let rows: Vec<[f64; 3]> = inputs
+                .iter()
+                .enumerate()
+                .map(|(k, &x)| [x, 100.0 / (k as f64 + 1.0), 0.01 * k as f64])
+                .collect();
+            let t = LookupTable::new(&rows).unwrap();
+            let (a, b) = (inputs[0] - 0.01, inputs[inputs.len() - 1] + 0.01);
+            let mut xs: Vec<f64> = (0..=20_000)
+                .map(|k| a + (b - a) * k as f64 / 20_000.0)
+                .collect();
+            for &x in &inputs {
+                xs.extend([x, x.next_up(), x.next_down()]);
+            }
+            for x in xs {
+                assert_eq!(t.eval(x), eval_by_scan(&t, x), "x = {x}");
+            }
+        }
     }
 
     #[test]
