@@ -7,7 +7,7 @@ use crate::error::{Error, Result};
 use crate::physics::Body;
 use crate::rng::Rng;
 use crate::robot::RobotProfile;
-use crate::sensors::{ground_background, infrared_reading, read_ground_with};
+use crate::sensors::{ground_background, infrared_miss, infrared_reading_with, read_ground_with};
 use crate::world::{NearbyWalls, RayFan, RayHit, World};
 
 /// A gap to a wall below this (metres) counts as touching it.
@@ -66,6 +66,8 @@ pub struct Simulator {
     rays: RayFan,
     /// Per distance sensor: what its ray met at the last sensor reading.
     ray_hits: Vec<Option<RayHit>>,
+    /// Per distance sensor: its table value and relative sigma when its ray meets nothing.
+    infrared_miss: Vec<(f64, f64)>,
     /// How far from the robot's centre a sensor ray or the clearance search can reach, metres.
     reach: f32,
     /// Per ground sensor: its table value and relative sigma over the bare floor of the world.
@@ -137,6 +139,11 @@ impl Simulator {
                     .collect::<Vec<_>>(),
             ),
             ray_hits: vec![None; robot.distance_sensors.len()],
+            infrared_miss: robot
+                .distance_sensors
+                .iter()
+                .map(|d| infrared_miss(&d.model))
+                .collect(),
             near: NearbyWalls::default(),
             ground_background: robot
                 .ground_sensors
@@ -326,9 +333,10 @@ impl Simulator {
         self.near
             .cast_fan(index, &self.rays, [x, y], [s, c], &mut self.ray_hits);
         let readings = self.distance_readings.iter_mut();
-        for ((reading, sensor), &hit) in readings.zip(&robot.distance_sensors).zip(&self.ray_hits) {
+        let sensors = robot.distance_sensors.iter().zip(&self.infrared_miss);
+        for ((reading, (sensor, &miss)), &hit) in readings.zip(sensors).zip(&self.ray_hits) {
             let rng = noise.then_some(&mut self.rng);
-            *reading = infrared_reading(&sensor.model, hit, rng);
+            *reading = infrared_reading_with(&sensor.model, hit, miss, rng);
         }
         let (sd, cd) = (s as f64, c as f64);
         for (i, sensor) in robot.ground_sensors.iter().enumerate() {
