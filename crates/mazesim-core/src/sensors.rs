@@ -48,6 +48,30 @@ pub fn infrared_reading(model: &SensorModel, hit: Option<RayHit>, rng: Option<&m
     noisy(value, sigma, rng)
 }
 
+/// What an infra-red sensor's table gives when its ray meets nothing (its last row), for
+/// `infrared_reading_with`.
+pub fn infrared_miss(model: &SensorModel) -> (f64, f64) {
+    model.table.eval(model.table.max_input())
+}
+
+/// `infrared_reading`, with `miss = infrared_miss(model)` computed beforehand: a ray that met
+/// nothing needs no table look-up.
+#[inline]
+pub fn infrared_reading_with(
+    model: &SensorModel,
+    hit: Option<RayHit>,
+    miss: (f64, f64),
+    rng: Option<&mut Rng>,
+) -> f32 {
+    let (value, sigma) = match hit {
+        Some(hit) => model
+            .table
+            .eval(hit.distance as f64 / hit.reflectance as f64),
+        None => miss,
+    };
+    noisy(value, sigma, rng)
+}
+
 /// Mean floor reflectance over the sensor's square spot centred at `at`, aligned with the robot's
 /// unit forward vector `axis` (cos, sin of its heading).
 pub fn spot_reflectance(
@@ -156,6 +180,34 @@ mod tests {
                 read_ground(model, &floor, at, axis, None),
                 "at {at:?}"
             );
+        }
+    }
+
+    #[test]
+    fn infrared_reading_with_a_miss_computed_once_reads_the_same() {
+        for name in ["e-puck", "seed", "alphabot2"] {
+            let robot = RobotProfile::builtin(name).unwrap();
+            let model = &robot.distance_sensors[0].model;
+            let miss = infrared_miss(model);
+            let range = model.table.max_input() as f32;
+            let mut hits = vec![None];
+            for k in 0..=100 {
+                let distance = range * k as f32 / 100.0;
+                for reflectance in [0.2, 0.5, 1.0] {
+                    hits.push(Some(RayHit {
+                        distance,
+                        reflectance,
+                    }));
+                }
+            }
+            let (mut a, mut b) = (Rng::new(7), Rng::new(7));
+            for hit in hits {
+                let once = infrared_reading_with(model, hit, miss, None);
+                assert_eq!(once.to_bits(), infrared_reading(model, hit, None).to_bits());
+                let noisy_once = infrared_reading_with(model, hit, miss, Some(&mut a));
+                let noisy = infrared_reading(model, hit, Some(&mut b));
+                assert_eq!(noisy_once.to_bits(), noisy.to_bits(), "{name} {hit:?}");
+            }
         }
     }
 

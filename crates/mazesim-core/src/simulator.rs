@@ -7,8 +7,8 @@ use crate::error::{Error, Result};
 use crate::physics::Body;
 use crate::rng::Rng;
 use crate::robot::RobotProfile;
-use crate::sensors::{ground_background, infrared_reading, read_ground_with};
-use crate::world::{NearbyWalls, World};
+use crate::sensors::{ground_background, infrared_miss, infrared_reading_with, read_ground_with};
+use crate::world::{NearbyWalls, RayFan, RayHit, World};
 
 /// A gap to a wall below this (metres) counts as touching it.
 pub const CONTACT_GAP: f32 = 2e-4;
@@ -62,8 +62,12 @@ pub struct Simulator {
     pose: [f32; 3],
     /// Sine and cosine of the yaw.
     heading: [f32; 2],
-    /// Per distance sensor: its ray in the robot frame (position, unit direction, length).
-    ray_mounts: Vec<[f32; 5]>,
+    /// The distance sensors' rays in the robot frame (position, unit direction, length).
+    rays: RayFan,
+    /// Per distance sensor: what its ray met at the last sensor reading.
+    ray_hits: Vec<Option<RayHit>>,
+    /// Per distance sensor: its table value and relative sigma when its ray meets nothing.
+    infrared_miss: Vec<(f64, f64)>,
     /// How far from the robot's centre a sensor ray or the clearance search can reach, metres.
     reach: f32,
     /// Per ground sensor: its table value and relative sigma over the bare floor of the world.
@@ -122,15 +126,23 @@ impl Simulator {
             start_override: None,
             distance_readings: vec![0.0; robot.distance_sensors.len()],
             reach: sensing_reach(&robot),
-            ray_mounts: robot
+            rays: RayFan::new(
+                &robot
+                    .distance_sensors
+                    .iter()
+                    .map(|d| {
+                        let [px, py] = d.position;
+                        let [dx, dy] = d.direction;
+                        let range = d.model.table.max_input();
+                        [px, py, dx, dy, range].map(|v| v as f32)
+                    })
+                    .collect::<Vec<_>>(),
+            ),
+            ray_hits: vec![None; robot.distance_sensors.len()],
+            infrared_miss: robot
                 .distance_sensors
                 .iter()
-                .map(|d| {
-                    let [px, py] = d.position;
-                    let [dx, dy] = d.direction;
-                    let range = d.model.table.max_input();
-                    [px, py, dx, dy, range].map(|v| v as f32)
-                })
+                .map(|d| infrared_miss(&d.model))
                 .collect(),
             near: NearbyWalls::default(),
             ground_background: robot
@@ -318,15 +330,13 @@ impl Simulator {
             - r;
         self.touching = self.clearance < CONTACT_GAP;
         let noise = self.config.noise;
+        self.near
+            .cast_fan(index, &self.rays, [x, y], [s, c], &mut self.ray_hits);
         let readings = self.distance_readings.iter_mut();
-        for ((reading, sensor), &[px, py, dx, dy, range]) in
-            readings.zip(&robot.distance_sensors).zip(&self.ray_mounts)
-        {
-            let origin = [x + c * px - s * py, y + s * px + c * py];
-            let dir = [c * dx - s * dy, s * dx + c * dy];
-            let hit = self.near.cast_ray(index, origin, dir, range);
+        let sensors = robot.distance_sensors.iter().zip(&self.infrared_miss);
+        for ((reading, (sensor, &miss)), &hit) in readings.zip(sensors).zip(&self.ray_hits) {
             let rng = noise.then_some(&mut self.rng);
-            *reading = infrared_reading(&sensor.model, hit, rng);
+            *reading = infrared_reading_with(&sensor.model, hit, miss, rng);
         }
         let (sd, cd) = (s as f64, c as f64);
         for (i, sensor) in robot.ground_sensors.iter().enumerate() {

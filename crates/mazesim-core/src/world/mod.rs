@@ -17,7 +17,7 @@ pub use builtin::{builtin_world_names, builtin_world_text};
 pub use floor::{FloorPaint, PaintRegion};
 pub use geometry::{Bounds, PaintShape, WallBox};
 pub use grid::CellMaze;
-pub use nearby::NearbyWalls;
+pub use nearby::{NearbyWalls, RayFan};
 pub use spec::WorldSpec;
 pub use walls::{RayHit, WallIndex};
 

@@ -2,7 +2,7 @@
 //! sensor rays and by the clearance check, instead of walking the bins once per query.
 
 use super::geometry::Bounds;
-use super::walls::{Nearest, RayHit, SlabRay, WallIndex};
+use super::walls::{next_up, Nearest, RayHit, SlabBox, SlabLanes, SlabRay, WallIndex, LANES};
 
 /// At most this many walls are kept; a region crowded with more is answered by the full index.
 const CAPACITY: usize = 32;
@@ -83,7 +83,9 @@ impl Neighbourhoods {
         if !(fx >= 0.0 && fy >= 0.0) {
             return None;
         }
-        let (col, row) = (fx as usize, fy as usize);
+        // Truncations of non-negative numbers: floors (through i64, cheaper than to usize; a
+        // saturated one is off the grid either way).
+        let (col, row) = (fx as i64 as usize, fy as i64 as usize);
         if col >= self.cols || row >= self.rows {
             return None;
         }
@@ -105,14 +107,15 @@ pub struct NearbyWalls {
     /// Walls kept, as indices into `index`.
     walls: [u32; CAPACITY],
     count: usize,
-    /// Axis-aligned walls: min x, min y, max x, max y, reflectance and index, in `aligned` slots.
-    aligned_boxes: [[f32; 4]; CAPACITY],
-    aligned_reflectance: [f32; CAPACITY],
-    aligned_wall: [u32; CAPACITY],
+    /// Axis-aligned walls as boxes, in `aligned` slots in increasing wall index.
+    boxes: [SlabBox; CAPACITY],
     aligned: usize,
     /// Rotated walls, as indices into `index`.
     rotated: [u32; CAPACITY],
     rotated_count: usize,
+    /// Every wall kept is an axis-aligned box with min <= max, and none overflowed: `cast_fan`
+    /// may cast all rays of a group together with `SlabLanes`.
+    slabs_only: bool,
 }
 
 impl Default for NearbyWalls {
@@ -121,12 +124,11 @@ impl Default for NearbyWalls {
             overflow: false,
             walls: [0; CAPACITY],
             count: 0,
-            aligned_boxes: [[0.0; 4]; CAPACITY],
-            aligned_reflectance: [0.0; CAPACITY],
-            aligned_wall: [0; CAPACITY],
+            boxes: [SlabBox::default(); CAPACITY],
             aligned: 0,
             rotated: [0; CAPACITY],
             rotated_count: 0,
+            slabs_only: false,
         }
     }
 }
@@ -146,50 +148,56 @@ impl NearbyWalls {
             !(x0 > hi[0] || y0 > hi[1] || x1 < lo[0] || y1 < lo[1])
         };
         if let Some(list) = index.walls_around(center, reach) {
+            // In index order: so are the axis-aligned walls kept.
             for &i in list {
                 if meets(i as usize) {
                     self.keep(index, i as usize);
                 }
             }
-            return;
+        } else {
+            let region = Bounds {
+                min: [lo[0] as f64, lo[1] as f64],
+                max: [hi[0] as f64, hi[1] as f64],
+            };
+            index.for_each_near(region, |i| {
+                // A wall spanning several bins is listed in each of them.
+                if meets(i) && !self.walls[..self.count].contains(&(i as u32)) {
+                    self.keep(index, i);
+                }
+            });
+            self.sort_aligned();
         }
-        let region = Bounds {
-            min: [lo[0] as f64, lo[1] as f64],
-            max: [hi[0] as f64, hi[1] as f64],
-        };
-        index.for_each_near(region, |i| {
-            // A wall spanning several bins is listed in each of them.
-            if meets(i) && !self.walls[..self.count].contains(&(i as u32)) {
-                self.keep(index, i);
-            }
-        });
+        self.slabs_only = !self.overflow && self.rotated_count == 0 && index.aligned_ordered();
+    }
+
+    /// Puts the axis-aligned walls in increasing wall index (they came in bin order).
+    fn sort_aligned(&mut self) {
+        self.boxes[..self.aligned].sort_unstable_by_key(|b| b.wall);
     }
 
     /// Adds wall `i` of `index` (or notes the overflow).
     #[inline]
     fn keep(&mut self, index: &WallIndex, i: usize) {
-        let near = self;
-        {
-            if near.overflow {
-                return;
+        // Once full, the count stays at `CAPACITY`: every later wall lands here too.
+        let count = self.count;
+        if count >= CAPACITY {
+            self.overflow = true;
+            return;
+        }
+        self.walls[count] = i as u32;
+        self.count = count + 1;
+        match index.aligned_box(i) {
+            Some(bounds) => {
+                self.boxes[self.aligned] = SlabBox {
+                    bounds,
+                    reflectance: index.reflectance(i),
+                    wall: i as u32,
+                };
+                self.aligned += 1;
             }
-            if near.count == CAPACITY {
-                near.overflow = true;
-                return;
-            }
-            near.walls[near.count] = i as u32;
-            near.count += 1;
-            match index.aligned_box(i) {
-                Some(b) => {
-                    near.aligned_boxes[near.aligned] = b;
-                    near.aligned_reflectance[near.aligned] = index.reflectance(i);
-                    near.aligned_wall[near.aligned] = i as u32;
-                    near.aligned += 1;
-                }
-                None => {
-                    near.rotated[near.rotated_count] = i as u32;
-                    near.rotated_count += 1;
-                }
+            None => {
+                self.rotated[self.rotated_count] = i as u32;
+                self.rotated_count += 1;
             }
         }
     }
@@ -209,9 +217,9 @@ impl NearbyWalls {
         }
         let slab = SlabRay::new(origin, dir);
         let mut best = Nearest::new(max_distance);
-        for k in 0..self.aligned {
-            if let Some(t) = slab.hit(&self.aligned_boxes[k], best.limit()) {
-                best.offer(t, self.aligned_wall[k], self.aligned_reflectance[k]);
+        for b in &self.boxes[..self.aligned] {
+            if let Some(t) = slab.hit(&b.bounds, best.limit()) {
+                best.offer(t, b.wall, b.reflectance);
             }
         }
         for &i in &self.rotated[..self.rotated_count] {
@@ -221,6 +229,65 @@ impl NearbyWalls {
             }
         }
         best.hit()
+    }
+
+    /// The nearest wall along each ray of `fan` for the frame at `at` with heading `heading` (sine
+    /// and cosine of its yaw), into `hits` in the fan's order (`hits` holds one per ray): for a
+    /// ray of position `p`, direction `d` and length `r` in the frame, `cast_ray` from
+    /// `[x + c p0 - s p1, y + s p0 + c p1]` along `[c d0 - s d1, s d0 + c d1]` up to `r`, bit for
+    /// bit. The rays must lie inside the region.
+    ///
+    /// When every wall kept is an axis-aligned box, each group of the fan meets all the boxes
+    /// in one pass (`SlabLanes`); otherwise its rays are cast one by one.
+    pub fn cast_fan(
+        &self,
+        index: &WallIndex,
+        fan: &RayFan,
+        at: [f32; 2],
+        heading: [f32; 2],
+        hits: &mut [Option<RayHit>],
+    ) {
+        assert_eq!(hits.len(), fan.len, "one hit slot per ray of the fan");
+        if !(self.slabs_only && fan.finite) {
+            self.cast_fan_one_by_one(index, fan, at, heading, hits);
+            return;
+        }
+        let boxes = &self.boxes[..self.aligned];
+        if boxes.is_empty() {
+            // Nothing near (as often between corridor walls): no ray meets anything.
+            hits.fill(None);
+            return;
+        }
+        for (group, hits) in fan.groups.iter().zip(hits.chunks_mut(LANES)) {
+            let (origin, dir) = group.place(at, heading);
+            let bound = group.bound;
+            let (distance, reflectance) = SlabLanes::new(origin, dir).nearest(boxes, bound);
+            for (l, hit) in hits.iter_mut().enumerate() {
+                *hit = (distance[l] < bound[l]).then_some(RayHit {
+                    distance: distance[l],
+                    reflectance: reflectance[l],
+                });
+            }
+        }
+    }
+
+    /// `cast_fan` by `cast_ray` for each ray.
+    #[inline(never)]
+    fn cast_fan_one_by_one(
+        &self,
+        index: &WallIndex,
+        fan: &RayFan,
+        at: [f32; 2],
+        heading: [f32; 2],
+        hits: &mut [Option<RayHit>],
+    ) {
+        for (group, hits) in fan.groups.iter().zip(hits.chunks_mut(LANES)) {
+            let (origin, dir) = group.place(at, heading);
+            for (l, hit) in hits.iter_mut().enumerate() {
+                let (o, d) = ([origin[0][l], origin[1][l]], [dir[0][l], dir[1][l]]);
+                *hit = self.cast_ray(index, o, d, group.range[l]);
+            }
+        }
     }
 
     /// Signed distance from `p` to the nearest wall surface within `search` metres, as
@@ -238,6 +305,96 @@ impl NearbyWalls {
             }
         }
         best
+    }
+}
+
+/// Rays fixed to a moving frame, such as a robot's distance sensors, kept in groups of `LANES`
+/// (the last one padded) to be cast together by `NearbyWalls::cast_fan`.
+#[derive(Debug, Clone)]
+pub struct RayFan {
+    groups: Vec<FanGroup>,
+    /// Number of rays (the rest of the last group is padding).
+    len: usize,
+    /// Every ray's length is finite, so that `bound` is defined.
+    finite: bool,
+}
+
+/// `LANES` rays of a fan as structure of arrays.
+#[derive(Debug, Clone, Copy)]
+struct FanGroup {
+    /// Position x and y in the frame per lane.
+    position: [[f32; LANES]; 2],
+    /// Unit direction x and y in the frame per lane.
+    direction: [[f32; LANES]; 2],
+    /// Length per lane.
+    range: [f32; LANES],
+    /// Per lane, the least f32 above the length (`next_up`): a hit counts when nearer than this.
+    /// Padding lanes: negative infinity, no hit.
+    bound: [f32; LANES],
+}
+
+impl FanGroup {
+    /// The rays' origins and directions (x, y per lane) for the frame at `at` with heading
+    /// `heading` (sine and cosine of its yaw).
+    #[inline(always)]
+    fn place(&self, at: [f32; 2], heading: [f32; 2]) -> ([[f32; LANES]; 2], [[f32; LANES]; 2]) {
+        let [x, y] = at;
+        let [s, c] = heading;
+        let [px, py] = &self.position;
+        let [dx, dy] = &self.direction;
+        let mut origin = [[0.0; LANES]; 2];
+        let mut dir = [[0.0; LANES]; 2];
+        for l in 0..LANES {
+            origin[0][l] = x + c * px[l] - s * py[l];
+            origin[1][l] = y + s * px[l] + c * py[l];
+            dir[0][l] = c * dx[l] - s * dy[l];
+            dir[1][l] = s * dx[l] + c * dy[l];
+        }
+        (origin, dir)
+    }
+}
+
+impl RayFan {
+    /// The rays `[position x, position y, direction x, direction y, length]` in the frame
+    /// (unit directions).
+    pub fn new(rays: &[[f32; 5]]) -> Self {
+        let groups = rays
+            .chunks(LANES)
+            .map(|chunk| {
+                let mut g = FanGroup {
+                    position: [[0.0; LANES]; 2],
+                    direction: [[1.0; LANES], [0.0; LANES]],
+                    range: [0.0; LANES],
+                    bound: [f32::NEG_INFINITY; LANES],
+                };
+                for (l, &[px, py, dx, dy, range]) in chunk.iter().enumerate() {
+                    g.position[0][l] = px;
+                    g.position[1][l] = py;
+                    g.direction[0][l] = dx;
+                    g.direction[1][l] = dy;
+                    g.range[l] = range;
+                    if range.is_finite() {
+                        g.bound[l] = next_up(range);
+                    }
+                }
+                g
+            })
+            .collect();
+        Self {
+            groups,
+            len: rays.len(),
+            finite: rays.iter().all(|r| r[4].is_finite()),
+        }
+    }
+
+    /// Number of rays.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// True when the fan has no rays.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
     }
 }
 
@@ -286,6 +443,232 @@ mod tests {
         for p in [[0.0, 0.0], [0.29, 0.02], [0.1, -0.19], [-0.2, 0.2]] {
             assert_eq!(near.signed_distance(&w, p, 0.1), w.signed_distance(p, 0.1));
         }
+    }
+
+    /// Axis-aligned walls only, with exact binary coordinates: walls 0 and 1 are the same box
+    /// (every hit on it a tie), wall 6 shares their face x = 0.1875 and reaches farther down (ties
+    /// for rays through it, and it comes first in bin order), wall 2 continues wall 0 upwards,
+    /// wall 3 is turned a quarter, wall 4 half a turn.
+    fn aligned_index() -> WallIndex {
+        let wall = |center: [f64; 2], half: [f64; 2], yaw: f64, reflectance: f64| WallBox {
+            center,
+            half,
+            yaw,
+            reflectance,
+        };
+        let quarter = std::f64::consts::FRAC_PI_2;
+        WallIndex::new(&[
+            wall([0.25, 0.0], [0.0625, 0.125], 0.0, 0.5),
+            wall([0.25, 0.0], [0.0625, 0.125], 0.0, 0.9),
+            wall([0.25, 0.25], [0.0625, 0.125], 0.0, 0.7),
+            wall([-0.25, 0.125], [0.125, 0.03125], quarter, 0.3),
+            wall([0.0, -0.3125], [0.375, 0.0078125], 2.0 * quarter, 1.0),
+            wall([-0.0625, -0.125], [0.03125, 0.03125], 0.0, 0.2),
+            wall([0.21875, -0.15625], [0.03125, 0.21875], 0.0, 0.1),
+        ])
+    }
+
+    /// Casts `rays` (position, direction, length in the frame) with `cast_fan` and checks each
+    /// against `index.cast_ray` from the documented world origin and direction, bit for bit;
+    /// returns the hits.
+    fn check_fan(
+        index: &WallIndex,
+        near: &NearbyWalls,
+        rays: &[[f32; 5]],
+        at: [f32; 2],
+        heading: [f32; 2],
+    ) -> Vec<Option<RayHit>> {
+        let fan = RayFan::new(rays);
+        assert_eq!(fan.len(), rays.len());
+        let mut hits = vec![None; rays.len()];
+        near.cast_fan(index, &fan, at, heading, &mut hits);
+        let ([x, y], [s, c]) = (at, heading);
+        for (&[px, py, dx, dy, range], hit) in rays.iter().zip(&hits) {
+            let origin = [x + c * px - s * py, y + s * px + c * py];
+            let dir = [c * dx - s * dy, s * dx + c * dy];
+            let expected = index.cast_ray(origin, dir, range);
+            let bits =
+                |h: Option<RayHit>| h.map(|h| (h.distance.to_bits(), h.reflectance.to_bits()));
+            assert_eq!(
+                bits(*hit),
+                bits(expected),
+                "ray from {origin:?} along {dir:?} up to {range}"
+            );
+        }
+        hits
+    }
+
+    /// Directions with zero components of both signs, diagonals and a sweep of angles.
+    fn directions() -> Vec<[f32; 2]> {
+        let h = std::f32::consts::FRAC_1_SQRT_2;
+        let mut dirs = vec![
+            [1.0, 0.0],
+            [-1.0, 0.0],
+            [0.0, 1.0],
+            [0.0, -1.0],
+            [1.0, -0.0],
+            [-1.0, -0.0],
+            [-0.0, 1.0],
+            [-0.0, -1.0],
+            [h, h],
+            [-h, h],
+            [h, -h],
+            [-h, -h],
+        ];
+        dirs.extend((0..72).map(|k| {
+            let a = (k as f32 * 5.0 + 0.5).to_radians();
+            [a.cos(), a.sin()]
+        }));
+        dirs
+    }
+
+    #[test]
+    fn fan_cast_together_answers_as_the_index_bit_for_bit() {
+        let w = aligned_index();
+        let mut near = NearbyWalls::default();
+        // Larger than a neighbourhood: gathered from the bins, then put in index order.
+        near.gather(&w, [0.0, 0.0], 0.9);
+        assert!(near.slabs_only && near.aligned == 7);
+        assert!(near.walls[..near.count].windows(2).any(|p| p[0] > p[1]));
+        // Origins on a grid (some inside walls, some on their faces and edges) and on corners.
+        let mut origins: Vec<[f32; 2]> = (0..15 * 15)
+            .map(|k| [(k % 15) as f32 * 0.05 - 0.35, (k / 15) as f32 * 0.05 - 0.35])
+            .collect();
+        origins.extend([
+            [0.0, 0.0],
+            [0.0, 0.125],
+            [0.1875, 0.0],
+            [0.3125, 0.125],
+            [0.1875, -0.125],
+            [-0.0625, -0.125],
+            [-0.09375, -0.15625],
+        ]);
+        // Lengths: none, exactly the distance from the origin to wall 0's face, and more.
+        let ranges = [0.0, 0.1875, 0.2, 0.35];
+        let mut rays = Vec::new();
+        for o in &origins {
+            for (k, d) in directions().iter().enumerate() {
+                rays.push([o[0], o[1], d[0], d[1], ranges[k % ranges.len()]]);
+                rays.push([o[0], o[1], d[0], d[1], 0.35]);
+            }
+        }
+        // Rays aimed at the walls' corners: entry and exit within rounding of each other.
+        let corners: Vec<[f32; 2]> = near.boxes[..near.aligned]
+            .iter()
+            .flat_map(|b| {
+                let [x0, y0, x1, y1] = b.bounds;
+                [[x0, y0], [x0, y1], [x1, y0], [x1, y1]]
+            })
+            .collect();
+        for o in origins.iter().step_by(3) {
+            for c in &corners {
+                let (dx, dy) = (c[0] - o[0], c[1] - o[1]);
+                let n = (dx * dx + dy * dy).sqrt();
+                if n > 0.0 {
+                    rays.push([o[0], o[1], dx / n, dy / n, 0.5]);
+                }
+            }
+        }
+        // Identity poses (world rays are the frame's; with a sine of +0 or -0 a zero component
+        // keeps one sign or the other), then turned ones; 13 rays a fan: a full group and a
+        // padded one.
+        let mut hits = 0;
+        for chunk in rays.chunks(13) {
+            for heading in [[0.0, 1.0], [-0.0, 1.0]] {
+                let found = check_fan(&w, &near, chunk, [0.0, 0.0], heading);
+                hits += found.iter().flatten().count();
+            }
+        }
+        for (k, chunk) in rays.chunks(13).enumerate().step_by(7) {
+            let a = k as f32 * 0.37;
+            let (s, c) = a.sin_cos();
+            let at = [0.01 * s, -0.02 * c];
+            let short: Vec<[f32; 5]> = chunk
+                .iter()
+                .map(|r| [r[0], r[1], r[2], r[3], 0.3])
+                .collect();
+            check_fan(&w, &near, &short, at, [s, c]);
+        }
+        assert!(hits > 1000, "{hits} hits");
+        // Ties: walls 0, 1 and 6 are met at once, and wall 0 comes first.
+        let along = |o: [f32; 2], range| {
+            check_fan(
+                &w,
+                &near,
+                &[[o[0], o[1], 1.0, 0.0, range]],
+                [0.0, 0.0],
+                [0.0, 1.0],
+            )[0]
+        };
+        assert_eq!(
+            along([0.0, 0.0], 0.1875),
+            Some(RayHit {
+                distance: 0.1875,
+                reflectance: 0.5
+            })
+        );
+        // From inside: at once.
+        assert_eq!(along([0.25, 0.0], 0.35).unwrap().distance, 0.0);
+    }
+
+    #[test]
+    fn fan_cast_in_a_neighbourhood_answers_as_the_index() {
+        let w = aligned_index();
+        let rays: Vec<[f32; 5]> = directions()
+            .iter()
+            .map(|d| [0.02 * d[1], -0.02 * d[0], d[0], d[1], 0.07])
+            .collect();
+        let mut hits = 0;
+        for k in 0..400 {
+            let center = [(k % 20) as f32 * 0.04 - 0.4, (k / 20) as f32 * 0.04 - 0.4];
+            let mut near = NearbyWalls::default();
+            near.gather(&w, center, 0.104);
+            let a = k as f32 * 0.1;
+            let found = check_fan(&w, &near, &rays, center, [a.sin(), a.cos()]);
+            hits += found.iter().flatten().count();
+        }
+        assert!(hits > 1000, "{hits} hits");
+    }
+
+    #[test]
+    fn fan_cast_one_by_one_answers_as_the_index() {
+        // Rotated walls among them.
+        let w = index();
+        let mut near = NearbyWalls::default();
+        near.gather(&w, [0.0, 0.0], 0.5);
+        assert!(!near.slabs_only);
+        let rays: Vec<[f32; 5]> = directions()
+            .iter()
+            .map(|d| [0.03 * d[0], 0.03 * d[1], d[0], d[1], 0.3])
+            .collect();
+        for k in 0..20 {
+            let a = k as f32 * 0.3;
+            check_fan(&w, &near, &rays, [0.01 * k as f32, 0.0], [a.sin(), a.cos()]);
+        }
+        // Too many walls: the full index answers.
+        let crowd: Vec<WallBox> = (0..40)
+            .map(|k| WallBox {
+                center: [(k % 8) as f64 * 0.05 - 0.2, (k / 8) as f64 * 0.05 - 0.1],
+                half: [0.01, 0.01],
+                yaw: 0.0,
+                reflectance: 0.5,
+            })
+            .collect();
+        let w = WallIndex::new(&crowd);
+        near.gather(&w, [0.0, 0.0], 0.3);
+        assert!(near.overflow && !near.slabs_only);
+        let found = check_fan(&w, &near, &rays, [0.0, 0.0], [0.0, 1.0]);
+        assert!(found.iter().flatten().count() > 10);
+        // A wall of negative size (min above max): not for the lanes, cast one by one.
+        let odd = WallIndex::new(&[WallBox {
+            center: [0.1, 0.0],
+            half: [-0.02, 0.05],
+            yaw: 0.0,
+            reflectance: 0.5,
+        }]);
+        near.gather(&odd, [0.0, 0.0], 0.3);
+        assert!(!near.slabs_only);
+        check_fan(&odd, &near, &rays, [0.0, 0.0], [0.0, 1.0]);
     }
 
     #[test]

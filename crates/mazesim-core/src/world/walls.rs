@@ -35,6 +35,9 @@ pub struct WallIndex {
     /// Per wall: the wall itself as an axis-aligned box (min x, min y, max x, max y) when it is
     /// one (yaw a multiple of 90 degrees, as in every cell maze), cast against with `slab_hit`.
     aligned: Vec<Option<[f32; 4]>>,
+    /// Every box of `aligned` has min <= max on both axes (as a wall of non-negative size does),
+    /// as `SlabLanes` needs.
+    aligned_ordered: bool,
     reflectance: Vec<f32>,
     origin: [f64; 2],
     /// Side of a bin in metres.
@@ -118,6 +121,10 @@ impl WallIndex {
                 })
             })
             .collect();
+        let aligned_ordered = aligned
+            .iter()
+            .flatten()
+            .all(|&[x0, y0, x1, y1]| x0 <= x1 && y0 <= y1);
         let bounds = walls.iter().fold(Bounds::EMPTY, |b, w| b.union(w.bounds()));
         if bounds.is_empty() {
             return Self {
@@ -125,6 +132,7 @@ impl WallIndex {
                 frames,
                 boxes,
                 aligned,
+                aligned_ordered,
                 reflectance,
                 origin: [0.0, 0.0],
                 bin: BIN,
@@ -162,6 +170,7 @@ impl WallIndex {
             frames,
             boxes,
             aligned,
+            aligned_ordered,
             reflectance,
             origin,
             bin,
@@ -287,6 +296,11 @@ impl WallIndex {
         self.aligned[i]
     }
 
+    /// Whether every axis-aligned wall's box has min <= max on both axes.
+    pub(super) fn aligned_ordered(&self) -> bool {
+        self.aligned_ordered
+    }
+
     /// Wall `i`'s bounding box (min x, min y, max x, max y), grown by 0.1 mm.
     pub(super) fn bounding_box(&self, i: usize) -> [f32; 4] {
         self.boxes[i]
@@ -357,21 +371,21 @@ fn greater(a: f32, b: f32) -> f32 {
     }
 }
 
+/// The reciprocal of a ray's direction component `d`, as slab tests use it. A component of
+/// (almost) zero becomes a tiny one of the same sign: the slab parameters then stay finite (no
+/// 0 * infinity, no NaN) and mean "never crosses this slab".
+#[inline]
+pub(super) fn slab_inverse(d: f32) -> f32 {
+    // The magnitude raised to 1e-20 if below (NaN stays) and the sign put back: `d` itself
+    // unless it is that small.
+    1.0 / greater(1e-20, d.abs()).copysign(d)
+}
+
 impl SlabRay {
     /// The ray from `origin` along `dir`.
     #[inline]
     pub(super) fn new(origin: [f32; 2], dir: [f32; 2]) -> Self {
-        // A direction component of (almost) zero becomes a tiny one of the same sign: the slab
-        // parameters then stay finite (no 0 * infinity, no NaN) and mean "never crosses this
-        // slab".
-        let inv = dir.map(|d| {
-            let d = if d.abs() < 1e-20 {
-                1e-20f32.copysign(d)
-            } else {
-                d
-            };
-            1.0 / d
-        });
+        let inv = dir.map(slab_inverse);
         let rising = [inv[0] > 0.0, inv[1] > 0.0];
         Self {
             origin,
@@ -396,6 +410,96 @@ impl SlabRay {
         let near = greater(greater(enter_x, enter_y), 0.0);
         let far = lesser(leave_x, leave_y);
         (near <= far && near <= limit).then_some(near)
+    }
+}
+
+/// An axis-aligned wall as a box, for slab tests.
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct SlabBox {
+    /// Min x, min y, max x, max y.
+    pub(super) bounds: [f32; 4],
+    /// The wall's reflection factor.
+    pub(super) reflectance: f32,
+    /// The wall's index.
+    pub(super) wall: u32,
+}
+
+/// Rays cast together against axis-aligned boxes: a group of this many lanes (two SSE vectors of
+/// f32).
+pub(super) const LANES: usize = 8;
+
+/// `LANES` rays prepared for slab tests together, as structure of arrays: lane `l` holds what a
+/// `SlabRay` holds for one ray, and all lanes meet each box side by side in a loop of fixed width
+/// that the compiler turns into vector instructions.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct SlabLanes {
+    /// Origin x and y per lane.
+    origin: [[f32; LANES]; 2],
+    /// Reciprocal direction x and y per lane (`slab_inverse`).
+    inv: [[f32; LANES]; 2],
+}
+
+impl SlabLanes {
+    /// The rays from `origin` (x, y per lane) along `dir` (x, y per lane).
+    #[inline]
+    pub(super) fn new(origin: [[f32; LANES]; 2], dir: [[f32; LANES]; 2]) -> Self {
+        let mut inv = [[0.0; LANES]; 2];
+        for l in 0..LANES {
+            inv[0][l] = slab_inverse(dir[0][l]);
+            inv[1][l] = slab_inverse(dir[1][l]);
+        }
+        Self { origin, inv }
+    }
+
+    /// Per lane, the nearest of `boxes` (each with min <= max on both axes, in increasing wall
+    /// index) met nearer than `bound` (the least f32 above the lane's range) as its distance and
+    /// the box's reflectance; `bound` and 0 where none is.
+    ///
+    /// Bit for bit what `SlabRay::hit` and `Nearest::offer` make of the same boxes:
+    /// - a side's parameter `(side - origin) * inv` is monotonic in the side, so with min <= max
+    ///   the lesser of a box's two parameters on an axis is the one of the side `SlabRay` picks
+    ///   as entered by (ties have equal bits), and the greater the one it leaves by;
+    /// - `near < bound` is `near <= limit` (`near` is never NaN);
+    /// - only a strictly nearer hit replaces the best, so of hits at equal distances the first,
+    ///   of lowest wall index, stays, and a hit at exactly the range counts.
+    #[inline]
+    pub(super) fn nearest(
+        &self,
+        boxes: &[SlabBox],
+        bound: [f32; LANES],
+    ) -> ([f32; LANES], [f32; LANES]) {
+        let [ox, oy] = self.origin;
+        let [ix, iy] = self.inv;
+        let mut best = bound;
+        let mut best_reflectance = [0.0; LANES];
+        for b in boxes {
+            let [x0, y0, x1, y1] = b.bounds;
+            let r = b.reflectance;
+            for l in 0..LANES {
+                let (ax, bx) = ((x0 - ox[l]) * ix[l], (x1 - ox[l]) * ix[l]);
+                let (ay, by) = ((y0 - oy[l]) * iy[l], (y1 - oy[l]) * iy[l]);
+                let near = greater(greater(lesser(ax, bx), lesser(ay, by)), 0.0);
+                let far = lesser(greater(ax, bx), greater(ay, by));
+                // Selects, not branches: a miss as an infinite distance, never below `best`
+                // (at most `next_up(f32::MAX)`, infinity itself).
+                let t = if near <= far { near } else { f32::INFINITY };
+                best_reflectance[l] = if t < best[l] { r } else { best_reflectance[l] };
+                best[l] = lesser(t, best[l]);
+            }
+        }
+        (best, best_reflectance)
+    }
+}
+
+/// The least f32 above the finite `x`: a distance `t` has `t <= x` exactly when `t < next_up(x)`.
+pub(super) fn next_up(x: f32) -> f32 {
+    debug_assert!(x.is_finite());
+    if x == 0.0 {
+        f32::from_bits(1)
+    } else if x > 0.0 {
+        f32::from_bits(x.to_bits() + 1)
+    } else {
+        f32::from_bits(x.to_bits() - 1)
     }
 }
 
@@ -477,6 +581,50 @@ mod tests {
         assert!(w.cast_ray([0.0, 0.0], [-1.0, 0.0], 3.0).is_none());
         let hit = w.cast_ray([1.5, 0.0], [1.0, 0.0], 3.0).unwrap();
         assert_eq!(hit.reflectance, 1.0);
+    }
+
+    #[test]
+    fn slab_inverse_and_next_up_are_exact() {
+        // The reciprocal as first written: the component itself unless below 1e-20 in magnitude.
+        let first = |d: f32| {
+            let d = if d.abs() < 1e-20 {
+                1e-20f32.copysign(d)
+            } else {
+                d
+            };
+            1.0 / d
+        };
+        let tiny = 1e-20f32;
+        let specials = [
+            0.0,
+            -0.0,
+            tiny,
+            -tiny,
+            f32::from_bits(tiny.to_bits() - 1),
+            f32::from_bits(tiny.to_bits() + 1),
+            f32::from_bits(1),
+            -f32::from_bits(1),
+            f32::MIN_POSITIVE,
+            1.0,
+            -1.0,
+            0.3,
+            f32::MAX,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+        ];
+        for d in specials {
+            assert_eq!(slab_inverse(d).to_bits(), first(d).to_bits(), "{d:e}");
+        }
+        let least = f32::from_bits(1);
+        assert_eq!(next_up(0.0).to_bits(), least.to_bits());
+        assert_eq!(next_up(-0.0).to_bits(), least.to_bits());
+        assert_eq!(next_up(-least).to_bits(), (-0.0f32).to_bits());
+        assert_eq!(next_up(least), f32::from_bits(2));
+        assert_eq!(next_up(1.0), 1.0 + f32::EPSILON);
+        assert_eq!(next_up(-1.0), -1.0 + f32::EPSILON / 2.0);
+        assert_eq!(next_up(0.07), f32::from_bits(0.07f32.to_bits() + 1));
+        assert_eq!(next_up(f32::MAX), f32::INFINITY);
     }
 
     #[test]
