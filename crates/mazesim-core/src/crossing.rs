@@ -5,9 +5,13 @@
 
 use crate::world::Checkpoint;
 
-/// Metres kept between a quiet disc and the nearest code's disc, and by which a point must
-/// clear a code's disc to be skipped: far above rounding, so no point on a code is skipped.
-const QUIET_MARGIN: f64 = 1e-6;
+/// Metres kept between a watch disc and the discs of the codes it does not watch: far above
+/// rounding, so that no code the sensor may be on goes unwatched.
+const WATCH_MARGIN: f64 = 1e-6;
+
+/// Codes whose disc comes within this many metres of the sensor are watched from there on; the
+/// others are left alone until it has moved about as far.
+const WATCH_REACH: f64 = 0.05;
 
 /// One completed crossing.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -41,9 +45,11 @@ pub struct CrossingTracker {
     /// The sensor's position at the last update or placement, to know the end by which it came
     /// onto a code.
     previous: Option<[f64; 2]>,
-    /// A disc (centre, radius) that reaches no code: while the sensor stays in it and on no
-    /// code, nothing can happen, and the codes need not be looked at.
-    quiet: Option<([f64; 2], f64)>,
+    /// A disc (centre, radius) that reaches the discs of the `watched` codes only: while the
+    /// sensor stays in it, it can be on no other code, and the others need not be looked at.
+    watch: Option<([f64; 2], f64)>,
+    /// Indices of the codes the watch disc reaches (and of the code the sensor is on), in order.
+    watched: Vec<usize>,
 }
 
 /// How far `p` is from the disc around a code's corners (negative inside it).
@@ -71,7 +77,7 @@ impl CrossingTracker {
     pub fn place(&mut self, checkpoints: &[Checkpoint], sensor: [f64; 2]) {
         self.on_code = None;
         self.previous = Some(sensor);
-        self.quiet = None;
+        self.watch = None;
         for (i, cp) in checkpoints.iter().enumerate() {
             let (u, v) = local(cp, sensor);
             if u.abs() <= cp.length / 2.0 && v.abs() <= cp.width / 2.0 {
@@ -81,7 +87,8 @@ impl CrossingTracker {
         }
     }
 
-    /// Moves the sensor to `sensor`; returns a crossing if one completed.
+    /// Moves the sensor to `sensor`; returns a crossing if one completed. `checkpoints` are those
+    /// of the last `place`.
     pub fn update(
         &mut self,
         checkpoints: &[Checkpoint],
@@ -90,23 +97,16 @@ impl CrossingTracker {
     ) -> Option<Crossing> {
         let mut done = None;
         let previous = self.previous.replace(sensor);
-        if let (None, Some((centre, radius))) = (self.on_code, self.quiet) {
+        let watching = self.watch.is_some_and(|(centre, radius)| {
             let (dx, dy) = (sensor[0] - centre[0], sensor[1] - centre[1]);
-            if dx * dx + dy * dy < radius * radius {
-                return None;
-            }
+            dx * dx + dy * dy < radius * radius
+        });
+        if !watching {
+            self.watch_around(checkpoints, sensor);
         }
-        // The distance to the nearest code's disc, for the next quiet disc.
-        let mut room = f64::INFINITY;
-        for (i, cp) in checkpoints.iter().enumerate() {
-            let current = matches!(self.on_code, Some((k, _)) if k == i);
-            let beyond = beyond_reach(cp, sensor);
-            // Most codes are far away: nothing to follow there.
-            if !current && beyond > QUIET_MARGIN {
-                room = room.min(beyond);
-                continue;
-            }
-            room = 0.0;
+        // The sensor is on no other code than these: on the others, nothing can happen.
+        for &i in &self.watched {
+            let cp = &checkpoints[i];
             let (u, v) = local(cp, sensor);
             let inside = u.abs() <= cp.length / 2.0 && v.abs() <= cp.width / 2.0;
             match self.on_code {
@@ -132,10 +132,25 @@ impl CrossingTracker {
                 }
             }
         }
-        // A margin far above rounding keeps the disc clear of every code.
-        self.quiet = (self.on_code.is_none() && room > QUIET_MARGIN)
-            .then_some((sensor, room - QUIET_MARGIN));
         done
+    }
+
+    /// Watches the codes within `WATCH_REACH` of `sensor` (and the one it is on), over a disc
+    /// around it that keeps `WATCH_MARGIN` from the discs of all the others.
+    fn watch_around(&mut self, checkpoints: &[Checkpoint], sensor: [f64; 2]) {
+        self.watched.clear();
+        // The distance to the nearest unwatched code's disc.
+        let mut room = f64::INFINITY;
+        for (i, cp) in checkpoints.iter().enumerate() {
+            let current = matches!(self.on_code, Some((k, _)) if k == i);
+            let beyond = beyond_reach(cp, sensor);
+            if current || beyond <= WATCH_REACH {
+                self.watched.push(i);
+            } else {
+                room = room.min(beyond);
+            }
+        }
+        self.watch = Some((sensor, room - WATCH_MARGIN));
     }
 }
 
@@ -265,5 +280,69 @@ mod tests {
     #[test]
     fn passing_beside_the_code_is_no_crossing() {
         assert!(drive([0.8, 0.3], [1.2, 0.3], 100).is_empty());
+    }
+
+    #[test]
+    fn watching_the_near_codes_only_changes_nothing() {
+        // Three junctions with a code on each way in, as the maze generator lays them out:
+        // the codes' discs overlap, and the sensor is near one most of the time.
+        let mut cps = Vec::new();
+        for junction in [[0.125, 0.125], [0.625, 0.375], [0.375, 0.875]] {
+            for d in 0..4 {
+                let out = d as f64 * std::f64::consts::FRAC_PI_2;
+                let mut cp = checkpoint();
+                cp.id = cps.len() as u32 + 1;
+                cp.center = [
+                    junction[0] + 0.125 * out.cos(),
+                    junction[1] + 0.125 * out.sin(),
+                ];
+                cp.yaw = out + std::f64::consts::PI;
+                cp.axis = [cp.yaw.cos(), cp.yaw.sin()];
+                cp.width = 0.23;
+                cps.push(cp);
+            }
+        }
+        let on_a_code = |p: [f64; 2]| {
+            cps.iter().any(|cp| {
+                let (u, v) = local(cp, p);
+                u.abs() <= cp.length / 2.0 && v.abs() <= cp.width / 2.0
+            })
+        };
+        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut uniform = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut t = CrossingTracker::new();
+        let mut total = 0;
+        for _ in 0..40 {
+            // Walks start off the codes: the reference knows nothing of a start on one.
+            let mut p = [uniform() * 1.0 - 0.1, uniform() * 1.2 - 0.1];
+            while on_a_code(p) {
+                p = [uniform() * 1.0 - 0.1, uniform() * 1.2 - 0.1];
+            }
+            let mut heading = uniform() * 6.3;
+            let mut path = vec![p];
+            for _ in 0..5_000 {
+                heading += (uniform() - 0.5) * 0.5;
+                let next = [p[0] + 0.004 * heading.cos(), p[1] + 0.004 * heading.sin()];
+                if !(-0.2..=1.0).contains(&next[0]) || !(-0.2..=1.2).contains(&next[1]) {
+                    heading += std::f64::consts::PI;
+                } else {
+                    p = next;
+                }
+                path.push(p);
+            }
+            let expected = reference(&cps, &path);
+            t.place(&cps, path[0]);
+            let found: Vec<_> = (1..path.len())
+                .filter_map(|k| t.update(&cps, path[k], k as u64))
+                .collect();
+            assert_eq!(found, expected);
+            total += found.len();
+        }
+        assert!(total > 300, "{total}");
     }
 }

@@ -10,7 +10,8 @@
 
 use crate::rng::Rng;
 use crate::robot::SensorModel;
-use crate::world::{FloorPaint, RayHit, WallIndex};
+use crate::world::floor::DiscPaint;
+use crate::world::{Bounds, FloorPaint, RayHit, WallIndex};
 
 /// Samples per side of the ground sensor's spot.
 const SPOT_SAMPLES: usize = 3;
@@ -83,7 +84,22 @@ pub fn spot_reflectance(
     if model.footprint <= 0.0 {
         return floor.reflectance_at(at);
     }
-    let candidates = floor.regions_near(at);
+    spot_reflectance_among(model, floor, floor.regions_near(at), at, axis)
+}
+
+/// `spot_reflectance` of a sensor with a spot (`footprint > 0`), given
+/// `candidates = floor.regions_near(at)`.
+///
+/// The mean is that of the floor at `SPOT_SAMPLES` x `SPOT_SAMPLES` points of the spot. When no
+/// edge of paint passes near the spot, all of them read the same, and that one value is summed
+/// as many times instead of looking every point up.
+pub fn spot_reflectance_among(
+    model: &SensorModel,
+    floor: &FloorPaint,
+    candidates: &[u32],
+    at: [f64; 2],
+    axis: [f64; 2],
+) -> f64 {
     if candidates.is_empty() {
         return floor.background();
     }
@@ -93,6 +109,13 @@ pub fn spot_reflectance(
     let [c, s] = axis;
     let step = model.footprint / SPOT_SAMPLES as f64;
     let first = -(model.footprint - step) / 2.0;
+    // Every sample lies within this distance of `at`: the corners of the grid of samples, turned
+    // and scaled by `axis` (of length 1 give or take rounding).
+    let reach = first.abs() * std::f64::consts::SQRT_2 * (c * c + s * s).sqrt();
+    let candidates = match floor.disc_paint(candidates, at, reach) {
+        DiscPaint::Uniform(f) => return uniform_spot(f),
+        DiscPaint::Mixed(candidates) => candidates,
+    };
     let mut sum = 0.0;
     for i in 0..SPOT_SAMPLES {
         let u = first + i as f64 * step;
@@ -103,6 +126,40 @@ pub fn spot_reflectance(
         }
     }
     sum / (SPOT_SAMPLES * SPOT_SAMPLES) as f64
+}
+
+/// The spot mean when every sample reads `f`: summed sample by sample like a mixed spot, which
+/// need not give back `f` itself to the last bit.
+#[inline]
+fn uniform_spot(f: f64) -> f64 {
+    let mut sum = 0.0;
+    for _ in 0..SPOT_SAMPLES * SPOT_SAMPLES {
+        sum += f;
+    }
+    sum / (SPOT_SAMPLES * SPOT_SAMPLES) as f64
+}
+
+/// The table value and relative sigma of a ground sensor over floor point `at`, given
+/// `candidates = floor.regions_near(at)` and `background = ground_background(model, floor)`.
+#[inline]
+fn ground_value(
+    model: &SensorModel,
+    floor: &FloorPaint,
+    candidates: &[u32],
+    at: [f64; 2],
+    axis: [f64; 2],
+    background: (f64, f64),
+) -> (f64, f64) {
+    // With no region near `at`, every point of the spot reads the background.
+    if candidates.is_empty() {
+        return background;
+    }
+    let f = if model.footprint <= 0.0 {
+        floor.reflectance_among(candidates, at)
+    } else {
+        spot_reflectance_among(model, floor, candidates, at, axis)
+    };
+    model.table.eval(model.height / f)
 }
 
 /// Reads a ground sensor at floor point `at` on a robot whose unit forward vector is `axis`.
@@ -118,7 +175,8 @@ pub fn read_ground(
     noisy(value, sigma, rng)
 }
 
-/// A ground sensor's table value and relative sigma over bare floor, for `read_ground_with`.
+/// A ground sensor's table value and relative sigma over bare floor, for `read_ground_with`
+/// and `GroundReader`.
 pub fn ground_background(model: &SensorModel, floor: &FloorPaint) -> (f64, f64) {
     model.table.eval(model.height / floor.background())
 }
@@ -134,14 +192,53 @@ pub fn read_ground_with(
     background: (f64, f64),
     rng: Option<&mut Rng>,
 ) -> f32 {
-    // With no region near `at`, every point of the spot reads the background.
-    let (value, sigma) = if floor.regions_near(at).is_empty() {
-        background
-    } else {
-        let f = spot_reflectance(model, floor, at, axis);
-        model.table.eval(model.height / f)
-    };
+    let candidates = floor.regions_near(at);
+    let (value, sigma) = ground_value(model, floor, candidates, at, axis, background);
     noisy(value, sigma, rng)
+}
+
+/// One ground sensor reading the floor of one world again and again, as `read_ground` does: it
+/// keeps its table value over bare floor and the last box of bare floor it was in (from
+/// `FloorPaint::bare_box`), so that while it stays in that box a reading needs no look-up.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GroundReader {
+    /// `ground_background` of the sensor and floor.
+    background: (f64, f64),
+    /// Floor where no region is near any point.
+    bare: Bounds,
+}
+
+impl GroundReader {
+    /// A reader of `floor` for a sensor of `model`.
+    pub fn new(model: &SensorModel, floor: &FloorPaint) -> Self {
+        Self {
+            background: ground_background(model, floor),
+            bare: Bounds::EMPTY,
+        }
+    }
+
+    /// Reads the sensor at floor point `at` on a robot whose unit forward vector is `axis`;
+    /// `floor` must be the one the reader was made for.
+    #[inline]
+    pub fn read(
+        &mut self,
+        model: &SensorModel,
+        floor: &FloorPaint,
+        at: [f64; 2],
+        axis: [f64; 2],
+        rng: Option<&mut Rng>,
+    ) -> f32 {
+        let (value, sigma) = if self.bare.contains(at) {
+            self.background
+        } else {
+            let candidates = floor.regions_near(at);
+            if candidates.is_empty() {
+                self.bare = floor.bare_box(at);
+            }
+            ground_value(model, floor, candidates, at, axis, self.background)
+        };
+        noisy(value, sigma, rng)
+    }
 }
 
 #[cfg(test)]
@@ -181,6 +278,256 @@ mod tests {
                 "at {at:?}"
             );
         }
+    }
+
+    /// The spot mean by its definition: every sample looked up among the regions near the
+    /// centre, summed and divided.
+    fn reference_spot(
+        model: &SensorModel,
+        floor: &FloorPaint,
+        at: [f64; 2],
+        axis: [f64; 2],
+    ) -> f64 {
+        if model.footprint <= 0.0 {
+            return floor.reflectance_at(at);
+        }
+        let candidates = floor.regions_near(at);
+        if candidates.is_empty() {
+            return floor.background();
+        }
+        let [c, s] = axis;
+        let step = model.footprint / SPOT_SAMPLES as f64;
+        let first = -(model.footprint - step) / 2.0;
+        let mut sum = 0.0;
+        for i in 0..SPOT_SAMPLES {
+            let u = first + i as f64 * step;
+            for j in 0..SPOT_SAMPLES {
+                let v = first + j as f64 * step;
+                let p = [at[0] + c * u - s * v, at[1] + s * u + c * v];
+                sum += floor.reflectance_among(candidates, p);
+            }
+        }
+        sum / (SPOT_SAMPLES * SPOT_SAMPLES) as f64
+    }
+
+    /// Barcode bars side by side (square to the axes and turned), discs and strokes over one
+    /// another, in reflectances whose nine-fold sums do not divide back exactly.
+    fn busy_floor() -> FloorPaint {
+        let mut regions = Vec::new();
+        for (k, yaw) in [0.0, std::f64::consts::FRAC_PI_2, 0.3]
+            .into_iter()
+            .enumerate()
+        {
+            let (s, c) = yaw.sin_cos();
+            let centre = [0.5 * k as f64, 0.2 * k as f64];
+            for bar in 0..6 {
+                let along = (bar as f64 - 2.5) * 0.017;
+                regions.push(PaintRegion {
+                    shape: PaintShape::Rect {
+                        center: [centre[0] + c * along, centre[1] + s * along],
+                        half: [0.0085, 0.115],
+                        yaw,
+                    },
+                    reflectance: [0.1, 0.7, 0.3][bar % 3],
+                });
+            }
+        }
+        regions.push(PaintRegion {
+            shape: PaintShape::Circle {
+                center: [0.5, 0.25],
+                radius: 0.03,
+            },
+            reflectance: 0.3,
+        });
+        regions.push(PaintRegion {
+            shape: PaintShape::Circle {
+                center: [1.2, -0.1],
+                radius: 0.002,
+            },
+            reflectance: 0.1,
+        });
+        regions.push(PaintRegion {
+            shape: PaintShape::Capsule {
+                a: [-0.1, -0.1],
+                b: [0.4, 0.05],
+                radius: 0.01,
+            },
+            reflectance: 0.7,
+        });
+        FloorPaint::new(0.9, regions)
+    }
+
+    #[test]
+    fn quick_spot_is_the_nine_sample_mean_to_the_bit() {
+        assert_ne!(
+            uniform_spot(0.1),
+            0.1,
+            "the test needs sums that do not divide back"
+        );
+        let e = RobotProfile::builtin("e-puck").unwrap();
+        let mut widest = (*e.ground_sensors[0].model).clone();
+        widest.footprint = 0.007;
+        let models = [&*e.ground_sensors[0].model, &widest];
+        let floor = busy_floor();
+        let mut rng = Rng::new(7);
+        let (mut mixed, mut painted) = (0, 0);
+        for n in 0..400_000 {
+            let model = models[n % 2];
+            // Near an edge of some region: a corner of its bounds, moved along and across.
+            let region = &floor.regions()[n % floor.regions().len()];
+            let b = region.shape.bounds();
+            let corner = [
+                if rng.uniform() < 0.5 {
+                    b.min[0]
+                } else {
+                    b.max[0]
+                },
+                if rng.uniform() < 0.5 {
+                    b.min[1]
+                } else {
+                    b.max[1]
+                },
+            ];
+            let spread = [0.004, 0.03, 0.3][n % 3];
+            let at = [
+                corner[0] + rng.uniform_range(-spread, spread),
+                corner[1] + rng.uniform_range(-spread, spread),
+            ];
+            let heading = rng.uniform_range(-4.0, 4.0);
+            let axis = if n % 4 == 0 {
+                // As the simulator has it: from an f32 heading.
+                let (s, c) = (heading as f32).sin_cos();
+                [c as f64, s as f64]
+            } else {
+                [heading.cos(), heading.sin()]
+            };
+            let quick = spot_reflectance(model, &floor, at, axis);
+            let expected = reference_spot(model, &floor, at, axis);
+            assert_eq!(quick, expected, "at {at:?} axis {axis:?}");
+            let candidates = floor.regions_near(at);
+            if !candidates.is_empty() {
+                let reach = model.footprint / 3.0 * std::f64::consts::SQRT_2;
+                match floor.disc_paint(candidates, at, reach) {
+                    crate::world::floor::DiscPaint::Mixed(_) => mixed += 1,
+                    crate::world::floor::DiscPaint::Uniform(f) => painted += (f != 0.9) as usize,
+                }
+            }
+        }
+        // Both ways were taken, many times.
+        assert!(mixed > 20_000 && painted > 20_000, "{mixed} {painted}");
+    }
+
+    /// Points on the edge of a shape, each with its outward unit normal.
+    fn edge_points(shape: &PaintShape) -> Vec<([f64; 2], [f64; 2])> {
+        let turned = |centre: [f64; 2], (s, c): (f64, f64), p: [f64; 2]| {
+            [
+                centre[0] + c * p[0] - s * p[1],
+                centre[1] + s * p[0] + c * p[1],
+            ]
+        };
+        let along = [-0.9, -0.31, 0.0, 0.57, 1.0];
+        let mut points = Vec::new();
+        match *shape {
+            PaintShape::Rect { center, half, yaw } => {
+                let turn = yaw.sin_cos();
+                for t in along {
+                    for (p, n) in [
+                        ([half[0], t * half[1]], [1.0, 0.0]),
+                        ([-half[0], t * half[1]], [-1.0, 0.0]),
+                        ([t * half[0], half[1]], [0.0, 1.0]),
+                        ([t * half[0], -half[1]], [0.0, -1.0]),
+                    ] {
+                        points.push((turned(center, turn, p), turned([0.0; 2], turn, n)));
+                    }
+                }
+            }
+            PaintShape::Circle { center, radius } => {
+                for k in 0..24 {
+                    let (s, c) = (k as f64 * 0.2618 + 0.1).sin_cos();
+                    points.push(([center[0] + radius * c, center[1] + radius * s], [c, s]));
+                }
+            }
+            PaintShape::Capsule { a, b, radius } => {
+                let d = [b[0] - a[0], b[1] - a[1]];
+                let len = (d[0] * d[0] + d[1] * d[1]).sqrt();
+                let n = [-d[1] / len, d[0] / len];
+                for t in along.map(|t| (t + 1.0) / 2.0) {
+                    let m = [a[0] + t * d[0], a[1] + t * d[1]];
+                    for side in [1.0, -1.0] {
+                        let n = [side * n[0], side * n[1]];
+                        points.push(([m[0] + radius * n[0], m[1] + radius * n[1]], n));
+                    }
+                }
+                for (end, away) in [(b, 1.0), (a, -1.0)] {
+                    let u = [away * d[0] / len, away * d[1] / len];
+                    points.push(([end[0] + radius * u[0], end[1] + radius * u[1]], u));
+                }
+            }
+        }
+        points
+    }
+
+    #[test]
+    fn quick_spot_on_edges_to_the_last_bit() {
+        // Spots whose corner sample falls on an edge (inside the shape or outside it), give or
+        // take a few rounding steps: there the quick tests must give way to the samples.
+        let e = RobotProfile::builtin("e-puck").unwrap();
+        let model = &*e.ground_sensors[0].model;
+        let floor = busy_floor();
+        let third = model.footprint / 3.0;
+        let reach = third * std::f64::consts::SQRT_2;
+        let mut checked = 0;
+        for region in floor.regions() {
+            for (edge, n) in edge_points(&region.shape) {
+                // The first corner sample lies at -reach along the diagonal of this heading,
+                // the last at +reach.
+                let heading = n[1].atan2(n[0]) - std::f64::consts::FRAC_PI_4;
+                let axis = [heading.cos(), heading.sin()];
+                for k in -30..=30 {
+                    for away in [reach, -reach, third, -third] {
+                        let d = away + k as f64 * 2e-13;
+                        let at = [edge[0] + d * n[0], edge[1] + d * n[1]];
+                        assert_eq!(
+                            spot_reflectance(model, &floor, at, axis),
+                            reference_spot(model, &floor, at, axis),
+                            "at {at:?} axis {axis:?}"
+                        );
+                        checked += 1;
+                    }
+                }
+            }
+        }
+        assert!(checked > 50_000, "{checked}");
+    }
+
+    #[test]
+    fn a_ground_reader_reads_as_read_ground() {
+        let e = RobotProfile::builtin("e-puck").unwrap();
+        let model = &*e.ground_sensors[0].model;
+        let floor = busy_floor();
+        let mut reader = GroundReader::new(model, &floor);
+        let (mut noise_a, mut noise_b) = (Rng::new(3), Rng::new(3));
+        let mut walk = Rng::new(11);
+        let (mut at, mut heading) = ([-0.6, -0.4], 0.0_f64);
+        for k in 0..200_000 {
+            heading += walk.uniform_range(-0.3, 0.3);
+            at = [at[0] + 0.004 * heading.cos(), at[1] + 0.004 * heading.sin()];
+            if !(-0.8..=1.8).contains(&at[0]) || !(-0.6..=0.9).contains(&at[1]) {
+                heading += std::f64::consts::PI;
+            }
+            let axis = [heading.cos(), heading.sin()];
+            let (a, b) = if k % 2 == 0 {
+                (Some(&mut noise_a), Some(&mut noise_b))
+            } else {
+                (None, None)
+            };
+            assert_eq!(
+                reader.read(model, &floor, at, axis, a),
+                read_ground(model, &floor, at, axis, b),
+                "at {at:?}"
+            );
+        }
+        assert_eq!(noise_a, noise_b);
     }
 
     #[test]

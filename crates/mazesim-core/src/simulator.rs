@@ -7,7 +7,7 @@ use crate::error::{Error, Result};
 use crate::physics::Body;
 use crate::rng::Rng;
 use crate::robot::RobotProfile;
-use crate::sensors::{ground_background, infrared_miss, infrared_reading_with, read_ground_with};
+use crate::sensors::{infrared_miss, infrared_reading_with, GroundReader};
 use crate::world::{NearbyWalls, RayFan, RayHit, World};
 
 /// A gap to a wall below this (metres) counts as touching it.
@@ -70,8 +70,8 @@ pub struct Simulator {
     infrared_miss: Vec<(f64, f64)>,
     /// How far from the robot's centre a sensor ray or the clearance search can reach, metres.
     reach: f32,
-    /// Per ground sensor: its table value and relative sigma over the bare floor of the world.
-    ground_background: Vec<(f64, f64)>,
+    /// Per ground sensor: its reader of the world's floor.
+    ground_readers: Vec<GroundReader>,
     /// The walls near the robot at its last sensor reading (kept to reuse its storage).
     near: NearbyWalls,
     time: f64,
@@ -145,10 +145,10 @@ impl Simulator {
                 .map(|d| infrared_miss(&d.model))
                 .collect(),
             near: NearbyWalls::default(),
-            ground_background: robot
+            ground_readers: robot
                 .ground_sensors
                 .iter()
-                .map(|g| ground_background(&g.model, world.floor()))
+                .map(|g| GroundReader::new(&g.model, world.floor()))
                 .collect(),
             ground_readings: vec![0.0; robot.ground_sensors.len()],
             world,
@@ -343,9 +343,8 @@ impl Simulator {
             let [px, py] = sensor.position;
             let at = [x as f64 + cd * px - sd * py, y as f64 + sd * px + cd * py];
             let rng = noise.then_some(&mut self.rng);
-            let background = self.ground_background[i];
-            self.ground_readings[i] =
-                read_ground_with(&sensor.model, world.floor(), at, [cd, sd], background, rng);
+            let reader = &mut self.ground_readers[i];
+            self.ground_readings[i] = reader.read(&sensor.model, world.floor(), at, [cd, sd], rng);
         }
     }
 

@@ -2,8 +2,14 @@
 //!
 //! Regions are drawn in order (a later region covers an earlier one). A coarse bin grid keeps a
 //! look-up to the few regions near the point.
+//!
+//! Besides the point-wise look-up, two tests judge a whole area at once, for the ground sensors:
+//! whether a disc (a sensor's spot) shows a single paint, and how far around a point the bins
+//! hold no region (the floor is bare). Both keep a slack far above the rounding of any coordinate
+//! of the floor from every edge they rely on, so that each point of the area reads exactly as the
+//! point-wise look-up reads it.
 
-use super::geometry::{Bounds, PaintShape};
+use super::geometry::{Bounds, DiscSide, PaintShape};
 
 /// One painted region.
 #[derive(Debug, Clone, PartialEq)]
@@ -33,6 +39,26 @@ fn bin_side(bounds: Bounds) -> f64 {
 /// list serves every point of a sensor spot centred in it (spots are a few millimetres wide).
 pub const SPOT_MARGIN: f64 = 0.005;
 
+/// Up to this many bins each way are joined to a point's own by `FloorPaint::bare_box`.
+const BARE_BOX_REACH: usize = 8;
+
+/// Metres of slack for every metre of the largest coordinate of a floor: some 4,500 times the
+/// relative rounding of an f64, where the tests' arithmetic loses a few roundings at most.
+const SLACK_PER_METRE: f64 = 1e-12;
+
+/// The least slack in metres, however small the floor's coordinates.
+const LEAST_SLACK: f64 = 1e-9;
+
+/// What a disc of floor shows, as the regions' edges tell.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum DiscPaint<'a> {
+    /// Every point of the disc has this reflectance (a region's, or the background).
+    Uniform(f64),
+    /// An edge may pass through the disc: its points are painted by these candidates (topmost
+    /// first) or are bare.
+    Mixed(&'a [u32]),
+}
+
 /// The painted floor of a world.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FloorPaint {
@@ -49,6 +75,9 @@ pub struct FloorPaint {
     bin_start: Vec<u32>,
     /// Region indices per bin, highest (topmost) first.
     bin_regions: Vec<u32>,
+    /// Metres by which the area tests stay clear of the edges they rely on: far above the
+    /// rounding of any coordinate of the grid or of a region.
+    slack: f64,
 }
 
 impl FloorPaint {
@@ -69,32 +98,52 @@ impl FloorPaint {
                 rows: 0,
                 bin_start: vec![0],
                 bin_regions: Vec::new(),
+                slack: LEAST_SLACK,
             };
         }
         let origin = bounds.min;
         let bin = bin_side(bounds);
         let cols = ((bounds.max[0] - origin[0]) / bin) as usize + 1;
         let rows = ((bounds.max[1] - origin[1]) / bin) as usize + 1;
-        let mut bins: Vec<Vec<u32>> = vec![Vec::new(); cols * rows];
-        for (i, r) in regions.iter().enumerate().rev() {
+        // The bins a region is listed in: those its bounds, grown by the margin, overlap.
+        let bins_of = |r: &PaintRegion| {
             let b = r.shape.bounds().grown(SPOT_MARGIN);
             let c0 = ((b.min[0] - origin[0]) / bin).max(0.0) as usize;
             let r0 = ((b.min[1] - origin[1]) / bin).max(0.0) as usize;
             let c1 = (((b.max[0] - origin[0]) / bin).max(0.0) as usize).min(cols - 1);
             let r1 = (((b.max[1] - origin[1]) / bin).max(0.0) as usize).min(rows - 1);
-            for row in r0..=r1 {
-                for col in c0..=c1 {
-                    bins[row * cols + col].push(i as u32);
-                }
+            (r0..=r1).flat_map(move |row| (c0..=c1).map(move |col| row * cols + col))
+        };
+        // Count the regions of each bin, then fill the lists, topmost region first.
+        let mut bin_start = vec![0u32; cols * rows + 1];
+        for r in &regions {
+            for b in bins_of(r) {
+                bin_start[b + 1] += 1;
             }
         }
-        let mut bin_start = Vec::with_capacity(bins.len() + 1);
-        let mut bin_regions = Vec::new();
-        bin_start.push(0);
-        for b in bins {
-            bin_regions.extend(b);
-            bin_start.push(bin_regions.len() as u32);
+        for b in 0..cols * rows {
+            bin_start[b + 1] += bin_start[b];
         }
+        let mut filled = bin_start[..cols * rows].to_vec();
+        let mut bin_regions = vec![0u32; bin_start[cols * rows] as usize];
+        for (i, r) in regions.iter().enumerate().rev() {
+            for b in bins_of(r) {
+                bin_regions[filled[b] as usize] = i as u32;
+                filled[b] += 1;
+            }
+        }
+        // The grid reaches a bin beyond the bounds, and every region lies within them.
+        let far = [
+            bounds.min,
+            bounds.max,
+            [
+                origin[0] + (cols as f64 + 1.0) * bin,
+                origin[1] + (rows as f64 + 1.0) * bin,
+            ],
+        ]
+        .iter()
+        .flatten()
+        .fold(0.0_f64, |m, v| m.max(v.abs()));
         Self {
             background,
             regions,
@@ -105,6 +154,7 @@ impl FloorPaint {
             rows,
             bin_start,
             bin_regions,
+            slack: LEAST_SLACK + far * SLACK_PER_METRE,
         }
     }
 
@@ -139,6 +189,7 @@ impl FloorPaint {
 
     /// Reflectance at `p` among `candidates` (from `regions_near` of a point within
     /// `SPOT_MARGIN` of `p`).
+    #[inline]
     pub fn reflectance_among(&self, candidates: &[u32], p: [f64; 2]) -> f64 {
         for &i in candidates {
             let r = &self.regions[i as usize];
@@ -152,6 +203,93 @@ impl FloorPaint {
     /// Reflectance factor of the floor at `p`.
     pub fn reflectance_at(&self, p: [f64; 2]) -> f64 {
         self.reflectance_among(self.regions_near(p), p)
+    }
+
+    /// What the disc of `radius` around `at` shows among `candidates` (from `regions_near` of a
+    /// point within `SPOT_MARGIN - radius` of `at`): `Uniform` when every point of it reads the
+    /// same with `reflectance_among`, otherwise the candidates from the topmost region whose edge
+    /// may cross it (those above it paint no point of the disc).
+    pub fn disc_paint<'a>(
+        &self,
+        candidates: &'a [u32],
+        at: [f64; 2],
+        radius: f64,
+    ) -> DiscPaint<'a> {
+        let radius = radius + self.slack;
+        for (k, &i) in candidates.iter().enumerate() {
+            let r = &self.regions[i as usize];
+            match r.shape.disc_side(at, radius, self.turns[i as usize]) {
+                DiscSide::Inside => return DiscPaint::Uniform(r.reflectance),
+                DiscSide::Outside => {}
+                DiscSide::Across => return DiscPaint::Mixed(&candidates[k..]),
+            }
+        }
+        DiscPaint::Uniform(self.background)
+    }
+
+    /// A box around `p` in which `regions_near` finds no region at any point, or the empty box
+    /// when it finds some at `p`. The box joins empty bins around `p`'s, up to `BARE_BOX_REACH`
+    /// each way, opens onto the bare floor beyond the grid and keeps the slack from other bins.
+    pub fn bare_box(&self, p: [f64; 2]) -> Bounds {
+        const WHOLE: Bounds = Bounds {
+            min: [f64::NEG_INFINITY; 2],
+            max: [f64::INFINITY; 2],
+        };
+        if self.cols == 0 {
+            return WHOLE;
+        }
+        if !self.regions_near(p).is_empty() || p[0].is_nan() || p[1].is_nan() {
+            return Bounds::EMPTY;
+        }
+        let f = [
+            (p[0] - self.origin[0]) / self.bin,
+            (p[1] - self.origin[1]) / self.bin,
+        ];
+        let n = [self.cols, self.rows];
+        // Beyond the grid: the half plane on that side of it.
+        for axis in 0..2 {
+            let mut half = WHOLE;
+            if f[axis] < 0.0 {
+                half.max[axis] = self.origin[axis] - self.slack;
+                return half;
+            }
+            if f[axis] >= n[axis] as f64 {
+                half.min[axis] = self.origin[axis] + n[axis] as f64 * self.bin + self.slack;
+                return half;
+            }
+        }
+        let (col, row) = (f[0] as usize, f[1] as usize);
+        let empty = |c: usize, r: usize| {
+            let bin = r * self.cols + c;
+            self.bin_start[bin] == self.bin_start[bin + 1]
+        };
+        // Along the row first, then whole rows of that width down and up.
+        let (mut c0, mut c1) = (col, col);
+        while c0 > 0 && col - c0 < BARE_BOX_REACH && empty(c0 - 1, row) {
+            c0 -= 1;
+        }
+        while c1 + 1 < self.cols && c1 - col < BARE_BOX_REACH && empty(c1 + 1, row) {
+            c1 += 1;
+        }
+        let (mut r0, mut r1) = (row, row);
+        while r0 > 0 && row - r0 < BARE_BOX_REACH && (c0..=c1).all(|c| empty(c, r0 - 1)) {
+            r0 -= 1;
+        }
+        while r1 + 1 < self.rows && r1 - row < BARE_BOX_REACH && (c0..=c1).all(|c| empty(c, r1 + 1))
+        {
+            r1 += 1;
+        }
+        let mut bare = WHOLE;
+        for (axis, first, last) in [(0, c0, c1), (1, r0, r1)] {
+            // A side on the grid's edge stays open.
+            if first > 0 {
+                bare.min[axis] = self.origin[axis] + first as f64 * self.bin + self.slack;
+            }
+            if last + 1 < n[axis] {
+                bare.max[axis] = self.origin[axis] + (last + 1) as f64 * self.bin - self.slack;
+            }
+        }
+        bare
     }
 }
 
@@ -181,5 +319,116 @@ mod tests {
         assert_eq!(floor.reflectance_at([-0.5, 0.0]), 0.5);
         assert_eq!(floor.reflectance_at([3.0, 0.0]), 1.0);
         assert_eq!(floor.reflectance_at([-3.0, -3.0]), 1.0);
+    }
+
+    /// Scattered codes of bars, a few discs and strokes, over about a metre and a half.
+    fn scattered_floor() -> FloorPaint {
+        let mut regions = Vec::new();
+        for k in 0..7 {
+            let yaw = [0.0, std::f64::consts::FRAC_PI_2, 0.4][k % 3];
+            let (s, c) = f64::sin_cos(yaw);
+            let centre = [0.23 * k as f64 - 0.1, 0.61 * ((k * 5) % 7) as f64 / 4.0];
+            for bar in 0..5 {
+                let along = (bar as f64 - 2.0) * 0.017;
+                regions.push(PaintRegion {
+                    shape: PaintShape::Rect {
+                        center: [centre[0] + c * along, centre[1] + s * along],
+                        half: [0.0085, 0.115],
+                        yaw,
+                    },
+                    reflectance: 0.2,
+                });
+            }
+        }
+        regions.push(PaintRegion {
+            shape: PaintShape::Circle {
+                center: [0.9, 0.3],
+                radius: 0.04,
+            },
+            reflectance: 0.5,
+        });
+        regions.push(PaintRegion {
+            shape: PaintShape::Capsule {
+                a: [0.2, 1.2],
+                b: [1.1, 0.9],
+                radius: 0.01,
+            },
+            reflectance: 0.5,
+        });
+        FloorPaint::new(1.0, regions)
+    }
+
+    #[test]
+    fn bins_list_every_region_whose_grown_bounds_meet_them_topmost_first() {
+        let floor = scattered_floor();
+        for row in 0..floor.rows {
+            for col in 0..floor.cols {
+                let x0 = floor.origin[0] + col as f64 * floor.bin;
+                let y0 = floor.origin[1] + row as f64 * floor.bin;
+                let expected: Vec<u32> = (0..floor.regions.len() as u32)
+                    .rev()
+                    .filter(|&i| {
+                        let b = floor.regions[i as usize].shape.bounds().grown(SPOT_MARGIN);
+                        let c0 = ((b.min[0] - floor.origin[0]) / floor.bin).max(0.0) as usize;
+                        let c1 = ((b.max[0] - floor.origin[0]) / floor.bin).max(0.0) as usize;
+                        let r0 = ((b.min[1] - floor.origin[1]) / floor.bin).max(0.0) as usize;
+                        let r1 = ((b.max[1] - floor.origin[1]) / floor.bin).max(0.0) as usize;
+                        (c0..=c1).contains(&col) && (r0..=r1).contains(&row)
+                    })
+                    .collect();
+                let middle = [x0 + floor.bin / 2.0, y0 + floor.bin / 2.0];
+                assert_eq!(
+                    floor.regions_near(middle),
+                    &expected[..],
+                    "bin {col}, {row}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn bare_boxes_hold_no_point_with_regions_near() {
+        let floor = scattered_floor();
+        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut uniform = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let (mut boxes, mut open) = (0, 0);
+        for _ in 0..20_000 {
+            let p = [uniform() * 2.4 - 0.6, uniform() * 2.4 - 0.6];
+            let bare = floor.bare_box(p);
+            if !floor.regions_near(p).is_empty() {
+                assert!(bare.is_empty());
+                continue;
+            }
+            assert!(bare.contains(p), "{p:?} {bare:?}");
+            boxes += 1;
+            open += bare.min.iter().chain(&bare.max).any(|v| v.is_infinite()) as usize;
+            // Open sides are tried a metre out; the others at their very edge too.
+            let lo = bare.min.map(|v| v.max(-2.0));
+            let hi = bare.max.map(|v| v.min(3.0));
+            for k in 0..40 {
+                let t = [uniform(), uniform()];
+                let mut q = [
+                    lo[0] + t[0] * (hi[0] - lo[0]),
+                    lo[1] + t[1] * (hi[1] - lo[1]),
+                ];
+                if k % 4 == 1 {
+                    q[0] = if t[1] < 0.5 { lo[0] } else { hi[0] };
+                }
+                if k % 4 == 2 {
+                    q[1] = if t[0] < 0.5 { lo[1] } else { hi[1] };
+                }
+                assert!(bare.contains(q), "{q:?} {bare:?}");
+                assert!(floor.regions_near(q).is_empty(), "{q:?} in {bare:?}");
+            }
+        }
+        assert!(boxes > 5_000 && open > 1_000, "{boxes} {open}");
+        // A bare floor is bare everywhere.
+        let plain = FloorPaint::new(1.0, Vec::new());
+        assert!(plain.bare_box([3.0, -1e9]).contains([-1e300, 1e300]));
     }
 }

@@ -137,11 +137,7 @@ impl PaintShape {
     pub fn contains_turned(&self, p: [f64; 2], turn: [f64; 2]) -> bool {
         match *self {
             PaintShape::Rect { center, half, .. } => {
-                let [s, c] = turn;
-                let dx = p[0] - center[0];
-                let dy = p[1] - center[1];
-                let lx = c * dx + s * dy;
-                let ly = -s * dx + c * dy;
+                let [lx, ly] = rect_local(center, turn, p);
                 lx.abs() <= half[0] && ly.abs() <= half[1]
             }
             PaintShape::Circle { center, radius } => {
@@ -149,19 +145,41 @@ impl PaintShape {
                 let dy = p[1] - center[1];
                 dx * dx + dy * dy <= radius * radius
             }
-            PaintShape::Capsule { a, b, radius } => {
-                let ab = [b[0] - a[0], b[1] - a[1]];
-                let ap = [p[0] - a[0], p[1] - a[1]];
-                let len2 = ab[0] * ab[0] + ab[1] * ab[1];
-                let t = if len2 > 0.0 {
-                    ((ap[0] * ab[0] + ap[1] * ab[1]) / len2).clamp(0.0, 1.0)
+            PaintShape::Capsule { a, b, radius } => segment_distance2(a, b, p) <= radius * radius,
+        }
+    }
+
+    /// Where the disc of `radius` around `c` lies with respect to the shape, given `turn()`.
+    /// `Across` when an edge passes through the disc, and also when the disc only comes near one
+    /// (a rectangle's corner): the caller then looks point by point. The answer holds for exact
+    /// points; for points computed with rounding, widen `radius` by a slack above it.
+    #[inline]
+    pub fn disc_side(&self, c: [f64; 2], radius: f64, turn: [f64; 2]) -> DiscSide {
+        match *self {
+            PaintShape::Rect { center, half, .. } => {
+                let [lx, ly] = rect_local(center, turn, c);
+                let (ax, ay) = (lx.abs(), ly.abs());
+                if ax + radius <= half[0] && ay + radius <= half[1] {
+                    DiscSide::Inside
+                } else if ax - radius > half[0] || ay - radius > half[1] {
+                    DiscSide::Outside
                 } else {
-                    0.0
-                };
-                let dx = ap[0] - t * ab[0];
-                let dy = ap[1] - t * ab[1];
-                dx * dx + dy * dy <= radius * radius
+                    DiscSide::Across
+                }
             }
+            PaintShape::Circle {
+                center,
+                radius: round,
+            } => {
+                let dx = c[0] - center[0];
+                let dy = c[1] - center[1];
+                disc_side_of_gap(dx * dx + dy * dy, round, radius)
+            }
+            PaintShape::Capsule {
+                a,
+                b,
+                radius: stroke,
+            } => disc_side_of_gap(segment_distance2(a, b, c), stroke, radius),
         }
     }
 
@@ -176,6 +194,57 @@ impl PaintShape {
             }
             .grown(radius),
         }
+    }
+}
+
+/// Where a disc lies with respect to a paint shape.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DiscSide {
+    /// Every point of the disc is painted by the shape.
+    Inside,
+    /// No point of the disc is painted by the shape.
+    Outside,
+    /// Some points may be painted and some not.
+    Across,
+}
+
+/// `p` in the frame of a rectangle centred at `center` turned by `turn` (its yaw's sine, cosine).
+#[inline]
+fn rect_local(center: [f64; 2], turn: [f64; 2], p: [f64; 2]) -> [f64; 2] {
+    let [s, c] = turn;
+    let dx = p[0] - center[0];
+    let dy = p[1] - center[1];
+    [c * dx + s * dy, -s * dx + c * dy]
+}
+
+/// Squared distance from `p` to the segment `a`-`b`.
+#[inline]
+fn segment_distance2(a: [f64; 2], b: [f64; 2], p: [f64; 2]) -> f64 {
+    let ab = [b[0] - a[0], b[1] - a[1]];
+    let ap = [p[0] - a[0], p[1] - a[1]];
+    let len2 = ab[0] * ab[0] + ab[1] * ab[1];
+    let t = if len2 > 0.0 {
+        ((ap[0] * ab[0] + ap[1] * ab[1]) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let dx = ap[0] - t * ab[0];
+    let dy = ap[1] - t * ab[1];
+    dx * dx + dy * dy
+}
+
+/// Where a disc of `radius` lies with respect to the points within `reach` of a centre (a
+/// point, or a segment), its own centre lying `distance2` (squared) from it.
+#[inline]
+fn disc_side_of_gap(distance2: f64, reach: f64, radius: f64) -> DiscSide {
+    let inner = reach - radius;
+    let outer = reach + radius;
+    if inner >= 0.0 && distance2 <= inner * inner {
+        DiscSide::Inside
+    } else if distance2 > outer * outer {
+        DiscSide::Outside
+    } else {
+        DiscSide::Across
     }
 }
 
@@ -213,5 +282,57 @@ mod tests {
         let w = WallBox::from_segment([0.0, 0.0], [0.0, 1.0], 0.01, 1.0);
         let b = w.bounds();
         assert!((b.min[1] + 0.005).abs() < 1e-12 && (b.max[1] - 1.005).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_disc_inside_or_outside_has_every_point_so() {
+        let shapes = [
+            PaintShape::Rect {
+                center: [0.1, -0.2],
+                half: [0.05, 0.02],
+                yaw: 0.7,
+            },
+            PaintShape::Circle {
+                center: [0.0, 0.1],
+                radius: 0.03,
+            },
+            PaintShape::Capsule {
+                a: [-0.1, 0.0],
+                b: [0.05, 0.04],
+                radius: 0.01,
+            },
+        ];
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut uniform = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut seen = [0; 3];
+        for shape in shapes {
+            let turn = shape.turn();
+            let b = shape.bounds().grown(0.02);
+            for _ in 0..4000 {
+                let c = [
+                    b.min[0] + uniform() * (b.max[0] - b.min[0]),
+                    b.min[1] + uniform() * (b.max[1] - b.min[1]),
+                ];
+                let radius = 0.001 + 0.01 * uniform();
+                let side = shape.disc_side(c, radius, turn);
+                seen[side as usize] += 1;
+                for k in 0..64 {
+                    let (s, co) = (k as f64 * 0.0982).sin_cos();
+                    let r = radius * [1.0, 0.999, 0.5, 0.0][k % 4];
+                    let p = [c[0] + r * co, c[1] + r * s];
+                    match side {
+                        DiscSide::Inside => assert!(shape.contains(p), "{shape:?} {c:?} {p:?}"),
+                        DiscSide::Outside => assert!(!shape.contains(p), "{shape:?} {c:?} {p:?}"),
+                        DiscSide::Across => {}
+                    }
+                }
+            }
+        }
+        assert!(seen.iter().all(|&n| n > 500), "{seen:?}");
     }
 }
