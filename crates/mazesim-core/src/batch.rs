@@ -1,18 +1,67 @@
-//! Many independent environments stepped in parallel (rayon), writing into buffers the caller
-//! owns. Each environment has its own world, robot and random stream, so its results do not
-//! depend on the thread count, the batch size or its place in the batch.
+//! Many independent environments stepped in parallel, writing into buffers the caller owns. Each
+//! environment has its own world, robot and random stream, so its results do not depend on the
+//! thread count, the batch size or its place in the batch.
+//!
+//! The calling thread steps environments too: it and the helper threads (a rayon pool of one
+//! thread fewer than asked for) take chunks of environments from a shared queue until none is
+//! left. The caller starts at once, without waiting for a helper to wake up, and no thread spins
+//! for work on a core the caller needs between steps (in a Python loop, for its policy).
 
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, OnceLock};
 
 use rayon::prelude::*;
+use rayon::ThreadPool;
 
 use crate::error::{Error, Result};
 use crate::robot::RobotProfile;
 use crate::simulator::{SimConfig, Simulator};
 use crate::world::World;
 
-/// Environments per rayon task: enough to amortise scheduling, few enough to balance two cores.
-const MIN_ENVS_PER_TASK: usize = 32;
+/// Environments per chunk of work: enough to amortise taking it from the queue, few enough that
+/// the threads finish close together.
+const CHUNK_ENVS: usize = 16;
+
+/// The helpers of batches that use every core: one thread fewer than the machine has cores,
+/// shared by all such batches; `None` on a single core.
+fn shared_helpers() -> Option<&'static ThreadPool> {
+    static HELPERS: OnceLock<Option<ThreadPool>> = OnceLock::new();
+    HELPERS
+        .get_or_init(|| {
+            let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+            helper_pool(cores).ok().flatten()
+        })
+        .as_ref()
+}
+
+/// A pool of `threads - 1` helper threads (`None` for one thread: the caller works alone).
+fn helper_pool(threads: usize) -> Result<Option<ThreadPool>> {
+    if threads <= 1 {
+        return Ok(None);
+    }
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads - 1)
+        .thread_name(|i| format!("mazesim-batch-{i}"))
+        .build()
+        .map(Some)
+        .map_err(|e| Error::InvalidArgument(format!("cannot start {threads} threads: {e}")))
+}
+
+/// Who steps a batch besides the calling thread.
+enum Helpers {
+    /// The pool shared by batches that use every core.
+    Shared(Option<&'static ThreadPool>),
+    /// A pool of the batch's own, for an explicit thread count.
+    Own(Option<ThreadPool>),
+}
+
+impl Helpers {
+    fn pool(&self) -> Option<&ThreadPool> {
+        match self {
+            Helpers::Shared(p) => *p,
+            Helpers::Own(p) => p.as_ref(),
+        }
+    }
+}
 
 /// Per-step outputs of a batch, one row per environment, in buffers the caller owns.
 pub struct StepOutputs<'a> {
@@ -31,12 +80,12 @@ pub struct Batch {
     envs: Vec<Simulator>,
     distance_width: usize,
     ground_width: usize,
-    pool: Option<rayon::ThreadPool>,
+    helpers: Helpers,
 }
 
 impl Batch {
     /// One environment per world, all with `robot`; env i gets `seeds[i]`.
-    /// `threads`: 0 = rayon's global pool (all cores), otherwise a pool of that many threads.
+    /// `threads`: 0 = every core, otherwise that many threads (the caller's among them).
     pub fn new(
         worlds: Vec<Arc<World>>,
         robot: Arc<RobotProfile>,
@@ -63,17 +112,10 @@ impl Batch {
                 robot.name
             )));
         }
-        let pool = if threads == 0 {
-            None
+        let helpers = if threads == 0 {
+            Helpers::Shared(shared_helpers())
         } else {
-            Some(
-                rayon::ThreadPoolBuilder::new()
-                    .num_threads(threads)
-                    .build()
-                    .map_err(|e| {
-                        Error::InvalidArgument(format!("cannot start {threads} threads: {e}"))
-                    })?,
-            )
+            Helpers::Own(helper_pool(threads)?)
         };
         let make = |(world, &seed): (Arc<World>, &u64)| {
             Simulator::new(
@@ -87,15 +129,15 @@ impl Batch {
             )
         };
         let pairs: Vec<(Arc<World>, &u64)> = worlds.into_iter().zip(seeds).collect();
-        let envs: Result<Vec<Simulator>> = match &pool {
+        let envs: Result<Vec<Simulator>> = match helpers.pool() {
             Some(p) => p.install(|| pairs.into_par_iter().map(make).collect()),
-            None => pairs.into_par_iter().map(make).collect(),
+            None => pairs.into_iter().map(make).collect(),
         };
         Ok(Batch {
             envs: envs?,
             distance_width: robot.distance_sensors.len(),
             ground_width: robot.ground_sensors.len(),
-            pool,
+            helpers,
         })
     }
 
@@ -147,39 +189,56 @@ impl Batch {
     ) {
         let width = self.observation_width();
         let dw = self.distance_width;
+        let alone = self.envs.len() <= CHUNK_ENVS;
         let StepOutputs {
             observations,
             poses,
             colliding,
             crossings,
         } = out;
-        let f = &f;
-        let mut work = move |envs: &mut [Simulator]| {
-            envs.par_iter_mut()
-                .zip(observations.par_chunks_mut(width))
-                .zip(poses.par_chunks_mut(3))
-                .zip(colliding.par_iter_mut())
-                .zip(crossings.par_iter_mut())
-                .enumerate()
-                .with_min_len(MIN_ENVS_PER_TASK)
-                .for_each(|(i, ((((env, obs), pose), colliding), crossing))| {
-                    f(
-                        i,
-                        env,
-                        Row {
-                            observation: obs,
-                            distance_width: dw,
-                            pose,
-                            colliding,
-                            crossing,
-                        },
-                    )
-                });
+        let chunks = self
+            .envs
+            .chunks_mut(CHUNK_ENVS)
+            .zip(observations.chunks_mut(CHUNK_ENVS * width))
+            .zip(poses.chunks_mut(CHUNK_ENVS * 3))
+            .zip(colliding.chunks_mut(CHUNK_ENVS))
+            .zip(crossings.chunks_mut(CHUNK_ENVS))
+            .enumerate();
+        let queue = Mutex::new(chunks);
+        let work = || loop {
+            let next = queue.lock().unwrap_or_else(|p| p.into_inner()).next();
+            let Some((k, ((((envs, obs), poses), colliding), crossings))) = next else {
+                return;
+            };
+            for env in envs.iter() {
+                env.warm();
+            }
+            let rows = envs
+                .iter_mut()
+                .zip(obs.chunks_mut(width))
+                .zip(poses.chunks_mut(3))
+                .zip(colliding.iter_mut())
+                .zip(crossings.iter_mut())
+                .enumerate();
+            for (j, ((((env, observation), pose), colliding), crossing)) in rows {
+                let row = Row {
+                    observation,
+                    distance_width: dw,
+                    pose,
+                    colliding,
+                    crossing,
+                };
+                f(k * CHUNK_ENVS + j, env, row);
+            }
         };
-        let envs = &mut self.envs;
-        match &self.pool {
-            Some(p) => p.install(move || work(envs)),
-            None => work(envs),
+        match self.helpers.pool() {
+            Some(pool) if !alone => pool.in_place_scope(|scope| {
+                for _ in 0..pool.current_num_threads() {
+                    scope.spawn(|_| work());
+                }
+                work();
+            }),
+            _ => work(),
         }
     }
 

@@ -170,6 +170,18 @@ impl NearbyWalls {
         self.slabs_only = !self.overflow && self.rotated_count == 0 && index.aligned_ordered();
     }
 
+    /// Reads what `gather` around `center` will read first (the neighbourhood list and the walls'
+    /// bounding boxes), so that a batch can bring several environments' walls into cache at once.
+    pub fn warm(index: &WallIndex, center: [f32; 2], reach: f32) {
+        if let Some(list) = index.walls_around(center, reach) {
+            let mut sum = 0.0f32;
+            for &i in list {
+                sum += index.bounding_box(i as usize)[0];
+            }
+            std::hint::black_box(sum);
+        }
+    }
+
     /// Puts the axis-aligned walls in increasing wall index (they came in bin order).
     fn sort_aligned(&mut self) {
         self.boxes[..self.aligned].sort_unstable_by_key(|b| b.wall);
