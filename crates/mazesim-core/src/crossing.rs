@@ -308,13 +308,8 @@ mod tests {
                 u.abs() <= cp.length / 2.0 && v.abs() <= cp.width / 2.0
             })
         };
-        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
-        let mut uniform = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = crate::rng::Rng::new(0x9e37_79b9_7f4a_7c15);
+        let mut uniform = move || rng.uniform();
         let mut t = CrossingTracker::new();
         let mut total = 0;
         for _ in 0..40 {

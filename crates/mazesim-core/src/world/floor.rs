@@ -389,13 +389,8 @@ mod tests {
     #[test]
     fn bare_boxes_hold_no_point_with_regions_near() {
         let floor = scattered_floor();
-        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
-        let mut uniform = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = crate::rng::Rng::new(0x9e37_79b9_7f4a_7c15);
+        let mut uniform = move || rng.uniform();
         let (mut boxes, mut open) = (0, 0);
         for _ in 0..20_000 {
             let p = [uniform() * 2.4 - 0.6, uniform() * 2.4 - 0.6];

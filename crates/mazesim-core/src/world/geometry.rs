@@ -302,13 +302,8 @@ mod tests {
                 radius: 0.01,
             },
         ];
-        let mut state = 0x2545_f491_4f6c_dd1d_u64;
-        let mut uniform = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = crate::rng::Rng::new(0x2545_f491_4f6c_dd1d);
+        let mut uniform = move || rng.uniform();
         let mut seen = [0; 3];
         for shape in shapes {
             let turn = shape.turn();
