@@ -124,3 +124,26 @@ def test_one_robot_driven_step_by_step_reaches_the_goal() -> None:
     else:
         pytest.fail(f"the robot did not reach the goal; it is at {simulator.pose}")
     assert simulator.collisions == 0
+
+
+def test_first_round_of_the_shipped_training_is_reproduced() -> None:
+    # The shipped tables come from `mazesim train` with its defaults; the simulator must still
+    # drive that run's robots exactly as it did then, or training from scratch no longer gives
+    # them. Its first round (2,048 robots x 500 steps) is replayed here and compared with the
+    # summary the run recorded in policy.json.
+    from mazesim.hrl.qlearning import LearningRate
+    from mazesim.hrl.train import _round_summary
+
+    shipped = Path(mazesim.__file__).parent / "hrl" / "data" / "seed-maze" / "policy.json"
+    training = json.loads(shipped.read_text())["training"]
+    recorded = training["lower"]
+    settings = LowerSettings(
+        **{
+            key: value
+            for key, value in recorded.items()
+            if key in {f.name for f in dataclasses.fields(LowerSettings)} and key != "rate"
+        },
+        rate=LearningRate(**recorded["rate"]),
+    )
+    trainer = LowerTrainer(settings, threads=0)
+    assert _round_summary(trainer.run_round(0)) == training["history"][0]
