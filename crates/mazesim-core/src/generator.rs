@@ -341,6 +341,18 @@ fn way_cells(m: &CellMaze) -> Vec<bool> {
 mod tests {
     use super::*;
 
+    /// The default maze of `seed` with a share `loops` of extra openings.
+    fn with_loops(loops: f64, seed: u64) -> World {
+        generate(
+            &MazeParams {
+                loops,
+                ..Default::default()
+            },
+            seed,
+        )
+        .unwrap()
+    }
+
     #[test]
     fn same_seed_same_maze_other_seed_differs() {
         let p = MazeParams::default();
@@ -429,14 +441,7 @@ mod tests {
     fn checkpoints_sit_before_junctions_with_valid_codes() {
         let mut total = 0;
         for seed in 0..30 {
-            let w = generate(
-                &MazeParams {
-                    loops: 0.2,
-                    ..Default::default()
-                },
-                seed,
-            )
-            .unwrap();
+            let w = with_loops(0.2, seed);
             let placed = w.maze().unwrap();
             let m = &placed.maze;
             let codes: Vec<String> = w
@@ -462,14 +467,7 @@ mod tests {
         let mut corners = 0;
         for seed in 0..200 {
             for loops in [0.0, 0.2] {
-                let w = generate(
-                    &MazeParams {
-                        loops,
-                        ..Default::default()
-                    },
-                    seed,
-                )
-                .unwrap();
+                let w = with_loops(loops, seed);
                 let m = &w.maze().unwrap().maze;
                 let marked = marked(&w);
                 let all = approaches(m);
@@ -502,14 +500,7 @@ mod tests {
         // Seed 5002 with loops has a straight cell between two doors; it used to get two codes
         // at the same centre facing opposite ways.
         for (seed, loops) in (0..300).map(|s| (s, 0.3)).chain([(5002, 0.3)]) {
-            let w = generate(
-                &MazeParams {
-                    loops,
-                    ..Default::default()
-                },
-                seed,
-            )
-            .unwrap();
+            let w = with_loops(loops, seed);
             let cps = w.checkpoints();
             for (i, a) in cps.iter().enumerate() {
                 for b in &cps[..i] {
@@ -523,14 +514,7 @@ mod tests {
                 }
             }
         }
-        let w = generate(
-            &MazeParams {
-                loops: 0.3,
-                ..Default::default()
-            },
-            5002,
-        )
-        .unwrap();
+        let w = with_loops(0.3, 5002);
         let m = &w.maze().unwrap().maze;
         let shared = w.checkpoints().iter().any(|cp| {
             let ((c, r), dir) = approach(m, cp, 0.25);

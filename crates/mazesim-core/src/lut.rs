@@ -193,7 +193,16 @@ mod tests {
                 .map(|k| a + (b - a) * k as f64 / 20_000.0)
                 .collect();
             for &x in &inputs {
-                xs.extend([x, x.next_up(), x.next_down()]);
+                // The input and its two neighbouring floats.
+                let (up, down) = if x == 0.0 {
+                    (f64::from_bits(1), -f64::from_bits(1))
+                } else {
+                    (
+                        f64::from_bits(x.to_bits() + 1),
+                        f64::from_bits(x.to_bits() - 1),
+                    )
+                };
+                xs.extend([x, up, down]);
             }
             for x in xs {
                 assert_eq!(t.eval(x), eval_by_scan(&t, x), "x = {x}");
@@ -217,5 +226,12 @@ mod tests {
         assert!(LookupTable::new(&[[0.0, 1.0, 0.0]]).is_err());
         assert!(LookupTable::new(&[[0.0, 1.0, 0.0], [0.0, 2.0, 0.0]]).is_err());
         assert!(LookupTable::new(&[[0.0, 1.0, -0.1], [1.0, 2.0, 0.0]]).is_err());
+        let long: Vec<[f64; 3]> = (0..256).map(|k| [k as f64, 1.0, 0.0]).collect();
+        let err = LookupTable::new(&long).unwrap_err().to_string();
+        assert!(
+            err.contains("at most 255 rows") && err.contains("256"),
+            "{err}"
+        );
+        assert!(LookupTable::new(&long[..255]).is_ok());
     }
 }

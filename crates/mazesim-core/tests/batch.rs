@@ -107,6 +107,10 @@ fn env_i_equals_a_lone_simulator_for_any_threads_and_batch_size() {
     assert_eq!(batch_trace(7, 1, 6), lone6);
     assert_eq!(batch_trace(64, 2, 6), lone6);
     assert_ne!(lone0, lone6);
+    // Past the first chunks of work the threads take: env 40 of 64.
+    let lone40 = lone_trace(40);
+    assert_eq!(batch_trace(64, 2, 40), lone40);
+    assert_eq!(batch_trace(64, 0, 40), lone40);
 }
 
 #[test]

@@ -167,7 +167,7 @@ def run_demo(args: argparse.Namespace, out: TextIO) -> int:
     elif arrived is None:
         goal = f"not reached in {poses[-1, 3]:.2f} s"
     else:
-        at = round(poses[arrived, 3] / step_s)
+        at = round(poses[arrived, 3] / step_s) if arrived > 0 else 0
         goal = f"reached at step {at} ({poses[arrived, 3]:.2f} s simulated)"
     name = "hierarchical policy (perform-learning)" if hrl else "avoid-collision"
     picture = os.path.join(out_dir, "trajectory.png")
