@@ -13,6 +13,7 @@ from mazesim.hrl.qlearning import (
     greedy,
     learning_rates,
     scalar_update,
+    td_targets,
 )
 
 
@@ -96,3 +97,22 @@ def test_greedy_and_epsilon_greedy() -> None:
     first = epsilon_greedy(q, np.zeros(50, int), 1.0, np.random.default_rng(7))
     second = epsilon_greedy(q, np.zeros(50, int), 1.0, np.random.default_rng(7))
     assert np.array_equal(first, second) and len(set(first.tolist())) == 3
+
+
+def test_greedy_and_targets_keep_to_the_allowed_actions() -> None:
+    q = np.array([[0.0, 1.0, 9.0], [4.0, 2.0, 7.0]])
+    allowed = np.array([True, True, False])
+    assert greedy(q, [0, 1], allowed).tolist() == [1, 0]
+    assert greedy(q, [0, 1]).tolist() == [2, 2]
+    # One mask per state, broadcast against the rows.
+    per_state = np.array([[True, True, False], [True, True, True]])
+    assert greedy(q, [0, 1], per_state).tolist() == [1, 2]
+    targets = td_targets(q, [0.5, 0.5], [0, 1], [0.9, 0.0], allowed)
+    assert targets.tolist() == pytest.approx([0.5 + 0.9 * 1.0, 0.5])
+    unmasked = q.copy()
+    visits = np.zeros(q.shape, dtype=np.int64)
+    batch_update(unmasked, visits.copy(), [1], [0], [0.0], [0], [1.0], LearningRate())
+    batch_update(q, visits, [1], [0], [0.0], [0], [1.0], LearningRate(), allowed)
+    # The next state's value is its best allowed action's (1.0), not 9.0.
+    assert q[1, 0] == pytest.approx(4.0 + 0.5 * (1.0 - 4.0))
+    assert unmasked[1, 0] == pytest.approx(4.0 + 0.5 * (9.0 - 4.0))

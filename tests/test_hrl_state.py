@@ -109,3 +109,25 @@ def test_heading_phases() -> None:
     forward = np.radians([-6.0, -4.0, 0.0, 4.0, 6.0])
     assert heading_phases(np.full(5, SubTask.FORWARD), forward).tolist() == [0, 1, 1, 1, 2]
     assert heading_phases(np.full(5, SubTask.CORRIDOR), forward).tolist() == [0] * 5
+
+
+def test_corridors_and_corners_never_reverses() -> None:
+    from mazesim.hrl.higher import HigherLevel
+    from mazesim.hrl.lower import lower_table_shape
+    from mazesim.hrl.policy import HierarchicalPolicy
+    from mazesim.hrl.subtasks import SUBTASK_ACTIONS
+
+    backward = ACTION_CODES.index("99")
+    assert not SUBTASK_ACTIONS[SubTask.CORRIDOR, backward]
+    assert SUBTASK_ACTIONS[1:].all() and SUBTASK_ACTIONS[SubTask.CORRIDOR].sum() == 11
+    # A table whose best action is backward everywhere: Corridors and Corners takes the best of
+    # the others, a door sub-task takes it.
+    lower = np.zeros(lower_table_shape())
+    lower[:, :, backward] = 1.0
+    lower[:, :, 3] = 0.5
+    policy = HierarchicalPolicy(lower, HigherLevel([[1, 2]]), np.zeros(2, dtype=np.int64))
+    poses = np.zeros((2, 3))
+    policy.reset([0, 1], poses)
+    policy.tracker.begin(np.array([False, True]), SubTask.RIGHT, poses)
+    actions = policy.act_on_distances(np.full((2, 6), 30.0), poses, np.zeros(2, dtype=np.int64))
+    assert actions.tolist() == [3, backward]

@@ -96,6 +96,8 @@ def test_truncated_metadata_is_refused(tmp_path: Path) -> None:
         ("state_encoding", lambda m: {**m, "level_edges_cm": [5.0, 13.0, 20.0]}, "state encoding"),
         ("actions", lambda m: m[::-1], "actions"),
         ("subtasks", lambda m: m[:3], "subtasks"),
+        # Tables of a version whose Corridors and Corners could reverse.
+        ("subtasks", lambda m: [{k: v for k, v in s.items() if k != "actions"} for s in m], "sub"),
     ],
 )
 def test_mismatched_metadata_is_refused(tmp_path: Path, key: str, change, reason: str) -> None:

@@ -18,7 +18,7 @@ from mazesim.hrl.tables import load_policy
 from mazesim.hrl.train import TrainSettings, train
 
 SHORT = LowerSettings(
-    num_envs=192, total_steps=192 * 300 * 3, round_steps=300, maze_pool=16, seed=5
+    num_envs=192, total_steps=192 * 300 * 4, round_steps=300, maze_pool=16, seed=5
 )
 
 
@@ -31,6 +31,10 @@ def test_short_training_is_reproducible_and_improves() -> None:
     assert np.array_equal(first.tables.q, second.tables.q)
     assert np.array_equal(first.tables.visits, second.tables.visits)
     assert rates[-1] > rates[0] + 0.1, rates
+    # Corridors and Corners never tried backward (`99`); the door sub-tasks did.
+    backward = 11
+    assert first.tables.visits[0, :, backward].sum() == 0
+    assert first.tables.visits[1:, :, backward].sum() > 0
 
 
 TINY = TrainSettings(

@@ -19,7 +19,8 @@ its action until the state changes (or for at most ``decision_steps`` steps) and
 one SMDP transition: the rewards along the way discounted, then ``gamma ** tau`` times the value
 of the state it led to. A greedy policy repeats its action while the state stays, so this is the
 same policy, learned from fewer, more informative updates. Exploration is epsilon-greedy at each
-decision, epsilon falling linearly from ``epsilon_start`` to 0 over the rounds but the last
+decision (among the sub-task's :data:`mazesim.hrl.subtasks.SUBTASK_ACTIONS`), epsilon falling
+linearly from ``epsilon_start`` to 0 over the rounds but the last
 ``greedy_share`` of them, which are greedy: the tables then learn from their own mistakes, so a
 greedy policy that loops between two states loses the value of the loop.
 
@@ -57,6 +58,7 @@ from mazesim.hrl.subtasks import (
     MAX_PHASES,
     NUM_SUBTASKS,
     PROGRESS_REWARD,
+    SUBTASK_ACTIONS,
     SubTask,
     SubTaskTracker,
     cruise_step_length,
@@ -91,6 +93,8 @@ SUCCESS_PAST_CENTRE = 0.04
 SUCCESS_ACROSS = 0.08
 
 NUM_ACTIONS = len(ACTION_CODES)
+#: The actions Corridors and Corners explores, drawn uniformly.
+_CORRIDOR_ACTIONS = np.flatnonzero(SUBTASK_ACTIONS[SubTask.CORRIDOR])
 
 
 def lower_table_shape() -> tuple[int, int, int]:
@@ -335,8 +339,12 @@ class LowerTrainer:
 
         for _ in range(settings.round_steps):
             explore = rng.random(count) < epsilon
-            random_action = rng.integers(0, NUM_ACTIONS, count)
-            greedy = np.argmax(q[role, state], axis=1)
+            random_action = np.where(
+                door,
+                rng.integers(0, NUM_ACTIONS, count),
+                _CORRIDOR_ACTIONS[rng.integers(0, _CORRIDOR_ACTIONS.size, count)],
+            )
+            greedy = np.argmax(np.where(SUBTASK_ACTIONS[role], q[role, state], -np.inf), axis=1)
             chosen = np.where(explore, random_action, greedy)
             action = np.where(deciding, chosen, action)
             decided_reward[deciding] = 0.0
@@ -460,4 +468,5 @@ class LowerTrainer:
                     following[mine],
                     factors[mine],
                     self.settings.rate,
+                    SUBTASK_ACTIONS[subtask],
                 )

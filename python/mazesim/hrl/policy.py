@@ -7,7 +7,8 @@ Each control step, for every robot (:meth:`HierarchicalPolicy.act`):
    to "Corridors and Corners";
 3. if a checkpoint was crossed (``checkpoint != 0``), the higher level chooses the sub-task
    (:mod:`mazesim.hrl.higher`), which starts there;
-4. the running sub-task's table gives the action (greedy).
+4. the running sub-task's table gives the action (greedy among the actions the sub-task may take,
+   :data:`mazesim.hrl.subtasks.SUBTASK_ACTIONS`).
 
 Alg. 5 runs "Corridors and Corners" on every step without a checkpoint; here a door sub-task the
 higher level chose keeps running until its own end (its turn needs more than the one step on the
@@ -27,7 +28,7 @@ from mazesim.errors import InvalidArgumentError
 from mazesim.hrl.discretise import NUM_SENSORS, distance_levels, volts_to_cm
 from mazesim.hrl.higher import HigherLevel
 from mazesim.hrl.lower import lower_table_shape
-from mazesim.hrl.subtasks import CONTROL_STEP_MS, SubTask, SubTaskTracker
+from mazesim.hrl.subtasks import CONTROL_STEP_MS, SUBTASK_ACTIONS, SubTask, SubTaskTracker
 
 __all__ = ["Chooser", "DeadReckoningNavigator", "HierarchicalPolicy", "StepRecord"]
 
@@ -144,7 +145,9 @@ class HierarchicalPolicy:
                 record.chosen[robots] = chosen
 
         state = self.tracker.states(distance_state)
-        action = np.argmax(self.lower_q[self.tracker.subtask, state], axis=1)
+        subtask = self.tracker.subtask
+        values = np.where(SUBTASK_ACTIONS[subtask], self.lower_q[subtask, state], -np.inf)
+        action = np.argmax(values, axis=1)
         record.state = distance_state
         record.subtask = self.tracker.subtask.copy()
         record.phase = self.tracker.phase.copy()

@@ -71,9 +71,16 @@ class LearningRate:
             )
 
 
-def greedy(q: FloatArray, states: npt.ArrayLike) -> IntArray:
-    """The greedy action of each state (ties go to the lowest action index)."""
-    return np.argmax(q[np.asarray(states, dtype=np.int64)], axis=-1).astype(np.int64)
+def greedy(
+    q: FloatArray, states: npt.ArrayLike, allowed: npt.NDArray[np.bool_] | None = None
+) -> IntArray:
+    """The greedy action of each state (ties go to the lowest action index), among the
+    ``allowed`` actions only when given (a boolean mask over the columns, or one mask per state
+    broadcast against the rows)."""
+    values = q[np.asarray(states, dtype=np.int64)]
+    if allowed is not None:
+        values = np.where(allowed, values, -np.inf)
+    return np.argmax(values, axis=-1).astype(np.int64)
 
 
 def epsilon_greedy(
@@ -118,15 +125,20 @@ def td_targets(
     rewards: npt.ArrayLike,
     next_states: npt.ArrayLike,
     bootstrap: npt.ArrayLike,
+    allowed: npt.NDArray[np.bool_] | None = None,
 ) -> FloatArray:
     """The targets ``r + bootstrap * max_b Q[s', b]`` of N transitions (0 * max where bootstrap is
-    0, so a terminal next state is never read)."""
+    0, so a terminal next state is never read); the max runs over the ``allowed`` actions only
+    (a boolean mask over the table's columns; all by default)."""
     rewards_array = np.asarray(rewards, dtype=np.float64)
     factors = np.broadcast_to(np.asarray(bootstrap, dtype=np.float64), rewards_array.shape)
     following = np.asarray(next_states, dtype=np.int64)
     best = np.zeros_like(rewards_array)
     live = factors != 0.0
-    best[live] = q[following[live]].max(axis=-1)
+    values = q[following[live]]
+    if allowed is not None:
+        values = values[:, allowed]
+    best[live] = values.max(axis=-1)
     return rewards_array + factors * best
 
 
@@ -145,6 +157,7 @@ def batch_update(
     next_states: npt.ArrayLike,
     bootstrap: npt.ArrayLike,
     rate: LearningRate,
+    allowed: npt.NDArray[np.bool_] | None = None,
 ) -> None:
     """Applies N Q-learning updates in place, as the module describes.
 
@@ -158,6 +171,8 @@ def batch_update(
         bootstrap: (N,) or scalar factor of ``max Q[s']``: ``gamma``, ``gamma ** tau``, or 0 at
             the end of an episode.
         rate: The learning-rate schedule.
+        allowed: The actions the table's learner may take (a boolean mask over its columns; all
+            by default): the value of a next state is the best of these.
 
     Raises:
         InvalidArgumentError: The arrays differ in length, or an index is out of the table.
@@ -179,7 +194,7 @@ def batch_update(
         raise InvalidArgumentError(f"expected states in [0, {num_states}), found out of range")
     if action_array.min() < 0 or action_array.max() >= num_actions:
         raise InvalidArgumentError(f"expected actions in [0, {num_actions}), found out of range")
-    targets = td_targets(q, np.ravel(rewards), np.ravel(next_states), np.ravel(bootstrap))
+    targets = td_targets(q, np.ravel(rewards), np.ravel(next_states), np.ravel(bootstrap), allowed)
     keys = state_array * num_actions + action_array
     order = np.argsort(keys, kind="stable")
     sorted_keys = keys[order]

@@ -25,6 +25,14 @@ change and the displacement since the sub-task began. :class:`SubTaskTracker` ta
 poses a :class:`mazesim.BatchSimulator` reports, which stand in for noise-free wheel odometry (they
 differ from it only when a wheel slips against a wall).
 
+**Actions.** The door sub-tasks choose among all 12 primitive actions. Corridors and Corners
+chooses among the 11 that do not reverse (:data:`SUBTASK_ACTIONS`): it follows corridors forward
+and turns round on the spot in a dead end. With ``99`` (backward) it could learn, in the few
+states its sensors cannot tell apart, to drive forward and back in front of a wall for ever; in
+training runs with other seeds or noise streams it did, and then reached the goal of only 30-50 %
+of unseen mazes. Its table keeps the ``99`` column (never updated) so that all tables share one
+shape.
+
 **Ends** (:meth:`SubTaskTracker.update`):
 
 - Corridors and Corners never ends by itself; a checkpoint event or the goal ends it.
@@ -63,7 +71,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import RobotProfile
-from mazesim.actions import WHEEL_SPEED_FRACTIONS
+from mazesim.actions import ACTION_CODES, WHEEL_SPEED_FRACTIONS
 from mazesim.hrl.discretise import NUM_STATES
 
 __all__ = [
@@ -83,6 +91,7 @@ __all__ = [
     "NUM_PHASES",
     "NUM_SUBTASKS",
     "PROGRESS_REWARD",
+    "SUBTASK_ACTIONS",
     "SUBTASK_CODES",
     "SUBTASK_NAMES",
     "TARGET_TURN",
@@ -115,6 +124,11 @@ SUBTASK_NAMES: tuple[str, ...] = (
 #: Short names for traces and tables.
 SUBTASK_CODES: tuple[str, ...] = ("CC", "R", "L", "F")
 NUM_SUBTASKS = len(SUBTASK_NAMES)
+#: The actions each sub-task may take, ``(NUM_SUBTASKS, 12)``: all but ``99`` for Corridors
+#: and Corners, all for the door sub-tasks.
+SUBTASK_ACTIONS: npt.NDArray[np.bool_] = np.ones((NUM_SUBTASKS, len(ACTION_CODES)), dtype=bool)
+SUBTASK_ACTIONS[0, ACTION_CODES.index("99")] = False
+SUBTASK_ACTIONS.flags.writeable = False
 #: Phases per sub-task.
 NUM_PHASES: tuple[int, ...] = (1, 3, 3, 3)
 #: The most phases of any sub-task (the stacked tables have ``4096 * MAX_PHASES`` rows).

@@ -50,6 +50,7 @@ from mazesim.hrl.subtasks import (
     CONTROL_STEP_MS,
     FORWARD_PHASE_ANGLE,
     NUM_PHASES,
+    SUBTASK_ACTIONS,
     SUBTASK_CODES,
     SUBTASK_NAMES,
     TURN_PHASE_ANGLES,
@@ -113,6 +114,9 @@ def encoding_metadata() -> dict[str, Any]:
                 "phase_rule": phase_rules[number],
                 "table": SUBTASK_TABLES[number],
                 "state": "distance_state + 4096 * phase",
+                "actions": [
+                    code for code, allowed in zip(ACTION_CODES, SUBTASK_ACTIONS[number]) if allowed
+                ],
             }
             for number in range(len(SUBTASK_NAMES))
         ],

@@ -101,10 +101,12 @@ impl FloorPaint {
                 slack: LEAST_SLACK,
             };
         }
-        let origin = bounds.min;
-        let bin = bin_side(bounds);
-        let cols = ((bounds.max[0] - origin[0]) / bin) as usize + 1;
-        let rows = ((bounds.max[1] - origin[1]) / bin) as usize + 1;
+        // The grid covers every point within the margin of some paint.
+        let covered = bounds.grown(SPOT_MARGIN);
+        let origin = covered.min;
+        let bin = bin_side(covered);
+        let cols = ((covered.max[0] - origin[0]) / bin) as usize + 1;
+        let rows = ((covered.max[1] - origin[1]) / bin) as usize + 1;
         // The bins a region is listed in: those its bounds, grown by the margin, overlap.
         let bins_of = |r: &PaintRegion| {
             let b = r.shape.bounds().grown(SPOT_MARGIN);
@@ -134,7 +136,7 @@ impl FloorPaint {
         }
         // The grid reaches a bin beyond the bounds, and every region lies within them.
         let far = [
-            bounds.min,
+            covered.min,
             bounds.max,
             [
                 origin[0] + (cols as f64 + 1.0) * bin,
@@ -383,6 +385,33 @@ mod tests {
                     "bin {col}, {row}"
                 );
             }
+        }
+    }
+
+    #[test]
+    fn regions_are_found_from_within_the_margin_beyond_all_paint() {
+        // One square of paint: points a little outside each of its sides and corners are within
+        // the margin of it, below and left of the paint's own bounds as well as above and right.
+        let floor = FloorPaint::new(
+            1.0,
+            vec![PaintRegion {
+                shape: PaintShape::Rect {
+                    center: [0.3, 0.2],
+                    half: [0.01, 0.01],
+                    yaw: 0.0,
+                },
+                reflectance: 0.2,
+            }],
+        );
+        let gap = 0.8 * SPOT_MARGIN;
+        let sides = (-1..=1).flat_map(|dx| (-1..=1).map(move |dy| (dx, dy)));
+        for (dx, dy) in sides.filter(|&side| side != (0, 0)) {
+            let p = [
+                0.3 + dx as f64 * (0.01 + gap / 2.0_f64.sqrt()),
+                0.2 + dy as f64 * (0.01 + gap / 2.0_f64.sqrt()),
+            ];
+            assert_eq!(floor.regions_near(p), &[0], "{p:?}");
+            assert!(floor.bare_box(p).is_empty(), "{p:?}");
         }
     }
 
