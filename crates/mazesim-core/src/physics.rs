@@ -32,7 +32,8 @@ const FREE_FLIGHT_MARGIN: f32 = 0.0005;
 /// with a set velocity and no contact, up to rounding (position += velocity * dt, angle += rate *
 /// dt); the contact pipeline runs only in the steps where the body could reach a wall. This is what
 /// makes a step cheap in a maze's corridors, and it changes nothing physical: rapier's solver still
-/// handles every approach to a wall, from further out than the body can travel in one step.
+/// handles every approach to a wall. It takes over while the body is at least `FREE_FLIGHT_MARGIN`
+/// from the wall, and its contact prediction reaches further than the body travels in a step.
 pub struct Body {
     world: PhysicsWorld,
     robot: RigidBodyHandle,
