@@ -93,7 +93,8 @@ SUCCESS_PAST_CENTRE = 0.04
 SUCCESS_ACROSS = 0.08
 
 NUM_ACTIONS = len(ACTION_CODES)
-#: The actions Corridors and Corners explores, drawn uniformly.
+#: The actions Corridors and Corners explores, drawn uniformly (the door sub-tasks may take, and
+#: explore, all 12).
 _CORRIDOR_ACTIONS = np.flatnonzero(SUBTASK_ACTIONS[SubTask.CORRIDOR])
 
 
