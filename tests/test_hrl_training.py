@@ -82,6 +82,20 @@ def test_shipped_navigator_reaches_the_goal_of_seed_maze() -> None:
     assert summary.mean_path_ratio is not None and summary.mean_path_ratio < 2.0
 
 
+def test_shipped_navigator_transfers_to_unseen_mazes() -> None:
+    # Issue 6's transfer: the shipped lower level, with a higher level trained in each unseen
+    # maze (at most 200 episodes), reaches the goal. A Corridors and Corners table that gets
+    # stuck in front of walls (as tables trained with `99` did: 30-50 % here) fails this.
+    from mazesim.hrl.evaluate import unseen_mazes
+
+    policy = load_policy()
+    worlds = unseen_mazes(6, seed=7)
+    report = evaluate_navigator(policy, worlds, 4, seed=7, sources=("truth",))
+    summary = report.summaries["truth"]
+    assert report.adapted and summary.episodes == 24
+    assert summary.success_rate >= 0.8, summary
+
+
 def test_eval_command_prints_json(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
     trace = tmp_path / "trace.txt"
     code = main(["eval", "--episodes", "2", "--events", "truth", "--json", "--trace", str(trace)])
