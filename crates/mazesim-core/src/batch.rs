@@ -7,7 +7,9 @@
 //! left. The caller starts at once, without waiting for a helper to wake up. After a step each
 //! helper stays awake for up to `LINGER` for the caller's next step (its policy, in a Python loop,
 //! takes tens of microseconds), so that it joins that step at once instead of being woken up from
-//! sleep; the caller's own core is never spun on.
+//! sleep; the caller's own core is never spun on. Batches that share the all-core pool may find
+//! its helpers still waiting on another batch: they join once that wait ends (at most `LINGER`),
+//! the caller working alone until then.
 
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, OnceLock};

@@ -345,7 +345,7 @@ class LowerTrainer:
                 rng.integers(0, NUM_ACTIONS, count),
                 _CORRIDOR_ACTIONS[rng.integers(0, _CORRIDOR_ACTIONS.size, count)],
             )
-            greedy = np.argmax(np.where(SUBTASK_ACTIONS[role], q[role, state], -np.inf), axis=1)
+            greedy = qlearning.best_allowed(q[role, state], SUBTASK_ACTIONS[role])
             chosen = np.where(explore, random_action, greedy)
             action = np.where(deciding, chosen, action)
             decided_reward[deciding] = 0.0

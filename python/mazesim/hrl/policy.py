@@ -28,6 +28,7 @@ from mazesim.errors import InvalidArgumentError
 from mazesim.hrl.discretise import NUM_SENSORS, distance_levels, volts_to_cm
 from mazesim.hrl.higher import HigherLevel
 from mazesim.hrl.lower import lower_table_shape
+from mazesim.hrl.qlearning import best_allowed
 from mazesim.hrl.subtasks import CONTROL_STEP_MS, SUBTASK_ACTIONS, SubTask, SubTaskTracker
 
 __all__ = ["Chooser", "DeadReckoningNavigator", "HierarchicalPolicy", "StepRecord"]
@@ -146,8 +147,7 @@ class HierarchicalPolicy:
 
         state = self.tracker.states(distance_state)
         subtask = self.tracker.subtask
-        values = np.where(SUBTASK_ACTIONS[subtask], self.lower_q[subtask, state], -np.inf)
-        action = np.argmax(values, axis=1)
+        action = best_allowed(self.lower_q[subtask, state], SUBTASK_ACTIONS[subtask])
         record.state = distance_state
         record.subtask = self.tracker.subtask.copy()
         record.phase = self.tracker.phase.copy()

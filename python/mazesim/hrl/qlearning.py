@@ -43,6 +43,7 @@ from mazesim.errors import InvalidArgumentError
 __all__ = [
     "LearningRate",
     "batch_update",
+    "best_allowed",
     "epsilon_greedy",
     "greedy",
     "learning_rates",
@@ -71,16 +72,21 @@ class LearningRate:
             )
 
 
+def best_allowed(values: FloatArray, allowed: npt.NDArray[np.bool_] | None = None) -> IntArray:
+    """The index of the largest of each row of ``values`` (ties go to the lowest), among the
+    ``allowed`` columns only when given (a boolean mask broadcast against ``values``)."""
+    if allowed is not None:
+        values = np.where(allowed, values, -np.inf)
+    return np.argmax(values, axis=-1).astype(np.int64)
+
+
 def greedy(
     q: FloatArray, states: npt.ArrayLike, allowed: npt.NDArray[np.bool_] | None = None
 ) -> IntArray:
     """The greedy action of each state (ties go to the lowest action index), among the
     ``allowed`` actions only when given (a boolean mask over the columns, or one mask per state
     broadcast against the rows)."""
-    values = q[np.asarray(states, dtype=np.int64)]
-    if allowed is not None:
-        values = np.where(allowed, values, -np.inf)
-    return np.argmax(values, axis=-1).astype(np.int64)
+    return best_allowed(q[np.asarray(states, dtype=np.int64)], allowed)
 
 
 def epsilon_greedy(
