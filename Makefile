@@ -6,17 +6,19 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 PY_PACKAGES := maturin numpy matplotlib pytest hypothesis ruff mypy typing_extensions gymnasium ray
-PY_SOURCES := python tests
+PY_SOURCES := python tests examples
 # Only `make bench-peers` needs these: the peers mazesim is measured against, and its
 # options (e.g. PEER_ARGS="--envs 64,1024 --json").
 PEER_PACKAGES := pymunk
 PEER_ARGS ?=
+# Only `make docs` needs these (pyproject's extra "docs"): mkdocs, its Material theme, mkdocstrings.
+DOCS_PACKAGES := "mkdocs>=1.6" "mkdocs-material>=9.5" "mkdocstrings[python]>=0.26"
 # The binding crate's build script asks this interpreter for its configuration.
 export PYO3_PYTHON := $(CURDIR)/$(BIN)/python
 
 .DEFAULT_GOAL := help
 
-.PHONY: help venv build test demo lint typecheck fmt bench wheel clean ros-deps ros-demo bench-peers
+.PHONY: help venv build test demo lint typecheck fmt bench wheel clean ros-deps ros-demo bench-peers docs
 
 help: ## list the targets
 	@echo "mazesim make targets:"
@@ -41,7 +43,7 @@ test: build ros-deps ## run the Rust tests, then the Python tests (ROS bridge te
 demo: build ## the shipped hierarchical navigator drives seed-maze to its goal; writes mazesim-demo/
 	$(BIN)/mazesim demo --controller hrl --out mazesim-demo
 
-# Debian's ROS 1 (DESIGN.md section 9): installed only when /usr/bin/python3 cannot import rospy.
+# Debian's ROS 1 (docs/ros.md): installed only when /usr/bin/python3 cannot import rospy.
 # The venv sees /usr/lib/python3/dist-packages through a .pth file, at the END of sys.path (first
 # would break rosbag).
 ROS_DEBS := python3-rosmaster python3-roslaunch python3-rospy python3-rostopic python3-std-msgs \
@@ -82,11 +84,15 @@ bench-peers: build ## mazesim against hand-written numpy and pymunk peers (insta
 	$(BIN)/python -m pip install --quiet $(PEER_PACKAGES)
 	$(BIN)/python benches/bench_vs_peers.py $(PEER_ARGS)
 
+docs: venv ## build the documentation site into site/ (mkdocs --strict; installs the docs tools)
+	$(BIN)/python -m pip install --quiet $(DOCS_PACKAGES)
+	NO_MKDOCS_2_WARNING=1 $(BIN)/mkdocs build --strict --quiet
+
 wheel: venv ## build a release wheel into dist/
 	$(BIN)/maturin build --release --out dist
 
 clean: ## remove build products, .venv, dist and demo output
 	cargo clean
-	rm -rf $(VENV) dist mazesim-demo mazesim-ros-demo .pytest_cache .ruff_cache .mypy_cache .hypothesis
+	rm -rf $(VENV) dist site mazesim-demo mazesim-ros-demo .pytest_cache .ruff_cache .mypy_cache .hypothesis
 	find python tests -name __pycache__ -type d -prune -exec rm -rf {} +
 	rm -f python/mazesim/_core*.so python/mazesim/_core*.pyd

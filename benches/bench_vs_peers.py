@@ -2,7 +2,7 @@
 
 Not a test: run it by hand or with `make bench-peers` (which installs pymunk into .venv first).
 
-The workload is that of DESIGN.md section 11: per environment a distinct 5 x 5 maze of 0.25 m
+The workload is the canonical one of docs/performance.md: per environment a distinct 5 x 5 maze of 0.25 m
 cells and 0.01 m walls (``generate_maze(seed=i, loops=0.1)``), the e-puck with ps0-ps7 and gs0-gs2
 read every step with noise, a 32 ms control step (= one physics step) and wheel speeds from the
 same Braitenberg rule (``peers.workload.braitenberg``). One env-step is one control step of one

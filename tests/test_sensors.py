@@ -1,4 +1,4 @@
-"""Sensor acceptance through the Python API (Webots' lookup tables, DESIGN section 3)."""
+"""Sensor acceptance through the Python API (Webots' lookup tables, docs/robots.md)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-//! The canonical workload of the benchmarks (DESIGN section 11): a 5 x 5 maze of 0.25 m cells and
+//! The canonical workload of the benchmarks (docs/performance.md): a 5 x 5 maze of 0.25 m cells and
 //! 0.01 m walls, the e-puck with ps0-7 and gs0-2, a 32 ms control step of one physics step, and
 //! wheel speeds from a Braitenberg rule.
 #![allow(dead_code)]

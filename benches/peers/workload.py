@@ -1,9 +1,9 @@
-"""The canonical workload of DESIGN.md section 11, as the hand-written peers need it.
+"""The canonical workload of docs/performance.md, as the hand-written peers need it.
 
 Mazes come from ``mazesim.generate_maze`` (5 x 5 cells of 0.25 m, 0.01 m walls, a tenth of extra
 openings, one distinct maze per environment); geometry and floor paint are read back from the
 ``World`` so that all runners step the very same mazes. The e-puck's geometry comes from its
-profile; its lookup tables are those of DESIGN.md section 3 (Webots' E-puck PROTO).
+profile; its lookup tables are those of docs/robots.md (Webots' E-puck PROTO).
 """
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
 """``mazesim bench``: env-steps per second and memory per env of the canonical workload.
 
-The workload (DESIGN section 11): per env a distinct generated 5 x 5 maze of 0.25 m cells and
+The workload (docs/performance.md): per env a distinct generated 5 x 5 maze of 0.25 m cells and
 0.01 m walls, the e-puck with ps0-7 and gs0-2 all read every step, a 32 ms control step of one
 physics step, and wheel speeds from a Braitenberg rule computed in numpy from the observations.
 Each batch size runs in a fresh process, so its resident memory is measured on its own.

@@ -1,4 +1,4 @@
-//! Acceptance of the sensors against Webots' tables (DESIGN section 3).
+//! Acceptance of the sensors against Webots' tables (docs/robots.md).
 
 mod common;
 

@@ -3,7 +3,7 @@
 A checkpoint's code is read bit by bit in the order the sensor meets the bars. Crossing along the
 checkpoint's yaw (arriving at the door it faces) reads the code as written; crossing the other way
 (departing) reads it backwards. A valid book has no palindrome, no duplicate and no code that is
-another code read backwards (DESIGN section 6), so every reading names one checkpoint and one
+another code read backwards (docs/barcodes.md), so every reading names one checkpoint and one
 direction, or nothing.
 """
 

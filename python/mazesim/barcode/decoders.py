@@ -286,7 +286,7 @@ class Alg7Decoder(Decoder):
     1 when it is at least 700. The bits are looked up in the book (the report converts them to a
     decimal number and compares; the look-up is the same). It ignores positions.
 
-    Example:
+    Examples:
         >>> from mazesim.barcode import CodeBook
         >>> decoder = Alg7Decoder(CodeBook({1: "10110"}))
         >>> stream = [600.0] + [856.0] * 4 + [300.0] * 4 + [856.0] * 8 + [300.0] * 4 + [600.0]

@@ -59,9 +59,16 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
             on it.
         world: As for :class:`~mazesim.envs.EPuckMazeEnv`; with ``"random"`` every environment
             draws its own maze at each reset.
-        robot, action_mode, noise, include_pose, control_step_ms, maze_size, goal_reward,
-        collision_penalty, progress_reward, render_size: As for
-            :class:`~mazesim.envs.EPuckMazeEnv`.
+        robot: As for :class:`~mazesim.envs.EPuckMazeEnv`.
+        action_mode: As for :class:`~mazesim.envs.EPuckMazeEnv`.
+        noise: As for :class:`~mazesim.envs.EPuckMazeEnv`.
+        include_pose: As for :class:`~mazesim.envs.EPuckMazeEnv`.
+        control_step_ms: As for :class:`~mazesim.envs.EPuckMazeEnv`.
+        maze_size: As for :class:`~mazesim.envs.EPuckMazeEnv`.
+        goal_reward: As for :class:`~mazesim.envs.EPuckMazeEnv`.
+        collision_penalty: As for :class:`~mazesim.envs.EPuckMazeEnv`.
+        progress_reward: As for :class:`~mazesim.envs.EPuckMazeEnv`.
+        render_size: As for :class:`~mazesim.envs.EPuckMazeEnv`.
 
     Raises:
         InvalidArgumentError: An option has a wrong type or value.

@@ -6,7 +6,7 @@
   e-puck controller uses; :func:`run_controller` runs an unmodified controller file on it, as
   ``mazesim webots run CONTROLLER.py`` does.
 
-Example:
+Examples:
     >>> import mazesim.webots
     >>> world, report = mazesim.webots.import_wbt("tests/data/webots-worlds/e-puck.R2023b.wbt")
     >>> len(report["obstacles"]), report["robot"]["yaw"]

@@ -1,0 +1,122 @@
+"""The fenced code blocks of the Markdown pages, as the documentation tests run them.
+
+A block is a fenced code block (```` ``` ```` or ``~~~``, possibly indented inside a list) with
+its language. The line directly above its opening fence may carry a marker:
+
+- ``<!-- no-test: REASON -->``: the block is not run; the tests show it as skipped with REASON.
+- ``<!-- world -->``: a ``toml`` block that is a whole world file, loaded with
+  ``mazesim.World.from_toml`` (other ``toml`` blocks are only parsed).
+
+A line ``--8<-- "PATH"`` inside a block (the mkdocs snippet syntax) stands for the text of the
+file PATH, relative to the repository's root.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+#: The languages whose blocks run: Python, shell, and TOML (parsed or loaded as a world).
+PYTHON_LANGUAGES = frozenset({"python", "py"})
+SHELL_LANGUAGES = frozenset({"bash", "sh", "console", "shell"})
+TOML_LANGUAGES = frozenset({"toml"})
+
+_FENCE = re.compile(r"^(?P<indent>[ \t]*)(?P<fence>`{3,}|~{3,})[ \t]*(?P<info>[^`]*)$")
+_NO_TEST = re.compile(r"^\s*<!--\s*no-test:\s*(?P<reason>.+?)\s*-->\s*$")
+_WORLD = re.compile(r"^\s*<!--\s*world\s*-->\s*$")
+_SNIPPET = re.compile(r"^\s*--8<--\s+\"(?P<path>[^\"]+)\"\s*$")
+
+
+@dataclass(frozen=True)
+class Block:
+    """One fenced code block of a page.
+
+    Attributes:
+        page: The page's path.
+        line: The 1-based line of the opening fence.
+        language: The fence's language, lower case ("" when none is given).
+        text: The block's text, its indentation removed and snippets expanded.
+        skip_reason: The reason of a ``no-test`` marker, or ``None``.
+        is_world: Whether a ``world`` marker says the block is a whole world file.
+    """
+
+    page: Path
+    line: int
+    language: str
+    text: str
+    skip_reason: str | None
+    is_world: bool
+
+    @property
+    def where(self) -> str:
+        """``page:line`` of the opening fence."""
+        return f"{self.page.name}:{self.line}"
+
+
+def expand_snippets(text: str, root: Path) -> str:
+    """Replaces each ``--8<-- "PATH"`` line by the text of ``root / PATH``."""
+    lines = []
+    for line in text.splitlines():
+        match = _SNIPPET.match(line)
+        if match:
+            lines.append((root / match["path"]).read_text(encoding="utf-8").rstrip("\n"))
+        else:
+            lines.append(line)
+    return "\n".join(lines) + ("\n" if text.endswith("\n") else "")
+
+
+def parse_blocks(page: Path, text: str, root: Path) -> list[Block]:
+    """The fenced code blocks of a page's text, in order.
+
+    Args:
+        page: The page's path (for messages).
+        text: The page's Markdown text.
+        root: The folder snippet paths are relative to.
+
+    Returns:
+        The blocks, each with its marker read from the line directly above its fence.
+
+    Raises:
+        ValueError: A fence is never closed.
+    """
+    lines = text.splitlines()
+    blocks = []
+    index = 0
+    while index < len(lines):
+        opening = _FENCE.match(lines[index])
+        if not opening:
+            index += 1
+            continue
+        indent, fence = opening["indent"], opening["fence"]
+        info = opening["info"].strip().split()
+        language = info[0].lower().lstrip("{.").rstrip("}") if info else ""
+        previous = lines[index - 1] if index > 0 else ""
+        no_test = _NO_TEST.match(previous)
+        body = []
+        end = index + 1
+        while end < len(lines):
+            closing = _FENCE.match(lines[end])
+            if (
+                closing
+                and closing["fence"][0] == fence[0]
+                and len(closing["fence"]) >= len(fence)
+                and not closing["info"].strip()
+            ):
+                break
+            body.append(lines[end][len(indent) :] if lines[end].startswith(indent) else lines[end])
+            end += 1
+        else:
+            raise ValueError(f"{page.name}:{index + 1}: a code fence {fence!r} is never closed")
+        blocks.append(
+            Block(
+                page=page,
+                line=index + 1,
+                language=language,
+                text=expand_snippets("\n".join(body) + "\n", root),
+                skip_reason=no_test["reason"] if no_test else None,
+                is_world=bool(_WORLD.match(previous)),
+            )
+        )
+        index = end + 1
+    return blocks

@@ -1,0 +1,184 @@
+"""Every code block of README.md and docs/*.md runs as written (see ``docs_blocks``).
+
+Python blocks run with this interpreter, shell blocks under bash with this interpreter's folder
+first on ``PATH`` (so ``mazesim ...`` is the installed command); the blocks of one page run in
+order in one temporary folder, into which ``examples/`` is copied. ``MAZESIM_EXAMPLES_FAST=1``
+is set, as for the examples. TOML blocks are parsed, world blocks loaded.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+import mazesim
+from docs_blocks import (
+    PYTHON_LANGUAGES,
+    SHELL_LANGUAGES,
+    TOML_LANGUAGES,
+    Block,
+    expand_snippets,
+    parse_blocks,
+)
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - Python 3.9 and 3.10
+    tomllib = pytest.importorskip("tomli")
+
+REPO = Path(__file__).resolve().parent.parent
+PAGES = [REPO / "README.md", *sorted((REPO / "docs").glob("*.md"))]
+#: A guard against a block that hangs, not a speed requirement.
+BLOCK_TIMEOUT_S = 300
+README_MAX_LINES = 250
+
+
+def _all_blocks() -> list[Block]:
+    return [
+        block
+        for page in PAGES
+        for block in parse_blocks(page, page.read_text(encoding="utf-8"), REPO)
+    ]
+
+
+BLOCKS = _all_blocks()
+RUNNABLE = PYTHON_LANGUAGES | SHELL_LANGUAGES | TOML_LANGUAGES
+
+
+def block_environment() -> dict[str, str]:
+    """The environment of a block: this interpreter's folder first on PATH, fast examples."""
+    bin_dir = str(Path(sys.executable).parent)
+    return {
+        **os.environ,
+        "PATH": f"{bin_dir}{os.pathsep}{os.environ.get('PATH', '')}",
+        "MAZESIM_EXAMPLES_FAST": "1",
+        "MPLBACKEND": "Agg",
+    }
+
+
+@pytest.fixture(scope="module")
+def page_folders(tmp_path_factory: pytest.TempPathFactory) -> dict[Path, Path]:
+    """One working folder per page, shared by its blocks (created on first use)."""
+    return {}
+
+
+def _page_folder(page: Path, folders: dict[Path, Path], factory: pytest.TempPathFactory) -> Path:
+    if page not in folders:
+        folder = factory.mktemp(page.stem)
+        shutil.copytree(REPO / "examples", folder / "examples")
+        folders[page] = folder
+    return folders[page]
+
+
+def run_block(block: Block, cwd: Path) -> subprocess.CompletedProcess[str]:
+    """Runs a Python or shell block in ``cwd``; returns the finished process."""
+    if block.language in PYTHON_LANGUAGES:
+        argv = [sys.executable, "-c", block.text]
+    else:
+        argv = ["bash", "-e", "-o", "pipefail", "-c", block.text]
+    return subprocess.run(
+        argv,
+        cwd=cwd,
+        env=block_environment(),
+        capture_output=True,
+        text=True,
+        timeout=BLOCK_TIMEOUT_S,
+        check=False,
+    )
+
+
+@pytest.mark.parametrize(
+    "block",
+    [block for block in BLOCKS if block.language in RUNNABLE],
+    ids=lambda block: block.where,
+)
+def test_code_block_runs(
+    block: Block,
+    page_folders: dict[Path, Path],
+    tmp_path_factory: pytest.TempPathFactory,
+) -> None:
+    if block.skip_reason is not None:
+        pytest.skip(f"{block.where}: {block.skip_reason}")
+    if block.language in TOML_LANGUAGES:
+        tomllib.loads(block.text)
+        if block.is_world:
+            mazesim.World.from_toml(block.text, source=block.where)
+        return
+    cwd = _page_folder(block.page, page_folders, tmp_path_factory)
+    finished = run_block(block, cwd)
+    assert finished.returncode == 0, (
+        f"{block.where} ({block.language}) exited with {finished.returncode}\n"
+        f"--- stdout\n{finished.stdout}\n--- stderr\n{finished.stderr}"
+    )
+
+
+def test_every_block_names_its_language() -> None:
+    unnamed = [block.where for block in BLOCKS if not block.language]
+    assert unnamed == [], f"code blocks without a language (use text for output): {unnamed}"
+
+
+def test_readme_is_short() -> None:
+    lines = (REPO / "README.md").read_text(encoding="utf-8").splitlines()
+    assert len(lines) <= README_MAX_LINES
+
+
+def test_readme_quick_start_is_the_example_script() -> None:
+    quickstart = (REPO / "examples" / "quickstart.py").read_text(encoding="utf-8")
+    readme = [block for block in BLOCKS if block.page.name == "README.md"]
+    readme_python = [block.text for block in readme if block.language == "python"]
+    assert quickstart in readme_python
+
+
+def test_relative_links_of_the_readme_and_pages_exist() -> None:
+    link = re.compile(r"\]\((?!https?://|#|mailto:)([^)\s#]+)")
+    missing = []
+    for page in PAGES:
+        for target in link.findall(page.read_text(encoding="utf-8")):
+            if not (page.parent / target).exists():
+                missing.append(f"{page.name}: {target}")
+    assert missing == []
+
+
+# --- the block parser --------------------------------------------------------------------------
+
+
+def test_markers_count_only_directly_above_the_fence(tmp_path: Path) -> None:
+    text = (
+        "<!-- no-test: needs a cluster -->\n"
+        "```bash\nray start --head\n```\n"
+        "<!-- no-test: too far away -->\n\n"
+        "```python\nprint(1)\n```\n"
+        "<!-- world -->\n"
+        "```toml\nformat = 'x'\n```\n"
+    )
+    first, second, third = parse_blocks(tmp_path / "page.md", text, tmp_path)
+    assert (first.language, first.skip_reason, first.line) == ("bash", "needs a cluster", 2)
+    assert second.skip_reason is None and second.text == "print(1)\n"
+    assert third.is_world and not first.is_world
+
+
+def test_indented_fences_and_snippets(tmp_path: Path) -> None:
+    (tmp_path / "script.py").write_text("print('from a file')\n")
+    text = '- a list item:\n\n  ```python\n  x = 1\n  --8<-- "script.py"\n  ```\n'
+    (block,) = parse_blocks(tmp_path / "page.md", text, tmp_path)
+    assert block.text == "x = 1\nprint('from a file')\n"
+    assert expand_snippets("plain\n", tmp_path) == "plain\n"
+
+
+def test_an_unclosed_fence_is_an_error(tmp_path: Path) -> None:
+    with pytest.raises(ValueError, match="page.md:2"):
+        parse_blocks(tmp_path / "page.md", "text\n```python\nprint(1)\n", tmp_path)
+
+
+def test_a_failing_block_fails(tmp_path: Path) -> None:
+    (bad,) = parse_blocks(tmp_path / "page.md", "```bash\nmazesim no-such-command\n```\n", tmp_path)
+    assert run_block(bad, tmp_path).returncode != 0
+    (good,) = parse_blocks(tmp_path / "page.md", "```sh\nmazesim worlds\n```\n", tmp_path)
+    finished = run_block(good, tmp_path)
+    assert finished.returncode == 0 and "seed-maze" in finished.stdout

@@ -1,0 +1,148 @@
+"""Every file in examples/ runs, in its fast mode (MAZESIM_EXAMPLES_FAST=1), and does its job."""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+import mazesim
+from mazesim.distributed import parse_sweep_config, run_sequential
+from mazesim.webots import import_wbt
+
+REPO = Path(__file__).resolve().parent.parent
+EXAMPLES = REPO / "examples"
+#: A guard against a script that hangs, not a speed requirement.
+TIMEOUT_S = 300
+
+#: Every file of examples/, each checked by the test named beside it.
+COVERED = {
+    "quickstart.py": "test_quickstart_drives_and_prints_pose_collisions_and_readings",
+    "batch_loop.py": "test_batch_loop_steps_many_robots_and_restarts_them",
+    "world_authoring.py": "test_world_authoring_saves_loads_drives_and_draws",
+    "webots/avoid_collision.py": "test_webots_controller_runs_through_mazesim_webots_run",
+    "ros_launch.py": "test_ros_launch_reaches_the_goal",
+    "sweep.toml": "test_sweep_example_runs_in_a_fast_variant",
+    "worlds/two-rooms.toml": "test_two_rooms_world_loads_with_its_goal_and_checkpoint",
+    "worlds/boxes.wbt": "test_boxes_wbt_imports_without_warnings",
+}
+
+
+def run_example(argv: list[str], cwd: Path) -> subprocess.CompletedProcess[str]:
+    """Runs a command in ``cwd`` with the examples' fast mode on; fails the test on an error."""
+    bin_dir = str(Path(sys.executable).parent)
+    env = {
+        **os.environ,
+        "PATH": f"{bin_dir}{os.pathsep}{os.environ.get('PATH', '')}",
+        "MAZESIM_EXAMPLES_FAST": "1",
+        "MPLBACKEND": "Agg",
+    }
+    finished = subprocess.run(
+        argv, cwd=cwd, env=env, capture_output=True, text=True, timeout=TIMEOUT_S, check=False
+    )
+    assert finished.returncode == 0, f"{argv}:\n{finished.stdout}\n{finished.stderr}"
+    return finished
+
+
+def test_every_example_file_is_covered() -> None:
+    files = {
+        path.relative_to(EXAMPLES).as_posix()
+        for path in EXAMPLES.rglob("*")
+        if path.is_file() and "__pycache__" not in path.parts
+    }
+    assert files == set(COVERED)
+    assert all(name in globals() for name in COVERED.values())
+
+
+def test_quickstart_drives_and_prints_pose_collisions_and_readings(tmp_path: Path) -> None:
+    out = run_example([sys.executable, str(EXAMPLES / "quickstart.py")], tmp_path).stdout
+    assert re.search(r"after 32\.00 s: x = [\d.-]+ m, y = [\d.-]+ m, yaw = [\d.-]+ rad", out), out
+    travelled = re.search(r"collisions: \d+, travelled ([\d.]+) m", out)
+    assert travelled and float(travelled[1]) > 1.0, out  # it drove, and turned at the wall
+    assert re.search(r"ps0\.\.ps7: \[(\s*[\d.]+){8}\]", out)
+    assert re.search(r"gs0\.\.gs2: \[(\s*[\d.]+){3}\]", out)
+
+
+def test_batch_loop_steps_many_robots_and_restarts_them(tmp_path: Path) -> None:
+    out = run_example([sys.executable, str(EXAMPLES / "batch_loop.py")], tmp_path).stdout
+    assert re.search(r"^64 robots x 200 steps", out, flags=re.MULTILINE), out
+    travelled = re.search(r"distance travelled per robot: ([\d.]+) m", out)
+    assert travelled and float(travelled[1]) > 0.1, out
+    assert re.search(r"restarts after a wall contact: \d+, barcode crossings: \d+", out)
+
+
+def test_world_authoring_saves_loads_drives_and_draws(tmp_path: Path) -> None:
+    run_example([sys.executable, str(EXAMPLES / "world_authoring.py"), "made"], tmp_path)
+    world = mazesim.load_world(tmp_path / "made" / "my-maze.toml")
+    assert world.name == "my-maze"
+    assert world.goal is not None and len(world.checkpoints()) == 1
+    picture = (tmp_path / "made" / "my-maze.png").read_bytes()
+    assert picture.startswith(b"\x89PNG") and len(picture) > 10_000
+
+
+def test_webots_controller_runs_through_mazesim_webots_run(tmp_path: Path) -> None:
+    controller = EXAMPLES / "webots" / "avoid_collision.py"
+    world = EXAMPLES / "worlds" / "boxes.wbt"
+    argv = ["mazesim", "webots", "run", str(controller), "--world", str(world), "--seconds", "5"]
+    run_example([*argv, "--out", "run"], tmp_path)
+    summary = json.loads((tmp_path / "run" / "summary.json").read_text())
+    assert summary["distance_m"] > 0.1, summary
+
+
+def _ros_available() -> bool:
+    if shutil.which("roscore") is None or shutil.which("roslaunch") is None:
+        return False
+    check = subprocess.run(
+        [sys.executable, "-c", "import rospy, std_msgs.msg"], capture_output=True, check=False
+    )
+    return check.returncode == 0
+
+
+@pytest.mark.skipif(not _ros_available(), reason="ROS 1 is not installed (run 'make ros-deps')")
+def test_ros_launch_reaches_the_goal(tmp_path: Path) -> None:
+    out = run_example([sys.executable, str(EXAMPLES / "ros_launch.py"), "2"], tmp_path).stdout
+    assert re.search(r"learning\.launch seed:=2: goal reached at step \d+", out), out
+
+
+def test_sweep_example_runs_in_a_fast_variant(tmp_path: Path) -> None:
+    text = (EXAMPLES / "sweep.toml").read_text()
+    sweep = parse_sweep_config(text, source="sweep.toml", base_dir=EXAMPLES)
+    assert len(sweep.settings) >= 4
+    assert {setting.params["trainer"] for setting in sweep.settings} == {"hrl"}
+    # The same grid with tiny budgets: every setting trains, evaluates and is written out.
+    budgets = {"steps": 20, "envs": 8, "higher_episodes": 2, "episode_steps": 50}
+    budgets["eval_episodes"] = 2
+    for key, value in budgets.items():
+        text, count = re.subn(rf"^{key} = .*$", f"{key} = {value}", text, flags=re.MULTILINE)
+        assert count == 1, key
+    fast = parse_sweep_config(text, source="sweep.toml", base_dir=EXAMPLES)
+    summary = run_sequential(fast, tmp_path / "sweep", threads=1)
+    assert [run["status"] for run in summary.runs] == ["ok"] * len(fast.settings)
+    assert (tmp_path / "sweep" / "sweep.png").stat().st_size > 10_000
+
+
+def test_two_rooms_world_loads_with_its_goal_and_checkpoint() -> None:
+    world = mazesim.load_world(EXAMPLES / "worlds" / "two-rooms.toml")
+    assert world.name == "two-rooms"
+    assert world.goal is not None
+    (checkpoint,) = world.checkpoints()
+    assert checkpoint["code"] == "10110"
+    sim = mazesim.Simulator(world, robot="e-puck", seed=0)
+    for _ in range(50):
+        sim.step(3.0, 3.0)
+    assert sim.pose[0] > world.start[0] + 0.05
+
+
+def test_boxes_wbt_imports_without_warnings() -> None:
+    world, report = import_wbt(EXAMPLES / "worlds" / "boxes.wbt")
+    assert report["warnings"] == []
+    assert report["robot"] is not None
+    assert len(report["obstacles"]) == 8  # the arena's four walls, three boxes and a wall
+    assert report["basic_time_step_ms"] == 16
+    assert world.basic_time_step_ms == 16
