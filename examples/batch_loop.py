@@ -17,8 +17,8 @@ import mazesim
 from mazesim.controllers import AvoidCollision
 
 FAST = os.environ.get("MAZESIM_EXAMPLES_FAST") == "1"
-NUM_ENVS = 64 if FAST else 1024
-STEPS = 200 if FAST else 2000  # control steps of 32 ms
+NUM_ENVS = 256 if FAST else 1024
+STEPS = 1000 if FAST else 2000  # control steps of 32 ms
 
 worlds = [mazesim.generate_maze(5, 5, seed=i, loops=0.1) for i in range(NUM_ENVS)]
 batch = mazesim.BatchSimulator(worlds, robot="e-puck", seeds=0)  # env i gets seed 0 + i
