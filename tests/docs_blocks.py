@@ -7,6 +7,9 @@ its language. The line directly above its opening fence may carry a marker:
 - ``<!-- world -->``: a ``toml`` block that is a whole world file, loaded with
   ``mazesim.World.from_toml`` (other ``toml`` blocks are only parsed).
 
+In a ``console`` block only the lines that start with the prompt ``$ `` are commands; the other
+lines are their output.
+
 A line ``--8<-- "PATH"`` inside a block (the mkdocs snippet syntax) stands for the text of the
 file PATH, relative to the repository's root.
 """
@@ -52,6 +55,12 @@ class Block:
     def where(self) -> str:
         """``page:line`` of the opening fence."""
         return f"{self.page.name}:{self.line}"
+
+
+def console_commands(text: str) -> str:
+    """The commands of a ``console`` block: its ``$ `` lines without the prompt."""
+    commands = [line[2:] for line in text.splitlines() if line.startswith("$ ")]
+    return "\n".join(commands) + "\n"
 
 
 def expand_snippets(text: str, root: Path) -> str:

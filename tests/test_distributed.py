@@ -77,13 +77,13 @@ def arrays_of(run_folder: Path) -> dict[str, bytes]:
 # --- configuration -------------------------------------------------------------------------
 
 
-def test_example_sweep_expands_to_4_settings_x_2_seeds() -> None:
+def test_example_sweep_expands_to_2_budgets_x_2_seeds() -> None:
     sweep = load_sweep_config(REPO / "examples" / "sweep.toml")
-    assert len(sweep.settings) == 8
-    assert len({setting.group for setting in sweep.settings}) == 4
-    assert list(sweep.axes) == ["learning_rate", "epsilon", "seed"]
+    assert len(sweep.settings) == 4
+    assert len({setting.group for setting in sweep.settings}) == 2
+    assert list(sweep.axes) == ["steps", "seed"]
     assert [setting.seed for setting in sweep.settings[:2]] == [0, 1]
-    assert sweep.settings[0].label == "learning_rate=0.1, epsilon=0.05"
+    assert sweep.settings[0].label == "steps=4000"
 
 
 def test_ids_are_stable_whatever_the_order_of_keys_and_values() -> None:

@@ -23,6 +23,7 @@ from docs_blocks import (
     SHELL_LANGUAGES,
     TOML_LANGUAGES,
     Block,
+    console_commands,
     expand_snippets,
     parse_blocks,
 )
@@ -81,7 +82,8 @@ def run_block(block: Block, cwd: Path) -> subprocess.CompletedProcess[str]:
     if block.language in PYTHON_LANGUAGES:
         argv = [sys.executable, "-c", block.text]
     else:
-        argv = ["bash", "-e", "-o", "pipefail", "-c", block.text]
+        script = console_commands(block.text) if block.language == "console" else block.text
+        argv = ["bash", "-e", "-o", "pipefail", "-c", script]
     return subprocess.run(
         argv,
         cwd=cwd,
@@ -174,6 +176,13 @@ def test_indented_fences_and_snippets(tmp_path: Path) -> None:
 def test_an_unclosed_fence_is_an_error(tmp_path: Path) -> None:
     with pytest.raises(ValueError, match="page.md:2"):
         parse_blocks(tmp_path / "page.md", "text\n```python\nprint(1)\n", tmp_path)
+
+
+def test_console_blocks_run_their_prompted_lines_only(tmp_path: Path) -> None:
+    text = "```console\n$ mazesim worlds\nsome output that is no command\n```\n"
+    (block,) = parse_blocks(tmp_path / "page.md", text, tmp_path)
+    assert console_commands(block.text) == "mazesim worlds\n"
+    assert run_block(block, tmp_path).returncode == 0
 
 
 def test_a_failing_block_fails(tmp_path: Path) -> None:
