@@ -16,7 +16,9 @@ file PATH, relative to the repository's root.
 
 from __future__ import annotations
 
+import os
 import re
+import sys
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -29,6 +31,22 @@ _FENCE = re.compile(r"^(?P<indent>[ \t]*)(?P<fence>`{3,}|~{3,})[ \t]*(?P<info>[^
 _NO_TEST = re.compile(r"^\s*<!--\s*no-test:\s*(?P<reason>.+?)\s*-->\s*$")
 _WORLD = re.compile(r"^\s*<!--\s*world\s*-->\s*$")
 _SNIPPET = re.compile(r"^\s*--8<--\s+\"(?P<path>[^\"]+)\"\s*$")
+
+
+def example_environment() -> dict[str, str]:
+    """The environment of a docs block or an example.
+
+    This interpreter's folder comes first on ``PATH`` (so ``mazesim`` and ``python`` are this
+    installation's); ``MAZESIM_EXAMPLES_FAST=1`` asks the examples for their fast mode, and
+    matplotlib draws without a display.
+    """
+    bin_dir = str(Path(sys.executable).parent)
+    return {
+        **os.environ,
+        "PATH": f"{bin_dir}{os.pathsep}{os.environ.get('PATH', '')}",
+        "MAZESIM_EXAMPLES_FAST": "1",
+        "MPLBACKEND": "Agg",
+    }
 
 
 @dataclass(frozen=True)

@@ -8,7 +8,6 @@ is set, as for the examples. TOML blocks are parsed, world blocks loaded.
 
 from __future__ import annotations
 
-import os
 import re
 import shutil
 import subprocess
@@ -24,6 +23,7 @@ from docs_blocks import (
     TOML_LANGUAGES,
     Block,
     console_commands,
+    example_environment,
     expand_snippets,
     parse_blocks,
 )
@@ -52,17 +52,6 @@ BLOCKS = _all_blocks()
 RUNNABLE = PYTHON_LANGUAGES | SHELL_LANGUAGES | TOML_LANGUAGES
 
 
-def block_environment() -> dict[str, str]:
-    """The environment of a block: this interpreter's folder first on PATH, fast examples."""
-    bin_dir = str(Path(sys.executable).parent)
-    return {
-        **os.environ,
-        "PATH": f"{bin_dir}{os.pathsep}{os.environ.get('PATH', '')}",
-        "MAZESIM_EXAMPLES_FAST": "1",
-        "MPLBACKEND": "Agg",
-    }
-
-
 @pytest.fixture(scope="module")
 def page_folders(tmp_path_factory: pytest.TempPathFactory) -> dict[Path, Path]:
     """One working folder per page, shared by its blocks (created on first use)."""
@@ -87,7 +76,7 @@ def run_block(block: Block, cwd: Path) -> subprocess.CompletedProcess[str]:
     return subprocess.run(
         argv,
         cwd=cwd,
-        env=block_environment(),
+        env=example_environment(),
         capture_output=True,
         text=True,
         timeout=BLOCK_TIMEOUT_S,

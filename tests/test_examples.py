@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import json
-import os
 import re
 import shutil
 import subprocess
@@ -13,6 +12,7 @@ from pathlib import Path
 import pytest
 
 import mazesim
+from docs_blocks import example_environment
 from mazesim.distributed import parse_sweep_config, run_sequential
 from mazesim.webots import import_wbt
 
@@ -36,15 +36,14 @@ COVERED = {
 
 def run_example(argv: list[str], cwd: Path) -> subprocess.CompletedProcess[str]:
     """Runs a command in ``cwd`` with the examples' fast mode on; fails the test on an error."""
-    bin_dir = str(Path(sys.executable).parent)
-    env = {
-        **os.environ,
-        "PATH": f"{bin_dir}{os.pathsep}{os.environ.get('PATH', '')}",
-        "MAZESIM_EXAMPLES_FAST": "1",
-        "MPLBACKEND": "Agg",
-    }
     finished = subprocess.run(
-        argv, cwd=cwd, env=env, capture_output=True, text=True, timeout=TIMEOUT_S, check=False
+        argv,
+        cwd=cwd,
+        env=example_environment(),
+        capture_output=True,
+        text=True,
+        timeout=TIMEOUT_S,
+        check=False,
     )
     assert finished.returncode == 0, f"{argv}:\n{finished.stdout}\n{finished.stderr}"
     return finished
