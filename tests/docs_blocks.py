@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import os
 import re
+import subprocess
 import sys
 from dataclasses import dataclass
 from pathlib import Path
@@ -47,6 +48,25 @@ def example_environment() -> dict[str, str]:
         "MAZESIM_EXAMPLES_FAST": "1",
         "MPLBACKEND": "Agg",
     }
+
+
+def run_command(argv: list[str], cwd: Path, timeout_s: float) -> subprocess.CompletedProcess[str]:
+    """Runs a command in ``cwd`` in :func:`example_environment`; returns the finished process.
+
+    Args:
+        argv: The command and its arguments.
+        cwd: The working folder.
+        timeout_s: A guard against a command that hangs (not a speed requirement).
+    """
+    return subprocess.run(
+        argv,
+        cwd=cwd,
+        env=example_environment(),
+        capture_output=True,
+        text=True,
+        timeout=timeout_s,
+        check=False,
+    )
 
 
 @dataclass(frozen=True)

@@ -23,9 +23,9 @@ from docs_blocks import (
     TOML_LANGUAGES,
     Block,
     console_commands,
-    example_environment,
     expand_snippets,
     parse_blocks,
+    run_command,
 )
 
 if sys.version_info >= (3, 11):
@@ -73,15 +73,7 @@ def run_block(block: Block, cwd: Path) -> subprocess.CompletedProcess[str]:
     else:
         script = console_commands(block.text) if block.language == "console" else block.text
         argv = ["bash", "-e", "-o", "pipefail", "-c", script]
-    return subprocess.run(
-        argv,
-        cwd=cwd,
-        env=example_environment(),
-        capture_output=True,
-        text=True,
-        timeout=BLOCK_TIMEOUT_S,
-        check=False,
-    )
+    return run_command(argv, cwd, BLOCK_TIMEOUT_S)
 
 
 @pytest.mark.parametrize(

@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 
 import mazesim
-from docs_blocks import example_environment
+from docs_blocks import run_command
 from mazesim.distributed import parse_sweep_config, run_sequential
 from mazesim.webots import import_wbt
 
@@ -36,15 +36,7 @@ COVERED = {
 
 def run_example(argv: list[str], cwd: Path) -> subprocess.CompletedProcess[str]:
     """Runs a command in ``cwd`` with the examples' fast mode on; fails the test on an error."""
-    finished = subprocess.run(
-        argv,
-        cwd=cwd,
-        env=example_environment(),
-        capture_output=True,
-        text=True,
-        timeout=TIMEOUT_S,
-        check=False,
-    )
+    finished = run_command(argv, cwd, TIMEOUT_S)
     assert finished.returncode == 0, f"{argv}:\n{finished.stdout}\n{finished.stderr}"
     return finished
 
