@@ -97,6 +97,11 @@ impl LookupTable {
         (lerp(&self.outputs), lerp(&self.noise))
     }
 
+    /// The smallest input (the nearest distance the table describes).
+    pub fn min_input(&self) -> f64 {
+        self.inputs[0]
+    }
+
     /// The largest input (the sensor's range).
     pub fn max_input(&self) -> f64 {
         self.inputs[self.inputs.len() - 1]

@@ -5,7 +5,8 @@ nodes that the ROS package ``mazesim_ros`` launches; options take precedence ove
 private ROS parameters, and trailing ``NAME:=VALUE`` arguments are ROS remappings (``_seed:=3``
 sets a private parameter, ``__name:=bridge2`` renames the node). ``mazesim ros demo`` runs a whole
 graph (the bridge and the perform-learning or avoid-collision node, recorded) on a private master.
-ROS is imported only when a command runs.
+ROS is imported only when a command runs; each command first checks, without importing it, that
+ROS 1 is installed, and says what to install if it is not.
 """
 
 from __future__ import annotations
@@ -14,8 +15,12 @@ import argparse
 from typing import Any
 
 from mazesim.cli import positive_int, positive_number, positive_seconds, seed_argument
+from mazesim.ros._ros import check_ros_installed
 
 __all__ = ["register"]
+
+#: The ROS commands ``mazesim ros demo`` runs: the master and the recorder.
+DEMO_COMMANDS = ("roscore", "rosbag")
 
 
 def _remapping(text: str) -> str:
@@ -48,6 +53,7 @@ def _add_node_arguments(parser: argparse.ArgumentParser, default_name: str) -> N
 
 
 def _run_bridge(args: argparse.Namespace) -> int:
+    check_ros_installed()
     from mazesim.ros.bridge import run_bridge
 
     options = {
@@ -64,6 +70,7 @@ def _run_bridge(args: argparse.Namespace) -> int:
 
 
 def _run_avoid_collision(args: argparse.Namespace) -> int:
+    check_ros_installed()
     from mazesim.ros.avoid_collision import run_avoid_collision
 
     options = {
@@ -75,6 +82,7 @@ def _run_avoid_collision(args: argparse.Namespace) -> int:
 
 
 def _run_perform_learning(args: argparse.Namespace) -> int:
+    check_ros_installed()
     from mazesim.ros.perform_learning import run_perform_learning
 
     options = {
@@ -87,6 +95,9 @@ def _run_perform_learning(args: argparse.Namespace) -> int:
 
 def _run_demo(args: argparse.Namespace) -> int:
     import sys
+
+    # Before a master is started: without ROS the nodes would fail one by one, much later.
+    check_ros_installed(DEMO_COMMANDS)
 
     from mazesim.ros.demo import run_demo
 
