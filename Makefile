@@ -28,9 +28,9 @@ help: ## list the targets
 venv: $(STAMP) ## create .venv (python3.11, else python3 >= 3.9) with maturin, numpy, matplotlib and the dev tools
 
 $(STAMP): Makefile
-	@test -x $(BIN)/python || $(PYTHON) -c 'import sys; sys.exit(sys.version_info < (3, 9))' \
+	@test -x $(BIN)/python || $(PYTHON) -c 'import sys; sys.exit(sys.version_info < (3, 9))' 2>/dev/null \
 		|| { echo "make venv: mazesim needs Python >= $(PYTHON_MIN); found '$(PYTHON)':" \
-			"$$($(PYTHON) --version 2>&1 || echo not installed). Install python3.11 (or any" \
+			"$$($(PYTHON) --version 2>/dev/null || echo not installed). Install python3.11 (or any" \
 			"python3 >= $(PYTHON_MIN)), or run 'make PYTHON=/path/to/python3.x ...'" >&2; exit 1; }
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
