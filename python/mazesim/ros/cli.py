@@ -12,15 +12,34 @@ ROS 1 is installed, and says what to install if it is not.
 from __future__ import annotations
 
 import argparse
+from collections.abc import Sequence
 from typing import Any
 
 from mazesim.cli import positive_int, positive_number, positive_seconds, seed_argument
 from mazesim.ros._ros import check_ros_installed
 
-__all__ = ["register"]
+__all__ = ["check_before_parsing", "register"]
 
 #: The ROS commands ``mazesim ros demo`` runs: the master and the recorder.
 DEMO_COMMANDS = ("roscore", "rosbag")
+#: The ``mazesim ros`` commands that run one node.
+NODE_COMMANDS = ("bridge", "avoid-collision", "perform-learning")
+
+
+def check_before_parsing(arguments: Sequence[str]) -> None:
+    """Fails fast on ``mazesim ros NODE ...`` where ROS 1 is missing, before the command line is
+    parsed: building the parsers of every command imports the plotting and learning modules,
+    which takes longer than the check.
+
+    Raises:
+        MissingDependencyError: ROS 1 is missing (see :func:`check_ros_installed`).
+    """
+    if len(arguments) < 2 or arguments[0] != "ros" or {"-h", "--help"} & set(arguments):
+        return
+    if arguments[1] == "demo":
+        check_ros_installed(DEMO_COMMANDS)
+    elif arguments[1] in NODE_COMMANDS:
+        check_ros_installed()
 
 
 def _remapping(text: str) -> str:
