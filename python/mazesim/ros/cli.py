@@ -139,14 +139,17 @@ def register(commands: Any) -> None:
 
     bridge = nodes.add_parser(
         "bridge",
-        help="the simulator node: publishes sensors, sensor_data, pose, /clock",
+        help="the simulator node: publishes sensors, sensor_data, pose, /clock, odom, tf, Range",
         description=(
             "Run a simulator as a ROS node. Publishes sensors (distance then ground sensors, "
             "Float64MultiArray), sensor_data (Sharp distances in cm + checkpoint, robots with "
             "Sharp sensors), pose ([x, y, yaw, time]) and /clock; subscribes motor ([left, right] "
-            "rad/s) and action (a primitive action code, String). In lockstep mode it advances "
-            "one control step per command received. Options left out fall back to the node's "
-            "private parameters (~world, ~robot, ...), then to the defaults shown."
+            "rad/s) and action (a primitive action code, String). Beside them: a "
+            "sensor_msgs/Range per distance sensor (ps0..ps7 on the e-puck), nav_msgs/Odometry "
+            "on odom, /tf (odom -> base_link) and /tf_static (the sensor frames); subscribes "
+            "cmd_vel (geometry_msgs/Twist). In lockstep mode it advances one control step per "
+            "command received. Options left out fall back to the node's private parameters "
+            "(~world, ~robot, ...), then to the defaults shown."
         ),
     )
     bridge.add_argument(
