@@ -265,3 +265,34 @@ def test_demo_command_names_a_missing_ros_tool(tmp_path: Path) -> None:
         pytest.skip("ROS 1 is not installed (run 'make ros-deps')")
     assert result.returncode == 2, result.stderr
     assert "the 'roscore' command" in result.stderr and "the 'rosbag' command" in result.stderr
+
+
+@pytest.mark.parametrize(
+    ("display", "has_rviz", "expected"),
+    [
+        (":0", True, "rviz -d {config}"),
+        ("", True, "rviz not started: no display"),
+        (":0", False, "rviz not started: no 'rviz' command"),
+    ],
+)
+def test_rviz_opens_with_the_saved_config_only_where_it_can(
+    tmp_path: Path, display: str, has_rviz: bool, expected: str
+) -> None:
+    fake_bin = tmp_path / "bin"
+    fake_bin.mkdir()
+    if has_rviz:  # a stand-in that says how it was started
+        rviz = fake_bin / "rviz"
+        rviz.write_text('#!/bin/sh\necho "rviz $*"\n')
+        rviz.chmod(0o755)
+    env = {"PATH": f"{fake_bin}:/usr/bin:/bin", "DISPLAY": display, "WAYLAND_DISPLAY": ""}
+    result = subprocess.run(
+        [sys.executable, str(REPO / "ros/mazesim_ros/nodes/rviz_if_display"), "__name:=rviz"],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=60,
+        check=False,
+    )
+    assert result.returncode == 0, result.stderr  # never fails the launch
+    config = REPO / "ros/mazesim_ros/rviz/mazesim.rviz"
+    assert expected.format(config=config) in result.stdout
