@@ -1,7 +1,10 @@
 # mazesim: the single entry point for building, testing and running.
-# `make demo` and `make test` are all a new checkout needs (Rust and Python 3.11 installed).
+# `make demo` and `make test` are all a new checkout needs (Rust and Python >= 3.9 installed).
 
-PYTHON ?= python3.11
+# The interpreter of the venv: python3.11 (what the figures were measured with) if present, else
+# python3; override with `make PYTHON=/path/to/python3.x`. It must be 3.9 or newer.
+PYTHON ?= $(shell command -v python3.11 2>/dev/null || command -v python3 2>/dev/null || echo python3)
+PYTHON_MIN := 3.9
 VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
@@ -24,9 +27,13 @@ help: ## list the targets
 	@echo "mazesim make targets:"
 	@grep -E '^[a-z-]+:.*## ' $(MAKEFILE_LIST) | sed -E 's/^([a-z-]+):.*## (.*)/  \1\t\2/' | expand -t 14
 
-venv: $(STAMP) ## create .venv (Python 3.11) with maturin, numpy, matplotlib and the dev tools
+venv: $(STAMP) ## create .venv (python3.11, else python3 >= 3.9) with maturin, numpy, matplotlib and the dev tools
 
 $(STAMP): Makefile
+	@test -x $(BIN)/python || $(PYTHON) -c 'import sys; sys.exit(sys.version_info < (3, 9))' 2>/dev/null \
+		|| { echo "make venv: mazesim needs Python >= $(PYTHON_MIN); found '$(PYTHON)':" \
+			"$$($(PYTHON) --version 2>/dev/null || echo not installed). Install python3.11 (or any" \
+			"python3 >= $(PYTHON_MIN)), or run 'make PYTHON=/path/to/python3.x ...'" >&2; exit 1; }
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 	$(BIN)/python -m pip install --quiet $(PY_PACKAGES)
@@ -47,11 +54,12 @@ demo: build ## the shipped hierarchical navigator drives seed-maze to its goal; 
 # The venv sees /usr/lib/python3/dist-packages through a .pth file, at the END of sys.path (first
 # would break rosbag).
 ROS_DEBS := python3-rosmaster python3-roslaunch python3-rospy python3-rostopic python3-std-msgs \
-	python3-rosgraph-msgs python3-rosbag rosout
+	python3-rosgraph-msgs python3-rosbag rosout python3-sensor-msgs python3-nav-msgs \
+	python3-geometry-msgs python3-tf2-msgs
 ROS_PTH = $$($(BIN)/python -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')/zz-debian-ros.pth
 
 ros-deps: venv ## install Debian's ROS 1 packages if missing; let .venv import them
-	@if /usr/bin/python3 -c 'import rospy' 2>/dev/null; then :; \
+	@if /usr/bin/python3 -c 'import rospy, rosbag, sensor_msgs.msg, nav_msgs.msg, geometry_msgs.msg, tf2_msgs.msg' 2>/dev/null; then :; \
 	elif command -v apt-get >/dev/null; then \
 		sudo=; [ "$$(id -u)" -eq 0 ] || sudo=sudo; \
 		$$sudo apt-get update && $$sudo apt-get install -y --no-install-recommends $(ROS_DEBS); \
@@ -88,8 +96,14 @@ docs: venv ## build the documentation site into site/ (mkdocs --strict; installs
 	$(BIN)/python -m pip install --quiet $(DOCS_PACKAGES)
 	NO_MKDOCS_2_WARNING=1 $(BIN)/mkdocs build --strict --quiet
 
-wheel: venv ## build a release wheel into dist/
-	$(BIN)/maturin build --release --out dist
+# The oldest glibc whose symbols the extension needs when built here (Debian 12, glibc 2.36):
+# hypot@GLIBC_2.35 is the newest. An older tag needs an older build host (a manylinux container).
+WHEEL_COMPATIBILITY ?= manylinux_2_35
+DIST ?= dist
+
+wheel: venv ## build the release wheel (abi3, manylinux_2_35, checked by maturin) and the sdist into dist/
+	$(BIN)/maturin build --release --compatibility $(WHEEL_COMPATIBILITY) --out $(DIST)
+	$(BIN)/maturin sdist --out $(DIST)
 
 clean: ## remove build products, .venv, dist and demo output
 	cargo clean

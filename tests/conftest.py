@@ -2,7 +2,12 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+from pathlib import Path
+
 import pytest
+
+from mazesim.ros.local_master import LocalMaster
 
 #: The worlds every installed mazesim carries.
 BUILTIN_WORLDS = ("seed-maze", "line-follow", "arena")
@@ -12,3 +17,18 @@ BUILTIN_WORLDS = ("seed-maze", "line-follow", "arena")
 def builtin_name(request: pytest.FixtureRequest) -> str:
     """Each built-in world name in turn."""
     return str(request.param)
+
+
+@pytest.fixture
+def master(tmp_path: Path) -> Iterator[LocalMaster]:
+    """A ROS master on a free loopback port; every process started on it is gone afterwards."""
+    graph = LocalMaster(home=str(tmp_path / "ros"))
+    graph.start()
+    try:
+        yield graph
+    finally:
+        spawned = [process for _, process in graph.processes]
+        left_behind = graph.close()
+    assert all(process.returncode is not None for process in spawned)
+    assert left_behind == []  # nothing had to be swept up after the orderly stop
+    assert graph.leftovers() == []

@@ -6,6 +6,8 @@ environment) and read its standard output.
     ros_probe.py drive COMMANDS_JSON   publish each command, wait for the state it produces
     ros_probe.py listen SECONDS        record what the bridge publishes for SECONDS (wall clock)
     ros_probe.py count TOPIC N         receive N messages of TOPIC (e.g. from rosbag play)
+    ros_probe.py standard TWISTS_JSON  publish each [linear.x, angular.z] on cmd_vel, keep the
+                                       standard messages (odom, /tf, /tf_static, Range topics)
 
 A drive command is ``{"topic": "motor" | "action", "data": ..., "steps": 0 | 1}``: ``steps`` is
 how many control steps it must cause (0 for a message the bridge must reject).
@@ -14,6 +16,7 @@ how many control steps it must cause (0 for a message the bridge must reject).
 from __future__ import annotations
 
 import json
+import math
 import sys
 import threading
 import time
@@ -21,8 +24,12 @@ import warnings
 from typing import Any
 
 import rospy
+from geometry_msgs.msg import Twist
+from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
+from sensor_msgs.msg import Range
 from std_msgs.msg import Float64MultiArray, String
+from tf2_msgs.msg import TFMessage
 
 TIMEOUT_S = 20.0
 STATE_TOPICS = ("pose", "sensors", "sensor_data")
@@ -110,6 +117,104 @@ def drive(commands: list[dict[str, Any]]) -> dict[str, Any]:
     return recorder.result()
 
 
+def _yaw(rotation: Any) -> float:
+    return 2.0 * math.atan2(rotation.z, rotation.w)
+
+
+class StandardRecorder:
+    """Keeps the standard messages: odom, /tf and /tf_static as plain rows, Range per topic."""
+
+    def __init__(self, range_topics: list[str]) -> None:
+        self.lock = threading.Condition()
+        self.odom: list[dict[str, Any]] = []
+        self.tf: list[dict[str, Any]] = []
+        self.tf_static: list[dict[str, Any]] = []
+        self.ranges: dict[str, list[dict[str, Any]]] = {topic: [] for topic in range_topics}
+        rospy.Subscriber("odom", Odometry, self.on_odom, tcp_nodelay=True)
+        rospy.Subscriber("/tf", TFMessage, self.on_tf, callback_args=self.tf, tcp_nodelay=True)
+        rospy.Subscriber("/tf_static", TFMessage, self.on_tf, callback_args=self.tf_static)
+        for topic in range_topics:
+            rospy.Subscriber(topic, Range, self.on_range, callback_args=topic, tcp_nodelay=True)
+
+    def on_odom(self, message: Odometry) -> None:
+        pose, twist = message.pose.pose, message.twist.twist
+        row = {
+            "stamp": message.header.stamp.to_sec(),
+            "frame": message.header.frame_id,
+            "child": message.child_frame_id,
+            "pose": [pose.position.x, pose.position.y, _yaw(pose.orientation)],
+            "z": [pose.position.z, pose.orientation.x, pose.orientation.y],
+            "twist": [twist.linear.x, twist.linear.y, twist.angular.z],
+        }
+        with self.lock:
+            self.odom.append(row)
+            self.lock.notify_all()
+
+    def on_tf(self, message: TFMessage, rows: list[dict[str, Any]]) -> None:
+        with self.lock:
+            for transform in message.transforms:
+                rows.append(
+                    {
+                        "stamp": transform.header.stamp.to_sec(),
+                        "parent": transform.header.frame_id,
+                        "child": transform.child_frame_id,
+                        "pose": [
+                            transform.transform.translation.x,
+                            transform.transform.translation.y,
+                            _yaw(transform.transform.rotation),
+                        ],
+                    }
+                )
+            self.lock.notify_all()
+
+    def on_range(self, message: Range, topic: str) -> None:
+        row = {
+            "stamp": message.header.stamp.to_sec(),
+            "frame": message.header.frame_id,
+            "radiation_type": message.radiation_type,
+            "min_range": message.min_range,
+            "max_range": message.max_range,
+            "range": message.range,
+        }
+        with self.lock:
+            self.ranges[topic].append(row)
+            self.lock.notify_all()
+
+    def wait_for(self, steps: int) -> None:
+        def arrived() -> bool:
+            return (
+                len(self.odom) >= steps
+                and len(self.tf) >= steps
+                and all(len(rows) >= steps for rows in self.ranges.values())
+            )
+
+        with self.lock:
+            if not self.lock.wait_for(arrived, TIMEOUT_S):
+                raise SystemExit(f"timed out waiting for {steps} steps of the standard topics")
+
+
+def standard(twists: list[list[float]]) -> dict[str, Any]:
+    cmd_vel = publisher("cmd_vel", Twist)
+    wait_for_connection(cmd_vel)
+    types = dict(rospy.get_published_topics())
+    range_topics = sorted(name for name, kind in types.items() if kind == "sensor_msgs/Range")
+    recorder = StandardRecorder(range_topics)
+    recorder.wait_for(1)  # the latched state before the first command
+    for step, (linear, angular) in enumerate(twists, start=2):
+        message = Twist()
+        message.linear.x, message.angular.z = linear, angular
+        cmd_vel.publish(message)
+        recorder.wait_for(step)
+    time.sleep(0.3)  # /tf_static is sent once, on connection; and nothing more may come
+    with recorder.lock:
+        return {
+            "odom": recorder.odom,
+            "tf": recorder.tf,
+            "tf_static": recorder.tf_static,
+            "ranges": recorder.ranges,
+        }
+
+
 def main() -> int:
     mode = sys.argv[1]
     rospy.init_node("ros_probe", anonymous=True, disable_signals=True)
@@ -121,6 +226,9 @@ def main() -> int:
             recorder = Recorder(STATE_TOPICS)
             time.sleep(float(sys.argv[2]))
             result = recorder.result()
+        elif mode == "standard":
+            with open(sys.argv[2]) as handle:
+                result = standard(json.load(handle))
         elif mode == "count":
             topic, count = sys.argv[2], int(sys.argv[3])
             recorder = Recorder((topic,))

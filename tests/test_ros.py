@@ -15,7 +15,6 @@ import shutil
 import subprocess
 import sys
 import uuid
-from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -207,22 +206,7 @@ def test_node_without_rospy_fails_with_one_clear_line() -> None:
     assert "make ros-deps" in lines[0]
 
 
-# --- against a real master -----------------------------------------------------------------------
-
-
-@pytest.fixture
-def master(tmp_path: Path) -> Iterator[LocalMaster]:
-    """A ROS master on a free loopback port; every process started on it is gone afterwards."""
-    graph = LocalMaster(home=str(tmp_path / "ros"))
-    graph.start()
-    try:
-        yield graph
-    finally:
-        spawned = [process for _, process in graph.processes]
-        left_behind = graph.close()
-    assert all(process.returncode is not None for process in spawned)
-    assert left_behind == []  # nothing had to be swept up after the orderly stop
-    assert graph.leftovers() == []
+# --- against a real master (the fixture ``master`` is in conftest.py) ---------------------------
 
 
 def run_probe(master: LocalMaster, *args: str) -> dict[str, Any]:
@@ -240,6 +224,20 @@ def run_probe(master: LocalMaster, *args: str) -> dict[str, Any]:
 
 def spawn_bridge(master: LocalMaster, *options: str) -> subprocess.Popen[bytes]:
     return master.spawn("bridge", [*MAZESIM, "ros", "bridge", *options])
+
+
+def spawn_launch(
+    master: LocalMaster, launch_file: str, *args: str, **env: str
+) -> tuple[subprocess.Popen[bytes], str]:
+    """Runs ``roslaunch mazesim_ros LAUNCH_FILE ARGS`` in the package folder of the repository;
+    returns the process and the tag in its environment (for :func:`_processes_with`)."""
+    tag = uuid.uuid4().hex
+    launch = master.spawn(
+        "roslaunch",
+        ["roslaunch", "mazesim_ros", launch_file, *args],
+        env={"ROS_PACKAGE_PATH": str(REPO / "ros"), "MAZESIM_TEST_LAUNCH": tag, **env},
+    )
+    return launch, tag
 
 
 def drive(master: LocalMaster, tmp_path: Path, commands: list[dict[str, Any]]) -> dict[str, Any]:
@@ -501,12 +499,7 @@ def test_realtime_mode_follows_the_wall_clock(master: LocalMaster) -> None:
 
 @needs_ros
 def test_launch_file_runs_and_stops_without_leftovers(master: LocalMaster) -> None:
-    tag = uuid.uuid4().hex
-    launch = master.spawn(
-        "roslaunch",
-        ["roslaunch", "mazesim_ros", "maze.launch", "world:=arena", "seed:=2"],
-        env={"ROS_PACKAGE_PATH": str(REPO / "ros"), "MAZESIM_TEST_LAUNCH": tag},
-    )
+    launch, tag = spawn_launch(master, "maze.launch", "world:=arena", "seed:=2")
     seen = run_probe(master, "count", "pose", "50")
     poses = np.array(seen["data"]["pose"])
     assert poses[-1, 3] > poses[0, 3]
@@ -518,12 +511,7 @@ def test_launch_file_runs_and_stops_without_leftovers(master: LocalMaster) -> No
 
 @needs_ros
 def test_learning_launch_stops_at_the_goal_without_leftovers(master: LocalMaster) -> None:
-    tag = uuid.uuid4().hex
-    launch = master.spawn(
-        "roslaunch",
-        ["roslaunch", "mazesim_ros", "learning.launch", "seed:=2"],
-        env={"ROS_PACKAGE_PATH": str(REPO / "ros"), "MAZESIM_TEST_LAUNCH": tag},
-    )
+    launch, tag = spawn_launch(master, "learning.launch", "seed:=2")
     # The bridge is required: it stops at the goal, and the launch with it.
     assert launch.wait(timeout=90) == 0
     log = Path(master.log_path("roslaunch")).read_text()

@@ -1,67 +1,122 @@
-"""A release wheel installs into a new virtual environment and runs from another directory."""
+"""`make wheel`: a manylinux abi3 wheel that installs into a new virtual environment and runs from
+another directory, and an sdist that carries everything the Rust core embeds.
+
+`make wheel` reuses the release build of `make build` in ``target/`` (the same profile and
+``PYO3_PYTHON``), so the build itself takes about a second; the new virtual environment and the
+installation of numpy and matplotlib (from pip's cache when it has them) take most of the time.
+"""
 
 from __future__ import annotations
 
 import os
+import re
 import shutil
 import subprocess
 import sys
+import tarfile
 import venv
 from pathlib import Path
 
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
+QUICKSTART = ROOT / "examples" / "quickstart.py"
 
 
-@pytest.mark.skipif(shutil.which("cargo") is None, reason="building a wheel needs cargo")
-def test_release_wheel_runs_the_demo_from_anywhere(tmp_path: Path) -> None:
-    maturin = Path(sys.executable).with_name("maturin")
-    dist = tmp_path / "dist"
-    subprocess.run(
-        [str(maturin), "build", "--release", "--quiet", "--out", str(dist)],
+def _make_wheel(dist: Path) -> tuple[Path, Path]:
+    """Runs ``make wheel`` into ``dist``; returns the wheel and the sdist."""
+    env = dict(os.environ, PYO3_PYTHON=sys.executable)
+    result = subprocess.run(
+        ["make", "-s", "wheel", f"DIST={dist}"],
         cwd=ROOT,
-        check=True,
+        env=env,
+        capture_output=True,
+        text=True,
+        check=False,
     )
+    assert result.returncode == 0, result.stdout + result.stderr
     wheels = list(dist.glob("mazesim-*.whl"))
-    assert len(wheels) == 1, wheels
+    sdists = list(dist.glob("mazesim-*.tar.gz"))
+    assert len(wheels) == 1 and len(sdists) == 1, list(dist.iterdir())
+    return wheels[0], sdists[0]
+
+
+@pytest.fixture(scope="module")
+def built(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, Path]:
+    if shutil.which("cargo") is None or shutil.which("make") is None:
+        pytest.skip("building the wheel needs cargo and make")
+    return _make_wheel(tmp_path_factory.mktemp("dist"))
+
+
+def test_wheel_is_abi3_and_manylinux(built: tuple[Path, Path]) -> None:
+    wheel, _ = built
+    # name-version-python-abi-platform: one wheel for CPython 3.9 and newer, installable from an
+    # index on any Linux with glibc 2.35 or newer.
+    assert re.fullmatch(r"mazesim-[\d.]+-cp39-abi3-manylinux_2_35_x86_64\.whl", wheel.name)
+
+
+def test_sdist_carries_what_the_core_embeds(built: tuple[Path, Path]) -> None:
+    _, sdist = built
+    with tarfile.open(sdist) as archive:
+        names = {name.split("/", 1)[1] for name in archive.getnames() if "/" in name}
+    embedded = set()
+    for source in (ROOT / "crates").rglob("*.rs"):
+        for relative in re.findall(r'include_(?:str|bytes)!\(\s*"([^"]+)"', source.read_text()):
+            target = (source.parent / relative).resolve()
+            embedded.add(target.relative_to(ROOT).as_posix())
+    assert {"worlds/seed-maze.toml", "robots/e-puck.toml"} <= embedded
+    assert embedded <= names, sorted(embedded - names)
+    assert {"pyproject.toml", "Cargo.lock", "python/mazesim/_core.pyi"} <= names
+
+
+def test_release_wheel_runs_the_demo_and_the_quick_start_from_anywhere(
+    built: tuple[Path, Path], tmp_path: Path
+) -> None:
+    # Only the wheel and the quick start's text leave the source tree.
+    wheel = Path(shutil.copy(built[0], tmp_path))
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    script = Path(shutil.copy(QUICKSTART, elsewhere))
     env_dir = tmp_path / "venv"
     venv.create(env_dir, with_pip=True)
     python = env_dir / "bin" / "python"
-    subprocess.run(
-        [
-            str(python),
-            "-m",
-            "pip",
-            "install",
-            "--quiet",
-            "--disable-pip-version-check",
-            str(wheels[0]),
-        ],
-        check=True,
-    )
-    elsewhere = tmp_path / "elsewhere"
-    elsewhere.mkdir()
-    clean_env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV")}
-    result = subprocess.run(
-        [str(env_dir / "bin" / "mazesim"), "demo", "--seconds", "5", "--out", "out"],
+    clean_env = {
+        key: value
+        for key, value in os.environ.items()
+        if key not in ("PYTHONPATH", "VIRTUAL_ENV", "PYTHONHOME")
+    }
+    install = subprocess.run(
+        [str(python), "-m", "pip", "install", "--quiet", "--disable-pip-version-check", wheel],
         cwd=elsewhere,
         env=clean_env,
         capture_output=True,
         text=True,
         check=False,
     )
-    assert result.returncode == 0, result.stderr
-    assert "seed-maze" in result.stdout
-    png = elsewhere / "out" / "trajectory.png"
-    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
-    # The installed package is the wheel's, not the source tree's.
-    where = subprocess.run(
-        [str(python), "-c", "import mazesim; print(mazesim.__file__)"],
-        cwd=elsewhere,
-        env=clean_env,
-        capture_output=True,
-        text=True,
-        check=True,
-    ).stdout
-    assert str(env_dir) in where
+    assert install.returncode == 0, install.stderr
+
+    def run(*argv: str) -> subprocess.CompletedProcess[str]:
+        return subprocess.run(
+            argv, cwd=elsewhere, env=clean_env, capture_output=True, text=True, check=False
+        )
+
+    demo = run(str(env_dir / "bin" / "mazesim"), "demo", "--seconds", "5", "--out", "out")
+    assert demo.returncode == 0, demo.stderr
+    assert "seed-maze" in demo.stdout
+    assert (elsewhere / "out" / "trajectory.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+    # -I (isolated): neither the script's folder nor user site-packages are on the path.
+    quickstart = run(str(python), "-I", str(script))
+    assert quickstart.returncode == 0, quickstart.stderr
+    lines = quickstart.stdout.splitlines()
+    assert lines[0].startswith("after 8.00 s (250 steps): x ")
+    assert lines[1].startswith("collisions: ")
+    assert len(lines[2].split()) == 2 + 8 and len(lines[3].split()) == 2 + 3  # ps0..7, gs0..2
+    # The installed package is the wheel's, and it runs the quick start exactly as the source
+    # tree's build does: same seed, same run.
+    where = run(str(python), "-I", "-c", "import mazesim; print(mazesim.__file__)").stdout
+    assert where.startswith(str(env_dir))
+    here = subprocess.run(
+        [sys.executable, str(QUICKSTART)], capture_output=True, text=True, check=True
+    )
+    assert quickstart.stdout == here.stdout

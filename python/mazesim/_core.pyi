@@ -136,6 +136,11 @@ class RobotProfile:
     def ground_sensor_names(self) -> list[str]: ...
     def distance_sensor_poses(self) -> npt.NDArray[np.float64]:
         """(N, 3) array: x, y, heading of each distance sensor in the robot frame."""
+    def distance_sensor_limits(self) -> npt.NDArray[np.float64]:
+        """(N, 2) array: nearest and farthest distance in metres of each distance sensor's table."""
+    def distance_from_reading(self, index: int, reading: float) -> float:
+        """Distance in metres at which distance sensor ``index`` reads ``reading`` off a white
+        wall (its table inverted, clamped to the table's distances)."""
     def ground_reading(self, index: int, reflectance: float) -> float:
         """Noise-free reading of ground sensor ``index`` over a floor of reflectance factor f."""
     def ground_sensor_positions(self) -> npt.NDArray[np.float64]:

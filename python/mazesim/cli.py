@@ -312,9 +312,17 @@ def main(argv: Sequence[str] | None = None) -> int:
     Returns:
         The exit code: 0 on success, 2 on an error (printed as one line on stderr), 130 on Ctrl-C.
     """
+    arguments = list(sys.argv[1:] if argv is None else argv)
+    try:
+        from mazesim.ros.cli import check_before_parsing
+
+        check_before_parsing(arguments)
+    except MazesimError as error:
+        print(f"mazesim: error: {_one_line(str(error))}", file=sys.stderr)
+        return EXIT_ERROR
     parser = build_parser()
     try:
-        args = parser.parse_args(argv)
+        args = parser.parse_args(arguments)
     except SystemExit as exit_request:
         # --help and --version exit with None (success); usage errors with 2.
         code = exit_request.code

@@ -12,6 +12,7 @@ attribute defaults to ``None``.
 from __future__ import annotations
 
 __all__ = [
+    "ClusterConnectionError",
     "InvalidActionError",
     "InvalidArgumentError",
     "MazesimError",
@@ -82,6 +83,11 @@ class MazesimIOError(MazesimError, OSError):
 class MissingDependencyError(MazesimError, ImportError):
     """An optional part of mazesim needs a package that is not installed (for example ROS 1's
     ``rospy`` for :mod:`mazesim.ros`); the message names the package and how to install it."""
+
+
+class ClusterConnectionError(MazesimError, ConnectionError):
+    """Joining a Ray cluster failed; the message names the address and what to check or set
+    (such as Ray's token authentication)."""
 
 
 class PolicyFormatError(MazesimError, ValueError):

@@ -97,6 +97,11 @@ impl LookupTable {
         (lerp(&self.outputs), lerp(&self.noise))
     }
 
+    /// The smallest input (the nearest distance the table describes).
+    pub fn min_input(&self) -> f64 {
+        self.inputs[0]
+    }
+
     /// The largest input (the sensor's range).
     pub fn max_input(&self) -> f64 {
         self.inputs[self.inputs.len() - 1]
@@ -156,6 +161,15 @@ mod tests {
         assert_eq!(t.eval(1.5).0, 25.0);
         assert_eq!(t.eval(5.0), (0.0, 0.3));
         assert_eq!(t.eval(f64::NAN).0, 100.0);
+    }
+
+    #[test]
+    fn input_range_and_inverse() {
+        let t = LookupTable::new(&[[0.5, 100.0, 0.1], [1.0, 50.0, 0.2], [2.0, 0.0, 0.3]]).unwrap();
+        assert_eq!((t.min_input(), t.max_input()), (0.5, 2.0));
+        assert_eq!(t.invert(75.0), 0.75);
+        assert_eq!(t.invert(500.0), 0.5); // clamped to the nearest distance
+        assert_eq!(t.invert(-1.0), 2.0); // and to the farthest
     }
 
     /// `eval` as defined: the first row at or above `x` by a scan from the top.

@@ -27,6 +27,13 @@ fn rows_to_array<'py, const N: usize>(
         .expect("a flat array of rows * N reshapes to (rows, N)")
 }
 
+/// The error for a sensor index at or above the robot's `count` sensors of that `kind`.
+fn sensor_index_error(kind: &str, count: usize, index: usize) -> PyErr {
+    crate::errors::to_py(mazesim_core::Error::InvalidArgument(format!(
+        "expected a {kind} sensor index below {count}, found {index}"
+    )))
+}
+
 #[pymethods]
 impl PyWorld {
     /// A built-in world by name (see `builtin_world_names()`).
@@ -297,14 +304,41 @@ impl PyRobotProfile {
         rows_to_array(py, rows)
     }
 
+    /// (N, 2) array: nearest and farthest distance in metres of each distance sensor's table.
+    fn distance_sensor_limits<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        let rows = self
+            .inner
+            .distance_sensors
+            .iter()
+            .map(|s| [s.model.table.min_input(), s.model.table.max_input()])
+            .collect();
+        rows_to_array(py, rows)
+    }
+
+    /// Distance in metres at which distance sensor `index` reads `reading` off a white wall
+    /// (its table inverted, clamped to the table's distances).
+    fn distance_from_reading(&self, index: usize, reading: f64) -> PyResult<f64> {
+        let sensors = &self.inner.distance_sensors;
+        let sensor = sensors
+            .get(index)
+            .ok_or_else(|| sensor_index_error("distance", sensors.len(), index))?;
+        if !reading.is_finite() {
+            return Err(crate::errors::to_py(mazesim_core::Error::InvalidArgument(
+                format!(
+                    "expected a finite reading of distance sensor {}, found {reading}",
+                    sensor.name
+                ),
+            )));
+        }
+        Ok(sensor.model.table.invert(reading))
+    }
+
     /// Noise-free reading of ground sensor `index` over a floor of reflectance factor `f`.
     fn ground_reading(&self, index: usize, reflectance: f64) -> PyResult<f64> {
-        let sensor = self.inner.ground_sensors.get(index).ok_or_else(|| {
-            crate::errors::to_py(mazesim_core::Error::InvalidArgument(format!(
-                "expected a ground sensor index below {}, found {index}",
-                self.inner.ground_sensors.len()
-            )))
-        })?;
+        let sensors = &self.inner.ground_sensors;
+        let sensor = sensors
+            .get(index)
+            .ok_or_else(|| sensor_index_error("ground", sensors.len(), index))?;
         if !(reflectance > 0.0 && reflectance <= 1.0) {
             return Err(crate::errors::to_py(mazesim_core::Error::InvalidArgument(
                 format!("expected a reflectance factor in (0, 1], found {reflectance}"),

@@ -21,12 +21,18 @@ import tempfile
 from collections.abc import Iterator
 from types import ModuleType
 
-from mazesim.errors import MissingDependencyError
+from mazesim.errors import ClusterConnectionError, MissingDependencyError
 
-__all__ = ["LOCAL", "import_ray", "local_cpus", "ray_session"]
+__all__ = ["LOCAL", "connection_advice", "import_ray", "local_cpus", "ray_session"]
 
 #: The address that asks for a local Ray instance, as no address does.
 LOCAL = "local"
+#: Ray's switch for token authentication: ``token`` turns it on for this process.
+AUTH_MODE_VARIABLE = "RAY_AUTH_MODE"
+#: Where Ray looks for the token, in this order: the token itself, a file, the default file.
+TOKEN_VARIABLE = "RAY_AUTH_TOKEN"
+TOKEN_PATH_VARIABLE = "RAY_AUTH_TOKEN_PATH"
+DEFAULT_TOKEN_FILE = "~/.ray/auth_token"
 
 
 def import_ray() -> ModuleType:
@@ -71,6 +77,38 @@ def _on_loopback(ray: ModuleType) -> Iterator[None]:
         constants.ENABLE_RAY_CLUSTER = saved
 
 
+def connection_advice(address: str, error: BaseException) -> str:
+    """What to check or set after joining the Ray cluster at ``address`` failed with ``error``.
+
+    Ray 2.5x turns on token authentication for a cluster that ``ray start --head`` starts when
+    ``RAY_AUTH_MODE=token`` is set or a token already exists (``~/.ray/auth_token``, left by any
+    earlier local instance); a driver that joins by address sends its token only when
+    ``RAY_AUTH_MODE=token`` is set, and otherwise gets a bare "Failed to connect".
+    """
+    mode = os.environ.get(AUTH_MODE_VARIABLE)
+    token_sources = (
+        f"{TOKEN_VARIABLE}, the file named by {TOKEN_PATH_VARIABLE}, or {DEFAULT_TOKEN_FILE} "
+        f"(print it with 'ray get-auth-token' on the head node)"
+    )
+    if mode is None or mode.lower() != "token":
+        found = "unset" if mode is None else repr(mode)
+        auth = (
+            f"if the cluster uses token authentication (Ray's default for 'ray start --head' "
+            f"when a token exists), set {AUTH_MODE_VARIABLE}=token here too (it is {found}) and "
+            f"give the cluster's token in {token_sources}"
+        )
+    else:
+        auth = (
+            f"{AUTH_MODE_VARIABLE}=token is set: check that this machine has the cluster's token "
+            f"in {token_sources}"
+        )
+    first_line = str(error).strip().splitlines()[0] if str(error).strip() else type(error).__name__
+    return (
+        f"could not join the Ray cluster at {address} ({first_line}); expected a cluster started "
+        f"with 'ray start --head' listening there, with the same Ray version; {auth}"
+    )
+
+
 @contextlib.contextmanager
 def ray_session(address: str | None = None, cpus: int | None = None) -> Iterator[ModuleType]:
     """Connects to Ray for the duration of a ``with`` block.
@@ -85,6 +123,8 @@ def ray_session(address: str | None = None, cpus: int | None = None) -> Iterator
 
     Raises:
         MissingDependencyError: Ray is not installed.
+        ClusterConnectionError: The cluster at ``address`` cannot be joined; the message says what
+            to check and set (:func:`connection_advice`).
     """
     ray = import_ray()
     if ray.is_initialized():
@@ -103,7 +143,11 @@ def ray_session(address: str | None = None, cpus: int | None = None) -> Iterator
                 log_to_driver=False,
             )
     else:
-        ray.init(address=address, logging_level=logging.WARNING, log_to_driver=False)
+        try:
+            ray.init(address=address, logging_level=logging.WARNING, log_to_driver=False)
+        except (ConnectionError, RuntimeError, ray.exceptions.RayError) as error:
+            # A missing or wrong token raises Ray's AuthenticationError, a RayError.
+            raise ClusterConnectionError(connection_advice(address, error)) from error
     try:
         yield ray
     finally:

@@ -6,8 +6,11 @@ into a :class:`~mazesim.errors.MissingDependencyError` that says how to install 
 
 from __future__ import annotations
 
+import importlib.util
 import os
+import shutil
 import signal
+import sys
 import threading
 import time
 import warnings
@@ -19,13 +22,76 @@ from mazesim.errors import MazesimError, MissingDependencyError
 #: Seconds after which a node says it is still waiting for the bridge.
 WAITING_NOTICE_S = 5.0
 
-__all__ = ["install_shutdown_handlers", "publisher", "require_ros", "wait_for_master"]
+__all__ = [
+    "check_ros_installed",
+    "install_shutdown_handlers",
+    "publisher",
+    "require_ros",
+    "wait_for_master",
+]
 
 #: Debian's packages that give ``rospy``, the message types and the command-line tools.
 DEBIAN_PACKAGES = (
     "python3-rosmaster python3-roslaunch python3-rospy python3-rostopic python3-std-msgs "
-    "python3-rosgraph-msgs python3-rosbag rosout"
+    "python3-rosgraph-msgs python3-rosbag rosout python3-sensor-msgs python3-nav-msgs "
+    "python3-geometry-msgs python3-tf2-msgs"
 )
+
+
+#: The modules the nodes import, with the Debian package that provides each.
+ROS_MODULES = {
+    "rospy": "python3-rospy",
+    "rosgraph": "python3-rosgraph",
+    "rosbag": "python3-rosbag",
+    "std_msgs": "python3-std-msgs",
+    "rosgraph_msgs": "python3-rosgraph-msgs",
+    "sensor_msgs": "python3-sensor-msgs",
+    "nav_msgs": "python3-nav-msgs",
+    "geometry_msgs": "python3-geometry-msgs",
+    "tf2_msgs": "python3-tf2-msgs",
+}
+
+
+def _install_advice() -> str:
+    return (
+        f"on Debian or Ubuntu run 'make ros-deps', or 'apt-get install {DEBIAN_PACKAGES}', and "
+        f"make /usr/lib/python3/dist-packages importable (see docs/ros.md)"
+    )
+
+
+def _importable(module: str) -> bool:
+    try:
+        return importlib.util.find_spec(module) is not None
+    except (ImportError, ValueError):  # ValueError: sys.modules holds None for it
+        return False
+
+
+def check_ros_installed(commands: tuple[str, ...] = ()) -> None:
+    """Fails fast when ROS 1 is missing, without importing it or contacting a master.
+
+    Looks for each module of :data:`ROS_MODULES` on this interpreter's path and for each of
+    ``commands`` (such as ``roscore``) on ``PATH``.
+
+    Raises:
+        MissingDependencyError: Something is missing; the message says what and how to install it.
+    """
+    missing = [
+        f"{module} ({package})"
+        for module, package in ROS_MODULES.items()
+        if not _importable(module)
+    ]
+    python_folder = os.path.dirname(sys.executable)
+    search_path = python_folder + os.pathsep + os.environ.get("PATH", "")
+    missing += [
+        f"the '{command}' command"
+        for command in commands
+        if shutil.which(command, path=search_path) is None
+    ]
+    if missing:
+        raise MissingDependencyError(
+            f"mazesim ros needs ROS 1, which {sys.executable} cannot find: missing "
+            f"{', '.join(missing)}; {_install_advice()}"
+        )
 
 
 def require_ros() -> Any:
@@ -33,7 +99,8 @@ def require_ros() -> Any:
 
     Returns:
         A namespace with ``rospy``, ``rosgraph``, ``Float64MultiArray``, ``MultiArrayDimension``,
-        ``String`` and ``Clock``.
+        ``String``, ``Clock`` and the standard messages ``Range``, ``Odometry``, ``Twist``,
+        ``TransformStamped`` and ``TFMessage``.
 
     Raises:
         MissingDependencyError: ROS 1's Python packages cannot be imported.
@@ -41,13 +108,16 @@ def require_ros() -> Any:
     try:
         import rosgraph
         import rospy
+        from geometry_msgs.msg import TransformStamped, Twist
+        from nav_msgs.msg import Odometry
         from rosgraph_msgs.msg import Clock
+        from sensor_msgs.msg import Range
         from std_msgs.msg import Float64MultiArray, MultiArrayDimension, String
+        from tf2_msgs.msg import TFMessage
     except ImportError as error:
         raise MissingDependencyError(
-            f"mazesim.ros needs ROS 1's Python packages (import failed: {error}); on Debian or "
-            f"Ubuntu run 'make ros-deps', or 'apt-get install {DEBIAN_PACKAGES}', and make "
-            f"/usr/lib/python3/dist-packages importable (see the README's ROS bridge section)"
+            f"mazesim.ros needs ROS 1's Python packages (import failed: {error}); "
+            f"{_install_advice()}"
         ) from error
     return SimpleNamespace(
         rospy=rospy,
@@ -56,6 +126,11 @@ def require_ros() -> Any:
         MultiArrayDimension=MultiArrayDimension,
         String=String,
         Clock=Clock,
+        Range=Range,
+        Odometry=Odometry,
+        Twist=Twist,
+        TransformStamped=TransformStamped,
+        TFMessage=TFMessage,
     )
 
 

@@ -2,7 +2,10 @@
 
 The bridge publishes ``sensors``, ``sensor_data`` (robots with Sharp sensors), ``pose`` and
 ``/clock``, and takes wheel speeds from ``motor`` or primitive action codes from ``action``; see
-:mod:`mazesim.ros.topics` for the layouts. It runs in one of two modes:
+:mod:`mazesim.ros.topics` for the layouts. Beside them it speaks the standard messages (one
+``sensor_msgs/Range`` per distance sensor, ``nav_msgs/Odometry`` on ``odom``, ``/tf`` and
+``/tf_static``, ``geometry_msgs/Twist`` commands on ``cmd_vel``); see :mod:`mazesim.ros.standard`.
+A ``cmd_vel`` twist is a command like the others. It runs in one of two modes:
 
 - ``lockstep`` (the default): the simulation advances exactly one control step for each command
   received, then publishes the new state, as Webots does with ``--synchronize``. The controller
@@ -39,13 +42,14 @@ import mazesim
 from mazesim._core import Simulator
 from mazesim.actions import wheel_speeds
 from mazesim.errors import InvalidArgumentError, MazesimError
-from mazesim.ros import topics
+from mazesim.ros import standard, topics
 from mazesim.ros._ros import (
     install_shutdown_handlers,
     publisher,
     require_ros,
     wait_for_master,
 )
+from mazesim.ros.standard import StandardPublishers
 
 __all__ = ["MODES", "Bridge", "BridgeSettings", "run_bridge"]
 
@@ -160,10 +164,12 @@ class Bridge:
             self.sensor_data_publisher = self._publisher(
                 topics.SENSOR_DATA_TOPIC, ros.Float64MultiArray
             )
+        self.standard = StandardPublishers(ros, simulator, self._publisher)
         self.publish_state()
         # No queue limit: in lockstep every command is one step and none may be dropped.
         rospy.Subscriber(topics.MOTOR_TOPIC, ros.Float64MultiArray, self.on_motor, tcp_nodelay=True)
         rospy.Subscriber(topics.ACTION_TOPIC, ros.String, self.on_action, tcp_nodelay=True)
+        rospy.Subscriber(standard.CMD_VEL_TOPIC, ros.Twist, self.on_cmd_vel, tcp_nodelay=True)
 
     def _publisher(self, topic: str, message_class: Any) -> Any:
         # Synchronous in lockstep: every subscriber (a recorder too) gets every step before the
@@ -181,7 +187,8 @@ class Bridge:
         return self.ros.Float64MultiArray(layout=layout, data=values)
 
     def publish_state(self) -> None:
-        """Publishes ``/clock``, ``pose``, ``sensors`` and ``sensor_data`` for the current step."""
+        """Publishes ``/clock``, ``pose``, ``sensors``, ``sensor_data`` and the standard messages
+        (``odom``, ``/tf``, one Range per distance sensor) for the current step."""
         simulator = self.simulator
         nanoseconds = round(simulator.time * 1e9)
         clock_time = self.ros.rospy.Time(nanoseconds // 10**9, nanoseconds % 10**9)
@@ -194,6 +201,7 @@ class Bridge:
             self.sensor_data_publisher.publish(
                 self._array(self._sensor_data_layout, topics.sensor_data_values(simulator))
             )
+        self.standard.publish(clock_time)
 
     def _finished(self) -> bool:
         """Notes the goal after a step; whether the bridge is done (duration, or goal reached)."""
@@ -234,6 +242,17 @@ class Bridge:
             return
         self.command(left, right)
 
+    def on_cmd_vel(self, message: Any) -> None:
+        """Handles a ``cmd_vel`` twist: ``linear.x`` in m/s, ``angular.z`` in rad/s."""
+        try:
+            left, right = standard.twist_wheel_speeds(
+                message.linear.x, message.angular.z, self.simulator.robot
+            )
+        except MazesimError as error:
+            self._reject(standard.CMD_VEL_TOPIC, error)
+            return
+        self.command(left, right)
+
     def _reject(self, topic: str, error: MazesimError) -> None:
         with self._lock:
             self.rejected += 1
@@ -269,9 +288,10 @@ class Bridge:
             while not self.stop.wait(0.1) and not rospy.is_shutdown():
                 if self.commands == 0 and time.monotonic() - started > IDLE_WARNING_S:
                     rospy.logwarn(
-                        "lockstep: waiting for a command on %s or %s (one control step each)",
+                        "lockstep: waiting for a command on %s, %s or %s (one control step each)",
                         rospy.resolve_name(topics.MOTOR_TOPIC),
                         rospy.resolve_name(topics.ACTION_TOPIC),
+                        rospy.resolve_name(standard.CMD_VEL_TOPIC),
                     )
                     started = math.inf
             return

@@ -5,17 +5,41 @@ nodes that the ROS package ``mazesim_ros`` launches; options take precedence ove
 private ROS parameters, and trailing ``NAME:=VALUE`` arguments are ROS remappings (``_seed:=3``
 sets a private parameter, ``__name:=bridge2`` renames the node). ``mazesim ros demo`` runs a whole
 graph (the bridge and the perform-learning or avoid-collision node, recorded) on a private master.
-ROS is imported only when a command runs.
+ROS is imported only when a command runs; each command first checks, without importing it, that
+ROS 1 is installed, and says what to install if it is not.
 """
 
 from __future__ import annotations
 
 import argparse
+from collections.abc import Sequence
 from typing import Any
 
 from mazesim.cli import positive_int, positive_number, positive_seconds, seed_argument
+from mazesim.ros._ros import check_ros_installed
 
-__all__ = ["register"]
+__all__ = ["check_before_parsing", "register"]
+
+#: The ROS commands ``mazesim ros demo`` runs: the master and the recorder.
+DEMO_COMMANDS = ("roscore", "rosbag")
+#: The ``mazesim ros`` commands that run one node.
+NODE_COMMANDS = ("bridge", "avoid-collision", "perform-learning")
+
+
+def check_before_parsing(arguments: Sequence[str]) -> None:
+    """Fails fast on ``mazesim ros NODE ...`` where ROS 1 is missing, before the command line is
+    parsed: building the parsers of every command imports the plotting and learning modules,
+    which takes longer than the check.
+
+    Raises:
+        MissingDependencyError: ROS 1 is missing (see :func:`check_ros_installed`).
+    """
+    if len(arguments) < 2 or arguments[0] != "ros" or {"-h", "--help"} & set(arguments):
+        return
+    if arguments[1] == "demo":
+        check_ros_installed(DEMO_COMMANDS)
+    elif arguments[1] in NODE_COMMANDS:
+        check_ros_installed()
 
 
 def _remapping(text: str) -> str:
@@ -48,6 +72,7 @@ def _add_node_arguments(parser: argparse.ArgumentParser, default_name: str) -> N
 
 
 def _run_bridge(args: argparse.Namespace) -> int:
+    check_ros_installed()
     from mazesim.ros.bridge import run_bridge
 
     options = {
@@ -64,6 +89,7 @@ def _run_bridge(args: argparse.Namespace) -> int:
 
 
 def _run_avoid_collision(args: argparse.Namespace) -> int:
+    check_ros_installed()
     from mazesim.ros.avoid_collision import run_avoid_collision
 
     options = {
@@ -75,6 +101,7 @@ def _run_avoid_collision(args: argparse.Namespace) -> int:
 
 
 def _run_perform_learning(args: argparse.Namespace) -> int:
+    check_ros_installed()
     from mazesim.ros.perform_learning import run_perform_learning
 
     options = {
@@ -87,6 +114,9 @@ def _run_perform_learning(args: argparse.Namespace) -> int:
 
 def _run_demo(args: argparse.Namespace) -> int:
     import sys
+
+    # Before a master is started: without ROS the nodes would fail one by one, much later.
+    check_ros_installed(DEMO_COMMANDS)
 
     from mazesim.ros.demo import run_demo
 
@@ -109,14 +139,17 @@ def register(commands: Any) -> None:
 
     bridge = nodes.add_parser(
         "bridge",
-        help="the simulator node: publishes sensors, sensor_data, pose, /clock",
+        help="the simulator node: publishes sensors, sensor_data, pose, /clock, odom, tf, Range",
         description=(
             "Run a simulator as a ROS node. Publishes sensors (distance then ground sensors, "
             "Float64MultiArray), sensor_data (Sharp distances in cm + checkpoint, robots with "
             "Sharp sensors), pose ([x, y, yaw, time]) and /clock; subscribes motor ([left, right] "
-            "rad/s) and action (a primitive action code, String). In lockstep mode it advances "
-            "one control step per command received. Options left out fall back to the node's "
-            "private parameters (~world, ~robot, ...), then to the defaults shown."
+            "rad/s) and action (a primitive action code, String). Beside them: a "
+            "sensor_msgs/Range per distance sensor (ps0..ps7 on the e-puck), nav_msgs/Odometry "
+            "on odom, /tf (odom -> base_link) and /tf_static (the sensor frames); subscribes "
+            "cmd_vel (geometry_msgs/Twist). In lockstep mode it advances one control step per "
+            "command received. Options left out fall back to the node's private parameters "
+            "(~world, ~robot, ...), then to the defaults shown."
         ),
     )
     bridge.add_argument(

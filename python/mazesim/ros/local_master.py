@@ -178,6 +178,14 @@ class LocalMaster:
         publishers, subscribers, services = state
         return publishers, subscribers, services
 
+    def topic_types(self) -> dict[str, str]:
+        """The type of every topic someone publishes or subscribes, as ``rostopic list -v``
+        shows them: ``{"/odom": "nav_msgs/Odometry", ...}``."""
+        code, message, types = _xmlrpc(self.uri, "getTopicTypes")
+        if code != 1:
+            raise MazesimError(f"the ROS master at {self.uri} refused getTopicTypes: {message}")
+        return {str(topic): str(kind) for topic, kind in types}
+
     def wait_for_subscriber(self, topic: str, timeout: float = 15.0) -> None:
         """Waits until some node subscribes ``topic`` (an absolute name such as ``/pose``)."""
         deadline = time.monotonic() + timeout
