@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 
 #: The worlds every installed mazesim carries.
@@ -12,3 +14,35 @@ BUILTIN_WORLDS = ("seed-maze", "line-follow", "arena")
 def builtin_name(request: pytest.FixtureRequest) -> str:
     """Each built-in world name in turn."""
     return str(request.param)
+
+
+@pytest.fixture(scope="session")
+def navigator_demo(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
+    """The shipped navigator's demo run once with ``--record``, ``--html`` and a GIF: the paths
+    of its outputs (``run``, ``html``, ``gif``, ``out``)."""
+    from mazesim.cli import main
+
+    folder = tmp_path_factory.mktemp("navigator-demo")
+    paths = {
+        "run": folder / "run.json.gz",
+        "html": folder / "replay.html",
+        "gif": folder / "run.gif",
+        "out": folder / "demo",
+    }
+    code = main(
+        [
+            "demo",
+            "--controller",
+            "hrl",
+            "--out",
+            str(paths["out"]),
+            "--record",
+            str(paths["run"]),
+            "--html",
+            str(paths["html"]),
+            "--video",
+            str(paths["gif"]),
+        ]
+    )
+    assert code == 0
+    return paths

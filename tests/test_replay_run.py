@@ -1,0 +1,145 @@
+"""The recorded-run format: round trips, versions, size, and what the navigator's run holds."""
+
+from __future__ import annotations
+
+import gzip
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import mazesim
+from mazesim.cli import main
+from mazesim.errors import MazesimError, RunFormatError
+from mazesim.hrl.subtasks import SUBTASK_NAMES
+from mazesim.replay import FORMAT_VERSION, RecordedRun, load_run, save_run
+from mazesim.replay.html import replay_html
+from mazesim.replay.recorder import SimulatorRecorder
+
+
+def long_run(steps: int = 4000) -> RecordedRun:
+    """The seed robot wandering ``steps`` control steps in seed-maze, every field filled."""
+    simulator = mazesim.Simulator(mazesim.load_world("seed-maze"), robot="seed", seed=3)
+    recorder = SimulatorRecorder(simulator, "wander", seed=3)
+    rng = np.random.default_rng(3)
+    for _ in range(steps):
+        left, right = rng.uniform(-3.0, 6.28, size=2)
+        recorder.capture()
+        recorder.acted(float(left), float(right))
+        recorder.recorder.set_action(code="00", subtask=int(rng.integers(4)))
+        simulator.step(float(left), float(right))
+    recorder.capture()
+    run = recorder.run("time up")
+    run.subtask_names = list(SUBTASK_NAMES)
+    return run
+
+
+def test_a_run_round_trips_within_its_units(tmp_path: Path) -> None:
+    run = long_run(300)
+    path = tmp_path / "run.json"
+    save_run(run, path)
+    again = load_run(path)
+    first, second = run.episodes[0], again.episodes[0]
+    assert again.world == run.world
+    assert (again.robot, again.controller, again.seed) == ("seed", "wander", 3)
+    assert second.frames == first.frames == 301
+    assert np.max(np.abs(second.poses[:, :2] - first.poses[:, :2])) <= 0.5e-4 + 1e-12
+    assert np.max(np.abs(second.poses[:, 2] - first.poses[:, 2])) <= 0.5e-3 + 1e-12
+    assert np.max(np.abs(second.readings - first.readings)) <= 0.5e-3 + 1e-9
+    assert np.array_equal(second.colliding, first.colliding)
+    assert np.array_equal(second.events, first.events)
+    assert second.actions == first.actions
+    assert first.levels is not None and np.array_equal(second.levels, first.levels)
+    assert first.subtasks is not None and np.array_equal(second.subtasks, first.subtasks)
+
+
+def test_gzip_run_files_are_read_by_their_content(tmp_path: Path) -> None:
+    run = long_run(20)
+    save_run(run, tmp_path / "run.json.gz")
+    data = (tmp_path / "run.json.gz").read_bytes()
+    assert data[:2] == b"\x1f\x8b"
+    assert json.loads(gzip.decompress(data))["format"] == "mazesim-run"
+    assert load_run(tmp_path / "run.json.gz").episodes[0].frames == 21
+
+
+def test_a_newer_major_version_is_refused_clearly(tmp_path: Path) -> None:
+    values = long_run(5).as_json()
+    values["version"] = f"{FORMAT_VERSION[0] + 1}.0"
+    path = tmp_path / "future.json"
+    path.write_text(json.dumps(values))
+    with pytest.raises(RunFormatError, match=r"version 2\.0 \(a newer format\).*upgrade mazesim"):
+        load_run(path)
+
+
+def test_a_newer_minor_version_with_unknown_fields_is_read(tmp_path: Path) -> None:
+    values = long_run(5).as_json()
+    values["version"] = f"{FORMAT_VERSION[0]}.{FORMAT_VERSION[1] + 3}"
+    values["something_new"] = [1, 2, 3]
+    values["episodes"][0]["also_new"] = "x"
+    path = tmp_path / "minor.json"
+    path.write_text(json.dumps(values))
+    assert load_run(path).episodes[0].frames == 6
+
+
+@pytest.mark.parametrize(
+    ("text", "message"),
+    [
+        ("not json at all", "expected a mazesim run"),
+        ('{"format": "something-else"}', "expected format 'mazesim-run', found 'something-else'"),
+        ('{"format": "mazesim-run", "version": "1.0"}', "a field is missing or malformed"),
+    ],
+)
+def test_what_is_not_a_run_raises_a_format_error(tmp_path: Path, text: str, message: str) -> None:
+    path = tmp_path / "bad.json"
+    path.write_text(text)
+    with pytest.raises(RunFormatError, match=message) as caught:
+        load_run(path)
+    assert isinstance(caught.value, MazesimError)
+    assert str(path) in str(caught.value)
+
+
+def test_a_4000_step_episode_replays_in_well_under_2_mb() -> None:
+    run = long_run(4000)
+    page = replay_html(run).encode("utf-8")
+    assert len(page) < 1_000_000, f"{len(page)} bytes"
+
+
+def test_the_navigator_demo_records_its_decisions_and_why(navigator_demo: dict[str, Path]) -> None:
+    run = load_run(navigator_demo["run"])
+    summary = json.loads((navigator_demo["out"] / "summary.json").read_text())
+    episode = run.episodes[0]
+    assert run.robot == "seed" and run.subtask_names == list(SUBTASK_NAMES)
+    assert episode.outcome == "goal reached"
+    assert episode.frames == summary["steps"] + 1
+    # The decisions are the ones the summary lists, in order, each with its values.
+    assert [(d.checkpoint if d.arrival else -d.checkpoint) for d in episode.decisions] == [
+        d["event"] for d in summary["decisions"]
+    ]
+    assert [SUBTASK_NAMES[d.chosen] for d in episode.decisions] == [
+        d["subtask"] for d in summary["decisions"]
+    ]
+    codes = {int(c["id"]): str(c["code"]) for c in run.world.checkpoints()}  # type: ignore[call-overload]
+    for number, decision in enumerate(episode.decisions, 1):
+        assert decision.number == number
+        assert len(decision.q_values) == len(SUBTASK_NAMES)
+        assert decision.greedy and decision.chosen == int(np.argmax(decision.q_values))
+        expected = codes[decision.checkpoint]
+        assert decision.code == (expected if decision.arrival else expected[::-1])
+        # The decision was made on the frame that followed the crossing of the code.
+        event = decision.checkpoint if decision.arrival else -decision.checkpoint
+        assert episode.events[decision.frame] == event
+        assert episode.subtasks is not None and episode.subtasks[decision.frame] == decision.chosen
+    assert episode.levels is not None and episode.levels.shape == (episode.frames, 6)
+    assert episode.actions is not None and all(len(code) == 2 for code in episode.actions[:-1])
+
+
+def test_replay_command_writes_a_page_from_a_run(
+    navigator_demo: dict[str, Path], tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    page = tmp_path / "again.html"
+    assert main(["replay", str(navigator_demo["run"]), "-o", str(page)]) == 0
+    assert page.read_text().startswith("<!DOCTYPE html>")
+    assert f"wrote {page}" in capsys.readouterr().out
+    assert main(["replay", str(navigator_demo["run"]), "-o", str(tmp_path / "x.txt")]) == 2
+    assert "expected -o FILE.html, FILE.mp4 or FILE.gif" in capsys.readouterr().err
