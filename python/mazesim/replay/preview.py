@@ -90,6 +90,18 @@ def save_world_preview(
     has_grid = _draw_grid(ax, world)
     _draw_codes(ax, world)
     handles = world_legend_handles(world)
+    if world.checkpoints():
+        handles.append(
+            Line2D(
+                [],
+                [],
+                marker=r"$\rightarrow$",
+                linestyle="none",
+                color="black",
+                markersize=9,
+                label="code (bars, e.g. 10110) read along the arrow: arrival",
+            )
+        )
     if has_grid:
         handles.append(Line2D([], [], color=GRID_COLOR, linestyle=":", label="maze cells"))
     ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8)
