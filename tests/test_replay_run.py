@@ -143,3 +143,39 @@ def test_replay_command_writes_a_page_from_a_run(
     assert f"wrote {page}" in capsys.readouterr().out
     assert main(["replay", str(navigator_demo["run"]), "-o", str(tmp_path / "x.txt")]) == 2
     assert "expected -o FILE.html, FILE.mp4 or FILE.gif" in capsys.readouterr().err
+
+
+def test_webots_run_records_every_step_of_the_controller(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    controller = Path(__file__).parent.parent / "examples" / "webots" / "avoid_collision.py"
+    run_file = tmp_path / "run.json"
+    code = main(
+        [
+            "webots", "run", str(controller), "--world", "arena", "--seconds", "3",
+            "--out", str(tmp_path / "out"), "--record", str(run_file),
+            "--html", str(tmp_path / "replay.html"),
+        ]
+    )  # fmt: skip
+    assert code == 0
+    assert f"{run_file}, {tmp_path / 'replay.html'}" in capsys.readouterr().out
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    run = load_run(run_file)
+    episode = run.episodes[0]
+    assert run.robot == "e-puck" and run.controller == "avoid_collision.py"
+    assert episode.frames == summary["steps"] + 1
+    assert episode.wheel_speeds is not None and np.any(episode.wheel_speeds != 0.0)
+    assert episode.readings.shape == (episode.frames, 11)  # ps0-7, gs0-2
+    travelled = np.sum(np.hypot(*np.diff(episode.poses[:, :2], axis=0).T))
+    assert travelled == pytest.approx(summary["distance_m"], abs=0.01)
+
+
+def test_demo_records_the_avoid_collision_run(tmp_path: Path) -> None:
+    run_file = tmp_path / "run.json"
+    assert main(["demo", "--seconds", "4", "--out", str(tmp_path), "--record", str(run_file)]) == 0
+    summary = json.loads((tmp_path / "summary.json").read_text())
+    episode = load_run(run_file).episodes[0]
+    assert episode.frames == summary["steps"] + 1
+    assert episode.levels is None  # the e-puck reads raw values, Table 4.1 is for the Sharps
+    assert episode.rays.shape == (episode.frames, 8)
+    assert np.all((episode.rays >= 0.0) & (episode.rays <= 0.07 + 1e-9))

@@ -18,7 +18,6 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim.actions import ACTION_CODES
-from mazesim.hrl import qlearning
 from mazesim.hrl.navigation import NavigationBatch
 from mazesim.hrl.subtasks import SUBTASK_NAMES
 from mazesim.replay.recorder import EpisodeRecorder, reading_scale
@@ -45,10 +44,6 @@ class NavigatorRecorder:
         self.episodes = episodes
         self.recorders: dict[int, EpisodeRecorder] = {}
         self.outcomes: dict[int, str] = {}
-        codes = []
-        for world in nav.worlds:
-            codes.append({int(c["id"]): str(c["code"]) for c in world.checkpoints()})  # type: ignore[call-overload]
-        self._codes = codes
 
     @property
     def record(self) -> Any:
@@ -98,20 +93,9 @@ class NavigatorRecorder:
             )
             chosen = int(record.chosen[env])
             if chosen >= 0 and hasattr(self.navigator, "higher"):
-                self._add_decision(env, recorder, int(event_row[env]), chosen)
+                world = int(self.navigator.world_of_env[env])
+                recorder.add_choice(self.navigator.higher, world, int(event_row[env]), chosen)
         return actions
-
-    def _add_decision(self, env: int, recorder: EpisodeRecorder, event: int, chosen: int) -> None:
-        higher = self.navigator.higher
-        world = int(self.navigator.world_of_env[env])
-        state = int(higher.states(np.array([world]), np.array([event]))[0])
-        table = higher.flat_q()
-        values = table[state]
-        best = int(qlearning.greedy(table, np.array([state]))[0])
-        code = self._codes[int(self.nav.world_of_env[env])].get(abs(event), "")
-        if event < 0:
-            code = code[::-1]  # crossed backwards, the bars come in the other order
-        recorder.add_decision(event, code, values.tolist(), chosen, chosen == best)
 
     def after_step(
         self, arrived: npt.NDArray[np.bool_], out_of_time: npt.NDArray[np.bool_]

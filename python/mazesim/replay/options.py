@@ -17,7 +17,14 @@ from typing import Any, TextIO
 from mazesim._core import Simulator
 from mazesim.replay.run import RecordedRun
 
-__all__ = ["SimulatorWatch", "add_viewing_options", "recording_requested", "write_views"]
+__all__ = [
+    "SimulatorWatch",
+    "add_viewing_options",
+    "play_live",
+    "recording_requested",
+    "viewing_requested",
+    "write_views",
+]
 
 
 def add_viewing_options(parser: argparse.ArgumentParser, live: bool = False) -> None:
@@ -61,6 +68,11 @@ def add_viewing_options(parser: argparse.ArgumentParser, live: bool = False) -> 
 def recording_requested(args: argparse.Namespace) -> bool:
     """Whether the command must record its run (for ``--html``, ``--video`` or ``--record``)."""
     return any(getattr(args, name, None) for name in ("html", "video", "record"))
+
+
+def viewing_requested(args: argparse.Namespace) -> bool:
+    """Whether the command records its run or shows it live."""
+    return recording_requested(args) or bool(getattr(args, "live", False))
 
 
 def write_views(args: argparse.Namespace, run: RecordedRun, title: str | None = None) -> list[str]:
@@ -166,3 +178,30 @@ class SimulatorWatch:
             return []
         self.recorder.capture()
         return write_views(self.args, self.recorder.run(outcome), title)
+
+
+class DeferredWatch:
+    """A :class:`SimulatorWatch` of whichever simulator is stepped first: an observer of
+    :func:`mazesim.webots.simulation.observing_steps`, for runs whose simulator is made later.
+
+    Args:
+        args: The command's arguments (``html``, ``video``, ``record``, ``live``).
+        controller: What drives the robot.
+        seed: The run's seed.
+    """
+
+    def __init__(self, args: argparse.Namespace, controller: str, seed: int) -> None:
+        self.args = args
+        self.controller = controller
+        self.seed = seed
+        self.watch: SimulatorWatch | None = None
+
+    def __call__(self, simulation: Any, left: float, right: float) -> None:
+        """Records the state before a step of ``simulation`` (its ``simulator``)."""
+        if self.watch is None:
+            self.watch = SimulatorWatch(self.args, simulation.simulator, self.controller, self.seed)
+        self.watch.before_step(left, right)
+
+    def finish(self, outcome: str = "", title: str | None = None) -> list[str]:
+        """See :meth:`SimulatorWatch.finish`; nothing when no step was taken."""
+        return [] if self.watch is None else self.watch.finish(outcome, title)

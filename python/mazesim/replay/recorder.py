@@ -10,15 +10,19 @@ recorder of the hierarchical navigator is :mod:`mazesim.replay.navigator`.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import RobotProfile, Simulator, World
 from mazesim.envs.rays import SensorRays
+from mazesim.hrl import qlearning
 from mazesim.hrl.discretise import NUM_SENSORS, distance_levels, volts_to_cm
 from mazesim.replay.run import Decision, RecordedEpisode, RecordedRun
+
+if TYPE_CHECKING:
+    from mazesim.hrl.higher import HigherLevel
 
 __all__ = ["EpisodeRecorder", "SimulatorRecorder", "reading_scale", "table_levels"]
 
@@ -50,6 +54,7 @@ class EpisodeRecorder:
     def __init__(self, world: World, robot: RobotProfile, number: int = 0) -> None:
         self.robot = robot
         self.number = number
+        self.codes = {int(c["id"]): str(c["code"]) for c in world.checkpoints()}  # type: ignore[call-overload]
         self.rays = SensorRays(world, robot, robot.distance_sensor_range)
         self.poses: list[tuple[float, float, float]] = []
         self.readings: list[npt.NDArray[np.float64]] = []
@@ -122,6 +127,25 @@ class EpisodeRecorder:
         )
         self.decisions.append(decision)
         return decision
+
+    def add_choice(self, higher: HigherLevel, world: int, event: int, chosen: int) -> Decision:
+        """Records the choice ``chosen`` of a higher level at a checkpoint event of the last
+        frame: the bars as read (backwards on a departure), the values of the sub-tasks in that
+        state, and whether the choice was the highest-valued one.
+
+        Args:
+            higher: The higher level that chose.
+            world: The robot's world in ``higher``.
+            event: The checkpoint event (+id arrival, -id departure).
+            chosen: The sub-task chosen.
+        """
+        state = int(higher.states(np.array([world]), np.array([event]))[0])
+        table = higher.flat_q()
+        best = int(qlearning.greedy(table, np.array([state]))[0])
+        bars = self.codes.get(abs(event), "")
+        return self.add_decision(
+            event, bars if event > 0 else bars[::-1], table[state].tolist(), chosen, chosen == best
+        )
 
     def episode(self, outcome: str = "") -> RecordedEpisode:
         """The recorded episode."""

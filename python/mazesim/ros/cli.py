@@ -14,6 +14,7 @@ import argparse
 from typing import Any
 
 from mazesim.cli import positive_int, positive_number, positive_seconds, seed_argument
+from mazesim.replay.options import add_viewing_options
 
 __all__ = ["register"]
 
@@ -259,4 +260,5 @@ def register(commands: Any) -> None:
         metavar="DIR",
         help="output folder, created if missing (default: %(default)s)",
     )
+    add_viewing_options(demo)
     demo.set_defaults(run=_run_demo)
