@@ -60,7 +60,9 @@ def run_replay(args: argparse.Namespace, out: TextIO) -> int:
 
         write_html(run, args.out)
         frames = sum(episode.frames for episode in run.episodes)
-        out.write(f"wrote {args.out} ({len(run.episodes)} episodes, {frames} frames)\n")
+        episodes = len(run.episodes)
+        noun = "episode" if episodes == 1 else "episodes"
+        out.write(f"wrote {args.out} ({episodes} {noun}, {frames} frames)\n")
         return 0
     from mazesim.replay.video import write_video
 

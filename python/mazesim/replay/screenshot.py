@@ -77,10 +77,15 @@ def headless_chromium(width: int = 1400, height: int = 900) -> Any:
     return webdriver.Chrome(options=options, service=service)
 
 
-def save_screenshot(html: str | Path, png: str | Path, step: int | None = None) -> None:
-    """Opens a replay page headless, shows ``step`` (by default the last decision's, else the
-    middle of the episode) and writes a PNG of the window."""
-    driver = headless_chromium()
+def save_screenshot(
+    html: str | Path,
+    png: str | Path,
+    step: int | None = None,
+    size: tuple[int, int] = (1400, 1200),
+) -> None:
+    """Opens a replay page headless, shows ``step`` (by default a few steps after the last
+    decision, else the middle of the episode) and writes a PNG of a window of ``size`` pixels."""
+    driver = headless_chromium(*size)
     try:
         driver.get(Path(html).resolve().as_uri())
         if step is None:

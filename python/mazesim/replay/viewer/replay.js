@@ -338,7 +338,7 @@
     var d = decisions[current];
     var best = Math.max.apply(null, d.q_values), worst = Math.min.apply(null, d.q_values);
     var rowsQ = d.q_values.map(function (q, k) {
-      var width = best > worst ? 6 * (q - worst) / (best - worst) : 6;
+      var width = best > worst ? 3 * (q - worst) / (best - worst) : 3;
       return '<tr class="' + (k === d.chosen ? "chosen" : "") + '"><td>' + subtaskChip(k) + '</td><td class="num">' + fixed(q, 2) +
         '</td><td><span class="qbar" style="width:' + fixed(width, 2) + 'em"></span>' + (k === d.chosen ? " chosen" : "") + "</td></tr>";
     });
