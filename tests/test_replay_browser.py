@@ -176,3 +176,21 @@ def test_episodes_of_a_batch_are_selectable(browser: Any, tmp_path: Path) -> Non
     browser.execute_script("window.mazesimReplay.show(100);")
     assert robot_position(browser) != first  # another start jitter, another path
     assert severe(browser.get_log("browser")) == []
+
+
+def test_a_run_without_a_navigator_plays_too(browser: Any, tmp_path: Path) -> None:
+    from mazesim.cli import main
+    from mazesim.replay import load_run
+
+    page = tmp_path / "demo.html"
+    run_file = tmp_path / "run.json"
+    args = ["demo", "--seconds", "3", "--out", str(tmp_path), "--html", str(page)]
+    assert main([*args, "--record", str(run_file)]) == 0
+    episode = load_run(run_file).episodes[0]
+    browser.get(page.resolve().as_uri())
+    browser.execute_script("window.mazesimReplay.show(50);")
+    assert browser.find_element("id", "reading-0").text == f"{episode.readings[50, 0]:.0f}"
+    assert browser.find_element("id", "level-0").text == "\u2014"  # no Table 4.1 for raw counts
+    assert not browser.find_element("id", "decision-box").is_displayed()
+    assert "wheels left" in browser.find_element("id", "action").text
+    assert severe(browser.get_log("browser")) == []

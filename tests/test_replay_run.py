@@ -179,3 +179,23 @@ def test_demo_records_the_avoid_collision_run(tmp_path: Path) -> None:
     assert episode.levels is None  # the e-puck reads raw values, Table 4.1 is for the Sharps
     assert episode.rays.shape == (episode.frames, 8)
     assert np.all((episode.rays >= 0.0) & (episode.rays <= 0.07 + 1e-9))
+
+
+def test_recording_does_not_change_an_evaluation() -> None:
+    from mazesim.hrl.evaluate import evaluate_navigator
+    from mazesim.hrl.tables import load_policy
+
+    world = mazesim.load_world("seed-maze")
+    plain = evaluate_navigator(load_policy(), [world], 4, seed=9, max_steps=700)
+    recorded = evaluate_navigator(load_policy(), [world], 4, seed=9, max_steps=700, record_runs=2)
+    assert plain.run is None and recorded.run is not None
+    assert recorded.summaries == plain.summaries
+    first, second = (report.evaluations["truth"].results for report in (plain, recorded))
+    assert [(r.episode, r.steps, r.arrived, r.bumps) for r in first] == [
+        (r.episode, r.steps, r.arrived, r.bumps) for r in second
+    ]
+    # Each recorded episode has a frame per step and the start.
+    steps = {r.episode: r.steps for r in second}
+    assert [episode.number for episode in recorded.run.episodes] == [0, 1]
+    for episode in recorded.run.episodes:
+        assert episode.frames == steps[episode.number] + 1

@@ -3,7 +3,7 @@
 The static part of a world (floor paint in grey levels equal to its reflectance, walls, checkpoint
 outlines, the goal and the start pose) is rasterised once into a background image; each frame
 copies it and draws the robot's trail, its body, a bold heading mark and its distance-sensor rays,
-each ray cut where it meets a wall (:class:`mazesim.envs.rays.SensorRays`). Optional text lines
+each ray cut where it meets a wall (:class:`mazesim.sensor_rays.SensorRays`). Optional text lines
 (time, step, reward, the last event...) go in a box at the top left (:func:`overlay_text`, with
 Pillow, which matplotlib already needs). Colours follow :mod:`mazesim.plotting`. At the default
 400 x 400 pixels a frame takes about a millisecond, fast enough to record videos of training.
@@ -21,7 +21,7 @@ import numpy.typing as npt
 if TYPE_CHECKING:
     from mazesim._core import RobotProfile, World
 
-from mazesim.envs.rays import SensorRays
+from mazesim.sensor_rays import SensorRays
 
 __all__ = ["TopDownRenderer", "overlay_text"]
 

@@ -16,10 +16,10 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import RobotProfile, Simulator, World
-from mazesim.envs.rays import SensorRays
 from mazesim.hrl import qlearning
 from mazesim.hrl.discretise import NUM_SENSORS, distance_levels, volts_to_cm
 from mazesim.replay.run import Decision, RecordedEpisode, RecordedRun
+from mazesim.sensor_rays import SensorRays
 
 if TYPE_CHECKING:
     from mazesim.hrl.higher import HigherLevel

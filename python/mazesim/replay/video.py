@@ -18,7 +18,6 @@ from pathlib import Path
 import numpy as np
 import numpy.typing as npt
 
-from mazesim.envs.render import TopDownRenderer
 from mazesim.errors import InvalidArgumentError, MissingDependencyError
 from mazesim.replay.run import RecordedEpisode, RecordedRun
 
@@ -87,6 +86,8 @@ def video_frames(
         raise InvalidArgumentError(
             f"expected an episode from 0 to {len(run.episodes) - 1}, found {episode}"
         )
+    from mazesim.envs.render import TopDownRenderer  # needs gymnasium, as all of mazesim.envs
+
     recorded = run.episodes[episode]
     profile = run.robot_profile
     renderer = TopDownRenderer(run.world, profile, (size, size), profile.distance_sensor_range)
