@@ -44,7 +44,8 @@ def test_release_wheel_runs_the_demo_from_anywhere(tmp_path: Path) -> None:
     elsewhere.mkdir()
     clean_env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV")}
     result = subprocess.run(
-        [str(env_dir / "bin" / "mazesim"), "demo", "--seconds", "5", "--out", "out"],
+        [str(env_dir / "bin" / "mazesim"), "demo", "--seconds", "5", "--out", "out"]
+        + ["--html", "out/replay.html"],
         cwd=elsewhere,
         env=clean_env,
         capture_output=True,
@@ -55,6 +56,8 @@ def test_release_wheel_runs_the_demo_from_anywhere(tmp_path: Path) -> None:
     assert "seed-maze" in result.stdout
     png = elsewhere / "out" / "trajectory.png"
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    # The replay's viewer (package data) came with the wheel.
+    assert "window.mazesimReplay" in (elsewhere / "out" / "replay.html").read_text()
     # The installed package is the wheel's, not the source tree's.
     where = subprocess.run(
         [str(python), "-c", "import mazesim; print(mazesim.__file__)"],

@@ -190,6 +190,7 @@
       list.appendChild(li);
     });
     document.getElementById("decision-box").style.display = run.subtask_names.length ? "" : "none";
+    document.getElementById("intro").style.display = run.subtask_names.length ? "" : "none";
     document.getElementById("subtask-box").style.display = episode.subtasks ? "" : "none";
     drawTimeline(episode);
     show(0);
