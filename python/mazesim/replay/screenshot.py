@@ -83,7 +83,7 @@ def save_screenshot(
     step: int | None = None,
     size: tuple[int, int] = (1400, 1200),
 ) -> None:
-    """Opens a replay page headless, shows ``step`` (by default a few steps after the last
+    """Opens a replay page headless, shows ``step`` (by default a few steps after the middle
     decision, else the middle of the episode) and writes a PNG of a window of ``size`` pixels."""
     driver = headless_chromium(*size)
     try:
@@ -93,7 +93,8 @@ def save_screenshot(
                 driver.execute_script(
                     "var e = document.getElementById('scene'); var run = JSON.parse(e.textContent)"
                     ".run.episodes[0]; var d = run.decisions;"
-                    "return d.length ? d[d.length - 1].frame + 5 : Math.floor(run.frames / 2);"
+                    "return d.length ? d[Math.floor(d.length / 2)].frame + 5 "
+                    ": Math.floor(run.frames / 2);"
                 )
             )
         driver.execute_script("window.mazesimReplay.show(arguments[0]);", step)

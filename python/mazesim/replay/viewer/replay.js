@@ -340,8 +340,8 @@
     var best = Math.max.apply(null, d.q_values), worst = Math.min.apply(null, d.q_values);
     var rowsQ = d.q_values.map(function (q, k) {
       var width = best > worst ? 3 * (q - worst) / (best - worst) : 3;
-      return '<tr class="' + (k === d.chosen ? "chosen" : "") + '"><td>' + subtaskChip(k) + '</td><td class="num">' + fixed(q, 2) +
-        '</td><td><span class="qbar" style="width:' + fixed(width, 2) + 'em"></span>' + (k === d.chosen ? " chosen" : "") + "</td></tr>";
+      return '<tr class="' + (k === d.chosen ? "chosen" : "") + '"><td>' + (k === d.chosen ? "&#x25B6; " : "") + subtaskChip(k) +
+        '</td><td class="num">' + fixed(q, 2) + '</td><td><span class="qbar" style="width:' + fixed(width, 2) + 'em"></span></td></tr>';
     });
     var why = d.greedy ? "it has the highest value of the four in this state (greedy choice)" :
       "exploring: a random choice, not the highest value";
@@ -349,7 +349,7 @@
       "): the robot read the barcode <code>" + escapeHtml(d.code) + "</code> of <b>checkpoint " + d.checkpoint + "</b> (" + d.direction +
       "), so the higher level looked up the state <b>" + (d.direction === "arrival" ? "+" : "\u2212") + d.checkpoint +
       "</b> and chose <b>" + escapeHtml(subtaskName(d.chosen)) + "</b>: " + why + ".</p>" +
-      "<table><thead><tr><th>sub-task</th><th class=\"num\">Q-value</th><th></th></tr></thead><tbody>" + rowsQ.join("") + "</tbody></table>" +
+      "<table><thead><tr><th>sub-task (&#x25B6; chosen)</th><th class=\"num\">Q-value</th><th></th></tr></thead><tbody>" + rowsQ.join("") + "</tbody></table>" +
       '<p class="note why">Q-value: the reward the higher level learned to expect, from this checkpoint and direction to the goal, ' +
       "if it starts that sub-task here (each step costs a little, touching a wall a lot, the goal pays 100). The turn on the map follows from the chosen sub-task.</p>";
   }
