@@ -5,6 +5,7 @@ Skipped, with the reason, where no Chromium can be driven (``make browser-deps``
 
 from __future__ import annotations
 
+import time
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -76,9 +77,6 @@ def test_play_advances_the_robot(page: Any) -> None:
     start = robot_position(page)
     page.execute_script("window.mazesimReplay.speed = 8;")
     page.find_element("id", "play").click()
-    page.implicitly_wait(0)
-    import time
-
     deadline = time.monotonic() + 5.0
     while page.execute_script("return window.mazesimReplay.frame") < 20:
         assert time.monotonic() < deadline, "play did not advance the replay"

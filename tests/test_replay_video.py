@@ -98,6 +98,7 @@ def test_render_shows_start_trail_and_an_overlay() -> None:
     for _ in range(40):
         env.step(np.array([1.0, 1.0], dtype=np.float32))
     later = env.render()
+    assert not env.unwrapped._simulator.colliding  # the body is blue, so red pixels are the trail
     # The trail is drawn from the start to where the robot is now.
     assert np.any(np.all(later == np.array(TRAIL_RGB, dtype=np.uint8), axis=-1))
     # The overlay (dark box, white text) at the top left changes with the step number.
