@@ -8,7 +8,8 @@ PYTHON_MIN := 3.9
 VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
-PY_PACKAGES := maturin numpy matplotlib pytest hypothesis ruff mypy typing_extensions gymnasium ray
+PY_PACKAGES := maturin numpy matplotlib pytest hypothesis ruff mypy typing_extensions gymnasium ray \
+	imageio imageio-ffmpeg selenium
 PY_SOURCES := python tests examples
 # Only `make bench-peers` needs these: the peers mazesim is measured against, and its
 # options (e.g. PEER_ARGS="--envs 64,1024 --json").
@@ -21,7 +22,8 @@ export PYO3_PYTHON := $(CURDIR)/$(BIN)/python
 
 .DEFAULT_GOAL := help
 
-.PHONY: help venv build test demo lint typecheck fmt bench wheel clean ros-deps ros-demo bench-peers docs
+.PHONY: help venv build test demo lint typecheck fmt bench wheel clean ros-deps ros-demo bench-peers \
+	browser-deps replay-screenshot docs
 
 help: ## list the targets
 	@echo "mazesim make targets:"
@@ -42,13 +44,13 @@ $(STAMP): Makefile
 build: venv ## build the extension in release mode and install mazesim into .venv
 	VIRTUAL_ENV=$(CURDIR)/$(VENV) $(BIN)/maturin develop --release --quiet
 
-test: build ros-deps ## run the Rust tests, then the Python tests (ROS bridge tests included)
+test: build ros-deps browser-deps ## run the Rust tests, then the Python tests (ROS bridge and browser tests included)
 	cargo test --workspace --exclude mazesim-py
 	$(BIN)/python -m pytest
 	$(BIN)/python -m mypy.stubtest mazesim._core
 
-demo: build ## the shipped hierarchical navigator drives seed-maze to its goal; writes mazesim-demo/
-	$(BIN)/mazesim demo --controller hrl --out mazesim-demo
+demo: build ## the shipped hierarchical navigator drives seed-maze to its goal; writes mazesim-demo/ (replay.html: watch it)
+	$(BIN)/mazesim demo --controller hrl --out mazesim-demo --html mazesim-demo/replay.html
 
 # Debian's ROS 1 (docs/ros.md): installed only when /usr/bin/python3 cannot import rospy.
 # The venv sees /usr/lib/python3/dist-packages through a .pth file, at the END of sys.path (first
@@ -69,6 +71,22 @@ ros-deps: venv ## install Debian's ROS 1 packages if missing; let .venv import t
 
 ros-demo: build ros-deps ## bridge + HRL node (perform-learning) over ROS in lockstep to seed-maze's goal; records mazesim-ros-demo/maze.bag
 	$(BIN)/mazesim ros demo --controller hrl --out mazesim-ros-demo
+
+# Debian's Chromium and its WebDriver, for the browser tests of the HTML replay (selenium drives
+# them headless); installed only when missing. Without them those tests are skipped, and say why.
+BROWSER_DEBS := chromium chromium-driver
+
+browser-deps: ## install Debian's chromium and chromium-driver if missing (the HTML replay's browser tests)
+	@if command -v chromium >/dev/null && command -v chromedriver >/dev/null; then :; \
+	elif command -v apt-get >/dev/null; then \
+		sudo=; [ "$$(id -u)" -eq 0 ] || sudo=sudo; \
+		$$sudo apt-get update && $$sudo apt-get install -y --no-install-recommends $(BROWSER_DEBS) \
+		|| echo "browser-deps: could not install $(BROWSER_DEBS); the browser tests of the HTML replay will be skipped"; \
+	else echo "browser-deps: no apt-get; install Chromium and chromedriver yourself (the browser tests of the HTML replay are skipped without them)"; fi
+
+replay-screenshot: build browser-deps ## the shipped navigator's demo replayed in headless Chromium: docs/replay.png
+	$(BIN)/mazesim demo --controller hrl --out mazesim-demo --html mazesim-demo/replay.html
+	$(BIN)/python -m mazesim.replay.screenshot mazesim-demo/replay.html docs/replay.png
 
 lint: venv ## rustfmt, clippy (warnings are errors), ruff check and ruff format
 	cargo fmt --all --check

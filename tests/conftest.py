@@ -32,3 +32,33 @@ def master(tmp_path: Path) -> Iterator[LocalMaster]:
     assert all(process.returncode is not None for process in spawned)
     assert left_behind == []  # nothing had to be swept up after the orderly stop
     assert graph.leftovers() == []
+@pytest.fixture(scope="session")
+def navigator_demo(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
+    """The shipped navigator's demo run once with ``--record``, ``--html`` and a GIF: the paths
+    of its outputs (``run``, ``html``, ``gif``, ``out``)."""
+    from mazesim.cli import main
+
+    folder = tmp_path_factory.mktemp("navigator-demo")
+    paths = {
+        "run": folder / "run.json.gz",
+        "html": folder / "replay.html",
+        "gif": folder / "run.gif",
+        "out": folder / "demo",
+    }
+    code = main(
+        [
+            "demo",
+            "--controller",
+            "hrl",
+            "--out",
+            str(paths["out"]),
+            "--record",
+            str(paths["run"]),
+            "--html",
+            str(paths["html"]),
+            "--video",
+            str(paths["gif"]),
+        ]
+    )
+    assert code == 0
+    return paths

@@ -278,7 +278,9 @@ def test_bad_options_raise_clear_errors() -> None:
     with pytest.raises(mazesim.UnknownNameError):
         EPuckMazeEnv(robot="no-such-robot")
     with pytest.raises(InvalidArgumentError, match="render_mode"):
-        EPuckMazeEnv(render_mode="human")
+        EPuckMazeEnv(render_mode="window")
+    with pytest.raises(InvalidArgumentError, match="render_mode"):
+        EPuckMazeVectorEnv(num_envs=2, render_mode="human")  # images only
     with pytest.raises(InvalidArgumentError, match="reset_mask"):
         vector = EPuckMazeVectorEnv(num_envs=2)
         vector.reset(options={"reset_mask": np.array([1, 0])})

@@ -100,10 +100,15 @@ def test_release_wheel_runs_the_demo_and_the_quick_start_from_anywhere(
             argv, cwd=elsewhere, env=clean_env, capture_output=True, text=True, check=False
         )
 
-    demo = run(str(env_dir / "bin" / "mazesim"), "demo", "--seconds", "5", "--out", "out")
+    demo = run(
+        str(env_dir / "bin" / "mazesim"),
+        *("demo", "--seconds", "5", "--out", "out", "--html", "out/replay.html"),
+    )
     assert demo.returncode == 0, demo.stderr
     assert "seed-maze" in demo.stdout
     assert (elsewhere / "out" / "trajectory.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    # The replay's viewer (package data) came with the wheel.
+    assert "window.mazesimReplay" in (elsewhere / "out" / "replay.html").read_text()
 
     # -I (isolated): neither the script's folder nor user site-packages are on the path.
     quickstart = run(str(python), "-I", str(script))

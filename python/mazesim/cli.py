@@ -25,6 +25,7 @@ import mazesim
 from mazesim._atomic import atomic_file
 from mazesim.controllers import AvoidCollision
 from mazesim.errors import InvalidArgumentError, MazesimError
+from mazesim.replay.options import SimulatorWatch, add_viewing_options
 
 __all__ = ["main", "positive_seconds", "seed_argument"]
 
@@ -37,6 +38,8 @@ COMMAND_MODULES: tuple[str, ...] = (
     "mazesim.webots.cli",
     "mazesim.distributed.command",
     "mazesim.hrl.command",
+    "mazesim.replay.command",
+    "mazesim.replay.show",
 )
 
 #: Exit code of a run that failed on an error of the user's input or of the file system.
@@ -159,6 +162,7 @@ def build_parser() -> argparse.ArgumentParser:
         "driving the report's seed robot to the goal, also writing DIR/trace.txt "
         "(default: %(default)s)",
     )
+    add_viewing_options(demo, live=True)
     demo.set_defaults(run=lambda args: run_demo(args, sys.stdout))
     for module_name in COMMAND_MODULES:
         importlib.import_module(module_name).register(commands)
@@ -245,12 +249,17 @@ def run_demo(args: argparse.Namespace, out: TextIO) -> int:
     ys = np.empty(steps + 1, dtype=np.float64)
     xs[0], ys[0], _ = simulator.pose
     progress = _Progress(args.seconds, sys.stderr)
+    watch = SimulatorWatch(args, simulator, "avoid-collision", args.seed)
+    contacts: list[tuple[float, float]] = []
     started = time.perf_counter()
     try:
         for step in range(1, steps + 1):
             left, right = controller(simulator.distance_sensors())
+            watch.before_step(left, right)
             simulator.step(left, right)
             xs[step], ys[step], _ = simulator.pose
+            if simulator.colliding:
+                contacts.append((xs[step], ys[step]))
             progress.update(simulator.time)
     finally:
         progress.close()
@@ -282,10 +291,12 @@ def run_demo(args: argparse.Namespace, out: TextIO) -> int:
         ys,
         picture,
         title=f"{world.name}: avoid-collision, {simulator.time:.0f} s, seed {args.seed}",
+        collisions=contacts,
     )
     summary_path = os.path.join(args.out, "summary.json")
     with atomic_file(summary_path) as handle:
         handle.write((json.dumps(summary, indent=2) + "\n").encode("utf-8"))
+    views = watch.finish("goal reached" if goal_reached else f"{simulator.time:.0f} s up")
 
     speed = "n/a" if summary["real_time_factor"] is None else f"{summary['real_time_factor']:.0f}x"
     out.write(
@@ -298,7 +309,7 @@ def run_demo(args: argparse.Namespace, out: TextIO) -> int:
         out.write(f"goal reached       {'yes' if goal_reached else 'no'}\n")
     out.write(
         f"wall-clock time    {wall_clock:.3f} s ({speed} real time)\n"
-        f"wrote              {picture}, {summary_path}\n"
+        f"wrote              {', '.join([picture, summary_path, *views])}\n"
     )
     return 0
 

@@ -19,6 +19,7 @@ __all__ = [
     "MazesimIOError",
     "MissingDependencyError",
     "PolicyFormatError",
+    "RunFormatError",
     "UnknownNameError",
     "WorldFormatError",
 ]
@@ -94,3 +95,9 @@ class PolicyFormatError(MazesimError, ValueError):
     """A saved navigator (Q-tables and their metadata, :mod:`mazesim.hrl.tables`) cannot be used:
     the file is truncated or corrupt, of another format version, or made for another state or
     action encoding or another world; the message names the file and says which."""
+
+
+class RunFormatError(MazesimError, ValueError):
+    """A recorded run (:mod:`mazesim.replay.run`) cannot be read: it is not a run file, it is
+    malformed, or it was written in a newer major version of the format than this mazesim
+    reads; the message names the file and says which."""

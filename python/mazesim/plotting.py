@@ -2,7 +2,9 @@
 
 :func:`plot_world` draws a world onto a matplotlib ``Axes``: floor paint in grey levels equal to
 its reflectance (black 0.2 ... white 1.0), walls, barcode checkpoints labelled by id, the goal and
-the start pose. :func:`save_trajectory_png` adds a robot's path and writes a PNG file atomically.
+the start pose; :func:`world_legend_handles` gives the legend entries of those markers.
+:func:`save_trajectory_png` adds a robot's path (its start, its end and where it touched a wall)
+with a legend and writes a PNG file atomically.
 Figures are rendered with the Agg backend and never touch pyplot's global state, so this module
 works headless and leaves the user's interactive backend alone.
 """
@@ -19,22 +21,26 @@ import numpy.typing as npt
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.collections import PolyCollection
 from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
 from matplotlib.patches import Circle, FancyArrow, Patch, Polygon
 
 from mazesim._atomic import atomic_file
 from mazesim.errors import InvalidArgumentError
 
 if TYPE_CHECKING:
+    from matplotlib.artist import Artist
     from matplotlib.axes import Axes
 
     from mazesim._core import World
 
-__all__ = ["plot_world", "save_trajectory_png"]
+__all__ = ["plot_world", "save_trajectory_png", "trajectory_legend", "world_legend_handles"]
 
 WALL_COLOR = "#8c3b1f"
 GOAL_COLOR = "#2ca02c"
 START_COLOR = "#1f77b4"
 PATH_COLOR = "#d62728"
+CHECKPOINT_COLOR = "#ffd92f"
+COLLISION_COLOR = "#000000"
 
 
 def _rectangle_corners(
@@ -152,7 +158,7 @@ def _draw_markers(ax: Axes, world: World) -> None:
             zorder=5,
             bbox={
                 "boxstyle": "circle,pad=0.2",
-                "facecolor": "#ffd92f",
+                "facecolor": CHECKPOINT_COLOR,
                 "edgecolor": "black",
                 "lw": 0.5,
             },
@@ -180,6 +186,61 @@ def _draw_markers(ax: Axes, world: World) -> None:
             zorder=6,
         )
     )
+
+
+def world_legend_handles(world: World) -> list[Artist]:
+    """Legend entries of what :func:`plot_world` draws of ``world``: walls, floor paint,
+    checkpoints, start and goal (those the world has)."""
+    handles: list[Artist] = [Patch(facecolor=WALL_COLOR, label="walls")]
+    if world.paint_regions():
+        handles.append(
+            Patch(facecolor=_grey(0.2), edgecolor="grey", label="floor paint (grey = reflectance)")
+        )
+    if world.checkpoints():
+        handles.append(
+            Line2D(
+                [],
+                [],
+                marker="o",
+                linestyle="none",
+                markersize=8,
+                markerfacecolor=CHECKPOINT_COLOR,
+                markeredgecolor="black",
+                label="checkpoint (its id)",
+            )
+        )
+    handles.append(
+        Line2D(
+            [],
+            [],
+            marker=r"$\rightarrow$",
+            linestyle="none",
+            markersize=10,
+            color=START_COLOR,
+            label="start pose",
+        )
+    )
+    if world.goal is not None:
+        handles.append(Patch(facecolor=GOAL_COLOR, alpha=0.45, label="goal"))
+    return handles
+
+
+def trajectory_legend(
+    ax: Axes, world: World, extra: Sequence[Artist] = (), outside: bool = True
+) -> None:
+    """Puts the legend of a trajectory picture: the world's markers, then ``extra`` entries
+    (paths, their ends, collisions, decisions)."""
+    handles = [*world_legend_handles(world), *extra]
+    if outside:
+        ax.legend(
+            handles=handles,
+            loc="upper left",
+            bbox_to_anchor=(1.02, 1.0),
+            fontsize=7,
+            frameon=False,
+        )
+    else:
+        ax.legend(handles=handles, loc="best", fontsize=7)
 
 
 def plot_world(ax: Axes, world: World) -> None:
@@ -212,8 +273,12 @@ def save_trajectory_png(
     ys: npt.ArrayLike,
     path: str | os.PathLike[str],
     title: str | None = None,
+    collisions: npt.ArrayLike | None = None,
 ) -> None:
     """Draws a world with a robot's path on top and writes it as a PNG file.
+
+    The legend names the walls, paint, checkpoints, start pose and goal, and the path, its start
+    and end and the places where the robot touched a wall.
 
     The file is written atomically: to a temporary file in the same folder, renamed over ``path``.
 
@@ -223,6 +288,7 @@ def save_trajectory_png(
         ys: The y coordinates of the path in metres, as many as ``xs``.
         path: The PNG file to write; its folder must exist.
         title: A title above the picture; by default the world's name.
+        collisions: (K, 2) positions where the robot touched a wall, marked with crosses.
 
     Raises:
         InvalidArgumentError: ``xs`` and ``ys`` differ in length.
@@ -235,13 +301,47 @@ def save_trajectory_png(
         )
     xmin, ymin, xmax, ymax = world.bounds
     aspect = (ymax - ymin) / max(xmax - xmin, 1e-3)
-    figure = Figure(figsize=(6.0, max(3.0, min(9.0, 6.0 * aspect + 0.6))), dpi=120)
+    figure = Figure(figsize=(8.0, max(3.0, min(9.0, 6.0 * aspect + 0.6))), dpi=120)
     FigureCanvasAgg(figure)
     ax = figure.add_subplot()
     plot_world(ax, world)
+    extra: list[Artist] = []
     if path_x.size:
-        ax.plot(path_x, path_y, color=PATH_COLOR, linewidth=1.2, zorder=7, label="trajectory")
-        ax.plot(path_x[-1:], path_y[-1:], marker="o", markersize=4, color=PATH_COLOR, zorder=8)
+        extra += ax.plot(path_x, path_y, color=PATH_COLOR, linewidth=1.2, zorder=7, label="path")
+        extra += ax.plot(
+            path_x[:1],
+            path_y[:1],
+            marker="s",
+            markersize=5,
+            linestyle="none",
+            color=START_COLOR,
+            zorder=8,
+            label="path start",
+        )
+        extra += ax.plot(
+            path_x[-1:],
+            path_y[-1:],
+            marker="o",
+            markersize=5,
+            linestyle="none",
+            color=PATH_COLOR,
+            zorder=8,
+            label="path end",
+        )
+    if collisions is not None:
+        contacts = np.asarray(collisions, dtype=np.float64).reshape(-1, 2)
+        if len(contacts):
+            extra += ax.plot(
+                contacts[:, 0],
+                contacts[:, 1],
+                marker="x",
+                markersize=5,
+                linestyle="none",
+                color=COLLISION_COLOR,
+                zorder=9,
+                label=f"touching a wall ({len(contacts)} steps)",
+            )
+    trajectory_legend(ax, world, extra)
     ax.set_title(world.name if title is None else title)
     figure.tight_layout()
     with atomic_file(path) as handle:

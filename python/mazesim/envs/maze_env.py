@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Any, SupportsFloat
 
 import gymnasium
@@ -16,10 +17,18 @@ from mazesim.envs.reward import GoalDistance, PathDistanceTable, step_reward
 from mazesim.envs.spaces import ActionConverter, ObservationLayout, sensor_ranges
 from mazesim.errors import InvalidArgumentError
 
-__all__ = ["RENDER_MODES", "EPuckMazeEnv", "check_render_mode", "step_length_ms"]
+__all__ = [
+    "RENDER_MODES",
+    "VECTOR_RENDER_MODES",
+    "EPuckMazeEnv",
+    "check_render_mode",
+    "step_length_ms",
+]
 
-#: The render modes of the maze environments.
-RENDER_MODES = ["rgb_array"]
+#: The render modes of the maze environment: a live window, or top-down RGB images.
+RENDER_MODES = ["human", "rgb_array"]
+#: The render modes of the vector environments (images only).
+VECTOR_RENDER_MODES = ["rgb_array"]
 
 
 def step_length_ms(options: EnvOptions, world: World) -> float:
@@ -29,12 +38,11 @@ def step_length_ms(options: EnvOptions, world: World) -> float:
     )
 
 
-def check_render_mode(render_mode: str | None) -> None:
-    """Raises InvalidArgumentError unless ``render_mode`` is None or one of :data:`RENDER_MODES`."""
-    if render_mode is not None and render_mode not in RENDER_MODES:
+def check_render_mode(render_mode: str | None, modes: Sequence[str] = tuple(RENDER_MODES)) -> None:
+    """Raises InvalidArgumentError unless ``render_mode`` is None or one of ``modes``."""
+    if render_mode is not None and render_mode not in modes:
         raise InvalidArgumentError(
-            f"expected render_mode to be None or one of {', '.join(RENDER_MODES)}; "
-            f"found {render_mode!r}"
+            f"expected render_mode to be None or one of {', '.join(modes)}; found {render_mode!r}"
         )
 
 
@@ -69,7 +77,9 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
     episodes bit for bit.
 
     Args:
-        render_mode: None or ``"rgb_array"`` (a top-down image, see :mod:`mazesim.envs.render`).
+        render_mode: None, ``"rgb_array"`` (a top-down image with the trail and an overlay of
+            time, step, reward and the last event, see :mod:`mazesim.envs.render`), or
+            ``"human"`` (that image in a window that updates every step).
         world: A built-in world name, a path to a world file, a ``World``, or ``"random"`` for a
             fresh random maze at each reset (``maze_size`` cells, drawn from the env's RNG).
         robot: The robot profile: ``"e-puck"``, ``"seed"`` or ``"alphabot2"``.
@@ -134,6 +144,11 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         self._distance = np.zeros(1)
         self._simulator: Simulator | None = None
         self._renderer: TopDownRenderer | None = None
+        self._live: Any = None
+        self._trail: list[tuple[float, float]] = []
+        self._last_reward = 0.0
+        self._episode_return = 0.0
+        self._last_event = "none"
 
     @property
     def observation_names(self) -> list[str]:
@@ -162,6 +177,11 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
             self._simulator.reset(seed=episode_seed)
         observation, pose = self._observe(self._simulator)
         self._distance = self._goal.evaluate(pose)[0]
+        self._trail = [(float(pose[0, 0]), float(pose[0, 1]))]
+        self._last_reward = self._episode_return = 0.0
+        self._last_event = "none"
+        if self.render_mode == "human":
+            self.render()
         return observation, self._info(self._simulator, pose)
 
     def step(
@@ -183,15 +203,53 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         colliding = np.array([simulator.colliding])
         reward = step_reward(self.options.reward, self._distance, distance, colliding, reached)
         self._distance = distance
+        self._note_step(simulator, pose, float(reward[0]), bool(reached[0]))
+        if self.render_mode == "human":
+            self.render()
         return observation, float(reward[0]), bool(reached[0]), False, self._info(simulator, pose)
 
+    def _note_step(
+        self, simulator: Simulator, pose: npt.NDArray[np.float32], reward: float, reached: bool
+    ) -> None:
+        """Keeps what the rendered overlay shows: the trail, the reward, the last event."""
+        self._trail.append((float(pose[0, 0]), float(pose[0, 1])))
+        self._last_reward = reward
+        self._episode_return += reward
+        crossing = simulator.last_crossing
+        if reached:
+            self._last_event = f"goal reached at step {simulator.steps}"
+        elif crossing != 0:
+            direction = "arrival" if crossing > 0 else "departure"
+            self._last_event = f"checkpoint {abs(crossing)} ({direction}) at step {simulator.steps}"
+        elif simulator.colliding:
+            self._last_event = f"touching a wall at step {simulator.steps}"
+
     def render(self) -> npt.NDArray[np.uint8] | None:
-        """A top-down (height, width, 3) uint8 image with ``render_mode="rgb_array"``."""
+        """A top-down (height, width, 3) uint8 image with ``render_mode="rgb_array"``; with
+        ``"human"``, the same image shown in a window (:class:`mazesim.replay.live.LiveView`,
+        which carries on headless where there is no display) and None.
+
+        The image shows the start pose and the goal, the robot's trail since the reset, and the
+        time, step, last reward (and the episode's return) and last event at the top left.
+        """
         if self.render_mode is None:
             gymnasium.logger.warn(
                 'render() needs a render mode: make the env with render_mode="rgb_array"'
             )
             return None
+        frame = self._frame()
+        if self.render_mode == "human":
+            if self._live is None:
+                from mazesim.replay.live import LiveView
+
+                self._live = LiveView(
+                    f"mazesim: {self.world.name}", 1.0 / float(self.metadata["render_fps"])
+                )
+            self._live.show(frame)
+            return None
+        return frame
+
+    def _frame(self) -> npt.NDArray[np.uint8]:
         if self._renderer is None:
             self._renderer = TopDownRenderer(
                 self.world,
@@ -201,12 +259,23 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
             )
         if self._simulator is None:
             return self._renderer.frame(self.world.start)
-        return self._renderer.frame(self._simulator.pose, self._simulator.colliding)
+        simulator = self._simulator
+        overlay = [
+            f"t {simulator.time:6.2f} s   step {simulator.steps}",
+            f"reward {self._last_reward:+.3f}   return {self._episode_return:+.2f}",
+            f"last event: {self._last_event}",
+        ]
+        return self._renderer.frame(
+            simulator.pose, simulator.colliding, trail=self._trail, overlay=overlay
+        )
 
     def close(self) -> None:
         """Releases the simulator and the renderer; safe to call more than once."""
         self._simulator = None
         self._renderer = None
+        if self._live is not None:
+            self._live.close()
+            self._live = None
 
     def _observe(
         self, simulator: Simulator

@@ -1,10 +1,12 @@
 """A fast top-down picture of a world and its robot, drawn with numpy alone.
 
 The static part of a world (floor paint in grey levels equal to its reflectance, walls, checkpoint
-outlines and the goal) is rasterised once into a background image; each frame copies it and draws
-the robot's body, its heading and its distance-sensor rays, each ray cut where it meets a wall.
-Colours follow :mod:`mazesim.plotting`. At the default 400 x 400 pixels a frame takes well under a
-millisecond, fast enough to record videos of training.
+outlines, the goal and the start pose) is rasterised once into a background image; each frame
+copies it and draws the robot's trail, its body, a bold heading mark and its distance-sensor rays,
+each ray cut where it meets a wall (:class:`mazesim.sensor_rays.SensorRays`). Optional text lines
+(time, step, reward, the last event...) go in a box at the top left (:func:`overlay_text`, with
+Pillow, which matplotlib already needs). Colours follow :mod:`mazesim.plotting`. At the default
+400 x 400 pixels a frame takes about a millisecond, fast enough to record videos of training.
 """
 
 from __future__ import annotations
@@ -19,7 +21,9 @@ import numpy.typing as npt
 if TYPE_CHECKING:
     from mazesim._core import RobotProfile, World
 
-__all__ = ["TopDownRenderer"]
+from mazesim.sensor_rays import SensorRays
+
+__all__ = ["TopDownRenderer", "overlay_text"]
 
 WALL_RGB = (0x8C, 0x3B, 0x1F)
 GOAL_RGB = (0x2C, 0xA0, 0x2C)
@@ -28,6 +32,10 @@ ROBOT_RGB = (0x1F, 0x77, 0xB4)
 COLLIDING_RGB = (0xD6, 0x27, 0x28)
 HEADING_RGB = (0xFF, 0xFF, 0xFF)
 RAY_RGB = (0xFF, 0x7F, 0x0E)
+START_RGB = (0x1F, 0x77, 0xB4)
+TRAIL_RGB = (0xD6, 0x27, 0x28)
+#: Thickness of the heading mark, in pixels.
+HEADING_WIDTH = 3
 GOAL_ALPHA = 0.45
 #: Length of a barcode along the direction of travel: five bars of 1.7 cm.
 BARCODE_LENGTH = 5 * 0.017
@@ -61,46 +69,61 @@ class TopDownRenderer:
         # Pixel (column, row) of the world point (x, y) is (x0 + x * scale, y0 - y * scale).
         self._x0 = (self.width - span_x * self.scale) / 2 - xmin * self.scale
         self._y0 = (self.height + span_y * self.scale) / 2 + ymin * self.scale
-        boxes = np.asarray(world.wall_boxes(), dtype=np.float64).reshape(-1, 6)
-        self._boxes = boxes
-        # Per wall box, as (1, B) rows: centre, half sizes, cos and sin of its yaw.
-        self._box_center = (boxes[:, 0][None, :], boxes[:, 1][None, :])
-        self._box_half = (boxes[:, 2][None, :] / 2, boxes[:, 3][None, :] / 2)
-        self._box_turn = (np.cos(boxes[:, 4])[None, :], np.sin(boxes[:, 4])[None, :])
+        self._boxes = np.asarray(world.wall_boxes(), dtype=np.float64).reshape(-1, 6)
         self._body_radius = robot.body_radius
-        sensors = np.asarray(robot.distance_sensor_poses(), dtype=np.float64).reshape(-1, 3)
-        # The heading mark is one more "ray" from the centre to the rim, never cut by walls.
-        self._spokes = np.vstack((sensors, [[0.0, 0.0, 0.0]]))
-        self._ray_length = ray_length
-        self._reach = np.full(len(self._spokes), self._body_radius)
+        self.rays = SensorRays(world, robot, ray_length)
         self._stamp = _disc_offsets(self._body_radius * self.scale)
-        self._spoke_rgb = np.array([RAY_RGB] * len(sensors) + [HEADING_RGB], dtype=np.uint8)
+        self._start = world.start
         self.background = self._draw_world(world)
 
     def frame(
-        self, pose: tuple[float, float, float], colliding: bool = False
+        self,
+        pose: tuple[float, float, float],
+        colliding: bool = False,
+        trail: npt.ArrayLike | None = None,
+        overlay: list[str] | None = None,
     ) -> npt.NDArray[np.uint8]:
-        """A new (height, width, 3) uint8 image of the world with the robot at ``pose``."""
+        """A new (height, width, 3) uint8 image of the world with the robot at ``pose``.
+
+        Args:
+            pose: The robot's x, y (m) and yaw (rad).
+            colliding: Draws the body red when True.
+            trail: (K, 2) positions the robot passed, drawn as a line under it.
+            overlay: Text lines shown at the top left (see :func:`overlay_text`).
+        """
         image = self.background.copy()
+        if trail is not None:
+            points = np.asarray(trail, dtype=np.float64).reshape(-1, 2)
+            if len(points) > 1:
+                colour = np.array([TRAIL_RGB] * (len(points) - 1), dtype=np.uint8)
+                self._segments(
+                    image, (points[:-1, 0], points[:-1, 1]), (points[1:, 0], points[1:, 1]), colour
+                )
         x, y, yaw = (float(v) for v in pose)
         rows = int(self._y0 - y * self.scale) + self._stamp[0]
         cols = int(self._x0 + x * self.scale) + self._stamp[1]
         keep = (rows >= 0) & (rows < self.height) & (cols >= 0) & (cols < self.width)
         image[rows[keep], cols[keep]] = COLLIDING_RGB if colliding else ROBOT_RGB
-        cos_yaw, sin_yaw = math.cos(yaw), math.sin(yaw)
-        local_x, local_y, heading = self._spokes.T
-        origins_x = x + cos_yaw * local_x - sin_yaw * local_y
-        origins_y = y + sin_yaw * local_x + cos_yaw * local_y
-        angles = yaw + heading
+        origins_x, origins_y, angles = self.rays.origins((x, y, yaw))
         cos_a, sin_a = np.cos(angles), np.sin(angles)
-        reach = self._reach.copy()
-        reach[:-1] = self._ray_hits(origins_x[:-1], origins_y[:-1], cos_a[:-1], sin_a[:-1])
+        reach = self.rays.hits(origins_x, origins_y, cos_a, sin_a)
+        ray_colour = np.array([RAY_RGB] * len(reach), dtype=np.uint8)
         self._segments(
             image,
             (origins_x, origins_y),
             (origins_x + cos_a * reach, origins_y + sin_a * reach),
-            self._spoke_rgb,
+            ray_colour,
         )
+        rim = np.array([self._body_radius])
+        self._segments(
+            image,
+            (np.array([x]), np.array([y])),
+            (x + math.cos(yaw) * rim, y + math.sin(yaw) * rim),
+            np.array([HEADING_RGB], dtype=np.uint8),
+            width=HEADING_WIDTH,
+        )
+        if overlay:
+            image = overlay_text(image, overlay)
         return image
 
     # -- geometry ------------------------------------------------------------------------------
@@ -147,50 +170,22 @@ class TopDownRenderer:
         starts: tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]],
         ends: tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]],
         rgb: npt.NDArray[np.uint8],
+        width: int = 1,
     ) -> None:
-        """Draws one-pixel lines from each start (xs, ys) to its end, line i in ``rgb[i]``."""
+        """Draws lines ``width`` pixels thick from each start (xs, ys) to its end, line i in
+        ``rgb[i]``."""
         col0, row0 = self._x0 + starts[0] * self.scale, self._y0 - starts[1] * self.scale
         col1, row1 = self._x0 + ends[0] * self.scale, self._y0 - ends[1] * self.scale
         longest = max(float(np.abs(col1 - col0).max()), float(np.abs(row1 - row0).max()))
         t = np.linspace(0.0, 1.0, int(longest * 1.5) + 2)[None, :]
-        cols = (col0[:, None] + (col1 - col0)[:, None] * t).astype(np.intp)
-        rows = (row0[:, None] + (row1 - row0)[:, None] * t).astype(np.intp)
-        keep = (cols >= 0) & (cols < self.width) & (rows >= 0) & (rows < self.height)
-        colours = np.broadcast_to(rgb[:, None, :], (*cols.shape, 3))
-        image[rows[keep], cols[keep]] = colours[keep]
-
-    def _ray_hits(
-        self,
-        origin_x: npt.NDArray[np.float64],
-        origin_y: npt.NDArray[np.float64],
-        cos_ray: npt.NDArray[np.float64],
-        sin_ray: npt.NDArray[np.float64],
-    ) -> npt.NDArray[np.float64]:
-        """Distance along each ray to the first wall (slab test), capped at the sensor range."""
-        length = self._ray_length
-        if not len(self._boxes):
-            return np.full(len(origin_x), length)
-        (cx, cy), (half_x, half_y), (cos_b, sin_b) = (
-            self._box_center,
-            self._box_half,
-            self._box_turn,
-        )
-        rel_x, rel_y = origin_x[:, None] - cx, origin_y[:, None] - cy
-        cos_r, sin_r = cos_ray[:, None], sin_ray[:, None]
-        # Ray origins and directions in each box's frame; a direction never exactly 0, so a ray
-        # parallel to a slab gets huge slab distances of the right sign.
-        ox, oy = cos_b * rel_x + sin_b * rel_y, cos_b * rel_y - sin_b * rel_x
-        dx = cos_b * cos_r + sin_b * sin_r
-        dy = cos_b * sin_r - sin_b * cos_r
-        dx = np.where(np.abs(dx) < 1e-12, 1e-12, dx)
-        dy = np.where(np.abs(dy) < 1e-12, 1e-12, dy)
-        tx1, tx2 = (-half_x - ox) / dx, (half_x - ox) / dx
-        ty1, ty2 = (-half_y - oy) / dy, (half_y - oy) / dy
-        near = np.maximum(np.minimum(tx1, tx2), np.minimum(ty1, ty2))
-        far = np.minimum(np.maximum(tx1, tx2), np.maximum(ty1, ty2))
-        near = np.maximum(near, 0.0)
-        distance = np.where(far >= near, near, length)
-        return np.minimum(distance.min(axis=1), length)
+        base_cols = col0[:, None] + (col1 - col0)[:, None] * t
+        base_rows = row0[:, None] + (row1 - row0)[:, None] * t
+        colours = np.broadcast_to(rgb[:, None, :], (*base_cols.shape, 3))
+        for shift in range(-(width // 2), width - width // 2):
+            for cols, rows in ((base_cols + shift, base_rows), (base_cols, base_rows + shift)):
+                cols, rows = cols.astype(np.intp), rows.astype(np.intp)
+                keep = (cols >= 0) & (cols < self.width) & (rows >= 0) & (rows < self.height)
+                image[rows[keep], cols[keep]] = colours[keep]
 
     # -- the static world ----------------------------------------------------------------------
 
@@ -220,8 +215,31 @@ class TopDownRenderer:
                 GOAL_RGB,
                 GOAL_ALPHA,
             )
+        self._draw_start(image)
         image.flags.writeable = False
         return image
+
+    def _draw_start(self, image: npt.NDArray[np.uint8]) -> None:
+        """The start pose: a ring of the robot's size and a line along its heading."""
+        sx, sy, syaw = self._start
+        outer, inner = self._body_radius, self._body_radius - 2.0 / self.scale
+        self._fill(
+            image,
+            (sx - outer, sy - outer, sx + outer, sy + outer),
+            lambda px, py: (
+                ((px - sx) ** 2 + (py - sy) ** 2 <= outer**2)
+                & ((px - sx) ** 2 + (py - sy) ** 2 >= inner**2)
+            ),
+            START_RGB,
+        )
+        reach = np.array([1.6 * self._body_radius])
+        self._segments(
+            image,
+            (np.array([sx]), np.array([sy])),
+            (sx + math.cos(syaw) * reach, sy + math.sin(syaw) * reach),
+            np.array([START_RGB], dtype=np.uint8),
+            width=2,
+        )
 
     def _paint_region(
         self, image: npt.NDArray[np.uint8], region: dict[str, object], rgb: tuple[int, int, int]
@@ -285,6 +303,20 @@ class TopDownRenderer:
             return mask
 
         self._fill(image, (cx - reach_x, cy - reach_y, cx + reach_x, cy + reach_y), inside, rgb)
+
+
+def overlay_text(image: npt.NDArray[np.uint8], lines: list[str]) -> npt.NDArray[np.uint8]:
+    """A copy of ``image`` with ``lines`` of text in a dark box at its top left."""
+    from PIL import Image, ImageDraw, ImageFont
+
+    picture = Image.fromarray(np.ascontiguousarray(image))
+    draw = ImageDraw.Draw(picture, "RGBA")
+    font = ImageFont.load_default()
+    text = "\n".join(lines)
+    left, top, right, bottom = draw.multiline_textbbox((6, 4), text, font=font, spacing=2)
+    draw.rectangle((left - 3, top - 2, right + 3, bottom + 3), fill=(0, 0, 0, 150))
+    draw.multiline_text((6, 4), text, fill=(255, 255, 255, 255), font=font, spacing=2)
+    return np.asarray(picture, dtype=np.uint8).copy()
 
 
 def _disc_offsets(radius_px: float) -> tuple[npt.NDArray[np.intp], npt.NDArray[np.intp]]:

@@ -26,7 +26,7 @@ from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
 from mazesim._core import BatchSimulator, World
-from mazesim.envs.maze_env import RENDER_MODES, check_render_mode, step_length_ms
+from mazesim.envs.maze_env import VECTOR_RENDER_MODES, check_render_mode, step_length_ms
 from mazesim.envs.options import DEFAULT_MAX_EPISODE_STEPS, EnvOptions, WorldOption, draw_seed
 from mazesim.envs.render import TopDownRenderer
 from mazesim.envs.reward import GoalDistance, PathDistanceTable, step_reward
@@ -76,7 +76,7 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
     """
 
     metadata: dict[str, Any] = {
-        "render_modes": RENDER_MODES,
+        "render_modes": VECTOR_RENDER_MODES,
         "render_fps": 31.25,
         "autoreset_mode": AutoresetMode.NEXT_STEP,
     }
@@ -107,7 +107,7 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
             raise InvalidArgumentError(
                 f"expected max_episode_steps to be at least 1 or None, found {max_episode_steps!r}"
             )
-        check_render_mode(render_mode)
+        check_render_mode(render_mode, VECTOR_RENDER_MODES)
         self.options = EnvOptions.create(
             world=world,
             robot=robot,

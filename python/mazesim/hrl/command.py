@@ -23,10 +23,13 @@ from mazesim import load_world
 from mazesim.cli import positive_int, seed_argument
 from mazesim.errors import InvalidArgumentError
 from mazesim.hrl.navigation import DEFAULT_MAX_STEPS, EVENT_SOURCES
+from mazesim.replay.options import add_viewing_options, recording_requested, write_views
 
 __all__ = ["register", "run_eval", "run_train", "step_count"]
 
 DEFAULT_OUT = "mazesim-policy"
+#: Episodes that ``eval --html/--video/--record`` records (the first ones of the first world).
+RECORDED_EPISODES = 3
 
 
 def step_count(text: str) -> int:
@@ -201,6 +204,7 @@ def register(commands: Any) -> None:
         "machine needs the same mazesim and 'pip install mazesim[ray]'). The results are the "
         "same as without it (default: no Ray, every episode in this process)",
     )
+    add_viewing_options(evaluate)
     evaluate.set_defaults(run=lambda args: run_eval(args, sys.stdout))
 
 
@@ -273,6 +277,11 @@ def run_eval(args: argparse.Namespace, out: TextIO) -> int:
             trace_path=args.trace,
             plot_path=args.plot,
             ray_address=args.address,
+            record_runs=min(per_world, RECORDED_EPISODES) if recording_requested(args) else 0,
+        )
+    if report.run is not None:
+        report.written += write_views(
+            args, report.run, f"{label}: {policy.kind} navigator, seed {args.seed}"
         )
     if args.json:
         first = report.summaries[sources[0]]

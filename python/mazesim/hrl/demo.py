@@ -27,6 +27,7 @@ from mazesim.hrl.navigation import StartJitter, shortest_path_steps
 from mazesim.hrl.policy import HierarchicalPolicy
 from mazesim.hrl.subtasks import CONTROL_STEP_MS, SUBTASK_NAMES
 from mazesim.hrl.tables import load_policy
+from mazesim.replay.options import play_live, recording_requested, write_views
 
 __all__ = ["run_hrl_demo"]
 
@@ -58,6 +59,8 @@ def run_hrl_demo(args: argparse.Namespace, out: TextIO) -> int:
         max_steps=steps,
         record_paths=1,
         trace=True,
+        record_runs=1 if recording_requested(args) or getattr(args, "live", False) else 0,
+        controller="hrl (shipped navigator)",
     )
     wall_clock = time.perf_counter() - started
     result = evaluation.results[0]
@@ -100,6 +103,10 @@ def run_hrl_demo(args: argparse.Namespace, out: TextIO) -> int:
     summary_path = os.path.join(args.out, "summary.json")
     with atomic_file(summary_path) as handle:
         handle.write((json.dumps(summary, indent=2) + "\n").encode("utf-8"))
+    title = f"{world.name}: the hierarchical navigator, seed {args.seed}, {outcome}"
+    views = [] if evaluation.run is None else write_views(args, evaluation.run, title)
+    if getattr(args, "live", False) and evaluation.run is not None:
+        play_live(evaluation.run, title)
     chosen = ", ".join(f"{d['event']:+d}: {d['subtask']}" for d in decisions) or "none"
     out.write(
         f"world              {world.name} (robot seed, hierarchical navigator, seed {args.seed})\n"
@@ -109,6 +116,6 @@ def run_hrl_demo(args: argparse.Namespace, out: TextIO) -> int:
         f"goal reached       {'yes' if result.arrived else 'no'}\n"
         f"decisions          {chosen}\n"
         f"wall-clock time    {wall_clock:.3f} s\n"
-        f"wrote              {picture}, {trace}, {summary_path}\n"
+        f"wrote              {', '.join([picture, trace, summary_path, *views])}\n"
     )
     return 0

@@ -48,6 +48,7 @@ from mazesim.hrl.navigation import (
 from mazesim.hrl.policy import HierarchicalPolicy, StepRecord
 from mazesim.hrl.subtasks import CONTROL_STEP_MS, SUBTASK_CODES, SUBTASK_NAMES
 from mazesim.hrl.tables import TrainedPolicy
+from mazesim.replay.run import RecordedRun
 
 __all__ = [
     "ADAPT_EPISODES",
@@ -99,6 +100,7 @@ class Evaluation:
     paths: dict[int, npt.NDArray[np.float64]] = field(default_factory=dict)
     marks: dict[int, list[tuple[float, float, int, int]]] = field(default_factory=dict)
     trace: list[str] = field(default_factory=list)
+    run: RecordedRun | None = None
 
 
 def unseen_mazes(count: int, seed: int) -> list[World]:
@@ -173,6 +175,8 @@ def evaluate(
     record_paths: int = 0,
     trace: bool = False,
     threads: int = 0,
+    record_runs: int = 0,
+    controller: str = "hrl",
 ) -> Evaluation:
     """Runs greedy episodes of a navigator and measures them.
 
@@ -189,6 +193,9 @@ def evaluate(
         record_paths: Record the trajectories of the first this many episodes of world 0.
         trace: Record the per-step trace of episode 0.
         threads: Worker threads of the batch.
+        record_runs: Record the first this many episodes frame by frame
+            (:attr:`Evaluation.run`, for the replay and videos).
+        controller: The controller's name in the recorded run.
     """
     per_world = max(1, min(episodes_per_world, EVALUATION_ENVS // max(1, len(worlds))))
     world_of_env = np.repeat(np.arange(len(worlds)), per_world)
@@ -202,6 +209,11 @@ def evaluate(
         threads=threads,
     )
     navigator = make_navigator(world_of_env)
+    recorder = None
+    if record_runs:
+        from mazesim.replay.navigator import NavigatorRecorder
+
+        recorder = NavigatorRecorder(nav, navigator, record_runs)
     evaluation = Evaluation(summary=_summarise([], [1.0], events), results=[])
     paths: dict[int, list[tuple[float, float]]] = {}
     ended: set[int] = set()
@@ -214,6 +226,8 @@ def evaluate(
         arrived: npt.NDArray[np.bool_],
         out_of_time: npt.NDArray[np.bool_],
     ) -> None:
+        if recorder is not None:
+            recorder.after_step(arrived, out_of_time)
         if not record_paths and not trace:
             return
         record = navigator.record
@@ -240,11 +254,20 @@ def evaluate(
         robots = np.flatnonzero(navigator.record.chosen >= 0)
         return robots, navigator.record.chosen[robots]
 
-    results = run_episodes(nav, navigator, episodes_per_world, watch, None, decisions_of)
+    results = run_episodes(
+        nav,
+        navigator if recorder is None else recorder,
+        episodes_per_world,
+        watch,
+        None,
+        decisions_of,
+    )
     shortest = [shortest_path_steps(world) for world in worlds]
     evaluation.summary = _summarise(results, shortest, events)
     evaluation.results = results
     evaluation.paths = {k: np.array(v) for k, v in paths.items()}
+    if recorder is not None:
+        evaluation.run = recorder.run(controller, seed)
     return evaluation
 
 
@@ -256,6 +279,7 @@ class Report:
     evaluations: dict[str, Evaluation]
     adapted: bool
     written: list[str]
+    run: RecordedRun | None = None
 
 
 def evaluate_navigator(
@@ -270,6 +294,7 @@ def evaluate_navigator(
     plot_episodes: int = 3,
     threads: int = 0,
     ray_address: str | None = None,
+    record_runs: int = 0,
 ) -> Report:
     """Evaluates a saved navigator with checkpoint events from each source, writing the trace
     and the picture of the first source's episodes when asked.
@@ -278,9 +303,11 @@ def evaluate_navigator(
         ray_address: ``None``: run every episode in this process. ``"local"``: spread them over
             a Ray instance started on this machine for the evaluation; any other value: over the
             Ray cluster at that address (``"auto"``, ``"HOST:6379"``, ``"ray://HOST:10001"``).
-            The trace and the picture's episodes are run here as well. Each source starts
-            its own local instance unless Ray is up already (:func:`run_eval
+            The trace, the picture's and the recorded episodes are run here as well. Each source
+            starts its own local instance unless Ray is up already (:func:`run_eval
             <mazesim.hrl.command.run_eval>` keeps one up for all of them).
+        record_runs: Record the first this many episodes of the first source frame by frame
+            (:attr:`Report.run`).
 
     Raises:
         PolicyFormatError: A flat navigator asked to drive a world it did not learn.
@@ -326,6 +353,8 @@ def evaluate_navigator(
             record_paths=plot_episodes if first and plot_path is not None else 0,
             trace=first and trace_path is not None,
             threads=threads,
+            record_runs=record_runs if first else 0,
+            controller=policy.kind,
         )
         summaries[source] = evaluation.summary
         evaluations[source] = evaluation
@@ -352,7 +381,7 @@ def evaluate_navigator(
             arrived=arrived,
         )
         written.append(str(plot_path))
-    return Report(summaries, evaluations, adapted, written)
+    return Report(summaries, evaluations, adapted, written, evaluations[first_source].run)
 
 
 def _evaluate_on_ray(
@@ -388,10 +417,11 @@ def _evaluate_on_ray(
     results = chunks.results(evaluate_episodes(chunks, chunks.episodes, address=address))
     shortest = [shortest_path_steps(world) for world in worlds]
     evaluation = Evaluation(_summarise(results, shortest, options["events"]), results)
-    recorded = max(options["record_paths"], 1 if options["trace"] else 0)
+    recorded = max(options["record_paths"], options["record_runs"], 1 if options["trace"] else 0)
     if recorded:
         local = evaluate(make_navigator, worlds[:1], min(episodes_per_world, recorded), **options)
         evaluation.paths, evaluation.marks, evaluation.trace = local.paths, local.marks, local.trace
+        evaluation.run = local.run
     return evaluation
 
 

@@ -1,8 +1,10 @@
 """Trajectory pictures of navigator episodes, in the manner of the report's Fig. 4.6 and 4.8.
 
 The maze is drawn by :func:`mazesim.plotting.plot_world`; on it, each episode's path, and along
-the first path numbered markers where the higher level chose a sub-task (the report numbers the
-robot's positions the same way), with a legend of those decisions.
+the first path markers ``D1``, ``D2``... where the higher level chose a sub-task (the report numbers
+the robot's positions the same way; the ``D`` keeps them apart from the checkpoint ids), and a
+legend: the world's markers, each path with its start and end, and each decision as
+``D3: left turn at checkpoint +5``.
 """
 
 from __future__ import annotations
@@ -18,12 +20,19 @@ from matplotlib.figure import Figure
 from mazesim._atomic import atomic_file
 from mazesim._core import World
 from mazesim.hrl.subtasks import SUBTASK_CODES, SUBTASK_NAMES
-from mazesim.plotting import plot_world
+from mazesim.plotting import START_COLOR, plot_world, trajectory_legend
 
-__all__ = ["save_episodes_png"]
+__all__ = ["decision_label", "save_episodes_png"]
 
 #: Colours of successive episodes' paths.
 PATH_COLOURS = ("#d62728", "#1f77b4", "#9467bd", "#ff7f0e", "#17becf", "#8c564b")
+
+
+def decision_label(number: int, event: int, option: int) -> str:
+    """How a decision reads in legends: ``"D3: left turn at checkpoint +5"``."""
+    turn = SUBTASK_NAMES[option].lower().replace(" on a door", "")
+    turn = turn.replace("going forward", "straight on")
+    return f"D{number}: {turn} at checkpoint {event:+d}"
 
 
 def save_episodes_png(
@@ -50,6 +59,7 @@ def save_episodes_png(
     FigureCanvasAgg(figure)
     ax = figure.add_subplot()
     plot_world(ax, world)
+    extra = []
     for place, episode in enumerate(sorted(paths)):
         trajectory = paths[episode]
         if len(trajectory) == 0:
@@ -58,7 +68,7 @@ def save_episodes_png(
         outcome = ""
         if arrived is not None and episode in arrived:
             outcome = ", goal" if arrived[episode] else ", no goal"
-        ax.plot(
+        extra += ax.plot(
             trajectory[:, 0],
             trajectory[:, 1],
             color=colour,
@@ -67,33 +77,37 @@ def save_episodes_png(
             zorder=7,
             label=f"episode {episode}{outcome}",
         )
+        ax.plot(
+            trajectory[:1, 0], trajectory[:1, 1], "s", color=START_COLOR, markersize=3, zorder=8
+        )
         ax.plot(trajectory[-1:, 0], trajectory[-1:, 1], "o", color=colour, markersize=3, zorder=8)
-    notes = []
+    if paths:
+        extra += ax.plot([], [], "s", color=START_COLOR, markersize=4, label="path start")
+        extra += ax.plot([], [], "o", color="grey", markersize=4, label="path end")
     first = min(paths) if paths else None
     for number, (x, y, event, option) in enumerate(
         marks.get(first, []) if first is not None else [], 1
     ):
         ax.annotate(
-            str(number),
+            f"D{number}",
             (x, y),
-            fontsize=7,
+            fontsize=6,
             ha="center",
             va="center",
+            color="white",
             zorder=9,
-            bbox={"boxstyle": "circle,pad=0.15", "facecolor": "white", "edgecolor": "black"},
+            bbox={"boxstyle": "round,pad=0.15", "facecolor": "#08519c", "edgecolor": "none"},
         )
-        notes.append(f"{number}: {event:+d} -> {SUBTASK_CODES[option]} ({SUBTASK_NAMES[option]})")
-    if notes:
-        ax.text(
-            1.02,
-            0.0,
-            f"decisions of episode {first}:\n" + "\n".join(notes),
-            transform=ax.transAxes,
-            fontsize=7,
-            va="bottom",
-            ha="left",
+        extra += ax.plot(
+            [],
+            [],
+            linestyle="none",
+            marker=f"$D{number}$",
+            color="#08519c",
+            markersize=9,
+            label=f"{decision_label(number, event, option)} ({SUBTASK_CODES[option]})",
         )
-    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=7, frameon=False)
+    trajectory_legend(ax, world, extra)
     ax.set_title(title, fontsize=9)
     figure.tight_layout()
     with atomic_file(path) as handle:

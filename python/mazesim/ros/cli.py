@@ -17,6 +17,7 @@ from typing import Any
 
 from mazesim.cli import positive_int, positive_number, positive_seconds, seed_argument
 from mazesim.ros._ros import check_ros_installed
+from mazesim.replay.options import add_viewing_options
 
 __all__ = ["check_before_parsing", "register"]
 
@@ -292,4 +293,5 @@ def register(commands: Any) -> None:
         metavar="DIR",
         help="output folder, created if missing (default: %(default)s)",
     )
+    add_viewing_options(demo)
     demo.set_defaults(run=_run_demo)

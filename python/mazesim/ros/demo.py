@@ -182,6 +182,7 @@ def run_demo(args: argparse.Namespace, out: TextIO) -> int:
         title=f"{world.name} over ROS: {controller} in lockstep, {poses[-1, 3]:.1f} s{outcome}",
     )
     step_ms = 1000.0 * step_s
+    views = _write_views(args, bag_path, world, robot, controller, step_ms)
     out.write(
         f"world              {world.name} (robot {robot}, seed {args.seed}, lockstep)\n"
         f"controller         {name}\n"
@@ -194,4 +195,20 @@ def run_demo(args: argparse.Namespace, out: TextIO) -> int:
         f"logs               {master.home}\n"
         f"play it back with  rosbag info {bag_path}; rosbag play {bag_path}\n"
     )
+    for view in views:
+        out.write(f"wrote              {view}\n")
     return 0
+
+
+def _write_views(
+    args: argparse.Namespace, bag_path: str, world: Any, robot: str, controller: str, step_ms: float
+) -> list[str]:
+    """The ``--html``, ``--video`` and ``--record`` outputs, from the bag."""
+    from mazesim.replay.options import recording_requested, write_views
+
+    if not recording_requested(args) or not math.isfinite(step_ms):
+        return []
+    from mazesim.replay.ros_bag import run_from_bag
+
+    run = run_from_bag(bag_path, world, robot, controller, args.seed, step_ms)
+    return write_views(args, run, f"{world.name} over ROS: {controller}, seed {args.seed}")

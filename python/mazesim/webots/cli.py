@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import math
 import os
@@ -11,6 +12,7 @@ from typing import Any, TextIO
 
 from mazesim._atomic import atomic_file
 from mazesim.cli import positive_seconds, seed_argument
+from mazesim.replay.options import DeferredWatch, add_viewing_options, viewing_requested
 
 __all__ = ["register"]
 
@@ -86,6 +88,7 @@ def register(commands: Any) -> None:
         "(default: %(default)s)",
     )
     run.add_argument("--no-noise", action="store_true", help="noise-free sensors")
+    add_viewing_options(run, live=True)
     run.set_defaults(run=lambda args: run_webots(args, sys.stdout))
 
 
@@ -131,9 +134,15 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
     out_dir = os.path.abspath(args.out)
     # Fail before the run, not after it, if the output folder cannot be made.
     os.makedirs(out_dir, exist_ok=True)
-    result = run_controller(
-        args.controller, world, seconds=args.seconds, seed=args.seed, noise=not args.no_noise
-    )
+    watch = DeferredWatch(args, os.path.basename(args.controller), args.seed)
+    with contextlib.ExitStack() as viewing:
+        if viewing_requested(args):
+            from mazesim.webots.simulation import observing_steps
+
+            viewing.enter_context(observing_steps(watch))
+        result = run_controller(
+            args.controller, world, seconds=args.seconds, seed=args.seed, noise=not args.no_noise
+        )
     name = os.path.basename(result.controller)
     wall_clock = result.wall_clock_seconds
     summary: dict[str, Any] = {
@@ -161,6 +170,9 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
     summary_path = os.path.join(out_dir, "summary.json")
     with atomic_file(summary_path) as handle:
         handle.write((json.dumps(summary, indent=2) + "\n").encode("utf-8"))
+    views = watch.finish(
+        f"{result.simulated_seconds:.0f} s", f"{world.name}: {name}, seed {args.seed}"
+    )
     factor = summary["real_time_factor"]
     speed = "n/a" if factor is None or not math.isfinite(factor) else f"{factor:.0f}x"
     ending = "robot.step returned -1" if result.reached_end else "the controller returned"
@@ -172,6 +184,6 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
         f"collisions         {result.collisions}\n"
         f"longest stop       {result.longest_stop_s:.2f} s\n"
         f"wall-clock time    {wall_clock:.3f} s ({speed} real time)\n"
-        f"wrote              {picture}, {summary_path}\n"
+        f"wrote              {', '.join([picture, summary_path, *views])}\n"
     )
     return 0

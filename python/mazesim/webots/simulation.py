@@ -9,6 +9,8 @@ with an optional time limit after which ``Robot.step`` returns -1, and the traje
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 
 import numpy as np
 import numpy.typing as npt
@@ -16,7 +18,7 @@ import numpy.typing as npt
 from mazesim._core import Simulator, World
 from mazesim.errors import InvalidArgumentError
 
-__all__ = ["RobotSimulation", "current", "prepare", "release"]
+__all__ = ["RobotSimulation", "StepObserver", "current", "observing_steps", "prepare", "release"]
 
 #: Displacement per step (metres) below which the robot counts as stopped.
 STOP_DISPLACEMENT = 1e-4
@@ -78,7 +80,10 @@ class RobotSimulation:
         return self.step_limit is not None and self.steps >= self.step_limit
 
     def advance(self, left: float, right: float) -> None:
-        """Runs one basic time step with these wheel speeds (rad/s)."""
+        """Runs one basic time step with these wheel speeds (rad/s), after showing the
+        observers (:func:`observing_steps`) the state before it."""
+        for observer in _observers:
+            observer(self, left, right)
         self.simulator.step(left, right)
         self.steps += 1
         self._distance = None
@@ -104,6 +109,21 @@ class RobotSimulation:
 
 
 _current: RobotSimulation | None = None
+
+#: Called before every step of every simulation with the wheel speeds of the step.
+StepObserver = Callable[[RobotSimulation, float, float], None]
+_observers: list[StepObserver] = []
+
+
+@contextmanager
+def observing_steps(observer: StepObserver) -> Iterator[None]:
+    """Calls ``observer(simulation, left, right)`` before every step taken inside the block (to
+    record a run or show it live)."""
+    _observers.append(observer)
+    try:
+        yield
+    finally:
+        _observers.remove(observer)
 
 
 def prepare(

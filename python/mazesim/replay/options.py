@@ -1,0 +1,207 @@
+"""The viewing options of the run commands: ``--html FILE``, ``--video FILE.mp4|.gif``,
+``--record RUN.json`` and ``--live``.
+
+``mazesim demo``, ``eval``, ``webots run`` and ``ros demo`` call :func:`add_viewing_options` on
+their parser, record the run when :func:`recording_requested`, and hand the recorded run to
+:func:`write_views`, which writes the replay page and the video and says where. Commands that step
+a :class:`mazesim.Simulator` themselves use a :class:`SimulatorWatch` for both the recording and
+the live view.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+from typing import Any, TextIO
+
+from mazesim._core import Simulator
+from mazesim.replay.run import RecordedRun
+
+__all__ = [
+    "SimulatorWatch",
+    "add_viewing_options",
+    "play_live",
+    "recording_requested",
+    "viewing_requested",
+    "write_views",
+]
+
+
+def add_viewing_options(parser: argparse.ArgumentParser, live: bool = False) -> None:
+    """Adds ``--html``, ``--video``, ``--record`` (and ``--live`` when ``live``) to a parser."""
+    from mazesim.replay.video import video_format
+
+    def video_file(text: str) -> str:
+        try:
+            video_format(text)
+        except ValueError as error:
+            raise argparse.ArgumentTypeError(str(error)) from None
+        return text
+
+    parser.add_argument(
+        "--html",
+        default=None,
+        metavar="FILE",
+        help="also write a self-contained HTML replay of the run (opens in any browser, offline)",
+    )
+    parser.add_argument(
+        "--video",
+        default=None,
+        type=video_file,
+        metavar="FILE.mp4|FILE.gif",
+        help="also write a video of the run (MP4 needs 'pip install mazesim[video]')",
+    )
+    parser.add_argument(
+        "--record",
+        default=None,
+        metavar="RUN.json",
+        help="also save the recorded run (.json, or .json.gz compressed) for 'mazesim replay'",
+    )
+    if live:
+        parser.add_argument(
+            "--live",
+            action="store_true",
+            help="show the run in a window as it goes, in real time (headless without a display)",
+        )
+
+
+def recording_requested(args: argparse.Namespace) -> bool:
+    """Whether the command must record its run (for ``--html``, ``--video`` or ``--record``)."""
+    return any(getattr(args, name, None) for name in ("html", "video", "record"))
+
+
+def viewing_requested(args: argparse.Namespace) -> bool:
+    """Whether the command records its run or shows it live."""
+    return recording_requested(args) or bool(getattr(args, "live", False))
+
+
+def write_views(args: argparse.Namespace, run: RecordedRun, title: str | None = None) -> list[str]:
+    """Writes the run file, the replay page and the video the command was asked for; returns
+    their paths."""
+    written = []
+    if getattr(args, "record", None):
+        from mazesim.replay.run import save_run
+
+        save_run(run, args.record)
+        written.append(os.fspath(args.record))
+    if getattr(args, "html", None):
+        from mazesim.replay.html import write_html
+
+        write_html(run, args.html, title)
+        written.append(os.fspath(args.html))
+    if getattr(args, "video", None):
+        from mazesim.replay.video import write_video
+
+        write_video(run, args.video)
+        written.append(os.fspath(args.video))
+    return written
+
+
+def play_live(run: RecordedRun, title: str, stream: TextIO | None = None) -> None:
+    """Shows the first episode of a recorded run in a live window, in real time."""
+    from mazesim.replay.live import LiveView
+    from mazesim.replay.video import video_frames
+
+    view = LiveView(title, run.control_step_ms / 1000.0, stream)
+    if view.headless:
+        return
+    for frame in video_frames(run):
+        view.show(frame)
+
+
+class SimulatorWatch:
+    """Records a :class:`mazesim.Simulator` for ``--html``/``--video`` and shows it ``--live``.
+
+    Call :meth:`before_step` with the wheel speeds of every step before the step, and
+    :meth:`finish` after the last.
+
+    Args:
+        args: The command's arguments (``html``, ``video``, ``live``).
+        simulator: The simulator the command steps.
+        controller: What drives the robot.
+        seed: The run's seed.
+    """
+
+    def __init__(
+        self, args: argparse.Namespace, simulator: Simulator, controller: str, seed: int
+    ) -> None:
+        from mazesim.replay.recorder import SimulatorRecorder
+
+        self.args = args
+        self.simulator = simulator
+        self.recorder = (
+            SimulatorRecorder(simulator, controller, seed) if recording_requested(args) else None
+        )
+        self.live: Any = None
+        self.renderer: Any = None
+        if getattr(args, "live", False):
+            from mazesim.envs.render import TopDownRenderer
+            from mazesim.replay.live import LiveView
+
+            self.live = LiveView(
+                f"mazesim: {simulator.world.name}", simulator.control_step_ms / 1000.0
+            )
+            robot = simulator.robot
+            if not self.live.headless:
+                self.renderer = TopDownRenderer(
+                    simulator.world, robot, ray_length=robot.distance_sensor_range
+                )
+            self.trail: list[tuple[float, float]] = []
+
+    def before_step(self, left: float, right: float) -> None:
+        """Records the frame before a step and the wheel speeds it runs with; shows it live."""
+        if self.recorder is not None:
+            self.recorder.capture()
+            self.recorder.acted(left, right)
+        self._show()
+
+    def _show(self) -> None:
+        if self.renderer is None:
+            return
+        x, y, yaw = self.simulator.pose
+        self.trail.append((x, y))
+        self.live.show(
+            self.renderer.frame(
+                (x, y, yaw),
+                self.simulator.colliding,
+                trail=self.trail,
+                overlay=[f"t {self.simulator.time:6.2f} s   step {self.simulator.steps}"],
+            )
+        )
+
+    def finish(self, outcome: str = "", title: str | None = None) -> list[str]:
+        """Records the last frame and writes the views asked for; returns their paths."""
+        self._show()
+        if self.live is not None:
+            self.live.close()
+        if self.recorder is None:
+            return []
+        self.recorder.capture()
+        return write_views(self.args, self.recorder.run(outcome), title)
+
+
+class DeferredWatch:
+    """A :class:`SimulatorWatch` of whichever simulator is stepped first: an observer of
+    :func:`mazesim.webots.simulation.observing_steps`, for runs whose simulator is made later.
+
+    Args:
+        args: The command's arguments (``html``, ``video``, ``record``, ``live``).
+        controller: What drives the robot.
+        seed: The run's seed.
+    """
+
+    def __init__(self, args: argparse.Namespace, controller: str, seed: int) -> None:
+        self.args = args
+        self.controller = controller
+        self.seed = seed
+        self.watch: SimulatorWatch | None = None
+
+    def __call__(self, simulation: Any, left: float, right: float) -> None:
+        """Records the state before a step of ``simulation`` (its ``simulator``)."""
+        if self.watch is None:
+            self.watch = SimulatorWatch(self.args, simulation.simulator, self.controller, self.seed)
+        self.watch.before_step(left, right)
+
+    def finish(self, outcome: str = "", title: str | None = None) -> list[str]:
+        """See :meth:`SimulatorWatch.finish`; nothing when no step was taken."""
+        return [] if self.watch is None else self.watch.finish(outcome, title)

@@ -1,0 +1,228 @@
+"""Recording runs frame by frame: one episode (:class:`EpisodeRecorder`) or one simulator.
+
+An :class:`EpisodeRecorder` collects the frames of one episode (pose, readings, contact,
+checkpoint event, and the ray lengths it works out from the pose) and what the controller did
+from each; :class:`SimulatorRecorder` does this for a :class:`mazesim.Simulator` stepped by a
+command (``mazesim demo``, ``mazesim webots run``) and returns the :class:`RecordedRun`. The
+recorder of the hierarchical navigator is :mod:`mazesim.replay.navigator`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+import numpy.typing as npt
+
+from mazesim._core import RobotProfile, Simulator, World
+from mazesim.hrl import qlearning
+from mazesim.hrl.discretise import NUM_SENSORS, distance_levels, volts_to_cm
+from mazesim.replay.run import Decision, RecordedEpisode, RecordedRun
+from mazesim.sensor_rays import SensorRays
+
+if TYPE_CHECKING:
+    from mazesim.hrl.higher import HigherLevel
+
+__all__ = ["EpisodeRecorder", "SimulatorRecorder", "reading_scale", "table_levels"]
+
+
+def reading_scale(robot: RobotProfile) -> float:
+    """How finely a robot's readings are stored: millivolts for volts, whole raw values else."""
+    return 1000.0 if robot.distance_sensor_unit == "volts" else 1.0
+
+
+def table_levels(
+    robot: RobotProfile, readings: npt.NDArray[np.float64]
+) -> npt.NDArray[np.int64] | None:
+    """Table 4.1 levels of the frames' readings for a robot with the report's six Sharp sensors
+    (volts), else None."""
+    if robot.distance_sensor_unit != "volts" or len(robot.distance_sensor_names) != NUM_SENSORS:
+        return None
+    return distance_levels(volts_to_cm(readings[:, :NUM_SENSORS]))
+
+
+class EpisodeRecorder:
+    """The frames of one episode, as they come.
+
+    Args:
+        world: The world (its walls stop the sensor rays).
+        robot: The robot profile.
+        number: The episode's number.
+    """
+
+    def __init__(self, world: World, robot: RobotProfile, number: int = 0) -> None:
+        self.robot = robot
+        self.number = number
+        self.codes = {int(c["id"]): str(c["code"]) for c in world.checkpoints()}  # type: ignore[call-overload]
+        self.rays = SensorRays(world, robot, robot.distance_sensor_range)
+        self.poses: list[tuple[float, float, float]] = []
+        self.readings: list[npt.NDArray[np.float64]] = []
+        self.ray_lengths: list[npt.NDArray[np.float64]] = []
+        self.colliding: list[bool] = []
+        self.events: list[int] = []
+        self.actions: list[str] = []
+        self.wheel_speeds: list[tuple[float, float]] = []
+        self.subtasks: list[int] = []
+        self.levels: list[npt.NDArray[np.int64]] = []
+        self.decisions: list[Decision] = []
+        self.finished = False
+
+    @property
+    def frames(self) -> int:
+        """Frames recorded so far."""
+        return len(self.poses)
+
+    def add_frame(
+        self,
+        pose: Sequence[float],
+        readings: npt.ArrayLike,
+        colliding: bool = False,
+        event: int = 0,
+    ) -> None:
+        """Adds the next frame: the pose, the readings (distance then ground sensors), whether
+        the robot touches a wall, and the checkpoint event of the step that led here."""
+        x, y, yaw = (float(v) for v in pose)
+        self.poses.append((x, y, yaw))
+        self.readings.append(np.asarray(readings, dtype=np.float64).ravel())
+        self.ray_lengths.append(self.rays.lengths((x, y, yaw)))
+        self.colliding.append(bool(colliding))
+        self.events.append(int(event))
+
+    def set_action(
+        self,
+        code: str | None = None,
+        wheel_speeds: tuple[float, float] | None = None,
+        subtask: int | None = None,
+        levels: npt.ArrayLike | None = None,
+    ) -> None:
+        """Records what the controller did from the last frame."""
+        frame = self.frames - 1
+        if code is not None:
+            _pad(self.actions, frame, "")
+            self.actions.append(code)
+        if wheel_speeds is not None:
+            _pad(self.wheel_speeds, frame, (0.0, 0.0))
+            self.wheel_speeds.append((float(wheel_speeds[0]), float(wheel_speeds[1])))
+        if subtask is not None:
+            _pad(self.subtasks, frame, -1)
+            self.subtasks.append(int(subtask))
+        if levels is not None:
+            _pad(self.levels, frame, np.zeros(NUM_SENSORS, dtype=np.int64))
+            self.levels.append(np.asarray(levels, dtype=np.int64).ravel())
+
+    def add_decision(
+        self, checkpoint_event: int, code: str, q_values: Sequence[float], chosen: int, greedy: bool
+    ) -> Decision:
+        """Records a higher-level choice made on the last frame's readings."""
+        decision = Decision(
+            number=len(self.decisions) + 1,
+            frame=self.frames - 1,
+            checkpoint=abs(int(checkpoint_event)),
+            arrival=checkpoint_event > 0,
+            code=code,
+            q_values=[float(value) for value in q_values],
+            chosen=int(chosen),
+            greedy=bool(greedy),
+        )
+        self.decisions.append(decision)
+        return decision
+
+    def add_choice(self, higher: HigherLevel, world: int, event: int, chosen: int) -> Decision:
+        """Records the choice ``chosen`` of a higher level at a checkpoint event of the last
+        frame: the bars as read (backwards on a departure), the values of the sub-tasks in that
+        state, and whether the choice was the highest-valued one.
+
+        Args:
+            higher: The higher level that chose.
+            world: The robot's world in ``higher``.
+            event: The checkpoint event (+id arrival, -id departure).
+            chosen: The sub-task chosen.
+        """
+        state = int(higher.states(np.array([world]), np.array([event]))[0])
+        table = higher.flat_q()
+        best = int(qlearning.greedy(table, np.array([state]))[0])
+        bars = self.codes.get(abs(event), "")
+        return self.add_decision(
+            event, bars if event > 0 else bars[::-1], table[state].tolist(), chosen, chosen == best
+        )
+
+    def episode(self, outcome: str = "") -> RecordedEpisode:
+        """The recorded episode."""
+        frames = self.frames
+        readings = np.array(self.readings, dtype=np.float64).reshape(frames, -1)
+        episode = RecordedEpisode(
+            number=self.number,
+            poses=np.array(self.poses, dtype=np.float64).reshape(frames, 3),
+            readings=readings,
+            rays=np.array(self.ray_lengths, dtype=np.float64).reshape(frames, -1),
+            colliding=np.array(self.colliding, dtype=bool),
+            events=np.array(self.events, dtype=np.int64),
+            decisions=list(self.decisions),
+            outcome=outcome,
+        )
+        if self.actions:
+            episode.actions = _padded(self.actions, frames, "")
+        if self.wheel_speeds:
+            episode.wheel_speeds = np.array(_padded(self.wheel_speeds, frames, (0.0, 0.0)))
+        if self.subtasks:
+            episode.subtasks = np.array(_padded(self.subtasks, frames, -1), dtype=np.int64)
+        if self.levels:
+            zero = np.zeros(NUM_SENSORS, dtype=np.int64)
+            episode.levels = np.array(_padded(self.levels, frames, zero), dtype=np.int64)
+        else:
+            episode.levels = table_levels(self.robot, readings)
+        return episode
+
+
+def _pad(values: list[Any], length: int, filler: object) -> None:
+    """Appends ``filler`` to ``values`` until it is ``length`` long."""
+    values.extend([filler] * (length - len(values)))
+
+
+def _padded(values: list[Any], length: int, filler: object) -> list[Any]:
+    """``values`` cut or padded with ``filler`` to ``length``."""
+    return [*values[:length], *([filler] * max(0, length - len(values)))]
+
+
+class SimulatorRecorder:
+    """Records one :class:`mazesim.Simulator` as a command steps it.
+
+    Call :meth:`capture` at the start and after every step, and :meth:`acted` with the wheel
+    speeds the controller set from the last captured frame.
+
+    Args:
+        simulator: The simulator.
+        controller: What drives the robot (``"avoid-collision"``, a controller file...).
+        seed: The run's seed.
+    """
+
+    def __init__(self, simulator: Simulator, controller: str, seed: int) -> None:
+        self.simulator = simulator
+        self.controller = controller
+        self.seed = seed
+        self.recorder = EpisodeRecorder(simulator.world, simulator.robot)
+
+    def capture(self) -> None:
+        """Adds a frame of the simulator's current state."""
+        simulator = self.simulator
+        readings = np.concatenate((simulator.distance_sensors(), simulator.ground_sensors()))
+        event = simulator.last_crossing if self.recorder.frames else 0
+        self.recorder.add_frame(simulator.pose, readings, simulator.colliding, event)
+
+    def acted(self, left: float, right: float) -> None:
+        """Records the wheel speeds set from the last frame."""
+        self.recorder.set_action(wheel_speeds=(left, right))
+
+    def run(self, outcome: str = "") -> RecordedRun:
+        """The recorded run."""
+        robot = self.simulator.robot
+        return RecordedRun(
+            world=self.simulator.world,
+            robot=robot.name,
+            controller=self.controller,
+            seed=self.seed,
+            control_step_ms=float(self.simulator.control_step_ms),
+            episodes=[self.recorder.episode(outcome)],
+            reading_scale=reading_scale(robot),
+        )

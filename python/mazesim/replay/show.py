@@ -1,0 +1,70 @@
+"""``mazesim show WORLD``: a labelled PNG of a world, written or opened.
+
+WORLD is a built-in world's name, a mazesim world file (``.toml``) or a Webots world (``.wbt``,
+imported; what the import left out or approximated is listed beside the picture).
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import tempfile
+import webbrowser
+from pathlib import Path
+from typing import Any, TextIO
+
+__all__ = ["load_with_warnings", "register", "run_show"]
+
+
+def register(commands: Any) -> None:
+    """Adds ``show`` to the ``mazesim`` command's subparsers."""
+    show = commands.add_parser(
+        "show",
+        help="draw a world (built-in, .toml or .wbt) into a PNG with a legend",
+        description=(
+            "Draw a world with a legend: walls, floor paint, checkpoints with their codes and "
+            "reading directions, start, goal and the maze grid when there is one; for a .wbt "
+            "world the importer's warnings are listed beside it. Writes -o FILE (default: "
+            "NAME.png in this folder), or opens the picture with --open."
+        ),
+    )
+    show.add_argument("world", metavar="WORLD", help="a built-in world name, a .toml or a .wbt")
+    show.add_argument("-o", "--out", default=None, metavar="FILE.png", help="the PNG to write")
+    show.add_argument(
+        "--open",
+        action="store_true",
+        help="open the picture with the system's viewer (written to a temporary file unless -o)",
+    )
+    show.set_defaults(run=lambda args: run_show(args, sys.stdout))
+
+
+def load_with_warnings(name_or_path: str) -> tuple[Any, list[str]]:
+    """A world and the importer's warnings (none unless it is a ``.wbt`` file)."""
+    import mazesim
+
+    if Path(name_or_path).suffix.lower() == ".wbt":
+        from mazesim.webots.importer import import_wbt
+
+        world, report = import_wbt(name_or_path)
+        return world, [str(warning) for warning in report["warnings"]]
+    return mazesim.load_world(name_or_path), []
+
+
+def run_show(args: argparse.Namespace, out: TextIO) -> int:
+    """Runs ``mazesim show``."""
+    from mazesim.replay.preview import save_world_preview
+
+    world, warnings = load_with_warnings(args.world)
+    path = args.out
+    if path is None:
+        if args.open:
+            handle, path = tempfile.mkstemp(prefix=f"{world.name}-", suffix=".png")
+            os.close(handle)
+        else:
+            path = f"{world.name}.png"
+    save_world_preview(world, path, warnings)
+    out.write(f"wrote {path} ({len(warnings)} importer warnings)\n")
+    if args.open and not webbrowser.open(Path(path).resolve().as_uri()):
+        out.write(f"no viewer could be started here; open {path} yourself\n")
+    return 0

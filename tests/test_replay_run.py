@@ -1,0 +1,201 @@
+"""The recorded-run format: round trips, versions, size, and what the navigator's run holds."""
+
+from __future__ import annotations
+
+import gzip
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import mazesim
+from mazesim.cli import main
+from mazesim.errors import MazesimError, RunFormatError
+from mazesim.hrl.subtasks import SUBTASK_NAMES
+from mazesim.replay import FORMAT_VERSION, RecordedRun, load_run, save_run
+from mazesim.replay.html import replay_html
+from mazesim.replay.recorder import SimulatorRecorder
+
+
+def long_run(steps: int = 4000) -> RecordedRun:
+    """The seed robot wandering ``steps`` control steps in seed-maze, every field filled."""
+    simulator = mazesim.Simulator(mazesim.load_world("seed-maze"), robot="seed", seed=3)
+    recorder = SimulatorRecorder(simulator, "wander", seed=3)
+    rng = np.random.default_rng(3)
+    for _ in range(steps):
+        left, right = rng.uniform(-3.0, 6.28, size=2)
+        recorder.capture()
+        recorder.acted(float(left), float(right))
+        recorder.recorder.set_action(code="00", subtask=int(rng.integers(4)))
+        simulator.step(float(left), float(right))
+    recorder.capture()
+    run = recorder.run("time up")
+    run.subtask_names = list(SUBTASK_NAMES)
+    return run
+
+
+def test_a_run_round_trips_within_its_units(tmp_path: Path) -> None:
+    run = long_run(300)
+    path = tmp_path / "run.json"
+    save_run(run, path)
+    again = load_run(path)
+    first, second = run.episodes[0], again.episodes[0]
+    assert again.world == run.world
+    assert (again.robot, again.controller, again.seed) == ("seed", "wander", 3)
+    assert second.frames == first.frames == 301
+    assert np.max(np.abs(second.poses[:, :2] - first.poses[:, :2])) <= 0.5e-4 + 1e-12
+    assert np.max(np.abs(second.poses[:, 2] - first.poses[:, 2])) <= 0.5e-3 + 1e-12
+    assert np.max(np.abs(second.readings - first.readings)) <= 0.5e-3 + 1e-9
+    assert np.array_equal(second.colliding, first.colliding)
+    assert np.array_equal(second.events, first.events)
+    assert second.actions == first.actions
+    assert first.levels is not None and np.array_equal(second.levels, first.levels)
+    assert first.subtasks is not None and np.array_equal(second.subtasks, first.subtasks)
+
+
+def test_gzip_run_files_are_read_by_their_content(tmp_path: Path) -> None:
+    run = long_run(20)
+    save_run(run, tmp_path / "run.json.gz")
+    data = (tmp_path / "run.json.gz").read_bytes()
+    assert data[:2] == b"\x1f\x8b"
+    assert json.loads(gzip.decompress(data))["format"] == "mazesim-run"
+    assert load_run(tmp_path / "run.json.gz").episodes[0].frames == 21
+
+
+def test_a_newer_major_version_is_refused_clearly(tmp_path: Path) -> None:
+    values = long_run(5).as_json()
+    values["version"] = f"{FORMAT_VERSION[0] + 1}.0"
+    path = tmp_path / "future.json"
+    path.write_text(json.dumps(values))
+    with pytest.raises(RunFormatError, match=r"version 2\.0 \(a newer format\).*upgrade mazesim"):
+        load_run(path)
+
+
+def test_a_newer_minor_version_with_unknown_fields_is_read(tmp_path: Path) -> None:
+    values = long_run(5).as_json()
+    values["version"] = f"{FORMAT_VERSION[0]}.{FORMAT_VERSION[1] + 3}"
+    values["something_new"] = [1, 2, 3]
+    values["episodes"][0]["also_new"] = "x"
+    path = tmp_path / "minor.json"
+    path.write_text(json.dumps(values))
+    assert load_run(path).episodes[0].frames == 6
+
+
+@pytest.mark.parametrize(
+    ("text", "message"),
+    [
+        ("not json at all", "expected a mazesim run"),
+        ('{"format": "something-else"}', "expected format 'mazesim-run', found 'something-else'"),
+        ('{"format": "mazesim-run", "version": "1.0"}', "a field is missing or malformed"),
+    ],
+)
+def test_what_is_not_a_run_raises_a_format_error(tmp_path: Path, text: str, message: str) -> None:
+    path = tmp_path / "bad.json"
+    path.write_text(text)
+    with pytest.raises(RunFormatError, match=message) as caught:
+        load_run(path)
+    assert isinstance(caught.value, MazesimError)
+    assert str(path) in str(caught.value)
+
+
+def test_a_4000_step_episode_replays_in_well_under_2_mb() -> None:
+    run = long_run(4000)
+    page = replay_html(run).encode("utf-8")
+    assert len(page) < 1_000_000, f"{len(page)} bytes"
+
+
+def test_the_navigator_demo_records_its_decisions_and_why(navigator_demo: dict[str, Path]) -> None:
+    run = load_run(navigator_demo["run"])
+    summary = json.loads((navigator_demo["out"] / "summary.json").read_text())
+    episode = run.episodes[0]
+    assert run.robot == "seed" and run.subtask_names == list(SUBTASK_NAMES)
+    assert episode.outcome == "goal reached"
+    assert episode.frames == summary["steps"] + 1
+    # The decisions are the ones the summary lists, in order, each with its values.
+    assert [(d.checkpoint if d.arrival else -d.checkpoint) for d in episode.decisions] == [
+        d["event"] for d in summary["decisions"]
+    ]
+    assert [SUBTASK_NAMES[d.chosen] for d in episode.decisions] == [
+        d["subtask"] for d in summary["decisions"]
+    ]
+    codes = {int(c["id"]): str(c["code"]) for c in run.world.checkpoints()}  # type: ignore[call-overload]
+    for number, decision in enumerate(episode.decisions, 1):
+        assert decision.number == number
+        assert len(decision.q_values) == len(SUBTASK_NAMES)
+        assert decision.greedy and decision.chosen == int(np.argmax(decision.q_values))
+        expected = codes[decision.checkpoint]
+        assert decision.code == (expected if decision.arrival else expected[::-1])
+        # The decision was made on the frame that followed the crossing of the code.
+        event = decision.checkpoint if decision.arrival else -decision.checkpoint
+        assert episode.events[decision.frame] == event
+        assert episode.subtasks is not None and episode.subtasks[decision.frame] == decision.chosen
+    assert episode.levels is not None and episode.levels.shape == (episode.frames, 6)
+    assert episode.actions is not None and all(len(code) == 2 for code in episode.actions[:-1])
+
+
+def test_replay_command_writes_a_page_from_a_run(
+    navigator_demo: dict[str, Path], tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    page = tmp_path / "again.html"
+    assert main(["replay", str(navigator_demo["run"]), "-o", str(page)]) == 0
+    assert page.read_text().startswith("<!DOCTYPE html>")
+    assert f"wrote {page}" in capsys.readouterr().out
+    assert main(["replay", str(navigator_demo["run"]), "-o", str(tmp_path / "x.txt")]) == 2
+    assert "expected -o FILE.html, FILE.mp4 or FILE.gif" in capsys.readouterr().err
+
+
+def test_webots_run_records_every_step_of_the_controller(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    controller = Path(__file__).parent.parent / "examples" / "webots" / "avoid_collision.py"
+    run_file = tmp_path / "run.json"
+    code = main(
+        [
+            "webots", "run", str(controller), "--world", "arena", "--seconds", "3",
+            "--out", str(tmp_path / "out"), "--record", str(run_file),
+            "--html", str(tmp_path / "replay.html"),
+        ]
+    )  # fmt: skip
+    assert code == 0
+    assert f"{run_file}, {tmp_path / 'replay.html'}" in capsys.readouterr().out
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    run = load_run(run_file)
+    episode = run.episodes[0]
+    assert run.robot == "e-puck" and run.controller == "avoid_collision.py"
+    assert episode.frames == summary["steps"] + 1
+    assert episode.wheel_speeds is not None and np.any(episode.wheel_speeds != 0.0)
+    assert episode.readings.shape == (episode.frames, 11)  # ps0-7, gs0-2
+    travelled = np.sum(np.hypot(*np.diff(episode.poses[:, :2], axis=0).T))
+    assert travelled == pytest.approx(summary["distance_m"], abs=0.01)
+
+
+def test_demo_records_the_avoid_collision_run(tmp_path: Path) -> None:
+    run_file = tmp_path / "run.json"
+    assert main(["demo", "--seconds", "4", "--out", str(tmp_path), "--record", str(run_file)]) == 0
+    summary = json.loads((tmp_path / "summary.json").read_text())
+    episode = load_run(run_file).episodes[0]
+    assert episode.frames == summary["steps"] + 1
+    assert episode.levels is None  # the e-puck reads raw values, Table 4.1 is for the Sharps
+    assert episode.rays.shape == (episode.frames, 8)
+    assert np.all((episode.rays >= 0.0) & (episode.rays <= 0.07 + 1e-9))
+
+
+def test_recording_does_not_change_an_evaluation() -> None:
+    from mazesim.hrl.evaluate import evaluate_navigator
+    from mazesim.hrl.tables import load_policy
+
+    world = mazesim.load_world("seed-maze")
+    plain = evaluate_navigator(load_policy(), [world], 4, seed=9, max_steps=700)
+    recorded = evaluate_navigator(load_policy(), [world], 4, seed=9, max_steps=700, record_runs=2)
+    assert plain.run is None and recorded.run is not None
+    assert recorded.summaries == plain.summaries
+    first, second = (report.evaluations["truth"].results for report in (plain, recorded))
+    assert [(r.episode, r.steps, r.arrived, r.bumps) for r in first] == [
+        (r.episode, r.steps, r.arrived, r.bumps) for r in second
+    ]
+    # Each recorded episode has a frame per step and the start.
+    steps = {r.episode: r.steps for r in second}
+    assert [episode.number for episode in recorded.run.episodes] == [0, 1]
+    for episode in recorded.run.episodes:
+        assert episode.frames == steps[episode.number] + 1
