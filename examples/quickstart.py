@@ -7,7 +7,7 @@ world = mazesim.load_world("seed-maze")  # a built-in name, or a path to a .toml
 sim = mazesim.Simulator(world, robot="e-puck", seed=0)  # same seed, same run, bit for bit
 avoid = AvoidCollision()  # Alg. 1: a proximity reading above 80 turns the robot away
 
-for _ in range(250):  # 250 control steps of 32 ms: 8 s of simulated time
+for _ in range(1000):  # 1,000 control steps of 32 ms: 32 s of simulated time
     left, right = avoid(sim.distance_sensors())  # ps0..ps7 -> wheel speeds in rad/s
     sim.step(left, right)
 

@@ -114,7 +114,7 @@ def test_release_wheel_runs_the_demo_and_the_quick_start_from_anywhere(
     quickstart = run(str(python), "-I", str(script))
     assert quickstart.returncode == 0, quickstart.stderr
     lines = quickstart.stdout.splitlines()
-    assert lines[0].startswith("after 8.00 s (250 steps): x ")
+    assert lines[0].startswith("after 32.00 s (1000 steps): x ")
     assert lines[1].startswith("collisions: ")
     assert len(lines[2].split()) == 2 + 8 and len(lines[3].split()) == 2 + 3  # ps0..7, gs0..2
     # The installed package is the wheel's, and it runs the quick start exactly as the source
