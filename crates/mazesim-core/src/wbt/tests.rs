@@ -117,11 +117,10 @@ fn what_is_not_understood_is_reported_not_fatal() {
         "does not stand upright",
         "a Mesh bounding object",
         "passes over the robot",
-        "a dynamic object",
-        "a box with a mass",
+        "line 9: Solid: an object with physics: imported as a static obstacle",
+        "line 10: WoodenBox: an object with physics: imported as a static obstacle",
         "USE NOPE",
-        "\"pioneer\": a robot that is not an e-puck",
-        "no e-puck in the world",
+        "\"pioneer\": a robot that is not an e-puck (Robot): mazesim simulates the e-puck in its place",
     ] {
         assert!(
             warned(&w, words),
@@ -129,9 +128,12 @@ fn what_is_not_understood_is_reported_not_fatal() {
             w.warnings
         );
     }
-    // Only the tilted box stays (as its enclosing box); the floor slab is silently dropped.
-    assert_eq!(w.obstacles.len(), 1);
-    assert!(w.robot.is_none());
+    // The tilted box (as its enclosing box) and the two objects with physics stay; the floor
+    // slab is silently dropped.
+    assert_eq!(w.obstacles.len(), 3);
+    assert_eq!(w.robot, Some([0.0, 0.0, 0.0]));
+    assert_eq!(w.robot_model.as_deref(), Some("Robot"));
+    assert_eq!(w.robot_profile, "e-puck");
 }
 
 #[test]
