@@ -107,6 +107,19 @@ fn full_speed_into_a_wall_never_penetrates_a_millimetre_and_counts_bumps() {
 }
 
 #[test]
+fn the_e_puck2_at_its_motor_limit_stays_out_of_a_wall() {
+    let mut s = sim(world(32.0, BOX_WALL), "e-puck2", 1, false);
+    let mut worst = f32::INFINITY;
+    for _ in 0..100 {
+        s.step(7.536, 7.536).unwrap();
+        worst = worst.min(s.wall_clearance());
+    }
+    assert_eq!(s.wheel_speeds(), [7.536, 7.536]);
+    assert!(worst > -0.001, "penetration {} m", -worst);
+    assert_eq!(s.collisions(), 1);
+}
+
+#[test]
 fn no_tunnelling_through_a_1cm_wall_at_any_speed_or_angle() {
     for &speed in &[0.5, 2.0, 4.0, 6.28] {
         for &yaw in &[0.0, 0.3, -0.6, 1.0] {
