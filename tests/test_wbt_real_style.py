@@ -228,3 +228,24 @@ def test_a_floor_proto_tiles_its_texture(tmp_path: Path) -> None:
         assert world.floor_reflectance(x, 0.3) == pytest.approx(0.2 if k % 2 == 0 else 1.0)
     assert report["robot"] is None and report["robot_model"] is None
     assert report["robot_profile"] == "e-puck"
+
+
+def test_a_textured_plane_on_the_floor_is_paint(tmp_path: Path) -> None:
+    # Line-follower worlds often draw the track on a Plane of their own, turned on the floor.
+    grey = np.full((10, 20), 255, dtype=np.uint8)
+    grey[:, 10:] = 0
+    Image.fromarray(grey, mode="L").save(tmp_path / "line.png")
+    plane = (
+        "Solid {\n  translation 0.5 0.2 0.0005\n  rotation 0 0 1 1.5708\n  children [\n"
+        "    Shape {\n      appearance Appearance {\n"
+        '        texture ImageTexture { url [ "line.png" ] }\n      }\n'
+        "      geometry Plane { size 0.4 0.2 }\n    }\n  ]\n}\n"
+    )
+    path = tmp_path / "plane.wbt"
+    path.write_text(HEADER + plane)
+    world, report = import_wbt(path)
+    assert report["floor_textures"][0]["size"] == pytest.approx([0.4, 0.2])
+    # Turned a quarter: the image's right (black) half lies towards +y, its top towards -x.
+    assert world.floor_reflectance(0.5, 0.3) == pytest.approx(0.2)
+    assert world.floor_reflectance(0.5, 0.1) == pytest.approx(1.0)
+    assert world.floor_reflectance(0.5, 0.45) == pytest.approx(world.floor_background)
