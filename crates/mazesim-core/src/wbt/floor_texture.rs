@@ -455,6 +455,42 @@ mod tests {
     }
 
     #[test]
+    fn large_images_are_sampled_down_keeping_their_edges() {
+        // 512 x 300, black left of column 200: after sampling down to 256 x 256 the edge is
+        // still at 200 / 512 of the width.
+        let (width, height) = (512, 300);
+        let levels = (0..width * height)
+            .map(|i| if i % width < 200 { 0.0 } else { 1.0 })
+            .collect();
+        let image = GreyImage {
+            width,
+            height,
+            levels,
+        };
+        let paint = texture([0.512, 0.3], [0.512, 0.3]).paint(&image).unwrap();
+        assert_eq!(paint.len(), 2, "one black and one white rectangle");
+        let edge = -0.256 + 0.2;
+        assert_eq!(reflectance_at(&paint, edge - 0.002, 0.0), Some(0.2));
+        assert_eq!(reflectance_at(&paint, edge + 0.002, 0.0), Some(1.0));
+    }
+
+    #[test]
+    fn a_y_up_arena_lays_its_texture_on_the_converted_floor() {
+        // R2021a: floorSize is (x, z) of the Y-up PROTO, 2 m along north (ENU -y), 1 m along east.
+        let import = WbtImport::from_text(
+            "#VRML_SIM R2021a utf8
+RectangleArena { floorSize 2 1 floorTileSize 1 0.5 floorAppearance Appearance { texture ImageTexture { url [\"t.png\"] } } }\n",
+            "old.wbt",
+        )
+        .unwrap();
+        let texture = &import.floor_textures[0];
+        assert_eq!(texture.size, [1.0, 2.0]);
+        assert_eq!(texture.tile, [0.5, 1.0]);
+        assert_eq!(texture.center, [0.0, 0.0]);
+        assert_eq!(texture.candidates, ["t.png", "textures/t.png"]);
+    }
+
+    #[test]
     fn a_missing_image_is_a_warning_naming_the_files() {
         let mut import = WbtImport::from_text(
             "#VRML_SIM R2023b utf8\nRectangleArena { floorAppearance PBRAppearance { baseColorMap ImageTexture { url [\"textures/track.png\"] } } }\n",

@@ -35,6 +35,28 @@ const VISUAL_NODES: &[&str] = &[
 ];
 /// Robot base nodes: their bodies are the robot, not obstacles.
 const ROBOT_NODES: &[&str] = &["Robot", "DifferentialWheels", "Supervisor"];
+/// Robot PROTOs of Webots' library that are not the e-puck, recognised even without a
+/// `controller` field (any other node with one is taken for a robot too).
+const OTHER_ROBOT_PROTOS: &[&str] = &[
+    "Thymio2",
+    "Khepera1",
+    "Khepera3",
+    "Khepera4",
+    "Elisa3",
+    "Hemisson",
+    "Pioneer2",
+    "Pioneer3dx",
+    "Pioneer3at",
+    "Create",
+    "TurtleBot3Burger",
+    "Rosbot",
+    "Robotino3",
+    "Moose",
+    "Mir100",
+    "Tiago",
+    "BB-8",
+    "Nao",
+];
 /// The e-puck PROTOs of Webots and webots_ros2.
 const EPUCK_PROTOS: &[&str] = &["E-puck", "E-puck_enu", "E-Puck_enu"];
 /// Nodes whose `endPoint` holds a Solid placed in the parent's frame.
@@ -382,9 +404,10 @@ impl<'d> Importer<'d> {
         false
     }
 
-    /// Whether a node that is no base node is a robot PROTO: it has a `controller` field.
+    /// Whether a node that is no base node is a robot PROTO: a known one, or one with a
+    /// `controller` field.
     fn is_robot_proto(&self, node: &'d Node) -> bool {
-        node.field("controller").is_some()
+        OTHER_ROBOT_PROTOS.contains(&node.type_name.as_str()) || node.field("controller").is_some()
     }
 
     /// The e-puck (or e-puck2): its start pose, model and the devices in its slots.

@@ -99,6 +99,22 @@ fn shapes_nest_scale_and_reuse() {
 }
 
 #[test]
+fn a_known_robot_proto_without_a_controller_field_is_a_robot() {
+    let w = import(
+        "#VRML_SIM R2023b utf8\nPioneer3dx { translation 1 2 0 rotation 0 0 1 0.5 }\nE-puck { translation 0.1 0 0 }\n",
+    );
+    // The e-puck wins over the robot it would stand in for.
+    assert_eq!(w.robot, Some([0.1, 0.0, 0.0]));
+    assert_eq!(w.robot_model.as_deref(), Some("E-puck"));
+    assert!(warned(&w, "Pioneer3dx: a robot that is not an e-puck"));
+    let alone =
+        import("#VRML_SIM R2023b utf8\nPioneer3dx { translation 1 2 0 rotation 0 0 1 0.5 }\n");
+    assert_eq!(alone.robot, Some([1.0, 2.0, 0.5]));
+    assert_eq!(alone.robot_model.as_deref(), Some("Pioneer3dx"));
+    assert_eq!(alone.robot_profile, "e-puck");
+}
+
+#[test]
 fn what_is_not_understood_is_reported_not_fatal() {
     let w = import(
         "#VRML_SIM R2023b utf8\nEXTERNPROTO \"https://x/protos/Chair.proto\"\n\
