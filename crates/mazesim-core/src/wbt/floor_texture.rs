@@ -162,14 +162,10 @@ impl FloorTexture {
         let [tx, ty] = self.tile;
         let (px, py) = (tx / image.width as f64, ty / image.height as f64);
         let tiles = [(sx / tx).ceil() as usize, (sy / ty).ceil() as usize];
-        if tiles[0]
-            .saturating_mul(tiles[1])
-            .saturating_mul(rects.len())
-            > MAX_TEXTURE_PAINT
-        {
+        let tile_count = tiles[0].saturating_mul(tiles[1]);
+        if tile_count.saturating_mul(rects.len()) > MAX_TEXTURE_PAINT {
             return Err(format!(
-                "expected at most {MAX_TEXTURE_PAINT} paint rectangles, found {} tiles of {} rectangles",
-                tiles[0] * tiles[1],
+                "expected at most {MAX_TEXTURE_PAINT} paint rectangles, found {tile_count} tiles of {} rectangles",
                 rects.len()
             ));
         }
@@ -452,6 +448,20 @@ mod tests {
             assert_eq!(reflectance_at(&paint, x, 0.0), Some(f), "x {x}");
         }
         assert_eq!(reflectance_at(&paint, 0.51, 0.0), None);
+    }
+
+    #[test]
+    fn too_many_tiles_are_refused_not_painted() {
+        let image = GreyImage {
+            width: 2,
+            height: 2,
+            levels: vec![0.0, 1.0, 1.0, 0.0],
+        };
+        let err = texture([1e6, 1e6], [1e-3, 1e-3]).paint(&image).unwrap_err();
+        assert!(
+            err.contains("expected at most 200000 paint rectangles"),
+            "{err}"
+        );
     }
 
     #[test]
