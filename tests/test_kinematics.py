@@ -12,6 +12,7 @@ import math
 
 import pytest
 
+import mazesim
 from mazesim import RobotProfile, Simulator, World
 
 #: Webots' simulated e-puck: wheel radius and effective wheel distance (metres).
@@ -135,3 +136,10 @@ def test_the_tof_reads_millimetres_to_a_wall() -> None:
     tof = sim.distance_sensors()[8]
     # The wall face is at x = 0.53, the sensor at x = 0.035: 0.495 m, read as 495 mm.
     assert tof == pytest.approx(495.0, abs=0.5)
+
+
+def test_every_e_puck_profile_is_built_in() -> None:
+    names = mazesim.robot_profile_names()
+    assert {"e-puck", "e-puck2", "e-puck-hardware"} <= set(names)
+    for name in ("e-puck", "e-puck2", "e-puck-hardware"):
+        assert RobotProfile.builtin(name).name == name
