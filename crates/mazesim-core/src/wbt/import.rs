@@ -88,6 +88,8 @@ pub struct Importer<'d> {
     pub robot: Option<FoundRobot>,
     /// The first robot that is not an e-puck: the e-puck stands in for it when there is none.
     pub other_robot: Option<FoundRobot>,
+    /// Where its warning is in `warnings`, and what the warning says of it (`line L: Type`).
+    other_robot_warning: Option<(usize, String)>,
     pub devices: Vec<ExtensionDevice>,
     pub floor_textures: Vec<FloorTexture>,
     pub warnings: Vec<String>,
@@ -106,6 +108,7 @@ pub fn import(doc: &Document) -> WbtImport {
         obstacles: Vec::new(),
         robot: None,
         other_robot: None,
+        other_robot_warning: None,
         devices: Vec::new(),
         floor_textures: Vec::new(),
         warnings: doc.warnings.clone(),
@@ -116,6 +119,10 @@ pub fn import(doc: &Document) -> WbtImport {
     let (basic_time_step_ms, root) = importer.world_info();
     for &id in &doc.roots {
         importer.scene(id, &root, 0);
+    }
+    if let (Some(_), Some((index, what))) = (&importer.robot, &importer.other_robot_warning) {
+        importer.warnings[*index] =
+            format!("{what}: a robot that is not an e-puck: not simulated, the world's e-puck is");
     }
     let robot = importer.robot.take().or(importer.other_robot.take());
     if robot.is_none() {
@@ -438,12 +445,20 @@ impl<'d> Importer<'d> {
     /// no e-puck), with a warning.
     fn other_robot(&mut self, node: &'d Node, frame: &Frame) {
         let label = self.label(node);
-        if self.other_robot.is_some() || self.robot.is_some() {
+        if self.robot.is_some() {
+            self.warn(format!(
+                "{label}: a robot that is not an e-puck: not simulated, the world's e-puck is"
+            ));
+            return;
+        }
+        if self.other_robot_warning.is_some() {
             self.warn(format!(
                 "{label}: a robot that is not an e-puck, beside another robot: ignored, mazesim simulates one robot"
             ));
             return;
         }
+        // Said again at the end if the world's e-puck comes later.
+        self.other_robot_warning = Some((self.warnings.len(), label.clone()));
         self.warn(format!(
             "{label}: a robot that is not an e-puck ({}): mazesim simulates the e-puck in its place, at its pose; its own body, wheels and devices are not imported",
             node.type_name

@@ -106,12 +106,17 @@ fn a_known_robot_proto_without_a_controller_field_is_a_robot() {
     // The e-puck wins over the robot it would stand in for.
     assert_eq!(w.robot, Some([0.1, 0.0, 0.0]));
     assert_eq!(w.robot_model.as_deref(), Some("E-puck"));
-    assert!(warned(&w, "Pioneer3dx: a robot that is not an e-puck"));
+    assert!(warned(
+        &w,
+        "line 2: Pioneer3dx: a robot that is not an e-puck: not simulated, the world's e-puck is"
+    ));
+    assert!(!warned(&w, "in its place"), "{:?}", w.warnings);
     let alone =
         import("#VRML_SIM R2023b utf8\nPioneer3dx { translation 1 2 0 rotation 0 0 1 0.5 }\n");
     assert_eq!(alone.robot, Some([1.0, 2.0, 0.5]));
     assert_eq!(alone.robot_model.as_deref(), Some("Pioneer3dx"));
     assert_eq!(alone.robot_profile, "e-puck");
+    assert!(warned(&alone, "mazesim simulates the e-puck in its place"));
 }
 
 #[test]
