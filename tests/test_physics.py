@@ -10,8 +10,8 @@ import pytest
 import mazesim
 from mazesim import InvalidActionError, MazesimError, Simulator, World
 
-R = 0.0205
-AXLE = 0.052
+R = 0.02  # the e-puck as Webots simulates it (robots/e-puck.toml)
+AXLE = 0.05685
 
 
 def world(body: str = "", step_ms: float = 10.0) -> World:

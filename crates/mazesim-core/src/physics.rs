@@ -12,8 +12,9 @@ use crate::world::WallBox;
 const LENGTH_UNIT: f32 = 0.01;
 
 /// Contacts are predicted this far ahead (metres). It must exceed the distance the body can move in
-/// one physics step (0.129 m/s * 32 ms = 4.1 mm at the e-puck's top speed) so that the solver sees a
-/// wall before the body reaches it; otherwise it only pushes the body out after it has sunk in.
+/// one physics step (0.151 m/s * 32 ms = 4.8 mm at the e-puck2's top speed, 7.536 rad/s of 0.02 m
+/// wheels) so that the solver sees a wall before the body reaches it; otherwise it only pushes the
+/// body out after it has sunk in.
 const PREDICTION_DISTANCE: f32 = 0.01;
 
 /// Rapier takes over from free flight in any step that could end within this gap of a wall

@@ -1,5 +1,6 @@
 //! Robot profiles as data: body, wheels, motors and sensors read from a TOML file.
-//! The built-in profiles (`e-puck`, `seed`, `alphabot2`) live in `robots/` and are embedded.
+//! The built-in profiles (`e-puck`, `e-puck-hardware`, `e-puck2`, `seed`, `alphabot2`) live in
+//! `robots/` and are embedded.
 
 use std::collections::BTreeMap;
 use std::sync::Arc;
@@ -13,6 +14,11 @@ use crate::world::values::{Finite, Positive};
 
 const BUILTIN: &[(&str, &str)] = &[
     ("e-puck", include_str!("../../../robots/e-puck.toml")),
+    (
+        "e-puck-hardware",
+        include_str!("../../../robots/e-puck-hardware.toml"),
+    ),
+    ("e-puck2", include_str!("../../../robots/e-puck2.toml")),
     ("seed", include_str!("../../../robots/seed.toml")),
     ("alphabot2", include_str!("../../../robots/alphabot2.toml")),
 ];
@@ -84,7 +90,8 @@ pub struct RobotProfile {
     pub body_radius: f64,
     /// Wheel radius.
     pub wheel_radius: f64,
-    /// Distance between the wheels.
+    /// Effective distance between the wheels: the yaw rate is `wheel_radius * (wr - wl) /
+    /// axle_length`. A kinematic constant (Webots' e-puck turns as if it were 0.05685 m).
     pub axle_length: f64,
     /// Motor limit in rad/s; faster commands are clamped.
     pub max_wheel_speed: f64,

@@ -7,22 +7,27 @@ use std::f64::consts::PI;
 
 use common::{sim, world};
 
-const R: f64 = 0.0205;
-const AXLE: f64 = 0.052;
+/// Wheel radius and effective wheel distance of each e-puck profile: as Webots simulates it,
+/// and the datasheet's hardware.
+const WHEELS: [(&str, f64, f64); 3] = [
+    ("e-puck", 0.02, 0.05685),
+    ("e-puck2", 0.02, 0.05685),
+    ("e-puck-hardware", 0.0205, 0.052),
+];
 
 #[test]
 fn straight_drive_covers_r_times_w_per_second() {
-    for w in [1.0, 3.0, 6.28] {
-        let mut s = sim(world(10.0, "[start]\nx = 0\ny = 0\n"), "e-puck", 1, false);
+    for ((robot, r, _), w) in WHEELS.iter().flat_map(|p| [1.0, 3.0, 6.28].map(|w| (p, w))) {
+        let mut s = sim(world(10.0, "[start]\nx = 0\ny = 0\n"), robot, 1, false);
         for _ in 0..100 {
             s.step(w, w).unwrap();
         }
         assert!((s.time() - 1.0).abs() < 1e-9);
         let [x, y, yaw] = s.pose();
-        let expected = R * w;
+        let expected = r * w;
         assert!(
             ((x as f64) - expected).abs() < 0.01 * expected,
-            "w {w}: x {x}, expected {expected}"
+            "{robot} w {w}: x {x}, expected {expected}"
         );
         assert!(y.abs() < 1e-5 && yaw.abs() < 1e-5);
         assert!((s.distance_travelled() - expected).abs() < 0.01 * expected);
@@ -31,8 +36,14 @@ fn straight_drive_covers_r_times_w_per_second() {
 
 #[test]
 fn spinning_in_place_turns_at_2rw_over_axle() {
+    for &(robot, r, axle) in &WHEELS {
+        spin_for_a_second(robot, r, axle);
+    }
+}
+
+fn spin_for_a_second(robot: &str, r: f64, axle: f64) {
     let w = 2.0;
-    let mut s = sim(world(10.0, ""), "e-puck", 1, false);
+    let mut s = sim(world(10.0, ""), robot, 1, false);
     let mut turned = 0.0;
     let mut last = s.pose()[2] as f64;
     for _ in 0..100 {
@@ -47,10 +58,10 @@ fn spinning_in_place_turns_at_2rw_over_axle() {
         turned += d;
         last = yaw;
     }
-    let expected = 2.0 * R * w / AXLE;
+    let expected = 2.0 * r * w / axle;
     assert!(
         (turned - expected).abs() < 0.01 * expected,
-        "turned {turned}, expected {expected}"
+        "{robot}: turned {turned}, expected {expected}"
     );
     let [x, y, _] = s.pose();
     assert!(x.abs() < 1e-5 && y.abs() < 1e-5);
@@ -93,6 +104,19 @@ fn full_speed_into_a_wall_never_penetrates_a_millimetre_and_counts_bumps() {
         s.step(6.28, 6.28).unwrap();
     }
     assert_eq!(s.collisions(), 2);
+}
+
+#[test]
+fn the_e_puck2_at_its_motor_limit_stays_out_of_a_wall() {
+    let mut s = sim(world(32.0, BOX_WALL), "e-puck2", 1, false);
+    let mut worst = f32::INFINITY;
+    for _ in 0..100 {
+        s.step(7.536, 7.536).unwrap();
+        worst = worst.min(s.wall_clearance());
+    }
+    assert_eq!(s.wheel_speeds(), [7.536, 7.536]);
+    assert!(worst > -0.001, "penetration {} m", -worst);
+    assert_eq!(s.collisions(), 1);
 }
 
 #[test]

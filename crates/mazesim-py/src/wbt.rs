@@ -1,18 +1,112 @@
 //! `import_wbt` / `import_wbt_text` for Python: a Webots world as a mazesim `World` plus the
 //! import report as a dict (the JSON layout of `mazesim import-wbt --json`).
 
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use mazesim_core::wbt::{Obstacle, WbtImport};
+use mazesim_core::wbt::{DeviceField, GreyImage, Obstacle, WbtImport};
+use mazesim_core::Error;
+use numpy::{PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString};
 
 use crate::errors::IntoPy;
 use crate::world::PyWorld;
 
+/// A device field as a Python value: a number, a list of numbers, a list of rows, a string, a
+/// list of strings or a bool.
+fn device_field<'py>(py: Python<'py>, value: &DeviceField) -> PyResult<Bound<'py, PyAny>> {
+    Ok(match value {
+        DeviceField::Number(v) => v.into_pyobject(py)?.into_any(),
+        DeviceField::Numbers(v) => v.clone().into_pyobject(py)?.into_any(),
+        DeviceField::Table(rows) => rows
+            .iter()
+            .map(|r| r.to_vec())
+            .collect::<Vec<_>>()
+            .into_pyobject(py)?
+            .into_any(),
+        DeviceField::Text(v) => v.into_pyobject(py)?.into_any(),
+        DeviceField::Texts(v) => v.clone().into_pyobject(py)?.into_any(),
+        DeviceField::Flag(v) => v.into_pyobject(py)?.to_owned().into_any(),
+    })
+}
+
+/// The robot's model and profile, its extension devices and the floor textures.
+fn robot_and_floor(out: &Bound<'_, PyDict>, import: &WbtImport) -> PyResult<()> {
+    let py = out.py();
+    out.set_item("robot_model", import.robot_model.clone())?;
+    out.set_item("robot_profile", &import.robot_profile)?;
+    let devices = PyList::empty(py);
+    for device in &import.extension_devices {
+        let d = PyDict::new(py);
+        d.set_item("type", &device.kind)?;
+        d.set_item("name", &device.name)?;
+        d.set_item("slot", &device.slot)?;
+        d.set_item("translation", device.translation.to_vec())?;
+        d.set_item("yaw", device.yaw)?;
+        let fields = PyDict::new(py);
+        for (name, value) in &device.fields {
+            fields.set_item(name, device_field(py, value)?)?;
+        }
+        d.set_item("fields", fields)?;
+        devices.append(d)?;
+    }
+    out.set_item("extension_devices", devices)?;
+    let textures = PyList::empty(py);
+    for texture in &import.floor_textures {
+        let d = PyDict::new(py);
+        d.set_item("urls", texture.urls.clone())?;
+        d.set_item("owner", &texture.owner)?;
+        d.set_item("center", texture.center.to_vec())?;
+        d.set_item("size", texture.size.to_vec())?;
+        d.set_item("yaw", texture.yaw)?;
+        d.set_item("tile", texture.tile.to_vec())?;
+        d.set_item("candidates", texture.candidates.clone())?;
+        textures.append(d)?;
+    }
+    out.set_item("floor_textures", textures)?;
+    out.set_item("floor_paint", import.paint.len())?;
+    Ok(())
+}
+
+/// The grey images handed in for the floor textures: `{file: (height, width) float64 array of
+/// grey levels in [0, 1]}`.
+fn grey_images(images: Option<&Bound<'_, PyDict>>) -> PyResult<BTreeMap<String, GreyImage>> {
+    let mut out = BTreeMap::new();
+    for (key, value) in images.into_iter().flat_map(|d| d.iter()) {
+        let file: String = key.extract()?;
+        let wrong = |found: String| {
+            Error::InvalidArgument(format!(
+                "floor image {file:?}: expected a C-contiguous (height, width) float64 array of grey levels in [0, 1], found {found}"
+            ))
+        };
+        let Ok(array) = value.cast::<PyArrayDyn<f64>>() else {
+            return Err(wrong(value.get_type().name()?.to_string())).py();
+        };
+        let shape = array.shape().to_vec();
+        if shape.len() != 2 || !array.is_c_contiguous() || shape.contains(&0) {
+            return Err(wrong(format!("shape {shape:?}"))).py();
+        }
+        let levels = array.readonly().as_slice()?.to_vec();
+        if levels.iter().any(|g| !(0.0..=1.0).contains(g)) {
+            return Err(wrong("a level outside [0, 1]".to_string())).py();
+        }
+        out.insert(
+            file,
+            GreyImage {
+                width: shape[1],
+                height: shape[0],
+                levels,
+            },
+        );
+    }
+    Ok(out)
+}
+
 /// The import as `{"obstacles": [...], "robot": {...} | None, "basic_time_step_ms": t,
-/// "warnings": [...]}`, in metres and radians, world frame, z up.
+/// "warnings": [...], "robot_model", "robot_profile", "extension_devices", "floor_textures",
+/// "floor_paint"}`, in metres and radians, world frame, z up.
 fn report<'py>(py: Python<'py>, import: &WbtImport) -> PyResult<Bound<'py, PyDict>> {
     let obstacles = PyList::empty(py);
     for obstacle in &import.obstacles {
@@ -46,6 +140,7 @@ fn report<'py>(py: Python<'py>, import: &WbtImport) -> PyResult<Bound<'py, PyDic
     }
     out.set_item("basic_time_step_ms", import.basic_time_step_ms)?;
     out.set_item("warnings", import.warnings.clone())?;
+    robot_and_floor(&out, import)?;
     Ok(out)
 }
 
@@ -59,9 +154,12 @@ fn world_name(source: &Path) -> String {
 
 fn finish<'py>(
     py: Python<'py>,
-    import: &WbtImport,
+    mut import: WbtImport,
     source: &Path,
+    floor_images: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<(PyWorld, Bound<'py, PyDict>)> {
+    import.paint_floor(&grey_images(floor_images)?);
+    let import = &import;
     let world = import.to_world(&world_name(source)).py()?;
     Ok((
         PyWorld {
@@ -72,21 +170,29 @@ fn finish<'py>(
 }
 
 /// Imports a Webots `.wbt` file: the mazesim World and the import report (a dict).
+/// `floor_images` maps texture files (as the report's `floor_textures` candidates name them) to
+/// their grey levels; the textures without one are reported missing.
 #[pyfunction]
-pub fn import_wbt(py: Python<'_>, path: PathBuf) -> PyResult<(PyWorld, Bound<'_, PyDict>)> {
+#[pyo3(signature = (path, floor_images = None))]
+pub fn import_wbt<'py>(
+    py: Python<'py>,
+    path: PathBuf,
+    floor_images: Option<&Bound<'py, PyDict>>,
+) -> PyResult<(PyWorld, Bound<'py, PyDict>)> {
     let import = WbtImport::load(&path).py()?;
-    finish(py, &import, &path)
+    finish(py, import, &path, floor_images)
 }
 
 /// Imports the text of a `.wbt` file; `source` names it in error messages and names the world.
 /// Lone surrogates (not UTF-8) are read as U+FFFD, so that they end in a located format error.
 #[pyfunction]
-#[pyo3(signature = (text, source = "<string>"))]
+#[pyo3(signature = (text, source = "<string>", floor_images = None))]
 pub fn import_wbt_text<'py>(
     py: Python<'py>,
     text: &Bound<'py, PyString>,
     source: &str,
+    floor_images: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<(PyWorld, Bound<'py, PyDict>)> {
     let import = WbtImport::from_text(&text.to_string_lossy(), source).py()?;
-    finish(py, &import, Path::new(source))
+    finish(py, import, Path::new(source), floor_images)
 }

@@ -82,7 +82,8 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
             ``"human"`` (that image in a window that updates every step).
         world: A built-in world name, a path to a world file, a ``World``, or ``"random"`` for a
             fresh random maze at each reset (``maze_size`` cells, drawn from the env's RNG).
-        robot: The robot profile: ``"e-puck"``, ``"seed"`` or ``"alphabot2"``.
+        robot: The robot profile (``mazesim.robot_profile_names()``): ``"e-puck"``,
+            ``"e-puck2"``, ``"e-puck-hardware"``, ``"seed"`` or ``"alphabot2"``.
         action_mode: ``"continuous"`` or ``"discrete"``.
         noise: Whether the sensors are noisy (Webots' relative Gaussian noise).
         include_pose: Whether the observation ends with x, y (metres) and yaw (radians).

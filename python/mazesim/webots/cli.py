@@ -114,6 +114,11 @@ def run_import(args: argparse.Namespace, out: TextIO) -> int:
         f"obstacles          {kinds.count('box')} boxes, {kinds.count('circle')} circles "
         f"({len(world.wall_boxes())} walls in the mazesim world)\n"
         f"robot start        {_pose(report['robot'])}\n"
+        f"robot              {report['robot_model'] or 'none'} "
+        f"(simulated as {report['robot_profile']})\n"
+        f"extension devices  {len(report['extension_devices'])}\n"
+        f"floor paint        {report['floor_paint']} rectangles from "
+        f"{len(report['floor_textures'])} floor textures\n"
         f"basic time step    {report['basic_time_step_ms']:g} ms\n"
         f"warnings           {len(report['warnings'])}\n"
     )

@@ -1,16 +1,22 @@
 """Importing Webots ``.wbt`` worlds as mazesim worlds.
 
 The reading and the conversion happen in the compiled core (``mazesim_core::wbt``): every
-collision shape of the world that meets the e-puck's height becomes a wall, the e-puck's pose
-becomes the start, ``WorldInfo.basicTimeStep`` the time step. The report says what was imported
-and what was not (unknown PROTOs, meshes, tilted or dynamic objects), in metres and radians,
-world frame, z up.
+collision shape of the world that meets the e-puck's height becomes a wall (objects with physics
+too, as static obstacles, with a warning), the robot's pose becomes the start, its model picks
+the robot profile, ``WorldInfo.basicTimeStep`` the time step. Floor image textures found beside
+the world file (PNG or JPEG, decoded here with Pillow) become floor paint. The report says what
+was imported and what was not (unknown PROTOs, meshes, tilted objects, missing textures), in
+metres and radians, world frame, z up.
 """
 
 from __future__ import annotations
 
 import os
-from typing import Literal, TypedDict, cast
+from collections.abc import Callable
+from typing import Any, Literal, TypedDict, Union, cast
+
+import numpy as np
+import numpy.typing as npt
 
 from mazesim import _core
 from mazesim._core import World
@@ -18,6 +24,8 @@ from mazesim._core import World
 __all__ = [
     "BoxObstacle",
     "CircleObstacle",
+    "ExtensionDevice",
+    "FloorTexture",
     "ImportReport",
     "RobotPose",
     "import_wbt",
@@ -50,13 +58,108 @@ class RobotPose(TypedDict):
     yaw: float
 
 
+#: A device field's value: a number, numbers, lookup-table rows, text(s) or a flag.
+DeviceFieldValue = Union[float, list[float], list[list[float]], str, list[str], bool]
+
+
+class ExtensionDevice(TypedDict):
+    """A device in the robot's ``turretSlot``, ``groundSensorsSlot`` or ``bodySlot``.
+
+    ``translation`` is in the robot's frame (x forward, y left, z up; metres, the slot's origin
+    taken as the robot's), ``yaw`` the direction of the device's x axis in that frame, and
+    ``fields`` its other fields (``lookupTable`` as rows of three numbers).
+    """
+
+    type: str
+    name: str
+    slot: str
+    translation: list[float]
+    yaw: float
+    fields: dict[str, DeviceFieldValue]
+
+
+class FloorTexture(TypedDict):
+    """An image texture on the floor: where it lies, how it tiles, which files were looked for."""
+
+    urls: list[str]
+    owner: str
+    center: list[float]
+    size: list[float]
+    yaw: float
+    tile: list[float]
+    candidates: list[str]
+
+
 class ImportReport(TypedDict):
-    """What ``mazesim import-wbt --json`` prints."""
+    """What ``mazesim import-wbt --json`` prints.
+
+    ``robot_model`` is the robot as found (``"E-puck"``, ``"e-puck2"`` for ``version "2"``, the
+    type name of another robot, ``None`` without one); ``robot_profile`` the mazesim profile
+    that simulates it (``"e-puck"`` or ``"e-puck2"``); ``floor_paint`` the number of paint
+    rectangles the floor textures gave.
+    """
 
     obstacles: list[BoxObstacle | CircleObstacle]
     robot: RobotPose | None
     basic_time_step_ms: float
     warnings: list[str]
+    robot_model: str | None
+    robot_profile: str
+    extension_devices: list[ExtensionDevice]
+    floor_textures: list[FloorTexture]
+    floor_paint: int
+
+
+def grey_levels(path: str) -> npt.NDArray[np.float64]:
+    """Reads an image file (PNG, JPEG, ...) as grey levels in [0, 1].
+
+    Args:
+        path: The image file.
+
+    Returns:
+        A C-contiguous ``(height, width)`` float64 array, the top row first.
+
+    Raises:
+        OSError: The file cannot be read or decoded.
+    """
+    from PIL import Image
+
+    with Image.open(path) as image:
+        grey = image.convert("L")
+    return np.ascontiguousarray(np.asarray(grey, dtype=np.float64) / 255.0)
+
+
+def _floor_images(report: dict[str, Any]) -> tuple[dict[str, npt.NDArray[np.float64]], list[str]]:
+    """The images of the report's floor textures (the first candidate file that exists), and a
+    warning for each file that exists but cannot be decoded."""
+    images: dict[str, npt.NDArray[np.float64]] = {}
+    problems: list[str] = []
+    for texture in report["floor_textures"]:
+        for candidate in texture["candidates"]:
+            if not os.path.isfile(candidate):
+                continue
+            try:
+                images[candidate] = grey_levels(candidate)
+            except OSError as error:
+                problems.append(
+                    f"{texture['owner']}: floor texture {candidate}: expected a PNG or JPEG "
+                    f"image, cannot decode it ({error})"
+                )
+            break
+    return images, problems
+
+
+def _with_floor(
+    imported: tuple[World, dict[str, Any]],
+    again: Callable[[dict[str, npt.NDArray[np.float64]]], tuple[World, dict[str, Any]]],
+) -> tuple[World, ImportReport]:
+    """Imports again with the floor textures' images when any was found."""
+    world, report = imported
+    images, problems = _floor_images(report)
+    if images:
+        world, report = again(images)
+    report["warnings"].extend(problems)
+    return world, cast(ImportReport, report)
 
 
 def import_wbt(path: str | os.PathLike[str]) -> tuple[World, ImportReport]:
@@ -66,15 +169,18 @@ def import_wbt(path: str | os.PathLike[str]) -> tuple[World, ImportReport]:
         path: A ``.wbt`` file of any Webots version from V8.5 to R2025a.
 
     Returns:
-        The mazesim world (named after the file) and the import report.
+        The mazesim world (named after the file) and the import report. Floor textures are
+        read from beside the file (the url, then ``textures/`` and the url's file name).
 
     Raises:
         WorldFormatError: The file is not a readable Webots world; ``line`` and ``column`` say
             where.
         MazesimIOError: The file cannot be read.
     """
-    world, report = _core.import_wbt(os.fspath(path))
-    return world, cast(ImportReport, report)
+    file = os.fspath(path)
+    return _with_floor(
+        _core.import_wbt(file), lambda images: _core.import_wbt(file, floor_images=images)
+    )
 
 
 def import_wbt_text(text: str, source: str = "<string>") -> tuple[World, ImportReport]:
@@ -82,7 +188,8 @@ def import_wbt_text(text: str, source: str = "<string>") -> tuple[World, ImportR
 
     Args:
         text: The file's text.
-        source: A name for error messages (and for the world, from its file stem).
+        source: A name for error messages (and for the world, from its file stem); floor
+            textures are looked for beside it.
 
     Returns:
         The mazesim world and the import report.
@@ -90,5 +197,7 @@ def import_wbt_text(text: str, source: str = "<string>") -> tuple[World, ImportR
     Raises:
         WorldFormatError: The text is not a readable Webots world.
     """
-    world, report = _core.import_wbt_text(text, source)
-    return world, cast(ImportReport, report)
+    return _with_floor(
+        _core.import_wbt_text(text, source),
+        lambda images: _core.import_wbt_text(text, source, floor_images=images),
+    )

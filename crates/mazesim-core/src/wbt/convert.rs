@@ -1,5 +1,6 @@
 //! An import as a mazesim world description: boxes become `[[walls]]`, circles become rings of
-//! thin walls (the world format has boxes only), the e-puck's pose becomes `[start]`.
+//! thin walls (the world format has boxes only), the e-puck's pose becomes `[start]`, floor
+//! textures become `[[paint]]` rectangles.
 
 use std::f64::consts::PI;
 
@@ -87,7 +88,7 @@ impl WbtImport {
             barcode: None,
             walls,
             segments: Vec::new(),
-            paint: Vec::new(),
+            paint: self.paint.clone(),
             checkpoints: Vec::new(),
         }
     }

@@ -2,6 +2,8 @@
 //! `WorldInfo`, the robot's start pose and the budget that keeps a hostile file bounded.
 //! Collision shapes are in `shapes.rs`, PROTO expansions in `protos.rs`.
 
+use super::devices::ExtensionDevice;
+use super::floor_texture::FloorTexture;
 use super::frames::{axis_angle, tilt, Frame, Vec3, ENU_TO_NUE, IDENTITY, NUE_TO_ENU};
 use super::shapes::snap;
 use super::tree::{Document, Node, NodeId};
@@ -29,12 +31,32 @@ const VISUAL_NODES: &[&str] = &[
     "PointLight",
     "SpotLight",
     "Fog",
-    "Shape",
     "CadShape",
-    "Floor",
 ];
 /// Robot base nodes: their bodies are the robot, not obstacles.
 const ROBOT_NODES: &[&str] = &["Robot", "DifferentialWheels", "Supervisor"];
+/// Robot PROTOs of Webots' library that are not the e-puck, recognised even without a
+/// `controller` field (any other node with one is taken for a robot too).
+const OTHER_ROBOT_PROTOS: &[&str] = &[
+    "Thymio2",
+    "Khepera1",
+    "Khepera3",
+    "Khepera4",
+    "Elisa3",
+    "Hemisson",
+    "Pioneer2",
+    "Pioneer3dx",
+    "Pioneer3at",
+    "Create",
+    "TurtleBot3Burger",
+    "Rosbot",
+    "Robotino3",
+    "Moose",
+    "Mir100",
+    "Tiago",
+    "BB-8",
+    "Nao",
+];
 /// The e-puck PROTOs of Webots and webots_ros2.
 const EPUCK_PROTOS: &[&str] = &["E-puck", "E-puck_enu", "E-Puck_enu"];
 /// Nodes whose `endPoint` holds a Solid placed in the parent's frame.
@@ -46,14 +68,34 @@ const JOINT_NODES: &[&str] = &[
     "Slot",
 ];
 
+/// The mazesim profile that stands in for a robot that is not an e-puck.
+pub const STAND_IN_PROFILE: &str = "e-puck";
+
+/// A robot found in the world: its start pose, model and the profile that simulates it.
+pub struct FoundRobot {
+    pub pose: [f64; 3],
+    pub model: String,
+    pub profile: &'static str,
+}
+
 /// The state of one import.
 pub struct Importer<'d> {
     pub doc: &'d Document,
     /// PROTOs and primitives are Y-up (files before R2022a).
     pub y_up: bool,
     pub obstacles: Vec<Obstacle>,
-    pub robot: Option<[f64; 3]>,
+    /// The e-puck (or e-puck2) the world runs with.
+    pub robot: Option<FoundRobot>,
+    /// The first robot that is not an e-puck: the e-puck stands in for it when there is none.
+    pub other_robot: Option<FoundRobot>,
+    /// Where its warning is in `warnings`, and what the warning says of it (`line L: Type`).
+    other_robot_warning: Option<(usize, String)>,
+    pub devices: Vec<ExtensionDevice>,
+    pub floor_textures: Vec<FloorTexture>,
     pub warnings: Vec<String>,
+    /// Set while reading the collision shapes of an object with physics: it falls onto the
+    /// floor in Webots, so its height does not let the robot pass under it.
+    pub falls: bool,
     visits: usize,
     too_deep: bool,
 }
@@ -65,7 +107,12 @@ pub fn import(doc: &Document) -> WbtImport {
         y_up: !doc.version.has_z_up_protos(),
         obstacles: Vec::new(),
         robot: None,
+        other_robot: None,
+        other_robot_warning: None,
+        devices: Vec::new(),
+        floor_textures: Vec::new(),
         warnings: doc.warnings.clone(),
+        falls: false,
         visits: 0,
         too_deep: false,
     };
@@ -73,14 +120,24 @@ pub fn import(doc: &Document) -> WbtImport {
     for &id in &doc.roots {
         importer.scene(id, &root, 0);
     }
-    if importer.robot.is_none() {
+    if let (Some(_), Some((index, what))) = (&importer.robot, &importer.other_robot_warning) {
+        importer.warnings[*index] =
+            format!("{what}: a robot that is not an e-puck: not simulated, the world's e-puck is");
+    }
+    let robot = importer.robot.take().or(importer.other_robot.take());
+    if robot.is_none() {
         importer
             .warnings
-            .push("no e-puck in the world: the robot starts at (0, 0) facing +x".into());
+            .push("no robot in the world: the e-puck starts at (0, 0) facing +x".into());
     }
     WbtImport {
         obstacles: importer.obstacles,
-        robot: importer.robot,
+        robot: robot.as_ref().map(|r| r.pose),
+        robot_model: robot.as_ref().map(|r| r.model.clone()),
+        robot_profile: robot.map_or(STAND_IN_PROFILE, |r| r.profile).to_string(),
+        extension_devices: importer.devices,
+        floor_textures: importer.floor_textures,
+        paint: Vec::new(),
         basic_time_step_ms,
         warnings: importer.warnings,
     }
@@ -257,17 +314,16 @@ impl<'d> Importer<'d> {
         if kind == "WorldInfo" || VISUAL_NODES.contains(&kind) {
             return;
         }
-        if EPUCK_PROTOS.contains(&kind) {
+        if kind == "Shape" {
+            self.textured_shape(node, frame);
+        } else if kind == "Floor" {
+            self.floor(node, frame);
+        } else if EPUCK_PROTOS.contains(&kind)
+            || (ROBOT_NODES.contains(&kind) && self.looks_like_epuck(node))
+        {
             self.epuck(node, frame);
-        } else if ROBOT_NODES.contains(&kind) {
-            if self.looks_like_epuck(node) {
-                self.epuck(node, frame);
-            } else {
-                let label = self.label(node);
-                self.warn(format!(
-                    "{label}: a robot that is not an e-puck: neither its body nor its pose is imported"
-                ));
-            }
+        } else if ROBOT_NODES.contains(&kind) || self.is_robot_proto(node) {
+            self.other_robot(node, frame);
         } else if JOINT_NODES.contains(&kind) {
             for &child in self.nodes(node, "endPoint") {
                 self.scene(child, frame, depth + 1);
@@ -303,19 +359,26 @@ impl<'d> Importer<'d> {
         !self.nodes(node, "physics").is_empty()
     }
 
+    /// Warns that an object with physics (or a mass) is kept as a static obstacle.
+    pub fn warn_static(&mut self, node: &'d Node) {
+        let label = self.label(node);
+        self.warn(format!(
+            "{label}: an object with physics: imported as a static obstacle (mazesim does not move objects; the robot cannot push it)"
+        ));
+    }
+
     fn solid(&mut self, node: &'d Node, frame: &Frame, depth: usize) {
         let local = self.local_frame(node, [0.0; 3]);
         let frame = frame.then(&local);
-        if self.is_dynamic(node) {
-            let label = self.label(node);
-            self.warn(format!(
-                "{label}: a dynamic object (it has physics): skipped, mazesim's obstacles are static"
-            ));
-            return;
+        let falls = self.is_dynamic(node);
+        if falls && !self.nodes(node, "boundingObject").is_empty() {
+            self.warn_static(node);
         }
         for &shape in self.nodes(node, "boundingObject") {
             let label = self.label(node);
+            self.falls = falls;
             self.bounding(shape, &frame, &label, depth + 1);
+            self.falls = false;
         }
         self.scene_children(node, &frame, depth);
     }
@@ -348,22 +411,72 @@ impl<'d> Importer<'d> {
         false
     }
 
-    /// Takes the start pose from an e-puck: its origin and where its forward axis points.
+    /// Whether a node that is no base node is a robot PROTO: a known one, or one with a
+    /// `controller` field.
+    fn is_robot_proto(&self, node: &'d Node) -> bool {
+        OTHER_ROBOT_PROTOS.contains(&node.type_name.as_str()) || node.field("controller").is_some()
+    }
+
+    /// The e-puck (or e-puck2): its start pose, model and the devices in its slots.
     fn epuck(&mut self, node: &'d Node, frame: &Frame) {
         let label = self.label(node);
-        let local = self.local_frame(node, [0.0; 3]);
-        let body = self.z_up(&frame.then(&local));
         if self.robot.is_some() {
             self.warn(format!(
                 "{label}: a second e-puck: ignored, mazesim simulates one robot"
             ));
             return;
         }
-        if self.strings(node, "version").iter().any(|v| v == "2") {
-            self.warn(format!(
-                "{label}: an e-puck2 (version \"2\"): mazesim's e-puck profile is the e-puck (max wheel speed 6.28 rad/s, not 7.536)"
-            ));
+        let version_2 = self.strings(node, "version").iter().any(|v| v == "2");
+        let (model, profile) = match (node.type_name.as_str(), version_2) {
+            (_, true) => ("e-puck2".to_string(), "e-puck2"),
+            (kind, false) => (kind.to_string(), "e-puck"),
+        };
+        if let Some(pose) = self.robot_pose(node, frame) {
+            self.robot = Some(FoundRobot {
+                pose,
+                model,
+                profile,
+            });
+            self.extension_slots(node);
         }
+    }
+
+    /// A robot that is not an e-puck: the e-puck stands in for it at its pose (if the world has
+    /// no e-puck), with a warning.
+    fn other_robot(&mut self, node: &'d Node, frame: &Frame) {
+        let label = self.label(node);
+        if self.robot.is_some() {
+            self.warn(format!(
+                "{label}: a robot that is not an e-puck: not simulated, the world's e-puck is"
+            ));
+            return;
+        }
+        if self.other_robot_warning.is_some() {
+            self.warn(format!(
+                "{label}: a robot that is not an e-puck, beside another robot: ignored, mazesim simulates one robot"
+            ));
+            return;
+        }
+        // Said again at the end if the world's e-puck comes later.
+        self.other_robot_warning = Some((self.warnings.len(), label.clone()));
+        self.warn(format!(
+            "{label}: a robot that is not an e-puck ({}): mazesim simulates the e-puck in its place, at its pose; its own body, wheels and devices are not imported",
+            node.type_name
+        ));
+        if let Some(pose) = self.robot_pose(node, frame) {
+            self.other_robot = Some(FoundRobot {
+                pose,
+                model: node.type_name.clone(),
+                profile: STAND_IN_PROFILE,
+            });
+        }
+    }
+
+    /// A robot's start pose: its origin and where its forward axis points.
+    fn robot_pose(&mut self, node: &'d Node, frame: &Frame) -> Option<[f64; 3]> {
+        let label = self.label(node);
+        let local = self.local_frame(node, [0.0; 3]);
+        let body = self.z_up(&frame.then(&local));
         let up = body.vector([0.0, 0.0, 1.0]);
         if tilt(up) > TILT_TOLERANCE {
             self.warn(format!(
@@ -385,8 +498,8 @@ impl<'d> Importer<'d> {
             self.warn(format!(
                 "{label}: the robot stands at ({x}, {y}), farther than {MAX_EXTENT} m from the origin; not imported"
             ));
-            return;
+            return None;
         }
-        self.robot = Some([snap(x), snap(y), snap(yaw)]);
+        Some([snap(x), snap(y), snap(yaw)])
     }
 }

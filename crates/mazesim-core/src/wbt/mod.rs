@@ -9,8 +9,12 @@
 //! common PROTOs), keeps every collision shape (`boundingObject`) that meets the robot's height
 //! as a 2D obstacle in the world frame (z up, metres, radians), reads the e-puck's start pose
 //! and `WorldInfo.basicTimeStep`. Worlds before R2022a are converted from NUE as Webots' own
-//! converter does; later files that say `coordinateSystem "NUE"` are turned as a whole. Anything
-//! not understood (an unknown PROTO, a tilted shape, a mesh, a dynamic object) becomes a warning.
+//! converter does; later files that say `coordinateSystem "NUE"` are turned as a whole. Objects
+//! with physics are kept as static obstacles, with a warning. The robot's model picks the
+//! profile (`e-puck`, or `e-puck2` for `version "2"`; another robot gets the e-puck in its place,
+//! with a warning), the devices in its extension slots are listed, and floor image textures are
+//! found for [`WbtImport::paint_floor`]. Anything not understood (an unknown PROTO, a tilted
+//! shape, a mesh) becomes a warning.
 //!
 //! ```
 //! use mazesim_core::wbt::{Obstacle, WbtImport};
@@ -29,6 +33,8 @@
 //! ```
 
 mod convert;
+mod devices;
+mod floor_texture;
 mod frames;
 mod header;
 mod import;
@@ -42,6 +48,9 @@ use std::path::Path;
 
 use crate::error::{Error, Result};
 
+pub use convert::polygon_sides;
+pub use devices::{DeviceField, ExtensionDevice};
+pub use floor_texture::{grey_reflectance, FloorTexture, GreyImage};
 pub use header::WbtVersion;
 pub use tree::{Document, Field, Node, NodeId, Value};
 
@@ -71,8 +80,20 @@ pub enum Obstacle {
 pub struct WbtImport {
     /// The static obstacles, in file order.
     pub obstacles: Vec<Obstacle>,
-    /// The e-puck's start pose (x, y, yaw), if the world has one.
+    /// The robot's start pose (x, y, yaw), if the world has one: the e-puck's, or that of the
+    /// robot the e-puck stands in for.
     pub robot: Option<[f64; 3]>,
+    /// The robot's model as found: `E-puck`, `e-puck2` for an E-puck of `version "2"`, or the
+    /// type name of a robot that is not an e-puck; `None` without a robot.
+    pub robot_model: Option<String>,
+    /// The mazesim robot profile that simulates it: `e-puck` or `e-puck2`.
+    pub robot_profile: String,
+    /// Devices in the robot's extension slots.
+    pub extension_devices: Vec<ExtensionDevice>,
+    /// Image textures on the floor, painted by [`WbtImport::paint_floor`].
+    pub floor_textures: Vec<FloorTexture>,
+    /// Floor paint from the textures painted so far.
+    pub paint: Vec<crate::world::spec::PaintSpec>,
     /// `WorldInfo.basicTimeStep` (Webots' default 32 ms when absent).
     pub basic_time_step_ms: f64,
     /// Everything not imported or approximated, one sentence each, with its line.
@@ -80,10 +101,13 @@ pub struct WbtImport {
 }
 
 impl WbtImport {
-    /// Imports a world file's text; `source` names it in error messages.
+    /// Imports a world file's text; `source` names it in error messages, and floor textures
+    /// are looked for beside it.
     pub fn from_text(text: &str, source: &str) -> Result<WbtImport> {
         let document = Document::parse(text, source)?;
-        Ok(import::import(&document))
+        let mut import = import::import(&document);
+        import.locate_textures(Path::new(source).parent().unwrap_or(Path::new("")));
+        Ok(import)
     }
 
     /// Imports a world file's bytes, which must be UTF-8 text.

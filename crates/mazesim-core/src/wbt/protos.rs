@@ -104,6 +104,7 @@ impl<'d> Importer<'d> {
         if height <= 0.0 {
             height = 0.1;
         }
+        self.arena_floor(node, &frame, floor);
         let [fx, fy] = floor;
         let (x, y, z) = (
             fx / 2.0 + thickness / 2.0,
@@ -136,10 +137,7 @@ impl<'d> Importer<'d> {
     fn container(&mut self, node: &'d Node, frame: &Frame, max_size: f64) {
         let label = self.label(node);
         if self.number(node, "mass", 0.0) > 0.0 {
-            self.warn(format!(
-                "{label}: a box with a mass (dynamic): skipped, mazesim's obstacles are static"
-            ));
-            return;
+            self.warn_static(node);
         }
         if self.number(node, "lidAngle", 0.0) != 0.0 {
             self.warn(format!("{label}: an open lid: imported as a closed box"));
@@ -156,18 +154,14 @@ impl<'d> Importer<'d> {
     }
 
     fn solid_box(&mut self, node: &'d Node, frame: &Frame) {
-        let label = self.label(node);
-        if self.is_dynamic(node) {
-            self.warn(format!(
-                "{label}: a dynamic object (it has physics): skipped, mazesim's obstacles are static"
-            ));
-            return;
-        }
         if node
             .field("enableBoundingObject")
             .is_some_and(|f| f.value.bools == [false])
         {
             return;
+        }
+        if self.is_dynamic(node) {
+            self.warn_static(node);
         }
         let frame = self.proto_frame(node, frame, [0.0, 0.0, 1.0]);
         let size = self.proto_size(node, [2.0; 3]);

@@ -121,12 +121,13 @@ impl<'d> Importer<'d> {
         }
     }
 
-    /// Whether a shape spanning `center_z +- half_z` meets the robot's height.
+    /// Whether a shape spanning `center_z +- half_z` meets the robot's height (a falling one, of
+    /// an object with physics, meets it once on the floor).
     fn meets_robot(&mut self, center_z: f64, half_z: f64, owner: &str) -> bool {
         if center_z + half_z <= FLOOR_LEVEL {
             return false;
         }
-        if center_z - half_z >= ROBOT_HEIGHT {
+        if center_z - half_z >= ROBOT_HEIGHT && !self.falls {
             self.warn(format!(
                 "{owner}: a collision shape {:.3} m above the floor passes over the robot: not imported",
                 center_z - half_z

@@ -99,6 +99,27 @@ fn shapes_nest_scale_and_reuse() {
 }
 
 #[test]
+fn a_known_robot_proto_without_a_controller_field_is_a_robot() {
+    let w = import(
+        "#VRML_SIM R2023b utf8\nPioneer3dx { translation 1 2 0 rotation 0 0 1 0.5 }\nE-puck { translation 0.1 0 0 }\n",
+    );
+    // The e-puck wins over the robot it would stand in for.
+    assert_eq!(w.robot, Some([0.1, 0.0, 0.0]));
+    assert_eq!(w.robot_model.as_deref(), Some("E-puck"));
+    assert!(warned(
+        &w,
+        "line 2: Pioneer3dx: a robot that is not an e-puck: not simulated, the world's e-puck is"
+    ));
+    assert!(!warned(&w, "in its place"), "{:?}", w.warnings);
+    let alone =
+        import("#VRML_SIM R2023b utf8\nPioneer3dx { translation 1 2 0 rotation 0 0 1 0.5 }\n");
+    assert_eq!(alone.robot, Some([1.0, 2.0, 0.5]));
+    assert_eq!(alone.robot_model.as_deref(), Some("Pioneer3dx"));
+    assert_eq!(alone.robot_profile, "e-puck");
+    assert!(warned(&alone, "mazesim simulates the e-puck in its place"));
+}
+
+#[test]
 fn what_is_not_understood_is_reported_not_fatal() {
     let w = import(
         "#VRML_SIM R2023b utf8\nEXTERNPROTO \"https://x/protos/Chair.proto\"\n\
@@ -117,11 +138,10 @@ fn what_is_not_understood_is_reported_not_fatal() {
         "does not stand upright",
         "a Mesh bounding object",
         "passes over the robot",
-        "a dynamic object",
-        "a box with a mass",
+        "line 9: Solid: an object with physics: imported as a static obstacle",
+        "line 10: WoodenBox: an object with physics: imported as a static obstacle",
         "USE NOPE",
-        "\"pioneer\": a robot that is not an e-puck",
-        "no e-puck in the world",
+        "\"pioneer\": a robot that is not an e-puck (Robot): mazesim simulates the e-puck in its place",
     ] {
         assert!(
             warned(&w, words),
@@ -129,9 +149,12 @@ fn what_is_not_understood_is_reported_not_fatal() {
             w.warnings
         );
     }
-    // Only the tilted box stays (as its enclosing box); the floor slab is silently dropped.
-    assert_eq!(w.obstacles.len(), 1);
-    assert!(w.robot.is_none());
+    // The tilted box (as its enclosing box) and the two objects with physics stay; the floor
+    // slab is silently dropped.
+    assert_eq!(w.obstacles.len(), 3);
+    assert_eq!(w.robot, Some([0.0, 0.0, 0.0]));
+    assert_eq!(w.robot_model.as_deref(), Some("Robot"));
+    assert_eq!(w.robot_profile, "e-puck");
 }
 
 #[test]

@@ -1,0 +1,174 @@
+//! Devices mounted in the e-puck's extension slots (`turretSlot`, `groundSensorsSlot`,
+//! `bodySlot`, and any other `...Slot` field): a GPS or a Compass on the turret, extra distance
+//! sensors, light sensors. Each is listed with its type, name, pose in the robot's frame (x
+//! forward, y left, z up, metres; the slot's origin taken as the robot's) and its other fields;
+//! anything else in a slot is a warning.
+
+use super::frames::{apply, Frame, NUE_TO_ENU};
+use super::import::Importer;
+use super::shapes::snap;
+use super::tree::Node;
+
+/// Webots device node types and the default of their `name` field.
+const DEVICE_TYPES: &[(&str, &str)] = &[
+    ("Accelerometer", "accelerometer"),
+    ("Altimeter", "altimeter"),
+    ("Brake", "brake"),
+    ("Camera", "camera"),
+    ("Compass", "compass"),
+    ("Connector", "connector"),
+    ("Display", "display"),
+    ("DistanceSensor", "distance sensor"),
+    ("Emitter", "emitter"),
+    ("GPS", "gps"),
+    ("Gyro", "gyro"),
+    ("InertialUnit", "inertial unit"),
+    ("LED", "led"),
+    ("Lidar", "lidar"),
+    ("LightSensor", "light sensor"),
+    ("LinearMotor", "linear motor"),
+    ("Pen", "pen"),
+    ("PositionSensor", "position sensor"),
+    ("Radar", "radar"),
+    ("RangeFinder", "range-finder"),
+    ("Receiver", "receiver"),
+    ("RotationalMotor", "rotational motor"),
+    ("Speaker", "speaker"),
+    ("TouchSensor", "touch sensor"),
+    ("VacuumGripper", "vacuum gripper"),
+];
+/// Nodes that only hold and place other nodes.
+const CONTAINERS: &[&str] = &["Solid", "Pose", "Transform", "Group"];
+/// Fields that place or hold a node rather than describe the device.
+const STRUCTURE_FIELDS: &[&str] = &[
+    "translation",
+    "rotation",
+    "scale",
+    "name",
+    "children",
+    "boundingObject",
+    "physics",
+];
+
+/// The value of a device field as the world gives it.
+#[derive(Debug, Clone, PartialEq)]
+pub enum DeviceField {
+    /// One number.
+    Number(f64),
+    /// Several numbers (a vector, a colour).
+    Numbers(Vec<f64>),
+    /// A `lookupTable`: rows of (input, output, relative noise).
+    Table(Vec<[f64; 3]>),
+    /// One string.
+    Text(String),
+    /// Several strings.
+    Texts(Vec<String>),
+    /// `TRUE` or `FALSE`.
+    Flag(bool),
+}
+
+/// A device in one of the robot's extension slots.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ExtensionDevice {
+    /// The Webots node type, e.g. `GPS`.
+    pub kind: String,
+    /// Its `name` field, or Webots' default name for the type.
+    pub name: String,
+    /// The slot it is mounted in, e.g. `turretSlot`.
+    pub slot: String,
+    /// Position in the robot's frame (x forward, y left, z up), metres.
+    pub translation: [f64; 3],
+    /// Direction of its x axis in the robot's frame, radians counter-clockwise from forward.
+    pub yaw: f64,
+    /// Its other fields with values (numbers, strings, booleans), in file order.
+    pub fields: Vec<(String, DeviceField)>,
+}
+
+impl<'d> Importer<'d> {
+    /// Lists the devices in every `...Slot` field of a robot node.
+    pub fn extension_slots(&mut self, robot: &'d Node) {
+        for field in &robot.fields {
+            if !field.name.ends_with("Slot") {
+                continue;
+            }
+            for &id in &field.value.nodes {
+                self.slot_node(self.node(id), &field.name, &Frame::IDENTITY, 0);
+            }
+        }
+    }
+
+    fn slot_node(&mut self, node: &'d Node, slot: &str, frame: &Frame, depth: usize) {
+        if !self.enter(depth) {
+            return;
+        }
+        let kind = node.type_name.as_str();
+        let local = self.local_frame(node, [0.0; 3]);
+        let frame = frame.then(&local);
+        if let Some(&(_, default_name)) = DEVICE_TYPES.iter().find(|(t, _)| *t == kind) {
+            self.device(node, slot, &frame, default_name);
+        } else if CONTAINERS.contains(&kind) {
+            if !self.nodes(node, "boundingObject").is_empty() {
+                let label = self.label(node);
+                self.warn(format!(
+                    "{label}: in the robot's {slot}: its collision shape is not added to the robot's body"
+                ));
+            }
+        } else {
+            let label = self.label(node);
+            let what = if kind == "Shape" || kind == "CadShape" {
+                "a visual node, not simulated"
+            } else {
+                "not a device mazesim lists; not imported"
+            };
+            self.warn(format!("{label}: in the robot's {slot}: {what}"));
+        }
+        for &child in self.nodes(node, "children") {
+            self.slot_node(self.node(child), slot, &frame, depth + 1);
+        }
+    }
+
+    fn device(&mut self, node: &'d Node, slot: &str, frame: &Frame, default_name: &str) {
+        let name = self
+            .strings(node, "name")
+            .first()
+            .cloned()
+            .unwrap_or_else(|| default_name.to_string());
+        // Files before R2022a write the robot's inside Y-up: turn it to the robot's Z-up frame.
+        let to_z_up = |v| if self.y_up { apply(&NUE_TO_ENU, v) } else { v };
+        let origin = to_z_up(frame.origin);
+        let x_axis = to_z_up(frame.axis(0));
+        let fields = node
+            .fields
+            .iter()
+            .filter(|f| !STRUCTURE_FIELDS.contains(&f.name.as_str()))
+            .filter_map(|f| {
+                let v = &f.value;
+                let value = if !v.numbers.is_empty() && f.name == "lookupTable" {
+                    let rows = v.numbers.chunks_exact(3).map(|r| [r[0], r[1], r[2]]);
+                    DeviceField::Table(rows.collect())
+                } else if v.numbers.len() == 1 {
+                    DeviceField::Number(v.numbers[0])
+                } else if !v.numbers.is_empty() {
+                    DeviceField::Numbers(v.numbers.clone())
+                } else if v.strings.len() == 1 {
+                    DeviceField::Text(v.strings[0].clone())
+                } else if !v.strings.is_empty() {
+                    DeviceField::Texts(v.strings.clone())
+                } else if let [flag] = v.bools[..] {
+                    DeviceField::Flag(flag)
+                } else {
+                    return None;
+                };
+                Some((f.name.clone(), value))
+            })
+            .collect();
+        self.devices.push(ExtensionDevice {
+            kind: node.type_name.clone(),
+            name,
+            slot: slot.to_string(),
+            translation: origin.map(snap),
+            yaw: snap(x_axis[1].atan2(x_axis[0])),
+            fields,
+        });
+    }
+}

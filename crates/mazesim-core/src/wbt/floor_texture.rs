@@ -1,0 +1,519 @@
+//! Floor textures: an `ImageTexture` on the floor (a `RectangleArena`'s `floorAppearance`, a
+//! `Floor`'s `appearance`, or a textured `Shape` whose `Plane` lies on the ground) becomes floor
+//! paint whose reflectance follows the image's grey level.
+//!
+//! The import only finds the textures and where they lie; the image files are read by the caller
+//! (the Python package decodes PNG and JPEG) and handed to [`WbtImport::paint_floor`] as grey
+//! levels. The image is laid on the floor rectangle as Webots tiles it: one copy of the image per
+//! tile (`floorTileSize` of a `RectangleArena`, `tileSize` of a `Floor`, the whole plane of a
+//! `Shape`), divided by the appearance's `textureTransform` scale, tiles starting at the
+//! rectangle's (-x, -y) corner, the image's top row towards +y and its left column towards -x.
+//! A grey level `g` in [0, 1] paints the reflection factor `0.2 + 0.8 g` of Webots' infra-red
+//! model (white 1, black 0.2), in steps of 1/255 of the grey scale.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use super::frames::{tilt, Frame};
+use super::import::{Importer, TILT_TOLERANCE};
+use super::shapes::{snap, wrap_angle, FLOOR_LEVEL};
+use super::tree::Node;
+use super::WbtImport;
+use crate::world::spec::PaintSpec;
+use crate::world::values::{Finite, Positive, Reflectance};
+
+/// Largest image side read, in pixels: larger images are sampled down to it (nearest pixel).
+pub const MAX_TEXTURE_SIDE: usize = 256;
+/// Most paint rectangles one texture may give; beyond it the texture is left out, with a warning.
+pub const MAX_TEXTURE_PAINT: usize = 200_000;
+/// Reflection factor of black in Webots' infra-red model; white is 1.
+const BLACK_REFLECTANCE: f64 = 0.2;
+
+/// A texture image as grey levels in [0, 1], row-major, the top row first.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GreyImage {
+    /// Pixels per row.
+    pub width: usize,
+    /// Rows.
+    pub height: usize,
+    /// `width * height` grey levels.
+    pub levels: Vec<f64>,
+}
+
+/// An image texture lying on the floor, as found in the world.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FloorTexture {
+    /// The `url` entries of the `ImageTexture`, in order.
+    pub urls: Vec<String>,
+    /// `line L: Type "name"` of the node the floor belongs to.
+    pub owner: String,
+    /// Centre of the textured rectangle (world frame, metres).
+    pub center: [f64; 2],
+    /// Its size along its own x and y.
+    pub size: [f64; 2],
+    /// Its rotation about z.
+    pub yaw: f64,
+    /// Size on the floor of one copy of the image.
+    pub tile: [f64; 2],
+    /// Files to look for, in order: each url beside the world file, then in `textures/` beside it.
+    pub candidates: Vec<String>,
+}
+
+/// The reflection factor painted for a grey level, quantised to 1/255 of the grey scale.
+pub fn grey_reflectance(level: f64) -> f64 {
+    let q = (level.clamp(0.0, 1.0) * 255.0).round() / 255.0;
+    BLACK_REFLECTANCE + (1.0 - BLACK_REFLECTANCE) * q
+}
+
+impl GreyImage {
+    /// The image sampled down (nearest pixel) to at most [`MAX_TEXTURE_SIDE`] a side.
+    fn bounded(&self) -> GreyImage {
+        if self.width <= MAX_TEXTURE_SIDE && self.height <= MAX_TEXTURE_SIDE {
+            return self.clone();
+        }
+        let (w, h) = (
+            self.width.min(MAX_TEXTURE_SIDE),
+            self.height.min(MAX_TEXTURE_SIDE),
+        );
+        let mut levels = Vec::with_capacity(w * h);
+        for r in 0..h {
+            let sr = (r * self.height + self.height / (2 * h)) / h;
+            for c in 0..w {
+                let sc = (c * self.width + self.width / (2 * w)) / w;
+                levels.push(self.levels[sr * self.width + sc]);
+            }
+        }
+        GreyImage {
+            width: w,
+            height: h,
+            levels,
+        }
+    }
+}
+
+/// A rectangle of one grey level in pixel units of one tile: columns `c0..c1`, rows `r0..r1`.
+struct PixelRect {
+    c0: usize,
+    c1: usize,
+    r0: usize,
+    r1: usize,
+    level: u8,
+}
+
+/// The image as rectangles of equal grey: runs along each row, joined with the same run of the
+/// rows above.
+fn pixel_rects(image: &GreyImage) -> Vec<PixelRect> {
+    let quantised: Vec<u8> = image
+        .levels
+        .iter()
+        .map(|g| (g.clamp(0.0, 1.0) * 255.0).round() as u8)
+        .collect();
+    let mut done = Vec::new();
+    // Open rectangles keyed by (c0, c1, level), still growing downwards.
+    let mut open: BTreeMap<(usize, usize, u8), usize> = BTreeMap::new();
+    for r in 0..image.height {
+        let row = &quantised[r * image.width..(r + 1) * image.width];
+        let mut next = BTreeMap::new();
+        let mut c0 = 0;
+        while c0 < row.len() {
+            let level = row[c0];
+            let c1 = c0 + row[c0..].iter().take_while(|&&v| v == level).count();
+            let r0 = open.remove(&(c0, c1, level)).unwrap_or(r);
+            next.insert((c0, c1, level), r0);
+            c0 = c1;
+        }
+        for ((c0, c1, level), r0) in std::mem::replace(&mut open, next) {
+            done.push(PixelRect {
+                c0,
+                c1,
+                r0,
+                r1: r,
+                level,
+            });
+        }
+    }
+    for ((c0, c1, level), r0) in open {
+        done.push(PixelRect {
+            c0,
+            c1,
+            r0,
+            r1: image.height,
+            level,
+        });
+    }
+    done
+}
+
+impl FloorTexture {
+    /// The paint of this texture for its image, or why it cannot be painted.
+    pub fn paint(&self, image: &GreyImage) -> Result<Vec<PaintSpec>, String> {
+        if image.width == 0 || image.height == 0 || image.levels.len() != image.width * image.height
+        {
+            return Err(format!(
+                "expected an image of width x height grey levels, found {} levels for {} x {}",
+                image.levels.len(),
+                image.width,
+                image.height
+            ));
+        }
+        let image = image.bounded();
+        let rects = pixel_rects(&image);
+        let [sx, sy] = self.size;
+        let [tx, ty] = self.tile;
+        let (px, py) = (tx / image.width as f64, ty / image.height as f64);
+        let tiles = [(sx / tx).ceil() as usize, (sy / ty).ceil() as usize];
+        let tile_count = tiles[0].saturating_mul(tiles[1]);
+        if tile_count.saturating_mul(rects.len()) > MAX_TEXTURE_PAINT {
+            return Err(format!(
+                "expected at most {MAX_TEXTURE_PAINT} paint rectangles, found {tile_count} tiles of {} rectangles",
+                rects.len()
+            ));
+        }
+        let (s, c) = self.yaw.sin_cos();
+        let mut paint = Vec::new();
+        for i in 0..tiles[0] {
+            for j in 0..tiles[1] {
+                // The tile's top-left corner in the rectangle's frame (origin at its centre).
+                let left = -sx / 2.0 + i as f64 * tx;
+                let top = -sy / 2.0 + (j + 1) as f64 * ty;
+                for rect in &rects {
+                    let x0 = left + rect.c0 as f64 * px;
+                    let x1 = (left + rect.c1 as f64 * px).min(sx / 2.0);
+                    let y1 = (top - rect.r0 as f64 * py).min(sy / 2.0);
+                    let y0 = (top - rect.r1 as f64 * py).max(-sy / 2.0);
+                    if x1 - x0 <= 1e-9 || y1 - y0 <= 1e-9 {
+                        continue;
+                    }
+                    let (u, v) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
+                    paint.push(PaintSpec::Rect {
+                        center: [
+                            Finite(snap(self.center[0] + c * u - s * v)),
+                            Finite(snap(self.center[1] + s * u + c * v)),
+                        ],
+                        size: [Positive(x1 - x0), Positive(y1 - y0)],
+                        yaw: Finite(self.yaw),
+                        reflectance: Reflectance(grey_reflectance(rect.level as f64 / 255.0)),
+                    });
+                }
+            }
+        }
+        Ok(paint)
+    }
+}
+
+impl WbtImport {
+    /// Paints the floor textures whose images are given, keyed by the candidate file each was
+    /// read from (the first candidate found counts); a texture with no image, or one that cannot
+    /// be painted, gets a warning naming the files looked for. Call it once, after the import.
+    pub fn paint_floor(&mut self, images: &BTreeMap<String, GreyImage>) {
+        for texture in &self.floor_textures {
+            let found = texture
+                .candidates
+                .iter()
+                .find_map(|c| images.get(c).map(|image| (c, image)));
+            match found {
+                Some((file, image)) => match texture.paint(image) {
+                    Ok(paint) => self.paint.extend(paint),
+                    Err(why) => self.warnings.push(format!(
+                        "{}: floor texture {file}: not painted: {why}",
+                        texture.owner
+                    )),
+                },
+                None => self.warnings.push(format!(
+                    "{}: floor texture {:?} not found (looked for {}): the floor is left bare",
+                    texture.owner,
+                    texture.urls.first().map_or("", String::as_str),
+                    if texture.candidates.is_empty() {
+                        "no file: the url is empty".to_string()
+                    } else {
+                        texture.candidates.join(", ")
+                    }
+                )),
+            }
+        }
+    }
+
+    /// Fills each texture's candidate files for a world file in `dir`.
+    pub(super) fn locate_textures(&mut self, dir: &Path) {
+        for texture in &mut self.floor_textures {
+            let mut candidates = Vec::new();
+            for url in &texture.urls {
+                let file = url.rsplit('/').next().unwrap_or(url);
+                let is_web = url.contains("://");
+                if !is_web && !url.is_empty() {
+                    candidates.push(dir.join(url).display().to_string());
+                }
+                if !file.is_empty() {
+                    candidates.push(dir.join("textures").join(file).display().to_string());
+                }
+            }
+            candidates.dedup();
+            texture.candidates = candidates;
+        }
+    }
+}
+
+impl<'d> Importer<'d> {
+    /// The `ImageTexture` urls of an appearance (`PBRAppearance.baseColorMap`,
+    /// `Appearance.texture`) and its `textureTransform` scale.
+    fn appearance_texture(&mut self, appearance: &'d Node) -> Option<(Vec<String>, [f64; 2])> {
+        let field = match appearance.type_name.as_str() {
+            "PBRAppearance" => "baseColorMap",
+            "Appearance" => "texture",
+            _ => {
+                let label = self.label(appearance);
+                self.warn(format!(
+                    "{label}: a floor appearance mazesim does not read (only PBRAppearance and Appearance with an ImageTexture): the floor is left bare"
+                ));
+                return None;
+            }
+        };
+        let texture = self
+            .nodes(appearance, field)
+            .iter()
+            .map(|&id| self.node(id))
+            .find(|n| n.type_name == "ImageTexture")?;
+        let urls = self.strings(texture, "url").to_vec();
+        let scale = self
+            .nodes(appearance, "textureTransform")
+            .first()
+            .map(|&id| self.node(id))
+            .map_or([1.0, 1.0], |t| self.vector(t, "scale", [1.0, 1.0]));
+        Some((urls, scale))
+    }
+
+    /// Records a texture laid on the floor rectangle `size` of `frame` (Z-up), one image per `tile`.
+    fn lay_texture(
+        &mut self,
+        owner: &'d Node,
+        appearance: &'d Node,
+        frame: &Frame,
+        size: [f64; 2],
+        tile: [f64; 2],
+    ) {
+        let Some((urls, scale)) = self.appearance_texture(appearance) else {
+            return;
+        };
+        let label = self.label(owner);
+        let tile = [tile[0] / scale[0], tile[1] / scale[1]];
+        let sizes_ok = size.iter().chain(&tile).all(|v| v.is_finite() && *v > 0.0);
+        if !sizes_ok {
+            self.warn(format!(
+                "{label}: a floor texture over {size:?} m in tiles of {tile:?} m: expected sizes above 0; not painted"
+            ));
+            return;
+        }
+        let x_axis = frame.axis(0);
+        let (sx, sy) = (
+            x_axis[0].hypot(x_axis[1]),
+            frame.axis(1)[0].hypot(frame.axis(1)[1]),
+        );
+        self.floor_textures.push(FloorTexture {
+            urls,
+            owner: label,
+            center: [snap(frame.origin[0]), snap(frame.origin[1])],
+            size: [size[0] * sx, size[1] * sy],
+            yaw: wrap_angle(snap(x_axis[1].atan2(x_axis[0]))),
+            tile: [tile[0] * sx, tile[1] * sy],
+            candidates: Vec::new(),
+        });
+    }
+
+    /// The floor of a `RectangleArena` (`frame` is its Z-up frame): its `floorAppearance`.
+    pub fn arena_floor(&mut self, node: &'d Node, frame: &Frame, floor: [f64; 2]) {
+        let Some(&appearance) = self.nodes(node, "floorAppearance").first() else {
+            return;
+        };
+        let mut tile = self.vector(node, "floorTileSize", [0.5, 0.5]);
+        if self.y_up {
+            tile = [tile[1], tile[0]];
+        }
+        self.lay_texture(node, self.node(appearance), frame, floor, tile);
+    }
+
+    /// A `Floor` PROTO: no collision in 2D, but its `appearance` may be a texture.
+    pub fn floor(&mut self, node: &'d Node, frame: &Frame) {
+        let Some(&appearance) = self.nodes(node, "appearance").first() else {
+            return;
+        };
+        let local = self.local_frame(node, [0.0; 3]);
+        let frame = self.z_up(&frame.then(&local));
+        let mut size = self.vector(node, "size", [10.0, 10.0]);
+        let mut tile = self.vector(node, "tileSize", [0.5, 0.5]);
+        if self.y_up {
+            size = [size[1], size[0]];
+            tile = [tile[1], tile[0]];
+        }
+        self.lay_texture(node, self.node(appearance), &frame, size, tile);
+    }
+
+    /// A `Shape` in the scene: a textured horizontal `Plane` at floor level is a floor texture.
+    pub fn textured_shape(&mut self, node: &'d Node, frame: &Frame) {
+        let Some(&geometry) = self.nodes(node, "geometry").first() else {
+            return;
+        };
+        let Some(&appearance) = self.nodes(node, "appearance").first() else {
+            return;
+        };
+        let geometry = self.node(geometry);
+        if geometry.type_name != "Plane" {
+            return;
+        }
+        let frame = self.z_up(frame);
+        let level = frame.origin[2];
+        if tilt(frame.axis(2)) > TILT_TOLERANCE || level.abs() > 10.0 * FLOOR_LEVEL {
+            return;
+        }
+        let mut size = self.vector(geometry, "size", [1.0, 1.0]);
+        if self.y_up {
+            size = [size[1], size[0]];
+        }
+        self.lay_texture(node, self.node(appearance), &frame, size, size);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn texture(size: [f64; 2], tile: [f64; 2]) -> FloorTexture {
+        FloorTexture {
+            urls: vec!["track.png".into()],
+            owner: "line 1: RectangleArena".into(),
+            center: [0.0, 0.0],
+            size,
+            yaw: 0.0,
+            tile,
+            candidates: vec!["track.png".into()],
+        }
+    }
+
+    fn reflectance_at(paint: &[PaintSpec], x: f64, y: f64) -> Option<f64> {
+        paint.iter().rev().find_map(|p| match p {
+            PaintSpec::Rect {
+                center,
+                size,
+                reflectance,
+                ..
+            } => {
+                let inside = (x - center[0].0).abs() < size[0].0 / 2.0
+                    && (y - center[1].0).abs() < size[1].0 / 2.0;
+                inside.then_some(reflectance.0)
+            }
+            _ => None,
+        })
+    }
+
+    #[test]
+    fn rows_of_equal_grey_join_into_rectangles() {
+        // 4 x 3: a black column in the middle of white, one grey pixel at the bottom right.
+        let levels = vec![
+            1.0, 0.0, 1.0, 1.0, //
+            1.0, 0.0, 1.0, 1.0, //
+            1.0, 0.0, 1.0, 0.5,
+        ];
+        let image = GreyImage {
+            width: 4,
+            height: 3,
+            levels,
+        };
+        assert_eq!(pixel_rects(&image).len(), 5);
+        let paint = texture([0.4, 0.3], [0.4, 0.3]).paint(&image).unwrap();
+        // Pixel (row 0, column 1) is at x in [-0.1, 0], y in [0.05, 0.15].
+        assert_eq!(reflectance_at(&paint, -0.05, 0.1), Some(0.2));
+        assert_eq!(reflectance_at(&paint, -0.15, -0.1), Some(1.0));
+        assert_eq!(
+            reflectance_at(&paint, 0.15, -0.1),
+            Some(grey_reflectance(0.5))
+        );
+        assert_eq!(reflectance_at(&paint, 0.15, 0.1), Some(1.0));
+    }
+
+    #[test]
+    fn tiles_repeat_the_image_and_stop_at_the_floor_edge() {
+        let image = GreyImage {
+            width: 2,
+            height: 1,
+            levels: vec![0.0, 1.0],
+        };
+        // A 1 x 0.2 floor in tiles of 0.4 x 0.2: black, white, black, white, black (cut).
+        let paint = texture([1.0, 0.2], [0.4, 0.2]).paint(&image).unwrap();
+        for (x, f) in [
+            (-0.45, 0.2),
+            (-0.25, 1.0),
+            (-0.05, 0.2),
+            (0.15, 1.0),
+            (0.45, 0.2),
+        ] {
+            assert_eq!(reflectance_at(&paint, x, 0.0), Some(f), "x {x}");
+        }
+        assert_eq!(reflectance_at(&paint, 0.51, 0.0), None);
+    }
+
+    #[test]
+    fn too_many_tiles_are_refused_not_painted() {
+        let image = GreyImage {
+            width: 2,
+            height: 2,
+            levels: vec![0.0, 1.0, 1.0, 0.0],
+        };
+        let err = texture([1e6, 1e6], [1e-3, 1e-3]).paint(&image).unwrap_err();
+        assert!(
+            err.contains("expected at most 200000 paint rectangles"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn large_images_are_sampled_down_keeping_their_edges() {
+        // 512 x 300, black left of column 200: after sampling down to 256 x 256 the edge is
+        // still at 200 / 512 of the width.
+        let (width, height) = (512, 300);
+        let levels = (0..width * height)
+            .map(|i| if i % width < 200 { 0.0 } else { 1.0 })
+            .collect();
+        let image = GreyImage {
+            width,
+            height,
+            levels,
+        };
+        let paint = texture([0.512, 0.3], [0.512, 0.3]).paint(&image).unwrap();
+        assert_eq!(paint.len(), 2, "one black and one white rectangle");
+        let edge = -0.256 + 0.2;
+        assert_eq!(reflectance_at(&paint, edge - 0.002, 0.0), Some(0.2));
+        assert_eq!(reflectance_at(&paint, edge + 0.002, 0.0), Some(1.0));
+    }
+
+    #[test]
+    fn a_y_up_arena_lays_its_texture_on_the_converted_floor() {
+        // R2021a: floorSize is (x, z) of the Y-up PROTO, 2 m along north (ENU -y), 1 m along east.
+        let import = WbtImport::from_text(
+            "#VRML_SIM R2021a utf8
+RectangleArena { floorSize 2 1 floorTileSize 1 0.5 floorAppearance Appearance { texture ImageTexture { url [\"t.png\"] } } }\n",
+            "old.wbt",
+        )
+        .unwrap();
+        let texture = &import.floor_textures[0];
+        assert_eq!(texture.size, [1.0, 2.0]);
+        assert_eq!(texture.tile, [0.5, 1.0]);
+        assert_eq!(texture.center, [0.0, 0.0]);
+        assert_eq!(texture.candidates, ["t.png", "textures/t.png"]);
+    }
+
+    #[test]
+    fn a_missing_image_is_a_warning_naming_the_files() {
+        let mut import = WbtImport::from_text(
+            "#VRML_SIM R2023b utf8\nRectangleArena { floorAppearance PBRAppearance { baseColorMap ImageTexture { url [\"textures/track.png\"] } } }\n",
+            "/worlds/line.wbt",
+        )
+        .unwrap();
+        assert_eq!(import.floor_textures.len(), 1);
+        import.paint_floor(&BTreeMap::new());
+        let warning = import.warnings.last().unwrap();
+        assert!(
+            warning.contains("/worlds/textures/track.png") && warning.contains("not found"),
+            "{warning}"
+        );
+        assert!(import.paint.is_empty());
+    }
+}
