@@ -10,7 +10,8 @@ world frame, z up.
 from __future__ import annotations
 
 import os
-from typing import Literal, TypedDict, cast
+from collections.abc import Mapping
+from typing import Any, Literal, TypedDict, cast
 
 from mazesim import _core
 from mazesim._core import World
@@ -22,7 +23,11 @@ __all__ = [
     "RobotPose",
     "import_wbt",
     "import_wbt_text",
+    "robot_warnings",
 ]
+
+#: Robot node types that mazesim simulates as they are.
+E_PUCK_MODELS = ("E-puck", "e-puck", "e-puck2", "E-puck2")
 
 
 class BoxObstacle(TypedDict):
@@ -92,3 +97,22 @@ def import_wbt_text(text: str, source: str = "<string>") -> tuple[World, ImportR
     """
     world, report = _core.import_wbt_text(text, source)
     return world, cast(ImportReport, report)
+
+
+def robot_warnings(report: Mapping[str, Any]) -> list[str]:
+    """Warnings about the world's robot that the report does not already give.
+
+    Args:
+        report: An import report; its ``robot_model`` (when present) names the robot's type.
+
+    Returns:
+        A warning when the robot is not an e-puck (it then runs as the report's
+        ``robot_profile``, by default the e-puck), unless a report warning already names it.
+    """
+    model = report.get("robot_model")
+    if not model or model in E_PUCK_MODELS:
+        return []
+    if any(str(model) in str(warning) for warning in report.get("warnings", [])):
+        return []
+    profile = report.get("robot_profile") or "e-puck"
+    return [f"the world's robot is a {model}, not an e-puck: mazesim runs it as the {profile}"]

@@ -1,0 +1,73 @@
+"""What a controller sees of a Webots world file beyond the import report.
+
+The import report gives walls, the robot's pose and its extension devices; the controller module
+also wants the DEF names (for ``Supervisor.getFromDef``), whether the robot is a supervisor,
+the E-puck's camera fields and the world's north. They are read from the file's text here.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+
+__all__ = ["Scene", "read_scene"]
+
+_DEF = re.compile(r"\bDEF\s+([^\s{}\[\]]+)\s+([A-Za-z_][\w-]*)\s*\{")
+_SUPERVISOR = re.compile(r"\bsupervisor\s+TRUE\b")
+_NUMBER = r"([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)"
+_CAMERA_WIDTH = re.compile(r"\bcamera_width\s+" + _NUMBER)
+_CAMERA_HEIGHT = re.compile(r"\bcamera_height\s+" + _NUMBER)
+_CAMERA_FOV = re.compile(r"\bcamera_fieldOfView\s+" + _NUMBER)
+_NORTH = re.compile(r"\bnorthDirection\s+" + _NUMBER + r"\s+" + _NUMBER + r"\s+" + _NUMBER)
+#: Node types that are robots.
+ROBOT_TYPES = {"E-puck", "Robot", "e-puck2", "Epuck", "E-puck2"}
+
+
+@dataclass
+class Scene:
+    """DEF names, supervisor flag, camera fields and north of a world file.
+
+    Attributes:
+        defs: DEF name -> node type, in file order.
+        robot_def: The robot node's DEF name, or None.
+        supervisor: Whether the file says ``supervisor TRUE``.
+        camera_width: The E-puck's ``camera_width`` field, if set.
+        camera_height: The E-puck's ``camera_height`` field, if set.
+        camera_fov: The E-puck's ``camera_fieldOfView`` field, if set.
+        north: ``WorldInfo.northDirection`` as x, y (world frame), if set.
+    """
+
+    defs: dict[str, str] = field(default_factory=dict)
+    robot_def: str | None = None
+    supervisor: bool = False
+    camera_width: int | None = None
+    camera_height: int | None = None
+    camera_fov: float | None = None
+    north: tuple[float, float] | None = None
+
+
+def read_scene(text: str, robot_model: str | None = None) -> Scene:
+    """Reads the scene facts of a world file's text (comments skipped).
+
+    Args:
+        text: The ``.wbt`` text.
+        robot_model: The robot's node type from the import report, if any.
+    """
+    text = "\n".join(line.split("#", 1)[0] for line in text.splitlines())
+    scene = Scene()
+    robot_types = ROBOT_TYPES | ({robot_model} if robot_model else set())
+    for match in _DEF.finditer(text):
+        name, node_type = match.group(1), match.group(2)
+        scene.defs.setdefault(name, node_type)
+        if scene.robot_def is None and node_type in robot_types:
+            scene.robot_def = name
+    scene.supervisor = bool(_SUPERVISOR.search(text))
+    if found := _CAMERA_WIDTH.search(text):
+        scene.camera_width = max(1, int(float(found.group(1))))
+    if found := _CAMERA_HEIGHT.search(text):
+        scene.camera_height = max(1, int(float(found.group(1))))
+    if found := _CAMERA_FOV.search(text):
+        scene.camera_fov = float(found.group(1))
+    if found := _NORTH.search(text):
+        scene.north = (float(found.group(1)), float(found.group(2)))
+    return scene
