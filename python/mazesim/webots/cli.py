@@ -230,7 +230,8 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
     with atomic_file(summary_path) as handle:
         handle.write((json.dumps(summary, indent=2) + "\n").encode("utf-8"))
     step_s = result.simulated_seconds / result.steps if result.steps else 0.0
-    with atomic_file(os.path.join(out_dir, "trajectory.csv")) as handle:
+    table = os.path.join(out_dir, "trajectory.csv")
+    with atomic_file(table) as handle:
         points = enumerate(zip(result.xs, result.ys))
         rows = (f"{i * step_s:.3f},{x:.5f},{y:.5f}" for i, (x, y) in points)
         handle.write(("time_s,x_m,y_m\n" + "\n".join(rows) + "\n").encode("utf-8"))
@@ -246,7 +247,7 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
         f"collisions         {result.collisions}\n"
         f"longest stop       {result.longest_stop_s:.2f} s\n"
         f"wall-clock time    {wall_clock:.3f} s ({speed} real time)\n"
-        f"wrote              {picture}, {summary_path}, trajectory.csv\n"
+        f"wrote              {picture}, {summary_path}, {table}\n"
     )
     return result.exit_status
 
