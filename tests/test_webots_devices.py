@@ -313,3 +313,26 @@ def test_a_robot_that_is_not_an_e_puck_is_warned_about() -> None:
 def test_unknown_robot_profiles_fall_back_to_the_e_puck() -> None:
     assert simulations.robot_profile_name({"robot_profile": "no-such-robot"}) == "e-puck"
     assert simulations.robot_profile_name(None) == "e-puck"
+
+
+def test_gps_reads_in_the_old_nue_frame_of_worlds_before_r2022a() -> None:
+    assert read_scene("#VRML_SIM R2021c utf8\nWorldInfo {}\n").nue
+    assert read_scene("#VRML_SIM V8.5 utf8\n").nue
+    assert not read_scene("#VRML_SIM R2023b utf8\n").nue
+    assert read_scene('#VRML_SIM R2023b utf8\nWorldInfo { coordinateSystem "NUE" }\n').nue
+    scene = read_scene("#VRML_SIM R2021a utf8\n")
+    gps_entry = {"type": "GPS", "name": "gps", "translation": [0.0, 0.0, 0.04]}
+    prepare(
+        mazesim.load_world("arena"),
+        seconds=1.0,
+        noise=False,
+        report={"extension_devices": [gps_entry]},
+        scene=scene,
+    )
+    controller.Robot.created = None
+    robot = controller.Robot()
+    gps = robot.getDevice("gps")
+    gps.enable(32)
+    simulations.current().move_robot(0.1, 0.2, 0.0)
+    robot.step(32)
+    assert gps.getValues() == pytest.approx([0.1, 0.04, -0.2])

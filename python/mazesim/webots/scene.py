@@ -18,6 +18,8 @@ _NUMBER = r"([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)"
 _CAMERA_WIDTH = re.compile(r"\bcamera_width\s+" + _NUMBER)
 _CAMERA_HEIGHT = re.compile(r"\bcamera_height\s+" + _NUMBER)
 _CAMERA_FOV = re.compile(r"\bcamera_fieldOfView\s+" + _NUMBER)
+_HEADER = re.compile(r"#VRML_SIM\s+(?:R(\d{4})([a-z])?|V?(\d+)\.)")
+_NUE = re.compile(r'\bcoordinateSystem\s+"NUE"')
 _NORTH = re.compile(r"\bnorthDirection\s+" + _NUMBER + r"\s+" + _NUMBER + r"\s+" + _NUMBER)
 #: Node types that are robots.
 ROBOT_TYPES = {"E-puck", "Robot", "e-puck2", "Epuck", "E-puck2"}
@@ -35,6 +37,8 @@ class Scene:
         camera_height: The E-puck's ``camera_height`` field, if set.
         camera_fov: The E-puck's ``camera_fieldOfView`` field, if set.
         north: ``WorldInfo.northDirection`` as x, y (world frame), if set.
+        nue: Whether the file uses Webots' old NUE frame (y up): before R2022a, or
+            ``coordinateSystem "NUE"``; a GPS then reads in that frame.
     """
 
     defs: dict[str, str] = field(default_factory=dict)
@@ -44,6 +48,7 @@ class Scene:
     camera_height: int | None = None
     camera_fov: float | None = None
     north: tuple[float, float] | None = None
+    nue: bool = False
 
 
 def read_scene(text: str, robot_model: str | None = None) -> Scene:
@@ -53,8 +58,13 @@ def read_scene(text: str, robot_model: str | None = None) -> Scene:
         text: The ``.wbt`` text.
         robot_model: The robot's node type from the import report, if any.
     """
-    text = "\n".join(line.split("#", 1)[0] for line in text.splitlines())
+    header = _HEADER.match(text.lstrip())
     scene = Scene()
+    if header is not None:
+        year = header.group(1)
+        scene.nue = int(year) < 2022 if year else header.group(3) is not None
+    text = "\n".join(line.split("#", 1)[0] for line in text.splitlines())
+    scene.nue = scene.nue or bool(_NUE.search(text))
     robot_types = ROBOT_TYPES | ({robot_model} if robot_model else set())
     for match in _DEF.finditer(text):
         name, node_type = match.group(1), match.group(2)
@@ -68,6 +78,6 @@ def read_scene(text: str, robot_model: str | None = None) -> Scene:
         scene.camera_height = max(1, int(float(found.group(1))))
     if found := _CAMERA_FOV.search(text):
         scene.camera_fov = float(found.group(1))
-    if found := _NORTH.search(text):
+    if (found := _NORTH.search(text)) and not scene.nue:
         scene.north = (float(found.group(1)), float(found.group(2)))
     return scene

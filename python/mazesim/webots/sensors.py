@@ -192,7 +192,8 @@ class Compass(_TableVector):
 
 
 class GPS(_TableVector):
-    """The device's position in the world frame (m) and its speed."""
+    """The device's position in the world frame (m) and its speed; in a world of Webots' old
+    NUE frame (before R2022a) in that frame: [x, height, -y]."""
 
     LOCAL = 0
     WGS84 = 1
@@ -200,6 +201,9 @@ class GPS(_TableVector):
 
     def _measure(self) -> tuple[float, float, float]:
         x, y, _ = self._mount.world_pose(self._simulation.simulator.pose)
+        if self._simulation.scene.nue:
+            # Worlds before R2022a: x, y up, z = -north (Webots' NUE frame).
+            return x, self._mount.z, -y
         return x, y, self._mount.z
 
     def getSpeed(self) -> float:
@@ -219,7 +223,7 @@ class GPS(_TableVector):
         if all(math.isnan(v) for v in self._value):
             return [math.nan] * 3
         vx, vy, _ = self._simulation.velocity
-        return [vx, vy, 0.0]
+        return [vx, 0.0, -vy] if self._simulation.scene.nue else [vx, vy, 0.0]
 
     @property
     def speed_vector(self) -> list[float]:
