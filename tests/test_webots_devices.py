@@ -336,3 +336,16 @@ def test_gps_reads_in_the_old_nue_frame_of_worlds_before_r2022a() -> None:
     simulations.current().move_robot(0.1, 0.2, 0.0)
     robot.step(32)
     assert gps.getValues() == pytest.approx([0.1, 0.04, -0.2])
+
+
+def test_the_reports_robot_profile_picks_the_devices_by_name() -> None:
+    robot = make_robot(report={"robot_profile": "alphabot2"})
+    assert robot.getModel() == "alphabot2"
+    profile = mazesim.RobotProfile.builtin("alphabot2")
+    for name in [*profile.distance_sensor_names, *profile.ground_sensor_names]:
+        assert isinstance(robot.getDevice(name), controller.DistanceSensor), name
+    assert robot.getDevice("left wheel motor").getMaxVelocity() == profile.max_wheel_speed
+    line4 = robot.getDevice("line4")
+    line4.enable(32)
+    robot.step(32)
+    assert line4.getValue() == pytest.approx(float(simulations.current().ground_readings()[4]))
