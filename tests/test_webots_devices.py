@@ -349,3 +349,18 @@ def test_the_reports_robot_profile_picks_the_devices_by_name() -> None:
     line4.enable(32)
     robot.step(32)
     assert line4.getValue() == pytest.approx(float(simulations.current().ground_readings()[4]))
+
+
+def test_other_def_nodes_have_their_translation_from_the_world_file() -> None:
+    world = Path(__file__).parent / "data" / "webots-worlds" / "collision_avoidance.wbt"
+    scene = read_scene(world.read_text())
+    prepare(mazesim.load_world(str(world)), seconds=1.0, scene=scene)
+    controller.Robot.created = None
+    supervisor = controller.Supervisor()
+    wall = supervisor.getFromDef("WALL_1")
+    assert wall.getPosition() == pytest.approx([0.5, 0.0, 0.05])
+    ball = supervisor.getFromDef("BALL").getField("translation")
+    assert ball.getSFVec3f() == pytest.approx([0.2, 0.0, 0.1])
+    ball.setSFVec3f([0.1, 0.1, 0.1])
+    assert supervisor.getFromDef("BALL").getPosition() == pytest.approx([0.1, 0.1, 0.1])
+    assert supervisor.getFromDef("WALL_SHAPE").getField("translation") is None

@@ -20,6 +20,7 @@ _CAMERA_HEIGHT = re.compile(r"\bcamera_height\s+" + _NUMBER)
 _CAMERA_FOV = re.compile(r"\bcamera_fieldOfView\s+" + _NUMBER)
 _HEADER = re.compile(r"#VRML_SIM\s+(?:R(\d{4})([a-z])?|V?(\d+)\.)")
 _NUE = re.compile(r'\bcoordinateSystem\s+"NUE"')
+_TRANSLATION = re.compile(r"\btranslation\s+" + _NUMBER + r"\s+" + _NUMBER + r"\s+" + _NUMBER)
 _NORTH = re.compile(r"\bnorthDirection\s+" + _NUMBER + r"\s+" + _NUMBER + r"\s+" + _NUMBER)
 #: Node types that are robots.
 ROBOT_TYPES = {"E-puck", "Robot", "e-puck2", "Epuck", "E-puck2"}
@@ -31,6 +32,8 @@ class Scene:
 
     Attributes:
         defs: DEF name -> node type, in file order.
+        translations: DEF name -> the ``translation`` of a top-level DEF node, in the world
+            frame (ENU, converted from NUE), when the node gives one.
         robot_def: The robot node's DEF name, or None.
         supervisor: Whether the file says ``supervisor TRUE``.
         camera_width: The E-puck's ``camera_width`` field, if set.
@@ -42,6 +45,7 @@ class Scene:
     """
 
     defs: dict[str, str] = field(default_factory=dict)
+    translations: dict[str, tuple[float, float, float]] = field(default_factory=dict)
     robot_def: str | None = None
     supervisor: bool = False
     camera_width: int | None = None
@@ -66,11 +70,17 @@ def read_scene(text: str, robot_model: str | None = None) -> Scene:
     text = "\n".join(line.split("#", 1)[0] for line in text.splitlines())
     scene.nue = scene.nue or bool(_NUE.search(text))
     robot_types = ROBOT_TYPES | ({robot_model} if robot_model else set())
+    depth, scanned = 0, 0
     for match in _DEF.finditer(text):
         name, node_type = match.group(1), match.group(2)
+        depth += _nesting(text[scanned : match.start()])
+        scanned = match.start()
         scene.defs.setdefault(name, node_type)
         if scene.robot_def is None and node_type in robot_types:
             scene.robot_def = name
+        if depth == 0 and (translation := _own_translation(text, match.end())) is not None:
+            x, y, z = translation
+            scene.translations.setdefault(name, (x, -z, y) if scene.nue else (x, y, z))
     scene.supervisor = bool(_SUPERVISOR.search(text))
     if found := _CAMERA_WIDTH.search(text):
         scene.camera_width = max(1, int(float(found.group(1))))
@@ -81,3 +91,28 @@ def read_scene(text: str, robot_model: str | None = None) -> Scene:
     if (found := _NORTH.search(text)) and not scene.nue:
         scene.north = (float(found.group(1)), float(found.group(2)))
     return scene
+
+
+def _nesting(text: str) -> int:
+    """How much deeper (in braces and brackets) the end of ``text`` is than its start."""
+    return text.count("{") + text.count("[") - text.count("}") - text.count("]")
+
+
+def _own_translation(text: str, body: int) -> tuple[float, float, float] | None:
+    """The ``translation`` field of the node whose body starts at ``body`` (after its ``{``),
+    not one of its children's."""
+    depth, own = 0, []
+    for index in range(body, len(text)):
+        char = text[index]
+        if char in "{[":
+            depth += 1
+        elif char in "}]":
+            depth -= 1
+            if depth < 0:
+                break
+        elif depth == 0:
+            own.append(char)
+    found = _TRANSLATION.search("".join(own))
+    if found is None:
+        return None
+    return float(found.group(1)), float(found.group(2)), float(found.group(3))

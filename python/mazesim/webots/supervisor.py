@@ -1,7 +1,8 @@
 """Webots' ``Supervisor``, ``Node`` and ``Field`` for the robot of a run.
 
-The supervisor sees the robot's node (``getSelf``, ``getFromDef`` of its DEF name, or of any
-DEF name of the world file, which gives a node without fields), reads and sets the robot's
+The supervisor sees the robot's node (``getSelf``, ``getFromDef`` of its DEF name) and the
+world file's other DEF nodes (their type, and the translation of a top-level one, which can be
+read and set but moves nothing in the simulation). It reads and sets the robot's
 ``translation`` and ``rotation`` (moving the robot in the simulation), reads its position,
 orientation and velocity, resets the simulation (the robot back at its start) and quits it
 with a status (``mazesim webots run`` exits with it).
@@ -105,8 +106,7 @@ class Field(NotSimulated):
         if self._name != "translation":
             self._wrong("get_sf_vec3f")
             return None
-        x, y, _ = self._node._pose()
-        return [x, y, 0.0]
+        return self._node.getPosition()
 
     def setSFVec3f(self, values: list[float]) -> None:
         """Moves the robot to [x, y, z] (z is ignored: the robot stays on the floor)."""
@@ -179,26 +179,48 @@ class Node(NotSimulated):
     """A node of the world: the robot's (with fields and a pose) or another DEF node."""
 
     def __init__(
-        self, type_name: str, def_name: str = "", node_id: int = 0, robot: bool = False
+        self,
+        type_name: str,
+        def_name: str = "",
+        node_id: int = 0,
+        robot: bool = False,
+        translation: tuple[float, float, float] | None = None,
     ) -> None:
+        """A node.
+
+        Args:
+            type_name: The node's type (``"E-puck"``, ``"Solid"``...).
+            def_name: Its DEF name.
+            node_id: Its unique id.
+            robot: Whether it is the robot of the run (its pose is the simulation's).
+            translation: The ``translation`` of another node, read from the world file.
+        """
         self._type_name = type_name
         self._def = def_name
         self._id = node_id
         self._robot = robot
+        self._translation = translation
+        self._yaw = 0.0
         self._strings = {"name": "e-puck", "customData": "", "controller": "<extern>"}
 
     def _simulation(self) -> _simulations.RobotSimulation:
         return _simulations.current()
 
     def _pose(self) -> tuple[float, float, float]:
-        if not self._robot:
+        if self._robot:
+            x, y, yaw = self._simulation().simulator.pose
+            return float(x), float(y), float(yaw)
+        if self._translation is None:
             return math.nan, math.nan, math.nan
-        x, y, yaw = self._simulation().simulator.pose
-        return float(x), float(y), float(yaw)
+        return self._translation[0], self._translation[1], self._yaw
 
     def _move(self, x: float, y: float, yaw: float) -> None:
+        """Moves the robot in the simulation; another node's pose is only recorded."""
         if self._robot:
             self._simulation().move_robot(x, y, yaw)
+        elif self._translation is not None:
+            self._translation = (x, y, self._translation[2])
+            self._yaw = yaw
 
     def getId(self) -> int:
         """The node's unique id."""
@@ -237,8 +259,11 @@ class Node(NotSimulated):
     def getField(self, fieldName: str) -> Field | None:
         """The field of that name, or None (with Webots' message)."""
         types = {"translation": Field.SF_VEC3F, "rotation": Field.SF_ROTATION}
-        types.update(dict.fromkeys(self._strings, Field.SF_STRING))
-        if not self._robot or fieldName not in types:
+        if self._robot:
+            types.update(dict.fromkeys(self._strings, Field.SF_STRING))
+        elif self._translation is None:
+            types = {}
+        if fieldName not in types:
             _print_error(
                 f"Error: wb_supervisor_node_get_field(): field '{fieldName}' does not exist "
                 f"in node '{self._def or self._type_name}'."
@@ -249,9 +274,12 @@ class Node(NotSimulated):
     getProtoField = getField
 
     def getPosition(self) -> list[float]:
-        """The node's position [x, y, z] in metres (world frame)."""
+        """The node's position [x, y, z] in metres (world frame; NaN for a node whose position
+        the world file does not give)."""
         x, y, _ = self._pose()
-        return [x, y, 0.0 if self._robot else math.nan]
+        if self._robot:
+            return [x, y, 0.0]
+        return [x, y, self._translation[2] if self._translation else math.nan]
 
     def getOrientation(self) -> list[float]:
         """The node's rotation matrix, row after row (9 numbers)."""
@@ -331,6 +359,7 @@ class Supervisor(Robot):
         robot_type = str(self._simulation.report.get("robot_model") or "E-puck")
         self._self = Node(robot_type, scene.robot_def or "", node_id=1, robot=True)
         self._mode = self.SIMULATION_MODE_FAST
+        self._nodes: dict[str, Node] = {}
 
     def getSelf(self) -> Node:
         """The robot's own node."""
@@ -349,7 +378,11 @@ class Supervisor(Robot):
         if name and (name == scene.robot_def or not scene.defs):
             return self._self
         if name in scene.defs:
-            return Node(scene.defs[name], name, node_id=2 + list(scene.defs).index(name))
+            if name not in self._nodes:
+                index = list(scene.defs).index(name)
+                translation = scene.translations.get(name)
+                self._nodes[name] = Node(scene.defs[name], name, 2 + index, translation=translation)
+            return self._nodes[name]
         _print_error(f"Error: wb_supervisor_node_get_from_def(): node '{name}' not found.")
         return None
 
