@@ -364,3 +364,35 @@ def test_other_def_nodes_have_their_translation_from_the_world_file() -> None:
     ball.setSFVec3f([0.1, 0.1, 0.1])
     assert supervisor.getFromDef("BALL").getPosition() == pytest.approx([0.1, 0.1, 0.1])
     assert supervisor.getFromDef("WALL_SHAPE").getField("translation") is None
+
+
+LIT_WORLD = """#VRML_SIM R2023b utf8
+WorldInfo { basicTimeStep 32 }
+PointLight {
+  location 0 0.3 0.033
+  intensity 0.1
+  attenuation 0 0 1
+}
+DirectionalLight { on FALSE direction 1 0 0 }
+"""
+
+
+def test_light_sensors_see_the_worlds_point_light() -> None:
+    scene = read_scene(LIT_WORLD)
+    assert len(scene.lights) == 1 and scene.lights[0].position == (0.0, 0.3, 0.033)
+    prepare(mazesim.load_world("arena"), seconds=1.0, noise=False, scene=scene)
+    controller.Robot.created = None
+    robot = controller.Robot()
+    sensors = [robot.getDevice(f"ls{i}") for i in range(8)]
+    for sensor in sensors:
+        sensor.enable(32)
+    robot.step(32)
+    values = [sensor.getValue() for sensor in sensors]
+    # The light is 0.3 m to the robot's left (+y): ls5 faces it, ls2 faces away.
+    assert values[5] == min(values) and values[2] == pytest.approx(4095.0)
+    x, y, heading = PROFILE.distance_sensor_poses()[5]
+    distance = 0.3 - y
+    expected = 4095.0 * (1.0 - 0.1 * math.cos(heading - math.pi / 2) / distance**2 / 2.0)
+    assert values[5] == pytest.approx(expected, rel=0.02)
+    nue = read_scene("#VRML_SIM R2021a utf8\nPointLight { location 1 2 3 }\n")
+    assert nue.lights[0].position == (1.0, -3.0, 2.0)

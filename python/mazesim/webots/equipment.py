@@ -10,6 +10,7 @@ device of the import report's ``extension_devices``.
 
 from __future__ import annotations
 
+import math
 import sys
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any
@@ -37,6 +38,8 @@ __all__ = ["Equipment", "extension_device"]
 LED_COUNT = 10
 #: Number of light sensors of the e-puck (ls0..ls7, beside ps0..ps7).
 LIGHT_SENSOR_COUNT = 8
+#: Height of the e-puck's light sensors above the floor (m).
+LIGHT_SENSOR_HEIGHT = 0.033
 
 
 def _names(profile: Any, attribute: str) -> list[str]:
@@ -54,6 +57,17 @@ def _table(fields: Mapping[str, Any]) -> list[list[float]] | None:
         return [[float(v) for v in row] for row in raw]
     flat = [float(v) for v in raw]
     return [flat[i : i + 3] for i in range(0, len(flat) - 2, 3)]
+
+
+def light_sensor_mount(profile: Any, index: int) -> DeviceMount:
+    """Where light sensor ``ls<index>`` sits: beside proximity sensor ``ps<index>`` (the
+    e-puck's TCRT1000 packages hold both), at the sensors' height."""
+    poses = profile.distance_sensor_poses()
+    if index < len(poses):
+        x, y, heading = (float(v) for v in poses[index][:3])
+    else:
+        x, y, heading = 0.0, 0.0, index * math.tau / LIGHT_SENSOR_COUNT
+    return DeviceMount((x, y, LIGHT_SENSOR_HEIGHT), heading)
 
 
 def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> Device | None:
@@ -76,7 +90,9 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
             name, simulation, mount, table, str(fields.get("type", "generic"))
         ),
         "LightSensor": lambda: (
-            LightSensor(name, simulation, table) if table else LightSensor(name, simulation)
+            LightSensor(name, simulation, table, mount)
+            if table
+            else LightSensor(name, simulation, mount=mount)
         ),
         "LED": lambda: LED(name, simulation),
         "Camera": lambda: Camera(
@@ -135,7 +151,10 @@ class Equipment:
             DistanceSensor(name, simulation, i, ground=False)
             for i, name in enumerate(_names(profile, "distance_sensor_names"))
         ]
-        devices += [LightSensor(f"ls{i}", simulation) for i in range(LIGHT_SENSOR_COUNT)]
+        devices += [
+            LightSensor(f"ls{i}", simulation, mount=light_sensor_mount(profile, i))
+            for i in range(LIGHT_SENSOR_COUNT)
+        ]
         devices += [
             DistanceSensor(name, simulation, i, ground=True)
             for i, name in enumerate(_names(profile, "ground_sensor_names"))

@@ -10,6 +10,8 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, field
 
+from mazesim.webots.lights import Light, read_lights
+
 __all__ = ["Scene", "read_scene"]
 
 _DEF = re.compile(r"\bDEF\s+([^\s{}\[\]]+)\s+([A-Za-z_][\w-]*)\s*\{")
@@ -40,6 +42,7 @@ class Scene:
         camera_height: The E-puck's ``camera_height`` field, if set.
         camera_fov: The E-puck's ``camera_fieldOfView`` field, if set.
         north: ``WorldInfo.northDirection`` as x, y (world frame), if set.
+        lights: The world's lights that are on (empty: the light sensors' default ambient).
         nue: Whether the file uses Webots' old NUE frame (y up): before R2022a, or
             ``coordinateSystem "NUE"``; a GPS then reads in that frame.
     """
@@ -53,6 +56,7 @@ class Scene:
     camera_fov: float | None = None
     north: tuple[float, float] | None = None
     nue: bool = False
+    lights: list[Light] = field(default_factory=list)
 
 
 def read_scene(text: str, robot_model: str | None = None) -> Scene:
@@ -82,6 +86,7 @@ def read_scene(text: str, robot_model: str | None = None) -> Scene:
             x, y, z = translation
             scene.translations.setdefault(name, (x, -z, y) if scene.nue else (x, y, z))
     scene.supervisor = bool(_SUPERVISOR.search(text))
+    scene.lights = read_lights(text, scene.nue)
     if found := _CAMERA_WIDTH.search(text):
         scene.camera_width = max(1, int(float(found.group(1))))
     if found := _CAMERA_HEIGHT.search(text):

@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, ClassVar
 import numpy as np
 
 from mazesim.webots.devices import _ScalarSensor, _VectorSensor
+from mazesim.webots.lights import irradiance
 from mazesim.webots.rays import WallBoxes
 
 if TYPE_CHECKING:
@@ -39,8 +40,6 @@ __all__ = [
 GRAVITY = 9.81
 #: The light sensors' table of Webots' E-puck PROTO: irradiance (W/m^2), value, noise.
 LIGHT_TABLE = ((0.0, 4095.0, 0.002), (2.0, 0.0, 0.002))
-#: Irradiance (W/m^2) of a world without light information: a light of intensity 1.
-DEFAULT_IRRADIANCE = 1.0
 #: The accelerometer's table: m/s^2 in and out (+-4 g), 0.5 % noise.
 ACCELEROMETER_TABLE = ((-39.24, -39.24, 0.005), (39.24, 39.24, 0.005))
 #: The gyro's table: rad/s in and out, 0.5 % noise.
@@ -282,7 +281,8 @@ class InertialUnit(_TableVector):
 
 
 class LightSensor(_Tabled, _ScalarSensor):
-    """Ambient light: the irradiance from the world's lights through the PROTO's table."""
+    """Light: the irradiance from the world's lights (:mod:`mazesim.webots.lights`) where the
+    sensor is, facing its direction, through the PROTO's table."""
 
     _api = "wb_light_sensor"
 
@@ -291,15 +291,17 @@ class LightSensor(_Tabled, _ScalarSensor):
         name: str,
         simulation: RobotSimulation,
         table: Sequence[Sequence[float]] = LIGHT_TABLE,
-        irradiance: float = DEFAULT_IRRADIANCE,
+        mount: DeviceMount | None = None,
     ) -> None:
         super().__init__(name, simulation)
         self._table = LookupTable(table)
-        self._irradiance = irradiance
+        self._mount = mount or DeviceMount()
         self._rng = _noise_stream(simulation, name)
 
     def _read(self) -> float:
-        return self._table(self._irradiance, self._rng)
+        x, y, heading = self._mount.world_pose(self._simulation.simulator.pose)
+        light = irradiance(self._simulation.scene.lights, (x, y, self._mount.z), heading)
+        return self._table(light, self._rng)
 
 
 class TouchSensor(_ScalarSensor):
