@@ -309,3 +309,30 @@ def test_key_script_holds_each_key_until_the_next_line() -> None:
     assert script.key_at(2.2) == 315 and script.key_at(2.6) is None
     assert script.key_at(3.5) == 0x20000 + 316
     assert script.key_at(10.0) is None
+
+
+OLD_STYLE = """
+import os
+import sys
+
+sys.path.append(os.path.join(os.environ["WEBOTS_HOME"], "lib", "controller", "python"))
+from controller import Robot  # noqa: E402
+
+robot = Robot()
+robot.keyboardEnable(32)
+while robot.step(32) != -1:
+    key = robot.keyboardGetKey()
+    if key == ord("Q"):
+        print("quit at", round(robot.getTime(), 2))
+        break
+"""
+
+
+def test_an_old_style_controller_that_looks_for_webots_home(tmp_path: Path) -> None:
+    script = tmp_path / "old_style.py"
+    script.write_text(OLD_STYLE)
+    keys = tmp_path / "keys.txt"
+    keys.write_text("0.96 q\n")
+    result = webots_run(script, "--world", "arena", "--keys", str(keys), cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert "quit at 0.96" in result.stdout

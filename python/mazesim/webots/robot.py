@@ -333,6 +333,18 @@ class Robot(NotSimulated):
         """The keyboard."""
         return self._equipment.keyboard
 
+    def keyboardEnable(self, samplingPeriod: int) -> None:
+        """Webots' API before R2018a: ``getKeyboard().enable(samplingPeriod)``."""
+        self._equipment.keyboard.enable(samplingPeriod)
+
+    def keyboardDisable(self) -> None:
+        """Webots' API before R2018a: ``getKeyboard().disable()``."""
+        self._equipment.keyboard.disable()
+
+    def keyboardGetKey(self) -> int:
+        """Webots' API before R2018a: ``getKeyboard().getKey()``."""
+        return self._equipment.keyboard.getKey()
+
     def getMouse(self) -> Mouse:
         """The mouse (no button is ever pressed)."""
         return self._equipment.mouse

@@ -2,7 +2,8 @@
 
 :func:`run_controller` prepares a simulation, installs :mod:`mazesim.webots.controller` as the
 module ``controller`` and executes the file as Webots does (as ``__main__``, from its own folder,
-with that folder on ``sys.path``) until the controller returns or ``Robot.step`` reports the end.
+with that folder on ``sys.path``, ``WEBOTS_HOME`` set if it was not) until the controller
+returns or ``Robot.step`` reports the end.
 """
 
 from __future__ import annotations
@@ -132,6 +133,10 @@ def run_controller(
     sys.modules["controller"] = controller_module
     sys.argv = [file]
     sys.path.insert(0, folder)
+    # Controllers written to run outside Webots too look Webots up through WEBOTS_HOME.
+    saved_home = os.environ.get("WEBOTS_HOME")
+    if saved_home is None:
+        os.environ["WEBOTS_HOME"] = os.path.dirname(os.path.abspath(controller_module.__file__))
     started = time.perf_counter()
     status, error = 0, ""
     try:
@@ -147,6 +152,8 @@ def run_controller(
         status = EXIT_CONTROLLER_ERROR
         error = _controller_traceback(failure)
     finally:
+        if saved_home is None:
+            os.environ.pop("WEBOTS_HOME", None)
         os.chdir(saved_cwd)
         sys.path[:] = saved_path
         sys.argv = saved_argv
