@@ -225,6 +225,7 @@ def test_a_controllers_own_oserror_is_its_traceback(tmp_path: Path) -> None:
         ("import sys\nsys.exit('giving up')\n", 1),
         ("raise KeyboardInterrupt\n", 130),
         ("import sys\nsys.exit()\n", 0),
+        ("while True\n    pass\n", 1),
     ],
 )
 def test_exit_statuses_and_files_whatever_the_ending(
@@ -238,8 +239,14 @@ def test_exit_statuses_and_files_whatever_the_ending(
     result = webots_run(script, "--world", "arena", cwd=tmp_path)
     assert result.returncode == status, result.stderr
     summary, _ = outputs(tmp_path)
-    assert summary["steps"] == 5 and summary["exit_status"] == status
-    if status == 1:
+    assert summary["exit_status"] == status
+    if "while True" in ending:
+        assert summary["steps"] == 0, "a controller that does not compile does not run"
+        assert f'File "{script}", line 5' in result.stderr and "SyntaxError" in result.stderr
+        assert "Traceback" not in result.stderr
+    else:
+        assert summary["steps"] == 5
+    if "giving up" in ending:
         assert "giving up" in result.stderr
 
 

@@ -63,9 +63,9 @@ def register(commands: Any) -> None:
         epilog=(
             "exit status: 0 the controller ended (or robot.step returned -1); N the "
             "controller's sys.exit(N) or a supervisor's simulationQuit(N); 1 the controller "
-            "raised an exception (its traceback is printed); 2 a mazesim error before the run "
-            "(unreadable controller, world or key script, --strict with import warnings); "
-            "130 interrupted (Ctrl-C)."
+            "raised an exception or does not compile (its traceback is printed); 2 a "
+            "mazesim error before the run (unreadable controller, world or key script, "
+            "--strict with import warnings); 130 interrupted (Ctrl-C)."
         ),
     )
     run.add_argument("controller", metavar="CONTROLLER.py", help="the controller's Python file")

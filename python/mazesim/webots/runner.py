@@ -118,11 +118,9 @@ def run_controller(
     Raises:
         MazesimIOError: The file cannot be read.
         InvalidArgumentError: ``seconds`` is not positive.
-        SyntaxError: The controller is not valid Python (the error names its file and line).
     """
     file = os.path.abspath(os.fspath(path))
     source = _read_source(file)
-    code = compile(source, file, "exec")
     simulation = simulations.prepare(
         world, seconds=seconds, seed=seed, noise=noise, report=report, keys=keys, scene=scene
     )
@@ -141,6 +139,8 @@ def run_controller(
     status, error = 0, ""
     try:
         os.chdir(folder)
+        # Compiled with its real file name, so that tracebacks show its own lines.
+        code = compile(source, file, "exec")
         exec(code, {"__name__": "__main__", "__file__": file, "__builtins__": __builtins__})
     except controller_module.ControllerStopped:
         pass
@@ -196,6 +196,8 @@ def _exit_status(request: SystemExit) -> tuple[int, str]:
 
 def _controller_traceback(failure: BaseException) -> str:
     """The traceback of a controller's exception, from the controller's own first frame."""
+    if isinstance(failure, SyntaxError):
+        return "".join(traceback.format_exception_only(type(failure), failure))
     trace: TracebackType | None = failure.__traceback__
     # The first frame is the runner's exec; the controller's file comes next.
     if trace is not None and trace.tb_next is not None:
