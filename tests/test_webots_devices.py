@@ -396,3 +396,19 @@ def test_light_sensors_see_the_worlds_point_light() -> None:
     assert values[5] == pytest.approx(expected, rel=0.02)
     nue = read_scene("#VRML_SIM R2021a utf8\nPointLight { location 1 2 3 }\n")
     assert nue.lights[0].position == (1.0, -3.0, 2.0)
+
+
+def test_a_camera_tilted_down_by_the_world_sees_only_floor() -> None:
+    scene = read_scene("E-puck {\n  camera_rotation 0 1 0 0.6\n  camera_height 20\n}\n")
+    assert scene.camera_pitch == pytest.approx(0.6)
+    prepare(mazesim.load_world("line-follow"), seconds=1.0, scene=scene)
+    controller.Robot.created = None
+    robot = controller.Robot()
+    camera = robot.getDevice("camera")
+    camera.enable(32)
+    robot.step(32)
+    image = camera.getImage()
+    assert camera.getHeight() == 20 and len(image) == 52 * 20 * 4
+    top_row = [controller.Camera.imageGetGray(image, 52, x, 0) for x in range(52)]
+    # Tilted 0.6 rad down, even the top row looks at the floor: white, with the line ahead.
+    assert max(top_row) == 255 and min(top_row) == 0

@@ -165,6 +165,7 @@ class Equipment:
             width=scene.camera_width or CameraView.width,
             height=scene.camera_height or CameraView.height,
             fov=scene.camera_fov or CameraView.fov,
+            pitch=scene.camera_pitch,
         )
         devices += [
             Camera("camera", simulation, view),

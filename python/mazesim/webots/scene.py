@@ -7,6 +7,7 @@ the E-puck's camera fields and the world's north. They are read from the file's 
 
 from __future__ import annotations
 
+import math
 import re
 from dataclasses import dataclass, field
 
@@ -20,6 +21,7 @@ _NUMBER = r"([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)"
 _CAMERA_WIDTH = re.compile(r"\bcamera_width\s+" + _NUMBER)
 _CAMERA_HEIGHT = re.compile(r"\bcamera_height\s+" + _NUMBER)
 _CAMERA_FOV = re.compile(r"\bcamera_fieldOfView\s+" + _NUMBER)
+_CAMERA_ROTATION = re.compile(r"\bcamera_rotation" + r"\s+".join([""] + [_NUMBER] * 4))
 _HEADER = re.compile(r"#VRML_SIM\s+(?:R(\d{4})([a-z])?|V?(\d+)\.)")
 _NUE = re.compile(r'\bcoordinateSystem\s+"NUE"')
 _TRANSLATION = re.compile(r"\btranslation\s+" + _NUMBER + r"\s+" + _NUMBER + r"\s+" + _NUMBER)
@@ -41,6 +43,8 @@ class Scene:
         camera_width: The E-puck's ``camera_width`` field, if set.
         camera_height: The E-puck's ``camera_height`` field, if set.
         camera_fov: The E-puck's ``camera_fieldOfView`` field, if set.
+        camera_pitch: How far down (rad) the E-puck's ``camera_rotation`` tilts the camera
+            (its part about the camera's y axis).
         north: ``WorldInfo.northDirection`` as x, y (world frame), if set.
         lights: The world's lights that are on (empty: the light sensors' default ambient).
         nue: Whether the file uses Webots' old NUE frame (y up): before R2022a, or
@@ -54,6 +58,7 @@ class Scene:
     camera_width: int | None = None
     camera_height: int | None = None
     camera_fov: float | None = None
+    camera_pitch: float = 0.0
     north: tuple[float, float] | None = None
     nue: bool = False
     lights: list[Light] = field(default_factory=list)
@@ -93,6 +98,10 @@ def read_scene(text: str, robot_model: str | None = None) -> Scene:
         scene.camera_height = max(1, int(float(found.group(1))))
     if found := _CAMERA_FOV.search(text):
         scene.camera_fov = float(found.group(1))
+    if found := _CAMERA_ROTATION.search(text):
+        ax, ay, az, angle = (float(v) for v in found.groups())
+        norm = math.sqrt(ax * ax + ay * ay + az * az) or 1.0
+        scene.camera_pitch = angle * ay / norm
     if (found := _NORTH.search(text)) and not scene.nue:
         scene.north = (float(found.group(1)), float(found.group(2)))
     return scene
