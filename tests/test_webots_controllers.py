@@ -93,6 +93,31 @@ def test_camera_line_follower_goes_round_the_line_follow_loop(tmp_path: Path) ->
     assert angles[-1] - angles[0] > 2 * math.pi
 
 
+def test_ground_sensor_line_follower_stays_on_the_line(tmp_path: Path) -> None:
+    result = webots_run("ground_line_follower.py", "--world", "line-follow", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    summary, trajectory = outputs(tmp_path)
+    assert summary["collisions"] == 0 and summary["reached_end"] is True
+    world = mazesim.load_world("line-follow")
+    offsets = [_distance_to_line(world, x, y) for _, x, y in trajectory[::10]]
+    # The ground sensors are 0.03 m ahead of the wheels, 0.01 m apart.
+    assert max(offsets) < 0.03, f"left the line by {max(offsets):.3f} m"
+    angles = np.unwrap(np.arctan2(trajectory[:, 2] - 0.5, trajectory[:, 1] - 0.6))
+    assert angles[-1] - angles[0] > 2 * math.pi
+
+
+def test_student_maze_solver_reaches_the_seed_maze_goal(tmp_path: Path) -> None:
+    result = webots_run("maze_wall_follower.py", "--world", "seed-maze", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert int(result.stdout.split("turns")[1].split()[0]) > 0
+    summary, trajectory = outputs(tmp_path)
+    goal = mazesim.load_world("seed-maze").goal
+    assert goal is not None
+    gx, gy, radius = goal
+    closest = np.min(np.hypot(trajectory[:, 1] - gx, trajectory[:, 2] - gy))
+    assert closest < radius, f"came no nearer the goal than {closest:.3f} m"
+
+
 def test_keyboard_script_drives_the_teleop_controller(tmp_path: Path) -> None:
     keys = tmp_path / "keys.txt"
     keys.write_text("# time_s key [duration_s]\n0.5 UP\n2.5 -\n3.0 LEFT 0.5\n4.0 SHIFT+q\n")
