@@ -412,3 +412,14 @@ def test_a_camera_tilted_down_by_the_world_sees_only_floor() -> None:
     top_row = [controller.Camera.imageGetGray(image, 52, x, 0) for x in range(52)]
     # Tilted 0.6 rad down, even the top row looks at the floor: white, with the line ahead.
     assert max(top_row) == 255 and min(top_row) == 0
+
+
+def test_the_robots_name_and_custom_data_come_from_the_world() -> None:
+    text = 'E-puck {\n  name "scout"\n  customData "lap 3"\n  turretSlot [ GPS { name "g" } ]\n}\n'
+    scene = read_scene(text)
+    assert (scene.robot_name, scene.robot_custom_data) == ("scout", "lap 3")
+    prepare(mazesim.load_world("arena"), seconds=1.0, scene=scene)
+    controller.Robot.created = None
+    supervisor = controller.Supervisor()
+    assert supervisor.getName() == "scout" and supervisor.getCustomData() == "lap 3"
+    assert supervisor.getSelf().getField("name").getSFString() == "scout"

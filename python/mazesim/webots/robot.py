@@ -111,7 +111,7 @@ class Robot(NotSimulated):
         Robot.created = self
         self._simulation = simulation
         self._equipment = Equipment(simulation)
-        self._custom_data = ""
+        self._custom_data = simulation.scene.robot_custom_data
 
     # --- the robot -------------------------------------------------------------------------
 
@@ -134,8 +134,8 @@ class Robot(NotSimulated):
         return self.getTime()
 
     def getName(self) -> str:
-        """The robot's name, ``"e-puck"``."""
-        return "e-puck"
+        """The robot's name: the world's ``name`` field of the robot, by default ``"e-puck"``."""
+        return self._simulation.scene.robot_name
 
     @property
     def name(self) -> str:

@@ -16,6 +16,8 @@ from mazesim.webots.lights import Light, read_lights
 __all__ = ["Scene", "read_scene"]
 
 _DEF = re.compile(r"\bDEF\s+([^\s{}\[\]]+)\s+([A-Za-z_][\w-]*)\s*\{")
+_NAME = re.compile(r'\bname\s+"((?:[^"\\]|\\.)*)"')
+_CUSTOM_DATA = re.compile(r'\bcustomData\s+"((?:[^"\\]|\\.)*)"')
 _SUPERVISOR = re.compile(r"\bsupervisor\s+TRUE\b")
 _NUMBER = r"([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)"
 _CAMERA_WIDTH = re.compile(r"\bcamera_width\s+" + _NUMBER)
@@ -40,6 +42,8 @@ class Scene:
             frame (ENU, converted from NUE), when the node gives one.
         robot_def: The robot node's DEF name, or None.
         supervisor: Whether the file says ``supervisor TRUE``.
+        robot_name: The robot's ``name`` field (Webots' default for the E-puck, ``"e-puck"``).
+        robot_custom_data: The robot's ``customData`` field.
         camera_width: The E-puck's ``camera_width`` field, if set.
         camera_height: The E-puck's ``camera_height`` field, if set.
         camera_fov: The E-puck's ``camera_fieldOfView`` field, if set.
@@ -55,6 +59,8 @@ class Scene:
     translations: dict[str, tuple[float, float, float]] = field(default_factory=dict)
     robot_def: str | None = None
     supervisor: bool = False
+    robot_name: str = "e-puck"
+    robot_custom_data: str = ""
     camera_width: int | None = None
     camera_height: int | None = None
     camera_fov: float | None = None
@@ -91,6 +97,15 @@ def read_scene(text: str, robot_model: str | None = None) -> Scene:
             x, y, z = translation
             scene.translations.setdefault(name, (x, -z, y) if scene.nue else (x, y, z))
     scene.supervisor = bool(_SUPERVISOR.search(text))
+    robot = re.search(
+        r"\b(?:" + "|".join(re.escape(t) for t in sorted(robot_types)) + r")\s*\{", text
+    )
+    if robot is not None:
+        fields = _own_text(text, robot.end())
+        if found := _NAME.search(fields):
+            scene.robot_name = found.group(1)
+        if found := _CUSTOM_DATA.search(fields):
+            scene.robot_custom_data = found.group(1)
     scene.lights = read_lights(text, scene.nue)
     if found := _CAMERA_WIDTH.search(text):
         scene.camera_width = max(1, int(float(found.group(1))))
@@ -112,9 +127,9 @@ def _nesting(text: str) -> int:
     return text.count("{") + text.count("[") - text.count("}") - text.count("]")
 
 
-def _own_translation(text: str, body: int) -> tuple[float, float, float] | None:
-    """The ``translation`` field of the node whose body starts at ``body`` (after its ``{``),
-    not one of its children's."""
+def _own_text(text: str, body: int) -> str:
+    """The fields of the node whose body starts at ``body`` (after its ``{``), without its
+    children's."""
     depth, own = 0, []
     for index in range(body, len(text)):
         char = text[index]
@@ -126,7 +141,12 @@ def _own_translation(text: str, body: int) -> tuple[float, float, float] | None:
                 break
         elif depth == 0:
             own.append(char)
-    found = _TRANSLATION.search("".join(own))
+    return "".join(own)
+
+
+def _own_translation(text: str, body: int) -> tuple[float, float, float] | None:
+    """The ``translation`` field of the node whose body starts at ``body``."""
+    found = _TRANSLATION.search(_own_text(text, body))
     if found is None:
         return None
     return float(found.group(1)), float(found.group(2)), float(found.group(3))

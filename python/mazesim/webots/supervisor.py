@@ -358,6 +358,7 @@ class Supervisor(Robot):
         scene = self._simulation.scene
         robot_type = str(self._simulation.report.get("robot_model") or "E-puck")
         self._self = Node(robot_type, scene.robot_def or "", node_id=1, robot=True)
+        self._self._strings.update(name=scene.robot_name, customData=self._custom_data)
         self._mode = self.SIMULATION_MODE_FAST
         self._nodes: dict[str, Node] = {}
 
