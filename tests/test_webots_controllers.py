@@ -368,3 +368,23 @@ def test_an_old_style_controller_that_looks_for_webots_home(tmp_path: Path) -> N
     result = webots_run(script, "--world", "arena", "--keys", str(keys), cwd=tmp_path)
     assert result.returncode == 0, result.stderr
     assert "quit at 0.96" in result.stdout
+
+
+PIONEER_WORLD = """#VRML_SIM R2023b utf8
+WorldInfo { basicTimeStep 32 }
+RectangleArena { floorSize 1 1 }
+Pioneer3dx { translation 0.1 0 0 }
+"""
+
+
+def test_a_world_whose_robot_is_not_an_e_puck_is_warned_about(tmp_path: Path) -> None:
+    world = tmp_path / "pioneer.wbt"
+    world.write_text(PIONEER_WORLD)
+    result = webots_run(
+        "multi_step_counter.py", "--world", str(world), "--seconds", "1", cwd=tmp_path
+    )
+    assert result.returncode == 0, result.stderr
+    warnings = [line for line in result.stderr.splitlines() if "mazesim: warning: " in line]
+    assert any("Pioneer3dx" in line for line in warnings), result.stderr
+    strict = webots_run("multi_step_counter.py", "--world", str(world), "--strict", cwd=tmp_path)
+    assert strict.returncode == 2 and "Pioneer3dx" in strict.stderr
