@@ -254,6 +254,10 @@ def test_supervisor_reads_and_sets_the_robots_fields(capsys: pytest.CaptureFixtu
     assert me.getField("mass") is None
     supervisor.simulationReset()
     assert me.getPosition() == pytest.approx([0.0, 0.0, 0.0], abs=1e-6)
+    children = supervisor.getRoot().getField("children")
+    assert children.getCount() == 0 and children.getTypeName() == "MFNode"
+    children.importMFNodeFromString(-1, "Solid {}")
+    assert "importMFNodeFromString() is not available in mazesim" in capsys.readouterr().err
     supervisor.simulationQuit(5)
     assert supervisor.step(32) == -1 and simulations.current().quit_status == 5
 

@@ -62,7 +62,7 @@ class Field(NotSimulated):
     MF_COLOR = 0x17
     MF_STRING = 0x18
     MF_NODE = 0x19
-    _type_names = {0x05: "SFVec3f", 0x06: "SFRotation", 0x08: "SFString"}
+    _type_names = {0x05: "SFVec3f", 0x06: "SFRotation", 0x08: "SFString", 0x19: "MFNode"}
 
     def __init__(self, node: Node, name: str, field_type: int) -> None:
         self._node = node
@@ -92,8 +92,23 @@ class Field(NotSimulated):
         return self._type_names[self._type]
 
     def getCount(self) -> int:
-        """-1: a single field has no count."""
-        return -1
+        """-1 for a single field; 0 for the root's ``children`` (its nodes are not listed)."""
+        return 0 if self._type == self.MF_NODE else -1
+
+    def getMFNode(self, index: int) -> None:
+        """None: the root's children are not listed."""
+        return None
+
+    def importMFNodeFromString(self, position: int, nodeString: str) -> None:
+        """Webots' error: mazesim adds no nodes to a running world."""
+        _print_error(
+            "Error: Field.importMFNodeFromString() is not available in mazesim: the world's "
+            "nodes are fixed when it is imported."
+        )
+
+    def removeMF(self, index: int) -> None:
+        """Webots' error: the root's children are not listed."""
+        _print_error(f"Error: wb_supervisor_field_remove_mf(): index {index} out of range.")
 
     def _wrong(self, function: str) -> None:
         _print_error(
@@ -259,7 +274,9 @@ class Node(NotSimulated):
     def getField(self, fieldName: str) -> Field | None:
         """The field of that name, or None (with Webots' message)."""
         types = {"translation": Field.SF_VEC3F, "rotation": Field.SF_ROTATION}
-        if self._robot:
+        if self._id == 0:
+            types = {"children": Field.MF_NODE}
+        elif self._robot:
             types.update(dict.fromkeys(self._strings, Field.SF_STRING))
         elif self._translation is None:
             types = {}
@@ -367,7 +384,7 @@ class Supervisor(Robot):
         return self._self
 
     def getRoot(self) -> Node:
-        """The scene tree's root (a Group without fields)."""
+        """The scene tree's root: a Group whose ``children`` field lists nothing."""
         return Node("Group", node_id=0)
 
     def getFromDef(self, name: str) -> Node | None:
