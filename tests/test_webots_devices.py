@@ -346,7 +346,9 @@ def test_the_reports_robot_profile_picks_the_devices_by_name() -> None:
     robot = make_robot(report={"robot_profile": "alphabot2"})
     assert robot.getModel() == "alphabot2"
     profile = mazesim.RobotProfile.builtin("alphabot2")
-    for name in [*profile.distance_sensor_names, *profile.ground_sensor_names]:
+    names = [profile.distance_sensor_names, profile.ground_sensor_names]
+    # Lists, or methods giving them (the robot-profile interface allows both).
+    for name in [n for group in names for n in (group() if callable(group) else group)]:
         assert isinstance(robot.getDevice(name), controller.DistanceSensor), name
     assert robot.getDevice("left wheel motor").getMaxVelocity() == profile.max_wheel_speed
     line4 = robot.getDevice("line4")
