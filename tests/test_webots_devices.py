@@ -429,3 +429,26 @@ def test_the_robots_name_and_custom_data_come_from_the_world() -> None:
     supervisor = controller.Supervisor()
     assert supervisor.getName() == "scout" and supervisor.getCustomData() == "lap 3"
     assert supervisor.getSelf().getField("name").getSFString() == "scout"
+
+
+def test_python_ray_casts_agree_with_the_cores_proximity_sensors() -> None:
+    from mazesim.webots.devices import PROXIMITY_TABLE
+    from mazesim.webots.rays import WallBoxes
+    from mazesim.webots.sensors import DeviceMount, LookupTable
+
+    world = mazesim.load_world("arena")
+    simulator = mazesim.Simulator(world, robot="e-puck", noise=False)
+    walls = WallBoxes(world)
+    table = LookupTable(PROXIMITY_TABLE)
+    near = 0
+    for pose in [(0.45, 0.0, 0.3), (0.0, 0.46, 1.2), (-0.44, -0.3, 2.8)]:
+        simulator.set_pose(*pose)
+        readings = simulator.distance_sensors()
+        near += int(np.sum(readings > 150.0))
+        for index, (x, y, heading) in enumerate(PROFILE.distance_sensor_poses()):
+            sx, sy, direction = DeviceMount((x, y, 0.0), heading).world_pose(pose)
+            ray = np.array([[math.cos(direction), math.sin(direction)]])
+            distance, reflectance = walls.cast((sx, sy), ray)
+            expected = table(min(float(distance[0]) / float(reflectance[0]), 0.07), None)
+            assert readings[index] == pytest.approx(expected, rel=0.02, abs=1.0), (pose, index)
+    assert near >= 4, "the poses put walls within the sensors' reach"
