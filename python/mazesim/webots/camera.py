@@ -19,7 +19,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim.webots.devices import _print_error, _Sensor
-from mazesim.webots.rays import WallBoxes, paint_reflectance
+from mazesim.webots.rays import FloorPaint, WallBoxes
 
 if TYPE_CHECKING:
     from mazesim.webots.simulation import RobotSimulation
@@ -55,14 +55,14 @@ class CameraView:
 
 
 def render(
-    view: CameraView, walls: WallBoxes, world: Any, pose: tuple[float, float, float]
+    view: CameraView, walls: WallBoxes, floor: FloorPaint, pose: tuple[float, float, float]
 ) -> npt.NDArray[np.uint8]:
     """Renders the view from a robot pose.
 
     Args:
         view: The camera.
         walls: The world's walls.
-        world: The world (its floor paint).
+        floor: The world's floor paint.
         pose: The robot's x, y, yaw.
 
     Returns:
@@ -81,10 +81,16 @@ def render(
     oy = y + sin_y * view.x
     dx = cos_y * forward - sin_y * left[None, :]
     dy = sin_y * forward + cos_y * left[None, :]
-    directions = np.stack([dx.ravel(), dy.ravel()], axis=1)
-    wall_t, wall_reflectance = walls.cast((ox, oy), directions)
-    wall_t = wall_t.reshape(rise.shape)
-    wall_reflectance = wall_reflectance.reshape(rise.shape)
+    if view.pitch == 0.0:
+        # A level camera: every row of a column casts the same ray along the floor.
+        column_t, column_reflectance = walls.cast((ox, oy), np.stack([dx[0], dy[0]], axis=1))
+        wall_t = np.broadcast_to(column_t, rise.shape)
+        wall_reflectance = np.broadcast_to(column_reflectance, rise.shape)
+    else:
+        directions = np.stack([dx.ravel(), dy.ravel()], axis=1)
+        wall_t, wall_reflectance = walls.cast((ox, oy), directions)
+        wall_t = wall_t.reshape(rise.shape)
+        wall_reflectance = wall_reflectance.reshape(rise.shape)
     with np.errstate(divide="ignore", invalid="ignore"):
         floor_t = np.where(rise < 0.0, view.z / -rise, np.inf)
     sees_wall = np.isfinite(wall_t) & (wall_t <= floor_t)
@@ -94,7 +100,7 @@ def render(
     image[...] = (SKY[2], SKY[1], SKY[0], 255)
     if sees_floor.any():
         t = floor_t[sees_floor]
-        reflectance = paint_reflectance(world, ox + t * dx[sees_floor], oy + t * dy[sees_floor])
+        reflectance = floor.reflectance(ox + t * dx[sees_floor], oy + t * dy[sees_floor])
         grey = _grey(reflectance, 1.0)
         image[sees_floor, :3] = grey[:, None]
     if sees_wall.any():
@@ -170,17 +176,17 @@ class Camera(_Sensor):
         super().__init__(name, simulation)
         self._view = view
         self._walls: WallBoxes | None = None
+        self._floor: FloorPaint | None = None
         self._pixels: npt.NDArray[np.uint8] | None = None
         self._bytes: bytes | None = None
         self._value = None
 
     def _read(self) -> Any:
-        if self._walls is None:
+        if self._walls is None or self._floor is None:
             self._walls = WallBoxes(self._simulation.world)
+            self._floor = FloorPaint(self._simulation.world)
         self._bytes = None
-        self._pixels = render(
-            self._view, self._walls, self._simulation.world, self._simulation.simulator.pose
-        )
+        self._pixels = render(self._view, self._walls, self._floor, self._simulation.simulator.pose)
         return True
 
     def _image(self) -> npt.NDArray[np.uint8] | None:

@@ -11,7 +11,7 @@ import numpy.typing as npt
 
 from mazesim._core import World
 
-__all__ = ["WallBoxes", "paint_reflectance"]
+__all__ = ["FloorPaint", "WallBoxes"]
 
 Floats = npt.NDArray[np.float64]
 
@@ -71,28 +71,34 @@ def _slab(origin: Floats, direction: Floats, half: Floats) -> tuple[Floats, Floa
     return near, far
 
 
-def paint_reflectance(world: World, x: Floats, y: Floats) -> Floats:
-    """The floor's reflectance factor at many points (the paint's drawing order respected)."""
-    result = np.full(np.shape(x), float(world.floor_background))
-    for region in world.paint_regions():
-        shape = region["shape"]
-        value = _number(region, "reflectance")
-        if shape == "rect":
-            cx, cy = _pair(region, "center")
-            sx, sy = _pair(region, "size")
-            yaw = _number(region, "yaw")
-            c, s = np.cos(yaw), np.sin(yaw)
-            u = c * (x - cx) + s * (y - cy)
-            v = -s * (x - cx) + c * (y - cy)
-            inside = (np.abs(u) <= sx / 2.0) & (np.abs(v) <= sy / 2.0)
-        elif shape == "circle":
-            cx, cy = _pair(region, "center")
-            inside = np.hypot(x - cx, y - cy) <= _number(region, "radius")
-        else:
-            a, b = _pair(region, "a"), _pair(region, "b")
-            inside = _segment_distance(x, y, a, b) <= _number(region, "radius")
-        result = np.where(inside, value, result)
-    return result
+class FloorPaint:
+    """The floor paint of a world, read once, for the reflectance at many points at a time."""
+
+    def __init__(self, world: World) -> None:
+        self.background = float(world.floor_background)
+        self.regions = world.paint_regions()
+
+    def reflectance(self, x: Floats, y: Floats) -> Floats:
+        """The floor's reflectance factor at each point (later paint drawn over earlier)."""
+        result = np.full(np.shape(x), self.background)
+        for region in self.regions:
+            shape = region["shape"]
+            if shape == "rect":
+                cx, cy = _pair(region, "center")
+                sx, sy = _pair(region, "size")
+                yaw = _number(region, "yaw")
+                c, s = np.cos(yaw), np.sin(yaw)
+                u = c * (x - cx) + s * (y - cy)
+                v = -s * (x - cx) + c * (y - cy)
+                inside = (np.abs(u) <= sx / 2.0) & (np.abs(v) <= sy / 2.0)
+            elif shape == "circle":
+                cx, cy = _pair(region, "center")
+                inside = np.hypot(x - cx, y - cy) <= _number(region, "radius")
+            else:
+                a, b = _pair(region, "a"), _pair(region, "b")
+                inside = _segment_distance(x, y, a, b) <= _number(region, "radius")
+            result = np.where(inside, _number(region, "reflectance"), result)
+        return result
 
 
 def _number(region: dict[str, object], key: str) -> float:
