@@ -452,3 +452,17 @@ def test_python_ray_casts_agree_with_the_cores_proximity_sensors() -> None:
             expected = table(min(float(distance[0]) / float(reflectance[0]), 0.07), None)
             assert readings[index] == pytest.approx(expected, rel=0.02, abs=1.0), (pose, index)
     assert near >= 4, "the poses put walls within the sensors' reach"
+
+
+def test_the_level_cameras_column_rays_render_as_per_pixel_rays() -> None:
+    from mazesim.webots.camera import CameraView, render
+    from mazesim.webots.rays import FloorPaint, WallBoxes
+
+    world = mazesim.load_world("seed-maze")
+    walls, floor = WallBoxes(world), FloorPaint(world)
+    for pose in [(0.12, 0.12, 0.0), (0.62, 0.6, 2.0), (1.1, 0.9, -1.0)]:
+        level = render(CameraView(), walls, floor, pose)
+        # A pitch too small to move any ray takes the per-pixel path.
+        per_pixel = render(CameraView(pitch=1e-12), walls, floor, pose)
+        assert np.array_equal(level, per_pixel)
+        assert len(np.unique(level[:, :, 0])) >= 3, "walls, floor and sky are all in view"
