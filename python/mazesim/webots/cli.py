@@ -93,7 +93,7 @@ def register(commands: Any) -> None:
         "--out",
         default="mazesim-webots",
         metavar="DIR",
-        help="folder for trajectory.png and summary.json, created if missing "
+        help="folder for trajectory.png, summary.json and trajectory.csv, created if missing "
         "(default: %(default)s)",
     )
     run.add_argument("--no-noise", action="store_true", help="noise-free sensors")
