@@ -388,3 +388,14 @@ def test_a_world_whose_robot_is_not_an_e_puck_is_warned_about(tmp_path: Path) ->
     assert any("Pioneer3dx" in line for line in warnings), result.stderr
     strict = webots_run("multi_step_counter.py", "--world", str(world), "--strict", cwd=tmp_path)
     assert strict.returncode == 2 and "Pioneer3dx" in strict.stderr
+
+
+def test_the_worlds_controller_args_are_the_controllers_argv(tmp_path: Path) -> None:
+    world = tmp_path / "args.wbt"
+    robot = 'E-puck {\n  controllerArgs [ "--speed" "3" ]\n}\n'
+    world.write_text("#VRML_SIM R2023b utf8\nRectangleArena { }\n" + robot)
+    script = tmp_path / "argv.py"
+    script.write_text("import sys\nfrom controller import Robot\nRobot()\nprint(sys.argv[1:])\n")
+    result = webots_run(script, "--world", str(world), cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert "['--speed', '3']" in result.stdout

@@ -110,7 +110,8 @@ def run_controller(
         noise: Whether the sensors are noisy.
         report: The import report of a ``.wbt`` world (robot profile, extension devices).
         keys: The keyboard script.
-        scene: DEF names, supervisor flag and camera fields of the world file.
+        scene: DEF names, supervisor flag, camera fields and controller arguments of the world
+            file (``sys.argv[1:]`` of the controller).
 
     Returns:
         What the run did.
@@ -129,7 +130,7 @@ def run_controller(
     saved_module: ModuleType | None = sys.modules.get("controller")
     saved_argv, saved_path, saved_cwd = sys.argv, list(sys.path), os.getcwd()
     sys.modules["controller"] = controller_module
-    sys.argv = [file]
+    sys.argv = [file, *(scene.controller_args if scene else [])]
     sys.path.insert(0, folder)
     # Controllers written to run outside Webots too look Webots up through WEBOTS_HOME.
     saved_home = os.environ.get("WEBOTS_HOME")

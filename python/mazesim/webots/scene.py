@@ -18,6 +18,8 @@ __all__ = ["Scene", "read_scene"]
 _DEF = re.compile(r"\bDEF\s+([^\s{}\[\]]+)\s+([A-Za-z_][\w-]*)\s*\{")
 _NAME = re.compile(r'\bname\s+"((?:[^"\\]|\\.)*)"')
 _CUSTOM_DATA = re.compile(r'\bcustomData\s+"((?:[^"\\]|\\.)*)"')
+_CONTROLLER_ARGS = re.compile(r'\bcontrollerArgs\s+(?:\[([^\]]*)\]|"((?:[^"\\]|\\.)*)")')
+_STRING = re.compile(r'"((?:[^"\\]|\\.)*)"')
 _SUPERVISOR = re.compile(r"\bsupervisor\s+TRUE\b")
 _NUMBER = r"([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)"
 _CAMERA_WIDTH = re.compile(r"\bcamera_width\s+" + _NUMBER)
@@ -44,6 +46,8 @@ class Scene:
         supervisor: Whether the file says ``supervisor TRUE``.
         robot_name: The robot's ``name`` field (Webots' default for the E-puck, ``"e-puck"``).
         robot_custom_data: The robot's ``customData`` field.
+        controller_args: The robot's ``controllerArgs`` (a list of strings since R2021a, one
+            string split at spaces before), given to the controller as ``sys.argv[1:]``.
         camera_width: The E-puck's ``camera_width`` field, if set.
         camera_height: The E-puck's ``camera_height`` field, if set.
         camera_fov: The E-puck's ``camera_fieldOfView`` field, if set.
@@ -61,6 +65,7 @@ class Scene:
     supervisor: bool = False
     robot_name: str = "e-puck"
     robot_custom_data: str = ""
+    controller_args: list[str] = field(default_factory=list)
     camera_width: int | None = None
     camera_height: int | None = None
     camera_fov: float | None = None
@@ -107,6 +112,11 @@ def read_scene(text: str, robot_model: str | None = None) -> Scene:
         if found := _CUSTOM_DATA.search(fields):
             scene.robot_custom_data = found.group(1)
     scene.lights = read_lights(text, scene.nue)
+    if found := _CONTROLLER_ARGS.search(text):
+        listed, single = found.groups()
+        scene.controller_args = (
+            _STRING.findall(listed) if listed is not None else (single or "").split()
+        )
     if found := _CAMERA_WIDTH.search(text):
         scene.camera_width = max(1, int(float(found.group(1))))
     if found := _CAMERA_HEIGHT.search(text):
