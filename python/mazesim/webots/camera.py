@@ -279,8 +279,8 @@ class Camera(_Sensor):
         )
 
     def getNear(self) -> float:
-        """The near clipping plane (m), Webots' default."""
-        return 0.01
+        """The near clipping plane (m) of the E-puck PROTO's camera."""
+        return 0.0055
 
     def getExposure(self) -> float:
         """The exposure (Webots' default 1)."""
