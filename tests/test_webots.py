@@ -60,9 +60,11 @@ def test_time_step_name_and_devices(robot: Robot, capsys: pytest.CaptureFixture[
     names = {robot.getDeviceByIndex(i).getName() for i in range(robot.getNumberOfDevices())}
     expected = {f"ps{i}" for i in range(8)} | {"gs0", "gs1", "gs2"} | {f"led{i}" for i in range(10)}
     expected |= {"left wheel motor", "right wheel motor", "left wheel sensor", "right wheel sensor"}
+    expected |= {f"ls{i}" for i in range(8)}
+    expected |= {"camera", "accelerometer", "gyro", "emitter", "receiver", "speaker"}
     assert names == expected
-    assert robot.getDevice("camera") is None
-    assert 'Device "camera" was not found on robot "e-puck"' in capsys.readouterr().err
+    assert robot.getDevice("lidar") is None
+    assert 'Device "lidar" was not found on robot "e-puck"' in capsys.readouterr().err
 
 
 def test_sensors_read_only_after_enable_and_one_period(
@@ -176,12 +178,15 @@ def test_a_report_style_controller_runs_unmodified(tmp_path: Path) -> None:
     assert sys.modules.get("controller") is before
 
 
-def test_controller_errors_propagate_and_state_is_restored(tmp_path: Path) -> None:
+def test_controller_errors_are_reported_and_state_is_restored(tmp_path: Path) -> None:
     script = tmp_path / "broken.py"
     script.write_text("from controller import Robot\nrobot = Robot()\nraise ValueError('mine')\n")
     path_before = list(sys.path)
-    with pytest.raises(ValueError, match="mine"):
-        run_controller(script, mazesim.load_world("arena"), seconds=1.0)
+    run = run_controller(script, mazesim.load_world("arena"), seconds=1.0)
+    assert run.exit_status == 1
+    assert f'File "{script}", line 3, in <module>' in run.error
+    assert run.error.rstrip().endswith("ValueError: mine")
+    assert "runner.py" not in run.error, "the traceback starts in the controller's file"
     assert sys.path == path_before and "controller" not in sys.modules
     with pytest.raises(MazesimIOError):
         run_controller(tmp_path / "missing.py", mazesim.load_world("arena"))

@@ -2,9 +2,10 @@
 
 - :func:`import_wbt` reads a Webots world (V8.5 to R2025a, NUE or ENU) into a mazesim
   :class:`~mazesim.World` and a report of what was imported and what was not.
-- :mod:`mazesim.webots.controller` is the part of Webots' Python ``controller`` module that an
-  e-puck controller uses; :func:`run_controller` runs an unmodified controller file on it, as
-  ``mazesim webots run CONTROLLER.py`` does.
+- :mod:`mazesim.webots.controller` is Webots' Python ``controller`` module for the e-puck (every
+  class, the e-puck's devices, extension-slot devices, keyboard script, supervisor);
+  :func:`run_controller` runs an unmodified controller file on it, as
+  ``mazesim webots run CONTROLLER.py`` does, and keeps the run whatever the controller does.
 
 Examples:
     >>> import mazesim.webots

@@ -56,7 +56,18 @@ def register(commands: Any) -> None:
         description=(
             "Run an unmodified Webots e-puck controller (its 'from controller import Robot' "
             "gets mazesim's controller module) headless until 'robot.step' returns -1 after "
-            "--seconds, then print a summary and write DIR/trajectory.png and DIR/summary.json."
+            "--seconds, then print a summary and write DIR/trajectory.png, DIR/summary.json and "
+            "DIR/trajectory.csv "
+            "(also when the controller raises, exits or is interrupted). The importer's "
+            "warnings about a .wbt world are printed on stderr, each line prefixed with "
+            "'mazesim: warning: '."
+        ),
+        epilog=(
+            "exit status: 0 the controller ended (or robot.step returned -1); N the "
+            "controller's sys.exit(N) or a supervisor's simulationQuit(N); 1 the controller "
+            "raised an exception or does not compile (its traceback is printed); 2 a "
+            "mazesim error before the run (unreadable controller, world or key script, "
+            "--strict with import warnings); 130 interrupted (Ctrl-C)."
         ),
     )
     run.add_argument("controller", metavar="CONTROLLER.py", help="the controller's Python file")
@@ -84,11 +95,24 @@ def register(commands: Any) -> None:
         "--out",
         default="mazesim-webots",
         metavar="DIR",
-        help="folder for trajectory.png and summary.json, created if missing "
+        help="folder for trajectory.png, summary.json and trajectory.csv, created if missing "
         "(default: %(default)s)",
     )
     run.add_argument("--no-noise", action="store_true", help="noise-free sensors")
     add_viewing_options(run, live=True)
+    run.add_argument(
+        "--keys",
+        metavar="FILE",
+        help="key script for the Keyboard: lines of 'time_s key [duration_s]' (key: one "
+        "character, a Webots key name such as UP, DOWN, LEFT, RIGHT, with modifiers such "
+        "as SHIFT+A, or '-' to release); without it getKey() returns -1",
+    )
+    run.add_argument(
+        "--strict",
+        action="store_true",
+        help="refuse a .wbt world with import warnings (a non-e-puck robot, dropped "
+        "objects...): exit 2 before running",
+    )
     run.set_defaults(run=lambda args: run_webots(args, sys.stdout))
 
 
@@ -129,13 +153,45 @@ def run_import(args: argparse.Namespace, out: TextIO) -> int:
     return 0
 
 
+def _load_world(spec: str, strict: bool) -> tuple[Any, dict[str, Any] | None, Any]:
+    """The world, its import report (for a .wbt file) and its scene; warnings printed."""
+    import mazesim
+    from mazesim.errors import WorldFormatError
+    from mazesim.webots.importer import import_wbt, robot_warnings
+    from mazesim.webots.scene import read_scene
+
+    if not spec.lower().endswith(".wbt"):
+        return mazesim.load_world(spec), None, None
+    world, imported = import_wbt(spec)
+    report: dict[str, Any] = dict(imported)
+    report["path"] = os.path.abspath(spec)
+    warnings = [*report.get("warnings", []), *robot_warnings(report)]
+    for warning in warnings:
+        print(f"mazesim: warning: {warning}", file=sys.stderr)
+    if strict and warnings:
+        raise WorldFormatError(
+            f"{spec}: --strict expects a world imported without warnings, found "
+            f"{len(warnings)} (listed above)",
+            source=spec,
+        )
+    with open(spec, encoding="utf-8", errors="replace") as handle:
+        scene = read_scene(handle.read(), report.get("robot_model"))
+    return world, report, scene
+
+
 def run_webots(args: argparse.Namespace, out: TextIO) -> int:
-    """Runs a controller file and writes its trajectory picture and summary."""
+    """Runs a controller file and writes its trajectory picture and summary.
+
+    Returns:
+        The run's exit status (see the command's epilog).
+    """
     import mazesim
     from mazesim.plotting import save_trajectory_png
+    from mazesim.webots.keyboard import read_keys
     from mazesim.webots.runner import run_controller
 
-    world = mazesim.load_world(args.world)
+    world, report, scene = _load_world(args.world, args.strict)
+    keys = read_keys(args.keys) if args.keys else None
     out_dir = os.path.abspath(args.out)
     # Fail before the run, not after it, if the output folder cannot be made.
     os.makedirs(out_dir, exist_ok=True)
@@ -146,13 +202,21 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
 
             viewing.enter_context(observing_steps(watch))
         result = run_controller(
-            args.controller, world, seconds=args.seconds, seed=args.seed, noise=not args.no_noise
+            args.controller,
+            world,
+            seconds=args.seconds,
+            seed=args.seed,
+            noise=not args.no_noise,
+            report=report,
+            keys=keys,
+            scene=scene,
         )
     name = os.path.basename(result.controller)
     wall_clock = result.wall_clock_seconds
     summary: dict[str, Any] = {
         "world": world.name,
         "controller": result.controller,
+        "robot": str(result.robot_model),
         "seed": args.seed,
         "simulated_seconds": result.simulated_seconds,
         "steps": result.steps,
@@ -160,6 +224,10 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
         "collisions": result.collisions,
         "longest_stop_s": result.longest_stop_s,
         "reached_end": result.reached_end,
+        "exit_status": result.exit_status,
+        "controller_error": result.error.strip().splitlines()[-1] if result.error else None,
+        "quit_requested": result.quit_requested,
+        "final_pose": list(result.final_pose),
         "wall_clock_seconds": wall_clock,
         "real_time_factor": result.simulated_seconds / wall_clock if wall_clock > 0 else None,
         "mazesim_version": mazesim.__version__,
@@ -175,20 +243,42 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
     summary_path = os.path.join(out_dir, "summary.json")
     with atomic_file(summary_path) as handle:
         handle.write((json.dumps(summary, indent=2) + "\n").encode("utf-8"))
+    step_s = result.simulated_seconds / result.steps if result.steps else 0.0
+    table = os.path.join(out_dir, "trajectory.csv")
+    with atomic_file(table) as handle:
+        points = enumerate(zip(result.xs, result.ys))
+        rows = (f"{i * step_s:.3f},{x:.5f},{y:.5f}" for i, (x, y) in points)
+        handle.write(("time_s,x_m,y_m\n" + "\n".join(rows) + "\n").encode("utf-8"))
+    if result.error:
+        sys.stderr.write(result.error)
     views = watch.finish(
         f"{result.simulated_seconds:.0f} s", f"{world.name}: {name}, seed {args.seed}"
     )
     factor = summary["real_time_factor"]
     speed = "n/a" if factor is None or not math.isfinite(factor) else f"{factor:.0f}x"
-    ending = "robot.step returned -1" if result.reached_end else "the controller returned"
     out.write(
         f"world              {world.name} (seed {args.seed})\n"
-        f"controller         {name} ({ending})\n"
+        f"controller         {name} ({_ending(result)})\n"
         f"simulated time     {result.simulated_seconds:.2f} s ({result.steps} steps)\n"
         f"distance travelled {result.distance_m:.2f} m\n"
         f"collisions         {result.collisions}\n"
         f"longest stop       {result.longest_stop_s:.2f} s\n"
         f"wall-clock time    {wall_clock:.3f} s ({speed} real time)\n"
-        f"wrote              {', '.join([picture, summary_path, *views])}\n"
+        f"wrote              {', '.join([picture, summary_path, table, *views])}\n"
     )
-    return 0
+    return result.exit_status
+
+
+def _ending(result: Any) -> str:
+    """How the controller's run ended, in words."""
+    from mazesim.webots.runner import EXIT_CONTROLLER_ERROR, EXIT_INTERRUPTED
+
+    if result.quit_requested:
+        return f"simulationQuit({result.exit_status})"
+    if result.exit_status == EXIT_INTERRUPTED:
+        return "interrupted"
+    if result.error and result.exit_status == EXIT_CONTROLLER_ERROR:
+        return "the controller raised an exception"
+    if result.exit_status:
+        return f"the controller exited with status {result.exit_status}"
+    return "robot.step returned -1" if result.reached_end else "the controller returned"

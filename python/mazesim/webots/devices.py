@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 import sys
-from typing import TYPE_CHECKING, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
 if TYPE_CHECKING:
     from mazesim.webots.simulation import RobotSimulation
@@ -40,8 +40,60 @@ def _print_error(message: str) -> None:
     print(message, file=sys.stderr)
 
 
-class Device:
+class Sampled:
+    """Mixin of what is read every sampling period: ``getSamplingPeriod`` and the
+    ``sampling_period`` property (assigning it enables or disables)."""
+
+    _period_ms: int
+
+    def enable(self, samplingPeriod: int) -> None:
+        raise NotImplementedError
+
+    def disable(self) -> None:
+        raise NotImplementedError
+
+    def getSamplingPeriod(self) -> int:
+        """The sampling period in ms, 0 when disabled."""
+        return self._period_ms
+
+    @property
+    def sampling_period(self) -> int:
+        """The sampling period in ms (property style); assigning it enables or disables."""
+        return self._period_ms
+
+    @sampling_period.setter
+    def sampling_period(self, period: int | None) -> None:
+        if period:
+            self.enable(period)
+        else:
+            self.disable()
+
+
+class _DeviceType(type):
+    """Lets a controller write ``DistanceSensor("ps0")``, as older Webots controllers do: a
+    device class called with only a name gives the robot's device of that name."""
+
+    def __call__(cls, *args: Any, **kwargs: Any) -> Any:
+        if len(args) == 1 and not kwargs and isinstance(args[0], str | int):
+            from mazesim.webots.robot import Robot
+
+            robot = Robot.created
+            if robot is None:
+                _print_error(
+                    f'Error: {cls.__name__}("{args[0]}") needs the Robot: create it first.'
+                )
+                return None
+            if isinstance(args[0], int):
+                return robot.getDeviceByIndex(args[0])
+            return robot.getDevice(args[0])
+        return super().__call__(*args, **kwargs)
+
+
+class Device(metaclass=_DeviceType):
     """A device of the robot, found by its name."""
+
+    #: Webots' node type of the device (``Node.DISTANCE_SENSOR``...), set by each class.
+    _node_type: ClassVar[int] = 0
 
     def __init__(self, name: str, simulation: RobotSimulation) -> None:
         self._name = name
@@ -51,15 +103,34 @@ class Device:
         """The device's name, e.g. ``"ps0"``."""
         return self._name
 
+    @property
+    def name(self) -> str:
+        """The device's name."""
+        return self._name
+
     def getModel(self) -> str:
         """The device's model string (empty, as for the e-puck's devices in Webots)."""
         return ""
+
+    @property
+    def model(self) -> str:
+        """The device's model string."""
+        return self.getModel()
+
+    def getNodeType(self) -> int:
+        """Webots' node type of the device (a ``Node`` constant)."""
+        return self._node_type
+
+    @property
+    def node_type(self) -> int:
+        """Webots' node type of the device."""
+        return self._node_type
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}({self._name!r})"
 
 
-class _Sensor(Device):
+class _Sensor(Sampled, Device):
     """A sampled sensor: enable, disable, getSamplingPeriod, getValue."""
 
     #: The C function names Webots' messages quote.
@@ -70,7 +141,7 @@ class _Sensor(Device):
         self._period_ms = 0
         self._period_steps = 0
         self._enabled_at = 0
-        self._value = math.nan
+        self._value: Any = math.nan
         self._warned_disabled = False
 
     def enable(self, samplingPeriod: int) -> None:
@@ -92,18 +163,17 @@ class _Sensor(Device):
         self._period_ms = 0
         self._period_steps = 0
 
-    def getSamplingPeriod(self) -> int:
-        """The sampling period in ms, 0 when disabled."""
-        return self._period_ms
-
-    def getValue(self) -> float:
-        """The last reading; NaN before the first sampling period has passed."""
+    def _warn_disabled(self, function: str) -> None:
+        """Prints Webots' message for a read of a disabled sensor, once."""
         if self._period_ms == 0 and not self._warned_disabled:
             self._warned_disabled = True
             _print_error(
-                f"Error: {self._api}_get_value() called for a disabled device! "
+                f"Error: {self._api}_{function}() called for a disabled device! "
                 f"Please use: {self._api}_enable()."
             )
+
+    def _reading(self, function: str) -> Any:
+        self._warn_disabled(function)
         return self._value
 
     def _after_step(self) -> None:
@@ -114,11 +184,43 @@ class _Sensor(Device):
         ):
             self._value = self._read()
 
-    def _read(self) -> float:
+    def _read(self) -> Any:
         raise NotImplementedError
 
 
-class DistanceSensor(_Sensor):
+class _ScalarSensor(_Sensor):
+    """A sensor with one value: ``getValue`` and the ``value`` property."""
+
+    def getValue(self) -> float:
+        """The last reading; NaN before the first sampling period has passed."""
+        return float(self._reading("get_value"))
+
+    @property
+    def value(self) -> float:
+        """:meth:`getValue` as a property."""
+        return self.getValue()
+
+
+class _VectorSensor(_Sensor):
+    """A sensor with three values: ``getValues`` and the ``value`` property."""
+
+    _width: ClassVar[int] = 3
+
+    def __init__(self, name: str, simulation: RobotSimulation) -> None:
+        super().__init__(name, simulation)
+        self._value = [math.nan] * self._width
+
+    def getValues(self) -> list[float]:
+        """The last reading; NaNs before the first sampling period has passed."""
+        return list(self._reading("get_values"))
+
+    @property
+    def value(self) -> list[float]:
+        """:meth:`getValues` as a property."""
+        return self.getValues()
+
+
+class DistanceSensor(_ScalarSensor):
     """An infra-red sensor: a proximity sensor ``ps0``..``ps7`` or a ground sensor ``gs0``..``gs2``.
 
     Readings are the raw values of Webots' e-puck model (about 4095 touching, 67 at 7 cm and
@@ -161,8 +263,35 @@ class DistanceSensor(_Sensor):
         """:data:`INFRA_RED`."""
         return self.INFRA_RED
 
+    def getMaxRange(self) -> float:
+        """The table's last distance (m)."""
+        return self._table[-1][0]
 
-class PositionSensor(_Sensor):
+    def getMinRange(self) -> float:
+        """The table's first distance (m)."""
+        return self._table[0][0]
+
+    def getAperture(self) -> float:
+        """The ray's aperture (rad): one ray."""
+        return 0.0
+
+    @property
+    def lookup_table(self) -> list[float]:
+        """:meth:`getLookupTable` as a property."""
+        return self.getLookupTable()
+
+    @property
+    def max_value(self) -> float:
+        """:meth:`getMaxValue` as a property."""
+        return self.getMaxValue()
+
+    @property
+    def min_value(self) -> float:
+        """:meth:`getMinValue` as a property."""
+        return self.getMinValue()
+
+
+class PositionSensor(_ScalarSensor):
     """A wheel encoder: the wheel's angle in radians."""
 
     ROTATIONAL = 0
@@ -184,6 +313,15 @@ class PositionSensor(_Sensor):
     def getMotor(self) -> Motor | None:
         """The motor of the same wheel."""
         return self._motor
+
+    @property
+    def motor(self) -> Motor | None:
+        """The motor of the same wheel."""
+        return self._motor
+
+    def getBrake(self) -> None:
+        """None: the e-puck's wheels have no brake device."""
+        return None
 
 
 class Motor(Device):
@@ -273,6 +411,90 @@ class Motor(Device):
         """The encoder of the same wheel."""
         return self._sensor
 
+    def getBrake(self) -> None:
+        """None: the e-puck's wheels have no brake device."""
+        return None
+
+    def getMultiplier(self) -> float:
+        """1: the motor is not coupled."""
+        return 1.0
+
+    def setControlPID(self, p: float, i: float, d: float) -> None:
+        """Accepted; position control keeps its proportional gain."""
+
+    def setAvailableTorque(self, torque: float) -> None:
+        """Accepted; mazesim's wheels are driven by speed."""
+
+    def setTorque(self, torque: float) -> None:
+        """Accepted; mazesim's wheels are driven by speed."""
+
+    setAvailableForce = setAvailableTorque
+    setForce = setTorque
+
+    def getAvailableTorque(self) -> float:
+        """The motor's maximum torque (N m) in Webots' E-puck PROTO (its default, 10)."""
+        return 10.0
+
+    getMaxTorque = getAvailableTorque
+    getAvailableForce = getAvailableTorque
+    getMaxForce = getAvailableTorque
+
+    def enableTorqueFeedback(self, samplingPeriod: int) -> None:
+        """Accepted; the feedback reads 0."""
+
+    def disableTorqueFeedback(self) -> None:
+        """Accepted."""
+
+    def getTorqueFeedback(self) -> float:
+        """0: no torque is simulated."""
+        return 0.0
+
+    def getTorqueFeedbackSamplingPeriod(self) -> int:
+        """0."""
+        return 0
+
+    enableForceFeedback = enableTorqueFeedback
+    disableForceFeedback = disableTorqueFeedback
+    getForceFeedback = getTorqueFeedback
+    getForceFeedbackSamplingPeriod = getTorqueFeedbackSamplingPeriod
+
+    @property
+    def velocity(self) -> float:
+        """The velocity set last (property style); assigning it calls :meth:`setVelocity`."""
+        return self._velocity
+
+    @velocity.setter
+    def velocity(self, velocity: float) -> None:
+        self.setVelocity(velocity)
+
+    @property
+    def target_position(self) -> float:
+        """The target position (property style); assigning it calls :meth:`setPosition`."""
+        return self._target_position
+
+    @target_position.setter
+    def target_position(self, position: float) -> None:
+        self.setPosition(position)
+
+    @property
+    def max_velocity(self) -> float:
+        """The motor's speed limit in rad/s."""
+        return self._max_velocity
+
+    @property
+    def acceleration(self) -> float:
+        """The acceleration set last (property style)."""
+        return self._acceleration
+
+    @acceleration.setter
+    def acceleration(self, acceleration: float) -> None:
+        self.setAcceleration(acceleration)
+
+    @property
+    def position_sensor(self) -> PositionSensor:
+        """The encoder of the same wheel."""
+        return self._sensor
+
     def _wheel_speed(self, angle: float) -> float:
         """The wheel speed (rad/s) for the next step, the wheel being at ``angle``."""
         limit = min(abs(self._velocity), self._max_velocity)
@@ -297,3 +519,12 @@ class LED(Device):
     def get(self) -> int:
         """The value set last."""
         return self._value
+
+    @property
+    def value(self) -> int:
+        """The value set last (property style); assigning it calls :meth:`set`."""
+        return self._value
+
+    @value.setter
+    def value(self, value: int) -> None:
+        self.set(value)

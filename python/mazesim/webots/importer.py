@@ -12,7 +12,7 @@ metres and radians, world frame, z up.
 from __future__ import annotations
 
 import os
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from typing import Any, Literal, TypedDict, Union, cast
 
 import numpy as np
@@ -30,7 +30,11 @@ __all__ = [
     "RobotPose",
     "import_wbt",
     "import_wbt_text",
+    "robot_warnings",
 ]
+
+#: Robot node types that mazesim simulates as they are.
+E_PUCK_MODELS = ("E-puck", "e-puck", "e-puck2", "E-puck2")
 
 
 class BoxObstacle(TypedDict):
@@ -201,3 +205,22 @@ def import_wbt_text(text: str, source: str = "<string>") -> tuple[World, ImportR
         _core.import_wbt_text(text, source),
         lambda images: _core.import_wbt_text(text, source, floor_images=images),
     )
+
+
+def robot_warnings(report: Mapping[str, Any]) -> list[str]:
+    """Warnings about the world's robot that the report does not already give.
+
+    Args:
+        report: An import report; its ``robot_model`` (when present) names the robot's type.
+
+    Returns:
+        A warning when the robot is not an e-puck (it then runs as the report's
+        ``robot_profile``, by default the e-puck), unless a report warning already names it.
+    """
+    model = report.get("robot_model")
+    if not model or model in E_PUCK_MODELS:
+        return []
+    if any(str(model) in str(warning) for warning in report.get("warnings", [])):
+        return []
+    profile = report.get("robot_profile") or "e-puck"
+    return [f"the world's robot is a {model}, not an e-puck: mazesim runs it as the {profile}"]

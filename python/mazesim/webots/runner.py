@@ -2,7 +2,8 @@
 
 :func:`run_controller` prepares a simulation, installs :mod:`mazesim.webots.controller` as the
 module ``controller`` and executes the file as Webots does (as ``__main__``, from its own folder,
-with that folder on ``sys.path``) until the controller returns or ``Robot.step`` reports the end.
+with that folder on ``sys.path``, ``WEBOTS_HOME`` set if it was not) until the controller
+returns or ``Robot.step`` reports the end.
 """
 
 from __future__ import annotations
@@ -10,15 +11,25 @@ from __future__ import annotations
 import os
 import sys
 import time
+import traceback
+from collections.abc import Mapping
 from dataclasses import dataclass, field
-from types import ModuleType
+from types import ModuleType, TracebackType
+from typing import Any
 
 from mazesim._core import World
 from mazesim.errors import MazesimIOError
 from mazesim.webots import controller as controller_module
 from mazesim.webots import simulation as simulations
+from mazesim.webots.keyboard import KeyScript
+from mazesim.webots.scene import Scene
 
-__all__ = ["ControllerRun", "run_controller"]
+__all__ = ["EXIT_CONTROLLER_ERROR", "EXIT_INTERRUPTED", "ControllerRun", "run_controller"]
+
+#: Exit status of a run whose controller raised an exception.
+EXIT_CONTROLLER_ERROR = 1
+#: Exit status of a run interrupted by Ctrl-C.
+EXIT_INTERRUPTED = 130
 
 
 @dataclass
@@ -38,6 +49,13 @@ class ControllerRun:
         wall_clock_seconds: Real time the run took.
         xs: The robot's x after each step, the start first.
         ys: The robot's y after each step, the start first.
+        exit_status: 0 when the controller ended normally; its ``sys.exit`` status, a
+            supervisor's ``simulationQuit`` status, :data:`EXIT_CONTROLLER_ERROR` when it
+            raised, :data:`EXIT_INTERRUPTED` on Ctrl-C.
+        error: The traceback of the controller's exception (its own frames first), or "".
+        quit_requested: Whether a supervisor called ``simulationQuit``.
+        final_pose: The robot's x, y, yaw at the end.
+        robot_model: The robot profile that ran.
     """
 
     world: World
@@ -51,6 +69,11 @@ class ControllerRun:
     wall_clock_seconds: float
     xs: list[float] = field(repr=False)
     ys: list[float] = field(repr=False)
+    exit_status: int = 0
+    error: str = field(default="", repr=False)
+    quit_requested: bool = False
+    final_pose: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    robot_model: str = "e-puck"
 
 
 def _read_source(path: str) -> str:
@@ -70,8 +93,14 @@ def run_controller(
     seconds: float = 60.0,
     seed: int = 0,
     noise: bool = True,
+    report: Mapping[str, Any] | None = None,
+    keys: KeyScript | None = None,
+    scene: Scene | None = None,
 ) -> ControllerRun:
-    """Runs a Webots-style controller file on the e-puck in ``world``.
+    """Runs a Webots-style controller file on the robot in ``world``.
+
+    Whatever the controller does (returns, raises, calls ``sys.exit``, is interrupted), the run
+    is returned: its exception becomes ``error`` and ``exit_status``.
 
     Args:
         path: The controller's Python file (``from controller import Robot`` and the usual loop).
@@ -79,6 +108,10 @@ def run_controller(
         seconds: Simulated seconds after which ``Robot.step`` returns -1.
         seed: Seed of the sensor noise.
         noise: Whether the sensors are noisy.
+        report: The import report of a ``.wbt`` world (robot profile, extension devices).
+        keys: The keyboard script.
+        scene: DEF names, supervisor flag, camera fields and controller arguments of the world
+            file (``sys.argv[1:]`` of the controller).
 
     Returns:
         What the run did.
@@ -86,29 +119,42 @@ def run_controller(
     Raises:
         MazesimIOError: The file cannot be read.
         InvalidArgumentError: ``seconds`` is not positive.
-        Exception: Whatever the controller raises (its own errors are its traceback).
     """
     file = os.path.abspath(os.fspath(path))
     source = _read_source(file)
-    code = compile(source, file, "exec")
-    simulation = simulations.prepare(world, seconds=seconds, seed=seed, noise=noise)
+    simulation = simulations.prepare(
+        world, seconds=seconds, seed=seed, noise=noise, report=report, keys=keys, scene=scene
+    )
     controller_module.Robot.created = None
     folder = os.path.dirname(file)
     saved_module: ModuleType | None = sys.modules.get("controller")
     saved_argv, saved_path, saved_cwd = sys.argv, list(sys.path), os.getcwd()
     sys.modules["controller"] = controller_module
-    sys.argv = [file]
+    sys.argv = [file, *(scene.controller_args if scene else [])]
     sys.path.insert(0, folder)
+    # Controllers written to run outside Webots too look Webots up through WEBOTS_HOME.
+    saved_home = os.environ.get("WEBOTS_HOME")
+    if saved_home is None:
+        os.environ["WEBOTS_HOME"] = os.path.dirname(os.path.abspath(controller_module.__file__))
     started = time.perf_counter()
+    status, error = 0, ""
     try:
         os.chdir(folder)
+        # Compiled with its real file name, so that tracebacks show its own lines.
+        code = compile(source, file, "exec")
         exec(code, {"__name__": "__main__", "__file__": file, "__builtins__": __builtins__})
     except controller_module.ControllerStopped:
         pass
     except SystemExit as request:
-        if request.code not in (None, 0):
-            raise
+        status, error = _exit_status(request)
+    except KeyboardInterrupt:
+        status = EXIT_INTERRUPTED
+    except BaseException as failure:  # noqa: BLE001 - the controller's error is reported
+        status = EXIT_CONTROLLER_ERROR
+        error = _controller_traceback(failure)
     finally:
+        if saved_home is None:
+            os.environ.pop("WEBOTS_HOME", None)
         os.chdir(saved_cwd)
         sys.path[:] = saved_path
         sys.argv = saved_argv
@@ -131,4 +177,30 @@ def run_controller(
         wall_clock_seconds=time.perf_counter() - started,
         xs=simulation.xs,
         ys=simulation.ys,
+        exit_status=status if simulation.quit_status is None else simulation.quit_status,
+        error=error,
+        quit_requested=simulation.quit_status is not None,
+        final_pose=simulator.pose,
+        robot_model=str(simulator.robot.name),
     )
+
+
+def _exit_status(request: SystemExit) -> tuple[int, str]:
+    """The exit status and message of a controller's ``sys.exit``."""
+    code = request.code
+    if code is None:
+        return 0, ""
+    if isinstance(code, int):
+        return code, ""
+    return EXIT_CONTROLLER_ERROR, f"{code}\n"
+
+
+def _controller_traceback(failure: BaseException) -> str:
+    """The traceback of a controller's exception, from the controller's own first frame."""
+    if isinstance(failure, SyntaxError):
+        return "".join(traceback.format_exception_only(type(failure), failure))
+    trace: TracebackType | None = failure.__traceback__
+    # The first frame is the runner's exec; the controller's file comes next.
+    if trace is not None and trace.tb_next is not None:
+        trace = trace.tb_next
+    return "".join(traceback.format_exception(type(failure), failure, trace))

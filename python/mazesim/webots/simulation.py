@@ -9,19 +9,49 @@ with an optional time limit after which ``Robot.step`` returns -1, and the traje
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
 
-from mazesim._core import Simulator, World
-from mazesim.errors import InvalidArgumentError
+from mazesim._core import RobotProfile, Simulator, World
+from mazesim.errors import InvalidArgumentError, UnknownNameError
+from mazesim.webots.keyboard import KeyScript
+from mazesim.webots.scene import Scene
 
-__all__ = ["RobotSimulation", "StepObserver", "current", "observing_steps", "prepare", "release"]
+__all__ = [
+    "RobotSimulation",
+    "StepObserver",
+    "current",
+    "observing_steps",
+    "prepare",
+    "release",
+    "robot_profile_name",
+]
 
 #: Displacement per step (metres) below which the robot counts as stopped.
 STOP_DISPLACEMENT = 1e-4
+#: The profile used when the import report names none (or one this build does not have).
+DEFAULT_PROFILE = "e-puck"
+
+
+def robot_profile_name(report: Mapping[str, Any] | None) -> str:
+    """The robot profile to simulate for an import report.
+
+    Args:
+        report: The import report of a ``.wbt`` world, or None for a mazesim world.
+
+    Returns:
+        The report's ``robot_profile`` when this build has that profile, else ``"e-puck"``.
+    """
+    name = (report or {}).get("robot_profile") or DEFAULT_PROFILE
+    try:
+        RobotProfile.builtin(str(name))
+    except UnknownNameError:
+        return DEFAULT_PROFILE
+    return str(name)
 
 
 class RobotSimulation:
@@ -38,10 +68,30 @@ class RobotSimulation:
         ys: The robot's y after each step (the start first).
         longest_stop_steps: The longest run of consecutive steps in which the robot moved less
             than :data:`STOP_DISPLACEMENT`.
+        report: The import report of the ``.wbt`` world (empty for a mazesim world).
+        keys: The keyboard script (empty: no key is ever pressed).
+        supervisor: Whether the robot is a supervisor (the world's ``supervisor TRUE``, or
+            the controller created a ``Supervisor``).
+        scene: DEF names, camera fields and north read from the world file.
+        noise: Whether the sensors are noisy.
+        seed: The seed of the sensor noise.
+        quit_status: The status a supervisor's ``simulationQuit`` asked for, or None.
+        velocity: The robot's world-frame velocity over the last step: vx, vy (m/s), yaw rate
+            (rad/s).
+        acceleration: The robot's world-frame acceleration over the last step: ax, ay (m/s^2).
     """
 
     def __init__(
-        self, world: World, *, seconds: float | None = None, seed: int = 0, noise: bool = True
+        self,
+        world: World,
+        *,
+        seconds: float | None = None,
+        seed: int = 0,
+        noise: bool = True,
+        report: Mapping[str, Any] | None = None,
+        keys: KeyScript | None = None,
+        supervisor: bool = False,
+        scene: Scene | None = None,
     ) -> None:
         """Creates the simulator of the run.
 
@@ -50,6 +100,12 @@ class RobotSimulation:
             seconds: Simulated seconds after which ``Robot.step`` returns -1; None runs forever.
             seed: Seed of the sensor noise.
             noise: Whether the sensors are noisy, as in Webots.
+            report: The import report of a ``.wbt`` world: its robot profile, extension devices
+                and DEF names are used.
+            keys: The keyboard script the ``Keyboard`` device plays.
+            supervisor: Whether the robot is a supervisor even if the controller creates a
+                plain ``Robot``.
+            scene: DEF names, camera fields and north read from the world file.
 
         Raises:
             InvalidArgumentError: ``seconds`` is not a positive number.
@@ -57,7 +113,16 @@ class RobotSimulation:
         if seconds is not None and not (math.isfinite(seconds) and seconds > 0.0):
             raise InvalidArgumentError(f"expected a positive number of seconds, found {seconds!r}")
         self.world = world
-        self.simulator = Simulator(world, robot="e-puck", seed=seed, noise=noise)
+        self.report: dict[str, Any] = dict(report or {})
+        self.keys = keys if keys is not None else KeyScript([])
+        self.scene = scene or Scene()
+        self.supervisor = supervisor or self.scene.supervisor
+        self.noise = noise
+        self.seed = seed
+        self.quit_status: int | None = None
+        self.simulator = Simulator(world, robot=robot_profile_name(report), seed=seed, noise=noise)
+        self.velocity = (0.0, 0.0, 0.0)
+        self.acceleration = (0.0, 0.0)
         self.basic_time_step_ms = float(self.simulator.control_step_ms)
         self.step_limit = (
             None
@@ -71,6 +136,7 @@ class RobotSimulation:
         self.ys: list[float] = [y]
         self.longest_stop_steps = 0
         self._stop_steps = 0
+        self._yaw = float(self.simulator.pose[2])
         self._distance: npt.NDArray[np.float32] | None = None
         self._ground: npt.NDArray[np.float32] | None = None
 
@@ -88,12 +154,39 @@ class RobotSimulation:
         self.steps += 1
         self._distance = None
         self._ground = None
-        x, y, _ = self.simulator.pose
+        x, y, yaw = self.simulator.pose
         moved = math.hypot(x - self.xs[-1], y - self.ys[-1])
+        dt = self.basic_time_step_ms / 1000.0
+        vx, vy = (x - self.xs[-1]) / dt, (y - self.ys[-1]) / dt
+        turned = math.remainder(yaw - self._yaw, math.tau)
+        previous = self.velocity
+        self.velocity = (vx, vy, turned / dt)
+        self.acceleration = ((vx - previous[0]) / dt, (vy - previous[1]) / dt)
+        self._yaw = yaw
         self.xs.append(x)
         self.ys.append(y)
         self._stop_steps = self._stop_steps + 1 if moved < STOP_DISPLACEMENT else 0
         self.longest_stop_steps = max(self.longest_stop_steps, self._stop_steps)
+
+    @property
+    def time(self) -> float:
+        """Simulated seconds since the start."""
+        return float(self.simulator.time)
+
+    def move_robot(self, x: float, y: float, yaw: float) -> None:
+        """Puts the robot at a new pose at rest (a supervisor's ``setSFVec3f`` / ``setSFRotation``).
+
+        The trajectory's latest point becomes the new pose; the move is not counted as
+        distance travelled.
+        """
+        self.simulator.set_pose(x, y, yaw)
+        self._distance = None
+        self._ground = None
+        self.velocity = (0.0, 0.0, 0.0)
+        self.acceleration = (0.0, 0.0)
+        self._yaw = yaw
+        self.xs[-1] = x
+        self.ys[-1] = y
 
     def distance_readings(self) -> npt.NDArray[np.float32]:
         """The proximity readings ps0..ps7 after the last step."""
@@ -127,7 +220,15 @@ def observing_steps(observer: StepObserver) -> Iterator[None]:
 
 
 def prepare(
-    world: World, *, seconds: float | None = None, seed: int = 0, noise: bool = True
+    world: World,
+    *,
+    seconds: float | None = None,
+    seed: int = 0,
+    noise: bool = True,
+    report: Mapping[str, Any] | None = None,
+    keys: KeyScript | None = None,
+    supervisor: bool = False,
+    scene: Scene | None = None,
 ) -> RobotSimulation:
     """Makes the simulation that the next ``controller.Robot()`` drives.
 
@@ -136,12 +237,25 @@ def prepare(
         seconds: Simulated seconds after which ``Robot.step`` returns -1; None runs forever.
         seed: Seed of the sensor noise.
         noise: Whether the sensors are noisy.
+        report: The import report of a ``.wbt`` world (robot profile, extension devices, DEFs).
+        keys: The keyboard script.
+        supervisor: Whether the robot is a supervisor whatever class the controller creates.
+        scene: DEF names, camera fields and north read from the world file.
 
     Returns:
         The new simulation (it replaces any earlier one).
     """
     global _current
-    _current = RobotSimulation(world, seconds=seconds, seed=seed, noise=noise)
+    _current = RobotSimulation(
+        world,
+        seconds=seconds,
+        seed=seed,
+        noise=noise,
+        report=report,
+        keys=keys,
+        supervisor=supervisor,
+        scene=scene,
+    )
     return _current
 
 

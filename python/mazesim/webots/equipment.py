@@ -1,0 +1,195 @@
+"""The devices a robot carries in a run: the profile's, the e-puck's built-in ones, and those
+the world mounts in its extension slots.
+
+Names are Webots': ``left wheel motor`` / ``right wheel motor``, ``left wheel sensor`` /
+``right wheel sensor``, the profile's distance sensors (``ps0``..``ps7``, and ``tof`` on the
+e-puck2) and ground sensors (``gs0``..``gs2``), ``ls0``..``ls7``, ``led0``..``led9``,
+``camera``, ``accelerometer``, ``gyro``, ``emitter``, ``receiver``, ``speaker``; then every
+device of the import report's ``extension_devices``.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from collections.abc import Callable, Mapping, Sequence
+from typing import Any
+
+from mazesim.webots.camera import Camera, CameraView
+from mazesim.webots.devices import LED, Device, DistanceSensor, Motor, PositionSensor, _Sensor
+from mazesim.webots.inert import Display, Emitter, Pen, Receiver, Speaker
+from mazesim.webots.keyboard import Joystick, Keyboard, Mouse
+from mazesim.webots.sensors import (
+    GPS,
+    Accelerometer,
+    Compass,
+    DeviceMount,
+    Gyro,
+    InertialUnit,
+    LightSensor,
+    RayDistanceSensor,
+    TouchSensor,
+)
+from mazesim.webots.simulation import RobotSimulation
+
+__all__ = ["Equipment", "extension_device"]
+
+#: Number of LEDs of the e-puck (led0..led9; led8 is the body LED, led9 the front LED).
+LED_COUNT = 10
+#: Number of light sensors of the e-puck (ls0..ls7, beside ps0..ps7).
+LIGHT_SENSOR_COUNT = 8
+#: Height of the e-puck's light sensors above the floor (m).
+LIGHT_SENSOR_HEIGHT = 0.033
+
+
+def _names(profile: Any, attribute: str) -> list[str]:
+    """A profile's sensor names, whether the binding gives them as a property or a method."""
+    names = getattr(profile, attribute)
+    return list(names() if callable(names) else names)
+
+
+def _table(fields: Mapping[str, Any]) -> list[list[float]] | None:
+    """A lookupTable field as rows of numbers (rows, or Webots' flat list), or None."""
+    raw = fields.get("lookupTable")
+    if not isinstance(raw, Sequence) or not raw:
+        return None
+    if all(isinstance(row, Sequence) for row in raw):
+        return [[float(v) for v in row] for row in raw]
+    flat = [float(v) for v in raw]
+    return [flat[i : i + 3] for i in range(0, len(flat) - 2, 3)]
+
+
+def light_sensor_mount(profile: Any, index: int) -> DeviceMount:
+    """Where light sensor ``ls<index>`` sits: beside proximity sensor ``ps<index>`` (the
+    e-puck's TCRT1000 packages hold both), at the sensors' height."""
+    poses = profile.distance_sensor_poses()
+    if index < len(poses):
+        x, y, heading = (float(v) for v in poses[index][:3])
+    else:
+        x, y, heading = 0.0, 0.0, index * math.tau / LIGHT_SENSOR_COUNT
+    return DeviceMount((x, y, LIGHT_SENSOR_HEIGHT), heading)
+
+
+def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> Device | None:
+    """The device for one entry of the import report's ``extension_devices``, or None when
+    mazesim has no such device type (a warning is printed)."""
+    kind = str(entry.get("type", ""))
+    name = str(entry.get("name") or kind.lower())
+    fields: Mapping[str, Any] = entry.get("fields") or {}
+    mount = DeviceMount(entry.get("translation") or (0.0, 0.0, 0.0), float(entry.get("yaw", 0.0)))
+    table = _table(fields)
+    north = simulation.scene.north or (0.0, 1.0)
+    builders: dict[str, Callable[[], Device]] = {
+        "GPS": lambda: GPS(name, simulation, mount, table),
+        "Compass": lambda: Compass(name, simulation, mount, table, north),
+        "Accelerometer": lambda: Accelerometer(name, simulation, mount, table),
+        "Gyro": lambda: Gyro(name, simulation, mount, table),
+        "InertialUnit": lambda: InertialUnit(name, simulation, mount, None),
+        "TouchSensor": lambda: TouchSensor(name, simulation),
+        "DistanceSensor": lambda: RayDistanceSensor(
+            name, simulation, mount, table, str(fields.get("type", "generic"))
+        ),
+        "LightSensor": lambda: (
+            LightSensor(name, simulation, table, mount)
+            if table
+            else LightSensor(name, simulation, mount=mount)
+        ),
+        "LED": lambda: LED(name, simulation),
+        "Camera": lambda: Camera(
+            name,
+            simulation,
+            CameraView(
+                width=int(fields.get("width", 64)),
+                height=int(fields.get("height", 64)),
+                fov=float(fields.get("fieldOfView", 0.7854)),
+                x=mount.x,
+                z=max(mount.z, 0.001),
+            ),
+        ),
+        "Emitter": lambda: Emitter(name, simulation),
+        "Receiver": lambda: Receiver(name, simulation),
+        "Speaker": lambda: Speaker(name, simulation),
+        "Display": lambda: Display(name, simulation),
+        "Pen": lambda: Pen(name, simulation),
+    }
+    build = builders.get(kind)
+    if build is None:
+        print(
+            f"mazesim: warning: the {kind or 'unnamed'} device {name!r} in the world is not "
+            "simulated",
+            file=sys.stderr,
+        )
+        return None
+    return build()
+
+
+class Equipment:
+    """Every device of the robot in a run, by name, and the inputs (keyboard, mouse, joystick).
+
+    Attributes:
+        devices: The devices by name, in Webots' order.
+        keyboard: The keyboard.
+        mouse: The mouse.
+        joystick: The joystick.
+    """
+
+    def __init__(self, simulation: RobotSimulation) -> None:
+        self._simulation = simulation
+        profile = simulation.simulator.robot
+        encoders = [
+            PositionSensor(name, simulation, side)
+            for side, name in enumerate(("left wheel sensor", "right wheel sensor"))
+        ]
+        self._motors = [
+            Motor(name, simulation, side, encoders[side])
+            for side, name in enumerate(("left wheel motor", "right wheel motor"))
+        ]
+        for motor, encoder in zip(self._motors, encoders):
+            encoder._motor = motor
+        devices: list[Device] = [*self._motors, *encoders]
+        devices += [
+            DistanceSensor(name, simulation, i, ground=False)
+            for i, name in enumerate(_names(profile, "distance_sensor_names"))
+        ]
+        devices += [
+            LightSensor(f"ls{i}", simulation, mount=light_sensor_mount(profile, i))
+            for i in range(LIGHT_SENSOR_COUNT)
+        ]
+        devices += [
+            DistanceSensor(name, simulation, i, ground=True)
+            for i, name in enumerate(_names(profile, "ground_sensor_names"))
+        ]
+        devices += [LED(f"led{i}", simulation) for i in range(LED_COUNT)]
+        scene = simulation.scene
+        view = CameraView(
+            width=scene.camera_width or CameraView.width,
+            height=scene.camera_height or CameraView.height,
+            fov=scene.camera_fov or CameraView.fov,
+            pitch=scene.camera_pitch,
+        )
+        devices += [
+            Camera("camera", simulation, view),
+            Accelerometer("accelerometer", simulation),
+            Gyro("gyro", simulation),
+            Emitter("emitter", simulation),
+            Receiver("receiver", simulation),
+            Speaker("speaker", simulation),
+        ]
+        for entry in simulation.report.get("extension_devices") or []:
+            if isinstance(entry, Mapping) and (device := extension_device(simulation, entry)):
+                devices.append(device)
+        self.devices: dict[str, Device] = {}
+        for device in devices:
+            self.devices.setdefault(device.getName(), device)
+        self._sampled = [device for device in devices if isinstance(device, _Sensor)]
+        self.keyboard = Keyboard(simulation=simulation)
+        self.mouse = Mouse()
+        self.joystick = Joystick()
+
+    def advance(self) -> None:
+        """Runs one basic step with the motors' speeds, then lets each sensor take its reading."""
+        simulation = self._simulation
+        left, right = simulation.simulator.encoders
+        simulation.advance(self._motors[0]._wheel_speed(left), self._motors[1]._wheel_speed(right))
+        for sensor in self._sampled:
+            sensor._after_step()

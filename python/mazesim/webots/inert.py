@@ -1,0 +1,418 @@
+"""Devices of Webots' ``controller`` module that the e-puck's simulation keeps inert.
+
+The e-puck's ``emitter``, ``receiver`` and ``speaker`` exist and accept every call: a run has
+one robot, so nothing sent is received and the receiver's queue stays empty; no sound is played.
+The other classes (Display, Pen, Lidar, RangeFinder, Radar, Connector, Brake, Altimeter,
+VacuumGripper, Skin, Motion) can be imported and constructed as in Webots, but the e-puck has no
+such device: their readings are Webots' values for a missing device.
+
+A method of Webots' API that mazesim does not simulate prints Webots-style
+``Error: <call>() is not available in mazesim`` on stderr and returns None, instead of raising
+``AttributeError`` (see :class:`NotSimulated`).
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
+
+from mazesim.webots.devices import Device, _print_error, _ScalarSensor
+
+if TYPE_CHECKING:
+    from mazesim.webots.simulation import RobotSimulation
+
+__all__ = [
+    "Altimeter",
+    "AnsiCodes",
+    "Brake",
+    "Connector",
+    "ContactPoint",
+    "Display",
+    "Emitter",
+    "Lidar",
+    "LidarPoint",
+    "Motion",
+    "NotSimulated",
+    "Pen",
+    "RadarTarget",
+    "Radar",
+    "RangeFinder",
+    "Receiver",
+    "Skin",
+    "Speaker",
+    "VacuumGripper",
+]
+
+
+class NotSimulated:
+    """Mixin: a Webots API name that the class does not define prints an error, returns None.
+
+    Only names in Webots' style (a lower-case letter first, no underscore) are answered; any
+    other missing attribute is an ``AttributeError`` as usual.
+    """
+
+    def __getattr__(self, name: str) -> Callable[..., None]:
+        if not name[:1].islower() or "_" in name:
+            raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+        owner = type(self).__name__
+
+        def not_simulated(*args: Any, **kwargs: Any) -> None:
+            print(f"Error: {owner}.{name}() is not available in mazesim.", file=sys.stderr)
+
+        return not_simulated
+
+
+class _Inert(NotSimulated, _ScalarSensor):
+    """A device the e-puck does not carry: enable/disable work, readings are NaN."""
+
+    def _read(self) -> float:
+        return math.nan
+
+
+class Emitter(NotSimulated, Device):
+    """The e-puck's radio emitter: packets are accepted and go nowhere (no other robot)."""
+
+    CHANNEL_BROADCAST = -1
+
+    def __init__(self, name: str, simulation: RobotSimulation) -> None:
+        super().__init__(name, simulation)
+        self._channel = 1
+        self._range = 0.8
+
+    def send(self, message: Any, length: int | None = None) -> int:
+        """Queues a packet (bytes, str or a list of numbers); returns 1 (accepted)."""
+        return 1
+
+    def getChannel(self) -> int:
+        """The channel (the e-puck's default, 1)."""
+        return self._channel
+
+    def setChannel(self, channel: int) -> None:
+        """Sets the channel."""
+        self._channel = int(channel)
+
+    def getRange(self) -> float:
+        """The range in metres (the e-puck's 0.8)."""
+        return self._range
+
+    def setRange(self, range: float) -> None:
+        """Sets the range in metres."""
+        self._range = float(range)
+
+    def getBufferSize(self) -> int:
+        """The buffer size in bytes (-1: unlimited)."""
+        return -1
+
+    @property
+    def channel(self) -> int:
+        """The channel (property style)."""
+        return self._channel
+
+    @channel.setter
+    def channel(self, channel: int) -> None:
+        self.setChannel(channel)
+
+
+class Receiver(NotSimulated, _ScalarSensor):
+    """The e-puck's radio receiver: its queue stays empty (no other robot sends)."""
+
+    CHANNEL_BROADCAST = -1
+    _api = "wb_receiver"
+
+    def __init__(self, name: str, simulation: RobotSimulation) -> None:
+        super().__init__(name, simulation)
+        self._channel = 1
+
+    def _read(self) -> float:
+        return 0.0
+
+    def getQueueLength(self) -> int:
+        """0: nothing is ever received."""
+        return 0
+
+    def _empty(self, function: str) -> None:
+        _print_error(f"Error: wb_receiver_{function}(): the receiver queue is empty.")
+
+    def nextPacket(self) -> None:
+        """Webots' error: the queue is empty."""
+        self._empty("next_packet")
+
+    def getData(self) -> None:
+        """None, with Webots' error: the queue is empty."""
+        self._empty("get_data")
+
+    def getBytes(self) -> None:
+        """None, with Webots' error: the queue is empty."""
+        self._empty("get_data")
+
+    def getString(self) -> None:
+        """None, with Webots' error: the queue is empty."""
+        self._empty("get_data")
+
+    def getDataSize(self) -> int:
+        """-1, with Webots' error: the queue is empty."""
+        self._empty("get_data_size")
+        return -1
+
+    def getSignalStrength(self) -> float:
+        """NaN: the queue is empty."""
+        self._empty("get_signal_strength")
+        return math.nan
+
+    def getEmitterDirection(self) -> list[float]:
+        """NaNs: the queue is empty."""
+        self._empty("get_emitter_direction")
+        return [math.nan] * 3
+
+    def getChannel(self) -> int:
+        """The channel (the e-puck's default, 1)."""
+        return self._channel
+
+    def setChannel(self, channel: int) -> None:
+        """Sets the channel."""
+        self._channel = int(channel)
+
+    @property
+    def queue_length(self) -> int:
+        """0: nothing is ever received."""
+        return 0
+
+
+class Speaker(NotSimulated, Device):
+    """The e-puck's speaker: sounds and speech are accepted and not played."""
+
+    def __init__(self, name: str, simulation: RobotSimulation) -> None:
+        super().__init__(name, simulation)
+        self._engine = "pico"
+        self._language = "en-US"
+
+    @staticmethod
+    def playSound(
+        left: Any,
+        right: Any,
+        sound: str,
+        volume: float,
+        pitch: float,
+        balance: float,
+        loop: bool,
+    ) -> None:
+        """Accepted; nothing is played."""
+
+    def stop(self, sound: str | None = None) -> None:
+        """Accepted."""
+
+    def isSoundPlaying(self, sound: str | None = None) -> bool:
+        """False: nothing plays."""
+        return False
+
+    def speak(self, text: str, volume: float = 1.0) -> None:
+        """Accepted; nothing is said."""
+
+    def isSpeaking(self) -> bool:
+        """False."""
+        return False
+
+    def setEngine(self, engine: str) -> bool:
+        """Sets the speech engine's name; True."""
+        self._engine = str(engine)
+        return True
+
+    def setLanguage(self, language: str) -> bool:
+        """Sets the speech language; True."""
+        self._language = str(language)
+        return True
+
+    def getEngine(self) -> str:
+        """The speech engine's name."""
+        return self._engine
+
+    def getLanguage(self) -> str:
+        """The speech language."""
+        return self._language
+
+
+class Display(_Inert):
+    """A display (the e-puck has none)."""
+
+    RGB = 3
+    RGBA = 4
+    ARGB = 5
+    BGRA = 6
+    ABGR = 7
+
+    def getWidth(self) -> int:
+        """0: no display."""
+        return 0
+
+    def getHeight(self) -> int:
+        """0: no display."""
+        return 0
+
+
+class Pen(_Inert):
+    """A pen (the e-puck has none)."""
+
+    def write(self, write: bool) -> None:
+        """Accepted; nothing is drawn."""
+
+    def setInkColor(self, color: int, density: float) -> None:
+        """Accepted; nothing is drawn."""
+
+
+class Lidar(_Inert):
+    """A lidar (the e-puck has none)."""
+
+    def getRangeImage(self) -> None:
+        """None: no lidar."""
+        return None
+
+    def getHorizontalResolution(self) -> int:
+        """0: no lidar."""
+        return 0
+
+    def getNumberOfLayers(self) -> int:
+        """0: no lidar."""
+        return 0
+
+
+class LidarPoint:
+    """A point of a lidar's point cloud."""
+
+    def __init__(self, x: float = 0.0, y: float = 0.0, z: float = 0.0, layer: int = 0) -> None:
+        self.x, self.y, self.z = x, y, z
+        self.layer_id = layer
+        self.time = 0.0
+
+
+class RangeFinder(_Inert):
+    """A range finder (the e-puck has none)."""
+
+    def getRangeImage(self, data_type: str = "list") -> None:
+        """None: no range finder."""
+        return None
+
+    @staticmethod
+    def rangeImageGetDepth(image: Any, width: int, x: int, y: int) -> float:
+        """The depth at pixel (x, y) of a range image."""
+        return float(image[y * width + x])
+
+
+class Radar(_Inert):
+    """A radar (the e-puck has none)."""
+
+    def getNumberOfTargets(self) -> int:
+        """0: no radar."""
+        return 0
+
+    def getTargets(self) -> list[RadarTarget]:
+        """The empty list: no radar."""
+        return []
+
+
+class RadarTarget:
+    """A target seen by a radar."""
+
+    def __init__(self) -> None:
+        self.distance = math.nan
+        self.received_power = math.nan
+        self.speed = math.nan
+        self.azimuth = math.nan
+
+
+class Connector(_Inert):
+    """A connector (the e-puck has none)."""
+
+    def isLocked(self) -> bool:
+        """False."""
+        return False
+
+    def getPresence(self) -> int:
+        """-1: no connector."""
+        return -1
+
+
+class Brake(NotSimulated, Device):
+    """A brake (the e-puck's wheels have none)."""
+
+    ROTATIONAL = 0
+    LINEAR = 1
+
+
+class Altimeter(_Inert):
+    """An altimeter (the e-puck has none)."""
+
+
+class VacuumGripper(_Inert):
+    """A vacuum gripper (the e-puck has none)."""
+
+    def isOn(self) -> bool:
+        """False."""
+        return False
+
+
+class Skin(_Inert):
+    """A skin (the e-puck has none)."""
+
+
+class Motion(NotSimulated):
+    """A motion file player (for humanoids; the e-puck has no joints to play it on)."""
+
+    def __init__(self, fileName: str = "") -> None:
+        self._file = fileName
+
+    def isValid(self) -> bool:
+        """False: no motion can be played."""
+        return False
+
+    def isOver(self) -> bool:
+        """True: nothing plays."""
+        return True
+
+    def play(self) -> None:
+        """Accepted; nothing plays."""
+
+    def stop(self) -> None:
+        """Accepted."""
+
+
+class ContactPoint:
+    """A contact point of a solid (``Node.getContactPoints``)."""
+
+    def __init__(self, point: list[float] | None = None, node_id: int = -1) -> None:
+        self.point = point or [0.0, 0.0, 0.0]
+        self.node_id = node_id
+
+    def getPoint(self) -> list[float]:
+        """The point in the world frame (m)."""
+        return self.point
+
+    def getNodeId(self) -> int:
+        """The id of the node in contact."""
+        return self.node_id
+
+
+class AnsiCodes:
+    """ANSI escape codes for coloured console output, as Webots' module has them."""
+
+    RESET = "\u001b[0m"
+    BOLD = "\u001b[1m"
+    UNDERLINE = "\u001b[4m"
+    BLACK_BACKGROUND = "\u001b[40m"
+    RED_BACKGROUND = "\u001b[41m"
+    GREEN_BACKGROUND = "\u001b[42m"
+    YELLOW_BACKGROUND = "\u001b[43m"
+    BLUE_BACKGROUND = "\u001b[44m"
+    MAGENTA_BACKGROUND = "\u001b[45m"
+    CYAN_BACKGROUND = "\u001b[46m"
+    WHITE_BACKGROUND = "\u001b[47m"
+    BLACK_FOREGROUND = "\u001b[30m"
+    RED_FOREGROUND = "\u001b[31m"
+    GREEN_FOREGROUND = "\u001b[32m"
+    YELLOW_FOREGROUND = "\u001b[33m"
+    BLUE_FOREGROUND = "\u001b[34m"
+    MAGENTA_FOREGROUND = "\u001b[35m"
+    CYAN_FOREGROUND = "\u001b[36m"
+    WHITE_FOREGROUND = "\u001b[37m"
+    CLEAR_SCREEN = "\u001b[2J"

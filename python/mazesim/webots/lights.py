@@ -1,0 +1,132 @@
+"""The world's lights, as the e-puck's light sensors see them.
+
+A world file's ``PointLight``, ``SpotLight`` and ``DirectionalLight`` nodes are read from its
+text; a light sensor at a point, facing a heading along the floor, receives from each light that
+is on::
+
+    E = intensity * (ambientIntensity + max(0, cos(a))) / attenuation
+
+where ``a`` is the angle between the sensor's direction and the way to the light, and the
+attenuation of a point or spot light at distance ``d`` is ``a0 + a1 d + a2 d^2`` (its
+``attenuation`` field; a directional light has none). Walls do not shade (Webots' LightSensor
+``occlusion`` defaults to FALSE). A world without such lights gets
+:data:`DEFAULT_IRRADIANCE`.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+
+__all__ = ["DEFAULT_IRRADIANCE", "Light", "irradiance", "read_lights"]
+
+#: Irradiance (W/m^2) of a world without light information: a light of intensity 1.
+DEFAULT_IRRADIANCE = 1.0
+
+_LIGHT = re.compile(r"\b(PointLight|SpotLight|DirectionalLight)\s*\{")
+_NUMBER = r"([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)"
+
+
+@dataclass(frozen=True)
+class Light:
+    """A light of the world, in the world frame (ENU).
+
+    Attributes:
+        position: Where a point or spot light is (m), or None for a directional light.
+        direction: Where a directional light shines to (unit vector), else None.
+        intensity: Its ``intensity``.
+        ambient: Its ``ambientIntensity``.
+        attenuation: Its ``attenuation`` coefficients (constant, linear, quadratic).
+        radius: Its ``radius`` (m): beyond it a point or spot light gives nothing.
+    """
+
+    position: tuple[float, float, float] | None
+    direction: tuple[float, float, float] | None
+    intensity: float = 1.0
+    ambient: float = 0.0
+    attenuation: tuple[float, float, float] = (1.0, 0.0, 0.0)
+    radius: float = 100.0
+
+
+def _body(text: str, start: int) -> str:
+    """The text of a node's body from just after its ``{`` to its ``}``."""
+    depth = 0
+    for index in range(start, len(text)):
+        if text[index] == "{":
+            depth += 1
+        elif text[index] == "}":
+            if depth == 0:
+                return text[start:index]
+            depth -= 1
+    return text[start:]
+
+
+def _numbers(body: str, name: str, count: int) -> list[float] | None:
+    found = re.search(r"\b" + name + r"\s+" + r"\s+".join([_NUMBER] * count), body)
+    return None if found is None else [float(v) for v in found.groups()]
+
+
+def read_lights(text: str, nue: bool = False) -> list[Light]:
+    """The lights of a world file's text that are on (comments already stripped).
+
+    Args:
+        text: The ``.wbt`` text.
+        nue: Whether the file is in Webots' old NUE frame (y up); positions are converted.
+    """
+    lights = []
+    for match in _LIGHT.finditer(text):
+        body = _body(text, match.end())
+        if re.search(r"\bon\s+FALSE\b", body):
+            continue
+        intensity = (_numbers(body, "intensity", 1) or [1.0])[0]
+        ambient = (_numbers(body, "ambientIntensity", 1) or [0.0])[0]
+        if match.group(1) == "DirectionalLight":
+            x, y, z = _numbers(body, "direction", 3) or [0.0, 0.0, -1.0]
+            x, y, z = (x, -z, y) if nue else (x, y, z)
+            norm = math.sqrt(x * x + y * y + z * z) or 1.0
+            lights.append(
+                Light(None, (x / norm, y / norm, z / norm), intensity=intensity, ambient=ambient)
+            )
+            continue
+        x, y, z = _numbers(body, "location", 3) or [0.0, 0.0, 0.0]
+        a0, a1, a2 = _numbers(body, "attenuation", 3) or [1.0, 0.0, 0.0]
+        radius = (_numbers(body, "radius", 1) or [100.0])[0]
+        lights.append(
+            Light(
+                (x, -z, y) if nue else (x, y, z),
+                None,
+                intensity=intensity,
+                ambient=ambient,
+                attenuation=(a0, a1, a2),
+                radius=radius,
+            )
+        )
+    return lights
+
+
+def irradiance(
+    lights: list[Light] | None, point: tuple[float, float, float], heading: float
+) -> float:
+    """The irradiance (W/m^2) a sensor at ``point`` facing ``heading`` (along the floor)
+    receives; :data:`DEFAULT_IRRADIANCE` when ``lights`` is None or empty."""
+    if not lights:
+        return DEFAULT_IRRADIANCE
+    facing = (math.cos(heading), math.sin(heading), 0.0)
+    total = 0.0
+    for light in lights:
+        if light.position is None:
+            assert light.direction is not None
+            towards = tuple(-v for v in light.direction)
+            attenuation = 1.0
+        else:
+            offset = [light.position[i] - point[i] for i in range(3)]
+            distance = math.sqrt(sum(v * v for v in offset))
+            if distance > light.radius:
+                continue
+            towards = tuple(v / distance for v in offset) if distance > 0 else facing
+            a0, a1, a2 = light.attenuation
+            attenuation = max(a0 + a1 * distance + a2 * distance * distance, 1e-9)
+        cosine = max(0.0, sum(f * t for f, t in zip(facing, towards)))
+        total += light.intensity * (light.ambient + cosine) / attenuation
+    return total

@@ -1,0 +1,124 @@
+"""Rays against the world's walls, from any pose: the camera's view and extra distance sensors.
+
+The core casts the profile's own sensors; these casts serve what the world adds (a camera, a
+distance sensor in an extension slot), from the wall boxes of :meth:`World.wall_boxes`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import numpy.typing as npt
+
+from mazesim._core import World
+
+__all__ = ["FloorPaint", "WallBoxes"]
+
+Floats = npt.NDArray[np.float64]
+
+
+class WallBoxes:
+    """The walls of a world as oriented boxes, ready for many rays at once."""
+
+    def __init__(self, world: World) -> None:
+        boxes = np.asarray(world.wall_boxes(), dtype=np.float64).reshape(-1, 6)
+        self.center = boxes[:, 0:2]
+        self.half = boxes[:, 2:4] / 2.0
+        self.cos = np.cos(boxes[:, 4])
+        self.sin = np.sin(boxes[:, 4])
+        self.reflectance = boxes[:, 5]
+
+    def cast(self, origin: tuple[float, float], directions: Floats) -> tuple[Floats, Floats]:
+        """Casts rays from ``origin`` along each of ``directions`` ((N, 2), not normalised).
+
+        Returns:
+            For each ray, the ray parameter ``t`` of the first wall met (the hit is at
+            ``origin + t * direction``; ``inf`` when none) and that wall's reflectance (NaN when
+            none).
+        """
+        count = directions.shape[0]
+        if self.center.shape[0] == 0:
+            return np.full(count, np.inf), np.full(count, np.nan)
+        # Origin and directions in each box's frame: (boxes,) and (rays, boxes).
+        ox = origin[0] - self.center[:, 0]
+        oy = origin[1] - self.center[:, 1]
+        local_ox = self.cos * ox + self.sin * oy
+        local_oy = -self.sin * ox + self.cos * oy
+        dx = directions[:, 0:1]
+        dy = directions[:, 1:2]
+        local_dx = self.cos * dx + self.sin * dy
+        local_dy = -self.sin * dx + self.cos * dy
+        with np.errstate(divide="ignore", invalid="ignore"):
+            near_x, far_x = _slab(local_ox, local_dx, self.half[:, 0])
+            near_y, far_y = _slab(local_oy, local_dy, self.half[:, 1])
+        near = np.maximum(np.maximum(near_x, near_y), 0.0)
+        far = np.minimum(far_x, far_y)
+        hit = near <= far
+        t = np.where(hit, near, np.inf)
+        nearest = np.argmin(t, axis=1)
+        distance = t[np.arange(count), nearest]
+        reflectance = np.where(np.isfinite(distance), self.reflectance[nearest], np.nan)
+        return distance, reflectance
+
+
+def _slab(origin: Floats, direction: Floats, half: Floats) -> tuple[Floats, Floats]:
+    """Entry and exit parameters of rays through the slab ``-half <= s <= half``."""
+    low = (-half - origin) / direction
+    high = (half - origin) / direction
+    inside = np.abs(origin) <= half
+    parallel = direction == 0.0
+    near = np.where(parallel, np.where(inside, -np.inf, np.inf), np.minimum(low, high))
+    far = np.where(parallel, np.where(inside, np.inf, -np.inf), np.maximum(low, high))
+    return near, far
+
+
+class FloorPaint:
+    """The floor paint of a world, read once, for the reflectance at many points at a time."""
+
+    def __init__(self, world: World) -> None:
+        self.background = float(world.floor_background)
+        self.regions = world.paint_regions()
+
+    def reflectance(self, x: Floats, y: Floats) -> Floats:
+        """The floor's reflectance factor at each point (later paint drawn over earlier)."""
+        result = np.full(np.shape(x), self.background)
+        for region in self.regions:
+            shape = region["shape"]
+            if shape == "rect":
+                cx, cy = _pair(region, "center")
+                sx, sy = _pair(region, "size")
+                yaw = _number(region, "yaw")
+                c, s = np.cos(yaw), np.sin(yaw)
+                u = c * (x - cx) + s * (y - cy)
+                v = -s * (x - cx) + c * (y - cy)
+                inside = (np.abs(u) <= sx / 2.0) & (np.abs(v) <= sy / 2.0)
+            elif shape == "circle":
+                cx, cy = _pair(region, "center")
+                inside = np.hypot(x - cx, y - cy) <= _number(region, "radius")
+            else:
+                a, b = _pair(region, "a"), _pair(region, "b")
+                inside = _segment_distance(x, y, a, b) <= _number(region, "radius")
+            result = np.where(inside, _number(region, "reflectance"), result)
+        return result
+
+
+def _number(region: dict[str, object], key: str) -> float:
+    value = region[key]
+    assert isinstance(value, int | float), f"paint {key}: expected a number, found {value!r}"
+    return float(value)
+
+
+def _pair(region: dict[str, object], key: str) -> tuple[float, float]:
+    value = region[key]
+    assert isinstance(value, list | tuple), f"paint {key}: expected [x, y], found {value!r}"
+    return float(value[0]), float(value[1])
+
+
+def _segment_distance(
+    x: Floats, y: Floats, a: tuple[float, float], b: tuple[float, float]
+) -> Floats:
+    abx, aby = b[0] - a[0], b[1] - a[1]
+    length2 = abx * abx + aby * aby
+    if length2 == 0.0:
+        return np.asarray(np.hypot(x - a[0], y - a[1]))
+    t = np.clip(((x - a[0]) * abx + (y - a[1]) * aby) / length2, 0.0, 1.0)
+    return np.asarray(np.hypot(x - (a[0] + t * abx), y - (a[1] + t * aby)))

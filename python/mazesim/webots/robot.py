@@ -1,0 +1,368 @@
+"""Webots' ``Robot``: the e-puck a controller drives, its devices and its clock."""
+
+from __future__ import annotations
+
+import math
+import os
+import sys
+import warnings
+from typing import Any, ClassVar
+
+from mazesim.errors import InvalidArgumentError
+from mazesim.webots import simulation as _simulations
+from mazesim.webots.equipment import Equipment
+from mazesim.webots.inert import NotSimulated
+from mazesim.webots.keyboard import Joystick, Keyboard, Mouse
+
+__all__ = ["ControllerStopped", "Robot"]
+
+
+class ControllerStopped(BaseException):
+    """Raised in a controller that calls ``Robot.step`` after it returned -1: the run is over.
+
+    It derives from ``BaseException`` so that a controller's ``except Exception`` does not
+    swallow it; ``mazesim webots run`` treats it as the controller's normal end.
+    """
+
+
+#: The deprecated per-type getters of Webots' Robot (all are ``getDevice`` now).
+DEPRECATED_GETTERS = (
+    "getAccelerometer",
+    "getAltimeter",
+    "getBrake",
+    "getCamera",
+    "getCompass",
+    "getConnector",
+    "getDisplay",
+    "getDistanceSensor",
+    "getEmitter",
+    "getGPS",
+    "getGyro",
+    "getInertialUnit",
+    "getLED",
+    "getLidar",
+    "getLightSensor",
+    "getMotor",
+    "getPen",
+    "getPositionSensor",
+    "getRadar",
+    "getRangeFinder",
+    "getReceiver",
+    "getSkin",
+    "getSpeaker",
+    "getTouchSensor",
+    "getVacuumGripper",
+)
+
+
+def _deprecated_getter(getter: str) -> Any:
+    # Webots' own message spells getLED as getLed.
+    spelled = "getLed" if getter == "getLED" else getter
+
+    def get(self: Robot, name: str) -> Any:
+        warnings.warn(
+            f"DEPRECATION: Robot.{spelled} is deprecated, please use Robot.getDevice instead.",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        return self.getDevice(name)
+
+    get.__name__ = getter
+    get.__doc__ = "Deprecated in Webots: use :meth:`getDevice`."
+    return get
+
+
+class Robot(NotSimulated):
+    """The e-puck the controller drives (only one per controller process, as in Webots)."""
+
+    EVENT_QUIT = -1
+    EVENT_NO_EVENT = 0
+    EVENT_MOUSE_CLICK = 1
+    EVENT_MOUSE_MOVE = 2
+    EVENT_KEYBOARD = 4
+    EVENT_JOYSTICK_BUTTON = 8
+    EVENT_JOYSTICK_AXIS = 16
+    EVENT_JOYSTICK_POV = 32
+    MODE_SIMULATION = 0
+    MODE_CROSS_COMPILATION = 1
+    MODE_REMOTE_CONTROL = 2
+    created: ClassVar[Robot | None] = None
+    _simulation: _simulations.RobotSimulation
+    _equipment: Equipment
+    _custom_data: str
+
+    def __init__(self) -> None:
+        """Attaches to the prepared simulation and finds the robot's devices.
+
+        Raises:
+            InvalidArgumentError: No simulation was prepared (see :func:`mazesim.webots.prepare`).
+        """
+        simulation = _simulations.current()
+        earlier = Robot.created
+        if earlier is not None and earlier._simulation is simulation:
+            print(
+                "Error: only one Robot instance can be created per controller process.",
+                file=sys.stderr,
+            )
+            self._simulation = simulation
+            self._equipment = earlier._equipment
+            self._custom_data = earlier._custom_data
+            return
+        Robot.created = self
+        self._simulation = simulation
+        self._equipment = Equipment(simulation)
+        self._custom_data = simulation.scene.robot_custom_data
+
+    # --- the robot -------------------------------------------------------------------------
+
+    def getBasicTimeStep(self) -> float:
+        """The world's basic time step in milliseconds (``WorldInfo.basicTimeStep``)."""
+        return self._simulation.basic_time_step_ms
+
+    @property
+    def basic_time_step(self) -> float:
+        """:meth:`getBasicTimeStep` as a property."""
+        return self.getBasicTimeStep()
+
+    def getTime(self) -> float:
+        """Simulated seconds since the start."""
+        return self._simulation.time
+
+    @property
+    def time(self) -> float:
+        """:meth:`getTime` as a property."""
+        return self.getTime()
+
+    def getName(self) -> str:
+        """The robot's name: the world's ``name`` field of the robot, by default ``"e-puck"``."""
+        return self._simulation.scene.robot_name
+
+    @property
+    def name(self) -> str:
+        """:meth:`getName` as a property."""
+        return self.getName()
+
+    def getModel(self) -> str:
+        """The robot's model as Webots reports it: the robot profile's name."""
+        return str(self._simulation.simulator.robot.name)
+
+    @property
+    def model(self) -> str:
+        """:meth:`getModel` as a property."""
+        return self.getModel()
+
+    def getCustomData(self) -> str:
+        """The robot's ``customData`` string (empty at the start)."""
+        return self._custom_data
+
+    def setCustomData(self, data: str) -> None:
+        """Sets the robot's ``customData`` string."""
+        self._custom_data = str(data)
+
+    getData = getCustomData
+    setData = setCustomData
+
+    @property
+    def custom_data(self) -> str:
+        """The ``customData`` string (property style)."""
+        return self._custom_data
+
+    @custom_data.setter
+    def custom_data(self, data: str) -> None:
+        self.setCustomData(data)
+
+    def getSupervisor(self) -> bool:
+        """Whether the robot is a supervisor (the world says so, or the controller made one)."""
+        return self._simulation.supervisor
+
+    @property
+    def supervisor(self) -> bool:
+        """:meth:`getSupervisor` as a property."""
+        return self.getSupervisor()
+
+    def getSynchronization(self) -> bool:
+        """True: the simulation waits for the controller at every step."""
+        return True
+
+    @property
+    def synchronization(self) -> bool:
+        """:meth:`getSynchronization` as a property."""
+        return True
+
+    def getMode(self) -> int:
+        """:data:`MODE_SIMULATION`."""
+        return self.MODE_SIMULATION
+
+    def setMode(self, mode: int, arg: Any = None) -> None:
+        """Only simulation is possible: any other mode prints Webots' error."""
+        if mode != self.MODE_SIMULATION:
+            print("Error: wb_robot_set_mode(): no remote control plugin.", file=sys.stderr)
+
+    @property
+    def mode(self) -> int:
+        """:meth:`getMode` as a property."""
+        return self.MODE_SIMULATION
+
+    def getProjectPath(self) -> str:
+        """The controller's project folder (the folder above ``controllers/``, else its own)."""
+        folder = os.path.dirname(os.path.abspath(sys.argv[0] if sys.argv else "."))
+        parent = os.path.dirname(folder)
+        if os.path.basename(parent) == "controllers":
+            return os.path.dirname(parent)
+        return folder
+
+    def getWorldPath(self) -> str:
+        """The world file's path, or the world's name for a built-in world."""
+        return str(self._simulation.report.get("path") or self._simulation.world.name)
+
+    @property
+    def project_path(self) -> str:
+        """:meth:`getProjectPath` as a property."""
+        return self.getProjectPath()
+
+    @property
+    def world_path(self) -> str:
+        """:meth:`getWorldPath` as a property."""
+        return self.getWorldPath()
+
+    def getUrdf(self, prefix: str = "") -> str:
+        """A minimal URDF of the robot (its name only: mazesim has no link tree)."""
+        return f'<?xml version="1.0"?>\n<robot name="{prefix}{self.getName()}">\n</robot>\n'
+
+    def waitForUserInputEvent(self, eventType: int, timeout: int) -> int:
+        """:data:`EVENT_NO_EVENT`: a headless run has no user."""
+        return self.EVENT_NO_EVENT
+
+    def wwiSendText(self, text: str) -> None:
+        """Accepted; there is no robot window."""
+
+    def wwiReceiveText(self) -> None:
+        """None: there is no robot window."""
+        return None
+
+    def batterySensorEnable(self, samplingPeriod: int) -> None:
+        """Accepted; the e-puck's battery is not simulated (it reads NaN)."""
+
+    def batterySensorDisable(self) -> None:
+        """Accepted."""
+
+    def batterySensorGetValue(self) -> float:
+        """NaN: the battery is not simulated."""
+        return math.nan
+
+    def batterySensorGetSamplingPeriod(self) -> int:
+        """0."""
+        return 0
+
+    def step(self, duration: float | None = None) -> int:
+        """Runs the simulation for ``duration`` ms (a whole number of basic steps, rounded up).
+
+        Args:
+            duration: Milliseconds to simulate; by default one basic time step.
+
+        Returns:
+            0, or -1 when the run's time is up or a supervisor asked to quit (the simulation
+            does not advance then).
+
+        Raises:
+            InvalidArgumentError: ``duration`` is negative or not a number.
+            ControllerStopped: ``step`` was called again after it returned -1.
+        """
+        simulation = self._simulation
+        basic = simulation.basic_time_step_ms
+        duration = basic if duration is None else float(duration)
+        if not (math.isfinite(duration) and duration >= 0.0):
+            raise InvalidArgumentError(
+                f"Robot.step expects a duration in ms >= 0, found {duration!r}"
+            )
+        if simulation.ended:
+            raise ControllerStopped("the run is over: Robot.step returned -1 before")
+        for _ in range(max(1, math.ceil(duration / basic - 1e-9))):
+            if simulation.time_is_up or simulation.quit_status is not None:
+                simulation.ended = True
+                return -1
+            self._equipment.advance()
+        return 0
+
+    def stepBegin(self, duration: float | None = None) -> int:
+        """The first half of :meth:`step`: here the whole step (``stepEnd`` returns its
+        result)."""
+        self._pending = self.step(duration)
+        return 0 if self._pending == 0 else -1
+
+    def stepEnd(self) -> int:
+        """The result of the step :meth:`stepBegin` ran."""
+        return int(getattr(self, "_pending", 0))
+
+    # --- devices ---------------------------------------------------------------------------
+
+    def getDevice(self, name: str) -> Any:
+        """The device of that name, or None (with Webots' message) if the robot has none."""
+        device = self._equipment.devices.get(str(name))
+        if device is None:
+            print(f'Device "{name}" was not found on robot "{self.getName()}"', file=sys.stderr)
+        return device
+
+    def getNumberOfDevices(self) -> int:
+        """How many devices the robot has."""
+        return len(self._equipment.devices)
+
+    @property
+    def number_of_devices(self) -> int:
+        """:meth:`getNumberOfDevices` as a property."""
+        return self.getNumberOfDevices()
+
+    def getDeviceByIndex(self, index: int) -> Any:
+        """The device at ``index``, or None (with Webots' message) out of range."""
+        devices = list(self._equipment.devices.values())
+        if not 0 <= int(index) < len(devices):
+            print(
+                f"Error: wb_robot_get_device_by_index(): index {index} is out of range "
+                f"[0, {len(devices) - 1}].",
+                file=sys.stderr,
+            )
+            return None
+        return devices[int(index)]
+
+    def getKeyboard(self) -> Keyboard:
+        """The keyboard."""
+        return self._equipment.keyboard
+
+    @property
+    def keyboard(self) -> Keyboard:
+        """The keyboard."""
+        return self._equipment.keyboard
+
+    def keyboardEnable(self, samplingPeriod: int) -> None:
+        """Webots' API before R2018a: ``getKeyboard().enable(samplingPeriod)``."""
+        self._equipment.keyboard.enable(samplingPeriod)
+
+    def keyboardDisable(self) -> None:
+        """Webots' API before R2018a: ``getKeyboard().disable()``."""
+        self._equipment.keyboard.disable()
+
+    def keyboardGetKey(self) -> int:
+        """Webots' API before R2018a: ``getKeyboard().getKey()``."""
+        return self._equipment.keyboard.getKey()
+
+    def getMouse(self) -> Mouse:
+        """The mouse (no button is ever pressed)."""
+        return self._equipment.mouse
+
+    @property
+    def mouse(self) -> Mouse:
+        """The mouse."""
+        return self._equipment.mouse
+
+    def getJoystick(self) -> Joystick:
+        """The joystick (never connected)."""
+        return self._equipment.joystick
+
+    @property
+    def joystick(self) -> Joystick:
+        """The joystick."""
+        return self._equipment.joystick
+
+
+for _getter in DEPRECATED_GETTERS:
+    setattr(Robot, _getter, _deprecated_getter(_getter))

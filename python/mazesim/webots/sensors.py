@@ -1,0 +1,395 @@
+"""Sensors computed in Python from the robot's pose and motion: light sensors, accelerometer,
+gyro, GPS, compass, inertial unit, touch sensor, and distance sensors the world adds.
+
+Frames are Webots' since R2022a (ENU): the world's x east, y north, z up; a device's x forward,
+y left, z up. Each sensor maps its physical quantity through its lookup table (interpolated
+linearly, clamped at both ends) and adds Gaussian noise of the table's relative standard
+deviation, seeded from the run's seed and the device's name.
+"""
+
+from __future__ import annotations
+
+import math
+import zlib
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, ClassVar
+
+import numpy as np
+
+from mazesim.webots.devices import _ScalarSensor, _VectorSensor
+from mazesim.webots.lights import irradiance
+from mazesim.webots.rays import WallBoxes
+
+if TYPE_CHECKING:
+    from mazesim.webots.simulation import RobotSimulation
+
+__all__ = [
+    "Accelerometer",
+    "Compass",
+    "DeviceMount",
+    "GPS",
+    "Gyro",
+    "InertialUnit",
+    "LightSensor",
+    "LookupTable",
+    "RayDistanceSensor",
+    "TouchSensor",
+]
+
+#: Standard gravity (m/s^2), what an accelerometer at rest reads along z.
+GRAVITY = 9.81
+#: The light sensors' table of Webots' E-puck PROTO: irradiance (W/m^2), value, noise.
+LIGHT_TABLE = ((0.0, 4095.0, 0.002), (2.0, 0.0, 0.002))
+#: The accelerometer's table: m/s^2 in and out (+-4 g), 0.5 % noise.
+ACCELEROMETER_TABLE = ((-39.24, -39.24, 0.005), (39.24, 39.24, 0.005))
+#: The gyro's table: rad/s in and out, 0.5 % noise.
+GYRO_TABLE = ((-100.0, -100.0, 0.005), (100.0, 100.0, 0.005))
+#: Webots' default DistanceSensor table (generic, 0.1 m).
+DISTANCE_TABLE = ((0.0, 0.0, 0.0), (0.1, 1000.0, 0.0))
+#: North in the world frame (Webots' WorldInfo.northDirection default since R2022a).
+NORTH = (0.0, 1.0, 0.0)
+
+Row = tuple[float, float, float]
+
+
+class LookupTable:
+    """A Webots lookup table: input, output, relative noise, row after row."""
+
+    def __init__(self, rows: Sequence[Sequence[float]]) -> None:
+        cleaned = [tuple(float(v) for v in row[:3]) for row in rows if len(row) >= 2]
+        self.rows: list[Row] = [
+            (row[0], row[1], row[2] if len(row) > 2 else 0.0) for row in cleaned
+        ]
+        self.rows.sort(key=lambda row: row[0])
+
+    def __call__(self, x: float, rng: np.random.Generator | None) -> float:
+        """The output for ``x``, with noise when ``rng`` is given; ``x`` itself without rows."""
+        if not self.rows:
+            return x
+        inputs = [row[0] for row in self.rows]
+        value = float(np.interp(x, inputs, [row[1] for row in self.rows]))
+        noise = float(np.interp(x, inputs, [row[2] for row in self.rows]))
+        if rng is not None and noise > 0.0:
+            value += abs(value) * noise * float(rng.standard_normal())
+        return value
+
+    def flat(self) -> list[float]:
+        """The table as Webots' ``getLookupTable`` returns it."""
+        return [number for row in self.rows for number in row]
+
+
+class DeviceMount:
+    """Where a device sits on the robot: translation (m) and yaw (rad) in the robot's frame."""
+
+    def __init__(self, translation: Sequence[float] = (0.0, 0.0, 0.0), yaw: float = 0.0) -> None:
+        padded = [*(float(v) for v in translation), 0.0, 0.0, 0.0][:3]
+        self.x, self.y, self.z = padded
+        self.yaw = float(yaw)
+
+    def world_pose(self, pose: tuple[float, float, float]) -> tuple[float, float, float]:
+        """The device's x, y, heading in the world for a robot pose."""
+        x, y, yaw = pose
+        c, s = math.cos(yaw), math.sin(yaw)
+        return x + c * self.x - s * self.y, y + s * self.x + c * self.y, yaw + self.yaw
+
+
+class _Tabled:
+    """Mixin of a sensor with a lookup table: ``getLookupTable`` and ``lookup_table``."""
+
+    _table: LookupTable
+
+    def getLookupTable(self) -> list[float]:
+        """The lookup table as Webots returns it."""
+        return self._table.flat()
+
+    @property
+    def lookup_table(self) -> list[float]:
+        """:meth:`getLookupTable` as a property."""
+        return self.getLookupTable()
+
+
+def _noise_stream(simulation: RobotSimulation, name: str) -> np.random.Generator | None:
+    if not simulation.noise:
+        return None
+    key = zlib.crc32(name.encode("utf-8"))
+    return np.random.default_rng(np.random.SeedSequence(simulation.seed, spawn_key=(key,)))
+
+
+class _TableVector(_Tabled, _VectorSensor):
+    """A three-axis sensor: a vector in the device frame through a lookup table."""
+
+    _default_table: ClassVar[tuple[Row, ...]] = ()
+
+    def __init__(
+        self,
+        name: str,
+        simulation: RobotSimulation,
+        mount: DeviceMount | None = None,
+        table: Sequence[Sequence[float]] | None = None,
+    ) -> None:
+        super().__init__(name, simulation)
+        self._mount = mount or DeviceMount()
+        self._table = LookupTable(self._default_table if table is None else table)
+        self._rng = _noise_stream(simulation, name)
+
+    def _read(self) -> list[float]:
+        return [self._table(v, self._rng) for v in self._measure()]
+
+    def _measure(self) -> tuple[float, float, float]:
+        raise NotImplementedError
+
+    def _heading(self) -> float:
+        return self._simulation.simulator.pose[2] + self._mount.yaw
+
+
+class Accelerometer(_TableVector):
+    """Specific force in the device frame (m/s^2): the body's acceleration plus 9.81 up."""
+
+    _api = "wb_accelerometer"
+    _default_table = ACCELEROMETER_TABLE
+
+    def _measure(self) -> tuple[float, float, float]:
+        ax, ay = self._simulation.acceleration
+        heading = self._heading()
+        c, s = math.cos(heading), math.sin(heading)
+        return c * ax + s * ay, -s * ax + c * ay, GRAVITY
+
+
+class Gyro(_TableVector):
+    """Angular velocity about the device's axes (rad/s): the yaw rate about z."""
+
+    _api = "wb_gyro"
+    _default_table = GYRO_TABLE
+
+    def _measure(self) -> tuple[float, float, float]:
+        return 0.0, 0.0, self._simulation.velocity[2]
+
+
+class Compass(_TableVector):
+    """The north direction in the device frame (unit vector)."""
+
+    _api = "wb_compass"
+
+    def __init__(
+        self,
+        name: str,
+        simulation: RobotSimulation,
+        mount: DeviceMount | None = None,
+        table: Sequence[Sequence[float]] | None = None,
+        north: Sequence[float] = NORTH,
+    ) -> None:
+        super().__init__(name, simulation, mount, table)
+        nx, ny = float(north[0]), float(north[1])
+        length = math.hypot(nx, ny) or 1.0
+        self._north = (nx / length, ny / length)
+
+    def _measure(self) -> tuple[float, float, float]:
+        heading = self._heading()
+        c, s = math.cos(heading), math.sin(heading)
+        nx, ny = self._north
+        return c * nx + s * ny, -s * nx + c * ny, 0.0
+
+
+class GPS(_TableVector):
+    """The device's position in the world frame (m) and its speed; in a world of Webots' old
+    NUE frame (before R2022a) in that frame: [x, height, -y]."""
+
+    LOCAL = 0
+    WGS84 = 1
+    _api = "wb_gps"
+
+    def _measure(self) -> tuple[float, float, float]:
+        x, y, _ = self._mount.world_pose(self._simulation.simulator.pose)
+        if self._simulation.scene.nue:
+            # Worlds before R2022a: x, y up, z = -north (Webots' NUE frame).
+            return x, self._mount.z, -y
+        return x, y, self._mount.z
+
+    def getSpeed(self) -> float:
+        """The speed (m/s) over the last step; NaN before the first sampling period."""
+        if all(math.isnan(v) for v in self._value):
+            return math.nan
+        vx, vy, _ = self._simulation.velocity
+        return math.hypot(vx, vy)
+
+    @property
+    def speed(self) -> float:
+        """:meth:`getSpeed` as a property."""
+        return self.getSpeed()
+
+    def getSpeedVector(self) -> list[float]:
+        """The velocity (m/s) in the world frame over the last step."""
+        if all(math.isnan(v) for v in self._value):
+            return [math.nan] * 3
+        vx, vy, _ = self._simulation.velocity
+        return [vx, 0.0, -vy] if self._simulation.scene.nue else [vx, vy, 0.0]
+
+    @property
+    def speed_vector(self) -> list[float]:
+        """:meth:`getSpeedVector` as a property."""
+        return self.getSpeedVector()
+
+    def getCoordinateSystem(self) -> int:
+        """:data:`LOCAL`: metres in the world frame."""
+        return self.LOCAL
+
+    @property
+    def coordinate_system(self) -> int:
+        """:meth:`getCoordinateSystem` as a property."""
+        return self.LOCAL
+
+    @staticmethod
+    def convertToDegreesMinutesSeconds(decimalDegree: float) -> str:
+        """Formats decimal degrees as Webots does, e.g. ``12°34'56.78"``."""
+        degrees = int(decimalDegree)
+        minutes_float = abs(decimalDegree - degrees) * 60.0
+        minutes = int(minutes_float)
+        seconds = (minutes_float - minutes) * 60.0
+        return f"{degrees}°{minutes}'{seconds:.2f}\""
+
+
+class InertialUnit(_TableVector):
+    """Roll, pitch and yaw of the device (rad); on the flat floor roll and pitch are 0."""
+
+    _api = "wb_inertial_unit"
+
+    def _measure(self) -> tuple[float, float, float]:
+        return 0.0, 0.0, math.remainder(self._heading(), math.tau)
+
+    def getRollPitchYaw(self) -> list[float]:
+        """[roll, pitch, yaw] in radians; NaNs before the first sampling period."""
+        return list(self._reading("get_roll_pitch_yaw"))
+
+    @property
+    def roll_pitch_yaw(self) -> list[float]:
+        """:meth:`getRollPitchYaw` as a property."""
+        return self.getRollPitchYaw()
+
+    def getQuaternion(self) -> list[float]:
+        """The orientation as a quaternion [x, y, z, w]."""
+        yaw = self.getRollPitchYaw()[2]
+        return [0.0, 0.0, math.sin(yaw / 2.0), math.cos(yaw / 2.0)]
+
+    @property
+    def quaternion(self) -> list[float]:
+        """:meth:`getQuaternion` as a property."""
+        return self.getQuaternion()
+
+    def getNoise(self) -> float:
+        """The noise of the readings (0: noise-free)."""
+        return 0.0
+
+
+class LightSensor(_Tabled, _ScalarSensor):
+    """Light: the irradiance from the world's lights (:mod:`mazesim.webots.lights`) where the
+    sensor is, facing its direction, through the PROTO's table."""
+
+    _api = "wb_light_sensor"
+
+    def __init__(
+        self,
+        name: str,
+        simulation: RobotSimulation,
+        table: Sequence[Sequence[float]] = LIGHT_TABLE,
+        mount: DeviceMount | None = None,
+    ) -> None:
+        super().__init__(name, simulation)
+        self._table = LookupTable(table)
+        self._mount = mount or DeviceMount()
+        self._rng = _noise_stream(simulation, name)
+
+    def _read(self) -> float:
+        x, y, heading = self._mount.world_pose(self._simulation.simulator.pose)
+        light = irradiance(self._simulation.scene.lights, (x, y, self._mount.z), heading)
+        return self._table(light, self._rng)
+
+
+class TouchSensor(_ScalarSensor):
+    """A bumper: 1 while the robot touches a wall, else 0."""
+
+    BUMPER = 0
+    FORCE = 1
+    FORCE3D = 2
+    _api = "wb_touch_sensor"
+
+    def _read(self) -> float:
+        return 1.0 if self._simulation.simulator.colliding else 0.0
+
+    def getValues(self) -> list[float]:
+        """A force-3d sensor's reading: zeros (a bumper has no force vector)."""
+        return [0.0, 0.0, 0.0]
+
+    def getType(self) -> int:
+        """:data:`BUMPER`."""
+        return self.BUMPER
+
+    @property
+    def type(self) -> int:
+        """:meth:`getType` as a property."""
+        return self.BUMPER
+
+    def getLookupTable(self) -> list[float]:
+        """The empty table of a bumper."""
+        return []
+
+
+class RayDistanceSensor(_Tabled, _ScalarSensor):
+    """A distance sensor the world adds: one ray from its mount against the walls."""
+
+    GENERIC = 0
+    INFRA_RED = 1
+    SONAR = 2
+    LASER = 3
+    _api = "wb_distance_sensor"
+    _types: ClassVar[dict[str, int]] = {"generic": 0, "infra-red": 1, "sonar": 2, "laser": 3}
+
+    def __init__(
+        self,
+        name: str,
+        simulation: RobotSimulation,
+        mount: DeviceMount,
+        table: Sequence[Sequence[float]] | None = None,
+        sensor_type: str = "generic",
+    ) -> None:
+        super().__init__(name, simulation)
+        self._mount = mount
+        self._table = LookupTable(DISTANCE_TABLE if not table else table)
+        self._type = self._types.get(sensor_type, self.GENERIC)
+        self._walls: WallBoxes | None = None
+        self._rng = _noise_stream(simulation, name)
+
+    def _read(self) -> float:
+        if self._walls is None:
+            self._walls = WallBoxes(self._simulation.world)
+        x, y, heading = self._mount.world_pose(self._simulation.simulator.pose)
+        direction = np.array([[math.cos(heading), math.sin(heading)]])
+        distance, reflectance = self._walls.cast((x, y), direction)
+        reach = self.getMaxRange()
+        d = float(distance[0])
+        if self._type == self.INFRA_RED and math.isfinite(d):
+            d = d / max(float(reflectance[0]), 1e-6)
+        return self._table(min(d, reach), self._rng)
+
+    def getMinValue(self) -> float:
+        """The smallest value the table gives."""
+        return min((row[1] for row in self._table.rows), default=0.0)
+
+    def getMaxValue(self) -> float:
+        """The largest value the table gives."""
+        return max((row[1] for row in self._table.rows), default=0.0)
+
+    def getMaxRange(self) -> float:
+        """The table's last distance (m)."""
+        return self._table.rows[-1][0] if self._table.rows else 0.0
+
+    def getMinRange(self) -> float:
+        """The table's first distance (m)."""
+        return self._table.rows[0][0] if self._table.rows else 0.0
+
+    def getAperture(self) -> float:
+        """The ray's aperture (rad): one ray."""
+        return 0.0
+
+    def getType(self) -> int:
+        """The sensor type from the world (``GENERIC`` by default)."""
+        return self._type

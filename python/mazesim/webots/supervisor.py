@@ -1,0 +1,462 @@
+"""Webots' ``Supervisor``, ``Node`` and ``Field`` for the robot of a run.
+
+The supervisor sees the robot's node (``getSelf``, ``getFromDef`` of its DEF name) and the
+world file's other DEF nodes (their type, and the translation of a top-level one, which can be
+read and set but moves nothing in the simulation). It reads and sets the robot's
+``translation`` and ``rotation`` (moving the robot in the simulation), reads its position,
+orientation and velocity, resets the simulation (the robot back at its start) and quits it
+with a status (``mazesim webots run`` exits with it).
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from typing import Any
+
+from mazesim.webots import simulation as _simulations
+from mazesim.webots.inert import ContactPoint, NotSimulated
+from mazesim.webots.robot import Robot
+
+__all__ = ["Field", "Node", "Supervisor"]
+
+#: Webots' node types, in the order of its ``WbNodeType`` enumeration (``Node.ROBOT``...).
+NODE_TYPES = (
+    "NO_NODE APPEARANCE BACKGROUND BILLBOARD BOX CAPSULE COLOR CONE COORDINATE CYLINDER "
+    "DIRECTIONAL_LIGHT ELEVATION_GRID FOG GROUP IMAGE_TEXTURE INDEXED_FACE_SET "
+    "INDEXED_LINE_SET MATERIAL MESH MUSCLE NORMAL PBR_APPEARANCE PLANE POINT_LIGHT POINT_SET "
+    "POSE SHAPE SPHERE SPOT_LIGHT TEXTURE_COORDINATE TEXTURE_TRANSFORM TRANSFORM VIEWPOINT "
+    "ROBOT ACCELEROMETER ALTIMETER BRAKE CAMERA COMPASS CONNECTOR DISPLAY DISTANCE_SENSOR "
+    "EMITTER GPS GYRO INERTIAL_UNIT LED LIDAR LIGHT_SENSOR LINEAR_MOTOR PEN POSITION_SENSOR "
+    "PROPELLER RADAR RANGE_FINDER RECEIVER ROTATIONAL_MOTOR SKIN SPEAKER TOUCH_SENSOR "
+    "VACUUM_GRIPPER BALL_JOINT BALL_JOINT_PARAMETERS CHARGER CONTACT_PROPERTIES DAMPING FLUID "
+    "FOCUS HINGE_2_JOINT HINGE_2_JOINT_PARAMETERS HINGE_JOINT HINGE_JOINT_PARAMETERS "
+    "IMMERSION_PROPERTIES JOINT_PARAMETERS LENS LENS_FLARE PHYSICS RECOGNITION SLIDER_JOINT "
+    "SLOT SOLID SOLID_REFERENCE TRACK TRACK_WHEEL WORLD_INFO ZOOM MICROPHONE RADIO"
+).split()
+
+
+def _print_error(message: str) -> None:
+    print(message, file=sys.stderr)
+
+
+class Field(NotSimulated):
+    """A field of a node: the robot's ``translation``, ``rotation``, ``name``, ``customData``."""
+
+    SF_BOOL = 0x01
+    SF_INT32 = 0x02
+    SF_FLOAT = 0x03
+    SF_VEC2F = 0x04
+    SF_VEC3F = 0x05
+    SF_ROTATION = 0x06
+    SF_COLOR = 0x07
+    SF_STRING = 0x08
+    SF_NODE = 0x09
+    MF = 0x10
+    MF_BOOL = 0x11
+    MF_INT32 = 0x12
+    MF_FLOAT = 0x13
+    MF_VEC2F = 0x14
+    MF_VEC3F = 0x15
+    MF_ROTATION = 0x16
+    MF_COLOR = 0x17
+    MF_STRING = 0x18
+    MF_NODE = 0x19
+    _type_names = {0x05: "SFVec3f", 0x06: "SFRotation", 0x08: "SFString", 0x19: "MFNode"}
+
+    def __init__(self, node: Node, name: str, field_type: int) -> None:
+        self._node = node
+        self._name = name
+        self._type = field_type
+
+    def getName(self) -> str:
+        """The field's name."""
+        return self._name
+
+    @property
+    def name(self) -> str:
+        """:meth:`getName` as a property."""
+        return self._name
+
+    def getType(self) -> int:
+        """The field's type (``Field.SF_VEC3F``...)."""
+        return self._type
+
+    @property
+    def type(self) -> int:
+        """:meth:`getType` as a property."""
+        return self._type
+
+    def getTypeName(self) -> str:
+        """The field's type name (``"SFVec3f"``...)."""
+        return self._type_names[self._type]
+
+    def getCount(self) -> int:
+        """-1 for a single field; 0 for the root's ``children`` (its nodes are not listed)."""
+        return 0 if self._type == self.MF_NODE else -1
+
+    def getMFNode(self, index: int) -> None:
+        """None: the root's children are not listed."""
+        return None
+
+    def importMFNodeFromString(self, position: int, nodeString: str) -> None:
+        """Webots' error: mazesim adds no nodes to a running world."""
+        _print_error(
+            "Error: Field.importMFNodeFromString() is not available in mazesim: the world's "
+            "nodes are fixed when it is imported."
+        )
+
+    def removeMF(self, index: int) -> None:
+        """Webots' error: the root's children are not listed."""
+        _print_error(f"Error: wb_supervisor_field_remove_mf(): index {index} out of range.")
+
+    def _wrong(self, function: str) -> None:
+        _print_error(
+            f"Error: wb_supervisor_field_{function}() called with a field of type "
+            f"{self.getTypeName()}."
+        )
+
+    def getSFVec3f(self) -> list[float] | None:
+        """The robot's translation [x, y, z] in metres (world frame)."""
+        if self._name != "translation":
+            self._wrong("get_sf_vec3f")
+            return None
+        return self._node.getPosition()
+
+    def setSFVec3f(self, values: list[float]) -> None:
+        """Moves the robot to [x, y, z] (z is ignored: the robot stays on the floor)."""
+        if self._name != "translation":
+            self._wrong("set_sf_vec3f")
+            return
+        _, _, yaw = self._node._pose()
+        self._node._move(float(values[0]), float(values[1]), yaw)
+
+    def getSFRotation(self) -> list[float] | None:
+        """The robot's rotation as axis and angle [0, 0, 1, yaw]."""
+        if self._name != "rotation":
+            self._wrong("get_sf_rotation")
+            return None
+        return [0.0, 0.0, 1.0, self._node._pose()[2]]
+
+    def setSFRotation(self, values: list[float]) -> None:
+        """Turns the robot to an axis-angle rotation (its yaw about z is kept)."""
+        if self._name != "rotation":
+            self._wrong("set_sf_rotation")
+            return
+        x, y, _ = self._node._pose()
+        self._node._move(x, y, _yaw_of_rotation([float(v) for v in values[:4]]))
+
+    def getSFString(self) -> str | None:
+        """The value of a string field (``name``, ``customData``, ``controller``)."""
+        if self._type != self.SF_STRING:
+            self._wrong("get_sf_string")
+            return None
+        return self._node._strings.get(self._name, "")
+
+    def setSFString(self, value: str) -> None:
+        """Sets a string field."""
+        if self._type != self.SF_STRING:
+            self._wrong("set_sf_string")
+            return
+        self._node._strings[self._name] = str(value)
+
+    @property
+    def value(self) -> Any:
+        """The field's value (property style)."""
+        if self._type == self.SF_VEC3F:
+            return self.getSFVec3f()
+        if self._type == self.SF_ROTATION:
+            return self.getSFRotation()
+        return self.getSFString()
+
+    @value.setter
+    def value(self, value: Any) -> None:
+        if self._type == self.SF_VEC3F:
+            self.setSFVec3f(value)
+        elif self._type == self.SF_ROTATION:
+            self.setSFRotation(value)
+        else:
+            self.setSFString(value)
+
+
+def _yaw_of_rotation(rotation: list[float]) -> float:
+    """The heading (rad) of an axis-angle rotation: the angle of its image of the x axis."""
+    ax, ay, az, angle = (rotation + [0.0, 0.0, 1.0, 0.0][len(rotation) :])[:4]
+    norm = math.sqrt(ax * ax + ay * ay + az * az) or 1.0
+    ax, ay, az = ax / norm, ay / norm, az / norm
+    c, s = math.cos(angle), math.sin(angle)
+    r00 = c + ax * ax * (1.0 - c)
+    r10 = ay * ax * (1.0 - c) + az * s
+    return math.atan2(r10, r00)
+
+
+class Node(NotSimulated):
+    """A node of the world: the robot's (with fields and a pose) or another DEF node."""
+
+    def __init__(
+        self,
+        type_name: str,
+        def_name: str = "",
+        node_id: int = 0,
+        robot: bool = False,
+        translation: tuple[float, float, float] | None = None,
+    ) -> None:
+        """A node.
+
+        Args:
+            type_name: The node's type (``"E-puck"``, ``"Solid"``...).
+            def_name: Its DEF name.
+            node_id: Its unique id.
+            robot: Whether it is the robot of the run (its pose is the simulation's).
+            translation: The ``translation`` of another node, read from the world file.
+        """
+        self._type_name = type_name
+        self._def = def_name
+        self._id = node_id
+        self._robot = robot
+        self._translation = translation
+        self._yaw = 0.0
+        self._strings = {"name": "e-puck", "customData": "", "controller": "<extern>"}
+
+    def _simulation(self) -> _simulations.RobotSimulation:
+        return _simulations.current()
+
+    def _pose(self) -> tuple[float, float, float]:
+        if self._robot:
+            x, y, yaw = self._simulation().simulator.pose
+            return float(x), float(y), float(yaw)
+        if self._translation is None:
+            return math.nan, math.nan, math.nan
+        return self._translation[0], self._translation[1], self._yaw
+
+    def _move(self, x: float, y: float, yaw: float) -> None:
+        """Moves the robot in the simulation; another node's pose is only recorded."""
+        if self._robot:
+            self._simulation().move_robot(x, y, yaw)
+        elif self._translation is not None:
+            self._translation = (x, y, self._translation[2])
+            self._yaw = yaw
+
+    def getId(self) -> int:
+        """The node's unique id."""
+        return self._id
+
+    @property
+    def id(self) -> int:
+        """:meth:`getId` as a property."""
+        return self._id
+
+    def getDef(self) -> str:
+        """The node's DEF name (empty if it has none)."""
+        return self._def
+
+    def getTypeName(self) -> str:
+        """The node's type name (``"E-puck"``, ``"Robot"``, ``"Group"``...)."""
+        return self._type_name
+
+    def getBaseTypeName(self) -> str:
+        """The base node type (``"Robot"`` for robot PROTOs)."""
+        return "Robot" if self._robot else self._type_name
+
+    def getType(self) -> int:
+        """The node's type constant (``Node.ROBOT`` for the robot)."""
+        name = "ROBOT" if self._robot else _constant_name(self._type_name)
+        return NODE_TYPES.index(name) if name in NODE_TYPES else NODE_TYPES.index("SOLID")
+
+    def isProto(self) -> bool:
+        """Whether the node is a PROTO instance."""
+        return self._type_name not in ("Robot", "Solid", "Group", "Transform", "Pose")
+
+    def getParentNode(self) -> None:
+        """None: mazesim keeps no scene tree."""
+        return None
+
+    def getField(self, fieldName: str) -> Field | None:
+        """The field of that name, or None (with Webots' message)."""
+        types = {"translation": Field.SF_VEC3F, "rotation": Field.SF_ROTATION}
+        if self._id == 0:
+            types = {"children": Field.MF_NODE}
+        elif self._robot:
+            types.update(dict.fromkeys(self._strings, Field.SF_STRING))
+        elif self._translation is None:
+            types = {}
+        if fieldName not in types:
+            _print_error(
+                f"Error: wb_supervisor_node_get_field(): field '{fieldName}' does not exist "
+                f"in node '{self._def or self._type_name}'."
+            )
+            return None
+        return Field(self, fieldName, types[fieldName])
+
+    getProtoField = getField
+
+    def getPosition(self) -> list[float]:
+        """The node's position [x, y, z] in metres (world frame; NaN for a node whose position
+        the world file does not give)."""
+        x, y, _ = self._pose()
+        if self._robot:
+            return [x, y, 0.0]
+        return [x, y, self._translation[2] if self._translation else math.nan]
+
+    def getOrientation(self) -> list[float]:
+        """The node's rotation matrix, row after row (9 numbers)."""
+        yaw = self._pose()[2]
+        c, s = math.cos(yaw), math.sin(yaw)
+        return [c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0]
+
+    def getPose(self, fromNode: Node | None = None) -> list[float]:
+        """The node's 4 x 4 homogeneous transform in the world frame, row after row."""
+        x, y, z = self.getPosition()
+        r = self.getOrientation()
+        return [*r[0:3], x, *r[3:6], y, *r[6:9], z, 0.0, 0.0, 0.0, 1.0]
+
+    def getCenterOfMass(self) -> list[float]:
+        """The centre of mass: the node's position."""
+        return self.getPosition()
+
+    def getVelocity(self) -> list[float]:
+        """Linear and angular velocity [vx, vy, vz, wx, wy, wz] (m/s, rad/s, world frame)."""
+        if not self._robot:
+            return [0.0] * 6
+        vx, vy, yaw_rate = self._simulation().velocity
+        return [vx, vy, 0.0, 0.0, 0.0, yaw_rate]
+
+    def setVelocity(self, velocity: list[float]) -> None:
+        """Accepted; the robot's velocity comes from its wheels."""
+
+    def resetPhysics(self) -> None:
+        """Accepted; the robot has no momentum beyond its wheels' speeds."""
+
+    def restartController(self) -> None:
+        """Webots' error: the running controller cannot be restarted."""
+        _print_error("Error: wb_supervisor_node_restart_controller() is not available in mazesim.")
+
+    def getContactPoints(self, includeDescendants: bool = False) -> list[ContactPoint]:
+        """The robot's contact with a wall, if it touches one (its centre stands for it)."""
+        if self._robot and self._simulation().simulator.colliding:
+            x, y, _ = self._pose()
+            return [ContactPoint([x, y, 0.0])]
+        return []
+
+    def getNumberOfFields(self) -> int:
+        """The number of fields :meth:`getField` knows."""
+        return 5 if self._robot else 0
+
+    def getStaticBalance(self) -> bool:
+        """True: the robot stands on the floor."""
+        return True
+
+
+def _constant_name(type_name: str) -> str:
+    """``"DistanceSensor"`` -> ``"DISTANCE_SENSOR"``."""
+    out = []
+    for i, char in enumerate(type_name):
+        if char.isupper() and i and not type_name[i - 1].isupper():
+            out.append("_")
+        out.append(char.upper())
+    return "".join(out)
+
+
+for _index, _name in enumerate(NODE_TYPES):
+    setattr(Node, _name, _index)
+
+
+class Supervisor(Robot):
+    """A robot with the supervisor's powers over the simulation."""
+
+    SIMULATION_MODE_PAUSE = 0
+    SIMULATION_MODE_REAL_TIME = 1
+    SIMULATION_MODE_FAST = 2
+
+    def __init__(self) -> None:
+        """Attaches to the prepared simulation as a supervisor."""
+        super().__init__()
+        self._simulation.supervisor = True
+        scene = self._simulation.scene
+        robot_type = str(self._simulation.report.get("robot_model") or "E-puck")
+        self._self = Node(robot_type, scene.robot_def or "", node_id=1, robot=True)
+        self._self._strings.update(name=scene.robot_name, customData=self._custom_data)
+        self._mode = self.SIMULATION_MODE_FAST
+        self._nodes: dict[str, Node] = {}
+
+    def getSelf(self) -> Node:
+        """The robot's own node."""
+        return self._self
+
+    def getRoot(self) -> Node:
+        """The scene tree's root: a Group whose ``children`` field lists nothing."""
+        return Node("Group", node_id=0)
+
+    def getFromDef(self, name: str) -> Node | None:
+        """The node of that DEF name, or None (with Webots' message).
+
+        A world without DEF names (a mazesim world) gives the robot's node for any name.
+        """
+        scene = self._simulation.scene
+        if name and (name == scene.robot_def or not scene.defs):
+            return self._self
+        if name in scene.defs:
+            if name not in self._nodes:
+                index = list(scene.defs).index(name)
+                translation = scene.translations.get(name)
+                self._nodes[name] = Node(scene.defs[name], name, 2 + index, translation=translation)
+            return self._nodes[name]
+        _print_error(f"Error: wb_supervisor_node_get_from_def(): node '{name}' not found.")
+        return None
+
+    def getFromId(self, id: int) -> Node | None:
+        """The robot's node for its id, else None."""
+        return self._self if id == self._self.getId() else None
+
+    def getFromDevice(self, device: Any) -> Node | None:
+        """The robot's node stands for its devices: None (devices have no nodes here)."""
+        return None
+
+    def getSelected(self) -> None:
+        """None: nothing is selected in a headless run."""
+        return None
+
+    def simulationQuit(self, status: int) -> None:
+        """Ends the run: the next ``step`` returns -1; ``mazesim webots run`` exits with
+        ``status``."""
+        self._simulation.quit_status = int(status)
+
+    def simulationReset(self) -> None:
+        """Puts the robot back at its start, at rest (the clock goes on)."""
+        x, y, yaw = self._simulation.world.start
+        self._simulation.move_robot(x, y, yaw)
+
+    def simulationResetPhysics(self) -> None:
+        """Stops the robot's motion (its wheels' speeds still apply at the next step)."""
+        self._simulation.velocity = (0.0, 0.0, 0.0)
+
+    def simulationGetMode(self) -> int:
+        """The mode set last (fast by default: a headless run runs as fast as it can)."""
+        return self._mode
+
+    def simulationSetMode(self, mode: int) -> None:
+        """Records the mode; a headless run always runs as fast as it can."""
+        self._mode = int(mode)
+
+    @property
+    def simulation_mode(self) -> int:
+        """The simulation mode (property style)."""
+        return self._mode
+
+    @simulation_mode.setter
+    def simulation_mode(self, mode: int) -> None:
+        self.simulationSetMode(mode)
+
+    def setLabel(self, *args: Any) -> None:
+        """Accepted; there is no 3D view to draw labels on."""
+
+    def worldReload(self) -> None:
+        """Resets the simulation (the world is the same)."""
+        self.simulationReset()
+
+    def exportImage(self, filename: str, quality: int) -> None:
+        """Accepted; there is no 3D view to export."""
+
+    def virtualRealityHeadsetIsUsed(self) -> bool:
+        """False."""
+        return False
