@@ -32,6 +32,8 @@ def master(tmp_path: Path) -> Iterator[LocalMaster]:
     assert all(process.returncode is not None for process in spawned)
     assert left_behind == []  # nothing had to be swept up after the orderly stop
     assert graph.leftovers() == []
+
+
 @pytest.fixture(scope="session")
 def navigator_demo(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
     """The shipped navigator's demo run once with ``--record``, ``--html`` and a GIF: the paths

@@ -16,8 +16,8 @@ from collections.abc import Sequence
 from typing import Any
 
 from mazesim.cli import positive_int, positive_number, positive_seconds, seed_argument
-from mazesim.ros._ros import check_ros_installed
 from mazesim.replay.options import add_viewing_options
+from mazesim.ros._ros import check_ros_installed
 
 __all__ = ["check_before_parsing", "register"]
 
