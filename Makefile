@@ -23,7 +23,7 @@ export PYO3_PYTHON := $(CURDIR)/$(BIN)/python
 .DEFAULT_GOAL := help
 
 .PHONY: help venv build test demo lint typecheck fmt bench wheel clean ros-deps ros-demo bench-peers \
-	browser-deps replay-screenshot docs
+	browser-deps replay-screenshot docs docs-deps
 
 help: ## list the targets
 	@echo "mazesim make targets:"
@@ -44,7 +44,7 @@ $(STAMP): Makefile
 build: venv ## build the extension in release mode and install mazesim into .venv
 	VIRTUAL_ENV=$(CURDIR)/$(VENV) $(BIN)/maturin develop --release --quiet
 
-test: build ros-deps browser-deps ## run the Rust tests, then the Python tests (ROS bridge and browser tests included)
+test: build ros-deps browser-deps docs-deps ## run the Rust tests, then the Python tests (ROS bridge and browser tests included)
 	cargo test --workspace --exclude mazesim-py
 	$(BIN)/python -m pytest
 	$(BIN)/python -m mypy.stubtest mazesim._core
@@ -110,8 +110,10 @@ bench-peers: build ## mazesim against hand-written numpy and pymunk peers (insta
 	$(BIN)/python -m pip install --quiet $(PEER_PACKAGES)
 	$(BIN)/python benches/bench_vs_peers.py $(PEER_ARGS)
 
-docs: venv ## build the documentation site into site/ (mkdocs --strict; installs the docs tools)
+docs-deps: venv ## install the docs tools (mkdocs, Material, mkdocstrings) into .venv
 	$(BIN)/python -m pip install --quiet $(DOCS_PACKAGES)
+
+docs: docs-deps ## build the documentation site into site/ (mkdocs --strict)
 	NO_MKDOCS_2_WARNING=1 $(BIN)/mkdocs build --strict --quiet
 
 # The oldest glibc whose symbols the extension needs when built here (Debian 12, glibc 2.36):
