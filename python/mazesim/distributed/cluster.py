@@ -21,7 +21,7 @@ import tempfile
 from collections.abc import Iterator
 from types import ModuleType
 
-from mazesim.errors import MissingDependencyError
+from mazesim.errors import InvalidArgumentError, MissingDependencyError
 
 __all__ = ["LOCAL", "import_ray", "local_cpus", "ray_session"]
 
@@ -85,6 +85,7 @@ def ray_session(address: str | None = None, cpus: int | None = None) -> Iterator
 
     Raises:
         MissingDependencyError: Ray is not installed.
+        InvalidArgumentError: ``address`` is not a Ray address.
     """
     ray = import_ray()
     if ray.is_initialized():
@@ -103,7 +104,13 @@ def ray_session(address: str | None = None, cpus: int | None = None) -> Iterator
                 log_to_driver=False,
             )
     else:
-        ray.init(address=address, logging_level=logging.WARNING, log_to_driver=False)
+        try:
+            ray.init(address=address, logging_level=logging.WARNING, log_to_driver=False)
+        except (ValueError, RuntimeError) as error:
+            raise InvalidArgumentError(
+                f"expected a Ray address ('local', 'auto', HOST:6379 or ray://HOST:10001), "
+                f"found {address!r}: {error}"
+            ) from None
     try:
         yield ray
     finally:

@@ -13,6 +13,7 @@ import sys
 from collections.abc import Sequence
 from typing import Any, TextIO
 
+from mazesim._paths import output_files, refuse_overwriting_inputs
 from mazesim.cli import positive_int
 from mazesim.distributed.config import PARAMETERS, TRAINER_DEFAULTS, load_sweep_config
 
@@ -106,6 +107,12 @@ def run_sweep_command(args: argparse.Namespace, out: TextIO) -> int:
     """Runs ``mazesim sweep`` and prints its summary."""
     from mazesim.distributed.runner import run_sequential, run_sweep
 
+    refuse_overwriting_inputs(
+        output_files(
+            args.out, ("sweep.toml", "settings.json", "results.json", "results.csv", "sweep.png")
+        ),
+        [("the sweep file", args.config)],
+    )
     config = load_sweep_config(args.config)
 
     def progress(line: str) -> None:

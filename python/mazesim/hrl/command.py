@@ -20,6 +20,7 @@ from pathlib import Path
 from typing import Any, TextIO
 
 from mazesim import load_world
+from mazesim._paths import output_files, refuse_overwriting_inputs
 from mazesim.cli import positive_int, seed_argument
 from mazesim.errors import InvalidArgumentError
 from mazesim.hrl.navigation import DEFAULT_MAX_STEPS, EVENT_SOURCES
@@ -27,6 +28,10 @@ from mazesim.hrl.navigation import DEFAULT_MAX_STEPS, EVENT_SOURCES
 __all__ = ["register", "run_eval", "run_train", "step_count"]
 
 DEFAULT_OUT = "mazesim-policy"
+
+
+#: The most env-steps a training run takes (the shipped navigator took 3.6e7).
+MAX_STEPS = 10**12
 
 
 def step_count(text: str) -> int:
@@ -43,8 +48,10 @@ def step_count(text: str) -> int:
         raise argparse.ArgumentTypeError(
             f"expected a number of env-steps such as 36000000, 36M or 500k, found {text!r}"
         ) from None
-    if not math.isfinite(value) or value < 1:
-        raise argparse.ArgumentTypeError(f"expected at least one env-step, found {text!r}")
+    if not math.isfinite(value) or not 1 <= value <= MAX_STEPS:
+        raise argparse.ArgumentTypeError(
+            f"expected a number of env-steps in [1, {MAX_STEPS:.0e}], found {text!r}"
+        )
     return int(value)
 
 
@@ -208,6 +215,10 @@ def run_train(args: argparse.Namespace, out: TextIO) -> int:
     """Runs ``mazesim train``."""
     from mazesim.hrl.train import TrainSettings, train, train_flat_policy
 
+    refuse_overwriting_inputs(
+        output_files(args.out, ("tables.npz", "policy.json", "checkpoint.npz")),
+        [("--world", args.world)],
+    )
     settings = TrainSettings(world=args.world, envs=args.envs, steps=args.steps, seed=args.seed)
     started = time.perf_counter()
     if args.flat:
@@ -246,6 +257,15 @@ def run_eval(args: argparse.Namespace, out: TextIO) -> int:
     )
     from mazesim.hrl.tables import load_policy
 
+    policy_files = [
+        (f"the navigator's {name}", Path(args.policy) / name)
+        for name in ("policy.json", "tables.npz")
+        if args.policy is not None
+    ]
+    refuse_overwriting_inputs(
+        [("--trace", args.trace), ("--plot", args.plot)],
+        [*policy_files, ("--world", args.world)],
+    )
     policy = load_policy(args.policy)
     if args.world == "random":
         from mazesim.hrl.evaluate import unseen_mazes

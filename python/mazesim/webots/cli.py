@@ -10,6 +10,7 @@ import sys
 from typing import Any, TextIO
 
 from mazesim._atomic import atomic_file
+from mazesim._paths import output_files, refuse_overwriting_inputs
 from mazesim.cli import positive_seconds, seed_argument
 
 __all__ = ["register"]
@@ -99,6 +100,8 @@ def run_import(args: argparse.Namespace, out: TextIO) -> int:
     """Imports a .wbt file, prints the summary or the JSON, writes the world if asked."""
     from mazesim.webots.importer import import_wbt
 
+    if args.out:
+        refuse_overwriting_inputs([("--out", args.out)], [("the Webots world", args.file)])
     world, report = import_wbt(args.file)
     if args.out:
         world.save(args.out)
@@ -129,6 +132,10 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
 
     world = mazesim.load_world(args.world)
     out_dir = os.path.abspath(args.out)
+    refuse_overwriting_inputs(
+        output_files(out_dir, ("trajectory.png", "summary.json")),
+        [("the controller", args.controller), ("--world", args.world)],
+    )
     # Fail before the run, not after it, if the output folder cannot be made.
     os.makedirs(out_dir, exist_ok=True)
     result = run_controller(
