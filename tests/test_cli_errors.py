@@ -136,3 +136,19 @@ def test_numbers_beyond_the_limits_are_refused_by_the_parser(
     assert main(arguments) == 2
     last = capsys.readouterr().err.strip().splitlines()[-1]
     assert "error: argument" in last and ("at most" in last or "in [" in last), last
+
+
+def test_an_empty_output_path_is_refused_not_taken_for_the_current_folder(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    assert main(["train", "--out", ""]) == 2
+    assert "--out: expected a path to write to, found ''" in capsys.readouterr().err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_an_output_file_that_is_a_folder_is_refused_before_the_run(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    assert main(["eval", "--episodes", "1", "--trace", str(tmp_path)]) == 2
+    assert "is a folder; expected the path of a file" in capsys.readouterr().err

@@ -13,9 +13,11 @@ import os
 import resource
 import subprocess
 import sys
+import time
 from collections.abc import Iterator
-from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
 from pathlib import Path
+from typing import IO
 
 import pytest
 
@@ -32,8 +34,10 @@ PARALLEL_RUNS = 4
 HOSTILE_NUMBERS = ("1" + "0" * 40, "-5", "nan", "inf", "1e400")
 #: Inputs that cannot be read as what they should be.
 HOSTILE_INPUTS = ("", "missing", "folder", "unreadable", "garbage")
-#: Places no output can be written to.
+#: Places no output folder (``--out DIR``) can be made at.
 HOSTILE_OUTPUTS = ("", "a-file", "under-a-file")
+#: Places no output file (``--trace FILE``) can be written to.
+HOSTILE_OUTPUT_FILES = ("", "folder", "under-a-file")
 #: Arguments that keep a valid run short, by command.
 QUICK = {
     "demo": ["--seconds", "1"],
@@ -93,33 +97,43 @@ def _kind(action: argparse.Action) -> str:
     name = action.option_strings[0] if action.option_strings else action.dest
     if name in NAME_OPTIONS:
         return "name"
-    if action.type is not None:
-        return "number"
-    return "output" if name in OUTPUT_OPTIONS else "input"
+    if name in OUTPUT_OPTIONS:
+        return "output" if action.metavar == "DIR" else "output file"
+    return "input" if action.type is None else "number"
 
 
 #: How many hostile values each option of a kind gets (rotating through the kind's values).
-VALUES_PER_OPTION = {"number": 2, "input": 2, "output": 1, "name": 1}
+VALUES_PER_OPTION = {"number": 1, "input": 2, "output": 3, "output file": 3, "name": 1}
 VALUES = {
     "number": HOSTILE_NUMBERS,
     "input": HOSTILE_INPUTS,
     "output": HOSTILE_OUTPUTS,
+    "output file": HOSTILE_OUTPUT_FILES,
     "name": ("",),
 }
 
 
-def _hostile_sets(parser: argparse.ArgumentParser) -> list[tuple[argparse.Action | None, str]]:
-    """(argument, hostile value) pairs of one command; (None, value) for an unknown option."""
+def _hostile_sets(
+    parser: argparse.ArgumentParser, turns: dict[str, int]
+) -> list[tuple[argparse.Action | None, str]]:
+    """(argument, hostile value) pairs of one command; (None, value) for an unknown option.
+
+    Each kind's values are dealt out in turn across all commands (``turns`` counts them), so
+    every value is tried somewhere.
+    """
     sets: list[tuple[argparse.Action | None, str]] = [(None, "--no-such-option")]
-    for index, action in enumerate(_value_options(parser)):
+    for action in _value_options(parser):
         kind = _kind(action)
         values = VALUES[kind]
-        for offset in range(VALUES_PER_OPTION[kind]):
-            sets.append((action, values[(index + offset) % len(values)]))
+        for _ in range(VALUES_PER_OPTION[kind]):
+            sets.append((action, values[turns.get(kind, 0) % len(values)]))
+            turns[kind] = turns.get(kind, 0) + 1
     return sets
 
 
 COMMANDS = dict(_commands(build_parser(), []))
+_TURNS: dict[str, int] = {}
+HOSTILE_SETS = {command: _hostile_sets(COMMANDS[command], _TURNS) for command in sorted(COMMANDS)}
 
 
 @pytest.fixture(scope="module")
@@ -162,18 +176,54 @@ def _limit_memory() -> None:
     resource.setrlimit(resource.RLIMIT_AS, (MEMORY_CAP, MEMORY_CAP))
 
 
-def run_limited(arguments: list[str], cwd: Path) -> subprocess.CompletedProcess[str]:
-    """Runs ``mazesim ARGUMENTS`` in a subprocess under the memory cap and time limit."""
-    return subprocess.run(
-        [sys.executable, "-m", "mazesim", *arguments],
-        capture_output=True,
-        text=True,
-        timeout=TIME_LIMIT_S,
-        cwd=cwd,
-        preexec_fn=_limit_memory,
-        check=False,
-        env={**os.environ, "PYTHONWARNINGS": "error"},
-    )
+@dataclass
+class Ending:
+    """How a run ended: its exit code and error output, or None when it was stopped."""
+
+    arguments: list[str]
+    returncode: int | None
+    stderr: str
+
+
+def run_limited(runs: list[tuple[list[str], Path]], log_folder: Path) -> list[Ending]:
+    """Runs ``mazesim ARGUMENTS`` in ``folder`` for each run, a few at a time, each in a
+    subprocess under the memory cap, stopped after the time limit.
+
+    The subprocesses are started from this thread alone (``preexec_fn`` is not safe beside other
+    threads), and write their error output to files, so no pipe needs a reader.
+    """
+    endings: list[Ending | None] = [None] * len(runs)
+    waiting = list(enumerate(runs))
+    running: list[tuple[int, subprocess.Popen[bytes], IO[bytes], float]] = []
+    while waiting or running:
+        while waiting and len(running) < PARALLEL_RUNS:
+            index, (arguments, folder) = waiting.pop(0)
+            stderr = open(log_folder / f"stderr-{index}.txt", "w+b")  # noqa: SIM115
+            process = subprocess.Popen(
+                [sys.executable, "-m", "mazesim", *arguments],
+                stdin=subprocess.DEVNULL,
+                stdout=subprocess.DEVNULL,
+                stderr=stderr,
+                cwd=folder,
+                preexec_fn=_limit_memory,
+                env={**os.environ, "PYTHONWARNINGS": "error"},
+            )
+            running.append((index, process, stderr, time.monotonic()))
+        time.sleep(0.05)
+        for entry in list(running):
+            index, process, stderr, started = entry
+            if process.poll() is None and time.monotonic() - started < TIME_LIMIT_S:
+                continue
+            code = process.poll()
+            if code is None:
+                process.kill()
+                process.wait()
+            stderr.seek(0)
+            text = stderr.read().decode("utf-8", "replace")
+            stderr.close()
+            endings[index] = Ending(runs[index][0], code, text)
+            running.remove(entry)
+    return [ending for ending in endings if ending is not None]
 
 
 def _arguments(
@@ -198,19 +248,21 @@ def _arguments(
     return arguments
 
 
-def _problem(result: subprocess.CompletedProcess[str]) -> str | None:
+def _problem(ending: Ending) -> str | None:
     """What is wrong with a run's ending, or None."""
-    if "Traceback" in result.stderr or "internal error" in result.stderr:
-        return f"a traceback or an internal error: {result.stderr[-2000:]}"
-    if result.returncode not in (0, 2):
-        return f"exit {result.returncode}: {result.stderr[-2000:]}"
-    if result.returncode == 2:
+    if ending.returncode is None:
+        return f"still running after {TIME_LIMIT_S} s"
+    if "Traceback" in ending.stderr or "internal error" in ending.stderr:
+        return f"a traceback or an internal error: {ending.stderr[-2000:]}"
+    if ending.returncode not in (0, 2):
+        return f"exit {ending.returncode}: {ending.stderr[-2000:]}"
+    if ending.returncode == 2:
         # One line: ours, or argparse's usage line followed by its one-line error.
-        lines = result.stderr.strip().splitlines()
+        lines = ending.stderr.strip().splitlines()
         if not lines or not lines[-1].startswith("mazesim") or "error: " not in lines[-1]:
-            return f"no one-line error: {result.stderr[-2000:]}"
+            return f"no one-line error: {ending.stderr[-2000:]}"
         if len(lines) > 1 and not lines[0].startswith("usage: "):
-            return f"more than one line: {result.stderr[-2000:]}"
+            return f"more than one line: {ending.stderr[-2000:]}"
     return None
 
 
@@ -220,31 +272,18 @@ def test_hostile_arguments_end_in_one_line_and_exit_2(
 ) -> None:
     parser = COMMANDS[command]
     runs = []
-    for number, hostile in enumerate(_hostile_sets(parser)):
+    for number, hostile in enumerate(HOSTILE_SETS[command]):
         if hostile[1] == "unreadable" and os.geteuid() == 0:
             continue  # root reads files without read permission
         folder = tmp_path / f"run-{number}"
         folder.mkdir()
         runs.append((_arguments(command, parser, hostile, files, folder), folder))
-    with ThreadPoolExecutor(max_workers=PARALLEL_RUNS) as pool:
-        results = list(pool.map(lambda run: (run[0], _run_or_hang(*run)), runs))
     problems = [
-        f"mazesim {' '.join(arguments)}: {problem}"
-        for arguments, result in results
-        if (
-            problem := _problem(result)
-            if isinstance(result, subprocess.CompletedProcess)
-            else result
-        )
+        f"mazesim {' '.join(ending.arguments)}: {problem}"
+        for ending in run_limited(runs, tmp_path)
+        if (problem := _problem(ending))
     ]
     assert not problems, "\n".join(problems)
-
-
-def _run_or_hang(arguments: list[str], folder: Path) -> subprocess.CompletedProcess[str] | str:
-    try:
-        return run_limited(arguments, folder)
-    except subprocess.TimeoutExpired:
-        return f"still running after {TIME_LIMIT_S} s"
 
 
 def test_every_command_is_covered() -> None:

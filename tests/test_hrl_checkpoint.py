@@ -157,6 +157,7 @@ def test_a_checkpoint_of_mazesim_0_1_still_resumes(
     [
         (lambda m: {**m, "next_round": -1}, "next_round"),
         (lambda m: {**m, "next_round": 1e300}, "next_round"),
+        (lambda m: {**m, "lower_seconds": 10**400}, "lower_seconds"),
         (lambda m: {**m, "history": {"a": 1}}, "history"),
         (lambda m: {**m, "lower_seconds": float("nan")}, "lower_seconds"),
         (lambda m: {k: v for k, v in m.items() if k != "settings"}, "settings"),

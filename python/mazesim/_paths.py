@@ -31,12 +31,17 @@ def refuse_overwriting_inputs(
         inputs: (what it is, path) of each file or folder the command reads.
 
     Raises:
-        InvalidArgumentError: An output is an input; the message names both and what to do.
+        InvalidArgumentError: An output is an input (the message names both and what to do),
+            or an output file is a folder.
     """
     read = [(label, path) for label, path in inputs if path is not None]
     for out_label, out_path in outputs:
         if out_path is None:
             continue
+        if os.path.isdir(out_path):
+            raise InvalidArgumentError(
+                f"{out_label} {os.fspath(out_path)!r} is a folder; expected the path of a file"
+            )
         for in_label, in_path in read:
             if same_file(out_path, in_path):
                 raise InvalidArgumentError(

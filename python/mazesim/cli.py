@@ -30,6 +30,7 @@ from mazesim.errors import InvalidArgumentError, MazesimError
 __all__ = [
     "main",
     "non_negative_int",
+    "output_path",
     "positive_int",
     "positive_number",
     "positive_seconds",
@@ -113,6 +114,14 @@ def non_negative_int(text: str) -> int:
     return whole_number(text, 0)
 
 
+def output_path(text: str) -> str:
+    """A path to write to: not empty (an empty path would quietly mean the current folder) and
+    without NUL characters."""
+    if not text or "\0" in text:
+        raise argparse.ArgumentTypeError(f"expected a path to write to, found {text!r}")
+    return text
+
+
 def seed_argument(text: str) -> int:
     try:
         value = int(text)
@@ -173,6 +182,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     demo.add_argument(
         "--out",
+        type=output_path,
         default="mazesim-demo",
         metavar="DIR",
         help="folder for trajectory.png and summary.json, created if missing "

@@ -14,7 +14,7 @@ from collections.abc import Sequence
 from typing import Any, TextIO
 
 from mazesim._paths import output_files, refuse_overwriting_inputs
-from mazesim.cli import positive_int
+from mazesim.cli import output_path, positive_int
 from mazesim.distributed.config import PARAMETERS, TRAINER_DEFAULTS, load_sweep_config
 
 __all__ = ["register", "run_sweep_command"]
@@ -62,6 +62,7 @@ def register(commands: Any) -> None:
     )
     parser.add_argument(
         "--out",
+        type=output_path,
         default="mazesim-sweep",
         metavar="DIR",
         help="output folder, created if missing (default: %(default)s)",

@@ -68,7 +68,7 @@ def tables_schema(npz_name: str) -> Record:
     array = Record(
         {
             "shape": ListOf(Whole(0, 2**31), 0, _MAX_DIMENSIONS),
-            "dtype": Text(choices=("float64", "int64", "uint8")),
+            "dtype": Text(choices=("float64", "int64")),
         }
     )
     return Record(
@@ -168,8 +168,8 @@ def read_bundle(
     npz_name: str,
     json_name: str,
     expected_format: str,
-    schema: Node | None = None,
-    arrays_of: ArraysOf | None = None,
+    schema: Node,
+    arrays_of: ArraysOf,
 ) -> tuple[dict[str, npt.NDArray[Any]], dict[str, Any]]:
     """Reads and checks what :func:`write_bundle` wrote.
 
@@ -180,8 +180,7 @@ def read_bundle(
         expected_format: The metadata's ``format``.
         schema: The metadata's schema (``format``, ``version`` and ``tables`` are checked in
             any case).
-        arrays_of: The arrays the archive must hold, from the checked metadata; by default
-            those the metadata names, each at most 64 MiB.
+        arrays_of: The arrays the archive must hold, computed from the checked metadata.
 
     Raises:
         PolicyFormatError: A file is missing, unreadable, truncated, corrupt or of another
@@ -193,24 +192,11 @@ def read_bundle(
     where = str(meta_path)
     text = read_limited(meta_path, MAX_METADATA_BYTES, "a saved navigator's metadata")
     metadata = _check_format(parse_metadata(text, where), where, expected_format)
-    if schema is not None:
-        schema.check(metadata, where, "")
+    schema.check(metadata, where, "")
     Record({"tables": tables_schema(npz_name)}, open=True).check(metadata, where, "")
     described = metadata["tables"]
-    if arrays_of is None:
-        expected: Mapping[str, ArraySpec] = {
-            name: ArraySpec(tuple(spec["shape"]), spec["dtype"])
-            for name, spec in described["arrays"].items()
-        }
-        for name, spec in expected.items():
-            if spec.nbytes > 64 * 1024 * 1024:
-                raise PolicyFormatError(
-                    f"{where}: tables.arrays.{name}: expected at most 64 MiB, "
-                    f"found {spec.dtype} {list(spec.shape)}"
-                )
-    else:
-        expected = arrays_of(metadata)
-        _check_described(described["arrays"], expected, where)
+    expected = arrays_of(metadata)
+    _check_described(described["arrays"], expected, where)
     largest = sum(spec.nbytes + MAX_HEADER_BYTES for spec in expected.values()) + _ARCHIVE_OVERHEAD
     declared = described["bytes"]
     if declared > largest:

@@ -21,7 +21,7 @@ from typing import Any, TextIO
 
 from mazesim import load_world
 from mazesim._paths import output_files, refuse_overwriting_inputs
-from mazesim.cli import positive_int, seed_argument
+from mazesim.cli import output_path, positive_int, seed_argument
 from mazesim.errors import InvalidArgumentError
 from mazesim.hrl.navigation import DEFAULT_MAX_STEPS, EVENT_SOURCES
 
@@ -103,6 +103,7 @@ def register(commands: Any) -> None:
     )
     train.add_argument(
         "--out",
+        type=output_path,
         default=DEFAULT_OUT,
         metavar="DIR",
         help="folder for the checkpoint and the navigator (default: %(default)s)",
@@ -189,12 +190,14 @@ def register(commands: Any) -> None:
     )
     evaluate.add_argument(
         "--trace",
+        type=output_path,
         default=None,
         metavar="FILE",
         help="write the per-step trace of the first episode (as the report's Fig. 4.7)",
     )
     evaluate.add_argument(
         "--plot",
+        type=output_path,
         default=None,
         metavar="FILE",
         help="draw the first episodes' trajectories on the maze into a PNG (Fig. 4.6 / 4.8)",

@@ -1,7 +1,7 @@
 """Checking the JSON metadata of saved navigators and training checkpoints against a schema.
 
 A schema is built from a few node kinds (:class:`Text`, :class:`Whole`, :class:`Number`,
-:class:`Flag`, :class:`ListOf`, :class:`Record`, :class:`AnyJson`); :meth:`Node.check` walks a
+:class:`ListOf`, :class:`Record`, :class:`AnyJson`); :meth:`Node.check` walks a
 parsed document and raises :class:`mazesim.errors.PolicyFormatError` at the first value that does
 not fit, naming the file, the field (``world.checkpoints[3]``), what was expected and what was
 found. Every node bounds what it accepts (lengths, ranges, depth), so a checked document can be
@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import json
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -26,7 +26,6 @@ __all__ = [
     "MAX_DEPTH",
     "MAX_METADATA_BYTES",
     "AnyJson",
-    "Flag",
     "ListOf",
     "Node",
     "Number",
@@ -163,17 +162,11 @@ class Number(Node):
         expected = f"a finite number in [{self.low:g}, {self.high:g}]"
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise self.fail(where, path, expected, value)
-        if not math.isfinite(float(value)) or not self.low <= value <= self.high:
+        # Compared as is: a whole number too large for a float is out of range, not an error.
+        if isinstance(value, float) and not math.isfinite(value):
             raise self.fail(where, path, expected, value)
-
-
-@dataclass(frozen=True)
-class Flag(Node):
-    """``true`` or ``false``."""
-
-    def check(self, value: Any, where: str, path: str) -> None:
-        if not isinstance(value, bool):
-            raise self.fail(where, path, "true or false", value)
+        if not self.low <= value <= self.high:
+            raise self.fail(where, path, expected, value)
 
 
 @dataclass(frozen=True)
@@ -227,8 +220,3 @@ class AnyJson(Node):
 
     def check(self, value: Any, where: str, path: str) -> None:
         return None
-
-
-def shape_of(value: Sequence[int]) -> tuple[int, ...]:
-    """A checked shape list as a tuple."""
-    return tuple(int(size) for size in value)

@@ -13,7 +13,13 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from mazesim.cli import positive_int, positive_number, positive_seconds, seed_argument
+from mazesim.cli import (
+    output_path,
+    positive_int,
+    positive_number,
+    positive_seconds,
+    seed_argument,
+)
 
 __all__ = ["register"]
 
@@ -255,6 +261,7 @@ def register(commands: Any) -> None:
     )
     demo.add_argument(
         "--out",
+        type=output_path,
         default="mazesim-ros-demo",
         metavar="DIR",
         help="output folder, created if missing (default: %(default)s)",

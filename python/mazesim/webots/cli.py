@@ -11,7 +11,7 @@ from typing import Any, TextIO
 
 from mazesim._atomic import atomic_file
 from mazesim._paths import output_files, refuse_overwriting_inputs
-from mazesim.cli import positive_seconds, seed_argument
+from mazesim.cli import output_path, positive_seconds, seed_argument
 
 __all__ = ["register"]
 
@@ -32,6 +32,7 @@ def register(commands: Any) -> None:
     importer.add_argument("file", metavar="FILE", help="the .wbt world file")
     importer.add_argument(
         "--out",
+        type=output_path,
         metavar="WORLD_FILE",
         help="also write the imported world as a mazesim world file (.toml)",
     )
@@ -81,6 +82,7 @@ def register(commands: Any) -> None:
     )
     run.add_argument(
         "--out",
+        type=output_path,
         default="mazesim-webots",
         metavar="DIR",
         help="folder for trajectory.png and summary.json, created if missing "
