@@ -135,7 +135,8 @@ def test_numbers_beyond_the_limits_are_refused_by_the_parser(
 ) -> None:
     assert main(arguments) == 2
     last = capsys.readouterr().err.strip().splitlines()[-1]
-    assert "error: argument" in last and ("at most" in last or "in [" in last), last
+    assert "error: argument" in last, last
+    assert any(limit in last for limit in ("at most", "at least", "in [")), last
 
 
 def test_an_empty_output_path_is_refused_not_taken_for_the_current_folder(

@@ -96,9 +96,13 @@ def whole_number(text: str, smallest: int, largest: int = MAX_COUNT) -> int:
         value = int(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"expected a whole number, found {text!r}") from None
-    if not smallest <= value <= largest:
+    if value < smallest:
         raise argparse.ArgumentTypeError(
-            f"expected a whole number in [{smallest}, {largest}], found {text!r}"
+            f"expected a whole number of at least {smallest}, found {text!r}"
+        )
+    if value > largest:
+        raise argparse.ArgumentTypeError(
+            f"expected a whole number of at most {largest}, found {text!r}"
         )
     return value
 
