@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 
 import mazesim
+from mazesim.cli import MAX_COUNT, non_negative_int
 from mazesim.errors import InvalidArgumentError
 
 __all__ = ["braitenberg", "braitenberg_one", "measure", "register", "single_env_rate"]
@@ -148,8 +149,8 @@ def _env_counts(text: str) -> list[int]:
         raise argparse.ArgumentTypeError(
             f"expected env counts like 1,64,1024, found {text!r}"
         ) from None
-    if not counts or min(counts) < 1:
-        raise argparse.ArgumentTypeError(f"expected positive env counts, found {text!r}")
+    if not counts or min(counts) < 1 or max(counts) > MAX_COUNT:
+        raise argparse.ArgumentTypeError(f"expected env counts in [1, {MAX_COUNT}], found {text!r}")
     return counts
 
 
@@ -201,14 +202,14 @@ def register(commands: Any) -> None:
     )
     parser.add_argument(
         "--steps",
-        type=int,
+        type=non_negative_int,
         default=0,
         metavar="K",
         help="steps per batch size (default: enough for about 1.5 s each)",
     )
     parser.add_argument(
         "--threads",
-        type=int,
+        type=non_negative_int,
         default=0,
         metavar="T",
         help="worker threads (default: 0 = all cores)",

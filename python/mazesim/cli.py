@@ -23,11 +23,21 @@ import numpy as np
 
 import mazesim
 from mazesim._atomic import atomic_file
+from mazesim._paths import output_files, refuse_overwriting_inputs
 from mazesim.controllers import AvoidCollision
 from mazesim.errors import InvalidArgumentError, MazesimError
 from mazesim.replay.options import SimulatorWatch, add_viewing_options
 
-__all__ = ["main", "positive_seconds", "seed_argument"]
+__all__ = [
+    "main",
+    "non_negative_int",
+    "output_path",
+    "positive_int",
+    "positive_number",
+    "positive_seconds",
+    "seed_argument",
+    "whole_number",
+]
 
 #: Modules that add subcommands: each has ``register(commands)``, which adds its parser(s) to the
 #: ``argparse`` subparsers object and sets ``run=<function(args) -> int>`` as the parser default.
@@ -48,38 +58,75 @@ EXIT_ERROR = 2
 EXIT_INTERRUPTED = 130
 #: Wall-clock seconds after which a run starts showing its progress on a terminal.
 PROGRESS_AFTER_S = 1.0
+#: The most simulated seconds a command runs for (11.6 days).
+MAX_SECONDS = 1e6
+#: The largest number a positive-number option takes.
+MAX_NUMBER = 1e9
+#: The largest count (of readings, episodes, envs, CPUs...) an option takes.
+MAX_COUNT = 2**31 - 1
 
 
-def _positive_float(text: str, what: str) -> float:
-    """A finite number above 0; ``what`` names it in the message ("number of seconds")."""
+def _positive_float(text: str, what: str, largest: float) -> float:
+    """A finite number in (0, largest]; ``what`` names it in the message ("number of seconds")."""
     try:
         value = float(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"expected a {what}, found {text!r}") from None
-    if not math.isfinite(value) or value <= 0.0:
-        raise argparse.ArgumentTypeError(f"expected a positive {what}, found {text!r}")
+    if not math.isfinite(value) or not 0.0 < value <= largest:
+        raise argparse.ArgumentTypeError(
+            f"expected a positive {what} of at most {largest:g}, found {text!r}"
+        )
     return value
 
 
 def positive_seconds(text: str) -> float:
-    """A positive, finite number of seconds."""
-    return _positive_float(text, "number of seconds")
+    """A positive number of seconds, at most :data:`MAX_SECONDS`."""
+    return _positive_float(text, "number of seconds", MAX_SECONDS)
 
 
 def positive_number(text: str) -> float:
-    """A finite number above 0."""
-    return _positive_float(text, "number")
+    """A finite number above 0, at most :data:`MAX_NUMBER`."""
+    return _positive_float(text, "number", MAX_NUMBER)
 
 
-def positive_int(text: str) -> int:
-    """A whole number of at least 1 (a count of readings, episodes, envs, CPUs...)."""
+def whole_number(text: str, smallest: int, largest: int = MAX_COUNT) -> int:
+    """A whole number in ``[smallest, largest]``.
+
+    Raises:
+        argparse.ArgumentTypeError: ``text`` is not such a number (argparse prints the message).
+    """
     try:
         value = int(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"expected a whole number, found {text!r}") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"expected a whole number of at least 1, found {text!r}")
+    if value < smallest:
+        raise argparse.ArgumentTypeError(
+            f"expected a whole number of at least {smallest}, found {text!r}"
+        )
+    if value > largest:
+        raise argparse.ArgumentTypeError(
+            f"expected a whole number of at most {largest}, found {text!r}"
+        )
     return value
+
+
+def positive_int(text: str) -> int:
+    """A whole number of at least 1 and at most :data:`MAX_COUNT` (a count of readings,
+    episodes, envs, CPUs...)."""
+    return whole_number(text, 1)
+
+
+def non_negative_int(text: str) -> int:
+    """A whole number of at least 0 and at most :data:`MAX_COUNT` (0 often means "automatic")."""
+    return whole_number(text, 0)
+
+
+def output_path(text: str) -> str:
+    """A path to write to: not empty (an empty path would quietly mean the current folder) and
+    without NUL characters."""
+    if not text or "\0" in text:
+        raise argparse.ArgumentTypeError(f"expected a path to write to, found {text!r}")
+    return text
 
 
 def seed_argument(text: str) -> int:
@@ -142,6 +189,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     demo.add_argument(
         "--out",
+        type=output_path,
         default="mazesim-demo",
         metavar="DIR",
         help="folder for trajectory.png and summary.json, created if missing "
@@ -226,6 +274,10 @@ def run_demo(args: argparse.Namespace, out: TextIO) -> int:
     """Runs the avoid-collision demo and writes its picture and summary."""
     from mazesim.plotting import save_trajectory_png
 
+    refuse_overwriting_inputs(
+        output_files(args.out, ("trajectory.png", "summary.json", "trace.txt")),
+        [("--world", args.world)],
+    )
     if getattr(args, "controller", "avoid-collision") == "hrl":
         from mazesim.hrl.demo import run_hrl_demo
 
@@ -343,6 +395,23 @@ def main(argv: Sequence[str] | None = None) -> int:
     except (MazesimError, OSError) as error:
         print(f"mazesim: error: {_one_line(str(error))}", file=sys.stderr)
         return EXIT_ERROR
+    except MemoryError:
+        print(
+            "mazesim: error: out of memory; ask for less (fewer envs, episodes, steps or seconds)",
+            file=sys.stderr,
+        )
+        return EXIT_ERROR
     except KeyboardInterrupt:
         print("mazesim: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
+    except BaseException as error:
+        # A bug, not the user's doing: one line and how to report it, not a traceback. (pyo3's
+        # PanicException derives from BaseException; SystemExit and GeneratorExit pass.)
+        if isinstance(error, (SystemExit, GeneratorExit)):
+            raise
+        print(
+            f"mazesim: error: internal error, please report it with the command that caused "
+            f"it: {type(error).__name__}: {_one_line(str(error))}",
+            file=sys.stderr,
+        )
+        return EXIT_ERROR

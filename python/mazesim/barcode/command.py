@@ -29,7 +29,7 @@ from mazesim.barcode.study import (
     Tally,
     run_study,
 )
-from mazesim.cli import positive_int, seed_argument
+from mazesim.cli import output_path, positive_int, seed_argument
 
 __all__ = ["register", "run_barcode_study"]
 
@@ -172,6 +172,7 @@ def register(commands: Any) -> None:
     )
     parser.add_argument(
         "--out",
+        type=output_path,
         default="mazesim-barcode-study",
         metavar="DIR",
         help="folder for the CSV tables and charts, created if missing (default: %(default)s)",

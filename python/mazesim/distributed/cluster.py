@@ -21,7 +21,7 @@ import tempfile
 from collections.abc import Iterator
 from types import ModuleType
 
-from mazesim.errors import ClusterConnectionError, MissingDependencyError
+from mazesim.errors import ClusterConnectionError, InvalidArgumentError, MissingDependencyError
 
 __all__ = ["LOCAL", "connection_advice", "import_ray", "local_cpus", "ray_session"]
 
@@ -123,6 +123,7 @@ def ray_session(address: str | None = None, cpus: int | None = None) -> Iterator
 
     Raises:
         MissingDependencyError: Ray is not installed.
+        InvalidArgumentError: ``address`` is not a Ray address.
         ClusterConnectionError: The cluster at ``address`` cannot be joined; the message says what
             to check and set (:func:`connection_advice`).
     """
@@ -145,6 +146,11 @@ def ray_session(address: str | None = None, cpus: int | None = None) -> Iterator
     else:
         try:
             ray.init(address=address, logging_level=logging.WARNING, log_to_driver=False)
+        except ValueError as error:
+            raise InvalidArgumentError(
+                f"expected a Ray address ('local', 'auto', HOST:6379 or ray://HOST:10001), "
+                f"found {address!r}: {error}"
+            ) from None
         except (ConnectionError, RuntimeError, ray.exceptions.RayError) as error:
             # A missing or wrong token raises Ray's AuthenticationError, a RayError.
             raise ClusterConnectionError(connection_advice(address, error)) from error

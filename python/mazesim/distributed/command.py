@@ -13,7 +13,8 @@ import sys
 from collections.abc import Sequence
 from typing import Any, TextIO
 
-from mazesim.cli import positive_int
+from mazesim._paths import output_files, refuse_overwriting_inputs
+from mazesim.cli import output_path, positive_int
 from mazesim.distributed.config import PARAMETERS, TRAINER_DEFAULTS, load_sweep_config
 
 __all__ = ["register", "run_sweep_command"]
@@ -61,6 +62,7 @@ def register(commands: Any) -> None:
     )
     parser.add_argument(
         "--out",
+        type=output_path,
         default="mazesim-sweep",
         metavar="DIR",
         help="output folder, created if missing (default: %(default)s)",
@@ -106,6 +108,12 @@ def run_sweep_command(args: argparse.Namespace, out: TextIO) -> int:
     """Runs ``mazesim sweep`` and prints its summary."""
     from mazesim.distributed.runner import run_sequential, run_sweep
 
+    refuse_overwriting_inputs(
+        output_files(
+            args.out, ("sweep.toml", "settings.json", "results.json", "results.csv", "sweep.png")
+        ),
+        [("the sweep file", args.config)],
+    )
     config = load_sweep_config(args.config)
 
     def progress(line: str) -> None:

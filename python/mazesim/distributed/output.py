@@ -74,6 +74,8 @@ CSV_COLUMNS: tuple[str, ...] = (
     "error",
 )
 _TEMPORARY_SUFFIX = ".partial"
+#: The largest ``run.json`` read back (a finished run's is a few kB).
+MAX_RUN_FILE_BYTES = 16 * 1024 * 1024
 
 
 def write_json(path: str, value: Any) -> None:
@@ -146,17 +148,21 @@ def remove_leftovers(out_dir: str) -> None:
 def read_finished_run(out_dir: str, setting: Setting) -> dict[str, Any] | None:
     """The result of a run of ``setting`` already in the output folder, or ``None``.
 
-    A run counts when its folder holds a readable ``run.json`` for the same parameters.
+    A run counts when its folder holds a readable ``run.json`` for the same parameters; any other
+    file there (damaged, of another layout, too large or nested too deeply) means the run is done
+    again.
     """
     path = os.path.join(out_dir, RUNS_DIR, setting.id, RUN_FILE)
     try:
-        with open(path, encoding="utf-8") as handle:
-            metadata = json.load(handle)
-    except (OSError, ValueError):
+        with open(path, "rb") as handle:
+            text = handle.read(MAX_RUN_FILE_BYTES + 1)
+        metadata = json.loads(text.decode("utf-8")) if len(text) <= MAX_RUN_FILE_BYTES else None
+    except (OSError, ValueError, RecursionError):
         return None
     if not isinstance(metadata, dict) or not isinstance(metadata.get("result"), dict):
         return None
-    if metadata.get("setting", {}).get("params") != dict(setting.params):
+    recorded = metadata.get("setting")
+    if not isinstance(recorded, dict) or recorded.get("params") != dict(setting.params):
         return None
     return dict(metadata["result"])
 

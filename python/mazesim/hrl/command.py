@@ -20,7 +20,8 @@ from pathlib import Path
 from typing import Any, TextIO
 
 from mazesim import load_world
-from mazesim.cli import positive_int, seed_argument
+from mazesim._paths import output_files, refuse_overwriting_inputs
+from mazesim.cli import output_path, positive_int, seed_argument
 from mazesim.errors import InvalidArgumentError
 from mazesim.hrl.navigation import DEFAULT_MAX_STEPS, EVENT_SOURCES
 from mazesim.replay.options import add_viewing_options, recording_requested, write_views
@@ -30,6 +31,10 @@ __all__ = ["register", "run_eval", "run_train", "step_count"]
 DEFAULT_OUT = "mazesim-policy"
 #: Episodes that ``eval --html/--video/--record`` records (the first ones of the first world).
 RECORDED_EPISODES = 3
+
+
+#: The most env-steps a training run takes (the shipped navigator took 3.6e7).
+MAX_STEPS = 10**12
 
 
 def step_count(text: str) -> int:
@@ -46,8 +51,10 @@ def step_count(text: str) -> int:
         raise argparse.ArgumentTypeError(
             f"expected a number of env-steps such as 36000000, 36M or 500k, found {text!r}"
         ) from None
-    if not math.isfinite(value) or value < 1:
-        raise argparse.ArgumentTypeError(f"expected at least one env-step, found {text!r}")
+    if not math.isfinite(value) or not 1 <= value <= MAX_STEPS:
+        raise argparse.ArgumentTypeError(
+            f"expected a number of env-steps in [1, {MAX_STEPS:.0e}], found {text!r}"
+        )
     return int(value)
 
 
@@ -99,6 +106,7 @@ def register(commands: Any) -> None:
     )
     train.add_argument(
         "--out",
+        type=output_path,
         default=DEFAULT_OUT,
         metavar="DIR",
         help="folder for the checkpoint and the navigator (default: %(default)s)",
@@ -185,12 +193,14 @@ def register(commands: Any) -> None:
     )
     evaluate.add_argument(
         "--trace",
+        type=output_path,
         default=None,
         metavar="FILE",
         help="write the per-step trace of the first episode (as the report's Fig. 4.7)",
     )
     evaluate.add_argument(
         "--plot",
+        type=output_path,
         default=None,
         metavar="FILE",
         help="draw the first episodes' trajectories on the maze into a PNG (Fig. 4.6 / 4.8)",
@@ -212,6 +222,10 @@ def run_train(args: argparse.Namespace, out: TextIO) -> int:
     """Runs ``mazesim train``."""
     from mazesim.hrl.train import TrainSettings, train, train_flat_policy
 
+    refuse_overwriting_inputs(
+        output_files(args.out, ("tables.npz", "policy.json", "checkpoint.npz")),
+        [("--world", args.world)],
+    )
     settings = TrainSettings(world=args.world, envs=args.envs, steps=args.steps, seed=args.seed)
     started = time.perf_counter()
     if args.flat:
@@ -250,6 +264,15 @@ def run_eval(args: argparse.Namespace, out: TextIO) -> int:
     )
     from mazesim.hrl.tables import load_policy
 
+    policy_files = [
+        (f"the navigator's {name}", Path(args.policy) / name)
+        for name in ("policy.json", "tables.npz")
+        if args.policy is not None
+    ]
+    refuse_overwriting_inputs(
+        [("--trace", args.trace), ("--plot", args.plot)],
+        [*policy_files, ("--world", args.world)],
+    )
     policy = load_policy(args.policy)
     if args.world == "random":
         from mazesim.hrl.evaluate import unseen_mazes

@@ -220,7 +220,7 @@ class LowerTrainer:
                 and maze.is_open(approach.door, (approach.heading + quarters) % 4)
             ]
         count = settings.num_envs
-        self.role = np.array([ROLE_PATTERN[i % len(ROLE_PATTERN)] for i in range(count)])
+        # The batch first: it refuses a number of envs the machine cannot hold.
         self.batch = BatchSimulator(
             self.mazes[0],
             num_envs=count,
@@ -230,6 +230,7 @@ class LowerTrainer:
             control_step_ms=settings.control_step_ms,
             threads=threads,
         )
+        self.role = np.resize(np.array(ROLE_PATTERN, dtype=np.int64), count)
         robot = RobotProfile.builtin("seed")
         self.wheel_speeds = (WHEEL_SPEED_FRACTIONS * robot.max_wheel_speed).astype(np.float32)
         self.cruise_step = cruise_step_length(robot, settings.control_step_ms)

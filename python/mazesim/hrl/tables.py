@@ -16,20 +16,20 @@ A saved navigator is a folder with two files:
   state names); ``training`` (the settings and measurements of the run); ``tables`` (each array's
   shape, and the size and sha256 of ``tables.npz``).
 
-Both files are written atomically. :func:`load_policy` raises
-:class:`mazesim.errors.PolicyFormatError` naming the file and the reason when a file is missing,
-truncated, corrupt (its sha256 differs), of another format or version, made for another state or
-action encoding, or has tables of the wrong shape or non-finite values.
+Both files are written atomically, the metadata last (:mod:`mazesim.hrl.bundle`).
+:func:`load_policy` checks the metadata against a schema (:func:`policy_schema`) before it reads
+the tables, and the tables' headers against the shapes the metadata allows before it reads their
+data, so no file decides how much memory is used. It raises
+:class:`mazesim.errors.PolicyFormatError` naming the file, the field and the reason when a file is
+missing, truncated, corrupt (its sha256 differs), malformed, of another format or version, made
+for another state or action encoding, or has tables of the wrong shape or non-finite values.
 :meth:`TrainedPolicy.check_world` refuses a world other than the one the higher level learned.
 """
 
 from __future__ import annotations
 
-import hashlib
-import io
 import json
 import os
-import zipfile
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
@@ -38,14 +38,22 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from mazesim._atomic import atomic_file
 from mazesim._core import World
 from mazesim.actions import ACTION_CODES, WHEEL_SPEED_FRACTIONS
 from mazesim.errors import PolicyFormatError
+from mazesim.hrl.archive import ArraySpec
+from mazesim.hrl.bundle import (
+    FORMAT_VERSION,
+    HEX_DIGITS,
+    read_bundle,
+    tables_schema,
+    write_bundle,
+)
 from mazesim.hrl.discretise import LEVEL_EDGES_CM, NUM_STATES, SENSOR_ORDER, SHARP_TABLE
 from mazesim.hrl.higher import event_state_names
 from mazesim.hrl.lower import lower_table_shape
 from mazesim.hrl.mazes import world_hash
+from mazesim.hrl.schema import AnyJson, ListOf, Record, Text, Whole
 from mazesim.hrl.subtasks import (
     CONTROL_STEP_MS,
     FORWARD_PHASE_ANGLE,
@@ -64,6 +72,8 @@ __all__ = [
     "TrainedPolicy",
     "encoding_metadata",
     "load_policy",
+    "policy_arrays",
+    "policy_schema",
     "read_bundle",
     "save_policy",
     "shipped_policy_dir",
@@ -71,7 +81,6 @@ __all__ = [
 ]
 
 FORMAT = "mazesim-policy"
-FORMAT_VERSION = 1
 METADATA_FILE = "policy.json"
 TABLES_FILE = "tables.npz"
 #: The lower-level table of each sub-task, by number.
@@ -126,114 +135,6 @@ def encoding_metadata() -> dict[str, Any]:
 def shipped_policy_dir(world_name: str = "seed-maze") -> Path:
     """The folder of the navigator shipped in the package for a built-in world."""
     return Path(str(resources.files("mazesim.hrl").joinpath("data", world_name)))
-
-
-def _sha256(data: bytes) -> str:
-    return hashlib.sha256(data).hexdigest()
-
-
-def write_bundle(
-    folder: str | os.PathLike[str],
-    npz_name: str,
-    json_name: str,
-    arrays: dict[str, npt.NDArray[Any]],
-    metadata: dict[str, Any],
-) -> None:
-    """Writes ``npz_name`` and ``json_name`` into ``folder`` (created if missing), atomically.
-
-    The JSON gets a ``tables`` entry with each array's shape and dtype and the ``.npz``'s size
-    and sha256; it is written after the ``.npz``.
-    """
-    path = Path(folder)
-    path.mkdir(parents=True, exist_ok=True)
-    buffer = io.BytesIO()
-    savez: Any = np.savez_compressed
-    savez(buffer, **arrays)
-    data = buffer.getvalue()
-    described = dict(metadata)
-    described["tables"] = {
-        "file": npz_name,
-        "bytes": len(data),
-        "sha256": _sha256(data),
-        "arrays": {
-            name: {"shape": list(array.shape), "dtype": str(array.dtype)}
-            for name, array in arrays.items()
-        },
-    }
-    with atomic_file(path / npz_name) as handle:
-        handle.write(data)
-    with atomic_file(path / json_name) as handle:
-        handle.write((json.dumps(described, indent=2) + "\n").encode("utf-8"))
-
-
-def read_bundle(
-    folder: str | os.PathLike[str], npz_name: str, json_name: str, expected_format: str
-) -> tuple[dict[str, npt.NDArray[Any]], dict[str, Any]]:
-    """Reads and checks what :func:`write_bundle` wrote.
-
-    Raises:
-        PolicyFormatError: A file is missing, unreadable, truncated, corrupt or of another
-            format or version, or an array's shape or dtype differs from the metadata.
-    """
-    path = Path(folder)
-    meta_path = path / json_name
-    npz_path = path / npz_name
-    try:
-        text = meta_path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise PolicyFormatError(f"{meta_path}: no such file (expected a saved navigator)") from None
-    except (OSError, UnicodeDecodeError) as error:
-        raise PolicyFormatError(f"{meta_path}: cannot be read: {error}") from None
-    try:
-        metadata = json.loads(text)
-    except json.JSONDecodeError as error:
-        raise PolicyFormatError(
-            f"{meta_path}: not valid JSON (truncated or corrupt?): {error}"
-        ) from None
-    if not isinstance(metadata, dict):
-        raise PolicyFormatError(f"{meta_path}: expected a JSON object, found {type(metadata)}")
-    if metadata.get("format") != expected_format:
-        raise PolicyFormatError(
-            f"{meta_path}: expected format {expected_format!r}, found {metadata.get('format')!r}"
-        )
-    if metadata.get("version") != FORMAT_VERSION:
-        raise PolicyFormatError(
-            f"{meta_path}: expected format version {FORMAT_VERSION}, "
-            f"found {metadata.get('version')!r}"
-        )
-    described = metadata.get("tables")
-    if not isinstance(described, dict) or not isinstance(described.get("arrays"), dict):
-        raise PolicyFormatError(f"{meta_path}: the 'tables' entry is missing or malformed")
-    try:
-        data = npz_path.read_bytes()
-    except FileNotFoundError:
-        raise PolicyFormatError(f"{npz_path}: no such file (its metadata is {meta_path})") from None
-    except OSError as error:
-        raise PolicyFormatError(f"{npz_path}: cannot be read: {error}") from None
-    if len(data) != described.get("bytes"):
-        raise PolicyFormatError(
-            f"{npz_path}: truncated or overwritten: expected {described.get('bytes')} bytes, "
-            f"found {len(data)}"
-        )
-    if _sha256(data) != described.get("sha256"):
-        raise PolicyFormatError(
-            f"{npz_path}: corrupt: its sha256 differs from the one in {meta_path.name}"
-        )
-    try:
-        with np.load(io.BytesIO(data), allow_pickle=False) as archive:
-            arrays = {name: archive[name] for name in archive.files}
-    except (ValueError, OSError, zipfile.BadZipFile, KeyError) as error:
-        raise PolicyFormatError(f"{npz_path}: not a readable .npz file: {error}") from None
-    for name, spec in described["arrays"].items():
-        if name not in arrays:
-            raise PolicyFormatError(f"{npz_path}: the table {name!r} is missing")
-        array = arrays[name]
-        if list(array.shape) != spec.get("shape") or str(array.dtype) != spec.get("dtype"):
-            raise PolicyFormatError(
-                f"{npz_path}: table {name!r} is {array.dtype} {list(array.shape)}, "
-                f"its metadata says {spec.get('dtype')} {spec.get('shape')}"
-            )
-    return arrays, metadata
 
 
 @dataclass
@@ -347,6 +248,36 @@ def save_policy(policy: TrainedPolicy, folder: str | os.PathLike[str]) -> None:
     write_bundle(folder, TABLES_FILE, METADATA_FILE, arrays, metadata)
 
 
+#: The most checkpoints a navigator's world may have, and the largest checkpoint id.
+MAX_CHECKPOINTS = 1024
+MAX_CHECKPOINT_ID = 65535
+
+
+def policy_schema() -> Record:
+    """The schema of ``policy.json`` (the encoding entries are compared with this mazesim's)."""
+    return Record(
+        {
+            "format": Text(choices=(FORMAT,)),
+            "version": Whole(FORMAT_VERSION, FORMAT_VERSION),
+            "kind": Text(choices=KINDS),
+            "state_encoding": AnyJson(),
+            "actions": AnyJson(),
+            "control_step_ms": AnyJson(),
+            "subtasks": AnyJson(),
+            "world": Record(
+                {
+                    "name": Text(max_length=256),
+                    "sha256": Text(length=64, alphabet=HEX_DIGITS),
+                    "checkpoints": ListOf(Whole(1, MAX_CHECKPOINT_ID), 0, MAX_CHECKPOINTS),
+                    "higher_states": ListOf(Text(max_length=16), 0, 2 * MAX_CHECKPOINTS),
+                }
+            ),
+            "training": Record({}, open=True, others=AnyJson()),
+            "tables": tables_schema(TABLES_FILE),
+        }
+    )
+
+
 def _check_encoding(metadata: dict[str, Any], where: Path) -> None:
     expected = encoding_metadata()
     for key in ("state_encoding", "actions", "control_step_ms", "subtasks"):
@@ -358,6 +289,44 @@ def _check_encoding(metadata: dict[str, Any], where: Path) -> None:
             )
 
 
+def _check_world(world: dict[str, Any], where: Path) -> None:
+    checkpoints = world["checkpoints"]
+    if len(set(checkpoints)) != len(checkpoints):
+        raise PolicyFormatError(
+            f"{where}: world.checkpoints: expected distinct ids, found {checkpoints[:20]}"
+        )
+    if world["higher_states"] != event_state_names(checkpoints):
+        raise PolicyFormatError(
+            f"{where}: world.higher_states: expected {event_state_names(checkpoints)[:8]}..., "
+            f"found {world['higher_states'][:8]}..."
+        )
+
+
+def policy_arrays(metadata: dict[str, Any]) -> dict[str, ArraySpec]:
+    """The tables a navigator's archive must hold, from its checked metadata."""
+    actions = len(ACTION_CODES)
+    checkpoints = len(metadata["world"]["checkpoints"])
+    if metadata["kind"] == "flat":
+        return {"flat": ArraySpec(((1 + 2 * checkpoints) * NUM_STATES, actions), "float64")}
+    arrays = {
+        name: ArraySpec((NUM_PHASES[number] * NUM_STATES, actions), "float64")
+        for number, name in enumerate(SUBTASK_TABLES)
+    }
+    arrays["higher"] = ArraySpec((2 * checkpoints, 4), "float64")
+    return arrays
+
+
+def _checked_policy_arrays(where: Path) -> Any:
+    """:func:`policy_arrays` after the checks that need this mazesim's encoding and world rules."""
+
+    def arrays_of(metadata: dict[str, Any]) -> dict[str, ArraySpec]:
+        _check_encoding(metadata, where)
+        _check_world(metadata["world"], where)
+        return policy_arrays(metadata)
+
+    return arrays_of
+
+
 def load_policy(folder: str | os.PathLike[str] | None = None) -> TrainedPolicy:
     """Loads a navigator saved by :func:`save_policy` (by default the one shipped for seed-maze).
 
@@ -366,19 +335,23 @@ def load_policy(folder: str | os.PathLike[str] | None = None) -> TrainedPolicy:
     """
     path = Path(folder) if folder is not None else shipped_policy_dir()
     meta_path = path / METADATA_FILE
-    arrays, metadata = read_bundle(path, TABLES_FILE, METADATA_FILE, FORMAT)
-    _check_encoding(metadata, meta_path)
-    kind = metadata.get("kind")
-    world = metadata.get("world")
-    if kind not in KINDS or not isinstance(world, dict):
-        raise PolicyFormatError(f"{meta_path}: expected a kind in {KINDS} and a world entry")
-    checkpoints = [int(c) for c in world.get("checkpoints", [])]
+    arrays, metadata = read_bundle(
+        path,
+        TABLES_FILE,
+        METADATA_FILE,
+        FORMAT,
+        schema=policy_schema(),
+        arrays_of=_checked_policy_arrays(meta_path),
+    )
+    kind = metadata["kind"]
+    world = metadata["world"]
+    checkpoints = [int(c) for c in world["checkpoints"]]
     policy = TrainedPolicy(
         kind=str(kind),
-        world_name=str(world.get("name")),
-        world_sha256=str(world.get("sha256")),
+        world_name=str(world["name"]),
+        world_sha256=str(world["sha256"]),
         checkpoint_ids=checkpoints,
-        training=dict(metadata.get("training") or {}),
+        training=dict(metadata["training"]),
         source=str(path),
     )
     npz_path = path / TABLES_FILE

@@ -7,7 +7,9 @@ the target world; checkpoints, ``--resume``, and a progress bar.
    ``envs`` robots at a time, until ``steps`` env-steps are done, round by round. After every
    round whose end is at least :attr:`TrainSettings.checkpoint_seconds` after the last
    checkpoint (and after the last round) the tables, their update counts and the round reached
-   are written to ``DIR/checkpoint.npz`` and ``DIR/checkpoint.json``, atomically.
+   are written to ``DIR/checkpoint.npz``, one file switched in with one atomic rename
+   (:mod:`mazesim.hrl.checkpoint`): a crash at any instant leaves the previous checkpoint or the
+   new one, whole.
 2. **Higher level** (:mod:`mazesim.hrl.episodes`): episodes on the target world with the lower
    level fixed, the sub-tasks chosen epsilon-greedily at checkpoint events.
 
@@ -28,21 +30,22 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any, TextIO
 
-import numpy as np
-
 from mazesim import load_world
 from mazesim.errors import InvalidArgumentError, PolicyFormatError
+from mazesim.hrl.checkpoint import (
+    CHECKPOINT_FILE,
+    CHECKPOINT_FORMAT,
+    Checkpoint,
+    checkpoint_exists,
+    read_checkpoint,
+    remove_checkpoint_leftovers,
+    write_checkpoint,
+)
 from mazesim.hrl.episodes import HigherTraining, train_higher
 from mazesim.hrl.lower import LowerSettings, LowerTables, LowerTrainer, RoundStats
 from mazesim.hrl.mazes import checkpoint_ids, world_hash
 from mazesim.hrl.navigation import shortest_path_steps
-from mazesim.hrl.tables import (
-    FORMAT_VERSION,
-    TrainedPolicy,
-    read_bundle,
-    save_policy,
-    write_bundle,
-)
+from mazesim.hrl.tables import TrainedPolicy, save_policy
 
 __all__ = [
     "CHECKPOINT_FORMAT",
@@ -50,10 +53,6 @@ __all__ = [
     "train",
     "train_flat_policy",
 ]
-
-CHECKPOINT_FORMAT = "mazesim-training-checkpoint"
-CHECKPOINT_NPZ = "checkpoint.npz"
-CHECKPOINT_JSON = "checkpoint.json"
 
 
 @dataclass(frozen=True)
@@ -135,53 +134,6 @@ def _round_summary(stats: RoundStats) -> dict[str, Any]:
     }
 
 
-def _save_checkpoint(
-    out: Path,
-    settings: TrainSettings,
-    tables: LowerTables,
-    next_round: int,
-    history: list[dict[str, Any]],
-    seconds: float,
-) -> None:
-    write_bundle(
-        out,
-        CHECKPOINT_NPZ,
-        CHECKPOINT_JSON,
-        {"q": tables.q, "visits": tables.visits},
-        {
-            "format": CHECKPOINT_FORMAT,
-            "version": FORMAT_VERSION,
-            "settings": settings.identity(),
-            "next_round": next_round,
-            "history": history,
-            "lower_seconds": seconds,
-        },
-    )
-
-
-def _load_checkpoint(
-    out: Path, settings: TrainSettings
-) -> tuple[LowerTables, int, list[dict[str, Any]], float]:
-    arrays, metadata = read_bundle(out, CHECKPOINT_NPZ, CHECKPOINT_JSON, CHECKPOINT_FORMAT)
-    saved = metadata.get("settings")
-    if saved != settings.identity():
-        raise PolicyFormatError(
-            f"{out / CHECKPOINT_JSON}: the checkpoint is of a run with other settings "
-            f"({saved}); resume it with those, or start afresh in another folder"
-        )
-    tables = LowerTables(
-        np.array(arrays["q"], dtype=np.float64), np.array(arrays["visits"], dtype=np.int64)
-    )
-    if tables.q.shape != LowerTables.zeros().q.shape or tables.visits.shape != tables.q.shape:
-        raise PolicyFormatError(f"{out / CHECKPOINT_NPZ}: tables of the wrong shape")
-    return (
-        tables,
-        int(metadata.get("next_round", 0)),
-        list(metadata.get("history", [])),
-        float(metadata.get("lower_seconds", 0.0)),
-    )
-
-
 def train(
     settings: TrainSettings,
     out: str | os.PathLike[str],
@@ -216,19 +168,23 @@ def train(
             f"world {world.name!r} needs a [grid] maze and a goal to train a navigator for"
         )
     lower_settings = settings.lower()
-    checkpoint_exists = (folder / CHECKPOINT_JSON).exists()
+    if folder.exists() and not folder.is_dir():
+        raise InvalidArgumentError(f"expected a folder for the navigator, found a file: {folder}")
     if resume:
-        if not checkpoint_exists:
-            raise PolicyFormatError(f"{folder / CHECKPOINT_JSON}: no checkpoint to resume from")
-        tables, next_round, history, lower_seconds = _load_checkpoint(folder, settings)
+        if not checkpoint_exists(folder):
+            raise PolicyFormatError(f"{folder / CHECKPOINT_FILE}: no checkpoint to resume from")
+        saved = read_checkpoint(folder, settings.identity())
+        tables, next_round = saved.tables, saved.next_round
+        history, lower_seconds = saved.history, saved.lower_seconds
     else:
-        if checkpoint_exists:
+        if checkpoint_exists(folder):
             raise PolicyFormatError(
                 f"{folder} holds the checkpoint of another run; pass --resume to continue it, "
                 "or choose another --out"
             )
         tables, next_round, history, lower_seconds = LowerTables.zeros(), 0, [], 0.0
     folder.mkdir(parents=True, exist_ok=True)
+    remove_checkpoint_leftovers(folder)
 
     bar = Progress(progress)
     rounds = lower_settings.rounds
@@ -246,13 +202,12 @@ def train(
                 last_round = round_index + 1 == rounds
                 stopping = stop_after_rounds is not None and done_here >= stop_after_rounds
                 if last_round or stopping or now - last_saved >= settings.checkpoint_seconds:
-                    _save_checkpoint(
+                    write_checkpoint(
                         folder,
-                        settings,
-                        trainer.tables,
-                        round_index + 1,
-                        history,
-                        lower_seconds + now - started,
+                        settings.identity(),
+                        Checkpoint(
+                            trainer.tables, round_index + 1, history, lower_seconds + now - started
+                        ),
                     )
                     last_saved = now
                 success = stats.door_success_rate()

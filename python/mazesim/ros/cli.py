@@ -15,7 +15,13 @@ import argparse
 from collections.abc import Sequence
 from typing import Any
 
-from mazesim.cli import positive_int, positive_number, positive_seconds, seed_argument
+from mazesim.cli import (
+    output_path,
+    positive_int,
+    positive_number,
+    positive_seconds,
+    seed_argument,
+)
 from mazesim.replay.options import add_viewing_options
 from mazesim.ros._ros import check_ros_installed
 
@@ -289,6 +295,7 @@ def register(commands: Any) -> None:
     )
     demo.add_argument(
         "--out",
+        type=output_path,
         default="mazesim-ros-demo",
         metavar="DIR",
         help="output folder, created if missing (default: %(default)s)",

@@ -11,7 +11,8 @@ import sys
 from typing import Any, TextIO
 
 from mazesim._atomic import atomic_file
-from mazesim.cli import positive_seconds, seed_argument
+from mazesim._paths import output_files, refuse_overwriting_inputs
+from mazesim.cli import output_path, positive_seconds, seed_argument
 from mazesim.replay.options import DeferredWatch, add_viewing_options, viewing_requested
 
 __all__ = ["register"]
@@ -33,6 +34,7 @@ def register(commands: Any) -> None:
     importer.add_argument("file", metavar="FILE", help="the .wbt world file")
     importer.add_argument(
         "--out",
+        type=output_path,
         metavar="WORLD_FILE",
         help="also write the imported world as a mazesim world file (.toml)",
     )
@@ -93,6 +95,7 @@ def register(commands: Any) -> None:
     )
     run.add_argument(
         "--out",
+        type=output_path,
         default="mazesim-webots",
         metavar="DIR",
         help="folder for trajectory.png, summary.json and trajectory.csv, created if missing "
@@ -126,6 +129,8 @@ def run_import(args: argparse.Namespace, out: TextIO) -> int:
     """Imports a .wbt file, prints the summary or the JSON, writes the world if asked."""
     from mazesim.webots.importer import import_wbt
 
+    if args.out:
+        refuse_overwriting_inputs([("--out", args.out)], [("the Webots world", args.file)])
     world, report = import_wbt(args.file)
     if args.out:
         world.save(args.out)
@@ -193,6 +198,10 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
     world, report, scene = _load_world(args.world, args.strict)
     keys = read_keys(args.keys) if args.keys else None
     out_dir = os.path.abspath(args.out)
+    refuse_overwriting_inputs(
+        output_files(out_dir, ("trajectory.png", "summary.json", "trajectory.csv")),
+        [("the controller", args.controller), ("--world", args.world)],
+    )
     # Fail before the run, not after it, if the output folder cannot be made.
     os.makedirs(out_dir, exist_ok=True)
     watch = DeferredWatch(args, os.path.basename(args.controller), args.seed)

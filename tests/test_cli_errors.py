@@ -1,0 +1,155 @@
+"""Issue 15: no command writes over one of its inputs; every error is one line and exit 2."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from mazesim.cli import main
+
+REPO = Path(__file__).resolve().parent.parent
+WBT = REPO / "tests" / "data" / "webots-worlds" / "e-puck.R2023b.wbt"
+
+
+def _mazesim(*arguments: str, cwd: Path) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(
+        [sys.executable, "-m", "mazesim", *arguments],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        cwd=cwd,
+        check=False,
+    )
+
+
+def _one_error_line(result: subprocess.CompletedProcess[str]) -> str:
+    assert result.returncode == 2, result.stderr
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("mazesim: error: "), result.stderr
+    return lines[0]
+
+
+@pytest.mark.parametrize(
+    "spelling",
+    ["same", "absolute", "dotted", "symlink to it", "symlinked folder", "hard link"],
+)
+def test_import_wbt_refuses_to_overwrite_the_webots_source(tmp_path: Path, spelling: str) -> None:
+    source = tmp_path / "worlds" / "x.wbt"
+    source.parent.mkdir()
+    shutil.copyfile(WBT, source)
+    original = source.read_bytes()
+    out = {
+        "same": "worlds/x.wbt",
+        "absolute": str(source),
+        "dotted": "worlds/../worlds/./x.wbt",
+        "symlink to it": "link.wbt",
+        "symlinked folder": "linked/x.wbt",
+        "hard link": "hard.wbt",
+    }[spelling]
+    if spelling == "symlink to it":
+        (tmp_path / "link.wbt").symlink_to(source)
+    elif spelling == "symlinked folder":
+        (tmp_path / "linked").symlink_to(source.parent, target_is_directory=True)
+    elif spelling == "hard link":
+        os.link(source, tmp_path / "hard.wbt")
+    line = _one_error_line(_mazesim("import-wbt", "worlds/x.wbt", "--out", out, cwd=tmp_path))
+    assert "is the same file as the Webots world" in line
+    assert "choose another --out" in line
+    assert source.read_bytes() == original
+
+
+def test_import_wbt_still_writes_another_file(tmp_path: Path) -> None:
+    result = _mazesim("import-wbt", str(WBT), "--out", "x.toml", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert (tmp_path / "x.toml").read_text().startswith('format = "mazesim-world"')
+
+
+def test_eval_refuses_to_write_its_trace_over_the_navigator(tmp_path: Path) -> None:
+    from mazesim.hrl.tables import shipped_policy_dir
+
+    navigator = tmp_path / "navigator"
+    shutil.copytree(shipped_policy_dir(), navigator)
+    before = (navigator / "policy.json").read_bytes()
+    code = main(["eval", "--policy", str(navigator), "--trace", str(navigator / "policy.json")])
+    assert code == 2
+    assert (navigator / "policy.json").read_bytes() == before
+
+
+def test_sweep_refuses_an_output_folder_holding_its_sweep_file(tmp_path: Path) -> None:
+    config = tmp_path / "sweep.toml"
+    config.write_text('[sweep]\nname = "x"\n[grid]\ntrainer = "flat-q"\n')
+    result = _mazesim("sweep", "sweep.toml", "--out", ".", "--sequential", cwd=tmp_path)
+    assert "is the same file as the sweep file" in _one_error_line(result)
+
+
+def test_an_unexpected_error_is_one_line_not_a_traceback(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    import mazesim.cli
+
+    def broken(out: object) -> int:
+        raise TypeError("unsupported operand")
+
+    monkeypatch.setattr(mazesim.cli, "run_worlds", broken)
+    assert main(["worlds"]) == 2
+    lines = capsys.readouterr().err.strip().splitlines()
+    assert lines == [
+        "mazesim: error: internal error, please report it with the command that caused it: "
+        "TypeError: unsupported operand"
+    ]
+
+
+def test_running_out_of_memory_is_one_line(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    import mazesim.cli
+
+    def greedy(out: object) -> int:
+        raise MemoryError
+
+    monkeypatch.setattr(mazesim.cli, "run_worlds", greedy)
+    assert main(["worlds"]) == 2
+    assert capsys.readouterr().err.startswith("mazesim: error: out of memory")
+
+
+@pytest.mark.parametrize(
+    "arguments",
+    [
+        ["demo", "--seconds", "1e300"],
+        ["bench", "--steps", "-1"],
+        ["bench", "--threads", "1" + "0" * 30],
+        ["bench", "--envs", "1,99999999999"],
+        ["train", "--steps", "1e40"],
+        ["eval", "--episodes", "99999999999"],
+        ["ros", "bridge", "--speed", "1e300"],
+    ],
+    ids=" ".join,
+)
+def test_numbers_beyond_the_limits_are_refused_by_the_parser(
+    arguments: list[str], capsys: pytest.CaptureFixture[str]
+) -> None:
+    assert main(arguments) == 2
+    last = capsys.readouterr().err.strip().splitlines()[-1]
+    assert "error: argument" in last, last
+    assert any(limit in last for limit in ("at most", "at least", "in [")), last
+
+
+def test_an_empty_output_path_is_refused_not_taken_for_the_current_folder(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    assert main(["train", "--out", ""]) == 2
+    assert "--out: expected a path to write to, found ''" in capsys.readouterr().err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_an_output_file_that_is_a_folder_is_refused_before_the_run(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    assert main(["eval", "--episodes", "1", "--trace", str(tmp_path)]) == 2
+    assert "is a folder; expected the path of a file" in capsys.readouterr().err

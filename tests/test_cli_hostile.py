@@ -1,0 +1,291 @@
+"""Issue 15: every command given hostile arguments ends with exit 2 and one line, never a traceback.
+
+The commands and their options are discovered from the parser, so a new command or option is
+tested without being listed here. Each run is a subprocess with a time limit and a 4 GiB
+address-space cap. Arguments that make a run quick (``--seconds 1``) come first; the hostile
+value comes last, so it wins.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import resource
+import subprocess
+import sys
+import time
+from collections.abc import Iterator
+from dataclasses import dataclass
+from pathlib import Path
+from typing import IO
+
+import pytest
+
+from mazesim.cli import build_parser
+
+REPO = Path(__file__).resolve().parent.parent
+WBT = REPO / "tests" / "data" / "webots-worlds" / "e-puck.R2023b.wbt"
+MEMORY_CAP = 4 * 1024**3
+TIME_LIMIT_S = 60
+#: Runs at once (each mostly waits for its imports).
+PARALLEL_RUNS = 4
+
+#: Numbers no option accepts: too large for any count, negative, not a number, infinite.
+HOSTILE_NUMBERS = ("1" + "0" * 40, "-5", "nan", "inf", "1e400")
+#: Inputs that cannot be read as what they should be.
+HOSTILE_INPUTS = ("", "missing", "folder", "unreadable", "garbage")
+#: Places no output folder (``--out DIR``) can be made at.
+HOSTILE_OUTPUTS = ("", "a-file", "under-a-file")
+#: Places no output file (``--trace FILE``) can be written to.
+HOSTILE_OUTPUT_FILES = ("", "folder", "under-a-file")
+#: Arguments that keep a valid run short, by command.
+QUICK = {
+    "demo": ["--seconds", "1"],
+    "bench": ["--envs", "1", "--steps", "100", "--threads", "1"],
+    "barcode-study": ["--readings", "1", "--envs", "1", "--thresholds", "1.4", "--speeds", "3"],
+    "webots run": ["--seconds", "1"],
+    "sweep": ["--sequential", "--quiet"],
+    "eval": ["--episodes", "1", "--events", "truth", "--max-steps", "50"],
+    "ros bridge": ["--duration", "1"],
+    "ros demo": ["--seconds", "1"],
+}
+#: Options that name outputs (the others taking paths are inputs).
+OUTPUT_OPTIONS = {"--out", "--trace", "--plot"}
+#: Options that take a name or an address, not a path or a number.
+NAME_OPTIONS = {"--robot", "--name", "--address", "remappings"}
+
+SMALL_SWEEP = """
+[sweep]
+name = "small"
+
+[grid]
+trainer = "flat-q"
+seed = 0
+maze_size = 3
+envs = 2
+steps = 20
+episode_steps = 20
+eval_episodes = 1
+"""
+CONTROLLER = """
+from controller import Robot
+robot = Robot()
+while robot.step(64) != -1:
+    pass
+"""
+
+
+def _commands(
+    parser: argparse.ArgumentParser, words: list[str]
+) -> Iterator[tuple[str, argparse.ArgumentParser]]:
+    subparsers = [a for a in parser._actions if isinstance(a, argparse._SubParsersAction)]
+    if not subparsers:
+        yield " ".join(words), parser
+        return
+    for name, child in subparsers[0].choices.items():
+        yield from _commands(child, [*words, name])
+
+
+def _value_options(parser: argparse.ArgumentParser) -> Iterator[argparse.Action]:
+    for action in parser._actions:
+        if action.nargs == 0 or isinstance(action, argparse._HelpAction) or action.choices:
+            continue
+        yield action
+
+
+def _kind(action: argparse.Action) -> str:
+    name = action.option_strings[0] if action.option_strings else action.dest
+    if name in NAME_OPTIONS:
+        return "name"
+    if name in OUTPUT_OPTIONS:
+        return "output" if action.metavar == "DIR" else "output file"
+    return "input" if action.type is None else "number"
+
+
+#: How many hostile values each option of a kind gets (rotating through the kind's values).
+VALUES_PER_OPTION = {"number": 1, "input": 2, "output": 3, "output file": 3, "name": 1}
+VALUES = {
+    "number": HOSTILE_NUMBERS,
+    "input": HOSTILE_INPUTS,
+    "output": HOSTILE_OUTPUTS,
+    "output file": HOSTILE_OUTPUT_FILES,
+    "name": ("",),
+}
+
+
+def _hostile_sets(
+    parser: argparse.ArgumentParser, turns: dict[str, int]
+) -> list[tuple[argparse.Action | None, str]]:
+    """(argument, hostile value) pairs of one command; (None, value) for an unknown option.
+
+    Each kind's values are dealt out in turn across all commands (``turns`` counts them), so
+    every value is tried somewhere.
+    """
+    sets: list[tuple[argparse.Action | None, str]] = [(None, "--no-such-option")]
+    for action in _value_options(parser):
+        kind = _kind(action)
+        values = VALUES[kind]
+        for _ in range(VALUES_PER_OPTION[kind]):
+            sets.append((action, values[turns.get(kind, 0) % len(values)]))
+            turns[kind] = turns.get(kind, 0) + 1
+    return sets
+
+
+COMMANDS = dict(_commands(build_parser(), []))
+_TURNS: dict[str, int] = {}
+HOSTILE_SETS = {command: _hostile_sets(COMMANDS[command], _TURNS) for command in sorted(COMMANDS)}
+
+
+@pytest.fixture(scope="module")
+def files(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
+    folder = tmp_path_factory.mktemp("hostile-files")
+    made = {
+        "folder": folder / "a-folder",
+        "unreadable": folder / "unreadable.toml",
+        "garbage": folder / "garbage.toml",
+        "a-file": folder / "a-file",
+        "sweep": folder / "sweep.toml",
+        "controller": folder / "controller.py",
+    }
+    made["folder"].mkdir()
+    made["unreadable"].write_text("[world]\n")
+    made["unreadable"].chmod(0)
+    made["garbage"].write_bytes(bytes(range(256)) * 8)
+    made["a-file"].write_text("not a folder\n")
+    made["sweep"].write_text(SMALL_SWEEP)
+    made["controller"].write_text(CONTROLLER)
+    return made
+
+
+def _value(value: str, files: dict[str, Path], tmp_path: Path) -> str:
+    if value == "missing":
+        return str(tmp_path / "no-such-thing.toml")
+    if value == "under-a-file":
+        return str(files["a-file"] / "inside")
+    if value in files:
+        return str(files[value])
+    return value
+
+
+def _positionals(command: str, files: dict[str, Path]) -> dict[str, str]:
+    """Valid values of the commands' positional arguments."""
+    return {"file": str(WBT), "controller": str(files["controller"]), "config": str(files["sweep"])}
+
+
+def _limit_memory() -> None:
+    resource.setrlimit(resource.RLIMIT_AS, (MEMORY_CAP, MEMORY_CAP))
+
+
+@dataclass
+class Ending:
+    """How a run ended: its exit code and error output, or None when it was stopped."""
+
+    arguments: list[str]
+    returncode: int | None
+    stderr: str
+
+
+def run_limited(runs: list[tuple[list[str], Path]], log_folder: Path) -> list[Ending]:
+    """Runs ``mazesim ARGUMENTS`` in ``folder`` for each run, a few at a time, each in a
+    subprocess under the memory cap, stopped after the time limit.
+
+    The subprocesses are started from this thread alone (``preexec_fn`` is not safe beside other
+    threads), and write their error output to files, so no pipe needs a reader.
+    """
+    endings: list[Ending | None] = [None] * len(runs)
+    waiting = list(enumerate(runs))
+    running: list[tuple[int, subprocess.Popen[bytes], IO[bytes], float]] = []
+    while waiting or running:
+        while waiting and len(running) < PARALLEL_RUNS:
+            index, (arguments, folder) = waiting.pop(0)
+            stderr = open(log_folder / f"stderr-{index}.txt", "w+b")  # noqa: SIM115
+            process = subprocess.Popen(
+                [sys.executable, "-m", "mazesim", *arguments],
+                stdin=subprocess.DEVNULL,
+                stdout=subprocess.DEVNULL,
+                stderr=stderr,
+                cwd=folder,
+                preexec_fn=_limit_memory,
+                env={**os.environ, "PYTHONWARNINGS": "error"},
+            )
+            running.append((index, process, stderr, time.monotonic()))
+        time.sleep(0.05)
+        for entry in list(running):
+            index, process, stderr, started = entry
+            if process.poll() is None and time.monotonic() - started < TIME_LIMIT_S:
+                continue
+            code = process.poll()
+            if code is None:
+                process.kill()
+                process.wait()
+            stderr.seek(0)
+            text = stderr.read().decode("utf-8", "replace")
+            stderr.close()
+            endings[index] = Ending(runs[index][0], code, text)
+            running.remove(entry)
+    return [ending for ending in endings if ending is not None]
+
+
+def _arguments(
+    command: str,
+    parser: argparse.ArgumentParser,
+    hostile: tuple[argparse.Action | None, str],
+    files: dict[str, Path],
+    folder: Path,
+) -> list[str]:
+    action, value = hostile
+    arguments = [*command.split(), *QUICK.get(command, [])]
+    text = _value(value, files, folder)
+    for positional in _value_options(parser):
+        if not positional.option_strings and positional is not action and positional.nargs is None:
+            arguments.append(_positionals(command, files)[positional.dest])
+    if action is None:
+        arguments.append(value)
+    elif action.option_strings:
+        arguments += [action.option_strings[0], text]
+    else:
+        arguments.append(text)
+    return arguments
+
+
+def _problem(ending: Ending) -> str | None:
+    """What is wrong with a run's ending, or None."""
+    if ending.returncode is None:
+        return f"still running after {TIME_LIMIT_S} s"
+    if "Traceback" in ending.stderr or "internal error" in ending.stderr:
+        return f"a traceback or an internal error: {ending.stderr[-2000:]}"
+    if ending.returncode not in (0, 2):
+        return f"exit {ending.returncode}: {ending.stderr[-2000:]}"
+    if ending.returncode == 2:
+        # One line: ours, or argparse's usage line followed by its one-line error.
+        lines = ending.stderr.strip().splitlines()
+        if not lines or not lines[-1].startswith("mazesim") or "error: " not in lines[-1]:
+            return f"no one-line error: {ending.stderr[-2000:]}"
+        if len(lines) > 1 and not lines[0].startswith("usage: "):
+            return f"more than one line: {ending.stderr[-2000:]}"
+    return None
+
+
+@pytest.mark.parametrize("command", sorted(COMMANDS))
+def test_hostile_arguments_end_in_one_line_and_exit_2(
+    command: str, files: dict[str, Path], tmp_path: Path
+) -> None:
+    parser = COMMANDS[command]
+    runs = []
+    for number, hostile in enumerate(HOSTILE_SETS[command]):
+        if hostile[1] == "unreadable" and os.geteuid() == 0:
+            continue  # root reads files without read permission
+        folder = tmp_path / f"run-{number}"
+        folder.mkdir()
+        runs.append((_arguments(command, parser, hostile, files, folder), folder))
+    problems = [
+        f"mazesim {' '.join(ending.arguments)}: {problem}"
+        for ending in run_limited(runs, tmp_path)
+        if (problem := _problem(ending))
+    ]
+    assert not problems, "\n".join(problems)
+
+
+def test_every_command_is_covered() -> None:
+    commands = set(COMMANDS)
+    assert {"demo", "train", "eval", "import-wbt", "sweep", "webots run"} <= commands
