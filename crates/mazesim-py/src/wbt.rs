@@ -9,6 +9,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString};
 
 use crate::errors::IntoPy;
+use crate::guard::{enter, enter_detached};
 use crate::world::PyWorld;
 
 /// The import as `{"obstacles": [...], "robot": {...} | None, "basic_time_step_ms": t,
@@ -74,8 +75,10 @@ fn finish<'py>(
 /// Imports a Webots `.wbt` file: the mazesim World and the import report (a dict).
 #[pyfunction]
 pub fn import_wbt(py: Python<'_>, path: PathBuf) -> PyResult<(PyWorld, Bound<'_, PyDict>)> {
-    let import = WbtImport::load(&path).py()?;
-    finish(py, &import, &path)
+    enter(|| {
+        let import = enter_detached(py, || WbtImport::load(&path))?;
+        finish(py, &import, &path)
+    })
 }
 
 /// Imports the text of a `.wbt` file; `source` names it in error messages and names the world.
@@ -87,6 +90,9 @@ pub fn import_wbt_text<'py>(
     text: &Bound<'py, PyString>,
     source: &str,
 ) -> PyResult<(PyWorld, Bound<'py, PyDict>)> {
-    let import = WbtImport::from_text(&text.to_string_lossy(), source).py()?;
-    finish(py, &import, Path::new(source))
+    enter(|| {
+        let text = text.to_string_lossy();
+        let import = enter_detached(py, || WbtImport::from_text(&text, source))?;
+        finish(py, &import, Path::new(source))
+    })
 }

@@ -9,7 +9,9 @@ use numpy::{PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::args::IntArg;
 use crate::errors::IntoPy;
+use crate::guard::{enter, enter_detached};
 
 /// A maze world: walls, floor paint, checkpoints, goal and start pose.
 #[pyclass(name = "World", module = "mazesim._core", frozen)]
@@ -32,36 +34,40 @@ impl PyWorld {
     /// A built-in world by name (see `builtin_world_names()`).
     #[staticmethod]
     fn builtin(name: &str) -> PyResult<Self> {
-        Ok(Self {
-            inner: Arc::new(World::builtin(name).py()?),
+        enter(|| {
+            Ok(Self {
+                inner: Arc::new(World::builtin(name).py()?),
+            })
         })
     }
 
     /// Reads a world file.
     #[staticmethod]
-    fn load(path: PathBuf) -> PyResult<Self> {
+    fn load(py: Python<'_>, path: PathBuf) -> PyResult<Self> {
+        let world = enter_detached(py, || World::load(&path))?;
         Ok(Self {
-            inner: Arc::new(World::load(&path).py()?),
+            inner: Arc::new(world),
         })
     }
 
     /// Parses a world file's text; `source` names it in error messages.
     #[staticmethod]
     #[pyo3(signature = (text, source = "<string>"))]
-    fn from_toml(text: &str, source: &str) -> PyResult<Self> {
+    fn from_toml(py: Python<'_>, text: &str, source: &str) -> PyResult<Self> {
+        let world = enter_detached(py, || World::from_toml(text, source))?;
         Ok(Self {
-            inner: Arc::new(World::from_toml(text, source).py()?),
+            inner: Arc::new(world),
         })
     }
 
     /// The world file text.
     fn to_toml(&self) -> PyResult<String> {
-        self.inner.to_toml().py()
+        enter(|| self.inner.to_toml().py())
     }
 
     /// Writes the world file atomically.
-    fn save(&self, path: PathBuf) -> PyResult<()> {
-        self.inner.save(&path).py()
+    fn save(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
+        enter_detached(py, || self.inner.save(&path))
     }
 
     #[getter]
@@ -189,8 +195,8 @@ impl PyWorld {
     }
 
     /// Floor reflectance factor at (x, y).
-    fn floor_reflectance(&self, x: f64, y: f64) -> f64 {
-        self.inner.floor().reflectance_at([x, y])
+    fn floor_reflectance(&self, x: f64, y: f64) -> PyResult<f64> {
+        enter(|| Ok(self.inner.floor().reflectance_at([x, y])))
     }
 
     fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
@@ -298,7 +304,8 @@ impl PyRobotProfile {
     }
 
     /// Noise-free reading of ground sensor `index` over a floor of reflectance factor `f`.
-    fn ground_reading(&self, index: usize, reflectance: f64) -> PyResult<f64> {
+    fn ground_reading(&self, index: IntArg, reflectance: f64) -> PyResult<f64> {
+        let index = index.count("index", usize::MAX)?;
         let sensor = self.inner.ground_sensors.get(index).ok_or_else(|| {
             crate::errors::to_py(mazesim_core::Error::InvalidArgument(format!(
                 "expected a ground sensor index below {}, found {index}",

@@ -187,12 +187,51 @@ proptest! {
 
 #[test]
 fn a_wall_a_kilometre_away_does_not_blow_up_the_index() {
-    let w = parse("[[walls]]\ncenter = [0, 0]\nsize = [0.1, 0.1]\n[[walls]]\ncenter = [1000, -1000]\nsize = [0.1, 0.1]\n[[paint]]\nshape = \"circle\"\ncenter = [-2000, 0]\nradius = 0.1\nreflectance = 0.2\n").unwrap();
+    let w = parse("[[walls]]\ncenter = [0, 0]\nsize = [0.1, 0.1]\n[[walls]]\ncenter = [990, -990]\nsize = [0.1, 0.1]\n[[paint]]\nshape = \"circle\"\ncenter = [-990, 0]\nradius = 0.1\nreflectance = 0.2\n").unwrap();
     let hit = w
         .wall_index()
         .cast_ray([-1.0, 0.0], [1.0, 0.0], 2.0)
         .unwrap();
     assert!((hit.distance - 0.95).abs() < 1e-4);
-    assert_eq!(w.floor().reflectance_at([-2000.0, 0.0]), 0.2);
+    assert_eq!(w.floor().reflectance_at([-990.0, 0.0]), 0.2);
     assert_eq!(w.floor().reflectance_at([0.0, 0.0]), 1.0);
+}
+
+#[test]
+fn issue_15_a_wall_far_from_the_origin_is_refused_with_its_field_and_range() {
+    let Err(Error::Format { field, message, .. }) =
+        parse("[[walls]]\ncenter = [1e20, 0]\nsize = [0.1, 0.1]\n")
+    else {
+        panic!("refused")
+    };
+    assert_eq!(field, "walls[0]");
+    assert!(
+        message.contains("[-1000, 1000]") && message.contains("1e20"),
+        "{message}"
+    );
+}
+
+#[test]
+fn issue_15_coincident_walls_are_one_solid() {
+    let wall = "[[walls]]\ncenter = [0.2, 0]\nsize = [0.1, 0.1]\n";
+    let w = parse(&wall.repeat(30_000)).unwrap();
+    assert_eq!(w.walls().len(), 30_000);
+    assert_eq!(w.solid_walls().len(), 1);
+}
+
+#[test]
+fn issue_15_crowded_overlapping_walls_are_refused() {
+    let text: String = (0..3_000)
+        .map(|i| {
+            format!(
+                "[[walls]]\ncenter = [{}, 0]\nsize = [0.1, 0.1]\n",
+                i as f64 * 1e-6
+            )
+        })
+        .collect();
+    let Err(Error::Format { field, message, .. }) = parse(&text) else {
+        panic!("refused")
+    };
+    assert_eq!(field, "walls");
+    assert!(message.contains("pairs"), "{message}");
 }
