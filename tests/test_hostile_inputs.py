@@ -272,3 +272,22 @@ def test_issue_15_a_forked_child_makes_and_steps_batches() -> None:
     with multiprocessing.get_context("fork").Pool(2) as pool:
         result = pool.map_async(_step_a_batch_in_a_child, range(2))
         assert result.get(timeout=60) == [expected, expected]
+
+
+def test_issue_15_ctrl_c_stops_a_long_batch_step_midway() -> None:
+    body = """
+    import os, signal, threading
+    w = _core.World.builtin("arena")
+    b = _core.BatchSimulator(w, num_envs=128, control_step_ms=w.basic_time_step_ms * 10000)
+    out = buffers(b)
+    threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
+    try:
+        b.step(np.full((128, 2), 6.0, np.float32), *out)
+        print("NOT INTERRUPTED")
+    except KeyboardInterrupt:
+        print("INTERRUPTED, UNSTEPPED", int((b.steps() == 0).sum()))
+    """
+    outcome = run_hostile(body)
+    assert outcome.ok and "INTERRUPTED" in outcome.stdout, outcome.describe()
+    # Stopped inside the call, not after it: some environments were never stepped.
+    assert int(outcome.stdout.split("UNSTEPPED")[1].split()[0]) > 0, outcome.stdout

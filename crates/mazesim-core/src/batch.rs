@@ -273,8 +273,8 @@ impl Batch {
         check("crossings", out.crossings.len(), 1)
     }
 
-    /// Sets the check for an interruption (Ctrl-C) that long calls make between chunks of
-    /// environments, at most every `INTERRUPT_POLL`, on the calling thread. When it answers true
+    /// Sets the check for an interruption (Ctrl-C) that long calls make between environments,
+    /// at most every `INTERRUPT_POLL`, on the calling thread. When it answers true
     /// the call stops taking chunks and returns `Error::Interrupted`; the environments then stand
     /// where they were, some stepped and some not: reset the batch before using it again.
     pub fn set_interrupt(&mut self, interrupt: Box<dyn Fn() -> bool + Send + Sync>) {
@@ -320,7 +320,9 @@ impl Batch {
             .zip(crossings.chunks_mut(CHUNK_ENVS))
             .enumerate();
         let queue = Mutex::new(chunks);
-        let work = |mut poll: Option<&mut Instant>| loop {
+        // Whether to stop: the calling thread (which has `poll`) asks `interrupt` now and then,
+        // every thread sees its answer before each environment.
+        let stop_now = |poll: &mut Option<&mut Instant>| {
             if let (Some(last), Some(interrupted)) = (poll.as_deref_mut(), interrupt) {
                 if last.elapsed() >= INTERRUPT_POLL {
                     *last = Instant::now();
@@ -329,7 +331,10 @@ impl Batch {
                     }
                 }
             }
-            if stopped.load(Ordering::Acquire) {
+            stopped.load(Ordering::Acquire)
+        };
+        let work = |mut poll: Option<&mut Instant>| loop {
+            if stop_now(&mut poll) {
                 return;
             }
             let next = queue.lock().unwrap_or_else(|p| p.into_inner()).next();
@@ -347,6 +352,9 @@ impl Batch {
                 .zip(crossings.iter_mut())
                 .enumerate();
             for (j, ((((env, observation), pose), colliding), crossing)) in rows {
+                if stop_now(&mut poll) {
+                    return;
+                }
                 let row = Row {
                     observation,
                     distance_width: dw,
@@ -523,5 +531,71 @@ impl Row<'_> {
         self.pose.copy_from_slice(&env.pose());
         *self.colliding = env.colliding();
         *self.crossing = env.last_crossing();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn batch(n: usize, threads: usize, control_step: Option<f64>) -> Batch {
+        let world = Arc::new(World::builtin("arena").unwrap());
+        let robot = Arc::new(RobotProfile::builtin("e-puck").unwrap());
+        let seeds: Vec<u64> = (0..n as u64).collect();
+        Batch::new(vec![world; n], robot, &seeds, true, control_step, threads).unwrap()
+    }
+
+    struct Buffers(Vec<f32>, Vec<f32>, Vec<bool>, Vec<i32>);
+
+    impl Buffers {
+        fn new(b: &Batch) -> Self {
+            let n = b.len();
+            Self(
+                vec![0.0; n * b.observation_width()],
+                vec![0.0; n * 3],
+                vec![false; n],
+                vec![0; n],
+            )
+        }
+        fn outputs(&mut self) -> StepOutputs<'_> {
+            StepOutputs {
+                observations: &mut self.0,
+                poses: &mut self.1,
+                colliding: &mut self.2,
+                crossings: &mut self.3,
+            }
+        }
+    }
+
+    #[test]
+    fn issue_15_a_panic_while_stepping_reaches_the_caller_and_the_batch_goes_on() {
+        let mut b = batch(96, 3, None);
+        let mut out = Buffers::new(&b);
+        let caught = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            b.run(out.outputs(), |i, _, _| assert!(i != 70, "env {i} broke"))
+        }));
+        let payload = caught.expect_err("the panic comes back");
+        assert!(payload.downcast_ref::<String>().unwrap().contains("env 70"));
+        b.step(&vec![1.0; 192], out.outputs()).unwrap();
+    }
+
+    #[test]
+    fn issue_15_an_interrupt_stops_a_long_step() {
+        // 64 environments of 10,000 physics steps each: minutes without the interrupt.
+        let mut b = batch(64, 2, Some(320.0));
+        b.set_interrupt(Box::new(|| true));
+        let mut out = Buffers::new(&b);
+        let started = Instant::now();
+        let result = b.step(&vec![6.0; 128], out.outputs());
+        assert!(matches!(result, Err(Error::Interrupted)));
+        assert!(started.elapsed() < Duration::from_secs(30));
+    }
+
+    #[test]
+    fn issue_15_thread_counts_and_batch_sizes_are_bounded() {
+        assert!(Helpers::new(MAX_THREADS + 1).is_err());
+        assert!(check_size(MAX_ENVS + 1, 0).is_err());
+        assert!(check_size(0, 0).is_err());
+        assert!(check_size(4, 40).is_ok());
     }
 }
