@@ -37,6 +37,9 @@ CASES = {
     "num_envs_million": "_core.BatchSimulator(_core.World.builtin('arena'), num_envs=10**6)",
     "num_envs_huge": "_core.BatchSimulator(_core.World.builtin('arena'), num_envs=10**15)",
     "num_envs_2_70": "_core.BatchSimulator(_core.World.builtin('arena'), num_envs=2**70)",
+    "vector_env_num_envs_billion": (
+        "import gymnasium\ngymnasium.make_vec('mazesim/EPuckMaze-v0', num_envs=10**9)"
+    ),
     "threads_unbounded": (
         "_core.BatchSimulator(_core.World.builtin('arena'), num_envs=2, threads=10**9)"
     ),
@@ -102,6 +105,7 @@ CASES = {
 #: The cases that gave silent nonsense (inf poses, a frozen robot, 40 cm from NaN) and must now be
 #: refused, not merely survived.
 MUST_BE_REFUSED = {
+    "vector_env_num_envs_billion",
     "wall_far_from_origin",
     "wall_at_1e39",
     "yaw_of_3_5e38",

@@ -22,11 +22,9 @@ pub struct PyWorld {
 fn rows_to_array<'py, const N: usize>(
     py: Python<'py>,
     rows: Vec<[f64; N]>,
-) -> Bound<'py, PyArray2<f64>> {
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let flat: Vec<f64> = rows.iter().flatten().copied().collect();
-    numpy::PyArray1::from_vec(py, flat)
-        .reshape([rows.len(), N])
-        .expect("a flat array of rows * N reshapes to (rows, N)")
+    numpy::PyArray1::from_vec(py, flat).reshape([rows.len(), N])
 }
 
 #[pymethods]
@@ -71,13 +69,13 @@ impl PyWorld {
     }
 
     #[getter]
-    fn name(&self) -> String {
-        self.inner.name().to_string()
+    fn name(&self) -> PyResult<String> {
+        enter(|| Ok(self.inner.name().to_string()))
     }
 
     #[getter]
-    fn basic_time_step_ms(&self) -> f64 {
-        self.inner.basic_time_step() * 1000.0
+    fn basic_time_step_ms(&self) -> PyResult<f64> {
+        enter(|| Ok(self.inner.basic_time_step() * 1000.0))
     }
 
     #[getter]
@@ -100,7 +98,7 @@ impl PyWorld {
     }
 
     /// (N, 6) array: cx, cy, sx, sy, yaw, reflectance of every wall box.
-    fn wall_boxes<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+    fn wall_boxes<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let rows = self
             .inner
             .walls()
@@ -190,8 +188,8 @@ impl PyWorld {
 
     /// Background floor reflectance (where nothing is painted).
     #[getter]
-    fn floor_background(&self) -> f64 {
-        self.inner.floor().background()
+    fn floor_background(&self) -> PyResult<f64> {
+        enter(|| Ok(self.inner.floor().background()))
     }
 
     /// Floor reflectance factor at (x, y).
@@ -234,24 +232,24 @@ impl PyRobotProfile {
     }
 
     #[getter]
-    fn name(&self) -> String {
-        self.inner.name.clone()
+    fn name(&self) -> PyResult<String> {
+        enter(|| Ok(self.inner.name.clone()))
     }
     #[getter]
-    fn body_radius(&self) -> f64 {
-        self.inner.body_radius
+    fn body_radius(&self) -> PyResult<f64> {
+        enter(|| Ok(self.inner.body_radius))
     }
     #[getter]
-    fn wheel_radius(&self) -> f64 {
-        self.inner.wheel_radius
+    fn wheel_radius(&self) -> PyResult<f64> {
+        enter(|| Ok(self.inner.wheel_radius))
     }
     #[getter]
-    fn axle_length(&self) -> f64 {
-        self.inner.axle_length
+    fn axle_length(&self) -> PyResult<f64> {
+        enter(|| Ok(self.inner.axle_length))
     }
     #[getter]
-    fn max_wheel_speed(&self) -> f64 {
-        self.inner.max_wheel_speed
+    fn max_wheel_speed(&self) -> PyResult<f64> {
+        enter(|| Ok(self.inner.max_wheel_speed))
     }
     #[getter]
     fn distance_sensor_names(&self) -> Vec<String> {
@@ -262,8 +260,8 @@ impl PyRobotProfile {
             .collect()
     }
     #[getter]
-    fn distance_sensor_unit(&self) -> String {
-        self.inner.distance_sensor_unit().to_string()
+    fn distance_sensor_unit(&self) -> PyResult<String> {
+        enter(|| Ok(self.inner.distance_sensor_unit().to_string()))
     }
     /// Largest noise-free reading of any distance sensor (its table's largest output).
     #[getter]
@@ -293,7 +291,7 @@ impl PyRobotProfile {
     }
 
     /// (N, 3) array: x, y, heading of each distance sensor in the robot frame.
-    fn distance_sensor_poses<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+    fn distance_sensor_poses<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let rows = self
             .inner
             .distance_sensors
@@ -321,7 +319,7 @@ impl PyRobotProfile {
     }
 
     /// (N, 2) array: x, y of each ground sensor in the robot frame.
-    fn ground_sensor_positions<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+    fn ground_sensor_positions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let rows = self
             .inner
             .ground_sensors
@@ -331,7 +329,7 @@ impl PyRobotProfile {
         rows_to_array(py, rows)
     }
 
-    fn __repr__(&self) -> String {
-        format!("RobotProfile(name={:?})", self.inner.name)
+    fn __repr__(&self) -> PyResult<String> {
+        enter(|| Ok(format!("RobotProfile(name={:?})", self.inner.name)))
     }
 }
