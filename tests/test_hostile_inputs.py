@@ -9,6 +9,8 @@ import random
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import mazesim
 from hostile import run_hostile
@@ -247,7 +249,7 @@ def test_issue_15_reset_with_its_own_output_as_mask_works() -> None:
     assert (poses[[0, 2]] != 9.0).all()
 
 
-def test_issue_15_large_integers_are_invalid_arguments() -> None:
+def test_issue_15_large_integers_and_non_numbers_are_invalid_arguments() -> None:
     world = _core.World.builtin("arena")
     for call in (
         lambda: _core.Simulator(world, seed=2**70),
@@ -256,9 +258,16 @@ def test_issue_15_large_integers_are_invalid_arguments() -> None:
         lambda: _core.BatchSimulator(world, num_envs=2, threads=2**70),
         lambda: _core.BatchSimulator(world, num_envs=2, seeds=[0, 2**64]),
         lambda: _core.generate_maze(width=2**80),
+        lambda: _core.generate_maze(cell_size=10**400),
+        lambda: _core.Simulator(world, control_step_ms=10**400),
+        lambda: _core.Simulator(world).set_start(10**400, 0.0, 0.0),
+        lambda: _core.Simulator(world).step("fast", 1.0),  # type: ignore[arg-type]
+        lambda: _core.sharp_volts_to_cm(-(10**400)),
     ):
         with pytest.raises(mazesim.InvalidArgumentError):
             call()
+    with pytest.raises(mazesim.InvalidActionError):
+        _core.Simulator(world).step(10**400, 0.0)
 
 
 def _step_a_batch_in_a_child(_: int) -> float:
@@ -295,3 +304,41 @@ def test_issue_15_ctrl_c_stops_a_long_batch_step_midway() -> None:
     assert outcome.ok and "INTERRUPTED" in outcome.stdout, outcome.describe()
     # Stopped inside the call, not after it: some environments were never stepped.
     assert int(outcome.stdout.split("UNSTEPPED")[1].split()[0]) > 0, outcome.stdout
+
+
+@st.composite
+def _careless_array(draw: st.DrawFn, shape: tuple[int, ...]) -> np.ndarray:
+    """An array meant to be of `shape`, drawn wrong in any way: dtype, shape, strides, alignment,
+    writability."""
+    dtype = draw(st.sampled_from([np.float32, np.float64, np.int32, np.uint64, np.bool_]))
+    if draw(st.booleans()):
+        shape = tuple(draw(st.integers(0, 5)) for _ in range(draw(st.integers(0, 3))))
+    size = int(np.prod(shape)) * np.dtype(dtype).itemsize
+    layout = draw(st.sampled_from(["plain", "unaligned", "strided", "read-only"]))
+    if layout == "unaligned":
+        array = np.zeros(size + 1, np.uint8)[1:].view(dtype).reshape(shape)
+    elif layout == "strided":
+        array = np.zeros(shape + (2,), dtype)[..., 0]
+    else:
+        array = np.zeros(shape, dtype)
+        array.flags.writeable = layout != "read-only"
+    return array
+
+
+@settings(max_examples=60, deadline=None)
+@given(data=st.data())
+def test_issue_15_careless_buffers_raise_invalid_argument_or_work(data: st.DataObject) -> None:
+    batch = _core.BatchSimulator(_core.World.builtin("arena"), num_envs=3, threads=1)
+    shapes = {
+        "actions": (3, 2),
+        "observations": (3, batch.observation_width),
+        "poses": (3, 3),
+        "colliding": (3,),
+        "crossings": (3,),
+    }
+    arrays = {name: data.draw(_careless_array(shape), label=name) for name, shape in shapes.items()}
+    try:
+        batch.step(*arrays.values())
+    except mazesim.InvalidArgumentError:
+        return
+    assert all(a.flags.c_contiguous and a.flags.aligned for a in arrays.values())

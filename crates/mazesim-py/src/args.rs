@@ -70,3 +70,50 @@ impl<'a, 'py> FromPyObject<'a, 'py> for IntArg {
         Ok(IntArg::Other(format!("a {kind}")))
     }
 }
+
+/// A real-number argument as given: a float, or an int of any size (one beyond `f64` becomes an
+/// infinity of its sign, which every check of a real refuses with its range), or something else,
+/// described for the error by [`Real::value`].
+#[derive(Debug, Clone)]
+pub enum Real {
+    /// A number.
+    Number(f64),
+    /// Not a number: its type's name.
+    Other(String),
+}
+
+impl Real {
+    /// The number; `name` names the argument in the error when it is not one.
+    pub fn value(&self, name: &str) -> PyResult<f64> {
+        match self {
+            Real::Number(v) => Ok(*v),
+            Real::Other(kind) => Err(invalid(format!(
+                "expected {name} to be a real number, found a {kind}"
+            ))),
+        }
+    }
+}
+
+impl<'a, 'py> FromPyObject<'a, 'py> for Real {
+    type Error = PyErr;
+
+    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        if let Ok(v) = obj.extract::<f64>() {
+            return Ok(Real::Number(v));
+        }
+        if obj.is_instance_of::<PyInt>() {
+            let negative = obj.lt(0).unwrap_or(false);
+            return Ok(Real::Number(if negative {
+                f64::NEG_INFINITY
+            } else {
+                f64::INFINITY
+            }));
+        }
+        let kind = obj
+            .get_type()
+            .name()
+            .map(|n| n.to_string())
+            .unwrap_or_default();
+        Ok(Real::Other(kind))
+    }
+}

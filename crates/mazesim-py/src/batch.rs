@@ -8,7 +8,7 @@ use mazesim_core::{Batch, RobotProfile, StepOutputs, World};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 
-use crate::args::IntArg;
+use crate::args::{IntArg, Real};
 use crate::buffers::{copied, writable};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::{enter, enter_detached};
@@ -131,10 +131,13 @@ impl PyBatch {
         robot: &str,
         seeds: Option<&Bound<'_, PyAny>>,
         noise: bool,
-        control_step_ms: Option<f64>,
+        control_step_ms: Option<Real>,
         threads: IntArg,
     ) -> PyResult<Self> {
         enter(|| {
+            let control_step_ms = control_step_ms
+                .map(|ms| ms.value("control_step_ms"))
+                .transpose()?;
             let num_envs = num_envs
                 .map(|n| n.count("num_envs", MAX_ENVS))
                 .transpose()?;

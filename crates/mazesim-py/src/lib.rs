@@ -15,7 +15,7 @@ mod world;
 
 use pyo3::prelude::*;
 
-use args::IntArg;
+use args::{IntArg, Real};
 use errors::IntoPy;
 use guard::enter;
 
@@ -34,33 +34,33 @@ fn robot_profile_names() -> PyResult<Vec<String>> {
 /// Converts a Sharp GP2Y0A41SK0F reading in volts to a distance in cm (inverted table); NaN or
 /// infinite volts raise InvalidArgumentError.
 #[pyfunction]
-fn sharp_volts_to_cm(volts: f64) -> PyResult<f64> {
-    enter(|| mazesim_core::sharp_volts_to_cm(volts).py())
+fn sharp_volts_to_cm(volts: Real) -> PyResult<f64> {
+    enter(|| mazesim_core::sharp_volts_to_cm(volts.value("volts")?).py())
 }
 
 /// A generated maze world (seeded; see mazesim-core's generator).
 #[pyfunction]
-#[pyo3(signature = (width = IntArg::Int(5), height = IntArg::Int(5), seed = IntArg::ZERO, cell_size = 0.25, wall_thickness = 0.01, loops = 0.0, checkpoints = true, floor_reflectance = 0.36),
+#[pyo3(signature = (width = IntArg::Int(5), height = IntArg::Int(5), seed = IntArg::ZERO, cell_size = Real::Number(0.25), wall_thickness = Real::Number(0.01), loops = Real::Number(0.0), checkpoints = true, floor_reflectance = Real::Number(0.36)),
     text_signature = "(width=5, height=5, seed=0, cell_size=0.25, wall_thickness=0.01, loops=0.0, checkpoints=True, floor_reflectance=0.36)")]
 fn generate_maze(
     width: IntArg,
     height: IntArg,
     seed: IntArg,
-    cell_size: f64,
-    wall_thickness: f64,
-    loops: f64,
+    cell_size: Real,
+    wall_thickness: Real,
+    loops: Real,
     checkpoints: bool,
-    floor_reflectance: f64,
+    floor_reflectance: Real,
 ) -> PyResult<world::PyWorld> {
     enter(|| {
         let params = mazesim_core::generator::MazeParams {
             width: width.count("width", usize::MAX)?,
             height: height.count("height", usize::MAX)?,
-            cell_size,
-            wall_thickness,
-            loops,
+            cell_size: cell_size.value("cell_size")?,
+            wall_thickness: wall_thickness.value("wall_thickness")?,
+            loops: loops.value("loops")?,
             checkpoints,
-            floor_reflectance,
+            floor_reflectance: floor_reflectance.value("floor_reflectance")?,
         };
         let seed = seed.seed("seed")?;
         let w = mazesim_core::generator::generate(&params, seed).py()?;

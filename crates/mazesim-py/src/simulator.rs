@@ -6,7 +6,7 @@ use mazesim_core::{SimConfig, Simulator};
 use numpy::PyArray1;
 use pyo3::prelude::*;
 
-use crate::args::IntArg;
+use crate::args::{IntArg, Real};
 use crate::errors::IntoPy;
 use crate::guard::{enter, enter_detached};
 use crate::world::{PyRobotProfile, PyWorld};
@@ -42,9 +42,12 @@ impl PySimulator {
         robot: &str,
         seed: IntArg,
         noise: bool,
-        control_step_ms: Option<f64>,
+        control_step_ms: Option<Real>,
     ) -> PyResult<Self> {
         enter(|| {
+            let control_step_ms = control_step_ms
+                .map(|ms| ms.value("control_step_ms"))
+                .transpose()?;
             let profile = PyRobotProfile::builtin(robot)?;
             let config = SimConfig {
                 seed: seed.seed("seed")?,
@@ -69,17 +72,20 @@ impl PySimulator {
     }
 
     /// Advances one control step with wheel speeds in rad/s (clamped to the motor limit).
-    fn step(&self, py: Python<'_>, left: f64, right: f64) -> PyResult<()> {
+    fn step(&self, py: Python<'_>, left: Real, right: Real) -> PyResult<()> {
+        let (left, right) = (left.value("left")?, right.value("right")?);
         enter_detached(py, || self.with(|s| s.step(left, right)))
     }
 
     /// Sets the pose every later reset starts from (instead of the world's start).
-    fn set_start(&self, x: f64, y: f64, yaw: f64) -> PyResult<()> {
+    fn set_start(&self, x: Real, y: Real, yaw: Real) -> PyResult<()> {
+        let (x, y, yaw) = (x.value("x")?, y.value("y")?, yaw.value("yaw")?);
         enter(|| self.with(|s| s.set_start(x, y, yaw)).py())
     }
 
     /// Moves the robot to (x, y, yaw) at rest and reads the sensors there.
-    fn set_pose(&self, x: f64, y: f64, yaw: f64) -> PyResult<()> {
+    fn set_pose(&self, x: Real, y: Real, yaw: Real) -> PyResult<()> {
+        let (x, y, yaw) = (x.value("x")?, y.value("y")?, yaw.value("yaw")?);
         enter(|| self.with(|s| s.set_pose(x, y, yaw)).py())
     }
 

@@ -9,7 +9,7 @@ use numpy::{PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::IntArg;
+use crate::args::{IntArg, Real};
 use crate::errors::IntoPy;
 use crate::guard::{enter, enter_detached};
 
@@ -193,7 +193,8 @@ impl PyWorld {
     }
 
     /// Floor reflectance factor at (x, y).
-    fn floor_reflectance(&self, x: f64, y: f64) -> PyResult<f64> {
+    fn floor_reflectance(&self, x: Real, y: Real) -> PyResult<f64> {
+        let (x, y) = (x.value("x")?, y.value("y")?);
         enter(|| Ok(self.inner.floor().reflectance_at([x, y])))
     }
 
@@ -302,8 +303,9 @@ impl PyRobotProfile {
     }
 
     /// Noise-free reading of ground sensor `index` over a floor of reflectance factor `f`.
-    fn ground_reading(&self, index: IntArg, reflectance: f64) -> PyResult<f64> {
+    fn ground_reading(&self, index: IntArg, reflectance: Real) -> PyResult<f64> {
         let index = index.count("index", usize::MAX)?;
+        let reflectance = reflectance.value("reflectance")?;
         let sensor = self.inner.ground_sensors.get(index).ok_or_else(|| {
             crate::errors::to_py(mazesim_core::Error::InvalidArgument(format!(
                 "expected a ground sensor index below {}, found {index}",
