@@ -13,7 +13,7 @@ ADDRESS_SPACE_CAP = 4 << 30
 TIME_LIMIT_S = 30.0
 
 _PRELUDE = """
-import resource, sys
+import resource, sys, time
 resource.setrlimit(resource.RLIMIT_AS, ({cap}, {cap}))
 import numpy as np
 import mazesim
