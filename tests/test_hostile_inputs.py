@@ -280,6 +280,9 @@ def _step_a_batch_in_a_child(_: int) -> float:
     return float(out[1][:, 0].sum())
 
 
+# Python 3.12+ warns that forking a process with threads may deadlock: the fork guard is what
+# keeps mazesim's batches from doing so.
+@pytest.mark.filterwarnings("ignore:This process .* is multi-threaded:DeprecationWarning")
 def test_issue_15_a_forked_child_makes_and_steps_batches() -> None:
     expected = _step_a_batch_in_a_child(0)
     with multiprocessing.get_context("fork").Pool(2) as pool:
