@@ -345,3 +345,30 @@ def test_issue_15_careless_buffers_raise_invalid_argument_or_work(data: st.DataO
     except mazesim.InvalidArgumentError:
         return
     assert all(a.flags.c_contiguous and a.flags.aligned for a in arrays.values())
+
+
+_INHERITED: list[_core.BatchSimulator] = []
+
+
+def _step_the_inherited_batch(_: int) -> float:
+    batch = _INHERITED[0]
+    out = (
+        np.zeros((64, batch.observation_width), np.float32),
+        np.zeros((64, 3), np.float32),
+        np.zeros(64, bool),
+        np.zeros(64, np.int32),
+    )
+    batch.reset(*out)
+    batch.step(np.full((64, 2), 4.0, np.float32), *out)
+    return float(out[1][:, 0].sum())
+
+
+@pytest.mark.filterwarnings("ignore:This process .* is multi-threaded:DeprecationWarning")
+@pytest.mark.parametrize("threads", [0, 2])
+def test_issue_15_a_forked_child_steps_a_batch_its_parent_made(threads: int) -> None:
+    _INHERITED[:] = [
+        _core.BatchSimulator(_core.World.builtin("seed-maze"), num_envs=64, threads=threads)
+    ]
+    expected = _step_the_inherited_batch(0)
+    with multiprocessing.get_context("fork").Pool(1) as pool:
+        assert pool.map_async(_step_the_inherited_batch, [0]).get(timeout=60) == [expected]
