@@ -30,6 +30,7 @@ from mazesim._core import (
     validate_codes,
 )
 from mazesim.errors import (
+    InternalError,
     InvalidActionError,
     InvalidArgumentError,
     MazesimError,
@@ -40,6 +41,7 @@ from mazesim.errors import (
 
 __all__ = [
     "BatchSimulator",
+    "InternalError",
     "InvalidActionError",
     "InvalidArgumentError",
     "MazesimError",

@@ -13,6 +13,7 @@ __all__ = [
     "Simulator",
     "World",
     "__version__",
+    "_panic_for_tests",
     "builtin_world_names",
     "default_codes",
     "generate_maze",
@@ -31,7 +32,11 @@ def robot_profile_names() -> list[str]:
     """Names of the robot profiles embedded in the package."""
 
 def sharp_volts_to_cm(volts: float) -> float:
-    """Converts a Sharp GP2Y0A41SK0F reading in volts to a distance in cm (inverted table)."""
+    """Converts a Sharp GP2Y0A41SK0F reading in volts to a distance in cm (inverted table); NaN or
+    infinite volts raise InvalidArgumentError."""
+
+def _panic_for_tests(message: str, on_helper_thread: bool = False) -> None:
+    """Panics inside the core (only the tests of the panic guard call it)."""
 
 def generate_maze(
     width: int = 5,

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 __all__ = [
     "ClusterConnectionError",
+    "InternalError",
     "InvalidActionError",
     "InvalidArgumentError",
     "MazesimError",
@@ -78,7 +79,21 @@ class InvalidArgumentError(MazesimError, ValueError):
 
 
 class MazesimIOError(MazesimError, OSError):
-    """Reading or writing a file failed (the message names the file)."""
+    """Reading or writing a file failed (the message names the file and gives the OS's reason).
+
+    The compiled core also sets ``errno``, ``strerror`` (the OS's reason) and ``filename``.
+    """
+
+    def __str__(self) -> str:
+        """The message as given, whatever attributes are set after construction."""
+        if len(self.args) == 1:
+            return str(self.args[0])
+        return super().__str__()
+
+
+class InternalError(MazesimError, RuntimeError):
+    """A bug in mazesim: the compiled core panicked. The message starts with "internal error,
+    please report" and carries the panic's message; the process goes on."""
 
 
 class MissingDependencyError(MazesimError, ImportError):

@@ -11,14 +11,15 @@
 //! its helpers still waiting on another batch: they join once that wait ends (at most `LINGER`),
 //! the caller working alone until then.
 
-use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::{Arc, Mutex, OnceLock};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use rayon::prelude::*;
 use rayon::ThreadPool;
 
 use crate::error::{Error, Result};
+use crate::limits::{check_count, MAX_ENVS, MAX_THREADS};
 use crate::robot::RobotProfile;
 use crate::simulator::{SimConfig, Simulator};
 use crate::world::World;
@@ -27,19 +28,35 @@ use crate::world::World;
 /// the threads finish close together.
 const CHUNK_ENVS: usize = 16;
 
+/// How often the calling thread asks whether to stop (Ctrl-C) while a batch call runs.
+const INTERRUPT_POLL: Duration = Duration::from_millis(50);
+
 /// How long a helper waits awake for the next step of the batch it just helped.
 const LINGER: Duration = Duration::from_micros(200);
 
 /// The helpers of batches that use every core: one thread fewer than the machine has cores,
-/// shared by all such batches; `None` on a single core.
+/// shared by all such batches of a process; `None` on a single core.
+///
+/// A forked child process inherits the parent's pool without its threads (`fork` copies only the
+/// calling thread), so work given to it would wait forever. The pool is therefore kept with the
+/// id of the process that made it, and a process that finds another's makes its own (the
+/// parent's copy is left alone: its threads do not exist here). This is the fork guard.
 fn shared_helpers() -> Option<&'static ThreadPool> {
-    static HELPERS: OnceLock<Option<ThreadPool>> = OnceLock::new();
-    HELPERS
-        .get_or_init(|| {
+    static HELPERS: Mutex<Option<(u32, Option<&'static ThreadPool>)>> = Mutex::new(None);
+    let pid = std::process::id();
+    let mut helpers = HELPERS.lock().unwrap_or_else(|p| p.into_inner());
+    match *helpers {
+        Some((owner, pool)) if owner == pid => pool,
+        _ => {
             let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-            helper_pool(cores).ok().flatten()
-        })
-        .as_ref()
+            let pool = helper_pool(cores.min(MAX_THREADS))
+                .ok()
+                .flatten()
+                .map(|p| &*Box::leak(Box::new(p)));
+            *helpers = Some((pid, pool));
+            pool
+        }
+    }
 }
 
 /// A pool of `threads - 1` helper threads (`None` for one thread: the caller works alone).
@@ -60,16 +77,74 @@ enum Helpers {
     /// The pool shared by batches that use every core.
     Shared(Option<&'static ThreadPool>),
     /// A pool of the batch's own, for an explicit thread count.
-    Own(Option<ThreadPool>),
+    Own(Option<ThreadPool>, usize),
 }
 
 impl Helpers {
+    /// The helpers for `threads` (0: every core), made in this process.
+    fn new(threads: usize) -> Result<Helpers> {
+        if threads > MAX_THREADS {
+            return Err(Error::InvalidArgument(format!(
+                "expected threads in 0..={MAX_THREADS} (0 = one per core), found {threads}"
+            )));
+        }
+        Ok(if threads == 0 {
+            Helpers::Shared(shared_helpers())
+        } else {
+            Helpers::Own(helper_pool(threads)?, threads)
+        })
+    }
+
     fn pool(&self) -> Option<&ThreadPool> {
         match self {
             Helpers::Shared(p) => *p,
-            Helpers::Own(p) => p.as_ref(),
+            Helpers::Own(p, _) => p.as_ref(),
         }
     }
+
+    /// The same helpers made again in a forked child; the parent's pool, whose threads do not
+    /// exist in the child, is forgotten rather than dropped (dropping would signal them).
+    fn remade(self) -> Result<Helpers> {
+        match self {
+            Helpers::Shared(_) => Helpers::new(0),
+            Helpers::Own(pool, threads) => {
+                std::mem::forget(pool);
+                Helpers::new(threads)
+            }
+        }
+    }
+}
+
+/// Bytes an environment needs besides its walls (simulator, rapier world, buffers), a generous
+/// estimate.
+const ENV_BYTES: u128 = 48 * 1024;
+
+/// Bytes each solid wall adds to an environment (its rapier collider and broad-phase entry).
+const WALL_BYTES: u128 = 1024;
+
+/// Refuses a batch of `envs` environments holding `walls` solid walls in all (summed over the
+/// environments) before anything is allocated: beyond `MAX_ENVS`, or when its estimated memory
+/// exceeds what the process may still allocate (the address-space limit and the memory the system
+/// has available, where the system tells).
+pub fn check_size(envs: usize, walls: u128) -> Result<()> {
+    check_count("environments (num_envs)", envs, MAX_ENVS)?;
+    if envs == 0 {
+        return Err(Error::InvalidArgument(
+            "expected at least one environment, found 0".into(),
+        ));
+    }
+    let needed = ENV_BYTES * envs as u128 + WALL_BYTES * walls;
+    if let Some(free) = crate::memory::allocatable_bytes() {
+        if needed > free as u128 {
+            return Err(Error::InvalidArgument(format!(
+                "expected a batch that fits in memory: num_envs = {envs} needs about {:.2} GB, \
+                 but this process can allocate about {:.2} GB more",
+                needed as f64 / 1e9,
+                free as f64 / 1e9
+            )));
+        }
+    }
+    Ok(())
 }
 
 /// Per-step outputs of a batch, one row per environment, in buffers the caller owns.
@@ -92,6 +167,10 @@ pub struct Batch {
     helpers: Helpers,
     /// Counts the batch's parallel runs; lingering helpers stop waiting when it moves.
     runs: Arc<AtomicU64>,
+    /// The process that made `helpers` (see `guard_fork`).
+    pid: u32,
+    /// Asked between chunks whether to stop (see `set_interrupt`).
+    interrupt: Option<Box<dyn Fn() -> bool + Send + Sync>>,
 }
 
 impl Batch {
@@ -123,11 +202,9 @@ impl Batch {
                 robot.name
             )));
         }
-        let helpers = if threads == 0 {
-            Helpers::Shared(shared_helpers())
-        } else {
-            Helpers::Own(helper_pool(threads)?)
-        };
+        let walls = worlds.iter().map(|w| w.solid_walls().len() as u128).sum();
+        check_size(worlds.len(), walls)?;
+        let helpers = Helpers::new(threads)?;
         let make = |(world, &seed): (Arc<World>, &u64)| {
             Simulator::new(
                 world,
@@ -150,6 +227,8 @@ impl Batch {
             ground_width: robot.ground_sensors.len(),
             helpers,
             runs: Arc::new(AtomicU64::new(0)),
+            pid: std::process::id(),
+            interrupt: None,
         })
     }
 
@@ -194,11 +273,35 @@ impl Batch {
         check("crossings", out.crossings.len(), 1)
     }
 
+    /// Sets the check for an interruption (Ctrl-C) that long calls make between environments,
+    /// at most every `INTERRUPT_POLL`, on the calling thread. When it answers true
+    /// the call stops taking chunks and returns `Error::Interrupted`; the environments then stand
+    /// where they were, some stepped and some not: reset the batch before using it again.
+    pub fn set_interrupt(&mut self, interrupt: Box<dyn Fn() -> bool + Send + Sync>) {
+        self.interrupt = Some(interrupt);
+    }
+
+    /// Makes the helper threads again when this process is a fork of the one that made them.
+    fn guard_fork(&mut self) -> Result<()> {
+        let pid = std::process::id();
+        if self.pid != pid {
+            let inherited = std::mem::replace(&mut self.helpers, Helpers::Shared(None));
+            self.helpers = inherited.remade()?;
+            self.runs = Arc::new(AtomicU64::new(0));
+            self.pid = pid;
+        }
+        Ok(())
+    }
+
     fn run<F: Fn(usize, &mut Simulator, Row<'_>) + Sync + Send>(
         &mut self,
         out: StepOutputs<'_>,
         f: F,
-    ) {
+    ) -> Result<()> {
+        self.guard_fork()?;
+        let interrupt = self.interrupt.as_deref();
+        let stopped = AtomicBool::new(false);
+        let mut polled = Instant::now();
         let width = self.observation_width();
         let dw = self.distance_width;
         let alone = self.envs.len() <= CHUNK_ENVS;
@@ -217,7 +320,23 @@ impl Batch {
             .zip(crossings.chunks_mut(CHUNK_ENVS))
             .enumerate();
         let queue = Mutex::new(chunks);
-        let work = || loop {
+        // Whether to stop: the calling thread (which has `poll`) asks `interrupt` now and then,
+        // every thread sees its answer before each environment.
+        let stop_now = |poll: &mut Option<&mut Instant>| {
+            if let (Some(last), Some(interrupted)) = (poll.as_deref_mut(), interrupt) {
+                if last.elapsed() >= INTERRUPT_POLL {
+                    *last = Instant::now();
+                    if interrupted() {
+                        stopped.store(true, Ordering::Release);
+                    }
+                }
+            }
+            stopped.load(Ordering::Acquire)
+        };
+        let work = |mut poll: Option<&mut Instant>| loop {
+            if stop_now(&mut poll) {
+                return;
+            }
             let next = queue.lock().unwrap_or_else(|p| p.into_inner()).next();
             let Some((k, ((((envs, obs), poses), colliding), crossings))) = next else {
                 return;
@@ -233,6 +352,9 @@ impl Batch {
                 .zip(crossings.iter_mut())
                 .enumerate();
             for (j, ((((env, observation), pose), colliding), crossing)) in rows {
+                if stop_now(&mut poll) {
+                    return;
+                }
                 let row = Row {
                     observation,
                     distance_width: dw,
@@ -248,9 +370,9 @@ impl Batch {
                 let run = self.runs.fetch_add(1, Ordering::AcqRel) + 1;
                 pool.in_place_scope(|scope| {
                     for _ in 0..pool.current_num_threads() {
-                        scope.spawn(|_| work());
+                        scope.spawn(|_| work(None));
                     }
-                    work();
+                    work(Some(&mut polled));
                 });
                 for _ in 0..pool.current_num_threads() {
                     let runs = Arc::clone(&self.runs);
@@ -262,8 +384,12 @@ impl Batch {
                     });
                 }
             }
-            _ => work(),
+            _ => work(Some(&mut polled)),
         }
+        if stopped.load(Ordering::Acquire) {
+            return Err(Error::Interrupted);
+        }
+        Ok(())
     }
 
     /// Steps every environment with `actions` (`(n, 2)` wheel speeds in rad/s, left then right)
@@ -290,8 +416,7 @@ impl Batch {
         self.run(out, |i, env, row| {
             let _ = env.step(actions[2 * i] as f64, actions[2 * i + 1] as f64);
             row.write(env);
-        });
-        Ok(())
+        })
     }
 
     /// Resets the environments where `mask` is true (all without a mask), each with its new seed
@@ -325,8 +450,7 @@ impl Batch {
                 env.reset(seeds.map(|s| s[i]));
                 row.write(env);
             }
-        });
-        Ok(())
+        })
     }
 
     /// Mutable access to one environment (to set its start pose, for example).
@@ -337,6 +461,33 @@ impl Batch {
                 "expected an environment index below {n}, found {index}"
             ))
         })
+    }
+
+    /// Sets the start pose of every environment for its later resets from `starts`, `(n, 3)` rows
+    /// of x, y, yaw. Every row is checked before any is applied: a bad row changes nothing, and
+    /// the error names its environment.
+    pub fn set_starts(&mut self, starts: &[f64]) -> Result<()> {
+        let n = self.envs.len();
+        if starts.len() != 3 * n {
+            return Err(Error::InvalidArgument(format!(
+                "expected starts of shape ({n}, 3), found {} values",
+                starts.len()
+            )));
+        }
+        let rows = || self.envs.iter().zip(starts.chunks_exact(3)).enumerate();
+        for (i, (env, row)) in rows() {
+            env.check_start(row[0], row[1], row[2])
+                .map_err(|e| match e {
+                    Error::InvalidArgument(m) => {
+                        Error::InvalidArgument(format!("environment {i}: {m}"))
+                    }
+                    other => other,
+                })?;
+        }
+        for (env, row) in self.envs.iter_mut().zip(starts.chunks_exact(3)) {
+            env.set_start(row[0], row[1], row[2])?;
+        }
+        Ok(())
     }
 
     /// Puts environment `index` into another world, reset to its start with `seed`. Its rows of the
@@ -359,8 +510,7 @@ impl Batch {
     /// Writes the current state of every environment into `out` without stepping.
     pub fn observe(&mut self, out: StepOutputs<'_>) -> Result<()> {
         self.check_outputs(&out)?;
-        self.run(out, |_, env, row| row.write(env));
-        Ok(())
+        self.run(out, |_, env, row| row.write(env))
     }
 }
 
@@ -381,5 +531,71 @@ impl Row<'_> {
         self.pose.copy_from_slice(&env.pose());
         *self.colliding = env.colliding();
         *self.crossing = env.last_crossing();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn batch(n: usize, threads: usize, control_step: Option<f64>) -> Batch {
+        let world = Arc::new(World::builtin("arena").unwrap());
+        let robot = Arc::new(RobotProfile::builtin("e-puck").unwrap());
+        let seeds: Vec<u64> = (0..n as u64).collect();
+        Batch::new(vec![world; n], robot, &seeds, true, control_step, threads).unwrap()
+    }
+
+    struct Buffers(Vec<f32>, Vec<f32>, Vec<bool>, Vec<i32>);
+
+    impl Buffers {
+        fn new(b: &Batch) -> Self {
+            let n = b.len();
+            Self(
+                vec![0.0; n * b.observation_width()],
+                vec![0.0; n * 3],
+                vec![false; n],
+                vec![0; n],
+            )
+        }
+        fn outputs(&mut self) -> StepOutputs<'_> {
+            StepOutputs {
+                observations: &mut self.0,
+                poses: &mut self.1,
+                colliding: &mut self.2,
+                crossings: &mut self.3,
+            }
+        }
+    }
+
+    #[test]
+    fn issue_15_a_panic_while_stepping_reaches_the_caller_and_the_batch_goes_on() {
+        let mut b = batch(96, 3, None);
+        let mut out = Buffers::new(&b);
+        let caught = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            b.run(out.outputs(), |i, _, _| assert!(i != 70, "env {i} broke"))
+        }));
+        let payload = caught.expect_err("the panic comes back");
+        assert!(payload.downcast_ref::<String>().unwrap().contains("env 70"));
+        b.step(&vec![1.0; 192], out.outputs()).unwrap();
+    }
+
+    #[test]
+    fn issue_15_an_interrupt_stops_a_long_step() {
+        // 64 environments of 10,000 physics steps each: minutes without the interrupt.
+        let mut b = batch(64, 2, Some(320.0));
+        b.set_interrupt(Box::new(|| true));
+        let mut out = Buffers::new(&b);
+        let started = Instant::now();
+        let result = b.step(&vec![6.0; 128], out.outputs());
+        assert!(matches!(result, Err(Error::Interrupted)));
+        assert!(started.elapsed() < Duration::from_secs(30));
+    }
+
+    #[test]
+    fn issue_15_thread_counts_and_batch_sizes_are_bounded() {
+        assert!(Helpers::new(MAX_THREADS + 1).is_err());
+        assert!(check_size(MAX_ENVS + 1, 0).is_err());
+        assert!(check_size(0, 0).is_err());
+        assert!(check_size(4, 40).is_ok());
     }
 }

@@ -53,9 +53,42 @@ pub enum Error {
     Io {
         /// The file.
         path: String,
-        /// The operating system's message.
+        /// What was being done and the operating system's reason.
         message: String,
+        /// The operating system's error number, when the OS gave one.
+        errno: Option<i32>,
+        /// The operating system's reason alone (as C's `strerror`), when the OS gave one.
+        reason: Option<String>,
     },
+    /// A long call stopped because the caller asked (Ctrl-C).
+    #[error("interrupted")]
+    Interrupted,
+    /// A bug in mazesim: a panic caught before it reached the caller.
+    #[error("internal error, please report: {0}")]
+    Internal(String),
+}
+
+impl Error {
+    /// An IO error of `path` while doing `what` ("cannot read the world file"), keeping the
+    /// operating system's error number and reason.
+    pub fn io(path: &std::path::Path, what: &str, err: &std::io::Error) -> Error {
+        let reason = os_reason(err);
+        Error::Io {
+            path: path.display().to_string(),
+            message: format!("{what}: {reason}"),
+            errno: err.raw_os_error(),
+            reason: Some(reason),
+        }
+    }
+}
+
+/// The reason of an IO error as the OS words it, without Rust's " (os error N)" suffix.
+fn os_reason(err: &std::io::Error) -> String {
+    let text = err.to_string();
+    match (err.raw_os_error(), text.rfind(" (os error ")) {
+        (Some(_), Some(at)) => text[..at].to_string(),
+        _ => text,
+    }
 }
 
 /// Result with the core's error.

@@ -7,10 +7,7 @@ use crate::error::{Error, Result};
 
 /// Writes `bytes` to `path` through a temporary file in the same folder, synced, then renamed.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    let io_err = |e: std::io::Error| Error::Io {
-        path: path.display().to_string(),
-        message: e.to_string(),
-    };
+    let io_err = |e: std::io::Error| Error::io(path, "cannot write the file", &e);
     let dir = path
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
@@ -18,6 +15,8 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     let name = path.file_name().ok_or_else(|| Error::Io {
         path: path.display().to_string(),
         message: "expected a file path, found a folder".into(),
+        errno: None,
+        reason: None,
     })?;
     let tmp = dir.join(format!(
         ".{}.tmp-{}",

@@ -22,7 +22,9 @@ pub mod crossing;
 pub mod error;
 pub mod generator;
 pub mod io;
+pub mod limits;
 pub mod lut;
+pub mod memory;
 pub mod physics;
 pub mod rng;
 pub mod robot;
@@ -38,8 +40,13 @@ pub use simulator::{SimConfig, Simulator};
 pub use world::{builtin_world_names, World};
 
 /// Converts a Sharp GP2Y0A41SK0F reading in volts to centimetres by inverting its table
-/// (clamped to 3-40 cm).
-pub fn sharp_volts_to_cm(volts: f64) -> f64 {
-    let seed = RobotProfile::builtin("seed").expect("the built-in seed profile is valid");
-    seed.distance_sensors[0].model.table.invert(volts) * 100.0
+/// (clamped to 3-40 cm). A reading that is not a finite number is an `InvalidArgument` error.
+pub fn sharp_volts_to_cm(volts: f64) -> Result<f64> {
+    if !volts.is_finite() {
+        return Err(Error::InvalidArgument(format!(
+            "expected a finite Sharp sensor reading in volts, found {volts}"
+        )));
+    }
+    let seed = RobotProfile::builtin("seed")?;
+    Ok(seed.distance_sensors[0].model.table.invert(volts) * 100.0)
 }

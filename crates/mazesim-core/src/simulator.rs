@@ -4,6 +4,7 @@ use std::sync::Arc;
 
 use crate::crossing::{Crossing, CrossingTracker};
 use crate::error::{Error, Result};
+use crate::limits::{self, MAX_PHYSICS_STEPS_PER_CONTROL_STEP};
 use crate::physics::Body;
 use crate::rng::Rng;
 use crate::robot::RobotProfile;
@@ -26,6 +27,35 @@ fn sensing_reach(robot: &RobotProfile) -> f32 {
     });
     let search = robot.body_radius + CLEARANCE_SEARCH as f64;
     rays.fold(search, f64::max) as f32 + 1e-3
+}
+
+/// How deep the body may start in a wall, metres: a pose closer than this to overlapping is
+/// accepted (rapier pushes the body out within a step), a deeper one is refused.
+pub const START_OVERLAP: f64 = 1e-3;
+
+/// Checks a pose `[x, y, yaw]` (named `what` in the error) against the limits and the walls: the
+/// robot's body may not overlap a wall by more than `START_OVERLAP`.
+fn check_free(world: &World, robot: &RobotProfile, what: &str, pose: [f64; 3]) -> Result<()> {
+    let [x, y, yaw] = pose;
+    limits::check_pose(what, x, y, yaw)?;
+    let r = robot.body_radius as f32;
+    let gap = world
+        .wall_index()
+        .signed_distance([x as f32, y as f32], r + CLEARANCE_SEARCH);
+    let overlap = r as f64 - gap as f64;
+    if overlap > START_OVERLAP {
+        return Err(Error::InvalidArgument(format!(
+            "expected a {what} where the robot (radius {} m) is clear of the walls, found \
+             ({x}, {y}, {yaw}) {}",
+            robot.body_radius,
+            if gap < 0.0 {
+                format!("with its centre {:.4} m inside a wall", -gap)
+            } else {
+                format!("overlapping a wall by {overlap:.4} m")
+            }
+        )));
+    }
+    Ok(())
 }
 
 /// How a simulator is set up.
@@ -110,9 +140,24 @@ impl Simulator {
                 control * 1000.0
             )));
         }
+        if ratio.round() > MAX_PHYSICS_STEPS_PER_CONTROL_STEP {
+            return Err(Error::InvalidArgument(format!(
+                "expected a control step of at most {MAX_PHYSICS_STEPS_PER_CONTROL_STEP} basic time \
+                 steps ({} ms), found {} ms ({} steps)",
+                MAX_PHYSICS_STEPS_PER_CONTROL_STEP * dt * 1000.0,
+                control * 1000.0,
+                ratio.round()
+            )));
+        }
         let start = world.start();
+        check_free(&world, &robot, "start pose", start)?;
         let pose = [start[0] as f32, start[1] as f32, start[2] as f32];
-        let body = Body::new(world.walls(), robot.body_radius as f32, pose, dt as f32);
+        let body = Body::new(
+            world.solid_walls(),
+            robot.body_radius as f32,
+            pose,
+            dt as f32,
+        );
         let barcode_sensor = (0..robot.ground_sensors.len()).min_by(|&a, &b| {
             let ya = robot.ground_sensors[a].position[1].abs();
             let yb = robot.ground_sensors[b].position[1].abs();
@@ -197,23 +242,22 @@ impl Simulator {
     }
 
     /// Sets the pose every later `reset` starts from (instead of the world's start).
+    /// The pose must lie within the limits (`crate::limits`) and leave the body clear of every wall.
     pub fn set_start(&mut self, x: f64, y: f64, yaw: f64) -> Result<()> {
-        if !(x.is_finite() && y.is_finite() && yaw.is_finite()) {
-            return Err(Error::InvalidArgument(format!(
-                "expected a finite start pose, found ({x}, {y}, {yaw})"
-            )));
-        }
+        self.check_start(x, y, yaw)?;
         self.start_override = Some([x as f32, y as f32, yaw as f32]);
         Ok(())
     }
 
+    /// Whether `set_start(x, y, yaw)` would accept the pose (it changes nothing).
+    pub fn check_start(&self, x: f64, y: f64, yaw: f64) -> Result<()> {
+        check_free(&self.world, &self.robot, "start pose", [x, y, yaw])
+    }
+
     /// Moves the robot to a pose (x, y, yaw), at rest; sensors are read there. Time and counters go on.
+    /// The pose must lie within the limits (`crate::limits`) and leave the body clear of every wall.
     pub fn set_pose(&mut self, x: f64, y: f64, yaw: f64) -> Result<()> {
-        if !(x.is_finite() && y.is_finite() && yaw.is_finite()) {
-            return Err(Error::InvalidArgument(format!(
-                "expected a finite pose, found ({x}, {y}, {yaw})"
-            )));
-        }
+        check_free(&self.world, &self.robot, "pose", [x, y, yaw])?;
         self.place([x as f32, y as f32, yaw as f32]);
         self.sense();
         Ok(())
@@ -221,7 +265,7 @@ impl Simulator {
 
     fn place(&mut self, pose: [f32; 3]) {
         self.body = Body::new(
-            self.world.walls(),
+            self.world.solid_walls(),
             self.robot.body_radius as f32,
             pose,
             self.dt as f32,

@@ -131,7 +131,8 @@ fn sharp_sensors_read_volts_and_convert_back_to_cm() {
     let s = sim(w, "seed", 1, false);
     let v = s.distance_sensors()[0] as f64;
     assert!((v - 1.25).abs() < 0.005, "{v}");
-    let cm = mazesim_core::sharp_volts_to_cm(v);
+    let cm = mazesim_core::sharp_volts_to_cm(v).unwrap();
     assert!((cm - 10.0).abs() < 0.1, "{cm}");
-    assert!((mazesim_core::sharp_volts_to_cm(2.01) - 6.0).abs() < 1e-6);
+    assert!((mazesim_core::sharp_volts_to_cm(2.01).unwrap() - 6.0).abs() < 1e-6);
+    assert!(mazesim_core::sharp_volts_to_cm(f64::NAN).is_err());
 }

@@ -3,12 +3,15 @@
 
 use std::sync::{Arc, Mutex};
 
-use mazesim_core::{Batch, Error, RobotProfile, StepOutputs, World};
+use mazesim_core::limits::{MAX_ENVS, MAX_THREADS};
+use mazesim_core::{Batch, RobotProfile, StepOutputs, World};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 
-use crate::buffers::{readable, writable};
-use crate::errors::{to_py, IntoPy};
+use crate::args::{IntArg, Real};
+use crate::buffers::{copied, writable};
+use crate::errors::{invalid, IntoPy};
+use crate::guard::{enter, enter_detached};
 use crate::world::PyWorld;
 
 /// N independent environments stepped together.
@@ -21,7 +24,7 @@ pub struct PyBatch {
 }
 
 fn bad(msg: String) -> PyErr {
-    to_py(Error::InvalidArgument(msg))
+    invalid(msg)
 }
 
 impl PyBatch {
@@ -35,9 +38,11 @@ impl PyBatch {
         &self,
         py: Python<'py>,
         value: impl Fn(&mazesim_core::Simulator) -> T,
-    ) -> Bound<'py, PyArray1<T>> {
-        let v: Vec<T> = self.with(|b| b.envs().iter().map(value).collect());
-        PyArray1::from_vec(py, v)
+    ) -> PyResult<Bound<'py, PyArray1<T>>> {
+        enter(|| {
+            let v: Vec<T> = self.with(|b| b.envs().iter().map(value).collect());
+            Ok(PyArray1::from_vec(py, v))
+        })
     }
 
     fn width(&self) -> usize {
@@ -70,21 +75,32 @@ impl<'py> Borrowed<'py> {
         })
     }
 
-    fn outputs(&mut self) -> StepOutputs<'_> {
-        StepOutputs {
-            observations: self.obs.as_slice_mut().expect("checked contiguous"),
-            poses: self.poses.as_slice_mut().expect("checked contiguous"),
-            colliding: self.colliding.as_slice_mut().expect("checked contiguous"),
-            crossings: self.crossings.as_slice_mut().expect("checked contiguous"),
-        }
+    fn outputs(&mut self) -> PyResult<StepOutputs<'_>> {
+        let unusable = |name: &str| bad(format!("expected {name} to be a contiguous array"));
+        Ok(StepOutputs {
+            observations: self
+                .obs
+                .as_slice_mut()
+                .map_err(|_| unusable("observations"))?,
+            poses: self.poses.as_slice_mut().map_err(|_| unusable("poses"))?,
+            colliding: self
+                .colliding
+                .as_slice_mut()
+                .map_err(|_| unusable("colliding"))?,
+            crossings: self
+                .crossings
+                .as_slice_mut()
+                .map_err(|_| unusable("crossings"))?,
+        })
     }
 }
 
 fn seeds_from(seeds: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<u64>> {
-    if let Ok(base) = seeds.extract::<u64>() {
+    if seeds.is_instance_of::<pyo3::types::PyInt>() {
+        let base = seeds.extract::<IntArg>()?.seed("seeds")?;
         return Ok((0..n as u64).map(|i| base.wrapping_add(i)).collect());
     }
-    let list: Vec<u64> = seeds.extract().map_err(|_| {
+    let list: Vec<IntArg> = seeds.extract().map_err(|_| {
         bad(format!(
             "expected seeds as one int (env i gets seed + i) or {n} ints in 0..2**64"
         ))
@@ -92,56 +108,79 @@ fn seeds_from(seeds: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<u64>> {
     if list.len() != n {
         return Err(bad(format!("expected {n} seeds, found {}", list.len())));
     }
-    Ok(list)
+    list.iter()
+        .enumerate()
+        .map(|(i, s)| s.seed(&format!("seeds[{i}]")))
+        .collect()
+}
+
+/// Asks Python whether Ctrl-C was pressed (on the main thread; elsewhere never).
+fn interrupted() -> bool {
+    Python::attach(|py| py.check_signals().is_err())
 }
 
 #[pymethods]
 impl PyBatch {
     #[new]
-    #[pyo3(signature = (worlds, num_envs = None, robot = "e-puck", seeds = None, noise = true, control_step_ms = None, threads = 0))]
+    #[pyo3(signature = (worlds, num_envs = None, robot = "e-puck", seeds = None, noise = true, control_step_ms = None, threads = IntArg::ZERO),
+        text_signature = "(worlds, num_envs=None, robot='e-puck', seeds=None, noise=True, control_step_ms=None, threads=0)")]
     fn new(
         py: Python<'_>,
         worlds: &Bound<'_, PyAny>,
-        num_envs: Option<usize>,
+        num_envs: Option<IntArg>,
         robot: &str,
         seeds: Option<&Bound<'_, PyAny>>,
         noise: bool,
-        control_step_ms: Option<f64>,
-        threads: usize,
+        control_step_ms: Option<Real>,
+        threads: IntArg,
     ) -> PyResult<Self> {
-        let worlds: Vec<Arc<World>> = if let Ok(w) = worlds.cast::<PyWorld>() {
-            let n = num_envs.ok_or_else(|| bad("expected num_envs with a single world".into()))?;
-            vec![w.get().inner.clone(); n]
-        } else {
-            let list: Vec<Bound<'_, PyWorld>> = worlds
-                .extract()
-                .map_err(|_| bad("expected worlds to be a World or a sequence of World".into()))?;
-            if let Some(n) = num_envs {
-                if n != list.len() {
-                    return Err(bad(format!(
-                        "expected num_envs to equal len(worlds) = {}, found {n}",
-                        list.len()
-                    )));
+        enter(|| {
+            let control_step_ms = control_step_ms
+                .map(|ms| ms.value("control_step_ms"))
+                .transpose()?;
+            let num_envs = num_envs
+                .map(|n| n.count("num_envs", MAX_ENVS))
+                .transpose()?;
+            let threads = threads.count("threads", MAX_THREADS)?;
+            let worlds: Vec<Arc<World>> = if let Ok(w) = worlds.cast::<PyWorld>() {
+                let n =
+                    num_envs.ok_or_else(|| bad("expected num_envs with a single world".into()))?;
+                let world = &w.get().inner;
+                let walls = world.solid_walls().len() as u128 * n as u128;
+                mazesim_core::batch::check_size(n, walls).py()?;
+                vec![world.clone(); n]
+            } else {
+                let list: Vec<Bound<'_, PyWorld>> = worlds.extract().map_err(|_| {
+                    bad("expected worlds to be a World or a sequence of World".into())
+                })?;
+                if let Some(n) = num_envs {
+                    if n != list.len() {
+                        return Err(bad(format!(
+                            "expected num_envs to equal len(worlds) = {}, found {n}",
+                            list.len()
+                        )));
+                    }
                 }
-            }
-            list.iter().map(|w| w.get().inner.clone()).collect()
-        };
-        let n = worlds.len();
-        let seeds = match seeds {
-            Some(s) => seeds_from(s, n)?,
-            None => (0..n as u64).collect(),
-        };
-        let profile = Arc::new(RobotProfile::builtin(robot).py()?);
-        let (dw, gw) = (profile.distance_sensors.len(), profile.ground_sensors.len());
-        let control = control_step_ms.map(|ms| ms / 1000.0);
-        let batch = py
-            .detach(move || Batch::new(worlds, profile, &seeds, noise, control, threads))
-            .py()?;
-        Ok(Self {
-            inner: Mutex::new(batch),
-            n,
-            distance_width: dw,
-            ground_width: gw,
+                list.iter().map(|w| w.get().inner.clone()).collect()
+            };
+            let n = worlds.len();
+            let seeds = match seeds {
+                Some(s) => seeds_from(s, n)?,
+                None => (0..n as u64).collect(),
+            };
+            let profile = Arc::new(RobotProfile::builtin(robot).py()?);
+            let (dw, gw) = (profile.distance_sensors.len(), profile.ground_sensors.len());
+            let control = control_step_ms.map(|ms| ms / 1000.0);
+            let mut batch = enter_detached(py, move || {
+                Batch::new(worlds, profile, &seeds, noise, control, threads)
+            })?;
+            batch.set_interrupt(Box::new(interrupted));
+            Ok(Self {
+                inner: Mutex::new(batch),
+                n,
+                distance_width: dw,
+                ground_width: gw,
+            })
         })
     }
 
@@ -174,11 +213,12 @@ impl PyBatch {
         colliding: &Bound<'py, PyAny>,
         crossings: &Bound<'py, PyAny>,
     ) -> PyResult<()> {
-        let actions = readable::<f32>(actions, "actions", "float32", &[self.n, 2])?;
-        let mut buffers = Borrowed::new(self, observations, poses, colliding, crossings)?;
-        let acts = actions.as_slice().expect("checked contiguous");
-        let out = buffers.outputs();
-        py.detach(|| self.with(|b| b.step(acts, out))).py()
+        enter(|| {
+            let actions = copied::<f32>(actions, "actions", "float32", &[self.n, 2])?;
+            let mut buffers = Borrowed::new(self, observations, poses, colliding, crossings)?;
+            let out = buffers.outputs()?;
+            enter_detached(py, || self.with(|b| b.step(&actions, out)))
+        })
     }
 
     /// Resets the environments where `mask` is true (all without one), with new `seeds` if given.
@@ -193,21 +233,18 @@ impl PyBatch {
         mask: Option<&Bound<'py, PyAny>>,
         seeds: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<()> {
-        let mask = mask
-            .map(|m| readable::<bool>(m, "mask", "bool", &[self.n]))
-            .transpose()?;
-        let seeds = seeds
-            .map(|s| readable::<u64>(s, "seeds", "uint64", &[self.n]))
-            .transpose()?;
-        let mut buffers = Borrowed::new(self, observations, poses, colliding, crossings)?;
-        let m = mask
-            .as_ref()
-            .map(|m| m.as_slice().expect("checked contiguous"));
-        let s = seeds
-            .as_ref()
-            .map(|s| s.as_slice().expect("checked contiguous"));
-        let out = buffers.outputs();
-        py.detach(|| self.with(|b| b.reset(m, s, out))).py()
+        enter(|| {
+            let mask = mask
+                .map(|m| copied::<bool>(m, "mask", "bool", &[self.n]))
+                .transpose()?;
+            let seeds = seeds
+                .map(|s| copied::<u64>(s, "seeds", "uint64", &[self.n]))
+                .transpose()?;
+            let mut buffers = Borrowed::new(self, observations, poses, colliding, crossings)?;
+            let out = buffers.outputs()?;
+            let (m, s) = (mask.as_deref(), seeds.as_deref());
+            enter_detached(py, || self.with(|b| b.reset(m, s, out)))
+        })
     }
 
     /// Writes the current state without stepping.
@@ -219,58 +256,65 @@ impl PyBatch {
         colliding: &Bound<'py, PyAny>,
         crossings: &Bound<'py, PyAny>,
     ) -> PyResult<()> {
-        let mut buffers = Borrowed::new(self, observations, poses, colliding, crossings)?;
-        let out = buffers.outputs();
-        py.detach(|| self.with(|b| b.observe(out))).py()
+        enter(|| {
+            let mut buffers = Borrowed::new(self, observations, poses, colliding, crossings)?;
+            let out = buffers.outputs()?;
+            enter_detached(py, || self.with(|b| b.observe(out)))
+        })
     }
 
     /// Puts environment `index` into `world`, reset to its start with `seed`; its rows of the
     /// buffers change at the next observe, step or reset.
-    fn set_world(&self, py: Python<'_>, index: usize, world: &PyWorld, seed: u64) -> PyResult<()> {
-        let w = world.inner.clone();
-        py.detach(|| self.with(|b| b.set_world(index, w, seed)))
-            .py()
+    fn set_world(
+        &self,
+        py: Python<'_>,
+        index: IntArg,
+        world: &PyWorld,
+        seed: IntArg,
+    ) -> PyResult<()> {
+        enter(|| {
+            let index = index.count("index", self.n.saturating_sub(1))?;
+            let seed = seed.seed("seed")?;
+            let w = world.inner.clone();
+            enter_detached(py, || self.with(|b| b.set_world(index, w, seed)))
+        })
     }
 
     /// Sets the start pose of each environment for its later resets: an (N, 3) float64 array of
-    /// x, y, yaw (every value finite).
+    /// x, y, yaw. Every row is checked before any is applied.
     fn set_starts(&self, starts: &Bound<'_, PyAny>) -> PyResult<()> {
-        let starts = readable::<f64>(starts, "starts", "float64", &[self.n, 3])?;
-        let rows = starts.as_slice().expect("checked contiguous");
-        self.with(|b| {
-            for i in 0..rows.len() / 3 {
-                b.env_mut(i)?
-                    .set_start(rows[3 * i], rows[3 * i + 1], rows[3 * i + 2])?;
-            }
-            Ok(())
+        enter(|| {
+            let rows = copied::<f64>(starts, "starts", "float64", &[self.n, 3])?;
+            self.with(|b| b.set_starts(&rows)).py()
         })
-        .py()
     }
 
     /// Wheel position sensors of each environment, (N, 2) float64 radians (left, right),
     /// quantised to the profile's encoder resolution.
     fn encoders<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
-        let v: Vec<f64> = self.with(|b| b.envs().iter().flat_map(|e| e.encoders()).collect());
-        PyArray1::from_vec(py, v).reshape([self.n, 2])
+        enter(|| {
+            let v: Vec<f64> = self.with(|b| b.envs().iter().flat_map(|e| e.encoders()).collect());
+            PyArray1::from_vec(py, v).reshape([self.n, 2])
+        })
     }
 
     /// Simulated seconds of each environment since its reset.
-    fn times<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+    fn times<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
         self.per_env(py, |e| e.time())
     }
 
     /// Control steps of each environment since its reset.
-    fn steps<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<u64>> {
+    fn steps<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<u64>>> {
         self.per_env(py, |e| e.steps())
     }
 
     /// Bumps of each environment since its reset.
-    fn collisions<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<u64>> {
+    fn collisions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<u64>>> {
         self.per_env(py, |e| e.collisions())
     }
 
     /// Path length of each environment since its reset, metres.
-    fn distances_travelled<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+    fn distances_travelled<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
         self.per_env(py, |e| e.distance_travelled())
     }
 

@@ -30,7 +30,7 @@ fn describe(obj: &Bound<'_, PyAny>) -> String {
 
 fn wrong<T>(name: &str, expected: &str, obj: &Bound<'_, PyAny>) -> PyResult<T> {
     Err(to_py(Error::InvalidArgument(format!(
-        "expected {name} to be a C-contiguous numpy array of {expected}, found a {}",
+        "expected {name} to be an aligned, C-contiguous numpy array of {expected}, found a {}",
         describe(obj)
     ))))
 }
@@ -55,7 +55,7 @@ pub fn writable<'py, T: Element>(
     let Ok(array) = obj.cast::<PyArrayDyn<T>>() else {
         return wrong(name, &expected, obj);
     };
-    if array.shape() != shape || !array.is_c_contiguous() {
+    if !usable(array, shape) {
         return wrong(name, &expected, obj);
     }
     array.try_readwrite().or_else(|_| {
@@ -78,10 +78,34 @@ pub fn readable<'py, T: Element>(
     let Ok(array) = obj.cast::<PyArrayDyn<T>>() else {
         return wrong(name, &expected, obj);
     };
-    if array.shape() != shape || !array.is_c_contiguous() {
+    if !usable(array, shape) {
         return wrong(name, &expected, obj);
     }
     array
         .try_readonly()
         .or_else(|_| wrong(name, &expected, obj))
+}
+
+/// A copy of an array of dtype `T` and exactly `shape`: inputs are copied before a call borrows
+/// its outputs, so an input may be one of the outputs (`reset(mask=colliding)`).
+pub fn copied<T: Element + Copy>(
+    obj: &Bound<'_, PyAny>,
+    name: &str,
+    dtype: &str,
+    shape: &[usize],
+) -> PyResult<Vec<T>> {
+    let array = readable::<T>(obj, name, dtype, shape)?;
+    match array.as_slice() {
+        Ok(values) => Ok(values.to_vec()),
+        Err(_) => wrong(
+            name,
+            &format!("dtype {dtype} and shape {}", shape_text(shape)),
+            obj,
+        ),
+    }
+}
+
+/// Whether `array` has `shape` and is C-contiguous and aligned, so that it can be a slice.
+fn usable<T: Element>(array: &Bound<'_, PyArrayDyn<T>>, shape: &[usize]) -> bool {
+    array.shape() == shape && array.is_c_contiguous() && array.is_aligned()
 }

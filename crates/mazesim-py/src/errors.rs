@@ -1,11 +1,14 @@
 //! Maps the core's error to the exception tree of `mazesim.errors`.
 
 use mazesim_core::Error;
-use pyo3::exceptions::PyRuntimeError;
+use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError};
 use pyo3::prelude::*;
 
 /// Builds the Python exception for a core error.
 pub fn to_py(err: Error) -> PyErr {
+    if let Error::Interrupted = err {
+        return PyKeyboardInterrupt::new_err("interrupted");
+    }
     Python::attach(|py| match build(py, &err) {
         Ok(e) => e,
         Err(import_failed) => PyRuntimeError::new_err(format!(
@@ -22,6 +25,7 @@ fn build(py: Python<'_>, err: &Error) -> PyResult<PyErr> {
         Error::InvalidAction(_) => "InvalidActionError",
         Error::InvalidArgument(_) => "InvalidArgumentError",
         Error::Io { .. } => "MazesimIOError",
+        Error::Internal(_) | Error::Interrupted => "InternalError",
     };
     let instance = errors.getattr(class_name)?.call1((err.to_string(),))?;
     match err {
@@ -36,12 +40,24 @@ fn build(py: Python<'_>, err: &Error) -> PyResult<PyErr> {
         Error::UnknownName { available, .. } => {
             instance.setattr("available", available.clone())?;
         }
-        Error::Io { path, .. } => {
+        Error::Io {
+            path,
+            errno,
+            reason,
+            ..
+        } => {
             instance.setattr("filename", path)?;
+            instance.setattr("errno", errno)?;
+            instance.setattr("strerror", reason)?;
         }
         _ => {}
     }
     Ok(PyErr::from_value(instance))
+}
+
+/// An `InvalidArgumentError` with `message`.
+pub fn invalid(message: String) -> PyErr {
+    to_py(Error::InvalidArgument(message))
 }
 
 /// Shorthand: a core result as a Python result.

@@ -4,71 +4,82 @@
 // Python functions take their keyword arguments as Rust parameters; many is normal here.
 #![allow(clippy::too_many_arguments)]
 
+mod args;
 mod batch;
 mod buffers;
 mod errors;
+mod guard;
 mod simulator;
 mod wbt;
 mod world;
 
 use pyo3::prelude::*;
 
+use args::{IntArg, Real};
+use errors::IntoPy;
+use guard::enter;
+
 /// Names of the worlds embedded in the package.
 #[pyfunction]
-fn builtin_world_names() -> Vec<String> {
-    mazesim_core::builtin_world_names()
+fn builtin_world_names() -> PyResult<Vec<String>> {
+    enter(|| Ok(mazesim_core::builtin_world_names()))
 }
 
 /// Names of the robot profiles embedded in the package.
 #[pyfunction]
-fn robot_profile_names() -> Vec<String> {
-    mazesim_core::robot_profile_names()
+fn robot_profile_names() -> PyResult<Vec<String>> {
+    enter(|| Ok(mazesim_core::robot_profile_names()))
 }
 
-/// Converts a Sharp GP2Y0A41SK0F reading in volts to a distance in cm (inverted table).
+/// Converts a Sharp GP2Y0A41SK0F reading in volts to a distance in cm (inverted table); NaN or
+/// infinite volts raise InvalidArgumentError.
 #[pyfunction]
-fn sharp_volts_to_cm(volts: f64) -> f64 {
-    mazesim_core::sharp_volts_to_cm(volts)
+fn sharp_volts_to_cm(volts: Real) -> PyResult<f64> {
+    enter(|| mazesim_core::sharp_volts_to_cm(volts.value("volts")?).py())
 }
 
 /// A generated maze world (seeded; see mazesim-core's generator).
 #[pyfunction]
-#[pyo3(signature = (width = 5, height = 5, seed = 0, cell_size = 0.25, wall_thickness = 0.01, loops = 0.0, checkpoints = true, floor_reflectance = 0.36))]
+#[pyo3(signature = (width = IntArg::Int(5), height = IntArg::Int(5), seed = IntArg::ZERO, cell_size = Real::Number(0.25), wall_thickness = Real::Number(0.01), loops = Real::Number(0.0), checkpoints = true, floor_reflectance = Real::Number(0.36)),
+    text_signature = "(width=5, height=5, seed=0, cell_size=0.25, wall_thickness=0.01, loops=0.0, checkpoints=True, floor_reflectance=0.36)")]
 fn generate_maze(
-    width: usize,
-    height: usize,
-    seed: u64,
-    cell_size: f64,
-    wall_thickness: f64,
-    loops: f64,
+    width: IntArg,
+    height: IntArg,
+    seed: IntArg,
+    cell_size: Real,
+    wall_thickness: Real,
+    loops: Real,
     checkpoints: bool,
-    floor_reflectance: f64,
+    floor_reflectance: Real,
 ) -> PyResult<world::PyWorld> {
-    let params = mazesim_core::generator::MazeParams {
-        width,
-        height,
-        cell_size,
-        wall_thickness,
-        loops,
-        checkpoints,
-        floor_reflectance,
-    };
-    let w = mazesim_core::generator::generate(&params, seed).map_err(errors::to_py)?;
-    Ok(world::PyWorld {
-        inner: std::sync::Arc::new(w),
+    enter(|| {
+        let params = mazesim_core::generator::MazeParams {
+            width: width.count("width", usize::MAX)?,
+            height: height.count("height", usize::MAX)?,
+            cell_size: cell_size.value("cell_size")?,
+            wall_thickness: wall_thickness.value("wall_thickness")?,
+            loops: loops.value("loops")?,
+            checkpoints,
+            floor_reflectance: floor_reflectance.value("floor_reflectance")?,
+        };
+        let seed = seed.seed("seed")?;
+        let w = mazesim_core::generator::generate(&params, seed).py()?;
+        Ok(world::PyWorld {
+            inner: std::sync::Arc::new(w),
+        })
     })
 }
 
 /// The default five-bit barcode book: 12 codes, none a palindrome or another's reverse.
 #[pyfunction]
-fn default_codes() -> Vec<String> {
-    mazesim_core::codebook::default_codes()
+fn default_codes() -> PyResult<Vec<String>> {
+    enter(|| Ok(mazesim_core::codebook::default_codes()))
 }
 
 /// Checks a barcode book (no palindrome, duplicate or reverse clash); raises InvalidArgumentError.
 #[pyfunction]
 fn validate_codes(codes: Vec<String>) -> PyResult<()> {
-    mazesim_core::codebook::validate(&codes).map_err(errors::to_py)
+    enter(|| mazesim_core::codebook::validate(&codes).py())
 }
 
 #[pymodule]
@@ -82,6 +93,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(validate_codes, m)?)?;
     m.add_function(wrap_pyfunction!(wbt::import_wbt, m)?)?;
     m.add_function(wrap_pyfunction!(wbt::import_wbt_text, m)?)?;
+    m.add_function(wrap_pyfunction!(guard::_panic_for_tests, m)?)?;
     m.add_class::<batch::PyBatch>()?;
     m.add_class::<world::PyWorld>()?;
     m.add_class::<world::PyRobotProfile>()?;

@@ -2,11 +2,13 @@
 
 use std::sync::Mutex;
 
-use mazesim_core::{Error, SimConfig, Simulator};
+use mazesim_core::{SimConfig, Simulator};
 use numpy::PyArray1;
 use pyo3::prelude::*;
 
+use crate::args::{IntArg, Real};
 use crate::errors::IntoPy;
+use crate::guard::{enter, enter_detached};
 use crate::world::{PyRobotProfile, PyWorld};
 
 /// One robot in one world, stepped in control steps.
@@ -23,122 +25,130 @@ impl PySimulator {
             .unwrap_or_else(|poisoned| poisoned.into_inner());
         f(&mut guard)
     }
-}
 
-fn seed_of(seed: i128) -> PyResult<u64> {
-    u64::try_from(seed).map_err(|_| {
-        crate::errors::to_py(Error::InvalidArgument(format!(
-            "expected a seed in 0..2**64, found {seed}"
-        )))
-    })
+    /// `with` for a Python entry point: a panic becomes `InternalError`.
+    fn read<T>(&self, f: impl FnOnce(&mut Simulator) -> T) -> PyResult<T> {
+        enter(|| Ok(self.with(f)))
+    }
 }
 
 #[pymethods]
 impl PySimulator {
     #[new]
-    #[pyo3(signature = (world, robot = "e-puck", seed = 0, noise = true, control_step_ms = None))]
+    #[pyo3(signature = (world, robot = "e-puck", seed = IntArg::ZERO, noise = true, control_step_ms = None),
+        text_signature = "(world, robot='e-puck', seed=0, noise=True, control_step_ms=None)")]
     fn new(
         world: &PyWorld,
         robot: &str,
-        seed: i128,
+        seed: IntArg,
         noise: bool,
-        control_step_ms: Option<f64>,
+        control_step_ms: Option<Real>,
     ) -> PyResult<Self> {
-        let profile = PyRobotProfile::builtin(robot)?;
-        let config = SimConfig {
-            seed: seed_of(seed)?,
-            noise,
-            control_step: control_step_ms.map(|ms| ms / 1000.0),
-        };
-        let sim = Simulator::new(world.inner.clone(), profile.inner, config).py()?;
-        Ok(Self {
-            inner: Mutex::new(sim),
+        enter(|| {
+            let control_step_ms = control_step_ms
+                .map(|ms| ms.value("control_step_ms"))
+                .transpose()?;
+            let profile = PyRobotProfile::builtin(robot)?;
+            let config = SimConfig {
+                seed: seed.seed("seed")?,
+                noise,
+                control_step: control_step_ms.map(|ms| ms / 1000.0),
+            };
+            let sim = Simulator::new(world.inner.clone(), profile.inner, config).py()?;
+            Ok(Self {
+                inner: Mutex::new(sim),
+            })
         })
     }
 
     /// Back to the start pose, time and counters zeroed; a new seed if given.
     #[pyo3(signature = (seed = None))]
-    fn reset(&self, seed: Option<i128>) -> PyResult<()> {
-        let seed = seed.map(seed_of).transpose()?;
-        self.with(|s| s.reset(seed));
-        Ok(())
+    fn reset(&self, seed: Option<IntArg>) -> PyResult<()> {
+        enter(|| {
+            let seed = seed.map(|s| s.seed("seed")).transpose()?;
+            self.with(|s| s.reset(seed));
+            Ok(())
+        })
     }
 
     /// Advances one control step with wheel speeds in rad/s (clamped to the motor limit).
-    fn step(&self, left: f64, right: f64) -> PyResult<()> {
-        self.with(|s| s.step(left, right)).py()
+    fn step(&self, py: Python<'_>, left: Real, right: Real) -> PyResult<()> {
+        let (left, right) = (left.value("left")?, right.value("right")?);
+        enter_detached(py, || self.with(|s| s.step(left, right)))
     }
 
     /// Sets the pose every later reset starts from (instead of the world's start).
-    fn set_start(&self, x: f64, y: f64, yaw: f64) -> PyResult<()> {
-        self.with(|s| s.set_start(x, y, yaw)).py()
+    fn set_start(&self, x: Real, y: Real, yaw: Real) -> PyResult<()> {
+        let (x, y, yaw) = (x.value("x")?, y.value("y")?, yaw.value("yaw")?);
+        enter(|| self.with(|s| s.set_start(x, y, yaw)).py())
     }
 
     /// Moves the robot to (x, y, yaw) at rest and reads the sensors there.
-    fn set_pose(&self, x: f64, y: f64, yaw: f64) -> PyResult<()> {
-        self.with(|s| s.set_pose(x, y, yaw)).py()
+    fn set_pose(&self, x: Real, y: Real, yaw: Real) -> PyResult<()> {
+        let (x, y, yaw) = (x.value("x")?, y.value("y")?, yaw.value("yaw")?);
+        enter(|| self.with(|s| s.set_pose(x, y, yaw)).py())
     }
 
     /// Distance sensor readings (float32), device order.
-    fn distance_sensors<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
-        self.with(|s| PyArray1::from_slice(py, s.distance_sensors()))
+    fn distance_sensors<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f32>>> {
+        self.read(|s| PyArray1::from_slice(py, s.distance_sensors()))
     }
 
     /// Ground sensor readings (float32), device order.
-    fn ground_sensors<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
-        self.with(|s| PyArray1::from_slice(py, s.ground_sensors()))
+    fn ground_sensors<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f32>>> {
+        self.read(|s| PyArray1::from_slice(py, s.ground_sensors()))
     }
 
     #[getter]
-    fn pose(&self) -> (f64, f64, f64) {
-        let p = self.with(|s| s.pose());
-        (p[0] as f64, p[1] as f64, p[2] as f64)
+    fn pose(&self) -> PyResult<(f64, f64, f64)> {
+        let p = self.read(|s| s.pose())?;
+        Ok((p[0] as f64, p[1] as f64, p[2] as f64))
     }
     #[getter]
-    fn time(&self) -> f64 {
-        self.with(|s| s.time())
+    fn time(&self) -> PyResult<f64> {
+        self.read(|s| s.time())
     }
     #[getter]
-    fn steps(&self) -> u64 {
-        self.with(|s| s.steps())
+    fn steps(&self) -> PyResult<u64> {
+        self.read(|s| s.steps())
     }
     #[getter]
-    fn collisions(&self) -> u64 {
-        self.with(|s| s.collisions())
+    fn collisions(&self) -> PyResult<u64> {
+        self.read(|s| s.collisions())
     }
     #[getter]
-    fn colliding(&self) -> bool {
-        self.with(|s| s.colliding())
+    fn colliding(&self) -> PyResult<bool> {
+        self.read(|s| s.colliding())
     }
     #[getter]
-    fn distance_travelled(&self) -> f64 {
-        self.with(|s| s.distance_travelled())
+    fn distance_travelled(&self) -> PyResult<f64> {
+        self.read(|s| s.distance_travelled())
     }
     #[getter]
-    fn wheel_speeds(&self) -> (f64, f64) {
-        let w = self.with(|s| s.wheel_speeds());
-        (w[0] as f64, w[1] as f64)
+    fn wheel_speeds(&self) -> PyResult<(f64, f64)> {
+        let w = self.read(|s| s.wheel_speeds())?;
+        Ok((w[0] as f64, w[1] as f64))
     }
     #[getter]
-    fn encoders(&self) -> (f64, f64) {
-        let e = self.with(|s| s.encoders());
-        (e[0], e[1])
+    fn encoders(&self) -> PyResult<(f64, f64)> {
+        let e = self.read(|s| s.encoders())?;
+        Ok((e[0], e[1]))
     }
     #[getter]
-    fn wall_clearance(&self) -> f64 {
-        self.with(|s| s.wall_clearance() as f64)
+    fn wall_clearance(&self) -> PyResult<f64> {
+        self.read(|s| s.wall_clearance() as f64)
     }
     /// Barcode crossed in the last step: +id along the checkpoint's yaw (arrival), -id against it
     /// (departure), 0 for none.
     #[getter]
-    fn last_crossing(&self) -> i32 {
-        self.with(|s| s.last_crossing())
+    fn last_crossing(&self) -> PyResult<i32> {
+        self.read(|s| s.last_crossing())
     }
 
     /// Barcode crossings since reset: dicts of checkpoint, direction ("arrival" along the
     /// checkpoint's yaw, "departure" against it), step and time.
     fn crossings<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, pyo3::types::PyDict>>> {
-        let (list, dt) = self.with(|s| (s.crossings().to_vec(), s.control_step()));
+        let (list, dt) = self.read(|s| (s.crossings().to_vec(), s.control_step()))?;
         list.iter()
             .map(|c| {
                 let d = pyo3::types::PyDict::new(py);
@@ -152,24 +162,24 @@ impl PySimulator {
     }
 
     #[getter]
-    fn control_step_ms(&self) -> f64 {
-        self.with(|s| s.control_step() * 1000.0)
+    fn control_step_ms(&self) -> PyResult<f64> {
+        self.read(|s| s.control_step() * 1000.0)
     }
     #[getter]
-    fn robot(&self) -> PyRobotProfile {
-        PyRobotProfile {
-            inner: self.with(|s| s.robot().clone()),
-        }
+    fn robot(&self) -> PyResult<PyRobotProfile> {
+        Ok(PyRobotProfile {
+            inner: self.read(|s| s.robot().clone())?,
+        })
     }
     #[getter]
-    fn world(&self) -> PyWorld {
-        PyWorld {
-            inner: self.with(|s| s.world().clone()),
-        }
+    fn world(&self) -> PyResult<PyWorld> {
+        Ok(PyWorld {
+            inner: self.read(|s| s.world().clone())?,
+        })
     }
 
-    fn __repr__(&self) -> String {
-        self.with(|s| {
+    fn __repr__(&self) -> PyResult<String> {
+        self.read(|s| {
             format!(
                 "Simulator(world={:?}, robot={:?}, time={:.3})",
                 s.world().name(),

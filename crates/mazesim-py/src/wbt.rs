@@ -12,6 +12,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString};
 
 use crate::errors::IntoPy;
+use crate::guard::{enter, enter_detached};
 use crate::world::PyWorld;
 
 /// A device field as a Python value: a number, a list of numbers, a list of rows, a string, a
@@ -179,8 +180,10 @@ pub fn import_wbt<'py>(
     path: PathBuf,
     floor_images: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<(PyWorld, Bound<'py, PyDict>)> {
-    let import = WbtImport::load(&path).py()?;
-    finish(py, import, &path, floor_images)
+    enter(|| {
+        let import = enter_detached(py, || WbtImport::load(&path))?;
+        finish(py, import, &path, floor_images)
+    })
 }
 
 /// Imports the text of a `.wbt` file; `source` names it in error messages and names the world.
@@ -193,6 +196,9 @@ pub fn import_wbt_text<'py>(
     source: &str,
     floor_images: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<(PyWorld, Bound<'py, PyDict>)> {
-    let import = WbtImport::from_text(&text.to_string_lossy(), source).py()?;
-    finish(py, import, Path::new(source), floor_images)
+    enter(|| {
+        let text = text.to_string_lossy();
+        let import = enter_detached(py, || WbtImport::from_text(&text, source))?;
+        finish(py, import, Path::new(source), floor_images)
+    })
 }

@@ -9,7 +9,9 @@ use numpy::{PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::args::{IntArg, Real};
 use crate::errors::IntoPy;
+use crate::guard::{enter, enter_detached};
 
 /// A maze world: walls, floor paint, checkpoints, goal and start pose.
 #[pyclass(name = "World", module = "mazesim._core", frozen)]
@@ -20,11 +22,9 @@ pub struct PyWorld {
 fn rows_to_array<'py, const N: usize>(
     py: Python<'py>,
     rows: Vec<[f64; N]>,
-) -> Bound<'py, PyArray2<f64>> {
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let flat: Vec<f64> = rows.iter().flatten().copied().collect();
-    numpy::PyArray1::from_vec(py, flat)
-        .reshape([rows.len(), N])
-        .expect("a flat array of rows * N reshapes to (rows, N)")
+    numpy::PyArray1::from_vec(py, flat).reshape([rows.len(), N])
 }
 
 /// The error for a sensor index at or above the robot's `count` sensors of that `kind`.
@@ -39,131 +39,153 @@ impl PyWorld {
     /// A built-in world by name (see `builtin_world_names()`).
     #[staticmethod]
     fn builtin(name: &str) -> PyResult<Self> {
-        Ok(Self {
-            inner: Arc::new(World::builtin(name).py()?),
+        enter(|| {
+            Ok(Self {
+                inner: Arc::new(World::builtin(name).py()?),
+            })
         })
     }
 
     /// Reads a world file.
     #[staticmethod]
-    fn load(path: PathBuf) -> PyResult<Self> {
+    fn load(py: Python<'_>, path: PathBuf) -> PyResult<Self> {
+        let world = enter_detached(py, || World::load(&path))?;
         Ok(Self {
-            inner: Arc::new(World::load(&path).py()?),
+            inner: Arc::new(world),
         })
     }
 
     /// Parses a world file's text; `source` names it in error messages.
     #[staticmethod]
     #[pyo3(signature = (text, source = "<string>"))]
-    fn from_toml(text: &str, source: &str) -> PyResult<Self> {
+    fn from_toml(py: Python<'_>, text: &str, source: &str) -> PyResult<Self> {
+        let world = enter_detached(py, || World::from_toml(text, source))?;
         Ok(Self {
-            inner: Arc::new(World::from_toml(text, source).py()?),
+            inner: Arc::new(world),
         })
     }
 
     /// The world file text.
     fn to_toml(&self) -> PyResult<String> {
-        self.inner.to_toml().py()
+        enter(|| self.inner.to_toml().py())
     }
 
     /// Writes the world file atomically.
-    fn save(&self, path: PathBuf) -> PyResult<()> {
-        self.inner.save(&path).py()
+    fn save(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
+        enter_detached(py, || self.inner.save(&path))
     }
 
     #[getter]
-    fn name(&self) -> String {
-        self.inner.name().to_string()
+    fn name(&self) -> PyResult<String> {
+        enter(|| Ok(self.inner.name().to_string()))
     }
 
     #[getter]
-    fn basic_time_step_ms(&self) -> f64 {
-        self.inner.basic_time_step() * 1000.0
+    fn basic_time_step_ms(&self) -> PyResult<f64> {
+        enter(|| Ok(self.inner.basic_time_step() * 1000.0))
     }
 
     #[getter]
-    fn bounds(&self) -> (f64, f64, f64, f64) {
-        let b = self.inner.bounds();
-        (b.min[0], b.min[1], b.max[0], b.max[1])
+    fn bounds(&self) -> PyResult<(f64, f64, f64, f64)> {
+        enter(|| {
+            Ok({
+                let b = self.inner.bounds();
+                (b.min[0], b.min[1], b.max[0], b.max[1])
+            })
+        })
     }
 
     #[getter]
-    fn start(&self) -> (f64, f64, f64) {
-        let s = self.inner.start();
-        (s[0], s[1], s[2])
+    fn start(&self) -> PyResult<(f64, f64, f64)> {
+        enter(|| {
+            Ok({
+                let s = self.inner.start();
+                (s[0], s[1], s[2])
+            })
+        })
     }
 
     #[getter]
-    fn goal(&self) -> Option<(f64, f64, f64)> {
-        self.inner
-            .goal()
-            .map(|g| (g.center[0], g.center[1], g.radius))
+    fn goal(&self) -> PyResult<Option<(f64, f64, f64)>> {
+        enter(|| {
+            Ok({
+                self.inner
+                    .goal()
+                    .map(|g| (g.center[0], g.center[1], g.radius))
+            })
+        })
     }
 
     /// (N, 6) array: cx, cy, sx, sy, yaw, reflectance of every wall box.
-    fn wall_boxes<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        let rows = self
-            .inner
-            .walls()
-            .iter()
-            .map(|w| {
-                [
-                    w.center[0],
-                    w.center[1],
-                    2.0 * w.half[0],
-                    2.0 * w.half[1],
-                    w.yaw,
-                    w.reflectance,
-                ]
-            })
-            .collect();
-        rows_to_array(py, rows)
+    fn wall_boxes<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        enter(|| {
+            let rows = self
+                .inner
+                .walls()
+                .iter()
+                .map(|w| {
+                    [
+                        w.center[0],
+                        w.center[1],
+                        2.0 * w.half[0],
+                        2.0 * w.half[1],
+                        w.yaw,
+                        w.reflectance,
+                    ]
+                })
+                .collect();
+            rows_to_array(py, rows)
+        })
     }
 
     /// Floor paint regions in drawing order, as dicts.
     fn paint_regions<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
-        let mut out = Vec::new();
-        for r in self.inner.floor().regions() {
-            let d = PyDict::new(py);
-            match r.shape {
-                PaintShape::Rect { center, half, yaw } => {
-                    d.set_item("shape", "rect")?;
-                    d.set_item("center", (center[0], center[1]))?;
-                    d.set_item("size", (2.0 * half[0], 2.0 * half[1]))?;
-                    d.set_item("yaw", yaw)?;
+        enter(|| {
+            let mut out = Vec::new();
+            for r in self.inner.floor().regions() {
+                let d = PyDict::new(py);
+                match r.shape {
+                    PaintShape::Rect { center, half, yaw } => {
+                        d.set_item("shape", "rect")?;
+                        d.set_item("center", (center[0], center[1]))?;
+                        d.set_item("size", (2.0 * half[0], 2.0 * half[1]))?;
+                        d.set_item("yaw", yaw)?;
+                    }
+                    PaintShape::Circle { center, radius } => {
+                        d.set_item("shape", "circle")?;
+                        d.set_item("center", (center[0], center[1]))?;
+                        d.set_item("radius", radius)?;
+                    }
+                    PaintShape::Capsule { a, b, radius } => {
+                        d.set_item("shape", "capsule")?;
+                        d.set_item("a", (a[0], a[1]))?;
+                        d.set_item("b", (b[0], b[1]))?;
+                        d.set_item("radius", radius)?;
+                    }
                 }
-                PaintShape::Circle { center, radius } => {
-                    d.set_item("shape", "circle")?;
-                    d.set_item("center", (center[0], center[1]))?;
-                    d.set_item("radius", radius)?;
-                }
-                PaintShape::Capsule { a, b, radius } => {
-                    d.set_item("shape", "capsule")?;
-                    d.set_item("a", (a[0], a[1]))?;
-                    d.set_item("b", (b[0], b[1]))?;
-                    d.set_item("radius", radius)?;
-                }
+                d.set_item("reflectance", r.reflectance)?;
+                out.push(d);
             }
-            d.set_item("reflectance", r.reflectance)?;
-            out.push(d);
-        }
-        Ok(out)
+            Ok(out)
+        })
     }
 
     /// Checkpoints as dicts: id, code, center, yaw, width.
     fn checkpoints<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
-        let mut out = Vec::new();
-        for c in self.inner.checkpoints() {
-            let d = PyDict::new(py);
-            d.set_item("id", c.id)?;
-            let code: String = c.code.iter().map(|&b| if b { '1' } else { '0' }).collect();
-            d.set_item("code", code)?;
-            d.set_item("center", (c.center[0], c.center[1]))?;
-            d.set_item("yaw", c.yaw)?;
-            d.set_item("width", c.width)?;
-            out.push(d);
-        }
-        Ok(out)
+        enter(|| {
+            let mut out = Vec::new();
+            for c in self.inner.checkpoints() {
+                let d = PyDict::new(py);
+                d.set_item("id", c.id)?;
+                let code: String = c.code.iter().map(|&b| if b { '1' } else { '0' }).collect();
+                d.set_item("code", code)?;
+                d.set_item("center", (c.center[0], c.center[1]))?;
+                d.set_item("yaw", c.yaw)?;
+                d.set_item("width", c.width)?;
+                out.push(d);
+            }
+            Ok(out)
+        })
     }
 
     /// The cell maze of a `[grid]` world, or None: a dict of "rows", "cols", "cell_size",
@@ -171,50 +193,61 @@ impl PyWorld {
     /// above cell column c) and "vertical" ((rows, cols + 1) bool: beside cell row r, line k,
     /// 0 = west), plus "start" and "goal" cells (column, row) when marked.
     fn cell_maze<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
-        let Some(placed) = self.inner.maze() else {
-            return Ok(None);
-        };
-        let m = &placed.maze;
-        let d = PyDict::new(py);
-        d.set_item("rows", m.rows)?;
-        d.set_item("cols", m.cols)?;
-        d.set_item("cell_size", placed.cell_size)?;
-        d.set_item("origin", (placed.origin[0], placed.origin[1]))?;
-        let h = numpy::PyArray1::from_slice(py, &m.horizontal).reshape([m.rows + 1, m.cols])?;
-        let v = numpy::PyArray1::from_slice(py, &m.vertical).reshape([m.rows, m.cols + 1])?;
-        d.set_item("horizontal", h)?;
-        d.set_item("vertical", v)?;
-        d.set_item("start", m.start)?;
-        d.set_item("goal", m.goal)?;
-        Ok(Some(d))
+        enter(|| {
+            let Some(placed) = self.inner.maze() else {
+                return Ok(None);
+            };
+            let m = &placed.maze;
+            let d = PyDict::new(py);
+            d.set_item("rows", m.rows)?;
+            d.set_item("cols", m.cols)?;
+            d.set_item("cell_size", placed.cell_size)?;
+            d.set_item("origin", (placed.origin[0], placed.origin[1]))?;
+            let h = numpy::PyArray1::from_slice(py, &m.horizontal).reshape([m.rows + 1, m.cols])?;
+            let v = numpy::PyArray1::from_slice(py, &m.vertical).reshape([m.rows, m.cols + 1])?;
+            d.set_item("horizontal", h)?;
+            d.set_item("vertical", v)?;
+            d.set_item("start", m.start)?;
+            d.set_item("goal", m.goal)?;
+            Ok(Some(d))
+        })
     }
 
     /// Background floor reflectance (where nothing is painted).
     #[getter]
-    fn floor_background(&self) -> f64 {
-        self.inner.floor().background()
+    fn floor_background(&self) -> PyResult<f64> {
+        enter(|| Ok(self.inner.floor().background()))
     }
 
     /// Floor reflectance factor at (x, y).
-    fn floor_reflectance(&self, x: f64, y: f64) -> f64 {
-        self.inner.floor().reflectance_at([x, y])
+    fn floor_reflectance(&self, x: Real, y: Real) -> PyResult<f64> {
+        let (x, y) = (x.value("x")?, y.value("y")?);
+        enter(|| Ok(self.inner.floor().reflectance_at([x, y])))
     }
 
-    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
-        other
-            .cast::<PyWorld>()
-            .map(|o| *o.get().inner == *self.inner)
-            .unwrap_or(false)
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> PyResult<bool> {
+        enter(|| {
+            Ok({
+                other
+                    .cast::<PyWorld>()
+                    .map(|o| *o.get().inner == *self.inner)
+                    .unwrap_or(false)
+            })
+        })
     }
 
-    fn __repr__(&self) -> String {
-        format!(
-            "World(name={:?}, walls={}, checkpoints={}, source={:?})",
-            self.inner.name(),
-            self.inner.walls().len(),
-            self.inner.checkpoints().len(),
-            self.inner.source()
-        )
+    fn __repr__(&self) -> PyResult<String> {
+        enter(|| {
+            Ok({
+                format!(
+                    "World(name={:?}, walls={}, checkpoints={}, source={:?})",
+                    self.inner.name(),
+                    self.inner.walls().len(),
+                    self.inner.checkpoints().len(),
+                    self.inner.source()
+                )
+            })
+        })
     }
 }
 
@@ -235,130 +268,164 @@ impl PyRobotProfile {
     }
 
     #[getter]
-    fn name(&self) -> String {
-        self.inner.name.clone()
+    fn name(&self) -> PyResult<String> {
+        enter(|| Ok(self.inner.name.clone()))
     }
     #[getter]
-    fn body_radius(&self) -> f64 {
-        self.inner.body_radius
+    fn body_radius(&self) -> PyResult<f64> {
+        enter(|| Ok(self.inner.body_radius))
     }
     #[getter]
-    fn wheel_radius(&self) -> f64 {
-        self.inner.wheel_radius
+    fn wheel_radius(&self) -> PyResult<f64> {
+        enter(|| Ok(self.inner.wheel_radius))
     }
     #[getter]
-    fn axle_length(&self) -> f64 {
-        self.inner.axle_length
+    fn axle_length(&self) -> PyResult<f64> {
+        enter(|| Ok(self.inner.axle_length))
     }
     #[getter]
-    fn max_wheel_speed(&self) -> f64 {
-        self.inner.max_wheel_speed
+    fn max_wheel_speed(&self) -> PyResult<f64> {
+        enter(|| Ok(self.inner.max_wheel_speed))
     }
     #[getter]
-    fn distance_sensor_names(&self) -> Vec<String> {
-        self.inner
-            .distance_sensors
-            .iter()
-            .map(|s| s.name.clone())
-            .collect()
+    fn distance_sensor_names(&self) -> PyResult<Vec<String>> {
+        enter(|| {
+            Ok({
+                self.inner
+                    .distance_sensors
+                    .iter()
+                    .map(|s| s.name.clone())
+                    .collect()
+            })
+        })
     }
     #[getter]
-    fn distance_sensor_unit(&self) -> String {
-        self.inner.distance_sensor_unit().to_string()
+    fn distance_sensor_unit(&self) -> PyResult<String> {
+        enter(|| Ok(self.inner.distance_sensor_unit().to_string()))
     }
     /// Largest noise-free reading of any distance sensor (its table's largest output).
     #[getter]
-    fn distance_sensor_max(&self) -> f64 {
-        let tables = self.inner.distance_sensors.iter().map(|s| &s.model.table);
-        tables.map(|t| t.max_output()).fold(0.0, f64::max)
+    fn distance_sensor_max(&self) -> PyResult<f64> {
+        enter(|| {
+            Ok({
+                let tables = self.inner.distance_sensors.iter().map(|s| &s.model.table);
+                tables.map(|t| t.max_output()).fold(0.0, f64::max)
+            })
+        })
     }
     /// Range of the distance sensors in metres (the longest table's last input).
     #[getter]
-    fn distance_sensor_range(&self) -> f64 {
-        let tables = self.inner.distance_sensors.iter().map(|s| &s.model.table);
-        tables.map(|t| t.max_input()).fold(0.0, f64::max)
+    fn distance_sensor_range(&self) -> PyResult<f64> {
+        enter(|| {
+            Ok({
+                let tables = self.inner.distance_sensors.iter().map(|s| &s.model.table);
+                tables.map(|t| t.max_input()).fold(0.0, f64::max)
+            })
+        })
     }
     /// Largest noise-free reading of any ground sensor (its table's largest output).
     #[getter]
-    fn ground_sensor_max(&self) -> f64 {
-        let tables = self.inner.ground_sensors.iter().map(|s| &s.model.table);
-        tables.map(|t| t.max_output()).fold(0.0, f64::max)
+    fn ground_sensor_max(&self) -> PyResult<f64> {
+        enter(|| {
+            Ok({
+                let tables = self.inner.ground_sensors.iter().map(|s| &s.model.table);
+                tables.map(|t| t.max_output()).fold(0.0, f64::max)
+            })
+        })
     }
     #[getter]
-    fn ground_sensor_names(&self) -> Vec<String> {
-        self.inner
-            .ground_sensors
-            .iter()
-            .map(|s| s.name.clone())
-            .collect()
+    fn ground_sensor_names(&self) -> PyResult<Vec<String>> {
+        enter(|| {
+            Ok({
+                self.inner
+                    .ground_sensors
+                    .iter()
+                    .map(|s| s.name.clone())
+                    .collect()
+            })
+        })
     }
 
     /// (N, 3) array: x, y, heading of each distance sensor in the robot frame.
-    fn distance_sensor_poses<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        let rows = self
-            .inner
-            .distance_sensors
-            .iter()
-            .map(|s| [s.position[0], s.position[1], s.heading])
-            .collect();
-        rows_to_array(py, rows)
+    fn distance_sensor_poses<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        enter(|| {
+            let rows = self
+                .inner
+                .distance_sensors
+                .iter()
+                .map(|s| [s.position[0], s.position[1], s.heading])
+                .collect();
+            rows_to_array(py, rows)
+        })
     }
 
     /// (N, 2) array: nearest and farthest distance in metres of each distance sensor's table.
-    fn distance_sensor_limits<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        let rows = self
-            .inner
-            .distance_sensors
-            .iter()
-            .map(|s| [s.model.table.min_input(), s.model.table.max_input()])
-            .collect();
-        rows_to_array(py, rows)
+    fn distance_sensor_limits<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        enter(|| {
+            let rows = self
+                .inner
+                .distance_sensors
+                .iter()
+                .map(|s| [s.model.table.min_input(), s.model.table.max_input()])
+                .collect();
+            rows_to_array(py, rows)
+        })
     }
 
     /// Distance in metres at which distance sensor `index` reads `reading` off a white wall
     /// (its table inverted, clamped to the table's distances).
-    fn distance_from_reading(&self, index: usize, reading: f64) -> PyResult<f64> {
-        let sensors = &self.inner.distance_sensors;
-        let sensor = sensors
-            .get(index)
-            .ok_or_else(|| sensor_index_error("distance", sensors.len(), index))?;
-        if !reading.is_finite() {
-            return Err(crate::errors::to_py(mazesim_core::Error::InvalidArgument(
-                format!(
-                    "expected a finite reading of distance sensor {}, found {reading}",
-                    sensor.name
-                ),
-            )));
-        }
-        Ok(sensor.model.table.invert(reading))
+    fn distance_from_reading(&self, index: IntArg, reading: Real) -> PyResult<f64> {
+        enter(|| {
+            let index = index.count("index", usize::MAX)?;
+            let reading = reading.value("reading")?;
+            let sensors = &self.inner.distance_sensors;
+            let sensor = sensors
+                .get(index)
+                .ok_or_else(|| sensor_index_error("distance", sensors.len(), index))?;
+            if !reading.is_finite() {
+                return Err(crate::errors::to_py(mazesim_core::Error::InvalidArgument(
+                    format!(
+                        "expected a finite reading of distance sensor {}, found {reading}",
+                        sensor.name
+                    ),
+                )));
+            }
+            Ok(sensor.model.table.invert(reading))
+        })
     }
 
     /// Noise-free reading of ground sensor `index` over a floor of reflectance factor `f`.
-    fn ground_reading(&self, index: usize, reflectance: f64) -> PyResult<f64> {
-        let sensors = &self.inner.ground_sensors;
-        let sensor = sensors
-            .get(index)
-            .ok_or_else(|| sensor_index_error("ground", sensors.len(), index))?;
-        if !(reflectance > 0.0 && reflectance <= 1.0) {
-            return Err(crate::errors::to_py(mazesim_core::Error::InvalidArgument(
-                format!("expected a reflectance factor in (0, 1], found {reflectance}"),
-            )));
-        }
-        Ok(sensor.model.table.eval(sensor.model.height / reflectance).0)
+    fn ground_reading(&self, index: IntArg, reflectance: Real) -> PyResult<f64> {
+        enter(|| {
+            let index = index.count("index", usize::MAX)?;
+            let reflectance = reflectance.value("reflectance")?;
+            let sensors = &self.inner.ground_sensors;
+            let sensor = sensors
+                .get(index)
+                .ok_or_else(|| sensor_index_error("ground", sensors.len(), index))?;
+            if !(reflectance > 0.0 && reflectance <= 1.0) {
+                return Err(crate::errors::to_py(mazesim_core::Error::InvalidArgument(
+                    format!("expected a reflectance factor in (0, 1], found {reflectance}"),
+                )));
+            }
+            Ok(sensor.model.table.eval(sensor.model.height / reflectance).0)
+        })
     }
 
     /// (N, 2) array: x, y of each ground sensor in the robot frame.
-    fn ground_sensor_positions<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        let rows = self
-            .inner
-            .ground_sensors
-            .iter()
-            .map(|s| s.position)
-            .collect();
-        rows_to_array(py, rows)
+    fn ground_sensor_positions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        enter(|| {
+            let rows = self
+                .inner
+                .ground_sensors
+                .iter()
+                .map(|s| s.position)
+                .collect();
+            rows_to_array(py, rows)
+        })
     }
 
-    fn __repr__(&self) -> String {
-        format!("RobotProfile(name={:?})", self.inner.name)
+    fn __repr__(&self) -> PyResult<String> {
+        enter(|| Ok(format!("RobotProfile(name={:?})", self.inner.name)))
     }
 }

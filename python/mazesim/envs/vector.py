@@ -133,10 +133,9 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         self._actions = ActionConverter(action_mode, self.options.robot.max_wheel_speed)
         self.single_observation_space = self._layout.space
         self.single_action_space = self._actions.space
-        self.observation_space = batch_space(self.single_observation_space, self.num_envs)
-        self.action_space = batch_space(self.single_action_space, self.num_envs)
-
         n = self.num_envs
+        # The batch first: it checks num_envs against the memory it needs before the spaces
+        # below allocate per-environment bounds.
         self._batch: BatchSimulator | None = BatchSimulator(
             first,
             n,
@@ -146,6 +145,8 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
             control_step_ms=self.options.control_step_ms,
             threads=threads,
         )
+        self.observation_space = batch_space(self.single_observation_space, self.num_envs)
+        self.action_space = batch_space(self.single_action_space, self.num_envs)
         self._sensors = np.zeros((n, self._layout.sensor_width), dtype=np.float32)
         self._poses = np.zeros((n, 3), dtype=np.float32)
         self._colliding = np.zeros(n, dtype=bool)

@@ -134,10 +134,8 @@ impl WbtImport {
 
     /// Reads and imports a `.wbt` file.
     pub fn load(path: &Path) -> Result<WbtImport> {
-        let bytes = std::fs::read(path).map_err(|e| Error::Io {
-            path: path.display().to_string(),
-            message: format!("cannot read the Webots world: {e}"),
-        })?;
+        let bytes =
+            std::fs::read(path).map_err(|e| Error::io(path, "cannot read the Webots world", &e))?;
         Self::from_bytes(&bytes, &path.display().to_string())
     }
 }

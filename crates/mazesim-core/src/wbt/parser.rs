@@ -9,6 +9,10 @@ use super::lexer::{syntax_error, tokenize, Token, TokenKind};
 use super::tree::{Document, Field, Node, NodeId, Value};
 use crate::error::{Error, Result};
 
+/// Most nodes a world may stand for once every `USE` is expanded: far above any real world (the
+/// largest test world has a few thousand), far below what exhausts memory.
+pub const MAX_EXPANDED_NODES: u64 = 1 << 20;
+
 /// Deepest nesting of nodes and brackets the reader accepts (real worlds stay under 30).
 pub const MAX_DEPTH: usize = 100;
 
@@ -23,6 +27,8 @@ impl Document {
             tokens,
             pos: 0,
             nodes: Vec::new(),
+            expanded: Vec::new(),
+            expanded_roots: 0,
             defs: HashMap::new(),
             warnings,
             path: Vec::new(),
@@ -46,6 +52,7 @@ impl Document {
                 }
                 _ => {
                     if let Some(id) = parser.node_statement("the top level")? {
+                        parser.add_root(id)?;
                         roots.push(id);
                     }
                 }
@@ -88,6 +95,10 @@ struct Parser<'a> {
     tokens: Vec<Token>,
     pos: usize,
     nodes: Vec<Node>,
+    /// Per node: how many nodes it stands for once every `USE` under it is expanded.
+    expanded: Vec<u64>,
+    /// The same, summed over the top-level nodes read so far.
+    expanded_roots: u64,
     defs: HashMap<String, NodeId>,
     warnings: Vec<String>,
     /// Node types and field names from the top down to where the parser is, for error messages.
@@ -307,6 +318,10 @@ impl Parser<'_> {
         }
         self.path.pop();
         self.depth -= 1;
+        let children = fields.iter().flat_map(|f| &f.value.nodes);
+        let expanded = children.fold(1u64, |n, &c| n.saturating_add(self.expanded[c]));
+        self.check_expansion((token.line, token.column), &type_name, expanded)?;
+        self.expanded.push(expanded);
         self.nodes.push(Node {
             type_name,
             def_name: None,
@@ -315,6 +330,41 @@ impl Parser<'_> {
             column: token.column,
         });
         Ok(self.nodes.len() - 1)
+    }
+
+    /// Refuses a node that stands for more than `MAX_EXPANDED_NODES` nodes once its `USE`s are
+    /// expanded (a few lines of nested `DEF` / `USE` double at every level), before anything walks
+    /// the expansion.
+    fn check_expansion(&self, at: (usize, usize), type_name: &str, expanded: u64) -> Result<()> {
+        if expanded <= MAX_EXPANDED_NODES {
+            return Ok(());
+        }
+        let field = if self.path.is_empty() {
+            "(top level)".to_string()
+        } else {
+            self.path.join(".")
+        };
+        Err(syntax_error(
+            self.source,
+            at.0,
+            at.1,
+            &field,
+            format!(
+                "expected a world of at most {MAX_EXPANDED_NODES} nodes once every USE is \
+                 expanded, found `{type_name}` standing for {expanded}"
+            ),
+        ))
+    }
+
+    /// Counts a top-level node's expansion towards the document's (see `check_expansion`).
+    fn add_root(&mut self, id: NodeId) -> Result<()> {
+        self.expanded_roots = self.expanded_roots.saturating_add(self.expanded[id]);
+        let node = &self.nodes[id];
+        self.check_expansion(
+            (node.line, node.column),
+            &node.type_name,
+            self.expanded_roots,
+        )
     }
 
     fn is_node_start(&self) -> bool {

@@ -9,6 +9,7 @@
 //! of the floor from every edge they rely on, so that each point of the area reads exactly as the
 //! point-wise look-up reads it.
 
+use super::binning;
 use super::geometry::{Bounds, DiscSide, PaintShape};
 
 /// One painted region.
@@ -104,9 +105,16 @@ impl FloorPaint {
         // The grid covers every point within the margin of some paint.
         let covered = bounds.grown(SPOT_MARGIN);
         let origin = covered.min;
-        let bin = bin_side(covered);
-        let cols = ((covered.max[0] - origin[0]) / bin) as usize + 1;
-        let rows = ((covered.max[1] - origin[1]) / bin) as usize + 1;
+        let grid = |bin: f64| {
+            let cols = ((covered.max[0] - origin[0]) / bin) as usize + 1;
+            let rows = ((covered.max[1] - origin[1]) / bin) as usize + 1;
+            (cols, rows)
+        };
+        let bin = binning::fitting_side(bin_side(covered), regions.len(), |bin| {
+            let listed = regions.iter().map(|r| r.shape.bounds().grown(SPOT_MARGIN));
+            binning::entries(listed, origin, bin, grid(bin))
+        });
+        let (cols, rows) = grid(bin);
         // The bins a region is listed in: those its bounds, grown by the margin, overlap.
         let bins_of = |r: &PaintRegion| {
             let b = r.shape.bounds().grown(SPOT_MARGIN);

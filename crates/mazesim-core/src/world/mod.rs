@@ -1,7 +1,9 @@
 //! Worlds: the file format (TOML, versioned), the compiled geometry the simulator uses, and the
 //! built-in worlds.
 
+mod binning;
 mod builtin;
+mod extent;
 pub mod floor;
 pub mod geometry;
 pub mod grid;
@@ -22,6 +24,7 @@ pub use spec::WorldSpec;
 pub use walls::{RayHit, WallIndex};
 
 use crate::error::{Error, Result};
+use extent::{ExtentCheck, Place};
 use spec::{BarcodeSpec, PaintSpec};
 use values::xy;
 
@@ -70,6 +73,9 @@ pub struct World {
     spec: WorldSpec,
     source: String,
     walls: Vec<WallBox>,
+    /// `walls` without exact duplicates (a wall written twice is one solid), in file order: what
+    /// the physics and the sensors see.
+    solid_walls: Vec<WallBox>,
     wall_index: WallIndex,
     floor: FloorPaint,
     checkpoints: Vec<Checkpoint>,
@@ -88,19 +94,7 @@ impl PartialEq for World {
 
 /// Byte offset of the `n`-th `[[name]]` header in `text` (0 when not found).
 fn table_offset(text: &str, name: &str, n: usize) -> usize {
-    let header = format!("[[{name}]]");
-    let mut seen = 0;
-    let mut offset = 0;
-    for line in text.split_inclusive('\n') {
-        if line.trim_start().starts_with(&header) {
-            if seen == n {
-                return offset + (line.len() - line.trim_start().len());
-            }
-            seen += 1;
-        }
-        offset += line.len();
-    }
-    0
+    extent::line_offset(text, &format!("[[{name}]]"), n)
 }
 
 impl World {
@@ -113,10 +107,8 @@ impl World {
 
     /// Reads a world file.
     pub fn load(path: &Path) -> Result<World> {
-        let text = std::fs::read_to_string(path).map_err(|e| Error::Io {
-            path: path.display().to_string(),
-            message: format!("cannot read the world file: {e}"),
-        })?;
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| Error::io(path, "cannot read the world file", &e))?;
         Self::from_toml(&text, &path.display().to_string())
     }
 
@@ -135,6 +127,21 @@ impl World {
     }
 
     fn compile(spec: WorldSpec, source: &str, text: &str) -> Result<World> {
+        let check = ExtentCheck { source, text };
+        check.time_step(spec.basic_time_step_ms.get())?;
+        let polyline_segments: usize = spec
+            .paint
+            .iter()
+            .map(|p| match p {
+                PaintSpec::Polyline { points, .. } => points.len(),
+                _ => 1,
+            })
+            .sum();
+        check.counts(
+            spec.walls.len() + spec.segments.len(),
+            polyline_segments + spec.checkpoints.len() * values::BARCODE_BITS,
+            spec.checkpoints.len(),
+        )?;
         let mut walls: Vec<WallBox> = Vec::new();
         let mut maze = None;
         let mut start = None;
@@ -159,6 +166,18 @@ impl World {
             })?;
             let origin = xy(&g.origin);
             let cs = g.cell_size.get();
+            check.within(
+                Place::Table("grid"),
+                "grid",
+                Bounds {
+                    min: origin,
+                    max: [
+                        origin[0] + cs * parsed.cols as f64,
+                        origin[1] + cs * parsed.rows as f64,
+                    ],
+                }
+                .grown(g.wall_thickness.get()),
+            )?;
             walls.extend(parsed.wall_boxes(origin, cs, g.wall_thickness.get()));
             if let Some((c, r)) = parsed.start {
                 let p = parsed.cell_center(origin, cs, c, r);
@@ -176,24 +195,43 @@ impl World {
                 cell_size: cs,
             });
         }
-        for w in &spec.walls {
-            walls.push(WallBox {
+        for (i, w) in spec.walls.iter().enumerate() {
+            let field = format!("walls[{i}]");
+            check.angle(Place::Array("walls", i), &field, w.yaw.get())?;
+            let wall = WallBox {
                 center: xy(&w.center),
                 half: [w.size[0].get() / 2.0, w.size[1].get() / 2.0],
                 yaw: w.yaw.get(),
                 reflectance: w.reflectance.get(),
-            });
+            };
+            check.within(Place::Array("walls", i), &field, wall.bounds())?;
+            walls.push(wall);
         }
-        for s in &spec.segments {
-            walls.push(WallBox::from_segment(
+        for (i, s) in spec.segments.iter().enumerate() {
+            let wall = WallBox::from_segment(
                 xy(&s.from),
                 xy(&s.to),
                 s.thickness.get(),
                 s.reflectance.get(),
-            ));
+            );
+            check.within(
+                Place::Array("segments", i),
+                &format!("segments[{i}]"),
+                wall.bounds(),
+            )?;
+            walls.push(wall);
         }
+        check.counts(walls.len(), 0, 0)?;
         let mut regions = Vec::new();
         for (i, p) in spec.paint.iter().enumerate() {
+            let first = regions.len();
+            if let PaintSpec::Rect { yaw, .. } = p {
+                check.angle(
+                    Place::Array("paint", i),
+                    &format!("paint[{i}].yaw"),
+                    yaw.get(),
+                )?;
+            }
             match p {
                 PaintSpec::Rect {
                     center,
@@ -255,8 +293,20 @@ impl World {
                     }
                 }
             }
+            let painted = regions[first..]
+                .iter()
+                .fold(Bounds::EMPTY, |b, r| b.union(r.shape.bounds()));
+            check.within(Place::Array("paint", i), &format!("paint[{i}]"), painted)?;
         }
         let barcode = spec.barcode.clone().unwrap_or_default();
+        check.within(
+            Place::Table("barcode"),
+            "barcode.bar_length",
+            Bounds {
+                min: [0.0, 0.0],
+                max: [barcode.bar_length.get() * values::BARCODE_BITS as f64, 0.0],
+            },
+        )?;
         let mut checkpoints: Vec<Checkpoint> = Vec::new();
         for (i, c) in spec.checkpoints.iter().enumerate() {
             let at = || table_offset(text, "checkpoints", i);
@@ -281,18 +331,39 @@ impl World {
                     ),
                 ));
             }
+            let field = format!("checkpoints[{i}]");
+            check.angle(Place::Array("checkpoints", i), &field, c.yaw.get())?;
+            check.point(Place::Array("checkpoints", i), &field, xy(&c.center))?;
+            let reach = c
+                .width
+                .get()
+                .max(barcode.bar_length.get() * values::BARCODE_BITS as f64);
+            check.within(
+                Place::Array("checkpoints", i),
+                &field,
+                Bounds {
+                    min: xy(&c.center),
+                    max: xy(&c.center),
+                }
+                .grown(reach),
+            )?;
             let cp = checkpoint_from(c, &barcode);
             regions.extend(barcode_bars(&cp, &barcode));
             checkpoints.push(cp);
         }
         if let Some(s) = &spec.start {
+            check.point(Place::Table("start"), "start", [s.x.get(), s.y.get()])?;
+            check.angle(Place::Table("start"), "start.yaw", s.yaw.get())?;
             start = Some([s.x.get(), s.y.get(), s.yaw.get()]);
         }
         if let Some(g) = &spec.goal {
-            goal = Some(Goal {
-                center: xy(&g.center),
-                radius: g.radius.get(),
-            });
+            let (center, radius) = (xy(&g.center), g.radius.get());
+            let disc = Bounds {
+                min: center,
+                max: center,
+            };
+            check.within(Place::Table("goal"), "goal", disc.grown(radius))?;
+            goal = Some(Goal { center, radius });
         }
         let start = start.unwrap_or([0.0, 0.0, 0.0]);
         let mut bounds = walls.iter().fold(Bounds::EMPTY, |b, w| b.union(w.bounds()));
@@ -310,8 +381,12 @@ impl World {
             });
         }
         let background = spec.floor.as_ref().map_or(1.0, |f| f.reflectance.get());
+        let solid_walls = distinct(&walls);
+        let wall_index = WallIndex::new(&solid_walls);
+        check.crowding(wall_index.crowded_pairs(), solid_walls.len())?;
         Ok(World {
-            wall_index: WallIndex::new(&walls),
+            solid_walls,
+            wall_index,
             floor: FloorPaint::new(background, regions),
             spec,
             source: source.to_string(),
@@ -360,7 +435,12 @@ impl World {
         &self.walls
     }
 
-    /// The walls indexed for ray casts.
+    /// The walls as solids: `walls` with exact duplicates merged, in file order.
+    pub fn solid_walls(&self) -> &[WallBox] {
+        &self.solid_walls
+    }
+
+    /// The solid walls indexed for ray casts.
     pub fn wall_index(&self) -> &WallIndex {
         &self.wall_index
     }
@@ -394,6 +474,27 @@ impl World {
     pub fn maze(&self) -> Option<&PlacedMaze> {
         self.maze.as_ref()
     }
+}
+
+/// `walls` without exact duplicates, first occurrences in order.
+fn distinct(walls: &[WallBox]) -> Vec<WallBox> {
+    let key = |w: &WallBox| {
+        [
+            w.center[0],
+            w.center[1],
+            w.half[0],
+            w.half[1],
+            w.yaw,
+            w.reflectance,
+        ]
+        .map(f64::to_bits)
+    };
+    let mut seen = std::collections::HashSet::with_capacity(walls.len());
+    walls
+        .iter()
+        .filter(|w| seen.insert(key(w)))
+        .copied()
+        .collect()
 }
 
 fn checkpoint_from(c: &spec::CheckpointSpec, barcode: &BarcodeSpec) -> Checkpoint {

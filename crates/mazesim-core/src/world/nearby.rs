@@ -1,6 +1,7 @@
 //! The walls near a robot, gathered once per step from the bin grid and then queried by all its
 //! sensor rays and by the clearance check, instead of walking the bins once per query.
 
+use super::binning;
 use super::geometry::Bounds;
 use super::walls::{next_up, Nearest, RayHit, SlabBox, SlabLanes, SlabRay, WallIndex, LANES};
 
@@ -33,16 +34,31 @@ impl Neighbourhoods {
     pub(super) fn new(boxes: &[[f32; 4]], bounds: Bounds) -> Self {
         let w = bounds.max[0] - bounds.min[0];
         let h = bounds.max[1] - bounds.min[1];
-        let side = NEIGHBOURHOOD.max((w * h / MAX_CELLS).sqrt());
-        let cols = (w / side) as usize + 1;
-        let rows = (h / side) as usize + 1;
         let origin = bounds.min;
+        let grid = |side: f64| ((w / side) as usize + 1, (h / side) as usize + 1);
+        // A wall is listed one cell beyond those it spans on every side, and 1 mm more.
+        let margin = 1e-3;
+        let side = binning::fitting_side(
+            NEIGHBOURHOOD.max((w * h / MAX_CELLS).sqrt()),
+            boxes.len(),
+            |side| {
+                let listed = boxes.iter().map(|b| {
+                    let [x0, y0, x1, y1] = b.map(|v| v as f64);
+                    let b = Bounds {
+                        min: [x0, y0],
+                        max: [x1, y1],
+                    };
+                    b.grown(side + margin)
+                });
+                binning::entries(listed, origin, side, grid(side))
+            },
+        );
+        let (cols, rows) = grid(side);
         let mut cells: Vec<Vec<u32>> = vec![Vec::new(); cols * rows];
         // A point's square meets the box only if the point's cell lies at most one cell beyond
         // the cells the box spans; 1 mm more covers rounding (a wall too many costs a box test,
         // one missing would be wrong).
         let cell = |v: f64, o: f64| ((v - o) / side).floor() as i64;
-        let margin = 1e-3;
         for (i, b) in boxes.iter().enumerate() {
             let [x0, y0, x1, y1] = b.map(|v| v as f64);
             let c0 = (cell(x0 - margin, origin[0]) - 1).max(0) as usize;

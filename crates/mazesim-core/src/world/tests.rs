@@ -187,12 +187,113 @@ proptest! {
 
 #[test]
 fn a_wall_a_kilometre_away_does_not_blow_up_the_index() {
-    let w = parse("[[walls]]\ncenter = [0, 0]\nsize = [0.1, 0.1]\n[[walls]]\ncenter = [1000, -1000]\nsize = [0.1, 0.1]\n[[paint]]\nshape = \"circle\"\ncenter = [-2000, 0]\nradius = 0.1\nreflectance = 0.2\n").unwrap();
+    let w = parse("[[walls]]\ncenter = [0, 0]\nsize = [0.1, 0.1]\n[[walls]]\ncenter = [990, -990]\nsize = [0.1, 0.1]\n[[paint]]\nshape = \"circle\"\ncenter = [-990, 0]\nradius = 0.1\nreflectance = 0.2\n").unwrap();
     let hit = w
         .wall_index()
         .cast_ray([-1.0, 0.0], [1.0, 0.0], 2.0)
         .unwrap();
     assert!((hit.distance - 0.95).abs() < 1e-4);
-    assert_eq!(w.floor().reflectance_at([-2000.0, 0.0]), 0.2);
+    assert_eq!(w.floor().reflectance_at([-990.0, 0.0]), 0.2);
     assert_eq!(w.floor().reflectance_at([0.0, 0.0]), 1.0);
+}
+
+#[test]
+fn issue_15_a_wall_far_from_the_origin_is_refused_with_its_field_and_range() {
+    let Err(Error::Format { field, message, .. }) =
+        parse("[[walls]]\ncenter = [1e20, 0]\nsize = [0.1, 0.1]\n")
+    else {
+        panic!("refused")
+    };
+    assert_eq!(field, "walls[0]");
+    assert!(
+        message.contains("[-1000, 1000]") && message.contains("1e20"),
+        "{message}"
+    );
+}
+
+#[test]
+fn issue_15_coincident_walls_are_one_solid() {
+    let wall = "[[walls]]\ncenter = [0.2, 0]\nsize = [0.1, 0.1]\n";
+    let w = parse(&wall.repeat(30_000)).unwrap();
+    assert_eq!(w.walls().len(), 30_000);
+    assert_eq!(w.solid_walls().len(), 1);
+}
+
+#[test]
+fn issue_15_crowded_overlapping_walls_are_refused() {
+    let text: String = (0..3_000)
+        .map(|i| {
+            format!(
+                "[[walls]]\ncenter = [{}, 0]\nsize = [0.1, 0.1]\n",
+                i as f64 * 1e-6
+            )
+        })
+        .collect();
+    let Err(Error::Format { field, message, .. }) = parse(&text) else {
+        panic!("refused")
+    };
+    assert_eq!(field, "walls");
+    assert!(message.contains("pairs"), "{message}");
+}
+
+/// Numbers that break careless code: beyond every limit, tiny, not finite (as TOML writes them).
+fn hostile_number() -> impl Strategy<Value = String> {
+    prop_oneof![
+        (-1500.0f64..1500.0).prop_map(|v| format!("{v:?}")),
+        prop::sample::select(vec![
+            "1e20",
+            "1e39",
+            "-1e300",
+            "3.5e38",
+            "1e-300",
+            "1e5",
+            "999.999",
+            "nan",
+            "inf",
+            "-inf",
+            "0.0",
+            "4294967296.0",
+        ])
+        .prop_map(String::from),
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(128))]
+    /// Issue #15: a world file of hostile numbers compiles into a world within the limits or is a
+    /// format error; it never panics, and a simulator made from it keeps a finite pose.
+    #[test]
+    fn issue_15_hostile_numbers_give_a_bounded_world_or_a_format_error(
+        walls in prop::collection::vec(prop::collection::vec(hostile_number(), 5), 0..4),
+        start in prop::collection::vec(hostile_number(), 3),
+        step in hostile_number(),
+    ) {
+        let mut text = format!(
+            "{HEADER}basic_time_step_ms = {step}\n[start]\nx = {}\ny = {}\nyaw = {}\n",
+            start[0], start[1], start[2]
+        );
+        for w in &walls {
+            text += &format!(
+                "[[walls]]\ncenter = [{}, {}]\nsize = [{}, {}]\nyaw = {}\n",
+                w[0], w[1], w[2], w[3], w[4]
+            );
+        }
+        match World::from_toml(&text, "hostile.toml") {
+            Err(e) => prop_assert!(matches!(e, Error::Format { .. }), "{e}"),
+            Ok(world) => {
+                let b = world.bounds();
+                let limit = crate::limits::MAX_COORDINATE;
+                prop_assert!(b.min.iter().chain(&b.max).all(|v| v.abs() <= limit));
+                let robot = std::sync::Arc::new(crate::RobotProfile::builtin("e-puck").unwrap());
+                if let Ok(mut sim) = crate::Simulator::new(
+                    std::sync::Arc::new(world),
+                    robot,
+                    crate::SimConfig::default(),
+                ) {
+                    sim.step(6.0, 5.0).unwrap();
+                    prop_assert!(sim.pose().iter().all(|v| v.is_finite()));
+                }
+            }
+        }
+    }
 }

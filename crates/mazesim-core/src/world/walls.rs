@@ -6,6 +6,7 @@ use parry2d::math::{Pose, Vector};
 use parry2d::query::{Ray, RayCast};
 use parry2d::shape::Cuboid;
 
+use super::binning;
 use super::geometry::{Bounds, WallBox};
 use super::nearby::Neighbourhoods;
 
@@ -144,9 +145,16 @@ impl WallIndex {
             };
         }
         let origin = bounds.min;
-        let bin = bin_side(bounds);
-        let cols = ((bounds.max[0] - origin[0]) / bin) as usize + 1;
-        let rows = ((bounds.max[1] - origin[1]) / bin) as usize + 1;
+        let grid = |bin: f64| {
+            let cols = ((bounds.max[0] - origin[0]) / bin) as usize + 1;
+            let rows = ((bounds.max[1] - origin[1]) / bin) as usize + 1;
+            (cols, rows)
+        };
+        let bin = binning::fitting_side(bin_side(bounds), walls.len(), |bin| {
+            let listed = walls.iter().map(|w| w.bounds().grown(1e-4));
+            binning::entries(listed, origin, bin, grid(bin))
+        });
+        let (cols, rows) = grid(bin);
         let mut bins: Vec<Vec<u32>> = vec![Vec::new(); cols * rows];
         for (i, w) in walls.iter().enumerate() {
             // Grow a little so that f32 rounding never drops a wall from a bin it touches.
@@ -180,6 +188,16 @@ impl WallIndex {
             bin_walls,
             around,
         }
+    }
+
+    /// Pairs of walls listed in a common bin (a pair in two bins counts twice): an upper bound
+    /// of the pairs of walls whose bounding boxes overlap.
+    pub fn crowded_pairs(&self) -> u64 {
+        let pairs = self.bin_start.windows(2).map(|w| {
+            let k = u64::from(w[1] - w[0]);
+            k * k.saturating_sub(1) / 2
+        });
+        pairs.fold(0, u64::saturating_add)
     }
 
     /// The walls whose bounding boxes may meet the square of half side `reach` around `p`, each

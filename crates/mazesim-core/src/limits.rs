@@ -1,0 +1,91 @@
+//! The bounds of every input: coordinates, sizes, counts, angles, time steps, threads and batch
+//! sizes. A world, simulator or batch outside them is refused when it is made, with an error that
+//! names the field, the value and the allowed range, so that nothing later can overflow, allocate
+//! without bound or lose the robot's motion to rounding. `docs/reliability.md` lists them.
+
+use crate::error::{Error, Result};
+
+/// Largest distance of any point of a world (wall, paint, checkpoint, start, goal) from the
+/// origin along x or y, metres. Poses are `f32`: at 1 km one unit in the last place is 61 um, so a
+/// physics step of 4 mm (the e-puck's top speed over 32 ms) is still resolved to 1.5 %.
+pub const MAX_COORDINATE: f64 = 1_000.0;
+
+/// Largest angle (a yaw) in radians, either sign; beyond it an `f32` angle is too coarse to turn by.
+pub const MAX_ANGLE: f64 = 1_000.0;
+
+/// Most walls of a world (boxes, segments and cell-maze walls together).
+pub const MAX_WALLS: usize = 100_000;
+
+/// Most floor paint regions of a world (each polyline segment and barcode bar counts as one).
+pub const MAX_PAINT_REGIONS: usize = 100_000;
+
+/// Most checkpoints of a world.
+pub const MAX_CHECKPOINTS: usize = 10_000;
+
+/// Least and largest basic time step (physics step), milliseconds.
+pub const BASIC_TIME_STEP_MS: (f64, f64) = (0.1, 1_000.0);
+
+/// Most physics steps in one control step: a control step never runs for long.
+pub const MAX_PHYSICS_STEPS_PER_CONTROL_STEP: f64 = 10_000.0;
+
+/// Most threads of a batch (0 means one per core).
+pub const MAX_THREADS: usize = 256;
+
+/// Most environments of a batch (memory is checked as well, see `batch::check_memory`).
+pub const MAX_ENVS: usize = 1 << 24;
+
+/// `Ok` when `value` is finite and within `[-bound, bound]`; otherwise an error naming `what`.
+pub fn check_bounded(what: &str, value: f64, bound: f64) -> Result<()> {
+    if value.is_finite() && value.abs() <= bound {
+        Ok(())
+    } else {
+        Err(Error::InvalidArgument(out_of_bounds(what, value, bound)))
+    }
+}
+
+/// The message of a value outside `[-bound, bound]`.
+pub fn out_of_bounds(what: &str, value: f64, bound: f64) -> String {
+    format!("expected {what} to be a finite number in [-{bound}, {bound}], found {value:?}")
+}
+
+/// Checks a pose (x, y in metres, yaw in radians) against `MAX_COORDINATE` and `MAX_ANGLE`;
+/// `what` names it ("start pose", "pose").
+pub fn check_pose(what: &str, x: f64, y: f64, yaw: f64) -> Result<()> {
+    check_bounded(&format!("the {what}'s x (metres)"), x, MAX_COORDINATE)?;
+    check_bounded(&format!("the {what}'s y (metres)"), y, MAX_COORDINATE)?;
+    check_bounded(&format!("the {what}'s yaw (radians)"), yaw, MAX_ANGLE)
+}
+
+/// Checks a count against its largest value; `what` names it ("walls").
+pub fn check_count(what: &str, count: usize, most: usize) -> Result<()> {
+    if count <= most {
+        Ok(())
+    } else {
+        Err(Error::InvalidArgument(format!(
+            "expected at most {most} {what}, found {count}"
+        )))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn poses_beyond_the_bounds_are_refused_with_the_field_and_range() {
+        assert!(check_pose("start pose", 999.0, -999.0, 6.0).is_ok());
+        let Err(Error::InvalidArgument(m)) = check_pose("start pose", 1e39, 0.0, 0.0) else {
+            panic!("refused")
+        };
+        assert!(m.contains("start pose's x"), "{m}");
+        assert!(m.contains("[-1000, 1000]") && m.contains("1e39"), "{m}");
+        assert!(check_pose("pose", 0.0, 0.0, 3.5e38).is_err());
+        assert!(check_pose("pose", 0.0, f64::NAN, 0.0).is_err());
+    }
+
+    #[test]
+    fn counts_above_the_most_are_refused() {
+        assert!(check_count("walls", MAX_WALLS, MAX_WALLS).is_ok());
+        assert!(check_count("walls", MAX_WALLS + 1, MAX_WALLS).is_err());
+    }
+}

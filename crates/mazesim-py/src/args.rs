@@ -1,0 +1,119 @@
+//! Integer arguments (counts, seeds, indices) taken as any Python object, so that one too large or
+//! negative for its Rust type, or not an int at all, is an `InvalidArgumentError` naming the
+//! argument and its range, not pyo3's `OverflowError` or `TypeError`.
+
+use pyo3::prelude::*;
+use pyo3::types::PyInt;
+
+use crate::errors::invalid;
+
+/// An integer argument as given, checked against its range by [`IntArg::within`].
+#[derive(Debug, Clone)]
+pub enum IntArg {
+    /// An int that fits in an `i128`.
+    Int(i128),
+    /// Anything else, described for the error: an int beyond `i128`, or another type.
+    Other(String),
+}
+
+impl IntArg {
+    /// The default of the seeds and thread counts.
+    pub const ZERO: IntArg = IntArg::Int(0);
+
+    /// The value as a `T` in `least..=most`; `name` names the argument in the error.
+    pub fn within<T>(&self, name: &str, least: T, most: T) -> PyResult<T>
+    where
+        T: TryFrom<i128> + Into<i128> + Copy + std::fmt::Display,
+    {
+        let refuse = |found: String| {
+            invalid(format!(
+                "expected {name} to be an int in {least}..={most}, found {found}"
+            ))
+        };
+        match self {
+            IntArg::Int(v) if (least.into()..=most.into()).contains(v) => {
+                T::try_from(*v).map_err(|_| refuse(v.to_string()))
+            }
+            IntArg::Int(v) => Err(refuse(v.to_string())),
+            IntArg::Other(found) => Err(refuse(found.clone())),
+        }
+    }
+
+    /// A seed: an int in `0..2**64`.
+    pub fn seed(&self, name: &str) -> PyResult<u64> {
+        self.within(name, 0, u64::MAX)
+    }
+
+    /// A count or index in `0..=most`.
+    pub fn count(&self, name: &str, most: usize) -> PyResult<usize> {
+        let most = u64::try_from(most).unwrap_or(u64::MAX);
+        self.within(name, 0u64, most).map(|v| v as usize)
+    }
+}
+
+impl<'a, 'py> FromPyObject<'a, 'py> for IntArg {
+    type Error = PyErr;
+
+    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        if let Ok(v) = obj.extract::<i128>() {
+            return Ok(IntArg::Int(v));
+        }
+        if obj.is_instance_of::<PyInt>() {
+            let digits = obj.str().map(|s| s.to_string()).unwrap_or_default();
+            return Ok(IntArg::Other(format!("an int of {} digits", digits.len())));
+        }
+        let kind = obj
+            .get_type()
+            .name()
+            .map(|n| n.to_string())
+            .unwrap_or_default();
+        Ok(IntArg::Other(format!("a {kind}")))
+    }
+}
+
+/// A real-number argument as given: a float, or an int of any size (one beyond `f64` becomes an
+/// infinity of its sign, which every check of a real refuses with its range), or something else,
+/// described for the error by [`Real::value`].
+#[derive(Debug, Clone)]
+pub enum Real {
+    /// A number.
+    Number(f64),
+    /// Not a number: its type's name.
+    Other(String),
+}
+
+impl Real {
+    /// The number; `name` names the argument in the error when it is not one.
+    pub fn value(&self, name: &str) -> PyResult<f64> {
+        match self {
+            Real::Number(v) => Ok(*v),
+            Real::Other(kind) => Err(invalid(format!(
+                "expected {name} to be a real number, found a {kind}"
+            ))),
+        }
+    }
+}
+
+impl<'a, 'py> FromPyObject<'a, 'py> for Real {
+    type Error = PyErr;
+
+    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        if let Ok(v) = obj.extract::<f64>() {
+            return Ok(Real::Number(v));
+        }
+        if obj.is_instance_of::<PyInt>() {
+            let negative = obj.lt(0).unwrap_or(false);
+            return Ok(Real::Number(if negative {
+                f64::NEG_INFINITY
+            } else {
+                f64::INFINITY
+            }));
+        }
+        let kind = obj
+            .get_type()
+            .name()
+            .map(|n| n.to_string())
+            .unwrap_or_default();
+        Ok(Real::Other(kind))
+    }
+}
