@@ -50,7 +50,7 @@ QUICK = {
     "ros demo": ["--seconds", "1"],
 }
 #: Options that name outputs (the others taking paths are inputs).
-OUTPUT_OPTIONS = {"--out", "--trace", "--plot"}
+OUTPUT_OPTIONS = {"--out", "--trace", "--plot", "--html", "--video", "--record"}
 #: Options that take a name or an address, not a path or a number.
 NAME_OPTIONS = {"--robot", "--name", "--address", "remappings"}
 
@@ -154,6 +154,15 @@ def files(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
     made["a-file"].write_text("not a folder\n")
     made["sweep"].write_text(SMALL_SWEEP)
     made["controller"].write_text(CONTROLLER)
+    made["run"] = folder / "run.json"
+    recorded = subprocess.run(
+        [sys.executable, "-m", "mazesim", "demo", "--seconds", "1", "--out", str(folder / "demo")]
+        + ["--record", str(made["run"])],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert recorded.returncode == 0, recorded.stderr
     return made
 
 
@@ -169,7 +178,13 @@ def _value(value: str, files: dict[str, Path], tmp_path: Path) -> str:
 
 def _positionals(command: str, files: dict[str, Path]) -> dict[str, str]:
     """Valid values of the commands' positional arguments."""
-    return {"file": str(WBT), "controller": str(files["controller"]), "config": str(files["sweep"])}
+    return {
+        "file": str(WBT),
+        "controller": str(files["controller"]),
+        "config": str(files["sweep"]),
+        "run_file": str(files["run"]),
+        "world": "arena",
+    }
 
 
 def _limit_memory() -> None:

@@ -119,7 +119,7 @@ def test_the_e_puck2_has_a_faster_motor_and_a_forward_tof() -> None:
     assert names[:8] == [f"ps{i}" for i in range(8)] and names[8] == "tof"
     assert e2.ground_sensor_names == ["gs0", "gs1", "gs2"]
     x, y, heading = e2.distance_sensor_poses()[names.index("tof")]
-    assert x > 0.03 and y == 0.0 and heading == 0.0
+    assert (x, y, heading) == pytest.approx((0.034, -0.0018, 0.0))  # E-puck.proto's pose
     sim = Simulator(open_floor(16.0), robot="e-puck2", noise=False)
     sim.step(50.0, 50.0)
     assert sim.wheel_speeds == pytest.approx((7.536, 7.536))
@@ -134,8 +134,10 @@ def test_the_tof_reads_millimetres_to_a_wall() -> None:
     sim = Simulator(world, robot="e-puck2", noise=False)
     sim.step(0.0, 0.0)
     tof = sim.distance_sensors()[8]
-    # The wall face is at x = 0.53, the sensor at x = 0.035: 0.495 m, read as 495 mm.
-    assert tof == pytest.approx(495.0, abs=0.5)
+    # The wall face is at x = 0.53, the sensor at x = 0.034: 0.496 m, between the PROTO table's
+    # rows 0.2 m -> 218.9 and 0.5 m -> 531.9.
+    expected = 218.9 + (0.496 - 0.2) / 0.3 * (531.9 - 218.9)
+    assert tof == pytest.approx(expected, abs=0.5)
 
 
 def test_every_e_puck_profile_is_built_in() -> None:

@@ -64,7 +64,7 @@ def write_world(folder: Path, robot: str, url: str = "textures/track.png") -> Pa
 
 
 EPUCK2 = (
-    'E-puck {\n  translation -0.2 -0.2 0\n  rotation 0 0 1 1.5708\n  controller "<extern>"\n'
+    'E-puck {\n  translation 0.15 0.15 0\n  rotation 0 0 1 1.5708\n  controller "<extern>"\n'
     '  version "2"\n  turretSlot [\n    GPS {\n      translation 0 0 0.01\n    }\n'
     '    Compass {\n      translation 0.01 0 0.01\n      name "north"\n    }\n  ]\n'
     "  groundSensorsSlot [\n    DistanceSensor {\n      translation 0.02 0 0\n"
@@ -154,7 +154,7 @@ def test_the_e_puck2_and_its_turret_devices_are_reported(maze: Path) -> None:
     _, report = import_wbt(maze)
     assert report["robot_model"] == "e-puck2"
     assert report["robot_profile"] == "e-puck2"
-    assert report["robot"] == pytest.approx({"x": -0.2, "y": -0.2, "yaw": 1.5708})
+    assert report["robot"] == pytest.approx({"x": 0.15, "y": 0.15, "yaw": 1.5708})
     devices = {d["name"]: d for d in report["extension_devices"]}
     assert set(devices) == {"gps", "north", "extra"}
     assert (devices["gps"]["type"], devices["gps"]["slot"]) == ("GPS", "turretSlot")

@@ -283,11 +283,12 @@ def test_every_e_puck_device_answers(tmp_path: Path) -> None:
     assert float(lines["gs1"]) == pytest.approx(PROFILE.ground_reading(1, 1.0), rel=0.01)
     assert float(lines["accelerometer"].split()[-1]) == pytest.approx(9.81, abs=0.01)
     spin = 2.0 * PROFILE.wheel_radius * 2.0 / PROFILE.axle_length
-    assert float(lines["gyro"].split()[-1]) == pytest.approx(spin, rel=0.02)
+    # The E-puck PROTO's gyro table maps +-13.315805 rad/s to +-100000.
+    assert float(lines["gyro"].split()[-1]) == pytest.approx(spin * 100000 / 13.315805, rel=0.02)
     assert lines["camera"] == "52 39 8112"
     assert lines["receiver"] == "queue 0"
     assert lines["led1"] == "1"
-    assert lines["model"] == PROFILE.name
+    assert lines["model"] == "GCtronic e-puck"  # the E-puck PROTO's model field
     assert lines["missing"] == "None"
     assert 'Device "lidar" was not found on robot "e-puck"' in result.stderr
 

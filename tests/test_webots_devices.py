@@ -170,9 +170,9 @@ def test_light_sensors_accelerometer_and_gyro() -> None:
     assert accelerometer.getValues()[0] == pytest.approx(0.0, abs=1e-3), "steady speed"
     drive(robot, -3.0, 3.0)
     robot.step(32)
-    assert gyro.getValues() == pytest.approx(
-        [0.0, 0.0, 2.0 * PROFILE.wheel_radius * 3.0 / PROFILE.axle_length], rel=0.01
-    )
+    spin = 2.0 * PROFILE.wheel_radius * 3.0 / PROFILE.axle_length
+    # The E-puck PROTO's gyro table maps +-13.315805 rad/s to +-100000.
+    assert gyro.getValues() == pytest.approx([0.0, 0.0, spin * 100000 / 13.315805], rel=0.01)
 
 
 def test_noisy_light_sensors_are_reproducible_from_the_seed() -> None:
@@ -398,7 +398,9 @@ def test_light_sensors_see_the_worlds_point_light() -> None:
     assert values[5] == min(values) and values[2] == pytest.approx(4095.0)
     x, y, heading = PROFILE.distance_sensor_poses()[5]
     distance = 0.3 - y
-    expected = 4095.0 * (1.0 - 0.1 * math.cos(heading - math.pi / 2) / distance**2 / 2.0)
+    irradiance = 0.1 * math.cos(heading - math.pi / 2) / distance**2
+    # The PROTO's table: 1 W/m^2 or less reads 4095, 2 W/m^2 reads 0.
+    expected = 4095.0 * (2.0 - irradiance)
     assert values[5] == pytest.approx(expected, rel=0.02)
     nue = read_scene("#VRML_SIM R2021a utf8\nPointLight { location 1 2 3 }\n")
     assert nue.lights[0].position == (1.0, -3.0, 2.0)
@@ -441,7 +443,7 @@ def test_python_ray_casts_agree_with_the_cores_proximity_sensors() -> None:
     walls = WallBoxes(world)
     table = LookupTable(PROXIMITY_TABLE)
     near = 0
-    for pose in [(0.45, 0.0, 0.3), (0.0, 0.46, 1.2), (-0.44, -0.3, 2.8)]:
+    for pose in [(0.45, 0.0, 0.3), (0.0, 0.455, 1.2), (-0.44, -0.3, 2.8)]:
         simulator.set_pose(*pose)
         readings = simulator.distance_sensors()
         near += int(np.sum(readings > 150.0))

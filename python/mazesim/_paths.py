@@ -2,12 +2,19 @@
 
 from __future__ import annotations
 
+import argparse
 import os
 from collections.abc import Iterable
 
 from mazesim.errors import InvalidArgumentError
 
-__all__ = ["output_files", "refuse_overwriting_inputs", "same_file"]
+__all__ = [
+    "output_file",
+    "output_files",
+    "output_path",
+    "refuse_overwriting_inputs",
+    "same_file",
+]
 
 
 def same_file(first: str | os.PathLike[str], second: str | os.PathLike[str]) -> bool:
@@ -56,3 +63,29 @@ def output_files(
 ) -> list[tuple[str, str | os.PathLike[str] | None]]:
     """(what it is, path) of the files a command writes into its output folder."""
     return [(f"the output {name}", os.path.join(folder, name)) for name in names]
+
+
+def output_path(text: str) -> str:
+    """A path to write to, as a command-line argument type: not empty (an empty path would
+    quietly mean the current folder) and without NUL characters."""
+    if not text or "\0" in text:
+        raise argparse.ArgumentTypeError(f"expected a path to write to, found {text!r}")
+    return text
+
+
+def output_file(text: str) -> str:
+    """The path of a file to write, as a command-line argument type: :func:`output_path`, not a
+    folder, and not below a file (its missing folders are made when it is written)."""
+    output_path(text)
+    if os.path.isdir(text):
+        raise argparse.ArgumentTypeError(
+            f"expected the path of a file to write, found the folder {text!r}"
+        )
+    parent = os.path.dirname(os.path.abspath(text))
+    while not os.path.exists(parent) and os.path.dirname(parent) != parent:
+        parent = os.path.dirname(parent)
+    if not os.path.isdir(parent):
+        raise argparse.ArgumentTypeError(
+            f"expected a path to write to, found {text!r}, below {parent!r}, which is a file"
+        )
+    return text

@@ -23,7 +23,7 @@ import numpy as np
 
 import mazesim
 from mazesim._atomic import atomic_file
-from mazesim._paths import output_files, refuse_overwriting_inputs
+from mazesim._paths import output_files, output_path, refuse_overwriting_inputs
 from mazesim.controllers import AvoidCollision
 from mazesim.errors import InvalidArgumentError, MazesimError
 from mazesim.replay.options import SimulatorWatch, add_viewing_options
@@ -119,14 +119,6 @@ def positive_int(text: str) -> int:
 def non_negative_int(text: str) -> int:
     """A whole number of at least 0 and at most :data:`MAX_COUNT` (0 often means "automatic")."""
     return whole_number(text, 0)
-
-
-def output_path(text: str) -> str:
-    """A path to write to: not empty (an empty path would quietly mean the current folder) and
-    without NUL characters."""
-    if not text or "\0" in text:
-        raise argparse.ArgumentTypeError(f"expected a path to write to, found {text!r}")
-    return text
 
 
 def seed_argument(text: str) -> int:

@@ -15,6 +15,7 @@ import os
 from typing import Any, TextIO
 
 from mazesim._core import Simulator
+from mazesim._paths import output_file
 from mazesim.replay.run import RecordedRun
 
 __all__ = [
@@ -32,6 +33,7 @@ def add_viewing_options(parser: argparse.ArgumentParser, live: bool = False) -> 
     from mazesim.replay.video import video_format
 
     def video_file(text: str) -> str:
+        output_file(text)
         try:
             video_format(text)
         except ValueError as error:
@@ -41,6 +43,7 @@ def add_viewing_options(parser: argparse.ArgumentParser, live: bool = False) -> 
     parser.add_argument(
         "--html",
         default=None,
+        type=output_file,
         metavar="FILE",
         help="also write a self-contained HTML replay of the run (opens in any browser, offline)",
     )
@@ -54,6 +57,7 @@ def add_viewing_options(parser: argparse.ArgumentParser, live: bool = False) -> 
     parser.add_argument(
         "--record",
         default=None,
+        type=output_file,
         metavar="RUN.json",
         help="also save the recorded run (.json, or .json.gz compressed) for 'mazesim replay'",
     )

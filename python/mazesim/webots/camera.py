@@ -1,6 +1,6 @@
 """The e-puck's camera: a forward view rendered from the 2D world.
 
-Each pixel is a ray from the camera (0.033 m ahead of the axle, 0.035 m above the floor, level,
+Each pixel is a ray from the camera (0.03 m ahead of the axle, 0.028 m above the floor, level,
 field of view 0.84 rad, 52 x 39 pixels as in Webots' E-puck PROTO). A ray that meets a wall below
 the wall's height sees the wall (grey from its reflectance); a ray going down that meets the floor
 first sees the floor paint, grey from its reflectance factor ``f`` (``(f - 0.2) / 0.8``, so a white
@@ -31,8 +31,8 @@ DEFAULT_WIDTH = 52
 DEFAULT_HEIGHT = 39
 DEFAULT_FOV = 0.84
 #: The camera's position on the robot (m): ahead of the wheel axle, above the floor.
-CAMERA_X = 0.033
-CAMERA_Z = 0.035
+CAMERA_X = 0.03
+CAMERA_Z = 0.028
 #: Wall height (m) when the world gives none: the e-puck worlds' usual walls.
 WALL_HEIGHT = 0.1
 #: Grey of a wall of reflectance 1 (walls are drawn a little darker than a white floor).

@@ -21,8 +21,9 @@ from dataclasses import dataclass
 
 __all__ = ["DEFAULT_IRRADIANCE", "Light", "irradiance", "read_lights"]
 
-#: Irradiance (W/m^2) of a world without light information: a light of intensity 1.
-DEFAULT_IRRADIANCE = 1.0
+#: Irradiance (W/m^2) of a world without light information: the middle of the e-puck light
+#: sensors' table (1-2 W/m^2), a reading of 2047.5.
+DEFAULT_IRRADIANCE = 1.5
 
 _LIGHT = re.compile(r"\b(PointLight|SpotLight|DirectionalLight)\s*\{")
 _NUMBER = r"([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)"

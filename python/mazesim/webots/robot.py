@@ -143,8 +143,12 @@ class Robot(NotSimulated):
         return self.getName()
 
     def getModel(self) -> str:
-        """The robot's model as Webots reports it: the robot profile's name."""
-        return str(self._simulation.simulator.robot.name)
+        """The robot's model as Webots reports it: the E-puck PROTO's ``model`` field,
+        "GCtronic e-puck" (``version "2"``: "GCtronic e-puck2")."""
+        profile = str(self._simulation.simulator.robot.name)
+        if profile.startswith("e-puck"):
+            return "GCtronic e-puck2" if profile == "e-puck2" else "GCtronic e-puck"
+        return profile
 
     @property
     def model(self) -> str:

@@ -38,12 +38,15 @@ __all__ = [
 
 #: Standard gravity (m/s^2), what an accelerometer at rest reads along z.
 GRAVITY = 9.81
-#: The light sensors' table of Webots' E-puck PROTO: irradiance (W/m^2), value, noise.
-LIGHT_TABLE = ((0.0, 4095.0, 0.002), (2.0, 0.0, 0.002))
-#: The accelerometer's table: m/s^2 in and out (+-4 g), 0.5 % noise.
-ACCELEROMETER_TABLE = ((-39.24, -39.24, 0.005), (39.24, 39.24, 0.005))
-#: The gyro's table: rad/s in and out, 0.5 % noise.
-GYRO_TABLE = ((-100.0, -100.0, 0.005), (100.0, 100.0, 0.005))
+#: The light sensors' table of Webots' E-puck PROTO (ls0-ls7 ``lookupTable [1 4095 0.01 2 0
+#: 0.01]``): irradiance (W/m^2), value, relative noise; 1 W/m^2 or less reads 4095.
+LIGHT_TABLE = ((1.0, 4095.0, 0.01), (2.0, 0.0, 0.01))
+#: The accelerometer's table of the E-puck PROTO (``[-100 -100 0.003 100 100 0.003]``): m/s^2 in
+#: and out, 0.3 % noise.
+ACCELEROMETER_TABLE = ((-100.0, -100.0, 0.003), (100.0, 100.0, 0.003))
+#: The gyro's table of the E-puck PROTO (``[-13.315805 -100000 0.003 13.315805 100000 0.003]``):
+#: rad/s in, raw counts out (about 7,510 a rad/s), 0.3 % noise.
+GYRO_TABLE = ((-13.315805, -100000.0, 0.003), (13.315805, 100000.0, 0.003))
 #: Webots' default DistanceSensor table (generic, 0.1 m).
 DISTANCE_TABLE = ((0.0, 0.0, 0.0), (0.1, 1000.0, 0.0))
 #: North in the world frame (Webots' WorldInfo.northDirection default since R2022a).
