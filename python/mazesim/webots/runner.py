@@ -11,6 +11,7 @@ from __future__ import annotations
 import os
 import sys
 import time
+import tokenize
 import traceback
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -18,7 +19,7 @@ from types import ModuleType, TracebackType
 from typing import Any
 
 from mazesim._core import World
-from mazesim.errors import MazesimIOError
+from mazesim.errors import InvalidArgumentError, MazesimIOError
 from mazesim.webots import controller as controller_module
 from mazesim.webots import simulation as simulations
 from mazesim.webots.keyboard import KeyScript
@@ -77,13 +78,20 @@ class ControllerRun:
 
 
 def _read_source(path: str) -> str:
+    """The controller's source text, decoded as Python decodes a source file (UTF-8, or the
+    encoding its coding comment declares)."""
     try:
-        with open(path, encoding="utf-8") as handle:
+        with tokenize.open(path) as handle:
             return handle.read()
     except OSError as error:
         failure = MazesimIOError(f"{path}: cannot read the controller: {error.strerror or error}")
         failure.filename = path
         raise failure from None
+    except (UnicodeDecodeError, SyntaxError, LookupError) as error:
+        raise InvalidArgumentError(
+            f"{path}: expected a Python controller file (text in UTF-8 or the encoding its "
+            f"coding comment names), found bytes that are not: {error}"
+        ) from None
 
 
 def run_controller(
