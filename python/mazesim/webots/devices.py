@@ -12,6 +12,8 @@ import math
 import sys
 from typing import TYPE_CHECKING, Any, ClassVar
 
+from mazesim.webots.node_types import node_type
+
 if TYPE_CHECKING:
     from mazesim.webots.simulation import RobotSimulation
 
@@ -227,6 +229,8 @@ class DistanceSensor(_ScalarSensor):
     beyond; ground: about 856 on white, 300 on black).
     """
 
+    _node_type = node_type("DISTANCE_SENSOR")
+
     GENERIC = 0
     INFRA_RED = 1
     SONAR = 2
@@ -294,6 +298,8 @@ class DistanceSensor(_ScalarSensor):
 class PositionSensor(_ScalarSensor):
     """A wheel encoder: the wheel's angle in radians."""
 
+    _node_type = node_type("POSITION_SENSOR")
+
     ROTATIONAL = 0
     LINEAR = 1
     _api = "wb_position_sensor"
@@ -326,6 +332,8 @@ class PositionSensor(_ScalarSensor):
 
 class Motor(Device):
     """A wheel motor: position control by default, velocity control after ``setPosition(inf)``."""
+
+    _node_type = node_type("ROTATIONAL_MOTOR")
 
     ROTATIONAL = 0
     LINEAR = 1
@@ -507,6 +515,8 @@ class Motor(Device):
 
 class LED(Device):
     """An LED; mazesim draws no light, it only remembers the value."""
+
+    _node_type = node_type("LED")
 
     def __init__(self, name: str, simulation: RobotSimulation) -> None:
         super().__init__(name, simulation)

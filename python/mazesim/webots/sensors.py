@@ -18,6 +18,7 @@ import numpy as np
 
 from mazesim.webots.devices import _ScalarSensor, _VectorSensor
 from mazesim.webots.lights import irradiance
+from mazesim.webots.node_types import node_type
 from mazesim.webots.rays import WallBoxes
 
 if TYPE_CHECKING:
@@ -145,6 +146,8 @@ class _TableVector(_Tabled, _VectorSensor):
 class Accelerometer(_TableVector):
     """Specific force in the device frame (m/s^2): the body's acceleration plus 9.81 up."""
 
+    _node_type = node_type("ACCELEROMETER")
+
     _api = "wb_accelerometer"
     _default_table = ACCELEROMETER_TABLE
 
@@ -158,6 +161,8 @@ class Accelerometer(_TableVector):
 class Gyro(_TableVector):
     """Angular velocity about the device's axes (rad/s): the yaw rate about z."""
 
+    _node_type = node_type("GYRO")
+
     _api = "wb_gyro"
     _default_table = GYRO_TABLE
 
@@ -167,6 +172,8 @@ class Gyro(_TableVector):
 
 class Compass(_TableVector):
     """The north direction in the device frame (unit vector)."""
+
+    _node_type = node_type("COMPASS")
 
     _api = "wb_compass"
 
@@ -193,6 +200,8 @@ class Compass(_TableVector):
 class GPS(_TableVector):
     """The device's position in the world frame (m) and its speed; in a world of Webots' old
     NUE frame (before R2022a) in that frame: [x, height, -y]."""
+
+    _node_type = node_type("GPS")
 
     LOCAL = 0
     WGS84 = 1
@@ -251,6 +260,8 @@ class GPS(_TableVector):
 class InertialUnit(_TableVector):
     """Roll, pitch and yaw of the device (rad); on the flat floor roll and pitch are 0."""
 
+    _node_type = node_type("INERTIAL_UNIT")
+
     _api = "wb_inertial_unit"
 
     def _measure(self) -> tuple[float, float, float]:
@@ -284,6 +295,8 @@ class LightSensor(_Tabled, _ScalarSensor):
     """Light: the irradiance from the world's lights (:mod:`mazesim.webots.lights`) where the
     sensor is, facing its direction, through the PROTO's table."""
 
+    _node_type = node_type("LIGHT_SENSOR")
+
     _api = "wb_light_sensor"
 
     def __init__(
@@ -306,6 +319,8 @@ class LightSensor(_Tabled, _ScalarSensor):
 
 class TouchSensor(_ScalarSensor):
     """A bumper: 1 while the robot touches a wall, else 0."""
+
+    _node_type = node_type("TOUCH_SENSOR")
 
     BUMPER = 0
     FORCE = 1
@@ -335,6 +350,8 @@ class TouchSensor(_ScalarSensor):
 
 class RayDistanceSensor(_Tabled, _ScalarSensor):
     """A distance sensor the world adds: one ray from its mount against the walls."""
+
+    _node_type = node_type("DISTANCE_SENSOR")
 
     GENERIC = 0
     INFRA_RED = 1
