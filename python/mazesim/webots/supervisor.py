@@ -1,11 +1,13 @@
 """Webots' ``Supervisor``, ``Node`` and ``Field`` for the robot of a run.
 
-The supervisor sees the robot's node (``getSelf``, ``getFromDef`` of its DEF name) and the
-world file's other DEF nodes (their type, and the translation of a top-level one, which can be
-read and set but moves nothing in the simulation). It reads and sets the robot's
-``translation`` and ``rotation`` (moving the robot in the simulation), reads its position,
-orientation and velocity, resets the simulation (the robot back at its start) and quits it
-with a status (``mazesim webots run`` exits with it).
+The supervisor sees the scene tree's root, whose ``children`` are the world file's top-level
+nodes (their type, DEF name and, read from the file, their ``translation``, ``rotation`` and
+``name``: snapshots that can be set but move nothing in the simulation), the robot's node among
+them (``getSelf``, ``getFromDef`` of its DEF name) and the file's other DEF nodes (their type).
+It reads and sets the robot's ``translation`` and ``rotation`` (moving the robot in the
+simulation), reads its position, orientation and velocity, resets the simulation (the robot
+back at its start) or the robot's motion, and quits it with a status (``mazesim webots run``
+exits with it).
 """
 
 from __future__ import annotations
