@@ -151,6 +151,18 @@ def test_devices_report_their_node_types(capsys: pytest.CaptureFixture[str]) -> 
     )
 
 
+def test_an_extension_slot_distance_sensor_is_a_distance_sensor() -> None:
+    entry = {"type": "DistanceSensor", "name": "front", "translation": [0.04, 0.0, 0.02]}
+    prepare(mazesim.load_world("arena"), seconds=1.0, report={"extension_devices": [entry]})
+    controller.Robot.created = None
+    front = controller.Robot().getDevice("front")
+    distance_sensor = importlib.import_module("mazesim.webots.controller.distance_sensor")
+    assert isinstance(front, controller.DistanceSensor)
+    assert isinstance(front, distance_sensor.DistanceSensor)
+    assert front.getNodeType() == controller.Node.DISTANCE_SENSOR
+    assert front.getType() == front.GENERIC and front.max_value == 1000.0
+
+
 def test_the_roots_children_are_the_world_files_top_level_nodes() -> None:
     supervisor = supervisor_in(SUPERVISED)
     root = supervisor.getRoot()

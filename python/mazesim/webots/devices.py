@@ -241,7 +241,7 @@ class DistanceSensor(_ScalarSensor):
         super().__init__(name, simulation)
         self._index = index
         self._ground = ground
-        self._table = GROUND_TABLE if ground else PROXIMITY_TABLE
+        self._rows = GROUND_TABLE if ground else PROXIMITY_TABLE
 
     def _read(self) -> float:
         readings = (
@@ -253,15 +253,15 @@ class DistanceSensor(_ScalarSensor):
 
     def getLookupTable(self) -> list[float]:
         """The lookup table as Webots returns it: distance, value, noise, row after row."""
-        return [number for row in self._table for number in row]
+        return [number for row in self._rows for number in row]
 
     def getMinValue(self) -> float:
         """The smallest value the table gives."""
-        return min(row[1] for row in self._table)
+        return min(row[1] for row in self._rows)
 
     def getMaxValue(self) -> float:
         """The largest value the table gives."""
-        return max(row[1] for row in self._table)
+        return max(row[1] for row in self._rows)
 
     def getType(self) -> int:
         """:data:`INFRA_RED`."""
@@ -269,11 +269,11 @@ class DistanceSensor(_ScalarSensor):
 
     def getMaxRange(self) -> float:
         """The table's last distance (m)."""
-        return self._table[-1][0]
+        return self._rows[-1][0]
 
     def getMinRange(self) -> float:
         """The table's first distance (m)."""
-        return self._table[0][0]
+        return self._rows[0][0]
 
     def getAperture(self) -> float:
         """The ray's aperture (rad): one ray."""

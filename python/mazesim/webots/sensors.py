@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
-from mazesim.webots.devices import _ScalarSensor, _VectorSensor
+from mazesim.webots.devices import DistanceSensor, _ScalarSensor, _VectorSensor
 from mazesim.webots.lights import irradiance
 from mazesim.webots.node_types import node_type
 from mazesim.webots.rays import WallBoxes
@@ -348,16 +348,10 @@ class TouchSensor(_ScalarSensor):
         return []
 
 
-class RayDistanceSensor(_Tabled, _ScalarSensor):
-    """A distance sensor the world adds: one ray from its mount against the walls."""
+class RayDistanceSensor(_Tabled, DistanceSensor):
+    """A distance sensor the world adds: one ray from its mount against the walls (a
+    :class:`DistanceSensor`, with the world's table and type)."""
 
-    _node_type = node_type("DISTANCE_SENSOR")
-
-    GENERIC = 0
-    INFRA_RED = 1
-    SONAR = 2
-    LASER = 3
-    _api = "wb_distance_sensor"
     _types: ClassVar[dict[str, int]] = {"generic": 0, "infra-red": 1, "sonar": 2, "laser": 3}
 
     def __init__(
@@ -368,7 +362,7 @@ class RayDistanceSensor(_Tabled, _ScalarSensor):
         table: Sequence[Sequence[float]] | None = None,
         sensor_type: str = "generic",
     ) -> None:
-        super().__init__(name, simulation)
+        _ScalarSensor.__init__(self, name, simulation)
         self._mount = mount
         self._table = LookupTable(DISTANCE_TABLE if not table else table)
         self._type = self._types.get(sensor_type, self.GENERIC)
