@@ -1,9 +1,9 @@
 """Running an unmodified Webots controller file headless on mazesim.
 
 :func:`run_controller` prepares a simulation, installs :mod:`mazesim.webots.controller` as the
-module ``controller`` and executes the file as Webots does (as ``__main__``, from its own folder,
-with that folder on ``sys.path``, ``WEBOTS_HOME`` set if it was not) until the controller
-returns or ``Robot.step`` reports the end.
+package ``controller`` (its submodules as ``controller.robot``...) and executes the file as Webots
+does (as ``__main__``, from its own folder, with that folder on ``sys.path``, ``WEBOTS_HOME`` set
+if it was not) until the controller returns or ``Robot.step`` reports the end.
 """
 
 from __future__ import annotations
