@@ -255,7 +255,8 @@ def test_supervisor_reads_and_sets_the_robots_fields(capsys: pytest.CaptureFixtu
     supervisor.simulationReset()
     assert me.getPosition() == pytest.approx([0.0, 0.0, 0.0], abs=1e-6)
     children = supervisor.getRoot().getField("children")
-    assert children.getCount() == 0 and children.getTypeName() == "MFNode"
+    assert children.getCount() == 1 and children.getTypeName() == "MFNode"
+    assert children.getMFNode(0) is me and children.getMFNode(-1) is me, "a mazesim world"
     children.importMFNodeFromString(-1, "Solid {}")
     assert "importMFNodeFromString() is not available in mazesim" in capsys.readouterr().err
     supervisor.simulationQuit(5)

@@ -19,6 +19,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim.webots.devices import _print_error, _Sensor
+from mazesim.webots.node_types import node_type
 from mazesim.webots.rays import FloorPaint, WallBoxes
 
 if TYPE_CHECKING:
@@ -166,6 +167,8 @@ class CameraRecognitionObject:
 
 class Camera(_Sensor):
     """The e-puck's ``camera``: images of the forward view, refreshed every sampling period."""
+
+    _node_type = node_type("CAMERA")
 
     COLOR = 0
     RANGE_FINDER = 1

@@ -12,6 +12,8 @@ import math
 import sys
 from typing import TYPE_CHECKING, Any, ClassVar
 
+from mazesim.webots.node_types import node_type
+
 if TYPE_CHECKING:
     from mazesim.webots.simulation import RobotSimulation
 
@@ -227,6 +229,8 @@ class DistanceSensor(_ScalarSensor):
     beyond; ground: about 856 on white, 300 on black).
     """
 
+    _node_type = node_type("DISTANCE_SENSOR")
+
     GENERIC = 0
     INFRA_RED = 1
     SONAR = 2
@@ -237,7 +241,7 @@ class DistanceSensor(_ScalarSensor):
         super().__init__(name, simulation)
         self._index = index
         self._ground = ground
-        self._table = GROUND_TABLE if ground else PROXIMITY_TABLE
+        self._rows = GROUND_TABLE if ground else PROXIMITY_TABLE
 
     def _read(self) -> float:
         readings = (
@@ -249,15 +253,15 @@ class DistanceSensor(_ScalarSensor):
 
     def getLookupTable(self) -> list[float]:
         """The lookup table as Webots returns it: distance, value, noise, row after row."""
-        return [number for row in self._table for number in row]
+        return [number for row in self._rows for number in row]
 
     def getMinValue(self) -> float:
         """The smallest value the table gives."""
-        return min(row[1] for row in self._table)
+        return min(row[1] for row in self._rows)
 
     def getMaxValue(self) -> float:
         """The largest value the table gives."""
-        return max(row[1] for row in self._table)
+        return max(row[1] for row in self._rows)
 
     def getType(self) -> int:
         """:data:`INFRA_RED`."""
@@ -265,11 +269,11 @@ class DistanceSensor(_ScalarSensor):
 
     def getMaxRange(self) -> float:
         """The table's last distance (m)."""
-        return self._table[-1][0]
+        return self._rows[-1][0]
 
     def getMinRange(self) -> float:
         """The table's first distance (m)."""
-        return self._table[0][0]
+        return self._rows[0][0]
 
     def getAperture(self) -> float:
         """The ray's aperture (rad): one ray."""
@@ -293,6 +297,8 @@ class DistanceSensor(_ScalarSensor):
 
 class PositionSensor(_ScalarSensor):
     """A wheel encoder: the wheel's angle in radians."""
+
+    _node_type = node_type("POSITION_SENSOR")
 
     ROTATIONAL = 0
     LINEAR = 1
@@ -326,6 +332,8 @@ class PositionSensor(_ScalarSensor):
 
 class Motor(Device):
     """A wheel motor: position control by default, velocity control after ``setPosition(inf)``."""
+
+    _node_type = node_type("ROTATIONAL_MOTOR")
 
     ROTATIONAL = 0
     LINEAR = 1
@@ -507,6 +515,8 @@ class Motor(Device):
 
 class LED(Device):
     """An LED; mazesim draws no light, it only remembers the value."""
+
+    _node_type = node_type("LED")
 
     def __init__(self, name: str, simulation: RobotSimulation) -> None:
         super().__init__(name, simulation)

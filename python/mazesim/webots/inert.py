@@ -19,6 +19,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from mazesim.webots.devices import Device, _print_error, _ScalarSensor
+from mazesim.webots.node_types import node_type
 
 if TYPE_CHECKING:
     from mazesim.webots.simulation import RobotSimulation
@@ -74,6 +75,8 @@ class _Inert(NotSimulated, _ScalarSensor):
 class Emitter(NotSimulated, Device):
     """The e-puck's radio emitter: packets are accepted and go nowhere (no other robot)."""
 
+    _node_type = node_type("EMITTER")
+
     CHANNEL_BROADCAST = -1
 
     def __init__(self, name: str, simulation: RobotSimulation) -> None:
@@ -117,6 +120,8 @@ class Emitter(NotSimulated, Device):
 
 class Receiver(NotSimulated, _ScalarSensor):
     """The e-puck's radio receiver: its queue stays empty (no other robot sends)."""
+
+    _node_type = node_type("RECEIVER")
 
     CHANNEL_BROADCAST = -1
     _api = "wb_receiver"
@@ -183,6 +188,8 @@ class Receiver(NotSimulated, _ScalarSensor):
 class Speaker(NotSimulated, Device):
     """The e-puck's speaker: sounds and speech are accepted and not played."""
 
+    _node_type = node_type("SPEAKER")
+
     def __init__(self, name: str, simulation: RobotSimulation) -> None:
         super().__init__(name, simulation)
         self._engine = "pico"
@@ -236,6 +243,8 @@ class Speaker(NotSimulated, Device):
 class Display(_Inert):
     """A display (the e-puck has none)."""
 
+    _node_type = node_type("DISPLAY")
+
     RGB = 3
     RGBA = 4
     ARGB = 5
@@ -254,6 +263,8 @@ class Display(_Inert):
 class Pen(_Inert):
     """A pen (the e-puck has none)."""
 
+    _node_type = node_type("PEN")
+
     def write(self, write: bool) -> None:
         """Accepted; nothing is drawn."""
 
@@ -263,6 +274,8 @@ class Pen(_Inert):
 
 class Lidar(_Inert):
     """A lidar (the e-puck has none)."""
+
+    _node_type = node_type("LIDAR")
 
     def getRangeImage(self) -> None:
         """None: no lidar."""
@@ -289,6 +302,8 @@ class LidarPoint:
 class RangeFinder(_Inert):
     """A range finder (the e-puck has none)."""
 
+    _node_type = node_type("RANGE_FINDER")
+
     def getRangeImage(self, data_type: str = "list") -> None:
         """None: no range finder."""
         return None
@@ -301,6 +316,8 @@ class RangeFinder(_Inert):
 
 class Radar(_Inert):
     """A radar (the e-puck has none)."""
+
+    _node_type = node_type("RADAR")
 
     def getNumberOfTargets(self) -> int:
         """0: no radar."""
@@ -324,6 +341,8 @@ class RadarTarget:
 class Connector(_Inert):
     """A connector (the e-puck has none)."""
 
+    _node_type = node_type("CONNECTOR")
+
     def isLocked(self) -> bool:
         """False."""
         return False
@@ -336,6 +355,8 @@ class Connector(_Inert):
 class Brake(NotSimulated, Device):
     """A brake (the e-puck's wheels have none)."""
 
+    _node_type = node_type("BRAKE")
+
     ROTATIONAL = 0
     LINEAR = 1
 
@@ -343,9 +364,13 @@ class Brake(NotSimulated, Device):
 class Altimeter(_Inert):
     """An altimeter (the e-puck has none)."""
 
+    _node_type = node_type("ALTIMETER")
+
 
 class VacuumGripper(_Inert):
     """A vacuum gripper (the e-puck has none)."""
+
+    _node_type = node_type("VACUUM_GRIPPER")
 
     def isOn(self) -> bool:
         """False."""
@@ -354,6 +379,8 @@ class VacuumGripper(_Inert):
 
 class Skin(_Inert):
     """A skin (the e-puck has none)."""
+
+    _node_type = node_type("SKIN")
 
 
 class Motion(NotSimulated):

@@ -1,9 +1,9 @@
 """Running an unmodified Webots controller file headless on mazesim.
 
 :func:`run_controller` prepares a simulation, installs :mod:`mazesim.webots.controller` as the
-module ``controller`` and executes the file as Webots does (as ``__main__``, from its own folder,
-with that folder on ``sys.path``, ``WEBOTS_HOME`` set if it was not) until the controller
-returns or ``Robot.step`` reports the end.
+package ``controller`` (its submodules as ``controller.robot``...) and executes the file as Webots
+does (as ``__main__``, from its own folder, with that folder on ``sys.path``, ``WEBOTS_HOME`` set
+if it was not) until the controller returns or ``Robot.step`` reports the end.
 """
 
 from __future__ import annotations
@@ -135,15 +135,14 @@ def run_controller(
     )
     controller_module.Robot.created = None
     folder = os.path.dirname(file)
-    saved_module: ModuleType | None = sys.modules.get("controller")
+    saved_modules = _install_controller_package()
     saved_argv, saved_path, saved_cwd = sys.argv, list(sys.path), os.getcwd()
-    sys.modules["controller"] = controller_module
     sys.argv = [file, *(scene.controller_args if scene else [])]
     sys.path.insert(0, folder)
     # Controllers written to run outside Webots too look Webots up through WEBOTS_HOME.
     saved_home = os.environ.get("WEBOTS_HOME")
     if saved_home is None:
-        os.environ["WEBOTS_HOME"] = os.path.dirname(os.path.abspath(controller_module.__file__))
+        os.environ["WEBOTS_HOME"] = os.path.dirname(os.path.dirname(controller_module.__file__))
     started = time.perf_counter()
     status, error = 0, ""
     try:
@@ -166,10 +165,7 @@ def run_controller(
         os.chdir(saved_cwd)
         sys.path[:] = saved_path
         sys.argv = saved_argv
-        if saved_module is None:
-            sys.modules.pop("controller", None)
-        else:
-            sys.modules["controller"] = saved_module
+        _restore_modules(saved_modules)
         controller_module.Robot.created = None
         simulations.release()
     simulator = simulation.simulator
@@ -191,6 +187,37 @@ def run_controller(
         final_pose=simulator.pose,
         robot_model=str(simulator.robot.name),
     )
+
+
+def _controller_module_names() -> dict[str, ModuleType]:
+    """The modules a controller imports: ``controller`` and its submodules."""
+    modules = {"controller": controller_module}
+    for name in controller_module.SUBMODULES:
+        modules[f"controller.{name}"] = getattr(controller_module, name)
+    return modules
+
+
+def _install_controller_package() -> dict[str, ModuleType]:
+    """Installs :mod:`mazesim.webots.controller` as the package ``controller``, its submodules
+    as ``controller.<name>``; returns the ``controller`` entries of ``sys.modules`` it
+    replaced."""
+    saved = {
+        name: module
+        for name, module in sys.modules.items()
+        if name == "controller" or name.startswith("controller.")
+    }
+    for name in saved:
+        del sys.modules[name]
+    sys.modules.update(_controller_module_names())
+    return saved
+
+
+def _restore_modules(saved: dict[str, ModuleType]) -> None:
+    """Removes every ``controller`` entry of ``sys.modules`` (the run's, and any the
+    controller added) and puts back those :func:`_install_controller_package` replaced."""
+    for name in [n for n in sys.modules if n == "controller" or n.startswith("controller.")]:
+        del sys.modules[name]
+    sys.modules.update(saved)
 
 
 def _exit_status(request: SystemExit) -> tuple[int, str]:

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 
 from mazesim.webots.lights import Light, read_lights
 
-__all__ = ["Scene", "read_scene"]
+__all__ = ["Scene", "SceneNode", "read_scene"]
 
 _DEF = re.compile(r"\bDEF\s+([^\s{}\[\]]+)\s+([A-Za-z_][\w-]*)\s*\{")
 _NAME = re.compile(r'\bname\s+"((?:[^"\\]|\\.)*)"')
@@ -28,10 +28,56 @@ _CAMERA_FOV = re.compile(r"\bcamera_fieldOfView\s+" + _NUMBER)
 _CAMERA_ROTATION = re.compile(r"\bcamera_rotation" + r"\s+".join([""] + [_NUMBER] * 4))
 _HEADER = re.compile(r"#VRML_SIM\s+(?:R(\d{4})([a-z])?|V?(\d+)\.)")
 _NUE = re.compile(r'\bcoordinateSystem\s+"NUE"')
+_NODE = re.compile(r"(?:\bDEF\s+([^\s{}\[\]]+)\s+)?(?<![\w-])([A-Za-z_][\w-]*)\s*\{")
+_ROTATION = re.compile(r"\brotation" + r"\s+".join([""] + [_NUMBER] * 4))
 _TRANSLATION = re.compile(r"\btranslation\s+" + _NUMBER + r"\s+" + _NUMBER + r"\s+" + _NUMBER)
 _NORTH = re.compile(r"\bnorthDirection\s+" + _NUMBER + r"\s+" + _NUMBER + r"\s+" + _NUMBER)
 #: Node types that are robots.
 ROBOT_TYPES = {"E-puck", "Robot", "e-puck2", "Epuck", "E-puck2"}
+#: The base node of the common PROTOs (``Node.getBaseTypeName``); a built-in node is its own.
+BASE_TYPES = {
+    "E-puck": "Robot",
+    "E-puck2": "Robot",
+    "e-puck2": "Robot",
+    "Epuck": "Robot",
+    "RectangleArena": "Solid",
+    "CircleArena": "Solid",
+    "Floor": "Solid",
+    "Wall": "Solid",
+    "WoodenBox": "Solid",
+    "CardboardBox": "Solid",
+    "SolidBox": "Solid",
+    "LegoTallWall": "Solid",
+    "LegoTallInterval": "Solid",
+    "TexturedBackground": "Background",
+    "TexturedBackgroundLight": "DirectionalLight",
+}
+
+
+@dataclass(frozen=True)
+class SceneNode:
+    """A node at the top of the world file (a child of the scene tree's root).
+
+    Attributes:
+        type_name: Its node type (``"WorldInfo"``, ``"RectangleArena"``, ``"E-puck"``...).
+        def_name: Its DEF name, or "".
+        translation: Its ``translation`` field in the world frame (ENU), if it has one.
+        rotation: Its ``rotation`` field (axis x, y, z and angle, world frame), if it has one.
+        name: Its ``name`` field, if it has one.
+        robot: Whether it is the robot of the run.
+    """
+
+    type_name: str
+    def_name: str = ""
+    translation: tuple[float, float, float] | None = None
+    rotation: tuple[float, float, float, float] | None = None
+    name: str | None = None
+    robot: bool = False
+
+    @property
+    def base_type(self) -> str:
+        """The built-in node the type is, or derives from (``"Solid"`` for a ``Wall``)."""
+        return BASE_TYPES.get(self.type_name, self.type_name)
 
 
 @dataclass
@@ -40,8 +86,6 @@ class Scene:
 
     Attributes:
         defs: DEF name -> node type, in file order.
-        translations: DEF name -> the ``translation`` of a top-level DEF node, in the world
-            frame (ENU, converted from NUE), when the node gives one.
         robot_def: The robot node's DEF name, or None.
         supervisor: Whether the file says ``supervisor TRUE``.
         robot_name: The robot's ``name`` field (Webots' default for the E-puck, ``"e-puck"``).
@@ -55,12 +99,12 @@ class Scene:
             (its part about the camera's y axis).
         north: ``WorldInfo.northDirection`` as x, y (world frame), if set.
         lights: The world's lights that are on (empty: the light sensors' default ambient).
+        nodes: The nodes at the top of the file, in file order (the root's ``children``).
         nue: Whether the file uses Webots' old NUE frame (y up): before R2022a, or
             ``coordinateSystem "NUE"``; a GPS then reads in that frame.
     """
 
     defs: dict[str, str] = field(default_factory=dict)
-    translations: dict[str, tuple[float, float, float]] = field(default_factory=dict)
     robot_def: str | None = None
     supervisor: bool = False
     robot_name: str = "e-puck"
@@ -73,6 +117,7 @@ class Scene:
     north: tuple[float, float] | None = None
     nue: bool = False
     lights: list[Light] = field(default_factory=list)
+    nodes: list[SceneNode] = field(default_factory=list)
 
 
 def read_scene(text: str, robot_model: str | None = None) -> Scene:
@@ -90,17 +135,12 @@ def read_scene(text: str, robot_model: str | None = None) -> Scene:
     text = "\n".join(line.split("#", 1)[0] for line in text.splitlines())
     scene.nue = scene.nue or bool(_NUE.search(text))
     robot_types = ROBOT_TYPES | ({robot_model} if robot_model else set())
-    depth, scanned = 0, 0
     for match in _DEF.finditer(text):
         name, node_type = match.group(1), match.group(2)
-        depth += _nesting(text[scanned : match.start()])
-        scanned = match.start()
         scene.defs.setdefault(name, node_type)
         if scene.robot_def is None and node_type in robot_types:
             scene.robot_def = name
-        if depth == 0 and (translation := _own_translation(text, match.end())) is not None:
-            x, y, z = translation
-            scene.translations.setdefault(name, (x, -z, y) if scene.nue else (x, y, z))
+    scene.nodes = _top_nodes(text, robot_types, scene.nue)
     scene.supervisor = bool(_SUPERVISOR.search(text))
     robot = re.search(
         r"\b(?:" + "|".join(re.escape(t) for t in sorted(robot_types)) + r")\s*\{", text
@@ -132,6 +172,48 @@ def read_scene(text: str, robot_model: str | None = None) -> Scene:
     return scene
 
 
+def _top_nodes(text: str, robot_types: set[str], nue: bool) -> list[SceneNode]:
+    """The nodes at the top of the file (comments removed), the first robot marked."""
+    nodes: list[SceneNode] = []
+    depth, scanned, robot_seen = 0, 0, False
+    for match in _NODE.finditer(text):
+        depth += _nesting(text[scanned : match.start()])
+        scanned = match.start()
+        if depth != 0:
+            continue
+        def_name, type_name = match.group(1) or "", match.group(2)
+        own = _own_text(text, match.end())
+        robot = not robot_seen and type_name in robot_types
+        robot_seen = robot_seen or robot
+        nodes.append(
+            SceneNode(
+                type_name,
+                def_name,
+                translation=_vector(_TRANSLATION.search(own), nue),
+                rotation=_rotation(_ROTATION.search(own), nue),
+                name=found.group(1) if (found := _NAME.search(own)) else None,
+                robot=robot,
+            )
+        )
+    return nodes
+
+
+def _vector(found: re.Match[str] | None, nue: bool) -> tuple[float, float, float] | None:
+    """A found x y z in the world frame (ENU, converted from NUE)."""
+    if found is None:
+        return None
+    x, y, z = (float(v) for v in found.groups())
+    return (x, -z, y) if nue else (x, y, z)
+
+
+def _rotation(found: re.Match[str] | None, nue: bool) -> tuple[float, float, float, float] | None:
+    """A found axis-angle rotation in the world frame (its axis converted from NUE)."""
+    if found is None:
+        return None
+    ax, ay, az, angle = (float(v) for v in found.groups())
+    return (ax, -az, ay, angle) if nue else (ax, ay, az, angle)
+
+
 def _nesting(text: str) -> int:
     """How much deeper (in braces and brackets) the end of ``text`` is than its start."""
     return text.count("{") + text.count("[") - text.count("}") - text.count("]")
@@ -152,11 +234,3 @@ def _own_text(text: str, body: int) -> str:
         elif depth == 0:
             own.append(char)
     return "".join(own)
-
-
-def _own_translation(text: str, body: int) -> tuple[float, float, float] | None:
-    """The ``translation`` field of the node whose body starts at ``body``."""
-    found = _TRANSLATION.search(_own_text(text, body))
-    if found is None:
-        return None
-    return float(found.group(1)), float(found.group(2)), float(found.group(3))

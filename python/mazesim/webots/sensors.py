@@ -16,8 +16,9 @@ from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
-from mazesim.webots.devices import _ScalarSensor, _VectorSensor
+from mazesim.webots.devices import DistanceSensor, _ScalarSensor, _VectorSensor
 from mazesim.webots.lights import irradiance
+from mazesim.webots.node_types import node_type
 from mazesim.webots.rays import WallBoxes
 
 if TYPE_CHECKING:
@@ -148,6 +149,8 @@ class _TableVector(_Tabled, _VectorSensor):
 class Accelerometer(_TableVector):
     """Specific force in the device frame (m/s^2): the body's acceleration plus 9.81 up."""
 
+    _node_type = node_type("ACCELEROMETER")
+
     _api = "wb_accelerometer"
     _default_table = ACCELEROMETER_TABLE
 
@@ -161,6 +164,8 @@ class Accelerometer(_TableVector):
 class Gyro(_TableVector):
     """Angular velocity about the device's axes (rad/s): the yaw rate about z."""
 
+    _node_type = node_type("GYRO")
+
     _api = "wb_gyro"
     _default_table = GYRO_TABLE
 
@@ -170,6 +175,8 @@ class Gyro(_TableVector):
 
 class Compass(_TableVector):
     """The north direction in the device frame (unit vector)."""
+
+    _node_type = node_type("COMPASS")
 
     _api = "wb_compass"
 
@@ -196,6 +203,8 @@ class Compass(_TableVector):
 class GPS(_TableVector):
     """The device's position in the world frame (m) and its speed; in a world of Webots' old
     NUE frame (before R2022a) in that frame: [x, height, -y]."""
+
+    _node_type = node_type("GPS")
 
     LOCAL = 0
     WGS84 = 1
@@ -254,6 +263,8 @@ class GPS(_TableVector):
 class InertialUnit(_TableVector):
     """Roll, pitch and yaw of the device (rad); on the flat floor roll and pitch are 0."""
 
+    _node_type = node_type("INERTIAL_UNIT")
+
     _api = "wb_inertial_unit"
 
     def _measure(self) -> tuple[float, float, float]:
@@ -287,6 +298,8 @@ class LightSensor(_Tabled, _ScalarSensor):
     """Light: the irradiance from the world's lights (:mod:`mazesim.webots.lights`) where the
     sensor is, facing its direction, through the PROTO's table."""
 
+    _node_type = node_type("LIGHT_SENSOR")
+
     _api = "wb_light_sensor"
 
     def __init__(
@@ -309,6 +322,8 @@ class LightSensor(_Tabled, _ScalarSensor):
 
 class TouchSensor(_ScalarSensor):
     """A bumper: 1 while the robot touches a wall, else 0."""
+
+    _node_type = node_type("TOUCH_SENSOR")
 
     BUMPER = 0
     FORCE = 1
@@ -336,14 +351,10 @@ class TouchSensor(_ScalarSensor):
         return []
 
 
-class RayDistanceSensor(_Tabled, _ScalarSensor):
-    """A distance sensor the world adds: one ray from its mount against the walls."""
+class RayDistanceSensor(_Tabled, DistanceSensor):
+    """A distance sensor the world adds: one ray from its mount against the walls (a
+    :class:`DistanceSensor`, with the world's table and type)."""
 
-    GENERIC = 0
-    INFRA_RED = 1
-    SONAR = 2
-    LASER = 3
-    _api = "wb_distance_sensor"
     _types: ClassVar[dict[str, int]] = {"generic": 0, "infra-red": 1, "sonar": 2, "laser": 3}
 
     def __init__(
@@ -354,7 +365,7 @@ class RayDistanceSensor(_Tabled, _ScalarSensor):
         table: Sequence[Sequence[float]] | None = None,
         sensor_type: str = "generic",
     ) -> None:
-        super().__init__(name, simulation)
+        _ScalarSensor.__init__(self, name, simulation)
         self._mount = mount
         self._table = LookupTable(DISTANCE_TABLE if not table else table)
         self._type = self._types.get(sensor_type, self.GENERIC)

@@ -1,11 +1,13 @@
 """Webots' ``Supervisor``, ``Node`` and ``Field`` for the robot of a run.
 
-The supervisor sees the robot's node (``getSelf``, ``getFromDef`` of its DEF name) and the
-world file's other DEF nodes (their type, and the translation of a top-level one, which can be
-read and set but moves nothing in the simulation). It reads and sets the robot's
-``translation`` and ``rotation`` (moving the robot in the simulation), reads its position,
-orientation and velocity, resets the simulation (the robot back at its start) and quits it
-with a status (``mazesim webots run`` exits with it).
+The supervisor sees the scene tree's root, whose ``children`` are the world file's top-level
+nodes (their type, DEF name and, read from the file, their ``translation``, ``rotation`` and
+``name``: snapshots that can be set but move nothing in the simulation), the robot's node among
+them (``getSelf``, ``getFromDef`` of its DEF name) and the file's other DEF nodes (their type).
+It reads and sets the robot's ``translation`` and ``rotation`` (moving the robot in the
+simulation), reads its position, orientation and velocity, resets the simulation (the robot
+back at its start) or the robot's motion, and quits it with a status (``mazesim webots run``
+exits with it).
 """
 
 from __future__ import annotations
@@ -16,24 +18,32 @@ from typing import Any
 
 from mazesim.webots import simulation as _simulations
 from mazesim.webots.inert import ContactPoint, NotSimulated
+from mazesim.webots.node_types import NODE_TYPES
 from mazesim.webots.robot import Robot
+from mazesim.webots.scene import SceneNode
 
 __all__ = ["Field", "Node", "Supervisor"]
 
-#: Webots' node types, in the order of its ``WbNodeType`` enumeration (``Node.ROBOT``...).
-NODE_TYPES = (
-    "NO_NODE APPEARANCE BACKGROUND BILLBOARD BOX CAPSULE COLOR CONE COORDINATE CYLINDER "
-    "DIRECTIONAL_LIGHT ELEVATION_GRID FOG GROUP IMAGE_TEXTURE INDEXED_FACE_SET "
-    "INDEXED_LINE_SET MATERIAL MESH MUSCLE NORMAL PBR_APPEARANCE PLANE POINT_LIGHT POINT_SET "
-    "POSE SHAPE SPHERE SPOT_LIGHT TEXTURE_COORDINATE TEXTURE_TRANSFORM TRANSFORM VIEWPOINT "
-    "ROBOT ACCELEROMETER ALTIMETER BRAKE CAMERA COMPASS CONNECTOR DISPLAY DISTANCE_SENSOR "
-    "EMITTER GPS GYRO INERTIAL_UNIT LED LIDAR LIGHT_SENSOR LINEAR_MOTOR PEN POSITION_SENSOR "
-    "PROPELLER RADAR RANGE_FINDER RECEIVER ROTATIONAL_MOTOR SKIN SPEAKER TOUCH_SENSOR "
-    "VACUUM_GRIPPER BALL_JOINT BALL_JOINT_PARAMETERS CHARGER CONTACT_PROPERTIES DAMPING FLUID "
-    "FOCUS HINGE_2_JOINT HINGE_2_JOINT_PARAMETERS HINGE_JOINT HINGE_JOINT_PARAMETERS "
-    "IMMERSION_PROPERTIES JOINT_PARAMETERS LENS LENS_FLARE PHYSICS RECOGNITION SLIDER_JOINT "
-    "SLOT SOLID SOLID_REFERENCE TRACK TRACK_WHEEL WORLD_INFO ZOOM MICROPHONE RADIO"
-).split()
+
+#: Webots' built-in nodes a world file places at its top (the others are PROTOs).
+_BUILT_IN_TYPES = {
+    "Robot",
+    "Solid",
+    "Group",
+    "Transform",
+    "Pose",
+    "WorldInfo",
+    "Viewpoint",
+    "Background",
+    "DirectionalLight",
+    "PointLight",
+    "SpotLight",
+    "Fog",
+    "Shape",
+    "Charger",
+}
+#: Base nodes with ``translation`` and ``rotation`` fields.
+_POSED_TYPES = {"Robot", "Solid", "Pose", "Transform", "Charger"}
 
 
 def _print_error(message: str) -> None:
@@ -92,12 +102,23 @@ class Field(NotSimulated):
         return self._type_names[self._type]
 
     def getCount(self) -> int:
-        """-1 for a single field; 0 for the root's ``children`` (its nodes are not listed)."""
-        return 0 if self._type == self.MF_NODE else -1
+        """-1 for a single field; the number of nodes of the root's ``children``."""
+        return len(self._node._children) if self._type == self.MF_NODE else -1
 
-    def getMFNode(self, index: int) -> None:
-        """None: the root's children are not listed."""
-        return None
+    def getMFNode(self, index: int) -> Node | None:
+        """The node at ``index`` of the root's ``children`` (negative: from the end, as in
+        Webots), or None with Webots' error."""
+        if self._type != self.MF_NODE:
+            self._wrong("get_mf_node")
+            return None
+        children = self._node._children
+        if not -len(children) <= int(index) < len(children):
+            _print_error(
+                f"Error: wb_supervisor_field_get_mf_node() called with an out of range index: "
+                f"{index}."
+            )
+            return None
+        return children[int(index)]
 
     def importMFNodeFromString(self, position: int, nodeString: str) -> None:
         """Webots' error: mazesim adds no nodes to a running world."""
@@ -107,8 +128,11 @@ class Field(NotSimulated):
         )
 
     def removeMF(self, index: int) -> None:
-        """Webots' error: the root's children are not listed."""
-        _print_error(f"Error: wb_supervisor_field_remove_mf(): index {index} out of range.")
+        """Webots' error: mazesim removes no nodes from a running world."""
+        _print_error(
+            "Error: Field.removeMF() is not available in mazesim: the world's nodes are fixed "
+            "when it is imported."
+        )
 
     def _wrong(self, function: str) -> None:
         _print_error(
@@ -117,34 +141,50 @@ class Field(NotSimulated):
         )
 
     def getSFVec3f(self) -> list[float] | None:
-        """The robot's translation [x, y, z] in metres (world frame)."""
+        """The node's translation [x, y, z] in metres (world frame; the robot's is live)."""
         if self._name != "translation":
             self._wrong("get_sf_vec3f")
             return None
-        return self._node.getPosition()
+        node = self._node
+        return node.getPosition() if node._robot else list(node._translation or ())
 
     def setSFVec3f(self, values: list[float]) -> None:
-        """Moves the robot to [x, y, z] (z is ignored: the robot stays on the floor)."""
+        """Moves the robot to [x, y, z] (z is ignored: the robot stays on the floor); another
+        node's translation is recorded (its walls do not move)."""
         if self._name != "translation":
             self._wrong("set_sf_vec3f")
             return
-        _, _, yaw = self._node._pose()
-        self._node._move(float(values[0]), float(values[1]), yaw)
+        node = self._node
+        if node._robot:
+            _, _, yaw = node._pose()
+            node._move(float(values[0]), float(values[1]), yaw)
+        else:
+            x, y, z = (float(v) for v in values[:3])
+            node._translation = (x, y, z)
 
     def getSFRotation(self) -> list[float] | None:
-        """The robot's rotation as axis and angle [0, 0, 1, yaw]."""
+        """The node's rotation as axis and angle (the robot's is live: [0, 0, 1, yaw])."""
         if self._name != "rotation":
             self._wrong("get_sf_rotation")
             return None
-        return [0.0, 0.0, 1.0, self._node._pose()[2]]
+        node = self._node
+        if node._robot:
+            return [0.0, 0.0, 1.0, node._pose()[2]]
+        return list(node._rotation or ())
 
     def setSFRotation(self, values: list[float]) -> None:
-        """Turns the robot to an axis-angle rotation (its yaw about z is kept)."""
+        """Turns the robot to an axis-angle rotation (its yaw about z is kept); another node's
+        rotation is recorded (its walls do not turn)."""
         if self._name != "rotation":
             self._wrong("set_sf_rotation")
             return
-        x, y, _ = self._node._pose()
-        self._node._move(x, y, _yaw_of_rotation([float(v) for v in values[:4]]))
+        node = self._node
+        if node._robot:
+            x, y, _ = node._pose()
+            node._move(x, y, _yaw_of_rotation([float(v) for v in values[:4]]))
+        else:
+            ax, ay, az, angle = (float(v) for v in values[:4])
+            node._rotation = (ax, ay, az, angle)
 
     def getSFString(self) -> str | None:
         """The value of a string field (``name``, ``customData``, ``controller``)."""
@@ -179,19 +219,29 @@ class Field(NotSimulated):
             self.setSFString(value)
 
 
+def _rotation_matrix(ax: float, ay: float, az: float, angle: float) -> list[float]:
+    """The 3 x 3 matrix of an axis-angle rotation, row after row."""
+    norm = math.sqrt(ax * ax + ay * ay + az * az) or 1.0
+    x, y, z = ax / norm, ay / norm, az / norm
+    c, s = math.cos(angle), math.sin(angle)
+    t = 1.0 - c
+    return [
+        *(t * x * x + c, t * x * y - s * z, t * x * z + s * y),
+        *(t * x * y + s * z, t * y * y + c, t * y * z - s * x),
+        *(t * x * z - s * y, t * y * z + s * x, t * z * z + c),
+    ]
+
+
 def _yaw_of_rotation(rotation: list[float]) -> float:
     """The heading (rad) of an axis-angle rotation: the angle of its image of the x axis."""
     ax, ay, az, angle = (rotation + [0.0, 0.0, 1.0, 0.0][len(rotation) :])[:4]
-    norm = math.sqrt(ax * ax + ay * ay + az * az) or 1.0
-    ax, ay, az = ax / norm, ay / norm, az / norm
-    c, s = math.cos(angle), math.sin(angle)
-    r00 = c + ax * ax * (1.0 - c)
-    r10 = ay * ax * (1.0 - c) + az * s
-    return math.atan2(r10, r00)
+    matrix = _rotation_matrix(ax, ay, az, angle)
+    return math.atan2(matrix[3], matrix[0])
 
 
 class Node(NotSimulated):
-    """A node of the world: the robot's (with fields and a pose) or another DEF node."""
+    """A node of the world: the root, the robot (with fields and a live pose) or another node
+    of the world file (a snapshot of its fields)."""
 
     def __init__(
         self,
@@ -200,6 +250,9 @@ class Node(NotSimulated):
         node_id: int = 0,
         robot: bool = False,
         translation: tuple[float, float, float] | None = None,
+        rotation: tuple[float, float, float, float] | None = None,
+        base_type: str | None = None,
+        name: str | None = None,
     ) -> None:
         """A node.
 
@@ -209,14 +262,46 @@ class Node(NotSimulated):
             node_id: Its unique id.
             robot: Whether it is the robot of the run (its pose is the simulation's).
             translation: The ``translation`` of another node, read from the world file.
+            rotation: The ``rotation`` (axis-angle) of another node, read from the world file.
+            base_type: The built-in node its type derives from (its type by default).
+            name: The ``name`` field of another node, read from the world file.
         """
         self._type_name = type_name
+        self._base_type = base_type or ("Robot" if robot else type_name)
         self._def = def_name
         self._id = node_id
         self._robot = robot
         self._translation = translation
-        self._yaw = 0.0
+        self._rotation = rotation
         self._strings = {"name": "e-puck", "customData": "", "controller": "<extern>"}
+        if not robot:
+            self._strings = {} if name is None else {"name": name}
+        self._parent: Node | None = None
+        self._children: list[Node] = []
+
+    @classmethod
+    def from_scene(cls, node: SceneNode, node_id: int) -> Node:
+        """The node of a world file's top-level node (a Solid-like node without a
+        ``translation`` or ``rotation`` field is at Webots' defaults)."""
+        translation, rotation = node.translation, node.rotation
+        if node.base_type in _POSED_TYPES:
+            translation = translation or (0.0, 0.0, 0.0)
+            rotation = rotation or (0.0, 0.0, 1.0, 0.0)
+        return cls(
+            node.type_name,
+            node.def_name,
+            node_id,
+            translation=translation,
+            rotation=rotation,
+            base_type=node.base_type,
+            name=node.name,
+        )
+
+    def _adopt(self, children: list[Node]) -> None:
+        """Makes ``children`` the node's ``children`` field."""
+        self._children = children
+        for child in children:
+            child._parent = self
 
     def _simulation(self) -> _simulations.RobotSimulation:
         return _simulations.current()
@@ -227,15 +312,12 @@ class Node(NotSimulated):
             return float(x), float(y), float(yaw)
         if self._translation is None:
             return math.nan, math.nan, math.nan
-        return self._translation[0], self._translation[1], self._yaw
+        yaw = _yaw_of_rotation(list(self._rotation)) if self._rotation else 0.0
+        return self._translation[0], self._translation[1], yaw
 
     def _move(self, x: float, y: float, yaw: float) -> None:
-        """Moves the robot in the simulation; another node's pose is only recorded."""
-        if self._robot:
-            self._simulation().move_robot(x, y, yaw)
-        elif self._translation is not None:
-            self._translation = (x, y, self._translation[2])
-            self._yaw = yaw
+        """Moves the robot in the simulation, at rest."""
+        self._simulation().move_robot(x, y, yaw)
 
     def getId(self) -> int:
         """The node's unique id."""
@@ -255,31 +337,39 @@ class Node(NotSimulated):
         return self._type_name
 
     def getBaseTypeName(self) -> str:
-        """The base node type (``"Robot"`` for robot PROTOs)."""
-        return "Robot" if self._robot else self._type_name
+        """The built-in node the type derives from (``"Robot"`` for the E-puck PROTO,
+        ``"Solid"`` for a ``Wall``)."""
+        return self._base_type
 
     def getType(self) -> int:
-        """The node's type constant (``Node.ROBOT`` for the robot)."""
-        name = "ROBOT" if self._robot else _constant_name(self._type_name)
+        """The node's type constant (``Node.ROBOT`` for the robot, ``Node.SOLID`` for a node of
+        unknown base)."""
+        name = _constant_name(self._base_type)
         return NODE_TYPES.index(name) if name in NODE_TYPES else NODE_TYPES.index("SOLID")
 
     def isProto(self) -> bool:
         """Whether the node is a PROTO instance."""
-        return self._type_name not in ("Robot", "Solid", "Group", "Transform", "Pose")
+        return self._type_name != self._base_type or self._type_name not in _BUILT_IN_TYPES
 
-    def getParentNode(self) -> None:
-        """None: mazesim keeps no scene tree."""
-        return None
+    def getParentNode(self) -> Node | None:
+        """The root for a node at the top of the world file; None for the root and for nodes
+        inside others (their parents are not kept)."""
+        return self._parent
+
+    def _field_types(self) -> dict[str, int]:
+        """The fields the node has: name -> ``Field`` type."""
+        if self._id == 0:
+            return {"children": Field.MF_NODE}
+        types = dict.fromkeys(self._strings, Field.SF_STRING)
+        if self._robot or self._translation is not None:
+            types["translation"] = Field.SF_VEC3F
+        if self._robot or self._rotation is not None:
+            types["rotation"] = Field.SF_ROTATION
+        return types
 
     def getField(self, fieldName: str) -> Field | None:
         """The field of that name, or None (with Webots' message)."""
-        types = {"translation": Field.SF_VEC3F, "rotation": Field.SF_ROTATION}
-        if self._id == 0:
-            types = {"children": Field.MF_NODE}
-        elif self._robot:
-            types.update(dict.fromkeys(self._strings, Field.SF_STRING))
-        elif self._translation is None:
-            types = {}
+        types = self._field_types()
         if fieldName not in types:
             _print_error(
                 f"Error: wb_supervisor_node_get_field(): field '{fieldName}' does not exist "
@@ -293,16 +383,17 @@ class Node(NotSimulated):
     def getPosition(self) -> list[float]:
         """The node's position [x, y, z] in metres (world frame; NaN for a node whose position
         the world file does not give)."""
-        x, y, _ = self._pose()
         if self._robot:
+            x, y, _ = self._pose()
             return [x, y, 0.0]
-        return [x, y, self._translation[2] if self._translation else math.nan]
+        return list(self._translation) if self._translation else [math.nan] * 3
 
     def getOrientation(self) -> list[float]:
         """The node's rotation matrix, row after row (9 numbers)."""
-        yaw = self._pose()[2]
-        c, s = math.cos(yaw), math.sin(yaw)
-        return [c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0]
+        if self._robot or self._rotation is None:
+            yaw = self._pose()[2]
+            return _rotation_matrix(0.0, 0.0, 1.0, yaw)
+        return _rotation_matrix(*self._rotation)
 
     def getPose(self, fromNode: Node | None = None) -> list[float]:
         """The node's 4 x 4 homogeneous transform in the world frame, row after row."""
@@ -325,7 +416,10 @@ class Node(NotSimulated):
         """Accepted; the robot's velocity comes from its wheels."""
 
     def resetPhysics(self) -> None:
-        """Accepted; the robot has no momentum beyond its wheels' speeds."""
+        """Stops the robot's motion (its wheels' speeds still apply at the next step); other
+        nodes are static."""
+        if self._robot:
+            self._simulation().velocity = (0.0, 0.0, 0.0)
 
     def restartController(self) -> None:
         """Webots' error: the running controller cannot be restarted."""
@@ -340,7 +434,12 @@ class Node(NotSimulated):
 
     def getNumberOfFields(self) -> int:
         """The number of fields :meth:`getField` knows."""
-        return 5 if self._robot else 0
+        if self._id == 0:
+            return 1
+        posed = self._robot or self._translation is not None
+        return (
+            len(self._strings) + (1 if posed else 0) + (1 if self._robot or self._rotation else 0)
+        )
 
     def getStaticBalance(self) -> bool:
         """True: the robot stands on the floor."""
@@ -374,9 +473,16 @@ class Supervisor(Robot):
         self._simulation.supervisor = True
         scene = self._simulation.scene
         robot_type = str(self._simulation.report.get("robot_model") or "E-puck")
-        self._self = Node(robot_type, scene.robot_def or "", node_id=1, robot=True)
+        self._self = Node(robot_type, scene.robot_def or "", robot=True)
         self._self._strings.update(name=scene.robot_name, customData=self._custom_data)
         self._mode = self.SIMULATION_MODE_FAST
+        self._root = Node("Group", node_id=0)
+        children = [self._self if node.robot else Node.from_scene(node, 0) for node in scene.nodes]
+        if self._self not in children:
+            children.append(self._self)
+        for node_id, child in enumerate(children, start=1):
+            child._id = node_id
+        self._root._adopt(children)
         self._nodes: dict[str, Node] = {}
 
     def getSelf(self) -> Node:
@@ -384,29 +490,36 @@ class Supervisor(Robot):
         return self._self
 
     def getRoot(self) -> Node:
-        """The scene tree's root: a Group whose ``children`` field lists nothing."""
-        return Node("Group", node_id=0)
+        """The scene tree's root: a Group whose ``children`` field lists the world file's
+        top-level nodes (only the robot in a mazesim world)."""
+        return self._root
 
     def getFromDef(self, name: str) -> Node | None:
-        """The node of that DEF name, or None (with Webots' message).
+        """The node of that DEF name (the first in the file), or None (with Webots' message).
 
         A world without DEF names (a mazesim world) gives the robot's node for any name.
         """
         scene = self._simulation.scene
         if name and (name == scene.robot_def or not scene.defs):
             return self._self
+        for child in self._root._children:
+            if name and child.getDef() == name:
+                return child
         if name in scene.defs:
             if name not in self._nodes:
-                index = list(scene.defs).index(name)
-                translation = scene.translations.get(name)
-                self._nodes[name] = Node(scene.defs[name], name, 2 + index, translation=translation)
+                node_id = len(self._root._children) + 1 + list(scene.defs).index(name)
+                self._nodes[name] = Node(scene.defs[name], name, node_id)
             return self._nodes[name]
         _print_error(f"Error: wb_supervisor_node_get_from_def(): node '{name}' not found.")
         return None
 
     def getFromId(self, id: int) -> Node | None:
-        """The robot's node for its id, else None."""
-        return self._self if id == self._self.getId() else None
+        """The node of that id (the root, a top-level node, a DEF node asked for before), or
+        None."""
+        for node in [self._root, *self._root._children, *self._nodes.values()]:
+            if node.getId() == id:
+                return node
+        return None
 
     def getFromDevice(self, device: Any) -> Node | None:
         """The robot's node stands for its devices: None (devices have no nodes here)."""

@@ -1,0 +1,7 @@
+"""Webots' ``controller.altimeter`` module: ``Altimeter``."""
+
+from __future__ import annotations
+
+from mazesim.webots.inert import Altimeter
+
+__all__ = ["Altimeter"]

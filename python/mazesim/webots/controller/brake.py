@@ -1,0 +1,7 @@
+"""Webots' ``controller.brake`` module: ``Brake``."""
+
+from __future__ import annotations
+
+from mazesim.webots.inert import Brake
+
+__all__ = ["Brake"]
