@@ -164,3 +164,37 @@ def test_make_demo_command_drives_seed_maze_to_the_goal(tmp_path: Path) -> None:
     summary = json.loads((out / "summary.json").read_text())
     assert summary["goal_reached"] is True
     assert summary["collisions"] == 0
+
+
+def test_demo_drives_the_e_puck2_with_its_proximity_sensors(tmp_path: Path) -> None:
+    # The e-puck2 lists its ToF beside ps0-ps7; Alg. 1 reads ps0-ps7 by name.
+    result = mazesim_command(
+        "demo",
+        "--robot",
+        "e-puck2",
+        "--world",
+        "arena",
+        "--seconds",
+        "3",
+        "--out",
+        "out",
+        cwd=tmp_path,
+    )
+    assert result.returncode == 0, result.stderr
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert summary["robot"] == "e-puck2" and summary["distance_m"] > 0.1
+
+
+def test_a_reader_closing_the_pipe_ends_the_command_quietly() -> None:
+    # `mazesim worlds | head -0`: the reader is gone before the first line is written.
+    process = subprocess.Popen(
+        [sys.executable, "-m", "mazesim", "worlds"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+    )
+    assert process.stdout is not None and process.stderr is not None
+    process.stdout.close()
+    with process.stderr:
+        error = process.stderr.read()
+    assert process.wait(timeout=60) == 141  # 128 + SIGPIPE, as shells report it
+    assert error == b""

@@ -14,6 +14,7 @@ import importlib
 import json
 import math
 import os
+import stat
 import sys
 import time
 from collections.abc import Sequence
@@ -56,6 +57,9 @@ COMMAND_MODULES: tuple[str, ...] = (
 EXIT_ERROR = 2
 #: Exit code of a run stopped with Ctrl-C (128 + SIGINT), as shells report it.
 EXIT_INTERRUPTED = 130
+#: Exit code of a run whose output pipe was closed by its reader (128 + SIGPIPE), as shells report
+#: a command that a closed pipe ended (``mazesim worlds | head -1``).
+EXIT_BROKEN_PIPE = 141
 #: Wall-clock seconds after which a run starts showing its progress on a terminal.
 PROGRESS_AFTER_S = 1.0
 #: The most simulated seconds a command runs for (11.6 days).
@@ -278,12 +282,16 @@ def run_demo(args: argparse.Namespace, out: TextIO) -> int:
     world = mazesim.load_world(args.world)
     simulator = mazesim.Simulator(world, robot=args.robot, seed=args.seed)
     robot = simulator.robot
-    if robot.distance_sensor_unit != "raw" or len(robot.distance_sensor_names) != 8:
+    proximity = [f"ps{i}" for i in range(8)]
+    names = list(robot.distance_sensor_names)
+    if robot.distance_sensor_unit != "raw" or not set(proximity) <= set(names):
         raise InvalidArgumentError(
-            f"the demo's avoid-collision controller needs the e-puck's 8 raw proximity sensors; "
-            f"robot {robot.name!r} has {len(robot.distance_sensor_names)} sensors "
+            f"the demo's avoid-collision controller needs the e-puck's 8 raw proximity sensors "
+            f"ps0-ps7; robot {robot.name!r} has {', '.join(names)} "
             f"in {robot.distance_sensor_unit!r}"
         )
+    # ps0-ps7, wherever the profile lists them (the e-puck2 has its ToF beside them).
+    columns = [names.index(name) for name in proximity]
     controller = AvoidCollision(max_speed=robot.max_wheel_speed)
     # Fail before the run, not after it, if the output folder cannot be made.
     os.makedirs(args.out, exist_ok=True)
@@ -298,7 +306,7 @@ def run_demo(args: argparse.Namespace, out: TextIO) -> int:
     started = time.perf_counter()
     try:
         for step in range(1, steps + 1):
-            left, right = controller(simulator.distance_sensors())
+            left, right = controller(simulator.distance_sensors()[columns])
             watch.before_step(left, right)
             simulator.step(left, right)
             xs[step], ys[step], _ = simulator.pose
@@ -358,6 +366,14 @@ def run_demo(args: argparse.Namespace, out: TextIO) -> int:
     return 0
 
 
+def _stdout_is_a_pipe() -> bool:
+    """Whether standard output is a pipe (whose reader may close it early)."""
+    try:
+        return stat.S_ISFIFO(os.fstat(sys.stdout.fileno()).st_mode)
+    except (OSError, ValueError, AttributeError):
+        return False
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Runs the ``mazesim`` command.
 
@@ -384,6 +400,14 @@ def main(argv: Sequence[str] | None = None) -> int:
         return code if isinstance(code, int) else (0 if code is None else EXIT_ERROR)
     try:
         return int(args.run(args))
+    except BrokenPipeError as error:
+        if not _stdout_is_a_pipe():
+            print(f"mazesim: error: {_one_line(str(error))}", file=sys.stderr)
+            return EXIT_ERROR
+        # The reader of the output went away: stop quietly, as Unix tools do, and keep Python
+        # from failing again when it flushes the closed pipe at exit.
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return EXIT_BROKEN_PIPE
     except (MazesimError, OSError) as error:
         print(f"mazesim: error: {_one_line(str(error))}", file=sys.stderr)
         return EXIT_ERROR
