@@ -42,7 +42,7 @@ criterion_main!(benches, physics_benches, batch_benches);
 fn body_step(c: &mut Criterion) {
     let world = common::world();
     let mut body =
-        mazesim_core::physics::Body::new(world.walls(), 0.037, [0.125, 1.125, 0.0], 0.032);
+        mazesim_core::physics::Body::new(world.walls(), &[], 0.037, [0.125, 1.125, 0.0], 0.032);
     let mut g = c.benchmark_group("body_step");
     g.throughput(Throughput::Elements(1));
     let mut i = 0u32;

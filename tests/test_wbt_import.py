@@ -153,20 +153,37 @@ def test_rats_life_maze_stays_in_its_area_and_runs_the_e_puck2() -> None:
     assert (report["robot_model"], report["robot_profile"]) == ("e-puck2", "e-puck2")
 
 
-def test_collision_avoidance_keeps_its_ball_as_a_static_disc() -> None:
+def test_collision_avoidance_ball_is_a_movable_disc_the_robot_pushes() -> None:
     world, report = import_wbt(corpus_file("collision_avoidance.wbt"))
-    circles = [o for o in report["obstacles"] if o["kind"] == "circle"]
-    assert circles == [{"kind": "circle", "center": [0.2, 0.0], "radius": 0.05}]
-    assert any(
-        '"ball": an object with physics: imported as a static obstacle' in w
-        for w in report["warnings"]
-    )
-    # The ball's ring of walls stands 0.15 m ahead: after 7.7 cm ps0 and ps7 see it 4 cm away.
+    assert [o["kind"] for o in report["obstacles"]] == ["box"] * 4
+    # A 5 cm sphere of Webots' default density, 1000 kg/m^3: 0.52 kg.
+    [ball] = report["bodies"]
+    assert (ball["kind"], ball["center"], ball["radius"]) == ("circle", [0.2, 0.0], 0.05)
+    assert ball["mass"] == pytest.approx(1000 * 4 / 3 * math.pi * 0.05**3)
+    assert world.bodies() == [
+        {
+            "shape": "circle",
+            "center": (0.2, 0.0),
+            "radius": 0.05,
+            "mass": ball["mass"],
+            "friction": 0.5,
+            "reflectance": 1.0,
+        }
+    ]
+    assert not any('"ball": an object with physics' in w for w in report["warnings"])
+    # The ball stands 0.15 m ahead: after 7.7 cm ps0 and ps7 see it 4 cm away.
     sim = mazesim.Simulator(world, noise=False)
     for _ in range(80):
         sim.step(3.0, 3.0)
     assert sim.distance_sensors()[[0, 7]].min() > 100.0
     assert sim.collisions == 0
+    # Then the robot pushes it ahead.
+    for _ in range(100):
+        sim.step(3.0, 3.0)
+    [(x, y, _)] = sim.body_poses()
+    assert x > sim.pose[0] + 0.08 and abs(y) < 0.02
+    sim.reset()
+    assert sim.body_poses() == [(pytest.approx(0.2), 0.0, 0.0)]
 
 
 def test_devices_in_the_turret_slot_are_listed() -> None:
@@ -226,6 +243,7 @@ def test_cli_json_layout(tmp_path: Path) -> None:
     report = json.loads(result.stdout)
     assert set(report) == {
         "obstacles",
+        "bodies",
         "robot",
         "basic_time_step_ms",
         "warnings",
@@ -268,8 +286,9 @@ def test_cli_summary_and_world_file(tmp_path: Path) -> None:
     assert out.is_file()
     saved = mazesim.load_world(out)
     assert saved == import_wbt(corpus_file("e-puck.R2021c_NUE.wbt"))[0]
-    warned = run_cli("import-wbt", str(corpus_file("collision_avoidance.wbt")), cwd=tmp_path)
-    assert '- line 25: Solid "ball": an object with physics: imported as a static' in warned.stdout
+    moved = run_cli("import-wbt", str(corpus_file("collision_avoidance.wbt")), cwd=tmp_path)
+    assert "movable bodies     1\n" in moved.stdout
+    assert "an object with physics" not in moved.stdout
 
 
 def test_cli_errors_are_one_line_with_exit_2(tmp_path: Path) -> None:

@@ -104,6 +104,9 @@ class World:
         """Floor paint in drawing order; each a dict with "shape" ("rect" | "circle" | "capsule"),
         its geometry ("center", "size", "yaw" | "center", "radius" | "a", "b", "radius") and
         "reflectance". Barcode bars are included as rects."""
+    def bodies(self) -> list[dict[str, object]]:
+        """Each movable body at its start pose as a dict: "shape" ("box" with "size" and
+        "yaw", or "circle" with "radius"), "center", "mass", "friction", "reflectance"."""
     def checkpoints(self) -> list[dict[str, object]]:
         """Each checkpoint as a dict: "id", "code", "center", "yaw", "width"."""
     def cell_maze(self) -> dict[str, object] | None:
@@ -180,6 +183,8 @@ class Simulator:
     def set_pose(self, x: float, y: float, yaw: float) -> None: ...
     def distance_sensors(self) -> npt.NDArray[np.float32]: ...
     def ground_sensors(self) -> npt.NDArray[np.float32]: ...
+    def body_poses(self) -> list[tuple[float, float, float]]:
+        """Current poses (x, y, yaw) of the world's movable bodies, in world order."""
     @property
     def pose(self) -> tuple[float, float, float]: ...
     @property

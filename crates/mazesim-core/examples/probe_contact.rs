@@ -7,7 +7,7 @@ fn main() {
         yaw: 0.0,
         reflectance: 1.0,
     }];
-    let mut body = mazesim_core::physics::Body::new(&walls, 0.037, [0.25, 0.0, 0.3], 0.032);
+    let mut body = mazesim_core::physics::Body::new(&walls, &[], 0.037, [0.25, 0.0, 0.3], 0.032);
     let n: usize = std::env::var("STEPS")
         .ok()
         .and_then(|s| s.parse().ok())

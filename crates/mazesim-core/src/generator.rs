@@ -198,6 +198,7 @@ pub fn generate(params: &MazeParams, seed: u64) -> Result<World> {
         walls: Vec::new(),
         segments: Vec::new(),
         paint: Vec::new(),
+        bodies: Vec::new(),
         checkpoints,
     };
     World::from_spec(

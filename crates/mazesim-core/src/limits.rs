@@ -19,6 +19,9 @@ pub const MAX_WALLS: usize = 100_000;
 /// Most floor paint regions of a world (each polyline segment and barcode bar counts as one).
 pub const MAX_PAINT_REGIONS: usize = 100_000;
 
+/// Most movable bodies of a world (each is a rapier body in every environment).
+pub const MAX_BODIES: usize = 1_000;
+
 /// Most checkpoints of a world.
 pub const MAX_CHECKPOINTS: usize = 10_000;
 

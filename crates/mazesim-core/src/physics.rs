@@ -1,12 +1,30 @@
-//! The robot's body in rapier2d: a dynamic ball among fixed wall boxes, seen from above (no gravity).
+//! The robot's body in rapier2d: a dynamic ball among fixed wall boxes and the world's movable
+//! bodies, seen from above (no gravity).
 //!
 //! Each physics step the wheel speeds set the body's velocity (differential drive), and rapier's
-//! contact solver keeps it out of the walls. The solver's length unit is scaled to the e-puck so
-//! its allowed penetration and prediction distance are fractions of a millimetre, not of a metre.
+//! contact solver keeps it out of the walls and pushes the movable bodies. The solver's length unit
+//! is scaled to the e-puck so its allowed penetration and prediction distance are fractions of a
+//! millimetre, not of a metre.
+//!
+//! Floor friction of a movable body: seen from above there is no gravity to press a body on the
+//! floor, so the floor's friction is a damping of its linear and angular velocity at a rate of
+//! `friction * FLOOR_DAMPING_PER_FRICTION` per second. A body sliding at 1 m/s slows at `mu * g`,
+//! as Coulomb friction would slow it; slower bodies slow less, and a pushed body coasts a short way
+//! (at the e-puck's top speed and friction 0.5, about 2.6 cm) before it stops. Contacts between the
+//! robot, the bodies and the walls have no friction.
 
+use rapier2d::parry::query::Ray;
 use rapier2d::prelude::*;
 
-use crate::world::WallBox;
+use crate::world::{BodyShape, MovableBody, RayHit, WallBox};
+
+/// Damping rate (1/s) of a movable body per unit of floor friction coefficient: g, 9.81 m/s^2,
+/// over a reference speed of 1 m/s.
+pub const FLOOR_DAMPING_PER_FRICTION: f32 = 9.81;
+
+/// Solver iterations when movable bodies are present: a push through a chain of bodies needs more
+/// than the single iteration that a ball against static walls needs.
+const SOLVER_ITERATIONS_WITH_BODIES: usize = 4;
 
 /// Scale of the scene for rapier's tolerances (allowed error, corrective velocity): 1 cm.
 const LENGTH_UNIT: f32 = 0.01;
@@ -44,6 +62,9 @@ pub struct Body {
     dt: f32,
     /// The rapier body lags behind `pose` after free-flight steps.
     stale: bool,
+    /// The movable bodies with their reflectance, in world order. With any of them every step
+    /// runs through rapier (no free flight).
+    movables: Vec<(RigidBodyHandle, ColliderHandle, f32)>,
 }
 
 fn wrap_angle(a: f32) -> f32 {
@@ -58,8 +79,15 @@ fn wrap_angle(a: f32) -> f32 {
 }
 
 impl Body {
-    /// A body of `radius` at `pose` (x, y, yaw) among `walls`, stepped by `dt` seconds.
-    pub fn new(walls: &[WallBox], radius: f32, pose: [f32; 3], dt: f32) -> Body {
+    /// A body of `radius` at `pose` (x, y, yaw) among `walls` and the movable `bodies` at their
+    /// start poses, stepped by `dt` seconds.
+    pub fn new(
+        walls: &[WallBox],
+        bodies: &[MovableBody],
+        radius: f32,
+        pose: [f32; 3],
+        dt: f32,
+    ) -> Body {
         let mut world = PhysicsWorld::new();
         world.gravity = Vector::ZERO;
         world.integration_parameters.dt = dt;
@@ -94,6 +122,40 @@ impl Body {
         world
             .colliders
             .insert_with_parent(ball, robot, &mut world.bodies);
+        if !bodies.is_empty() {
+            world.integration_parameters.num_solver_iterations = SOLVER_ITERATIONS_WITH_BODIES;
+        }
+        let movables = bodies
+            .iter()
+            .map(|m| {
+                let damping = m.friction as f32 * FLOOR_DAMPING_PER_FRICTION;
+                let [x, y, yaw] = m.start.map(|v| v as f32);
+                let rigid = RigidBodyBuilder::dynamic()
+                    .translation(Vector::new(x, y))
+                    .rotation(yaw)
+                    .linear_damping(damping)
+                    .angular_damping(damping)
+                    .can_sleep(false)
+                    .build();
+                let handle = world.bodies.insert(rigid);
+                let shape = match m.shape {
+                    BodyShape::Box { half } => {
+                        ColliderBuilder::cuboid(half[0] as f32, half[1] as f32)
+                    }
+                    BodyShape::Circle { radius } => ColliderBuilder::ball(radius as f32),
+                };
+                let collider = shape
+                    .mass(m.mass as f32)
+                    .friction(0.0)
+                    .friction_combine_rule(CoefficientCombineRule::Min)
+                    .restitution(0.0);
+                let collider =
+                    world
+                        .colliders
+                        .insert_with_parent(collider, handle, &mut world.bodies);
+                (handle, collider, m.reflectance as f32)
+            })
+            .collect();
         let mut body = Body {
             world,
             robot,
@@ -101,6 +163,7 @@ impl Body {
             heading: [0.0, 1.0],
             dt,
             stale: false,
+            movables,
         };
         body.set_pose(body.rapier_pose());
         body
@@ -109,7 +172,7 @@ impl Body {
     /// Whether a step of `linear` m/s could bring the body within `FREE_FLIGHT_MARGIN` of a wall,
     /// given its current `clearance` (gap to the nearest wall).
     fn near_wall(&self, linear: f32, clearance: f32) -> bool {
-        clearance - linear.abs() * self.dt <= FREE_FLIGHT_MARGIN
+        !self.movables.is_empty() || clearance - linear.abs() * self.dt <= FREE_FLIGHT_MARGIN
     }
 
     /// Advances one physics step with the body driven at `linear` m/s forward and `angular` rad/s;
@@ -152,6 +215,48 @@ impl Body {
     /// Current pose (x, y, yaw in (-pi, pi]).
     pub fn pose(&self) -> [f32; 3] {
         self.pose
+    }
+
+    /// Current poses (x, y, yaw) of the movable bodies, in world order.
+    pub fn movable_poses(&self) -> impl Iterator<Item = [f32; 3]> + '_ {
+        self.movables.iter().map(|&(handle, _, _)| {
+            let b = &self.world.bodies[handle];
+            let t = b.translation();
+            [t.x, t.y, b.rotation().angle()]
+        })
+    }
+
+    /// The nearest movable body a ray from `origin` along the unit `dir` meets within
+    /// `max_distance`, at the bodies' current poses.
+    pub fn cast_ray_movables(
+        &self,
+        origin: [f32; 2],
+        dir: [f32; 2],
+        max_distance: f32,
+    ) -> Option<RayHit> {
+        let ray = Ray::new(
+            Vector::new(origin[0], origin[1]),
+            Vector::new(dir[0], dir[1]),
+        );
+        let mut nearest: Option<RayHit> = None;
+        for &(_, collider, reflectance) in &self.movables {
+            let c = &self.world.colliders[collider];
+            let limit = nearest.map_or(max_distance, |h| h.distance);
+            if let Some(distance) = c.shape().cast_ray(c.position(), &ray, limit, true) {
+                if distance < limit {
+                    nearest = Some(RayHit {
+                        distance,
+                        reflectance,
+                    });
+                }
+            }
+        }
+        nearest
+    }
+
+    /// Whether the world has movable bodies.
+    pub fn has_movables(&self) -> bool {
+        !self.movables.is_empty()
     }
 
     /// Sine and cosine of the current yaw (computed once per step, for every user of the pose).

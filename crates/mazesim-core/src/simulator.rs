@@ -94,6 +94,8 @@ pub struct Simulator {
     heading: [f32; 2],
     /// The distance sensors' rays in the robot frame (position, unit direction, length).
     rays: RayFan,
+    /// The same rays as plain numbers `[px, py, dx, dy, length]`, cast against movable bodies.
+    sensor_rays: Vec<[f32; 5]>,
     /// Per distance sensor: what its ray met at the last sensor reading.
     ray_hits: Vec<Option<RayHit>>,
     /// Per distance sensor: its table value and relative sigma when its ray meets nothing.
@@ -154,6 +156,7 @@ impl Simulator {
         let pose = [start[0] as f32, start[1] as f32, start[2] as f32];
         let body = Body::new(
             world.solid_walls(),
+            world.bodies(),
             robot.body_radius as f32,
             pose,
             dt as f32,
@@ -163,6 +166,16 @@ impl Simulator {
             let yb = robot.ground_sensors[b].position[1].abs();
             ya.total_cmp(&yb)
         });
+        let sensor_rays: Vec<[f32; 5]> = robot
+            .distance_sensors
+            .iter()
+            .map(|d| {
+                let [px, py] = d.position;
+                let [dx, dy] = d.direction;
+                let range = d.model.table.max_input();
+                [px, py, dx, dy, range].map(|v| v as f32)
+            })
+            .collect();
         let mut sim = Simulator {
             barcode_sensor,
             tracker: CrossingTracker::new(),
@@ -171,18 +184,8 @@ impl Simulator {
             start_override: None,
             distance_readings: vec![0.0; robot.distance_sensors.len()],
             reach: sensing_reach(&robot),
-            rays: RayFan::new(
-                &robot
-                    .distance_sensors
-                    .iter()
-                    .map(|d| {
-                        let [px, py] = d.position;
-                        let [dx, dy] = d.direction;
-                        let range = d.model.table.max_input();
-                        [px, py, dx, dy, range].map(|v| v as f32)
-                    })
-                    .collect::<Vec<_>>(),
-            ),
+            rays: RayFan::new(&sensor_rays),
+            sensor_rays,
             ray_hits: vec![None; robot.distance_sensors.len()],
             infrared_miss: robot
                 .distance_sensors
@@ -266,6 +269,7 @@ impl Simulator {
     fn place(&mut self, pose: [f32; 3]) {
         self.body = Body::new(
             self.world.solid_walls(),
+            self.world.bodies(),
             self.robot.body_radius as f32,
             pose,
             self.dt as f32,
@@ -376,6 +380,17 @@ impl Simulator {
         let noise = self.config.noise;
         self.near
             .cast_fan(index, &self.rays, [x, y], [s, c], &mut self.ray_hits);
+        if self.body.has_movables() {
+            for (hit, &[px, py, dx, dy, length]) in self.ray_hits.iter_mut().zip(&self.sensor_rays)
+            {
+                let origin = [x + c * px - s * py, y + s * px + c * py];
+                let dir = [c * dx - s * dy, s * dx + c * dy];
+                let limit = hit.map_or(length, |h| h.distance);
+                if let Some(body_hit) = self.body.cast_ray_movables(origin, dir, limit) {
+                    *hit = Some(body_hit);
+                }
+            }
+        }
         let readings = self.distance_readings.iter_mut();
         let sensors = robot.distance_sensors.iter().zip(&self.infrared_miss);
         for ((reading, (sensor, &miss)), &hit) in readings.zip(sensors).zip(&self.ray_hits) {
@@ -413,6 +428,11 @@ impl Simulator {
     /// Index of the ground sensor whose crossings are tracked (nearest the robot's centre line).
     pub fn barcode_sensor(&self) -> Option<usize> {
         self.barcode_sensor
+    }
+
+    /// Current poses (x, y, yaw) of the world's movable bodies, in world order.
+    pub fn body_poses(&self) -> Vec<[f32; 3]> {
+        self.body.movable_poses().collect()
     }
 
     /// Distance sensor readings in device order (raw counts or volts, per the profile).

@@ -6,6 +6,8 @@ use std::f64::consts::{FRAC_PI_2, PI};
 use std::path::PathBuf;
 
 use mazesim_core::wbt::{Obstacle, WbtImport};
+use mazesim_core::world::spec::BodySpec;
+use mazesim_core::world::values::xy;
 
 const LENGTH_TOLERANCE: f64 = 1e-3;
 const ANGLE_TOLERANCE: f64 = 0.01;
@@ -100,7 +102,7 @@ fn epuck_world_boxes() -> Vec<([f64; 2], [f64; 2], f64)> {
 }
 
 #[test]
-fn collision_avoidance_has_four_walls_and_keeps_the_ball_as_a_static_disc() {
+fn collision_avoidance_has_four_walls_and_a_movable_ball() {
     let import = import("collision_avoidance.wbt");
     assert_boxes(
         &import,
@@ -114,28 +116,24 @@ fn collision_avoidance_has_four_walls_and_keeps_the_ball_as_a_static_disc() {
     );
     assert_robot(&import, 0.0, 0.0, 0.0);
     assert_eq!(import.basic_time_step_ms, 16.0);
-    // The ball has physics: it falls onto the floor in Webots; mazesim keeps it where it
-    // lands, static, and says so.
-    let circles: Vec<_> = import
+    // The ball has physics (a 5 cm sphere of the default density, 1000 kg/m^3: 0.52 kg): it
+    // becomes a movable disc where it lands, not a static one (#16).
+    assert!(import
         .obstacles
         .iter()
-        .filter(|o| matches!(o, Obstacle::Circle { .. }))
-        .collect();
-    assert_eq!(
-        circles,
-        [&Obstacle::Circle {
-            center: [0.2, 0.0],
-            radius: 0.05
-        }]
-    );
-    assert!(
-        warned(
-            &import,
-            "\"ball\": an object with physics: imported as a static obstacle"
-        ),
-        "{:?}",
-        import.warnings
-    );
+        .all(|o| matches!(o, Obstacle::Box { .. })));
+    let [BodySpec::Circle {
+        center,
+        radius,
+        mass,
+        ..
+    }] = import.bodies.as_slice()
+    else {
+        panic!("one movable disc: {:?}", import.bodies)
+    };
+    assert_eq!((xy(center), radius.get()), ([0.2, 0.0], 0.05));
+    assert!((mass.get() - 1000.0 * 4.0 / 3.0 * PI * 0.05f64.powi(3)).abs() < 1e-9);
+    assert!(!warned(&import, "\"ball\": an object with physics"));
 }
 
 #[test]
@@ -278,4 +276,36 @@ fn every_corpus_world_builds_a_mazesim_world() {
         assert_eq!(world.start(), [x, y, yaw]);
         assert_eq!(world.basic_time_step() * 1000.0, import.basic_time_step_ms);
     }
+}
+
+#[test]
+fn a_light_wooden_box_becomes_a_movable_body_and_a_heavy_or_large_one_stays_static() {
+    let text = "#VRML_SIM R2023b utf8\n\
+        WoodenBox { translation 0.3 0 0.05 size 0.1 0.1 0.1 mass 0.1 }\n\
+        WoodenBox { translation -0.3 0 0.05 size 0.1 0.1 0.1 mass 2 }\n\
+        WoodenBox { translation 0 0.5 0.3 size 0.6 0.6 0.6 mass 0.1 }\n\
+        Solid { translation 0 -0.3 0.02 physics Physics { mass 0.05 } boundingObject Box { size 0.04 0.04 0.04 } }\n";
+    let import = WbtImport::from_text(text, "boxes.wbt").unwrap();
+    let centers: Vec<[f64; 2]> = import
+        .bodies
+        .iter()
+        .map(|b| match b {
+            BodySpec::Box { center, mass, .. } => {
+                assert!(mass.get() == 0.1 || mass.get() == 0.05);
+                xy(center)
+            }
+            BodySpec::Circle { .. } => panic!("a box"),
+        })
+        .collect();
+    assert_eq!(centers, [[0.3, 0.0], [0.0, -0.3]]);
+    // The 2 kg box and the 0.6 m box stay static, with the warning.
+    assert_eq!(import.obstacles.len(), 2);
+    let statics = import
+        .warnings
+        .iter()
+        .filter(|w| w.contains("imported as a static obstacle"))
+        .count();
+    assert_eq!(statics, 2, "{:#?}", import.warnings);
+    let world = import.to_world("boxes").unwrap();
+    assert_eq!(world.bodies().len(), 2);
 }

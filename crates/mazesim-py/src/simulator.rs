@@ -104,6 +104,14 @@ impl PySimulator {
         let p = self.read(|s| s.pose())?;
         Ok((p[0] as f64, p[1] as f64, p[2] as f64))
     }
+    /// Current poses (x, y, yaw) of the world's movable bodies, in world order.
+    fn body_poses(&self) -> PyResult<Vec<(f64, f64, f64)>> {
+        let poses = self.read(|s| s.body_poses())?;
+        Ok(poses
+            .iter()
+            .map(|p| (p[0] as f64, p[1] as f64, p[2] as f64))
+            .collect())
+    }
     #[getter]
     fn time(&self) -> PyResult<f64> {
         self.read(|s| s.time())

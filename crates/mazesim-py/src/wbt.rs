@@ -6,6 +6,8 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use mazesim_core::wbt::{DeviceField, GreyImage, Obstacle, WbtImport};
+use mazesim_core::world::spec::BodySpec;
+use mazesim_core::world::values::xy;
 use mazesim_core::Error;
 use numpy::{PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
@@ -105,7 +107,7 @@ fn grey_images(images: Option<&Bound<'_, PyDict>>) -> PyResult<BTreeMap<String, 
     Ok(out)
 }
 
-/// The import as `{"obstacles": [...], "robot": {...} | None, "basic_time_step_ms": t,
+/// The import as `{"obstacles": [...], "bodies": [...], "robot": {...} | None, "basic_time_step_ms": t,
 /// "warnings": [...], "robot_model", "robot_profile", "extension_devices", "floor_textures",
 /// "floor_paint"}`, in metres and radians, world frame, z up.
 fn report<'py>(py: Python<'py>, import: &WbtImport) -> PyResult<Bound<'py, PyDict>> {
@@ -127,8 +129,44 @@ fn report<'py>(py: Python<'py>, import: &WbtImport) -> PyResult<Bound<'py, PyDic
         }
         obstacles.append(d)?;
     }
+    let bodies = PyList::empty(py);
+    for body in &import.bodies {
+        let d = PyDict::new(py);
+        let (mass, friction) = match body {
+            BodySpec::Box {
+                center,
+                size,
+                yaw,
+                mass,
+                friction,
+                ..
+            } => {
+                d.set_item("kind", "box")?;
+                d.set_item("center", xy(center).to_vec())?;
+                d.set_item("size", [size[0].get(), size[1].get()].to_vec())?;
+                d.set_item("yaw", yaw.get())?;
+                (mass, friction)
+            }
+            BodySpec::Circle {
+                center,
+                radius,
+                mass,
+                friction,
+                ..
+            } => {
+                d.set_item("kind", "circle")?;
+                d.set_item("center", xy(center).to_vec())?;
+                d.set_item("radius", radius.get())?;
+                (mass, friction)
+            }
+        };
+        d.set_item("mass", mass.get())?;
+        d.set_item("friction", friction.get())?;
+        bodies.append(d)?;
+    }
     let out = PyDict::new(py);
     out.set_item("obstacles", obstacles)?;
+    out.set_item("bodies", bodies)?;
     match import.robot {
         Some([x, y, yaw]) => {
             let robot = PyDict::new(py);

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use mazesim_core::world::PaintShape;
+use mazesim_core::world::{BodyShape, PaintShape};
 use mazesim_core::{RobotProfile, World};
 use numpy::{PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
@@ -164,6 +164,36 @@ impl PyWorld {
                     }
                 }
                 d.set_item("reflectance", r.reflectance)?;
+                out.push(d);
+            }
+            Ok(out)
+        })
+    }
+
+    /// Movable bodies at their start poses as dicts: shape ("box" with size and yaw, or
+    /// "circle" with radius), center, mass, friction, reflectance.
+    fn bodies<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
+        enter(|| {
+            let mut out = Vec::new();
+            for b in self.inner.bodies() {
+                let d = PyDict::new(py);
+                let [x, y, yaw] = b.start;
+                match b.shape {
+                    BodyShape::Box { half } => {
+                        d.set_item("shape", "box")?;
+                        d.set_item("center", (x, y))?;
+                        d.set_item("size", (2.0 * half[0], 2.0 * half[1]))?;
+                        d.set_item("yaw", yaw)?;
+                    }
+                    BodyShape::Circle { radius } => {
+                        d.set_item("shape", "circle")?;
+                        d.set_item("center", (x, y))?;
+                        d.set_item("radius", radius)?;
+                    }
+                }
+                d.set_item("mass", b.mass)?;
+                d.set_item("friction", b.friction)?;
+                d.set_item("reflectance", b.reflectance)?;
                 out.push(d);
             }
             Ok(out)

@@ -1,8 +1,9 @@
 """Importing Webots ``.wbt`` worlds as mazesim worlds.
 
 The reading and the conversion happen in the compiled core (``mazesim_core::wbt``): every
-collision shape of the world that meets the e-puck's height becomes a wall (objects with physics
-too, as static obstacles, with a warning), the robot's pose becomes the start, its model picks
+collision shape of the world that meets the e-puck's height becomes a wall; an object with physics
+becomes a movable body when it is one box or disc at most 0.5 m wide and 1.5 kg heavy, otherwise a
+static obstacle with a warning. The robot's pose becomes the start, its model picks
 the robot profile, ``WorldInfo.basicTimeStep`` the time step. Floor image textures found beside
 the world file (PNG or JPEG, decoded here with Pillow) become floor paint. The report says what
 was imported and what was not (unknown PROTOs, meshes, tilted objects, missing textures), in
@@ -100,10 +101,12 @@ class ImportReport(TypedDict):
     ``robot_model`` is the robot as found (``"E-puck"``, ``"e-puck2"`` for ``version "2"``, the
     type name of another robot, ``None`` without one); ``robot_profile`` the mazesim profile
     that simulates it (``"e-puck"`` or ``"e-puck2"``); ``floor_paint`` the number of paint
-    rectangles the floor textures gave.
+    rectangles the floor textures gave; ``bodies`` the movable bodies (``kind``, ``center``,
+    ``size`` and ``yaw`` or ``radius``, ``mass`` in kg, floor ``friction``).
     """
 
     obstacles: list[BoxObstacle | CircleObstacle]
+    bodies: list[dict[str, object]]
     robot: RobotPose | None
     basic_time_step_ms: float
     warnings: list[str]

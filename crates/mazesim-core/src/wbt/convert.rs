@@ -90,6 +90,7 @@ impl WbtImport {
             segments: Vec::new(),
             paint: self.paint.clone(),
             checkpoints: Vec::new(),
+            bodies: self.bodies.clone(),
         }
     }
 

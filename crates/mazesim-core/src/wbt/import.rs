@@ -8,6 +8,8 @@ use super::frames::{axis_angle, tilt, Frame, Vec3, ENU_TO_NUE, IDENTITY, NUE_TO_
 use super::shapes::snap;
 use super::tree::{Document, Node, NodeId};
 use super::{Obstacle, WbtImport};
+use crate::world::spec::{BodySpec, DEFAULT_BODY_FRICTION};
+use crate::world::values::{Finite, NonNegative, Positive, Reflectance};
 
 /// Webots' default `WorldInfo.basicTimeStep` in milliseconds.
 pub const DEFAULT_BASIC_TIME_STEP_MS: f64 = 32.0;
@@ -78,12 +80,26 @@ pub struct FoundRobot {
     pub profile: &'static str,
 }
 
+/// Heaviest object with physics imported as a movable body, kilograms: ten times the e-puck's
+/// 0.15 kg. Heavier ones stay static obstacles (the robot could hardly push them).
+pub const MAX_BODY_MASS: f64 = 1.5;
+
+/// Widest object with physics imported as a movable body (a box's side, a disc's diameter),
+/// metres. Wider ones (walls, furniture) stay static obstacles.
+pub const MAX_BODY_SIDE: f64 = 0.5;
+
+/// Most a movable box's footprint may be longer than wide: a longer, thinner box (a maze wall
+/// with physics) stays a static obstacle.
+pub const MAX_BODY_ELONGATION: f64 = 4.0;
+
 /// The state of one import.
 pub struct Importer<'d> {
     pub doc: &'d Document,
     /// PROTOs and primitives are Y-up (files before R2022a).
     pub y_up: bool,
     pub obstacles: Vec<Obstacle>,
+    /// Movable bodies: objects with physics light and small enough to push (see `movable`).
+    pub bodies: Vec<BodySpec>,
     /// The e-puck (or e-puck2) the world runs with.
     pub robot: Option<FoundRobot>,
     /// The first robot that is not an e-puck: the e-puck stands in for it when there is none.
@@ -106,6 +122,7 @@ pub fn import(doc: &Document) -> WbtImport {
         doc,
         y_up: !doc.version.has_z_up_protos(),
         obstacles: Vec::new(),
+        bodies: Vec::new(),
         robot: None,
         other_robot: None,
         other_robot_warning: None,
@@ -132,6 +149,7 @@ pub fn import(doc: &Document) -> WbtImport {
     }
     WbtImport {
         obstacles: importer.obstacles,
+        bodies: importer.bodies,
         robot: robot.as_ref().map(|r| r.pose),
         robot_model: robot.as_ref().map(|r| r.model.clone()),
         robot_profile: robot.map_or(STAND_IN_PROFILE, |r| r.profile).to_string(),
@@ -359,11 +377,12 @@ impl<'d> Importer<'d> {
         !self.nodes(node, "physics").is_empty()
     }
 
-    /// Warns that an object with physics (or a mass) is kept as a static obstacle.
+    /// Warns that an object with physics (or a mass) is kept as a static obstacle: too heavy, too
+    /// large or not one box or disc to be a movable body.
     pub fn warn_static(&mut self, node: &'d Node) {
         let label = self.label(node);
         self.warn(format!(
-            "{label}: an object with physics: imported as a static obstacle (mazesim does not move objects; the robot cannot push it)"
+            "{label}: an object with physics: imported as a static obstacle (mazesim moves only one box or disc of at most {MAX_BODY_SIDE} m and {MAX_BODY_MASS} kg that is not a thin wall; the robot cannot push it)"
         ));
     }
 
@@ -371,16 +390,94 @@ impl<'d> Importer<'d> {
         let local = self.local_frame(node, [0.0; 3]);
         let frame = frame.then(&local);
         let falls = self.is_dynamic(node);
-        if falls && !self.nodes(node, "boundingObject").is_empty() {
-            self.warn_static(node);
-        }
+        let first = self.obstacles.len();
         for &shape in self.nodes(node, "boundingObject") {
             let label = self.label(node);
             self.falls = falls;
             self.bounding(shape, &frame, &label, depth + 1);
             self.falls = false;
         }
+        if falls && !self.nodes(node, "boundingObject").is_empty() {
+            let mass = self.physics_mass(node);
+            if !self.make_movable(first, mass) {
+                self.warn_static(node);
+            }
+        }
         self.scene_children(node, &frame, depth);
+    }
+
+    /// The mass of a Solid with physics, kilograms: its Physics `mass` when positive, otherwise
+    /// `density` (default 1000 kg/m^3) times the volume of its bounding object when that is one
+    /// Box, Sphere or Cylinder (bare or as a Shape's geometry); `None` otherwise.
+    fn physics_mass(&mut self, node: &'d Node) -> Option<f64> {
+        let &physics = self.nodes(node, "physics").first()?;
+        let physics = self.node(physics);
+        let mass = self.number(physics, "mass", -1.0);
+        if mass > 0.0 {
+            return Some(mass);
+        }
+        let density = self.number(physics, "density", 1000.0);
+        let &[bounding] = self.nodes(node, "boundingObject") else {
+            return None;
+        };
+        let mut geometry = self.node(bounding);
+        if geometry.type_name == "Shape" {
+            geometry = self.node(*self.nodes(geometry, "geometry").first()?);
+        }
+        let volume = match geometry.type_name.as_str() {
+            "Box" => self.vector(geometry, "size", [2.0; 3]).iter().product(),
+            "Sphere" => {
+                let r = self.number(geometry, "radius", 1.0);
+                4.0 / 3.0 * std::f64::consts::PI * r * r * r
+            }
+            "Cylinder" => {
+                let r = self.number(geometry, "radius", 1.0);
+                std::f64::consts::PI * r * r * self.number(geometry, "height", 2.0)
+            }
+            _ => return None,
+        };
+        let mass = density * volume;
+        (mass.is_finite() && mass > 0.0).then_some(mass)
+    }
+
+    /// Turns the obstacles emitted since index `first` into one movable body of `mass` kg, when
+    /// they are one box (not longer than `MAX_BODY_ELONGATION` times its width) or one disc no
+    /// wider than `MAX_BODY_SIDE` and `mass` is at most `MAX_BODY_MASS`; returns whether it did (otherwise the obstacles stay static).
+    pub fn make_movable(&mut self, first: usize, mass: Option<f64>) -> bool {
+        let Some(mass) = mass.filter(|m| m.is_finite() && *m > 0.0 && *m <= MAX_BODY_MASS) else {
+            return false;
+        };
+        if self.obstacles.len() != first + 1 {
+            return false;
+        }
+        let body = match self.obstacles[first] {
+            Obstacle::Box { center, size, yaw }
+                if size.iter().all(|s| *s <= MAX_BODY_SIDE)
+                    && size[0].min(size[1]) * MAX_BODY_ELONGATION >= size[0].max(size[1]) =>
+            {
+                BodySpec::Box {
+                    center: center.map(Finite),
+                    size: size.map(Positive),
+                    yaw: Finite(yaw),
+                    mass: Positive(mass),
+                    friction: NonNegative(DEFAULT_BODY_FRICTION),
+                    reflectance: Reflectance(1.0),
+                }
+            }
+            Obstacle::Circle { center, radius } if 2.0 * radius <= MAX_BODY_SIDE => {
+                BodySpec::Circle {
+                    center: center.map(Finite),
+                    radius: Positive(radius),
+                    mass: Positive(mass),
+                    friction: NonNegative(DEFAULT_BODY_FRICTION),
+                    reflectance: Reflectance(1.0),
+                }
+            }
+            _ => return false,
+        };
+        self.obstacles.truncate(first);
+        self.bodies.push(body);
+        true
     }
 
     /// A raw robot node counts as an e-puck when its name or model says so, or when it carries

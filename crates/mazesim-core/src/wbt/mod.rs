@@ -80,6 +80,8 @@ pub enum Obstacle {
 pub struct WbtImport {
     /// The static obstacles, in file order.
     pub obstacles: Vec<Obstacle>,
+    /// The movable bodies (light, small objects with physics), in file order.
+    pub bodies: Vec<crate::world::spec::BodySpec>,
     /// The robot's start pose (x, y, yaw), if the world has one: the e-puck's, or that of the
     /// robot the e-puck stands in for.
     pub robot: Option<[f64; 3]>,

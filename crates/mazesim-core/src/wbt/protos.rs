@@ -133,12 +133,11 @@ impl<'d> Importer<'d> {
         self.box_at(node, &frame, [0.0, 0.0, size[2] / 2.0], size);
     }
 
-    /// `WoodenBox` and `CardboardBox`: a box centred on the translation; static when mass <= 0.
+    /// `WoodenBox` and `CardboardBox`: a box centred on the translation; static when mass <= 0, a
+    /// movable body when light and small enough (`Importer::make_movable`).
     fn container(&mut self, node: &'d Node, frame: &Frame, max_size: f64) {
         let label = self.label(node);
-        if self.number(node, "mass", 0.0) > 0.0 {
-            self.warn_static(node);
-        }
+        let mass = self.number(node, "mass", 0.0);
         if self.number(node, "lidAngle", 0.0) != 0.0 {
             self.warn(format!("{label}: an open lid: imported as a closed box"));
         }
@@ -150,7 +149,11 @@ impl<'d> Importer<'d> {
                 "{label}: size {size:?} clamped to {clamped:?} as Webots does (0.01 to {max_size} m)"
             ));
         }
+        let first = self.obstacles.len();
         self.box_at(node, &frame, [0.0; 3], clamped);
+        if mass > 0.0 && !self.make_movable(first, Some(mass)) {
+            self.warn_static(node);
+        }
     }
 
     fn solid_box(&mut self, node: &'d Node, frame: &Frame) {

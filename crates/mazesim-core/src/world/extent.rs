@@ -6,7 +6,8 @@ use super::geometry::Bounds;
 use super::locate;
 use crate::error::{Error, Result};
 use crate::limits::{
-    BASIC_TIME_STEP_MS, MAX_ANGLE, MAX_CHECKPOINTS, MAX_COORDINATE, MAX_PAINT_REGIONS, MAX_WALLS,
+    BASIC_TIME_STEP_MS, MAX_ANGLE, MAX_BODIES, MAX_CHECKPOINTS, MAX_COORDINATE, MAX_PAINT_REGIONS,
+    MAX_WALLS,
 };
 
 /// Pairs of walls sharing a bin of the wall index that any world may have.
@@ -127,6 +128,18 @@ impl ExtentCheck<'_> {
             }
         }
         Ok(())
+    }
+
+    /// The count of movable bodies.
+    pub fn body_count(&self, bodies: usize) -> Result<()> {
+        if bodies <= MAX_BODIES {
+            return Ok(());
+        }
+        Err(self.refuse(
+            Place::Array("bodies", MAX_BODIES),
+            "bodies",
+            format!("expected at most {MAX_BODIES} movable bodies, found {bodies}"),
+        ))
     }
 
     /// `pairs` (pairs of walls listed in a common bin of the wall index, an upper bound of the

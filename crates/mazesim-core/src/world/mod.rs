@@ -2,6 +2,7 @@
 //! built-in worlds.
 
 mod binning;
+pub mod bodies;
 mod builtin;
 mod extent;
 pub mod floor;
@@ -15,6 +16,7 @@ pub mod walls;
 
 use std::path::Path;
 
+pub use bodies::{BodyShape, MovableBody};
 pub use builtin::{builtin_world_names, builtin_world_text};
 pub use floor::{FloorPaint, PaintRegion};
 pub use geometry::{Bounds, PaintShape, WallBox};
@@ -83,6 +85,8 @@ pub struct World {
     start: [f64; 3],
     bounds: Bounds,
     maze: Option<PlacedMaze>,
+    /// Movable bodies at their start poses, in file order.
+    bodies: Vec<MovableBody>,
 }
 
 impl PartialEq for World {
@@ -366,6 +370,7 @@ impl World {
             goal = Some(Goal { center, radius });
         }
         let start = start.unwrap_or([0.0, 0.0, 0.0]);
+        let bodies = bodies::compile(&spec.bodies, &check)?;
         let mut bounds = walls.iter().fold(Bounds::EMPTY, |b, w| b.union(w.bounds()));
         bounds = regions
             .iter()
@@ -380,6 +385,7 @@ impl World {
                 max: [g.center[0] + g.radius, g.center[1] + g.radius],
             });
         }
+        bounds = bodies.iter().fold(bounds, |b, m| b.union(m.bounds()));
         let background = spec.floor.as_ref().map_or(1.0, |f| f.reflectance.get());
         let solid_walls = distinct(&walls);
         let wall_index = WallIndex::new(&solid_walls);
@@ -396,6 +402,7 @@ impl World {
             start,
             bounds,
             maze,
+            bodies,
         })
     }
 
@@ -468,6 +475,11 @@ impl World {
     /// Bounds of walls, paint, start and goal.
     pub fn bounds(&self) -> Bounds {
         self.bounds
+    }
+
+    /// Movable bodies at their start poses, in file order.
+    pub fn bodies(&self) -> &[MovableBody] {
+        &self.bodies
     }
 
     /// The cell maze, when the world has a `[grid]`.

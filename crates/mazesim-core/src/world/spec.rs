@@ -4,7 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::values::{
-    BarcodeBits, Finite, FormatTag, FormatVersion, Point, Positive, Reflectance, Size,
+    BarcodeBits, Finite, FormatTag, FormatVersion, NonNegative, Point, Positive, Reflectance, Size,
 };
 
 fn default_time_step() -> Positive {
@@ -59,6 +59,9 @@ pub struct WorldSpec {
     /// Barcode checkpoints.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub checkpoints: Vec<CheckpointSpec>,
+    /// Movable rigid bodies the robot can push.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub bodies: Vec<BodySpec>,
 }
 
 /// `[floor]`.
@@ -248,4 +251,50 @@ pub struct CheckpointSpec {
     pub yaw: Finite,
     /// Extent across the corridor.
     pub width: Positive,
+}
+
+/// Floor friction coefficient of a movable body when the file gives none.
+pub const DEFAULT_BODY_FRICTION: f64 = 0.5;
+
+fn default_friction() -> NonNegative {
+    NonNegative(DEFAULT_BODY_FRICTION)
+}
+
+/// `[[bodies]]`: a movable rigid body (a box or a ball seen from above) the robot can push.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "shape", rename_all = "lowercase", deny_unknown_fields)]
+pub enum BodySpec {
+    /// A box.
+    Box {
+        /// Start position of the centre.
+        center: Point,
+        /// Extent along its own axes.
+        size: Size,
+        /// Start rotation in radians.
+        #[serde(default = "zero", skip_serializing_if = "is_zero")]
+        yaw: Finite,
+        /// Mass in kilograms.
+        mass: Positive,
+        /// Coefficient of friction with the floor.
+        #[serde(default = "default_friction")]
+        friction: NonNegative,
+        /// Infra-red reflection factor.
+        #[serde(default = "white", skip_serializing_if = "is_white")]
+        reflectance: Reflectance,
+    },
+    /// A disc (a ball or a cylinder standing up).
+    Circle {
+        /// Start position of the centre.
+        center: Point,
+        /// Radius in metres.
+        radius: Positive,
+        /// Mass in kilograms.
+        mass: Positive,
+        /// Coefficient of friction with the floor.
+        #[serde(default = "default_friction")]
+        friction: NonNegative,
+        /// Infra-red reflection factor.
+        #[serde(default = "white", skip_serializing_if = "is_white")]
+        reflectance: Reflectance,
+    },
 }

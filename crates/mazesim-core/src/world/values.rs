@@ -44,6 +44,12 @@ checked_f64!(
     "a number above zero"
 );
 checked_f64!(
+    /// A finite number at or above zero (a friction coefficient).
+    NonNegative,
+    |v| v.is_finite() && v >= 0.0,
+    "a number at or above zero"
+);
+checked_f64!(
     /// A reflection factor in (0, 1] as Webots' infra-red model uses it.
     Reflectance,
     |v| v.is_finite() && v > 0.0 && v <= 1.0,
