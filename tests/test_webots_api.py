@@ -110,9 +110,9 @@ def test_node_type_constants_are_webots_values_and_distinct() -> None:
     node = controller.Node
     assert (node.NO_NODE, node.ROBOT, node.DISTANCE_SENSOR, node.ROTATIONAL_MOTOR) == (
         0,
-        33,
-        41,
-        56,
+        34,
+        42,
+        57,
     )
     assert (node.SOLID, node.WORLD_INFO) == (80, 84)
 

@@ -1,7 +1,8 @@
 """Webots' node type constants (``Node.DISTANCE_SENSOR``...), shared by nodes and devices.
 
-Their values are those of Webots' ``WbNodeType`` enumeration: each name's index in
-:data:`NODE_TYPES`, so no two types share a value.
+Their values are those of Webots' ``WbNodeType`` enumeration (``include/controller/c/webots/
+nodes.h`` of R2023b and later: ``WB_NODE_ROBOT`` is 34, ``WB_NODE_DISTANCE_SENSOR`` 42): each
+name's index in :data:`NODE_TYPES`, so no two types share a value.
 """
 
 from __future__ import annotations
@@ -10,7 +11,7 @@ __all__ = ["NODE_TYPES", "node_type"]
 
 #: Webots' node types, in the order of its ``WbNodeType`` enumeration (``Node.ROBOT``...).
 NODE_TYPES = (
-    "NO_NODE APPEARANCE BACKGROUND BILLBOARD BOX CAPSULE COLOR CONE COORDINATE CYLINDER "
+    "NO_NODE APPEARANCE BACKGROUND BILLBOARD BOX CAD_SHAPE CAPSULE COLOR CONE COORDINATE CYLINDER "
     "DIRECTIONAL_LIGHT ELEVATION_GRID FOG GROUP IMAGE_TEXTURE INDEXED_FACE_SET "
     "INDEXED_LINE_SET MATERIAL MESH MUSCLE NORMAL PBR_APPEARANCE PLANE POINT_LIGHT POINT_SET "
     "POSE SHAPE SPHERE SPOT_LIGHT TEXTURE_COORDINATE TEXTURE_TRANSFORM TRANSFORM VIEWPOINT "
@@ -18,14 +19,14 @@ NODE_TYPES = (
     "EMITTER GPS GYRO INERTIAL_UNIT LED LIDAR LIGHT_SENSOR LINEAR_MOTOR PEN POSITION_SENSOR "
     "PROPELLER RADAR RANGE_FINDER RECEIVER ROTATIONAL_MOTOR SKIN SPEAKER TOUCH_SENSOR "
     "VACUUM_GRIPPER BALL_JOINT BALL_JOINT_PARAMETERS CHARGER CONTACT_PROPERTIES DAMPING FLUID "
-    "FOCUS HINGE_2_JOINT HINGE_2_JOINT_PARAMETERS HINGE_JOINT HINGE_JOINT_PARAMETERS "
+    "FOCUS HINGE_JOINT HINGE_JOINT_PARAMETERS HINGE_2_JOINT "
     "IMMERSION_PROPERTIES JOINT_PARAMETERS LENS LENS_FLARE PHYSICS RECOGNITION SLIDER_JOINT "
     "SLOT SOLID SOLID_REFERENCE TRACK TRACK_WHEEL WORLD_INFO ZOOM MICROPHONE RADIO"
 ).split()
 
 
 def node_type(name: str) -> int:
-    """The value of Webots' node type ``name`` (``"DISTANCE_SENSOR"`` -> 41).
+    """The value of Webots' node type ``name`` (``"DISTANCE_SENSOR"`` -> 42).
 
     Raises:
         ValueError: ``name`` is not one of :data:`NODE_TYPES`.
