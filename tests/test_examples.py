@@ -4,17 +4,15 @@ from __future__ import annotations
 
 import json
 import re
-import shutil
 import subprocess
 import sys
 from pathlib import Path
-
-import pytest
 
 import mazesim
 from docs_blocks import run_command
 from mazesim.distributed import parse_sweep_config, run_sequential
 from mazesim.webots import import_wbt
+from ros_support import needs_ros
 
 REPO = Path(__file__).resolve().parent.parent
 EXAMPLES = REPO / "examples"
@@ -88,16 +86,7 @@ def test_webots_controller_runs_through_mazesim_webots_run(tmp_path: Path) -> No
     assert summary["distance_m"] > 0.1, summary
 
 
-def _ros_available() -> bool:
-    if shutil.which("roscore") is None or shutil.which("roslaunch") is None:
-        return False
-    check = subprocess.run(
-        [sys.executable, "-c", "import rospy, std_msgs.msg"], capture_output=True, check=False
-    )
-    return check.returncode == 0
-
-
-@pytest.mark.skipif(not _ros_available(), reason="ROS 1 is not installed (run 'make ros-deps')")
+@needs_ros
 def test_ros_launch_reaches_the_goal(tmp_path: Path) -> None:
     out = run_example([sys.executable, str(EXAMPLES / "ros_launch.py"), "2"], tmp_path).stdout
     assert re.search(r"learning\.launch seed:=2: goal reached at step \d+", out), out

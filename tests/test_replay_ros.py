@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import re
-import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -13,20 +12,10 @@ import pytest
 
 from mazesim.hrl.subtasks import SUBTASK_NAMES
 from mazesim.replay import load_run
+from ros_support import needs_ros
 
 
-def _ros_available() -> bool:
-    if shutil.which("roscore") is None or shutil.which("rosbag") is None:
-        return False
-    check = subprocess.run(
-        [sys.executable, "-c", "import rospy, rosbag, std_msgs.msg, rosgraph_msgs.msg"],
-        capture_output=True,
-        check=False,
-    )
-    return check.returncode == 0
-
-
-@pytest.mark.skipif(not _ros_available(), reason="ROS 1 is not installed (run 'make ros-deps')")
+@needs_ros
 def test_ros_demo_records_the_run_and_the_navigator_decisions(tmp_path: Path) -> None:
     out = tmp_path / "demo"
     command = [sys.executable, "-m", "mazesim", "ros", "demo", "--out", str(out)]

@@ -11,7 +11,6 @@ import json
 import math
 import os
 import re
-import shutil
 import subprocess
 import sys
 import uuid
@@ -31,28 +30,13 @@ from mazesim.ros.bridge import BridgeSettings, resolve_settings
 from mazesim.ros.demo import goal_step
 from mazesim.ros.local_master import LocalMaster
 from mazesim.ros.perform_learning import control_step_value
+from ros_support import needs_ros
 
 REPO = Path(__file__).resolve().parents[1]
 PROBE = Path(__file__).with_name("ros_probe.py")
 MAZESIM = (sys.executable, "-m", "mazesim")
 EPUCK_SENSORS = "ps0,ps1,ps2,ps3,ps4,ps5,ps6,ps7,gs0,gs1,gs2"
 STEP_S = 0.032
-
-
-def _ros_available() -> bool:
-    if shutil.which("roscore") is None or shutil.which("rosbag") is None:
-        return False
-    check = subprocess.run(
-        [sys.executable, "-c", "import rospy, rosbag, std_msgs.msg, rosgraph_msgs.msg"],
-        capture_output=True,
-        check=False,
-    )
-    return check.returncode == 0
-
-
-needs_ros = pytest.mark.skipif(
-    not _ros_available(), reason="ROS 1 is not installed (run 'make ros-deps')"
-)
 
 
 # --- the parts that need no ROS ------------------------------------------------------------------

@@ -16,6 +16,7 @@ from collections.abc import Callable
 from typing import Any, TextIO
 
 import mazesim
+from mazesim._paths import output_path
 from mazesim.barcode.decoders import DECODERS
 from mazesim.barcode.link import LINKS
 from mazesim.barcode.study import (
@@ -29,7 +30,7 @@ from mazesim.barcode.study import (
     Tally,
     run_study,
 )
-from mazesim.cli import output_path, positive_int, seed_argument
+from mazesim.cli import positive_int, seed_argument
 
 __all__ = ["register", "run_barcode_study"]
 

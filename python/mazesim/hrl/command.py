@@ -20,8 +20,8 @@ from pathlib import Path
 from typing import Any, TextIO
 
 from mazesim import load_world
-from mazesim._paths import output_files, refuse_overwriting_inputs
-from mazesim.cli import output_path, positive_int, seed_argument
+from mazesim._paths import output_files, output_path, refuse_overwriting_inputs
+from mazesim.cli import positive_int, seed_argument
 from mazesim.errors import InvalidArgumentError
 from mazesim.hrl.navigation import DEFAULT_MAX_STEPS, EVENT_SOURCES
 from mazesim.replay.options import add_viewing_options, recording_requested, write_views

@@ -11,8 +11,8 @@ import sys
 from typing import Any, TextIO
 
 from mazesim._atomic import atomic_file
-from mazesim._paths import output_files, refuse_overwriting_inputs
-from mazesim.cli import output_path, positive_seconds, seed_argument
+from mazesim._paths import output_files, output_path, refuse_overwriting_inputs
+from mazesim.cli import positive_seconds, seed_argument
 from mazesim.replay.options import DeferredWatch, add_viewing_options, viewing_requested
 
 __all__ = ["register"]
