@@ -117,3 +117,52 @@ impl<'a, 'py> FromPyObject<'a, 'py> for Real {
         Ok(Real::Other(kind))
     }
 }
+
+/// An argument of a plain Python type (a str, bool, path or list of str) taken as any Python
+/// object, so that one of another type is an `InvalidArgumentError` naming the argument and the
+/// type expected, not pyo3's `TypeError`.
+#[derive(Debug, Clone)]
+pub enum Given<T> {
+    /// The value, of the expected type.
+    Value(T),
+    /// Not of the expected type: the name of the type found.
+    Other(String),
+}
+
+impl<T> Given<T> {
+    /// The value; `name` names the argument and `expected` its type in the error.
+    pub fn value(self, name: &str, expected: &str) -> PyResult<T> {
+        match self {
+            Given::Value(v) => Ok(v),
+            Given::Other(kind) => Err(invalid(format!(
+                "expected {name} to be {expected}, found a {kind}"
+            ))),
+        }
+    }
+}
+
+impl<'a, 'py, T> FromPyObject<'a, 'py> for Given<T>
+where
+    T: FromPyObject<'a, 'py>,
+{
+    type Error = PyErr;
+
+    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        if let Ok(v) = obj.extract::<T>() {
+            return Ok(Given::Value(v));
+        }
+        let kind = obj
+            .get_type()
+            .name()
+            .map(|n| n.to_string())
+            .unwrap_or_default();
+        Ok(Given::Other(kind))
+    }
+}
+
+/// A text argument.
+pub type Text = Given<String>;
+/// A true/false argument (a bool or a numpy bool).
+pub type Flag = Given<bool>;
+/// A file path argument (a str or an `os.PathLike`).
+pub type PathArg = Given<std::path::PathBuf>;

@@ -8,11 +8,11 @@ use mazesim_core::{Batch, RobotProfile, StepOutputs, World};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 
-use crate::args::{IntArg, Real};
+use crate::args::{Flag, IntArg, Real, Text};
 use crate::buffers::{copied, writable};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::{enter, enter_detached};
-use crate::world::PyWorld;
+use crate::world::{world_argument, PyWorld};
 
 /// N independent environments stepped together.
 #[pyclass(name = "BatchSimulator", module = "mazesim._core", frozen)]
@@ -122,15 +122,15 @@ fn interrupted() -> bool {
 #[pymethods]
 impl PyBatch {
     #[new]
-    #[pyo3(signature = (worlds, num_envs = None, robot = "e-puck", seeds = None, noise = true, control_step_ms = None, threads = IntArg::ZERO),
+    #[pyo3(signature = (worlds, num_envs = None, robot = Text::Value("e-puck".into()), seeds = None, noise = Flag::Value(true), control_step_ms = None, threads = IntArg::ZERO),
         text_signature = "(worlds, num_envs=None, robot='e-puck', seeds=None, noise=True, control_step_ms=None, threads=0)")]
     fn new(
         py: Python<'_>,
         worlds: &Bound<'_, PyAny>,
         num_envs: Option<IntArg>,
-        robot: &str,
+        robot: Text,
         seeds: Option<&Bound<'_, PyAny>>,
-        noise: bool,
+        noise: Flag,
         control_step_ms: Option<Real>,
         threads: IntArg,
     ) -> PyResult<Self> {
@@ -142,6 +142,8 @@ impl PyBatch {
                 .map(|n| n.count("num_envs", MAX_ENVS))
                 .transpose()?;
             let threads = threads.count("threads", MAX_THREADS)?;
+            let robot = robot.value("robot", "a robot profile name (str)")?;
+            let noise = noise.value("noise", "a bool")?;
             let worlds: Vec<Arc<World>> = if let Ok(w) = worlds.cast::<PyWorld>() {
                 let n =
                     num_envs.ok_or_else(|| bad("expected num_envs with a single world".into()))?;
@@ -168,7 +170,7 @@ impl PyBatch {
                 Some(s) => seeds_from(s, n)?,
                 None => (0..n as u64).collect(),
             };
-            let profile = Arc::new(RobotProfile::builtin(robot).py()?);
+            let profile = Arc::new(RobotProfile::builtin(&robot).py()?);
             let (dw, gw) = (profile.distance_sensors.len(), profile.ground_sensors.len());
             let control = control_step_ms.map(|ms| ms / 1000.0);
             let mut batch = enter_detached(py, move || {
@@ -269,13 +271,13 @@ impl PyBatch {
         &self,
         py: Python<'_>,
         index: IntArg,
-        world: &PyWorld,
+        world: &Bound<'_, PyAny>,
         seed: IntArg,
     ) -> PyResult<()> {
         enter(|| {
             let index = index.count("index", self.n.saturating_sub(1))?;
             let seed = seed.seed("seed")?;
-            let w = world.inner.clone();
+            let w = world_argument(world, "world")?;
             enter_detached(py, || self.with(|b| b.set_world(index, w, seed)))
         })
     }

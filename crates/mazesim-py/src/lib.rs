@@ -15,7 +15,7 @@ mod world;
 
 use pyo3::prelude::*;
 
-use args::{IntArg, Real};
+use args::{Flag, Given, IntArg, Real};
 use errors::IntoPy;
 use guard::enter;
 
@@ -40,7 +40,7 @@ fn sharp_volts_to_cm(volts: Real) -> PyResult<f64> {
 
 /// A generated maze world (seeded; see mazesim-core's generator).
 #[pyfunction]
-#[pyo3(signature = (width = IntArg::Int(5), height = IntArg::Int(5), seed = IntArg::ZERO, cell_size = Real::Number(0.25), wall_thickness = Real::Number(0.01), loops = Real::Number(0.0), checkpoints = true, floor_reflectance = Real::Number(0.36)),
+#[pyo3(signature = (width = IntArg::Int(5), height = IntArg::Int(5), seed = IntArg::ZERO, cell_size = Real::Number(0.25), wall_thickness = Real::Number(0.01), loops = Real::Number(0.0), checkpoints = Flag::Value(true), floor_reflectance = Real::Number(0.36)),
     text_signature = "(width=5, height=5, seed=0, cell_size=0.25, wall_thickness=0.01, loops=0.0, checkpoints=True, floor_reflectance=0.36)")]
 fn generate_maze(
     width: IntArg,
@@ -49,7 +49,7 @@ fn generate_maze(
     cell_size: Real,
     wall_thickness: Real,
     loops: Real,
-    checkpoints: bool,
+    checkpoints: Flag,
     floor_reflectance: Real,
 ) -> PyResult<world::PyWorld> {
     enter(|| {
@@ -59,7 +59,7 @@ fn generate_maze(
             cell_size: cell_size.value("cell_size")?,
             wall_thickness: wall_thickness.value("wall_thickness")?,
             loops: loops.value("loops")?,
-            checkpoints,
+            checkpoints: checkpoints.value("checkpoints", "a bool")?,
             floor_reflectance: floor_reflectance.value("floor_reflectance")?,
         };
         let seed = seed.seed("seed")?;
@@ -78,8 +78,11 @@ fn default_codes() -> PyResult<Vec<String>> {
 
 /// Checks a barcode book (no palindrome, duplicate or reverse clash); raises InvalidArgumentError.
 #[pyfunction]
-fn validate_codes(codes: Vec<String>) -> PyResult<()> {
-    enter(|| mazesim_core::codebook::validate(&codes).py())
+fn validate_codes(codes: Given<Vec<String>>) -> PyResult<()> {
+    enter(|| {
+        let codes = codes.value("codes", "a list of str")?;
+        mazesim_core::codebook::validate(&codes).py()
+    })
 }
 
 #[pymodule]

@@ -6,10 +6,10 @@ use mazesim_core::{SimConfig, Simulator};
 use numpy::PyArray1;
 use pyo3::prelude::*;
 
-use crate::args::{IntArg, Real};
+use crate::args::{Flag, IntArg, Real, Text};
 use crate::errors::IntoPy;
 use crate::guard::{enter, enter_detached};
-use crate::world::{PyRobotProfile, PyWorld};
+use crate::world::{world_argument, PyRobotProfile, PyWorld};
 
 /// One robot in one world, stepped in control steps.
 #[pyclass(name = "Simulator", module = "mazesim._core", frozen)]
@@ -35,26 +35,29 @@ impl PySimulator {
 #[pymethods]
 impl PySimulator {
     #[new]
-    #[pyo3(signature = (world, robot = "e-puck", seed = IntArg::ZERO, noise = true, control_step_ms = None),
+    #[pyo3(signature = (world, robot = Text::Value("e-puck".into()), seed = IntArg::ZERO, noise = Flag::Value(true), control_step_ms = None),
         text_signature = "(world, robot='e-puck', seed=0, noise=True, control_step_ms=None)")]
     fn new(
-        world: &PyWorld,
-        robot: &str,
+        world: &Bound<'_, PyAny>,
+        robot: Text,
         seed: IntArg,
-        noise: bool,
+        noise: Flag,
         control_step_ms: Option<Real>,
     ) -> PyResult<Self> {
         enter(|| {
+            let world = world_argument(world, "world")?;
+            let robot = robot.value("robot", "a robot profile name (str)")?;
+            let noise = noise.value("noise", "a bool")?;
             let control_step_ms = control_step_ms
                 .map(|ms| ms.value("control_step_ms"))
                 .transpose()?;
-            let profile = PyRobotProfile::builtin(robot)?;
+            let profile = PyRobotProfile::named(&robot)?;
             let config = SimConfig {
                 seed: seed.seed("seed")?,
                 noise,
                 control_step: control_step_ms.map(|ms| ms / 1000.0),
             };
-            let sim = Simulator::new(world.inner.clone(), profile.inner, config).py()?;
+            let sim = Simulator::new(world, profile.inner, config).py()?;
             Ok(Self {
                 inner: Mutex::new(sim),
             })

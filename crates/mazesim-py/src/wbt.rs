@@ -13,7 +13,8 @@ use numpy::{PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString};
 
-use crate::errors::IntoPy;
+use crate::args::{PathArg, Text};
+use crate::errors::{invalid, IntoPy};
 use crate::guard::{enter, enter_detached};
 use crate::world::PyWorld;
 
@@ -75,10 +76,30 @@ fn robot_and_floor(out: &Bound<'_, PyDict>, import: &WbtImport) -> PyResult<()> 
 
 /// The grey images handed in for the floor textures: `{file: (height, width) float64 array of
 /// grey levels in [0, 1]}`.
-fn grey_images(images: Option<&Bound<'_, PyDict>>) -> PyResult<BTreeMap<String, GreyImage>> {
+fn grey_images(images: Option<&Bound<'_, PyAny>>) -> PyResult<BTreeMap<String, GreyImage>> {
+    let type_name = |obj: &Bound<'_, PyAny>| {
+        obj.get_type()
+            .name()
+            .map(|n| n.to_string())
+            .unwrap_or_default()
+    };
+    let images = match images {
+        None => None,
+        Some(obj) => Some(obj.cast::<PyDict>().map_err(|_| {
+            invalid(format!(
+                "expected floor_images to be a dict of file name -> grey-level array, found a {}",
+                type_name(obj)
+            ))
+        })?),
+    };
     let mut out = BTreeMap::new();
     for (key, value) in images.into_iter().flat_map(|d| d.iter()) {
-        let file: String = key.extract()?;
+        let file: String = key.extract().map_err(|_| {
+            invalid(format!(
+                "expected the keys of floor_images to be file names (str), found a {}",
+                type_name(&key)
+            ))
+        })?;
         let wrong = |found: String| {
             Error::InvalidArgument(format!(
                 "floor image {file:?}: expected a C-contiguous (height, width) float64 array of grey levels in [0, 1], found {found}"
@@ -195,7 +216,7 @@ fn finish<'py>(
     py: Python<'py>,
     mut import: WbtImport,
     source: &Path,
-    floor_images: Option<&Bound<'py, PyDict>>,
+    floor_images: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(PyWorld, Bound<'py, PyDict>)> {
     import.paint_floor(&grey_images(floor_images)?);
     let import = &import;
@@ -215,10 +236,11 @@ fn finish<'py>(
 #[pyo3(signature = (path, floor_images = None))]
 pub fn import_wbt<'py>(
     py: Python<'py>,
-    path: PathBuf,
-    floor_images: Option<&Bound<'py, PyDict>>,
+    path: PathArg,
+    floor_images: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(PyWorld, Bound<'py, PyDict>)> {
     enter(|| {
+        let path: PathBuf = path.value("path", "a str or os.PathLike")?;
         let import = enter_detached(py, || WbtImport::load(&path))?;
         finish(py, import, &path, floor_images)
     })
@@ -227,16 +249,27 @@ pub fn import_wbt<'py>(
 /// Imports the text of a `.wbt` file; `source` names it in error messages and names the world.
 /// Lone surrogates (not UTF-8) are read as U+FFFD, so that they end in a located format error.
 #[pyfunction]
-#[pyo3(signature = (text, source = "<string>", floor_images = None))]
+#[pyo3(signature = (text, source = Text::Value("<string>".into()), floor_images = None),
+    text_signature = "(text, source='<string>', floor_images=None)")]
 pub fn import_wbt_text<'py>(
     py: Python<'py>,
-    text: &Bound<'py, PyString>,
-    source: &str,
-    floor_images: Option<&Bound<'py, PyDict>>,
+    text: &Bound<'py, PyAny>,
+    source: Text,
+    floor_images: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(PyWorld, Bound<'py, PyDict>)> {
     enter(|| {
+        let text = text.cast::<PyString>().map_err(|_| {
+            invalid(format!(
+                "expected text to be a str, found a {}",
+                text.get_type()
+                    .name()
+                    .map(|n| n.to_string())
+                    .unwrap_or_default()
+            ))
+        })?;
         let text = text.to_string_lossy();
-        let import = enter_detached(py, || WbtImport::from_text(&text, source))?;
-        finish(py, import, Path::new(source), floor_images)
+        let source = source.value("source", "a str")?;
+        let import = enter_detached(py, || WbtImport::from_text(&text, &source))?;
+        finish(py, import, Path::new(&source), floor_images)
     })
 }

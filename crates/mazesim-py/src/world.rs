@@ -1,6 +1,5 @@
 //! `World` and `RobotProfile` for Python.
 
-use std::path::PathBuf;
 use std::sync::Arc;
 
 use mazesim_core::world::{BodyShape, PaintShape};
@@ -9,7 +8,7 @@ use numpy::{PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::{IntArg, Real};
+use crate::args::{IntArg, PathArg, Real, Text};
 use crate::errors::IntoPy;
 use crate::guard::{enter, enter_detached};
 
@@ -38,17 +37,19 @@ fn sensor_index_error(kind: &str, count: usize, index: usize) -> PyErr {
 impl PyWorld {
     /// A built-in world by name (see `builtin_world_names()`).
     #[staticmethod]
-    fn builtin(name: &str) -> PyResult<Self> {
+    fn builtin(name: Text) -> PyResult<Self> {
         enter(|| {
+            let name = name.value("name", "a str")?;
             Ok(Self {
-                inner: Arc::new(World::builtin(name).py()?),
+                inner: Arc::new(World::builtin(&name).py()?),
             })
         })
     }
 
     /// Reads a world file.
     #[staticmethod]
-    fn load(py: Python<'_>, path: PathBuf) -> PyResult<Self> {
+    fn load(py: Python<'_>, path: PathArg) -> PyResult<Self> {
+        let path = path.value("path", "a str or os.PathLike")?;
         let world = enter_detached(py, || World::load(&path))?;
         Ok(Self {
             inner: Arc::new(world),
@@ -57,9 +58,11 @@ impl PyWorld {
 
     /// Parses a world file's text; `source` names it in error messages.
     #[staticmethod]
-    #[pyo3(signature = (text, source = "<string>"))]
-    fn from_toml(py: Python<'_>, text: &str, source: &str) -> PyResult<Self> {
-        let world = enter_detached(py, || World::from_toml(text, source))?;
+    #[pyo3(signature = (text, source = Text::Value("<string>".into())), text_signature = "(text, source='<string>')")]
+    fn from_toml(py: Python<'_>, text: Text, source: Text) -> PyResult<Self> {
+        let text = text.value("text", "a str")?;
+        let source = source.value("source", "a str")?;
+        let world = enter_detached(py, || World::from_toml(&text, &source))?;
         Ok(Self {
             inner: Arc::new(world),
         })
@@ -71,7 +74,8 @@ impl PyWorld {
     }
 
     /// Writes the world file atomically.
-    fn save(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
+    fn save(&self, py: Python<'_>, path: PathArg) -> PyResult<()> {
+        let path = path.value("path", "a str or os.PathLike")?;
         enter_detached(py, || self.inner.save(&path))
     }
 
@@ -287,14 +291,38 @@ pub struct PyRobotProfile {
     pub inner: Arc<RobotProfile>,
 }
 
+impl PyRobotProfile {
+    /// A built-in profile by name.
+    pub fn named(name: &str) -> PyResult<Self> {
+        Ok(Self {
+            inner: Arc::new(RobotProfile::builtin(name).py()?),
+        })
+    }
+}
+
+/// The `World` a `world` argument names, or an `InvalidArgumentError` saying what was found.
+pub fn world_argument(world: &Bound<'_, PyAny>, name: &str) -> PyResult<Arc<World>> {
+    match world.cast::<PyWorld>() {
+        Ok(w) => Ok(w.get().inner.clone()),
+        Err(_) => {
+            let kind = world
+                .get_type()
+                .name()
+                .map(|n| n.to_string())
+                .unwrap_or_default();
+            Err(crate::errors::invalid(format!(
+                "expected {name} to be a mazesim.World, found a {kind}"
+            )))
+        }
+    }
+}
+
 #[pymethods]
 impl PyRobotProfile {
     /// A built-in profile by name (see `robot_profile_names()`).
     #[staticmethod]
-    pub fn builtin(name: &str) -> PyResult<Self> {
-        Ok(Self {
-            inner: Arc::new(RobotProfile::builtin(name).py()?),
-        })
+    fn builtin(name: Text) -> PyResult<Self> {
+        enter(|| Self::named(&name.value("name", "a str")?))
     }
 
     #[getter]

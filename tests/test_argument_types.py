@@ -1,0 +1,166 @@
+"""Every argument of every function and method of ``mazesim._core``, given a value of the wrong
+type, raises ``mazesim.InvalidArgumentError`` naming the argument: never pyo3's ``TypeError``.
+
+The arguments are found by introspection, so a new function or method is covered as soon as it
+exists; a parameter name this file has no valid sample for fails the test (add its sample below).
+"""
+
+from __future__ import annotations
+
+import inspect
+from collections.abc import Callable, Iterator
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+import mazesim
+import mazesim._core as core
+
+WEBOTS_WORLD = sorted((Path(__file__).parent / "data" / "webots-worlds").glob("*.wbt"))[0]
+NUM_ENVS = 2
+
+#: Private entry points kept for tests of the panic guard.
+PRIVATE = {"_panic_for_tests"}
+
+
+class WrongType:
+    """A value of a type no argument takes."""
+
+    def __repr__(self) -> str:
+        return "WrongType()"
+
+
+def callables() -> Iterator[tuple[str, str, Callable[..., Any]]]:
+    """(class or "", name, callable) for every public callable of the extension."""
+    for name in sorted(dir(core)):
+        obj = getattr(core, name)
+        if name in PRIVATE or name.startswith("__"):
+            continue
+        if inspect.isclass(obj):
+            if issubclass(obj, BaseException):
+                continue
+            yield "", name, obj
+            for member in sorted(dir(obj)):
+                if not member.startswith("_") and callable(getattr(obj, member)):
+                    yield name, member, getattr(obj, member)
+        elif callable(obj):
+            yield "", name, obj
+
+
+def samples(tmp: Path) -> dict[str, Any]:
+    """A valid value of every parameter name, and an instance of every class."""
+    world = mazesim.World.builtin("seed-maze")
+    batch = core.BatchSimulator(world, num_envs=NUM_ENVS)
+    x, y, yaw = world.start
+    saved = tmp / "world.toml"
+    world.save(saved)
+    return {
+        "instances": {
+            "World": world,
+            "Simulator": core.Simulator(world),
+            "BatchSimulator": batch,
+            "RobotProfile": core.RobotProfile.builtin("e-puck"),
+        },
+        "name": {"World": "seed-maze", "RobotProfile": "e-puck"},
+        "path": {"load": saved, "save": tmp / "out.toml", "import_wbt": WEBOTS_WORLD},
+        "worlds": world,
+        "world": world,
+        "num_envs": NUM_ENVS,
+        "robot": "e-puck",
+        "seeds": None,
+        "noise": True,
+        "control_step_ms": None,
+        "threads": 0,
+        "observations": np.zeros((NUM_ENVS, batch.observation_width), np.float32),
+        "poses": np.zeros((NUM_ENVS, 3), np.float32),
+        "colliding": np.zeros(NUM_ENVS, bool),
+        "crossings": np.zeros(NUM_ENVS, np.int32),
+        "actions": np.zeros((NUM_ENVS, 2), np.float32),
+        "mask": None,
+        "starts": np.array([[x, y, yaw]] * NUM_ENVS),
+        "index": 0,
+        "seed": 0,
+        "reading": 100.0,
+        "reflectance": 0.5,
+        "x": x,
+        "y": y,
+        "yaw": yaw,
+        "left": 0.0,
+        "right": 0.0,
+        "text": world.to_toml(),
+        "source": "sample",
+        "floor_images": None,
+        "codes": core.default_codes(),
+        "volts": 1.0,
+        "width": 5,
+        "height": 5,
+        "cell_size": 0.25,
+        "wall_thickness": 0.01,
+        "loops": 0.0,
+        "checkpoints": True,
+        "floor_reflectance": 0.36,
+    }
+
+
+def sample(table: dict[str, Any], param: str, owner: str, name: str) -> Any:
+    value = table[param]
+    if param in ("name", "path"):
+        return value[owner or name] if param == "name" else value[name]
+    if param == "text" and name == "import_wbt_text":
+        return WEBOTS_WORLD.read_text(encoding="utf-8")
+    return value
+
+
+def cases(tmp: Path) -> Iterator[tuple[str, Callable[..., Any], dict[str, Any], str]]:
+    """(label, callable, valid keyword arguments, the parameter to give a wrong type)."""
+    table = samples(tmp)
+    for owner, name, target in callables():
+        bound = getattr(table["instances"][owner], name) if owner else target
+        try:
+            params = [p for p in inspect.signature(bound).parameters.values() if p.name != "self"]
+        except (TypeError, ValueError):
+            continue
+        missing = [p.name for p in params if p.name not in table]
+        assert not missing, f"{owner}.{name}: no valid sample for {missing}; add one"
+        valid = {p.name: sample(table, p.name, owner, name) for p in params}
+        for p in params:
+            yield f"{owner + '.' if owner else ''}{name}({p.name}=)", bound, valid, p.name
+
+
+def test_every_argument_of_a_wrong_type_is_an_invalid_argument_error(tmp_path: Path) -> None:
+    checked = 0
+    failures = []
+    for label, target, valid, wrong in cases(tmp_path):
+        try:
+            target(**{**valid, wrong: WrongType()})
+        except mazesim.InvalidArgumentError as error:
+            if wrong not in str(error):
+                failures.append(f"{label}: the message does not name {wrong!r}: {error}")
+        except BaseException as error:  # noqa: BLE001 - any other exception is the failure
+            failures.append(f"{label}: {type(error).__name__}: {error}")
+        else:
+            failures.append(f"{label}: accepted a WrongType()")
+        checked += 1
+    assert not failures, "\n".join(failures)
+    assert checked >= 60
+
+
+def test_the_valid_samples_are_accepted(tmp_path: Path) -> None:
+    """The other half of the check above: with every argument valid, nothing is refused, so the
+    errors above are the wrong-typed argument's doing."""
+    seen = set()
+    for label, target, valid, _ in cases(tmp_path):
+        if label.split("(")[0] in seen:
+            continue
+        seen.add(label.split("(")[0])
+        target(**valid)
+    assert len(seen) >= 20
+
+
+@pytest.mark.parametrize("robot", [None, 3, b"e-puck"])
+def test_simulator_robot_of_a_wrong_type(robot: Any) -> None:
+    world = mazesim.World.builtin("seed-maze")
+    with pytest.raises(mazesim.InvalidArgumentError, match=r"expected robot to be .*found a"):
+        mazesim.Simulator(world, robot=robot)
