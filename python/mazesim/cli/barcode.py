@@ -30,6 +30,7 @@ from mazesim.barcode.study import (
     run_study,
 )
 from mazesim.cli._args import output_path, positive_int, seed_argument
+from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
 
 __all__ = ["register", "run_barcode_study"]
@@ -93,10 +94,13 @@ def register(commands: Any) -> None:
             "the default threshold. Writes by_threshold.csv/.png and by_speed.csv/.png into "
             "DIR."
         ),
-        epilog=(
-            "Decoders: alg7 = the report's Alg. 7 (middle sample of each fifth, threshold 700); "
-            "robust = places samples along the code with wheel odometry. Shares in the JSON "
-            "output are in [0, 1]; 'spurious' counts valid reads of no crossing."
+        epilog=examples(
+            "mazesim barcode-study",
+            "mazesim barcode-study --link ros --out study-ros",
+            "mazesim barcode-study --thresholds 1.2,2.0 --speeds 3.14,6.28 --readings 500 --json",
+            notes="Decoders: alg7 = the report's Alg. 7 (middle sample of each fifth, threshold "
+            "700); robust = places samples along the code with wheel odometry. Shares in the JSON "
+            "output are in [0, 1]; 'spurious' counts valid reads of no crossing.",
         ),
     )
     parser.add_argument(

@@ -13,6 +13,7 @@ import os
 from typing import Any
 
 from mazesim.cli._args import MAX_COUNT, non_negative_int
+from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
 
 __all__ = ["register", "run_bench"]
@@ -71,7 +72,13 @@ def register(commands: Any) -> None:
         description=(
             "Run the canonical workload (a distinct 5 x 5 maze per env, the e-puck with all 11 "
             "sensors read each step, 32 ms steps, Braitenberg wheel speeds) at each batch size, "
-            "each in a fresh process, and print env-steps per second and resident bytes per env."
+            "each in a fresh process, and print env-steps per second and resident bytes per env. "
+            "Last, one env stepped from a Python loop, for comparison."
+        ),
+        epilog=examples(
+            "mazesim bench",
+            "mazesim bench --envs 64,1024 --steps 200 --json",
+            "mazesim bench --threads 1",
         ),
     )
     parser.add_argument(

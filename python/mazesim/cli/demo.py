@@ -18,6 +18,7 @@ from typing import Any, TextIO
 
 from mazesim._paths import output_files, refuse_overwriting_inputs
 from mazesim.cli._args import output_path, positive_seconds, seed_argument
+from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
 from mazesim.replay.options import add_viewing_options
 
@@ -32,7 +33,16 @@ def register(commands: Any) -> None:
         description=(
             "Drive the robot headless with the avoid-collision controller of the source report "
             "(Alg. 1: turn away when a front proximity sensor reads above 80), print a summary, "
-            "and write DIR/trajectory.png and DIR/summary.json."
+            "and write DIR/trajectory.png and DIR/summary.json. With --controller hrl the "
+            "shipped hierarchical navigator drives the report's seed robot to the goal instead "
+            "(a maze world with a goal), and DIR/trace.txt lists its steps as the report's "
+            "Fig. 4.7."
+        ),
+        epilog=examples(
+            "mazesim demo",
+            "mazesim demo --controller hrl --html mazesim-demo/replay.html",
+            "mazesim demo --world arena --seconds 120 --seed 3 --out runs/arena",
+            "mazesim demo --world my-maze.toml --robot e-puck2 --video demo.mp4",
         ),
     )
     demo.add_argument(

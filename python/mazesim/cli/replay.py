@@ -11,6 +11,7 @@ import sys
 from pathlib import Path
 from typing import Any, TextIO
 
+from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
 from mazesim.errors import InvalidArgumentError
 
@@ -26,6 +27,11 @@ def register(commands: Any) -> None:
             "Turn a recorded run (a .json or .json.gz run file, see docs/watching.md) into a "
             "self-contained HTML replay (-o FILE.html) or a video of one episode "
             "(-o FILE.mp4 or FILE.gif)."
+        ),
+        epilog=examples(
+            "mazesim replay run.json.gz -o replay.html",
+            "mazesim replay run.json.gz -o episode2.mp4 --episode 2",
+            "mazesim replay run.json.gz -o run.gif",
         ),
     )
     replay.add_argument("run_file", metavar="RUN", help="the recorded run (.json or .json.gz)")

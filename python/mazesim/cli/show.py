@@ -14,6 +14,8 @@ import webbrowser
 from pathlib import Path
 from typing import Any, TextIO
 
+from mazesim.cli._help import examples
+
 __all__ = ["register", "run_show"]
 
 
@@ -27,6 +29,11 @@ def register(commands: Any) -> None:
             "reading directions, start, goal and the maze grid when there is one; for a .wbt "
             "world the importer's warnings are listed beside it. Writes -o FILE (default: "
             "NAME.png in this folder), or opens the picture with --open."
+        ),
+        epilog=examples(
+            "mazesim show seed-maze",
+            "mazesim show my-maze.toml -o my-maze.png",
+            "mazesim show Maze.wbt --open",
         ),
     )
     show.add_argument("world", metavar="WORLD", help="a built-in world name, a .toml or a .wbt")

@@ -13,6 +13,7 @@ from typing import Any, TextIO
 from mazesim._atomic import atomic_file
 from mazesim._paths import output_files, output_path, refuse_overwriting_inputs
 from mazesim.cli._args import positive_seconds, seed_argument
+from mazesim.cli._help import examples
 from mazesim.cli.progress import ProgressDisplay, add_progress_option, progress_display
 from mazesim.replay.options import DeferredWatch, add_viewing_options, viewing_requested
 
@@ -30,6 +31,11 @@ def register(commands: Any) -> None:
             "the start, WorldInfo.basicTimeStep the time step. Prints a summary with the "
             "warnings (what was not imported or was approximated); --json prints the import as "
             "one JSON object instead. Lengths in metres, angles in radians, world frame, z up."
+        ),
+        epilog=examples(
+            "mazesim import-wbt Maze.wbt",
+            "mazesim import-wbt Maze.wbt --out maze.toml",
+            "mazesim import-wbt Maze.wbt --json",
         ),
     )
     importer.add_argument("file", metavar="FILE", help="the .wbt world file")
@@ -51,6 +57,7 @@ def register(commands: Any) -> None:
         "webots",
         help="run Webots-style e-puck controllers on mazesim",
         description="Run Webots-style Python controllers of the e-puck on mazesim.",
+        epilog=examples("mazesim webots run my_controller.py --world Maze.wbt"),
     )
     actions = webots.add_subparsers(dest="webots_command", metavar="COMMAND", required=True)
     run = actions.add_parser(
@@ -65,12 +72,15 @@ def register(commands: Any) -> None:
             "warnings about a .wbt world are printed on stderr, each line prefixed with "
             "'mazesim: warning: '."
         ),
-        epilog=(
-            "exit status: 0 the controller ended (or robot.step returned -1); N the "
+        epilog=examples(
+            "mazesim webots run my_controller.py",
+            "mazesim webots run my_controller.py --world Maze.wbt --seconds 120 --strict",
+            "mazesim webots run my_controller.py --keys keys.txt --html run.html",
+            notes="exit status: 0 the controller ended (or robot.step returned -1); N the "
             "controller's sys.exit(N) or a supervisor's simulationQuit(N); 1 the controller "
             "raised an exception or does not compile (its traceback is printed); 2 a "
             "mazesim error before the run (unreadable controller, world or key script, "
-            "--strict with import warnings); 130 interrupted (Ctrl-C)."
+            "--strict with import warnings); 130 interrupted (Ctrl-C).",
         ),
     )
     run.add_argument("controller", metavar="CONTROLLER.py", help="the controller's Python file")

@@ -5,6 +5,8 @@ from __future__ import annotations
 import sys
 from typing import Any, TextIO
 
+from mazesim.cli._help import examples
+
 __all__ = ["register", "run_worlds"]
 
 
@@ -14,7 +16,8 @@ def register(commands: Any) -> None:
         "worlds",
         help="list the built-in worlds",
         description="List the built-in worlds: name, size and number of barcode checkpoints, "
-        "and whether the world has a goal.",
+        "and whether the world has a goal. Any command's --world takes these names.",
+        epilog=examples("mazesim worlds"),
     )
     worlds.set_defaults(run=lambda args: run_worlds(sys.stdout))
 
