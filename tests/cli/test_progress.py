@@ -104,6 +104,28 @@ def test_a_new_stage_starts_its_own_count_and_lines() -> None:
     ]
 
 
+def test_a_note_shows_beside_the_count_until_the_stage_ends() -> None:
+    stream, clock = io.StringIO(), FakeClock()
+    display = ProgressDisplay(stream, unit="episodes", plain_every_s=5.0, clock=clock)
+    display("higher level", 0, 100)
+    display.note("success 40%")
+    clock.now += 10.0
+    display("higher level", 50, 100)
+    display("evaluating", 0, 10)
+    clock.now += 10.0
+    display("evaluating", 5, 10)
+    assert stream.getvalue().splitlines() == [
+        "mazesim: higher level: 50/100 episodes (50%), 5.00 episodes/s, ETA 0:10, success 40%",
+        "mazesim: evaluating: 5/10 episodes (50%), 0.50 episodes/s, ETA 0:10",
+    ]
+    terminal = FakeTerminal()
+    with ProgressDisplay(terminal, unit="episodes", bar_delay_s=0) as bars:
+        bars("higher level", 1, 100)
+        bars.note("success 40%")
+        bars("higher level", 100, 100)
+    assert "episodes/s, success 40%]" in terminal.getvalue()
+
+
 def test_a_disabled_display_writes_nothing_even_on_a_terminal() -> None:
     stream = FakeTerminal()
     with ProgressDisplay(stream, enabled=False, bar_delay_s=0) as display:

@@ -40,7 +40,7 @@ PLAIN_EVERY_S = 30.0
 #: The bar of a stage on a terminal: stage, share, bar, counts, elapsed time, ETA and rate.
 BAR_FORMAT = (
     "{desc}: {percentage:3.0f}%|{bar}| {n_fmt}/{total_fmt} {unit} "
-    "[{elapsed} elapsed, ETA {remaining}, {rate_fmt}]"
+    "[{elapsed} elapsed, ETA {remaining}, {rate_fmt}{postfix}]"
 )
 
 
@@ -72,6 +72,7 @@ class _Stage:
         self.started = now
         self.last_line = now
         self.lines = 0
+        self.note = ""
         self.bar: Any = None
 
 
@@ -165,6 +166,16 @@ class ProgressDisplay:
                 self._plain_line(current, done, total, now)
             self._end_stage()
 
+    def note(self, text: str) -> None:
+        """Shows ``text`` (a live figure such as ``"success 42%"``) beside the current stage's
+        count, until the stage ends or another note replaces it."""
+        stage = self._stage
+        if not self.enabled or stage is None:
+            return
+        stage.note = text
+        if stage.bar is not None:
+            stage.bar.set_postfix_str(text, refresh=False)
+
     def _open_bar(self, stage: str, done: int, total: int) -> Any:
         from tqdm import tqdm
 
@@ -193,6 +204,8 @@ class ProgressDisplay:
         else:
             left = (total - done) / rate if rate > 0 else float("inf")
             line += f", {_rate(rate, unit)}, ETA {clock_time(left)}"
+        if stage.note:
+            line += f", {stage.note}"
         self.stream.write(line + "\n")
         self.stream.flush()
         stage.lines += 1
