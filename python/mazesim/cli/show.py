@@ -14,7 +14,9 @@ import webbrowser
 from pathlib import Path
 from typing import Any, TextIO
 
-__all__ = ["load_with_warnings", "register", "run_show"]
+from mazesim.cli._help import examples
+
+__all__ = ["register", "run_show"]
 
 
 def register(commands: Any) -> None:
@@ -28,6 +30,11 @@ def register(commands: Any) -> None:
             "world the importer's warnings are listed beside it. Writes -o FILE (default: "
             "NAME.png in this folder), or opens the picture with --open."
         ),
+        epilog=examples(
+            "mazesim show seed-maze",
+            "mazesim show my-maze.toml -o my-maze.png",
+            "mazesim show Maze.wbt --open",
+        ),
     )
     show.add_argument("world", metavar="WORLD", help="a built-in world name, a .toml or a .wbt")
     show.add_argument("-o", "--out", default=None, metavar="FILE.png", help="the PNG to write")
@@ -39,21 +46,9 @@ def register(commands: Any) -> None:
     show.set_defaults(run=lambda args: run_show(args, sys.stdout))
 
 
-def load_with_warnings(name_or_path: str) -> tuple[Any, list[str]]:
-    """A world and the importer's warnings (none unless it is a ``.wbt`` file)."""
-    import mazesim
-
-    if Path(name_or_path).suffix.lower() == ".wbt":
-        from mazesim.webots.importer import import_wbt
-
-        world, report = import_wbt(name_or_path)
-        return world, [str(warning) for warning in report["warnings"]]
-    return mazesim.load_world(name_or_path), []
-
-
 def run_show(args: argparse.Namespace, out: TextIO) -> int:
     """Runs ``mazesim show``."""
-    from mazesim.replay.preview import save_world_preview
+    from mazesim.replay.preview import load_with_warnings, save_world_preview
 
     world, warnings = load_with_warnings(args.world)
     path = args.out

@@ -15,13 +15,15 @@ import argparse
 from collections.abc import Sequence
 from typing import Any
 
-from mazesim.cli import (
+from mazesim.cli._args import (
+    non_negative_seconds,
     output_path,
     positive_int,
     positive_number,
     positive_seconds,
     seed_argument,
 )
+from mazesim.cli._help import examples
 from mazesim.replay.options import add_viewing_options
 from mazesim.ros._ros import check_ros_installed
 
@@ -55,12 +57,6 @@ def _remapping(text: str) -> str:
             f"expected a ROS remapping NAME:=VALUE (e.g. sensors:=/robot1/sensors); found {text!r}"
         )
     return text
-
-
-def _non_negative_seconds(text: str) -> float:
-    if text.strip() in ("0", "0.0"):
-        return 0.0
-    return positive_seconds(text)
 
 
 def _add_node_arguments(parser: argparse.ArgumentParser, default_name: str) -> None:
@@ -141,6 +137,11 @@ def register(commands: Any) -> None:
             "commands. ROS_MASTER_URI says which master to use. Needs ROS 1's Python packages "
             "(on Debian: 'make ros-deps')."
         ),
+        epilog=examples(
+            "mazesim ros demo",
+            "mazesim ros bridge --robot seed --stop-at-goal",
+            "mazesim ros perform-learning",
+        ),
     )
     nodes = ros.add_subparsers(dest="ros_command", metavar="NODE", required=True)
 
@@ -157,6 +158,11 @@ def register(commands: Any) -> None:
             "cmd_vel (geometry_msgs/Twist). In lockstep mode it advances one control step per "
             "command received. Options left out fall back to the node's private parameters "
             "(~world, ~robot, ...), then to the defaults shown."
+        ),
+        epilog=examples(
+            "mazesim ros bridge",
+            "mazesim ros bridge --world arena --mode realtime --speed 2",
+            "mazesim ros bridge --robot seed --stop-at-goal __name:=bridge2 pose:=/robot2/pose",
         ),
     )
     bridge.add_argument(
@@ -180,7 +186,7 @@ def register(commands: Any) -> None:
     )
     bridge.add_argument(
         "--duration",
-        type=_non_negative_seconds,
+        type=non_negative_seconds,
         metavar="S",
         help="stop after S simulated seconds; 0 runs until stopped (default: 0)",
     )
@@ -199,6 +205,10 @@ def register(commands: Any) -> None:
         description=(
             "Subscribe sensors, run the avoid-collision rule (Alg. 1) on ps0..ps7 and publish "
             "[left, right] on motor, one command per reading. Needs a bridge running the e-puck."
+        ),
+        epilog=examples(
+            "mazesim ros avoid-collision",
+            "mazesim ros avoid-collision --threshold 120 --wait-for-subscribers 2",
         ),
     )
     avoid.add_argument(
@@ -232,6 +242,10 @@ def register(commands: Any) -> None:
             "bridge running a robot with Sharp sensors (--robot seed). The policy dead-reckons "
             "its sub-tasks from its actions, each lasting one control step of the bridge (read "
             "from the control_step_ms parameter the bridge sets)."
+        ),
+        epilog=examples(
+            "mazesim ros perform-learning",
+            "mazesim ros perform-learning --policy mazesim-policy",
         ),
     )
     learning.add_argument(
@@ -267,6 +281,11 @@ def register(commands: Any) -> None:
             "the bridge stops at the goal, or after --seconds; with avoid-collision the e-puck "
             "runs the avoid-collision node for --seconds. Writes DIR/maze.bag, "
             "DIR/trajectory.png and DIR/logs/."
+        ),
+        epilog=examples(
+            "mazesim ros demo",
+            "mazesim ros demo --controller avoid-collision --world arena --seconds 30",
+            "mazesim ros demo --html ros-demo.html",
         ),
     )
     demo.add_argument(

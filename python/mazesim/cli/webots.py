@@ -12,7 +12,9 @@ from typing import Any, TextIO
 
 from mazesim._atomic import atomic_file
 from mazesim._paths import output_files, output_path, refuse_overwriting_inputs
-from mazesim.cli import positive_seconds, seed_argument
+from mazesim.cli._args import positive_seconds, seed_argument
+from mazesim.cli._help import examples
+from mazesim.cli.progress import ProgressDisplay, add_progress_option, progress_display
 from mazesim.replay.options import DeferredWatch, add_viewing_options, viewing_requested
 
 __all__ = ["register"]
@@ -29,6 +31,11 @@ def register(commands: Any) -> None:
             "the start, WorldInfo.basicTimeStep the time step. Prints a summary with the "
             "warnings (what was not imported or was approximated); --json prints the import as "
             "one JSON object instead. Lengths in metres, angles in radians, world frame, z up."
+        ),
+        epilog=examples(
+            "mazesim import-wbt Maze.wbt",
+            "mazesim import-wbt Maze.wbt --out maze.toml",
+            "mazesim import-wbt Maze.wbt --json",
         ),
     )
     importer.add_argument("file", metavar="FILE", help="the .wbt world file")
@@ -50,6 +57,7 @@ def register(commands: Any) -> None:
         "webots",
         help="run Webots-style e-puck controllers on mazesim",
         description="Run Webots-style Python controllers of the e-puck on mazesim.",
+        epilog=examples("mazesim webots run my_controller.py --world Maze.wbt"),
     )
     actions = webots.add_subparsers(dest="webots_command", metavar="COMMAND", required=True)
     run = actions.add_parser(
@@ -64,12 +72,15 @@ def register(commands: Any) -> None:
             "warnings about a .wbt world are printed on stderr, each line prefixed with "
             "'mazesim: warning: '."
         ),
-        epilog=(
-            "exit status: 0 the controller ended (or robot.step returned -1); N the "
+        epilog=examples(
+            "mazesim webots run my_controller.py",
+            "mazesim webots run my_controller.py --world Maze.wbt --seconds 120 --strict",
+            "mazesim webots run my_controller.py --keys keys.txt --html run.html",
+            notes="exit status: 0 the controller ended (or robot.step returned -1); N the "
             "controller's sys.exit(N) or a supervisor's simulationQuit(N); 1 the controller "
             "raised an exception or does not compile (its traceback is printed); 2 a "
             "mazesim error before the run (unreadable controller, world or key script, "
-            "--strict with import warnings); 130 interrupted (Ctrl-C)."
+            "--strict with import warnings); 130 interrupted (Ctrl-C).",
         ),
     )
     run.add_argument("controller", metavar="CONTROLLER.py", help="the controller's Python file")
@@ -116,6 +127,7 @@ def register(commands: Any) -> None:
         help="refuse a .wbt world with import warnings (a non-e-puck robot, dropped "
         "objects...): exit 2 before running",
     )
+    add_progress_option(run)
     run.set_defaults(run=lambda args: run_webots(args, sys.stdout))
 
 
@@ -205,12 +217,15 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
     )
     # Fail before the run, not after it, if the output folder cannot be made.
     os.makedirs(out_dir, exist_ok=True)
+    from mazesim.webots.simulation import observing_steps
+
     watch = DeferredWatch(args, os.path.basename(args.controller), args.seed)
     with contextlib.ExitStack() as viewing:
         if viewing_requested(args):
-            from mazesim.webots.simulation import observing_steps
-
             viewing.enter_context(observing_steps(watch))
+        display = viewing.enter_context(progress_display(args, unit="steps"))
+        steps = _StepProgress(display, args.seconds)
+        viewing.enter_context(observing_steps(steps))
         result = run_controller(
             args.controller,
             world,
@@ -221,6 +236,8 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
             keys=keys,
             scene=scene,
         )
+        if result.reached_end:
+            steps.finish()
     name = os.path.basename(result.controller)
     wall_clock = result.wall_clock_seconds
     summary: dict[str, Any] = {
@@ -277,6 +294,27 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
         f"wrote              {', '.join([picture, summary_path, table, *views])}\n"
     )
     return result.exit_status
+
+
+class _StepProgress:
+    """A step observer that shows the simulator's steps against those ``--seconds`` take."""
+
+    def __init__(self, display: ProgressDisplay, seconds: float) -> None:
+        self.display = display
+        self.seconds = seconds
+        self.total = 0
+
+    def __call__(self, simulation: Any, left: float, right: float) -> None:
+        """Shows the steps taken before a step of ``simulation``."""
+        simulator = simulation.simulator
+        if not self.total:
+            self.total = max(1, math.ceil(self.seconds * 1000.0 / simulator.control_step_ms - 1e-9))
+        self.display("simulating", simulator.steps, self.total)
+
+    def finish(self) -> None:
+        """Shows the run's end: ``--seconds`` were simulated."""
+        if self.total:
+            self.display("simulating", self.total, self.total)
 
 
 def _ending(result: Any) -> str:

@@ -11,6 +11,8 @@ import sys
 from pathlib import Path
 from typing import Any, TextIO
 
+from mazesim.cli._help import examples
+from mazesim.cli.progress import add_progress_option, progress_display
 from mazesim.errors import InvalidArgumentError
 
 __all__ = ["register", "run_replay"]
@@ -25,6 +27,11 @@ def register(commands: Any) -> None:
             "Turn a recorded run (a .json or .json.gz run file, see docs/watching.md) into a "
             "self-contained HTML replay (-o FILE.html) or a video of one episode "
             "(-o FILE.mp4 or FILE.gif)."
+        ),
+        epilog=examples(
+            "mazesim replay run.json.gz -o replay.html",
+            "mazesim replay run.json.gz -o episode2.mp4 --episode 2",
+            "mazesim replay run.json.gz -o run.gif",
         ),
     )
     replay.add_argument("run_file", metavar="RUN", help="the recorded run (.json or .json.gz)")
@@ -42,6 +49,7 @@ def register(commands: Any) -> None:
         metavar="K",
         help="the episode a video shows, counted from 0 (default: %(default)s)",
     )
+    add_progress_option(replay)
     replay.set_defaults(run=lambda args: run_replay(args, sys.stdout))
 
 
@@ -66,6 +74,12 @@ def run_replay(args: argparse.Namespace, out: TextIO) -> int:
         return 0
     from mazesim.replay.video import write_video
 
-    count = write_video(run, args.out, episode=args.episode)
+    with progress_display(args, unit="frames") as display:
+        count = write_video(
+            run,
+            args.out,
+            episode=args.episode,
+            progress=lambda done, total: display("video", done, total),
+        )
     out.write(f"wrote {args.out} ({count} frames of episode {args.episode})\n")
     return 0

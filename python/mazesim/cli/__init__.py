@@ -1,0 +1,188 @@
+"""The ``mazesim`` command line.
+
+:func:`main` is the ``mazesim`` entry point; :func:`build_parser` builds its parser from the
+command modules of this package (:data:`COMMAND_MODULES`), each adding its subcommand(s). Building
+the parsers imports only light modules: a command imports what it needs when it runs. Errors are
+printed as one line, ``mazesim: error: <message>``, with exit code 2.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import os
+import stat
+import sys
+from collections.abc import Sequence
+
+import mazesim
+from mazesim.cli._help import CommandParser, examples
+from mazesim.errors import MazesimError
+
+__all__ = ["COMMANDS", "build_parser", "main"]
+
+#: The commands in the order ``mazesim --help`` lists them: the module that adds each, and its
+#: one-line summary (the module's own, checked by the tests). A module has ``register(commands)``,
+#: which adds its parser(s) to the ``argparse`` subparsers object and sets
+#: ``run=<function(args) -> int>`` as the parser default.
+COMMANDS: dict[str, tuple[str, str]] = {
+    "worlds": ("mazesim.cli.worlds", "list the built-in worlds"),
+    "demo": (
+        "mazesim.cli.demo",
+        "drive the robot (avoid-collision or the shipped navigator) and plot its path",
+    ),
+    "bench": (
+        "mazesim.cli.bench",
+        "measure env-steps per second and memory per env of the canonical workload",
+    ),
+    "ros": ("mazesim.cli.ros", "run the ROS 1 bridge and controller nodes (needs ROS 1)"),
+    "barcode-study": (
+        "mazesim.cli.barcode",
+        "measure barcode reading (right / wrong / missed) by threshold and by speed",
+    ),
+    "import-wbt": (
+        "mazesim.cli.webots",
+        "import a Webots .wbt world (obstacles, robot pose, time step)",
+    ),
+    "webots": ("mazesim.cli.webots", "run Webots-style e-puck controllers on mazesim"),
+    "sweep": (
+        "mazesim.cli.sweep",
+        "train a grid of settings (seeds, rates, mazes) as Ray tasks; summarise them",
+    ),
+    "train": (
+        "mazesim.cli.train",
+        "train the hierarchical navigator (lower level on generated mazes, higher level on the "
+        "world)",
+    ),
+    "eval": (
+        "mazesim.cli.evaluate",
+        "measure a trained navigator: success, collisions, steps, decisions",
+    ),
+    "replay": ("mazesim.cli.replay", "turn a recorded run into an HTML replay or a video"),
+    "show": (
+        "mazesim.cli.show",
+        "draw a world (built-in, .toml or .wbt) into a PNG with a legend",
+    ),
+}
+
+#: Exit code of a run that failed on an error of the user's input or of the file system.
+EXIT_ERROR = 2
+#: Exit code of a run stopped with Ctrl-C (128 + SIGINT), as shells report it.
+EXIT_INTERRUPTED = 130
+#: Exit code of a run whose output pipe was closed by its reader (128 + SIGPIPE), as shells report
+#: a command that a closed pipe ended (``mazesim worlds | head -1``).
+EXIT_BROKEN_PIPE = 141
+
+
+def build_parser(command: str | None = None) -> argparse.ArgumentParser:
+    """Builds the argument parser of the ``mazesim`` command.
+
+    Args:
+        command: The command to build in full; the others are listed by name and summary only,
+            which is enough for ``mazesim --help`` and imports none of their modules. None
+            builds every command in full; a name that is not a command builds none.
+    """
+    parser = CommandParser(
+        prog="mazesim",
+        description=(
+            "mazesim: a fast, deterministic simulator of the e-puck robot in mazes. "
+            "Run 'mazesim COMMAND --help' for the options of a command."
+        ),
+        epilog=examples(
+            "mazesim worlds",
+            "mazesim demo --controller hrl",
+            "mazesim eval --episodes 20",
+            "mazesim COMMAND --help",
+        ),
+    )
+    parser.add_argument("--version", action="version", version=f"mazesim {mazesim.__version__}")
+    commands = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
+    registered: set[str] = set()
+    for name, (module_name, summary) in COMMANDS.items():
+        if command is None or COMMANDS.get(command, ("",))[0] == module_name:
+            if module_name not in registered:
+                importlib.import_module(module_name).register(commands)
+                registered.add(module_name)
+        else:
+            commands.add_parser(name, help=summary)
+    return parser
+
+
+def _command_word(arguments: Sequence[str]) -> str:
+    """The command a command line runs: its first word that is not an option ("" if none)."""
+    return next((word for word in arguments if not word.startswith("-")), "")
+
+
+def _one_line(message: str) -> str:
+    """Joins a possibly multi-line message into one line."""
+    parts = [line.strip() for line in message.splitlines() if line.strip()]
+    return "; ".join(parts) if parts else "unknown error"
+
+
+def _stdout_is_a_pipe() -> bool:
+    """Whether standard output is a pipe (whose reader may close it early)."""
+    try:
+        return stat.S_ISFIFO(os.fstat(sys.stdout.fileno()).st_mode)
+    except (OSError, ValueError, AttributeError):
+        return False
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Runs the ``mazesim`` command.
+
+    Args:
+        argv: The arguments after the program name; by default ``sys.argv[1:]``.
+
+    Returns:
+        The exit code: 0 on success, 2 on an error (printed as one line on stderr), 130 on Ctrl-C.
+    """
+    arguments = list(sys.argv[1:] if argv is None else argv)
+    command = _command_word(arguments)
+    if command == "ros":
+        try:
+            from mazesim.cli.ros import check_before_parsing
+
+            check_before_parsing(arguments)
+        except MazesimError as error:
+            print(f"mazesim: error: {_one_line(str(error))}", file=sys.stderr)
+            return EXIT_ERROR
+    parser = build_parser(command)
+    try:
+        args = parser.parse_args(arguments)
+    except SystemExit as exit_request:
+        # --help and --version exit with None (success); usage errors with 2.
+        code = exit_request.code
+        return code if isinstance(code, int) else (0 if code is None else EXIT_ERROR)
+    try:
+        return int(args.run(args))
+    except BrokenPipeError as error:
+        if not _stdout_is_a_pipe():
+            print(f"mazesim: error: {_one_line(str(error))}", file=sys.stderr)
+            return EXIT_ERROR
+        # The reader of the output went away: stop quietly, as Unix tools do, and keep Python
+        # from failing again when it flushes the closed pipe at exit.
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return EXIT_BROKEN_PIPE
+    except (MazesimError, OSError) as error:
+        print(f"mazesim: error: {_one_line(str(error))}", file=sys.stderr)
+        return EXIT_ERROR
+    except MemoryError:
+        print(
+            "mazesim: error: out of memory; ask for less (fewer envs, episodes, steps or seconds)",
+            file=sys.stderr,
+        )
+        return EXIT_ERROR
+    except KeyboardInterrupt:
+        print("mazesim: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except BaseException as error:
+        # A bug, not the user's doing: one line and how to report it, not a traceback. (pyo3's
+        # PanicException derives from BaseException; SystemExit and GeneratorExit pass.)
+        if isinstance(error, (SystemExit, GeneratorExit)):
+            raise
+        print(
+            f"mazesim: error: internal error, please report it with the command that caused "
+            f"it: {type(error).__name__}: {_one_line(str(error))}",
+            file=sys.stderr,
+        )
+        return EXIT_ERROR

@@ -1,0 +1,52 @@
+"""How the commands' ``--help`` reads: wrapped paragraphs, and examples kept as written.
+
+The ``mazesim`` parser is a :class:`CommandParser`, and so is every command's parser (argparse
+makes subparsers of their parent's class): each formats its help with :class:`HelpFormatter`.
+:func:`examples` makes the ``examples:`` section of a command's epilog.
+"""
+
+from __future__ import annotations
+
+import argparse
+import textwrap
+from typing import Any
+
+__all__ = ["CommandParser", "HelpFormatter", "examples"]
+
+
+class HelpFormatter(argparse.HelpFormatter):
+    """argparse's formatter, but a description or epilog is paragraphs (split at blank lines),
+    each wrapped to the terminal, and lines indented by two spaces (examples) are kept as
+    written."""
+
+    def _fill_text(self, text: str, width: int, indent: str) -> str:
+        paragraphs = []
+        for paragraph in text.strip("\n").split("\n\n"):
+            first, *rest = paragraph.splitlines() or [""]
+            if rest and not all(line.startswith("  ") for line in rest):
+                first, rest = paragraph, []
+            head = textwrap.fill(
+                " ".join(first.split()), width, initial_indent=indent, subsequent_indent=indent
+            )
+            paragraphs.append("\n".join([head, *(indent + line for line in rest)]))
+        return "\n\n".join(paragraphs)
+
+
+class CommandParser(argparse.ArgumentParser):
+    """An argument parser whose help is formatted by :class:`HelpFormatter` unless told
+    otherwise."""
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        kwargs.setdefault("formatter_class", HelpFormatter)
+        super().__init__(*args, **kwargs)
+
+
+def examples(*command_lines: str, notes: str = "") -> str:
+    """An epilog: ``notes`` (wrapped), then ``examples:`` and one command line per line.
+
+    Args:
+        command_lines: Whole command lines, each starting with ``mazesim``.
+        notes: A paragraph shown before the examples.
+    """
+    listed = "examples:\n" + "\n".join(f"  {line}" for line in command_lines)
+    return f"{notes}\n\n{listed}" if notes else listed

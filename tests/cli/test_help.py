@@ -1,0 +1,105 @@
+"""``mazesim --help`` and each command's help: summaries, defaults, examples that parse, and a
+parser that imports only the command it runs."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import shlex
+import subprocess
+import sys
+from collections.abc import Iterator
+
+import pytest
+
+from mazesim.cli import COMMANDS, build_parser
+from mazesim.cli._help import HelpFormatter, examples
+
+#: Commands whose help has no examples yet (their modules are being reworked).
+WITHOUT_EXAMPLES = {"sweep", "train", "eval"}
+#: Modules no parser may import: plotting, learning, Ray, images, ROS.
+HEAVY = ("matplotlib", "PIL", "ray", "rospy", "imageio", "mazesim.hrl", "mazesim.distributed")
+
+
+def _leaf_commands(
+    parser: argparse.ArgumentParser, words: tuple[str, ...] = ()
+) -> Iterator[tuple[str, argparse.ArgumentParser]]:
+    subparsers = [a for a in parser._actions if isinstance(a, argparse._SubParsersAction)]
+    if not subparsers:
+        yield " ".join(words), parser
+    for action in subparsers:
+        for name, sub in action.choices.items():
+            yield from _leaf_commands(sub, (*words, name))
+
+
+LEAVES = dict(_leaf_commands(build_parser()))
+
+
+def _imported_by(code: str) -> list[str]:
+    """The modules a fresh interpreter has imported after ``code``."""
+    script = f"import sys, json\n{code}\nprint(json.dumps(sorted(sys.modules)))\n"
+    done = subprocess.run(
+        [sys.executable, "-c", script], capture_output=True, text=True, check=True
+    )
+    modules: list[str] = json.loads(done.stdout.splitlines()[-1])
+    return modules
+
+
+def test_the_summaries_of_mazesim_help_are_the_commands_own() -> None:
+    (commands,) = [a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction)]
+    registered = [(choice.dest, choice.help) for choice in commands._choices_actions]
+    assert registered == [(name, summary) for name, (_, summary) in COMMANDS.items()]
+
+
+def test_mazesim_help_imports_no_command_module() -> None:
+    code = "from mazesim.cli import main\nassert main(['--help']) == 0"
+    modules = _imported_by(code)
+    commands = {module for module, _ in COMMANDS.values()}
+    assert commands.isdisjoint(modules)
+    assert [m for m in modules if m.startswith(HEAVY)] == []
+
+
+@pytest.mark.parametrize("command", sorted(set(COMMANDS) - WITHOUT_EXAMPLES))
+def test_a_command_imports_its_own_module_only(command: str) -> None:
+    modules = _imported_by(f"from mazesim.cli import build_parser\nbuild_parser({command!r})")
+    others = {module for module, _ in COMMANDS.values()} - {COMMANDS[command][0]}
+    assert others.isdisjoint(modules)
+    assert [m for m in modules if m.startswith(HEAVY)] == []
+
+
+@pytest.mark.parametrize("command", sorted(LEAVES))
+def test_every_default_is_shown(command: str) -> None:
+    unshown = [
+        action.option_strings
+        for action in LEAVES[command]._actions
+        if action.option_strings
+        and action.default not in (None, False, argparse.SUPPRESS)
+        and "default" not in (action.help or "")
+    ]
+    assert unshown == []
+
+
+@pytest.mark.parametrize(
+    "command", sorted(c for c in LEAVES if c.split()[0] not in WITHOUT_EXAMPLES)
+)
+def test_the_examples_of_a_command_parse(command: str) -> None:
+    parser = LEAVES[command]
+    help_text = parser.format_help()
+    assert "\nexamples:\n" in help_text
+    lines = help_text.split("\nexamples:\n", 1)[1].splitlines()
+    assert lines and all(line.startswith(f"  mazesim {command}") for line in lines), lines
+    for line in lines:
+        args = build_parser().parse_args(shlex.split(line)[1:])
+        assert args.command == command.split()[0]
+
+
+def test_examples_keep_their_lines_and_wrap_the_notes() -> None:
+    parser = argparse.ArgumentParser(
+        prog="mazesim x",
+        formatter_class=HelpFormatter,
+        epilog=examples("mazesim x " + "--long-option " * 8, notes="word " * 40),
+    )
+    text = parser.format_help()
+    notes, listed = text.split("\nexamples:\n")
+    assert max(len(line) for line in notes.splitlines()) <= 80
+    assert listed.splitlines() == ["  mazesim x " + "--long-option " * 8]
