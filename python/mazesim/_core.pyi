@@ -178,6 +178,17 @@ class Simulator:
     def reset(self, seed: int | None = None) -> None: ...
     def step(self, left: float, right: float) -> None:
         """Advances one control step with wheel speeds in rad/s (clamped to the motor limit)."""
+    def step_observe(
+        self,
+        left: float,
+        right: float,
+        low: npt.NDArray[np.float32],
+        high: npt.NDArray[np.float32],
+    ) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.float32], bool, int]:
+        """`step`, then what a gym step returns, in one call: the readings (float32, the distance
+        sensors then the ground sensors) clamped to [`low`, `high`] (float32 arrays of that
+        width), the pose (float32 x, y, yaw), whether the body touches a wall and the signed
+        checkpoint crossed in this step (0: none)."""
     def set_start(self, x: float, y: float, yaw: float) -> None:
         """Sets the pose every later reset starts from (instead of the world's start)."""
     def set_pose(self, x: float, y: float, yaw: float) -> None: ...

@@ -7,7 +7,8 @@ use numpy::PyArray1;
 use pyo3::prelude::*;
 
 use crate::args::{IntArg, Real};
-use crate::errors::IntoPy;
+use crate::buffers::readable;
+use crate::errors::{invalid, IntoPy};
 use crate::guard::{enter, enter_detached};
 use crate::world::{PyRobotProfile, PyWorld};
 
@@ -75,6 +76,50 @@ impl PySimulator {
     fn step(&self, py: Python<'_>, left: Real, right: Real) -> PyResult<()> {
         let (left, right) = (left.value("left")?, right.value("right")?);
         enter_detached(py, || self.with(|s| s.step(left, right)))
+    }
+
+    /// `step`, then what a gym step returns, in one call: the readings (float32, the distance
+    /// sensors then the ground sensors) clamped to [`low`, `high`] (float32 arrays of that
+    /// width), the pose (float32 x, y, yaw), whether the body touches a wall and the signed
+    /// checkpoint crossed in this step (0: none).
+    #[allow(clippy::type_complexity)]
+    fn step_observe<'py>(
+        &self,
+        py: Python<'py>,
+        left: Real,
+        right: Real,
+        low: &Bound<'py, PyAny>,
+        high: &Bound<'py, PyAny>,
+    ) -> PyResult<(
+        Bound<'py, PyArray1<f32>>,
+        Bound<'py, PyArray1<f32>>,
+        bool,
+        i32,
+    )> {
+        let (left, right) = (left.value("left")?, right.value("right")?);
+        enter(|| {
+            self.with(|s| {
+                let width = s.distance_sensors().len() + s.ground_sensors().len();
+                let low = readable::<f32>(low, "low", "float32", &[width])?;
+                let high = readable::<f32>(high, "high", "float32", &[width])?;
+                let contiguous = |name: &str| invalid(format!("expected {name} to be contiguous"));
+                let low = low.as_slice().map_err(|_| contiguous("low"))?;
+                let high = high.as_slice().map_err(|_| contiguous("high"))?;
+                s.step(left, right).py()?;
+                let readings: Vec<f32> = (s.distance_sensors().iter())
+                    .chain(s.ground_sensors())
+                    .zip(low.iter().zip(high))
+                    .map(|(value, (least, most))| value.max(*least).min(*most))
+                    .collect();
+                let p = s.pose();
+                Ok((
+                    PyArray1::from_vec(py, readings),
+                    PyArray1::from_slice(py, &p),
+                    s.colliding(),
+                    s.last_crossing(),
+                ))
+            })
+        })
     }
 
     /// Sets the pose every later reset starts from (instead of the world's start).

@@ -11,9 +11,10 @@ import numpy.typing as npt
 from gymnasium.error import ResetNeeded
 
 from mazesim._core import Simulator, World
-from mazesim.envs.options import EnvOptions, WorldOption, draw_seed
+from mazesim.envs.options import EnvOptions, draw_seed
 from mazesim.envs.render import TopDownRenderer
-from mazesim.envs.reward import GoalDistance, PathDistanceTable, step_reward
+from mazesim.envs.reward import PathDistanceTable
+from mazesim.envs.scalar_goal import ScalarGoalDistance
 from mazesim.envs.spaces import ActionConverter, ObservationLayout, sensor_ranges
 from mazesim.errors import InvalidArgumentError
 
@@ -80,20 +81,10 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         render_mode: None, ``"rgb_array"`` (a top-down image with the trail and an overlay of
             time, step, reward and the last event, see :mod:`mazesim.envs.render`), or
             ``"human"`` (that image in a window that updates every step).
-        world: A built-in world name, a path to a world file, a ``World``, or ``"random"`` for a
-            fresh random maze at each reset (``maze_size`` cells, drawn from the env's RNG).
-        robot: The robot profile (``mazesim.robot_profile_names()``): ``"e-puck"``,
-            ``"e-puck2"``, ``"e-puck-hardware"``, ``"seed"`` or ``"alphabot2"``.
-        action_mode: ``"continuous"`` or ``"discrete"``.
-        noise: Whether the sensors are noisy (Webots' relative Gaussian noise).
-        include_pose: Whether the observation ends with x, y (metres) and yaw (radians).
-        control_step_ms: The control step in ms (a whole number of physics steps); None for the
-            world's basic time step.
-        maze_size: (width, height) in cells of the random mazes.
-        goal_reward: Bonus on reaching the goal.
-        collision_penalty: Penalty for every step spent touching a wall.
-        progress_reward: Reward per metre of progress along the shortest path.
-        render_size: Side of the rendered images in pixels, or (width, height).
+        **options: The options of :meth:`mazesim.envs.options.EnvOptions.create`, the one list
+            of them: ``world``, ``robot``, ``action_mode``, ``clip_actions``, ``noise``,
+            ``include_pose``, ``control_step_ms``, ``maze_size``, ``goal_reward``,
+            ``collision_penalty``, ``progress_reward``, ``render_size``.
 
     Raises:
         InvalidArgumentError: An option has a wrong type or value.
@@ -102,47 +93,26 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
 
     metadata: dict[str, Any] = {"render_modes": RENDER_MODES, "render_fps": 31.25}
 
-    def __init__(
-        self,
-        render_mode: str | None = None,
-        world: WorldOption = "seed-maze",
-        robot: str = "e-puck",
-        action_mode: str = "continuous",
-        noise: bool = True,
-        include_pose: bool = False,
-        control_step_ms: float | None = None,
-        maze_size: tuple[int, int] = (5, 5),
-        goal_reward: float = 10.0,
-        collision_penalty: float = 0.1,
-        progress_reward: float = 10.0,
-        render_size: int | tuple[int, int] = 400,
-    ) -> None:
+    def __init__(self, render_mode: str | None = None, **options: Any) -> None:
         check_render_mode(render_mode)
         self.render_mode = render_mode
-        self.options = EnvOptions.create(
-            world=world,
-            robot=robot,
-            action_mode=action_mode,
-            noise=noise,
-            include_pose=include_pose,
-            control_step_ms=control_step_ms,
-            maze_size=maze_size,
-            goal_reward=goal_reward,
-            collision_penalty=collision_penalty,
-            progress_reward=progress_reward,
-            render_size=render_size,
-        )
+        self.options = EnvOptions.from_keywords(options)
         self.world = self.options.sample_world()
         self.metadata = {
             **type(self).metadata,
             "render_fps": 1000.0 / step_length_ms(self.options, self.world),
         }
-        self._layout = ObservationLayout(self.options.robot, self.world, include_pose)
-        self._actions = ActionConverter(action_mode, self.options.robot.max_wheel_speed)
+        self._layout = ObservationLayout(self.options.robot, self.world, self.options.include_pose)
+        self._actions = ActionConverter(
+            self.options.action_mode, self.options.robot.max_wheel_speed, self.options.clip_actions
+        )
         self.observation_space = self._layout.space
         self.action_space = self._actions.space
-        self._goal = GoalDistance(1, PathDistanceTable.of_world(self.world))
-        self._distance = np.zeros(1)
+        width = self._layout.sensor_width
+        self._low = np.ascontiguousarray(self._layout.low[:width])
+        self._high = np.ascontiguousarray(self._layout.high[:width])
+        self._goal = ScalarGoalDistance(PathDistanceTable.of_world(self.world))
+        self._distance = 0.0
         self._simulator: Simulator | None = None
         self._renderer: TopDownRenderer | None = None
         self._live: Any = None
@@ -172,18 +142,29 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
                 noise=self.options.noise,
                 control_step_ms=self.options.control_step_ms,
             )
-            self._goal.set(0, PathDistanceTable.of_world(self.world))
+            self._goal = ScalarGoalDistance(PathDistanceTable.of_world(self.world))
             self._renderer = None
         else:
             self._simulator.reset(seed=episode_seed)
-        observation, pose = self._observe(self._simulator)
-        self._distance = self._goal.evaluate(pose)[0]
-        self._trail = [(float(pose[0, 0]), float(pose[0, 1]))]
+        simulator = self._simulator
+        readings = np.concatenate((simulator.distance_sensors(), simulator.ground_sensors()))
+        pose = np.array(simulator.pose, dtype=np.float32)
+        observation = self._layout.assemble_one(readings, pose)
+        x, y, yaw = pose.tolist()
+        self._distance, reached = self._goal.evaluate(x, y)
+        self._trail = [(x, y)]
         self._last_reward = self._episode_return = 0.0
         self._last_event = "none"
         if self.render_mode == "human":
             self.render()
-        return observation, self._info(self._simulator, pose)
+        info = {
+            "pose": pose,
+            "collisions": simulator.collisions,
+            "colliding": simulator.colliding,
+            "distance_to_goal": self._distance,
+            "is_success": False,
+        }
+        return observation, info
 
     def step(
         self, action: Any
@@ -198,22 +179,40 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         if simulator is None:
             raise ResetNeeded("call reset() before step() (and after close())")
         left, right = self._actions.single(action)
-        simulator.step(left, right)
-        observation, pose = self._observe(simulator)
-        distance, reached = self._goal.evaluate(pose)
-        colliding = np.array([simulator.colliding])
-        reward = step_reward(self.options.reward, self._distance, distance, colliding, reached)
+        observation, pose, colliding, crossing = simulator.step_observe(
+            left, right, self._low, self._high
+        )
+        if self._layout.include_pose:
+            observation = self._layout.assemble_one(observation, pose)
+        x, y, _ = pose.tolist()
+        distance, reached = self._goal.evaluate(x, y)
+        weights = self.options.reward
+        reward = (
+            weights.progress * (self._distance - distance)
+            - weights.collision * float(colliding)
+            + weights.goal * float(reached)
+        )
         self._distance = distance
-        self._note_step(simulator, pose, float(reward[0]), bool(reached[0]))
-        if self.render_mode == "human":
-            self.render()
-        return observation, float(reward[0]), bool(reached[0]), False, self._info(simulator, pose)
+        info = {
+            "pose": pose,
+            "collisions": simulator.collisions,
+            "colliding": colliding,
+            "distance_to_goal": distance,
+            "is_success": reached,
+        }
+        if crossing != 0:
+            info["checkpoint"] = crossing
+        if self.render_mode is not None:
+            self._note_step(simulator, x, y, reward, reached)
+            if self.render_mode == "human":
+                self.render()
+        return observation, reward, reached, False, info
 
     def _note_step(
-        self, simulator: Simulator, pose: npt.NDArray[np.float32], reward: float, reached: bool
+        self, simulator: Simulator, x: float, y: float, reward: float, reached: bool
     ) -> None:
         """Keeps what the rendered overlay shows: the trail, the reward, the last event."""
-        self._trail.append((float(pose[0, 0]), float(pose[0, 1])))
+        self._trail.append((x, y))
         self._last_reward = reward
         self._episode_return += reward
         crossing = simulator.last_crossing
@@ -277,22 +276,3 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         if self._live is not None:
             self._live.close()
             self._live = None
-
-    def _observe(
-        self, simulator: Simulator
-    ) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.float32]]:
-        """The observation (width,) and the pose as a (1, 3) float32 array."""
-        sensors = np.concatenate((simulator.distance_sensors(), simulator.ground_sensors()))
-        pose = np.array([simulator.pose], dtype=np.float32)
-        return self._layout.assemble(sensors[None, :], pose)[0], pose
-
-    def _info(self, simulator: Simulator, pose: npt.NDArray[np.float32]) -> dict[str, Any]:
-        info: dict[str, Any] = {
-            "pose": pose[0].copy(),
-            "collisions": int(simulator.collisions),
-            "colliding": bool(simulator.colliding),
-            "distance_to_goal": float(self._distance[0]),
-        }
-        if simulator.last_crossing != 0:
-            info["checkpoint"] = int(simulator.last_crossing)
-        return info
