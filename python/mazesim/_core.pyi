@@ -116,6 +116,11 @@ class World:
     def floor_background(self) -> float:
         """Background floor reflectance (where nothing is painted)."""
     def floor_reflectance(self, x: float, y: float) -> float: ...
+    def __reduce__(self) -> tuple[Any, tuple[str, str]]:
+        """Pickles as its world file text and source name."""
+    def __copy__(self) -> World:
+        """A world is immutable: a copy is the world itself."""
+    def __deepcopy__(self, memo: dict[int, Any], /) -> World: ...
     def __eq__(self, other: object, /) -> bool: ...
     __hash__: ClassVar[None]  # type: ignore[assignment]
 
@@ -127,6 +132,11 @@ class RobotProfile:
     def builtin(name: str) -> RobotProfile: ...
     @property
     def name(self) -> str: ...
+    def __reduce__(self) -> tuple[Any, tuple[str]]:
+        """Pickles as its built-in name."""
+    def __copy__(self) -> RobotProfile:
+        """A profile is immutable: a copy is the profile itself."""
+    def __deepcopy__(self, memo: dict[int, Any], /) -> RobotProfile: ...
     @property
     def body_radius(self) -> float: ...
     @property
@@ -226,6 +236,18 @@ class Simulator:
     def robot(self) -> RobotProfile: ...
     @property
     def world(self) -> World: ...
+    def snapshot(self) -> bytes:
+        """The whole state as bytes, for `restore` (pose, velocities, rapier's contact state, noise
+        stream, time, counters, barcode tracker, readings)."""
+    def restore(self, snapshot: bytes) -> None:
+        """Puts the simulator in the state of a `snapshot` of a simulator of the same world, robot
+        profile, control step and noise setting; it then goes on exactly as that one would."""
+    def __copy__(self) -> Simulator:
+        """An independent simulator in the same state, sharing the (immutable) world."""
+    def __deepcopy__(self, memo: dict[int, Any], /) -> Simulator: ...
+    def __reduce__(self) -> tuple[type[Simulator], tuple[Any, ...], bytes]:
+        """Pickles as the constructor's arguments and a snapshot."""
+    def __setstate__(self, state: bytes, /) -> None: ...
 
 @final
 class BatchSimulator:
