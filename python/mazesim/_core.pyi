@@ -295,6 +295,12 @@ class BatchSimulator:
         colliding: npt.NDArray[np.bool_],
         crossings: npt.NDArray[np.int32],
     ) -> None: ...
+    def snapshot_env(self, index: int) -> bytes:
+        """The whole state of environment `index` as bytes (as `Simulator.snapshot`), for
+        `restore_env`: what pickling a vector env keeps of each environment."""
+    def restore_env(self, index: int, snapshot: bytes) -> None:
+        """Puts environment `index` in the state of a `snapshot_env` (or `Simulator.snapshot`) of an
+        environment of the same world, robot profile, control step and noise setting."""
     def set_world(self, index: int, world: World, seed: int) -> None: ...
     def set_starts(self, starts: npt.NDArray[np.float64]) -> None:
         """Start poses ((N, 3) float64 x, y, yaw) of each env for its later resets."""

@@ -18,7 +18,7 @@ from stable_baselines3.common.env_checker import check_env  # noqa: E402
 from stable_baselines3.common.vec_env import DummyVecEnv, VecEnv  # noqa: E402
 
 from env_worlds import CORRIDOR  # noqa: E402
-from mazesim.envs import ENV_ID  # noqa: E402
+from mazesim.envs import ENV_ID, TASKS  # noqa: E402
 from mazesim.errors import InvalidArgumentError  # noqa: E402
 from mazesim.integrations.sb3 import MazesimVecEnv, make_vec_env  # noqa: E402
 
@@ -108,8 +108,9 @@ def test_make_vec_env_monitors_episodes_and_success(corridor: str) -> None:
         assert info["terminal_observation"].shape == (11,)
 
 
-def test_check_env_of_stable_baselines3_passes() -> None:
-    check_env(gymnasium.make(ENV_ID).unwrapped, warn=True)
+@pytest.mark.parametrize("task", TASKS, ids=[task.env_id for task in TASKS])
+def test_check_env_of_stable_baselines3_passes_on_every_task(task: Any) -> None:
+    check_env(gymnasium.make(task.env_id).unwrapped, warn=True)
 
 
 def test_adapter_refuses_a_next_step_vector_env() -> None:

@@ -11,6 +11,7 @@ import numpy.typing as npt
 from gymnasium.error import ResetNeeded
 
 from mazesim._core import Simulator, World
+from mazesim.envs.navigation import navigation_features
 from mazesim.envs.options import EnvOptions, draw_seed
 from mazesim.envs.render import TopDownRenderer
 from mazesim.envs.reward import PathDistanceTable
@@ -106,12 +107,18 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         self._actions = ActionConverter(
             self.options.action_mode, self.options.robot.max_wheel_speed, self.options.clip_actions
         )
-        self.observation_space = self._layout.space
+        table = PathDistanceTable.of_world(self.world)
+        self._features = navigation_features(
+            self.options.observation, 1, self.options.robot, self.world, table
+        )
+        self._previous = np.zeros((1, 2), dtype=np.float32)
+        features = self._features
+        self.observation_space = self._layout.space if features is None else features.space
         self.action_space = self._actions.space
         width = self._layout.sensor_width
         self._low = np.ascontiguousarray(self._layout.low[:width])
         self._high = np.ascontiguousarray(self._layout.high[:width])
-        self._goal = ScalarGoalDistance(PathDistanceTable.of_world(self.world))
+        self._goal = ScalarGoalDistance(table)
         self._distance = 0.0
         self._simulator: Simulator | None = None
         self._renderer: TopDownRenderer | None = None
@@ -123,8 +130,9 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
 
     @property
     def observation_names(self) -> list[str]:
-        """What each index of the observation holds (sensor names, then x, y, yaw)."""
-        return list(self._layout.names)
+        """What each index of the observation holds (sensor names, then x, y, yaw, or the
+        navigation features)."""
+        return list(self._layout.names if self._features is None else self._features.names)
 
     def reset(
         self, *, seed: int | None = None, options: dict[str, Any] | None = None
@@ -142,7 +150,10 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
                 noise=self.options.noise,
                 control_step_ms=self.options.control_step_ms,
             )
-            self._goal = ScalarGoalDistance(PathDistanceTable.of_world(self.world))
+            table = PathDistanceTable.of_world(self.world)
+            self._goal = ScalarGoalDistance(table)
+            if self._features is not None:
+                self._features.set(0, self.world, table)
             self._renderer = None
         else:
             self._simulator.reset(seed=episode_seed)
@@ -150,6 +161,9 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         readings = np.concatenate((simulator.distance_sensors(), simulator.ground_sensors()))
         pose = np.array(simulator.pose, dtype=np.float32)
         observation = self._layout.assemble_one(readings, pose)
+        if self._features is not None:
+            self._previous[:] = 0.0
+            observation = self._features.observe(readings[None], pose[None], self._previous)[0]
         x, y, yaw = pose.tolist()
         self._distance, reached = self._goal.evaluate(x, y)
         self._trail = [(x, y)]
@@ -184,6 +198,10 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         )
         if self._layout.include_pose:
             observation = self._layout.assemble_one(observation, pose)
+        elif self._features is not None:
+            self._previous[0] = (left, right)
+            self._previous /= self._actions.max_speed
+            observation = self._features.observe(observation[None], pose[None], self._previous)[0]
         x, y, _ = pose.tolist()
         distance, reached = self._goal.evaluate(x, y)
         weights = self.options.reward
@@ -268,6 +286,15 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         return self._renderer.frame(
             simulator.pose, simulator.colliding, trail=self._trail, overlay=overlay
         )
+
+    def __getstate__(self) -> dict[str, Any]:
+        """What pickling and deep-copying keep: everything but the window and the renderer (made
+        again when needed); the simulator pickles with its whole state, so a copy goes on
+        exactly as the original."""
+        state = self.__dict__.copy()
+        state["_live"] = None
+        state["_renderer"] = None
+        return state
 
     def close(self) -> None:
         """Releases the simulator and the renderer; safe to call more than once."""

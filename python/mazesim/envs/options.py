@@ -16,6 +16,7 @@ import numpy as np
 
 import mazesim
 from mazesim._core import RobotProfile, World, generate_maze
+from mazesim.envs.navigation import OBSERVATIONS, START_GOALS, draw_start_and_goal
 from mazesim.envs.reward import RewardWeights
 from mazesim.errors import InvalidArgumentError
 
@@ -55,6 +56,8 @@ class EnvOptions:
         robot: The robot profile.
         action_mode: ``"continuous"`` or ``"discrete"``.
         clip_actions: Whether continuous actions outside [-1, 1] are clipped (True) or raise.
+        observation: ``"sensors"``, ``"goal"`` or ``"guided"`` (:mod:`mazesim.envs.navigation`).
+        start_goal: ``"world"`` (the world's) or ``"random"`` (random cells at every reset).
         noise: Whether the sensors are noisy.
         include_pose: Whether the observation ends with the pose (x, y, yaw).
         control_step_ms: The control step in ms, or None for the world's basic time step.
@@ -70,6 +73,8 @@ class EnvOptions:
     include_pose: bool
     control_step_ms: float | None
     clip_actions: bool = True
+    observation: str = "sensors"
+    start_goal: str = "world"
     reward: RewardWeights = field(default_factory=RewardWeights)
     render_size: tuple[int, int] = (400, 400)
 
@@ -80,6 +85,8 @@ class EnvOptions:
         robot: str = "e-puck",
         action_mode: str = "continuous",
         clip_actions: bool = True,
+        observation: str = "sensors",
+        start_goal: str = "world",
         noise: bool = True,
         include_pose: bool = False,
         control_step_ms: float | None = None,
@@ -104,6 +111,12 @@ class EnvOptions:
                 with False it raises :class:`~mazesim.errors.InvalidActionError`. A NaN or
                 infinite action, a wrong shape or dtype and a discrete index out of range
                 always raise.
+            observation: ``"sensors"`` (the raw readings), ``"goal"`` (normalised readings, the
+                goal's position in the robot's frame, the previous action) or ``"guided"``
+                (``"goal"`` and the next waypoint of the shortest path); see
+                :mod:`mazesim.envs.navigation`.
+            start_goal: ``"world"`` (the world's start and goal) or ``"random"`` (at every reset
+                two distinct random cells of the maze, the start facing a random direction).
             noise: Whether the sensors are noisy (Webots' relative Gaussian noise).
             include_pose: Whether the observation ends with x, y (metres) and yaw (radians).
             control_step_ms: The control step in ms (a whole number of physics steps); None for
@@ -123,6 +136,19 @@ class EnvOptions:
             raise InvalidArgumentError(
                 f"expected action_mode to be one of {', '.join(ACTION_MODES)}; "
                 f"found {action_mode!r}"
+            )
+        for name, value, accepted in (
+            ("observation", observation, OBSERVATIONS),
+            ("start_goal", start_goal, START_GOALS),
+        ):
+            if value not in accepted:
+                raise InvalidArgumentError(
+                    f"expected {name} to be one of {', '.join(accepted)}; found {value!r}"
+                )
+        if observation != "sensors" and include_pose:
+            raise InvalidArgumentError(
+                f'expected include_pose=False with observation="{observation}" '
+                "(it holds the goal's relative position), found include_pose=True"
             )
         flags = (("noise", noise), ("include_pose", include_pose), ("clip_actions", clip_actions))
         for name, flag in flags:
@@ -157,6 +183,8 @@ class EnvOptions:
             include_pose=bool(include_pose),
             control_step_ms=None if control_step_ms is None else float(control_step_ms),
             clip_actions=bool(clip_actions),
+            observation=observation,
+            start_goal=start_goal,
             reward=RewardWeights(goal_reward, collision_penalty, progress_reward),
             render_size=(int(sides[0]), int(sides[1])),
         )
@@ -188,9 +216,13 @@ class EnvOptions:
         return generate_maze(width, height, seed=seed)
 
     def next_world(self, rng: np.random.Generator) -> World | None:
-        """The world of the next episode: a random maze drawn from ``rng``, or None to keep the
+        """The world of the next episode: a random maze drawn from ``rng`` (or the fixed world),
+        with a random start and goal drawn next if ``start_goal="random"``; None to keep the
         fixed world (and then nothing is drawn)."""
-        return None if self.world is not None else self.random_maze(draw_seed(rng))
+        world = self.world if self.world is not None else self.random_maze(draw_seed(rng))
+        if self.start_goal == "random":
+            return draw_start_and_goal(world, rng)
+        return None if self.world is not None else world
 
 
 def option_names() -> list[str]:

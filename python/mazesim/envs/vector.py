@@ -27,6 +27,7 @@ from gymnasium.vector.utils import batch_space
 
 from mazesim._core import BatchSimulator, World
 from mazesim.envs.maze_env import VECTOR_RENDER_MODES, check_render_mode, step_length_ms
+from mazesim.envs.navigation import navigation_features
 from mazesim.envs.options import DEFAULT_MAX_EPISODE_STEPS, EnvOptions, draw_seed
 from mazesim.envs.render import TopDownRenderer
 from mazesim.envs.reward import GoalDistance, PathDistanceTable, step_reward
@@ -99,6 +100,7 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         self.autoreset_mode = _autoreset_mode(autoreset_mode)
         self.options = EnvOptions.from_keywords(options)
         self.num_envs = int(num_envs)
+        self._threads = threads
         self.max_episode_steps = None if max_episode_steps is None else int(max_episode_steps)
         self.render_mode = render_mode
         first = self.options.sample_world()
@@ -111,7 +113,12 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         self._actions = ActionConverter(
             self.options.action_mode, self.options.robot.max_wheel_speed, self.options.clip_actions
         )
-        self.single_observation_space = self._layout.space
+        table = PathDistanceTable.of_world(first)
+        self._features = navigation_features(
+            self.options.observation, self.num_envs, self.options.robot, first, table
+        )
+        features = self._features
+        self.single_observation_space = self._layout.space if features is None else features.space
         self.single_action_space = self._actions.space
         n = self.num_envs
         # The batch first: it checks num_envs against the memory it needs before the spaces
@@ -133,7 +140,8 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         self._crossings = np.zeros(n, dtype=np.int32)
         self._worlds: list[World] = [first] * n
         self._renderers: list[TopDownRenderer | None] = [None] * n
-        self._goal = GoalDistance(n, PathDistanceTable.of_world(first))
+        self._goal = GoalDistance(n, table)
+        self._previous = np.zeros((n, 2), dtype=np.float32)
         self._rngs: list[np.random.Generator | None] = [None] * n
         self._distance = np.zeros(n)
         self._reached = np.zeros(n, dtype=bool)
@@ -143,8 +151,9 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
 
     @property
     def observation_names(self) -> list[str]:
-        """What each column of the observations holds (sensor names, then x, y, yaw)."""
-        return list(self._layout.names)
+        """What each column of the observations holds (sensor names, then x, y, yaw, or the
+        navigation features)."""
+        return list(self._layout.names if self._features is None else self._features.names)
 
     def reset(
         self,
@@ -171,8 +180,7 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         self._distance[envs] = self._goal.evaluate(self._poses)[0][envs]
         self._reached[envs] = False
         self._needs_reset = False
-        observations = self._layout.assemble(self._sensors, self._poses)
-        return observations, self._info(mask)
+        return self._observations(), self._info(mask)
 
     def step(
         self, actions: npt.NDArray[Any]
@@ -195,6 +203,8 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         if self._needs_reset:
             raise ResetNeeded("call reset() before step()")
         speeds = self._actions.batch(actions, self.num_envs)
+        if self._features is not None:
+            self._previous = speeds / self._actions.max_speed
         batch.step(speeds, self._sensors, self._poses, self._colliding, self._crossings)
         restarting = self._autoreset.copy()
         any_restart = bool(restarting.any())
@@ -218,7 +228,7 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
             truncated[restarting] = False
             self._elapsed[restarting] = 0
         self._reached = terminated.copy()
-        observations = self._layout.assemble(self._sensors, self._poses)
+        observations = self._observations()
         if self.autoreset_mode == AutoresetMode.NEXT_STEP:
             self._autoreset = terminated | truncated
             return observations, rewards, terminated, truncated, self._info(None)
@@ -239,8 +249,7 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         info.update(
             final_obs=final_obs, _final_obs=ended, final_info=final_info, _final_info=ended.copy()
         )
-        observations = self._layout.assemble(self._sensors, self._poses)
-        return observations, rewards, terminated, truncated, info
+        return self._observations(), rewards, terminated, truncated, info
 
     def render(self) -> tuple[npt.NDArray[np.uint8], ...] | None:
         """One top-down (height, width, 3) uint8 image per environment, with
@@ -264,6 +273,42 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         """Releases the batch engine and the renderers."""
         self._batch = None
         self._renderers = [None] * self.num_envs
+
+    def _observations(self) -> npt.NDArray[np.float32]:
+        """The observations of the current state (a new array)."""
+        if self._features is None:
+            return self._layout.assemble(self._sensors, self._poses)
+        return self._features.observe(self._sensors, self._poses, self._previous)
+
+    def __getstate__(self) -> dict[str, Any]:
+        """What pickling and deep-copying keep: everything, the batch engine as one snapshot per
+        environment (the renderers are made again when needed)."""
+        state = self.__dict__.copy()
+        batch = state.pop("_batch")
+        state["_renderers"] = [None] * self.num_envs
+        state["_batch_snapshots"] = (
+            None if batch is None else [batch.snapshot_env(i) for i in range(self.num_envs)]
+        )
+        return state
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        """Rebuilds the batch engine from its snapshots: the copy goes on as the original."""
+        snapshots = state.pop("_batch_snapshots")
+        self.__dict__.update(state)
+        self._batch = None
+        if snapshots is not None:
+            batch = BatchSimulator(
+                list(self._worlds),
+                self.num_envs,
+                robot=self.options.robot.name,
+                seeds=0,
+                noise=self.options.noise,
+                control_step_ms=self.options.control_step_ms,
+                threads=self._threads,
+            )
+            for i, snapshot in enumerate(snapshots):
+                batch.restore_env(i, snapshot)
+            self._batch = batch
 
     # -- helpers -------------------------------------------------------------------------------
 
@@ -316,8 +361,12 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
                 batch.set_world(int(i), world, episode_seed)
                 self._worlds[i] = world
                 self._renderers[i] = None
-                self._goal.set(int(i), PathDistanceTable.of_world(world))
+                table = PathDistanceTable.of_world(world)
+                self._goal.set(int(i), table)
+                if self._features is not None:
+                    self._features.set(int(i), world, table)
         batch.reset(self._sensors, self._poses, self._colliding, self._crossings, mask, seeds)
+        self._previous[envs] = 0.0
         self._elapsed[envs] = 0
         self._autoreset[envs] = False
 
