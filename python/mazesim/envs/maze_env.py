@@ -56,11 +56,14 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
 
     Observation: the sensor readings as a float32 vector, distance sensors then ground sensors
     (for the e-puck: ps0-ps7 raw counts, gs0-gs2 raw), with the pose appended when
-    ``include_pose`` is set; see :mod:`mazesim.envs.spaces` for each index and the bounds.
+    ``include_pose`` is set; see :mod:`mazesim.envs.spaces` for each index and the bounds. With
+    ``observation="goal"`` or ``"guided"``: normalised readings, the goal (and the next waypoint)
+    in the robot's frame and the previous action (:mod:`mazesim.envs.navigation`).
 
     Action: ``"continuous"``, ``Box(-1, 1, (2,), float32)``, the left and right wheel speeds as
     fractions of the motor limit; or ``"discrete"``, ``Discrete(12)``, the report's primitive
     actions of :mod:`mazesim.actions` (``00`` forward, ``11``-``44`` right turns, ...).
+    Continuous actions outside [-1, 1] are clipped (``clip_actions=True``, the default).
 
     Reward: ``progress * (metres gained along the shortest path to the goal)
     - collision * (1 while touching a wall) + goal * (1 on reaching the goal)``, by default with
@@ -71,8 +74,9 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
 
     Info (after reset and after every step): ``pose`` (float32 x, y, yaw), ``collisions`` (bumps
     since the reset), ``colliding`` (touching a wall now), ``distance_to_goal`` (the shortest-path
-    distance in metres) and, only on a step that crossed a barcode checkpoint, ``checkpoint``: its
-    id, positive when crossed along the barcode's direction (arriving), negative when departing.
+    distance in metres), ``is_success`` (True on the step that reaches the goal) and, only on a
+    step that crossed a barcode checkpoint, ``checkpoint``: its id, positive when crossed along
+    the barcode's direction (arriving), negative when departing.
 
     Seeding: ``reset(seed=s)`` seeds the env's RNG; each episode draws its simulator seed (and its
     maze, with ``world="random"``) from that RNG, so the same seed and actions replay the same
@@ -186,7 +190,8 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         """Runs one control step with ``action``.
 
         Raises:
-            InvalidActionError: The action is not in the action space (shape, dtype, NaN, range).
+            InvalidActionError: The action has a wrong shape or dtype, is NaN or infinite, or is
+                outside the space (a continuous one only with ``clip_actions=False``).
             ResetNeeded: :meth:`reset` has not been called since the env was made or closed.
         """
         simulator = self._simulator

@@ -194,8 +194,9 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         """Steps every environment; those whose episode ended at the last step start a new one.
 
         Raises:
-            InvalidActionError: The actions are not in the action space (shape, dtype, NaN,
-                range); the message names the environment.
+            InvalidActionError: The actions have a wrong shape or dtype, are NaN or infinite, or
+                lie outside the space (continuous ones only with ``clip_actions=False``); the
+                message names the environment.
             ResetNeeded: :meth:`reset` has not been called yet.
             ClosedEnvironmentError: The env is closed.
         """
