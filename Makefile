@@ -17,13 +17,17 @@ PEER_PACKAGES := pymunk
 PEER_ARGS ?=
 # Only `make docs` needs these (pyproject's extra "docs"): mkdocs, its Material theme, mkdocstrings.
 DOCS_PACKAGES := "mkdocs>=1.6" "mkdocs-material>=9.5" "mkdocstrings[python]>=0.26"
+# Only `make sb3-deps` (and so `make test`) needs these (pyproject's extra "sb3"): Stable-Baselines3
+# 2.x and torch, for mazesim.integrations.sb3, its tests and the examples' PPO scripts. torch from
+# PyPI is a large download the first time (pip's cache makes later installs quick).
+SB3_PACKAGES := "stable-baselines3>=2.3,<3"
 # The binding crate's build script asks this interpreter for its configuration.
 export PYO3_PYTHON := $(CURDIR)/$(BIN)/python
 
 .DEFAULT_GOAL := help
 
 .PHONY: help venv build test demo lint typecheck fmt bench wheel clean ros-deps ros-demo bench-peers \
-	browser-deps replay-screenshot docs docs-deps
+	browser-deps replay-screenshot docs docs-deps sb3-deps
 
 help: ## list the targets
 	@echo "mazesim make targets:"
@@ -44,7 +48,7 @@ $(STAMP): Makefile
 build: venv ## build the extension in release mode and install mazesim into .venv
 	VIRTUAL_ENV=$(CURDIR)/$(VENV) $(BIN)/maturin develop --release --quiet
 
-test: build ros-deps browser-deps docs-deps ## run the Rust tests, then the Python tests (ROS bridge and browser tests included)
+test: build ros-deps browser-deps docs-deps sb3-deps ## run the Rust tests, then the Python tests (ROS bridge, browser and SB3 tests included)
 	cargo test --workspace --exclude mazesim-py
 	$(BIN)/python -m pytest
 	$(BIN)/python -m mypy.stubtest mazesim._core
@@ -109,6 +113,9 @@ bench: ## run the criterion benches
 bench-peers: build ## mazesim against hand-written numpy and pymunk peers (installs pymunk)
 	$(BIN)/python -m pip install --quiet $(PEER_PACKAGES)
 	$(BIN)/python benches/bench_vs_peers.py $(PEER_ARGS)
+
+sb3-deps: venv ## install Stable-Baselines3 and torch into .venv (mazesim[sb3]: the SB3 adapter, the PPO examples)
+	$(BIN)/python -m pip install --quiet $(SB3_PACKAGES)
 
 docs-deps: venv ## install the docs tools (mkdocs, Material, mkdocstrings) into .venv
 	$(BIN)/python -m pip install --quiet $(DOCS_PACKAGES)

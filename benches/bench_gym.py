@@ -17,6 +17,11 @@ drawn beforehand, so the policy costs nothing). One env-step is one control step
 Raw and vector env step in turns, one step each, so that other load on the machine falls on both
 alike; the rate is from the median step time (the sustained rate, from the mean, is printed too).
 
+One env: ``gymnasium.make("mazesim/EPuckMaze-v0")`` against ``gymnasium.make("CartPole-v1")``,
+both stepped through gymnasium's wrappers with random actions (episodes restart when they end),
+in alternating rounds of ``ROUND`` steps so that other load on the machine falls on both alike,
+with the raw :class:`mazesim.Simulator` beside them; the ratio is the figure to read.
+
 Rendering: frames per second of ``env.render()`` of a single env made with
 ``render_mode="rgb_array"`` (400 x 400, through gymnasium's wrappers) and of the numpy rasteriser
 alone, in seed-maze.
@@ -41,6 +46,8 @@ from mazesim.envs import ENV_ID
 from mazesim.envs.options import draw_seed
 
 POOL = 16
+#: Steps of one env between switches from one contender to the next.
+ROUND = 2000
 
 
 def _rate(run: Callable[[], None], count: int) -> float:
@@ -123,6 +130,42 @@ def sync_throughput(num_envs: int, steps: int) -> float:
     return rate
 
 
+def single_env_rates(steps: int) -> dict[str, float]:
+    """Steps per second of one mazesim env and one CartPole env (both through gymnasium.make),
+    and of the raw Simulator, from the median of alternating rounds."""
+    contenders: dict[str, Callable[[int], None]] = {}
+    for name, env_id in (("mazesim_env", ENV_ID), ("cartpole_env", "CartPole-v1")):
+        env: Any = gymnasium.make(env_id)
+        env.reset(seed=0)
+        env.action_space.seed(0)
+        pool = [env.action_space.sample() for _ in range(POOL)]
+
+        def run(count: int, env: Any = env, pool: list[Any] = pool) -> None:
+            for k in range(count):
+                _, _, terminated, truncated, _ = env.step(pool[k % POOL])
+                if terminated or truncated:
+                    env.reset()
+
+        contenders[name] = run
+    simulator = mazesim.Simulator(mazesim.load_world("seed-maze"), seed=0)
+    wheels = [(float(a), float(b)) for a, b in np.random.default_rng(0).uniform(-6, 6, (POOL, 2))]
+
+    def raw(count: int) -> None:
+        for k in range(count):
+            simulator.step(*wheels[k % POOL])
+            simulator.distance_sensors()
+            simulator.ground_sensors()
+
+    contenders["raw_simulator"] = raw
+    times: dict[str, list[float]] = {name: [] for name in contenders}
+    for _ in range(max(1, steps // ROUND)):
+        for name, run in contenders.items():
+            start = time.perf_counter()
+            run(ROUND)
+            times[name].append(time.perf_counter() - start)
+    return {f"{name}_steps_per_s": ROUND / float(np.median(ts)) for name, ts in times.items()}
+
+
 def render_rates(frames: int) -> dict[str, float]:
     """Frames per second of env.render() (400 x 400) and of the rasteriser alone."""
     env: Any = gymnasium.make(ENV_ID, render_mode="rgb_array")
@@ -155,6 +198,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--threads", type=int, default=0, help="engine threads (0: all cores)")
     parser.add_argument("--sync-steps", type=int, default=10, help="SyncVectorEnv steps (0: skip)")
     parser.add_argument("--frames", type=int, default=2000, help="frames to render")
+    parser.add_argument(
+        "--single-steps", type=int, default=100_000, help="steps of one env (0: skip)"
+    )
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     args = parser.parse_args(argv)
 
@@ -170,6 +216,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     result["vector_mean_env_steps_per_s"] = rates["vector_mean"]
     if args.sync_steps > 0:
         result["sync_env_steps_per_s"] = sync_throughput(args.envs, args.sync_steps)
+    if args.single_steps > 0:
+        result.update(single_env_rates(args.single_steps))
+        result["mazesim_over_cartpole"] = (
+            result["mazesim_env_steps_per_s"] / result["cartpole_env_steps_per_s"]
+        )
     result.update(render_rates(args.frames))
 
     if args.json:
@@ -188,6 +239,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     )
     if "sync_env_steps_per_s" in result:
         print(f"  SyncVectorEnv           {result['sync_env_steps_per_s']:>12,.0f} env-steps/s")
+    if "mazesim_env_steps_per_s" in result:
+        print(
+            f"  one env, gymnasium.make {result['mazesim_env_steps_per_s']:>12,.0f} steps/s"
+            f"  ({result['mazesim_over_cartpole']:.2f} x CartPole-v1's "
+            f"{result['cartpole_env_steps_per_s']:,.0f}; raw Simulator "
+            f"{result['raw_simulator_steps_per_s']:,.0f})"
+        )
     print(f"  env.render() 400x400    {result['render_fps']:>12,.0f} frames/s")
     print(f"  rasteriser alone        {result['rasteriser_fps']:>12,.0f} frames/s")
     return 0

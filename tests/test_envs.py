@@ -17,6 +17,7 @@ from gymnasium.error import ClosedEnvironmentError, ResetNeeded  # noqa: E402
 from gymnasium.utils.env_checker import check_env  # noqa: E402
 
 import mazesim  # noqa: E402
+from env_worlds import CORRIDOR  # noqa: E402
 from mazesim.actions import (  # noqa: E402
     ACTION_CODES,
     WHEEL_SPEED_FRACTIONS,
@@ -27,34 +28,6 @@ from mazesim.envs import ENV_ID, EPuckMazeEnv, EPuckMazeVectorEnv  # noqa: E402
 from mazesim.envs.render import ROBOT_RGB  # noqa: E402
 from mazesim.envs.reward import GoalDistance, PathDistanceTable  # noqa: E402
 from mazesim.errors import InvalidActionError, InvalidArgumentError  # noqa: E402
-
-#: Three cells in a row: the start in the west cell facing east, a barcode checkpoint on the way
-#: and the goal in the east cell, so short episodes end at the goal and cross the barcode.
-CORRIDOR = """\
-format = "mazesim-world"
-version = 1
-name = "corridor"
-
-[floor]
-reflectance = 0.36
-
-[grid]
-cell_size = 0.25
-wall_thickness = 0.01
-origin = [0.0, 0.0]
-map = \"\"\"
-+--+--+--+
-|S     G |
-+--+--+--+
-\"\"\"
-
-[[checkpoints]]
-id = 1
-code = "10110"
-center = [0.25, 0.125]
-yaw = 0.0
-width = 0.23
-"""
 
 
 @pytest.fixture(scope="module")
@@ -238,7 +211,7 @@ def test_step_before_reset_raises() -> None:
     ],
 )
 def test_bad_continuous_actions_raise_invalid_action_error(action: Any, message: str) -> None:
-    env = gymnasium.make(ENV_ID)
+    env = gymnasium.make(ENV_ID, clip_actions=False)
     env.reset(seed=0)
     with pytest.raises(InvalidActionError, match=message.replace("[", r"\[").replace("]", r"\]")):
         env.step(action)
@@ -254,7 +227,7 @@ def test_bad_discrete_actions_raise_invalid_action_error(action: Any) -> None:
 
 
 def test_bad_vector_actions_name_the_environment() -> None:
-    envs = gymnasium.make_vec(ENV_ID, num_envs=4)
+    envs = gymnasium.make_vec(ENV_ID, num_envs=4, clip_actions=False)
     envs.reset(seed=0)
     actions = np.zeros((4, 2), dtype=np.float32)
     actions[2, 1] = np.nan

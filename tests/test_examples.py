@@ -8,6 +8,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 import mazesim
 from docs_blocks import run_command
 from mazesim.distributed import parse_sweep_config, run_sequential
@@ -29,6 +31,7 @@ COVERED = {
     "sweep.toml": "test_sweep_example_runs_in_a_fast_variant",
     "worlds/two-rooms.toml": "test_two_rooms_world_loads_with_its_goal_and_checkpoint",
     "worlds/boxes.wbt": "test_boxes_wbt_imports_without_warnings",
+    "ppo_sb3.py": "test_ppo_sb3_trains_and_evaluates_on_held_out_mazes",
 }
 
 
@@ -128,3 +131,14 @@ def test_boxes_wbt_imports_without_warnings() -> None:
     assert len(report["obstacles"]) == 8  # the arena's four walls, three boxes and a wall
     assert report["basic_time_step_ms"] == 16
     assert world.basic_time_step_ms == 16
+
+
+def test_ppo_sb3_trains_and_evaluates_on_held_out_mazes(tmp_path: Path) -> None:
+    pytest.importorskip("stable_baselines3", reason="needs mazesim[sb3] (make sb3-deps)")
+    for task in ("mazesim/MazeFixed-v0", "mazesim/UnseenMazeGuided-v0"):
+        argv = [sys.executable, str(EXAMPLES / "ppo_sb3.py"), "--task", task, "--out", "run"]
+        out = run_example(argv, tmp_path).stdout
+        pattern = rf"{task} seed 0: \d+ env-steps in \d+ s .*success on 4 held-out episodes: \d+ %"
+        assert re.search(pattern, out), out
+        assert (tmp_path / "run" / "progress.csv").read_text().count("\n") >= 2
+        assert (tmp_path / "run" / "model.zip").stat().st_size > 1000

@@ -35,6 +35,7 @@ from mazesim.errors import (
     InvalidArgumentError,
     MazesimError,
     MazesimIOError,
+    SnapshotError,
     UnknownNameError,
     WorldFormatError,
 )
@@ -48,6 +49,7 @@ __all__ = [
     "MazesimIOError",
     "RobotProfile",
     "Simulator",
+    "SnapshotError",
     "UnknownNameError",
     "World",
     "WorldFormatError",

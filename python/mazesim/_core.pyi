@@ -116,6 +116,11 @@ class World:
     def floor_background(self) -> float:
         """Background floor reflectance (where nothing is painted)."""
     def floor_reflectance(self, x: float, y: float) -> float: ...
+    def __reduce__(self) -> tuple[Any, tuple[str, str]]:
+        """Pickles as its world file text and source name."""
+    def __copy__(self) -> World:
+        """A world is immutable: a copy is the world itself."""
+    def __deepcopy__(self, memo: dict[int, Any], /) -> World: ...
     def __eq__(self, other: object, /) -> bool: ...
     __hash__: ClassVar[None]  # type: ignore[assignment]
 
@@ -127,6 +132,11 @@ class RobotProfile:
     def builtin(name: str) -> RobotProfile: ...
     @property
     def name(self) -> str: ...
+    def __reduce__(self) -> tuple[Any, tuple[str]]:
+        """Pickles as its built-in name."""
+    def __copy__(self) -> RobotProfile:
+        """A profile is immutable: a copy is the profile itself."""
+    def __deepcopy__(self, memo: dict[int, Any], /) -> RobotProfile: ...
     @property
     def body_radius(self) -> float: ...
     @property
@@ -178,6 +188,17 @@ class Simulator:
     def reset(self, seed: int | None = None) -> None: ...
     def step(self, left: float, right: float) -> None:
         """Advances one control step with wheel speeds in rad/s (clamped to the motor limit)."""
+    def step_observe(
+        self,
+        left: float,
+        right: float,
+        low: npt.NDArray[np.float32],
+        high: npt.NDArray[np.float32],
+    ) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.float32], bool, int]:
+        """`step`, then what a gym step returns, in one call: the readings (float32, the distance
+        sensors then the ground sensors) clamped to [`low`, `high`] (float32 arrays of that
+        width), the pose (float32 x, y, yaw), whether the body touches a wall and the signed
+        checkpoint crossed in this step (0: none)."""
     def set_start(self, x: float, y: float, yaw: float) -> None:
         """Sets the pose every later reset starts from (instead of the world's start)."""
     def set_pose(self, x: float, y: float, yaw: float) -> None: ...
@@ -215,6 +236,18 @@ class Simulator:
     def robot(self) -> RobotProfile: ...
     @property
     def world(self) -> World: ...
+    def snapshot(self) -> bytes:
+        """The whole state as bytes, for `restore` (pose, velocities, rapier's contact state, noise
+        stream, time, counters, barcode tracker, readings)."""
+    def restore(self, snapshot: bytes) -> None:
+        """Puts the simulator in the state of a `snapshot` of a simulator of the same world, robot
+        profile, control step and noise setting; it then goes on exactly as that one would."""
+    def __copy__(self) -> Simulator:
+        """An independent simulator in the same state, sharing the (immutable) world."""
+    def __deepcopy__(self, memo: dict[int, Any], /) -> Simulator: ...
+    def __reduce__(self) -> tuple[type[Simulator], tuple[Any, ...], bytes]:
+        """Pickles as the constructor's arguments and a snapshot."""
+    def __setstate__(self, state: bytes, /) -> None: ...
 
 @final
 class BatchSimulator:
@@ -262,6 +295,12 @@ class BatchSimulator:
         colliding: npt.NDArray[np.bool_],
         crossings: npt.NDArray[np.int32],
     ) -> None: ...
+    def snapshot_env(self, index: int) -> bytes:
+        """The whole state of environment `index` as bytes (as `Simulator.snapshot`), for
+        `restore_env`: what pickling a vector env keeps of each environment."""
+    def restore_env(self, index: int, snapshot: bytes) -> None:
+        """Puts environment `index` in the state of a `snapshot_env` (or `Simulator.snapshot`) of an
+        environment of the same world, robot profile, control step and noise setting."""
     def set_world(self, index: int, world: World, seed: int) -> None: ...
     def set_starts(self, starts: npt.NDArray[np.float64]) -> None:
         """Start poses ((N, 3) float64 x, y, yaw) of each env for its later resets."""

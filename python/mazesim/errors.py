@@ -21,6 +21,7 @@ __all__ = [
     "MissingDependencyError",
     "PolicyFormatError",
     "RunFormatError",
+    "SnapshotError",
     "UnknownNameError",
     "WorldFormatError",
 ]
@@ -89,6 +90,13 @@ class MazesimIOError(MazesimError, OSError):
         if len(self.args) == 1:
             return str(self.args[0])
         return super().__str__()
+
+
+class SnapshotError(InvalidArgumentError):
+    """A simulator snapshot cannot be restored: the bytes are not a snapshot, are truncated or
+    corrupt, are of another format version, or were taken in another world, with another robot
+    profile, control step or noise setting; the message says which, with what was expected and
+    what was found."""
 
 
 class InternalError(MazesimError, RuntimeError):

@@ -14,7 +14,7 @@ const WATCH_MARGIN: f64 = 1e-6;
 const WATCH_REACH: f64 = 0.05;
 
 /// One completed crossing.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct Crossing {
     /// The checkpoint's id.
     pub checkpoint: u32,
@@ -37,7 +37,7 @@ impl Crossing {
 }
 
 /// Follows one sensor over the codes of a world.
-#[derive(Debug, Clone, Default, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct CrossingTracker {
     /// The code the sensor is on (index into the world's checkpoints) and the end it came in by
     /// (-1 = the start of the code, +1 = its end).
@@ -71,6 +71,17 @@ impl CrossingTracker {
     /// A tracker that has not seen the sensor yet.
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// Whether every code index it holds is below `codes` and its positions are finite: what a
+    /// tracker read back from a snapshot must satisfy to follow a world of `codes` checkpoints.
+    pub fn fits(&self, codes: usize) -> bool {
+        let finite = |p: &[f64]| p.iter().all(|v| v.is_finite());
+        self.on_code
+            .is_none_or(|(i, end)| i < codes && (-1..=1).contains(&end))
+            && self.previous.is_none_or(|p| finite(&p))
+            && self.watch.is_none_or(|(c, r)| finite(&c) && !r.is_nan())
+            && self.watched.iter().all(|&i| i < codes)
     }
 
     /// Places the sensor without reporting anything (after a reset or a teleport).

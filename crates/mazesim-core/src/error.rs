@@ -60,6 +60,10 @@ pub enum Error {
         /// The operating system's reason alone (as C's `strerror`), when the OS gave one.
         reason: Option<String>,
     },
+    /// A simulator snapshot that cannot be restored: not a snapshot, truncated or corrupt, of
+    /// another format version, or taken in another world, with another robot or control step.
+    #[error("{0}")]
+    Snapshot(String),
     /// A long call stopped because the caller asked (Ctrl-C).
     #[error("interrupted")]
     Interrupted,

@@ -20,6 +20,7 @@ pub mod batch;
 pub mod codebook;
 pub mod crossing;
 pub mod error;
+pub mod fingerprint;
 pub mod generator;
 pub mod io;
 pub mod limits;

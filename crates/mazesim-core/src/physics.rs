@@ -254,6 +254,59 @@ impl Body {
         nearest
     }
 
+    /// Writes the body's whole physical state with `serializer`: rapier's bodies, colliders,
+    /// broad and narrow phases with their contact manifolds and warm-start impulses, islands, and
+    /// the pose kept outside rapier. Rapier's pipelines hold only workspace and are left out.
+    pub fn save<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        use serde::Serialize;
+        (&self.world, self.pose, self.stale).serialize(serializer)
+    }
+
+    /// Reads back what `save` wrote for a body built like this one (same walls, bodies and
+    /// radius); a state of another make is refused with what was expected and what was found.
+    pub fn load<'de, D: serde::Deserializer<'de>>(
+        &mut self,
+        deserializer: D,
+    ) -> Result<(), String> {
+        use serde::Deserialize;
+        let (world, pose, stale): (PhysicsWorld, [f32; 3], bool) =
+            Deserialize::deserialize(deserializer).map_err(|e| e.to_string())?;
+        let counts = |w: &PhysicsWorld| (w.bodies.len(), w.colliders.len());
+        if counts(&world) != counts(&self.world) {
+            return Err(format!(
+                "expected a physics state of {} bodies and {} colliders, found {} and {}",
+                self.world.bodies.len(),
+                self.world.colliders.len(),
+                world.bodies.len(),
+                world.colliders.len()
+            ));
+        }
+        let handles_known = world.bodies.get(self.robot).is_some()
+            && self.movables.iter().all(|&(body, collider, _)| {
+                world.bodies.get(body).is_some() && world.colliders.get(collider).is_some()
+            });
+        if !handles_known || !pose.iter().all(|v| v.is_finite()) {
+            return Err(
+                "expected the robot's and every movable body's handles and a finite pose, \
+                 found a physics state without them"
+                    .to_string(),
+            );
+        }
+        self.world.islands = world.islands;
+        self.world.broad_phase = world.broad_phase;
+        self.world.narrow_phase = world.narrow_phase;
+        self.world.bodies = world.bodies;
+        self.world.colliders = world.colliders;
+        self.world.impulse_joints = world.impulse_joints;
+        self.world.multibody_joints = world.multibody_joints;
+        self.world.soft_bodies = world.soft_bodies;
+        self.world.integration_parameters = world.integration_parameters;
+        self.world.gravity = world.gravity;
+        self.set_pose(pose);
+        self.stale = stale;
+        Ok(())
+    }
+
     /// Whether the world has movable bodies.
     pub fn has_movables(&self) -> bool {
         !self.movables.is_empty()

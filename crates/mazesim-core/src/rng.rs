@@ -11,7 +11,7 @@
 use std::sync::OnceLock;
 
 /// Deterministic pseudo-random stream.
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct Rng {
     state: [u64; 4],
 }

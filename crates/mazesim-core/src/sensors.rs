@@ -200,7 +200,7 @@ pub fn read_ground_with(
 /// One ground sensor reading the floor of one world again and again, as `read_ground` does: it
 /// keeps its table value over bare floor and the last box of bare floor it was in (from
 /// `FloorPaint::bare_box`), so that while it stays in that box a reading needs no look-up.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct GroundReader {
     /// `ground_background` of the sensor and floor.
     background: (f64, f64),

@@ -291,6 +291,30 @@ impl PyBatch {
         })
     }
 
+    /// The whole state of environment `index` as bytes (as `Simulator.snapshot`), for
+    /// `restore_env`: what pickling a vector env keeps of each environment.
+    fn snapshot_env<'py>(
+        &self,
+        py: Python<'py>,
+        index: IntArg,
+    ) -> PyResult<Bound<'py, pyo3::types::PyBytes>> {
+        enter(|| {
+            let index = index.count("index", self.n.saturating_sub(1))?;
+            let bytes = self.with(|b| b.envs()[index].snapshot());
+            Ok(pyo3::types::PyBytes::new(py, &bytes))
+        })
+    }
+
+    /// Puts environment `index` in the state of a `snapshot_env` (or `Simulator.snapshot`) of an
+    /// environment of the same world, robot profile, control step and noise setting.
+    fn restore_env(&self, index: IntArg, snapshot: &[u8]) -> PyResult<()> {
+        enter(|| {
+            let index = index.count("index", self.n.saturating_sub(1))?;
+            self.with(|b| b.env_mut(index).and_then(|env| env.restore(snapshot)))
+                .py()
+        })
+    }
+
     /// Wheel position sensors of each environment, (N, 2) float64 radians (left, right),
     /// quantised to the profile's encoder resolution.
     fn encoders<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {

@@ -25,6 +25,7 @@ fn build(py: Python<'_>, err: &Error) -> PyResult<PyErr> {
         Error::InvalidAction(_) => "InvalidActionError",
         Error::InvalidArgument(_) => "InvalidArgumentError",
         Error::Io { .. } => "MazesimIOError",
+        Error::Snapshot(_) => "SnapshotError",
         Error::Internal(_) | Error::Interrupted => "InternalError",
     };
     let instance = errors.getattr(class_name)?.call1((err.to_string(),))?;

@@ -5,9 +5,11 @@ use std::sync::Mutex;
 use mazesim_core::{SimConfig, Simulator};
 use numpy::PyArray1;
 use pyo3::prelude::*;
+use pyo3::types::{PyBytes, PyDict, PyTuple};
 
 use crate::args::{Flag, IntArg, Real, Text};
-use crate::errors::IntoPy;
+use crate::buffers::readable;
+use crate::errors::{invalid, IntoPy};
 use crate::guard::{enter, enter_detached};
 use crate::world::{world_argument, PyRobotProfile, PyWorld};
 
@@ -78,6 +80,50 @@ impl PySimulator {
     fn step(&self, py: Python<'_>, left: Real, right: Real) -> PyResult<()> {
         let (left, right) = (left.value("left")?, right.value("right")?);
         enter_detached(py, || self.with(|s| s.step(left, right)))
+    }
+
+    /// `step`, then what a gym step returns, in one call: the readings (float32, the distance
+    /// sensors then the ground sensors) clamped to [`low`, `high`] (float32 arrays of that
+    /// width), the pose (float32 x, y, yaw), whether the body touches a wall and the signed
+    /// checkpoint crossed in this step (0: none).
+    #[allow(clippy::type_complexity)]
+    fn step_observe<'py>(
+        &self,
+        py: Python<'py>,
+        left: Real,
+        right: Real,
+        low: &Bound<'py, PyAny>,
+        high: &Bound<'py, PyAny>,
+    ) -> PyResult<(
+        Bound<'py, PyArray1<f32>>,
+        Bound<'py, PyArray1<f32>>,
+        bool,
+        i32,
+    )> {
+        let (left, right) = (left.value("left")?, right.value("right")?);
+        enter(|| {
+            self.with(|s| {
+                let width = s.distance_sensors().len() + s.ground_sensors().len();
+                let low = readable::<f32>(low, "low", "float32", &[width])?;
+                let high = readable::<f32>(high, "high", "float32", &[width])?;
+                let contiguous = |name: &str| invalid(format!("expected {name} to be contiguous"));
+                let low = low.as_slice().map_err(|_| contiguous("low"))?;
+                let high = high.as_slice().map_err(|_| contiguous("high"))?;
+                s.step(left, right).py()?;
+                let readings: Vec<f32> = (s.distance_sensors().iter())
+                    .chain(s.ground_sensors())
+                    .zip(low.iter().zip(high))
+                    .map(|(value, (least, most))| value.max(*least).min(*most))
+                    .collect();
+                let p = s.pose();
+                Ok((
+                    PyArray1::from_vec(py, readings),
+                    PyArray1::from_slice(py, &p),
+                    s.colliding(),
+                    s.last_crossing(),
+                ))
+            })
+        })
     }
 
     /// Sets the pose every later reset starts from (instead of the world's start).
@@ -158,11 +204,11 @@ impl PySimulator {
 
     /// Barcode crossings since reset: dicts of checkpoint, direction ("arrival" along the
     /// checkpoint's yaw, "departure" against it), step and time.
-    fn crossings<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, pyo3::types::PyDict>>> {
+    fn crossings<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
         let (list, dt) = self.read(|s| (s.crossings().to_vec(), s.control_step()))?;
         list.iter()
             .map(|c| {
-                let d = pyo3::types::PyDict::new(py);
+                let d = PyDict::new(py);
                 d.set_item("checkpoint", c.checkpoint)?;
                 d.set_item("direction", if c.forward { "arrival" } else { "departure" })?;
                 d.set_item("step", c.step)?;
@@ -187,6 +233,60 @@ impl PySimulator {
         Ok(PyWorld {
             inner: self.read(|s| s.world().clone())?,
         })
+    }
+
+    /// The whole state as bytes, for `restore` (pose, velocities, rapier's contact state, noise
+    /// stream, time, counters, barcode tracker, readings).
+    fn snapshot<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyBytes>> {
+        let bytes = self.read(|s| s.snapshot())?;
+        Ok(PyBytes::new(py, &bytes))
+    }
+
+    /// Puts the simulator in the state of a `snapshot` of a simulator of the same world, robot
+    /// profile, control step and noise setting; it then goes on exactly as that one would.
+    fn restore(&self, py: Python<'_>, snapshot: &[u8]) -> PyResult<()> {
+        enter_detached(py, || self.with(|s| s.restore(snapshot)))
+    }
+
+    /// An independent simulator in the same state, sharing the (immutable) world.
+    fn __copy__(&self) -> PyResult<Self> {
+        enter(|| {
+            let copy = self.with(|s| s.duplicate()).py()?;
+            Ok(Self {
+                inner: Mutex::new(copy),
+            })
+        })
+    }
+
+    fn __deepcopy__(&self, _memo: &Bound<'_, PyDict>) -> PyResult<Self> {
+        self.__copy__()
+    }
+
+    /// Pickles as the constructor's arguments and a snapshot.
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyTuple>> {
+        let py = slf.py();
+        let this = slf.get();
+        let (world, robot, config, snapshot) = this.read(|s| {
+            (
+                s.world().clone(),
+                s.robot().name.clone(),
+                s.config(),
+                s.snapshot(),
+            )
+        })?;
+        let control_step_ms = config.control_step.map(|c| c * 1000.0);
+        let args = (
+            PyWorld { inner: world },
+            robot,
+            config.seed,
+            config.noise,
+            control_step_ms,
+        );
+        (slf.get_type(), args, PyBytes::new(py, &snapshot)).into_pyobject(py)
+    }
+
+    fn __setstate__(&self, py: Python<'_>, state: &[u8]) -> PyResult<()> {
+        self.restore(py, state)
     }
 
     fn __repr__(&self) -> PyResult<String> {

@@ -73,6 +73,22 @@ impl PyWorld {
         enter(|| self.inner.to_toml().py())
     }
 
+    /// Pickles as its world file text and source name.
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, (String, String))> {
+        let text = slf.get().to_toml()?;
+        let source = slf.get().inner.source().to_string();
+        Ok((slf.get_type().getattr("from_toml")?, (text, source)))
+    }
+
+    /// A world is immutable: a copy is the world itself.
+    fn __copy__(slf: PyRef<'_, Self>) -> PyRef<'_, Self> {
+        slf
+    }
+
+    fn __deepcopy__<'py>(slf: PyRef<'py, Self>, _memo: &Bound<'py, PyDict>) -> PyRef<'py, Self> {
+        slf
+    }
+
     /// Writes the world file atomically.
     fn save(&self, py: Python<'_>, path: PathArg) -> PyResult<()> {
         let path = path.value("path", "a str or os.PathLike")?;
@@ -328,6 +344,21 @@ impl PyRobotProfile {
     #[getter]
     fn name(&self) -> PyResult<String> {
         enter(|| Ok(self.inner.name.clone()))
+    }
+
+    /// Pickles as its built-in name.
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, (String,))> {
+        let name = slf.get().inner.name.clone();
+        Ok((slf.get_type().getattr("builtin")?, (name,)))
+    }
+
+    /// A profile is immutable: a copy is the profile itself.
+    fn __copy__(slf: PyRef<'_, Self>) -> PyRef<'_, Self> {
+        slf
+    }
+
+    fn __deepcopy__<'py>(slf: PyRef<'py, Self>, _memo: &Bound<'py, PyDict>) -> PyRef<'py, Self> {
+        slf
     }
     #[getter]
     fn body_radius(&self) -> PyResult<f64> {

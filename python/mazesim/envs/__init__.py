@@ -1,6 +1,6 @@
 """Gymnasium environments: ``mazesim/EPuckMaze-v0`` and its native vector env.
 
-``import mazesim`` registers the environment when gymnasium is installed
+``import mazesim`` registers the task suite (:mod:`mazesim.envs.tasks`) when gymnasium is installed
 (``pip install "mazesim[gym]"``)::
 
     import gymnasium
@@ -31,6 +31,7 @@ from mazesim.envs.maze_env import EPuckMazeEnv  # noqa: E402
 from mazesim.envs.options import DEFAULT_MAX_EPISODE_STEPS  # noqa: E402
 from mazesim.envs.render import TopDownRenderer  # noqa: E402
 from mazesim.envs.reward import RewardWeights  # noqa: E402
+from mazesim.envs.tasks import TASKS, Task, register_tasks  # noqa: E402
 from mazesim.envs.vector import EPuckMazeVectorEnv  # noqa: E402
 
 __all__ = [
@@ -39,8 +40,11 @@ __all__ = [
     "EPuckMazeEnv",
     "EPuckMazeVectorEnv",
     "RewardWeights",
+    "TASKS",
+    "Task",
     "TopDownRenderer",
     "register_envs",
+    "register_tasks",
 ]
 
 #: The id of the maze environment in gymnasium's registry.
@@ -48,17 +52,9 @@ ENV_ID = "mazesim/EPuckMaze-v0"
 
 
 def register_envs() -> None:
-    """Registers ``mazesim/EPuckMaze-v0`` (single and vector entry points) with gymnasium.
+    """Registers the task suite (:mod:`mazesim.envs.tasks`), ``mazesim/EPuckMaze-v0`` first, with
+    single and vector entry points.
 
     ``import mazesim`` calls it; calling it again does nothing.
     """
-    from gymnasium.envs.registration import register, registry
-
-    if ENV_ID in registry:
-        return
-    register(
-        id=ENV_ID,
-        entry_point="mazesim.envs.maze_env:EPuckMazeEnv",
-        vector_entry_point="mazesim.envs.vector:EPuckMazeVectorEnv",
-        max_episode_steps=DEFAULT_MAX_EPISODE_STEPS,
-    )
+    register_tasks()

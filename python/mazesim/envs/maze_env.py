@@ -11,9 +11,11 @@ import numpy.typing as npt
 from gymnasium.error import ResetNeeded
 
 from mazesim._core import Simulator, World
-from mazesim.envs.options import EnvOptions, WorldOption, draw_seed
+from mazesim.envs.navigation import navigation_features
+from mazesim.envs.options import EnvOptions, draw_seed
 from mazesim.envs.render import TopDownRenderer
-from mazesim.envs.reward import GoalDistance, PathDistanceTable, step_reward
+from mazesim.envs.reward import PathDistanceTable
+from mazesim.envs.scalar_goal import ScalarGoalDistance
 from mazesim.envs.spaces import ActionConverter, ObservationLayout, sensor_ranges
 from mazesim.errors import InvalidArgumentError
 
@@ -54,11 +56,14 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
 
     Observation: the sensor readings as a float32 vector, distance sensors then ground sensors
     (for the e-puck: ps0-ps7 raw counts, gs0-gs2 raw), with the pose appended when
-    ``include_pose`` is set; see :mod:`mazesim.envs.spaces` for each index and the bounds.
+    ``include_pose`` is set; see :mod:`mazesim.envs.spaces` for each index and the bounds. With
+    ``observation="goal"`` or ``"guided"``: normalised readings, the goal (and the next waypoint)
+    in the robot's frame and the previous action (:mod:`mazesim.envs.navigation`).
 
     Action: ``"continuous"``, ``Box(-1, 1, (2,), float32)``, the left and right wheel speeds as
     fractions of the motor limit; or ``"discrete"``, ``Discrete(12)``, the report's primitive
     actions of :mod:`mazesim.actions` (``00`` forward, ``11``-``44`` right turns, ...).
+    Continuous actions outside [-1, 1] are clipped (``clip_actions=True``, the default).
 
     Reward: ``progress * (metres gained along the shortest path to the goal)
     - collision * (1 while touching a wall) + goal * (1 on reaching the goal)``, by default with
@@ -69,8 +74,9 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
 
     Info (after reset and after every step): ``pose`` (float32 x, y, yaw), ``collisions`` (bumps
     since the reset), ``colliding`` (touching a wall now), ``distance_to_goal`` (the shortest-path
-    distance in metres) and, only on a step that crossed a barcode checkpoint, ``checkpoint``: its
-    id, positive when crossed along the barcode's direction (arriving), negative when departing.
+    distance in metres), ``is_success`` (True on the step that reaches the goal) and, only on a
+    step that crossed a barcode checkpoint, ``checkpoint``: its id, positive when crossed along
+    the barcode's direction (arriving), negative when departing.
 
     Seeding: ``reset(seed=s)`` seeds the env's RNG; each episode draws its simulator seed (and its
     maze, with ``world="random"``) from that RNG, so the same seed and actions replay the same
@@ -80,20 +86,10 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         render_mode: None, ``"rgb_array"`` (a top-down image with the trail and an overlay of
             time, step, reward and the last event, see :mod:`mazesim.envs.render`), or
             ``"human"`` (that image in a window that updates every step).
-        world: A built-in world name, a path to a world file, a ``World``, or ``"random"`` for a
-            fresh random maze at each reset (``maze_size`` cells, drawn from the env's RNG).
-        robot: The robot profile (``mazesim.robot_profile_names()``): ``"e-puck"``,
-            ``"e-puck2"``, ``"e-puck-hardware"``, ``"seed"`` or ``"alphabot2"``.
-        action_mode: ``"continuous"`` or ``"discrete"``.
-        noise: Whether the sensors are noisy (Webots' relative Gaussian noise).
-        include_pose: Whether the observation ends with x, y (metres) and yaw (radians).
-        control_step_ms: The control step in ms (a whole number of physics steps); None for the
-            world's basic time step.
-        maze_size: (width, height) in cells of the random mazes.
-        goal_reward: Bonus on reaching the goal.
-        collision_penalty: Penalty for every step spent touching a wall.
-        progress_reward: Reward per metre of progress along the shortest path.
-        render_size: Side of the rendered images in pixels, or (width, height).
+        **options: The options of :meth:`mazesim.envs.options.EnvOptions.create`, the one list
+            of them: ``world``, ``robot``, ``action_mode``, ``clip_actions``, ``noise``,
+            ``include_pose``, ``control_step_ms``, ``maze_size``, ``goal_reward``,
+            ``collision_penalty``, ``progress_reward``, ``render_size``.
 
     Raises:
         InvalidArgumentError: An option has a wrong type or value.
@@ -102,47 +98,32 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
 
     metadata: dict[str, Any] = {"render_modes": RENDER_MODES, "render_fps": 31.25}
 
-    def __init__(
-        self,
-        render_mode: str | None = None,
-        world: WorldOption = "seed-maze",
-        robot: str = "e-puck",
-        action_mode: str = "continuous",
-        noise: bool = True,
-        include_pose: bool = False,
-        control_step_ms: float | None = None,
-        maze_size: tuple[int, int] = (5, 5),
-        goal_reward: float = 10.0,
-        collision_penalty: float = 0.1,
-        progress_reward: float = 10.0,
-        render_size: int | tuple[int, int] = 400,
-    ) -> None:
+    def __init__(self, render_mode: str | None = None, **options: Any) -> None:
         check_render_mode(render_mode)
         self.render_mode = render_mode
-        self.options = EnvOptions.create(
-            world=world,
-            robot=robot,
-            action_mode=action_mode,
-            noise=noise,
-            include_pose=include_pose,
-            control_step_ms=control_step_ms,
-            maze_size=maze_size,
-            goal_reward=goal_reward,
-            collision_penalty=collision_penalty,
-            progress_reward=progress_reward,
-            render_size=render_size,
-        )
+        self.options = EnvOptions.from_keywords(options)
         self.world = self.options.sample_world()
         self.metadata = {
             **type(self).metadata,
             "render_fps": 1000.0 / step_length_ms(self.options, self.world),
         }
-        self._layout = ObservationLayout(self.options.robot, self.world, include_pose)
-        self._actions = ActionConverter(action_mode, self.options.robot.max_wheel_speed)
-        self.observation_space = self._layout.space
+        self._layout = ObservationLayout(self.options.robot, self.world, self.options.include_pose)
+        self._actions = ActionConverter(
+            self.options.action_mode, self.options.robot.max_wheel_speed, self.options.clip_actions
+        )
+        table = PathDistanceTable.of_world(self.world)
+        self._features = navigation_features(
+            self.options.observation, 1, self.options.robot, self.world, table
+        )
+        self._previous = np.zeros((1, 2), dtype=np.float32)
+        features = self._features
+        self.observation_space = self._layout.space if features is None else features.space
         self.action_space = self._actions.space
-        self._goal = GoalDistance(1, PathDistanceTable.of_world(self.world))
-        self._distance = np.zeros(1)
+        width = self._layout.sensor_width
+        self._low = np.ascontiguousarray(self._layout.low[:width])
+        self._high = np.ascontiguousarray(self._layout.high[:width])
+        self._goal = ScalarGoalDistance(table)
+        self._distance = 0.0
         self._simulator: Simulator | None = None
         self._renderer: TopDownRenderer | None = None
         self._live: Any = None
@@ -153,8 +134,9 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
 
     @property
     def observation_names(self) -> list[str]:
-        """What each index of the observation holds (sensor names, then x, y, yaw)."""
-        return list(self._layout.names)
+        """What each index of the observation holds (sensor names, then x, y, yaw, or the
+        navigation features)."""
+        return list(self._layout.names if self._features is None else self._features.names)
 
     def reset(
         self, *, seed: int | None = None, options: dict[str, Any] | None = None
@@ -172,18 +154,35 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
                 noise=self.options.noise,
                 control_step_ms=self.options.control_step_ms,
             )
-            self._goal.set(0, PathDistanceTable.of_world(self.world))
+            table = PathDistanceTable.of_world(self.world)
+            self._goal = ScalarGoalDistance(table)
+            if self._features is not None:
+                self._features.set(0, self.world, table)
             self._renderer = None
         else:
             self._simulator.reset(seed=episode_seed)
-        observation, pose = self._observe(self._simulator)
-        self._distance = self._goal.evaluate(pose)[0]
-        self._trail = [(float(pose[0, 0]), float(pose[0, 1]))]
+        simulator = self._simulator
+        readings = np.concatenate((simulator.distance_sensors(), simulator.ground_sensors()))
+        pose = np.array(simulator.pose, dtype=np.float32)
+        observation = self._layout.assemble_one(readings, pose)
+        if self._features is not None:
+            self._previous[:] = 0.0
+            observation = self._features.observe(readings[None], pose[None], self._previous)[0]
+        x, y, yaw = pose.tolist()
+        self._distance, reached = self._goal.evaluate(x, y)
+        self._trail = [(x, y)]
         self._last_reward = self._episode_return = 0.0
         self._last_event = "none"
         if self.render_mode == "human":
             self.render()
-        return observation, self._info(self._simulator, pose)
+        info = {
+            "pose": pose,
+            "collisions": simulator.collisions,
+            "colliding": simulator.colliding,
+            "distance_to_goal": self._distance,
+            "is_success": False,
+        }
+        return observation, info
 
     def step(
         self, action: Any
@@ -191,29 +190,52 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         """Runs one control step with ``action``.
 
         Raises:
-            InvalidActionError: The action is not in the action space (shape, dtype, NaN, range).
+            InvalidActionError: The action has a wrong shape or dtype, is NaN or infinite, or is
+                outside the space (a continuous one only with ``clip_actions=False``).
             ResetNeeded: :meth:`reset` has not been called since the env was made or closed.
         """
         simulator = self._simulator
         if simulator is None:
             raise ResetNeeded("call reset() before step() (and after close())")
         left, right = self._actions.single(action)
-        simulator.step(left, right)
-        observation, pose = self._observe(simulator)
-        distance, reached = self._goal.evaluate(pose)
-        colliding = np.array([simulator.colliding])
-        reward = step_reward(self.options.reward, self._distance, distance, colliding, reached)
+        observation, pose, colliding, crossing = simulator.step_observe(
+            left, right, self._low, self._high
+        )
+        if self._layout.include_pose:
+            observation = self._layout.assemble_one(observation, pose)
+        elif self._features is not None:
+            self._previous[0] = (left, right)
+            self._previous /= self._actions.max_speed
+            observation = self._features.observe(observation[None], pose[None], self._previous)[0]
+        x, y, _ = pose.tolist()
+        distance, reached = self._goal.evaluate(x, y)
+        weights = self.options.reward
+        reward = (
+            weights.progress * (self._distance - distance)
+            - weights.collision * float(colliding)
+            + weights.goal * float(reached)
+        )
         self._distance = distance
-        self._note_step(simulator, pose, float(reward[0]), bool(reached[0]))
-        if self.render_mode == "human":
-            self.render()
-        return observation, float(reward[0]), bool(reached[0]), False, self._info(simulator, pose)
+        info = {
+            "pose": pose,
+            "collisions": simulator.collisions,
+            "colliding": colliding,
+            "distance_to_goal": distance,
+            "is_success": reached,
+        }
+        if crossing != 0:
+            info["checkpoint"] = crossing
+        if self.render_mode is not None:
+            self._note_step(simulator, x, y, reward, reached)
+            if self.render_mode == "human":
+                self.render()
+        return observation, reward, reached, False, info
 
     def _note_step(
-        self, simulator: Simulator, pose: npt.NDArray[np.float32], reward: float, reached: bool
+        self, simulator: Simulator, x: float, y: float, reward: float, reached: bool
     ) -> None:
         """Keeps what the rendered overlay shows: the trail, the reward, the last event."""
-        self._trail.append((float(pose[0, 0]), float(pose[0, 1])))
+        self._trail.append((x, y))
         self._last_reward = reward
         self._episode_return += reward
         crossing = simulator.last_crossing
@@ -270,6 +292,15 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
             simulator.pose, simulator.colliding, trail=self._trail, overlay=overlay
         )
 
+    def __getstate__(self) -> dict[str, Any]:
+        """What pickling and deep-copying keep: everything but the window and the renderer (made
+        again when needed); the simulator pickles with its whole state, so a copy goes on
+        exactly as the original."""
+        state = self.__dict__.copy()
+        state["_live"] = None
+        state["_renderer"] = None
+        return state
+
     def close(self) -> None:
         """Releases the simulator and the renderer; safe to call more than once."""
         self._simulator = None
@@ -277,22 +308,3 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         if self._live is not None:
             self._live.close()
             self._live = None
-
-    def _observe(
-        self, simulator: Simulator
-    ) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.float32]]:
-        """The observation (width,) and the pose as a (1, 3) float32 array."""
-        sensors = np.concatenate((simulator.distance_sensors(), simulator.ground_sensors()))
-        pose = np.array([simulator.pose], dtype=np.float32)
-        return self._layout.assemble(sensors[None, :], pose)[0], pose
-
-    def _info(self, simulator: Simulator, pose: npt.NDArray[np.float32]) -> dict[str, Any]:
-        info: dict[str, Any] = {
-            "pose": pose[0].copy(),
-            "collisions": int(simulator.collisions),
-            "colliding": bool(simulator.colliding),
-            "distance_to_goal": float(self._distance[0]),
-        }
-        if simulator.last_crossing != 0:
-            info["checkpoint"] = int(simulator.last_crossing)
-        return info

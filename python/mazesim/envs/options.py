@@ -1,19 +1,33 @@
-"""The options of the maze environments, checked once and shared by the single and vector envs."""
+"""The options of the maze environments, checked once and shared by the single and vector envs.
+
+:meth:`EnvOptions.create` is the one list of the keyword arguments of
+``gymnasium.make("mazesim/...")`` and ``gymnasium.make_vec(...)``, with their defaults and their
+documentation; both environments pass their keywords straight to it.
+"""
 
 from __future__ import annotations
 
+import inspect
 import os
 from dataclasses import dataclass, field
-from typing import Union
+from typing import Any, Union
 
 import numpy as np
 
 import mazesim
 from mazesim._core import RobotProfile, World, generate_maze
+from mazesim.envs.navigation import OBSERVATIONS, START_GOALS, draw_start_and_goal
 from mazesim.envs.reward import RewardWeights
 from mazesim.errors import InvalidArgumentError
 
-__all__ = ["ACTION_MODES", "DEFAULT_MAX_EPISODE_STEPS", "EnvOptions", "WorldOption", "draw_seed"]
+__all__ = [
+    "ACTION_MODES",
+    "DEFAULT_MAX_EPISODE_STEPS",
+    "EnvOptions",
+    "WorldOption",
+    "draw_seed",
+    "option_names",
+]
 
 #: The accepted values of ``action_mode``.
 ACTION_MODES = ("continuous", "discrete")
@@ -41,6 +55,9 @@ class EnvOptions:
         maze_size: (width, height) in cells of the random mazes.
         robot: The robot profile.
         action_mode: ``"continuous"`` or ``"discrete"``.
+        clip_actions: Whether continuous actions outside [-1, 1] are clipped (True) or raise.
+        observation: ``"sensors"``, ``"goal"`` or ``"guided"`` (:mod:`mazesim.envs.navigation`).
+        start_goal: ``"world"`` (the world's) or ``"random"`` (random cells at every reset).
         noise: Whether the sensors are noisy.
         include_pose: Whether the observation ends with the pose (x, y, yaw).
         control_step_ms: The control step in ms, or None for the world's basic time step.
@@ -55,6 +72,9 @@ class EnvOptions:
     noise: bool
     include_pose: bool
     control_step_ms: float | None
+    clip_actions: bool = True
+    observation: str = "sensors"
+    start_goal: str = "world"
     reward: RewardWeights = field(default_factory=RewardWeights)
     render_size: tuple[int, int] = (400, 400)
 
@@ -64,6 +84,9 @@ class EnvOptions:
         world: WorldOption = "seed-maze",
         robot: str = "e-puck",
         action_mode: str = "continuous",
+        clip_actions: bool = True,
+        observation: str = "sensors",
+        start_goal: str = "world",
         noise: bool = True,
         include_pose: bool = False,
         control_step_ms: float | None = None,
@@ -75,6 +98,35 @@ class EnvOptions:
     ) -> EnvOptions:
         """Checks the keyword arguments of the environments and resolves the world and robot.
 
+        Args:
+            world: A built-in world name, a path to a world file, a ``World``, or ``"random"``
+                for a fresh random maze at each reset (``maze_size`` cells, drawn from the env's
+                RNG).
+            robot: The robot profile (``mazesim.robot_profile_names()``): ``"e-puck"``,
+                ``"e-puck2"``, ``"e-puck-hardware"``, ``"seed"`` or ``"alphabot2"``.
+            action_mode: ``"continuous"`` (left and right wheel speeds as fractions of the motor
+                limit) or ``"discrete"`` (the report's 12 primitive actions).
+            clip_actions: With True (the default), a continuous action outside [-1, 1] is
+                clipped to it, as ``np.clip`` would, so a policy's 1.0001 drives at full speed;
+                with False it raises :class:`~mazesim.errors.InvalidActionError`. A NaN or
+                infinite action, a wrong shape or dtype and a discrete index out of range
+                always raise.
+            observation: ``"sensors"`` (the raw readings), ``"goal"`` (normalised readings, the
+                goal's position in the robot's frame, the previous action) or ``"guided"``
+                (``"goal"`` and the next waypoint of the shortest path); see
+                :mod:`mazesim.envs.navigation`.
+            start_goal: ``"world"`` (the world's start and goal) or ``"random"`` (at every reset
+                two distinct random cells of the maze, the start facing a random direction).
+            noise: Whether the sensors are noisy (Webots' relative Gaussian noise).
+            include_pose: Whether the observation ends with x, y (metres) and yaw (radians).
+            control_step_ms: The control step in ms (a whole number of physics steps); None for
+                the world's basic time step.
+            maze_size: (width, height) in cells of the random mazes.
+            goal_reward: Bonus on reaching the goal.
+            collision_penalty: Penalty for every step spent touching a wall.
+            progress_reward: Reward per metre of progress along the shortest path.
+            render_size: Side of the rendered images in pixels, or (width, height).
+
         Raises:
             InvalidArgumentError: An option has a wrong type or value.
             UnknownNameError: The world or the robot profile does not exist.
@@ -85,7 +137,21 @@ class EnvOptions:
                 f"expected action_mode to be one of {', '.join(ACTION_MODES)}; "
                 f"found {action_mode!r}"
             )
-        for name, flag in (("noise", noise), ("include_pose", include_pose)):
+        for name, value, accepted in (
+            ("observation", observation, OBSERVATIONS),
+            ("start_goal", start_goal, START_GOALS),
+        ):
+            if value not in accepted:
+                raise InvalidArgumentError(
+                    f"expected {name} to be one of {', '.join(accepted)}; found {value!r}"
+                )
+        if observation != "sensors" and include_pose:
+            raise InvalidArgumentError(
+                f'expected include_pose=False with observation="{observation}" '
+                "(it holds the goal's relative position), found include_pose=True"
+            )
+        flags = (("noise", noise), ("include_pose", include_pose), ("clip_actions", clip_actions))
+        for name, flag in flags:
             if not isinstance(flag, (bool, np.bool_)):
                 raise InvalidArgumentError(f"expected {name} to be True or False, found {flag!r}")
         if control_step_ms is not None and not (
@@ -116,9 +182,24 @@ class EnvOptions:
             noise=bool(noise),
             include_pose=bool(include_pose),
             control_step_ms=None if control_step_ms is None else float(control_step_ms),
+            clip_actions=bool(clip_actions),
+            observation=observation,
+            start_goal=start_goal,
             reward=RewardWeights(goal_reward, collision_penalty, progress_reward),
             render_size=(int(sides[0]), int(sides[1])),
         )
+
+    @classmethod
+    def from_keywords(cls, keywords: dict[str, Any]) -> EnvOptions:
+        """:meth:`create` from an environment's keyword arguments; an unknown keyword raises
+        InvalidArgumentError naming the options there are."""
+        unknown = sorted(set(keywords) - set(option_names()))
+        if unknown:
+            raise InvalidArgumentError(
+                f"expected options among {', '.join(option_names())}; "
+                f"found unknown {', '.join(map(repr, unknown))}"
+            )
+        return cls.create(**keywords)
 
     @property
     def random_world(self) -> bool:
@@ -135,9 +216,18 @@ class EnvOptions:
         return generate_maze(width, height, seed=seed)
 
     def next_world(self, rng: np.random.Generator) -> World | None:
-        """The world of the next episode: a random maze drawn from ``rng``, or None to keep the
+        """The world of the next episode: a random maze drawn from ``rng`` (or the fixed world),
+        with a random start and goal drawn next if ``start_goal="random"``; None to keep the
         fixed world (and then nothing is drawn)."""
-        return None if self.world is not None else self.random_maze(draw_seed(rng))
+        world = self.world if self.world is not None else self.random_maze(draw_seed(rng))
+        if self.start_goal == "random":
+            return draw_start_and_goal(world, rng)
+        return None if self.world is not None else world
+
+
+def option_names() -> list[str]:
+    """The names of the environments' options, in the order of :meth:`EnvOptions.create`."""
+    return list(inspect.signature(EnvOptions.create).parameters)
 
 
 def _is_random(world: WorldOption) -> bool:

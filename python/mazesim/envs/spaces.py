@@ -26,8 +26,10 @@ Action
     of the motor limit (6.28 rad/s on the e-puck). ``"discrete"``: ``Discrete(12)``, the report's
     primitive actions of :mod:`mazesim.actions` (index ``i`` is ``ACTION_CODES[i]``).
 
-A bad action (wrong shape or dtype, NaN or infinite, outside the space) raises
-:class:`~mazesim.errors.InvalidActionError` saying what was expected and what was found.
+A bad action (wrong shape or dtype, NaN or infinite) raises
+:class:`~mazesim.errors.InvalidActionError` saying what was expected and what was found. A finite
+continuous action outside [-1, 1] is clipped to it by default (``clip_actions=True``, as
+``np.clip`` would, after the conversion to float32), or raises with ``clip_actions=False``.
 """
 
 from __future__ import annotations
@@ -129,19 +131,41 @@ class ObservationLayout:
         np.minimum(out, self.high, out=out)
         return out
 
+    def assemble_one(
+        self, readings: npt.NDArray[np.float32], pose: npt.NDArray[np.float32]
+    ) -> npt.NDArray[np.float32]:
+        """One new (width,) observation from (sensor_width,) readings and a pose: a row of
+        :meth:`assemble`, bit for bit."""
+        if self.include_pose:
+            out = np.empty(self.width, dtype=np.float32)
+            out[: self.sensor_width] = readings
+            out[self.sensor_width :] = pose
+            np.maximum(out, self.low, out=out)
+        else:
+            out = np.maximum(readings, self.low)
+        np.minimum(out, self.high, out=out)
+        return out
+
 
 class ActionConverter:
     """Checks actions and turns them into float32 wheel speeds in rad/s.
 
+    Both give the wheel speeds of the float32 product ``fraction * max_speed``, so a single env and
+    the vector env drive the same speeds bit for bit.
+
     Args:
         action_mode: ``"continuous"`` or ``"discrete"``.
         max_speed: The motor limit in rad/s.
+        clip: Whether continuous actions outside [-1, 1] are clipped to it (else they raise).
     """
 
-    def __init__(self, action_mode: str, max_speed: float) -> None:
+    def __init__(self, action_mode: str, max_speed: float, clip: bool = False) -> None:
         self.discrete = action_mode == "discrete"
+        self.clip = clip
         self.max_speed = np.float32(max_speed)
         self.table = (WHEEL_SPEED_FRACTIONS * max_speed).astype(np.float32)
+        self._speeds = [(float(left), float(right)) for left, right in self.table]
+        self._max = float(self.max_speed)
         self.space: spaces.Space[Any]
         if self.discrete:
             self.space = spaces.Discrete(len(ACTION_CODES))
@@ -149,8 +173,16 @@ class ActionConverter:
             self.space = spaces.Box(-1.0, 1.0, shape=(2,), dtype=np.float32)
 
     def single(self, action: Any) -> tuple[float, float]:
-        """The (left, right) wheel speeds in rad/s of one action."""
+        """The (left, right) wheel speeds in rad/s of one action.
+
+        The speeds are the exact products of float32 values in double precision; the simulator
+        rounds them to float32, which gives the float32 products the vector env computes.
+        """
         array = np.asarray(action)
+        if not self.discrete and array.dtype == np.float32 and array.shape == (2,):
+            left, right = array.tolist()
+            if -1.0 <= left <= 1.0 and -1.0 <= right <= 1.0:  # False for NaN too
+                return left * self._max, right * self._max
         if self.discrete:
             if array.shape != () or array.dtype.kind not in "iu":
                 raise InvalidActionError(
@@ -163,11 +195,10 @@ class ActionConverter:
                     f"expected an action in 0..{len(ACTION_CODES) - 1} (one of the codes "
                     f"{', '.join(ACTION_CODES)}), found {index}"
                 )
-            left, right = self.table[index]
-        else:
-            _check_fractions(array, (2,), "")
-            left, right = array.astype(np.float32) * self.max_speed
-        return float(left), float(right)
+            return self._speeds[index]
+        _check_fractions(array, (2,), "", self.clip)
+        left, right = np.clip(array.astype(np.float32), -1.0, 1.0).tolist()
+        return left * self._max, right * self._max
 
     def batch(self, actions: Any, num_envs: int) -> npt.NDArray[np.float32]:
         """The (N, 2) float32 wheel speeds in rad/s of a batch of actions."""
@@ -185,12 +216,18 @@ class ActionConverter:
                     f"found {array[bad[0]]} in environment {bad[0]}"
                 )
             return self.table[array]
-        _check_fractions(array, (num_envs, 2), " in environment {env}")
-        return array.astype(np.float32) * self.max_speed
+        _check_fractions(array, (num_envs, 2), " in environment {env}", self.clip)
+        fractions = array.astype(np.float32)
+        if self.clip:
+            np.clip(fractions, -1.0, 1.0, out=fractions)
+        return fractions * self.max_speed
 
 
-def _check_fractions(array: npt.NDArray[Any], shape: tuple[int, ...], where: str) -> None:
-    """Raises InvalidActionError unless ``array`` holds finite reals in [-1, 1] of ``shape``."""
+def _check_fractions(
+    array: npt.NDArray[Any], shape: tuple[int, ...], where: str, clip: bool
+) -> None:
+    """Raises InvalidActionError unless ``array`` holds finite reals of ``shape``, in [-1, 1]
+    unless they are to be clipped."""
     if array.dtype.kind not in "fiu":
         raise InvalidActionError(
             f"expected real wheel speed fractions (float32), found dtype {array.dtype}"
@@ -200,7 +237,7 @@ def _check_fractions(array: npt.NDArray[Any], shape: tuple[int, ...], where: str
             f"expected an action of shape {shape} (left, right wheel speed as fractions of the "
             f"motor limit), found shape {array.shape}"
         )
-    inside = np.abs(array) <= 1.0  # False for NaN too
+    inside = np.isfinite(array) if clip else np.abs(array) <= 1.0  # False for NaN too
     if inside.all():
         return
     finite = np.isfinite(array)

@@ -27,7 +27,8 @@ from gymnasium.vector.utils import batch_space
 
 from mazesim._core import BatchSimulator, World
 from mazesim.envs.maze_env import VECTOR_RENDER_MODES, check_render_mode, step_length_ms
-from mazesim.envs.options import DEFAULT_MAX_EPISODE_STEPS, EnvOptions, WorldOption, draw_seed
+from mazesim.envs.navigation import navigation_features
+from mazesim.envs.options import DEFAULT_MAX_EPISODE_STEPS, EnvOptions, draw_seed
 from mazesim.envs.render import TopDownRenderer
 from mazesim.envs.reward import GoalDistance, PathDistanceTable, step_reward
 from mazesim.envs.spaces import ActionConverter, ObservationLayout, sensor_ranges
@@ -35,7 +36,7 @@ from mazesim.errors import InvalidArgumentError
 
 __all__ = ["EPuckMazeVectorEnv"]
 
-_INFO_KEYS = ("pose", "collisions", "colliding", "distance_to_goal")
+_INFO_KEYS = ("pose", "collisions", "colliding", "distance_to_goal", "is_success")
 
 
 class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], npt.NDArray[Any]]):
@@ -57,18 +58,15 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         render_mode: None or ``"rgb_array"``: :meth:`render` returns one image per environment.
         threads: Worker threads of the batch engine (0: one per core). The results do not depend
             on it.
-        world: As for :class:`~mazesim.envs.EPuckMazeEnv`; with ``"random"`` every environment
-            draws its own maze at each reset.
-        robot: As for :class:`~mazesim.envs.EPuckMazeEnv`.
-        action_mode: As for :class:`~mazesim.envs.EPuckMazeEnv`.
-        noise: As for :class:`~mazesim.envs.EPuckMazeEnv`.
-        include_pose: As for :class:`~mazesim.envs.EPuckMazeEnv`.
-        control_step_ms: As for :class:`~mazesim.envs.EPuckMazeEnv`.
-        maze_size: As for :class:`~mazesim.envs.EPuckMazeEnv`.
-        goal_reward: As for :class:`~mazesim.envs.EPuckMazeEnv`.
-        collision_penalty: As for :class:`~mazesim.envs.EPuckMazeEnv`.
-        progress_reward: As for :class:`~mazesim.envs.EPuckMazeEnv`.
-        render_size: As for :class:`~mazesim.envs.EPuckMazeEnv`.
+        autoreset_mode: gymnasium's ``AutoresetMode`` (or its value, ``"NextStep"`` or
+            ``"SameStep"``). NEXT_STEP (the default): the step after an episode ends starts the
+            next one. SAME_STEP (what Stable-Baselines3 expects): the step that ends an episode
+            returns the first observation of the next one, and the last observation and info of
+            the ended episode in ``info["final_obs"]`` and ``info["final_info"]`` (masks
+            ``_final_obs``, ``_final_info``), as ``SyncVectorEnv`` does in that mode.
+        **options: The options of :meth:`mazesim.envs.options.EnvOptions.create`, as for
+            :class:`~mazesim.envs.EPuckMazeEnv`; with ``world="random"`` every environment draws
+            its own maze at each reset.
 
     Raises:
         InvalidArgumentError: An option has a wrong type or value.
@@ -87,17 +85,8 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         max_episode_steps: int | None = DEFAULT_MAX_EPISODE_STEPS,
         render_mode: str | None = None,
         threads: int = 0,
-        world: WorldOption = "seed-maze",
-        robot: str = "e-puck",
-        action_mode: str = "continuous",
-        noise: bool = True,
-        include_pose: bool = False,
-        control_step_ms: float | None = None,
-        maze_size: tuple[int, int] = (5, 5),
-        goal_reward: float = 10.0,
-        collision_penalty: float = 0.1,
-        progress_reward: float = 10.0,
-        render_size: int | tuple[int, int] = 400,
+        autoreset_mode: AutoresetMode | str = AutoresetMode.NEXT_STEP,
+        **options: Any,
     ) -> None:
         if not isinstance(num_envs, (int, np.integer)) or num_envs < 1:
             raise InvalidArgumentError(f"expected num_envs to be at least 1, found {num_envs!r}")
@@ -108,30 +97,28 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
                 f"expected max_episode_steps to be at least 1 or None, found {max_episode_steps!r}"
             )
         check_render_mode(render_mode, VECTOR_RENDER_MODES)
-        self.options = EnvOptions.create(
-            world=world,
-            robot=robot,
-            action_mode=action_mode,
-            noise=noise,
-            include_pose=include_pose,
-            control_step_ms=control_step_ms,
-            maze_size=maze_size,
-            goal_reward=goal_reward,
-            collision_penalty=collision_penalty,
-            progress_reward=progress_reward,
-            render_size=render_size,
-        )
+        self.autoreset_mode = _autoreset_mode(autoreset_mode)
+        self.options = EnvOptions.from_keywords(options)
         self.num_envs = int(num_envs)
+        self._threads = threads
         self.max_episode_steps = None if max_episode_steps is None else int(max_episode_steps)
         self.render_mode = render_mode
         first = self.options.sample_world()
         self.metadata = {
             **type(self).metadata,
             "render_fps": 1000.0 / step_length_ms(self.options, first),
+            "autoreset_mode": self.autoreset_mode,
         }
-        self._layout = ObservationLayout(self.options.robot, first, include_pose)
-        self._actions = ActionConverter(action_mode, self.options.robot.max_wheel_speed)
-        self.single_observation_space = self._layout.space
+        self._layout = ObservationLayout(self.options.robot, first, self.options.include_pose)
+        self._actions = ActionConverter(
+            self.options.action_mode, self.options.robot.max_wheel_speed, self.options.clip_actions
+        )
+        table = PathDistanceTable.of_world(first)
+        self._features = navigation_features(
+            self.options.observation, self.num_envs, self.options.robot, first, table
+        )
+        features = self._features
+        self.single_observation_space = self._layout.space if features is None else features.space
         self.single_action_space = self._actions.space
         n = self.num_envs
         # The batch first: it checks num_envs against the memory it needs before the spaces
@@ -153,17 +140,20 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         self._crossings = np.zeros(n, dtype=np.int32)
         self._worlds: list[World] = [first] * n
         self._renderers: list[TopDownRenderer | None] = [None] * n
-        self._goal = GoalDistance(n, PathDistanceTable.of_world(first))
+        self._goal = GoalDistance(n, table)
+        self._previous = np.zeros((n, 2), dtype=np.float32)
         self._rngs: list[np.random.Generator | None] = [None] * n
         self._distance = np.zeros(n)
+        self._reached = np.zeros(n, dtype=bool)
         self._elapsed = np.zeros(n, dtype=np.int64)
         self._autoreset = np.zeros(n, dtype=bool)
         self._needs_reset = True
 
     @property
     def observation_names(self) -> list[str]:
-        """What each column of the observations holds (sensor names, then x, y, yaw)."""
-        return list(self._layout.names)
+        """What each column of the observations holds (sensor names, then x, y, yaw, or the
+        navigation features)."""
+        return list(self._layout.names if self._features is None else self._features.names)
 
     def reset(
         self,
@@ -188,9 +178,9 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
                 self._rngs[i] = seeding.np_random(seeds[i])[0]
         self._reset_envs(batch, envs)
         self._distance[envs] = self._goal.evaluate(self._poses)[0][envs]
+        self._reached[envs] = False
         self._needs_reset = False
-        observations = self._layout.assemble(self._sensors, self._poses)
-        return observations, self._info(mask)
+        return self._observations(), self._info(mask)
 
     def step(
         self, actions: npt.NDArray[Any]
@@ -204,8 +194,9 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         """Steps every environment; those whose episode ended at the last step start a new one.
 
         Raises:
-            InvalidActionError: The actions are not in the action space (shape, dtype, NaN,
-                range); the message names the environment.
+            InvalidActionError: The actions have a wrong shape or dtype, are NaN or infinite, or
+                lie outside the space (continuous ones only with ``clip_actions=False``); the
+                message names the environment.
             ResetNeeded: :meth:`reset` has not been called yet.
             ClosedEnvironmentError: The env is closed.
         """
@@ -213,6 +204,8 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         if self._needs_reset:
             raise ResetNeeded("call reset() before step()")
         speeds = self._actions.batch(actions, self.num_envs)
+        if self._features is not None:
+            self._previous = speeds / self._actions.max_speed
         batch.step(speeds, self._sensors, self._poses, self._colliding, self._crossings)
         restarting = self._autoreset.copy()
         any_restart = bool(restarting.any())
@@ -235,9 +228,29 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
             terminated[restarting] = False
             truncated[restarting] = False
             self._elapsed[restarting] = 0
-        self._autoreset = terminated | truncated
-        observations = self._layout.assemble(self._sensors, self._poses)
-        return observations, rewards, terminated, truncated, self._info(None)
+        self._reached = terminated.copy()
+        observations = self._observations()
+        if self.autoreset_mode == AutoresetMode.NEXT_STEP:
+            self._autoreset = terminated | truncated
+            return observations, rewards, terminated, truncated, self._info(None)
+        ended = terminated | truncated
+        if not ended.any():
+            return observations, rewards, terminated, truncated, self._info(None)
+        # SAME_STEP: the ended environments start their next episode now; what they ended with
+        # goes into info["final_obs"] and info["final_info"], as SyncVectorEnv puts it there.
+        final_info = self._info(ended)
+        final_obs = np.full(self.num_envs, None, dtype=object)
+        envs = np.flatnonzero(ended)
+        for i in envs:
+            final_obs[i] = observations[i].copy()
+        self._reset_envs(batch, envs)
+        self._distance[envs] = self._goal.evaluate(self._poses)[0][envs]
+        self._reached[envs] = False
+        info = self._info(None)
+        info.update(
+            final_obs=final_obs, _final_obs=ended, final_info=final_info, _final_info=ended.copy()
+        )
+        return self._observations(), rewards, terminated, truncated, info
 
     def render(self) -> tuple[npt.NDArray[np.uint8], ...] | None:
         """One top-down (height, width, 3) uint8 image per environment, with
@@ -261,6 +274,42 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         """Releases the batch engine and the renderers."""
         self._batch = None
         self._renderers = [None] * self.num_envs
+
+    def _observations(self) -> npt.NDArray[np.float32]:
+        """The observations of the current state (a new array)."""
+        if self._features is None:
+            return self._layout.assemble(self._sensors, self._poses)
+        return self._features.observe(self._sensors, self._poses, self._previous)
+
+    def __getstate__(self) -> dict[str, Any]:
+        """What pickling and deep-copying keep: everything, the batch engine as one snapshot per
+        environment (the renderers are made again when needed)."""
+        state = self.__dict__.copy()
+        batch = state.pop("_batch")
+        state["_renderers"] = [None] * self.num_envs
+        state["_batch_snapshots"] = (
+            None if batch is None else [batch.snapshot_env(i) for i in range(self.num_envs)]
+        )
+        return state
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        """Rebuilds the batch engine from its snapshots: the copy goes on as the original."""
+        snapshots = state.pop("_batch_snapshots")
+        self.__dict__.update(state)
+        self._batch = None
+        if snapshots is not None:
+            batch = BatchSimulator(
+                list(self._worlds),
+                self.num_envs,
+                robot=self.options.robot.name,
+                seeds=0,
+                noise=self.options.noise,
+                control_step_ms=self.options.control_step_ms,
+                threads=self._threads,
+            )
+            for i, snapshot in enumerate(snapshots):
+                batch.restore_env(i, snapshot)
+            self._batch = batch
 
     # -- helpers -------------------------------------------------------------------------------
 
@@ -313,8 +362,12 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
                 batch.set_world(int(i), world, episode_seed)
                 self._worlds[i] = world
                 self._renderers[i] = None
-                self._goal.set(int(i), PathDistanceTable.of_world(world))
+                table = PathDistanceTable.of_world(world)
+                self._goal.set(int(i), table)
+                if self._features is not None:
+                    self._features.set(int(i), world, table)
         batch.reset(self._sensors, self._poses, self._colliding, self._crossings, mask, seeds)
+        self._previous[envs] = 0.0
         self._elapsed[envs] = 0
         self._autoreset[envs] = False
 
@@ -327,6 +380,7 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
             "collisions": batch.collisions().astype(np.int64),
             "colliding": self._colliding.copy(),
             "distance_to_goal": self._distance.copy(),
+            "is_success": self._reached.copy(),
         }
         has = np.ones(self.num_envs, dtype=bool) if mask is None else mask
         info: dict[str, Any] = {}
@@ -353,3 +407,13 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
             self.options.render_size,
             sensor_ranges(self.options.robot).ray_length,
         )
+
+
+def _autoreset_mode(mode: AutoresetMode | str) -> AutoresetMode:
+    """The autoreset mode of ``mode``; raises InvalidArgumentError for DISABLED or a stranger."""
+    modes = (AutoresetMode.NEXT_STEP, AutoresetMode.SAME_STEP)
+    for known in modes:
+        if mode is known or mode == known.value:
+            return known
+    names = ", ".join(f"AutoresetMode.{m.name} ({m.value!r})" for m in modes)
+    raise InvalidArgumentError(f"expected autoreset_mode to be one of {names}; found {mode!r}")

@@ -1,7 +1,7 @@
 //! Plain geometry of a compiled world: boxes, floor shapes and their bounds, in f64 metres.
 
 /// An axis-aligned bounding box.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Bounds {
     /// Lower corner.
     pub min: [f64; 2],

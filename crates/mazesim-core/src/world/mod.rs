@@ -87,6 +87,8 @@ pub struct World {
     maze: Option<PlacedMaze>,
     /// Movable bodies at their start poses, in file order.
     bodies: Vec<MovableBody>,
+    /// Hash of the description as `to_toml` writes it: equal worlds have equal fingerprints.
+    fingerprint: u64,
 }
 
 impl PartialEq for World {
@@ -390,7 +392,11 @@ impl World {
         let solid_walls = distinct(&walls);
         let wall_index = WallIndex::new(&solid_walls);
         check.crowding(wall_index.crowded_pairs(), solid_walls.len())?;
+        let fingerprint = toml::to_string(&spec)
+            .map(|text| crate::fingerprint::fnv1a(text.as_bytes()))
+            .map_err(|e| Error::InvalidArgument(format!("cannot write the world: {e}")))?;
         Ok(World {
+            fingerprint,
             solid_walls,
             wall_index,
             floor: FloorPaint::new(background, regions),
@@ -410,6 +416,12 @@ impl World {
     pub fn to_toml(&self) -> Result<String> {
         toml::to_string_pretty(&self.spec)
             .map_err(|e| Error::InvalidArgument(format!("cannot write the world: {e}")))
+    }
+
+    /// A hash of the description (`crate::fingerprint`): worlds that are equal have the same
+    /// fingerprint, and worlds with the same fingerprint are equal but for a one-in-2^64 chance.
+    pub fn fingerprint(&self) -> u64 {
+        self.fingerprint
     }
 
     /// Writes the world file atomically (a temporary file in the same folder, then a rename).

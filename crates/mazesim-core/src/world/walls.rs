@@ -52,7 +52,7 @@ pub struct WallIndex {
 }
 
 /// What a ray hit.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct RayHit {
     /// Distance along the ray in metres.
     pub distance: f32,

@@ -1,5 +1,7 @@
 //! One robot in one world: physics, sensors, time and counters, stepped in control steps.
 
+mod snapshot;
+
 use std::sync::Arc;
 
 use crate::crossing::{Crossing, CrossingTracker};
@@ -84,6 +86,8 @@ impl Default for SimConfig {
 pub struct Simulator {
     world: Arc<World>,
     robot: Arc<RobotProfile>,
+    /// A hash of the robot profile's content, that snapshots carry.
+    robot_fingerprint: u64,
     config: SimConfig,
     physics_steps: u32,
     dt: f64,
@@ -177,6 +181,7 @@ impl Simulator {
             })
             .collect();
         let mut sim = Simulator {
+            robot_fingerprint: crate::fingerprint::fnv1a(format!("{robot:?}").as_bytes()),
             barcode_sensor,
             tracker: CrossingTracker::new(),
             crossings: Vec::new(),

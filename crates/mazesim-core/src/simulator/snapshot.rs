@@ -1,0 +1,353 @@
+//! Snapshots: a simulator's whole state as bytes, restored into a simulator of the same world,
+//! robot profile, control step and noise setting, which then goes on exactly as the original
+//! would have (for search-based planners, pickling and copies).
+//!
+//! Layout (integers little-endian):
+//!
+//! | bytes | what |
+//! |---|---|
+//! | 8 | magic `MZSNAPSH` |
+//! | 4 | format version |
+//! | 8 | world fingerprint ([`World::fingerprint`]) |
+//! | 8 | robot profile fingerprint |
+//! | 4 | physics steps per control step |
+//! | 1 | noise on (1) or off (0) |
+//! | 8 | payload length |
+//! | 8 | FNV-1a checksum of every other byte of the snapshot, in order |
+//! | 2 + n | world name (length, UTF-8), for error messages |
+//! | 2 + n | robot profile name (length, UTF-8), for error messages |
+//! | payload | the state, in postcard's encoding of serde data |
+//!
+//! The state holds the pose, rapier's world (bodies, colliders, broad and narrow phase with contact
+//! manifolds and warm-start impulses, islands), the noise stream, time, counters, the barcode
+//! tracker and crossings, the last readings and the ground sensors' caches.
+
+use postcard::ser_flavors::Flavor;
+use serde::{Deserialize, Serialize};
+
+use super::Simulator;
+use crate::crossing::{Crossing, CrossingTracker};
+use crate::error::{Error, Result};
+use crate::fingerprint::{fnv1a, fnv1a_extend};
+use crate::rng::Rng;
+use crate::sensors::GroundReader;
+use crate::world::RayHit;
+
+const MAGIC: &[u8; 8] = b"MZSNAPSH";
+
+/// The version of the layout and of the state it holds; bumped whenever either changes.
+pub const SNAPSHOT_VERSION: u32 = 1;
+
+/// Bytes of the fixed part of the header (before the names).
+const FIXED_HEADER: usize = 8 + 4 + 8 + 8 + 4 + 1 + 8 + 8;
+
+/// The state outside the body, as serde data.
+#[derive(Serialize, Deserialize)]
+struct State {
+    seed: u64,
+    rng: Rng,
+    pose: [f32; 3],
+    ray_hits: Vec<Option<RayHit>>,
+    ground_readers: Vec<GroundReader>,
+    time: f64,
+    steps: u64,
+    collisions: u64,
+    colliding: bool,
+    touching: bool,
+    clearance: f32,
+    distance_travelled: f64,
+    wheel_speeds: [f32; 2],
+    wheel_angles: [f64; 2],
+    distance_readings: Vec<f32>,
+    ground_readings: Vec<f32>,
+    tracker: CrossingTracker,
+    crossings: Vec<Crossing>,
+    last_crossing: i32,
+    start_override: Option<[f32; 3]>,
+}
+
+/// What the header says, read back.
+struct Header<'a> {
+    version: u32,
+    world: u64,
+    robot: u64,
+    physics_steps: u32,
+    noise: u8,
+    length: u64,
+    checksum: u64,
+    world_name: &'a str,
+    robot_name: &'a str,
+}
+
+fn corrupt(what: impl std::fmt::Display) -> Error {
+    Error::Snapshot(format!(
+        "expected a simulator snapshot, found corrupt bytes: {what}"
+    ))
+}
+
+/// Reads the header at the start of `bytes`; returns it and the rest.
+fn read_header(bytes: &[u8]) -> Result<(Header<'_>, &[u8])> {
+    if bytes.len() < MAGIC.len() || &bytes[..MAGIC.len()] != MAGIC {
+        let start = &bytes[..bytes.len().min(MAGIC.len())];
+        return Err(Error::Snapshot(format!(
+            "expected a simulator snapshot (bytes starting with {:?}), found {} bytes starting \
+             with {:?}",
+            String::from_utf8_lossy(MAGIC),
+            bytes.len(),
+            String::from_utf8_lossy(start)
+        )));
+    }
+    if bytes.len() < FIXED_HEADER {
+        return Err(Error::Snapshot(format!(
+            "expected a simulator snapshot of at least {FIXED_HEADER} bytes, found {} bytes \
+             (truncated)",
+            bytes.len()
+        )));
+    }
+    let mut at = MAGIC.len();
+    let mut take = |n: usize| {
+        let part = &bytes[at..at + n];
+        at += n;
+        part
+    };
+    let u32_at = |b: &[u8]| u32::from_le_bytes(b.try_into().expect("4 bytes"));
+    let u64_at = |b: &[u8]| u64::from_le_bytes(b.try_into().expect("8 bytes"));
+    let version = u32_at(take(4));
+    let world = u64_at(take(8));
+    let robot = u64_at(take(8));
+    let physics_steps = u32_at(take(4));
+    let noise = take(1)[0];
+    let length = u64_at(take(8));
+    let checksum = u64_at(take(8));
+    let mut rest = &bytes[at..];
+    let mut name = |what: &str| -> Result<&str> {
+        let truncated = || {
+            Error::Snapshot(format!(
+                "expected the {what} name in the snapshot's header, found the bytes end \
+                 (truncated)"
+            ))
+        };
+        let (len, tail) = rest.split_first_chunk::<2>().ok_or_else(truncated)?;
+        let len = u16::from_le_bytes(*len) as usize;
+        let text = tail.get(..len).ok_or_else(truncated)?;
+        rest = &tail[len..];
+        std::str::from_utf8(text).map_err(corrupt)
+    };
+    let world_name = name("world")?;
+    let robot_name = name("robot profile")?;
+    let header = Header {
+        version,
+        world,
+        robot,
+        physics_steps,
+        noise,
+        length,
+        checksum,
+        world_name,
+        robot_name,
+    };
+    Ok((header, rest))
+}
+
+/// The checksum of a snapshot: every byte but those of the checksum itself.
+fn checksum(bytes: &[u8]) -> u64 {
+    let before = FIXED_HEADER - 8;
+    fnv1a_extend(fnv1a(&bytes[..before]), &bytes[FIXED_HEADER..])
+}
+
+/// Appends `text` with its length as two bytes (cut to 65,535 bytes at a character boundary).
+fn push_name(out: &mut Vec<u8>, text: &str) {
+    let mut end = text.len().min(u16::MAX as usize);
+    while !text.is_char_boundary(end) {
+        end -= 1;
+    }
+    out.extend_from_slice(&(end as u16).to_le_bytes());
+    out.extend_from_slice(&text.as_bytes()[..end]);
+}
+
+impl Simulator {
+    /// The whole state as bytes, for [`Simulator::restore`] (see the module notes for the layout).
+    pub fn snapshot(&self) -> Vec<u8> {
+        let state = State {
+            seed: self.config.seed,
+            rng: self.rng.clone(),
+            pose: self.pose,
+            ray_hits: self.ray_hits.clone(),
+            ground_readers: self.ground_readers.clone(),
+            time: self.time,
+            steps: self.steps,
+            collisions: self.collisions,
+            colliding: self.colliding,
+            touching: self.touching,
+            clearance: self.clearance,
+            distance_travelled: self.distance_travelled,
+            wheel_speeds: self.wheel_speeds,
+            wheel_angles: self.wheel_angles,
+            distance_readings: self.distance_readings.clone(),
+            ground_readings: self.ground_readings.clone(),
+            tracker: self.tracker.clone(),
+            crossings: self.crossings.clone(),
+            last_crossing: self.last_crossing,
+            start_override: self.start_override,
+        };
+        let payload = postcard::to_allocvec(&state).expect("the state is serde data");
+        let mut body = postcard::Serializer {
+            output: postcard::ser_flavors::ExtendFlavor::new(payload),
+        };
+        self.body
+            .save(&mut body)
+            .expect("the physics state is serde data");
+        let payload = body.output.finalize().expect("a vector takes every byte");
+        let mut out = Vec::with_capacity(FIXED_HEADER + 64 + payload.len());
+        out.extend_from_slice(MAGIC);
+        out.extend_from_slice(&SNAPSHOT_VERSION.to_le_bytes());
+        out.extend_from_slice(&self.world.fingerprint().to_le_bytes());
+        out.extend_from_slice(&self.robot_fingerprint.to_le_bytes());
+        out.extend_from_slice(&self.physics_steps.to_le_bytes());
+        out.push(u8::from(self.config.noise));
+        out.extend_from_slice(&(payload.len() as u64).to_le_bytes());
+        out.extend_from_slice(&[0; 8]);
+        push_name(&mut out, self.world.name());
+        push_name(&mut out, &self.robot.name);
+        out.extend_from_slice(&payload);
+        let sum = checksum(&out);
+        out[FIXED_HEADER - 8..FIXED_HEADER].copy_from_slice(&sum.to_le_bytes());
+        out
+    }
+
+    /// Puts this simulator in the state `snapshot` holds, taken by [`Simulator::snapshot`] of a
+    /// simulator of the same world, robot profile, control step and noise setting; it then goes
+    /// on exactly as the one that took the snapshot. Bytes that are not such a snapshot (another
+    /// world or robot, another format version, truncated or corrupt) are refused with
+    /// `Error::Snapshot` and change nothing.
+    pub fn restore(&mut self, snapshot: &[u8]) -> Result<()> {
+        let (header, payload) = read_header(snapshot)?;
+        if header.version != SNAPSHOT_VERSION {
+            return Err(Error::Snapshot(format!(
+                "expected a snapshot of format version {SNAPSHOT_VERSION}, found version {}",
+                header.version
+            )));
+        }
+        if header.world != self.world.fingerprint() {
+            return Err(Error::Snapshot(format!(
+                "expected a snapshot taken in world {:?} (fingerprint {:016x}), found one taken \
+                 in world {:?} (fingerprint {:016x})",
+                self.world.name(),
+                self.world.fingerprint(),
+                header.world_name,
+                header.world
+            )));
+        }
+        if header.robot != self.robot_fingerprint {
+            return Err(Error::Snapshot(format!(
+                "expected a snapshot of robot profile {:?} (fingerprint {:016x}), found one of \
+                 robot profile {:?} (fingerprint {:016x})",
+                self.robot.name, self.robot_fingerprint, header.robot_name, header.robot
+            )));
+        }
+        let noise = u8::from(self.config.noise);
+        if header.physics_steps != self.physics_steps || header.noise != noise {
+            let describe = |steps: u32, noise: bool| {
+                format!(
+                    "a {} ms control step with noise {}",
+                    steps as f64 * self.dt * 1000.0,
+                    if noise { "on" } else { "off" }
+                )
+            };
+            return Err(Error::Snapshot(format!(
+                "expected a snapshot of a simulator with {}, found one with {}",
+                describe(self.physics_steps, self.config.noise),
+                describe(header.physics_steps, header.noise != 0)
+            )));
+        }
+        if payload.len() as u64 != header.length {
+            return Err(Error::Snapshot(format!(
+                "expected {} bytes of state after the snapshot's header, found {}{}",
+                header.length,
+                payload.len(),
+                if (payload.len() as u64) < header.length {
+                    " (truncated)"
+                } else {
+                    ""
+                }
+            )));
+        }
+        if checksum(snapshot) != header.checksum {
+            return Err(corrupt("its checksum does not match its contents"));
+        }
+        let (state, body_bytes): (State, &[u8]) =
+            postcard::take_from_bytes(payload).map_err(corrupt)?;
+        self.check_state(&state)?;
+        let mut body_reader = postcard::Deserializer::from_bytes(body_bytes);
+        self.body.load(&mut body_reader).map_err(corrupt)?;
+        self.heading = self.body.heading();
+        self.config.seed = state.seed;
+        self.rng = state.rng;
+        self.pose = state.pose;
+        self.ray_hits = state.ray_hits;
+        self.ground_readers = state.ground_readers;
+        self.time = state.time;
+        self.steps = state.steps;
+        self.collisions = state.collisions;
+        self.colliding = state.colliding;
+        self.touching = state.touching;
+        self.clearance = state.clearance;
+        self.distance_travelled = state.distance_travelled;
+        self.wheel_speeds = state.wheel_speeds;
+        self.wheel_angles = state.wheel_angles;
+        self.distance_readings = state.distance_readings;
+        self.ground_readings = state.ground_readings;
+        self.tracker = state.tracker;
+        self.crossings = state.crossings;
+        self.last_crossing = state.last_crossing;
+        self.start_override = state.start_override;
+        Ok(())
+    }
+
+    /// Refuses a decoded state that does not fit this simulator (sizes, indices, finite pose).
+    fn check_state(&self, state: &State) -> Result<()> {
+        let sizes = [
+            ("ray hits", state.ray_hits.len(), self.ray_hits.len()),
+            (
+                "ground sensor readers",
+                state.ground_readers.len(),
+                self.ground_readers.len(),
+            ),
+            (
+                "distance readings",
+                state.distance_readings.len(),
+                self.distance_readings.len(),
+            ),
+            (
+                "ground readings",
+                state.ground_readings.len(),
+                self.ground_readings.len(),
+            ),
+        ];
+        for (what, found, expected) in sizes {
+            if found != expected {
+                return Err(corrupt(format!(
+                    "expected {expected} {what}, found {found}"
+                )));
+            }
+        }
+        if !state.tracker.fits(self.world.checkpoints().len()) {
+            return Err(corrupt(format!(
+                "its barcode tracker refers to codes beyond the world's {}",
+                self.world.checkpoints().len()
+            )));
+        }
+        let pose_ok = |p: &[f32; 3]| p.iter().all(|v| v.is_finite());
+        if !pose_ok(&state.pose) || !state.start_override.as_ref().is_none_or(pose_ok) {
+            return Err(corrupt("expected finite poses, found others"));
+        }
+        Ok(())
+    }
+
+    /// A simulator in the same state as this one, which goes on exactly as this one would.
+    pub fn duplicate(&self) -> Result<Simulator> {
+        let mut copy = Simulator::new(self.world.clone(), self.robot.clone(), self.config())?;
+        copy.restore(&self.snapshot())?;
+        Ok(copy)
+    }
+}

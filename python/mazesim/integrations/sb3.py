@@ -1,0 +1,211 @@
+"""Stable-Baselines3 on the batch engine: a ``VecEnv`` over the native vector env.
+
+SB3's ``DummyVecEnv`` steps its environments one by one in Python; this adapter steps them all in
+one call of the batch engine and gives SB3 exactly what ``DummyVecEnv`` over the single envs would,
+bit for bit under the same seeds: observations, float32 rewards, dones, and one info dict per
+environment with ``TimeLimit.truncated``, ``terminal_observation`` on the step that ends an
+episode (whose first observation of the next episode is returned, SB3's same-step autoreset) and
+``is_success``, so SB3 logs a success rate. The one line::
+
+    from mazesim.integrations.sb3 import make_vec_env
+
+    envs = make_vec_env("mazesim/EPuckMaze-v0", n_envs=64, seed=0)  # VecMonitor on top
+    model = stable_baselines3.PPO("MlpPolicy", envs)
+
+Needs the optional extra ``mazesim[sb3]`` (Stable-Baselines3 2.x and torch).
+"""
+
+from __future__ import annotations
+
+import importlib.util
+from collections.abc import Iterable, Sequence
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from mazesim.errors import InvalidArgumentError, MissingDependencyError
+
+if importlib.util.find_spec("stable_baselines3") is None:
+    raise MissingDependencyError(
+        'mazesim.integrations.sb3 needs Stable-Baselines3 2.x: pip install "mazesim[sb3]"'
+    )
+
+import gymnasium  # noqa: E402
+from gymnasium.vector import AutoresetMode  # noqa: E402
+from stable_baselines3.common.vec_env import VecEnv, VecMonitor  # noqa: E402
+from stable_baselines3.common.vec_env.base_vec_env import (  # noqa: E402
+    VecEnvObs,
+    VecEnvStepReturn,
+)
+
+from mazesim.envs.vector import EPuckMazeVectorEnv  # noqa: E402
+
+__all__ = ["MazesimVecEnv", "make_vec_env"]
+
+#: The keys of every per-environment info, in the single env's order.
+_INFO_KEYS = ("pose", "collisions", "colliding", "distance_to_goal", "is_success")
+
+
+def make_vec_env(
+    env_id: str = "mazesim/EPuckMaze-v0",
+    n_envs: int = 8,
+    seed: int | None = None,
+    monitor: bool = True,
+    **options: Any,
+) -> VecEnv:
+    """SB3's vectorised environment of a mazesim task, stepped by the batch engine.
+
+    Args:
+        env_id: A registered mazesim task (its options and time limit are used).
+        n_envs: Number of environments.
+        seed: Environment i is seeded with ``seed + i`` at the first reset (as SB3 does).
+        monitor: Whether to wrap it in SB3's ``VecMonitor`` (episode returns and lengths in
+            ``info["episode"]``, as ``Monitor`` gives with ``DummyVecEnv``).
+        **options: More keyword arguments of the task (``threads`` included).
+
+    Returns:
+        A :class:`MazesimVecEnv`, in a ``VecMonitor`` if ``monitor``.
+
+    Raises:
+        InvalidArgumentError: An option has a wrong type or value.
+    """
+    vector = gymnasium.make_vec(
+        env_id,
+        n_envs,
+        vectorization_mode="vector_entry_point",
+        autoreset_mode=AutoresetMode.SAME_STEP,
+        **options,
+    )
+    native = vector.unwrapped
+    if not isinstance(native, EPuckMazeVectorEnv):
+        raise InvalidArgumentError(f"expected a mazesim task, found {env_id!r}")
+    venv: VecEnv = MazesimVecEnv(native)
+    if seed is not None:
+        venv.seed(seed)
+    return VecMonitor(venv) if monitor else venv
+
+
+class MazesimVecEnv(VecEnv):
+    """An SB3 ``VecEnv`` over a native :class:`~mazesim.envs.EPuckMazeVectorEnv`.
+
+    Args:
+        vector_env: The native vector env, made with ``autoreset_mode=AutoresetMode.SAME_STEP``.
+
+    Raises:
+        InvalidArgumentError: The vector env is not native or does not reset in the same step.
+    """
+
+    def __init__(self, vector_env: EPuckMazeVectorEnv) -> None:
+        if not isinstance(vector_env, EPuckMazeVectorEnv):
+            raise InvalidArgumentError(
+                f"expected a mazesim EPuckMazeVectorEnv, found {type(vector_env).__name__}"
+            )
+        if vector_env.autoreset_mode != AutoresetMode.SAME_STEP:
+            raise InvalidArgumentError(
+                "expected a vector env made with autoreset_mode=AutoresetMode.SAME_STEP "
+                f"(SB3 resets in the same step), found {vector_env.autoreset_mode}"
+            )
+        self.vector_env = vector_env
+        self.render_mode = vector_env.render_mode
+        super().__init__(
+            vector_env.num_envs,
+            vector_env.single_observation_space,
+            vector_env.single_action_space,
+        )
+        self._actions: Any = None
+
+    def reset(self) -> VecEnvObs:
+        """Resets every environment, with the seeds and options given since the last reset."""
+        seeds = None if all(s is None for s in self._seeds) else list(self._seeds)
+        options = self._options[0] if all(o == self._options[0] for o in self._options) else None
+        if options is None:
+            raise InvalidArgumentError("expected the same reset options for every environment")
+        observations, info = self.vector_env.reset(seed=seeds, options=options or None)
+        self.reset_infos = self._split(info, np.ones(self.num_envs, dtype=bool))
+        self._reset_seeds()
+        self._reset_options()
+        return observations
+
+    def step_async(self, actions: npt.NDArray[Any]) -> None:
+        """Keeps the actions for :meth:`step_wait`."""
+        self._actions = actions
+
+    def step_wait(self) -> VecEnvStepReturn:
+        """Steps every environment; an ended episode restarts at once (see the module)."""
+        observations, rewards, terminated, truncated, info = self.vector_env.step(self._actions)
+        dones = terminated | truncated
+        final = info.get("_final_info")
+        if final is None:
+            infos = self._split(info, np.ones(self.num_envs, dtype=bool))
+        else:
+            infos = self._split(info, ~final)
+            ended = np.flatnonzero(final)
+            step_infos = self._split(info["final_info"], final)
+            reset_infos = self._split(info, final)
+            for i in ended.tolist():
+                infos[i] = step_infos[i]
+                infos[i]["terminal_observation"] = info["final_obs"][i]
+                self.reset_infos[i] = reset_infos[i]
+        time_limit = (truncated & ~terminated).tolist()
+        for i, entry in enumerate(infos):
+            entry["TimeLimit.truncated"] = time_limit[i]
+        return observations, rewards.astype(np.float32), dones, infos
+
+    def _split(self, info: dict[str, Any], rows: npt.NDArray[np.bool_]) -> list[dict[str, Any]]:
+        """One dict per environment of the vector env's info, for the environments in ``rows``
+        (empty dicts elsewhere), with Python scalars as a single env gives them."""
+        infos: list[dict[str, Any]] = [{} for _ in range(self.num_envs)]
+        wanted = np.flatnonzero(rows)
+        if wanted.size == 0:
+            return infos
+        poses = info["pose"]
+        columns = {key: info[key].tolist() for key in _INFO_KEYS[1:]}
+        crossed = info.get("_checkpoint", np.zeros(self.num_envs, dtype=bool)).tolist()
+        checkpoints = info.get("checkpoint", np.zeros(self.num_envs, dtype=np.int64)).tolist()
+        for i in wanted.tolist():
+            entry = infos[i]
+            entry["pose"] = poses[i].copy()
+            for key, column in columns.items():
+                entry[key] = column[i]
+            if crossed[i]:
+                entry["checkpoint"] = checkpoints[i]
+        return infos
+
+    def close(self) -> None:
+        """Closes the vector env."""
+        self.vector_env.close()
+
+    def get_images(self) -> Sequence[npt.NDArray[Any] | None]:
+        """One image per environment (``render_mode="rgb_array"``)."""
+        frames = self.vector_env.render()
+        return list(frames) if frames is not None else [None] * self.num_envs
+
+    def get_attr(self, attr_name: str, indices: Any = None) -> list[Any]:
+        """The vector env's attribute, once per environment of ``indices``."""
+        value = getattr(self.vector_env, attr_name)
+        return [value for _ in self._indices(indices)]
+
+    def set_attr(self, attr_name: str, value: Any, indices: Any = None) -> None:
+        """Not supported: the environments share one engine."""
+        raise InvalidArgumentError(
+            f"expected no set_attr on the batch engine's environments, found {attr_name!r}"
+        )
+
+    def env_method(
+        self, method_name: str, *method_args: Any, indices: Any = None, **method_kwargs: Any
+    ) -> list[Any]:
+        """Calls the vector env's method once, and gives its result for each of ``indices``."""
+        result = getattr(self.vector_env, method_name)(*method_args, **method_kwargs)
+        return [result for _ in self._indices(indices)]
+
+    def env_is_wrapped(self, wrapper_class: type, indices: Any = None) -> list[bool]:
+        """False: the environments are not gymnasium envs with wrappers."""
+        return [False for _ in self._indices(indices)]
+
+    def _indices(self, indices: Any) -> Iterable[int]:
+        if indices is None:
+            return range(self.num_envs)
+        if isinstance(indices, int):
+            return [indices]
+        return list(indices)

@@ -1,0 +1,120 @@
+"""Stable-Baselines3 through the batch engine: mazesim.integrations.sb3 against DummyVecEnv."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import pytest
+
+gymnasium = pytest.importorskip("gymnasium")
+pytest.importorskip(
+    "stable_baselines3", reason="needs the optional extra mazesim[sb3] (make sb3-deps)"
+)
+
+import torch  # noqa: E402
+from stable_baselines3 import PPO  # noqa: E402
+from stable_baselines3.common.env_checker import check_env  # noqa: E402
+from stable_baselines3.common.vec_env import DummyVecEnv, VecEnv  # noqa: E402
+
+from env_worlds import CORRIDOR  # noqa: E402
+from mazesim.envs import ENV_ID, TASKS  # noqa: E402
+from mazesim.errors import InvalidArgumentError  # noqa: E402
+from mazesim.integrations.sb3 import MazesimVecEnv, make_vec_env  # noqa: E402
+
+
+def dummy_vec_env(n_envs: int, **options: Any) -> DummyVecEnv:
+    """SB3's reference: single envs stepped one by one in Python."""
+    return DummyVecEnv([lambda: gymnasium.make(ENV_ID, **options) for _ in range(n_envs)])
+
+
+def assert_same_infos(mine: list[dict[str, Any]], theirs: list[dict[str, Any]], where: str) -> None:
+    assert len(mine) == len(theirs)
+    for env, (a, b) in enumerate(zip(mine, theirs)):
+        assert a.keys() == b.keys(), f"{where}, env {env}: keys {sorted(a)} != {sorted(b)}"
+        for key in a:
+            assert type(a[key]) is type(b[key]), f"{where}, env {env}: type of {key}"
+            if isinstance(a[key], np.ndarray):
+                assert a[key].dtype == b[key].dtype and np.array_equal(a[key], b[key]), key
+            else:
+                assert a[key] == b[key], f"{where}, env {env}: {key} {a[key]} != {b[key]}"
+
+
+@pytest.fixture(scope="module")
+def corridor(tmp_path_factory: pytest.TempPathFactory) -> str:
+    path = tmp_path_factory.mktemp("worlds") / "corridor.toml"
+    path.write_text(CORRIDOR)
+    return str(path)
+
+
+@pytest.mark.parametrize("world", ["corridor", "random"])
+def test_adapter_equals_dummy_vec_env_bit_for_bit(world: str, corridor: str) -> None:
+    options = {"world": corridor if world == "corridor" else world, "max_episode_steps": 220}
+    n_envs = 4
+    fast = make_vec_env(ENV_ID, n_envs, seed=11, monitor=False, **options)
+    reference = dummy_vec_env(n_envs, **options)
+    reference.seed(11)
+    assert fast.observation_space == reference.observation_space
+    assert fast.action_space == reference.action_space
+    assert np.array_equal(fast.reset(), reference.reset())
+    assert_same_infos(fast.reset_infos, reference.reset_infos, "reset")
+    rng = np.random.default_rng(3)
+    dones = successes = crossings = 0
+    for step in range(700):
+        actions = (0.7 + 0.3 * rng.uniform(-1, 1, (n_envs, 2))).astype(np.float32)
+        mine, theirs = fast.step(actions), reference.step(actions)
+        for name, a, b in zip(("observations", "rewards", "dones"), mine[:3], theirs[:3]):
+            assert a.dtype == b.dtype and np.array_equal(a, b), f"step {step}: {name}"
+        assert_same_infos(mine[3], theirs[3], f"step {step}")
+        assert_same_infos(fast.reset_infos, reference.reset_infos, f"step {step} resets")
+        dones += int(mine[2].sum())
+        successes += sum(info["is_success"] for info in mine[3])
+        crossings += sum("checkpoint" in info for info in mine[3])
+    assert dones >= n_envs
+    if world == "corridor":
+        assert successes > 0 and crossings > 0
+
+
+def test_ppo_trained_through_the_adapter_gives_the_same_weights() -> None:
+    def train(envs: VecEnv) -> dict[str, torch.Tensor]:
+        model = PPO(
+            "MlpPolicy", envs, n_steps=128, batch_size=128, n_epochs=2, seed=5, device="cpu"
+        )
+        model.learn(total_timesteps=2048)
+        return model.policy.state_dict()
+
+    options = {"world": "random", "max_episode_steps": 100}
+    fast = train(make_vec_env(ENV_ID, 4, **options))
+    reference = train(dummy_vec_env(4, **options))
+    assert fast.keys() == reference.keys()
+    for name in fast:
+        assert torch.equal(fast[name], reference[name]), name
+    untrained = PPO("MlpPolicy", make_vec_env(ENV_ID, 4, **options), seed=5, device="cpu")
+    assert not all(torch.equal(fast[n], untrained.policy.state_dict()[n]) for n in fast)
+
+
+def test_make_vec_env_monitors_episodes_and_success(corridor: str) -> None:
+    envs = make_vec_env(ENV_ID, 2, seed=0, world=corridor, noise=False)
+    envs.reset()
+    forward = np.full((2, 2), 0.8, dtype=np.float32)
+    for _ in range(300):
+        _, _, dones, infos = envs.step(forward)
+        if dones.any():
+            break
+    assert dones.all()
+    for info in infos:
+        assert info["is_success"] is True and not info["TimeLimit.truncated"]
+        assert info["episode"]["l"] < 300 and info["episode"]["r"] > 10.0
+        assert info["terminal_observation"].shape == (11,)
+
+
+@pytest.mark.parametrize("task", TASKS, ids=[task.env_id for task in TASKS])
+def test_check_env_of_stable_baselines3_passes_on_every_task(task: Any) -> None:
+    check_env(gymnasium.make(task.env_id).unwrapped, warn=True)
+
+
+def test_adapter_refuses_a_next_step_vector_env() -> None:
+    from mazesim.envs import EPuckMazeVectorEnv
+
+    with pytest.raises(InvalidArgumentError, match="SAME_STEP"):
+        MazesimVecEnv(EPuckMazeVectorEnv(num_envs=2))
