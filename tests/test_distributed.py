@@ -378,6 +378,7 @@ def test_issue_9_trace_ends_with_its_episode(tmp_path: Path, capsys: Any) -> Non
 def test_eval_in_unseen_mazes_adapts_once_and_ships_the_tables(
     local_ray: Any, monkeypatch: Any
 ) -> None:
+    from mazesim.distributed.episodes import ray_spreader
     from mazesim.hrl import evaluate as hrl_evaluate
     from mazesim.hrl.tables import load_policy
 
@@ -394,7 +395,8 @@ def test_eval_in_unseen_mazes_adapts_once_and_ships_the_tables(
     worlds = hrl_evaluate.unseen_mazes(3, seed=2)
     options: dict[str, Any] = {"seed": 2, "sources": ("truth",), "max_steps": 800}
     alone = hrl_evaluate.evaluate_navigator(policy, worlds, 2, **options)
-    on_ray = hrl_evaluate.evaluate_navigator(policy, worlds, 2, ray_address="local", **options)
+    spread = ray_spreader("local")
+    on_ray = hrl_evaluate.evaluate_navigator(policy, worlds, 2, spread=spread, **options)
     assert trained == [1, 1] and alone.adapted and on_ray.adapted
     assert on_ray.summaries == alone.summaries
     assert on_ray.summaries["truth"].decisions  # the higher level chose sub-tasks on the way

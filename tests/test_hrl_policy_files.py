@@ -23,7 +23,7 @@ import mazesim
 from mazesim.errors import PolicyFormatError
 from mazesim.hrl.bundle import sha256
 from mazesim.hrl.lower import lower_table_shape
-from mazesim.hrl.mazes import world_hash
+from mazesim.maze import world_hash
 from mazesim.hrl.tables import TrainedPolicy, load_policy, save_policy
 
 POLICY_JSON = "policy.json"

@@ -13,7 +13,7 @@ import pytest
 import mazesim
 from mazesim.errors import MazesimError, PolicyFormatError
 from mazesim.hrl.lower import lower_table_shape
-from mazesim.hrl.mazes import world_hash
+from mazesim.maze import world_hash
 from mazesim.hrl.tables import TrainedPolicy, load_policy, save_policy
 
 

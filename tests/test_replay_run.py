@@ -184,10 +184,13 @@ def test_demo_records_the_avoid_collision_run(tmp_path: Path) -> None:
 def test_recording_does_not_change_an_evaluation() -> None:
     from mazesim.hrl.evaluate import evaluate_navigator
     from mazesim.hrl.tables import load_policy
+    from mazesim.replay.navigator import Recording
 
     world = mazesim.load_world("seed-maze")
     plain = evaluate_navigator(load_policy(), [world], 4, seed=9, max_steps=700)
-    recorded = evaluate_navigator(load_policy(), [world], 4, seed=9, max_steps=700, record_runs=2)
+    recorded = evaluate_navigator(
+        load_policy(), [world], 4, seed=9, max_steps=700, recorder=Recording(2)
+    )
     assert plain.run is None and recorded.run is not None
     assert recorded.summaries == plain.summaries
     first, second = (report.evaluations["truth"].results for report in (plain, recorded))

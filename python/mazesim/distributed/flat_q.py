@@ -38,8 +38,8 @@ from mazesim._core import BatchSimulator, RobotProfile, World
 from mazesim.actions import WHEEL_SPEED_FRACTIONS
 from mazesim.errors import InvalidArgumentError
 from mazesim.hrl.discretise import NUM_STATES, observation_states
-from mazesim.hrl.mazes import CellMaze
 from mazesim.hrl.qlearning import LearningRate, batch_update, epsilon_greedy, greedy
+from mazesim.maze import CellMaze
 
 if TYPE_CHECKING:
     from mazesim.distributed.config import Setting

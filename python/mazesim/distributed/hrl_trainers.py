@@ -39,14 +39,14 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import World
+from mazesim.episodes import MAX_STEPS
 from mazesim.errors import InvalidArgumentError
 from mazesim.hrl.episodes import EpisodeResult, HigherTraining, train_higher
 from mazesim.hrl.evaluate import evaluate
 from mazesim.hrl.lower import LowerSettings, LowerTrainer
-from mazesim.hrl.mazes import checkpoint_ids
-from mazesim.hrl.navigation import DEFAULT_MAX_STEPS
 from mazesim.hrl.qlearning import LearningRate
 from mazesim.hrl.train import TrainSettings
+from mazesim.maze import checkpoint_ids
 
 if TYPE_CHECKING:
     from mazesim.distributed.config import Setting
@@ -61,7 +61,7 @@ HRL_DEFAULTS: dict[str, Any] = {
     "epsilon": _LOWER.epsilon_start,
     "discount": _LOWER.gamma,
     "higher_episodes": _TRAIN.higher_episodes,
-    "episode_steps": DEFAULT_MAX_STEPS,
+    "episode_steps": MAX_STEPS,
 }
 #: Points of a curve over training episodes (windows of nearly equal numbers of episodes).
 CURVE_POINTS = 20

@@ -24,12 +24,13 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import World
+from mazesim._seeding import stream
 from mazesim.actions import ACTION_CODES
+from mazesim.episodes import MAX_STEPS, EpisodeBatch
 from mazesim.hrl import qlearning
 from mazesim.hrl.discretise import NUM_SENSORS, NUM_STATES, distance_levels, volts_to_cm
-from mazesim.hrl.mazes import checkpoint_ids
-from mazesim.hrl.navigation import DEFAULT_MAX_STEPS, NavigationBatch
 from mazesim.hrl.policy import StepRecord
+from mazesim.maze import checkpoint_ids
 
 __all__ = [
     "FlatNavigator",
@@ -128,15 +129,16 @@ def train_flat(
     q = np.zeros((rows, len(ACTION_CODES)))
     visits = np.zeros(q.shape, dtype=np.int64)
     rate = qlearning.LearningRate()
-    nav = NavigationBatch(
+    nav = EpisodeBatch(
         [world],
         np.zeros(num_envs, dtype=np.int64),
         seed=seed,
-        max_steps=DEFAULT_MAX_STEPS,
+        stream="flat/episode",
+        max_steps=MAX_STEPS,
         threads=threads,
     )
     navigator = FlatNavigator(q, ids, num_envs)
-    rng = np.random.default_rng([seed, 3])
+    rng = stream(seed, "flat/explore")
     everyone = np.arange(num_envs)
     next_episode = num_envs
     nav.start(everyone, everyone)

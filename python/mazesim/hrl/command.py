@@ -22,8 +22,10 @@ from typing import Any, TextIO
 from mazesim import load_world
 from mazesim._paths import output_files, output_path, refuse_overwriting_inputs
 from mazesim.cli import positive_int, seed_argument
+from mazesim.episodes import EVENT_SOURCES
+from mazesim.episodes import MAX_STEPS as EPISODE_STEP_LIMIT
 from mazesim.errors import InvalidArgumentError
-from mazesim.hrl.navigation import DEFAULT_MAX_STEPS, EVENT_SOURCES
+from mazesim.replay.navigator import Recording
 from mazesim.replay.options import add_viewing_options, recording_requested, write_views
 
 __all__ = ["register", "run_eval", "run_train", "step_count"]
@@ -181,7 +183,7 @@ def register(commands: Any) -> None:
     evaluate.add_argument(
         "--max-steps",
         type=positive_int,
-        default=DEFAULT_MAX_STEPS,
+        default=EPISODE_STEP_LIMIT,
         metavar="N",
         help="control steps (64 ms) after which an episode fails (default: %(default)s)",
     )
@@ -288,6 +290,7 @@ def run_eval(args: argparse.Namespace, out: TextIO) -> int:
     with contextlib.ExitStack() as ray:
         if args.address is not None:
             from mazesim.distributed.cluster import ray_session
+            from mazesim.distributed.episodes import ray_spreader
 
             ray.enter_context(ray_session(args.address))  # one Ray session for every source
         report = evaluate_navigator(
@@ -299,8 +302,10 @@ def run_eval(args: argparse.Namespace, out: TextIO) -> int:
             max_steps=args.max_steps,
             trace_path=args.trace,
             plot_path=args.plot,
-            ray_address=args.address,
-            record_runs=min(per_world, RECORDED_EPISODES) if recording_requested(args) else 0,
+            spread=None if args.address is None else ray_spreader(args.address),
+            recorder=(
+                Recording(min(per_world, RECORDED_EPISODES)) if recording_requested(args) else None
+            ),
         )
     if report.run is not None:
         report.written += write_views(

@@ -2,7 +2,7 @@
 the report's pictures (trajectories, Fig. 4.6 / 4.8) and terminal trace (Fig. 4.7).
 
 An evaluation runs greedy episodes in a world with sensor noise and the start jitter of
-:class:`mazesim.hrl.navigation.StartJitter` (2 cm, 10 degrees). In the world the navigator's
+:class:`mazesim.episodes.StartJitter` (2 cm, 10 degrees). In the world the navigator's
 higher level learned, it uses that table; in any other world (a file, or the unseen generated
 mazes of ``--world random``) the lower-level tables are kept and only the higher level is trained
 there first, with at most :data:`ADAPT_EPISODES` episodes per maze: the transfer test.
@@ -10,45 +10,52 @@ there first, with at most :data:`ADAPT_EPISODES` episodes per maze: the transfer
 Measures (:class:`Summary`): the share of episodes that reached the goal; bumps (wall contacts
 the simulator counts) per episode, and the share of episodes without any; the control steps of
 the episodes that arrived, and their ratio to the steps of the shortest path at cruise speed
-(:func:`mazesim.hrl.navigation.shortest_path_steps`); and which sub-task the higher level chose
+(:func:`mazesim.episodes.shortest_path_steps`); and which sub-task the higher level chose
 at each checkpoint event.
 
-With ``ray_address``, :func:`evaluate_navigator` spreads the episodes over Ray workers
-(:mod:`mazesim.distributed.hrl_episodes`): the higher level of an unseen world is trained once,
-here, and its tables shipped to the workers; every episode ends as it would here, so the summary
-is the same with Ray or without.
+With ``spread``, :func:`evaluate_navigator` hands the episodes out in chunks
+(:mod:`mazesim.hrl.chunks`; ``mazesim eval --address`` passes Ray's
+:func:`mazesim.distributed.evaluate_episodes`): the higher level of an unseen world is trained
+once, here, and its tables shipped with the chunks; every episode ends as it would here, so the
+summary is the same spread or not.
+
+Recording the first episodes frame by frame (for the replay and videos) takes a ``recorder``
+factory from the caller (:func:`mazesim.replay.navigator.recording`), so this module needs
+nothing of the viewers.
 """
 
 from __future__ import annotations
 
-import functools
 import math
 import os
 from collections import Counter
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import asdict, dataclass, field
-from typing import Any, TextIO
+from typing import Any, Protocol, TextIO
 
 import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import World, generate_maze
+from mazesim._seeding import stream_seeds
 from mazesim.actions import ACTION_CODES, ACTIONS
-from mazesim.errors import InvalidArgumentError
-from mazesim.hrl.discretise import format_levels
-from mazesim.hrl.episodes import EpisodeResult, HigherTraining, run_episodes, train_higher
-from mazesim.hrl.higher import HigherLevel
-from mazesim.hrl.mazes import world_hash
-from mazesim.hrl.navigation import (
-    DEFAULT_MAX_STEPS,
-    NavigationBatch,
+from mazesim.episodes import (
+    MAX_STEPS,
+    EpisodeBatch,
+    EpisodeResult,
     StartJitter,
+    run_episodes,
     shortest_path_steps,
 )
+from mazesim.errors import InvalidArgumentError
+from mazesim.hrl.chunks import NavigatorEpisodes
+from mazesim.hrl.discretise import format_levels
+from mazesim.hrl.episodes import HigherTraining, train_higher
+from mazesim.hrl.higher import HigherLevel
 from mazesim.hrl.policy import HierarchicalPolicy, StepRecord
 from mazesim.hrl.subtasks import CONTROL_STEP_MS, SUBTASK_CODES, SUBTASK_NAMES
 from mazesim.hrl.tables import TrainedPolicy
-from mazesim.replay.run import RecordedRun
+from mazesim.maze import world_hash
 
 __all__ = [
     "ADAPT_EPISODES",
@@ -100,13 +107,13 @@ class Evaluation:
     paths: dict[int, npt.NDArray[np.float64]] = field(default_factory=dict)
     marks: dict[int, list[tuple[float, float, int, int]]] = field(default_factory=dict)
     trace: list[str] = field(default_factory=list)
-    run: RecordedRun | None = None
+    run: Any = None
 
 
 def unseen_mazes(count: int, seed: int) -> list[World]:
     """``count`` generated 5 x 5 perfect mazes for testing; their seeds derive from ``seed`` on a
     stream no training run uses."""
-    maze_seeds = np.random.SeedSequence([seed, 0x7E577E57]).generate_state(count, np.uint64)
+    maze_seeds = stream_seeds(seed, "evaluate/mazes", count)
     return [generate_maze(5, 5, seed=int(maze_seed)) for maze_seed in maze_seeds]
 
 
@@ -164,6 +171,23 @@ def _summarise(results: list[EpisodeResult], shortest: Sequence[float], events: 
 NavigatorFactory = Callable[[npt.NDArray[np.int64]], Any]
 
 
+class RecorderFactory(Protocol):
+    """Builds a recording navigator from the batch and the navigator it watches.
+
+    What it builds is a navigator itself, with ``after_step(arrived, out_of_time)`` and
+    ``run(controller, seed)`` (the recorded run); it records the first :attr:`episodes` episodes.
+    """
+
+    episodes: int
+
+    def __call__(self, nav: EpisodeBatch, navigator: Any) -> Any: ...
+
+
+#: Runs an evaluation's chunks (``chunk(first, count)`` -> per-episode arrays) for ``episodes``
+#: episodes and joins their arrays in episode order.
+Spreader = Callable[[Callable[[int, int], Mapping[str, Any]], int], Mapping[str, Any]]
+
+
 def evaluate(
     make_navigator: NavigatorFactory,
     worlds: Sequence[World],
@@ -171,11 +195,11 @@ def evaluate(
     seed: int = 0,
     events: str = "truth",
     jitter: StartJitter | None = None,
-    max_steps: int = DEFAULT_MAX_STEPS,
+    max_steps: int = MAX_STEPS,
     record_paths: int = 0,
     trace: bool = False,
     threads: int = 0,
-    record_runs: int = 0,
+    recorder: RecorderFactory | None = None,
     controller: str = "hrl",
 ) -> Evaluation:
     """Runs greedy episodes of a navigator and measures them.
@@ -193,13 +217,13 @@ def evaluate(
         record_paths: Record the trajectories of the first this many episodes of world 0.
         trace: Record the per-step trace of episode 0.
         threads: Worker threads of the batch.
-        record_runs: Record the first this many episodes frame by frame
-            (:attr:`Evaluation.run`, for the replay and videos).
+        recorder: Records the first episodes frame by frame (:attr:`Evaluation.run`, for the
+            replay and videos); see :data:`RecorderFactory`.
         controller: The controller's name in the recorded run.
     """
     per_world = max(1, min(episodes_per_world, EVALUATION_ENVS // max(1, len(worlds))))
     world_of_env = np.repeat(np.arange(len(worlds)), per_world)
-    nav = NavigationBatch(
+    nav = EpisodeBatch(
         worlds,
         world_of_env,
         seed=seed,
@@ -209,11 +233,7 @@ def evaluate(
         threads=threads,
     )
     navigator = make_navigator(world_of_env)
-    recorder = None
-    if record_runs:
-        from mazesim.replay.navigator import NavigatorRecorder
-
-        recorder = NavigatorRecorder(nav, navigator, record_runs)
+    recording = None if recorder is None else recorder(nav, navigator)
     evaluation = Evaluation(summary=_summarise([], [1.0], events), results=[])
     paths: dict[int, list[tuple[float, float]]] = {}
     ended: set[int] = set()
@@ -221,13 +241,13 @@ def evaluate(
     lines = evaluation.trace
 
     def watch(
-        batch: NavigationBatch,
+        batch: EpisodeBatch,
         actions: npt.NDArray[np.int64],
         arrived: npt.NDArray[np.bool_],
         out_of_time: npt.NDArray[np.bool_],
     ) -> None:
-        if recorder is not None:
-            recorder.after_step(arrived, out_of_time)
+        if recording is not None:
+            recording.after_step(arrived, out_of_time)
         if not record_paths and not trace:
             return
         record = navigator.record
@@ -256,7 +276,7 @@ def evaluate(
 
     results = run_episodes(
         nav,
-        navigator if recorder is None else recorder,
+        navigator if recording is None else recording,
         episodes_per_world,
         watch,
         None,
@@ -266,8 +286,8 @@ def evaluate(
     evaluation.summary = _summarise(results, shortest, events)
     evaluation.results = results
     evaluation.paths = {k: np.array(v) for k, v in paths.items()}
-    if recorder is not None:
-        evaluation.run = recorder.run(controller, seed)
+    if recording is not None:
+        evaluation.run = recording.run(controller, seed)
     return evaluation
 
 
@@ -279,7 +299,7 @@ class Report:
     evaluations: dict[str, Evaluation]
     adapted: bool
     written: list[str]
-    run: RecordedRun | None = None
+    run: Any = None
 
 
 def evaluate_navigator(
@@ -288,30 +308,28 @@ def evaluate_navigator(
     episodes_per_world: int,
     seed: int = 0,
     sources: Sequence[str] = ("truth",),
-    max_steps: int = DEFAULT_MAX_STEPS,
+    max_steps: int = MAX_STEPS,
     trace_path: str | os.PathLike[str] | None = None,
     plot_path: str | os.PathLike[str] | None = None,
     plot_episodes: int = 3,
     threads: int = 0,
-    ray_address: str | None = None,
-    record_runs: int = 0,
+    spread: Spreader | None = None,
+    recorder: RecorderFactory | None = None,
 ) -> Report:
     """Evaluates a saved navigator with checkpoint events from each source, writing the trace
     and the picture of the first source's episodes when asked.
 
     Args:
-        ray_address: ``None``: run every episode in this process. ``"local"``: spread them over
-            a Ray instance started on this machine for the evaluation; any other value: over the
-            Ray cluster at that address (``"auto"``, ``"HOST:6379"``, ``"ray://HOST:10001"``).
-            The trace, the picture's and the recorded episodes are run here as well. Each source
-            starts its own local instance unless Ray is up already (:func:`run_eval
-            <mazesim.hrl.command.run_eval>` keeps one up for all of them).
-        record_runs: Record the first this many episodes of the first source frame by frame
-            (:attr:`Report.run`).
+        spread: ``None``: run every episode in this process; else the function that runs the
+            evaluation's chunks (:data:`Spreader`, e.g. Ray's
+            :func:`mazesim.distributed.evaluate_episodes`). The trace, the picture's and the
+            recorded episodes are run here as well.
+        recorder: Records the first episodes of the first source frame by frame
+            (:attr:`Report.run`; see :data:`RecorderFactory`).
 
     Raises:
         PolicyFormatError: A flat navigator asked to drive a world it did not learn.
-        MissingDependencyError: ``ray_address`` without Ray installed.
+        MissingDependencyError: ``spread`` needs a package that is not installed.
     """
     adapted = False
     make_navigator: NavigatorFactory
@@ -336,11 +354,13 @@ def evaluate_navigator(
 
     summaries: dict[str, Summary] = {}
     evaluations: dict[str, Evaluation] = {}
-    run: Callable[..., Evaluation] = evaluate
-    if ray_address is not None:
-        run = functools.partial(
-            _evaluate_on_ray, ray_address, policy, None if policy.kind == "flat" else level
-        )
+    level_shipped = None if policy.kind == "flat" else level
+
+    def run(*args: Any, **options: Any) -> Evaluation:
+        if spread is None:
+            return evaluate(*args, **options)
+        return _evaluate_spread(spread, policy, level_shipped, *args, **options)
+
     for place, source in enumerate(sources):
         first = place == 0
         evaluation = run(
@@ -353,7 +373,7 @@ def evaluate_navigator(
             record_paths=plot_episodes if first and plot_path is not None else 0,
             trace=first and trace_path is not None,
             threads=threads,
-            record_runs=record_runs if first else 0,
+            recorder=recorder if first else None,
             controller=policy.kind,
         )
         summaries[source] = evaluation.summary
@@ -384,8 +404,8 @@ def evaluate_navigator(
     return Report(summaries, evaluations, adapted, written, evaluations[first_source].run)
 
 
-def _evaluate_on_ray(
-    address: str,
+def _evaluate_spread(
+    spread: Spreader,
     policy: TrainedPolicy,
     level: HigherLevel | None,
     make_navigator: NavigatorFactory,
@@ -393,10 +413,8 @@ def _evaluate_on_ray(
     episodes_per_world: int,
     **options: Any,
 ) -> Evaluation:
-    """:func:`evaluate` with its episodes spread over Ray (the session that is up, else one at
-    ``address``); the episodes to record for the trace and the picture run here as well."""
-    from mazesim.distributed.episodes import evaluate_episodes
-    from mazesim.distributed.hrl_episodes import NavigatorEpisodes
+    """:func:`evaluate` with its episodes spread in chunks by ``spread``; the episodes to record
+    for the trace, the picture and the replay run here as well."""
 
     if level is None:
         ids: list[list[int]] = [list(policy.checkpoint_ids)]
@@ -414,10 +432,12 @@ def _evaluate_on_ray(
         higher_q=level.q if level is not None else None,
         flat_q=policy.flat_q if level is None else None,
     )
-    results = chunks.results(evaluate_episodes(chunks, chunks.episodes, address=address))
+    results = chunks.results(spread(chunks, chunks.episodes))
     shortest = [shortest_path_steps(world) for world in worlds]
     evaluation = Evaluation(_summarise(results, shortest, options["events"]), results)
-    recorded = max(options["record_paths"], options["record_runs"], 1 if options["trace"] else 0)
+    recorded = max(options["record_paths"], 1 if options["trace"] else 0)
+    if options["recorder"] is not None:
+        recorded = max(recorded, options["recorder"].episodes)
     if recorded:
         local = evaluate(make_navigator, worlds[:1], min(episodes_per_world, recorded), **options)
         evaluation.paths, evaluation.marks, evaluation.trace = local.paths, local.marks, local.trace
@@ -425,7 +445,7 @@ def _evaluate_on_ray(
     return evaluation
 
 
-def _trace_line(batch: NavigationBatch, record: StepRecord, env: int) -> str:
+def _trace_line(batch: EpisodeBatch, record: StepRecord, env: int) -> str:
     """One step of the trace, in the report's style (Fig. 4.7): what the robot sensed and did,
     after a line for the checkpoint event and decision that came first, if any."""
     step = int(batch.episode_steps[env])

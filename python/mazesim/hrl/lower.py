@@ -42,11 +42,12 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 import numpy.typing as npt
 
-from mazesim._core import BatchSimulator, RobotProfile, World, generate_maze
-from mazesim.actions import ACTION_CODES, WHEEL_SPEED_FRACTIONS
+from mazesim._core import World, generate_maze
+from mazesim._seeding import stream, stream_seeds
+from mazesim.actions import ACTION_CODES
+from mazesim.batch import RobotBatch
 from mazesim.hrl import qlearning
 from mazesim.hrl.discretise import NUM_STATES, observation_states
-from mazesim.hrl.mazes import CellMaze, DoorApproach, world_with_start
 from mazesim.hrl.subtasks import (
     COLLISION_PENALTY,
     CONTROL_STEP_MS,
@@ -64,6 +65,7 @@ from mazesim.hrl.subtasks import (
     cruise_step_length,
 )
 from mazesim.hrl.symmetry import MIRRORED_ACTION, MIRRORED_SUBTASK, mirrored_states
+from mazesim.maze import CellMaze, DoorApproach
 
 __all__ = [
     "LowerSettings",
@@ -178,7 +180,7 @@ class RoundStats:
 
 def training_mazes(seed: int, count: int) -> list[World]:
     """The pool of generated 5 x 5 mazes a run trains on; their seeds derive from ``seed``."""
-    maze_seeds = np.random.SeedSequence([seed, 0x6D617A65]).generate_state(count, np.uint64)
+    maze_seeds = stream_seeds(seed, "lower/mazes", count)
     return [
         generate_maze(5, 5, seed=int(maze_seed), loops=POOL_LOOPS[index % len(POOL_LOOPS)])
         for index, maze_seed in enumerate(maze_seeds)
@@ -221,23 +223,17 @@ class LowerTrainer:
             ]
         count = settings.num_envs
         # The batch first: it refuses a number of envs the machine cannot hold.
-        self.batch = BatchSimulator(
-            self.mazes[0],
-            num_envs=count,
-            robot="seed",
-            seeds=0,
-            noise=True,
+        self.batch = RobotBatch(
+            self.mazes,
+            np.zeros(count, dtype=np.int64),
             control_step_ms=settings.control_step_ms,
             threads=threads,
         )
         self.role = np.resize(np.array(ROLE_PATTERN, dtype=np.int64), count)
-        robot = RobotProfile.builtin("seed")
-        self.wheel_speeds = (WHEEL_SPEED_FRACTIONS * robot.max_wheel_speed).astype(np.float32)
-        self.cruise_step = cruise_step_length(robot, settings.control_step_ms)
-        self.observations = np.zeros((count, self.batch.observation_width), dtype=np.float32)
-        self.poses = np.zeros((count, 3), dtype=np.float32)
-        self.colliding = np.zeros(count, dtype=bool)
-        self.crossings = np.zeros(count, dtype=np.int32)
+        self.cruise_step = cruise_step_length(self.batch.profile, settings.control_step_ms)
+        self.observations = self.batch.observations
+        self.poses = self.batch.poses
+        self.colliding = self.batch.colliding
         self.tracker = SubTaskTracker(count)
         # The door path of each robot's episode: start, door centre, directions, first leg.
         self.path_start = np.zeros((count, 2))
@@ -250,7 +246,9 @@ class LowerTrainer:
     # -- episodes ---------------------------------------------------------------------------
 
     def _start_episodes(self, envs: npt.NDArray[np.int64], rng: np.random.Generator) -> None:
-        for env in envs:
+        poses = np.zeros((envs.size, 3))
+        seeds = np.zeros(envs.size, dtype=np.uint64)
+        for row, env in enumerate(envs):
             role = int(self.role[env])
             if role == SubTask.CORRIDOR:
                 maze_index = int(rng.integers(len(self.mazes)))
@@ -289,9 +287,11 @@ class LowerTrainer:
                     (approach.heading + _TURN_QUARTERS[SubTask(role)]) % 4
                 )
                 self.first_leg[env] = float((door - start) @ heading_in)
-            world = world_with_start(self.mazes[maze_index], x, y, yaw)
-            self.batch.set_world(int(env), world, int(rng.integers(2**63)))
+            self.batch.move_to_world(int(env), maze_index)
+            poses[row] = x, y, yaw
+            seeds[row] = rng.integers(2**63)
             self.episode_steps[env] = 0
+        self.batch.place(envs, poses, seeds)
 
     def _path_progress(self, positions: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
         """Metres along each robot's door path (first leg clipped to its length)."""
@@ -312,7 +312,7 @@ class LowerTrainer:
     def run_round(self, round_index: int) -> RoundStats:
         """Runs round ``round_index`` (0-based) and returns what happened in it."""
         settings = self.settings
-        rng = np.random.default_rng([settings.seed, 1, round_index])
+        rng = stream(settings.seed, "lower/round", round_index)
         epsilon = settings.epsilon(round_index)
         count = settings.num_envs
         everyone = np.arange(count)
@@ -321,7 +321,6 @@ class LowerTrainer:
         door = role != SubTask.CORRIDOR
 
         self._start_episodes(everyone, rng)
-        self.batch.observe(self.observations, self.poses, self.colliding, self.crossings)
         positions = self.poses.astype(np.float64)
         self.tracker.begin(np.ones(count, dtype=bool), role, positions)
         progress = self._path_progress(positions[:, :2])
@@ -354,13 +353,7 @@ class LowerTrainer:
             decided_steps[deciding] = 0
 
             before = self.poses.astype(np.float64)
-            self.batch.step(
-                self.wheel_speeds[action],
-                self.observations,
-                self.poses,
-                self.colliding,
-                self.crossings,
-            )
+            self.batch.step(action)
             positions = self.poses.astype(np.float64)
             self.episode_steps += 1
             done, gave_up = self.tracker.update(positions)
@@ -415,7 +408,6 @@ class LowerTrainer:
             restart = np.flatnonzero(ended | cut_short | corridor_over)
             if restart.size:
                 self._start_episodes(restart, rng)
-                self.batch.observe(self.observations, self.poses, self.colliding, self.crossings)
                 fresh = np.zeros(count, dtype=bool)
                 fresh[restart] = True
                 positions = self.poses.astype(np.float64)

@@ -70,8 +70,8 @@ from enum import IntEnum
 import numpy as np
 import numpy.typing as npt
 
-from mazesim._core import RobotProfile
-from mazesim.actions import ACTION_CODES, WHEEL_SPEED_FRACTIONS
+from mazesim.actions import ACTION_CODES
+from mazesim.batch import CONTROL_STEP_MS, cruise_step_length
 from mazesim.hrl.discretise import NUM_STATES
 
 __all__ = [
@@ -136,7 +136,6 @@ MAX_PHASES = max(NUM_PHASES)
 #: The heading change each sub-task aims at (radians, counter-clockwise positive).
 TARGET_TURN: tuple[float, ...] = (0.0, -math.pi / 2.0, math.pi / 2.0, 0.0)
 #: The navigator's control step in milliseconds: two 32 ms physics steps of the maze worlds.
-CONTROL_STEP_MS = 64.0
 #: Turn towards its side (radians) at which a turn enters phase 1 and phase 2.
 TURN_PHASE_ANGLES = (math.radians(30.0), math.radians(60.0))
 #: Heading change (radians) beyond which "Going forward on a door" is in phase 0 or 2.
@@ -164,13 +163,6 @@ HEADING_REWARD = 2.0
 #: Reward at the end of a door sub-task that entered its opening, and of one that did not.
 DOOR_SUCCESS_REWARD = 5.0
 DOOR_FAILURE_REWARD = -5.0
-
-
-def cruise_step_length(robot: RobotProfile, control_step_ms: float = CONTROL_STEP_MS) -> float:
-    """Metres the robot drives in one control step at the cruise speed (action ``00``)."""
-    left, right = WHEEL_SPEED_FRACTIONS[0]
-    speed = 0.5 * (left + right) * robot.max_wheel_speed * robot.wheel_radius
-    return float(speed * control_step_ms / 1000.0)
 
 
 def heading_phases(subtasks: npt.ArrayLike, heading_change: npt.ArrayLike) -> npt.NDArray[np.int64]:

@@ -52,7 +52,6 @@ from mazesim.hrl.bundle import (
 from mazesim.hrl.discretise import LEVEL_EDGES_CM, NUM_STATES, SENSOR_ORDER, SHARP_TABLE
 from mazesim.hrl.higher import event_state_names
 from mazesim.hrl.lower import lower_table_shape
-from mazesim.hrl.mazes import world_hash
 from mazesim.hrl.schema import AnyJson, ListOf, Record, Text, Whole
 from mazesim.hrl.subtasks import (
     CONTROL_STEP_MS,
@@ -63,6 +62,7 @@ from mazesim.hrl.subtasks import (
     SUBTASK_NAMES,
     TURN_PHASE_ANGLES,
 )
+from mazesim.maze import world_hash
 
 __all__ = [
     "FORMAT",
@@ -148,7 +148,7 @@ class TrainedPolicy:
         higher_q: The higher level's table for its world, ``(2 * checkpoints, 4)``.
         flat_q: The flat baseline's table.
         world_name: The world the higher level (or the flat table) learned.
-        world_sha256: That world's sha256 (see :func:`mazesim.hrl.mazes.world_hash`).
+        world_sha256: That world's sha256 (see :func:`mazesim.maze.world_hash`).
         checkpoint_ids: That world's checkpoint ids, in table order.
         training: The training settings and measurements.
         source: The folder it was loaded from, if any.

@@ -31,6 +31,7 @@ from pathlib import Path
 from typing import Any, TextIO
 
 from mazesim import load_world
+from mazesim.episodes import shortest_path_steps
 from mazesim.errors import InvalidArgumentError, PolicyFormatError
 from mazesim.hrl.checkpoint import (
     CHECKPOINT_FILE,
@@ -43,9 +44,8 @@ from mazesim.hrl.checkpoint import (
 )
 from mazesim.hrl.episodes import HigherTraining, train_higher
 from mazesim.hrl.lower import LowerSettings, LowerTables, LowerTrainer, RoundStats
-from mazesim.hrl.mazes import checkpoint_ids, world_hash
-from mazesim.hrl.navigation import shortest_path_steps
 from mazesim.hrl.tables import TrainedPolicy, save_policy
+from mazesim.maze import checkpoint_ids, world_hash
 
 __all__ = [
     "CHECKPOINT_FORMAT",

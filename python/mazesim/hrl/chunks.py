@@ -1,18 +1,19 @@
-"""The episodes of a navigator's evaluation in chunks, for Ray workers (``mazesim eval --address``).
+"""A navigator's evaluation episodes in chunks that run anywhere (``mazesim eval --address``).
 
 :func:`mazesim.hrl.evaluate.evaluate` runs ``episodes_per_world`` greedy episodes in each of its
 worlds; episode ``k`` of world ``w`` is numbered ``w * episodes_per_world + k`` and draws its
 start jitter and sensor noise from ``(seed, number)`` alone
-(:class:`mazesim.hrl.navigation.NavigationBatch`), and a greedy navigator keeps nothing from one
+(:class:`mazesim.episodes.EpisodeBatch`), and a greedy navigator keeps nothing from one
 episode to the next. So the episodes numbered ``first`` to ``first + count - 1`` can run anywhere,
 in any company, and end the same: :class:`NavigatorEpisodes` holds what they need (the tables,
-the worlds as TOML text) and runs such a chunk; :func:`mazesim.distributed.evaluate_episodes`
-spreads the chunks over Ray and :meth:`NavigatorEpisodes.results` turns the joined arrays back
-into the :class:`~mazesim.hrl.episodes.EpisodeResult` list that ``evaluate`` returns.
+the worlds as TOML text) and runs such a chunk; whoever spreads the chunks (the evaluator's
+``spread`` argument, :func:`mazesim.distributed.evaluate_episodes` on Ray) joins their arrays,
+and :meth:`NavigatorEpisodes.results` turns them back into the
+:class:`~mazesim.episodes.EpisodeResult` list that ``evaluate`` returns.
 
 A chunk runs its episodes side by side, up to :data:`mazesim.hrl.evaluate.EVALUATION_ENVS` at a
 time, one robot per episode. The decisions of an episode come back as counts per (checkpoint
-event, sub-task), so its :attr:`~mazesim.hrl.episodes.EpisodeResult.decisions` list holds the
+event, sub-task), so its :attr:`~mazesim.episodes.EpisodeResult.decisions` list holds the
 same decisions in a fixed order rather than in the order they were taken.
 """
 
@@ -26,10 +27,9 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import World
+from mazesim.episodes import EpisodeBatch, EpisodeResult, run_episodes
 from mazesim.errors import InvalidArgumentError
-from mazesim.hrl.episodes import EpisodeResult, run_episodes
 from mazesim.hrl.higher import HigherLevel
-from mazesim.hrl.navigation import NavigationBatch
 from mazesim.hrl.subtasks import NUM_SUBTASKS
 
 __all__ = ["NavigatorEpisodes"]
@@ -38,7 +38,7 @@ __all__ = ["NavigatorEpisodes"]
 CHUNK_ENVS = 500
 
 
-class _NumberedEpisodes(NavigationBatch):
+class _NumberedEpisodes(EpisodeBatch):
     """A batch whose robot ``i`` is alone in world slot ``i`` and runs episode ``numbers[i]``."""
 
     def __init__(
