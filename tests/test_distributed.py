@@ -379,8 +379,8 @@ def test_eval_in_unseen_mazes_adapts_once_and_ships_the_tables(
     local_ray: Any, monkeypatch: Any
 ) -> None:
     from mazesim.distributed.episodes import ray_spreader
-    from mazesim.hrl import evaluate as hrl_evaluate
-    from mazesim.hrl.tables import load_policy
+    from mazesim.learn import evaluate as hrl_evaluate
+    from mazesim.learn.tables import load_policy
 
     monkeypatch.setattr(hrl_evaluate, "ADAPT_EPISODES", 6)
     trained: list[int] = []

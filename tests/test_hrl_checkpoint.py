@@ -17,16 +17,16 @@ import numpy as np
 import pytest
 
 from mazesim.errors import PolicyFormatError
-from mazesim.hrl.archive import write_archive
-from mazesim.hrl.bundle import write_bundle
-from mazesim.hrl.checkpoint import (
+from mazesim.learn.archive import write_archive
+from mazesim.learn.bundle import write_bundle
+from mazesim.learn.checkpoint import (
     CHECKPOINT_FILE,
     CHECKPOINT_FORMAT,
     checkpoint_exists,
     read_checkpoint,
 )
-from mazesim.hrl.tables import FORMAT_VERSION, TrainedPolicy, load_policy
-from mazesim.hrl.train import TrainSettings, train
+from mazesim.learn.tables import FORMAT_VERSION, TrainedPolicy, load_policy
+from mazesim.learn.train import TrainSettings, train
 
 #: Three lower-level rounds, a checkpoint after each.
 RUN = TrainSettings(

@@ -21,10 +21,10 @@ from hypothesis import strategies as st
 
 import mazesim
 from mazesim.errors import PolicyFormatError
-from mazesim.hrl.bundle import sha256
-from mazesim.hrl.lower import lower_table_shape
+from mazesim.learn.bundle import sha256
+from mazesim.learn.lower import lower_table_shape
+from mazesim.learn.tables import TrainedPolicy, load_policy, save_policy
 from mazesim.maze import world_hash
-from mazesim.hrl.tables import TrainedPolicy, load_policy, save_policy
 
 POLICY_JSON = "policy.json"
 TABLES_NPZ = "tables.npz"

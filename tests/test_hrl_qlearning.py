@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from mazesim.errors import InvalidArgumentError
-from mazesim.hrl.qlearning import (
+from mazesim.learn.qlearning import (
     LearningRate,
     batch_update,
     epsilon_greedy,

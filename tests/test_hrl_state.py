@@ -8,7 +8,7 @@ import pytest
 import mazesim
 from mazesim.actions import ACTION_CODES, WHEEL_SPEED_FRACTIONS, wheel_speeds
 from mazesim.errors import InvalidArgumentError
-from mazesim.hrl.discretise import (
+from mazesim.learn.discretise import (
     NUM_STATES,
     SENSOR_ORDER,
     decode_state,
@@ -17,8 +17,8 @@ from mazesim.hrl.discretise import (
     observation_states,
     volts_to_cm,
 )
-from mazesim.hrl.subtasks import SubTask, heading_phases
-from mazesim.hrl.symmetry import MIRRORED_ACTION, MIRRORED_SUBTASK, mirrored_states
+from mazesim.learn.subtasks import SubTask, heading_phases
+from mazesim.learn.symmetry import MIRRORED_ACTION, MIRRORED_SUBTASK, mirrored_states
 
 
 def test_table_4_1_levels_at_the_boundaries() -> None:
@@ -112,10 +112,10 @@ def test_heading_phases() -> None:
 
 
 def test_corridors_and_corners_never_reverses() -> None:
-    from mazesim.hrl.higher import HigherLevel
-    from mazesim.hrl.lower import lower_table_shape
-    from mazesim.hrl.policy import HierarchicalPolicy
-    from mazesim.hrl.subtasks import SUBTASK_ACTIONS
+    from mazesim.learn.higher import HigherLevel
+    from mazesim.learn.lower import lower_table_shape
+    from mazesim.learn.policy import HierarchicalPolicy
+    from mazesim.learn.subtasks import SUBTASK_ACTIONS
 
     backward = ACTION_CODES.index("99")
     assert not SUBTASK_ACTIONS[SubTask.CORRIDOR, backward]

@@ -12,9 +12,9 @@ import pytest
 
 import mazesim
 from mazesim.errors import MazesimError, PolicyFormatError
-from mazesim.hrl.lower import lower_table_shape
+from mazesim.learn.lower import lower_table_shape
+from mazesim.learn.tables import TrainedPolicy, load_policy, save_policy
 from mazesim.maze import world_hash
-from mazesim.hrl.tables import TrainedPolicy, load_policy, save_policy
 
 
 def random_policy(seed: int = 0) -> TrainedPolicy:

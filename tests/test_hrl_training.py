@@ -12,10 +12,10 @@ import pytest
 import mazesim
 from mazesim.cli import main
 from mazesim.errors import PolicyFormatError
-from mazesim.hrl.evaluate import evaluate_navigator
-from mazesim.hrl.lower import LowerSettings, LowerTrainer
-from mazesim.hrl.tables import load_policy
-from mazesim.hrl.train import TrainSettings, train
+from mazesim.learn.evaluate import evaluate_navigator
+from mazesim.learn.lower import LowerSettings, LowerTrainer
+from mazesim.learn.tables import load_policy
+from mazesim.learn.train import TrainSettings, train
 
 SHORT = LowerSettings(
     num_envs=192, total_steps=192 * 300 * 4, round_steps=300, maze_pool=16, seed=5
@@ -86,7 +86,7 @@ def test_shipped_navigator_transfers_to_unseen_mazes() -> None:
     # Issue 6's transfer: the shipped lower level, with a higher level trained in each unseen
     # maze (at most 200 episodes), reaches the goal. A Corridors and Corners table that gets
     # stuck in front of walls (as tables trained with `99` did: 30-50 % here) fails this.
-    from mazesim.hrl.evaluate import unseen_mazes
+    from mazesim.learn.evaluate import unseen_mazes
 
     policy = load_policy()
     worlds = unseen_mazes(6, seed=7)
@@ -124,7 +124,7 @@ def test_one_robot_driven_step_by_step_reaches_the_goal() -> None:
     # The perform-learning node's hook: distances in cm and the checkpoint in, an action code out;
     # the sub-tasks' odometry is dead-reckoned from the actions.
     from mazesim.actions import wheel_speeds
-    from mazesim.hrl.discretise import volts_to_cm
+    from mazesim.learn.discretise import volts_to_cm
 
     policy = load_policy()
     policy.reset(control_step_ms=64.0)
@@ -149,10 +149,10 @@ def test_first_round_of_the_shipped_training_is_reproduced() -> None:
     # drive that run's robots exactly as it did then, or training from scratch no longer gives
     # them. Its first round (2,048 robots x 500 steps) is replayed here and compared with the
     # summary the run recorded in policy.json.
-    from mazesim.hrl.qlearning import LearningRate
-    from mazesim.hrl.train import _round_summary
+    from mazesim.learn.qlearning import LearningRate
+    from mazesim.learn.train import _round_summary
 
-    shipped = Path(mazesim.__file__).parent / "hrl" / "data" / "seed-maze" / "policy.json"
+    shipped = Path(mazesim.__file__).parent / "learn" / "data" / "seed-maze" / "policy.json"
     training = json.loads(shipped.read_text())["training"]
     recorded = training["lower"]
     settings = LowerSettings(

@@ -12,7 +12,7 @@ import pytest
 import mazesim
 from mazesim.cli import main
 from mazesim.errors import MazesimError, RunFormatError
-from mazesim.hrl.subtasks import SUBTASK_NAMES
+from mazesim.learn.subtasks import SUBTASK_NAMES
 from mazesim.replay import FORMAT_VERSION, RecordedRun, load_run, save_run
 from mazesim.replay.html import replay_html
 from mazesim.replay.recorder import SimulatorRecorder
@@ -182,8 +182,8 @@ def test_demo_records_the_avoid_collision_run(tmp_path: Path) -> None:
 
 
 def test_recording_does_not_change_an_evaluation() -> None:
-    from mazesim.hrl.evaluate import evaluate_navigator
-    from mazesim.hrl.tables import load_policy
+    from mazesim.learn.evaluate import evaluate_navigator
+    from mazesim.learn.tables import load_policy
     from mazesim.replay.navigator import Recording
 
     world = mazesim.load_world("seed-maze")

@@ -117,7 +117,7 @@ def evaluate_episodes(
 
 def ray_spreader(address: str | None) -> Callable[[EpisodeChunk, int], dict[str, Any]]:
     """:func:`evaluate_episodes` at ``address``, as the ``spread`` argument of
-    :func:`mazesim.hrl.evaluate.evaluate_navigator` takes it."""
+    :func:`mazesim.learn.evaluate.evaluate_navigator` takes it."""
 
     def spread(evaluate_chunk: EpisodeChunk, episodes: int) -> dict[str, Any]:
         return evaluate_episodes(evaluate_chunk, episodes, address=address)

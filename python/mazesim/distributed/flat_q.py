@@ -1,9 +1,9 @@
 """The sweep's own trainer: seeded flat tabular Q-learning on the batch engine.
 
-One Q-table over the lower level's 4096 distance states (:mod:`mazesim.hrl.discretise`: the six
+One Q-table over the lower level's 4096 distance states (:mod:`mazesim.learn.discretise`: the six
 Sharp distances of the ``seed`` robot, Table 4.1) and the twelve primitive actions
 (:mod:`mazesim.actions`), trained on all the envs of a :class:`mazesim.BatchSimulator` at once
-with :func:`mazesim.hrl.qlearning.batch_update` (a constant learning rate) and epsilon-greedy
+with :func:`mazesim.learn.qlearning.batch_update` (a constant learning rate) and epsilon-greedy
 exploration. It knows no position, so the best it can learn is a way of following corridors that
 tends towards the goal: a baseline that makes a sweep real, not a navigator.
 
@@ -16,7 +16,7 @@ so driving back and forth earns nothing.
 
 Expect a low success rate: the six distances do not say where in the maze the robot is, so the
 same state asks for different actions in different corridors (the report's flat learner did not
-reach its goal either). :mod:`mazesim.hrl` is the navigator; this trainer is the sweep's
+reach its goal either). :mod:`mazesim.learn` is the navigator; this trainer is the sweep's
 stand-in and yardstick.
 
 **Seeds.** Everything random comes from the setting's seed: the exploration draws, the sensor
@@ -37,8 +37,8 @@ import numpy.typing as npt
 from mazesim._core import BatchSimulator, RobotProfile, World
 from mazesim.actions import WHEEL_SPEED_FRACTIONS
 from mazesim.errors import InvalidArgumentError
-from mazesim.hrl.discretise import NUM_STATES, observation_states
-from mazesim.hrl.qlearning import LearningRate, batch_update, epsilon_greedy, greedy
+from mazesim.learn.discretise import NUM_STATES, observation_states
+from mazesim.learn.qlearning import LearningRate, batch_update, epsilon_greedy, greedy
 from mazesim.maze import CellMaze
 
 if TYPE_CHECKING:

@@ -1,16 +1,16 @@
 """The sweep's trainers ``hrl`` and ``baseline``: mazesim's hierarchical navigator and its flat
 baseline, trained and evaluated for one setting.
 
-``hrl`` runs the two stages of :func:`mazesim.hrl.train.train` without its files and progress
+``hrl`` runs the two stages of :func:`mazesim.learn.train.train` without its files and progress
 bar: the lower level's four sub-tasks on the pool of generated 5 x 5 mazes
-(:class:`mazesim.hrl.lower.LowerTrainer`), then the higher level on the setting's world
-(:func:`mazesim.hrl.episodes.train_higher`), then greedy episodes there
-(:func:`mazesim.hrl.evaluate.evaluate`). The setting maps onto it as follows:
+(:class:`mazesim.learn.lower.LowerTrainer`), then the higher level on the setting's world
+(:func:`mazesim.learn.higher_training.train_higher`), then greedy episodes there
+(:func:`mazesim.learn.evaluate.evaluate`). The setting maps onto it as follows:
 
 - ``world`` / ``maze_size``, ``maze_seed``, ``loops``: the world the higher level learns and the
   navigator is evaluated in (it needs a cell maze and a goal);
 - ``envs``, ``steps``: the lower level's robots and control steps per robot, in rounds of at most
-  500 steps (:attr:`mazesim.hrl.lower.LowerSettings.round_steps`) of equal length, so the
+  500 steps (:attr:`mazesim.learn.lower.LowerSettings.round_steps`) of equal length, so the
   budget is ``envs x steps`` env-steps rounded up to whole rounds;
 - ``learning_rate``, ``epsilon``, ``discount``: the lower level's first learning rate of a
   state-action pair, first-round exploration and gamma (:data:`HRL_DEFAULTS` when left out);
@@ -18,7 +18,7 @@ bar: the lower level's four sub-tasks on the pool of generated 5 x 5 mazes
   after which a higher-level or evaluation episode fails;
 - ``eval_episodes``: greedy evaluation episodes; ``seed``: everything random.
 
-``baseline`` trains :func:`mazesim.hrl.baseline.train_flat` on the setting's world for ``envs x
+``baseline`` trains :func:`mazesim.learn.baseline.train_flat` on the setting's world for ``envs x
 steps`` env-steps with ``envs`` robots and evaluates it the same way; its own schedule fixes its
 learning rate, exploration and discount.
 
@@ -41,11 +41,11 @@ import numpy.typing as npt
 from mazesim._core import World
 from mazesim.episodes import MAX_STEPS
 from mazesim.errors import InvalidArgumentError
-from mazesim.hrl.episodes import EpisodeResult, HigherTraining, train_higher
-from mazesim.hrl.evaluate import evaluate
-from mazesim.hrl.lower import LowerSettings, LowerTrainer
-from mazesim.hrl.qlearning import LearningRate
-from mazesim.hrl.train import TrainSettings
+from mazesim.learn.evaluate import evaluate
+from mazesim.learn.higher_training import EpisodeResult, HigherTraining, train_higher
+from mazesim.learn.lower import LowerSettings, LowerTrainer
+from mazesim.learn.qlearning import LearningRate
+from mazesim.learn.train import TrainSettings
 from mazesim.maze import checkpoint_ids
 
 if TYPE_CHECKING:
@@ -132,7 +132,7 @@ def train_hrl(setting: Setting, threads: int = 1) -> dict[str, Any]:
 
     Returns:
         A dict with ``tables`` (``lower_q`` and ``lower_visits``, stacked as
-        :class:`mazesim.hrl.lower.LowerTables`; ``higher_q``, ``higher_visits`` and the world's
+        :class:`mazesim.learn.lower.LowerTables`; ``higher_q``, ``higher_visits`` and the world's
         ``checkpoint_ids``), ``curves`` (one row per lower-level round, ``stage`` 1, then one per
         window of higher-level episodes, ``stage`` 2: cumulative ``env_steps``,
         ``success_rate`` of the door sub-tasks or of reaching the goal, ``contact_share``, and
@@ -182,7 +182,7 @@ def train_hrl(setting: Setting, threads: int = 1) -> dict[str, Any]:
     training_seconds = time.perf_counter() - started
 
     started = time.perf_counter()
-    from mazesim.hrl.policy import HierarchicalPolicy
+    from mazesim.learn.policy import HierarchicalPolicy
 
     def make_navigator(world_of_env: npt.NDArray[np.int64]) -> HierarchicalPolicy:
         return HierarchicalPolicy(lower_q, level, world_of_env)
@@ -214,7 +214,7 @@ def train_hrl(setting: Setting, threads: int = 1) -> dict[str, Any]:
 
 
 def train_baseline(setting: Setting, threads: int = 1) -> dict[str, Any]:
-    """Trains the flat baseline of :mod:`mazesim.hrl.baseline` for one setting and evaluates it.
+    """Trains the flat baseline of :mod:`mazesim.learn.baseline` for one setting and evaluates it.
 
     Args:
         setting: The setting: its world, ``envs``, ``steps`` (``envs x steps`` env-steps),
@@ -231,7 +231,7 @@ def train_baseline(setting: Setting, threads: int = 1) -> dict[str, Any]:
     Raises:
         InvalidArgumentError: The world has no cell maze or no goal.
     """
-    from mazesim.hrl.baseline import FlatNavigator, train_flat
+    from mazesim.learn.baseline import FlatNavigator, train_flat
 
     started = time.perf_counter()
     world = _maze_world(setting, "baseline")

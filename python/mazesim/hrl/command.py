@@ -62,7 +62,7 @@ def step_count(text: str) -> int:
 
 def register(commands: Any) -> None:
     """Adds ``train`` and ``eval`` to the ``mazesim`` command's subparsers."""
-    from mazesim.hrl.train import TrainSettings
+    from mazesim.learn.train import TrainSettings
 
     defaults = TrainSettings()
     train = commands.add_parser(
@@ -222,7 +222,7 @@ def register(commands: Any) -> None:
 
 def run_train(args: argparse.Namespace, out: TextIO) -> int:
     """Runs ``mazesim train``."""
-    from mazesim.hrl.train import TrainSettings, train, train_flat_policy
+    from mazesim.learn.train import TrainSettings, train, train_flat_policy
 
     refuse_overwriting_inputs(
         output_files(args.out, ("tables.npz", "policy.json", "checkpoint.npz")),
@@ -260,11 +260,11 @@ def run_train(args: argparse.Namespace, out: TextIO) -> int:
 
 def run_eval(args: argparse.Namespace, out: TextIO) -> int:
     """Runs ``mazesim eval``."""
-    from mazesim.hrl.evaluate import (
+    from mazesim.learn.evaluate import (
         evaluate_navigator,
         print_summary,
     )
-    from mazesim.hrl.tables import load_policy
+    from mazesim.learn.tables import load_policy
 
     policy_files = [
         (f"the navigator's {name}", Path(args.policy) / name)
@@ -277,7 +277,7 @@ def run_eval(args: argparse.Namespace, out: TextIO) -> int:
     )
     policy = load_policy(args.policy)
     if args.world == "random":
-        from mazesim.hrl.evaluate import unseen_mazes
+        from mazesim.learn.evaluate import unseen_mazes
 
         worlds = unseen_mazes(args.mazes, args.seed)
         per_world = max(1, math.ceil(args.episodes / len(worlds)))

@@ -22,11 +22,11 @@ import mazesim
 from mazesim._atomic import atomic_file
 from mazesim.episodes import StartJitter, shortest_path_steps
 from mazesim.errors import InvalidArgumentError
-from mazesim.hrl.evaluate import evaluate, navigator_for, write_trace
-from mazesim.hrl.figures import save_episodes_png
-from mazesim.hrl.policy import HierarchicalPolicy
-from mazesim.hrl.subtasks import CONTROL_STEP_MS, SUBTASK_NAMES
-from mazesim.hrl.tables import load_policy
+from mazesim.learn.evaluate import evaluate, navigator_for, write_trace
+from mazesim.learn.figures import save_episodes_png
+from mazesim.learn.policy import HierarchicalPolicy
+from mazesim.learn.subtasks import CONTROL_STEP_MS, SUBTASK_NAMES
+from mazesim.learn.tables import load_policy
 from mazesim.replay.navigator import Recording
 from mazesim.replay.options import play_live, recording_requested, write_views
 

@@ -19,7 +19,7 @@ import numpy.typing as npt
 
 from mazesim.actions import ACTION_CODES
 from mazesim.episodes import EpisodeBatch
-from mazesim.hrl.subtasks import SUBTASK_NAMES
+from mazesim.learn.subtasks import SUBTASK_NAMES
 from mazesim.replay.recorder import EpisodeRecorder, reading_scale
 from mazesim.replay.run import RecordedRun
 
@@ -127,7 +127,7 @@ class NavigatorRecorder:
 
 
 class Recording:
-    """What :func:`mazesim.hrl.evaluate.evaluate` takes as its ``recorder``: builds a
+    """What :func:`mazesim.learn.evaluate.evaluate` takes as its ``recorder``: builds a
     :class:`NavigatorRecorder` of the first ``episodes`` episodes.
 
     Args:

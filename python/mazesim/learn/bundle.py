@@ -3,10 +3,10 @@
 :func:`write_bundle` writes the archive, then the metadata, each atomically; the metadata is
 written last and records the archive's size and sha256, so a reader never takes a half-written
 pair for a whole one. :func:`read_bundle` checks in an order that lets no file decide how much
-memory is used: the metadata's size and depth (:func:`mazesim.hrl.schema.parse_metadata`), its
+memory is used: the metadata's size and depth (:func:`mazesim.learn.schema.parse_metadata`), its
 format and version, its schema; then the arrays it must describe (computed by the caller from the
 checked metadata), the archive's size against them, its sha256, and every member's header
-(:func:`mazesim.hrl.archive.read_arrays`), before any table is read.
+(:func:`mazesim.learn.archive.read_arrays`), before any table is read.
 """
 
 from __future__ import annotations
@@ -24,8 +24,8 @@ import numpy.typing as npt
 
 from mazesim._atomic import atomic_file
 from mazesim.errors import PolicyFormatError
-from mazesim.hrl.archive import MAX_HEADER_BYTES, ArraySpec, read_arrays
-from mazesim.hrl.schema import (
+from mazesim.learn.archive import MAX_HEADER_BYTES, ArraySpec, read_arrays
+from mazesim.learn.schema import (
     MAX_METADATA_BYTES,
     ListOf,
     Node,

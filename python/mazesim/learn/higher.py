@@ -3,7 +3,7 @@
 The higher level acts only at a checkpoint event, when the robot has crossed a barcode: its
 state is the checkpoint and the direction of the crossing (arrival: along the checkpoint's yaw,
 towards the door it faces; departure: the other way), its options are the four sub-tasks. The
-chosen sub-task runs until it ends (:mod:`mazesim.hrl.subtasks`), then Corridors and Corners
+chosen sub-task runs until it ends (:mod:`mazesim.learn.subtasks`), then Corridors and Corners
 drives until the next event; the whole stretch is one SMDP transition, learned as
 
     Q[h, o] <- Q[h, o] + alpha * (R + max_o' Q[h', o'] - Q[h, o])
@@ -28,8 +28,8 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim.errors import InvalidArgumentError
-from mazesim.hrl import qlearning
-from mazesim.hrl.subtasks import NUM_SUBTASKS
+from mazesim.learn import qlearning
+from mazesim.learn.subtasks import NUM_SUBTASKS
 
 __all__ = [
     "CONTACT_REWARD",

@@ -1,6 +1,6 @@
 """A navigator's evaluation episodes in chunks that run anywhere (``mazesim eval --address``).
 
-:func:`mazesim.hrl.evaluate.evaluate` runs ``episodes_per_world`` greedy episodes in each of its
+:func:`mazesim.learn.evaluate.evaluate` runs ``episodes_per_world`` greedy episodes in each of its
 worlds; episode ``k`` of world ``w`` is numbered ``w * episodes_per_world + k`` and draws its
 start jitter and sensor noise from ``(seed, number)`` alone
 (:class:`mazesim.episodes.EpisodeBatch`), and a greedy navigator keeps nothing from one
@@ -11,7 +11,7 @@ the worlds as TOML text) and runs such a chunk; whoever spreads the chunks (the 
 and :meth:`NavigatorEpisodes.results` turns them back into the
 :class:`~mazesim.episodes.EpisodeResult` list that ``evaluate`` returns.
 
-A chunk runs its episodes side by side, up to :data:`mazesim.hrl.evaluate.EVALUATION_ENVS` at a
+A chunk runs its episodes side by side, up to :data:`mazesim.learn.evaluate.EVALUATION_ENVS` at a
 time, one robot per episode. The decisions of an episode come back as counts per (checkpoint
 event, sub-task), so its :attr:`~mazesim.episodes.EpisodeResult.decisions` list holds the
 same decisions in a fixed order rather than in the order they were taken.
@@ -29,8 +29,8 @@ import numpy.typing as npt
 from mazesim._core import World
 from mazesim.episodes import EpisodeBatch, EpisodeResult, run_episodes
 from mazesim.errors import InvalidArgumentError
-from mazesim.hrl.higher import HigherLevel
-from mazesim.hrl.subtasks import NUM_SUBTASKS
+from mazesim.learn.higher import HigherLevel
+from mazesim.learn.subtasks import NUM_SUBTASKS
 
 __all__ = ["NavigatorEpisodes"]
 
@@ -106,11 +106,11 @@ class NavigatorEpisodes:
         """The navigator of robots that drive in worlds ``slot_worlds`` (one slot each)."""
         robots = np.arange(slot_worlds.size)
         if self.kind == "flat":
-            from mazesim.hrl.baseline import FlatNavigator
+            from mazesim.learn.baseline import FlatNavigator
 
             assert self.flat_q is not None
             return FlatNavigator(self.flat_q, list(self.checkpoint_ids[0]), robots.size)
-        from mazesim.hrl.policy import HierarchicalPolicy
+        from mazesim.learn.policy import HierarchicalPolicy
 
         assert self.lower_q is not None and self.higher_q is not None
         level = HigherLevel([self.checkpoint_ids[w] for w in slot_worlds])

@@ -19,7 +19,7 @@ from matplotlib.figure import Figure
 
 from mazesim._atomic import atomic_file
 from mazesim._core import World
-from mazesim.hrl.subtasks import SUBTASK_CODES, SUBTASK_NAMES
+from mazesim.learn.subtasks import SUBTASK_CODES, SUBTASK_NAMES
 from mazesim.plotting import START_COLOR, plot_world, trajectory_legend
 
 __all__ = ["decision_label", "save_episodes_png"]

@@ -2,13 +2,13 @@
 
 Each control step, for every robot (:meth:`HierarchicalPolicy.act`):
 
-1. the sensor distances become levels and a state (:mod:`mazesim.hrl.discretise`);
+1. the sensor distances become levels and a state (:mod:`mazesim.learn.discretise`);
 2. the running sub-task's odometry advances; a door sub-task that ended (or gave up) hands over
    to "Corridors and Corners";
 3. if a checkpoint was crossed (``checkpoint != 0``), the higher level chooses the sub-task
-   (:mod:`mazesim.hrl.higher`), which starts there;
+   (:mod:`mazesim.learn.higher`), which starts there;
 4. the running sub-task's table gives the action (greedy among the actions the sub-task may take,
-   :data:`mazesim.hrl.subtasks.SUBTASK_ACTIONS`).
+   :data:`mazesim.learn.subtasks.SUBTASK_ACTIONS`).
 
 Alg. 5 runs "Corridors and Corners" on every step without a checkpoint; here a door sub-task the
 higher level chose keeps running until its own end (its turn needs more than the one step on the
@@ -25,11 +25,11 @@ import numpy.typing as npt
 from mazesim._core import RobotProfile
 from mazesim.actions import ACTION_CODES, WHEEL_SPEED_FRACTIONS
 from mazesim.errors import InvalidArgumentError
-from mazesim.hrl.discretise import NUM_SENSORS, distance_levels, volts_to_cm
-from mazesim.hrl.higher import HigherLevel
-from mazesim.hrl.lower import lower_table_shape
-from mazesim.hrl.qlearning import best_allowed
-from mazesim.hrl.subtasks import CONTROL_STEP_MS, SUBTASK_ACTIONS, SubTask, SubTaskTracker
+from mazesim.learn.discretise import NUM_SENSORS, distance_levels, volts_to_cm
+from mazesim.learn.higher import HigherLevel
+from mazesim.learn.lower import lower_table_shape
+from mazesim.learn.qlearning import best_allowed
+from mazesim.learn.subtasks import CONTROL_STEP_MS, SUBTASK_ACTIONS, SubTask, SubTaskTracker
 
 __all__ = ["Chooser", "DeadReckoningNavigator", "HierarchicalPolicy", "StepRecord"]
 

@@ -9,7 +9,7 @@ number    name                       phases  what it does
 3 (F)     Going forward on a door    3       drives straight through the door ahead
 ========  =========================  ======  ==================================================
 
-**State.** Corridors and Corners sees the distance state of :mod:`mazesim.hrl.discretise`
+**State.** Corridors and Corners sees the distance state of :mod:`mazesim.learn.discretise`
 (4096 values). The door sub-tasks add a phase, the robot's heading change since the sub-task
 began in three bins (:func:`heading_phases`), and see ``distance_state + 4096 * phase``
 (12288 values):
@@ -72,7 +72,7 @@ import numpy.typing as npt
 
 from mazesim.actions import ACTION_CODES
 from mazesim.batch import CONTROL_STEP_MS, cruise_step_length
-from mazesim.hrl.discretise import NUM_STATES
+from mazesim.learn.discretise import NUM_STATES
 
 __all__ = [
     "COLLISION_PENALTY",

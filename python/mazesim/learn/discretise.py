@@ -20,7 +20,7 @@ sensor the most significant. There are ``4**6 = 4096`` states (:data:`NUM_STATES
 
 Example:
     >>> import numpy as np
-    >>> from mazesim.hrl.discretise import distance_levels, encode_state, decode_state
+    >>> from mazesim.learn.discretise import distance_levels, encode_state, decode_state
     >>> levels = distance_levels(np.array([25.0, 30.0, 8.3, 8.3, 13.3, 13.3]))
     >>> levels.tolist()
     [3, 3, 1, 1, 2, 2]

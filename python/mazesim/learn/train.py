@@ -3,18 +3,18 @@ the target world; checkpoints, ``--resume``, and a progress bar.
 
 :func:`train` runs two stages:
 
-1. **Lower level** (:mod:`mazesim.hrl.lower`): the four sub-tasks on a pool of generated mazes,
+1. **Lower level** (:mod:`mazesim.learn.lower`): the four sub-tasks on a pool of generated mazes,
    ``envs`` robots at a time, until ``steps`` env-steps are done, round by round. After every
    round whose end is at least :attr:`TrainSettings.checkpoint_seconds` after the last
    checkpoint (and after the last round) the tables, their update counts and the round reached
    are written to ``DIR/checkpoint.npz``, one file switched in with one atomic rename
-   (:mod:`mazesim.hrl.checkpoint`): a crash at any instant leaves the previous checkpoint or the
+   (:mod:`mazesim.learn.checkpoint`): a crash at any instant leaves the previous checkpoint or the
    new one, whole.
-2. **Higher level** (:mod:`mazesim.hrl.episodes`): episodes on the target world with the lower
-   level fixed, the sub-tasks chosen epsilon-greedily at checkpoint events.
+2. **Higher level** (:mod:`mazesim.learn.higher_training`): episodes on the target world with
+   the lower level fixed, the sub-tasks chosen epsilon-greedily at checkpoint events.
 
 The navigator is then saved into ``DIR`` (``tables.npz`` and ``policy.json``, see
-:mod:`mazesim.hrl.tables`) with the settings and what the run measured.
+:mod:`mazesim.learn.tables`) with the settings and what the run measured.
 
 Everything random follows from the seed, round by round, and the simulator is deterministic
 whatever the thread count, so a run stopped at any point and continued with ``resume=True``
@@ -33,7 +33,7 @@ from typing import Any, TextIO
 from mazesim import load_world
 from mazesim.episodes import shortest_path_steps
 from mazesim.errors import InvalidArgumentError, PolicyFormatError
-from mazesim.hrl.checkpoint import (
+from mazesim.learn.checkpoint import (
     CHECKPOINT_FILE,
     CHECKPOINT_FORMAT,
     Checkpoint,
@@ -42,9 +42,9 @@ from mazesim.hrl.checkpoint import (
     remove_checkpoint_leftovers,
     write_checkpoint,
 )
-from mazesim.hrl.episodes import HigherTraining, train_higher
-from mazesim.hrl.lower import LowerSettings, LowerTables, LowerTrainer, RoundStats
-from mazesim.hrl.tables import TrainedPolicy, save_policy
+from mazesim.learn.higher_training import HigherTraining, train_higher
+from mazesim.learn.lower import LowerSettings, LowerTables, LowerTrainer, RoundStats
+from mazesim.learn.tables import TrainedPolicy, save_policy
 from mazesim.maze import checkpoint_ids, world_hash
 
 __all__ = [
@@ -279,8 +279,8 @@ def train_flat_policy(
     threads: int = 0,
 ) -> TrainedPolicy:
     """Trains the flat baseline on ``settings.world`` for ``settings.steps`` env-steps and saves
-    it into ``out`` (:mod:`mazesim.hrl.baseline`)."""
-    from mazesim.hrl.baseline import train_flat
+    it into ``out`` (:mod:`mazesim.learn.baseline`)."""
+    from mazesim.learn.baseline import train_flat
 
     world = load_world(settings.world)
     if world.goal is None or world.cell_maze() is None:

@@ -16,14 +16,14 @@ import numpy.typing as npt
 from mazesim._core import World
 from mazesim._seeding import stream
 from mazesim.episodes import MAX_STEPS, EpisodeBatch, EpisodeResult, StartJitter, run_episodes
-from mazesim.hrl.higher import (
+from mazesim.learn.higher import (
     CONTACT_REWARD,
     GOAL_REWARD,
     STEP_REWARD,
     HigherLearner,
     HigherLevel,
 )
-from mazesim.hrl.policy import HierarchicalPolicy
+from mazesim.learn.policy import HierarchicalPolicy
 from mazesim.maze import checkpoint_ids
 
 __all__ = [

@@ -25,10 +25,10 @@ import numpy as np
 
 from mazesim._atomic import atomic_file, remove_stale_temporaries
 from mazesim.errors import PolicyFormatError
-from mazesim.hrl.archive import MAX_HEADER_BYTES, ArraySpec, read_archive, write_archive
-from mazesim.hrl.bundle import FORMAT_VERSION, read_bundle, read_limited
-from mazesim.hrl.lower import LowerTables, lower_table_shape
-from mazesim.hrl.schema import (
+from mazesim.learn.archive import MAX_HEADER_BYTES, ArraySpec, read_archive, write_archive
+from mazesim.learn.bundle import FORMAT_VERSION, read_bundle, read_limited
+from mazesim.learn.lower import LowerTables, lower_table_shape
+from mazesim.learn.schema import (
     MAX_METADATA_BYTES,
     AnyJson,
     ListOf,

@@ -14,7 +14,7 @@ the episodes that arrived, and their ratio to the steps of the shortest path at 
 at each checkpoint event.
 
 With ``spread``, :func:`evaluate_navigator` hands the episodes out in chunks
-(:mod:`mazesim.hrl.chunks`; ``mazesim eval --address`` passes Ray's
+(:mod:`mazesim.learn.chunks`; ``mazesim eval --address`` passes Ray's
 :func:`mazesim.distributed.evaluate_episodes`): the higher level of an unseen world is trained
 once, here, and its tables shipped with the chunks; every episode ends as it would here, so the
 summary is the same spread or not.
@@ -48,13 +48,13 @@ from mazesim.episodes import (
     shortest_path_steps,
 )
 from mazesim.errors import InvalidArgumentError
-from mazesim.hrl.chunks import NavigatorEpisodes
-from mazesim.hrl.discretise import format_levels
-from mazesim.hrl.episodes import HigherTraining, train_higher
-from mazesim.hrl.higher import HigherLevel
-from mazesim.hrl.policy import HierarchicalPolicy, StepRecord
-from mazesim.hrl.subtasks import CONTROL_STEP_MS, SUBTASK_CODES, SUBTASK_NAMES
-from mazesim.hrl.tables import TrainedPolicy
+from mazesim.learn.chunks import NavigatorEpisodes
+from mazesim.learn.discretise import format_levels
+from mazesim.learn.higher import HigherLevel
+from mazesim.learn.higher_training import HigherTraining, train_higher
+from mazesim.learn.policy import HierarchicalPolicy, StepRecord
+from mazesim.learn.subtasks import CONTROL_STEP_MS, SUBTASK_CODES, SUBTASK_NAMES
+from mazesim.learn.tables import TrainedPolicy
 from mazesim.maze import world_hash
 
 __all__ = [
@@ -206,8 +206,8 @@ def evaluate(
 
     Args:
         make_navigator: Builds the navigator of the robots from their world numbers (a
-            :class:`~mazesim.hrl.policy.HierarchicalPolicy` or a
-            :class:`~mazesim.hrl.baseline.FlatNavigator`).
+            :class:`~mazesim.learn.policy.HierarchicalPolicy` or a
+            :class:`~mazesim.learn.baseline.FlatNavigator`).
         worlds: The worlds.
         episodes_per_world: Episodes in each world.
         seed: Seed of the episodes' start jitter and sensor noise.
@@ -334,7 +334,7 @@ def evaluate_navigator(
     adapted = False
     make_navigator: NavigatorFactory
     if policy.kind == "flat":
-        from mazesim.hrl.baseline import FlatNavigator
+        from mazesim.learn.baseline import FlatNavigator
 
         if len(worlds) != 1 or policy.flat_q is None:
             raise InvalidArgumentError("the flat baseline drives the one world it learned")
@@ -384,7 +384,7 @@ def evaluate_navigator(
         write_trace(evaluations[first_source].trace, trace_path, worlds[0], seed, first_source)
         written.append(str(trace_path))
     if plot_path is not None:
-        from mazesim.hrl.figures import save_episodes_png
+        from mazesim.learn.figures import save_episodes_png
 
         evaluation = evaluations[first_source]
         arrived = {r.episode: r.arrived for r in evaluation.results}

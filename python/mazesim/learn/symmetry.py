@@ -14,8 +14,8 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim.actions import WHEEL_SPEED_FRACTIONS
-from mazesim.hrl.discretise import NUM_LEVELS, NUM_SENSORS, NUM_STATES, SENSOR_ORDER
-from mazesim.hrl.subtasks import SubTask
+from mazesim.learn.discretise import NUM_LEVELS, NUM_SENSORS, NUM_STATES, SENSOR_ORDER
+from mazesim.learn.subtasks import SubTask
 
 __all__ = ["MIRRORED_ACTION", "MIRRORED_SUBTASK", "mirrored_states"]
 

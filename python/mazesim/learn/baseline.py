@@ -1,11 +1,11 @@
 """The flat baseline: one Q-table over primitive actions, trained on the target world directly.
 
 Without a hierarchy a tabular learner needs to know where it is in the maze, so its state is the
-distance state of :mod:`mazesim.hrl.discretise` together with the last checkpoint event seen in
+distance state of :mod:`mazesim.learn.discretise` together with the last checkpoint event seen in
 the episode (none, or arrival / departure at each checkpoint): ``distance_state + 4096 * k``
 with ``k = 0`` before any event and ``k = 1 + 2 * place + (departure)`` after one, so
 ``(1 + 2 * checkpoints) * 4096`` states. It learns with the same machinery as the sub-tasks
-(decisions held until the state changes, the batch update of :mod:`mazesim.hrl.qlearning`,
+(decisions held until the state changes, the batch update of :mod:`mazesim.learn.qlearning`,
 epsilon falling from 0.3 to 0 over the first 80% of the budget) on episodes of the target world
 from its jittered start, for the same number of env-steps as the hierarchical run it is compared
 with.
@@ -27,9 +27,9 @@ from mazesim._core import World
 from mazesim._seeding import stream
 from mazesim.actions import ACTION_CODES
 from mazesim.episodes import MAX_STEPS, EpisodeBatch
-from mazesim.hrl import qlearning
-from mazesim.hrl.discretise import NUM_SENSORS, NUM_STATES, distance_levels, volts_to_cm
-from mazesim.hrl.policy import StepRecord
+from mazesim.learn import qlearning
+from mazesim.learn.discretise import NUM_SENSORS, NUM_STATES, distance_levels, volts_to_cm
+from mazesim.learn.policy import StepRecord
 from mazesim.maze import checkpoint_ids
 
 __all__ = [

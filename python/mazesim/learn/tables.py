@@ -5,7 +5,7 @@ A saved navigator is a folder with two files:
 - ``tables.npz``: the Q-tables as float64 arrays, written with :func:`numpy.savez_compressed` and
   read with ``allow_pickle=False``. A hierarchical navigator holds ``corridor`` (4096 x 12),
   ``right``, ``left`` and ``forward`` (12288 x 12: 4096 distance states times 3 phases) and
-  ``higher`` (states x 4, the rows of :func:`mazesim.hrl.higher.event_state_names`); the flat
+  ``higher`` (states x 4, the rows of :func:`mazesim.learn.higher.event_state_names`); the flat
   baseline holds ``flat`` ((1 + 2 * checkpoints) * 4096 x 12).
 - ``policy.json``: what the tables mean, checked on loading. ``format`` (``"mazesim-policy"``)
   and ``version`` (:data:`FORMAT_VERSION`); ``kind`` (``"hierarchical"`` or ``"flat"``);
@@ -16,7 +16,7 @@ A saved navigator is a folder with two files:
   state names); ``training`` (the settings and measurements of the run); ``tables`` (each array's
   shape, and the size and sha256 of ``tables.npz``).
 
-Both files are written atomically, the metadata last (:mod:`mazesim.hrl.bundle`).
+Both files are written atomically, the metadata last (:mod:`mazesim.learn.bundle`).
 :func:`load_policy` checks the metadata against a schema (:func:`policy_schema`) before it reads
 the tables, and the tables' headers against the shapes the metadata allows before it reads their
 data, so no file decides how much memory is used. It raises
@@ -41,19 +41,19 @@ import numpy.typing as npt
 from mazesim._core import World
 from mazesim.actions import ACTION_CODES, WHEEL_SPEED_FRACTIONS
 from mazesim.errors import PolicyFormatError
-from mazesim.hrl.archive import ArraySpec
-from mazesim.hrl.bundle import (
+from mazesim.learn.archive import ArraySpec
+from mazesim.learn.bundle import (
     FORMAT_VERSION,
     HEX_DIGITS,
     read_bundle,
     tables_schema,
     write_bundle,
 )
-from mazesim.hrl.discretise import LEVEL_EDGES_CM, NUM_STATES, SENSOR_ORDER, SHARP_TABLE
-from mazesim.hrl.higher import event_state_names
-from mazesim.hrl.lower import lower_table_shape
-from mazesim.hrl.schema import AnyJson, ListOf, Record, Text, Whole
-from mazesim.hrl.subtasks import (
+from mazesim.learn.discretise import LEVEL_EDGES_CM, NUM_STATES, SENSOR_ORDER, SHARP_TABLE
+from mazesim.learn.higher import event_state_names
+from mazesim.learn.lower import lower_table_shape
+from mazesim.learn.schema import AnyJson, ListOf, Record, Text, Whole
+from mazesim.learn.subtasks import (
     CONTROL_STEP_MS,
     FORWARD_PHASE_ANGLE,
     NUM_PHASES,
@@ -134,7 +134,7 @@ def encoding_metadata() -> dict[str, Any]:
 
 def shipped_policy_dir(world_name: str = "seed-maze") -> Path:
     """The folder of the navigator shipped in the package for a built-in world."""
-    return Path(str(resources.files("mazesim.hrl").joinpath("data", world_name)))
+    return Path(str(resources.files("mazesim.learn").joinpath("data", world_name)))
 
 
 @dataclass
@@ -144,7 +144,7 @@ class TrainedPolicy:
     Attributes:
         kind: ``"hierarchical"`` or ``"flat"``.
         lower_q: The stacked lower-level tables (hierarchical), shape
-            :func:`mazesim.hrl.lower.lower_table_shape`.
+            :func:`mazesim.learn.lower.lower_table_shape`.
         higher_q: The higher level's table for its world, ``(2 * checkpoints, 4)``.
         flat_q: The flat baseline's table.
         world_name: The world the higher level (or the flat table) learned.
@@ -174,13 +174,13 @@ class TrainedPolicy:
                 dead-reckoned from the actions with it.
         """
         if self.kind == "flat":
-            from mazesim.hrl.baseline import FlatNavigator
+            from mazesim.learn.baseline import FlatNavigator
 
             assert self.flat_q is not None
             self._driver = _FlatDriver(FlatNavigator(self.flat_q, self.checkpoint_ids, 1))
             return
-        from mazesim.hrl.higher import HigherLevel
-        from mazesim.hrl.policy import DeadReckoningNavigator
+        from mazesim.learn.higher import HigherLevel
+        from mazesim.learn.policy import DeadReckoningNavigator
 
         assert self.lower_q is not None and self.higher_q is not None
         level = HigherLevel([self.checkpoint_ids], q=self.higher_q[None])
@@ -213,7 +213,7 @@ class _FlatDriver:
         self.navigator.reset([0], None)
 
     def act(self, distances_cm: npt.ArrayLike, checkpoint: int) -> str:
-        from mazesim.hrl.discretise import distance_levels
+        from mazesim.learn.discretise import distance_levels
 
         levels = distance_levels(np.asarray(distances_cm, dtype=np.float64).reshape(1, 6))
         state = self.navigator.states_from_levels(levels, np.array([int(checkpoint)]))

@@ -12,20 +12,20 @@ every kind of door occurs):
 - A door sub-task starts in a straight corridor cell next to a door that has the opening it needs
   (on the right, the left or straight ahead), between 3 cm short of and 5 cm past the cell's
   centre (where a checkpoint's code ends), up to 3 cm off the centre line and 11 degrees off the
-  corridor's heading; it runs until :class:`mazesim.hrl.subtasks.SubTaskTracker` says it ended.
+  corridor's heading; it runs until :class:`mazesim.learn.subtasks.SubTaskTracker` says it ended.
 
 **Decisions.** The discretised state changes only every few control steps, so a decision holds
 its action until the state changes (or for at most ``decision_steps`` steps) and is learned as
 one SMDP transition: the rewards along the way discounted, then ``gamma ** tau`` times the value
 of the state it led to. A greedy policy repeats its action while the state stays, so this is the
 same policy, learned from fewer, more informative updates. Exploration is epsilon-greedy at each
-decision (among the sub-task's :data:`mazesim.hrl.subtasks.SUBTASK_ACTIONS`), epsilon falling
+decision (among the sub-task's :data:`mazesim.learn.subtasks.SUBTASK_ACTIONS`), epsilon falling
 linearly from ``epsilon_start`` to 0 over the rounds but the last
 ``greedy_share`` of them, which are greedy: the tables then learn from their own mistakes, so a
 greedy policy that loops between two states loses the value of the loop.
 
-**Updates.** Every transition and its mirror image (:mod:`mazesim.hrl.symmetry`) update the tables
-with :func:`mazesim.hrl.qlearning.batch_update`.
+**Updates.** Every transition and its mirror image (:mod:`mazesim.learn.symmetry`) update the tables
+with :func:`mazesim.learn.qlearning.batch_update`.
 
 **Rounds.** Training runs in rounds of ``round_steps`` control steps; every robot starts a fresh
 episode at the start of a round (episodes still running at its end are cut short, not failed).
@@ -46,9 +46,9 @@ from mazesim._core import World, generate_maze
 from mazesim._seeding import stream, stream_seeds
 from mazesim.actions import ACTION_CODES
 from mazesim.batch import RobotBatch
-from mazesim.hrl import qlearning
-from mazesim.hrl.discretise import NUM_STATES, observation_states
-from mazesim.hrl.subtasks import (
+from mazesim.learn import qlearning
+from mazesim.learn.discretise import NUM_STATES, observation_states
+from mazesim.learn.subtasks import (
     COLLISION_PENALTY,
     CONTROL_STEP_MS,
     CORRIDOR_STEP_REWARD,
@@ -64,7 +64,7 @@ from mazesim.hrl.subtasks import (
     SubTaskTracker,
     cruise_step_length,
 )
-from mazesim.hrl.symmetry import MIRRORED_ACTION, MIRRORED_SUBTASK, mirrored_states
+from mazesim.learn.symmetry import MIRRORED_ACTION, MIRRORED_SUBTASK, mirrored_states
 from mazesim.maze import CellMaze, DoorApproach
 
 __all__ = [
