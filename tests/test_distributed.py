@@ -6,19 +6,18 @@ import json
 import os
 import subprocess
 import sys
-from functools import partial
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 import pytest
 
+import mazesim
 from mazesim.cli import main
 from mazesim.distributed import (
     Setting,
     TaskOutput,
     evaluate_episodes,
-    flat_q,
     load_sweep_config,
     parse_sweep_config,
     run_sequential,
@@ -117,9 +116,9 @@ def test_ids_are_stable_whatever_the_order_of_keys_and_values() -> None:
             r"grid.collision_penalty: trainer 'hrl' does not use it",
         ),
         (
-            "[grid]\ntrainer = ['flat-q', 'baseline']\nepsilon = 0.2\n",
+            "[grid]\ntrainer = ['flat-q', 'baseline']\nhigher_episodes = 20\n",
             InvalidArgumentError,
-            r"grid.epsilon: trainer 'baseline' does not use it",
+            r"grid.higher_episodes: trainer 'flat-q' does not use it",
         ),
         ("[grid]\ntrainer = 'hrl'\nnoise = false\n", InvalidArgumentError, "noise = true only"),
     ],
@@ -171,14 +170,16 @@ def test_a_task_is_the_same_with_1_or_2_threads() -> None:
     assert one.result["env_steps"] == 8 * 150
     metadata = json.loads(one.files["run.json"])
     assert metadata["setting"]["id"] == setting.id
-    assert metadata["tables"] == {"q": [4096, 12], "visits": [4096, 12]}
+    # "flat-q" is the one flat learner under its former name: a table per checkpoint context.
+    checkpoints = metadata["tables"]["checkpoint_ids"][0]
+    assert metadata["tables"]["flat_q"] == [(1 + 2 * checkpoints) * 4096, 12]
 
 
 @pytest.mark.parametrize("trainer", ["hrl", "baseline"])
 def test_navigator_trainers_are_the_same_with_1_or_2_threads(trainer: str) -> None:
     text = HRL_SWEEP.replace('trainer = "hrl"', f'trainer = "{trainer}"')
     if trainer == "baseline":
-        unused = ("learning_rate", "epsilon", "higher_episodes")  # baseline has its own schedule
+        unused = ("higher_episodes",)  # the flat learner has no higher level
         text = "\n".join(line for line in text.splitlines() if not line.startswith(unused))
     setting = parse_sweep_config(text).settings[0]
     one, two = train_and_evaluate(setting, 1), train_and_evaluate(setting, 2)
@@ -321,12 +322,25 @@ def test_a_worker_killed_mid_task_loses_nothing(local_ray: Any, tmp_path: Path) 
 
 
 def test_evaluation_spread_over_ray_equals_one_batch(local_ray: Any) -> None:
-    setting = parse_sweep_config(SMALL_SWEEP).settings[0]
-    q = np.random.default_rng(3).normal(size=(4096, 12))
-    evaluate = partial(flat_q.evaluate, setting, q)
-    whole = evaluate(0, 10)
-    spread = evaluate_episodes(evaluate, 10, chunks=3)
-    assert sorted(spread) == ["collisions", "reached", "steps"]
+    from mazesim.learn.chunks import NavigatorEpisodes
+    from mazesim.learn.tables import load_policy
+
+    policy = load_policy(None)
+    world = mazesim.load_world("seed-maze")
+    evaluate = NavigatorEpisodes(
+        kind="hierarchical",
+        world_tomls=(world.to_toml(),),
+        episodes_per_world=5,
+        seed=3,
+        events="truth",
+        max_steps=300,
+        checkpoint_ids=(tuple(policy.checkpoint_ids),),
+        lower_q=policy.lower_q,
+        higher_q=None if policy.higher_q is None else policy.higher_q[None],
+    )
+    whole = evaluate(0, 5)
+    spread = evaluate_episodes(evaluate, 5, chunks=3)
+    assert sorted(spread) == sorted(whole)
     for name in whole:
         assert np.array_equal(spread[name], whole[name])
 

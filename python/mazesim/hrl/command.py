@@ -16,6 +16,7 @@ import json
 import math
 import sys
 import time
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any, TextIO
 
@@ -37,6 +38,55 @@ RECORDED_EPISODES = 3
 
 #: The most env-steps a training run takes (the shipped navigator took 3.6e7).
 MAX_STEPS = 10**12
+
+
+class ProgressLine:
+    """A one-line progress display with an ETA, redrawn in place: ``progress(stage, done, total)``.
+
+    Args:
+        stream: Where the line goes (a terminal).
+    """
+
+    def __init__(self, stream: TextIO) -> None:
+        self.stream = stream
+        self.stage = ""
+        self.started = time.perf_counter()
+        self.shown = False
+
+    def __call__(self, stage: str, done: int, total: int) -> None:
+        now = time.perf_counter()
+        if stage != self.stage:
+            self.stage, self.started = stage, now
+        share = done / total if total else 1.0
+        elapsed = now - self.started
+        eta = f"ETA {elapsed * (1.0 - share) / share:4.0f} s" if share > 0 else "ETA    ? s"
+        filled = int(round(24 * share))
+        self.stream.write(
+            f"\r\033[K{stage} [{'#' * filled}{'.' * (24 - filled)}] {100 * share:3.0f}% "
+            f"{done}/{total}  {elapsed:4.0f} s  {eta}"
+        )
+        self.stream.flush()
+        self.shown = True
+
+    def close(self) -> None:
+        """Clears the line."""
+        if self.shown:
+            self.stream.write("\r\033[K")
+            self.stream.flush()
+            self.shown = False
+
+
+@contextlib.contextmanager
+def progress_display(stream: TextIO | None = None) -> Iterator[ProgressLine | None]:
+    """A :class:`ProgressLine` on ``stream`` (standard error by default) when it is a terminal,
+    else None; the line is cleared at the end."""
+    target = sys.stderr if stream is None else stream
+    line = ProgressLine(target) if target.isatty() else None
+    try:
+        yield line
+    finally:
+        if line is not None:
+            line.close()
 
 
 def step_count(text: str) -> int:
@@ -74,7 +124,7 @@ def register(commands: Any) -> None:
             "generated mazes with many robots at once, then the higher level on --world. "
             "Checkpoints are written to --out as it goes; --resume continues a stopped run to the "
             "same tables as an uninterrupted one. The navigator is saved as "
-            "--out/tables.npz and --out/policy.json. A progress bar with the live success rate "
+            "--out/tables.npz and --out/policy.json. A progress line with an ETA "
             "shows on a terminal."
         ),
     )
@@ -233,7 +283,8 @@ def run_train(args: argparse.Namespace, out: TextIO) -> int:
     if args.flat:
         if args.resume:
             raise InvalidArgumentError("--resume continues hierarchical runs only, not --flat")
-        policy = train_flat_policy(settings, args.out)
+        with progress_display() as progress:
+            policy = train_flat_policy(settings, args.out, progress=progress)
         seconds = time.perf_counter() - started
         out.write(
             f"trained the flat baseline for {policy.world_name} in {seconds:.0f} s "
@@ -241,7 +292,8 @@ def run_train(args: argparse.Namespace, out: TextIO) -> int:
             f"{Path(args.out) / 'policy.json'}\n"
         )
         return 0
-    result = train(settings, args.out, resume=args.resume)
+    with progress_display() as progress:
+        result = train(settings, args.out, resume=args.resume, progress=progress)
     if result is None:
         return 0
     seconds = time.perf_counter() - started
@@ -287,7 +339,7 @@ def run_eval(args: argparse.Namespace, out: TextIO) -> int:
         per_world = args.episodes
         label = worlds[0].name
     sources = list(EVENT_SOURCES) if args.events == "both" else [args.events]
-    with contextlib.ExitStack() as ray:
+    with contextlib.ExitStack() as ray, progress_display() as progress:
         if args.address is not None:
             from mazesim.distributed.cluster import ray_session
             from mazesim.distributed.episodes import ray_spreader
@@ -306,6 +358,7 @@ def run_eval(args: argparse.Namespace, out: TextIO) -> int:
             recorder=(
                 Recording(min(per_world, RECORDED_EPISODES)) if recording_requested(args) else None
             ),
+            progress=progress,
         )
     if report.run is not None:
         report.written += write_views(

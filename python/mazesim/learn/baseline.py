@@ -1,4 +1,5 @@
-"""The flat baseline: one Q-table over primitive actions, trained on the target world directly.
+"""The flat baseline, the package's one flat Q-learner: one Q-table over primitive actions,
+trained on the target world directly (``mazesim train --flat``, the sweep's ``baseline``).
 
 Without a hierarchy a tabular learner needs to know where it is in the maze, so its state is the
 distance state of :mod:`mazesim.learn.discretise` together with the last checkpoint event seen in
@@ -10,15 +11,16 @@ epsilon falling from 0.3 to 0 over the first 80% of the budget) on episodes of t
 from its jittered start, for the same number of env-steps as the hierarchical run it is compared
 with.
 
-Rewards per control step: ``10 * (metres driven forward)``, ``-0.02``, ``-2`` in contact with a
-wall, and ``+10`` on reaching the goal, which ends the episode. Episodes that run out of time are
-cut short (not failed), as the sub-tasks' are.
+Rewards per control step (:class:`FlatConfig`'s defaults): ``10 * (metres driven forward)``,
+``-0.02``, ``-2`` in contact with a wall, and ``+10`` on reaching the goal, which ends the
+episode. Episodes that run out of time are cut short (not failed), as the sub-tasks' are.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from dataclasses import dataclass
 
 import numpy as np
 import numpy.typing as npt
@@ -33,20 +35,54 @@ from mazesim.learn.policy import StepRecord
 from mazesim.maze import checkpoint_ids
 
 __all__ = [
+    "FlatConfig",
     "FlatNavigator",
     "flat_table_rows",
     "train_flat",
 ]
 
 _PLACE = 4 ** np.arange(NUM_SENSORS, dtype=np.int64)
-GAMMA = 0.99
-DECISION_STEPS = 10
-EPSILON_START = 0.3
-GREEDY_SHARE = 0.2
-PROGRESS_REWARD = 10.0
-STEP_REWARD = -0.02
-CONTACT_REWARD = -2.0
-GOAL_REWARD = 10.0
+
+
+@dataclass(frozen=True)
+class FlatConfig:
+    """The flat learner's settings; these defaults are the only ones (``mazesim train --flat``
+    and the sweep's ``baseline`` trainer start from them).
+
+    Attributes:
+        gamma: Discount factor per control step.
+        decision_steps: Longest a decision holds its action (it ends earlier when the state
+            changes).
+        epsilon_start: Exploration rate at the start, falling linearly to 0.
+        greedy_share: Share of the budget at the end that is greedy.
+        learning_rate: First learning rate of a state-action pair (falling with its updates as
+            :class:`mazesim.learn.qlearning.LearningRate` says).
+        progress_reward: Reward per metre driven forward.
+        step_reward: Reward of each control step.
+        contact_reward: Reward of each control step in contact with a wall.
+        goal_reward: Reward on reaching the goal.
+        max_steps: Control steps after which a training episode is cut short.
+    """
+
+    gamma: float = 0.99
+    decision_steps: int = 10
+    epsilon_start: float = 0.3
+    greedy_share: float = 0.2
+    learning_rate: float = qlearning.LearningRate().initial
+    progress_reward: float = 10.0
+    step_reward: float = -0.02
+    contact_reward: float = -2.0
+    goal_reward: float = 10.0
+    max_steps: int = MAX_STEPS
+
+    def rate(self) -> qlearning.LearningRate:
+        """The learning-rate schedule: the default one, started at :attr:`learning_rate`."""
+        default = qlearning.LearningRate()
+        return qlearning.LearningRate(
+            initial=self.learning_rate,
+            floor=min(default.floor, self.learning_rate),
+            power=default.power,
+        )
 
 
 def flat_table_rows(checkpoint_count: int) -> int:
@@ -118,8 +154,12 @@ def train_flat(
     seed: int = 0,
     threads: int = 0,
     progress: Callable[[int, int, float], None] | None = None,
+    config: FlatConfig | None = None,
 ) -> tuple[npt.NDArray[np.float64], list[bool]]:
     """Trains the flat baseline on ``world`` for ``env_steps`` env-steps.
+
+    Its episodes run through the episode layer on the ``flat/episode`` stream; exploration draws
+    from ``flat/explore`` (:mod:`mazesim._seeding`). ``config`` defaults to :class:`FlatConfig`.
 
     Returns:
         The table and, per finished episode, whether it reached the goal.
@@ -128,13 +168,14 @@ def train_flat(
     rows = flat_table_rows(len(ids))
     q = np.zeros((rows, len(ACTION_CODES)))
     visits = np.zeros(q.shape, dtype=np.int64)
-    rate = qlearning.LearningRate()
+    config = config if config is not None else FlatConfig()
+    rate = config.rate()
     nav = EpisodeBatch(
         [world],
         np.zeros(num_envs, dtype=np.int64),
         seed=seed,
         stream="flat/episode",
-        max_steps=MAX_STEPS,
+        max_steps=config.max_steps,
         threads=threads,
     )
     navigator = FlatNavigator(q, ids, num_envs)
@@ -152,9 +193,9 @@ def train_flat(
     deciding = np.ones(num_envs, dtype=bool)
     outcomes: list[bool] = []
     total_steps = max(1, math.ceil(env_steps / num_envs))
-    exploring = max(1.0, total_steps * (1.0 - GREEDY_SHARE))
+    exploring = max(1.0, total_steps * (1.0 - config.greedy_share))
     for step in range(total_steps):
-        epsilon = max(0.0, EPSILON_START * (1.0 - step / exploring))
+        epsilon = max(0.0, config.epsilon_start * (1.0 - step / exploring))
         explore = rng.random(num_envs) < epsilon
         random_action = rng.integers(0, len(ACTION_CODES), num_envs)
         chosen = np.where(explore, random_action, qlearning.greedy(q, state))
@@ -169,17 +210,17 @@ def train_flat(
             after[:, 1] - before[:, 1]
         ) * np.sin(before[:, 2])
         reward = (
-            PROGRESS_REWARD * forward
-            + STEP_REWARD
-            + CONTACT_REWARD * nav.colliding
-            + GOAL_REWARD * arrived
+            config.progress_reward * forward
+            + config.step_reward
+            + config.contact_reward * nav.colliding
+            + config.goal_reward * arrived
         )
         next_state = navigator.states(nav.observations, nav.events)
         earned += discount * reward
-        discount *= GAMMA
+        discount *= config.gamma
         held += 1
         ended = arrived | out_of_time
-        deciding = ended | (next_state != state) | (held >= DECISION_STEPS)
+        deciding = ended | (next_state != state) | (held >= config.decision_steps)
         learners = np.flatnonzero(deciding)
         qlearning.batch_update(
             q,

@@ -118,7 +118,11 @@ def unseen_mazes(count: int, seed: int) -> list[World]:
 
 
 def navigator_for(
-    policy: TrainedPolicy, worlds: Sequence[World], seed: int = 0, threads: int = 0
+    policy: TrainedPolicy,
+    worlds: Sequence[World],
+    seed: int = 0,
+    threads: int = 0,
+    progress: Callable[[str, int, int], None] | None = None,
 ) -> tuple[HigherLevel, bool]:
     """The higher level to drive ``worlds`` with: the policy's own when it is the world it
     learned, else one trained there for :data:`ADAPT_EPISODES` episodes per world.
@@ -132,7 +136,12 @@ def navigator_for(
         level = HigherLevel([policy.checkpoint_ids], q=policy.higher_q[None])
         return level, False
     settings = HigherTraining(episodes_per_world=ADAPT_EPISODES, seed=seed)
-    level, _ = train_higher(policy.lower_q, worlds, settings, threads=threads)
+
+    def adapting(done: int, total: int, recent: float) -> None:
+        if progress is not None:
+            progress("adapt", done, total)
+
+    level, _ = train_higher(policy.lower_q, worlds, settings, threads=threads, progress=adapting)
     return level, True
 
 
@@ -201,6 +210,7 @@ def evaluate(
     threads: int = 0,
     recorder: RecorderFactory | None = None,
     controller: str = "hrl",
+    progress: Callable[[str, int, int], None] | None = None,
 ) -> Evaluation:
     """Runs greedy episodes of a navigator and measures them.
 
@@ -220,6 +230,7 @@ def evaluate(
         recorder: Records the first episodes frame by frame (:attr:`Evaluation.run`, for the
             replay and videos); see :data:`RecorderFactory`.
         controller: The controller's name in the recorded run.
+        progress: Called as ``progress("evaluate", episodes_done, episodes_total)``.
     """
     per_world = max(1, min(episodes_per_world, EVALUATION_ENVS // max(1, len(worlds))))
     world_of_env = np.repeat(np.arange(len(worlds)), per_world)
@@ -274,12 +285,20 @@ def evaluate(
         robots = np.flatnonzero(navigator.record.chosen >= 0)
         return robots, navigator.record.chosen[robots]
 
+    total = episodes_per_world * len(worlds)
+    finished = [0]
+
+    def on_end(robots: npt.NDArray[np.int64], arrived: npt.NDArray[np.bool_]) -> None:
+        finished[0] += robots.size
+        if progress is not None:
+            progress("evaluate", min(finished[0], total), total)
+
     results = run_episodes(
         nav,
         navigator if recording is None else recording,
         episodes_per_world,
         watch,
-        None,
+        on_end,
         decisions_of,
     )
     shortest = [shortest_path_steps(world) for world in worlds]
@@ -315,6 +334,7 @@ def evaluate_navigator(
     threads: int = 0,
     spread: Spreader | None = None,
     recorder: RecorderFactory | None = None,
+    progress: Callable[[str, int, int], None] | None = None,
 ) -> Report:
     """Evaluates a saved navigator with checkpoint events from each source, writing the trace
     and the picture of the first source's episodes when asked.
@@ -326,6 +346,9 @@ def evaluate_navigator(
             recorded episodes are run here as well.
         recorder: Records the first episodes of the first source frame by frame
             (:attr:`Report.run`; see :data:`RecorderFactory`).
+        progress: Called as ``progress(stage, done, total)``: ``"adapt"`` while the higher level
+            learns unseen worlds, then ``"evaluate"`` (``"evaluate robust"`` for the second
+            source) over the episodes.
 
     Raises:
         PolicyFormatError: A flat navigator asked to drive a world it did not learn.
@@ -345,7 +368,9 @@ def evaluate_navigator(
             return FlatNavigator(flat_q, policy.checkpoint_ids, world_of_env.size)
 
     else:
-        level, adapted = navigator_for(policy, worlds, seed=seed, threads=threads)
+        level, adapted = navigator_for(
+            policy, worlds, seed=seed, threads=threads, progress=progress
+        )
         lower_q = policy.lower_q
         assert lower_q is not None
 
@@ -375,6 +400,7 @@ def evaluate_navigator(
             threads=threads,
             recorder=recorder if first else None,
             controller=policy.kind,
+            progress=_staged(progress, "evaluate" if first else f"evaluate {source}"),
         )
         summaries[source] = evaluation.summary
         evaluations[source] = evaluation
@@ -402,6 +428,16 @@ def evaluate_navigator(
         )
         written.append(str(plot_path))
     return Report(summaries, evaluations, adapted, written, evaluations[first_source].run)
+
+
+def _staged(
+    progress: Callable[[str, int, int], None] | None, stage: str
+) -> Callable[[str, int, int], None] | None:
+    """``progress`` reporting under the name ``stage``."""
+    if progress is None:
+        return None
+    report = progress
+    return lambda _, done, total: report(stage, done, total)
 
 
 def _evaluate_spread(
@@ -432,7 +468,10 @@ def _evaluate_spread(
         higher_q=level.q if level is not None else None,
         flat_q=policy.flat_q if level is None else None,
     )
+    progress = options.pop("progress")
     results = chunks.results(spread(chunks, chunks.episodes))
+    if progress is not None:
+        progress("evaluate", chunks.episodes, chunks.episodes)
     shortest = [shortest_path_steps(world) for world in worlds]
     evaluation = Evaluation(_summarise(results, shortest, options["events"]), results)
     recorded = max(options["record_paths"], 1 if options["trace"] else 0)

@@ -1,7 +1,9 @@
 """Training a navigator from scratch: the lower level on generated mazes, then the higher level on
-the target world; checkpoints, ``--resume``, and a progress bar.
+the target world; checkpoints and ``--resume``.
 
-:func:`train` runs two stages:
+:func:`run_training` is the one training pipeline (the sweep's ``hrl`` trainer runs it too); it
+writes and prints nothing, and reports through ``progress(stage, done, total)`` and a
+``checkpoint`` callback. :func:`train` runs it with checkpoints in a folder. The two stages:
 
 1. **Lower level** (:mod:`mazesim.learn.lower`): the four sub-tasks on a pool of generated mazes,
    ``envs`` robots at a time, until ``steps`` env-steps are done, round by round. After every
@@ -24,15 +26,17 @@ ends with the same tables as a run never stopped (only the timings differ).
 from __future__ import annotations
 
 import os
-import sys
 import time
+from collections.abc import Callable, Sequence
 from dataclasses import asdict, dataclass
 from pathlib import Path
-from typing import Any, TextIO
+from typing import Any
 
 from mazesim import load_world
-from mazesim.episodes import shortest_path_steps
+from mazesim._core import World
+from mazesim.episodes import MAX_STEPS, EpisodeResult, shortest_path_steps
 from mazesim.errors import InvalidArgumentError, PolicyFormatError
+from mazesim.learn.baseline import train_flat
 from mazesim.learn.checkpoint import (
     CHECKPOINT_FILE,
     CHECKPOINT_FORMAT,
@@ -42,6 +46,7 @@ from mazesim.learn.checkpoint import (
     remove_checkpoint_leftovers,
     write_checkpoint,
 )
+from mazesim.learn.higher import HigherLevel
 from mazesim.learn.higher_training import HigherTraining, train_higher
 from mazesim.learn.lower import LowerSettings, LowerTables, LowerTrainer, RoundStats
 from mazesim.learn.tables import TrainedPolicy, save_policy
@@ -49,7 +54,11 @@ from mazesim.maze import checkpoint_ids, world_hash
 
 __all__ = [
     "CHECKPOINT_FORMAT",
+    "CheckpointFn",
+    "ProgressFn",
     "TrainSettings",
+    "TrainingRun",
+    "run_training",
     "train",
     "train_flat_policy",
 ]
@@ -66,7 +75,7 @@ class TrainSettings:
     maze_pool: int = 200
     higher_episodes: int = 400
     higher_envs: int = 32
-    higher_max_steps: int = 4000
+    higher_max_steps: int = MAX_STEPS
     checkpoint_seconds: float = 30.0
 
     def lower(self) -> LowerSettings:
@@ -91,38 +100,6 @@ class TrainSettings:
         return values
 
 
-class Progress:
-    """A one-line progress bar with the live success rate, on a terminal only."""
-
-    def __init__(self, stream: TextIO | None) -> None:
-        self.stream = stream
-        self.enabled = stream is not None and stream.isatty()
-        self.started = time.perf_counter()
-        self.shown = False
-
-    def show(self, stage: str, done: int, total: int, detail: str) -> None:
-        """Redraws the bar."""
-        if not self.enabled or self.stream is None:
-            return
-        share = done / total if total else 1.0
-        width = 24
-        filled = int(round(width * share))
-        elapsed = time.perf_counter() - self.started
-        self.stream.write(
-            f"\r\033[K{stage} [{'#' * filled}{'.' * (width - filled)}] {100 * share:3.0f}%  "
-            f"{detail}  {elapsed:5.0f} s"
-        )
-        self.stream.flush()
-        self.shown = True
-
-    def close(self) -> None:
-        """Clears the bar's line."""
-        if self.shown and self.stream is not None:
-            self.stream.write("\r\033[K")
-            self.stream.flush()
-            self.shown = False
-
-
 def _round_summary(stats: RoundStats) -> dict[str, Any]:
     return {
         "round": stats.round_index,
@@ -134,21 +111,126 @@ def _round_summary(stats: RoundStats) -> dict[str, Any]:
     }
 
 
+#: Reports progress as ``progress(stage, done, total)``: stage ``"lower"`` counts rounds,
+#: ``"higher"`` and ``"flat"`` count episodes or steps.
+ProgressFn = Callable[[str, int, int], None]
+#: Called after each lower-level round with the tables, the next round and the history so far;
+#: returns True to stop there (as if interrupted).
+CheckpointFn = Callable[[LowerTables, int, list[dict[str, Any]]], bool]
+
+
+@dataclass
+class TrainingRun:
+    """What :func:`run_training` learned and measured."""
+
+    tables: LowerTables
+    level: HigherLevel
+    history: list[dict[str, Any]]
+    round_stats: list[RoundStats]
+    higher_results: list[EpisodeResult]
+    lower_seconds: float
+    higher_seconds: float
+
+
+def run_training(
+    lower: LowerSettings,
+    higher: HigherTraining,
+    world: World,
+    *,
+    tables: LowerTables | None = None,
+    next_round: int = 0,
+    history: Sequence[dict[str, Any]] = (),
+    threads: int = 0,
+    progress: ProgressFn | None = None,
+    checkpoint: CheckpointFn | None = None,
+) -> TrainingRun | None:
+    """The training pipeline: the lower level round by round, then the higher level on ``world``.
+
+    It writes and prints nothing; ``checkpoint`` and ``progress`` are how callers see it go.
+
+    Args:
+        lower: The lower-level stage's settings.
+        higher: The higher-level stage's settings.
+        world: The world the higher level learns (a cell maze with a goal).
+        tables: Tables to continue from (a resumed run), fresh ones by default.
+        next_round: The first lower-level round to run.
+        history: The round summaries of the rounds already run.
+        threads: Worker threads of the simulator (0: one per core); results do not depend on it.
+        progress: See :data:`ProgressFn`.
+        checkpoint: See :data:`CheckpointFn`.
+
+    Returns:
+        The run, or None when ``checkpoint`` stopped it.
+    """
+    tables = tables if tables is not None else LowerTables.zeros()
+    summaries = list(history)
+    stats_seen: list[RoundStats] = []
+    started = time.perf_counter()
+    rounds = lower.rounds
+    if next_round < rounds:
+        trainer = LowerTrainer(lower, tables, threads=threads)
+        for round_index in range(next_round, rounds):
+            stats = trainer.run_round(round_index)
+            stats_seen.append(stats)
+            summaries.append(_round_summary(stats))
+            if progress is not None:
+                progress("lower", round_index + 1, rounds)
+            stop = checkpoint is not None and checkpoint(trainer.tables, round_index + 1, summaries)
+            if stop and round_index + 1 < rounds:
+                return None
+        tables = trainer.tables
+    lower_seconds = time.perf_counter() - started
+    started = time.perf_counter()
+
+    def higher_progress(done: int, total: int, recent: float) -> None:
+        if progress is not None:
+            progress("higher", done, total)
+
+    level, results = train_higher(
+        tables.q, [world], higher, threads=threads, progress=higher_progress
+    )
+    return TrainingRun(
+        tables=tables,
+        level=level,
+        history=summaries,
+        round_stats=stats_seen,
+        higher_results=results,
+        lower_seconds=lower_seconds,
+        higher_seconds=time.perf_counter() - started,
+    )
+
+
+def _navigator_world(name: str) -> World:
+    world = load_world(name)
+    if world.goal is None or world.cell_maze() is None:
+        raise InvalidArgumentError(
+            f"world {world.name!r} needs a [grid] maze and a goal to train a navigator for"
+        )
+    return world
+
+
+def _machine() -> dict[str, Any]:
+    return {
+        "cpu_count": os.cpu_count(),
+        "load_average": list(os.getloadavg()) if hasattr(os, "getloadavg") else None,
+    }
+
+
 def train(
     settings: TrainSettings,
     out: str | os.PathLike[str],
     resume: bool = False,
-    progress: TextIO | None = sys.stderr,
+    progress: ProgressFn | None = None,
     threads: int = 0,
     stop_after_rounds: int | None = None,
 ) -> TrainedPolicy | None:
-    """Trains a navigator and saves it into ``out``.
+    """Trains a navigator (:func:`run_training`) with checkpoints in ``out``, and saves it there.
 
     Args:
         settings: The run's settings.
         out: The folder for the checkpoint and the navigator (created if missing).
         resume: Continue the run whose checkpoint is in ``out``.
-        progress: Where the progress bar goes (shown only on a terminal); None for none.
+        progress: See :data:`ProgressFn`.
         threads: Worker threads of the simulator (0: one per core); results do not depend on it.
         stop_after_rounds: Stop (as if interrupted) after this many lower-level rounds in this
             call, leaving the checkpoint; for tests.
@@ -162,11 +244,7 @@ def train(
         UnknownNameError, WorldFormatError: The world cannot be loaded.
     """
     folder = Path(out)
-    world = load_world(settings.world)
-    if world.goal is None or world.cell_maze() is None:
-        raise InvalidArgumentError(
-            f"world {world.name!r} needs a [grid] maze and a goal to train a navigator for"
-        )
+    world = _navigator_world(settings.world)
     lower_settings = settings.lower()
     if folder.exists() and not folder.is_dir():
         raise InvalidArgumentError(f"expected a folder for the navigator, found a file: {folder}")
@@ -186,63 +264,36 @@ def train(
     folder.mkdir(parents=True, exist_ok=True)
     remove_checkpoint_leftovers(folder)
 
-    bar = Progress(progress)
     rounds = lower_settings.rounds
-    try:
-        if next_round < rounds:
-            trainer = LowerTrainer(lower_settings, tables, threads=threads)
-            started = time.perf_counter()
-            last_saved = started
-            done_here = 0
-            for round_index in range(next_round, rounds):
-                stats = trainer.run_round(round_index)
-                history.append(_round_summary(stats))
-                done_here += 1
-                now = time.perf_counter()
-                last_round = round_index + 1 == rounds
-                stopping = stop_after_rounds is not None and done_here >= stop_after_rounds
-                if last_round or stopping or now - last_saved >= settings.checkpoint_seconds:
-                    write_checkpoint(
-                        folder,
-                        settings.identity(),
-                        Checkpoint(
-                            trainer.tables, round_index + 1, history, lower_seconds + now - started
-                        ),
-                    )
-                    last_saved = now
-                success = stats.door_success_rate()
-                bar.show(
-                    "lower level",
-                    round_index + 1,
-                    rounds,
-                    f"round {round_index + 1}/{rounds}  door sub-tasks {100 * success:.1f}% "
-                    f"success  corridor speed {stats.corridor_speed:.2f}",
-                )
-                if stopping and not last_round:
-                    return None
-            lower_seconds += time.perf_counter() - started
-            tables = trainer.tables
-        higher_started = time.perf_counter()
+    started = time.perf_counter()
+    clock = {"saved": started, "done": 0}
 
-        def higher_progress(done: int, total: int, recent: float) -> None:
-            bar.show(
-                "higher level",
-                done,
-                total,
-                f"episode {done}/{total} on {world.name}  {100 * recent:.1f}% reached the goal",
+    def save(tables: LowerTables, reached: int, summaries: list[dict[str, Any]]) -> bool:
+        clock["done"] += 1
+        now = time.perf_counter()
+        stopping = stop_after_rounds is not None and clock["done"] >= stop_after_rounds
+        if reached == rounds or stopping or now - clock["saved"] >= settings.checkpoint_seconds:
+            elapsed = lower_seconds + now - started
+            write_checkpoint(
+                folder, settings.identity(), Checkpoint(tables, reached, summaries, elapsed)
             )
+            clock["saved"] = now
+        return stopping
 
-        level, results = train_higher(
-            tables.q,
-            [world],
-            settings.higher(),
-            threads=threads,
-            progress=higher_progress,
-        )
-        higher_seconds = time.perf_counter() - higher_started
-    finally:
-        bar.close()
-
+    run = run_training(
+        lower_settings,
+        settings.higher(),
+        world,
+        tables=tables,
+        next_round=next_round,
+        history=history,
+        threads=threads,
+        progress=progress,
+        checkpoint=save,
+    )
+    if run is None:
+        return None
+    results = run.higher_results
     last = results[-100:]
     training: dict[str, Any] = {
         "settings": asdict(settings),
@@ -250,21 +301,20 @@ def train(
         "higher": asdict(settings.higher()),
         "lower_env_steps": rounds * lower_settings.num_envs * lower_settings.round_steps,
         "higher_env_steps": int(sum(r.steps for r in results)),
-        "lower_seconds": round(lower_seconds, 1),
-        "higher_seconds": round(higher_seconds, 1),
+        "lower_seconds": round(lower_seconds + run.lower_seconds, 1),
+        "higher_seconds": round(run.higher_seconds, 1),
         "higher_success_last_100": sum(r.arrived for r in last) / max(1, len(last)),
         "shortest_path_steps": shortest_path_steps(world),
-        "history": history,
-        "cpu_count": os.cpu_count(),
-        "load_average": list(os.getloadavg()) if hasattr(os, "getloadavg") else None,
+        "history": run.history,
+        **_machine(),
     }
     policy = TrainedPolicy(
         kind="hierarchical",
         world_name=world.name,
         world_sha256=world_hash(world),
-        checkpoint_ids=level.checkpoint_ids[0],
-        lower_q=tables.q,
-        higher_q=level.q[0],
+        checkpoint_ids=run.level.checkpoint_ids[0],
+        lower_q=run.tables.q,
+        higher_q=run.level.q[0],
         training=training,
     )
     save_policy(policy, folder)
@@ -275,40 +325,26 @@ def train(
 def train_flat_policy(
     settings: TrainSettings,
     out: str | os.PathLike[str],
-    progress: TextIO | None = sys.stderr,
+    progress: ProgressFn | None = None,
     threads: int = 0,
 ) -> TrainedPolicy:
     """Trains the flat baseline on ``settings.world`` for ``settings.steps`` env-steps and saves
     it into ``out`` (:mod:`mazesim.learn.baseline`)."""
-    from mazesim.learn.baseline import train_flat
-
-    world = load_world(settings.world)
-    if world.goal is None or world.cell_maze() is None:
-        raise InvalidArgumentError(
-            f"world {world.name!r} needs a [grid] maze and a goal to train a navigator for"
-        )
-    bar = Progress(progress)
+    world = _navigator_world(settings.world)
     started = time.perf_counter()
 
     def flat_progress(done: int, total: int, recent: float) -> None:
-        bar.show(
-            "flat baseline",
-            done,
-            total,
-            f"step {done}/{total}  {100 * recent:.1f}% of recent episodes reached the goal",
-        )
+        if progress is not None:
+            progress("flat", done, total)
 
-    try:
-        q, outcomes = train_flat(
-            world,
-            settings.steps,
-            num_envs=settings.envs,
-            seed=settings.seed,
-            threads=threads,
-            progress=flat_progress,
-        )
-    finally:
-        bar.close()
+    q, outcomes = train_flat(
+        world,
+        settings.steps,
+        num_envs=settings.envs,
+        seed=settings.seed,
+        threads=threads,
+        progress=flat_progress,
+    )
     last = outcomes[-100:]
     policy = TrainedPolicy(
         kind="flat",
@@ -322,8 +358,7 @@ def train_flat_policy(
             "seconds": round(time.perf_counter() - started, 1),
             "episodes": len(outcomes),
             "success_last_100": sum(last) / max(1, len(last)),
-            "cpu_count": os.cpu_count(),
-            "load_average": list(os.getloadavg()) if hasattr(os, "getloadavg") else None,
+            **_machine(),
         },
     )
     Path(out).mkdir(parents=True, exist_ok=True)
