@@ -1,4 +1,4 @@
-"""``mazesim bench``: env-steps per second and memory per env of the canonical workload.
+"""The canonical workload of ``mazesim bench``: env-steps per second and memory per env.
 
 The workload (docs/performance.md): per env a distinct generated 5 x 5 maze of 0.25 m cells and
 0.01 m walls, the e-puck with ps0-7 and gs0-2 all read every step, a 32 ms control step of one
@@ -8,7 +8,6 @@ Each batch size runs in a fresh process, so its resident memory is measured on i
 
 from __future__ import annotations
 
-import argparse
 import json
 import os
 import subprocess
@@ -19,10 +18,9 @@ from typing import Any
 import numpy as np
 
 import mazesim
-from mazesim.cli import MAX_COUNT, non_negative_int
 from mazesim.errors import InvalidArgumentError
 
-__all__ = ["braitenberg", "braitenberg_one", "measure", "register", "single_env_rate"]
+__all__ = ["braitenberg", "braitenberg_one", "measure", "single_env_rate"]
 
 #: Seconds a measurement aims to last when --steps is not given.
 TARGET_SECONDS = 1.5
@@ -140,79 +138,3 @@ def _measure_in_child(envs: int, steps: int, threads: int) -> dict[str, Any]:
         )
     result: dict[str, Any] = json.loads(done.stdout)
     return result
-
-
-def _env_counts(text: str) -> list[int]:
-    try:
-        counts = [int(part) for part in text.split(",") if part.strip()]
-    except ValueError:
-        raise argparse.ArgumentTypeError(
-            f"expected env counts like 1,64,1024, found {text!r}"
-        ) from None
-    if not counts or min(counts) < 1 or max(counts) > MAX_COUNT:
-        raise argparse.ArgumentTypeError(f"expected env counts in [1, {MAX_COUNT}], found {text!r}")
-    return counts
-
-
-def run(args: argparse.Namespace) -> int:
-    """Runs ``mazesim bench``."""
-    results = []
-    show = sys.stderr.isatty() and not args.json
-    for envs in args.envs:
-        steps = args.steps or _auto_steps(envs)
-        if show:
-            print(f"measuring {envs} envs x {steps} steps ...", file=sys.stderr, flush=True)
-        result = _measure_in_child(envs, steps, args.threads)
-        results.append({k: result[k] for k in ("envs", "env_steps_per_s", "bytes_per_env")})
-    single = single_env_rate(20_000 if args.steps == 0 else max(args.steps, 1000))
-    workload = dict(WORKLOAD, threads=args.threads or os.cpu_count(), cpus=os.cpu_count())
-    if args.json:
-        print(
-            json.dumps(
-                {"workload": workload, "results": results, "single_env_python_steps_per_s": single}
-            )
-        )
-        return 0
-    print(f"workload: {WORKLOAD['maze']}; {WORKLOAD['robot']}; 32 ms steps; Braitenberg")
-    print(f"threads: {workload['threads']} of {os.cpu_count()} cpus")
-    print(f"{'envs':>7}  {'env-steps/s':>13}  {'bytes/env':>10}")
-    for r in results:
-        print(f"{r['envs']:>7}  {r['env_steps_per_s']:>13,.0f}  {r['bytes_per_env']:>10,}")
-    print(f"one env stepped from Python: {single:,.0f} steps/s")
-    return 0
-
-
-def register(commands: Any) -> None:
-    """Adds ``mazesim bench`` to the command line."""
-    parser = commands.add_parser(
-        "bench",
-        help="measure env-steps per second and memory per env of the canonical workload",
-        description=(
-            "Run the canonical workload (a distinct 5 x 5 maze per env, the e-puck with all 11 "
-            "sensors read each step, 32 ms steps, Braitenberg wheel speeds) at each batch size, "
-            "each in a fresh process, and print env-steps per second and resident bytes per env."
-        ),
-    )
-    parser.add_argument(
-        "--envs",
-        type=_env_counts,
-        default=[1, 64, 1024, 4096, 65536],
-        metavar="N,N,...",
-        help="batch sizes (default: 1,64,1024,4096,65536)",
-    )
-    parser.add_argument(
-        "--steps",
-        type=non_negative_int,
-        default=0,
-        metavar="K",
-        help="steps per batch size (default: enough for about 1.5 s each)",
-    )
-    parser.add_argument(
-        "--threads",
-        type=non_negative_int,
-        default=0,
-        metavar="T",
-        help="worker threads (default: 0 = all cores)",
-    )
-    parser.add_argument("--json", action="store_true", help="print one JSON object")
-    parser.set_defaults(run=run)

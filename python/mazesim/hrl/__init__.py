@@ -1,7 +1,6 @@
 """The former name of :mod:`mazesim.learn`, kept so that ``mazesim.hrl`` still imports.
 
 Every public name of :mod:`mazesim.learn` is here as well; new code imports :mod:`mazesim.learn`.
-(The ``train`` and ``eval`` command modules live here until the command-line package takes them.)
 """
 
 from __future__ import annotations

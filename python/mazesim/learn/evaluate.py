@@ -287,6 +287,8 @@ def evaluate(
 
     total = episodes_per_world * len(worlds)
     finished = [0]
+    if progress is not None:
+        progress("evaluate", 0, total)
 
     def on_end(robots: npt.NDArray[np.int64], arrived: npt.NDArray[np.bool_]) -> None:
         finished[0] += robots.size

@@ -110,7 +110,7 @@ class LowerSettings:
     """What a lower-level training run does (all of it goes into the saved metadata)."""
 
     num_envs: int = 2048
-    total_steps: int = 24_000_000
+    total_steps: int = 36_000_000
     round_steps: int = 500
     seed: int = 0
     maze_pool: int = 200

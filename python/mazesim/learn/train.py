@@ -28,13 +28,13 @@ from __future__ import annotations
 import os
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import asdict, dataclass
+from dataclasses import Field, asdict, dataclass, field, fields
 from pathlib import Path
 from typing import Any
 
 from mazesim import load_world
 from mazesim._core import World
-from mazesim.episodes import MAX_STEPS, EpisodeResult, shortest_path_steps
+from mazesim.episodes import EpisodeResult, shortest_path_steps
 from mazesim.errors import InvalidArgumentError, PolicyFormatError
 from mazesim.learn.baseline import train_flat
 from mazesim.learn.checkpoint import (
@@ -58,6 +58,7 @@ __all__ = [
     "ProgressFn",
     "TrainSettings",
     "TrainingRun",
+    "command_line_fields",
     "run_training",
     "train",
     "train_flat_policy",
@@ -66,16 +67,36 @@ __all__ = [
 
 @dataclass(frozen=True)
 class TrainSettings:
-    """A training run's settings (saved with the navigator and checked on ``--resume``)."""
+    """A training run's settings (saved with the navigator and checked on ``--resume``).
 
-    world: str = "seed-maze"
-    envs: int = 2048
-    steps: int = 36_000_000
-    seed: int = 0
-    maze_pool: int = 200
+    The defaults are the only ones: the lower level's come from :class:`LowerSettings`, the step
+    limit from :data:`mazesim.episodes.MAX_STEPS`, and ``mazesim train`` builds its options from
+    the fields whose metadata has a ``help`` text (:func:`command_line_fields`).
+    """
+
+    world: str = field(
+        default="seed-maze",
+        metadata={
+            "help": "the world the higher level learns: a built-in name or a world file",
+            "metavar": "NAME|PATH",
+        },
+    )
+    envs: int = field(
+        default=LowerSettings.num_envs,
+        metadata={"help": "robots stepped at once while training the lower level", "metavar": "N"},
+    )
+    steps: int = field(
+        default=LowerSettings.total_steps,
+        metadata={"help": "env-steps of lower-level training, e.g. 36M or 500k", "metavar": "K"},
+    )
+    seed: int = field(
+        default=LowerSettings.seed,
+        metadata={"help": "seed of everything random in the run", "metavar": "S"},
+    )
+    maze_pool: int = LowerSettings.maze_pool
     higher_episodes: int = 400
     higher_envs: int = 32
-    higher_max_steps: int = MAX_STEPS
+    higher_max_steps: int = HigherTraining.max_steps
     checkpoint_seconds: float = 30.0
 
     def lower(self) -> LowerSettings:
@@ -98,6 +119,11 @@ class TrainSettings:
         values = asdict(self)
         values.pop("checkpoint_seconds")
         return values
+
+
+def command_line_fields() -> list[Field[Any]]:
+    """The fields of :class:`TrainSettings` that ``mazesim train`` offers as options, in order."""
+    return [f for f in fields(TrainSettings) if "help" in f.metadata]
 
 
 def _round_summary(stats: RoundStats) -> dict[str, Any]:
