@@ -28,7 +28,7 @@ from test_ros import _processes_with
 
 pytest.importorskip("ray", reason="Ray is optional: pip install 'mazesim[ray]'")
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 BIN = Path(sys.executable).parent
 TAG_VARIABLE = "MAZESIM_TEST_RAY_HEAD"
 #: A sweep small enough to check a cluster: two runs of a few hundred env-steps.

@@ -28,7 +28,7 @@ from mazesim.distributed.episodes import split_episodes
 from mazesim.distributed.output import RUNS_DIR, remove_leftovers, write_run_folder
 from mazesim.errors import InvalidArgumentError, MazesimIOError, UnknownNameError
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 
 #: 4 settings x 2 seeds, small enough to train in a fraction of a second each.
@@ -374,19 +374,6 @@ def test_eval_spread_over_ray_equals_eval_without(
         assert (tmp_path / f"ray.{suffix}").read_bytes() == (
             tmp_path / f"alone.{suffix}"
         ).read_bytes()
-
-
-def test_issue_9_trace_ends_with_its_episode(tmp_path: Path, capsys: Any) -> None:
-    # A robot whose episode ended waits, still stepped, while the others finish theirs; the trace
-    # of episode 0 used to follow it on after the goal, and so differed with the episode count.
-    traces = [tmp_path / "one.txt", tmp_path / "three.txt"]
-    for episodes, trace in zip(("1", "3"), traces):
-        assert (
-            main(["eval", "--episodes", episodes, "--events", "truth", "--trace", str(trace)]) == 0
-        )
-    capsys.readouterr()
-    assert traces[0].read_text() == traces[1].read_text()
-    assert traces[1].read_text().splitlines()[-1].startswith("# goal reached after")
 
 
 def test_eval_in_unseen_mazes_adapts_once_and_ships_the_tables(
