@@ -28,6 +28,41 @@ __all__ = ["register", "run_eval"]
 
 #: Episodes that ``eval --html/--video/--record`` records (the first ones of the first world).
 RECORDED_EPISODES = 3
+#: Episodes whose paths ``eval --plot`` draws (the first ones of the first world).
+PLOTTED_EPISODES = 3
+
+
+def _write_trace_and_plot(
+    args: argparse.Namespace, report: Any, world: Any, source: str, kind: str
+) -> list[str]:
+    """Writes ``--trace`` and ``--plot`` of the first source's episodes; returns their paths."""
+    from mazesim._atomic import atomic_file
+    from mazesim.learn.report import trace_text
+
+    evaluation = report.evaluations[source]
+    written = []
+    if args.trace is not None:
+        text = trace_text(evaluation.trace, world, args.seed, source)
+        with atomic_file(args.trace) as handle:
+            handle.write(text.encode("utf-8"))
+        written.append(str(args.trace))
+    if args.plot is not None:
+        from mazesim.learn.figures import save_episodes_png
+
+        summary = evaluation.summary
+        save_episodes_png(
+            world,
+            evaluation.paths,
+            evaluation.marks,
+            args.plot,
+            title=(
+                f"{world.name}: {kind} navigator, seed {args.seed}; "
+                f"{100 * summary.success_rate:.0f}% of {summary.episodes} episodes reached the goal"
+            ),
+            arrived={r.episode: r.arrived for r in evaluation.results},
+        )
+        written.append(str(args.plot))
+    return written
 
 
 def register(commands: Any) -> None:
@@ -130,10 +165,8 @@ def register(commands: Any) -> None:
 
 def run_eval(args: argparse.Namespace, out: TextIO) -> int:
     """Runs ``mazesim eval``."""
-    from mazesim.learn.evaluate import (
-        evaluate_navigator,
-        print_summary,
-    )
+    from mazesim.learn.evaluate import evaluate_navigator
+    from mazesim.learn.report import summary_text
     from mazesim.learn.tables import load_policy
 
     policy_files = [
@@ -171,16 +204,17 @@ def run_eval(args: argparse.Namespace, out: TextIO) -> int:
             seed=args.seed,
             sources=sources,
             max_steps=args.max_steps,
-            trace_path=args.trace,
-            plot_path=args.plot,
+            trace=args.trace is not None,
+            plot_episodes=PLOTTED_EPISODES if args.plot is not None else 0,
             spread=None if args.address is None else ray_spreader(args.address),
             recorder=(
                 Recording(min(per_world, RECORDED_EPISODES)) if recording_requested(args) else None
             ),
             progress=progress,
         )
+    written = _write_trace_and_plot(args, report, worlds[0], sources[0], policy.kind)
     if report.run is not None:
-        report.written += write_views(
+        written += write_views(
             args, report.run, f"{label}: {policy.kind} navigator, seed {args.seed}"
         )
     if args.json:
@@ -201,7 +235,7 @@ def run_eval(args: argparse.Namespace, out: TextIO) -> int:
             "at most 200 episodes per maze)\n"
         )
     for source in sources:
-        print_summary(report.summaries[source], out, source_names[source])
-    for path in report.written:
+        out.write(summary_text(report.summaries[source], source_names[source]))
+    for path in written:
         out.write(f"wrote {path}\n")
     return 0

@@ -1,5 +1,7 @@
 """Evaluating a navigator: success, collisions, steps against the shortest path, decisions, and
-the report's pictures (trajectories, Fig. 4.6 / 4.8) and terminal trace (Fig. 4.7).
+what the report's pictures (trajectories, Fig. 4.6 / 4.8) and terminal trace (Fig. 4.7) are
+drawn from. It writes and prints nothing: :mod:`mazesim.learn.report` turns a summary and a
+trace into text, :mod:`mazesim.learn.figures` draws the paths, and ``mazesim eval`` writes them.
 
 An evaluation runs greedy episodes in a world with sensor noise and the start jitter of
 :class:`mazesim.episodes.StartJitter` (2 cm, 10 degrees). In the world the navigator's
@@ -27,11 +29,10 @@ nothing of the viewers.
 from __future__ import annotations
 
 import math
-import os
 from collections import Counter
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import asdict, dataclass, field
-from typing import Any, Protocol, TextIO
+from typing import Any, Protocol
 
 import numpy as np
 import numpy.typing as npt
@@ -65,9 +66,7 @@ __all__ = [
     "evaluate",
     "evaluate_navigator",
     "navigator_for",
-    "print_summary",
     "unseen_mazes",
-    "write_trace",
 ]
 
 #: Episodes the higher level may train in a world it has not seen, per maze.
@@ -314,12 +313,11 @@ def evaluate(
 
 @dataclass
 class Report:
-    """What :func:`evaluate_navigator` measured and wrote."""
+    """What :func:`evaluate_navigator` measured."""
 
     summaries: dict[str, Summary]
     evaluations: dict[str, Evaluation]
     adapted: bool
-    written: list[str]
     run: Any = None
 
 
@@ -330,18 +328,20 @@ def evaluate_navigator(
     seed: int = 0,
     sources: Sequence[str] = ("truth",),
     max_steps: int = MAX_STEPS,
-    trace_path: str | os.PathLike[str] | None = None,
-    plot_path: str | os.PathLike[str] | None = None,
-    plot_episodes: int = 3,
+    trace: bool = False,
+    plot_episodes: int = 0,
     threads: int = 0,
     spread: Spreader | None = None,
     recorder: RecorderFactory | None = None,
     progress: Callable[[str, int, int], None] | None = None,
 ) -> Report:
-    """Evaluates a saved navigator with checkpoint events from each source, writing the trace
-    and the picture of the first source's episodes when asked.
+    """Evaluates a saved navigator with checkpoint events from each source (it writes nothing).
 
     Args:
+        trace: Record the per-step trace of the first source's episode 0
+            (:attr:`Evaluation.trace`; :func:`mazesim.learn.report.trace_text` makes it a file).
+        plot_episodes: Record the paths of the first source's first this many episodes of the
+            first world (:attr:`Evaluation.paths`, for :mod:`mazesim.learn.figures`).
         spread: ``None``: run every episode in this process; else the function that runs the
             evaluation's chunks (:data:`Spreader`, e.g. Ray's
             :func:`mazesim.distributed.evaluate_episodes`). The trace, the picture's and the
@@ -397,8 +397,8 @@ def evaluate_navigator(
             seed=seed,
             events=source,
             max_steps=max_steps,
-            record_paths=plot_episodes if first and plot_path is not None else 0,
-            trace=first and trace_path is not None,
+            record_paths=plot_episodes if first else 0,
+            trace=first and trace,
             threads=threads,
             recorder=recorder if first else None,
             controller=policy.kind,
@@ -406,30 +406,7 @@ def evaluate_navigator(
         )
         summaries[source] = evaluation.summary
         evaluations[source] = evaluation
-    written = []
-    first_source = sources[0]
-    if trace_path is not None:
-        write_trace(evaluations[first_source].trace, trace_path, worlds[0], seed, first_source)
-        written.append(str(trace_path))
-    if plot_path is not None:
-        from mazesim.learn.figures import save_episodes_png
-
-        evaluation = evaluations[first_source]
-        arrived = {r.episode: r.arrived for r in evaluation.results}
-        summary = evaluation.summary
-        save_episodes_png(
-            worlds[0],
-            evaluation.paths,
-            evaluation.marks,
-            plot_path,
-            title=(
-                f"{worlds[0].name}: {policy.kind} navigator, seed {seed}; "
-                f"{100 * summary.success_rate:.0f}% of {summary.episodes} episodes reached the goal"
-            ),
-            arrived=arrived,
-        )
-        written.append(str(plot_path))
-    return Report(summaries, evaluations, adapted, written, evaluations[first_source].run)
+    return Report(summaries, evaluations, adapted, evaluations[sources[0]].run)
 
 
 def _staged(
@@ -513,49 +490,3 @@ def _trace_line(batch: EpisodeBatch, record: StepRecord, env: int) -> str:
     if batch.colliding[env]:
         line += "  [contact]"
     return "\n".join([*before, line])
-
-
-def write_trace(
-    lines: Sequence[str], path: str | os.PathLike[str], world: World, seed: int, events: str
-) -> None:
-    """Writes the trace of episode 0 (atomically)."""
-    from mazesim._atomic import atomic_file
-
-    header = [
-        f"# mazesim navigator trace: world {world.name}, episode 0 of seed {seed}, "
-        f"checkpoint events from the {'ground truth' if events == 'truth' else 'robust decoder'}",
-        "# levels: Table 4.1 levels of the sensors front, back, left, right, left-front, "
-        "right-front (0: < 7 cm, 1: < 13, 2: < 20, 3: farther)",
-        "# sub-task: CC Corridors and Corners, R / L right / left turn on a door, "
-        "F going forward on a door; then its phase",
-        "# step  time_s      x      y    yaw  levels              state  sub-task  action",
-    ]
-    with atomic_file(path) as handle:
-        handle.write(("\n".join([*header, *lines]) + "\n").encode("utf-8"))
-
-
-def print_summary(summary: Summary, out: TextIO, label: str) -> None:
-    """Writes a summary as text."""
-    ratio = "n/a" if summary.mean_path_ratio is None else f"{summary.mean_path_ratio:.2f}"
-    steps = "n/a" if summary.mean_steps is None else f"{summary.mean_steps:.0f}"
-    out.write(
-        f"{label}\n"
-        f"  episodes            {summary.episodes}\n"
-        f"  success rate        {100.0 * summary.success_rate:.1f}%\n"
-        f"  without collision   {100.0 * summary.collision_free_rate:.1f}%\n"
-        f"  mean collisions     {summary.mean_collisions:.3f}\n"
-        f"  mean steps          {steps} (arrived episodes; {CONTROL_STEP_MS:.0f} ms each)\n"
-        f"  mean path ratio     {ratio} (steps / shortest-path steps)\n"
-    )
-    if len(summary.world_success) > 1:
-        always = sum(1 for rate in summary.world_success if rate == 1.0)
-        never = sum(1 for rate in summary.world_success if rate == 0.0)
-        out.write(
-            f"  worlds              {len(summary.world_success)}: every episode reached the goal "
-            f"in {always}, none in {never}\n"
-        )
-    if summary.decisions:
-        out.write("  decisions at checkpoint events (event: sub-task x times)\n")
-        for event, counts in summary.decisions.items():
-            chosen = ", ".join(f"{code} x{count}" for code, count in counts.items())
-            out.write(f"    {event:>4}: {chosen}\n")
