@@ -7,9 +7,10 @@ Not a test: run it by hand (Ray must be installed)::
 
 The sweep: ``--runs`` settings (seeds) of a trainer on a generated 5 x 5 maze, ``--envs`` envs
 for ``--steps`` training steps each, then greedy evaluation episodes of at most 600 steps (32
-for ``flat-q``, 16 for ``hrl`` and ``baseline``). ``hrl`` trains its lower level with those envs
-and steps, then its higher level for ``--higher-episodes`` episodes of at most 600 steps. One
-env-step is one control step of one robot (32 ms for ``flat-q``, 64 ms for the navigators);
+for ``flat-q``, 16 for ``hrl`` and ``baseline``; ``flat-q`` is another name of ``baseline``).
+``hrl`` trains its lower level with those envs and steps, then its higher level for
+``--higher-episodes`` episodes of at most 600 steps. One env-step is one control step of 64 ms
+of one robot;
 training and evaluation both count. Modes:
 
 - single process, 1 thread: :func:`mazesim.distributed.run_sequential`, batch engine on 1 core;

@@ -70,7 +70,7 @@ def test_import_wbt_still_writes_another_file(tmp_path: Path) -> None:
 
 
 def test_eval_refuses_to_write_its_trace_over_the_navigator(tmp_path: Path) -> None:
-    from mazesim.hrl.tables import shipped_policy_dir
+    from mazesim.learn.tables import shipped_policy_dir
 
     navigator = tmp_path / "navigator"
     shutil.copytree(shipped_policy_dir(), navigator)

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import mazesim
-from mazesim.hrl.mazes import CellMaze
+from mazesim.maze import CellMaze
 
 CODE_LENGTH = 5 * 0.017
 

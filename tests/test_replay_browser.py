@@ -124,7 +124,7 @@ def test_the_panel_shows_the_readings_of_the_step_shown(
 
 
 def test_the_panel_explains_each_decision(page: Any, navigator_demo: dict[str, Path]) -> None:
-    from mazesim.hrl.subtasks import SUBTASK_NAMES
+    from mazesim.learn.subtasks import SUBTASK_NAMES
     from mazesim.replay import load_run
 
     episode = load_run(navigator_demo["run"]).episodes[0]

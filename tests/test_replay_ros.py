@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mazesim.hrl.subtasks import SUBTASK_NAMES
+from mazesim.learn.subtasks import SUBTASK_NAMES
 from mazesim.replay import load_run
 from ros_support import needs_ros
 

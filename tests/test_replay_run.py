@@ -12,7 +12,7 @@ import pytest
 import mazesim
 from mazesim.cli import main
 from mazesim.errors import MazesimError, RunFormatError
-from mazesim.hrl.subtasks import SUBTASK_NAMES
+from mazesim.learn.subtasks import SUBTASK_NAMES
 from mazesim.replay import FORMAT_VERSION, RecordedRun, load_run, save_run
 from mazesim.replay.html import replay_html
 from mazesim.replay.recorder import SimulatorRecorder
@@ -182,12 +182,15 @@ def test_demo_records_the_avoid_collision_run(tmp_path: Path) -> None:
 
 
 def test_recording_does_not_change_an_evaluation() -> None:
-    from mazesim.hrl.evaluate import evaluate_navigator
-    from mazesim.hrl.tables import load_policy
+    from mazesim.learn.evaluate import evaluate_navigator
+    from mazesim.learn.tables import load_policy
+    from mazesim.replay.navigator import Recording
 
     world = mazesim.load_world("seed-maze")
     plain = evaluate_navigator(load_policy(), [world], 4, seed=9, max_steps=700)
-    recorded = evaluate_navigator(load_policy(), [world], 4, seed=9, max_steps=700, record_runs=2)
+    recorded = evaluate_navigator(
+        load_policy(), [world], 4, seed=9, max_steps=700, recorder=Recording(2)
+    )
     assert plain.run is None and recorded.run is not None
     assert recorded.summaries == plain.summaries
     first, second = (report.evaluations["truth"].results for report in (plain, recorded))

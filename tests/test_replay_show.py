@@ -10,7 +10,7 @@ from matplotlib.figure import Figure
 
 import mazesim
 from mazesim.cli import main
-from mazesim.hrl.figures import decision_label
+from mazesim.learn.figures import decision_label
 from mazesim.plotting import plot_world, trajectory_legend, world_legend_handles
 from mazesim.replay.preview import load_with_warnings
 

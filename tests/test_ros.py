@@ -24,7 +24,7 @@ import mazesim
 from mazesim.actions import wheel_speeds
 from mazesim.controllers import AvoidCollision
 from mazesim.errors import InvalidActionError, InvalidArgumentError
-from mazesim.hrl import load_policy
+from mazesim.learn import load_policy
 from mazesim.ros import topics
 from mazesim.ros.bridge import BridgeSettings, resolve_settings
 from mazesim.ros.demo import goal_step

@@ -304,6 +304,8 @@ class BatchSimulator:
     def set_world(self, index: int, world: World, seed: int) -> None: ...
     def set_starts(self, starts: npt.NDArray[np.float64]) -> None:
         """Start poses ((N, 3) float64 x, y, yaw) of each env for its later resets."""
+    def set_starts_at(self, envs: npt.NDArray[np.int64], starts: npt.NDArray[np.float64]) -> None:
+        """Start poses ((M, 3) float64 x, y, yaw) of envs ``envs`` for their later resets."""
     def encoders(self) -> npt.NDArray[np.float64]:
         """(N, 2) wheel positions in radians (left, right)."""
     def times(self) -> npt.NDArray[np.float64]: ...

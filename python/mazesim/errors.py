@@ -115,7 +115,7 @@ class ClusterConnectionError(MazesimError, ConnectionError):
 
 
 class PolicyFormatError(MazesimError, ValueError):
-    """A saved navigator (Q-tables and their metadata, :mod:`mazesim.hrl.tables`) cannot be used:
+    """A saved navigator (Q-tables and their metadata, :mod:`mazesim.learn.tables`) cannot be used:
     the file is truncated or corrupt, of another format version, or made for another state or
     action encoding or another world; the message names the file and says which."""
 

@@ -474,8 +474,29 @@ impl Batch {
                 starts.len()
             )));
         }
-        let rows = || self.envs.iter().zip(starts.chunks_exact(3)).enumerate();
-        for (i, (env, row)) in rows() {
+        let everyone: Vec<usize> = (0..n).collect();
+        self.set_starts_at(&everyone, starts)
+    }
+
+    /// Sets the start pose of environments `envs` for their later resets from `starts`, one row
+    /// of x, y, yaw per listed environment (the others keep theirs). Every index and row is
+    /// checked before any is applied: a bad one changes nothing, and the error names its
+    /// environment.
+    pub fn set_starts_at(&mut self, envs: &[usize], starts: &[f64]) -> Result<()> {
+        let n = self.envs.len();
+        if starts.len() != 3 * envs.len() {
+            return Err(Error::InvalidArgument(format!(
+                "expected starts of shape ({}, 3), one row per listed environment, found {} values",
+                envs.len(),
+                starts.len()
+            )));
+        }
+        for (&i, row) in envs.iter().zip(starts.chunks_exact(3)) {
+            let env = self.envs.get(i).ok_or_else(|| {
+                Error::InvalidArgument(format!(
+                    "expected an environment index below {n}, found {i}"
+                ))
+            })?;
             env.check_start(row[0], row[1], row[2])
                 .map_err(|e| match e {
                     Error::InvalidArgument(m) => {
@@ -484,8 +505,8 @@ impl Batch {
                     other => other,
                 })?;
         }
-        for (env, row) in self.envs.iter_mut().zip(starts.chunks_exact(3)) {
-            env.set_start(row[0], row[1], row[2])?;
+        for (&i, row) in envs.iter().zip(starts.chunks_exact(3)) {
+            self.envs[i].set_start(row[0], row[1], row[2])?;
         }
         Ok(())
     }
@@ -565,6 +586,22 @@ mod tests {
                 crossings: &mut self.3,
             }
         }
+    }
+
+    #[test]
+    fn issue_17_set_starts_at_moves_the_listed_envs_only() {
+        let mut b = batch(3, 1, None);
+        let mut out = Buffers::new(&b);
+        b.reset(None, None, out.outputs()).unwrap();
+        let before = out.1.clone();
+        b.set_starts_at(&[2], &[0.1, -0.1, 1.0]).unwrap();
+        b.reset(None, None, out.outputs()).unwrap();
+        assert_eq!(&out.1[..6], &before[..6]);
+        assert!((out.1[6] - 0.1).abs() < 1e-6 && (out.1[7] + 0.1).abs() < 1e-6);
+        let bad = b.set_starts_at(&[0, 3], &[0.0; 6]).unwrap_err().to_string();
+        assert!(bad.contains("below 3, found 3"), "{bad}");
+        let short = b.set_starts_at(&[0, 1], &[0.0; 3]).unwrap_err().to_string();
+        assert!(short.contains("shape (2, 3)"), "{short}");
     }
 
     #[test]

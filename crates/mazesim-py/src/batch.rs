@@ -315,6 +315,18 @@ impl PyBatch {
         })
     }
 
+    /// Sets the start pose of the environments `envs` ((M,) int64 indices) for their later
+    /// resets: an (M, 3) float64 array of x, y, yaw; the other environments keep theirs.
+    fn set_starts_at(&self, envs: &Bound<'_, PyAny>, starts: &Bound<'_, PyAny>) -> PyResult<()> {
+        enter(|| {
+            let m = envs.len()?;
+            let indices = copied::<i64>(envs, "envs", "int64", &[m])?;
+            let rows = copied::<f64>(starts, "starts", "float64", &[m, 3])?;
+            let indices = env_indices(&indices, self.n)?;
+            self.with(|b| b.set_starts_at(&indices, &rows)).py()
+        })
+    }
+
     /// Wheel position sensors of each environment, (N, 2) float64 radians (left, right),
     /// quantised to the profile's encoder resolution.
     fn encoders<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
@@ -355,4 +367,19 @@ impl PyBatch {
             self.width()
         )
     }
+}
+
+/// Environment indices from int64 values, each checked to be below `n`.
+fn env_indices(values: &[i64], n: usize) -> PyResult<Vec<usize>> {
+    values
+        .iter()
+        .map(|&i| {
+            usize::try_from(i).ok().filter(|&i| i < n).ok_or_else(|| {
+                invalid(format!(
+                    "expected environment indices from 0 to {}, found {i}",
+                    n.saturating_sub(1)
+                ))
+            })
+        })
+        .collect()
 }

@@ -20,13 +20,15 @@ import numpy.typing as npt
 
 import mazesim
 from mazesim._atomic import atomic_file
+from mazesim.episodes import StartJitter, shortest_path_steps
 from mazesim.errors import InvalidArgumentError
-from mazesim.hrl.evaluate import evaluate, navigator_for, write_trace
-from mazesim.hrl.figures import save_episodes_png
-from mazesim.hrl.navigation import StartJitter, shortest_path_steps
-from mazesim.hrl.policy import HierarchicalPolicy
-from mazesim.hrl.subtasks import CONTROL_STEP_MS, SUBTASK_NAMES
-from mazesim.hrl.tables import load_policy
+from mazesim.learn.evaluate import evaluate, navigator_for
+from mazesim.learn.figures import save_episodes_png
+from mazesim.learn.policy import HierarchicalPolicy
+from mazesim.learn.report import trace_text
+from mazesim.learn.subtasks import CONTROL_STEP_MS, SUBTASK_NAMES
+from mazesim.learn.tables import load_policy
+from mazesim.replay.navigator import Recording
 from mazesim.replay.options import play_live, recording_requested, write_views
 
 __all__ = ["run_hrl_demo"]
@@ -59,7 +61,9 @@ def run_hrl_demo(args: argparse.Namespace, out: TextIO) -> int:
         max_steps=steps,
         record_paths=1,
         trace=True,
-        record_runs=1 if recording_requested(args) or getattr(args, "live", False) else 0,
+        recorder=Recording(1)
+        if recording_requested(args) or getattr(args, "live", False)
+        else None,
         controller="hrl (shipped navigator)",
     )
     wall_clock = time.perf_counter() - started
@@ -99,7 +103,8 @@ def run_hrl_demo(args: argparse.Namespace, out: TextIO) -> int:
         arrived={0: result.arrived},
     )
     trace = os.path.join(args.out, "trace.txt")
-    write_trace(evaluation.trace, trace, world, args.seed, "truth")
+    with atomic_file(trace) as handle:
+        handle.write(trace_text(evaluation.trace, world, args.seed, "truth").encode("utf-8"))
     summary_path = os.path.join(args.out, "summary.json")
     with atomic_file(summary_path) as handle:
         handle.write((json.dumps(summary, indent=2) + "\n").encode("utf-8"))

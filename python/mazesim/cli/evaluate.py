@@ -19,13 +19,50 @@ from typing import Any, TextIO
 from mazesim import load_world
 from mazesim._paths import refuse_overwriting_inputs
 from mazesim.cli._args import output_path, positive_int, seed_argument
-from mazesim.hrl.navigation import DEFAULT_MAX_STEPS, EVENT_SOURCES
+from mazesim.cli.progress import add_progress_option, progress_display
+from mazesim.episodes import EVENT_SOURCES, MAX_STEPS
+from mazesim.replay.navigator import Recording
 from mazesim.replay.options import add_viewing_options, recording_requested, write_views
 
 __all__ = ["register", "run_eval"]
 
 #: Episodes that ``eval --html/--video/--record`` records (the first ones of the first world).
 RECORDED_EPISODES = 3
+#: Episodes whose paths ``eval --plot`` draws (the first ones of the first world).
+PLOTTED_EPISODES = 3
+
+
+def _write_trace_and_plot(
+    args: argparse.Namespace, report: Any, world: Any, source: str, kind: str
+) -> list[str]:
+    """Writes ``--trace`` and ``--plot`` of the first source's episodes; returns their paths."""
+    from mazesim._atomic import atomic_file
+    from mazesim.learn.report import trace_text
+
+    evaluation = report.evaluations[source]
+    written = []
+    if args.trace is not None:
+        text = trace_text(evaluation.trace, world, args.seed, source)
+        with atomic_file(args.trace) as handle:
+            handle.write(text.encode("utf-8"))
+        written.append(str(args.trace))
+    if args.plot is not None:
+        from mazesim.learn.figures import save_episodes_png
+
+        summary = evaluation.summary
+        save_episodes_png(
+            world,
+            evaluation.paths,
+            evaluation.marks,
+            args.plot,
+            title=(
+                f"{world.name}: {kind} navigator, seed {args.seed}; "
+                f"{100 * summary.success_rate:.0f}% of {summary.episodes} episodes reached the goal"
+            ),
+            arrived={r.episode: r.arrived for r in evaluation.results},
+        )
+        written.append(str(args.plot))
+    return written
 
 
 def register(commands: Any) -> None:
@@ -88,7 +125,7 @@ def register(commands: Any) -> None:
     evaluate.add_argument(
         "--max-steps",
         type=positive_int,
-        default=DEFAULT_MAX_STEPS,
+        default=MAX_STEPS,
         metavar="N",
         help="control steps (64 ms) after which an episode fails (default: %(default)s)",
     )
@@ -122,16 +159,15 @@ def register(commands: Any) -> None:
         "same as without it (default: no Ray, every episode in this process)",
     )
     add_viewing_options(evaluate)
+    add_progress_option(evaluate)
     evaluate.set_defaults(run=lambda args: run_eval(args, sys.stdout))
 
 
 def run_eval(args: argparse.Namespace, out: TextIO) -> int:
     """Runs ``mazesim eval``."""
-    from mazesim.hrl.evaluate import (
-        evaluate_navigator,
-        print_summary,
-    )
-    from mazesim.hrl.tables import load_policy
+    from mazesim.learn.evaluate import evaluate_navigator
+    from mazesim.learn.report import summary_text
+    from mazesim.learn.tables import load_policy
 
     policy_files = [
         (f"the navigator's {name}", Path(args.policy) / name)
@@ -144,7 +180,7 @@ def run_eval(args: argparse.Namespace, out: TextIO) -> int:
     )
     policy = load_policy(args.policy)
     if args.world == "random":
-        from mazesim.hrl.evaluate import unseen_mazes
+        from mazesim.learn.evaluate import unseen_mazes
 
         worlds = unseen_mazes(args.mazes, args.seed)
         per_world = max(1, math.ceil(args.episodes / len(worlds)))
@@ -154,9 +190,11 @@ def run_eval(args: argparse.Namespace, out: TextIO) -> int:
         per_world = args.episodes
         label = worlds[0].name
     sources = list(EVENT_SOURCES) if args.events == "both" else [args.events]
-    with contextlib.ExitStack() as ray:
+    units = {"adapt": "episodes", "evaluate": "episodes", "evaluate robust": "episodes"}
+    with contextlib.ExitStack() as ray, progress_display(args, units=units) as progress:
         if args.address is not None:
             from mazesim.distributed.cluster import ray_session
+            from mazesim.distributed.episodes import ray_spreader
 
             ray.enter_context(ray_session(args.address))  # one Ray session for every source
         report = evaluate_navigator(
@@ -166,13 +204,17 @@ def run_eval(args: argparse.Namespace, out: TextIO) -> int:
             seed=args.seed,
             sources=sources,
             max_steps=args.max_steps,
-            trace_path=args.trace,
-            plot_path=args.plot,
-            ray_address=args.address,
-            record_runs=min(per_world, RECORDED_EPISODES) if recording_requested(args) else 0,
+            trace=args.trace is not None,
+            plot_episodes=PLOTTED_EPISODES if args.plot is not None else 0,
+            spread=None if args.address is None else ray_spreader(args.address),
+            recorder=(
+                Recording(min(per_world, RECORDED_EPISODES)) if recording_requested(args) else None
+            ),
+            progress=progress,
         )
+    written = _write_trace_and_plot(args, report, worlds[0], sources[0], policy.kind)
     if report.run is not None:
-        report.written += write_views(
+        written += write_views(
             args, report.run, f"{label}: {policy.kind} navigator, seed {args.seed}"
         )
     if args.json:
@@ -193,7 +235,7 @@ def run_eval(args: argparse.Namespace, out: TextIO) -> int:
             "at most 200 episodes per maze)\n"
         )
     for source in sources:
-        print_summary(report.summaries[source], out, source_names[source])
-    for path in report.written:
+        out.write(summary_text(report.summaries[source], source_names[source]))
+    for path in written:
         out.write(f"wrote {path}\n")
     return 0

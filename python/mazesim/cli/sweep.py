@@ -15,6 +15,7 @@ from typing import Any, TextIO
 
 from mazesim._paths import output_files, output_path, refuse_overwriting_inputs
 from mazesim.cli._args import positive_int
+from mazesim.cli.progress import add_progress_option, progress_display
 from mazesim.distributed.config import PARAMETERS, TRAINER_DEFAULTS, load_sweep_config
 
 __all__ = ["register", "run_sweep_command"]
@@ -26,12 +27,10 @@ EXIT_RUNS_FAILED = 1
 def _parameter_help() -> str:
     def default(name: str, value: Any) -> str:
         if name in TRAINER_DEFAULTS:
-            return "the trainer's"
-        return "none" if value is None else json.dumps(value)
+            return ""  # each trainer's, which the help text gives
+        return f" (default {'none' if value is None else json.dumps(value)})"
 
-    return "; ".join(
-        f"{p.name} (default {default(p.name, p.default)}): {p.help}" for p in PARAMETERS
-    )
+    return "; ".join(f"{p.name}{default(p.name, p.default)}: {p.help}" for p in PARAMETERS)
 
 
 def register(commands: Any) -> None:
@@ -81,6 +80,7 @@ def register(commands: Any) -> None:
     parser.add_argument(
         "--quiet", action="store_true", help="print only the summary, not a line per run"
     )
+    add_progress_option(parser)
     parser.set_defaults(run=lambda args: run_sweep_command(args, sys.stdout))
 
 
@@ -123,10 +123,22 @@ def run_sweep_command(args: argparse.Namespace, out: TextIO) -> int:
 
     where = "in this process" if args.sequential else f"on Ray ({args.address or 'local'})"
     progress(f"sweep {config.name}: {len(config.settings)} runs {where}, into {args.out}")
-    if args.sequential:
-        summary = run_sequential(config, args.out, progress=progress)
-    else:
-        summary = run_sweep(config, args.out, args.address, cpus=args.cpus, progress=progress)
+    total = len(config.settings)
+    with progress_display(args, unit="runs") as display:
+        finished = [0]
+
+        def run_finished(line: str) -> None:
+            progress(line)
+            finished[0] += 1
+            display("sweep", min(finished[0], total), total)
+
+        display("sweep", 0, total)
+        if args.sequential:
+            summary = run_sequential(config, args.out, progress=run_finished)
+        else:
+            summary = run_sweep(
+                config, args.out, args.address, cpus=args.cpus, progress=run_finished
+            )
     for line in _summary_lines(summary.runs):
         out.write(line + "\n")
     rate = summary.env_steps / max(summary.wall_seconds, 1e-9)

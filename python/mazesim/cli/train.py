@@ -15,11 +15,14 @@ from typing import Any, TextIO
 
 from mazesim._paths import output_files, output_path, refuse_overwriting_inputs
 from mazesim.cli._args import positive_int, seed_argument
+from mazesim.cli.progress import add_progress_option, progress_display
 from mazesim.errors import InvalidArgumentError
 
 __all__ = ["register", "run_train", "step_count"]
 
 DEFAULT_OUT = "mazesim-policy"
+#: What each training stage counts.
+_UNITS = {"lower": "rounds", "higher": "episodes", "flat": "steps"}
 #: The most env-steps a training run takes (the shipped navigator took 3.6e7).
 MAX_STEPS = 10**12
 
@@ -47,7 +50,7 @@ def step_count(text: str) -> int:
 
 def register(commands: Any) -> None:
     """Adds ``train`` to the ``mazesim`` command's subparsers."""
-    from mazesim.hrl.train import TrainSettings
+    from mazesim.learn.train import TrainSettings, command_line_fields
 
     defaults = TrainSettings()
     train = commands.add_parser(
@@ -59,38 +62,19 @@ def register(commands: Any) -> None:
             "generated mazes with many robots at once, then the higher level on --world. "
             "Checkpoints are written to --out as it goes; --resume continues a stopped run to the "
             "same tables as an uninterrupted one. The navigator is saved as "
-            "--out/tables.npz and --out/policy.json. A progress bar with the live success rate "
-            "shows on a terminal."
+            "--out/tables.npz and --out/policy.json. Progress shows on stderr with the time "
+            "left (ETA)."
         ),
     )
-    train.add_argument(
-        "--world",
-        default=defaults.world,
-        metavar="NAME|PATH",
-        help="the world the higher level learns: a built-in name or a world file "
-        "(default: %(default)s)",
-    )
-    train.add_argument(
-        "--envs",
-        type=positive_int,
-        default=defaults.envs,
-        metavar="N",
-        help="robots stepped at once while training the lower level (default: %(default)s)",
-    )
-    train.add_argument(
-        "--steps",
-        type=step_count,
-        default=defaults.steps,
-        metavar="K",
-        help="env-steps of lower-level training, e.g. 36M or 500k (default: %(default)s)",
-    )
-    train.add_argument(
-        "--seed",
-        type=seed_argument,
-        default=defaults.seed,
-        metavar="S",
-        help="seed of everything random in the run (default: %(default)s)",
-    )
+    option_types = {"envs": positive_int, "steps": step_count, "seed": seed_argument}
+    for setting in command_line_fields():
+        train.add_argument(
+            f"--{setting.name}",
+            type=option_types.get(setting.name, str),
+            default=getattr(defaults, setting.name),
+            metavar=setting.metadata["metavar"],
+            help=f"{setting.metadata['help']} (default: %(default)s)",
+        )
     train.add_argument(
         "--out",
         type=output_path,
@@ -108,23 +92,30 @@ def register(commands: Any) -> None:
         action="store_true",
         help="train the flat Q-learning baseline on --world instead, for --steps env-steps",
     )
+    add_progress_option(train)
     train.set_defaults(run=lambda args: run_train(args, sys.stdout))
 
 
 def run_train(args: argparse.Namespace, out: TextIO) -> int:
     """Runs ``mazesim train``."""
-    from mazesim.hrl.train import TrainSettings, train, train_flat_policy
+    from mazesim.learn.train import (
+        TrainSettings,
+        command_line_fields,
+        train,
+        train_flat_policy,
+    )
 
     refuse_overwriting_inputs(
         output_files(args.out, ("tables.npz", "policy.json", "checkpoint.npz")),
         [("--world", args.world)],
     )
-    settings = TrainSettings(world=args.world, envs=args.envs, steps=args.steps, seed=args.seed)
+    settings = TrainSettings(**{f.name: getattr(args, f.name) for f in command_line_fields()})
     started = time.perf_counter()
     if args.flat:
         if args.resume:
             raise InvalidArgumentError("--resume continues hierarchical runs only, not --flat")
-        policy = train_flat_policy(settings, args.out)
+        with progress_display(args, units=_UNITS) as progress:
+            policy = train_flat_policy(settings, args.out, progress=progress)
         seconds = time.perf_counter() - started
         out.write(
             f"trained the flat baseline for {policy.world_name} in {seconds:.0f} s "
@@ -132,7 +123,8 @@ def run_train(args: argparse.Namespace, out: TextIO) -> int:
             f"{Path(args.out) / 'policy.json'}\n"
         )
         return 0
-    result = train(settings, args.out, resume=args.resume)
+    with progress_display(args, units=_UNITS) as progress:
+        result = train(settings, args.out, resume=args.resume, progress=progress)
     if result is None:
         return 0
     seconds = time.perf_counter() - started

@@ -6,7 +6,7 @@ every setting; the settings are the product of the axes. Every parameter not giv
 default (:data:`PARAMETERS`)::
 
     [sweep]
-    name = "flat-q-rates"
+    name = "flat-rates"
     cpus_per_task = 1      # batch-engine threads (and Ray CPUs) of each task
     max_retries = 2        # times a task whose worker died is run again
 
@@ -87,11 +87,23 @@ def _count(low: int, high: int) -> Callable[[Any], bool]:
     return lambda value: low <= value <= high
 
 
+def _defaults(name: str) -> str:
+    """The help text's note of each trainer's default, read from the learning layer's configs."""
+    from mazesim.distributed.hrl_trainers import FLAT_DEFAULTS, HRL_DEFAULTS
+
+    parts = [
+        f"{trainer}: {defaults[name]}"
+        for trainer, defaults in (("hrl", HRL_DEFAULTS), ("baseline", FLAT_DEFAULTS))
+        if name in defaults
+    ]
+    return f" (default {'; '.join(parts)})"
+
+
 #: The parameters of a setting, in expansion order (the last varies fastest).
 PARAMETERS: tuple[Parameter, ...] = (
     Parameter("trainer", str, "auto", lambda v: bool(v), "a trainer name", "who trains: "
-              "'hrl' (mazesim's hierarchical navigator), 'baseline' (its flat baseline), "
-              "'flat-q' (the sweep's own flat learner), or 'auto' (the first installed of these)"),
+              "'hrl' (mazesim's hierarchical navigator), 'baseline' (its flat learner; also "
+              "named 'flat-q'), or 'auto' (the first installed of these)"),
     Parameter("world", str, None, lambda v: bool(v), "a world name or path",
               "a built-in world or a .toml world file (relative to the sweep file); "
               "instead of a generated maze"),
@@ -109,22 +121,22 @@ PARAMETERS: tuple[Parameter, ...] = (
               "training steps of the whole batch (env-steps = envs x steps; hrl: of its "
               "lower level, in rounds of at most 500 steps)"),
     Parameter("episode_steps", int, None, _count(1, 10**7), "a positive number of steps",
-              "control steps before an episode is cut off (flat-q: 32 ms steps, default 1500; "
-              "hrl and baseline: 64 ms steps, default 4000, in evaluation and in hrl's "
-              "higher-level training)"),
+              "control steps of 64 ms before an episode is cut off (in evaluation, in hrl's "
+              "higher-level training and in baseline's training)" + _defaults("episode_steps")),
     Parameter("higher_episodes", int, None, _count(1, 10**7), "a positive number of episodes",
-              "hrl only: episodes the higher level trains on the world (default 400)"),
+              "hrl only: episodes the higher level trains on the world"
+              + _defaults("higher_episodes")),
     Parameter("learning_rate", float, None, lambda v: 0.0 < v <= 0.5, "a rate in (0, 0.5]",
-              "Q-learning rate (flat-q: constant, default 0.2; hrl: the lower level's first "
-              "rate of a state-action pair, falling with its updates, default 0.5)"),
+              "Q-learning rate: the first rate of a state-action pair, falling with its updates "
+              "(hrl: of the lower level)" + _defaults("learning_rate")),
     Parameter("epsilon", float, None, lambda v: 0.0 <= v <= 1.0, "a rate in [0, 1]",
-              "exploration rate (flat-q: constant, default 0.1; hrl: the lower level's first "
-              "round, falling to 0, default 0.3)"),
+              "exploration rate at the start, falling to 0 (hrl: of the lower level's first "
+              "round)" + _defaults("epsilon")),
     Parameter("discount", float, None, lambda v: 0.0 <= v < 1.0, "a factor in [0, 1)",
-              "discount factor gamma (flat-q: default 0.97; hrl: the lower level's, "
-              "default 0.99)"),
+              "discount factor gamma (hrl: the lower level's)" + _defaults("discount")),
     Parameter("collision_penalty", float, None, lambda v: v >= 0.0, "a number >= 0",
-              "flat-q only: reward subtracted per step in contact with a wall (default 0.5)"),
+              "baseline only: reward subtracted per step in contact with a wall"
+              + _defaults("collision_penalty")),
     Parameter("eval_episodes", int, 32, _count(1, 10**6), "a positive number of episodes",
               "greedy episodes of the evaluation after training"),
     Parameter("seed", int, 0, _count(0, 2**63 - 1), "a seed in [0, 2^63)",

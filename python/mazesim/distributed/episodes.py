@@ -28,7 +28,7 @@ import numpy.typing as npt
 from mazesim.distributed.cluster import local_cpus, ray_session
 from mazesim.errors import InvalidArgumentError, MazesimError
 
-__all__ = ["EpisodeChunk", "evaluate_episodes", "split_episodes"]
+__all__ = ["EpisodeChunk", "evaluate_episodes", "ray_spreader", "split_episodes"]
 
 EpisodeChunk = Callable[[int, int], Mapping[str, npt.ArrayLike]]
 
@@ -113,3 +113,13 @@ def evaluate_episodes(
                     f"{type(error).__name__}: {str(error).splitlines()[0] if str(error) else ''}"
                 ) from error
     return _join(parts, plan)
+
+
+def ray_spreader(address: str | None) -> Callable[[EpisodeChunk, int], dict[str, Any]]:
+    """:func:`evaluate_episodes` at ``address``, as the ``spread`` argument of
+    :func:`mazesim.learn.evaluate.evaluate_navigator` takes it."""
+
+    def spread(evaluate_chunk: EpisodeChunk, episodes: int) -> dict[str, Any]:
+        return evaluate_episodes(evaluate_chunk, episodes, address=address)
+
+    return spread

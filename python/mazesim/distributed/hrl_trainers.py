@@ -1,16 +1,13 @@
-"""The sweep's trainers ``hrl`` and ``baseline``: mazesim's hierarchical navigator and its flat
-baseline, trained and evaluated for one setting.
+"""The sweep's trainers ``hrl`` and ``baseline``: a setting mapped onto the learning layer's
+configs, trained and evaluated there, and its curves gathered.
 
-``hrl`` runs the two stages of :func:`mazesim.hrl.train.train` without its files and progress
-bar: the lower level's four sub-tasks on the pool of generated 5 x 5 mazes
-(:class:`mazesim.hrl.lower.LowerTrainer`), then the higher level on the setting's world
-(:func:`mazesim.hrl.episodes.train_higher`), then greedy episodes there
-(:func:`mazesim.hrl.evaluate.evaluate`). The setting maps onto it as follows:
+``hrl`` runs :func:`mazesim.learn.train.run_training` (the pipeline of ``mazesim train``), then
+greedy episodes (:func:`mazesim.learn.evaluate.evaluate`). The setting maps onto it as follows:
 
 - ``world`` / ``maze_size``, ``maze_seed``, ``loops``: the world the higher level learns and the
   navigator is evaluated in (it needs a cell maze and a goal);
 - ``envs``, ``steps``: the lower level's robots and control steps per robot, in rounds of at most
-  500 steps (:attr:`mazesim.hrl.lower.LowerSettings.round_steps`) of equal length, so the
+  500 steps (:attr:`mazesim.learn.lower.LowerSettings.round_steps`) of equal length, so the
   budget is ``envs x steps`` env-steps rounded up to whole rounds;
 - ``learning_rate``, ``epsilon``, ``discount``: the lower level's first learning rate of a
   state-action pair, first-round exploration and gamma (:data:`HRL_DEFAULTS` when left out);
@@ -18,18 +15,21 @@ bar: the lower level's four sub-tasks on the pool of generated 5 x 5 mazes
   after which a higher-level or evaluation episode fails;
 - ``eval_episodes``: greedy evaluation episodes; ``seed``: everything random.
 
-``baseline`` trains :func:`mazesim.hrl.baseline.train_flat` on the setting's world for ``envs x
-steps`` env-steps with ``envs`` robots and evaluates it the same way; its own schedule fixes its
-learning rate, exploration and discount.
+``baseline`` (also named ``flat-q``) trains the one flat learner,
+:func:`mazesim.learn.baseline.train_flat`, on the setting's world for ``envs x steps`` env-steps
+with ``envs`` robots and evaluates it the same way; ``learning_rate``, ``epsilon``, ``discount``,
+``collision_penalty`` and ``episode_steps`` set the fields of its
+:class:`~mazesim.learn.baseline.FlatConfig` (whose defaults are :data:`FLAT_DEFAULTS`).
 
 Both are seeded: the tables depend on the setting alone, not on the thread count or the machine.
-Evaluation episodes draw their start jitter and sensor noise from :func:`evaluation_seed`, a
-stream of the seed that no training episode uses. ``mean_steps`` in the result is over all
-evaluation episodes (an episode that fails counts its ``episode_steps``), as for ``flat-q``.
+Evaluation episodes draw their start jitter and sensor noise from the ``evaluate/episode``
+stream of the seed (:mod:`mazesim._seeding`), which no training episode uses. ``mean_steps`` in
+the result is over all evaluation episodes (an episode that fails counts its ``episode_steps``).
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from collections.abc import Sequence
@@ -39,19 +39,28 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import World
+from mazesim.episodes import MAX_STEPS, EpisodeResult
 from mazesim.errors import InvalidArgumentError
-from mazesim.hrl.episodes import EpisodeResult, HigherTraining, train_higher
-from mazesim.hrl.evaluate import evaluate
-from mazesim.hrl.lower import LowerSettings, LowerTrainer
-from mazesim.hrl.mazes import checkpoint_ids
-from mazesim.hrl.navigation import DEFAULT_MAX_STEPS
-from mazesim.hrl.qlearning import LearningRate
-from mazesim.hrl.train import TrainSettings
+from mazesim.learn.baseline import FlatConfig, FlatNavigator, train_flat
+from mazesim.learn.evaluate import evaluate
+from mazesim.learn.higher_training import HigherTraining
+from mazesim.learn.lower import LowerSettings
+from mazesim.learn.policy import HierarchicalPolicy
+from mazesim.learn.qlearning import LearningRate
+from mazesim.learn.train import TrainSettings, run_training
+from mazesim.maze import checkpoint_ids
 
 if TYPE_CHECKING:
     from mazesim.distributed.config import Setting
 
-__all__ = ["CURVE_POINTS", "HRL_DEFAULTS", "evaluation_seed", "train_baseline", "train_hrl"]
+__all__ = [
+    "CURVE_POINTS",
+    "FLAT_DEFAULTS",
+    "HRL_DEFAULTS",
+    "flat_config",
+    "train_baseline",
+    "train_hrl",
+]
 
 _LOWER = LowerSettings()
 _TRAIN = TrainSettings()
@@ -61,16 +70,20 @@ HRL_DEFAULTS: dict[str, Any] = {
     "epsilon": _LOWER.epsilon_start,
     "discount": _LOWER.gamma,
     "higher_episodes": _TRAIN.higher_episodes,
-    "episode_steps": DEFAULT_MAX_STEPS,
+    "episode_steps": MAX_STEPS,
+}
+_FLAT = FlatConfig()
+#: What ``baseline`` uses for the hyperparameters a setting leaves out (its config's defaults).
+FLAT_DEFAULTS: dict[str, Any] = {
+    "learning_rate": _FLAT.learning_rate,
+    "epsilon": _FLAT.epsilon_start,
+    "discount": _FLAT.gamma,
+    "collision_penalty": -_FLAT.contact_reward,
+    "episode_steps": _FLAT.max_steps,
 }
 #: Points of a curve over training episodes (windows of nearly equal numbers of episodes).
 CURVE_POINTS = 20
 _STAGE_LOWER, _STAGE_HIGHER = 1, 2
-
-
-def evaluation_seed(seed: int) -> int:
-    """The seed of a setting's evaluation episodes: a stream of ``seed`` of its own."""
-    return int(np.random.SeedSequence([seed, 0x6576616C]).generate_state(1, np.uint64)[0])
 
 
 def _maze_world(setting: Setting, trainer: str) -> World:
@@ -83,9 +96,21 @@ def _maze_world(setting: Setting, trainer: str) -> World:
     return world
 
 
-def _value(setting: Setting, name: str) -> Any:
+def _value(setting: Setting, name: str, defaults: dict[str, Any] = HRL_DEFAULTS) -> Any:
     value = setting.params.get(name)
-    return HRL_DEFAULTS[name] if value is None else value
+    return defaults[name] if value is None else value
+
+
+def flat_config(setting: Setting) -> FlatConfig:
+    """The flat learner's config of a setting: its hyperparameters over :data:`FLAT_DEFAULTS`."""
+    return dataclasses.replace(
+        _FLAT,
+        learning_rate=float(_value(setting, "learning_rate", FLAT_DEFAULTS)),
+        epsilon_start=float(_value(setting, "epsilon", FLAT_DEFAULTS)),
+        gamma=float(_value(setting, "discount", FLAT_DEFAULTS)),
+        contact_reward=-float(_value(setting, "collision_penalty", FLAT_DEFAULTS)),
+        max_steps=int(_value(setting, "episode_steps", FLAT_DEFAULTS)),
+    )
 
 
 def _lower_settings(setting: Setting) -> LowerSettings:
@@ -124,7 +149,8 @@ def _windows(count: int, points: int) -> list[tuple[int, int]]:
 
 
 def train_hrl(setting: Setting, threads: int = 1) -> dict[str, Any]:
-    """Trains the hierarchical navigator for one setting and evaluates it greedily.
+    """Trains the hierarchical navigator for one setting (:func:`mazesim.learn.train.run_training`)
+    and evaluates it greedily (:func:`mazesim.learn.evaluate.evaluate`).
 
     Args:
         setting: The setting (see the module for how its parameters are used).
@@ -132,7 +158,7 @@ def train_hrl(setting: Setting, threads: int = 1) -> dict[str, Any]:
 
     Returns:
         A dict with ``tables`` (``lower_q`` and ``lower_visits``, stacked as
-        :class:`mazesim.hrl.lower.LowerTables`; ``higher_q``, ``higher_visits`` and the world's
+        :class:`mazesim.learn.lower.LowerTables`; ``higher_q``, ``higher_visits`` and the world's
         ``checkpoint_ids``), ``curves`` (one row per lower-level round, ``stage`` 1, then one per
         window of higher-level episodes, ``stage`` 2: cumulative ``env_steps``,
         ``success_rate`` of the door sub-tasks or of reaching the goal, ``contact_share``, and
@@ -145,21 +171,6 @@ def train_hrl(setting: Setting, threads: int = 1) -> dict[str, Any]:
     started = time.perf_counter()
     world = _maze_world(setting, "hrl")
     lower = _lower_settings(setting)
-    trainer = LowerTrainer(lower, threads=threads)
-    curve: dict[str, list[float]] = {
-        name: []
-        for name in ("stage", "env_steps", "success_rate", "contact_share", "corridor_speed")
-    }
-    env_steps = 0
-    for round_index in range(lower.rounds):
-        stats = trainer.run_round(round_index)
-        env_steps += stats.env_steps
-        curve["stage"].append(_STAGE_LOWER)
-        curve["env_steps"].append(env_steps)
-        curve["success_rate"].append(stats.door_success_rate())
-        curve["contact_share"].append(stats.contact_share)
-        curve["corridor_speed"].append(stats.corridor_speed)
-
     episodes = int(_value(setting, "higher_episodes"))
     max_steps = int(_value(setting, "episode_steps"))
     higher = HigherTraining(
@@ -168,8 +179,21 @@ def train_hrl(setting: Setting, threads: int = 1) -> dict[str, Any]:
         max_steps=max_steps,
         seed=setting.seed,
     )
-    lower_q = trainer.tables.q
-    level, results = train_higher(lower_q, [world], higher, threads=threads)
+    run = run_training(lower, higher, world, threads=threads)
+    assert run is not None  # no checkpoint callback, so it runs to its end
+    curve: dict[str, list[float]] = {
+        name: []
+        for name in ("stage", "env_steps", "success_rate", "contact_share", "corridor_speed")
+    }
+    env_steps = 0
+    for stats in run.round_stats:
+        env_steps += stats.env_steps
+        curve["stage"].append(_STAGE_LOWER)
+        curve["env_steps"].append(env_steps)
+        curve["success_rate"].append(stats.door_success_rate())
+        curve["contact_share"].append(stats.contact_share)
+        curve["corridor_speed"].append(stats.corridor_speed)
+    results = run.higher_results
     for first, end in _windows(len(results), CURVE_POINTS):
         window = results[first:end]
         steps = sum(r.steps for r in window)
@@ -182,7 +206,7 @@ def train_hrl(setting: Setting, threads: int = 1) -> dict[str, Any]:
     training_seconds = time.perf_counter() - started
 
     started = time.perf_counter()
-    from mazesim.hrl.policy import HierarchicalPolicy
+    lower_q, level = run.tables.q, run.level
 
     def make_navigator(world_of_env: npt.NDArray[np.int64]) -> HierarchicalPolicy:
         return HierarchicalPolicy(lower_q, level, world_of_env)
@@ -191,7 +215,7 @@ def train_hrl(setting: Setting, threads: int = 1) -> dict[str, Any]:
         make_navigator,
         [world],
         int(setting.params["eval_episodes"]),
-        seed=evaluation_seed(setting.seed),
+        seed=setting.seed,
         max_steps=max_steps,
         threads=threads,
     )
@@ -199,7 +223,7 @@ def train_hrl(setting: Setting, threads: int = 1) -> dict[str, Any]:
     return {
         "tables": {
             "lower_q": lower_q,
-            "lower_visits": trainer.tables.visits,
+            "lower_visits": run.tables.visits,
             "higher_q": level.q[0],
             "higher_visits": level.visits[0],
             "checkpoint_ids": np.array(level.checkpoint_ids[0], dtype=np.int64),
@@ -214,12 +238,11 @@ def train_hrl(setting: Setting, threads: int = 1) -> dict[str, Any]:
 
 
 def train_baseline(setting: Setting, threads: int = 1) -> dict[str, Any]:
-    """Trains the flat baseline of :mod:`mazesim.hrl.baseline` for one setting and evaluates it.
+    """Trains the flat baseline of :mod:`mazesim.learn.baseline` for one setting and evaluates it.
 
     Args:
         setting: The setting: its world, ``envs``, ``steps`` (``envs x steps`` env-steps),
-            ``episode_steps`` (of the evaluation; training episodes last at most 4000 steps),
-            ``eval_episodes`` and ``seed``.
+            the hyperparameters of :func:`flat_config`, ``eval_episodes`` and ``seed``.
         threads: Threads of the batch engine (the result does not depend on them).
 
     Returns:
@@ -231,12 +254,13 @@ def train_baseline(setting: Setting, threads: int = 1) -> dict[str, Any]:
     Raises:
         InvalidArgumentError: The world has no cell maze or no goal.
     """
-    from mazesim.hrl.baseline import FlatNavigator, train_flat
-
     started = time.perf_counter()
     world = _maze_world(setting, "baseline")
     envs, steps = int(setting.params["envs"]), int(setting.params["steps"])
-    q, outcomes = train_flat(world, envs * steps, num_envs=envs, seed=setting.seed, threads=threads)
+    config = flat_config(setting)
+    q, outcomes = train_flat(
+        world, envs * steps, num_envs=envs, seed=setting.seed, threads=threads, config=config
+    )
     curve: dict[str, list[float]] = {"episodes": [], "success_rate": []}
     for first, end in _windows(len(outcomes), CURVE_POINTS):
         curve["episodes"].append(end)
@@ -253,8 +277,8 @@ def train_baseline(setting: Setting, threads: int = 1) -> dict[str, Any]:
         make_navigator,
         [world],
         int(setting.params["eval_episodes"]),
-        seed=evaluation_seed(setting.seed),
-        max_steps=int(_value(setting, "episode_steps")),
+        seed=setting.seed,
+        max_steps=config.max_steps,
         threads=threads,
     )
     evaluation_seconds = time.perf_counter() - started

@@ -11,9 +11,9 @@ by name in :data:`TRAINERS`; ``"auto"`` picks the first of :data:`AUTO_ORDER` th
 installation has. A trainer is a function ``trainer(setting, threads) -> dict`` returning
 ``tables`` (name -> array), ``curves`` (name -> equal-length 1-D array), ``evaluation``
 (``success_rate``, ``mean_collisions``, ``mean_steps``), ``env_steps``, ``eval_env_steps``,
-``training_seconds`` and ``evaluation_seconds``; :func:`mazesim.distributed.flat_q.train` is the
-model. ``hrl`` and ``baseline`` (:mod:`mazesim.distributed.hrl_trainers`) train mazesim's
-hierarchical navigator and its flat baseline.
+``training_seconds`` and ``evaluation_seconds``. ``hrl`` and ``baseline`` (also named
+``flat-q``; :mod:`mazesim.distributed.hrl_trainers`) train mazesim's hierarchical navigator and
+its one flat learner, both from :mod:`mazesim.learn`.
 """
 
 from __future__ import annotations
@@ -59,21 +59,23 @@ __all__ = [
 TRAINERS: dict[str, str] = {
     "hrl": "mazesim.distributed.hrl_trainers:train_hrl",
     "baseline": "mazesim.distributed.hrl_trainers:train_baseline",
-    "flat-q": "mazesim.distributed.flat_q:train",
+    # The former name of the flat learner's trainer: the package has one flat learner.
+    "flat-q": "mazesim.distributed.hrl_trainers:train_baseline",
 }
 #: What ``trainer = "auto"`` picks: the first of these that is installed.
-AUTO_ORDER: tuple[str, ...] = ("hrl", "baseline", "flat-q")
+AUTO_ORDER: tuple[str, ...] = ("hrl", "baseline")
 
 #: Parameters a trainer has no use for: a setting of that trainer must leave them out (``None``).
 UNUSED_PARAMETERS: dict[str, tuple[str, ...]] = {
     "hrl": ("collision_penalty",),
-    "baseline": ("higher_episodes", "learning_rate", "epsilon", "discount", "collision_penalty"),
+    "baseline": ("higher_episodes",),
     "flat-q": ("higher_episodes",),
 }
 #: Values a trainer cannot run without.
 _REQUIRED_VALUES: dict[str, dict[str, Any]] = {
     "hrl": {"noise": True},
     "baseline": {"noise": True},
+    "flat-q": {"noise": True},
 }
 
 #: The trained tables of a run, an ``.npz`` archive (no pickled objects).

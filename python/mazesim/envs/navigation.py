@@ -37,7 +37,7 @@ import numpy.typing as npt
 from gymnasium import spaces
 
 from mazesim._core import RobotProfile, World
-from mazesim.envs.reward import PathDistanceTable
+from mazesim.maze import PathDistanceTable
 from mazesim.envs.spaces import NOISE_MARGIN, sensor_ranges
 from mazesim.errors import InvalidArgumentError
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 
-from mazesim.envs.reward import PathDistanceTable
+from mazesim.maze import PathDistanceTable
 
 __all__ = ["ScalarGoalDistance"]
 

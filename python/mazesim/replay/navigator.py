@@ -1,8 +1,8 @@
 """Recording the navigator's episodes: what it saw, which sub-task ran, and why it turned.
 
-A :class:`NavigatorRecorder` stands between :func:`mazesim.hrl.episodes.run_episodes` and a
+A :class:`NavigatorRecorder` stands between :func:`mazesim.episodes.run_episodes` and a
 navigator (the hierarchical policy or the flat baseline) and records the first few episodes of a
-:class:`mazesim.hrl.navigation.NavigationBatch`: at every step, before the navigator acts, the
+:class:`mazesim.episodes.EpisodeBatch`: at every step, before the navigator acts, the
 frame it acts on (pose, the Sharp volts and ground reading, contact, the checkpoint event of the
 last step), then what it did (the action code, the running sub-task, the Table 4.1 levels) and, at
 a checkpoint, the higher level's decision: the barcode as read, the value of each sub-task and the
@@ -18,12 +18,12 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim.actions import ACTION_CODES
-from mazesim.hrl.navigation import NavigationBatch
-from mazesim.hrl.subtasks import SUBTASK_NAMES
+from mazesim.episodes import EpisodeBatch
+from mazesim.learn.subtasks import SUBTASK_NAMES
 from mazesim.replay.recorder import EpisodeRecorder, reading_scale
 from mazesim.replay.run import RecordedRun
 
-__all__ = ["NavigatorRecorder"]
+__all__ = ["NavigatorRecorder", "Recording"]
 
 
 class NavigatorRecorder:
@@ -38,7 +38,7 @@ class NavigatorRecorder:
         episodes: How many of the first episodes to record.
     """
 
-    def __init__(self, nav: NavigationBatch, navigator: Any, episodes: int) -> None:
+    def __init__(self, nav: EpisodeBatch, navigator: Any, episodes: int) -> None:
         self.nav = nav
         self.navigator = navigator
         self.episodes = episodes
@@ -124,3 +124,19 @@ class NavigatorRecorder:
             subtask_names=list(SUBTASK_NAMES) if hierarchical else [],
             reading_scale=reading_scale(nav.robot),
         )
+
+
+class Recording:
+    """What :func:`mazesim.learn.evaluate.evaluate` takes as its ``recorder``: builds a
+    :class:`NavigatorRecorder` of the first ``episodes`` episodes.
+
+    Args:
+        episodes: How many of the first episodes to record.
+    """
+
+    def __init__(self, episodes: int) -> None:
+        self.episodes = episodes
+
+    def __call__(self, nav: EpisodeBatch, navigator: Any) -> NavigatorRecorder:
+        """The recorder of ``nav``'s first episodes, driven by ``navigator``."""
+        return NavigatorRecorder(nav, navigator, self.episodes)

@@ -16,13 +16,13 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import RobotProfile, Simulator, World
-from mazesim.hrl import qlearning
-from mazesim.hrl.discretise import NUM_SENSORS, distance_levels, volts_to_cm
+from mazesim.learn import qlearning
+from mazesim.learn.discretise import NUM_SENSORS, distance_levels, volts_to_cm
 from mazesim.replay.run import Decision, RecordedEpisode, RecordedRun
 from mazesim.sensor_rays import SensorRays
 
 if TYPE_CHECKING:
-    from mazesim.hrl.higher import HigherLevel
+    from mazesim.learn.higher import HigherLevel
 
 __all__ = ["EpisodeRecorder", "SimulatorRecorder", "reading_scale", "table_levels"]
 

@@ -5,7 +5,7 @@ The frames are the bridge's ``/pose`` messages in the order recorded, with the `
 message of the same step and the wheel speeds of ``/motor`` (avoid-collision) or the action code
 of ``/action`` (the perform-learning node). For the hierarchical policy, the ``/sensor_data``
 messages (six distances in cm and the checkpoint event) are fed once more to the navigator the
-node runs (:class:`mazesim.hrl.policy.DeadReckoningNavigator`, deterministic), which gives the
+node runs (:class:`mazesim.learn.policy.DeadReckoningNavigator`, deterministic), which gives the
 running sub-task, the Table 4.1 levels and each decision with the higher level's values: the
 same choices the node made, since it saw the same messages.
 """
@@ -18,7 +18,7 @@ import numpy as np
 
 from mazesim._core import RobotProfile, World
 from mazesim.errors import MissingDependencyError
-from mazesim.hrl.subtasks import SUBTASK_NAMES
+from mazesim.learn.subtasks import SUBTASK_NAMES
 from mazesim.replay.recorder import EpisodeRecorder, reading_scale
 from mazesim.replay.run import RecordedRun
 
@@ -84,9 +84,9 @@ def run_from_bag(
 
 
 def _navigator(control_step_ms: float) -> Any:
-    from mazesim.hrl.higher import HigherLevel
-    from mazesim.hrl.policy import DeadReckoningNavigator
-    from mazesim.hrl.tables import load_policy
+    from mazesim.learn.higher import HigherLevel
+    from mazesim.learn.policy import DeadReckoningNavigator
+    from mazesim.learn.tables import load_policy
 
     policy = load_policy()
     assert policy.lower_q is not None and policy.higher_q is not None

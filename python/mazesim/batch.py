@@ -1,0 +1,167 @@
+"""One owner of a batch simulator and its four output buffers.
+
+A :class:`RobotBatch` holds a :class:`mazesim.BatchSimulator` of N robots together with the
+buffers every call writes into (observations, poses, contact flags, checkpoint crossings), and the
+table turning the twelve discrete actions (:mod:`mazesim.actions`) into wheel speeds. Everything
+above it (:mod:`mazesim.episodes`, :mod:`mazesim.learn`) steps, resets and places robots through
+it and reads the buffers; nothing else allocates them.
+
+:meth:`RobotBatch.place` puts robots at given poses with given noise seeds: the binding's per-env
+start (:meth:`mazesim.BatchSimulator.set_starts_at`) and a masked reset, so a world is never
+copied or re-parsed to move a start.
+
+Example:
+    >>> import numpy as np, mazesim
+    >>> from mazesim.batch import RobotBatch
+    >>> batch = RobotBatch([mazesim.load_world("seed-maze")], np.zeros(2, dtype=np.int64))
+    >>> x, y, yaw = batch.worlds[0].start
+    >>> batch.place([1], [[x + 0.01, y, yaw]], [7])
+    >>> batch.step(np.zeros(2, dtype=np.int64))
+    >>> batch.poses.shape
+    (2, 3)
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+import numpy.typing as npt
+
+from mazesim._core import BatchSimulator, RobotProfile, World
+from mazesim.actions import WHEEL_SPEED_FRACTIONS
+from mazesim.errors import InvalidArgumentError
+
+__all__ = ["CONTROL_STEP_MS", "RobotBatch", "cruise_step_length"]
+
+#: The control step of the report's navigator, in milliseconds.
+CONTROL_STEP_MS = 64.0
+
+
+def cruise_step_length(robot: RobotProfile, control_step_ms: float = CONTROL_STEP_MS) -> float:
+    """Metres the robot drives in one control step at the cruise speed (action ``00``)."""
+    left, right = WHEEL_SPEED_FRACTIONS[0]
+    speed = 0.5 * (left + right) * robot.max_wheel_speed * robot.wheel_radius
+    return float(speed * control_step_ms / 1000.0)
+
+
+class RobotBatch:
+    """N robots of one profile, each in one of a list of worlds, with their output buffers.
+
+    Args:
+        worlds: The worlds; robot ``i`` starts in ``worlds[world_of_env[i]]``.
+        world_of_env: (N,) index of each robot's world.
+        robot: The robot profile's name.
+        noise: Sensor noise on or off.
+        control_step_ms: The control step.
+        threads: Worker threads (0: one per core); results do not depend on it.
+
+    Attributes:
+        observations: (N, observation_width) float32: distance sensors, then ground sensors.
+        poses: (N, 3) float32 x, y, yaw.
+        colliding: (N,) bool, in contact with a wall.
+        crossings: (N,) int32 checkpoint crossing of the last step (+id, -id or 0).
+
+    Raises:
+        InvalidArgumentError: No world, or a robot whose world index is out of range.
+    """
+
+    def __init__(
+        self,
+        worlds: Sequence[World],
+        world_of_env: npt.ArrayLike,
+        robot: str = "seed",
+        noise: bool = True,
+        control_step_ms: float = CONTROL_STEP_MS,
+        threads: int = 0,
+    ) -> None:
+        self.worlds = list(worlds)
+        self.world_of_env = np.asarray(world_of_env, dtype=np.int64).ravel().copy()
+        count = self.world_of_env.size
+        if not self.worlds or count < 1:
+            raise InvalidArgumentError(
+                f"expected at least one world and one robot, found {len(self.worlds)} world(s) "
+                f"and {count} robot(s)"
+            )
+        low, high = int(self.world_of_env.min()), int(self.world_of_env.max())
+        if low < 0 or high >= len(self.worlds):
+            bad = low if low < 0 else high
+            raise InvalidArgumentError(
+                f"expected world indices from 0 to {len(self.worlds) - 1}, found {bad}"
+            )
+        self.num_envs = count
+        self.control_step_ms = float(control_step_ms)
+        self.profile = RobotProfile.builtin(robot)
+        self.wheel_speeds = (WHEEL_SPEED_FRACTIONS * self.profile.max_wheel_speed).astype(
+            np.float32
+        )
+        self.simulator = BatchSimulator(
+            [self.worlds[i] for i in self.world_of_env],
+            robot=robot,
+            seeds=0,
+            noise=noise,
+            control_step_ms=control_step_ms,
+            threads=threads,
+        )
+        self.distance_width = self.simulator.distance_width
+        self.observations = np.zeros((count, self.simulator.observation_width), dtype=np.float32)
+        self.poses = np.zeros((count, 3), dtype=np.float32)
+        self.colliding = np.zeros(count, dtype=bool)
+        self.crossings = np.zeros(count, dtype=np.int32)
+
+    def speeds_of(self, actions: npt.ArrayLike) -> npt.NDArray[np.float32]:
+        """(N, 2) wheel speeds of discrete actions (indices into the action table)."""
+        return self.wheel_speeds[np.asarray(actions, dtype=np.int64)]
+
+    def step(self, actions: npt.ArrayLike) -> None:
+        """Steps every robot with discrete actions; the buffers hold the results."""
+        self.step_speeds(self.speeds_of(actions))
+
+    def step_speeds(self, speeds: npt.NDArray[np.float32]) -> None:
+        """Steps every robot with (N, 2) wheel speeds in rad/s."""
+        self.simulator.step(speeds, self.observations, self.poses, self.colliding, self.crossings)
+
+    def reset(
+        self, mask: npt.NDArray[np.bool_] | None = None, seeds: npt.ArrayLike | None = None
+    ) -> None:
+        """Resets the robots where ``mask`` is true (all without one) to their starts.
+
+        Args:
+            mask: (N,) bool, the robots to reset.
+            seeds: (N,) noise seeds of the reset robots (the others' are ignored).
+        """
+        rows = None if seeds is None else np.asarray(seeds, dtype=np.uint64)
+        self.simulator.reset(
+            self.observations, self.poses, self.colliding, self.crossings, mask=mask, seeds=rows
+        )
+
+    def observe(self) -> None:
+        """Writes the current state into the buffers without stepping."""
+        self.simulator.observe(self.observations, self.poses, self.colliding, self.crossings)
+
+    def move_to_world(self, env: int, world: int) -> None:
+        """Puts robot ``env`` into ``worlds[world]`` (placed at that world's start until
+        :meth:`place` moves it); nothing happens when it is there already."""
+        if int(self.world_of_env[env]) == int(world):
+            return
+        self.simulator.set_world(int(env), self.worlds[int(world)], 0)
+        self.world_of_env[env] = int(world)
+
+    def place(self, envs: npt.ArrayLike, poses: npt.ArrayLike, seeds: npt.ArrayLike) -> None:
+        """Starts robots ``envs`` afresh at ``poses`` ((M, 3) x, y, yaw) with noise ``seeds``.
+
+        Their counters restart and their rows of the buffers hold their first observations;
+        the other robots are not touched.
+        """
+        robots = np.asarray(envs, dtype=np.int64).ravel()
+        starts = np.asarray(poses, dtype=np.float64).reshape(robots.size, 3)
+        self.simulator.set_starts_at(robots, np.ascontiguousarray(starts))
+        mask = np.zeros(self.num_envs, dtype=bool)
+        mask[robots] = True
+        all_seeds = np.zeros(self.num_envs, dtype=np.uint64)
+        all_seeds[robots] = np.asarray(seeds, dtype=np.uint64).ravel()
+        self.reset(mask, all_seeds)
+
+    def collisions(self) -> npt.NDArray[np.int64]:
+        """(N,) wall bumps of each robot since its last reset (the simulator's counter)."""
+        return self.simulator.collisions().astype(np.int64)

@@ -1,0 +1,198 @@
+"""The lower level's state: six Sharp distances, discretised by the report's Table 4.1.
+
+The ``seed`` robot reads six Sharp GP2Y0A41SK0F sensors in volts, in the report's order
+(:data:`SENSOR_ORDER`: front, back, left, right, left-front, right-front). Each reading is
+turned back into a distance in cm by inverting the sensor's table (:func:`volts_to_cm`, the same
+arithmetic as :func:`mazesim.sharp_volts_to_cm`, vectorised), then into a level by Table 4.1:
+
+=====================  =====
+distance d (cm)        level
+=====================  =====
+0 <= d < 7             0
+7 <= d < 13            1
+13 <= d < 20           2
+d >= 20                3
+=====================  =====
+
+The six levels form one number, ``state = sum(level[i] * 4**i)`` with ``i`` the sensor's place
+in :data:`SENSOR_ORDER`: the front sensor is the least significant base-4 digit, the right-front
+sensor the most significant. There are ``4**6 = 4096`` states (:data:`NUM_STATES`).
+
+Example:
+    >>> import numpy as np
+    >>> from mazesim.learn.discretise import distance_levels, encode_state, decode_state
+    >>> levels = distance_levels(np.array([25.0, 30.0, 8.3, 8.3, 13.3, 13.3]))
+    >>> levels.tolist()
+    [3, 3, 1, 1, 2, 2]
+    >>> encode_state(levels)
+    2655
+    >>> decode_state(2655).tolist()
+    [3, 3, 1, 1, 2, 2]
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import numpy.typing as npt
+
+from mazesim.errors import InvalidArgumentError
+
+__all__ = [
+    "LEVEL_EDGES_CM",
+    "NUM_LEVELS",
+    "NUM_SENSORS",
+    "NUM_STATES",
+    "SENSOR_ORDER",
+    "SHARP_TABLE",
+    "decode_state",
+    "distance_levels",
+    "encode_state",
+    "format_levels",
+    "observation_levels",
+    "observation_states",
+    "volts_to_cm",
+]
+
+#: The six distance sensors in the report's order (Fig. 4.7), as the ``seed`` robot lists them.
+SENSOR_ORDER: tuple[str, ...] = ("front", "back", "left", "right", "left-front", "right-front")
+#: Number of distance sensors in the state.
+NUM_SENSORS = len(SENSOR_ORDER)
+#: Table 4.1: a distance is at level k when it is at least ``LEVEL_EDGES_CM[k - 1]`` cm and below
+#: ``LEVEL_EDGES_CM[k]`` cm.
+LEVEL_EDGES_CM: tuple[float, ...] = (7.0, 13.0, 20.0)
+#: Levels per sensor (0 to 3).
+NUM_LEVELS = len(LEVEL_EDGES_CM) + 1
+#: Number of lower-level states, ``4**6``.
+NUM_STATES = NUM_LEVELS**NUM_SENSORS
+
+#: The Sharp GP2Y0A41SK0F table of the ``seed`` robot profile (``robots/seed.toml``): distance in
+#: metres and the output in volts, the volts falling as the distance grows.
+SHARP_TABLE: tuple[tuple[float, float], ...] = (
+    (0.03, 3.03),
+    (0.035, 2.78),
+    (0.04, 2.72),
+    (0.05, 2.33),
+    (0.06, 2.01),
+    (0.07, 1.76),
+    (0.08, 1.55),
+    (0.09, 1.40),
+    (0.10, 1.25),
+    (0.12, 1.04),
+    (0.14, 0.92),
+    (0.16, 0.82),
+    (0.18, 0.73),
+    (0.20, 0.66),
+    (0.25, 0.53),
+    (0.30, 0.42),
+    (0.35, 0.37),
+    (0.40, 0.31),
+)
+_TABLE_METRES = np.array([row[0] for row in SHARP_TABLE], dtype=np.float64)
+_TABLE_VOLTS = np.array([row[1] for row in SHARP_TABLE], dtype=np.float64)
+_PLACE_VALUES = NUM_LEVELS ** np.arange(NUM_SENSORS, dtype=np.int64)
+
+
+def volts_to_cm(volts: npt.ArrayLike) -> npt.NDArray[np.float64]:
+    """Converts Sharp readings in volts to distances in cm, element by element.
+
+    The table is inverted piecewise linearly and clamped: 3.03 V or more reads 3 cm, 0.31 V or
+    less reads 40 cm. The arithmetic is that of :func:`mazesim.sharp_volts_to_cm`, so the results
+    are equal to it bit for bit.
+
+    Args:
+        volts: Readings of any shape.
+
+    Returns:
+        The distances in cm, float64, of the same shape.
+    """
+    values = np.asarray(volts, dtype=np.float64)
+    # First table row whose volts are at or below the reading (the rows' volts fall).
+    upper = np.searchsorted(-_TABLE_VOLTS, -values, side="left")
+    upper = np.clip(upper, 1, len(_TABLE_VOLTS) - 1)
+    volts_before, volts_after = _TABLE_VOLTS[upper - 1], _TABLE_VOLTS[upper]
+    metres_before, metres_after = _TABLE_METRES[upper - 1], _TABLE_METRES[upper]
+    with np.errstate(invalid="ignore"):
+        fraction = (values - volts_before) / (volts_after - volts_before)
+    metres = metres_before + fraction * (metres_after - metres_before)
+    metres = np.where(values >= _TABLE_VOLTS[0], _TABLE_METRES[0], metres)
+    metres = np.where(values <= _TABLE_VOLTS[-1], _TABLE_METRES[-1], metres)
+    return metres * 100.0
+
+
+def distance_levels(distances_cm: npt.ArrayLike) -> npt.NDArray[np.int64]:
+    """Table 4.1: the level (0 to 3) of each distance in cm.
+
+    Args:
+        distances_cm: Distances of any shape.
+
+    Returns:
+        The levels, int64, of the same shape.
+    """
+    values = np.asarray(distances_cm, dtype=np.float64)
+    return np.searchsorted(np.asarray(LEVEL_EDGES_CM), values, side="right").astype(np.int64)
+
+
+def encode_state(levels: npt.ArrayLike) -> npt.NDArray[np.int64] | int:
+    """The state number of six levels: ``sum(level[i] * 4**i)``.
+
+    Args:
+        levels: Six levels in :data:`SENSOR_ORDER`, or an (N, 6) array of them.
+
+    Returns:
+        An ``int`` for one set of levels, an (N,) int64 array for N.
+
+    Raises:
+        InvalidArgumentError: The last axis is not 6 long or a level is outside 0 to 3.
+    """
+    array = np.asarray(levels, dtype=np.int64)
+    if array.ndim == 0 or array.shape[-1] != NUM_SENSORS:
+        raise InvalidArgumentError(
+            f"expected {NUM_SENSORS} levels per state (last axis), found shape {array.shape}"
+        )
+    if array.size and (array.min() < 0 or array.max() >= NUM_LEVELS):
+        raise InvalidArgumentError(
+            f"expected levels from 0 to {NUM_LEVELS - 1}, found {array.min()} to {array.max()}"
+        )
+    states = array @ _PLACE_VALUES
+    return int(states) if array.ndim == 1 else states
+
+
+def decode_state(state: npt.ArrayLike) -> npt.NDArray[np.int64]:
+    """The six levels of a state number (the inverse of :func:`encode_state`).
+
+    Args:
+        state: A state number or an array of them, each in ``[0, 4096)``.
+
+    Returns:
+        The levels, shape ``state.shape + (6,)``.
+
+    Raises:
+        InvalidArgumentError: A state is outside ``[0, 4096)``.
+    """
+    array = np.asarray(state, dtype=np.int64)
+    if array.size and (array.min() < 0 or array.max() >= NUM_STATES):
+        raise InvalidArgumentError(
+            f"expected states from 0 to {NUM_STATES - 1}, found {array.min()} to {array.max()}"
+        )
+    return (array[..., None] // _PLACE_VALUES) % NUM_LEVELS
+
+
+def observation_levels(observations: npt.ArrayLike) -> npt.NDArray[np.int64]:
+    """The (N, 6) levels of batch observations (the first six columns, volts)."""
+    rows = np.asarray(observations)
+    if rows.ndim != 2 or rows.shape[1] < NUM_SENSORS:
+        raise InvalidArgumentError(
+            f"expected observations of shape (N, >= {NUM_SENSORS}) with the Sharp volts first, "
+            f"found {rows.shape}"
+        )
+    return distance_levels(volts_to_cm(rows[:, :NUM_SENSORS]))
+
+
+def observation_states(observations: npt.ArrayLike) -> npt.NDArray[np.int64]:
+    """The (N,) states of batch observations (the first six columns, volts)."""
+    return observation_levels(observations) @ _PLACE_VALUES
+
+
+def format_levels(levels: npt.ArrayLike) -> str:
+    """Six levels as the report prints them (Fig. 4.7), e.g. ``"[3, 3, 1, 1, 2, 2]"``."""
+    return "[" + ", ".join(str(int(level)) for level in np.asarray(levels).ravel()) + "]"

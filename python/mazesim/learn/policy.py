@@ -1,0 +1,205 @@
+"""The navigator of the report's Alg. 5: both levels together, for N robots at once.
+
+Each control step, for every robot (:meth:`HierarchicalPolicy.act`):
+
+1. the sensor distances become levels and a state (:mod:`mazesim.learn.discretise`);
+2. the running sub-task's odometry advances; a door sub-task that ended (or gave up) hands over
+   to "Corridors and Corners";
+3. if a checkpoint was crossed (``checkpoint != 0``), the higher level chooses the sub-task
+   (:mod:`mazesim.learn.higher`), which starts there;
+4. the running sub-task's table gives the action (greedy among the actions the sub-task may take,
+   :data:`mazesim.learn.subtasks.SUBTASK_ACTIONS`).
+
+Alg. 5 runs "Corridors and Corners" on every step without a checkpoint; here a door sub-task the
+higher level chose keeps running until its own end (its turn needs more than the one step on the
+code), then "Corridors and Corners" takes over, as in the report.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+import numpy.typing as npt
+
+from mazesim._core import RobotProfile
+from mazesim.actions import ACTION_CODES, WHEEL_SPEED_FRACTIONS
+from mazesim.errors import InvalidArgumentError
+from mazesim.learn.discretise import NUM_SENSORS, distance_levels, volts_to_cm
+from mazesim.learn.higher import HigherLevel
+from mazesim.learn.lower import lower_table_shape
+from mazesim.learn.qlearning import best_allowed
+from mazesim.learn.subtasks import CONTROL_STEP_MS, SUBTASK_ACTIONS, SubTask, SubTaskTracker
+
+__all__ = ["Chooser", "DeadReckoningNavigator", "HierarchicalPolicy", "StepRecord"]
+
+_PLACE = 4 ** np.arange(NUM_SENSORS, dtype=np.int64)
+
+#: Picks sub-tasks for robots at a checkpoint event: ``(envs, higher states) -> sub-tasks``.
+Chooser = Callable[[npt.NDArray[np.int64], npt.NDArray[np.int64]], npt.NDArray[np.int64]]
+
+
+class StepRecord:
+    """What the navigator saw and did in its last step, for traces (arrays of N)."""
+
+    def __init__(self, num_envs: int) -> None:
+        self.levels = np.zeros((num_envs, NUM_SENSORS), dtype=np.int64)
+        self.distances_cm = np.zeros((num_envs, NUM_SENSORS), dtype=np.float64)
+        self.state = np.zeros(num_envs, dtype=np.int64)
+        self.subtask = np.zeros(num_envs, dtype=np.int64)
+        self.phase = np.zeros(num_envs, dtype=np.int64)
+        self.action = np.zeros(num_envs, dtype=np.int64)
+        self.event = np.zeros(num_envs, dtype=np.int64)
+        self.chosen = np.full(num_envs, -1, dtype=np.int64)
+        self.ended = np.zeros(num_envs, dtype=bool)
+
+
+class HierarchicalPolicy:
+    """Alg. 5 for N robots: lower-level tables, a higher level, and a sub-task per robot.
+
+    Args:
+        lower_q: The stacked lower-level tables, shape :func:`lower_table_shape`.
+        higher: The higher level (its tables for the robots' worlds).
+        world_of_env: (N,) each robot's world in ``higher``.
+        chooser: Picks sub-tasks at events; by default the higher level's greedy choice.
+    """
+
+    def __init__(
+        self,
+        lower_q: npt.NDArray[np.float64],
+        higher: HigherLevel,
+        world_of_env: npt.ArrayLike,
+        chooser: Chooser | None = None,
+    ) -> None:
+        if lower_q.shape != lower_table_shape():
+            raise InvalidArgumentError(
+                f"expected lower-level tables of shape {lower_table_shape()}, found {lower_q.shape}"
+            )
+        self.lower_q = lower_q
+        self.higher = higher
+        self.world_of_env = np.asarray(world_of_env, dtype=np.int64).ravel()
+        self.num_envs = self.world_of_env.size
+        self.chooser = chooser
+        self.tracker = SubTaskTracker(self.num_envs)
+        self.record = StepRecord(self.num_envs)
+
+    def reset(self, envs: npt.ArrayLike, poses: npt.ArrayLike) -> None:
+        """Starts robots ``envs`` afresh, in "Corridors and Corners", at their poses."""
+        mask = np.zeros(self.num_envs, dtype=bool)
+        mask[np.asarray(envs, dtype=np.int64)] = True
+        self.tracker.begin(mask, SubTask.CORRIDOR, poses)
+
+    def act(
+        self,
+        observations: npt.ArrayLike,
+        poses: npt.ArrayLike,
+        events: npt.ArrayLike,
+    ) -> npt.NDArray[np.int64]:
+        """One step of Alg. 5 for every robot.
+
+        Args:
+            observations: (N, W) batch observations (Sharp volts first).
+            poses: (N, 3) poses, the odometry of the sub-tasks.
+            events: (N,) checkpoint events of the last step (+id, -id, 0).
+
+        Returns:
+            (N,) action indices.
+        """
+        rows = np.asarray(observations)
+        return self.act_on_distances(volts_to_cm(rows[:, :NUM_SENSORS]), poses, events)
+
+    def act_on_distances(
+        self,
+        distances_cm: npt.ArrayLike,
+        poses: npt.ArrayLike,
+        events: npt.ArrayLike,
+    ) -> npt.NDArray[np.int64]:
+        """:meth:`act` from the six distances in cm of each robot, ``(N, 6)``."""
+        pose_rows = np.asarray(poses, dtype=np.float64)
+        event = np.asarray(events, dtype=np.int64)
+        record = self.record
+        record.distances_cm = np.asarray(distances_cm, dtype=np.float64).reshape(-1, NUM_SENSORS)
+        record.levels = distance_levels(record.distances_cm)
+        distance_state = record.levels @ _PLACE
+
+        done, gave_up = self.tracker.update(pose_rows)
+        record.ended = done | gave_up
+        self.tracker.begin(record.ended, SubTask.CORRIDOR, pose_rows)
+
+        record.event = event
+        record.chosen[:] = -1
+        at_event = np.flatnonzero(event != 0)
+        if at_event.size:
+            states = self.higher.states(self.world_of_env[at_event], event[at_event])
+            known = states >= 0
+            robots, states = at_event[known], states[known]
+            if robots.size:
+                if self.chooser is None:
+                    chosen = self.higher.choose(states)
+                else:
+                    chosen = self.chooser(robots, states)
+                mask = np.zeros(self.num_envs, dtype=bool)
+                mask[robots] = True
+                options = np.zeros(self.num_envs, dtype=np.int64)
+                options[robots] = chosen
+                self.tracker.begin(mask, options, pose_rows)
+                record.chosen[robots] = chosen
+
+        state = self.tracker.states(distance_state)
+        subtask = self.tracker.subtask
+        action = best_allowed(self.lower_q[subtask, state], SUBTASK_ACTIONS[subtask])
+        record.state = distance_state
+        record.subtask = self.tracker.subtask.copy()
+        record.phase = self.tracker.phase.copy()
+        record.action = action
+        return action
+
+
+class DeadReckoningNavigator:
+    """Alg. 5 for one robot that reports only its distances and checkpoints (as over ROS).
+
+    The sub-tasks' odometry is dead-reckoned from the wheel speeds of the actions this navigator
+    chose, each held for one control step of ``control_step_ms`` (set it to the step of the
+    simulator or robot that runs the actions).
+
+    Args:
+        lower_q: The stacked lower-level tables.
+        higher: The higher level (one world).
+        control_step_ms: How long each action runs.
+    """
+
+    def __init__(
+        self,
+        lower_q: npt.NDArray[np.float64],
+        higher: HigherLevel,
+        control_step_ms: float = CONTROL_STEP_MS,
+    ) -> None:
+        robot = RobotProfile.builtin("seed")
+        self.policy = HierarchicalPolicy(lower_q, higher, np.zeros(1, dtype=np.int64))
+        self.step_seconds = control_step_ms / 1000.0
+        self.speeds = WHEEL_SPEED_FRACTIONS * robot.max_wheel_speed
+        self.wheel_radius = robot.wheel_radius
+        self.axle_length = robot.axle_length
+        self.pose = np.zeros((1, 3), dtype=np.float64)
+        self.policy.reset([0], self.pose)
+
+    def reset(self) -> None:
+        """Starts a new episode."""
+        self.pose[:] = 0.0
+        self.policy.reset([0], self.pose)
+
+    def act(self, distances_cm: npt.ArrayLike, checkpoint: int) -> str:
+        """The action code for six distances in cm (front, back, left, right, left-front,
+        right-front) and the checkpoint event of the last step (+id, -id or 0)."""
+        distances = np.asarray(distances_cm, dtype=np.float64).reshape(1, NUM_SENSORS)
+        action = int(
+            self.policy.act_on_distances(distances, self.pose, np.array([int(checkpoint)]))[0]
+        )
+        left, right = self.speeds[action]
+        forward = 0.5 * self.wheel_radius * (left + right) * self.step_seconds
+        turn = self.wheel_radius * (right - left) / self.axle_length * self.step_seconds
+        heading = self.pose[0, 2] + 0.5 * turn
+        self.pose[0, 0] += forward * np.cos(heading)
+        self.pose[0, 1] += forward * np.sin(heading)
+        self.pose[0, 2] = (self.pose[0, 2] + turn + np.pi) % (2.0 * np.pi) - np.pi
+        return ACTION_CODES[action]

@@ -1,0 +1,275 @@
+"""The four lower-level sub-tasks of the report's section 4.1: their states, ends and rewards.
+
+========  =========================  ======  ==================================================
+number    name                       phases  what it does
+========  =========================  ======  ==================================================
+0 (CC)    Corridors and Corners      1       follows the corridor it is in, round its corners
+1 (R)     Right turn on a door       3       drives to the next opening on its right and turns in
+2 (L)     Left turn on a door        3       drives to the next opening on its left and turns in
+3 (F)     Going forward on a door    3       drives straight through the door ahead
+========  =========================  ======  ==================================================
+
+**State.** Corridors and Corners sees the distance state of :mod:`mazesim.learn.discretise`
+(4096 values). The door sub-tasks add a phase, the robot's heading change since the sub-task
+began in three bins (:func:`heading_phases`), and see ``distance_state + 4096 * phase``
+(12288 values):
+
+- the turns: 0 while the robot has turned less than 30 degrees towards its side, 1 up to 60
+  degrees, 2 beyond. Without it the middle of a crossing looks the same before and after a right
+  turn (open on all sides), and a table could not tell "turn now" from "the turn is done".
+- Going forward: 0 when the heading is more than 5 degrees right of where it began, 1 within
+  5 degrees, 2 more than 5 degrees left. Inside a door the side sensors see nothing to steer by.
+
+**Odometry.** The phases and the ends use what the robot's wheel odometry knows: the heading
+change and the displacement since the sub-task began. :class:`SubTaskTracker` takes them from the
+poses a :class:`mazesim.BatchSimulator` reports, which stand in for noise-free wheel odometry (they
+differ from it only when a wheel slips against a wall).
+
+**Actions.** The door sub-tasks choose among all 12 primitive actions. Corridors and Corners
+chooses among the 11 that do not reverse (:data:`SUBTASK_ACTIONS`): it follows corridors forward
+and turns round on the spot in a dead end. With ``99`` (backward) it could learn, in the few
+states its sensors cannot tell apart, to drive forward and back in front of a wall for ever; in
+training runs with other seeds or noise streams it did, and then reached the goal of only 30-50 %
+of unseen mazes. Its table keeps the ``99`` column (never updated) so that all tables share one
+shape.
+
+**Ends** (:meth:`SubTaskTracker.update`):
+
+- Corridors and Corners never ends by itself; a checkpoint event or the goal ends it.
+- Right / Left turn: done when the heading is within 10 degrees of 90 degrees to that side of the
+  heading at the start and the robot has driven :data:`TURN_EXIT_DISTANCE` (8 cm) towards the new
+  heading since it last entered phase 2.
+- Going forward: done when the robot is :data:`FORWARD_DISTANCE` (40 cm) ahead of where it began
+  (through the door it was about to enter, just into the next cell) within 10 degrees of its
+  heading.
+- A door sub-task gives up after :data:`MAX_DOOR_STEPS` control steps (12.8 s at the navigator's
+  64 ms step) or a heading change of more than 150 degrees; Corridors and Corners then drives on.
+
+A checkpoint event (a barcode crossed) ends whatever runs and asks the higher level again.
+
+**Rewards** (training only; they may read the maze, the robot never does):
+
+- Corridors and Corners: ``10 * (metres driven forward along the robot's heading)`` per step,
+  ``-0.02`` a step and ``-2`` per step in contact with a wall. Driving a corridor at cruise speed
+  earns 0.02 a step; turning on the spot or dithering between two states loses 0.02 a step.
+- Door sub-tasks: ``10 * (metres of progress along the door's path)`` per step, where the path runs
+  from the start to the door's centre, then 25 cm into the target opening (progress along each leg
+  is clipped to the leg); for Going forward also ``2 * (radians the heading error shrank)``;
+  ``-0.03`` a step; ``-2`` per step in contact; at the end ``+5`` when the
+  robot has really entered the target opening (its centre at least 4 cm past the door's centre
+  that way and within 8 cm of the opening's centre line) and ``-5`` when it has not, or turned
+  round. Running out of steps only cuts the episode short (the value of where it stopped still
+  counts), so the step cost alone teaches that dithering does not pay.
+"""
+
+from __future__ import annotations
+
+import math
+from enum import IntEnum
+
+import numpy as np
+import numpy.typing as npt
+
+from mazesim.actions import ACTION_CODES
+from mazesim.batch import CONTROL_STEP_MS, cruise_step_length
+from mazesim.learn.discretise import NUM_STATES
+
+__all__ = [
+    "COLLISION_PENALTY",
+    "CONTROL_STEP_MS",
+    "CORRIDOR_STEP_REWARD",
+    "DOOR_FAILURE_REWARD",
+    "DOOR_STEP_REWARD",
+    "DOOR_SUCCESS_REWARD",
+    "FORWARD_DISTANCE",
+    "FORWARD_PHASE_ANGLE",
+    "GIVE_UP_ANGLE",
+    "HEADING_REWARD",
+    "HEADING_TOLERANCE",
+    "MAX_DOOR_STEPS",
+    "MAX_PHASES",
+    "NUM_PHASES",
+    "NUM_SUBTASKS",
+    "PROGRESS_REWARD",
+    "SUBTASK_ACTIONS",
+    "SUBTASK_CODES",
+    "SUBTASK_NAMES",
+    "TARGET_TURN",
+    "TURN_EXIT_DISTANCE",
+    "TURN_PHASE_ANGLES",
+    "SubTask",
+    "SubTaskTracker",
+    "cruise_step_length",
+    "heading_phases",
+    "subtask_states",
+]
+
+
+class SubTask(IntEnum):
+    """The lower-level sub-tasks, numbered as their tables are stored."""
+
+    CORRIDOR = 0
+    RIGHT = 1
+    LEFT = 2
+    FORWARD = 3
+
+
+#: The report's names of the sub-tasks, by number.
+SUBTASK_NAMES: tuple[str, ...] = (
+    "Corridors and Corners",
+    "Right turn on a door",
+    "Left turn on a door",
+    "Going forward on a door",
+)
+#: Short names for traces and tables.
+SUBTASK_CODES: tuple[str, ...] = ("CC", "R", "L", "F")
+NUM_SUBTASKS = len(SUBTASK_NAMES)
+#: The actions each sub-task may take, ``(NUM_SUBTASKS, 12)``: all but ``99`` for Corridors
+#: and Corners, all for the door sub-tasks.
+SUBTASK_ACTIONS: npt.NDArray[np.bool_] = np.ones((NUM_SUBTASKS, len(ACTION_CODES)), dtype=bool)
+SUBTASK_ACTIONS[0, ACTION_CODES.index("99")] = False
+SUBTASK_ACTIONS.flags.writeable = False
+#: Phases per sub-task.
+NUM_PHASES: tuple[int, ...] = (1, 3, 3, 3)
+#: The most phases of any sub-task (the stacked tables have ``4096 * MAX_PHASES`` rows).
+MAX_PHASES = max(NUM_PHASES)
+#: The heading change each sub-task aims at (radians, counter-clockwise positive).
+TARGET_TURN: tuple[float, ...] = (0.0, -math.pi / 2.0, math.pi / 2.0, 0.0)
+#: The navigator's control step in milliseconds: two 32 ms physics steps of the maze worlds.
+#: Turn towards its side (radians) at which a turn enters phase 1 and phase 2.
+TURN_PHASE_ANGLES = (math.radians(30.0), math.radians(60.0))
+#: Heading change (radians) beyond which "Going forward on a door" is in phase 0 or 2.
+FORWARD_PHASE_ANGLE = math.radians(5.0)
+#: Largest heading error (radians) at which a door sub-task may end.
+HEADING_TOLERANCE = math.radians(10.0)
+#: Metres driven towards the new heading after entering phase 2, to end a turn.
+TURN_EXIT_DISTANCE = 0.08
+#: Metres ahead of its start at which "Going forward on a door" ends.
+FORWARD_DISTANCE = 0.40
+#: Control steps after which a door sub-task gives up.
+MAX_DOOR_STEPS = 200
+#: Heading change (radians) after which a door sub-task gives up.
+GIVE_UP_ANGLE = math.radians(150.0)
+#: Reward per metre of progress.
+PROGRESS_REWARD = 10.0
+#: Reward of each control step spent in contact with a wall.
+COLLISION_PENALTY = -2.0
+#: Reward of each control step of Corridors and Corners, and of a door sub-task.
+CORRIDOR_STEP_REWARD = -0.02
+DOOR_STEP_REWARD = -0.03
+#: Reward per radian by which "Going forward on a door" brings its heading back to where it began
+#: (a potential: turning away and back again sums to nothing).
+HEADING_REWARD = 2.0
+#: Reward at the end of a door sub-task that entered its opening, and of one that did not.
+DOOR_SUCCESS_REWARD = 5.0
+DOOR_FAILURE_REWARD = -5.0
+
+
+def heading_phases(subtasks: npt.ArrayLike, heading_change: npt.ArrayLike) -> npt.NDArray[np.int64]:
+    """The phase of each robot from its sub-task and heading change (radians, CCW positive)."""
+    kinds = np.asarray(subtasks, dtype=np.int64)
+    change = np.asarray(heading_change, dtype=np.float64)
+    turn = np.asarray(TARGET_TURN)[kinds]
+    towards = change * np.sign(turn)
+    turn_phase = np.searchsorted(np.asarray(TURN_PHASE_ANGLES), towards, side="right")
+    forward_phase = (
+        1
+        + (change > FORWARD_PHASE_ANGLE).astype(np.int64)
+        - (change < -FORWARD_PHASE_ANGLE).astype(np.int64)
+    )
+    phases = np.where(turn != 0.0, turn_phase, forward_phase)
+    return np.where(kinds == SubTask.CORRIDOR, 0, phases).astype(np.int64)
+
+
+def subtask_states(distance_states: npt.ArrayLike, phases: npt.ArrayLike) -> npt.NDArray[np.int64]:
+    """A sub-task's state: ``distance_state + 4096 * phase``."""
+    return np.asarray(distance_states, dtype=np.int64) + NUM_STATES * np.asarray(
+        phases, dtype=np.int64
+    )
+
+
+def _wrap(angle: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+    """Angles wrapped to [-pi, pi)."""
+    return np.asarray((angle + math.pi) % (2.0 * math.pi) - math.pi, dtype=np.float64)
+
+
+class SubTaskTracker:
+    """The running sub-task of N robots, with the odometry its phase and end read.
+
+    Args:
+        num_envs: Number of robots.
+    """
+
+    def __init__(self, num_envs: int) -> None:
+        self.num_envs = num_envs
+        self.subtask = np.zeros(num_envs, dtype=np.int64)
+        self.start = np.zeros((num_envs, 3), dtype=np.float64)
+        self.previous_yaw = np.zeros(num_envs, dtype=np.float64)
+        self.heading_change = np.zeros(num_envs, dtype=np.float64)
+        self.steps = np.zeros(num_envs, dtype=np.int64)
+        self.phase = np.zeros(num_envs, dtype=np.int64)
+        self.turn_point = np.zeros((num_envs, 2), dtype=np.float64)
+
+    def begin(self, mask: npt.ArrayLike, subtasks: npt.ArrayLike, poses: npt.ArrayLike) -> None:
+        """Starts sub-tasks for the robots in ``mask`` at their current poses.
+
+        Args:
+            mask: (N,) bool, the robots that begin a sub-task.
+            subtasks: (N,) or scalar sub-task numbers (read where ``mask`` is true).
+            poses: (N, 3) poses x, y, yaw.
+        """
+        flags = np.asarray(mask, dtype=bool)
+        pose_rows = np.asarray(poses, dtype=np.float64)
+        chosen = np.broadcast_to(np.asarray(subtasks, dtype=np.int64), flags.shape)
+        self.subtask[flags] = chosen[flags]
+        self.start[flags] = pose_rows[flags]
+        self.previous_yaw[flags] = pose_rows[flags, 2]
+        self.heading_change[flags] = 0.0
+        self.steps[flags] = 0
+        self.phase[flags] = heading_phases(self.subtask[flags], 0.0)
+        self.turn_point[flags] = pose_rows[flags, :2]
+
+    def update(self, poses: npt.ArrayLike) -> tuple[npt.NDArray[np.bool_], npt.NDArray[np.bool_]]:
+        """Follows one control step of every robot.
+
+        Args:
+            poses: (N, 3) poses after the step.
+
+        Returns:
+            ``(done, gave_up)``: (N,) bool, the door sub-tasks that reached their end, and those
+            that gave up (turned round, or ran out of steps: see :attr:`out_of_steps`). Corridors
+            and Corners is never in either.
+        """
+        pose_rows = np.asarray(poses, dtype=np.float64)
+        self.heading_change += _wrap(pose_rows[:, 2] - self.previous_yaw)
+        self.previous_yaw = pose_rows[:, 2].copy()
+        self.steps += 1
+        turn = np.asarray(TARGET_TURN)[self.subtask]
+        is_turn = turn != 0.0
+        phase = heading_phases(self.subtask, self.heading_change)
+        entering = is_turn & (phase == 2) & (self.phase != 2)
+        self.turn_point[entering] = pose_rows[entering, :2]
+        self.phase = phase
+
+        target_heading = self.start[:, 2] + turn
+        direction = np.stack([np.cos(target_heading), np.sin(target_heading)], axis=1)
+        aligned = np.abs(self.heading_change - turn) <= HEADING_TOLERANCE
+        turned_out = np.einsum("ij,ij->i", pose_rows[:, :2] - self.turn_point, direction)
+        ahead = np.einsum("ij,ij->i", pose_rows[:, :2] - self.start[:, :2], direction)
+        turn_done = is_turn & (phase == 2) & aligned & (turned_out >= TURN_EXIT_DISTANCE)
+        forward_done = (self.subtask == SubTask.FORWARD) & aligned & (ahead >= FORWARD_DISTANCE)
+        door = self.subtask != SubTask.CORRIDOR
+        gave_up = door & (
+            (self.steps >= MAX_DOOR_STEPS) | (np.abs(self.heading_change) > GIVE_UP_ANGLE)
+        )
+        done = (turn_done | forward_done) & ~gave_up
+        return done, gave_up
+
+    @property
+    def out_of_steps(self) -> npt.NDArray[np.bool_]:
+        """(N,) bool: door sub-tasks that have used up :data:`MAX_DOOR_STEPS`."""
+        return (self.subtask != SubTask.CORRIDOR) & (self.steps >= MAX_DOOR_STEPS)
+
+    def states(self, distance_states: npt.ArrayLike) -> npt.NDArray[np.int64]:
+        """Each robot's state in its running sub-task's table."""
+        return subtask_states(distance_states, self.phase)

@@ -1,0 +1,393 @@
+"""Training a navigator from scratch: the lower level on generated mazes, then the higher level on
+the target world; checkpoints and ``--resume``.
+
+:func:`run_training` is the one training pipeline (the sweep's ``hrl`` trainer runs it too); it
+writes and prints nothing, and reports through ``progress(stage, done, total)`` and a
+``checkpoint`` callback. :func:`train` runs it with checkpoints in a folder. The two stages:
+
+1. **Lower level** (:mod:`mazesim.learn.lower`): the four sub-tasks on a pool of generated mazes,
+   ``envs`` robots at a time, until ``steps`` env-steps are done, round by round. After every
+   round whose end is at least :attr:`TrainSettings.checkpoint_seconds` after the last
+   checkpoint (and after the last round) the tables, their update counts and the round reached
+   are written to ``DIR/checkpoint.npz``, one file switched in with one atomic rename
+   (:mod:`mazesim.learn.checkpoint`): a crash at any instant leaves the previous checkpoint or the
+   new one, whole.
+2. **Higher level** (:mod:`mazesim.learn.higher_training`): episodes on the target world with
+   the lower level fixed, the sub-tasks chosen epsilon-greedily at checkpoint events.
+
+The navigator is then saved into ``DIR`` (``tables.npz`` and ``policy.json``, see
+:mod:`mazesim.learn.tables`) with the settings and what the run measured.
+
+Everything random follows from the seed, round by round, and the simulator is deterministic
+whatever the thread count, so a run stopped at any point and continued with ``resume=True``
+ends with the same tables as a run never stopped (only the timings differ).
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import Field, asdict, dataclass, field, fields
+from pathlib import Path
+from typing import Any
+
+from mazesim import load_world
+from mazesim._core import World
+from mazesim.episodes import EpisodeResult, shortest_path_steps
+from mazesim.errors import InvalidArgumentError, PolicyFormatError
+from mazesim.learn.baseline import train_flat
+from mazesim.learn.checkpoint import (
+    CHECKPOINT_FILE,
+    CHECKPOINT_FORMAT,
+    Checkpoint,
+    checkpoint_exists,
+    read_checkpoint,
+    remove_checkpoint_leftovers,
+    write_checkpoint,
+)
+from mazesim.learn.higher import HigherLevel
+from mazesim.learn.higher_training import HigherTraining, train_higher
+from mazesim.learn.lower import LowerSettings, LowerTables, LowerTrainer, RoundStats
+from mazesim.learn.tables import TrainedPolicy, save_policy
+from mazesim.maze import checkpoint_ids, world_hash
+
+__all__ = [
+    "CHECKPOINT_FORMAT",
+    "CheckpointFn",
+    "ProgressFn",
+    "TrainSettings",
+    "TrainingRun",
+    "command_line_fields",
+    "run_training",
+    "train",
+    "train_flat_policy",
+]
+
+
+@dataclass(frozen=True)
+class TrainSettings:
+    """A training run's settings (saved with the navigator and checked on ``--resume``).
+
+    The defaults are the only ones: the lower level's come from :class:`LowerSettings`, the step
+    limit from :data:`mazesim.episodes.MAX_STEPS`, and ``mazesim train`` builds its options from
+    the fields whose metadata has a ``help`` text (:func:`command_line_fields`).
+    """
+
+    world: str = field(
+        default="seed-maze",
+        metadata={
+            "help": "the world the higher level learns: a built-in name or a world file",
+            "metavar": "NAME|PATH",
+        },
+    )
+    envs: int = field(
+        default=LowerSettings.num_envs,
+        metadata={"help": "robots stepped at once while training the lower level", "metavar": "N"},
+    )
+    steps: int = field(
+        default=LowerSettings.total_steps,
+        metadata={"help": "env-steps of lower-level training, e.g. 36M or 500k", "metavar": "K"},
+    )
+    seed: int = field(
+        default=LowerSettings.seed,
+        metadata={"help": "seed of everything random in the run", "metavar": "S"},
+    )
+    maze_pool: int = LowerSettings.maze_pool
+    higher_episodes: int = 400
+    higher_envs: int = 32
+    higher_max_steps: int = HigherTraining.max_steps
+    checkpoint_seconds: float = 30.0
+
+    def lower(self) -> LowerSettings:
+        """The lower-level stage's settings."""
+        return LowerSettings(
+            num_envs=self.envs, total_steps=self.steps, seed=self.seed, maze_pool=self.maze_pool
+        )
+
+    def higher(self) -> HigherTraining:
+        """The higher-level stage's settings."""
+        return HigherTraining(
+            episodes_per_world=self.higher_episodes,
+            envs_per_world=self.higher_envs,
+            max_steps=self.higher_max_steps,
+            seed=self.seed,
+        )
+
+    def identity(self) -> dict[str, Any]:
+        """What must match for a checkpoint to be continued (not the checkpoint interval)."""
+        values = asdict(self)
+        values.pop("checkpoint_seconds")
+        return values
+
+
+def command_line_fields() -> list[Field[Any]]:
+    """The fields of :class:`TrainSettings` that ``mazesim train`` offers as options, in order."""
+    return [f for f in fields(TrainSettings) if "help" in f.metadata]
+
+
+def _round_summary(stats: RoundStats) -> dict[str, Any]:
+    return {
+        "round": stats.round_index,
+        "epsilon": round(stats.epsilon, 6),
+        "door_success": [round(stats.door_success_rate(k), 4) for k in (1, 2, 3)],
+        "door_cut": stats.door_cut[1:],
+        "corridor_speed": round(stats.corridor_speed, 4),
+        "contact_share": round(stats.contact_share, 6),
+    }
+
+
+#: Reports progress as ``progress(stage, done, total)``: stage ``"lower"`` counts rounds,
+#: ``"higher"`` and ``"flat"`` count episodes or steps.
+ProgressFn = Callable[[str, int, int], None]
+#: Called after each lower-level round with the tables, the next round and the history so far;
+#: returns True to stop there (as if interrupted).
+CheckpointFn = Callable[[LowerTables, int, list[dict[str, Any]]], bool]
+
+
+@dataclass
+class TrainingRun:
+    """What :func:`run_training` learned and measured."""
+
+    tables: LowerTables
+    level: HigherLevel
+    history: list[dict[str, Any]]
+    round_stats: list[RoundStats]
+    higher_results: list[EpisodeResult]
+    lower_seconds: float
+    higher_seconds: float
+
+
+def run_training(
+    lower: LowerSettings,
+    higher: HigherTraining,
+    world: World,
+    *,
+    tables: LowerTables | None = None,
+    next_round: int = 0,
+    history: Sequence[dict[str, Any]] = (),
+    threads: int = 0,
+    progress: ProgressFn | None = None,
+    checkpoint: CheckpointFn | None = None,
+) -> TrainingRun | None:
+    """The training pipeline: the lower level round by round, then the higher level on ``world``.
+
+    It writes and prints nothing; ``checkpoint`` and ``progress`` are how callers see it go.
+
+    Args:
+        lower: The lower-level stage's settings.
+        higher: The higher-level stage's settings.
+        world: The world the higher level learns (a cell maze with a goal).
+        tables: Tables to continue from (a resumed run), fresh ones by default.
+        next_round: The first lower-level round to run.
+        history: The round summaries of the rounds already run.
+        threads: Worker threads of the simulator (0: one per core); results do not depend on it.
+        progress: See :data:`ProgressFn`.
+        checkpoint: See :data:`CheckpointFn`.
+
+    Returns:
+        The run, or None when ``checkpoint`` stopped it.
+    """
+    tables = tables if tables is not None else LowerTables.zeros()
+    summaries = list(history)
+    stats_seen: list[RoundStats] = []
+    started = time.perf_counter()
+    rounds = lower.rounds
+    if next_round < rounds:
+        trainer = LowerTrainer(lower, tables, threads=threads)
+        for round_index in range(next_round, rounds):
+            stats = trainer.run_round(round_index)
+            stats_seen.append(stats)
+            summaries.append(_round_summary(stats))
+            if progress is not None:
+                progress("lower", round_index + 1, rounds)
+            stop = checkpoint is not None and checkpoint(trainer.tables, round_index + 1, summaries)
+            if stop and round_index + 1 < rounds:
+                return None
+        tables = trainer.tables
+    lower_seconds = time.perf_counter() - started
+    started = time.perf_counter()
+
+    def higher_progress(done: int, total: int, recent: float) -> None:
+        if progress is not None:
+            progress("higher", done, total)
+
+    level, results = train_higher(
+        tables.q, [world], higher, threads=threads, progress=higher_progress
+    )
+    return TrainingRun(
+        tables=tables,
+        level=level,
+        history=summaries,
+        round_stats=stats_seen,
+        higher_results=results,
+        lower_seconds=lower_seconds,
+        higher_seconds=time.perf_counter() - started,
+    )
+
+
+def _navigator_world(name: str) -> World:
+    world = load_world(name)
+    if world.goal is None or world.cell_maze() is None:
+        raise InvalidArgumentError(
+            f"world {world.name!r} needs a [grid] maze and a goal to train a navigator for"
+        )
+    return world
+
+
+def _machine() -> dict[str, Any]:
+    return {
+        "cpu_count": os.cpu_count(),
+        "load_average": list(os.getloadavg()) if hasattr(os, "getloadavg") else None,
+    }
+
+
+def train(
+    settings: TrainSettings,
+    out: str | os.PathLike[str],
+    resume: bool = False,
+    progress: ProgressFn | None = None,
+    threads: int = 0,
+    stop_after_rounds: int | None = None,
+) -> TrainedPolicy | None:
+    """Trains a navigator (:func:`run_training`) with checkpoints in ``out``, and saves it there.
+
+    Args:
+        settings: The run's settings.
+        out: The folder for the checkpoint and the navigator (created if missing).
+        resume: Continue the run whose checkpoint is in ``out``.
+        progress: See :data:`ProgressFn`.
+        threads: Worker threads of the simulator (0: one per core); results do not depend on it.
+        stop_after_rounds: Stop (as if interrupted) after this many lower-level rounds in this
+            call, leaving the checkpoint; for tests.
+
+    Returns:
+        The trained navigator, or None when stopped early by ``stop_after_rounds``.
+
+    Raises:
+        PolicyFormatError: ``resume`` without a usable checkpoint of the same settings, or a
+            checkpoint already in ``out`` without ``resume``.
+        UnknownNameError, WorldFormatError: The world cannot be loaded.
+    """
+    folder = Path(out)
+    world = _navigator_world(settings.world)
+    lower_settings = settings.lower()
+    if folder.exists() and not folder.is_dir():
+        raise InvalidArgumentError(f"expected a folder for the navigator, found a file: {folder}")
+    if resume:
+        if not checkpoint_exists(folder):
+            raise PolicyFormatError(f"{folder / CHECKPOINT_FILE}: no checkpoint to resume from")
+        saved = read_checkpoint(folder, settings.identity())
+        tables, next_round = saved.tables, saved.next_round
+        history, lower_seconds = saved.history, saved.lower_seconds
+    else:
+        if checkpoint_exists(folder):
+            raise PolicyFormatError(
+                f"{folder} holds the checkpoint of another run; pass --resume to continue it, "
+                "or choose another --out"
+            )
+        tables, next_round, history, lower_seconds = LowerTables.zeros(), 0, [], 0.0
+    folder.mkdir(parents=True, exist_ok=True)
+    remove_checkpoint_leftovers(folder)
+
+    rounds = lower_settings.rounds
+    started = time.perf_counter()
+    clock = {"saved": started, "done": 0}
+
+    def save(tables: LowerTables, reached: int, summaries: list[dict[str, Any]]) -> bool:
+        clock["done"] += 1
+        now = time.perf_counter()
+        stopping = stop_after_rounds is not None and clock["done"] >= stop_after_rounds
+        if reached == rounds or stopping or now - clock["saved"] >= settings.checkpoint_seconds:
+            elapsed = lower_seconds + now - started
+            write_checkpoint(
+                folder, settings.identity(), Checkpoint(tables, reached, summaries, elapsed)
+            )
+            clock["saved"] = now
+        return stopping
+
+    run = run_training(
+        lower_settings,
+        settings.higher(),
+        world,
+        tables=tables,
+        next_round=next_round,
+        history=history,
+        threads=threads,
+        progress=progress,
+        checkpoint=save,
+    )
+    if run is None:
+        return None
+    results = run.higher_results
+    last = results[-100:]
+    training: dict[str, Any] = {
+        "settings": asdict(settings),
+        "lower": lower_settings.as_dict(),
+        "higher": asdict(settings.higher()),
+        "lower_env_steps": rounds * lower_settings.num_envs * lower_settings.round_steps,
+        "higher_env_steps": int(sum(r.steps for r in results)),
+        "lower_seconds": round(lower_seconds + run.lower_seconds, 1),
+        "higher_seconds": round(run.higher_seconds, 1),
+        "higher_success_last_100": sum(r.arrived for r in last) / max(1, len(last)),
+        "shortest_path_steps": shortest_path_steps(world),
+        "history": run.history,
+        **_machine(),
+    }
+    policy = TrainedPolicy(
+        kind="hierarchical",
+        world_name=world.name,
+        world_sha256=world_hash(world),
+        checkpoint_ids=run.level.checkpoint_ids[0],
+        lower_q=run.tables.q,
+        higher_q=run.level.q[0],
+        training=training,
+    )
+    save_policy(policy, folder)
+    policy.source = str(folder)
+    return policy
+
+
+def train_flat_policy(
+    settings: TrainSettings,
+    out: str | os.PathLike[str],
+    progress: ProgressFn | None = None,
+    threads: int = 0,
+) -> TrainedPolicy:
+    """Trains the flat baseline on ``settings.world`` for ``settings.steps`` env-steps and saves
+    it into ``out`` (:mod:`mazesim.learn.baseline`)."""
+    world = _navigator_world(settings.world)
+    started = time.perf_counter()
+
+    def flat_progress(done: int, total: int, recent: float) -> None:
+        if progress is not None:
+            progress("flat", done, total)
+
+    q, outcomes = train_flat(
+        world,
+        settings.steps,
+        num_envs=settings.envs,
+        seed=settings.seed,
+        threads=threads,
+        progress=flat_progress,
+    )
+    last = outcomes[-100:]
+    policy = TrainedPolicy(
+        kind="flat",
+        world_name=world.name,
+        world_sha256=world_hash(world),
+        checkpoint_ids=checkpoint_ids(world),
+        flat_q=q,
+        training={
+            "settings": asdict(settings),
+            "env_steps": settings.steps,
+            "seconds": round(time.perf_counter() - started, 1),
+            "episodes": len(outcomes),
+            "success_last_100": sum(last) / max(1, len(last)),
+            **_machine(),
+        },
+    )
+    Path(out).mkdir(parents=True, exist_ok=True)
+    save_policy(policy, out)
+    policy.source = str(out)
+    return policy

@@ -1,0 +1,375 @@
+"""The one cell-maze model: openings, shortest paths, door approaches, and the goal distance.
+
+A :class:`CellMaze` wraps :meth:`mazesim.World.cell_maze` of a ``[grid]`` world. Cells are
+``(column, row)`` with row 0 on the north edge; directions are numbered counter-clockwise from
+east, so direction ``d`` has the heading ``d * pi / 2``: 0 east, 1 north, 2 west, 3 south. This
+is the package's only direction convention and :meth:`CellMaze.distances_from` its only maze
+breadth-first search.
+
+Training reads the maze (the learner never does): where the doors are, which way a turn leads,
+and how far the goal is. :class:`GoalDistance` is the shortest-path distance to the goal that the
+environments' reward uses (:mod:`mazesim.envs.reward`).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import math
+from collections import deque
+from dataclasses import dataclass
+from typing import cast
+
+import numpy as np
+import numpy.typing as npt
+
+from mazesim._core import World
+from mazesim.errors import InvalidArgumentError
+
+__all__ = [
+    "EAST",
+    "NORTH",
+    "SOUTH",
+    "WEST",
+    "CellMaze",
+    "DoorApproach",
+    "GoalDistance",
+    "PathDistanceTable",
+    "checkpoint_ids",
+    "world_hash",
+]
+
+EAST, NORTH, WEST, SOUTH = 0, 1, 2, 3
+#: Sides of a cell (the four directions); a goal-distance row has one more target, the goal.
+_SIDES = 4
+_TARGETS = _SIDES + 1
+#: Smallest distance used in an inverse-distance weight (metres), so a side never divides by zero.
+_NEAREST = 1e-9
+#: (column, row) step of each direction (rows grow southwards).
+_STEP = {EAST: (1, 0), NORTH: (0, -1), WEST: (-1, 0), SOUTH: (0, 1)}
+
+
+def checkpoint_ids(world: World) -> list[int]:
+    """The ids of a world's checkpoints, in increasing order."""
+    return sorted(int(cast(int, checkpoint["id"])) for checkpoint in world.checkpoints())
+
+
+def world_hash(world: World) -> str:
+    """The sha256 of the world's description (:meth:`mazesim.World.to_toml`), in hex."""
+    return hashlib.sha256(world.to_toml().encode("utf-8")).hexdigest()
+
+
+@dataclass(frozen=True)
+class DoorApproach:
+    """A way into a door (a junction cell with three or four openings).
+
+    Attributes:
+        cell: The cell the robot starts in, next to the door.
+        door: The door cell.
+        heading: The direction from ``cell`` to ``door``.
+        straight: ``cell`` is open only towards the door and straight behind (or a dead end), so
+            nothing opens on its sides: the generator paints this approach's checkpoint in its
+            middle (otherwise, after a corner or from a neighbouring door, across the edge
+            between ``cell`` and ``door``).
+    """
+
+    cell: tuple[int, int]
+    door: tuple[int, int]
+    heading: int
+    straight: bool
+
+
+class CellMaze:
+    """The cells and walls of a grid world.
+
+    Args:
+        world: A world with a ``[grid]`` maze.
+
+    Raises:
+        InvalidArgumentError: The world has no cell maze.
+    """
+
+    def __init__(self, world: World) -> None:
+        maze = world.cell_maze()
+        if maze is None:
+            raise InvalidArgumentError(
+                f"expected a world with a [grid] cell maze, found none in {world.name!r}"
+            )
+        self.rows = int(cast(int, maze["rows"]))
+        self.cols = int(cast(int, maze["cols"]))
+        self.cell_size = float(cast(float, maze["cell_size"]))
+        origin = cast("tuple[float, float]", maze["origin"])
+        self.origin = (float(origin[0]), float(origin[1]))
+        self.horizontal = np.asarray(maze["horizontal"], dtype=bool)
+        self.vertical = np.asarray(maze["vertical"], dtype=bool)
+        start = cast("tuple[int, int] | None", maze["start"])
+        goal = cast("tuple[int, int] | None", maze["goal"])
+        self.start_cell = None if start is None else (int(start[0]), int(start[1]))
+        self.goal_cell = None if goal is None else (int(goal[0]), int(goal[1]))
+
+    def is_open(self, cell: tuple[int, int], direction: int) -> bool:
+        """True when no wall closes ``cell`` on side ``direction``."""
+        column, row = cell
+        if direction == EAST:
+            return not self.vertical[row, column + 1]
+        if direction == WEST:
+            return not self.vertical[row, column]
+        if direction == NORTH:
+            return not self.horizontal[row, column]
+        return not self.horizontal[row + 1, column]
+
+    def openings(self, cell: tuple[int, int]) -> list[int]:
+        """The open directions of a cell, in direction order."""
+        return [d for d in range(4) if self.is_open(cell, d)]
+
+    def neighbour(self, cell: tuple[int, int], direction: int) -> tuple[int, int]:
+        """The cell next to ``cell`` in ``direction`` (whether or not a wall is between)."""
+        step_column, step_row = _STEP[direction]
+        return cell[0] + step_column, cell[1] + step_row
+
+    def cells(self) -> list[tuple[int, int]]:
+        """Every cell, row by row from the north-west corner."""
+        return [(column, row) for row in range(self.rows) for column in range(self.cols)]
+
+    def center(self, cell: tuple[int, int]) -> tuple[float, float]:
+        """The world coordinates of a cell's centre."""
+        column, row = cell
+        return (
+            self.origin[0] + (column + 0.5) * self.cell_size,
+            self.origin[1] + (self.rows - row - 0.5) * self.cell_size,
+        )
+
+    def cell_at(self, x: npt.ArrayLike, y: npt.ArrayLike) -> tuple[npt.NDArray[np.int64], ...]:
+        """The (column, row) arrays of the cells holding the points (clipped to the grid)."""
+        column = np.floor((np.asarray(x) - self.origin[0]) / self.cell_size).astype(np.int64)
+        row_from_south = np.floor((np.asarray(y) - self.origin[1]) / self.cell_size)
+        row = (self.rows - 1 - row_from_south).astype(np.int64)
+        return np.clip(column, 0, self.cols - 1), np.clip(row, 0, self.rows - 1)
+
+    def distances_from(self, cell: tuple[int, int]) -> npt.NDArray[np.int64]:
+        """Breadth-first cell distances from ``cell``, shape (rows, cols); -1 where unreachable."""
+        distance = np.full((self.rows, self.cols), -1, dtype=np.int64)
+        distance[cell[1], cell[0]] = 0
+        queue = deque([cell])
+        while queue:
+            here = queue.popleft()
+            for direction in self.openings(here):
+                there = self.neighbour(here, direction)
+                if distance[there[1], there[0]] < 0:
+                    distance[there[1], there[0]] = distance[here[1], here[0]] + 1
+                    queue.append(there)
+        return distance
+
+    def shortest_path_length(self) -> float:
+        """Metres from the start cell's centre to the goal cell's centre along the cells."""
+        if self.start_cell is None or self.goal_cell is None:
+            raise InvalidArgumentError("expected a maze with a start and a goal cell")
+        moves = self.distances_from(self.start_cell)[self.goal_cell[1], self.goal_cell[0]]
+        if moves < 0:
+            raise InvalidArgumentError("the goal cell cannot be reached from the start cell")
+        return float(moves) * self.cell_size
+
+    def is_door(self, cell: tuple[int, int]) -> bool:
+        """A door is a junction: a cell with three or four openings."""
+        return len(self.openings(cell)) >= 3
+
+    def door_approaches(self) -> list[DoorApproach]:
+        """Every (cell, door) pair where the cell opens into a door, in cell order."""
+        approaches = []
+        for door in self.cells():
+            if not self.is_door(door):
+                continue
+            for side in self.openings(door):
+                cell = self.neighbour(door, side)
+                heading = (side + 2) % 4
+                open_sides = self.openings(cell)
+                straight = set(open_sides) <= {heading, side}
+                approaches.append(DoorApproach(cell, door, heading, straight))
+        return approaches
+
+    def code_centre(self, approach: DoorApproach) -> tuple[float, float]:
+        """Where the generator paints the middle of an approach's code: the middle of a straight
+        approach cell, else the middle of the edge between the cell and the door."""
+        x, y = self.center(approach.cell)
+        if approach.straight:
+            return x, y
+        shift = self.cell_size / 2.0
+        angle = self.heading_of(approach.heading)
+        return x + shift * round(math.cos(angle)), y + shift * round(math.sin(angle))
+
+    def heading_of(self, direction: int) -> float:
+        """The heading in radians of a direction number."""
+        return direction * math.pi / 2.0
+
+
+@dataclass(frozen=True)
+class PathDistanceTable:
+    """What the distance to the goal needs to know about one world.
+
+    Attributes:
+        mode: ``"maze"`` (cell maze), ``"straight"`` (straight line to the goal) or ``"none"``
+            (no goal).
+        rows: Cell rows (1 without a maze).
+        cols: Cell columns (1 without a maze).
+        cell_size: Side of a cell in metres (1.0 without a maze).
+        origin: World position of the grid's south-west corner.
+        goal: (x, y, radius) of the goal disc, or (0, 0, -1) without a goal.
+        targets: (rows * cols, 5) values of the east, north, west and south sides and of the goal
+            point for each cell (row-major from the north-west cell), NaN where a side is no target.
+    """
+
+    mode: str
+    rows: int
+    cols: int
+    cell_size: float
+    origin: tuple[float, float]
+    goal: tuple[float, float, float]
+    targets: npt.NDArray[np.float64]
+
+    @classmethod
+    def of_world(cls, world: World) -> PathDistanceTable:
+        """Builds the table of a world: a breadth-first search over its cell maze, if it has one."""
+        goal = world.goal
+        if goal is None:
+            return cls("none", 1, 1, 1.0, (0.0, 0.0), (0.0, 0.0, -1.0), np.full((1, _TARGETS), 0.0))
+        maze = world.cell_maze()
+        if maze is None:
+            targets = np.full((1, _TARGETS), np.nan)
+            return cls("straight", 1, 1, 1.0, (0.0, 0.0), goal, targets)
+        cells = CellMaze(world)
+        if cells.goal_cell is None:
+            columns, rows = cells.cell_at(goal[0], goal[1])
+            goal_cell = (int(columns), int(rows))
+        else:
+            goal_cell = cells.goal_cell
+        targets = _cell_targets(cells, goal_cell)
+        return cls("maze", cells.rows, cells.cols, cells.cell_size, cells.origin, goal, targets)
+
+
+#: Ties between sides in a dead end's back-wall test go north, east, south, west.
+_TIE_ORDER = {NORTH: 0, EAST: 1, SOUTH: 2, WEST: 3}
+
+
+def _cell_targets(maze: CellMaze, goal: tuple[int, int]) -> npt.NDArray[np.float64]:
+    """The interpolation targets of every cell (see :class:`GoalDistance`), sides in direction
+    order, then the goal point."""
+    steps = maze.distances_from(goal)
+    size = maze.cell_size
+    unreachable = (int(steps.max()) + 1) * size
+    nan = math.nan
+    targets = []
+    for cell in maze.cells():
+        column, row = cell
+        values = [nan] * _TARGETS
+        targets.append(values)
+        if steps[row, column] < 0:
+            values[:_SIDES] = [unreachable] * _SIDES
+            continue
+        here = float(steps[row, column]) * size
+        for direction in maze.openings(cell):
+            next_column, next_row = maze.neighbour(cell, direction)
+            if steps[next_row, next_column] >= 0:
+                values[direction] = 0.5 * (here + float(steps[next_row, next_column]) * size)
+        if cell == goal:
+            values[_SIDES] = 0.0
+            continue
+        known = [(v, side) for side, v in enumerate(values[:_SIDES]) if not math.isnan(v)]
+        if known and all(value <= here for value, _ in known):
+            nearest = min(known, key=lambda item: (item[0], _TIE_ORDER[item[1]]))[1]
+            back = (nearest + 2) % _SIDES
+            if math.isnan(values[back]):
+                values[back] = here + 0.5 * size
+    return np.array(targets, dtype=np.float64)
+
+
+class GoalDistance:
+    """The shortest-path distances to the goal of N environments, each in its own world.
+
+    Args:
+        num_envs: Number of environments.
+        table: The table every environment starts with.
+    """
+
+    def __init__(self, num_envs: int, table: PathDistanceTable) -> None:
+        self.num_envs = num_envs
+        self._cells = table.rows * table.cols
+        self._modes = [table.mode] * num_envs
+        self._kinds = frozenset(self._modes)
+        self._has_goal = np.zeros(num_envs, dtype=bool)
+        self._last_row = np.zeros(num_envs)
+        self._last_col = np.zeros(num_envs)
+        self._cols = np.zeros(num_envs, dtype=np.intp)
+        self._size = np.zeros(num_envs)
+        self._origin_x = np.zeros(num_envs)
+        self._origin_y = np.zeros(num_envs)
+        self._goal_x = np.zeros(num_envs)
+        self._goal_y = np.zeros(num_envs)
+        self._goal_r2 = np.zeros(num_envs)
+        # Per env and cell: the 5 target values (0 where absent), then 5 presence flags (0 or 1).
+        self._targets = np.zeros((num_envs * self._cells, 2 * _TARGETS))
+        self._first_cell = np.arange(num_envs, dtype=np.intp) * self._cells
+        self.set(np.arange(num_envs), table)
+
+    def set(self, envs: npt.NDArray[np.intp] | int, table: PathDistanceTable) -> None:
+        """Puts the environments ``envs`` (indices) into the world described by ``table``."""
+        cells = table.rows * table.cols
+        if cells > self._cells:
+            grown = np.zeros((self.num_envs, cells, 2 * _TARGETS))
+            grown[:, : self._cells] = self._targets.reshape(self.num_envs, self._cells, -1)
+            self._targets = grown.reshape(self.num_envs * cells, -1)
+            self._first_cell = np.arange(self.num_envs, dtype=np.intp) * cells
+            self._cells = cells
+        for env in np.atleast_1d(envs):
+            self._modes[int(env)] = table.mode
+        if self._kinds != {table.mode}:
+            self._kinds = frozenset(self._modes)
+        self._has_goal[envs] = table.mode != "none"
+        self._last_row[envs] = table.rows - 1
+        self._last_col[envs] = table.cols - 1
+        self._cols[envs] = table.cols
+        self._size[envs] = table.cell_size
+        self._origin_x[envs], self._origin_y[envs] = table.origin
+        self._goal_x[envs], self._goal_y[envs] = table.goal[0], table.goal[1]
+        self._goal_r2[envs] = table.goal[2] * table.goal[2] if table.mode != "none" else -1.0
+        present = ~np.isnan(table.targets)
+        rows = np.concatenate((np.where(present, table.targets, 0.0), present), axis=1)
+        view = self._targets.reshape(self.num_envs, self._cells, -1)
+        view[envs, :cells] = rows
+
+    def evaluate(
+        self, poses: npt.NDArray[np.float32]
+    ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.bool_]]:
+        """Shortest-path distances (N,) in metres to the goal from (N, 3) ``poses``, and whether
+        each robot's centre lies in its goal disc."""
+        x = poses[:, 0].astype(np.float64)
+        y = poses[:, 1].astype(np.float64)
+        gx = x - self._goal_x
+        gy = y - self._goal_y
+        to_goal2 = gx * gx + gy * gy
+        to_goal = np.sqrt(to_goal2)
+        reached = to_goal2 <= self._goal_r2
+        modes = self._kinds
+        if modes == {"none"}:
+            return np.zeros(self.num_envs), reached
+        if modes == {"straight"}:
+            return to_goal, reached
+        size = self._size
+        col = np.minimum(np.maximum(np.floor((x - self._origin_x) / size), 0.0), self._last_col)
+        up = np.minimum(np.maximum(np.floor((y - self._origin_y) / size), 0.0), self._last_row)
+        half = 0.5 * size
+        u = x - (self._origin_x + (col + 0.5) * size)
+        v = y - (self._origin_y + (up + 0.5) * size)
+        cell = (self._last_row - up).astype(np.intp) * self._cols + col.astype(np.intp)
+        targets = np.take(self._targets, self._first_cell + cell, axis=0)
+        gaps = np.stack((half - u, half - v, half + u, half + v, to_goal), axis=1)
+        weights = targets[:, _TARGETS:] / np.maximum(gaps, _NEAREST)
+        terms = weights * targets[:, :_TARGETS]
+        # Summed north, east, south, west, goal: the order the environments' rewards were
+        # pinned with (floating-point sums depend on their order).
+        n, e, s, w = NORTH, EAST, SOUTH, WEST
+        weighted = terms[:, n] + terms[:, e] + terms[:, s] + terms[:, w] + terms[:, _SIDES]
+        total = weights[:, n] + weights[:, e] + weights[:, s] + weights[:, w] + weights[:, _SIDES]
+        along = weighted / total
+        if modes == {"maze"}:
+            return along, reached
+        maze = np.array([mode == "maze" for mode in self._modes])
+        return np.where(maze, along, np.where(self._has_goal, to_goal, 0.0)), reached

@@ -1,0 +1,191 @@
+"""Issue 15: a training checkpoint is complete or absent at every instant.
+
+A crash is simulated at every file replacement of a training run (the k-th ``os.replace``
+raises and nothing is cleaned up, as after ``kill -9``); the run is then continued with
+``resume`` and must end with the tables of a run never interrupted.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import os
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+from mazesim.errors import PolicyFormatError
+from mazesim.learn.archive import write_archive
+from mazesim.learn.bundle import write_bundle
+from mazesim.learn.checkpoint import (
+    CHECKPOINT_FILE,
+    CHECKPOINT_FORMAT,
+    checkpoint_exists,
+    read_checkpoint,
+)
+from mazesim.learn.tables import FORMAT_VERSION, TrainedPolicy, load_policy
+from mazesim.learn.train import TrainSettings, train
+
+#: Three lower-level rounds, a checkpoint after each.
+RUN = TrainSettings(
+    envs=32,
+    steps=32 * 500 * 3,
+    seed=3,
+    maze_pool=4,
+    higher_episodes=2,
+    higher_envs=2,
+    higher_max_steps=200,
+    checkpoint_seconds=0.0,
+)
+ROUNDS = 3
+
+
+class SimulatedCrash(BaseException):
+    """The process dies here (a BaseException, so no ``except Exception`` catches it)."""
+
+
+@pytest.fixture(scope="module")
+def uninterrupted(tmp_path_factory: pytest.TempPathFactory) -> TrainedPolicy:
+    folder = tmp_path_factory.mktemp("uninterrupted")
+    policy = train(RUN, folder, progress=None, threads=1)
+    assert policy is not None
+    return load_policy(folder)
+
+
+def _replacements_of_a_run(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> int:
+    """How many times a whole run replaces a file."""
+    calls = []
+    real_replace = os.replace
+
+    def counting_replace(source: Any, target: Any) -> None:
+        calls.append(target)
+        real_replace(source, target)
+
+    with monkeypatch.context() as patch:
+        patch.setattr(os, "replace", counting_replace)
+        train(RUN, tmp_path / "counted", progress=None, threads=1)
+    return len(calls)
+
+
+def _crash_at(folder: Path, crash_call: int, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Runs training in ``folder`` until the ``crash_call``-th file replacement, which dies."""
+    calls = 0
+    real_replace = os.replace
+
+    def crashing_replace(source: Any, target: Any) -> None:
+        nonlocal calls
+        calls += 1
+        if calls == crash_call:
+            raise SimulatedCrash
+        real_replace(source, target)
+
+    with monkeypatch.context() as patch:
+        patch.setattr(os, "replace", crashing_replace)
+        # A killed process cleans nothing up: its temporary files stay.
+        patch.setattr(os, "unlink", lambda *args, **kwargs: None)
+        with pytest.raises(SimulatedCrash):
+            train(RUN, folder, progress=None, threads=1)
+
+
+def _assert_same_navigator(first: TrainedPolicy, second: TrainedPolicy) -> None:
+    assert first.lower_q is not None and second.lower_q is not None
+    assert np.array_equal(first.lower_q, second.lower_q)
+    assert first.higher_q is not None and second.higher_q is not None
+    assert np.array_equal(first.higher_q, second.higher_q)
+    assert first.training["history"] == second.training["history"]
+
+
+def test_a_crash_at_any_file_replacement_resumes_to_the_same_tables(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, uninterrupted: TrainedPolicy
+) -> None:
+    replacements = _replacements_of_a_run(tmp_path, monkeypatch)
+    # One per checkpoint, then the navigator's two files.
+    assert replacements == ROUNDS + 2
+    for crash_call in range(1, replacements + 1):
+        folder = tmp_path / f"crash-{crash_call}"
+        _crash_at(folder, crash_call, monkeypatch)
+        leftovers = [name for name in os.listdir(folder) if name.endswith(".tmp")]
+        assert leftovers, "the simulated crash should leave its temporary file"
+        # The checkpoint on disk is the last whole one: absent before the first was switched in.
+        whole_checkpoints = min(crash_call - 1, ROUNDS)
+        if whole_checkpoints == 0:
+            assert not checkpoint_exists(folder)
+            with pytest.raises(PolicyFormatError, match="no checkpoint"):
+                train(RUN, folder, progress=None, threads=1, resume=True)
+            resumed = train(RUN, folder, progress=None, threads=1)
+        else:
+            saved = read_checkpoint(folder, RUN.identity())
+            assert saved.next_round == whole_checkpoints
+            assert len(saved.history) == whole_checkpoints
+            resumed = train(RUN, folder, progress=None, threads=1, resume=True)
+        assert resumed is not None
+        _assert_same_navigator(load_policy(folder), uninterrupted)
+        assert [name for name in os.listdir(folder) if name.endswith(".tmp")] == []
+
+
+def test_a_checkpoint_of_mazesim_0_1_still_resumes(
+    tmp_path: Path, uninterrupted: TrainedPolicy
+) -> None:
+    folder = tmp_path / "old"
+    assert train(RUN, folder, progress=None, threads=1, stop_after_rounds=1) is None
+    saved = read_checkpoint(folder, RUN.identity())
+    (folder / CHECKPOINT_FILE).unlink()
+    write_bundle(
+        folder,
+        CHECKPOINT_FILE,
+        "checkpoint.json",
+        {"q": saved.tables.q, "visits": saved.tables.visits},
+        {
+            "format": CHECKPOINT_FORMAT,
+            "version": FORMAT_VERSION,
+            "settings": RUN.identity(),
+            "next_round": saved.next_round,
+            "history": saved.history,
+            "lower_seconds": saved.lower_seconds,
+        },
+    )
+    assert train(RUN, folder, progress=None, threads=1, resume=True) is not None
+    _assert_same_navigator(load_policy(folder), uninterrupted)
+    # The first new checkpoint replaced the two old files with one.
+    assert not (folder / "checkpoint.json").exists()
+
+
+@pytest.mark.parametrize(
+    ("change", "reason"),
+    [
+        (lambda m: {**m, "next_round": -1}, "next_round"),
+        (lambda m: {**m, "next_round": 1e300}, "next_round"),
+        (lambda m: {**m, "lower_seconds": 10**400}, "lower_seconds"),
+        (lambda m: {**m, "history": {"a": 1}}, "history"),
+        (lambda m: {**m, "lower_seconds": float("nan")}, "lower_seconds"),
+        (lambda m: {k: v for k, v in m.items() if k != "settings"}, "settings"),
+        (lambda m: {**m, "settings": {**m["settings"], "seed": 4}}, "other settings"),
+    ],
+)
+def test_a_malformed_checkpoint_is_refused(tmp_path: Path, change: Any, reason: str) -> None:
+    assert train(RUN, tmp_path, progress=None, threads=1, stop_after_rounds=1) is None
+    saved = read_checkpoint(tmp_path, RUN.identity())
+    metadata = {
+        "format": CHECKPOINT_FORMAT,
+        "version": FORMAT_VERSION,
+        "settings": RUN.identity(),
+        "next_round": saved.next_round,
+        "history": saved.history,
+        "lower_seconds": saved.lower_seconds,
+    }
+    data = write_archive(
+        {"q": saved.tables.q, "visits": saved.tables.visits},
+        {"checkpoint.json": json.dumps(change(metadata)).encode()},
+    )
+    (tmp_path / CHECKPOINT_FILE).write_bytes(data)
+    with pytest.raises(PolicyFormatError, match=reason):
+        train(RUN, tmp_path, progress=None, threads=1, resume=True)
+
+
+def test_other_settings_cannot_resume(tmp_path: Path) -> None:
+    assert train(RUN, tmp_path, progress=None, threads=1, stop_after_rounds=1) is None
+    other = dataclasses.replace(RUN, seed=RUN.seed + 1)
+    with pytest.raises(PolicyFormatError, match="other settings"):
+        train(other, tmp_path, progress=None, threads=1, resume=True)

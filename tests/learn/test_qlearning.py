@@ -1,0 +1,118 @@
+"""Issue 6: tabular Q-learning, one update and a batch of them."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from mazesim.errors import InvalidArgumentError
+from mazesim.learn.qlearning import (
+    LearningRate,
+    batch_update,
+    epsilon_greedy,
+    greedy,
+    learning_rates,
+    scalar_update,
+    td_targets,
+)
+
+
+def test_scalar_update_equals_the_formula() -> None:
+    q = np.array([[1.0, 2.0], [3.0, 4.0]])
+    scalar_update(q, state=0, action=1, reward=0.5, next_state=1, bootstrap=0.9, alpha=0.1)
+    assert q[0, 1] == pytest.approx(2.0 + 0.1 * (0.5 + 0.9 * 4.0 - 2.0))
+    scalar_update(q, state=1, action=0, reward=-1.0, next_state=0, bootstrap=0.0, alpha=0.5)
+    assert q[1, 0] == pytest.approx(3.0 + 0.5 * (-1.0 - 3.0))
+    assert q[0, 0] == 1.0 and q[1, 1] == 4.0
+
+
+def test_one_batch_update_equals_the_formula() -> None:
+    q = np.array([[1.0, 2.0], [3.0, 4.0]])
+    visits = np.zeros((2, 2), dtype=np.int64)
+    rate = LearningRate(initial=0.5, floor=0.02, power=0.5)
+    batch_update(q, visits, [0], [1], [0.5], [1], [0.9], rate)
+    assert q[0, 1] == pytest.approx(2.0 + 0.5 * (0.5 + 0.9 * 4.0 - 2.0))
+    assert visits.tolist() == [[0, 1], [0, 0]]
+    # The second visit of the pair learns at 0.5 / sqrt(2).
+    before = q[0, 1]
+    batch_update(q, visits, [0], [1], [1.0], [0], [0.0], rate)
+    assert q[0, 1] == pytest.approx(before + 0.5 / np.sqrt(2.0) * (1.0 - before))
+
+
+def loop_of_scalar_updates(q, visits, states, actions, rewards, next_states, bootstrap, rate):
+    """The reference: scalar updates in environment order, targets from the table before."""
+    before = q.copy()
+    for i in range(len(states)):
+        target = rewards[i] + bootstrap[i] * before[next_states[i]].max()
+        alpha = learning_rates(visits[states[i], actions[i]], rate)
+        q[states[i], actions[i]] += alpha * (target - q[states[i], actions[i]])
+        visits[states[i], actions[i]] += 1
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_vectorised_update_equals_a_loop_with_duplicate_pairs(seed: int) -> None:
+    rng = np.random.default_rng(seed)
+    q = rng.normal(size=(6, 3))
+    visits = rng.integers(0, 4, size=(6, 3))
+    count = 300  # 18 pairs: every pair is hit many times in the one batch
+    states = rng.integers(0, 6, count)
+    actions = rng.integers(0, 3, count)
+    states[:50], actions[:50] = 2, 1  # and one pair 50+ times
+    rewards = rng.normal(size=count)
+    next_states = rng.integers(0, 6, count)
+    bootstrap = np.where(rng.random(count) < 0.2, 0.0, 0.99 ** rng.integers(1, 12, count))
+    rate = LearningRate(initial=0.5, floor=0.05, power=0.6)
+    q_loop, visits_loop = q.copy(), visits.copy()
+    loop_of_scalar_updates(
+        q_loop, visits_loop, states, actions, rewards, next_states, bootstrap, rate
+    )
+    batch_update(q, visits, states, actions, rewards, next_states, bootstrap, rate)
+    np.testing.assert_allclose(q, q_loop, rtol=1e-12, atol=1e-12)
+    assert np.array_equal(visits, visits_loop)
+
+
+def test_a_thousand_envs_on_one_pair_do_not_diverge() -> None:
+    q = np.zeros((1, 1))
+    visits = np.zeros((1, 1), dtype=np.int64)
+    batch_update(q, visits, np.zeros(1000), np.zeros(1000), np.ones(1000), np.zeros(1000), 0.0,
+                 LearningRate())  # fmt: skip
+    assert q[0, 0] == pytest.approx(1.0)
+    assert visits[0, 0] == 1000
+
+
+def test_batch_update_refuses_mismatched_inputs() -> None:
+    q = np.zeros((2, 2))
+    visits = np.zeros((2, 2), dtype=np.int64)
+    with pytest.raises(InvalidArgumentError, match="as many actions"):
+        batch_update(q, visits, [0, 1], [0], [0.0, 0.0], [0, 0], 0.9, LearningRate())
+    with pytest.raises(InvalidArgumentError, match="states in"):
+        batch_update(q, visits, [2], [0], [0.0], [0], 0.9, LearningRate())
+
+
+def test_greedy_and_epsilon_greedy() -> None:
+    q = np.array([[0.0, 0.0, 0.0], [0.0, 2.0, 2.0], [-1.0, -3.0, 5.0]])
+    assert greedy(q, [0, 1, 2]).tolist() == [0, 1, 2]  # ties go to the lowest index
+    rng = np.random.default_rng(0)
+    assert epsilon_greedy(q, [0, 1, 2], 0.0, rng).tolist() == [0, 1, 2]
+    first = epsilon_greedy(q, np.zeros(50, int), 1.0, np.random.default_rng(7))
+    second = epsilon_greedy(q, np.zeros(50, int), 1.0, np.random.default_rng(7))
+    assert np.array_equal(first, second) and len(set(first.tolist())) == 3
+
+
+def test_greedy_and_targets_keep_to_the_allowed_actions() -> None:
+    q = np.array([[0.0, 1.0, 9.0], [4.0, 2.0, 7.0]])
+    allowed = np.array([True, True, False])
+    assert greedy(q, [0, 1], allowed).tolist() == [1, 0]
+    assert greedy(q, [0, 1]).tolist() == [2, 2]
+    # One mask per state, broadcast against the rows.
+    per_state = np.array([[True, True, False], [True, True, True]])
+    assert greedy(q, [0, 1], per_state).tolist() == [1, 2]
+    targets = td_targets(q, [0.5, 0.5], [0, 1], [0.9, 0.0], allowed)
+    assert targets.tolist() == pytest.approx([0.5 + 0.9 * 1.0, 0.5])
+    unmasked = q.copy()
+    visits = np.zeros(q.shape, dtype=np.int64)
+    batch_update(unmasked, visits.copy(), [1], [0], [0.0], [0], [1.0], LearningRate())
+    batch_update(q, visits, [1], [0], [0.0], [0], [1.0], LearningRate(), allowed)
+    # The next state's value is its best allowed action's (1.0), not 9.0.
+    assert q[1, 0] == pytest.approx(4.0 + 0.5 * (1.0 - 4.0))
+    assert unmasked[1, 0] == pytest.approx(4.0 + 0.5 * (9.0 - 4.0))

@@ -1,0 +1,64 @@
+"""The one cell-maze model: directions, breadth-first distances, and the goal distance."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import mazesim
+from mazesim.errors import InvalidArgumentError
+from mazesim.maze import EAST, NORTH, SOUTH, WEST, CellMaze, GoalDistance, PathDistanceTable
+
+
+def test_directions_turn_counter_clockwise_from_east() -> None:
+    maze = CellMaze(mazesim.generate_maze(3, 3, seed=1))
+    assert [maze.heading_of(d) for d in (EAST, NORTH, WEST, SOUTH)] == pytest.approx(
+        [0.0, math.pi / 2, math.pi, 3 * math.pi / 2]
+    )
+    x0, y0 = maze.center((1, 1))
+    for direction in (EAST, NORTH, WEST, SOUTH):
+        x, y = maze.center(maze.neighbour((1, 1), direction))
+        heading = maze.heading_of(direction)
+        assert (x - x0, y - y0) == pytest.approx(
+            (maze.cell_size * math.cos(heading), maze.cell_size * math.sin(heading)), abs=1e-12
+        )
+
+
+def test_breadth_first_distances_count_cells_along_open_sides() -> None:
+    maze = CellMaze(mazesim.generate_maze(5, 5, seed=4))
+    distance = maze.distances_from((0, 0))
+    assert distance[0, 0] == 0 and np.all(distance >= 0)  # a perfect maze: all reachable
+    for cell in maze.cells():
+        here = distance[cell[1], cell[0]]
+        steps = [
+            distance[n[1], n[0]]
+            for n in map(lambda d: maze.neighbour(cell, d), maze.openings(cell))
+        ]
+        if here > 0:
+            assert min(steps) == here - 1  # one open neighbour is a cell closer
+        assert all(abs(s - here) <= 1 for s in steps)
+
+
+def test_goal_distance_at_cell_centres_is_cells_to_go() -> None:
+    world = mazesim.generate_maze(5, 5, seed=7)
+    maze = CellMaze(world)
+    assert maze.goal_cell is not None
+    cells_to_go = maze.distances_from(maze.goal_cell)
+    cells = [cell for cell in maze.cells() if cell != maze.goal_cell]
+    poses = np.array([[*maze.center(cell), 0.0] for cell in cells], dtype=np.float32)
+    distances, reached = GoalDistance(len(cells), PathDistanceTable.of_world(world)).evaluate(poses)
+    expected = np.array([cells_to_go[row, column] * maze.cell_size for column, row in cells])
+    # Within a cell the distance blends its sides', so a centre lies within a quarter cell of its
+    # cell count, and farther cells are farther.
+    assert np.all(np.abs(distances - expected) <= 0.25 * maze.cell_size)
+    order = np.argsort(expected, kind="stable")
+    farther = np.diff(expected[order]) > 0
+    assert np.all(np.diff(distances[order])[farther] > 0)
+    assert not reached.any()
+
+
+def test_a_world_without_a_maze_has_no_cell_model() -> None:
+    with pytest.raises(InvalidArgumentError, match=r"\[grid\] cell maze"):
+        CellMaze(mazesim.load_world("arena"))
