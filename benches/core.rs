@@ -50,7 +50,7 @@ fn body_step(c: &mut Criterion) {
         b.iter(|| {
             i += 1;
             let w = if (i / 50) % 2 == 0 { 0.0 } else { 2.0 };
-            body.step(0.1, w, 0.0);
+            body.step(0.1, w, 0.0, world.wall_index());
         })
     });
     g.finish();
