@@ -79,6 +79,7 @@ fn random_wheel_speeds_never_sink_deeper_than_before() {
             deepest = deepest.max(run.step(&actions).1);
         }
         assert!(deepest <= DEEPEST, "{robot}: sank {:.4} mm", deepest * 1e3);
+        assert!(deepest < 1e-5, "{robot}: sank {:.6} mm", deepest * 1e3);
     }
 }
 
