@@ -46,11 +46,11 @@ fn body_step(c: &mut Criterion) {
     let mut g = c.benchmark_group("body_step");
     g.throughput(Throughput::Elements(1));
     let mut i = 0u32;
-    g.bench_function("rapier_only", |b| {
+    g.bench_function("disc_against_walls", |b| {
         b.iter(|| {
             i += 1;
             let w = if (i / 50) % 2 == 0 { 0.0 } else { 2.0 };
-            body.step(0.1, w, 0.0);
+            body.step(0.1, w, 0.0, world.wall_index());
         })
     });
     g.finish();

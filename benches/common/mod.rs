@@ -64,6 +64,17 @@ pub fn braitenberg(ps: &[f32]) -> (f64, f64) {
     (base - turn, base + turn)
 }
 
+/// Wheel speeds of the contact workload for env `i` at step `k`: ahead at nearly full speed with
+/// a slight curve whose side changes every 150 steps, so that robots drive into walls and keep
+/// pushing along them (nine steps in ten in contact once they have reached one).
+pub fn pushing(k: usize, i: usize) -> (f64, f64) {
+    if (k / 150 + i) % 2 == 0 {
+        (6.0, 5.0)
+    } else {
+        (5.0, 6.0)
+    }
+}
+
 /// `n` distinct generated 5 x 5 mazes (seeds 0..n, a tenth of the walls opened into loops).
 pub fn distinct_mazes(n: usize) -> Vec<Arc<World>> {
     use mazesim_core::generator::{generate, MazeParams};

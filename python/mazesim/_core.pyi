@@ -271,6 +271,9 @@ class BatchSimulator:
     def distance_width(self) -> int: ...
     @property
     def ground_width(self) -> int: ...
+    def bytes_per_env(self) -> int:
+        """Bytes the batch holds per environment: each env's own state, plus each distinct world
+        (envs of equal worlds share one copy) and the robot's sensing set-up counted once."""
     def step(
         self,
         actions: npt.NDArray[np.float32],

@@ -21,7 +21,7 @@ use rayon::ThreadPool;
 use crate::error::{Error, Result};
 use crate::limits::{check_count, MAX_ENVS, MAX_THREADS};
 use crate::robot::RobotProfile;
-use crate::simulator::{SimConfig, Simulator};
+use crate::simulator::{Rig, SimConfig, Simulator};
 use crate::world::World;
 
 /// Environments per chunk of work: enough to amortise taking it from the queue, few enough that
@@ -115,12 +115,35 @@ impl Helpers {
     }
 }
 
-/// Bytes an environment needs besides its walls (simulator, rapier world, buffers), a generous
-/// estimate.
-const ENV_BYTES: u128 = 48 * 1024;
+/// Bytes an environment needs besides its walls (simulator, buffers), a generous estimate.
+const ENV_BYTES: u128 = 8 * 1024;
 
-/// Bytes each solid wall adds to an environment (its rapier collider and broad-phase entry).
+/// Bytes each solid wall adds to a world (its index entries), or to an env of a world with
+/// movable bodies (its rapier collider and broad-phase entry), a generous estimate.
 const WALL_BYTES: u128 = 1024;
+
+/// `worlds` with every world of the same content as an earlier one replaced by that one, so that
+/// envs of equal worlds share one copy of its walls, paint and indexes.
+pub fn share_equal_worlds(worlds: Vec<Arc<World>>) -> Vec<Arc<World>> {
+    let mut seen: std::collections::HashMap<u64, Vec<Arc<World>>> =
+        std::collections::HashMap::new();
+    worlds
+        .into_iter()
+        .map(|world| {
+            let same = seen.entry(world.fingerprint()).or_default();
+            match same
+                .iter()
+                .find(|w| Arc::ptr_eq(w, &world) || ***w == *world)
+            {
+                Some(first) => first.clone(),
+                None => {
+                    same.push(world.clone());
+                    world
+                }
+            }
+        })
+        .collect()
+}
 
 /// Refuses a batch of `envs` environments holding `walls` solid walls in all (summed over the
 /// environments) before anything is allocated: beyond `MAX_ENVS`, or when its estimated memory
@@ -202,13 +225,22 @@ impl Batch {
                 robot.name
             )));
         }
-        let walls = worlds.iter().map(|w| w.solid_walls().len() as u128).sum();
-        check_size(worlds.len(), walls)?;
+        let worlds = share_equal_worlds(worlds);
+        let walls = |w: &Arc<World>| w.solid_walls().len() as u128;
+        let mut counted = std::collections::HashSet::new();
+        let distinct = worlds
+            .iter()
+            .filter(|w| counted.insert(Arc::as_ptr(w)))
+            .map(walls)
+            .collect::<Vec<_>>();
+        let with_bodies = worlds.iter().filter(|w| !w.bodies().is_empty()).map(walls);
+        check_size(worlds.len(), distinct.into_iter().chain(with_bodies).sum())?;
         let helpers = Helpers::new(threads)?;
+        let rig = Rig::new(robot.clone());
         let make = |(world, &seed): (Arc<World>, &u64)| {
-            Simulator::new(
+            Simulator::with_rig(
                 world,
-                robot.clone(),
+                rig.clone(),
                 SimConfig {
                     seed,
                     noise,
@@ -230,6 +262,32 @@ impl Batch {
             pid: std::process::id(),
             interrupt: None,
         })
+    }
+
+    /// Bytes the batch holds per environment, rounded down: each env's simulator, each distinct
+    /// world once (envs of equal worlds share one), the robot's rig once (`crate::footprint`).
+    pub fn bytes_per_env(&self) -> usize {
+        let mut worlds = std::collections::HashSet::new();
+        let mut rigs = std::collections::HashSet::new();
+        let shared: usize = self
+            .envs
+            .iter()
+            .map(|env| {
+                let world = if worlds.insert(Arc::as_ptr(env.world())) {
+                    env.world().heap_bytes()
+                } else {
+                    0
+                };
+                let rig = if rigs.insert(Arc::as_ptr(env.rig())) {
+                    env.rig().heap_bytes()
+                } else {
+                    0
+                };
+                world + rig
+            })
+            .sum();
+        let own: usize = self.envs.iter().map(Simulator::heap_bytes).sum();
+        (shared + own + std::mem::size_of_val(self)) / self.envs.len()
     }
 
     /// Number of environments.
@@ -524,7 +582,16 @@ impl Batch {
             seed,
             ..env.config()
         };
-        *env = Simulator::new(world, env.robot().clone(), config)?;
+        let rig = env.rig().clone();
+        // An env of an equal world lends its copy.
+        let world = self
+            .envs
+            .iter()
+            .map(Simulator::world)
+            .find(|w| w.fingerprint() == world.fingerprint() && ***w == *world)
+            .cloned()
+            .unwrap_or(world);
+        self.envs[index] = Simulator::with_rig(world, rig, config)?;
         Ok(())
     }
 

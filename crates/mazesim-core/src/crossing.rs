@@ -73,6 +73,11 @@ impl CrossingTracker {
         Self::default()
     }
 
+    /// Bytes of its buffers on the heap (`crate::footprint`).
+    pub fn heap_bytes(&self) -> usize {
+        crate::footprint::vec_bytes(&self.watched)
+    }
+
     /// Whether every code index it holds is below `codes` and its positions are finite: what a
     /// tracker read back from a snapshot must satisfy to follow a world of `codes` checkpoints.
     pub fn fits(&self, codes: usize) -> bool {

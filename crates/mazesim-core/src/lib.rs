@@ -18,9 +18,11 @@
 
 pub mod batch;
 pub mod codebook;
+pub mod contact;
 pub mod crossing;
 pub mod error;
 pub mod fingerprint;
+pub mod footprint;
 pub mod generator;
 pub mod io;
 pub mod limits;

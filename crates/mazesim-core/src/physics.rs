@@ -1,10 +1,11 @@
-//! The robot's body in rapier2d: a dynamic ball among fixed wall boxes and the world's movable
-//! bodies, seen from above (no gravity).
+//! The robot's body, seen from above (no gravity): a disc whose velocity the wheel speeds set each
+//! physics step (differential drive).
 //!
-//! Each physics step the wheel speeds set the body's velocity (differential drive), and rapier's
-//! contact solver keeps it out of the walls and pushes the movable bodies. The solver's length unit
-//! is scaled to the e-puck so its allowed penetration and prediction distance are fractions of a
-//! millimetre, not of a metre.
+//! Among walls alone, its contacts are resolved by `crate::contact` against the world's shared
+//! wall index. In a world with movable bodies, rapier2d simulates the robot as a dynamic ball
+//! among fixed wall boxes and the bodies: its contact solver keeps the robot out of the walls and
+//! pushes the bodies. The solver's length unit is scaled to the e-puck so its allowed penetration
+//! and prediction distance are fractions of a millimetre, not of a metre.
 //!
 //! Floor friction of a movable body: seen from above there is no gravity to press a body on the
 //! floor, so the floor's friction is a damping of its linear and angular velocity at a rate of
@@ -16,14 +17,14 @@
 use rapier2d::parry::query::Ray;
 use rapier2d::prelude::*;
 
-use crate::world::{BodyShape, MovableBody, RayHit, WallBox};
+use crate::contact;
+use crate::world::{BodyShape, MovableBody, RayHit, WallBox, WallIndex};
 
 /// Damping rate (1/s) of a movable body per unit of floor friction coefficient: g, 9.81 m/s^2,
 /// over a reference speed of 1 m/s.
 pub const FLOOR_DAMPING_PER_FRICTION: f32 = 9.81;
 
-/// Solver iterations when movable bodies are present: a push through a chain of bodies needs more
-/// than the single iteration that a ball against static walls needs.
+/// Rapier's solver iterations: a push through a chain of bodies needs more than one.
 const SOLVER_ITERATIONS_WITH_BODIES: usize = 4;
 
 /// Scale of the scene for rapier's tolerances (allowed error, corrective velocity): 1 cm.
@@ -35,35 +36,32 @@ const LENGTH_UNIT: f32 = 0.01;
 /// body out after it has sunk in.
 const PREDICTION_DISTANCE: f32 = 0.01;
 
-/// Rapier takes over from free flight in any step that could end within this gap of a wall
-/// (metres). Free flight never reaches a wall: the gap is measured before the step and the body,
-/// a disc, cannot close more of it than it travels, so rapier's solver still meets every wall from
-/// at least this far out, well inside its prediction distance. Free flight and rapier move a free
-/// body alike but not to the last bit (rapier keeps the heading as a unit complex number), so this
-/// margin is part of the results: the shipped navigator was trained with this one. (A margin of
-/// one prediction distance, 1 cm, ran every step near a wall through rapier and cost a fifth more
-/// per env-step.)
+/// Free flight gives way to the contact solve in any step that could end within this gap of a
+/// wall (metres). The wall contact solve (`crate::contact`) moves a body that meets no wall
+/// exactly as free flight does, so this margin only saves work: it does not change results.
 const FREE_FLIGHT_MARGIN: f32 = 0.0005;
 
-/// The physical state of one robot among its walls.
+/// The physical state of one robot among its walls and the world's movable bodies.
 ///
-/// Far from every wall the body moves in free flight, integrated here as rapier integrates a body
-/// with a set velocity and no contact, up to rounding (position += velocity * dt, angle += rate *
-/// dt); the contact pipeline runs only in the steps where the body could reach a wall. This is what
-/// makes a step cheap in a maze's corridors, and it changes nothing physical: rapier's solver still
-/// handles every approach to a wall. It takes over while the body is at least `FREE_FLIGHT_MARGIN`
-/// from the wall, and its contact prediction reaches further than the body travels in a step.
+/// Among walls alone the body holds only its pose: far from every wall it moves in free flight
+/// (position += velocity * dt, angle += rate * dt), near one its contacts are resolved against the
+/// world's shared wall index by `crate::contact`, without a rapier world per env. With movable
+/// bodies, rapier simulates the robot, the bodies and the walls together every step.
 pub struct Body {
-    world: PhysicsWorld,
-    robot: RigidBodyHandle,
     pose: [f32; 3],
     /// Sine and cosine of `pose[2]`.
     heading: [f32; 2],
     dt: f32,
-    /// The rapier body lags behind `pose` after free-flight steps.
-    stale: bool,
-    /// The movable bodies with their reflectance, in world order. With any of them every step
-    /// runs through rapier (no free flight).
+    radius: f32,
+    /// Rapier's scene, for a world with movable bodies.
+    scene: Option<Box<Scene>>,
+}
+
+/// The robot, the walls and the movable bodies in rapier.
+struct Scene {
+    world: PhysicsWorld,
+    robot: RigidBodyHandle,
+    /// The movable bodies with their reflectance, in world order.
     movables: Vec<(RigidBodyHandle, ColliderHandle, f32)>,
 }
 
@@ -78,23 +76,20 @@ fn wrap_angle(a: f32) -> f32 {
     }
 }
 
-impl Body {
-    /// A body of `radius` at `pose` (x, y, yaw) among `walls` and the movable `bodies` at their
-    /// start poses, stepped by `dt` seconds.
-    pub fn new(
+impl Scene {
+    /// Rapier's world of `walls`, the robot's ball and the movable `bodies`.
+    fn new(
         walls: &[WallBox],
         bodies: &[MovableBody],
         radius: f32,
         pose: [f32; 3],
         dt: f32,
-    ) -> Body {
+    ) -> Self {
         let mut world = PhysicsWorld::new();
         world.gravity = Vector::ZERO;
         world.integration_parameters.dt = dt;
         world.integration_parameters.length_unit = LENGTH_UNIT;
-        // One ball against static boxes needs no more: the contact tests hold, a contact step
-        // costs about a fifth less than with rapier's default of 4.
-        world.integration_parameters.num_solver_iterations = 1;
+        world.integration_parameters.num_solver_iterations = SOLVER_ITERATIONS_WITH_BODIES;
         world.integration_parameters.normalized_prediction_distance =
             PREDICTION_DISTANCE / LENGTH_UNIT;
         for w in walls {
@@ -122,9 +117,6 @@ impl Body {
         world
             .colliders
             .insert_with_parent(ball, robot, &mut world.bodies);
-        if !bodies.is_empty() {
-            world.integration_parameters.num_solver_iterations = SOLVER_ITERATIONS_WITH_BODIES;
-        }
         let movables = bodies
             .iter()
             .map(|m| {
@@ -156,60 +148,108 @@ impl Body {
                 (handle, collider, m.reflectance as f32)
             })
             .collect();
-        let mut body = Body {
+        Scene {
             world,
             robot,
+            movables,
+        }
+    }
+
+    fn robot_pose(&self) -> [f32; 3] {
+        let b = &self.world.bodies[self.robot];
+        let t = b.translation();
+        [t.x, t.y, b.rotation().angle()]
+    }
+
+    /// Takes `world`, read back from a snapshot, after checking it was made like this one.
+    fn load(&mut self, world: PhysicsWorld) -> Result<(), String> {
+        let counts = |w: &PhysicsWorld| (w.bodies.len(), w.colliders.len());
+        if counts(&world) != counts(&self.world) {
+            return Err(format!(
+                "expected a physics state of {} bodies and {} colliders, found {} and {}",
+                self.world.bodies.len(),
+                self.world.colliders.len(),
+                world.bodies.len(),
+                world.colliders.len()
+            ));
+        }
+        let handles_known = world.bodies.get(self.robot).is_some()
+            && self.movables.iter().all(|&(body, collider, _)| {
+                world.bodies.get(body).is_some() && world.colliders.get(collider).is_some()
+            });
+        if !handles_known {
+            return Err(
+                "expected the robot's and every movable body's handles, found a \
+                        physics state without them"
+                    .to_string(),
+            );
+        }
+        self.world.islands = world.islands;
+        self.world.broad_phase = world.broad_phase;
+        self.world.narrow_phase = world.narrow_phase;
+        self.world.bodies = world.bodies;
+        self.world.colliders = world.colliders;
+        self.world.impulse_joints = world.impulse_joints;
+        self.world.multibody_joints = world.multibody_joints;
+        self.world.soft_bodies = world.soft_bodies;
+        self.world.integration_parameters = world.integration_parameters;
+        self.world.gravity = world.gravity;
+        Ok(())
+    }
+}
+
+impl Body {
+    /// A body of `radius` at `pose` (x, y, yaw) among `walls` and the movable `bodies` at their
+    /// start poses, stepped by `dt` seconds. Without movable bodies nothing of `walls` is kept:
+    /// `step` takes the world's wall index.
+    pub fn new(
+        walls: &[WallBox],
+        bodies: &[MovableBody],
+        radius: f32,
+        pose: [f32; 3],
+        dt: f32,
+    ) -> Body {
+        let scene =
+            (!bodies.is_empty()).then(|| Box::new(Scene::new(walls, bodies, radius, pose, dt)));
+        let mut body = Body {
             pose,
             heading: [0.0, 1.0],
             dt,
-            stale: false,
-            movables,
+            radius,
+            scene,
         };
-        body.set_pose(body.rapier_pose());
+        let start = body.scene.as_ref().map_or(pose, |s| s.robot_pose());
+        body.set_pose(start);
         body
     }
 
-    /// Whether a step of `linear` m/s could bring the body within `FREE_FLIGHT_MARGIN` of a wall,
-    /// given its current `clearance` (gap to the nearest wall).
-    fn near_wall(&self, linear: f32, clearance: f32) -> bool {
-        !self.movables.is_empty() || clearance - linear.abs() * self.dt <= FREE_FLIGHT_MARGIN
-    }
-
     /// Advances one physics step with the body driven at `linear` m/s forward and `angular` rad/s;
-    /// `clearance` is the current gap between the body and the nearest wall.
-    pub fn step(&mut self, linear: f32, angular: f32, clearance: f32) {
+    /// `clearance` is the current gap between the body and the nearest of `walls` (the world's
+    /// wall index, the same walls the body was made among).
+    pub fn step(&mut self, linear: f32, angular: f32, clearance: f32, walls: &WallIndex) {
         let [x, y, yaw] = self.pose;
         let [s, c] = self.heading;
-        if !self.near_wall(linear, clearance) {
-            self.set_pose([
-                x + c * linear * self.dt,
-                y + s * linear * self.dt,
-                wrap_angle(yaw + angular * self.dt),
-            ]);
-            self.stale = true;
-            return;
+        let velocity = [c * linear, s * linear];
+        let turned = wrap_angle(yaw + angular * self.dt);
+        if let Some(scene) = self.scene.as_mut() {
+            let body = &mut scene.world.bodies[scene.robot];
+            body.set_linvel(Vector::new(velocity[0], velocity[1]), true);
+            body.set_angvel(angular, true);
+            scene.world.step();
+            let pose = scene.robot_pose();
+            self.set_pose(pose);
+        } else if clearance - linear.abs() * self.dt > FREE_FLIGHT_MARGIN {
+            self.set_pose([x + velocity[0] * self.dt, y + velocity[1] * self.dt, turned]);
+        } else {
+            let [nx, ny] = contact::slide(walls, [x, y], self.radius, velocity, self.dt);
+            self.set_pose([nx, ny, turned]);
         }
-        let body = &mut self.world.bodies[self.robot];
-        if self.stale {
-            body.set_position(Pose::new(Vector::new(x, y), yaw), true);
-            self.stale = false;
-        }
-        body.set_linvel(Vector::new(c * linear, s * linear), true);
-        body.set_angvel(angular, true);
-        self.world.step();
-        self.set_pose(self.rapier_pose());
     }
 
     fn set_pose(&mut self, pose: [f32; 3]) {
         let (s, c) = pose[2].sin_cos();
         self.pose = pose;
         self.heading = [s, c];
-    }
-
-    fn rapier_pose(&self) -> [f32; 3] {
-        let b = &self.world.bodies[self.robot];
-        let t = b.translation();
-        [t.x, t.y, b.rotation().angle()]
     }
 
     /// Current pose (x, y, yaw in (-pi, pi]).
@@ -219,10 +259,12 @@ impl Body {
 
     /// Current poses (x, y, yaw) of the movable bodies, in world order.
     pub fn movable_poses(&self) -> impl Iterator<Item = [f32; 3]> + '_ {
-        self.movables.iter().map(|&(handle, _, _)| {
-            let b = &self.world.bodies[handle];
+        let scene = self.scene.as_deref();
+        let movables = scene.map_or(&[][..], |s| &s.movables[..]);
+        movables.iter().filter_map(move |&(handle, _, _)| {
+            let b = &scene?.world.bodies[handle];
             let t = b.translation();
-            [t.x, t.y, b.rotation().angle()]
+            Some([t.x, t.y, b.rotation().angle()])
         })
     }
 
@@ -239,8 +281,9 @@ impl Body {
             Vector::new(dir[0], dir[1]),
         );
         let mut nearest: Option<RayHit> = None;
-        for &(_, collider, reflectance) in &self.movables {
-            let c = &self.world.colliders[collider];
+        let scene = self.scene.as_deref()?;
+        for &(_, collider, reflectance) in &scene.movables {
+            let c = &scene.world.colliders[collider];
             let limit = nearest.map_or(max_distance, |h| h.distance);
             if let Some(distance) = c.shape().cast_ray(c.position(), &ray, limit, true) {
                 if distance < limit {
@@ -254,12 +297,14 @@ impl Body {
         nearest
     }
 
-    /// Writes the body's whole physical state with `serializer`: rapier's bodies, colliders,
-    /// broad and narrow phases with their contact manifolds and warm-start impulses, islands, and
-    /// the pose kept outside rapier. Rapier's pipelines hold only workspace and are left out.
+    /// Writes the body's whole physical state with `serializer`: its pose and, with movable
+    /// bodies, rapier's bodies, colliders, broad and narrow phases with their contact manifolds
+    /// and warm-start impulses, and islands. Rapier's pipelines hold only workspace and are left
+    /// out.
     pub fn save<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         use serde::Serialize;
-        (&self.world, self.pose, self.stale).serialize(serializer)
+        let world = self.scene.as_ref().map(|s| &s.world);
+        (self.pose, world).serialize(serializer)
     }
 
     /// Reads back what `save` wrote for a body built like this one (same walls, bodies and
@@ -269,47 +314,40 @@ impl Body {
         deserializer: D,
     ) -> Result<(), String> {
         use serde::Deserialize;
-        let (world, pose, stale): (PhysicsWorld, [f32; 3], bool) =
+        let (pose, world): ([f32; 3], Option<PhysicsWorld>) =
             Deserialize::deserialize(deserializer).map_err(|e| e.to_string())?;
-        let counts = |w: &PhysicsWorld| (w.bodies.len(), w.colliders.len());
-        if counts(&world) != counts(&self.world) {
-            return Err(format!(
-                "expected a physics state of {} bodies and {} colliders, found {} and {}",
-                self.world.bodies.len(),
-                self.world.colliders.len(),
-                world.bodies.len(),
-                world.colliders.len()
-            ));
+        if !pose.iter().all(|v| v.is_finite()) {
+            return Err(format!("expected a finite pose, found {pose:?}"));
         }
-        let handles_known = world.bodies.get(self.robot).is_some()
-            && self.movables.iter().all(|&(body, collider, _)| {
-                world.bodies.get(body).is_some() && world.colliders.get(collider).is_some()
-            });
-        if !handles_known || !pose.iter().all(|v| v.is_finite()) {
-            return Err(
-                "expected the robot's and every movable body's handles and a finite pose, \
-                 found a physics state without them"
-                    .to_string(),
-            );
+        match (self.scene.as_mut(), world) {
+            (Some(scene), Some(world)) => scene.load(world)?,
+            (None, None) => {}
+            (mine, _) => {
+                return Err(format!(
+                    "expected a physics state {} movable bodies, found one {}",
+                    if mine.is_some() { "with" } else { "without" },
+                    if mine.is_some() { "without" } else { "with" }
+                ))
+            }
         }
-        self.world.islands = world.islands;
-        self.world.broad_phase = world.broad_phase;
-        self.world.narrow_phase = world.narrow_phase;
-        self.world.bodies = world.bodies;
-        self.world.colliders = world.colliders;
-        self.world.impulse_joints = world.impulse_joints;
-        self.world.multibody_joints = world.multibody_joints;
-        self.world.soft_bodies = world.soft_bodies;
-        self.world.integration_parameters = world.integration_parameters;
-        self.world.gravity = world.gravity;
         self.set_pose(pose);
-        self.stale = stale;
         Ok(())
+    }
+
+    /// Bytes of rapier's scene, estimated from the sizes of its sets' entries (0 without one).
+    pub fn heap_bytes(&self) -> usize {
+        use std::mem::size_of;
+        self.scene.as_ref().map_or(0, |s| {
+            size_of::<Scene>()
+                + s.world.bodies.len() * size_of::<RigidBody>()
+                + s.world.colliders.len() * (size_of::<Collider>() + size_of::<Cuboid>())
+                + s.movables.capacity() * size_of::<(RigidBodyHandle, ColliderHandle, f32)>()
+        })
     }
 
     /// Whether the world has movable bodies.
     pub fn has_movables(&self) -> bool {
-        !self.movables.is_empty()
+        self.scene.is_some()
     }
 
     /// Sine and cosine of the current yaw (computed once per step, for every user of the pose).

@@ -205,6 +205,12 @@ impl PyBatch {
         self.ground_width
     }
 
+    /// Bytes the batch holds per environment: each env's own state, plus each distinct world
+    /// (envs of equal worlds share one copy) and the robot's sensing set-up counted once.
+    fn bytes_per_env(&self) -> PyResult<usize> {
+        enter(|| Ok(self.with(|b| b.bytes_per_env())))
+    }
+
     /// Steps every environment with `actions` ((N, 2) float32 wheel speeds, rad/s).
     fn step<'py>(
         &self,

@@ -1,6 +1,9 @@
 //! One robot in one world: physics, sensors, time and counters, stepped in control steps.
 
+mod rig;
 mod snapshot;
+
+pub use rig::Rig;
 
 use std::sync::Arc;
 
@@ -10,8 +13,8 @@ use crate::limits::{self, MAX_PHYSICS_STEPS_PER_CONTROL_STEP};
 use crate::physics::Body;
 use crate::rng::Rng;
 use crate::robot::RobotProfile;
-use crate::sensors::{infrared_miss, infrared_reading_with, GroundReader};
-use crate::world::{NearbyWalls, RayFan, RayHit, World};
+use crate::sensors::{infrared_reading_with, GroundReader};
+use crate::world::{NearbyWalls, RayHit, World};
 
 /// A gap to a wall below this (metres) counts as touching it.
 pub const CONTACT_GAP: f32 = 2e-4;
@@ -19,17 +22,6 @@ pub const CONTACT_GAP: f32 = 2e-4;
 /// How far beyond the body the nearest wall is looked for (metres); farther counts as this far.
 /// It exceeds the contact prediction distance plus a step's travel, so free flight is decided right.
 const CLEARANCE_SEARCH: f32 = 0.03;
-
-/// How far from a robot's centre its sensor rays and the clearance search reach, metres, with a
-/// margin of 1 mm for rounding: the square of this half side around the robot holds them all.
-fn sensing_reach(robot: &RobotProfile) -> f32 {
-    let rays = robot.distance_sensors.iter().map(|d| {
-        let [px, py] = d.position;
-        (px * px + py * py).sqrt() + d.model.table.max_input()
-    });
-    let search = robot.body_radius + CLEARANCE_SEARCH as f64;
-    rays.fold(search, f64::max) as f32 + 1e-3
-}
 
 /// How deep the body may start in a wall, metres: a pose closer than this to overlapping is
 /// accepted (rapier pushes the body out within a step), a deeper one is refused.
@@ -86,8 +78,8 @@ impl Default for SimConfig {
 pub struct Simulator {
     world: Arc<World>,
     robot: Arc<RobotProfile>,
-    /// A hash of the robot profile's content, that snapshots carry.
-    robot_fingerprint: u64,
+    /// The robot's sensing set-up, shared with the other simulators of a batch.
+    rig: Arc<Rig>,
     config: SimConfig,
     physics_steps: u32,
     dt: f64,
@@ -96,20 +88,10 @@ pub struct Simulator {
     pose: [f32; 3],
     /// Sine and cosine of the yaw.
     heading: [f32; 2],
-    /// The distance sensors' rays in the robot frame (position, unit direction, length).
-    rays: RayFan,
-    /// The same rays as plain numbers `[px, py, dx, dy, length]`, cast against movable bodies.
-    sensor_rays: Vec<[f32; 5]>,
     /// Per distance sensor: what its ray met at the last sensor reading.
     ray_hits: Vec<Option<RayHit>>,
-    /// Per distance sensor: its table value and relative sigma when its ray meets nothing.
-    infrared_miss: Vec<(f64, f64)>,
-    /// How far from the robot's centre a sensor ray or the clearance search can reach, metres.
-    reach: f32,
     /// Per ground sensor: its reader of the world's floor.
     ground_readers: Vec<GroundReader>,
-    /// The walls near the robot at its last sensor reading (kept to reuse its storage).
-    near: NearbyWalls,
     time: f64,
     steps: u64,
     collisions: u64,
@@ -121,8 +103,6 @@ pub struct Simulator {
     wheel_angles: [f64; 2],
     distance_readings: Vec<f32>,
     ground_readings: Vec<f32>,
-    /// Index of the ground sensor that reads barcodes: the one nearest the centre line.
-    barcode_sensor: Option<usize>,
     tracker: CrossingTracker,
     crossings: Vec<Crossing>,
     last_crossing: i32,
@@ -133,6 +113,13 @@ pub struct Simulator {
 impl Simulator {
     /// A simulator reset to the world's start pose.
     pub fn new(world: Arc<World>, robot: Arc<RobotProfile>, config: SimConfig) -> Result<Self> {
+        Self::with_rig(world, Rig::new(robot), config)
+    }
+
+    /// A simulator of the robot of `rig` (shared with other simulators), reset to the world's
+    /// start pose.
+    pub fn with_rig(world: Arc<World>, rig: Arc<Rig>, config: SimConfig) -> Result<Self> {
+        let robot = rig.robot.clone();
         let dt = world.basic_time_step();
         let control = config.control_step.unwrap_or(dt);
         let ratio = control / dt;
@@ -165,39 +152,14 @@ impl Simulator {
             pose,
             dt as f32,
         );
-        let barcode_sensor = (0..robot.ground_sensors.len()).min_by(|&a, &b| {
-            let ya = robot.ground_sensors[a].position[1].abs();
-            let yb = robot.ground_sensors[b].position[1].abs();
-            ya.total_cmp(&yb)
-        });
-        let sensor_rays: Vec<[f32; 5]> = robot
-            .distance_sensors
-            .iter()
-            .map(|d| {
-                let [px, py] = d.position;
-                let [dx, dy] = d.direction;
-                let range = d.model.table.max_input();
-                [px, py, dx, dy, range].map(|v| v as f32)
-            })
-            .collect();
         let mut sim = Simulator {
-            robot_fingerprint: crate::fingerprint::fnv1a(format!("{robot:?}").as_bytes()),
-            barcode_sensor,
+            rig,
             tracker: CrossingTracker::new(),
             crossings: Vec::new(),
             last_crossing: 0,
             start_override: None,
             distance_readings: vec![0.0; robot.distance_sensors.len()],
-            reach: sensing_reach(&robot),
-            rays: RayFan::new(&sensor_rays),
-            sensor_rays,
             ray_hits: vec![None; robot.distance_sensors.len()],
-            infrared_miss: robot
-                .distance_sensors
-                .iter()
-                .map(|d| infrared_miss(&d.model))
-                .collect(),
-            near: NearbyWalls::default(),
             ground_readers: robot
                 .ground_sensors
                 .iter()
@@ -290,7 +252,7 @@ impl Simulator {
 
     /// World position of the barcode-reading ground sensor.
     fn barcode_sensor_position(&self) -> Option<[f64; 2]> {
-        let sensor = &self.robot.ground_sensors[self.barcode_sensor?];
+        let sensor = &self.robot.ground_sensors[self.rig.barcode_sensor?];
         let [x, y, _] = self.pose.map(|v| v as f64);
         let [s, c] = self.heading.map(|v| v as f64);
         let [px, py] = sensor.position;
@@ -331,7 +293,8 @@ impl Simulator {
         self.last_crossing = 0;
         for k in 1..=self.physics_steps {
             let before = self.pose;
-            self.body.step(linear, angular, self.clearance);
+            self.body
+                .step(linear, angular, self.clearance, self.world.wall_index());
             self.pose = self.body.pose();
             self.heading = self.body.heading();
             let dx = (self.pose[0] - before[0]) as f64;
@@ -370,24 +333,25 @@ impl Simulator {
     /// walls near the robot are gathered once, over a square holding every sensor ray and the
     /// clearance search square, and all those queries run against them.
     fn sense(&mut self) {
+        rig::NEARBY.with_borrow_mut(|near| self.sense_among(near));
+    }
+
+    /// `sense` with `near` to gather the walls into.
+    fn sense_among(&mut self, near: &mut NearbyWalls) {
         let [x, y, _] = self.pose;
         let [s, c] = self.heading;
         let robot = &*self.robot;
         let world = &*self.world;
         let r = robot.body_radius as f32;
         let index = world.wall_index();
-        self.near.gather(index, [x, y], self.reach);
-        self.clearance = self
-            .near
-            .signed_distance(index, [x, y], r + CLEARANCE_SEARCH)
-            - r;
+        let rig = &*self.rig;
+        near.gather(index, [x, y], rig.reach);
+        self.clearance = near.signed_distance(index, [x, y], r + CLEARANCE_SEARCH) - r;
         self.touching = self.clearance < CONTACT_GAP;
         let noise = self.config.noise;
-        self.near
-            .cast_fan(index, &self.rays, [x, y], [s, c], &mut self.ray_hits);
+        near.cast_fan(index, &rig.rays, [x, y], [s, c], &mut self.ray_hits);
         if self.body.has_movables() {
-            for (hit, &[px, py, dx, dy, length]) in self.ray_hits.iter_mut().zip(&self.sensor_rays)
-            {
+            for (hit, &[px, py, dx, dy, length]) in self.ray_hits.iter_mut().zip(&rig.sensor_rays) {
                 let origin = [x + c * px - s * py, y + s * px + c * py];
                 let dir = [c * dx - s * dy, s * dx + c * dy];
                 let limit = hit.map_or(length, |h| h.distance);
@@ -397,7 +361,7 @@ impl Simulator {
             }
         }
         let readings = self.distance_readings.iter_mut();
-        let sensors = robot.distance_sensors.iter().zip(&self.infrared_miss);
+        let sensors = robot.distance_sensors.iter().zip(&rig.infrared_miss);
         for ((reading, (sensor, &miss)), &hit) in readings.zip(sensors).zip(&self.ray_hits) {
             let rng = noise.then_some(&mut self.rng);
             *reading = infrared_reading_with(&sensor.model, hit, miss, rng);
@@ -416,7 +380,7 @@ impl Simulator {
     /// bring it into cache for several environments at once; changes nothing.
     pub fn warm(&self) {
         let [x, y, _] = self.pose;
-        NearbyWalls::warm(self.world.wall_index(), [x, y], self.reach);
+        NearbyWalls::warm(self.world.wall_index(), [x, y], self.rig.reach);
     }
 
     /// Barcode crossings since reset, in order.
@@ -432,7 +396,7 @@ impl Simulator {
 
     /// Index of the ground sensor whose crossings are tracked (nearest the robot's centre line).
     pub fn barcode_sensor(&self) -> Option<usize> {
-        self.barcode_sensor
+        self.rig.barcode_sensor
     }
 
     /// Current poses (x, y, yaw) of the world's movable bodies, in world order.
@@ -518,5 +482,25 @@ impl Simulator {
     /// The robot profile.
     pub fn robot(&self) -> &Arc<RobotProfile> {
         &self.robot
+    }
+
+    /// Bytes this simulator holds of its own: its size and its buffers on the heap, rapier's scene
+    /// in a world with movable bodies estimated from its bodies and colliders; the world and the
+    /// rig, which simulators share, are not counted (`crate::footprint`).
+    pub fn heap_bytes(&self) -> usize {
+        use crate::footprint::vec_bytes;
+        std::mem::size_of_val(self)
+            + vec_bytes(&self.ray_hits)
+            + vec_bytes(&self.ground_readers)
+            + vec_bytes(&self.distance_readings)
+            + vec_bytes(&self.ground_readings)
+            + vec_bytes(&self.crossings)
+            + self.tracker.heap_bytes()
+            + self.body.heap_bytes()
+    }
+
+    /// The robot's sensing set-up (shared with the other simulators of a batch).
+    pub fn rig(&self) -> &Arc<Rig> {
+        &self.rig
     }
 }

@@ -202,7 +202,7 @@ impl Simulator {
         out.extend_from_slice(MAGIC);
         out.extend_from_slice(&SNAPSHOT_VERSION.to_le_bytes());
         out.extend_from_slice(&self.world.fingerprint().to_le_bytes());
-        out.extend_from_slice(&self.robot_fingerprint.to_le_bytes());
+        out.extend_from_slice(&self.rig.fingerprint.to_le_bytes());
         out.extend_from_slice(&self.physics_steps.to_le_bytes());
         out.push(u8::from(self.config.noise));
         out.extend_from_slice(&(payload.len() as u64).to_le_bytes());
@@ -238,11 +238,11 @@ impl Simulator {
                 header.world
             )));
         }
-        if header.robot != self.robot_fingerprint {
+        if header.robot != self.rig.fingerprint {
             return Err(Error::Snapshot(format!(
                 "expected a snapshot of robot profile {:?} (fingerprint {:016x}), found one of \
                  robot profile {:?} (fingerprint {:016x})",
-                self.robot.name, self.robot_fingerprint, header.robot_name, header.robot
+                self.robot.name, self.rig.fingerprint, header.robot_name, header.robot
             )));
         }
         let noise = u8::from(self.config.noise);
@@ -346,7 +346,7 @@ impl Simulator {
 
     /// A simulator in the same state as this one, which goes on exactly as this one would.
     pub fn duplicate(&self) -> Result<Simulator> {
-        let mut copy = Simulator::new(self.world.clone(), self.robot.clone(), self.config())?;
+        let mut copy = Simulator::with_rig(self.world.clone(), self.rig.clone(), self.config())?;
         copy.restore(&self.snapshot())?;
         Ok(copy)
     }

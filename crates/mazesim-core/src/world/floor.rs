@@ -21,8 +21,9 @@ pub struct PaintRegion {
     pub reflectance: f64,
 }
 
-/// Side of a look-up bin in metres.
-const BIN: f64 = 0.05;
+/// Side of a look-up bin in metres: a barcode's bars share a bin or two, and a 5 x 5 maze's
+/// grid stays under 200 bins (under a kilobyte of offsets).
+const BIN: f64 = 0.1;
 
 /// At most this many bins: a world spread over kilometres gets coarser bins, not a huge grid.
 const MAX_BINS: f64 = 262_144.0;
@@ -166,6 +167,15 @@ impl FloorPaint {
             bin_regions,
             slack: LEAST_SLACK + far * SLACK_PER_METRE,
         }
+    }
+
+    /// Bytes of its buffers on the heap (`crate::footprint`).
+    pub fn heap_bytes(&self) -> usize {
+        use crate::footprint::vec_bytes;
+        vec_bytes(&self.regions)
+            + vec_bytes(&self.turns)
+            + vec_bytes(&self.bin_start)
+            + vec_bytes(&self.bin_regions)
     }
 
     /// Background reflectance.

@@ -74,7 +74,8 @@ pub struct PlacedMaze {
 pub struct World {
     spec: WorldSpec,
     source: String,
-    walls: Vec<WallBox>,
+    /// Every wall box in file order, when some are exact duplicates (`None`: as `solid_walls`).
+    walls: Option<Vec<WallBox>>,
     /// `walls` without exact duplicates (a wall written twice is one solid), in file order: what
     /// the physics and the sensors see.
     solid_walls: Vec<WallBox>,
@@ -389,7 +390,11 @@ impl World {
         }
         bounds = bodies.iter().fold(bounds, |b, m| b.union(m.bounds()));
         let background = spec.floor.as_ref().map_or(1.0, |f| f.reflectance.get());
-        let solid_walls = distinct(&walls);
+        regions.shrink_to_fit();
+        checkpoints.shrink_to_fit();
+        let mut solid_walls = distinct(&walls);
+        solid_walls.shrink_to_fit();
+        let walls = (walls.len() != solid_walls.len()).then_some(walls);
         let wall_index = WallIndex::new(&solid_walls);
         check.crowding(wall_index.crowded_pairs(), solid_walls.len())?;
         let fingerprint = toml::to_string(&spec)
@@ -424,6 +429,47 @@ impl World {
         self.fingerprint
     }
 
+    /// Bytes the world holds: its own size and its buffers on the heap, the description's
+    /// included (`crate::footprint`; the description's small buffers are counted by their length).
+    pub fn heap_bytes(&self) -> usize {
+        use crate::footprint::{string_bytes, vec_bytes};
+        use std::mem::size_of_val;
+        let spec = &self.spec;
+        let described = string_bytes(&spec.name)
+            + spec
+                .grid
+                .as_ref()
+                .map_or(0, |g| string_bytes(g.map.get_ref()))
+            + vec_bytes(&spec.walls)
+            + vec_bytes(&spec.segments)
+            + vec_bytes(&spec.paint)
+            + vec_bytes(&spec.checkpoints)
+            + vec_bytes(&spec.bodies)
+            + spec
+                .checkpoints
+                .iter()
+                .map(|c| string_bytes(&c.code.0))
+                .sum::<usize>();
+        let maze = self.maze.as_ref().map_or(0, |m| {
+            vec_bytes(&m.maze.horizontal) + vec_bytes(&m.maze.vertical)
+        });
+        size_of_val(self)
+            + described
+            + string_bytes(&self.source)
+            + self.walls.as_ref().map_or(0, vec_bytes)
+            + vec_bytes(&self.solid_walls)
+            + self.wall_index.heap_bytes()
+            + self.floor.heap_bytes()
+            + vec_bytes(&self.checkpoints)
+            + self
+                .checkpoints
+                .iter()
+                .map(|c| vec_bytes(&c.code))
+                .sum::<usize>()
+            + maze
+            + vec_bytes(&self.bodies)
+    }
+
     /// Writes the world file atomically (a temporary file in the same folder, then a rename).
     pub fn save(&self, path: &Path) -> Result<()> {
         crate::io::write_atomic(path, self.to_toml()?.as_bytes())
@@ -451,7 +497,7 @@ impl World {
 
     /// Every wall as a box.
     pub fn walls(&self) -> &[WallBox] {
-        &self.walls
+        self.walls.as_deref().unwrap_or(&self.solid_walls)
     }
 
     /// The walls as solids: `walls` with exact duplicates merged, in file order.

@@ -88,6 +88,11 @@ impl Neighbourhoods {
         }
     }
 
+    /// Bytes of its buffers on the heap.
+    pub(super) fn heap_bytes(&self) -> usize {
+        crate::footprint::vec_bytes(&self.start) + crate::footprint::vec_bytes(&self.walls)
+    }
+
     /// The list of the cell holding `p`, if the square of half side `reach` around `p` stays in
     /// its 3 x 3 block and `p` lies on the grid.
     pub(super) fn around(&self, p: [f32; 2], reach: f32) -> Option<&[u32]> {
@@ -413,6 +418,11 @@ impl RayFan {
             len: rays.len(),
             finite: rays.iter().all(|r| r[4].is_finite()),
         }
+    }
+
+    /// Bytes of its buffers on the heap (`crate::footprint`).
+    pub fn heap_bytes(&self) -> usize {
+        crate::footprint::vec_bytes(&self.groups)
     }
 
     /// Number of rays.

@@ -166,8 +166,9 @@ impl WallIndex {
                 }
             }
         }
-        let mut bin_start = vec![0u32];
-        let mut bin_walls = Vec::new();
+        let mut bin_start = Vec::with_capacity(bins.len() + 1);
+        bin_start.push(0u32);
+        let mut bin_walls = Vec::with_capacity(bins.iter().map(Vec::len).sum());
         for b in bins {
             bin_walls.extend(b);
             bin_start.push(bin_walls.len() as u32);
@@ -248,6 +249,19 @@ impl WallIndex {
                 f(i as usize);
             }
         }
+    }
+
+    /// Bytes of its buffers on the heap (`crate::footprint`).
+    pub fn heap_bytes(&self) -> usize {
+        use crate::footprint::vec_bytes;
+        vec_bytes(&self.shapes)
+            + vec_bytes(&self.frames)
+            + vec_bytes(&self.boxes)
+            + vec_bytes(&self.aligned)
+            + vec_bytes(&self.reflectance)
+            + vec_bytes(&self.bin_start)
+            + vec_bytes(&self.bin_walls)
+            + self.around.heap_bytes()
     }
 
     /// Number of walls.
@@ -338,6 +352,44 @@ impl WallIndex {
         let qy = (-s * dx + c * dy).abs() - hy;
         let outside = (qx.max(0.0).powi(2) + qy.max(0.0).powi(2)).sqrt();
         outside + qx.max(qy).min(0.0)
+    }
+
+    /// Signed distance from `p` to wall `i`'s surface (negative inside) with the unit normal of the
+    /// surface nearest `p`, pointing out of the wall: the direction in which the wall pushes a disc
+    /// centred at `p`.
+    #[inline]
+    pub(crate) fn wall_contact(&self, i: usize, p: [f32; 2]) -> (f32, [f32; 2]) {
+        let [cx, cy, c, s, hx, hy] = self.frames[i];
+        let (dx, dy) = (p[0] - cx, p[1] - cy);
+        // `p` in the wall's frame, and its offset beyond each pair of faces.
+        let (lx, ly) = (c * dx + s * dy, -s * dx + c * dy);
+        let (qx, qy) = (lx.abs() - hx, ly.abs() - hy);
+        let (sx, sy) = (1f32.copysign(lx), 1f32.copysign(ly));
+        let (distance, [nx, ny]) = if qx > 0.0 || qy > 0.0 {
+            let (ox, oy) = (qx.max(0.0), qy.max(0.0));
+            let d = (ox * ox + oy * oy).sqrt();
+            (d, [sx * ox / d, sy * oy / d])
+        } else if qx > qy {
+            (qx, [sx, 0.0])
+        } else {
+            (qy, [0.0, sy])
+        };
+        (distance, [c * nx - s * ny, s * nx + c * ny])
+    }
+
+    /// Calls `f` with every wall whose bounding box may meet the square of half side `reach`
+    /// around `p` (a wall may come more than once).
+    pub(crate) fn for_each_around(&self, p: [f32; 2], reach: f32, mut f: impl FnMut(usize)) {
+        match self.walls_around(p, reach) {
+            Some(list) => list.iter().for_each(|&i| f(i as usize)),
+            None => {
+                let b = Bounds {
+                    min: [(p[0] - reach) as f64, (p[1] - reach) as f64],
+                    max: [(p[0] + reach) as f64, (p[1] + reach) as f64],
+                };
+                self.for_each_near(b, f);
+            }
+        }
     }
 
     /// Signed distance from `p` to the nearest wall surface within `search` metres

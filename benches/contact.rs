@@ -1,0 +1,78 @@
+//! Criterion benches of contact: 1,024 envs of distinct 5 x 5 mazes driven into walls (the
+//! contact workload, about nine steps in ten in contact once warmed up) and the same envs
+//! steered clear of them by the Braitenberg rule (almost no contact), in env-steps per second.
+//! Each starts from 300 warm-up steps, so that the pushing robots have reached their walls.
+
+mod common;
+
+use std::sync::Arc;
+
+use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use mazesim_core::{Batch, RobotProfile, StepOutputs};
+
+const ENVS: usize = 1024;
+
+struct Workload {
+    batch: Batch,
+    observations: Vec<f32>,
+    poses: Vec<f32>,
+    colliding: Vec<bool>,
+    crossings: Vec<i32>,
+    actions: Vec<f32>,
+    step: usize,
+}
+
+impl Workload {
+    fn new() -> Self {
+        let robot = Arc::new(RobotProfile::builtin("e-puck").unwrap());
+        let seeds: Vec<u64> = (0..ENVS as u64).collect();
+        let batch = Batch::new(common::distinct_mazes(ENVS), robot, &seeds, true, None, 0).unwrap();
+        let width = batch.observation_width();
+        Workload {
+            batch,
+            observations: vec![0.0; ENVS * width],
+            poses: vec![0.0; ENVS * 3],
+            colliding: vec![false; ENVS],
+            crossings: vec![0; ENVS],
+            actions: vec![0.0; 2 * ENVS],
+            step: 0,
+        }
+    }
+
+    fn step(&mut self, pushing: bool) {
+        let width = self.batch.observation_width();
+        for i in 0..ENVS {
+            let (l, r) = if pushing {
+                common::pushing(self.step, i)
+            } else {
+                common::braitenberg(&self.observations[i * width..i * width + 8])
+            };
+            self.actions[2 * i] = l as f32;
+            self.actions[2 * i + 1] = r as f32;
+        }
+        let out = StepOutputs {
+            observations: &mut self.observations,
+            poses: &mut self.poses,
+            colliding: &mut self.colliding,
+            crossings: &mut self.crossings,
+        };
+        self.batch.step(&self.actions, out).unwrap();
+        self.step += 1;
+    }
+}
+
+fn contact(c: &mut Criterion) {
+    let mut g = c.benchmark_group("contact_1024_envs");
+    g.throughput(Throughput::Elements(ENVS as u64));
+    for (name, pushing) in [("into_walls", true), ("steering_clear", false)] {
+        let mut w = Workload::new();
+        for _ in 0..300 {
+            w.step(pushing);
+        }
+        g.bench_function(name, |b| b.iter(|| w.step(pushing)));
+    }
+    g.finish();
+}
+
+criterion_group!(benches, contact);
+criterion_main!(benches);
