@@ -13,13 +13,15 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import mazesim
 from hostile import run_hostile
 from mazesim.actions import WHEEL_SPEED_FRACTIONS
 from mazesim.bench import braitenberg
 from mazesim.controllers import AvoidCollision
-from mazesim.hrl.discretise import observation_states
+from mazesim.hrl.discretise import SHARP_TABLE, observation_states
 from mazesim.hrl.qlearning import best_allowed
 
 LIMIT = 40
@@ -261,3 +263,34 @@ def test_ctrl_c_stops_a_long_run() -> None:
     outcome = run_hostile(body)
     assert outcome.ok and "INTERRUPTED" in outcome.stdout, outcome.describe()
     assert "NOT INTERRUPTED" not in outcome.stdout
+
+
+_TABLE_VOLTS = [volts for _, volts in SHARP_TABLE]
+
+
+@settings(max_examples=300, deadline=None)
+@given(
+    st.lists(
+        st.one_of(
+            st.floats(0.0, 4.0, width=32),
+            st.sampled_from(_TABLE_VOLTS),
+            st.floats(-10.0, 10.0, width=32, allow_subnormal=True),
+        ),
+        min_size=6,
+        max_size=6 * 20,
+    ).filter(lambda v: len(v) % 6 == 0),
+    st.integers(0, 5),
+)
+def test_the_core_discretises_as_numpy_does(volts: list[float], extra: int) -> None:
+    rows = np.array(volts, dtype=np.float32).reshape(-1, 6)
+    observations = np.concatenate([rows, np.full((len(rows), extra), 500.0, np.float32)], axis=1)
+    np.testing.assert_array_equal(
+        mazesim._core.lower_level_states(observations), observation_states(observations)
+    )
+
+
+def test_lower_level_states_refuses_rows_too_short() -> None:
+    with pytest.raises(mazesim.InvalidArgumentError, match=r"\(N, >= 6\)"):
+        mazesim._core.lower_level_states(np.zeros((3, 5), np.float32))
+    with pytest.raises(mazesim.InvalidArgumentError, match="float32"):
+        mazesim._core.lower_level_states(np.zeros((3, 6)))

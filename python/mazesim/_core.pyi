@@ -19,6 +19,7 @@ __all__ = [
     "generate_maze",
     "import_wbt",
     "import_wbt_text",
+    "lower_level_states",
     "robot_profile_names",
     "sharp_volts_to_cm",
     "validate_codes",
@@ -34,6 +35,11 @@ def robot_profile_names() -> list[str]:
 def sharp_volts_to_cm(volts: float) -> float:
     """Converts a Sharp GP2Y0A41SK0F reading in volts to a distance in cm (inverted table); NaN or
     infinite volts raise InvalidArgumentError."""
+
+def lower_level_states(observations: npt.NDArray[np.float32]) -> npt.NDArray[np.int64]:
+    """The lower level's state (Table 4.1 levels of the first six distance readings, in volts)
+    of each row of an (N, W >= 6) float32 array: what ``BatchSimulator.run``'s tabular
+    controller acts on, equal to ``mazesim.hrl.discretise.observation_states``."""
 
 def _panic_for_tests(message: str, on_helper_thread: bool = False) -> None:
     """Panics inside the core (only the tests of the panic guard call it)."""

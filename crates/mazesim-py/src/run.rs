@@ -1,7 +1,7 @@
 //! `BatchSimulator.run` for Python: the built-in controller named by its arguments, the optional
 //! per-step output arrays (`trace`) borrowed and checked, the counters returned as numpy arrays.
 
-use mazesim_core::control::{tabular, AvoidCollision, TabularPolicy};
+use mazesim_core::control::{tabular, AvoidCollision, Discretiser, TabularPolicy};
 use mazesim_core::{Controller, RunCounters, RunTrace};
 use numpy::{PyArray1, PyReadwriteArrayDyn};
 use pyo3::prelude::*;
@@ -10,6 +10,7 @@ use pyo3::types::PyDict;
 use crate::args::Real;
 use crate::buffers::{copied, writable};
 use crate::errors::{invalid, IntoPy};
+use crate::guard::enter;
 
 /// The names `run` accepts for its controller.
 const CONTROLLERS: &str = "'braitenberg', 'avoid-collision', 'tabular' or 'random'";
@@ -201,4 +202,37 @@ pub fn counters_dict<'py>(py: Python<'py>, counters: RunCounters) -> PyResult<Bo
         PyArray1::from_vec(py, counters.goals_reached),
     )?;
     Ok(dict)
+}
+
+/// The lower level's state (Table 4.1 levels of the first six distance readings, in volts) of
+/// each row of `observations`, an (N, W >= 6) float32 array: what the tabular controller of
+/// `BatchSimulator.run` acts on.
+#[pyfunction]
+pub fn lower_level_states<'py>(
+    py: Python<'py>,
+    observations: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyArray1<i64>>> {
+    enter(|| {
+        let shape = observations
+            .getattr("shape")
+            .and_then(|s| s.extract::<Vec<usize>>())
+            .unwrap_or_default();
+        let sensors = tabular::NUM_SENSORS;
+        let (rows, width) = match shape[..] {
+            [rows, width] if width >= sensors => (rows, width),
+            _ => {
+                return Err(invalid(format!(
+                    "expected observations of shape (N, >= {sensors}) with the Sharp volts \
+                     first, found shape {shape:?}"
+                )))
+            }
+        };
+        let values = copied::<f32>(observations, "observations", "float32", &[rows, width])?;
+        let discretiser = Discretiser::new().py()?;
+        let states: Vec<i64> = values
+            .chunks_exact(width)
+            .map(|row| discretiser.state(row) as i64)
+            .collect();
+        Ok(PyArray1::from_vec(py, states))
+    })
 }
