@@ -9,6 +9,7 @@
 //! the batch size: each environment draws only from its own stream (seeded per environment) and
 //! its simulator's. Per-step outputs are written only where the caller asks for them.
 
+use std::ops::Range;
 use std::time::Instant;
 
 use crate::batch::{Row, CHUNK_ENVS, INTERRUPT_POLL};
@@ -104,6 +105,40 @@ fn rows_per_chunk<T>(block: Option<&mut [T]>, n: usize, width: usize) -> Vec<Vec
     per_chunk
 }
 
+impl RunTrace<'_> {
+    /// Per chunk of `CHUNK_ENVS` environments, its rows of steps `steps` of each traced output.
+    fn chunk_rows(&mut self, steps: Range<usize>, n: usize, width: usize) -> Vec<ChunkTrace<'_>> {
+        fn part<'t, T>(
+            values: &'t mut Option<&mut [T]>,
+            steps: &Range<usize>,
+            n: usize,
+            width: usize,
+        ) -> std::vec::IntoIter<Vec<&'t mut [T]>> {
+            let span = steps.start * n * width..steps.end * n * width;
+            let block = values.as_deref_mut().map(|v| &mut v[span]);
+            rows_per_chunk(block, n, width).into_iter()
+        }
+        let mut observations = part(&mut self.observations, &steps, n, width);
+        let mut poses = part(&mut self.poses, &steps, n, 3);
+        let mut colliding = part(&mut self.colliding, &steps, n, 1);
+        let mut crossings = part(&mut self.crossings, &steps, n, 1);
+        let mut wheel_speeds = part(&mut self.wheel_speeds, &steps, n, 2);
+        let mut actions = part(&mut self.actions, &steps, n, 1);
+        let mut episode_ends = part(&mut self.episode_ends, &steps, n, 1);
+        (0..n.div_ceil(CHUNK_ENVS))
+            .map(|_| ChunkTrace {
+                observations: observations.next().unwrap_or_default(),
+                poses: poses.next().unwrap_or_default(),
+                colliding: colliding.next().unwrap_or_default(),
+                crossings: crossings.next().unwrap_or_default(),
+                wheel_speeds: wheel_speeds.next().unwrap_or_default(),
+                actions: actions.next().unwrap_or_default(),
+                episode_ends: episode_ends.next().unwrap_or_default(),
+            })
+            .collect()
+    }
+}
+
 /// Writes `value` as environment `j`'s row of step `s` in `rows`, when traced.
 fn put<T: Copy>(rows: &mut [&mut [T]], s: usize, j: usize, value: &[T]) {
     if let Some(step) = rows.get_mut(s) {
@@ -195,63 +230,7 @@ impl Batch {
         let mut polled = Instant::now();
         loop {
             let block = BLOCK_STEPS.min(steps - first);
-            let span = |w: usize| first * n * w..(first + block) * n * w;
-            let traced: Vec<ChunkTrace<'_>> = rows_per_chunk(
-                trace
-                    .observations
-                    .as_deref_mut()
-                    .map(|t| &mut t[span(width)]),
-                n,
-                width,
-            )
-            .into_iter()
-            .zip(rows_per_chunk(
-                trace.poses.as_deref_mut().map(|t| &mut t[span(3)]),
-                n,
-                3,
-            ))
-            .zip(rows_per_chunk(
-                trace.colliding.as_deref_mut().map(|t| &mut t[span(1)]),
-                n,
-                1,
-            ))
-            .zip(rows_per_chunk(
-                trace.crossings.as_deref_mut().map(|t| &mut t[span(1)]),
-                n,
-                1,
-            ))
-            .zip(rows_per_chunk(
-                trace.wheel_speeds.as_deref_mut().map(|t| &mut t[span(2)]),
-                n,
-                2,
-            ))
-            .zip(rows_per_chunk(
-                trace.actions.as_deref_mut().map(|t| &mut t[span(1)]),
-                n,
-                1,
-            ))
-            .zip(rows_per_chunk(
-                trace.episode_ends.as_deref_mut().map(|t| &mut t[span(1)]),
-                n,
-                1,
-            ))
-            .map(
-                |(
-                    (((((observations, poses), colliding), crossings), wheel_speeds), actions),
-                    episode_ends,
-                )| {
-                    ChunkTrace {
-                        observations,
-                        poses,
-                        colliding,
-                        crossings,
-                        wheel_speeds,
-                        actions,
-                        episode_ends,
-                    }
-                },
-            )
-            .collect();
+            let traced = trace.chunk_rows(first..first + block, n, width);
             let (obs, pos, col, cro) = (
                 &mut *observations,
                 &mut *poses,
