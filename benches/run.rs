@@ -59,6 +59,7 @@ fn run_against_steps(c: &mut Criterion) {
         steps: STEPS,
         max_episode_steps: 1000,
         end_at_goal: false,
+        end_at_crossing: false,
         autoreset: true,
     };
     let seeds: Vec<u64> = (0..ENVS as u64).collect();

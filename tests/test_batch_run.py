@@ -294,3 +294,23 @@ def test_lower_level_states_refuses_rows_too_short() -> None:
         mazesim._core.lower_level_states(np.zeros((3, 5), np.float32))
     with pytest.raises(mazesim.InvalidArgumentError, match="float32"):
         mazesim._core.lower_level_states(np.zeros((3, 6)))
+
+
+def test_a_crossing_stops_an_env_for_the_rest_of_the_call_only() -> None:
+    batch = make_batch(64, threads=2)
+    out = buffers(batch)
+    batch.reset(*out)
+    trace = trace_buffers(batch, 400)
+    counters = batch.run(
+        400, "braitenberg", *out, trace=trace, end_at_crossing=True, autoreset=False
+    )
+    crossed = (trace["crossings"] != 0).any(axis=0)
+    assert crossed.any() and not crossed.all()
+    first = np.argmax(trace["crossings"] != 0, axis=0)
+    np.testing.assert_array_equal(counters["steps"], np.where(crossed, first + 1, 400))
+    np.testing.assert_array_equal(trace["episode_ends"].sum(axis=0), crossed)
+    env = int(np.flatnonzero(crossed)[0])
+    np.testing.assert_array_equal(trace["poses"][-1, env], trace["poses"][first[env], env])
+    # The next call moves the stopped envs on.
+    again = batch.run(10, "braitenberg", *out, end_at_crossing=True, autoreset=False)
+    assert (again["steps"][crossed] > 0).all()

@@ -264,6 +264,7 @@ class BatchSimulator:
         seeds: int | Sequence[int] | None = None,
         max_episode_steps: int = 0,
         end_at_goal: bool = False,
+        end_at_crossing: bool = False,
         autoreset: bool = True,
         trace: dict[str, npt.NDArray[Any]] | None = None,
         table: npt.NDArray[np.float64] | None = None,
@@ -288,9 +289,10 @@ class BatchSimulator:
         stream seeded with ``seeds[i]`` (an int ``s`` gives ``s + i``; ``0..N`` by default).
 
         An episode ends after ``max_episode_steps`` steps since its reset (0: no limit) or, with
-        ``end_at_goal``, on the step the robot's centre enters the goal disc. With ``autoreset``
-        an env is reset at once with the seed that follows its last one (SplitMix64); without,
-        it stands still until reset.
+        ``end_at_goal``, on the step the robot's centre enters the goal disc, or, with
+        ``end_at_crossing``, on a step that crosses a barcode. With ``autoreset`` an env is reset
+        at once with the seed that follows its last one (SplitMix64); without, it stands still
+        until reset (stopped by a crossing: for the rest of the call only).
 
         Args:
             steps: Control steps of every env.
@@ -302,6 +304,7 @@ class BatchSimulator:
             seeds: Seeds of the envs' controller streams.
             max_episode_steps: Step limit of an episode (0: none).
             end_at_goal: Whether reaching the goal ends an episode.
+            end_at_crossing: Whether crossing a barcode ends an episode.
             autoreset: Whether an ended episode is reset at once.
             trace: Per-step outputs to fill, by key: ``observations`` (steps, N, width) float32,
                 ``poses`` (steps, N, 3) float32, ``colliding`` and ``episode_ends``

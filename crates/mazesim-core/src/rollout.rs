@@ -31,6 +31,10 @@ pub struct RunOptions {
     pub max_episode_steps: u64,
     /// An episode also ends on the step the robot's centre enters the world's goal disc.
     pub end_at_goal: bool,
+    /// An episode also ends on a step that crosses a barcode. Without `autoreset`, an environment
+    /// stopped by a crossing stands still for the rest of the call only: the next call moves it
+    /// on (after, say, a higher level chose what it does next).
+    pub end_at_crossing: bool,
     /// An environment whose episode ends is reset at once (its next seed is
     /// [`crate::rng::next_seed`] of its last one) and goes on; otherwise it stands still for the
     /// rest of the call and later calls (until it is reset).
@@ -75,6 +79,8 @@ pub struct RunCounters {
 /// One environment's counters, as the threads add to them.
 #[derive(Debug, Clone, Copy, Default)]
 struct Counts {
+    /// Stopped by an episode's end for the rest of the call (without autoreset).
+    stopped: bool,
     steps: u64,
     in_contact: u64,
     finished: u64,
@@ -163,8 +169,9 @@ fn check_trace<T>(name: &str, values: &Option<&mut [T]>, shape: [usize; 3]) -> R
     }
 }
 
-/// Whether the episode of `env` is over: its step limit reached, or its robot at the goal.
-fn episode_over(env: &Simulator, options: &RunOptions) -> (bool, bool) {
+/// Whether the episode of `env` is over: its step limit reached, its robot at the goal or, when
+/// `after_step`, a barcode crossed in its last step; and whether it is at the goal.
+fn episode_over(env: &Simulator, options: &RunOptions, after_step: bool) -> (bool, bool) {
     let at_goal = options.end_at_goal
         && env.world().goal().is_some_and(|goal| {
             let [x, y, _] = env.pose();
@@ -172,7 +179,11 @@ fn episode_over(env: &Simulator, options: &RunOptions) -> (bool, bool) {
             dx * dx + dy * dy <= goal.radius * goal.radius
         });
     let limit = options.max_episode_steps;
-    (at_goal || (limit > 0 && env.steps() >= limit), at_goal)
+    let crossed = after_step && options.end_at_crossing && env.last_crossing() != 0;
+    (
+        at_goal || crossed || (limit > 0 && env.steps() >= limit),
+        at_goal,
+    )
 }
 
 /// `chunks` with its argument's lifetime tied to its result's (a closure alone would be inferred
@@ -321,7 +332,7 @@ fn step_one(
     s: usize,
     j: usize,
 ) {
-    let standing = !options.autoreset && episode_over(env, options).0;
+    let standing = !options.autoreset && (count.stopped || episode_over(env, options, false).0);
     let mut decision = crate::control::Decision {
         wheel_speeds: [0.0; 2],
         action: -1,
@@ -334,8 +345,9 @@ fn step_one(
         let _ = env.step(left as f64, right as f64);
         count.steps += 1;
         count.in_contact += env.colliding() as u64;
-        let (over, at_goal) = episode_over(env, options);
+        let (over, at_goal) = episode_over(env, options, true);
         ended = over;
+        count.stopped = over && !options.autoreset;
         count.finished += over as u64;
         count.at_goal += at_goal as u64;
     }

@@ -101,6 +101,7 @@ fn options(steps: usize) -> RunOptions {
         steps,
         max_episode_steps: LIMIT,
         end_at_goal: true,
+        end_at_crossing: false,
         autoreset: true,
     }
 }

@@ -231,10 +231,10 @@ impl PyBatch {
     /// environment's wheel speeds from the built-in `controller` ('braitenberg',
     /// 'avoid-collision', 'tabular' or 'random'); see `docs/performance.md` and the stub.
     #[pyo3(signature = (steps, controller, observations, poses, colliding, crossings, *, seeds = None,
-        max_episode_steps = IntArg::ZERO, end_at_goal = false, autoreset = true, trace = None,
+        max_episode_steps = IntArg::ZERO, end_at_goal = false, end_at_crossing = false, autoreset = true, trace = None,
         table = None, allowed_actions = None, table_index = None, epsilon = Real::Number(0.0),
         threshold = Real::Number(80.0), max_speed = Real::Number(EPUCK_MAX_SPEED)),
-        text_signature = "($self, steps, controller, observations, poses, colliding, crossings, *, seeds=None, max_episode_steps=0, end_at_goal=False, autoreset=True, trace=None, table=None, allowed_actions=None, table_index=None, epsilon=0.0, threshold=80.0, max_speed=6.28)")]
+        text_signature = "($self, steps, controller, observations, poses, colliding, crossings, *, seeds=None, max_episode_steps=0, end_at_goal=False, end_at_crossing=False, autoreset=True, trace=None, table=None, allowed_actions=None, table_index=None, epsilon=0.0, threshold=80.0, max_speed=6.28)")]
     fn run<'py>(
         &self,
         py: Python<'py>,
@@ -247,6 +247,7 @@ impl PyBatch {
         seeds: Option<&Bound<'py, PyAny>>,
         max_episode_steps: IntArg,
         end_at_goal: bool,
+        end_at_crossing: bool,
         autoreset: bool,
         trace: Option<&Bound<'py, PyDict>>,
         table: Option<&Bound<'py, PyAny>>,
@@ -262,6 +263,7 @@ impl PyBatch {
                 steps: steps.count("steps", MAX_RUN_STEPS)?,
                 max_episode_steps: max_episode_steps.seed("max_episode_steps")?,
                 end_at_goal,
+                end_at_crossing,
                 autoreset,
             };
             let tabular = TabularArgs {
