@@ -21,8 +21,8 @@ from hostile import run_hostile
 from mazesim.actions import WHEEL_SPEED_FRACTIONS
 from mazesim.bench import braitenberg
 from mazesim.controllers import AvoidCollision
-from mazesim.hrl.discretise import SHARP_TABLE, observation_states
-from mazesim.hrl.qlearning import best_allowed
+from mazesim.learn.discretise import SHARP_TABLE, observation_states
+from mazesim.learn.qlearning import best_allowed
 
 LIMIT = 40
 MASK64 = (1 << 64) - 1

@@ -14,10 +14,10 @@ from mazesim._core import Simulator, World
 from mazesim.envs.navigation import navigation_features
 from mazesim.envs.options import EnvOptions, draw_seed
 from mazesim.envs.render import TopDownRenderer
-from mazesim.maze import PathDistanceTable
 from mazesim.envs.scalar_goal import ScalarGoalDistance
 from mazesim.envs.spaces import ActionConverter, ObservationLayout, sensor_ranges
 from mazesim.errors import InvalidArgumentError
+from mazesim.maze import PathDistanceTable
 
 __all__ = [
     "RENDER_MODES",

@@ -37,9 +37,9 @@ import numpy.typing as npt
 from gymnasium import spaces
 
 from mazesim._core import RobotProfile, World
-from mazesim.maze import PathDistanceTable
 from mazesim.envs.spaces import NOISE_MARGIN, sensor_ranges
 from mazesim.errors import InvalidArgumentError
+from mazesim.maze import PathDistanceTable
 
 __all__ = [
     "OBSERVATIONS",

@@ -31,9 +31,9 @@ from mazesim.envs.navigation import navigation_features
 from mazesim.envs.options import DEFAULT_MAX_EPISODE_STEPS, EnvOptions, draw_seed
 from mazesim.envs.render import TopDownRenderer
 from mazesim.envs.reward import step_reward
-from mazesim.maze import GoalDistance, PathDistanceTable
 from mazesim.envs.spaces import ActionConverter, ObservationLayout, sensor_ranges
 from mazesim.errors import InvalidArgumentError
+from mazesim.maze import GoalDistance, PathDistanceTable
 
 __all__ = ["EPuckMazeVectorEnv"]
 
