@@ -13,7 +13,7 @@ PY_PACKAGES := maturin numpy matplotlib pytest hypothesis ruff mypy typing_exten
 PY_SOURCES := python tests examples
 # Only `make bench-peers` needs these: the peers mazesim is measured against, and its
 # options (e.g. PEER_ARGS="--envs 64,1024 --json").
-PEER_PACKAGES := pymunk
+PEER_PACKAGES := pymunk "jax[cpu]"
 PEER_ARGS ?=
 # Only `make docs` needs these (pyproject's extra "docs"): mkdocs, its Material theme, mkdocstrings.
 DOCS_PACKAGES := "mkdocs>=1.6" "mkdocs-material>=9.5" "mkdocstrings[python]>=0.26"

@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 
 import mazesim
+from mazesim.benchmark.workloads import braitenberg
 from mazesim.cli import MAX_COUNT, non_negative_int
 from mazesim.errors import InvalidArgumentError
 
@@ -34,31 +35,6 @@ WORKLOAD: dict[str, Any] = {
     "physics_steps_per_control_step": 1,
     "policy": "Braitenberg rule in numpy on ps0-7",
 }
-
-
-def braitenberg(ps: np.ndarray, out: np.ndarray) -> np.ndarray:
-    """Braitenberg wheel speeds (rad/s) from e-puck proximity readings, written into ``out``.
-
-    Each side's activation turns the robot away from that side; a frontal obstacle turns it
-    left so it never stalls square to a wall.
-
-    Args:
-        ps: (N, 8) raw proximity readings.
-        out: (N, 2) float32 buffer for left and right wheel speeds.
-
-    Returns:
-        ``out``.
-    """
-    a = np.clip((ps - np.float32(67.19)) / np.float32(300.0), 0.0, 1.0)
-    right_side = a[:, 0] + 0.7 * a[:, 1] + 0.4 * a[:, 2]
-    left_side = a[:, 7] + 0.7 * a[:, 6] + 0.4 * a[:, 5]
-    front = 0.5 * (a[:, 0] + a[:, 7])
-    base = 5.0 * (1.0 - front)
-    turn = 4.0 * (right_side - left_side) + 6.0 * front
-    np.subtract(base, turn, out=out[:, 0])
-    np.add(base, turn, out=out[:, 1])
-    np.clip(out, -6.28, 6.28, out=out)
-    return out
 
 
 def _rss_bytes() -> int:
