@@ -106,7 +106,7 @@ fmt: venv ## format Rust and Python sources in place
 bench: ## run the criterion benches
 	cargo bench
 
-bench-peers: build ## mazesim against hand-written numpy and pymunk peers (installs pymunk)
+bench-peers: build ## mazesim against hand-written numpy, pymunk and JAX peers (installs pymunk and jax)
 	$(BIN)/python -m pip install --quiet $(PEER_PACKAGES)
 	$(BIN)/python benches/bench_vs_peers.py $(PEER_ARGS)
 

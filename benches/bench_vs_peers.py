@@ -1,11 +1,12 @@
 """mazesim against what a Python user could write instead, on the canonical workload.
 
-Not a test: run it by hand or with `make bench-peers` (which installs pymunk into .venv first).
+Not a test: run it by hand or with `make bench-peers` (which installs pymunk and jax into .venv
+first).
 
-The workload is the canonical one of docs/performance.md: per environment a distinct 5 x 5 maze of 0.25 m
-cells and 0.01 m walls (``generate_maze(seed=i, loops=0.1)``), the e-puck with ps0-ps7 and gs0-gs2
-read every step with noise, a 32 ms control step (= one physics step) and wheel speeds from the
-same Braitenberg rule (``peers.workload.braitenberg``). One env-step is one control step of one
+The workload is the canonical one of docs/performance.md: per environment a distinct 5 x 5 maze
+of 0.25 m cells and 0.01 m walls (``generate_maze(seed=i, loops=0.1)``), the e-puck with ps0-ps7
+and gs0-gs2 read every step with noise, a 32 ms control step (= one physics step) and wheel
+speeds from the same Braitenberg rule (``peers.workload.braitenberg``). One env-step is one control step of one
 robot with all 11 sensors read. It runs up to five ways in this process:
 
 - mazesim: ``BatchSimulator`` stepping into preallocated buffers, the rule in numpy (one step
@@ -52,6 +53,7 @@ from typing import Any, Protocol
 import numpy as np
 
 import mazesim
+from mazesim.benchmark.report import machine
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
@@ -119,34 +121,6 @@ class MazesimRunner:
 
     def poses(self) -> np.ndarray:
         return self.pose
-
-
-def cpu_model() -> str:
-    try:
-        with open("/proc/cpuinfo", encoding="utf-8") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or platform.machine()
-
-
-def usable_cores() -> int:
-    if hasattr(os, "sched_getaffinity"):
-        return len(os.sched_getaffinity(0))
-    return os.cpu_count() or 1
-
-
-def machine() -> dict[str, Any]:
-    info: dict[str, Any] = {
-        "cpu": cpu_model(),
-        "cores": os.cpu_count() or 1,
-        "usable_cores": usable_cores(),
-    }
-    if hasattr(os, "getloadavg"):
-        info["load_average_1min"] = round(os.getloadavg()[0], 2)
-    return info
 
 
 def versions() -> dict[str, str]:
@@ -260,7 +234,7 @@ def warm_up(runner: Runner, steps: int, seconds: float) -> int:
 
 def threads_of(name: str, threads: int) -> int | str:
     if name == "mazesim":
-        return threads or usable_cores()
+        return threads or int(machine()["usable_cores"])
     return "XLA CPU" if name.startswith("jax") else 1
 
 

@@ -182,8 +182,14 @@ class SteadyState:
         self.colliding = np.zeros(n, np.bool_)
         self.crossings = np.zeros(n, np.int32)
         self.actions = np.zeros((n, 2), np.float32)
-        #: Steps of each env's current episode; staggered so that resets spread evenly.
-        self.episode_clock = (np.arange(n, dtype=np.int64) * settings.episode_steps) // n
+        # Env i starts i * limit // n steps into its first episode, so that resets spread
+        # evenly; as these offsets never decrease with i, the envs whose episodes end at a given
+        # step are a slice of the batch: ends_from[v]:ends_to[v] for the envs of offset v.
+        limit = settings.episode_steps
+        self.episode_offset = (np.arange(n, dtype=np.int64) * limit) // n
+        residues = np.arange(limit)
+        self.ends_from = np.searchsorted(self.episode_offset, residues, "left").tolist()
+        self.ends_to = np.searchsorted(self.episode_offset, residues, "right").tolist()
         self.ended = np.zeros(n, np.bool_)
         self.workload: Workload = make_workload(settings.workload, n, settings.seed)
         #: Steps since the batch was made.
@@ -206,20 +212,29 @@ class SteadyState:
         """
         batch, obs, poses = self.batch, self.observations, self.poses
         colliding, crossings, actions = self.colliding, self.crossings, self.actions
-        clock, ended, limit = self.episode_clock, self.ended, self.settings.episode_steps
+        ended, limit = self.ended, self.settings.episode_steps
+        ends_from, ends_to = self.ends_from, self.ends_to
         act = self.workload.act
         contacts = episodes = 0
+        done = self.steps_done
         for _ in range(steps):
             batch.step(act(obs, actions), obs, poses, colliding, crossings)
             contacts += int(np.count_nonzero(colliding))
-            clock += 1
-            np.greater_equal(clock, limit, out=ended)
-            if ended.any():
-                episodes += int(np.count_nonzero(ended))
-                clock[ended] = 0
+            done += 1
+            offset = -done % limit  # the envs of this offset have just reached the limit
+            first, last = ends_from[offset], ends_to[offset]
+            if last > first:
+                episodes += last - first
+                ended[first:last] = True
                 batch.reset(obs, poses, colliding, crossings, mask=ended)
-        self.steps_done += steps
+                ended[first:last] = False
+        self.steps_done = done
         return contacts, episodes
+
+    @property
+    def episode_clock(self) -> np.ndarray:
+        """Steps of each env's current episode."""
+        return (self.episode_offset + self.steps_done) % self.settings.episode_steps
 
     def timed_block(self, steps: int) -> Block:
         """Advances ``steps`` steps and times them."""

@@ -29,6 +29,7 @@ __all__ = [
     "RandomWorkload",
     "Workload",
     "braitenberg",
+    "braitenberg_one",
     "make_workload",
     "seek_walls",
 ]
@@ -76,6 +77,18 @@ def braitenberg(ps: F32, out: F32) -> F32:
     right_side, left_side, front = _sides(ps)
     turn = 4.0 * (right_side - left_side) + 6.0 * front
     return _steer(5.0 * (1.0 - front), turn, out)
+
+
+def braitenberg_one(ps: list[float]) -> tuple[float, float]:
+    """The Braitenberg rule of :func:`braitenberg` for one robot, in plain Python floats
+    (unclipped)."""
+    a = [min(max((v - 67.19) / 300.0, 0.0), 1.0) for v in ps]
+    right_side = a[0] + 0.7 * a[1] + 0.4 * a[2]
+    left_side = a[7] + 0.7 * a[6] + 0.4 * a[5]
+    front = 0.5 * (a[0] + a[7])
+    base = 5.0 * (1.0 - front)
+    turn = 4.0 * (right_side - left_side) + 6.0 * front
+    return base - turn, base + turn
 
 
 def seek_walls(ps: F32, out: F32) -> F32:
