@@ -6,8 +6,8 @@ first).
 The workload is the canonical one of docs/performance.md: per environment a distinct 5 x 5 maze
 of 0.25 m cells and 0.01 m walls (``generate_maze(seed=i, loops=0.1)``), the e-puck with ps0-ps7
 and gs0-gs2 read every step with noise, a 32 ms control step (= one physics step) and wheel
-speeds from the same Braitenberg rule (``peers.workload.braitenberg``). One env-step is one control step of one
-robot with all 11 sensors read. It runs up to five ways in this process:
+speeds from the same Braitenberg rule (``peers.workload.braitenberg``). One env-step is one
+control step of one robot with all 11 sensors read. It runs up to five ways in this process:
 
 - mazesim: ``BatchSimulator`` stepping into preallocated buffers, the rule in numpy (one step
   per call), or many steps per call with the rule in Rust (``BatchSimulator.run``, once the

@@ -19,7 +19,8 @@ from typing import Any
 import numpy as np
 
 import mazesim
-from mazesim.benchmark.workloads import braitenberg
+from mazesim.benchmark.report import single_env_rate
+from mazesim.benchmark.workloads import braitenberg, braitenberg_one
 from mazesim.cli import MAX_COUNT, non_negative_int
 from mazesim.errors import InvalidArgumentError
 
@@ -78,31 +79,6 @@ def measure(envs: int, steps: int, threads: int, seed: int = 0) -> dict[str, Any
         "steps": steps,
         "seconds": seconds,
     }
-
-
-def braitenberg_one(ps: list[float]) -> tuple[float, float]:
-    """The Braitenberg rule of :func:`braitenberg` for one robot, in plain Python floats."""
-    a = [min(max((v - 67.19) / 300.0, 0.0), 1.0) for v in ps]
-    right_side = a[0] + 0.7 * a[1] + 0.4 * a[2]
-    left_side = a[7] + 0.7 * a[6] + 0.4 * a[5]
-    front = 0.5 * (a[0] + a[7])
-    base = 5.0 * (1.0 - front)
-    turn = 4.0 * (right_side - left_side) + 6.0 * front
-    return base - turn, base + turn
-
-
-def single_env_rate(steps: int = 100_000) -> float:
-    """Steps per second of one Simulator stepped from a Python loop: all 11 sensors read and
-    the Braitenberg rule computed in plain Python each step (numpy's per-call overhead would
-    dominate a single robot)."""
-    sim = mazesim.Simulator(mazesim.generate_maze(5, 5, seed=0, loops=0.1), seed=0)
-    started = time.perf_counter()
-    for _ in range(steps):
-        ps = sim.distance_sensors().tolist()
-        sim.ground_sensors()
-        left, right = braitenberg_one(ps)
-        sim.step(left, right)
-    return steps / (time.perf_counter() - started)
 
 
 def _measure_in_child(envs: int, steps: int, threads: int) -> dict[str, Any]:
