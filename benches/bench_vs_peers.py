@@ -29,7 +29,7 @@ mazesim uses every core (rayon) unless ``--threads`` says otherwise; numpy and p
 JAX uses XLA's own CPU threads. At more than one step per call only the runners that can run
 several steps in one call (mazesim and the JAX peers) are timed.
 
-    .venv/bin/python benches/bench_vs_peers.py [--envs 1024] [--steps-per-call 1,100]
+    .venv/bin/python benches/bench_vs_peers.py [--envs 1,1024,4096] [--steps-per-call 1,100]
         [--steps K] [--json] [--check]
 
 ``--check`` also runs the physical and sensor checks: robots stay inside their mazes, the deepest
@@ -411,7 +411,7 @@ def check(envs: int, steps: int, chunk: int, threads: int, peers: Sequence[str])
 
 def parse(argv: Sequence[str] | None) -> argparse.Namespace:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--envs", default="1024", help="environment counts, comma-separated")
+    parser.add_argument("--envs", default="1,1024,4096", help="environment counts, comma-separated")
     parser.add_argument(
         "--steps-per-call",
         default="1,100",
@@ -562,7 +562,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     checks = None
     if args.check:
         chunk = runs[0].get("numpy_chunk") or args.chunk or 256
-        checks = check(min(args.envs[0], 256), 500, chunk, args.threads, args.peers)
+        checks = check(min(max(args.envs), 256), 500, chunk, args.threads, args.peers)
         say_checks(checks, say)
 
     if args.json:
