@@ -90,12 +90,12 @@ def test_sweep_refuses_an_output_folder_holding_its_sweep_file(tmp_path: Path) -
 def test_an_unexpected_error_is_one_line_not_a_traceback(
     monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    import mazesim.cli
+    import mazesim.cli.worlds
 
     def broken(out: object) -> int:
         raise TypeError("unsupported operand")
 
-    monkeypatch.setattr(mazesim.cli, "run_worlds", broken)
+    monkeypatch.setattr(mazesim.cli.worlds, "run_worlds", broken)
     assert main(["worlds"]) == 2
     lines = capsys.readouterr().err.strip().splitlines()
     assert lines == [
@@ -107,12 +107,12 @@ def test_an_unexpected_error_is_one_line_not_a_traceback(
 def test_running_out_of_memory_is_one_line(
     monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    import mazesim.cli
+    import mazesim.cli.worlds
 
     def greedy(out: object) -> int:
         raise MemoryError
 
-    monkeypatch.setattr(mazesim.cli, "run_worlds", greedy)
+    monkeypatch.setattr(mazesim.cli.worlds, "run_worlds", greedy)
     assert main(["worlds"]) == 2
     assert capsys.readouterr().err.startswith("mazesim: error: out of memory")
 
@@ -121,7 +121,7 @@ def test_running_out_of_memory_is_one_line(
     "arguments",
     [
         ["demo", "--seconds", "1e300"],
-        ["bench", "--steps", "-1"],
+        ["bench", "--block-steps", "-1"],
         ["bench", "--threads", "1" + "0" * 30],
         ["bench", "--envs", "1,99999999999"],
         ["train", "--steps", "1e40"],

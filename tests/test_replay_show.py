@@ -12,7 +12,7 @@ import mazesim
 from mazesim.cli import main
 from mazesim.hrl.figures import decision_label
 from mazesim.plotting import plot_world, trajectory_legend, world_legend_handles
-from mazesim.replay.show import load_with_warnings
+from mazesim.replay.preview import load_with_warnings
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 WBT_FOLDER = Path(__file__).parent / "data" / "webots-worlds"

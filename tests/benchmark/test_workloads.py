@@ -10,6 +10,7 @@ from mazesim.benchmark.workloads import (
     CONTACT_AVOID_STEPS,
     CONTACT_PUSH_STEPS,
     MAX_WHEEL_SPEED,
+    braitenberg_one,
     seek_walls,
 )
 from mazesim.errors import UnknownNameError
@@ -66,3 +67,12 @@ def test_random_workload_is_seeded_and_bounded() -> None:
     assert first.min() >= -MAX_WHEEL_SPEED and first.max() <= MAX_WHEEL_SPEED
     # Uniform over the whole range: both signs and both ends are reached.
     assert first.min() < -0.9 * MAX_WHEEL_SPEED and first.max() > 0.9 * MAX_WHEEL_SPEED
+
+
+def test_vector_and_scalar_braitenberg_agree() -> None:
+    rng = np.random.default_rng(0)
+    ps = rng.uniform(60, 1500, size=(50, 8)).astype(np.float32)
+    out = braitenberg(ps, np.zeros((50, 2), np.float32))
+    for row, (left, right) in zip(ps, out):
+        expected = np.clip(braitenberg_one(row.tolist()), -MAX_WHEEL_SPEED, MAX_WHEEL_SPEED)
+        assert np.allclose([left, right], expected, atol=1e-4)

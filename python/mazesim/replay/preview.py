@@ -12,16 +12,18 @@ import math
 import os
 import textwrap
 from collections.abc import Sequence
+from pathlib import Path
 
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
+from mazesim import load_world
 from mazesim._atomic import atomic_file
 from mazesim._core import World
 from mazesim.plotting import plot_world, world_legend_handles
 
-__all__ = ["GRID_COLOR", "save_world_preview"]
+__all__ = ["GRID_COLOR", "load_with_warnings", "save_world_preview"]
 
 GRID_COLOR = "#6baed6"
 
@@ -119,3 +121,13 @@ def save_world_preview(
     figure.text(0.66, 0.08, "\n".join(notes), fontsize=7, va="bottom", ha="left", wrap=True)
     with atomic_file(path) as handle:
         figure.savefig(handle, format="png")
+
+
+def load_with_warnings(name_or_path: str) -> tuple[World, list[str]]:
+    """A world and the importer's warnings (none unless it is a ``.wbt`` file)."""
+    if Path(name_or_path).suffix.lower() == ".wbt":
+        from mazesim.webots.importer import import_wbt
+
+        world, report = import_wbt(name_or_path)
+        return world, [str(warning) for warning in report["warnings"]]
+    return load_world(name_or_path), []

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 
 import numpy as np
@@ -102,11 +102,22 @@ def video_frames(
 
 
 def write_video(
-    run: RecordedRun, path: str | os.PathLike[str], episode: int = 0, size: int = 400
+    run: RecordedRun,
+    path: str | os.PathLike[str],
+    episode: int = 0,
+    size: int = 400,
+    progress: Callable[[int, int], None] | None = None,
 ) -> int:
     """Writes a video of one episode of a run; the format follows the suffix.
 
     The file appears only when complete (written beside it, then renamed).
+
+    Args:
+        run: The recorded run.
+        path: The video file, ``.mp4`` or ``.gif``.
+        episode: The episode shown, counted from 0.
+        size: Width and height of the frames in pixels, a multiple of 16.
+        progress: Called as ``progress(done, total)`` after each frame drawn.
 
     Returns:
         The number of frames written.
@@ -127,6 +138,8 @@ def write_video(
     target = Path(path)
     partial = target.with_name(f".{target.stem}.partial{suffix}")
     frames = video_frames(run, episode, size, steps)
+    if progress is not None:
+        frames = _counted(frames, len(steps), progress)
     try:
         if suffix == ".gif":
             count = _write_gif(frames, partial, fps)
@@ -137,6 +150,15 @@ def write_video(
         if partial.exists():
             partial.unlink()
     return count
+
+
+def _counted(
+    frames: Iterator[npt.NDArray[np.uint8]], total: int, progress: Callable[[int, int], None]
+) -> Iterator[npt.NDArray[np.uint8]]:
+    """The frames, calling ``progress(done, total)`` after each."""
+    for done, frame in enumerate(frames, start=1):
+        yield frame
+        progress(done, total)
 
 
 def _write_gif(frames: Iterator[npt.NDArray[np.uint8]], path: Path, fps: float) -> int:

@@ -14,7 +14,7 @@ from collections.abc import Sequence
 from typing import Any, TextIO
 
 from mazesim._paths import output_files, output_path, refuse_overwriting_inputs
-from mazesim.cli import positive_int
+from mazesim.cli._args import positive_int
 from mazesim.distributed.config import PARAMETERS, TRAINER_DEFAULTS, load_sweep_config
 
 __all__ = ["register", "run_sweep_command"]

@@ -11,6 +11,7 @@ import sys
 from pathlib import Path
 from typing import Any, TextIO
 
+from mazesim.cli.progress import add_progress_option, progress_display
 from mazesim.errors import InvalidArgumentError
 
 __all__ = ["register", "run_replay"]
@@ -42,6 +43,7 @@ def register(commands: Any) -> None:
         metavar="K",
         help="the episode a video shows, counted from 0 (default: %(default)s)",
     )
+    add_progress_option(replay)
     replay.set_defaults(run=lambda args: run_replay(args, sys.stdout))
 
 
@@ -66,6 +68,12 @@ def run_replay(args: argparse.Namespace, out: TextIO) -> int:
         return 0
     from mazesim.replay.video import write_video
 
-    count = write_video(run, args.out, episode=args.episode)
+    with progress_display(args, unit="frames") as display:
+        count = write_video(
+            run,
+            args.out,
+            episode=args.episode,
+            progress=lambda done, total: display("video", done, total),
+        )
     out.write(f"wrote {args.out} ({count} frames of episode {args.episode})\n")
     return 0

@@ -12,7 +12,8 @@ from typing import Any, TextIO
 
 from mazesim._atomic import atomic_file
 from mazesim._paths import output_files, output_path, refuse_overwriting_inputs
-from mazesim.cli import positive_seconds, seed_argument
+from mazesim.cli._args import positive_seconds, seed_argument
+from mazesim.cli.progress import ProgressDisplay, add_progress_option, progress_display
 from mazesim.replay.options import DeferredWatch, add_viewing_options, viewing_requested
 
 __all__ = ["register"]
@@ -116,6 +117,7 @@ def register(commands: Any) -> None:
         help="refuse a .wbt world with import warnings (a non-e-puck robot, dropped "
         "objects...): exit 2 before running",
     )
+    add_progress_option(run)
     run.set_defaults(run=lambda args: run_webots(args, sys.stdout))
 
 
@@ -205,12 +207,15 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
     )
     # Fail before the run, not after it, if the output folder cannot be made.
     os.makedirs(out_dir, exist_ok=True)
+    from mazesim.webots.simulation import observing_steps
+
     watch = DeferredWatch(args, os.path.basename(args.controller), args.seed)
     with contextlib.ExitStack() as viewing:
         if viewing_requested(args):
-            from mazesim.webots.simulation import observing_steps
-
             viewing.enter_context(observing_steps(watch))
+        display = viewing.enter_context(progress_display(args, unit="steps"))
+        steps = _StepProgress(display, args.seconds)
+        viewing.enter_context(observing_steps(steps))
         result = run_controller(
             args.controller,
             world,
@@ -221,6 +226,8 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
             keys=keys,
             scene=scene,
         )
+        if result.reached_end:
+            steps.finish()
     name = os.path.basename(result.controller)
     wall_clock = result.wall_clock_seconds
     summary: dict[str, Any] = {
@@ -277,6 +284,27 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
         f"wrote              {', '.join([picture, summary_path, table, *views])}\n"
     )
     return result.exit_status
+
+
+class _StepProgress:
+    """A step observer that shows the simulator's steps against those ``--seconds`` take."""
+
+    def __init__(self, display: ProgressDisplay, seconds: float) -> None:
+        self.display = display
+        self.seconds = seconds
+        self.total = 0
+
+    def __call__(self, simulation: Any, left: float, right: float) -> None:
+        """Shows the steps taken before a step of ``simulation``."""
+        simulator = simulation.simulator
+        if not self.total:
+            self.total = max(1, math.ceil(self.seconds * 1000.0 / simulator.control_step_ms - 1e-9))
+        self.display("simulating", simulator.steps, self.total)
+
+    def finish(self) -> None:
+        """Shows the run's end: ``--seconds`` were simulated."""
+        if self.total:
+            self.display("simulating", self.total, self.total)
 
 
 def _ending(result: Any) -> str:

@@ -16,7 +16,6 @@ from collections.abc import Callable
 from typing import Any, TextIO
 
 import mazesim
-from mazesim._paths import output_path
 from mazesim.barcode.decoders import DECODERS
 from mazesim.barcode.link import LINKS
 from mazesim.barcode.study import (
@@ -30,7 +29,8 @@ from mazesim.barcode.study import (
     Tally,
     run_study,
 )
-from mazesim.cli import positive_int, seed_argument
+from mazesim.cli._args import output_path, positive_int, seed_argument
+from mazesim.cli.progress import add_progress_option, progress_display
 
 __all__ = ["register", "run_barcode_study"]
 
@@ -183,36 +183,8 @@ def register(commands: Any) -> None:
         action="store_true",
         help="print the results as one JSON object instead of a table",
     )
-    parser.set_defaults(run=lambda args: run_barcode_study(args, sys.stdout, sys.stderr))
-
-
-class _ProgressBar:
-    """A progress bar on stderr, drawn only on a terminal."""
-
-    def __init__(self, stream: TextIO) -> None:
-        self.stream = stream
-        self.enabled = stream.isatty()
-        self.next_update = 0.0
-        self.shown = False
-
-    def __call__(self, done: int, total: int) -> None:
-        if not self.enabled:
-            return
-        now = time.perf_counter()
-        if now < self.next_update and done < total:
-            return
-        self.next_update = now + 0.1
-        filled = int(30 * done / max(total, 1))
-        self.stream.write(
-            f"\rbarcode-study [{'#' * filled}{'.' * (30 - filled)}] {done}/{total} readings"
-        )
-        self.stream.flush()
-        self.shown = True
-
-    def close(self) -> None:
-        if self.shown:
-            self.stream.write("\r\033[K")
-            self.stream.flush()
+    add_progress_option(parser)
+    parser.set_defaults(run=lambda args: run_barcode_study(args, sys.stdout))
 
 
 def _table(title: str, key: str, tallies: list[Tally]) -> str:
@@ -230,15 +202,14 @@ def _table(title: str, key: str, tallies: list[Tally]) -> str:
     return "\n".join(lines) + "\n"
 
 
-def run_barcode_study(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
+def run_barcode_study(args: argparse.Namespace, out: TextIO) -> int:
     """Runs the study, writes its files and prints the table or the JSON object."""
     from mazesim.barcode.charts import write_study_files
 
     world = mazesim.load_world(args.world)
     os.makedirs(args.out, exist_ok=True)
-    progress = _ProgressBar(err)
     started = time.perf_counter()
-    try:
+    with progress_display(args, unit="readings") as display:
         result: StudyResult = run_study(
             world,
             readings=args.readings,
@@ -249,11 +220,9 @@ def run_barcode_study(args: argparse.Namespace, out: TextIO, err: TextIO) -> int
             envs=args.envs,
             default_threshold_v=args.default_threshold,
             default_speed=args.default_speed,
-            progress=progress,
+            progress=lambda done, total: display("barcode-study", done, total),
             link=args.link,
         )
-    finally:
-        progress.close()
     elapsed = time.perf_counter() - started
     written = write_study_files(result, args.out)
     if args.json:

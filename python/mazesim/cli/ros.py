@@ -15,7 +15,8 @@ import argparse
 from collections.abc import Sequence
 from typing import Any
 
-from mazesim.cli import (
+from mazesim.cli._args import (
+    non_negative_seconds,
     output_path,
     positive_int,
     positive_number,
@@ -55,12 +56,6 @@ def _remapping(text: str) -> str:
             f"expected a ROS remapping NAME:=VALUE (e.g. sensors:=/robot1/sensors); found {text!r}"
         )
     return text
-
-
-def _non_negative_seconds(text: str) -> float:
-    if text.strip() in ("0", "0.0"):
-        return 0.0
-    return positive_seconds(text)
 
 
 def _add_node_arguments(parser: argparse.ArgumentParser, default_name: str) -> None:
@@ -180,7 +175,7 @@ def register(commands: Any) -> None:
     )
     bridge.add_argument(
         "--duration",
-        type=_non_negative_seconds,
+        type=non_negative_seconds,
         metavar="S",
         help="stop after S simulated seconds; 0 runs until stopped (default: 0)",
     )

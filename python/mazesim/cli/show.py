@@ -14,7 +14,7 @@ import webbrowser
 from pathlib import Path
 from typing import Any, TextIO
 
-__all__ = ["load_with_warnings", "register", "run_show"]
+__all__ = ["register", "run_show"]
 
 
 def register(commands: Any) -> None:
@@ -39,21 +39,9 @@ def register(commands: Any) -> None:
     show.set_defaults(run=lambda args: run_show(args, sys.stdout))
 
 
-def load_with_warnings(name_or_path: str) -> tuple[Any, list[str]]:
-    """A world and the importer's warnings (none unless it is a ``.wbt`` file)."""
-    import mazesim
-
-    if Path(name_or_path).suffix.lower() == ".wbt":
-        from mazesim.webots.importer import import_wbt
-
-        world, report = import_wbt(name_or_path)
-        return world, [str(warning) for warning in report["warnings"]]
-    return mazesim.load_world(name_or_path), []
-
-
 def run_show(args: argparse.Namespace, out: TextIO) -> int:
     """Runs ``mazesim show``."""
-    from mazesim.replay.preview import save_world_preview
+    from mazesim.replay.preview import load_with_warnings, save_world_preview
 
     world, warnings = load_with_warnings(args.world)
     path = args.out

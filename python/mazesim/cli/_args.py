@@ -1,0 +1,108 @@
+"""Argument types of the ``mazesim`` command line.
+
+Each type takes the text of one argument and returns its value, or raises
+:class:`argparse.ArgumentTypeError` with a message that says what was expected and what was
+found (argparse prints it as ``mazesim COMMAND: error: argument --X: <message>``, exit code 2).
+This module imports nothing heavy: every command's parser uses it.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+
+from mazesim._paths import output_path
+
+__all__ = [
+    "MAX_COUNT",
+    "MAX_NUMBER",
+    "MAX_SECONDS",
+    "non_negative_int",
+    "non_negative_seconds",
+    "output_path",
+    "positive_int",
+    "positive_number",
+    "positive_seconds",
+    "seed_argument",
+    "whole_number",
+]
+
+#: The most simulated seconds a command runs for (11.6 days).
+MAX_SECONDS = 1e6
+#: The largest number a positive-number option takes.
+MAX_NUMBER = 1e9
+#: The largest count (of readings, episodes, envs, CPUs...) an option takes.
+MAX_COUNT = 2**31 - 1
+
+
+def _positive_float(text: str, what: str, largest: float) -> float:
+    """A finite number in (0, largest]; ``what`` names it in the message ("number of seconds")."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a {what}, found {text!r}") from None
+    if not math.isfinite(value) or not 0.0 < value <= largest:
+        raise argparse.ArgumentTypeError(
+            f"expected a positive {what} of at most {largest:g}, found {text!r}"
+        )
+    return value
+
+
+def positive_seconds(text: str) -> float:
+    """A positive number of seconds, at most :data:`MAX_SECONDS`."""
+    return _positive_float(text, "number of seconds", MAX_SECONDS)
+
+
+def non_negative_seconds(text: str) -> float:
+    """A number of seconds of at least 0 (0 often means "until stopped")."""
+    if text.strip() in ("0", "0.0"):
+        return 0.0
+    return positive_seconds(text)
+
+
+def positive_number(text: str) -> float:
+    """A finite number above 0, at most :data:`MAX_NUMBER`."""
+    return _positive_float(text, "number", MAX_NUMBER)
+
+
+def whole_number(text: str, smallest: int, largest: int = MAX_COUNT) -> int:
+    """A whole number in ``[smallest, largest]``.
+
+    Raises:
+        argparse.ArgumentTypeError: ``text`` is not such a number (argparse prints the message).
+    """
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a whole number, found {text!r}") from None
+    if value < smallest:
+        raise argparse.ArgumentTypeError(
+            f"expected a whole number of at least {smallest}, found {text!r}"
+        )
+    if value > largest:
+        raise argparse.ArgumentTypeError(
+            f"expected a whole number of at most {largest}, found {text!r}"
+        )
+    return value
+
+
+def positive_int(text: str) -> int:
+    """A whole number of at least 1 and at most :data:`MAX_COUNT` (a count of readings,
+    episodes, envs, CPUs...)."""
+    return whole_number(text, 1)
+
+
+def non_negative_int(text: str) -> int:
+    """A whole number of at least 0 and at most :data:`MAX_COUNT` (0 often means "automatic")."""
+    return whole_number(text, 0)
+
+
+def seed_argument(text: str) -> int:
+    """A seed: a whole number in ``[0, 2^64)``."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a whole number, found {text!r}") from None
+    if value < 0 or value >= 2**64:
+        raise argparse.ArgumentTypeError(f"expected a seed in [0, 2^64), found {text!r}")
+    return value

@@ -1,0 +1,150 @@
+"""``mazesim bench``: steady-state env-steps per second, contact share and memory per env.
+
+The measuring is :mod:`mazesim.benchmark`'s (docs/performance.md); this module parses the
+options, shows the progress over the batch sizes (in env-steps, so that a large batch weighs
+more than a small one) and prints the table (or, with ``--json``, one JSON object).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+from typing import Any
+
+from mazesim.benchmark import MAZE_KINDS, MIN_WARMUP_STEPS, WORKLOADS, BenchSettings
+from mazesim.benchmark.report import machine, run_sizes, single_env_rate, table
+from mazesim.cli._args import (
+    MAX_COUNT,
+    non_negative_int,
+    positive_int,
+    seed_argument,
+    whole_number,
+)
+from mazesim.cli.progress import add_progress_option, progress_display
+
+__all__ = ["register", "run_bench"]
+
+#: Batch sizes measured when --envs is not given.
+DEFAULT_SIZES = [1, 64, 1024, 4096]
+
+
+def _env_counts(text: str) -> list[int]:
+    try:
+        counts = [int(part) for part in text.split(",") if part.strip()]
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"expected env counts like 1,64,1024, found {text!r}"
+        ) from None
+    if not counts or min(counts) < 1 or max(counts) > MAX_COUNT:
+        raise argparse.ArgumentTypeError(f"expected env counts in [1, {MAX_COUNT}], found {text!r}")
+    return counts
+
+
+def _warmup_steps(text: str) -> int:
+    return whole_number(text, MIN_WARMUP_STEPS)
+
+
+def run_bench(args: argparse.Namespace) -> int:
+    """Runs ``mazesim bench``."""
+    settings = BenchSettings(
+        workload=args.workload,
+        mazes=args.mazes,
+        threads=args.threads,
+        warmup_steps=args.warmup,
+        block_steps=args.block_steps,
+        blocks=args.blocks,
+        episode_steps=args.episode_steps,
+        seed=args.seed,
+    )
+    with progress_display(args, unit="env-steps") as display:
+        reports = run_sizes(
+            settings, args.envs, progress=lambda done, total: display("bench", done, total)
+        )
+    single = single_env_rate()
+    if args.json:
+        document: dict[str, Any] = {
+            "settings": {k: v for k, v in vars(settings).items() if k != "envs"},
+            "machine": machine(),
+            "results": reports,
+            "single_env_python_steps_per_s": single,
+        }
+        print(json.dumps(document))
+        return 0
+    print(table(reports))
+    print(f"one env stepped from Python (Simulator, rule in plain Python): {single:,.0f} steps/s")
+    return 0
+
+
+def register(commands: Any) -> None:
+    """Adds ``mazesim bench`` to the command line."""
+    parser = commands.add_parser(
+        "bench",
+        help="measure steady-state env-steps per second, contact share and memory per env",
+        description=(
+            "Run a workload on a batch of 5 x 5 mazes (the e-puck with all 11 sensors read "
+            "each step, 32 ms steps) at each batch size, each in a fresh process: a warm-up of "
+            "at least 1,000 steps with episodes reset as they end, then timed blocks. Prints "
+            "env-steps per wall-second and per CPU-second, the share of steps in contact and "
+            "resident bytes per env (docs/performance.md)."
+        ),
+    )
+    parser.add_argument(
+        "--envs",
+        type=_env_counts,
+        default=DEFAULT_SIZES,
+        metavar="N,N,...",
+        help="batch sizes (default: 1,64,1024,4096)",
+    )
+    parser.add_argument(
+        "--workload",
+        choices=list(WORKLOADS),
+        default="braitenberg",
+        help="the wheel-speed rule: braitenberg (wander clear of walls), contact (about half "
+        "the steps pushing into walls), random (uniform wheel speeds) (default: braitenberg)",
+    )
+    parser.add_argument(
+        "--mazes",
+        choices=list(MAZE_KINDS),
+        default="distinct",
+        help="a generated maze per env, or one shared by all (default: distinct)",
+    )
+    parser.add_argument(
+        "--threads",
+        type=non_negative_int,
+        default=0,
+        metavar="T",
+        help="worker threads (default: 0 = all cores)",
+    )
+    parser.add_argument(
+        "--warmup",
+        type=_warmup_steps,
+        default=MIN_WARMUP_STEPS,
+        metavar="K",
+        help=f"untimed steps first, at least {MIN_WARMUP_STEPS} (default: {MIN_WARMUP_STEPS})",
+    )
+    parser.add_argument(
+        "--blocks", type=positive_int, default=5, metavar="B", help="timed blocks (default: 5)"
+    )
+    parser.add_argument(
+        "--block-steps",
+        type=positive_int,
+        default=300,
+        metavar="S",
+        help="steps per timed block (default: 300)",
+    )
+    parser.add_argument(
+        "--episode-steps",
+        type=positive_int,
+        default=1000,
+        metavar="E",
+        help="episode step limit; an env is reset when it reaches it (default: 1000)",
+    )
+    parser.add_argument(
+        "--seed",
+        type=seed_argument,
+        default=0,
+        help="seeds the mazes, the sensor noise and the random workload (default: 0)",
+    )
+    parser.add_argument("--json", action="store_true", help="print one JSON object")
+    add_progress_option(parser)
+    parser.set_defaults(run=run_bench)

@@ -1,0 +1,191 @@
+"""``mazesim demo``: the robot driven headless, its path plotted.
+
+By default the e-puck runs the report's avoid-collision controller (Alg. 1) for ``--seconds``;
+``--controller hrl`` hands the run to :mod:`mazesim.cli.demo_hrl`, the shipped hierarchical
+navigator driving the seed robot to the goal. Both print a summary and write
+``DIR/trajectory.png`` and ``DIR/summary.json``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import sys
+import time
+from typing import Any, TextIO
+
+from mazesim._paths import output_files, refuse_overwriting_inputs
+from mazesim.cli._args import output_path, positive_seconds, seed_argument
+from mazesim.cli.progress import add_progress_option, progress_display
+from mazesim.replay.options import add_viewing_options
+
+__all__ = ["register", "run_demo"]
+
+
+def register(commands: Any) -> None:
+    """Adds ``demo`` to the ``mazesim`` command's subparsers."""
+    demo = commands.add_parser(
+        "demo",
+        help="drive the robot (avoid-collision or the shipped navigator) and plot its path",
+        description=(
+            "Drive the robot headless with the avoid-collision controller of the source report "
+            "(Alg. 1: turn away when a front proximity sensor reads above 80), print a summary, "
+            "and write DIR/trajectory.png and DIR/summary.json."
+        ),
+    )
+    demo.add_argument(
+        "--world",
+        default="seed-maze",
+        metavar="NAME|PATH",
+        help="a built-in world name or a world file (default: %(default)s)",
+    )
+    demo.add_argument(
+        "--seconds",
+        type=positive_seconds,
+        default=60.0,
+        metavar="S",
+        help="simulated seconds to run (default: %(default)s)",
+    )
+    demo.add_argument(
+        "--seed",
+        type=seed_argument,
+        default=0,
+        metavar="N",
+        help="seed of the sensor noise (default: %(default)s)",
+    )
+    demo.add_argument(
+        "--out",
+        type=output_path,
+        default="mazesim-demo",
+        metavar="DIR",
+        help="folder for trajectory.png and summary.json, created if missing "
+        "(default: %(default)s)",
+    )
+    demo.add_argument(
+        "--robot",
+        default="e-puck",
+        metavar="NAME",
+        help="robot profile; the controller needs the e-puck's 8 proximity sensors "
+        "(default: %(default)s)",
+    )
+    demo.add_argument(
+        "--controller",
+        choices=("avoid-collision", "hrl"),
+        default="avoid-collision",
+        help="avoid-collision (Alg. 1), or hrl: the shipped hierarchical navigator (Alg. 5) "
+        "driving the report's seed robot to the goal, also writing DIR/trace.txt "
+        "(default: %(default)s)",
+    )
+    add_viewing_options(demo, live=True)
+    add_progress_option(demo)
+    demo.set_defaults(run=lambda args: run_demo(args, sys.stdout))
+
+
+def run_demo(args: argparse.Namespace, out: TextIO) -> int:
+    """Runs the demo and writes its picture and summary."""
+    refuse_overwriting_inputs(
+        output_files(args.out, ("trajectory.png", "summary.json", "trace.txt")),
+        [("--world", args.world)],
+    )
+    if getattr(args, "controller", "avoid-collision") == "hrl":
+        from mazesim.cli.demo_hrl import run_hrl_demo
+
+        return run_hrl_demo(args, out)
+    return run_avoid_collision_demo(args, out)
+
+
+def run_avoid_collision_demo(args: argparse.Namespace, out: TextIO) -> int:
+    """Runs the avoid-collision demo and writes its picture and summary."""
+    import numpy as np
+
+    import mazesim
+    from mazesim._atomic import atomic_file
+    from mazesim.controllers import AvoidCollision
+    from mazesim.errors import InvalidArgumentError
+    from mazesim.plotting import save_trajectory_png
+    from mazesim.replay.options import SimulatorWatch
+
+    world = mazesim.load_world(args.world)
+    simulator = mazesim.Simulator(world, robot=args.robot, seed=args.seed)
+    robot = simulator.robot
+    proximity = [f"ps{i}" for i in range(8)]
+    names = list(robot.distance_sensor_names)
+    if robot.distance_sensor_unit != "raw" or not set(proximity) <= set(names):
+        raise InvalidArgumentError(
+            f"the demo's avoid-collision controller needs the e-puck's 8 raw proximity sensors "
+            f"ps0-ps7; robot {robot.name!r} has {', '.join(names)} "
+            f"in {robot.distance_sensor_unit!r}"
+        )
+    # ps0-ps7, wherever the profile lists them (the e-puck2 has its ToF beside them).
+    columns = [names.index(name) for name in proximity]
+    controller = AvoidCollision(max_speed=robot.max_wheel_speed)
+    # Fail before the run, not after it, if the output folder cannot be made.
+    os.makedirs(args.out, exist_ok=True)
+    steps = max(1, math.ceil(args.seconds * 1000.0 / simulator.control_step_ms - 1e-9))
+
+    xs = np.empty(steps + 1, dtype=np.float64)
+    ys = np.empty(steps + 1, dtype=np.float64)
+    xs[0], ys[0], _ = simulator.pose
+    watch = SimulatorWatch(args, simulator, "avoid-collision", args.seed)
+    contacts: list[tuple[float, float]] = []
+    started = time.perf_counter()
+    with progress_display(args, unit="steps") as progress:
+        for step in range(1, steps + 1):
+            left, right = controller(simulator.distance_sensors()[columns])
+            watch.before_step(left, right)
+            simulator.step(left, right)
+            xs[step], ys[step], _ = simulator.pose
+            if simulator.colliding:
+                contacts.append((xs[step], ys[step]))
+            progress("simulating", step, steps)
+    wall_clock = time.perf_counter() - started
+
+    goal_reached: bool | None = None
+    if world.goal is not None:
+        goal_x, goal_y, radius = world.goal
+        goal_reached = bool(np.any(np.hypot(xs - goal_x, ys - goal_y) <= radius))
+    summary: dict[str, Any] = {
+        "world": world.name,
+        "robot": robot.name,
+        "seed": args.seed,
+        "controller": "avoid-collision",
+        "simulated_seconds": simulator.time,
+        "steps": simulator.steps,
+        "distance_m": simulator.distance_travelled,
+        "collisions": simulator.collisions,
+        "goal_reached": goal_reached,
+        "wall_clock_seconds": wall_clock,
+        "real_time_factor": simulator.time / wall_clock if wall_clock > 0 else None,
+        "mazesim_version": mazesim.__version__,
+    }
+
+    picture = os.path.join(args.out, "trajectory.png")
+    save_trajectory_png(
+        world,
+        xs,
+        ys,
+        picture,
+        title=f"{world.name}: avoid-collision, {simulator.time:.0f} s, seed {args.seed}",
+        collisions=contacts,
+    )
+    summary_path = os.path.join(args.out, "summary.json")
+    with atomic_file(summary_path) as handle:
+        handle.write((json.dumps(summary, indent=2) + "\n").encode("utf-8"))
+    views = watch.finish("goal reached" if goal_reached else f"{simulator.time:.0f} s up")
+
+    speed = "n/a" if summary["real_time_factor"] is None else f"{summary['real_time_factor']:.0f}x"
+    out.write(
+        f"world              {world.name} (robot {robot.name}, seed {args.seed})\n"
+        f"simulated time     {simulator.time:.2f} s ({simulator.steps} steps)\n"
+        f"distance travelled {simulator.distance_travelled:.2f} m\n"
+        f"collisions         {simulator.collisions}\n"
+    )
+    if goal_reached is not None:
+        out.write(f"goal reached       {'yes' if goal_reached else 'no'}\n")
+    out.write(
+        f"wall-clock time    {wall_clock:.3f} s ({speed} real time)\n"
+        f"wrote              {', '.join([picture, summary_path, *views])}\n"
+    )
+    return 0

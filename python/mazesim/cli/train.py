@@ -1,0 +1,149 @@
+"""``mazesim train``: training the hierarchical navigator.
+
+``mazesim train`` trains from scratch (or, with ``--resume``, continues a stopped run) and saves
+the navigator into ``--out``; ``--flat`` trains the flat baseline instead, for the same budget.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+import time
+from pathlib import Path
+from typing import Any, TextIO
+
+from mazesim._paths import output_files, output_path, refuse_overwriting_inputs
+from mazesim.cli._args import positive_int, seed_argument
+from mazesim.errors import InvalidArgumentError
+
+__all__ = ["register", "run_train", "step_count"]
+
+DEFAULT_OUT = "mazesim-policy"
+#: The most env-steps a training run takes (the shipped navigator took 3.6e7).
+MAX_STEPS = 10**12
+
+
+def step_count(text: str) -> int:
+    """A number of env-steps: a whole number, optionally with a k or M suffix (``36M``)."""
+    cleaned = text.strip().replace("_", "")
+    scale = 1
+    if cleaned[-1:] in ("k", "K"):
+        scale, cleaned = 1_000, cleaned[:-1]
+    elif cleaned[-1:] in ("m", "M"):
+        scale, cleaned = 1_000_000, cleaned[:-1]
+    try:
+        value = float(cleaned) * scale
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"expected a number of env-steps such as 36000000, 36M or 500k, found {text!r}"
+        ) from None
+    if not math.isfinite(value) or not 1 <= value <= MAX_STEPS:
+        raise argparse.ArgumentTypeError(
+            f"expected a number of env-steps in [1, {MAX_STEPS:.0e}], found {text!r}"
+        )
+    return int(value)
+
+
+def register(commands: Any) -> None:
+    """Adds ``train`` to the ``mazesim`` command's subparsers."""
+    from mazesim.hrl.train import TrainSettings
+
+    defaults = TrainSettings()
+    train = commands.add_parser(
+        "train",
+        help="train the hierarchical navigator (lower level on generated mazes, higher level on "
+        "the world)",
+        description=(
+            "Train the hierarchical Q-learning navigator from scratch: the four sub-tasks on "
+            "generated mazes with many robots at once, then the higher level on --world. "
+            "Checkpoints are written to --out as it goes; --resume continues a stopped run to the "
+            "same tables as an uninterrupted one. The navigator is saved as "
+            "--out/tables.npz and --out/policy.json. A progress bar with the live success rate "
+            "shows on a terminal."
+        ),
+    )
+    train.add_argument(
+        "--world",
+        default=defaults.world,
+        metavar="NAME|PATH",
+        help="the world the higher level learns: a built-in name or a world file "
+        "(default: %(default)s)",
+    )
+    train.add_argument(
+        "--envs",
+        type=positive_int,
+        default=defaults.envs,
+        metavar="N",
+        help="robots stepped at once while training the lower level (default: %(default)s)",
+    )
+    train.add_argument(
+        "--steps",
+        type=step_count,
+        default=defaults.steps,
+        metavar="K",
+        help="env-steps of lower-level training, e.g. 36M or 500k (default: %(default)s)",
+    )
+    train.add_argument(
+        "--seed",
+        type=seed_argument,
+        default=defaults.seed,
+        metavar="S",
+        help="seed of everything random in the run (default: %(default)s)",
+    )
+    train.add_argument(
+        "--out",
+        type=output_path,
+        default=DEFAULT_OUT,
+        metavar="DIR",
+        help="folder for the checkpoint and the navigator (default: %(default)s)",
+    )
+    train.add_argument(
+        "--resume",
+        action="store_true",
+        help="continue the run whose checkpoint is in --out (same settings)",
+    )
+    train.add_argument(
+        "--flat",
+        action="store_true",
+        help="train the flat Q-learning baseline on --world instead, for --steps env-steps",
+    )
+    train.set_defaults(run=lambda args: run_train(args, sys.stdout))
+
+
+def run_train(args: argparse.Namespace, out: TextIO) -> int:
+    """Runs ``mazesim train``."""
+    from mazesim.hrl.train import TrainSettings, train, train_flat_policy
+
+    refuse_overwriting_inputs(
+        output_files(args.out, ("tables.npz", "policy.json", "checkpoint.npz")),
+        [("--world", args.world)],
+    )
+    settings = TrainSettings(world=args.world, envs=args.envs, steps=args.steps, seed=args.seed)
+    started = time.perf_counter()
+    if args.flat:
+        if args.resume:
+            raise InvalidArgumentError("--resume continues hierarchical runs only, not --flat")
+        policy = train_flat_policy(settings, args.out)
+        seconds = time.perf_counter() - started
+        out.write(
+            f"trained the flat baseline for {policy.world_name} in {seconds:.0f} s "
+            f"({settings.steps} env-steps)\nwrote {Path(args.out) / 'tables.npz'}, "
+            f"{Path(args.out) / 'policy.json'}\n"
+        )
+        return 0
+    result = train(settings, args.out, resume=args.resume)
+    if result is None:
+        return 0
+    seconds = time.perf_counter() - started
+    info = result.training
+    out.write(
+        f"trained a navigator for {result.world_name} in {seconds:.0f} s "
+        f"(lower level {info['lower_seconds']:.0f} s, {info['lower_env_steps']} env-steps; "
+        f"higher level {info['higher_seconds']:.0f} s)\n"
+        f"higher-level training: {100 * info['higher_success_last_100']:.0f}% of the last 100 "
+        f"episodes reached the goal\n"
+        f"wrote {Path(args.out) / 'tables.npz'}, {Path(args.out) / 'policy.json'}\n"
+        f"evaluate it with: mazesim eval --policy {args.out}\n"
+    )
+    return 0
