@@ -2,7 +2,7 @@
 
 import os
 from collections.abc import Sequence
-from typing import Any, ClassVar, final
+from typing import Any, ClassVar, Literal, final
 
 import numpy as np
 import numpy.typing as npt
@@ -246,6 +246,72 @@ class BatchSimulator:
         colliding: npt.NDArray[np.bool_],
         crossings: npt.NDArray[np.int32],
     ) -> None: ...
+    def run(
+        self,
+        steps: int,
+        controller: Literal["braitenberg", "avoid-collision", "tabular", "random"],
+        observations: npt.NDArray[np.float32],
+        poses: npt.NDArray[np.float32],
+        colliding: npt.NDArray[np.bool_],
+        crossings: npt.NDArray[np.int32],
+        *,
+        seeds: int | Sequence[int] | None = None,
+        max_episode_steps: int = 0,
+        end_at_goal: bool = False,
+        autoreset: bool = True,
+        trace: dict[str, npt.NDArray[Any]] | None = None,
+        table: npt.NDArray[np.float64] | None = None,
+        allowed_actions: npt.NDArray[np.bool_] | None = None,
+        table_index: npt.NDArray[np.int64] | None = None,
+        epsilon: float = 0.0,
+        threshold: float = 80.0,
+        max_speed: float = 6.28,
+    ) -> dict[str, npt.NDArray[np.uint64]]:
+        """Runs ``steps`` control steps of every env in one call, the GIL released, each env's
+        wheel speeds chosen in the core by a built-in controller.
+
+        Controllers (each equal, bit for bit, to its Python counterpart on the same readings):
+        ``"braitenberg"`` (:func:`mazesim.bench.braitenberg` on ps0-7), ``"avoid-collision"``
+        (:class:`mazesim.controllers.AvoidCollision` with ``threshold`` and ``max_speed``),
+        ``"tabular"`` (greedy over ``table``, a float64 ``(4096, 12)`` Q-table or
+        ``(tables, 4096, 12)`` tables with env ``i`` acting from ``table[table_index[i]]``, on
+        the Table 4.1 state of the first six distance sensors; ties go to the first maximum;
+        only ``allowed_actions`` (``(12,)`` or ``(tables, 12)`` bool) are taken; with
+        probability ``epsilon`` a uniformly random allowed action) and ``"random"`` (wheel
+        speeds uniform within the motor limit). Env ``i`` draws its random numbers from its own
+        stream seeded with ``seeds[i]`` (an int ``s`` gives ``s + i``; ``0..N`` by default).
+
+        An episode ends after ``max_episode_steps`` steps since its reset (0: no limit) or, with
+        ``end_at_goal``, on the step the robot's centre enters the goal disc. With ``autoreset``
+        an env is reset at once with the seed that follows its last one (SplitMix64); without,
+        it stands still until reset.
+
+        Args:
+            steps: Control steps of every env.
+            controller: The built-in controller.
+            observations: (N, observation_width) float32, the final observations.
+            poses: (N, 3) float32, the final poses.
+            colliding: (N,) bool, the final step's contact flags.
+            crossings: (N,) int32, the final step's barcode crossings.
+            seeds: Seeds of the envs' controller streams.
+            max_episode_steps: Step limit of an episode (0: none).
+            end_at_goal: Whether reaching the goal ends an episode.
+            autoreset: Whether an ended episode is reset at once.
+            trace: Per-step outputs to fill, by key: ``observations`` (steps, N, width) float32,
+                ``poses`` (steps, N, 3) float32, ``colliding`` and ``episode_ends``
+                (steps, N) bool, ``crossings`` and ``actions`` (steps, N) int32,
+                ``wheel_speeds`` (steps, N, 2) float32.
+            table: The Q-table(s) of the tabular controller.
+            allowed_actions: The actions the tabular controller may take.
+            table_index: (N,) int64, the table of each env.
+            epsilon: The tabular controller's exploration rate in [0, 1].
+            threshold: Avoid-collision's obstacle threshold (raw reading).
+            max_speed: Avoid-collision's maximum wheel speed, rad/s.
+
+        Returns:
+            (N,) uint64 counters of the call: ``steps``, ``steps_in_contact``,
+            ``episodes_finished`` and ``goals_reached``.
+        """
     def reset(
         self,
         observations: npt.NDArray[np.float32],

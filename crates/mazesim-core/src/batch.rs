@@ -26,10 +26,10 @@ use crate::world::World;
 
 /// Environments per chunk of work: enough to amortise taking it from the queue, few enough that
 /// the threads finish close together.
-const CHUNK_ENVS: usize = 16;
+pub(crate) const CHUNK_ENVS: usize = 16;
 
 /// How often the calling thread asks whether to stop (Ctrl-C) while a batch call runs.
-const INTERRUPT_POLL: Duration = Duration::from_millis(50);
+pub(crate) const INTERRUPT_POLL: Duration = Duration::from_millis(50);
 
 /// How long a helper waits awake for the next step of the batch it just helped.
 const LINGER: Duration = Duration::from_micros(200);
@@ -252,7 +252,7 @@ impl Batch {
         &self.envs
     }
 
-    fn check_outputs(&self, out: &StepOutputs<'_>) -> Result<()> {
+    pub(crate) fn check_outputs(&self, out: &StepOutputs<'_>) -> Result<()> {
         let n = self.envs.len();
         let check = |name: &str, len: usize, width: usize| {
             if len != n * width {
@@ -281,6 +281,13 @@ impl Batch {
         self.interrupt = Some(interrupt);
     }
 
+    /// Asks the check for an interruption (see `set_interrupt`) now: true when the call should stop.
+    pub(crate) fn interrupted(&self) -> bool {
+        self.interrupt
+            .as_deref()
+            .is_some_and(|interrupted| interrupted())
+    }
+
     /// Makes the helper threads again when this process is a fork of the one that made them.
     fn guard_fork(&mut self) -> Result<()> {
         let pid = std::process::id();
@@ -293,33 +300,77 @@ impl Batch {
         Ok(())
     }
 
-    fn run<F: Fn(usize, &mut Simulator, Row<'_>) + Sync + Send>(
-        &mut self,
-        out: StepOutputs<'_>,
+    fn run<'a, F: Fn(usize, &mut Simulator, Row<'_>) + Sync + Send>(
+        &'a mut self,
+        out: StepOutputs<'a>,
         f: F,
     ) -> Result<()> {
-        self.guard_fork()?;
-        let interrupt = self.interrupt.as_deref();
-        let stopped = AtomicBool::new(false);
-        let mut polled = Instant::now();
         let width = self.observation_width();
         let dw = self.distance_width;
-        let alone = self.envs.len() <= CHUNK_ENVS;
         let StepOutputs {
             observations,
             poses,
             colliding,
             crossings,
         } = out;
-        let chunks = self
-            .envs
-            .chunks_mut(CHUNK_ENVS)
-            .zip(observations.chunks_mut(CHUNK_ENVS * width))
-            .zip(poses.chunks_mut(CHUNK_ENVS * 3))
-            .zip(colliding.chunks_mut(CHUNK_ENVS))
-            .zip(crossings.chunks_mut(CHUNK_ENVS))
-            .enumerate();
-        let queue = Mutex::new(chunks);
+        let chunks = move |envs: &'a mut [Simulator]| {
+            // The braces move the output slices into the iterator (the closure runs once).
+            envs.chunks_mut(CHUNK_ENVS)
+                .zip({ observations }.chunks_mut(CHUNK_ENVS * width))
+                .zip({ poses }.chunks_mut(CHUNK_ENVS * 3))
+                .zip({ colliding }.chunks_mut(CHUNK_ENVS))
+                .zip({ crossings }.chunks_mut(CHUNK_ENVS))
+                .enumerate()
+        };
+        self.par_chunks(chunks, |chunk, stop| {
+            let (k, ((((envs, obs), poses), colliding), crossings)) = chunk;
+            for env in envs.iter() {
+                env.warm();
+            }
+            let rows = envs
+                .iter_mut()
+                .zip(obs.chunks_mut(width))
+                .zip(poses.chunks_mut(3))
+                .zip(colliding.iter_mut())
+                .zip(crossings.iter_mut())
+                .enumerate();
+            for (j, ((((env, observation), pose), colliding), crossing)) in rows {
+                if stop() {
+                    return;
+                }
+                let row = Row {
+                    observation,
+                    distance_width: dw,
+                    pose,
+                    colliding,
+                    crossing,
+                };
+                f(k * CHUNK_ENVS + j, env, row);
+            }
+        })
+    }
+
+    /// Runs `work` on every chunk that `chunks_of` makes of the environments (chunks of
+    /// `CHUNK_ENVS` environments with their slices of the outputs), on the calling thread and the
+    /// helpers, each chunk taken from a shared queue. `work` gets a chunk and `stop`, to ask
+    /// before each environment: once `stop()` is true (Ctrl-C) it should return at once, and the
+    /// call returns `Error::Interrupted`.
+    pub(crate) fn par_chunks<'e, I, C, W>(
+        &'e mut self,
+        chunks_of: impl FnOnce(&'e mut [Simulator]) -> I,
+        work: W,
+    ) -> Result<()>
+    where
+        I: Iterator<Item = C> + Send,
+        C: Send,
+        W: Fn(C, &mut dyn FnMut() -> bool) + Sync,
+    {
+        self.guard_fork()?;
+        let interrupt = self.interrupt.as_deref();
+        let stopped = AtomicBool::new(false);
+        let mut polled = Instant::now();
+        let alone = self.envs.len() <= CHUNK_ENVS;
+        let queue = Mutex::new(chunks_of(&mut self.envs));
         // Whether to stop: the calling thread (which has `poll`) asks `interrupt` now and then,
         // every thread sees its answer before each environment.
         let stop_now = |poll: &mut Option<&mut Instant>| {
@@ -333,46 +384,24 @@ impl Batch {
             }
             stopped.load(Ordering::Acquire)
         };
-        let work = |mut poll: Option<&mut Instant>| loop {
+        let work_through = |mut poll: Option<&mut Instant>| loop {
             if stop_now(&mut poll) {
                 return;
             }
             let next = queue.lock().unwrap_or_else(|p| p.into_inner()).next();
-            let Some((k, ((((envs, obs), poses), colliding), crossings))) = next else {
+            let Some(chunk) = next else {
                 return;
             };
-            for env in envs.iter() {
-                env.warm();
-            }
-            let rows = envs
-                .iter_mut()
-                .zip(obs.chunks_mut(width))
-                .zip(poses.chunks_mut(3))
-                .zip(colliding.iter_mut())
-                .zip(crossings.iter_mut())
-                .enumerate();
-            for (j, ((((env, observation), pose), colliding), crossing)) in rows {
-                if stop_now(&mut poll) {
-                    return;
-                }
-                let row = Row {
-                    observation,
-                    distance_width: dw,
-                    pose,
-                    colliding,
-                    crossing,
-                };
-                f(k * CHUNK_ENVS + j, env, row);
-            }
+            work(chunk, &mut || stop_now(&mut poll));
         };
         match self.helpers.pool() {
             Some(pool) if !alone => {
                 let run = self.runs.fetch_add(1, Ordering::AcqRel) + 1;
                 pool.in_place_scope(|scope| {
                     for _ in 0..pool.current_num_threads() {
-                        scope.spawn(|_| work(None));
+                        scope.spawn(|_| work_through(None));
                     }
-                    work(Some(&mut polled));
+                    work_through(Some(&mut polled));
                 });
                 for _ in 0..pool.current_num_threads() {
                     let runs = Arc::clone(&self.runs);
@@ -384,7 +413,7 @@ impl Batch {
                     });
                 }
             }
-            _ => work(Some(&mut polled)),
+            _ => work_through(Some(&mut polled)),
         }
         if stopped.load(Ordering::Acquire) {
             return Err(Error::Interrupted);
@@ -515,16 +544,16 @@ impl Batch {
 }
 
 /// One environment's rows of the outputs.
-struct Row<'a> {
-    observation: &'a mut [f32],
-    distance_width: usize,
-    pose: &'a mut [f32],
-    colliding: &'a mut bool,
-    crossing: &'a mut i32,
+pub(crate) struct Row<'a> {
+    pub(crate) observation: &'a mut [f32],
+    pub(crate) distance_width: usize,
+    pub(crate) pose: &'a mut [f32],
+    pub(crate) colliding: &'a mut bool,
+    pub(crate) crossing: &'a mut i32,
 }
 
 impl Row<'_> {
-    fn write(self, env: &Simulator) {
+    pub(crate) fn write(self, env: &Simulator) {
         let (d, g) = self.observation.split_at_mut(self.distance_width);
         d.copy_from_slice(env.distance_sensors());
         g.copy_from_slice(env.ground_sensors());

@@ -18,6 +18,7 @@
 
 pub mod batch;
 pub mod codebook;
+pub mod control;
 pub mod crossing;
 pub mod error;
 pub mod generator;
@@ -28,14 +29,17 @@ pub mod memory;
 pub mod physics;
 pub mod rng;
 pub mod robot;
+pub mod rollout;
 pub mod sensors;
 pub mod simulator;
 pub mod wbt;
 pub mod world;
 
 pub use batch::{Batch, StepOutputs};
+pub use control::Controller;
 pub use error::{Error, Location, Result};
 pub use robot::{robot_profile_names, RobotProfile};
+pub use rollout::{RunCounters, RunOptions, RunTrace};
 pub use simulator::{SimConfig, Simulator};
 pub use world::{builtin_world_names, World};
 

@@ -24,6 +24,13 @@ fn splitmix64(x: &mut u64) -> u64 {
     z ^ (z >> 31)
 }
 
+/// The seed that follows `seed`: the first SplitMix64 output from `seed`. A batch's multi-step call
+/// resets an environment whose episode ended with the seed that follows its last one.
+pub fn next_seed(seed: u64) -> u64 {
+    let mut x = seed;
+    splitmix64(&mut x)
+}
+
 impl Rng {
     /// A stream determined entirely by `seed`.
     pub fn new(seed: u64) -> Self {

@@ -3,15 +3,18 @@
 
 use std::sync::{Arc, Mutex};
 
+use mazesim_core::control::avoid_collision::EPUCK_MAX_SPEED;
 use mazesim_core::limits::{MAX_ENVS, MAX_THREADS};
-use mazesim_core::{Batch, RobotProfile, StepOutputs, World};
+use mazesim_core::{Batch, RobotProfile, RunOptions, StepOutputs, World};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 
 use crate::args::{IntArg, Real};
 use crate::buffers::{copied, writable};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::{enter, enter_detached};
+use crate::run::{self, TabularArgs, Traces};
 use crate::world::PyWorld;
 
 /// N independent environments stepped together.
@@ -22,6 +25,9 @@ pub struct PyBatch {
     distance_width: usize,
     ground_width: usize,
 }
+
+/// Most control steps one `run` call takes.
+const MAX_RUN_STEPS: usize = 1 << 40;
 
 fn bad(msg: String) -> PyErr {
     invalid(msg)
@@ -218,6 +224,65 @@ impl PyBatch {
             let mut buffers = Borrowed::new(self, observations, poses, colliding, crossings)?;
             let out = buffers.outputs()?;
             enter_detached(py, || self.with(|b| b.step(&actions, out)))
+        })
+    }
+
+    /// Runs `steps` control steps of every environment in one call, the GIL released, each
+    /// environment's wheel speeds from the built-in `controller` ('braitenberg',
+    /// 'avoid-collision', 'tabular' or 'random'); see `docs/performance.md` and the stub.
+    #[pyo3(signature = (steps, controller, observations, poses, colliding, crossings, *, seeds = None,
+        max_episode_steps = IntArg::ZERO, end_at_goal = false, autoreset = true, trace = None,
+        table = None, allowed_actions = None, table_index = None, epsilon = Real::Number(0.0),
+        threshold = Real::Number(80.0), max_speed = Real::Number(EPUCK_MAX_SPEED)),
+        text_signature = "($self, steps, controller, observations, poses, colliding, crossings, *, seeds=None, max_episode_steps=0, end_at_goal=False, autoreset=True, trace=None, table=None, allowed_actions=None, table_index=None, epsilon=0.0, threshold=80.0, max_speed=6.28)")]
+    fn run<'py>(
+        &self,
+        py: Python<'py>,
+        steps: IntArg,
+        controller: &str,
+        observations: &Bound<'py, PyAny>,
+        poses: &Bound<'py, PyAny>,
+        colliding: &Bound<'py, PyAny>,
+        crossings: &Bound<'py, PyAny>,
+        seeds: Option<&Bound<'py, PyAny>>,
+        max_episode_steps: IntArg,
+        end_at_goal: bool,
+        autoreset: bool,
+        trace: Option<&Bound<'py, PyDict>>,
+        table: Option<&Bound<'py, PyAny>>,
+        allowed_actions: Option<&Bound<'py, PyAny>>,
+        table_index: Option<&Bound<'py, PyAny>>,
+        epsilon: Real,
+        threshold: Real,
+        max_speed: Real,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        enter(|| {
+            let n = self.n;
+            let options = RunOptions {
+                steps: steps.count("steps", MAX_RUN_STEPS)?,
+                max_episode_steps: max_episode_steps.seed("max_episode_steps")?,
+                end_at_goal,
+                autoreset,
+            };
+            let tabular = TabularArgs {
+                table,
+                allowed_actions,
+                table_index,
+                epsilon,
+            };
+            let controller = run::controller(controller, n, threshold, max_speed, tabular)?;
+            let seeds = match seeds {
+                Some(s) => seeds_from(s, n)?,
+                None => (0..n as u64).collect(),
+            };
+            let mut traces = Traces::new(trace, options.steps, n, self.width())?;
+            let mut buffers = Borrowed::new(self, observations, poses, colliding, crossings)?;
+            let out = buffers.outputs()?;
+            let trace = traces.slices();
+            let counters = enter_detached(py, || {
+                self.with(|b| b.run_steps(&controller, &seeds, &options, out, trace))
+            })?;
+            run::counters_dict(py, counters)
         })
     }
 

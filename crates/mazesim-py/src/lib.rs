@@ -9,6 +9,7 @@ mod batch;
 mod buffers;
 mod errors;
 mod guard;
+mod run;
 mod simulator;
 mod wbt;
 mod world;

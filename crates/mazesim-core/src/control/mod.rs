@@ -1,0 +1,103 @@
+//! Controllers that run in the core, per environment, for the multi-step call
+//! ([`crate::Batch::run_steps`]): each maps an environment's latest readings (and, for those
+//! that draw random numbers, its own seeded stream) to the wheel speeds of its next step. Each
+//! gives, bit for bit, the wheel speeds of its Python counterpart on the same readings, so that a
+//! multi-step call equals stepping the batch from Python one step at a time.
+
+pub mod avoid_collision;
+pub mod braitenberg;
+pub mod random_wheels;
+pub mod tabular;
+
+pub use avoid_collision::AvoidCollision;
+pub use tabular::{Discretiser, TabularPolicy};
+
+use crate::error::{Error, Result};
+use crate::rng::Rng;
+use crate::robot::RobotProfile;
+
+/// A built-in controller.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Controller {
+    /// The Braitenberg rule of the benchmark workload on ps0..ps7 (`mazesim.bench.braitenberg`).
+    Braitenberg,
+    /// The report's Alg. 1 on ps0..ps7 (`mazesim.controllers.AvoidCollision`).
+    AvoidCollision(AvoidCollision),
+    /// A tabular policy over the Table 4.1 state of the first six (Sharp) distance sensors.
+    Tabular(Box<TabularPolicy>),
+    /// Uniform random wheel speeds within the robot's motor limit.
+    RandomWheels,
+}
+
+/// What a controller chose for one environment for one step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Decision {
+    /// Left and right wheel speeds, rad/s.
+    pub wheel_speeds: [f32; 2],
+    /// The primitive action (index into `tabular::WHEEL_SPEED_FRACTIONS`), -1 for controllers
+    /// that do not choose among primitive actions.
+    pub action: i32,
+}
+
+impl Controller {
+    /// The controller's name as the Python API spells it.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Controller::Braitenberg => "braitenberg",
+            Controller::AvoidCollision(_) => "avoid-collision",
+            Controller::Tabular(_) => "tabular",
+            Controller::RandomWheels => "random",
+        }
+    }
+
+    /// Checks that the controller can drive `envs` environments of `robot`: enough distance
+    /// sensors for its rule, one table index per environment.
+    pub fn check(&self, robot: &RobotProfile, envs: usize) -> Result<()> {
+        let needed = match self {
+            Controller::Braitenberg | Controller::AvoidCollision(_) => 8,
+            Controller::Tabular(policy) => {
+                policy.check_envs(envs)?;
+                tabular::NUM_SENSORS
+            }
+            Controller::RandomWheels => 0,
+        };
+        let found = robot.distance_sensors.len();
+        if found < needed {
+            return Err(Error::InvalidArgument(format!(
+                "the {} controller reads {needed} distance sensors, robot profile {:?} has {found}",
+                self.name(),
+                robot.name
+            )));
+        }
+        Ok(())
+    }
+
+    /// The decision for environment `env` from its distance readings, its robot's motor limit
+    /// `max_speed` (rad/s) and its stream.
+    #[inline]
+    pub fn decide(
+        &self,
+        env: usize,
+        readings: &[f32],
+        max_speed: f64,
+        stream: &mut Rng,
+    ) -> Decision {
+        let free = |wheel_speeds| Decision {
+            wheel_speeds,
+            action: -1,
+        };
+        match self {
+            Controller::Braitenberg => free(braitenberg::wheel_speeds(readings)),
+            Controller::AvoidCollision(rule) => free(rule.wheel_speeds(readings)),
+            Controller::RandomWheels => free(random_wheels::wheel_speeds(stream, max_speed)),
+            Controller::Tabular(policy) => {
+                let action = policy.action(env, readings, stream);
+                let [l, r] = tabular::WHEEL_SPEED_FRACTIONS[action];
+                Decision {
+                    wheel_speeds: [(l * max_speed) as f32, (r * max_speed) as f32],
+                    action: action as i32,
+                }
+            }
+        }
+    }
+}

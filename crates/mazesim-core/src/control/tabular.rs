@@ -1,0 +1,267 @@
+//! A tabular policy over the report's lower-level state: the six Sharp distances discretised by
+//! Table 4.1 (as `mazesim.hrl.discretise` does) and the twelve primitive actions (as
+//! `mazesim.actions` lists them), acting greedily, optionally within a mask of allowed actions and
+//! with epsilon-greedy exploration from each environment's own stream.
+
+use crate::error::{Error, Result};
+use crate::lut::LookupTable;
+use crate::rng::Rng;
+use crate::RobotProfile;
+
+/// Distance sensors in the state: front, back, left, right, left-front, right-front.
+pub const NUM_SENSORS: usize = 6;
+/// Table 4.1: a distance is at level k when it is at least `LEVEL_EDGES_CM[k - 1]` cm and below
+/// `LEVEL_EDGES_CM[k]` cm.
+pub const LEVEL_EDGES_CM: [f64; 3] = [7.0, 13.0, 20.0];
+/// Levels per sensor.
+pub const NUM_LEVELS: usize = LEVEL_EDGES_CM.len() + 1;
+/// States of the lower level, `4^6`.
+pub const NUM_STATES: usize = 4096;
+/// The primitive actions.
+pub const NUM_ACTIONS: usize = 12;
+
+/// (left, right) wheel speeds of the primitive actions as fractions of the motor limit, in the
+/// order of `mazesim.actions.ACTION_CODES`: `00`, `11`-`44`, `55`-`88`, `aa`, `bb`, `99`.
+pub const WHEEL_SPEED_FRACTIONS: [[f64; 2]; NUM_ACTIONS] = [
+    [0.5, 0.5],
+    [0.5, 0.375],
+    [0.5, 0.25],
+    [0.5, 0.125],
+    [0.5, 0.0],
+    [0.375, 0.5],
+    [0.25, 0.5],
+    [0.125, 0.5],
+    [0.0, 0.5],
+    [0.25, -0.25],
+    [-0.25, 0.25],
+    [-0.25, -0.25],
+];
+
+/// Turns Sharp readings in volts into the lower level's state number.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Discretiser {
+    /// The Sharp GP2Y0A41SK0F table (metres to volts) of the `seed` robot.
+    sharp: LookupTable,
+}
+
+impl Discretiser {
+    /// The discretiser of the `seed` robot's Sharp sensors.
+    pub fn new() -> Result<Self> {
+        let seed = RobotProfile::builtin("seed")?;
+        Ok(Self {
+            sharp: seed.distance_sensors[0].model.table.clone(),
+        })
+    }
+
+    /// The level (0 to 3) of one reading in volts: volts to cm by inverting the Sharp table (the
+    /// arithmetic of `mazesim.sharp_volts_to_cm`), then Table 4.1.
+    pub fn level(&self, volts: f32) -> usize {
+        let cm = self.sharp.invert(volts as f64) * 100.0;
+        LEVEL_EDGES_CM.iter().filter(|&&edge| edge <= cm).count()
+    }
+
+    /// The state `sum(level[i] * 4^i)` of the first six readings (volts, in the report's order).
+    pub fn state(&self, volts: &[f32]) -> usize {
+        volts[..NUM_SENSORS]
+            .iter()
+            .rev()
+            .fold(0, |state, &v| state * NUM_LEVELS + self.level(v))
+    }
+}
+
+/// Greedy (or epsilon-greedy) actions from one or several Q-tables of shape
+/// `(NUM_STATES, NUM_ACTIONS)`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TabularPolicy {
+    /// `(tables, NUM_STATES, NUM_ACTIONS)` values, all finite.
+    values: Vec<f64>,
+    tables: usize,
+    /// Per table, the actions it may take, listed in increasing order.
+    allowed: Vec<Vec<u8>>,
+    /// Per environment, the table it acts from; all use table 0 when `None`.
+    table_of_env: Option<Vec<u32>>,
+    epsilon: f64,
+    discretiser: Discretiser,
+}
+
+impl TabularPolicy {
+    /// A policy from `values` (`tables` Q-tables of `NUM_STATES x NUM_ACTIONS` values, row-major),
+    /// each acting among its `allowed` actions (`tables x NUM_ACTIONS` flags; all when `None`),
+    /// environment i from table `table_of_env[i]` (table 0 for all when `None`), exploring with
+    /// probability `epsilon`.
+    pub fn new(
+        values: Vec<f64>,
+        tables: usize,
+        allowed: Option<&[bool]>,
+        table_of_env: Option<Vec<u32>>,
+        epsilon: f64,
+    ) -> Result<Self> {
+        let per_table = NUM_STATES * NUM_ACTIONS;
+        if tables == 0 || values.len() != tables * per_table {
+            return Err(Error::InvalidArgument(format!(
+                "expected a Q-table of shape ({NUM_STATES}, {NUM_ACTIONS}) or (tables, \
+                 {NUM_STATES}, {NUM_ACTIONS}), found {} values for {tables} tables",
+                values.len()
+            )));
+        }
+        if let Some(at) = values.iter().position(|v| !v.is_finite()) {
+            return Err(Error::InvalidArgument(format!(
+                "expected finite Q-values, found {} at table {}, state {}, action {}",
+                values[at],
+                at / per_table,
+                at % per_table / NUM_ACTIONS,
+                at % NUM_ACTIONS
+            )));
+        }
+        if !(0.0..=1.0).contains(&epsilon) {
+            return Err(Error::InvalidArgument(format!(
+                "expected epsilon in [0, 1], found {epsilon}"
+            )));
+        }
+        let allowed: Vec<Vec<u8>> = match allowed {
+            None => vec![(0..NUM_ACTIONS as u8).collect(); tables],
+            Some(flags) => {
+                if flags.len() != tables * NUM_ACTIONS {
+                    return Err(Error::InvalidArgument(format!(
+                        "expected allowed actions of shape ({NUM_ACTIONS},) or ({tables}, \
+                         {NUM_ACTIONS}), found {} flags",
+                        flags.len()
+                    )));
+                }
+                flags
+                    .chunks_exact(NUM_ACTIONS)
+                    .map(|row| {
+                        (0..NUM_ACTIONS as u8)
+                            .filter(|&a| row[a as usize])
+                            .collect()
+                    })
+                    .collect()
+            }
+        };
+        if let Some(t) = allowed.iter().position(|a| a.is_empty()) {
+            return Err(Error::InvalidArgument(format!(
+                "expected at least one allowed action per table, found none for table {t}"
+            )));
+        }
+        if let Some(map) = &table_of_env {
+            if let Some(i) = map.iter().position(|&t| t as usize >= tables) {
+                return Err(Error::InvalidArgument(format!(
+                    "expected table indices below {tables}, found {} for environment {i}",
+                    map[i]
+                )));
+            }
+        }
+        Ok(Self {
+            values,
+            tables,
+            allowed,
+            table_of_env,
+            epsilon,
+            discretiser: Discretiser::new()?,
+        })
+    }
+
+    /// Checks that the policy can drive `envs` environments.
+    pub fn check_envs(&self, envs: usize) -> Result<()> {
+        match &self.table_of_env {
+            Some(map) if map.len() != envs => Err(Error::InvalidArgument(format!(
+                "expected one table index per environment ({envs}), found {}",
+                map.len()
+            ))),
+            _ => Ok(()),
+        }
+    }
+
+    /// The action of environment `env` on Sharp readings `volts`: with probability epsilon a
+    /// uniformly random allowed action, otherwise the first allowed action of greatest value (as
+    /// `numpy.argmax` picks it). Every decision draws two numbers from `stream`, whatever epsilon
+    /// is: a uniform `u` (explore when `u < epsilon`) and 64 bits `k` (the `floor(k * count /
+    /// 2^64)`-th allowed action when exploring).
+    pub fn action(&self, env: usize, volts: &[f32], stream: &mut Rng) -> usize {
+        let table = self.table_of_env.as_ref().map_or(0, |m| m[env] as usize);
+        let allowed = &self.allowed[table];
+        let explore = stream.uniform() < self.epsilon;
+        let bits = stream.next_u64();
+        if explore {
+            let pick = ((bits as u128 * allowed.len() as u128) >> 64) as usize;
+            return allowed[pick] as usize;
+        }
+        let state = self.discretiser.state(volts);
+        let start = (table * NUM_STATES + state) * NUM_ACTIONS;
+        let row = &self.values[start..start + NUM_ACTIONS];
+        let mut best = allowed[0] as usize;
+        for &a in &allowed[1..] {
+            if row[a as usize] > row[best] {
+                best = a as usize;
+            }
+        }
+        best
+    }
+
+    /// Number of Q-tables.
+    pub fn tables(&self) -> usize {
+        self.tables
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn levels_follow_table_4_1() {
+        let d = Discretiser::new().unwrap();
+        // 3.03 V and more read 3 cm, 0.31 V and less 40 cm; 1.76 V is 7 cm, 1.04 V 12 cm.
+        assert_eq!(d.level(3.5), 0);
+        assert_eq!(d.level(1.76), 1);
+        assert_eq!(d.level(1.04), 1);
+        assert_eq!(d.level(0.82), 2);
+        assert_eq!(d.level(0.2), 3);
+        assert_eq!(d.state(&[0.2, 3.5, 3.5, 3.5, 3.5, 3.5]), 3);
+        assert_eq!(d.state(&[3.5, 3.5, 3.5, 3.5, 3.5, 0.2]), 3 * 4usize.pow(5));
+    }
+
+    #[test]
+    fn greedy_takes_the_first_best_allowed_action() {
+        let mut values = vec![0.0; NUM_STATES * NUM_ACTIONS];
+        values[3] = 1.0;
+        values[7] = 1.0;
+        let mut stream = Rng::new(0);
+        let volts = [3.5f32; 6]; // state 0
+        let policy = TabularPolicy::new(values.clone(), 1, None, None, 0.0).unwrap();
+        assert_eq!(policy.action(0, &volts, &mut stream), 3);
+        let mut mask = [true; NUM_ACTIONS];
+        mask[3] = false;
+        let policy = TabularPolicy::new(values, 1, Some(&mask), None, 0.0).unwrap();
+        assert_eq!(policy.action(0, &volts, &mut stream), 7);
+    }
+
+    #[test]
+    fn bad_tables_and_masks_are_refused() {
+        let mut values = vec![0.0; NUM_STATES * NUM_ACTIONS];
+        assert!(TabularPolicy::new(values.clone(), 2, None, None, 0.0).is_err());
+        assert!(TabularPolicy::new(values.clone(), 1, Some(&[false; 12]), None, 0.0).is_err());
+        assert!(TabularPolicy::new(values.clone(), 1, None, Some(vec![1]), 0.0).is_err());
+        assert!(TabularPolicy::new(values.clone(), 1, None, None, 1.5).is_err());
+        values[NUM_ACTIONS * 5 + 2] = f64::NAN;
+        let err = TabularPolicy::new(values, 1, None, None, 0.0).unwrap_err();
+        assert!(err.to_string().contains("state 5, action 2"), "{err}");
+    }
+
+    #[test]
+    fn exploration_takes_only_allowed_actions_and_all_of_them() {
+        let values = vec![0.0; NUM_STATES * NUM_ACTIONS];
+        let mut mask = [false; NUM_ACTIONS];
+        mask[2] = true;
+        mask[9] = true;
+        mask[11] = true;
+        let policy = TabularPolicy::new(values, 1, Some(&mask), None, 1.0).unwrap();
+        let mut stream = Rng::new(3);
+        let mut seen = [0usize; NUM_ACTIONS];
+        for _ in 0..3000 {
+            seen[policy.action(0, &[1.0; 6], &mut stream)] += 1;
+        }
+        assert_eq!(seen.iter().sum::<usize>(), seen[2] + seen[9] + seen[11]);
+        assert!(seen[2] > 800 && seen[9] > 800 && seen[11] > 800, "{seen:?}");
+    }
+}

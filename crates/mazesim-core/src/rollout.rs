@@ -1,0 +1,385 @@
+//! The multi-step call: many control steps of every environment of a batch in one call, each
+//! environment's wheel speeds chosen by a built-in [`Controller`] in the core, with episodes
+//! ending on a step limit or at the goal and, optionally, reset as they end.
+//!
+//! Environments are independent, so each runs a block of steps on its own (its state stays in
+//! cache) before the next takes its place; the threads take chunks of environments from one queue
+//! as a single step does. A run of `k` steps gives, bit for bit, what `k` calls of
+//! [`Batch::step`] give with the same controller computed outside, whatever the thread count or
+//! the batch size: each environment draws only from its own stream (seeded per environment) and
+//! its simulator's. Per-step outputs are written only where the caller asks for them.
+
+use std::time::Instant;
+
+use crate::batch::{Row, CHUNK_ENVS, INTERRUPT_POLL};
+use crate::control::Controller;
+use crate::error::{Error, Result};
+use crate::rng::{next_seed, Rng};
+use crate::{Batch, Simulator, StepOutputs};
+
+/// Steps each environment takes before the next takes its place: long enough to keep an
+/// environment in cache, short enough that Ctrl-C (asked between environments) is answered soon.
+const BLOCK_STEPS: usize = 64;
+
+/// How a multi-step call runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct RunOptions {
+    /// Control steps of every environment.
+    pub steps: usize,
+    /// An episode ends after this many control steps since its reset (0: no limit).
+    pub max_episode_steps: u64,
+    /// An episode also ends on the step the robot's centre enters the world's goal disc.
+    pub end_at_goal: bool,
+    /// An environment whose episode ends is reset at once (its next seed is
+    /// [`crate::rng::next_seed`] of its last one) and goes on; otherwise it stands still for the
+    /// rest of the call and later calls (until it is reset).
+    pub autoreset: bool,
+}
+
+/// Per-step outputs of a multi-step call, each `(steps, n, width)` values in step-major order,
+/// written only where given. Row `[t, i]` holds environment i's state after its step t, before
+/// any reset that step's end of episode brings; an environment that stands still repeats its
+/// observation and pose, with colliding false, crossing 0, wheel speeds 0 and action -1.
+#[derive(Default)]
+pub struct RunTrace<'a> {
+    /// Observations, `(steps, n, observation_width)`.
+    pub observations: Option<&'a mut [f32]>,
+    /// Poses (x, y, yaw), `(steps, n, 3)`.
+    pub poses: Option<&'a mut [f32]>,
+    /// Touched a wall during the step, `(steps, n)`.
+    pub colliding: Option<&'a mut [bool]>,
+    /// Signed checkpoint id of a barcode crossed in the step, 0 for none, `(steps, n)`.
+    pub crossings: Option<&'a mut [i32]>,
+    /// The wheel speeds the controller chose (rad/s, before the motor limit), `(steps, n, 2)`.
+    pub wheel_speeds: Option<&'a mut [f32]>,
+    /// The primitive action the controller chose, -1 for none, `(steps, n)`.
+    pub actions: Option<&'a mut [i32]>,
+    /// The episode ended with the step, `(steps, n)`.
+    pub episode_ends: Option<&'a mut [bool]>,
+}
+
+/// What a multi-step call counted, per environment.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct RunCounters {
+    /// Control steps taken (fewer than asked for an environment that stood still).
+    pub steps: Vec<u64>,
+    /// Steps during which the robot touched a wall.
+    pub steps_in_contact: Vec<u64>,
+    /// Episodes that ended.
+    pub episodes_finished: Vec<u64>,
+    /// Episodes that ended at the goal.
+    pub goals_reached: Vec<u64>,
+}
+
+/// One environment's counters, as the threads add to them.
+#[derive(Debug, Clone, Copy, Default)]
+struct Counts {
+    steps: u64,
+    in_contact: u64,
+    finished: u64,
+    at_goal: u64,
+}
+
+/// One chunk of environments' rows of each step of a block, per traced output (empty when not
+/// traced).
+struct ChunkTrace<'a> {
+    observations: Vec<&'a mut [f32]>,
+    poses: Vec<&'a mut [f32]>,
+    colliding: Vec<&'a mut [bool]>,
+    crossings: Vec<&'a mut [i32]>,
+    wheel_speeds: Vec<&'a mut [f32]>,
+    actions: Vec<&'a mut [i32]>,
+    episode_ends: Vec<&'a mut [bool]>,
+}
+
+/// Per chunk of `CHUNK_ENVS` environments, its rows of each step of `block` (`(steps, n, width)`
+/// values); empty lists when `block` is `None`.
+fn rows_per_chunk<T>(block: Option<&mut [T]>, n: usize, width: usize) -> Vec<Vec<&mut [T]>> {
+    let mut per_chunk: Vec<Vec<&mut [T]>> = (0..n.div_ceil(CHUNK_ENVS)).map(|_| vec![]).collect();
+    for step in block.into_iter().flat_map(|b| b.chunks_mut(n * width)) {
+        for (rows, chunk) in step.chunks_mut(CHUNK_ENVS * width).zip(&mut per_chunk) {
+            chunk.push(rows);
+        }
+    }
+    per_chunk
+}
+
+/// Writes `value` as environment `j`'s row of step `s` in `rows`, when traced.
+fn put<T: Copy>(rows: &mut [&mut [T]], s: usize, j: usize, value: &[T]) {
+    if let Some(step) = rows.get_mut(s) {
+        let w = value.len();
+        step[j * w..(j + 1) * w].copy_from_slice(value);
+    }
+}
+
+/// Checks that a traced output holds `steps x n x width` values.
+fn check_trace<T>(name: &str, values: &Option<&mut [T]>, shape: [usize; 3]) -> Result<()> {
+    match values {
+        Some(v) if v.len() != shape.iter().product::<usize>() => {
+            Err(Error::InvalidArgument(format!(
+                "expected {name} to hold {} x {} x {} values, found {}",
+                shape[0],
+                shape[1],
+                shape[2],
+                v.len()
+            )))
+        }
+        _ => Ok(()),
+    }
+}
+
+/// Whether the episode of `env` is over: its step limit reached, or its robot at the goal.
+fn episode_over(env: &Simulator, options: &RunOptions) -> (bool, bool) {
+    let at_goal = options.end_at_goal
+        && env.world().goal().is_some_and(|goal| {
+            let [x, y, _] = env.pose();
+            let (dx, dy) = (x as f64 - goal.center[0], y as f64 - goal.center[1]);
+            dx * dx + dy * dy <= goal.radius * goal.radius
+        });
+    let limit = options.max_episode_steps;
+    (at_goal || (limit > 0 && env.steps() >= limit), at_goal)
+}
+
+/// `chunks` with its argument's lifetime tied to its result's (a closure alone would be inferred
+/// for any lifetime).
+fn chunks_of<'e, I, F: FnOnce(&'e mut [Simulator]) -> I>(chunks: F) -> F {
+    chunks
+}
+
+impl Batch {
+    /// Runs `options.steps` control steps of every environment, wheel speeds from `controller`,
+    /// environment i drawing its random numbers from a stream seeded with `seeds[i]`. The final
+    /// state goes into `out` (as after [`Batch::step`]), the per-step outputs into the parts of
+    /// `trace` that are given; the counters are returned.
+    ///
+    /// Ctrl-C (see [`Batch::set_interrupt`]) stops the call between environments with
+    /// `Error::Interrupted`, the environments standing where they were.
+    pub fn run_steps(
+        &mut self,
+        controller: &Controller,
+        seeds: &[u64],
+        options: &RunOptions,
+        out: StepOutputs<'_>,
+        trace: RunTrace<'_>,
+    ) -> Result<RunCounters> {
+        let n = self.len();
+        let width = self.observation_width();
+        let robot = self.envs()[0].robot().clone();
+        controller.check(&robot, n)?;
+        if seeds.len() != n {
+            return Err(Error::InvalidArgument(format!(
+                "expected one controller seed per environment ({n}), found {}",
+                seeds.len()
+            )));
+        }
+        self.check_outputs(&out)?;
+        let steps = options.steps;
+        check_trace("observations trace", &trace.observations, [steps, n, width])?;
+        check_trace("poses trace", &trace.poses, [steps, n, 3])?;
+        check_trace("colliding trace", &trace.colliding, [steps, n, 1])?;
+        check_trace("crossings trace", &trace.crossings, [steps, n, 1])?;
+        check_trace("wheel_speeds trace", &trace.wheel_speeds, [steps, n, 2])?;
+        check_trace("actions trace", &trace.actions, [steps, n, 1])?;
+        check_trace("episode_ends trace", &trace.episode_ends, [steps, n, 1])?;
+
+        let mut streams: Vec<Rng> = seeds.iter().map(|&s| Rng::new(s)).collect();
+        let mut counts = vec![Counts::default(); n];
+        let StepOutputs {
+            observations,
+            poses,
+            colliding,
+            crossings,
+        } = out;
+        let mut trace = trace;
+        let mut first = 0;
+        let mut polled = Instant::now();
+        loop {
+            let block = BLOCK_STEPS.min(steps - first);
+            let span = |w: usize| first * n * w..(first + block) * n * w;
+            let traced: Vec<ChunkTrace<'_>> = rows_per_chunk(
+                trace
+                    .observations
+                    .as_deref_mut()
+                    .map(|t| &mut t[span(width)]),
+                n,
+                width,
+            )
+            .into_iter()
+            .zip(rows_per_chunk(
+                trace.poses.as_deref_mut().map(|t| &mut t[span(3)]),
+                n,
+                3,
+            ))
+            .zip(rows_per_chunk(
+                trace.colliding.as_deref_mut().map(|t| &mut t[span(1)]),
+                n,
+                1,
+            ))
+            .zip(rows_per_chunk(
+                trace.crossings.as_deref_mut().map(|t| &mut t[span(1)]),
+                n,
+                1,
+            ))
+            .zip(rows_per_chunk(
+                trace.wheel_speeds.as_deref_mut().map(|t| &mut t[span(2)]),
+                n,
+                2,
+            ))
+            .zip(rows_per_chunk(
+                trace.actions.as_deref_mut().map(|t| &mut t[span(1)]),
+                n,
+                1,
+            ))
+            .zip(rows_per_chunk(
+                trace.episode_ends.as_deref_mut().map(|t| &mut t[span(1)]),
+                n,
+                1,
+            ))
+            .map(
+                |(
+                    (((((observations, poses), colliding), crossings), wheel_speeds), actions),
+                    episode_ends,
+                )| {
+                    ChunkTrace {
+                        observations,
+                        poses,
+                        colliding,
+                        crossings,
+                        wheel_speeds,
+                        actions,
+                        episode_ends,
+                    }
+                },
+            )
+            .collect();
+            let (obs, pos, col, cro) = (
+                &mut *observations,
+                &mut *poses,
+                &mut *colliding,
+                &mut *crossings,
+            );
+            let (streams, counts) = (&mut streams, &mut counts);
+            let dw = robot.distance_sensors.len();
+            let max_speed = robot.max_wheel_speed;
+            let chunks = chunks_of(move |envs| {
+                envs.chunks_mut(CHUNK_ENVS)
+                    .zip({ streams }.chunks_mut(CHUNK_ENVS))
+                    .zip({ counts }.chunks_mut(CHUNK_ENVS))
+                    .zip({ obs }.chunks_mut(CHUNK_ENVS * width))
+                    .zip({ pos }.chunks_mut(CHUNK_ENVS * 3))
+                    .zip({ col }.chunks_mut(CHUNK_ENVS))
+                    .zip({ cro }.chunks_mut(CHUNK_ENVS))
+                    .zip(traced)
+                    .enumerate()
+            });
+            self.par_chunks(chunks, |chunk, stop| {
+                let (k, (((((((envs, streams), counts), obs), pos), col), cro), mut rows)) = chunk;
+                let per_env = envs
+                    .iter_mut()
+                    .zip(streams.iter_mut())
+                    .zip(counts.iter_mut())
+                    .zip(obs.chunks_mut(width))
+                    .zip(pos.chunks_mut(3))
+                    .zip(col.iter_mut())
+                    .zip(cro.iter_mut())
+                    .enumerate();
+                for (j, ((((((env, stream), count), observation), pose), colliding), crossing)) in
+                    per_env
+                {
+                    if stop() {
+                        return;
+                    }
+                    let index = k * CHUNK_ENVS + j;
+                    for s in 0..block {
+                        step_one(
+                            controller, options, index, env, stream, count, max_speed, &mut rows,
+                            s, j,
+                        );
+                    }
+                    let row = Row {
+                        observation,
+                        distance_width: dw,
+                        pose,
+                        colliding,
+                        crossing,
+                    };
+                    row.write(env);
+                }
+            })?;
+            first += block;
+            if first >= steps {
+                break;
+            }
+            // Blocks can be shorter than the poll interval: ask between them too.
+            if polled.elapsed() >= INTERRUPT_POLL {
+                polled = Instant::now();
+                if self.interrupted() {
+                    return Err(Error::Interrupted);
+                }
+            }
+        }
+        Ok(RunCounters {
+            steps: counts.iter().map(|c| c.steps).collect(),
+            steps_in_contact: counts.iter().map(|c| c.in_contact).collect(),
+            episodes_finished: counts.iter().map(|c| c.finished).collect(),
+            goals_reached: counts.iter().map(|c| c.at_goal).collect(),
+        })
+    }
+}
+
+/// One control step of environment `index` (row `j` of its chunk, step `s` of the block).
+#[allow(clippy::too_many_arguments)]
+#[inline]
+fn step_one(
+    controller: &Controller,
+    options: &RunOptions,
+    index: usize,
+    env: &mut Simulator,
+    stream: &mut Rng,
+    count: &mut Counts,
+    max_speed: f64,
+    rows: &mut ChunkTrace<'_>,
+    s: usize,
+    j: usize,
+) {
+    let standing = !options.autoreset && episode_over(env, options).0;
+    let mut decision = crate::control::Decision {
+        wheel_speeds: [0.0; 2],
+        action: -1,
+    };
+    let mut ended = false;
+    if !standing {
+        decision = controller.decide(index, env.distance_sensors(), max_speed, stream);
+        let [left, right] = decision.wheel_speeds;
+        // The controllers give finite speeds, so a step cannot fail.
+        let _ = env.step(left as f64, right as f64);
+        count.steps += 1;
+        count.in_contact += env.colliding() as u64;
+        let (over, at_goal) = episode_over(env, options);
+        ended = over;
+        count.finished += over as u64;
+        count.at_goal += at_goal as u64;
+    }
+    if let Some(step) = rows.observations.get_mut(s) {
+        let (distance, ground) = (env.distance_sensors(), env.ground_sensors());
+        let w = distance.len() + ground.len();
+        let (d, g) = step[j * w..(j + 1) * w].split_at_mut(distance.len());
+        d.copy_from_slice(distance);
+        g.copy_from_slice(ground);
+    }
+    put(&mut rows.poses, s, j, &env.pose());
+    put(&mut rows.colliding, s, j, &[env.colliding() && !standing]);
+    put(
+        &mut rows.crossings,
+        s,
+        j,
+        &[if standing { 0 } else { env.last_crossing() }],
+    );
+    put(&mut rows.wheel_speeds, s, j, &decision.wheel_speeds);
+    put(&mut rows.actions, s, j, &[decision.action]);
+    put(&mut rows.episode_ends, s, j, &[ended]);
+    if ended && options.autoreset {
+        let seed = next_seed(env.config().seed);
+        env.reset(Some(seed));
+    }
+}

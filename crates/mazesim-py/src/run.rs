@@ -1,0 +1,204 @@
+//! `BatchSimulator.run` for Python: the built-in controller named by its arguments, the optional
+//! per-step output arrays (`trace`) borrowed and checked, the counters returned as numpy arrays.
+
+use mazesim_core::control::{tabular, AvoidCollision, TabularPolicy};
+use mazesim_core::{Controller, RunCounters, RunTrace};
+use numpy::{PyArray1, PyReadwriteArrayDyn};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::args::Real;
+use crate::buffers::{copied, writable};
+use crate::errors::{invalid, IntoPy};
+
+/// The names `run` accepts for its controller.
+const CONTROLLERS: &str = "'braitenberg', 'avoid-collision', 'tabular' or 'random'";
+
+/// The keys of `run`'s `trace` dict.
+const TRACE_KEYS: [&str; 7] = [
+    "observations",
+    "poses",
+    "colliding",
+    "crossings",
+    "wheel_speeds",
+    "actions",
+    "episode_ends",
+];
+
+/// The arguments of the tabular controller, as given.
+pub struct TabularArgs<'a, 'py> {
+    pub table: Option<&'a Bound<'py, PyAny>>,
+    pub allowed_actions: Option<&'a Bound<'py, PyAny>>,
+    pub table_index: Option<&'a Bound<'py, PyAny>>,
+    pub epsilon: Real,
+}
+
+/// The controller `name` with its arguments, for `n` environments.
+pub fn controller(
+    name: &str,
+    n: usize,
+    threshold: Real,
+    max_speed: Real,
+    tabular: TabularArgs<'_, '_>,
+) -> PyResult<Controller> {
+    Ok(match name {
+        "braitenberg" => Controller::Braitenberg,
+        "random" => Controller::RandomWheels,
+        "avoid-collision" => Controller::AvoidCollision(
+            AvoidCollision::new(threshold.value("threshold")?, max_speed.value("max_speed")?)
+                .py()?,
+        ),
+        "tabular" => Controller::Tabular(Box::new(tabular_policy(n, tabular)?)),
+        other => {
+            return Err(invalid(format!(
+                "expected controller to be {CONTROLLERS}, found {other:?}"
+            )))
+        }
+    })
+}
+
+fn tabular_policy(n: usize, args: TabularArgs<'_, '_>) -> PyResult<TabularPolicy> {
+    let (states, actions) = (tabular::NUM_STATES, tabular::NUM_ACTIONS);
+    let table = args.table.ok_or_else(|| {
+        invalid(format!(
+            "the tabular controller needs table, a float64 array of shape ({states}, {actions}) \
+             or (tables, {states}, {actions})"
+        ))
+    })?;
+    let shape = table
+        .getattr("shape")
+        .and_then(|s| s.extract::<Vec<usize>>())
+        .unwrap_or_default();
+    let tables = if shape.len() == 3 { shape[0] } else { 1 };
+    let table_shape: Vec<usize> = if shape.len() == 3 {
+        vec![tables, states, actions]
+    } else {
+        vec![states, actions]
+    };
+    let values = copied::<f64>(table, "table", "float64", &table_shape)?;
+    let allowed = args
+        .allowed_actions
+        .map(|a| {
+            let shape: &[usize] = if table_shape.len() == 3 {
+                &[tables, actions]
+            } else {
+                &[actions]
+            };
+            copied::<bool>(a, "allowed_actions", "bool", shape)
+        })
+        .transpose()?;
+    let table_of_env = args
+        .table_index
+        .map(|t| {
+            let index = copied::<i64>(t, "table_index", "int64", &[n])?;
+            index
+                .iter()
+                .enumerate()
+                .map(|(i, &t)| {
+                    u32::try_from(t).map_err(|_| {
+                        invalid(format!(
+                            "expected table_index values in 0..{tables}, found {t} for environment {i}"
+                        ))
+                    })
+                })
+                .collect::<PyResult<Vec<u32>>>()
+        })
+        .transpose()?;
+    let epsilon = args.epsilon.value("epsilon")?;
+    TabularPolicy::new(values, tables, allowed.as_deref(), table_of_env, epsilon).py()
+}
+
+/// The per-step output arrays of one call, borrowed.
+#[derive(Default)]
+pub struct Traces<'py> {
+    observations: Option<PyReadwriteArrayDyn<'py, f32>>,
+    poses: Option<PyReadwriteArrayDyn<'py, f32>>,
+    colliding: Option<PyReadwriteArrayDyn<'py, bool>>,
+    crossings: Option<PyReadwriteArrayDyn<'py, i32>>,
+    wheel_speeds: Option<PyReadwriteArrayDyn<'py, f32>>,
+    actions: Option<PyReadwriteArrayDyn<'py, i32>>,
+    episode_ends: Option<PyReadwriteArrayDyn<'py, bool>>,
+}
+
+impl<'py> Traces<'py> {
+    /// Borrows the arrays of `trace` (keys of `TRACE_KEYS`), each checked against its shape for
+    /// `steps` steps of `n` environments with observations `width` wide.
+    pub fn new(
+        trace: Option<&Bound<'py, PyDict>>,
+        steps: usize,
+        n: usize,
+        width: usize,
+    ) -> PyResult<Self> {
+        let mut t = Traces::default();
+        let Some(trace) = trace else {
+            return Ok(t);
+        };
+        for (key, value) in trace.iter() {
+            let key: String = key.extract().map_err(|_| {
+                invalid(format!(
+                    "expected trace keys among {TRACE_KEYS:?}, found {key}"
+                ))
+            })?;
+            let name = format!("trace[{key:?}]");
+            match key.as_str() {
+                "observations" => {
+                    t.observations = Some(writable(&value, &name, "float32", &[steps, n, width])?)
+                }
+                "poses" => t.poses = Some(writable(&value, &name, "float32", &[steps, n, 3])?),
+                "colliding" => t.colliding = Some(writable(&value, &name, "bool", &[steps, n])?),
+                "crossings" => t.crossings = Some(writable(&value, &name, "int32", &[steps, n])?),
+                "wheel_speeds" => {
+                    t.wheel_speeds = Some(writable(&value, &name, "float32", &[steps, n, 2])?)
+                }
+                "actions" => t.actions = Some(writable(&value, &name, "int32", &[steps, n])?),
+                "episode_ends" => {
+                    t.episode_ends = Some(writable(&value, &name, "bool", &[steps, n])?)
+                }
+                other => {
+                    return Err(invalid(format!(
+                        "expected trace keys among {TRACE_KEYS:?}, found {other:?}"
+                    )))
+                }
+            }
+        }
+        Ok(t)
+    }
+
+    /// The borrowed arrays as the core's slices.
+    pub fn slices(&mut self) -> RunTrace<'_> {
+        fn slice<'a, T: numpy::Element>(
+            a: &'a mut Option<PyReadwriteArrayDyn<'_, T>>,
+        ) -> Option<&'a mut [T]> {
+            // `writable` has checked that the array is contiguous.
+            a.as_mut().and_then(|a| a.as_slice_mut().ok())
+        }
+        RunTrace {
+            observations: slice(&mut self.observations),
+            poses: slice(&mut self.poses),
+            colliding: slice(&mut self.colliding),
+            crossings: slice(&mut self.crossings),
+            wheel_speeds: slice(&mut self.wheel_speeds),
+            actions: slice(&mut self.actions),
+            episode_ends: slice(&mut self.episode_ends),
+        }
+    }
+}
+
+/// The counters of a run as a dict of (N,) uint64 arrays.
+pub fn counters_dict<'py>(py: Python<'py>, counters: RunCounters) -> PyResult<Bound<'py, PyDict>> {
+    let dict = PyDict::new(py);
+    dict.set_item("steps", PyArray1::from_vec(py, counters.steps))?;
+    dict.set_item(
+        "steps_in_contact",
+        PyArray1::from_vec(py, counters.steps_in_contact),
+    )?;
+    dict.set_item(
+        "episodes_finished",
+        PyArray1::from_vec(py, counters.episodes_finished),
+    )?;
+    dict.set_item(
+        "goals_reached",
+        PyArray1::from_vec(py, counters.goals_reached),
+    )?;
+    Ok(dict)
+}

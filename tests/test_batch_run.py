@@ -1,0 +1,263 @@
+"""``BatchSimulator.run``: many control steps in one call with a controller in the core.
+
+Each run is checked against the same batch stepped from Python one step at a time with the
+Python version of its controller (or, for controllers that draw random numbers, with the wheel
+speeds the run recorded), bit for bit, over thread counts and batch sizes.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+import pytest
+
+import mazesim
+from hostile import run_hostile
+from mazesim.actions import WHEEL_SPEED_FRACTIONS
+from mazesim.bench import braitenberg
+from mazesim.controllers import AvoidCollision
+from mazesim.hrl.discretise import observation_states
+from mazesim.hrl.qlearning import best_allowed
+
+LIMIT = 40
+MASK64 = (1 << 64) - 1
+
+Buffers = tuple[
+    npt.NDArray[np.float32], npt.NDArray[np.float32], npt.NDArray[np.bool_], npt.NDArray[np.int32]
+]
+
+
+def next_seed(seed: int) -> int:
+    """The seed an ended episode is reset with: the first SplitMix64 output from ``seed``."""
+    z = (seed + 0x9E3779B97F4A7C15) & MASK64
+    z = ((z ^ (z >> 30)) * 0xBF58476D1CE4E5B9) & MASK64
+    z = ((z ^ (z >> 27)) * 0x94D049BB133111EB) & MASK64
+    return z ^ (z >> 31)
+
+
+def make_batch(
+    n: int, robot: str = "e-puck", threads: int = 1, first: int = 0
+) -> mazesim.BatchSimulator:
+    """Envs ``first .. first + n`` of a family of distinct mazes, env i seeded with i."""
+    worlds = [mazesim.generate_maze(5, 5, seed=50 + i, loops=0.1) for i in range(first, first + n)]
+    return mazesim.BatchSimulator(worlds, robot=robot, seeds=first, threads=threads)
+
+
+def buffers(batch: mazesim.BatchSimulator) -> Buffers:
+    n = batch.num_envs
+    return (
+        np.zeros((n, batch.observation_width), np.float32),
+        np.zeros((n, 3), np.float32),
+        np.zeros(n, bool),
+        np.zeros(n, np.int32),
+    )
+
+
+def trace_buffers(batch: mazesim.BatchSimulator, steps: int) -> dict[str, npt.NDArray[Any]]:
+    n = batch.num_envs
+    return {
+        "observations": np.zeros((steps, n, batch.observation_width), np.float32),
+        "poses": np.zeros((steps, n, 3), np.float32),
+        "colliding": np.zeros((steps, n), bool),
+        "crossings": np.zeros((steps, n), np.int32),
+        "wheel_speeds": np.zeros((steps, n, 2), np.float32),
+        "actions": np.zeros((steps, n), np.int32),
+        "episode_ends": np.zeros((steps, n), bool),
+    }
+
+
+def run(
+    batch: mazesim.BatchSimulator, steps: int, controller: str, **options: Any
+) -> tuple[dict[str, npt.NDArray[Any]], Buffers, dict[str, npt.NDArray[np.uint64]]]:
+    out = buffers(batch)
+    batch.observe(*out)
+    trace = trace_buffers(batch, steps)
+    counters = batch.run(steps, controller, *out, trace=trace, max_episode_steps=LIMIT, **options)
+    return trace, out, counters
+
+
+def step_from_python(
+    batch: mazesim.BatchSimulator,
+    steps: int,
+    choose: Callable[[int, npt.NDArray[np.float32]], npt.NDArray[np.float32]],
+    first_seed: int = 0,
+) -> npt.NDArray[np.float32]:
+    """Steps ``batch`` with wheel speeds ``choose(step, observations)``, resetting each env whose
+    episode reached ``LIMIT`` steps with the seed after its last; the observations of each step."""
+    out = buffers(batch)
+    batch.observe(*out)
+    seeds = np.arange(first_seed, first_seed + batch.num_envs, dtype=np.uint64)
+    trace = []
+    for t in range(steps):
+        batch.step(choose(t, out[0]), *out)
+        trace.append(out[0].copy())
+        ended = batch.steps() >= LIMIT
+        following = np.array([next_seed(int(s)) for s in seeds], dtype=np.uint64)
+        seeds = np.where(ended, following, seeds)
+        batch.reset(*out, mask=ended, seeds=seeds)
+    return np.stack(trace)
+
+
+@pytest.mark.parametrize(("n", "threads"), [(5, 1), (33, 2), (40, 0)])
+def test_braitenberg_run_equals_python_steps(n: int, threads: int) -> None:
+    trace, out, counters = run(make_batch(n, threads=threads), 100, "braitenberg")
+    actions = np.zeros((n, 2), np.float32)
+    stepped = step_from_python(make_batch(n), 100, lambda _, obs: braitenberg(obs[:, :8], actions))
+    np.testing.assert_array_equal(trace["observations"], stepped)
+    assert trace["episode_ends"].sum() == counters["episodes_finished"].sum() > 0
+    assert counters["steps_in_contact"].sum() == trace["colliding"].sum()
+    assert (counters["steps"] == 100).all()
+
+
+def test_avoid_collision_run_equals_python_steps() -> None:
+    # A low threshold: sensor noise alone turns the robots both ways.
+    controller = AvoidCollision(threshold=70.0)
+    trace, _, _ = run(make_batch(24, threads=2), 90, "avoid-collision", threshold=70.0)
+    stepped = step_from_python(make_batch(24), 90, lambda _, obs: controller.batch(obs[:, :8]))
+    np.testing.assert_array_equal(trace["observations"], stepped)
+    wheels = trace["wheel_speeds"]
+    assert (wheels[..., 0] == 0).any() and (wheels[..., 1] == 0).any()
+
+
+@pytest.mark.parametrize("table_seed", range(8))
+def test_tabular_run_acts_as_numpy_argmax_over_table_4_1(table_seed: int) -> None:
+    rng = np.random.default_rng(table_seed)
+    n, steps = 12, 60
+    # Few distinct values, so that ties (the first maximum wins) are common.
+    tables = rng.integers(0, 3, size=(3, 4096, 12)).astype(np.float64)
+    allowed = rng.random((3, 12)) < 0.6
+    allowed[:, rng.integers(0, 12)] = True
+    roles = rng.integers(0, 3, size=n).astype(np.int64)
+    batch = make_batch(n, robot="seed", threads=2)
+    start = buffers(batch)
+    batch.observe(*start)
+    trace, _, _ = run(
+        batch, steps, "tabular", table=tables, allowed_actions=allowed, table_index=roles
+    )
+    ends = trace["episode_ends"]
+    assert not ends[: LIMIT - 1].any() and ends[LIMIT - 1].all()
+    before = np.concatenate([start[0][None], trace["observations"][:-1]])
+    for t in range(min(steps, LIMIT)):
+        states = observation_states(before[t])
+        expected = best_allowed(tables[roles, states], allowed[roles])
+        np.testing.assert_array_equal(trace["actions"][t], expected)
+        np.testing.assert_array_equal(
+            trace["wheel_speeds"][t],
+            (WHEEL_SPEED_FRACTIONS[expected] * 6.28).astype(np.float32),
+        )
+    wheels = trace["wheel_speeds"]
+    stepped = step_from_python(make_batch(n, robot="seed"), steps, lambda t, _: wheels[t])
+    np.testing.assert_array_equal(trace["observations"], stepped)
+
+
+@pytest.mark.parametrize("controller", ["random", "tabular"])
+def test_random_draws_replay_from_python_and_ignore_threads_and_batch_size(
+    controller: str,
+) -> None:
+    robot = "seed" if controller == "tabular" else "e-puck"
+    table = np.random.default_rng(0).random((4096, 12))
+    allowed = np.ones(12, bool)
+    allowed[[3, 11]] = False
+    options: dict[str, Any] = {"seeds": 77}
+    if controller == "tabular":
+        options |= {"table": table, "epsilon": 0.5, "allowed_actions": allowed}
+    one, _, _ = run(make_batch(30, robot, threads=1), 80, controller, **options)
+    two, _, _ = run(make_batch(30, robot, threads=2), 80, controller, **options)
+    for key in one:
+        np.testing.assert_array_equal(one[key], two[key])
+    # Env 17 alone, in a batch of one, with the seeds env 17 had in the batch of 30.
+    alone, _, _ = run(make_batch(1, robot, first=17), 80, controller, **(options | {"seeds": 94}))
+    for key in one:
+        np.testing.assert_array_equal(alone[key][:, 0], one[key][:, 17])
+    wheels = one["wheel_speeds"]
+    stepped = step_from_python(make_batch(30, robot), 80, lambda t, _: wheels[t])
+    np.testing.assert_array_equal(one["observations"], stepped)
+    if controller == "tabular":
+        assert not np.isin(one["actions"], [3, 11]).any()
+        assert len(np.unique(one["actions"])) == 10
+    else:
+        assert (np.abs(wheels) <= 6.28).all() and wheels.std() > 2.0
+
+
+def test_goal_ends_episodes_and_without_autoreset_envs_stand_still() -> None:
+    world = mazesim.load_world("seed-maze")
+    gx, gy, radius = world.goal
+    batch = mazesim.BatchSimulator(world, num_envs=3, threads=1)
+    # Just outside the goal disc, facing its centre.
+    batch.set_starts(np.array([[gx + radius + 0.01, gy, np.pi]] * 3))
+    out = buffers(batch)
+    batch.reset(*out)
+    trace = trace_buffers(batch, 30)
+    counters = batch.run(30, "braitenberg", *out, trace=trace, end_at_goal=True, autoreset=False)
+    assert counters["goals_reached"].tolist() == [1, 1, 1]
+    ended = int(np.argmax(trace["episode_ends"][:, 0]))
+    assert 0 < ended < 29 and counters["steps"].tolist() == [ended + 1] * 3
+    assert trace["episode_ends"].sum() == 3
+    inside = np.hypot(trace["poses"][ended, :, 0] - gx, trace["poses"][ended, :, 1] - gy)
+    assert (inside <= radius).all()
+    np.testing.assert_array_equal(trace["poses"][-1], trace["poses"][ended])
+    assert (trace["actions"] == -1).all() and (trace["wheel_speeds"][ended + 1 :] == 0).all()
+    again = batch.run(5, "braitenberg", *out, end_at_goal=True, autoreset=False)
+    assert again["steps"].tolist() == [0, 0, 0]
+    moving = batch.run(5, "braitenberg", *out, end_at_goal=False, autoreset=False)
+    assert moving["steps"].tolist() == [5, 5, 5]
+
+
+def _bad_calls() -> list[tuple[str, dict[str, Any], str]]:
+    q = np.zeros((4096, 12))
+    return [
+        ("spin", {}, "expected controller to be"),
+        ("tabular", {}, "needs table"),
+        ("tabular", {"table": np.zeros((4096, 11))}, "table"),
+        ("tabular", {"table": q.astype(np.float32)}, "float64"),
+        ("tabular", {"table": np.full((4096, 12), np.nan)}, "state 0, action 0"),
+        ("tabular", {"table": q, "allowed_actions": np.zeros(12, bool)}, "allowed action"),
+        ("tabular", {"table": q, "table_index": np.array([0, 1, 0, 0])}, "table indices"),
+        ("tabular", {"table": q, "table_index": np.array([0, -1, 0, 0])}, "table_index"),
+        ("tabular", {"table": q, "epsilon": 2.0}, "epsilon"),
+        ("braitenberg", {"seeds": [1, 2]}, "expected 4 seeds"),
+        ("braitenberg", {"trace": {"speeds": np.zeros((3, 4, 2), np.float32)}}, "trace keys"),
+        ("braitenberg", {"trace": {"poses": np.zeros((3, 4, 3))}}, 'trace["poses"]'),
+        ("braitenberg", {"trace": {"poses": np.zeros((2, 4, 3), np.float32)}}, "(3, 4, 3)"),
+        ("avoid-collision", {"threshold": float("nan")}, "threshold"),
+    ]
+
+
+@pytest.mark.parametrize(("controller", "options", "says"), _bad_calls())
+def test_bad_arguments_raise_before_anything_moves(
+    controller: str, options: dict[str, Any], says: str
+) -> None:
+    batch = make_batch(4, robot="seed" if controller == "tabular" else "e-puck")
+    out = buffers(batch)
+    with pytest.raises(mazesim.InvalidArgumentError) as caught:
+        batch.run(3, controller, *out, **options)
+    assert says in str(caught.value)
+    assert (batch.steps() == 0).all()
+
+
+def test_a_robot_without_the_sensors_of_the_controller_is_refused() -> None:
+    batch = make_batch(2, robot="seed")
+    with pytest.raises(mazesim.InvalidArgumentError, match="reads 8 distance sensors"):
+        batch.run(3, "braitenberg", *buffers(batch))
+    with pytest.raises(mazesim.InvalidArgumentError, match="steps"):
+        batch.run(-1, "random", *buffers(batch))
+
+
+def test_ctrl_c_stops_a_long_run() -> None:
+    body = """
+    import os, signal, threading
+    b = _core.BatchSimulator(_core.World.builtin("arena"), num_envs=64, threads=2)
+    out = buffers(b)
+    threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
+    try:
+        b.run(10**9, "random", *out)
+        print("NOT INTERRUPTED")
+    except KeyboardInterrupt:
+        print("INTERRUPTED")
+    """
+    outcome = run_hostile(body)
+    assert outcome.ok and "INTERRUPTED" in outcome.stdout, outcome.describe()
+    assert "NOT INTERRUPTED" not in outcome.stdout
