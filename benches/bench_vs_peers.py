@@ -10,8 +10,7 @@ speeds from the same Braitenberg rule (``peers.workload.braitenberg``). One env-
 control step of one robot with all 11 sensors read. It runs up to five ways in this process:
 
 - mazesim: ``BatchSimulator`` stepping into preallocated buffers, the rule in numpy (one step
-  per call), or many steps per call with the rule in Rust (``BatchSimulator.run``, once the
-  engine has it; until then the steps of a call are a Python loop);
+  per call), or many steps per call with the same rule in the engine (``BatchSimulator.run``);
 - numpy: a tuned kinematic simulator in plain vectorised float32 numpy, worked in cache-sized
   chunks of environments (``peers.numpy_peer``; chunk size from a quick sweep unless given);
 - pymunk: one Chipmunk space per environment, hand-built (``peers.pymunk_peer``);
@@ -115,9 +114,20 @@ class MazesimRunner:
         self.batch.reset(self.obs, self.pose, self.colliding, self.crossings)
 
     def step(self) -> None:
-        for _ in range(self.steps_per_call):
-            wl.braitenberg(self.obs[:, :8].T, self.actions[:, 0], self.actions[:, 1], self.scratch)
-            self.batch.step(self.actions, self.obs, self.pose, self.colliding, self.crossings)
+        if self.steps_per_call > 1:
+            # The same rule in the engine (bit for bit), many steps per call, no episode limit.
+            self.batch.run(
+                self.steps_per_call,
+                "braitenberg",
+                self.obs,
+                self.pose,
+                self.colliding,
+                self.crossings,
+                autoreset=False,
+            )
+            return
+        wl.braitenberg(self.obs[:, :8].T, self.actions[:, 0], self.actions[:, 1], self.scratch)
+        self.batch.step(self.actions, self.obs, self.pose, self.colliding, self.crossings)
 
     def poses(self) -> np.ndarray:
         return self.pose

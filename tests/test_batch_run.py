@@ -17,7 +17,7 @@ import pytest
 import mazesim
 from hostile import run_hostile
 from mazesim.actions import WHEEL_SPEED_FRACTIONS
-from mazesim.bench import braitenberg
+from mazesim.benchmark import braitenberg
 from mazesim.controllers import AvoidCollision
 from mazesim.hrl.discretise import observation_states
 from mazesim.hrl.qlearning import best_allowed

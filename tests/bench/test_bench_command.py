@@ -72,12 +72,31 @@ def test_shared_mazes_are_reported() -> None:
     assert doc["results"][0]["settings"]["mazes"] == "shared"
 
 
+def test_one_and_many_steps_per_call_are_both_reported() -> None:
+    doc = bench_json(
+        "--envs", "1,8", "--steps-per-call", "1,100", "--blocks", "2", "--block-steps", "100"
+    )  # fmt: skip
+    assert doc["settings"]["steps_per_call"] == [1, 100]
+    runs = [(r["settings"]["envs"], r["settings"]["steps_per_call"]) for r in doc["results"]]
+    assert runs == [(1, 1), (1, 100), (8, 1), (8, 100)]
+    for result in doc["results"]:
+        assert [b["first_step"] for b in result["blocks"]] == [1000, 1100]
+        assert result["env_steps_per_s"] > 0
+
+
+def test_the_contact_workload_refuses_many_steps_per_call() -> None:
+    done = bench("--workload", "contact", "--steps-per-call", "1,10", check=False)
+    assert done.returncode == 2
+    assert "contact workload runs one step per call" in done.stderr
+
+
 def test_text_report_is_a_table_under_its_settings() -> None:
     out = bench("--envs", "2", "--blocks", "1", "--block-steps", "20", "--workload", "random")
     lines = out.stdout.splitlines()
     assert lines[0].startswith("workload random, distinct 5 x 5 mazes")
     assert "env-steps/s" in lines[1] and "per CPU-s" in lines[1] and "contact" in lines[1]
-    assert lines[2].split()[0] == "2"
+    assert "per call" in lines[1]
+    assert lines[2].split()[:2] == ["2", "1"]
     assert "one env stepped from Python" in out.stdout
 
 
@@ -89,6 +108,7 @@ def test_text_report_is_a_table_under_its_settings() -> None:
         (["--mazes", "some"], "invalid choice: 'some'"),
         (["--envs", "0,x"], "env counts"),
         (["--blocks", "0"], "at least 1"),
+        (["--steps-per-call", "0"], "steps per call in [1,"),
     ],
 )
 def test_bad_options_exit_2_saying_what_was_expected(args: list[str], message: str) -> None:

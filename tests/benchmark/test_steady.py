@@ -109,3 +109,44 @@ def test_memory_per_env_is_reported() -> None:
 def test_bad_settings_are_refused(field: str, value: object, message: str) -> None:
     with pytest.raises(InvalidArgumentError, match=message):
         SteadyState(small(**{field: value}))
+
+
+def test_many_steps_per_call_replay_single_steps_bit_for_bit() -> None:
+    # Episodes of 100 steps over 4 envs end at multiples of 25 steps: calls of 25 steps reset
+    # the same envs at the same steps as single steps do, and the engine's Braitenberg rule is
+    # the numpy one, so both ways give the very same batch.
+    def final(per_call: int) -> tuple[np.ndarray, np.ndarray, tuple[int, int]]:
+        run = SteadyState(small(steps_per_call=per_call, threads=2))
+        counts = run.advance(MIN_WARMUP_STEPS + 150)
+        return run.poses.copy(), run.observations.copy(), counts
+
+    poses_1, obs_1, counts_1 = final(1)
+    poses_25, obs_25, counts_25 = final(25)
+    assert np.array_equal(poses_1, poses_25)
+    assert np.array_equal(obs_1, obs_25)
+    assert counts_1 == counts_25
+
+
+def test_many_steps_per_call_keep_the_blocks_and_episodes() -> None:
+    report = measure(small(steps_per_call=50, workload="random"))
+    assert [b["first_step"] for b in report["blocks"]] == [1000, 1050, 1100]
+    assert [b["episodes_ended"] for b in report["blocks"]] == [2, 2, 2]
+    assert report["settings"]["steps_per_call"] == 50
+
+
+def test_the_random_workload_in_the_engine_draws_afresh_in_every_call() -> None:
+    run = SteadyState(small(envs=2, steps_per_call=10, workload="random", episode_steps=10_000))
+    headings = []
+    for _ in range(3):
+        headings.append(run.poses[:, 2].astype(np.float64))
+        run.advance(10)
+    headings.append(run.poses[:, 2].astype(np.float64))
+    # A robot's turn over a call depends on its wheel speeds only: calls that repeated their
+    # draws would turn every robot by the same angle each time.
+    turns = np.angle(np.exp(1j * np.diff(headings, axis=0)))
+    assert not np.allclose(turns[1], turns[2], atol=1e-4)
+
+
+def test_a_workload_without_an_engine_controller_runs_one_step_per_call() -> None:
+    with pytest.raises(InvalidArgumentError, match="contact workload runs one step per call"):
+        SteadyState(small(workload="contact", steps_per_call=10))

@@ -41,7 +41,10 @@ def machine() -> dict[str, Any]:
 
 
 def run_sizes(
-    settings: BenchSettings, sizes: Sequence[int], progress: RunProgress | None = None
+    settings: BenchSettings,
+    sizes: Sequence[int],
+    progress: RunProgress | None = None,
+    steps_per_call: Sequence[int] = (),
 ) -> list[dict[str, Any]]:
     """Measures ``settings`` at each batch size of ``sizes``, each in a fresh process.
 
@@ -50,11 +53,15 @@ def run_sizes(
         sizes: Env counts.
         progress: Called with the env-steps done so far and the env-steps in all, across sizes
             (so that a display's ETA weighs a large batch more than a small one).
+        steps_per_call: Steps per call to measure at each size, one run each (by default only
+            ``settings.steps_per_call``).
 
     Returns:
-        One report of :func:`~mazesim.benchmark.measure` per size.
+        One report of :func:`~mazesim.benchmark.measure` per size (and steps per call), in the
+        order of ``sizes``.
     """
-    runs = [replace(settings, envs=n) for n in sizes]
+    per_call = list(steps_per_call) or [settings.steps_per_call]
+    runs = [replace(settings, envs=n, steps_per_call=k) for n in sizes for k in per_call]
     for run in runs:
         run.check()
     steps_each = settings.warmup_steps + settings.blocks * settings.block_steps
@@ -102,13 +109,14 @@ def table(reports: Sequence[dict[str, Any]]) -> str:
         f"workload {s['workload']}, {s['mazes']} 5 x 5 mazes, threads {s['threads'] or 'all'}; "
         f"warm-up {s['warmup_steps']:,} steps, then {s['blocks']} blocks of "
         f"{s['block_steps']} steps; episodes of {s['episode_steps']:,} steps",
-        f"{'envs':>7}  {'env-steps/s':>12}  {'blocks (min-max)':>23}  {'per CPU-s':>11}  "
-        f"{'contact':>7}  {'bytes/env':>14}",
+        f"{'envs':>7}  {'per call':>8}  {'env-steps/s':>12}  {'blocks (min-max)':>23}  "
+        f"{'per CPU-s':>11}  {'contact':>7}  {'bytes/env':>14}",
     ]
     for r in reports:
         low, high = r["env_steps_per_s_range"]
         lines.append(
-            f"{r['settings']['envs']:>7,}  {r['env_steps_per_s']:>12,.0f}  "
+            f"{r['settings']['envs']:>7,}  {r['settings']['steps_per_call']:>8}  "
+            f"{r['env_steps_per_s']:>12,.0f}  "
             f"{f'{low:,.0f}-{high:,.0f}':>23}  {r['env_steps_per_cpu_s']:>11,.0f}  "
             f"{r['contact_share']:>7.1%}  {_bytes(r['memory']):>14}"
         )

@@ -59,6 +59,10 @@ class BenchSettings:
         block_steps: Steps in each timed block.
         blocks: Timed blocks.
         episode_steps: The episode step limit; an env is reset when its episode reaches it.
+        steps_per_call: Control steps per call into the engine. 1: the workload's rule in
+            numpy between single steps, as a Python training loop runs. More: the engine's own
+            controller for the workload runs that many steps in one ``BatchSimulator.run``
+            call; episodes that reach their limit within a call are reset after it.
         seed: Seeds the mazes, the sensor noise and the random workload.
     """
 
@@ -70,6 +74,7 @@ class BenchSettings:
     block_steps: int = 300
     blocks: int = 5
     episode_steps: int = 1000
+    steps_per_call: int = 1
     seed: int = 0
 
     def check(self) -> None:
@@ -81,6 +86,7 @@ class BenchSettings:
             "block_steps": (self.block_steps, 1),
             "blocks": (self.blocks, 1),
             "episode_steps": (self.episode_steps, 1),
+            "steps_per_call": (self.steps_per_call, 1),
             "seed": (self.seed, 0),
         }
         for name, (value, smallest) in counts.items():
@@ -93,6 +99,13 @@ class BenchSettings:
             raise InvalidArgumentError(
                 f"benchmark setting workload: expected one of {', '.join(WORKLOADS)}, "
                 f"found {self.workload!r}"
+            )
+        if self.steps_per_call > 1 and WORKLOADS[self.workload].builtin is None:
+            multi = ", ".join(name for name, kind in WORKLOADS.items() if kind.builtin)
+            raise InvalidArgumentError(
+                f"benchmark setting steps_per_call: the {self.workload} workload runs one step "
+                f"per call (the engine has no controller for it), found {self.steps_per_call}; "
+                f"workloads that run many steps per call: {multi}"
             )
         if self.mazes not in MAZE_KINDS:
             raise InvalidArgumentError(
@@ -194,6 +207,10 @@ class SteadyState:
         self.workload: Workload = make_workload(settings.workload, n, settings.seed)
         #: Steps since the batch was made.
         self.steps_done = 0
+        #: Seeds the engine's controller streams in the next ``run`` call (env i: this + i);
+        #: each call moves it on by N, so that no call repeats another's draws.
+        state = np.random.SeedSequence(settings.seed).generate_state(1, np.uint64)
+        self.controller_seed = int(state[0]) >> 1
         self.batch.reset(self.observations, self.poses, self.colliding, self.crossings)
         engine = engine_bytes(self.batch)
         #: Memory per env: the resident set's growth while the batch was built, and the
@@ -210,6 +227,8 @@ class SteadyState:
         Returns:
             The env-steps that ended in contact with a wall, and the episodes that ended.
         """
+        if self.settings.steps_per_call > 1:
+            return self._advance_in_calls(steps)
         batch, obs, poses = self.batch, self.observations, self.poses
         colliding, crossings, actions = self.colliding, self.crossings, self.actions
         ended, limit = self.ended, self.settings.episode_steps
@@ -229,6 +248,34 @@ class SteadyState:
                 batch.reset(obs, poses, colliding, crossings, mask=ended)
                 ended[first:last] = False
         self.steps_done = done
+        return contacts, episodes
+
+    def _advance_in_calls(self, steps: int) -> tuple[int, int]:
+        """:meth:`advance` in calls of ``steps_per_call`` steps of the engine's controller."""
+        batch, obs, poses = self.batch, self.observations, self.poses
+        colliding, crossings, ended = self.colliding, self.crossings, self.ended
+        limit, per_call = self.settings.episode_steps, self.settings.steps_per_call
+        controller = self.workload.builtin
+        assert controller is not None  # BenchSettings.check
+        contacts = episodes = 0
+        left = steps
+        while left > 0:
+            k = min(per_call, left)
+            counts = batch.run(
+                k, controller, obs, poses, colliding, crossings, seeds=self.controller_seed
+            )
+            self.controller_seed += self.settings.envs
+            contacts += int(counts["steps_in_contact"].sum())
+            # The envs whose episodes reached the limit during the call are reset after it.
+            for done in range(self.steps_done + 1, self.steps_done + k + 1):
+                offset = -done % limit
+                ended[self.ends_from[offset] : self.ends_to[offset]] = True
+            if ended.any():
+                episodes += int(np.count_nonzero(ended))
+                batch.reset(obs, poses, colliding, crossings, mask=ended)
+                ended[:] = False
+            self.steps_done += k
+            left -= k
         return contacts, episodes
 
     @property

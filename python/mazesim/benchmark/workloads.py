@@ -15,7 +15,7 @@ methods, so a measurement (or a user's own loop) can take any of them:
 
 from __future__ import annotations
 
-from typing import Protocol
+from typing import Literal, Optional, Protocol
 
 import numpy as np
 import numpy.typing as npt
@@ -35,6 +35,8 @@ __all__ = [
 ]
 
 F32 = npt.NDArray[np.float32]
+#: The engine's own controllers that a workload may name (``BatchSimulator.run``), or None.
+Builtin = Optional[Literal["braitenberg", "random"]]
 
 #: The e-puck's largest wheel speed (rad/s), the bound of every workload's wheel speeds.
 MAX_WHEEL_SPEED = 6.28
@@ -109,9 +111,14 @@ def seek_walls(ps: F32, out: F32) -> F32:
 
 
 class Workload(Protocol):
-    """A batch controller: one call per step, wheel speeds for every env."""
+    """A batch controller: one call per step, wheel speeds for every env.
+
+    ``builtin`` names the engine's own controller that runs the same rule inside
+    ``BatchSimulator.run`` (many steps per call), or is None where the engine has none.
+    """
 
     name: str
+    builtin: Builtin
 
     def act(self, observations: F32, actions: F32) -> F32:
         """Writes the next wheel speeds (N, 2) into ``actions`` from ``observations`` (N, W)
@@ -122,7 +129,8 @@ class Workload(Protocol):
 class BraitenbergWorkload:
     """The canonical workload: the Braitenberg rule of :func:`braitenberg` on ps0-ps7."""
 
-    name = "braitenberg"
+    name: str = "braitenberg"
+    builtin: Builtin = "braitenberg"
 
     def __init__(self, envs: int, seed: int = 0) -> None:
         del envs, seed  # the rule has no state
@@ -142,7 +150,8 @@ class ContactWorkload:
     phase is the env's own clock.
     """
 
-    name = "contact"
+    name: str = "contact"
+    builtin: Builtin = None
 
     def __init__(self, envs: int, seed: int = 0) -> None:
         del seed  # the phases are fixed by the env index
@@ -167,7 +176,8 @@ class RandomWorkload:
     The draws come from one ``numpy.random.Generator`` seeded from ``seed``, so a run replays.
     """
 
-    name = "random"
+    name: str = "random"
+    builtin: Builtin = "random"  # the engine's own streams: the same law, other draws
 
     def __init__(self, envs: int, seed: int = 0) -> None:
         del envs

@@ -28,16 +28,25 @@ __all__ = ["register", "run_bench"]
 DEFAULT_SIZES = [1, 64, 1024, 4096]
 
 
-def _env_counts(text: str) -> list[int]:
+def _counts(text: str, what: str, example: str) -> list[int]:
+    """Whole numbers in [1, MAX_COUNT], comma-separated; ``what`` names them in messages."""
     try:
         counts = [int(part) for part in text.split(",") if part.strip()]
     except ValueError:
         raise argparse.ArgumentTypeError(
-            f"expected env counts like 1,64,1024, found {text!r}"
+            f"expected {what} like {example}, found {text!r}"
         ) from None
     if not counts or min(counts) < 1 or max(counts) > MAX_COUNT:
-        raise argparse.ArgumentTypeError(f"expected env counts in [1, {MAX_COUNT}], found {text!r}")
+        raise argparse.ArgumentTypeError(f"expected {what} in [1, {MAX_COUNT}], found {text!r}")
     return counts
+
+
+def _env_counts(text: str) -> list[int]:
+    return _counts(text, "env counts", "1,64,1024")
+
+
+def _steps_per_call(text: str) -> list[int]:
+    return _counts(text, "steps per call", "1,100")
 
 
 def _warmup_steps(text: str) -> int:
@@ -47,6 +56,7 @@ def _warmup_steps(text: str) -> int:
 def run_bench(args: argparse.Namespace) -> int:
     """Runs ``mazesim bench``."""
     settings = BenchSettings(
+        steps_per_call=max(args.steps_per_call),
         workload=args.workload,
         mazes=args.mazes,
         threads=args.threads,
@@ -58,12 +68,19 @@ def run_bench(args: argparse.Namespace) -> int:
     )
     with progress_display(args, unit="env-steps") as display:
         reports = run_sizes(
-            settings, args.envs, progress=lambda done, total: display("bench", done, total)
+            settings,
+            args.envs,
+            progress=lambda done, total: display("bench", done, total),
+            steps_per_call=args.steps_per_call,
         )
     single = single_env_rate()
     if args.json:
         document: dict[str, Any] = {
-            "settings": {k: v for k, v in vars(settings).items() if k != "envs"},
+            "settings": {
+                **{k: v for k, v in vars(settings).items() if k != "envs"},
+                "envs": args.envs,
+                "steps_per_call": args.steps_per_call,
+            },
             "machine": machine(),
             "results": reports,
             "single_env_python_steps_per_s": single,
@@ -138,6 +155,15 @@ def register(commands: Any) -> None:
         default=1000,
         metavar="E",
         help="episode step limit; an env is reset when it reaches it (default: 1000)",
+    )
+    parser.add_argument(
+        "--steps-per-call",
+        type=_steps_per_call,
+        default=[1],
+        metavar="K,K,...",
+        help="control steps per call into the engine, one run each: 1 steps from Python with "
+        "the rule in numpy; more runs the engine's own controller for the workload in one "
+        "BatchSimulator.run call (braitenberg and random only) (default: 1)",
     )
     parser.add_argument(
         "--seed",
