@@ -150,3 +150,8 @@ def test_the_random_workload_in_the_engine_draws_afresh_in_every_call() -> None:
 def test_a_workload_without_an_engine_controller_runs_one_step_per_call() -> None:
     with pytest.raises(InvalidArgumentError, match="contact workload runs one step per call"):
         SteadyState(small(workload="contact", steps_per_call=10))
+
+
+def test_a_seed_too_large_for_the_last_env_is_refused() -> None:
+    with pytest.raises(InvalidArgumentError, match="at most 2\\^64 - 4 for 4 envs"):
+        SteadyState(small(seed=2**64 - 2))

@@ -95,6 +95,11 @@ class BenchSettings:
                     f"benchmark setting {name}: expected a whole number of at least {smallest}, "
                     f"found {value!r}"
                 )
+        if self.seed + self.envs > 2**64:
+            raise InvalidArgumentError(
+                f"benchmark setting seed: env i's maze takes seed + i, so expected a seed of at "
+                f"most 2^64 - {self.envs} for {self.envs} envs, found {self.seed}"
+            )
         if self.workload not in WORKLOADS:
             raise InvalidArgumentError(
                 f"benchmark setting workload: expected one of {', '.join(WORKLOADS)}, "
