@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from mazesim.benchmark import MIN_WARMUP_STEPS, BenchSettings, SteadyState, measure
+from mazesim.benchmark.fresh import measure_in_fresh_process
 from mazesim.benchmark.steady import make_worlds
 from mazesim.errors import InvalidArgumentError
 
@@ -89,12 +90,17 @@ def test_shared_mazes_are_one_world_for_every_env() -> None:
     assert run.batch.num_envs == 3 and run.advance(10)[0] >= 0
 
 
-def test_memory_per_env_is_reported() -> None:
-    report = measure(small())
-    assert report["memory"]["resident_bytes_per_env"] >= 0
-    assert report["memory"]["engine_bytes_per_env"] is None or (
-        report["memory"]["engine_bytes_per_env"] > 0
-    )
+def test_memory_per_env_comes_from_a_fresh_process() -> None:
+    def bytes_per_env(mazes: str) -> float:
+        report = measure_in_fresh_process(small(envs=256, mazes=mazes, blocks=1, block_steps=10))
+        memory = report["memory"]
+        assert memory["engine_bytes_per_env"] is None or memory["engine_bytes_per_env"] > 0
+        resident: float = memory["resident_bytes_per_env"]
+        return resident
+
+    distinct, shared = bytes_per_env("distinct"), bytes_per_env("shared")
+    assert distinct > 1000 and shared > 0
+    assert shared < distinct  # 255 fewer mazes to hold
 
 
 @pytest.mark.parametrize(

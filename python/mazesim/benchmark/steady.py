@@ -218,8 +218,10 @@ class SteadyState:
         self.controller_seed = int(state[0]) >> 1
         self.batch.reset(self.observations, self.poses, self.colliding, self.crossings)
         engine = engine_bytes(self.batch)
-        #: Memory per env: the resident set's growth while the batch was built, and the
-        #: engine's own count where it has one (None otherwise).
+        #: Memory per env: the resident set's growth while the batch was built (only in a
+        #: fresh process is it the batch's own: elsewhere memory freed before can be reused,
+        #: and the growth can even be negative), and the engine's own count where it has one
+        #: (None otherwise).
         self.memory = {
             "resident_bytes_per_env": (resident_bytes() - resident_before) / n,
             "engine_bytes_per_env": None if engine is None else engine / n,
