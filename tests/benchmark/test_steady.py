@@ -161,3 +161,11 @@ def test_a_workload_without_an_engine_controller_runs_one_step_per_call() -> Non
 def test_a_seed_too_large_for_the_last_env_is_refused() -> None:
     with pytest.raises(InvalidArgumentError, match="at most 2\\^64 - 4 for 4 envs"):
         SteadyState(small(seed=2**64 - 2))
+
+
+def test_a_huge_episode_limit_costs_no_memory() -> None:
+    # The envs ending at a step are computed, not looked up in a table per step of an episode.
+    run = SteadyState(small(episode_steps=2**31 - 1))
+    _, episodes = run.advance(10)
+    assert episodes == 0
+    assert run.episode_clock.tolist() == [10, 536870921, 1073741833, 1610612745]

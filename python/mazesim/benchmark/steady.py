@@ -201,13 +201,9 @@ class SteadyState:
         self.crossings = np.zeros(n, np.int32)
         self.actions = np.zeros((n, 2), np.float32)
         # Env i starts i * limit // n steps into its first episode, so that resets spread
-        # evenly; as these offsets never decrease with i, the envs whose episodes end at a given
-        # step are a slice of the batch: ends_from[v]:ends_to[v] for the envs of offset v.
-        limit = settings.episode_steps
-        self.episode_offset = (np.arange(n, dtype=np.int64) * limit) // n
-        residues = np.arange(limit)
-        self.ends_from = np.searchsorted(self.episode_offset, residues, "left").tolist()
-        self.ends_to = np.searchsorted(self.episode_offset, residues, "right").tolist()
+        # evenly; the envs of offset v, whose episodes all end at the same steps, are a slice of
+        # the batch (:meth:`envs_of_offset`).
+        self.episode_offset = (np.arange(n, dtype=np.int64) * settings.episode_steps) // n
         self.ended = np.zeros(n, np.bool_)
         self.workload: Workload = make_workload(settings.workload, n, settings.seed)
         #: Steps since the batch was made.
@@ -239,7 +235,7 @@ class SteadyState:
         batch, obs, poses = self.batch, self.observations, self.poses
         colliding, crossings, actions = self.colliding, self.crossings, self.actions
         ended, limit = self.ended, self.settings.episode_steps
-        ends_from, ends_to = self.ends_from, self.ends_to
+        envs_of_offset = self.envs_of_offset
         act = self.workload.act
         contacts = episodes = 0
         done = self.steps_done
@@ -247,8 +243,8 @@ class SteadyState:
             batch.step(act(obs, actions), obs, poses, colliding, crossings)
             contacts += int(np.count_nonzero(colliding))
             done += 1
-            offset = -done % limit  # the envs of this offset have just reached the limit
-            first, last = ends_from[offset], ends_to[offset]
+            # The envs of this offset have just reached the limit.
+            first, last = envs_of_offset(-done % limit)
             if last > first:
                 episodes += last - first
                 ended[first:last] = True
@@ -275,8 +271,8 @@ class SteadyState:
             contacts += int(counts["steps_in_contact"].sum())
             # The envs whose episodes reached the limit during the call are reset after it.
             for done in range(self.steps_done + 1, self.steps_done + k + 1):
-                offset = -done % limit
-                ended[self.ends_from[offset] : self.ends_to[offset]] = True
+                first, last = self.envs_of_offset(-done % limit)
+                ended[first:last] = True
             if ended.any():
                 episodes += int(np.count_nonzero(ended))
                 batch.reset(obs, poses, colliding, crossings, mask=ended)
@@ -284,6 +280,13 @@ class SteadyState:
             self.steps_done += k
             left -= k
         return contacts, episodes
+
+    def envs_of_offset(self, offset: int) -> tuple[int, int]:
+        """The slice ``first:last`` of the envs that start ``offset`` steps into their first
+        episode (``i * limit // n == offset`` exactly for ``ceil(offset * n / limit) <= i <
+        ceil((offset + 1) * n / limit)``); empty where no env has that offset."""
+        n, limit = self.settings.envs, self.settings.episode_steps
+        return -(-offset * n // limit), -(-(offset + 1) * n // limit)
 
     @property
     def episode_clock(self) -> np.ndarray:
