@@ -13,7 +13,7 @@ PY_PACKAGES := maturin numpy matplotlib tqdm pytest hypothesis ruff mypy typing_
 PY_SOURCES := python tests examples
 # Only `make bench-peers` needs these: the peers mazesim is measured against, and its
 # options (e.g. PEER_ARGS="--envs 64,1024 --json").
-PEER_PACKAGES := pymunk
+PEER_PACKAGES := pymunk "jax[cpu]"
 PEER_ARGS ?=
 # Only `make docs` needs these (pyproject's extra "docs"): mkdocs, its Material theme, mkdocstrings.
 DOCS_PACKAGES := "mkdocs>=1.6" "mkdocs-material>=9.5" "mkdocstrings[python]>=0.26"
@@ -110,7 +110,7 @@ fmt: venv ## format Rust and Python sources in place
 bench: ## run the criterion benches
 	cargo bench
 
-bench-peers: build ## mazesim against hand-written numpy and pymunk peers (installs pymunk)
+bench-peers: build ## mazesim against hand-written numpy, pymunk and JAX peers (installs pymunk and jax)
 	$(BIN)/python -m pip install --quiet $(PEER_PACKAGES)
 	$(BIN)/python benches/bench_vs_peers.py $(PEER_ARGS)
 

@@ -19,7 +19,7 @@ from hypothesis import strategies as st
 import mazesim
 from hostile import run_hostile
 from mazesim.actions import WHEEL_SPEED_FRACTIONS
-from mazesim.bench import braitenberg
+from mazesim.benchmark import braitenberg
 from mazesim.controllers import AvoidCollision
 from mazesim.learn.discretise import SHARP_TABLE, observation_states
 from mazesim.learn.qlearning import best_allowed

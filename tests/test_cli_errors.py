@@ -121,7 +121,7 @@ def test_running_out_of_memory_is_one_line(
     "arguments",
     [
         ["demo", "--seconds", "1e300"],
-        ["bench", "--steps", "-1"],
+        ["bench", "--block-steps", "-1"],
         ["bench", "--threads", "1" + "0" * 30],
         ["bench", "--envs", "1,99999999999"],
         ["train", "--steps", "1e40"],

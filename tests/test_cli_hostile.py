@@ -41,7 +41,7 @@ HOSTILE_OUTPUT_FILES = ("", "folder", "under-a-file")
 #: Arguments that keep a valid run short, by command.
 QUICK = {
     "demo": ["--seconds", "1"],
-    "bench": ["--envs", "1", "--steps", "100", "--threads", "1"],
+    "bench": ["--envs", "1", "--blocks", "1", "--block-steps", "100", "--threads", "1"],
     "barcode-study": ["--readings", "1", "--envs", "1", "--thresholds", "1.4", "--speeds", "3"],
     "webots run": ["--seconds", "1"],
     "sweep": ["--sequential", "--quiet"],

@@ -353,6 +353,7 @@ class NumpyPeer:
     (3, N: x, y, yaw) and contact flags (N,) live in arrays the chunks write in place."""
 
     name = "numpy"
+    steps_per_call = 1
 
     def __init__(
         self,

@@ -111,6 +111,7 @@ class PymunkPeer:
     """N environments, each its own pymunk space, stepped one after the other."""
 
     name = "pymunk"
+    steps_per_call = 1
 
     def __init__(
         self, mazes: Sequence[Maze], robot: Robot, seed: int = 0, noise: bool = True

@@ -314,7 +314,7 @@ class BatchSimulator:
         wheel speeds chosen in the core by a built-in controller.
 
         Controllers (each equal, bit for bit, to its Python counterpart on the same readings):
-        ``"braitenberg"`` (:func:`mazesim.bench.braitenberg` on ps0-7), ``"avoid-collision"``
+        ``"braitenberg"`` (:func:`mazesim.benchmark.braitenberg` on ps0-7), ``"avoid-collision"``
         (:class:`mazesim.controllers.AvoidCollision` with ``threshold`` and ``max_speed``),
         ``"tabular"`` (greedy over ``table``, a float64 ``(4096, 12)`` Q-table or
         ``(tables, 4096, 12)`` tables with env ``i`` acting from ``table[table_index[i]]``, on

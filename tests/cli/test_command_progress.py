@@ -43,7 +43,11 @@ COMMANDS = {
         "barcode-study",
         "readings",
     ),
-    "bench": (["bench", "--envs", "1", "--steps", "20", "--threads", "1"], "bench", "runs"),
+    "bench": (
+        ["bench", "--envs", "1", "--blocks", "1", "--block-steps", "20", "--threads", "1"],
+        "bench",
+        "env-steps",
+    ),
     "webots run": (
         ["webots", "run", str(CONTROLLER), "--seconds", "2", "--out", "out"],
         "simulating",

@@ -1,66 +1,95 @@
-"""``mazesim bench``: env-steps per second and memory per env of the canonical workload.
+"""``mazesim bench``: steady-state env-steps per second, contact share and memory per env.
 
-The workload and its measurement are in :mod:`mazesim.bench`; this module parses the options,
-shows the progress over the batch sizes and prints the table (or, with ``--json``, one JSON
-object).
+The measuring is :mod:`mazesim.benchmark`'s (docs/performance.md); this module parses the
+options, shows the progress over the batch sizes (in env-steps, so that a large batch weighs
+more than a small one) and prints the table (or, with ``--json``, one JSON object).
 """
 
 from __future__ import annotations
 
 import argparse
 import json
-import os
 from typing import Any
 
-from mazesim.cli._args import MAX_COUNT, non_negative_int
+from mazesim.benchmark import MAZE_KINDS, MIN_WARMUP_STEPS, WORKLOADS, BenchSettings
+from mazesim.benchmark.report import machine, run_sizes, single_env_rate, table
+from mazesim.cli._args import (
+    MAX_COUNT,
+    non_negative_int,
+    positive_int,
+    seed_argument,
+    whole_number,
+)
 from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
 
 __all__ = ["register", "run_bench"]
 
+#: Batch sizes measured when --envs is not given.
+DEFAULT_SIZES = [1, 64, 1024, 4096]
 
-def _env_counts(text: str) -> list[int]:
+
+def _counts(text: str, what: str, example: str) -> list[int]:
+    """Whole numbers in [1, MAX_COUNT], comma-separated; ``what`` names them in messages."""
     try:
         counts = [int(part) for part in text.split(",") if part.strip()]
     except ValueError:
         raise argparse.ArgumentTypeError(
-            f"expected env counts like 1,64,1024, found {text!r}"
+            f"expected {what} like {example}, found {text!r}"
         ) from None
     if not counts or min(counts) < 1 or max(counts) > MAX_COUNT:
-        raise argparse.ArgumentTypeError(f"expected env counts in [1, {MAX_COUNT}], found {text!r}")
+        raise argparse.ArgumentTypeError(f"expected {what} in [1, {MAX_COUNT}], found {text!r}")
     return counts
+
+
+def _env_counts(text: str) -> list[int]:
+    return _counts(text, "env counts", "1,64,1024")
+
+
+def _steps_per_call(text: str) -> list[int]:
+    return _counts(text, "steps per call", "1,100")
+
+
+def _warmup_steps(text: str) -> int:
+    return whole_number(text, MIN_WARMUP_STEPS)
 
 
 def run_bench(args: argparse.Namespace) -> int:
     """Runs ``mazesim bench``."""
-    from mazesim.bench import WORKLOAD, _auto_steps, _measure_in_child, single_env_rate
-
-    results = []
-    # One run per batch size, then the single env stepped from Python.
-    total = len(args.envs) + 1
-    with progress_display(args, unit="runs") as display:
-        display("bench", 0, total)
-        for done, envs in enumerate(args.envs, start=1):
-            steps = args.steps or _auto_steps(envs)
-            result = _measure_in_child(envs, steps, args.threads)
-            results.append({k: result[k] for k in ("envs", "env_steps_per_s", "bytes_per_env")})
-            display("bench", done, total)
-        single = single_env_rate(20_000 if args.steps == 0 else max(args.steps, 1000))
-        display("bench", total, total)
-    workload = dict(WORKLOAD, threads=args.threads or os.cpu_count(), cpus=os.cpu_count())
-    if args.json:
-        print(
-            json.dumps(
-                {"workload": workload, "results": results, "single_env_python_steps_per_s": single}
-            )
+    settings = BenchSettings(
+        steps_per_call=max(args.steps_per_call),
+        workload=args.workload,
+        mazes=args.mazes,
+        threads=args.threads,
+        warmup_steps=args.warmup,
+        block_steps=args.block_steps,
+        blocks=args.blocks,
+        episode_steps=args.episode_steps,
+        seed=args.seed,
+    )
+    with progress_display(args, unit="env-steps") as display:
+        reports = run_sizes(
+            settings,
+            args.envs,
+            progress=lambda done, total: display("bench", done, total),
+            steps_per_call=args.steps_per_call,
         )
+    single = single_env_rate()
+    if args.json:
+        document: dict[str, Any] = {
+            "settings": {
+                **{k: v for k, v in vars(settings).items() if k != "envs"},
+                "envs": args.envs,
+                "steps_per_call": args.steps_per_call,
+            },
+            "machine": machine(),
+            "results": reports,
+            "single_env_python_steps_per_s": single,
+        }
+        print(json.dumps(document))
         return 0
-    print(f"workload: {WORKLOAD['maze']}; {WORKLOAD['robot']}; 32 ms steps; Braitenberg")
-    print(f"threads: {workload['threads']} of {os.cpu_count()} cpus")
-    print(f"{'envs':>7}  {'env-steps/s':>13}  {'bytes/env':>10}")
-    for r in results:
-        print(f"{r['envs']:>7}  {r['env_steps_per_s']:>13,.0f}  {r['bytes_per_env']:>10,}")
-    print(f"one env stepped from Python: {single:,.0f} steps/s")
+    print(table(reports))
+    print(f"one env stepped from Python (Simulator, rule in plain Python): {single:,.0f} steps/s")
     return 0
 
 
@@ -68,32 +97,40 @@ def register(commands: Any) -> None:
     """Adds ``mazesim bench`` to the command line."""
     parser = commands.add_parser(
         "bench",
-        help="measure env-steps per second and memory per env of the canonical workload",
+        help="measure steady-state env-steps per second, contact share and memory per env",
         description=(
-            "Run the canonical workload (a distinct 5 x 5 maze per env, the e-puck with all 11 "
-            "sensors read each step, 32 ms steps, Braitenberg wheel speeds) at each batch size, "
-            "each in a fresh process, and print env-steps per second and resident bytes per env. "
-            "Last, one env stepped from a Python loop, for comparison."
+            "Run a workload on a batch of 5 x 5 mazes (the e-puck with all 11 sensors read "
+            "each step, 32 ms steps) at each batch size, each in a fresh process: a warm-up of "
+            "at least 1,000 steps with episodes reset as they end, then timed blocks. Prints "
+            "env-steps per wall-second and per CPU-second, the share of steps in contact and "
+            "resident bytes per env (docs/performance.md)."
         ),
         epilog=examples(
             "mazesim bench",
-            "mazesim bench --envs 64,1024 --steps 200 --json",
-            "mazesim bench --threads 1",
+            "mazesim bench --envs 64,1024 --json",
+            "mazesim bench --workload contact --envs 1024",
+            "mazesim bench --envs 1024 --steps-per-call 1,100",
         ),
     )
     parser.add_argument(
         "--envs",
         type=_env_counts,
-        default=[1, 64, 1024, 4096, 65536],
+        default=DEFAULT_SIZES,
         metavar="N,N,...",
-        help="batch sizes (default: 1,64,1024,4096,65536)",
+        help="batch sizes (default: 1,64,1024,4096)",
     )
     parser.add_argument(
-        "--steps",
-        type=non_negative_int,
-        default=0,
-        metavar="K",
-        help="steps per batch size (default: enough for about 1.5 s each)",
+        "--workload",
+        choices=list(WORKLOADS),
+        default="braitenberg",
+        help="the wheel-speed rule: braitenberg (wander clear of walls), contact (about half "
+        "the steps pushing into walls), random (uniform wheel speeds) (default: braitenberg)",
+    )
+    parser.add_argument(
+        "--mazes",
+        choices=list(MAZE_KINDS),
+        default="distinct",
+        help="a generated maze per env, or one shared by all (default: distinct)",
     )
     parser.add_argument(
         "--threads",
@@ -101,6 +138,45 @@ def register(commands: Any) -> None:
         default=0,
         metavar="T",
         help="worker threads (default: 0 = all cores)",
+    )
+    parser.add_argument(
+        "--warmup",
+        type=_warmup_steps,
+        default=MIN_WARMUP_STEPS,
+        metavar="K",
+        help=f"untimed steps first, at least {MIN_WARMUP_STEPS} (default: {MIN_WARMUP_STEPS})",
+    )
+    parser.add_argument(
+        "--blocks", type=positive_int, default=5, metavar="B", help="timed blocks (default: 5)"
+    )
+    parser.add_argument(
+        "--block-steps",
+        type=positive_int,
+        default=300,
+        metavar="S",
+        help="steps per timed block (default: 300)",
+    )
+    parser.add_argument(
+        "--episode-steps",
+        type=positive_int,
+        default=1000,
+        metavar="E",
+        help="episode step limit; an env is reset when it reaches it (default: 1000)",
+    )
+    parser.add_argument(
+        "--steps-per-call",
+        type=_steps_per_call,
+        default=[1],
+        metavar="K,K,...",
+        help="control steps per call into the engine, one run each: 1 steps from Python with "
+        "the rule in numpy; more runs the engine's own controller for the workload in one "
+        "BatchSimulator.run call (braitenberg and random only) (default: 1)",
+    )
+    parser.add_argument(
+        "--seed",
+        type=seed_argument,
+        default=0,
+        help="seeds the mazes, the sensor noise and the random workload (default: 0)",
     )
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     add_progress_option(parser)

@@ -1,4 +1,4 @@
-//! The Braitenberg rule of the benchmark workload (`mazesim.bench.braitenberg`), in the same
+//! The Braitenberg rule of the benchmark workload (`mazesim.benchmark.braitenberg`), in the same
 //! float32 arithmetic as numpy computes it, so that both give the same wheel speeds bit for bit.
 
 /// Reading of ps0..ps7 at which a sensor starts to count (the e-puck table's value at 7 cm).

@@ -19,7 +19,7 @@ use crate::robot::RobotProfile;
 /// A built-in controller.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Controller {
-    /// The Braitenberg rule of the benchmark workload on ps0..ps7 (`mazesim.bench.braitenberg`).
+    /// The Braitenberg rule of the benchmark workload on ps0..ps7 (`mazesim.benchmark.braitenberg`).
     Braitenberg,
     /// The report's Alg. 1 on ps0..ps7 (`mazesim.controllers.AvoidCollision`).
     AvoidCollision(AvoidCollision),
