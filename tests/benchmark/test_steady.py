@@ -94,7 +94,7 @@ def test_memory_per_env_comes_from_a_fresh_process() -> None:
     def bytes_per_env(mazes: str) -> float:
         report = measure_in_fresh_process(small(envs=256, mazes=mazes, blocks=1, block_steps=10))
         memory = report["memory"]
-        assert memory["engine_bytes_per_env"] is None or memory["engine_bytes_per_env"] > 0
+        assert memory["engine_bytes_per_env"] > 0
         resident: float = memory["resident_bytes_per_env"]
         return resident
 
