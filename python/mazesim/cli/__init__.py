@@ -33,7 +33,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     ),
     "bench": (
         "mazesim.cli.bench",
-        "measure env-steps per second and memory per env of the canonical workload",
+        "measure steady-state env-steps per second, contact share and memory per env",
     ),
     "ros": ("mazesim.cli.ros", "run the ROS 1 bridge and controller nodes (needs ROS 1)"),
     "barcode-study": (
