@@ -56,10 +56,11 @@ def samples(tmp: Path) -> dict[str, Any]:
     x, y, yaw = world.start
     saved = tmp / "world.toml"
     world.save(saved)
+    simulator = core.Simulator(world)
     return {
         "instances": {
             "World": world,
-            "Simulator": core.Simulator(world),
+            "Simulator": simulator,
             "BatchSimulator": batch,
             "RobotProfile": core.RobotProfile.builtin("e-puck"),
         },
@@ -101,12 +102,29 @@ def samples(tmp: Path) -> dict[str, Any]:
         "loops": 0.0,
         "checkpoints": True,
         "floor_reflectance": 0.36,
+        "envs": np.arange(NUM_ENVS, dtype=np.int64),
+        "low": np.zeros(11, np.float32),
+        "high": np.full(11, 5000.0, np.float32),
+        "steps": 3,
+        "controller": "tabular",
+        "max_episode_steps": 0,
+        "end_at_goal": False,
+        "end_at_crossing": False,
+        "autoreset": True,
+        "trace": None,
+        "table": np.zeros((4096, 12)),
+        "allowed_actions": None,
+        "table_index": None,
+        "epsilon": 0.0,
+        "threshold": 80.0,
+        "max_speed": 6.28,
+        "snapshot": {"restore": simulator.snapshot(), "restore_env": batch.snapshot_env(0)},
     }
 
 
 def sample(table: dict[str, Any], param: str, owner: str, name: str) -> Any:
     value = table[param]
-    if param in ("name", "path"):
+    if param in ("name", "path", "snapshot"):
         return value[owner or name] if param == "name" else value[name]
     if param == "text" and name == "import_wbt_text":
         return WEBOTS_WORLD.read_text(encoding="utf-8")

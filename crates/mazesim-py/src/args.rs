@@ -166,3 +166,30 @@ pub type Text = Given<String>;
 pub type Flag = Given<bool>;
 /// A file path argument (a str or an `os.PathLike`).
 pub type PathArg = Given<std::path::PathBuf>;
+
+/// The contents of a `bytes` object (or a `bytearray`).
+#[derive(Debug, Clone)]
+pub struct ByteString(pub Vec<u8>);
+
+impl<'a, 'py> FromPyObject<'a, 'py> for ByteString {
+    type Error = PyErr;
+
+    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        if let Ok(bytes) = obj.cast::<pyo3::types::PyBytes>() {
+            return Ok(ByteString(bytes.as_bytes().to_vec()));
+        }
+        let array = obj.cast::<pyo3::types::PyByteArray>()?;
+        Ok(ByteString(array.to_vec()))
+    }
+}
+
+/// A bytes argument.
+pub type Bytes = Given<ByteString>;
+
+/// The name of an object's type, for an error saying what was found.
+pub fn type_name(obj: &Bound<'_, PyAny>) -> String {
+    obj.get_type()
+        .name()
+        .map(|n| n.to_string())
+        .unwrap_or_default()
+}

@@ -10,7 +10,7 @@ use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::{Flag, IntArg, Real, Text};
+use crate::args::{type_name, Bytes, Flag, IntArg, Real, Text};
 use crate::buffers::{copied, writable};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::{enter, enter_detached};
@@ -239,7 +239,7 @@ impl PyBatch {
     /// environment's wheel speeds from the built-in `controller` ('braitenberg',
     /// 'avoid-collision', 'tabular' or 'random'); see `docs/performance.md` and the stub.
     #[pyo3(signature = (steps, controller, observations, poses, colliding, crossings, *, seeds = None,
-        max_episode_steps = IntArg::ZERO, end_at_goal = false, end_at_crossing = false, autoreset = true, trace = None,
+        max_episode_steps = IntArg::ZERO, end_at_goal = Flag::Value(false), end_at_crossing = Flag::Value(false), autoreset = Flag::Value(true), trace = None,
         table = None, allowed_actions = None, table_index = None, epsilon = Real::Number(0.0),
         threshold = Real::Number(80.0), max_speed = Real::Number(EPUCK_MAX_SPEED)),
         text_signature = "($self, steps, controller, observations, poses, colliding, crossings, *, seeds=None, max_episode_steps=0, end_at_goal=False, end_at_crossing=False, autoreset=True, trace=None, table=None, allowed_actions=None, table_index=None, epsilon=0.0, threshold=80.0, max_speed=6.28)")]
@@ -247,17 +247,17 @@ impl PyBatch {
         &self,
         py: Python<'py>,
         steps: IntArg,
-        controller: &str,
+        controller: Text,
         observations: &Bound<'py, PyAny>,
         poses: &Bound<'py, PyAny>,
         colliding: &Bound<'py, PyAny>,
         crossings: &Bound<'py, PyAny>,
         seeds: Option<&Bound<'py, PyAny>>,
         max_episode_steps: IntArg,
-        end_at_goal: bool,
-        end_at_crossing: bool,
-        autoreset: bool,
-        trace: Option<&Bound<'py, PyDict>>,
+        end_at_goal: Flag,
+        end_at_crossing: Flag,
+        autoreset: Flag,
+        trace: Option<&Bound<'py, PyAny>>,
         table: Option<&Bound<'py, PyAny>>,
         allowed_actions: Option<&Bound<'py, PyAny>>,
         table_index: Option<&Bound<'py, PyAny>>,
@@ -270,17 +270,31 @@ impl PyBatch {
             let options = RunOptions {
                 steps: steps.count("steps", MAX_RUN_STEPS)?,
                 max_episode_steps: max_episode_steps.seed("max_episode_steps")?,
-                end_at_goal,
-                end_at_crossing,
-                autoreset,
+                end_at_goal: end_at_goal.value("end_at_goal", "a bool")?,
+                end_at_crossing: end_at_crossing.value("end_at_crossing", "a bool")?,
+                autoreset: autoreset.value("autoreset", "a bool")?,
             };
+            let controller = controller.value("controller", "a str")?;
+            // Checked whatever the controller, so that a wrong one is never silently ignored.
+            threshold.value("threshold")?;
+            max_speed.value("max_speed")?;
+            let trace = trace
+                .map(|t| {
+                    t.cast::<PyDict>().map_err(|_| {
+                        invalid(format!(
+                            "expected trace to be a dict of name -> array, found a {}",
+                            type_name(t)
+                        ))
+                    })
+                })
+                .transpose()?;
             let tabular = TabularArgs {
                 table,
                 allowed_actions,
                 table_index,
                 epsilon,
             };
-            let controller = run::controller(controller, n, threshold, max_speed, tabular)?;
+            let controller = run::controller(&controller, n, threshold, max_speed, tabular)?;
             let seeds = match seeds {
                 Some(s) => seeds_from(s, n)?,
                 None => (0..n as u64).collect(),
@@ -380,10 +394,11 @@ impl PyBatch {
 
     /// Puts environment `index` in the state of a `snapshot_env` (or `Simulator.snapshot`) of an
     /// environment of the same world, robot profile, control step and noise setting.
-    fn restore_env(&self, index: IntArg, snapshot: &[u8]) -> PyResult<()> {
+    fn restore_env(&self, index: IntArg, snapshot: Bytes) -> PyResult<()> {
         enter(|| {
             let index = index.count("index", self.n.saturating_sub(1))?;
-            self.with(|b| b.env_mut(index).and_then(|env| env.restore(snapshot)))
+            let snapshot = snapshot.value("snapshot", "bytes")?.0;
+            self.with(|b| b.env_mut(index).and_then(|env| env.restore(&snapshot)))
                 .py()
         })
     }
@@ -392,7 +407,12 @@ impl PyBatch {
     /// resets: an (M, 3) float64 array of x, y, yaw; the other environments keep theirs.
     fn set_starts_at(&self, envs: &Bound<'_, PyAny>, starts: &Bound<'_, PyAny>) -> PyResult<()> {
         enter(|| {
-            let m = envs.len()?;
+            let m = envs.len().map_err(|_| {
+                invalid(format!(
+                    "expected envs to be an (M,) int64 array of env indices, found a {}",
+                    type_name(envs)
+                ))
+            })?;
             let indices = copied::<i64>(envs, "envs", "int64", &[m])?;
             let rows = copied::<f64>(starts, "starts", "float64", &[m, 3])?;
             let indices = env_indices(&indices, self.n)?;

@@ -7,7 +7,7 @@ use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyTuple};
 
-use crate::args::{Flag, IntArg, Real, Text};
+use crate::args::{Bytes, Flag, IntArg, Real, Text};
 use crate::buffers::readable;
 use crate::errors::{invalid, IntoPy};
 use crate::guard::{enter, enter_detached};
@@ -244,8 +244,9 @@ impl PySimulator {
 
     /// Puts the simulator in the state of a `snapshot` of a simulator of the same world, robot
     /// profile, control step and noise setting; it then goes on exactly as that one would.
-    fn restore(&self, py: Python<'_>, snapshot: &[u8]) -> PyResult<()> {
-        enter_detached(py, || self.with(|s| s.restore(snapshot)))
+    fn restore(&self, py: Python<'_>, snapshot: Bytes) -> PyResult<()> {
+        let snapshot = enter(|| snapshot.value("snapshot", "bytes"))?.0;
+        enter_detached(py, || self.with(|s| s.restore(&snapshot)))
     }
 
     /// An independent simulator in the same state, sharing the (immutable) world.
@@ -285,7 +286,7 @@ impl PySimulator {
         (slf.get_type(), args, PyBytes::new(py, &snapshot)).into_pyobject(py)
     }
 
-    fn __setstate__(&self, py: Python<'_>, state: &[u8]) -> PyResult<()> {
+    fn __setstate__(&self, py: Python<'_>, state: Bytes) -> PyResult<()> {
         self.restore(py, state)
     }
 

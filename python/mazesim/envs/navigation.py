@@ -39,7 +39,7 @@ from gymnasium import spaces
 from mazesim._core import RobotProfile, World
 from mazesim.envs.spaces import NOISE_MARGIN, sensor_ranges
 from mazesim.errors import InvalidArgumentError
-from mazesim.maze import PathDistanceTable
+from mazesim.maze import EAST, NORTH, SOUTH, WEST, PathDistanceTable
 
 __all__ = [
     "OBSERVATIONS",
@@ -56,8 +56,9 @@ OBSERVATIONS = ("sensors", "goal", "guided")
 START_GOALS = ("world", "random")
 #: Bound of the waypoint's coordinates in cells (a neighbour's centre is at most 1.5 cells off).
 _WAYPOINT_BOUND = 2.0
-#: North, east, south, west as (column, row-up) steps: the side order of the distance table.
-_SIDE_STEPS = ((0.0, 1.0), (1.0, 0.0), (0.0, -1.0), (-1.0, 0.0))
+#: The (column, row-up) step across each side of a cell, by maze's direction codes (the side
+#: order of the distance table).
+_SIDE_STEPS = {EAST: (1.0, 0.0), NORTH: (0.0, 1.0), WEST: (-1.0, 0.0), SOUTH: (0.0, -1.0)}
 
 
 def navigation_features(

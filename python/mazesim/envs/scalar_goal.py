@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 
-from mazesim.maze import PathDistanceTable
+from mazesim.maze import EAST, NORTH, SOUTH, WEST, PathDistanceTable
 
 __all__ = ["ScalarGoalDistance"]
 
@@ -36,7 +36,7 @@ class ScalarGoalDistance:
         self._last_row = table.rows - 1
         self._last_col = table.cols - 1
         self._cols = table.cols
-        # Per cell: (value, presence) of the north, east, south, west sides and the goal point.
+        # Per cell: (value, presence) of each side, in maze's direction order, and the goal point.
         self._cells: list[tuple[tuple[float, float], ...]] = [
             tuple(
                 (0.0, 0.0) if math.isnan(value) else (float(value), 1.0) for value in row.tolist()
@@ -67,7 +67,8 @@ class ScalarGoalDistance:
         half = 0.5 * size
         u = x - (origin_x + (col + 0.5) * size)
         v = y - (origin_y + (up + 0.5) * size)
-        north, east, south, west, goal = self._cells[(self._last_row - up) * self._cols + col]
+        cell = self._cells[(self._last_row - up) * self._cols + col]
+        north, east, south, west, goal = cell[NORTH], cell[EAST], cell[SOUTH], cell[WEST], cell[4]
         w0 = north[1] / max(half - v, _NEAREST)
         w1 = east[1] / max(half - u, _NEAREST)
         w2 = south[1] / max(half + v, _NEAREST)
