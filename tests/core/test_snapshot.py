@@ -147,6 +147,8 @@ def test_hostile_snapshots_are_refused_and_change_nothing() -> None:
         sim.restore(snapshot[:-3])
     with pytest.raises(mazesim.InvalidArgumentError):
         sim.restore(snapshot[:40])
-    with pytest.raises(TypeError):
+    with pytest.raises(
+        mazesim.InvalidArgumentError, match="expected snapshot to be bytes, found a str"
+    ):
         sim.restore("a string")  # type: ignore[arg-type]
     sim.restore(snapshot)
