@@ -148,7 +148,7 @@ def test_replay_command_writes_a_page_from_a_run(
 def test_webots_run_records_every_step_of_the_controller(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    controller = Path(__file__).parent.parent / "examples" / "webots" / "avoid_collision.py"
+    controller = Path(__file__).parents[2] / "examples" / "webots" / "avoid_collision.py"
     run_file = tmp_path / "run.json"
     code = main(
         [

@@ -20,7 +20,7 @@ import mazesim
 from mazesim.errors import MazesimError, MazesimIOError, WorldFormatError
 from mazesim.webots import import_wbt, import_wbt_text
 
-CORPUS = Path(__file__).parent / "data" / "webots-worlds"
+CORPUS = Path(__file__).parents[1] / "data" / "webots-worlds"
 LENGTH = 1e-3
 ANGLE = 0.01
 

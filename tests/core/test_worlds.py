@@ -45,7 +45,7 @@ def test_each_builtin_world_loads(builtin_name: str) -> None:
 
 
 def test_builtin_world_loads_equal_to_its_file(builtin_name: str) -> None:
-    path = Path(__file__).resolve().parents[1] / "worlds" / f"{builtin_name}.toml"
+    path = Path(__file__).resolve().parents[2] / "worlds" / f"{builtin_name}.toml"
     assert mazesim.load_world(path) == mazesim.load_world(builtin_name)
 
 

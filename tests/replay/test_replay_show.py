@@ -15,7 +15,7 @@ from mazesim.plotting import plot_world, trajectory_legend, world_legend_handles
 from mazesim.replay.preview import load_with_warnings
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
-WBT_FOLDER = Path(__file__).parent / "data" / "webots-worlds"
+WBT_FOLDER = Path(__file__).parents[1] / "data" / "webots-worlds"
 WBT_FILES = sorted(WBT_FOLDER.glob("*.wbt"))
 
 

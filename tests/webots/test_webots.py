@@ -19,7 +19,7 @@ from mazesim.webots import simulation as simulations
 from mazesim.webots.controller import ControllerStopped, Robot
 from mazesim.webots.devices import LED, DistanceSensor, Motor, PositionSensor
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 EXAMPLE = ROOT / "examples" / "webots" / "avoid_collision.py"
 CORPUS = ROOT / "tests" / "data" / "webots-worlds"
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"

@@ -18,8 +18,8 @@ from mazesim.webots import simulation as simulations
 from mazesim.webots.node_types import NODE_TYPES
 from mazesim.webots.scene import read_scene
 
-CONTROLLERS = Path(__file__).resolve().parent / "data" / "controllers"
-WORLDS = Path(__file__).resolve().parent / "data" / "webots-worlds"
+CONTROLLERS = Path(__file__).resolve().parents[1] / "data" / "controllers"
+WORLDS = Path(__file__).resolve().parents[1] / "data" / "webots-worlds"
 SUPERVISED = CONTROLLERS / "worlds" / "supervised_arena.wbt"
 #: Webots' submodules (R2023b): module -> the classes it defines.
 SUBMODULES = {

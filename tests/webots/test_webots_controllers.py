@@ -21,7 +21,7 @@ import mazesim
 from mazesim.webots import import_wbt, run_controller
 from mazesim.webots.keyboard import KeyScript
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 CONTROLLERS = ROOT / "tests" / "data" / "controllers"
 GPS_WORLD = CONTROLLERS / "worlds" / "gps_compass_arena.wbt"
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"

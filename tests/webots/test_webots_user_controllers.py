@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-CONTROLLERS = Path(__file__).resolve().parent / "data" / "controllers"
+CONTROLLERS = Path(__file__).resolve().parents[1] / "data" / "controllers"
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 
 

@@ -12,7 +12,7 @@ import pytest
 
 from mazesim.cli import main
 
-REPO = Path(__file__).resolve().parent.parent
+REPO = Path(__file__).resolve().parents[2]
 WBT = REPO / "tests" / "data" / "webots-worlds" / "e-puck.R2023b.wbt"
 
 

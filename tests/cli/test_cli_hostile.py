@@ -23,7 +23,7 @@ import pytest
 
 from mazesim.cli import build_parser
 
-REPO = Path(__file__).resolve().parent.parent
+REPO = Path(__file__).resolve().parents[2]
 WBT = REPO / "tests" / "data" / "webots-worlds" / "e-puck.R2023b.wbt"
 MEMORY_CAP = 4 * 1024**3
 TIME_LIMIT_S = 60

@@ -359,7 +359,7 @@ def test_the_reports_robot_profile_picks_the_devices_by_name() -> None:
 
 
 def test_other_def_nodes_have_their_translation_from_the_world_file() -> None:
-    world = Path(__file__).parent / "data" / "webots-worlds" / "collision_avoidance.wbt"
+    world = Path(__file__).parents[1] / "data" / "webots-worlds" / "collision_avoidance.wbt"
     scene = read_scene(world.read_text())
     prepare(mazesim.load_world(str(world)), seconds=1.0, scene=scene)
     controller.Robot.created = None
