@@ -46,6 +46,8 @@ STREAMS: dict[str, tuple[int, int]] = {
     "transfer/episode": (9, 1),
     # The wake-ups of a transfer study's unsynchronised link.
     "transfer/link": (10, 0),
+    # The perturbed robot of each env of a domain-randomised round (index: round).
+    "randomise/profiles": (11, 1),
 }
 
 
