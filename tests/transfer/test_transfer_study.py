@@ -144,3 +144,8 @@ def test_bad_options_are_refused(policy: TrainedPolicy) -> None:
         _study(policy, StudyOptions(axes=parse_axes("latency"), events="psychic"))
     with pytest.raises(PolicyFormatError, match="learned world 'seed-maze'"):
         run_study(policy, load_world("arena"), SMALL)
+    flat = TrainedPolicy("flat", policy.world_name, policy.world_sha256, policy.checkpoint_ids)
+    with pytest.raises(
+        InvalidArgumentError, match="expected a hierarchical navigator, found a flat"
+    ):
+        _study(flat)

@@ -23,7 +23,6 @@ from mazesim.cli._args import (
 )
 from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
-from mazesim.errors import MazesimError
 
 __all__ = ["axes_argument", "register", "run_transfer_study"]
 
@@ -164,10 +163,6 @@ def run_transfer_study(args: argparse.Namespace, out: TextIO) -> int:
 
     os.makedirs(args.out, exist_ok=True)  # a bad --out fails before the study runs
     policy = load_policy(args.policy)
-    if policy.kind != "hierarchical":
-        raise MazesimError(
-            f"expected a hierarchical navigator in {policy.source}, found a {policy.kind} one"
-        )
     world = load_world(policy.world_name)
     options = StudyOptions(
         axes=parse_axes(args.axes),

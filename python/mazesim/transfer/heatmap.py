@@ -80,7 +80,7 @@ def save_pairs_map(result: StudyResult, path: str) -> None:
     for cell in result.pairs:
         a, b = (names.index(name) for name in cell.setting.axes)
         rates[a, b] = rates[b, a] = cell.measure.success_rate
-    figure = Figure(figsize=(2.5 + 0.75 * len(axes), 2.0 + 0.65 * len(axes)))
+    figure = Figure(figsize=(max(6.5, 2.5 + 0.75 * len(axes)), 2.0 + 0.65 * len(axes)))
     plot = figure.add_subplot()
     image = plot.imshow(np.ma.masked_invalid(rates), cmap=COLOURS, vmin=0.0, vmax=1.0)
     for a in range(len(axes)):
