@@ -76,7 +76,7 @@ def register(commands: Any) -> None:
         type=positive_int,
         default=None,
         metavar="N",
-        help="episodes per cell (default: 100)",
+        help="episodes per cell (default: 200)",
     )
     parser.add_argument(
         "--axes",

@@ -226,19 +226,28 @@ def run_cells(
     for index, setting in enumerate(settings):
         groups.setdefault(str(setting.get("robot")), []).append(index)
 
-    def ended(robots: npt.NDArray[np.int64], arrived: npt.NDArray[np.bool_]) -> None:
-        if progress is not None:
-            progress(int(robots.size))
-
     for robot, members in groups.items():
-        for first in range(0, len(members), BATCH_ENVS):
-            chunk = members[first : first + BATCH_ENVS]
+        for first in range(0, len(members), BATCH_ENVS - 1):
+            chunk = members[first : first + BATCH_ENVS - 1]
             chosen = [settings[index] for index in chunk]
+            # The batch's first robot sets what every robot's decoder believes of its wheels (and
+            # the action table): an unperturbed robot of the profile, as on a real robot whose
+            # controller knows only the nominal numbers. A reference cell leads when none does.
+            lead = 0
+            if profile_changes(chosen[0]):
+                chosen.insert(0, Setting() if robot == SEED_ROBOT else Setting.of({"robot": robot}))
+                lead = 1
             nav = run.batch(robot, chosen)
             navigator = run.navigator(robot, chosen, nav.world_of_env)
+            studied = nav.world_of_env >= lead
+
+            def ended(robots: npt.NDArray[np.int64], arrived: npt.NDArray[np.bool_]) -> None:
+                if progress is not None:
+                    progress(int(np.count_nonzero(studied[robots])))  # noqa: B023
+
             results = run_episodes(nav, navigator, run.episodes, on_end=ended)
             shortest = run.shortest_steps(robot)
-            for place, index in enumerate(chunk):
+            for place, index in enumerate(chunk, start=lead):
                 own = [result for result in results if result.world == place]
                 measures[index] = CellMeasure.of(own, shortest)
     return [measures[index] for index in range(len(settings))]

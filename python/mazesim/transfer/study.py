@@ -26,7 +26,7 @@ from mazesim.transfer.result import Cell, StudyResult
 __all__ = ["DEFAULT_EPISODES", "DEFAULT_MAX_STEPS", "StudyOptions", "run_study", "study_size"]
 
 #: Episodes per cell of a default study.
-DEFAULT_EPISODES = 100
+DEFAULT_EPISODES = 200
 #: Control steps (64 ms) after which a study's episode fails: about 2 minutes, several times
 #: the shipped navigator's usual episode in seed-maze.
 DEFAULT_MAX_STEPS = 2000
