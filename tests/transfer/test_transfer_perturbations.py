@@ -79,3 +79,13 @@ def test_other_robots_and_perturbed_cells_run_through_the_study(run: CellRun) ->
     assert [m.episodes for m in measures] == [2, 2, 2, 2]
     for measure in measures:
         assert 0.0 <= measure.success_rate <= 1.0 and measure.contacts_per_episode >= 0.0
+
+
+def test_both_ends_of_every_documented_range_make_a_profile() -> None:
+    from mazesim.transfer import AXES
+    from mazesim.transfer.randomise import RANDOMISED_AXES
+
+    for axis in AXES:
+        if axis.name in RANDOMISED_AXES:
+            for level in (axis.low, axis.high):
+                assert profile_of(Setting.of({axis.name: level})).name == "seed~perturbed"

@@ -149,3 +149,22 @@ def test_bad_options_are_refused(policy: TrainedPolicy) -> None:
         InvalidArgumentError, match="expected a hierarchical navigator, found a flat"
     ):
         _study(flat)
+
+
+def test_the_harshest_level_is_the_least_successful_then_the_later_on_a_tie() -> None:
+    from mazesim.transfer.cells import CellMeasure
+    from mazesim.transfer.result import Cell
+    from mazesim.transfer.study import _harshness
+
+    def cell(level: float, success: float, contacts: float = 0.0) -> Cell:
+        measure = CellMeasure(10, success, contacts, 1.0, 1.2, 600.0)
+        return Cell(Setting.of({"noise_scale": level}), measure)
+
+    def harshest(cells: list[Cell]) -> object:
+        return min(enumerate(cells), key=lambda item: _harshness(*item))[1].setting.get(
+            "noise_scale"
+        )
+
+    assert harshest([cell(0.5, 1.0), cell(2.0, 0.9), cell(4.0, 1.0)]) == 2.0
+    assert harshest([cell(0.5, 1.0), cell(2.0, 1.0), cell(4.0, 1.0)]) == 4.0
+    assert harshest([cell(0.5, 1.0, 0.3), cell(2.0, 1.0), cell(4.0, 1.0)]) == 0.5

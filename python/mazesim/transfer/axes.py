@@ -155,7 +155,7 @@ AXES: tuple[Axis, ...] = (
     Axis("link", "how the controller meets the simulator (ros: unsynchronised node)", "",
          "lockstep", ("ros",), names=LINKS),
     Axis("slip", "share of the motion lost while touching a wall", "", 0.0, (0.1, 0.25, 0.5),
-         0.0, 1.0),
+         0.0, 0.95),
 )  # fmt: skip
 
 #: The axes' names, in order.

@@ -3,14 +3,16 @@
 :func:`run_study` drives the navigator's greedy episodes in its own world (the one its higher level
 learned) with the unperturbed robot (the baseline), at each level of each axis (the single-axis
 cells), then for each pair of axes at their harshest levels (the pairwise cells; an axis's
-harshest level is the one where its single-axis success was lowest, the first on a tie). Every
-cell runs the same episodes (:mod:`mazesim.transfer.cells`), so the study is deterministic under
-its seed whatever the thread count.
+harshest level is the one where its single-axis success was lowest; on a tie, the one with the
+most contacts, then the longest paths, then the last listed, since levels go from mild to
+harsh). Every cell runs the same episodes (:mod:`mazesim.transfer.cells`), so the study is
+deterministic under its seed whatever the thread count.
 """
 
 from __future__ import annotations
 
 import itertools
+import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
@@ -68,6 +70,14 @@ class StudyOptions:
             raise InvalidArgumentError(
                 f"expected events from one of {', '.join(EVENT_SOURCES)}, found {self.events!r}"
             )
+
+
+def _harshness(place: int, cell: Cell) -> tuple[float, float, float, int]:
+    """Orders an axis's cells harshest first: the lowest success, then the most contacts, then
+    the longest paths, then the later level (levels are listed from mild to harsh)."""
+    measure = cell.measure
+    path = math.inf if measure.path_ratio is None else measure.path_ratio
+    return (measure.success_rate, -measure.contacts_per_episode, -path, -place)
 
 
 def single_settings(axes: Sequence[Axis]) -> list[Setting]:
@@ -137,7 +147,7 @@ def run_study(
     harshest: dict[str, Level] = {}
     for axis in options.axes:
         own = [cell for cell in single if cell.setting.axes == (axis.name,)]
-        worst = min(own, key=lambda cell: cell.measure.success_rate)
+        worst = min(enumerate(own), key=lambda item: _harshness(*item))[1]
         harshest[axis.name] = worst.setting.get(axis.name)
     pairs: list[Cell] = []
     if options.pairs and len(options.axes) > 1:
