@@ -301,8 +301,34 @@ def ran(robots: list[Any], threads: int, controller: str = "random") -> dict[str
     out = buffers(batch)
     batch.reset(*out)
     trace = {"poses": np.zeros((30, n, 3), np.float32)}
-    counters = batch.run(30, controller, *out, seeds=np.arange(n, dtype=np.uint64) + 7, trace=trace)
+    extra: dict[str, Any] = {}
+    if controller == "tabular":
+        extra["table"] = np.random.default_rng(2).uniform(0.0, 1.0, (4096, 12))
+    seeds = np.arange(n, dtype=np.uint64) + 7
+    counters = batch.run(30, controller, *out, seeds=seeds, trace=trace, **extra)
     return {"poses": trace["poses"], "obs": out[0].copy(), "counters": counters}
+
+
+EPUCK = RobotProfile.builtin("e-puck")
+
+
+@pytest.mark.parametrize(
+    ("controller", "base"),
+    [("braitenberg", EPUCK), ("avoid-collision", EPUCK), ("random", EPUCK), ("tabular", SEED)],
+)
+def test_every_controller_runs_mixed_profiles_as_each_alone(
+    controller: str, base: RobotProfile
+) -> None:
+    robots = [
+        base,
+        base.perturbed(wheel_radius_scale=0.95, noise_scale=2.0),
+        base.perturbed(motor_gains=(1.0, 0.9), wall_reflectance=0.5),
+    ]
+    mixed = ran(robots, threads=2, controller=controller)
+    for i, robot in enumerate(robots):
+        alone = ran([robot] * len(robots), threads=1, controller=controller)
+        np.testing.assert_array_equal(mixed["poses"][:, i], alone["poses"][:, i])
+    assert not np.array_equal(mixed["poses"][:, 0], mixed["poses"][:, 1])
 
 
 def test_run_of_mixed_profiles_equals_each_profile_run_in_its_slot() -> None:

@@ -215,7 +215,8 @@ impl PyBatch {
     }
 
     /// Bytes the batch holds per environment: each env's own state, plus each distinct world
-    /// (envs of equal worlds share one copy) and the robot's sensing set-up counted once.
+    /// (envs of equal worlds share one copy) and each distinct robot profile's sensing set-up
+    /// counted once.
     fn bytes_per_env(&self) -> PyResult<usize> {
         enter(|| Ok(self.with(|b| b.bytes_per_env())))
     }

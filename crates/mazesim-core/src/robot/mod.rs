@@ -282,7 +282,7 @@ impl RobotProfile {
                 model: find(s, SensorKind::Ground, "ground_sensors", i)?,
             });
         }
-        Ok(RobotProfile {
+        let profile = RobotProfile {
             name: file.name,
             description: file.description,
             body_radius: file.body_radius.0,
@@ -297,7 +297,39 @@ impl RobotProfile {
             wall_reflectance: file.wall_reflectance.map_or(1.0, |v| v.0),
             ground_gain: file.ground_gain.map_or(1.0, |v| v.0),
             slip_on_contact: file.slip_on_contact.map_or(0.0, |v| v.0),
-        })
+        };
+        profile
+            .check_top_speeds()
+            .map_err(|message| bad("wheel_radius".into(), message))?;
+        Ok(profile)
+    }
+
+    /// Top speed (m/s) and top turn rate (rad/s) of the robot: its wheel radius times its motor
+    /// limit times its faster motor's gain, and twice that over its axle length.
+    pub fn top_speeds(&self) -> (f64, f64) {
+        let gain = self.motor_gains[0].max(self.motor_gains[1]);
+        let speed = self.wheel_radius * self.max_wheel_speed * gain;
+        (speed, 2.0 * speed / self.axle_length)
+    }
+
+    /// Refuses a robot faster than `limits::MAX_ROBOT_SPEED` or turning faster than
+    /// `limits::MAX_TURN_RATE`: its motion would leave what the physics resolves.
+    pub(crate) fn check_top_speeds(&self) -> std::result::Result<(), String> {
+        use crate::limits::{MAX_ROBOT_SPEED, MAX_TURN_RATE};
+        let (speed, turn) = self.top_speeds();
+        if !(speed.is_finite() && speed <= MAX_ROBOT_SPEED) {
+            return Err(format!(
+                "expected a robot whose top speed (wheel radius x max wheel speed x motor gain) \
+                 is at most {MAX_ROBOT_SPEED} m/s, found {speed} m/s"
+            ));
+        }
+        if !(turn.is_finite() && turn <= MAX_TURN_RATE) {
+            return Err(format!(
+                "expected a robot whose top turn rate (2 x top speed / axle length) is at most \
+                 {MAX_TURN_RATE} rad/s, found {turn} rad/s"
+            ));
+        }
+        Ok(())
     }
 
     /// Unit of the distance sensors' readings ("raw" or "volts"), or "" without any.

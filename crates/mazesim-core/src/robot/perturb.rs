@@ -199,6 +199,9 @@ impl RobotProfile {
                 v > 0.0
             })?;
         }
+        out.check_top_speeds().map_err(|message| {
+            Error::InvalidArgument(format!("{message} after the perturbation"))
+        })?;
         Ok(out)
     }
 }
@@ -336,6 +339,20 @@ mod tests {
                 "slip_on_contact",
             ),
         ];
+        let fast = seed()
+            .perturbed(&Perturbation {
+                wheel_radius_scale: 10.0,
+                ..Default::default()
+            })
+            .unwrap();
+        let err = fast
+            .perturbed(&Perturbation {
+                wheel_radius_scale: 10.0,
+                ..Default::default()
+            })
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("top speed") && err.contains("12.87"), "{err}");
         for (p, name) in bad {
             let err = seed().perturbed(&p).unwrap_err().to_string();
             assert!(err.contains(name) && err.contains("found"), "{err}");
