@@ -119,6 +119,15 @@ def samples(tmp: Path) -> dict[str, Any]:
         "threshold": 80.0,
         "max_speed": 6.28,
         "snapshot": {"restore": simulator.snapshot(), "restore_env": batch.snapshot_env(0)},
+        "wheel_radius_scale": 1.05,
+        "axle_length_scale": 0.95,
+        "motor_gains": (1.0, 0.95),
+        "noise_scale": 2.0,
+        "ir_angle_error": 0.05,
+        "ir_offset_error": 0.002,
+        "wall_reflectance": 0.5,
+        "ground_gain": 0.9,
+        "slip_on_contact": 0.2,
     }
 
 
@@ -128,6 +137,8 @@ def sample(table: dict[str, Any], param: str, owner: str, name: str) -> Any:
         return value[owner or name] if param == "name" else value[name]
     if param == "text" and name == "import_wbt_text":
         return WEBOTS_WORLD.read_text(encoding="utf-8")
+    if param == "text" and owner == "RobotProfile":
+        return core.RobotProfile.builtin("seed").to_toml()
     return value
 
 

@@ -52,3 +52,21 @@ def test_bad_placements_name_the_robot() -> None:
         batch.simulator.set_starts_at(np.array([0, 1]), np.zeros((1, 3)))
     with pytest.raises(InvalidArgumentError, match="world indices from 0 to 0, found 1"):
         RobotBatch([world], [0, 1])
+
+
+def test_robots_may_be_a_profile_or_one_per_robot() -> None:
+    world = mazesim.load_world("seed-maze")
+    seed = mazesim.RobotProfile.builtin("seed")
+    faster = seed.perturbed(wheel_radius_scale=1.05)
+    mixed = RobotBatch([world], np.zeros(2, dtype=np.int64), robot=[seed, faster], noise=False)
+    assert mixed.profile.name == "seed"
+    alone = RobotBatch([world], np.zeros(1, dtype=np.int64), robot=faster, noise=False)
+    assert alone.profile.name == "seed~perturbed"
+    for _ in range(10):
+        mixed.step(np.zeros(2, dtype=np.int64))
+        alone.step(np.zeros(1, dtype=np.int64))
+    np.testing.assert_array_equal(mixed.poses[1], alone.poses[0])
+    # The same action drives the wider wheels 5 % farther.
+    x, y, _ = world.start
+    travelled = np.hypot(mixed.poses[:, 0] - x, mixed.poses[:, 1] - y)
+    assert travelled[1] / travelled[0] == pytest.approx(1.05, rel=1e-4)

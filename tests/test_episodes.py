@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import numpy.typing as npt
+import pytest
 
 import mazesim
 from mazesim.episodes import MAX_STEPS, EpisodeBatch, StartJitter, run_episodes
@@ -58,3 +59,18 @@ def test_the_goal_test_ends_an_episode_on_arrival() -> None:
     nav.batch.place([0], [(goal_x, goal_y, 0.0)], [1])
     arrived, out_of_time = nav.step([0])
     assert arrived[0] and not out_of_time[0]
+
+
+def test_episodes_run_on_the_robot_given() -> None:
+    world = mazesim.load_world("seed-maze")
+    smaller = mazesim.RobotProfile.builtin("seed").perturbed(wheel_radius_scale=0.9)
+    travelled = []
+    for robot in ("seed", smaller):
+        nav = EpisodeBatch([world], num_envs=1, jitter=StartJitter(0.0, 0.0), robot=robot)
+        assert nav.robot.name == (robot if isinstance(robot, str) else robot.name)
+        nav.start([0], [0])
+        x, y, _ = nav.poses[0].copy()
+        for _ in range(5):
+            nav.step([0])
+        travelled.append(float(np.hypot(nav.poses[0, 0] - x, nav.poses[0, 1] - y)))
+    assert travelled[1] / travelled[0] == pytest.approx(0.9, rel=1e-3)

@@ -101,6 +101,23 @@ CASES = {
         "_core.import_wbt_text(t)"
     ),
     "missing_world_file": "_core.World.load('/nonexistent/world.toml')",
+    "perturbed_to_a_runaway_robot": (
+        "p = _core.RobotProfile.builtin('seed')\n"
+        "for _ in range(400):\n    p = p.perturbed(wheel_radius_scale=10.0)\n"
+        "s = _core.Simulator(_core.World.builtin('arena'), robot=p)\ns.step(6.0, 6.0)"
+    ),
+    "profile_of_huge_wheels": (
+        "t = _core.RobotProfile.builtin('seed').to_toml()\n"
+        "t = t.replace('wheel_radius = 0.0205', 'wheel_radius = 1e298')\n"
+        "s = _core.Simulator(_core.World.builtin('arena'), robot=_core.RobotProfile.from_toml(t))\n"
+        "s.step(6.0, 6.0)"
+    ),
+    "perturbed_offset_1e300": (
+        "_core.RobotProfile.builtin('seed').perturbed(ir_offset_error=1e300)"
+    ),
+    "robot_list_of_other_things": (
+        "_core.BatchSimulator(_core.World.builtin('arena'), num_envs=2, robot=[None, b'x'])"
+    ),
 }
 
 
@@ -125,6 +142,10 @@ MUST_BE_REFUSED = {
     "same_output_twice",
     "wbt_def_use_explosion",
     "missing_world_file",
+    "perturbed_to_a_runaway_robot",
+    "profile_of_huge_wheels",
+    "perturbed_offset_1e300",
+    "robot_list_of_other_things",
 }
 
 

@@ -13,6 +13,8 @@ ROOT = Path(mazesim.__file__).parent
 
 #: Each lower layer and the packages it must never import (its callers, directly or not).
 FORBIDDEN = {
+    "transfer": ("mazesim.distributed", "mazesim.cli", "mazesim.ros", "mazesim.replay",
+                 "mazesim.hrl"),
     "learn": ("mazesim.distributed", "mazesim.cli", "mazesim.ros", "mazesim.replay", "mazesim.hrl"),
     "envs": ("mazesim.distributed", "mazesim.cli", "mazesim.ros", "mazesim.learn", "mazesim.hrl"),
     "episodes.py": ("mazesim.distributed", "mazesim.cli", "mazesim.ros", "mazesim.learn",

@@ -132,14 +132,43 @@ class World:
 
 @final
 class RobotProfile:
-    """A robot's body, wheels and sensors, loaded from the embedded profile files."""
+    """A robot's body, wheels and sensors, loaded from the embedded profile files or TOML text,
+    and how one real robot may differ from them (see ``docs/perturbations.md``)."""
 
     @staticmethod
     def builtin(name: str) -> RobotProfile: ...
+    @staticmethod
+    def from_toml(text: str, source: str = "<string>") -> RobotProfile:
+        """Parses a profile file's text; ``source`` names it in error messages."""
+    def to_toml(self) -> str:
+        """The profile as the TOML text of a profile file (``from_toml`` reads it back)."""
+    def perturbed(
+        self,
+        *,
+        wheel_radius_scale: float = 1.0,
+        axle_length_scale: float = 1.0,
+        motor_gains: tuple[float, float] | Sequence[float] = (1.0, 1.0),
+        noise_scale: float = 1.0,
+        ir_angle_error: float = 0.0,
+        ir_offset_error: float = 0.0,
+        wall_reflectance: float = 1.0,
+        ground_gain: float = 1.0,
+        slip_on_contact: float = 0.0,
+    ) -> RobotProfile:
+        """A copy of the profile as a real robot may differ from it, named ``"<name>~perturbed"``.
+
+        Scales and gains multiply the profile's own; ``ir_angle_error`` (radians) turns each
+        infra-red sensor outward, ``ir_offset_error`` (metres) moves it along its heading;
+        ``wall_reflectance`` in (0, 1], ``slip_on_contact`` in [0, 1). Neutral arguments simulate
+        exactly as this profile. Bad values raise InvalidArgumentError naming them.
+        """
     @property
     def name(self) -> str: ...
-    def __reduce__(self) -> tuple[Any, tuple[str]]:
-        """Pickles as its built-in name."""
+    @property
+    def description(self) -> str: ...
+    def __reduce__(self) -> tuple[Any, tuple[str, ...]]:
+        """Pickles as its built-in name when it is that built-in profile, otherwise as its TOML
+        text."""
     def __copy__(self) -> RobotProfile:
         """A profile is immutable: a copy is the profile itself."""
     def __deepcopy__(self, memo: dict[int, Any], /) -> RobotProfile: ...
@@ -151,6 +180,24 @@ class RobotProfile:
     def axle_length(self) -> float: ...
     @property
     def max_wheel_speed(self) -> float: ...
+    @property
+    def encoder_resolution(self) -> float: ...
+    @property
+    def motor_gains(self) -> tuple[float, float]:
+        """Gains (left, right) of the motors: each wheel turns at its gain times the command."""
+    @property
+    def noise_scale(self) -> float:
+        """Multiplies every sensor model's relative noise."""
+    @property
+    def wall_reflectance(self) -> float:
+        """Reflection factor of the walls as the infra-red sensors see them (1 = as the world has
+        them)."""
+    @property
+    def ground_gain(self) -> float:
+        """Multiplies every ground sensor reading."""
+    @property
+    def slip_on_contact(self) -> float:
+        """Fraction of the wheels' motion lost while the body touches a wall."""
     @property
     def distance_sensor_names(self) -> list[str]: ...
     @property
@@ -186,7 +233,7 @@ class Simulator:
     def __new__(
         cls,
         world: World,
-        robot: str = "e-puck",
+        robot: str | RobotProfile = "e-puck",
         seed: int = 0,
         noise: bool = True,
         control_step_ms: float | None = None,
@@ -257,13 +304,17 @@ class Simulator:
 
 @final
 class BatchSimulator:
-    """N independent environments stepped in parallel into caller-owned numpy buffers."""
+    """N independent environments stepped in parallel into caller-owned numpy buffers.
+
+    ``robot`` is a profile name or a RobotProfile for every environment, or a sequence of them,
+    one per environment (domain randomisation; every profile with the sensors of the first).
+    """
 
     def __new__(
         cls,
         worlds: World | Sequence[World],
         num_envs: int | None = None,
-        robot: str = "e-puck",
+        robot: str | RobotProfile | Sequence[str | RobotProfile] = "e-puck",
         seeds: int | Sequence[int] | None = None,
         noise: bool = True,
         control_step_ms: float | None = None,
@@ -279,7 +330,8 @@ class BatchSimulator:
     def ground_width(self) -> int: ...
     def bytes_per_env(self) -> int:
         """Bytes the batch holds per environment: each env's own state, plus each distinct world
-        (envs of equal worlds share one copy) and the robot's sensing set-up counted once."""
+        (envs of equal worlds share one copy) and each distinct robot profile's sensing set-up
+        counted once."""
     def step(
         self,
         actions: npt.NDArray[np.float32],

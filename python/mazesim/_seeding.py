@@ -42,6 +42,12 @@ STREAMS: dict[str, tuple[int, int]] = {
     "evaluate/episode": (7, 1),
     # The unseen generated mazes of the transfer test.
     "evaluate/mazes": (8, 0),
+    # A transfer study's episode, the same in every cell (index: episode number).
+    "transfer/episode": (9, 1),
+    # The wake-ups of a transfer study's unsynchronised link.
+    "transfer/link": (10, 0),
+    # The perturbed robot of each env of a domain-randomised round (index: round).
+    "randomise/profiles": (11, 1),
 }
 
 

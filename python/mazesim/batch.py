@@ -24,6 +24,7 @@ Example:
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import Union
 
 import numpy as np
 import numpy.typing as npt
@@ -32,10 +33,21 @@ from mazesim._core import BatchSimulator, RobotProfile, World
 from mazesim.actions import WHEEL_SPEED_FRACTIONS
 from mazesim.errors import InvalidArgumentError
 
-__all__ = ["CONTROL_STEP_MS", "RobotBatch", "cruise_step_length"]
+__all__ = ["CONTROL_STEP_MS", "RobotBatch", "RobotChoice", "cruise_step_length"]
 
 #: The control step of the report's navigator, in milliseconds.
 CONTROL_STEP_MS = 64.0
+
+#: A ``robot`` argument: a built-in profile's name or a profile (such as a
+#: :meth:`mazesim.RobotProfile.perturbed` one) for every robot, or a sequence of them, one per
+#: robot (all with the sensors of the first).
+RobotChoice = Union[str, RobotProfile, Sequence[Union[str, RobotProfile]]]
+
+
+def first_profile(robot: RobotChoice) -> RobotProfile:
+    """The profile of the first robot of a ``robot`` argument the batch simulator accepted."""
+    first = robot if isinstance(robot, (str, RobotProfile)) else robot[0]
+    return first if isinstance(first, RobotProfile) else RobotProfile.builtin(first)
 
 
 def cruise_step_length(robot: RobotProfile, control_step_ms: float = CONTROL_STEP_MS) -> float:
@@ -46,17 +58,20 @@ def cruise_step_length(robot: RobotProfile, control_step_ms: float = CONTROL_STE
 
 
 class RobotBatch:
-    """N robots of one profile, each in one of a list of worlds, with their output buffers.
+    """N robots of one profile (or one each), each in one of a list of worlds, with their output
+    buffers.
 
     Args:
         worlds: The worlds; robot ``i`` starts in ``worlds[world_of_env[i]]``.
         world_of_env: (N,) index of each robot's world.
-        robot: The robot profile's name.
+        robot: The robot profile (a name or a :class:`mazesim.RobotProfile`), or one per robot.
         noise: Sensor noise on or off.
         control_step_ms: The control step.
         threads: Worker threads (0: one per core); results do not depend on it.
 
     Attributes:
+        profile: The first robot's profile (every robot has its sensors); the discrete actions'
+            wheel speeds are fractions of its motor limit.
         observations: (N, observation_width) float32: distance sensors, then ground sensors.
         poses: (N, 3) float32 x, y, yaw.
         colliding: (N,) bool, in contact with a wall.
@@ -70,7 +85,7 @@ class RobotBatch:
         self,
         worlds: Sequence[World],
         world_of_env: npt.ArrayLike,
-        robot: str = "seed",
+        robot: RobotChoice = "seed",
         noise: bool = True,
         control_step_ms: float = CONTROL_STEP_MS,
         threads: int = 0,
@@ -91,10 +106,6 @@ class RobotBatch:
             )
         self.num_envs = count
         self.control_step_ms = float(control_step_ms)
-        self.profile = RobotProfile.builtin(robot)
-        self.wheel_speeds = (WHEEL_SPEED_FRACTIONS * self.profile.max_wheel_speed).astype(
-            np.float32
-        )
         self.simulator = BatchSimulator(
             [self.worlds[i] for i in self.world_of_env],
             robot=robot,
@@ -102,6 +113,10 @@ class RobotBatch:
             noise=noise,
             control_step_ms=control_step_ms,
             threads=threads,
+        )
+        self.profile = first_profile(robot)
+        self.wheel_speeds = (WHEEL_SPEED_FRACTIONS * self.profile.max_wheel_speed).astype(
+            np.float32
         )
         self.distance_width = self.simulator.distance_width
         self.observations = np.zeros((count, self.simulator.observation_width), dtype=np.float32)

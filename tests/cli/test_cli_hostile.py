@@ -46,6 +46,7 @@ QUICK = {
     "webots run": ["--seconds", "1"],
     "sweep": ["--sequential", "--quiet"],
     "eval": ["--episodes", "1", "--events", "truth", "--max-steps", "50"],
+    "transfer-study": ["--axes", "latency", "--episodes", "1", "--max-steps", "50", "--no-pairs"],
     "ros bridge": ["--duration", "1"],
     "ros demo": ["--seconds", "1"],
 }

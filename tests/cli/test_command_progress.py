@@ -43,6 +43,21 @@ COMMANDS = {
         "barcode-study",
         "readings",
     ),
+    "transfer-study": (
+        [
+            "transfer-study",
+            "--axes",
+            "latency",
+            "--episodes",
+            "2",
+            "--max-steps",
+            "300",
+            "--out",
+            "out",
+        ],
+        "transfer",
+        "episodes",
+    ),
     "bench": (
         ["bench", "--envs", "1", "--blocks", "1", "--block-steps", "20", "--threads", "1"],
         "bench",

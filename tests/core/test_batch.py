@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 import mazesim
+from batch_buffers import buffers
 from mazesim import BatchSimulator, InvalidActionError, InvalidArgumentError, Simulator
 
 STEPS = 150
@@ -14,16 +15,6 @@ STEPS = 150
 def actions_for(n: int, step: int) -> np.ndarray:
     t = step * 0.05 + np.arange(n, dtype=np.float32)
     return np.stack([4 + 2.5 * np.sin(t), 4 + 2.5 * np.cos(1.7 * t)], axis=1).astype(np.float32)
-
-
-def buffers(batch: BatchSimulator) -> tuple[np.ndarray, ...]:
-    n = batch.num_envs
-    return (
-        np.zeros((n, batch.observation_width), np.float32),
-        np.zeros((n, 3), np.float32),
-        np.zeros(n, bool),
-        np.zeros(n, np.int32),
-    )
 
 
 def batch_run(n: int, threads: int, watch: int) -> np.ndarray:

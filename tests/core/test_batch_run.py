@@ -17,6 +17,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import mazesim
+from batch_buffers import Buffers, buffers
 from hostile import run_hostile
 from mazesim.actions import WHEEL_SPEED_FRACTIONS
 from mazesim.benchmark import braitenberg
@@ -26,10 +27,6 @@ from mazesim.learn.qlearning import best_allowed
 
 LIMIT = 40
 MASK64 = (1 << 64) - 1
-
-Buffers = tuple[
-    npt.NDArray[np.float32], npt.NDArray[np.float32], npt.NDArray[np.bool_], npt.NDArray[np.int32]
-]
 
 
 def next_seed(seed: int) -> int:
@@ -46,16 +43,6 @@ def make_batch(
     """Envs ``first .. first + n`` of a family of distinct mazes, env i seeded with i."""
     worlds = [mazesim.generate_maze(5, 5, seed=50 + i, loops=0.1) for i in range(first, first + n)]
     return mazesim.BatchSimulator(worlds, robot=robot, seeds=first, threads=threads)
-
-
-def buffers(batch: mazesim.BatchSimulator) -> Buffers:
-    n = batch.num_envs
-    return (
-        np.zeros((n, batch.observation_width), np.float32),
-        np.zeros((n, 3), np.float32),
-        np.zeros(n, bool),
-        np.zeros(n, np.int32),
-    )
 
 
 def trace_buffers(batch: mazesim.BatchSimulator, steps: int) -> dict[str, npt.NDArray[Any]]:

@@ -170,6 +170,55 @@ pub fn check_size(envs: usize, walls: u128) -> Result<()> {
     Ok(())
 }
 
+/// The sensing rigs of a batch of `n` envs: one per env of `robots` (or one for all when
+/// `robots` holds one profile), equal profiles sharing one rig. Every profile must have sensors
+/// to observe, and as many of each kind as the first.
+fn rigs_of(robots: &[Arc<RobotProfile>], n: usize) -> Result<Vec<Arc<Rig>>> {
+    if robots.len() != 1 && robots.len() != n {
+        return Err(Error::InvalidArgument(format!(
+            "expected one robot profile, or one per environment ({n}), found {}",
+            robots.len()
+        )));
+    }
+    let first = &robots[0];
+    if first.distance_sensors.is_empty() && first.ground_sensors.is_empty() {
+        return Err(Error::InvalidArgument(format!(
+            "robot profile {:?} has no sensors to observe",
+            first.name
+        )));
+    }
+    let widths = |r: &RobotProfile| (r.distance_sensors.len(), r.ground_sensors.len());
+    let mut made: Vec<Arc<Rig>> = Vec::new();
+    let mut rigs = Vec::with_capacity(robots.len());
+    for (i, robot) in robots.iter().enumerate() {
+        if widths(robot) != widths(first) {
+            return Err(Error::InvalidArgument(format!(
+                "expected every environment's robot profile to have the sensors of the first \
+                 ({:?}: {} distance, {} ground), found {:?} in environment {i} with {} and {}",
+                first.name,
+                first.distance_sensors.len(),
+                first.ground_sensors.len(),
+                robot.name,
+                robot.distance_sensors.len(),
+                robot.ground_sensors.len()
+            )));
+        }
+        let same = made
+            .iter()
+            .find(|r| Arc::ptr_eq(r.robot(), robot) || **r.robot() == **robot);
+        let rig = match same {
+            Some(rig) => rig.clone(),
+            None => {
+                let rig = Rig::new(robot.clone());
+                made.push(rig.clone());
+                rig
+            }
+        };
+        rigs.push(rig);
+    }
+    Ok(rigs)
+}
+
 /// Per-step outputs of a batch, one row per environment, in buffers the caller owns.
 pub struct StepOutputs<'a> {
     /// `(n, observation_width)`: distance sensors then ground sensors.
@@ -207,6 +256,22 @@ impl Batch {
         control_step: Option<f64>,
         threads: usize,
     ) -> Result<Batch> {
+        let robots = vec![robot; worlds.len().max(1)];
+        Self::with_robots(worlds, &robots, seeds, noise, control_step, threads)
+    }
+
+    /// One environment per world, env i with robot `robots[i]` (or all with `robots[0]` when it
+    /// is the only one) and seed `seeds[i]`: a batch of several profiles (domain randomisation).
+    /// Every profile must have as many distance and ground sensors as the first; envs of equal
+    /// profiles share one sensing rig. `threads` as for [`Batch::new`].
+    pub fn with_robots(
+        worlds: Vec<Arc<World>>,
+        robots: &[Arc<RobotProfile>],
+        seeds: &[u64],
+        noise: bool,
+        control_step: Option<f64>,
+        threads: usize,
+    ) -> Result<Batch> {
         if worlds.is_empty() {
             return Err(Error::InvalidArgument(
                 "expected at least one environment, found 0".into(),
@@ -219,12 +284,8 @@ impl Batch {
                 seeds.len()
             )));
         }
-        if robot.distance_sensors.is_empty() && robot.ground_sensors.is_empty() {
-            return Err(Error::InvalidArgument(format!(
-                "robot profile {:?} has no sensors to observe",
-                robot.name
-            )));
-        }
+        let rigs = rigs_of(robots, worlds.len())?;
+        let robot = rigs[0].robot().clone();
         let worlds = share_equal_worlds(worlds);
         let walls = |w: &Arc<World>| w.solid_walls().len() as u128;
         let mut counted = std::collections::HashSet::new();
@@ -236,11 +297,10 @@ impl Batch {
         let with_bodies = worlds.iter().filter(|w| !w.bodies().is_empty()).map(walls);
         check_size(worlds.len(), distinct.into_iter().chain(with_bodies).sum())?;
         let helpers = Helpers::new(threads)?;
-        let rig = Rig::new(robot.clone());
-        let make = |(world, &seed): (Arc<World>, &u64)| {
+        let make = |(world, seed, rig): (Arc<World>, u64, Arc<Rig>)| {
             Simulator::with_rig(
                 world,
-                rig.clone(),
+                rig,
                 SimConfig {
                     seed,
                     noise,
@@ -248,7 +308,10 @@ impl Batch {
                 },
             )
         };
-        let pairs: Vec<(Arc<World>, &u64)> = worlds.into_iter().zip(seeds).collect();
+        let rig_of = |i: usize| rigs[i.min(rigs.len() - 1)].clone();
+        let pairs: Vec<(Arc<World>, u64, Arc<Rig>)> = (worlds.into_iter().zip(seeds).enumerate())
+            .map(|(i, (world, &seed))| (world, seed, rig_of(i)))
+            .collect();
         let envs: Result<Vec<Simulator>> = match helpers.pool() {
             Some(p) => p.install(|| pairs.into_par_iter().map(make).collect()),
             None => pairs.into_iter().map(make).collect(),
@@ -722,6 +785,57 @@ mod tests {
         let result = b.step(&vec![6.0; 128], out.outputs());
         assert!(matches!(result, Err(Error::Interrupted)));
         assert!(started.elapsed() < Duration::from_secs(30));
+    }
+
+    #[test]
+    fn issue_21_envs_of_several_profiles_step_as_each_alone() {
+        let world = Arc::new(World::builtin("seed-maze").unwrap());
+        let seed = Arc::new(RobotProfile::builtin("seed").unwrap());
+        let faster = Arc::new(
+            seed.perturbed(&crate::Perturbation {
+                wheel_radius_scale: 1.05,
+                noise_scale: 2.0,
+                ..Default::default()
+            })
+            .unwrap(),
+        );
+        let robots = vec![seed.clone(), faster.clone(), seed.clone(), faster];
+        let seeds = [3, 4, 5, 6];
+        let mut mixed =
+            Batch::with_robots(vec![world.clone(); 4], &robots, &seeds, true, None, 2).unwrap();
+        // Equal profiles share one rig.
+        assert!(Arc::ptr_eq(mixed.envs()[0].rig(), mixed.envs()[2].rig()));
+        assert!(!Arc::ptr_eq(mixed.envs()[0].rig(), mixed.envs()[1].rig()));
+        let mut out = Buffers::new(&mixed);
+        let actions: Vec<f32> = (0..8).map(|k| 3.0 + (k % 3) as f32).collect();
+        for _ in 0..30 {
+            mixed.step(&actions, out.outputs()).unwrap();
+        }
+        for (i, robot) in robots.iter().enumerate() {
+            let mut alone = Batch::new(
+                vec![world.clone()],
+                robot.clone(),
+                &seeds[i..=i],
+                true,
+                None,
+                1,
+            )
+            .unwrap();
+            let mut one = Buffers::new(&alone);
+            for _ in 0..30 {
+                alone
+                    .step(&actions[2 * i..2 * i + 2], one.outputs())
+                    .unwrap();
+            }
+            assert_eq!(&out.1[3 * i..3 * i + 3], &one.1[..], "env {i}");
+            assert_eq!(&out.0[7 * i..7 * i + 7], &one.0[..], "env {i}");
+        }
+        let epuck = Arc::new(RobotProfile::builtin("e-puck").unwrap());
+        let err = Batch::with_robots(vec![world; 2], &[seed, epuck], &[0, 1], true, None, 1)
+            .err()
+            .unwrap()
+            .to_string();
+        assert!(err.contains("environment 1 with 8 and 3"), "{err}");
     }
 
     #[test]

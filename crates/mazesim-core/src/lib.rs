@@ -41,7 +41,7 @@ pub mod world;
 pub use batch::{Batch, StepOutputs};
 pub use control::Controller;
 pub use error::{Error, Location, Result};
-pub use robot::{robot_profile_names, RobotProfile};
+pub use robot::{robot_profile_names, Perturbation, RobotProfile};
 pub use rollout::{RunCounters, RunOptions, RunTrace};
 pub use simulator::{SimConfig, Simulator};
 pub use world::{builtin_world_names, World};

@@ -31,6 +31,14 @@ pub const BASIC_TIME_STEP_MS: (f64, f64) = (0.1, 1_000.0);
 /// Most physics steps in one control step: a control step never runs for long.
 pub const MAX_PHYSICS_STEPS_PER_CONTROL_STEP: f64 = 10_000.0;
 
+/// Largest top speed of a robot (its wheel radius times its motor limit times its faster motor's
+/// gain), metres per second: 80 times the e-puck's, and a step of it stays resolved in `f32`.
+pub const MAX_ROBOT_SPEED: f64 = 10.0;
+
+/// Largest top turn rate of a robot (twice its top speed over its axle length), radians per
+/// second: a control step never turns it by more than an `f32` angle can hold.
+pub const MAX_TURN_RATE: f64 = 10_000.0;
+
 /// Most threads of a batch (0 means one per core).
 pub const MAX_THREADS: usize = 256;
 

@@ -97,6 +97,12 @@ impl LookupTable {
         (lerp(&self.outputs), lerp(&self.noise))
     }
 
+    /// The table's `(input, output, relative_sigma)` rows, as `new` took them.
+    pub fn rows(&self) -> impl Iterator<Item = [f64; 3]> + '_ {
+        let columns = self.inputs.iter().zip(&self.outputs).zip(&self.noise);
+        columns.map(|((&x, &y), &sigma)| [x, y, sigma])
+    }
+
     /// The smallest input (the nearest distance the table describes).
     pub fn min_input(&self) -> f64 {
         self.inputs[0]

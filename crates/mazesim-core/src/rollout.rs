@@ -10,6 +10,7 @@
 //! its simulator's. Per-step outputs are written only where the caller asks for them.
 
 use std::ops::Range;
+use std::sync::Arc;
 use std::time::Instant;
 
 use crate::batch::{Row, CHUNK_ENVS, INTERRUPT_POLL};
@@ -211,7 +212,12 @@ impl Batch {
         let n = self.len();
         let width = self.observation_width();
         let robot = self.envs()[0].robot().clone();
-        controller.check(&robot, n)?;
+        let mut checked = std::collections::HashSet::new();
+        for env in self.envs() {
+            if checked.insert(Arc::as_ptr(env.rig())) {
+                controller.check(env.robot(), n)?;
+            }
+        }
         if seeds.len() != n {
             return Err(Error::InvalidArgument(format!(
                 "expected one controller seed per environment ({n}), found {}",
@@ -250,7 +256,6 @@ impl Batch {
             );
             let (streams, counts) = (&mut streams, &mut counts);
             let dw = robot.distance_sensors.len();
-            let max_speed = robot.max_wheel_speed;
             let chunks = chunks_of(move |envs| {
                 envs.chunks_mut(CHUNK_ENVS)
                     .zip({ streams }.chunks_mut(CHUNK_ENVS))
@@ -282,8 +287,7 @@ impl Batch {
                     let index = k * CHUNK_ENVS + j;
                     for s in 0..block {
                         step_one(
-                            controller, options, index, env, stream, count, max_speed, &mut rows,
-                            s, j,
+                            controller, options, index, env, stream, count, &mut rows, s, j,
                         );
                     }
                     let row = Row {
@@ -327,7 +331,6 @@ fn step_one(
     env: &mut Simulator,
     stream: &mut Rng,
     count: &mut Counts,
-    max_speed: f64,
     rows: &mut ChunkTrace<'_>,
     s: usize,
     j: usize,
@@ -339,6 +342,7 @@ fn step_one(
     };
     let mut ended = false;
     if !standing {
+        let max_speed = env.robot().max_wheel_speed;
         decision = controller.decide(index, env.distance_sensors(), max_speed, stream);
         let [left, right] = decision.wheel_speeds;
         // The controllers give finite speeds, so a step cannot fail.

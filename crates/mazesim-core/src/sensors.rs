@@ -7,14 +7,58 @@
 //! Ground sensors look down from `height`; the floor's reflectance is averaged over a square spot
 //! of side `footprint` (so a reading over a bar edge lies between the two colours) and read as
 //! `LUT(height / f)`.
+//!
+//! A robot's profile may describe how its sensors differ from their models
+//! ([`SensorImperfections`]):
+//! - `noise_scale` multiplies every relative sigma (0: noiseless, and no random number drawn, as
+//!   with the noise off).
+//! - `wall_reflectance` multiplies the reflection factor of whatever an infra-red ray meets, so
+//!   the reading is `LUT(d / (f * wall_reflectance))`. This is Webots' own infra-red model of a
+//!   darker surface (its `f = 0.2 + 0.8 * red * (1 - 0.5 * roughness)` falls from 1 for a white
+//!   wall to 0.2 for a black one): a wall of reflectance `r` reads at distance `d` what a white
+//!   wall reads at `d / r`, so darker walls read farther, and a reading that falls to the far
+//!   value sooner. (Real triangulating sensors such as the Sharp GP2Y0A41SK0F depend less on
+//!   colour than this model says; the model errs on the side of a larger perturbation.)
+//! - `ground_gain` multiplies every ground sensor reading (before noise): the gain drift of a
+//!   reflective floor sensor, which Alg. 7's fixed threshold of 700 sees as the threshold moved
+//!   to `700 / ground_gain`.
 
 use crate::rng::Rng;
-use crate::robot::SensorModel;
+use crate::robot::{RobotProfile, SensorModel};
 use crate::world::floor::DiscPaint;
 use crate::world::{Bounds, FloorPaint, RayHit, WallIndex};
 
 /// Samples per side of the ground sensor's spot.
 const SPOT_SAMPLES: usize = 3;
+
+/// How one robot's sensors differ from their models (see the module notes).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SensorImperfections {
+    /// Multiplies every relative sigma.
+    pub noise_scale: f64,
+    /// Multiplies the reflection factor of what an infra-red ray meets.
+    pub wall_reflectance: f64,
+    /// Multiplies every ground reading.
+    pub ground_gain: f64,
+}
+
+impl SensorImperfections {
+    /// Sensors exactly as their models.
+    pub const NONE: SensorImperfections = SensorImperfections {
+        noise_scale: 1.0,
+        wall_reflectance: 1.0,
+        ground_gain: 1.0,
+    };
+
+    /// Those of `robot`'s profile.
+    pub fn of(robot: &RobotProfile) -> Self {
+        Self {
+            noise_scale: robot.noise_scale,
+            wall_reflectance: robot.wall_reflectance,
+            ground_gain: robot.ground_gain,
+        }
+    }
+}
 
 /// Applies the model's relative Gaussian noise to a table value.
 #[inline]
@@ -55,22 +99,25 @@ pub fn infrared_miss(model: &SensorModel) -> (f64, f64) {
     model.table.eval(model.table.max_input())
 }
 
-/// `infrared_reading`, with `miss = infrared_miss(model)` computed beforehand: a ray that met
-/// nothing needs no table look-up.
+/// `infrared_reading` of a sensor with imperfections `imperfect`, with
+/// `miss = infrared_miss(model)` computed beforehand: a ray that met nothing needs no table
+/// look-up.
 #[inline]
 pub fn infrared_reading_with(
     model: &SensorModel,
     hit: Option<RayHit>,
     miss: (f64, f64),
+    imperfect: &SensorImperfections,
     rng: Option<&mut Rng>,
 ) -> f32 {
     let (value, sigma) = match hit {
-        Some(hit) => model
-            .table
-            .eval(hit.distance as f64 / hit.reflectance as f64),
+        Some(hit) => {
+            let reflectance = hit.reflectance as f64 * imperfect.wall_reflectance;
+            model.table.eval(hit.distance as f64 / reflectance)
+        }
         None => miss,
     };
-    noisy(value, sigma, rng)
+    noisy(value, sigma * imperfect.noise_scale, rng)
 }
 
 /// Mean floor reflectance over the sensor's square spot centred at `at`, aligned with the robot's
@@ -217,8 +264,8 @@ impl GroundReader {
         }
     }
 
-    /// Reads the sensor at floor point `at` on a robot whose unit forward vector is `axis`;
-    /// `floor` must be the one the reader was made for.
+    /// Reads the sensor, of imperfections `imperfect`, at floor point `at` on a robot whose unit
+    /// forward vector is `axis`; `floor` must be the one the reader was made for.
     #[inline]
     pub fn read(
         &mut self,
@@ -226,6 +273,7 @@ impl GroundReader {
         floor: &FloorPaint,
         at: [f64; 2],
         axis: [f64; 2],
+        imperfect: &SensorImperfections,
         rng: Option<&mut Rng>,
     ) -> f32 {
         let (value, sigma) = if self.bare.contains(at) {
@@ -237,7 +285,8 @@ impl GroundReader {
             }
             ground_value(model, floor, candidates, at, axis, self.background)
         };
-        noisy(value, sigma, rng)
+        let gain = imperfect.ground_gain;
+        noisy(value * gain, sigma * imperfect.noise_scale, rng)
     }
 }
 
@@ -522,7 +571,7 @@ mod tests {
                 (None, None)
             };
             assert_eq!(
-                reader.read(model, &floor, at, axis, a),
+                reader.read(model, &floor, at, axis, &SensorImperfections::NONE, a),
                 read_ground(model, &floor, at, axis, b),
                 "at {at:?}"
             );
@@ -549,9 +598,10 @@ mod tests {
             }
             let (mut a, mut b) = (Rng::new(7), Rng::new(7));
             for hit in hits {
-                let once = infrared_reading_with(model, hit, miss, None);
+                let none = &SensorImperfections::NONE;
+                let once = infrared_reading_with(model, hit, miss, none, None);
                 assert_eq!(once.to_bits(), infrared_reading(model, hit, None).to_bits());
-                let noisy_once = infrared_reading_with(model, hit, miss, Some(&mut a));
+                let noisy_once = infrared_reading_with(model, hit, miss, none, Some(&mut a));
                 let noisy = infrared_reading(model, hit, Some(&mut b));
                 assert_eq!(noisy_once.to_bits(), noisy.to_bits(), "{name} {hit:?}");
             }

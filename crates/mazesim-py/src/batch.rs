@@ -5,7 +5,7 @@ use std::sync::{Arc, Mutex};
 
 use mazesim_core::control::avoid_collision::EPUCK_MAX_SPEED;
 use mazesim_core::limits::{MAX_ENVS, MAX_THREADS};
-use mazesim_core::{Batch, RobotProfile, RunOptions, StepOutputs, World};
+use mazesim_core::{Batch, RunOptions, StepOutputs, World};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -14,6 +14,7 @@ use crate::args::{type_name, Bytes, Flag, IntArg, Real, Text};
 use crate::buffers::{copied, writable};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::{enter, enter_detached};
+use crate::profile::RobotArg;
 use crate::run::{self, TabularArgs, Traces};
 use crate::world::{world_argument, PyWorld};
 
@@ -128,13 +129,13 @@ fn interrupted() -> bool {
 #[pymethods]
 impl PyBatch {
     #[new]
-    #[pyo3(signature = (worlds, num_envs = None, robot = Text::Value("e-puck".into()), seeds = None, noise = Flag::Value(true), control_step_ms = None, threads = IntArg::ZERO),
+    #[pyo3(signature = (worlds, num_envs = None, robot = RobotArg::default_robot(), seeds = None, noise = Flag::Value(true), control_step_ms = None, threads = IntArg::ZERO),
         text_signature = "(worlds, num_envs=None, robot='e-puck', seeds=None, noise=True, control_step_ms=None, threads=0)")]
     fn new(
         py: Python<'_>,
         worlds: &Bound<'_, PyAny>,
         num_envs: Option<IntArg>,
-        robot: Text,
+        robot: RobotArg,
         seeds: Option<&Bound<'_, PyAny>>,
         noise: Flag,
         control_step_ms: Option<Real>,
@@ -148,7 +149,6 @@ impl PyBatch {
                 .map(|n| n.count("num_envs", MAX_ENVS))
                 .transpose()?;
             let threads = threads.count("threads", MAX_THREADS)?;
-            let robot = robot.value("robot", "a robot profile name (str)")?;
             let noise = noise.value("noise", "a bool")?;
             let worlds: Vec<Arc<World>> = if let Ok(w) = worlds.cast::<PyWorld>() {
                 let n =
@@ -176,11 +176,14 @@ impl PyBatch {
                 Some(s) => seeds_from(s, n)?,
                 None => (0..n as u64).collect(),
             };
-            let profile = Arc::new(RobotProfile::builtin(&robot).py()?);
-            let (dw, gw) = (profile.distance_sensors.len(), profile.ground_sensors.len());
+            let profiles = robot.profiles(n)?;
+            let (dw, gw) = (
+                profiles[0].distance_sensors.len(),
+                profiles[0].ground_sensors.len(),
+            );
             let control = control_step_ms.map(|ms| ms / 1000.0);
             let mut batch = enter_detached(py, move || {
-                Batch::new(worlds, profile, &seeds, noise, control, threads)
+                Batch::with_robots(worlds, &profiles, &seeds, noise, control, threads)
             })?;
             batch.set_interrupt(Box::new(interrupted));
             Ok(Self {
@@ -212,7 +215,8 @@ impl PyBatch {
     }
 
     /// Bytes the batch holds per environment: each env's own state, plus each distinct world
-    /// (envs of equal worlds share one copy) and the robot's sensing set-up counted once.
+    /// (envs of equal worlds share one copy) and each distinct robot profile's sensing set-up
+    /// counted once.
     fn bytes_per_env(&self) -> PyResult<usize> {
         enter(|| Ok(self.with(|b| b.bytes_per_env())))
     }

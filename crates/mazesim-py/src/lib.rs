@@ -9,6 +9,7 @@ mod batch;
 mod buffers;
 mod errors;
 mod guard;
+mod profile;
 mod run;
 mod simulator;
 mod wbt;
@@ -101,7 +102,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run::lower_level_states, m)?)?;
     m.add_class::<batch::PyBatch>()?;
     m.add_class::<world::PyWorld>()?;
-    m.add_class::<world::PyRobotProfile>()?;
+    m.add_class::<profile::PyRobotProfile>()?;
     m.add_class::<simulator::PySimulator>()?;
     Ok(())
 }

@@ -7,11 +7,12 @@ use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyTuple};
 
-use crate::args::{Bytes, Flag, IntArg, Real, Text};
+use crate::args::{Bytes, Flag, IntArg, Real};
 use crate::buffers::readable;
 use crate::errors::{invalid, IntoPy};
 use crate::guard::{enter, enter_detached};
-use crate::world::{world_argument, PyRobotProfile, PyWorld};
+use crate::profile::{PyRobotProfile, RobotArg};
+use crate::world::{world_argument, PyWorld};
 
 /// One robot in one world, stepped in control steps.
 #[pyclass(name = "Simulator", module = "mazesim._core", frozen)]
@@ -37,29 +38,28 @@ impl PySimulator {
 #[pymethods]
 impl PySimulator {
     #[new]
-    #[pyo3(signature = (world, robot = Text::Value("e-puck".into()), seed = IntArg::ZERO, noise = Flag::Value(true), control_step_ms = None),
+    #[pyo3(signature = (world, robot = RobotArg::default_robot(), seed = IntArg::ZERO, noise = Flag::Value(true), control_step_ms = None),
         text_signature = "(world, robot='e-puck', seed=0, noise=True, control_step_ms=None)")]
     fn new(
         world: &Bound<'_, PyAny>,
-        robot: Text,
+        robot: RobotArg,
         seed: IntArg,
         noise: Flag,
         control_step_ms: Option<Real>,
     ) -> PyResult<Self> {
         enter(|| {
             let world = world_argument(world, "world")?;
-            let robot = robot.value("robot", "a robot profile name (str)")?;
+            let profile = robot.profile("robot")?;
             let noise = noise.value("noise", "a bool")?;
             let control_step_ms = control_step_ms
                 .map(|ms| ms.value("control_step_ms"))
                 .transpose()?;
-            let profile = PyRobotProfile::named(&robot)?;
             let config = SimConfig {
                 seed: seed.seed("seed")?,
                 noise,
                 control_step: control_step_ms.map(|ms| ms / 1000.0),
             };
-            let sim = Simulator::new(world, profile.inner, config).py()?;
+            let sim = Simulator::new(world, profile, config).py()?;
             Ok(Self {
                 inner: Mutex::new(sim),
             })
@@ -270,7 +270,7 @@ impl PySimulator {
         let (world, robot, config, snapshot) = this.read(|s| {
             (
                 s.world().clone(),
-                s.robot().name.clone(),
+                s.robot().clone(),
                 s.config(),
                 s.snapshot(),
             )
@@ -278,7 +278,7 @@ impl PySimulator {
         let control_step_ms = config.control_step.map(|c| c * 1000.0);
         let args = (
             PyWorld { inner: world },
-            robot,
+            PyRobotProfile { inner: robot },
             config.seed,
             config.noise,
             control_step_ms,

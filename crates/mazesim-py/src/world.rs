@@ -1,14 +1,14 @@
-//! `World` and `RobotProfile` for Python.
+//! `World` for Python.
 
 use std::sync::Arc;
 
 use mazesim_core::world::{BodyShape, PaintShape};
-use mazesim_core::{RobotProfile, World};
+use mazesim_core::World;
 use numpy::{PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::{IntArg, PathArg, Real, Text};
+use crate::args::{PathArg, Real, Text};
 use crate::errors::IntoPy;
 use crate::guard::{enter, enter_detached};
 
@@ -18,19 +18,13 @@ pub struct PyWorld {
     pub inner: Arc<World>,
 }
 
-fn rows_to_array<'py, const N: usize>(
+/// Rows of `N` numbers as an `(len, N)` numpy array.
+pub(crate) fn rows_to_array<'py, const N: usize>(
     py: Python<'py>,
     rows: Vec<[f64; N]>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let flat: Vec<f64> = rows.iter().flatten().copied().collect();
     numpy::PyArray1::from_vec(py, flat).reshape([rows.len(), N])
-}
-
-/// The error for a sensor index at or above the robot's `count` sensors of that `kind`.
-fn sensor_index_error(kind: &str, count: usize, index: usize) -> PyErr {
-    crate::errors::to_py(mazesim_core::Error::InvalidArgument(format!(
-        "expected a {kind} sensor index below {count}, found {index}"
-    )))
 }
 
 #[pymethods]
@@ -301,21 +295,6 @@ impl PyWorld {
     }
 }
 
-/// A robot's body, wheels and sensors.
-#[pyclass(name = "RobotProfile", module = "mazesim._core", frozen)]
-pub struct PyRobotProfile {
-    pub inner: Arc<RobotProfile>,
-}
-
-impl PyRobotProfile {
-    /// A built-in profile by name.
-    pub fn named(name: &str) -> PyResult<Self> {
-        Ok(Self {
-            inner: Arc::new(RobotProfile::builtin(name).py()?),
-        })
-    }
-}
-
 /// The `World` a `world` argument names, or an `InvalidArgumentError` saying what was found.
 pub fn world_argument(world: &Bound<'_, PyAny>, name: &str) -> PyResult<Arc<World>> {
     match world.cast::<PyWorld>() {
@@ -330,191 +309,5 @@ pub fn world_argument(world: &Bound<'_, PyAny>, name: &str) -> PyResult<Arc<Worl
                 "expected {name} to be a mazesim.World, found a {kind}"
             )))
         }
-    }
-}
-
-#[pymethods]
-impl PyRobotProfile {
-    /// A built-in profile by name (see `robot_profile_names()`).
-    #[staticmethod]
-    fn builtin(name: Text) -> PyResult<Self> {
-        enter(|| Self::named(&name.value("name", "a str")?))
-    }
-
-    #[getter]
-    fn name(&self) -> PyResult<String> {
-        enter(|| Ok(self.inner.name.clone()))
-    }
-
-    /// Pickles as its built-in name.
-    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, (String,))> {
-        let name = slf.get().inner.name.clone();
-        Ok((slf.get_type().getattr("builtin")?, (name,)))
-    }
-
-    /// A profile is immutable: a copy is the profile itself.
-    fn __copy__(slf: PyRef<'_, Self>) -> PyRef<'_, Self> {
-        slf
-    }
-
-    fn __deepcopy__<'py>(slf: PyRef<'py, Self>, _memo: &Bound<'py, PyDict>) -> PyRef<'py, Self> {
-        slf
-    }
-    #[getter]
-    fn body_radius(&self) -> PyResult<f64> {
-        enter(|| Ok(self.inner.body_radius))
-    }
-    #[getter]
-    fn wheel_radius(&self) -> PyResult<f64> {
-        enter(|| Ok(self.inner.wheel_radius))
-    }
-    #[getter]
-    fn axle_length(&self) -> PyResult<f64> {
-        enter(|| Ok(self.inner.axle_length))
-    }
-    #[getter]
-    fn max_wheel_speed(&self) -> PyResult<f64> {
-        enter(|| Ok(self.inner.max_wheel_speed))
-    }
-    #[getter]
-    fn distance_sensor_names(&self) -> PyResult<Vec<String>> {
-        enter(|| {
-            Ok({
-                self.inner
-                    .distance_sensors
-                    .iter()
-                    .map(|s| s.name.clone())
-                    .collect()
-            })
-        })
-    }
-    #[getter]
-    fn distance_sensor_unit(&self) -> PyResult<String> {
-        enter(|| Ok(self.inner.distance_sensor_unit().to_string()))
-    }
-    /// Largest noise-free reading of any distance sensor (its table's largest output).
-    #[getter]
-    fn distance_sensor_max(&self) -> PyResult<f64> {
-        enter(|| {
-            Ok({
-                let tables = self.inner.distance_sensors.iter().map(|s| &s.model.table);
-                tables.map(|t| t.max_output()).fold(0.0, f64::max)
-            })
-        })
-    }
-    /// Range of the distance sensors in metres (the longest table's last input).
-    #[getter]
-    fn distance_sensor_range(&self) -> PyResult<f64> {
-        enter(|| {
-            Ok({
-                let tables = self.inner.distance_sensors.iter().map(|s| &s.model.table);
-                tables.map(|t| t.max_input()).fold(0.0, f64::max)
-            })
-        })
-    }
-    /// Largest noise-free reading of any ground sensor (its table's largest output).
-    #[getter]
-    fn ground_sensor_max(&self) -> PyResult<f64> {
-        enter(|| {
-            Ok({
-                let tables = self.inner.ground_sensors.iter().map(|s| &s.model.table);
-                tables.map(|t| t.max_output()).fold(0.0, f64::max)
-            })
-        })
-    }
-    #[getter]
-    fn ground_sensor_names(&self) -> PyResult<Vec<String>> {
-        enter(|| {
-            Ok({
-                self.inner
-                    .ground_sensors
-                    .iter()
-                    .map(|s| s.name.clone())
-                    .collect()
-            })
-        })
-    }
-
-    /// (N, 3) array: x, y, heading of each distance sensor in the robot frame.
-    fn distance_sensor_poses<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        enter(|| {
-            let rows = self
-                .inner
-                .distance_sensors
-                .iter()
-                .map(|s| [s.position[0], s.position[1], s.heading])
-                .collect();
-            rows_to_array(py, rows)
-        })
-    }
-
-    /// (N, 2) array: nearest and farthest distance in metres of each distance sensor's table.
-    fn distance_sensor_limits<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        enter(|| {
-            let rows = self
-                .inner
-                .distance_sensors
-                .iter()
-                .map(|s| [s.model.table.min_input(), s.model.table.max_input()])
-                .collect();
-            rows_to_array(py, rows)
-        })
-    }
-
-    /// Distance in metres at which distance sensor `index` reads `reading` off a white wall
-    /// (its table inverted, clamped to the table's distances).
-    fn distance_from_reading(&self, index: IntArg, reading: Real) -> PyResult<f64> {
-        enter(|| {
-            let index = index.count("index", usize::MAX)?;
-            let reading = reading.value("reading")?;
-            let sensors = &self.inner.distance_sensors;
-            let sensor = sensors
-                .get(index)
-                .ok_or_else(|| sensor_index_error("distance", sensors.len(), index))?;
-            if !reading.is_finite() {
-                return Err(crate::errors::to_py(mazesim_core::Error::InvalidArgument(
-                    format!(
-                        "expected a finite reading of distance sensor {}, found {reading}",
-                        sensor.name
-                    ),
-                )));
-            }
-            Ok(sensor.model.table.invert(reading))
-        })
-    }
-
-    /// Noise-free reading of ground sensor `index` over a floor of reflectance factor `f`.
-    fn ground_reading(&self, index: IntArg, reflectance: Real) -> PyResult<f64> {
-        enter(|| {
-            let index = index.count("index", usize::MAX)?;
-            let reflectance = reflectance.value("reflectance")?;
-            let sensors = &self.inner.ground_sensors;
-            let sensor = sensors
-                .get(index)
-                .ok_or_else(|| sensor_index_error("ground", sensors.len(), index))?;
-            if !(reflectance > 0.0 && reflectance <= 1.0) {
-                return Err(crate::errors::to_py(mazesim_core::Error::InvalidArgument(
-                    format!("expected a reflectance factor in (0, 1], found {reflectance}"),
-                )));
-            }
-            Ok(sensor.model.table.eval(sensor.model.height / reflectance).0)
-        })
-    }
-
-    /// (N, 2) array: x, y of each ground sensor in the robot frame.
-    fn ground_sensor_positions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        enter(|| {
-            let rows = self
-                .inner
-                .ground_sensors
-                .iter()
-                .map(|s| s.position)
-                .collect();
-            rows_to_array(py, rows)
-        })
-    }
-
-    fn __repr__(&self) -> PyResult<String> {
-        enter(|| Ok(format!("RobotProfile(name={:?})", self.inner.name)))
     }
 }

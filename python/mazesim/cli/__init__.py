@@ -40,6 +40,10 @@ COMMANDS: dict[str, tuple[str, str]] = {
         "mazesim.cli.barcode",
         "measure barcode reading (right / wrong / missed) by threshold and by speed",
     ),
+    "transfer-study": (
+        "mazesim.cli.transfer",
+        "measure a navigator on a grid of robot perturbations (sim-to-real transfer)",
+    ),
     "import-wbt": (
         "mazesim.cli.webots",
         "import a Webots .wbt world (obstacles, robot pose, time step)",

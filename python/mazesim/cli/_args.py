@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import argparse
 import math
+from collections.abc import Sequence
 
 from mazesim._paths import output_path
 
@@ -17,6 +18,7 @@ __all__ = [
     "MAX_COUNT",
     "MAX_NUMBER",
     "MAX_SECONDS",
+    "name_list",
     "non_negative_int",
     "non_negative_seconds",
     "output_path",
@@ -95,6 +97,21 @@ def positive_int(text: str) -> int:
 def non_negative_int(text: str) -> int:
     """A whole number of at least 0 and at most :data:`MAX_COUNT` (0 often means "automatic")."""
     return whole_number(text, 0)
+
+
+def name_list(text: str, names: Sequence[str], what: str) -> list[str]:
+    """Comma-separated names among ``names`` (``what`` they are, for the message), each once, in
+    the order given.
+
+    Raises:
+        argparse.ArgumentTypeError: An unknown name, or none at all.
+    """
+    chosen = [part.strip() for part in text.split(",") if part.strip()]
+    if not chosen or any(name not in names for name in chosen):
+        raise argparse.ArgumentTypeError(
+            f"expected {what} among {', '.join(names)}, found {text!r}"
+        )
+    return list(dict.fromkeys(chosen))
 
 
 def seed_argument(text: str) -> int:

@@ -29,7 +29,7 @@ from mazesim.barcode.study import (
     Tally,
     run_study,
 )
-from mazesim.cli._args import output_path, positive_int, seed_argument
+from mazesim.cli._args import name_list, output_path, positive_int, seed_argument
 from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
 
@@ -70,13 +70,7 @@ def speed_list(text: str) -> list[float]:
 
 def decoder_list(text: str) -> list[str]:
     """Comma-separated decoder names."""
-    names = [part.strip() for part in text.split(",") if part.strip()]
-    unknown = [name for name in names if name not in DECODERS]
-    if unknown or not names:
-        raise argparse.ArgumentTypeError(
-            f"expected decoders among {', '.join(DECODERS)}, found {text!r}"
-        )
-    return list(dict.fromkeys(names))
+    return name_list(text, tuple(DECODERS), "decoders")
 
 
 def register(commands: Any) -> None:

@@ -281,18 +281,31 @@ impl Simulator {
     }
 
     /// Advances one control step with wheel speeds in rad/s. Speeds beyond the motor limit are
-    /// clamped to it (as Webots does); NaN or infinite speeds raise `InvalidAction`.
+    /// clamped to it (as Webots does); NaN or infinite speeds raise `InvalidAction`. Each wheel
+    /// then turns at its motor's gain (the profile's `motor_gains`) times its clamped speed, and
+    /// while the body touches a wall it moves only `1 - slip_on_contact` of the wheels' motion.
     pub fn step(&mut self, left: f64, right: f64) -> Result<()> {
         let wl = self.clamp_speed("left", left)?;
         let wr = self.clamp_speed("right", right)?;
         self.wheel_speeds = [wl, wr];
+        // The wheels turn at the motors' gains times the command.
+        let [gl, gr] = self.robot.motor_gains;
+        let (wl, wr) = ((wl as f64 * gl) as f32, (wr as f64 * gr) as f32);
         let r = self.robot.wheel_radius as f32;
         let linear = r * (wl + wr) / 2.0;
         let angular = r * (wr - wl) / self.robot.axle_length as f32;
+        let slip = self.robot.slip_on_contact;
+        let kept = (1.0 - slip) as f32;
         let mut any_contact = false;
         self.last_crossing = 0;
         for k in 1..=self.physics_steps {
             let before = self.pose;
+            // In contact with a wall, the wheels slip: the body moves `kept` of their motion.
+            let (linear, angular) = if slip > 0.0 && self.touching {
+                (linear * kept, angular * kept)
+            } else {
+                (linear, angular)
+            };
             self.body
                 .step(linear, angular, self.clearance, self.world.wall_index());
             self.pose = self.body.pose();
@@ -364,7 +377,7 @@ impl Simulator {
         let sensors = robot.distance_sensors.iter().zip(&rig.infrared_miss);
         for ((reading, (sensor, &miss)), &hit) in readings.zip(sensors).zip(&self.ray_hits) {
             let rng = noise.then_some(&mut self.rng);
-            *reading = infrared_reading_with(&sensor.model, hit, miss, rng);
+            *reading = infrared_reading_with(&sensor.model, hit, miss, &rig.imperfections, rng);
         }
         let (sd, cd) = (s as f64, c as f64);
         for (i, sensor) in robot.ground_sensors.iter().enumerate() {
@@ -372,7 +385,9 @@ impl Simulator {
             let at = [x as f64 + cd * px - sd * py, y as f64 + sd * px + cd * py];
             let rng = noise.then_some(&mut self.rng);
             let reader = &mut self.ground_readers[i];
-            self.ground_readings[i] = reader.read(&sensor.model, world.floor(), at, [cd, sd], rng);
+            let imperfect = &rig.imperfections;
+            self.ground_readings[i] =
+                reader.read(&sensor.model, world.floor(), at, [cd, sd], imperfect, rng);
         }
     }
 
@@ -449,12 +464,14 @@ impl Simulator {
         self.distance_travelled
     }
 
-    /// Wheel speeds applied in the last step (after clamping), rad/s.
+    /// Wheel speeds commanded in the last step (after clamping), rad/s; the wheels turned at the
+    /// motors' gains times these.
     pub fn wheel_speeds(&self) -> [f32; 2] {
         self.wheel_speeds
     }
 
-    /// Wheel position sensors (radians), quantised to the profile's encoder resolution.
+    /// Wheel position sensors (radians): the wheels' true rotation (motor gains included, slip
+    /// not taken off), quantised to the profile's encoder resolution.
     pub fn encoders(&self) -> [f64; 2] {
         let q = self.robot.encoder_resolution;
         self.wheel_angles

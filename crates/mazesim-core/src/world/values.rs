@@ -55,6 +55,12 @@ checked_f64!(
     |v| v.is_finite() && v > 0.0 && v <= 1.0,
     "a reflectance factor in (0, 1] (1 = white, 0.2 = black)"
 );
+checked_f64!(
+    /// A fraction in [0, 1) (of motion lost to wheel slip).
+    SlipFraction,
+    |v| v.is_finite() && (0.0..1.0).contains(&v),
+    "a fraction in [0, 1)"
+);
 
 /// A point or vector `[x, y]` in metres.
 pub type Point = [Finite; 2];

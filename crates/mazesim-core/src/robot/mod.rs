@@ -1,26 +1,40 @@
 //! Robot profiles as data: body, wheels, motors and sensors read from a TOML file.
 //! The built-in profiles (`e-puck`, `e-puck-hardware`, `e-puck2`, `seed`, `alphabot2`) live in
 //! `robots/` and are embedded.
+//!
+//! A profile may also describe the imperfections of one real robot (`motor_gains`,
+//! `noise_scale`, `wall_reflectance`, `ground_gain`, `slip_on_contact`); each is optional and
+//! neutral by default, so a profile without them runs as it always did. [`perturb`] makes
+//! perturbed copies of a profile for sim-to-real transfer studies; [`text`] writes a profile back
+//! as TOML.
+
+pub mod perturb;
+pub mod text;
+
+pub use perturb::Perturbation;
 
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::lut::LookupTable;
 use crate::world::locate;
-use crate::world::values::{Finite, Positive};
+use crate::world::values::{Finite, NonNegative, Positive, Reflectance, SlipFraction};
 
 const BUILTIN: &[(&str, &str)] = &[
-    ("e-puck", include_str!("../../../robots/e-puck.toml")),
+    ("e-puck", include_str!("../../../../robots/e-puck.toml")),
     (
         "e-puck-hardware",
-        include_str!("../../../robots/e-puck-hardware.toml"),
+        include_str!("../../../../robots/e-puck-hardware.toml"),
     ),
-    ("e-puck2", include_str!("../../../robots/e-puck2.toml")),
-    ("seed", include_str!("../../../robots/seed.toml")),
-    ("alphabot2", include_str!("../../../robots/alphabot2.toml")),
+    ("e-puck2", include_str!("../../../../robots/e-puck2.toml")),
+    ("seed", include_str!("../../../../robots/seed.toml")),
+    (
+        "alphabot2",
+        include_str!("../../../../robots/alphabot2.toml"),
+    ),
 ];
 
 /// Names of the built-in robot profiles.
@@ -29,7 +43,7 @@ pub fn robot_profile_names() -> Vec<String> {
 }
 
 /// What a sensor model measures.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum SensorKind {
     /// A ray cast to the walls, read through the Webots infra-red model.
@@ -101,9 +115,25 @@ pub struct RobotProfile {
     pub distance_sensors: Vec<DistanceSensor>,
     /// Floor sensors in device order.
     pub ground_sensors: Vec<GroundSensor>,
+    /// Gain of the left and right motor: a wheel turns at its gain times the commanded (clamped)
+    /// speed, and its encoder counts that true rotation. `[1, 1]`: a matched pair.
+    pub motor_gains: [f64; 2],
+    /// Multiplies the relative noise of every sensor model (0: noiseless readings).
+    pub noise_scale: f64,
+    /// Reflection factor of the walls as this robot's infra-red sensors see them, in (0, 1]: it
+    /// multiplies that of whatever a ray meets, so 1 leaves the world's walls as they are (white
+    /// in Webots' tables) and lower values read them darker (see `crate::sensors`).
+    pub wall_reflectance: f64,
+    /// Multiplies every ground sensor reading: a drift of the sensors' gain, which a fixed
+    /// threshold sees as a threshold drifted by its inverse.
+    pub ground_gain: f64,
+    /// Fraction of the wheels' motion lost while the body touches a wall (wheel slip on
+    /// contact), in [0, 1); the encoders go on counting the wheels' rotation.
+    pub slip_on_contact: f64,
 }
 
-#[derive(Deserialize)]
+/// A profile file as TOML holds it (read by `from_toml`, written by `text::to_toml`).
+#[derive(Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct ProfileFile {
     name: String,
@@ -113,8 +143,18 @@ struct ProfileFile {
     wheel_radius: Positive,
     axle_length: Positive,
     max_wheel_speed: Positive,
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     encoder_resolution: Option<Positive>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    motor_gains: Option<[Positive; 2]>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    noise_scale: Option<NonNegative>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    wall_reflectance: Option<Reflectance>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    ground_gain: Option<Positive>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    slip_on_contact: Option<SlipFraction>,
     models: BTreeMap<String, ModelFile>,
     #[serde(default)]
     distance_sensors: Vec<SensorFile>,
@@ -122,24 +162,24 @@ struct ProfileFile {
     ground_sensors: Vec<SensorFile>,
 }
 
-#[derive(Deserialize)]
+#[derive(Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct ModelFile {
     kind: SensorKind,
     unit: String,
     table: Vec<[Finite; 3]>,
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     height: Option<Positive>,
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     footprint: Option<Positive>,
 }
 
-#[derive(Deserialize)]
+#[derive(Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct SensorFile {
     name: String,
     position: [Finite; 2],
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     heading: Option<Finite>,
     model: String,
 }
@@ -242,7 +282,7 @@ impl RobotProfile {
                 model: find(s, SensorKind::Ground, "ground_sensors", i)?,
             });
         }
-        Ok(RobotProfile {
+        let profile = RobotProfile {
             name: file.name,
             description: file.description,
             body_radius: file.body_radius.0,
@@ -252,7 +292,44 @@ impl RobotProfile {
             encoder_resolution: file.encoder_resolution.map_or(0.0, |r| r.0),
             distance_sensors,
             ground_sensors,
-        })
+            motor_gains: file.motor_gains.map_or([1.0, 1.0], |g| [g[0].0, g[1].0]),
+            noise_scale: file.noise_scale.map_or(1.0, |v| v.0),
+            wall_reflectance: file.wall_reflectance.map_or(1.0, |v| v.0),
+            ground_gain: file.ground_gain.map_or(1.0, |v| v.0),
+            slip_on_contact: file.slip_on_contact.map_or(0.0, |v| v.0),
+        };
+        profile
+            .check_top_speeds()
+            .map_err(|message| bad("wheel_radius".into(), message))?;
+        Ok(profile)
+    }
+
+    /// Top speed (m/s) and top turn rate (rad/s) of the robot: its wheel radius times its motor
+    /// limit times its faster motor's gain, and twice that over its axle length.
+    pub fn top_speeds(&self) -> (f64, f64) {
+        let gain = self.motor_gains[0].max(self.motor_gains[1]);
+        let speed = self.wheel_radius * self.max_wheel_speed * gain;
+        (speed, 2.0 * speed / self.axle_length)
+    }
+
+    /// Refuses a robot faster than `limits::MAX_ROBOT_SPEED` or turning faster than
+    /// `limits::MAX_TURN_RATE`: its motion would leave what the physics resolves.
+    pub(crate) fn check_top_speeds(&self) -> std::result::Result<(), String> {
+        use crate::limits::{MAX_ROBOT_SPEED, MAX_TURN_RATE};
+        let (speed, turn) = self.top_speeds();
+        if !(speed.is_finite() && speed <= MAX_ROBOT_SPEED) {
+            return Err(format!(
+                "expected a robot whose top speed (wheel radius x max wheel speed x motor gain) \
+                 is at most {MAX_ROBOT_SPEED} m/s, found {speed} m/s"
+            ));
+        }
+        if !(turn.is_finite() && turn <= MAX_TURN_RATE) {
+            return Err(format!(
+                "expected a robot whose top turn rate (2 x top speed / axle length) is at most \
+                 {MAX_TURN_RATE} rad/s, found {turn} rad/s"
+            ));
+        }
+        Ok(())
     }
 
     /// Unit of the distance sensors' readings ("raw" or "volts"), or "" without any.

@@ -1,0 +1,422 @@
+//! `RobotProfile` for Python: the built-in profiles, profiles read from TOML text, their
+//! perturbed copies, and the `robot` argument of the simulators (a name, a profile or, for a
+//! batch, one per environment).
+
+use std::sync::Arc;
+
+use mazesim_core::{Perturbation, RobotProfile};
+use numpy::PyArray2;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList, PyString, PyTuple};
+
+use crate::args::{type_name, IntArg, Real, Text};
+use crate::errors::{invalid, IntoPy};
+use crate::guard::enter;
+use crate::world::rows_to_array;
+
+/// A robot's body, wheels and sensors.
+#[pyclass(name = "RobotProfile", module = "mazesim._core", frozen)]
+pub struct PyRobotProfile {
+    pub inner: Arc<RobotProfile>,
+}
+
+impl PyRobotProfile {
+    /// A built-in profile by name.
+    pub fn named(name: &str) -> PyResult<Self> {
+        Ok(Self {
+            inner: Arc::new(RobotProfile::builtin(name).py()?),
+        })
+    }
+}
+
+/// A `robot` argument as given: a built-in profile's name, a `RobotProfile`, a list or tuple of
+/// them (one per environment of a batch), or something else (its type's name, for the error).
+#[derive(Debug, Clone)]
+pub enum RobotArg {
+    /// A built-in profile's name.
+    Name(String),
+    /// A profile.
+    Profile(Arc<RobotProfile>),
+    /// A list or tuple of robot arguments.
+    Many(Vec<RobotArg>),
+    /// Anything else: the name of its type.
+    Other(String),
+}
+
+impl RobotArg {
+    /// The default robot of the simulators.
+    pub fn default_robot() -> RobotArg {
+        RobotArg::Name("e-puck".into())
+    }
+
+    /// The one profile this argument gives; `name` names the argument in the error.
+    pub fn profile(&self, name: &str) -> PyResult<Arc<RobotProfile>> {
+        match self {
+            RobotArg::Name(n) => Ok(PyRobotProfile::named(n)?.inner),
+            RobotArg::Profile(p) => Ok(p.clone()),
+            RobotArg::Many(_) => Err(invalid(format!(
+                "expected {name} to be a robot profile name (str) or a mazesim.RobotProfile, \
+                 found a sequence"
+            ))),
+            RobotArg::Other(kind) => Err(invalid(format!(
+                "expected {name} to be a robot profile name (str) or a mazesim.RobotProfile, \
+                 found a {kind}"
+            ))),
+        }
+    }
+
+    /// The profiles of a batch of `n` environments: one for all, or one per environment from a
+    /// list or tuple of `n`.
+    pub fn profiles(&self, n: usize) -> PyResult<Vec<Arc<RobotProfile>>> {
+        match self {
+            RobotArg::Many(items) if items.len() == n => items
+                .iter()
+                .enumerate()
+                .map(|(i, item)| item.profile(&format!("robot[{i}]")))
+                .collect(),
+            RobotArg::Many(items) => Err(invalid(format!(
+                "expected robot to be a robot profile name (str), a mazesim.RobotProfile or a \
+                 sequence of {n} of them (one per environment), found {} of them",
+                items.len()
+            ))),
+            RobotArg::Other(kind) => Err(invalid(format!(
+                "expected robot to be a robot profile name (str), a mazesim.RobotProfile or a \
+                 sequence of {n} of them (one per environment), found a {kind}"
+            ))),
+            one => Ok(vec![one.profile("robot")?]),
+        }
+    }
+}
+
+impl<'a, 'py> FromPyObject<'a, 'py> for RobotArg {
+    type Error = PyErr;
+
+    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        if let Ok(p) = obj.cast::<PyRobotProfile>() {
+            return Ok(RobotArg::Profile(p.get().inner.clone()));
+        }
+        if let Ok(text) = obj.cast::<PyString>() {
+            return Ok(RobotArg::Name(text.to_cow()?.into_owned()));
+        }
+        if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
+            let items: Vec<Bound<'py, PyAny>> = obj.extract()?;
+            let one = |item: &Bound<'py, PyAny>| match item.extract::<RobotArg>() {
+                Ok(RobotArg::Many(_)) => RobotArg::Other(type_name(item)),
+                Ok(arg) => arg,
+                Err(_) => RobotArg::Other(type_name(item)),
+            };
+            return Ok(RobotArg::Many(items.iter().map(one).collect()));
+        }
+        Ok(RobotArg::Other(type_name(&obj.to_owned())))
+    }
+}
+
+/// The left and right gains of a `motor_gains` argument: a sequence of two real numbers.
+fn gains_argument(gains: &Bound<'_, PyAny>) -> PyResult<[f64; 2]> {
+    let refuse = |found: String| {
+        invalid(format!(
+            "expected motor_gains to be a (left, right) pair of real numbers, found {found}"
+        ))
+    };
+    let items: Vec<Real> = gains
+        .extract()
+        .map_err(|_| refuse(format!("a {}", type_name(gains))))?;
+    match items.as_slice() {
+        [left, right] => Ok([
+            left.value("motor_gains[0]")?,
+            right.value("motor_gains[1]")?,
+        ]),
+        other => Err(refuse(format!("{} values", other.len()))),
+    }
+}
+
+/// The error for a sensor index at or above the robot's `count` sensors of that `kind`.
+fn sensor_index_error(kind: &str, count: usize, index: usize) -> PyErr {
+    crate::errors::to_py(mazesim_core::Error::InvalidArgument(format!(
+        "expected a {kind} sensor index below {count}, found {index}"
+    )))
+}
+
+#[pymethods]
+impl PyRobotProfile {
+    /// A built-in profile by name (see `robot_profile_names()`).
+    #[staticmethod]
+    fn builtin(name: Text) -> PyResult<Self> {
+        enter(|| Self::named(&name.value("name", "a str")?))
+    }
+
+    /// Parses a profile file's text; `source` names it in error messages.
+    #[staticmethod]
+    #[pyo3(signature = (text, source = Text::Value("<string>".into())),
+        text_signature = "(text, source='<string>')")]
+    fn from_toml(text: Text, source: Text) -> PyResult<Self> {
+        enter(|| {
+            let text = text.value("text", "a str")?;
+            let source = source.value("source", "a str")?;
+            Ok(Self {
+                inner: Arc::new(RobotProfile::from_toml(&text, &source).py()?),
+            })
+        })
+    }
+
+    /// The profile as the TOML text of a profile file (`from_toml` reads it back).
+    fn to_toml(&self) -> PyResult<String> {
+        enter(|| self.inner.to_toml().py())
+    }
+
+    /// A copy of the profile as a real robot may differ from it, named `"<name>~perturbed"`:
+    /// see `docs/perturbations.md`. Neutral arguments simulate exactly as this profile.
+    #[pyo3(signature = (*, wheel_radius_scale = Real::Number(1.0), axle_length_scale = Real::Number(1.0),
+        motor_gains = None, noise_scale = Real::Number(1.0), ir_angle_error = Real::Number(0.0),
+        ir_offset_error = Real::Number(0.0), wall_reflectance = Real::Number(1.0),
+        ground_gain = Real::Number(1.0), slip_on_contact = Real::Number(0.0)),
+        text_signature = "($self, *, wheel_radius_scale=1.0, axle_length_scale=1.0, motor_gains=(1.0, 1.0), noise_scale=1.0, ir_angle_error=0.0, ir_offset_error=0.0, wall_reflectance=1.0, ground_gain=1.0, slip_on_contact=0.0)")]
+    #[allow(clippy::too_many_arguments)]
+    fn perturbed(
+        &self,
+        wheel_radius_scale: Real,
+        axle_length_scale: Real,
+        motor_gains: Option<&Bound<'_, PyAny>>,
+        noise_scale: Real,
+        ir_angle_error: Real,
+        ir_offset_error: Real,
+        wall_reflectance: Real,
+        ground_gain: Real,
+        slip_on_contact: Real,
+    ) -> PyResult<Self> {
+        enter(|| {
+            let perturbation = Perturbation {
+                wheel_radius_scale: wheel_radius_scale.value("wheel_radius_scale")?,
+                axle_length_scale: axle_length_scale.value("axle_length_scale")?,
+                motor_gains: motor_gains.map_or(Ok([1.0, 1.0]), gains_argument)?,
+                noise_scale: noise_scale.value("noise_scale")?,
+                ir_angle_error: ir_angle_error.value("ir_angle_error")?,
+                ir_offset_error: ir_offset_error.value("ir_offset_error")?,
+                wall_reflectance: wall_reflectance.value("wall_reflectance")?,
+                ground_gain: ground_gain.value("ground_gain")?,
+                slip_on_contact: slip_on_contact.value("slip_on_contact")?,
+            };
+            Ok(Self {
+                inner: Arc::new(self.inner.perturbed(&perturbation).py()?),
+            })
+        })
+    }
+
+    #[getter]
+    fn name(&self) -> PyResult<String> {
+        enter(|| Ok(self.inner.name.clone()))
+    }
+    #[getter]
+    fn description(&self) -> PyResult<String> {
+        enter(|| Ok(self.inner.description.clone()))
+    }
+
+    /// Pickles as its built-in name when it is that built-in profile, otherwise as its TOML text.
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyTuple>> {
+        let py = slf.py();
+        let profile = &slf.get().inner;
+        let builtin = RobotProfile::builtin(&profile.name).ok();
+        if builtin.as_ref() == Some(&**profile) {
+            let args = (profile.name.clone(),);
+            return (slf.get_type().getattr("builtin")?, args).into_pyobject(py);
+        }
+        let text = enter(|| profile.to_toml().py())?;
+        let args = (text, format!("<pickled robot profile {:?}>", profile.name));
+        (slf.get_type().getattr("from_toml")?, args).into_pyobject(py)
+    }
+
+    /// A profile is immutable: a copy is the profile itself.
+    fn __copy__(slf: PyRef<'_, Self>) -> PyRef<'_, Self> {
+        slf
+    }
+
+    fn __deepcopy__<'py>(slf: PyRef<'py, Self>, _memo: &Bound<'py, PyDict>) -> PyRef<'py, Self> {
+        slf
+    }
+    #[getter]
+    fn body_radius(&self) -> PyResult<f64> {
+        enter(|| Ok(self.inner.body_radius))
+    }
+    #[getter]
+    fn wheel_radius(&self) -> PyResult<f64> {
+        enter(|| Ok(self.inner.wheel_radius))
+    }
+    #[getter]
+    fn axle_length(&self) -> PyResult<f64> {
+        enter(|| Ok(self.inner.axle_length))
+    }
+    #[getter]
+    fn max_wheel_speed(&self) -> PyResult<f64> {
+        enter(|| Ok(self.inner.max_wheel_speed))
+    }
+    #[getter]
+    fn encoder_resolution(&self) -> PyResult<f64> {
+        enter(|| Ok(self.inner.encoder_resolution))
+    }
+    /// Gains (left, right) of the motors: each wheel turns at its gain times the command.
+    #[getter]
+    fn motor_gains(&self) -> PyResult<(f64, f64)> {
+        enter(|| Ok((self.inner.motor_gains[0], self.inner.motor_gains[1])))
+    }
+    /// Multiplies every sensor model's relative noise.
+    #[getter]
+    fn noise_scale(&self) -> PyResult<f64> {
+        enter(|| Ok(self.inner.noise_scale))
+    }
+    /// Reflection factor of the walls as the infra-red sensors see them (1 = as the world has them).
+    #[getter]
+    fn wall_reflectance(&self) -> PyResult<f64> {
+        enter(|| Ok(self.inner.wall_reflectance))
+    }
+    /// Multiplies every ground sensor reading.
+    #[getter]
+    fn ground_gain(&self) -> PyResult<f64> {
+        enter(|| Ok(self.inner.ground_gain))
+    }
+    /// Fraction of the wheels' motion lost while the body touches a wall.
+    #[getter]
+    fn slip_on_contact(&self) -> PyResult<f64> {
+        enter(|| Ok(self.inner.slip_on_contact))
+    }
+    #[getter]
+    fn distance_sensor_names(&self) -> PyResult<Vec<String>> {
+        enter(|| {
+            Ok({
+                self.inner
+                    .distance_sensors
+                    .iter()
+                    .map(|s| s.name.clone())
+                    .collect()
+            })
+        })
+    }
+    #[getter]
+    fn distance_sensor_unit(&self) -> PyResult<String> {
+        enter(|| Ok(self.inner.distance_sensor_unit().to_string()))
+    }
+    /// Largest noise-free reading of any distance sensor (its table's largest output).
+    #[getter]
+    fn distance_sensor_max(&self) -> PyResult<f64> {
+        enter(|| {
+            Ok({
+                let tables = self.inner.distance_sensors.iter().map(|s| &s.model.table);
+                tables.map(|t| t.max_output()).fold(0.0, f64::max)
+            })
+        })
+    }
+    /// Range of the distance sensors in metres (the longest table's last input).
+    #[getter]
+    fn distance_sensor_range(&self) -> PyResult<f64> {
+        enter(|| {
+            Ok({
+                let tables = self.inner.distance_sensors.iter().map(|s| &s.model.table);
+                tables.map(|t| t.max_input()).fold(0.0, f64::max)
+            })
+        })
+    }
+    /// Largest noise-free reading of any ground sensor (its table's largest output).
+    #[getter]
+    fn ground_sensor_max(&self) -> PyResult<f64> {
+        enter(|| {
+            Ok({
+                let tables = self.inner.ground_sensors.iter().map(|s| &s.model.table);
+                tables.map(|t| t.max_output()).fold(0.0, f64::max)
+            })
+        })
+    }
+    #[getter]
+    fn ground_sensor_names(&self) -> PyResult<Vec<String>> {
+        enter(|| {
+            Ok({
+                self.inner
+                    .ground_sensors
+                    .iter()
+                    .map(|s| s.name.clone())
+                    .collect()
+            })
+        })
+    }
+
+    /// (N, 3) array: x, y, heading of each distance sensor in the robot frame.
+    fn distance_sensor_poses<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        enter(|| {
+            let rows = self
+                .inner
+                .distance_sensors
+                .iter()
+                .map(|s| [s.position[0], s.position[1], s.heading])
+                .collect();
+            rows_to_array(py, rows)
+        })
+    }
+
+    /// (N, 2) array: nearest and farthest distance in metres of each distance sensor's table.
+    fn distance_sensor_limits<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        enter(|| {
+            let rows = self
+                .inner
+                .distance_sensors
+                .iter()
+                .map(|s| [s.model.table.min_input(), s.model.table.max_input()])
+                .collect();
+            rows_to_array(py, rows)
+        })
+    }
+
+    /// Distance in metres at which distance sensor `index` reads `reading` off a white wall
+    /// (its table inverted, clamped to the table's distances).
+    fn distance_from_reading(&self, index: IntArg, reading: Real) -> PyResult<f64> {
+        enter(|| {
+            let index = index.count("index", usize::MAX)?;
+            let reading = reading.value("reading")?;
+            let sensors = &self.inner.distance_sensors;
+            let sensor = sensors
+                .get(index)
+                .ok_or_else(|| sensor_index_error("distance", sensors.len(), index))?;
+            if !reading.is_finite() {
+                return Err(crate::errors::to_py(mazesim_core::Error::InvalidArgument(
+                    format!(
+                        "expected a finite reading of distance sensor {}, found {reading}",
+                        sensor.name
+                    ),
+                )));
+            }
+            Ok(sensor.model.table.invert(reading))
+        })
+    }
+
+    /// Noise-free reading of ground sensor `index` over a floor of reflectance factor `f`.
+    fn ground_reading(&self, index: IntArg, reflectance: Real) -> PyResult<f64> {
+        enter(|| {
+            let index = index.count("index", usize::MAX)?;
+            let reflectance = reflectance.value("reflectance")?;
+            let sensors = &self.inner.ground_sensors;
+            let sensor = sensors
+                .get(index)
+                .ok_or_else(|| sensor_index_error("ground", sensors.len(), index))?;
+            if !(reflectance > 0.0 && reflectance <= 1.0) {
+                return Err(crate::errors::to_py(mazesim_core::Error::InvalidArgument(
+                    format!("expected a reflectance factor in (0, 1], found {reflectance}"),
+                )));
+            }
+            Ok(sensor.model.table.eval(sensor.model.height / reflectance).0)
+        })
+    }
+
+    /// (N, 2) array: x, y of each ground sensor in the robot frame.
+    fn ground_sensor_positions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        enter(|| {
+            let rows = self
+                .inner
+                .ground_sensors
+                .iter()
+                .map(|s| s.position)
+                .collect();
+            rows_to_array(py, rows)
+        })
+    }
+
+    fn __repr__(&self) -> PyResult<String> {
+        enter(|| Ok(format!("RobotProfile(name={:?})", self.inner.name)))
+    }
+}
