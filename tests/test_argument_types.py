@@ -118,6 +118,7 @@ def samples(tmp: Path) -> dict[str, Any]:
         "epsilon": 0.0,
         "threshold": 80.0,
         "max_speed": 6.28,
+        "active": None,
         "snapshot": {"restore": simulator.snapshot(), "restore_env": batch.snapshot_env(0)},
     }
 

@@ -54,6 +54,7 @@ from mazesim.learn.discretise import format_levels
 from mazesim.learn.higher import HigherLevel
 from mazesim.learn.higher_training import HigherTraining, train_higher
 from mazesim.learn.policy import HierarchicalPolicy, StepRecord
+from mazesim.learn.stretches import run_navigator_episodes, stretches_apply
 from mazesim.learn.subtasks import CONTROL_STEP_MS, SUBTASK_CODES, SUBTASK_NAMES
 from mazesim.learn.tables import TrainedPolicy
 from mazesim.maze import world_hash
@@ -210,8 +211,16 @@ def evaluate(
     recorder: RecorderFactory | None = None,
     controller: str = "hrl",
     progress: Callable[[str, int, int], None] | None = None,
+    multi_step: bool = True,
 ) -> Evaluation:
     """Runs greedy episodes of a navigator and measures them.
+
+    A greedy :class:`~mazesim.learn.policy.HierarchicalPolicy` with events from the ground truth
+    runs its corridor stretches in the core's multi-step call
+    (:func:`mazesim.learn.stretches.run_navigator_episodes`); the episodes to record (paths,
+    trace, replay) then run once more, one step at a time. Any other navigator (a flat one, one
+    that wraps ``act``) and decoder events run one step at a time. The results are the same
+    either way.
 
     Args:
         make_navigator: Builds the navigator of the robots from their world numbers (a
@@ -230,6 +239,7 @@ def evaluate(
             replay and videos); see :data:`RecorderFactory`.
         controller: The controller's name in the recorded run.
         progress: Called as ``progress("evaluate", episodes_done, episodes_total)``.
+        multi_step: Use the multi-step call where it applies; ``False``: one step at a time.
     """
     per_world = max(1, min(episodes_per_world, EVALUATION_ENVS // max(1, len(worlds))))
     world_of_env = np.repeat(np.arange(len(worlds)), per_world)
@@ -243,6 +253,33 @@ def evaluate(
         threads=threads,
     )
     navigator = make_navigator(world_of_env)
+    total = episodes_per_world * len(worlds)
+    finished = [0]
+    if progress is not None:
+        progress("evaluate", 0, total)
+
+    def on_end(robots: npt.NDArray[np.int64], arrived: npt.NDArray[np.bool_]) -> None:
+        finished[0] += robots.size
+        if progress is not None:
+            progress("evaluate", min(finished[0], total), total)
+
+    shortest = [shortest_path_steps(world) for world in worlds]
+    if multi_step and stretches_apply(nav, navigator):
+        results = run_navigator_episodes(nav, navigator, episodes_per_world, on_end)
+        evaluation = Evaluation(_summarise(results, shortest, events), results)
+        options = dict(
+            seed=seed,
+            events=events,
+            jitter=jitter,
+            max_steps=max_steps,
+            record_paths=record_paths,
+            trace=trace,
+            threads=threads,
+            recorder=recorder,
+            controller=controller,
+        )
+        _record_here(evaluation, make_navigator, worlds, episodes_per_world, options)
+        return evaluation
     recording = None if recorder is None else recorder(nav, navigator)
     evaluation = Evaluation(summary=_summarise([], [1.0], events), results=[])
     paths: dict[int, list[tuple[float, float]]] = {}
@@ -284,16 +321,6 @@ def evaluate(
         robots = np.flatnonzero(navigator.record.chosen >= 0)
         return robots, navigator.record.chosen[robots]
 
-    total = episodes_per_world * len(worlds)
-    finished = [0]
-    if progress is not None:
-        progress("evaluate", 0, total)
-
-    def on_end(robots: npt.NDArray[np.int64], arrived: npt.NDArray[np.bool_]) -> None:
-        finished[0] += robots.size
-        if progress is not None:
-            progress("evaluate", min(finished[0], total), total)
-
     results = run_episodes(
         nav,
         navigator if recording is None else recording,
@@ -302,7 +329,6 @@ def evaluate(
         on_end,
         decisions_of,
     )
-    shortest = [shortest_path_steps(world) for world in worlds]
     evaluation.summary = _summarise(results, shortest, events)
     evaluation.results = results
     evaluation.paths = {k: np.array(v) for k, v in paths.items()}
@@ -334,6 +360,7 @@ def evaluate_navigator(
     spread: Spreader | None = None,
     recorder: RecorderFactory | None = None,
     progress: Callable[[str, int, int], None] | None = None,
+    multi_step: bool = True,
 ) -> Report:
     """Evaluates a saved navigator with checkpoint events from each source (it writes nothing).
 
@@ -351,6 +378,9 @@ def evaluate_navigator(
         progress: Called as ``progress(stage, done, total)``: ``"adapt"`` while the higher level
             learns unseen worlds, then ``"evaluate"`` (``"evaluate robust"`` for the second
             source) over the episodes.
+        multi_step: Run the corridor stretches in the core's multi-step call where it applies
+            (see :func:`evaluate`); ``False``: every episode one step at a time. The results
+            are the same.
 
     Raises:
         PolicyFormatError: A flat navigator asked to drive a world it did not learn.
@@ -403,6 +433,7 @@ def evaluate_navigator(
             recorder=recorder if first else None,
             controller=policy.kind,
             progress=_staged(progress, "evaluate" if first else f"evaluate {source}"),
+            multi_step=multi_step,
         )
         summaries[source] = evaluation.summary
         evaluations[source] = evaluation
@@ -453,14 +484,29 @@ def _evaluate_spread(
         progress("evaluate", chunks.episodes, chunks.episodes)
     shortest = [shortest_path_steps(world) for world in worlds]
     evaluation = Evaluation(_summarise(results, shortest, options["events"]), results)
+    _record_here(evaluation, make_navigator, worlds, episodes_per_world, options)
+    return evaluation
+
+
+def _record_here(
+    evaluation: Evaluation,
+    make_navigator: NavigatorFactory,
+    worlds: Sequence[World],
+    episodes_per_world: int,
+    options: dict[str, Any],
+) -> None:
+    """Runs the first episodes of the first world again, one step at a time, for the paths,
+    the trace and the recorded run that ``options`` ask for (an episode ends the same way
+    whatever runs it), and puts them into ``evaluation``."""
     recorded = max(options["record_paths"], 1 if options["trace"] else 0)
     if options["recorder"] is not None:
         recorded = max(recorded, options["recorder"].episodes)
-    if recorded:
-        local = evaluate(make_navigator, worlds[:1], min(episodes_per_world, recorded), **options)
-        evaluation.paths, evaluation.marks, evaluation.trace = local.paths, local.marks, local.trace
-        evaluation.run = local.run
-    return evaluation
+    if not recorded:
+        return
+    options = {**options, "multi_step": False}
+    local = evaluate(make_navigator, worlds[:1], min(episodes_per_world, recorded), **options)
+    evaluation.paths, evaluation.marks, evaluation.trace = local.paths, local.marks, local.trace
+    evaluation.run = local.run
 
 
 def _trace_line(batch: EpisodeBatch, record: StepRecord, env: int) -> str:
