@@ -24,6 +24,7 @@ Example:
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import Union
 
 import numpy as np
 import numpy.typing as npt
@@ -32,10 +33,12 @@ from mazesim._core import BatchSimulator, RobotProfile, World
 from mazesim.actions import WHEEL_SPEED_FRACTIONS
 from mazesim.errors import InvalidArgumentError
 
-__all__ = ["CONTROL_STEP_MS", "RobotBatch", "cruise_step_length"]
+__all__ = ["CONTROL_STEP_MS", "RobotBatch", "RobotChoice", "cruise_step_length"]
 
 #: The control step of the report's navigator, in milliseconds.
 CONTROL_STEP_MS = 64.0
+#: A batch's robot: a profile's name, a :class:`RobotProfile`, or one of these per robot.
+RobotChoice = Union[str, RobotProfile, Sequence[Union[str, RobotProfile]]]
 
 
 def cruise_step_length(robot: RobotProfile, control_step_ms: float = CONTROL_STEP_MS) -> float:
@@ -51,7 +54,8 @@ class RobotBatch:
     Args:
         worlds: The worlds; robot ``i`` starts in ``worlds[world_of_env[i]]``.
         world_of_env: (N,) index of each robot's world.
-        robot: The robot profile's name.
+        robot: The robot profile's name (see :data:`RobotChoice`; this core's batch takes a
+            name only).
         noise: Sensor noise on or off.
         control_step_ms: The control step.
         threads: Worker threads (0: one per core); results do not depend on it.
@@ -70,7 +74,7 @@ class RobotBatch:
         self,
         worlds: Sequence[World],
         world_of_env: npt.ArrayLike,
-        robot: str = "seed",
+        robot: RobotChoice = "seed",
         noise: bool = True,
         control_step_ms: float = CONTROL_STEP_MS,
         threads: int = 0,
@@ -88,6 +92,11 @@ class RobotBatch:
             bad = low if low < 0 else high
             raise InvalidArgumentError(
                 f"expected world indices from 0 to {len(self.worlds) - 1}, found {bad}"
+            )
+        if not isinstance(robot, str):
+            raise InvalidArgumentError(
+                "expected a robot profile name (str): this batch takes no RobotProfile or "
+                f"profile per robot, found a {type(robot).__name__}"
             )
         self.num_envs = count
         self.control_step_ms = float(control_step_ms)

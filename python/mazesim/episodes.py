@@ -28,7 +28,7 @@ import numpy.typing as npt
 from mazesim._core import RobotProfile, World
 from mazesim._seeding import seed_sequence
 from mazesim._seeding import stream as random_stream
-from mazesim.batch import CONTROL_STEP_MS, RobotBatch, cruise_step_length
+from mazesim.batch import CONTROL_STEP_MS, RobotBatch, RobotChoice, cruise_step_length
 from mazesim.errors import InvalidArgumentError
 from mazesim.maze import CellMaze
 
@@ -89,6 +89,7 @@ class EpisodeBatch:
         events: ``"truth"`` or ``"robust"`` (see the module).
         control_step_ms: The control step.
         threads: Worker threads of the batch (0: one per core).
+        robot: The robots (:data:`mazesim.batch.RobotChoice`), handed to the batch as given.
 
     Raises:
         InvalidArgumentError: A world has no goal, or a bad argument.
@@ -107,6 +108,7 @@ class EpisodeBatch:
         events: str = "truth",
         control_step_ms: float = CONTROL_STEP_MS,
         threads: int = 0,
+        robot: RobotChoice = "seed",
     ) -> None:
         if events not in EVENT_SOURCES:
             raise InvalidArgumentError(
@@ -124,7 +126,12 @@ class EpisodeBatch:
         if world_of_env is None:
             world_of_env = np.zeros(num_envs, dtype=np.int64)
         self.batch = RobotBatch(
-            self.worlds, world_of_env, noise=noise, control_step_ms=control_step_ms, threads=threads
+            self.worlds,
+            world_of_env,
+            robot=robot,
+            noise=noise,
+            control_step_ms=control_step_ms,
+            threads=threads,
         )
         self.world_of_env = self.batch.world_of_env
         count = self.num_envs = self.batch.num_envs

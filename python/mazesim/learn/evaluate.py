@@ -40,6 +40,7 @@ import numpy.typing as npt
 from mazesim._core import World, generate_maze
 from mazesim._seeding import stream_seeds
 from mazesim.actions import ACTION_CODES, ACTIONS
+from mazesim.batch import RobotChoice
 from mazesim.episodes import (
     MAX_STEPS,
     EpisodeBatch,
@@ -123,9 +124,18 @@ def navigator_for(
     seed: int = 0,
     threads: int = 0,
     progress: Callable[[str, int, int], None] | None = None,
+    robot: RobotChoice = "seed",
 ) -> tuple[HigherLevel, bool]:
     """The higher level to drive ``worlds`` with: the policy's own when it is the world it
     learned, else one trained there for :data:`ADAPT_EPISODES` episodes per world.
+
+    Args:
+        policy: The navigator.
+        worlds: The worlds to drive.
+        seed: Seed of the adaptation's episodes and exploration.
+        threads: Worker threads of the batch.
+        progress: Called as ``progress("adapt", episodes_done, episodes_total)``.
+        robot: The robots of the adaptation (:data:`mazesim.batch.RobotChoice`).
 
     Returns:
         The higher level (one table per world) and whether it was trained here.
@@ -141,7 +151,9 @@ def navigator_for(
         if progress is not None:
             progress("adapt", done, total)
 
-    level, _ = train_higher(policy.lower_q, worlds, settings, threads=threads, progress=adapting)
+    level, _ = train_higher(
+        policy.lower_q, worlds, settings, threads=threads, progress=adapting, robot=robot
+    )
     return level, True
 
 
@@ -212,6 +224,7 @@ def evaluate(
     controller: str = "hrl",
     progress: Callable[[str, int, int], None] | None = None,
     multi_step: bool = True,
+    robot: RobotChoice = "seed",
 ) -> Evaluation:
     """Runs greedy episodes of a navigator and measures them.
 
@@ -240,6 +253,7 @@ def evaluate(
         controller: The controller's name in the recorded run.
         progress: Called as ``progress("evaluate", episodes_done, episodes_total)``.
         multi_step: Use the multi-step call where it applies; ``False``: one step at a time.
+        robot: The robots (:data:`mazesim.batch.RobotChoice`), handed to the batch as given.
     """
     per_world = max(1, min(episodes_per_world, EVALUATION_ENVS // max(1, len(worlds))))
     world_of_env = np.repeat(np.arange(len(worlds)), per_world)
@@ -251,6 +265,7 @@ def evaluate(
         max_steps=max_steps,
         events=events,
         threads=threads,
+        robot=robot,
     )
     navigator = make_navigator(world_of_env)
     total = episodes_per_world * len(worlds)
@@ -277,6 +292,7 @@ def evaluate(
             threads=threads,
             recorder=recorder,
             controller=controller,
+            robot=robot,
         )
         _record_here(evaluation, make_navigator, worlds, episodes_per_world, options)
         return evaluation
@@ -361,6 +377,7 @@ def evaluate_navigator(
     recorder: RecorderFactory | None = None,
     progress: Callable[[str, int, int], None] | None = None,
     multi_step: bool = True,
+    robot: RobotChoice = "seed",
 ) -> Report:
     """Evaluates a saved navigator with checkpoint events from each source (it writes nothing).
 
@@ -381,11 +398,18 @@ def evaluate_navigator(
         multi_step: Run the corridor stretches in the core's multi-step call where it applies
             (see :func:`evaluate`); ``False``: every episode one step at a time. The results
             are the same.
+        robot: The robots of the evaluation and of the higher level's adaptation
+            (:data:`mazesim.batch.RobotChoice`), handed to the batches as given; the seed
+            robot's only with ``spread``.
 
     Raises:
         PolicyFormatError: A flat navigator asked to drive a world it did not learn.
         MissingDependencyError: ``spread`` needs a package that is not installed.
     """
+    if spread is not None and not (isinstance(robot, str) and robot == "seed"):
+        raise InvalidArgumentError(
+            f"expected the seed robot for an evaluation spread in chunks, found {robot!r}"
+        )
     adapted = False
     make_navigator: NavigatorFactory
     if policy.kind == "flat":
@@ -401,7 +425,7 @@ def evaluate_navigator(
 
     else:
         level, adapted = navigator_for(
-            policy, worlds, seed=seed, threads=threads, progress=progress
+            policy, worlds, seed=seed, threads=threads, progress=progress, robot=robot
         )
         lower_q = policy.lower_q
         assert lower_q is not None
@@ -434,6 +458,7 @@ def evaluate_navigator(
             controller=policy.kind,
             progress=_staged(progress, "evaluate" if first else f"evaluate {source}"),
             multi_step=multi_step,
+            robot=robot,
         )
         summaries[source] = evaluation.summary
         evaluations[source] = evaluation

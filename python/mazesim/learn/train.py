@@ -34,6 +34,7 @@ from typing import Any
 
 from mazesim import load_world
 from mazesim._core import World
+from mazesim.batch import RobotChoice
 from mazesim.episodes import EpisodeResult, shortest_path_steps
 from mazesim.errors import InvalidArgumentError, PolicyFormatError
 from mazesim.learn.baseline import train_flat
@@ -169,6 +170,7 @@ def run_training(
     threads: int = 0,
     progress: ProgressFn | None = None,
     checkpoint: CheckpointFn | None = None,
+    robot: RobotChoice = "seed",
 ) -> TrainingRun | None:
     """The training pipeline: the lower level round by round, then the higher level on ``world``.
 
@@ -184,6 +186,8 @@ def run_training(
         threads: Worker threads of the simulator (0: one per core); results do not depend on it.
         progress: See :data:`ProgressFn`.
         checkpoint: See :data:`CheckpointFn`.
+        robot: The robots of both stages (:data:`mazesim.batch.RobotChoice`: a profile's name,
+            a :class:`~mazesim.RobotProfile`, or one per robot), handed to the batches as given.
 
     Returns:
         The run, or None when ``checkpoint`` stopped it.
@@ -194,7 +198,7 @@ def run_training(
     started = time.perf_counter()
     rounds = lower.rounds
     if next_round < rounds:
-        trainer = LowerTrainer(lower, tables, threads=threads)
+        trainer = LowerTrainer(lower, tables, threads=threads, robot=robot)
         for round_index in range(next_round, rounds):
             stats = trainer.run_round(round_index)
             stats_seen.append(stats)
@@ -213,7 +217,7 @@ def run_training(
             progress("higher", done, total)
 
     level, results = train_higher(
-        tables.q, [world], higher, threads=threads, progress=higher_progress
+        tables.q, [world], higher, threads=threads, progress=higher_progress, robot=robot
     )
     return TrainingRun(
         tables=tables,
@@ -249,6 +253,7 @@ def train(
     progress: ProgressFn | None = None,
     threads: int = 0,
     stop_after_rounds: int | None = None,
+    robot: RobotChoice = "seed",
 ) -> TrainedPolicy | None:
     """Trains a navigator (:func:`run_training`) with checkpoints in ``out``, and saves it there.
 
@@ -260,6 +265,7 @@ def train(
         threads: Worker threads of the simulator (0: one per core); results do not depend on it.
         stop_after_rounds: Stop (as if interrupted) after this many lower-level rounds in this
             call, leaving the checkpoint; for tests.
+        robot: The robots (see :func:`run_training`).
 
     Returns:
         The trained navigator, or None when stopped early by ``stop_after_rounds``.
@@ -316,6 +322,7 @@ def train(
         threads=threads,
         progress=progress,
         checkpoint=save,
+        robot=robot,
     )
     if run is None:
         return None
