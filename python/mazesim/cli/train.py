@@ -92,12 +92,19 @@ def register(commands: Any) -> None:
         action="store_true",
         help="train the flat Q-learning baseline on --world instead, for --steps env-steps",
     )
+    train.add_argument(
+        "--tensorboard",
+        action="store_true",
+        help="also log the learning curve to TensorBoard event files in --out/tensorboard "
+        "(needs pip install 'mazesim[tensorboard]'); --out/learning_curve.csv is always written",
+    )
     add_progress_option(train)
     train.set_defaults(run=lambda args: run_train(args, sys.stdout))
 
 
 def run_train(args: argparse.Namespace, out: TextIO) -> int:
     """Runs ``mazesim train``."""
+    from mazesim.cli.learning_curve import CURVE_FILE, LearningCurve
     from mazesim.learn.train import (
         TrainSettings,
         command_line_fields,
@@ -106,25 +113,26 @@ def run_train(args: argparse.Namespace, out: TextIO) -> int:
     )
 
     refuse_overwriting_inputs(
-        output_files(args.out, ("tables.npz", "policy.json", "checkpoint.npz")),
+        output_files(args.out, ("tables.npz", "policy.json", "checkpoint.npz", CURVE_FILE)),
         [("--world", args.world)],
     )
     settings = TrainSettings(**{f.name: getattr(args, f.name) for f in command_line_fields()})
+    curve = LearningCurve(Path(args.out), tensorboard=args.tensorboard)
     started = time.perf_counter()
     if args.flat:
         if args.resume:
             raise InvalidArgumentError("--resume continues hierarchical runs only, not --flat")
-        with progress_display(args, units=_UNITS) as progress:
-            policy = train_flat_policy(settings, args.out, progress=progress)
+        with curve, progress_display(args, units=_UNITS) as progress:
+            policy = train_flat_policy(settings, args.out, progress=progress, curve=curve)
         seconds = time.perf_counter() - started
         out.write(
             f"trained the flat baseline for {policy.world_name} in {seconds:.0f} s "
             f"({settings.steps} env-steps)\nwrote {Path(args.out) / 'tables.npz'}, "
-            f"{Path(args.out) / 'policy.json'}\n"
+            f"{Path(args.out) / 'policy.json'}, {curve.path}\n"
         )
         return 0
-    with progress_display(args, units=_UNITS) as progress:
-        result = train(settings, args.out, resume=args.resume, progress=progress)
+    with curve, progress_display(args, units=_UNITS) as progress:
+        result = train(settings, args.out, resume=args.resume, progress=progress, curve=curve)
     if result is None:
         return 0
     seconds = time.perf_counter() - started
@@ -135,7 +143,8 @@ def run_train(args: argparse.Namespace, out: TextIO) -> int:
         f"higher level {info['higher_seconds']:.0f} s)\n"
         f"higher-level training: {100 * info['higher_success_last_100']:.0f}% of the last 100 "
         f"episodes reached the goal\n"
-        f"wrote {Path(args.out) / 'tables.npz'}, {Path(args.out) / 'policy.json'}\n"
+        f"wrote {Path(args.out) / 'tables.npz'}, {Path(args.out) / 'policy.json'}, "
+        f"{curve.path}\n"
         f"evaluate it with: mazesim eval --policy {args.out}\n"
     )
     return 0
