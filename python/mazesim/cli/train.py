@@ -14,7 +14,7 @@ from pathlib import Path
 from typing import Any, TextIO
 
 from mazesim._paths import output_files, output_path, refuse_overwriting_inputs
-from mazesim.cli._args import positive_int, seed_argument
+from mazesim.cli._args import add_setting_options, positive_int, seed_argument
 from mazesim.cli.progress import add_progress_option, progress_display
 from mazesim.errors import InvalidArgumentError
 
@@ -50,7 +50,7 @@ def step_count(text: str) -> int:
 
 def register(commands: Any) -> None:
     """Adds ``train`` to the ``mazesim`` command's subparsers."""
-    from mazesim.learn.train import TrainSettings, command_line_fields
+    from mazesim.learn.train import TrainSettings
 
     defaults = TrainSettings()
     train = commands.add_parser(
@@ -67,14 +67,7 @@ def register(commands: Any) -> None:
         ),
     )
     option_types = {"envs": positive_int, "steps": step_count, "seed": seed_argument}
-    for setting in command_line_fields():
-        train.add_argument(
-            f"--{setting.name}",
-            type=option_types.get(setting.name, str),
-            default=getattr(defaults, setting.name),
-            metavar=setting.metadata["metavar"],
-            help=f"{setting.metadata['help']} (default: %(default)s)",
-        )
+    add_setting_options(train, defaults, option_types)
     train.add_argument(
         "--out",
         type=output_path,

@@ -28,6 +28,7 @@ nothing of the viewers.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections import Counter
 from collections.abc import Callable, Mapping, Sequence
@@ -42,6 +43,7 @@ from mazesim._seeding import stream_seeds
 from mazesim.actions import ACTION_CODES, ACTIONS
 from mazesim.batch import RobotChoice
 from mazesim.episodes import (
+    EVENT_SOURCES,
     MAX_STEPS,
     EpisodeBatch,
     EpisodeResult,
@@ -61,7 +63,9 @@ from mazesim.learn.tables import TrainedPolicy
 from mazesim.maze import world_hash
 
 __all__ = [
+    "ADAPTATION",
     "ADAPT_EPISODES",
+    "EvalSettings",
     "Evaluation",
     "Report",
     "Summary",
@@ -71,8 +75,11 @@ __all__ = [
     "unseen_mazes",
 ]
 
+#: How the higher level trains in worlds it has not seen: at most 200 episodes per maze, 8
+#: robots per maze (the seed is the evaluation's).
+ADAPTATION = HigherTraining(episodes_per_world=200, envs_per_world=8)
 #: Episodes the higher level may train in a world it has not seen, per maze.
-ADAPT_EPISODES = 200
+ADAPT_EPISODES = ADAPTATION.episodes_per_world
 #: Robots stepped side by side in an evaluation (at most).
 EVALUATION_ENVS = 500
 
@@ -111,6 +118,66 @@ class Evaluation:
     run: Any = None
 
 
+@dataclass(frozen=True)
+class EvalSettings:
+    """What ``mazesim eval`` measures: its options are these fields (the defaults are the only
+    ones, the help texts are the metadata's)."""
+
+    policy: str | None = field(
+        default=None,
+        metadata={
+            "help": "folder of a saved navigator",
+            "metavar": "DIR",
+            "default_text": "the one shipped for seed-maze",
+        },
+    )
+    world: str | None = field(
+        default=None,
+        metadata={
+            "help": "a built-in world, a world file, or 'random' for unseen generated mazes",
+            "metavar": "NAME|PATH|random",
+            "default_text": "the navigator's world",
+        },
+    )
+    episodes: int = field(
+        default=200,
+        metadata={
+            "help": "evaluation episodes (with 'random': spread over --mazes mazes)",
+            "metavar": "N",
+        },
+    )
+    mazes: int = field(
+        default=100, metadata={"help": "unseen mazes of --world random", "metavar": "M"}
+    )
+    seed: int = field(
+        default=0,
+        metadata={
+            "help": "seed of the episodes' start jitter and sensor noise, and of the random mazes",
+            "metavar": "S",
+        },
+    )
+    events: str = field(
+        default="both",
+        metadata={
+            "help": "checkpoint events from the simulator's ground truth, from the robust barcode "
+            "decoder, or both, reported side by side",
+            "choices": (*EVENT_SOURCES, "both"),
+        },
+    )
+    max_steps: int = field(
+        default=MAX_STEPS,
+        metadata={
+            "help": "control steps (64 ms) after which an episode fails",
+            "metavar": "N",
+        },
+    )
+
+    @property
+    def sources(self) -> list[str]:
+        """The event sources to evaluate with, in order."""
+        return list(EVENT_SOURCES) if self.events == "both" else [self.events]
+
+
 def unseen_mazes(count: int, seed: int) -> list[World]:
     """``count`` generated 5 x 5 perfect mazes for testing; their seeds derive from ``seed`` on a
     stream no training run uses."""
@@ -145,7 +212,7 @@ def navigator_for(
     if len(worlds) == 1 and world_hash(worlds[0]) == policy.world_sha256:
         level = HigherLevel([policy.checkpoint_ids], q=policy.higher_q[None])
         return level, False
-    settings = HigherTraining(episodes_per_world=ADAPT_EPISODES, seed=seed)
+    settings = dataclasses.replace(ADAPTATION, seed=seed)
 
     def adapting(done: int, total: int, recent: float) -> None:
         if progress is not None:

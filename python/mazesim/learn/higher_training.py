@@ -35,10 +35,12 @@ __all__ = [
 
 @dataclass(frozen=True)
 class HigherTraining:
-    """How the higher level trains on its worlds."""
+    """How the higher level trains on its worlds; the defaults are ``mazesim train``'s (the
+    adaptation to unseen worlds of :func:`mazesim.learn.evaluate.navigator_for` is
+    :data:`mazesim.learn.evaluate.ADAPTATION`)."""
 
-    episodes_per_world: int = 200
-    envs_per_world: int = 8
+    episodes_per_world: int = 400
+    envs_per_world: int = 32
     epsilon_start: float = 0.2
     greedy_share: float = 0.3
     max_steps: int = MAX_STEPS

@@ -97,8 +97,8 @@ class TrainSettings:
         metadata={"help": "seed of everything random in the run", "metavar": "S"},
     )
     maze_pool: int = LowerSettings.maze_pool
-    higher_episodes: int = 400
-    higher_envs: int = 32
+    higher_episodes: int = HigherTraining.episodes_per_world
+    higher_envs: int = HigherTraining.envs_per_world
     higher_max_steps: int = HigherTraining.max_steps
     checkpoint_seconds: float = 30.0
 
