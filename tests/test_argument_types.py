@@ -119,6 +119,7 @@ def samples(tmp: Path) -> dict[str, Any]:
         "threshold": 80.0,
         "max_speed": 6.28,
         "active": None,
+        "hold_spins": False,
         "snapshot": {"restore": simulator.snapshot(), "restore_env": batch.snapshot_env(0)},
     }
 

@@ -7,14 +7,18 @@ import numpy as np
 import pytest
 
 import mazesim
+from mazesim.actions import ACTION_CODES
 from mazesim.episodes import EpisodeBatch, run_episodes
 from mazesim.errors import InvalidArgumentError
+from mazesim.learn import policy as policy_module
 from mazesim.learn.evaluate import evaluate_navigator
 from mazesim.learn.higher import HigherLevel
-from mazesim.learn.policy import HierarchicalPolicy
+from mazesim.learn.policy import HierarchicalPolicy, hold_spins
 from mazesim.learn.stretches import run_navigator_episodes, stretches_apply
 from mazesim.learn.tables import load_policy
 from mazesim.maze import checkpoint_ids
+
+RIGHT, LEFT, FORWARD = (ACTION_CODES.index(code) for code in ("aa", "bb", "00"))
 
 
 def decisions_of(policy: HierarchicalPolicy) -> tuple[np.ndarray, np.ndarray]:
@@ -22,11 +26,30 @@ def decisions_of(policy: HierarchicalPolicy) -> tuple[np.ndarray, np.ndarray]:
     return robots, policy.record.chosen[robots]
 
 
+def test_a_corridor_robot_keeps_its_turn_on_the_spot() -> None:
+    spins = np.array([RIGHT, LEFT, RIGHT, LEFT, FORWARD, LEFT])
+    previous = np.array([LEFT, RIGHT, RIGHT, -1, RIGHT, RIGHT])
+    corridor = np.array([True, True, True, True, True, False])
+    np.testing.assert_array_equal(
+        hold_spins(spins, previous, corridor), [LEFT, RIGHT, RIGHT, LEFT, FORWARD, LEFT]
+    )
+
+
 @pytest.mark.parametrize("stretch_steps", [1, 256])
-def test_stretches_equal_single_steps_in_unseen_mazes(stretch_steps: int) -> None:
+def test_stretches_equal_single_steps_in_unseen_mazes(
+    stretch_steps: int, monkeypatch: pytest.MonkeyPatch
+) -> None:
     """Random higher-level values (so every sub-task runs), a checkpoint the higher level does
-    not know (its events are ignored), a short step limit (so some episodes fail), and fewer
-    robots than episodes (robots wait with none left)."""
+    not know (its events are ignored), a short step limit (so some episodes fail), fewer
+    robots than episodes (robots wait with none left), and turns on the spot held."""
+    held = [0]
+
+    def counting(actions: np.ndarray, previous: np.ndarray, where: np.ndarray) -> np.ndarray:
+        kept = hold_spins(actions, previous, where)
+        held[0] += int(np.count_nonzero(kept != actions))
+        return kept
+
+    monkeypatch.setattr(policy_module, "hold_spins", counting)
     shipped = load_policy(None)
     assert shipped.lower_q is not None
     worlds = [mazesim.generate_maze(5, 5, seed=300 + i) for i in range(3)]
@@ -58,6 +81,7 @@ def test_stretches_equal_single_steps_in_unseen_mazes(stretch_steps: int) -> Non
     arrived = [r.arrived for r in fast]
     assert any(arrived) and not all(arrived), "expected both ends of an episode to be covered"
     assert {option for r in fast for _, option in r.decisions} == {0, 1, 2, 3}
+    assert held[0] > 0, "expected turns on the spot kept in the per-step loop"
 
 
 def test_evaluation_is_the_same_either_way_with_trace_and_paths() -> None:

@@ -371,7 +371,8 @@ fn step_one(
     };
     let mut ended = false;
     if !standing {
-        decision = controller.decide(index, env.distance_sensors(), max_speed, stream);
+        let last = env.wheel_speeds();
+        decision = controller.decide(index, env.distance_sensors(), last, max_speed, stream);
         let [left, right] = decision.wheel_speeds;
         // The controllers give finite speeds, so a step cannot fail.
         let _ = env.step(left as f64, right as f64);

@@ -241,8 +241,8 @@ impl PyBatch {
     #[pyo3(signature = (steps, controller, observations, poses, colliding, crossings, *, seeds = None,
         max_episode_steps = IntArg::ZERO, end_at_goal = Flag::Value(false), end_at_crossing = Flag::Value(false), autoreset = Flag::Value(true), trace = None,
         table = None, allowed_actions = None, table_index = None, epsilon = Real::Number(0.0),
-        threshold = Real::Number(80.0), max_speed = Real::Number(EPUCK_MAX_SPEED), active = None),
-        text_signature = "($self, steps, controller, observations, poses, colliding, crossings, *, seeds=None, max_episode_steps=0, end_at_goal=False, end_at_crossing=False, autoreset=True, trace=None, table=None, allowed_actions=None, table_index=None, epsilon=0.0, threshold=80.0, max_speed=6.28, active=None)")]
+        threshold = Real::Number(80.0), max_speed = Real::Number(EPUCK_MAX_SPEED), active = None, hold_spins = Flag::Value(false)),
+        text_signature = "($self, steps, controller, observations, poses, colliding, crossings, *, seeds=None, max_episode_steps=0, end_at_goal=False, end_at_crossing=False, autoreset=True, trace=None, table=None, allowed_actions=None, table_index=None, epsilon=0.0, threshold=80.0, max_speed=6.28, active=None, hold_spins=False)")]
     fn run<'py>(
         &self,
         py: Python<'py>,
@@ -265,6 +265,7 @@ impl PyBatch {
         threshold: Real,
         max_speed: Real,
         active: Option<&Bound<'py, PyAny>>,
+        hold_spins: Flag,
     ) -> PyResult<Bound<'py, PyDict>> {
         enter(|| {
             let n = self.n;
@@ -294,6 +295,7 @@ impl PyBatch {
                 allowed_actions,
                 table_index,
                 epsilon,
+                hold_spins,
             };
             let controller = run::controller(&controller, n, threshold, max_speed, tabular)?;
             let seeds = match seeds {

@@ -7,8 +7,10 @@ drive each such robot for up to :data:`STRETCH_STEPS` control steps in one call,
 crosses a barcode, reaches the goal or runs out of steps; the higher level then decides in
 Python, as :meth:`~mazesim.learn.policy.HierarchicalPolicy.act` does at every step. A door
 sub-task reads its odometry phase after every step, so its robots go one step per call, from
-the table of their sub-task and phase; the corridor robots stand still meanwhile. Robots are
-independent (each draws only from its own noise stream), so a robot may run ahead of another.
+the table of their sub-task and phase; the corridor robots stand still meanwhile. The core
+keeps a corridor robot's turn on the spot as :func:`mazesim.learn.policy.hold_spins` does.
+Robots are independent (each draws only from its own noise stream), so a robot may run ahead of
+another.
 
 Every episode ends as it does through :func:`mazesim.episodes.run_episodes` one step at a time:
 the same actions, steps, contacts, bumps and decisions, bit for bit (the tests compare both).
@@ -100,7 +102,7 @@ def run_navigator_episodes(
         steps = np.zeros(count, dtype=np.int64)
         contacts = np.zeros(count, dtype=np.int64)
         goals = np.zeros(count, dtype=np.int64)
-        for robots, length in ((active & ~door, stretch_steps), (door, 1)):
+        for robots, length, corridor in ((active & ~door, stretch_steps, True), (door, 1, False)):
             if not robots.any():
                 continue
             # Only the tables these robots act from go to the core (each call copies them).
@@ -120,6 +122,7 @@ def run_navigator_episodes(
                 allowed_actions=allowed[used],
                 table_index=np.minimum(np.searchsorted(used, table_index), used.size - 1),
                 active=robots,
+                hold_spins=corridor,
             )
             steps += counters["steps"].astype(np.int64)
             contacts += counters["steps_in_contact"].astype(np.int64)
