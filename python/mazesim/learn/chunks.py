@@ -30,7 +30,6 @@ from mazesim._core import World
 from mazesim.episodes import EpisodeBatch, EpisodeResult, run_episodes
 from mazesim.errors import InvalidArgumentError
 from mazesim.learn.higher import HigherLevel
-from mazesim.learn.stretches import run_navigator_episodes, stretches_apply
 from mazesim.learn.subtasks import NUM_SUBTASKS
 
 __all__ = ["NavigatorEpisodes"]
@@ -161,11 +160,7 @@ class NavigatorEpisodes:
                 robots = np.flatnonzero(navigator.record.chosen >= 0)
                 return robots, navigator.record.chosen[robots]
 
-            if stretches_apply(nav, navigator):
-                results = run_navigator_episodes(nav, navigator, 1)
-            else:
-                results = run_episodes(nav, navigator, 1, None, None, decisions_of)
-            for result in results:
+            for result in run_episodes(nav, navigator, 1, None, None, decisions_of):
                 row = result.episode - first
                 arrays["arrived"][row] = result.arrived
                 arrays["steps"][row] = result.steps

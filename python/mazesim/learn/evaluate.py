@@ -290,17 +290,18 @@ def evaluate(
     recorder: RecorderFactory | None = None,
     controller: str = "hrl",
     progress: Callable[[str, int, int], None] | None = None,
-    multi_step: bool = True,
+    multi_step: bool = False,
     robot: RobotChoice = "seed",
 ) -> Evaluation:
     """Runs greedy episodes of a navigator and measures them.
 
-    A greedy :class:`~mazesim.learn.policy.HierarchicalPolicy` with events from the ground truth
-    runs its corridor stretches in the core's multi-step call
+    With ``multi_step``, a greedy :class:`~mazesim.learn.policy.HierarchicalPolicy` with events
+    from the ground truth runs its corridor stretches in the core's multi-step call
     (:func:`mazesim.learn.stretches.run_navigator_episodes`); the episodes to record (paths,
     trace, replay) then run once more, one step at a time. Any other navigator (a flat one, one
     that wraps ``act``) and decoder events run one step at a time. The results are the same
-    either way.
+    either way; on seed-maze with 500 robots side by side one step at a time is the faster (the
+    door sub-tasks, half the steps, go one step per call either way), hence the default.
 
     Args:
         make_navigator: Builds the navigator of the robots from their world numbers (a
@@ -319,7 +320,8 @@ def evaluate(
             replay and videos); see :data:`RecorderFactory`.
         controller: The controller's name in the recorded run.
         progress: Called as ``progress("evaluate", episodes_done, episodes_total)``.
-        multi_step: Use the multi-step call where it applies; ``False``: one step at a time.
+        multi_step: Use the multi-step call where it applies; ``False`` (the default): one step
+            at a time.
         robot: The robots (:data:`mazesim.batch.RobotChoice`), handed to the batch as given.
     """
     per_world = max(1, min(episodes_per_world, EVALUATION_ENVS // max(1, len(worlds))))
@@ -443,7 +445,7 @@ def evaluate_navigator(
     spread: Spreader | None = None,
     recorder: RecorderFactory | None = None,
     progress: Callable[[str, int, int], None] | None = None,
-    multi_step: bool = True,
+    multi_step: bool = False,
     robot: RobotChoice = "seed",
 ) -> Report:
     """Evaluates a saved navigator with checkpoint events from each source (it writes nothing).
@@ -463,8 +465,8 @@ def evaluate_navigator(
             learns unseen worlds, then ``"evaluate"`` (``"evaluate robust"`` for the second
             source) over the episodes.
         multi_step: Run the corridor stretches in the core's multi-step call where it applies
-            (see :func:`evaluate`); ``False``: every episode one step at a time. The results
-            are the same.
+            (see :func:`evaluate`); ``False`` (the default): every episode one step at a time.
+            The results are the same.
         robot: The robots of the evaluation and of the higher level's adaptation
             (:data:`mazesim.batch.RobotChoice`), handed to the batches as given; the seed
             robot's only with ``spread``.
