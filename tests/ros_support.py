@@ -2,13 +2,37 @@
 
 from __future__ import annotations
 
+import json
 import shutil
 import subprocess
 import sys
+import uuid
+from pathlib import Path
+from typing import Any
 
 import pytest
 
-__all__ = ["needs_ros", "ros_available"]
+from mazesim.ros import local_master
+from mazesim.ros.local_master import LocalMaster
+
+__all__ = [
+    "MAZESIM",
+    "PROBE",
+    "REPO",
+    "needs_ros",
+    "processes_with",
+    "ros_available",
+    "run_probe",
+    "spawn_bridge",
+    "spawn_launch",
+]
+
+#: The repository's root folder.
+REPO = Path(__file__).resolve().parents[1]
+#: The ROS client the tests run against a bridge (``ros_probe.py``).
+PROBE = Path(__file__).with_name("ros_probe.py")
+#: The ``mazesim`` command of this interpreter.
+MAZESIM = (sys.executable, "-m", "mazesim")
 
 
 def ros_available() -> bool:
@@ -28,3 +52,39 @@ def ros_available() -> bool:
 needs_ros = pytest.mark.skipif(
     not ros_available(), reason="ROS 1 is not installed (run 'make ros-deps')"
 )
+
+
+def run_probe(master: LocalMaster, *args: str) -> dict[str, Any]:
+    result = subprocess.run(
+        [sys.executable, str(PROBE), *args],
+        env=master.env,
+        capture_output=True,
+        text=True,
+        timeout=60,
+        check=False,
+    )
+    assert result.returncode == 0, result.stdout + result.stderr
+    return dict(json.loads(result.stdout.strip().splitlines()[-1]))
+
+
+def spawn_bridge(master: LocalMaster, *options: str) -> subprocess.Popen[bytes]:
+    return master.spawn("bridge", [*MAZESIM, "ros", "bridge", *options])
+
+
+def spawn_launch(
+    master: LocalMaster, launch_file: str, *args: str, **env: str
+) -> tuple[subprocess.Popen[bytes], str]:
+    """Runs ``roslaunch mazesim_ros LAUNCH_FILE ARGS`` in the package folder of the repository;
+    returns the process and the tag in its environment (for :func:`processes_with`)."""
+    tag = uuid.uuid4().hex
+    launch = master.spawn(
+        "roslaunch",
+        ["roslaunch", "mazesim_ros", launch_file, *args],
+        env={"ROS_PACKAGE_PATH": str(REPO / "ros"), "MAZESIM_TEST_LAUNCH": tag, **env},
+    )
+    return launch, tag
+
+
+def processes_with(variable: str, value: str) -> list[int]:
+    """PIDs of running (not zombie) processes whose environment has variable=value."""
+    return [pid for pid, _ in local_master.processes_with(variable, value)]

@@ -118,6 +118,8 @@ def samples(tmp: Path) -> dict[str, Any]:
         "epsilon": 0.0,
         "threshold": 80.0,
         "max_speed": 6.28,
+        "active": None,
+        "hold_spins": False,
         "snapshot": {"restore": simulator.snapshot(), "restore_env": batch.snapshot_env(0)},
         "wheel_radius_scale": 1.05,
         "axle_length_scale": 0.95,

@@ -361,6 +361,8 @@ class BatchSimulator:
         epsilon: float = 0.0,
         threshold: float = 80.0,
         max_speed: float = 6.28,
+        active: npt.NDArray[np.bool_] | None = None,
+        hold_spins: bool = False,
     ) -> dict[str, npt.NDArray[np.uint64]]:
         """Runs ``steps`` control steps of every env in one call, the GIL released, each env's
         wheel speeds chosen in the core by a built-in controller.
@@ -404,6 +406,11 @@ class BatchSimulator:
             epsilon: The tabular controller's exploration rate in [0, 1].
             threshold: Avoid-collision's obstacle threshold (raw reading).
             max_speed: Avoid-collision's maximum wheel speed, rad/s.
+            active: (N,) bool, the envs that step; the others stand still for the whole call
+                (as an env whose episode ended does, its stream untouched). All by default.
+            hold_spins: The tabular controller keeps turning on the spot the way an env's last
+                step turned (action ``aa`` or ``bb``, read from its wheel speeds) rather than
+                turn back (``mazesim.learn.policy.hold_spins``).
 
         Returns:
             (N,) uint64 counters of the call: ``steps``, ``steps_in_contact``,

@@ -37,7 +37,6 @@ __all__ = ["CONTROL_STEP_MS", "RobotBatch", "RobotChoice", "cruise_step_length"]
 
 #: The control step of the report's navigator, in milliseconds.
 CONTROL_STEP_MS = 64.0
-
 #: A ``robot`` argument: a built-in profile's name or a profile (such as a
 #: :meth:`mazesim.RobotProfile.perturbed` one) for every robot, or a sequence of them, one per
 #: robot (all with the sensors of the first).

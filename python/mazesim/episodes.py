@@ -37,6 +37,7 @@ __all__ = [
     "MAX_STEPS",
     "EpisodeBatch",
     "EpisodeResult",
+    "EpisodeSchedule",
     "Navigator",
     "StartJitter",
     "run_episodes",
@@ -214,11 +215,21 @@ class EpisodeBatch:
                 self.events[env] = reading.signed_id
         else:
             self.events[:] = self.batch.crossings
-        goal = self.goals[self.world_of_env]
-        distance = np.hypot(self.poses[:, 0] - goal[:, 0], self.poses[:, 1] - goal[:, 1])
-        arrived = distance <= goal[:, 2]
+        arrived = self.at_goal()
         out_of_time = ~arrived & (self.episode_steps >= self.max_steps)
         return arrived, out_of_time
+
+    def at_goal(self) -> npt.NDArray[np.bool_]:
+        """(N,) bool: robots whose centre is inside their world's goal disc.
+
+        The squared distance from the float32 pose to the goal, in float64, against the squared
+        radius: the core's own goal test (``BatchSimulator.run``'s ``end_at_goal``), so that an
+        episode ends on the same step whichever way it is stepped.
+        """
+        goal = self.goals[self.world_of_env]
+        dx = self.poses[:, 0].astype(np.float64) - goal[:, 0]
+        dy = self.poses[:, 1].astype(np.float64) - goal[:, 1]
+        return np.asarray(dx * dx + dy * dy <= goal[:, 2] * goal[:, 2])
 
     def bumps(self) -> npt.NDArray[np.int64]:
         """(N,) wall bumps of each robot's episode so far (the simulator's collision counter)."""
@@ -254,6 +265,101 @@ Watcher = Callable[
 ]
 
 
+class EpisodeSchedule:
+    """Which episode each robot of an :class:`EpisodeBatch` runs, and what the ended ones
+    measured: the bookkeeping shared by :func:`run_episodes` and the loops that step robots
+    many steps at a time (:mod:`mazesim.learn.stretches`).
+
+    Episode ``k`` of world ``w`` is numbered ``w * episodes_per_world + k``; robots of a world
+    take its episodes in turn, and a robot whose world has none left is no longer
+    :attr:`active`.
+
+    Args:
+        nav: The robots and their worlds.
+        navigator: Told of every robot that starts an episode (``reset``).
+        episodes_per_world: Episodes to run in each world.
+    """
+
+    def __init__(self, nav: EpisodeBatch, navigator: Navigator, episodes_per_world: int) -> None:
+        self.nav = nav
+        self.navigator = navigator
+        worlds = len(nav.worlds)
+        self.next_episode = np.arange(worlds) * episodes_per_world
+        self.last_episode = self.next_episode + episodes_per_world
+        self.active = np.zeros(nav.num_envs, dtype=bool)
+        self.results: dict[int, EpisodeResult] = {}
+        self.decisions: dict[int, list[tuple[int, int]]] = {}
+
+    def start(self, robots: npt.NDArray[np.int64]) -> None:
+        """Starts the next episode of their world on ``robots`` (where one is left)."""
+        nav = self.nav
+        starting = []
+        numbers = []
+        for env in robots:
+            world = nav.world_of_env[env]
+            if self.next_episode[world] < self.last_episode[world]:
+                starting.append(env)
+                numbers.append(self.next_episode[world])
+                self.next_episode[world] += 1
+        self.active[robots] = False
+        if starting:
+            chosen = np.array(starting, dtype=np.int64)
+            nav.start(chosen, numbers)
+            self.navigator.reset(chosen, nav.poses)
+            self.active[chosen] = True
+            for env in chosen:
+                self.decisions[int(env)] = []
+
+    def decide(
+        self,
+        robots: npt.NDArray[np.int64],
+        chosen: npt.NDArray[np.int64],
+        events: npt.NDArray[np.int64],
+    ) -> None:
+        """Logs the sub-tasks ``chosen`` for ``robots`` with the events that caused them."""
+        for env, option in zip(robots, chosen):
+            if self.active[env]:
+                self.decisions[int(env)].append((int(events[env]), int(option)))
+
+    def end(self, ended: npt.NDArray[np.int64], arrived: npt.NDArray[np.bool_]) -> None:
+        """Records the episodes of robots ``ended`` (``arrived``: (N,) bool) and starts their
+        next ones."""
+        nav = self.nav
+        bumps = nav.bumps()
+        for env in ended:
+            number = int(nav.episode[env])
+            self.results[number] = EpisodeResult(
+                world=int(nav.world_of_env[env]),
+                episode=number,
+                arrived=bool(arrived[env]),
+                steps=int(nav.episode_steps[env]),
+                bumps=int(bumps[env]),
+                contact_steps=int(nav.contact_steps[env]),
+                decisions=self.decisions.pop(int(env)),
+            )
+        self.start(ended)
+
+    def close(
+        self,
+        arrived: npt.NDArray[np.bool_],
+        out_of_time: npt.NDArray[np.bool_],
+        events: npt.NDArray[np.int64],
+        on_end: Callable[[npt.NDArray[np.int64], npt.NDArray[np.bool_]], None] | None,
+    ) -> None:
+        """Ends the episodes of the robots that ``arrived`` or ran ``out_of_time`` ((N,) bool):
+        tells ``on_end``, records them (:meth:`end`) and clears their pending ``events``."""
+        ended = np.flatnonzero(arrived | out_of_time)
+        if ended.size:
+            if on_end is not None:
+                on_end(ended, arrived[ended])
+            self.end(ended, arrived)
+            events[ended] = 0
+
+    def ordered_results(self) -> list[EpisodeResult]:
+        """The results so far, in order of episode number."""
+        return [self.results[number] for number in sorted(self.results)]
+
+
 def run_episodes(
     nav: EpisodeBatch,
     navigator: Navigator,
@@ -262,7 +368,7 @@ def run_episodes(
     on_end: Callable[[npt.NDArray[np.int64], npt.NDArray[np.bool_]], None] | None = None,
     decisions_of: Callable[[], tuple[npt.NDArray[np.int64], npt.NDArray[np.int64]]] | None = None,
 ) -> list[EpisodeResult]:
-    """Runs ``episodes_per_world`` episodes in each world of ``nav``.
+    """Runs ``episodes_per_world`` episodes in each world of ``nav``, one control step at a time.
 
     Episode ``k`` of world ``w`` is numbered ``w * episodes_per_world + k``; its start jitter and
     noise seed follow from that number (see :class:`EpisodeBatch`). Robots of a world take its
@@ -281,63 +387,19 @@ def run_episodes(
     Returns:
         The results, in order of episode number.
     """
-    count = nav.num_envs
-    worlds = len(nav.worlds)
-    next_episode = np.arange(worlds) * episodes_per_world
-    last_episode = next_episode + episodes_per_world
-    active = np.zeros(count, dtype=bool)
-    results: dict[int, EpisodeResult] = {}
-    decisions: dict[int, list[tuple[int, int]]] = {}
-
-    def start(robots: npt.NDArray[np.int64]) -> None:
-        starting = []
-        numbers = []
-        for env in robots:
-            world = nav.world_of_env[env]
-            if next_episode[world] < last_episode[world]:
-                starting.append(env)
-                numbers.append(next_episode[world])
-                next_episode[world] += 1
-        active[robots] = False
-        if starting:
-            chosen = np.array(starting, dtype=np.int64)
-            nav.start(chosen, numbers)
-            navigator.reset(chosen, nav.poses)
-            active[chosen] = True
-            for env in chosen:
-                decisions[int(env)] = []
-
-    start(np.arange(count))
-    events = np.zeros(count, dtype=np.int64)
+    schedule = EpisodeSchedule(nav, navigator, episodes_per_world)
+    active = schedule.active
+    schedule.start(np.arange(nav.num_envs))
+    events = np.zeros(nav.num_envs, dtype=np.int64)
     while np.any(active):
         actions = navigator.act(nav.observations, nav.poses, events)
         if decisions_of is not None:
-            robots, chosen = decisions_of()
-            for env, option in zip(robots, chosen):
-                if active[env]:
-                    decisions[int(env)].append((int(events[env]), int(option)))
+            schedule.decide(*decisions_of(), events)
         arrived, out_of_time = nav.step(actions)
         arrived &= active
         out_of_time &= active
         events = nav.events.copy()
         if watch is not None:
             watch(nav, actions, arrived, out_of_time)
-        ended = np.flatnonzero(arrived | out_of_time)
-        if ended.size:
-            if on_end is not None:
-                on_end(ended, arrived[ended])
-            bumps = nav.bumps()
-            for env in ended:
-                number = int(nav.episode[env])
-                results[number] = EpisodeResult(
-                    world=int(nav.world_of_env[env]),
-                    episode=number,
-                    arrived=bool(arrived[env]),
-                    steps=int(nav.episode_steps[env]),
-                    bumps=int(bumps[env]),
-                    contact_steps=int(nav.contact_steps[env]),
-                    decisions=decisions.pop(int(env)),
-                )
-            start(ended)
-            events[ended] = 0
-    return [results[number] for number in sorted(results)]
+        schedule.close(arrived, out_of_time, events, on_end)
+    return schedule.ordered_results()

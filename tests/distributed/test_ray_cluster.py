@@ -24,7 +24,7 @@ import pytest
 from mazesim.distributed.cluster import connection_advice
 from mazesim.errors import ClusterConnectionError
 from mazesim.ros.local_master import free_loopback_port
-from test_ros import _processes_with
+from ros_support import processes_with
 
 pytest.importorskip("ray", reason="Ray is optional: pip install 'mazesim[ray]'")
 
@@ -72,9 +72,9 @@ def _stop(head: subprocess.Popen[bytes], tag: str) -> None:
             head.kill()
             head.wait()
     deadline = time.monotonic() + 15.0
-    while _processes_with(TAG_VARIABLE, tag) and time.monotonic() < deadline:
+    while processes_with(TAG_VARIABLE, tag) and time.monotonic() < deadline:
         time.sleep(0.2)
-    for pid in _processes_with(TAG_VARIABLE, tag):
+    for pid in processes_with(TAG_VARIABLE, tag):
         os.kill(pid, signal.SIGKILL)
 
 
@@ -122,7 +122,7 @@ def cluster(tmp_path: Path) -> Iterator[tuple[str, dict[str, str]]]:
     finally:
         _stop(head, tag)
         shutil.rmtree(session_root, ignore_errors=True)
-    assert _processes_with(TAG_VARIABLE, tag) == []
+    assert processes_with(TAG_VARIABLE, tag) == []
 
 
 def _mazesim(env: dict[str, str], cwd: Path, *args: str) -> subprocess.CompletedProcess[str]:

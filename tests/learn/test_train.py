@@ -15,7 +15,8 @@ from mazesim.errors import PolicyFormatError
 from mazesim.learn.evaluate import evaluate_navigator
 from mazesim.learn.lower import LowerSettings, LowerTrainer
 from mazesim.learn.tables import load_policy
-from mazesim.learn.train import TrainSettings, train
+from mazesim.learn.train import train
+from training_settings import TINY
 
 SHORT = LowerSettings(
     num_envs=192, total_steps=192 * 300 * 4, round_steps=300, maze_pool=16, seed=5
@@ -35,18 +36,6 @@ def test_short_training_is_reproducible_and_improves() -> None:
     backward = 11
     assert first.tables.visits[0, :, backward].sum() == 0
     assert first.tables.visits[1:, :, backward].sum() > 0
-
-
-TINY = TrainSettings(
-    envs=64,
-    steps=64 * 500 * 3,
-    seed=11,
-    maze_pool=8,
-    higher_episodes=4,
-    higher_envs=2,
-    higher_max_steps=300,
-    checkpoint_seconds=1e9,
-)
 
 
 def test_interrupted_training_resumes_to_the_same_tables(tmp_path: Path) -> None:

@@ -80,6 +80,8 @@ pub struct RunCounters {
 /// One environment's counters, as the threads add to them.
 #[derive(Debug, Clone, Copy, Default)]
 struct Counts {
+    /// Held still for the whole call (not among the call's active environments).
+    held: bool,
     /// Stopped by an episode's end for the rest of the call (without autoreset).
     stopped: bool,
     steps: u64,
@@ -209,6 +211,22 @@ impl Batch {
         out: StepOutputs<'_>,
         trace: RunTrace<'_>,
     ) -> Result<RunCounters> {
+        self.run_steps_of(controller, seeds, options, None, out, trace)
+    }
+
+    /// [`Batch::run_steps`] for the environments where `active` is true (all when `None`); the
+    /// others stand still for the whole call, as an environment whose episode ended does, and
+    /// their random streams are not drawn from. A caller that steps some environments one step
+    /// at a time (deciding in between) and others many steps at once runs both through this.
+    pub fn run_steps_of(
+        &mut self,
+        controller: &Controller,
+        seeds: &[u64],
+        options: &RunOptions,
+        active: Option<&[bool]>,
+        out: StepOutputs<'_>,
+        trace: RunTrace<'_>,
+    ) -> Result<RunCounters> {
         let n = self.len();
         let width = self.observation_width();
         let robot = self.envs()[0].robot().clone();
@@ -235,7 +253,20 @@ impl Batch {
         check_trace("episode_ends trace", &trace.episode_ends, [steps, n, 1])?;
 
         let mut streams: Vec<Rng> = seeds.iter().map(|&s| Rng::new(s)).collect();
-        let mut counts = vec![Counts::default(); n];
+        if let Some(flags) = active {
+            if flags.len() != n {
+                return Err(Error::InvalidArgument(format!(
+                    "expected one active flag per environment ({n}), found {}",
+                    flags.len()
+                )));
+            }
+        }
+        let mut counts: Vec<Counts> = (0..n)
+            .map(|i| Counts {
+                held: active.is_some_and(|flags| !flags[i]),
+                ..Counts::default()
+            })
+            .collect();
         let StepOutputs {
             observations,
             poses,
@@ -335,7 +366,8 @@ fn step_one(
     s: usize,
     j: usize,
 ) {
-    let standing = !options.autoreset && (count.stopped || episode_over(env, options, false).0);
+    let standing = count.held
+        || (!options.autoreset && (count.stopped || episode_over(env, options, false).0));
     let mut decision = crate::control::Decision {
         wheel_speeds: [0.0; 2],
         action: -1,
@@ -343,7 +375,8 @@ fn step_one(
     let mut ended = false;
     if !standing {
         let max_speed = env.robot().max_wheel_speed;
-        decision = controller.decide(index, env.distance_sensors(), max_speed, stream);
+        let last = env.wheel_speeds();
+        decision = controller.decide(index, env.distance_sensors(), last, max_speed, stream);
         let [left, right] = decision.wheel_speeds;
         // The controllers give finite speeds, so a step cannot fail.
         let _ = env.step(left as f64, right as f64);

@@ -245,8 +245,8 @@ impl PyBatch {
     #[pyo3(signature = (steps, controller, observations, poses, colliding, crossings, *, seeds = None,
         max_episode_steps = IntArg::ZERO, end_at_goal = Flag::Value(false), end_at_crossing = Flag::Value(false), autoreset = Flag::Value(true), trace = None,
         table = None, allowed_actions = None, table_index = None, epsilon = Real::Number(0.0),
-        threshold = Real::Number(80.0), max_speed = Real::Number(EPUCK_MAX_SPEED)),
-        text_signature = "($self, steps, controller, observations, poses, colliding, crossings, *, seeds=None, max_episode_steps=0, end_at_goal=False, end_at_crossing=False, autoreset=True, trace=None, table=None, allowed_actions=None, table_index=None, epsilon=0.0, threshold=80.0, max_speed=6.28)")]
+        threshold = Real::Number(80.0), max_speed = Real::Number(EPUCK_MAX_SPEED), active = None, hold_spins = Flag::Value(false)),
+        text_signature = "($self, steps, controller, observations, poses, colliding, crossings, *, seeds=None, max_episode_steps=0, end_at_goal=False, end_at_crossing=False, autoreset=True, trace=None, table=None, allowed_actions=None, table_index=None, epsilon=0.0, threshold=80.0, max_speed=6.28, active=None, hold_spins=False)")]
     fn run<'py>(
         &self,
         py: Python<'py>,
@@ -268,6 +268,8 @@ impl PyBatch {
         epsilon: Real,
         threshold: Real,
         max_speed: Real,
+        active: Option<&Bound<'py, PyAny>>,
+        hold_spins: Flag,
     ) -> PyResult<Bound<'py, PyDict>> {
         enter(|| {
             let n = self.n;
@@ -297,18 +299,24 @@ impl PyBatch {
                 allowed_actions,
                 table_index,
                 epsilon,
+                hold_spins,
             };
             let controller = run::controller(&controller, n, threshold, max_speed, tabular)?;
             let seeds = match seeds {
                 Some(s) => seeds_from(s, n)?,
                 None => (0..n as u64).collect(),
             };
+            let active = active
+                .map(|a| copied::<bool>(a, "active", "bool", &[n]))
+                .transpose()?;
             let mut traces = Traces::new(trace, options.steps, n, self.width())?;
             let mut buffers = Borrowed::new(self, observations, poses, colliding, crossings)?;
             let out = buffers.outputs()?;
             let trace = traces.slices();
             let counters = enter_detached(py, || {
-                self.with(|b| b.run_steps(&controller, &seeds, &options, out, trace))
+                self.with(|b| {
+                    b.run_steps_of(&controller, &seeds, &options, active.as_deref(), out, trace)
+                })
             })?;
             run::counters_dict(py, counters)
         })

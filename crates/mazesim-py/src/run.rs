@@ -7,7 +7,7 @@ use numpy::{PyArray1, PyReadwriteArrayDyn};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::Real;
+use crate::args::{Flag, Real};
 use crate::buffers::{copied, writable};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::enter;
@@ -32,6 +32,7 @@ pub struct TabularArgs<'a, 'py> {
     pub allowed_actions: Option<&'a Bound<'py, PyAny>>,
     pub table_index: Option<&'a Bound<'py, PyAny>>,
     pub epsilon: Real,
+    pub hold_spins: Flag,
 }
 
 /// The controller `name` with its arguments, for `n` environments.
@@ -106,7 +107,12 @@ fn tabular_policy(n: usize, args: TabularArgs<'_, '_>) -> PyResult<TabularPolicy
         })
         .transpose()?;
     let epsilon = args.epsilon.value("epsilon")?;
-    TabularPolicy::new(values, tables, allowed.as_deref(), table_of_env, epsilon).py()
+    let hold_spins = args.hold_spins.value("hold_spins", "a bool")?;
+    Ok(
+        TabularPolicy::new(values, tables, allowed.as_deref(), table_of_env, epsilon)
+            .py()?
+            .with_held_spins(hold_spins),
+    )
 }
 
 /// The per-step output arrays of one call, borrowed.

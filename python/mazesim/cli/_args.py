@@ -9,13 +9,16 @@ This module imports nothing heavy: every command's parser uses it.
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Mapping, Sequence
+from typing import Any
 
 from mazesim._paths import output_path
 
 __all__ = [
     "MAX_COUNT",
+    "add_setting_options",
     "MAX_NUMBER",
     "MAX_SECONDS",
     "name_list",
@@ -123,3 +126,36 @@ def seed_argument(text: str) -> int:
     if value < 0 or value >= 2**64:
         raise argparse.ArgumentTypeError(f"expected a seed in [0, 2^64), found {text!r}")
     return value
+
+
+def add_setting_options(
+    parser: argparse.ArgumentParser,
+    settings: Any,
+    types: Mapping[str, Callable[[str], Any]],
+) -> list[str]:
+    """Adds an option ``--name`` for each field of the settings dataclass ``settings`` whose
+    metadata has a ``help`` text: its default is the field's, its help the metadata's (with the
+    default, or the metadata's ``default_text``), its type from ``types`` (text by default), its
+    ``metavar`` and ``choices`` from the metadata.
+
+    Returns:
+        The fields' names, in order (the ``argparse`` destinations).
+    """
+    names = []
+    for setting in dataclasses.fields(settings):
+        if "help" not in setting.metadata:
+            continue
+        meta = setting.metadata
+        shown = meta.get("default_text", "%(default)s")
+        options: dict[str, Any] = {
+            "default": getattr(settings, setting.name),
+            "help": f"{meta['help']} (default: {shown})",
+        }
+        if "choices" in meta:
+            options["choices"] = meta["choices"]
+        else:
+            options["type"] = types.get(setting.name, str)
+            options["metavar"] = meta["metavar"]
+        parser.add_argument(f"--{setting.name.replace('_', '-')}", **options)
+        names.append(setting.name)
+    return names

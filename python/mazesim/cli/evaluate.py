@@ -13,14 +13,14 @@ import contextlib
 import json
 import math
 import sys
+from dataclasses import fields
 from pathlib import Path
 from typing import Any, TextIO
 
 from mazesim import load_world
 from mazesim._paths import refuse_overwriting_inputs
-from mazesim.cli._args import output_path, positive_int, seed_argument
+from mazesim.cli._args import add_setting_options, output_path, positive_int, seed_argument
 from mazesim.cli.progress import add_progress_option, progress_display
-from mazesim.episodes import EVENT_SOURCES, MAX_STEPS
 from mazesim.replay.navigator import Recording
 from mazesim.replay.options import add_viewing_options, recording_requested, write_views
 
@@ -67,6 +67,8 @@ def _write_trace_and_plot(
 
 def register(commands: Any) -> None:
     """Adds ``eval`` to the ``mazesim`` command's subparsers."""
+    from mazesim.learn.evaluate import ADAPT_EPISODES, EvalSettings
+
     evaluate = commands.add_parser(
         "eval",
         help="measure a trained navigator: success, collisions, steps, decisions",
@@ -76,58 +78,18 @@ def register(commands: Any) -> None:
             "and report the success rate, collisions, steps against the shortest path and the "
             "sub-tasks chosen at each checkpoint. In a world the navigator's higher level did "
             "not learn (a file, or 'random': unseen generated 5 x 5 mazes), only the higher level "
-            "is trained there first, for at most 200 episodes per maze."
+            f"is trained there first, for at most {ADAPT_EPISODES} episodes per maze."
         ),
     )
-    evaluate.add_argument(
-        "--policy",
-        default=None,
-        metavar="DIR",
-        help="folder of a saved navigator (default: the one shipped for seed-maze)",
-    )
-    evaluate.add_argument(
-        "--world",
-        default=None,
-        metavar="NAME|PATH|random",
-        help="a built-in world, a world file, or 'random' for unseen generated mazes "
-        "(default: the navigator's world)",
-    )
-    evaluate.add_argument(
-        "--episodes",
-        type=positive_int,
-        default=200,
-        metavar="N",
-        help="evaluation episodes (with 'random': spread over --mazes mazes) "
-        "(default: %(default)s)",
-    )
-    evaluate.add_argument(
-        "--mazes",
-        type=positive_int,
-        default=100,
-        metavar="M",
-        help="unseen mazes of --world random (default: %(default)s)",
-    )
-    evaluate.add_argument(
-        "--seed",
-        type=seed_argument,
-        default=0,
-        metavar="S",
-        help="seed of the episodes' start jitter and sensor noise, and of the random mazes "
-        "(default: %(default)s)",
-    )
-    evaluate.add_argument(
-        "--events",
-        choices=(*EVENT_SOURCES, "both"),
-        default="both",
-        help="checkpoint events from the simulator's ground truth, from the robust barcode "
-        "decoder, or both, reported side by side (default: %(default)s)",
-    )
-    evaluate.add_argument(
-        "--max-steps",
-        type=positive_int,
-        default=MAX_STEPS,
-        metavar="N",
-        help="control steps (64 ms) after which an episode fails (default: %(default)s)",
+    add_setting_options(
+        evaluate,
+        EvalSettings(),
+        {
+            "episodes": positive_int,
+            "mazes": positive_int,
+            "seed": seed_argument,
+            "max_steps": positive_int,
+        },
     )
     evaluate.add_argument(
         "--json",
@@ -165,7 +127,7 @@ def register(commands: Any) -> None:
 
 def run_eval(args: argparse.Namespace, out: TextIO) -> int:
     """Runs ``mazesim eval``."""
-    from mazesim.learn.evaluate import evaluate_navigator
+    from mazesim.learn.evaluate import ADAPT_EPISODES, EvalSettings, evaluate_navigator
     from mazesim.learn.report import summary_text
     from mazesim.learn.tables import load_policy
 
@@ -189,7 +151,8 @@ def run_eval(args: argparse.Namespace, out: TextIO) -> int:
         worlds = [load_world(args.world if args.world is not None else policy.world_name)]
         per_world = args.episodes
         label = worlds[0].name
-    sources = list(EVENT_SOURCES) if args.events == "both" else [args.events]
+    settings = EvalSettings(**{f.name: getattr(args, f.name) for f in fields(EvalSettings)})
+    sources = settings.sources
     units = {"adapt": "episodes", "evaluate": "episodes", "evaluate robust": "episodes"}
     with contextlib.ExitStack() as ray, progress_display(args, units=units) as progress:
         if args.address is not None:
@@ -232,7 +195,7 @@ def run_eval(args: argparse.Namespace, out: TextIO) -> int:
     if report.adapted:
         out.write(
             "  the higher level was trained here first (lower-level tables kept, "
-            "at most 200 episodes per maze)\n"
+            f"at most {ADAPT_EPISODES} episodes per maze)\n"
         )
     for source in sources:
         out.write(summary_text(report.summaries[source], source_names[source]))

@@ -14,7 +14,7 @@ from pathlib import Path
 from typing import Any, TextIO
 
 from mazesim._paths import output_files, output_path, refuse_overwriting_inputs
-from mazesim.cli._args import positive_int, seed_argument
+from mazesim.cli._args import add_setting_options, positive_int, seed_argument
 from mazesim.cli.progress import add_progress_option, progress_display
 from mazesim.errors import InvalidArgumentError
 
@@ -50,7 +50,7 @@ def step_count(text: str) -> int:
 
 def register(commands: Any) -> None:
     """Adds ``train`` to the ``mazesim`` command's subparsers."""
-    from mazesim.learn.train import TrainSettings, command_line_fields
+    from mazesim.learn.train import TrainSettings
 
     defaults = TrainSettings()
     train = commands.add_parser(
@@ -67,14 +67,7 @@ def register(commands: Any) -> None:
         ),
     )
     option_types = {"envs": positive_int, "steps": step_count, "seed": seed_argument}
-    for setting in command_line_fields():
-        train.add_argument(
-            f"--{setting.name}",
-            type=option_types.get(setting.name, str),
-            default=getattr(defaults, setting.name),
-            metavar=setting.metadata["metavar"],
-            help=f"{setting.metadata['help']} (default: %(default)s)",
-        )
+    add_setting_options(train, defaults, option_types)
     train.add_argument(
         "--out",
         type=output_path,
@@ -92,12 +85,19 @@ def register(commands: Any) -> None:
         action="store_true",
         help="train the flat Q-learning baseline on --world instead, for --steps env-steps",
     )
+    train.add_argument(
+        "--tensorboard",
+        action="store_true",
+        help="also log the learning curve to TensorBoard event files in --out/tensorboard "
+        "(needs pip install 'mazesim[tensorboard]'); --out/learning_curve.csv is always written",
+    )
     add_progress_option(train)
     train.set_defaults(run=lambda args: run_train(args, sys.stdout))
 
 
 def run_train(args: argparse.Namespace, out: TextIO) -> int:
     """Runs ``mazesim train``."""
+    from mazesim.cli.learning_curve import CURVE_FILE, LearningCurve
     from mazesim.learn.train import (
         TrainSettings,
         command_line_fields,
@@ -106,25 +106,26 @@ def run_train(args: argparse.Namespace, out: TextIO) -> int:
     )
 
     refuse_overwriting_inputs(
-        output_files(args.out, ("tables.npz", "policy.json", "checkpoint.npz")),
+        output_files(args.out, ("tables.npz", "policy.json", "checkpoint.npz", CURVE_FILE)),
         [("--world", args.world)],
     )
     settings = TrainSettings(**{f.name: getattr(args, f.name) for f in command_line_fields()})
+    curve = LearningCurve(Path(args.out), tensorboard=args.tensorboard)
     started = time.perf_counter()
     if args.flat:
         if args.resume:
             raise InvalidArgumentError("--resume continues hierarchical runs only, not --flat")
-        with progress_display(args, units=_UNITS) as progress:
-            policy = train_flat_policy(settings, args.out, progress=progress)
+        with curve, progress_display(args, units=_UNITS) as progress:
+            policy = train_flat_policy(settings, args.out, progress=progress, curve=curve)
         seconds = time.perf_counter() - started
         out.write(
             f"trained the flat baseline for {policy.world_name} in {seconds:.0f} s "
             f"({settings.steps} env-steps)\nwrote {Path(args.out) / 'tables.npz'}, "
-            f"{Path(args.out) / 'policy.json'}\n"
+            f"{Path(args.out) / 'policy.json'}, {curve.path}\n"
         )
         return 0
-    with progress_display(args, units=_UNITS) as progress:
-        result = train(settings, args.out, resume=args.resume, progress=progress)
+    with curve, progress_display(args, units=_UNITS) as progress:
+        result = train(settings, args.out, resume=args.resume, progress=progress, curve=curve)
     if result is None:
         return 0
     seconds = time.perf_counter() - started
@@ -135,7 +136,8 @@ def run_train(args: argparse.Namespace, out: TextIO) -> int:
         f"higher level {info['higher_seconds']:.0f} s)\n"
         f"higher-level training: {100 * info['higher_success_last_100']:.0f}% of the last 100 "
         f"episodes reached the goal\n"
-        f"wrote {Path(args.out) / 'tables.npz'}, {Path(args.out) / 'policy.json'}\n"
+        f"wrote {Path(args.out) / 'tables.npz'}, {Path(args.out) / 'policy.json'}, "
+        f"{curve.path}\n"
         f"evaluate it with: mazesim eval --policy {args.out}\n"
     )
     return 0

@@ -28,6 +28,7 @@ nothing of the viewers.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections import Counter
 from collections.abc import Callable, Mapping, Sequence
@@ -40,7 +41,9 @@ import numpy.typing as npt
 from mazesim._core import World, generate_maze
 from mazesim._seeding import stream_seeds
 from mazesim.actions import ACTION_CODES, ACTIONS
+from mazesim.batch import RobotChoice
 from mazesim.episodes import (
+    EVENT_SOURCES,
     MAX_STEPS,
     EpisodeBatch,
     EpisodeResult,
@@ -54,12 +57,15 @@ from mazesim.learn.discretise import format_levels
 from mazesim.learn.higher import HigherLevel
 from mazesim.learn.higher_training import HigherTraining, train_higher
 from mazesim.learn.policy import HierarchicalPolicy, StepRecord
+from mazesim.learn.stretches import run_navigator_episodes, stretches_apply
 from mazesim.learn.subtasks import CONTROL_STEP_MS, SUBTASK_CODES, SUBTASK_NAMES
 from mazesim.learn.tables import TrainedPolicy
 from mazesim.maze import world_hash
 
 __all__ = [
+    "ADAPTATION",
     "ADAPT_EPISODES",
+    "EvalSettings",
     "Evaluation",
     "Report",
     "Summary",
@@ -69,8 +75,11 @@ __all__ = [
     "unseen_mazes",
 ]
 
+#: How the higher level trains in worlds it has not seen: at most 200 episodes per maze, 8
+#: robots per maze (the seed is the evaluation's).
+ADAPTATION = HigherTraining(episodes_per_world=200, envs_per_world=8)
 #: Episodes the higher level may train in a world it has not seen, per maze.
-ADAPT_EPISODES = 200
+ADAPT_EPISODES = ADAPTATION.episodes_per_world
 #: Robots stepped side by side in an evaluation (at most).
 EVALUATION_ENVS = 500
 
@@ -109,6 +118,66 @@ class Evaluation:
     run: Any = None
 
 
+@dataclass(frozen=True)
+class EvalSettings:
+    """What ``mazesim eval`` measures: its options are these fields (the defaults are the only
+    ones, the help texts are the metadata's)."""
+
+    policy: str | None = field(
+        default=None,
+        metadata={
+            "help": "folder of a saved navigator",
+            "metavar": "DIR",
+            "default_text": "the one shipped for seed-maze",
+        },
+    )
+    world: str | None = field(
+        default=None,
+        metadata={
+            "help": "a built-in world, a world file, or 'random' for unseen generated mazes",
+            "metavar": "NAME|PATH|random",
+            "default_text": "the navigator's world",
+        },
+    )
+    episodes: int = field(
+        default=200,
+        metadata={
+            "help": "evaluation episodes (with 'random': spread over --mazes mazes)",
+            "metavar": "N",
+        },
+    )
+    mazes: int = field(
+        default=100, metadata={"help": "unseen mazes of --world random", "metavar": "M"}
+    )
+    seed: int = field(
+        default=0,
+        metadata={
+            "help": "seed of the episodes' start jitter and sensor noise, and of the random mazes",
+            "metavar": "S",
+        },
+    )
+    events: str = field(
+        default="both",
+        metadata={
+            "help": "checkpoint events from the simulator's ground truth, from the robust barcode "
+            "decoder, or both, reported side by side",
+            "choices": (*EVENT_SOURCES, "both"),
+        },
+    )
+    max_steps: int = field(
+        default=MAX_STEPS,
+        metadata={
+            "help": "control steps (64 ms) after which an episode fails",
+            "metavar": "N",
+        },
+    )
+
+    @property
+    def sources(self) -> list[str]:
+        """The event sources to evaluate with, in order."""
+        return list(EVENT_SOURCES) if self.events == "both" else [self.events]
+
+
 def unseen_mazes(count: int, seed: int) -> list[World]:
     """``count`` generated 5 x 5 perfect mazes for testing; their seeds derive from ``seed`` on a
     stream no training run uses."""
@@ -122,9 +191,18 @@ def navigator_for(
     seed: int = 0,
     threads: int = 0,
     progress: Callable[[str, int, int], None] | None = None,
+    robot: RobotChoice = "seed",
 ) -> tuple[HigherLevel, bool]:
     """The higher level to drive ``worlds`` with: the policy's own when it is the world it
     learned, else one trained there for :data:`ADAPT_EPISODES` episodes per world.
+
+    Args:
+        policy: The navigator.
+        worlds: The worlds to drive.
+        seed: Seed of the adaptation's episodes and exploration.
+        threads: Worker threads of the batch.
+        progress: Called as ``progress("adapt", episodes_done, episodes_total)``.
+        robot: The robots of the adaptation (:data:`mazesim.batch.RobotChoice`).
 
     Returns:
         The higher level (one table per world) and whether it was trained here.
@@ -134,13 +212,15 @@ def navigator_for(
     if len(worlds) == 1 and world_hash(worlds[0]) == policy.world_sha256:
         level = HigherLevel([policy.checkpoint_ids], q=policy.higher_q[None])
         return level, False
-    settings = HigherTraining(episodes_per_world=ADAPT_EPISODES, seed=seed)
+    settings = dataclasses.replace(ADAPTATION, seed=seed)
 
     def adapting(done: int, total: int, recent: float) -> None:
         if progress is not None:
             progress("adapt", done, total)
 
-    level, _ = train_higher(policy.lower_q, worlds, settings, threads=threads, progress=adapting)
+    level, _ = train_higher(
+        policy.lower_q, worlds, settings, threads=threads, progress=adapting, robot=robot
+    )
     return level, True
 
 
@@ -210,8 +290,18 @@ def evaluate(
     recorder: RecorderFactory | None = None,
     controller: str = "hrl",
     progress: Callable[[str, int, int], None] | None = None,
+    multi_step: bool = False,
+    robot: RobotChoice = "seed",
 ) -> Evaluation:
     """Runs greedy episodes of a navigator and measures them.
+
+    With ``multi_step``, a greedy :class:`~mazesim.learn.policy.HierarchicalPolicy` with events
+    from the ground truth runs its corridor stretches in the core's multi-step call
+    (:func:`mazesim.learn.stretches.run_navigator_episodes`); the episodes to record (paths,
+    trace, replay) then run once more, one step at a time. Any other navigator (a flat one, one
+    that wraps ``act``) and decoder events run one step at a time. The results are the same
+    either way; on seed-maze with 500 robots side by side one step at a time is the faster (the
+    door sub-tasks, half the steps, go one step per call either way), hence the default.
 
     Args:
         make_navigator: Builds the navigator of the robots from their world numbers (a
@@ -230,6 +320,9 @@ def evaluate(
             replay and videos); see :data:`RecorderFactory`.
         controller: The controller's name in the recorded run.
         progress: Called as ``progress("evaluate", episodes_done, episodes_total)``.
+        multi_step: Use the multi-step call where it applies; ``False`` (the default): one step
+            at a time.
+        robot: The robots (:data:`mazesim.batch.RobotChoice`), handed to the batch as given.
     """
     per_world = max(1, min(episodes_per_world, EVALUATION_ENVS // max(1, len(worlds))))
     world_of_env = np.repeat(np.arange(len(worlds)), per_world)
@@ -241,8 +334,37 @@ def evaluate(
         max_steps=max_steps,
         events=events,
         threads=threads,
+        robot=robot,
     )
     navigator = make_navigator(world_of_env)
+    total = episodes_per_world * len(worlds)
+    finished = [0]
+    if progress is not None:
+        progress("evaluate", 0, total)
+
+    def on_end(robots: npt.NDArray[np.int64], arrived: npt.NDArray[np.bool_]) -> None:
+        finished[0] += robots.size
+        if progress is not None:
+            progress("evaluate", min(finished[0], total), total)
+
+    shortest = [shortest_path_steps(world) for world in worlds]
+    if multi_step and stretches_apply(nav, navigator):
+        results = run_navigator_episodes(nav, navigator, episodes_per_world, on_end)
+        evaluation = Evaluation(_summarise(results, shortest, events), results)
+        options = dict(
+            seed=seed,
+            events=events,
+            jitter=jitter,
+            max_steps=max_steps,
+            record_paths=record_paths,
+            trace=trace,
+            threads=threads,
+            recorder=recorder,
+            controller=controller,
+            robot=robot,
+        )
+        _record_here(evaluation, make_navigator, worlds, episodes_per_world, options)
+        return evaluation
     recording = None if recorder is None else recorder(nav, navigator)
     evaluation = Evaluation(summary=_summarise([], [1.0], events), results=[])
     paths: dict[int, list[tuple[float, float]]] = {}
@@ -284,16 +406,6 @@ def evaluate(
         robots = np.flatnonzero(navigator.record.chosen >= 0)
         return robots, navigator.record.chosen[robots]
 
-    total = episodes_per_world * len(worlds)
-    finished = [0]
-    if progress is not None:
-        progress("evaluate", 0, total)
-
-    def on_end(robots: npt.NDArray[np.int64], arrived: npt.NDArray[np.bool_]) -> None:
-        finished[0] += robots.size
-        if progress is not None:
-            progress("evaluate", min(finished[0], total), total)
-
     results = run_episodes(
         nav,
         navigator if recording is None else recording,
@@ -302,7 +414,6 @@ def evaluate(
         on_end,
         decisions_of,
     )
-    shortest = [shortest_path_steps(world) for world in worlds]
     evaluation.summary = _summarise(results, shortest, events)
     evaluation.results = results
     evaluation.paths = {k: np.array(v) for k, v in paths.items()}
@@ -334,6 +445,8 @@ def evaluate_navigator(
     spread: Spreader | None = None,
     recorder: RecorderFactory | None = None,
     progress: Callable[[str, int, int], None] | None = None,
+    multi_step: bool = False,
+    robot: RobotChoice = "seed",
 ) -> Report:
     """Evaluates a saved navigator with checkpoint events from each source (it writes nothing).
 
@@ -351,11 +464,21 @@ def evaluate_navigator(
         progress: Called as ``progress(stage, done, total)``: ``"adapt"`` while the higher level
             learns unseen worlds, then ``"evaluate"`` (``"evaluate robust"`` for the second
             source) over the episodes.
+        multi_step: Run the corridor stretches in the core's multi-step call where it applies
+            (see :func:`evaluate`); ``False`` (the default): every episode one step at a time.
+            The results are the same.
+        robot: The robots of the evaluation and of the higher level's adaptation
+            (:data:`mazesim.batch.RobotChoice`), handed to the batches as given; the seed
+            robot's only with ``spread``.
 
     Raises:
         PolicyFormatError: A flat navigator asked to drive a world it did not learn.
         MissingDependencyError: ``spread`` needs a package that is not installed.
     """
+    if spread is not None and not (isinstance(robot, str) and robot == "seed"):
+        raise InvalidArgumentError(
+            f"expected the seed robot for an evaluation spread in chunks, found {robot!r}"
+        )
     adapted = False
     make_navigator: NavigatorFactory
     if policy.kind == "flat":
@@ -371,7 +494,7 @@ def evaluate_navigator(
 
     else:
         level, adapted = navigator_for(
-            policy, worlds, seed=seed, threads=threads, progress=progress
+            policy, worlds, seed=seed, threads=threads, progress=progress, robot=robot
         )
         lower_q = policy.lower_q
         assert lower_q is not None
@@ -403,6 +526,8 @@ def evaluate_navigator(
             recorder=recorder if first else None,
             controller=policy.kind,
             progress=_staged(progress, "evaluate" if first else f"evaluate {source}"),
+            multi_step=multi_step,
+            robot=robot,
         )
         summaries[source] = evaluation.summary
         evaluations[source] = evaluation
@@ -453,14 +578,29 @@ def _evaluate_spread(
         progress("evaluate", chunks.episodes, chunks.episodes)
     shortest = [shortest_path_steps(world) for world in worlds]
     evaluation = Evaluation(_summarise(results, shortest, options["events"]), results)
+    _record_here(evaluation, make_navigator, worlds, episodes_per_world, options)
+    return evaluation
+
+
+def _record_here(
+    evaluation: Evaluation,
+    make_navigator: NavigatorFactory,
+    worlds: Sequence[World],
+    episodes_per_world: int,
+    options: dict[str, Any],
+) -> None:
+    """Runs the first episodes of the first world again, one step at a time, for the paths,
+    the trace and the recorded run that ``options`` ask for (an episode ends the same way
+    whatever runs it), and puts them into ``evaluation``."""
     recorded = max(options["record_paths"], 1 if options["trace"] else 0)
     if options["recorder"] is not None:
         recorded = max(recorded, options["recorder"].episodes)
-    if recorded:
-        local = evaluate(make_navigator, worlds[:1], min(episodes_per_world, recorded), **options)
-        evaluation.paths, evaluation.marks, evaluation.trace = local.paths, local.marks, local.trace
-        evaluation.run = local.run
-    return evaluation
+    if not recorded:
+        return
+    options = {**options, "multi_step": False}
+    local = evaluate(make_navigator, worlds[:1], min(episodes_per_world, recorded), **options)
+    evaluation.paths, evaluation.marks, evaluation.trace = local.paths, local.marks, local.trace
+    evaluation.run = local.run
 
 
 def _trace_line(batch: EpisodeBatch, record: StepRecord, env: int) -> str:

@@ -15,6 +15,7 @@ import numpy.typing as npt
 
 from mazesim._core import World
 from mazesim._seeding import stream
+from mazesim.batch import RobotChoice
 from mazesim.episodes import MAX_STEPS, EpisodeBatch, EpisodeResult, StartJitter, run_episodes
 from mazesim.learn.higher import (
     CONTACT_REWARD,
@@ -34,10 +35,12 @@ __all__ = [
 
 @dataclass(frozen=True)
 class HigherTraining:
-    """How the higher level trains on its worlds."""
+    """How the higher level trains on its worlds; the defaults are ``mazesim train``'s (the
+    adaptation to unseen worlds of :func:`mazesim.learn.evaluate.navigator_for` is
+    :data:`mazesim.learn.evaluate.ADAPTATION`)."""
 
-    episodes_per_world: int = 200
-    envs_per_world: int = 8
+    episodes_per_world: int = 400
+    envs_per_world: int = 32
     epsilon_start: float = 0.2
     greedy_share: float = 0.3
     max_steps: int = MAX_STEPS
@@ -56,6 +59,7 @@ def train_higher(
     jitter: StartJitter | None = None,
     threads: int = 0,
     progress: Callable[[int, int, float], None] | None = None,
+    robot: RobotChoice = "seed",
 ) -> tuple[HigherLevel, list[EpisodeResult]]:
     """Trains the higher level of each world with the lower level fixed.
 
@@ -66,6 +70,7 @@ def train_higher(
         jitter: Start jitter of the episodes (the default :class:`StartJitter`).
         threads: Worker threads of the batch.
         progress: Called as ``progress(episodes_done, episodes_total, recent_success)``.
+        robot: The robots (:data:`mazesim.batch.RobotChoice`), handed to the batch as given.
 
     Returns:
         The higher level and the training episodes' results.
@@ -79,6 +84,7 @@ def train_higher(
         jitter=jitter,
         max_steps=settings.max_steps,
         threads=threads,
+        robot=robot,
     )
     level = HigherLevel([checkpoint_ids(world) for world in worlds])
     learner = HigherLearner(level, nav.num_envs)

@@ -45,7 +45,7 @@ import numpy.typing as npt
 from mazesim._core import World, generate_maze
 from mazesim._seeding import stream, stream_seeds
 from mazesim.actions import ACTION_CODES
-from mazesim.batch import RobotBatch
+from mazesim.batch import RobotBatch, RobotChoice
 from mazesim.learn import qlearning
 from mazesim.learn.discretise import NUM_STATES, observation_states
 from mazesim.learn.subtasks import (
@@ -203,10 +203,15 @@ class LowerTrainer:
         settings: The run's settings.
         tables: Tables to continue from; fresh ones by default.
         threads: Worker threads of the batch (0: one per core); results do not depend on it.
+        robot: The robots (:data:`mazesim.batch.RobotChoice`), handed to the batch as given.
     """
 
     def __init__(
-        self, settings: LowerSettings, tables: LowerTables | None = None, threads: int = 0
+        self,
+        settings: LowerSettings,
+        tables: LowerTables | None = None,
+        threads: int = 0,
+        robot: RobotChoice = "seed",
     ) -> None:
         self.settings = settings
         self.tables = tables if tables is not None else LowerTables.zeros()
@@ -226,6 +231,7 @@ class LowerTrainer:
         self.batch = RobotBatch(
             self.mazes,
             np.zeros(count, dtype=np.int64),
+            robot=robot,
             control_step_ms=settings.control_step_ms,
             threads=threads,
         )

@@ -31,12 +31,35 @@ from mazesim.learn.lower import lower_table_shape
 from mazesim.learn.qlearning import best_allowed
 from mazesim.learn.subtasks import CONTROL_STEP_MS, SUBTASK_ACTIONS, SubTask, SubTaskTracker
 
-__all__ = ["Chooser", "DeadReckoningNavigator", "HierarchicalPolicy", "StepRecord"]
+__all__ = ["Chooser", "DeadReckoningNavigator", "HierarchicalPolicy", "StepRecord", "hold_spins"]
 
 _PLACE = 4 ** np.arange(NUM_SENSORS, dtype=np.int64)
 
 #: Picks sub-tasks for robots at a checkpoint event: ``(envs, higher states) -> sub-tasks``.
 Chooser = Callable[[npt.NDArray[np.int64], npt.NDArray[np.int64]], npt.NDArray[np.int64]]
+
+
+_SPIN_RIGHT = ACTION_CODES.index("aa")
+_SPIN_LEFT = ACTION_CODES.index("bb")
+
+
+def hold_spins(
+    actions: npt.NDArray[np.int64],
+    previous: npt.NDArray[np.int64],
+    where: npt.NDArray[np.bool_],
+) -> npt.NDArray[np.int64]:
+    """``actions`` with a turn on the spot kept where ``where`` is true: a robot that turned one
+    way on the spot in its last step and would turn the other way now keeps turning as before.
+
+    "Corridors and Corners" facing a wall between two openings can see a state whose best action
+    turns it right and, one step later, a state whose best turns it left: without this it would
+    turn back and forth on the spot until its time runs out.
+    """
+    reverses = where & (
+        ((previous == _SPIN_RIGHT) & (actions == _SPIN_LEFT))
+        | ((previous == _SPIN_LEFT) & (actions == _SPIN_RIGHT))
+    )
+    return np.where(reverses, previous, actions)
 
 
 class StepRecord:
@@ -82,12 +105,14 @@ class HierarchicalPolicy:
         self.chooser = chooser
         self.tracker = SubTaskTracker(self.num_envs)
         self.record = StepRecord(self.num_envs)
+        self.previous_action = np.full(self.num_envs, -1, dtype=np.int64)
 
     def reset(self, envs: npt.ArrayLike, poses: npt.ArrayLike) -> None:
         """Starts robots ``envs`` afresh, in "Corridors and Corners", at their poses."""
         mask = np.zeros(self.num_envs, dtype=bool)
         mask[np.asarray(envs, dtype=np.int64)] = True
         self.tracker.begin(mask, SubTask.CORRIDOR, poses)
+        self.previous_action[mask] = -1
 
     def act(
         self,
@@ -148,6 +173,8 @@ class HierarchicalPolicy:
         state = self.tracker.states(distance_state)
         subtask = self.tracker.subtask
         action = best_allowed(self.lower_q[subtask, state], SUBTASK_ACTIONS[subtask])
+        action = hold_spins(action, self.previous_action, subtask == SubTask.CORRIDOR)
+        self.previous_action = action
         record.state = distance_state
         record.subtask = self.tracker.subtask.copy()
         record.phase = self.tracker.phase.copy()

@@ -34,6 +34,7 @@ from typing import Any
 
 from mazesim import load_world
 from mazesim._core import World
+from mazesim.batch import RobotChoice
 from mazesim.episodes import EpisodeResult, shortest_path_steps
 from mazesim.errors import InvalidArgumentError, PolicyFormatError
 from mazesim.learn.baseline import train_flat
@@ -54,7 +55,9 @@ from mazesim.maze import checkpoint_ids, world_hash
 
 __all__ = [
     "CHECKPOINT_FORMAT",
+    "CURVE_VALUES",
     "CheckpointFn",
+    "CurveFn",
     "ProgressFn",
     "TrainSettings",
     "TrainingRun",
@@ -94,8 +97,8 @@ class TrainSettings:
         metadata={"help": "seed of everything random in the run", "metavar": "S"},
     )
     maze_pool: int = LowerSettings.maze_pool
-    higher_episodes: int = 400
-    higher_envs: int = 32
+    higher_episodes: int = HigherTraining.episodes_per_world
+    higher_envs: int = HigherTraining.envs_per_world
     higher_max_steps: int = HigherTraining.max_steps
     checkpoint_seconds: float = 30.0
 
@@ -137,12 +140,52 @@ def _round_summary(stats: RoundStats) -> dict[str, Any]:
     }
 
 
+#: The learning curve's values, in order: what :data:`CurveFn` reports for each point.
+#: ``index`` is the lower level's round (1-based) or the higher level's episodes finished;
+#: ``env_steps`` the lower level's env-steps so far; ``epsilon`` its exploration rate;
+#: ``door_success_right``/``_left``/``_forward`` the share of each door sub-task's episodes of
+#: the round that ended in their opening; ``corridor_speed`` "Corridors and Corners"' mean
+#: forward speed over the round as a share of the cruise speed; ``contact_share`` the share of
+#: the round's steps in contact with a wall; ``goal_rate`` the share of the higher level's last
+#: 200 episodes that reached the goal. A value a stage does not measure is absent.
+CURVE_VALUES = (
+    "index",
+    "env_steps",
+    "epsilon",
+    "door_success_right",
+    "door_success_left",
+    "door_success_forward",
+    "corridor_speed",
+    "contact_share",
+    "goal_rate",
+)
+
 #: Reports progress as ``progress(stage, done, total)``: stage ``"lower"`` counts rounds,
 #: ``"higher"`` and ``"flat"`` count episodes or steps.
 ProgressFn = Callable[[str, int, int], None]
 #: Called after each lower-level round with the tables, the next round and the history so far;
 #: returns True to stop there (as if interrupted).
 CheckpointFn = Callable[[LowerTables, int, list[dict[str, Any]]], bool]
+#: Receives the learning curve point by point as ``curve(stage, values)``: stage ``"lower"``
+#: after each round (the rounds of a resumed run's checkpoint first), ``"higher"`` each time
+#: episodes end; ``values`` maps names of :data:`CURVE_VALUES` to numbers.
+CurveFn = Callable[[str, dict[str, float]], None]
+
+
+def _lower_point(summary: dict[str, Any], lower: LowerSettings) -> dict[str, float]:
+    """The learning curve's point of a lower-level round from its summary."""
+    done = int(summary["round"]) + 1
+    right, left, forward = summary["door_success"]
+    return {
+        "index": done,
+        "env_steps": done * lower.num_envs * lower.round_steps,
+        "epsilon": summary["epsilon"],
+        "door_success_right": right,
+        "door_success_left": left,
+        "door_success_forward": forward,
+        "corridor_speed": summary["corridor_speed"],
+        "contact_share": summary["contact_share"],
+    }
 
 
 @dataclass
@@ -169,6 +212,8 @@ def run_training(
     threads: int = 0,
     progress: ProgressFn | None = None,
     checkpoint: CheckpointFn | None = None,
+    robot: RobotChoice = "seed",
+    curve: CurveFn | None = None,
 ) -> TrainingRun | None:
     """The training pipeline: the lower level round by round, then the higher level on ``world``.
 
@@ -184,6 +229,9 @@ def run_training(
         threads: Worker threads of the simulator (0: one per core); results do not depend on it.
         progress: See :data:`ProgressFn`.
         checkpoint: See :data:`CheckpointFn`.
+        robot: The robots of both stages (:data:`mazesim.batch.RobotChoice`: a profile's name,
+            a :class:`~mazesim.RobotProfile`, or one per robot), handed to the batches as given.
+        curve: See :data:`CurveFn`.
 
     Returns:
         The run, or None when ``checkpoint`` stopped it.
@@ -193,12 +241,17 @@ def run_training(
     stats_seen: list[RoundStats] = []
     started = time.perf_counter()
     rounds = lower.rounds
+    if curve is not None:
+        for summary in summaries:
+            curve("lower", _lower_point(summary, lower))
     if next_round < rounds:
-        trainer = LowerTrainer(lower, tables, threads=threads)
+        trainer = LowerTrainer(lower, tables, threads=threads, robot=robot)
         for round_index in range(next_round, rounds):
             stats = trainer.run_round(round_index)
             stats_seen.append(stats)
             summaries.append(_round_summary(stats))
+            if curve is not None:
+                curve("lower", _lower_point(summaries[-1], lower))
             if progress is not None:
                 progress("lower", round_index + 1, rounds)
             stop = checkpoint is not None and checkpoint(trainer.tables, round_index + 1, summaries)
@@ -211,9 +264,11 @@ def run_training(
     def higher_progress(done: int, total: int, recent: float) -> None:
         if progress is not None:
             progress("higher", done, total)
+        if curve is not None:
+            curve("higher", {"index": done, "goal_rate": recent})
 
     level, results = train_higher(
-        tables.q, [world], higher, threads=threads, progress=higher_progress
+        tables.q, [world], higher, threads=threads, progress=higher_progress, robot=robot
     )
     return TrainingRun(
         tables=tables,
@@ -249,6 +304,8 @@ def train(
     progress: ProgressFn | None = None,
     threads: int = 0,
     stop_after_rounds: int | None = None,
+    robot: RobotChoice = "seed",
+    curve: CurveFn | None = None,
 ) -> TrainedPolicy | None:
     """Trains a navigator (:func:`run_training`) with checkpoints in ``out``, and saves it there.
 
@@ -260,6 +317,8 @@ def train(
         threads: Worker threads of the simulator (0: one per core); results do not depend on it.
         stop_after_rounds: Stop (as if interrupted) after this many lower-level rounds in this
             call, leaving the checkpoint; for tests.
+        robot: The robots (see :func:`run_training`).
+        curve: Receives the learning curve (:data:`CurveFn`).
 
     Returns:
         The trained navigator, or None when stopped early by ``stop_after_rounds``.
@@ -316,6 +375,8 @@ def train(
         threads=threads,
         progress=progress,
         checkpoint=save,
+        robot=robot,
+        curve=curve,
     )
     if run is None:
         return None
@@ -353,15 +414,19 @@ def train_flat_policy(
     out: str | os.PathLike[str],
     progress: ProgressFn | None = None,
     threads: int = 0,
+    curve: CurveFn | None = None,
 ) -> TrainedPolicy:
     """Trains the flat baseline on ``settings.world`` for ``settings.steps`` env-steps and saves
-    it into ``out`` (:mod:`mazesim.learn.baseline`)."""
+    it into ``out`` (:mod:`mazesim.learn.baseline`); ``curve`` receives ``("flat", {"index":
+    env-steps done, "goal_rate": share of the last episodes that reached the goal})``."""
     world = _navigator_world(settings.world)
     started = time.perf_counter()
 
     def flat_progress(done: int, total: int, recent: float) -> None:
         if progress is not None:
             progress("flat", done, total)
+        if curve is not None:
+            curve("flat", {"index": done, "goal_rate": recent})
 
     q, outcomes = train_flat(
         world,

@@ -30,7 +30,7 @@ from typing import Any
 
 from mazesim.errors import MazesimError, MissingDependencyError
 
-__all__ = ["LocalMaster", "free_loopback_port"]
+__all__ = ["LocalMaster", "free_loopback_port", "processes_with"]
 
 #: The environment variable whose value tags every process a LocalMaster starts.
 TAG_VARIABLE = "MAZESIM_ROS_GRAPH"
@@ -42,6 +42,31 @@ def _xmlrpc(uri: str, method: str, *args: object) -> Any:
     """Calls a ROS XML-RPC API method; returns ``[code, message, value]`` as the API defines."""
     with xmlrpc.client.ServerProxy(uri) as proxy:
         return getattr(proxy, method)(CALLER_ID, *args)
+
+
+def processes_with(variable: str, value: str) -> list[tuple[int, str]]:
+    """Running (not zombie) processes whose environment has ``variable=value``: ``(pid, command
+    line)`` pairs. Reads ``/proc``; elsewhere it returns an empty list."""
+    marker = f"{variable}={value}".encode()
+    found: list[tuple[int, str]] = []
+    if not os.path.isdir("/proc"):
+        return found
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            with open(f"/proc/{entry}/environ", "rb") as environ:
+                if marker not in environ.read().split(b"\0"):
+                    continue
+            with open(f"/proc/{entry}/stat", "rb") as stat:
+                if stat.read().rsplit(b")", 1)[1].split()[0] == b"Z":
+                    continue  # a zombie: exited, waiting to be reaped
+            with open(f"/proc/{entry}/cmdline", "rb") as cmdline:
+                command = cmdline.read().replace(b"\0", b" ").decode(errors="replace")
+        except OSError:
+            continue
+        found.append((int(entry), command.strip()))
+    return found
 
 
 def free_loopback_port() -> int:
@@ -329,23 +354,4 @@ class LocalMaster:
 
         Reads ``/proc``; elsewhere it returns an empty list.
         """
-        marker = f"{TAG_VARIABLE}={self.tag}".encode()
-        found: list[tuple[int, str]] = []
-        if not os.path.isdir("/proc"):
-            return found
-        for entry in os.listdir("/proc"):
-            if not entry.isdigit():
-                continue
-            try:
-                with open(f"/proc/{entry}/environ", "rb") as environ:
-                    if marker not in environ.read().split(b"\0"):
-                        continue
-                with open(f"/proc/{entry}/stat", "rb") as stat:
-                    if stat.read().rsplit(b")", 1)[1].split()[0] == b"Z":
-                        continue  # a zombie: exited, waiting to be reaped
-                with open(f"/proc/{entry}/cmdline", "rb") as cmdline:
-                    command = cmdline.read().replace(b"\0", b" ").decode(errors="replace")
-            except OSError:
-                continue
-            found.append((int(entry), command.strip()))
-        return found
+        return processes_with(TAG_VARIABLE, self.tag)

@@ -72,13 +72,15 @@ impl Controller {
         Ok(())
     }
 
-    /// The decision for environment `env` from its distance readings, its robot's motor limit
-    /// `max_speed` (rad/s) and its stream.
+    /// The decision for environment `env` from its distance readings, the wheel speeds of its
+    /// last step (`[0, 0]` after a reset), its robot's motor limit `max_speed` (rad/s) and its
+    /// stream.
     #[inline]
     pub fn decide(
         &self,
         env: usize,
         readings: &[f32],
+        last_wheel_speeds: [f32; 2],
         max_speed: f64,
         stream: &mut Rng,
     ) -> Decision {
@@ -91,7 +93,7 @@ impl Controller {
             Controller::AvoidCollision(rule) => free(rule.wheel_speeds(readings)),
             Controller::RandomWheels => free(random_wheels::wheel_speeds(stream, max_speed)),
             Controller::Tabular(policy) => {
-                let action = policy.action(env, readings, stream);
+                let action = policy.action_after(env, readings, last_wheel_speeds, stream);
                 let [l, r] = tabular::WHEEL_SPEED_FRACTIONS[action];
                 Decision {
                     wheel_speeds: [(l * max_speed) as f32, (r * max_speed) as f32],

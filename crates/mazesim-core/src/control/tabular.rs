@@ -81,8 +81,14 @@ pub struct TabularPolicy {
     /// Per environment, the table it acts from; all use table 0 when `None`.
     table_of_env: Option<Vec<u32>>,
     epsilon: f64,
+    /// Keep turning on the spot the way the last step turned rather than turn back.
+    hold_spins: bool,
     discretiser: Discretiser,
 }
+
+/// The action that turns right on the spot (`aa`) and the one that turns left (`bb`).
+const SPIN_RIGHT: usize = 9;
+const SPIN_LEFT: usize = 10;
 
 impl TabularPolicy {
     /// A policy from `values` (`tables` Q-tables of `NUM_STATES x NUM_ACTIONS` values, row-major),
@@ -157,8 +163,41 @@ impl TabularPolicy {
             allowed,
             table_of_env,
             epsilon,
+            hold_spins: false,
             discretiser: Discretiser::new()?,
         })
+    }
+
+    /// The policy keeping a turn on the spot (`mazesim.learn.policy.hold_spins`): an
+    /// environment whose last step turned one way on the spot (its wheel speeds, see
+    /// [`TabularPolicy::action_after`]) and whose action now turns the other way keeps turning
+    /// as before.
+    pub fn with_held_spins(mut self, hold: bool) -> Self {
+        self.hold_spins = hold;
+        self
+    }
+
+    /// [`TabularPolicy::action`] after a step with wheel speeds `last` (`[0, 0]` after a reset),
+    /// a turn on the spot kept when the policy holds spins.
+    pub fn action_after(
+        &self,
+        env: usize,
+        volts: &[f32],
+        last: [f32; 2],
+        stream: &mut Rng,
+    ) -> usize {
+        let action = self.action(env, volts, stream);
+        if !self.hold_spins {
+            return action;
+        }
+        let [left, right] = last;
+        if action == SPIN_LEFT && left > 0.0 && right < 0.0 {
+            SPIN_RIGHT
+        } else if action == SPIN_RIGHT && left < 0.0 && right > 0.0 {
+            SPIN_LEFT
+        } else {
+            action
+        }
     }
 
     /// Checks that the policy can drive `envs` environments.

@@ -18,7 +18,7 @@ import mazesim
 from mazesim.errors import InvalidActionError, InvalidArgumentError
 from mazesim.ros import standard
 from mazesim.ros.local_master import LocalMaster
-from test_ros import REPO, _processes_with, needs_ros, run_probe, spawn_bridge, spawn_launch
+from ros_support import REPO, needs_ros, processes_with, run_probe, spawn_bridge, spawn_launch
 
 EPUCK = mazesim.RobotProfile.builtin("e-puck")
 STEP_S = 0.032
@@ -213,7 +213,7 @@ def test_view_launch_runs_without_a_display(master: LocalMaster) -> None:
     log = Path(master.log_path("roslaunch")).read_text()
     assert "rviz not started: no display" in log
     assert "Traceback" not in log
-    assert _processes_with("MAZESIM_TEST_LAUNCH", tag) == []
+    assert processes_with("MAZESIM_TEST_LAUNCH", tag) == []
 
 
 def test_every_ros_command_says_what_to_install_without_ros(tmp_path: Path) -> None:

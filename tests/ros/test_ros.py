@@ -9,11 +9,9 @@ from __future__ import annotations
 
 import json
 import math
-import os
 import re
 import subprocess
 import sys
-import uuid
 from pathlib import Path
 from typing import Any
 
@@ -30,11 +28,16 @@ from mazesim.ros.bridge import BridgeSettings, resolve_settings
 from mazesim.ros.demo import goal_step
 from mazesim.ros.local_master import LocalMaster
 from mazesim.ros.perform_learning import control_step_value
-from ros_support import needs_ros
+from ros_support import (
+    MAZESIM,
+    PROBE,
+    needs_ros,
+    processes_with,
+    run_probe,
+    spawn_bridge,
+    spawn_launch,
+)
 
-REPO = Path(__file__).resolve().parents[1]
-PROBE = Path(__file__).with_name("ros_probe.py")
-MAZESIM = (sys.executable, "-m", "mazesim")
 EPUCK_SENSORS = "ps0,ps1,ps2,ps3,ps4,ps5,ps6,ps7,gs0,gs1,gs2"
 STEP_S = 0.032
 
@@ -191,37 +194,6 @@ def test_node_without_rospy_fails_with_one_clear_line() -> None:
 
 
 # --- against a real master (the fixture ``master`` is in conftest.py) ---------------------------
-
-
-def run_probe(master: LocalMaster, *args: str) -> dict[str, Any]:
-    result = subprocess.run(
-        [sys.executable, str(PROBE), *args],
-        env=master.env,
-        capture_output=True,
-        text=True,
-        timeout=60,
-        check=False,
-    )
-    assert result.returncode == 0, result.stdout + result.stderr
-    return dict(json.loads(result.stdout.strip().splitlines()[-1]))
-
-
-def spawn_bridge(master: LocalMaster, *options: str) -> subprocess.Popen[bytes]:
-    return master.spawn("bridge", [*MAZESIM, "ros", "bridge", *options])
-
-
-def spawn_launch(
-    master: LocalMaster, launch_file: str, *args: str, **env: str
-) -> tuple[subprocess.Popen[bytes], str]:
-    """Runs ``roslaunch mazesim_ros LAUNCH_FILE ARGS`` in the package folder of the repository;
-    returns the process and the tag in its environment (for :func:`_processes_with`)."""
-    tag = uuid.uuid4().hex
-    launch = master.spawn(
-        "roslaunch",
-        ["roslaunch", "mazesim_ros", launch_file, *args],
-        env={"ROS_PACKAGE_PATH": str(REPO / "ros"), "MAZESIM_TEST_LAUNCH": tag, **env},
-    )
-    return launch, tag
 
 
 def drive(master: LocalMaster, tmp_path: Path, commands: list[dict[str, Any]]) -> dict[str, Any]:
@@ -490,7 +462,7 @@ def test_launch_file_runs_and_stops_without_leftovers(master: LocalMaster) -> No
     assert math.hypot(*(poses[-1, :2] - poses[0, :2])) > 0.02
 
     assert LocalMaster.stop_process(launch) == 0  # SIGINT, as Ctrl-C
-    assert _processes_with("MAZESIM_TEST_LAUNCH", tag) == []
+    assert processes_with("MAZESIM_TEST_LAUNCH", tag) == []
 
 
 @needs_ros
@@ -505,7 +477,7 @@ def test_learning_launch_stops_at_the_goal_without_leftovers(master: LocalMaster
     assert reached == int(found[1])
     assert f"goal reached at step {found[1]};" in log
     assert "Traceback" not in log
-    assert _processes_with("MAZESIM_TEST_LAUNCH", tag) == []
+    assert processes_with("MAZESIM_TEST_LAUNCH", tag) == []
 
 
 @needs_ros
@@ -594,23 +566,3 @@ def test_recorded_run_plays_back_and_equals_in_process_run(
     assert left_behind == [] and player.leftovers() == []
     played = json.loads(stdout.strip().splitlines()[-1])["data"]["pose"]
     assert played == expected
-
-
-def _processes_with(variable: str, value: str) -> list[int]:
-    """PIDs of running (not zombie) processes whose environment has variable=value."""
-    marker = f"{variable}={value}".encode()
-    found = []
-    for entry in os.listdir("/proc"):
-        if not entry.isdigit():
-            continue
-        try:
-            with open(f"/proc/{entry}/environ", "rb") as environ:
-                if marker not in environ.read().split(b"\0"):
-                    continue
-            with open(f"/proc/{entry}/stat", "rb") as stat:
-                if stat.read().rsplit(b")", 1)[1].split()[0] == b"Z":
-                    continue
-        except OSError:
-            continue
-        found.append(int(entry))
-    return found

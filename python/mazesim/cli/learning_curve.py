@@ -1,0 +1,97 @@
+"""The learning curve of ``mazesim train``: a CSV file always, TensorBoard on request.
+
+``OUT/learning_curve.csv`` has one row per point the training reports
+(:data:`mazesim.learn.train.CurveFn`) and the columns :data:`CSV_COLUMNS`: ``stage``
+(``lower``, ``higher``, or ``flat`` for ``--flat``), then the values that
+:data:`mazesim.learn.train.CURVE_VALUES` describes, empty where a stage does not measure one.
+A resumed run writes the file afresh, its checkpoint's rounds first. With ``--tensorboard``
+the same values also go to TensorBoard event files in ``OUT/tensorboard/`` (as
+``lower/door_success_right``, ``higher/goal_rate``..., stepped by ``index``); that needs the
+optional ``tensorboardX`` package (``pip install 'mazesim[tensorboard]'``).
+"""
+
+from __future__ import annotations
+
+import csv
+from pathlib import Path
+from types import TracebackType
+from typing import Any
+
+from mazesim.errors import MissingDependencyError
+from mazesim.learn.train import CURVE_VALUES
+
+__all__ = ["CSV_COLUMNS", "CURVE_FILE", "TENSORBOARD_FOLDER", "LearningCurve"]
+
+#: The CSV file's name in the output folder.
+CURVE_FILE = "learning_curve.csv"
+#: The folder of the TensorBoard event files in the output folder.
+TENSORBOARD_FOLDER = "tensorboard"
+#: The CSV file's columns.
+CSV_COLUMNS = ("stage", *CURVE_VALUES)
+
+
+def _tensorboard_writer_class() -> Any:
+    """``tensorboardX.SummaryWriter``."""
+    try:
+        from tensorboardX import SummaryWriter
+    except ImportError:
+        raise MissingDependencyError(
+            "--tensorboard needs the tensorboardX package: pip install 'mazesim[tensorboard]'"
+        ) from None
+    return SummaryWriter
+
+
+class LearningCurve:
+    """Writes a training's learning curve into ``folder`` as it comes (a context manager and a
+    :data:`mazesim.learn.train.CurveFn`); the files are opened at the first point, when the
+    training has made its folder.
+
+    Args:
+        folder: The output folder.
+        tensorboard: Also log to TensorBoard event files.
+
+    Raises:
+        MissingDependencyError: ``tensorboard`` without the tensorboardX package (raised before
+            any file is written).
+    """
+
+    def __init__(self, folder: Path, tensorboard: bool = False) -> None:
+        self.folder = folder
+        self._writer_class = _tensorboard_writer_class() if tensorboard else None
+        self.writer: Any = None
+        self.path = folder / CURVE_FILE
+        self._file: Any = None
+        self._csv: Any = None
+
+    def __call__(self, stage: str, values: dict[str, float]) -> None:
+        if self._file is None:
+            self._file = self.path.open("w", newline="", encoding="utf-8")
+            self._csv = csv.DictWriter(self._file, fieldnames=CSV_COLUMNS, restval="")
+            self._csv.writeheader()
+            if self._writer_class is not None:
+                self.writer = self._writer_class(logdir=str(self.folder / TENSORBOARD_FOLDER))
+        self._csv.writerow({"stage": stage, **values})
+        self._file.flush()
+        if self.writer is not None:
+            step = int(values["index"])
+            for name, value in values.items():
+                if name != "index":
+                    self.writer.add_scalar(f"{stage}/{name}", value, step)
+
+    def close(self) -> None:
+        """Closes the files."""
+        if self._file is not None:
+            self._file.close()
+        if self.writer is not None:
+            self.writer.close()
+
+    def __enter__(self) -> LearningCurve:
+        return self
+
+    def __exit__(
+        self,
+        kind: type[BaseException] | None,
+        error: BaseException | None,
+        trace: TracebackType | None,
+    ) -> None:
+        self.close()

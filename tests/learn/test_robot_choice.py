@@ -1,0 +1,66 @@
+"""``robot=`` of training and evaluation reaches every batch they build, as given."""
+
+from __future__ import annotations
+
+import contextlib
+from typing import Any
+
+import pytest
+
+import mazesim
+from mazesim.batch import RobotBatch
+from mazesim.learn.evaluate import evaluate_navigator, unseen_mazes
+from mazesim.learn.higher_training import HigherTraining
+from mazesim.learn.lower import LowerSettings
+from mazesim.learn.tables import load_policy
+from mazesim.learn.train import run_training
+
+
+@pytest.fixture
+def robots_seen(monkeypatch: pytest.MonkeyPatch) -> list[Any]:
+    seen: list[Any] = []
+    original = RobotBatch.__init__
+
+    def spy(self: RobotBatch, *args: Any, **options: Any) -> None:
+        seen.append(options.get("robot", "seed"))
+        original(self, *args, **options)
+
+    monkeypatch.setattr(RobotBatch, "__init__", spy)
+    return seen
+
+
+def test_training_hands_the_robot_to_both_stages(robots_seen: list[Any]) -> None:
+    lower = LowerSettings(num_envs=4, total_steps=40, round_steps=10, maze_pool=2)
+    higher = HigherTraining(episodes_per_world=1, envs_per_world=1, max_steps=20)
+    world = mazesim.load_world("seed-maze")
+    run = run_training(lower, higher, world, threads=1, robot="e-puck")
+    assert run is not None
+    assert robots_seen == ["e-puck", "e-puck"]
+    robots_seen.clear()
+    run_training(lower, higher, world, threads=1)
+    assert robots_seen == ["seed", "seed"]
+
+
+def test_evaluation_hands_the_robot_to_adaptation_and_episodes(robots_seen: list[Any]) -> None:
+    policy = load_policy(None)
+    report = evaluate_navigator(policy, unseen_mazes(1, 0), 1, max_steps=30, robot="e-puck")
+    assert report.adapted
+    assert robots_seen and set(robots_seen) == {"e-puck"}
+    # A profile object is handed on as it is (the batch decides what it takes).
+    profile = mazesim.RobotProfile.builtin("e-puck")
+    robots_seen.clear()
+    with contextlib.suppress(mazesim.InvalidArgumentError):
+        evaluate_navigator(
+            policy, [mazesim.load_world("seed-maze")], 1, max_steps=30, robot=profile
+        )
+    assert robots_seen and robots_seen[0] is profile
+
+
+def test_a_spread_evaluation_refuses_another_robot() -> None:
+    def spread(chunk: Any, episodes: int) -> Any:
+        raise AssertionError("not reached")
+
+    with pytest.raises(mazesim.InvalidArgumentError, match="seed robot"):
+        evaluate_navigator(
+            load_policy(None), [mazesim.load_world("seed-maze")], 1, spread=spread, robot="e-puck"
+        )

@@ -1,0 +1,123 @@
+"""The navigator's corridor stretches in the core's multi-step call give, episode for episode,
+what one step at a time gives (:mod:`mazesim.learn.stretches`)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import mazesim
+from mazesim.actions import ACTION_CODES
+from mazesim.episodes import EpisodeBatch, run_episodes
+from mazesim.errors import InvalidArgumentError
+from mazesim.learn import policy as policy_module
+from mazesim.learn.evaluate import evaluate_navigator
+from mazesim.learn.higher import HigherLevel
+from mazesim.learn.policy import HierarchicalPolicy, hold_spins
+from mazesim.learn.stretches import run_navigator_episodes, stretches_apply
+from mazesim.learn.tables import load_policy
+from mazesim.maze import checkpoint_ids
+
+RIGHT, LEFT, FORWARD = (ACTION_CODES.index(code) for code in ("aa", "bb", "00"))
+
+
+def decisions_of(policy: HierarchicalPolicy) -> tuple[np.ndarray, np.ndarray]:
+    robots = np.flatnonzero(policy.record.chosen >= 0)
+    return robots, policy.record.chosen[robots]
+
+
+def test_a_corridor_robot_keeps_its_turn_on_the_spot() -> None:
+    spins = np.array([RIGHT, LEFT, RIGHT, LEFT, FORWARD, LEFT])
+    previous = np.array([LEFT, RIGHT, RIGHT, -1, RIGHT, RIGHT])
+    corridor = np.array([True, True, True, True, True, False])
+    np.testing.assert_array_equal(
+        hold_spins(spins, previous, corridor), [LEFT, RIGHT, RIGHT, LEFT, FORWARD, LEFT]
+    )
+
+
+@pytest.mark.parametrize("stretch_steps", [1, 256])
+def test_stretches_equal_single_steps_in_unseen_mazes(
+    stretch_steps: int, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Random higher-level values (so every sub-task runs), a checkpoint the higher level does
+    not know (its events are ignored), a short step limit (so some episodes fail), fewer
+    robots than episodes (robots wait with none left), and turns on the spot held."""
+    held = [0]
+
+    def counting(actions: np.ndarray, previous: np.ndarray, where: np.ndarray) -> np.ndarray:
+        kept = hold_spins(actions, previous, where)
+        held[0] += int(np.count_nonzero(kept != actions))
+        return kept
+
+    monkeypatch.setattr(policy_module, "hold_spins", counting)
+    shipped = load_policy(None)
+    assert shipped.lower_q is not None
+    worlds = [mazesim.generate_maze(5, 5, seed=300 + i) for i in range(3)]
+    ids = [checkpoint_ids(world)[1:] for world in worlds]
+    values = np.random.default_rng(6).normal(size=HigherLevel(ids).q.shape)
+    level = HigherLevel(ids, q=values)
+    world_of_env = np.repeat(np.arange(3), 2)
+    results = []
+    for multi in (True, False):
+        nav = EpisodeBatch(worlds, world_of_env, seed=9, max_steps=2500, threads=1)
+        policy = HierarchicalPolicy(shipped.lower_q, level, world_of_env)
+        ends: list[bool] = []
+
+        def on_end(robots: np.ndarray, arrived: np.ndarray, ends: list[bool] = ends) -> None:
+            ends.extend(arrived.tolist())
+
+        if multi:
+            got = run_navigator_episodes(nav, policy, 5, on_end, stretch_steps=stretch_steps)
+        else:
+            got = run_episodes(
+                nav, policy, 5, None, on_end, lambda policy=policy: decisions_of(policy)
+            )
+        results.append((got, sorted(ends)))
+    (fast, fast_ends), (slow, slow_ends) = results
+    assert [r.episode for r in fast] == list(range(15))
+    assert fast == slow
+    # Robots run ahead of one another, so which robot runs which episode may differ.
+    assert len(fast_ends) == 15 and sorted(fast_ends) == sorted(slow_ends)
+    arrived = [r.arrived for r in fast]
+    assert any(arrived) and not all(arrived), "expected both ends of an episode to be covered"
+    assert {option for r in fast for _, option in r.decisions} == {0, 1, 2, 3}
+    assert held[0] > 0, "expected turns on the spot kept in the per-step loop"
+
+
+def test_evaluation_is_the_same_either_way_with_trace_and_paths() -> None:
+    policy = load_policy(None)
+    world = mazesim.load_world("seed-maze")
+    reports = [
+        evaluate_navigator(
+            policy, [world], 12, seed=3, trace=True, plot_episodes=2, multi_step=multi
+        )
+        for multi in (True, False)
+    ]
+    fast, slow = (report.evaluations["truth"] for report in reports)
+    assert fast.results == slow.results
+    assert fast.summary == slow.summary
+    assert fast.trace == slow.trace and len(fast.trace) > 100
+    assert fast.paths.keys() == slow.paths.keys() == {0, 1}
+    for episode in fast.paths:
+        np.testing.assert_array_equal(fast.paths[episode], slow.paths[episode])
+    assert fast.marks == slow.marks
+
+
+def test_what_stretches_cannot_run_is_refused() -> None:
+    policy = load_policy(None)
+    assert policy.lower_q is not None and policy.higher_q is not None
+    world = mazesim.load_world("seed-maze")
+    level = HigherLevel([policy.checkpoint_ids], q=policy.higher_q[None])
+    greedy = HierarchicalPolicy(policy.lower_q, level, [0])
+    exploring = HierarchicalPolicy(
+        policy.lower_q, level, [0], chooser=lambda robots, states: states * 0
+    )
+    truth = EpisodeBatch([world], num_envs=1)
+    robust = EpisodeBatch([world], num_envs=1, events="robust")
+    assert stretches_apply(truth, greedy)
+    assert not stretches_apply(robust, greedy)
+    assert not stretches_apply(truth, exploring)
+    with pytest.raises(InvalidArgumentError, match="ground truth"):
+        run_navigator_episodes(robust, greedy, 1)
+    with pytest.raises(InvalidArgumentError, match="at least 1 step"):
+        run_navigator_episodes(truth, greedy, 1, stretch_steps=0)
