@@ -18,6 +18,7 @@ from env_worlds import CORRIDOR  # noqa: E402
 from mazesim.envs import TASKS, EPuckMazeEnv  # noqa: E402
 from mazesim.envs.navigation import with_start_and_goal  # noqa: E402
 from mazesim.errors import InvalidArgumentError  # noqa: E402
+from mazesim.maze import CellMaze  # noqa: E402
 
 
 @pytest.mark.parametrize("task", TASKS, ids=[task.env_id for task in TASKS])
@@ -33,10 +34,10 @@ def test_every_task_passes_check_env(task: Any) -> None:
 def test_tiers_run_from_one_fixed_maze_to_unseen_mazes() -> None:
     assert [task.tier for task in TASKS] == [0, 1, 2, 3, 4]
     assert TASKS[0].options == {}  # EPuckMaze-v0 as it was
-    first = gymnasium.make("mazesim/MazeFixed-v0").unwrapped
+    first = gymnasium.make("mazesim/MazeFixed-v1").unwrapped
     starts = {(first.reset(seed=s)[1]["pose"].tobytes()) for s in range(3)}
     assert len(starts) == 1  # tier 1: one start
-    unseen = gymnasium.make("mazesim/UnseenMaze-v0").unwrapped
+    unseen = gymnasium.make("mazesim/UnseenMaze-v1").unwrapped
     walls = set()
     for seed in range(3):
         unseen.reset(seed=seed)
@@ -61,6 +62,35 @@ def test_random_start_and_goal_are_distinct_cells_drawn_from_the_seed() -> None:
     assert again.world == env.world
     # The walls and barcodes are seed-maze's.
     assert np.array_equal(env.world.wall_boxes(), mazesim.load_world("seed-maze").wall_boxes())
+
+
+def test_random_start_and_goal_always_join() -> None:
+    # seed-maze's cells (1, 1), (3, 1), (1, 3) and (3, 3) are walled in: never a start or a goal.
+    env = EPuckMazeEnv(world="seed-maze", start_goal="random", observation="goal")
+    cells = set()
+    for seed in range(120):
+        env.reset(seed=seed)
+        maze = CellMaze(env.world)
+        assert maze.start_cell is not None and maze.goal_cell is not None
+        column, row = maze.goal_cell
+        assert maze.distances_from(maze.start_cell)[row, column] > 0
+        cells |= {maze.start_cell, maze.goal_cell}
+    assert cells == {(c, r) for c in range(5) for r in range(5)} - {(1, 1), (3, 1), (1, 3), (3, 3)}
+
+
+def test_tiers_1_to_3_act_every_128_ms_and_tier_2_observes_the_pose() -> None:
+    for env_id in ("mazesim/MazeFixed-v1", "mazesim/MazeRandomGoal-v1", "mazesim/UnseenMaze-v1"):
+        assert gymnasium.make(env_id).unwrapped.metadata["render_fps"] == 1000 / 128
+    env = gymnasium.make("mazesim/MazeRandomGoal-v1").unwrapped
+    observation, info = env.reset(seed=3)
+    value = dict(zip(env.observation_names, observation.tolist()))
+    x, y, yaw = info["pose"].tolist()
+    assert value["x"] == pytest.approx(x / 1.25, abs=0.02)  # seed-maze's bounds span 1.25 m
+    assert value["y"] == pytest.approx(y / 1.25, abs=0.02)
+    assert (value["heading_cos"], value["heading_sin"]) == pytest.approx(
+        (math.cos(yaw), math.sin(yaw)), abs=1e-6
+    )
+    assert "x" not in gymnasium.make("mazesim/MazeFixed-v1").unwrapped.observation_names
 
 
 def test_with_start_and_goal_moves_both() -> None:
@@ -99,7 +129,7 @@ def test_bad_task_options_raise() -> None:
         EPuckMazeEnv(world="arena", start_goal="random").reset(seed=0)
 
 
-@pytest.mark.parametrize("env_id", ["mazesim/MazeRandomGoal-v0", "mazesim/UnseenMazeGuided-v0"])
+@pytest.mark.parametrize("env_id", ["mazesim/MazeRandomGoal-v1", "mazesim/UnseenMazeGuided-v0"])
 @pytest.mark.parametrize("action_mode", ["continuous", "discrete"])
 def test_native_vector_env_equals_sync_on_the_tasks(env_id: str, action_mode: str) -> None:
     num_envs = 4

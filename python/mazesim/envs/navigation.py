@@ -39,7 +39,7 @@ from gymnasium import spaces
 from mazesim._core import RobotProfile, World
 from mazesim.envs.spaces import NOISE_MARGIN, sensor_ranges
 from mazesim.errors import InvalidArgumentError
-from mazesim.maze import EAST, NORTH, SOUTH, WEST, PathDistanceTable
+from mazesim.maze import EAST, NORTH, SOUTH, WEST, CellMaze, PathDistanceTable
 
 __all__ = [
     "OBSERVATIONS",
@@ -62,35 +62,62 @@ _SIDE_STEPS = {EAST: (1.0, 0.0), NORTH: (0.0, 1.0), WEST: (-1.0, 0.0), SOUTH: (0
 
 
 def navigation_features(
-    observation: str, num_envs: int, robot: RobotProfile, world: World, table: PathDistanceTable
+    observation: str,
+    num_envs: int,
+    robot: RobotProfile,
+    world: World,
+    table: PathDistanceTable,
+    pose: bool = False,
 ) -> NavigationFeatures | None:
-    """The features of an ``observation`` kind for N environments all in ``world`` at first;
-    None for ``"sensors"``."""
+    """The features of an ``observation`` kind for N environments all in ``world`` at first
+    (with the robot's pose if ``pose``); None for ``"sensors"``."""
     if observation == "sensors":
         return None
-    features = NavigationFeatures(num_envs, robot, observation == "guided")
+    features = NavigationFeatures(num_envs, robot, observation == "guided", pose)
     features.set(np.arange(num_envs), world, table)
     return features
 
 
 def draw_start_and_goal(world: World, rng: np.random.Generator) -> World:
-    """``world`` with its start and goal in two distinct random cells of its maze, the start
-    facing a random direction; draws three numbers from ``rng``.
+    """``world`` with its start and goal in two distinct random cells of its maze that join each
+    other, the start facing a random direction; draws three numbers from ``rng``.
+
+    The start is drawn among the cells of the largest connected set of cells (every cell in a
+    generated maze; seed-maze has four walled-in cells), the goal among the others of that set.
 
     Raises:
-        InvalidArgumentError: The world has no cell maze.
+        InvalidArgumentError: The world has no cell maze, or no two cells join.
     """
-    maze = world.cell_maze()
-    if maze is None:
+    if world.cell_maze() is None:
         raise InvalidArgumentError(
             f'expected a world with a cell maze for start_goal="random", found {world.name!r}'
         )
-    rows, cols = int(maze["rows"]), int(maze["cols"])  # type: ignore[call-overload]
-    start = int(rng.integers(rows * cols))
-    goal = int(rng.integers(rows * cols - 1))
+    cells = _largest_connected_cells(CellMaze(world))
+    if len(cells) < 2:
+        raise InvalidArgumentError(
+            f'expected two cells that join each other for start_goal="random", found none in '
+            f"{world.name!r}"
+        )
+    start = int(rng.integers(len(cells)))
+    goal = int(rng.integers(len(cells) - 1))
     goal += goal >= start
     yaw = float(rng.uniform(-math.pi, math.pi))
-    return with_start_and_goal(world, divmod(start, cols), divmod(goal, cols), yaw)
+    return with_start_and_goal(world, cells[start], cells[goal], yaw)
+
+
+def _largest_connected_cells(maze: CellMaze) -> list[tuple[int, int]]:
+    """The (row, column) cells of the largest set of cells joined by open sides, row-major from
+    the north-west (the first such set if two are as large)."""
+    best: list[tuple[int, int]] = []
+    seen = np.zeros((maze.rows, maze.cols), dtype=bool)
+    for column, row in maze.cells():
+        if seen[row, column]:
+            continue
+        reach = maze.distances_from((column, row)) >= 0
+        seen |= reach
+        if int(reach.sum()) > len(best):
+            best = [(int(r), int(c)) for r, c in zip(*np.nonzero(reach), strict=True)]
+    return best
 
 
 def with_start_and_goal(
@@ -128,27 +155,38 @@ class NavigationFeatures:
         num_envs: Number of environments.
         robot: The robot profile.
         guided: Whether the observation holds the waypoint.
+        pose: Whether the observation holds the robot's pose in the maze.
     """
 
-    def __init__(self, num_envs: int, robot: RobotProfile, guided: bool) -> None:
+    def __init__(
+        self, num_envs: int, robot: RobotProfile, guided: bool, pose: bool = False
+    ) -> None:
         ranges = sensor_ranges(robot)
         distance, ground = robot.distance_sensor_names, robot.ground_sensor_names
         scale = [ranges.distance_max] * len(distance) + [ranges.ground_max] * len(ground)
         self.sensor_width = len(scale)
         self._scale = np.array(scale, dtype=np.float64)
         self.guided = guided
+        self.pose = pose
         extra = ["goal_forward", "goal_left"]
-        bounds = [1.5, 1.5]
+        low, high = [-1.5, -1.5], [1.5, 1.5]
         if guided:
             extra += ["waypoint_forward", "waypoint_left"]
-            bounds += [_WAYPOINT_BOUND, _WAYPOINT_BOUND]
+            low += [-_WAYPOINT_BOUND, -_WAYPOINT_BOUND]
+            high += [_WAYPOINT_BOUND, _WAYPOINT_BOUND]
+        if pose:
+            extra += ["x", "y", "heading_cos", "heading_sin"]
+            low += [0.0, 0.0, -1.0, -1.0]
+            high += [1.0, 1.0, 1.0, 1.0]
         extra += ["previous_left", "previous_right"]
-        bounds += [1.0, 1.0]
+        low += [-1.0, -1.0]
+        high += [1.0, 1.0]
         self.names = [*distance, *ground, *extra]
-        self.low = np.array([0.0] * self.sensor_width + [-b for b in bounds], dtype=np.float32)
-        self.high = np.array([NOISE_MARGIN] * self.sensor_width + bounds, dtype=np.float32)
+        self.low = np.array([0.0] * self.sensor_width + low, dtype=np.float32)
+        self.high = np.array([NOISE_MARGIN] * self.sensor_width + high, dtype=np.float32)
         self._goal = np.zeros((num_envs, 2))
         self._extent = np.ones(num_envs)
+        self._corner = np.zeros((num_envs, 2))
         self._size = np.ones(num_envs)
         self._origin = np.zeros((num_envs, 2))
         self._shape = np.ones((num_envs, 2), dtype=np.intp)  # rows, cols
@@ -166,6 +204,7 @@ class NavigationFeatures:
         self._goal[env] = table.goal[:2]
         xmin, ymin, xmax, ymax = world.bounds
         self._extent[env] = max(xmax - xmin, ymax - ymin, 1e-6)
+        self._corner[env] = (xmin, ymin)
         self._size[env] = table.cell_size
         self._origin[env] = table.origin
         self._shape[env] = (table.rows, table.cols)
@@ -194,6 +233,13 @@ class NavigationFeatures:
             parts += [
                 ((cos * dx + sin * dy) / unit)[:, None],
                 ((cos * dy - sin * dx) / unit)[:, None],
+            ]
+        if self.pose:
+            parts += [
+                ((x - self._corner[:, 0]) / self._extent)[:, None],
+                ((y - self._corner[:, 1]) / self._extent)[:, None],
+                cos[:, None],
+                sin[:, None],
             ]
         parts.append(previous)
         out = np.concatenate(parts, axis=1).astype(np.float32)

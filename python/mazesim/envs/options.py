@@ -145,11 +145,6 @@ class EnvOptions:
                 raise InvalidArgumentError(
                     f"expected {name} to be one of {', '.join(accepted)}; found {value!r}"
                 )
-        if observation != "sensors" and include_pose:
-            raise InvalidArgumentError(
-                f'expected include_pose=False with observation="{observation}" '
-                "(it holds the goal's relative position), found include_pose=True"
-            )
         flags = (("noise", noise), ("include_pose", include_pose), ("clip_actions", clip_actions))
         for name, flag in flags:
             if not isinstance(flag, (bool, np.bool_)):

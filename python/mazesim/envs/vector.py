@@ -116,7 +116,12 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         )
         table = PathDistanceTable.of_world(first)
         self._features = navigation_features(
-            self.options.observation, self.num_envs, self.options.robot, first, table
+            self.options.observation,
+            self.num_envs,
+            self.options.robot,
+            first,
+            table,
+            self.options.include_pose,
         )
         features = self._features
         self.single_observation_space = self._layout.space if features is None else features.space
