@@ -11,6 +11,7 @@ logger, with the success rate of the last 100 episodes; ``curve.png``, its pictu
 then runs the trained policy for one episode on each of ``--eval-episodes`` held-out episodes:
 environments seeded from ``10**6 + seed``, so their mazes, starts and goals were never trained on.
 It prints the success rate. ``MAZESIM_EXAMPLES_FAST=1`` runs a tiny version (a few seconds).
+``--plot runs/fixed-0 runs/fixed-1 --picture fixed.png`` draws finished runs' curves together.
 
 Tiers 1 to 3 scale PPO's rewards by a running estimate of the returns' spread (SB3's
 ``VecNormalize`` with ``norm_obs=False``): the observations are already of order 1. Tier 3 is
@@ -47,7 +48,7 @@ SETTINGS: dict[str, dict[str, Any]] = {
     "mazesim/MazeRandomGoal-v1": {"envs": 128, "steps": 2_000_000, "n_steps": 128, "batch": 4096},
     "mazesim/UnseenMaze-v1": {
         "envs": 128,
-        "steps": 2_000_000,
+        "steps": 3_000_000,
         "n_steps": 128,
         "batch": 4096,
         "deterministic": False,
@@ -80,17 +81,22 @@ def evaluate(model: PPO, task: str, episodes: int, seed: int, deterministic: boo
     return float(success.mean())
 
 
-def plot_curve(progress: Path, picture: Path, title: str) -> None:
-    """Draws the success rate of the last 100 training episodes against env-steps."""
-    steps, success = [], []
-    with progress.open() as rows:
-        for row in csv.DictReader(rows):
-            if row.get("rollout/success_rate"):
-                steps.append(float(row["time/total_timesteps"]))
-                success.append(100 * float(row["rollout/success_rate"]))
+def plot_curves(runs: list[Path], picture: Path, title: str) -> None:
+    """Draws the success rate of the last 100 training episodes against env-steps, one line per
+    run directory (its ``progress.csv``), into a small PNG."""
     figure, axes = plt.subplots(figsize=(4, 2.6), dpi=80)
-    axes.plot(steps, success)
-    axes.set(xlabel="env-steps", ylabel="success %", ylim=(-2, 102), title=title)
+    for run in runs:
+        steps, success = [], []
+        with (run / "progress.csv").open() as rows:
+            for row in csv.DictReader(rows):
+                if row.get("rollout/success_rate"):
+                    steps.append(float(row["time/total_timesteps"]))
+                    success.append(100 * float(row["rollout/success_rate"]))
+        axes.plot(steps, success, label=run.name)
+    axes.set(xlabel="env-steps", ylabel="success %", ylim=(-2, 102))
+    axes.set_title(title, fontsize=9)
+    if len(runs) > 1:
+        axes.legend(fontsize=7, loc="lower right")
     figure.tight_layout()
     figure.savefig(picture)
     plt.close(figure)
@@ -105,7 +111,18 @@ def main() -> int:
     parser.add_argument("--envs", type=int, default=None, help="default: the tier's")
     parser.add_argument("--eval-episodes", type=int, default=100)
     parser.add_argument("--out", type=Path, default=Path("ppo-run"))
+    parser.add_argument(
+        "--plot",
+        type=Path,
+        nargs="+",
+        metavar="RUN",
+        help="no training: draw these runs' learning curves into --picture",
+    )
+    parser.add_argument("--picture", type=Path, default=Path("curves.png"))
     args = parser.parse_args()
+    if args.plot:
+        plot_curves(args.plot, args.picture, args.task)
+        return 0
     settings = {"normalize_reward": True, "deterministic": True, **SETTINGS[args.task]}
     if fast:
         settings.update(envs=8, steps=2048, n_steps=64, batch=256)
@@ -139,7 +156,7 @@ def main() -> int:
     seconds = time.perf_counter() - start
     model.save(args.out / "model.zip")
     envs.close()
-    plot_curve(args.out / "progress.csv", args.out / "curve.png", f"{args.task} seed {args.seed}")
+    plot_curves([args.out], args.out / "curve.png", f"{args.task} seed {args.seed}")
     success = evaluate(model, args.task, args.eval_episodes, args.seed, settings["deterministic"])
     print(
         f"{args.task} seed {args.seed}: {model.num_timesteps} env-steps in {seconds:.0f} s "

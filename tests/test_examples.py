@@ -143,3 +143,6 @@ def test_ppo_sb3_trains_and_evaluates_on_held_out_mazes(tmp_path: Path) -> None:
         assert (tmp_path / "run" / "progress.csv").read_text().count("\n") >= 2
         assert (tmp_path / "run" / "model.zip").stat().st_size > 1000
         assert (tmp_path / "run" / "curve.png").read_bytes()[:4] == b"\x89PNG"
+    argv = [sys.executable, str(EXAMPLES / "ppo_sb3.py"), "--plot", "run", "run"]
+    run_example([*argv, "--picture", "both.png"], tmp_path)
+    assert (tmp_path / "both.png").read_bytes()[:4] == b"\x89PNG"

@@ -226,9 +226,18 @@ class PathDistanceTable:
     targets: npt.NDArray[np.float64]
 
     @classmethod
-    def of_world(cls, world: World) -> PathDistanceTable:
-        """Builds the table of a world: a breadth-first search over its cell maze, if it has one."""
-        goal = world.goal
+    def of_world(
+        cls, world: World, goal: tuple[float, float, float] | None = None
+    ) -> PathDistanceTable:
+        """Builds the table of a world: a breadth-first search over its cell maze, if it has one.
+
+        Args:
+            world: The world.
+            goal: The goal disc (x, y, radius) instead of the world's (an environment's own goal,
+                ``BatchSimulator.set_goals_at``); its cell is the goal cell.
+        """
+        own = goal is not None
+        goal = goal if goal is not None else world.goal
         if goal is None:
             return cls("none", 1, 1, 1.0, (0.0, 0.0), (0.0, 0.0, -1.0), np.full((1, _TARGETS), 0.0))
         maze = world.cell_maze()
@@ -236,7 +245,7 @@ class PathDistanceTable:
             targets = np.full((1, _TARGETS), np.nan)
             return cls("straight", 1, 1, 1.0, (0.0, 0.0), goal, targets)
         cells = CellMaze(world)
-        if cells.goal_cell is None:
+        if own or cells.goal_cell is None:
             columns, rows = cells.cell_at(goal[0], goal[1])
             goal_cell = (int(columns), int(rows))
         else:

@@ -11,7 +11,7 @@ import numpy.typing as npt
 from gymnasium.error import ResetNeeded
 
 from mazesim._core import Simulator, World
-from mazesim.envs.navigation import navigation_features
+from mazesim.envs.navigation import StartAndGoal, navigation_features
 from mazesim.envs.options import EnvOptions, draw_seed
 from mazesim.envs.render import TopDownRenderer
 from mazesim.envs.spaces import ActionConverter, ObservationLayout, sensor_ranges
@@ -127,6 +127,7 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         self._low = np.ascontiguousarray(self._layout.low[:width])
         self._high = np.ascontiguousarray(self._layout.high[:width])
         self._goal = GoalDistance(1, table)
+        self._drawn: StartAndGoal | None = None
         self._distance = 0.0
         self._simulator: Simulator | None = None
         self._renderer: TopDownRenderer | None = None
@@ -147,30 +148,38 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
     ) -> tuple[npt.NDArray[np.float32], dict[str, Any]]:
         """Starts a new episode; ``options`` are accepted and unused."""
         super().reset(seed=seed)
-        world = self.options.next_world(self.np_random)
+        world, drawn = self.options.next_world(self.np_random)
         episode_seed = draw_seed(self.np_random)
-        if world is not None or self._simulator is None:
+        simulator = self._simulator
+        fresh = world is not None or simulator is None
+        if fresh:
             self.world = world if world is not None else self.world
-            self._simulator = Simulator(
+            simulator = self._simulator = Simulator(
                 self.world,
                 robot=self.options.robot.name,
                 seed=episode_seed,
                 noise=self.options.noise,
                 control_step_ms=self.options.control_step_ms,
             )
-            table = PathDistanceTable.of_world(self.world)
+        assert simulator is not None
+        if drawn is not None:
+            simulator.set_start(*drawn.start)
+            simulator.set_goal(*drawn.goal)
+        if drawn is not None or not fresh:
+            simulator.reset(seed=episode_seed)
+        if fresh or drawn is not None:
+            table = PathDistanceTable.of_world(self.world, None if drawn is None else drawn.goal)
             self._goal.set(0, table)
             if self._features is not None:
                 self._features.set(0, self.world, table)
             self._renderer = None
-        else:
-            self._simulator.reset(seed=episode_seed)
-        simulator = self._simulator
+        self._drawn = drawn
         readings = np.concatenate((simulator.distance_sensors(), simulator.ground_sensors()))
         pose = np.array(simulator.pose, dtype=np.float32)
         observation = self._layout.assemble_one(readings, pose)
         if self._features is not None:
             self._previous[:] = 0.0
+            self._features.restart(0)
             observation = self._features.observe(readings[None], pose[None], self._previous)[0]
         x, y, yaw = pose.tolist()
         self._distance, reached = self._goal.evaluate_one(x, y)
@@ -278,11 +287,14 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
 
     def _frame(self) -> npt.NDArray[np.uint8]:
         if self._renderer is None:
+            drawn = self._drawn
             self._renderer = TopDownRenderer(
                 self.world,
                 self.options.robot,
                 self.options.render_size,
                 sensor_ranges(self.options.robot).ray_length,
+                start=None if drawn is None else drawn.start,
+                goal=None if drawn is None else drawn.goal,
             )
         if self._simulator is None:
             return self._renderer.frame(self.world.start)

@@ -9,7 +9,8 @@ id                                     task
 ``mazesim/MazeRandomGoal-v1``          tier 2: seed-maze, random start and goal cells that
                                        join; goal and pose observed, 128 ms control step
 ``mazesim/UnseenMaze-v1``              tier 3: a new 5 x 5 maze every episode, random start
-                                       and goal, goal-conditioned observation only, 128 ms
+                                       and goal; the goal and the map explored so far
+                                       (open sides, visits round the robot), 128 ms
 ``mazesim/UnseenMazeGuided-v0``        tier 4: as tier 3, plus the next waypoint of the
                                        shortest path: the tier a feed-forward policy solves on
                                        mazes it never saw
@@ -23,7 +24,9 @@ with time limits of the same order in seconds (500 or 1000 steps): with a 32 ms 
 was 1,500 to 2,000 steps whose rewards were each a few thousandths, too long a horizon for a
 discount of 0.99, and PPO learned nothing in minutes. Tier 2 also observes the pose (on one known
 maze, where the robot is tells the way) and draws start and goal only among cells that join
-(seed-maze has four walled-in cells).
+(seed-maze has four walled-in cells). Tier 3 observes the map the robot has explored in this
+episode (``observation="explore"``): with the goal's direction alone a memoryless policy drives in
+circles in a maze it cannot see, with its visits it can prefer the corridors it has not tried.
 """
 
 from __future__ import annotations
@@ -83,11 +86,11 @@ TASKS: tuple[Task, ...] = (
     Task(
         "mazesim/UnseenMaze-v1",
         3,
-        "a new 5 x 5 maze each episode, random start and goal",
+        "a new 5 x 5 maze each episode, random start and goal, the explored map observed",
         1000,
         {
             "world": "random",
-            "observation": "goal",
+            "observation": "explore",
             "start_goal": "random",
             "control_step_ms": LONG_STEP_MS,
         },
