@@ -2,7 +2,7 @@
 
 Not a test: run it by hand (needs ``make sb3-deps``)::
 
-    .venv/bin/python benches/bench_sb3.py [--task mazesim/UnseenMazeGuided-v0] [--envs 256]
+    .venv/bin/python benches/bench_sb3.py [--task mazesim/UnseenMazeGuided-v0] [--envs 512]
 
 Both train the same PPO (MLP policy, the same hyperparameters, chosen for throughput on a CPU:
 rollouts of ``--n-steps`` steps per environment, minibatches of ``--batch`` samples or the whole
@@ -52,7 +52,7 @@ def train_rate(envs: VecEnv, steps: int, n_steps: int, batch: int, epochs: int) 
 def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
     parser.add_argument("--task", default="mazesim/UnseenMazeGuided-v0")
-    parser.add_argument("--envs", type=int, default=256, help="envs of the batch engine's VecEnv")
+    parser.add_argument("--envs", type=int, default=512, help="envs of the batch engine's VecEnv")
     parser.add_argument("--n-steps", type=int, default=128, help="rollout steps per env")
     parser.add_argument("--batch", type=int, default=8192, help="PPO minibatch size")
     parser.add_argument("--epochs", type=int, default=1, help="PPO epochs per rollout")
