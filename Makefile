@@ -120,7 +120,7 @@ sb3-deps: venv ## install Stable-Baselines3 and torch into .venv (mazesim[sb3]: 
 docs-deps: venv ## install the docs tools (mkdocs, Material, mkdocstrings) into .venv
 	$(BIN)/python -m pip install --quiet $(DOCS_PACKAGES)
 
-docs: docs-deps ## build the documentation site into site/ (mkdocs --strict)
+docs: docs-deps sb3-deps ## build the documentation site into site/ (mkdocs --strict; the API page shows the SB3 adapter)
 	NO_MKDOCS_2_WARNING=1 $(BIN)/mkdocs build --strict --quiet
 
 # The oldest glibc whose symbols the extension needs when built here (Debian 12, glibc 2.36):

@@ -81,6 +81,8 @@ def samples(tmp: Path) -> dict[str, Any]:
         "actions": np.zeros((NUM_ENVS, 2), np.float32),
         "mask": None,
         "starts": np.array([[x, y, yaw]] * NUM_ENVS),
+        "goals": np.array([[x, y, 0.05]] * NUM_ENVS),
+        "radius": 0.05,
         "index": 0,
         "seed": 0,
         "reading": 100.0,

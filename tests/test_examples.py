@@ -135,10 +135,25 @@ def test_boxes_wbt_imports_without_warnings() -> None:
 
 def test_ppo_sb3_trains_and_evaluates_on_held_out_mazes(tmp_path: Path) -> None:
     pytest.importorskip("stable_baselines3", reason="needs mazesim[sb3] (make sb3-deps)")
-    for task in ("mazesim/MazeFixed-v0", "mazesim/UnseenMazeGuided-v0"):
+    for task in ("mazesim/MazeFixed-v1", "mazesim/UnseenMazeGuided-v0"):
         argv = [sys.executable, str(EXAMPLES / "ppo_sb3.py"), "--task", task, "--out", "run"]
         out = run_example(argv, tmp_path).stdout
         pattern = rf"{task} seed 0: \d+ env-steps in \d+ s .*success on 4 held-out episodes: \d+ %"
         assert re.search(pattern, out), out
         assert (tmp_path / "run" / "progress.csv").read_text().count("\n") >= 2
         assert (tmp_path / "run" / "model.zip").stat().st_size > 1000
+        assert (tmp_path / "run" / "curve.png").read_bytes()[:4] == b"\x89PNG"
+    argv = [sys.executable, str(EXAMPLES / "ppo_sb3.py"), "--plot", "run", "run"]
+    run_example([*argv, "--picture", "both.png"], tmp_path)
+    assert (tmp_path / "both.png").read_bytes()[:4] == b"\x89PNG"
+
+
+def test_bench_sb3_prints_both_training_rates_and_their_ratio(tmp_path: Path) -> None:
+    pytest.importorskip("stable_baselines3", reason="needs mazesim[sb3] (make sb3-deps)")
+    argv = [sys.executable, str(REPO / "benches" / "bench_sb3.py"), "--task"]
+    argv += ["mazesim/MazeFixed-v1", "--envs", "16", "--n-steps", "16", "--batch", "128"]
+    argv += ["--dummy-steps", "256", "--fast-steps", "512", "--rounds", "1"]
+    out = run_example(argv, tmp_path).stdout
+    assert re.search(r"DummyVecEnv x 8 single envs +[\d,]+ env-steps/s", out), out
+    assert re.search(r"make_vec_env, 16 envs \(batch\) +[\d,]+ env-steps/s", out), out
+    assert re.search(r"ratio +\d+\.\d x", out), out

@@ -62,3 +62,24 @@ def test_goal_distance_at_cell_centres_is_cells_to_go() -> None:
 def test_a_world_without_a_maze_has_no_cell_model() -> None:
     with pytest.raises(InvalidArgumentError, match=r"\[grid\] cell maze"):
         CellMaze(mazesim.load_world("arena"))
+
+
+@pytest.mark.parametrize("world_name", ["seed-maze", "arena", "generated"])
+def test_goal_distance_of_one_env_in_python_floats_equals_the_vectorised_one(
+    world_name: str,
+) -> None:
+    if world_name == "generated":
+        world = mazesim.generate_maze(6, 4, seed=3)
+    else:
+        world = mazesim.load_world(world_name)
+    table = PathDistanceTable.of_world(world)
+    rng = np.random.default_rng(0)
+    xmin, ymin, xmax, ymax = world.bounds
+    poses = np.zeros((500, 3), dtype=np.float32)
+    poses[:, 0] = rng.uniform(xmin, xmax, 500)
+    poses[:, 1] = rng.uniform(ymin, ymax, 500)
+    many, reached = GoalDistance(500, table).evaluate(poses)
+    one = GoalDistance(1, PathDistanceTable.of_world(mazesim.load_world("seed-maze")))
+    one.set(0, table)  # a table of another world replaces the first, the scalar one with it
+    for i, (x, y, _) in enumerate(poses.tolist()):
+        assert one.evaluate_one(x, y) == (many[i], reached[i]), i

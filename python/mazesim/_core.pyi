@@ -254,6 +254,11 @@ class Simulator:
         checkpoint crossed in this step (0: none)."""
     def set_start(self, x: float, y: float, yaw: float) -> None:
         """Sets the pose every later reset starts from (instead of the world's start)."""
+    def set_goal(self, x: float, y: float, radius: float) -> None:
+        """Sets the goal disc, centre (x, y) and radius in metres, instead of the world's."""
+    @property
+    def goal(self) -> tuple[float, float, float] | None:
+        """The goal disc (x, y, radius) the episodes end at (`set_goal`'s, else the world's)."""
     def set_pose(self, x: float, y: float, yaw: float) -> None: ...
     def distance_sensors(self) -> npt.NDArray[np.float32]: ...
     def ground_sensors(self) -> npt.NDArray[np.float32]: ...
@@ -443,6 +448,10 @@ class BatchSimulator:
         """Start poses ((N, 3) float64 x, y, yaw) of each env for its later resets."""
     def set_starts_at(self, envs: npt.NDArray[np.int64], starts: npt.NDArray[np.float64]) -> None:
         """Start poses ((M, 3) float64 x, y, yaw) of envs ``envs`` for their later resets."""
+    def set_goals_at(self, envs: npt.NDArray[np.int64], goals: npt.NDArray[np.float64]) -> None:
+        """Goal discs ((M, 3) float64 x, y, radius) of envs ``envs``, instead of their worlds'."""
+    def goals(self) -> npt.NDArray[np.float64]:
+        """(N, 3) goal disc (x, y, radius) of each env; NaN rows for none."""
     def encoders(self) -> npt.NDArray[np.float64]:
         """(N, 2) wheel positions in radians (left, right)."""
     def times(self) -> npt.NDArray[np.float64]: ...

@@ -226,9 +226,18 @@ class PathDistanceTable:
     targets: npt.NDArray[np.float64]
 
     @classmethod
-    def of_world(cls, world: World) -> PathDistanceTable:
-        """Builds the table of a world: a breadth-first search over its cell maze, if it has one."""
-        goal = world.goal
+    def of_world(
+        cls, world: World, goal: tuple[float, float, float] | None = None
+    ) -> PathDistanceTable:
+        """Builds the table of a world: a breadth-first search over its cell maze, if it has one.
+
+        Args:
+            world: The world.
+            goal: The goal disc (x, y, radius) instead of the world's (an environment's own goal,
+                ``BatchSimulator.set_goals_at``); its cell is the goal cell.
+        """
+        own = goal is not None
+        goal = goal if goal is not None else world.goal
         if goal is None:
             return cls("none", 1, 1, 1.0, (0.0, 0.0), (0.0, 0.0, -1.0), np.full((1, _TARGETS), 0.0))
         maze = world.cell_maze()
@@ -236,7 +245,7 @@ class PathDistanceTable:
             targets = np.full((1, _TARGETS), np.nan)
             return cls("straight", 1, 1, 1.0, (0.0, 0.0), goal, targets)
         cells = CellMaze(world)
-        if cells.goal_cell is None:
+        if own or cells.goal_cell is None:
             columns, rows = cells.cell_at(goal[0], goal[1])
             goal_cell = (int(columns), int(rows))
         else:
@@ -307,6 +316,7 @@ class GoalDistance:
         # Per env and cell: the 5 target values (0 where absent), then 5 presence flags (0 or 1).
         self._targets = np.zeros((num_envs * self._cells, 2 * _TARGETS))
         self._first_cell = np.arange(num_envs, dtype=np.intp) * self._cells
+        self._scalar: _ScalarGoal | None = None
         self.set(np.arange(num_envs), table)
 
     def set(self, envs: npt.NDArray[np.intp] | int, table: PathDistanceTable) -> None:
@@ -334,6 +344,19 @@ class GoalDistance:
         rows = np.concatenate((np.where(present, table.targets, 0.0), present), axis=1)
         view = self._targets.reshape(self.num_envs, self._cells, -1)
         view[envs, :cells] = rows
+        self._scalar = None
+
+    def evaluate_one(self, x: float, y: float) -> tuple[float, bool]:
+        """:meth:`evaluate` of environment 0 at (x, y), the float32 pose as Python floats.
+
+        The same operations in the same order on Python floats (IEEE doubles round exactly as
+        numpy's float64 ufuncs do element-wise), so a single env agrees bit for bit with a vector
+        env; for one environment numpy's two dozen array operations cost more than the step.
+        """
+        scalar = self._scalar
+        if scalar is None:
+            scalar = self._scalar = _ScalarGoal(self)
+        return scalar.evaluate(x, y)
 
     def evaluate(
         self, poses: npt.NDArray[np.float32]
@@ -373,3 +396,47 @@ class GoalDistance:
             return along, reached
         maze = np.array([mode == "maze" for mode in self._modes])
         return np.where(maze, along, np.where(self._has_goal, to_goal, 0.0)), reached
+
+
+class _ScalarGoal:
+    """Environment 0 of a :class:`GoalDistance` in Python floats (see ``evaluate_one``)."""
+
+    def __init__(self, distance: GoalDistance) -> None:
+        self.mode = distance._modes[0]
+        self.goal_x, self.goal_y = float(distance._goal_x[0]), float(distance._goal_y[0])
+        self.goal_r2 = float(distance._goal_r2[0])
+        self.size = float(distance._size[0])
+        self.origin_x, self.origin_y = float(distance._origin_x[0]), float(distance._origin_y[0])
+        self.last_row, self.last_col = int(distance._last_row[0]), int(distance._last_col[0])
+        self.cols = int(distance._cols[0])
+        # Per cell: (value, presence) of each target, in direction order, then the goal point.
+        cells = distance._targets[: distance._cells].tolist()
+        self.cells = [tuple((row[k], row[_TARGETS + k]) for k in range(_TARGETS)) for row in cells]
+
+    def evaluate(self, x: float, y: float) -> tuple[float, bool]:
+        gx = x - self.goal_x
+        gy = y - self.goal_y
+        to_goal2 = gx * gx + gy * gy
+        reached = to_goal2 <= self.goal_r2
+        if self.mode == "maze":
+            return self._along(x, y, math.sqrt(to_goal2)), reached
+        if self.mode == "straight":
+            return math.sqrt(to_goal2), reached
+        return 0.0, reached
+
+    def _along(self, x: float, y: float, to_goal: float) -> float:
+        size = self.size
+        col = min(max(math.floor((x - self.origin_x) / size), 0), self.last_col)
+        up = min(max(math.floor((y - self.origin_y) / size), 0), self.last_row)
+        half = 0.5 * size
+        u = x - (self.origin_x + (col + 0.5) * size)
+        v = y - (self.origin_y + (up + 0.5) * size)
+        cell = self.cells[(self.last_row - up) * self.cols + col]
+        north, east, south, west, goal = cell[NORTH], cell[EAST], cell[SOUTH], cell[WEST], cell[4]
+        w0 = north[1] / max(half - v, _NEAREST)
+        w1 = east[1] / max(half - u, _NEAREST)
+        w2 = south[1] / max(half + v, _NEAREST)
+        w3 = west[1] / max(half + u, _NEAREST)
+        w4 = goal[1] / max(to_goal, _NEAREST)
+        weighted = w0 * north[0] + w1 * east[0] + w2 * south[0] + w3 * west[0] + w4 * goal[0]
+        return weighted / (w0 + w1 + w2 + w3 + w4)

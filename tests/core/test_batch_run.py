@@ -195,6 +195,40 @@ def test_goal_ends_episodes_and_without_autoreset_envs_stand_still() -> None:
     assert moving["steps"].tolist() == [5, 5, 5]
 
 
+def test_each_env_ends_at_its_own_goal_from_set_goals_at() -> None:
+    world = mazesim.load_world("seed-maze")
+    gx, gy, radius = world.goal
+    batch = mazesim.BatchSimulator(world, num_envs=3, threads=1)
+    starts = np.array([[gx + radius + 0.01, gy, np.pi]] * 3)
+    batch.set_starts(starts)
+    # Env 1's goal moves to the start cell's west neighbour; env 2's to a far corner.
+    batch.set_goals_at(np.array([1, 2]), np.array([[gx - 0.25, gy, 0.08], [0.125, 0.125, 0.08]]))
+    goals = batch.goals()
+    assert goals[0].tolist() == list(world.goal)
+    assert goals[1].tolist() == [gx - 0.25, gy, 0.08] and goals[2].tolist() == [0.125, 0.125, 0.08]
+    out = buffers(batch)
+    batch.reset(*out)
+    counters = batch.run(30, "braitenberg", *out, end_at_goal=True, autoreset=False)
+    assert counters["goals_reached"].tolist() == [1, 0, 0]
+    # A bad row changes nothing and names its environment.
+    with pytest.raises(mazesim.InvalidArgumentError, match="environment 2: .*radius"):
+        batch.set_goals_at(np.array([0, 2]), np.array([[0.1, 0.1, 0.1], [0.1, 0.1, 0.0]]))
+    assert batch.goals()[0].tolist() == list(world.goal)
+    # A snapshot carries an env's own goal; set_world goes back to the world's.
+    snapshot = batch.snapshot_env(2)
+    batch.restore_env(0, snapshot)
+    assert batch.goals()[0].tolist() == [0.125, 0.125, 0.08]
+    batch.set_world(2, world, 0)
+    assert batch.goals()[2].tolist() == list(world.goal)
+    single = mazesim.Simulator(world)
+    single.set_goal(0.5, 0.5, 0.1)
+    assert single.goal == (0.5, 0.5, 0.1)
+    copy = mazesim.Simulator(world)
+    copy.restore(single.snapshot())
+    assert copy.goal == (0.5, 0.5, 0.1)
+    assert mazesim.Simulator(mazesim.load_world("arena")).goal is None
+
+
 def _bad_calls() -> list[tuple[str, dict[str, Any], str]]:
     q = np.zeros((4096, 12))
     return [

@@ -75,6 +75,27 @@ def test_adapter_equals_dummy_vec_env_bit_for_bit(world: str, corridor: str) -> 
         assert successes > 0 and crossings > 0
 
 
+@pytest.mark.parametrize("task", TASKS[1:], ids=[task.env_id for task in TASKS[1:]])
+def test_adapter_equals_dummy_vec_env_on_every_tier(task: Any) -> None:
+    n_envs = 3
+    fast = make_vec_env(task.env_id, n_envs, seed=5, monitor=False, max_episode_steps=40)
+    reference = DummyVecEnv(
+        [lambda: gymnasium.make(task.env_id, max_episode_steps=40) for _ in range(n_envs)]
+    )
+    reference.seed(5)
+    assert np.array_equal(fast.reset(), reference.reset())
+    rng = np.random.default_rng(5)
+    dones = 0
+    for step in range(100):
+        actions = rng.uniform(-1, 1, (n_envs, 2)).astype(np.float32)
+        mine, theirs = fast.step(actions), reference.step(actions)
+        for name, a, b in zip(("observations", "rewards", "dones"), mine[:3], theirs[:3]):
+            assert a.dtype == b.dtype and np.array_equal(a, b), f"step {step}: {name}"
+        assert_same_infos(mine[3], theirs[3], f"step {step}")
+        dones += int(mine[2].sum())
+    assert dones >= 2 * n_envs  # episodes ended and restarted in new starts and goals
+
+
 def test_ppo_trained_through_the_adapter_gives_the_same_weights() -> None:
     def train(envs: VecEnv) -> dict[str, torch.Tensor]:
         model = PPO(

@@ -633,30 +633,63 @@ impl Batch {
     /// checked before any is applied: a bad one changes nothing, and the error names its
     /// environment.
     pub fn set_starts_at(&mut self, envs: &[usize], starts: &[f64]) -> Result<()> {
+        self.set_rows_at(
+            envs,
+            starts,
+            "starts",
+            |env, [x, y, yaw]| env.check_start(x, y, yaw),
+            |env, [x, y, yaw]| env.set_start(x, y, yaw),
+        )
+    }
+
+    /// Sets the goal disc of environments `envs`, one row of x, y, radius (metres) per listed
+    /// environment, instead of their worlds' (the others keep theirs; `set_world` goes back to the
+    /// world's). Every index and row is checked before any is applied: a bad one changes nothing,
+    /// and the error names its environment.
+    pub fn set_goals_at(&mut self, envs: &[usize], goals: &[f64]) -> Result<()> {
+        self.set_rows_at(
+            envs,
+            goals,
+            "goals",
+            |_, [x, y, radius]| crate::simulator::check_goal(x, y, radius),
+            |env, [x, y, radius]| env.set_goal(x, y, radius),
+        )
+    }
+
+    /// Applies one row of three values to each listed environment with `apply`, once `check` has
+    /// accepted every index and row (`what` names the rows in errors).
+    fn set_rows_at(
+        &mut self,
+        envs: &[usize],
+        rows: &[f64],
+        what: &str,
+        check: impl Fn(&Simulator, [f64; 3]) -> Result<()>,
+        apply: impl Fn(&mut Simulator, [f64; 3]) -> Result<()>,
+    ) -> Result<()> {
         let n = self.envs.len();
-        if starts.len() != 3 * envs.len() {
+        if rows.len() != 3 * envs.len() {
             return Err(Error::InvalidArgument(format!(
-                "expected starts of shape ({}, 3), one row per listed environment, found {} values",
+                "expected {what} of shape ({}, 3), one row per listed environment, found {} values",
                 envs.len(),
-                starts.len()
+                rows.len()
             )));
         }
-        for (&i, row) in envs.iter().zip(starts.chunks_exact(3)) {
+        let row_of = |row: &[f64]| [row[0], row[1], row[2]];
+        for (&i, row) in envs.iter().zip(rows.chunks_exact(3)) {
             let env = self.envs.get(i).ok_or_else(|| {
                 Error::InvalidArgument(format!(
                     "expected an environment index below {n}, found {i}"
                 ))
             })?;
-            env.check_start(row[0], row[1], row[2])
-                .map_err(|e| match e {
-                    Error::InvalidArgument(m) => {
-                        Error::InvalidArgument(format!("environment {i}: {m}"))
-                    }
-                    other => other,
-                })?;
+            check(env, row_of(row)).map_err(|e| match e {
+                Error::InvalidArgument(m) => {
+                    Error::InvalidArgument(format!("environment {i}: {m}"))
+                }
+                other => other,
+            })?;
         }
-        for (&i, row) in envs.iter().zip(starts.chunks_exact(3)) {
-            self.envs[i].set_start(row[0], row[1], row[2])?;
+        for (&i, row) in envs.iter().zip(rows.chunks_exact(3)) {
+            apply(&mut self.envs[i], row_of(row))?;
         }
         Ok(())
     }
@@ -761,6 +794,31 @@ mod tests {
         assert!(bad.contains("below 3, found 3"), "{bad}");
         let short = b.set_starts_at(&[0, 1], &[0.0; 3]).unwrap_err().to_string();
         assert!(short.contains("shape (2, 3)"), "{short}");
+    }
+
+    #[test]
+    fn issue_19_set_goals_at_sets_the_listed_envs_goals_checked_first() {
+        let mut b = batch(3, 1, None);
+        let world_goal = b.envs()[0].goal();
+        b.set_goals_at(&[1], &[0.3, 0.2, 0.05]).unwrap();
+        assert_eq!(b.envs()[0].goal(), world_goal);
+        let own = b.envs()[1].goal().unwrap();
+        assert_eq!((own.center, own.radius), ([0.3, 0.2], 0.05));
+        let rows = [0.1, 0.1, 0.05, 0.1, 0.1, -1.0];
+        let bad = b.set_goals_at(&[0, 2], &rows).unwrap_err().to_string();
+        assert!(
+            bad.contains("environment 2") && bad.contains("radius"),
+            "{bad}"
+        );
+        assert_eq!(b.envs()[0].goal(), world_goal, "nothing applied");
+        let far = b.set_goals_at(&[0], &[f64::NAN, 0.0, 0.1]).unwrap_err();
+        assert!(far.to_string().contains("goal's x"), "{far}");
+        let index = b.set_goals_at(&[3], &[0.1, 0.1, 0.1]).unwrap_err();
+        assert!(index.to_string().contains("below 3, found 3"), "{index}");
+        // A snapshot carries the environment's own goal.
+        let snapshot = b.envs()[1].snapshot();
+        b.env_mut(0).unwrap().restore(&snapshot).unwrap();
+        assert_eq!(b.envs()[0].goal(), Some(own));
     }
 
     #[test]

@@ -30,7 +30,8 @@ pub struct RunOptions {
     pub steps: usize,
     /// An episode ends after this many control steps since its reset (0: no limit).
     pub max_episode_steps: u64,
-    /// An episode also ends on the step the robot's centre enters the world's goal disc.
+    /// An episode also ends on the step the robot's centre enters its goal disc (the world's, or
+    /// the one `set_goal` gave).
     pub end_at_goal: bool,
     /// An episode also ends on a step that crosses a barcode. Without `autoreset`, an environment
     /// stopped by a crossing stands still for the rest of the call only: the next call moves it
@@ -176,7 +177,7 @@ fn check_trace<T>(name: &str, values: &Option<&mut [T]>, shape: [usize; 3]) -> R
 /// `after_step`, a barcode crossed in its last step; and whether it is at the goal.
 fn episode_over(env: &Simulator, options: &RunOptions, after_step: bool) -> (bool, bool) {
     let at_goal = options.end_at_goal
-        && env.world().goal().is_some_and(|goal| {
+        && env.goal().is_some_and(|goal| {
             let [x, y, _] = env.pose();
             let (dx, dy) = (x as f64 - goal.center[0], y as f64 - goal.center[1]);
             dx * dx + dy * dy <= goal.radius * goal.radius

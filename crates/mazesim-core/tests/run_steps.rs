@@ -378,3 +378,19 @@ fn an_interrupt_stops_a_long_run() {
     assert!(matches!(result, Err(mazesim_core::Error::Interrupted)));
     assert!(started.elapsed() < std::time::Duration::from_secs(30));
 }
+
+#[test]
+fn issue_19_an_episode_ends_at_its_environments_own_goal() {
+    let worlds = mazes(2);
+    let mut b = batch(worlds.clone(), "e-puck", &[0, 1], 1);
+    let [x, y, _] = worlds[1].start();
+    // A disc round env 1's start: its episodes end at every step; env 0 keeps its world's goal.
+    b.set_goals_at(&[1], &[x, y, 0.2]).unwrap();
+    let traced = run(&mut b, &Controller::Braitenberg, &[0, 1], options(20));
+    assert_eq!(traced.counters.goals_reached[1], 20);
+    assert_eq!(traced.counters.goals_reached[0], 0);
+    // Going back to a world drops the environment's own goal.
+    b.set_world(1, worlds[1].clone(), 1).unwrap();
+    let traced = run(&mut b, &Controller::Braitenberg, &[0, 1], options(20));
+    assert_eq!(traced.counters.goals_reached[1], 0);
+}

@@ -55,6 +55,25 @@ impl PyBatch {
     fn width(&self) -> usize {
         self.distance_width + self.ground_width
     }
+
+    /// The (M,) int64 indices `envs` as checked env indices, and the (M, 3) float64 rows of
+    /// `values` (named `what`) that go with them.
+    fn listed_rows(
+        &self,
+        envs: &Bound<'_, PyAny>,
+        values: &Bound<'_, PyAny>,
+        what: &str,
+    ) -> PyResult<(Vec<usize>, Vec<f64>)> {
+        let m = envs.len().map_err(|_| {
+            invalid(format!(
+                "expected envs to be an (M,) int64 array of env indices, found a {}",
+                type_name(envs)
+            ))
+        })?;
+        let indices = copied::<i64>(envs, "envs", "int64", &[m])?;
+        let rows = copied::<f64>(values, what, "float64", &[m, 3])?;
+        Ok((env_indices(&indices, self.n)?, rows))
+    }
 }
 
 /// The buffers of one call, borrowed.
@@ -419,16 +438,34 @@ impl PyBatch {
     /// resets: an (M, 3) float64 array of x, y, yaw; the other environments keep theirs.
     fn set_starts_at(&self, envs: &Bound<'_, PyAny>, starts: &Bound<'_, PyAny>) -> PyResult<()> {
         enter(|| {
-            let m = envs.len().map_err(|_| {
-                invalid(format!(
-                    "expected envs to be an (M,) int64 array of env indices, found a {}",
-                    type_name(envs)
-                ))
-            })?;
-            let indices = copied::<i64>(envs, "envs", "int64", &[m])?;
-            let rows = copied::<f64>(starts, "starts", "float64", &[m, 3])?;
-            let indices = env_indices(&indices, self.n)?;
+            let (indices, rows) = self.listed_rows(envs, starts, "starts")?;
             self.with(|b| b.set_starts_at(&indices, &rows)).py()
+        })
+    }
+
+    /// Sets the goal disc of the environments `envs` ((M,) int64 indices): an (M, 3) float64
+    /// array of x, y, radius in metres, instead of their worlds' goals; the other environments
+    /// keep theirs, and `set_world` goes back to the world's.
+    fn set_goals_at(&self, envs: &Bound<'_, PyAny>, goals: &Bound<'_, PyAny>) -> PyResult<()> {
+        enter(|| {
+            let (indices, rows) = self.listed_rows(envs, goals, "goals")?;
+            self.with(|b| b.set_goals_at(&indices, &rows)).py()
+        })
+    }
+
+    /// The goal disc of each environment, (N, 3) float64 x, y, radius; NaN rows for none.
+    fn goals<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
+        enter(|| {
+            let v: Vec<f64> = self.with(|b| {
+                b.envs()
+                    .iter()
+                    .flat_map(|e| match e.goal() {
+                        Some(g) => [g.center[0], g.center[1], g.radius],
+                        None => [f64::NAN; 3],
+                    })
+                    .collect()
+            });
+            PyArray1::from_vec(py, v).reshape([self.n, 3])
         })
     }
 

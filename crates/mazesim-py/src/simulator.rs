@@ -132,6 +132,18 @@ impl PySimulator {
         enter(|| self.with(|s| s.set_start(x, y, yaw)).py())
     }
 
+    /// Sets the goal disc, centre (x, y) and radius in metres, instead of the world's.
+    fn set_goal(&self, x: Real, y: Real, radius: Real) -> PyResult<()> {
+        let (x, y, radius) = (x.value("x")?, y.value("y")?, radius.value("radius")?);
+        enter(|| self.with(|s| s.set_goal(x, y, radius)).py())
+    }
+
+    /// The goal disc (x, y, radius) the episodes end at (`set_goal`'s, else the world's), or None.
+    #[getter]
+    fn goal(&self) -> PyResult<Option<(f64, f64, f64)>> {
+        enter(|| Ok(self.with(|s| s.goal().map(|g| (g.center[0], g.center[1], g.radius)))))
+    }
+
     /// Moves the robot to (x, y, yaw) at rest and reads the sensors there.
     fn set_pose(&self, x: Real, y: Real, yaw: Real) -> PyResult<()> {
         let (x, y, yaw) = (x.value("x")?, y.value("y")?, yaw.value("yaw")?);

@@ -11,13 +11,12 @@ import numpy.typing as npt
 from gymnasium.error import ResetNeeded
 
 from mazesim._core import Simulator, World
-from mazesim.envs.navigation import navigation_features
+from mazesim.envs.navigation import StartAndGoal, navigation_features
 from mazesim.envs.options import EnvOptions, draw_seed
 from mazesim.envs.render import TopDownRenderer
-from mazesim.envs.scalar_goal import ScalarGoalDistance
 from mazesim.envs.spaces import ActionConverter, ObservationLayout, sensor_ranges
 from mazesim.errors import InvalidArgumentError
-from mazesim.maze import PathDistanceTable
+from mazesim.maze import GoalDistance, PathDistanceTable
 
 __all__ = [
     "RENDER_MODES",
@@ -113,7 +112,12 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         )
         table = PathDistanceTable.of_world(self.world)
         self._features = navigation_features(
-            self.options.observation, 1, self.options.robot, self.world, table
+            self.options.observation,
+            1,
+            self.options.robot,
+            self.world,
+            table,
+            self.options.include_pose,
         )
         self._previous = np.zeros((1, 2), dtype=np.float32)
         features = self._features
@@ -122,7 +126,8 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         width = self._layout.sensor_width
         self._low = np.ascontiguousarray(self._layout.low[:width])
         self._high = np.ascontiguousarray(self._layout.high[:width])
-        self._goal = ScalarGoalDistance(table)
+        self._goal = GoalDistance(1, table)
+        self._drawn: StartAndGoal | None = None
         self._distance = 0.0
         self._simulator: Simulator | None = None
         self._renderer: TopDownRenderer | None = None
@@ -143,33 +148,41 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
     ) -> tuple[npt.NDArray[np.float32], dict[str, Any]]:
         """Starts a new episode; ``options`` are accepted and unused."""
         super().reset(seed=seed)
-        world = self.options.next_world(self.np_random)
+        world, drawn = self.options.next_world(self.np_random)
         episode_seed = draw_seed(self.np_random)
-        if world is not None or self._simulator is None:
+        simulator = self._simulator
+        fresh = world is not None or simulator is None
+        if fresh:
             self.world = world if world is not None else self.world
-            self._simulator = Simulator(
+            simulator = self._simulator = Simulator(
                 self.world,
                 robot=self.options.robot.name,
                 seed=episode_seed,
                 noise=self.options.noise,
                 control_step_ms=self.options.control_step_ms,
             )
-            table = PathDistanceTable.of_world(self.world)
-            self._goal = ScalarGoalDistance(table)
+        assert simulator is not None
+        if drawn is not None:
+            simulator.set_start(*drawn.start)
+            simulator.set_goal(*drawn.goal)
+        if drawn is not None or not fresh:
+            simulator.reset(seed=episode_seed)
+        if fresh or drawn is not None:
+            table = PathDistanceTable.of_world(self.world, None if drawn is None else drawn.goal)
+            self._goal.set(0, table)
             if self._features is not None:
                 self._features.set(0, self.world, table)
             self._renderer = None
-        else:
-            self._simulator.reset(seed=episode_seed)
-        simulator = self._simulator
+        self._drawn = drawn
         readings = np.concatenate((simulator.distance_sensors(), simulator.ground_sensors()))
         pose = np.array(simulator.pose, dtype=np.float32)
         observation = self._layout.assemble_one(readings, pose)
         if self._features is not None:
             self._previous[:] = 0.0
+            self._features.restart(0)
             observation = self._features.observe(readings[None], pose[None], self._previous)[0]
         x, y, yaw = pose.tolist()
-        self._distance, reached = self._goal.evaluate(x, y)
+        self._distance, reached = self._goal.evaluate_one(x, y)
         self._trail = [(x, y)]
         self._last_reward = self._episode_return = 0.0
         self._last_event = "none"
@@ -201,14 +214,14 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         observation, pose, colliding, crossing = simulator.step_observe(
             left, right, self._low, self._high
         )
-        if self._layout.include_pose:
-            observation = self._layout.assemble_one(observation, pose)
-        elif self._features is not None:
+        if self._features is not None:
             self._previous[0] = (left, right)
             self._previous /= self._actions.max_speed
             observation = self._features.observe(observation[None], pose[None], self._previous)[0]
+        elif self._layout.include_pose:
+            observation = self._layout.assemble_one(observation, pose)
         x, y, _ = pose.tolist()
-        distance, reached = self._goal.evaluate(x, y)
+        distance, reached = self._goal.evaluate_one(x, y)
         weights = self.options.reward
         reward = (
             weights.progress * (self._distance - distance)
@@ -274,11 +287,14 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
 
     def _frame(self) -> npt.NDArray[np.uint8]:
         if self._renderer is None:
+            drawn = self._drawn
             self._renderer = TopDownRenderer(
                 self.world,
                 self.options.robot,
                 self.options.render_size,
                 sensor_ranges(self.options.robot).ray_length,
+                start=None if drawn is None else drawn.start,
+                goal=None if drawn is None else drawn.goal,
             )
         if self._simulator is None:
             return self._renderer.frame(self.world.start)

@@ -3,9 +3,10 @@ learnable by a memoryless policy.
 
 Start and goal
     With ``start_goal="random"`` every episode moves the start and the goal of its cell maze to two
-    distinct cells drawn from the env's RNG (the start at the centre of its cell, facing a uniformly
-    random direction). The world itself is rewritten (:func:`with_start_and_goal`), so the reward,
-    the termination, the pictures and the barcodes all follow.
+    distinct cells that join, drawn from the env's RNG (the start at the centre of its cell, facing
+    a uniformly random direction; :func:`draw_start_and_goal`). The simulator gets them as its
+    own start and goal (``set_starts_at`` and ``set_goals_at`` of the batch engine), the world
+    is not changed; the reward, the termination and the pictures follow.
 
 Observations (``observation=``)
     ``"sensors"``: the raw readings (``mazesim/EPuckMaze-v0``, see :mod:`mazesim.envs.spaces`).
@@ -29,7 +30,7 @@ Observations (``observation=``)
 from __future__ import annotations
 
 import math
-import re
+from dataclasses import dataclass
 from typing import Any, cast
 
 import numpy as np
@@ -39,84 +40,110 @@ from gymnasium import spaces
 from mazesim._core import RobotProfile, World
 from mazesim.envs.spaces import NOISE_MARGIN, sensor_ranges
 from mazesim.errors import InvalidArgumentError
-from mazesim.maze import EAST, NORTH, SOUTH, WEST, PathDistanceTable
+from mazesim.maze import EAST, NORTH, SOUTH, WEST, CellMaze, PathDistanceTable
 
 __all__ = [
     "OBSERVATIONS",
     "START_GOALS",
     "NavigationFeatures",
+    "StartAndGoal",
     "draw_start_and_goal",
     "navigation_features",
-    "with_start_and_goal",
 ]
 
 #: The accepted values of ``observation``.
-OBSERVATIONS = ("sensors", "goal", "guided")
+OBSERVATIONS = ("sensors", "goal", "explore", "guided")
 #: The accepted values of ``start_goal``.
 START_GOALS = ("world", "random")
 #: Bound of the waypoint's coordinates in cells (a neighbour's centre is at most 1.5 cells off).
 _WAYPOINT_BOUND = 2.0
+#: The sides of the explored map's observation, relative to the robot's heading.
+_RELATIVE_SIDES = ("ahead", "left", "behind", "right")
+#: Visits of a cell the explored map tells apart (more read as this many).
+_VISITS_SEEN = 3.0
 #: The (column, row-up) step across each side of a cell, by maze's direction codes (the side
 #: order of the distance table).
 _SIDE_STEPS = {EAST: (1.0, 0.0), NORTH: (0.0, 1.0), WEST: (-1.0, 0.0), SOUTH: (0.0, -1.0)}
 
 
 def navigation_features(
-    observation: str, num_envs: int, robot: RobotProfile, world: World, table: PathDistanceTable
+    observation: str,
+    num_envs: int,
+    robot: RobotProfile,
+    world: World,
+    table: PathDistanceTable,
+    pose: bool = False,
 ) -> NavigationFeatures | None:
-    """The features of an ``observation`` kind for N environments all in ``world`` at first;
-    None for ``"sensors"``."""
+    """The features of an ``observation`` kind for N environments all in ``world`` at first
+    (with the robot's pose if ``pose``); None for ``"sensors"``."""
     if observation == "sensors":
         return None
-    features = NavigationFeatures(num_envs, robot, observation == "guided")
+    features = NavigationFeatures(
+        num_envs, robot, observation == "guided", pose, explore=observation == "explore"
+    )
     features.set(np.arange(num_envs), world, table)
     return features
 
 
-def draw_start_and_goal(world: World, rng: np.random.Generator) -> World:
-    """``world`` with its start and goal in two distinct random cells of its maze, the start
-    facing a random direction; draws three numbers from ``rng``.
+@dataclass(frozen=True)
+class StartAndGoal:
+    """An episode's start pose and goal disc, given to the simulator (``set_start`` /
+    ``set_goal``, ``set_starts_at`` / ``set_goals_at``); the world itself is not changed.
+
+    Attributes:
+        start: x, y (metres) and yaw (radians) of the start pose.
+        goal: x, y and radius (metres) of the goal disc.
+    """
+
+    start: tuple[float, float, float]
+    goal: tuple[float, float, float]
+
+
+def draw_start_and_goal(world: World, rng: np.random.Generator) -> StartAndGoal:
+    """A start and a goal in two distinct random cells of ``world``'s maze that join each other,
+    the start at its cell's centre facing a random direction, the goal a disc of a third of a cell
+    round its cell's centre (as a ``G`` of a world's map); draws three numbers from ``rng``.
+
+    The start is drawn among the cells of the largest connected set of cells (every cell in a
+    generated maze; seed-maze has four walled-in cells), the goal among the others of that set.
 
     Raises:
-        InvalidArgumentError: The world has no cell maze.
+        InvalidArgumentError: The world has no cell maze, or no two cells join.
     """
-    maze = world.cell_maze()
-    if maze is None:
+    if world.cell_maze() is None:
         raise InvalidArgumentError(
             f'expected a world with a cell maze for start_goal="random", found {world.name!r}'
         )
-    rows, cols = int(maze["rows"]), int(maze["cols"])  # type: ignore[call-overload]
-    start = int(rng.integers(rows * cols))
-    goal = int(rng.integers(rows * cols - 1))
+    maze = CellMaze(world)
+    cells = _largest_connected_cells(maze)
+    if len(cells) < 2:
+        raise InvalidArgumentError(
+            f'expected two cells that join each other for start_goal="random", found none in '
+            f"{world.name!r}"
+        )
+    start = int(rng.integers(len(cells)))
+    goal = int(rng.integers(len(cells) - 1))
     goal += goal >= start
     yaw = float(rng.uniform(-math.pi, math.pi))
-    return with_start_and_goal(world, divmod(start, cols), divmod(goal, cols), yaw)
+    (start_row, start_col), (goal_row, goal_col) = cells[start], cells[goal]
+    start_x, start_y = maze.center((start_col, start_row))
+    goal_x, goal_y = maze.center((goal_col, goal_row))
+    return StartAndGoal((start_x, start_y, yaw), (goal_x, goal_y, maze.cell_size / 3.0))
 
 
-def with_start_and_goal(
-    world: World, start: tuple[int, int], goal: tuple[int, int], yaw: float
-) -> World:
-    """A copy of a cell-maze world with the start at the centre of cell ``start`` facing ``yaw``
-    and the goal in cell ``goal`` (cells as (row from the north, column))."""
-    maze = world.cell_maze()
-    assert maze is not None
-    size = float(maze["cell_size"])  # type: ignore[arg-type]
-    origin_x, origin_y = (float(v) for v in maze["origin"])  # type: ignore[attr-defined]
-    rows = int(maze["rows"])  # type: ignore[call-overload]
-    text = re.sub(r"\n\[start\]\n(?:[a-z]+ = [^\n]*\n)*", "\n", world.to_toml())
-    head, found, rest = text.partition('map = """\n')
-    grid, _, tail = rest.partition('"""')
-    lines = [list(line.replace("S", " ").replace("G", " ")) for line in grid.split("\n")]
-    for mark, (row, col) in (("S", start), ("G", goal)):
-        lines[2 * row + 1][3 * col + 1] = mark
-    x = origin_x + (start[1] + 0.5) * size
-    y = origin_y + (rows - 1 - start[0] + 0.5) * size
-    first_table = head.index("\n[") + 1  # the start table goes before the first table
-    head = (
-        f"{head[:first_table]}[start]\nx = {x!r}\ny = {y!r}\nyaw = {yaw!r}\n\n{head[first_table:]}"
-    )
-    grid = "\n".join("".join(line) for line in lines)
-    return World.from_toml(head + found + grid + '"""' + tail, source=f"<{world.name}>")
+def _largest_connected_cells(maze: CellMaze) -> list[tuple[int, int]]:
+    """The (row, column) cells of the largest set of cells joined by open sides, row-major from
+    the north-west (the first such set if two are as large)."""
+    best: list[tuple[int, int]] = []
+    seen = np.zeros((maze.rows, maze.cols), dtype=bool)
+    for column, row in maze.cells():
+        if seen[row, column]:
+            continue
+        reach = maze.distances_from((column, row)) >= 0
+        seen |= reach
+        if int(reach.sum()) > len(best):
+            best = [(int(r), int(c)) for r, c in zip(*np.nonzero(reach), strict=True)]
+    return best
 
 
 class NavigationFeatures:
@@ -128,32 +155,60 @@ class NavigationFeatures:
         num_envs: Number of environments.
         robot: The robot profile.
         guided: Whether the observation holds the waypoint.
+        pose: Whether the observation holds the robot's pose in the maze.
+        explore: Whether the observation holds the explored map round the robot's cell.
     """
 
-    def __init__(self, num_envs: int, robot: RobotProfile, guided: bool) -> None:
+    def __init__(
+        self,
+        num_envs: int,
+        robot: RobotProfile,
+        guided: bool,
+        pose: bool = False,
+        explore: bool = False,
+    ) -> None:
         ranges = sensor_ranges(robot)
         distance, ground = robot.distance_sensor_names, robot.ground_sensor_names
         scale = [ranges.distance_max] * len(distance) + [ranges.ground_max] * len(ground)
         self.sensor_width = len(scale)
         self._scale = np.array(scale, dtype=np.float64)
         self.guided = guided
+        self.pose = pose
         extra = ["goal_forward", "goal_left"]
-        bounds = [1.5, 1.5]
+        low, high = [-1.5, -1.5], [1.5, 1.5]
         if guided:
             extra += ["waypoint_forward", "waypoint_left"]
-            bounds += [_WAYPOINT_BOUND, _WAYPOINT_BOUND]
+            low += [-_WAYPOINT_BOUND, -_WAYPOINT_BOUND]
+            high += [_WAYPOINT_BOUND, _WAYPOINT_BOUND]
+        self.explore = explore
+        if explore:
+            extra += [f"open_{side}" for side in _RELATIVE_SIDES]
+            extra += [f"visits_{side}" for side in _RELATIVE_SIDES] + ["visits_here"]
+            low += [0.0] * 9
+            high += [1.0] * 9
+        if pose:
+            extra += ["x", "y", "heading_cos", "heading_sin"]
+            low += [0.0, 0.0, -1.0, -1.0]
+            high += [1.0, 1.0, 1.0, 1.0]
         extra += ["previous_left", "previous_right"]
-        bounds += [1.0, 1.0]
+        low += [-1.0, -1.0]
+        high += [1.0, 1.0]
         self.names = [*distance, *ground, *extra]
-        self.low = np.array([0.0] * self.sensor_width + [-b for b in bounds], dtype=np.float32)
-        self.high = np.array([NOISE_MARGIN] * self.sensor_width + bounds, dtype=np.float32)
+        self.low = np.array([0.0] * self.sensor_width + low, dtype=np.float32)
+        self.high = np.array([NOISE_MARGIN] * self.sensor_width + high, dtype=np.float32)
         self._goal = np.zeros((num_envs, 2))
         self._extent = np.ones(num_envs)
+        self._corner = np.zeros((num_envs, 2))
         self._size = np.ones(num_envs)
         self._origin = np.zeros((num_envs, 2))
         self._shape = np.ones((num_envs, 2), dtype=np.intp)  # rows, cols
         self._cells = 1
         self._waypoints = np.zeros((num_envs, 1, 2))
+        # The explored map: which sides of each cell are open (direction order), the visits of
+        # each cell this episode, and the cell each robot was last seen in (-1: none yet).
+        self._open = np.zeros((num_envs, 1, 4))
+        self._visits = np.zeros((num_envs, 1))
+        self._last = np.full(num_envs, -1, dtype=np.intp)
 
     @property
     def space(self) -> spaces.Space[npt.NDArray[np.float32]]:
@@ -166,15 +221,31 @@ class NavigationFeatures:
         self._goal[env] = table.goal[:2]
         xmin, ymin, xmax, ymax = world.bounds
         self._extent[env] = max(xmax - xmin, ymax - ymin, 1e-6)
+        self._corner[env] = (xmin, ymin)
         self._size[env] = table.cell_size
         self._origin[env] = table.origin
         self._shape[env] = (table.rows, table.cols)
         waypoints = _waypoints(table)
-        if len(waypoints) > self._cells:
-            grown = np.zeros((len(self._goal), len(waypoints), 2))
+        cells = max(len(waypoints), table.rows * table.cols)
+        if cells > self._cells:
+            n = len(self._goal)
+            grown = np.zeros((n, cells, 2))
             grown[:, : self._cells] = self._waypoints
-            self._waypoints, self._cells = grown, len(waypoints)
+            opened = np.zeros((n, cells, 4))
+            opened[:, : self._cells] = self._open
+            visits = np.zeros((n, cells))
+            visits[:, : self._cells] = self._visits
+            self._waypoints, self._open, self._visits = grown, opened, visits
+            self._cells = cells
         self._waypoints[env, : len(waypoints)] = waypoints
+        if self.explore:
+            self._open[env, : table.rows * table.cols] = _open_sides(world, table)
+        self.restart(env)
+
+    def restart(self, env: int | npt.NDArray[np.intp]) -> None:
+        """Forgets the explored map's visits of environment(s) ``env`` (a new episode)."""
+        self._visits[env] = 0.0
+        self._last[env] = -1
 
     def observe(
         self,
@@ -195,24 +266,69 @@ class NavigationFeatures:
                 ((cos * dx + sin * dy) / unit)[:, None],
                 ((cos * dy - sin * dx) / unit)[:, None],
             ]
+        if self.explore:
+            parts.append(self._explored(x, y, yaw))
+        if self.pose:
+            parts += [
+                ((x - self._corner[:, 0]) / self._extent)[:, None],
+                ((y - self._corner[:, 1]) / self._extent)[:, None],
+                cos[:, None],
+                sin[:, None],
+            ]
         parts.append(previous)
         out = np.concatenate(parts, axis=1).astype(np.float32)
         np.maximum(out, self.low, out=out)
         np.minimum(out, self.high, out=out)
         return out
 
+    def _cell(self, x: npt.NDArray[np.float64], y: npt.NDArray[np.float64]) -> npt.NDArray[np.intp]:
+        """The cell (row-major from the north-west) each robot is in."""
+        rows, cols = self._shape[:, 0], self._shape[:, 1]
+        col = np.clip(np.floor((x - self._origin[:, 0]) / self._size), 0, cols - 1)
+        up = np.clip(np.floor((y - self._origin[:, 1]) / self._size), 0, rows - 1)
+        return (rows - 1 - up.astype(np.intp)) * cols + col.astype(np.intp)
+
     def _targets(
         self, x: npt.NDArray[np.float64], y: npt.NDArray[np.float64]
     ) -> list[tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]]:
         targets = [(self._goal, self._extent)]
         if self.guided:
-            rows, cols = self._shape[:, 0], self._shape[:, 1]
-            col = np.clip(np.floor((x - self._origin[:, 0]) / self._size), 0, cols - 1)
-            up = np.clip(np.floor((y - self._origin[:, 1]) / self._size), 0, rows - 1)
-            cell = (rows - 1 - up.astype(np.intp)) * cols + col.astype(np.intp)
-            waypoint = self._waypoints[np.arange(len(x)), cell]
+            waypoint = self._waypoints[np.arange(len(x)), self._cell(x, y)]
             targets.append((waypoint, self._size))
         return targets
+
+    def _explored(
+        self, x: npt.NDArray[np.float64], y: npt.NDArray[np.float64], yaw: npt.NDArray[np.float64]
+    ) -> npt.NDArray[np.float64]:
+        """(N, 9): the sides of each robot's cell ahead, left, behind and right of it (the side
+        its heading is nearest first), open or not; the visits this episode of the cells across
+        them (0 across a wall) and of its own cell, each up to ``_VISITS_SEEN`` and scaled to 1.
+        Entering a cell counts a visit."""
+        envs = np.arange(len(x))
+        cell = self._cell(x, y)
+        entered = cell != self._last
+        self._visits[envs[entered], cell[entered]] += 1.0
+        self._last = cell
+        facing = np.round(yaw / (0.5 * math.pi)).astype(np.intp) % 4
+        sides = (facing[:, None] + np.arange(4)[None, :]) % 4  # ahead, left, behind, right
+        opened = self._open[envs[:, None], cell[:, None], sides]
+        cols = self._shape[:, 1]
+        steps = np.array([1, -1, -1, 1])[sides] * np.where(sides % 2 == 0, 1, cols[:, None])
+        across = np.clip(cell[:, None] + steps, 0, self._cells - 1)
+        seen = np.minimum(self._visits[envs[:, None], across], _VISITS_SEEN) / _VISITS_SEEN
+        here = np.minimum(self._visits[envs, cell], _VISITS_SEEN) / _VISITS_SEEN
+        return np.concatenate((opened, opened * seen, here[:, None]), axis=1)
+
+
+def _open_sides(world: World, table: PathDistanceTable) -> npt.NDArray[np.float64]:
+    """(cells, 4): 1 where a side of a cell (row-major from the north-west, sides in direction
+    order) is open, 0 where a wall closes it; all closed without a cell maze."""
+    if table.mode != "maze":
+        return np.zeros((table.rows * table.cols, 4))
+    maze = CellMaze(world)
+    return np.array(
+        [[float(maze.is_open(cell, side)) for side in range(4)] for cell in maze.cells()]
+    )
 
 
 def _waypoints(table: PathDistanceTable) -> npt.NDArray[np.float64]:

@@ -16,7 +16,12 @@ import numpy as np
 
 import mazesim
 from mazesim._core import RobotProfile, World, generate_maze
-from mazesim.envs.navigation import OBSERVATIONS, START_GOALS, draw_start_and_goal
+from mazesim.envs.navigation import (
+    OBSERVATIONS,
+    START_GOALS,
+    StartAndGoal,
+    draw_start_and_goal,
+)
 from mazesim.envs.reward import RewardWeights
 from mazesim.errors import InvalidArgumentError
 
@@ -145,11 +150,6 @@ class EnvOptions:
                 raise InvalidArgumentError(
                     f"expected {name} to be one of {', '.join(accepted)}; found {value!r}"
                 )
-        if observation != "sensors" and include_pose:
-            raise InvalidArgumentError(
-                f'expected include_pose=False with observation="{observation}" '
-                "(it holds the goal's relative position), found include_pose=True"
-            )
         flags = (("noise", noise), ("include_pose", include_pose), ("clip_actions", clip_actions))
         for name, flag in flags:
             if not isinstance(flag, (bool, np.bool_)):
@@ -215,14 +215,13 @@ class EnvOptions:
         width, height = self.maze_size
         return generate_maze(width, height, seed=seed)
 
-    def next_world(self, rng: np.random.Generator) -> World | None:
-        """The world of the next episode: a random maze drawn from ``rng`` (or the fixed world),
-        with a random start and goal drawn next if ``start_goal="random"``; None to keep the
-        fixed world (and then nothing is drawn)."""
+    def next_world(self, rng: np.random.Generator) -> tuple[World | None, StartAndGoal | None]:
+        """The world of the next episode, a random maze drawn from ``rng`` (None to keep the
+        fixed world: nothing is drawn for it), and its start and goal, drawn next if
+        ``start_goal="random"`` (None for the world's own)."""
         world = self.world if self.world is not None else self.random_maze(draw_seed(rng))
-        if self.start_goal == "random":
-            return draw_start_and_goal(world, rng)
-        return None if self.world is not None else world
+        drawn = draw_start_and_goal(world, rng) if self.start_goal == "random" else None
+        return (None if self.world is not None else world), drawn
 
 
 def option_names() -> list[str]:

@@ -53,6 +53,8 @@ class TopDownRenderer:
         robot: The robot profile (body radius, sensor poses).
         size: (width, height) of the frames in pixels.
         ray_length: Range of the distance sensors in metres.
+        start: The start pose (x, y, yaw) drawn, instead of the world's.
+        goal: The goal disc (x, y, radius) drawn, instead of the world's.
     """
 
     def __init__(
@@ -61,6 +63,8 @@ class TopDownRenderer:
         robot: RobotProfile,
         size: tuple[int, int] = (400, 400),
         ray_length: float = 0.07,
+        start: tuple[float, float, float] | None = None,
+        goal: tuple[float, float, float] | None = None,
     ) -> None:
         self.width, self.height = size
         xmin, ymin, xmax, ymax = world.bounds
@@ -73,7 +77,8 @@ class TopDownRenderer:
         self._body_radius = robot.body_radius
         self.rays = SensorRays(world, robot, ray_length)
         self._stamp = _disc_offsets(self._body_radius * self.scale)
-        self._start = world.start
+        self._start = world.start if start is None else start
+        self._goal = world.goal if goal is None else goal
         self.background = self._draw_world(world)
 
     def frame(
@@ -206,8 +211,8 @@ class TopDownRenderer:
             outer = (BARCODE_LENGTH + 2 * pixel, width)
             inner = (BARCODE_LENGTH - 2 * pixel, width - 4 * pixel)
             self._box(image, center, outer, yaw, CHECKPOINT_RGB, hollow=inner)
-        if world.goal is not None:
-            gx, gy, radius = world.goal
+        if self._goal is not None:
+            gx, gy, radius = self._goal
             self._fill(
                 image,
                 (gx - radius, gy - radius, gx + radius, gy + radius),

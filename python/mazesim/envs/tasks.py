@@ -4,11 +4,13 @@
 id                                     task
 =====================================  ======================================================
 ``mazesim/EPuckMaze-v0``               seed-maze, its start and goal, raw readings (as it was)
-``mazesim/MazeFixed-v0``               tier 1: seed-maze, its fixed start and goal;
-                                       goal-conditioned observation
-``mazesim/MazeRandomGoal-v0``          tier 2: seed-maze, random start and goal cells
-``mazesim/UnseenMaze-v0``              tier 3: a new 5 x 5 maze every episode, random start
-                                       and goal, goal-conditioned observation only
+``mazesim/MazeFixed-v1``               tier 1: seed-maze, its fixed start and goal;
+                                       goal-conditioned observation, 128 ms control step
+``mazesim/MazeRandomGoal-v1``          tier 2: seed-maze, random start and goal cells that
+                                       join; goal and pose observed, 128 ms control step
+``mazesim/UnseenMaze-v1``              tier 3: a new 5 x 5 maze every episode, random start
+                                       and goal; the goal and the map explored so far
+                                       (open sides, visits round the robot), 128 ms
 ``mazesim/UnseenMazeGuided-v0``        tier 4: as tier 3, plus the next waypoint of the
                                        shortest path: the tier a feed-forward policy solves on
                                        mazes it never saw
@@ -16,6 +18,15 @@ id                                     task
 
 The observations are those of :mod:`mazesim.envs.navigation`; the reward is the one of every
 maze env (:mod:`mazesim.envs.reward`). Every option can still be changed at ``make``.
+
+Version 1 of tiers 1 to 3 (version 0 was never released) acts every 128 ms instead of every 32 ms,
+with time limits of the same order in seconds (500 or 1000 steps): with a 32 ms step an episode
+was 1,500 to 2,000 steps whose rewards were each a few thousandths, too long a horizon for a
+discount of 0.99, and PPO learned nothing in minutes. Tier 2 also observes the pose (on one known
+maze, where the robot is tells the way) and draws start and goal only among cells that join
+(seed-maze has four walled-in cells). Tier 3 observes the map the robot has explored in this
+episode (``observation="explore"``): with the goal's direction alone a memoryless policy drives in
+circles in a maze it cannot see, with its visits it can prefer the corridors it has not tried.
 """
 
 from __future__ import annotations
@@ -23,7 +34,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
-__all__ = ["TASKS", "Task", "register_tasks"]
+__all__ = ["LONG_STEP_MS", "TASKS", "Task", "register_tasks"]
 
 
 @dataclass(frozen=True)
@@ -45,29 +56,44 @@ class Task:
     options: dict[str, Any] = field(default_factory=dict)
 
 
+#: The control step of tiers 1 to 3 in ms: four physics steps of 32 ms per action, so that a
+#: discount of 0.99 looks about 13 s ahead (a few cells) and episodes are a few hundred steps.
+LONG_STEP_MS = 128.0
+
 #: Every registered task, easiest first.
 TASKS: tuple[Task, ...] = (
     Task("mazesim/EPuckMaze-v0", 0, "seed-maze from its start, raw readings", 3000),
     Task(
-        "mazesim/MazeFixed-v0",
+        "mazesim/MazeFixed-v1",
         1,
         "one maze (seed-maze), fixed start and goal",
-        2000,
-        {"world": "seed-maze", "observation": "goal"},
+        500,
+        {"world": "seed-maze", "observation": "goal", "control_step_ms": LONG_STEP_MS},
     ),
     Task(
-        "mazesim/MazeRandomGoal-v0",
+        "mazesim/MazeRandomGoal-v1",
         2,
-        "one maze (seed-maze), random start and goal cells",
-        2000,
-        {"world": "seed-maze", "observation": "goal", "start_goal": "random"},
+        "one maze (seed-maze), random start and goal cells, the robot's pose observed",
+        500,
+        {
+            "world": "seed-maze",
+            "observation": "goal",
+            "include_pose": True,
+            "start_goal": "random",
+            "control_step_ms": LONG_STEP_MS,
+        },
     ),
     Task(
-        "mazesim/UnseenMaze-v0",
+        "mazesim/UnseenMaze-v1",
         3,
-        "a new 5 x 5 maze each episode, random start and goal",
-        1500,
-        {"world": "random", "observation": "goal", "start_goal": "random"},
+        "a new 5 x 5 maze each episode, random start and goal, the explored map observed",
+        1000,
+        {
+            "world": "random",
+            "observation": "explore",
+            "start_goal": "random",
+            "control_step_ms": LONG_STEP_MS,
+        },
     ),
     Task(
         "mazesim/UnseenMazeGuided-v0",

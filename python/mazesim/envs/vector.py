@@ -27,7 +27,7 @@ from gymnasium.vector.utils import batch_space
 
 from mazesim._core import BatchSimulator, World
 from mazesim.envs.maze_env import VECTOR_RENDER_MODES, check_render_mode, step_length_ms
-from mazesim.envs.navigation import navigation_features
+from mazesim.envs.navigation import StartAndGoal, navigation_features
 from mazesim.envs.options import DEFAULT_MAX_EPISODE_STEPS, EnvOptions, draw_seed
 from mazesim.envs.render import TopDownRenderer
 from mazesim.envs.reward import step_reward
@@ -116,7 +116,12 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         )
         table = PathDistanceTable.of_world(first)
         self._features = navigation_features(
-            self.options.observation, self.num_envs, self.options.robot, first, table
+            self.options.observation,
+            self.num_envs,
+            self.options.robot,
+            first,
+            table,
+            self.options.include_pose,
         )
         features = self._features
         self.single_observation_space = self._layout.space if features is None else features.space
@@ -141,6 +146,7 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         self._crossings = np.zeros(n, dtype=np.int32)
         self._worlds: list[World] = [first] * n
         self._renderers: list[TopDownRenderer | None] = [None] * n
+        self._drawn: list[StartAndGoal | None] = [None] * n
         self._goal = GoalDistance(n, table)
         self._previous = np.zeros((n, 2), dtype=np.float32)
         self._rngs: list[np.random.Generator | None] = [None] * n
@@ -265,7 +271,7 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         for i in range(self.num_envs):
             renderer = self._renderers[i]
             if renderer is None:
-                renderer = self._renderer_for(self._worlds[i])
+                renderer = self._renderer_for(i)
                 self._renderers[i] = renderer
             x, y, yaw = (float(v) for v in self._poses[i])
             frames.append(renderer.frame((x, y, yaw), bool(self._colliding[i])))
@@ -353,20 +359,36 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         mask = np.zeros(self.num_envs, dtype=bool)
         mask[envs] = True
         seeds = np.zeros(self.num_envs, dtype=np.uint64)
+        placed: list[int] = []
+        starts: list[tuple[float, float, float]] = []
+        goals: list[tuple[float, float, float]] = []
         for i in envs:
             rng = self._rngs[i]
             if rng is None:
                 rng = self._rngs[i] = seeding.np_random()[0]
-            world = self.options.next_world(rng)
+            world, drawn = self.options.next_world(rng)
             seeds[i] = episode_seed = draw_seed(rng)
             if world is not None:
                 batch.set_world(int(i), world, episode_seed)
                 self._worlds[i] = world
+            if drawn is not None:
+                placed.append(int(i))
+                starts.append(drawn.start)
+                goals.append(drawn.goal)
+            if world is not None or drawn is not None:
+                self._drawn[i] = drawn
                 self._renderers[i] = None
-                table = PathDistanceTable.of_world(world)
+                goal = None if drawn is None else drawn.goal
+                table = PathDistanceTable.of_world(self._worlds[i], goal)
                 self._goal.set(int(i), table)
                 if self._features is not None:
-                    self._features.set(int(i), world, table)
+                    self._features.set(int(i), self._worlds[i], table)
+        if self._features is not None:
+            self._features.restart(envs)
+        if placed:
+            where = np.array(placed, dtype=np.int64)
+            batch.set_starts_at(where, np.array(starts, dtype=np.float64))
+            batch.set_goals_at(where, np.array(goals, dtype=np.float64))
         batch.reset(self._sensors, self._poses, self._colliding, self._crossings, mask, seeds)
         self._previous[envs] = 0.0
         self._elapsed[envs] = 0
@@ -397,16 +419,20 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
             info["_checkpoint"] = crossed
         return info
 
-    def _renderer_for(self, world: World) -> TopDownRenderer:
+    def _renderer_for(self, env: int) -> TopDownRenderer:
+        """A renderer of env ``env``'s world, start and goal: another env's if they are equal."""
+        world, drawn = self._worlds[env], self._drawn[env]
         for i, other in enumerate(self._worlds):
             renderer = self._renderers[i]
-            if renderer is not None and other is world:
+            if renderer is not None and other is world and self._drawn[i] == drawn:
                 return renderer
         return TopDownRenderer(
             world,
             self.options.robot,
             self.options.render_size,
             sensor_ranges(self.options.robot).ray_length,
+            start=None if drawn is None else drawn.start,
+            goal=None if drawn is None else drawn.goal,
         )
 
 

@@ -147,29 +147,28 @@ class MazesimVecEnv(VecEnv):
                 infos[i] = step_infos[i]
                 infos[i]["terminal_observation"] = info["final_obs"][i]
                 self.reset_infos[i] = reset_infos[i]
-        time_limit = (truncated & ~terminated).tolist()
-        for i, entry in enumerate(infos):
-            entry["TimeLimit.truncated"] = time_limit[i]
+        for entry, time_limit in zip(infos, (truncated & ~terminated).tolist()):
+            entry["TimeLimit.truncated"] = time_limit
         return observations, rewards.astype(np.float32), dones, infos
 
     def _split(self, info: dict[str, Any], rows: npt.NDArray[np.bool_]) -> list[dict[str, Any]]:
         """One dict per environment of the vector env's info, for the environments in ``rows``
-        (empty dicts elsewhere), with Python scalars as a single env gives them."""
-        infos: list[dict[str, Any]] = [{} for _ in range(self.num_envs)]
-        wanted = np.flatnonzero(rows)
-        if wanted.size == 0:
-            return infos
-        poses = info["pose"]
-        columns = {key: info[key].tolist() for key in _INFO_KEYS[1:]}
-        crossed = info.get("_checkpoint", np.zeros(self.num_envs, dtype=bool)).tolist()
-        checkpoints = info.get("checkpoint", np.zeros(self.num_envs, dtype=np.int64)).tolist()
-        for i in wanted.tolist():
-            entry = infos[i]
-            entry["pose"] = poses[i].copy()
-            for key, column in columns.items():
-                entry[key] = column[i]
-            if crossed[i]:
-                entry["checkpoint"] = checkpoints[i]
+        (empty dicts elsewhere), with Python scalars as a single env gives them.
+
+        The vector env's info arrays are new at every call, so each environment's pose is a row
+        of its own array's (no environment shares one with another)."""
+        columns = [list(info["pose"]), *(info[key].tolist() for key in _INFO_KEYS[1:])]
+        if rows.all():
+            infos = [dict(zip(_INFO_KEYS, values)) for values in zip(*columns)]
+        else:
+            infos = [{} for _ in range(self.num_envs)]
+            for i in np.flatnonzero(rows).tolist():
+                infos[i] = {key: column[i] for key, column in zip(_INFO_KEYS, columns)}
+        crossed = info.get("_checkpoint")
+        if crossed is not None:
+            checkpoints = info["checkpoint"]
+            for i in np.flatnonzero(crossed & rows).tolist():
+                infos[i]["checkpoint"] = int(checkpoints[i])
         return infos
 
     def close(self) -> None:

@@ -14,7 +14,7 @@ use crate::physics::Body;
 use crate::rng::Rng;
 use crate::robot::RobotProfile;
 use crate::sensors::{infrared_reading_with, GroundReader};
-use crate::world::{NearbyWalls, RayHit, World};
+use crate::world::{Goal, NearbyWalls, RayHit, World};
 
 /// A gap to a wall below this (metres) counts as touching it.
 pub const CONTACT_GAP: f32 = 2e-4;
@@ -108,6 +108,8 @@ pub struct Simulator {
     last_crossing: i32,
     /// Start pose used by `reset` instead of the world's, when set.
     start_override: Option<[f32; 3]>,
+    /// The goal disc `set_goal` gave, instead of the world's.
+    goal_override: Option<Goal>,
 }
 
 impl Simulator {
@@ -158,6 +160,7 @@ impl Simulator {
             crossings: Vec::new(),
             last_crossing: 0,
             start_override: None,
+            goal_override: None,
             distance_readings: vec![0.0; robot.distance_sensors.len()],
             ray_hits: vec![None; robot.distance_sensors.len()],
             ground_readers: robot
@@ -216,6 +219,23 @@ impl Simulator {
     pub fn set_start(&mut self, x: f64, y: f64, yaw: f64) -> Result<()> {
         self.check_start(x, y, yaw)?;
         self.start_override = Some([x as f32, y as f32, yaw as f32]);
+        Ok(())
+    }
+
+    /// The goal disc the episodes end at: the one `set_goal` gave, else the world's.
+    pub fn goal(&self) -> Option<Goal> {
+        self.goal_override.or(self.world.goal())
+    }
+
+    /// Sets the goal disc of this simulator, centre (x, y) and radius in metres, instead of the
+    /// world's, until the simulator is made again. The centre must lie within the limits
+    /// (`crate::limits`), the radius be finite and positive.
+    pub fn set_goal(&mut self, x: f64, y: f64, radius: f64) -> Result<()> {
+        check_goal(x, y, radius)?;
+        self.goal_override = Some(Goal {
+            center: [x, y],
+            radius,
+        });
         Ok(())
     }
 
@@ -519,5 +539,20 @@ impl Simulator {
     /// The robot's sensing set-up (shared with the other simulators of a batch).
     pub fn rig(&self) -> &Arc<Rig> {
         &self.rig
+    }
+}
+
+/// Checks a goal disc: a centre within `MAX_COORDINATE`, a finite positive radius.
+pub(crate) fn check_goal(x: f64, y: f64, radius: f64) -> Result<()> {
+    use limits::{check_bounded, MAX_COORDINATE};
+    check_bounded("the goal's x (metres)", x, MAX_COORDINATE)?;
+    check_bounded("the goal's y (metres)", y, MAX_COORDINATE)?;
+    if radius.is_finite() && radius > 0.0 && radius <= MAX_COORDINATE {
+        Ok(())
+    } else {
+        Err(Error::InvalidArgument(format!(
+            "expected the goal's radius to be a positive number of metres up to {MAX_COORDINATE}, \
+             found {radius:?}"
+        )))
     }
 }

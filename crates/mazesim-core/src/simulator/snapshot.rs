@@ -31,12 +31,12 @@ use crate::error::{Error, Result};
 use crate::fingerprint::{fnv1a, fnv1a_extend};
 use crate::rng::Rng;
 use crate::sensors::GroundReader;
-use crate::world::RayHit;
+use crate::world::{Goal, RayHit};
 
 const MAGIC: &[u8; 8] = b"MZSNAPSH";
 
 /// The version of the layout and of the state it holds; bumped whenever either changes.
-pub const SNAPSHOT_VERSION: u32 = 1;
+pub const SNAPSHOT_VERSION: u32 = 2;
 
 /// Bytes of the fixed part of the header (before the names).
 const FIXED_HEADER: usize = 8 + 4 + 8 + 8 + 4 + 1 + 8 + 8;
@@ -64,6 +64,7 @@ struct State {
     crossings: Vec<Crossing>,
     last_crossing: i32,
     start_override: Option<[f32; 3]>,
+    goal_override: Option<[f64; 3]>,
 }
 
 /// What the header says, read back.
@@ -189,6 +190,9 @@ impl Simulator {
             crossings: self.crossings.clone(),
             last_crossing: self.last_crossing,
             start_override: self.start_override,
+            goal_override: self
+                .goal_override
+                .map(|g| [g.center[0], g.center[1], g.radius]),
         };
         let payload = postcard::to_allocvec(&state).expect("the state is serde data");
         let mut body = postcard::Serializer {
@@ -301,6 +305,10 @@ impl Simulator {
         self.crossings = state.crossings;
         self.last_crossing = state.last_crossing;
         self.start_override = state.start_override;
+        self.goal_override = state.goal_override.map(|[x, y, radius]| Goal {
+            center: [x, y],
+            radius,
+        });
         Ok(())
     }
 
@@ -340,6 +348,9 @@ impl Simulator {
         let pose_ok = |p: &[f32; 3]| p.iter().all(|v| v.is_finite());
         if !pose_ok(&state.pose) || !state.start_override.as_ref().is_none_or(pose_ok) {
             return Err(corrupt("expected finite poses, found others"));
+        }
+        if let Some([x, y, radius]) = state.goal_override {
+            super::check_goal(x, y, radius).map_err(|e| corrupt(e.to_string()))?;
         }
         Ok(())
     }
