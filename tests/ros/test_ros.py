@@ -21,9 +21,9 @@ import pytest
 import mazesim
 from mazesim.actions import wheel_speeds
 from mazesim.controllers import AvoidCollision
-from mazesim.errors import InvalidActionError, InvalidArgumentError
+from mazesim.errors import InvalidActionError, InvalidArgumentError, MazesimIOError
 from mazesim.learn import load_policy
-from mazesim.ros import topics
+from mazesim.ros import demo, topics
 from mazesim.ros.bridge import BridgeSettings, resolve_settings
 from mazesim.ros.demo import goal_step
 from mazesim.ros.local_master import LocalMaster
@@ -566,3 +566,15 @@ def test_recorded_run_plays_back_and_equals_in_process_run(
     assert left_behind == [] and player.leftovers() == []
     played = json.loads(stdout.strip().splitlines()[-1])["data"]["pose"]
     assert played == expected
+
+
+def test_demo_refuses_a_disk_where_the_recorder_would_not_record(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    full = demo.shutil.disk_usage(tmp_path)._replace(free=demo.RECORDER_MIN_FREE_BYTES - 1)
+    monkeypatch.setattr(demo.shutil, "disk_usage", lambda path: full)
+    with pytest.raises(MazesimIOError, match=r"at least 1 GiB free.*found 1024 MiB free"):
+        demo.check_free_space(str(tmp_path))
+    roomy = full._replace(free=demo.RECORDER_MIN_FREE_BYTES)
+    monkeypatch.setattr(demo.shutil, "disk_usage", lambda path: roomy)
+    demo.check_free_space(str(tmp_path))

@@ -17,6 +17,7 @@ from __future__ import annotations
 import argparse
 import math
 import os
+import shutil
 import sys
 import time
 from typing import Any, TextIO
@@ -27,12 +28,20 @@ import mazesim
 from mazesim.errors import (
     InvalidArgumentError,
     MazesimError,
+    MazesimIOError,
     MissingDependencyError,
     PolicyFormatError,
 )
 from mazesim.ros.local_master import LocalMaster
 
-__all__ = ["CONTROLLERS", "RECORDED_TOPICS", "goal_step", "read_poses", "run_demo"]
+__all__ = [
+    "CONTROLLERS",
+    "RECORDED_TOPICS",
+    "check_free_space",
+    "goal_step",
+    "read_poses",
+    "run_demo",
+]
 
 #: The demo's controller nodes.
 CONTROLLERS = ("hrl", "avoid-collision")
@@ -43,6 +52,19 @@ RECORDED_TOPICS = {
 }
 #: Wall-clock seconds the demo allows per simulated second before it gives up.
 WALL_SECONDS_PER_SIMULATED_SECOND = 2.0
+#: ROS 1's ``rosbag record`` stops recording when its disk has less than 1 GiB free (its
+#: ``min_space`` default, which the Debian build's command line cannot change).
+RECORDER_MIN_FREE_BYTES = 1 << 30
+
+
+def check_free_space(out_dir: str) -> None:
+    """Refuses to start when ``rosbag record`` would stop at once for want of disk space."""
+    free = shutil.disk_usage(out_dir).free
+    if free < RECORDER_MIN_FREE_BYTES:
+        raise MazesimIOError(
+            f"rosbag record needs at least 1 GiB free on the disk of {out_dir}; found "
+            f"{free / 2**20:.0f} MiB free: free some space or pass --out on another disk"
+        )
 
 
 def read_poses(bag_path: str) -> Any:
@@ -92,6 +114,7 @@ def run_demo(args: argparse.Namespace, out: TextIO) -> int:
     robot = "seed" if hrl else "e-puck"
     out_dir = os.path.abspath(args.out)
     os.makedirs(out_dir, exist_ok=True)
+    check_free_space(out_dir)
     bag_path = os.path.join(out_dir, "maze.bag")
     if os.path.exists(bag_path):
         os.remove(bag_path)

@@ -13,7 +13,7 @@ use crate::limits::{self, MAX_PHYSICS_STEPS_PER_CONTROL_STEP};
 use crate::physics::Body;
 use crate::rng::Rng;
 use crate::robot::RobotProfile;
-use crate::sensors::{infrared_reading_with, GroundReader};
+use crate::sensors::{infrared_reading_with, GroundReader, SensorImperfections};
 use crate::world::{Goal, NearbyWalls, RayHit, World};
 
 /// A gap to a wall below this (metres) counts as touching it.
@@ -382,6 +382,7 @@ impl Simulator {
         self.clearance = near.signed_distance(index, [x, y], r + CLEARANCE_SEARCH) - r;
         self.touching = self.clearance < CONTACT_GAP;
         let noise = self.config.noise;
+        let imperfect = &SensorImperfections::of(robot);
         near.cast_fan(index, &rig.rays, [x, y], [s, c], &mut self.ray_hits);
         if self.body.has_movables() {
             for (hit, &[px, py, dx, dy, length]) in self.ray_hits.iter_mut().zip(&rig.sensor_rays) {
@@ -397,7 +398,7 @@ impl Simulator {
         let sensors = robot.distance_sensors.iter().zip(&rig.infrared_miss);
         for ((reading, (sensor, &miss)), &hit) in readings.zip(sensors).zip(&self.ray_hits) {
             let rng = noise.then_some(&mut self.rng);
-            *reading = infrared_reading_with(&sensor.model, hit, miss, &rig.imperfections, rng);
+            *reading = infrared_reading_with(&sensor.model, hit, miss, imperfect, rng);
         }
         let (sd, cd) = (s as f64, c as f64);
         for (i, sensor) in robot.ground_sensors.iter().enumerate() {
@@ -405,7 +406,6 @@ impl Simulator {
             let at = [x as f64 + cd * px - sd * py, y as f64 + sd * px + cd * py];
             let rng = noise.then_some(&mut self.rng);
             let reader = &mut self.ground_readers[i];
-            let imperfect = &rig.imperfections;
             self.ground_readings[i] =
                 reader.read(&sensor.model, world.floor(), at, [cd, sd], imperfect, rng);
         }

@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use crate::fingerprint::fnv1a;
 use crate::robot::RobotProfile;
-use crate::sensors::{infrared_miss, SensorImperfections};
+use crate::sensors::infrared_miss;
 use crate::world::{NearbyWalls, RayFan};
 
 use super::CLEARANCE_SEARCH;
@@ -35,8 +35,6 @@ pub struct Rig {
     pub(super) barcode_sensor: Option<usize>,
     /// A hash of the profile's content, that snapshots carry.
     pub(super) fingerprint: u64,
-    /// How the profile's sensors differ from their models.
-    pub(super) imperfections: SensorImperfections,
 }
 
 /// How far from a robot's centre its sensor rays and the clearance search reach, metres, with a
@@ -79,7 +77,6 @@ impl Rig {
             reach: sensing_reach(&robot),
             barcode_sensor,
             fingerprint: fnv1a(format!("{robot:?}").as_bytes()),
-            imperfections: SensorImperfections::of(&robot),
             robot,
         })
     }
@@ -96,10 +93,5 @@ impl Rig {
     /// The robot profile.
     pub fn robot(&self) -> &Arc<RobotProfile> {
         &self.robot
-    }
-
-    /// A hash of the profile's content (equal profiles, equal fingerprints).
-    pub fn fingerprint(&self) -> u64 {
-        self.fingerprint
     }
 }
