@@ -26,7 +26,12 @@ from mazesim.distributed import (
 )
 from mazesim.distributed.episodes import split_episodes
 from mazesim.distributed.output import RUNS_DIR, remove_leftovers, write_run_folder
-from mazesim.errors import InvalidArgumentError, MazesimIOError, UnknownNameError
+from mazesim.errors import (
+    InvalidArgumentError,
+    MazesimIOError,
+    UnknownNameError,
+    WorldFormatError,
+)
 
 REPO = Path(__file__).resolve().parents[2]
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
@@ -138,6 +143,13 @@ def test_missing_sweep_file_and_its_cli_error(tmp_path: Path, capsys: Any) -> No
     assert len(lines) == 1 and lines[0].startswith("mazesim: error: ")
     assert "grid.epsilon" in lines[0]
     assert not (tmp_path / "out").exists()
+
+
+def test_a_world_file_that_is_not_text_is_a_world_format_error(tmp_path: Path) -> None:
+    picture = tmp_path / "maze.png"
+    picture.write_bytes(b"\x89PNG\r\n\x1a\n\x00\x00")
+    with pytest.raises(WorldFormatError, match=r"grid.world: expected a UTF-8 world file"):
+        parse_sweep_config(f"[grid]\nworld = '{picture}'\n", source="bad.toml")
 
 
 @pytest.mark.parametrize("command", ["sweep", "eval"])

@@ -66,6 +66,13 @@ def test_a_missing_toml_file_is_an_io_error(tmp_path: Path) -> None:
         parse_spec(tmp_path / "none.toml")
 
 
+def test_a_spec_file_that_is_not_text_is_refused(tmp_path: Path) -> None:
+    path = tmp_path / "spec.toml"
+    path.write_bytes(b"\x89PNG\r\n\x1a\n\x00\x00")
+    with pytest.raises(InvalidArgumentError, match="expected a UTF-8 TOML file"):
+        parse_spec(path)
+
+
 def test_sampling_is_uniform_in_each_range_and_repeatable() -> None:
     spec = RandomisationSpec.of({"wheel_radius": (0.95, 1.05), "slip": [0.0, 0.5]})
     settings = sample_settings(spec, 2000, seed=3, round_index=1)

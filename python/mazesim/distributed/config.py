@@ -48,6 +48,7 @@ from mazesim.errors import (
     MazesimIOError,
     MissingDependencyError,
     UnknownNameError,
+    WorldFormatError,
 )
 
 __all__ = [
@@ -321,6 +322,12 @@ def _world_text(source: str, name: str, base_dir: str) -> str | None:
                 text = handle.read()
         except OSError as error:
             raise MazesimIOError(f"{source}: grid.world: cannot read {path!r}: {error}") from None
+        except UnicodeDecodeError as error:
+            raise WorldFormatError(
+                f"{source}: grid.world: expected a UTF-8 world file at {path!r}: {error}",
+                source=path,
+                field="grid.world",
+            ) from None
         world = World.from_toml(text, source=path)
     if world.goal is None:
         raise InvalidArgumentError(

@@ -126,9 +126,11 @@ def _toml_table(path: Path) -> Mapping[str, Any]:
         raise MazesimIOError(
             f"{path}: cannot read the randomisation file: {error.strerror or error}"
         ) from None
+    except UnicodeDecodeError as error:
+        raise InvalidArgumentError(f"{path}: expected a UTF-8 TOML file: {error}") from None
     try:
         document = toml.loads(text)
-    except (toml.TOMLDecodeError, UnicodeDecodeError) as error:
+    except toml.TOMLDecodeError as error:
         raise InvalidArgumentError(f"{path}: not a valid TOML file: {error}") from None
     table = document.get("randomise")
     if not isinstance(table, dict) or set(document) != {"randomise"}:

@@ -160,6 +160,11 @@ def read_keys(path: str | os.PathLike[str]) -> KeyScript:
         failure = MazesimIOError(f"{file}: cannot read the key script: {error.strerror or error}")
         failure.filename = file
         raise failure from None
+    except UnicodeDecodeError as error:
+        raise InvalidArgumentError(
+            f"{file}: expected a key script in UTF-8 text (lines of 'time_s key [duration_s]'); "
+            f"found bytes that are not text: {error}"
+        ) from None
     return KeyScript.parse(text, file)
 
 
