@@ -11,6 +11,7 @@ from pathlib import Path
 import pytest
 
 from mazesim.cli import main
+from ros_support import needs_ros
 
 REPO = Path(__file__).resolve().parents[2]
 WBT = REPO / "tests" / "data" / "webots-worlds" / "e-puck.R2023b.wbt"
@@ -126,7 +127,8 @@ def test_running_out_of_memory_is_one_line(
         ["bench", "--envs", "1,99999999999"],
         ["train", "--steps", "1e40"],
         ["eval", "--episodes", "99999999999"],
-        ["ros", "bridge", "--speed", "1e300"],
+        # ``mazesim ros`` checks for ROS 1 before it parses (a quick failure where it is missing).
+        pytest.param(["ros", "bridge", "--speed", "1e300"], marks=needs_ros),
     ],
     ids=" ".join,
 )

@@ -167,6 +167,7 @@ def test_ros_help_lists_the_nodes(capsys: pytest.CaptureFixture[str]) -> None:
     assert "--controller {hrl,avoid-collision}" in capsys.readouterr().out
 
 
+@needs_ros
 def test_hrl_demo_refuses_a_world_its_tables_do_not_know(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
