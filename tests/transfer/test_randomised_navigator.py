@@ -60,3 +60,18 @@ def test_eval_takes_the_name(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["eval", "--policy", "randomised", "--episodes", "4", "--no-progress"]) == 0
     out = capsys.readouterr().out
     assert "seed-maze-randomised" in out and "success rate        100.0%" in out
+
+
+def test_first_round_of_the_randomised_training_is_reproduced() -> None:
+    # The shipped randomised tables come from `mazesim train --randomise` with the ranges in
+    # their policy.json: its first round, drawn again from those ranges, is what the run recorded.
+    from mazesim.learn.lower import LowerTrainer
+    from mazesim.learn.train import TrainSettings, _round_summary
+    from mazesim.transfer.randomise import robot_draw
+
+    training = load_policy("randomised").training
+    settings = TrainSettings(**training["settings"])
+    assert settings.lower().as_dict() == training["lower"]
+    draw = robot_draw(parse_spec(settings.randomise), settings.seed)
+    trainer = LowerTrainer(settings.lower(), robot=draw(0, settings.envs))
+    assert _round_summary(trainer.run_round(0)) == training["history"][0]
