@@ -15,6 +15,7 @@ import subprocess
 import sys
 import tarfile
 import venv
+import zipfile
 from pathlib import Path
 
 import pytest
@@ -67,6 +68,15 @@ def test_sdist_carries_what_the_core_embeds(built: tuple[Path, Path]) -> None:
     assert {"worlds/seed-maze.toml", "robots/e-puck.toml"} <= embedded
     assert embedded <= names, sorted(embedded - names)
     assert {"pyproject.toml", "Cargo.lock", "python/mazesim/_core.pyi"} <= names
+
+
+def test_wheel_carries_the_shipped_navigators(built: tuple[Path, Path]) -> None:
+    wheel, _ = built
+    with zipfile.ZipFile(wheel) as archive:
+        names = set(archive.namelist())
+    for folder in ("seed-maze", "seed-maze-randomised"):
+        files = {f"mazesim/learn/data/{folder}/{name}" for name in ("policy.json", "tables.npz")}
+        assert files <= names, sorted(files - names)
 
 
 def test_release_wheel_runs_the_demo_and_the_quick_start_from_anywhere(

@@ -7,16 +7,21 @@ the navigator into ``--out``; ``--flat`` trains the flat baseline instead, for t
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import math
 import sys
 import time
 from pathlib import Path
-from typing import Any, TextIO
+from typing import TYPE_CHECKING, Any, TextIO
 
 from mazesim._paths import output_files, output_path, refuse_overwriting_inputs
 from mazesim.cli._args import add_setting_options, positive_int, seed_argument
 from mazesim.cli.progress import add_progress_option, progress_display
 from mazesim.errors import InvalidArgumentError
+
+if TYPE_CHECKING:
+    from mazesim.batch import RobotChoice
+    from mazesim.learn.train import RobotDraw
 
 __all__ = ["register", "run_train", "step_count"]
 
@@ -86,6 +91,14 @@ def register(commands: Any) -> None:
         help="train the flat Q-learning baseline on --world instead, for --steps env-steps",
     )
     train.add_argument(
+        "--randomise",
+        metavar="SPEC",
+        help="domain randomisation: each lower-level round's robots (and the higher level's) "
+        "are the seed robot perturbed at random within these ranges, inline "
+        "(wheel_radius=0.95:1.05,ir_angle=-10:10) or a TOML file with a [randomise] table; "
+        "see the transfer study's page",
+    )
+    train.add_argument(
         "--tensorboard",
         action="store_true",
         help="also log the learning curve to TensorBoard event files in --out/tensorboard "
@@ -110,6 +123,17 @@ def run_train(args: argparse.Namespace, out: TextIO) -> int:
         [("--world", args.world)],
     )
     settings = TrainSettings(**{f.name: getattr(args, f.name) for f in command_line_fields()})
+    robot: RobotChoice | RobotDraw = "seed"
+    if args.randomise is not None:
+        if args.flat:
+            raise InvalidArgumentError(
+                "--randomise trains hierarchical navigators only, not --flat"
+            )
+        from mazesim.transfer.randomise import parse_spec, robot_draw
+
+        spec = parse_spec(args.randomise)
+        settings = dataclasses.replace(settings, randomise=spec.text())
+        robot = robot_draw(spec, settings.seed)
     curve = LearningCurve(Path(args.out), tensorboard=args.tensorboard)
     started = time.perf_counter()
     if args.flat:
@@ -125,7 +149,9 @@ def run_train(args: argparse.Namespace, out: TextIO) -> int:
         )
         return 0
     with curve, progress_display(args, units=_UNITS) as progress:
-        result = train(settings, args.out, resume=args.resume, progress=progress, curve=curve)
+        result = train(
+            settings, args.out, resume=args.resume, progress=progress, curve=curve, robot=robot
+        )
     if result is None:
         return 0
     seconds = time.perf_counter() - started

@@ -69,7 +69,8 @@ def register(commands: Any) -> None:
         "--policy",
         default=None,
         metavar="DIR",
-        help="folder of a saved hierarchical navigator (default: the one shipped for seed-maze)",
+        help="folder of a saved hierarchical navigator, or 'randomised': the one shipped trained "
+        "with domain randomisation (default: the one shipped for seed-maze)",
     )
     parser.add_argument(
         "--episodes",

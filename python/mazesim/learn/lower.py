@@ -227,19 +227,11 @@ class LowerTrainer:
                 and maze.is_open(approach.door, (approach.heading + quarters) % 4)
             ]
         count = settings.num_envs
+        self.threads = threads
         # The batch first: it refuses a number of envs the machine cannot hold.
-        self.batch = RobotBatch(
-            self.mazes,
-            np.zeros(count, dtype=np.int64),
-            robot=robot,
-            control_step_ms=settings.control_step_ms,
-            threads=threads,
-        )
+        self.use_robots(robot)
         self.role = np.resize(np.array(ROLE_PATTERN, dtype=np.int64), count)
         self.cruise_step = cruise_step_length(self.batch.profile, settings.control_step_ms)
-        self.observations = self.batch.observations
-        self.poses = self.batch.poses
-        self.colliding = self.batch.colliding
         self.tracker = SubTaskTracker(count)
         # The door path of each robot's episode: start, door centre, directions, first leg.
         self.path_start = np.zeros((count, 2))
@@ -248,6 +240,20 @@ class LowerTrainer:
         self.heading_out = np.zeros((count, 2))
         self.first_leg = np.zeros(count)
         self.episode_steps = np.zeros(count, dtype=np.int64)
+
+    def use_robots(self, robot: RobotChoice) -> None:
+        """Drives the next rounds with ``robot``: a fresh batch of those robots (every robot starts
+        a fresh episode at a round's start, so nothing of the last round's batch is lost)."""
+        self.batch = RobotBatch(
+            self.mazes,
+            np.zeros(self.settings.num_envs, dtype=np.int64),
+            robot=robot,
+            control_step_ms=self.settings.control_step_ms,
+            threads=self.threads,
+        )
+        self.observations = self.batch.observations
+        self.poses = self.batch.poses
+        self.colliding = self.batch.colliding
 
     # -- episodes ---------------------------------------------------------------------------
 

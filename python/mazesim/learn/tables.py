@@ -68,10 +68,12 @@ __all__ = [
     "FORMAT",
     "FORMAT_VERSION",
     "METADATA_FILE",
+    "SHIPPED_NAVIGATORS",
     "TABLES_FILE",
     "TrainedPolicy",
     "encoding_metadata",
     "load_policy",
+    "navigator_folder",
     "policy_arrays",
     "policy_schema",
     "read_bundle",
@@ -135,6 +137,24 @@ def encoding_metadata() -> dict[str, Any]:
 def shipped_policy_dir(world_name: str = "seed-maze") -> Path:
     """The folder of the navigator shipped in the package for a built-in world."""
     return Path(str(resources.files("mazesim.learn").joinpath("data", world_name)))
+
+
+#: Navigators shipped beside the default one, by the name ``load_policy`` (and ``--policy``)
+#: takes for them when no folder of that name exists: their folders in the package's data.
+SHIPPED_NAVIGATORS = {"randomised": "seed-maze-randomised"}
+
+
+def navigator_folder(folder: str | os.PathLike[str] | None = None) -> Path:
+    """The folder of a navigator: ``folder`` itself, the shipped seed-maze navigator's for None,
+    or a shipped navigator's for its name in :data:`SHIPPED_NAVIGATORS` (``"randomised"``)
+    when no folder of that name exists."""
+    if folder is None:
+        return shipped_policy_dir()
+    path = Path(folder)
+    name = os.fspath(folder)
+    if name in SHIPPED_NAVIGATORS and not path.exists():
+        return shipped_policy_dir(SHIPPED_NAVIGATORS[name])
+    return path
 
 
 @dataclass
@@ -328,12 +348,13 @@ def _checked_policy_arrays(where: Path) -> Any:
 
 
 def load_policy(folder: str | os.PathLike[str] | None = None) -> TrainedPolicy:
-    """Loads a navigator saved by :func:`save_policy` (by default the one shipped for seed-maze).
+    """Loads a navigator saved by :func:`save_policy` (by default the one shipped for seed-maze;
+    ``"randomised"``: the one trained with domain randomisation, see :func:`navigator_folder`).
 
     Raises:
         PolicyFormatError: The folder does not hold a usable navigator (the message says why).
     """
-    path = Path(folder) if folder is not None else shipped_policy_dir()
+    path = navigator_folder(folder)
     meta_path = path / METADATA_FILE
     arrays, metadata = read_bundle(
         path,

@@ -59,6 +59,7 @@ __all__ = [
     "CheckpointFn",
     "CurveFn",
     "ProgressFn",
+    "RobotDraw",
     "TrainSettings",
     "TrainingRun",
     "command_line_fields",
@@ -101,6 +102,9 @@ class TrainSettings:
     higher_envs: int = HigherTraining.envs_per_world
     higher_max_steps: int = HigherTraining.max_steps
     checkpoint_seconds: float = 30.0
+    #: The domain randomisation's ranges as ``axis=low:high,...`` (``mazesim train --randomise``;
+    #: :func:`train` then draws the robots with a :data:`RobotDraw`), empty for the seed robot.
+    randomise: str = ""
 
     def lower(self) -> LowerSettings:
         """The lower-level stage's settings."""
@@ -121,6 +125,9 @@ class TrainSettings:
         """What must match for a checkpoint to be continued (not the checkpoint interval)."""
         values = asdict(self)
         values.pop("checkpoint_seconds")
+        if not self.randomise:
+            # A run without randomisation has the identity it had before the field existed.
+            values.pop("randomise")
         return values
 
 
@@ -170,6 +177,17 @@ CheckpointFn = Callable[[LowerTables, int, list[dict[str, Any]]], bool]
 #: after each round (the rounds of a resumed run's checkpoint first), ``"higher"`` each time
 #: episodes end; ``values`` maps names of :data:`CURVE_VALUES` to numbers.
 CurveFn = Callable[[str, dict[str, float]], None]
+#: Draws the robots of a randomised run as ``draw(round_index, count)``: the lower level's
+#: robots for each round (``round_index`` from 0), and the higher level's once, with
+#: ``round_index`` the lower level's number of rounds. The same arguments must give the same
+#: robots (a resumed run draws its rounds again).
+RobotDraw = Callable[[int, int], RobotChoice]
+
+
+def _robots_of(robot: RobotChoice | RobotDraw, round_index: int, count: int) -> RobotChoice:
+    if callable(robot):
+        return robot(round_index, count)
+    return robot
 
 
 def _lower_point(summary: dict[str, Any], lower: LowerSettings) -> dict[str, float]:
@@ -212,7 +230,7 @@ def run_training(
     threads: int = 0,
     progress: ProgressFn | None = None,
     checkpoint: CheckpointFn | None = None,
-    robot: RobotChoice = "seed",
+    robot: RobotChoice | RobotDraw = "seed",
     curve: CurveFn | None = None,
 ) -> TrainingRun | None:
     """The training pipeline: the lower level round by round, then the higher level on ``world``.
@@ -230,7 +248,9 @@ def run_training(
         progress: See :data:`ProgressFn`.
         checkpoint: See :data:`CheckpointFn`.
         robot: The robots of both stages (:data:`mazesim.batch.RobotChoice`: a profile's name,
-            a :class:`~mazesim.RobotProfile`, or one per robot), handed to the batches as given.
+            a :class:`~mazesim.RobotProfile`, or one per robot), handed to the batches as given;
+            or a :data:`RobotDraw` giving fresh robots to each lower-level round and to the
+            higher level (domain randomisation).
         curve: See :data:`CurveFn`.
 
     Returns:
@@ -245,8 +265,12 @@ def run_training(
         for summary in summaries:
             curve("lower", _lower_point(summary, lower))
     if next_round < rounds:
-        trainer = LowerTrainer(lower, tables, threads=threads, robot=robot)
+        draws = callable(robot)
+        first = _robots_of(robot, next_round, lower.num_envs)
+        trainer = LowerTrainer(lower, tables, threads=threads, robot=first)
         for round_index in range(next_round, rounds):
+            if draws and round_index > next_round:
+                trainer.use_robots(_robots_of(robot, round_index, lower.num_envs))
             stats = trainer.run_round(round_index)
             stats_seen.append(stats)
             summaries.append(_round_summary(stats))
@@ -268,7 +292,12 @@ def run_training(
             curve("higher", {"index": done, "goal_rate": recent})
 
     level, results = train_higher(
-        tables.q, [world], higher, threads=threads, progress=higher_progress, robot=robot
+        tables.q,
+        [world],
+        higher,
+        threads=threads,
+        progress=higher_progress,
+        robot=_robots_of(robot, rounds, higher.envs_per_world),
     )
     return TrainingRun(
         tables=tables,
@@ -304,7 +333,7 @@ def train(
     progress: ProgressFn | None = None,
     threads: int = 0,
     stop_after_rounds: int | None = None,
-    robot: RobotChoice = "seed",
+    robot: RobotChoice | RobotDraw = "seed",
     curve: CurveFn | None = None,
 ) -> TrainedPolicy | None:
     """Trains a navigator (:func:`run_training`) with checkpoints in ``out``, and saves it there.
@@ -317,18 +346,26 @@ def train(
         threads: Worker threads of the simulator (0: one per core); results do not depend on it.
         stop_after_rounds: Stop (as if interrupted) after this many lower-level rounds in this
             call, leaving the checkpoint; for tests.
-        robot: The robots (see :func:`run_training`).
+        robot: The robots (see :func:`run_training`); a :data:`RobotDraw` exactly when
+            ``settings.randomise`` names its ranges.
         curve: Receives the learning curve (:data:`CurveFn`).
 
     Returns:
         The trained navigator, or None when stopped early by ``stop_after_rounds``.
 
     Raises:
+        InvalidArgumentError: ``settings.randomise`` without a :data:`RobotDraw` or the other
+            way round.
         PolicyFormatError: ``resume`` without a usable checkpoint of the same settings, or a
             checkpoint already in ``out`` without ``resume``.
         UnknownNameError, WorldFormatError: The world cannot be loaded.
     """
     folder = Path(out)
+    if bool(settings.randomise) != callable(robot):
+        raise InvalidArgumentError(
+            "expected a robot draw exactly with randomisation ranges in the settings, found "
+            f"randomise={settings.randomise!r} and robot={robot!r}"
+        )
     world = _navigator_world(settings.world)
     lower_settings = settings.lower()
     if folder.exists() and not folder.is_dir():

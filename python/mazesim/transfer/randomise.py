@@ -21,7 +21,7 @@ from __future__ import annotations
 import math
 import os
 import sys
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -36,6 +36,7 @@ __all__ = [
     "RANDOMISED_AXES",
     "RandomisationSpec",
     "parse_spec",
+    "robot_draw",
     "sample_profiles",
     "sample_settings",
 ]
@@ -89,6 +90,11 @@ class RandomisationSpec:
         if not checked:
             raise InvalidArgumentError(f"{where}: expected at least one axis range, found none")
         return RandomisationSpec(tuple((n, checked[n]) for n in AXIS_NAMES if n in checked))
+
+    def text(self) -> str:
+        """The spec inline, ``axis=low:high,...`` in the study's axis order (:func:`parse_spec`
+        reads it back as the same spec)."""
+        return ",".join(f"{name}={low!r}:{high!r}" for name, (low, high) in self.ranges)
 
 
 def _inline(text: str) -> dict[str, list[float]]:
@@ -181,3 +187,17 @@ def sample_profiles(
 ) -> list[RobotProfile]:
     """The seed robot perturbed as :func:`sample_settings` draws, one profile per env."""
     return [profile_of(setting) for setting in sample_settings(spec, count, seed, round_index)]
+
+
+def robot_draw(spec: RandomisationSpec, seed: int) -> Callable[[int, int], list[RobotProfile]]:
+    """The robots of a randomised training run (a :data:`mazesim.learn.train.RobotDraw`):
+    ``draw(round_index, count)`` is :func:`sample_profiles` of that round, but for robot 0, the
+    unperturbed seed robot. A batch's first robot sets what every robot's controller believes of
+    its wheels, and a real robot's controller knows only the nominal numbers."""
+
+    def draw(round_index: int, count: int) -> list[RobotProfile]:
+        profiles = sample_profiles(spec, count, seed, round_index)
+        profiles[0] = profile_of(Setting())
+        return profiles
+
+    return draw
