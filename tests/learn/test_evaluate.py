@@ -9,7 +9,8 @@ import numpy as np
 
 import mazesim
 from mazesim.cli import main
-from mazesim.learn.evaluate import evaluate_navigator
+from mazesim.episodes import EpisodeResult
+from mazesim.learn.evaluate import evaluate_navigator, summarise
 from mazesim.learn.tables import load_policy
 
 
@@ -52,3 +53,17 @@ def test_progress_counts_every_episode() -> None:
     assert report.summaries["truth"].episodes == 3
     assert seen[0] == ("evaluate", 0, 3) and seen[-1] == ("evaluate", 3, 3)
     assert [done for _, done, _ in seen] == sorted(done for _, done, _ in seen)
+
+
+def test_a_summary_counts_steps_of_arrivals_and_of_every_episode() -> None:
+    # Issue 17: the sweep reads the evaluator's one result type, whose mean over every episode
+    # (a failed one at its limit) is the sweep's mean_steps; mean_steps counts arrivals only.
+    results = [
+        EpisodeResult(world=0, episode=0, arrived=True, steps=100, bumps=0, contact_steps=0),
+        EpisodeResult(world=0, episode=1, arrived=False, steps=400, bumps=3, contact_steps=9),
+    ]
+    summary = summarise(results, [50.0], "truth")
+    assert (summary.success_rate, summary.mean_collisions) == (0.5, 1.5)
+    assert (summary.mean_steps, summary.mean_path_ratio) == (100.0, 2.0)
+    assert summary.mean_steps_all == 250.0
+    assert "mean_steps_all" not in summary.as_json()

@@ -25,6 +25,8 @@ from mazesim.cli.progress import add_progress_option, progress_display
 
 __all__ = ["register", "run_bench"]
 
+#: The one default of each setting: the bench's own.
+DEFAULTS = BenchSettings()
 #: Batch sizes measured when --envs is not given.
 DEFAULT_SIZES = [1, 64, 1024, 4096]
 
@@ -122,61 +124,69 @@ def register(commands: Any) -> None:
     parser.add_argument(
         "--workload",
         choices=list(WORKLOADS),
-        default="braitenberg",
+        default=DEFAULTS.workload,
         help="the wheel-speed rule: braitenberg (wander clear of walls), contact (about half "
-        "the steps pushing into walls), random (uniform wheel speeds) (default: braitenberg)",
+        "the steps pushing into walls), random (uniform wheel speeds) "
+        f"(default: {DEFAULTS.workload})",
     )
     parser.add_argument(
         "--mazes",
         choices=list(MAZE_KINDS),
-        default="distinct",
-        help="a generated maze per env, or one shared by all (default: distinct)",
+        default=DEFAULTS.mazes,
+        help=f"a generated maze per env, or one shared by all (default: {DEFAULTS.mazes})",
     )
     parser.add_argument(
         "--threads",
         type=non_negative_int,
-        default=0,
+        default=DEFAULTS.threads,
         metavar="T",
-        help="worker threads (default: 0 = all cores)",
+        help=f"worker threads (default: {DEFAULTS.threads} = all cores)",
     )
     parser.add_argument(
         "--warmup",
         type=_warmup_steps,
-        default=MIN_WARMUP_STEPS,
+        default=DEFAULTS.warmup_steps,
         metavar="K",
-        help=f"untimed steps first, at least {MIN_WARMUP_STEPS} (default: {MIN_WARMUP_STEPS})",
+        help=f"untimed steps first, at least {MIN_WARMUP_STEPS} (default: {DEFAULTS.warmup_steps})",
     )
     parser.add_argument(
-        "--blocks", type=positive_int, default=5, metavar="B", help="timed blocks (default: 5)"
+        "--blocks",
+        type=positive_int,
+        default=DEFAULTS.blocks,
+        metavar="B",
+        help=f"timed blocks (default: {DEFAULTS.blocks})",
     )
     parser.add_argument(
         "--block-steps",
         type=positive_int,
-        default=300,
+        default=DEFAULTS.block_steps,
         metavar="S",
-        help="steps per timed block (default: 300)",
+        help=f"steps per timed block (default: {DEFAULTS.block_steps})",
     )
     parser.add_argument(
         "--episode-steps",
         type=positive_int,
-        default=1000,
+        default=DEFAULTS.episode_steps,
         metavar="E",
-        help="episode step limit; an env is reset when it reaches it (default: 1000)",
+        help="episode step limit; an env is reset when it reaches it "
+        f"(default: {DEFAULTS.episode_steps})",
     )
     parser.add_argument(
         "--steps-per-call",
         type=_steps_per_call,
-        default=[1],
+        default=[DEFAULTS.steps_per_call],
         metavar="K,K,...",
         help="control steps per call into the engine, one run each: 1 steps from Python with "
         "the rule in numpy; more runs the engine's own controller for the workload in one "
-        "BatchSimulator.run call (braitenberg and random only) (default: 1)",
+        "BatchSimulator.run call (braitenberg and random only) "
+        f"(default: {DEFAULTS.steps_per_call})",
     )
     parser.add_argument(
         "--seed",
         type=seed_argument,
-        default=0,
-        help="seeds the mazes, the sensor noise and the random workload (default: 0)",
+        default=DEFAULTS.seed,
+        help="seeds the mazes, the sensor noise and the random workload "
+        f"(default: {DEFAULTS.seed})",
     )
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     add_progress_option(parser)

@@ -32,17 +32,16 @@ from __future__ import annotations
 import dataclasses
 import math
 import time
-from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import World
-from mazesim.episodes import MAX_STEPS, EpisodeResult
+from mazesim.episodes import MAX_STEPS
 from mazesim.errors import InvalidArgumentError
 from mazesim.learn.baseline import FlatConfig, FlatNavigator, train_flat
-from mazesim.learn.evaluate import evaluate
+from mazesim.learn.evaluate import Summary, evaluate
 from mazesim.learn.higher_training import HigherTraining
 from mazesim.learn.lower import LowerSettings
 from mazesim.learn.policy import HierarchicalPolicy
@@ -133,11 +132,12 @@ def _lower_settings(setting: Setting) -> LowerSettings:
     )
 
 
-def _evaluation(results: Sequence[EpisodeResult]) -> dict[str, float]:
+def _evaluation(summary: Summary) -> dict[str, float]:
+    """A sweep's evaluation values, read from the evaluator's one result type."""
     return {
-        "success_rate": float(np.mean([r.arrived for r in results])),
-        "mean_collisions": float(np.mean([r.bumps for r in results])),
-        "mean_steps": float(np.mean([r.steps for r in results])),
+        "success_rate": summary.success_rate,
+        "mean_collisions": summary.mean_collisions,
+        "mean_steps": summary.mean_steps_all,
     }
 
 
@@ -229,7 +229,7 @@ def train_hrl(setting: Setting, threads: int = 1) -> dict[str, Any]:
             "checkpoint_ids": np.array(level.checkpoint_ids[0], dtype=np.int64),
         },
         "curves": {name: np.asarray(values) for name, values in curve.items()},
-        "evaluation": _evaluation(evaluation.results),
+        "evaluation": _evaluation(evaluation.summary),
         "env_steps": env_steps,
         "eval_env_steps": int(sum(r.steps for r in evaluation.results)),
         "training_seconds": training_seconds,
@@ -285,7 +285,7 @@ def train_baseline(setting: Setting, threads: int = 1) -> dict[str, Any]:
     return {
         "tables": {"flat_q": q, "checkpoint_ids": np.array(sorted(ids), dtype=np.int64)},
         "curves": {name: np.asarray(values) for name, values in curve.items()},
-        "evaluation": _evaluation(evaluation.results),
+        "evaluation": _evaluation(evaluation.summary),
         "env_steps": envs * steps,
         "eval_env_steps": int(sum(r.steps for r in evaluation.results)),
         "training_seconds": training_seconds,

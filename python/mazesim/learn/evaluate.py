@@ -72,6 +72,7 @@ __all__ = [
     "evaluate",
     "evaluate_navigator",
     "navigator_for",
+    "summarise",
     "unseen_mazes",
 ]
 
@@ -97,11 +98,13 @@ class Summary:
     events: str
     decisions: dict[str, dict[str, int]] = field(default_factory=dict)
     world_success: list[float] = field(default_factory=list)
+    #: Mean steps over every episode, a failed one counted at its limit (a sweep's ``mean_steps``).
+    mean_steps_all: float = 0.0
 
     def as_json(self) -> dict[str, Any]:
         """The summary as the ``--json`` output's values."""
         values = asdict(self)
-        for private in ("decisions", "events", "world_success"):
+        for private in ("decisions", "events", "world_success", "mean_steps_all"):
             values.pop(private)
         return values
 
@@ -224,7 +227,14 @@ def navigator_for(
     return level, True
 
 
-def _summarise(results: list[EpisodeResult], shortest: Sequence[float], events: str) -> Summary:
+def summarise(results: list[EpisodeResult], shortest: Sequence[float], events: str) -> Summary:
+    """The one result type of an evaluation: what ``results`` measured.
+
+    Args:
+        results: The episodes.
+        shortest: The shortest path's steps of each world, for the path ratio.
+        events: Where the checkpoint events came from.
+    """
     arrived = [r for r in results if r.arrived]
     count = len(results)
     decisions: dict[str, Counter[str]] = {}
@@ -242,6 +252,7 @@ def _summarise(results: list[EpisodeResult], shortest: Sequence[float], events: 
         success_rate=len(arrived) / count if count else 0.0,
         mean_collisions=float(np.mean([r.bumps for r in results])) if count else 0.0,
         mean_steps=float(np.mean([r.steps for r in arrived])) if arrived else None,
+        mean_steps_all=float(np.mean([r.steps for r in results])) if count else 0.0,
         mean_path_ratio=(
             float(np.mean([r.steps / shortest[r.world] for r in arrived])) if arrived else None
         ),
@@ -350,7 +361,7 @@ def evaluate(
     shortest = [shortest_path_steps(world) for world in worlds]
     if multi_step and stretches_apply(nav, navigator):
         results = run_navigator_episodes(nav, navigator, episodes_per_world, on_end)
-        evaluation = Evaluation(_summarise(results, shortest, events), results)
+        evaluation = Evaluation(summarise(results, shortest, events), results)
         options = dict(
             seed=seed,
             events=events,
@@ -366,7 +377,7 @@ def evaluate(
         _record_here(evaluation, make_navigator, worlds, episodes_per_world, options)
         return evaluation
     recording = None if recorder is None else recorder(nav, navigator)
-    evaluation = Evaluation(summary=_summarise([], [1.0], events), results=[])
+    evaluation = Evaluation(summary=summarise([], [1.0], events), results=[])
     paths: dict[int, list[tuple[float, float]]] = {}
     ended: set[int] = set()
     marks = evaluation.marks
@@ -414,7 +425,7 @@ def evaluate(
         on_end,
         decisions_of,
     )
-    evaluation.summary = _summarise(results, shortest, events)
+    evaluation.summary = summarise(results, shortest, events)
     evaluation.results = results
     evaluation.paths = {k: np.array(v) for k, v in paths.items()}
     if recording is not None:
@@ -577,7 +588,7 @@ def _evaluate_spread(
     if progress is not None:
         progress("evaluate", chunks.episodes, chunks.episodes)
     shortest = [shortest_path_steps(world) for world in worlds]
-    evaluation = Evaluation(_summarise(results, shortest, options["events"]), results)
+    evaluation = Evaluation(summarise(results, shortest, options["events"]), results)
     _record_here(evaluation, make_navigator, worlds, episodes_per_world, options)
     return evaluation
 

@@ -27,7 +27,13 @@ import numpy.typing as npt
 from mazesim._core import RobotProfile, World
 from mazesim._seeding import stream_seeds
 from mazesim.batch import cruise_step_length
-from mazesim.episodes import EpisodeBatch, EpisodeResult, run_episodes, shortest_path_steps
+from mazesim.episodes import (
+    MAX_STEPS,
+    EpisodeBatch,
+    EpisodeResult,
+    run_episodes,
+    shortest_path_steps,
+)
 from mazesim.errors import InvalidArgumentError
 from mazesim.learn.higher import HigherLevel
 from mazesim.learn.policy import HierarchicalPolicy
@@ -155,7 +161,7 @@ class CellRun:
     episodes: int
     seed: int = 0
     events: str = "robust"
-    max_steps: int = 4000
+    max_steps: int = MAX_STEPS
     threads: int = 0
 
     def batch(self, robot: str, settings: Sequence[Setting]) -> _CellEpisodes:
