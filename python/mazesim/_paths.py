@@ -4,17 +4,49 @@ from __future__ import annotations
 
 import argparse
 import os
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, MazesimError, MazesimIOError
 
 __all__ = [
     "output_file",
     "output_files",
     "output_path",
+    "read_text",
     "refuse_overwriting_inputs",
     "same_file",
 ]
+
+
+def read_text(
+    path: str | os.PathLike[str],
+    what: str,
+    not_text: Callable[[str], MazesimError] = InvalidArgumentError,
+) -> str:
+    """The text of a UTF-8 file a command reads.
+
+    Args:
+        path: The file.
+        what: What the file is, for messages (``"the key script"``).
+        not_text: Builds the error for bytes that are not UTF-8 text from its message
+            (:class:`~mazesim.errors.InvalidArgumentError` unless a format has its own).
+
+    Raises:
+        MazesimIOError: The file cannot be read (its ``filename`` is the path).
+        MazesimError: What ``not_text`` builds, when the file is not UTF-8 text.
+    """
+    file = os.fspath(path)
+    try:
+        with open(file, encoding="utf-8") as handle:
+            return handle.read()
+    except OSError as error:
+        failure = MazesimIOError(f"{file}: cannot read {what}: {error.strerror or error}")
+        failure.filename = file
+        raise failure from None
+    except UnicodeDecodeError as error:
+        raise not_text(
+            f"{file}: expected {what} in UTF-8 text, found other bytes: {error}"
+        ) from None
 
 
 def same_file(first: str | os.PathLike[str], second: str | os.PathLike[str]) -> bool:

@@ -148,7 +148,7 @@ def test_missing_sweep_file_and_its_cli_error(tmp_path: Path, capsys: Any) -> No
 def test_a_world_file_that_is_not_text_is_a_world_format_error(tmp_path: Path) -> None:
     picture = tmp_path / "maze.png"
     picture.write_bytes(b"\x89PNG\r\n\x1a\n\x00\x00")
-    with pytest.raises(WorldFormatError, match=r"grid.world: expected a UTF-8 world file"):
+    with pytest.raises(WorldFormatError, match=r"expected the world of .*grid.world in UTF-8 text"):
         parse_sweep_config(f"[grid]\nworld = '{picture}'\n", source="bad.toml")
 
 

@@ -43,9 +43,9 @@ from dataclasses import dataclass
 from typing import Any
 
 from mazesim._core import World, builtin_world_names, generate_maze
+from mazesim._paths import read_text
 from mazesim.errors import (
     InvalidArgumentError,
-    MazesimIOError,
     MissingDependencyError,
     UnknownNameError,
     WorldFormatError,
@@ -317,17 +317,11 @@ def _world_text(source: str, name: str, base_dir: str) -> str | None:
                 f"built-in worlds: {', '.join(available)}",
                 available=available,
             )
-        try:
-            with open(path, encoding="utf-8") as handle:
-                text = handle.read()
-        except OSError as error:
-            raise MazesimIOError(f"{source}: grid.world: cannot read {path!r}: {error}") from None
-        except UnicodeDecodeError as error:
-            raise WorldFormatError(
-                f"{source}: grid.world: expected a UTF-8 world file at {path!r}: {error}",
-                source=path,
-                field="grid.world",
-            ) from None
+        text = read_text(
+            path,
+            f"the world of {source}'s grid.world",
+            lambda message: WorldFormatError(message, source=path, field="grid.world"),
+        )
         world = World.from_toml(text, source=path)
     if world.goal is None:
         raise InvalidArgumentError(
@@ -446,11 +440,5 @@ def load_sweep_config(path: str | os.PathLike[str]) -> SweepConfig:
         MazesimIOError: The file cannot be read.
     """
     source = os.fspath(path)
-    try:
-        with open(source, encoding="utf-8") as handle:
-            text = handle.read()
-    except OSError as error:
-        raise MazesimIOError(f"cannot read the sweep file {source!r}: {error}") from None
-    except UnicodeDecodeError as error:
-        raise InvalidArgumentError(f"{source}: expected UTF-8 text: {error}") from None
+    text = read_text(source, "the sweep file")
     return parse_sweep_config(text, source, base_dir=os.path.dirname(os.path.abspath(source)))

@@ -27,8 +27,9 @@ from pathlib import Path
 from typing import Any
 
 from mazesim._core import RobotProfile
+from mazesim._paths import read_text
 from mazesim._seeding import stream
-from mazesim.errors import InvalidArgumentError, MazesimIOError, MissingDependencyError
+from mazesim.errors import InvalidArgumentError, MissingDependencyError
 from mazesim.transfer.axes import AXIS_NAMES, Setting, axis_named
 from mazesim.transfer.cells import profile_of
 
@@ -126,14 +127,7 @@ def _toml_table(path: Path) -> Mapping[str, Any]:
             raise MissingDependencyError(
                 "a randomisation file on Python < 3.11 needs 'tomli' (pip install tomli)"
             ) from None
-    try:
-        text = path.read_text(encoding="utf-8")
-    except OSError as error:
-        raise MazesimIOError(
-            f"{path}: cannot read the randomisation file: {error.strerror or error}"
-        ) from None
-    except UnicodeDecodeError as error:
-        raise InvalidArgumentError(f"{path}: expected a UTF-8 TOML file: {error}") from None
+    text = read_text(path, "the randomisation file (a TOML [randomise] table)")
     try:
         document = toml.loads(text)
     except toml.TOMLDecodeError as error:

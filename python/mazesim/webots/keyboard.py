@@ -19,7 +19,8 @@ import sys
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, NamedTuple
 
-from mazesim.errors import InvalidArgumentError, MazesimIOError
+from mazesim._paths import read_text
+from mazesim.errors import InvalidArgumentError
 from mazesim.webots.devices import Sampled
 
 if TYPE_CHECKING:
@@ -153,18 +154,7 @@ def read_keys(path: str | os.PathLike[str]) -> KeyScript:
         InvalidArgumentError: A line is malformed.
     """
     file = os.fspath(path)
-    try:
-        with open(file, encoding="utf-8") as handle:
-            text = handle.read()
-    except OSError as error:
-        failure = MazesimIOError(f"{file}: cannot read the key script: {error.strerror or error}")
-        failure.filename = file
-        raise failure from None
-    except UnicodeDecodeError as error:
-        raise InvalidArgumentError(
-            f"{file}: expected a key script in UTF-8 text (lines of 'time_s key [duration_s]'); "
-            f"found bytes that are not text: {error}"
-        ) from None
+    text = read_text(file, "the key script (lines of 'time_s key [duration_s]')")
     return KeyScript.parse(text, file)
 
 
