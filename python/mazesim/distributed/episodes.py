@@ -3,18 +3,16 @@
 An evaluation is given as a function ``evaluate_chunk(first, count)`` that runs episodes
 ``first`` to ``first + count - 1`` and returns per-episode arrays (``reached``, ``steps``, ...),
 each of length ``count``. When episode ``e``'s outcome depends only on ``e`` and the
-evaluation's seed (as :func:`mazesim.distributed.flat_q.evaluate` guarantees), any split into
-chunks gives the same episodes: :func:`evaluate_episodes` runs the chunks as Ray tasks, each on its
-own batch engine, and joins their arrays in episode order.
+evaluation's seed (as :func:`mazesim.learn.evaluate.evaluate_navigator` guarantees), any split
+into chunks gives the same episodes: :func:`evaluate_episodes` runs the chunks as Ray tasks, each
+on its own batch engine, and joins their arrays in episode order.
 
-Example (``q`` a trained table, ``setting`` its sweep setting)::
+Example (``policy`` a saved navigator, ``world`` its world)::
 
-    from functools import partial
-    from mazesim.distributed import evaluate_episodes
-    from mazesim.distributed.flat_q import evaluate
+    from mazesim.distributed.episodes import ray_spreader
+    from mazesim.learn.evaluate import evaluate_navigator
 
-    episodes = evaluate_episodes(partial(evaluate, setting, q), 10_000, address="auto")
-    success_rate = episodes["reached"].mean()
+    report = evaluate_navigator(policy, [world], 10_000, spread=ray_spreader("auto"))
 """
 
 from __future__ import annotations

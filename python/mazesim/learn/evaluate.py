@@ -129,7 +129,8 @@ class EvalSettings:
     policy: str | None = field(
         default=None,
         metadata={
-            "help": "folder of a saved navigator",
+            "help": "folder of a saved navigator, or 'randomised': the one shipped trained with "
+            "domain randomisation",
             "metavar": "DIR",
             "default_text": "the one shipped for seed-maze",
         },
