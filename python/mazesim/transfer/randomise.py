@@ -111,7 +111,11 @@ def _inline(text: str) -> dict[str, list[float]]:
             values = []
         if not equals or not colon or not all(math.isfinite(v) for v in values) or not values:
             raise InvalidArgumentError(
-                f"randomisation: expected axis=low:high, found {part!r} in {text!r}"
+                f"randomisation: expected a TOML file or axis=low:high, found {part!r} in {text!r}"
+            )
+        if name.strip() in ranges:
+            raise InvalidArgumentError(
+                f"randomisation: expected each axis once, found {name.strip()!r} twice in {text!r}"
             )
         ranges[name.strip()] = values
     return ranges
