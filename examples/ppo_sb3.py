@@ -7,15 +7,17 @@ the task suite; each tier has its settings below (``--task`` picks one)::
 
 It trains PPO (an MLP policy) for ``--total-timesteps`` env-steps on ``--envs`` environments of
 the task (seeded ``seed``, ``seed + 1``, ...), writes the learning curve (``progress.csv``: SB3's
-logger, with the success rate of the last 100 episodes; ``curve.png``, its picture) and the model,
-then runs the trained policy for one episode on each of ``--eval-episodes`` held-out episodes:
+logger, with the success rate and mean length of the last 100 episodes; ``curve.png``, their
+picture) and the model, then runs the trained policy for one episode on each of
+``--eval-episodes`` held-out episodes:
 environments seeded from ``10**6 + seed``, so their mazes, starts and goals were never trained on.
 It prints the success rate. ``MAZESIM_EXAMPLES_FAST=1`` runs a tiny version (a few seconds).
 ``--plot runs/fixed-0 runs/fixed-1 --picture fixed.png`` draws finished runs' curves together.
 
-Tiers 1 to 3 scale PPO's rewards by a running estimate of the returns' spread (SB3's
-``VecNormalize`` with ``norm_obs=False``): the observations are already of order 1. Tier 3 is
-evaluated with sampled actions: its memoryless policy, driven deterministically, can loop for
+Tiers 1 to 3 (``UnseenMaze-v1``) scale PPO's rewards by a running estimate of the returns' spread
+(SB3's ``VecNormalize`` with ``norm_obs=False``): the observations are already of order 1;
+``UnseenMaze-v2`` takes tier 4's settings (no reward scaling), with 3M env-steps. ``UnseenMaze-v1``
+is evaluated with sampled actions: its memoryless policy, driven deterministically, can loop for
 ever in a maze it cannot see; sampling gets it out, as it did in training.
 """
 
@@ -53,6 +55,13 @@ SETTINGS: dict[str, dict[str, Any]] = {
         "batch": 4096,
         "deterministic": False,
     },
+    "mazesim/UnseenMaze-v2": {
+        "envs": 128,
+        "steps": 3_000_000,
+        "n_steps": 128,
+        "batch": 4096,
+        "normalize_reward": False,
+    },
     "mazesim/UnseenMazeGuided-v0": {
         "envs": 128,
         "steps": 1_000_000,
@@ -82,21 +91,24 @@ def evaluate(model: PPO, task: str, episodes: int, seed: int, deterministic: boo
 
 
 def plot_curves(runs: list[Path], picture: Path, title: str) -> None:
-    """Draws the success rate of the last 100 training episodes against env-steps, one line per
-    run directory (its ``progress.csv``), into a small PNG."""
-    figure, axes = plt.subplots(figsize=(4, 2.6), dpi=80)
+    """Draws, one line per run directory (its ``progress.csv``), the success rate and the mean
+    length of the last 100 training episodes against env-steps, side by side, into a small PNG."""
+    figure, (rate, length) = plt.subplots(1, 2, figsize=(7, 2.6), dpi=80)
     for run in runs:
-        steps, success = [], []
+        steps, success, lengths = [], [], []
         with (run / "progress.csv").open() as rows:
             for row in csv.DictReader(rows):
                 if row.get("rollout/success_rate"):
                     steps.append(float(row["time/total_timesteps"]))
                     success.append(100 * float(row["rollout/success_rate"]))
-        axes.plot(steps, success, label=run.name)
-    axes.set(xlabel="env-steps", ylabel="success %", ylim=(-2, 102))
-    axes.set_title(title, fontsize=9)
+                    lengths.append(float(row["rollout/ep_len_mean"]))
+        rate.plot(steps, success, label=run.name)
+        length.plot(steps, lengths, label=run.name)
+    rate.set(xlabel="env-steps", ylabel="success %", ylim=(-2, 102))
+    length.set(xlabel="env-steps", ylabel="episode length (steps)", ylim=(0, None))
+    figure.suptitle(title, fontsize=9)
     if len(runs) > 1:
-        axes.legend(fontsize=7, loc="lower right")
+        rate.legend(fontsize=7, loc="lower right")
     figure.tight_layout()
     figure.savefig(picture)
     plt.close(figure)

@@ -135,7 +135,7 @@ def test_boxes_wbt_imports_without_warnings() -> None:
 
 def test_ppo_sb3_trains_and_evaluates_on_held_out_mazes(tmp_path: Path) -> None:
     pytest.importorskip("stable_baselines3", reason="needs mazesim[sb3] (make sb3-deps)")
-    for task in ("mazesim/MazeFixed-v1", "mazesim/UnseenMazeGuided-v0"):
+    for task in ("mazesim/MazeFixed-v1", "mazesim/UnseenMaze-v2", "mazesim/UnseenMazeGuided-v0"):
         argv = [sys.executable, str(EXAMPLES / "ppo_sb3.py"), "--task", task, "--out", "run"]
         out = run_example(argv, tmp_path).stdout
         pattern = rf"{task} seed 0: \d+ env-steps in \d+ s .*success on 4 held-out episodes: \d+ %"

@@ -13,6 +13,7 @@ environments' reward uses (:mod:`mazesim.envs.reward`).
 
 from __future__ import annotations
 
+import copy
 import hashlib
 import math
 from collections import deque
@@ -116,6 +117,32 @@ class CellMaze:
         if direction == NORTH:
             return not self.horizontal[row, column]
         return not self.horizontal[row + 1, column]
+
+    def as_known_after(self, visited: npt.NDArray[np.bool_]) -> CellMaze:
+        """The maze as a robot that has visited the ``visited`` cells knows it.
+
+        The sides of a visited cell are as they are (the robot saw them from inside); every other
+        inner side is assumed open (the free-space assumption of a mapping robot); the outer
+        wall is known. The start and goal cells are kept.
+
+        Args:
+            visited: (rows, cols) booleans, row 0 on the north edge.
+
+        Raises:
+            InvalidArgumentError: ``visited`` is not of the maze's shape.
+        """
+        visited = np.asarray(visited, dtype=bool)
+        if visited.shape != (self.rows, self.cols):
+            raise InvalidArgumentError(
+                f"expected visited cells of shape ({self.rows}, {self.cols}), "
+                f"found shape {visited.shape}"
+            )
+        known = copy.copy(self)
+        known.horizontal = self.horizontal.copy()
+        known.horizontal[1:-1] &= visited[:-1] | visited[1:]
+        known.vertical = self.vertical.copy()
+        known.vertical[:, 1:-1] &= visited[:, :-1] | visited[:, 1:]
+        return known
 
     def openings(self, cell: tuple[int, int]) -> list[int]:
         """The open directions of a cell, in direction order."""

@@ -32,17 +32,24 @@ def test_every_task_passes_check_env(task: Any) -> None:
 
 
 def test_tiers_run_from_one_fixed_maze_to_unseen_mazes() -> None:
-    assert [task.tier for task in TASKS] == [0, 1, 2, 3, 4]
+    assert [task.tier for task in TASKS] == [0, 1, 2, 3, 3, 4]
     assert TASKS[0].options == {}  # EPuckMaze-v0 as it was
     first = gymnasium.make("mazesim/MazeFixed-v1").unwrapped
     starts = {(first.reset(seed=s)[1]["pose"].tobytes()) for s in range(3)}
     assert len(starts) == 1  # tier 1: one start
-    unseen = gymnasium.make("mazesim/UnseenMaze-v1").unwrapped
+    with pytest.warns(DeprecationWarning, match="upgrading to version `v2`"):
+        unseen = gymnasium.make("mazesim/UnseenMaze-v1").unwrapped  # kept, but not the newest
     walls = set()
     for seed in range(3):
         unseen.reset(seed=seed)
         walls.add(unseen.world.wall_boxes().tobytes())
     assert len(walls) == 3  # tier 3: a new maze every episode
+    assert gymnasium.make("mazesim/UnseenMaze-v1").unwrapped.options.observation == "explore"
+    planned = gymnasium.make("mazesim/UnseenMaze-v2").unwrapped
+    assert planned.options.observation == "plan" and planned.metadata["render_fps"] == 1000 / 32
+    names = planned.observation_names
+    assert names[: len(unseen.observation_names) - 2] != unseen.observation_names[:-2]
+    assert set(unseen.observation_names) | {"waypoint_forward", "waypoint_left"} == set(names)
 
 
 def test_random_start_and_goal_are_distinct_cells_drawn_from_the_seed() -> None:
@@ -142,7 +149,9 @@ def test_bad_task_options_raise() -> None:
         EPuckMazeEnv(world="arena", start_goal="random").reset(seed=0)
 
 
-@pytest.mark.parametrize("env_id", ["mazesim/MazeRandomGoal-v1", "mazesim/UnseenMazeGuided-v0"])
+@pytest.mark.parametrize(
+    "env_id", ["mazesim/MazeRandomGoal-v1", "mazesim/UnseenMaze-v2", "mazesim/UnseenMazeGuided-v0"]
+)
 @pytest.mark.parametrize("action_mode", ["continuous", "discrete"])
 def test_native_vector_env_equals_sync_on_the_tasks(env_id: str, action_mode: str) -> None:
     num_envs = 4

@@ -56,8 +56,9 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
     Observation: the sensor readings as a float32 vector, distance sensors then ground sensors
     (for the e-puck: ps0-ps7 raw counts, gs0-gs2 raw), with the pose appended when
     ``include_pose`` is set; see :mod:`mazesim.envs.spaces` for each index and the bounds. With
-    ``observation="goal"`` or ``"guided"``: normalised readings, the goal (and the next waypoint)
-    in the robot's frame and the previous action (:mod:`mazesim.envs.navigation`).
+    ``observation="goal"``, ``"explore"``, ``"guided"`` or ``"plan"``: normalised readings, the
+    goal (and the explored map, the next waypoint) in the robot's frame and the previous action
+    (:mod:`mazesim.envs.navigation`).
 
     Action: ``"continuous"``, ``Box(-1, 1, (2,), float32)``, the left and right wheel speeds as
     fractions of the motor limit; or ``"discrete"``, ``Discrete(12)``, the report's primitive

@@ -17,13 +17,56 @@ Observations (``observation=``)
     - the goal's position in the robot's frame (forward, left), in units of the maze's larger side;
     - the previous action as wheel speed fractions (0, 0 after a reset).
 
+    ``"explore"``: ``"goal"`` plus, before the previous action, the map explored in this episode
+    round the robot: whether the sides of its cell ahead, left, behind and right of it are open,
+    the visits of the cells across them (0 across a wall) and of its own cell, up to 3, scaled
+    to 1.
+
     ``"guided"``: ``"goal"`` plus, before the previous action, the next waypoint of the shortest
     path in the robot's frame (forward, left) in cells: the centre of the neighbouring cell on the
     way to the goal, or the goal itself in the goal cell.
 
+    ``"plan"``: ``"explore"`` plus, after the goal, the next waypoint (forward, left, in cells) of
+    the shortest path to the goal through the maze **as the robot knows it in this episode**:
+    the sides of the cells it has visited are as they are, every side it has not seen is assumed
+    open (the free-space assumption of a mapping robot, as in D* Lite), the outer wall is known
+    (:meth:`mazesim.maze.CellMaze.as_known_after`). The path is planned again whenever the robot
+    enters a cell for the first time (the only moment its map changes), with the maze model's one
+    breadth-first search; the waypoint is the centre of the neighbouring cell on that path, or the
+    goal in the goal cell. Following it the robot reaches the goal of any maze whose goal can be
+    reached: each plan either gets there or leads into a cell not visited yet.
+
+    The ``"plan"`` observation of the e-puck (``mazesim/UnseenMaze-v2``), 26 values:
+
+    =====  ==========================  ==================================================
+    index  name                        value
+    =====  ==========================  ==================================================
+    0-7    ps0-ps7                     proximity readings / 4095 (0 to 1.25)
+    8-10   gs0-gs2                     ground readings / 1000 (0 to 1.25)
+    11-12  goal_forward, goal_left     the goal in the robot's frame, in units of the
+                                       maze's larger side (-1.5 to 1.5)
+    13-14  waypoint_forward,           the planned waypoint in the robot's frame, in
+           waypoint_left               cells (-2 to 2)
+    15-18  open_ahead ... open_right   1 where that side of the robot's cell is open
+                                       (ahead, left, behind, right), else 0
+    19-22  visits_ahead ...            visits of the cell across that side this
+           visits_right                episode, up to 3, / 3 (0 across a wall)
+    23     visits_here                 visits of the robot's own cell, up to 3, / 3
+    24-25  previous_left,              the previous action (wheel speed fractions)
+           previous_right
+    =====  ==========================  ==================================================
+
+    ``"guided"`` has indices 0 to 14 and the previous action at 15-16; ``"explore"`` has 0 to
+    12, then the map (as 15 to 23 here) and the previous action; ``env.observation_names`` lists
+    them for any robot.
+
     What a real e-puck could have: its readings and its previous action, yes; the goal's relative
-    position, from wheel odometry and a known goal (it drifts, the simulator's does not); the
-    waypoint needs a map and a position in it, as a robot that reads the floor barcodes at the
+    position, from wheel odometry and a known goal (it drifts, the simulator's does not). The
+    explored map and the plan need what a mapping robot builds itself: odometry to tell which cell
+    it is in, its IR sensors for the walls of that cell (they see a wall a few centimetres away;
+    the e-puck2's time-of-flight sensor ahead up to 2 m), the maze's size and cell size, and a
+    breadth-first search over at most 25 cells on entering a new one. The ``"guided"`` waypoint
+    needs the true map and a position in it, as a robot that reads the floor barcodes at the
     junctions of a known maze has (the report's checkpoints), so it is a privileged observation.
 """
 
@@ -49,10 +92,11 @@ __all__ = [
     "StartAndGoal",
     "draw_start_and_goal",
     "navigation_features",
+    "planned_waypoints",
 ]
 
 #: The accepted values of ``observation``.
-OBSERVATIONS = ("sensors", "goal", "explore", "guided")
+OBSERVATIONS = ("sensors", "goal", "explore", "guided", "plan")
 #: The accepted values of ``start_goal``.
 START_GOALS = ("world", "random")
 #: Bound of the waypoint's coordinates in cells (a neighbour's centre is at most 1.5 cells off).
@@ -79,7 +123,12 @@ def navigation_features(
     if observation == "sensors":
         return None
     features = NavigationFeatures(
-        num_envs, robot, observation == "guided", pose, explore=observation == "explore"
+        num_envs,
+        robot,
+        observation == "guided",
+        pose,
+        explore=observation in ("explore", "plan"),
+        plan=observation == "plan",
     )
     features.set(np.arange(num_envs), world, table)
     return features
@@ -147,7 +196,8 @@ def _largest_connected_cells(maze: CellMaze) -> list[tuple[int, int]]:
 
 
 class NavigationFeatures:
-    """The ``"goal"`` and ``"guided"`` observations of N environments (see the module).
+    """The ``"goal"``, ``"explore"``, ``"guided"`` and ``"plan"`` observations of N environments
+    (see the module).
 
     The single env runs it with N = 1, so single and vector envs agree bit for bit.
 
@@ -157,6 +207,8 @@ class NavigationFeatures:
         guided: Whether the observation holds the waypoint.
         pose: Whether the observation holds the robot's pose in the maze.
         explore: Whether the observation holds the explored map round the robot's cell.
+        plan: Whether the observation holds the waypoint planned through the maze as the robot
+            knows it (instead of ``guided``'s through the true maze).
     """
 
     def __init__(
@@ -166,6 +218,7 @@ class NavigationFeatures:
         guided: bool,
         pose: bool = False,
         explore: bool = False,
+        plan: bool = False,
     ) -> None:
         ranges = sensor_ranges(robot)
         distance, ground = robot.distance_sensor_names, robot.ground_sensor_names
@@ -173,10 +226,11 @@ class NavigationFeatures:
         self.sensor_width = len(scale)
         self._scale = np.array(scale, dtype=np.float64)
         self.guided = guided
+        self.plan = plan
         self.pose = pose
         extra = ["goal_forward", "goal_left"]
         low, high = [-1.5, -1.5], [1.5, 1.5]
-        if guided:
+        if guided or plan:
             extra += ["waypoint_forward", "waypoint_left"]
             low += [-_WAYPOINT_BOUND, -_WAYPOINT_BOUND]
             high += [_WAYPOINT_BOUND, _WAYPOINT_BOUND]
@@ -209,6 +263,9 @@ class NavigationFeatures:
         self._open = np.zeros((num_envs, 1, 4))
         self._visits = np.zeros((num_envs, 1))
         self._last = np.full(num_envs, -1, dtype=np.intp)
+        # The plan: each environment's true maze (None without one) and its goal cell.
+        self._mazes: list[CellMaze | None] = [None] * num_envs
+        self._goal_cells: list[tuple[int, int]] = [(0, 0)] * num_envs
 
     @property
     def space(self) -> spaces.Space[npt.NDArray[np.float32]]:
@@ -240,10 +297,20 @@ class NavigationFeatures:
         self._waypoints[env, : len(waypoints)] = waypoints
         if self.explore:
             self._open[env, : table.rows * table.cols] = _open_sides(world, table)
+        if self.plan:
+            maze = CellMaze(world) if table.mode == "maze" else None
+            goal_cell = (0, 0)
+            if maze is not None:
+                column, row = maze.cell_at(table.goal[0], table.goal[1])
+                goal_cell = (int(column), int(row))
+            for one in np.atleast_1d(env).tolist():
+                self._mazes[one] = maze
+                self._goal_cells[one] = goal_cell
         self.restart(env)
 
     def restart(self, env: int | npt.NDArray[np.intp]) -> None:
-        """Forgets the explored map's visits of environment(s) ``env`` (a new episode)."""
+        """Forgets the explored map's visits of environment(s) ``env`` (a new episode); the plan
+        is made again at the next observation, from the robot's first cell."""
         self._visits[env] = 0.0
         self._last[env] = -1
 
@@ -259,15 +326,20 @@ class NavigationFeatures:
         y = poses[:, 1].astype(np.float64)
         yaw = poses[:, 2].astype(np.float64)
         cos, sin = np.cos(yaw), np.sin(yaw)
+        cell = self._cell(x, y)
+        if self.explore:
+            discovered = self._visit(cell)
+            if self.plan and discovered.size:
+                self._replan(discovered)
         parts: list[npt.NDArray[Any]] = [readings / self._scale]
-        for target, unit in self._targets(x, y):
+        for target, unit in self._targets(cell):
             dx, dy = target[:, 0] - x, target[:, 1] - y
             parts += [
                 ((cos * dx + sin * dy) / unit)[:, None],
                 ((cos * dy - sin * dx) / unit)[:, None],
             ]
         if self.explore:
-            parts.append(self._explored(x, y, yaw))
+            parts.append(self._explored(cell, yaw))
         if self.pose:
             parts += [
                 ((x - self._corner[:, 0]) / self._extent)[:, None],
@@ -289,26 +361,46 @@ class NavigationFeatures:
         return (rows - 1 - up.astype(np.intp)) * cols + col.astype(np.intp)
 
     def _targets(
-        self, x: npt.NDArray[np.float64], y: npt.NDArray[np.float64]
+        self, cell: npt.NDArray[np.intp]
     ) -> list[tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]]:
         targets = [(self._goal, self._extent)]
-        if self.guided:
-            waypoint = self._waypoints[np.arange(len(x)), self._cell(x, y)]
+        if self.guided or self.plan:
+            waypoint = self._waypoints[np.arange(len(cell)), cell]
             targets.append((waypoint, self._size))
         return targets
 
+    def _visit(self, cell: npt.NDArray[np.intp]) -> npt.NDArray[np.intp]:
+        """Counts a visit of each robot that entered ``cell`` since the last observation; the
+        environments whose robot entered a cell for the first time this episode."""
+        envs = np.arange(len(cell))
+        entered = envs[cell != self._last]
+        first = entered[self._visits[entered, cell[entered]] == 0.0]
+        self._visits[entered, cell[entered]] += 1.0
+        self._last = cell
+        return first
+
+    def _replan(self, envs: npt.NDArray[np.intp]) -> None:
+        """Plans again the waypoints of environments ``envs`` through their mazes as their robots
+        know them now (their visited cells)."""
+        for env in envs.tolist():
+            maze = self._mazes[env]
+            if maze is None:
+                continue
+            cells = maze.rows * maze.cols
+            visited = self._visits[env, :cells].reshape(maze.rows, maze.cols) > 0.0
+            known = maze.as_known_after(visited)
+            self._waypoints[env, :cells] = planned_waypoints(
+                known, self._goal_cells[env], self._goal[env]
+            )
+
     def _explored(
-        self, x: npt.NDArray[np.float64], y: npt.NDArray[np.float64], yaw: npt.NDArray[np.float64]
+        self, cell: npt.NDArray[np.intp], yaw: npt.NDArray[np.float64]
     ) -> npt.NDArray[np.float64]:
         """(N, 9): the sides of each robot's cell ahead, left, behind and right of it (the side
         its heading is nearest first), open or not; the visits this episode of the cells across
         them (0 across a wall) and of its own cell, each up to ``_VISITS_SEEN`` and scaled to 1.
-        Entering a cell counts a visit."""
-        envs = np.arange(len(x))
-        cell = self._cell(x, y)
-        entered = cell != self._last
-        self._visits[envs[entered], cell[entered]] += 1.0
-        self._last = cell
+        Entering a cell counts a visit (:meth:`_visit`, before)."""
+        envs = np.arange(len(cell))
         facing = np.round(yaw / (0.5 * math.pi)).astype(np.intp) % 4
         sides = (facing[:, None] + np.arange(4)[None, :]) % 4  # ahead, left, behind, right
         opened = self._open[envs[:, None], cell[:, None], sides]
@@ -329,6 +421,28 @@ def _open_sides(world: World, table: PathDistanceTable) -> npt.NDArray[np.float6
     return np.array(
         [[float(maze.is_open(cell, side)) for side in range(4)] for cell in maze.cells()]
     )
+
+
+def planned_waypoints(
+    maze: CellMaze, goal_cell: tuple[int, int], goal: npt.NDArray[np.float64]
+) -> npt.NDArray[np.float64]:
+    """The next waypoint (x, y) of each cell of ``maze`` (row-major from the north-west) on a
+    shortest path to ``goal_cell`` (a breadth-first search from it): the centre of the open
+    neighbour nearest the goal (the first in direction order on a tie), ``goal`` in the goal cell
+    and in cells from which it cannot be reached."""
+    steps = maze.distances_from(goal_cell)
+    points = np.empty((maze.rows * maze.cols, 2))
+    points[:] = goal
+    for index, cell in enumerate(maze.cells()):
+        here = steps[cell[1], cell[0]]
+        if here <= 0:
+            continue
+        for direction in maze.openings(cell):
+            column, row = maze.neighbour(cell, direction)
+            if steps[row, column] == here - 1:
+                points[index] = maze.center((column, row))
+                break
+    return points
 
 
 def _waypoints(table: PathDistanceTable) -> npt.NDArray[np.float64]:

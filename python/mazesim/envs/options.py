@@ -61,7 +61,8 @@ class EnvOptions:
         robot: The robot profile.
         action_mode: ``"continuous"`` or ``"discrete"``.
         clip_actions: Whether continuous actions outside [-1, 1] are clipped (True) or raise.
-        observation: ``"sensors"``, ``"goal"`` or ``"guided"`` (:mod:`mazesim.envs.navigation`).
+        observation: ``"sensors"``, ``"goal"``, ``"explore"``, ``"guided"`` or ``"plan"``
+            (:mod:`mazesim.envs.navigation`).
         start_goal: ``"world"`` (the world's) or ``"random"`` (random cells at every reset).
         noise: Whether the sensors are noisy.
         include_pose: Whether the observation ends with the pose (x, y, yaw).
@@ -117,8 +118,10 @@ class EnvOptions:
                 infinite action, a wrong shape or dtype and a discrete index out of range
                 always raise.
             observation: ``"sensors"`` (the raw readings), ``"goal"`` (normalised readings, the
-                goal's position in the robot's frame, the previous action) or ``"guided"``
-                (``"goal"`` and the next waypoint of the shortest path); see
+                goal's position in the robot's frame, the previous action), ``"explore"``
+                (``"goal"`` and the map explored round the robot), ``"guided"`` (``"goal"`` and
+                the next waypoint of the shortest path) or ``"plan"`` (``"explore"`` and the next
+                waypoint of the shortest path through the maze as the robot knows it); see
                 :mod:`mazesim.envs.navigation`.
             start_goal: ``"world"`` (the world's start and goal) or ``"random"`` (at every reset
                 two distinct random cells of the maze, the start facing a random direction).

@@ -21,6 +21,11 @@ Observation
     sensor's lookup table, so they hold every noisy reading (relative noise never exceeds 9 % at
     the top of a table); observations are also clipped to the space, so they always lie inside it.
 
+    This is the ``observation="sensors"`` vector. The goal-conditioned ones of the task suite
+    (``"goal"``, ``"explore"``, ``"guided"`` and ``"plan"``: normalised readings, the goal, the
+    explored map, a waypoint, the previous action) are listed index by index in
+    :mod:`mazesim.envs.navigation`.
+
 Action
     ``"continuous"``: ``Box(-1, 1, (2,), float32)``, the left and right wheel speeds as fractions
     of the motor limit (6.28 rad/s on the e-puck). ``"discrete"``: ``Discrete(12)``, the report's

@@ -11,9 +11,14 @@ id                                     task
 ``mazesim/UnseenMaze-v1``              tier 3: a new 5 x 5 maze every episode, random start
                                        and goal; the goal and the map explored so far
                                        (open sides, visits round the robot), 128 ms
+``mazesim/UnseenMaze-v2``              tier 3: as v1, plus the next waypoint of the
+                                       shortest path through the maze as the robot knows it
+                                       (visited cells' sides, the rest assumed open); 32 ms:
+                                       the generalising task whose observation a mapping
+                                       robot computes itself
 ``mazesim/UnseenMazeGuided-v0``        tier 4: as tier 3, plus the next waypoint of the
-                                       shortest path: the tier a feed-forward policy solves on
-                                       mazes it never saw
+                                       shortest path through the true maze (a map-given,
+                                       privileged task)
 =====================================  ======================================================
 
 The observations are those of :mod:`mazesim.envs.navigation`; the reward is the one of every
@@ -27,6 +32,12 @@ maze, where the robot is tells the way) and draws start and goal only among cell
 (seed-maze has four walled-in cells). Tier 3 observes the map the robot has explored in this
 episode (``observation="explore"``): with the goal's direction alone a memoryless policy drives in
 circles in a maze it cannot see, with its visits it can prefer the corridors it has not tried.
+
+Version 2 of tier 3 (``observation="plan"``, v1 kept as it was) adds the next waypoint of a plan
+the robot could make itself: the shortest path through the maze as it knows it, planned again
+on entering each new cell. The policy then only has to drive from cell to cell, as in tier 4,
+which a feed-forward policy learns in about a million env-steps at 32 ms; the exploring is the
+planner's. Its time limit (3000 steps, 96 s) leaves room for the dead ends the plan walks into.
 """
 
 from __future__ import annotations
@@ -94,6 +105,14 @@ TASKS: tuple[Task, ...] = (
             "start_goal": "random",
             "control_step_ms": LONG_STEP_MS,
         },
+    ),
+    Task(
+        "mazesim/UnseenMaze-v2",
+        3,
+        "a new 5 x 5 maze each episode, random start and goal, the explored map and the next "
+        "waypoint of a path planned through it observed",
+        3000,
+        {"world": "random", "observation": "plan", "start_goal": "random"},
     ),
     Task(
         "mazesim/UnseenMazeGuided-v0",

@@ -1,0 +1,187 @@
+"""The ``"plan"`` observation (``mazesim/UnseenMaze-v2``): the next waypoint of a path planned
+through the maze as the robot knows it, the sides it has not seen assumed open."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+gymnasium = pytest.importorskip("gymnasium")
+
+import mazesim  # noqa: E402
+from env_worlds import TRAP  # noqa: E402
+from mazesim.envs import EPuckMazeEnv  # noqa: E402
+from mazesim.envs.navigation import _waypoints, planned_waypoints  # noqa: E402
+from mazesim.errors import InvalidArgumentError  # noqa: E402
+from mazesim.maze import EAST, NORTH, CellMaze, PathDistanceTable  # noqa: E402
+
+#: Cells of TRAP (column, row from the north).
+START, GOAL, SOUTH_WEST = (1, 1), (0, 0), (0, 1)
+
+
+def _centre(cell: tuple[int, int]) -> tuple[float, float]:
+    """The centre of a (column, row) cell of TRAP (row 0 north)."""
+    return (cell[0] + 0.5) * 0.25, (1 - cell[1] + 0.5) * 0.25
+
+
+def _index(cell: tuple[int, int]) -> int:
+    """The row-major index of a cell of TRAP."""
+    return cell[1] * 3 + cell[0]
+
+
+@pytest.fixture
+def trap(tmp_path: Path) -> str:
+    path = tmp_path / "trap.toml"
+    path.write_text(TRAP)
+    return str(path)
+
+
+def test_unvisited_sides_are_assumed_open_visited_ones_are_as_they_are(trap: str) -> None:
+    maze = CellMaze(mazesim.load_world(trap))
+    visited = np.zeros((2, 3), dtype=bool)
+    visited[START[1], START[0]] = True
+    known = maze.as_known_after(visited)
+    assert not known.is_open(START, NORTH)  # the start's own wall: seen
+    assert known.is_open(SOUTH_WEST, NORTH) and not maze.is_open(SOUTH_WEST, NORTH)  # assumed
+    assert not known.is_open((2, 0), EAST)  # the outer wall is known
+    assert np.array_equal(
+        maze.as_known_after(np.ones((2, 3), dtype=bool)).horizontal, maze.horizontal
+    )
+    assert maze.horizontal.sum() > known.horizontal.sum()  # the original is not changed
+    with pytest.raises(InvalidArgumentError, match=r"shape \(2, 3\), found shape \(3, 2\)"):
+        maze.as_known_after(np.zeros((3, 2), dtype=bool))
+
+
+def test_the_plan_goes_through_unseen_sides_until_a_wall_is_found(trap: str) -> None:
+    maze = CellMaze(mazesim.load_world(trap))
+    goal = np.array(_centre(GOAL))
+    visited = np.zeros((2, 3), dtype=bool)
+    visited[START[1], START[0]] = True
+    planned = planned_waypoints(maze.as_known_after(visited), GOAL, goal)
+    assert planned[_index(START)].tolist() == list(_centre(SOUTH_WEST))  # west: the short way
+    assert planned[_index(SOUTH_WEST)].tolist() == goal.tolist()  # through the unseen side
+    visited[SOUTH_WEST[1], SOUTH_WEST[0]] = True  # there the robot sees the wall north of it
+    planned = planned_waypoints(maze.as_known_after(visited), GOAL, goal)
+    assert planned[_index(SOUTH_WEST)].tolist() == list(_centre(START))  # back east
+    assert planned[_index(START)].tolist() == list(_centre((2, 1)))  # the true way round
+    assert planned[_index((2, 1))].tolist() == list(_centre((2, 0)))
+
+
+@pytest.mark.parametrize("loops", [0.0, 0.4])
+def test_with_every_cell_visited_the_plan_is_the_true_shortest_path(loops: float) -> None:
+    for seed in range(4):
+        world = mazesim.generate_maze(5, 5, seed=seed, loops=loops)
+        maze = CellMaze(world)
+        assert maze.goal_cell is not None
+        table = PathDistanceTable.of_world(world)
+        known = maze.as_known_after(np.ones((maze.rows, maze.cols), dtype=bool))
+        planned = planned_waypoints(known, maze.goal_cell, np.array(table.goal[:2]))
+        assert np.array_equal(planned, _waypoints(table)), seed
+
+
+def _waypoint(env: EPuckMazeEnv, cell: tuple[int, int], yaw: float) -> tuple[float, float]:
+    """The observed waypoint (forward, left, in cells) after moving the robot to a cell's centre
+    facing ``yaw``."""
+    env._simulator.set_pose(*_centre(cell), yaw)
+    observation = env.step(np.zeros(2, dtype=np.float32))[0]
+    value = dict(zip(env.observation_names, observation.tolist()))
+    return value["waypoint_forward"], value["waypoint_left"]
+
+
+def test_the_observed_waypoint_changes_when_the_robot_finds_a_wall(trap: str) -> None:
+    env = EPuckMazeEnv(world=trap, observation="plan", noise=False)
+    env.reset(seed=0)
+    assert env.observation_names[11:15] == [
+        "goal_forward",
+        "goal_left",
+        "waypoint_forward",
+        "waypoint_left",
+    ]
+    # In the start cell facing east: the plan leads west, behind the robot.
+    assert _waypoint(env, START, 0.0) == pytest.approx((-1.0, 0.0), abs=1e-5)
+    # In the south-west cell, facing north: its north wall is seen, the plan leads back east.
+    assert _waypoint(env, SOUTH_WEST, math.pi / 2) == pytest.approx((0.0, -1.0), abs=1e-5)
+    assert _waypoint(env, START, 0.0) == pytest.approx((1.0, 0.0), abs=1e-5)
+    # The guided waypoint, on the true path, leads east from the first step.
+    guided = EPuckMazeEnv(world=trap, observation="guided", noise=False)
+    guided.reset(seed=0)
+    assert _waypoint(guided, START, 0.0) == pytest.approx((1.0, 0.0), abs=1e-5)
+    # A new episode forgets the map: west again.
+    env.reset(seed=1)
+    assert _waypoint(env, START, 0.0) == pytest.approx((-1.0, 0.0), abs=1e-5)
+
+
+def _trace(seed: int, steps: int) -> list[Any]:
+    env = gymnasium.make("mazesim/UnseenMaze-v2")
+    observation, _ = env.reset(seed=seed)
+    rng = np.random.default_rng(seed)
+    trace = [observation]
+    for _ in range(steps):
+        action = (0.6 + 0.4 * rng.uniform(-1, 1, 2)).astype(np.float32)
+        trace.append(env.step(action)[0])
+    return trace
+
+
+def test_same_seed_same_plan() -> None:
+    first, again, other = _trace(3, 150), _trace(3, 150), _trace(4, 150)
+    assert all(np.array_equal(a, b) for a, b in zip(first, again, strict=True))
+    assert not all(np.array_equal(a, b) for a, b in zip(first, other, strict=True))
+
+
+def test_native_vector_env_equals_sync_while_plans_change() -> None:
+    num_envs = 5
+    options = {"max_episode_steps": 400}
+    native = gymnasium.make_vec(
+        "mazesim/UnseenMaze-v2", num_envs, vectorization_mode="vector_entry_point", **options
+    )
+    sync = gymnasium.make_vec(
+        "mazesim/UnseenMaze-v2", num_envs, vectorization_mode="sync", **options
+    )
+    names = native.unwrapped.observation_names
+    waypoint = [names.index("waypoint_forward"), names.index("waypoint_left")]
+    first, expected = native.reset(seed=11)[0], sync.reset(seed=11)[0]
+    assert np.array_equal(first, expected)
+    rng = np.random.default_rng(11)
+    jumps = 0
+    previous = first[:, waypoint]
+    for step in range(900):
+        actions = (0.6 + 0.4 * rng.uniform(-1, 1, (num_envs, 2))).astype(np.float32)
+        mine, theirs = native.step(actions), sync.step(actions)
+        for a, b in zip(mine[:4], theirs[:4]):
+            assert a.dtype == b.dtype and np.array_equal(a, b), step
+        # A new plan (or a new cell) moves the waypoint by a large step at once.
+        jumps += int((np.abs(mine[0][:, waypoint] - previous).max(axis=1) > 0.5).sum())
+        previous = mine[0][:, waypoint]
+    assert jumps > num_envs
+    native.close()
+    sync.close()
+
+
+def test_a_rule_that_follows_the_plan_reaches_every_goal() -> None:
+    # Turn towards the waypoint, drive when it is roughly ahead: every unseen maze is solved,
+    # so the observation carries what a memoryless policy needs (uniform random actions reach
+    # about 1 goal in 100 in the same time).
+    num_envs = 16
+    envs = gymnasium.make_vec(
+        "mazesim/UnseenMaze-v2", num_envs, vectorization_mode="vector_entry_point"
+    )
+    names = envs.unwrapped.observation_names
+    forward, left = names.index("waypoint_forward"), names.index("waypoint_left")
+    observations, _ = envs.reset(seed=5)
+    ended = np.zeros(num_envs, dtype=bool)
+    reached = np.zeros(num_envs, dtype=bool)
+    for _ in range(3000):  # the time limit: every episode has ended by then
+        angle = np.arctan2(observations[:, left], observations[:, forward])
+        drive = np.where(np.abs(angle) > 0.5, 0.0, 0.8)
+        actions = np.stack([drive - angle, drive + angle], axis=1).clip(-1, 1).astype(np.float32)
+        observations, _, terminated, truncated, _ = envs.step(actions)
+        reached |= terminated & ~ended
+        ended |= terminated | truncated
+        if ended.all():
+            break
+    assert reached.all()
+    envs.close()
