@@ -9,7 +9,16 @@ import pytest
 
 import mazesim
 from mazesim.errors import InvalidArgumentError
-from mazesim.maze import EAST, NORTH, SOUTH, WEST, CellMaze, GoalDistance, PathDistanceTable
+from mazesim.maze import (
+    EAST,
+    NORTH,
+    SOUTH,
+    WEST,
+    CellMaze,
+    GoalDistance,
+    PathDistanceTable,
+    breadth_first_distances,
+)
 
 
 def test_directions_turn_counter_clockwise_from_east() -> None:
@@ -39,6 +48,53 @@ def test_breadth_first_distances_count_cells_along_open_sides() -> None:
         if here > 0:
             assert min(steps) == here - 1  # one open neighbour is a cell closer
         assert all(abs(s - here) <= 1 for s in steps)
+
+
+def test_many_mazes_searched_at_once_give_each_its_own_distances() -> None:
+    mazes = [CellMaze(mazesim.generate_maze(6, 4, seed=seed, loops=0.3)) for seed in range(3)]
+    sources = np.array([(0, 0), (5, 3), (2, 1)])
+    together = breadth_first_distances(np.stack([m.open_sides() for m in mazes]), sources)
+    for maze, source, distance in zip(mazes, sources, together):
+        alone = breadth_first_distances(maze.open_sides()[None], source[None])[0]
+        assert np.array_equal(distance, alone)
+        assert np.array_equal(distance, maze.distances_from(tuple(source)))
+        assert distance[source[1], source[0]] == 0 and distance.max() > 3
+
+
+def test_open_sides_are_is_open_of_every_cell() -> None:
+    maze = CellMaze(mazesim.load_world("seed-maze"))
+    sides = maze.open_sides()
+    assert sides.shape == (maze.rows, maze.cols, 4)
+    for column, row in maze.cells():
+        expected = [maze.is_open((column, row), direction) for direction in range(4)]
+        assert sides[row, column].tolist() == expected
+
+
+@pytest.mark.parametrize("loops", [0.0, 0.5])
+def test_next_cells_lead_one_open_step_nearer_the_target(loops: float) -> None:
+    maze = CellMaze(mazesim.generate_maze(6, 4, seed=2, loops=loops))
+    target = (4, 1)
+    following = maze.next_cells_towards(target)
+    distance = maze.distances_from(target)
+    assert following[1, 4].tolist() == [-1, -1]
+    for cell in maze.cells():
+        if cell == target:
+            continue
+        nearer = [
+            direction
+            for direction in maze.openings(cell)
+            if distance[maze.neighbour(cell, direction)[::-1]] == distance[cell[::-1]] - 1
+        ]
+        # The first such side in direction order (a tie between two ways is settled so).
+        assert tuple(following[cell[1], cell[0]]) == maze.neighbour(cell, nearer[0])
+
+
+def test_next_cells_are_none_where_the_target_cannot_be_reached() -> None:
+    maze = CellMaze(mazesim.load_world("seed-maze"))  # (1, 1) is walled in
+    following = maze.next_cells_towards((0, 0))
+    distance = maze.distances_from((0, 0))
+    assert distance[1, 1] < 0 and following[1, 1].tolist() == [-1, -1]
+    assert np.array_equal((following >= 0).all(axis=-1), distance > 0)
 
 
 def test_goal_distance_at_cell_centres_is_cells_to_go() -> None:

@@ -3,8 +3,9 @@
 A :class:`CellMaze` wraps :meth:`mazesim.World.cell_maze` of a ``[grid]`` world. Cells are
 ``(column, row)`` with row 0 on the north edge; directions are numbered counter-clockwise from
 east, so direction ``d`` has the heading ``d * pi / 2``: 0 east, 1 north, 2 west, 3 south. This
-is the package's only direction convention and :meth:`CellMaze.distances_from` its only maze
-breadth-first search.
+is the package's only direction convention and :func:`breadth_first_distances` its only maze
+breadth-first search (:meth:`CellMaze.distances_from` for one maze, :func:`next_cells` for the
+way, both for many mazes at once).
 
 Training reads the maze (the learner never does): where the doors are, which way a turn leads,
 and how far the goal is. :class:`GoalDistance` is the shortest-path distance to the goal that the
@@ -13,10 +14,8 @@ environments' reward uses (:mod:`mazesim.envs.reward`).
 
 from __future__ import annotations
 
-import copy
 import hashlib
 import math
-from collections import deque
 from dataclasses import dataclass
 from typing import cast
 
@@ -35,7 +34,10 @@ __all__ = [
     "DoorApproach",
     "GoalDistance",
     "PathDistanceTable",
+    "assumed_open_sides",
+    "breadth_first_distances",
     "checkpoint_ids",
+    "next_cells",
     "world_hash",
 ]
 
@@ -118,31 +120,21 @@ class CellMaze:
             return not self.horizontal[row, column]
         return not self.horizontal[row + 1, column]
 
-    def as_known_after(self, visited: npt.NDArray[np.bool_]) -> CellMaze:
-        """The maze as a robot that has visited the ``visited`` cells knows it.
+    def open_sides(self) -> npt.NDArray[np.bool_]:
+        """(rows, cols, 4): whether each side of each cell is open, sides in direction order
+        (:meth:`is_open` of every cell at once)."""
+        sides = np.empty((self.rows, self.cols, 4), dtype=bool)
+        sides[..., EAST] = ~self.vertical[:, 1:]
+        sides[..., NORTH] = ~self.horizontal[:-1]
+        sides[..., WEST] = ~self.vertical[:, :-1]
+        sides[..., SOUTH] = ~self.horizontal[1:]
+        return sides
 
-        The sides of a visited cell are as they are (the robot saw them from inside); every other
-        inner side is assumed open (the free-space assumption of a mapping robot); the outer
-        wall is known. The start and goal cells are kept.
-
-        Args:
-            visited: (rows, cols) booleans, row 0 on the north edge.
-
-        Raises:
-            InvalidArgumentError: ``visited`` is not of the maze's shape.
-        """
-        visited = np.asarray(visited, dtype=bool)
-        if visited.shape != (self.rows, self.cols):
-            raise InvalidArgumentError(
-                f"expected visited cells of shape ({self.rows}, {self.cols}), "
-                f"found shape {visited.shape}"
-            )
-        known = copy.copy(self)
-        known.horizontal = self.horizontal.copy()
-        known.horizontal[1:-1] &= visited[:-1] | visited[1:]
-        known.vertical = self.vertical.copy()
-        known.vertical[:, 1:-1] &= visited[:, :-1] | visited[:, 1:]
-        return known
+    def next_cells_towards(self, target: tuple[int, int]) -> npt.NDArray[np.int64]:
+        """(rows, cols, 2): the (column, row) of the next cell on a shortest path from each cell
+        to ``target`` (:func:`next_cells`); -1, -1 in ``target`` and in the cells that cannot
+        reach it."""
+        return next_cells(self.open_sides()[None], np.array([target]))[0]
 
     def openings(self, cell: tuple[int, int]) -> list[int]:
         """The open directions of a cell, in direction order."""
@@ -173,18 +165,9 @@ class CellMaze:
         return np.clip(column, 0, self.cols - 1), np.clip(row, 0, self.rows - 1)
 
     def distances_from(self, cell: tuple[int, int]) -> npt.NDArray[np.int64]:
-        """Breadth-first cell distances from ``cell``, shape (rows, cols); -1 where unreachable."""
-        distance = np.full((self.rows, self.cols), -1, dtype=np.int64)
-        distance[cell[1], cell[0]] = 0
-        queue = deque([cell])
-        while queue:
-            here = queue.popleft()
-            for direction in self.openings(here):
-                there = self.neighbour(here, direction)
-                if distance[there[1], there[0]] < 0:
-                    distance[there[1], there[0]] = distance[here[1], here[0]] + 1
-                    queue.append(there)
-        return distance
+        """Breadth-first cell distances from ``cell``, shape (rows, cols); -1 where unreachable
+        (:func:`breadth_first_distances` of this one maze)."""
+        return breadth_first_distances(self.open_sides()[None], np.array([cell]))[0]
 
     def shortest_path_length(self) -> float:
         """Metres from the start cell's centre to the goal cell's centre along the cells."""
@@ -226,6 +209,110 @@ class CellMaze:
     def heading_of(self, direction: int) -> float:
         """The heading in radians of a direction number."""
         return direction * math.pi / 2.0
+
+
+def breadth_first_distances(
+    open_sides: npt.NDArray[np.bool_], sources: npt.NDArray[np.int64]
+) -> npt.NDArray[np.int64]:
+    """Breadth-first cell distances in K mazes of one shape, each from its own source cell.
+
+    Args:
+        open_sides: (K, rows, cols, 4) whether each side of each cell is open, sides in direction
+            order (:meth:`CellMaze.open_sides`); the sides on the grid's edge count as walls.
+        sources: (K, 2) the (column, row) cell each search starts from.
+
+    Returns:
+        (K, rows, cols) steps from the source cell along open sides; -1 where unreachable.
+    """
+    count, rows, cols, _ = open_sides.shape
+    cells = rows * cols
+    opened = (open_sides & _inside(rows, cols)).reshape(count * cells, _SIDES)
+    offsets = np.array([_STEP[d][0] + _STEP[d][1] * cols for d in range(_SIDES)])
+    distance = np.full(count * cells, -1, dtype=np.int64)
+    sources = np.asarray(sources, dtype=np.int64).reshape(count, 2)
+    frontier = np.arange(count) * cells + sources[:, 1] * cols + sources[:, 0]
+    distance[frontier] = 0
+    last = np.empty(count * cells, dtype=np.int64)  # where a cell last appears among the next
+    layer = 0
+    while frontier.size:
+        layer += 1
+        there = (frontier[:, None] + offsets)[opened[frontier]]
+        there = there[distance[there] < 0]
+        order = np.arange(there.size)
+        last[there] = order
+        frontier = there[last[there] == order]  # each cell once
+        distance[frontier] = layer
+    return distance.reshape(count, rows, cols)
+
+
+def next_cells(
+    open_sides: npt.NDArray[np.bool_], targets: npt.NDArray[np.int64]
+) -> npt.NDArray[np.int64]:
+    """The way to a target cell in K mazes of one shape.
+
+    Args:
+        open_sides: (K, rows, cols, 4) open sides, as for :func:`breadth_first_distances`.
+        targets: (K, 2) the (column, row) target cell of each maze.
+
+    Returns:
+        (K, rows, cols, 2): the (column, row) of the next cell on a shortest path from each cell
+        to its maze's target: across the first open side in direction order whose neighbour is
+        one step nearer; -1, -1 in the target and in the cells that cannot reach it.
+    """
+    count, rows, cols, _ = open_sides.shape
+    steps = breadth_first_distances(open_sides, targets)
+    around = np.full((count, rows + 2, cols + 2), -2, dtype=np.int64)
+    around[:, 1:-1, 1:-1] = steps
+    step = np.array([_STEP[direction] for direction in range(_SIDES)])  # (column, row) steps
+    neighbours = np.stack(
+        [around[:, 1 + r : 1 + r + rows, 1 + c : 1 + c + cols] for c, r in step], axis=-1
+    )
+    nearer = open_sides & (neighbours == steps[..., None] - 1) & (steps[..., None] > 0)
+    direction = nearer.argmax(axis=-1)
+    row, column = np.indices((rows, cols))
+    following = np.stack((column, row), axis=-1)[None] + step[direction]
+    following[~nearer.any(axis=-1)] = -1
+    return following
+
+
+def assumed_open_sides(
+    open_sides: npt.NDArray[np.bool_], visited: npt.NDArray[np.bool_]
+) -> npt.NDArray[np.bool_]:
+    """The open sides of K mazes as robots that have visited some of their cells know them.
+
+    The sides of a visited cell are as they are (the robot saw them from inside, and so the side
+    its neighbour shares with it); every other side is assumed open (the free-space assumption
+    of a mapping robot); the grid's edge is known to be walled.
+
+    Args:
+        open_sides: (K, rows, cols, 4) the true open sides (:meth:`CellMaze.open_sides`).
+        visited: (K, rows, cols) the cells each robot has been in.
+
+    Raises:
+        InvalidArgumentError: ``visited`` is not of the mazes' shape.
+    """
+    if visited.shape != open_sides.shape[:3]:
+        raise InvalidArgumentError(
+            f"expected visited cells of shape {open_sides.shape[:3]}, found shape {visited.shape}"
+        )
+    count, rows, cols, _ = open_sides.shape
+    around = np.zeros((count, rows + 2, cols + 2), dtype=bool)
+    around[:, 1:-1, 1:-1] = visited
+    seen = np.stack(
+        [
+            visited | around[:, 1 + r : 1 + r + rows, 1 + c : 1 + c + cols]
+            for c, r in (_STEP[direction] for direction in range(_SIDES))
+        ],
+        axis=-1,
+    )
+    return (open_sides | ~seen) & _inside(rows, cols)
+
+
+def _inside(rows: int, cols: int) -> npt.NDArray[np.bool_]:
+    """(rows, cols, 4): False on the sides that lie on the grid's edge."""
+    inside = np.ones((rows, cols, _SIDES), dtype=bool)
+    inside[:, -1, EAST] = inside[0, :, NORTH] = inside[:, 0, WEST] = inside[-1, :, SOUTH] = False
+    return inside
 
 
 @dataclass(frozen=True)

@@ -8,16 +8,18 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+import numpy.typing as npt
 import pytest
 
 gymnasium = pytest.importorskip("gymnasium")
 
 import mazesim  # noqa: E402
+import mazesim.maze as directions  # noqa: E402
 from env_worlds import TRAP  # noqa: E402
 from mazesim.envs import EPuckMazeEnv  # noqa: E402
 from mazesim.envs.navigation import _waypoints, planned_waypoints  # noqa: E402
 from mazesim.errors import InvalidArgumentError  # noqa: E402
-from mazesim.maze import EAST, NORTH, CellMaze, PathDistanceTable  # noqa: E402
+from mazesim.maze import CellMaze, PathDistanceTable, assumed_open_sides  # noqa: E402
 
 #: Cells of TRAP (column, row from the north).
 START, GOAL, SOUTH_WEST = (1, 1), (0, 0), (0, 1)
@@ -40,47 +42,71 @@ def trap(tmp_path: Path) -> str:
     return str(path)
 
 
+def _known(maze: CellMaze, *visited: tuple[int, int]) -> npt.NDArray[np.bool_]:
+    """(1, rows, cols, 4): the open sides of ``maze`` as a robot that visited ``visited`` knows
+    them."""
+    seen = np.zeros((1, maze.rows, maze.cols), dtype=bool)
+    for column, row in visited:
+        seen[0, row, column] = True
+    return assumed_open_sides(maze.open_sides()[None], seen)
+
+
+def _plan(maze: CellMaze, *visited: tuple[int, int]) -> npt.NDArray[np.float64]:
+    """(cells, 2): the waypoints planned to GOAL through TRAP as known after ``visited``."""
+    return planned_waypoints(
+        _known(maze, *visited),
+        np.array([GOAL]),
+        np.array([_centre(GOAL)]),
+        np.array([maze.origin]),
+        np.array([maze.cell_size]),
+    )[0]
+
+
 def test_unvisited_sides_are_assumed_open_visited_ones_are_as_they_are(trap: str) -> None:
     maze = CellMaze(mazesim.load_world(trap))
-    visited = np.zeros((2, 3), dtype=bool)
-    visited[START[1], START[0]] = True
-    known = maze.as_known_after(visited)
-    assert not known.is_open(START, NORTH)  # the start's own wall: seen
-    assert known.is_open(SOUTH_WEST, NORTH) and not maze.is_open(SOUTH_WEST, NORTH)  # assumed
-    assert not known.is_open((2, 0), EAST)  # the outer wall is known
-    assert np.array_equal(
-        maze.as_known_after(np.ones((2, 3), dtype=bool)).horizontal, maze.horizontal
-    )
-    assert maze.horizontal.sum() > known.horizontal.sum()  # the original is not changed
-    with pytest.raises(InvalidArgumentError, match=r"shape \(2, 3\), found shape \(3, 2\)"):
-        maze.as_known_after(np.zeros((3, 2), dtype=bool))
+    known = _known(maze, START)[0]
+    assert not known[START[1], START[0], directions.NORTH]  # the start's own wall: seen
+    assert known[SOUTH_WEST[1], SOUTH_WEST[0], directions.NORTH]  # not seen: assumed open ...
+    assert not maze.is_open(SOUTH_WEST, directions.NORTH)  # ... but a wall
+    assert (
+        not known[0, 1, directions.SOUTH] and not known[1, 1, directions.NORTH]
+    )  # both sides of a seen wall
+    assert (
+        not known[0, 2, directions.EAST] and not known[1, 0, directions.WEST]
+    )  # the outer wall is known
+    everything = _known(maze, *maze.cells())[0]
+    assert np.array_equal(everything, maze.open_sides())
+    with pytest.raises(InvalidArgumentError, match=r"shape \(1, 2, 3\), found shape \(1, 3, 2\)"):
+        assumed_open_sides(maze.open_sides()[None], np.zeros((1, 3, 2), dtype=bool))
 
 
 def test_the_plan_goes_through_unseen_sides_until_a_wall_is_found(trap: str) -> None:
     maze = CellMaze(mazesim.load_world(trap))
-    goal = np.array(_centre(GOAL))
-    visited = np.zeros((2, 3), dtype=bool)
-    visited[START[1], START[0]] = True
-    planned = planned_waypoints(maze.as_known_after(visited), GOAL, goal)
+    goal = list(_centre(GOAL))
+    planned = _plan(maze, START)
     assert planned[_index(START)].tolist() == list(_centre(SOUTH_WEST))  # west: the short way
-    assert planned[_index(SOUTH_WEST)].tolist() == goal.tolist()  # through the unseen side
-    visited[SOUTH_WEST[1], SOUTH_WEST[0]] = True  # there the robot sees the wall north of it
-    planned = planned_waypoints(maze.as_known_after(visited), GOAL, goal)
+    assert planned[_index(SOUTH_WEST)].tolist() == goal  # through the unseen side
+    planned = _plan(maze, START, SOUTH_WEST)  # there the robot sees the wall north of it
     assert planned[_index(SOUTH_WEST)].tolist() == list(_centre(START))  # back east
     assert planned[_index(START)].tolist() == list(_centre((2, 1)))  # the true way round
     assert planned[_index((2, 1))].tolist() == list(_centre((2, 0)))
+    assert planned[_index(GOAL)].tolist() == goal
 
 
 @pytest.mark.parametrize("loops", [0.0, 0.4])
 def test_with_every_cell_visited_the_plan_is_the_true_shortest_path(loops: float) -> None:
-    for seed in range(4):
-        world = mazesim.generate_maze(5, 5, seed=seed, loops=loops)
-        maze = CellMaze(world)
-        assert maze.goal_cell is not None
-        table = PathDistanceTable.of_world(world)
-        known = maze.as_known_after(np.ones((maze.rows, maze.cols), dtype=bool))
-        planned = planned_waypoints(known, maze.goal_cell, np.array(table.goal[:2]))
-        assert np.array_equal(planned, _waypoints(table)), seed
+    worlds = [mazesim.generate_maze(5, 5, seed=seed, loops=loops) for seed in range(4)]
+    mazes = [CellMaze(world) for world in worlds]
+    tables = [PathDistanceTable.of_world(world) for world in worlds]
+    planned = planned_waypoints(
+        np.stack([maze.open_sides() for maze in mazes]),  # all four at once
+        np.array([maze.goal_cell for maze in mazes]),
+        np.array([table.goal[:2] for table in tables]),
+        np.array([maze.origin for maze in mazes]),
+        np.array([maze.cell_size for maze in mazes]),
+    )
+    for seed, table in enumerate(tables):
+        assert np.array_equal(planned[seed], _waypoints(table)), seed
 
 
 def _waypoint(env: EPuckMazeEnv, cell: tuple[int, int], yaw: float) -> tuple[float, float]:

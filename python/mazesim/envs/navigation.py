@@ -30,11 +30,12 @@ Observations (``observation=``)
     the shortest path to the goal through the maze **as the robot knows it in this episode**:
     the sides of the cells it has visited are as they are, every side it has not seen is assumed
     open (the free-space assumption of a mapping robot, as in D* Lite), the outer wall is known
-    (:meth:`mazesim.maze.CellMaze.as_known_after`). The path is planned again whenever the robot
+    (:func:`mazesim.maze.assumed_open_sides`). The path is planned again whenever the robot
     enters a cell for the first time (the only moment its map changes), with the maze model's one
-    breadth-first search; the waypoint is the centre of the neighbouring cell on that path, or the
-    goal in the goal cell. Following it the robot reaches the goal of any maze whose goal can be
-    reached: each plan either gets there or leads into a cell not visited yet.
+    breadth-first search, for all the environments that need it at once; the waypoint is the
+    centre of the neighbouring cell on that path, or the goal in the goal cell. Following it the
+    robot reaches the goal of any maze whose goal can be reached: each plan either gets there or
+    leads into a cell not visited yet.
 
     The ``"plan"`` observation of the e-puck (``mazesim/UnseenMaze-v2``), 26 values:
 
@@ -83,7 +84,16 @@ from gymnasium import spaces
 from mazesim._core import RobotProfile, World
 from mazesim.envs.spaces import NOISE_MARGIN, sensor_ranges
 from mazesim.errors import InvalidArgumentError
-from mazesim.maze import EAST, NORTH, SOUTH, WEST, CellMaze, PathDistanceTable
+from mazesim.maze import (
+    EAST,
+    NORTH,
+    SOUTH,
+    WEST,
+    CellMaze,
+    PathDistanceTable,
+    assumed_open_sides,
+    next_cells,
+)
 
 __all__ = [
     "OBSERVATIONS",
@@ -263,9 +273,9 @@ class NavigationFeatures:
         self._open = np.zeros((num_envs, 1, 4))
         self._visits = np.zeros((num_envs, 1))
         self._last = np.full(num_envs, -1, dtype=np.intp)
-        # The plan: each environment's true maze (None without one) and its goal cell.
-        self._mazes: list[CellMaze | None] = [None] * num_envs
-        self._goal_cells: list[tuple[int, int]] = [(0, 0)] * num_envs
+        # The plan: whether each environment has a cell maze to plan in, and its goal cell.
+        self._plannable = np.zeros(num_envs, dtype=bool)
+        self._goal_cells = np.zeros((num_envs, 2), dtype=np.int64)  # column, row
 
     @property
     def space(self) -> spaces.Space[npt.NDArray[np.float32]]:
@@ -295,17 +305,16 @@ class NavigationFeatures:
             self._waypoints, self._open, self._visits = grown, opened, visits
             self._cells = cells
         self._waypoints[env, : len(waypoints)] = waypoints
+        # The true open sides of the cells (all closed without a cell maze).
+        maze = CellMaze(world) if self.explore and table.mode == "maze" else None
         if self.explore:
-            self._open[env, : table.rows * table.cols] = _open_sides(world, table)
+            sides = 0.0 if maze is None else maze.open_sides().reshape(-1, 4)
+            self._open[env, : table.rows * table.cols] = sides
         if self.plan:
-            maze = CellMaze(world) if table.mode == "maze" else None
-            goal_cell = (0, 0)
+            self._plannable[env] = maze is not None
             if maze is not None:
                 column, row = maze.cell_at(table.goal[0], table.goal[1])
-                goal_cell = (int(column), int(row))
-            for one in np.atleast_1d(env).tolist():
-                self._mazes[one] = maze
-                self._goal_cells[one] = goal_cell
+                self._goal_cells[env] = (int(column), int(row))
         self.restart(env)
 
     def restart(self, env: int | npt.NDArray[np.intp]) -> None:
@@ -381,16 +390,21 @@ class NavigationFeatures:
 
     def _replan(self, envs: npt.NDArray[np.intp]) -> None:
         """Plans again the waypoints of environments ``envs`` through their mazes as their robots
-        know them now (their visited cells)."""
-        for env in envs.tolist():
-            maze = self._mazes[env]
-            if maze is None:
-                continue
-            cells = maze.rows * maze.cols
-            visited = self._visits[env, :cells].reshape(maze.rows, maze.cols) > 0.0
-            known = maze.as_known_after(visited)
-            self._waypoints[env, :cells] = planned_waypoints(
-                known, self._goal_cells[env], self._goal[env]
+        know them now (their visited cells), all mazes of a shape at once."""
+        envs = envs[self._plannable[envs]]
+        shapes = self._shape[envs]
+        same = envs.size == 0 or bool((shapes == shapes[0]).all())  # as a rule, one shape
+        for rows, cols in (shapes[:1] if same else np.unique(shapes, axis=0)).tolist():
+            group = envs[(shapes[:, 0] == rows) & (shapes[:, 1] == cols)]
+            cells = rows * cols
+            opened = self._open[group, :cells].reshape(-1, rows, cols, 4) > 0.0
+            visited = self._visits[group, :cells].reshape(-1, rows, cols) > 0.0
+            self._waypoints[group, :cells] = planned_waypoints(
+                assumed_open_sides(opened, visited),
+                self._goal_cells[group],
+                self._goal[group],
+                self._origin[group],
+                self._size[group],
             )
 
     def _explored(
@@ -412,36 +426,36 @@ class NavigationFeatures:
         return np.concatenate((opened, opened * seen, here[:, None]), axis=1)
 
 
-def _open_sides(world: World, table: PathDistanceTable) -> npt.NDArray[np.float64]:
-    """(cells, 4): 1 where a side of a cell (row-major from the north-west, sides in direction
-    order) is open, 0 where a wall closes it; all closed without a cell maze."""
-    if table.mode != "maze":
-        return np.zeros((table.rows * table.cols, 4))
-    maze = CellMaze(world)
-    return np.array(
-        [[float(maze.is_open(cell, side)) for side in range(4)] for cell in maze.cells()]
-    )
-
-
 def planned_waypoints(
-    maze: CellMaze, goal_cell: tuple[int, int], goal: npt.NDArray[np.float64]
+    open_sides: npt.NDArray[np.bool_],
+    goal_cells: npt.NDArray[np.int64],
+    goals: npt.NDArray[np.float64],
+    origins: npt.NDArray[np.float64],
+    sizes: npt.NDArray[np.float64],
 ) -> npt.NDArray[np.float64]:
-    """The next waypoint (x, y) of each cell of ``maze`` (row-major from the north-west) on a
-    shortest path to ``goal_cell`` (a breadth-first search from it): the centre of the open
-    neighbour nearest the goal (the first in direction order on a tie), ``goal`` in the goal cell
-    and in cells from which it cannot be reached."""
-    steps = maze.distances_from(goal_cell)
-    points = np.empty((maze.rows * maze.cols, 2))
-    points[:] = goal
-    for index, cell in enumerate(maze.cells()):
-        here = steps[cell[1], cell[0]]
-        if here <= 0:
-            continue
-        for direction in maze.openings(cell):
-            column, row = maze.neighbour(cell, direction)
-            if steps[row, column] == here - 1:
-                points[index] = maze.center((column, row))
-                break
+    """The next waypoint of every cell of K mazes of one shape on a shortest path to their goals.
+
+    Args:
+        open_sides: (K, rows, cols, 4) the open sides the path may take (the true ones, or
+            :func:`~mazesim.maze.assumed_open_sides`).
+        goal_cells: (K, 2) the (column, row) goal cell of each maze.
+        goals: (K, 2) the goal point (x, y) of each maze.
+        origins: (K, 2) the south-west corner of each grid.
+        sizes: (K,) the cell size of each maze.
+
+    Returns:
+        (K, rows * cols, 2) waypoints (x, y), cells row-major from the north-west: the centre of
+        the next cell (:func:`~mazesim.maze.next_cells`: the open neighbour nearest the goal, the
+        first in direction order on a tie), the goal point in the goal cell and in cells from
+        which it cannot be reached.
+    """
+    count, rows, cols, _ = open_sides.shape
+    following = next_cells(open_sides, goal_cells).reshape(count, rows * cols, 2)
+    points = np.empty((count, rows * cols, 2))
+    points[..., 0] = origins[:, None, 0] + (following[..., 0] + 0.5) * sizes[:, None]
+    points[..., 1] = origins[:, None, 1] + (rows - following[..., 1] - 0.5) * sizes[:, None]
+    nowhere = following[..., 0] < 0
+    points[nowhere] = np.broadcast_to(goals[:, None, :], points.shape)[nowhere]
     return points
 
 
