@@ -226,23 +226,25 @@ def breadth_first_distances(
     """
     count, rows, cols, _ = open_sides.shape
     cells = rows * cols
-    opened = (open_sides & _inside(rows, cols)).reshape(count * cells, _SIDES)
-    offsets = np.array([_STEP[d][0] + _STEP[d][1] * cols for d in range(_SIDES)])
-    distance = np.full(count * cells, -1, dtype=np.int64)
+    opened = (open_sides & _inside(rows, cols)).reshape(count, cells, _SIDES).tolist()
+    offsets = list(enumerate(_STEP[d][0] + _STEP[d][1] * cols for d in range(_SIDES)))
     sources = np.asarray(sources, dtype=np.int64).reshape(count, 2)
-    frontier = np.arange(count) * cells + sources[:, 1] * cols + sources[:, 0]
-    distance[frontier] = 0
-    last = np.empty(count * cells, dtype=np.int64)  # where a cell last appears among the next
-    layer = 0
-    while frontier.size:
-        layer += 1
-        there = (frontier[:, None] + offsets)[opened[frontier]]
-        there = there[distance[there] < 0]
-        order = np.arange(there.size)
-        last[there] = order
-        frontier = there[last[there] == order]  # each cell once
-        distance[frontier] = layer
-    return distance.reshape(count, rows, cols)
+    distances = np.empty((count, cells), dtype=np.int64)
+    for maze, (column, row) in enumerate(sources.tolist()):
+        sides = opened[maze]
+        distance = [-1] * cells
+        source = row * cols + column
+        distance[source] = 0
+        queue = [source]
+        for here in queue:  # the queue grows while it is read: breadth first
+            step = distance[here] + 1
+            for side, offset in offsets:
+                there = here + offset
+                if sides[here][side] and distance[there] < 0:
+                    distance[there] = step
+                    queue.append(there)
+        distances[maze] = distance
+    return distances.reshape(count, rows, cols)
 
 
 def next_cells(

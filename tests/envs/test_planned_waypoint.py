@@ -3,7 +3,9 @@ through the maze as the robot knows it, the sides it has not seen assumed open."
 
 from __future__ import annotations
 
+import copy
 import math
+import pickle
 from pathlib import Path
 from typing import Any
 
@@ -211,3 +213,17 @@ def test_a_rule_that_follows_the_plan_reaches_every_goal() -> None:
             break
     assert reached.all()
     envs.close()
+
+
+def test_a_copy_goes_on_with_the_same_map_and_plan() -> None:
+    env = gymnasium.make("mazesim/UnseenMaze-v2")
+    env.reset(seed=8)
+    forward = np.array([0.7, 0.75], dtype=np.float32)
+    for _ in range(120):  # a few cells in: visits and a plan of this episode
+        env.step(forward)
+    twin = copy.deepcopy(env)
+    again = pickle.loads(pickle.dumps(env))
+    for step in range(300):
+        expected = env.step(forward)[0]
+        assert np.array_equal(twin.step(forward)[0], expected), step
+        assert np.array_equal(again.step(forward)[0], expected), step
