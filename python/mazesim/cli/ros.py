@@ -74,6 +74,11 @@ def _add_node_arguments(parser: argparse.ArgumentParser, default_name: str) -> N
     )
 
 
+def _node_options(args: argparse.Namespace, names: tuple[str, ...]) -> dict[str, Any]:
+    """A node's options: the command line's values of ``names``, under the same names."""
+    return {name: getattr(args, name) for name in names}
+
+
 def _run_bridge(args: argparse.Namespace) -> int:
     check_ros_installed()
     from mazesim.ros.bridge import run_bridge
@@ -95,11 +100,7 @@ def _run_avoid_collision(args: argparse.Namespace) -> int:
     check_ros_installed()
     from mazesim.ros.avoid_collision import run_avoid_collision
 
-    options = {
-        "threshold": args.threshold,
-        "max_speed": args.max_speed,
-        "wait_for_subscribers": args.wait_for_subscribers,
-    }
+    options = _node_options(args, ("threshold", "max_speed", "wait_for_subscribers"))
     return run_avoid_collision(options, args.remappings, args.name)
 
 
@@ -107,11 +108,7 @@ def _run_perform_learning(args: argparse.Namespace) -> int:
     check_ros_installed()
     from mazesim.ros.perform_learning import run_perform_learning
 
-    options = {
-        "policy": args.policy,
-        "control_step_ms": args.control_step_ms,
-        "wait_for_subscribers": args.wait_for_subscribers,
-    }
+    options = _node_options(args, ("policy", "control_step_ms", "wait_for_subscribers"))
     return run_perform_learning(options, args.remappings, args.name)
 
 

@@ -6,6 +6,23 @@
 
 use super::geometry::Bounds;
 
+/// Side of a look-up bin in metres: a few e-puck diameters; a barcode's bars share a bin or two,
+/// and a 5 x 5 maze's grid stays under 200 bins (under a kilobyte of offsets).
+pub(super) const BIN: f64 = 0.1;
+
+/// At most this many bins: a world spread over kilometres gets coarser bins, not a huge grid.
+const MAX_BINS: f64 = 262_144.0;
+
+/// Side of the bins for a grid over `bounds` (walls, floor paint): [`BIN`], or larger for very
+/// large worlds.
+pub(super) fn bin_side(bounds: Bounds) -> f64 {
+    let w = bounds.max[0] - bounds.min[0];
+    let h = bounds.max[1] - bounds.min[1];
+    BIN.max((w * h / MAX_BINS).sqrt())
+        .max(w / 4096.0)
+        .max(h / 4096.0)
+}
+
 /// Entries any grid may hold, at least: 4 Mi `u32` indices, 16 MiB.
 const LEAST_BUDGET: u64 = 1 << 22;
 
