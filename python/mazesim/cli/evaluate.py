@@ -125,12 +125,8 @@ def register(commands: Any) -> None:
 
 def run_eval(args: argparse.Namespace, out: TextIO) -> int:
     """Runs ``mazesim eval``."""
-    from mazesim.learn.evaluate import (
-        ADAPT_EPISODES,
-        EvalSettings,
-        EvaluationRecord,
-        evaluate_navigator,
-    )
+    from mazesim.learn import EvaluationRecord, evaluate_navigator
+    from mazesim.learn.evaluate import ADAPT_EPISODES, EvalSettings
     from mazesim.learn.report import summary_text
     from mazesim.learn.tables import load_policy
 

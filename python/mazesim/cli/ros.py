@@ -74,6 +74,17 @@ def _add_node_arguments(parser: argparse.ArgumentParser, default_name: str) -> N
     )
 
 
+def _add_wait_option(parser: argparse.ArgumentParser, topic: str) -> None:
+    """Adds ``--wait-for-subscribers`` of a node that publishes ``topic``."""
+    parser.add_argument(
+        "--wait-for-subscribers",
+        type=positive_int,
+        metavar="N",
+        help=f"subscribers of {topic} to wait for before starting: 1 (the bridge), 2 with a "
+        "recorder (default: ~wait_for_subscribers or 1)",
+    )
+
+
 def _node_options(args: argparse.Namespace, names: tuple[str, ...]) -> dict[str, Any]:
     """A node's options: the command line's values of ``names``, under the same names."""
     return {name: getattr(args, name) for name in names}
@@ -220,13 +231,7 @@ def register(commands: Any) -> None:
         metavar="RAD_S",
         help="maximum wheel speed in rad/s (default: ~max_speed or 6.28)",
     )
-    avoid.add_argument(
-        "--wait-for-subscribers",
-        type=positive_int,
-        metavar="N",
-        help="subscribers of motor to wait for before starting: 1 (the bridge), 2 with a "
-        "recorder (default: ~wait_for_subscribers or 1)",
-    )
+    _add_wait_option(avoid, "motor")
     _add_node_arguments(avoid, "avoid_collision")
     avoid.set_defaults(run=_run_avoid_collision)
 
@@ -257,13 +262,7 @@ def register(commands: Any) -> None:
         help="how long each action runs (default: ~control_step_ms, else the bridge's "
         "control_step_ms parameter)",
     )
-    learning.add_argument(
-        "--wait-for-subscribers",
-        type=positive_int,
-        metavar="N",
-        help="subscribers of action to wait for before starting: 1 (the bridge), 2 with a "
-        "recorder (default: ~wait_for_subscribers or 1)",
-    )
+    _add_wait_option(learning, "action")
     _add_node_arguments(learning, "perform_learning")
     learning.set_defaults(run=_run_perform_learning)
 
