@@ -90,16 +90,9 @@ impl FloorPaint {
         // The grid covers every point within the margin of some paint.
         let covered = bounds.grown(SPOT_MARGIN);
         let origin = covered.min;
-        let grid = |bin: f64| {
-            let cols = ((covered.max[0] - origin[0]) / bin) as usize + 1;
-            let rows = ((covered.max[1] - origin[1]) / bin) as usize + 1;
-            (cols, rows)
-        };
-        let bin = binning::fitting_side(binning::bin_side(covered), regions.len(), |bin| {
-            let listed = regions.iter().map(|r| r.shape.bounds().grown(SPOT_MARGIN));
-            binning::entries(listed, origin, bin, grid(bin))
+        let (bin, cols, rows) = binning::grid_over(covered, regions.len(), || {
+            regions.iter().map(|r| r.shape.bounds().grown(SPOT_MARGIN))
         });
-        let (cols, rows) = grid(bin);
         // The bins a region is listed in: those its bounds, grown by the margin, overlap.
         let bins_of = |r: &PaintRegion| {
             let b = r.shape.bounds().grown(SPOT_MARGIN);

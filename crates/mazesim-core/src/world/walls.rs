@@ -130,16 +130,9 @@ impl WallIndex {
             };
         }
         let origin = bounds.min;
-        let grid = |bin: f64| {
-            let cols = ((bounds.max[0] - origin[0]) / bin) as usize + 1;
-            let rows = ((bounds.max[1] - origin[1]) / bin) as usize + 1;
-            (cols, rows)
-        };
-        let bin = binning::fitting_side(binning::bin_side(bounds), walls.len(), |bin| {
-            let listed = walls.iter().map(|w| w.bounds().grown(1e-4));
-            binning::entries(listed, origin, bin, grid(bin))
+        let (bin, cols, rows) = binning::grid_over(bounds, walls.len(), || {
+            walls.iter().map(|w| w.bounds().grown(1e-4))
         });
-        let (cols, rows) = grid(bin);
         let mut bins: Vec<Vec<u32>> = vec![Vec::new(); cols * rows];
         for (i, w) in walls.iter().enumerate() {
             // Grow a little so that f32 rounding never drops a wall from a bin it touches.
