@@ -110,3 +110,18 @@ def test_the_bench_command_reads_its_defaults_from_bench_settings() -> None:
         value = getattr(args, renamed.get(field.name, field.name))
         expected = getattr(settings, field.name)
         assert value == ([expected] if field.name == "steps_per_call" else expected), field.name
+
+
+def test_the_bench_options_are_written_once_in_bench_settings() -> None:
+    parser = argparse.ArgumentParser()
+    bench.register(parser.add_subparsers())
+    (command,) = (
+        action.choices["bench"]
+        for action in parser._actions
+        if isinstance(action, argparse._SubParsersAction)
+    )
+    helps = {action.dest: action.help or "" for action in command._actions}
+    documented = [f for f in dataclasses.fields(BenchSettings) if "help" in f.metadata]
+    assert len(documented) >= 6
+    for field in documented:
+        assert helps[field.name].startswith(field.metadata["help"]), field.name

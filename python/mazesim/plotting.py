@@ -33,7 +33,13 @@ if TYPE_CHECKING:
 
     from mazesim._core import World
 
-__all__ = ["plot_world", "save_trajectory_png", "trajectory_legend", "world_legend_handles"]
+__all__ = [
+    "plot_world",
+    "save_trajectory_png",
+    "trajectory_legend",
+    "world_figure",
+    "world_legend_handles",
+]
 
 WALL_COLOR = "#8c3b1f"
 GOAL_COLOR = "#2ca02c"
@@ -267,6 +273,27 @@ def plot_world(ax: Axes, world: World) -> None:
     ax.set_ylabel("y (m)")
 
 
+def world_figure(
+    world: World, width: float, heights: tuple[float, float], margin: float
+) -> tuple[Figure, Axes]:
+    """A figure for a picture of ``world``, with the world drawn on its axes.
+
+    Args:
+        world: The world.
+        width: The figure's width in inches.
+        heights: The least and the most height in inches.
+        margin: Inches added to the height the world's aspect asks for (titles, legends).
+    """
+    xmin, ymin, xmax, ymax = world.bounds
+    aspect = (ymax - ymin) / max(xmax - xmin, 1e-3)
+    height = max(heights[0], min(heights[1], 6.0 * aspect + margin))
+    figure = Figure(figsize=(width, height), dpi=120)
+    FigureCanvasAgg(figure)
+    ax = figure.add_subplot()
+    plot_world(ax, world)
+    return figure, ax
+
+
 def save_trajectory_png(
     world: World,
     xs: npt.ArrayLike,
@@ -299,12 +326,7 @@ def save_trajectory_png(
         raise InvalidArgumentError(
             f"a trajectory needs as many x as y coordinates; found {path_x.size} and {path_y.size}"
         )
-    xmin, ymin, xmax, ymax = world.bounds
-    aspect = (ymax - ymin) / max(xmax - xmin, 1e-3)
-    figure = Figure(figsize=(8.0, max(3.0, min(9.0, 6.0 * aspect + 0.6))), dpi=120)
-    FigureCanvasAgg(figure)
-    ax = figure.add_subplot()
-    plot_world(ax, world)
+    figure, ax = world_figure(world, 8.0, (3.0, 9.0), 0.6)
     extra: list[Artist] = []
     if path_x.size:
         extra += ax.plot(path_x, path_y, color=PATH_COLOR, linewidth=1.2, zorder=7, label="path")

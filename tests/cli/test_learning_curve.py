@@ -11,6 +11,7 @@ import pytest
 
 from mazesim.cli import main
 from mazesim.cli.learning_curve import CSV_COLUMNS, CURVE_FILE, TENSORBOARD_FOLDER, LearningCurve
+from mazesim.learn.checkpoint import RunFolder
 from mazesim.learn.train import train
 from training_settings import TINY
 
@@ -26,7 +27,7 @@ def rows(folder: Path) -> list[dict[str, str]]:
 
 def test_training_writes_every_round_and_episode(tmp_path: Path) -> None:
     with LearningCurve(tmp_path) as curve:
-        assert train(TINY, tmp_path, curve=curve) is not None
+        assert train(TINY, RunFolder(tmp_path), curve=curve) is not None
     written = rows(tmp_path)
     lower = [row for row in written if row["stage"] == "lower"]
     higher = [row for row in written if row["stage"] == "higher"]
@@ -46,12 +47,12 @@ def test_training_writes_every_round_and_episode(tmp_path: Path) -> None:
 def test_a_resumed_run_writes_the_whole_curve_again(tmp_path: Path) -> None:
     whole, parts = tmp_path / "whole", tmp_path / "parts"
     with LearningCurve(whole) as curve:
-        train(TINY, whole, curve=curve)
+        train(TINY, RunFolder(whole), curve=curve)
     with LearningCurve(parts) as curve:
-        assert train(TINY, parts, curve=curve, stop_after_rounds=1) is None
+        assert train(TINY, RunFolder(parts), curve=curve, stop_after_rounds=1) is None
     assert [row["index"] for row in rows(parts)] == ["1"]
     with LearningCurve(parts) as curve:
-        train(TINY, parts, resume=True, curve=curve)
+        train(TINY, RunFolder(parts, resume=True), curve=curve)
     assert rows(parts) == rows(whole)
 
 
@@ -76,7 +77,7 @@ def scalars(folder: Path) -> dict[str, list[tuple[int, float]]]:
 @pytest.mark.skipif(not HAS_TENSORBOARDX, reason="tensorboardX is not installed")
 def test_tensorboard_gets_the_same_values(tmp_path: Path) -> None:
     with LearningCurve(tmp_path, tensorboard=True) as curve:
-        train(TINY, tmp_path, curve=curve)
+        train(TINY, RunFolder(tmp_path), curve=curve)
     logged = scalars(tmp_path / TENSORBOARD_FOLDER)
     lower = [row for row in rows(tmp_path) if row["stage"] == "lower"]
     assert [step for step, _ in logged["lower/contact_share"]] == [1, 2, 3]

@@ -353,9 +353,8 @@ def test_evaluation_spread_over_ray_equals_one_batch(local_ray: Any) -> None:
     )
     whole = evaluate(0, 5)
     spread = evaluate_episodes(evaluate, 5, chunks=3)
-    assert sorted(spread) == sorted(whole)
-    for name in whole:
-        assert np.array_equal(spread[name], whole[name])
+    assert [r.episode for r in whole] == list(range(5))
+    assert spread == whole
 
 
 def test_sweep_command_on_ray_and_without(local_ray: Any, tmp_path: Path, capsys: Any) -> None:
@@ -411,9 +410,7 @@ def test_eval_in_unseen_mazes_adapts_once_and_ships_the_tables(
     alone = hrl_evaluate.evaluate_navigator(policy, worlds, 2, **options)
     spread = ray_spreader("local")
     on_ray = hrl_evaluate.evaluate_navigator(policy, worlds, 2, spread=spread, **options)
-    assert trained == [1, 1] and alone.adapted and on_ray.adapted
-    assert on_ray.summaries == alone.summaries
-    assert on_ray.summaries["truth"].decisions  # the higher level chose sub-tasks on the way
-    assert [r.steps for r in on_ray.evaluations["truth"].results] == [
-        r.steps for r in alone.evaluations["truth"].results
-    ]
+    assert trained == [1, 1] and alone["truth"].adapted and on_ray["truth"].adapted
+    assert on_ray == alone
+    assert on_ray["truth"].decisions  # the higher level chose sub-tasks on the way
+    assert len(on_ray["truth"].world_success) == 3 and on_ray["truth"].env_steps > 0

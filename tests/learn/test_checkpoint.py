@@ -22,6 +22,7 @@ from mazesim.learn.bundle import write_bundle
 from mazesim.learn.checkpoint import (
     CHECKPOINT_FILE,
     CHECKPOINT_FORMAT,
+    RunFolder,
     checkpoint_exists,
     read_checkpoint,
 )
@@ -49,7 +50,7 @@ class SimulatedCrash(BaseException):
 @pytest.fixture(scope="module")
 def uninterrupted(tmp_path_factory: pytest.TempPathFactory) -> TrainedPolicy:
     folder = tmp_path_factory.mktemp("uninterrupted")
-    policy = train(RUN, folder, progress=None, threads=1)
+    policy = train(RUN, RunFolder(folder), progress=None, threads=1)
     assert policy is not None
     return load_policy(folder)
 
@@ -65,7 +66,7 @@ def _replacements_of_a_run(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> i
 
     with monkeypatch.context() as patch:
         patch.setattr(os, "replace", counting_replace)
-        train(RUN, tmp_path / "counted", progress=None, threads=1)
+        train(RUN, RunFolder(tmp_path / "counted"), progress=None, threads=1)
     return len(calls)
 
 
@@ -86,7 +87,7 @@ def _crash_at(folder: Path, crash_call: int, monkeypatch: pytest.MonkeyPatch) ->
         # A killed process cleans nothing up: its temporary files stay.
         patch.setattr(os, "unlink", lambda *args, **kwargs: None)
         with pytest.raises(SimulatedCrash):
-            train(RUN, folder, progress=None, threads=1)
+            train(RUN, RunFolder(folder), progress=None, threads=1)
 
 
 def _assert_same_navigator(first: TrainedPolicy, second: TrainedPolicy) -> None:
@@ -113,13 +114,13 @@ def test_a_crash_at_any_file_replacement_resumes_to_the_same_tables(
         if whole_checkpoints == 0:
             assert not checkpoint_exists(folder)
             with pytest.raises(PolicyFormatError, match="no checkpoint"):
-                train(RUN, folder, progress=None, threads=1, resume=True)
-            resumed = train(RUN, folder, progress=None, threads=1)
+                train(RUN, RunFolder(folder, resume=True), progress=None, threads=1)
+            resumed = train(RUN, RunFolder(folder), progress=None, threads=1)
         else:
             saved = read_checkpoint(folder, RUN.identity())
             assert saved.next_round == whole_checkpoints
             assert len(saved.history) == whole_checkpoints
-            resumed = train(RUN, folder, progress=None, threads=1, resume=True)
+            resumed = train(RUN, RunFolder(folder, resume=True), progress=None, threads=1)
         assert resumed is not None
         _assert_same_navigator(load_policy(folder), uninterrupted)
         assert [name for name in os.listdir(folder) if name.endswith(".tmp")] == []
@@ -129,7 +130,7 @@ def test_a_checkpoint_of_mazesim_0_1_still_resumes(
     tmp_path: Path, uninterrupted: TrainedPolicy
 ) -> None:
     folder = tmp_path / "old"
-    assert train(RUN, folder, progress=None, threads=1, stop_after_rounds=1) is None
+    assert train(RUN, RunFolder(folder), progress=None, threads=1, stop_after_rounds=1) is None
     saved = read_checkpoint(folder, RUN.identity())
     (folder / CHECKPOINT_FILE).unlink()
     write_bundle(
@@ -146,7 +147,7 @@ def test_a_checkpoint_of_mazesim_0_1_still_resumes(
             "lower_seconds": saved.lower_seconds,
         },
     )
-    assert train(RUN, folder, progress=None, threads=1, resume=True) is not None
+    assert train(RUN, RunFolder(folder, resume=True), progress=None, threads=1) is not None
     _assert_same_navigator(load_policy(folder), uninterrupted)
     # The first new checkpoint replaced the two old files with one.
     assert not (folder / "checkpoint.json").exists()
@@ -165,7 +166,7 @@ def test_a_checkpoint_of_mazesim_0_1_still_resumes(
     ],
 )
 def test_a_malformed_checkpoint_is_refused(tmp_path: Path, change: Any, reason: str) -> None:
-    assert train(RUN, tmp_path, progress=None, threads=1, stop_after_rounds=1) is None
+    assert train(RUN, RunFolder(tmp_path), progress=None, threads=1, stop_after_rounds=1) is None
     saved = read_checkpoint(tmp_path, RUN.identity())
     metadata = {
         "format": CHECKPOINT_FORMAT,
@@ -181,11 +182,11 @@ def test_a_malformed_checkpoint_is_refused(tmp_path: Path, change: Any, reason: 
     )
     (tmp_path / CHECKPOINT_FILE).write_bytes(data)
     with pytest.raises(PolicyFormatError, match=reason):
-        train(RUN, tmp_path, progress=None, threads=1, resume=True)
+        train(RUN, RunFolder(tmp_path, resume=True), progress=None, threads=1)
 
 
 def test_other_settings_cannot_resume(tmp_path: Path) -> None:
-    assert train(RUN, tmp_path, progress=None, threads=1, stop_after_rounds=1) is None
+    assert train(RUN, RunFolder(tmp_path), progress=None, threads=1, stop_after_rounds=1) is None
     other = dataclasses.replace(RUN, seed=RUN.seed + 1)
     with pytest.raises(PolicyFormatError, match="other settings"):
-        train(other, tmp_path, progress=None, threads=1, resume=True)
+        train(other, RunFolder(tmp_path, resume=True), progress=None, threads=1)

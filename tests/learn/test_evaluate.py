@@ -43,14 +43,14 @@ def test_evaluation_episodes_are_not_training_episodes() -> None:
 
 def test_progress_counts_every_episode() -> None:
     seen: list[tuple[str, int, int]] = []
-    report = evaluate_navigator(
+    summaries = evaluate_navigator(
         load_policy(),
         [mazesim.load_world("seed-maze")],
         3,
         max_steps=200,
         progress=lambda stage, done, total: seen.append((stage, done, total)),
     )
-    assert report.summaries["truth"].episodes == 3
+    assert summaries["truth"].episodes == 3
     assert seen[0] == ("evaluate", 0, 3) and seen[-1] == ("evaluate", 3, 3)
     assert [done for _, done, _ in seen] == sorted(done for _, done, _ in seen)
 

@@ -43,8 +43,8 @@ def test_training_hands_the_robot_to_both_stages(robots_seen: list[Any]) -> None
 
 def test_evaluation_hands_the_robot_to_adaptation_and_episodes(robots_seen: list[Any]) -> None:
     policy = load_policy(None)
-    report = evaluate_navigator(policy, unseen_mazes(1, 0), 1, max_steps=30, robot="e-puck")
-    assert report.adapted
+    summaries = evaluate_navigator(policy, unseen_mazes(1, 0), 1, max_steps=30, robot="e-puck")
+    assert summaries["truth"].adapted
     assert robots_seen and set(robots_seen) == {"e-puck"}
     # A profile object is handed on as it is (the batch decides what it takes).
     profile = mazesim.RobotProfile.builtin("e-puck")

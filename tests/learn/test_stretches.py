@@ -11,7 +11,7 @@ from mazesim.actions import ACTION_CODES
 from mazesim.episodes import EpisodeBatch, run_episodes
 from mazesim.errors import InvalidArgumentError
 from mazesim.learn import policy as policy_module
-from mazesim.learn.evaluate import evaluate_navigator
+from mazesim.learn.evaluate import EvaluationRecord, evaluate_navigator
 from mazesim.learn.higher import HigherLevel
 from mazesim.learn.policy import HierarchicalPolicy, hold_spins
 from mazesim.learn.stretches import run_navigator_episodes, stretches_apply
@@ -87,19 +87,17 @@ def test_stretches_equal_single_steps_in_unseen_mazes(
 def test_evaluation_is_the_same_either_way_with_trace_and_paths() -> None:
     policy = load_policy(None)
     world = mazesim.load_world("seed-maze")
-    reports = [
-        evaluate_navigator(
-            policy, [world], 12, seed=3, trace=True, plot_episodes=2, multi_step=multi
-        )
-        for multi in (True, False)
+    fast, slow = EvaluationRecord(paths=2, trace=True), EvaluationRecord(paths=2, trace=True)
+    summaries = [
+        evaluate_navigator(policy, [world], 12, seed=3, record=record, multi_step=multi)
+        for record, multi in ((fast, True), (slow, False))
     ]
-    fast, slow = (report.evaluations["truth"] for report in reports)
-    assert fast.results == slow.results
-    assert fast.summary == slow.summary
-    assert fast.trace == slow.trace and len(fast.trace) > 100
-    assert fast.paths.keys() == slow.paths.keys() == {0, 1}
-    for episode in fast.paths:
-        np.testing.assert_array_equal(fast.paths[episode], slow.paths[episode])
+    assert summaries[0] == summaries[1]
+    assert fast.outcomes == slow.outcomes and sorted(fast.outcomes) == [0, 1]
+    assert fast.trace_lines == slow.trace_lines and len(fast.trace_lines) > 100
+    assert fast.episode_paths.keys() == slow.episode_paths.keys() == {0, 1}
+    for episode in fast.episode_paths:
+        np.testing.assert_array_equal(fast.episode_paths[episode], slow.episode_paths[episode])
     assert fast.marks == slow.marks
 
 

@@ -12,10 +12,11 @@ import pytest
 import mazesim
 from mazesim.cli import main
 from mazesim.errors import PolicyFormatError
+from mazesim.learn.checkpoint import RunFolder
 from mazesim.learn.evaluate import evaluate_navigator
 from mazesim.learn.lower import LowerSettings, LowerTrainer
 from mazesim.learn.tables import load_policy
-from mazesim.learn.train import train
+from mazesim.learn.train import train, train_flat_policy
 from training_settings import TINY
 
 SHORT = LowerSettings(
@@ -39,18 +40,21 @@ def test_short_training_is_reproducible_and_improves() -> None:
 
 
 def test_interrupted_training_resumes_to_the_same_tables(tmp_path: Path) -> None:
-    whole = train(TINY, tmp_path / "whole", progress=None)
+    whole = train(TINY, RunFolder(tmp_path / "whole"), progress=None)
     assert whole is not None
-    assert train(TINY, tmp_path / "parts", progress=None, stop_after_rounds=1) is None
+    assert train(TINY, RunFolder(tmp_path / "parts"), progress=None, stop_after_rounds=1) is None
     assert (tmp_path / "parts" / "checkpoint.npz").exists()
     assert not (tmp_path / "parts" / "tables.npz").exists()
     with pytest.raises(PolicyFormatError, match="--resume"):
-        train(TINY, tmp_path / "parts", progress=None)
+        train(TINY, RunFolder(tmp_path / "parts"), progress=None)
     other = dataclasses.replace(TINY, seed=12)
     with pytest.raises(PolicyFormatError, match="other settings"):
-        train(other, tmp_path / "parts", progress=None, resume=True)
-    assert train(TINY, tmp_path / "parts", progress=None, resume=True, stop_after_rounds=1) is None
-    resumed = train(TINY, tmp_path / "parts", progress=None, resume=True)
+        train(other, RunFolder(tmp_path / "parts", resume=True), progress=None)
+    assert (
+        train(TINY, RunFolder(tmp_path / "parts", resume=True), progress=None, stop_after_rounds=1)
+        is None
+    )
+    resumed = train(TINY, RunFolder(tmp_path / "parts", resume=True), progress=None)
     assert resumed is not None
     first, second = load_policy(tmp_path / "whole"), load_policy(tmp_path / "parts")
     assert first.lower_q is not None and second.lower_q is not None
@@ -60,12 +64,34 @@ def test_interrupted_training_resumes_to_the_same_tables(tmp_path: Path) -> None
     assert first.training["history"] == second.training["history"]
 
 
+def test_training_without_a_writer_writes_no_file(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # Issue 17: learn/ does no I/O unless handed a writer; the tables are those a run folder
+    # gets.
+    monkeypatch.chdir(tmp_path)
+    alone = train(TINY, threads=1)
+    flat = train_flat_policy(dataclasses.replace(TINY, steps=64 * 50), threads=1)
+    assert list(tmp_path.iterdir()) == []
+    assert alone is not None and alone.source is None and flat.flat_q is not None
+    written = train(TINY, RunFolder(tmp_path / "run"), threads=1)
+    assert written is not None and written.source == str(tmp_path / "run")
+    assert sorted(p.name for p in (tmp_path / "run").iterdir()) == [
+        "checkpoint.npz",
+        "policy.json",
+        "tables.npz",
+    ]
+    saved = load_policy(tmp_path / "run")
+    for tables in ("lower_q", "higher_q"):
+        assert np.array_equal(getattr(alone, tables), getattr(saved, tables)), tables
+    assert alone.training["history"] == saved.training["history"]
+
+
 def test_shipped_navigator_reaches_the_goal_of_seed_maze() -> None:
     policy = load_policy()
     world = mazesim.load_world("seed-maze")
     policy.check_world(world)
-    report = evaluate_navigator(policy, [world], 4, seed=3)
-    summary = report.summaries["truth"]
+    summary = evaluate_navigator(policy, [world], 4, seed=3)["truth"]
     assert summary.episodes == 4
     assert summary.success_rate == 1.0
     assert summary.mean_path_ratio is not None and summary.mean_path_ratio < 2.0
@@ -79,9 +105,8 @@ def test_shipped_navigator_transfers_to_unseen_mazes() -> None:
 
     policy = load_policy()
     worlds = unseen_mazes(6, seed=7)
-    report = evaluate_navigator(policy, worlds, 4, seed=7, sources=("truth",))
-    summary = report.summaries["truth"]
-    assert report.adapted and summary.episodes == 24
+    summary = evaluate_navigator(policy, worlds, 4, seed=7, sources=("truth",))["truth"]
+    assert summary.adapted and summary.episodes == 24
     assert summary.success_rate >= 0.8, summary
 
 

@@ -182,23 +182,27 @@ def test_demo_records_the_avoid_collision_run(tmp_path: Path) -> None:
 
 
 def test_recording_does_not_change_an_evaluation() -> None:
-    from mazesim.learn.evaluate import evaluate_navigator
+    from mazesim.learn.evaluate import EvaluationRecord, evaluate_navigator
     from mazesim.learn.tables import load_policy
     from mazesim.replay.navigator import Recording
 
     world = mazesim.load_world("seed-maze")
-    plain = evaluate_navigator(load_policy(), [world], 4, seed=9, max_steps=700)
-    recorded = evaluate_navigator(
-        load_policy(), [world], 4, seed=9, max_steps=700, recorder=Recording(2)
+    plain_record, recorded_record = (
+        EvaluationRecord(paths=2),
+        EvaluationRecord(paths=2, recorder=Recording(2)),
     )
-    assert plain.run is None and recorded.run is not None
-    assert recorded.summaries == plain.summaries
-    first, second = (report.evaluations["truth"].results for report in (plain, recorded))
-    assert [(r.episode, r.steps, r.arrived, r.bumps) for r in first] == [
-        (r.episode, r.steps, r.arrived, r.bumps) for r in second
-    ]
+    plain = evaluate_navigator(
+        load_policy(), [world], 4, seed=9, max_steps=700, record=plain_record
+    )
+    recorded = evaluate_navigator(
+        load_policy(), [world], 4, seed=9, max_steps=700, record=recorded_record
+    )
+    assert plain_record.run is None and recorded_record.run is not None
+    assert recorded == plain
+    first, second = plain_record.outcomes, recorded_record.outcomes
+    assert first == second and sorted(second) == [0, 1]
     # Each recorded episode has a frame per step and the start.
-    steps = {r.episode: r.steps for r in second}
-    assert [episode.number for episode in recorded.run.episodes] == [0, 1]
-    for episode in recorded.run.episodes:
+    steps = {number: r.steps for number, r in second.items()}
+    assert [episode.number for episode in recorded_record.run.episodes] == [0, 1]
+    for episode in recorded_record.run.episodes:
         assert episode.frames == steps[episode.number] + 1

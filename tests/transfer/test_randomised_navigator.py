@@ -38,8 +38,7 @@ def test_the_randomised_navigator_says_how_it_was_trained() -> None:
 
 def test_the_randomised_navigator_reaches_the_goal_of_seed_maze() -> None:
     world = mazesim.load_world("seed-maze")
-    report = evaluate_navigator(load_policy("randomised"), [world], 8, seed=5)
-    summary = report.summaries["truth"]
+    summary = evaluate_navigator(load_policy("randomised"), [world], 8, seed=5)["truth"]
     assert summary.episodes == 8 and summary.success_rate == 1.0
     assert summary.mean_path_ratio is not None and summary.mean_path_ratio < 1.5
 

@@ -15,6 +15,7 @@ from mazesim._core import RobotProfile
 from mazesim.batch import RobotChoice
 from mazesim.cli import main
 from mazesim.errors import InvalidArgumentError, PolicyFormatError
+from mazesim.learn.checkpoint import RunFolder
 from mazesim.learn.tables import TrainedPolicy, load_policy
 from mazesim.learn.train import train
 from mazesim.transfer.randomise import parse_spec, robot_draw
@@ -26,7 +27,8 @@ OTHER = parse_spec("noise_scale=0.5:4,ir_offset=-10:10")
 
 def _train(out: Path, spec: str = SPEC.text(), threads: int = 0) -> TrainedPolicy:
     settings = dataclasses.replace(TINY, randomise=spec)
-    policy = train(settings, out, threads=threads, robot=robot_draw(parse_spec(spec), TINY.seed))
+    draw = robot_draw(parse_spec(spec), TINY.seed)
+    policy = train(settings, RunFolder(out), threads=threads, robot=draw)
     assert policy is not None
     return policy
 
@@ -69,7 +71,7 @@ def test_training_draws_every_round_and_the_higher_level_once(tmp_path: Path) ->
         return draw(round_index, count)
 
     settings = dataclasses.replace(TINY, randomise=SPEC.text())
-    train(settings, tmp_path / "run", robot=recording)
+    train(settings, RunFolder(tmp_path / "run"), robot=recording)
     rounds = settings.lower().rounds
     lower_calls = [(k, settings.envs) for k in range(rounds)]
     assert calls == [*lower_calls, (rounds, settings.higher_envs)]
@@ -82,7 +84,7 @@ def test_randomised_training_is_deterministic_whatever_the_threads(tmp_path: Pat
     assert one.training["history"] == two.training["history"]
     # The robots reach the simulator: the seed robot alone learns other tables, and so do
     # other ranges.
-    plain = train(TINY, tmp_path / "plain")
+    plain = train(TINY, RunFolder(tmp_path / "plain"))
     assert plain is not None and not _same_tables(one, plain)
     assert not _same_tables(one, _train(tmp_path / "other", spec=OTHER.text()))
 
@@ -96,21 +98,21 @@ def test_the_spec_is_saved_and_resume_refuses_another(tmp_path: Path) -> None:
     parts = tmp_path / "parts"
     settings = dataclasses.replace(TINY, randomise=SPEC.text())
     draw = robot_draw(SPEC, TINY.seed)
-    assert train(settings, parts, robot=draw, stop_after_rounds=1) is None
+    assert train(settings, RunFolder(parts), robot=draw, stop_after_rounds=1) is None
     other = dataclasses.replace(TINY, randomise=OTHER.text())
     with pytest.raises(PolicyFormatError, match="other settings"):
-        train(other, parts, resume=True, robot=robot_draw(OTHER, TINY.seed))
+        train(other, RunFolder(parts, resume=True), robot=robot_draw(OTHER, TINY.seed))
     with pytest.raises(PolicyFormatError, match="other settings"):
-        train(TINY, parts, resume=True)
-    resumed = train(settings, parts, resume=True, robot=draw)
+        train(TINY, RunFolder(parts, resume=True))
+    resumed = train(settings, RunFolder(parts, resume=True), robot=draw)
     assert resumed is not None and _same_tables(whole, resumed)
 
 
 def test_ranges_and_a_draw_go_together(tmp_path: Path) -> None:
     with pytest.raises(InvalidArgumentError, match="expected a robot draw exactly with"):
-        train(dataclasses.replace(TINY, randomise=SPEC.text()), tmp_path / "a")
+        train(dataclasses.replace(TINY, randomise=SPEC.text()), RunFolder(tmp_path / "a"))
     with pytest.raises(InvalidArgumentError, match="expected a robot draw exactly with"):
-        train(TINY, tmp_path / "b", robot=robot_draw(SPEC, TINY.seed))
+        train(TINY, RunFolder(tmp_path / "b"), robot=robot_draw(SPEC, TINY.seed))
     assert not (tmp_path / "a").exists() and not (tmp_path / "b").exists()
 
 

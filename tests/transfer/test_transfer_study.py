@@ -83,7 +83,7 @@ def test_a_cell_measures_the_same_whatever_shares_its_batch(
 def test_the_baseline_of_the_shipped_navigator_arrives(small: StudyResult) -> None:
     measure = small.baseline.measure
     assert measure.success_rate == 1.0
-    assert measure.path_ratio is not None and 1.0 < measure.path_ratio < 2.0
+    assert measure.mean_path_ratio is not None and 1.0 < measure.mean_path_ratio < 2.0
     assert measure.mean_steps is not None and measure.mean_steps < SMALL.max_steps
 
 
@@ -95,7 +95,7 @@ def test_three_steps_of_latency_cost_the_shipped_navigator(policy: TrainedPolicy
     late = result.single[-1]
     assert late.setting.get("latency") == 3.0
     assert late.measure.success_rate < result.baseline.measure.success_rate
-    assert late.measure.contacts_per_episode > result.baseline.measure.contacts_per_episode
+    assert late.measure.mean_collisions > result.baseline.measure.mean_collisions
 
 
 def test_the_json_fits_the_schema(small: StudyResult) -> None:
@@ -152,12 +152,12 @@ def test_bad_options_are_refused(policy: TrainedPolicy) -> None:
 
 
 def test_the_harshest_level_is_the_least_successful_then_the_later_on_a_tie() -> None:
-    from mazesim.transfer.cells import CellMeasure
+    from mazesim.learn.summary import Summary
     from mazesim.transfer.result import Cell
     from mazesim.transfer.study import _harshness
 
     def cell(level: float, success: float, contacts: float = 0.0) -> Cell:
-        measure = CellMeasure(10, success, contacts, 1.0, 1.2, 600.0)
+        measure = Summary(10, success, contacts, 600.0, 1.2, 1.0, "robust")
         return Cell(Setting.of({"noise_scale": level}), measure)
 
     def harshest(cells: list[Cell]) -> object:

@@ -17,7 +17,7 @@ from __future__ import annotations
 import statistics
 import time
 from collections.abc import Callable
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, field
 from typing import Any
 
 import numpy as np
@@ -67,15 +67,45 @@ class BenchSettings:
     """
 
     envs: int = 1024
-    workload: str = "braitenberg"
-    mazes: str = "distinct"
-    threads: int = 0
+    workload: str = field(
+        default="braitenberg",
+        metadata={
+            "help": "the wheel-speed rule: braitenberg (wander clear of walls), contact (about "
+            "half the steps pushing into walls), random (uniform wheel speeds)",
+            "choices": tuple(WORKLOADS),
+        },
+    )
+    mazes: str = field(
+        default="distinct",
+        metadata={
+            "help": "a generated maze per env, or one shared by all",
+            "choices": MAZE_KINDS,
+        },
+    )
+    threads: int = field(
+        default=0,
+        metadata={"help": "worker threads", "metavar": "T", "default_text": "0 = all cores"},
+    )
     warmup_steps: int = MIN_WARMUP_STEPS
-    block_steps: int = 300
-    blocks: int = 5
-    episode_steps: int = 1000
+    block_steps: int = field(
+        default=300, metadata={"help": "steps per timed block", "metavar": "S"}
+    )
+    blocks: int = field(default=5, metadata={"help": "timed blocks", "metavar": "B"})
+    episode_steps: int = field(
+        default=1000,
+        metadata={
+            "help": "episode step limit; an env is reset when it reaches it",
+            "metavar": "E",
+        },
+    )
     steps_per_call: int = 1
-    seed: int = 0
+    seed: int = field(
+        default=0,
+        metadata={
+            "help": "seeds the mazes, the sensor noise and the random workload",
+            "metavar": "S",
+        },
+    )
 
     def check(self) -> None:
         """Raises :class:`~mazesim.errors.InvalidArgumentError` naming the first bad field."""

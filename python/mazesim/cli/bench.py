@@ -9,12 +9,14 @@ from __future__ import annotations
 
 import argparse
 import json
+from dataclasses import fields
 from typing import Any
 
-from mazesim.benchmark import MAZE_KINDS, MIN_WARMUP_STEPS, WORKLOADS, BenchSettings
+from mazesim.benchmark import MIN_WARMUP_STEPS, BenchSettings
 from mazesim.benchmark.report import machine, run_sizes, single_env_rate, table
 from mazesim.cli._args import (
     MAX_COUNT,
+    add_setting_options,
     non_negative_int,
     positive_int,
     seed_argument,
@@ -59,15 +61,9 @@ def _warmup_steps(text: str) -> int:
 def run_bench(args: argparse.Namespace) -> int:
     """Runs ``mazesim bench``."""
     settings = BenchSettings(
-        steps_per_call=max(args.steps_per_call),
-        workload=args.workload,
-        mazes=args.mazes,
-        threads=args.threads,
+        **{f.name: getattr(args, f.name) for f in fields(BenchSettings) if "help" in f.metadata},
         warmup_steps=args.warmup,
-        block_steps=args.block_steps,
-        blocks=args.blocks,
-        episode_steps=args.episode_steps,
-        seed=args.seed,
+        steps_per_call=max(args.steps_per_call),
     )
     with progress_display(args, unit="env-steps") as display:
         reports = run_sizes(
@@ -121,26 +117,16 @@ def register(commands: Any) -> None:
         metavar="N,N,...",
         help="batch sizes (default: 1,64,1024,4096)",
     )
-    parser.add_argument(
-        "--workload",
-        choices=list(WORKLOADS),
-        default=DEFAULTS.workload,
-        help="the wheel-speed rule: braitenberg (wander clear of walls), contact (about half "
-        "the steps pushing into walls), random (uniform wheel speeds) "
-        f"(default: {DEFAULTS.workload})",
-    )
-    parser.add_argument(
-        "--mazes",
-        choices=list(MAZE_KINDS),
-        default=DEFAULTS.mazes,
-        help=f"a generated maze per env, or one shared by all (default: {DEFAULTS.mazes})",
-    )
-    parser.add_argument(
-        "--threads",
-        type=non_negative_int,
-        default=DEFAULTS.threads,
-        metavar="T",
-        help=f"worker threads (default: {DEFAULTS.threads} = all cores)",
+    add_setting_options(
+        parser,
+        DEFAULTS,
+        {
+            "threads": non_negative_int,
+            "block_steps": positive_int,
+            "blocks": positive_int,
+            "episode_steps": positive_int,
+            "seed": seed_argument,
+        },
     )
     parser.add_argument(
         "--warmup",
@@ -148,28 +134,6 @@ def register(commands: Any) -> None:
         default=DEFAULTS.warmup_steps,
         metavar="K",
         help=f"untimed steps first, at least {MIN_WARMUP_STEPS} (default: {DEFAULTS.warmup_steps})",
-    )
-    parser.add_argument(
-        "--blocks",
-        type=positive_int,
-        default=DEFAULTS.blocks,
-        metavar="B",
-        help=f"timed blocks (default: {DEFAULTS.blocks})",
-    )
-    parser.add_argument(
-        "--block-steps",
-        type=positive_int,
-        default=DEFAULTS.block_steps,
-        metavar="S",
-        help=f"steps per timed block (default: {DEFAULTS.block_steps})",
-    )
-    parser.add_argument(
-        "--episode-steps",
-        type=positive_int,
-        default=DEFAULTS.episode_steps,
-        metavar="E",
-        help="episode step limit; an env is reset when it reaches it "
-        f"(default: {DEFAULTS.episode_steps})",
     )
     parser.add_argument(
         "--steps-per-call",
@@ -180,13 +144,6 @@ def register(commands: Any) -> None:
         "the rule in numpy; more runs the engine's own controller for the workload in one "
         "BatchSimulator.run call (braitenberg and random only) "
         f"(default: {DEFAULTS.steps_per_call})",
-    )
-    parser.add_argument(
-        "--seed",
-        type=seed_argument,
-        default=DEFAULTS.seed,
-        help="seeds the mazes, the sensor noise and the random workload "
-        f"(default: {DEFAULTS.seed})",
     )
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     add_progress_option(parser)

@@ -22,11 +22,12 @@ import mazesim
 from mazesim._atomic import atomic_file
 from mazesim.episodes import StartJitter, shortest_path_steps
 from mazesim.errors import InvalidArgumentError
-from mazesim.learn.evaluate import evaluate, navigator_for
+from mazesim.learn.evaluate import EvaluationRecord, evaluate, navigator_for
 from mazesim.learn.figures import save_episodes_png
 from mazesim.learn.policy import HierarchicalPolicy
 from mazesim.learn.report import trace_text
 from mazesim.learn.subtasks import CONTROL_STEP_MS, SUBTASK_NAMES
+from mazesim.learn.summary import summarise
 from mazesim.learn.tables import load_policy
 from mazesim.replay.navigator import Recording
 from mazesim.replay.options import play_live, recording_requested, write_views
@@ -52,23 +53,23 @@ def run_hrl_demo(args: argparse.Namespace, out: TextIO) -> int:
 
     steps = max(1, math.ceil(args.seconds * 1000.0 / CONTROL_STEP_MS - 1e-9))
     started = time.perf_counter()
-    evaluation = evaluate(
+    live = getattr(args, "live", False)
+    record = EvaluationRecord(
+        paths=1, trace=True, recorder=Recording(1) if recording_requested(args) or live else None
+    )
+    evaluate(
         make_navigator,
         [world],
         1,
         seed=args.seed,
         jitter=StartJitter(0.0, 0.0),
         max_steps=steps,
-        record_paths=1,
-        trace=True,
-        recorder=Recording(1)
-        if recording_requested(args) or getattr(args, "live", False)
-        else None,
+        record=record,
         controller="hrl (shipped navigator)",
     )
     wall_clock = time.perf_counter() - started
-    result = evaluation.results[0]
-    path = evaluation.paths.get(0, np.zeros((0, 2)))
+    result = record.outcomes[0]
+    path = record.episode_paths.get(0, np.zeros((0, 2)))
     distance = float(np.sum(np.hypot(*np.diff(path, axis=0).T))) if len(path) > 1 else 0.0
     simulated = result.steps * CONTROL_STEP_MS / 1000.0
     decisions = [
@@ -85,7 +86,7 @@ def run_hrl_demo(args: argparse.Namespace, out: TextIO) -> int:
         "distance_m": distance,
         "collisions": result.bumps,
         "goal_reached": result.arrived,
-        "path_ratio": result.steps / shortest_path_steps(world) if result.arrived else None,
+        "path_ratio": summarise([result], [shortest_path_steps(world)]).mean_path_ratio,
         "decisions": decisions,
         "wall_clock_seconds": wall_clock,
         "real_time_factor": simulated / wall_clock if wall_clock > 0 else None,
@@ -95,8 +96,8 @@ def run_hrl_demo(args: argparse.Namespace, out: TextIO) -> int:
     outcome = "reached the goal" if result.arrived else "did not reach the goal"
     save_episodes_png(
         world,
-        evaluation.paths,
-        evaluation.marks,
+        record.episode_paths,
+        record.marks,
         picture,
         title=f"{world.name}: hierarchical navigator, seed {args.seed}, {outcome} "
         f"in {simulated:.1f} s",
@@ -104,14 +105,14 @@ def run_hrl_demo(args: argparse.Namespace, out: TextIO) -> int:
     )
     trace = os.path.join(args.out, "trace.txt")
     with atomic_file(trace) as handle:
-        handle.write(trace_text(evaluation.trace, world, args.seed, "truth").encode("utf-8"))
+        handle.write(trace_text(record.trace_lines, world, args.seed, "truth").encode("utf-8"))
     summary_path = os.path.join(args.out, "summary.json")
     with atomic_file(summary_path) as handle:
         handle.write((json.dumps(summary, indent=2) + "\n").encode("utf-8"))
     title = f"{world.name}: the hierarchical navigator, seed {args.seed}, {outcome}"
-    views = [] if evaluation.run is None else write_views(args, evaluation.run, title)
-    if getattr(args, "live", False) and evaluation.run is not None:
-        play_live(evaluation.run, title)
+    views = [] if record.run is None else write_views(args, record.run, title)
+    if live and record.run is not None:
+        play_live(record.run, title)
     chosen = ", ".join(f"{d['event']:+d}: {d['subtask']}" for d in decisions) or "none"
     out.write(
         f"world              {world.name} (robot seed, hierarchical navigator, seed {args.seed})\n"

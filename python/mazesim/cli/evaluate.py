@@ -33,33 +33,31 @@ PLOTTED_EPISODES = 3
 
 
 def _write_trace_and_plot(
-    args: argparse.Namespace, report: Any, world: Any, source: str, kind: str
+    args: argparse.Namespace, record: Any, summary: Any, world: Any, source: str, kind: str
 ) -> list[str]:
     """Writes ``--trace`` and ``--plot`` of the first source's episodes; returns their paths."""
     from mazesim._atomic import atomic_file
     from mazesim.learn.report import trace_text
 
-    evaluation = report.evaluations[source]
     written = []
     if args.trace is not None:
-        text = trace_text(evaluation.trace, world, args.seed, source)
+        text = trace_text(record.trace_lines, world, args.seed, source)
         with atomic_file(args.trace) as handle:
             handle.write(text.encode("utf-8"))
         written.append(str(args.trace))
     if args.plot is not None:
         from mazesim.learn.figures import save_episodes_png
 
-        summary = evaluation.summary
         save_episodes_png(
             world,
-            evaluation.paths,
-            evaluation.marks,
+            record.episode_paths,
+            record.marks,
             args.plot,
             title=(
                 f"{world.name}: {kind} navigator, seed {args.seed}; "
                 f"{100 * summary.success_rate:.0f}% of {summary.episodes} episodes reached the goal"
             ),
-            arrived={r.episode: r.arrived for r in evaluation.results},
+            arrived={number: result.arrived for number, result in record.outcomes.items()},
         )
         written.append(str(args.plot))
     return written
@@ -127,7 +125,8 @@ def register(commands: Any) -> None:
 
 def run_eval(args: argparse.Namespace, out: TextIO) -> int:
     """Runs ``mazesim eval``."""
-    from mazesim.learn.evaluate import ADAPT_EPISODES, EvalSettings, evaluate_navigator
+    from mazesim.learn import EvaluationRecord, evaluate_navigator
+    from mazesim.learn.evaluate import ADAPT_EPISODES, EvalSettings
     from mazesim.learn.report import summary_text
     from mazesim.learn.tables import load_policy
 
@@ -154,37 +153,40 @@ def run_eval(args: argparse.Namespace, out: TextIO) -> int:
     settings = EvalSettings(**{f.name: getattr(args, f.name) for f in fields(EvalSettings)})
     sources = settings.sources
     units = {"adapt": "episodes", "evaluate": "episodes", "evaluate robust": "episodes"}
+    record = EvaluationRecord(
+        paths=PLOTTED_EPISODES if args.plot is not None else 0,
+        trace=args.trace is not None,
+        recorder=(
+            Recording(min(per_world, RECORDED_EPISODES)) if recording_requested(args) else None
+        ),
+    )
     with contextlib.ExitStack() as ray, progress_display(args, units=units) as progress:
         if args.address is not None:
             from mazesim.distributed.cluster import ray_session
             from mazesim.distributed.episodes import ray_spreader
 
             ray.enter_context(ray_session(args.address))  # one Ray session for every source
-        report = evaluate_navigator(
+        summaries = evaluate_navigator(
             policy,
             worlds,
             per_world,
             seed=args.seed,
             sources=sources,
             max_steps=args.max_steps,
-            trace=args.trace is not None,
-            plot_episodes=PLOTTED_EPISODES if args.plot is not None else 0,
+            record=record,
             spread=None if args.address is None else ray_spreader(args.address),
-            recorder=(
-                Recording(min(per_world, RECORDED_EPISODES)) if recording_requested(args) else None
-            ),
             progress=progress,
         )
-    written = _write_trace_and_plot(args, report, worlds[0], sources[0], policy.kind)
-    if report.run is not None:
+    first = summaries[sources[0]]
+    written = _write_trace_and_plot(args, record, first, worlds[0], sources[0], policy.kind)
+    if record.run is not None:
         written += write_views(
-            args, report.run, f"{label}: {policy.kind} navigator, seed {args.seed}"
+            args, record.run, f"{label}: {policy.kind} navigator, seed {args.seed}"
         )
     if args.json:
-        first = report.summaries[sources[0]]
         values: dict[str, Any] = first.as_json()
         for source in sources[1:]:
-            values[f"{source}_decoder"] = report.summaries[source].as_json()
+            values[f"{source}_decoder"] = summaries[source].as_json()
         out.write(json.dumps(values) + "\n")
         return 0
     source_names = {
@@ -192,13 +194,13 @@ def run_eval(args: argparse.Namespace, out: TextIO) -> int:
         "robust": ("checkpoint events read by the robust barcode decoder"),
     }
     out.write(f"navigator {policy.source} ({policy.kind}) in {label}, seed {args.seed}\n")
-    if report.adapted:
+    if first.adapted:
         out.write(
             "  the higher level was trained here first (lower-level tables kept, "
             f"at most {ADAPT_EPISODES} episodes per maze)\n"
         )
     for source in sources:
-        out.write(summary_text(report.summaries[source], source_names[source]))
+        out.write(summary_text(summaries[source], source_names[source]))
     for path in written:
         out.write(f"wrote {path}\n")
     return 0

@@ -74,6 +74,22 @@ def _add_node_arguments(parser: argparse.ArgumentParser, default_name: str) -> N
     )
 
 
+def _add_wait_option(parser: argparse.ArgumentParser, topic: str) -> None:
+    """Adds ``--wait-for-subscribers`` of a node that publishes ``topic``."""
+    parser.add_argument(
+        "--wait-for-subscribers",
+        type=positive_int,
+        metavar="N",
+        help=f"subscribers of {topic} to wait for before starting: 1 (the bridge), 2 with a "
+        "recorder (default: ~wait_for_subscribers or 1)",
+    )
+
+
+def _node_options(args: argparse.Namespace, names: tuple[str, ...]) -> dict[str, Any]:
+    """A node's options: the command line's values of ``names``, under the same names."""
+    return {name: getattr(args, name) for name in names}
+
+
 def _run_bridge(args: argparse.Namespace) -> int:
     check_ros_installed()
     from mazesim.ros.bridge import run_bridge
@@ -95,11 +111,7 @@ def _run_avoid_collision(args: argparse.Namespace) -> int:
     check_ros_installed()
     from mazesim.ros.avoid_collision import run_avoid_collision
 
-    options = {
-        "threshold": args.threshold,
-        "max_speed": args.max_speed,
-        "wait_for_subscribers": args.wait_for_subscribers,
-    }
+    options = _node_options(args, ("threshold", "max_speed", "wait_for_subscribers"))
     return run_avoid_collision(options, args.remappings, args.name)
 
 
@@ -107,11 +119,7 @@ def _run_perform_learning(args: argparse.Namespace) -> int:
     check_ros_installed()
     from mazesim.ros.perform_learning import run_perform_learning
 
-    options = {
-        "policy": args.policy,
-        "control_step_ms": args.control_step_ms,
-        "wait_for_subscribers": args.wait_for_subscribers,
-    }
+    options = _node_options(args, ("policy", "control_step_ms", "wait_for_subscribers"))
     return run_perform_learning(options, args.remappings, args.name)
 
 
@@ -223,13 +231,7 @@ def register(commands: Any) -> None:
         metavar="RAD_S",
         help="maximum wheel speed in rad/s (default: ~max_speed or 6.28)",
     )
-    avoid.add_argument(
-        "--wait-for-subscribers",
-        type=positive_int,
-        metavar="N",
-        help="subscribers of motor to wait for before starting: 1 (the bridge), 2 with a "
-        "recorder (default: ~wait_for_subscribers or 1)",
-    )
+    _add_wait_option(avoid, "motor")
     _add_node_arguments(avoid, "avoid_collision")
     avoid.set_defaults(run=_run_avoid_collision)
 
@@ -260,13 +262,7 @@ def register(commands: Any) -> None:
         help="how long each action runs (default: ~control_step_ms, else the bridge's "
         "control_step_ms parameter)",
     )
-    learning.add_argument(
-        "--wait-for-subscribers",
-        type=positive_int,
-        metavar="N",
-        help="subscribers of action to wait for before starting: 1 (the bridge), 2 with a "
-        "recorder (default: ~wait_for_subscribers or 1)",
-    )
+    _add_wait_option(learning, "action")
     _add_node_arguments(learning, "perform_learning")
     learning.set_defaults(run=_run_perform_learning)
 

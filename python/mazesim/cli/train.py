@@ -111,6 +111,7 @@ def register(commands: Any) -> None:
 def run_train(args: argparse.Namespace, out: TextIO) -> int:
     """Runs ``mazesim train``."""
     from mazesim.cli.learning_curve import CURVE_FILE, LearningCurve
+    from mazesim.learn.checkpoint import RunFolder
     from mazesim.learn.train import (
         TrainSettings,
         command_line_fields,
@@ -140,7 +141,9 @@ def run_train(args: argparse.Namespace, out: TextIO) -> int:
         if args.resume:
             raise InvalidArgumentError("--resume continues hierarchical runs only, not --flat")
         with curve, progress_display(args, units=_UNITS) as progress:
-            policy = train_flat_policy(settings, args.out, progress=progress, curve=curve)
+            policy = train_flat_policy(
+                settings, RunFolder(args.out), progress=progress, curve=curve
+            )
         seconds = time.perf_counter() - started
         out.write(
             f"trained the flat baseline for {policy.world_name} in {seconds:.0f} s "
@@ -149,9 +152,8 @@ def run_train(args: argparse.Namespace, out: TextIO) -> int:
         )
         return 0
     with curve, progress_display(args, units=_UNITS) as progress:
-        result = train(
-            settings, args.out, resume=args.resume, progress=progress, curve=curve, robot=robot
-        )
+        folder = RunFolder(args.out, resume=args.resume)
+        result = train(settings, folder, progress=progress, curve=curve, robot=robot)
     if result is None:
         return 0
     seconds = time.perf_counter() - started

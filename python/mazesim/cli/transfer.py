@@ -149,7 +149,7 @@ def _table(result: Any) -> str:
         measure = cell.measure
         lines.append(
             f"  {cell.setting.label():<46} {measure.success_rate:>8.1%} "
-            f"{measure.contacts_per_episode:>9.2f} {_rate(measure.path_ratio, '.2f'):>6}"
+            f"{measure.mean_collisions:>9.2f} {_rate(measure.mean_path_ratio, '.2f'):>6}"
         )
     return "\n".join(lines) + "\n"
 

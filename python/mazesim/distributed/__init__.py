@@ -5,10 +5,10 @@ is one task (:mod:`mazesim.distributed.tasks`): train, evaluate, hand back the t
 :func:`run_sweep` runs the tasks on Ray, a local instance or an existing cluster, and gathers
 everything into one output folder (:mod:`mazesim.distributed.output`); :func:`run_sequential`
 runs the same tasks in this process. A setting names its trainer: ``hrl`` or ``baseline``
-(:mod:`mazesim.distributed.hrl_trainers`, mazesim's navigator and its flat baseline) or
-``flat-q`` (:mod:`mazesim.distributed.flat_q`). :func:`evaluate_episodes` spreads the episodes of
-an evaluation over Ray workers (``mazesim eval --address``:
-:mod:`mazesim.distributed.hrl_episodes`).
+(also named ``flat-q``): :mod:`mazesim.distributed.hrl_trainers`, mazesim's navigator and its one
+flat learner. :func:`evaluate_episodes` spreads the episodes of an evaluation over Ray workers
+(``mazesim eval --address``: :mod:`mazesim.distributed.episodes`, running the chunks of
+:mod:`mazesim.learn.chunks`).
 
 Ray is optional (``pip install "mazesim[ray]"``): this package imports it only when it runs
 something on Ray.

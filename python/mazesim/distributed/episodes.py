@@ -1,34 +1,35 @@
 """Spreading the episodes of one evaluation over Ray workers.
 
 An evaluation is given as a function ``evaluate_chunk(first, count)`` that runs episodes
-``first`` to ``first + count - 1`` and returns per-episode arrays (``reached``, ``steps``, ...),
-each of length ``count``. When episode ``e``'s outcome depends only on ``e`` and the
-evaluation's seed (as :func:`mazesim.learn.evaluate.evaluate_navigator` guarantees), any split
-into chunks gives the same episodes: :func:`evaluate_episodes` runs the chunks as Ray tasks, each
-on its own batch engine, and joins their arrays in episode order.
+``first`` to ``first + count - 1`` and returns their results, one per episode in order (the
+navigator's chunks, :class:`mazesim.learn.chunks.NavigatorEpisodes`, return
+:class:`~mazesim.episodes.EpisodeResult` lists). When episode ``e``'s outcome depends only on
+``e`` and the evaluation's seed (as :func:`mazesim.learn.evaluate.evaluate_navigator`
+guarantees), any split into chunks gives the same episodes: :func:`evaluate_episodes` runs the
+chunks as Ray tasks, each on its own batch engine, and joins their results in episode order; the
+evaluator summarises them once (:func:`mazesim.learn.summary.summarise`).
 
 Example (``policy`` a saved navigator, ``world`` its world)::
 
     from mazesim.distributed.episodes import ray_spreader
     from mazesim.learn.evaluate import evaluate_navigator
 
-    report = evaluate_navigator(policy, [world], 10_000, spread=ray_spreader("auto"))
+    summaries = evaluate_navigator(policy, [world], 10_000, spread=ray_spreader("auto"))
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Sequence
 from typing import Any
-
-import numpy as np
-import numpy.typing as npt
 
 from mazesim.distributed.cluster import local_cpus, ray_session
 from mazesim.errors import InvalidArgumentError, MazesimError
 
 __all__ = ["EpisodeChunk", "evaluate_episodes", "ray_spreader", "split_episodes"]
 
-EpisodeChunk = Callable[[int, int], Mapping[str, npt.ArrayLike]]
+#: Runs episodes ``first`` to ``first + count - 1`` as ``chunk(first, count)`` and returns their
+#: results, one per episode in order.
+EpisodeChunk = Callable[[int, int], Sequence[Any]]
 
 
 def split_episodes(episodes: int, chunks: int) -> list[tuple[int, int]]:
@@ -43,20 +44,19 @@ def split_episodes(episodes: int, chunks: int) -> list[tuple[int, int]]:
     return [(bounds[i], bounds[i + 1] - bounds[i]) for i in range(chunks)]
 
 
-def _run_chunk(evaluate_chunk: EpisodeChunk, first: int, count: int) -> dict[str, Any]:
-    return {name: np.asarray(values) for name, values in evaluate_chunk(first, count).items()}
+def _run_chunk(evaluate_chunk: EpisodeChunk, first: int, count: int) -> list[Any]:
+    return list(evaluate_chunk(first, count))
 
 
-def _join(parts: list[dict[str, Any]], chunks: list[tuple[int, int]]) -> dict[str, Any]:
-    names = set(parts[0])
+def _join(parts: list[list[Any]], chunks: list[tuple[int, int]]) -> list[Any]:
+    """The chunks' results in episode order, each chunk checked to hold one per episode."""
     for part, (first, count) in zip(parts, chunks):
-        if set(part) != names or any(np.shape(values)[:1] != (count,) for values in part.values()):
-            shapes = {name: np.shape(values) for name, values in part.items()}
+        if len(part) != count:
             raise InvalidArgumentError(
-                f"episodes {first}..{first + count - 1}: expected arrays {sorted(names)} of "
-                f"length {count}, found {shapes}"
+                f"episodes {first}..{first + count - 1}: expected {count} results, "
+                f"found {len(part)}"
             )
-    return {name: np.concatenate([part[name] for part in parts]) for name in parts[0]}
+    return [result for part in parts for result in part]
 
 
 def evaluate_episodes(
@@ -68,12 +68,12 @@ def evaluate_episodes(
     cpus_per_chunk: int = 1,
     max_retries: int = 2,
     cpus: int | None = None,
-) -> dict[str, npt.NDArray[Any]]:
-    """Runs the episodes of an evaluation as Ray tasks and joins their per-episode arrays.
+) -> list[Any]:
+    """Runs the episodes of an evaluation as Ray tasks and joins their results.
 
     Args:
-        evaluate_chunk: ``evaluate_chunk(first, count)`` -> per-episode arrays of length
-            ``count``; it must be picklable (a module-level function or a
+        evaluate_chunk: ``evaluate_chunk(first, count)`` -> the ``count`` episodes' results,
+            in order; it must be picklable (a module-level function or a
             :func:`functools.partial` of one).
         episodes: Number of episodes.
         address: A Ray cluster to join; ``None`` or ``"local"`` starts a local Ray instance
@@ -84,7 +84,7 @@ def evaluate_episodes(
         cpus: CPUs of a local Ray instance (by default this machine's cores).
 
     Returns:
-        Each array of the chunks, joined in episode order.
+        The results of every episode, in episode order.
 
     Raises:
         MazesimError: A chunk failed on every attempt (the message names its episodes).
@@ -113,11 +113,11 @@ def evaluate_episodes(
     return _join(parts, plan)
 
 
-def ray_spreader(address: str | None) -> Callable[[EpisodeChunk, int], dict[str, Any]]:
+def ray_spreader(address: str | None) -> Callable[[EpisodeChunk, int], list[Any]]:
     """:func:`evaluate_episodes` at ``address``, as the ``spread`` argument of
     :func:`mazesim.learn.evaluate.evaluate_navigator` takes it."""
 
-    def spread(evaluate_chunk: EpisodeChunk, episodes: int) -> dict[str, Any]:
+    def spread(evaluate_chunk: EpisodeChunk, episodes: int) -> list[Any]:
         return evaluate_episodes(evaluate_chunk, episodes, address=address)
 
     return spread

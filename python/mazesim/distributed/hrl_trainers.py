@@ -38,14 +38,15 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import World
-from mazesim.episodes import MAX_STEPS
+from mazesim.episodes import MAX_STEPS, shortest_path_steps
 from mazesim.errors import InvalidArgumentError
 from mazesim.learn.baseline import FlatConfig, FlatNavigator, train_flat
-from mazesim.learn.evaluate import Summary, evaluate
+from mazesim.learn.evaluate import evaluate
 from mazesim.learn.higher_training import HigherTraining
 from mazesim.learn.lower import LowerSettings
 from mazesim.learn.policy import HierarchicalPolicy
 from mazesim.learn.qlearning import LearningRate
+from mazesim.learn.summary import Summary, summarise
 from mazesim.learn.train import TrainSettings, run_training
 from mazesim.maze import checkpoint_ids
 
@@ -194,13 +195,14 @@ def train_hrl(setting: Setting, threads: int = 1) -> dict[str, Any]:
         curve["contact_share"].append(stats.contact_share)
         curve["corridor_speed"].append(stats.corridor_speed)
     results = run.higher_results
+    shortest = [shortest_path_steps(world)]
     for first, end in _windows(len(results), CURVE_POINTS):
         window = results[first:end]
         steps = sum(r.steps for r in window)
         env_steps += steps
         curve["stage"].append(_STAGE_HIGHER)
         curve["env_steps"].append(env_steps)
-        curve["success_rate"].append(float(np.mean([r.arrived for r in window])))
+        curve["success_rate"].append(summarise(window, shortest).success_rate)
         curve["contact_share"].append(sum(r.contact_steps for r in window) / max(1, steps))
         curve["corridor_speed"].append(math.nan)
     training_seconds = time.perf_counter() - started
@@ -211,7 +213,7 @@ def train_hrl(setting: Setting, threads: int = 1) -> dict[str, Any]:
     def make_navigator(world_of_env: npt.NDArray[np.int64]) -> HierarchicalPolicy:
         return HierarchicalPolicy(lower_q, level, world_of_env)
 
-    evaluation = evaluate(
+    summary = evaluate(
         make_navigator,
         [world],
         int(setting.params["eval_episodes"]),
@@ -229,9 +231,9 @@ def train_hrl(setting: Setting, threads: int = 1) -> dict[str, Any]:
             "checkpoint_ids": np.array(level.checkpoint_ids[0], dtype=np.int64),
         },
         "curves": {name: np.asarray(values) for name, values in curve.items()},
-        "evaluation": _evaluation(evaluation.summary),
+        "evaluation": _evaluation(summary),
         "env_steps": env_steps,
-        "eval_env_steps": int(sum(r.steps for r in evaluation.results)),
+        "eval_env_steps": summary.env_steps,
         "training_seconds": training_seconds,
         "evaluation_seconds": evaluation_seconds,
     }
@@ -273,7 +275,7 @@ def train_baseline(setting: Setting, threads: int = 1) -> dict[str, Any]:
     def make_navigator(world_of_env: npt.NDArray[np.int64]) -> FlatNavigator:
         return FlatNavigator(q, ids, world_of_env.size)
 
-    evaluation = evaluate(
+    summary = evaluate(
         make_navigator,
         [world],
         int(setting.params["eval_episodes"]),
@@ -285,9 +287,9 @@ def train_baseline(setting: Setting, threads: int = 1) -> dict[str, Any]:
     return {
         "tables": {"flat_q": q, "checkpoint_ids": np.array(sorted(ids), dtype=np.int64)},
         "curves": {name: np.asarray(values) for name, values in curve.items()},
-        "evaluation": _evaluation(evaluation.summary),
+        "evaluation": _evaluation(summary),
         "env_steps": envs * steps,
-        "eval_env_steps": int(sum(r.steps for r in evaluation.results)),
+        "eval_env_steps": summary.env_steps,
         "training_seconds": training_seconds,
         "evaluation_seconds": evaluation_seconds,
     }

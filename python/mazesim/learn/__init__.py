@@ -18,7 +18,8 @@ Two levels, as the report's section 4.1 describes them:
 
 :mod:`mazesim.learn.policy` runs both levels (Alg. 5); :mod:`mazesim.learn.train` trains from
 scratch with checkpoints and resume; :mod:`mazesim.learn.tables` saves and loads the tables;
-:mod:`mazesim.learn.evaluate` measures a navigator; :mod:`mazesim.learn.baseline` is the one flat
+:mod:`mazesim.learn.evaluate` measures a navigator (its one result type,
+:class:`~mazesim.learn.summary.Summary`); :mod:`mazesim.learn.baseline` is the one flat
 Q-learner, for comparison. Trained tables for ``seed-maze`` ship in the package (``mazesim eval``
 uses them by default). ``mazesim.hrl`` is this package's former name and still imports.
 """
@@ -35,9 +36,10 @@ from mazesim.learn.discretise import (
     observation_states,
     volts_to_cm,
 )
-from mazesim.learn.evaluate import Summary, evaluate_navigator
+from mazesim.learn.evaluate import EvaluationRecord, evaluate_navigator
 from mazesim.learn.policy import HierarchicalPolicy
 from mazesim.learn.subtasks import SUBTASK_NAMES, SubTask
+from mazesim.learn.summary import Summary, summarise
 from mazesim.learn.tables import TrainedPolicy, load_policy, save_policy
 from mazesim.learn.train import TrainSettings, train
 
@@ -46,6 +48,7 @@ __all__ = [
     "NUM_STATES",
     "SENSOR_ORDER",
     "SUBTASK_NAMES",
+    "EvaluationRecord",
     "HierarchicalPolicy",
     "SubTask",
     "Summary",
@@ -58,6 +61,7 @@ __all__ = [
     "load_policy",
     "observation_states",
     "save_policy",
+    "summarise",
     "train",
     "volts_to_cm",
 ]

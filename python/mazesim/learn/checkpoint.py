@@ -9,6 +9,12 @@ crash leaves at most a temporary file, removed on the next run.
 
 Checkpoints of mazesim 0.1 (``checkpoint.npz`` with the tables and a separate
 ``checkpoint.json``) are still read; the next checkpoint replaces them with the one-file form.
+
+:class:`RunFolder` is a training run's folder, which :func:`mazesim.learn.train.train` writes
+through (its ``checkpoint`` argument): the checkpoint to continue from with ``--resume``, the
+checkpoints as the run goes, and the navigator at the end
+(:func:`mazesim.learn.tables.save_policy`). Training itself writes nothing; ``mazesim train``
+hands it a folder.
 """
 
 from __future__ import annotations
@@ -16,6 +22,7 @@ from __future__ import annotations
 import contextlib
 import io
 import json
+import os
 import zipfile
 from dataclasses import dataclass
 from pathlib import Path
@@ -24,7 +31,7 @@ from typing import Any
 import numpy as np
 
 from mazesim._atomic import atomic_file, remove_stale_temporaries
-from mazesim.errors import PolicyFormatError
+from mazesim.errors import InvalidArgumentError, PolicyFormatError
 from mazesim.learn.archive import MAX_HEADER_BYTES, ArraySpec, read_archive, write_archive
 from mazesim.learn.bundle import FORMAT_VERSION, read_bundle, read_limited
 from mazesim.learn.lower import LowerTables, lower_table_shape
@@ -38,11 +45,13 @@ from mazesim.learn.schema import (
     Whole,
     parse_metadata,
 )
+from mazesim.learn.tables import TrainedPolicy, save_policy
 
 __all__ = [
     "CHECKPOINT_FILE",
     "CHECKPOINT_FORMAT",
     "Checkpoint",
+    "RunFolder",
     "checkpoint_exists",
     "read_checkpoint",
     "remove_checkpoint_leftovers",
@@ -196,3 +205,55 @@ def read_checkpoint(folder: Path, settings: dict[str, Any]) -> Checkpoint:
         history=list(metadata["history"]),
         lower_seconds=float(metadata["lower_seconds"]),
     )
+
+
+class RunFolder:
+    """A training run's folder: its checkpoints, the one to continue from, and the navigator.
+
+    Args:
+        folder: The folder (created when the run starts, if missing).
+        resume: Continue the run whose checkpoint is in ``folder``; otherwise the folder must hold
+            no checkpoint.
+    """
+
+    def __init__(self, folder: str | os.PathLike[str], resume: bool = False) -> None:
+        self.folder = Path(folder)
+        self.resume = resume
+
+    def start(self, settings: dict[str, Any]) -> Checkpoint | None:
+        """Prepares the folder for a run with ``settings`` (its identity) and returns the
+        checkpoint to continue from, or None for a fresh run.
+
+        Raises:
+            InvalidArgumentError: The folder is a file.
+            PolicyFormatError: ``resume`` without a usable checkpoint of the same settings, or a
+                checkpoint already in the folder without ``resume``.
+        """
+        folder = self.folder
+        if folder.exists() and not folder.is_dir():
+            raise InvalidArgumentError(
+                f"expected a folder for the navigator, found a file: {folder}"
+            )
+        saved = None
+        if self.resume:
+            if not checkpoint_exists(folder):
+                raise PolicyFormatError(f"{folder / CHECKPOINT_FILE}: no checkpoint to resume from")
+            saved = read_checkpoint(folder, settings)
+        elif checkpoint_exists(folder):
+            raise PolicyFormatError(
+                f"{folder} holds the checkpoint of another run; pass --resume to continue it, "
+                "or choose another --out"
+            )
+        folder.mkdir(parents=True, exist_ok=True)
+        remove_checkpoint_leftovers(folder)
+        return saved
+
+    def save(self, settings: dict[str, Any], checkpoint: Checkpoint) -> None:
+        """Writes the run's checkpoint (:func:`write_checkpoint`)."""
+        write_checkpoint(self.folder, settings, checkpoint)
+
+    def finish(self, policy: TrainedPolicy) -> None:
+        """Saves the trained navigator into the folder and names it as its source."""
+        self.folder.mkdir(parents=True, exist_ok=True)
+        save_policy(policy, self.folder)
+        policy.source = str(self.folder)

@@ -6,20 +6,21 @@ start jitter and sensor noise from ``(seed, number)`` alone
 (:class:`mazesim.episodes.EpisodeBatch`), and a greedy navigator keeps nothing from one
 episode to the next. So the episodes numbered ``first`` to ``first + count - 1`` can run anywhere,
 in any company, and end the same: :class:`NavigatorEpisodes` holds what they need (the tables,
-the worlds as TOML text) and runs such a chunk; whoever spreads the chunks (the evaluator's
-``spread`` argument, :func:`mazesim.distributed.evaluate_episodes` on Ray) joins their arrays,
-and :meth:`NavigatorEpisodes.results` turns them back into the
-:class:`~mazesim.episodes.EpisodeResult` list that ``evaluate`` returns.
+the worlds as TOML text) and runs such a chunk, handing back its episodes'
+:class:`~mazesim.episodes.EpisodeResult` list, numbered and placed as ``evaluate`` numbers and
+places them. Whoever spreads the chunks (the evaluator's ``spread`` argument,
+:func:`mazesim.distributed.evaluate_episodes` on Ray) joins the lists in episode order, and the
+evaluator summarises them once (:func:`mazesim.learn.summary.summarise`), as it does the
+episodes it runs itself.
 
-A chunk runs its episodes side by side, up to :data:`mazesim.learn.evaluate.EVALUATION_ENVS` at a
-time, one robot per episode. The decisions of an episode come back as counts per (checkpoint
-event, sub-task), so its :attr:`~mazesim.episodes.EpisodeResult.decisions` list holds the
-same decisions in a fixed order rather than in the order they were taken.
+A chunk runs its episodes side by side, up to :data:`CHUNK_ENVS` at a time, one robot per
+episode.
 """
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+import dataclasses
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -30,7 +31,6 @@ from mazesim._core import World
 from mazesim.episodes import EpisodeBatch, EpisodeResult, run_episodes
 from mazesim.errors import InvalidArgumentError
 from mazesim.learn.higher import HigherLevel
-from mazesim.learn.subtasks import NUM_SUBTASKS
 
 __all__ = ["NavigatorEpisodes"]
 
@@ -98,10 +98,6 @@ class NavigatorEpisodes:
         """Episodes of the whole evaluation."""
         return len(self.world_tomls) * self.episodes_per_world
 
-    @property
-    def _largest_id(self) -> int:
-        return max((max(ids) for ids in self.checkpoint_ids if ids), default=0)
-
     def _navigator(self, slot_worlds: npt.NDArray[np.int64]) -> Any:
         """The navigator of robots that drive in worlds ``slot_worlds`` (one slot each)."""
         robots = np.arange(slot_worlds.size)
@@ -117,13 +113,12 @@ class NavigatorEpisodes:
         level.q[:] = self.higher_q[slot_worlds, : level.num_states]
         return HierarchicalPolicy(self.lower_q, level, robots)
 
-    def __call__(self, first: int, count: int) -> dict[str, npt.NDArray[Any]]:
+    def __call__(self, first: int, count: int) -> list[EpisodeResult]:
         """Runs episodes ``first`` to ``first + count - 1``.
 
         Returns:
-            Per-episode arrays: ``world``, ``arrived``, ``steps``, ``bumps``,
-            ``contact_steps``, and ``decisions``, ``(count, 2 * largest id + 1, 4)`` counts of
-            the sub-task chosen at each checkpoint event (index ``event + largest id``).
+            Their results, in episode order, numbered and placed in worlds as
+            :func:`mazesim.learn.evaluate.evaluate` numbers and places them.
         """
         if first < 0 or count < 1 or first + count > self.episodes:
             raise InvalidArgumentError(
@@ -131,19 +126,12 @@ class NavigatorEpisodes:
                 f"found {first}..{first + count - 1}"
             )
         worlds = [World.from_toml(text) for text in self.world_tomls]
-        largest = self._largest_id
         numbers = np.arange(first, first + count, dtype=np.int64)
-        arrays: dict[str, npt.NDArray[Any]] = {
-            "world": numbers // self.episodes_per_world,
-            "arrived": np.zeros(count, dtype=bool),
-            "steps": np.zeros(count, dtype=np.int64),
-            "bumps": np.zeros(count, dtype=np.int64),
-            "contact_steps": np.zeros(count, dtype=np.int64),
-            "decisions": np.zeros((count, 2 * largest + 1, NUM_SUBTASKS), dtype=np.int64),
-        }
+        world_of_episode = numbers // self.episodes_per_world
+        results: list[EpisodeResult] = []
         for start in range(0, count, CHUNK_ENVS):
             part = numbers[start : start + CHUNK_ENVS]
-            slot_worlds = arrays["world"][start : start + part.size]
+            slot_worlds = world_of_episode[start : start + part.size]
             nav = _NumberedEpisodes(
                 [worlds[w] for w in slot_worlds],
                 part,
@@ -161,36 +149,21 @@ class NavigatorEpisodes:
                 return robots, navigator.record.chosen[robots]
 
             for result in run_episodes(nav, navigator, 1, None, None, decisions_of):
-                row = result.episode - first
-                arrays["arrived"][row] = result.arrived
-                arrays["steps"][row] = result.steps
-                arrays["bumps"][row] = result.bumps
-                arrays["contact_steps"][row] = result.contact_steps
-                for event, option in result.decisions:
-                    arrays["decisions"][row, event + largest, option] += 1
-        return arrays
+                world = int(world_of_episode[result.episode - first])
+                results.append(dataclasses.replace(result, world=world))
+        return sorted(results, key=lambda result: result.episode)
 
-    def results(self, arrays: Mapping[str, npt.ArrayLike]) -> list[EpisodeResult]:
-        """The episodes of the joined arrays of every chunk (episodes ``0 .. episodes - 1``)."""
-        largest = self._largest_id
-        columns = {name: np.asarray(values) for name, values in arrays.items()}
-        results = []
-        for number in range(columns["arrived"].shape[0]):
-            counts = columns["decisions"][number]
-            decisions = [
-                (int(index) - largest, int(option))
-                for index, option in zip(*np.nonzero(counts))
-                for _ in range(int(counts[index, option]))
-            ]
-            results.append(
-                EpisodeResult(
-                    world=int(columns["world"][number]),
-                    episode=number,
-                    arrived=bool(columns["arrived"][number]),
-                    steps=int(columns["steps"][number]),
-                    bumps=int(columns["bumps"][number]),
-                    contact_steps=int(columns["contact_steps"][number]),
-                    decisions=decisions,
-                )
+    def check_joined(self, results: Sequence[EpisodeResult]) -> list[EpisodeResult]:
+        """The joined results of every chunk, checked to be episodes ``0 .. episodes - 1`` in
+        order.
+
+        Raises:
+            InvalidArgumentError: An episode is missing, repeated or out of order.
+        """
+        numbers = [result.episode for result in results]
+        if numbers != list(range(self.episodes)):
+            raise InvalidArgumentError(
+                f"expected the results of episodes 0..{self.episodes - 1} in order, found "
+                f"{len(numbers)} results numbered {numbers[:3]}...{numbers[-3:]}"
             )
-        return results
+        return list(results)

@@ -9,11 +9,13 @@ higher level learned, it uses that table; in any other world (a file, or the uns
 mazes of ``--world random``) the lower-level tables are kept and only the higher level is trained
 there first, with at most :data:`ADAPT_EPISODES` episodes per maze: the transfer test.
 
-Measures (:class:`Summary`): the share of episodes that reached the goal; bumps (wall contacts
-the simulator counts) per episode, and the share of episodes without any; the control steps of
-the episodes that arrived, and their ratio to the steps of the shortest path at cruise speed
-(:func:`mazesim.episodes.shortest_path_steps`); and which sub-task the higher level chose
-at each checkpoint event.
+Measures (:class:`~mazesim.learn.summary.Summary`, the one result type, made by
+:func:`~mazesim.learn.summary.summarise`): the share of episodes that reached the goal; bumps
+(wall contacts the simulator counts) per episode, and the share of episodes without any; the
+control steps of the episodes that arrived, and their ratio to the steps of the shortest path at
+cruise speed (:func:`mazesim.episodes.shortest_path_steps`); and which sub-task the higher level
+chose at each checkpoint event. :func:`evaluate_navigator` returns one summary per source of
+checkpoint events.
 
 With ``spread``, :func:`evaluate_navigator` hands the episodes out in chunks
 (:mod:`mazesim.learn.chunks`; ``mazesim eval --address`` passes Ray's
@@ -21,18 +23,18 @@ With ``spread``, :func:`evaluate_navigator` hands the episodes out in chunks
 once, here, and its tables shipped with the chunks; every episode ends as it would here, so the
 summary is the same spread or not.
 
-Recording the first episodes frame by frame (for the replay and videos) takes a ``recorder``
-factory from the caller (:func:`mazesim.replay.navigator.recording`), so this module needs
-nothing of the viewers.
+What the first episodes looked like (their paths, the trace of episode 0, a recorded run for
+the replay and videos) goes into an :class:`EvaluationRecord` the caller hands in; recording
+frame by frame takes a ``recorder`` factory from the caller
+(:class:`mazesim.replay.navigator.Recording`), so this module needs nothing of the viewers.
 """
 
 from __future__ import annotations
 
 import dataclasses
 import math
-from collections import Counter
-from collections.abc import Callable, Mapping, Sequence
-from dataclasses import asdict, dataclass, field
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
 from typing import Any, Protocol
 
 import numpy as np
@@ -59,6 +61,7 @@ from mazesim.learn.higher_training import HigherTraining, train_higher
 from mazesim.learn.policy import HierarchicalPolicy, StepRecord
 from mazesim.learn.stretches import run_navigator_episodes, stretches_apply
 from mazesim.learn.subtasks import CONTROL_STEP_MS, SUBTASK_CODES, SUBTASK_NAMES
+from mazesim.learn.summary import Summary, summarise
 from mazesim.learn.tables import TrainedPolicy
 from mazesim.maze import world_hash
 
@@ -66,8 +69,7 @@ __all__ = [
     "ADAPTATION",
     "ADAPT_EPISODES",
     "EvalSettings",
-    "Evaluation",
-    "Report",
+    "EvaluationRecord",
     "Summary",
     "evaluate",
     "evaluate_navigator",
@@ -86,39 +88,43 @@ EVALUATION_ENVS = 500
 
 
 @dataclass
-class Summary:
-    """What an evaluation measured."""
+class EvaluationRecord:
+    """What an evaluation records of its first episodes beside the summary: the caller says what
+    to record and hands the record to the evaluator, which fills in the rest.
 
-    episodes: int
-    success_rate: float
-    mean_collisions: float
-    mean_steps: float | None
-    mean_path_ratio: float | None
-    collision_free_rate: float
-    events: str
-    decisions: dict[str, dict[str, int]] = field(default_factory=dict)
-    world_success: list[float] = field(default_factory=list)
-    #: Mean steps over every episode, a failed one counted at its limit (a sweep's ``mean_steps``).
-    mean_steps_all: float = 0.0
+    Attributes:
+        paths: Record the trajectories of the first this many episodes of the first world.
+        trace: Record the per-step trace of episode 0 (:func:`mazesim.learn.report.trace_text`
+            makes it a file).
+        recorder: Records the first episodes frame by frame (:attr:`run`, for the replay and
+            videos); see :class:`RecorderFactory`.
+        episode_paths: Filled in: each recorded episode's ``(x, y)`` points, by episode number
+            (for :mod:`mazesim.learn.figures`).
+        marks: Filled in: each recorded episode's decisions as ``(x, y, event, sub-task)``.
+        trace_lines: Filled in: the trace of episode 0, one step or event a line.
+        run: Filled in: the run the recorder recorded (``None`` without a recorder).
+        outcomes: Filled in: the results of the recorded episodes, by episode number.
+    """
 
-    def as_json(self) -> dict[str, Any]:
-        """The summary as the ``--json`` output's values."""
-        values = asdict(self)
-        for private in ("decisions", "events", "world_success", "mean_steps_all"):
-            values.pop(private)
-        return values
-
-
-@dataclass
-class Evaluation:
-    """An evaluation's summary, its episodes, and what was recorded for pictures and traces."""
-
-    summary: Summary
-    results: list[EpisodeResult]
-    paths: dict[int, npt.NDArray[np.float64]] = field(default_factory=dict)
+    paths: int = 0
+    trace: bool = False
+    recorder: RecorderFactory | None = None
+    episode_paths: dict[int, npt.NDArray[np.float64]] = field(default_factory=dict)
     marks: dict[int, list[tuple[float, float, int, int]]] = field(default_factory=dict)
-    trace: list[str] = field(default_factory=list)
+    trace_lines: list[str] = field(default_factory=list)
     run: Any = None
+    outcomes: dict[int, EpisodeResult] = field(default_factory=dict)
+
+    @property
+    def episodes(self) -> int:
+        """Episodes of the first world this record asks for (0: none)."""
+        wanted = max(self.paths, 1 if self.trace else 0)
+        return wanted if self.recorder is None else max(wanted, self.recorder.episodes)
+
+    def fill_from(self, other: EvaluationRecord) -> None:
+        """Takes what ``other`` recorded (the same episodes, run elsewhere)."""
+        self.episode_paths, self.marks = other.episode_paths, other.marks
+        self.trace_lines, self.run, self.outcomes = other.trace_lines, other.run, other.outcomes
 
 
 @dataclass(frozen=True)
@@ -228,46 +234,6 @@ def navigator_for(
     return level, True
 
 
-def summarise(results: list[EpisodeResult], shortest: Sequence[float], events: str) -> Summary:
-    """The one result type of an evaluation: what ``results`` measured.
-
-    Args:
-        results: The episodes.
-        shortest: The shortest path's steps of each world, for the path ratio.
-        events: Where the checkpoint events came from.
-    """
-    arrived = [r for r in results if r.arrived]
-    count = len(results)
-    decisions: dict[str, Counter[str]] = {}
-    for result in results:
-        for event, option in result.decisions:
-            key = f"{'+' if event > 0 else '-'}{abs(event)}"
-            decisions.setdefault(key, Counter())[SUBTASK_CODES[option]] += 1
-    worlds = max((r.world for r in results), default=-1) + 1
-    world_success = [
-        float(np.mean([r.arrived for r in results if r.world == world])) for world in range(worlds)
-    ]
-    return Summary(
-        world_success=world_success,
-        episodes=count,
-        success_rate=len(arrived) / count if count else 0.0,
-        mean_collisions=float(np.mean([r.bumps for r in results])) if count else 0.0,
-        mean_steps=float(np.mean([r.steps for r in arrived])) if arrived else None,
-        mean_steps_all=float(np.mean([r.steps for r in results])) if count else 0.0,
-        mean_path_ratio=(
-            float(np.mean([r.steps / shortest[r.world] for r in arrived])) if arrived else None
-        ),
-        collision_free_rate=(sum(1 for r in results if r.bumps == 0) / count if count else 0.0),
-        events=events,
-        decisions={
-            key: dict(sorted(counts.items()))
-            for key, counts in sorted(
-                decisions.items(), key=lambda item: (abs(int(item[0])), item[0][0] == "-")
-            )
-        },
-    )
-
-
 NavigatorFactory = Callable[[npt.NDArray[np.int64]], Any]
 
 
@@ -283,9 +249,9 @@ class RecorderFactory(Protocol):
     def __call__(self, nav: EpisodeBatch, navigator: Any) -> Any: ...
 
 
-#: Runs an evaluation's chunks (``chunk(first, count)`` -> per-episode arrays) for ``episodes``
-#: episodes and joins their arrays in episode order.
-Spreader = Callable[[Callable[[int, int], Mapping[str, Any]], int], Mapping[str, Any]]
+#: Runs an evaluation's chunks (``chunk(first, count)`` -> the results of episodes ``first`` to
+#: ``first + count - 1``) for ``episodes`` episodes and joins them in episode order.
+Spreader = Callable[[Callable[[int, int], list[EpisodeResult]], int], list[EpisodeResult]]
 
 
 def evaluate(
@@ -296,15 +262,13 @@ def evaluate(
     events: str = "truth",
     jitter: StartJitter | None = None,
     max_steps: int = MAX_STEPS,
-    record_paths: int = 0,
-    trace: bool = False,
+    record: EvaluationRecord | None = None,
     threads: int = 0,
-    recorder: RecorderFactory | None = None,
     controller: str = "hrl",
     progress: Callable[[str, int, int], None] | None = None,
     multi_step: bool = False,
     robot: RobotChoice = "seed",
-) -> Evaluation:
+) -> Summary:
     """Runs greedy episodes of a navigator and measures them.
 
     With ``multi_step``, a greedy :class:`~mazesim.learn.policy.HierarchicalPolicy` with events
@@ -325,16 +289,16 @@ def evaluate(
         events: ``"truth"`` or ``"robust"`` (checkpoint events from the decoder).
         jitter: Start jitter; the default :class:`StartJitter`.
         max_steps: Control steps after which an episode fails.
-        record_paths: Record the trajectories of the first this many episodes of world 0.
-        trace: Record the per-step trace of episode 0.
+        record: What to record of the first episodes (filled in here); ``None``: nothing.
         threads: Worker threads of the batch.
-        recorder: Records the first episodes frame by frame (:attr:`Evaluation.run`, for the
-            replay and videos); see :data:`RecorderFactory`.
         controller: The controller's name in the recorded run.
         progress: Called as ``progress("evaluate", episodes_done, episodes_total)``.
         multi_step: Use the multi-step call where it applies; ``False`` (the default): one step
             at a time.
         robot: The robots (:data:`mazesim.batch.RobotChoice`), handed to the batch as given.
+
+    Returns:
+        What the episodes measured.
     """
     per_world = max(1, min(episodes_per_world, EVALUATION_ENVS // max(1, len(worlds))))
     world_of_env = np.repeat(np.arange(len(worlds)), per_world)
@@ -362,27 +326,16 @@ def evaluate(
     shortest = [shortest_path_steps(world) for world in worlds]
     if multi_step and stretches_apply(nav, navigator):
         results = run_navigator_episodes(nav, navigator, episodes_per_world, on_end)
-        evaluation = Evaluation(summarise(results, shortest, events), results)
-        options = dict(
-            seed=seed,
-            events=events,
-            jitter=jitter,
-            max_steps=max_steps,
-            record_paths=record_paths,
-            trace=trace,
-            threads=threads,
-            recorder=recorder,
-            controller=controller,
-            robot=robot,
-        )
-        _record_here(evaluation, make_navigator, worlds, episodes_per_world, options)
-        return evaluation
-    recording = None if recorder is None else recorder(nav, navigator)
-    evaluation = Evaluation(summary=summarise([], [1.0], events), results=[])
+        options: dict[str, Any] = {"seed": seed, "events": events, "jitter": jitter}
+        options.update(max_steps=max_steps, threads=threads, controller=controller, robot=robot)
+        _record_here(record, make_navigator, worlds, episodes_per_world, options)
+        return summarise(results, shortest, events)
+    record = record if record is not None else EvaluationRecord()
+    recording = None if record.recorder is None else record.recorder(nav, navigator)
     paths: dict[int, list[tuple[float, float]]] = {}
     ended: set[int] = set()
-    marks = evaluation.marks
-    lines = evaluation.trace
+    marks = record.marks
+    lines = record.trace_lines
 
     def watch(
         batch: EpisodeBatch,
@@ -392,22 +345,22 @@ def evaluate(
     ) -> None:
         if recording is not None:
             recording.after_step(arrived, out_of_time)
-        if not record_paths and not trace:
+        if not record.paths and not record.trace:
             return
-        record = navigator.record
+        steps = navigator.record
         # A robot left without an episode is still stepped: record its episode's steps only.
         running = ~np.isin(batch.episode, list(ended))
-        for env in np.flatnonzero(running & (batch.episode < record_paths)):
+        for env in np.flatnonzero(running & (batch.episode < record.paths)):
             episode = int(batch.episode[env])
             x, y, _ = (float(v) for v in batch.poses[env])
             paths.setdefault(episode, []).append((x, y))
-            if record.chosen[env] >= 0:
+            if steps.chosen[env] >= 0:
                 marks.setdefault(episode, []).append(
-                    (x, y, int(record.event[env]), int(record.chosen[env]))
+                    (x, y, int(steps.event[env]), int(steps.chosen[env]))
                 )
-        if trace:
+        if record.trace:
             for env in np.flatnonzero(running & (batch.episode == 0)):
-                lines.append(_trace_line(batch, record, int(env)))
+                lines.append(_trace_line(batch, steps, int(env)))
                 if arrived[env]:
                     lines.append(f"# goal reached after {int(batch.episode_steps[env])} steps")
                 elif out_of_time[env]:
@@ -426,22 +379,12 @@ def evaluate(
         on_end,
         decisions_of,
     )
-    evaluation.summary = summarise(results, shortest, events)
-    evaluation.results = results
-    evaluation.paths = {k: np.array(v) for k, v in paths.items()}
+    record.episode_paths = {k: np.array(v) for k, v in paths.items()}
+    recorded = [r for r in results if r.world == 0 and r.episode < record.episodes]
+    record.outcomes = {r.episode: r for r in recorded}
     if recording is not None:
-        evaluation.run = recording.run(controller, seed)
-    return evaluation
-
-
-@dataclass
-class Report:
-    """What :func:`evaluate_navigator` measured."""
-
-    summaries: dict[str, Summary]
-    evaluations: dict[str, Evaluation]
-    adapted: bool
-    run: Any = None
+        record.run = recording.run(controller, seed)
+    return summarise(results, shortest, events)
 
 
 def evaluate_navigator(
@@ -451,28 +394,22 @@ def evaluate_navigator(
     seed: int = 0,
     sources: Sequence[str] = ("truth",),
     max_steps: int = MAX_STEPS,
-    trace: bool = False,
-    plot_episodes: int = 0,
+    record: EvaluationRecord | None = None,
     threads: int = 0,
     spread: Spreader | None = None,
-    recorder: RecorderFactory | None = None,
     progress: Callable[[str, int, int], None] | None = None,
     multi_step: bool = False,
     robot: RobotChoice = "seed",
-) -> Report:
+) -> dict[str, Summary]:
     """Evaluates a saved navigator with checkpoint events from each source (it writes nothing).
 
     Args:
-        trace: Record the per-step trace of the first source's episode 0
-            (:attr:`Evaluation.trace`; :func:`mazesim.learn.report.trace_text` makes it a file).
-        plot_episodes: Record the paths of the first source's first this many episodes of the
-            first world (:attr:`Evaluation.paths`, for :mod:`mazesim.learn.figures`).
+        record: What to record of the first source's first episodes in the first world (the
+            paths, the trace of episode 0, a run for the replay), filled in here.
         spread: ``None``: run every episode in this process; else the function that runs the
             evaluation's chunks (:data:`Spreader`, e.g. Ray's
-            :func:`mazesim.distributed.evaluate_episodes`). The trace, the picture's and the
-            recorded episodes are run here as well.
-        recorder: Records the first episodes of the first source frame by frame
-            (:attr:`Report.run`; see :data:`RecorderFactory`).
+            :func:`mazesim.distributed.evaluate_episodes`). The recorded episodes are run here
+            as well.
         progress: Called as ``progress(stage, done, total)``: ``"adapt"`` while the higher level
             learns unseen worlds, then ``"evaluate"`` (``"evaluate robust"`` for the second
             source) over the episodes.
@@ -482,6 +419,11 @@ def evaluate_navigator(
         robot: The robots of the evaluation and of the higher level's adaptation
             (:data:`mazesim.batch.RobotChoice`), handed to the batches as given; the seed
             robot's only with ``spread``.
+
+    Returns:
+        Each source's summary, in the order of ``sources``; their
+        :attr:`~mazesim.learn.summary.Summary.adapted` says whether the higher level was
+        trained in ``worlds`` first.
 
     Raises:
         PolicyFormatError: A flat navigator asked to drive a world it did not learn.
@@ -515,35 +457,31 @@ def evaluate_navigator(
             return HierarchicalPolicy(lower_q, level, world_of_env)
 
     summaries: dict[str, Summary] = {}
-    evaluations: dict[str, Evaluation] = {}
     level_shipped = None if policy.kind == "flat" else level
 
-    def run(*args: Any, **options: Any) -> Evaluation:
+    def run(*args: Any, **options: Any) -> Summary:
         if spread is None:
             return evaluate(*args, **options)
         return _evaluate_spread(spread, policy, level_shipped, *args, **options)
 
     for place, source in enumerate(sources):
         first = place == 0
-        evaluation = run(
+        summary = run(
             make_navigator,
             worlds,
             episodes_per_world,
             seed=seed,
             events=source,
             max_steps=max_steps,
-            record_paths=plot_episodes if first else 0,
-            trace=first and trace,
+            record=record if first else None,
             threads=threads,
-            recorder=recorder if first else None,
             controller=policy.kind,
             progress=_staged(progress, "evaluate" if first else f"evaluate {source}"),
             multi_step=multi_step,
             robot=robot,
         )
-        summaries[source] = evaluation.summary
-        evaluations[source] = evaluation
-    return Report(summaries, evaluations, adapted, evaluations[sources[0]].run)
+        summaries[source] = dataclasses.replace(summary, adapted=adapted)
+    return summaries
 
 
 def _staged(
@@ -564,9 +502,9 @@ def _evaluate_spread(
     worlds: Sequence[World],
     episodes_per_world: int,
     **options: Any,
-) -> Evaluation:
+) -> Summary:
     """:func:`evaluate` with its episodes spread in chunks by ``spread``; the episodes to record
-    for the trace, the picture and the replay run here as well."""
+    run here as well."""
 
     if level is None:
         ids: list[list[int]] = [list(policy.checkpoint_ids)]
@@ -585,34 +523,29 @@ def _evaluate_spread(
         flat_q=policy.flat_q if level is None else None,
     )
     progress = options.pop("progress")
-    results = chunks.results(spread(chunks, chunks.episodes))
+    results = chunks.check_joined(spread(chunks, chunks.episodes))
     if progress is not None:
         progress("evaluate", chunks.episodes, chunks.episodes)
     shortest = [shortest_path_steps(world) for world in worlds]
-    evaluation = Evaluation(summarise(results, shortest, options["events"]), results)
-    _record_here(evaluation, make_navigator, worlds, episodes_per_world, options)
-    return evaluation
+    _record_here(options.pop("record"), make_navigator, worlds, episodes_per_world, options)
+    return summarise(results, shortest, options["events"])
 
 
 def _record_here(
-    evaluation: Evaluation,
+    record: EvaluationRecord | None,
     make_navigator: NavigatorFactory,
     worlds: Sequence[World],
     episodes_per_world: int,
     options: dict[str, Any],
 ) -> None:
-    """Runs the first episodes of the first world again, one step at a time, for the paths,
-    the trace and the recorded run that ``options`` ask for (an episode ends the same way
-    whatever runs it), and puts them into ``evaluation``."""
-    recorded = max(options["record_paths"], 1 if options["trace"] else 0)
-    if options["recorder"] is not None:
-        recorded = max(recorded, options["recorder"].episodes)
-    if not recorded:
+    """Runs the first episodes of the first world again, one step at a time, for what ``record``
+    asks for (an episode ends the same way whatever runs it), and fills it in."""
+    if record is None or not record.episodes:
         return
-    options = {**options, "multi_step": False}
-    local = evaluate(make_navigator, worlds[:1], min(episodes_per_world, recorded), **options)
-    evaluation.paths, evaluation.marks, evaluation.trace = local.paths, local.marks, local.trace
-    evaluation.run = local.run
+    here = EvaluationRecord(record.paths, record.trace, record.recorder)
+    options = {**options, "multi_step": False, "record": here}
+    evaluate(make_navigator, worlds[:1], min(episodes_per_world, record.episodes), **options)
+    record.fill_from(here)
 
 
 def _trace_line(batch: EpisodeBatch, record: StepRecord, env: int) -> str:

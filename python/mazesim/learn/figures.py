@@ -14,13 +14,11 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 import numpy.typing as npt
-from matplotlib.backends.backend_agg import FigureCanvasAgg
-from matplotlib.figure import Figure
 
 from mazesim._atomic import atomic_file
 from mazesim._core import World
 from mazesim.learn.subtasks import SUBTASK_CODES, SUBTASK_NAMES
-from mazesim.plotting import START_COLOR, plot_world, trajectory_legend
+from mazesim.plotting import START_COLOR, trajectory_legend, world_figure
 
 __all__ = ["decision_label", "save_episodes_png"]
 
@@ -53,12 +51,7 @@ def save_episodes_png(
         title: The title above the picture.
         arrived: Episode number -> whether it reached the goal (shown in the legend).
     """
-    xmin, ymin, xmax, ymax = world.bounds
-    aspect = (ymax - ymin) / max(xmax - xmin, 1e-3)
-    figure = Figure(figsize=(7.5, max(4.0, min(10.0, 6.0 * aspect + 1.2))), dpi=120)
-    FigureCanvasAgg(figure)
-    ax = figure.add_subplot()
-    plot_world(ax, world)
+    figure, ax = world_figure(world, 7.5, (4.0, 10.0), 1.2)
     extra = []
     for place, episode in enumerate(sorted(paths)):
         trajectory = paths[episode]

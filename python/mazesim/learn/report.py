@@ -9,7 +9,7 @@ from collections.abc import Sequence
 
 from mazesim._core import World
 from mazesim.batch import CONTROL_STEP_MS
-from mazesim.learn.evaluate import Summary
+from mazesim.learn.summary import Summary
 
 __all__ = ["summary_text", "trace_text"]
 

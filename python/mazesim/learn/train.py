@@ -3,20 +3,25 @@ the target world; checkpoints and ``--resume``.
 
 :func:`run_training` is the one training pipeline (the sweep's ``hrl`` trainer runs it too); it
 writes and prints nothing, and reports through ``progress(stage, done, total)`` and a
-``checkpoint`` callback. :func:`train` runs it with checkpoints in a folder. The two stages:
+``checkpoint`` callback. :func:`train` runs it from settings, and writes only through the
+:class:`RunWriter` it is handed (``mazesim train`` hands it a
+:class:`~mazesim.learn.checkpoint.RunFolder`: checkpoints, ``--resume`` and the saved navigator);
+without one it writes nothing. The two stages:
 
 1. **Lower level** (:mod:`mazesim.learn.lower`): the four sub-tasks on a pool of generated mazes,
    ``envs`` robots at a time, until ``steps`` env-steps are done, round by round. After every
    round whose end is at least :attr:`TrainSettings.checkpoint_seconds` after the last
    checkpoint (and after the last round) the tables, their update counts and the round reached
-   are written to ``DIR/checkpoint.npz``, one file switched in with one atomic rename
+   go to the writer; a :class:`~mazesim.learn.checkpoint.RunFolder` writes them to
+   ``DIR/checkpoint.npz``, one file switched in with one atomic rename
    (:mod:`mazesim.learn.checkpoint`): a crash at any instant leaves the previous checkpoint or the
    new one, whole.
 2. **Higher level** (:mod:`mazesim.learn.higher_training`): episodes on the target world with
    the lower level fixed, the sub-tasks chosen epsilon-greedily at checkpoint events.
 
-The navigator is then saved into ``DIR`` (``tables.npz`` and ``policy.json``, see
-:mod:`mazesim.learn.tables`) with the settings and what the run measured.
+The navigator, with the settings and what the run measured, then goes to the writer
+(a :class:`~mazesim.learn.checkpoint.RunFolder` saves ``tables.npz`` and ``policy.json`` into
+``DIR``, see :mod:`mazesim.learn.tables`).
 
 Everything random follows from the seed, round by round, and the simulator is deterministic
 whatever the thread count, so a run stopped at any point and continued with ``resume=True``
@@ -29,28 +34,20 @@ import os
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import Field, asdict, dataclass, field, fields
-from pathlib import Path
-from typing import Any
+from typing import Any, Protocol
 
 from mazesim import load_world
 from mazesim._core import World
 from mazesim.batch import RobotChoice
 from mazesim.episodes import EpisodeResult, shortest_path_steps
-from mazesim.errors import InvalidArgumentError, PolicyFormatError
+from mazesim.errors import InvalidArgumentError
 from mazesim.learn.baseline import train_flat
-from mazesim.learn.checkpoint import (
-    CHECKPOINT_FILE,
-    CHECKPOINT_FORMAT,
-    Checkpoint,
-    checkpoint_exists,
-    read_checkpoint,
-    remove_checkpoint_leftovers,
-    write_checkpoint,
-)
+from mazesim.learn.checkpoint import CHECKPOINT_FORMAT, Checkpoint
 from mazesim.learn.higher import HigherLevel
 from mazesim.learn.higher_training import HigherTraining, train_higher
 from mazesim.learn.lower import LowerSettings, LowerTables, LowerTrainer, RoundStats
-from mazesim.learn.tables import TrainedPolicy, save_policy
+from mazesim.learn.summary import summarise
+from mazesim.learn.tables import TrainedPolicy
 from mazesim.maze import checkpoint_ids, world_hash
 
 __all__ = [
@@ -60,6 +57,7 @@ __all__ = [
     "CurveFn",
     "ProgressFn",
     "RobotDraw",
+    "RunWriter",
     "TrainSettings",
     "TrainingRun",
     "command_line_fields",
@@ -326,26 +324,46 @@ def _machine() -> dict[str, Any]:
     }
 
 
+class RunWriter(Protocol):
+    """Where :func:`train` writes a run (:class:`mazesim.learn.checkpoint.RunFolder` writes a
+    folder); ``settings`` are the run's :meth:`TrainSettings.identity`."""
+
+    def start(self, settings: dict[str, Any]) -> Checkpoint | None:
+        """Prepares for the run; returns the checkpoint to continue from (None: start afresh)."""
+        ...
+
+    def save(self, settings: dict[str, Any], checkpoint: Checkpoint) -> None:
+        """Keeps a checkpoint of the run."""
+        ...
+
+    def finish(self, policy: TrainedPolicy) -> None:
+        """Keeps the trained navigator."""
+        ...
+
+
 def train(
     settings: TrainSettings,
-    out: str | os.PathLike[str],
-    resume: bool = False,
+    checkpoint: RunWriter | None = None,
     progress: ProgressFn | None = None,
     threads: int = 0,
     stop_after_rounds: int | None = None,
     robot: RobotChoice | RobotDraw = "seed",
     curve: CurveFn | None = None,
 ) -> TrainedPolicy | None:
-    """Trains a navigator (:func:`run_training`) with checkpoints in ``out``, and saves it there.
+    """Trains a navigator (:func:`run_training`) from ``settings``.
+
+    It writes and prints nothing itself: checkpoints, the run to continue and the trained
+    navigator go through ``checkpoint``.
 
     Args:
         settings: The run's settings.
-        out: The folder for the checkpoint and the navigator (created if missing).
-        resume: Continue the run whose checkpoint is in ``out``.
+        checkpoint: Where the run is written (``mazesim train``:
+            :class:`mazesim.learn.checkpoint.RunFolder`, which also says whether to resume);
+            ``None``: nowhere.
         progress: See :data:`ProgressFn`.
         threads: Worker threads of the simulator (0: one per core); results do not depend on it.
         stop_after_rounds: Stop (as if interrupted) after this many lower-level rounds in this
-            call, leaving the checkpoint; for tests.
+            call, after a checkpoint; for tests.
         robot: The robots (see :func:`run_training`); a :data:`RobotDraw` exactly when
             ``settings.randomise`` names its ranges.
         curve: Receives the learning curve (:data:`CurveFn`).
@@ -356,11 +374,10 @@ def train(
     Raises:
         InvalidArgumentError: ``settings.randomise`` without a :data:`RobotDraw` or the other
             way round.
-        PolicyFormatError: ``resume`` without a usable checkpoint of the same settings, or a
-            checkpoint already in ``out`` without ``resume``.
+        PolicyFormatError: The writer has no usable checkpoint to resume, or one it should not
+            continue (see :meth:`mazesim.learn.checkpoint.RunFolder.start`).
         UnknownNameError, WorldFormatError: The world cannot be loaded.
     """
-    folder = Path(out)
     if bool(settings.randomise) != callable(robot):
         raise InvalidArgumentError(
             "expected a robot draw exactly with randomisation ranges in the settings, found "
@@ -368,23 +385,12 @@ def train(
         )
     world = _navigator_world(settings.world)
     lower_settings = settings.lower()
-    if folder.exists() and not folder.is_dir():
-        raise InvalidArgumentError(f"expected a folder for the navigator, found a file: {folder}")
-    if resume:
-        if not checkpoint_exists(folder):
-            raise PolicyFormatError(f"{folder / CHECKPOINT_FILE}: no checkpoint to resume from")
-        saved = read_checkpoint(folder, settings.identity())
+    saved = None if checkpoint is None else checkpoint.start(settings.identity())
+    if saved is not None:
         tables, next_round = saved.tables, saved.next_round
         history, lower_seconds = saved.history, saved.lower_seconds
     else:
-        if checkpoint_exists(folder):
-            raise PolicyFormatError(
-                f"{folder} holds the checkpoint of another run; pass --resume to continue it, "
-                "or choose another --out"
-            )
         tables, next_round, history, lower_seconds = LowerTables.zeros(), 0, [], 0.0
-    folder.mkdir(parents=True, exist_ok=True)
-    remove_checkpoint_leftovers(folder)
 
     rounds = lower_settings.rounds
     started = time.perf_counter()
@@ -394,11 +400,10 @@ def train(
         clock["done"] += 1
         now = time.perf_counter()
         stopping = stop_after_rounds is not None and clock["done"] >= stop_after_rounds
-        if reached == rounds or stopping or now - clock["saved"] >= settings.checkpoint_seconds:
+        due = reached == rounds or stopping or now - clock["saved"] >= settings.checkpoint_seconds
+        if due and checkpoint is not None:
             elapsed = lower_seconds + now - started
-            write_checkpoint(
-                folder, settings.identity(), Checkpoint(tables, reached, summaries, elapsed)
-            )
+            checkpoint.save(settings.identity(), Checkpoint(tables, reached, summaries, elapsed))
             clock["saved"] = now
         return stopping
 
@@ -418,17 +423,17 @@ def train(
     if run is None:
         return None
     results = run.higher_results
-    last = results[-100:]
+    shortest = shortest_path_steps(world)
     training: dict[str, Any] = {
         "settings": asdict(settings),
         "lower": lower_settings.as_dict(),
         "higher": asdict(settings.higher()),
         "lower_env_steps": rounds * lower_settings.num_envs * lower_settings.round_steps,
-        "higher_env_steps": int(sum(r.steps for r in results)),
+        "higher_env_steps": summarise(results, [shortest]).env_steps,
         "lower_seconds": round(lower_seconds + run.lower_seconds, 1),
         "higher_seconds": round(run.higher_seconds, 1),
-        "higher_success_last_100": sum(r.arrived for r in last) / max(1, len(last)),
-        "shortest_path_steps": shortest_path_steps(world),
+        "higher_success_last_100": summarise(results[-100:], [shortest]).success_rate,
+        "shortest_path_steps": shortest,
         "history": run.history,
         **_machine(),
     }
@@ -441,21 +446,23 @@ def train(
         higher_q=run.level.q[0],
         training=training,
     )
-    save_policy(policy, folder)
-    policy.source = str(folder)
+    if checkpoint is not None:
+        checkpoint.finish(policy)
     return policy
 
 
 def train_flat_policy(
     settings: TrainSettings,
-    out: str | os.PathLike[str],
+    checkpoint: RunWriter | None = None,
     progress: ProgressFn | None = None,
     threads: int = 0,
     curve: CurveFn | None = None,
 ) -> TrainedPolicy:
-    """Trains the flat baseline on ``settings.world`` for ``settings.steps`` env-steps and saves
-    it into ``out`` (:mod:`mazesim.learn.baseline`); ``curve`` receives ``("flat", {"index":
-    env-steps done, "goal_rate": share of the last episodes that reached the goal})``."""
+    """Trains the flat baseline on ``settings.world`` for ``settings.steps`` env-steps
+    (:mod:`mazesim.learn.baseline`) and hands it to ``checkpoint``'s
+    :meth:`~RunWriter.finish` (``None``: it is only returned); ``curve`` receives ``("flat",
+    {"index": env-steps done, "goal_rate": share of the last episodes that reached the
+    goal})``."""
     world = _navigator_world(settings.world)
     started = time.perf_counter()
 
@@ -489,7 +496,6 @@ def train_flat_policy(
             **_machine(),
         },
     )
-    Path(out).mkdir(parents=True, exist_ok=True)
-    save_policy(policy, out)
-    policy.source = str(out)
+    if checkpoint is not None:
+        checkpoint.finish(policy)
     return policy

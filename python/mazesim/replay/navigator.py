@@ -127,8 +127,8 @@ class NavigatorRecorder:
 
 
 class Recording:
-    """What :func:`mazesim.learn.evaluate.evaluate` takes as its ``recorder``: builds a
-    :class:`NavigatorRecorder` of the first ``episodes`` episodes.
+    """The ``recorder`` of an evaluation's :class:`~mazesim.learn.evaluate.EvaluationRecord`:
+    builds a :class:`NavigatorRecorder` of the first ``episodes`` episodes.
 
     Args:
         episodes: How many of the first episodes to record.

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -30,18 +30,18 @@ from mazesim.batch import cruise_step_length
 from mazesim.episodes import (
     MAX_STEPS,
     EpisodeBatch,
-    EpisodeResult,
     run_episodes,
     shortest_path_steps,
 )
 from mazesim.errors import InvalidArgumentError
 from mazesim.learn.higher import HigherLevel
 from mazesim.learn.policy import HierarchicalPolicy
+from mazesim.learn.summary import Summary, summarise
 from mazesim.transfer.axes import Setting
 from mazesim.transfer.control import DelayedNavigator, LinkedNavigator
 from mazesim.transfer.readings import SeedReadingsNavigator
 
-__all__ = ["BATCH_ENVS", "CellMeasure", "CellRun", "profile_changes", "profile_of", "run_cells"]
+__all__ = ["BATCH_ENVS", "CellRun", "profile_changes", "profile_of", "run_cells"]
 
 #: Robots stepped side by side in one batch (at most).
 BATCH_ENVS = 500
@@ -88,43 +88,6 @@ def profile_of(setting: Setting) -> RobotProfile:
         )
     profile: RobotProfile = perturbed(**changes)
     return profile
-
-
-@dataclass
-class CellMeasure:
-    """What a cell's episodes measured.
-
-    Attributes:
-        episodes: Episodes run.
-        success_rate: Share of them that reached the goal.
-        contacts_per_episode: Wall bumps (contacts the simulator counts) per episode.
-        collision_free_rate: Share of episodes without a bump.
-        path_ratio: Mean control steps of the arrived episodes over the shortest path's
-            (``None`` when none arrived).
-        mean_steps: Mean control steps of the arrived episodes (``None`` when none arrived).
-    """
-
-    episodes: int
-    success_rate: float
-    contacts_per_episode: float
-    collision_free_rate: float
-    path_ratio: float | None
-    mean_steps: float | None
-
-    @staticmethod
-    def of(results: Sequence[EpisodeResult], shortest_steps: float) -> CellMeasure:
-        """The measure of a cell's episodes."""
-        count = len(results)
-        arrived = [r.steps for r in results if r.arrived]
-        mean_steps = float(np.mean(arrived)) if arrived else None
-        return CellMeasure(
-            episodes=count,
-            success_rate=len(arrived) / count,
-            contacts_per_episode=float(np.mean([r.bumps for r in results])),
-            collision_free_rate=sum(1 for r in results if r.bumps == 0) / count,
-            path_ratio=None if mean_steps is None else mean_steps / shortest_steps,
-            mean_steps=mean_steps,
-        )
 
 
 class _CellEpisodes(EpisodeBatch):
@@ -214,7 +177,7 @@ def run_cells(
     settings: Sequence[Setting],
     run: CellRun,
     progress: Callable[[int], None] | None = None,
-) -> list[CellMeasure]:
+) -> list[Summary]:
     """Drives ``run.episodes`` greedy episodes of the navigator in each setting.
 
     The cells of one robot profile share a batch (up to :data:`BATCH_ENVS` cells a batch).
@@ -225,9 +188,10 @@ def run_cells(
         progress: Called with the number of episodes that just ended.
 
     Returns:
-        Each cell's measure, in the order of ``settings``.
+        What each cell's episodes measured (:func:`mazesim.learn.summary.summarise`, the
+        evaluator's own), in the order of ``settings``.
     """
-    measures: dict[int, CellMeasure] = {}
+    measures: dict[int, Summary] = {}
     groups: dict[str, list[int]] = {}
     for index, setting in enumerate(settings):
         groups.setdefault(str(setting.get("robot")), []).append(index)
@@ -252,8 +216,9 @@ def run_cells(
                     progress(int(np.count_nonzero(studied[robots])))  # noqa: B023
 
             results = run_episodes(nav, navigator, run.episodes, on_end=ended)
-            shortest = run.shortest_steps(robot)
+            shortest = [run.shortest_steps(robot)]
             for place, index in enumerate(chunk, start=lead):
-                own = [result for result in results if result.world == place]
-                measures[index] = CellMeasure.of(own, shortest)
+                # A cell is world ``place`` of the batch and the one world of its summary.
+                own = [replace(result, world=0) for result in results if result.world == place]
+                measures[index] = summarise(own, shortest, run.events)
     return [measures[index] for index in range(len(settings))]

@@ -23,13 +23,13 @@ are in [0, 1]. The JSON holds no time or host, so the same study gives the same 
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field
 from typing import Any
 
 from mazesim.errors import InvalidArgumentError, PolicyFormatError
 from mazesim.learn.schema import ListOf, Node, Number, Record, Text, Whole
+from mazesim.learn.summary import Summary
 from mazesim.transfer.axes import AXIS_NAMES, Axis, Level, Setting
-from mazesim.transfer.cells import CellMeasure
 
 __all__ = ["FORMAT", "STUDY_SCHEMA", "VERSION", "Cell", "StudyResult", "check_study_json"]
 
@@ -41,15 +41,24 @@ VERSION = 1
 
 @dataclass
 class Cell:
-    """A setting and what its episodes measured."""
+    """A setting and what its episodes measured (the evaluator's :class:`Summary`)."""
 
     setting: Setting
-    measure: CellMeasure
+    measure: Summary
 
     def as_json(self) -> dict[str, Any]:
-        """The cell as the JSON's CELL object."""
-        return {"setting": self.setting.as_json(), "label": self.setting.label(),
-                **asdict(self.measure)}  # fmt: skip
+        """The cell as the JSON's CELL object: the summary under the study's documented keys."""
+        measure = self.measure
+        return {
+            "setting": self.setting.as_json(),
+            "label": self.setting.label(),
+            "episodes": measure.episodes,
+            "success_rate": measure.success_rate,
+            "contacts_per_episode": measure.mean_collisions,
+            "collision_free_rate": measure.collision_free_rate,
+            "path_ratio": measure.mean_path_ratio,
+            "mean_steps": measure.mean_steps,
+        }
 
 
 @dataclass

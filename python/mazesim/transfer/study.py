@@ -76,8 +76,8 @@ def _harshness(place: int, cell: Cell) -> tuple[float, float, float, int]:
     """Orders an axis's cells harshest first: the lowest success, then the most contacts, then
     the longest paths, then the later level (levels are listed from mild to harsh)."""
     measure = cell.measure
-    path = math.inf if measure.path_ratio is None else measure.path_ratio
-    return (measure.success_rate, -measure.contacts_per_episode, -path, -place)
+    path = math.inf if measure.mean_path_ratio is None else measure.mean_path_ratio
+    return (measure.success_rate, -measure.mean_collisions, -path, -place)
 
 
 def single_settings(axes: Sequence[Axis]) -> list[Setting]:

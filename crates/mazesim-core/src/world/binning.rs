@@ -6,6 +6,44 @@
 
 use super::geometry::Bounds;
 
+/// Side of a look-up bin in metres: a few e-puck diameters; a barcode's bars share a bin or two,
+/// and a 5 x 5 maze's grid stays under 200 bins (under a kilobyte of offsets).
+pub(super) const BIN: f64 = 0.1;
+
+/// At most this many bins: a world spread over kilometres gets coarser bins, not a huge grid.
+const MAX_BINS: f64 = 262_144.0;
+
+/// Side of the bins for a grid over `bounds` (walls, floor paint): [`BIN`], or larger for very
+/// large worlds.
+fn bin_side(bounds: Bounds) -> f64 {
+    let w = bounds.max[0] - bounds.min[0];
+    let h = bounds.max[1] - bounds.min[1];
+    BIN.max((w * h / MAX_BINS).sqrt())
+        .max(w / 4096.0)
+        .max(h / 4096.0)
+}
+
+/// The look-up grid over `bounds` (bins from `bounds.min`) of `items` items listed in every bin
+/// their box from `listed()` meets: the bins' side ([`bin_side`], doubled until the lists fit the
+/// budget of [`fitting_side`]) and the grid's columns and rows.
+pub(super) fn grid_over<I: Iterator<Item = Bounds>>(
+    bounds: Bounds,
+    items: usize,
+    listed: impl Fn() -> I,
+) -> (f64, usize, usize) {
+    let origin = bounds.min;
+    let grid = |bin: f64| {
+        let cols = ((bounds.max[0] - origin[0]) / bin) as usize + 1;
+        let rows = ((bounds.max[1] - origin[1]) / bin) as usize + 1;
+        (cols, rows)
+    };
+    let bin = fitting_side(bin_side(bounds), items, |bin| {
+        entries(listed(), origin, bin, grid(bin))
+    });
+    let (cols, rows) = grid(bin);
+    (bin, cols, rows)
+}
+
 /// Entries any grid may hold, at least: 4 Mi `u32` indices, 16 MiB.
 const LEAST_BUDGET: u64 = 1 << 22;
 

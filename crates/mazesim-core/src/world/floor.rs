@@ -21,22 +21,6 @@ pub struct PaintRegion {
     pub reflectance: f64,
 }
 
-/// Side of a look-up bin in metres: a barcode's bars share a bin or two, and a 5 x 5 maze's
-/// grid stays under 200 bins (under a kilobyte of offsets).
-const BIN: f64 = 0.1;
-
-/// At most this many bins: a world spread over kilometres gets coarser bins, not a huge grid.
-const MAX_BINS: f64 = 262_144.0;
-
-/// Side of the bins for a grid over `bounds`: `BIN`, or larger for very large worlds.
-fn bin_side(bounds: Bounds) -> f64 {
-    let w = bounds.max[0] - bounds.min[0];
-    let h = bounds.max[1] - bounds.min[1];
-    BIN.max((w * h / MAX_BINS).sqrt())
-        .max(w / 4096.0)
-        .max(h / 4096.0)
-}
-
 /// Regions are listed in every bin they come within this distance of (metres), so that a bin's
 /// list serves every point of a sensor spot centred in it (spots are a few millimetres wide).
 pub const SPOT_MARGIN: f64 = 0.005;
@@ -95,7 +79,7 @@ impl FloorPaint {
                 regions,
                 turns,
                 origin: [0.0, 0.0],
-                bin: BIN,
+                bin: binning::BIN,
                 cols: 0,
                 rows: 0,
                 bin_start: vec![0],
@@ -106,16 +90,9 @@ impl FloorPaint {
         // The grid covers every point within the margin of some paint.
         let covered = bounds.grown(SPOT_MARGIN);
         let origin = covered.min;
-        let grid = |bin: f64| {
-            let cols = ((covered.max[0] - origin[0]) / bin) as usize + 1;
-            let rows = ((covered.max[1] - origin[1]) / bin) as usize + 1;
-            (cols, rows)
-        };
-        let bin = binning::fitting_side(bin_side(covered), regions.len(), |bin| {
-            let listed = regions.iter().map(|r| r.shape.bounds().grown(SPOT_MARGIN));
-            binning::entries(listed, origin, bin, grid(bin))
+        let (bin, cols, rows) = binning::grid_over(covered, regions.len(), || {
+            regions.iter().map(|r| r.shape.bounds().grown(SPOT_MARGIN))
         });
-        let (cols, rows) = grid(bin);
         // The bins a region is listed in: those its bounds, grown by the margin, overlap.
         let bins_of = |r: &PaintRegion| {
             let b = r.shape.bounds().grown(SPOT_MARGIN);

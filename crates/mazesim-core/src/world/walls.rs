@@ -10,21 +10,6 @@ use super::binning;
 use super::geometry::{Bounds, WallBox};
 use super::nearby::Neighbourhoods;
 
-/// Side of a look-up bin in metres (a few e-puck diameters).
-const BIN: f64 = 0.1;
-
-/// At most this many bins: a world spread over kilometres gets coarser bins, not a huge grid.
-const MAX_BINS: f64 = 262_144.0;
-
-/// Side of the bins for a grid over `bounds`: `BIN`, or larger for very large worlds.
-fn bin_side(bounds: Bounds) -> f64 {
-    let w = bounds.max[0] - bounds.min[0];
-    let h = bounds.max[1] - bounds.min[1];
-    BIN.max((w * h / MAX_BINS).sqrt())
-        .max(w / 4096.0)
-        .max(h / 4096.0)
-}
-
 /// The walls of a world as parry2d shapes with a bin index.
 #[derive(Debug, Clone)]
 pub struct WallIndex {
@@ -136,7 +121,7 @@ impl WallIndex {
                 aligned_ordered,
                 reflectance,
                 origin: [0.0, 0.0],
-                bin: BIN,
+                bin: binning::BIN,
                 cols: 0,
                 rows: 0,
                 bin_start: vec![0],
@@ -145,16 +130,9 @@ impl WallIndex {
             };
         }
         let origin = bounds.min;
-        let grid = |bin: f64| {
-            let cols = ((bounds.max[0] - origin[0]) / bin) as usize + 1;
-            let rows = ((bounds.max[1] - origin[1]) / bin) as usize + 1;
-            (cols, rows)
-        };
-        let bin = binning::fitting_side(bin_side(bounds), walls.len(), |bin| {
-            let listed = walls.iter().map(|w| w.bounds().grown(1e-4));
-            binning::entries(listed, origin, bin, grid(bin))
+        let (bin, cols, rows) = binning::grid_over(bounds, walls.len(), || {
+            walls.iter().map(|w| w.bounds().grown(1e-4))
         });
-        let (cols, rows) = grid(bin);
         let mut bins: Vec<Vec<u32>> = vec![Vec::new(); cols * rows];
         for (i, w) in walls.iter().enumerate() {
             // Grow a little so that f32 rounding never drops a wall from a bin it touches.
