@@ -13,9 +13,13 @@ robot profiles (the ``robot`` axis's names). It is written inline,
     ir_angle = [-10.0, 10.0]      # degrees, as the study's levels
 
 Each range must lie within its axis's documented range. A name listed twice is drawn twice as
-often. :func:`sample_settings` draws one setting per env: its base profile from the named stream
-``randomise/robots``, each ranged axis uniformly in its range from ``randomise/profiles``, both of
-a seed and a round; :func:`sample_profiles` turns them into robot profiles
+often; an axis given several ranges (``wall_reflectance=0.2:0.4|0.2:1``, or
+``[[0.2, 0.4], [0.2, 1.0]]`` in the TOML) draws one of them, each as likely, then uniformly
+within it: a distribution weighted to one end.
+
+:func:`sample_settings` draws one setting per env: its base profile from the named stream
+``randomise/robots``, each ranged axis from ``randomise/profiles``, both of a seed and a round;
+:func:`sample_profiles` turns them into robot profiles
 (``EpisodeBatch(..., robot=sample_profiles(spec, num_envs, seed, round))`` when every env is of
 one base profile), and :func:`robot_draw` into a training run's robots, several base profiles
 as a :class:`~mazesim.learn.fleet.Fleet` whose robots read in the seed robot's volts, as the
@@ -80,12 +84,33 @@ def _robot_names(value: Any, where: str) -> tuple[str, ...]:
     return tuple(names)
 
 
+def _checked_range(name: str, pair: Any, where: str) -> tuple[float, float]:
+    """One ``[low, high]`` of axis ``name``, within its documented range."""
+    axis = axis_named(name)
+    numbers = list(pair) if isinstance(pair, (list, tuple)) else [pair]
+    if len(numbers) != 2 or not all(
+        isinstance(n, (int, float)) and not isinstance(n, bool) for n in numbers
+    ):
+        raise InvalidArgumentError(
+            f"{where}: {name}: expected a range of two numbers [low, high], found {pair!r}"
+        )
+    low, high = (float(axis.check(float(n))) for n in numbers)
+    if low > high:
+        raise InvalidArgumentError(
+            f"{where}: {name}: expected low <= high, found {low:g} > {high:g}"
+        )
+    return low, high
+
+
 @dataclass(frozen=True)
 class RandomisationSpec:
     """Ranges of the randomised axes.
 
     Attributes:
-        ranges: Each randomised axis and its ``(low, high)``, in the study's axis order.
+        ranges: Each randomised axis and its ``(low, high)``, in the study's axis order. An axis
+            listed with several ranges (one after the other) draws one of them, each as likely,
+            then uniformly within it: ``wall_reflectance`` as ``(0.2, 0.4)`` and ``(0.2, 1.0)``
+            draws five eighths of its values below 0.4.
         robots: The base robot profiles each env draws one of, uniformly (a name listed twice
             is drawn twice as often); empty for the seed robot alone.
     """
@@ -95,17 +120,17 @@ class RandomisationSpec:
 
     @staticmethod
     def of(ranges: Mapping[str, Any], where: str = "randomisation") -> RandomisationSpec:
-        """A spec from axis names and ``(low, high)`` pairs, each checked.
+        """A spec from axis names and ``(low, high)`` pairs (or lists of them), each checked.
 
         Raises:
             InvalidArgumentError: An axis that is not randomised, a range that is not two
                 numbers with ``low <= high``, or one outside the axis's documented range.
             UnknownNameError: An axis that does not exist, or a robot profile that does not.
         """
-        checked: dict[str, tuple[float, float]] = {}
+        checked: dict[str, list[tuple[float, float]]] = {}
         robots: tuple[str, ...] = ()
         for name, pair in ranges.items():
-            axis = axis_named(name)
+            axis_named(name)
             if name == ROBOT_AXIS:
                 robots = _robot_names(pair, where)
                 continue
@@ -114,29 +139,31 @@ class RandomisationSpec:
                     f"{where}: axis {name!r} is not a property of the robot profile; expected "
                     f"one of {', '.join(RANDOMISED_AXES)}"
                 )
-            numbers = list(pair) if isinstance(pair, (list, tuple)) else [pair]
-            if len(numbers) != 2 or not all(
-                isinstance(n, (int, float)) and not isinstance(n, bool) for n in numbers
-            ):
-                raise InvalidArgumentError(
-                    f"{where}: {name}: expected a range of two numbers [low, high], found {pair!r}"
-                )
-            low, high = (float(axis.check(float(n))) for n in numbers)
-            if low > high:
-                raise InvalidArgumentError(
-                    f"{where}: {name}: expected low <= high, found {low:g} > {high:g}"
-                )
-            checked[name] = (low, high)
+            several = isinstance(pair, (list, tuple)) and all(
+                isinstance(part, (list, tuple)) for part in pair
+            )
+            parts = list(pair) if several and pair else [pair]
+            checked[name] = [_checked_range(name, part, where) for part in parts]
         if not checked and not robots:
             raise InvalidArgumentError(f"{where}: expected at least one axis range, found none")
-        ordered = tuple((n, checked[n]) for n in AXIS_NAMES if n in checked)
+        ordered = tuple((n, span) for n in AXIS_NAMES if n in checked for span in checked[n])
         return RandomisationSpec(ordered, robots)
 
+    def axes(self) -> list[tuple[str, list[tuple[float, float]]]]:
+        """Each randomised axis once, with its ranges, in the study's axis order."""
+        grouped: dict[str, list[tuple[float, float]]] = {}
+        for name, span in self.ranges:
+            grouped.setdefault(name, []).append(span)
+        return list(grouped.items())
+
     def text(self) -> str:
-        """The spec inline, ``robot=a|b,axis=low:high,...`` in the study's axis order
+        """The spec inline, ``robot=a|b,axis=low:high|low:high,...`` in the study's axis order
         (:func:`parse_spec` reads it back as the same spec)."""
         parts = [f"{ROBOT_AXIS}={'|'.join(self.robots)}"] if self.robots else []
-        parts += [f"{name}={low!r}:{high!r}" for name, (low, high) in self.ranges]
+        parts += [
+            f"{name}=" + "|".join(f"{low!r}:{high!r}" for low, high in spans)
+            for name, spans in self.axes()
+        ]
         return ",".join(parts)
 
 
@@ -153,16 +180,20 @@ def _inline(text: str) -> dict[str, Any]:
         if name == ROBOT_AXIS and equals:
             ranges[name] = [robot.strip() for robot in bounds.split("|")]
             continue
-        low, colon, high = bounds.partition(":")
-        try:
-            values = [float(low), float(high)]
-        except ValueError:
-            values = []
-        if not equals or not colon or not all(math.isfinite(v) for v in values) or not values:
-            raise InvalidArgumentError(
-                f"randomisation: expected a TOML file or axis=low:high, found {part!r} in {text!r}"
-            )
-        ranges[name] = values
+        spans = []
+        for span in bounds.split("|"):
+            low, colon, high = span.partition(":")
+            try:
+                values = [float(low), float(high)]
+            except ValueError:
+                values = []
+            if not equals or not colon or not all(math.isfinite(v) for v in values) or not values:
+                raise InvalidArgumentError(
+                    f"randomisation: expected a TOML file or axis=low:high, found {part!r} in "
+                    f"{text!r}"
+                )
+            spans.append(values)
+        ranges[name] = spans[0] if len(spans) == 1 else spans
     return ranges
 
 
@@ -213,19 +244,27 @@ def sample_settings(
     arguments give the same settings; env ``i``'s does not depend on ``count``)."""
     if count < 1:
         raise InvalidArgumentError(f"expected at least one env, found {count}")
-    # One row of draws per env, filled in order: env i's row does not depend on ``count``.
-    unit = stream(seed, "randomise/profiles", round_index).random((count, len(spec.ranges)))
+    # One row of draws per env, a column per axis, filled in order: env i's row does not depend
+    # on ``count``. An axis of k ranges takes range floor(k u) and the rest of k u within it.
+    axes = spec.axes()
+    unit = stream(seed, "randomise/profiles", round_index).random((count, len(axes)))
     robots = [SEED_ROBOT] * count
     if spec.robots:
         picks = stream(seed, "randomise/robots", round_index).random(count) * len(spec.robots)
         robots = [spec.robots[min(int(pick), len(spec.robots) - 1)] for pick in picks]
+
+    def level(spans: list[tuple[float, float]], u: float) -> float:
+        place = min(int(u * len(spans)), len(spans) - 1)
+        low, high = spans[place]
+        return low + (high - low) * (u * len(spans) - place)
+
     return [
         Setting.of(
             {
                 **({} if robots[env] == SEED_ROBOT else {ROBOT_AXIS: robots[env]}),
                 **{
-                    name: low + (high - low) * float(unit[env, column])
-                    for column, (name, (low, high)) in enumerate(spec.ranges)
+                    name: level(spans, float(unit[env, column]))
+                    for column, (name, spans) in enumerate(axes)
                 },
             }
         )
