@@ -48,6 +48,8 @@ STREAMS: dict[str, tuple[int, int]] = {
     "transfer/link": (10, 0),
     # The perturbed robot of each env of a domain-randomised round (index: round).
     "randomise/profiles": (11, 1),
+    # The base robot profile of each env of a domain-randomised round (index: round).
+    "randomise/robots": (12, 1),
 }
 
 

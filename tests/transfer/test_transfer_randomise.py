@@ -97,3 +97,29 @@ def test_every_profile_axis_can_be_randomised() -> None:
     }  # fmt: skip
     with pytest.raises(InvalidArgumentError, match="at least one env"):
         sample_settings(parse_spec("slip=0:0.5"), 0, seed=0)
+
+
+def test_an_axis_of_several_ranges_draws_each_range_as_often(tmp_path: Path) -> None:
+    dark = parse_spec("wall_reflectance=0.2:0.4|0.2:1,slip=0:0.5")
+    path = tmp_path / "dark.toml"
+    path.write_text("[randomise]\nwall_reflectance = [[0.2, 0.4], [0.2, 1.0]]\nslip = [0, 0.5]\n")
+    assert parse_spec(path) == dark
+    assert parse_spec(dark.text()) == dark
+    assert dark.text() == "wall_reflectance=0.2:0.4|0.2:1.0,slip=0.0:0.5"
+    levels = np.array(
+        [s.get("wall_reflectance") for s in sample_settings(dark, 4000, seed=1, round_index=0)]
+    )
+    assert levels.min() >= 0.2 and levels.max() <= 1.0 and levels.max() > 0.9
+    # Half from [0.2, 0.4], half from [0.2, 1] (a quarter of which is below 0.4): 5/8 below.
+    assert 0.6 < float(np.mean(levels < 0.4)) < 0.65
+    # The other axes draw as they would without the second range.
+    plain = parse_spec("wall_reflectance=0.2:1,slip=0:0.5")
+    slips = [s.get("slip") for s in sample_settings(plain, 50, seed=1)]
+    assert [s.get("slip") for s in sample_settings(dark, 50, seed=1)] == slips
+
+
+def test_a_bad_range_among_several_is_named() -> None:
+    with pytest.raises(InvalidArgumentError, match=r"expected a level in \[0.05, 1\]"):
+        parse_spec("wall_reflectance=0.2:0.4|0.01:1")
+    with pytest.raises(InvalidArgumentError, match="expected a TOML file or axis=low:high"):
+        parse_spec("wall_reflectance=0.2:0.4|0.5")

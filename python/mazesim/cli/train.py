@@ -94,9 +94,9 @@ def register(commands: Any) -> None:
         "--randomise",
         metavar="SPEC",
         help="domain randomisation: each lower-level round's robots (and the higher level's) "
-        "are the seed robot perturbed at random within these ranges, inline "
-        "(wheel_radius=0.95:1.05,ir_angle=-10:10) or a TOML file with a [randomise] table; "
-        "see the transfer study's page",
+        "are the seed robot, or a base profile drawn from robot=name|name, perturbed at random "
+        "within these ranges, inline (robot=seed|e-puck,wheel_radius=0.95:1.05,ir_angle=-10:10) "
+        "or a TOML file with a [randomise] table; see the transfer study's page",
     )
     train.add_argument(
         "--tensorboard",

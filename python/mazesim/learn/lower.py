@@ -48,6 +48,7 @@ from mazesim.actions import ACTION_CODES
 from mazesim.batch import RobotBatch, RobotChoice
 from mazesim.learn import qlearning
 from mazesim.learn.discretise import NUM_STATES, observation_states
+from mazesim.learn.fleet import Fleet, FleetBatch
 from mazesim.learn.subtasks import (
     COLLISION_PENALTY,
     CONTROL_STEP_MS,
@@ -203,7 +204,8 @@ class LowerTrainer:
         settings: The run's settings.
         tables: Tables to continue from; fresh ones by default.
         threads: Worker threads of the batch (0: one per core); results do not depend on it.
-        robot: The robots (:data:`mazesim.batch.RobotChoice`), handed to the batch as given.
+        robot: The robots (:data:`mazesim.batch.RobotChoice`), handed to the batch as given, or
+            a :class:`~mazesim.learn.fleet.Fleet` of several base profiles.
     """
 
     def __init__(
@@ -211,7 +213,7 @@ class LowerTrainer:
         settings: LowerSettings,
         tables: LowerTables | None = None,
         threads: int = 0,
-        robot: RobotChoice = "seed",
+        robot: RobotChoice | Fleet = "seed",
     ) -> None:
         self.settings = settings
         self.tables = tables if tables is not None else LowerTables.zeros()
@@ -241,16 +243,22 @@ class LowerTrainer:
         self.first_leg = np.zeros(count)
         self.episode_steps = np.zeros(count, dtype=np.int64)
 
-    def use_robots(self, robot: RobotChoice) -> None:
+    def use_robots(self, robot: RobotChoice | Fleet) -> None:
         """Drives the next rounds with ``robot``: a fresh batch of those robots (every robot starts
         a fresh episode at a round's start, so nothing of the last round's batch is lost)."""
-        self.batch = RobotBatch(
-            self.mazes,
-            np.zeros(self.settings.num_envs, dtype=np.int64),
-            robot=robot,
-            control_step_ms=self.settings.control_step_ms,
-            threads=self.threads,
-        )
+        self.batch: RobotBatch | FleetBatch
+        if isinstance(robot, Fleet):
+            self.batch = FleetBatch(
+                self.mazes, robot, self.settings.control_step_ms, threads=self.threads
+            )
+        else:
+            self.batch = RobotBatch(
+                self.mazes,
+                np.zeros(self.settings.num_envs, dtype=np.int64),
+                robot=robot,
+                control_step_ms=self.settings.control_step_ms,
+                threads=self.threads,
+            )
         self.observations = self.batch.observations
         self.poses = self.batch.poses
         self.colliding = self.batch.colliding

@@ -34,7 +34,7 @@ import os
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import Field, asdict, dataclass, field, fields
-from typing import Any, Protocol
+from typing import Any, Protocol, Union
 
 from mazesim import load_world
 from mazesim._core import World
@@ -43,6 +43,7 @@ from mazesim.episodes import EpisodeResult, shortest_path_steps
 from mazesim.errors import InvalidArgumentError
 from mazesim.learn.baseline import train_flat
 from mazesim.learn.checkpoint import CHECKPOINT_FORMAT, Checkpoint
+from mazesim.learn.fleet import Fleet
 from mazesim.learn.higher import HigherLevel
 from mazesim.learn.higher_training import HigherTraining, train_higher
 from mazesim.learn.lower import LowerSettings, LowerTables, LowerTrainer, RoundStats
@@ -178,14 +179,20 @@ CurveFn = Callable[[str, dict[str, float]], None]
 #: Draws the robots of a randomised run as ``draw(round_index, count)``: the lower level's
 #: robots for each round (``round_index`` from 0), and the higher level's once, with
 #: ``round_index`` the lower level's number of rounds. The same arguments must give the same
-#: robots (a resumed run draws its rounds again).
-RobotDraw = Callable[[int, int], RobotChoice]
+#: robots (a resumed run draws its rounds again). A draw of several base profiles gives a
+#: :class:`~mazesim.learn.fleet.Fleet`; the higher level then trains with its ``higher`` robots.
+RobotDraw = Callable[[int, int], Union[RobotChoice, Fleet]]
 
 
-def _robots_of(robot: RobotChoice | RobotDraw, round_index: int, count: int) -> RobotChoice:
+def _robots_of(robot: RobotChoice | RobotDraw, round_index: int, count: int) -> RobotChoice | Fleet:
     if callable(robot):
         return robot(round_index, count)
     return robot
+
+
+def _higher_robots(robot: RobotChoice | RobotDraw, round_index: int, count: int) -> RobotChoice:
+    robots = _robots_of(robot, round_index, count)
+    return robots.higher if isinstance(robots, Fleet) else robots
 
 
 def _lower_point(summary: dict[str, Any], lower: LowerSettings) -> dict[str, float]:
@@ -295,7 +302,7 @@ def run_training(
         higher,
         threads=threads,
         progress=higher_progress,
-        robot=_robots_of(robot, rounds, higher.envs_per_world),
+        robot=_higher_robots(robot, rounds, higher.envs_per_world),
     )
     return TrainingRun(
         tables=tables,
