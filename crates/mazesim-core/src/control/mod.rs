@@ -6,6 +6,7 @@
 
 pub mod avoid_collision;
 pub mod braitenberg;
+pub mod door;
 pub mod random_wheels;
 pub mod tabular;
 
