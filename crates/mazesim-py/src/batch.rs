@@ -5,6 +5,7 @@ use std::sync::{Arc, Mutex};
 
 use mazesim_core::control::avoid_collision::EPUCK_MAX_SPEED;
 use mazesim_core::limits::{MAX_ENVS, MAX_THREADS};
+use mazesim_core::rollout::RunEnvs;
 use mazesim_core::{Batch, RunOptions, StepOutputs, World};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
@@ -16,6 +17,7 @@ use crate::errors::{invalid, IntoPy};
 use crate::guard::{enter, enter_detached};
 use crate::profile::RobotArg;
 use crate::run::{self, TabularArgs, Traces};
+use crate::subtasks::SubTaskArrays;
 use crate::world::{world_argument, PyWorld};
 
 /// N independent environments stepped together.
@@ -264,8 +266,9 @@ impl PyBatch {
     #[pyo3(signature = (steps, controller, observations, poses, colliding, crossings, *, seeds = None,
         max_episode_steps = IntArg::ZERO, end_at_goal = Flag::Value(false), end_at_crossing = Flag::Value(false), autoreset = Flag::Value(true), trace = None,
         table = None, allowed_actions = None, table_index = None, epsilon = Real::Number(0.0),
-        threshold = Real::Number(80.0), max_speed = Real::Number(EPUCK_MAX_SPEED), active = None, hold_spins = Flag::Value(false)),
-        text_signature = "($self, steps, controller, observations, poses, colliding, crossings, *, seeds=None, max_episode_steps=0, end_at_goal=False, end_at_crossing=False, autoreset=True, trace=None, table=None, allowed_actions=None, table_index=None, epsilon=0.0, threshold=80.0, max_speed=6.28, active=None, hold_spins=False)")]
+        threshold = Real::Number(80.0), max_speed = Real::Number(EPUCK_MAX_SPEED), active = None, hold_spins = Flag::Value(false),
+        subtasks = None),
+        text_signature = "($self, steps, controller, observations, poses, colliding, crossings, *, seeds=None, max_episode_steps=0, end_at_goal=False, end_at_crossing=False, autoreset=True, trace=None, table=None, allowed_actions=None, table_index=None, epsilon=0.0, threshold=80.0, max_speed=6.28, active=None, hold_spins=False, subtasks=None)")]
     fn run<'py>(
         &self,
         py: Python<'py>,
@@ -289,6 +292,7 @@ impl PyBatch {
         max_speed: Real,
         active: Option<&Bound<'py, PyAny>>,
         hold_spins: Flag,
+        subtasks: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         enter(|| {
             let n = self.n;
@@ -329,15 +333,23 @@ impl PyBatch {
                 .map(|a| copied::<bool>(a, "active", "bool", &[n]))
                 .transpose()?;
             let mut traces = Traces::new(trace, options.steps, n, self.width())?;
+            let mut subtask_arrays = subtasks.map(|s| SubTaskArrays::new(s, n)).transpose()?;
+            let mut states = subtask_arrays.as_ref().map(|a| a.states()).transpose()?;
             let mut buffers = Borrowed::new(self, observations, poses, colliding, crossings)?;
             let out = buffers.outputs()?;
             let trace = traces.slices();
-            let counters = enter_detached(py, || {
-                self.with(|b| {
-                    b.run_steps_of(&controller, &seeds, &options, active.as_deref(), out, trace)
-                })
-            })?;
-            run::counters_dict(py, counters)
+            let envs = RunEnvs {
+                active: active.as_deref(),
+                subtasks: states.as_deref_mut(),
+            };
+            let ran = enter_detached(py, || {
+                self.with(|b| b.run_steps_of(&controller, &seeds, &options, envs, out, trace))
+            });
+            // The states as far as the call got, even when it stopped with an error.
+            if let (Some(arrays), Some(states)) = (&mut subtask_arrays, &states) {
+                arrays.store(states);
+            }
+            run::counters_dict(py, ran?)
         })
     }
 

@@ -8,6 +8,7 @@
 use std::f64::consts::PI;
 
 use super::tabular::NUM_STATES;
+use crate::error::{Error, Result};
 
 /// Corridors and Corners: one phase, never ends by itself.
 pub const CORRIDOR: usize = 0;
@@ -19,6 +20,13 @@ pub const LEFT: usize = 2;
 pub const FORWARD: usize = 3;
 /// The sub-tasks.
 pub const NUM_SUBTASKS: usize = 4;
+/// Phases of each sub-task.
+pub const NUM_PHASES: [usize; NUM_SUBTASKS] = [1, 3, 3, 3];
+/// The most phases of any sub-task: the tables of a navigator's lower level are stacked as
+/// `NUM_SUBTASKS x MAX_PHASES` tables of the distance state, table `subtask * MAX_PHASES + phase`.
+pub const MAX_PHASES: usize = 3;
+/// The stacked tables of the four sub-tasks' phases.
+pub const NUM_TABLES: usize = NUM_SUBTASKS * MAX_PHASES;
 /// The heading change each sub-task aims at (radians, counter-clockwise positive).
 pub const TARGET_TURN: [f64; NUM_SUBTASKS] = [0.0, -PI / 2.0, PI / 2.0, 0.0];
 /// Control steps after which a door sub-task gives up.
@@ -132,6 +140,44 @@ impl SubTaskState {
         distance_state + NUM_STATES * self.phase
     }
 
+    /// The table of the stacked `NUM_TABLES` (see [`MAX_PHASES`]) the robot acts from.
+    pub fn table(&self) -> usize {
+        self.subtask * MAX_PHASES + self.phase
+    }
+
+    /// Checks a state given from outside (robot `env`'s): a known sub-task, a phase it has, a
+    /// finite odometry.
+    pub fn check(&self, env: usize) -> Result<()> {
+        if self.subtask >= NUM_SUBTASKS {
+            return Err(Error::InvalidArgument(format!(
+                "expected sub-task numbers in 0..{NUM_SUBTASKS}, found {} for environment {env}",
+                self.subtask
+            )));
+        }
+        let phases = NUM_PHASES[self.subtask];
+        if self.phase >= phases {
+            return Err(Error::InvalidArgument(format!(
+                "expected phases in 0..{phases} for sub-task {}, found {} for environment {env}",
+                self.subtask, self.phase
+            )));
+        }
+        let odometry = [
+            ("start", self.start[0]),
+            ("start", self.start[1]),
+            ("start", self.start[2]),
+            ("previous_yaw", self.previous_yaw),
+            ("heading_change", self.heading_change),
+            ("turn_point", self.turn_point[0]),
+            ("turn_point", self.turn_point[1]),
+        ];
+        match odometry.iter().find(|(_, value)| !value.is_finite()) {
+            Some((name, value)) => Err(Error::InvalidArgument(format!(
+                "expected a finite sub-task {name}, found {value} for environment {env}"
+            ))),
+            None => Ok(()),
+        }
+    }
+
     /// Follows one control step that ended at `pose`, as `SubTaskTracker.update` does.
     pub fn update(&mut self, pose: [f32; 3]) -> SubTaskEnd {
         let [x, y, yaw] = pose.map(f64::from);
@@ -214,6 +260,34 @@ mod tests {
         assert_eq!(task.update([0.0, -0.05, -1.5]), SubTaskEnd::Running);
         assert_eq!(task.update([0.0, -0.09, -1.55]), SubTaskEnd::Done);
         assert_eq!(task.table_row(7), 7 + 2 * NUM_STATES);
+        assert_eq!(task.table(), RIGHT * MAX_PHASES + 2);
+    }
+
+    #[test]
+    fn states_from_outside_are_checked() {
+        let task = SubTaskState::begin(LEFT, [0.0, 0.0, 0.0]);
+        assert!(task.check(0).is_ok());
+        let unknown = SubTaskState { subtask: 4, ..task };
+        assert!(unknown
+            .check(3)
+            .unwrap_err()
+            .to_string()
+            .contains("environment 3"));
+        let corridor_phase = SubTaskState {
+            subtask: CORRIDOR,
+            phase: 1,
+            ..task
+        };
+        assert!(corridor_phase.check(0).is_err());
+        let lost = SubTaskState {
+            heading_change: f64::NAN,
+            ..task
+        };
+        let err = lost.check(5).unwrap_err().to_string();
+        assert!(
+            err.contains("heading_change") && err.contains("NaN"),
+            "{err}"
+        );
     }
 
     #[test]
