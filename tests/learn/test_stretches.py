@@ -138,9 +138,17 @@ def test_what_stretches_cannot_run_is_refused() -> None:
     )
     truth = EpisodeBatch([world], num_envs=1)
     robust = EpisodeBatch([world], num_envs=1, events="robust")
+    seed = mazesim.RobotProfile.builtin("seed")
+    faster = mazesim.RobotProfile.from_toml(
+        seed.to_toml().replace(f"max_wheel_speed = {seed.max_wheel_speed}", "max_wheel_speed = 7.5")
+    )
+    assert faster.max_wheel_speed == 7.5
+    mixed = EpisodeBatch([world], num_envs=2, robot=[seed, faster])
     assert stretches_apply(truth, greedy)
+    assert stretches_apply(EpisodeBatch([world], num_envs=2, robot=[seed, seed]), greedy)
     assert not stretches_apply(robust, greedy)
     assert not stretches_apply(truth, exploring)
+    assert not stretches_apply(mixed, greedy)
     with pytest.raises(InvalidArgumentError, match="ground truth"):
         run_navigator_episodes(robust, greedy, 1)
     with pytest.raises(InvalidArgumentError, match="at least 1 step"):

@@ -41,11 +41,13 @@ STRETCH_STEPS = 256
 
 def stretches_apply(nav: EpisodeBatch, navigator: object) -> bool:
     """Whether :func:`run_navigator_episodes` can run ``navigator``'s episodes in ``nav``: a
-    :class:`HierarchicalPolicy` choosing greedily, with events from the ground truth."""
+    :class:`HierarchicalPolicy` choosing greedily, with events from the ground truth, on robots
+    of one motor limit (the per-step loop drives every robot at the first one's fractions)."""
     return (
         type(navigator) is HierarchicalPolicy
         and navigator.chooser is None
         and nav.events_from == "truth"
+        and nav.batch.one_motor_limit
     )
 
 
@@ -71,13 +73,14 @@ def run_navigator_episodes(
         The results, in order of episode number, with the decisions of each episode.
 
     Raises:
-        InvalidArgumentError: Events from the decoder, a navigator that explores, or a
-            stretch of fewer than one step.
+        InvalidArgumentError: Events from the decoder, a navigator that explores, robots of
+            different motor limits, or a stretch of fewer than one step.
     """
     if not stretches_apply(nav, policy):
         raise InvalidArgumentError(
-            "expected a greedy HierarchicalPolicy and events from the ground truth, found "
-            f"a {type(policy).__name__} with events from {nav.events_from!r}"
+            "expected a greedy HierarchicalPolicy, events from the ground truth and robots of "
+            f"one motor limit, found a {type(policy).__name__} with events from "
+            f"{nav.events_from!r} and one_motor_limit={nav.batch.one_motor_limit}"
         )
     if stretch_steps < 1:
         raise InvalidArgumentError(f"expected a stretch of at least 1 step, found {stretch_steps}")
