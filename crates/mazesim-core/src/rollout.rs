@@ -13,7 +13,7 @@ use std::ops::Range;
 use std::sync::Arc;
 use std::time::Instant;
 
-use crate::batch::{Row, CHUNK_ENVS, INTERRUPT_POLL};
+use crate::batch::{CHUNK_ENVS, INTERRUPT_POLL};
 use crate::control::door::{self, SubTaskEnd, SubTaskState};
 use crate::control::Controller;
 use crate::error::{Error, Result};
@@ -341,51 +341,33 @@ impl Batch {
         let width = self.observation_width();
         let robot = self.envs()[0].robot().clone();
         let steps = options.steps;
-        let StepOutputs {
-            observations,
-            poses,
-            colliding,
-            crossings,
-        } = out;
+        let dw = robot.distance_sensors.len();
+        let mut out = out;
         let mut trace = trace;
         let mut first = 0;
         let mut polled = Instant::now();
         loop {
             let block = BLOCK_STEPS.min(steps - first);
             let traced = trace.chunk_rows(first..first + block, n, width);
-            let (obs, pos, col, cro) = (
-                &mut *observations,
-                &mut *poses,
-                &mut *colliding,
-                &mut *crossings,
-            );
+            let outputs = out.reborrow();
             let (streams, counts) = (&mut *streams, &mut *counts);
-            let dw = robot.distance_sensors.len();
             let chunks = chunks_of(move |envs| {
                 envs.chunks_mut(CHUNK_ENVS)
                     .zip({ streams }.chunks_mut(CHUNK_ENVS))
                     .zip({ counts }.chunks_mut(CHUNK_ENVS))
-                    .zip({ obs }.chunks_mut(CHUNK_ENVS * width))
-                    .zip({ pos }.chunks_mut(CHUNK_ENVS * 3))
-                    .zip({ col }.chunks_mut(CHUNK_ENVS))
-                    .zip({ cro }.chunks_mut(CHUNK_ENVS))
+                    .zip(outputs.chunks(width))
                     .zip(traced)
                     .enumerate()
             });
             self.par_chunks(chunks, |chunk, stop| {
-                let (k, (((((((envs, streams), counts), obs), pos), col), cro), mut rows)) = chunk;
+                let (k, ((((envs, streams), counts), outputs), mut rows)) = chunk;
                 let per_env = envs
                     .iter_mut()
                     .zip(streams.iter_mut())
                     .zip(counts.iter_mut())
-                    .zip(obs.chunks_mut(width))
-                    .zip(pos.chunks_mut(3))
-                    .zip(col.iter_mut())
-                    .zip(cro.iter_mut())
+                    .zip(outputs.rows(width, dw))
                     .enumerate();
-                for (j, ((((((env, stream), count), observation), pose), colliding), crossing)) in
-                    per_env
-                {
+                for (j, (((env, stream), count), row)) in per_env {
                     if stop() {
                         return;
                     }
@@ -395,13 +377,6 @@ impl Batch {
                             controller, options, index, env, stream, count, &mut rows, s, j,
                         );
                     }
-                    let row = Row {
-                        observation,
-                        distance_width: dw,
-                        pose,
-                        colliding,
-                        crossing,
-                    };
                     row.write(env);
                 }
             })?;

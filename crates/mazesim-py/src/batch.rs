@@ -42,6 +42,20 @@ impl PyBatch {
         f(&mut guard)
     }
 
+    /// Runs `work` on the batch with the four output buffers (observations, poses, colliding,
+    /// crossings) borrowed and checked, the GIL released.
+    fn with_outputs<'py, T: Send>(
+        &self,
+        py: Python<'py>,
+        buffers: [&Bound<'py, PyAny>; 4],
+        work: impl FnOnce(&mut Batch, StepOutputs<'_>) -> mazesim_core::Result<T> + Send,
+    ) -> PyResult<T> {
+        let [observations, poses, colliding, crossings] = buffers;
+        let mut borrowed = Borrowed::new(self, observations, poses, colliding, crossings)?;
+        let out = borrowed.outputs()?;
+        enter_detached(py, || self.with(|b| work(b, out)))
+    }
+
     /// One value per environment as a numpy array.
     fn per_env<'py, T: numpy::Element>(
         &self,
@@ -254,9 +268,8 @@ impl PyBatch {
     ) -> PyResult<()> {
         enter(|| {
             let actions = copied::<f32>(actions, "actions", "float32", &[self.n, 2])?;
-            let mut buffers = Borrowed::new(self, observations, poses, colliding, crossings)?;
-            let out = buffers.outputs()?;
-            enter_detached(py, || self.with(|b| b.step(&actions, out)))
+            let buffers = [observations, poses, colliding, crossings];
+            self.with_outputs(py, buffers, |b, out| b.step(&actions, out))
         })
     }
 
@@ -335,15 +348,14 @@ impl PyBatch {
             let mut traces = Traces::new(trace, options.steps, n, self.width())?;
             let mut subtask_arrays = subtasks.map(|s| SubTaskArrays::new(s, n)).transpose()?;
             let mut states = subtask_arrays.as_ref().map(|a| a.states()).transpose()?;
-            let mut buffers = Borrowed::new(self, observations, poses, colliding, crossings)?;
-            let out = buffers.outputs()?;
             let trace = traces.slices();
             let envs = RunEnvs {
                 active: active.as_deref(),
                 subtasks: states.as_deref_mut(),
             };
-            let ran = enter_detached(py, || {
-                self.with(|b| b.run_steps_of(&controller, &seeds, &options, envs, out, trace))
+            let buffers = [observations, poses, colliding, crossings];
+            let ran = self.with_outputs(py, buffers, |b, out| {
+                b.run_steps_of(&controller, &seeds, &options, envs, out, trace)
             });
             // The states as far as the call got, even when it stopped with an error.
             if let (Some(arrays), Some(states)) = (&mut subtask_arrays, &states) {
@@ -372,10 +384,9 @@ impl PyBatch {
             let seeds = seeds
                 .map(|s| copied::<u64>(s, "seeds", "uint64", &[self.n]))
                 .transpose()?;
-            let mut buffers = Borrowed::new(self, observations, poses, colliding, crossings)?;
-            let out = buffers.outputs()?;
             let (m, s) = (mask.as_deref(), seeds.as_deref());
-            enter_detached(py, || self.with(|b| b.reset(m, s, out)))
+            let buffers = [observations, poses, colliding, crossings];
+            self.with_outputs(py, buffers, |b, out| b.reset(m, s, out))
         })
     }
 
@@ -389,9 +400,8 @@ impl PyBatch {
         crossings: &Bound<'py, PyAny>,
     ) -> PyResult<()> {
         enter(|| {
-            let mut buffers = Borrowed::new(self, observations, poses, colliding, crossings)?;
-            let out = buffers.outputs()?;
-            enter_detached(py, || self.with(|b| b.observe(out)))
+            let buffers = [observations, poses, colliding, crossings];
+            self.with_outputs(py, buffers, |b, out| b.observe(out))
         })
     }
 
