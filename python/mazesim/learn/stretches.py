@@ -35,7 +35,7 @@ from mazesim.learn.subtasks import MAX_PHASES, NUM_SUBTASKS, SUBTASK_ACTIONS
 
 __all__ = ["STRETCH_STEPS", "run_navigator_episodes", "stretches_apply"]
 
-#: Control steps the core drives a corridor robot in one call at most.
+#: Control steps the core drives a robot in one call at most.
 STRETCH_STEPS = 256
 
 
@@ -58,8 +58,9 @@ def run_navigator_episodes(
     on_end: Callable[[npt.NDArray[np.int64], npt.NDArray[np.bool_]], None] | None = None,
     stretch_steps: int = STRETCH_STEPS,
 ) -> list[EpisodeResult]:
-    """Runs ``episodes_per_world`` greedy episodes of ``policy`` in each world of ``nav``, the
-    corridor stretches in the core; the results equal :func:`mazesim.episodes.run_episodes`'s.
+    """Runs ``episodes_per_world`` greedy episodes of ``policy`` in each world of ``nav``, each
+    robot in the core from one checkpoint event to the next; the results equal
+    :func:`mazesim.episodes.run_episodes`'s.
 
     Args:
         nav: The robots and their worlds (events from the ground truth).
@@ -67,7 +68,7 @@ def run_navigator_episodes(
         episodes_per_world: Episodes to run in each world.
         on_end: Called with the robots whose episode ended and whether each arrived, before new
             episodes start on them.
-        stretch_steps: Control steps of a corridor stretch in one call at most.
+        stretch_steps: Control steps of a robot in one call at most.
 
     Returns:
         The results, in order of episode number, with the decisions of each episode.
