@@ -122,6 +122,7 @@ def samples(tmp: Path) -> dict[str, Any]:
         "max_speed": 6.28,
         "active": None,
         "hold_spins": False,
+        "subtasks": None,
         "snapshot": {"restore": simulator.snapshot(), "restore_env": batch.snapshot_env(0)},
         "wheel_radius_scale": 1.05,
         "axle_length_scale": 0.95,

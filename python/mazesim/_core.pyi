@@ -368,6 +368,7 @@ class BatchSimulator:
         max_speed: float = 6.28,
         active: npt.NDArray[np.bool_] | None = None,
         hold_spins: bool = False,
+        subtasks: dict[str, npt.NDArray[Any]] | None = None,
     ) -> dict[str, npt.NDArray[np.uint64]]:
         """Runs ``steps`` control steps of every env in one call, the GIL released, each env's
         wheel speeds chosen in the core by a built-in controller.
@@ -415,11 +416,25 @@ class BatchSimulator:
                 (as an env whose episode ended does, its stream untouched). All by default.
             hold_spins: The tabular controller keeps turning on the spot the way an env's last
                 step turned (action ``aa`` or ``bb``, read from its wheel speeds) rather than
-                turn back (``mazesim.learn.policy.hold_spins``).
+                turn back (``mazesim.learn.policy.hold_spins``); with ``subtasks``, in Corridors
+                and Corners only.
+            subtasks: The navigator's running sub-task of each env, the arrays of
+                :class:`mazesim.learn.subtasks.SubTaskTracker` by key (``subtask``, ``steps``
+                and ``phase`` (N,) int64, ``start`` (N, 3), ``previous_yaw`` and
+                ``heading_change`` (N,), ``turn_point`` (N, 2) float64), read and written in
+                place. The tabular controller then takes ``table`` as the 12 stacked tables of
+                the sub-tasks' phases ``(12, 4096, 12)`` (no ``table_index``), acts from table
+                ``3 * subtask + phase`` and follows the odometry after every step as
+                :meth:`~mazesim.learn.subtasks.SubTaskTracker.update` does; a door sub-task that
+                ends (or gives up) hands over to Corridors and Corners there. The states are
+                taken as left after following the last step and left with the call's last step
+                not yet followed (as :meth:`mazesim.learn.policy.HierarchicalPolicy.act`
+                follows it); an env reset by ``autoreset`` begins Corridors and Corners.
 
         Returns:
             (N,) uint64 counters of the call: ``steps``, ``steps_in_contact``,
-            ``episodes_finished`` and ``goals_reached``.
+            ``episodes_finished``, ``goals_reached`` and, with ``subtasks``, the door sub-tasks
+            that reached their end (``subtasks_done``) or gave up (``subtasks_given_up``).
         """
     def reset(
         self,

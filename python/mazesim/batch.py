@@ -71,6 +71,8 @@ class RobotBatch:
     Attributes:
         profile: The first robot's profile (every robot has its sensors); the discrete actions'
             wheel speeds are fractions of its motor limit.
+        one_motor_limit: Whether every robot has the first's motor limit (the core's tabular
+            controller takes the fractions of each robot's own).
         observations: (N, observation_width) float32: distance sensors, then ground sensors.
         poses: (N, 3) float32 x, y, yaw.
         colliding: (N,) bool, in contact with a wall.
@@ -114,6 +116,10 @@ class RobotBatch:
             threads=threads,
         )
         self.profile = first_profile(robot)
+        robots = [robot] if isinstance(robot, (str, RobotProfile)) else list(robot)
+        self.one_motor_limit = all(
+            first_profile(each).max_wheel_speed == self.profile.max_wheel_speed for each in robots
+        )
         self.wheel_speeds = (WHEEL_SPEED_FRACTIONS * self.profile.max_wheel_speed).astype(
             np.float32
         )

@@ -3,6 +3,8 @@ what one step at a time gives (:mod:`mazesim.learn.stretches`)."""
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 import pytest
 
@@ -35,13 +37,21 @@ def test_a_corridor_robot_keeps_its_turn_on_the_spot() -> None:
     )
 
 
-@pytest.mark.parametrize("stretch_steps", [1, 256])
+@pytest.mark.parametrize(
+    ("stretch_steps", "seed", "threads", "robots_per_world"),
+    [(1, 9, 1, 2), (256, 9, 2, 2), (256, 4, 1, 5), (37, 4, 2, 5)],
+)
 def test_stretches_equal_single_steps_in_unseen_mazes(
-    stretch_steps: int, monkeypatch: pytest.MonkeyPatch
+    stretch_steps: int,
+    seed: int,
+    threads: int,
+    robots_per_world: int,
+    monkeypatch: pytest.MonkeyPatch,
 ) -> None:
     """Random higher-level values (so every sub-task runs), a checkpoint the higher level does
     not know (its events are ignored), a short step limit (so some episodes fail), fewer
-    robots than episodes (robots wait with none left), and turns on the spot held."""
+    robots than episodes (robots wait with none left), and turns on the spot held; two seeds,
+    one and two threads, two batch sizes."""
     held = [0]
 
     def counting(actions: np.ndarray, previous: np.ndarray, where: np.ndarray) -> np.ndarray:
@@ -56,11 +66,20 @@ def test_stretches_equal_single_steps_in_unseen_mazes(
     ids = [checkpoint_ids(world)[1:] for world in worlds]
     values = np.random.default_rng(6).normal(size=HigherLevel(ids).q.shape)
     level = HigherLevel(ids, q=values)
-    world_of_env = np.repeat(np.arange(3), 2)
+    world_of_env = np.repeat(np.arange(3), robots_per_world)
     results = []
+    calls = []
     for multi in (True, False):
-        nav = EpisodeBatch(worlds, world_of_env, seed=9, max_steps=2500, threads=1)
+        nav = EpisodeBatch(worlds, world_of_env, seed=seed, max_steps=2500, threads=threads)
         policy = HierarchicalPolicy(shipped.lower_q, level, world_of_env)
+        acts = [0]
+        act = policy.act
+
+        def counted(*args: Any, act: Any = act, acts: list[int] = acts) -> Any:
+            acts[0] += 1
+            return act(*args)
+
+        policy.act = counted  # type: ignore[method-assign]
         ends: list[bool] = []
 
         def on_end(robots: np.ndarray, arrived: np.ndarray, ends: list[bool] = ends) -> None:
@@ -73,6 +92,7 @@ def test_stretches_equal_single_steps_in_unseen_mazes(
                 nav, policy, 5, None, on_end, lambda policy=policy: decisions_of(policy)
             )
         results.append((got, sorted(ends)))
+        calls.append(acts[0])
     (fast, fast_ends), (slow, slow_ends) = results
     assert [r.episode for r in fast] == list(range(15))
     assert fast == slow
@@ -82,6 +102,10 @@ def test_stretches_equal_single_steps_in_unseen_mazes(
     assert any(arrived) and not all(arrived), "expected both ends of an episode to be covered"
     assert {option for r in fast for _, option in r.decisions} == {0, 1, 2, 3}
     assert held[0] > 0, "expected turns on the spot kept in the per-step loop"
+    if stretch_steps > 1:
+        # Door sub-tasks and corridors alike go many steps a call: one call a checkpoint event
+        # or so, where a door step used to cost a call of its own.
+        assert calls[0] * 8 < calls[1], calls
 
 
 def test_evaluation_is_the_same_either_way_with_trace_and_paths() -> None:
@@ -112,9 +136,17 @@ def test_what_stretches_cannot_run_is_refused() -> None:
     )
     truth = EpisodeBatch([world], num_envs=1)
     robust = EpisodeBatch([world], num_envs=1, events="robust")
+    seed = mazesim.RobotProfile.builtin("seed")
+    faster = mazesim.RobotProfile.from_toml(
+        seed.to_toml().replace(f"max_wheel_speed = {seed.max_wheel_speed}", "max_wheel_speed = 7.5")
+    )
+    assert faster.max_wheel_speed == 7.5
+    mixed = EpisodeBatch([world], num_envs=2, robot=[seed, faster])
     assert stretches_apply(truth, greedy)
+    assert stretches_apply(EpisodeBatch([world], num_envs=2, robot=[seed, seed]), greedy)
     assert not stretches_apply(robust, greedy)
     assert not stretches_apply(truth, exploring)
+    assert not stretches_apply(mixed, greedy)
     with pytest.raises(InvalidArgumentError, match="ground truth"):
         run_navigator_episodes(robust, greedy, 1)
     with pytest.raises(InvalidArgumentError, match="at least 1 step"):

@@ -231,6 +231,53 @@ pub struct StepOutputs<'a> {
     pub crossings: &'a mut [i32],
 }
 
+impl<'a> StepOutputs<'a> {
+    /// The same buffers, borrowed again for a shorter time.
+    pub(crate) fn reborrow(&mut self) -> StepOutputs<'_> {
+        StepOutputs {
+            observations: self.observations,
+            poses: self.poses,
+            colliding: self.colliding,
+            crossings: self.crossings,
+        }
+    }
+
+    /// The buffers cut into the rows of successive chunks of `CHUNK_ENVS` environments
+    /// (observations `width` wide).
+    pub(crate) fn chunks(self, width: usize) -> impl Iterator<Item = StepOutputs<'a>> + Send {
+        self.observations
+            .chunks_mut(CHUNK_ENVS * width)
+            .zip(self.poses.chunks_mut(CHUNK_ENVS * 3))
+            .zip(self.colliding.chunks_mut(CHUNK_ENVS))
+            .zip(self.crossings.chunks_mut(CHUNK_ENVS))
+            .map(
+                |(((observations, poses), colliding), crossings)| StepOutputs {
+                    observations,
+                    poses,
+                    colliding,
+                    crossings,
+                },
+            )
+    }
+
+    /// Each environment's row (observations `width` wide, the first `distance_width` of them
+    /// distance readings).
+    pub(crate) fn rows(self, width: usize, distance_width: usize) -> impl Iterator<Item = Row<'a>> {
+        self.observations
+            .chunks_mut(width)
+            .zip(self.poses.chunks_mut(3))
+            .zip(self.colliding.iter_mut())
+            .zip(self.crossings.iter_mut())
+            .map(move |(((observation, pose), colliding), crossing)| Row {
+                observation,
+                distance_width,
+                pose,
+                colliding,
+                crossing,
+            })
+    }
+}
+
 /// N environments stepped together.
 pub struct Batch {
     envs: Vec<Simulator>,
@@ -428,44 +475,19 @@ impl Batch {
     ) -> Result<()> {
         let width = self.observation_width();
         let dw = self.distance_width;
-        let StepOutputs {
-            observations,
-            poses,
-            colliding,
-            crossings,
-        } = out;
         let chunks = move |envs: &'a mut [Simulator]| {
-            // The braces move the output slices into the iterator (the closure runs once).
             envs.chunks_mut(CHUNK_ENVS)
-                .zip({ observations }.chunks_mut(CHUNK_ENVS * width))
-                .zip({ poses }.chunks_mut(CHUNK_ENVS * 3))
-                .zip({ colliding }.chunks_mut(CHUNK_ENVS))
-                .zip({ crossings }.chunks_mut(CHUNK_ENVS))
+                .zip(out.chunks(width))
                 .enumerate()
         };
-        self.par_chunks(chunks, |chunk, stop| {
-            let (k, ((((envs, obs), poses), colliding), crossings)) = chunk;
+        self.par_chunks(chunks, |(k, (envs, out)), stop| {
             for env in envs.iter() {
                 env.warm();
             }
-            let rows = envs
-                .iter_mut()
-                .zip(obs.chunks_mut(width))
-                .zip(poses.chunks_mut(3))
-                .zip(colliding.iter_mut())
-                .zip(crossings.iter_mut())
-                .enumerate();
-            for (j, ((((env, observation), pose), colliding), crossing)) in rows {
+            for (j, (env, row)) in envs.iter_mut().zip(out.rows(width, dw)).enumerate() {
                 if stop() {
                     return;
                 }
-                let row = Row {
-                    observation,
-                    distance_width: dw,
-                    pose,
-                    colliding,
-                    crossing,
-                };
                 f(k * CHUNK_ENVS + j, env, row);
             }
         })

@@ -13,7 +13,8 @@ use std::ops::Range;
 use std::sync::Arc;
 use std::time::Instant;
 
-use crate::batch::{Row, CHUNK_ENVS, INTERRUPT_POLL};
+use crate::batch::{CHUNK_ENVS, INTERRUPT_POLL};
+use crate::control::door::{self, SubTaskEnd, SubTaskState};
 use crate::control::Controller;
 use crate::error::{Error, Result};
 use crate::rng::{next_seed, Rng};
@@ -65,6 +66,23 @@ pub struct RunTrace<'a> {
     pub episode_ends: Option<&'a mut [bool]>,
 }
 
+/// Which environments a multi-step call moves, and the sub-tasks its tabular controller follows.
+#[derive(Default)]
+pub struct RunEnvs<'a> {
+    /// The environments that move (all when `None`); the others stand still for the whole call,
+    /// as an environment whose episode ended does, and their random streams are not drawn from.
+    pub active: Option<&'a [bool]>,
+    /// Each environment's running sub-task of the navigator's lower level (`None`: the tabular
+    /// controller acts from `table_of_env`). The tabular controller then acts from the table
+    /// of the sub-task's phase and follows the odometry after every step, as
+    /// `mazesim.learn.policy.HierarchicalPolicy.act` does: a door sub-task that ends (or gives
+    /// up) hands over to Corridors and Corners, which goes on. A state is taken as the caller
+    /// left it after following the last step (so the first step of a call follows nothing)
+    /// and is left the same way: the odometry has followed every step of the call but the last.
+    /// An environment reset by `autoreset` begins Corridors and Corners at its new pose.
+    pub subtasks: Option<&'a mut [SubTaskState]>,
+}
+
 /// What a multi-step call counted, per environment.
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct RunCounters {
@@ -76,6 +94,10 @@ pub struct RunCounters {
     pub episodes_finished: Vec<u64>,
     /// Episodes that ended at the goal.
     pub goals_reached: Vec<u64>,
+    /// Door sub-tasks that reached their end (with `RunEnvs::subtasks`).
+    pub subtasks_done: Vec<u64>,
+    /// Door sub-tasks that gave up: out of steps or turned round (with `RunEnvs::subtasks`).
+    pub subtasks_given_up: Vec<u64>,
 }
 
 /// One environment's counters, as the threads add to them.
@@ -89,6 +111,10 @@ struct Counts {
     in_contact: u64,
     finished: u64,
     at_goal: u64,
+    /// The running sub-task, when the call follows sub-tasks.
+    task: Option<SubTaskState>,
+    subtasks_done: u64,
+    subtasks_given_up: u64,
 }
 
 /// One chunk of environments' rows of each step of a block, per traced output (empty when not
@@ -212,25 +238,26 @@ impl Batch {
         out: StepOutputs<'_>,
         trace: RunTrace<'_>,
     ) -> Result<RunCounters> {
-        self.run_steps_of(controller, seeds, options, None, out, trace)
+        let envs = RunEnvs::default();
+        self.run_steps_of(controller, seeds, options, envs, out, trace)
     }
 
-    /// [`Batch::run_steps`] for the environments where `active` is true (all when `None`); the
-    /// others stand still for the whole call, as an environment whose episode ended does, and
-    /// their random streams are not drawn from. A caller that steps some environments one step
-    /// at a time (deciding in between) and others many steps at once runs both through this.
+    /// [`Batch::run_steps`] for the environments `envs.active` (all when `None`), the tabular
+    /// controller following `envs.subtasks` when given (see [`RunEnvs`]). A caller that
+    /// steps some environments one step at a time (deciding in between) and others many steps
+    /// at once runs both through this.
     pub fn run_steps_of(
         &mut self,
         controller: &Controller,
         seeds: &[u64],
         options: &RunOptions,
-        active: Option<&[bool]>,
+        envs: RunEnvs<'_>,
         out: StepOutputs<'_>,
         trace: RunTrace<'_>,
     ) -> Result<RunCounters> {
+        let RunEnvs { active, subtasks } = envs;
         let n = self.len();
         let width = self.observation_width();
-        let robot = self.envs()[0].robot().clone();
         let mut checked = std::collections::HashSet::new();
         for env in self.envs() {
             if checked.insert(Arc::as_ptr(env.rig())) {
@@ -262,57 +289,85 @@ impl Batch {
                 )));
             }
         }
+        if let Some(tasks) = &subtasks {
+            controller.check_subtasks()?;
+            if tasks.len() != n {
+                return Err(Error::InvalidArgument(format!(
+                    "expected one sub-task state per environment ({n}), found {}",
+                    tasks.len()
+                )));
+            }
+            for (i, task) in tasks.iter().enumerate() {
+                task.check(i)?;
+            }
+        }
         let mut counts: Vec<Counts> = (0..n)
             .map(|i| Counts {
                 held: active.is_some_and(|flags| !flags[i]),
+                task: subtasks.as_ref().map(|tasks| tasks[i]),
                 ..Counts::default()
             })
             .collect();
-        let StepOutputs {
-            observations,
-            poses,
-            colliding,
-            crossings,
-        } = out;
+        let stepped = self.run_blocks(controller, options, &mut streams, &mut counts, out, trace);
+        // The sub-tasks as far as they got, even when Ctrl-C stopped the call.
+        if let Some(tasks) = subtasks {
+            for (task, count) in tasks.iter_mut().zip(&counts) {
+                *task = count.task.unwrap_or(*task);
+            }
+        }
+        stepped?;
+        let counters = |f: fn(&Counts) -> u64| counts.iter().map(f).collect();
+        Ok(RunCounters {
+            steps: counters(|c| c.steps),
+            steps_in_contact: counters(|c| c.in_contact),
+            episodes_finished: counters(|c| c.finished),
+            goals_reached: counters(|c| c.at_goal),
+            subtasks_done: counters(|c| c.subtasks_done),
+            subtasks_given_up: counters(|c| c.subtasks_given_up),
+        })
+    }
+
+    /// The blocks of steps of a multi-step call, after its checks.
+    fn run_blocks(
+        &mut self,
+        controller: &Controller,
+        options: &RunOptions,
+        streams: &mut [Rng],
+        counts: &mut [Counts],
+        out: StepOutputs<'_>,
+        trace: RunTrace<'_>,
+    ) -> Result<()> {
+        let n = self.len();
+        let width = self.observation_width();
+        let robot = self.envs()[0].robot().clone();
+        let steps = options.steps;
+        let dw = robot.distance_sensors.len();
+        let mut out = out;
         let mut trace = trace;
         let mut first = 0;
         let mut polled = Instant::now();
         loop {
             let block = BLOCK_STEPS.min(steps - first);
             let traced = trace.chunk_rows(first..first + block, n, width);
-            let (obs, pos, col, cro) = (
-                &mut *observations,
-                &mut *poses,
-                &mut *colliding,
-                &mut *crossings,
-            );
-            let (streams, counts) = (&mut streams, &mut counts);
-            let dw = robot.distance_sensors.len();
+            let outputs = out.reborrow();
+            let (streams, counts) = (&mut *streams, &mut *counts);
             let chunks = chunks_of(move |envs| {
                 envs.chunks_mut(CHUNK_ENVS)
                     .zip({ streams }.chunks_mut(CHUNK_ENVS))
                     .zip({ counts }.chunks_mut(CHUNK_ENVS))
-                    .zip({ obs }.chunks_mut(CHUNK_ENVS * width))
-                    .zip({ pos }.chunks_mut(CHUNK_ENVS * 3))
-                    .zip({ col }.chunks_mut(CHUNK_ENVS))
-                    .zip({ cro }.chunks_mut(CHUNK_ENVS))
+                    .zip(outputs.chunks(width))
                     .zip(traced)
                     .enumerate()
             });
             self.par_chunks(chunks, |chunk, stop| {
-                let (k, (((((((envs, streams), counts), obs), pos), col), cro), mut rows)) = chunk;
+                let (k, ((((envs, streams), counts), outputs), mut rows)) = chunk;
                 let per_env = envs
                     .iter_mut()
                     .zip(streams.iter_mut())
                     .zip(counts.iter_mut())
-                    .zip(obs.chunks_mut(width))
-                    .zip(pos.chunks_mut(3))
-                    .zip(col.iter_mut())
-                    .zip(cro.iter_mut())
+                    .zip(outputs.rows(width, dw))
                     .enumerate();
-                for (j, ((((((env, stream), count), observation), pose), colliding), crossing)) in
-                    per_env
-                {
+                for (j, (((env, stream), count), row)) in per_env {
                     if stop() {
                         return;
                     }
@@ -322,13 +377,6 @@ impl Batch {
                             controller, options, index, env, stream, count, &mut rows, s, j,
                         );
                     }
-                    let row = Row {
-                        observation,
-                        distance_width: dw,
-                        pose,
-                        colliding,
-                        crossing,
-                    };
                     row.write(env);
                 }
             })?;
@@ -344,12 +392,7 @@ impl Batch {
                 }
             }
         }
-        Ok(RunCounters {
-            steps: counts.iter().map(|c| c.steps).collect(),
-            steps_in_contact: counts.iter().map(|c| c.in_contact).collect(),
-            episodes_finished: counts.iter().map(|c| c.finished).collect(),
-            goals_reached: counts.iter().map(|c| c.at_goal).collect(),
-        })
+        Ok(())
     }
 }
 
@@ -375,9 +418,13 @@ fn step_one(
     };
     let mut ended = false;
     if !standing {
+        if count.steps > 0 {
+            follow_subtask(count, env.pose());
+        }
         let max_speed = env.robot().max_wheel_speed;
         let last = env.wheel_speeds();
-        decision = controller.decide(index, env.distance_sensors(), last, max_speed, stream);
+        let task = count.task.as_ref();
+        decision = controller.decide(index, env.distance_sensors(), last, max_speed, stream, task);
         let [left, right] = decision.wheel_speeds;
         // The controllers give finite speeds, so a step cannot fail.
         let _ = env.step(left as f64, right as f64);
@@ -410,5 +457,22 @@ fn step_one(
     if ended && options.autoreset {
         let seed = next_seed(env.config().seed);
         env.reset(Some(seed));
+        if let Some(task) = &mut count.task {
+            *task = SubTaskState::begin(door::CORRIDOR, env.pose());
+        }
     }
+}
+
+/// Follows the step that ended at `pose` in the running sub-task, if any; a door sub-task that
+/// ends hands over to Corridors and Corners there.
+fn follow_subtask(count: &mut Counts, pose: [f32; 3]) {
+    let Some(task) = &mut count.task else {
+        return;
+    };
+    match task.update(pose) {
+        SubTaskEnd::Running => return,
+        SubTaskEnd::Done => count.subtasks_done += 1,
+        SubTaskEnd::GaveUp => count.subtasks_given_up += 1,
+    }
+    *task = SubTaskState::begin(door::CORRIDOR, pose);
 }

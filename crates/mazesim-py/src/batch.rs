@@ -5,6 +5,7 @@ use std::sync::{Arc, Mutex};
 
 use mazesim_core::control::avoid_collision::EPUCK_MAX_SPEED;
 use mazesim_core::limits::{MAX_ENVS, MAX_THREADS};
+use mazesim_core::rollout::RunEnvs;
 use mazesim_core::{Batch, RunOptions, StepOutputs, World};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
@@ -16,6 +17,7 @@ use crate::errors::{invalid, IntoPy};
 use crate::guard::{enter, enter_detached};
 use crate::profile::RobotArg;
 use crate::run::{self, TabularArgs, Traces};
+use crate::subtasks::SubTaskArrays;
 use crate::world::{world_argument, PyWorld};
 
 /// N independent environments stepped together.
@@ -38,6 +40,20 @@ impl PyBatch {
     fn with<T>(&self, f: impl FnOnce(&mut Batch) -> T) -> T {
         let mut guard = self.inner.lock().unwrap_or_else(|p| p.into_inner());
         f(&mut guard)
+    }
+
+    /// Runs `work` on the batch with the four output buffers (observations, poses, colliding,
+    /// crossings) borrowed and checked, the GIL released.
+    fn with_outputs<'py, T: Send>(
+        &self,
+        py: Python<'py>,
+        buffers: [&Bound<'py, PyAny>; 4],
+        work: impl FnOnce(&mut Batch, StepOutputs<'_>) -> mazesim_core::Result<T> + Send,
+    ) -> PyResult<T> {
+        let [observations, poses, colliding, crossings] = buffers;
+        let mut borrowed = Borrowed::new(self, observations, poses, colliding, crossings)?;
+        let out = borrowed.outputs()?;
+        enter_detached(py, || self.with(|b| work(b, out)))
     }
 
     /// One value per environment as a numpy array.
@@ -252,9 +268,8 @@ impl PyBatch {
     ) -> PyResult<()> {
         enter(|| {
             let actions = copied::<f32>(actions, "actions", "float32", &[self.n, 2])?;
-            let mut buffers = Borrowed::new(self, observations, poses, colliding, crossings)?;
-            let out = buffers.outputs()?;
-            enter_detached(py, || self.with(|b| b.step(&actions, out)))
+            let buffers = [observations, poses, colliding, crossings];
+            self.with_outputs(py, buffers, |b, out| b.step(&actions, out))
         })
     }
 
@@ -264,8 +279,9 @@ impl PyBatch {
     #[pyo3(signature = (steps, controller, observations, poses, colliding, crossings, *, seeds = None,
         max_episode_steps = IntArg::ZERO, end_at_goal = Flag::Value(false), end_at_crossing = Flag::Value(false), autoreset = Flag::Value(true), trace = None,
         table = None, allowed_actions = None, table_index = None, epsilon = Real::Number(0.0),
-        threshold = Real::Number(80.0), max_speed = Real::Number(EPUCK_MAX_SPEED), active = None, hold_spins = Flag::Value(false)),
-        text_signature = "($self, steps, controller, observations, poses, colliding, crossings, *, seeds=None, max_episode_steps=0, end_at_goal=False, end_at_crossing=False, autoreset=True, trace=None, table=None, allowed_actions=None, table_index=None, epsilon=0.0, threshold=80.0, max_speed=6.28, active=None, hold_spins=False)")]
+        threshold = Real::Number(80.0), max_speed = Real::Number(EPUCK_MAX_SPEED), active = None, hold_spins = Flag::Value(false),
+        subtasks = None),
+        text_signature = "($self, steps, controller, observations, poses, colliding, crossings, *, seeds=None, max_episode_steps=0, end_at_goal=False, end_at_crossing=False, autoreset=True, trace=None, table=None, allowed_actions=None, table_index=None, epsilon=0.0, threshold=80.0, max_speed=6.28, active=None, hold_spins=False, subtasks=None)")]
     fn run<'py>(
         &self,
         py: Python<'py>,
@@ -289,6 +305,7 @@ impl PyBatch {
         max_speed: Real,
         active: Option<&Bound<'py, PyAny>>,
         hold_spins: Flag,
+        subtasks: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         enter(|| {
             let n = self.n;
@@ -329,15 +346,22 @@ impl PyBatch {
                 .map(|a| copied::<bool>(a, "active", "bool", &[n]))
                 .transpose()?;
             let mut traces = Traces::new(trace, options.steps, n, self.width())?;
-            let mut buffers = Borrowed::new(self, observations, poses, colliding, crossings)?;
-            let out = buffers.outputs()?;
+            let mut subtask_arrays = subtasks.map(|s| SubTaskArrays::new(s, n)).transpose()?;
+            let mut states = subtask_arrays.as_ref().map(|a| a.states()).transpose()?;
             let trace = traces.slices();
-            let counters = enter_detached(py, || {
-                self.with(|b| {
-                    b.run_steps_of(&controller, &seeds, &options, active.as_deref(), out, trace)
-                })
-            })?;
-            run::counters_dict(py, counters)
+            let envs = RunEnvs {
+                active: active.as_deref(),
+                subtasks: states.as_deref_mut(),
+            };
+            let buffers = [observations, poses, colliding, crossings];
+            let ran = self.with_outputs(py, buffers, |b, out| {
+                b.run_steps_of(&controller, &seeds, &options, envs, out, trace)
+            });
+            // The states as far as the call got, even when it stopped with an error.
+            if let (Some(arrays), Some(states)) = (&mut subtask_arrays, &states) {
+                arrays.store(states);
+            }
+            run::counters_dict(py, ran?)
         })
     }
 
@@ -360,10 +384,9 @@ impl PyBatch {
             let seeds = seeds
                 .map(|s| copied::<u64>(s, "seeds", "uint64", &[self.n]))
                 .transpose()?;
-            let mut buffers = Borrowed::new(self, observations, poses, colliding, crossings)?;
-            let out = buffers.outputs()?;
             let (m, s) = (mask.as_deref(), seeds.as_deref());
-            enter_detached(py, || self.with(|b| b.reset(m, s, out)))
+            let buffers = [observations, poses, colliding, crossings];
+            self.with_outputs(py, buffers, |b, out| b.reset(m, s, out))
         })
     }
 
@@ -377,9 +400,8 @@ impl PyBatch {
         crossings: &Bound<'py, PyAny>,
     ) -> PyResult<()> {
         enter(|| {
-            let mut buffers = Borrowed::new(self, observations, poses, colliding, crossings)?;
-            let out = buffers.outputs()?;
-            enter_detached(py, || self.with(|b| b.observe(out)))
+            let buffers = [observations, poses, colliding, crossings];
+            self.with_outputs(py, buffers, |b, out| b.observe(out))
         })
     }
 

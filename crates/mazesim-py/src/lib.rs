@@ -12,6 +12,7 @@ mod guard;
 mod profile;
 mod run;
 mod simulator;
+mod subtasks;
 mod wbt;
 mod world;
 

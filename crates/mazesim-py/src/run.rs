@@ -194,19 +194,16 @@ impl<'py> Traces<'py> {
 /// The counters of a run as a dict of (N,) uint64 arrays.
 pub fn counters_dict<'py>(py: Python<'py>, counters: RunCounters) -> PyResult<Bound<'py, PyDict>> {
     let dict = PyDict::new(py);
-    dict.set_item("steps", PyArray1::from_vec(py, counters.steps))?;
-    dict.set_item(
-        "steps_in_contact",
-        PyArray1::from_vec(py, counters.steps_in_contact),
-    )?;
-    dict.set_item(
-        "episodes_finished",
-        PyArray1::from_vec(py, counters.episodes_finished),
-    )?;
-    dict.set_item(
-        "goals_reached",
-        PyArray1::from_vec(py, counters.goals_reached),
-    )?;
+    for (name, values) in [
+        ("steps", counters.steps),
+        ("steps_in_contact", counters.steps_in_contact),
+        ("episodes_finished", counters.episodes_finished),
+        ("goals_reached", counters.goals_reached),
+        ("subtasks_done", counters.subtasks_done),
+        ("subtasks_given_up", counters.subtasks_given_up),
+    ] {
+        dict.set_item(name, PyArray1::from_vec(py, values))?;
+    }
     Ok(dict)
 }
 

@@ -266,18 +266,19 @@ def evaluate(
     threads: int = 0,
     controller: str = "hrl",
     progress: Callable[[str, int, int], None] | None = None,
-    multi_step: bool = False,
+    multi_step: bool = True,
     robot: RobotChoice = "seed",
 ) -> Summary:
     """Runs greedy episodes of a navigator and measures them.
 
-    With ``multi_step``, a greedy :class:`~mazesim.learn.policy.HierarchicalPolicy` with events
-    from the ground truth runs its corridor stretches in the core's multi-step call
+    With ``multi_step`` (the default), a greedy
+    :class:`~mazesim.learn.policy.HierarchicalPolicy` with events from the ground truth runs in
+    the core's multi-step call from one checkpoint event to the next, door sub-tasks included
     (:func:`mazesim.learn.stretches.run_navigator_episodes`); the episodes to record (paths,
     trace, replay) then run once more, one step at a time. Any other navigator (a flat one, one
-    that wraps ``act``) and decoder events run one step at a time. The results are the same
-    either way; on seed-maze with 500 robots side by side one step at a time is the faster (the
-    door sub-tasks, half the steps, go one step per call either way), hence the default.
+    that wraps ``act``), robots of different motor limits and decoder events run one step at a
+    time. The results are the same either way; the multi-step call is the faster (see
+    ``docs/performance.md``).
 
     Args:
         make_navigator: Builds the navigator of the robots from their world numbers (a
@@ -293,7 +294,7 @@ def evaluate(
         threads: Worker threads of the batch.
         controller: The controller's name in the recorded run.
         progress: Called as ``progress("evaluate", episodes_done, episodes_total)``.
-        multi_step: Use the multi-step call where it applies; ``False`` (the default): one step
+        multi_step: Use the multi-step call where it applies (the default); ``False``: one step
             at a time.
         robot: The robots (:data:`mazesim.batch.RobotChoice`), handed to the batch as given.
 
@@ -398,7 +399,7 @@ def evaluate_navigator(
     threads: int = 0,
     spread: Spreader | None = None,
     progress: Callable[[str, int, int], None] | None = None,
-    multi_step: bool = False,
+    multi_step: bool = True,
     robot: RobotChoice = "seed",
 ) -> dict[str, Summary]:
     """Evaluates a saved navigator with checkpoint events from each source (it writes nothing).
@@ -413,9 +414,9 @@ def evaluate_navigator(
         progress: Called as ``progress(stage, done, total)``: ``"adapt"`` while the higher level
             learns unseen worlds, then ``"evaluate"`` (``"evaluate robust"`` for the second
             source) over the episodes.
-        multi_step: Run the corridor stretches in the core's multi-step call where it applies
-            (see :func:`evaluate`); ``False`` (the default): every episode one step at a time.
-            The results are the same.
+        multi_step: Run the episodes in the core's multi-step call where it applies (the
+            default; see :func:`evaluate`); ``False``: every episode one step at a time. The
+            results are the same.
         robot: The robots of the evaluation and of the higher level's adaptation
             (:data:`mazesim.batch.RobotChoice`), handed to the batches as given; the seed
             robot's only with ``spread``.

@@ -1,16 +1,17 @@
 """The navigator's episodes in stretches: the lower level driven by the core's multi-step call.
 
-Between two checkpoint events a robot in "Corridors and Corners" acts from one table on the
-distance state alone, which the core's ``tabular`` controller computes itself
-(:meth:`mazesim.BatchSimulator.run`). :func:`run_navigator_episodes` therefore lets the core
-drive each such robot for up to :data:`STRETCH_STEPS` control steps in one call, until it
-crosses a barcode, reaches the goal or runs out of steps; the higher level then decides in
-Python, as :meth:`~mazesim.learn.policy.HierarchicalPolicy.act` does at every step. A door
-sub-task reads its odometry phase after every step, so its robots go one step per call, from
-the table of their sub-task and phase; the corridor robots stand still meanwhile. The core
+Between two checkpoint events the navigator's lower level acts alone: a robot runs its sub-task
+from the sub-task's table on the distance state and the phase, and a door sub-task that ends
+hands over to "Corridors and Corners". The core's ``tabular`` controller does all of this
+itself when handed the sub-task tracker's arrays (:meth:`mazesim.BatchSimulator.run` with
+``subtasks``): it computes the distance state, follows each robot's odometry after every step
+as :meth:`~mazesim.learn.subtasks.SubTaskTracker.update` does (the same f64 operations), and
 keeps a corridor robot's turn on the spot as :func:`mazesim.learn.policy.hold_spins` does.
-Robots are independent (each draws only from its own noise stream), so a robot may run ahead of
-another.
+:func:`run_navigator_episodes` therefore lets the core drive each robot for up to
+:data:`STRETCH_STEPS` control steps in one call, until it crosses a barcode, reaches the goal or
+runs out of steps; the higher level then decides in Python, as
+:meth:`~mazesim.learn.policy.HierarchicalPolicy.act` does at every step. Robots are independent
+(each draws only from its own noise stream), so a robot may run ahead of another.
 
 Every episode ends as it does through :func:`mazesim.episodes.run_episodes` one step at a time:
 the same actions, steps, contacts, bumps and decisions, bit for bit (the tests compare both).
@@ -30,21 +31,23 @@ from mazesim.episodes import EpisodeBatch, EpisodeResult, EpisodeSchedule
 from mazesim.errors import InvalidArgumentError
 from mazesim.learn.discretise import NUM_STATES
 from mazesim.learn.policy import HierarchicalPolicy
-from mazesim.learn.subtasks import MAX_PHASES, NUM_SUBTASKS, SUBTASK_ACTIONS, SubTask
+from mazesim.learn.subtasks import MAX_PHASES, NUM_SUBTASKS, SUBTASK_ACTIONS
 
 __all__ = ["STRETCH_STEPS", "run_navigator_episodes", "stretches_apply"]
 
-#: Control steps the core drives a corridor robot in one call at most.
+#: Control steps the core drives a robot in one call at most.
 STRETCH_STEPS = 256
 
 
 def stretches_apply(nav: EpisodeBatch, navigator: object) -> bool:
     """Whether :func:`run_navigator_episodes` can run ``navigator``'s episodes in ``nav``: a
-    :class:`HierarchicalPolicy` choosing greedily, with events from the ground truth."""
+    :class:`HierarchicalPolicy` choosing greedily, with events from the ground truth, on robots
+    of one motor limit (the per-step loop drives every robot at the first one's fractions)."""
     return (
         type(navigator) is HierarchicalPolicy
         and navigator.chooser is None
         and nav.events_from == "truth"
+        and nav.batch.one_motor_limit
     )
 
 
@@ -55,8 +58,9 @@ def run_navigator_episodes(
     on_end: Callable[[npt.NDArray[np.int64], npt.NDArray[np.bool_]], None] | None = None,
     stretch_steps: int = STRETCH_STEPS,
 ) -> list[EpisodeResult]:
-    """Runs ``episodes_per_world`` greedy episodes of ``policy`` in each world of ``nav``, the
-    corridor stretches in the core; the results equal :func:`mazesim.episodes.run_episodes`'s.
+    """Runs ``episodes_per_world`` greedy episodes of ``policy`` in each world of ``nav``, each
+    robot in the core from one checkpoint event to the next; the results equal
+    :func:`mazesim.episodes.run_episodes`'s.
 
     Args:
         nav: The robots and their worlds (events from the ground truth).
@@ -64,24 +68,25 @@ def run_navigator_episodes(
         episodes_per_world: Episodes to run in each world.
         on_end: Called with the robots whose episode ended and whether each arrived, before new
             episodes start on them.
-        stretch_steps: Control steps of a corridor stretch in one call at most.
+        stretch_steps: Control steps of a robot in one call at most.
 
     Returns:
         The results, in order of episode number, with the decisions of each episode.
 
     Raises:
-        InvalidArgumentError: Events from the decoder, a navigator that explores, or a
-            stretch of fewer than one step.
+        InvalidArgumentError: Events from the decoder, a navigator that explores, robots of
+            different motor limits, or a stretch of fewer than one step.
     """
     if not stretches_apply(nav, policy):
         raise InvalidArgumentError(
-            "expected a greedy HierarchicalPolicy and events from the ground truth, found "
-            f"a {type(policy).__name__} with events from {nav.events_from!r}"
+            "expected a greedy HierarchicalPolicy, events from the ground truth and robots of "
+            f"one motor limit, found a {type(policy).__name__} with events from "
+            f"{nav.events_from!r} and one_motor_limit={nav.batch.one_motor_limit}"
         )
     if stretch_steps < 1:
         raise InvalidArgumentError(f"expected a stretch of at least 1 step, found {stretch_steps}")
-    # One table per (sub-task, phase): the core reads the distance state, the phase picks the
-    # table; "Corridors and Corners" has one phase and acts from table 0.
+    # One table per (sub-task, phase): the core reads the distance state, the sub-task and its
+    # phase pick the table ("Corridors and Corners" has one phase).
     tables = np.ascontiguousarray(
         policy.lower_q.reshape(NUM_SUBTASKS * MAX_PHASES, NUM_STATES, len(ACTION_CODES))
     )
@@ -92,45 +97,32 @@ def run_navigator_episodes(
     active = schedule.active
     schedule.start(np.arange(count))
     events = np.zeros(count, dtype=np.int64)
-    tracker = policy.tracker
     while np.any(active):
+        # The higher level at the events, and the odometry of the last step of each robot.
         policy.act(nav.observations, nav.poses, events)
         chosen = np.flatnonzero(policy.record.chosen >= 0)
         schedule.decide(chosen, policy.record.chosen[chosen], events)
-        table_index = tracker.subtask * MAX_PHASES + tracker.phase
-        door = active & (tracker.subtask != SubTask.CORRIDOR)
-        steps = np.zeros(count, dtype=np.int64)
-        contacts = np.zeros(count, dtype=np.int64)
-        goals = np.zeros(count, dtype=np.int64)
-        for robots, length, corridor in ((active & ~door, stretch_steps, True), (door, 1, False)):
-            if not robots.any():
-                continue
-            # Only the tables these robots act from go to the core (each call copies them).
-            used = np.unique(table_index[robots])
-            counters = batch.simulator.run(
-                length,
-                "tabular",
-                batch.observations,
-                batch.poses,
-                batch.colliding,
-                batch.crossings,
-                max_episode_steps=nav.max_steps,
-                end_at_goal=True,
-                end_at_crossing=True,
-                autoreset=False,
-                table=tables[used],
-                allowed_actions=allowed[used],
-                table_index=np.minimum(np.searchsorted(used, table_index), used.size - 1),
-                active=robots,
-                hold_spins=corridor,
-            )
-            steps += counters["steps"].astype(np.int64)
-            contacts += counters["steps_in_contact"].astype(np.int64)
-            goals += counters["goals_reached"].astype(np.int64)
-        nav.episode_steps += steps
-        nav.contact_steps += contacts
+        counters = batch.simulator.run(
+            stretch_steps,
+            "tabular",
+            batch.observations,
+            batch.poses,
+            batch.colliding,
+            batch.crossings,
+            max_episode_steps=nav.max_steps,
+            end_at_goal=True,
+            end_at_crossing=True,
+            autoreset=False,
+            table=tables,
+            allowed_actions=allowed,
+            active=active,
+            hold_spins=True,
+            subtasks=policy.tracker.arrays(),
+        )
+        nav.episode_steps += counters["steps"].astype(np.int64)
+        nav.contact_steps += counters["steps_in_contact"].astype(np.int64)
         nav.events[:] = batch.crossings
-        arrived = active & (goals > 0)
+        arrived = active & (counters["goals_reached"] > 0)
         out_of_time = active & ~arrived & (nav.episode_steps >= nav.max_steps)
         events = np.where(active, nav.events, 0)
         schedule.close(arrived, out_of_time, events, on_end)

@@ -66,6 +66,7 @@ from __future__ import annotations
 
 import math
 from enum import IntEnum
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -264,6 +265,20 @@ class SubTaskTracker:
         )
         done = (turn_done | forward_done) & ~gave_up
         return done, gave_up
+
+    def arrays(self) -> dict[str, npt.NDArray[Any]]:
+        """The tracker's state by name, for the core's multi-step call
+        (``BatchSimulator.run(..., subtasks=...)``), which follows the sub-tasks step by step
+        as :meth:`update` does and writes the arrays in place."""
+        return {
+            "subtask": self.subtask,
+            "start": self.start,
+            "previous_yaw": self.previous_yaw,
+            "heading_change": self.heading_change,
+            "steps": self.steps,
+            "phase": self.phase,
+            "turn_point": self.turn_point,
+        }
 
     @property
     def out_of_steps(self) -> npt.NDArray[np.bool_]:

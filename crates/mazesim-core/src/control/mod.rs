@@ -6,6 +6,7 @@
 
 pub mod avoid_collision;
 pub mod braitenberg;
+pub mod door;
 pub mod random_wheels;
 pub mod tabular;
 
@@ -15,6 +16,7 @@ pub use tabular::{Discretiser, TabularPolicy};
 use crate::error::{Error, Result};
 use crate::rng::Rng;
 use crate::robot::RobotProfile;
+use door::SubTaskState;
 
 /// A built-in controller.
 #[derive(Debug, Clone, PartialEq)]
@@ -72,9 +74,21 @@ impl Controller {
         Ok(())
     }
 
+    /// Checks that the controller can drive robots through door sub-tasks (see
+    /// [`TabularPolicy::check_subtasks`]): only the tabular one can.
+    pub fn check_subtasks(&self) -> Result<()> {
+        match self {
+            Controller::Tabular(policy) => policy.check_subtasks(),
+            other => Err(Error::InvalidArgument(format!(
+                "expected the tabular controller with subtasks, found {:?}",
+                other.name()
+            ))),
+        }
+    }
+
     /// The decision for environment `env` from its distance readings, the wheel speeds of its
-    /// last step (`[0, 0]` after a reset), its robot's motor limit `max_speed` (rad/s) and its
-    /// stream.
+    /// last step (`[0, 0]` after a reset), its robot's motor limit `max_speed` (rad/s), its
+    /// stream and, for the tabular controller, its running sub-task `task` if it has one.
     #[inline]
     pub fn decide(
         &self,
@@ -83,6 +97,7 @@ impl Controller {
         last_wheel_speeds: [f32; 2],
         max_speed: f64,
         stream: &mut Rng,
+        task: Option<&SubTaskState>,
     ) -> Decision {
         let free = |wheel_speeds| Decision {
             wheel_speeds,
@@ -93,7 +108,10 @@ impl Controller {
             Controller::AvoidCollision(rule) => free(rule.wheel_speeds(readings)),
             Controller::RandomWheels => free(random_wheels::wheel_speeds(stream, max_speed)),
             Controller::Tabular(policy) => {
-                let action = policy.action_after(env, readings, last_wheel_speeds, stream);
+                let action = match task {
+                    Some(task) => policy.action_in_task(task, readings, last_wheel_speeds, stream),
+                    None => policy.action_after(env, readings, last_wheel_speeds, stream),
+                };
                 let [l, r] = tabular::WHEEL_SPEED_FRACTIONS[action];
                 Decision {
                     wheel_speeds: [(l * max_speed) as f32, (r * max_speed) as f32],

@@ -3,6 +3,7 @@
 //! `mazesim.actions` lists them), acting greedily, optionally within a mask of allowed actions and
 //! with epsilon-greedy exploration from each environment's own stream.
 
+use super::door::{self, SubTaskState};
 use crate::error::{Error, Result};
 use crate::lut::LookupTable;
 use crate::rng::Rng;
@@ -187,7 +188,36 @@ impl TabularPolicy {
         stream: &mut Rng,
     ) -> usize {
         let action = self.action(env, volts, stream);
-        if !self.hold_spins {
+        self.held(action, last, self.hold_spins)
+    }
+
+    /// The action of a robot running door sub-task state `task` (see [`super::door`]): from
+    /// the table of its sub-task's phase (`task.table()` of the `door::NUM_TABLES` stacked
+    /// tables), a turn on the spot kept, when the policy holds spins, in Corridors and Corners
+    /// only (as `mazesim.learn.policy.HierarchicalPolicy.act` does).
+    pub fn action_in_task(
+        &self,
+        task: &SubTaskState,
+        volts: &[f32],
+        last: [f32; 2],
+        stream: &mut Rng,
+    ) -> usize {
+        let action = self.action_from(task.table(), volts, stream);
+        self.held(
+            action,
+            last,
+            self.hold_spins && task.subtask == door::CORRIDOR,
+        )
+    }
+
+    /// `action`, or, when `hold` and the last step (wheel speeds `last`) turned the other way
+    /// on the spot, that turn again.
+    ///
+    /// The wheel speeds tell the turn as the last action does: `aa` is the only action with the
+    /// left wheel forward and the right one backward, `bb` the only one the other way round,
+    /// and the motor limit (positive) keeps the signs; after a reset both are 0 (no turn).
+    fn held(&self, action: usize, last: [f32; 2], hold: bool) -> usize {
+        if !hold {
             return action;
         }
         let [left, right] = last;
@@ -218,6 +248,11 @@ impl TabularPolicy {
     /// 2^64)`-th allowed action when exploring).
     pub fn action(&self, env: usize, volts: &[f32], stream: &mut Rng) -> usize {
         let table = self.table_of_env.as_ref().map_or(0, |m| m[env] as usize);
+        self.action_from(table, volts, stream)
+    }
+
+    /// [`TabularPolicy::action`] from table `table`.
+    fn action_from(&self, table: usize, volts: &[f32], stream: &mut Rng) -> usize {
         let allowed = &self.allowed[table];
         let explore = stream.uniform() < self.epsilon;
         let bits = stream.next_u64();
@@ -240,6 +275,27 @@ impl TabularPolicy {
     /// Number of Q-tables.
     pub fn tables(&self) -> usize {
         self.tables
+    }
+
+    /// Checks that the policy can drive robots through door sub-tasks: the `door::NUM_TABLES`
+    /// stacked tables of the sub-tasks' phases, and no fixed table per environment.
+    pub fn check_subtasks(&self) -> Result<()> {
+        if self.tables != door::NUM_TABLES || self.table_of_env.is_some() {
+            return Err(Error::InvalidArgument(format!(
+                "expected, with subtasks, the {} stacked tables of the sub-tasks' phases \
+                 (shape ({}, {NUM_STATES}, {NUM_ACTIONS})) and no table_index, found {} \
+                 tables{}",
+                door::NUM_TABLES,
+                door::NUM_TABLES,
+                self.tables,
+                if self.table_of_env.is_some() {
+                    " and a table_index"
+                } else {
+                    ""
+                }
+            )));
+        }
+        Ok(())
     }
 }
 
@@ -285,6 +341,28 @@ mod tests {
         values[NUM_ACTIONS * 5 + 2] = f64::NAN;
         let err = TabularPolicy::new(values, 1, None, None, 0.0).unwrap_err();
         assert!(err.to_string().contains("state 5, action 2"), "{err}");
+    }
+
+    #[test]
+    fn wheel_speeds_tell_a_turn_on_the_spot_as_the_action_does() {
+        let values = vec![0.0; NUM_STATES * NUM_ACTIONS];
+        let policy = TabularPolicy::new(values, 1, None, None, 0.0).unwrap();
+        for max_speed in [1e-3, 7.536, 50.0] {
+            for (last, &[l, r]) in WHEEL_SPEED_FRACTIONS.iter().enumerate() {
+                let speeds = [(l * max_speed) as f32, (r * max_speed) as f32];
+                for action in 0..NUM_ACTIONS {
+                    // `mazesim.learn.policy.hold_spins` on the actions themselves.
+                    let expected = match (last, action) {
+                        (SPIN_RIGHT, SPIN_LEFT) => SPIN_RIGHT,
+                        (SPIN_LEFT, SPIN_RIGHT) => SPIN_LEFT,
+                        _ => action,
+                    };
+                    assert_eq!(policy.held(action, speeds, true), expected);
+                    assert_eq!(policy.held(action, speeds, false), action);
+                }
+            }
+        }
+        assert_eq!(policy.held(SPIN_LEFT, [0.0, 0.0], true), SPIN_LEFT);
     }
 
     #[test]
