@@ -16,6 +16,7 @@ import mazesim
 from mazesim._core import RobotProfile
 from mazesim.batch import RobotBatch
 from mazesim.errors import InvalidArgumentError, UnknownNameError
+from mazesim.learn.checkpoint import RunFolder
 from mazesim.learn.fleet import Fleet, FleetBatch
 from mazesim.learn.train import train
 from mazesim.transfer.axes import Setting
@@ -177,8 +178,8 @@ def test_training_on_several_robots_is_deterministic_and_records_the_spec(
     tmp_path: Path,
 ) -> None:
     settings = dataclasses.replace(TINY, randomise=SPEC.text())
-    one = train(settings, tmp_path / "one", threads=1, robot=robot_draw(SPEC, TINY.seed))
-    two = train(settings, tmp_path / "two", threads=2, robot=robot_draw(SPEC, TINY.seed))
+    one = train(settings, RunFolder(tmp_path / "one"), threads=1, robot=robot_draw(SPEC, TINY.seed))
+    two = train(settings, RunFolder(tmp_path / "two"), threads=2, robot=robot_draw(SPEC, TINY.seed))
     assert one is not None and two is not None
     assert one.lower_q is not None and two.lower_q is not None
     assert np.array_equal(one.lower_q, two.lower_q)
@@ -190,7 +191,7 @@ def test_training_on_several_robots_is_deterministic_and_records_the_spec(
     seed_only = parse_spec("wheel_radius=0.95:1.05,wall_reflectance=0.2:1")
     plain = train(
         dataclasses.replace(TINY, randomise=seed_only.text()),
-        tmp_path / "plain",
+        RunFolder(tmp_path / "plain"),
         robot=robot_draw(seed_only, TINY.seed),
     )
     assert plain is not None and plain.lower_q is not None
