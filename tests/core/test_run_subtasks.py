@@ -178,6 +178,16 @@ def test_bad_sub_task_arrays_are_refused_before_anything_moves(change: Any, matc
     np.testing.assert_array_equal(batch.poses, start)
 
 
+def test_a_step_count_at_its_largest_stays_there() -> None:
+    batch, tracker = robots_in_doors([0, 1])
+    largest = np.iinfo(np.int64).max
+    tracker.subtask[0] = SubTask.CORRIDOR  # counts on without an end
+    tracker.steps[:] = largest
+    _, counters = run_in_core(batch, tracker, 3)
+    assert int(counters["subtasks_given_up"].sum()) == 1  # the door sub-task is out of steps
+    assert tracker.steps[0] == largest
+
+
 @pytest.mark.parametrize(
     ("options", "match"),
     [

@@ -120,7 +120,10 @@ impl<'py> SubTaskArrays<'py> {
         fill(&mut self.start, states, |s| s.start);
         fill(&mut self.previous_yaw, states, |s| [s.previous_yaw]);
         fill(&mut self.heading_change, states, |s| [s.heading_change]);
-        fill(&mut self.steps, states, |s| [s.steps as i64]);
+        // A count past i64::MAX (only from a count handed in near it) stays at the largest.
+        fill(&mut self.steps, states, |s| {
+            [i64::try_from(s.steps).unwrap_or(i64::MAX)]
+        });
         fill(&mut self.phase, states, |s| [s.phase as i64]);
         fill(&mut self.turn_point, states, |s| s.turn_point);
     }
