@@ -20,6 +20,7 @@ __all__ = [
     "import_wbt",
     "import_wbt_text",
     "lower_level_states",
+    "q_batch_update",
     "robot_profile_names",
     "sharp_volts_to_cm",
     "validate_codes",
@@ -35,6 +36,23 @@ def robot_profile_names() -> list[str]:
 def sharp_volts_to_cm(volts: float) -> float:
     """Converts a Sharp GP2Y0A41SK0F reading in volts to a distance in cm (inverted table); NaN or
     infinite volts raise InvalidArgumentError."""
+
+def q_batch_update(
+    q: npt.NDArray[np.float64],
+    visits: npt.NDArray[np.int64],
+    states: npt.NDArray[np.int64],
+    actions: npt.NDArray[np.int64],
+    rewards: npt.NDArray[np.float64],
+    next_states: npt.NDArray[np.int64],
+    bootstrap: npt.NDArray[np.float64],
+    allowed: npt.NDArray[np.bool_],
+    initial: float,
+    floor: float,
+    power: float,
+) -> None:
+    """N Q-learning updates of one (states, actions) table in place
+    (``mazesim.learn.qlearning.batch_update``): targets read the table before the call, the
+    updates apply in order, each at ``max(floor, initial * (visits + 1) ** -power)``."""
 
 def lower_level_states(observations: npt.NDArray[np.float32]) -> npt.NDArray[np.int64]:
     """The lower level's state (Table 4.1 levels of the first six distance readings, in volts)
@@ -458,6 +476,34 @@ class BatchSimulator:
     def restore_env(self, index: int, snapshot: bytes) -> None:
         """Puts environment `index` in the state of a `snapshot_env` (or `Simulator.snapshot`) of an
         environment of the same world, robot profile, control step and noise setting."""
+    def train_lower_round(
+        self,
+        observations: npt.NDArray[np.float32],
+        poses: npt.NDArray[np.float32],
+        colliding: npt.NDArray[np.bool_],
+        crossings: npt.NDArray[np.int32],
+        *,
+        worlds: Sequence[World],
+        world_of_env: npt.NDArray[np.int64],
+        role: npt.NDArray[np.int64],
+        starts: dict[str, npt.NDArray[Any]],
+        explore: npt.NDArray[np.float64],
+        random_action: npt.NDArray[np.int64],
+        q: npt.NDArray[np.float64],
+        visits: npt.NDArray[np.int64],
+        symmetry: dict[str, npt.NDArray[np.int64]],
+        allowed: npt.NDArray[np.bool_],
+        wheel_speeds: npt.NDArray[np.float32],
+        settings: dict[str, float],
+    ) -> dict[str, Any]:
+        """One round of the lower level's Q-learning in the core, as
+        ``mazesim.learn.lower.LowerTrainer`` steps it from Python, bit for bit: ``explore``
+        ((steps, N) uniforms) and ``random_action`` ((steps, N)) are the exploration draws,
+        ``starts`` each robot's (N, K) queue of episode starts (``world``, ``pose`` (N, K, 3),
+        ``seed`` uint64, ``path`` (N, K, 9)); ``q`` and ``visits`` ((4, 12288, 12)) and
+        ``world_of_env`` are updated in place. Returns the round's counts (``success``,
+        ``failure``, ``cut`` per sub-task, ``corridor_metres``, ``contact_steps``). The GIL is
+        released while it runs."""
     def set_world(self, index: int, world: World, seed: int) -> None: ...
     def set_starts(self, starts: npt.NDArray[np.float64]) -> None:
         """Start poses ((N, 3) float64 x, y, yaw) of each env for its later resets."""

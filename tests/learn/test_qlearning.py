@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 
@@ -116,3 +118,30 @@ def test_greedy_and_targets_keep_to_the_allowed_actions() -> None:
     # The next state's value is its best allowed action's (1.0), not 9.0.
     assert q[1, 0] == pytest.approx(4.0 + 0.5 * (1.0 - 4.0))
     assert unmasked[1, 0] == pytest.approx(4.0 + 0.5 * (9.0 - 4.0))
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_the_batch_update_is_the_loop_of_scalar_updates_exactly(seed: int) -> None:
+    """With the rate computed as the core computes it (the C library's pow), the batch is the
+    loop bit for bit, duplicates of a pair applied one after the other in the batch's order."""
+    rng = np.random.default_rng(seed)
+    q = rng.normal(size=(5, 4))
+    visits = rng.integers(0, 30, size=(5, 4))
+    count = 200
+    states, actions = rng.integers(0, 5, count), rng.integers(0, 4, count)
+    rewards, next_states = rng.normal(size=count), rng.integers(0, 5, count)
+    bootstrap = np.where(rng.random(count) < 0.3, 0.0, 0.99 ** rng.integers(1, 9, count))
+    allowed = np.array([True, False, True, True])
+    rate = LearningRate(initial=0.5, floor=0.03, power=0.7)
+    expected_q, expected_visits = q.copy(), visits.copy()
+    before = q.copy()
+    for i in range(count):
+        best = before[next_states[i], allowed].max() if bootstrap[i] else 0.0
+        target = rewards[i] + bootstrap[i] * best
+        pair = states[i], actions[i]
+        alpha = max(rate.floor, rate.initial * math.pow(expected_visits[pair] + 1.0, -rate.power))
+        expected_q[pair] += alpha * (target - expected_q[pair])
+        expected_visits[pair] += 1
+    batch_update(q, visits, states, actions, rewards, next_states, bootstrap, rate, allowed)
+    assert np.array_equal(q, expected_q)
+    assert np.array_equal(visits, expected_visits)

@@ -218,7 +218,7 @@ fn episode_over(env: &Simulator, options: &RunOptions, after_step: bool) -> (boo
 
 /// `chunks` with its argument's lifetime tied to its result's (a closure alone would be inferred
 /// for any lifetime).
-fn chunks_of<'e, I, F: FnOnce(&'e mut [Simulator]) -> I>(chunks: F) -> F {
+pub(crate) fn chunks_of<'e, I, F: FnOnce(&'e mut [Simulator]) -> I>(chunks: F) -> F {
     chunks
 }
 

@@ -15,6 +15,7 @@ use crate::args::{type_name, Bytes, Flag, IntArg, Real, Text};
 use crate::buffers::{copied, writable};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::{enter, enter_detached};
+use crate::lower;
 use crate::profile::RobotArg;
 use crate::run::{self, TabularArgs, Traces};
 use crate::subtasks::SubTaskArrays;
@@ -402,6 +403,55 @@ impl PyBatch {
         enter(|| {
             let buffers = [observations, poses, colliding, crossings];
             self.with_outputs(py, buffers, |b, out| b.observe(out))
+        })
+    }
+
+    /// Runs one round of the lower level's Q-learning in the core (see `mazesim-core`'s
+    /// `lower_training`): `explore` ((steps, N) float64) sets its length; `q` and `visits`
+    /// ((4, 12288, 12)) and `world_of_env` are updated in place, the buffers hold the last step.
+    /// Returns the round's counts as a dict. The GIL is released while it runs.
+    #[pyo3(signature = (observations, poses, colliding, crossings, *, worlds, world_of_env, role, starts, explore, random_action, q, visits, symmetry, allowed, wheel_speeds, settings))]
+    fn train_lower_round<'py>(
+        &self,
+        py: Python<'py>,
+        observations: &Bound<'py, PyAny>,
+        poses: &Bound<'py, PyAny>,
+        colliding: &Bound<'py, PyAny>,
+        crossings: &Bound<'py, PyAny>,
+        worlds: &Bound<'py, PyAny>,
+        world_of_env: &Bound<'py, PyAny>,
+        role: &Bound<'py, PyAny>,
+        starts: &Bound<'py, PyAny>,
+        explore: &Bound<'py, PyAny>,
+        random_action: &Bound<'py, PyAny>,
+        q: &Bound<'py, PyAny>,
+        visits: &Bound<'py, PyAny>,
+        symmetry: &Bound<'py, PyAny>,
+        allowed: &Bound<'py, PyAny>,
+        wheel_speeds: &Bound<'py, PyAny>,
+        settings: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        enter(|| {
+            let settings = lower::round_settings(settings)?;
+            let mut arrays = lower::RoundArrays::new(
+                self.n,
+                worlds,
+                world_of_env,
+                role,
+                starts,
+                explore,
+                random_action,
+                q,
+                visits,
+                symmetry,
+                allowed,
+                wheel_speeds,
+            )?;
+            let buffers = [observations, poses, colliding, crossings];
+            let round = arrays.round(settings);
+            let counts =
+                self.with_outputs(py, buffers, move |b, out| b.train_lower_round(round, out))?;
+            lower::counts_dict(py, &counts)
         })
     }
 

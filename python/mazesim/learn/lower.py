@@ -38,16 +38,18 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass, field
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
 
-from mazesim._core import World, generate_maze
+from mazesim._core import World, generate_maze, lower_level_states
 from mazesim._seeding import stream, stream_seeds
 from mazesim.actions import ACTION_CODES
 from mazesim.batch import RobotBatch, RobotChoice
+from mazesim.errors import InvalidArgumentError
 from mazesim.learn import qlearning
-from mazesim.learn.discretise import NUM_STATES, observation_states
+from mazesim.learn.discretise import NUM_STATES
 from mazesim.learn.fleet import Fleet, FleetBatch
 from mazesim.learn.subtasks import (
     COLLISION_PENALTY,
@@ -66,7 +68,7 @@ from mazesim.learn.subtasks import (
     cruise_step_length,
 )
 from mazesim.learn.symmetry import MIRRORED_ACTION, MIRRORED_SUBTASK, mirrored_states
-from mazesim.maze import CellMaze, DoorApproach
+from mazesim.maze import CellMaze
 
 __all__ = [
     "LowerSettings",
@@ -99,6 +101,19 @@ NUM_ACTIONS = len(ACTION_CODES)
 #: The actions Corridors and Corners explores, drawn uniformly (the door sub-tasks may take, and
 #: explore, all 12).
 _CORRIDOR_ACTIONS = np.flatnonzero(SUBTASK_ACTIONS[SubTask.CORRIDOR])
+#: Episode starts drawn per robot for a round. A robot's episodes take its starts in turn, and
+#: begin again from its first if it ever used them all (a door episode lasts 10 steps at the
+#: least, so 64 cover a round of up to 640 steps).
+STARTS_PER_ROUND = 64
+#: Exact unit vectors of the four grid directions (east, north, west, south).
+_UNIT = np.array([[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]])
+#: The mirror image of every row of every sub-task's table, for the core's round.
+_MIRRORED_ROWS = np.stack(
+    [
+        mirrored_states(np.arange(MAX_PHASES * NUM_STATES), np.full(MAX_PHASES * NUM_STATES, k))
+        for k in range(NUM_SUBTASKS)
+    ]
+).astype(np.int64)
 
 
 def lower_table_shape() -> tuple[int, int, int]:
@@ -192,13 +207,166 @@ def training_mazes(seed: int, count: int) -> list[World]:
 _TURN_QUARTERS = {SubTask.RIGHT: 3, SubTask.LEFT: 1, SubTask.FORWARD: 0}
 
 
-def _unit(direction: int) -> npt.NDArray[np.float64]:
-    angle = direction * math.pi / 2.0
-    return np.array([math.cos(angle), math.sin(angle)])
+@dataclass
+class EpisodeStarts:
+    """Each robot's queue of episode starts for one round, ``(N, K)`` rows: robot i's k-th
+    episode of the round starts from row ``k % K`` of its queue.
+
+    Attributes:
+        world: Index of the start's maze in the pool.
+        pose: x, y, yaw.
+        seed: The sensor-noise seed.
+        path: A door sub-task's path (zeros for Corridors and Corners): start (2), door centre
+            (2), heading in (2), heading out (2), length of the first leg.
+    """
+
+    world: npt.NDArray[np.int64]
+    pose: npt.NDArray[np.float64]
+    seed: npt.NDArray[np.uint64]
+    path: npt.NDArray[np.float64]
+
+    def as_dict(self) -> dict[str, npt.NDArray[Any]]:
+        """The arrays by name, as the core's round takes them."""
+        return {"world": self.world, "pose": self.pose, "seed": self.seed, "path": self.path}
+
+
+@dataclass
+class Exploration:
+    """A round's exploration draws, ``(steps, N)``: a deciding robot explores when its uniform
+    draw is below the round's epsilon, and then takes its random action (among its sub-task's
+    :data:`~mazesim.learn.subtasks.SUBTASK_ACTIONS`)."""
+
+    uniform: npt.NDArray[np.float64]
+    action: npt.NDArray[np.int64]
+
+
+class _StartTables:
+    """The pool's possible starts as arrays, to draw many at once."""
+
+    def __init__(self, cells: list[CellMaze]) -> None:
+        most_cells = max(maze.rows * maze.cols for maze in cells)
+        self.cell_count = np.array([maze.rows * maze.cols for maze in cells], dtype=np.int64)
+        self.cell_centre = np.zeros((len(cells), most_cells, 2))
+        self.openings = np.zeros((len(cells), most_cells, 4), dtype=np.int64)
+        self.opening_count = np.ones((len(cells), most_cells), dtype=np.int64)
+        for m, maze in enumerate(cells):
+            for c, cell in enumerate(maze.cells()):
+                self.cell_centre[m, c] = maze.center(cell)
+                open_sides = maze.openings(cell)
+                self.openings[m, c, : len(open_sides)] = open_sides
+                self.opening_count[m, c] = max(1, len(open_sides))
+        # Door starts of each door sub-task: maze, cell centre, door centre, heading.
+        self.door: dict[int, tuple[npt.NDArray[Any], ...]] = {}
+        for subtask, quarters in _TURN_QUARTERS.items():
+            picks = [
+                (m, maze.center(a.cell), maze.center(a.door), a.heading)
+                for m, maze in enumerate(cells)
+                for a in maze.door_approaches()
+                if a.straight and maze.is_open(a.door, (a.heading + quarters) % 4)
+            ]
+            if not picks:
+                raise InvalidArgumentError(
+                    f"expected the training mazes to hold a door for sub-task {subtask.name}, "
+                    "found none"
+                )
+            self.door[int(subtask)] = (
+                np.array([p[0] for p in picks], dtype=np.int64),
+                np.array([p[1] for p in picks], dtype=np.float64),
+                np.array([p[2] for p in picks], dtype=np.float64),
+                np.array([p[3] for p in picks], dtype=np.int64),
+            )
+
+
+def _index_below(
+    rng: np.random.Generator, count: npt.NDArray[np.int64], shape: tuple[int, ...]
+) -> npt.NDArray[np.int64]:
+    """Uniform indices below ``count`` (broadcast to ``shape``)."""
+    drawn = np.floor(rng.random(shape) * count).astype(np.int64)
+    return np.minimum(drawn, count - 1)
+
+
+def draw_starts(
+    rng: np.random.Generator,
+    role: npt.NDArray[np.int64],
+    tables: _StartTables,
+    per_env: int = STARTS_PER_ROUND,
+) -> EpisodeStarts:
+    """Draws ``per_env`` episode starts for each robot of sub-task ``role`` (see the module)."""
+    shape = (role.size, per_env)
+    door_env = np.broadcast_to((role != SubTask.CORRIDOR)[:, None], shape)
+    # Corridors and Corners: a random cell of a random maze, facing one of its openings or any way.
+    maze = rng.integers(len(tables.cell_count), size=shape)
+    cell = _index_below(rng, tables.cell_count[maze], shape)
+    side = _index_below(rng, tables.opening_count[maze, cell], shape)
+    direction = tables.openings[maze, cell, side]
+    position = tables.cell_centre[maze, cell] + rng.uniform(
+        -CORRIDOR_START_SPREAD, CORRIDOR_START_SPREAD, (*shape, 2)
+    )
+    yaw = direction * (math.pi / 2.0) + rng.uniform(-CORRIDOR_START_YAW, CORRIDOR_START_YAW, shape)
+    any_way = rng.random(shape) < CORRIDOR_ANY_HEADING
+    yaw = np.where(any_way, rng.uniform(-math.pi, math.pi, shape), yaw)
+    # A door sub-task: a straight corridor cell next to a door with the opening it needs.
+    along = rng.uniform(*DOOR_START_ALONG, shape)
+    across = rng.uniform(-DOOR_START_ACROSS, DOOR_START_ACROSS, shape)
+    yaw_error = rng.uniform(-DOOR_START_YAW, DOOR_START_YAW, shape)
+    pick = rng.random(shape)
+    path = np.zeros((*shape, 9))
+    for subtask, (door_maze, cell_centre, door_centre, heading) in tables.door.items():
+        mine = np.broadcast_to((role == subtask)[:, None], shape)
+        if not mine.any():
+            continue
+        k = np.minimum(np.floor(pick * heading.size).astype(np.int64), heading.size - 1)[mine]
+        heading_in = _UNIT[heading[k]]
+        sideways = np.stack([-heading_in[:, 1], heading_in[:, 0]], axis=1)
+        start = (
+            cell_centre[k] + heading_in * along[mine][:, None] + sideways * across[mine][:, None]
+        )
+        door = door_centre[k]
+        maze[mine] = door_maze[k]
+        position[mine] = start
+        yaw[mine] = heading[k] * (math.pi / 2.0) + yaw_error[mine]
+        to_door = door - start
+        path[mine] = np.column_stack(
+            [
+                start,
+                door,
+                heading_in,
+                _UNIT[(heading[k] + _TURN_QUARTERS[SubTask(subtask)]) % 4],
+                to_door[:, 0] * heading_in[:, 0] + to_door[:, 1] * heading_in[:, 1],
+            ]
+        )
+    seeds = rng.integers(2**63, size=shape).astype(np.uint64)
+    path[~door_env] = 0.0
+    pose = np.concatenate([position, yaw[..., None]], axis=-1)
+    return EpisodeStarts(world=maze.astype(np.int64), pose=pose, seed=seeds, path=path)
+
+
+def draw_exploration(
+    rng: np.random.Generator, role: npt.NDArray[np.int64], steps: int
+) -> Exploration:
+    """A round's exploration draws for robots of sub-task ``role`` (see :class:`Exploration`)."""
+    count = role.size
+    uniform = rng.random((steps, count))
+    door_action = rng.integers(0, NUM_ACTIONS, (steps, count))
+    corridor_action = _CORRIDOR_ACTIONS[rng.integers(0, _CORRIDOR_ACTIONS.size, (steps, count))]
+    door = (role != SubTask.CORRIDOR)[None, :]
+    return Exploration(uniform, np.where(door, door_action, corridor_action).astype(np.int64))
+
+
+def _along(
+    points: npt.NDArray[np.float64], origin: npt.NDArray[np.float64], unit: npt.NDArray[np.float64]
+) -> npt.NDArray[np.float64]:
+    """Each row's ``(point - origin) . unit``, as the core sums it."""
+    return (points[:, 0] - origin[:, 0]) * unit[:, 0] + (points[:, 1] - origin[:, 1]) * unit[:, 1]
 
 
 class LowerTrainer:
     """Trains the lower-level tables round by round.
+
+    A round runs in the core (``BatchSimulator.train_lower_round``) when the robots are one
+    :class:`~mazesim.batch.RobotBatch` whose robots share one motor limit, and otherwise (a
+    :class:`~mazesim.learn.fleet.Fleet`) one step at a time here; both give the same tables bit for
+    bit from the same draws.
 
     Args:
         settings: The run's settings.
@@ -218,30 +386,13 @@ class LowerTrainer:
         self.settings = settings
         self.tables = tables if tables is not None else LowerTables.zeros()
         self.mazes = training_mazes(settings.seed, settings.maze_pool)
-        self.cells = [CellMaze(world) for world in self.mazes]
-        self.door_starts: dict[int, list[tuple[int, DoorApproach]]] = {}
-        for subtask, quarters in _TURN_QUARTERS.items():
-            self.door_starts[int(subtask)] = [
-                (index, approach)
-                for index, maze in enumerate(self.cells)
-                for approach in maze.door_approaches()
-                if approach.straight
-                and maze.is_open(approach.door, (approach.heading + quarters) % 4)
-            ]
+        self.start_tables = _StartTables([CellMaze(world) for world in self.mazes])
         count = settings.num_envs
         self.threads = threads
         # The batch first: it refuses a number of envs the machine cannot hold.
         self.use_robots(robot)
         self.role = np.resize(np.array(ROLE_PATTERN, dtype=np.int64), count)
         self.cruise_step = cruise_step_length(self.batch.profile, settings.control_step_ms)
-        self.tracker = SubTaskTracker(count)
-        # The door path of each robot's episode: start, door centre, directions, first leg.
-        self.path_start = np.zeros((count, 2))
-        self.door_centre = np.zeros((count, 2))
-        self.heading_in = np.zeros((count, 2))
-        self.heading_out = np.zeros((count, 2))
-        self.first_leg = np.zeros(count)
-        self.episode_steps = np.zeros(count, dtype=np.int64)
 
     def use_robots(self, robot: RobotChoice | Fleet) -> None:
         """Drives the next rounds with ``robot``: a fresh batch of those robots (every robot starts
@@ -263,89 +414,119 @@ class LowerTrainer:
         self.poses = self.batch.poses
         self.colliding = self.batch.colliding
 
-    # -- episodes ---------------------------------------------------------------------------
+    @property
+    def in_core(self) -> bool:
+        """Whether rounds run in the core: robots of one batch, of one motor limit."""
+        return isinstance(self.batch, RobotBatch) and self.batch.one_motor_limit
 
-    def _start_episodes(self, envs: npt.NDArray[np.int64], rng: np.random.Generator) -> None:
-        poses = np.zeros((envs.size, 3))
-        seeds = np.zeros(envs.size, dtype=np.uint64)
-        for row, env in enumerate(envs):
-            role = int(self.role[env])
-            if role == SubTask.CORRIDOR:
-                maze_index = int(rng.integers(len(self.mazes)))
-                maze = self.cells[maze_index]
-                cell = maze.cells()[int(rng.integers(maze.rows * maze.cols))]
-                openings = maze.openings(cell)
-                direction = openings[int(rng.integers(len(openings)))]
-                centre = np.array(maze.center(cell))
-                offset = rng.uniform(-CORRIDOR_START_SPREAD, CORRIDOR_START_SPREAD, 2)
-                x, y = centre + offset
-                yaw = direction * math.pi / 2.0 + rng.uniform(
-                    -CORRIDOR_START_YAW, CORRIDOR_START_YAW
-                )
-                if rng.random() < CORRIDOR_ANY_HEADING:
-                    yaw = rng.uniform(-math.pi, math.pi)
-            else:
-                starts = self.door_starts[role]
-                maze_index, approach = starts[int(rng.integers(len(starts)))]
-                maze = self.cells[maze_index]
-                heading_in = _unit(approach.heading)
-                across = np.array([-heading_in[1], heading_in[0]])
-                start = (
-                    np.array(maze.center(approach.cell))
-                    + heading_in * rng.uniform(*DOOR_START_ALONG)
-                    + across * rng.uniform(-DOOR_START_ACROSS, DOOR_START_ACROSS)
-                )
-                x, y = start
-                yaw = approach.heading * math.pi / 2.0 + rng.uniform(
-                    -DOOR_START_YAW, DOOR_START_YAW
-                )
-                door = np.array(maze.center(approach.door))
-                self.path_start[env] = start
-                self.door_centre[env] = door
-                self.heading_in[env] = heading_in
-                self.heading_out[env] = _unit(
-                    (approach.heading + _TURN_QUARTERS[SubTask(role)]) % 4
-                )
-                self.first_leg[env] = float((door - start) @ heading_in)
-            self.batch.move_to_world(int(env), maze_index)
-            poses[row] = x, y, yaw
-            seeds[row] = rng.integers(2**63)
-            self.episode_steps[env] = 0
-        self.batch.place(envs, poses, seeds)
-
-    def _path_progress(self, positions: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
-        """Metres along each robot's door path (first leg clipped to its length)."""
-        first = np.einsum("ij,ij->i", positions - self.path_start, self.heading_in)
-        second = np.einsum("ij,ij->i", positions - self.door_centre, self.heading_out)
-        return np.minimum(first, self.first_leg) + np.clip(second, 0.0, DOOR_PATH_EXIT)
-
-    def _entered_opening(self, positions: npt.NDArray[np.float64]) -> npt.NDArray[np.bool_]:
-        relative = positions - self.door_centre
-        along = np.einsum("ij,ij->i", relative, self.heading_out)
-        across = np.abs(
-            relative[:, 0] * self.heading_out[:, 1] - relative[:, 1] * self.heading_out[:, 0]
-        )
-        return (along >= SUCCESS_PAST_CENTRE) & (across <= SUCCESS_ACROSS)
+    def draws(self, round_index: int) -> tuple[EpisodeStarts, Exploration]:
+        """Round ``round_index``'s random draws: the episode starts, then the exploration, from
+        the stream ``lower/round`` of the round."""
+        rng = stream(self.settings.seed, "lower/round", round_index)
+        starts = draw_starts(rng, self.role, self.start_tables)
+        return starts, draw_exploration(rng, self.role, self.settings.round_steps)
 
     # -- one round --------------------------------------------------------------------------
 
-    def run_round(self, round_index: int) -> RoundStats:
-        """Runs round ``round_index`` (0-based) and returns what happened in it."""
+    def run_round(self, round_index: int, stepwise: bool = False) -> RoundStats:
+        """Runs round ``round_index`` (0-based) and returns what happened in it.
+
+        Args:
+            round_index: The round.
+            stepwise: Step it from Python one control step at a time even when the core could
+                run it (the same tables and counts, slower).
+        """
         settings = self.settings
-        rng = stream(settings.seed, "lower/round", round_index)
         epsilon = settings.epsilon(round_index)
+        starts, exploration = self.draws(round_index)
+        if self.in_core and not stepwise:
+            counts = self._round_in_core(starts, exploration, epsilon)
+        else:
+            counts = self._round_stepwise(starts, exploration, epsilon)
         count = settings.num_envs
-        everyone = np.arange(count)
+        door = self.role != SubTask.CORRIDOR
+        corridor_robot_steps = int(np.count_nonzero(~door)) * settings.round_steps
+        return RoundStats(
+            round_index=round_index,
+            epsilon=epsilon,
+            env_steps=count * settings.round_steps,
+            door_success=[int(v) for v in counts["success"]],
+            door_failure=[int(v) for v in counts["failure"]],
+            door_cut=[int(v) for v in counts["cut"]],
+            corridor_speed=float(counts["corridor_metres"])
+            / max(1, corridor_robot_steps)
+            / self.cruise_step,
+            contact_share=int(counts["contact_steps"]) / (count * settings.round_steps),
+        )
+
+    def _core_settings(self, epsilon: float) -> dict[str, float]:
+        settings = self.settings
+        return {
+            "gamma": settings.gamma,
+            "epsilon": epsilon,
+            "decision_steps": settings.decision_steps,
+            "corridor_episode_steps": settings.corridor_episode_steps,
+            "rate_initial": settings.rate.initial,
+            "rate_floor": settings.rate.floor,
+            "rate_power": settings.rate.power,
+            "progress_reward": PROGRESS_REWARD,
+            "collision_penalty": COLLISION_PENALTY,
+            "corridor_step_reward": CORRIDOR_STEP_REWARD,
+            "door_step_reward": DOOR_STEP_REWARD,
+            "heading_reward": HEADING_REWARD,
+            "door_success_reward": DOOR_SUCCESS_REWARD,
+            "door_failure_reward": DOOR_FAILURE_REWARD,
+            "door_path_exit": DOOR_PATH_EXIT,
+            "success_past_centre": SUCCESS_PAST_CENTRE,
+            "success_across": SUCCESS_ACROSS,
+        }
+
+    def _round_in_core(
+        self, starts: EpisodeStarts, exploration: Exploration, epsilon: float
+    ) -> dict[str, Any]:
+        batch = self.batch
+        assert isinstance(batch, RobotBatch)
+        return batch.simulator.train_lower_round(
+            batch.observations,
+            batch.poses,
+            batch.colliding,
+            batch.crossings,
+            worlds=batch.worlds,
+            world_of_env=batch.world_of_env,
+            role=self.role,
+            starts=starts.as_dict(),
+            explore=exploration.uniform,
+            random_action=exploration.action,
+            q=self.tables.q,
+            visits=self.tables.visits,
+            symmetry={
+                "states": _MIRRORED_ROWS,
+                "actions": MIRRORED_ACTION,
+                "subtasks": MIRRORED_SUBTASK,
+            },
+            allowed=SUBTASK_ACTIONS,
+            wheel_speeds=batch.wheel_speeds,
+            settings=self._core_settings(epsilon),
+        )
+
+    def _round_stepwise(
+        self, starts: EpisodeStarts, exploration: Exploration, epsilon: float
+    ) -> dict[str, Any]:
+        """The round one control step at a time; the core's round follows it operation for
+        operation."""
+        settings = self.settings
+        count = settings.num_envs
         q = self.tables.q
         role = self.role
         door = role != SubTask.CORRIDOR
+        episode = _Episodes(self, starts)
+        tracker = episode.tracker
+        everyone = np.arange(count)
 
-        self._start_episodes(everyone, rng)
-        positions = self.poses.astype(np.float64)
-        self.tracker.begin(np.ones(count, dtype=bool), role, positions)
-        progress = self._path_progress(positions[:, :2])
+        episode.start(everyone)
+        progress = episode.progress()
         previous_error = np.zeros(count)
-        state = self.tracker.states(observation_states(self.observations))
+        state = tracker.states(lower_level_states(self.observations))
         action = np.zeros(count, dtype=np.int64)
         decided_reward = np.zeros(count)
         decided_discount = np.ones(count)
@@ -358,15 +539,10 @@ class LowerTrainer:
         corridor_metres = 0.0
         contact_steps = 0
 
-        for _ in range(settings.round_steps):
-            explore = rng.random(count) < epsilon
-            random_action = np.where(
-                door,
-                rng.integers(0, NUM_ACTIONS, count),
-                _CORRIDOR_ACTIONS[rng.integers(0, _CORRIDOR_ACTIONS.size, count)],
-            )
+        for step in range(settings.round_steps):
+            explore = exploration.uniform[step] < epsilon
             greedy = qlearning.best_allowed(q[role, state], SUBTASK_ACTIONS[role])
-            chosen = np.where(explore, random_action, greedy)
+            chosen = np.where(explore, exploration.action[step], greedy)
             action = np.where(deciding, chosen, action)
             decided_reward[deciding] = 0.0
             decided_discount[deciding] = 1.0
@@ -375,15 +551,14 @@ class LowerTrainer:
             before = self.poses.astype(np.float64)
             self.batch.step(action)
             positions = self.poses.astype(np.float64)
-            self.episode_steps += 1
-            done, gave_up = self.tracker.update(positions)
-            out_of_steps = gave_up & self.tracker.out_of_steps
-            next_state = self.tracker.states(observation_states(self.observations))
+            episode.steps += 1
+            done, gave_up = tracker.update(positions)
+            out_of_steps = gave_up & tracker.out_of_steps
+            next_state = tracker.states(lower_level_states(self.observations))
 
-            forward = (positions[:, 0] - before[:, 0]) * np.cos(before[:, 2]) + (
-                positions[:, 1] - before[:, 1]
-            ) * np.sin(before[:, 2])
-            new_progress = self._path_progress(positions[:, :2])
+            heading = np.stack([np.cos(before[:, 2]), np.sin(before[:, 2])], axis=1)
+            forward = _along(positions, before, heading)
+            new_progress = episode.progress()
             reward = np.where(
                 door,
                 PROGRESS_REWARD * (new_progress - progress) + DOOR_STEP_REWARD,
@@ -391,17 +566,17 @@ class LowerTrainer:
             )
             reward += COLLISION_PENALTY * self.colliding
             progress = new_progress
-            heading_error = np.abs(self.tracker.heading_change)
+            heading_error = np.abs(tracker.heading_change)
             reward += np.where(
                 role == SubTask.FORWARD, HEADING_REWARD * (previous_error - heading_error), 0.0
             )
             previous_error = heading_error
-            entered = self._entered_opening(positions[:, :2])
+            entered = episode.entered_opening()
             ended = door & (done | (gave_up & ~out_of_steps))
             good = ended & done & entered
             reward += np.where(ended, np.where(good, DOOR_SUCCESS_REWARD, DOOR_FAILURE_REWARD), 0.0)
             cut_short = door & out_of_steps
-            corridor_over = ~door & (self.episode_steps >= settings.corridor_episode_steps)
+            corridor_over = ~door & (episode.steps >= settings.corridor_episode_steps)
 
             decided_reward += decided_discount * reward
             decided_discount *= settings.gamma
@@ -421,32 +596,28 @@ class LowerTrainer:
                 success[subtask] += int(np.count_nonzero(mine & good))
                 failure[subtask] += int(np.count_nonzero(mine & ended & ~good))
                 cut[subtask] += int(np.count_nonzero(mine & cut_short))
-            corridor_metres += float(forward[~door].sum())
+            if np.any(~door):
+                # Summed in robot order, as the core sums it.
+                corridor_metres += float(np.cumsum(forward[~door])[-1])
             contact_steps += int(np.count_nonzero(self.colliding))
 
             state = next_state
             restart = np.flatnonzero(ended | cut_short | corridor_over)
             if restart.size:
-                self._start_episodes(restart, rng)
+                episode.start(restart)
                 fresh = np.zeros(count, dtype=bool)
                 fresh[restart] = True
-                positions = self.poses.astype(np.float64)
-                self.tracker.begin(fresh, role, positions)
-                progress[fresh] = self._path_progress(positions[:, :2])[fresh]
+                progress[fresh] = episode.progress()[fresh]
                 previous_error[fresh] = 0.0
-                state[fresh] = self.tracker.states(observation_states(self.observations))[fresh]
+                state[fresh] = tracker.states(lower_level_states(self.observations))[fresh]
 
-        corridor_robot_steps = int(np.count_nonzero(~door)) * settings.round_steps
-        return RoundStats(
-            round_index=round_index,
-            epsilon=epsilon,
-            env_steps=count * settings.round_steps,
-            door_success=success,
-            door_failure=failure,
-            door_cut=cut,
-            corridor_speed=corridor_metres / max(1, corridor_robot_steps) / self.cruise_step,
-            contact_share=contact_steps / (count * settings.round_steps),
-        )
+        return {
+            "success": success,
+            "failure": failure,
+            "cut": cut,
+            "corridor_metres": corridor_metres,
+            "contact_steps": contact_steps,
+        }
 
     def _learn(
         self,
@@ -457,7 +628,7 @@ class LowerTrainer:
         next_state: npt.NDArray[np.int64],
         bootstrap: npt.NDArray[np.float64],
     ) -> None:
-        """Feeds the finished decisions and their mirror images to the tables."""
+        """Feeds the finished decisions, then their mirror images, to the tables."""
         envs = np.flatnonzero(deciding)
         if envs.size == 0:
             return
@@ -484,3 +655,49 @@ class LowerTrainer:
                     self.settings.rate,
                     SUBTASK_ACTIONS[subtask],
                 )
+
+
+class _Episodes:
+    """The robots' running episodes in a round stepped from Python: where each started, its door
+    path and its sub-task's odometry."""
+
+    def __init__(self, trainer: LowerTrainer, starts: EpisodeStarts) -> None:
+        count = trainer.settings.num_envs
+        self.trainer = trainer
+        self.starts = starts
+        self.tracker = SubTaskTracker(count)
+        self.taken = np.zeros(count, dtype=np.int64)
+        self.steps = np.zeros(count, dtype=np.int64)
+        self.path = np.zeros((count, 9))
+
+    def start(self, envs: npt.NDArray[np.int64]) -> None:
+        """Starts the next episode of each robot of ``envs`` from its queue."""
+        trainer = self.trainer
+        per_env = self.starts.world.shape[1]
+        rows = self.taken[envs] % per_env
+        self.taken[envs] += 1
+        for env, world in zip(envs, self.starts.world[envs, rows]):
+            trainer.batch.move_to_world(int(env), int(world))
+        trainer.batch.place(envs, self.starts.pose[envs, rows], self.starts.seed[envs, rows])
+        self.path[envs] = self.starts.path[envs, rows]
+        self.steps[envs] = 0
+        fresh = np.zeros(trainer.settings.num_envs, dtype=bool)
+        fresh[envs] = True
+        self.tracker.begin(fresh, trainer.role, trainer.poses.astype(np.float64))
+
+    def progress(self) -> npt.NDArray[np.float64]:
+        """Metres along each robot's door path (first leg clipped to its length)."""
+        positions = self.trainer.poses.astype(np.float64)
+        path = self.path
+        first = _along(positions, path[:, 0:2], path[:, 4:6])
+        second = _along(positions, path[:, 2:4], path[:, 6:8])
+        return np.minimum(first, path[:, 8]) + np.clip(second, 0.0, DOOR_PATH_EXIT)
+
+    def entered_opening(self) -> npt.NDArray[np.bool_]:
+        """Whether each robot is past its door's centre into the opening, near its centre line."""
+        positions = self.trainer.poses.astype(np.float64)
+        centre, heading_out = self.path[:, 2:4], self.path[:, 6:8]
+        along = _along(positions, centre, heading_out)
+        relative = positions[:, :2] - centre
+        across = np.abs(relative[:, 0] * heading_out[:, 1] - relative[:, 1] * heading_out[:, 0])
+        return (along >= SUCCESS_PAST_CENTRE) & (across <= SUCCESS_ACROSS)

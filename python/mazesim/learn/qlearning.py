@@ -10,8 +10,9 @@ where ``bootstrap`` is ``gamma`` for an ordinary step, ``gamma ** tau`` for a de
 pair's n-th update is ``max(floor, initial * (n + 1) ** -power)`` (:class:`LearningRate`): a table
 keeps the count of updates of each pair beside it.
 
-:func:`batch_update` applies the transitions of N environments stepped together. Its result
-equals this loop of scalar updates, in environment order::
+:func:`batch_update` applies the transitions of N environments stepped together, in the core
+(``mazesim._core.q_batch_update``). Its result is this loop of scalar updates, in environment
+order::
 
     before = q.copy()
     for i in range(N):
@@ -20,12 +21,12 @@ equals this loop of scalar updates, in environment order::
         q[states[i], actions[i]] += alpha * (target - q[states[i], actions[i]])
         visits[states[i], actions[i]] += 1
 
-up to floating-point rounding (relative differences of order 1e-15): the N transitions happen at
-the same time, so their targets read the table as it was before the batch, and when k
-environments hit the same state-action pair their updates are applied one after the other, in
-closed form (``Q <- prod(1 - alpha_j) Q + sum_j alpha_j prod_{i > j}(1 - alpha_i) target_j``).
-Summing the k increments instead (``np.add.at`` of ``alpha * td_error``) would move ``Q`` by k
-times a step when thousands of environments share a state, and diverge.
+the N transitions happen at the same time, so their targets read the table as it was before
+the batch, and when k environments hit the same state-action pair their updates are applied one
+after the other, each at its own rate. Summing the k increments instead (``np.add.at`` of
+``alpha * td_error``) would move ``Q`` by k times a step when thousands of environments share a
+state, and diverge. The core computes the rate with the C library's ``pow``, which numpy's
+vectorised power can differ from in the last bit, so the loop above matches it to rounding.
 
 Greedy choices break ties towards the lowest action index, so an untried state (all zeros) drives
 forward (action 0, ``00``).
@@ -38,6 +39,7 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
+from mazesim._core import q_batch_update
 from mazesim.errors import InvalidArgumentError
 
 __all__ = [
@@ -200,27 +202,26 @@ def batch_update(
         raise InvalidArgumentError(f"expected states in [0, {num_states}), found out of range")
     if action_array.min() < 0 or action_array.max() >= num_actions:
         raise InvalidArgumentError(f"expected actions in [0, {num_actions}), found out of range")
-    targets = td_targets(q, np.ravel(rewards), np.ravel(next_states), np.ravel(bootstrap), allowed)
-    keys = state_array * num_actions + action_array
-    order = np.argsort(keys, kind="stable")
-    sorted_keys = keys[order]
-    starts_group = np.ones(count, dtype=bool)
-    starts_group[1:] = sorted_keys[1:] != sorted_keys[:-1]
-    group = np.cumsum(starts_group) - 1
-    group_start = np.flatnonzero(starts_group)
-    group_size = np.diff(np.append(group_start, count))
-    unique_keys = sorted_keys[group_start]
-    flat_q = q.reshape(-1)
-    flat_visits = visits.reshape(-1)
-    # The j-th update of a pair in the batch has the rate of its visit count then; the later
-    # updates of the pair shrink what it moved by their (1 - rate) each.
-    position = np.arange(count) - group_start[group]
-    alpha = learning_rates(flat_visits[unique_keys][group] + position, rate)
-    log_keep = np.log1p(-alpha)
-    through = np.cumsum(log_keep)
-    group_total = np.add.reduceat(log_keep, group_start)
-    before_group = through[group_start] - log_keep[group_start]
-    after = (before_group + group_total)[group] - through
-    moved = np.bincount(group, weights=alpha * np.exp(after) * targets[order])
-    flat_q[unique_keys] = np.exp(group_total) * flat_q[unique_keys] + moved
-    flat_visits[unique_keys] += group_size
+    reward_array = np.ascontiguousarray(np.ravel(rewards), dtype=np.float64)
+    factors = np.ascontiguousarray(
+        np.broadcast_to(np.asarray(bootstrap, dtype=np.float64).ravel(), (count,)), dtype=np.float64
+    )
+    following = np.ascontiguousarray(np.ravel(next_states), dtype=np.int64)
+    mask = (
+        np.ones(num_actions, dtype=bool)
+        if allowed is None
+        else np.ascontiguousarray(allowed, dtype=bool)
+    )
+    q_batch_update(
+        q,
+        visits,
+        np.ascontiguousarray(state_array),
+        np.ascontiguousarray(action_array),
+        reward_array,
+        following,
+        factors,
+        mask,
+        rate.initial,
+        rate.floor,
+        rate.power,
+    )

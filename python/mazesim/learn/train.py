@@ -120,13 +120,18 @@ class TrainSettings:
             seed=self.seed,
         )
 
+    def as_dict(self) -> dict[str, Any]:
+        """The settings as a navigator's metadata records them: a run without randomisation has
+        no ``randomise`` key, as before the field existed."""
+        values = asdict(self)
+        if not self.randomise:
+            values.pop("randomise")
+        return values
+
     def identity(self) -> dict[str, Any]:
         """What must match for a checkpoint to be continued (not the checkpoint interval)."""
-        values = asdict(self)
+        values = self.as_dict()
         values.pop("checkpoint_seconds")
-        if not self.randomise:
-            # A run without randomisation has the identity it had before the field existed.
-            values.pop("randomise")
         return values
 
 
@@ -432,7 +437,7 @@ def train(
     results = run.higher_results
     shortest = shortest_path_steps(world)
     training: dict[str, Any] = {
-        "settings": asdict(settings),
+        "settings": settings.as_dict(),
         "lower": lower_settings.as_dict(),
         "higher": asdict(settings.higher()),
         "lower_env_steps": rounds * lower_settings.num_envs * lower_settings.round_steps,
@@ -495,7 +500,7 @@ def train_flat_policy(
         checkpoint_ids=checkpoint_ids(world),
         flat_q=q,
         training={
-            "settings": asdict(settings),
+            "settings": settings.as_dict(),
             "env_steps": settings.steps,
             "seconds": round(time.perf_counter() - started, 1),
             "episodes": len(outcomes),

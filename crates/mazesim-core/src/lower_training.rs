@@ -1,0 +1,638 @@
+//! A round of the lower level's Q-learning in the core (`mazesim.learn.lower`): every robot of a
+//! batch practises its sub-task, acting epsilon-greedily from the stacked tables, and the tables
+//! learn from every finished decision and its mirror image, for a whole round in one call.
+//!
+//! The round follows `LowerTrainer.run_round_stepwise` operation for operation in f64 (the same
+//! products and sums in the same order, the sub-tasks' odometry of [`crate::control::door`], the
+//! Table 4.1 state of [`crate::control::Discretiser`], the batch updates of [`crate::qlearning`]),
+//! so that both give the same tables bit for bit. Its random numbers come from the caller, drawn
+//! before the round: each robot's queue of episode starts and each step's exploration draws. The
+//! robots step in parallel; everything between two steps runs in robot order on the calling
+//! thread, so the result does not depend on the thread count.
+
+use std::sync::Arc;
+
+use crate::batch::{Row, StepOutputs, CHUNK_ENVS};
+use crate::control::door::{self, SubTaskEnd, SubTaskState};
+use crate::control::tabular::{NUM_ACTIONS, NUM_SENSORS, NUM_STATES};
+use crate::control::Discretiser;
+use crate::error::{Error, Result};
+use crate::qlearning::{best_action, LearningRate, QTable, Transition};
+use crate::rollout::chunks_of;
+use crate::{Batch, Simulator, World};
+
+/// Rows of each sub-task's table: the distance state of each phase.
+pub const ROWS: usize = door::MAX_PHASES * NUM_STATES;
+/// Values of each door-path row: start (2), door centre (2), heading in (2), heading out (2), and
+/// the length of the first leg.
+pub const PATH_WIDTH: usize = 9;
+
+/// The rewards of the lower level (`mazesim.learn.subtasks`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Rewards {
+    /// Per metre of progress (along the door path, or forward in a corridor).
+    pub progress: f64,
+    /// Per step in contact with a wall.
+    pub collision: f64,
+    /// Per step of Corridors and Corners.
+    pub corridor_step: f64,
+    /// Per step of a door sub-task.
+    pub door_step: f64,
+    /// Per radian by which "Going forward on a door" brings its heading back.
+    pub heading: f64,
+    /// At the end of a door sub-task that entered its opening.
+    pub door_success: f64,
+    /// At the end of one that did not.
+    pub door_failure: f64,
+}
+
+/// How a round learns.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RoundSettings {
+    /// Discount per control step.
+    pub gamma: f64,
+    /// Exploration rate of the round.
+    pub epsilon: f64,
+    /// Longest decision, in control steps.
+    pub decision_steps: u64,
+    /// Length of a Corridors-and-Corners episode.
+    pub corridor_episode_steps: u64,
+    /// The learning rate of the updates.
+    pub rate: LearningRate,
+    /// The rewards.
+    pub rewards: Rewards,
+    /// How far into the opening a door path runs (metres).
+    pub door_path_exit: f64,
+    /// A door sub-task entered its opening when it ended this far past the door's centre...
+    pub success_past_centre: f64,
+    /// ...and at most this far off the opening's centre line (metres).
+    pub success_across: f64,
+}
+
+/// Each robot's queue of episode starts for the round, `(n, per_env)` rows; robot i's k-th
+/// episode takes row `k % per_env` of its queue.
+pub struct StartQueues<'a> {
+    /// Starts per robot.
+    pub per_env: usize,
+    /// The world of each start (an index into the round's worlds).
+    pub world: &'a [i64],
+    /// x, y, yaw of each start.
+    pub pose: &'a [f64],
+    /// The sensor-noise seed of each start.
+    pub seed: &'a [u64],
+    /// The door path of each start (`PATH_WIDTH` values; unused by Corridors and Corners).
+    pub path: &'a [f64],
+}
+
+/// The left-right mirror image of the lower level (`mazesim.learn.symmetry`).
+pub struct Symmetry<'a> {
+    /// `(4, ROWS)`: the mirror image of each row of each sub-task's table.
+    pub states: &'a [i64],
+    /// The mirror image of each action.
+    pub actions: [usize; NUM_ACTIONS],
+    /// The mirror image of each sub-task.
+    pub subtasks: [usize; door::NUM_SUBTASKS],
+}
+
+/// Everything a round reads and writes.
+pub struct LowerRound<'a> {
+    /// How it learns.
+    pub settings: RoundSettings,
+    /// The worlds the starts name.
+    pub worlds: &'a [Arc<World>],
+    /// The world each robot is in (updated as robots move to other worlds).
+    pub world_of_env: &'a mut [i64],
+    /// Each robot's sub-task.
+    pub role: &'a [i64],
+    /// The episode starts.
+    pub starts: StartQueues<'a>,
+    /// `(steps, n)` uniform draws in [0, 1): a deciding robot explores when its draw is below
+    /// epsilon. The round runs `steps` control steps.
+    pub explore: &'a [f64],
+    /// `(steps, n)` the action a deciding robot takes when it explores.
+    pub random_action: &'a [i64],
+    /// `(4, ROWS, NUM_ACTIONS)` values, updated in place.
+    pub q: &'a mut [f64],
+    /// Update counts of the same shape, updated in place.
+    pub visits: &'a mut [i64],
+    /// The actions each sub-task may take.
+    pub allowed: [[bool; NUM_ACTIONS]; door::NUM_SUBTASKS],
+    /// The mirror image.
+    pub symmetry: Symmetry<'a>,
+    /// Left and right wheel speeds (rad/s) of each action.
+    pub wheel_speeds: [[f32; 2]; NUM_ACTIONS],
+}
+
+/// What happened in a round.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct RoundCounts {
+    /// Door episodes of each sub-task that ended in their opening.
+    pub success: [u64; door::NUM_SUBTASKS],
+    /// Door episodes that ended elsewhere, or gave up turned round.
+    pub failure: [u64; door::NUM_SUBTASKS],
+    /// Door episodes that ran out of steps.
+    pub cut: [u64; door::NUM_SUBTASKS],
+    /// Metres Corridors and Corners drove forward, summed step by step in robot order.
+    pub corridor_metres: f64,
+    /// Robot-steps in contact with a wall.
+    pub contact_steps: u64,
+}
+
+/// A door path: to the door along the corridor, then into the opening.
+#[derive(Debug, Clone, Copy, Default)]
+struct DoorPath {
+    start: [f64; 2],
+    centre: [f64; 2],
+    heading_in: [f64; 2],
+    heading_out: [f64; 2],
+    first_leg: f64,
+}
+
+fn dot(a: [f64; 2], from: [f64; 2], b: [f64; 2]) -> f64 {
+    (a[0] - from[0]) * b[0] + (a[1] - from[1]) * b[1]
+}
+
+impl DoorPath {
+    fn of(row: &[f64]) -> Self {
+        Self {
+            start: [row[0], row[1]],
+            centre: [row[2], row[3]],
+            heading_in: [row[4], row[5]],
+            heading_out: [row[6], row[7]],
+            first_leg: row[8],
+        }
+    }
+
+    /// Metres along the path (the first leg clipped to its length).
+    fn progress(&self, p: [f64; 2], exit: f64) -> f64 {
+        let first = dot(p, self.start, self.heading_in);
+        let second = dot(p, self.centre, self.heading_out);
+        first.min(self.first_leg) + second.clamp(0.0, exit)
+    }
+
+    /// Whether `p` is past the door's centre into the opening, near its centre line.
+    fn entered(&self, p: [f64; 2], settings: &RoundSettings) -> bool {
+        let along = dot(p, self.centre, self.heading_out);
+        let relative = [p[0] - self.centre[0], p[1] - self.centre[1]];
+        let across = (relative[0] * self.heading_out[1] - relative[1] * self.heading_out[0]).abs();
+        along >= settings.success_past_centre && across <= settings.success_across
+    }
+}
+
+/// One robot's episode and decision.
+#[derive(Debug, Clone, Copy)]
+struct Learner {
+    role: usize,
+    task: SubTaskState,
+    path: DoorPath,
+    progress: f64,
+    previous_error: f64,
+    /// The row of its table it is in.
+    state: usize,
+    action: usize,
+    reward: f64,
+    discount: f64,
+    decided_steps: u64,
+    deciding: bool,
+    episode_steps: u64,
+    next_start: usize,
+    /// What its last step brought.
+    step: StepDone,
+}
+
+/// What one robot's control step brought, for the tables and the counts.
+#[derive(Debug, Clone, Copy, Default)]
+struct StepDone {
+    /// The decision that ended with the step, and its mirror image.
+    transitions: Option<[Transition; 2]>,
+    /// A door episode ended (in its opening or not, not cut short).
+    ended: bool,
+    /// ...in its opening.
+    good: bool,
+    /// A door episode ran out of steps.
+    cut_short: bool,
+    /// Metres driven forward.
+    forward: f64,
+    colliding: bool,
+    /// The episode is over: the robot starts its next one.
+    restart: bool,
+}
+
+/// What every robot's step reads, shared by the threads.
+struct Pass<'a> {
+    q: &'a [f64],
+    allowed: &'a [[bool; NUM_ACTIONS]; door::NUM_SUBTASKS],
+    symmetry: &'a Symmetry<'a>,
+    wheel_speeds: &'a [[f32; 2]; NUM_ACTIONS],
+    settings: &'a RoundSettings,
+    discretiser: &'a Discretiser,
+}
+
+impl Pass<'_> {
+    /// One control step of one robot: its decision when it is deciding (exploring when `draw`
+    /// is below epsilon, then taking `random`), the step, its reward, and the decision it ends.
+    fn step(
+        &self,
+        env: &mut Simulator,
+        learner: &mut Learner,
+        row: Row<'_>,
+        draw: f64,
+        random: i64,
+    ) {
+        let settings = self.settings;
+        let per_table = ROWS * NUM_ACTIONS;
+        if learner.deciding {
+            learner.action = if draw < settings.epsilon {
+                random as usize
+            } else {
+                let table = &self.q[learner.role * per_table..][..per_table];
+                let values = &table[learner.state * NUM_ACTIONS..][..NUM_ACTIONS];
+                best_action(values, &self.allowed[learner.role])
+            };
+            learner.reward = 0.0;
+            learner.discount = 1.0;
+            learner.decided_steps = 0;
+        }
+        let [bx, by, byaw] = env.pose().map(f64::from);
+        let [left, right] = self.wheel_speeds[learner.action];
+        // The wheel speeds are finite (checked when the round began), so a step cannot fail.
+        let _ = env.step(f64::from(left), f64::from(right));
+        row.write(env);
+        let pose = env.pose();
+        let here = position(pose);
+        learner.episode_steps += 1;
+        let end = learner.task.update(pose);
+        let is_door = learner.role != door::CORRIDOR;
+        let gave_up = end == SubTaskEnd::GaveUp;
+        let done = end == SubTaskEnd::Done;
+        let out_of_steps = gave_up && is_door && learner.task.steps >= door::MAX_DOOR_STEPS;
+        let distance = self.discretiser.state(env.distance_sensors());
+        let next_state = learner.task.table_row(distance);
+
+        let forward = (here[0] - bx) * byaw.cos() + (here[1] - by) * byaw.sin();
+        let new_progress = learner.path.progress(here, settings.door_path_exit);
+        let rewards = &settings.rewards;
+        let mut reward = if is_door {
+            rewards.progress * (new_progress - learner.progress) + rewards.door_step
+        } else {
+            rewards.progress * forward + rewards.corridor_step
+        };
+        let colliding = env.colliding();
+        reward += rewards.collision * f64::from(u8::from(colliding));
+        learner.progress = new_progress;
+        let heading_error = learner.task.heading_change.abs();
+        reward += if learner.role == door::FORWARD {
+            rewards.heading * (learner.previous_error - heading_error)
+        } else {
+            0.0
+        };
+        learner.previous_error = heading_error;
+        let ended = is_door && (done || (gave_up && !out_of_steps));
+        let good = ended && done && learner.path.entered(here, settings);
+        reward += if ended {
+            if good {
+                rewards.door_success
+            } else {
+                rewards.door_failure
+            }
+        } else {
+            0.0
+        };
+        let cut_short = is_door && out_of_steps;
+        let corridor_over = !is_door && learner.episode_steps >= settings.corridor_episode_steps;
+
+        learner.reward += learner.discount * reward;
+        learner.discount *= settings.gamma;
+        learner.decided_steps += 1;
+        learner.deciding = ended
+            || cut_short
+            || corridor_over
+            || next_state != learner.state
+            || learner.decided_steps >= settings.decision_steps;
+        let transitions = learner.deciding.then(|| {
+            let bootstrap = if ended { 0.0 } else { learner.discount };
+            let mirror = |row: usize| self.symmetry.states[learner.role * ROWS + row] as usize;
+            [
+                Transition {
+                    state: learner.state,
+                    action: learner.action,
+                    reward: learner.reward,
+                    next_state,
+                    bootstrap,
+                },
+                Transition {
+                    state: mirror(learner.state),
+                    action: self.symmetry.actions[learner.action],
+                    reward: learner.reward,
+                    next_state: mirror(next_state),
+                    bootstrap,
+                },
+            ]
+        });
+        learner.state = next_state;
+        learner.step = StepDone {
+            transitions,
+            ended,
+            good,
+            cut_short,
+            forward,
+            colliding,
+            restart: ended || cut_short || corridor_over,
+        };
+    }
+}
+
+fn pose_of(poses: &[f32], i: usize) -> [f32; 3] {
+    [poses[3 * i], poses[3 * i + 1], poses[3 * i + 2]]
+}
+
+fn position(pose: [f32; 3]) -> [f64; 2] {
+    [f64::from(pose[0]), f64::from(pose[1])]
+}
+
+impl LowerRound<'_> {
+    fn check(&self, n: usize) -> Result<()> {
+        let expect = |name: &str, found: usize, wanted: usize| {
+            if found == wanted {
+                Ok(())
+            } else {
+                Err(Error::InvalidArgument(format!(
+                    "expected {name} to hold {wanted} values, found {found}"
+                )))
+            }
+        };
+        let k = self.starts.per_env;
+        if k == 0 {
+            return Err(Error::InvalidArgument(
+                "expected at least one start per robot, found 0".into(),
+            ));
+        }
+        expect("world_of_env", self.world_of_env.len(), n)?;
+        expect("role", self.role.len(), n)?;
+        expect("start worlds", self.starts.world.len(), n * k)?;
+        expect("start poses", self.starts.pose.len(), 3 * n * k)?;
+        expect("start seeds", self.starts.seed.len(), n * k)?;
+        expect("door paths", self.starts.path.len(), PATH_WIDTH * n * k)?;
+        let steps = self.explore.len() / n;
+        expect("explore", self.explore.len(), steps * n)?;
+        expect("random_action", self.random_action.len(), steps * n)?;
+        let per_table = ROWS * NUM_ACTIONS;
+        expect("q", self.q.len(), door::NUM_SUBTASKS * per_table)?;
+        expect("visits", self.visits.len(), door::NUM_SUBTASKS * per_table)?;
+        expect(
+            "mirrored states",
+            self.symmetry.states.len(),
+            door::NUM_SUBTASKS * ROWS,
+        )?;
+        if let Some(r) = self.role.iter().find(|&&r| !(0..4).contains(&r)) {
+            return Err(Error::InvalidArgument(format!(
+                "expected sub-tasks in 0..4, found {r}"
+            )));
+        }
+        let worlds = self.worlds.len() as i64;
+        if let Some(w) = (self.starts.world.iter().chain(self.world_of_env.iter()))
+            .find(|&&w| !(0..worlds).contains(&w))
+        {
+            return Err(Error::InvalidArgument(format!(
+                "expected world indices in [0, {worlds}), found {w}"
+            )));
+        }
+        if let Some(a) = self.random_action.iter().find(|&&a| !(0..12).contains(&a)) {
+            return Err(Error::InvalidArgument(format!(
+                "expected exploring actions in [0, {NUM_ACTIONS}), found {a}"
+            )));
+        }
+        if let Some(s) = self
+            .symmetry
+            .states
+            .iter()
+            .find(|&&s| !(0..ROWS as i64).contains(&s))
+        {
+            return Err(Error::InvalidArgument(format!(
+                "expected mirrored states in [0, {ROWS}), found {s}"
+            )));
+        }
+        if let Some(v) = self.q.iter().find(|v| !v.is_finite()) {
+            return Err(Error::InvalidArgument(format!(
+                "expected finite Q-values, found {v}"
+            )));
+        }
+        let finite = self.starts.pose.iter().chain(self.starts.path);
+        if let Some(v) = finite.chain(self.explore).find(|v| !v.is_finite()) {
+            return Err(Error::InvalidArgument(format!(
+                "expected finite starts, door paths and exploration draws, found {v}"
+            )));
+        }
+        Ok(())
+    }
+}
+
+impl Batch {
+    /// Runs one round of the lower level's Q-learning (see the module): `round.explore` sets the
+    /// number of control steps; the tables, `world_of_env` and the batch's robots are left as the
+    /// round leaves them, and `out` holds the last step's outputs.
+    pub fn train_lower_round(
+        &mut self,
+        round: LowerRound<'_>,
+        mut out: StepOutputs<'_>,
+    ) -> Result<RoundCounts> {
+        let n = self.len();
+        round.check(n)?;
+        self.check_outputs(&out)?;
+        if self.observation_width() < NUM_SENSORS {
+            return Err(Error::InvalidArgument(format!(
+                "the lower level reads {NUM_SENSORS} distance sensors, the robots have {}",
+                self.observation_width()
+            )));
+        }
+        let LowerRound {
+            settings,
+            worlds,
+            world_of_env,
+            role,
+            starts,
+            explore,
+            random_action,
+            q,
+            visits,
+            allowed,
+            symmetry,
+            wheel_speeds,
+        } = round;
+        let discretiser = Discretiser::new()?;
+        let width = self.observation_width();
+        let steps = explore.len() / n;
+        let mut learners: Vec<Learner> = (0..n)
+            .map(|i| Learner {
+                role: role[i] as usize,
+                task: SubTaskState::begin(role[i] as usize, [0.0; 3]),
+                path: DoorPath::default(),
+                progress: 0.0,
+                previous_error: 0.0,
+                state: 0,
+                action: 0,
+                reward: 0.0,
+                discount: 1.0,
+                decided_steps: 0,
+                deciding: true,
+                episode_steps: 0,
+                next_start: 0,
+                step: StepDone::default(),
+            })
+            .collect();
+        let everyone: Vec<usize> = (0..n).collect();
+        let mut counts = RoundCounts::default();
+        let distance_width = self.envs()[0].distance_sensors().len();
+        let mut originals: Vec<Vec<Transition>> = vec![Vec::new(); door::NUM_SUBTASKS];
+        let mut mirrors: Vec<Vec<Transition>> = vec![Vec::new(); door::NUM_SUBTASKS];
+        let mut targets = Vec::new();
+        let mut restart = Vec::new();
+        let per_table = ROWS * NUM_ACTIONS;
+
+        self.start_episodes(
+            &everyone,
+            &mut learners,
+            &starts,
+            worlds,
+            world_of_env,
+            &settings,
+            &discretiser,
+            &mut out,
+        )?;
+        for step in 0..steps {
+            let draws = &explore[step * n..(step + 1) * n];
+            let randoms = &random_action[step * n..(step + 1) * n];
+            let pass = Pass {
+                q: &*q,
+                allowed: &allowed,
+                symmetry: &symmetry,
+                wheel_speeds: &wheel_speeds,
+                settings: &settings,
+                discretiser: &discretiser,
+            };
+            // Every robot decides (reading the tables as the last step left them), steps and
+            // scores its step, in parallel; what the step taught is gathered below in order.
+            let outputs = out.reborrow();
+            let learners_ref = &mut learners;
+            let chunks = chunks_of(move |envs| {
+                envs.chunks_mut(CHUNK_ENVS)
+                    .zip(learners_ref.chunks_mut(CHUNK_ENVS))
+                    .zip(outputs.chunks(width))
+                    .enumerate()
+            });
+            self.par_chunks(chunks, |(k, ((envs, learners), outputs)), stop| {
+                let rows = outputs.rows(width, distance_width);
+                for (j, ((env, learner), row)) in
+                    envs.iter_mut().zip(learners).zip(rows).enumerate()
+                {
+                    if stop() {
+                        return;
+                    }
+                    let i = k * CHUNK_ENVS + j;
+                    pass.step(env, learner, row, draws[i], randoms[i]);
+                }
+            })?;
+
+            let mut corridor_metres = 0.0;
+            for (i, learner) in learners.iter().enumerate() {
+                let done = &learner.step;
+                if let Some([own, mirrored]) = done.transitions {
+                    originals[learner.role].push(own);
+                    mirrors[symmetry.subtasks[learner.role]].push(mirrored);
+                }
+                if learner.role != door::CORRIDOR {
+                    counts.success[learner.role] += u64::from(done.good);
+                    counts.failure[learner.role] += u64::from(done.ended && !done.good);
+                    counts.cut[learner.role] += u64::from(done.cut_short);
+                } else {
+                    corridor_metres += done.forward;
+                }
+                counts.contact_steps += u64::from(done.colliding);
+                if done.restart {
+                    restart.push(i);
+                }
+            }
+            counts.corridor_metres += corridor_metres;
+            // Each table learns from its robots' decisions, then from the mirror images.
+            for (subtask, (own, mirrored)) in originals.iter_mut().zip(&mut mirrors).enumerate() {
+                own.append(mirrored);
+                if !own.is_empty() {
+                    let mut table = QTable {
+                        values: &mut q[subtask * per_table..][..per_table],
+                        visits: &mut visits[subtask * per_table..][..per_table],
+                        actions: NUM_ACTIONS,
+                    };
+                    table.update(own, &allowed[subtask], &settings.rate, &mut targets);
+                    own.clear();
+                }
+            }
+            if !restart.is_empty() {
+                self.start_episodes(
+                    &restart,
+                    &mut learners,
+                    &starts,
+                    worlds,
+                    world_of_env,
+                    &settings,
+                    &discretiser,
+                    &mut out,
+                )?;
+                restart.clear();
+            }
+        }
+        Ok(counts)
+    }
+}
+
+impl Batch {
+    /// Starts the next episode of each robot of `envs` (in increasing order) from its queue: into
+    /// its world (when it is elsewhere), at its pose with its noise seed, its sub-task begun
+    /// there and its decision open.
+    #[allow(clippy::too_many_arguments)]
+    fn start_episodes(
+        &mut self,
+        envs: &[usize],
+        learners: &mut [Learner],
+        starts: &StartQueues<'_>,
+        worlds: &[Arc<World>],
+        world_of_env: &mut [i64],
+        settings: &RoundSettings,
+        discretiser: &Discretiser,
+        out: &mut StepOutputs<'_>,
+    ) -> Result<()> {
+        let width = self.observation_width();
+        let distance_width = self.envs()[0].distance_sensors().len();
+        for &i in envs {
+            let learner = &mut learners[i];
+            let row = i * starts.per_env + learner.next_start % starts.per_env;
+            learner.next_start += 1;
+            let world = starts.world[row];
+            if world_of_env[i] != world {
+                self.set_world(i, worlds[world as usize].clone(), 0)?;
+                world_of_env[i] = world;
+            }
+            self.set_starts_at(&[i], &starts.pose[3 * row..3 * row + 3])?;
+            let env = self.env_mut(i)?;
+            env.reset(Some(starts.seed[row]));
+            Row {
+                observation: &mut out.observations[i * width..(i + 1) * width],
+                distance_width,
+                pose: &mut out.poses[3 * i..3 * i + 3],
+                colliding: &mut out.colliding[i],
+                crossing: &mut out.crossings[i],
+            }
+            .write(env);
+            let pose = pose_of(out.poses, i);
+            learner.path = DoorPath::of(&starts.path[PATH_WIDTH * row..PATH_WIDTH * (row + 1)]);
+            learner.task = SubTaskState::begin(learner.role, pose);
+            learner.progress = learner
+                .path
+                .progress(position(pose), settings.door_path_exit);
+            learner.previous_error = 0.0;
+            let distance = discretiser.state(&out.observations[i * width..]);
+            learner.state = learner.task.table_row(distance);
+            learner.episode_steps = 0;
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,219 @@
+//! A round of the lower level's Q-learning in the core: the same tables and counts whatever the
+//! thread count, learning from every decision and its mirror image, and refusing bad arrays
+//! before anything moves.
+
+use std::sync::Arc;
+
+use mazesim_core::control::door::NUM_SUBTASKS;
+use mazesim_core::control::tabular::NUM_ACTIONS;
+use mazesim_core::generator::{generate, MazeParams};
+use mazesim_core::lower_training::{
+    LowerRound, Rewards, RoundCounts, RoundSettings, StartQueues, Symmetry, PATH_WIDTH, ROWS,
+};
+use mazesim_core::qlearning::LearningRate;
+use mazesim_core::rng::Rng;
+use mazesim_core::{Batch, Error, RobotProfile, StepOutputs, World};
+
+const ENVS: usize = 20;
+const PER_ENV: usize = 6;
+const STEPS: usize = 260;
+const TABLE: usize = NUM_SUBTASKS * ROWS * NUM_ACTIONS;
+
+struct Setup {
+    worlds: Vec<Arc<World>>,
+    role: Vec<i64>,
+    start_world: Vec<i64>,
+    start_pose: Vec<f64>,
+    start_seed: Vec<u64>,
+    start_path: Vec<f64>,
+    explore: Vec<f64>,
+    random_action: Vec<i64>,
+    mirrored: Vec<i64>,
+}
+
+fn setup() -> Setup {
+    let worlds: Vec<Arc<World>> = (0..3)
+        .map(|s| Arc::new(generate(&MazeParams::default(), 70 + s).unwrap()))
+        .collect();
+    let mut rng = Rng::new(5);
+    let role: Vec<i64> = (0..ENVS as i64).map(|i| i % NUM_SUBTASKS as i64).collect();
+    let (mut start_world, mut start_pose, mut start_seed, mut start_path) =
+        (vec![], vec![], vec![], vec![]);
+    for _ in 0..ENVS * PER_ENV {
+        let w = (rng.uniform() * 3.0) as usize;
+        // The centre of a random cell of the 5 x 5 maze of 0.25 m cells, facing any way.
+        let (cx, cy) = ((rng.uniform() * 5.0).floor(), (rng.uniform() * 5.0).floor());
+        let (x, y) = (0.125 + 0.25 * cx, 0.125 + 0.25 * cy);
+        let yaw = rng.uniform_range(-3.1, 3.1);
+        start_world.push(w as i64);
+        start_pose.extend([x, y, yaw]);
+        start_seed.push(rng.next_u64());
+        let (c, s) = (yaw.cos(), yaw.sin());
+        start_path.extend([x, y, x + 0.25 * c, y + 0.25 * s, c, s, s, -c, 0.25]);
+    }
+    let explore = (0..STEPS * ENVS).map(|_| rng.uniform()).collect();
+    let random_action = (0..STEPS * ENVS)
+        .map(|i| (rng.uniform() * if i % 4 == 0 { 11.0 } else { 12.0 }) as i64)
+        .collect();
+    let mirrored = (0..NUM_SUBTASKS).flat_map(|_| 0..ROWS as i64).collect();
+    Setup {
+        worlds,
+        role,
+        start_world,
+        start_pose,
+        start_seed,
+        start_path,
+        explore,
+        random_action,
+        mirrored,
+    }
+}
+
+fn settings(epsilon: f64) -> RoundSettings {
+    RoundSettings {
+        gamma: 0.99,
+        epsilon,
+        decision_steps: 10,
+        corridor_episode_steps: 60,
+        rate: LearningRate::new(0.5, 0.02, 0.5).unwrap(),
+        rewards: Rewards {
+            progress: 10.0,
+            collision: -2.0,
+            corridor_step: -0.02,
+            door_step: -0.03,
+            heading: 2.0,
+            door_success: 5.0,
+            door_failure: -5.0,
+        },
+        door_path_exit: 0.25,
+        success_past_centre: 0.04,
+        success_across: 0.08,
+    }
+}
+
+struct Outcome {
+    q: Vec<f64>,
+    visits: Vec<i64>,
+    counts: Result<RoundCounts, Error>,
+    poses: Vec<f32>,
+}
+
+fn round(threads: usize, epsilon: f64, spoil: impl FnOnce(&mut Setup)) -> Outcome {
+    let mut s = setup();
+    spoil(&mut s);
+    let profile = Arc::new(RobotProfile::builtin("seed").unwrap());
+    let seeds: Vec<u64> = (0..ENVS as u64).collect();
+    let worlds = (0..ENVS).map(|i| s.worlds[i % 3].clone()).collect();
+    let mut batch = Batch::new(worlds, profile.clone(), &seeds, true, None, threads).unwrap();
+    let mut world_of_env: Vec<i64> = (0..ENVS as i64).map(|i| i % 3).collect();
+    let (mut q, mut visits) = (vec![0.0; TABLE], vec![0i64; TABLE]);
+    let mut allowed = [[true; NUM_ACTIONS]; NUM_SUBTASKS];
+    allowed[0][11] = false;
+    let limit = profile.max_wheel_speed as f32;
+    let fractions = mazesim_core::control::tabular::WHEEL_SPEED_FRACTIONS;
+    let wheel_speeds = fractions.map(|[l, r]| [l as f32 * limit, r as f32 * limit]);
+    let n = ENVS;
+    let mut obs = vec![0.0; n * batch.observation_width()];
+    let (mut poses, mut colliding, mut crossings) = (vec![0.0; 3 * n], vec![false; n], vec![0; n]);
+    let counts = batch.train_lower_round(
+        LowerRound {
+            settings: settings(epsilon),
+            worlds: &s.worlds,
+            world_of_env: &mut world_of_env,
+            role: &s.role,
+            starts: StartQueues {
+                per_env: PER_ENV,
+                world: &s.start_world,
+                pose: &s.start_pose,
+                seed: &s.start_seed,
+                path: &s.start_path,
+            },
+            explore: &s.explore,
+            random_action: &s.random_action,
+            q: &mut q,
+            visits: &mut visits,
+            allowed,
+            symmetry: Symmetry {
+                states: &s.mirrored,
+                actions: std::array::from_fn(|a| a),
+                subtasks: [0, 2, 1, 3],
+            },
+            wheel_speeds,
+        },
+        StepOutputs {
+            observations: &mut obs,
+            poses: &mut poses,
+            colliding: &mut colliding,
+            crossings: &mut crossings,
+        },
+    );
+    Outcome {
+        q,
+        visits,
+        counts,
+        poses,
+    }
+}
+
+#[test]
+fn a_round_gives_the_same_tables_whatever_the_threads() {
+    let one = round(1, 0.3, |_| {});
+    let two = round(2, 0.3, |_| {});
+    assert_eq!(one.q, two.q);
+    assert_eq!(one.visits, two.visits);
+    assert_eq!(one.poses, two.poses);
+    assert_eq!(one.counts.unwrap(), two.counts.unwrap());
+}
+
+#[test]
+fn every_decision_teaches_its_table_and_its_mirror_image() {
+    let ran = round(2, 1.0, |_| {});
+    let counts = ran.counts.unwrap();
+    let per_table = ROWS * NUM_ACTIONS;
+    let visits_of =
+        |k: usize| -> i64 { ran.visits[k * per_table..(k + 1) * per_table].iter().sum() };
+    // The right and left turns teach each other's table as much as their own.
+    assert_eq!(visits_of(1), visits_of(2));
+    assert!(visits_of(0) > 0 && visits_of(3) > 0);
+    // Corridors and Corners never takes its forbidden action, even exploring all the time.
+    let backward: i64 = (0..ROWS)
+        .map(|row| ran.visits[row * NUM_ACTIONS + 11])
+        .sum();
+    assert_eq!(backward, 0);
+    assert!(ran.q.iter().all(|v| v.is_finite()) && ran.q.iter().any(|&v| v != 0.0));
+    // Random driving ends door episodes (by 200 steps at the latest), some in contact with walls.
+    let ended: u64 = (1..4)
+        .map(|k| counts.success[k] + counts.failure[k] + counts.cut[k])
+        .sum();
+    assert!(ended > 0, "{counts:?}");
+    assert!(counts.contact_steps > 0 && counts.contact_steps < (ENVS * STEPS) as u64);
+    assert!(counts.corridor_metres.is_finite());
+}
+
+/// A change that makes one array bad.
+type Spoil = Box<dyn FnOnce(&mut Setup)>;
+
+#[test]
+fn bad_arrays_are_refused_before_anything_moves() {
+    let cases: Vec<(Spoil, &str)> = vec![
+        (Box::new(|s| s.start_world[3] = 7), "world indices"),
+        (
+            Box::new(|s| s.start_pose.pop().map(drop).unwrap_or(())),
+            "start poses",
+        ),
+        (Box::new(|s| s.explore[0] = f64::NAN), "finite"),
+        (Box::new(|s| s.random_action[1] = 12), "exploring actions"),
+        (Box::new(|s| s.role[0] = 4), "sub-tasks"),
+        (Box::new(|s| s.mirrored[5] = -1), "mirrored states"),
+        (
+            Box::new(|s| s.start_path.truncate(PATH_WIDTH)),
+            "door paths",
+        ),
+    ];
+    for (spoil, message) in cases {
+        let ran = round(1, 0.3, spoil);
+        let err = ran.counts.unwrap_err().to_string();
+        assert!(err.contains(message), "{message}: {err}");
+        assert!(ran.q.iter().all(|&v| v == 0.0) && ran.visits.iter().all(|&v| v == 0));
+    }
+}

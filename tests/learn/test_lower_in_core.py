@@ -1,0 +1,150 @@
+"""Issue 18: the lower level's Q-learning runs in the core, one call per round, and gives the
+tables of the round stepped from Python bit for bit, whatever the thread count."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from mazesim.errors import InvalidArgumentError, MazesimError
+from mazesim.learn.fleet import Fleet
+from mazesim.learn.lower import (
+    STARTS_PER_ROUND,
+    LowerSettings,
+    LowerTrainer,
+    draw_exploration,
+    draw_starts,
+)
+from mazesim.transfer.randomise import parse_spec, robot_draw
+
+SMALL = LowerSettings(num_envs=120, total_steps=120 * 200 * 2, round_steps=200, maze_pool=12)
+
+
+def _rounds(trainer: LowerTrainer, stepwise: bool) -> list[object]:
+    return [trainer.run_round(k, stepwise=stepwise) for k in range(trainer.settings.rounds)]
+
+
+def _same_trainers(first: LowerTrainer, second: LowerTrainer) -> None:
+    assert np.array_equal(first.tables.q, second.tables.q)
+    assert np.array_equal(first.tables.visits, second.tables.visits)
+    assert np.array_equal(first.poses, second.poses)
+    assert np.array_equal(first.observations, second.observations)
+    assert np.array_equal(first.batch.world_of_env, second.batch.world_of_env)  # type: ignore[union-attr]
+
+
+@pytest.mark.parametrize("threads", [1, 2])
+def test_a_round_in_the_core_is_the_round_stepped_from_python(threads: int) -> None:
+    stepwise = LowerTrainer(SMALL, threads=1)
+    in_core = LowerTrainer(SMALL, threads=threads)
+    assert in_core.in_core
+    assert _rounds(stepwise, True) == _rounds(in_core, False)
+    _same_trainers(stepwise, in_core)
+    # The round learned something, and Corridors and Corners never tried its forbidden action.
+    assert in_core.tables.visits.sum() > 0
+    assert in_core.tables.visits[0, :, 11].sum() == 0
+
+
+def test_randomised_robots_learn_in_the_core_as_stepped_from_python() -> None:
+    spec = parse_spec("wheel_radius=0.9:1.1,ir_angle=-10:10,wall_reflectance=0.3:1,slip=0:0.5")
+    draw = robot_draw(spec, 3)
+    stepwise = LowerTrainer(SMALL, threads=2, robot=draw(0, SMALL.num_envs))
+    in_core = LowerTrainer(SMALL, threads=2, robot=draw(0, SMALL.num_envs))
+    assert in_core.in_core
+    assert stepwise.run_round(0, stepwise=True) == in_core.run_round(0)
+    _same_trainers(stepwise, in_core)
+
+
+def test_robots_of_other_sensors_train_one_step_at_a_time() -> None:
+    draw = robot_draw(parse_spec("robot=seed|e-puck2"), 0)
+    robots = draw(0, SMALL.num_envs)
+    assert isinstance(robots, Fleet)
+    assert not LowerTrainer(SMALL, threads=1, robot=robots).in_core
+
+
+def test_a_round_draws_only_from_its_own_stream() -> None:
+    trainer = LowerTrainer(SMALL, threads=1)
+    starts, exploration = trainer.draws(1)
+    again_starts, again_exploration = trainer.draws(1)
+    assert np.array_equal(starts.pose, again_starts.pose)
+    assert np.array_equal(exploration.uniform, again_exploration.uniform)
+    other, _ = trainer.draws(2)
+    assert not np.array_equal(starts.pose, other.pose)
+
+
+def test_episode_starts_are_where_their_sub_task_begins() -> None:
+    trainer = LowerTrainer(SMALL, threads=1)
+    rng = np.random.default_rng(4)
+    starts = draw_starts(rng, trainer.role, trainer.start_tables)
+    assert starts.world.shape == (SMALL.num_envs, STARTS_PER_ROUND)
+    door = trainer.role != 0
+    # Door sub-tasks start on their path's first leg, facing along it, short of the door.
+    path = starts.path[door]
+    heading_in = path[..., 4:6]
+    facing = np.stack([np.cos(starts.pose[door][..., 2]), np.sin(starts.pose[door][..., 2])], -1)
+    assert np.all(np.einsum("...i,...i->...", heading_in, facing) > np.cos(0.21))
+    assert np.allclose(path[..., 0:2], starts.pose[door][..., :2])
+    assert np.all((path[..., 8] > 0.15) & (path[..., 8] < 0.3))
+    # Corridors and Corners carries no path; every start lies inside its maze.
+    assert np.all(starts.path[~door] == 0.0)
+    assert np.all((starts.pose[..., :2] > 0.0) & (starts.pose[..., :2] < 1.3))
+    assert starts.world.min() >= 0 and starts.world.max() < SMALL.maze_pool
+    actions = draw_exploration(rng, trainer.role, 50).action
+    assert actions[:, trainer.role == 0].max() < 11 and actions[:, door].max() == 11
+
+
+def _round_arguments(trainer: LowerTrainer) -> dict[str, object]:
+    starts, exploration = trainer.draws(0)
+    batch = trainer.batch
+    core_settings = trainer._core_settings(0.1)
+    from mazesim.learn.lower import _MIRRORED_ROWS
+    from mazesim.learn.subtasks import SUBTASK_ACTIONS
+    from mazesim.learn.symmetry import MIRRORED_ACTION, MIRRORED_SUBTASK
+
+    return {
+        "worlds": batch.worlds,  # type: ignore[union-attr]
+        "world_of_env": batch.world_of_env,  # type: ignore[union-attr]
+        "role": trainer.role,
+        "starts": starts.as_dict(),
+        "explore": exploration.uniform[:5],
+        "random_action": exploration.action[:5],
+        "q": trainer.tables.q,
+        "visits": trainer.tables.visits,
+        "symmetry": {
+            "states": _MIRRORED_ROWS,
+            "actions": MIRRORED_ACTION,
+            "subtasks": MIRRORED_SUBTASK,
+        },
+        "allowed": SUBTASK_ACTIONS,
+        "wheel_speeds": batch.wheel_speeds,  # type: ignore[union-attr]
+        "settings": core_settings,
+    }
+
+
+@pytest.mark.parametrize(
+    ("change", "message"),
+    [
+        (lambda a: a.update(q=np.zeros((4, 10, 12))), "q"),
+        (lambda a: a.update(explore=np.full_like(a["explore"], np.nan)), "finite"),
+        (lambda a: a.update(random_action=np.full_like(a["random_action"], 12)), "exploring"),
+        (lambda a: a["starts"].update(world=np.full_like(a["starts"]["world"], 99)), "world"),
+        (lambda a: a["starts"].update(pose=a["starts"]["pose"][:, :3]), "pose"),
+        (lambda a: a["settings"].pop("gamma"), "gamma"),
+        (lambda a: a["settings"].update(gamma=1.5), "gamma"),
+        (lambda a: a["settings"].update(decision_steps=0), "decision_steps"),
+        (lambda a: a["settings"].update(extra=1.0), "extra"),
+        (lambda a: a.update(worlds=[1, 2]), "World"),
+        (lambda a: a.update(role=np.full(SMALL.num_envs, 7)), "sub-tasks"),
+    ],
+)
+def test_bad_round_arguments_are_refused_before_anything_moves(change, message) -> None:
+    trainer = LowerTrainer(SMALL, threads=1)
+    arguments = _round_arguments(trainer)
+    q_before = trainer.tables.q.copy()
+    change(arguments)
+    batch = trainer.batch
+    with pytest.raises(InvalidArgumentError, match=message) as raised:
+        batch.simulator.train_lower_round(  # type: ignore[union-attr]
+            batch.observations, batch.poses, batch.colliding, batch.crossings, **arguments
+        )
+    assert isinstance(raised.value, MazesimError)
+    assert np.array_equal(trainer.tables.q, q_before)
