@@ -39,10 +39,11 @@ ALLOWED = np.ascontiguousarray(np.repeat(SUBTASK_ACTIONS, MAX_PHASES, axis=0))
 
 
 def robots_in_doors(worlds: list[int], threads: int = 1) -> tuple[RobotBatch, SubTaskTracker]:
-    """Robots in generated mazes, each beginning a sub-task (all four kinds) where it starts."""
+    """Robots in generated mazes, each beginning a sub-task (all four kinds) where it starts,
+    the robot of world w with sensor-noise seed w (whatever the batch it is in)."""
     mazes = [mazesim.generate_maze(5, 5, seed=150 + w) for w in worlds]
     batch = RobotBatch(mazes, np.arange(len(worlds)), threads=threads)
-    batch.observe()
+    batch.reset(seeds=np.array(worlds, dtype=np.uint64))
     tracker = SubTaskTracker(batch.num_envs)
     kinds = np.array(worlds) % NUM_SUBTASKS
     tracker.begin(np.ones(batch.num_envs, dtype=bool), kinds, batch.poses)

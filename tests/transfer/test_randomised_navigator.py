@@ -45,12 +45,12 @@ def test_the_randomised_navigator_reaches_the_goal_of_seed_maze() -> None:
 
 def test_it_keeps_going_where_the_shipped_tables_break() -> None:
     world = mazesim.load_world("seed-maze")
-    options = StudyOptions(axes=parse_axes("wall_reflectance,latency"), episodes=20, pairs=False)
+    options = StudyOptions(axes=parse_axes("wall_reflectance"), episodes=20, pairs=False)
     rates = {}
     for name in (None, "randomised"):
         result = run_study(load_policy(name), world, options)
         rates[name] = {cell.setting.label(): cell.measure.success_rate for cell in result.single}
-    for cell in ("wall_reflectance x0.4", "latency 2 steps"):
+    for cell in ("wall_reflectance x0.6", "wall_reflectance x0.4"):
         assert rates["randomised"][cell] >= 0.9, rates
         assert rates[None][cell] <= 0.8, rates
 

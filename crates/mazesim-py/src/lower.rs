@@ -15,7 +15,7 @@ use numpy::{PyReadonlyArrayDyn, PyReadwriteArrayDyn};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::type_name;
+use crate::args::{type_name, Real};
 use crate::buffers::{copied, readable, writable};
 use crate::errors::{invalid, IntoPy};
 use crate::world::world_argument;
@@ -348,9 +348,9 @@ pub fn q_batch_update(
     next_states: &Bound<'_, PyAny>,
     bootstrap: &Bound<'_, PyAny>,
     allowed: &Bound<'_, PyAny>,
-    initial: f64,
-    floor: f64,
-    power: f64,
+    initial: Real,
+    floor: Real,
+    power: Real,
 ) -> PyResult<()> {
     crate::guard::enter(|| {
         let shape = shape_of(q);
@@ -359,7 +359,12 @@ pub fn q_batch_update(
                 "expected q to be a (states, actions) float64 array, found shape {shape:?}"
             )));
         };
-        let rate = LearningRate::new(initial, floor, power).py()?;
+        let rate = LearningRate::new(
+            initial.value("initial")?,
+            floor.value("floor")?,
+            power.value("power")?,
+        )
+        .py()?;
         let m = shape_of(states).first().copied().unwrap_or(0);
         let states = copied::<i64>(states, "states", "int64", &[m])?;
         let actions = copied::<i64>(actions, "actions", "int64", &[m])?;

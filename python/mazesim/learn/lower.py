@@ -29,9 +29,16 @@ with :func:`mazesim.learn.qlearning.batch_update`.
 
 **Rounds.** Training runs in rounds of ``round_steps`` control steps; every robot starts a fresh
 episode at the start of a round (episodes still running at its end are cut short, not failed).
-A round's randomness comes from ``(seed, round)`` only, and the simulator is deterministic, so the
-tables after round k depend on the settings alone: a run resumed from a checkpoint after round k
-ends with the same tables as one never stopped.
+A round's randomness is drawn before it from the stream of ``(seed, round)``: each robot's queue
+of episode starts (:func:`draw_starts`), then every step's exploration draws
+(:func:`draw_exploration`). The simulator is deterministic, so the tables after round k depend on
+the settings alone: a run resumed from a checkpoint after round k ends with the same tables as one
+never stopped.
+
+**In the core.** A round runs in one call of ``BatchSimulator.train_lower_round`` when its robots
+share one batch and one motor limit; otherwise (a :class:`~mazesim.learn.fleet.Fleet` of several
+sensor sets) it steps from Python, ``run_round(k, stepwise=True)``. The core follows the Python
+loop operation for operation, so both give the same tables bit for bit from the same draws.
 """
 
 from __future__ import annotations
