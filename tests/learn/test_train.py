@@ -179,3 +179,16 @@ def test_first_round_of_the_shipped_training_is_reproduced() -> None:
     )
     trainer = LowerTrainer(settings, threads=0)
     assert _round_summary(trainer.run_round(0)) == training["history"][0]
+
+
+def test_the_flat_baseline_trains_into_a_folder_that_does_not_exist_yet(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    out = tmp_path / "new" / "flat"
+    # 4 robots for 10,000 steps each: every one ends an episode (4,000 steps at most) on the way.
+    args = ["train", "--flat", "--envs", "4", "--steps", "40k", "--out", str(out), "--no-progress"]
+    assert main(args) == 0
+    assert "trained the flat baseline" in capsys.readouterr().out
+    for name in ("tables.npz", "policy.json", "learning_curve.csv"):
+        assert (out / name).is_file(), name
+    assert load_policy(out).kind == "flat"

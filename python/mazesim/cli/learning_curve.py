@@ -43,8 +43,8 @@ def _tensorboard_writer_class() -> Any:
 
 class LearningCurve:
     """Writes a training's learning curve into ``folder`` as it comes (a context manager and a
-    :data:`mazesim.learn.train.CurveFn`); the files are opened at the first point, when the
-    training has made its folder.
+    :data:`mazesim.learn.train.CurveFn`); the files are opened at the first point, the folder
+    made then if the training has not made it yet.
 
     Args:
         folder: The output folder.
@@ -65,6 +65,8 @@ class LearningCurve:
 
     def __call__(self, stage: str, values: dict[str, float]) -> None:
         if self._file is None:
+            # The hierarchical training has made the folder by now; the flat one makes it last.
+            self.folder.mkdir(parents=True, exist_ok=True)
             self._file = self.path.open("w", newline="", encoding="utf-8")
             self._csv = csv.DictWriter(self._file, fieldnames=CSV_COLUMNS, restval="")
             self._csv.writeheader()
