@@ -124,6 +124,8 @@ def _round_arguments(trainer: LowerTrainer) -> dict[str, object]:
     ("change", "message"),
     [
         (lambda a: a.update(q=np.zeros((4, 10, 12))), "q"),
+        (lambda a: a.update(q=np.full_like(a["q"], np.inf)), "finite Q"),
+        (lambda a: a.update(visits=np.full_like(a["visits"], -1)), "visit counts"),
         (lambda a: a.update(explore=np.full_like(a["explore"], np.nan)), "finite"),
         (lambda a: a.update(random_action=np.full_like(a["random_action"], 12)), "exploring"),
         (lambda a: a["starts"].update(world=np.full_like(a["starts"]["world"], 99)), "world"),

@@ -145,3 +145,11 @@ def test_the_batch_update_is_the_loop_of_scalar_updates_exactly(seed: int) -> No
     batch_update(q, visits, states, actions, rewards, next_states, bootstrap, rate, allowed)
     assert np.array_equal(q, expected_q)
     assert np.array_equal(visits, expected_visits)
+
+
+def test_negative_visit_counts_are_refused_before_any_update() -> None:
+    q = np.zeros((2, 2))
+    visits = np.array([[0, -1], [0, 0]])
+    with pytest.raises(InvalidArgumentError, match="visit counts of 0 or more"):
+        batch_update(q, visits, [0], [0], [1.0], [1], [0.5], LearningRate())
+    assert np.all(q == 0.0)

@@ -412,6 +412,11 @@ impl LowerRound<'_> {
                 "expected mirrored states in [0, {ROWS}), found {s}"
             )));
         }
+        if let Some(v) = self.visits.iter().find(|&&v| v < 0) {
+            return Err(Error::InvalidArgument(format!(
+                "expected visit counts of 0 or more, found {v}"
+            )));
+        }
         if let Some(v) = self.q.iter().find(|v| !v.is_finite()) {
             return Err(Error::InvalidArgument(format!(
                 "expected finite Q-values, found {v}"

@@ -154,6 +154,14 @@ impl QTable<'_> {
                 self.visits.len()
             )));
         }
+        if let Some(at) = self.visits.iter().position(|&v| v < 0) {
+            return Err(Error::InvalidArgument(format!(
+                "expected visit counts of 0 or more, found {} at state {}, action {}",
+                self.visits[at],
+                at / self.actions,
+                at % self.actions
+            )));
+        }
         if allowed.len() != self.actions || !allowed.iter().any(|&ok| ok) {
             return Err(Error::InvalidArgument(format!(
                 "expected {} allowed-action flags, at least one true, found {:?}",
@@ -276,6 +284,14 @@ mod tests {
             ..bad
         };
         assert!(table.check(&[nan], &[true, true]).is_err());
+        let mut negative = [0, 0, -3, 0];
+        let counted = QTable {
+            values: &mut [0.0; 4],
+            visits: &mut negative,
+            actions: 2,
+        };
+        let err = counted.check(&[], &[true, true]).unwrap_err().to_string();
+        assert!(err.contains("-3 at state 1, action 0"), "{err}");
         assert!(table.check(&[], &[false, false]).is_err());
     }
 }
