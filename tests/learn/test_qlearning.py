@@ -153,3 +153,25 @@ def test_negative_visit_counts_are_refused_before_any_update() -> None:
     with pytest.raises(InvalidArgumentError, match="visit counts of 0 or more"):
         batch_update(q, visits, [0], [0], [1.0], [1], [0.5], LearningRate())
     assert np.all(q == 0.0)
+
+
+def test_the_core_update_names_a_negative_index_and_ignores_an_unread_next_state() -> None:
+    from mazesim._core import q_batch_update
+
+    q, visits = np.zeros((3, 2)), np.zeros((3, 2), dtype=np.int64)
+    ones = np.ones(2, dtype=bool)
+
+    def update(states: list[int], next_states: list[int], bootstrap: list[float]) -> None:
+        q_batch_update(
+            q, visits, np.array(states), np.array([0, 1]), np.array([1.0, 2.0]),
+            np.array(next_states), np.array(bootstrap), ones, 0.5, 0.02, 0.5,
+        )  # fmt: skip
+
+    with pytest.raises(InvalidArgumentError, match="states of 0 or more, found -4 at transition 1"):
+        update([0, -4], [0, 0], [0.9, 0.9])
+    with pytest.raises(InvalidArgumentError, match="next_states of 0 or more, found -1"):
+        update([0, 1], [0, -1], [0.9, 0.9])
+    assert visits.sum() == 0
+    # An episode's end reads no next state, so any number there is as good as another.
+    update([0, 1], [0, -1], [0.9, 0.0])
+    assert q[1, 1] == 1.0 and visits.sum() == 2

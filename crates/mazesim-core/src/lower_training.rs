@@ -247,7 +247,8 @@ impl Pass<'_> {
             } else {
                 let table = &self.q[learner.role * per_table..][..per_table];
                 let values = &table[learner.state * NUM_ACTIONS..][..NUM_ACTIONS];
-                best_action(values, &self.allowed[learner.role])
+                let allowed = &self.allowed[learner.role];
+                best_action(values, (0..NUM_ACTIONS).filter(|&a| allowed[a]))
             };
             learner.reward = 0.0;
             learner.discount = 1.0;
@@ -402,6 +403,19 @@ impl LowerRound<'_> {
                 "expected exploring actions in [0, {NUM_ACTIONS}), found {a}"
             )));
         }
+        // A sub-task never explores an action it may not take (Corridors and Corners: `99`).
+        let not_allowed = self.random_action.iter().enumerate().find(|&(at, &a)| {
+            let subtask = self.role[at % n] as usize;
+            !self.allowed[subtask][a as usize]
+        });
+        if let Some((at, &a)) = not_allowed {
+            let (step, env) = (at / n, at % n);
+            return Err(Error::InvalidArgument(format!(
+                "expected exploring actions the robot's sub-task may take, found action {a} for \
+                 robot {env} (sub-task {}) at step {step}",
+                self.role[env]
+            )));
+        }
         if let Some(s) = self
             .symmetry
             .states
@@ -464,7 +478,12 @@ impl Batch {
             symmetry,
             wheel_speeds,
         } = round;
-        let discretiser = Discretiser::new()?;
+        let starter = Starter {
+            starts,
+            worlds,
+            door_path_exit: settings.door_path_exit,
+            discretiser: Discretiser::new()?,
+        };
         let width = self.observation_width();
         let steps = explore.len() / n;
         let mut learners: Vec<Learner> = (0..n)
@@ -494,16 +513,7 @@ impl Batch {
         let mut restart = Vec::new();
         let per_table = ROWS * NUM_ACTIONS;
 
-        self.start_episodes(
-            &everyone,
-            &mut learners,
-            &starts,
-            worlds,
-            world_of_env,
-            &settings,
-            &discretiser,
-            &mut out,
-        )?;
+        starter.start(self, &everyone, &mut learners, world_of_env, &mut out)?;
         for step in 0..steps {
             let draws = &explore[step * n..(step + 1) * n];
             let randoms = &random_action[step * n..(step + 1) * n];
@@ -513,7 +523,7 @@ impl Batch {
                 symmetry: &symmetry,
                 wheel_speeds: &wheel_speeds,
                 settings: &settings,
-                discretiser: &discretiser,
+                discretiser: &starter.discretiser,
             };
             // Every robot decides (reading the tables as the last step left them), steps and
             // scores its step, in parallel; what the step taught is gathered below in order.
@@ -572,16 +582,7 @@ impl Batch {
                 }
             }
             if !restart.is_empty() {
-                self.start_episodes(
-                    &restart,
-                    &mut learners,
-                    &starts,
-                    worlds,
-                    world_of_env,
-                    &settings,
-                    &discretiser,
-                    &mut out,
-                )?;
+                starter.start(self, &restart, &mut learners, world_of_env, &mut out)?;
                 restart.clear();
             }
         }
@@ -589,35 +590,40 @@ impl Batch {
     }
 }
 
-impl Batch {
+/// Where the robots' episodes start: their queues, the worlds they name, and what a start sets.
+struct Starter<'a> {
+    starts: StartQueues<'a>,
+    worlds: &'a [Arc<World>],
+    door_path_exit: f64,
+    discretiser: Discretiser,
+}
+
+impl Starter<'_> {
     /// Starts the next episode of each robot of `envs` (in increasing order) from its queue: into
     /// its world (when it is elsewhere), at its pose with its noise seed, its sub-task begun
     /// there and its decision open.
-    #[allow(clippy::too_many_arguments)]
-    fn start_episodes(
-        &mut self,
+    fn start(
+        &self,
+        batch: &mut Batch,
         envs: &[usize],
         learners: &mut [Learner],
-        starts: &StartQueues<'_>,
-        worlds: &[Arc<World>],
         world_of_env: &mut [i64],
-        settings: &RoundSettings,
-        discretiser: &Discretiser,
         out: &mut StepOutputs<'_>,
     ) -> Result<()> {
-        let width = self.observation_width();
-        let distance_width = self.envs()[0].distance_sensors().len();
+        let width = batch.observation_width();
+        let distance_width = batch.envs()[0].distance_sensors().len();
         for &i in envs {
             let learner = &mut learners[i];
+            let starts = &self.starts;
             let row = i * starts.per_env + learner.next_start % starts.per_env;
             learner.next_start += 1;
             let world = starts.world[row];
             if world_of_env[i] != world {
-                self.set_world(i, worlds[world as usize].clone(), 0)?;
+                batch.set_world(i, self.worlds[world as usize].clone(), 0)?;
                 world_of_env[i] = world;
             }
-            self.set_starts_at(&[i], &starts.pose[3 * row..3 * row + 3])?;
-            let env = self.env_mut(i)?;
+            batch.set_starts_at(&[i], &starts.pose[3 * row..3 * row + 3])?;
+            let env = batch.env_mut(i)?;
             env.reset(Some(starts.seed[row]));
             Row {
                 observation: &mut out.observations[i * width..(i + 1) * width],
@@ -630,11 +636,9 @@ impl Batch {
             let pose = pose_of(out.poses, i);
             learner.path = DoorPath::of(&starts.path[PATH_WIDTH * row..PATH_WIDTH * (row + 1)]);
             learner.task = SubTaskState::begin(learner.role, pose);
-            learner.progress = learner
-                .path
-                .progress(position(pose), settings.door_path_exit);
+            learner.progress = learner.path.progress(position(pose), self.door_path_exit);
             learner.previous_error = 0.0;
-            let distance = discretiser.state(&out.observations[i * width..]);
+            let distance = self.discretiser.state(&out.observations[i * width..]);
             learner.state = learner.task.table_row(distance);
             learner.episode_steps = 0;
         }

@@ -50,12 +50,12 @@ impl LearningRate {
     }
 }
 
-/// The greedy action of one row of values among the `allowed` ones: the largest, ties going to
-/// the lowest index (0 when none is allowed).
-pub fn best_action(values: &[f64], allowed: &[bool]) -> usize {
+/// The greedy action of one row of values among the `allowed` action indices (listed in
+/// increasing order): the largest, ties going to the lowest index (0 when none is allowed).
+pub fn best_action(values: &[f64], allowed: impl IntoIterator<Item = usize>) -> usize {
     let mut best: Option<usize> = None;
-    for (action, &value) in values.iter().enumerate() {
-        if allowed[action] && best.is_none_or(|b| value > values[b]) {
+    for action in allowed {
+        if best.is_none_or(|b| values[action] > values[b]) {
             best = Some(action);
         }
     }
@@ -95,10 +95,8 @@ impl QTable<'_> {
 
     /// The greedy action of `row` among the `allowed` ones (see [`best_action`]).
     pub fn best(&self, row: usize, allowed: &[bool]) -> usize {
-        best_action(
-            &self.values[row * self.actions..(row + 1) * self.actions],
-            allowed,
-        )
+        let values = &self.values[row * self.actions..(row + 1) * self.actions];
+        best_action(values, (0..self.actions).filter(|&a| allowed[a]))
     }
 
     /// The largest allowed value of `row`.

@@ -203,6 +203,11 @@ fn bad_arrays_are_refused_before_anything_moves() {
         ),
         (Box::new(|s| s.explore[0] = f64::NAN), "finite"),
         (Box::new(|s| s.random_action[1] = 12), "exploring actions"),
+        // Robot 0 runs Corridors and Corners, which may not take action 11 (`99`).
+        (
+            Box::new(|s| s.random_action[2 * ENVS] = 11),
+            "robot 0 (sub-task 0) at step 2",
+        ),
         (Box::new(|s| s.role[0] = 4), "sub-tasks"),
         (Box::new(|s| s.mirrored[5] = -1), "mirrored states"),
         (

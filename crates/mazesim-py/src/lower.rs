@@ -372,7 +372,21 @@ pub fn q_batch_update(
         let next_states = copied::<i64>(next_states, "next_states", "int64", &[m])?;
         let bootstrap = copied::<f64>(bootstrap, "bootstrap", "float64", &[m])?;
         let allowed = copied::<bool>(allowed, "allowed", "bool", &[columns])?;
-        let index = |v: i64| if v < 0 { usize::MAX } else { v as usize };
+        // A next state is read only where its bootstrap is not 0.
+        let read = |name: &str, i: usize| name != "next_states" || bootstrap[i] != 0.0;
+        for (name, values) in [
+            ("states", &states),
+            ("actions", &actions),
+            ("next_states", &next_states),
+        ] {
+            if let Some(at) = (0..m).find(|&i| values[i] < 0 && read(name, i)) {
+                return Err(invalid(format!(
+                    "expected {name} of 0 or more, found {} at transition {at}",
+                    values[at]
+                )));
+            }
+        }
+        let index = |v: i64| v.max(0) as usize;
         let batch: Vec<Transition> = (0..m)
             .map(|i| Transition {
                 state: index(states[i]),

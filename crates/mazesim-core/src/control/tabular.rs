@@ -6,6 +6,7 @@
 use super::door::{self, SubTaskState};
 use crate::error::{Error, Result};
 use crate::lut::LookupTable;
+use crate::qlearning::best_action;
 use crate::rng::Rng;
 use crate::RobotProfile;
 
@@ -263,13 +264,7 @@ impl TabularPolicy {
         let state = self.discretiser.state(volts);
         let start = (table * NUM_STATES + state) * NUM_ACTIONS;
         let row = &self.values[start..start + NUM_ACTIONS];
-        let mut best = allowed[0] as usize;
-        for &a in &allowed[1..] {
-            if row[a as usize] > row[best] {
-                best = a as usize;
-            }
-        }
-        best
+        best_action(row, allowed.iter().map(|&a| usize::from(a)))
     }
 
     /// Number of Q-tables.
