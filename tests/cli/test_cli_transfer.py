@@ -60,6 +60,18 @@ def test_the_table_names_every_cell(tmp_path: Path) -> None:
 
 
 @pytest.mark.parametrize(
+    ("episodes", "words"), [("1", "1 episode a cell"), ("2", "2 episodes a cell")]
+)
+def test_the_header_counts_episodes_in_words(tmp_path: Path, episodes: str, words: str) -> None:
+    out = io.StringIO()
+    argv = ["--axes", "latency", "--episodes", episodes, "--max-steps", "50", "--no-pairs"]
+    args = _args(*argv, "--out", str(tmp_path / "study"), "--no-progress")
+    assert run_transfer_study(args, out) == 0
+    header = out.getvalue().splitlines()[0]
+    assert f": {words}, seed 0" in header
+
+
+@pytest.mark.parametrize(
     ("argv", "message"),
     [
         (["--axes", "latency,warp"], "argument --axes: expected axes among robot, wheel_radius"),

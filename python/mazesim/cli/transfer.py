@@ -189,7 +189,7 @@ def run_transfer_study(args: argparse.Namespace, out: TextIO) -> int:
         out.write(json.dumps(result.as_json(), indent=2) + "\n")
         return 0
     out.write(
-        f"{result.policy} navigator in {result.world}: {result.episodes} episodes a cell, "
+        f"{result.policy} navigator in {result.world}: {result.episodes_label}, "
         f"seed {result.seed}, {result.events} checkpoint events\n"
     )
     out.write(_table(result))

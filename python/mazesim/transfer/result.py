@@ -91,6 +91,11 @@ class StudyResult:
     single: list[Cell] = field(default_factory=list)
     pairs: list[Cell] = field(default_factory=list)
 
+    @property
+    def episodes_label(self) -> str:
+        """The episodes per cell in words: ``"1 episode a cell"``, ``"200 episodes a cell"``."""
+        return f"{self.episodes} episode{'' if self.episodes == 1 else 's'} a cell"
+
     def as_json(self) -> dict[str, Any]:
         """The result as the documented JSON object."""
         return {
