@@ -139,3 +139,13 @@ def test_adapter_refuses_a_next_step_vector_env() -> None:
 
     with pytest.raises(InvalidArgumentError, match="SAME_STEP"):
         MazesimVecEnv(EPuckMazeVectorEnv(num_envs=2))
+
+
+@pytest.mark.parametrize("attribute", ["observation_space", "action_space"])
+def test_get_attr_gives_each_environments_space_as_dummy_vec_env(attribute: str) -> None:
+    fast = make_vec_env(ENV_ID, 3, seed=0)
+    reference = dummy_vec_env(3)
+    spaces = fast.get_attr(attribute)
+    assert spaces == reference.get_attr(attribute)
+    assert spaces[0] == getattr(fast, attribute)
+    assert fast.get_attr(attribute, indices=[1]) == reference.get_attr(attribute, indices=[1])

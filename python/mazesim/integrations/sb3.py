@@ -45,6 +45,12 @@ __all__ = ["MazesimVecEnv", "make_vec_env"]
 
 #: The keys of every per-environment info, in the single env's order.
 _INFO_KEYS = ("pose", "collisions", "colliding", "distance_to_goal", "is_success")
+#: The vector env's attributes that hold all environments at once, and the attribute that holds
+#: one environment's (what ``DummyVecEnv.get_attr`` gives: each single env's own value).
+_PER_ENVIRONMENT = {
+    "observation_space": "single_observation_space",
+    "action_space": "single_action_space",
+}
 
 
 def make_vec_env(
@@ -181,8 +187,13 @@ class MazesimVecEnv(VecEnv):
         return list(frames) if frames is not None else [None] * self.num_envs
 
     def get_attr(self, attr_name: str, indices: Any = None) -> list[Any]:
-        """The vector env's attribute, once per environment of ``indices``."""
-        value = getattr(self.vector_env, attr_name)
+        """The vector env's attribute, once per environment of ``indices``.
+
+        SB3 documents ``get_attr`` as each environment's own attribute (``DummyVecEnv`` reads it
+        from every single env), so ``observation_space`` and ``action_space`` are the spaces of
+        one environment, not the vector env's batched ones.
+        """
+        value = getattr(self.vector_env, _PER_ENVIRONMENT.get(attr_name, attr_name))
         return [value for _ in self._indices(indices)]
 
     def set_attr(self, attr_name: str, value: Any, indices: Any = None) -> None:
