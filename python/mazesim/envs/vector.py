@@ -15,6 +15,7 @@ a boolean mask ``_k`` of the environments that have it.
 
 from __future__ import annotations
 
+import numbers
 from typing import Any
 
 import gymnasium
@@ -177,7 +178,7 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         batch = self._open_batch()
         n = self.num_envs
         seeds = self._seeds(seed)
-        super().reset(seed=seed if isinstance(seed, int) else None)
+        super().reset(seed=seeds[0] if _is_seed(seed) else None)
         mask = self._reset_mask(dict(options or {}).get("reset_mask"))
         envs = np.flatnonzero(mask) if mask is not None else np.arange(n)
         for i in envs:
@@ -325,16 +326,28 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
             raise ClosedEnvironmentError("the vector env is closed")
         return self._batch
 
-    def _seeds(self, seed: int | list[int | None] | None) -> list[int | None]:
+    def _seeds(self, seed: Any) -> list[int | None]:
+        """One seed (or None) per environment: ``seed + i``, or the list's, checked.
+
+        Numpy integers count as the ints they hold; anything else is refused by name (gymnasium
+        documents ``seed`` as an int or a list of ``num_envs`` ints or None)."""
         n = self.num_envs
         if seed is None:
             return [None] * n
-        if isinstance(seed, int):
-            return [seed + i for i in range(n)]
-        seeds = list(seed)
-        if len(seeds) != n:
-            raise InvalidArgumentError(f"expected {n} seeds (one per env), found {len(seeds)}")
-        return seeds
+        if _is_seed(seed):
+            return [int(seed) + i for i in range(n)]
+        if not isinstance(seed, (list, tuple)) or len(seed) != n:
+            found = f"{len(seed)}" if isinstance(seed, (list, tuple)) else repr(seed)
+            raise InvalidArgumentError(
+                f"expected seed to be an int of at least 0, None or a list of {n} of them "
+                f"(one per env), found {found}"
+            )
+        for i, one in enumerate(seed):
+            if one is not None and not _is_seed(one):
+                raise InvalidArgumentError(
+                    f"expected seed {i} to be an int of at least 0 or None, found {one!r}"
+                )
+        return [None if one is None else int(one) for one in seed]
 
     def _reset_mask(self, mask: Any) -> npt.NDArray[np.bool_] | None:
         if mask is None:
@@ -434,6 +447,11 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
             start=None if drawn is None else drawn.start,
             goal=None if drawn is None else drawn.goal,
         )
+
+
+def _is_seed(seed: Any) -> bool:
+    """Whether ``seed`` is one seed: a Python or numpy integer of at least 0, not a bool."""
+    return isinstance(seed, numbers.Integral) and not isinstance(seed, bool) and int(seed) >= 0
 
 
 def _autoreset_mode(mode: AutoresetMode | str) -> AutoresetMode:
