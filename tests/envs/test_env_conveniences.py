@@ -128,6 +128,19 @@ def test_single_and_vector_env_take_the_same_options() -> None:
     assert single.observation_space == vector.single_observation_space
 
 
+def test_single_env_spec_of_the_vector_env_makes_one_of_its_environments() -> None:
+    vector = gymnasium.make_vec(
+        "mazesim/UnseenMaze-v2", 3, max_episode_steps=40, threads=1, maze_size=(3, 4)
+    )
+    spec = vector.unwrapped.single_env_spec
+    reference = gymnasium.make("mazesim/UnseenMaze-v2", max_episode_steps=40, maze_size=(3, 4))
+    assert spec == reference.spec
+    single = gymnasium.make(spec)
+    observations, _ = vector.reset(seed=5)
+    assert np.array_equal(single.reset(seed=5)[0], observations[0])
+    assert EPuckMazeVectorEnv(num_envs=2).single_env_spec is None  # not made by make_vec
+
+
 def test_make_without_importing_mazesim_first() -> None:
     """gymnasium (1.x) has no plugin entry points; its ``module:env`` form imports mazesim."""
     script = (

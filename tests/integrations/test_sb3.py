@@ -149,3 +149,14 @@ def test_get_attr_gives_each_environments_space_as_dummy_vec_env(attribute: str)
     assert spaces == reference.get_attr(attribute)
     assert spaces[0] == getattr(fast, attribute)
     assert fast.get_attr(attribute, indices=[1]) == reference.get_attr(attribute, indices=[1])
+
+
+def test_get_attr_spec_is_a_single_envs_spec_that_makes_the_same_env() -> None:
+    options = {"noise": False, "max_episode_steps": 99}
+    fast = make_vec_env("mazesim/MazeFixed-v1", 2, seed=0, threads=1, **options)
+    reference = DummyVecEnv([lambda: gymnasium.make("mazesim/MazeFixed-v1", **options)])
+    spec = fast.get_attr("spec")[0]
+    assert spec == reference.get_attr("spec")[0]
+    evaluation = gymnasium.make(spec)  # refused the vector env's num_envs, threads, ... before
+    assert evaluation.spec is not None and evaluation.spec.max_episode_steps == 99
+    assert np.array_equal(evaluation.reset(seed=0)[0], reference.envs[0].reset(seed=0)[0])

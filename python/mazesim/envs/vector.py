@@ -15,12 +15,14 @@ a boolean mask ``_k`` of the environments that have it.
 
 from __future__ import annotations
 
+import dataclasses
 import numbers
 from typing import Any
 
 import gymnasium
 import numpy as np
 import numpy.typing as npt
+from gymnasium.envs.registration import EnvSpec
 from gymnasium.error import ClosedEnvironmentError, ResetNeeded
 from gymnasium.utils import seeding
 from gymnasium.vector import AutoresetMode, VectorEnv
@@ -39,6 +41,16 @@ from mazesim.maze import GoalDistance, PathDistanceTable
 __all__ = ["EPuckMazeVectorEnv"]
 
 _INFO_KEYS = ("pose", "collisions", "colliding", "distance_to_goal", "is_success")
+#: The keywords a ``make_vec`` spec holds for the vector env itself, not for its environments.
+_VECTOR_KEYWORDS = (
+    "num_envs",
+    "vectorization_mode",
+    "vector_kwargs",
+    "wrappers",
+    "threads",
+    "autoreset_mode",
+    "max_episode_steps",
+)
 
 
 class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], npt.NDArray[Any]]):
@@ -156,6 +168,19 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         self._elapsed = np.zeros(n, dtype=np.int64)
         self._autoreset = np.zeros(n, dtype=bool)
         self._needs_reset = True
+
+    @property
+    def single_env_spec(self) -> EnvSpec | None:
+        """The spec of one of its environments, as ``gymnasium.make`` records a single env's: the
+        task's id and options without the vector env's own keywords (``num_envs``, ``threads``,
+        ``autoreset_mode``, ...) and its time limit as ``max_episode_steps``, so
+        ``gymnasium.make(envs.single_env_spec)`` makes one environment of the same task. None
+        when the env has no spec (made without ``gymnasium.make_vec``)."""
+        spec = self.spec
+        if spec is None:
+            return None
+        kwargs = {key: value for key, value in spec.kwargs.items() if key not in _VECTOR_KEYWORDS}
+        return dataclasses.replace(spec, kwargs=kwargs, max_episode_steps=self.max_episode_steps)
 
     @property
     def observation_names(self) -> list[str]:

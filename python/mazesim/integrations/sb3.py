@@ -50,6 +50,7 @@ _INFO_KEYS = ("pose", "collisions", "colliding", "distance_to_goal", "is_success
 _PER_ENVIRONMENT = {
     "observation_space": "single_observation_space",
     "action_space": "single_action_space",
+    "spec": "single_env_spec",
 }
 
 
@@ -191,7 +192,8 @@ class MazesimVecEnv(VecEnv):
 
         SB3 documents ``get_attr`` as each environment's own attribute (``DummyVecEnv`` reads it
         from every single env), so ``observation_space`` and ``action_space`` are the spaces of
-        one environment, not the vector env's batched ones.
+        one environment, not the vector env's batched ones, and ``spec`` is one environment's
+        (``gymnasium.make(spec)`` makes an env of the same task, say for evaluation).
         """
         value = getattr(self.vector_env, _PER_ENVIRONMENT.get(attr_name, attr_name))
         return [value for _ in self._indices(indices)]
