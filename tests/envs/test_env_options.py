@@ -15,16 +15,18 @@ from mazesim.errors import InvalidArgumentError  # noqa: E402
 
 TASK = "mazesim/UnseenMaze-v2"
 
-#: Each option as numpy gives it (a sweep's ``rng.integers`` or ``np.linspace``) and as Python
-#: does: the env made with either is the same env.
-NUMPY_OPTIONS: dict[str, tuple[Any, Any]] = {
-    "maze_size": ((np.int64(4), np.int32(6)), (4, 6)),
-    "control_step_ms": (np.float32(64.0), 64.0),
-    "goal_reward": (np.float32(5.0), 5.0),
-    "collision_penalty": (np.float64(0.25), 0.25),
-    "progress_reward": (np.int64(20), 20),
-    "render_size": (np.int64(64), 64),
-}
+#: Options as numpy gives them (a sweep's ``rng.integers`` or ``np.linspace``, a config's array)
+#: and as Python numbers: the env made with either is the same env.
+NUMPY_OPTIONS: list[tuple[str, Any, Any]] = [
+    ("maze_size", (np.int64(4), np.int32(6)), (4, 6)),
+    ("maze_size", np.array([4, 6]), (4, 6)),
+    ("render_size", np.int64(64), 64),
+    ("render_size", np.array([64, 48]), (64, 48)),
+    ("control_step_ms", np.float32(64.0), 64.0),
+    ("goal_reward", np.float32(5.0), 5.0),
+    ("collision_penalty", np.float64(0.25), 0.25),
+    ("progress_reward", np.int64(20), 20),
+]
 
 
 def rollout(env: Any, steps: int = 40) -> list[Any]:
@@ -38,9 +40,14 @@ def rollout(env: Any, steps: int = 40) -> list[Any]:
     return out
 
 
-@pytest.mark.parametrize("name", sorted(NUMPY_OPTIONS))
-def test_numpy_scalars_make_the_same_env_as_python_numbers(name: str) -> None:
-    numpy_value, python_value = NUMPY_OPTIONS[name]
+@pytest.mark.parametrize(
+    ("name", "numpy_value", "python_value"),
+    NUMPY_OPTIONS,
+    ids=[f"{name}-{type(value).__name__}" for name, value, _ in NUMPY_OPTIONS],
+)
+def test_numpy_values_make_the_same_env_as_python_numbers(
+    name: str, numpy_value: Any, python_value: Any
+) -> None:
     from_numpy = gymnasium.make(TASK, **{name: numpy_value})
     from_python = gymnasium.make(TASK, **{name: python_value})
     mine, theirs = rollout(from_numpy), rollout(from_python)

@@ -44,6 +44,9 @@ ACTION_MODES = ("continuous", "discrete")
 #: longest shortest path of a 5 x 5 maze of 0.25 m cells.
 DEFAULT_MAX_EPISODE_STEPS = 3000
 
+#: What a (width, height) option (``maze_size``, ``render_size``) may come as.
+_PAIRS = (tuple, list, np.ndarray)
+
 #: What the ``world`` option accepts: a built-in name, a path, ``"random"`` or a World.
 WorldOption = Union[str, "os.PathLike[str]", World]
 
@@ -166,7 +169,7 @@ class EnvOptions:
                 f"expected control_step_ms to be a positive number of ms or None, "
                 f"found {control_step_ms!r}"
             )
-        sizes = (maze_size,) if not isinstance(maze_size, (tuple, list)) else tuple(maze_size)
+        sizes = (maze_size,) if not isinstance(maze_size, _PAIRS) else tuple(maze_size)
         if len(sizes) != 2 or not all(_is_count(n) and n >= 2 for n in sizes):
             raise InvalidArgumentError(
                 f"expected maze_size to be (width, height) of at least 2 cells each, "
@@ -175,7 +178,7 @@ class EnvOptions:
         sides: tuple[Any, ...] = (render_size,)
         if _is_count(render_size):
             sides = (render_size, render_size)
-        elif isinstance(render_size, (tuple, list)):
+        elif isinstance(render_size, _PAIRS):
             sides = tuple(render_size)
         if len(sides) != 2 or not all(_is_count(n) and 16 <= n <= 4096 for n in sides):
             raise InvalidArgumentError(
