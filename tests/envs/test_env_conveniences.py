@@ -118,6 +118,11 @@ def test_unknown_option_names_the_options_there_are() -> None:
     assert option_names()[:4] == ["world", "robot", "action_mode", "clip_actions"]
 
 
+def test_the_env_docstring_names_every_option() -> None:
+    documented = EPuckMazeEnv.__doc__ or ""
+    assert [name for name in option_names() if f"``{name}``" not in documented] == []
+
+
 def test_single_and_vector_env_take_the_same_options() -> None:
     options = {"world": "random", "action_mode": "discrete", "include_pose": True}
     single, vector = EPuckMazeEnv(**options), EPuckMazeVectorEnv(num_envs=2, **options)
