@@ -60,7 +60,9 @@ def test_numpy_values_make_the_same_env_as_python_numbers(
     assert observations.dtype == np.float32 and rewards.dtype == np.float64
 
 
-@pytest.mark.parametrize("render_size", [3.5, None, "big", (64,), (64, 64.0), True])
+@pytest.mark.parametrize(
+    "render_size", [3.5, None, "big", (64,), (64, 64.0), True, np.array(64), np.ones((2, 2), int)]
+)
 def test_a_render_size_of_the_wrong_type_is_refused_by_name(render_size: Any) -> None:
     for make in (EPuckMazeEnv, EPuckMazeVectorEnv):
         with pytest.raises(InvalidArgumentError, match="render_size"):

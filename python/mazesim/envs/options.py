@@ -44,9 +44,6 @@ ACTION_MODES = ("continuous", "discrete")
 #: longest shortest path of a 5 x 5 maze of 0.25 m cells.
 DEFAULT_MAX_EPISODE_STEPS = 3000
 
-#: What a (width, height) option (``maze_size``, ``render_size``) may come as.
-_PAIRS = (tuple, list, np.ndarray)
-
 #: What the ``world`` option accepts: a built-in name, a path, ``"random"`` or a World.
 WorldOption = Union[str, "os.PathLike[str]", World]
 
@@ -169,17 +166,13 @@ class EnvOptions:
                 f"expected control_step_ms to be a positive number of ms or None, "
                 f"found {control_step_ms!r}"
             )
-        sizes = (maze_size,) if not isinstance(maze_size, _PAIRS) else tuple(maze_size)
+        sizes = _items(maze_size)
         if len(sizes) != 2 or not all(_is_count(n) and n >= 2 for n in sizes):
             raise InvalidArgumentError(
                 f"expected maze_size to be (width, height) of at least 2 cells each, "
                 f"found {maze_size!r}"
             )
-        sides: tuple[Any, ...] = (render_size,)
-        if _is_count(render_size):
-            sides = (render_size, render_size)
-        elif isinstance(render_size, _PAIRS):
-            sides = tuple(render_size)
+        sides = (render_size, render_size) if _is_count(render_size) else _items(render_size)
         if len(sides) != 2 or not all(_is_count(n) and 16 <= n <= 4096 for n in sides):
             raise InvalidArgumentError(
                 f"expected render_size to be pixels (16 to 4096) or (width, height), "
@@ -241,6 +234,14 @@ class EnvOptions:
 def option_names() -> list[str]:
     """The names of the environments' options, in the order of :meth:`EnvOptions.create`."""
     return list(inspect.signature(EnvOptions.create).parameters)
+
+
+def _items(value: Any) -> tuple[Any, ...]:
+    """The items of a (width, height) option given as a tuple, a list or a 1-d numpy array;
+    ``(value,)`` for anything else (which the caller then refuses)."""
+    if isinstance(value, (tuple, list)) or (isinstance(value, np.ndarray) and value.ndim == 1):
+        return tuple(value)
+    return (value,)
 
 
 def _is_count(value: Any) -> bool:
