@@ -118,6 +118,11 @@ def test_unknown_option_names_the_options_there_are() -> None:
     assert option_names()[:4] == ["world", "robot", "action_mode", "clip_actions"]
 
 
+def test_the_env_docstring_names_every_option() -> None:
+    documented = EPuckMazeEnv.__doc__ or ""
+    assert [name for name in option_names() if f"``{name}``" not in documented] == []
+
+
 def test_single_and_vector_env_take_the_same_options() -> None:
     options = {"world": "random", "action_mode": "discrete", "include_pose": True}
     single, vector = EPuckMazeEnv(**options), EPuckMazeVectorEnv(num_envs=2, **options)
@@ -126,6 +131,19 @@ def test_single_and_vector_env_take_the_same_options() -> None:
         assert mine == theirs or mine.name == theirs.name, name  # a robot profile by its name
     assert single.action_space == vector.single_action_space
     assert single.observation_space == vector.single_observation_space
+
+
+def test_single_env_spec_of_the_vector_env_makes_one_of_its_environments() -> None:
+    vector = gymnasium.make_vec(
+        "mazesim/UnseenMaze-v2", 3, max_episode_steps=40, threads=1, maze_size=(3, 4)
+    )
+    spec = vector.unwrapped.single_env_spec
+    reference = gymnasium.make("mazesim/UnseenMaze-v2", max_episode_steps=40, maze_size=(3, 4))
+    assert spec == reference.spec
+    single = gymnasium.make(spec)
+    observations, _ = vector.reset(seed=5)
+    assert np.array_equal(single.reset(seed=5)[0], observations[0])
+    assert EPuckMazeVectorEnv(num_envs=2).single_env_spec is None  # not made by make_vec
 
 
 def test_make_without_importing_mazesim_first() -> None:

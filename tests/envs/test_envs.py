@@ -174,6 +174,16 @@ def test_vector_env_seeds_env_i_with_seed_plus_i() -> None:
         assert np.array_equal(observation, observations[i])
 
 
+def test_vector_env_takes_numpy_seeds_and_refuses_others_by_name() -> None:
+    vector = EPuckMazeVectorEnv(num_envs=2, world="random")
+    reference, _ = vector.reset(seed=10)
+    assert np.array_equal(vector.reset(seed=np.int64(10))[0], reference)
+    assert np.array_equal(vector.reset(seed=[np.int32(10), 11])[0], reference)
+    for seed in (2.5, "10", -1, [10, 11, 12], [10, 1.5], (True, 3)):
+        with pytest.raises(InvalidArgumentError, match="expected seed"):
+            vector.reset(seed=seed)  # type: ignore[arg-type]
+
+
 def test_close_twice_is_safe() -> None:
     env = gymnasium.make(ENV_ID)
     env.reset(seed=0)

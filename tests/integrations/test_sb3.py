@@ -139,3 +139,36 @@ def test_adapter_refuses_a_next_step_vector_env() -> None:
 
     with pytest.raises(InvalidArgumentError, match="SAME_STEP"):
         MazesimVecEnv(EPuckMazeVectorEnv(num_envs=2))
+
+
+@pytest.mark.parametrize("attribute", ["observation_space", "action_space"])
+def test_get_attr_gives_each_environments_space_as_dummy_vec_env(attribute: str) -> None:
+    fast = make_vec_env(ENV_ID, 3, seed=0)
+    reference = dummy_vec_env(3)
+    spaces = fast.get_attr(attribute)
+    assert spaces == reference.get_attr(attribute)
+    assert spaces[0] == getattr(fast, attribute)
+    assert fast.get_attr(attribute, indices=[1]) == reference.get_attr(attribute, indices=[1])
+
+
+def test_get_attr_spec_is_a_single_envs_spec_that_makes_the_same_env() -> None:
+    options = {"noise": False, "max_episode_steps": 99}
+    fast = make_vec_env("mazesim/MazeFixed-v1", 2, seed=0, threads=1, **options)
+    reference = DummyVecEnv([lambda: gymnasium.make("mazesim/MazeFixed-v1", **options)])
+    spec = fast.get_attr("spec")[0]
+    assert spec == reference.get_attr("spec")[0]
+    evaluation = gymnasium.make(spec)  # refused the vector env's num_envs, threads, ... before
+    assert evaluation.spec is not None and evaluation.spec.max_episode_steps == 99
+    assert np.array_equal(evaluation.reset(seed=0)[0], reference.envs[0].reset(seed=0)[0])
+
+
+def test_env_method_calls_each_environments_method_not_the_whole_engines() -> None:
+    fast = make_vec_env(ENV_ID, 3, seed=0, world="random", render_mode="rgb_array")
+    fast.reset()
+    images = fast.get_images()
+    frames = fast.env_method("render", indices=[2])
+    assert len(frames) == 1 and np.array_equal(frames[0], images[2])  # env 2's image alone
+    assert [frame.shape for frame in fast.env_method("render")] == [(400, 400, 3)] * 3
+    for method in ("reset", "step", "close"):  # would act on all three environments at once
+        with pytest.raises(InvalidArgumentError, match=f"found '{method}'"):
+            fast.env_method(method, indices=[0])

@@ -87,9 +87,9 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
             time, step, reward and the last event, see :mod:`mazesim.envs.render`), or
             ``"human"`` (that image in a window that updates every step).
         **options: The options of :meth:`mazesim.envs.options.EnvOptions.create`, the one list
-            of them: ``world``, ``robot``, ``action_mode``, ``clip_actions``, ``noise``,
-            ``include_pose``, ``control_step_ms``, ``maze_size``, ``goal_reward``,
-            ``collision_penalty``, ``progress_reward``, ``render_size``.
+            of them: ``world``, ``robot``, ``action_mode``, ``clip_actions``, ``observation``,
+            ``start_goal``, ``noise``, ``include_pose``, ``control_step_ms``, ``maze_size``,
+            ``goal_reward``, ``collision_penalty``, ``progress_reward``, ``render_size``.
 
     Raises:
         InvalidArgumentError: An option has a wrong type or value.

@@ -103,6 +103,7 @@ __all__ = [
     "draw_start_and_goal",
     "navigation_features",
     "planned_waypoints",
+    "start_and_goal_cells",
 ]
 
 #: The accepted values of ``observation``.
@@ -169,6 +170,24 @@ def draw_start_and_goal(world: World, rng: np.random.Generator) -> StartAndGoal:
     Raises:
         InvalidArgumentError: The world has no cell maze, or no two cells join.
     """
+    maze, cells = start_and_goal_cells(world)
+    start = int(rng.integers(len(cells)))
+    goal = int(rng.integers(len(cells) - 1))
+    goal += goal >= start
+    yaw = float(rng.uniform(-math.pi, math.pi))
+    (start_row, start_col), (goal_row, goal_col) = cells[start], cells[goal]
+    start_x, start_y = maze.center((start_col, start_row))
+    goal_x, goal_y = maze.center((goal_col, goal_row))
+    return StartAndGoal((start_x, start_y, yaw), (goal_x, goal_y, maze.cell_size / 3.0))
+
+
+def start_and_goal_cells(world: World) -> tuple[CellMaze, list[tuple[int, int]]]:
+    """The cell maze of ``world`` and the (row, column) cells :func:`draw_start_and_goal` draws
+    from: those of its largest set of cells joined by open sides.
+
+    Raises:
+        InvalidArgumentError: The world has no cell maze, or no two cells join.
+    """
     if world.cell_maze() is None:
         raise InvalidArgumentError(
             f'expected a world with a cell maze for start_goal="random", found {world.name!r}'
@@ -180,14 +199,7 @@ def draw_start_and_goal(world: World, rng: np.random.Generator) -> StartAndGoal:
             f'expected two cells that join each other for start_goal="random", found none in '
             f"{world.name!r}"
         )
-    start = int(rng.integers(len(cells)))
-    goal = int(rng.integers(len(cells) - 1))
-    goal += goal >= start
-    yaw = float(rng.uniform(-math.pi, math.pi))
-    (start_row, start_col), (goal_row, goal_col) = cells[start], cells[goal]
-    start_x, start_y = maze.center((start_col, start_row))
-    goal_x, goal_y = maze.center((goal_col, goal_row))
-    return StartAndGoal((start_x, start_y, yaw), (goal_x, goal_y, maze.cell_size / 3.0))
+    return maze, cells
 
 
 def _largest_connected_cells(maze: CellMaze) -> list[tuple[int, int]]:

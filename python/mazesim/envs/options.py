@@ -8,6 +8,7 @@ documentation; both environments pass their keywords straight to it.
 from __future__ import annotations
 
 import inspect
+import numbers
 import os
 from dataclasses import dataclass, field
 from typing import Any, Union
@@ -21,6 +22,7 @@ from mazesim.envs.navigation import (
     START_GOALS,
     StartAndGoal,
     draw_start_and_goal,
+    start_and_goal_cells,
 )
 from mazesim.envs.reward import RewardWeights
 from mazesim.errors import InvalidArgumentError
@@ -158,28 +160,30 @@ class EnvOptions:
             if not isinstance(flag, (bool, np.bool_)):
                 raise InvalidArgumentError(f"expected {name} to be True or False, found {flag!r}")
         if control_step_ms is not None and not (
-            isinstance(control_step_ms, (int, float)) and control_step_ms > 0
+            isinstance(control_step_ms, numbers.Real) and control_step_ms > 0
         ):
             raise InvalidArgumentError(
                 f"expected control_step_ms to be a positive number of ms or None, "
                 f"found {control_step_ms!r}"
             )
-        sizes = (maze_size,) if not isinstance(maze_size, (tuple, list)) else tuple(maze_size)
-        if len(sizes) != 2 or not all(isinstance(n, int) and n >= 2 for n in sizes):
+        sizes = _items(maze_size)
+        if len(sizes) != 2 or not all(_is_count(n) and n >= 2 for n in sizes):
             raise InvalidArgumentError(
                 f"expected maze_size to be (width, height) of at least 2 cells each, "
                 f"found {maze_size!r}"
             )
-        sides = (render_size, render_size) if isinstance(render_size, int) else render_size
-        if len(sides) != 2 or not all(isinstance(n, int) and 16 <= n <= 4096 for n in sides):
+        sides = (render_size, render_size) if _is_count(render_size) else _items(render_size)
+        if len(sides) != 2 or not all(_is_count(n) and 16 <= n <= 4096 for n in sides):
             raise InvalidArgumentError(
                 f"expected render_size to be pixels (16 to 4096) or (width, height), "
                 f"found {render_size!r}"
             )
         resolved = None if _is_random(world) else _resolve_world(world)
+        if resolved is not None and start_goal == "random":
+            start_and_goal_cells(resolved)  # refused now, not at the first reset
         return cls(
             world=resolved,
-            maze_size=(sizes[0], sizes[1]),
+            maze_size=(int(sizes[0]), int(sizes[1])),
             robot=RobotProfile.builtin(robot),
             action_mode=action_mode,
             noise=bool(noise),
@@ -230,6 +234,19 @@ class EnvOptions:
 def option_names() -> list[str]:
     """The names of the environments' options, in the order of :meth:`EnvOptions.create`."""
     return list(inspect.signature(EnvOptions.create).parameters)
+
+
+def _items(value: Any) -> tuple[Any, ...]:
+    """The items of a (width, height) option given as a tuple, a list or a 1-d numpy array;
+    ``(value,)`` for anything else (which the caller then refuses)."""
+    if isinstance(value, (tuple, list)) or (isinstance(value, np.ndarray) and value.ndim == 1):
+        return tuple(value)
+    return (value,)
+
+
+def _is_count(value: Any) -> bool:
+    """Whether ``value`` is a whole number (a Python or numpy integer), not a bool."""
+    return isinstance(value, numbers.Integral) and not isinstance(value, bool)
 
 
 def _is_random(world: WorldOption) -> bool:

@@ -29,6 +29,7 @@ arrays of one row, so the native vector environment and a ``SyncVectorEnv`` agre
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass
 
 import numpy as np
@@ -58,10 +59,13 @@ class RewardWeights:
     def __post_init__(self) -> None:
         for name in ("goal", "collision", "progress"):
             value = getattr(self, name)
-            if not isinstance(value, (int, float)) or not math.isfinite(value):
+            if not isinstance(value, numbers.Real) or not math.isfinite(value):
                 raise InvalidArgumentError(
                     f"expected a finite number for the {name} reward weight, found {value!r}"
                 )
+            # A numpy scalar (np.float32(5.0) from a sweep) weighs as the Python float it holds,
+            # so rewards stay Python floats and float64 arrays whatever the weights' types.
+            object.__setattr__(self, name, float(value))
 
 
 def step_reward(

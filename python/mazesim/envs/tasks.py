@@ -56,7 +56,8 @@ class Task:
         env_id: The gymnasium id.
         tier: 0 for the original env, then 1 (easiest) to 4.
         summary: What the task is, in one line.
-        max_episode_steps: The time limit in control steps of 32 ms.
+        max_episode_steps: The time limit in control steps (of 32 ms, or of the task's
+            ``control_step_ms``: 128 ms for tiers 1 to 3 of version 1).
         options: The env options that make the task (see ``EnvOptions.create``).
     """
 

@@ -15,11 +15,14 @@ a boolean mask ``_k`` of the environments that have it.
 
 from __future__ import annotations
 
+import dataclasses
+import numbers
 from typing import Any
 
 import gymnasium
 import numpy as np
 import numpy.typing as npt
+from gymnasium.envs.registration import EnvSpec
 from gymnasium.error import ClosedEnvironmentError, ResetNeeded
 from gymnasium.utils import seeding
 from gymnasium.vector import AutoresetMode, VectorEnv
@@ -38,6 +41,16 @@ from mazesim.maze import GoalDistance, PathDistanceTable
 __all__ = ["EPuckMazeVectorEnv"]
 
 _INFO_KEYS = ("pose", "collisions", "colliding", "distance_to_goal", "is_success")
+#: The keywords a ``make_vec`` spec holds for the vector env itself, not for its environments.
+_VECTOR_KEYWORDS = (
+    "num_envs",
+    "vectorization_mode",
+    "vector_kwargs",
+    "wrappers",
+    "threads",
+    "autoreset_mode",
+    "max_episode_steps",
+)
 
 
 class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], npt.NDArray[Any]]):
@@ -157,6 +170,19 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         self._needs_reset = True
 
     @property
+    def single_env_spec(self) -> EnvSpec | None:
+        """The spec of one of its environments, as ``gymnasium.make`` records a single env's: the
+        task's id and options without the vector env's own keywords (``num_envs``, ``threads``,
+        ``autoreset_mode``, ...) and its time limit as ``max_episode_steps``, so
+        ``gymnasium.make(envs.single_env_spec)`` makes one environment of the same task. None
+        when the env has no spec (made without ``gymnasium.make_vec``)."""
+        spec = self.spec
+        if spec is None:
+            return None
+        kwargs = {key: value for key, value in spec.kwargs.items() if key not in _VECTOR_KEYWORDS}
+        return dataclasses.replace(spec, kwargs=kwargs, max_episode_steps=self.max_episode_steps)
+
+    @property
     def observation_names(self) -> list[str]:
         """What each column of the observations holds (sensor names, then x, y, yaw, or the
         navigation features)."""
@@ -177,7 +203,7 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         batch = self._open_batch()
         n = self.num_envs
         seeds = self._seeds(seed)
-        super().reset(seed=seed if isinstance(seed, int) else None)
+        super().reset(seed=seeds[0] if _is_seed(seed) else None)
         mask = self._reset_mask(dict(options or {}).get("reset_mask"))
         envs = np.flatnonzero(mask) if mask is not None else np.arange(n)
         for i in envs:
@@ -325,16 +351,28 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
             raise ClosedEnvironmentError("the vector env is closed")
         return self._batch
 
-    def _seeds(self, seed: int | list[int | None] | None) -> list[int | None]:
+    def _seeds(self, seed: Any) -> list[int | None]:
+        """One seed (or None) per environment: ``seed + i``, or the list's, checked.
+
+        Numpy integers count as the ints they hold; anything else is refused by name (gymnasium
+        documents ``seed`` as an int or a list of ``num_envs`` ints or None)."""
         n = self.num_envs
         if seed is None:
             return [None] * n
-        if isinstance(seed, int):
-            return [seed + i for i in range(n)]
-        seeds = list(seed)
-        if len(seeds) != n:
-            raise InvalidArgumentError(f"expected {n} seeds (one per env), found {len(seeds)}")
-        return seeds
+        if _is_seed(seed):
+            return [int(seed) + i for i in range(n)]
+        if not isinstance(seed, (list, tuple)) or len(seed) != n:
+            found = f"{len(seed)}" if isinstance(seed, (list, tuple)) else repr(seed)
+            raise InvalidArgumentError(
+                f"expected seed to be an int of at least 0, None or a list of {n} of them "
+                f"(one per env), found {found}"
+            )
+        for i, one in enumerate(seed):
+            if one is not None and not _is_seed(one):
+                raise InvalidArgumentError(
+                    f"expected seed {i} to be an int of at least 0 or None, found {one!r}"
+                )
+        return [None if one is None else int(one) for one in seed]
 
     def _reset_mask(self, mask: Any) -> npt.NDArray[np.bool_] | None:
         if mask is None:
@@ -434,6 +472,11 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
             start=None if drawn is None else drawn.start,
             goal=None if drawn is None else drawn.goal,
         )
+
+
+def _is_seed(seed: Any) -> bool:
+    """Whether ``seed`` is one seed: a Python or numpy integer of at least 0, not a bool."""
+    return isinstance(seed, numbers.Integral) and not isinstance(seed, bool) and int(seed) >= 0
 
 
 def _autoreset_mode(mode: AutoresetMode | str) -> AutoresetMode:

@@ -45,6 +45,16 @@ __all__ = ["MazesimVecEnv", "make_vec_env"]
 
 #: The keys of every per-environment info, in the single env's order.
 _INFO_KEYS = ("pose", "collisions", "colliding", "distance_to_goal", "is_success")
+#: The vector env's methods that act on every environment at once, which ``env_method`` (a call
+#: of each environment's method in SB3's terms) refuses.
+_WHOLE_ENGINE_METHODS = ("reset", "step", "close")
+#: The vector env's attributes that hold all environments at once, and the attribute that holds
+#: one environment's (what ``DummyVecEnv.get_attr`` gives: each single env's own value).
+_PER_ENVIRONMENT = {
+    "observation_space": "single_observation_space",
+    "action_space": "single_action_space",
+    "spec": "single_env_spec",
+}
 
 
 def make_vec_env(
@@ -181,8 +191,14 @@ class MazesimVecEnv(VecEnv):
         return list(frames) if frames is not None else [None] * self.num_envs
 
     def get_attr(self, attr_name: str, indices: Any = None) -> list[Any]:
-        """The vector env's attribute, once per environment of ``indices``."""
-        value = getattr(self.vector_env, attr_name)
+        """The vector env's attribute, once per environment of ``indices``.
+
+        SB3 documents ``get_attr`` as each environment's own attribute (``DummyVecEnv`` reads it
+        from every single env), so ``observation_space`` and ``action_space`` are the spaces of
+        one environment, not the vector env's batched ones, and ``spec`` is one environment's
+        (``gymnasium.make(spec)`` makes an env of the same task, say for evaluation).
+        """
+        value = getattr(self.vector_env, _PER_ENVIRONMENT.get(attr_name, attr_name))
         return [value for _ in self._indices(indices)]
 
     def set_attr(self, attr_name: str, value: Any, indices: Any = None) -> None:
@@ -194,9 +210,28 @@ class MazesimVecEnv(VecEnv):
     def env_method(
         self, method_name: str, *method_args: Any, indices: Any = None, **method_kwargs: Any
     ) -> list[Any]:
-        """Calls the vector env's method once, and gives its result for each of ``indices``."""
+        """Calls the vector env's method once, and gives its result for each of ``indices``.
+
+        SB3 documents ``env_method`` as a call of each environment's method, one result per
+        environment: ``render`` gives each environment's own image (as ``DummyVecEnv`` does),
+        and ``reset``, ``step`` and ``close``, which would act on every environment of the one
+        engine at once, are refused (use the ``VecEnv``'s own ``reset``, ``step`` and ``close``).
+
+        Raises:
+            InvalidArgumentError: ``method_name`` is ``reset``, ``step`` or ``close``.
+        """
+        targets = list(self._indices(indices))
+        if method_name in _WHOLE_ENGINE_METHODS:
+            raise InvalidArgumentError(
+                f"expected env_method of a method that acts on one environment, found "
+                f"{method_name!r}, which acts on all {self.num_envs} environments of the batch "
+                f"engine at once: call the VecEnv's own {method_name}()"
+            )
+        if method_name == "render" and not method_args and not method_kwargs:
+            frames = self.get_images()
+            return [frames[i] for i in targets]
         result = getattr(self.vector_env, method_name)(*method_args, **method_kwargs)
-        return [result for _ in self._indices(indices)]
+        return [result for _ in targets]
 
     def env_is_wrapped(self, wrapper_class: type, indices: Any = None) -> list[bool]:
         """False: the environments are not gymnasium envs with wrappers."""
