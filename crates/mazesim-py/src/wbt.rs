@@ -40,6 +40,7 @@ fn device_field<'py>(py: Python<'py>, value: &DeviceField) -> PyResult<Bound<'py
 fn robot_and_floor(out: &Bound<'_, PyDict>, import: &WbtImport) -> PyResult<()> {
     let py = out.py();
     out.set_item("robot_model", import.robot_model.clone())?;
+    out.set_item("robot_line", import.robot_line)?;
     out.set_item("robot_profile", &import.robot_profile)?;
     let devices = PyList::empty(py);
     for device in &import.extension_devices {
@@ -129,7 +130,7 @@ fn grey_images(images: Option<&Bound<'_, PyAny>>) -> PyResult<BTreeMap<String, G
 }
 
 /// The import as `{"obstacles": [...], "bodies": [...], "robot": {...} | None, "basic_time_step_ms": t,
-/// "warnings": [...], "robot_model", "robot_profile", "extension_devices", "floor_textures",
+/// "warnings": [...], "robot_model", "robot_line", "robot_profile", "extension_devices", "floor_textures",
 /// "floor_paint"}`, in metres and radians, world frame, z up.
 fn report<'py>(py: Python<'py>, import: &WbtImport) -> PyResult<Bound<'py, PyDict>> {
     let obstacles = PyList::empty(py);

@@ -193,7 +193,7 @@ def _load_world(spec: str, strict: bool) -> tuple[Any, dict[str, Any] | None, An
             source=spec,
         )
     with open(spec, encoding="utf-8", errors="replace") as handle:
-        scene = read_scene(handle.read(), report.get("robot_model"))
+        scene = read_scene(handle.read(), report.get("robot_model"), report.get("robot_line"))
     return world, report, scene
 
 

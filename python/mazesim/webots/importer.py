@@ -99,7 +99,8 @@ class ImportReport(TypedDict):
     """What ``mazesim import-wbt --json`` prints.
 
     ``robot_model`` is the robot as found (``"E-puck"``, ``"e-puck2"`` for ``version "2"``, the
-    type name of another robot, ``None`` without one); ``robot_profile`` the mazesim profile
+    type name of another robot, ``None`` without one); ``robot_line`` the line of its node in
+    the file (``None`` without one); ``robot_profile`` the mazesim profile
     that simulates it (``"e-puck"`` or ``"e-puck2"``); ``floor_paint`` the number of paint
     rectangles the floor textures gave; ``bodies`` the movable bodies (``kind``, ``center``,
     ``size`` and ``yaw`` or ``radius``, ``mass`` in kg, floor ``friction``).
@@ -111,6 +112,7 @@ class ImportReport(TypedDict):
     basic_time_step_ms: float
     warnings: list[str]
     robot_model: str | None
+    robot_line: int | None
     robot_profile: str
     extension_devices: list[ExtensionDevice]
     floor_textures: list[FloorTexture]

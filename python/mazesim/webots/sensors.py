@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, ClassVar
 import numpy as np
 
 from mazesim.webots.devices import DistanceSensor, _ScalarSensor, _VectorSensor
+from mazesim.webots.frames import enu_to_nue
 from mazesim.webots.lights import irradiance
 from mazesim.webots.node_types import node_type
 from mazesim.webots.rays import WallBoxes
@@ -202,7 +203,8 @@ class Compass(_TableVector):
 
 class GPS(_TableVector):
     """The device's position in the world frame (m) and its speed; in a world of Webots' old
-    NUE frame (before R2022a) in that frame: [x, height, -y]."""
+    NUE frame (before R2022a) in that frame, as the world file writes positions: the inverse of
+    the importer's conversion, [-y, height, -x]."""
 
     _node_type = node_type("GPS")
 
@@ -213,8 +215,8 @@ class GPS(_TableVector):
     def _measure(self) -> tuple[float, float, float]:
         x, y, _ = self._mount.world_pose(self._simulation.simulator.pose)
         if self._simulation.scene.nue:
-            # Worlds before R2022a: x, y up, z = -north (Webots' NUE frame).
-            return x, self._mount.z, -y
+            # Worlds before R2022a: x north, y up, z east (Webots' NUE frame).
+            return enu_to_nue(x, y, self._mount.z)
         return x, y, self._mount.z
 
     def getSpeed(self) -> float:
@@ -234,7 +236,7 @@ class GPS(_TableVector):
         if all(math.isnan(v) for v in self._value):
             return [math.nan] * 3
         vx, vy, _ = self._simulation.velocity
-        return [vx, 0.0, -vy] if self._simulation.scene.nue else [vx, vy, 0.0]
+        return list(enu_to_nue(vx, vy, 0.0)) if self._simulation.scene.nue else [vx, vy, 0.0]
 
     @property
     def speed_vector(self) -> list[float]:

@@ -78,6 +78,8 @@ pub struct FoundRobot {
     pub pose: [f64; 3],
     pub model: String,
     pub profile: &'static str,
+    /// The line of its node type in the file.
+    pub line: usize,
 }
 
 /// Heaviest object with physics imported as a movable body, kilograms: ten times the e-puck's
@@ -152,6 +154,7 @@ pub fn import(doc: &Document) -> WbtImport {
         bodies: importer.bodies,
         robot: robot.as_ref().map(|r| r.pose),
         robot_model: robot.as_ref().map(|r| r.model.clone()),
+        robot_line: robot.as_ref().map(|r| r.line),
         robot_profile: robot.map_or(STAND_IN_PROFILE, |r| r.profile).to_string(),
         extension_devices: importer.devices,
         floor_textures: importer.floor_textures,
@@ -533,6 +536,7 @@ impl<'d> Importer<'d> {
                 pose,
                 model,
                 profile,
+                line: node.line,
             });
             self.extension_slots(node);
         }
@@ -565,6 +569,7 @@ impl<'d> Importer<'d> {
                 pose,
                 model: node.type_name.clone(),
                 profile: STAND_IN_PROFILE,
+                line: node.line,
             });
         }
     }

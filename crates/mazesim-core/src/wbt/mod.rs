@@ -88,6 +88,8 @@ pub struct WbtImport {
     /// The robot's model as found: `E-puck`, `e-puck2` for an E-puck of `version "2"`, or the
     /// type name of a robot that is not an e-puck; `None` without a robot.
     pub robot_model: Option<String>,
+    /// The line of the robot's node in the file (its node type's line); `None` without a robot.
+    pub robot_line: Option<usize>,
     /// The mazesim robot profile that simulates it: `e-puck` or `e-puck2`.
     pub robot_profile: String,
     /// Devices in the robot's extension slots.

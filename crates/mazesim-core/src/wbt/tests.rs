@@ -106,6 +106,8 @@ fn a_known_robot_proto_without_a_controller_field_is_a_robot() {
     // The e-puck wins over the robot it would stand in for.
     assert_eq!(w.robot, Some([0.1, 0.0, 0.0]));
     assert_eq!(w.robot_model.as_deref(), Some("E-puck"));
+    // The robot's line tells it from the other robot (for the controller's name and fields).
+    assert_eq!(w.robot_line, Some(3));
     assert!(warned(
         &w,
         "line 2: Pioneer3dx: a robot that is not an e-puck: not simulated, the world's e-puck is"
@@ -115,6 +117,7 @@ fn a_known_robot_proto_without_a_controller_field_is_a_robot() {
         import("#VRML_SIM R2023b utf8\nPioneer3dx { translation 1 2 0 rotation 0 0 1 0.5 }\n");
     assert_eq!(alone.robot, Some([1.0, 2.0, 0.5]));
     assert_eq!(alone.robot_model.as_deref(), Some("Pioneer3dx"));
+    assert_eq!(alone.robot_line, Some(2));
     assert_eq!(alone.robot_profile, "e-puck");
     assert!(warned(&alone, "mazesim simulates the e-puck in its place"));
 }

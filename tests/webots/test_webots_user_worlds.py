@@ -1,0 +1,152 @@
+"""Worlds as Webots users keep them (a referee robot beside the e-puck, files of R2019 with a
+byte-order mark and Windows line endings, ``#`` inside strings), run through
+``mazesim webots run`` in a subprocess or read as the command reads them."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+import mazesim
+from mazesim.webots import controller, prepare
+from mazesim.webots import simulation as simulations
+from mazesim.webots.importer import import_wbt
+from mazesim.webots.scene import read_scene
+
+#: A competition-style world: a supervisor ``Robot`` (the referee) comes before the e-puck.
+REFEREE_WORLD = """#VRML_SIM R2023b utf8
+WorldInfo { basicTimeStep 16 }
+RectangleArena { floorSize 1 1 }
+DEF REFEREE Robot {
+  name "referee"
+  controller "referee"
+  controllerArgs [ "--referee" ]
+  supervisor TRUE
+}
+DEF EPUCK E-puck {
+  translation -0.2 0.1 0
+  name "my e-puck"
+  controllerArgs [ "left" "3.5" ]
+  customData "team #2"
+}
+"""
+
+#: Prints what the robot knows of itself.
+WHO_AM_I = """import sys
+from controller import Robot
+
+robot = Robot()
+print("name:", robot.getName())
+print("args:", sys.argv[1:])
+print("supervisor:", robot.getSupervisor())
+print("data:", robot.getCustomData())
+robot.step(16)
+"""
+
+
+def run_webots(folder: Path, controller_text: str, world_text: str) -> str:
+    """Runs a controller in a world for 1 s; gives its standard output (exit status 0)."""
+    (folder / "controller.py").write_text(controller_text)
+    (folder / "world.wbt").write_bytes(world_text.encode("utf-8"))
+    result = subprocess.run(
+        [sys.executable, "-m", "mazesim", "webots", "run", "controller.py"]
+        + ["--world", "world.wbt", "--seconds", "1", "--out", "out", "--no-progress"],
+        cwd=folder,
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=False,
+    )
+    assert result.returncode == 0, result.stderr
+    return result.stdout
+
+
+def test_a_referee_robot_before_the_e_puck_lends_it_nothing(tmp_path: Path) -> None:
+    out = run_webots(tmp_path, WHO_AM_I, REFEREE_WORLD)
+    assert "name: my e-puck" in out
+    assert "args: ['left', '3.5']" in out
+    assert "supervisor: False" in out
+    assert "data: team #2" in out
+
+
+def test_the_supervisors_self_is_the_e_puck_not_the_referee(tmp_path: Path) -> None:
+    world_file = tmp_path / "world.wbt"
+    world_file.write_text(REFEREE_WORLD)
+    world, report = import_wbt(str(world_file))
+    assert report["robot_line"] == 10
+    scene = read_scene(REFEREE_WORLD, report["robot_model"], report["robot_line"])
+    assert (scene.robot_def, scene.robot_name, scene.supervisor) == ("EPUCK", "my e-puck", False)
+    assert [node.def_name for node in scene.nodes if node.robot] == ["EPUCK"]
+    prepare(world, seconds=1.0, noise=False, report=report, scene=scene)
+    controller.Robot.created = None
+    supervisor = controller.Supervisor()
+    assert supervisor.getSelf().getDef() == "EPUCK"
+    assert supervisor.getFromDef("EPUCK") is supervisor.getSelf()
+    referee = supervisor.getFromDef("REFEREE")
+    assert referee is not supervisor.getSelf() and referee.getTypeName() == "Robot"
+    simulations.release()
+
+
+#: An R2019b world (NUE, y up) saved on Windows: a byte-order mark and CR LF line endings.
+R2019_WORLD = (
+    "\ufeff#VRML_SIM R2019b utf8\r\n"
+    "WorldInfo {\r\n  basicTimeStep 16\r\n}\r\n"
+    "RectangleArena { floorSize 2 1.5 }\r\n"
+    "PointLight { location 0.5 0.3 -0.2 }\r\n"
+    "DEF W1 Solid {\r\n"
+    "  translation 0.3 0.05 0.1\r\n"
+    "  rotation 0 1 0 0.7\r\n"
+    "  children [ DEF WALL_SHAPE Shape { geometry Box { size 0.5 0.1 0.02 } } ]\r\n"
+    "  boundingObject USE WALL_SHAPE\r\n"
+    "}\r\n"
+    'E-puck { translation -0.5 0 0 controllerArgs "--speed 3" }\r\n'
+)
+
+
+def test_an_r2019_world_with_a_byte_order_mark_is_read_in_its_nue_frame(tmp_path: Path) -> None:
+    world_file = tmp_path / "old.wbt"
+    world_file.write_bytes(R2019_WORLD.encode("utf-8"))
+    world, report = import_wbt(str(world_file))
+    scene = read_scene(world_file.read_text(encoding="utf-8"), report["robot_model"])
+    assert scene.nue, "the header after the byte-order mark says R2019b"
+    assert scene.controller_args == ["--speed", "3"]
+    # The supervisor's view of the wall and the imported wall agree (Webots' converter's map).
+    wall = next(node for node in scene.nodes if node.def_name == "W1")
+    imported = [o for o in report["obstacles"] if o["size"] == pytest.approx([0.02, 0.5])]
+    assert len(imported) == 1
+    assert wall.translation is not None
+    assert wall.translation[:2] == pytest.approx(imported[0]["center"])
+    assert wall.translation == pytest.approx((-0.1, -0.3, 0.05))
+    # The robot too: its start and its node.
+    robot = next(node for node in scene.nodes if node.robot)
+    assert robot.translation is not None and report["robot"] is not None
+    assert robot.translation[:2] == pytest.approx((report["robot"]["x"], report["robot"]["y"]))
+    assert scene.lights[0].position == pytest.approx((0.2, -0.5, 0.3))
+
+
+def test_a_gps_of_an_nue_world_reads_the_world_files_own_coordinates() -> None:
+    world = mazesim.load_world("arena")
+    gps_entry = {"type": "GPS", "name": "gps", "translation": [0.0, 0.0, 0.0]}
+    scene = read_scene("#VRML_SIM R2020b utf8\nE-puck { translation -0.2 0 0.1 }\n")
+    prepare(world, seconds=1.0, noise=False, report={"extension_devices": [gps_entry]}, scene=scene)
+    controller.Robot.created = None
+    robot = controller.Robot()
+    gps = robot.getDevice("gps")
+    gps.enable(32)
+    # The robot where the importer puts that E-puck: (x, y, z) -> (-z, -x, y).
+    simulations.current().move_robot(-0.1, 0.2, 0.0)
+    robot.step(32)
+    assert gps.getValues() == pytest.approx([-0.2, 0.0, 0.1], abs=1e-6)
+    simulations.release()
+
+
+def test_a_hash_inside_a_string_is_no_comment() -> None:
+    scene = read_scene(
+        '#VRML_SIM R2023b utf8\nE-puck {\n  name "e-puck #1"  # the first one\n'
+        '  controllerArgs [ "--colour" "#ff0000" ]\n}\n'
+    )
+    assert scene.robot_name == "e-puck #1"
+    assert scene.controller_args == ["--colour", "#ff0000"]
