@@ -47,12 +47,14 @@ robot.step(16)
 """
 
 
-def run_webots(folder: Path, controller_text: str, world_text: str) -> str:
-    """Runs a controller in a world for 1 s; gives its standard output (exit status 0)."""
+def run_webots(
+    folder: Path, controller_text: str, world_text: str, *options: str
+) -> subprocess.CompletedProcess[str]:
+    """Runs a controller in a world for 1 s (exit status 0 expected)."""
     (folder / "controller.py").write_text(controller_text)
     (folder / "world.wbt").write_bytes(world_text.encode("utf-8"))
     result = subprocess.run(
-        [sys.executable, "-m", "mazesim", "webots", "run", "controller.py"]
+        [sys.executable, "-m", "mazesim", "webots", "run", "controller.py", *options]
         + ["--world", "world.wbt", "--seconds", "1", "--out", "out", "--no-progress"],
         cwd=folder,
         capture_output=True,
@@ -61,11 +63,11 @@ def run_webots(folder: Path, controller_text: str, world_text: str) -> str:
         check=False,
     )
     assert result.returncode == 0, result.stderr
-    return result.stdout
+    return result
 
 
 def test_a_referee_robot_before_the_e_puck_lends_it_nothing(tmp_path: Path) -> None:
-    out = run_webots(tmp_path, WHO_AM_I, REFEREE_WORLD)
+    out = run_webots(tmp_path, WHO_AM_I, REFEREE_WORLD).stdout
     assert "name: my e-puck" in out
     assert "args: ['left', '3.5']" in out
     assert "supervisor: False" in out
@@ -150,3 +152,24 @@ def test_a_hash_inside_a_string_is_no_comment() -> None:
     )
     assert scene.robot_name == "e-puck #1"
     assert scene.controller_args == ["--colour", "#ff0000"]
+
+
+def test_strict_accepts_an_e_puck_with_its_ground_sensors_module(tmp_path: Path) -> None:
+    world = (
+        "#VRML_SIM R2023b utf8\n"
+        "WorldInfo { basicTimeStep 16 }\n"
+        "RectangleArena { floorSize 1 1 }\n"
+        "E-puck { groundSensorsSlot [ E-puckGroundSensors { } ] }\n"
+    )
+    reads_ground = (
+        "from controller import Robot\n"
+        "robot = Robot()\n"
+        "gs = [robot.getDevice(f'gs{i}') for i in range(3)]\n"
+        "for sensor in gs:\n"
+        "    sensor.enable(16)\n"
+        "robot.step(16)\n"
+        "print('ground', [round(sensor.getValue()) for sensor in gs])\n"
+    )
+    result = run_webots(tmp_path, reads_ground, world, "--strict", "--no-noise")
+    assert "mazesim: warning" not in result.stderr
+    assert "ground [856, 856, 856]" in result.stdout

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import difflib
 import math
 import os
 import sys
@@ -305,6 +306,14 @@ class Robot(NotSimulated):
         device = self._equipment.devices.get(str(name))
         if device is None:
             print(f'Device "{name}" was not found on robot "{self.getName()}"', file=sys.stderr)
+            similar = difflib.get_close_matches(str(name), list(self._equipment.devices), n=3)
+            if similar:
+                # Older worlds and other robots name devices otherwise ("left wheel", "ds0").
+                print(
+                    f"mazesim: the robot's devices with a name like {str(name)!r}: "
+                    + ", ".join(repr(found) for found in similar),
+                    file=sys.stderr,
+                )
         return device
 
     def getNumberOfDevices(self) -> int:

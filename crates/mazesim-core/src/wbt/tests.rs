@@ -340,3 +340,19 @@ fn a_legacy_arena_swaps_its_floor_size_like_the_converter() {
     );
     assert!(close(size[0], 0.01) && close(size[1], 3.0), "{size:?}");
 }
+
+#[test]
+fn the_e_pucks_ground_sensors_module_is_its_own_gs_sensors_not_a_warning() {
+    let w = import(
+        "#VRML_SIM R2023b utf8\nE-puck {\n  groundSensorsSlot [\n    E-puckGroundSensors {\n    }\n  ]\n}\n",
+    );
+    assert!(w.warnings.is_empty(), "{:?}", w.warnings);
+    assert!(w.extension_devices.is_empty());
+    // Anything else in the slot is still reported.
+    let other =
+        import("#VRML_SIM R2023b utf8\nE-puck { groundSensorsSlot [ LineSensorBar { } ] }\n");
+    assert!(warned(
+        &other,
+        "LineSensorBar: in the robot's groundSensorsSlot"
+    ));
+}
