@@ -173,3 +173,52 @@ def test_strict_accepts_an_e_puck_with_its_ground_sensors_module(tmp_path: Path)
     result = run_webots(tmp_path, reads_ground, world, "--strict", "--no-noise")
     assert "mazesim: warning" not in result.stderr
     assert "ground [856, 856, 856]" in result.stdout
+
+
+def test_devices_of_a_world_before_r2022a_read_in_the_y_up_protos_frames() -> None:
+    # The E-puck of R2021 and before is a Y-up PROTO: its accelerometer reads gravity along y,
+    # its gyro the yaw rate about y; north defaults to the world's x (NUE), and a compass
+    # reads it in the device frame x right, y up, z back.
+    scene = read_scene("#VRML_SIM R2021b utf8\nE-puck { }\n")
+    assert scene.y_up_devices and scene.north == pytest.approx((0.0, -1.0))
+    compass_entry = {"type": "Compass", "name": "compass", "translation": [0.0, 0.0, 0.03]}
+    report = {"extension_devices": [compass_entry]}
+    prepare(mazesim.load_world("arena"), seconds=2.0, noise=False, report=report, scene=scene)
+    controller.Robot.created = None
+    robot = controller.Robot()
+    devices = [robot.getDevice(name) for name in ("accelerometer", "gyro", "compass")]
+    for device in devices:
+        device.enable(32)
+    robot.step(32)
+    accelerometer, gyro, compass = (device.getValues() for device in devices)
+    assert accelerometer == pytest.approx([0.0, 9.81, 0.0])
+    # Facing the start's -z (west in NUE), north is on the robot's right: +x.
+    assert compass == pytest.approx([1.0, 0.0, 0.0], abs=1e-9)
+    left, right = robot.getDevice("left wheel motor"), robot.getDevice("right wheel motor")
+    for motor, speed in ((left, -2.0), (right, 2.0)):
+        motor.setPosition(float("inf"))
+        motor.setVelocity(speed)
+    robot.step(32)
+    robot.step(32)
+    spin = gyro_table_rate(robot.getDevice("gyro").getValues())
+    assert spin[0] == pytest.approx(0.0) and spin[2] == pytest.approx(0.0)
+    assert spin[1] > 0.5, "turning left (counter-clockwise seen from above) about +y"
+    simulations.release()
+
+
+def gyro_table_rate(values: list[float]) -> list[float]:
+    """The E-puck gyro's raw counts back in rad/s (its table: 13.315805 rad/s -> 100000)."""
+    return [v * 13.315805 / 100000.0 for v in values]
+
+
+def test_an_r2023_world_keeps_the_enu_device_frames() -> None:
+    scene = read_scene("#VRML_SIM R2023b utf8\nE-puck { }\n")
+    assert not scene.y_up_devices and scene.north is None
+    prepare(mazesim.load_world("arena"), seconds=1.0, noise=False, scene=scene)
+    controller.Robot.created = None
+    robot = controller.Robot()
+    accelerometer = robot.getDevice("accelerometer")
+    accelerometer.enable(32)
+    robot.step(32)
+    assert accelerometer.getValues() == pytest.approx([0.0, 0.0, 9.81])
+    simulations.release()

@@ -105,6 +105,9 @@ class Scene:
         nodes: The nodes at the top of the file, in file order (the root's ``children``).
         nue: Whether the file uses Webots' old NUE frame (y up): before R2022a, or
             ``coordinateSystem "NUE"``; a GPS then reads in that frame.
+        y_up_devices: Whether the robot's PROTOs are Webots' Y-up ones (a file before
+            R2022a): an accelerometer, gyro or compass then reads in the device frame x
+            right, y up, z back.
     """
 
     defs: dict[str, str] = field(default_factory=dict)
@@ -119,6 +122,7 @@ class Scene:
     camera_pitch: float = 0.0
     north: tuple[float, float] | None = None
     nue: bool = False
+    y_up_devices: bool = False
     lights: list[Light] = field(default_factory=list)
     nodes: list[SceneNode] = field(default_factory=list)
 
@@ -142,6 +146,7 @@ def read_scene(text: str, robot_model: str | None = None, robot_line: int | None
     if header is not None:
         year = header.group(1)
         scene.nue = int(year) < 2022 if year else header.group(3) is not None
+        scene.y_up_devices = scene.nue
     text = _COMMENT_OR_STRING.sub(_without_comment, text)
     scene.nue = scene.nue or bool(_NUE.search(text))
     robot_types = ROBOT_TYPES | ({robot_model} if robot_model else set())
@@ -175,8 +180,12 @@ def read_scene(text: str, robot_model: str | None = None, robot_line: int | None
         ax, ay, az, angle = (float(v) for v in found.groups())
         norm = math.sqrt(ax * ax + ay * ay + az * az) or 1.0
         scene.camera_pitch = angle * ay / norm
-    if (found := _NORTH.search(text)) and not scene.nue:
-        scene.north = (float(found.group(1)), float(found.group(2)))
+    if found := _NORTH.search(text):
+        x, y, z = (float(v) for v in found.groups())
+        scene.north = nue_to_enu(x, y, z)[:2] if scene.nue else (x, y)
+    elif scene.y_up_devices:
+        # WorldInfo.northDirection's default before R2022a: x (1 0 0).
+        scene.north = nue_to_enu(1.0, 0.0, 0.0)[:2]
     return scene
 
 

@@ -124,6 +124,9 @@ class _TableVector(_Tabled, _VectorSensor):
     """A three-axis sensor: a vector in the device frame through a lookup table."""
 
     _default_table: ClassVar[tuple[Row, ...]] = ()
+    #: Whether the vector is in the device's own frame, which in the Y-up PROTOs of worlds
+    #: before R2022a is x right, y up, z back (the ENU x forward, y left, z up before).
+    _device_frame: ClassVar[bool] = False
 
     def __init__(
         self,
@@ -138,7 +141,10 @@ class _TableVector(_Tabled, _VectorSensor):
         self._rng = _noise_stream(simulation, name)
 
     def _read(self) -> list[float]:
-        return [self._table(v, self._rng) for v in self._measure()]
+        measured = self._measure()
+        if self._device_frame and self._simulation.scene.y_up_devices:
+            measured = enu_to_nue(*measured)
+        return [self._table(v, self._rng) for v in measured]
 
     def _measure(self) -> tuple[float, float, float]:
         raise NotImplementedError
@@ -148,9 +154,11 @@ class _TableVector(_Tabled, _VectorSensor):
 
 
 class Accelerometer(_TableVector):
-    """Specific force in the device frame (m/s^2): the body's acceleration plus 9.81 up."""
+    """Specific force in the device frame (m/s^2): the body's acceleration plus 9.81 up (along
+    z; along y in a world before R2022a, whose PROTOs are Y-up)."""
 
     _node_type = node_type("ACCELEROMETER")
+    _device_frame = True
 
     _api = "wb_accelerometer"
     _default_table = ACCELEROMETER_TABLE
@@ -163,9 +171,11 @@ class Accelerometer(_TableVector):
 
 
 class Gyro(_TableVector):
-    """Angular velocity about the device's axes (rad/s): the yaw rate about z."""
+    """Angular velocity about the device's axes (rad/s): the yaw rate about z (about y in a
+    world before R2022a)."""
 
     _node_type = node_type("GYRO")
+    _device_frame = True
 
     _api = "wb_gyro"
     _default_table = GYRO_TABLE
@@ -178,6 +188,7 @@ class Compass(_TableVector):
     """The north direction in the device frame (unit vector)."""
 
     _node_type = node_type("COMPASS")
+    _device_frame = True
 
     _api = "wb_compass"
 
