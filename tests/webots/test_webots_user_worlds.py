@@ -4,6 +4,7 @@ byte-order mark and Windows line endings, ``#`` inside strings), run through
 
 from __future__ import annotations
 
+import math
 import subprocess
 import sys
 from pathlib import Path
@@ -222,3 +223,44 @@ def test_an_r2023_world_keeps_the_enu_device_frames() -> None:
     robot.step(32)
     assert accelerometer.getValues() == pytest.approx([0.0, 0.0, 9.81])
     simulations.release()
+
+
+#: An E-puck as Webots saves it after a run: its wheel joints' positions in hidden fields.
+SAVED_EPUCK = """#VRML_SIM R2023b utf8
+WorldInfo { basicTimeStep 32 }
+RectangleArena { floorSize 1 1 }
+E-puck {
+  hidden position_0_0 12.3
+  hidden position_0_1 -3.2
+  hidden linearVelocity_0 0 0 0
+  translation 0 0 0
+}
+"""
+
+
+def test_wheel_sensors_start_where_a_saved_world_left_the_wheels() -> None:
+    # Webots restores the joints' hidden positions, so its wheel sensors start there and
+    # Webots' tutorial's setPosition(10.0) turns the left wheel back from 12.3 rad.
+    scene = read_scene(SAVED_EPUCK, "E-puck", 4)
+    assert scene.wheel_positions == (12.3, -3.2)
+    prepare(mazesim.load_world("arena"), seconds=5.0, noise=False, scene=scene)
+    controller.Robot.created = None
+    robot = controller.Robot()
+    sensors = [robot.getDevice(f"{side} wheel sensor") for side in ("left", "right")]
+    for sensor in sensors:
+        sensor.enable(32)
+    robot.step(32)
+    resolution = 2 * math.pi / 1000
+    assert sensors[0].getValue() == pytest.approx(12.3, abs=resolution)
+    assert sensors[1].getValue() == pytest.approx(-3.2, abs=resolution)
+    # Position control starts at the joints' positions (Webots' WbMotor): nothing turns.
+    left_motor = robot.getDevice("left wheel motor")
+    assert left_motor.getTargetPosition() == 12.3
+    left_motor.setPosition(10.0)
+    for _ in range(40):
+        robot.step(32)
+    assert sensors[0].getValue() == pytest.approx(10.0, abs=resolution)
+    assert sensors[1].getValue() == pytest.approx(-3.2, abs=resolution), "the right wheel stays"
+    simulations.release()
+    fresh = read_scene(SAVED_EPUCK.replace("hidden", "# hidden"))
+    assert fresh.wheel_positions == (0.0, 0.0)

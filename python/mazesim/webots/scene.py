@@ -34,9 +34,13 @@ _NUE = re.compile(r'\bcoordinateSystem\s+"NUE"')
 _NODE = re.compile(r"(?:\bDEF\s+([^\s{}\[\]]+)\s+)?(?<![\w-])([A-Za-z_][\w-]*)\s*\{")
 _ROTATION = re.compile(r"\brotation" + r"\s+".join([""] + [_NUMBER] * 4))
 _TRANSLATION = re.compile(r"\btranslation\s+" + _NUMBER + r"\s+" + _NUMBER + r"\s+" + _NUMBER)
+#: A wheel joint's position saved in a world file: ``hidden position_0_<joint> <rad>``.
+_HIDDEN_WHEEL = re.compile(r"\bhidden\s+position_0_([01])\s+" + _NUMBER)
 _NORTH = re.compile(r"\bnorthDirection\s+" + _NUMBER + r"\s+" + _NUMBER + r"\s+" + _NUMBER)
 #: Node types that are robots.
 ROBOT_TYPES = {"E-puck", "Robot", "e-puck2", "Epuck", "E-puck2"}
+#: The E-puck PROTOs, whose hidden joint positions are their wheels'.
+EPUCK_TYPES = {"E-puck", "E-puck2", "e-puck2", "Epuck"}
 #: The base node of the common PROTOs (``Node.getBaseTypeName``); a built-in node is its own.
 BASE_TYPES = {
     "E-puck": "Robot",
@@ -105,6 +109,9 @@ class Scene:
         nodes: The nodes at the top of the file, in file order (the root's ``children``).
         nue: Whether the file uses Webots' old NUE frame (y up): before R2022a, or
             ``coordinateSystem "NUE"``; a GPS then reads in that frame.
+        wheel_positions: The left and right wheel joints' positions (rad) a world saved after
+            a run holds (the E-puck's ``hidden position_0_0`` and ``position_0_1``): where
+            Webots restores them, so where its wheel sensors start; 0 otherwise.
         y_up_devices: Whether the robot's PROTOs are Webots' Y-up ones (a file before
             R2022a): an accelerometer, gyro or compass then reads in the device frame x
             right, y up, z back.
@@ -123,6 +130,7 @@ class Scene:
     north: tuple[float, float] | None = None
     nue: bool = False
     y_up_devices: bool = False
+    wheel_positions: tuple[float, float] = (0.0, 0.0)
     lights: list[Light] = field(default_factory=list)
     nodes: list[SceneNode] = field(default_factory=list)
 
@@ -163,6 +171,10 @@ def read_scene(text: str, robot_model: str | None = None, robot_line: int | None
             scene.robot_name = found.group(1)
         if found := _CUSTOM_DATA.search(own):
             scene.robot_custom_data = found.group(1)
+        saved = {int(j): float(v) for j, v in _HIDDEN_WHEEL.findall(own)}
+        if robot.group(2) in EPUCK_TYPES:
+            # The E-puck PROTO's first HingeJoint is its left wheel's, the second its right's.
+            scene.wheel_positions = (saved.get(0, 0.0), saved.get(1, 0.0))
     scene.supervisor = bool(_SUPERVISOR.search(own))
     scene.lights = read_lights(text, scene.nue)
     if found := _CONTROLLER_ARGS.search(body):
