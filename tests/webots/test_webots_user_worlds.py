@@ -264,3 +264,12 @@ def test_wheel_sensors_start_where_a_saved_world_left_the_wheels() -> None:
     simulations.release()
     fresh = read_scene(SAVED_EPUCK.replace("hidden", "# hidden"))
     assert fresh.wheel_positions == (0.0, 0.0)
+
+
+def test_a_world_written_compactly_by_hand_gives_the_robots_arguments() -> None:
+    text = (
+        "#VRML_SIM R2023b utf8\nWorldInfo{basicTimeStep\t16}\n"
+        'DEF R E-puck{translation -0.2,0,0\tname "bot" controllerArgs["a","b"]}\n'
+    )
+    scene = read_scene(text)
+    assert (scene.robot_def, scene.robot_name, scene.controller_args) == ("R", "bot", ["a", "b"])

@@ -19,7 +19,7 @@ __all__ = ["Scene", "SceneNode", "read_scene"]
 _DEF = re.compile(r"\bDEF\s+([^\s{}\[\]]+)\s+([A-Za-z_][\w-]*)\s*\{")
 _NAME = re.compile(r'\bname\s+"((?:[^"\\]|\\.)*)"')
 _CUSTOM_DATA = re.compile(r'\bcustomData\s+"((?:[^"\\]|\\.)*)"')
-_CONTROLLER_ARGS = re.compile(r'\bcontrollerArgs\s+(?:\[([^\]]*)\]|"((?:[^"\\]|\\.)*)")')
+_CONTROLLER_ARGS = re.compile(r'\bcontrollerArgs\s*(?:\[([^\]]*)\]|"((?:[^"\\]|\\.)*)")')
 _STRING = re.compile(r'"((?:[^"\\]|\\.)*)"')
 #: A string (kept: it may hold a ``#``) or a comment (removed).
 _COMMENT_OR_STRING = re.compile(r'"(?:[^"\\\n]|\\.)*"|#[^\n]*')
