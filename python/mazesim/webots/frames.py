@@ -9,7 +9,10 @@ here by the same map, and every value a device of such a world reports in Webots
 
 from __future__ import annotations
 
-__all__ = ["enu_to_nue", "nue_to_enu"]
+__all__ = ["ENU_TO_NUE", "enu_to_nue", "enu_to_nue_matrix", "nue_to_enu"]
+
+#: The matrix of :func:`enu_to_nue` (rows).
+ENU_TO_NUE = ((0.0, -1.0, 0.0), (0.0, 0.0, 1.0), (-1.0, 0.0, 0.0))
 
 
 def nue_to_enu(x: float, y: float, z: float) -> tuple[float, float, float]:
@@ -20,3 +23,14 @@ def nue_to_enu(x: float, y: float, z: float) -> tuple[float, float, float]:
 def enu_to_nue(x: float, y: float, z: float) -> tuple[float, float, float]:
     """A world-frame (ENU) vector in the NUE frame of the world file it came from."""
     return -y, z, -x
+
+
+def enu_to_nue_matrix(matrix: list[float]) -> list[float]:
+    """A world-frame (ENU) rotation matrix, row after row, as the NUE world file's frame sees it:
+    ``M R M^T``, M the matrix of :func:`enu_to_nue`."""
+    m = ENU_TO_NUE
+    return [
+        sum(m[i][k] * matrix[3 * k + n] * m[j][n] for k in range(3) for n in range(3))
+        for i in range(3)
+        for j in range(3)
+    ]
