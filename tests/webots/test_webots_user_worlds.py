@@ -273,3 +273,19 @@ def test_a_world_written_compactly_by_hand_gives_the_robots_arguments() -> None:
     )
     scene = read_scene(text)
     assert (scene.robot_def, scene.robot_name, scene.controller_args) == ("R", "bot", ["a", "b"])
+
+
+def test_the_robot_reports_its_controllers_name_and_arguments(tmp_path: Path) -> None:
+    asks = (
+        "from controller import Node, Robot\n"
+        "robot = Robot()\n"
+        "print('controller:', robot.getControllerName())\n"
+        "print('arguments:', robot.getControllerArguments())\n"
+        "print('robot type:', robot.getType() == Node.ROBOT)\n"
+        "robot.step(16)\n"
+    )
+    result = run_webots(tmp_path, asks, REFEREE_WORLD)
+    assert "controller: controller\n" in result.stdout
+    assert "arguments: left 3.5\n" in result.stdout
+    assert "robot type: True\n" in result.stdout
+    assert "not available" not in result.stderr

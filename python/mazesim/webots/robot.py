@@ -14,6 +14,7 @@ from mazesim.webots import simulation as _simulations
 from mazesim.webots.equipment import Equipment
 from mazesim.webots.inert import NotSimulated
 from mazesim.webots.keyboard import Joystick, Keyboard, Mouse
+from mazesim.webots.node_types import node_type
 
 __all__ = ["ControllerStopped", "Robot"]
 
@@ -229,6 +230,19 @@ class Robot(NotSimulated):
     def world_path(self) -> str:
         """:meth:`getWorldPath` as a property."""
         return self.getWorldPath()
+
+    def getControllerName(self) -> str:
+        """The controller's name, as the robot's ``controller`` field gives it in Webots: the
+        name of the file that runs (without ``.py``)."""
+        return os.path.splitext(os.path.basename(sys.argv[0] if sys.argv else ""))[0]
+
+    def getControllerArguments(self) -> str:
+        """The robot's ``controllerArgs`` as one string (``sys.argv[1:]`` joined by spaces)."""
+        return " ".join(self._simulation.scene.controller_args)
+
+    def getType(self) -> int:
+        """Webots' node type of the robot: ``Node.ROBOT``."""
+        return node_type("ROBOT")
 
     def getUrdf(self, prefix: str = "") -> str:
         """A minimal URDF of the robot (its name only: mazesim has no link tree)."""
