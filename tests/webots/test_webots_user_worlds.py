@@ -289,3 +289,42 @@ def test_the_robot_reports_its_controllers_name_and_arguments(tmp_path: Path) ->
     assert "arguments: left 3.5\n" in result.stdout
     assert "robot type: True\n" in result.stdout
     assert "not available" not in result.stderr
+
+
+def test_ground_sensors_without_the_module_are_given_with_webots_difference_said(
+    tmp_path: Path,
+) -> None:
+    reads_gs0 = (
+        "from controller import Robot\n"
+        "robot = Robot()\n"
+        "print('gs0 found:', robot.getDevice('gs0') is not None)\n"
+        "robot.getDevice('gs1')\n"
+        "robot.step(16)\n"
+    )
+    bare = "#VRML_SIM R2023b utf8\nRectangleArena { }\nE-puck { }\n"
+    result = run_webots(tmp_path, reads_gs0, bare)
+    assert "gs0 found: True" in result.stdout
+    assert result.stderr.count("has no ground sensors module") == 1
+    module = "groundSensorsSlot [ E-puckGroundSensors { } ]"
+    equipped = bare.replace("E-puck { }", f"E-puck {{ {module} }}")
+    result = run_webots(tmp_path, reads_gs0, equipped)
+    assert "gs0 found: True" in result.stdout
+    assert "ground sensors module" not in result.stderr
+
+
+def test_the_camera_of_an_e_puck_in_a_world_without_walls_sees_floor_and_sky(
+    tmp_path: Path,
+) -> None:
+    world_file = tmp_path / "open.wbt"
+    world_file.write_text("#VRML_SIM R2023b utf8\nE-puck { }\n")
+    prepare(mazesim.load_world(str(world_file)), seconds=1.0, noise=False)
+    controller.Robot.created = None
+    robot = controller.Robot()
+    camera = robot.getDevice("camera")
+    camera.enable(32)
+    robot.step(32)  # warnings are errors here: no RuntimeWarning for rays that meet nothing
+    image = camera.getImageArray()
+    assert image is not None and len(image) == camera.getWidth()
+    top, bottom = image[0][0], image[0][camera.getHeight() - 1]
+    assert top != bottom, "sky above, floor below"
+    simulations.release()

@@ -27,6 +27,9 @@ class ControllerStopped(BaseException):
     """
 
 
+#: The e-puck's ground sensors, which Webots' E-puck has only with its ground sensors module.
+GROUND_SENSOR_NAMES = ("gs0", "gs1", "gs2")
+
 #: The deprecated per-type getters of Webots' Robot (all are ``getDevice`` now).
 DEPRECATED_GETTERS = (
     "getAccelerometer",
@@ -92,6 +95,7 @@ class Robot(NotSimulated):
     _simulation: _simulations.RobotSimulation
     _equipment: Equipment
     _custom_data: str
+    _warned_ground_module = False
 
     def __init__(self) -> None:
         """Attaches to the prepared simulation and finds the robot's devices.
@@ -318,6 +322,18 @@ class Robot(NotSimulated):
     def getDevice(self, name: str) -> Any:
         """The device of that name, or None (with Webots' message) if the robot has none."""
         device = self._equipment.devices.get(str(name))
+        if (
+            str(name) in GROUND_SENSOR_NAMES
+            and self._simulation.scene.ground_sensors_module is False
+            and not self._warned_ground_module
+        ):
+            self._warned_ground_module = True
+            print(
+                f"mazesim: warning: the world's E-puck has no ground sensors module "
+                f"(groundSensorsSlot [ E-puckGroundSensors {{ }} ]): in Webots "
+                f'getDevice("{name}") returns None; mazesim gives the sensors',
+                file=sys.stderr,
+            )
         if device is None:
             print(f'Device "{name}" was not found on robot "{self.getName()}"', file=sys.stderr)
             similar = difflib.get_close_matches(str(name), list(self._equipment.devices), n=3)

@@ -34,6 +34,8 @@ _NUE = re.compile(r'\bcoordinateSystem\s+"NUE"')
 _NODE = re.compile(r"(?:\bDEF\s+([^\s{}\[\]]+)\s+)?(?<![\w-])([A-Za-z_][\w-]*)\s*\{")
 _ROTATION = re.compile(r"\brotation" + r"\s+".join([""] + [_NUMBER] * 4))
 _TRANSLATION = re.compile(r"\btranslation\s+" + _NUMBER + r"\s+" + _NUMBER + r"\s+" + _NUMBER)
+#: Webots' ground sensors module of the E-puck (its gs0..gs2), in the groundSensorsSlot.
+_GROUND_SENSORS_MODULE = re.compile(r"\bgroundSensorsSlot\s*\[[^\]]*\bE-puckGroundSensors\s*\{")
 #: A wheel joint's position saved in a world file: ``hidden position_0_<joint> <rad>``.
 _HIDDEN_WHEEL = re.compile(r"\bhidden\s+position_0_([01])\s+" + _NUMBER)
 _NORTH = re.compile(r"\bnorthDirection\s+" + _NUMBER + r"\s+" + _NUMBER + r"\s+" + _NUMBER)
@@ -109,6 +111,9 @@ class Scene:
         nodes: The nodes at the top of the file, in file order (the root's ``children``).
         nue: Whether the file uses Webots' old NUE frame (y up): before R2022a, or
             ``coordinateSystem "NUE"``; a GPS then reads in that frame.
+        ground_sensors_module: Whether the world's E-puck carries Webots' ground sensors
+            module (``E-puckGroundSensors`` in its ``groundSensorsSlot``), without which
+            Webots' e-puck has no ``gs0``..``gs2``; None for a robot that is no E-puck node.
         wheel_positions: The left and right wheel joints' positions (rad) a world saved after
             a run holds (the E-puck's ``hidden position_0_0`` and ``position_0_1``): where
             Webots restores them, so where its wheel sensors start; 0 otherwise.
@@ -131,6 +136,7 @@ class Scene:
     nue: bool = False
     y_up_devices: bool = False
     wheel_positions: tuple[float, float] = (0.0, 0.0)
+    ground_sensors_module: bool | None = None
     lights: list[Light] = field(default_factory=list)
     nodes: list[SceneNode] = field(default_factory=list)
 
@@ -175,6 +181,7 @@ def read_scene(text: str, robot_model: str | None = None, robot_line: int | None
         if robot.group(2) in EPUCK_TYPES:
             # The E-puck PROTO's first HingeJoint is its left wheel's, the second its right's.
             scene.wheel_positions = (saved.get(0, 0.0), saved.get(1, 0.0))
+            scene.ground_sensors_module = bool(_GROUND_SENSORS_MODULE.search(body))
     scene.supervisor = bool(_SUPERVISOR.search(own))
     scene.lights = read_lights(text, scene.nue)
     if found := _CONTROLLER_ARGS.search(body):
