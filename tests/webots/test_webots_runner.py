@@ -9,6 +9,7 @@ from pathlib import Path
 import pytest
 
 import mazesim
+from mazesim.errors import MazesimIOError
 from mazesim.webots import run_controller
 
 #: A controller that reads its speed from a helper module beside it.
@@ -71,3 +72,17 @@ def test_modules_of_a_folder_the_controller_puts_on_its_path_are_forgotten_too(
     assert run.exit_status == 0, run.error
     assert "epuck_helpers" not in sys.modules
     assert "json" in sys.modules, "a module of the interpreter's own path stays loaded"
+
+
+def test_a_webots_controller_folder_runs_the_file_named_after_it(tmp_path: Path) -> None:
+    folder = tmp_path / "controllers" / "wanderer"
+    folder.mkdir(parents=True)
+    (folder / "settings.py").write_text("SPEED = 1.5\n")
+    (folder / "wanderer.py").write_text(USES_SETTINGS)
+    run = run_controller(folder, mazesim.load_world("arena"), seconds=1.0)
+    assert run.exit_status == 0, run.error
+    assert run.controller == str(folder / "wanderer.py")
+    empty = tmp_path / "controllers" / "empty"
+    empty.mkdir()
+    with pytest.raises(MazesimIOError, match="holding empty.py"):
+        run_controller(empty, mazesim.load_world("arena"), seconds=1.0)

@@ -83,7 +83,11 @@ def register(commands: Any) -> None:
             "--strict with import warnings); 130 interrupted (Ctrl-C).",
         ),
     )
-    run.add_argument("controller", metavar="CONTROLLER.py", help="the controller's Python file")
+    run.add_argument(
+        "controller",
+        metavar="CONTROLLER.py",
+        help="the controller's Python file, or its Webots folder controllers/NAME (NAME.py in it)",
+    )
     run.add_argument(
         "--world",
         default="arena",

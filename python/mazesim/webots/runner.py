@@ -25,7 +25,13 @@ from mazesim.webots import simulation as simulations
 from mazesim.webots.keyboard import KeyScript
 from mazesim.webots.scene import Scene
 
-__all__ = ["EXIT_CONTROLLER_ERROR", "EXIT_INTERRUPTED", "ControllerRun", "run_controller"]
+__all__ = [
+    "EXIT_CONTROLLER_ERROR",
+    "EXIT_INTERRUPTED",
+    "ControllerRun",
+    "controller_file",
+    "run_controller",
+]
 
 #: Exit status of a run whose controller raised an exception.
 EXIT_CONTROLLER_ERROR = 1
@@ -77,6 +83,28 @@ class ControllerRun:
     robot_model: str = "e-puck"
 
 
+def controller_file(path: str | os.PathLike[str]) -> str:
+    """The controller file to run: ``path`` itself, or for a Webots controller folder
+    ``controllers/NAME`` the ``NAME.py`` in it, which Webots runs for a Python controller.
+
+    Raises:
+        MazesimIOError: ``path`` is a folder without that file.
+    """
+    file = os.path.abspath(os.fspath(path))
+    if not os.path.isdir(file):
+        return file
+    name = os.path.basename(file)
+    inside = os.path.join(file, f"{name}.py")
+    if not os.path.isfile(inside):
+        failure = MazesimIOError(
+            f"{file}: expected a controller file, or a Webots controller folder holding "
+            f"{name}.py (Webots runs controllers/NAME/NAME.py), found a folder without it"
+        )
+        failure.filename = file
+        raise failure
+    return inside
+
+
 def _read_source(path: str) -> str:
     """The controller's source text, decoded as Python decodes a source file (UTF-8, or the
     encoding its coding comment declares)."""
@@ -111,7 +139,8 @@ def run_controller(
     is returned: its exception becomes ``error`` and ``exit_status``.
 
     Args:
-        path: The controller's Python file (``from controller import Robot`` and the usual loop).
+        path: The controller's Python file (``from controller import Robot`` and the usual
+            loop), or its Webots controller folder (``controllers/NAME``, holding ``NAME.py``).
         world: The world to run in.
         seconds: Simulated seconds after which ``Robot.step`` returns -1.
         seed: Seed of the sensor noise.
@@ -128,7 +157,7 @@ def run_controller(
         MazesimIOError: The file cannot be read.
         InvalidArgumentError: ``seconds`` is not positive.
     """
-    file = os.path.abspath(os.fspath(path))
+    file = controller_file(path)
     source = _read_source(file)
     simulation = simulations.prepare(
         world, seconds=seconds, seed=seed, noise=noise, report=report, keys=keys, scene=scene
