@@ -49,13 +49,18 @@ robot.step(16)
 
 
 def run_webots(
-    folder: Path, controller_text: str, world_text: str, *options: str
+    folder: Path,
+    controller_text: str,
+    world_text: str,
+    *options: str,
+    controller: str = "controller.py",
 ) -> subprocess.CompletedProcess[str]:
-    """Runs a controller in a world for 1 s (exit status 0 expected)."""
-    (folder / "controller.py").write_text(controller_text)
+    """Runs a controller (written as ``controller``) in a world for 1 s (exit status 0
+    expected)."""
+    (folder / controller).write_text(controller_text)
     (folder / "world.wbt").write_bytes(world_text.encode("utf-8"))
     result = subprocess.run(
-        [sys.executable, "-m", "mazesim", "webots", "run", "controller.py", *options]
+        [sys.executable, "-m", "mazesim", "webots", "run", controller, *options]
         + ["--world", "world.wbt", "--seconds", "1", "--out", "out", "--no-progress"],
         cwd=folder,
         capture_output=True,
@@ -328,3 +333,31 @@ def test_the_camera_of_an_e_puck_in_a_world_without_walls_sees_floor_and_sky(
     top, bottom = image[0][0], image[0][camera.getHeight() - 1]
     assert top != bottom, "sky above, floor below"
     simulations.release()
+
+
+#: Two e-pucks, each with its own controller, as leader-follower worlds have them.
+LEADER_FOLLOWER = """#VRML_SIM R2023b utf8
+WorldInfo { basicTimeStep 16 }
+RectangleArena { floorSize 1 1 }
+DEF LEADER E-puck { translation 0.2 0 0 name "leader" controller "leader" }
+DEF FOLLOWER E-puck {
+  translation -0.3 0.2 0
+  name "follower"
+  controller "follower"
+  controllerArgs [ "--gap" "0.1" ]
+}
+"""
+
+
+def test_the_e_puck_whose_controller_runs_is_the_robot(tmp_path: Path) -> None:
+    result = run_webots(tmp_path, WHO_AM_I, LEADER_FOLLOWER, controller="follower.py")
+    assert "name: follower" in result.stdout
+    assert "args: ['--gap', '0.1']" in result.stdout
+    assert "an e-puck of another controller: ignored" in result.stderr
+    trajectory = (tmp_path / "out" / "trajectory.csv").read_text().splitlines()
+    assert trajectory[1].split(",")[1:] == ["-0.30000", "0.20000"], "the follower's start"
+    # The Python API: the first e-puck unless a controller is named.
+    world_file = tmp_path / "world.wbt"
+    assert import_wbt(str(world_file))[1]["robot"] == {"x": 0.2, "y": 0.0, "yaw": 0.0}
+    _, report = import_wbt(str(world_file), controller="follower")
+    assert report["robot"] is not None and report["robot"]["x"] == pytest.approx(-0.3)

@@ -175,8 +175,11 @@ def run_import(args: argparse.Namespace, out: TextIO) -> int:
     return 0
 
 
-def _load_world(spec: str, strict: bool) -> tuple[Any, dict[str, Any] | None, Any]:
-    """The world, its import report (for a .wbt file) and its scene; warnings printed."""
+def _load_world(
+    spec: str, strict: bool, controller: str | None = None
+) -> tuple[Any, dict[str, Any] | None, Any]:
+    """The world, its import report (for a .wbt file) and its scene; warnings printed. Of
+    several e-pucks, the one whose ``controller`` field names ``controller`` runs."""
     import mazesim
     from mazesim.errors import WorldFormatError
     from mazesim.webots.importer import import_wbt, robot_warnings
@@ -184,7 +187,7 @@ def _load_world(spec: str, strict: bool) -> tuple[Any, dict[str, Any] | None, An
 
     if not spec.lower().endswith(".wbt"):
         return mazesim.load_world(spec), None, None
-    world, imported = import_wbt(spec)
+    world, imported = import_wbt(spec, controller=controller)
     report: dict[str, Any] = dict(imported)
     report["path"] = os.path.abspath(spec)
     warnings = [*report.get("warnings", []), *robot_warnings(report)]
@@ -210,9 +213,10 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
     import mazesim
     from mazesim.plotting import save_trajectory_png
     from mazesim.webots.keyboard import read_keys
-    from mazesim.webots.runner import run_controller
+    from mazesim.webots.runner import controller_file, run_controller
 
-    world, report, scene = _load_world(args.world, args.strict)
+    controller = os.path.splitext(os.path.basename(controller_file(args.controller)))[0]
+    world, report, scene = _load_world(args.world, args.strict, controller)
     keys = read_keys(args.keys) if args.keys else None
     out_dir = os.path.abspath(args.out)
     refuse_overwriting_inputs(

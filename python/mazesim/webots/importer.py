@@ -171,11 +171,16 @@ def _with_floor(
     return world, cast(ImportReport, report)
 
 
-def import_wbt(path: str | os.PathLike[str]) -> tuple[World, ImportReport]:
+def import_wbt(
+    path: str | os.PathLike[str], controller: str | None = None
+) -> tuple[World, ImportReport]:
     """Imports a Webots world file.
 
     Args:
         path: A ``.wbt`` file of any Webots version from V8.5 to R2025a.
+        controller: The name of the controller that will run (its file name without
+            ``.py``): of several e-pucks, the first whose ``controller`` field names it is the
+            robot, as Webots runs each robot's own controller; by default, the first e-puck.
 
     Returns:
         The mazesim world (named after the file) and the import report. Floor textures are
@@ -188,7 +193,8 @@ def import_wbt(path: str | os.PathLike[str]) -> tuple[World, ImportReport]:
     """
     file = os.fspath(path)
     return _with_floor(
-        _core.import_wbt(file), lambda images: _core.import_wbt(file, floor_images=images)
+        _core.import_wbt(file, controller=controller),
+        lambda images: _core.import_wbt(file, floor_images=images, controller=controller),
     )
 
 

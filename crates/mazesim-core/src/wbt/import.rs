@@ -116,10 +116,12 @@ pub struct Importer<'d> {
     pub falls: bool,
     visits: usize,
     too_deep: bool,
+    /// The e-puck whose `controller` field names the controller of the run, if one does.
+    chosen: Option<&'d Node>,
 }
 
 /// Imports a parsed world.
-pub fn import(doc: &Document) -> WbtImport {
+pub fn import(doc: &Document, controller: Option<&str>) -> WbtImport {
     let mut importer = Importer {
         doc,
         y_up: !doc.version.has_z_up_protos(),
@@ -134,7 +136,9 @@ pub fn import(doc: &Document) -> WbtImport {
         falls: false,
         visits: 0,
         too_deep: false,
+        chosen: None,
     };
+    importer.chosen = controller.and_then(|name| importer.epuck_of_controller(name));
     let (basic_time_step_ms, root) = importer.world_info();
     for &id in &doc.roots {
         importer.scene(id, &root, 0);
@@ -517,9 +521,28 @@ impl<'d> Importer<'d> {
         OTHER_ROBOT_PROTOS.contains(&node.type_name.as_str()) || node.field("controller").is_some()
     }
 
+    /// The first e-puck whose `controller` field is `name`.
+    fn epuck_of_controller(&self, name: &str) -> Option<&'d Node> {
+        self.doc.nodes.iter().find(|node| {
+            let kind = node.type_name.as_str();
+            (EPUCK_PROTOS.contains(&kind)
+                || (ROBOT_NODES.contains(&kind) && self.looks_like_epuck(node)))
+                && self.strings(node, "controller").iter().any(|c| c == name)
+        })
+    }
+
     /// The e-puck (or e-puck2): its start pose, model and the devices in its slots.
     fn epuck(&mut self, node: &'d Node, frame: &Frame) {
         let label = self.label(node);
+        if let Some(chosen) = self.chosen.filter(|chosen| !std::ptr::eq(*chosen, node)) {
+            let controller = self.strings(chosen, "controller").first().cloned();
+            self.warn(format!(
+                "{label}: an e-puck of another controller: ignored, mazesim simulates the e-puck whose controller is \"{}\" (line {})",
+                controller.unwrap_or_default(),
+                chosen.line
+            ));
+            return;
+        }
         if self.robot.is_some() {
             self.warn(format!(
                 "{label}: a second e-puck: ignored, mazesim simulates one robot"

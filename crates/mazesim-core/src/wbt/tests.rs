@@ -356,3 +356,22 @@ fn the_e_pucks_ground_sensors_module_is_its_own_gs_sensors_not_a_warning() {
         "LineSensorBar: in the robot's groundSensorsSlot"
     ));
 }
+
+#[test]
+fn the_e_puck_of_the_controller_that_runs_is_the_robot() {
+    let text = "#VRML_SIM R2023b utf8\nE-puck { translation 0.1 0 0 controller \"leader\" }\nE-puck { translation -0.3 0.2 0 controller \"follower\" }\n";
+    let follower = WbtImport::from_text_for(text, "two.wbt", Some("follower")).unwrap();
+    assert_eq!(follower.robot, Some([-0.3, 0.2, 0.0]));
+    assert_eq!(follower.robot_line, Some(3));
+    assert!(warned(
+        &follower,
+        "line 2: E-puck: an e-puck of another controller: ignored"
+    ));
+    assert!(!warned(&follower, "a second e-puck"));
+    // Without a controller, or one no e-puck names, the first e-puck runs, as before.
+    for controller in [None, Some("nobody")] {
+        let first = WbtImport::from_text_for(text, "two.wbt", controller).unwrap();
+        assert_eq!(first.robot, Some([0.1, 0.0, 0.0]));
+        assert!(warned(&first, "line 3: E-puck: a second e-puck: ignored"));
+    }
+}
