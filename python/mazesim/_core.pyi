@@ -85,15 +85,19 @@ def validate_codes(codes: list[str]) -> None:
 def import_wbt(
     path: str | os.PathLike[str],
     floor_images: dict[str, npt.NDArray[np.float64]] | None = None,
+    controller: str | None = None,
 ) -> tuple[World, dict[str, Any]]:
     """Imports a Webots .wbt file: the mazesim World and the import report (obstacles, robot,
-    basic_time_step_ms, warnings, robot_model, robot_profile, extension_devices, floor_textures,
-    floor_paint). `floor_images` maps texture files to (height, width) grey levels in [0, 1]."""
+    basic_time_step_ms, warnings, robot_model, robot_line, robot_profile, extension_devices,
+    floor_textures, floor_paint). `floor_images` maps texture files to (height, width) grey
+    levels in [0, 1]; of several e-pucks, the first whose `controller` field is `controller` is
+    the robot."""
 
 def import_wbt_text(
     text: str,
     source: str = "<string>",
     floor_images: dict[str, npt.NDArray[np.float64]] | None = None,
+    controller: str | None = None,
 ) -> tuple[World, dict[str, Any]]:
     """Imports the text of a .wbt file; `source` names it in error messages and names the world,
     and floor textures are looked for beside it."""

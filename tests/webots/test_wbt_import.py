@@ -248,6 +248,7 @@ def test_cli_json_layout(tmp_path: Path) -> None:
         "basic_time_step_ms",
         "warnings",
         "robot_model",
+        "robot_line",
         "robot_profile",
         "extension_devices",
         "floor_textures",

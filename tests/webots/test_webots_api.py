@@ -219,12 +219,27 @@ def test_top_level_nodes_read_their_fields_and_the_robot_is_live() -> None:
     assert simulations.current().simulator.pose[:2] == pytest.approx((0.1, 0.2), abs=1e-6)
 
 
-def test_nue_worlds_give_their_nodes_in_the_enu_frame() -> None:
+def test_nue_worlds_give_their_nodes_in_the_files_own_frame() -> None:
+    # As Webots before R2022a: the supervisor reads the file's own NUE values (y up), which
+    # mazesim converts, as the importer does, for the simulation.
     supervisor = supervisor_in(WORLDS / "e-puck.R2021c_NUE.wbt")
     box = supervisor.getRoot().getField("children").getMFNode(5)
     assert box.getTypeName() == "WoodenBox"
-    assert box.getPosition() == pytest.approx([-0.2, -0.683174, 0.05])
-    assert box.getField("rotation").getSFRotation() == pytest.approx([0, 0, 1, 0.5])
+    assert box.getPosition() == pytest.approx([-0.2, 0.05, 0.683174])
+    assert box.getField("translation").getSFVec3f() == pytest.approx([-0.2, 0.05, 0.683174])
+    assert box.getField("rotation").getSFRotation() == pytest.approx([0, 1, 0, 0.5])
+    # The robot: the file's "rotation 0 1 0 1.57", its height 0 on y.
+    robot = supervisor.getSelf()
+    assert robot.getField("rotation").getSFRotation() == pytest.approx([0, 1, 0, 1.57], abs=1e-6)
+    assert robot.getPosition() == pytest.approx([0.0, 0.0, 0.0], abs=1e-6)
+    orientation = robot.getOrientation()
+    assert orientation[0] == pytest.approx(math.cos(1.57), abs=1e-6)
+    assert orientation[2] == pytest.approx(math.sin(1.57), abs=1e-6), "about y, the NUE up"
+    # Moving it in the file's frame puts it where the importer puts that place.
+    robot.getField("translation").setSFVec3f([0.3, 0.0, -0.1])
+    x, y, _ = simulations.current().simulator.pose
+    assert (x, y) == pytest.approx((0.1, -0.3), abs=1e-6)
+    assert robot.getPosition() == pytest.approx([0.3, 0.0, -0.1], abs=1e-6)
 
 
 def test_reset_physics_stops_the_robot() -> None:

@@ -340,7 +340,8 @@ def test_gps_reads_in_the_old_nue_frame_of_worlds_before_r2022a() -> None:
     gps.enable(32)
     simulations.current().move_robot(0.1, 0.2, 0.0)
     robot.step(32)
-    assert gps.getValues() == pytest.approx([0.1, 0.04, -0.2])
+    # The inverse of the importer's (Webots' converter's) map (x, y, z) -> (-z, -x, y).
+    assert gps.getValues() == pytest.approx([-0.2, 0.04, -0.1])
 
 
 def test_the_reports_robot_profile_picks_the_devices_by_name() -> None:
@@ -404,7 +405,7 @@ def test_light_sensors_see_the_worlds_point_light() -> None:
     expected = 4095.0 * (2.0 - irradiance)
     assert values[5] == pytest.approx(expected, rel=0.02)
     nue = read_scene("#VRML_SIM R2021a utf8\nPointLight { location 1 2 3 }\n")
-    assert nue.lights[0].position == (1.0, -3.0, 2.0)
+    assert nue.lights[0].position == (-3.0, -1.0, 2.0)
 
 
 def test_a_camera_tilted_down_by_the_world_sees_only_floor() -> None:

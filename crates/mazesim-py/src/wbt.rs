@@ -40,6 +40,7 @@ fn device_field<'py>(py: Python<'py>, value: &DeviceField) -> PyResult<Bound<'py
 fn robot_and_floor(out: &Bound<'_, PyDict>, import: &WbtImport) -> PyResult<()> {
     let py = out.py();
     out.set_item("robot_model", import.robot_model.clone())?;
+    out.set_item("robot_line", import.robot_line)?;
     out.set_item("robot_profile", &import.robot_profile)?;
     let devices = PyList::empty(py);
     for device in &import.extension_devices {
@@ -129,7 +130,7 @@ fn grey_images(images: Option<&Bound<'_, PyAny>>) -> PyResult<BTreeMap<String, G
 }
 
 /// The import as `{"obstacles": [...], "bodies": [...], "robot": {...} | None, "basic_time_step_ms": t,
-/// "warnings": [...], "robot_model", "robot_profile", "extension_devices", "floor_textures",
+/// "warnings": [...], "robot_model", "robot_line", "robot_profile", "extension_devices", "floor_textures",
 /// "floor_paint"}`, in metres and radians, world frame, z up.
 fn report<'py>(py: Python<'py>, import: &WbtImport) -> PyResult<Bound<'py, PyDict>> {
     let obstacles = PyList::empty(py);
@@ -231,17 +232,23 @@ fn finish<'py>(
 
 /// Imports a Webots `.wbt` file: the mazesim World and the import report (a dict).
 /// `floor_images` maps texture files (as the report's `floor_textures` candidates name them) to
-/// their grey levels; the textures without one are reported missing.
+/// their grey levels; the textures without one are reported missing. `controller` names the
+/// controller that will run: of several e-pucks, the first whose `controller` field is it is
+/// the robot.
 #[pyfunction]
-#[pyo3(signature = (path, floor_images = None))]
+#[pyo3(signature = (path, floor_images = None, controller = None))]
 pub fn import_wbt<'py>(
     py: Python<'py>,
     path: PathArg,
     floor_images: Option<&Bound<'py, PyAny>>,
+    controller: Option<Text>,
 ) -> PyResult<(PyWorld, Bound<'py, PyDict>)> {
     enter(|| {
         let path: PathBuf = path.value("path", "a str or os.PathLike")?;
-        let import = enter_detached(py, || WbtImport::load(&path))?;
+        let controller = controller
+            .map(|c| c.value("controller", "a str or None"))
+            .transpose()?;
+        let import = enter_detached(py, || WbtImport::load_for(&path, controller.as_deref()))?;
         finish(py, import, &path, floor_images)
     })
 }
@@ -249,13 +256,14 @@ pub fn import_wbt<'py>(
 /// Imports the text of a `.wbt` file; `source` names it in error messages and names the world.
 /// Lone surrogates (not UTF-8) are read as U+FFFD, so that they end in a located format error.
 #[pyfunction]
-#[pyo3(signature = (text, source = Text::Value("<string>".into()), floor_images = None),
-    text_signature = "(text, source='<string>', floor_images=None)")]
+#[pyo3(signature = (text, source = Text::Value("<string>".into()), floor_images = None, controller = None),
+    text_signature = "(text, source='<string>', floor_images=None, controller=None)")]
 pub fn import_wbt_text<'py>(
     py: Python<'py>,
     text: &Bound<'py, PyAny>,
     source: Text,
     floor_images: Option<&Bound<'py, PyAny>>,
+    controller: Option<Text>,
 ) -> PyResult<(PyWorld, Bound<'py, PyDict>)> {
     enter(|| {
         let text = text.cast::<PyString>().map_err(|_| {
@@ -269,7 +277,12 @@ pub fn import_wbt_text<'py>(
         })?;
         let text = text.to_string_lossy();
         let source = source.value("source", "a str")?;
-        let import = enter_detached(py, || WbtImport::from_text(&text, &source))?;
+        let controller = controller
+            .map(|c| c.value("controller", "a str or None"))
+            .transpose()?;
+        let import = enter_detached(py, || {
+            WbtImport::from_text_for(&text, &source, controller.as_deref())
+        })?;
         finish(py, import, Path::new(&source), floor_images)
     })
 }

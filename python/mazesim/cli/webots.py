@@ -83,7 +83,11 @@ def register(commands: Any) -> None:
             "--strict with import warnings); 130 interrupted (Ctrl-C).",
         ),
     )
-    run.add_argument("controller", metavar="CONTROLLER.py", help="the controller's Python file")
+    run.add_argument(
+        "controller",
+        metavar="CONTROLLER.py",
+        help="the controller's Python file, or its Webots folder controllers/NAME (NAME.py in it)",
+    )
     run.add_argument(
         "--world",
         default="arena",
@@ -171,8 +175,11 @@ def run_import(args: argparse.Namespace, out: TextIO) -> int:
     return 0
 
 
-def _load_world(spec: str, strict: bool) -> tuple[Any, dict[str, Any] | None, Any]:
-    """The world, its import report (for a .wbt file) and its scene; warnings printed."""
+def _load_world(
+    spec: str, strict: bool, controller: str | None = None
+) -> tuple[Any, dict[str, Any] | None, Any]:
+    """The world, its import report (for a .wbt file) and its scene; warnings printed. Of
+    several e-pucks, the one whose ``controller`` field names ``controller`` runs."""
     import mazesim
     from mazesim.errors import WorldFormatError
     from mazesim.webots.importer import import_wbt, robot_warnings
@@ -180,7 +187,7 @@ def _load_world(spec: str, strict: bool) -> tuple[Any, dict[str, Any] | None, An
 
     if not spec.lower().endswith(".wbt"):
         return mazesim.load_world(spec), None, None
-    world, imported = import_wbt(spec)
+    world, imported = import_wbt(spec, controller=controller)
     report: dict[str, Any] = dict(imported)
     report["path"] = os.path.abspath(spec)
     warnings = [*report.get("warnings", []), *robot_warnings(report)]
@@ -193,7 +200,7 @@ def _load_world(spec: str, strict: bool) -> tuple[Any, dict[str, Any] | None, An
             source=spec,
         )
     with open(spec, encoding="utf-8", errors="replace") as handle:
-        scene = read_scene(handle.read(), report.get("robot_model"))
+        scene = read_scene(handle.read(), report.get("robot_model"), report.get("robot_line"))
     return world, report, scene
 
 
@@ -206,9 +213,10 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
     import mazesim
     from mazesim.plotting import save_trajectory_png
     from mazesim.webots.keyboard import read_keys
-    from mazesim.webots.runner import run_controller
+    from mazesim.webots.runner import controller_file, run_controller
 
-    world, report, scene = _load_world(args.world, args.strict)
+    controller = os.path.splitext(os.path.basename(controller_file(args.controller)))[0]
+    world, report, scene = _load_world(args.world, args.strict, controller)
     keys = read_keys(args.keys) if args.keys else None
     out_dir = os.path.abspath(args.out)
     refuse_overwriting_inputs(

@@ -95,7 +95,9 @@ def render(
     with np.errstate(divide="ignore", invalid="ignore"):
         floor_t = np.where(rise < 0.0, view.z / -rise, np.inf)
     sees_wall = np.isfinite(wall_t) & (wall_t <= floor_t)
-    sees_wall &= view.z + wall_t * rise <= view.wall_height
+    # A ray that meets no wall (an open side of the world) has no height to compare.
+    hit_height = view.z + np.where(np.isfinite(wall_t), wall_t, 0.0) * rise
+    sees_wall &= hit_height <= view.wall_height
     sees_floor = ~sees_wall & np.isfinite(floor_t)
     image = np.empty(rise.shape + (4,), dtype=np.uint8)
     image[...] = (SKY[2], SKY[1], SKY[0], 255)

@@ -310,7 +310,7 @@ class PositionSensor(_ScalarSensor):
         self._motor: Motor | None = None
 
     def _read(self) -> float:
-        return float(self._simulation.simulator.encoders[self._side])
+        return self._simulation.wheel_angles()[self._side]
 
     def getType(self) -> int:
         """:data:`ROTATIONAL`."""
@@ -345,7 +345,9 @@ class Motor(Device):
         self._side = side
         self._sensor = sensor
         self._max_velocity = float(simulation.simulator.robot.max_wheel_speed)
-        self._target_position = 0.0
+        # As in Webots (WbMotor::preFinalize), position control starts at the joint's position:
+        # 0, or where a world saved after a run left the wheel.
+        self._target_position = float(simulation.scene.wheel_positions[side])
         # As in Webots, the velocity starts at maxVelocity (the speed of position control).
         self._velocity = self._max_velocity
         self._acceleration = -1.0

@@ -189,7 +189,7 @@ class Equipment:
     def advance(self) -> None:
         """Runs one basic step with the motors' speeds, then lets each sensor take its reading."""
         simulation = self._simulation
-        left, right = simulation.simulator.encoders
+        left, right = simulation.wheel_angles()
         simulation.advance(self._motors[0]._wheel_speed(left), self._motors[1]._wheel_speed(right))
         for sensor in self._sampled:
             sensor._after_step()

@@ -99,7 +99,8 @@ class ImportReport(TypedDict):
     """What ``mazesim import-wbt --json`` prints.
 
     ``robot_model`` is the robot as found (``"E-puck"``, ``"e-puck2"`` for ``version "2"``, the
-    type name of another robot, ``None`` without one); ``robot_profile`` the mazesim profile
+    type name of another robot, ``None`` without one); ``robot_line`` the line of its node in
+    the file (``None`` without one); ``robot_profile`` the mazesim profile
     that simulates it (``"e-puck"`` or ``"e-puck2"``); ``floor_paint`` the number of paint
     rectangles the floor textures gave; ``bodies`` the movable bodies (``kind``, ``center``,
     ``size`` and ``yaw`` or ``radius``, ``mass`` in kg, floor ``friction``).
@@ -111,6 +112,7 @@ class ImportReport(TypedDict):
     basic_time_step_ms: float
     warnings: list[str]
     robot_model: str | None
+    robot_line: int | None
     robot_profile: str
     extension_devices: list[ExtensionDevice]
     floor_textures: list[FloorTexture]
@@ -169,11 +171,16 @@ def _with_floor(
     return world, cast(ImportReport, report)
 
 
-def import_wbt(path: str | os.PathLike[str]) -> tuple[World, ImportReport]:
+def import_wbt(
+    path: str | os.PathLike[str], controller: str | None = None
+) -> tuple[World, ImportReport]:
     """Imports a Webots world file.
 
     Args:
         path: A ``.wbt`` file of any Webots version from V8.5 to R2025a.
+        controller: The name of the controller that will run (its file name without
+            ``.py``): of several e-pucks, the first whose ``controller`` field names it is the
+            robot, as Webots runs each robot's own controller; by default, the first e-puck.
 
     Returns:
         The mazesim world (named after the file) and the import report. Floor textures are
@@ -186,7 +193,8 @@ def import_wbt(path: str | os.PathLike[str]) -> tuple[World, ImportReport]:
     """
     file = os.fspath(path)
     return _with_floor(
-        _core.import_wbt(file), lambda images: _core.import_wbt(file, floor_images=images)
+        _core.import_wbt(file, controller=controller),
+        lambda images: _core.import_wbt(file, floor_images=images, controller=controller),
     )
 
 

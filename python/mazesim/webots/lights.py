@@ -19,6 +19,8 @@ import math
 import re
 from dataclasses import dataclass
 
+from mazesim.webots.frames import nue_to_enu
+
 __all__ = ["DEFAULT_IRRADIANCE", "Light", "irradiance", "read_lights"]
 
 #: Irradiance (W/m^2) of a world without light information: the middle of the e-puck light
@@ -84,7 +86,7 @@ def read_lights(text: str, nue: bool = False) -> list[Light]:
         ambient = (_numbers(body, "ambientIntensity", 1) or [0.0])[0]
         if match.group(1) == "DirectionalLight":
             x, y, z = _numbers(body, "direction", 3) or [0.0, 0.0, -1.0]
-            x, y, z = (x, -z, y) if nue else (x, y, z)
+            x, y, z = nue_to_enu(x, y, z) if nue else (x, y, z)
             norm = math.sqrt(x * x + y * y + z * z) or 1.0
             lights.append(
                 Light(None, (x / norm, y / norm, z / norm), intensity=intensity, ambient=ambient)
@@ -95,7 +97,7 @@ def read_lights(text: str, nue: bool = False) -> list[Light]:
         radius = (_numbers(body, "radius", 1) or [100.0])[0]
         lights.append(
             Light(
-                (x, -z, y) if nue else (x, y, z),
+                nue_to_enu(x, y, z) if nue else (x, y, z),
                 None,
                 intensity=intensity,
                 ambient=ambient,

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import difflib
 import math
 import os
 import sys
@@ -13,6 +14,7 @@ from mazesim.webots import simulation as _simulations
 from mazesim.webots.equipment import Equipment
 from mazesim.webots.inert import NotSimulated
 from mazesim.webots.keyboard import Joystick, Keyboard, Mouse
+from mazesim.webots.node_types import node_type
 
 __all__ = ["ControllerStopped", "Robot"]
 
@@ -24,6 +26,9 @@ class ControllerStopped(BaseException):
     swallow it; ``mazesim webots run`` treats it as the controller's normal end.
     """
 
+
+#: The e-puck's ground sensors, which Webots' E-puck has only with its ground sensors module.
+GROUND_SENSOR_NAMES = ("gs0", "gs1", "gs2")
 
 #: The deprecated per-type getters of Webots' Robot (all are ``getDevice`` now).
 DEPRECATED_GETTERS = (
@@ -90,6 +95,7 @@ class Robot(NotSimulated):
     _simulation: _simulations.RobotSimulation
     _equipment: Equipment
     _custom_data: str
+    _warned_ground_module = False
 
     def __init__(self) -> None:
         """Attaches to the prepared simulation and finds the robot's devices.
@@ -229,6 +235,19 @@ class Robot(NotSimulated):
         """:meth:`getWorldPath` as a property."""
         return self.getWorldPath()
 
+    def getControllerName(self) -> str:
+        """The controller's name, as the robot's ``controller`` field gives it in Webots: the
+        name of the file that runs (without ``.py``)."""
+        return os.path.splitext(os.path.basename(sys.argv[0] if sys.argv else ""))[0]
+
+    def getControllerArguments(self) -> str:
+        """The robot's ``controllerArgs`` as one string (``sys.argv[1:]`` joined by spaces)."""
+        return " ".join(self._simulation.scene.controller_args)
+
+    def getType(self) -> int:
+        """Webots' node type of the robot: ``Node.ROBOT``."""
+        return node_type("ROBOT")
+
     def getUrdf(self, prefix: str = "") -> str:
         """A minimal URDF of the robot (its name only: mazesim has no link tree)."""
         return f'<?xml version="1.0"?>\n<robot name="{prefix}{self.getName()}">\n</robot>\n'
@@ -303,8 +322,28 @@ class Robot(NotSimulated):
     def getDevice(self, name: str) -> Any:
         """The device of that name, or None (with Webots' message) if the robot has none."""
         device = self._equipment.devices.get(str(name))
+        if (
+            str(name) in GROUND_SENSOR_NAMES
+            and self._simulation.scene.ground_sensors_module is False
+            and not self._warned_ground_module
+        ):
+            self._warned_ground_module = True
+            print(
+                f"mazesim: warning: the world's E-puck has no ground sensors module "
+                f"(groundSensorsSlot [ E-puckGroundSensors {{ }} ]): in Webots "
+                f'getDevice("{name}") returns None; mazesim gives the sensors',
+                file=sys.stderr,
+            )
         if device is None:
             print(f'Device "{name}" was not found on robot "{self.getName()}"', file=sys.stderr)
+            similar = difflib.get_close_matches(str(name), list(self._equipment.devices), n=3)
+            if similar:
+                # Older worlds and other robots name devices otherwise ("left wheel", "ds0").
+                print(
+                    f"mazesim: the robot's devices with a name like {str(name)!r}: "
+                    + ", ".join(repr(found) for found in similar),
+                    file=sys.stderr,
+                )
         return device
 
     def getNumberOfDevices(self) -> int:

@@ -25,7 +25,13 @@ from mazesim.webots import simulation as simulations
 from mazesim.webots.keyboard import KeyScript
 from mazesim.webots.scene import Scene
 
-__all__ = ["EXIT_CONTROLLER_ERROR", "EXIT_INTERRUPTED", "ControllerRun", "run_controller"]
+__all__ = [
+    "EXIT_CONTROLLER_ERROR",
+    "EXIT_INTERRUPTED",
+    "ControllerRun",
+    "controller_file",
+    "run_controller",
+]
 
 #: Exit status of a run whose controller raised an exception.
 EXIT_CONTROLLER_ERROR = 1
@@ -77,6 +83,28 @@ class ControllerRun:
     robot_model: str = "e-puck"
 
 
+def controller_file(path: str | os.PathLike[str]) -> str:
+    """The controller file to run: ``path`` itself, or for a Webots controller folder
+    ``controllers/NAME`` the ``NAME.py`` in it, which Webots runs for a Python controller.
+
+    Raises:
+        MazesimIOError: ``path`` is a folder without that file.
+    """
+    file = os.path.abspath(os.fspath(path))
+    if not os.path.isdir(file):
+        return file
+    name = os.path.basename(file)
+    inside = os.path.join(file, f"{name}.py")
+    if not os.path.isfile(inside):
+        failure = MazesimIOError(
+            f"{file}: expected a controller file, or a Webots controller folder holding "
+            f"{name}.py (Webots runs controllers/NAME/NAME.py), found a folder without it"
+        )
+        failure.filename = file
+        raise failure
+    return inside
+
+
 def _read_source(path: str) -> str:
     """The controller's source text, decoded as Python decodes a source file (UTF-8, or the
     encoding its coding comment declares)."""
@@ -111,7 +139,8 @@ def run_controller(
     is returned: its exception becomes ``error`` and ``exit_status``.
 
     Args:
-        path: The controller's Python file (``from controller import Robot`` and the usual loop).
+        path: The controller's Python file (``from controller import Robot`` and the usual
+            loop), or its Webots controller folder (``controllers/NAME``, holding ``NAME.py``).
         world: The world to run in.
         seconds: Simulated seconds after which ``Robot.step`` returns -1.
         seed: Seed of the sensor noise.
@@ -128,7 +157,7 @@ def run_controller(
         MazesimIOError: The file cannot be read.
         InvalidArgumentError: ``seconds`` is not positive.
     """
-    file = os.path.abspath(os.fspath(path))
+    file = controller_file(path)
     source = _read_source(file)
     simulation = simulations.prepare(
         world, seconds=seconds, seed=seed, noise=noise, report=report, keys=keys, scene=scene
@@ -137,6 +166,7 @@ def run_controller(
     folder = os.path.dirname(file)
     saved_modules = _install_controller_package()
     saved_argv, saved_path, saved_cwd = sys.argv, list(sys.path), os.getcwd()
+    saved_module_names = set(sys.modules)
     sys.argv = [file, *(scene.controller_args if scene else [])]
     sys.path.insert(0, folder)
     # Controllers written to run outside Webots too look Webots up through WEBOTS_HOME.
@@ -162,6 +192,7 @@ def run_controller(
     finally:
         if saved_home is None:
             os.environ.pop("WEBOTS_HOME", None)
+        _forget_own_modules(saved_module_names, sys.path, saved_path, folder, saved_cwd)
         os.chdir(saved_cwd)
         sys.path[:] = saved_path
         sys.argv = saved_argv
@@ -187,6 +218,33 @@ def run_controller(
         final_pose=simulator.pose,
         robot_model=str(simulator.robot.name),
     )
+
+
+def _forget_own_modules(
+    before: set[str], path: list[str], saved_path: list[str], folder: str, saved_cwd: str
+) -> None:
+    """Removes from ``sys.modules`` the modules the controller imported from its own folder or
+    from a folder it put on ``sys.path`` (its helper modules, a project's ``libraries/``).
+
+    Webots starts each controller in a new process, so a controller always imports its own
+    helpers; without this, a second run in the same process (of another controller with a
+    ``settings.py`` of its own, or of the same one after an edit) would get the first run's.
+    Modules found through the interpreter's own path stay loaded (numpy...), also from a
+    virtual environment inside the controller's folder: the most specific folder decides.
+    """
+
+    def root(entry: str, base: str) -> str:
+        return os.path.join(os.path.abspath(os.path.join(base, entry)), "")
+
+    own = {root(p, folder) for p in [folder, *(p for p in path if p not in saved_path)]}
+    roots = sorted(own | {root(p, saved_cwd) for p in saved_path}, key=len, reverse=True)
+    for name in [n for n in sys.modules if n not in before]:
+        file = getattr(sys.modules[name], "__file__", None)
+        if not isinstance(file, str):
+            continue
+        found = next((r for r in roots if os.path.abspath(file).startswith(r)), None)
+        if found in own:
+            del sys.modules[name]
 
 
 def _controller_module_names() -> dict[str, ModuleType]:

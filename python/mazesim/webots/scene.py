@@ -11,6 +11,7 @@ import math
 import re
 from dataclasses import dataclass, field
 
+from mazesim.webots.frames import nue_to_enu
 from mazesim.webots.lights import Light, read_lights
 
 __all__ = ["Scene", "SceneNode", "read_scene"]
@@ -18,8 +19,10 @@ __all__ = ["Scene", "SceneNode", "read_scene"]
 _DEF = re.compile(r"\bDEF\s+([^\s{}\[\]]+)\s+([A-Za-z_][\w-]*)\s*\{")
 _NAME = re.compile(r'\bname\s+"((?:[^"\\]|\\.)*)"')
 _CUSTOM_DATA = re.compile(r'\bcustomData\s+"((?:[^"\\]|\\.)*)"')
-_CONTROLLER_ARGS = re.compile(r'\bcontrollerArgs\s+(?:\[([^\]]*)\]|"((?:[^"\\]|\\.)*)")')
+_CONTROLLER_ARGS = re.compile(r'\bcontrollerArgs\s*(?:\[([^\]]*)\]|"((?:[^"\\]|\\.)*)")')
 _STRING = re.compile(r'"((?:[^"\\]|\\.)*)"')
+#: A string (kept: it may hold a ``#``) or a comment (removed).
+_COMMENT_OR_STRING = re.compile(r'"(?:[^"\\\n]|\\.)*"|#[^\n]*')
 _SUPERVISOR = re.compile(r"\bsupervisor\s+TRUE\b")
 _NUMBER = r"([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)"
 _CAMERA_WIDTH = re.compile(r"\bcamera_width\s+" + _NUMBER)
@@ -31,9 +34,15 @@ _NUE = re.compile(r'\bcoordinateSystem\s+"NUE"')
 _NODE = re.compile(r"(?:\bDEF\s+([^\s{}\[\]]+)\s+)?(?<![\w-])([A-Za-z_][\w-]*)\s*\{")
 _ROTATION = re.compile(r"\brotation" + r"\s+".join([""] + [_NUMBER] * 4))
 _TRANSLATION = re.compile(r"\btranslation\s+" + _NUMBER + r"\s+" + _NUMBER + r"\s+" + _NUMBER)
+#: Webots' ground sensors module of the E-puck (its gs0..gs2), in its groundSensorsSlot.
+_GROUND_SENSORS_MODULE = re.compile(r"(?<![\w-])E-puckGroundSensors\s*\{")
+#: A wheel joint's position saved in a world file: ``hidden position_0_<joint> <rad>``.
+_HIDDEN_WHEEL = re.compile(r"\bhidden\s+position_0_([01])\s+" + _NUMBER)
 _NORTH = re.compile(r"\bnorthDirection\s+" + _NUMBER + r"\s+" + _NUMBER + r"\s+" + _NUMBER)
 #: Node types that are robots.
 ROBOT_TYPES = {"E-puck", "Robot", "e-puck2", "Epuck", "E-puck2"}
+#: The E-puck PROTOs, whose hidden joint positions are their wheels'.
+EPUCK_TYPES = {"E-puck", "E-puck2", "e-puck2", "Epuck"}
 #: The base node of the common PROTOs (``Node.getBaseTypeName``); a built-in node is its own.
 BASE_TYPES = {
     "E-puck": "Robot",
@@ -102,6 +111,15 @@ class Scene:
         nodes: The nodes at the top of the file, in file order (the root's ``children``).
         nue: Whether the file uses Webots' old NUE frame (y up): before R2022a, or
             ``coordinateSystem "NUE"``; a GPS then reads in that frame.
+        ground_sensors_module: Whether the world's E-puck carries Webots' ground sensors
+            module (``E-puckGroundSensors`` in its ``groundSensorsSlot``), without which
+            Webots' e-puck has no ``gs0``..``gs2``; None for a robot that is no E-puck node.
+        wheel_positions: The left and right wheel joints' positions (rad) a world saved after
+            a run holds (the E-puck's ``hidden position_0_0`` and ``position_0_1``): where
+            Webots restores them, so where its wheel sensors start; 0 otherwise.
+        y_up_devices: Whether the robot's PROTOs are Webots' Y-up ones (a file before
+            R2022a): an accelerometer, gyro or compass then reads in the device frame x
+            right, y up, z back.
     """
 
     defs: dict[str, str] = field(default_factory=dict)
@@ -116,66 +134,100 @@ class Scene:
     camera_pitch: float = 0.0
     north: tuple[float, float] | None = None
     nue: bool = False
+    y_up_devices: bool = False
+    wheel_positions: tuple[float, float] = (0.0, 0.0)
+    ground_sensors_module: bool | None = None
     lights: list[Light] = field(default_factory=list)
     nodes: list[SceneNode] = field(default_factory=list)
 
 
-def read_scene(text: str, robot_model: str | None = None) -> Scene:
+def read_scene(text: str, robot_model: str | None = None, robot_line: int | None = None) -> Scene:
     """Reads the scene facts of a world file's text (comments skipped).
+
+    The robot's own facts (DEF and ``name``, ``customData``, ``supervisor``,
+    ``controllerArgs``, camera fields) are read from its node alone, so that another robot of
+    the world (a referee or supervisor ``Robot``) lends it none of its own.
 
     Args:
         text: The ``.wbt`` text.
         robot_model: The robot's node type from the import report, if any.
+        robot_line: The line of the robot's node from the import report (``robot_line``), if
+            any; without it the first robot node of the file is the robot.
     """
+    text = text.lstrip("\ufeff")
     header = _HEADER.match(text.lstrip())
     scene = Scene()
     if header is not None:
         year = header.group(1)
         scene.nue = int(year) < 2022 if year else header.group(3) is not None
-    text = "\n".join(line.split("#", 1)[0] for line in text.splitlines())
+        scene.y_up_devices = scene.nue
+    text = _COMMENT_OR_STRING.sub(_without_comment, text)
     scene.nue = scene.nue or bool(_NUE.search(text))
     robot_types = ROBOT_TYPES | ({robot_model} if robot_model else set())
+    robot = _robot_node(text, robot_types, robot_line)
     for match in _DEF.finditer(text):
-        name, node_type = match.group(1), match.group(2)
-        scene.defs.setdefault(name, node_type)
-        if scene.robot_def is None and node_type in robot_types:
-            scene.robot_def = name
-    scene.nodes = _top_nodes(text, robot_types, scene.nue)
-    scene.supervisor = bool(_SUPERVISOR.search(text))
-    robot = re.search(
-        r"\b(?:" + "|".join(re.escape(t) for t in sorted(robot_types)) + r")\s*\{", text
-    )
+        scene.defs.setdefault(match.group(1), match.group(2))
+    scene.nodes = _top_nodes(text, robot, scene.nue)
+    # Without a robot node, the whole file stands for it.
+    own, body = text, text
     if robot is not None:
-        fields = _own_text(text, robot.end())
-        if found := _NAME.search(fields):
+        scene.robot_def = robot.group(1)
+        own, body = _own_text(text, robot.end()), _body_text(text, robot.end())
+        if found := _NAME.search(own):
             scene.robot_name = found.group(1)
-        if found := _CUSTOM_DATA.search(fields):
+        if found := _CUSTOM_DATA.search(own):
             scene.robot_custom_data = found.group(1)
+        saved = {int(j): float(v) for j, v in _HIDDEN_WHEEL.findall(own)}
+        if robot.group(2) in EPUCK_TYPES:
+            # The E-puck PROTO's first HingeJoint is its left wheel's, the second its right's.
+            scene.wheel_positions = (saved.get(0, 0.0), saved.get(1, 0.0))
+            scene.ground_sensors_module = bool(_GROUND_SENSORS_MODULE.search(body))
+    scene.supervisor = bool(_SUPERVISOR.search(own))
     scene.lights = read_lights(text, scene.nue)
-    if found := _CONTROLLER_ARGS.search(text):
+    if found := _CONTROLLER_ARGS.search(body):
         listed, single = found.groups()
         scene.controller_args = (
             _STRING.findall(listed) if listed is not None else (single or "").split()
         )
-    if found := _CAMERA_WIDTH.search(text):
+    if found := _CAMERA_WIDTH.search(own):
         scene.camera_width = max(1, int(float(found.group(1))))
-    if found := _CAMERA_HEIGHT.search(text):
+    if found := _CAMERA_HEIGHT.search(own):
         scene.camera_height = max(1, int(float(found.group(1))))
-    if found := _CAMERA_FOV.search(text):
+    if found := _CAMERA_FOV.search(own):
         scene.camera_fov = float(found.group(1))
-    if found := _CAMERA_ROTATION.search(text):
+    if found := _CAMERA_ROTATION.search(own):
         ax, ay, az, angle = (float(v) for v in found.groups())
         norm = math.sqrt(ax * ax + ay * ay + az * az) or 1.0
         scene.camera_pitch = angle * ay / norm
-    if (found := _NORTH.search(text)) and not scene.nue:
-        scene.north = (float(found.group(1)), float(found.group(2)))
+    if found := _NORTH.search(text):
+        x, y, z = (float(v) for v in found.groups())
+        scene.north = nue_to_enu(x, y, z)[:2] if scene.nue else (x, y)
+    elif scene.y_up_devices:
+        # WorldInfo.northDirection's default before R2022a: x (1 0 0).
+        scene.north = nue_to_enu(1.0, 0.0, 0.0)[:2]
     return scene
 
 
-def _top_nodes(text: str, robot_types: set[str], nue: bool) -> list[SceneNode]:
-    """The nodes at the top of the file (comments removed), the first robot marked."""
+def _without_comment(match: re.Match[str]) -> str:
+    """A string of the file as it is, a comment (``#`` to the end of its line) removed."""
+    found = match.group(0)
+    return "" if found.startswith("#") else found
+
+
+def _robot_node(text: str, robot_types: set[str], line: int | None) -> re.Match[str] | None:
+    """The robot's node (DEF name, type): the first robot node on ``line``, or of the file."""
+    for match in _NODE.finditer(text):
+        if match.group(2) not in robot_types:
+            continue
+        if line is None or text.count("\n", 0, match.start(2)) + 1 == line:
+            return match
+    return None
+
+
+def _top_nodes(text: str, robot: re.Match[str] | None, nue: bool) -> list[SceneNode]:
+    """The nodes at the top of the file (comments removed), the robot's marked."""
     nodes: list[SceneNode] = []
-    depth, scanned, robot_seen = 0, 0, False
+    depth, scanned = 0, 0
     for match in _NODE.finditer(text):
         depth += _nesting(text[scanned : match.start()])
         scanned = match.start()
@@ -183,8 +235,6 @@ def _top_nodes(text: str, robot_types: set[str], nue: bool) -> list[SceneNode]:
             continue
         def_name, type_name = match.group(1) or "", match.group(2)
         own = _own_text(text, match.end())
-        robot = not robot_seen and type_name in robot_types
-        robot_seen = robot_seen or robot
         nodes.append(
             SceneNode(
                 type_name,
@@ -192,7 +242,7 @@ def _top_nodes(text: str, robot_types: set[str], nue: bool) -> list[SceneNode]:
                 translation=_vector(_TRANSLATION.search(own), nue),
                 rotation=_rotation(_ROTATION.search(own), nue),
                 name=found.group(1) if (found := _NAME.search(own)) else None,
-                robot=robot,
+                robot=robot is not None and match.start() == robot.start(),
             )
         )
     return nodes
@@ -203,7 +253,7 @@ def _vector(found: re.Match[str] | None, nue: bool) -> tuple[float, float, float
     if found is None:
         return None
     x, y, z = (float(v) for v in found.groups())
-    return (x, -z, y) if nue else (x, y, z)
+    return nue_to_enu(x, y, z) if nue else (x, y, z)
 
 
 def _rotation(found: re.Match[str] | None, nue: bool) -> tuple[float, float, float, float] | None:
@@ -211,12 +261,25 @@ def _rotation(found: re.Match[str] | None, nue: bool) -> tuple[float, float, flo
     if found is None:
         return None
     ax, ay, az, angle = (float(v) for v in found.groups())
-    return (ax, -az, ay, angle) if nue else (ax, ay, az, angle)
+    return (*nue_to_enu(ax, ay, az), angle) if nue else (ax, ay, az, angle)
 
 
 def _nesting(text: str) -> int:
     """How much deeper (in braces and brackets) the end of ``text`` is than its start."""
     return text.count("{") + text.count("[") - text.count("}") - text.count("]")
+
+
+def _body_text(text: str, body: int) -> str:
+    """The text of the node whose body starts at ``body`` (after its ``{``), to its ``}``."""
+    depth = 0
+    for index in range(body, len(text)):
+        if text[index] in "{[":
+            depth += 1
+        elif text[index] in "}]":
+            depth -= 1
+            if depth < 0:
+                return text[body:index]
+    return text[body:]
 
 
 def _own_text(text: str, body: int) -> str:

@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, ClassVar
 import numpy as np
 
 from mazesim.webots.devices import DistanceSensor, _ScalarSensor, _VectorSensor
+from mazesim.webots.frames import enu_to_nue
 from mazesim.webots.lights import irradiance
 from mazesim.webots.node_types import node_type
 from mazesim.webots.rays import WallBoxes
@@ -123,6 +124,9 @@ class _TableVector(_Tabled, _VectorSensor):
     """A three-axis sensor: a vector in the device frame through a lookup table."""
 
     _default_table: ClassVar[tuple[Row, ...]] = ()
+    #: Whether the vector is in the device's own frame, which in the Y-up PROTOs of worlds
+    #: before R2022a is x right, y up, z back (the ENU x forward, y left, z up before).
+    _device_frame: ClassVar[bool] = False
 
     def __init__(
         self,
@@ -137,7 +141,10 @@ class _TableVector(_Tabled, _VectorSensor):
         self._rng = _noise_stream(simulation, name)
 
     def _read(self) -> list[float]:
-        return [self._table(v, self._rng) for v in self._measure()]
+        measured = self._measure()
+        if self._device_frame and self._simulation.scene.y_up_devices:
+            measured = enu_to_nue(*measured)
+        return [self._table(v, self._rng) for v in measured]
 
     def _measure(self) -> tuple[float, float, float]:
         raise NotImplementedError
@@ -147,9 +154,11 @@ class _TableVector(_Tabled, _VectorSensor):
 
 
 class Accelerometer(_TableVector):
-    """Specific force in the device frame (m/s^2): the body's acceleration plus 9.81 up."""
+    """Specific force in the device frame (m/s^2): the body's acceleration plus 9.81 up (along
+    z; along y in a world before R2022a, whose PROTOs are Y-up)."""
 
     _node_type = node_type("ACCELEROMETER")
+    _device_frame = True
 
     _api = "wb_accelerometer"
     _default_table = ACCELEROMETER_TABLE
@@ -162,9 +171,11 @@ class Accelerometer(_TableVector):
 
 
 class Gyro(_TableVector):
-    """Angular velocity about the device's axes (rad/s): the yaw rate about z."""
+    """Angular velocity about the device's axes (rad/s): the yaw rate about z (about y in a
+    world before R2022a)."""
 
     _node_type = node_type("GYRO")
+    _device_frame = True
 
     _api = "wb_gyro"
     _default_table = GYRO_TABLE
@@ -177,6 +188,7 @@ class Compass(_TableVector):
     """The north direction in the device frame (unit vector)."""
 
     _node_type = node_type("COMPASS")
+    _device_frame = True
 
     _api = "wb_compass"
 
@@ -202,7 +214,8 @@ class Compass(_TableVector):
 
 class GPS(_TableVector):
     """The device's position in the world frame (m) and its speed; in a world of Webots' old
-    NUE frame (before R2022a) in that frame: [x, height, -y]."""
+    NUE frame (before R2022a) in that frame, as the world file writes positions: the inverse of
+    the importer's conversion, [-y, height, -x]."""
 
     _node_type = node_type("GPS")
 
@@ -213,8 +226,8 @@ class GPS(_TableVector):
     def _measure(self) -> tuple[float, float, float]:
         x, y, _ = self._mount.world_pose(self._simulation.simulator.pose)
         if self._simulation.scene.nue:
-            # Worlds before R2022a: x, y up, z = -north (Webots' NUE frame).
-            return x, self._mount.z, -y
+            # Worlds before R2022a: x north, y up, z east (Webots' NUE frame).
+            return enu_to_nue(x, y, self._mount.z)
         return x, y, self._mount.z
 
     def getSpeed(self) -> float:
@@ -234,7 +247,7 @@ class GPS(_TableVector):
         if all(math.isnan(v) for v in self._value):
             return [math.nan] * 3
         vx, vy, _ = self._simulation.velocity
-        return [vx, 0.0, -vy] if self._simulation.scene.nue else [vx, vy, 0.0]
+        return list(enu_to_nue(vx, vy, 0.0)) if self._simulation.scene.nue else [vx, vy, 0.0]
 
     @property
     def speed_vector(self) -> list[float]:

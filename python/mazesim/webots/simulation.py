@@ -188,6 +188,19 @@ class RobotSimulation:
         self.xs[-1] = x
         self.ys[-1] = y
 
+    def wheel_angles(self) -> tuple[float, float]:
+        """The left and right wheel joints' positions (rad), as Webots' wheel sensors read them:
+        where the world file left them (:attr:`Scene.wheel_positions`, 0 in a fresh world) plus
+        the turns of the run, to the encoders' resolution."""
+        resolution = float(self.simulator.robot.encoder_resolution)
+        angles = []
+        for start, turned in zip(self.scene.wheel_positions, self.simulator.encoders):
+            angle = start + float(turned)
+            if start and resolution > 0.0:
+                angle = round(angle / resolution) * resolution
+            angles.append(angle)
+        return angles[0], angles[1]
+
     def distance_readings(self) -> npt.NDArray[np.float32]:
         """The proximity readings ps0..ps7 after the last step."""
         if self._distance is None:

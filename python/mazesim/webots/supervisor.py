@@ -17,6 +17,7 @@ import sys
 from typing import Any
 
 from mazesim.webots import simulation as _simulations
+from mazesim.webots.frames import enu_to_nue, enu_to_nue_matrix, nue_to_enu
 from mazesim.webots.inert import ContactPoint, NotSimulated
 from mazesim.webots.node_types import NODE_TYPES
 from mazesim.webots.robot import Robot
@@ -48,6 +49,23 @@ _POSED_TYPES = {"Robot", "Solid", "Pose", "Transform", "Charger"}
 
 def _print_error(message: str) -> None:
     print(message, file=sys.stderr)
+
+
+def _file_frame() -> bool:
+    """Whether the world file is in Webots' old NUE frame: a supervisor then reads and writes
+    positions, rotations and velocities in it, as the file writes them (Webots before R2022a
+    did), and mazesim converts them as the importer converts the world."""
+    return _simulations.current().scene.nue
+
+
+def _out(vector: list[float]) -> list[float]:
+    """A world-frame (ENU) vector as the supervisor reports it."""
+    return list(enu_to_nue(*vector[:3])) if len(vector) == 3 and _file_frame() else vector
+
+
+def _in(vector: list[float]) -> list[float]:
+    """A vector the supervisor was given, in the world frame (ENU)."""
+    return list(nue_to_enu(*vector[:3])) if _file_frame() else vector
 
 
 class Field(NotSimulated):
@@ -146,7 +164,7 @@ class Field(NotSimulated):
             self._wrong("get_sf_vec3f")
             return None
         node = self._node
-        return node.getPosition() if node._robot else list(node._translation or ())
+        return node.getPosition() if node._robot else _out(list(node._translation or ()))
 
     def setSFVec3f(self, values: list[float]) -> None:
         """Moves the robot to [x, y, z] (z is ignored: the robot stays on the floor); another
@@ -155,11 +173,10 @@ class Field(NotSimulated):
             self._wrong("set_sf_vec3f")
             return
         node = self._node
+        x, y, z = _in([float(v) for v in values[:3]])
         if node._robot:
-            _, _, yaw = node._pose()
-            node._move(float(values[0]), float(values[1]), yaw)
+            node._move(x, y, node._pose()[2])
         else:
-            x, y, z = (float(v) for v in values[:3])
             node._translation = (x, y, z)
 
     def getSFRotation(self) -> list[float] | None:
@@ -168,9 +185,8 @@ class Field(NotSimulated):
             self._wrong("get_sf_rotation")
             return None
         node = self._node
-        if node._robot:
-            return [0.0, 0.0, 1.0, node._pose()[2]]
-        return list(node._rotation or ())
+        rotation = [0.0, 0.0, 1.0, node._pose()[2]] if node._robot else list(node._rotation or ())
+        return [*_out(rotation[:3]), rotation[3]] if rotation else rotation
 
     def setSFRotation(self, values: list[float]) -> None:
         """Turns the robot to an axis-angle rotation (its yaw about z is kept); another node's
@@ -179,11 +195,12 @@ class Field(NotSimulated):
             self._wrong("set_sf_rotation")
             return
         node = self._node
+        ax, ay, az = _in([float(v) for v in values[:3]])
+        angle = float(values[3])
         if node._robot:
             x, y, _ = node._pose()
-            node._move(x, y, _yaw_of_rotation([float(v) for v in values[:4]]))
+            node._move(x, y, _yaw_of_rotation([ax, ay, az, angle]))
         else:
-            ax, ay, az, angle = (float(v) for v in values[:4])
             node._rotation = (ax, ay, az, angle)
 
     def getSFString(self) -> str | None:
@@ -385,15 +402,16 @@ class Node(NotSimulated):
         the world file does not give)."""
         if self._robot:
             x, y, _ = self._pose()
-            return [x, y, 0.0]
-        return list(self._translation) if self._translation else [math.nan] * 3
+            return _out([x, y, 0.0])
+        return _out(list(self._translation)) if self._translation else [math.nan] * 3
 
     def getOrientation(self) -> list[float]:
         """The node's rotation matrix, row after row (9 numbers)."""
         if self._robot or self._rotation is None:
-            yaw = self._pose()[2]
-            return _rotation_matrix(0.0, 0.0, 1.0, yaw)
-        return _rotation_matrix(*self._rotation)
+            matrix = _rotation_matrix(0.0, 0.0, 1.0, self._pose()[2])
+        else:
+            matrix = _rotation_matrix(*self._rotation)
+        return enu_to_nue_matrix(matrix) if _file_frame() else matrix
 
     def getPose(self, fromNode: Node | None = None) -> list[float]:
         """The node's 4 x 4 homogeneous transform in the world frame, row after row."""
@@ -410,7 +428,7 @@ class Node(NotSimulated):
         if not self._robot:
             return [0.0] * 6
         vx, vy, yaw_rate = self._simulation().velocity
-        return [vx, vy, 0.0, 0.0, 0.0, yaw_rate]
+        return [*_out([vx, vy, 0.0]), *_out([0.0, 0.0, yaw_rate])]
 
     def setVelocity(self, velocity: list[float]) -> None:
         """Accepted; the robot's velocity comes from its wheels."""
@@ -429,7 +447,7 @@ class Node(NotSimulated):
         """The robot's contact with a wall, if it touches one (its centre stands for it)."""
         if self._robot and self._simulation().simulator.colliding:
             x, y, _ = self._pose()
-            return [ContactPoint([x, y, 0.0])]
+            return [ContactPoint(_out([x, y, 0.0]))]
         return []
 
     def getNumberOfFields(self) -> int:

@@ -37,6 +37,9 @@ const DEVICE_TYPES: &[(&str, &str)] = &[
     ("TouchSensor", "touch sensor"),
     ("VacuumGripper", "vacuum gripper"),
 ];
+/// Extension PROTOs of the E-puck whose devices every mazesim e-puck has: the
+/// `E-puckGroundSensors` of the `groundSensorsSlot` are its `gs0`, `gs1`, `gs2`.
+const BUILT_IN_EXTENSIONS: &[&str] = &["E-puckGroundSensors"];
 /// Nodes that only hold and place other nodes.
 const CONTAINERS: &[&str] = &["Solid", "Pose", "Transform", "Group"];
 /// Fields that place or hold a node rather than describe the device.
@@ -102,6 +105,9 @@ impl<'d> Importer<'d> {
             return;
         }
         let kind = node.type_name.as_str();
+        if BUILT_IN_EXTENSIONS.contains(&kind) {
+            return;
+        }
         let local = self.local_frame(node, [0.0; 3]);
         let frame = frame.then(&local);
         if let Some(&(_, default_name)) = DEVICE_TYPES.iter().find(|(t, _)| *t == kind) {

@@ -78,6 +78,8 @@ pub struct FoundRobot {
     pub pose: [f64; 3],
     pub model: String,
     pub profile: &'static str,
+    /// The line of its node type in the file.
+    pub line: usize,
 }
 
 /// Heaviest object with physics imported as a movable body, kilograms: ten times the e-puck's
@@ -114,10 +116,12 @@ pub struct Importer<'d> {
     pub falls: bool,
     visits: usize,
     too_deep: bool,
+    /// The e-puck whose `controller` field names the controller of the run, if one does.
+    chosen: Option<&'d Node>,
 }
 
 /// Imports a parsed world.
-pub fn import(doc: &Document) -> WbtImport {
+pub fn import(doc: &Document, controller: Option<&str>) -> WbtImport {
     let mut importer = Importer {
         doc,
         y_up: !doc.version.has_z_up_protos(),
@@ -132,7 +136,9 @@ pub fn import(doc: &Document) -> WbtImport {
         falls: false,
         visits: 0,
         too_deep: false,
+        chosen: None,
     };
+    importer.chosen = controller.and_then(|name| importer.epuck_of_controller(name));
     let (basic_time_step_ms, root) = importer.world_info();
     for &id in &doc.roots {
         importer.scene(id, &root, 0);
@@ -152,6 +158,7 @@ pub fn import(doc: &Document) -> WbtImport {
         bodies: importer.bodies,
         robot: robot.as_ref().map(|r| r.pose),
         robot_model: robot.as_ref().map(|r| r.model.clone()),
+        robot_line: robot.as_ref().map(|r| r.line),
         robot_profile: robot.map_or(STAND_IN_PROFILE, |r| r.profile).to_string(),
         extension_devices: importer.devices,
         floor_textures: importer.floor_textures,
@@ -514,9 +521,28 @@ impl<'d> Importer<'d> {
         OTHER_ROBOT_PROTOS.contains(&node.type_name.as_str()) || node.field("controller").is_some()
     }
 
+    /// The first e-puck whose `controller` field is `name`.
+    fn epuck_of_controller(&self, name: &str) -> Option<&'d Node> {
+        self.doc.nodes.iter().find(|node| {
+            let kind = node.type_name.as_str();
+            (EPUCK_PROTOS.contains(&kind)
+                || (ROBOT_NODES.contains(&kind) && self.looks_like_epuck(node)))
+                && self.strings(node, "controller").iter().any(|c| c == name)
+        })
+    }
+
     /// The e-puck (or e-puck2): its start pose, model and the devices in its slots.
     fn epuck(&mut self, node: &'d Node, frame: &Frame) {
         let label = self.label(node);
+        if let Some(chosen) = self.chosen.filter(|chosen| !std::ptr::eq(*chosen, node)) {
+            let controller = self.strings(chosen, "controller").first().cloned();
+            self.warn(format!(
+                "{label}: an e-puck of another controller: ignored, mazesim simulates the e-puck whose controller is \"{}\" (line {})",
+                controller.unwrap_or_default(),
+                chosen.line
+            ));
+            return;
+        }
         if self.robot.is_some() {
             self.warn(format!(
                 "{label}: a second e-puck: ignored, mazesim simulates one robot"
@@ -533,6 +559,7 @@ impl<'d> Importer<'d> {
                 pose,
                 model,
                 profile,
+                line: node.line,
             });
             self.extension_slots(node);
         }
@@ -565,6 +592,7 @@ impl<'d> Importer<'d> {
                 pose,
                 model: node.type_name.clone(),
                 profile: STAND_IN_PROFILE,
+                line: node.line,
             });
         }
     }

@@ -88,6 +88,8 @@ pub struct WbtImport {
     /// The robot's model as found: `E-puck`, `e-puck2` for an E-puck of `version "2"`, or the
     /// type name of a robot that is not an e-puck; `None` without a robot.
     pub robot_model: Option<String>,
+    /// The line of the robot's node in the file (its node type's line); `None` without a robot.
+    pub robot_line: Option<usize>,
     /// The mazesim robot profile that simulates it: `e-puck` or `e-puck2`.
     pub robot_profile: String,
     /// Devices in the robot's extension slots.
@@ -106,16 +108,32 @@ impl WbtImport {
     /// Imports a world file's text; `source` names it in error messages, and floor textures
     /// are looked for beside it.
     pub fn from_text(text: &str, source: &str) -> Result<WbtImport> {
+        Self::from_text_for(text, source, None)
+    }
+
+    /// [`WbtImport::from_text`] for the run of one controller: of several e-pucks, the first
+    /// whose `controller` field names it is the robot (Webots runs each robot's own controller).
+    pub fn from_text_for(text: &str, source: &str, controller: Option<&str>) -> Result<WbtImport> {
         let document = Document::parse(text, source)?;
-        let mut import = import::import(&document);
+        let mut import = import::import(&document, controller);
         import.locate_textures(Path::new(source).parent().unwrap_or(Path::new("")));
         Ok(import)
     }
 
     /// Imports a world file's bytes, which must be UTF-8 text.
     pub fn from_bytes(bytes: &[u8], source: &str) -> Result<WbtImport> {
+        Self::from_bytes_for(bytes, source, None)
+    }
+
+    /// [`WbtImport::from_bytes`] for the run of one controller (see
+    /// [`WbtImport::from_text_for`]).
+    pub fn from_bytes_for(
+        bytes: &[u8],
+        source: &str,
+        controller: Option<&str>,
+    ) -> Result<WbtImport> {
         match std::str::from_utf8(bytes) {
-            Ok(text) => Self::from_text(text, source),
+            Ok(text) => Self::from_text_for(text, source, controller),
             Err(e) => {
                 let valid = std::str::from_utf8(&bytes[..e.valid_up_to()]).unwrap_or_default();
                 let line = valid.matches('\n').count() + 1;
@@ -136,9 +154,14 @@ impl WbtImport {
 
     /// Reads and imports a `.wbt` file.
     pub fn load(path: &Path) -> Result<WbtImport> {
+        Self::load_for(path, None)
+    }
+
+    /// [`WbtImport::load`] for the run of one controller (see [`WbtImport::from_text_for`]).
+    pub fn load_for(path: &Path, controller: Option<&str>) -> Result<WbtImport> {
         let bytes =
             std::fs::read(path).map_err(|e| Error::io(path, "cannot read the Webots world", &e))?;
-        Self::from_bytes(&bytes, &path.display().to_string())
+        Self::from_bytes_for(&bytes, &path.display().to_string(), controller)
     }
 }
 

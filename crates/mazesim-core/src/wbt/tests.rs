@@ -106,6 +106,8 @@ fn a_known_robot_proto_without_a_controller_field_is_a_robot() {
     // The e-puck wins over the robot it would stand in for.
     assert_eq!(w.robot, Some([0.1, 0.0, 0.0]));
     assert_eq!(w.robot_model.as_deref(), Some("E-puck"));
+    // The robot's line tells it from the other robot (for the controller's name and fields).
+    assert_eq!(w.robot_line, Some(3));
     assert!(warned(
         &w,
         "line 2: Pioneer3dx: a robot that is not an e-puck: not simulated, the world's e-puck is"
@@ -115,6 +117,7 @@ fn a_known_robot_proto_without_a_controller_field_is_a_robot() {
         import("#VRML_SIM R2023b utf8\nPioneer3dx { translation 1 2 0 rotation 0 0 1 0.5 }\n");
     assert_eq!(alone.robot, Some([1.0, 2.0, 0.5]));
     assert_eq!(alone.robot_model.as_deref(), Some("Pioneer3dx"));
+    assert_eq!(alone.robot_line, Some(2));
     assert_eq!(alone.robot_profile, "e-puck");
     assert!(warned(&alone, "mazesim simulates the e-puck in its place"));
 }
@@ -336,4 +339,39 @@ fn a_legacy_arena_swaps_its_floor_size_like_the_converter() {
         "{center:?}"
     );
     assert!(close(size[0], 0.01) && close(size[1], 3.0), "{size:?}");
+}
+
+#[test]
+fn the_e_pucks_ground_sensors_module_is_its_own_gs_sensors_not_a_warning() {
+    let w = import(
+        "#VRML_SIM R2023b utf8\nE-puck {\n  groundSensorsSlot [\n    E-puckGroundSensors {\n    }\n  ]\n}\n",
+    );
+    assert!(w.warnings.is_empty(), "{:?}", w.warnings);
+    assert!(w.extension_devices.is_empty());
+    // Anything else in the slot is still reported.
+    let other =
+        import("#VRML_SIM R2023b utf8\nE-puck { groundSensorsSlot [ LineSensorBar { } ] }\n");
+    assert!(warned(
+        &other,
+        "LineSensorBar: in the robot's groundSensorsSlot"
+    ));
+}
+
+#[test]
+fn the_e_puck_of_the_controller_that_runs_is_the_robot() {
+    let text = "#VRML_SIM R2023b utf8\nE-puck { translation 0.1 0 0 controller \"leader\" }\nE-puck { translation -0.3 0.2 0 controller \"follower\" }\n";
+    let follower = WbtImport::from_text_for(text, "two.wbt", Some("follower")).unwrap();
+    assert_eq!(follower.robot, Some([-0.3, 0.2, 0.0]));
+    assert_eq!(follower.robot_line, Some(3));
+    assert!(warned(
+        &follower,
+        "line 2: E-puck: an e-puck of another controller: ignored"
+    ));
+    assert!(!warned(&follower, "a second e-puck"));
+    // Without a controller, or one no e-puck names, the first e-puck runs, as before.
+    for controller in [None, Some("nobody")] {
+        let first = WbtImport::from_text_for(text, "two.wbt", controller).unwrap();
+        assert_eq!(first.robot, Some([0.1, 0.0, 0.0]));
+        assert!(warned(&first, "line 3: E-puck: a second e-puck: ignored"));
+    }
 }

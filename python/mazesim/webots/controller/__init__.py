@@ -24,6 +24,7 @@ time is up; a controller that steps again after that is stopped, as Webots stops
 
 from __future__ import annotations
 
+from mazesim.errors import UnknownNameError
 from mazesim.webots.controller.accelerometer import Accelerometer
 from mazesim.webots.controller.altimeter import Altimeter
 from mazesim.webots.controller.ansi_codes import AnsiCodes
@@ -112,3 +113,25 @@ __all__ = [
     "TouchSensor",
     "VacuumGripper",
 ]
+
+
+def __getattr__(name: str) -> object:
+    """Refuses, saying what to use instead, the classes of Webots before R2018a that the module
+    does not have (``from controller import DifferentialWheels``).
+
+    Raises:
+        UnknownNameError: ``DifferentialWheels``, the node of the e-puck before R2018a, which
+            Webots deprecated with "Please use the Robot node instead with two HingeJoint,
+            RotationalMotor and PositionSensor nodes".
+        AttributeError: Any other name the module lacks.
+    """
+    if name == "DifferentialWheels":
+        raise UnknownNameError(
+            "controller.DifferentialWheels: the e-puck of Webots before R2018a, which Webots "
+            "deprecated and mazesim does not have; the e-puck is a Robot with two motors: "
+            "robot = Robot(), robot.getDevice('left wheel motor') and 'right wheel motor', "
+            "setPosition(float('inf')) then setVelocity(rad/s) for setSpeed (speed units of "
+            "0.00628 rad/s: setVelocity(0.00628 * speed)), and the encoders 'left wheel "
+            "sensor' and 'right wheel sensor' in radians"
+        )
+    raise AttributeError(f"module 'controller' has no attribute {name!r}")

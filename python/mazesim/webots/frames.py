@@ -1,0 +1,36 @@
+"""Webots' old NUE frame (worlds before R2022a: x north, y up, z east) and mazesim's ENU frame.
+
+Webots' R2022a world converter maps a translation ``(x, y, z)`` of an NUE world to ``(-z, -x,
+y)`` and a rotation's axis likewise; the importer (``mazesim-core``'s ``wbt::frames``) does the
+same, so every position the controller module reads from an NUE world file must be converted
+here by the same map, and every value a device of such a world reports in Webots' old frame
+(a GPS) by its inverse.
+"""
+
+from __future__ import annotations
+
+__all__ = ["ENU_TO_NUE", "enu_to_nue", "enu_to_nue_matrix", "nue_to_enu"]
+
+#: The matrix of :func:`enu_to_nue` (rows).
+ENU_TO_NUE = ((0.0, -1.0, 0.0), (0.0, 0.0, 1.0), (-1.0, 0.0, 0.0))
+
+
+def nue_to_enu(x: float, y: float, z: float) -> tuple[float, float, float]:
+    """A vector of an NUE world file in the world frame (ENU) of the imported world."""
+    return -z, -x, y
+
+
+def enu_to_nue(x: float, y: float, z: float) -> tuple[float, float, float]:
+    """A world-frame (ENU) vector in the NUE frame of the world file it came from."""
+    return -y, z, -x
+
+
+def enu_to_nue_matrix(matrix: list[float]) -> list[float]:
+    """A world-frame (ENU) rotation matrix, row after row, as the NUE world file's frame sees it:
+    ``M R M^T``, M the matrix of :func:`enu_to_nue`."""
+    m = ENU_TO_NUE
+    return [
+        sum(m[i][k] * matrix[3 * k + n] * m[j][n] for k in range(3) for n in range(3))
+        for i in range(3)
+        for j in range(3)
+    ]

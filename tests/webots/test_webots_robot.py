@@ -1,0 +1,32 @@
+"""``Robot`` as controllers written for other robots or older worlds call it."""
+
+from __future__ import annotations
+
+import pytest
+
+import mazesim
+from mazesim.errors import UnknownNameError
+from mazesim.webots import controller, prepare
+from mazesim.webots import simulation as simulations
+
+
+def test_a_device_name_of_older_worlds_gets_the_e_pucks_own_names(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    prepare(mazesim.load_world("arena"), seconds=1.0)
+    controller.Robot.created = None
+    robot = controller.Robot()
+    assert robot.getDevice("left wheel") is None, "as in Webots: no such device"
+    err = capsys.readouterr().err
+    assert 'Device "left wheel" was not found on robot "e-puck"' in err
+    assert "'left wheel motor', 'left wheel sensor'" in err
+    assert robot.getDevice("lidar") is None
+    assert "mazesim:" not in capsys.readouterr().err, "no hint without a similar name"
+    simulations.release()
+
+
+def test_the_differential_wheels_of_webots_before_r2018a_is_refused_with_what_to_use() -> None:
+    with pytest.raises(UnknownNameError, match="DifferentialWheels.*'left wheel motor'"):
+        exec("from mazesim.webots.controller import DifferentialWheels", {})
+    with pytest.raises(AttributeError, match="no attribute 'NoSuchClass'"):
+        _ = controller.NoSuchClass  # type: ignore[attr-defined]

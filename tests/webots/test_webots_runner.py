@@ -1,0 +1,88 @@
+"""``run_controller`` in one process, as a notebook or a script of runs uses it: each run gets
+its own controller's helper modules, as each Webots controller gets a process of its own."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import pytest
+
+import mazesim
+from mazesim.errors import MazesimIOError
+from mazesim.webots import run_controller
+
+#: A controller that reads its speed from a helper module beside it.
+USES_SETTINGS = """from controller import Robot
+import settings
+
+robot = Robot()
+print("speed", settings.SPEED)
+robot.step(32)
+"""
+
+
+def test_each_run_imports_its_own_controllers_helper_modules(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    world = mazesim.load_world("arena")
+    for name, speed in (("first", 1.0), ("second", 2.0)):
+        folder = tmp_path / name
+        folder.mkdir()
+        (folder / "settings.py").write_text(f"SPEED = {speed}\n")
+        (folder / "controller.py").write_text(USES_SETTINGS)
+    first = run_controller(tmp_path / "first" / "controller.py", world, seconds=1.0)
+    second = run_controller(tmp_path / "second" / "controller.py", world, seconds=1.0)
+    assert (first.exit_status, second.exit_status) == (0, 0), first.error + second.error
+    out = capsys.readouterr().out
+    assert out.splitlines() == ["speed 1.0", "speed 2.0"]
+    assert "settings" not in sys.modules
+
+
+def test_a_helper_edited_between_two_runs_is_read_again(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    world = mazesim.load_world("arena")
+    (tmp_path / "controller.py").write_text(USES_SETTINGS)
+    for speed in (1.0, 3.25):
+        (tmp_path / "settings.py").write_text(f"SPEED = {speed}\n")
+        run = run_controller(tmp_path / "controller.py", world, seconds=1.0)
+        assert run.exit_status == 0, run.error
+    assert capsys.readouterr().out.splitlines() == ["speed 1.0", "speed 3.25"]
+
+
+def test_modules_of_a_folder_the_controller_puts_on_its_path_are_forgotten_too(
+    tmp_path: Path,
+) -> None:
+    library = tmp_path / "libraries" / "shared"
+    library.mkdir(parents=True)
+    (library / "epuck_helpers.py").write_text("WHEEL_RADIUS = 0.0205\n")
+    folder = tmp_path / "controllers" / "uses_library"
+    folder.mkdir(parents=True)
+    controller = folder / "uses_library.py"
+    controller.write_text(
+        "import os, sys\n"
+        "sys.path.append(os.path.join('..', '..', 'libraries', 'shared'))\n"
+        "import epuck_helpers\n"
+        "import json\n"
+        "from controller import Robot\n"
+        "Robot().step(32)\n"
+    )
+    run = run_controller(controller, mazesim.load_world("arena"), seconds=1.0)
+    assert run.exit_status == 0, run.error
+    assert "epuck_helpers" not in sys.modules
+    assert "json" in sys.modules, "a module of the interpreter's own path stays loaded"
+
+
+def test_a_webots_controller_folder_runs_the_file_named_after_it(tmp_path: Path) -> None:
+    folder = tmp_path / "controllers" / "wanderer"
+    folder.mkdir(parents=True)
+    (folder / "settings.py").write_text("SPEED = 1.5\n")
+    (folder / "wanderer.py").write_text(USES_SETTINGS)
+    run = run_controller(folder, mazesim.load_world("arena"), seconds=1.0)
+    assert run.exit_status == 0, run.error
+    assert run.controller == str(folder / "wanderer.py")
+    empty = tmp_path / "controllers" / "empty"
+    empty.mkdir()
+    with pytest.raises(MazesimIOError, match="holding empty.py"):
+        run_controller(empty, mazesim.load_world("arena"), seconds=1.0)
