@@ -264,7 +264,7 @@ def _check_value(parameter: Parameter, value: Any, where: str) -> Any:
     try:
         converted = kind(value)
     except OverflowError:  # a whole number too large for a float
-        raise InvalidArgumentError(f"{where}: expected {parameter.expected}, found {value!r}") from None
+        converted = math.inf
     if kind is float and not math.isfinite(converted):
         raise InvalidArgumentError(f"{where}: expected {parameter.expected}, found {value!r}")
     if not parameter.accepts(converted):
