@@ -118,6 +118,14 @@ CASES = {
     "robot_list_of_other_things": (
         "_core.BatchSimulator(_core.World.builtin('arena'), num_envs=2, robot=[None, b'x'])"
     ),
+    # Endless files: each reader stops at its size bound instead of filling the memory.
+    "world_file_dev_zero": "_core.World.load('/dev/zero')",
+    "wbt_file_dev_zero": "_core.import_wbt('/dev/zero')",
+    "sweep_file_dev_zero": (
+        "from mazesim.distributed.config import load_sweep_config\nload_sweep_config('/dev/zero')"
+    ),
+    "key_script_dev_zero": "from mazesim.webots.keyboard import read_keys\nread_keys('/dev/zero')",
+    "run_file_dev_zero": "from mazesim.replay import load_run\nload_run('/dev/zero')",
 }
 
 
@@ -146,6 +154,11 @@ MUST_BE_REFUSED = {
     "profile_of_huge_wheels",
     "perturbed_offset_1e300",
     "robot_list_of_other_things",
+    "world_file_dev_zero",
+    "wbt_file_dev_zero",
+    "sweep_file_dev_zero",
+    "key_script_dev_zero",
+    "run_file_dev_zero",
 }
 
 

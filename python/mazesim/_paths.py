@@ -10,6 +10,7 @@ from collections.abc import Callable, Iterable
 from mazesim.errors import InvalidArgumentError, MazesimError, MazesimIOError
 
 __all__ = [
+    "MAX_TEXT_CHARACTERS",
     "file_name_of",
     "output_file",
     "output_files",
@@ -20,27 +21,38 @@ __all__ = [
 ]
 
 
+#: The most characters of a text file a command reads (a sweep file, a key script, a
+#: randomisation file): far beyond any real one, and refused before an endless file such as
+#: ``/dev/zero`` fills the memory.
+MAX_TEXT_CHARACTERS = 64 * 1024 * 1024
+
+
 def read_text(
     path: str | os.PathLike[str],
     what: str,
     not_text: Callable[[str], MazesimError] = InvalidArgumentError,
 ) -> str:
-    """The text of a UTF-8 file a command reads.
+    """The text of a UTF-8 file a command reads, of at most :data:`MAX_TEXT_CHARACTERS`.
 
     Args:
         path: The file.
         what: What the file is, for messages (``"the key script"``).
-        not_text: Builds the error for bytes that are not UTF-8 text from its message
-            (:class:`~mazesim.errors.InvalidArgumentError` unless a format has its own).
+        not_text: Builds the error for a file that is not UTF-8 text, or too long, from its
+            message (:class:`~mazesim.errors.InvalidArgumentError` unless a format has its own).
 
     Raises:
         MazesimIOError: The file cannot be read (its ``filename`` is the path).
-        MazesimError: What ``not_text`` builds, when the file is not UTF-8 text.
+        MazesimError: What ``not_text`` builds, when the file is not UTF-8 text or too long.
     """
     file = os.fspath(path)
     try:
         with open(file, encoding="utf-8") as handle:
-            return handle.read()
+            text = handle.read(MAX_TEXT_CHARACTERS + 1)
+        if len(text) > MAX_TEXT_CHARACTERS:
+            raise not_text(
+                f"{file}: expected {what} of at most {MAX_TEXT_CHARACTERS} characters, found more"
+            )
+        return text
     except OSError as error:
         failure = MazesimIOError(f"{file}: cannot read {what}: {error.strerror or error}")
         failure.filename = file

@@ -46,7 +46,7 @@ mod tree;
 
 use std::path::Path;
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 
 pub use convert::polygon_sides;
 pub use devices::{DeviceField, ExtensionDevice};
@@ -136,8 +136,8 @@ impl WbtImport {
 
     /// Reads and imports a `.wbt` file.
     pub fn load(path: &Path) -> Result<WbtImport> {
-        let bytes =
-            std::fs::read(path).map_err(|e| Error::io(path, "cannot read the Webots world", &e))?;
+        let limit = crate::limits::MAX_WBT_FILE_BYTES;
+        let bytes = crate::io::read_limited(path, limit, "the Webots world")?;
         Self::from_bytes(&bytes, &path.display().to_string())
     }
 }
