@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import gzip
 import json
+import os
 from pathlib import Path
 from typing import Any
 
@@ -15,7 +16,7 @@ from mazesim.cli import main
 from mazesim.errors import MazesimError, RunFormatError
 from mazesim.learn.subtasks import SUBTASK_NAMES
 from mazesim.replay import FORMAT_VERSION, RecordedRun, load_run, save_run
-from mazesim.replay.html import replay_html
+from mazesim.replay.html import replay_html, write_html
 from mazesim.replay.recorder import SimulatorRecorder
 from mazesim.replay.run import MAX_RUN_BYTES
 
@@ -287,3 +288,17 @@ def test_deep_nesting_and_a_gzip_bomb_are_format_errors(tmp_path: Path) -> None:
     cut.write_bytes(gzip.compress(json.dumps(long_run(5).as_json()).encode())[:-40])
     with pytest.raises(RunFormatError, match="expected a mazesim run"):
         load_run(cut)
+
+
+def test_a_run_under_a_file_name_of_another_encoding_replays(tmp_path: Path) -> None:
+    """A file name with a byte that is not UTF-8 (Python keeps it as a surrogate) names the run
+    in messages, shown as U+FFFD, instead of failing with 'expected source to be a str, found a
+    str'."""
+    path = tmp_path / os.fsdecode(b"run\xff.json")
+    save_run(long_run(5), path)
+    assert load_run(path).episodes[0].frames == 6
+    page = tmp_path / os.fsdecode(b"page\xff.html")
+    write_html(load_run(path), page)
+    assert page.stat().st_size > 10_000
+    with pytest.raises(mazesim.WorldFormatError, match="run\ufffd.toml"):
+        mazesim.World.from_toml("walls = 3", os.fsdecode(b"run\xff.toml"))
