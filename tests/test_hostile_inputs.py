@@ -126,6 +126,19 @@ CASES = {
     ),
     "key_script_dev_zero": "from mazesim.webots.keyboard import read_keys\nread_keys('/dev/zero')",
     "run_file_dev_zero": "from mazesim.replay import load_run\nload_run('/dev/zero')",
+    # Counts the command line allows (up to 2^31 - 1) that made a world or a maze per unit
+    # before any check: the process aborted in the core, or the system killed it.
+    "barcode_study_envs_2_31": (
+        "from mazesim.barcode.study import run_setting\n"
+        "run_setting(_core.World.builtin('seed-maze'), 1.4, 3.0, readings=1, envs=2**31 - 1)"
+    ),
+    "unseen_mazes_2_31": (
+        "from mazesim.learn.evaluate import unseen_mazes\nunseen_mazes(2**31 - 1, 0)"
+    ),
+    "bench_distinct_mazes_2_31": (
+        "from mazesim.benchmark.steady import BenchSettings, SteadyState\n"
+        "SteadyState(BenchSettings(envs=2**31 - 1))"
+    ),
 }
 
 
@@ -159,6 +172,9 @@ MUST_BE_REFUSED = {
     "sweep_file_dev_zero",
     "key_script_dev_zero",
     "run_file_dev_zero",
+    "barcode_study_envs_2_31",
+    "unseen_mazes_2_31",
+    "bench_distinct_mazes_2_31",
 }
 
 
