@@ -302,3 +302,14 @@ def test_a_run_under_a_file_name_of_another_encoding_replays(tmp_path: Path) -> 
     assert page.stat().st_size > 10_000
     with pytest.raises(mazesim.WorldFormatError, match="run\ufffd.toml"):
         mazesim.World.from_toml("walls = 3", os.fsdecode(b"run\xff.toml"))
+
+
+def test_a_controller_name_cannot_break_out_of_the_page_script() -> None:
+    run = long_run(3)
+    run.controller = "<!--<script></script>--></script><b>x"
+    page = replay_html(run)
+    opening = '<script type="application/json" id="scene">'
+    block = page[page.index(opening) + len(opening) :]
+    block = block[: block.index("</script>")]
+    assert "<" not in block
+    assert json.loads(block)["run"]["controller"] == run.controller
