@@ -118,6 +118,27 @@ CASES = {
     "robot_list_of_other_things": (
         "_core.BatchSimulator(_core.World.builtin('arena'), num_envs=2, robot=[None, b'x'])"
     ),
+    # Endless files: each reader stops at its size bound instead of filling the memory.
+    "world_file_dev_zero": "_core.World.load('/dev/zero')",
+    "wbt_file_dev_zero": "_core.import_wbt('/dev/zero')",
+    "sweep_file_dev_zero": (
+        "from mazesim.distributed.config import load_sweep_config\nload_sweep_config('/dev/zero')"
+    ),
+    "key_script_dev_zero": "from mazesim.webots.keyboard import read_keys\nread_keys('/dev/zero')",
+    "run_file_dev_zero": "from mazesim.replay import load_run\nload_run('/dev/zero')",
+    # Counts the command line allows (up to 2^31 - 1) that made a world or a maze per unit
+    # before any check: the process aborted in the core, or the system killed it.
+    "barcode_study_envs_2_31": (
+        "from mazesim.barcode.study import run_setting\n"
+        "run_setting(_core.World.builtin('seed-maze'), 1.4, 3.0, readings=1, envs=2**31 - 1)"
+    ),
+    "unseen_mazes_2_31": (
+        "from mazesim.learn.evaluate import unseen_mazes\nunseen_mazes(2**31 - 1, 0)"
+    ),
+    "bench_distinct_mazes_2_31": (
+        "from mazesim.benchmark.steady import BenchSettings, SteadyState\n"
+        "SteadyState(BenchSettings(envs=2**31 - 1))"
+    ),
 }
 
 
@@ -146,6 +167,14 @@ MUST_BE_REFUSED = {
     "profile_of_huge_wheels",
     "perturbed_offset_1e300",
     "robot_list_of_other_things",
+    "world_file_dev_zero",
+    "wbt_file_dev_zero",
+    "sweep_file_dev_zero",
+    "key_script_dev_zero",
+    "run_file_dev_zero",
+    "barcode_study_envs_2_31",
+    "unseen_mazes_2_31",
+    "bench_distinct_mazes_2_31",
 }
 
 

@@ -4,11 +4,14 @@ from __future__ import annotations
 
 import argparse
 import os
+import re
 from collections.abc import Callable, Iterable
 
 from mazesim.errors import InvalidArgumentError, MazesimError, MazesimIOError
 
 __all__ = [
+    "MAX_TEXT_CHARACTERS",
+    "file_name_of",
     "output_file",
     "output_files",
     "output_path",
@@ -18,27 +21,38 @@ __all__ = [
 ]
 
 
+#: The most characters of a text file a command reads (a sweep file, a key script, a
+#: randomisation file): far beyond any real one, and refused before an endless file such as
+#: ``/dev/zero`` fills the memory.
+MAX_TEXT_CHARACTERS = 64 * 1024 * 1024
+
+
 def read_text(
     path: str | os.PathLike[str],
     what: str,
     not_text: Callable[[str], MazesimError] = InvalidArgumentError,
 ) -> str:
-    """The text of a UTF-8 file a command reads.
+    """The text of a UTF-8 file a command reads, of at most :data:`MAX_TEXT_CHARACTERS`.
 
     Args:
         path: The file.
         what: What the file is, for messages (``"the key script"``).
-        not_text: Builds the error for bytes that are not UTF-8 text from its message
-            (:class:`~mazesim.errors.InvalidArgumentError` unless a format has its own).
+        not_text: Builds the error for a file that is not UTF-8 text, or too long, from its
+            message (:class:`~mazesim.errors.InvalidArgumentError` unless a format has its own).
 
     Raises:
         MazesimIOError: The file cannot be read (its ``filename`` is the path).
-        MazesimError: What ``not_text`` builds, when the file is not UTF-8 text.
+        MazesimError: What ``not_text`` builds, when the file is not UTF-8 text or too long.
     """
     file = os.fspath(path)
     try:
         with open(file, encoding="utf-8") as handle:
-            return handle.read()
+            text = handle.read(MAX_TEXT_CHARACTERS + 1)
+        if len(text) > MAX_TEXT_CHARACTERS:
+            raise not_text(
+                f"{file}: expected {what} of at most {MAX_TEXT_CHARACTERS} characters, found more"
+            )
+        return text
     except OSError as error:
         failure = MazesimIOError(f"{file}: cannot read {what}: {error.strerror or error}")
         failure.filename = file
@@ -58,11 +72,26 @@ def same_file(first: str | os.PathLike[str], second: str | os.PathLike[str]) -> 
         return False
 
 
+def _same_target(first: str | os.PathLike[str], second: str | os.PathLike[str]) -> bool:
+    """Whether two paths would write one file, whether it exists yet or not: the same file, or
+    the same path once ``..``, symbolic links and case (where the disk ignores it) are
+    resolved."""
+    if same_file(first, second):
+        return True
+    try:
+        return os.path.normcase(os.path.realpath(first)) == os.path.normcase(
+            os.path.realpath(second)
+        )
+    except (OSError, ValueError):
+        return False
+
+
 def refuse_overwriting_inputs(
     outputs: Iterable[tuple[str, str | os.PathLike[str] | None]],
     inputs: Iterable[tuple[str, str | os.PathLike[str] | None]],
 ) -> None:
-    """Raises when a file a command would write is one of the files it reads.
+    """Raises when a file a command would write is one of the files it reads, or another of the
+    files it writes.
 
     Args:
         outputs: (what it is, path) of each file the command writes, e.g.
@@ -70,10 +99,11 @@ def refuse_overwriting_inputs(
         inputs: (what it is, path) of each file or folder the command reads.
 
     Raises:
-        InvalidArgumentError: An output is an input (the message names both and what to do),
-            or an output file is a folder.
+        InvalidArgumentError: An output is an input, or two outputs are one file (the message
+            names both and what to do), or an output file is a folder.
     """
     read = [(label, path) for label, path in inputs if path is not None]
+    written: list[tuple[str, str | os.PathLike[str]]] = []
     for out_label, out_path in outputs:
         if out_path is None:
             continue
@@ -81,13 +111,31 @@ def refuse_overwriting_inputs(
             raise InvalidArgumentError(
                 f"{out_label} {os.fspath(out_path)!r} is a folder; expected the path of a file"
             )
-        for in_label, in_path in read:
-            if same_file(out_path, in_path):
-                raise InvalidArgumentError(
-                    f"{out_label} {os.fspath(out_path)!r} is the same file as {in_label} "
-                    f"{os.fspath(in_path)!r}; mazesim does not write over its own input: "
-                    f"choose another {out_label}"
-                )
+        clashes = [
+            (label, path, "; mazesim does not write over its own input:")
+            for label, path in read
+            if same_file(out_path, path)
+        ]
+        clashes += [
+            (label, path, ", which this command writes too:")
+            for label, path in written
+            if _same_target(out_path, path)
+        ]
+        if clashes:
+            label, path, why = clashes[0]
+            raise InvalidArgumentError(
+                f"{out_label} {os.fspath(out_path)!r} is the same file as {label} "
+                f"{os.fspath(path)!r}{why} choose another {out_label}"
+            )
+        written.append((out_label, out_path))
+
+
+def file_name_of(name: str, suffix: str) -> str:
+    """A plain file name made from a name the user's files chose (a world's ``name``): no folder
+    parts, no leading dot, only letters, digits, ``-``, ``_`` and ``.``; ``"world"`` if nothing
+    is left. ``file_name_of("../x y", ".png")`` is ``"x-y.png"``."""
+    plain = re.sub(r"[^A-Za-z0-9._-]+", "-", os.path.basename(name.replace("\\", "/")))
+    return (plain.lstrip(".-") or "world") + suffix
 
 
 def output_files(

@@ -22,6 +22,7 @@ from typing import IO
 import pytest
 
 from mazesim.cli import build_parser
+from ros_support import needs_ros
 
 REPO = Path(__file__).resolve().parents[2]
 WBT = REPO / "tests" / "data" / "webots-worlds" / "e-puck.R2023b.wbt"
@@ -95,10 +96,10 @@ def _value_options(parser: argparse.ArgumentParser) -> Iterator[argparse.Action]
 
 
 def _kind(action: argparse.Action) -> str:
-    name = action.option_strings[0] if action.option_strings else action.dest
-    if name in NAME_OPTIONS:
+    names = set(action.option_strings or [action.dest])
+    if names & NAME_OPTIONS:
         return "name"
-    if name in OUTPUT_OPTIONS:
+    if names & OUTPUT_OPTIONS:
         return "output" if action.metavar == "DIR" else "output file"
     return "input" if action.type is None else "number"
 
@@ -305,3 +306,94 @@ def test_hostile_arguments_end_in_one_line_and_exit_2(
 def test_every_command_is_covered() -> None:
     commands = set(COMMANDS)
     assert {"demo", "train", "eval", "import-wbt", "sweep", "webots run"} <= commands
+
+
+def _output_file_options(parser: argparse.ArgumentParser) -> list[argparse.Action]:
+    return [
+        action
+        for action in _value_options(parser)
+        if action.option_strings and _kind(action) == "output file"
+    ]
+
+
+def _input_of(parser: argparse.ArgumentParser) -> argparse.Action:
+    """The option or positional argument naming the command's main input file."""
+    by_name = {a.option_strings[0] if a.option_strings else a.dest: a for a in parser._actions}
+    for name in ("--world", "world", "run_file", "file"):
+        if name in by_name:
+            return by_name[name]
+    raise AssertionError(f"no input among {sorted(by_name)}")
+
+
+#: Commands that write files named by options, each with an input the outputs must not replace.
+OUTPUT_FILE_COMMANDS = sorted(
+    command for command, parser in COMMANDS.items() if _output_file_options(parser)
+)
+
+
+def _input_copy(action: argparse.Action, files: dict[str, Path], folder: Path) -> Path:
+    """A fresh copy of a valid input for ``action`` in ``folder``."""
+    source = {"run_file": files["run"], "file": WBT}.get(
+        action.dest, REPO / "worlds" / "arena.toml"
+    )
+    copy = folder / f"input{''.join(source.suffixes)}"
+    copy.write_bytes(source.read_bytes())
+    return copy
+
+
+def test_output_file_commands_are_found() -> None:
+    assert {"demo", "eval", "webots run", "ros demo", "show", "replay"} <= set(OUTPUT_FILE_COMMANDS)
+
+
+@pytest.mark.parametrize(
+    "command",
+    [
+        pytest.param(command, marks=needs_ros) if command.startswith("ros ") else command
+        for command in OUTPUT_FILE_COMMANDS
+    ],
+)
+def test_no_output_option_writes_over_an_input_or_another_output(
+    command: str, files: dict[str, Path], tmp_path: Path
+) -> None:
+    """Each output file option given the command's input (under any name: a hard link with the
+    suffix the option needs), or two output options given one path: refused in one line, exit 2,
+    the input unchanged and nothing written."""
+    parser = COMMANDS[command]
+    source = _input_of(parser)
+    outputs = _output_file_options(parser)
+    runs: list[tuple[list[str], Path]] = []
+    inputs: list[tuple[Path, bytes]] = []
+    for number, option in enumerate(outputs):
+        folder = tmp_path / f"run-{number}"
+        folder.mkdir()
+        original = _input_copy(source, files, folder)
+        suffix = {"--video": ".gif", "--html": ".html"}.get(option.option_strings[-1])
+        if command in ("show", "replay") or suffix is not None:
+            suffix = suffix or (".html" if command == "replay" else ".png")
+            alias = folder / f"same-input{suffix}"
+            os.link(original, alias)
+        else:
+            alias = folder / ".." / folder.name / original.name
+        arguments = _arguments(command, parser, (option, str(alias)), files, folder)
+        if source.option_strings:
+            arguments += [source.option_strings[0], str(original)]
+        else:
+            arguments[arguments.index(_positionals(command, files)[source.dest])] = str(original)
+        runs.append((arguments, folder))
+        inputs.append((original, original.read_bytes()))
+    if len(outputs) > 1:
+        folder = tmp_path / "two-outputs"
+        folder.mkdir()
+        arguments = _arguments(command, parser, (outputs[1], "./view.gif"), files, folder)
+        runs.append(([*arguments, outputs[0].option_strings[0], "view.gif"], folder))
+    endings = run_limited(runs, tmp_path)
+    problems = [
+        f"mazesim {' '.join(ending.arguments)}: {problem or 'ran'}"
+        for ending in endings
+        if (problem := _problem(ending))
+        or ending.returncode != 2
+        or "same file" not in ending.stderr
+    ]
+    assert not problems, "\n".join(problems)
+    assert all(path.read_bytes() == data for path, data in inputs)
+    assert not (tmp_path / "two-outputs" / "view.gif").exists()

@@ -126,6 +126,13 @@ def test_ids_are_stable_whatever_the_order_of_keys_and_values() -> None:
             r"grid.higher_episodes: trainer 'flat-q' does not use it",
         ),
         ("[grid]\ntrainer = 'hrl'\nnoise = false\n", InvalidArgumentError, "noise = true only"),
+        ("[grid]\nlearning_rate = 1" + "0" * 400 + "\n", InvalidArgumentError, "learning_rate"),
+        (
+            "[grid]\ntrainer = 'flat-q'\n"
+            + "".join(f"{key} = {list(range(1, 2001))}\n" for key in ("seed", "maze_seed", "envs")),
+            InvalidArgumentError,
+            r"grid: expected at most 100000 settings, found 8000000000 \(2000 maze_seed x 2000",
+        ),
     ],
 )
 def test_config_errors_are_the_packages_own(text: str, error: type, match: str) -> None:

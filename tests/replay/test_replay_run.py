@@ -4,7 +4,9 @@ from __future__ import annotations
 
 import gzip
 import json
+import os
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -14,8 +16,9 @@ from mazesim.cli import main
 from mazesim.errors import MazesimError, RunFormatError
 from mazesim.learn.subtasks import SUBTASK_NAMES
 from mazesim.replay import FORMAT_VERSION, RecordedRun, load_run, save_run
-from mazesim.replay.html import replay_html
+from mazesim.replay.html import replay_html, write_html
 from mazesim.replay.recorder import SimulatorRecorder
+from mazesim.replay.run import MAX_RUN_BYTES
 
 
 def long_run(steps: int = 4000) -> RecordedRun:
@@ -87,7 +90,7 @@ def test_a_newer_minor_version_with_unknown_fields_is_read(tmp_path: Path) -> No
     [
         ("not json at all", "expected a mazesim run"),
         ('{"format": "something-else"}', "expected format 'mazesim-run', found 'something-else'"),
-        ('{"format": "mazesim-run", "version": "1.0"}', "a field is missing or malformed"),
+        ('{"format": "mazesim-run", "version": "1.0"}', "expected a field world, found none"),
     ],
 )
 def test_what_is_not_a_run_raises_a_format_error(tmp_path: Path, text: str, message: str) -> None:
@@ -206,3 +209,107 @@ def test_recording_does_not_change_an_evaluation() -> None:
     assert [episode.number for episode in recorded_record.run.episodes] == [0, 1]
     for episode in recorded_record.run.episodes:
         assert episode.frames == steps[episode.number] + 1
+
+
+#: Damaged or hostile fields of a run file (a path into its JSON, the value) and the field the
+#: error must name; each once crashed the reader, the page or the video, or was read silently.
+HOSTILE_FIELDS = [
+    (("seed",), float("inf"), "seed"),
+    (("seed",), -1, "seed"),
+    (("control_step_ms",), 0, "control_step_ms"),
+    (("control_step_ms",), float("nan"), "control_step_ms"),
+    (("reading_scale",), 0, "reading_scale"),
+    (("robot",), "r2d2", "robot"),
+    (("robot",), ["seed"], "robot"),
+    (("world",), [], "world"),
+    (("episodes",), {}, "episodes"),
+    (("episodes", 0, "frames"), 10**30, "episodes[0].frames"),
+    (("episodes", 0, "frames"), 0, "episodes[0].frames"),
+    (("episodes", 0, "x"), [10**400] * 21, "episodes[0].x"),
+    (("episodes", 0, "x"), "abc", "episodes[0].x"),
+    (("episodes", 0, "yaw"), [[1, 2]] * 21, "episodes[0].yaw"),
+    (("episodes", 0, "readings"), [[1.0]] * 20 + [[1.0, 2.0]], "episodes[0].readings"),
+    (("episodes", 0, "contacts"), [-1], "episodes[0].contacts[0]"),
+    (("episodes", 0, "contacts"), [21], "episodes[0].contacts[0]"),
+    (("episodes", 0, "events"), [[1, 2, 3]], "episodes[0].events[0]"),
+    (("episodes", 0, "events"), [[99, 2]], "episodes[0].events[0][0]"),
+    (("episodes", 0, "actions"), [], "episodes[0].actions"),
+    (("episodes", 0, "wheel_speeds"), [[1, 2, 3]] * 21, "episodes[0].wheel_speeds"),
+    (("episodes", 0, "subtasks"), "9" * 21, "episodes[0].subtasks"),
+    (("episodes", 0, "levels"), ["x"] * 21, "episodes[0].levels"),
+    (("episodes", 0, "decisions"), [{"chosen": 0}], "episodes[0].decisions[0]"),
+]
+
+
+def _hostile_run_file(tmp_path: Path, place: tuple[str | int, ...], value: object) -> Path:
+    values = long_run(20).as_json()
+    values["episodes"][0]["decisions"] = []
+    target: Any = values
+    for key in place[:-1]:
+        target = target[key]
+    target[place[-1]] = value
+    path = tmp_path / "hostile.json"
+    path.write_text(json.dumps(values))
+    return path
+
+
+@pytest.mark.parametrize(("place", "value", "field"), HOSTILE_FIELDS)
+def test_a_damaged_field_is_a_format_error_naming_it(
+    tmp_path: Path, place: tuple[str | int, ...], value: object, field: str
+) -> None:
+    path = _hostile_run_file(tmp_path, place, value)
+    with pytest.raises(RunFormatError) as caught:
+        load_run(path)
+    assert f"{path}: {field}" in str(caught.value) or f"field {field}" in str(caught.value)
+
+
+@pytest.mark.parametrize("out", ["page.html", "video.gif"])
+def test_the_replay_command_refuses_a_damaged_run_in_one_line(
+    tmp_path: Path, out: str, capsys: pytest.CaptureFixture[str]
+) -> None:
+    path = _hostile_run_file(tmp_path, ("control_step_ms",), 0)
+    assert main(["replay", str(path), "-o", str(tmp_path / out), "--no-progress"]) == 2
+    error = capsys.readouterr().err
+    assert error.count("\n") == 1 and "control_step_ms: expected a finite number above 0" in error
+    assert not (tmp_path / out).exists()
+
+
+def test_deep_nesting_and_a_gzip_bomb_are_format_errors(tmp_path: Path) -> None:
+    deep = tmp_path / "deep.json"
+    deep.write_text("[" * 200_000)
+    with pytest.raises(RunFormatError, match="deeper nesting"):
+        load_run(deep)
+    bomb = tmp_path / "bomb.json.gz"
+    bomb.write_bytes(gzip.compress(b" " * (MAX_RUN_BYTES + 1), 9))
+    assert bomb.stat().st_size < MAX_RUN_BYTES // 500
+    with pytest.raises(RunFormatError, match=f"at most {MAX_RUN_BYTES} bytes"):
+        load_run(bomb)
+    cut = tmp_path / "cut.json.gz"
+    cut.write_bytes(gzip.compress(json.dumps(long_run(5).as_json()).encode())[:-40])
+    with pytest.raises(RunFormatError, match="expected a mazesim run"):
+        load_run(cut)
+
+
+def test_a_run_under_a_file_name_of_another_encoding_replays(tmp_path: Path) -> None:
+    """A file name with a byte that is not UTF-8 (Python keeps it as a surrogate) names the run
+    in messages, shown as U+FFFD, instead of failing with 'expected source to be a str, found a
+    str'."""
+    path = tmp_path / os.fsdecode(b"run\xff.json")
+    save_run(long_run(5), path)
+    assert load_run(path).episodes[0].frames == 6
+    page = tmp_path / os.fsdecode(b"page\xff.html")
+    write_html(load_run(path), page)
+    assert page.stat().st_size > 10_000
+    with pytest.raises(mazesim.WorldFormatError, match="run\ufffd.toml"):
+        mazesim.World.from_toml("walls = 3", os.fsdecode(b"run\xff.toml"))
+
+
+def test_a_controller_name_cannot_break_out_of_the_page_script() -> None:
+    run = long_run(3)
+    run.controller = "<!--<script></script>--></script><b>x"
+    page = replay_html(run)
+    opening = '<script type="application/json" id="scene">'
+    block = page[page.index(opening) + len(opening) :]
+    block = block[: block.index("</script>")]
+    assert "<" not in block
+    assert json.loads(block)["run"]["controller"] == run.controller

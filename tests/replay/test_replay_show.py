@@ -43,6 +43,30 @@ def test_show_writes_name_png_here_by_default(
     assert png_size(tmp_path / "arena.png")[0] > 0
 
 
+@pytest.mark.parametrize(
+    ("name", "picture"),
+    [
+        ("../escaped", "escaped.png"),
+        ("", "world.png"),
+        ("/tmp/a b", "a-b.png"),
+        ("..", "world.png"),
+    ],
+)
+def test_a_world_name_names_a_file_here_never_a_folder(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, name: str, picture: str
+) -> None:
+    here = tmp_path / "here"
+    here.mkdir()
+    monkeypatch.chdir(here)
+    world = mazesim.World.from_toml(
+        f'format = "mazesim-world"\nversion = 1\nname = {name!r}\n'.replace("'", '"')
+    )
+    world.save("named.toml")
+    assert main(["show", "named.toml"]) == 0
+    assert sorted(path.name for path in here.iterdir()) == sorted(["named.toml", picture])
+    assert sorted(path.name for path in tmp_path.iterdir()) == ["here"]
+
+
 def test_show_renders_a_world_file(tmp_path: Path) -> None:
     world_file = tmp_path / "maze.toml"
     mazesim.generate_maze(3, 4, seed=5).save(str(world_file))

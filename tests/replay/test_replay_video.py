@@ -46,7 +46,57 @@ def test_an_mp4_decodes_to_one_frame_per_step(
         assert reader.get_meta_data()["fps"] == pytest.approx(1000 / 64, abs=0.01)
     finally:
         reader.close()
-    assert not list(tmp_path.glob(".*partial*"))
+    assert [p.name for p in tmp_path.iterdir()] == ["run.mp4"]
+
+
+@pytest.mark.parametrize("suffix", [".mp4", ".gif"])
+def test_two_writers_of_one_video_each_write_a_whole_one(
+    navigator_demo: dict[str, Path], tmp_path: Path, suffix: str
+) -> None:
+    """A second write of the same video starting while the first runs (a second command) leaves
+    a whole video, the last finished, and no temporary files; one stopped midway leaves the
+    video as it was."""
+    if suffix == ".mp4":
+        pytest.importorskip("imageio_ffmpeg", reason="MP4 needs imageio-ffmpeg (mazesim[video])")
+    run = load_run(navigator_demo["run"])
+    long, short = _first_frames(run.episodes[0], 60), _first_frames(run.episodes[0], 20)
+    path = tmp_path / f"video{suffix}"
+    other = load_run(navigator_demo["run"])
+    other.episodes[0] = short
+    run.episodes[0] = long
+
+    def second_write(done: int, total: int) -> None:
+        if done == 5:
+            write_video(other, path)
+
+    assert write_video(run, path, progress=second_write) == len(
+        video_frame_steps(run, long, suffix)
+    )
+    assert _frame_count(path) == len(video_frame_steps(run, long, suffix))
+    assert [p.name for p in tmp_path.iterdir()] == [path.name]
+
+    def stop(done: int, total: int) -> None:
+        if done == 5:
+            raise KeyboardInterrupt
+
+    before = path.read_bytes()
+    with pytest.raises(KeyboardInterrupt):
+        write_video(other, path, progress=stop)
+    assert path.read_bytes() == before
+    assert [p.name for p in tmp_path.iterdir()] == [path.name]
+
+
+def _frame_count(path: Path) -> int:
+    """The frames of a GIF or MP4 file, its reader closed."""
+    if path.suffix == ".gif":
+        return len(list(imageio.imiter(path)))
+    import imageio.v2 as imageio2
+
+    reader = imageio2.get_reader(path, format="FFMPEG")
+    try:
+        return int(reader.count_frames())
+    finally:
+        reader.close()
 
 
 def _first_frames(episode, count):  # type: ignore[no-untyped-def]

@@ -52,6 +52,7 @@ def test_a_bad_inline_spec_says_what_it_expected(
         ("[other]\nslip = [0.0, 0.5]\n", r"expected one table \[randomise\]"),
         ("[randomise\n", "not a valid TOML file"),
         ('[randomise]\nslip = ["a", "b"]\n', "expected a range of two numbers"),
+        ("[randomise]\nslip = [0, 1" + "0" * 400 + "]\n", r"slip: expected a range of two finite"),
     ],
 )
 def test_a_bad_toml_spec_names_the_file(tmp_path: Path, text: str, message: str) -> None:

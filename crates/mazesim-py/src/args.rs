@@ -186,6 +186,34 @@ impl<'a, 'py> FromPyObject<'a, 'py> for ByteString {
 /// A bytes argument.
 pub type Bytes = Given<ByteString>;
 
+/// A name shown in messages (the file a text came from): a str taken whole, any character that
+/// is not Unicode text (the undecodable bytes of a file name, kept as surrogates by Python)
+/// shown as U+FFFD.
+#[derive(Debug, Clone)]
+pub struct Label(pub String);
+
+impl<'a, 'py> FromPyObject<'a, 'py> for Label {
+    type Error = PyErr;
+
+    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        let text = obj.cast::<pyo3::types::PyString>()?;
+        if let Ok(plain) = text.to_cow() {
+            return Ok(Label(plain.into_owned()));
+        }
+        // The bytes of the file name as the system gave them, each undecodable one shown once.
+        let bytes = text.call_method1("encode", ("utf-8", "surrogateescape"));
+        Ok(Label(
+            match bytes.as_ref().map(|b| b.cast::<pyo3::types::PyBytes>()) {
+                Ok(Ok(bytes)) => String::from_utf8_lossy(bytes.as_bytes()).into_owned(),
+                _ => text.to_string_lossy().into_owned(),
+            },
+        ))
+    }
+}
+
+/// A source-name argument (`source="maze.toml"`).
+pub type SourceName = Given<Label>;
+
 /// The name of an object's type, for an error saying what was found.
 pub fn type_name(obj: &Bound<'_, PyAny>) -> String {
     obj.get_type()

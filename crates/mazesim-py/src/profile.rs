@@ -9,7 +9,7 @@ use numpy::PyArray2;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString, PyTuple};
 
-use crate::args::{type_name, IntArg, Real, Text};
+use crate::args::{type_name, IntArg, Label, Real, SourceName, Text};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::enter;
 use crate::world::rows_to_array;
@@ -147,12 +147,12 @@ impl PyRobotProfile {
 
     /// Parses a profile file's text; `source` names it in error messages.
     #[staticmethod]
-    #[pyo3(signature = (text, source = Text::Value("<string>".into())),
+    #[pyo3(signature = (text, source = SourceName::Value(Label("<string>".into()))),
         text_signature = "(text, source='<string>')")]
-    fn from_toml(text: Text, source: Text) -> PyResult<Self> {
+    fn from_toml(text: Text, source: SourceName) -> PyResult<Self> {
         enter(|| {
             let text = text.value("text", "a str")?;
-            let source = source.value("source", "a str")?;
+            let source = source.value("source", "a str")?.0;
             Ok(Self {
                 inner: Arc::new(RobotProfile::from_toml(&text, &source).py()?),
             })

@@ -13,7 +13,7 @@ use numpy::{PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString};
 
-use crate::args::{PathArg, Text};
+use crate::args::{Label, PathArg, SourceName, Text};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::{enter, enter_detached};
 use crate::world::PyWorld;
@@ -256,12 +256,12 @@ pub fn import_wbt<'py>(
 /// Imports the text of a `.wbt` file; `source` names it in error messages and names the world.
 /// Lone surrogates (not UTF-8) are read as U+FFFD, so that they end in a located format error.
 #[pyfunction]
-#[pyo3(signature = (text, source = Text::Value("<string>".into()), floor_images = None, controller = None),
+#[pyo3(signature = (text, source = SourceName::Value(Label("<string>".into())), floor_images = None, controller = None),
     text_signature = "(text, source='<string>', floor_images=None, controller=None)")]
 pub fn import_wbt_text<'py>(
     py: Python<'py>,
     text: &Bound<'py, PyAny>,
-    source: Text,
+    source: SourceName,
     floor_images: Option<&Bound<'py, PyAny>>,
     controller: Option<Text>,
 ) -> PyResult<(PyWorld, Bound<'py, PyDict>)> {
@@ -276,7 +276,7 @@ pub fn import_wbt_text<'py>(
             ))
         })?;
         let text = text.to_string_lossy();
-        let source = source.value("source", "a str")?;
+        let source = source.value("source", "a str")?.0;
         let controller = controller
             .map(|c| c.value("controller", "a str or None"))
             .transpose()?;

@@ -8,7 +8,7 @@ use numpy::{PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::{PathArg, Real, Text};
+use crate::args::{Label, PathArg, Real, SourceName, Text};
 use crate::errors::IntoPy;
 use crate::guard::{enter, enter_detached};
 
@@ -52,10 +52,10 @@ impl PyWorld {
 
     /// Parses a world file's text; `source` names it in error messages.
     #[staticmethod]
-    #[pyo3(signature = (text, source = Text::Value("<string>".into())), text_signature = "(text, source='<string>')")]
-    fn from_toml(py: Python<'_>, text: Text, source: Text) -> PyResult<Self> {
+    #[pyo3(signature = (text, source = SourceName::Value(Label("<string>".into()))), text_signature = "(text, source='<string>')")]
+    fn from_toml(py: Python<'_>, text: Text, source: SourceName) -> PyResult<Self> {
         let text = text.value("text", "a str")?;
-        let source = source.value("source", "a str")?;
+        let source = source.value("source", "a str")?.0;
         let world = enter_detached(py, || World::from_toml(&text, &source))?;
         Ok(Self {
             inner: Arc::new(world),

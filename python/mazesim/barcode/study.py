@@ -70,6 +70,8 @@ DEFAULT_THRESHOLD = 1.4
 DEFAULT_SPEED = 3.14
 #: Robots wandering at once.
 DEFAULT_ENVS = 64
+#: The most robots of a study (each has its own world copy, decoders and tallies in Python).
+MAX_ENVS = 65_536
 #: Largest gap in control steps between a crossing and the read that answers it (over the
 #: ``ros`` link, plus the node's longest period: its decoder hears of the floor later).
 MATCH_STEPS = 4
@@ -275,9 +277,9 @@ def run_setting(
         MazesimError: Fewer crossings than asked for within :data:`MAX_SECONDS` per robot.
     """
     check_link(link)
-    if readings < 1 or envs < 1:
+    if readings < 1 or not 1 <= envs <= MAX_ENVS:
         raise InvalidArgumentError(
-            f"expected at least one reading and one robot, found {readings} and {envs}"
+            f"expected at least one reading and 1 to {MAX_ENVS} robots, found {readings} and {envs}"
         )
     if not (math.isfinite(threshold_v) and threshold_v > 0.0):
         raise InvalidArgumentError(f"expected a positive threshold in volts, found {threshold_v}")

@@ -44,6 +44,9 @@ MIN_WARMUP_STEPS = 1000
 #: ``distinct``: env i gets the generated maze of seed ``seed + i``; ``shared``: every env
 #: steps the maze of seed ``seed``.
 MAZE_KINDS = ("distinct", "shared")
+#: The most envs of a batch of distinct mazes: the design's largest benchmark batch, whose mazes
+#: take about 1 GB (a larger batch is checked against the memory when it is made).
+MAX_DISTINCT_MAZES = 65_536
 
 
 @dataclass(frozen=True)
@@ -125,6 +128,12 @@ class BenchSettings:
                     f"benchmark setting {name}: expected a whole number of at least {smallest}, "
                     f"found {value!r}"
                 )
+        if self.mazes == "distinct" and self.envs > MAX_DISTINCT_MAZES:
+            raise InvalidArgumentError(
+                f"benchmark setting envs: expected at most {MAX_DISTINCT_MAZES} envs with distinct "
+                f"mazes (each generated beforehand), found {self.envs}; more share one maze "
+                "(mazes='shared')"
+            )
         if self.seed + self.envs > 2**64:
             raise InvalidArgumentError(
                 f"benchmark setting seed: env i's maze takes seed + i, so expected a seed of at "

@@ -20,7 +20,7 @@ from mazesim._paths import output_files, refuse_overwriting_inputs
 from mazesim.cli._args import output_path, positive_seconds, seed_argument
 from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
-from mazesim.replay.options import add_viewing_options
+from mazesim.replay.options import add_viewing_options, viewing_outputs
 
 __all__ = ["register", "run_demo"]
 
@@ -96,7 +96,10 @@ def register(commands: Any) -> None:
 def run_demo(args: argparse.Namespace, out: TextIO) -> int:
     """Runs the demo and writes its picture and summary."""
     refuse_overwriting_inputs(
-        output_files(args.out, ("trajectory.png", "summary.json", "trace.txt")),
+        [
+            *output_files(args.out, ("trajectory.png", "summary.json", "trace.txt")),
+            *viewing_outputs(args),
+        ],
         [("--world", args.world)],
     )
     if getattr(args, "controller", "avoid-collision") == "hrl":

@@ -22,7 +22,12 @@ from mazesim._paths import refuse_overwriting_inputs
 from mazesim.cli._args import add_setting_options, output_path, positive_int, seed_argument
 from mazesim.cli.progress import add_progress_option, progress_display
 from mazesim.replay.navigator import Recording
-from mazesim.replay.options import add_viewing_options, recording_requested, write_views
+from mazesim.replay.options import (
+    add_viewing_options,
+    recording_requested,
+    viewing_outputs,
+    write_views,
+)
 
 __all__ = ["register", "run_eval"]
 
@@ -136,7 +141,7 @@ def run_eval(args: argparse.Namespace, out: TextIO) -> int:
         if args.policy is not None
     ]
     refuse_overwriting_inputs(
-        [("--trace", args.trace), ("--plot", args.plot)],
+        [("--trace", args.trace), ("--plot", args.plot), *viewing_outputs(args)],
         [*policy_files, ("--world", args.world)],
     )
     policy = load_policy(args.policy)

@@ -11,6 +11,7 @@ import sys
 from pathlib import Path
 from typing import Any, TextIO
 
+from mazesim._paths import refuse_overwriting_inputs
 from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
 from mazesim.errors import InvalidArgumentError
@@ -62,6 +63,7 @@ def run_replay(args: argparse.Namespace, out: TextIO) -> int:
         raise InvalidArgumentError(
             f"expected -o FILE.html, FILE.mp4 or FILE.gif, found {args.out!r}"
         )
+    refuse_overwriting_inputs([("-o", args.out)], [("the run", args.run_file)])
     run = load_run(args.run_file)
     if suffix in (".html", ".htm"):
         from mazesim.replay.html import write_html

@@ -126,6 +126,13 @@ def _run_perform_learning(args: argparse.Namespace) -> int:
 def _run_demo(args: argparse.Namespace) -> int:
     import sys
 
+    from mazesim._paths import output_files, refuse_overwriting_inputs
+    from mazesim.replay.options import viewing_outputs
+
+    refuse_overwriting_inputs(
+        [*output_files(args.out, ("maze.bag", "trajectory.png")), *viewing_outputs(args)],
+        [("--world", args.world)],
+    )
     # Before a master is started: without ROS the nodes would fail one by one, much later.
     check_ros_installed(DEMO_COMMANDS)
 

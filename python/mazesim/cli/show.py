@@ -14,6 +14,7 @@ import webbrowser
 from pathlib import Path
 from typing import Any, TextIO
 
+from mazesim._paths import file_name_of, refuse_overwriting_inputs
 from mazesim.cli._help import examples
 
 __all__ = ["register", "run_show"]
@@ -50,14 +51,17 @@ def run_show(args: argparse.Namespace, out: TextIO) -> int:
     """Runs ``mazesim show``."""
     from mazesim.replay.preview import load_with_warnings, save_world_preview
 
+    if args.out is not None:
+        refuse_overwriting_inputs([("-o", args.out)], [("the world", args.world)])
     world, warnings = load_with_warnings(args.world)
     path = args.out
     if path is None:
+        # The world's name is the file's to choose: it names a file here, never a folder.
         if args.open:
-            handle, path = tempfile.mkstemp(prefix=f"{world.name}-", suffix=".png")
+            handle, path = tempfile.mkstemp(prefix=file_name_of(world.name, "-"), suffix=".png")
             os.close(handle)
         else:
-            path = f"{world.name}.png"
+            path = file_name_of(world.name, ".png")
     save_world_preview(world, path, warnings)
     out.write(f"wrote {path} ({len(warnings)} importer warnings)\n")
     if args.open and not webbrowser.open(Path(path).resolve().as_uri()):

@@ -15,7 +15,12 @@ from mazesim._paths import output_files, output_path, refuse_overwriting_inputs
 from mazesim.cli._args import positive_seconds, seed_argument
 from mazesim.cli._help import examples
 from mazesim.cli.progress import ProgressDisplay, add_progress_option, progress_display
-from mazesim.replay.options import DeferredWatch, add_viewing_options, viewing_requested
+from mazesim.replay.options import (
+    DeferredWatch,
+    add_viewing_options,
+    viewing_outputs,
+    viewing_requested,
+)
 
 __all__ = ["register"]
 
@@ -220,8 +225,11 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
     keys = read_keys(args.keys) if args.keys else None
     out_dir = os.path.abspath(args.out)
     refuse_overwriting_inputs(
-        output_files(out_dir, ("trajectory.png", "summary.json", "trajectory.csv")),
-        [("the controller", args.controller), ("--world", args.world)],
+        [
+            *output_files(out_dir, ("trajectory.png", "summary.json", "trajectory.csv")),
+            *viewing_outputs(args),
+        ],
+        [("the controller", args.controller), ("--world", args.world), ("--keys", args.keys)],
     )
     # Fail before the run, not after it, if the output folder cannot be made.
     os.makedirs(out_dir, exist_ok=True)

@@ -52,6 +52,7 @@ from mazesim.errors import (
 )
 
 __all__ = [
+    "MAX_SETTINGS",
     "PARAMETERS",
     "TRAINER_DEFAULTS",
     "Parameter",
@@ -154,6 +155,8 @@ TRAINER_DEFAULTS: tuple[str, ...] = (
     "collision_penalty",
 )
 _SWEEP_KEYS = ("name", "cpus_per_task", "max_retries")
+#: The most settings a grid may expand to (each is a training run).
+MAX_SETTINGS = 100_000
 
 
 @dataclass(frozen=True)
@@ -258,7 +261,10 @@ def _check_value(parameter: Parameter, value: Any, where: str) -> Any:
         right_kind = isinstance(value, kind)
     if not right_kind:
         raise InvalidArgumentError(f"{where}: expected {parameter.expected}, found {value!r}")
-    converted = kind(value)
+    try:
+        converted = kind(value)
+    except OverflowError:  # a whole number too large for a float
+        converted = math.inf
     if kind is float and not math.isfinite(converted):
         raise InvalidArgumentError(f"{where}: expected {parameter.expected}, found {value!r}")
     if not parameter.accepts(converted):
@@ -397,6 +403,13 @@ def parse_sweep_config(
         numbers[key] = value
 
     values = _read_grid(source, document.get("grid", {}))
+    count = math.prod(len(options) for options in values.values())
+    if count > MAX_SETTINGS:
+        lengths = " x ".join(f"{len(v)} {k}" for k, v in values.items() if len(v) > 1)
+        raise InvalidArgumentError(
+            f"{source}: grid: expected at most {MAX_SETTINGS} settings, found {count} "
+            f"({lengths}); split the sweep or shorten its lists"
+        )
     values["trainer"] = tuple(dict.fromkeys(resolve_trainer(t) for t in values["trainer"]))
     world_texts = {
         world: _world_text(source, world, os.fspath(base_dir))

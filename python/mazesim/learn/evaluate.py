@@ -188,9 +188,19 @@ class EvalSettings:
         return list(EVENT_SOURCES) if self.events == "both" else [self.events]
 
 
+#: The most unseen mazes one evaluation generates (each takes about 16 kB and an episode or more).
+MAX_UNSEEN_MAZES = 10_000
+
+
 def unseen_mazes(count: int, seed: int) -> list[World]:
     """``count`` generated 5 x 5 perfect mazes for testing; their seeds derive from ``seed`` on a
-    stream no training run uses."""
+    stream no training run uses.
+
+    Raises:
+        InvalidArgumentError: ``count`` is not in 1 to :data:`MAX_UNSEEN_MAZES`.
+    """
+    if not 1 <= count <= MAX_UNSEEN_MAZES:
+        raise InvalidArgumentError(f"expected 1 to {MAX_UNSEEN_MAZES} unseen mazes, found {count}")
     maze_seeds = stream_seeds(seed, "evaluate/mazes", count)
     return [generate_maze(5, 5, seed=int(maze_seed)) for maze_seed in maze_seeds]
 

@@ -108,8 +108,9 @@ def replay_html(run: RecordedRun, title: str | None = None) -> str:
     """The replay page of a run, as text."""
     heading = title or f"{run.world.name}: {run.controller}, seed {run.seed}"
     scene = json.dumps(scene_of(run), separators=(",", ":"))
-    # Inside <script>, "</" could end the block early; "<\/" reads the same in JSON.
-    scene = scene.replace("</", "<\\/")
+    # Inside <script>, "</script" would end the block early and "<!--<script" change how the
+    # rest is parsed: no "<" is left in the JSON, whose "\u003c" reads the same.
+    scene = scene.replace("<", "\\u003c")
     page = _viewer_file("replay.html")
     for marker, value in (
         ("__STYLE__", _viewer_file("replay.css")),

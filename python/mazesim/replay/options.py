@@ -23,6 +23,7 @@ __all__ = [
     "add_viewing_options",
     "play_live",
     "recording_requested",
+    "viewing_outputs",
     "viewing_requested",
     "write_views",
 ]
@@ -67,6 +68,12 @@ def add_viewing_options(parser: argparse.ArgumentParser, live: bool = False) -> 
             action="store_true",
             help="show the run in a window as it goes, in real time (headless without a display)",
         )
+
+
+def viewing_outputs(args: argparse.Namespace) -> list[tuple[str, str | None]]:
+    """(option, path) of the files ``--html``, ``--video`` and ``--record`` write (None when not
+    asked for), for :func:`mazesim._paths.refuse_overwriting_inputs`."""
+    return [(f"--{name}", getattr(args, name, None)) for name in ("html", "video", "record")]
 
 
 def recording_requested(args: argparse.Namespace) -> bool:

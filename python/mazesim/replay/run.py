@@ -21,6 +21,7 @@ from __future__ import annotations
 import gzip
 import json
 import os
+import zlib
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -28,8 +29,9 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._atomic import atomic_file
-from mazesim._core import RobotProfile, World
+from mazesim._core import RobotProfile, World, robot_profile_names
 from mazesim.errors import MazesimIOError, RunFormatError
+from mazesim.replay.run_fields import RunFields
 
 __all__ = [
     "FORMAT_NAME",
@@ -50,6 +52,11 @@ POSITION_UNIT = 1e-4
 YAW_UNIT = 1e-3
 RAY_UNIT = 1e-3
 WHEEL_SPEED_UNIT = 1e-2
+#: The most bytes of JSON a run file may hold (once decompressed): a 4,000-step episode takes a
+#: few hundred kB, so this is hundreds of long episodes, and parsing it stays within a few GB.
+MAX_RUN_BYTES = 256 * 1024 * 1024
+#: The Table 4.1 levels of a frame: one per Sharp distance.
+NUM_LEVELS = 6
 
 
 @dataclass
@@ -248,25 +255,50 @@ def save_run(run: RecordedRun, path: str | os.PathLike[str]) -> None:
 def load_run(path: str | os.PathLike[str]) -> RecordedRun:
     """Reads a run file written by :func:`save_run` (this or an older minor version).
 
+    The file (once decompressed) may hold at most :data:`MAX_RUN_BYTES` bytes of JSON; every
+    field is checked before it is used.
+
     Raises:
         MazesimIOError: The file cannot be read.
-        RunFormatError: It is not a run file, or of a newer major version, or malformed.
+        RunFormatError: It is not a run file, or of a newer major version, or too large, or a
+            field is missing or malformed (the message names the field).
     """
     name = os.fspath(path)
     try:
         with open(name, "rb") as handle:
-            data = handle.read()
+            data = handle.read(MAX_RUN_BYTES + 1)
     except OSError as error:
         failure = MazesimIOError(f"{name}: cannot read the run: {error.strerror or error}")
         failure.filename = name
         raise failure from None
+    too_large = RunFormatError(
+        f"{name}: expected a run of at most {MAX_RUN_BYTES} bytes of JSON, found more"
+    )
     try:
         if data[:2] == b"\x1f\x8b":
-            data = gzip.decompress(data)
+            data = _decompressed(data, MAX_RUN_BYTES, too_large)
+        if len(data) > MAX_RUN_BYTES:
+            raise too_large
         values = json.loads(data.decode("utf-8"))
-    except (OSError, EOFError, UnicodeDecodeError, json.JSONDecodeError) as error:
+    except RecursionError:
+        raise RunFormatError(
+            f"{name}: expected a mazesim run (JSON), found deeper nesting than any run has"
+        ) from None
+    except (OSError, EOFError, UnicodeDecodeError, zlib.error, json.JSONDecodeError) as error:
         raise RunFormatError(f"{name}: expected a mazesim run (JSON), found: {error}") from None
     return run_from_json(values, name)
+
+
+def _decompressed(data: bytes, largest: int, too_large: RunFormatError) -> bytes:
+    """The gzip stream ``data`` decompressed, refused with ``too_large`` past ``largest`` bytes
+    (a small file may expand a thousandfold)."""
+    stream = zlib.decompressobj(wbits=16 + zlib.MAX_WBITS)
+    text = stream.decompress(data, largest + 1)
+    if len(text) > largest or stream.unconsumed_tail:
+        raise too_large
+    if not stream.eof:
+        raise EOFError("the compressed file ends before its end")
+    return text + stream.flush()
 
 
 def run_from_json(values: Any, source: str = "<run>") -> RecordedRun:
@@ -292,61 +324,138 @@ def run_from_json(values: Any, source: str = "<run>") -> RecordedRun:
             f"version {version} ({newer} format): "
             + ("upgrade mazesim to read it" if major > FORMAT_VERSION[0] else "record it again")
         )
-    try:
-        scale = float(values.get("reading_scale", 1.0))
-        run = RecordedRun(
-            world=World.from_toml(values["world"]["toml"], f"{source}: world"),
-            robot=str(values["robot"]),
-            controller=str(values["controller"]),
-            seed=int(values["seed"]),
-            control_step_ms=float(values["control_step_ms"]),
-            subtask_names=[str(name) for name in values.get("subtask_names", [])],
-            reading_scale=scale,
-        )
-        run.episodes = [_episode_from_json(episode, scale) for episode in values["episodes"]]
-    except (KeyError, TypeError, ValueError, IndexError) as error:
-        raise RunFormatError(
-            f"{source}: a field is missing or malformed ({type(error).__name__}: {error})"
-        ) from None
+    fields = RunFields(source)
+    world = fields.get(values, "world", "world")
+    toml = fields.text(fields.get(world, "toml", "world.toml"), "world.toml")
+    robot = fields.text(fields.get(values, "robot", "robot"), "robot", robot_profile_names())
+    subtask_names = fields.texts(
+        fields.get(values, "subtask_names", "subtask_names", []), "subtask_names"
+    )
+    scale = fields.number(
+        fields.get(values, "reading_scale", "reading_scale", 1.0), "reading_scale", 0.0, 1e9
+    )
+    run = RecordedRun(
+        world=World.from_toml(toml, f"{source}: world"),
+        robot=robot,
+        controller=fields.text(fields.get(values, "controller", "controller"), "controller"),
+        seed=fields.whole(fields.get(values, "seed", "seed"), "seed", 0, 2**64 - 1),
+        control_step_ms=fields.number(
+            fields.get(values, "control_step_ms", "control_step_ms"), "control_step_ms", 0.0, 1e6
+        ),
+        subtask_names=subtask_names,
+        reading_scale=scale,
+    )
+    episodes = fields.get(values, "episodes", "episodes")
+    if not isinstance(episodes, list):
+        raise fields.fail("episodes", "a list of episodes", episodes)
+    run.episodes = [
+        _episode_from_json(fields, episode, f"episodes[{index}]", scale, len(subtask_names))
+        for index, episode in enumerate(episodes)
+    ]
     return run
 
 
-def _episode_from_json(values: dict[str, Any], reading_scale: float) -> RecordedEpisode:
-    frames = int(values["frames"])
+def _episode_from_json(
+    fields: RunFields, values: Any, where: str, reading_scale: float, subtasks: int
+) -> RecordedEpisode:
+    """One episode; ``where`` names it in errors, ``subtasks`` is the number of sub-task names."""
+
+    def get(key: str, *default: Any) -> Any:
+        return fields.get(values, key, f"{where}.{key}", *default)
+
+    frames = fields.whole(get("frames"), f"{where}.frames", 1, 2**40)
     poses = np.column_stack(
         [
-            np.asarray(values["x"], dtype=np.float64) * POSITION_UNIT,
-            np.asarray(values["y"], dtype=np.float64) * POSITION_UNIT,
-            np.asarray(values["yaw"], dtype=np.float64) * YAW_UNIT,
+            fields.table(get("x"), f"{where}.x", frames) * POSITION_UNIT,
+            fields.table(get("y"), f"{where}.y", frames) * POSITION_UNIT,
+            fields.table(get("yaw"), f"{where}.yaw", frames) * YAW_UNIT,
         ]
-    ).reshape(frames, 3)
+    )
     colliding = np.zeros(frames, dtype=bool)
-    colliding[np.asarray(values["contacts"], dtype=np.int64)] = True
+    colliding[fields.indices(get("contacts"), f"{where}.contacts", frames)] = True
     events = np.zeros(frames, dtype=np.int64)
-    for frame, event in values["events"]:
-        events[int(frame)] = int(event)
+    crossings = get("events")
+    if not isinstance(crossings, list):
+        raise fields.fail(f"{where}.events", "a list of [frame, event] pairs", crossings)
+    for index, pair in enumerate(crossings):
+        field = f"{where}.events[{index}]"
+        if not isinstance(pair, list) or len(pair) != 2:
+            raise fields.fail(field, "a pair [frame, event]", pair)
+        frame = fields.whole(pair[0], f"{field}[0]", 0, frames - 1)
+        event = fields.whole(pair[1], f"{field}[1]", -65535, 65535)
+        if event == 0:
+            raise fields.fail(f"{field}[1]", "a checkpoint id, + or - (not 0)", event)
+        events[frame] = event
+    decisions = get("decisions", [])
+    if not isinstance(decisions, list):
+        raise fields.fail(f"{where}.decisions", "a list of decisions", decisions)
     episode = RecordedEpisode(
-        number=int(values["number"]),
+        number=fields.whole(get("number"), f"{where}.number", 0, 2**63 - 1),
         poses=poses,
-        readings=np.asarray(values["readings"], dtype=np.float64).reshape(frames, -1)
-        / reading_scale,
-        rays=np.asarray(values["rays"], dtype=np.float64).reshape(frames, -1) * RAY_UNIT,
+        readings=fields.table(get("readings"), f"{where}.readings", frames, -1) / reading_scale,
+        rays=fields.table(get("rays"), f"{where}.rays", frames, -1) * RAY_UNIT,
         colliding=colliding,
         events=events,
-        outcome=str(values.get("outcome", "")),
-        decisions=[Decision.from_json(decision) for decision in values.get("decisions", [])],
+        outcome=fields.text(get("outcome", ""), f"{where}.outcome"),
+        decisions=[
+            _decision_from_json(fields, decision, f"{where}.decisions[{index}]", frames, subtasks)
+            for index, decision in enumerate(decisions)
+        ],
     )
     if "actions" in values:
-        episode.actions = [str(code) for code in values["actions"]]
+        episode.actions = fields.texts(values["actions"], f"{where}.actions", frames)
     if "wheel_speeds" in values:
-        speeds = np.asarray(values["wheel_speeds"], dtype=np.float64) * WHEEL_SPEED_UNIT
-        episode.wheel_speeds = speeds.reshape(frames, 2)
+        speeds = fields.table(values["wheel_speeds"], f"{where}.wheel_speeds", frames, 2)
+        episode.wheel_speeds = speeds * WHEEL_SPEED_UNIT
     if "subtasks" in values:
+        letters = fields.text(values["subtasks"], f"{where}.subtasks")
+        allowed = "-" + "0123456789"[: subtasks if subtasks else 10]
+        if len(letters) != frames or letters.strip(allowed):
+            raise fields.fail(
+                f"{where}.subtasks",
+                f"{frames} characters, each '-' or a sub-task index below {subtasks or 10}",
+                letters,
+            )
         episode.subtasks = np.array(
-            [-1 if letter == "-" else int(letter) for letter in values["subtasks"]], dtype=np.int64
+            [-1 if letter == "-" else int(letter) for letter in letters], dtype=np.int64
         )
     if "levels" in values:
-        episode.levels = np.array(
-            [[int(v) for v in row] for row in values["levels"]], dtype=np.int64
-        ).reshape(frames, -1)
+        rows = fields.texts(values["levels"], f"{where}.levels", frames)
+        if any(len(row) != NUM_LEVELS or row.strip("0123") for row in rows):
+            raise fields.fail(
+                f"{where}.levels", f"{frames} strings of {NUM_LEVELS} digits 0-3", values["levels"]
+            )
+        episode.levels = np.array([[int(v) for v in row] for row in rows], dtype=np.int64)
     return episode
+
+
+def _decision_from_json(
+    fields: RunFields, values: Any, where: str, frames: int, subtasks: int
+) -> Decision:
+    """One decision, its frame within the episode's and its choice among ``subtasks``."""
+
+    def get(key: str) -> Any:
+        return fields.get(values, key, f"{where}.{key}")
+
+    code = fields.text(get("code"), f"{where}.code")
+    if code.strip("01"):
+        raise fields.fail(f"{where}.code", "bars as a string of 0 and 1", code)
+    q_values = get("q_values")
+    greedy = get("greedy")
+    if not isinstance(greedy, bool):
+        raise fields.fail(f"{where}.greedy", "true or false", greedy)
+    return Decision(
+        number=fields.whole(get("number"), f"{where}.number", 0, 2**63 - 1),
+        frame=fields.whole(get("frame"), f"{where}.frame", 0, frames - 1),
+        checkpoint=fields.whole(get("checkpoint"), f"{where}.checkpoint", 1, 65535),
+        arrival=fields.text(get("direction"), f"{where}.direction", ("arrival", "departure"))
+        == "arrival",
+        code=code,
+        q_values=fields.table(
+            q_values, f"{where}.q_values", len(q_values) if isinstance(q_values, list) else 0
+        ).tolist(),
+        chosen=fields.whole(
+            get("chosen"), f"{where}.chosen", 0, subtasks - 1 if subtasks else 2**31
+        ),
+        greedy=greedy,
+    )

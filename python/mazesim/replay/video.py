@@ -12,12 +12,15 @@ from __future__ import annotations
 
 import math
 import os
+import shutil
 from collections.abc import Callable, Iterator
 from pathlib import Path
+from typing import IO
 
 import numpy as np
 import numpy.typing as npt
 
+from mazesim._atomic import atomic_file, temporary_name
 from mazesim.errors import InvalidArgumentError, MissingDependencyError
 from mazesim.replay.run import RecordedEpisode, RecordedRun
 
@@ -135,21 +138,23 @@ def write_video(
         )
     steps = video_frame_steps(run, run.episodes[episode], suffix)
     fps = 1000.0 / (run.control_step_ms * steps.step)
-    target = Path(path)
-    partial = target.with_name(f".{target.stem}.partial{suffix}")
     frames = video_frames(run, episode, size, steps)
     if progress is not None:
         frames = _counted(frames, len(steps), progress)
-    try:
+    # Written to a temporary file of this process alone, then switched in whole: two commands
+    # writing one video, or one stopped midway, never leave a mixed or partial file.
+    with atomic_file(path) as handle:
         if suffix == ".gif":
-            count = _write_gif(frames, partial, fps)
-        else:
-            count = _write_mp4(frames, partial, fps)
-        os.replace(partial, target)
-    finally:
-        if partial.exists():
-            partial.unlink()
-    return count
+            return _write_gif(frames, handle, fps)
+        # ffmpeg names its container from the file name: it writes a file of its own, copied in.
+        encoded = Path(f"{temporary_name(os.fspath(path))}{suffix}")
+        try:
+            count = _write_mp4(frames, encoded, fps)
+            with open(encoded, "rb") as video:
+                shutil.copyfileobj(video, handle)
+        finally:
+            encoded.unlink(missing_ok=True)
+        return count
 
 
 def _counted(
@@ -161,7 +166,7 @@ def _counted(
         progress(done, total)
 
 
-def _write_gif(frames: Iterator[npt.NDArray[np.uint8]], path: Path, fps: float) -> int:
+def _write_gif(frames: Iterator[npt.NDArray[np.uint8]], path: IO[bytes], fps: float) -> int:
     from PIL import Image
 
     # Each frame keeps its own 64-colour palette: a fraction of the memory of RGB frames.

@@ -94,7 +94,12 @@ def _checked_range(name: str, pair: Any, where: str) -> tuple[float, float]:
         raise InvalidArgumentError(
             f"{where}: {name}: expected a range of two numbers [low, high], found {pair!r}"
         )
-    low, high = (float(axis.check(float(n))) for n in numbers)
+    try:
+        low, high = (float(axis.check(float(n))) for n in numbers)
+    except OverflowError:  # a whole number too large for a float
+        raise InvalidArgumentError(
+            f"{where}: {name}: expected a range of two finite numbers, found {pair!r}"[:300]
+        ) from None
     if low > high:
         raise InvalidArgumentError(
             f"{where}: {name}: expected low <= high, found {low:g} > {high:g}"

@@ -46,7 +46,7 @@ mod tree;
 
 use std::path::Path;
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 
 pub use convert::polygon_sides;
 pub use devices::{DeviceField, ExtensionDevice};
@@ -159,8 +159,8 @@ impl WbtImport {
 
     /// [`WbtImport::load`] for the run of one controller (see [`WbtImport::from_text_for`]).
     pub fn load_for(path: &Path, controller: Option<&str>) -> Result<WbtImport> {
-        let bytes =
-            std::fs::read(path).map_err(|e| Error::io(path, "cannot read the Webots world", &e))?;
+        let limit = crate::limits::MAX_WBT_FILE_BYTES;
+        let bytes = crate::io::read_limited(path, limit, "the Webots world")?;
         Self::from_bytes_for(&bytes, &path.display().to_string(), controller)
     }
 }

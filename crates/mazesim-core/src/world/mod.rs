@@ -114,8 +114,15 @@ impl World {
 
     /// Reads a world file.
     pub fn load(path: &Path) -> Result<World> {
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| Error::io(path, "cannot read the world file", &e))?;
+        let what = "the world file";
+        let bytes = crate::io::read_limited(path, crate::limits::MAX_WORLD_FILE_BYTES, what)?;
+        let text = String::from_utf8(bytes).map_err(|_| {
+            let not_text = std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                "stream did not contain valid UTF-8",
+            );
+            Error::io(path, &format!("cannot read {what}"), &not_text)
+        })?;
         Self::from_toml(&text, &path.display().to_string())
     }
 
