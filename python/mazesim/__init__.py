@@ -93,9 +93,12 @@ def load_world(name_or_path: str | os.PathLike[str]) -> World:
             return import_wbt(path)[0]
         return World.load(path)
     available = sorted(builtin_world_names())
+    found = (
+        "it is a folder or a device, not a world file" if os.path.exists(path) else "no such file"
+    )
     error = UnknownNameError(
-        f"no built-in world named {path!r} and no such file; "
-        f"built-in worlds: {', '.join(available)}"
+        f"no built-in world named {path!r} and {found}; "
+        f"built-in worlds: {', '.join(available)} (or a path to a .toml or .wbt world file)"
     )
     error.available = available
     raise error

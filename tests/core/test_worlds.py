@@ -197,6 +197,14 @@ def test_unknown_builtin_name_lists_the_available_names() -> None:
     assert isinstance(caught.value, LookupError)
 
 
+def test_a_folder_or_device_given_as_a_world_says_it_is_not_a_world_file(tmp_path: Path) -> None:
+    for where in (tmp_path, Path(os.devnull)):
+        with pytest.raises(UnknownNameError, match="a folder or a device, not a world file"):
+            mazesim.load_world(where)
+    with pytest.raises(UnknownNameError, match="and no such file"):
+        mazesim.load_world(tmp_path / "missing.toml")
+
+
 def test_core_unknown_builtin_name_lists_the_available_names() -> None:
     with pytest.raises(UnknownNameError) as caught:
         World.builtin("no-such-world")
