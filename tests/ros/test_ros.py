@@ -516,9 +516,11 @@ def test_recorded_run_plays_back_and_equals_in_process_run(
     counts = {topic: int(n) for topic, n in re.findall(r"(/\w+)\s+(\d+) msgs", info.stdout)}
     assert counts["/pose"] == counts["/sensors"] == counts["/clock"] == steps + 1
     if hrl:
-        # The recorder's subscriber queue holds 100 messages: a recorder starved of CPU can drop
-        # some of the second array topic (seen: 9 of 1,263 on a heavily loaded machine).
-        assert steps + 1 - (steps + 1) // 50 <= counts["/sensor_data"] <= steps + 1, (counts, steps)
+        # The recorder's subscriber queue holds 100 messages (rosbag has no option for it): a
+        # recorder starved of CPU can drop some of the second array topic (seen: 9 of 1,263 on a
+        # heavily loaded machine, 41 of 1,062 during the whole test suite). The lockstep topics
+        # above are exact; this one must be there, nearly whole.
+        assert steps + 1 - (steps + 1) // 10 <= counts["/sensor_data"] <= steps + 1, (counts, steps)
         # Every step answers one command; the recorder may lose a few that are in flight when
         # the run starts or stops (seen: 2 of 1,236 on a loaded machine).
         assert steps - 5 <= counts["/action"] <= steps + 1, (counts, steps)
