@@ -3,9 +3,11 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
+import fcntl
 import os
 import re
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Iterator
 
 from mazesim.errors import InvalidArgumentError, MazesimError, MazesimIOError
 
@@ -18,6 +20,7 @@ __all__ = [
     "read_text",
     "refuse_overwriting_inputs",
     "same_file",
+    "writing_alone",
 ]
 
 
@@ -169,3 +172,51 @@ def output_file(text: str) -> str:
             f"expected a path to write to, found {text!r}, below {parent!r}, which is a file"
         )
     return text
+
+
+@contextlib.contextmanager
+def writing_alone(
+    folder: str | os.PathLike[str], command: str, create: bool = True
+) -> Iterator[None]:
+    """Holds an exclusive lock on ``folder`` while ``command`` writes into it.
+
+    A second command into the same folder (a run started twice by mistake) is refused at once
+    instead of interleaving its checkpoints and tables with the first's. The lock is the
+    operating system's advisory lock on the folder itself (``flock``): no file is left behind,
+    and it is released when the command ends, however it ends (a crash or a kill too).
+
+    Args:
+        folder: The output folder; made if missing and ``create``.
+        command: The command, for the message (e.g. ``"mazesim train"``).
+        create: Make the folder when it does not exist; when False and it does not exist,
+            nothing is locked (the command refuses the missing folder itself).
+
+    Raises:
+        MazesimIOError: Another process holds the folder, or it cannot be made or opened.
+    """
+    path = os.fspath(folder)
+    if not os.path.isdir(path):
+        if not create:
+            yield
+            return
+        try:
+            os.makedirs(path, exist_ok=True)
+        except OSError as error:
+            raise MazesimIOError(
+                f"{path}: cannot make the output folder: {error.strerror}"
+            ) from error
+    try:
+        handle = os.open(path, os.O_RDONLY | os.O_DIRECTORY)
+    except OSError as error:
+        raise MazesimIOError(f"{path}: cannot open the output folder: {error.strerror}") from error
+    try:
+        try:
+            fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            raise MazesimIOError(
+                f"{path}: another process is writing into this folder (a {command} started "
+                f"twice?); wait for it to end, or choose another output folder"
+            ) from None
+        yield
+    finally:
+        os.close(handle)

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 import mazesim
+from mazesim._paths import writing_alone
 from mazesim.cli import main
 from mazesim.errors import PolicyFormatError
 from mazesim.learn.checkpoint import RunFolder
@@ -192,3 +193,36 @@ def test_the_flat_baseline_trains_into_a_folder_that_does_not_exist_yet(
     for name in ("tables.npz", "policy.json", "learning_curve.csv"):
         assert (out / name).is_file(), name
     assert load_policy(out).kind == "flat"
+
+
+def test_a_second_training_into_a_folder_in_use_is_refused_at_once(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    out = tmp_path / "run"
+    args = ["train", "--flat", "--envs", "4", "--steps", "40k", "--out", str(out), "--no-progress"]
+    with writing_alone(out, "mazesim train"):  # a first run, still writing
+        assert main(args) == 2
+        error = capsys.readouterr().err
+        assert "another process is writing into this folder" in error and str(out) in error
+        assert list(out.iterdir()) == []
+        assert main(["train", "--out", str(out), "--resume", "--no-progress"]) == 2
+        assert "another process is writing into this folder" in capsys.readouterr().err
+    # Released when the first run ends: the next one trains, and leaves no lock file behind.
+    assert main(args) == 0
+    assert sorted(p.name for p in out.iterdir()) == [
+        "learning_curve.csv",
+        "policy.json",
+        "tables.npz",
+    ]
+    with writing_alone(out, "mazesim train"):
+        pass
+
+
+def test_the_folder_lock_is_released_when_the_run_fails(tmp_path: Path) -> None:
+    out = tmp_path / "run"
+    with pytest.raises(RuntimeError), writing_alone(out, "mazesim train"):
+        raise RuntimeError("the run failed")
+    with writing_alone(out, "mazesim train"):
+        assert out.is_dir()
+    with writing_alone(tmp_path / "missing", "mazesim train", create=False):
+        assert not (tmp_path / "missing").exists()

@@ -14,7 +14,7 @@ import time
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, TextIO
 
-from mazesim._paths import output_files, output_path, refuse_overwriting_inputs
+from mazesim._paths import output_files, output_path, refuse_overwriting_inputs, writing_alone
 from mazesim.cli._args import add_setting_options, positive_int, seed_argument
 from mazesim.cli.progress import add_progress_option, progress_display
 from mazesim.errors import InvalidArgumentError
@@ -140,10 +140,11 @@ def run_train(args: argparse.Namespace, out: TextIO) -> int:
     if args.flat:
         if args.resume:
             raise InvalidArgumentError("--resume continues hierarchical runs only, not --flat")
-        with curve, progress_display(args, units=_UNITS) as progress:
-            policy = train_flat_policy(
-                settings, RunFolder(args.out), progress=progress, curve=curve
-            )
+        with writing_alone(args.out, "mazesim train"), curve:
+            with progress_display(args, units=_UNITS) as progress:
+                policy = train_flat_policy(
+                    settings, RunFolder(args.out), progress=progress, curve=curve
+                )
         seconds = time.perf_counter() - started
         out.write(
             f"trained the flat baseline for {policy.world_name} in {seconds:.0f} s "
@@ -151,9 +152,10 @@ def run_train(args: argparse.Namespace, out: TextIO) -> int:
             f"{Path(args.out) / 'policy.json'}, {curve.path}\n"
         )
         return 0
-    with curve, progress_display(args, units=_UNITS) as progress:
-        folder = RunFolder(args.out, resume=args.resume)
-        result = train(settings, folder, progress=progress, curve=curve, robot=robot)
+    with writing_alone(args.out, "mazesim train", create=not args.resume), curve:
+        with progress_display(args, units=_UNITS) as progress:
+            folder = RunFolder(args.out, resume=args.resume)
+            result = train(settings, folder, progress=progress, curve=curve, robot=robot)
     if result is None:
         return 0
     seconds = time.perf_counter() - started
