@@ -15,6 +15,7 @@ the tests use it.
 from __future__ import annotations
 
 import os
+import random
 import shutil
 import signal
 import socket
@@ -69,8 +70,40 @@ def processes_with(variable: str, value: str) -> list[tuple[int, str]]:
     return found
 
 
+#: Where :func:`free_loopback_port` looks first: below Linux's ephemeral range (32768-60999 by
+#: default), so that no outgoing connection is given the port between the pick and its use.
+LISTEN_PORTS = (20000, 32768)
+#: Times :meth:`LocalMaster.start` tries another port when roscore finds its own one taken.
+PORT_ATTEMPTS = 4
+
+
+def _ephemeral_start() -> int:
+    """The first port of the system's ephemeral range (the ports outgoing connections get)."""
+    try:
+        with open("/proc/sys/net/ipv4/ip_local_port_range") as ranges:
+            return int(ranges.read().split()[0])
+    except (OSError, ValueError, IndexError):
+        return LISTEN_PORTS[1]
+
+
 def free_loopback_port() -> int:
-    """A TCP port on 127.0.0.1 that no one listens on (the system picks it)."""
+    """A TCP port on 127.0.0.1 that no one uses now.
+
+    A port the system picks (binding port 0) lies in its ephemeral range, which it also hands to
+    outgoing connections: one of those could take the port before the server that is to listen
+    on it binds it. So a free port below that range is preferred, drawn at random; the system's
+    pick is the fallback.
+    """
+    low, high = LISTEN_PORTS[0], min(LISTEN_PORTS[1], _ephemeral_start())
+    draw = random.Random(os.urandom(8))
+    for _ in range(64 if high > low else 0):
+        port = draw.randrange(low, high)
+        with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as probe:
+            try:
+                probe.bind(("127.0.0.1", port))
+            except OSError:
+                continue
+            return port
     with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as probe:
         probe.bind(("127.0.0.1", 0))
         return int(probe.getsockname()[1])
@@ -151,6 +184,24 @@ class LocalMaster:
                 "no 'roscore' command: install ROS 1 (on Debian, 'make ros-deps' or "
                 "'apt-get install python3-roslaunch rosout')"
             )
+        for attempt in range(PORT_ATTEMPTS):
+            if attempt:
+                self._move_to(free_loopback_port())
+            if self._start_roscore(timeout):
+                return
+        raise MazesimError(
+            f"roscore found its port taken {PORT_ATTEMPTS} times (the last {self.port}); "
+            f"see {self.log_path('roscore')}"
+        )
+
+    def _move_to(self, port: int) -> None:
+        """Gives the master (not started yet) another port."""
+        self.port = port
+        self.uri = f"http://127.0.0.1:{port}"
+        self.env["ROS_MASTER_URI"] = self.uri
+
+    def _start_roscore(self, timeout: float) -> bool:
+        """Starts roscore on :attr:`port`; False when it stopped because the port was taken."""
         with open(self.log_path("roscore"), "wb") as log:
             self.roscore = subprocess.Popen(
                 ["roscore", "-p", str(self.port)],
@@ -166,11 +217,21 @@ class LocalMaster:
         while not (self.is_online() and self._rosout_listens()):
             if self.roscore.poll() is not None or time.monotonic() > deadline:
                 self.close()
+                if self._port_was_taken():
+                    return False
                 raise MazesimError(
                     f"roscore did not start on port {self.port} within {timeout:g} s; "
                     f"see {self.log_path('roscore')}"
                 )
             time.sleep(0.05)
+        return True
+
+    def _port_was_taken(self) -> bool:
+        try:
+            with open(self.log_path("roscore"), "rb") as log:
+                return b"Address already in use" in log.read()
+        except OSError:
+            return False
 
     def is_online(self) -> bool:
         """Whether the master answers on its port."""

@@ -1,0 +1,34 @@
+"""The private ROS master's port: chosen where no outgoing connection can take it, and another
+one tried when roscore finds its own taken."""
+
+from __future__ import annotations
+
+import socket
+from pathlib import Path
+
+from mazesim.ros import local_master
+from mazesim.ros.local_master import LISTEN_PORTS, LocalMaster, free_loopback_port
+from ros_support import needs_ros
+
+
+def test_a_free_port_lies_below_the_ephemeral_range() -> None:
+    high = min(LISTEN_PORTS[1], local_master._ephemeral_start())
+    for _ in range(20):
+        port = free_loopback_port()
+        assert LISTEN_PORTS[0] <= port < high
+        with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as probe:
+            probe.bind(("127.0.0.1", port))  # free indeed
+
+
+@needs_ros
+def test_a_master_whose_port_is_taken_starts_on_another(tmp_path: Path) -> None:
+    master = LocalMaster(home=str(tmp_path / "ros"))
+    taken = master.port
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as holder:
+        # Bound, not listening: what an outgoing connection given that port looks like.
+        holder.bind(("127.0.0.1", taken))
+        with master:
+            assert master.port != taken and master.is_online()
+            assert master.uri == f"http://127.0.0.1:{master.port}"
+            assert master.env["ROS_MASTER_URI"] == master.uri
+        assert master.leftovers() == []
