@@ -45,6 +45,10 @@ __all__ = [
 
 #: The demo's controller nodes.
 CONTROLLERS = ("hrl", "avoid-collision")
+#: The bridge and the controller run at this lower CPU priority than the recorder: in lockstep
+#: they go as fast as the CPU lets them, and a recorder starved of it drops messages once its
+#: subscriber queue (100 messages, fixed in rosbag) is full.
+NODE_NICENESS = 5
 #: The topics the demo records, by controller.
 RECORDED_TOPICS = {
     "hrl": ("/clock", "/pose", "/sensors", "/sensor_data", "/action"),
@@ -144,6 +148,7 @@ def run_demo(args: argparse.Namespace, out: TextIO) -> int:
                 *(["--stop-at-goal"] if hrl else []),
                 "__name:=bridge",
             ],
+            niceness=NODE_NICENESS,
         )
         recorded = RECORDED_TOPICS[controller]
         recorder = master.spawn(
@@ -155,7 +160,9 @@ def run_demo(args: argparse.Namespace, out: TextIO) -> int:
         state_topics = [topic for topic in recorded if topic not in ("/motor", "/action")]
         master.wait_for_connections("/bridge", state_topics, "/recorder")
         node = "perform-learning" if hrl else "avoid-collision"
-        master.spawn(node, [*mazesim_command, node, "--wait-for-subscribers", "2"])
+        master.spawn(
+            node, [*mazesim_command, node, "--wait-for-subscribers", "2"], niceness=NODE_NICENESS
+        )
         deadline = time.monotonic() + 30.0 + WALL_SECONDS_PER_SIMULATED_SECOND * args.seconds
         while bridge.poll() is None and time.monotonic() < deadline:
             time.sleep(0.05)

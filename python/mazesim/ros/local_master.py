@@ -321,7 +321,11 @@ class LocalMaster:
             time.sleep(0.05)
 
     def spawn(
-        self, name: str, argv: Sequence[str], env: dict[str, str] | None = None
+        self,
+        name: str,
+        argv: Sequence[str],
+        env: dict[str, str] | None = None,
+        niceness: int = 0,
     ) -> subprocess.Popen[bytes]:
         """Starts a process against this master; its output goes to :meth:`log_path`.
 
@@ -329,10 +333,15 @@ class LocalMaster:
             name: A short name for logs and errors (``"bridge"``).
             argv: The command and its arguments.
             env: Variables to add to :attr:`env` for this process.
+            niceness: How much lower than this process's its CPU priority is (``nice -n``; it
+                execs the command, so the process is still the command's).
         """
+        command = list(argv)
+        if niceness and shutil.which("nice") is not None:
+            command = ["nice", "-n", str(int(niceness)), *command]
         with open(self.log_path(name), "wb") as log:
             process = subprocess.Popen(
-                list(argv),
+                command,
                 env={**self.env, **(env or {})},
                 stdin=subprocess.DEVNULL,
                 stdout=log,
