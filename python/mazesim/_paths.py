@@ -195,6 +195,10 @@ def writing_alone(
         MazesimIOError: Another process holds the folder, or it cannot be made or opened.
     """
     path = os.fspath(folder)
+    if os.path.exists(path) and not os.path.isdir(path):
+        raise MazesimIOError(
+            f"{path}: expected an output folder, found a file; choose another output folder"
+        )
     if not os.path.isdir(path):
         if not create:
             yield

@@ -12,7 +12,7 @@ import pytest
 import mazesim
 from mazesim._paths import writing_alone
 from mazesim.cli import main
-from mazesim.errors import PolicyFormatError
+from mazesim.errors import MazesimIOError, PolicyFormatError
 from mazesim.learn.checkpoint import RunFolder
 from mazesim.learn.evaluate import evaluate_navigator
 from mazesim.learn.lower import LowerSettings, LowerTrainer
@@ -226,3 +226,8 @@ def test_the_folder_lock_is_released_when_the_run_fails(tmp_path: Path) -> None:
         assert out.is_dir()
     with writing_alone(tmp_path / "missing", "mazesim train", create=False):
         assert not (tmp_path / "missing").exists()
+    (tmp_path / "a-file").write_text("kept")
+    with pytest.raises(MazesimIOError, match="expected an output folder, found a file"):
+        with writing_alone(tmp_path / "a-file", "mazesim train"):
+            pass
+    assert (tmp_path / "a-file").read_text() == "kept"

@@ -15,7 +15,8 @@ def test_a_free_port_lies_below_the_ephemeral_range() -> None:
     high = min(LISTEN_PORTS[1], local_master._ephemeral_start())
     for _ in range(20):
         port = free_loopback_port()
-        assert LISTEN_PORTS[0] <= port < high
+        if high > LISTEN_PORTS[0]:  # a system whose ephemeral range starts lower gets its pick
+            assert LISTEN_PORTS[0] <= port < high
         with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as probe:
             probe.bind(("127.0.0.1", port))  # free indeed
 
