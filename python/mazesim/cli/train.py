@@ -99,6 +99,19 @@ def register(commands: Any) -> None:
         "or a TOML file with a [randomise] table; see the transfer study's page",
     )
     train.add_argument(
+        "--door-distance",
+        action="store_true",
+        help="the door sub-tasks' phases also count the distance driven since the checkpoint "
+        "(18 phases), so a robot that cannot see a door from the corridor's middle (an e-puck's "
+        "own sensors, dark walls) can learn where it is; trains and runs from Python",
+    )
+    train.add_argument(
+        "--blind-forward",
+        action="store_true",
+        help="'Corridors and Corners' drives forward where no sensor sees a wall, in training "
+        "and after; trains from Python",
+    )
+    train.add_argument(
         "--tensorboard",
         action="store_true",
         help="also log the learning curve to TensorBoard event files in --out/tensorboard "
@@ -124,6 +137,14 @@ def run_train(args: argparse.Namespace, out: TextIO) -> int:
         [("--world", args.world)],
     )
     settings = TrainSettings(**{f.name: getattr(args, f.name) for f in command_line_fields()})
+    if args.door_distance or args.blind_forward:
+        if args.flat:
+            raise InvalidArgumentError(
+                "--door-distance and --blind-forward train hierarchical navigators only, not --flat"
+            )
+        settings = dataclasses.replace(
+            settings, door_distance=args.door_distance, blind_forward=args.blind_forward
+        )
     robot: RobotChoice | RobotDraw = "seed"
     if args.randomise is not None:
         if args.flat:

@@ -83,8 +83,8 @@ class Checkpoint:
     lower_seconds: float
 
 
-def _arrays() -> dict[str, ArraySpec]:
-    shape = lower_table_shape()
+def _arrays(door_distance: bool = False) -> dict[str, ArraySpec]:
+    shape = lower_table_shape(door_distance)
     return {"q": ArraySpec(shape, "float64"), "visits": ArraySpec(shape, "int64")}
 
 
@@ -151,9 +151,11 @@ def _holds_metadata(data: bytes) -> bool:
         return True  # malformed: read as a one-file checkpoint, which says what is wrong
 
 
-def _read_one_file(path: Path) -> tuple[dict[str, Any], dict[str, Any]] | None:
+def _read_one_file(
+    path: Path, door_distance: bool = False
+) -> tuple[dict[str, Any], dict[str, Any]] | None:
     """The arrays and metadata of a one-file checkpoint, or None for a mazesim 0.1 one."""
-    arrays = _arrays()
+    arrays = _arrays(door_distance)
     largest = sum(spec.nbytes + MAX_HEADER_BYTES for spec in arrays.values()) + MAX_METADATA_BYTES
     data = read_limited(path, largest, "a training checkpoint")
     if (path.parent / METADATA_MEMBER).exists() and not _holds_metadata(data):
@@ -167,6 +169,31 @@ def _read_one_file(path: Path) -> tuple[dict[str, Any], dict[str, Any]] | None:
     return tables, metadata
 
 
+def _read_tables(folder: Path, door_distance: bool) -> tuple[dict[str, Any], dict[str, Any]]:
+    """The checkpoint's arrays (tables with or without distance phases) and metadata."""
+    path = folder / CHECKPOINT_FILE
+    found = _read_one_file(path, door_distance) if path.exists() else None
+    if found is None:
+        found = read_bundle(
+            folder,
+            CHECKPOINT_FILE,
+            METADATA_MEMBER,
+            CHECKPOINT_FORMAT,
+            schema=_schema(),
+            arrays_of=lambda metadata: _arrays(door_distance),
+        )
+    return found
+
+
+def _read_tables_or_none(
+    folder: Path, door_distance: bool
+) -> tuple[dict[str, Any], dict[str, Any]] | None:
+    try:
+        return _read_tables(folder, door_distance)
+    except PolicyFormatError:
+        return None
+
+
 def read_checkpoint(folder: Path, settings: dict[str, Any]) -> Checkpoint:
     """Reads and checks the checkpoint in ``folder``.
 
@@ -178,17 +205,16 @@ def read_checkpoint(folder: Path, settings: dict[str, Any]) -> Checkpoint:
         PolicyFormatError: No checkpoint, a malformed one, or one of a run with other settings.
     """
     path = folder / CHECKPOINT_FILE
-    found = _read_one_file(path) if path.exists() else None
-    if found is None:
-        found = read_bundle(
-            folder,
-            CHECKPOINT_FILE,
-            METADATA_MEMBER,
-            CHECKPOINT_FORMAT,
-            schema=_schema(),
-            arrays_of=lambda metadata: _arrays(),
-        )
-    arrays, metadata = found
+    # The tables' shape follows the run's door sub-task phases (``mazesim train --door-distance``).
+    door_distance = bool(settings.get("door_distance", False))
+    try:
+        arrays, metadata = _read_tables(folder, door_distance)
+    except PolicyFormatError:
+        # Tables of the other phases are a run with other settings, said below.
+        other = _read_tables_or_none(folder, not door_distance)
+        if other is None or other[1]["settings"] == settings:
+            raise
+        arrays, metadata = other
     if metadata["settings"] != settings:
         raise PolicyFormatError(
             f"{path}: the checkpoint is of a run with other settings "

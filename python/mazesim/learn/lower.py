@@ -59,6 +59,7 @@ from mazesim.learn import qlearning
 from mazesim.learn.discretise import NUM_STATES
 from mazesim.learn.fleet import Fleet, FleetBatch
 from mazesim.learn.subtasks import (
+    BLIND_STATE,
     COLLISION_PENALTY,
     CONTROL_STEP_MS,
     CORRIDOR_STEP_REWARD,
@@ -73,6 +74,7 @@ from mazesim.learn.subtasks import (
     SubTask,
     SubTaskTracker,
     cruise_step_length,
+    phase_counts,
 )
 from mazesim.learn.symmetry import MIRRORED_ACTION, MIRRORED_SUBTASK, mirrored_states
 from mazesim.maze import CellMaze
@@ -82,6 +84,7 @@ __all__ = [
     "LowerTables",
     "LowerTrainer",
     "RoundStats",
+    "drive_on_when_blind",
     "lower_table_shape",
     "training_mazes",
 ]
@@ -105,6 +108,8 @@ SUCCESS_PAST_CENTRE = 0.04
 SUCCESS_ACROSS = 0.08
 
 NUM_ACTIONS = len(ACTION_CODES)
+#: The forward action, which ``blind_forward`` takes in the blind state.
+_FORWARD = ACTION_CODES.index("00")
 #: The actions Corridors and Corners explores, drawn uniformly (the door sub-tasks may take, and
 #: explore, all 12).
 _CORRIDOR_ACTIONS = np.flatnonzero(SUBTASK_ACTIONS[SubTask.CORRIDOR])
@@ -123,9 +128,23 @@ _MIRRORED_ROWS = np.stack(
 ).astype(np.int64)
 
 
-def lower_table_shape() -> tuple[int, int, int]:
-    """Shape of the stacked lower-level tables: (sub-task, state with phase, action)."""
-    return (NUM_SUBTASKS, MAX_PHASES * NUM_STATES, NUM_ACTIONS)
+def lower_table_shape(door_distance: bool = False) -> tuple[int, int, int]:
+    """Shape of the stacked lower-level tables: (sub-task, state with phase, action); with
+    ``door_distance`` the door sub-tasks' phases count the distance too
+    (:data:`mazesim.learn.subtasks.DISTANCE_PHASES`)."""
+    return (NUM_SUBTASKS, max(phase_counts(door_distance)) * NUM_STATES, NUM_ACTIONS)
+
+
+def drive_on_when_blind(q: npt.NDArray[np.float64]) -> None:
+    """Makes forward (``00``) the best action of Corridors and Corners in the blind state
+    (:data:`mazesim.learn.subtasks.BLIND_STATE`), in place: every other action's value there
+    is put below forward's where it was not already. Training with ``blind_forward`` never tries
+    them there, so their values are the untried ones; after this every reader of the tables (the
+    core's too) drives forward there, as the training did."""
+    row = q[SubTask.CORRIDOR, BLIND_STATE]
+    forward = row[_FORWARD]
+    others = np.arange(row.size) != _FORWARD
+    row[others & (row >= forward)] = forward - 1.0
 
 
 @dataclass(frozen=True)
@@ -144,6 +163,12 @@ class LowerSettings:
     corridor_episode_steps: int = 350
     control_step_ms: float = CONTROL_STEP_MS
     rate: qlearning.LearningRate = field(default_factory=qlearning.LearningRate)
+    #: The door sub-tasks' phases also count the distance driven (``mazesim train
+    #: --door-distance``, :data:`mazesim.learn.subtasks.DISTANCE_PHASES`).
+    door_distance: bool = False
+    #: Corridors and Corners drives forward in the blind state, in training (exploring too) and
+    #: after it (``mazesim train --blind-forward``, :func:`drive_on_when_blind`).
+    blind_forward: bool = False
 
     @property
     def rounds(self) -> int:
@@ -156,8 +181,12 @@ class LowerSettings:
         return max(0.0, self.epsilon_start * (1.0 - round_index / exploring))
 
     def as_dict(self) -> dict[str, object]:
-        """The settings as plain JSON values."""
+        """The settings as plain JSON values (``door_distance`` and ``blind_forward`` only when
+        set, as before they existed)."""
         values = asdict(self)
+        for name in ("door_distance", "blind_forward"):
+            if not values[name]:
+                values.pop(name)
         values["rounds"] = self.rounds
         return values
 
@@ -174,9 +203,10 @@ class LowerTables:
     visits: npt.NDArray[np.int64]
 
     @classmethod
-    def zeros(cls) -> LowerTables:
-        """Fresh tables: all values 0 (so untried states drive forward), no visits."""
-        shape = lower_table_shape()
+    def zeros(cls, door_distance: bool = False) -> LowerTables:
+        """Fresh tables (:func:`lower_table_shape`): all values 0 (so untried states drive
+        forward), no visits."""
+        shape = lower_table_shape(door_distance)
         return cls(np.zeros(shape, dtype=np.float64), np.zeros(shape, dtype=np.int64))
 
 
@@ -391,7 +421,12 @@ class LowerTrainer:
         robot: RobotChoice | Fleet = "seed",
     ) -> None:
         self.settings = settings
-        self.tables = tables if tables is not None else LowerTables.zeros()
+        self.tables = tables if tables is not None else LowerTables.zeros(settings.door_distance)
+        if self.tables.q.shape != lower_table_shape(settings.door_distance):
+            raise InvalidArgumentError(
+                f"expected lower-level tables of shape {lower_table_shape(settings.door_distance)}"
+                f" (door_distance={settings.door_distance}), found {self.tables.q.shape}"
+            )
         self.mazes = training_mazes(settings.seed, settings.maze_pool)
         self.start_tables = _StartTables([CellMaze(world) for world in self.mazes])
         count = settings.num_envs
@@ -423,8 +458,16 @@ class LowerTrainer:
 
     @property
     def in_core(self) -> bool:
-        """Whether rounds run in the core: robots of one batch, of one motor limit."""
-        return isinstance(self.batch, RobotBatch) and self.batch.one_motor_limit
+        """Whether rounds run in the core: robots of one batch, of one motor limit, and the
+        heading phases without the blind rule (the core knows neither ``door_distance`` nor
+        ``blind_forward``)."""
+        settings = self.settings
+        return (
+            isinstance(self.batch, RobotBatch)
+            and self.batch.one_motor_limit
+            and not settings.door_distance
+            and not settings.blind_forward
+        )
 
     def draws(self, round_index: int) -> tuple[EpisodeStarts, Exploration]:
         """Round ``round_index``'s random draws: the episode starts, then the exploration, from
@@ -550,6 +593,9 @@ class LowerTrainer:
             explore = exploration.uniform[step] < epsilon
             greedy = qlearning.best_allowed(q[role, state], SUBTASK_ACTIONS[role])
             chosen = np.where(explore, exploration.action[step], greedy)
+            if settings.blind_forward:
+                blind = (role == SubTask.CORRIDOR) & (state == BLIND_STATE)
+                chosen = np.where(blind, _FORWARD, chosen)
             action = np.where(deciding, chosen, action)
             decided_reward[deciding] = 0.0
             decided_discount[deciding] = 1.0
@@ -672,7 +718,7 @@ class _Episodes:
         count = trainer.settings.num_envs
         self.trainer = trainer
         self.starts = starts
-        self.tracker = SubTaskTracker(count)
+        self.tracker = SubTaskTracker(count, trainer.settings.door_distance)
         self.taken = np.zeros(count, dtype=np.int64)
         self.steps = np.zeros(count, dtype=np.int64)
         self.path = np.zeros((count, 9))

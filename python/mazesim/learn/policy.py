@@ -81,7 +81,8 @@ class HierarchicalPolicy:
     """Alg. 5 for N robots: lower-level tables, a higher level, and a sub-task per robot.
 
     Args:
-        lower_q: The stacked lower-level tables, shape :func:`lower_table_shape`.
+        lower_q: The stacked lower-level tables, shape :func:`lower_table_shape` (with or
+            without ``door_distance``: the tracker's phases follow the shape).
         higher: The higher level (its tables for the robots' worlds).
         world_of_env: (N,) each robot's world in ``higher``.
         chooser: Picks sub-tasks at events; by default the higher level's greedy choice.
@@ -94,16 +95,18 @@ class HierarchicalPolicy:
         world_of_env: npt.ArrayLike,
         chooser: Chooser | None = None,
     ) -> None:
-        if lower_q.shape != lower_table_shape():
+        door_distance = lower_q.ndim == 3 and lower_q.shape[1] == lower_table_shape(True)[1]
+        if lower_q.shape != lower_table_shape(door_distance):
             raise InvalidArgumentError(
-                f"expected lower-level tables of shape {lower_table_shape()}, found {lower_q.shape}"
+                f"expected lower-level tables of shape {lower_table_shape()} (or "
+                f"{lower_table_shape(True)}, with door_distance), found {lower_q.shape}"
             )
         self.lower_q = lower_q
         self.higher = higher
         self.world_of_env = np.asarray(world_of_env, dtype=np.int64).ravel()
         self.num_envs = self.world_of_env.size
         self.chooser = chooser
-        self.tracker = SubTaskTracker(self.num_envs)
+        self.tracker = SubTaskTracker(self.num_envs, door_distance)
         self.record = StepRecord(self.num_envs)
         self.previous_action = np.full(self.num_envs, -1, dtype=np.int64)
 

@@ -41,10 +41,12 @@ STRETCH_STEPS = 256
 
 def stretches_apply(nav: EpisodeBatch, navigator: object) -> bool:
     """Whether :func:`run_navigator_episodes` can run ``navigator``'s episodes in ``nav``: a
-    :class:`HierarchicalPolicy` choosing greedily, with events from the ground truth, on robots
-    of one motor limit (the per-step loop drives every robot at the first one's fractions)."""
+    :class:`HierarchicalPolicy` of heading phases (the core does not count the distance),
+    choosing greedily, with events from the ground truth, on robots of one motor limit (the
+    per-step loop drives every robot at the first one's fractions)."""
     return (
         type(navigator) is HierarchicalPolicy
+        and not navigator.tracker.door_distance
         and navigator.chooser is None
         and nav.events_from == "truth"
         and nav.batch.one_motor_limit
@@ -79,9 +81,9 @@ def run_navigator_episodes(
     """
     if not stretches_apply(nav, policy):
         raise InvalidArgumentError(
-            "expected a greedy HierarchicalPolicy, events from the ground truth and robots of "
-            f"one motor limit, found a {type(policy).__name__} with events from "
-            f"{nav.events_from!r} and one_motor_limit={nav.batch.one_motor_limit}"
+            "expected a greedy HierarchicalPolicy of heading phases, events from the ground "
+            f"truth and robots of one motor limit, found a {type(policy).__name__} with events "
+            f"from {nav.events_from!r} and one_motor_limit={nav.batch.one_motor_limit}"
         )
     if stretch_steps < 1:
         raise InvalidArgumentError(f"expected a stretch of at least 1 step, found {stretch_steps}")

@@ -20,6 +20,16 @@ began in three bins (:func:`heading_phases`), and see ``distance_state + 4096 * 
 - Going forward: 0 when the heading is more than 5 degrees right of where it began, 1 within
   5 degrees, 2 more than 5 degrees left. Inside a door the side sensors see nothing to steer by.
 
+**Distance phases** (``door_distance``, ``mazesim train --door-distance``). A navigator
+trained so also counts, in its door sub-tasks' phase, how far its odometry has carried it ahead of
+where the sub-task began (along the heading it began with) in six bins (:data:`DISTANCE_EDGES`:
+below 12 cm, 12-18, 18-22, 22-26, 26-30 and beyond 30 cm): the phase is
+``heading_phase + 3 * distance_bin`` (18 phases, :data:`DISTANCE_PHASES`). A door lies 20-28 cm
+ahead of a door sub-task's training start, so a table can learn to drive on to it and turn there
+without seeing it: a robot whose sensors see no wall from a corridor's middle (the e-puck's own
+infra-red sensors, or the Sharp ones at dark walls) finds its doors so. Which a navigator uses
+follows from its tables' shape (:func:`door_distance_of`).
+
 **Odometry.** The phases and the ends use what the robot's wheel odometry knows: the heading
 change and the displacement since the sub-task began. :class:`SubTaskTracker` takes them from the
 poses a :class:`mazesim.BatchSimulator` reports, which stand in for noise-free wheel odometry (they
@@ -73,14 +83,18 @@ import numpy.typing as npt
 
 from mazesim.actions import ACTION_CODES
 from mazesim.batch import CONTROL_STEP_MS, cruise_step_length
+from mazesim.errors import InvalidArgumentError
 from mazesim.learn.discretise import NUM_STATES
 
 __all__ = [
+    "BLIND_STATE",
     "COLLISION_PENALTY",
     "CONTROL_STEP_MS",
     "CORRIDOR_STEP_REWARD",
     "DOOR_FAILURE_REWARD",
     "DOOR_STEP_REWARD",
+    "DISTANCE_EDGES",
+    "DISTANCE_PHASES",
     "DOOR_SUCCESS_REWARD",
     "FORWARD_DISTANCE",
     "FORWARD_PHASE_ANGLE",
@@ -101,7 +115,10 @@ __all__ = [
     "SubTask",
     "SubTaskTracker",
     "cruise_step_length",
+    "distance_bins",
+    "door_distance_of",
     "heading_phases",
+    "phase_counts",
     "subtask_states",
 ]
 
@@ -134,6 +151,13 @@ SUBTASK_ACTIONS.flags.writeable = False
 NUM_PHASES: tuple[int, ...] = (1, 3, 3, 3)
 #: The most phases of any sub-task (the stacked tables have ``4096 * MAX_PHASES`` rows).
 MAX_PHASES = max(NUM_PHASES)
+#: Edges (metres ahead of the sub-task's start, along the heading it began with) of the door
+#: sub-tasks' distance bins, with ``door_distance``.
+DISTANCE_EDGES: tuple[float, ...] = (0.12, 0.18, 0.22, 0.26, 0.30)
+#: Phases per sub-task with ``door_distance``: the three heading phases in each distance bin.
+DISTANCE_PHASES: tuple[int, ...] = (1,) + (MAX_PHASES * (len(DISTANCE_EDGES) + 1),) * 3
+#: The distance state in which no sensor sees a wall (every level 3).
+BLIND_STATE = NUM_STATES - 1
 #: The heading change each sub-task aims at (radians, counter-clockwise positive).
 TARGET_TURN: tuple[float, ...] = (0.0, -math.pi / 2.0, math.pi / 2.0, 0.0)
 #: The navigator's control step in milliseconds: two 32 ms physics steps of the maze worlds.
@@ -182,6 +206,33 @@ def heading_phases(subtasks: npt.ArrayLike, heading_change: npt.ArrayLike) -> np
     return np.where(kinds == SubTask.CORRIDOR, 0, phases).astype(np.int64)
 
 
+def distance_bins(distances: npt.ArrayLike) -> npt.NDArray[np.int64]:
+    """The distance bin (0 to 5, :data:`DISTANCE_EDGES`) of distances in metres ahead."""
+    return np.searchsorted(
+        np.asarray(DISTANCE_EDGES), np.asarray(distances, dtype=np.float64), side="right"
+    ).astype(np.int64)
+
+
+def phase_counts(door_distance: bool) -> tuple[int, ...]:
+    """Phases per sub-task: :data:`NUM_PHASES`, or :data:`DISTANCE_PHASES` with distance."""
+    return DISTANCE_PHASES if door_distance else NUM_PHASES
+
+
+def door_distance_of(rows: int) -> bool:
+    """Whether stacked tables of ``rows`` rows per sub-task count the distance in their phases.
+
+    Raises:
+        InvalidArgumentError: ``rows`` is neither ``4096 * 3`` nor ``4096 * 18``.
+    """
+    for door_distance in (False, True):
+        if rows == NUM_STATES * max(phase_counts(door_distance)):
+            return door_distance
+    raise InvalidArgumentError(
+        f"expected lower-level tables of {NUM_STATES * MAX_PHASES} rows per sub-task (heading "
+        f"phases) or {NUM_STATES * max(DISTANCE_PHASES)} (with distance), found {rows}"
+    )
+
+
 def subtask_states(distance_states: npt.ArrayLike, phases: npt.ArrayLike) -> npt.NDArray[np.int64]:
     """A sub-task's state: ``distance_state + 4096 * phase``."""
     return np.asarray(distance_states, dtype=np.int64) + NUM_STATES * np.asarray(
@@ -199,10 +250,17 @@ class SubTaskTracker:
 
     Args:
         num_envs: Number of robots.
+        door_distance: Whether the door sub-tasks' phases also count the distance driven
+            (:data:`DISTANCE_PHASES`).
+
+    Attributes:
+        phase: Each robot's phase: its heading phase, plus 3 times its distance bin with
+            ``door_distance``.
     """
 
-    def __init__(self, num_envs: int) -> None:
+    def __init__(self, num_envs: int, door_distance: bool = False) -> None:
         self.num_envs = num_envs
+        self.door_distance = door_distance
         self.subtask = np.zeros(num_envs, dtype=np.int64)
         self.start = np.zeros((num_envs, 3), dtype=np.float64)
         self.previous_yaw = np.zeros(num_envs, dtype=np.float64)
@@ -248,9 +306,17 @@ class SubTaskTracker:
         turn = np.asarray(TARGET_TURN)[self.subtask]
         is_turn = turn != 0.0
         phase = heading_phases(self.subtask, self.heading_change)
-        entering = is_turn & (phase == 2) & (self.phase != 2)
+        entering = is_turn & (phase == 2) & (self.heading_phase != 2)
         self.turn_point[entering] = pose_rows[entering, :2]
-        self.phase = phase
+        if self.door_distance:
+            heading = np.stack([np.cos(self.start[:, 2]), np.sin(self.start[:, 2])], axis=1)
+            driven = np.einsum("ij,ij->i", pose_rows[:, :2] - self.start[:, :2], heading)
+            bins = distance_bins(driven)
+            self.phase = np.where(
+                self.subtask == SubTask.CORRIDOR, 0, phase + MAX_PHASES * bins
+            ).astype(np.int64)
+        else:
+            self.phase = phase
 
         target_heading = self.start[:, 2] + turn
         direction = np.stack([np.cos(target_heading), np.sin(target_heading)], axis=1)
@@ -269,7 +335,16 @@ class SubTaskTracker:
     def arrays(self) -> dict[str, npt.NDArray[Any]]:
         """The tracker's state by name, for the core's multi-step call
         (``BatchSimulator.run(..., subtasks=...)``), which follows the sub-tasks step by step
-        as :meth:`update` does and writes the arrays in place."""
+        as :meth:`update` does and writes the arrays in place.
+
+        Raises:
+            InvalidArgumentError: The tracker counts the distance, which the core does not.
+        """
+        if self.door_distance:
+            raise InvalidArgumentError(
+                "expected a tracker of heading phases for the core's multi-step call, found one "
+                "that counts the distance (door_distance): step it from Python"
+            )
         return {
             "subtask": self.subtask,
             "start": self.start,
@@ -279,6 +354,11 @@ class SubTaskTracker:
             "phase": self.phase,
             "turn_point": self.turn_point,
         }
+
+    @property
+    def heading_phase(self) -> npt.NDArray[np.int64]:
+        """(N,) each robot's heading phase alone (:func:`heading_phases`)."""
+        return self.phase % MAX_PHASES
 
     @property
     def out_of_steps(self) -> npt.NDArray[np.bool_]:

@@ -15,7 +15,7 @@ import numpy.typing as npt
 
 from mazesim.actions import WHEEL_SPEED_FRACTIONS
 from mazesim.learn.discretise import NUM_LEVELS, NUM_SENSORS, NUM_STATES, SENSOR_ORDER
-from mazesim.learn.subtasks import SubTask
+from mazesim.learn.subtasks import MAX_PHASES, SubTask
 
 __all__ = ["MIRRORED_ACTION", "MIRRORED_SUBTASK", "mirrored_states"]
 
@@ -51,11 +51,14 @@ _MIRRORED_DISTANCE_STATE = _levels[:, _SWAPPED_SENSOR] @ _PLACE
 def mirrored_states(states: npt.ArrayLike, subtasks: npt.ArrayLike) -> npt.NDArray[np.int64]:
     """Mirrors the states of the given sub-tasks (distance state plus 4096 times the phase).
 
-    A turn's phase counts its progress towards its own side, so it stays; the phase of "Going
-    forward on a door" tells right of straight (0) from left of it (2), so those two swap.
+    A turn's phase counts its progress towards its own side, so it stays; the heading phase of
+    "Going forward on a door" tells right of straight (0) from left of it (2), so those two swap.
+    A distance bin (``heading_phase + 3 * bin``, :data:`mazesim.learn.subtasks.DISTANCE_PHASES`)
+    stays.
     """
     values = np.asarray(states, dtype=np.int64)
     phase = values // NUM_STATES
     forward = np.asarray(subtasks) == SubTask.FORWARD
-    phase = np.where(forward, 2 - phase, phase)
+    heading, distance_bin = phase % MAX_PHASES, phase // MAX_PHASES
+    phase = np.where(forward, 2 - heading + MAX_PHASES * distance_bin, phase)
     return _MIRRORED_DISTANCE_STATE[values % NUM_STATES] + NUM_STATES * phase

@@ -40,7 +40,7 @@ import numpy.typing as npt
 
 from mazesim._core import World
 from mazesim.actions import ACTION_CODES, WHEEL_SPEED_FRACTIONS
-from mazesim.errors import PolicyFormatError
+from mazesim.errors import InvalidArgumentError, PolicyFormatError
 from mazesim.learn.archive import ArraySpec
 from mazesim.learn.bundle import (
     FORMAT_VERSION,
@@ -55,12 +55,14 @@ from mazesim.learn.lower import lower_table_shape
 from mazesim.learn.schema import AnyJson, ListOf, Record, Text, Whole
 from mazesim.learn.subtasks import (
     CONTROL_STEP_MS,
+    DISTANCE_EDGES,
     FORWARD_PHASE_ANGLE,
-    NUM_PHASES,
     SUBTASK_ACTIONS,
     SUBTASK_CODES,
     SUBTASK_NAMES,
     TURN_PHASE_ANGLES,
+    door_distance_of,
+    phase_counts,
 )
 from mazesim.maze import world_hash
 
@@ -90,8 +92,10 @@ SUBTASK_TABLES = ("corridor", "right", "left", "forward")
 KINDS = ("hierarchical", "flat")
 
 
-def encoding_metadata() -> dict[str, Any]:
-    """The state and action encoding this version of mazesim uses, as saved and checked."""
+def encoding_metadata(door_distance: bool = False) -> dict[str, Any]:
+    """The state and action encoding this version of mazesim uses, as saved and checked; with
+    ``door_distance`` the door sub-tasks' phases count the distance driven too
+    (:data:`mazesim.learn.subtasks.DISTANCE_PHASES`)."""
     phase_rules = [
         "none",
         f"heading turned towards the side: < {np.degrees(TURN_PHASE_ANGLES[0]):.0f} deg -> 0, "
@@ -101,6 +105,16 @@ def encoding_metadata() -> dict[str, Any]:
         f"heading change: < -{np.degrees(FORWARD_PHASE_ANGLE):.0f} deg -> 0, "
         f"> {np.degrees(FORWARD_PHASE_ANGLE):.0f} deg -> 2, else 1",
     ]
+    if door_distance:
+        edges = ", ".join(
+            f"< {100 * edge:.0f} cm -> {place}" for place, edge in enumerate(DISTANCE_EDGES)
+        )
+        phase_rules[1:] = [
+            f"({rule}) + 3 * (metres ahead of the start along its heading: {edges}, "
+            f"else {len(DISTANCE_EDGES)})"
+            for rule in phase_rules[1:]
+        ]
+    phases = phase_counts(door_distance)
     return {
         "state_encoding": {
             "sensors": list(SENSOR_ORDER),
@@ -121,7 +135,7 @@ def encoding_metadata() -> dict[str, Any]:
                 "number": number,
                 "name": SUBTASK_NAMES[number],
                 "code": SUBTASK_CODES[number],
-                "phases": NUM_PHASES[number],
+                "phases": phases[number],
                 "phase_rule": phase_rules[number],
                 "table": SUBTASK_TABLES[number],
                 "state": "distance_state + 4096 * phase",
@@ -243,11 +257,16 @@ class _FlatDriver:
 def save_policy(policy: TrainedPolicy, folder: str | os.PathLike[str]) -> None:
     """Writes a navigator into ``folder`` as ``tables.npz`` and ``policy.json``."""
     arrays: dict[str, npt.NDArray[Any]] = {}
+    door_distance = False
     if policy.kind == "hierarchical":
         if policy.lower_q is None or policy.higher_q is None:
             raise PolicyFormatError("a hierarchical navigator needs lower and higher tables")
+        try:
+            door_distance = door_distance_of(int(policy.lower_q.shape[1]))
+        except InvalidArgumentError as error:
+            raise PolicyFormatError(str(error)) from None
         for number, name in enumerate(SUBTASK_TABLES):
-            rows = NUM_PHASES[number] * NUM_STATES
+            rows = phase_counts(door_distance)[number] * NUM_STATES
             arrays[name] = np.ascontiguousarray(policy.lower_q[number, :rows], dtype=np.float64)
         arrays["higher"] = np.asarray(policy.higher_q, dtype=np.float64)
     elif policy.kind == "flat":
@@ -257,7 +276,7 @@ def save_policy(policy: TrainedPolicy, folder: str | os.PathLike[str]) -> None:
     else:
         raise PolicyFormatError(f"expected a kind in {KINDS}, found {policy.kind!r}")
     metadata: dict[str, Any] = {"format": FORMAT, "version": FORMAT_VERSION, "kind": policy.kind}
-    metadata.update(encoding_metadata())
+    metadata.update(encoding_metadata(door_distance))
     metadata["world"] = {
         "name": policy.world_name,
         "sha256": policy.world_sha256,
@@ -298,15 +317,28 @@ def policy_schema() -> Record:
     )
 
 
-def _check_encoding(metadata: dict[str, Any], where: Path) -> None:
-    expected = encoding_metadata()
+def _encoding_keys(metadata: dict[str, Any], expected: dict[str, Any]) -> str | None:
+    """The first encoding entry of ``metadata`` that differs from ``expected``, if any."""
     for key in ("state_encoding", "actions", "control_step_ms", "subtasks"):
         if metadata.get(key) != expected[key]:
-            raise PolicyFormatError(
-                f"{where}: made for another {key.replace('_', ' ')} than this mazesim uses "
-                f"(expected {json.dumps(expected[key])[:160]}..., "
-                f"found {json.dumps(metadata.get(key))[:160]}...)"
-            )
+            return key
+    return None
+
+
+def _check_encoding(metadata: dict[str, Any], where: Path) -> bool:
+    """Checks the encoding against this mazesim's, with heading phases or with the distance;
+    returns whether the tables count the distance (``door_distance``)."""
+    plain = encoding_metadata()
+    if _encoding_keys(metadata, encoding_metadata(True)) is None:
+        return True
+    key = _encoding_keys(metadata, plain)
+    if key is not None:
+        raise PolicyFormatError(
+            f"{where}: made for another {key.replace('_', ' ')} than this mazesim uses "
+            f"(expected {json.dumps(plain[key])[:160]}..., "
+            f"found {json.dumps(metadata.get(key))[:160]}...)"
+        )
+    return False
 
 
 def _check_world(world: dict[str, Any], where: Path) -> None:
@@ -328,8 +360,9 @@ def policy_arrays(metadata: dict[str, Any]) -> dict[str, ArraySpec]:
     checkpoints = len(metadata["world"]["checkpoints"])
     if metadata["kind"] == "flat":
         return {"flat": ArraySpec(((1 + 2 * checkpoints) * NUM_STATES, actions), "float64")}
+    phases = [int(subtask["phases"]) for subtask in metadata["subtasks"]]
     arrays = {
-        name: ArraySpec((NUM_PHASES[number] * NUM_STATES, actions), "float64")
+        name: ArraySpec((phases[number] * NUM_STATES, actions), "float64")
         for number, name in enumerate(SUBTASK_TABLES)
     }
     arrays["higher"] = ArraySpec((2 * checkpoints, 4), "float64")
@@ -377,9 +410,10 @@ def load_policy(folder: str | os.PathLike[str] | None = None) -> TrainedPolicy:
     )
     npz_path = path / TABLES_FILE
     if kind == "hierarchical":
-        lower = np.zeros(lower_table_shape())
+        door_distance = _check_encoding(metadata, meta_path)
+        lower = np.zeros(lower_table_shape(door_distance))
         for number, name in enumerate(SUBTASK_TABLES):
-            expected = (NUM_PHASES[number] * NUM_STATES, len(ACTION_CODES))
+            expected = (phase_counts(door_distance)[number] * NUM_STATES, len(ACTION_CODES))
             table = _table(arrays, name, expected, npz_path)
             lower[number, : expected[0]] = table
         policy.lower_q = lower

@@ -46,7 +46,13 @@ from mazesim.learn.checkpoint import CHECKPOINT_FORMAT, Checkpoint
 from mazesim.learn.fleet import Fleet
 from mazesim.learn.higher import HigherLevel
 from mazesim.learn.higher_training import HigherTraining, train_higher
-from mazesim.learn.lower import LowerSettings, LowerTables, LowerTrainer, RoundStats
+from mazesim.learn.lower import (
+    LowerSettings,
+    LowerTables,
+    LowerTrainer,
+    RoundStats,
+    drive_on_when_blind,
+)
 from mazesim.learn.summary import summarise
 from mazesim.learn.tables import TrainedPolicy
 from mazesim.maze import checkpoint_ids, world_hash
@@ -104,11 +110,22 @@ class TrainSettings:
     #: The domain randomisation's ranges as ``axis=low:high,...`` (``mazesim train --randomise``;
     #: :func:`train` then draws the robots with a :data:`RobotDraw`), empty for the seed robot.
     randomise: str = ""
+    #: The door sub-tasks' phases also count the distance driven (``mazesim train
+    #: --door-distance``; :data:`mazesim.learn.subtasks.DISTANCE_PHASES`).
+    door_distance: bool = False
+    #: Corridors and Corners drives forward where no sensor sees a wall (``mazesim train
+    #: --blind-forward``; :func:`mazesim.learn.lower.drive_on_when_blind`).
+    blind_forward: bool = False
 
     def lower(self) -> LowerSettings:
         """The lower-level stage's settings."""
         return LowerSettings(
-            num_envs=self.envs, total_steps=self.steps, seed=self.seed, maze_pool=self.maze_pool
+            num_envs=self.envs,
+            total_steps=self.steps,
+            seed=self.seed,
+            maze_pool=self.maze_pool,
+            door_distance=self.door_distance,
+            blind_forward=self.blind_forward,
         )
 
     def higher(self) -> HigherTraining:
@@ -122,10 +139,12 @@ class TrainSettings:
 
     def as_dict(self) -> dict[str, Any]:
         """The settings as a navigator's metadata records them: a run without randomisation has
-        no ``randomise`` key, as before the field existed."""
+        no ``randomise`` key, and one without ``door_distance`` or ``blind_forward`` not those,
+        as before the fields existed."""
         values = asdict(self)
-        if not self.randomise:
-            values.pop("randomise")
+        for name in ("randomise", "door_distance", "blind_forward"):
+            if not values[name]:
+                values.pop(name)
         return values
 
     def identity(self) -> dict[str, Any]:
@@ -266,7 +285,7 @@ def run_training(
     Returns:
         The run, or None when ``checkpoint`` stopped it.
     """
-    tables = tables if tables is not None else LowerTables.zeros()
+    tables = tables if tables is not None else LowerTables.zeros(lower.door_distance)
     summaries = list(history)
     stats_seen: list[RoundStats] = []
     started = time.perf_counter()
@@ -292,6 +311,8 @@ def run_training(
             if stop and round_index + 1 < rounds:
                 return None
         tables = trainer.tables
+    if lower.blind_forward:
+        drive_on_when_blind(tables.q)
     lower_seconds = time.perf_counter() - started
     started = time.perf_counter()
 
@@ -402,7 +423,8 @@ def train(
         tables, next_round = saved.tables, saved.next_round
         history, lower_seconds = saved.history, saved.lower_seconds
     else:
-        tables, next_round, history, lower_seconds = LowerTables.zeros(), 0, [], 0.0
+        tables, next_round = LowerTables.zeros(settings.door_distance), 0
+        history, lower_seconds = [], 0.0
 
     rounds = lower_settings.rounds
     started = time.perf_counter()
