@@ -397,3 +397,23 @@ def test_no_output_option_writes_over_an_input_or_another_output(
     assert not problems, "\n".join(problems)
     assert all(path.read_bytes() == data for path, data in inputs)
     assert not (tmp_path / "two-outputs" / "view.gif").exists()
+
+
+@pytest.mark.parametrize("name", ["\u00fc.png", os.fsdecode(b"\xff.png")])
+def test_an_output_name_the_terminal_cannot_show_is_printed_escaped(
+    tmp_path: Path, name: str
+) -> None:
+    # A terminal of a strict ASCII encoding (or a non-UTF-8 byte in the name): the command
+    # used to write its file, then fail with "internal error" printing the name.
+    target = tmp_path / name
+    result = subprocess.run(
+        [sys.executable, "-m", "mazesim", "show", "seed-maze", "-o", os.fsencode(target)],
+        capture_output=True,
+        env={**os.environ, "PYTHONIOENCODING": "ascii:strict"},
+        timeout=TIME_LIMIT_S,
+        check=False,
+    )
+    assert result.returncode == 0, result.stderr
+    assert target.exists()
+    printed = result.stdout.decode("ascii")
+    assert "wrote" in printed and ("\\x" in printed or "\\udc" in printed)

@@ -3,6 +3,7 @@
 
 use std::io::{Read, Write};
 use std::path::Path;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 use crate::error::{Error, Location, Result};
 
@@ -30,7 +31,13 @@ pub fn read_limited(path: &Path, limit: u64, what: &str) -> Result<Vec<u8>> {
     Ok(bytes)
 }
 
-/// Writes `bytes` to `path` through a temporary file in the same folder, synced, then renamed.
+/// Temporary files made by this process so far: each write has its own, even when several
+/// threads write the same path at once.
+static TEMPORARY_FILES: AtomicU64 = AtomicU64::new(0);
+
+/// Writes `bytes` to `path` through a temporary file of its own in the same folder, synced, then
+/// renamed: a reader sees the old file or the new one whole, and two writers of one path (two
+/// threads of one process too) never write into each other's temporary file.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     let io_err = |e: std::io::Error| Error::io(path, "cannot write the file", &e);
     let dir = path
@@ -44,12 +51,16 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
         reason: None,
     })?;
     let tmp = dir.join(format!(
-        ".{}.tmp-{}",
+        ".{}.tmp-{}-{}",
         name.to_string_lossy(),
-        std::process::id()
+        std::process::id(),
+        TEMPORARY_FILES.fetch_add(1, Ordering::Relaxed)
     ));
     let result = (|| {
-        let mut f = std::fs::File::create(&tmp)?;
+        let mut f = std::fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(&tmp)?;
         f.write_all(bytes)?;
         f.sync_all()?;
         std::fs::rename(&tmp, path)
@@ -77,6 +88,32 @@ mod tests {
             error.contains("expected the text of at most 10 bytes, found more"),
             "{error}"
         );
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn threads_writing_one_file_at_once_each_write_it_whole() {
+        let dir = std::env::temp_dir().join(format!("mazesim-write-atomic-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("world.toml");
+        let contents: Vec<Vec<u8>> = (0..8u8).map(|k| vec![b'a' + k; 64 * 1024]).collect();
+        std::thread::scope(|scope| {
+            for content in &contents {
+                let path = &path;
+                scope.spawn(move || {
+                    for _ in 0..25 {
+                        write_atomic(path, content).unwrap();
+                    }
+                });
+            }
+        });
+        let written = std::fs::read(&path).unwrap();
+        assert!(contents.contains(&written), "the file mixes writes");
+        let names: Vec<_> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|entry| entry.unwrap().file_name())
+            .collect();
+        assert_eq!(names, vec![std::ffi::OsString::from("world.toml")]);
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

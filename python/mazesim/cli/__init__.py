@@ -131,6 +131,16 @@ def _stdout_is_a_pipe() -> bool:
         return False
 
 
+def _printable_output() -> None:
+    """Lets stdout print any file name: under a locale whose encoding cannot show a character
+    (a file name of non-UTF-8 bytes, say, or ``PYTHONIOENCODING=ascii``) the character is
+    written escaped (``\\udcff``) instead of failing the command after its work is done."""
+    for stream in (sys.stdout, sys.stderr):
+        reconfigure = getattr(stream, "reconfigure", None)
+        if reconfigure is not None and getattr(stream, "errors", None) == "strict":
+            reconfigure(errors="backslashreplace")
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Runs the ``mazesim`` command.
 
@@ -141,6 +151,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         The exit code: 0 on success, 2 on an error (printed as one line on stderr), 130 on Ctrl-C.
     """
     arguments = list(sys.argv[1:] if argv is None else argv)
+    _printable_output()
     command = _command_word(arguments)
     if command == "ros":
         try:
