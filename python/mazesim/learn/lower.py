@@ -36,8 +36,9 @@ the settings alone: a run resumed from a checkpoint after round k ends with the 
 never stopped.
 
 **In the core.** A round runs in one call of ``BatchSimulator.train_lower_round`` when its robots
-share one batch and one motor limit; otherwise (a :class:`~mazesim.learn.fleet.Fleet` of several
-sensor sets) it steps from Python, ``run_round(k, stepwise=True)``. The core follows the Python
+share one batch and one motor limit and neither ``door_distance`` nor ``blind_forward`` is set;
+otherwise (a :class:`~mazesim.learn.fleet.Fleet` of several sensor sets, or either option) it steps
+from Python, ``run_round(k, stepwise=True)``. The core follows the Python
 loop operation for operation, so both give the same tables bit for bit from the same draws.
 """
 
