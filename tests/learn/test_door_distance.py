@@ -205,6 +205,18 @@ def test_the_blind_rule_and_distance_phases_train_alike_at_any_thread_count() ->
     assert blind.sum() > blind[FORWARD]
 
 
+def test_either_option_alone_trains_from_python() -> None:
+    plain = dataclasses.replace(E_PUCK_ROUND, door_distance=False, blind_forward=False)
+    assert LowerTrainer(plain).in_core
+    for door_distance, blind_forward in ((True, False), (False, True)):
+        settings = dataclasses.replace(
+            plain, door_distance=door_distance, blind_forward=blind_forward
+        )
+        trainer = LowerTrainer(settings)
+        assert not trainer.in_core
+        assert trainer.tables.q.shape == lower_table_shape(door_distance)
+
+
 def test_a_trainer_refuses_tables_of_the_other_phases() -> None:
     from mazesim.learn.lower import LowerTables
 

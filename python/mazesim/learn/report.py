@@ -22,7 +22,8 @@ def trace_text(lines: Sequence[str], world: World, seed: int, events: str) -> st
         "# levels: Table 4.1 levels of the sensors front, back, left, right, left-front, "
         "right-front (0: < 7 cm, 1: < 13, 2: < 20, 3: farther)",
         "# sub-task: CC Corridors and Corners, R / L right / left turn on a door, "
-        "F going forward on a door; then its phase",
+        "F going forward on a door; then its phase (a navigator trained with --door-distance: "
+        "heading phase + 3 x distance bin)",
         "# step  time_s      x      y    yaw  levels              state  sub-task  action",
     ]
     return "\n".join([*header, *lines]) + "\n"

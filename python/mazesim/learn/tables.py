@@ -56,6 +56,7 @@ from mazesim.learn.schema import AnyJson, ListOf, Record, Text, Whole
 from mazesim.learn.subtasks import (
     CONTROL_STEP_MS,
     DISTANCE_EDGES,
+    DISTANCE_PHASES,
     FORWARD_PHASE_ANGLE,
     SUBTASK_ACTIONS,
     SUBTASK_CODES,
@@ -410,7 +411,8 @@ def load_policy(folder: str | os.PathLike[str] | None = None) -> TrainedPolicy:
     )
     npz_path = path / TABLES_FILE
     if kind == "hierarchical":
-        door_distance = _check_encoding(metadata, meta_path)
+        # The encoding was checked against both (``arrays_of``): its phases say which it is.
+        door_distance = tuple(s["phases"] for s in metadata["subtasks"]) == DISTANCE_PHASES
         lower = np.zeros(lower_table_shape(door_distance))
         for number, name in enumerate(SUBTASK_TABLES):
             expected = (phase_counts(door_distance)[number] * NUM_STATES, len(ACTION_CODES))
