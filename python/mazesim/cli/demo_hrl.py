@@ -49,7 +49,7 @@ def run_hrl_demo(args: argparse.Namespace, out: TextIO) -> int:
     assert lower_q is not None
 
     def make_navigator(world_of_env: npt.NDArray[np.int64]) -> HierarchicalPolicy:
-        return HierarchicalPolicy(lower_q, level, world_of_env)
+        return HierarchicalPolicy(lower_q, level, world_of_env, hold_heading=policy.hold_heading)
 
     steps = max(1, math.ceil(args.seconds * 1000.0 / CONTROL_STEP_MS - 1e-9))
     started = time.perf_counter()

@@ -112,6 +112,14 @@ def register(commands: Any) -> None:
         "and after; trains from Python",
     )
     train.add_argument(
+        "--hold-heading",
+        action="store_true",
+        help="there, it also holds its heading on the maze's grid: it steers back to the nearest "
+        "multiple of 90 degrees and finishes a turn on the spot it began (implies "
+        "--blind-forward); for robots that drive blind down a corridor's middle, such as the "
+        "e-puck's own sensors; trains and runs from Python",
+    )
+    train.add_argument(
         "--tensorboard",
         action="store_true",
         help="also log the learning curve to TensorBoard event files in --out/tensorboard "
@@ -137,13 +145,17 @@ def run_train(args: argparse.Namespace, out: TextIO) -> int:
         [("--world", args.world)],
     )
     settings = TrainSettings(**{f.name: getattr(args, f.name) for f in command_line_fields()})
-    if args.door_distance or args.blind_forward:
+    if args.door_distance or args.blind_forward or args.hold_heading:
         if args.flat:
             raise InvalidArgumentError(
-                "--door-distance and --blind-forward train hierarchical navigators only, not --flat"
+                "--door-distance, --blind-forward and --hold-heading train hierarchical "
+                "navigators only, not --flat"
             )
         settings = dataclasses.replace(
-            settings, door_distance=args.door_distance, blind_forward=args.blind_forward
+            settings,
+            door_distance=args.door_distance,
+            blind_forward=args.blind_forward or args.hold_heading,
+            hold_heading=args.hold_heading,
         )
     robot: RobotChoice | RobotDraw = "seed"
     if args.randomise is not None:

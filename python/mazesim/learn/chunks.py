@@ -69,6 +69,8 @@ class NavigatorEpisodes:
         higher_q: The higher-level tables, ``(worlds, states, 4)`` (hierarchical).
         flat_q: The flat table (flat).
         threads: Batch-engine threads of a chunk.
+        hold_heading: The navigator holds its heading where blind (hierarchical;
+            :attr:`mazesim.learn.tables.TrainedPolicy.hold_heading`).
     """
 
     kind: str
@@ -82,6 +84,7 @@ class NavigatorEpisodes:
     higher_q: npt.NDArray[np.float64] | None = None
     flat_q: npt.NDArray[np.float64] | None = None
     threads: int = 1
+    hold_heading: bool = False
 
     def __post_init__(self) -> None:
         tables = (self.lower_q, self.higher_q) if self.kind == "hierarchical" else (self.flat_q,)
@@ -111,7 +114,7 @@ class NavigatorEpisodes:
         assert self.lower_q is not None and self.higher_q is not None
         level = HigherLevel([self.checkpoint_ids[w] for w in slot_worlds])
         level.q[:] = self.higher_q[slot_worlds, : level.num_states]
-        return HierarchicalPolicy(self.lower_q, level, robots)
+        return HierarchicalPolicy(self.lower_q, level, robots, hold_heading=self.hold_heading)
 
     def __call__(self, first: int, count: int) -> list[EpisodeResult]:
         """Runs episodes ``first`` to ``first + count - 1``.

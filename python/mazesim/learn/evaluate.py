@@ -239,7 +239,13 @@ def navigator_for(
             progress("adapt", done, total)
 
     level, _ = train_higher(
-        policy.lower_q, worlds, settings, threads=threads, progress=adapting, robot=robot
+        policy.lower_q,
+        worlds,
+        settings,
+        threads=threads,
+        progress=adapting,
+        robot=robot,
+        hold_heading=policy.hold_heading,
     )
     return level, True
 
@@ -463,9 +469,10 @@ def evaluate_navigator(
         )
         lower_q = policy.lower_q
         assert lower_q is not None
+        hold_heading = policy.hold_heading
 
         def make_navigator(world_of_env: npt.NDArray[np.int64]) -> Any:
-            return HierarchicalPolicy(lower_q, level, world_of_env)
+            return HierarchicalPolicy(lower_q, level, world_of_env, hold_heading=hold_heading)
 
     summaries: dict[str, Summary] = {}
     level_shipped = None if policy.kind == "flat" else level
@@ -532,6 +539,7 @@ def _evaluate_spread(
         lower_q=policy.lower_q if level is not None else None,
         higher_q=level.q if level is not None else None,
         flat_q=policy.flat_q if level is None else None,
+        hold_heading=policy.hold_heading,
     )
     progress = options.pop("progress")
     results = chunks.check_joined(spread(chunks, chunks.episodes))

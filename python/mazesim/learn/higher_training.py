@@ -60,6 +60,7 @@ def train_higher(
     threads: int = 0,
     progress: Callable[[int, int, float], None] | None = None,
     robot: RobotChoice = "seed",
+    hold_heading: bool = False,
 ) -> tuple[HigherLevel, list[EpisodeResult]]:
     """Trains the higher level of each world with the lower level fixed.
 
@@ -71,6 +72,8 @@ def train_higher(
         threads: Worker threads of the batch.
         progress: Called as ``progress(episodes_done, episodes_total, recent_success)``.
         robot: The robots (:data:`mazesim.batch.RobotChoice`), handed to the batch as given.
+        hold_heading: The lower level holds its heading where blind
+            (:mod:`mazesim.learn.heading_hold`), as the navigator was trained.
 
     Returns:
         The higher level and the training episodes' results.
@@ -106,7 +109,9 @@ def train_higher(
         last_choice["robots"], last_choice["options"] = robots, options
         return options
 
-    policy = HierarchicalPolicy(lower_q, level, world_of_env, chooser=choose)
+    policy = HierarchicalPolicy(
+        lower_q, level, world_of_env, chooser=choose, hold_heading=hold_heading
+    )
     total = len(worlds) * settings.episodes_per_world
     finished: list[bool] = []
 

@@ -36,8 +36,9 @@ the settings alone: a run resumed from a checkpoint after round k ends with the 
 never stopped.
 
 **In the core.** A round runs in one call of ``BatchSimulator.train_lower_round`` when its robots
-share one batch and one motor limit and neither ``door_distance`` nor ``blind_forward`` is set;
-otherwise (a :class:`~mazesim.learn.fleet.Fleet` of several sensor sets, or either option) it steps
+share one batch and one motor limit and none of ``door_distance``, ``blind_forward`` and
+``hold_heading`` is set; otherwise (a :class:`~mazesim.learn.fleet.Fleet` of several sensor sets,
+or any of those options) it steps
 from Python, ``run_round(k, stepwise=True)``. The core follows the Python
 loop operation for operation, so both give the same tables bit for bit from the same draws.
 """
@@ -59,6 +60,7 @@ from mazesim.errors import InvalidArgumentError
 from mazesim.learn import qlearning
 from mazesim.learn.discretise import NUM_STATES
 from mazesim.learn.fleet import Fleet, FleetBatch
+from mazesim.learn.heading_hold import hold_actions
 from mazesim.learn.subtasks import (
     BLIND_STATE,
     COLLISION_PENALTY,
@@ -170,6 +172,9 @@ class LowerSettings:
     #: Corridors and Corners drives forward in the blind state, in training (exploring too) and
     #: after it (``mazesim train --blind-forward``, :func:`drive_on_when_blind`).
     blind_forward: bool = False
+    #: There, it holds its heading on the maze's grid instead of driving straight on (``mazesim
+    #: train --hold-heading``, :mod:`mazesim.learn.heading_hold`); set with ``blind_forward``.
+    hold_heading: bool = False
 
     @property
     def rounds(self) -> int:
@@ -182,10 +187,10 @@ class LowerSettings:
         return max(0.0, self.epsilon_start * (1.0 - round_index / exploring))
 
     def as_dict(self) -> dict[str, object]:
-        """The settings as plain JSON values (``door_distance`` and ``blind_forward`` only when
-        set, as before they existed)."""
+        """The settings as plain JSON values (``door_distance``, ``blind_forward`` and
+        ``hold_heading`` only when set, as before they existed)."""
         values = asdict(self)
-        for name in ("door_distance", "blind_forward"):
+        for name in ("door_distance", "blind_forward", "hold_heading"):
             if not values[name]:
                 values.pop(name)
         values["rounds"] = self.rounds
@@ -460,14 +465,15 @@ class LowerTrainer:
     @property
     def in_core(self) -> bool:
         """Whether rounds run in the core: robots of one batch, of one motor limit, and the
-        heading phases without the blind rule (the core knows neither ``door_distance`` nor
-        ``blind_forward``)."""
+        heading phases without a blind rule (the core knows neither ``door_distance`` nor
+        ``blind_forward`` and ``hold_heading``)."""
         settings = self.settings
         return (
             isinstance(self.batch, RobotBatch)
             and self.batch.one_motor_limit
             and not settings.door_distance
             and not settings.blind_forward
+            and not settings.hold_heading
         )
 
     def draws(self, round_index: int) -> tuple[EpisodeStarts, Exploration]:
@@ -594,9 +600,13 @@ class LowerTrainer:
             explore = exploration.uniform[step] < epsilon
             greedy = qlearning.best_allowed(q[role, state], SUBTASK_ACTIONS[role])
             chosen = np.where(explore, exploration.action[step], greedy)
-            if settings.blind_forward:
+            if settings.blind_forward or settings.hold_heading:
                 blind = (role == SubTask.CORRIDOR) & (state == BLIND_STATE)
-                chosen = np.where(blind, _FORWARD, chosen)
+                if settings.hold_heading:
+                    rule = hold_actions(self.poses[:, 2], action)
+                else:
+                    rule = np.full(count, _FORWARD)
+                chosen = np.where(blind, rule, chosen)
             action = np.where(deciding, chosen, action)
             decided_reward[deciding] = 0.0
             decided_discount[deciding] = 1.0

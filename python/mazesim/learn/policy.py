@@ -26,10 +26,17 @@ from mazesim._core import RobotProfile
 from mazesim.actions import ACTION_CODES, WHEEL_SPEED_FRACTIONS
 from mazesim.errors import InvalidArgumentError
 from mazesim.learn.discretise import NUM_SENSORS, distance_levels, volts_to_cm
+from mazesim.learn.heading_hold import hold_actions
 from mazesim.learn.higher import HigherLevel
 from mazesim.learn.lower import lower_table_shape
 from mazesim.learn.qlearning import best_allowed
-from mazesim.learn.subtasks import CONTROL_STEP_MS, SUBTASK_ACTIONS, SubTask, SubTaskTracker
+from mazesim.learn.subtasks import (
+    BLIND_STATE,
+    CONTROL_STEP_MS,
+    SUBTASK_ACTIONS,
+    SubTask,
+    SubTaskTracker,
+)
 
 __all__ = ["Chooser", "DeadReckoningNavigator", "HierarchicalPolicy", "StepRecord", "hold_spins"]
 
@@ -86,6 +93,9 @@ class HierarchicalPolicy:
         higher: The higher level (its tables for the robots' worlds).
         world_of_env: (N,) each robot's world in ``higher``.
         chooser: Picks sub-tasks at events; by default the higher level's greedy choice.
+        hold_heading: "Corridors and Corners" holds its heading on the grid where no sensor sees
+            a wall (:mod:`mazesim.learn.heading_hold`), as a navigator trained with
+            ``--hold-heading`` does (:attr:`mazesim.learn.tables.TrainedPolicy.hold_heading`).
     """
 
     def __init__(
@@ -94,6 +104,7 @@ class HierarchicalPolicy:
         higher: HigherLevel,
         world_of_env: npt.ArrayLike,
         chooser: Chooser | None = None,
+        hold_heading: bool = False,
     ) -> None:
         door_distance = lower_q.ndim == 3 and lower_q.shape[1] == lower_table_shape(True)[1]
         if lower_q.shape != lower_table_shape(door_distance):
@@ -106,6 +117,7 @@ class HierarchicalPolicy:
         self.world_of_env = np.asarray(world_of_env, dtype=np.int64).ravel()
         self.num_envs = self.world_of_env.size
         self.chooser = chooser
+        self.hold_heading = hold_heading
         self.tracker = SubTaskTracker(self.num_envs, door_distance)
         self.record = StepRecord(self.num_envs)
         self.previous_action = np.full(self.num_envs, -1, dtype=np.int64)
@@ -177,6 +189,10 @@ class HierarchicalPolicy:
         subtask = self.tracker.subtask
         action = best_allowed(self.lower_q[subtask, state], SUBTASK_ACTIONS[subtask])
         action = hold_spins(action, self.previous_action, subtask == SubTask.CORRIDOR)
+        if self.hold_heading:
+            blind = (subtask == SubTask.CORRIDOR) & (distance_state == BLIND_STATE)
+            held = hold_actions(pose_rows[:, 2], self.previous_action)
+            action = np.where(blind, held, action)
         self.previous_action = action
         record.state = distance_state
         record.subtask = self.tracker.subtask.copy()
@@ -196,6 +212,8 @@ class DeadReckoningNavigator:
         lower_q: The stacked lower-level tables.
         higher: The higher level (one world).
         control_step_ms: How long each action runs.
+        hold_heading: Hold the heading where blind (:mod:`mazesim.learn.heading_hold`), on the
+            grid of the dead-reckoned frame, whose heading 0 is the episode's start.
     """
 
     def __init__(
@@ -203,9 +221,12 @@ class DeadReckoningNavigator:
         lower_q: npt.NDArray[np.float64],
         higher: HigherLevel,
         control_step_ms: float = CONTROL_STEP_MS,
+        hold_heading: bool = False,
     ) -> None:
         robot = RobotProfile.builtin("seed")
-        self.policy = HierarchicalPolicy(lower_q, higher, np.zeros(1, dtype=np.int64))
+        self.policy = HierarchicalPolicy(
+            lower_q, higher, np.zeros(1, dtype=np.int64), hold_heading=hold_heading
+        )
         self.step_seconds = control_step_ms / 1000.0
         self.speeds = WHEEL_SPEED_FRACTIONS * robot.max_wheel_speed
         self.wheel_radius = robot.wheel_radius

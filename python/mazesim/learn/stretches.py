@@ -41,12 +41,14 @@ STRETCH_STEPS = 256
 
 def stretches_apply(nav: EpisodeBatch, navigator: object) -> bool:
     """Whether :func:`run_navigator_episodes` can run ``navigator``'s episodes in ``nav``: a
-    :class:`HierarchicalPolicy` of heading phases (the core does not count the distance),
-    choosing greedily, with events from the ground truth, on robots of one motor limit (the
-    per-step loop drives every robot at the first one's fractions)."""
+    :class:`HierarchicalPolicy` of heading phases that does not hold its heading (the core
+    neither counts the distance nor holds the heading), choosing greedily, with events from the
+    ground truth, on robots of one motor limit (the per-step loop drives every robot at the
+    first one's fractions)."""
     return (
         type(navigator) is HierarchicalPolicy
         and not navigator.tracker.door_distance
+        and not navigator.hold_heading
         and navigator.chooser is None
         and nav.events_from == "truth"
         and nav.batch.one_motor_limit

@@ -200,6 +200,15 @@ class TrainedPolicy:
     source: str | None = None
     _driver: Any = field(default=None, repr=False, compare=False)
 
+    @property
+    def hold_heading(self) -> bool:
+        """Whether its "Corridors and Corners" holds the heading on the grid where no sensor
+        sees a wall, as it was trained to (``mazesim train --hold-heading``, recorded in
+        :attr:`training` ``["lower"]``; :mod:`mazesim.learn.heading_hold`). Every runner of the
+        navigator in mazesim applies the rule when this is true."""
+        lower = self.training.get("lower")
+        return isinstance(lower, dict) and lower.get("hold_heading") is True
+
     def reset(self, control_step_ms: float = CONTROL_STEP_MS) -> None:
         """Starts an episode of :meth:`act`: one robot driven step by step (the hook of the ROS
         perform-learning node, :mod:`mazesim.ros.perform_learning`).
@@ -219,7 +228,9 @@ class TrainedPolicy:
 
         assert self.lower_q is not None and self.higher_q is not None
         level = HigherLevel([self.checkpoint_ids], q=self.higher_q[None])
-        self._driver = DeadReckoningNavigator(self.lower_q, level, control_step_ms)
+        self._driver = DeadReckoningNavigator(
+            self.lower_q, level, control_step_ms, hold_heading=self.hold_heading
+        )
 
     def act(self, distances_cm: npt.ArrayLike, checkpoint: int) -> str:
         """The action code for one robot's six distances in cm (front, back, left, right,
@@ -410,6 +421,13 @@ def load_policy(folder: str | os.PathLike[str] | None = None) -> TrainedPolicy:
         source=str(path),
     )
     npz_path = path / TABLES_FILE
+    lower_settings = policy.training.get("lower")
+    if isinstance(lower_settings, dict) and "hold_heading" in lower_settings:
+        if not isinstance(lower_settings["hold_heading"], bool):
+            raise PolicyFormatError(
+                f"{meta_path}: expected training.lower.hold_heading to be true or false, "
+                f"found {lower_settings['hold_heading']!r}"
+            )
     if kind == "hierarchical":
         # The encoding was checked against both (``arrays_of``): its phases say which it is.
         door_distance = tuple(s["phases"] for s in metadata["subtasks"]) == DISTANCE_PHASES

@@ -116,6 +116,9 @@ class TrainSettings:
     #: Corridors and Corners drives forward where no sensor sees a wall (``mazesim train
     #: --blind-forward``; :func:`mazesim.learn.lower.drive_on_when_blind`).
     blind_forward: bool = False
+    #: There, it holds its heading on the maze's grid (``mazesim train --hold-heading``;
+    #: :mod:`mazesim.learn.heading_hold`), in the lower level's training and the higher level's.
+    hold_heading: bool = False
 
     def lower(self) -> LowerSettings:
         """The lower-level stage's settings."""
@@ -126,6 +129,7 @@ class TrainSettings:
             maze_pool=self.maze_pool,
             door_distance=self.door_distance,
             blind_forward=self.blind_forward,
+            hold_heading=self.hold_heading,
         )
 
     def higher(self) -> HigherTraining:
@@ -139,10 +143,10 @@ class TrainSettings:
 
     def as_dict(self) -> dict[str, Any]:
         """The settings as a navigator's metadata records them: a run without randomisation has
-        no ``randomise`` key, and one without ``door_distance`` or ``blind_forward`` not those,
-        as before the fields existed."""
+        no ``randomise`` key, and one without ``door_distance``, ``blind_forward`` or
+        ``hold_heading`` not those, as before the fields existed."""
         values = asdict(self)
-        for name in ("randomise", "door_distance", "blind_forward"):
+        for name in ("randomise", "door_distance", "blind_forward", "hold_heading"):
             if not values[name]:
                 values.pop(name)
         return values
@@ -311,7 +315,7 @@ def run_training(
             if stop and round_index + 1 < rounds:
                 return None
         tables = trainer.tables
-    if lower.blind_forward:
+    if lower.blind_forward or lower.hold_heading:
         drive_on_when_blind(tables.q)
     lower_seconds = time.perf_counter() - started
     started = time.perf_counter()
@@ -329,6 +333,7 @@ def run_training(
         threads=threads,
         progress=higher_progress,
         robot=_higher_robots(robot, rounds, higher.envs_per_world),
+        hold_heading=lower.hold_heading,
     )
     return TrainingRun(
         tables=tables,

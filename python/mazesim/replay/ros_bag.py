@@ -91,7 +91,9 @@ def _navigator(control_step_ms: float) -> Any:
     policy = load_policy()
     assert policy.lower_q is not None and policy.higher_q is not None
     higher = HigherLevel([policy.checkpoint_ids], q=policy.higher_q[None])
-    return DeadReckoningNavigator(policy.lower_q, higher, control_step_ms)
+    return DeadReckoningNavigator(
+        policy.lower_q, higher, control_step_ms, hold_heading=policy.hold_heading
+    )
 
 
 def _replay_decision(

@@ -116,6 +116,8 @@ class CellRun:
         events: Checkpoint events from ``"truth"`` or the ``"robust"`` decoder.
         max_steps: Control steps after which an episode fails.
         threads: Worker threads of the batch.
+        hold_heading: The navigator holds its heading where blind
+            (:attr:`mazesim.learn.tables.TrainedPolicy.hold_heading`).
     """
 
     world: World
@@ -126,6 +128,7 @@ class CellRun:
     events: str = "robust"
     max_steps: int = MAX_STEPS
     threads: int = 0
+    hold_heading: bool = False
 
     def batch(self, robot: str, settings: Sequence[Setting]) -> _CellEpisodes:
         """The episode batch of cells of one robot profile, as many robots each as fit."""
@@ -153,7 +156,10 @@ class CellRun:
     def navigator(self, robot: str, settings: Sequence[Setting], cell_of_env: Any) -> Any:
         """The navigator of a batch's robots, wrapped per robot as its cell's setting asks."""
         navigator: Any = HierarchicalPolicy(
-            self.lower_q, self.higher, np.zeros(len(cell_of_env), dtype=np.int64)
+            self.lower_q,
+            self.higher,
+            np.zeros(len(cell_of_env), dtype=np.int64),
+            hold_heading=self.hold_heading,
         )
         if robot != SEED_ROBOT:
             navigator = SeedReadingsNavigator(navigator, RobotProfile.builtin(robot))

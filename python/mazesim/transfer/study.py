@@ -127,6 +127,7 @@ def run_study(
         events=options.events,
         max_steps=options.max_steps,
         threads=options.threads,
+        hold_heading=policy.hold_heading,
     )
     _, total = study_size(options)
     done = [0]
