@@ -95,7 +95,6 @@ def test_it_holds_its_heading_and_brings_the_e_pucks_own_sensors_home() -> None:
     for cell in ("robot e-puck", "robot e-puck-hardware", "robot e-puck2"):
         assert rates["held"][cell] >= 0.9, rates
         assert rates["shipped"][cell] <= 0.7, rates
-    # The same tables without the rule lose e-pucks (200 episodes a cell: 83 and 82.5 % on the
-    # e-puck-hardware and e-puck, against 100 %).
-    blind_robots = ("robot e-puck", "robot e-puck-hardware")
-    assert sum(rates["unheld"][c] for c in blind_robots) <= 1.8, rates
+    # The same tables without the rule lose the e-puck2 (200 episodes a cell: 44.5 %, against
+    # 100 %), whose time-of-flight sensor sees ahead and nothing to the sides.
+    assert rates["unheld"]["robot e-puck2"] <= 0.8, rates

@@ -38,9 +38,9 @@ never stopped.
 **In the core.** A round runs in one call of ``BatchSimulator.train_lower_round`` when its robots
 share one batch and one motor limit and none of ``door_distance``, ``blind_forward`` and
 ``hold_heading`` is set; otherwise (a :class:`~mazesim.learn.fleet.Fleet` of several sensor sets,
-or any of those options) it steps
-from Python, ``run_round(k, stepwise=True)``. The core follows the Python
-loop operation for operation, so both give the same tables bit for bit from the same draws.
+or any of those options) it steps from Python, ``run_round(k, stepwise=True)``. The core follows
+the Python loop operation for operation, so both give the same tables bit for bit from the same
+draws.
 """
 
 from __future__ import annotations
@@ -465,7 +465,7 @@ class LowerTrainer:
     @property
     def in_core(self) -> bool:
         """Whether rounds run in the core: robots of one batch, of one motor limit, and the
-        heading phases without a blind rule (the core knows neither ``door_distance`` nor
+        heading phases without a blind rule (the core knows none of ``door_distance``,
         ``blind_forward`` and ``hold_heading``)."""
         settings = self.settings
         return (
