@@ -69,6 +69,15 @@ def test_the_header_counts_episodes_in_words(tmp_path: Path, episodes: str, word
     assert run_transfer_study(args, out) == 0
     header = out.getvalue().splitlines()[0]
     assert f": {words}, seed 0" in header
+    assert header.endswith("odometry from the wheel encoders")
+
+
+def test_odometry_from_the_true_pose_is_a_choice_and_recorded(tmp_path: Path) -> None:
+    out = io.StringIO()
+    args = _args(*TINY, "--no-pairs", "--odometry", "truth", "--json", "--out", str(tmp_path))
+    assert run_transfer_study(args, out) == 0
+    assert json.loads(out.getvalue())["odometry"] == "truth"
+    assert _args().odometry == "encoders"
 
 
 @pytest.mark.parametrize(
@@ -78,6 +87,7 @@ def test_the_header_counts_episodes_in_words(tmp_path: Path, episodes: str, word
         (["--axes", ""], "argument --axes: expected axes among"),
         (["--episodes", "0"], "argument --episodes"),
         (["--events", "psychic"], "argument --events: invalid choice"),
+        (["--odometry", "gyro"], "argument --odometry: invalid choice"),
         (["--threads", "-1"], "argument --threads"),
     ],
 )

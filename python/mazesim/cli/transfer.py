@@ -99,6 +99,15 @@ def register(commands: Any) -> None:
         "decoder reading the ground sensor, as a real robot must (default: %(default)s)",
     )
     parser.add_argument(
+        "--odometry",
+        choices=("encoders", "truth"),
+        default="encoders",
+        help="what the navigator's odometry (its door sub-tasks' turns and distances, the "
+        "heading it holds where blind) is measured from: each robot's wheel encoders read with "
+        "its profile's nominal wheel radius and axle length, as on a real robot, or the "
+        "simulator's true pose (default: %(default)s)",
+    )
+    parser.add_argument(
         "--max-steps",
         type=positive_int,
         default=None,
@@ -171,6 +180,7 @@ def run_transfer_study(args: argparse.Namespace, out: TextIO) -> int:
         pairs=not args.no_pairs,
         seed=args.seed,
         events=args.events,
+        odometry=args.odometry,
         max_steps=args.max_steps if args.max_steps is not None else DEFAULT_MAX_STEPS,
         threads=args.threads,
     )
@@ -190,7 +200,8 @@ def run_transfer_study(args: argparse.Namespace, out: TextIO) -> int:
         return 0
     out.write(
         f"{result.policy} navigator in {result.world}: {result.episodes_label}, "
-        f"seed {result.seed}, {result.events} checkpoint events\n"
+        f"seed {result.seed}, {result.events} checkpoint events, odometry from "
+        f"{'the wheel encoders' if result.odometry == 'encoders' else 'the true pose'}\n"
     )
     out.write(_table(result))
     out.write(f"ran in {elapsed:.1f} s; wrote {', '.join(written)}\n")

@@ -37,6 +37,7 @@ from mazesim.learn.subtasks import (
     SubTask,
     SubTaskTracker,
 )
+from mazesim.odometry import advance
 
 __all__ = ["Chooser", "DeadReckoningNavigator", "HierarchicalPolicy", "StepRecord", "hold_spins"]
 
@@ -246,11 +247,6 @@ class DeadReckoningNavigator:
         action = int(
             self.policy.act_on_distances(distances, self.pose, np.array([int(checkpoint)]))[0]
         )
-        left, right = self.speeds[action]
-        forward = 0.5 * self.wheel_radius * (left + right) * self.step_seconds
-        turn = self.wheel_radius * (right - left) / self.axle_length * self.step_seconds
-        heading = self.pose[0, 2] + 0.5 * turn
-        self.pose[0, 0] += forward * np.cos(heading)
-        self.pose[0, 1] += forward * np.sin(heading)
-        self.pose[0, 2] = (self.pose[0, 2] + turn + np.pi) % (2.0 * np.pi) - np.pi
+        left, right = self.speeds[action] * (self.wheel_radius * self.step_seconds)
+        advance(self.pose, [left], [right], self.axle_length)
         return ACTION_CODES[action]

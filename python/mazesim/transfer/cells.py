@@ -39,6 +39,7 @@ from mazesim.learn.policy import HierarchicalPolicy
 from mazesim.learn.summary import Summary, summarise
 from mazesim.transfer.axes import Setting
 from mazesim.transfer.control import DelayedNavigator, LinkedNavigator
+from mazesim.transfer.odometry import EncoderOdometryNavigator
 from mazesim.transfer.readings import SeedReadingsNavigator
 
 __all__ = ["BATCH_ENVS", "CellRun", "profile_changes", "profile_of", "run_cells"]
@@ -118,6 +119,9 @@ class CellRun:
         threads: Worker threads of the batch.
         hold_heading: The navigator holds its heading where blind
             (:attr:`mazesim.learn.tables.TrainedPolicy.hold_heading`).
+        odometry: The navigator's odometry: the simulator's poses (``"truth"``) or each robot's
+            wheel encoders with its profile's nominal numbers (``"encoders"``,
+            :mod:`mazesim.transfer.odometry`).
     """
 
     world: World
@@ -129,6 +133,7 @@ class CellRun:
     max_steps: int = MAX_STEPS
     threads: int = 0
     hold_heading: bool = False
+    odometry: str = "truth"
 
     def batch(self, robot: str, settings: Sequence[Setting]) -> _CellEpisodes:
         """The episode batch of cells of one robot profile, as many robots each as fit."""
@@ -153,16 +158,22 @@ class CellRun:
         batch.episodes_per_cell = self.episodes
         return batch
 
-    def navigator(self, robot: str, settings: Sequence[Setting], cell_of_env: Any) -> Any:
+    def navigator(self, robot: str, settings: Sequence[Setting], nav: EpisodeBatch) -> Any:
         """The navigator of a batch's robots, wrapped per robot as its cell's setting asks."""
+        cell_of_env = nav.world_of_env
         navigator: Any = HierarchicalPolicy(
             self.lower_q,
             self.higher,
             np.zeros(len(cell_of_env), dtype=np.int64),
             hold_heading=self.hold_heading,
         )
+        nominal = RobotProfile.builtin(robot)
+        if self.odometry == "encoders":
+            navigator = EncoderOdometryNavigator(
+                navigator, nav.batch.simulator.encoders, nominal.wheel_radius, nominal.axle_length
+            )
         if robot != SEED_ROBOT:
-            navigator = SeedReadingsNavigator(navigator, RobotProfile.builtin(robot))
+            navigator = SeedReadingsNavigator(navigator, nominal)
         delays = np.array([int(float(setting.get("latency"))) for setting in settings])
         navigator = DelayedNavigator(navigator, delays[cell_of_env])
         linked = np.array([setting.get("link") == "ros" for setting in settings])
@@ -214,7 +225,7 @@ def run_cells(
                 chosen.insert(0, Setting() if robot == SEED_ROBOT else Setting.of({"robot": robot}))
                 lead = 1
             nav = run.batch(robot, chosen)
-            navigator = run.navigator(robot, chosen, nav.world_of_env)
+            navigator = run.navigator(robot, chosen, nav)
             studied = nav.world_of_env >= lead
 
             def ended(robots: npt.NDArray[np.int64], arrived: npt.NDArray[np.bool_]) -> None:

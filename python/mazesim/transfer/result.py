@@ -5,7 +5,8 @@ The JSON object (``mazesim transfer-study --json``, and ``transfer.json`` in ``-
     {
       "format": "mazesim-transfer-study", "version": 1,
       "policy": "<the navigator's folder, or 'shipped'>", "world": "seed-maze",
-      "seed": 0, "episodes": 100, "events": "robust", "max_steps": 2000,
+      "seed": 0, "episodes": 100, "events": "robust", "odometry": "encoders",
+      "max_steps": 2000,
       "axes": [{"name": "wheel_radius", "unit": "x", "rest": 1.0,
                 "levels": [0.95, ...], "harshest": 0.95}, ...],
       "baseline": {CELL},
@@ -30,6 +31,7 @@ from mazesim.errors import InvalidArgumentError, PolicyFormatError
 from mazesim.learn.schema import ListOf, Node, Number, Record, Text, Whole
 from mazesim.learn.summary import Summary
 from mazesim.transfer.axes import AXIS_NAMES, Axis, Level, Setting
+from mazesim.transfer.odometry import ODOMETRY_SOURCES
 
 __all__ = ["FORMAT", "STUDY_SCHEMA", "VERSION", "Cell", "StudyResult", "check_study_json"]
 
@@ -71,6 +73,7 @@ class StudyResult:
         seed: The study's seed.
         episodes: Episodes per cell.
         events: Where checkpoint events came from (``"truth"`` or ``"robust"``).
+        odometry: What the navigator's odometry came from (``"encoders"`` or ``"truth"``).
         max_steps: Control steps after which an episode failed.
         axes: The axes studied.
         harshest: Each axis's level of lowest single-axis success.
@@ -84,6 +87,7 @@ class StudyResult:
     seed: int
     episodes: int
     events: str
+    odometry: str
     max_steps: int
     axes: tuple[Axis, ...]
     harshest: dict[str, Level]
@@ -106,6 +110,7 @@ class StudyResult:
             "seed": self.seed,
             "episodes": self.episodes,
             "events": self.events,
+            "odometry": self.odometry,
             "max_steps": self.max_steps,
             "axes": [
                 {
@@ -170,6 +175,7 @@ STUDY_SCHEMA = Record(
         "seed": Whole(0, 2**64 - 1),
         "episodes": Whole(1, 10**9),
         "events": Text(choices=("truth", "robust")),
+        "odometry": Text(choices=ODOMETRY_SOURCES),
         "max_steps": Whole(1, 10**9),
         "axes": ListOf(
             Record(
@@ -188,7 +194,9 @@ STUDY_SCHEMA = Record(
         "baseline": _CELL,
         "single": ListOf(_CELL, 0, 10_000),
         "pairs": ListOf(_CELL, 0, 10_000),
-    }
+    },
+    # Studies written before the odometry was a choice took the simulator's poses ("truth").
+    optional=frozenset({"odometry"}),
 )
 
 

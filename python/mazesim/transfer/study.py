@@ -23,6 +23,7 @@ from mazesim.learn.evaluate import navigator_for
 from mazesim.learn.tables import TrainedPolicy
 from mazesim.transfer.axes import AXES, Axis, Level, Setting
 from mazesim.transfer.cells import CellRun, run_cells
+from mazesim.transfer.odometry import ODOMETRY_SOURCES
 from mazesim.transfer.result import Cell, StudyResult
 
 __all__ = ["DEFAULT_EPISODES", "DEFAULT_MAX_STEPS", "StudyOptions", "run_study", "study_size"]
@@ -47,6 +48,9 @@ class StudyOptions:
             decoder reading the ground sensor (only then does ``ground_drift`` matter).
         max_steps: Control steps after which an episode fails.
         threads: Worker threads of the batch (0: one per core); results do not depend on it.
+        odometry: The navigator's odometry: each robot's wheel encoders read with its profile's
+            nominal wheel radius and axle length (``"encoders"``, as on a real robot) or the
+            simulator's poses (``"truth"``); see :mod:`mazesim.transfer.odometry`.
     """
 
     axes: tuple[Axis, ...] = AXES
@@ -56,6 +60,7 @@ class StudyOptions:
     events: str = "robust"
     max_steps: int = DEFAULT_MAX_STEPS
     threads: int = 0
+    odometry: str = "encoders"
 
     def check(self) -> None:
         """Raises :class:`InvalidArgumentError` on a setting out of range."""
@@ -69,6 +74,11 @@ class StudyOptions:
         if self.events not in EVENT_SOURCES:
             raise InvalidArgumentError(
                 f"expected events from one of {', '.join(EVENT_SOURCES)}, found {self.events!r}"
+            )
+        if self.odometry not in ODOMETRY_SOURCES:
+            raise InvalidArgumentError(
+                f"expected odometry from one of {', '.join(ODOMETRY_SOURCES)}, found "
+                f"{self.odometry!r}"
             )
 
 
@@ -128,6 +138,7 @@ def run_study(
         max_steps=options.max_steps,
         threads=options.threads,
         hold_heading=policy.hold_heading,
+        odometry=options.odometry,
     )
     _, total = study_size(options)
     done = [0]
@@ -164,6 +175,7 @@ def run_study(
         seed=options.seed,
         episodes=options.episodes,
         events=options.events,
+        odometry=options.odometry,
         max_steps=options.max_steps,
         axes=tuple(options.axes),
         harshest=harshest,
