@@ -26,7 +26,7 @@ export PYO3_PYTHON := $(CURDIR)/$(BIN)/python
 
 .DEFAULT_GOAL := help
 
-.PHONY: help venv build test demo lint typecheck fmt bench wheel clean ros-deps ros-demo bench-peers \
+.PHONY: help venv build test demo lint typecheck fmt bench wheel clean ros-deps ros-demo bench-peers bench-transfer \
 	browser-deps replay-screenshot docs docs-deps sb3-deps
 
 help: ## list the targets
@@ -109,6 +109,9 @@ fmt: venv ## format Rust and Python sources in place
 
 bench: ## run the criterion benches
 	cargo bench
+
+bench-transfer: build ## time the full default transfer study of the shipped and randomised navigators (budget 10 min each)
+	$(BIN)/python benches/bench_transfer.py
 
 bench-peers: build ## mazesim against hand-written numpy, pymunk and JAX peers (installs pymunk and jax)
 	$(BIN)/python -m pip install --quiet $(PEER_PACKAGES)

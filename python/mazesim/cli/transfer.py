@@ -200,8 +200,7 @@ def run_transfer_study(args: argparse.Namespace, out: TextIO) -> int:
         return 0
     out.write(
         f"{result.policy} navigator in {result.world}: {result.episodes_label}, "
-        f"seed {result.seed}, {result.events} checkpoint events, odometry from "
-        f"{'the wheel encoders' if result.odometry == 'encoders' else 'the true pose'}\n"
+        f"seed {result.seed}, {result.events} checkpoint events, {result.odometry_label}\n"
     )
     out.write(_table(result))
     out.write(f"ran in {elapsed:.1f} s; wrote {', '.join(written)}\n")

@@ -60,7 +60,7 @@ def save_single_map(result: StudyResult, path: str) -> None:
     figure.colorbar(image, ax=plot, label="success rate")
     plot.set_title(
         f"{result.world}: {result.policy} navigator, success by perturbation "
-        f"({result.episodes_label}, seed {result.seed})",
+        f"({result.episodes_label}, seed {result.seed}, {result.odometry_label})",
         fontsize=9,
     )
     figure.tight_layout()
@@ -93,7 +93,7 @@ def save_pairs_map(result: StudyResult, path: str) -> None:
     figure.colorbar(image, ax=plot, label="success rate")
     plot.set_title(
         f"{result.world}: {result.policy} navigator, pairs of perturbations at their harshest "
-        f"levels\n({result.episodes_label}; diagonal: one axis alone)",
+        f"levels\n({result.episodes_label}; {result.odometry_label}; diagonal: one axis alone)",
         fontsize=9,
     )
     figure.tight_layout()

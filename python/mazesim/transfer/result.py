@@ -100,6 +100,12 @@ class StudyResult:
         """The episodes per cell in words: ``"1 episode a cell"``, ``"200 episodes a cell"``."""
         return f"{self.episodes} episode{'' if self.episodes == 1 else 's'} a cell"
 
+    @property
+    def odometry_label(self) -> str:
+        """Where the odometry came from, in words: ``"odometry from the wheel encoders"``."""
+        source = "the wheel encoders" if self.odometry == "encoders" else "the true pose"
+        return f"odometry from {source}"
+
     def as_json(self) -> dict[str, Any]:
         """The result as the documented JSON object."""
         return {
