@@ -15,6 +15,7 @@ from mazesim.cli import COMMANDS, build_parser, main
 from mazesim.cli.transfer import AXIS_NAMES, run_transfer_study
 from mazesim.transfer import AXIS_NAMES as STUDY_AXES
 from mazesim.transfer import check_study_json
+from mazesim.transfer.odometry import ODOMETRY_SOURCES
 
 TINY = ["--axes", "latency,link", "--episodes", "2", "--max-steps", "600", "--events", "truth"]
 
@@ -23,8 +24,11 @@ def _args(*argv: str) -> Namespace:
     return build_parser("transfer-study").parse_args(["transfer-study", *argv])
 
 
-def test_the_parser_knows_the_studys_axes() -> None:
+def test_the_parser_knows_the_studys_axes_and_odometries() -> None:
     assert AXIS_NAMES == STUDY_AXES
+    assert [_args("--odometry", name).odometry for name in ODOMETRY_SOURCES] == list(
+        ODOMETRY_SOURCES
+    )
     assert "transfer-study" in COMMANDS
 
 

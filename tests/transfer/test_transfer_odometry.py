@@ -13,7 +13,6 @@ import pytest
 from mazesim import RobotProfile, load_world
 from mazesim.actions import action_index
 from mazesim.errors import InvalidArgumentError
-from mazesim.learn.evaluate import navigator_for
 from mazesim.learn.tables import load_policy
 from mazesim.odometry import advance, wrap_angle
 from mazesim.transfer import StudyOptions, check_study_json, parse_axes, run_study
@@ -44,32 +43,29 @@ class Scripted:
         return np.full(rows.shape[0], self.action, dtype=np.int64)
 
 
-@pytest.fixture(scope="module")
-def run() -> CellRun:
-    policy = load_policy(None)
-    world = load_world(policy.world_name)
-    higher, _ = navigator_for(policy, [world])
-    assert policy.lower_q is not None
-    return CellRun(world, policy.lower_q, higher, episodes=2, events="truth")
-
-
 def _drive(
-    run: CellRun, settings: list[Setting], action: int, steps: int, yaw: float | None = None
+    run: CellRun,
+    settings: list[Setting],
+    action: int,
+    steps: int,
+    yaw: float | None = None,
+    robot: str = "seed",
 ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.float64]]:
-    """Drives each cell's robots with one action for ``steps`` steps (from the world's start,
-    turned to ``yaw`` if given), the navigator behind encoder odometry; returns each cell's first
-    robot's (start, true end, believed end) poses."""
-    nav = run.batch("seed", settings)
+    """Drives each cell's robots (of profile ``robot``) with one action for ``steps`` steps (from
+    the world's start, turned to ``yaw`` if given), the navigator behind encoder odometry with
+    that profile's nominal numbers; returns each cell's first robot's (start, true end, believed
+    end) poses."""
+    nav = run.batch(robot, settings)
     robots = np.arange(nav.num_envs)
     nav.start(robots, np.zeros(nav.num_envs, dtype=np.int64))
     if yaw is not None:
         x, y, _ = run.world.start
         nav.batch.place(robots, np.tile([x, y, yaw], (nav.num_envs, 1)), np.zeros(nav.num_envs))
     start = nav.poses.astype(np.float64).copy()
-    seed = RobotProfile.builtin("seed")
+    nominal = RobotProfile.builtin(robot)
     scripted = Scripted(action)
     odometry = EncoderOdometryNavigator(
-        scripted, nav.batch.simulator.encoders, seed.wheel_radius, seed.axle_length
+        scripted, nav.batch.simulator.encoders, nominal.wheel_radius, nominal.axle_length
     )
     odometry.reset(np.arange(nav.num_envs), nav.poses)
     assert scripted.started is not None
@@ -100,9 +96,12 @@ def test_advance_drives_straight_turns_on_the_spot_and_closes_a_circle() -> None
     assert wrap_angle(math.pi) == pytest.approx(-math.pi)
 
 
-def test_on_the_nominal_robot_the_encoders_follow_the_true_pose(run: CellRun) -> None:
+@pytest.mark.parametrize("robot", ["seed", "e-puck", "e-puck2", "alphabot2"])
+def test_on_a_nominal_robot_the_encoders_follow_the_true_pose(run: CellRun, robot: str) -> None:
+    # Each profile's own wheels, axle and encoder resolution (the e-puck's steps of 2 pi / 1000).
+    cell = [Setting() if robot == "seed" else Setting.of({"robot": robot})]
     for action, steps in ((FORWARD, 25), (SPIN, 15), (action_index("11"), 25)):
-        start, true, believed = _drive(run, [Setting()], action, steps)
+        start, true, believed = _drive(run, cell, action, steps, robot=robot)
         assert np.hypot(*(true[0, :2] - start[0, :2])) + abs(true[0, 2] - start[0, 2]) > 0.02
         assert np.hypot(*(believed[0, :2] - true[0, :2])) < 0.002
         assert abs(wrap_angle(believed[0, 2] - true[0, 2])) < math.radians(0.5)

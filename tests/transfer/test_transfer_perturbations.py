@@ -7,20 +7,9 @@ import math
 import numpy as np
 import pytest
 
-from mazesim import RobotProfile, load_world
-from mazesim.learn.evaluate import navigator_for
-from mazesim.learn.tables import load_policy
+from mazesim import RobotProfile
 from mazesim.transfer.axes import Setting
 from mazesim.transfer.cells import CellRun, profile_of
-
-
-@pytest.fixture(scope="module")
-def run() -> CellRun:
-    policy = load_policy(None)
-    world = load_world(policy.world_name)
-    higher, _ = navigator_for(policy, [world])
-    assert policy.lower_q is not None
-    return CellRun(world, policy.lower_q, higher, episodes=2, events="truth")
 
 
 def test_a_settings_profile_carries_its_scales() -> None:

@@ -85,6 +85,7 @@ from mazesim.actions import ACTION_CODES
 from mazesim.batch import CONTROL_STEP_MS, cruise_step_length
 from mazesim.errors import InvalidArgumentError
 from mazesim.learn.discretise import NUM_STATES
+from mazesim.odometry import wrap_angle
 
 __all__ = [
     "BLIND_STATE",
@@ -240,11 +241,6 @@ def subtask_states(distance_states: npt.ArrayLike, phases: npt.ArrayLike) -> npt
     )
 
 
-def _wrap(angle: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
-    """Angles wrapped to [-pi, pi)."""
-    return np.asarray((angle + math.pi) % (2.0 * math.pi) - math.pi, dtype=np.float64)
-
-
 class SubTaskTracker:
     """The running sub-task of N robots, with the odometry its phase and end read.
 
@@ -300,7 +296,7 @@ class SubTaskTracker:
             and Corners is never in either.
         """
         pose_rows = np.asarray(poses, dtype=np.float64)
-        self.heading_change += _wrap(pose_rows[:, 2] - self.previous_yaw)
+        self.heading_change += wrap_angle(pose_rows[:, 2] - self.previous_yaw)
         self.previous_yaw = pose_rows[:, 2].copy()
         self.steps += 1
         turn = np.asarray(TARGET_TURN)[self.subtask]

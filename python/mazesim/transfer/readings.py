@@ -29,6 +29,7 @@ import numpy.typing as npt
 
 from mazesim._core import RobotProfile
 from mazesim.learn.discretise import NUM_SENSORS, SHARP_TABLE
+from mazesim.odometry import wrap_angle
 
 __all__ = ["FAR_CM", "SeedReadings", "SeedReadingsNavigator"]
 
@@ -48,7 +49,7 @@ _SHARP_VOLTS = np.array([v for _, v in SHARP_TABLE])
 
 
 def _angle_between(a: npt.NDArray[np.float64], b: float) -> npt.NDArray[np.float64]:
-    return np.abs((a - b + np.pi) % (2.0 * np.pi) - np.pi)
+    return np.abs(wrap_angle(a - b))
 
 
 class SeedReadings:
