@@ -44,6 +44,9 @@ Coverage: {covered} of {instances} instances import ({share:.0%}).
 
 
 def _cell(text: str) -> str:
+    """Text for a table cell: one line, pipes escaped, and ``<extern>`` kept as text (not an
+    HTML tag)."""
+    text = text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
     return text.replace("|", "\\|").replace("\n", " ").strip()
 
 
