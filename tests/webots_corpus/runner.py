@@ -161,6 +161,9 @@ def _run_project(project: Project, mirrors: Path, work: Path, census: Census) ->
         message = str(error).replace(f"{root}{os.sep}", "")
         return Row(project, "error", f"import: {type(error).__name__}: {message}")
     warnings = list(report.get("warnings", []))
+    if project.language != "python" and project.broken:
+        census.add(f"{project.repo}:{project.world}", text, *losses(warnings))
+        return Row(project, "broken itself", project.broken, warnings=warnings)
     if project.language != "python":
         dropped, stood_in = losses(warnings)
         census.add(f"{project.repo}:{project.world}", text, dropped, stood_in)

@@ -192,7 +192,10 @@ def test_the_runner_exports_runs_and_checks_a_project(tmp_path: Path) -> None:
     assert passing.result == "pass"
     assert passing.cause.startswith("import: line 7: Mystery")  # what the import lost
     c_project = replace(project, name="someone/tiny-c", language="c")
-    assert run_project(c_project, mirrors, work, Census()).result == "not run"
+    c_row = run_project(c_project, mirrors, work, Census())
+    assert (c_row.result, c_row.cause[:34]) == ("not run", "C controller; import: line 7: Myst")
+    broken = run_project(replace(c_project, broken="needs a door"), mirrors, work, Census())
+    assert (broken.result, broken.cause) == ("broken itself", "needs a door")
     elsewhere = run_project(replace(project, repo="someone/else"), mirrors, work, Census())
     assert (elsewhere.result, elsewhere.cause[:27]) == ("skipped", "no mirror of someone/else i")
     page = render([row, passing, elsewhere], census, "2026-01-01", "abc", 1.0)
