@@ -27,6 +27,7 @@ export PYO3_PYTHON := $(CURDIR)/$(BIN)/python
 .DEFAULT_GOAL := help
 
 .PHONY: help venv build test demo lint typecheck fmt bench wheel clean ros-deps ros-demo bench-peers bench-transfer \
+	webots-compat \
 	browser-deps replay-screenshot docs docs-deps sb3-deps
 
 help: ## list the targets
@@ -112,6 +113,14 @@ bench: ## run the criterion benches
 
 bench-transfer: build ## time the full default transfer study of the shipped and randomised navigators (budget 10 min each)
 	$(BIN)/python benches/bench_transfer.py
+
+# The Webots compatibility corpus (tests/webots_corpus/, docs/webots-compat.md) runs from local
+# git mirrors of its repositories, one per repository in MIRRORS (named owner+name, bare or a
+# clone; tests/webots_corpus/mirrors.py lists the names looked for). A missing one is skipped.
+MIRRORS ?= mirrors
+
+webots-compat: build ## run the Webots compatibility corpus from local git mirrors (MIRRORS=DIR); writes docs/webots-compat.md
+	$(BIN)/python tests/webots_corpus/run_corpus.py --mirrors $(MIRRORS)
 
 bench-peers: build ## mazesim against hand-written numpy, pymunk and JAX peers (installs pymunk and jax)
 	$(BIN)/python -m pip install --quiet $(PEER_PACKAGES)

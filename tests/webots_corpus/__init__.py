@@ -1,0 +1,1 @@
+"""The Webots compatibility corpus: its manifest, runner, facts and PROTO census."""

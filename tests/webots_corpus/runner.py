@@ -1,0 +1,229 @@
+"""Runs one corpus project from a local mirror: exports it, imports its world, runs its first
+controller with ``mazesim webots run`` for the project's simulated time, and checks its facts."""
+
+from __future__ import annotations
+
+import csv
+import importlib.util
+import json
+import os
+import re
+import signal
+import subprocess
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from webots_corpus.census import DROPPED_WORDS, Census, losses
+from webots_corpus.facts import MOVED, Outcome, check, parse_fact
+from webots_corpus.manifest import Project
+from webots_corpus.mirrors import MirrorError, export, find_mirror, has_commit, read_file
+
+#: Wall-clock seconds a run may take beyond its simulated time before it is stopped.
+GRACE_S = 30.0
+#: Wall-clock seconds a stopped run has to write its outputs before it is killed.
+INTERRUPT_GRACE_S = 5.0
+LANGUAGE_NAMES = {"c": "C controller", "cpp": "C++ controller"}
+
+
+@dataclass
+class Row:
+    """A project's line of the compatibility table."""
+
+    project: Project
+    result: str
+    cause: str = ""
+    checks: list[tuple[str, bool, str]] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
+    wall_s: float = 0.0
+
+
+def _import(world: Path, controller: str) -> tuple[Any, dict[str, Any]]:
+    from mazesim.webots import import_wbt
+
+    world_obj, report = import_wbt(world, controller=controller)
+    return world_obj, dict(report)
+
+
+def _trajectory(path: Path) -> np.ndarray:
+    if not path.is_file():
+        return np.zeros((0, 2))
+    with path.open(encoding="utf-8") as handle:
+        rows = [(float(r["x_m"]), float(r["y_m"])) for r in csv.DictReader(handle)]
+    return np.array(rows, dtype=np.float64).reshape(-1, 2)
+
+
+def _robots_moving(summary: dict[str, Any]) -> int | None:
+    robots = summary.get("robots")
+    if not isinstance(robots, list):
+        return None
+    return sum(1 for r in robots if isinstance(r, dict) and float(r.get("distance_m", 0)) > MOVED)
+
+
+def _missing_packages(project: Project) -> list[str]:
+    return [p for p in project.packages if importlib.util.find_spec(p) is None]
+
+
+def _significant(warnings: list[str]) -> list[str]:
+    """The warnings that say something of the world was lost (without the list of known PROTOs
+    some of them end with)."""
+    lost = [w for w in warnings if any(word in w.lower() for word in (*DROPPED_WORDS, "unknown"))]
+    return [re.sub(r" \(known PROTOs: [^)]*\)", "", w) for w in lost]
+
+
+@dataclass
+class RunResult:
+    """What ``mazesim webots run`` left: its exit status (None when it was stopped for taking
+    too long), its standard output and the last error line of its standard error."""
+
+    exit_status: int | None
+    stdout: str
+    last_error: str
+
+
+def _last_error(stderr: str) -> str:
+    lines = [line.strip() for line in stderr.splitlines() if line.strip()]
+    errors = [line for line in lines if re.match(r"^[\w.]*(Error|Exception)\b", line)]
+    return errors[-1] if errors else ""
+
+
+def _run(project: Project, root: Path, world: Path, out: Path) -> RunResult:
+    """Runs the project's first controller."""
+    command = [
+        sys.executable, "-m", "mazesim", "webots", "run", str(root / project.controllers[0]),
+        "--world", str(world), "--seconds", f"{project.seconds:g}", "--out", str(out),
+    ]  # fmt: skip
+    if project.keys:
+        keys = out.parent / "keys.txt"
+        keys.write_text("\n".join(project.keys) + "\n", encoding="utf-8")
+        command += ["--keys", str(keys)]
+    env = dict(os.environ, MPLBACKEND="Agg", PYTHONDONTWRITEBYTECODE="1")
+    process = subprocess.Popen(
+        command,
+        cwd=root,
+        env=env,
+        stdin=subprocess.DEVNULL,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        start_new_session=True,
+    )
+    status: int | None
+    try:
+        stdout, stderr = process.communicate(timeout=project.seconds + GRACE_S)
+        status = process.returncode
+    except subprocess.TimeoutExpired:
+        # Ctrl-C first: the run then writes its summary and trajectory as far as it got.
+        os.killpg(process.pid, signal.SIGINT)
+        try:
+            stdout, stderr = process.communicate(timeout=INTERRUPT_GRACE_S)
+        except subprocess.TimeoutExpired:
+            os.killpg(process.pid, signal.SIGKILL)
+            stdout, stderr = process.communicate()
+        status = None
+    except BaseException:  # interrupted: the run's own session would outlive the runner
+        os.killpg(process.pid, signal.SIGKILL)
+        raise
+    text = stderr.decode("utf-8", "replace")
+    return RunResult(status, stdout.decode("utf-8", "replace"), _last_error(text))
+
+
+def run_project(project: Project, mirrors: Path, work: Path, census: Census) -> Row:
+    """Exports, imports, runs and checks one project (and counts its world in the census)."""
+    started = time.monotonic()
+    row = _run_project(project, mirrors, work, census)
+    row.wall_s = time.monotonic() - started
+    return row
+
+
+def _run_project(project: Project, mirrors: Path, work: Path, census: Census) -> Row:
+    git_dir = find_mirror(mirrors, project.repo)
+    if git_dir is None:
+        return Row(project, "skipped", f"no mirror of {project.repo} in {mirrors}")
+    if not has_commit(git_dir, project.commit):
+        return Row(project, "skipped", f"the mirror lacks commit {project.commit[:12]}")
+    root = work / project.name.replace("/", "+")
+    folders = [project.root, *(str(Path(c).parent) for c in project.controllers)]
+    try:
+        export(git_dir, project.commit, ["" if f == "." else f for f in folders], root)
+        text = read_file(git_dir, project.commit, project.world).decode("utf-8", "replace")
+    except MirrorError as error:
+        return Row(project, "error", str(error))
+    world = root / project.world
+    controller = Path(project.controllers[0]).stem
+    try:
+        world_obj, report = _import(world, controller)
+    except Exception as error:  # noqa: BLE001 - any import failure is the row's result
+        census.add(f"{project.repo}:{project.world}", text, set(), set())
+        message = str(error).replace(f"{root}{os.sep}", "")
+        return Row(project, "error", f"import: {type(error).__name__}: {message}")
+    warnings = list(report.get("warnings", []))
+    if project.language != "python" and project.broken:
+        census.add(f"{project.repo}:{project.world}", text, *losses(warnings))
+        return Row(project, "broken itself", project.broken, warnings=warnings)
+    if project.language != "python":
+        dropped, stood_in = losses(warnings)
+        census.add(f"{project.repo}:{project.world}", text, dropped, stood_in)
+        lost = _significant(warnings)
+        cause = LANGUAGE_NAMES[project.language] + (f"; import: {lost[0]}" if lost else "")
+        return Row(project, "not run", cause, warnings=warnings)
+    missing = _missing_packages(project)
+    if missing:
+        dropped, stood_in = losses(warnings)
+        census.add(f"{project.repo}:{project.world}", text, dropped, stood_in)
+        return Row(
+            project, "not run", f"needs Python package {', '.join(missing)}", warnings=warnings
+        )
+    out = root.parent / f"{root.name}.out"
+    run = _run(project, root, world, out)
+    summary: dict[str, Any] = {}
+    if (out / "summary.json").is_file():
+        summary = json.loads((out / "summary.json").read_text(encoding="utf-8"))
+    dropped, stood_in = losses(warnings, summary)
+    census.add(f"{project.repo}:{project.world}", text, dropped, stood_in)
+    boxes = np.asarray(world_obj.wall_boxes(), dtype=np.float64).reshape(-1, 6)[:, :5]
+    outcome = Outcome(
+        exit_status=run.exit_status,
+        error=str(summary.get("controller_error") or ""),
+        stdout=run.stdout,
+        path=_trajectory(out / "trajectory.csv"),
+        walls=boxes,
+        floor=world_obj.floor_reflectance,
+        robots_moving=_robots_moving(summary),
+        wall_count=len(report.get("obstacles", [])),
+    )
+    checks = []
+    for line in project.expect:
+        ok, measured = check(parse_fact(line), outcome)
+        checks.append((line, ok, measured))
+    return _judge(project, checks, warnings, outcome, run)
+
+
+def _judge(
+    project: Project,
+    checks: list[tuple[str, bool, str]],
+    warnings: list[str],
+    outcome: Outcome,
+    run: RunResult,
+) -> Row:
+    failed = [f"{line} ({measured})" for line, ok, measured in checks if not ok]
+    parts: list[str] = []
+    stopped = run.exit_status is None
+    if stopped:
+        parts.append(f"stopped after {project.seconds + GRACE_S:.0f} s of wall-clock time")
+        if run.last_error:
+            parts.append(f"its last error: {run.last_error}")
+    if outcome.error:
+        parts.append(f"controller: {outcome.error}")
+    if failed:
+        parts.append("expected " + "; ".join(failed))
+    lost = _significant(warnings)
+    if lost:
+        parts.append(f"import: {lost[0]}" + (f" (+{len(lost) - 1} more)" if len(lost) > 1 else ""))
+    if project.broken:
+        return Row(project, "broken itself", project.broken, checks, warnings)
+    result = "pass" if not failed and not stopped else ("timeout" if stopped else "fail")
+    return Row(project, result, "; ".join(parts), checks, warnings)

@@ -1,0 +1,204 @@
+"""The compatibility corpus's manifest has its documented shape, and its runner's export, run,
+fact checks, census and page work on a tiny project written here (a local git repository: no
+network, no mirror of the corpus)."""
+
+from __future__ import annotations
+
+import math
+import re
+import shutil
+import subprocess
+from dataclasses import replace
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+from webots_corpus.census import Census, losses, proto_instances
+from webots_corpus.facts import Outcome, check, dark_fraction, min_gap, parse_fact
+from webots_corpus.manifest import ManifestError, Project, load_manifest, parse_manifest
+from webots_corpus.report import render
+from webots_corpus.runner import run_project
+
+DATA = Path(__file__).resolve().parents[1] / "data" / "webots_corpus"
+COMMIT = "0123456789abcdef0123456789abcdef01234567"
+PROJECT_TOML = f"""
+[[project]]
+name = "someone/demo"
+repo = "someone/demo"
+commit = "{COMMIT}"
+world = "worlds/demo.wbt"
+controllers = ["controllers/demo/demo.py"]
+language = "python"
+does = "drives"
+seconds = 10
+expect = ["exit 0", "travels 0.5"]
+broken = ""
+"""
+
+
+def test_the_manifest_has_enough_projects_from_enough_repositories() -> None:
+    projects = load_manifest()
+    assert len(projects) >= 40
+    assert len({p.repo for p in projects}) >= 25
+    assert sum(p.language == "python" for p in projects) >= 25
+    for project in projects:
+        assert len(project.commit) == 40 and int(project.commit, 16) >= 0
+        assert project.world.endswith(".wbt") and project.controllers and project.does
+        assert project.broken or project.expect, project.name
+        assert all(parse_fact(fact) for fact in project.expect)
+
+
+def test_a_broken_field_is_required_and_facts_must_parse() -> None:
+    assert parse_manifest(PROJECT_TOML)[0].expect == ("exit 0", "travels 0.5")
+    cases = {
+        'broken = ""\n': "expected the field 'broken'",
+        f'commit = "{COMMIT}"': "expected commit 40 hex digits",
+        '"travels 0.5"': "expected a number after travels",
+        'language = "python"': "expected language in",
+        "seconds = 10": "expected seconds in (0, 120]",
+    }
+    replacements = {
+        'broken = ""\n': "",
+        f'commit = "{COMMIT}"': 'commit = "abc123"',
+        '"travels 0.5"': '"travels far"',
+        'language = "python"': 'language = "java"',
+        "seconds = 10": "seconds = 0",
+    }
+    for old, message in cases.items():
+        with pytest.raises(ManifestError, match=re.escape(message)):
+            parse_manifest(PROJECT_TOML.replace(old, replacements[old]))
+    with pytest.raises(ManifestError, match="found twice"):
+        parse_manifest(PROJECT_TOML + PROJECT_TOML)
+
+
+def _outcome(path: list[tuple[float, float]], **overrides: Any) -> Outcome:
+    base = Outcome(
+        exit_status=0,
+        error="",
+        stdout="ready\n",
+        path=np.array(path, dtype=np.float64),
+        walls=np.array([[0.5, 0.0, 0.02, 1.0, 0.0]]),  # a wall along x = 0.5
+        floor=lambda x, y: 0.1 if abs(y) < 0.01 else 0.9,  # a dark line along y = 0
+        wall_count=1,
+    )
+    return replace(base, **overrides)
+
+
+def test_facts_measure_the_path_the_walls_and_the_floor() -> None:
+    straight = _outcome([(0.0, 0.0), (0.1, 0.0), (0.2, 0.0), (0.3, 0.0)])
+    assert check(parse_fact("travels 0.25"), straight) == (True, "travelled 0.30 m")
+    assert not check(parse_fact("travels 0.35"), straight)[0]
+    assert check(parse_fact("leaves_start 0.29"), straight)[0]
+    assert not check(parse_fact("stays_near 0.2"), straight)[0]
+    # The body (radius 0.037) is 0.5 - 0.01 - 0.3 - 0.037 = 0.153 m from the wall at its closest.
+    assert math.isclose(min_gap(straight.path, straight.walls, 0.037), 0.153, abs_tol=1e-9)
+    assert check(parse_fact("clearance 0.15"), straight)[0]
+    assert not check(parse_fact("clearance 0.16"), straight)[0]
+    touching = _outcome([(0.46, 0.0)])  # 0.49 - 0.46 < 0.037: inside the wall
+    assert not check(parse_fact("clearance 0"), touching)[0]
+    assert dark_fraction(straight.path, straight.floor) == 1.0
+    off_line = _outcome([(0.0, 0.0), (0.0, 0.1), (0.0, 0.2), (0.0, 0.3)])
+    assert check(parse_fact("on_dark 0.25"), off_line) == (True, "on dark floor 25% of steps")
+    assert not check(parse_fact("on_dark 0.3"), off_line)[0]
+    assert check(parse_fact("prints ready"), straight)[0]
+    assert not check(parse_fact("prints steady"), straight)[0]
+    assert not check(parse_fact("exit 0"), _outcome([], exit_status=1))[0]
+    failed = _outcome([], error="ZeroDivisionError: division by zero")
+    assert check(parse_fact("no_error"), failed) == (False, f"error: {failed.error}")
+    assert check(parse_fact("robots 1"), straight)[0]
+    assert not check(parse_fact("robots 2"), straight)[0]
+    assert check(parse_fact("robots 2"), replace(straight, robots_moving=2))[0]
+    with pytest.raises(ValueError, match="expected a kind among"):
+        parse_fact("flies 2")
+
+
+def test_the_census_finds_proto_instances_and_what_the_import_lost() -> None:
+    text = (DATA / "worlds" / "corner.wbt").read_text(encoding="utf-8")
+    found = [(i.type_name, i.line) for i in proto_instances(text)]
+    assert found == [("RectangleArena", 5), ("WoodenBox", 6), ("Mystery", 7), ("E-puck", 8)]
+    nested = 'Robot { children [ Gadget { slot [ Part { } ] } ] }\n"Fake {" # Comment {\n'
+    assert [(i.type_name, i.parent_line) for i in proto_instances(nested)] == [
+        ("Gadget", None),
+        ("Part", 1),
+    ]
+    warnings = [
+        "line 7: Mystery: an unknown PROTO: not imported (known PROTOs: ...)",
+        "line 6: WoodenBox: an object with physics: imported as a static obstacle",
+        "line 5: RectangleArena: replaced by a stand-in of its documented geometry",
+    ]
+    dropped, stood_in = losses(warnings, {"dropped": [{"line": 8, "type": "E-puck"}]})
+    assert (dropped, stood_in) == ({7, 8}, {5})
+    census = Census()
+    census.add("w", text, dropped, stood_in)
+    census.add("w", text, set(), set())  # a world is counted once
+    assert census.types["Mystery"].dropped == 1 and census.types["WoodenBox"].imported == 1
+    assert census.types["RectangleArena"].stood_in == 1
+    assert census.coverage() == 0.5
+
+
+def _mirror(tmp_path: Path) -> tuple[Path, str]:
+    """A mirror folder holding one repository, someone/tiny, of the tiny project."""
+    work = tmp_path / "src"
+    shutil.copytree(DATA, work)
+    git = ["git", "-C", str(work), "-c", "user.name=t", "-c", "user.email=t@example.org"]
+    subprocess.run([*git, "init", "-q"], check=True)
+    subprocess.run([*git, "add", "."], check=True)
+    subprocess.run([*git, "commit", "-q", "-m", "tiny"], check=True)
+    commit = subprocess.run(
+        [*git, "rev-parse", "HEAD"], check=True, capture_output=True, text=True
+    ).stdout.strip()
+    mirrors = tmp_path / "mirrors"
+    (mirrors / "someone+tiny").mkdir(parents=True)
+    shutil.move(str(work / ".git"), str(mirrors / "someone+tiny" / "repo.git"))
+    (mirrors / "someone+tiny" / "repo.git").rename(mirrors / "someone+tiny" / "repo")
+    return mirrors, commit
+
+
+def test_the_runner_exports_runs_and_checks_a_project(tmp_path: Path) -> None:
+    mirrors, commit = _mirror(tmp_path)
+    project = Project(
+        name="someone/tiny",
+        repo="someone/tiny",
+        commit=commit,
+        world="worlds/corner.wbt",
+        controllers=("controllers/forward/forward.py",),
+        language="python",
+        does="drives forward",
+        seconds=2.0,
+        expect=(
+            "exit 0",
+            "no_error",
+            "leaves_start 0.1",
+            "clearance 0",
+            "walls 4",
+            "prints hello corpus",
+            "travels 1.0",
+        ),  # fmt: skip
+        broken="",
+    )
+    census = Census()
+    work = tmp_path / "work"
+    row = run_project(project, mirrors, work, census)
+    # Half speed for 2 s: 3.14 rad/s * 0.0205 m * 2 s = 0.13 m, far from 1 m.
+    assert row.result == "fail", row
+    assert [ok for _, ok, _ in row.checks] == [True] * 6 + [False]
+    assert "expected travels 1.0 (travelled 0.1" in row.cause
+    assert "line 7: Mystery" in " ".join(row.warnings)
+    assert census.types["Mystery"].dropped == 1 and census.types["E-puck"].imported == 1
+
+    passing = run_project(replace(project, expect=project.expect[:-1]), mirrors, work, Census())
+    assert passing.result == "pass"
+    assert passing.cause.startswith("import: line 7: Mystery")  # what the import lost
+    c_project = replace(project, name="someone/tiny-c", language="c")
+    c_row = run_project(c_project, mirrors, work, Census())
+    assert (c_row.result, c_row.cause[:34]) == ("not run", "C controller; import: line 7: Myst")
+    broken = run_project(replace(c_project, broken="needs a door"), mirrors, work, Census())
+    assert (broken.result, broken.cause) == ("broken itself", "needs a door")
+    elsewhere = run_project(replace(project, repo="someone/else"), mirrors, work, Census())
+    assert (elsewhere.result, elsewhere.cause[:27]) == ("skipped", "no mirror of someone/else i")
+    page = render([row, passing, elsewhere], census, "2026-01-01", "abc", 1.0)
+    assert "| fail |" in page and "| pass |" in page and "| skipped |" in page
+    assert "| Mystery | 1 | 1 | 0 | 0 | 1 |" in page
+    assert "Coverage: 3 of 4 instances import (75%)" in page
