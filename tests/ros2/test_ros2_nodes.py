@@ -1,7 +1,7 @@
 """The ROS 2 nodes with the bridge, each in its own process over DDS in a private network
 namespace: the hierarchical navigator reaches seed-maze's goal in the same steps as in process and
 its bag reads back through an independent reader; a timer on simulation time drives a free-running
-bridge; ``/sim_control`` steps a paused one."""
+bridge that ``/sim_control`` steps and runs."""
 
 from __future__ import annotations
 
@@ -67,51 +67,57 @@ def test_hrl_navigator_over_ros2_reaches_the_goal_in_the_in_process_steps(tmp_pa
     }  # fmt: skip
 
 
-def test_timer_on_simulation_time_drives_a_free_running_bridge(tmp_path: Path) -> None:
+def test_sim_control_and_a_sim_time_timer_drive_a_free_running_bridge(tmp_path: Path) -> None:
     bag = tmp_path / "free"
-    bridge = [
-        *MAZESIM, "ros2", "bridge", "--mode", "free", "--speed", "0", "--stop-after", "200",
-        "--bag", str(bag),
-    ]  # fmt: skip
-    node = [*MAZESIM, "ros2", "avoid-collision", "--period-ms", "64"]
-    # The node runs in the background; the bridge in front ends after 200 steps.
-    result = run_in_namespace([node], bridge, timeout=90, grace=2.0)
-    assert "stopped after 200 steps" in result.stderr, result.stderr
-    poses = [list(message.data) for message in _bag_messages(bag)["/pose"]]  # type: ignore[attr-defined]
-    assert len(poses) == 201
-    # The wheels start at rest: only the node's commands can have moved the robot.
-    travelled = sum(math.dist(a[:2], b[:2]) for a, b in zip(poses, poses[1:]))
-    assert travelled > 0.1, travelled
-    assert "avoid_collision: stopped after" in result.stderr
-
-
-def test_sim_control_steps_a_paused_bridge(tmp_path: Path) -> None:
-    bag = tmp_path / "paused"
     bridge = [
         *MAZESIM, "ros2", "bridge", "--mode", "free", "--paused", "--speed", "0",
         "--bag", str(bag),
     ]  # fmt: skip
+    # A node on a 64 ms timer of simulation time (/clock), as use_sim_time gives.
+    node = [*MAZESIM, "ros2", "avoid-collision", "--period-ms", "64"]
     control = [sys.executable, "-c", _CONTROL]
-    result = run_in_namespace([bridge], control, timeout=60, grace=1.0)
+    result = run_in_namespace([bridge, node], control, timeout=90, grace=1.0)
     assert result.returncode == 0, result.stderr
-    clocks = _bag_messages(bag)["/clock"]
-    # The reset state, then exactly the 7 steps asked for, then nothing while paused.
-    assert len(clocks) == 8, len(clocks)
+    found = _bag_messages(bag)
+    clocks = [m.clock.sec * 10**9 + m.clock.nanosec for m in found["/clock"]]  # type: ignore[attr-defined]
+    # Paused: the reset state; "step 4" and "step 3": exactly 7 steps; "run_until 6.4": up to
+    # 6.4 s (200 steps), then paused again until stopped.
+    assert clocks[:8] == [1, *(32_000_000 * step for step in range(1, 8))]
+    assert clocks[-1] == 6_400_000_000 and len(clocks) == 201
+    poses = [list(message.data) for message in found["/pose"]]  # type: ignore[attr-defined]
+    # The wheels start at rest: only the timer node's commands can have moved the robot.
+    travelled = sum(math.dist(a[:2], b[:2]) for a, b in zip(poses, poses[1:]))
+    assert travelled > 0.1, travelled
+    assert "avoid_collision: stopped after" in result.stderr
 
 
 _CONTROL = """
 import time
 from mazesim.ros2 import cdr
 from mazesim.ros2.node import Node
-from mazesim.ros2.qos import COMMAND
+from mazesim.ros2.qos import CLOCK, COMMAND
 node = Node("sim_control_test")
+clock = node.reader("/clock", "rosgraph_msgs/msg/Clock", CLOCK)
 control = node.writer("/sim_control", "std_msgs/msg/String", COMMAND)
 node.announce()
 deadline = time.monotonic() + 20
 while not control.subscribers() and time.monotonic() < deadline:
     time.sleep(0.01)
+time.sleep(0.5)
+now = 0
+def wait_for(target):
+    global now
+    deadline = time.monotonic() + 20
+    while now < target and time.monotonic() < deadline:
+        for data in clock.take():
+            now = cdr.decode_clock(data)
+        time.sleep(0.005)
+    assert now == target, (now, target)
+control.publish(cdr.encode_string("step 4"))
+wait_for(4 * 32_000_000)
+control.publish(cdr.encode_string("step 3"))
+wait_for(7 * 32_000_000)
+control.publish(cdr.encode_string("run_until 6.4"))
+wait_for(6_400_000_000)
 time.sleep(0.3)
-for text in ("step 4", "step 3"):
-    control.publish(cdr.encode_string(text))
-    time.sleep(0.5)
 """
