@@ -26,6 +26,12 @@ def require_ros2() -> None:
     missing = [
         pypi for module, pypi in ROS2_PACKAGES.items() if importlib.util.find_spec(module) is None
     ]
+    if missing and sys.version_info < (3, 10):
+        raise MissingDependencyError(
+            f"mazesim ros2 needs {' and '.join(missing)}; cyclonedds needs Python >= 3.10 and "
+            f"{sys.executable} is Python {sys.version_info.major}.{sys.version_info.minor}: use "
+            f"a newer Python, then 'pip install \"mazesim[ros2]\"'"
+        )
     if missing:
         raise MissingDependencyError(
             f"mazesim ros2 needs {' and '.join(missing)}, which {sys.executable} cannot import: "
