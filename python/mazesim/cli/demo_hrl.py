@@ -30,7 +30,7 @@ from mazesim.learn.subtasks import CONTROL_STEP_MS, SUBTASK_NAMES
 from mazesim.learn.summary import summarise
 from mazesim.learn.tables import load_policy
 from mazesim.replay.navigator import Recording
-from mazesim.replay.options import play_live, recording_requested, write_views
+from mazesim.replay.views import play_live, recording_requested, write_views
 
 __all__ = ["run_hrl_demo"]
 

@@ -22,7 +22,7 @@ from mazesim._paths import refuse_overwriting_inputs
 from mazesim.cli._args import add_setting_options, output_path, positive_int, seed_argument
 from mazesim.cli.progress import add_progress_option, progress_display
 from mazesim.replay.navigator import Recording
-from mazesim.replay.options import (
+from mazesim.replay.views import (
     add_viewing_options,
     recording_requested,
     viewing_outputs,
