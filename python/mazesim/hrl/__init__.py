@@ -1,8 +1,5 @@
-"""Deprecated: the former name of :mod:`mazesim.learn`, kept for a deprecation period.
-
-Importing it warns (:class:`DeprecationWarning`) and gives every public name of
-:mod:`mazesim.learn`; import :mod:`mazesim.learn` instead. Nothing inside mazesim imports it.
-"""
+"""Deprecated: the former name of :mod:`mazesim.learn`, whose every public name it gives; importing
+it warns (:class:`DeprecationWarning`). Import :mod:`mazesim.learn` instead."""
 
 from __future__ import annotations
 
