@@ -52,7 +52,7 @@ from typing import Any, Protocol
 import numpy as np
 
 import mazesim
-from mazesim.benchmark.report import machine
+from mazesim.benchmark.size_sweep import machine
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 

@@ -179,7 +179,7 @@ MUST_BE_REFUSED = {
 
 
 @pytest.mark.parametrize("name", sorted(CASES))
-def test_issue_15_hostile_input_ends_in_a_mazesim_error_or_a_result(name: str) -> None:
+def test_hostile_input_ends_in_a_mazesim_error_or_a_result(name: str) -> None:
     outcome = run_hostile(CASES[name])
     assert outcome.ok, f"{name}: {outcome.describe()}"
     if name in MUST_BE_REFUSED:
@@ -237,7 +237,7 @@ def _mutated_world(rng: random.Random) -> str:
 
 
 @pytest.mark.parametrize("seed", range(6))
-def test_issue_15_mutated_worlds_end_in_a_mazesim_error_or_a_result(seed: int) -> None:
+def test_mutated_worlds_end_in_a_mazesim_error_or_a_result(seed: int) -> None:
     rng = random.Random(seed)
     worlds = [_mutated_world(rng) for _ in range(25)]
     body = (
@@ -256,13 +256,13 @@ def test_issue_15_mutated_worlds_end_in_a_mazesim_error_or_a_result(seed: int) -
     assert outcome.ok, outcome.describe()
 
 
-def test_issue_15_a_panic_is_an_internal_error() -> None:
+def test_a_panic_is_an_internal_error() -> None:
     for on_helper_thread in (False, True):
         with pytest.raises(mazesim.InternalError, match="internal error, please report: boom"):
             _core._panic_for_tests("boom", on_helper_thread=on_helper_thread)
 
 
-def test_issue_15_io_errors_keep_errno_and_reason(tmp_path: object) -> None:
+def test_io_errors_keep_errno_and_reason(tmp_path: object) -> None:
     with pytest.raises(mazesim.MazesimIOError) as caught:
         _core.World.load("/nonexistent/world.toml")
     assert caught.value.errno == 2
@@ -272,7 +272,7 @@ def test_issue_15_io_errors_keep_errno_and_reason(tmp_path: object) -> None:
     assert "None" not in str(caught.value)
 
 
-def test_issue_15_set_starts_applies_no_row_when_one_is_bad() -> None:
+def test_set_starts_applies_no_row_when_one_is_bad() -> None:
     batch = _core.BatchSimulator(_core.World.builtin("arena"), num_envs=2)
     buffers = (
         np.zeros((2, batch.observation_width), np.float32),
@@ -287,7 +287,7 @@ def test_issue_15_set_starts_applies_no_row_when_one_is_bad() -> None:
     np.testing.assert_allclose(buffers[1][0], start, atol=1e-6)
 
 
-def test_issue_15_reset_with_its_own_output_as_mask_works() -> None:
+def test_reset_with_its_own_output_as_mask_works() -> None:
     batch = _core.BatchSimulator(_core.World.builtin("arena"), num_envs=4)
     obs = np.zeros((4, batch.observation_width), np.float32)
     poses = np.zeros((4, 3), np.float32)
@@ -299,7 +299,7 @@ def test_issue_15_reset_with_its_own_output_as_mask_works() -> None:
     assert (poses[[0, 2]] != 9.0).all()
 
 
-def test_issue_15_large_integers_and_non_numbers_are_invalid_arguments() -> None:
+def test_large_integers_and_non_numbers_are_invalid_arguments() -> None:
     world = _core.World.builtin("arena")
     for call in (
         lambda: _core.Simulator(world, seed=2**70),
@@ -333,14 +333,14 @@ def _step_a_batch_in_a_child(_: int) -> float:
 # Python 3.12+ warns that forking a process with threads may deadlock: the fork guard is what
 # keeps mazesim's batches from doing so.
 @pytest.mark.filterwarnings("ignore:This process .* is multi-threaded:DeprecationWarning")
-def test_issue_15_a_forked_child_makes_and_steps_batches() -> None:
+def test_a_forked_child_makes_and_steps_batches() -> None:
     expected = _step_a_batch_in_a_child(0)
     with multiprocessing.get_context("fork").Pool(2) as pool:
         result = pool.map_async(_step_a_batch_in_a_child, range(2))
         assert result.get(timeout=60) == [expected, expected]
 
 
-def test_issue_15_ctrl_c_stops_a_long_batch_step_midway() -> None:
+def test_ctrl_c_stops_a_long_batch_step_midway() -> None:
     body = """
     import os, signal, threading
     w = _core.World.builtin("arena")
@@ -381,7 +381,7 @@ def _careless_array(draw: st.DrawFn, shape: tuple[int, ...]) -> np.ndarray:
 
 @settings(max_examples=60, deadline=None)
 @given(data=st.data())
-def test_issue_15_careless_buffers_raise_invalid_argument_or_work(data: st.DataObject) -> None:
+def test_careless_buffers_raise_invalid_argument_or_work(data: st.DataObject) -> None:
     batch = _core.BatchSimulator(_core.World.builtin("arena"), num_envs=3, threads=1)
     shapes = {
         "actions": (3, 2),
@@ -416,7 +416,7 @@ def _step_the_inherited_batch(_: int) -> float:
 
 @pytest.mark.filterwarnings("ignore:This process .* is multi-threaded:DeprecationWarning")
 @pytest.mark.parametrize("threads", [0, 2])
-def test_issue_15_a_forked_child_steps_a_batch_its_parent_made(threads: int) -> None:
+def test_a_forked_child_steps_a_batch_its_parent_made(threads: int) -> None:
     _INHERITED[:] = [
         _core.BatchSimulator(_core.World.builtin("seed-maze"), num_envs=64, threads=threads)
     ]

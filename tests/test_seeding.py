@@ -36,7 +36,7 @@ def test_tags_are_unique() -> None:
     assert len(set(tags)) == len(tags)
 
 
-def test_issue_17_the_zero_padding_trap_cannot_recur() -> None:
+def test_the_zero_padding_trap_cannot_recur() -> None:
     # numpy pads entropy lists with zeros: the old ad-hoc lists collided.
     old_round_0 = np.random.default_rng([0, 1, 0]).random(3)
     old_episode_1 = np.random.default_rng([0, 1]).random(3)

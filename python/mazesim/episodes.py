@@ -268,7 +268,7 @@ Watcher = Callable[
 class EpisodeSchedule:
     """Which episode each robot of an :class:`EpisodeBatch` runs, and what the ended ones
     measured: the bookkeeping shared by :func:`run_episodes` and the loops that step robots
-    many steps at a time (:mod:`mazesim.learn.stretches`).
+    many steps at a time (:mod:`mazesim.learn.core_episodes`).
 
     Episode ``k`` of world ``w`` is numbered ``w * episodes_per_world + k``; robots of a world
     take its episodes in turn, and a robot whose world has none left is no longer

@@ -1,7 +1,7 @@
 """``BatchSimulator.run(..., active=mask)``: the envs outside the mask stand still for the call.
 
 A caller stepping some envs one step at a time and others many steps at once (the navigator's
-corridor stretches, :mod:`mazesim.learn.stretches`) relies on it: a held env neither moves nor
+corridor stretches, :mod:`mazesim.learn.core_episodes`) relies on it: a held env neither moves nor
 draws from its streams, and an active env goes exactly as it would with every env active.
 """
 

@@ -342,7 +342,7 @@ def test_a_worker_killed_mid_task_loses_nothing(local_ray: Any, tmp_path: Path) 
 
 
 def test_evaluation_spread_over_ray_equals_one_batch(local_ray: Any) -> None:
-    from mazesim.learn.chunks import NavigatorEpisodes
+    from mazesim.learn.episode_ranges import NavigatorEpisodes
     from mazesim.learn.tables import load_policy
 
     policy = load_policy(None)

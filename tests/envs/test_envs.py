@@ -25,9 +25,9 @@ from mazesim.actions import (  # noqa: E402
     wheel_speeds,
 )
 from mazesim.envs import ENV_ID, EPuckMazeEnv, EPuckMazeVectorEnv  # noqa: E402
-from mazesim.envs.render import ROBOT_RGB  # noqa: E402
 from mazesim.envs.reward import GoalDistance, PathDistanceTable  # noqa: E402
 from mazesim.errors import InvalidActionError, InvalidArgumentError  # noqa: E402
+from mazesim.render.topdown import ROBOT_RGB  # noqa: E402
 
 
 @pytest.fixture(scope="module")

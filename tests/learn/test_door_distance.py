@@ -16,6 +16,7 @@ from mazesim.actions import ACTION_CODES
 from mazesim.cli import main
 from mazesim.errors import InvalidArgumentError, PolicyFormatError
 from mazesim.learn.checkpoint import RunFolder
+from mazesim.learn.core_episodes import stretches_apply
 from mazesim.learn.discretise import NUM_STATES
 from mazesim.learn.evaluate import evaluate_navigator
 from mazesim.learn.fleet import Fleet
@@ -27,7 +28,6 @@ from mazesim.learn.lower import (
     lower_table_shape,
 )
 from mazesim.learn.policy import HierarchicalPolicy
-from mazesim.learn.stretches import stretches_apply
 from mazesim.learn.subtasks import (
     BLIND_STATE,
     DISTANCE_EDGES,

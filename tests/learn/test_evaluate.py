@@ -14,7 +14,7 @@ from mazesim.learn.evaluate import evaluate_navigator, summarise
 from mazesim.learn.tables import load_policy
 
 
-def test_issue_9_trace_ends_with_its_episode(tmp_path: Path, capsys: Any) -> None:
+def test_trace_ends_with_its_episode(tmp_path: Path, capsys: Any) -> None:
     # A robot whose episode ended waits, still stepped, while the others finish theirs; the trace
     # of episode 0 used to follow it on after the goal, and so differed with the episode count.
     traces = [tmp_path / "one.txt", tmp_path / "three.txt"]

@@ -16,13 +16,13 @@ from mazesim.actions import ACTION_CODES, WHEEL_SPEED_FRACTIONS
 from mazesim.cli import main
 from mazesim.errors import PolicyFormatError
 from mazesim.learn.checkpoint import RunFolder
+from mazesim.learn.core_episodes import stretches_apply
 from mazesim.learn.discretise import NUM_SENSORS, distance_levels, encode_state
 from mazesim.learn.fleet import Fleet
 from mazesim.learn.heading_hold import HOLD_TOLERANCE, grid_error, hold_actions
 from mazesim.learn.higher import HigherLevel
 from mazesim.learn.lower import LowerSettings, LowerTrainer, lower_table_shape
 from mazesim.learn.policy import DeadReckoningNavigator, HierarchicalPolicy
-from mazesim.learn.stretches import stretches_apply
 from mazesim.learn.subtasks import BLIND_STATE, SubTask
 from mazesim.learn.tables import load_policy, save_policy
 from mazesim.learn.train import train

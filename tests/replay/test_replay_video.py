@@ -10,10 +10,10 @@ import numpy as np
 import pytest
 
 from mazesim.cli import main
-from mazesim.envs.render import START_RGB, TRAIL_RGB
 from mazesim.errors import InvalidArgumentError
+from mazesim.render.live import LiveView, display_problem
+from mazesim.render.topdown import START_RGB, TRAIL_RGB
 from mazesim.replay import load_run
-from mazesim.replay.live import LiveView, display_problem
 from mazesim.replay.video import video_frame_steps, write_video
 
 imageio = pytest.importorskip("imageio.v3", reason="videos need imageio (mazesim[video])")

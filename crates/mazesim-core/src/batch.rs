@@ -803,7 +803,7 @@ mod tests {
     }
 
     #[test]
-    fn issue_17_set_starts_at_moves_the_listed_envs_only() {
+    fn set_starts_at_moves_the_listed_envs_only() {
         let mut b = batch(3, 1, None);
         let mut out = Buffers::new(&b);
         b.reset(None, None, out.outputs()).unwrap();
@@ -819,7 +819,7 @@ mod tests {
     }
 
     #[test]
-    fn issue_19_set_goals_at_sets_the_listed_envs_goals_checked_first() {
+    fn set_goals_at_sets_the_listed_envs_goals_checked_first() {
         let mut b = batch(3, 1, None);
         let world_goal = b.envs()[0].goal();
         b.set_goals_at(&[1], &[0.3, 0.2, 0.05]).unwrap();
@@ -844,7 +844,7 @@ mod tests {
     }
 
     #[test]
-    fn issue_15_a_panic_while_stepping_reaches_the_caller_and_the_batch_goes_on() {
+    fn a_panic_while_stepping_reaches_the_caller_and_the_batch_goes_on() {
         let mut b = batch(96, 3, None);
         let mut out = Buffers::new(&b);
         let caught = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
@@ -856,7 +856,7 @@ mod tests {
     }
 
     #[test]
-    fn issue_15_an_interrupt_stops_a_long_step() {
+    fn an_interrupt_stops_a_long_step() {
         // 64 environments of 10,000 physics steps each: minutes without the interrupt.
         let mut b = batch(64, 2, Some(320.0));
         b.set_interrupt(Box::new(|| true));
@@ -868,7 +868,7 @@ mod tests {
     }
 
     #[test]
-    fn issue_21_envs_of_several_profiles_step_as_each_alone() {
+    fn envs_of_several_profiles_step_as_each_alone() {
         let world = Arc::new(World::builtin("seed-maze").unwrap());
         let seed = Arc::new(RobotProfile::builtin("seed").unwrap());
         let faster = Arc::new(
@@ -919,7 +919,7 @@ mod tests {
     }
 
     #[test]
-    fn issue_15_thread_counts_and_batch_sizes_are_bounded() {
+    fn thread_counts_and_batch_sizes_are_bounded() {
         assert!(Helpers::new(MAX_THREADS + 1).is_err());
         assert!(check_size(MAX_ENVS + 1, 0).is_err());
         assert!(check_size(0, 0).is_err());

@@ -6,7 +6,7 @@
 //!
 //! ```
 //! use std::sync::Arc;
-//! use mazesim_core::{RobotProfile, SimConfig, Simulator, World};
+//! use mazesim_core::prelude::*;
 //!
 //! let world = Arc::new(World::builtin("arena").unwrap());
 //! let robot = Arc::new(RobotProfile::builtin("e-puck").unwrap());
@@ -14,39 +14,63 @@
 //! sim.step(3.0, 3.0).unwrap();
 //! assert_eq!(sim.distance_sensors().len(), 8);
 //! ```
+//!
+//! Modules are grouped by subsystem below, from the ground up; `Batch` has one `impl` per concern
+//! (stepping in [`batch`], the multi-step call in [`rollout`], the navigator's training round in
+//! [`lower_training`]), and [`prelude`] brings the types most programs start from.
 #![warn(missing_docs)]
 
-pub mod batch;
+// World and geometry: the format and walls, seeded mazes, barcode code books.
 pub mod codebook;
-pub mod contact;
-pub mod control;
-pub mod crossing;
-pub mod error;
-pub mod fingerprint;
-pub mod footprint;
 pub mod generator;
-pub mod io;
-pub mod limits;
-pub mod lower_training;
-pub mod lut;
-pub mod memory;
-pub mod physics;
-pub mod qlearning;
-pub mod rng;
-pub mod robot;
-pub mod rollout;
-pub mod sensors;
-pub mod simulator;
-pub mod wbt;
 pub mod world;
+
+// Robot and sensors: profiles, lookup tables, infra-red and ground models, crossings.
+mod crossing;
+mod lut;
+pub mod robot;
+pub mod sensors;
+
+// Physics: the body (rapier2d when bodies move) and its contacts with static walls.
+mod contact;
+pub mod physics;
+
+// Engine: one simulator, the batch, the multi-step call and its built-in controllers.
+pub mod batch;
+pub mod control;
+pub mod rollout;
+pub mod simulator;
+
+// Navigator: tabular Q-learning and the lower level's training round.
+pub mod lower_training;
+pub mod qlearning;
+
+// Webots import.
+pub mod wbt;
+
+// Utilities: errors, fingerprints, memory accounting, file access, limits, random streams.
+mod error;
+mod fingerprint;
+mod footprint;
+mod io;
+pub mod limits;
+mod memory;
+pub mod rng;
 
 pub use batch::{Batch, StepOutputs};
 pub use control::Controller;
+pub use crossing::{Crossing, CrossingTracker};
 pub use error::{Error, Location, Result};
+pub use lut::LookupTable;
 pub use robot::{robot_profile_names, Perturbation, RobotProfile};
 pub use rollout::{RunCounters, RunOptions, RunTrace};
 pub use simulator::{SimConfig, Simulator};
 pub use world::{builtin_world_names, World};
+
+/// The types most programs start from: `use mazesim_core::prelude::*;`.
+pub mod prelude {
+    pub use crate::{Batch, Error, Result, RobotProfile, SimConfig, Simulator, StepOutputs, World};
+}
 
 /// Converts a Sharp GP2Y0A41SK0F reading in volts to centimetres by inverting its table
 /// (clamped to 3-40 cm). A reading that is not a finite number is an `InvalidArgument` error.

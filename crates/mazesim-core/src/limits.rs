@@ -49,7 +49,7 @@ pub const MAX_TURN_RATE: f64 = 10_000.0;
 /// Most threads of a batch (0 means one per core).
 pub const MAX_THREADS: usize = 256;
 
-/// Most environments of a batch (memory is checked as well, see `batch::check_memory`).
+/// Most environments of a batch (memory is checked as well, see `batch::check_size`).
 pub const MAX_ENVS: usize = 1 << 24;
 
 /// `Ok` when `value` is finite and within `[-bound, bound]`; otherwise an error naming `what`.

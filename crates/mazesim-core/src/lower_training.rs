@@ -2,7 +2,7 @@
 //! batch practises its sub-task, acting epsilon-greedily from the stacked tables, and the tables
 //! learn from every finished decision and its mirror image, for a whole round in one call.
 //!
-//! The round follows `LowerTrainer.run_round_stepwise` operation for operation in f64 (the same
+//! The round follows `LowerTrainer.run_round(stepwise=True)` operation for operation in f64 (the same
 //! products and sums in the same order, the sub-tasks' odometry of [`crate::control::door`], the
 //! Table 4.1 state of [`crate::control::Discretiser`], the batch updates of [`crate::qlearning`]),
 //! so that both give the same tables bit for bit. Its random numbers come from the caller, drawn

@@ -380,7 +380,7 @@ fn an_interrupt_stops_a_long_run() {
 }
 
 #[test]
-fn issue_19_an_episode_ends_at_its_environments_own_goal() {
+fn an_episode_ends_at_its_environments_own_goal() {
     let worlds = mazes(2);
     let mut b = batch(worlds.clone(), "e-puck", &[0, 1], 1);
     let [x, y, _] = worlds[1].start();

@@ -13,7 +13,7 @@ from dataclasses import fields
 from typing import Any
 
 from mazesim.benchmark import MIN_WARMUP_STEPS, BenchSettings
-from mazesim.benchmark.report import machine, run_sizes, single_env_rate, table
+from mazesim.benchmark.size_sweep import machine, run_sizes, single_env_rate, table
 from mazesim.cli._args import (
     MAX_COUNT,
     add_setting_options,

@@ -20,7 +20,7 @@ from mazesim._paths import output_files, refuse_overwriting_inputs
 from mazesim.cli._args import output_path, positive_seconds, seed_argument
 from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
-from mazesim.replay.options import add_viewing_options, viewing_outputs
+from mazesim.replay.views import add_viewing_options, viewing_outputs
 
 __all__ = ["register", "run_demo"]
 
@@ -118,7 +118,7 @@ def run_avoid_collision_demo(args: argparse.Namespace, out: TextIO) -> int:
     from mazesim.controllers import AvoidCollision
     from mazesim.errors import InvalidArgumentError
     from mazesim.plotting import save_trajectory_png
-    from mazesim.replay.options import SimulatorWatch
+    from mazesim.replay.views import SimulatorWatch
 
     world = mazesim.load_world(args.world)
     simulator = mazesim.Simulator(world, robot=args.robot, seed=args.seed)

@@ -23,14 +23,14 @@ from mazesim._atomic import atomic_file
 from mazesim.episodes import StartJitter, shortest_path_steps
 from mazesim.errors import InvalidArgumentError
 from mazesim.learn.evaluate import EvaluationRecord, evaluate, navigator_for
+from mazesim.learn.evaluation_text import trace_text
 from mazesim.learn.figures import save_episodes_png
 from mazesim.learn.policy import HierarchicalPolicy
-from mazesim.learn.report import trace_text
 from mazesim.learn.subtasks import CONTROL_STEP_MS, SUBTASK_NAMES
 from mazesim.learn.summary import summarise
 from mazesim.learn.tables import load_policy
 from mazesim.replay.navigator import Recording
-from mazesim.replay.options import play_live, recording_requested, write_views
+from mazesim.replay.views import play_live, recording_requested, write_views
 
 __all__ = ["run_hrl_demo"]
 

@@ -22,7 +22,7 @@ from mazesim._paths import refuse_overwriting_inputs
 from mazesim.cli._args import add_setting_options, output_path, positive_int, seed_argument
 from mazesim.cli.progress import add_progress_option, progress_display
 from mazesim.replay.navigator import Recording
-from mazesim.replay.options import (
+from mazesim.replay.views import (
     add_viewing_options,
     recording_requested,
     viewing_outputs,
@@ -42,7 +42,7 @@ def _write_trace_and_plot(
 ) -> list[str]:
     """Writes ``--trace`` and ``--plot`` of the first source's episodes; returns their paths."""
     from mazesim._atomic import atomic_file
-    from mazesim.learn.report import trace_text
+    from mazesim.learn.evaluation_text import trace_text
 
     written = []
     if args.trace is not None:
@@ -132,7 +132,7 @@ def run_eval(args: argparse.Namespace, out: TextIO) -> int:
     """Runs ``mazesim eval``."""
     from mazesim.learn import EvaluationRecord, evaluate_navigator
     from mazesim.learn.evaluate import ADAPT_EPISODES, EvalSettings
-    from mazesim.learn.report import summary_text
+    from mazesim.learn.evaluation_text import summary_text
     from mazesim.learn.tables import load_policy
 
     policy_files = [

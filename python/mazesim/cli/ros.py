@@ -24,7 +24,7 @@ from mazesim.cli._args import (
     seed_argument,
 )
 from mazesim.cli._help import examples
-from mazesim.replay.options import add_viewing_options
+from mazesim.replay.views import add_viewing_options
 from mazesim.ros._ros import check_ros_installed
 
 __all__ = ["check_before_parsing", "register"]
@@ -127,7 +127,7 @@ def _run_demo(args: argparse.Namespace) -> int:
     import sys
 
     from mazesim._paths import output_files, refuse_overwriting_inputs
-    from mazesim.replay.options import viewing_outputs
+    from mazesim.replay.views import viewing_outputs
 
     refuse_overwriting_inputs(
         [*output_files(args.out, ("maze.bag", "trajectory.png")), *viewing_outputs(args)],
@@ -244,9 +244,9 @@ def register(commands: Any) -> None:
 
     learning = nodes.add_parser(
         "perform-learning",
-        help="the hierarchical policy node (Alg. 5; needs mazesim.hrl)",
+        help="the hierarchical policy node (Alg. 5)",
         description=(
-            "Subscribe sensor_data, ask the hierarchical policy of mazesim.hrl (Alg. 5) for a "
+            "Subscribe sensor_data, ask the hierarchical policy of mazesim.learn (Alg. 5) for a "
             "primitive action and publish its code on action, one action per reading. Needs a "
             "bridge running a robot with Sharp sensors (--robot seed). The policy dead-reckons "
             "its sub-tasks from its actions, each lasting one control step of the bridge (read "

@@ -15,7 +15,7 @@ from mazesim._paths import output_files, output_path, refuse_overwriting_inputs
 from mazesim.cli._args import positive_seconds, seed_argument
 from mazesim.cli._help import examples
 from mazesim.cli.progress import ProgressDisplay, add_progress_option, progress_display
-from mazesim.replay.options import (
+from mazesim.replay.views import (
     DeferredWatch,
     add_viewing_options,
     viewing_outputs,

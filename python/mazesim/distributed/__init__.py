@@ -8,7 +8,7 @@ runs the same tasks in this process. A setting names its trainer: ``hrl`` or ``b
 (also named ``flat-q``): :mod:`mazesim.distributed.hrl_trainers`, mazesim's navigator and its one
 flat learner. :func:`evaluate_episodes` spreads the episodes of an evaluation over Ray workers
 (``mazesim eval --address``: :mod:`mazesim.distributed.episodes`, running the chunks of
-:mod:`mazesim.learn.chunks`).
+:mod:`mazesim.learn.episode_ranges`).
 
 Ray is optional (``pip install "mazesim[ray]"``): this package imports it only when it runs
 something on Ray.

@@ -2,7 +2,7 @@
 
 An evaluation is given as a function ``evaluate_chunk(first, count)`` that runs episodes
 ``first`` to ``first + count - 1`` and returns their results, one per episode in order (the
-navigator's chunks, :class:`mazesim.learn.chunks.NavigatorEpisodes`, return
+navigator's chunks, :class:`mazesim.learn.episode_ranges.NavigatorEpisodes`, return
 :class:`~mazesim.episodes.EpisodeResult` lists). When episode ``e``'s outcome depends only on
 ``e`` and the evaluation's seed (as :func:`mazesim.learn.evaluate.evaluate_navigator`
 guarantees), any split into chunks gives the same episodes: :func:`evaluate_episodes` runs the

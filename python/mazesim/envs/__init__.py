@@ -12,7 +12,7 @@
 :class:`EPuckMazeEnv` is one robot in a maze, :class:`EPuckMazeVectorEnv` runs N of them in the
 batch engine and equals ``SyncVectorEnv`` bit for bit. The observation, action and reward are
 documented in :mod:`mazesim.envs.spaces` and :mod:`mazesim.envs.reward`, the pictures in
-:mod:`mazesim.envs.render`.
+:mod:`mazesim.render.topdown`.
 """
 
 from __future__ import annotations
@@ -29,10 +29,10 @@ if importlib.util.find_spec("gymnasium") is None:
 
 from mazesim.envs.maze_env import EPuckMazeEnv  # noqa: E402
 from mazesim.envs.options import DEFAULT_MAX_EPISODE_STEPS  # noqa: E402
-from mazesim.envs.render import TopDownRenderer  # noqa: E402
 from mazesim.envs.reward import RewardWeights  # noqa: E402
 from mazesim.envs.tasks import TASKS, Task, register_tasks  # noqa: E402
 from mazesim.envs.vector import EPuckMazeVectorEnv  # noqa: E402
+from mazesim.render.topdown import TopDownRenderer  # noqa: E402
 
 __all__ = [
     "DEFAULT_MAX_EPISODE_STEPS",

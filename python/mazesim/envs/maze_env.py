@@ -13,10 +13,10 @@ from gymnasium.error import ResetNeeded
 from mazesim._core import Simulator, World
 from mazesim.envs.navigation import StartAndGoal, navigation_features
 from mazesim.envs.options import EnvOptions, draw_seed
-from mazesim.envs.render import TopDownRenderer
 from mazesim.envs.spaces import ActionConverter, ObservationLayout, sensor_ranges
 from mazesim.errors import InvalidArgumentError
 from mazesim.maze import GoalDistance, PathDistanceTable
+from mazesim.render.topdown import TopDownRenderer
 
 __all__ = [
     "RENDER_MODES",
@@ -84,7 +84,7 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
 
     Args:
         render_mode: None, ``"rgb_array"`` (a top-down image with the trail and an overlay of
-            time, step, reward and the last event, see :mod:`mazesim.envs.render`), or
+            time, step, reward and the last event, see :mod:`mazesim.render.topdown`), or
             ``"human"`` (that image in a window that updates every step).
         **options: The options of :meth:`mazesim.envs.options.EnvOptions.create`, the one list
             of them: ``world``, ``robot``, ``action_mode``, ``clip_actions``, ``observation``,
@@ -263,7 +263,7 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
 
     def render(self) -> npt.NDArray[np.uint8] | None:
         """A top-down (height, width, 3) uint8 image with ``render_mode="rgb_array"``; with
-        ``"human"``, the same image shown in a window (:class:`mazesim.replay.live.LiveView`,
+        ``"human"``, the same image shown in a window (:class:`mazesim.render.live.LiveView`,
         which carries on headless where there is no display) and None.
 
         The image shows the start pose and the goal, the robot's trail since the reset, and the
@@ -277,7 +277,7 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         frame = self._frame()
         if self.render_mode == "human":
             if self._live is None:
-                from mazesim.replay.live import LiveView
+                from mazesim.render.live import LiveView
 
                 self._live = LiveView(
                     f"mazesim: {self.world.name}", 1.0 / float(self.metadata["render_fps"])

@@ -32,11 +32,11 @@ from mazesim._core import BatchSimulator, World
 from mazesim.envs.maze_env import VECTOR_RENDER_MODES, check_render_mode, step_length_ms
 from mazesim.envs.navigation import StartAndGoal, navigation_features
 from mazesim.envs.options import DEFAULT_MAX_EPISODE_STEPS, EnvOptions, draw_seed
-from mazesim.envs.render import TopDownRenderer
 from mazesim.envs.reward import step_reward
 from mazesim.envs.spaces import ActionConverter, ObservationLayout, sensor_ranges
 from mazesim.errors import InvalidArgumentError
 from mazesim.maze import GoalDistance, PathDistanceTable
+from mazesim.render.topdown import TopDownRenderer
 
 __all__ = ["EPuckMazeVectorEnv"]
 

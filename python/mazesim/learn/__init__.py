@@ -21,7 +21,8 @@ scratch with checkpoints and resume; :mod:`mazesim.learn.tables` saves and loads
 :mod:`mazesim.learn.evaluate` measures a navigator (its one result type,
 :class:`~mazesim.learn.summary.Summary`); :mod:`mazesim.learn.baseline` is the one flat
 Q-learner, for comparison. Trained tables for ``seed-maze`` ship in the package (``mazesim eval``
-uses them by default). ``mazesim.hrl`` is this package's former name and still imports.
+uses them by default). ``mazesim.hrl``, this package's former name, still imports, with a
+:class:`DeprecationWarning`.
 """
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
 """Evaluating a navigator: success, collisions, steps against the shortest path, decisions, and
 what the report's pictures (trajectories, Fig. 4.6 / 4.8) and terminal trace (Fig. 4.7) are
-drawn from. It writes and prints nothing: :mod:`mazesim.learn.report` turns a summary and a
+drawn from. It writes and prints nothing: :mod:`mazesim.learn.evaluation_text` turns a summary and a
 trace into text, :mod:`mazesim.learn.figures` draws the paths, and ``mazesim eval`` writes them.
 
 An evaluation runs greedy episodes in a world with sensor noise and the start jitter of
@@ -18,7 +18,7 @@ chose at each checkpoint event. :func:`evaluate_navigator` returns one summary p
 checkpoint events.
 
 With ``spread``, :func:`evaluate_navigator` hands the episodes out in chunks
-(:mod:`mazesim.learn.chunks`; ``mazesim eval --address`` passes Ray's
+(:mod:`mazesim.learn.episode_ranges`; ``mazesim eval --address`` passes Ray's
 :func:`mazesim.distributed.evaluate_episodes`): the higher level of an unseen world is trained
 once, here, and its tables shipped with the chunks; every episode ends as it would here, so the
 summary is the same spread or not.
@@ -54,12 +54,12 @@ from mazesim.episodes import (
     shortest_path_steps,
 )
 from mazesim.errors import InvalidArgumentError
-from mazesim.learn.chunks import NavigatorEpisodes
+from mazesim.learn.core_episodes import run_navigator_episodes, stretches_apply
 from mazesim.learn.discretise import format_levels
+from mazesim.learn.episode_ranges import NavigatorEpisodes
 from mazesim.learn.higher import HigherLevel
 from mazesim.learn.higher_training import HigherTraining, train_higher
 from mazesim.learn.policy import HierarchicalPolicy, StepRecord
-from mazesim.learn.stretches import run_navigator_episodes, stretches_apply
 from mazesim.learn.subtasks import CONTROL_STEP_MS, SUBTASK_CODES, SUBTASK_NAMES
 from mazesim.learn.summary import Summary, summarise
 from mazesim.learn.tables import TrainedPolicy
@@ -94,8 +94,8 @@ class EvaluationRecord:
 
     Attributes:
         paths: Record the trajectories of the first this many episodes of the first world.
-        trace: Record the per-step trace of episode 0 (:func:`mazesim.learn.report.trace_text`
-            makes it a file).
+        trace: Record the per-step trace of episode 0
+            (:func:`mazesim.learn.evaluation_text.trace_text` makes it a file).
         recorder: Records the first episodes frame by frame (:attr:`run`, for the replay and
             videos); see :class:`RecorderFactory`.
         episode_paths: Filled in: each recorded episode's ``(x, y)`` points, by episode number
@@ -290,7 +290,7 @@ def evaluate(
     With ``multi_step`` (the default), a greedy
     :class:`~mazesim.learn.policy.HierarchicalPolicy` with events from the ground truth runs in
     the core's multi-step call from one checkpoint event to the next, door sub-tasks included
-    (:func:`mazesim.learn.stretches.run_navigator_episodes`); the episodes to record (paths,
+    (:func:`mazesim.learn.core_episodes.run_navigator_episodes`); the episodes to record (paths,
     trace, replay) then run once more, one step at a time. Any other navigator (a flat one, one
     that wraps ``act``), robots of different motor limits and decoder events run one step at a
     time. The results are the same either way; the multi-step call is the faster (see

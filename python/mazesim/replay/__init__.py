@@ -1,4 +1,5 @@
-"""Watching runs: the recorded-run format, the HTML replay, videos, the live view, world previews.
+"""Watching runs: the recorded-run format, the HTML replay, videos, world previews (the pictures
+and the live window are :mod:`mazesim.render`'s).
 
 - :mod:`mazesim.replay.run`: :class:`RecordedRun`, the versioned run format, :func:`save_run` and
   :func:`load_run`;
@@ -6,9 +7,8 @@
   the navigator's episodes;
 - :mod:`mazesim.replay.html`: the self-contained HTML replay (:func:`write_html`);
 - :mod:`mazesim.replay.video`: MP4 and GIF videos (:func:`write_video`);
-- :mod:`mazesim.replay.live`: a window that updates as a run goes;
 - :mod:`mazesim.replay.preview`: a labelled picture of a world (``mazesim show``);
-- :mod:`mazesim.replay.options`: the ``--html``, ``--video`` and ``--live`` options of the run
+- :mod:`mazesim.replay.views`: the ``--html``, ``--video`` and ``--live`` options of the run
   commands.
 """
 

@@ -1,6 +1,6 @@
 """Videos of recorded runs: MP4 (imageio with the ffmpeg of the ``imageio-ffmpeg`` wheel) or GIF.
 
-Each frame is the top-down picture of :class:`mazesim.envs.render.TopDownRenderer` with the
+Each frame is the top-down picture of :class:`mazesim.render.topdown.TopDownRenderer` with the
 robot's trail, its sensor rays, and an overlay of the time, the step, the action, the running
 sub-task and the last barcode event or decision. A video plays in real time: one frame per control
 step, or one every few steps when the control step is shorter than a frame should be (GIFs are
@@ -22,6 +22,7 @@ import numpy.typing as npt
 
 from mazesim._atomic import atomic_file, temporary_name
 from mazesim.errors import InvalidArgumentError, MissingDependencyError
+from mazesim.render.topdown import TopDownRenderer
 from mazesim.replay.run import RecordedEpisode, RecordedRun
 
 __all__ = ["VIDEO_FORMATS", "frame_overlay", "video_frame_steps", "video_frames", "write_video"]
@@ -89,7 +90,6 @@ def video_frames(
         raise InvalidArgumentError(
             f"expected an episode from 0 to {len(run.episodes) - 1}, found {episode}"
         )
-    from mazesim.envs.render import TopDownRenderer  # needs gymnasium, as all of mazesim.envs
 
     recorded = run.episodes[episode]
     profile = run.robot_profile

@@ -11,7 +11,7 @@ An optional part of mazesim: importing it, or :mod:`mazesim`, never needs ROS. T
   ``geometry_msgs/Twist`` it takes on ``cmd_vel``.
 - :mod:`mazesim.ros.avoid_collision`: the avoid-collision controller node (Listing 3.2).
 - :mod:`mazesim.ros.perform_learning`: the perform-learning node (Alg. 5), the hierarchical policy
-  of :mod:`mazesim.hrl` answering ``sensor_data`` with ``action`` codes.
+  of :mod:`mazesim.learn` answering ``sensor_data`` with ``action`` codes.
 - :mod:`mazesim.ros.demo`: ``mazesim ros demo``, bridge and a controller node on a private master,
   recorded in a bag.
 - :mod:`mazesim.ros.topics`: the topics and their layouts (the codes of the ``action`` topic and

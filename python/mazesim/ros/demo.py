@@ -234,7 +234,7 @@ def _write_views(
     args: argparse.Namespace, bag_path: str, world: Any, robot: str, controller: str, step_ms: float
 ) -> list[str]:
     """The ``--html``, ``--video`` and ``--record`` outputs, from the bag."""
-    from mazesim.replay.options import recording_requested, write_views
+    from mazesim.replay.views import recording_requested, write_views
 
     if not recording_requested(args) or not math.isfinite(step_ms):
         return []

@@ -6,18 +6,18 @@ action and publishes its code on ``action``: one action per reading, which is ex
 lockstep bridge waits for. Before it subscribes it waits until the bridge listens on ``action``, so
 its first action cannot be lost.
 
-The policy is :mod:`mazesim.hrl`'s, loaded with :func:`mazesim.hrl.load_policy` (by default the
-tables shipped for ``seed-maze``); the node imports it only when it starts. Like the report's
-robot, the policy sees only what the topic carries: the odometry of its sub-tasks is dead-reckoned
-from the actions it chose, each held for one control step of the bridge. The node takes that step
-from the ``control_step_ms`` parameter the bridge sets in its namespace (32 ms for the ``seed``
-robot; the shipped tables were trained with 64 ms steps and reach the goal at 32 ms as well) and
-passes it to ``policy.reset(control_step_ms=...)``.
+The policy is :mod:`mazesim.learn`'s, loaded with :func:`mazesim.learn.tables.load_policy` (by
+default the tables shipped for ``seed-maze``); the node imports it only when it starts. Like the
+report's robot, the policy sees only what the topic carries: the odometry of its sub-tasks is
+dead-reckoned from the actions it chose, each held for one control step of the bridge. The node
+takes that step from the ``control_step_ms`` parameter the bridge sets in its namespace (32 ms for
+the ``seed`` robot; the shipped tables were trained with 64 ms steps and reach the goal at 32 ms as
+well) and passes it to ``policy.reset(control_step_ms=...)``.
 
-The hooks it relies on, as :class:`mazesim.hrl.TrainedPolicy` provides them:
+The hooks it relies on, as :class:`mazesim.learn.TrainedPolicy` provides them:
 
-- ``mazesim.hrl.load_policy(path: str | None)`` returns a policy; ``None`` means the tables shipped
-  with the package.
+- ``mazesim.learn.tables.load_policy(path: str | None)`` returns a policy; ``None`` means the
+  tables shipped with the package.
 - ``policy.reset(control_step_ms)`` starts a new episode whose actions each last that long.
 - ``policy.act(distances_cm, checkpoint) -> str`` takes the six distances in cm (front, back, left,
   right, left-front, right-front; a float64 array of shape (6,)) and the signed checkpoint id
@@ -32,7 +32,6 @@ must not miss the first actions either).
 
 from __future__ import annotations
 
-import importlib
 import math
 import threading
 import time
@@ -40,7 +39,7 @@ from typing import Any
 
 import numpy as np
 
-from mazesim.errors import InvalidArgumentError, MazesimError, MissingDependencyError
+from mazesim.errors import InvalidArgumentError, MazesimError
 from mazesim.ros import topics
 from mazesim.ros._ros import (
     install_shutdown_handlers,
@@ -58,36 +57,19 @@ MASTER_TIMEOUT_S = 10.0
 CONTROL_STEP_TIMEOUT_S = 10.0
 
 
-def _hrl_module() -> Any:
-    """Imports :mod:`mazesim.hrl`, or says clearly that this installation lacks it."""
-    try:
-        hrl = importlib.import_module("mazesim.hrl")
-    except ModuleNotFoundError as error:
-        if error.name != "mazesim.hrl":
-            raise
-        raise MissingDependencyError(
-            "the perform-learning node needs mazesim.hrl (the hierarchical Q-learning policy), "
-            "which this installation of mazesim does not have"
-        ) from error
-    if not callable(getattr(hrl, "load_policy", None)):
-        raise MissingDependencyError(
-            "the perform-learning node needs mazesim.hrl.load_policy(path), "
-            "which this installation of mazesim.hrl does not provide"
-        )
-    return hrl
-
-
 def load_policy(path: str | None) -> Any:
-    """Loads the hierarchical policy through :mod:`mazesim.hrl`'s ``load_policy`` hook.
+    """Loads the hierarchical policy with :func:`mazesim.learn.tables.load_policy`, imported
+    only when the node starts.
 
     Args:
         path: A folder of trained tables, or ``None`` for the tables shipped with mazesim.
 
     Raises:
-        MissingDependencyError: This installation of mazesim has no :mod:`mazesim.hrl`.
         PolicyFormatError: The folder does not hold a usable policy.
     """
-    return _hrl_module().load_policy(path)
+    from mazesim.learn.tables import load_policy as load_tables
+
+    return load_tables(path)
 
 
 def control_step_value(name: str, value: Any, allow_zero: bool) -> float:
@@ -145,7 +127,6 @@ def run_perform_learning(
     """
     ros = require_ros()
     rospy = ros.rospy
-    _hrl_module()  # fail before touching ROS when the policy is missing
     wait_for_master(ros, MASTER_TIMEOUT_S)
     rospy.init_node(
         node_name, argv=["mazesim-ros-perform-learning", *remappings], disable_signals=True

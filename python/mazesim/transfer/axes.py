@@ -31,7 +31,7 @@ slip               share of the motion lost while touching a wall   0.1, 0.25, 0
 
 The first ten axes but ``robot``, ``latency`` and ``link`` are robot-profile perturbations
 (:meth:`mazesim.RobotProfile.perturbed`); ``latency`` and ``link`` change how the controller
-meets the simulator (:mod:`mazesim.transfer.control`).
+meets the simulator (:mod:`mazesim.transfer.control_timing`).
 """
 
 from __future__ import annotations

@@ -5,8 +5,8 @@ one robot profile run side by side in one :class:`mazesim.episodes.EpisodeBatch`
 its own entry in the batch's world list (the same world, repeated) and its own robots, each robot
 its own (perturbed) profile; the navigator of all of them is the plain one wrapped per robot
 (:class:`~mazesim.transfer.readings.SeedReadingsNavigator` on another profile,
-:class:`~mazesim.transfer.control.DelayedNavigator`,
-:class:`~mazesim.transfer.control.LinkedNavigator`).
+:class:`~mazesim.transfer.control_timing.DelayedNavigator`,
+:class:`~mazesim.transfer.control_timing.LinkedNavigator`).
 
 Every cell drives the same episodes: episode ``k`` of every cell starts from the same jittered
 pose with the same noise seed (common random numbers), so the difference between a cell and the
@@ -38,7 +38,7 @@ from mazesim.learn.higher import HigherLevel
 from mazesim.learn.policy import HierarchicalPolicy
 from mazesim.learn.summary import Summary, summarise
 from mazesim.transfer.axes import Setting
-from mazesim.transfer.control import DelayedNavigator, LinkedNavigator
+from mazesim.transfer.control_timing import DelayedNavigator, LinkedNavigator
 from mazesim.transfer.odometry import EncoderOdometryNavigator
 from mazesim.transfer.readings import SeedReadingsNavigator
 

@@ -232,43 +232,11 @@ def observing_steps(observer: StepObserver) -> Iterator[None]:
         _observers.remove(observer)
 
 
-def prepare(
-    world: World,
-    *,
-    seconds: float | None = None,
-    seed: int = 0,
-    noise: bool = True,
-    report: Mapping[str, Any] | None = None,
-    keys: KeyScript | None = None,
-    supervisor: bool = False,
-    scene: Scene | None = None,
-) -> RobotSimulation:
-    """Makes the simulation that the next ``controller.Robot()`` drives.
-
-    Args:
-        world: The world to run in.
-        seconds: Simulated seconds after which ``Robot.step`` returns -1; None runs forever.
-        seed: Seed of the sensor noise.
-        noise: Whether the sensors are noisy.
-        report: The import report of a ``.wbt`` world (robot profile, extension devices, DEFs).
-        keys: The keyboard script.
-        supervisor: Whether the robot is a supervisor whatever class the controller creates.
-        scene: DEF names, camera fields and north read from the world file.
-
-    Returns:
-        The new simulation (it replaces any earlier one).
-    """
+def prepare(world: World, **settings: Any) -> RobotSimulation:
+    """Makes the simulation that the next ``controller.Robot()`` drives, replacing any earlier
+    one: ``RobotSimulation(world, **settings)`` (the settings are :class:`RobotSimulation`'s)."""
     global _current
-    _current = RobotSimulation(
-        world,
-        seconds=seconds,
-        seed=seed,
-        noise=noise,
-        report=report,
-        keys=keys,
-        supervisor=supervisor,
-        scene=scene,
-    )
+    _current = RobotSimulation(world, **settings)
     return _current
 
 

@@ -1,5 +1,5 @@
 //! A tabular policy over the report's lower-level state: the six Sharp distances discretised by
-//! Table 4.1 (as `mazesim.hrl.discretise` does) and the twelve primitive actions (as
+//! Table 4.1 (as `mazesim.learn.discretise` does) and the twelve primitive actions (as
 //! `mazesim.actions` lists them), acting greedily, optionally within a mask of allowed actions and
 //! with epsilon-greedy exploration from each environment's own stream.
 

@@ -198,7 +198,7 @@ fn a_wall_a_kilometre_away_does_not_blow_up_the_index() {
 }
 
 #[test]
-fn issue_15_a_wall_far_from_the_origin_is_refused_with_its_field_and_range() {
+fn a_wall_far_from_the_origin_is_refused_with_its_field_and_range() {
     let Err(Error::Format { field, message, .. }) =
         parse("[[walls]]\ncenter = [1e20, 0]\nsize = [0.1, 0.1]\n")
     else {
@@ -212,7 +212,7 @@ fn issue_15_a_wall_far_from_the_origin_is_refused_with_its_field_and_range() {
 }
 
 #[test]
-fn issue_15_coincident_walls_are_one_solid() {
+fn coincident_walls_are_one_solid() {
     let wall = "[[walls]]\ncenter = [0.2, 0]\nsize = [0.1, 0.1]\n";
     let w = parse(&wall.repeat(30_000)).unwrap();
     assert_eq!(w.walls().len(), 30_000);
@@ -220,7 +220,7 @@ fn issue_15_coincident_walls_are_one_solid() {
 }
 
 #[test]
-fn issue_15_crowded_overlapping_walls_are_refused() {
+fn crowded_overlapping_walls_are_refused() {
     let text: String = (0..3_000)
         .map(|i| {
             format!(
@@ -263,7 +263,7 @@ proptest! {
     /// Issue #15: a world file of hostile numbers compiles into a world within the limits or is a
     /// format error; it never panics, and a simulator made from it keeps a finite pose.
     #[test]
-    fn issue_15_hostile_numbers_give_a_bounded_world_or_a_format_error(
+    fn hostile_numbers_give_a_bounded_world_or_a_format_error(
         walls in prop::collection::vec(prop::collection::vec(hostile_number(), 5), 0..4),
         start in prop::collection::vec(hostile_number(), 3),
         step in hostile_number(),

@@ -19,7 +19,7 @@ pub struct WallIndex {
     /// Per wall: its bounding box (min x, min y, max x, max y), to skip walls a ray cannot meet.
     boxes: Vec<[f32; 4]>,
     /// Per wall: the wall itself as an axis-aligned box (min x, min y, max x, max y) when it is
-    /// one (yaw a multiple of 90 degrees, as in every cell maze), cast against with `slab_hit`.
+    /// one (yaw a multiple of 90 degrees, as in every cell maze), cast against with `SlabRay::hit`.
     aligned: Vec<Option<[f32; 4]>>,
     /// Every box of `aligned` has min <= max on both axes (as a wall of non-negative size does),
     /// as `SlabLanes` needs.

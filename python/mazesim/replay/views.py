@@ -110,7 +110,7 @@ def write_views(args: argparse.Namespace, run: RecordedRun, title: str | None = 
 
 def play_live(run: RecordedRun, title: str, stream: TextIO | None = None) -> None:
     """Shows the first episode of a recorded run in a live window, in real time."""
-    from mazesim.replay.live import LiveView
+    from mazesim.render.live import LiveView
     from mazesim.replay.video import video_frames
 
     view = LiveView(title, run.control_step_ms / 1000.0, stream)
@@ -146,8 +146,8 @@ class SimulatorWatch:
         self.live: Any = None
         self.renderer: Any = None
         if getattr(args, "live", False):
-            from mazesim.envs.render import TopDownRenderer
-            from mazesim.replay.live import LiveView
+            from mazesim.render.live import LiveView
+            from mazesim.render.topdown import TopDownRenderer
 
             self.live = LiveView(
                 f"mazesim: {simulator.world.name}", simulator.control_step_ms / 1000.0

@@ -1,5 +1,5 @@
 """The navigator's corridor stretches in the core's multi-step call give, episode for episode,
-what one step at a time gives (:mod:`mazesim.learn.stretches`)."""
+what one step at a time gives (:mod:`mazesim.learn.core_episodes`)."""
 
 from __future__ import annotations
 
@@ -13,10 +13,10 @@ from mazesim.actions import ACTION_CODES
 from mazesim.episodes import EpisodeBatch, run_episodes
 from mazesim.errors import InvalidArgumentError
 from mazesim.learn import policy as policy_module
+from mazesim.learn.core_episodes import run_navigator_episodes, stretches_apply
 from mazesim.learn.evaluate import EvaluationRecord, evaluate_navigator
 from mazesim.learn.higher import HigherLevel
 from mazesim.learn.policy import HierarchicalPolicy, hold_spins
-from mazesim.learn.stretches import run_navigator_episodes, stretches_apply
 from mazesim.learn.tables import load_policy
 from mazesim.maze import checkpoint_ids
 

@@ -9,7 +9,7 @@ import pytest
 
 from mazesim.barcode.link import UnsyncedLink
 from mazesim.errors import InvalidArgumentError
-from mazesim.transfer.control import DelayedNavigator, LinkedNavigator
+from mazesim.transfer.control_timing import DelayedNavigator, LinkedNavigator
 
 
 class Scripted:
