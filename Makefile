@@ -26,7 +26,7 @@ export PYO3_PYTHON := $(CURDIR)/$(BIN)/python
 
 .DEFAULT_GOAL := help
 
-.PHONY: help venv build test demo lint typecheck fmt bench wheel clean ros-deps ros-demo bench-peers bench-transfer \
+.PHONY: help venv build test demo lint typecheck fmt bench wheel clean ros-deps ros2-deps ros-demo bench-peers bench-transfer \
 	browser-deps replay-screenshot docs docs-deps sb3-deps
 
 help: ## list the targets
@@ -48,7 +48,7 @@ $(STAMP): Makefile
 build: venv ## build the extension in release mode and install mazesim into .venv
 	VIRTUAL_ENV=$(CURDIR)/$(VENV) $(BIN)/maturin develop --release --quiet
 
-test: build ros-deps browser-deps docs-deps sb3-deps ## run the Rust tests, then the Python tests (ROS bridge, browser and SB3 tests included)
+test: build ros-deps ros2-deps browser-deps docs-deps sb3-deps ## run the Rust tests, then the Python tests (ROS 1 and ROS 2 bridges, browser and SB3 tests included)
 	cargo test --workspace --exclude mazesim-py
 	$(BIN)/python -m pytest
 	$(BIN)/python -m mypy.stubtest mazesim._core
@@ -75,6 +75,13 @@ ros-deps: venv ## install Debian's ROS 1 packages if missing; let .venv import t
 
 ros-demo: build ros-deps ## bridge + HRL node (perform-learning) over ROS in lockstep to seed-maze's goal; records mazesim-ros-demo/maze.bag
 	$(BIN)/mazesim ros demo --controller hrl --out mazesim-ros-demo
+
+# ROS 2 over DDS needs no ROS 2 installation (docs/ros2.md): pyproject's extra "ros2" (Cyclone DDS and
+# rosbags), and the independent bag reader its tests check the bags with (mcap, mcap-ros2-support).
+ROS2_PACKAGES := "cyclonedds>=0.10.5,<12" "rosbags>=0.10,<1" "mcap>=1.1" "mcap-ros2-support>=0.5"
+
+ros2-deps: venv ## install the ROS 2 extra (cyclonedds, rosbags) and the tests' bag reader (mcap) into .venv
+	$(BIN)/python -m pip install --quiet $(ROS2_PACKAGES)
 
 # Debian's Chromium and its WebDriver, for the browser tests of the HTML replay (selenium drives
 # them headless); installed only when missing. Without them those tests are skipped, and say why.

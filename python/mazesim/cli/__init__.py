@@ -36,6 +36,10 @@ COMMANDS: dict[str, tuple[str, str]] = {
         "measure steady-state env-steps per second, contact share and memory per env",
     ),
     "ros": ("mazesim.cli.ros", "run the ROS 1 bridge and controller nodes (needs ROS 1)"),
+    "ros2": (
+        "mazesim.cli.ros2",
+        "run the ROS 2 bridge and controller nodes over DDS (needs mazesim[ros2])",
+    ),
     "barcode-study": (
         "mazesim.cli.barcode",
         "measure barcode reading (right / wrong / missed) by threshold and by speed",
@@ -153,9 +157,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     arguments = list(sys.argv[1:] if argv is None else argv)
     _printable_output()
     command = _command_word(arguments)
-    if command == "ros":
+    if command in ("ros", "ros2"):
         try:
-            from mazesim.cli.ros import check_before_parsing
+            if command == "ros":
+                from mazesim.cli.ros import check_before_parsing
+            else:
+                from mazesim.cli.ros2 import check_before_parsing
 
             check_before_parsing(arguments)
         except MazesimError as error:

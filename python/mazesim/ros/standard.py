@@ -98,17 +98,21 @@ def sensor_frames(robot: RobotProfile) -> list[SensorFrame]:
     ]
 
 
-def ranges(simulator: Simulator) -> list[float]:
+def ranges(
+    simulator: Simulator,
+    robot: RobotProfile | None = None,
+    frames: list[SensorFrame] | None = None,
+) -> list[float]:
     """The distance each sensor reports on its Range topic, in metres (``inf``: nothing in range).
 
     A reading is turned into the distance at which the sensor reads it off a white wall (its
-    table inverted), as a controller that knows only the reading would.
+    table inverted), as a controller that knows only the reading would. A caller that publishes
+    every step passes the simulator's ``robot`` and its :func:`sensor_frames`, read once.
     """
-    robot = simulator.robot
+    robot = simulator.robot if robot is None else robot
+    frames = sensor_frames(robot) if frames is None else frames
     distances = []
-    for index, (reading, frame) in enumerate(
-        zip(simulator.distance_sensors().tolist(), sensor_frames(robot))
-    ):
+    for index, (reading, frame) in enumerate(zip(simulator.distance_sensors().tolist(), frames)):
         distance = robot.distance_from_reading(index, reading)
         # Within float32 rounding of the far end (readings are float32): nothing in range.
         nothing = distance >= frame.max_range * (1.0 - FAR_END_TOLERANCE)

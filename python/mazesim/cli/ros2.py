@@ -1,0 +1,175 @@
+"""The ``mazesim ros2`` commands: the ROS 2 bridge, the controller nodes and the demo.
+
+No ROS 2 installation is needed: the extra ``mazesim[ros2]`` (``cyclonedds``, ``rosbags``) is;
+without it every command says what to install, at once, before parsing its options.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+from mazesim.cli._args import non_negative_int, seed_argument
+from mazesim.cli._help import examples
+from mazesim.episodes import MAX_STEPS
+from mazesim.ros2._deps import require_ros2
+
+__all__ = ["check_before_parsing", "register"]
+
+DISTROS = ("humble", "jazzy")
+
+
+def check_before_parsing(arguments: Sequence[str]) -> None:
+    """Fails fast on ``mazesim ros2 COMMAND ...`` where the ROS 2 extra is missing.
+
+    Raises:
+        MissingDependencyError: ``cyclonedds`` or ``rosbags`` is missing.
+    """
+    if len(arguments) < 2 or arguments[0] != "ros2" or {"-h", "--help"} & set(arguments):
+        return
+    require_ros2()
+
+
+def _speed(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not (math.isfinite(value) and value >= 0.0):
+        raise argparse.ArgumentTypeError(
+            f"expected a speed factor >= 0 (0: as fast as possible); found {text!r}"
+        )
+    return value
+
+
+def _add_common(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--ros-distro",
+        choices=DISTROS,
+        default="humble",
+        help="the ROS 2 distribution whose message layouts to speak (default: %(default)s)",
+    )
+    parser.add_argument(
+        "--network",
+        action="store_true",
+        help="discover over the network (the subnet); by default this machine only, unless "
+        "ROS_AUTOMATIC_DISCOVERY_RANGE or ROS_LOCALHOST_ONLY=0 says otherwise",
+    )
+
+
+def _run_bridge(args: argparse.Namespace) -> int:
+    from mazesim.ros2.bridge import BridgeSettings, run_bridge
+
+    return run_bridge(
+        BridgeSettings(
+            world=args.world,
+            robot=args.robot,
+            seed=args.seed,
+            noise=not args.no_noise,
+            distro=args.ros_distro,
+            mode=args.mode,
+            speed=args.speed,
+            paused=args.paused,
+            stop_after=args.stop_after,
+            stop_at_goal=args.stop_at_goal,
+            bag=args.bag,
+            network=args.network,
+        )
+    )
+
+
+def _run_perform_learning(args: argparse.Namespace) -> int:
+    from mazesim.ros2.nodes import run_perform_learning
+
+    return run_perform_learning(args.ros_distro, args.policy, args.control_step_ms, args.network)
+
+
+def _run_avoid_collision(args: argparse.Namespace) -> int:
+    from mazesim.ros2.nodes import run_avoid_collision
+
+    return run_avoid_collision(args.ros_distro, args.period_ms, args.network)
+
+
+def _run_demo(args: argparse.Namespace) -> int:
+    from mazesim.ros2.demo import run_demo
+
+    result = run_demo(Path(args.out), args.controller, args.ros_distro, args.seed, args.steps)
+    goal = "goal not reached" if result.goal_step is None else f"goal at step {result.goal_step}"
+    print(f"mazesim ros2 demo: {result.steps} steps, {goal}; bag: {result.bag}")
+    return 0
+
+
+def register(commands: Any) -> None:
+    """Adds ``mazesim ros2`` and its subcommands."""
+    parser = commands.add_parser(
+        "ros2",
+        help="run the ROS 2 bridge and controller nodes over DDS (needs mazesim[ros2])",
+        description=__doc__.split("\n\n")[0],
+        epilog=examples(
+            "mazesim ros2 bridge --world seed-maze",
+            "mazesim ros2 bridge --mode free --speed 2 --ros-distro jazzy",
+            "mazesim ros2 demo --out ros2-demo",
+        ),
+    )
+    sub = parser.add_subparsers(dest="ros2_command", required=True, metavar="COMMAND")
+    bridge = sub.add_parser("bridge", help="the simulator behind the e-puck's ROS 2 topics")
+    bridge.add_argument(
+        "--world", default="seed-maze", help="world name or file (default: %(default)s)"
+    )
+    bridge.add_argument("--robot", default="e-puck", help="robot profile (default: %(default)s)")
+    bridge.add_argument(
+        "--seed", type=seed_argument, default=0, help="the sensor noise's seed (default: 0)"
+    )
+    bridge.add_argument("--no-noise", action="store_true", help="noise-free sensors")
+    bridge.add_argument(
+        "--mode",
+        choices=("lockstep", "free"),
+        default="lockstep",
+        help="lockstep: one control step per command; free: steps on its own "
+        "(default: %(default)s)",
+    )
+    bridge.add_argument(
+        "--speed",
+        type=_speed,
+        default=1.0,
+        help="free mode: simulated seconds per wall-clock second, 0 for as fast as possible "
+        "(default: %(default)s)",
+    )
+    bridge.add_argument("--paused", action="store_true", help="free mode: start paused")
+    bridge.add_argument(
+        "--stop-after", type=non_negative_int, default=0, help="stop after N steps (0: never)"
+    )
+    bridge.add_argument("--stop-at-goal", action="store_true", help="stop once at the goal")
+    bridge.add_argument("--bag", default=None, help="record a rosbag2 (MCAP) into this new folder")
+    _add_common(bridge)
+    bridge.set_defaults(run=_run_bridge)
+    learning = sub.add_parser(
+        "perform-learning", help="the shipped hierarchical navigator: /sensor_data -> /action"
+    )
+    learning.add_argument("--policy", default=None, help="a folder of trained tables")
+    learning.add_argument(
+        "--control-step-ms", type=float, default=32.0, help="the bridge's step (default: 32)"
+    )
+    _add_common(learning)
+    learning.set_defaults(run=_run_perform_learning)
+    avoid = sub.add_parser("avoid-collision", help="the report's Alg. 1: /sensors -> /motor")
+    avoid.add_argument(
+        "--period-ms",
+        type=float,
+        default=0.0,
+        help="0: answer each reading; else a timer of this period on simulation time (/clock)",
+    )
+    _add_common(avoid)
+    avoid.set_defaults(run=_run_avoid_collision)
+    demo = sub.add_parser("demo", help="bridge + navigator node to the goal, recorded in a bag")
+    demo.add_argument("--out", default="mazesim-ros2-demo", help="output folder")
+    demo.add_argument("--controller", choices=("hrl", "avoid-collision"), default="hrl")
+    demo.add_argument("--seed", type=seed_argument, default=0, help="the bridge's seed")
+    demo.add_argument(
+        "--steps", type=non_negative_int, default=MAX_STEPS, help="step limit (default: %(default)s)"
+    )
+    _add_common(demo)
+    demo.set_defaults(run=_run_demo)

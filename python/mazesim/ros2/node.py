@@ -1,0 +1,194 @@
+"""A ROS 2 node on Cyclone DDS, without a ROS 2 installation.
+
+:class:`Node` owns one DDS participant, creates readers and writers of ROS 2 topics (``/ps0`` is
+the DDS topic ``rt/ps0``) with the distribution's types, QoS and USER_DATA, and announces itself
+on ``ros_discovery_info``. Writers send already encoded messages (:mod:`mazesim.ros2.cdr`) and
+readers hand back the bytes they received: Cyclone's own Python serializer is used only for the
+few messages sent once.
+"""
+
+from __future__ import annotations
+
+import time
+import uuid
+from typing import Any
+
+from mazesim.errors import MazesimIOError
+from mazesim.ros2 import graph, messages, network
+from mazesim.ros2._deps import require_ros2
+from mazesim.ros2.qos import GRAPH, TopicQos, cyclone_qos
+
+__all__ = ["Node", "Reader", "Writer", "dds_topic_name"]
+
+
+def dds_topic_name(topic: str) -> str:
+    """The DDS topic of a ROS 2 topic: ``/ps0`` -> ``rt/ps0``."""
+    return "rt/" + topic.lstrip("/")
+
+
+class Writer:
+    """Publishes encoded messages of one topic."""
+
+    def __init__(self, topic: str, msgtype: str, writer: Any) -> None:
+        from cyclonedds._clayer import ddspy_write
+
+        self.topic = topic
+        self.msgtype = msgtype
+        self.dds = writer
+        self._write = ddspy_write
+        self._ref = writer._ref
+
+    def publish(self, data: bytes) -> None:
+        """Sends one message, already in CDR with its encapsulation header.
+
+        Raises:
+            MazesimIOError: DDS refused it.
+        """
+        result = self._write(self._ref, data)
+        if result < 0:
+            raise MazesimIOError(f"expected DDS to take a message on {self.topic}; error {result}")
+
+    def publish_sample(self, sample: Any) -> bytes:
+        """Sends a Cyclone DDS sample of the topic's type; returns its encoding."""
+        data: bytes = sample.serialize(use_version_2=False)
+        data = data.ljust(-(-len(data) // 4) * 4, b"\x00")
+        self.publish(data)
+        return data
+
+    def subscribers(self) -> int:
+        """How many readers are matched."""
+        return len(self.dds.get_matched_subscriptions())
+
+
+class Reader:
+    """Receives the encoded messages of one topic."""
+
+    def __init__(self, topic: str, msgtype: str, reader: Any) -> None:
+        from cyclonedds._clayer import ddspy_take
+        from cyclonedds.core import InstanceState, SampleState, ViewState
+
+        self.topic = topic
+        self.msgtype = msgtype
+        self.dds = reader
+        self._take = ddspy_take
+        self._mask = SampleState.Any | ViewState.Any | InstanceState.Any
+
+    def take(self, count: int = 64) -> list[bytes]:
+        """The messages received since the last call, oldest first (at most ``count``)."""
+        result = self._take(self.dds._ref, self._mask, count)
+        if isinstance(result, int):
+            raise MazesimIOError(
+                f"expected DDS to hand over messages of {self.topic}; error {result}"
+            )
+        return [data for data, info in result if info.valid_data]
+
+    def publishers(self) -> int:
+        """How many writers are matched."""
+        return len(self.dds.get_matched_publications())
+
+
+class Node:
+    """One ROS 2 node in its own DDS participant.
+
+    Args:
+        name: The node's name, as ``ros2 node list`` shows it.
+        distro: The ROS 2 distribution whose layouts, hashes and GIDs to use.
+        discovery: The domain and the discovery reach (this machine by default).
+        namespace: The node's namespace.
+    """
+
+    def __init__(
+        self,
+        name: str,
+        distro: str = "humble",
+        discovery: network.Discovery | None = None,
+        namespace: str = "/",
+    ) -> None:
+        require_ros2()
+        from cyclonedds.core import Policy
+        from cyclonedds.domain import Domain, DomainParticipant
+        from cyclonedds.qos import Qos
+        from cyclonedds.topic import Topic
+
+        self._topic_class = Topic
+        self.name = name
+        self.namespace = namespace
+        self.distro = messages.check_distro(distro)
+        self.discovery = discovery or network.discovery_from_environment()
+        config = network.cyclone_config(self.discovery)
+        self._domain = Domain(self.discovery.domain_id, config) if config else None
+        self.participant: Any = DomainParticipant(
+            self.discovery.domain_id, qos=Qos(Policy.Userdata(graph.PARTICIPANT_USER_DATA))
+        )
+        self._topics: dict[str, Any] = {}
+        self.readers: list[Reader] = []
+        self.writers: list[Writer] = []
+        self._graph_writer = self._dds_writer(
+            graph.DISCOVERY_TOPIC, graph.DISCOVERY_TYPE, GRAPH, ros_topic=False
+        )
+
+    def _topic(self, dds_name: str, msgtype: str) -> Any:
+        if dds_name not in self._topics:
+            self._topics[dds_name] = self._topic_class(
+                self.participant, dds_name, messages.idl_type(self.distro, msgtype)
+            )
+        return self._topics[dds_name]
+
+    def _dds_writer(self, topic: str, msgtype: str, qos: TopicQos, ros_topic: bool = True) -> Any:
+        from cyclonedds.pub import DataWriter
+
+        name = dds_topic_name(topic) if ros_topic else topic
+        user_data = graph.endpoint_user_data(self.distro, msgtype) if ros_topic else None
+        return DataWriter(
+            self.participant, self._topic(name, msgtype), qos=cyclone_qos(qos, user_data)
+        )
+
+    def writer(self, topic: str, msgtype: str, qos: TopicQos) -> Writer:
+        """A writer of the ROS 2 topic ``topic`` (``/ps0``) of ``msgtype`` (``pkg/msg/Name``)."""
+        writer = Writer(topic, msgtype, self._dds_writer(topic, msgtype, qos))
+        self.writers.append(writer)
+        return writer
+
+    def reader(self, topic: str, msgtype: str, qos: TopicQos) -> Reader:
+        """A reader of the ROS 2 topic ``topic`` of ``msgtype``."""
+        from cyclonedds.sub import DataReader
+
+        user_data = graph.endpoint_user_data(self.distro, msgtype)
+        dds = DataReader(
+            self.participant,
+            self._topic(dds_topic_name(topic), msgtype),
+            qos=cyclone_qos(qos, user_data),
+        )
+        reader = Reader(topic, msgtype, dds)
+        self.readers.append(reader)
+        return reader
+
+    def announce(self) -> None:
+        """Publishes the node and its endpoints on ``ros_discovery_info``."""
+        sample = graph.participant_entities_info(
+            self.distro,
+            self.participant.guid,
+            [
+                (
+                    self.namespace,
+                    self.name,
+                    [reader.dds.guid for reader in self.readers],
+                    [writer.dds.guid for writer in self.writers],
+                )
+            ],
+        )
+        self._graph_writer.write(sample)
+
+    def guid(self) -> uuid.UUID:
+        """The participant's DDS GUID."""
+        return uuid.UUID(str(self.participant.guid))
+
+    def close(self) -> None:
+        """Leaves the DDS domain (other nodes see the participant go at once)."""
+        self.participant = None
+        self._topics.clear()
+        self.readers.clear()
+        self.writers.clear()
+        self._graph_writer = None
+        self._domain = None
+        time.sleep(0)

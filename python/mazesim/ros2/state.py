@@ -1,0 +1,275 @@
+"""The topics the bridge publishes after each step, and their messages, encoded.
+
+As Webots' e-puck driver and the real robot's publish them (``webots_ros2_epuck``): a
+``sensor_msgs/msg/Range`` per distance sensor (``/ps0`` .. ``/ps7``, ``/tof`` on the e-puck2,
+frames named after the sensors) and per ground sensor (``/gs0`` .. ``/gs2``), ``/scan`` built from
+them, ``/odom``, ``/tf``, ``/tf_static`` once and ``/clock``; and the report's own topics as the
+ROS 1 bridge has them (``/sensors``, ``/sensor_data``, ``/pose``). The numbers are those of
+:mod:`mazesim.ros.standard` and :mod:`mazesim.ros.topics`, so both bridges say the same.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from collections.abc import Sequence
+from typing import NamedTuple
+
+from mazesim._core import RobotProfile, Simulator
+from mazesim.ros import standard, topics
+from mazesim.ros2 import cdr
+from mazesim.ros2.qos import CLOCK, SENSOR, TF, TF_STATIC, TopicQos
+
+__all__ = [
+    "CLOCK_TOPIC",
+    "SCAN_FRAME",
+    "StateTopics",
+    "Topic",
+    "ground_distance",
+    "scan_ranges",
+]
+
+CLOCK_TOPIC = "/clock"
+TF_STATIC_TOPIC = "/tf_static"
+SCAN_TOPIC = "/scan"
+#: The LaserScan's frame, 0.033 m above ``base_link`` as in Webots' e-puck driver.
+SCAN_FRAME = "laser_scanner"
+SCAN_HEIGHT = 0.033
+#: Webots' e-puck driver: rays every 15 degrees from -150 to +150; each sensor's range is
+#: measured from the body's centre by adding its radius, 0.035 m; readings beyond 0.04 m (of
+#: the infra-red sensors) are out of range; range_min 0.035 + 0.009, range_max 0.035 + 1.0.
+SCAN_STEP_DEGREES = 15
+SCAN_HALF_DEGREES = 150
+SCAN_BODY_OFFSET = 0.035
+SCAN_INFRARED_MAX = 0.04
+SCAN_RANGE_MIN = SCAN_BODY_OFFSET + 0.009
+SCAN_RANGE_MAX = SCAN_BODY_OFFSET + 1.0
+#: Each e-puck sensor's ray in the scan, in degrees.
+SCAN_ANGLES = {
+    "ps0": -15, "ps1": -45, "ps2": -90, "ps3": -150, "ps4": 150, "ps5": 90, "ps6": 45, "ps7": 15,
+    "tof": 0,
+}  # fmt: skip
+RADIATION_INFRARED = 1
+
+RANGE = "sensor_msgs/msg/Range"
+LASER_SCAN = "sensor_msgs/msg/LaserScan"
+ODOMETRY = "nav_msgs/msg/Odometry"
+TF_MESSAGE = "tf2_msgs/msg/TFMessage"
+FLOAT64_ARRAY = "std_msgs/msg/Float64MultiArray"
+CLOCK_TYPE = "rosgraph_msgs/msg/Clock"
+
+
+class Topic(NamedTuple):
+    """A topic the bridge publishes: name, message type, QoS."""
+
+    name: str
+    msgtype: str
+    qos: TopicQos
+
+
+def _ground_tables(robot: RobotProfile) -> list[list[tuple[float, float]]]:
+    """Each ground sensor's table rows ``(distance, reading)``, from the profile."""
+    if sys.version_info >= (3, 11):
+        import tomllib
+    else:  # mazesim[ros2] installs tomli there
+        import tomli as tomllib
+    profile = tomllib.loads(robot.to_toml())
+    models = profile.get("models", {})
+    return [
+        [(float(row[0]), float(row[1])) for row in models[sensor["model"]]["table"]]
+        for sensor in profile.get("ground_sensors", [])
+    ]
+
+
+def ground_distance(table: Sequence[tuple[float, float]], reading: float) -> float:
+    """The distance at which a ground sensor's table gives ``reading`` (interpolated, clamped)."""
+    for (near, near_value), (far, far_value) in zip(table, table[1:]):
+        low, high = sorted((near_value, far_value))
+        if low <= reading <= high and near_value != far_value:
+            return near + (reading - near_value) * (far - near) / (far_value - near_value)
+    first, last = table[0], table[-1]
+    # Beyond the table: the end whose reading is nearer.
+    return first[0] if abs(reading - first[1]) <= abs(reading - last[1]) else last[0]
+
+
+def scan_ranges(distances: dict[str, float]) -> list[float]:
+    """The ranges of the LaserScan of the e-puck's sensors (``inf``: nothing in range)."""
+    count = 2 * SCAN_HALF_DEGREES // SCAN_STEP_DEGREES + 1
+    ranges = [0.0] * count
+    for name, degrees in SCAN_ANGLES.items():
+        if name not in distances:
+            continue
+        distance = distances[name]
+        if name != "tof" and not distance <= SCAN_INFRARED_MAX:
+            distance = 0.0
+        elif not math.isfinite(distance):
+            distance = 0.0
+        ranges[(degrees + SCAN_HALF_DEGREES) // SCAN_STEP_DEGREES] = distance + SCAN_BODY_OFFSET
+    return ranges
+
+
+class StateTopics:
+    """The state topics of one simulator, and their messages after each step.
+
+    Args:
+        simulator: The simulator whose state is published.
+        distro: ``humble`` or ``jazzy`` (Jazzy's Range carries a variance).
+    """
+
+    def __init__(self, simulator: Simulator, distro: str) -> None:
+        self.simulator = simulator
+        self.robot = robot = simulator.robot
+        self.jazzy = distro != "humble"
+        self.frames = standard.sensor_frames(robot)
+        self.ground_names = [name.replace("-", "_") for name in robot.ground_sensor_names]
+        self.ground_tables = _ground_tables(robot)
+        self.ground_limits = [
+            (min(row[0] for row in table), max(row[0] for row in table))
+            for table in self.ground_tables
+        ]
+        names = {frame.frame for frame in self.frames}
+        self.has_scan = {f"ps{index}" for index in range(8)} <= names
+        self.sensor_labels = topics.sensor_names(simulator)
+        self.sharp = topics.has_sharp_sensors(simulator)
+        self.sensor_data_labels = [f"{name} cm" for name in robot.distance_sensor_names] + [
+            "checkpoint"
+        ]
+        self.before = simulator.pose
+        self.topics: list[Topic] = [
+            *(Topic(f"/{frame.frame}", RANGE, SENSOR) for frame in self.frames),
+            *(Topic(f"/{name}", RANGE, SENSOR) for name in self.ground_names),
+        ]
+        if self.has_scan:
+            self.topics.append(Topic(SCAN_TOPIC, LASER_SCAN, SENSOR))
+        self.topics += [
+            Topic("/odom", ODOMETRY, SENSOR),
+            Topic("/tf", TF_MESSAGE, TF),
+            Topic(f"/{topics.SENSORS_TOPIC}", FLOAT64_ARRAY, SENSOR),
+        ]
+        if self.sharp:
+            self.topics.append(Topic(f"/{topics.SENSOR_DATA_TOPIC}", FLOAT64_ARRAY, SENSOR))
+        self.topics += [
+            Topic(f"/{topics.POSE_TOPIC}", FLOAT64_ARRAY, SENSOR),
+            Topic(CLOCK_TOPIC, CLOCK_TYPE, CLOCK),
+        ]
+
+    def static_topic(self) -> Topic:
+        """``/tf_static``."""
+        return Topic(TF_STATIC_TOPIC, TF_MESSAGE, TF_STATIC)
+
+    def static_transforms(self, stamp: cdr.Stamp) -> bytes:
+        """The ``/tf_static`` message: ``base_link`` -> every sensor frame (and the scan's)."""
+        transforms: list[cdr.Transform] = [
+            (
+                stamp,
+                standard.BASE_FRAME,
+                frame.frame,
+                (frame.x, frame.y, 0.0),
+                standard.yaw_quaternion(frame.yaw),
+            )
+            for frame in self.frames
+        ]
+        positions = self.robot.ground_sensor_positions().tolist()
+        for name, (x, y) in zip(self.ground_names, positions):
+            # Looking down: pitched by +90 degrees about y.
+            down = (0.0, math.sqrt(0.5), 0.0, math.sqrt(0.5))
+            transforms.append((stamp, standard.BASE_FRAME, name, (x, y, 0.0), down))
+        if self.has_scan:
+            transforms.append(
+                (
+                    stamp,
+                    standard.BASE_FRAME,
+                    SCAN_FRAME,
+                    (0.0, 0.0, SCAN_HEIGHT),
+                    (0.0, 0.0, 0.0, 1.0),
+                )
+            )
+        return cdr.encode_tf_message(transforms)
+
+    def messages(self, stamp: cdr.Stamp, step_seconds: float) -> list[bytes]:
+        """The encoded message of each of :attr:`topics`, in order, for the current state.
+
+        Args:
+            stamp: The simulation time the messages carry.
+            step_seconds: The time since the previous state (the odometry twist's interval).
+        """
+        simulator = self.simulator
+        variance = 0.0 if self.jazzy else None
+        distances = standard.ranges(simulator, self.robot, self.frames)
+        out = [
+            cdr.encode_range(
+                stamp,
+                frame.frame,
+                RADIATION_INFRARED,
+                standard.FIELD_OF_VIEW,
+                frame.min_range,
+                frame.max_range,
+                distance,
+                variance,
+            )
+            for frame, distance in zip(self.frames, distances)
+        ]
+        for name, table, (near, far), reading in zip(
+            self.ground_names,
+            self.ground_tables,
+            self.ground_limits,
+            simulator.ground_sensors().tolist(),
+        ):
+            distance = ground_distance(table, reading)
+            out.append(
+                cdr.encode_range(
+                    stamp,
+                    name,
+                    RADIATION_INFRARED,
+                    standard.FIELD_OF_VIEW,
+                    near,
+                    far,
+                    distance,
+                    variance,
+                )  # fmt: skip
+            )
+        if self.has_scan:
+            by_name = {frame.frame: distance for frame, distance in zip(self.frames, distances)}
+            increment = math.radians(SCAN_STEP_DEGREES)
+            out.append(
+                cdr.encode_laser_scan(
+                    stamp,
+                    SCAN_FRAME,
+                    (-math.radians(SCAN_HALF_DEGREES), math.radians(SCAN_HALF_DEGREES), increment),
+                    (0.0, step_seconds),
+                    (SCAN_RANGE_MIN, SCAN_RANGE_MAX),
+                    scan_ranges(by_name),
+                )
+            )
+        x, y, yaw = after = simulator.pose
+        velocity = standard.body_velocity(self.before, after, step_seconds)
+        self.before = after
+        rotation = standard.yaw_quaternion(yaw)
+        out.append(
+            cdr.encode_odometry(
+                stamp,
+                standard.ODOM_FRAME,
+                standard.BASE_FRAME,
+                (x, y, 0.0, *rotation),
+                (velocity.forward, velocity.leftward, 0.0, 0.0, 0.0, velocity.turn),
+            )
+        )
+        out.append(
+            cdr.encode_tf_message(
+                [(stamp, standard.ODOM_FRAME, standard.BASE_FRAME, (x, y, 0.0), rotation)]
+            )
+        )
+        out.append(
+            cdr.encode_float64_multi_array(self.sensor_labels, topics.sensors_values(simulator))
+        )
+        if self.sharp:
+            out.append(
+                cdr.encode_float64_multi_array(
+                    self.sensor_data_labels, topics.sensor_data_values(simulator)
+                )
+            )
+        out.append(
+            cdr.encode_float64_multi_array(("x", "y", "yaw", "time"), topics.pose_values(simulator))
+        )
+        out.append(cdr.encode_clock(stamp))
+        return out

@@ -1,0 +1,227 @@
+"""A lockstep driver of the ROS 2 bridge, on Cyclone DDS's own message decoding.
+
+Run as a separate process: it subscribes to the bridge's state topics, sends one ``/cmd_vel`` per
+step (``Twist`` or ``TwistStamped`` as the distribution says), decodes every message with Cyclone
+DDS's serializer (not mazesim's encoder) and checks every field against an in-process simulator
+driven by the same commands. Exit code 0: all steps equal; 1: the first difference or a missing
+message, on stderr.
+
+    python cyclone_driver.py --distro humble --steps 2000 [--robot e-puck] [--seed 0]
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+import time
+from typing import Any
+
+import numpy as np
+
+import mazesim
+from mazesim.ros import standard, topics
+from mazesim.ros2 import messages, network, state
+from mazesim.ros2.clock import stamp_nanoseconds
+from mazesim.ros2.qos import COMMAND, SENSOR, TF, TF_STATIC, cyclone_qos
+
+WAIT_S = 10.0
+
+
+class Mismatch(Exception):
+    pass
+
+
+def f32(value: float) -> float:
+    return float(np.float32(value))
+
+
+def same(topic: str, field: str, found: Any, expected: Any) -> None:
+    if isinstance(expected, float) and isinstance(found, float):
+        equal = found == expected or (math.isnan(found) and math.isnan(expected))
+    else:
+        equal = found == expected
+    if not equal:
+        raise Mismatch(f"{topic}.{field}: expected {expected!r}, found {found!r}")
+
+
+def commands(count: int, seed: int) -> list[tuple[float, float]]:
+    rng = np.random.default_rng(seed)
+    return [(float(v), float(w)) for v, w in rng.uniform((-0.05, -3.0), (0.15, 3.0), (count, 2))]
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--distro", default="humble")
+    parser.add_argument("--steps", type=int, default=2000)
+    parser.add_argument("--robot", default="e-puck")
+    parser.add_argument("--world", default="seed-maze")
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--wait", type=float, default=10.0, help="seconds to wait for a message")
+    parser.add_argument(
+        "--reader-distro", default=None, help="decode the state with another distro's layouts"
+    )
+    args = parser.parse_args()
+    global WAIT_S
+    WAIT_S = args.wait
+
+    from cyclonedds.core import Policy
+    from cyclonedds.domain import Domain, DomainParticipant
+    from cyclonedds.pub import DataWriter
+    from cyclonedds.qos import Qos
+    from cyclonedds.sub import DataReader
+    from cyclonedds.topic import Topic
+
+    discovery = network.discovery_from_environment()
+    config = network.cyclone_config(discovery)
+    domain = Domain(discovery.domain_id, config) if config else None
+    participant = DomainParticipant(discovery.domain_id, qos=Qos(Policy.Userdata(b"enclave=/;")))
+    distro = args.distro
+    simulator = mazesim.Simulator(mazesim.load_world(args.world), robot=args.robot, seed=args.seed)
+    expected_topics = state.StateTopics(simulator, distro)
+    readers: dict[str, Any] = {}
+    for topic in expected_topics.topics:
+        kind = messages.idl_type(args.reader_distro or distro, topic.msgtype)
+        readers[topic.name] = DataReader(
+            participant,
+            Topic(participant, "rt/" + topic.name.lstrip("/"), kind),
+            qos=cyclone_qos(topic.qos),
+        )
+    static_type = messages.idl_type(distro, "tf2_msgs/msg/TFMessage")
+    static_reader = DataReader(
+        participant, Topic(participant, "rt/tf_static", static_type), qos=cyclone_qos(TF_STATIC)
+    )
+    jazzy = distro != "humble"
+    twist_name = "geometry_msgs/msg/TwistStamped" if jazzy else "geometry_msgs/msg/Twist"
+    twist_type = messages.idl_type(distro, twist_name)
+    vector = messages.idl_type(distro, "geometry_msgs/msg/Vector3")
+    inner = messages.idl_type(distro, "geometry_msgs/msg/Twist")
+    header = messages.idl_type(distro, "std_msgs/msg/Header")
+    time_type = messages.idl_type(distro, "builtin_interfaces/msg/Time")
+    cmd_vel = DataWriter(
+        participant, Topic(participant, "rt/cmd_vel", twist_type), qos=cyclone_qos(COMMAND)
+    )
+    _ = (SENSOR, TF, domain)
+
+    pending: dict[str, list[Any]] = {name: [] for name in readers}
+
+    def collect(stamp_ns: int) -> dict[str, Any]:
+        deadline = time.monotonic() + WAIT_S
+        while True:
+            for name, reader in readers.items():
+                pending[name].extend(reader.take(16))
+            if all(pending[name] for name in readers):
+                break
+            if time.monotonic() > deadline:
+                missing = sorted(name for name in readers if not pending[name])
+                raise Mismatch(f"no message within {WAIT_S:.0f} s on {', '.join(missing)}")
+            time.sleep(0.0002)
+        got = {name: pending[name].pop(0) for name in readers}
+        for name, message in got.items():
+            stamp = message.clock if name == "/clock" else getattr(message, "header", None)
+            if name == "/tf":
+                stamp = message.transforms[0].header
+            if stamp is not None:
+                stamp = stamp.stamp if hasattr(stamp, "stamp") else stamp
+                same(name, "stamp", stamp.sec * 1_000_000_000 + stamp.nanosec, stamp_ns)
+        return got
+
+    def check(got: dict[str, Any], step_seconds: float, before: tuple[float, float, float]) -> None:
+        robot = simulator.robot
+        frames = standard.sensor_frames(robot)
+        distances = standard.ranges(simulator)
+        for frame, distance in zip(frames, distances):
+            message = got[f"/{frame.frame}"]
+            same(frame.frame, "frame_id", message.header.frame_id, frame.frame)
+            same(frame.frame, "range", message.range, f32(distance))
+            same(frame.frame, "min_range", message.min_range, f32(frame.min_range))
+            same(frame.frame, "max_range", message.max_range, f32(frame.max_range))
+            same(frame.frame, "radiation_type", message.radiation_type, 1)
+            if jazzy:
+                same(frame.frame, "variance", message.variance, 0.0)
+            elif hasattr(message, "variance"):
+                raise Mismatch("a Humble Range has no variance")
+        for index, reading in enumerate(simulator.ground_sensors().tolist()):
+            name = expected_topics.ground_names[index]
+            table = expected_topics.ground_tables[index]
+            same(name, "range", got[f"/{name}"].range, f32(state.ground_distance(table, reading)))
+        if expected_topics.has_scan:
+            scan = got["/scan"]
+            by_name = {frame.frame: d for frame, d in zip(frames, distances)}
+            same("scan", "ranges", list(scan.ranges), [f32(r) for r in state.scan_ranges(by_name)])
+            same("scan", "frame_id", scan.header.frame_id, "laser_scanner")
+            same("scan", "angle_min", scan.angle_min, f32(-math.radians(150)))
+        x, y, yaw = simulator.pose
+        odom = got["/odom"]
+        same("odom", "child_frame_id", odom.child_frame_id, "base_link")
+        same("odom", "frame_id", odom.header.frame_id, "odom")
+        position = odom.pose.pose.position
+        same("odom", "position", (position.x, position.y, position.z), (x, y, 0.0))
+        q = odom.pose.pose.orientation
+        same("odom", "orientation", (q.x, q.y, q.z, q.w), standard.yaw_quaternion(yaw))
+        velocity = standard.body_velocity(before, (x, y, yaw), step_seconds)
+        twist = odom.twist.twist
+        same("odom", "twist", (twist.linear.x, twist.linear.y, twist.angular.z), tuple(velocity))
+        transform = got["/tf"].transforms[0]
+        same("tf", "child", transform.child_frame_id, "base_link")
+        t = transform.transform.translation
+        same("tf", "translation", (t.x, t.y, t.z), (x, y, 0.0))
+        same("sensors", "data", list(got["/sensors"].data), topics.sensors_values(simulator))
+        same("pose", "data", list(got["/pose"].data), topics.pose_values(simulator))
+        if "/sensor_data" in got:
+            same(
+                "sensor_data",
+                "data",
+                list(got["/sensor_data"].data),
+                topics.sensor_data_values(simulator),
+            )
+
+    deadline = time.monotonic() + WAIT_S
+    while not cmd_vel.get_matched_subscriptions():
+        if time.monotonic() > deadline:
+            print("driver: no bridge on /cmd_vel", file=sys.stderr)
+            return 1
+        time.sleep(0.01)
+    try:
+        before = simulator.pose
+        check(collect(stamp_nanoseconds(0.0)), 0.0, before)
+        statics = static_reader.take(4)
+        if not statics:
+            raise Mismatch("no /tf_static")
+        frames = {t.child_frame_id for t in statics[0].transforms}
+        expected_frames = {f.frame for f in standard.sensor_frames(simulator.robot)}
+        if not expected_frames <= frames:
+            raise Mismatch(f"/tf_static lacks {sorted(expected_frames - frames)}")
+        robot = simulator.robot
+        started = time.monotonic()
+        for linear, angular in commands(args.steps, args.seed):
+            linear_v = vector(x=linear, y=0.0, z=0.0)
+            angular_v = vector(x=0.0, y=0.0, z=angular)
+            if jazzy:
+                now = stamp_nanoseconds(simulator.time)
+                sample = twist_type(
+                    header=header(
+                        stamp=time_type(sec=now // 10**9, nanosec=now % 10**9), frame_id="base_link"
+                    ),
+                    twist=inner(linear=linear_v, angular=angular_v),
+                )
+            else:
+                sample = twist_type(linear=linear_v, angular=angular_v)
+            cmd_vel.write(sample)
+            before = simulator.pose
+            simulator.step(*standard.twist_wheel_speeds(linear, angular, robot))
+            got = collect(stamp_nanoseconds(simulator.time))
+            check(got, simulator.control_step_ms / 1000.0, before)
+        elapsed = time.monotonic() - started
+    except Mismatch as error:
+        print(f"driver: step {simulator.steps}: {error}", file=sys.stderr, flush=True)
+        return 1
+    print(
+        f"driver: {args.steps} steps, every field equal ({args.steps / elapsed:.0f} steps/s)",
+        flush=True,
+    )
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
