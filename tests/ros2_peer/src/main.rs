@@ -33,7 +33,7 @@ use messages::{
     Clock, Float64MultiArray, Header, LaserScan, Odometry, RangeLayout, TfMessage, Time, Twist,
     TwistStamped, Vector3,
 };
-use options::{Distro, Options, USAGE};
+use options::{CmdVel, Distro, Options, USAGE};
 use step::{Sample, StepSet, RANGE_TOPICS};
 
 /// Why the peer stopped: each kind has its exit status.
@@ -116,26 +116,19 @@ enum CommandWriter {
 }
 
 impl CommandWriter {
-    fn create(node: &mut Node, distro: Distro) -> Result<CommandWriter, Failure> {
+    fn create(node: &mut Node, kind: CmdVel) -> Result<CommandWriter, Failure> {
         let name = Name::new("/", "cmd_vel").map_err(other("topic name"))?;
         let qos = reliable(10);
-        let type_name = match distro {
-            Distro::Humble => "Twist",
-            Distro::Jazzy => "TwistStamped",
-        };
+        let type_name = MessageTypeName::new("geometry_msgs", kind.type_name());
         let topic = node
-            .create_topic(
-                &name,
-                MessageTypeName::new("geometry_msgs", type_name),
-                &qos,
-            )
+            .create_topic(&name, type_name, &qos)
             .map_err(other("create topic"))?;
-        Ok(match distro {
-            Distro::Humble => CommandWriter::Twist(
+        Ok(match kind {
+            CmdVel::Twist => CommandWriter::Twist(
                 node.create_publisher(&topic, Some(qos))
                     .map_err(other("create publisher"))?,
             ),
-            Distro::Jazzy => CommandWriter::TwistStamped(
+            CmdVel::TwistStamped => CommandWriter::TwistStamped(
                 node.create_publisher(&topic, Some(qos))
                     .map_err(other("create publisher"))?,
             ),
@@ -203,7 +196,59 @@ async fn gather(
     }
 }
 
-async fn drive(node: &mut Node, options: &Options, out: &mut dyn Write) -> Result<(), Failure> {
+/// Fails with a layout mismatch if another participant reads `/cmd_vel` or writes a state topic
+/// under a type name other than this peer's (DDS then matches no reader with that writer).
+fn foreign_types(context: &Context, options: &Options) -> Result<(), Failure> {
+    let participant = context.domain_participant();
+    let ours = |topic: &str| -> Option<String> {
+        let name = topic.strip_prefix("rt/")?;
+        let (package, type_name) = match name {
+            "cmd_vel" => ("geometry_msgs", options.cmd_vel.type_name()),
+            "scan" => ("sensor_msgs", "LaserScan"),
+            "odom" => ("nav_msgs", "Odometry"),
+            "tf" => ("tf2_msgs", "TFMessage"),
+            "sensors" | "pose" => ("std_msgs", "Float64MultiArray"),
+            "clock" => ("rosgraph_msgs", "Clock"),
+            _ if RANGE_TOPICS.contains(&name) => ("sensor_msgs", "Range"),
+            _ => return None,
+        };
+        Some(format!("{package}::msg::dds_::{type_name}_"))
+    };
+    let remote_readers = participant.discovered_readers().into_iter().map(|reader| {
+        let data = reader.subscription_topic_data;
+        (data.topic_name().clone(), data.type_name().clone())
+    });
+    let remote_writers = participant.discovered_writers().into_iter().map(|writer| {
+        let data = writer.publication_topic_data;
+        (data.topic_name, data.type_name)
+    });
+    let mut differences: Vec<String> = remote_readers
+        .chain(remote_writers)
+        .filter_map(|(topic, type_name): (String, String)| {
+            let expected = ours(&topic)?;
+            (expected != type_name)
+                .then(|| format!("{topic} is {type_name} there, {expected} here"))
+        })
+        .collect();
+    differences.sort();
+    differences.dedup();
+    if differences.is_empty() {
+        return Ok(());
+    }
+    Err(Failure::Layout(format!(
+        "the bridge's types differ from this peer's ({}, /cmd_vel {}): {}",
+        options.distro.name(),
+        options.cmd_vel.type_name(),
+        differences.join("; ")
+    )))
+}
+
+async fn drive(
+    context: &Context,
+    node: &mut Node,
+    options: &Options,
+    out: &mut dyn Write,
+) -> Result<(), Failure> {
     let with_variance = options.distro == Distro::Jazzy;
     let distro = options.distro.name();
     let mut ranges = Vec::new();
@@ -271,8 +316,13 @@ async fn drive(node: &mut Node, options: &Options, out: &mut dyn Write) -> Resul
     let mut incoming = stream::select_all(streams);
 
     // The command writer last: the bridge publishes its reset state once it has matched it.
-    let writer = CommandWriter::create(node, options.distro)?;
-    let (reset, mut now) = gather(&mut incoming, options.start_timeout, "the reset state").await?;
+    let writer = CommandWriter::create(node, options.cmd_vel)?;
+    let reset = gather(&mut incoming, options.start_timeout, "the reset state").await;
+    if let Err(Failure::Timeout(_)) = reset {
+        // Silence is what DDS makes of a type the other side does not share: say so if it is.
+        foreign_types(context, options)?;
+    }
+    let (reset, mut now) = reset?;
     if now != (Time { sec: 0, nanosec: 1 }) {
         return Err(Failure::Other(format!(
             "the reset state is stamped {now}, not 0.000000001"
@@ -324,7 +374,7 @@ fn run(options: &Options) -> Result<(), Failure> {
         .spawn(node.spinner().map_err(other("node spinner"))?.spin())
         .detach();
     let started = Instant::now();
-    smol::block_on(executor.run(drive(&mut node, options, &mut out)))?;
+    smol::block_on(executor.run(drive(&context, &mut node, options, &mut out)))?;
     out.flush().map_err(other("writing the output"))?;
     eprintln!(
         "ros2-peer: {} steps ({}) in {:.2} s",

@@ -4,13 +4,14 @@ use std::path::PathBuf;
 use std::time::Duration;
 
 pub const USAGE: &str = "\
-usage: ros2-peer [--distro humble|jazzy] [--steps N] [--seed N] [--out FILE]
+usage: ros2-peer [--distro humble|jazzy] [--cmd-vel twist|twist-stamped] [--steps N] [--seed N] [--out FILE]
                  [--step-timeout SECONDS] [--start-timeout SECONDS]
 
 Drives mazesim's ROS 2 bridge in lockstep over ROS 2 (ros2-client over RustDDS): reads the
 reset state, then answers each step's state with one /cmd_vel from a seeded sequence, for N
 steps, and writes one JSON line per step (step 0 is the reset state) with every decoded field.
-The DDS domain is ROS_DOMAIN_ID (default 0).
+--distro sets the Range layout and, unless --cmd-vel says otherwise, the /cmd_vel type (Humble:
+Twist, Jazzy: TwistStamped). The DDS domain is ROS_DOMAIN_ID (default 0).
 Exit status: 0 done, 2 bad usage, 3 a message whose layout is not the distribution's,
 4 a step (or the reset state) that did not arrive in time, 1 any other failure.";
 
@@ -30,9 +31,27 @@ impl Distro {
     }
 }
 
+/// The `/cmd_vel` message type the peer writes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CmdVel {
+    Twist,
+    TwistStamped,
+}
+
+impl CmdVel {
+    /// The message's name in `geometry_msgs`.
+    pub fn type_name(self) -> &'static str {
+        match self {
+            CmdVel::Twist => "Twist",
+            CmdVel::TwistStamped => "TwistStamped",
+        }
+    }
+}
+
 #[derive(Clone, Debug)]
 pub struct Options {
     pub distro: Distro,
+    pub cmd_vel: CmdVel,
     pub steps: usize,
     pub seed: u64,
     pub out: Option<PathBuf>,
@@ -65,6 +84,7 @@ impl Options {
     pub fn parse(args: &[String], domain: Option<&str>) -> Result<Options, String> {
         let mut options = Options {
             distro: Distro::Humble,
+            cmd_vel: CmdVel::Twist,
             steps: 2000,
             seed: 0,
             out: None,
@@ -75,6 +95,7 @@ impl Options {
         if let Some(text) = domain.filter(|text| !text.is_empty()) {
             options.domain_id = number(text, "ROS_DOMAIN_ID", "a domain id from 0 to 232")?;
         }
+        let mut cmd_vel = None;
         let mut index = 0;
         while index < args.len() {
             let flag = args[index].as_str();
@@ -89,6 +110,17 @@ impl Options {
                             ))
                         }
                     }
+                }
+                "--cmd-vel" => {
+                    cmd_vel = Some(match value(args, index, flag)? {
+                        "twist" => CmdVel::Twist,
+                        "twist-stamped" => CmdVel::TwistStamped,
+                        other => {
+                            return Err(format!(
+                                "--cmd-vel expects twist or twist-stamped, found {other:?}"
+                            ))
+                        }
+                    })
                 }
                 "--steps" => {
                     options.steps = number(value(args, index, flag)?, flag, "a count of steps")?
@@ -109,6 +141,10 @@ impl Options {
             }
             index += 2;
         }
+        options.cmd_vel = cmd_vel.unwrap_or(match options.distro {
+            Distro::Humble => CmdVel::Twist,
+            Distro::Jazzy => CmdVel::TwistStamped,
+        });
         Ok(options)
     }
 }
