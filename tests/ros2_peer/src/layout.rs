@@ -72,3 +72,71 @@ impl<'de, S: DeserializeSeed<'de>> Visitor<'de> for WholePayload<S> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use rustdds::serialization::deserialize_from_cdr_with_decoder_and_rep_id;
+    use rustdds::RepresentationIdentifier;
+
+    use super::*;
+    use crate::messages::{Range, RangeLayout};
+
+    /// A `Range` as CDR (little-endian, the payload after its encapsulation header), stamped
+    /// 1 ns, frame `ps0`, range 0.05 m; Jazzy's carries a variance of 0.
+    fn range_payload(with_variance: bool) -> Vec<u8> {
+        let mut bytes = Vec::new();
+        bytes.extend(0i32.to_le_bytes());
+        bytes.extend(1u32.to_le_bytes());
+        bytes.extend(4u32.to_le_bytes());
+        bytes.extend(b"ps0\0");
+        bytes.extend([1, 0, 0, 0]); // radiation_type, then padding to float32's alignment
+        for value in [0.1f32, 0.005, 0.07, 0.05] {
+            bytes.extend(value.to_le_bytes());
+        }
+        if with_variance {
+            bytes.extend(0f32.to_le_bytes());
+        }
+        bytes
+    }
+
+    fn decode(bytes: &[u8], with_variance: bool) -> Result<Range, String> {
+        let seed = WholePayload(RangeLayout { with_variance });
+        deserialize_from_cdr_with_decoder_and_rep_id(bytes, RepresentationIdentifier::CDR_LE, seed)
+            .map(|(range, _)| range)
+            .map_err(|error| error.to_string())
+    }
+
+    #[test]
+    fn each_distribution_reads_its_own_range() {
+        let humble = decode(&range_payload(false), false).unwrap();
+        assert_eq!(
+            (
+                humble.header.frame_id.as_str(),
+                humble.range,
+                humble.variance
+            ),
+            ("ps0", 0.05, None)
+        );
+        assert_eq!(humble.header.stamp.nanosec, 1);
+        let jazzy = decode(&range_payload(true), true).unwrap();
+        assert_eq!((jazzy.range, jazzy.variance), (0.05, Some(0.0)));
+    }
+
+    #[test]
+    fn humble_reading_jazzy_range_is_a_mismatch() {
+        let error = decode(&range_payload(true), false).unwrap_err();
+        assert!(error.contains("fields this layout lacks"), "{error}");
+    }
+
+    #[test]
+    fn jazzy_reading_humble_range_is_a_mismatch() {
+        assert!(decode(&range_payload(false), true).is_err());
+    }
+
+    #[test]
+    fn padding_to_four_bytes_is_not_a_field() {
+        let mut padded = range_payload(false);
+        padded.extend([0, 0, 0]);
+        assert!(decode(&padded, false).is_ok());
+    }
+}
