@@ -50,6 +50,8 @@ QUICK = {
     "transfer-study": ["--axes", "latency", "--episodes", "1", "--max-steps", "50", "--no-pairs"],
     "ros bridge": ["--duration", "1"],
     "ros demo": ["--seconds", "1"],
+    "ros2 bridge": ["--mode", "free", "--speed", "0", "--stop-after", "1"],
+    "ros2 demo": ["--steps", "1", "--controller", "avoid-collision"],
 }
 #: Options that name outputs (the others taking paths are inputs).
 OUTPUT_OPTIONS = {"--out", "--trace", "--plot", "--html", "--video", "--record"}

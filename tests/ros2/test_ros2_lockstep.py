@@ -68,7 +68,7 @@ def test_a_driver_of_the_wrong_layout_is_caught() -> None:
     # the driver receives no Range and says which topics stayed silent.
     result = run_in_namespace(
         [_bridge("jazzy", 1)],
-        _driver("jazzy", 1, "--reader-distro", "humble", "--wait", "3"),
+        _driver("jazzy", 1, "--reader-distro", "humble", "--wait", "2"),
         timeout=60,
         grace=1.0,
     )

@@ -12,7 +12,8 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from mazesim.cli._args import non_negative_int, seed_argument
+from mazesim._paths import output_path
+from mazesim.cli._args import non_negative_int, positive_number, seed_argument
 from mazesim.cli._help import examples
 from mazesim.episodes import MAX_STEPS
 from mazesim.ros2._deps import require_ros2
@@ -33,16 +34,32 @@ def check_before_parsing(arguments: Sequence[str]) -> None:
     require_ros2()
 
 
-def _speed(text: str) -> float:
+#: The largest speed factor and timer period the commands take.
+LARGEST = 1e6
+
+
+def _non_negative(text: str, what: str) -> float:
     try:
         value = float(text)
     except ValueError:
         value = math.nan
-    if not (math.isfinite(value) and value >= 0.0):
-        raise argparse.ArgumentTypeError(
-            f"expected a speed factor >= 0 (0: as fast as possible); found {text!r}"
-        )
+    if not (math.isfinite(value) and 0.0 <= value <= LARGEST):
+        raise argparse.ArgumentTypeError(f"expected {what} from 0 to {LARGEST:g}; found {text!r}")
     return value
+
+
+def _speed(text: str) -> float:
+    return _non_negative(text, "a speed factor (0: as fast as possible)")
+
+
+def _period_ms(text: str) -> float:
+    return _non_negative(text, "a timer period in ms (0: answer each reading)")
+
+
+def _policy(text: str) -> str:
+    if not text or "\0" in text:
+        raise argparse.ArgumentTypeError(f"expected a folder of trained tables; found {text!r}")
+    return text
 
 
 def _add_common(parser: argparse.ArgumentParser) -> None:
@@ -94,9 +111,15 @@ def _run_avoid_collision(args: argparse.Namespace) -> int:
 
 
 def _run_demo(args: argparse.Namespace) -> int:
+    import mazesim
+    from mazesim._paths import output_files, refuse_overwriting_inputs
     from mazesim.ros2.demo import run_demo
 
-    result = run_demo(Path(args.out), args.controller, args.ros_distro, args.seed, args.steps)
+    refuse_overwriting_inputs(output_files(args.out, ("bag",)), [("--world", args.world)])
+    mazesim.load_world(args.world)  # a bad world fails here, before any process starts
+    result = run_demo(
+        Path(args.out), args.controller, args.ros_distro, args.seed, args.steps, args.world
+    )
     goal = "goal not reached" if result.goal_step is None else f"goal at step {result.goal_step}"
     print(f"mazesim ros2 demo: {result.steps} steps, {goal}; bag: {result.bag}")
     return 0
@@ -115,13 +138,24 @@ def register(commands: Any) -> None:
         ),
     )
     sub = parser.add_subparsers(dest="ros2_command", required=True, metavar="COMMAND")
-    bridge = sub.add_parser("bridge", help="the simulator behind the e-puck's ROS 2 topics")
+    bridge = sub.add_parser(
+        "bridge",
+        help="the simulator behind the e-puck's ROS 2 topics",
+        epilog=examples(
+            "mazesim ros2 bridge --world seed-maze --bag run1",
+            "mazesim ros2 bridge --robot seed --stop-at-goal --ros-distro jazzy",
+            "mazesim ros2 bridge --mode free --speed 0 --paused",
+        ),
+    )
     bridge.add_argument(
         "--world", default="seed-maze", help="world name or file (default: %(default)s)"
     )
     bridge.add_argument("--robot", default="e-puck", help="robot profile (default: %(default)s)")
     bridge.add_argument(
-        "--seed", type=seed_argument, default=0, help="the sensor noise's seed (default: 0)"
+        "--seed",
+        type=seed_argument,
+        default=0,
+        help="the sensor noise's seed (default: %(default)s)",
     )
     bridge.add_argument("--no-noise", action="store_true", help="noise-free sensors")
     bridge.add_argument(
@@ -140,36 +174,86 @@ def register(commands: Any) -> None:
     )
     bridge.add_argument("--paused", action="store_true", help="free mode: start paused")
     bridge.add_argument(
-        "--stop-after", type=non_negative_int, default=0, help="stop after N steps (0: never)"
+        "--stop-after",
+        type=non_negative_int,
+        default=0,
+        help="stop after N steps, 0 for never (default: %(default)s)",
     )
     bridge.add_argument("--stop-at-goal", action="store_true", help="stop once at the goal")
     bridge.add_argument("--bag", default=None, help="record a rosbag2 (MCAP) into this new folder")
     _add_common(bridge)
     bridge.set_defaults(run=_run_bridge)
     learning = sub.add_parser(
-        "perform-learning", help="the shipped hierarchical navigator: /sensor_data -> /action"
+        "perform-learning",
+        help="the shipped hierarchical navigator: /sensor_data -> /action",
+        epilog=examples(
+            "mazesim ros2 perform-learning",
+            "mazesim ros2 perform-learning --ros-distro jazzy --control-step-ms 32",
+        ),
     )
-    learning.add_argument("--policy", default=None, help="a folder of trained tables")
     learning.add_argument(
-        "--control-step-ms", type=float, default=32.0, help="the bridge's step (default: 32)"
+        "--policy", type=_policy, default=None, help="a folder of trained tables (default: shipped)"
+    )
+    learning.add_argument(
+        "--control-step-ms",
+        type=positive_number,
+        default=32.0,
+        help="the bridge's step (default: %(default)s)",
     )
     _add_common(learning)
     learning.set_defaults(run=_run_perform_learning)
-    avoid = sub.add_parser("avoid-collision", help="the report's Alg. 1: /sensors -> /motor")
+    avoid = sub.add_parser(
+        "avoid-collision",
+        help="the report's Alg. 1: /sensors -> /motor",
+        epilog=examples(
+            "mazesim ros2 avoid-collision",
+            "mazesim ros2 avoid-collision --period-ms 64",
+        ),
+    )
     avoid.add_argument(
         "--period-ms",
-        type=float,
+        type=_period_ms,
         default=0.0,
-        help="0: answer each reading; else a timer of this period on simulation time (/clock)",
+        help="0: answer each reading; else a timer of this period on simulation time (/clock) "
+        "(default: %(default)s)",
     )
     _add_common(avoid)
     avoid.set_defaults(run=_run_avoid_collision)
-    demo = sub.add_parser("demo", help="bridge + navigator node to the goal, recorded in a bag")
-    demo.add_argument("--out", default="mazesim-ros2-demo", help="output folder")
-    demo.add_argument("--controller", choices=("hrl", "avoid-collision"), default="hrl")
-    demo.add_argument("--seed", type=seed_argument, default=0, help="the bridge's seed")
+    demo = sub.add_parser(
+        "demo",
+        help="bridge + navigator node to the goal, recorded in a bag",
+        epilog=examples(
+            "mazesim ros2 demo --out ros2-demo",
+            "mazesim ros2 demo --controller avoid-collision --steps 500 --ros-distro jazzy",
+        ),
+    )
     demo.add_argument(
-        "--steps", type=non_negative_int, default=MAX_STEPS, help="step limit (default: %(default)s)"
+        "--world",
+        default="seed-maze",
+        metavar="NAME|PATH",
+        help="built-in world or world file (default: %(default)s)",
+    )
+    demo.add_argument(
+        "--out",
+        type=output_path,
+        default="mazesim-ros2-demo",
+        metavar="DIR",
+        help="output folder, created if missing (default: %(default)s)",
+    )
+    demo.add_argument(
+        "--controller",
+        choices=("hrl", "avoid-collision"),
+        default="hrl",
+        help="the node that drives (default: %(default)s)",
+    )
+    demo.add_argument(
+        "--seed", type=seed_argument, default=0, help="the bridge's seed (default: %(default)s)"
+    )
+    demo.add_argument(
+        "--steps",
+        type=non_negative_int,
+        default=MAX_STEPS,
+        help="step limit (default: %(default)s)",
     )
     _add_common(demo)
     demo.set_defaults(run=_run_demo)

@@ -2,8 +2,8 @@
 
 Each message is stored as the bytes that went out on the wire, with its topic's type definition
 and hash for the distribution (``rosbags`` writes the bag), received time = its stamp (simulated
-nanoseconds), so one step's message set shares one time. The bag is a folder; it is written under
-a temporary name beside the target and renamed into place when closed, so a bag that exists is
+nanoseconds), so one step's message set shares one time. The bag is a folder; it is written in a
+temporary folder beside the target and moved into place when closed, so a bag that exists is
 complete.
 """
 
@@ -36,13 +36,18 @@ class BagRecorder:
         self.path = Path(path)
         if self.path.exists():
             raise MazesimIOError(f"expected a new bag folder; found {self.path}, which exists")
-        self.partial = self.path.with_name(self.path.name + ".partial")
+        # rosbags names the MCAP file after its folder: the folder keeps its final name inside a
+        # temporary parent until the bag is complete.
+        self.partial = self.path.parent / f".{self.path.name}.partial"
         if self.partial.exists():
             shutil.rmtree(self.partial)
+        self.partial.mkdir(parents=True)
         self.distro = distro
         self.typestore = messages.typestore(distro)
         try:
-            self.writer = Writer(self.partial, version=9, storage_plugin=StoragePlugin.MCAP)
+            self.writer = Writer(
+                self.partial / self.path.name, version=9, storage_plugin=StoragePlugin.MCAP
+            )
             self.writer.open()
         except OSError as error:
             raise MazesimIOError(f"expected to write a bag at {self.path}; {error}") from error
@@ -61,4 +66,5 @@ class BagRecorder:
     def close(self) -> None:
         """Finishes the bag and moves it into place."""
         self.writer.close()
-        self.partial.rename(self.path)
+        (self.partial / self.path.name).rename(self.path)
+        self.partial.rmdir()

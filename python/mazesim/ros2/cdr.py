@@ -255,9 +255,9 @@ def encode_tf_message(transforms: Sequence[Transform]) -> bytes:
 
 
 @functools.cache
-def _array_layout(label: str, count: int) -> struct.Struct:
+def _array_layout(label: str | None, count: int) -> struct.Struct:
     layout = _Layout()
-    if label:
+    if label is not None:
         layout.field("I", 4, 4).string(label).field("I", 4, 4, 2)
     else:
         layout.field("I", 4, 4)
@@ -270,10 +270,10 @@ def _array_layout(label: str, count: int) -> struct.Struct:
 def encode_float64_multi_array(labels: Sequence[str], data: Sequence[float]) -> bytes:
     """A ``std_msgs/msg/Float64MultiArray`` of one dimension, labelled ``,``-joined ``labels``
     (no dimension when ``labels`` is empty)."""
-    label = ",".join(labels)
+    label = ",".join(labels) if labels else None
     layout = _array_layout(label, len(data))
     count = len(data)
-    if label:
+    if label is not None:
         text = label.encode()
         return CDR_LE + layout.pack(1, len(text) + 1, text, count, count, 0, count, *data)
     return CDR_LE + layout.pack(0, 0, count, *data)

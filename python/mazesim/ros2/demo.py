@@ -44,6 +44,7 @@ def run_demo(
     distro: str = "humble",
     seed: int = 0,
     steps: int = MAX_STEPS,
+    world: str = "seed-maze",
 ) -> DemoResult:
     """Runs the bridge and a controller node until the goal (or ``steps``); returns the result.
 
@@ -51,13 +52,16 @@ def run_demo(
         MazesimIOError: ``OUT/bag`` exists already.
         MazesimError: The bridge failed or did not finish in time.
     """
-    out.mkdir(parents=True, exist_ok=True)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as error:
+        raise MazesimIOError(f"expected to make the output folder {out}; {error}") from error
     bag = out / "bag"
     if bag.exists():
         raise MazesimIOError(f"expected a new bag folder; found {bag}, which exists")
     robot = "seed" if controller == "hrl" else "e-puck"
     bridge_arguments = [
-        "bridge", "--robot", robot, "--world", "seed-maze", "--seed", str(seed),
+        "bridge", "--robot", robot, "--world", world, "--seed", str(seed),
         "--ros-distro", distro, "--stop-after", str(steps), "--bag", str(bag),
     ]  # fmt: skip
     if controller == "hrl":
