@@ -1,8 +1,8 @@
 """The ROS 2 bridge in lockstep, driven by a peer built on an independent ROS 2 implementation
 (``tests/ros2_peer``: ros2-client over RustDDS, ``make ros2-peer``), in a private network namespace
 with only the loopback interface: every decoded field of every step equals what the in-process
-simulator, given the same commands, says it should be, in Humble's and Jazzy's layouts; a peer
-expecting the other distribution's layout reports the mismatch.
+simulator, given the same commands, says it should be, for 2,000 steps in Humble's layouts and in
+Jazzy's; a peer expecting the other distribution's layout reports the mismatch.
 
 The expected messages are built here from the simulator's state and the documented topic table
 (docs/ros2.md), not with the bridge's encoder.
@@ -223,8 +223,8 @@ def test_jazzy_peer_drives_2000_steps_every_field_equal_in_process(tmp_path: Pat
 def test_a_peer_of_the_other_distribution_reports_a_layout_mismatch(
     tmp_path: Path, bridge: str, peer: list[str], says: str
 ) -> None:
-    command = _peer(tmp_path / "steps.jsonl", *peer, "--steps", "5", "--start-timeout", "4")
-    result = run_in_namespace([_bridge(bridge, 5)], command, timeout=60, grace=1.0)
+    command = _peer(tmp_path / "steps.jsonl", *peer, "--steps", "5", "--start-timeout", "3")
+    result = run_in_namespace([_bridge(bridge, 5)], command, timeout=60, grace=0.5)
     # The bridge, never driven, is stopped after the grace: 100 more per background failure.
     assert result.returncode % 100 == LAYOUT_MISMATCH, result.stderr
     assert "ros2-peer: layout mismatch" in result.stderr

@@ -333,6 +333,7 @@ async fn drive(
             writeln!(out, "{}", set.to_json(step, command)).map_err(other("writing the output"))
         };
     write_line(&reset, 0, None)?;
+    let stepping = Instant::now();
     for (index, command) in command_sequence(options.seed, options.steps)
         .into_iter()
         .enumerate()
@@ -349,6 +350,13 @@ async fn drive(
         now = clock;
         write_line(&set, step, Some(command))?;
     }
+    let seconds = stepping.elapsed().as_secs_f64();
+    eprintln!(
+        "ros2-peer: {} steps ({}) in {seconds:.2} s after the reset state: {:.0} steps/s",
+        options.steps,
+        options.distro.name(),
+        options.steps as f64 / seconds
+    );
     Ok(())
 }
 
@@ -373,15 +381,8 @@ fn run(options: &Options) -> Result<(), Failure> {
     executor
         .spawn(node.spinner().map_err(other("node spinner"))?.spin())
         .detach();
-    let started = Instant::now();
     smol::block_on(executor.run(drive(&context, &mut node, options, &mut out)))?;
     out.flush().map_err(other("writing the output"))?;
-    eprintln!(
-        "ros2-peer: {} steps ({}) in {:.2} s",
-        options.steps,
-        options.distro.name(),
-        started.elapsed().as_secs_f64()
-    );
     Ok(())
 }
 
