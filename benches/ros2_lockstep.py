@@ -3,11 +3,12 @@
 
 The bridge (``mazesim ros2 bridge``, lockstep, e-puck in seed-maze: 8 Range, 3 ground Range,
 LaserScan, Odometry, TF, sensors, pose and Clock each step) runs as its own process; this process
-is the controller, a ROS 2 node answering every ``/sensors`` message with the avoid-collision rule
-on ``/motor``. One control step is one full round trip. Then, in the same sitting, where ROS 1 is
-installed, ``benches/ros_lockstep.py`` measures the ROS 1 bridge the same way. Last, where the time
-goes: the bridge's own work per step (simulate, encode every message, hand them to DDS) measured in
-this process.
+is the controller, a ROS 2 node subscribed to every state topic (so the whole set goes over the
+wire each step) answering every ``/sensors`` message with the avoid-collision rule on ``/motor``.
+One control step is one full round trip. Then, where the time goes: the bridge's own work per
+step (simulate, encode every message, hand them to DDS with no reader) measured in this process.
+Last, in the same sitting, where ROS 1 is installed, ``benches/ros_lockstep.py`` measures the
+ROS 1 bridge the same way.
 
     .venv/bin/python benches/ros2_lockstep.py [--steps N] [--repeats K] [--distro humble|jazzy]
 """
@@ -39,6 +40,13 @@ def ros2_rates(steps: int, repeats: int, distro: str) -> list[float]:
     )
     try:
         node = Node("ros2_lockstep_bench", distro)
+        # Every state topic is subscribed, so the bridge delivers the full set each step.
+        simulator = mazesim.Simulator(mazesim.load_world("seed-maze"), robot="e-puck", seed=0)
+        others = [
+            node.reader(topic.name, topic.msgtype, topic.qos)
+            for topic in StateTopics(simulator, distro).topics
+            if topic.name != "/sensors"
+        ]
         sensors = node.reader("/sensors", FLOAT64_ARRAY, SENSOR)
         motor = node.writer("/motor", FLOAT64_ARRAY, COMMAND)
         node.announce()
@@ -54,6 +62,8 @@ def ros2_rates(steps: int, repeats: int, distro: str) -> list[float]:
             while True:
                 waitset.wait(100_000_000)
                 received = sensors.take()
+                for reader in others:
+                    reader.take()
                 if received:
                     values = cdr.decode_float64_array(received[-1])
                     left, right = controller(values[:8])

@@ -15,6 +15,7 @@ import argparse
 import math
 import sys
 import time
+import uuid
 from typing import Any
 
 import numpy as np
@@ -103,7 +104,59 @@ def main() -> int:
     )
     _ = (SENSOR, TF, domain)
 
+    graph_type = messages.idl_type(distro, "rmw_dds_common/msg/ParticipantEntitiesInfo")
+    graph_reader = DataReader(
+        participant,
+        Topic(participant, "ros_discovery_info", graph_type),
+        qos=cyclone_qos(TF_STATIC),
+    )
     pending: dict[str, list[Any]] = {name: [] for name in readers}
+
+    def check_graph() -> None:
+        """The bridge is the ROS node ``mazesim_bridge``: its participant's USER_DATA, its
+        entry on ros_discovery_info naming the GIDs of its endpoints, and (Jazzy) their hashes."""
+        from cyclonedds.builtin import (
+            BuiltinDataReader,
+            BuiltinTopicDcpsParticipant,
+            BuiltinTopicDcpsPublication,
+        )
+
+        nodes = {}
+        for info in graph_reader.take(16):
+            for node in info.node_entities_info_seq:
+                nodes[node.node_name] = (info.gid, node)
+        if "mazesim_bridge" not in nodes:
+            raise Mismatch(f"ros_discovery_info names no mazesim_bridge: {sorted(nodes)}")
+        gid, node = nodes["mazesim_bridge"]
+        size = 24 if distro == "humble" else 16
+        if len(gid.data) != size:
+            raise Mismatch(f"expected a GID of {size} bytes; found {len(gid.data)}")
+        bridge_key = uuid.UUID(bytes=bytes(gid.data[:16]))
+        participants = BuiltinDataReader(participant, BuiltinTopicDcpsParticipant).take(64)
+        data = [p.qos[Policy.Userdata] for p in participants if p.key == bridge_key]
+        if not data or data[0] is None or data[0].data != b"enclave=/;":
+            raise Mismatch(f"the bridge's participant USER_DATA is {data}, not enclave=/;")
+        publications = {
+            p.key: p
+            for p in BuiltinDataReader(participant, BuiltinTopicDcpsPublication).take(256)
+            if p.participant_key == bridge_key
+        }
+        writers = {uuid.UUID(bytes=bytes(g.data[:16])) for g in node.writer_gid_seq}
+        named = {publications[key].topic_name for key in writers if key in publications}
+        expected_names = {"rt/" + t.name.lstrip("/") for t in expected_topics.topics}
+        if not expected_names | {"rt/tf_static"} <= named:
+            raise Mismatch(f"the node's writer GIDs miss {sorted(expected_names - named)}")
+        for key in writers & publications.keys():
+            user = publications[key].qos[Policy.Userdata]
+            text = user.data.decode() if user is not None else ""
+            if jazzy and not text.startswith("typehash=RIHS01_"):
+                raise Mismatch(f"{publications[key].topic_name} carries no type hash: {text!r}")
+            if not jazzy and text:
+                raise Mismatch(f"a Humble endpoint carries USER_DATA {text!r}")
+        if len(node.reader_gid_seq) < 3:
+            raise Mismatch(
+                f"expected the bridge's 3 command readers; found {len(node.reader_gid_seq)}"
+            )
 
     def collect(stamp_ns: int) -> dict[str, Any]:
         deadline = time.monotonic() + WAIT_S
@@ -185,6 +238,7 @@ def main() -> int:
     try:
         before = simulator.pose
         check(collect(stamp_nanoseconds(0.0)), 0.0, before)
+        check_graph()
         statics = static_reader.take(4)
         if not statics:
             raise Mismatch("no /tf_static")

@@ -81,3 +81,30 @@ def test_without_the_extra_the_command_says_what_to_install() -> None:
     assert result.returncode == 2
     assert 'pip install "mazesim[ros2]"' in result.stderr
     assert "cyclonedds and rosbags" in result.stderr
+
+
+def test_the_pages_topic_table_says_what_the_bridge_publishes() -> None:
+    """Each published topic's type and QoS in docs/ros2.md are those of the code."""
+    import re
+    from pathlib import Path
+
+    import mazesim
+    from mazesim.ros2.state import StateTopics
+
+    page = (Path(__file__).parents[2] / "docs" / "ros2.md").read_text(encoding="utf-8")
+    rows = [line.split(" | ") for line in page.splitlines() if line.startswith("| `")]
+    described = {}
+    for cells in rows:
+        for name in re.findall(r"`(/[a-z_0-9]+)`", cells[0]):
+            described[name] = (cells[1], cells[2])
+    for robot in ("e-puck", "e-puck2", "seed"):
+        simulator = mazesim.Simulator(mazesim.load_world("seed-maze"), robot=robot, seed=0)
+        state = StateTopics(simulator, "humble")
+        for topic in [*state.topics, state.static_topic()]:
+            name = topic.name
+            if re.fullmatch(r"/ps[1-6]|/gs1", name):
+                continue  # the table's "/ps0 .. /ps7" and "/gs0 .. /gs2" rows
+            assert name in described, name
+            kind, qos = described[name]
+            assert f"`{topic.msgtype}`" in kind, (name, kind)
+            assert qos == topic.qos.describe(), (name, qos)
