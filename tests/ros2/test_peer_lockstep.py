@@ -223,7 +223,7 @@ def test_jazzy_peer_drives_2000_steps_every_field_equal_in_process(tmp_path: Pat
 def test_a_peer_of_the_other_distribution_reports_a_layout_mismatch(
     tmp_path: Path, bridge: str, peer: list[str], says: str
 ) -> None:
-    command = _peer(tmp_path / "steps.jsonl", *peer, "--steps", "5", "--start-timeout", "3")
+    command = _peer(tmp_path / "steps.jsonl", *peer, "--steps", "5", "--start-timeout", "10")
     result = run_in_namespace([_bridge(bridge, 5)], command, timeout=60, grace=0.5)
     # The bridge, never driven, is stopped after the grace: 100 more per background failure.
     assert result.returncode % 100 == LAYOUT_MISMATCH, result.stderr

@@ -16,7 +16,7 @@ use std::fs::File;
 use std::io::{self, BufWriter, Write};
 use std::pin::Pin;
 use std::process::ExitCode;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use futures::stream::{self, Stream, StreamExt};
 use ros2_client::qos::History;
@@ -35,6 +35,9 @@ use messages::{
 };
 use options::{CmdVel, Distro, Options, USAGE};
 use step::{Sample, StepSet, RANGE_TOPICS};
+
+/// How often the announced types are compared while the reset state is awaited.
+const TYPE_CHECK_INTERVAL: Duration = Duration::from_millis(200);
 
 /// Why the peer stopped: each kind has its exit status.
 enum Failure {
@@ -168,7 +171,7 @@ impl CommandWriter {
 /// Gathers one step's message set from `incoming`, or fails after `timeout`.
 async fn gather(
     incoming: &mut (impl Stream<Item = Received> + Unpin),
-    timeout: std::time::Duration,
+    timeout: Duration,
     what: &str,
 ) -> Result<(StepSet, Time), Failure> {
     let deadline = Instant::now() + timeout;
@@ -317,12 +320,16 @@ async fn drive(
 
     // The command writer last: the bridge publishes its reset state once it has matched it.
     let writer = CommandWriter::create(node, options.cmd_vel)?;
-    let reset = gather(&mut incoming, options.start_timeout, "the reset state").await;
-    if let Err(Failure::Timeout(_)) = reset {
-        // Silence is what DDS makes of a type the other side does not share: say so if it is.
-        foreign_types(context, options)?;
-    }
-    let (reset, mut now) = reset?;
+    // Silence is what DDS makes of a type the other side does not share: while the reset state
+    // is awaited, the types the other participants announce are compared with this peer's.
+    let watch_types = async {
+        loop {
+            Timer::after(TYPE_CHECK_INTERVAL).await;
+            foreign_types(context, options)?;
+        }
+    };
+    let reset = gather(&mut incoming, options.start_timeout, "the reset state");
+    let (reset, mut now) = smol::future::or(reset, watch_types).await?;
     if now != (Time { sec: 0, nanosec: 1 }) {
         return Err(Failure::Other(format!(
             "the reset state is stamped {now}, not 0.000000001"
