@@ -399,7 +399,8 @@ fn main() -> ExitCode {
     let options = match Options::parse(&args, domain.as_deref()) {
         Ok(options) => options,
         Err(message) if message.is_empty() => {
-            println!("{USAGE}");
+            // A closed pipe (`ros2-peer --help | head`) is no failure.
+            let _ = writeln!(io::stdout(), "{USAGE}");
             return ExitCode::SUCCESS;
         }
         Err(message) => {
