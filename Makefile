@@ -26,8 +26,8 @@ export PYO3_PYTHON := $(CURDIR)/$(BIN)/python
 
 .DEFAULT_GOAL := help
 
-.PHONY: help venv build test demo lint typecheck fmt bench wheel clean ros-deps ros2-deps ros-demo bench-peers bench-transfer \
-	webots-compat \
+.PHONY: help venv build test demo lint typecheck fmt bench wheel clean ros-deps ros2-deps ros2-peer ros-demo bench-peers \
+	bench-transfer webots-compat \
 	browser-deps replay-screenshot docs docs-deps sb3-deps
 
 help: ## list the targets
@@ -49,8 +49,9 @@ $(STAMP): Makefile
 build: venv ## build the extension in release mode and install mazesim into .venv
 	VIRTUAL_ENV=$(CURDIR)/$(VENV) $(BIN)/maturin develop --release --quiet
 
-test: build ros-deps ros2-deps browser-deps docs-deps sb3-deps ## run the Rust tests, then the Python tests (ROS 1 and ROS 2 bridges, browser and SB3 tests included)
+test: build ros-deps ros2-deps ros2-peer browser-deps docs-deps sb3-deps ## run the Rust tests, then the Python tests (ROS 1 and ROS 2 bridges, browser and SB3 tests included)
 	cargo test --workspace --exclude mazesim-py
+	cargo test --release --locked --quiet --manifest-path $(ROS2_PEER_MANIFEST) --target-dir $(ROS2_PEER_TARGET)
 	$(BIN)/python -m pytest
 	$(BIN)/python -m mypy.stubtest mazesim._core
 
@@ -84,6 +85,15 @@ ROS2_PACKAGES := "cyclonedds>=0.10.5,<12" "rosbags>=0.10,<1" "mcap>=1.1" "mcap-r
 ros2-deps: venv ## install the ROS 2 extra (cyclonedds, rosbags) and the tests' bag reader (mcap) into .venv
 	$(BIN)/python -m pip install --quiet $(ROS2_PACKAGES)
 
+# The ROS 2 tests' second driver of the bridge, on an independent ROS 2 implementation: ros2-client
+# over RustDDS from crates.io (tests/ros2_peer, outside the workspace, with its own lock file).
+# Its first build compiles about 180 crates: some 3 CPU-minutes; later builds are incremental.
+ROS2_PEER_MANIFEST := tests/ros2_peer/Cargo.toml
+ROS2_PEER_TARGET := target/ros2-peer
+
+ros2-peer: ## build the ROS 2 tests' peer (tests/ros2_peer: ros2-client over RustDDS) into target/ros2-peer
+	cargo build --release --locked --quiet --manifest-path $(ROS2_PEER_MANIFEST) --target-dir $(ROS2_PEER_TARGET)
+
 # Debian's Chromium and its WebDriver, for the browser tests of the HTML replay (selenium drives
 # them headless); installed only when missing. Without them those tests are skipped, and say why.
 BROWSER_DEBS := chromium chromium-driver
@@ -103,6 +113,9 @@ replay-screenshot: build browser-deps ## the shipped navigator's demo replayed i
 lint: venv ## rustfmt, clippy (warnings are errors), ruff check and ruff format
 	cargo fmt --all --check
 	cargo clippy --workspace --all-targets -- -D warnings
+	cargo fmt --check --manifest-path $(ROS2_PEER_MANIFEST)
+	cargo clippy --release --locked --quiet --manifest-path $(ROS2_PEER_MANIFEST) --target-dir $(ROS2_PEER_TARGET) \
+		--all-targets -- -D warnings
 	$(BIN)/ruff check $(PY_SOURCES)
 	$(BIN)/ruff format --check $(PY_SOURCES)
 
