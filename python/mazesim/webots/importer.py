@@ -34,6 +34,9 @@ __all__ = [
     "robot_warnings",
 ]
 
+#: Largest world file the PROTO engine reads (a larger one goes to the core, which refuses it).
+MAX_WORLD_BYTES = 64 * 1024 * 1024
+
 #: Robot node types that mazesim simulates as they are.
 E_PUCK_MODELS = ("E-puck", "e-puck", "e-puck2", "E-puck2")
 
@@ -117,6 +120,18 @@ class ImportReport(TypedDict):
     extension_devices: list[ExtensionDevice]
     floor_textures: list[FloorTexture]
     floor_paint: int
+    protos: ProtoReport
+
+
+class ProtoReport(TypedDict):
+    """What the PROTO engine did: the PROTO types expanded (with the file or URL each was read
+    from), those replaced by mazesim's stand-ins (with what the stand-in models), the URLs
+    read from the download cache and those downloaded."""
+
+    expanded: dict[str, str]
+    stand_ins: dict[str, str]
+    cache_hits: list[str]
+    downloads: list[str]
 
 
 def grey_levels(path: str) -> npt.NDArray[np.float64]:
@@ -176,8 +191,13 @@ def import_wbt(
 ) -> tuple[World, ImportReport]:
     """Imports a Webots world file.
 
+    PROTO instances are first expanded by mazesim's PROTO engine (:mod:`mazesim.webots.proto`):
+    the world's ``EXTERNPROTO`` files (relative paths, ``webots://`` and https URLs, through a
+    download cache), the project's ``protos/`` folder and ``$WEBOTS_HOME``; stock objects that
+    cannot be read get a stand-in, named in the warnings.
+
     Args:
-        path: A ``.wbt`` file of any Webots version from V8.5 to R2025a.
+        path: A ``.wbt`` file of any Webots version from V8.5 to R2025a (any line ends).
         controller: The name of the controller that will run (its file name without
             ``.py``): of several e-pucks, the first whose ``controller`` field names it is the
             robot, as Webots runs each robot's own controller; by default, the first e-puck.
@@ -187,24 +207,44 @@ def import_wbt(
         read from beside the file (the url, then ``textures/`` and the url's file name).
 
     Raises:
-        WorldFormatError: The file is not a readable Webots world; ``line`` and ``column`` say
-            where.
-        MazesimIOError: The file cannot be read.
+        WorldFormatError: The file is not a readable Webots world, or one of its PROTOs is
+            malformed; ``line`` and ``column`` say where.
+        MazesimIOError: The file cannot be read; a ``ProtoUnavailableError`` when an
+            ``EXTERNPROTO`` URL can be neither downloaded nor found in the cache.
     """
     file = os.fspath(path)
-    return _with_floor(
-        _core.import_wbt(file, controller=controller),
-        lambda images: _core.import_wbt(file, floor_images=images, controller=controller),
-    )
+    text = _world_text(file)
+    if text is None:  # not UTF-8 or not readable: the core says why, with the place
+        return _with_floor(
+            _core.import_wbt(file, controller=controller),
+            lambda images: _core.import_wbt(file, floor_images=images, controller=controller),
+        )
+    return import_wbt_text(text, file, controller=controller)
 
 
-def import_wbt_text(text: str, source: str = "<string>") -> tuple[World, ImportReport]:
-    """Imports the text of a Webots world file.
+def _world_text(file: str) -> str | None:
+    """The text of a world file, or None when the core should read it (and report why not)."""
+    try:
+        with open(file, "rb") as handle:
+            data = handle.read(MAX_WORLD_BYTES + 1)
+        if len(data) > MAX_WORLD_BYTES:
+            return None
+        return data.decode("utf-8")
+    except (OSError, UnicodeDecodeError):
+        return None
+
+
+def import_wbt_text(
+    text: str, source: str = "<string>", controller: str | None = None
+) -> tuple[World, ImportReport]:
+    """Imports the text of a Webots world file (its PROTOs expanded as in :func:`import_wbt`).
 
     Args:
         text: The file's text.
         source: A name for error messages (and for the world, from its file stem); floor
-            textures are looked for beside it.
+            textures, relative ``EXTERNPROTO`` paths and the project's ``protos/`` folder are
+            looked for beside it.
+        controller: As for :func:`import_wbt`.
 
     Returns:
         The mazesim world and the import report.
@@ -212,10 +252,23 @@ def import_wbt_text(text: str, source: str = "<string>") -> tuple[World, ImportR
     Raises:
         WorldFormatError: The text is not a readable Webots world.
     """
-    return _with_floor(
-        _core.import_wbt_text(text, source),
-        lambda images: _core.import_wbt_text(text, source, floor_images=images),
+    from mazesim.webots.proto import expand_world
+
+    expanded, protos = expand_world(text, source)
+    world, report = _with_floor(
+        _core.import_wbt_text(expanded, source, controller=controller),
+        lambda images: _core.import_wbt_text(
+            expanded, source, floor_images=images, controller=controller
+        ),
     )
+    report["warnings"][:0] = protos.warnings
+    report["protos"] = {
+        "expanded": protos.expanded,
+        "stand_ins": protos.stand_ins,
+        "cache_hits": protos.cache_hits,
+        "downloads": protos.downloads,
+    }
+    return world, report
 
 
 def robot_warnings(report: Mapping[str, Any]) -> list[str]:
