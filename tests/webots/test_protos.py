@@ -8,8 +8,9 @@ import functools
 import http.server
 import shutil
 import threading
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -30,7 +31,7 @@ def _private_cache(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.delenv("MAZESIM_OFFLINE", raising=False)
 
 
-def _boxes(report: dict) -> list[tuple[list[float], list[float]]]:
+def _boxes(report: Mapping[str, Any]) -> list[tuple[list[float], list[float]]]:
     return [(o["center"], o["size"]) for o in report["obstacles"] if o["kind"] == "box"]
 
 
@@ -63,8 +64,11 @@ def test_warnings_keep_the_lines_of_the_file() -> None:
 
 
 def _serve(folder: Path) -> Iterator[str]:
-    handler = functools.partial(http.server.SimpleHTTPRequestHandler, directory=str(folder))
-    handler.log_message = lambda *args: None  # type: ignore[method-assign]
+    class QuietHandler(http.server.SimpleHTTPRequestHandler):
+        def log_message(self, format: str, *args: Any) -> None:
+            pass
+
+    handler = functools.partial(QuietHandler, directory=str(folder))
     server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
     thread = threading.Thread(target=server.serve_forever, daemon=True)
     thread.start()
