@@ -181,5 +181,7 @@ def test_template_error_names_the_proto(tmp_path: Path) -> None:
     )
     from mazesim.errors import WorldFormatError
 
-    with pytest.raises(WorldFormatError, match="Broken.proto: its JavaScript template fails"):
+    with pytest.raises(
+        WorldFormatError, match=r"Broken.proto:1:1: its JavaScript template fails: ReferenceError"
+    ):
         import_wbt_text("#VRML_SIM R2023b utf8\nBroken { }\n", str(tmp_path / "worlds" / "b.wbt"))

@@ -38,7 +38,7 @@ __all__ = [
 MAX_WORLD_BYTES = 64 * 1024 * 1024
 
 #: Robot node types that mazesim simulates as they are.
-E_PUCK_MODELS = ("E-puck", "e-puck", "e-puck2", "E-puck2")
+E_PUCK_MODELS = ("E-puck", "e-puck", "e-puck2", "E-puck2", "EPuck")
 
 
 class BoxObstacle(TypedDict):
@@ -71,10 +71,13 @@ DeviceFieldValue = Union[float, list[float], list[list[float]], str, list[str], 
 
 
 class ExtensionDevice(TypedDict):
-    """A device in the robot's ``turretSlot``, ``groundSensorsSlot`` or ``bodySlot``.
+    """A device in the robot's ``turretSlot``, ``groundSensorsSlot`` or ``bodySlot``, or (slot
+    ``children``) anywhere among a plain ``Robot`` e-puck's children that is not one of the
+    e-puck's own devices.
 
     ``translation`` is in the robot's frame (x forward, y left, z up; metres, the slot's origin
-    taken as the robot's), ``yaw`` the direction of the device's x axis in that frame, and
+    taken as the robot's), ``yaw`` the direction of the device's x axis in that frame, ``pitch``
+    how far that axis points below the horizontal (pi/2: at the floor), and
     ``fields`` its other fields (``lookupTable`` as rows of three numbers).
     """
 
@@ -83,6 +86,7 @@ class ExtensionDevice(TypedDict):
     slot: str
     translation: list[float]
     yaw: float
+    pitch: float
     fields: dict[str, DeviceFieldValue]
 
 

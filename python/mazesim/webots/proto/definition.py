@@ -6,9 +6,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, field
 
-from mazesim.errors import WorldFormatError
-
-from .syntax import tokenize
+from .syntax import located_error, tokenize
 
 __all__ = ["FieldDeclaration", "ProtoDefinition", "parse_definition", "externproto_urls"]
 
@@ -74,9 +72,7 @@ def parse_definition(text: str, origin: str) -> ProtoDefinition:
     text = text.replace("\r\n", "\n").replace("\r", "\n")
     match = re.search(r"^\s*PROTO\s+([^\s\[]+)\s*\[", text, re.MULTILINE)
     if match is None:
-        raise WorldFormatError(
-            f"{origin}: expected a PROTO definition (PROTO Name [ ... ] {{ ... }})"
-        )
+        raise located_error("expected a PROTO definition (PROTO Name [ ... ] { ... })", origin)
     name = match.group(1)
     start = match.end()
     # The interface holds no template: its tokens can be read up to the closing ']'.
@@ -91,13 +87,13 @@ def parse_definition(text: str, origin: str) -> ProtoDefinition:
                 break
             depth -= 1
     if end_index is None or tokens[end_index].kind != "]":
-        raise WorldFormatError(f"{origin}: PROTO {name}: expected ']' closing its fields")
+        raise located_error(f"PROTO {name}: expected ']' closing its fields", origin)
     interface_end = start + tokens[end_index].start
     fields = _declarations(text, start, tokens[:end_index])
     opening = text.find("{", interface_end + 1)
     closing = _body_end(text)
     if opening < 0 or closing <= opening:
-        raise WorldFormatError(f"{origin}: PROTO {name}: expected '{{' body '}}' after its fields")
+        raise located_error(f"PROTO {name}: expected '{{' body '}}' after its fields", origin)
     body = text[opening + 1 : closing]
     return ProtoDefinition(
         name=name,

@@ -16,7 +16,7 @@ from mazesim.errors import WorldFormatError
 from .definition import ProtoDefinition, externproto_urls, parse_definition
 from .resolver import ProtoSource, ProtoUnavailableError, Resolver, is_url
 from .stand_ins import STAND_INS
-from .syntax import Node, line_of, parse_nodes, tokenize
+from .syntax import Node, line_of, located_error, parse_nodes, tokenize
 from .templates import evaluate_template
 from .values import field_value
 
@@ -278,9 +278,9 @@ class Expander:
                 target = item.is_reference
                 if target is not None:
                     if target not in values:
-                        raise WorldFormatError(
-                            f"{definition.origin}: `{item.name} IS {target}`: "
-                            f"{definition.name} has no field `{target}`"
+                        raise located_error(
+                            f"`{item.name} IS {target}`: {definition.name} has no field `{target}`",
+                            definition.origin,
                         )
                     replacements.append((item.value_start, item.value_end, values[target]))
                 for child in item.nodes:

@@ -8,6 +8,7 @@ the world's version when no installation has the file."""
 from __future__ import annotations
 
 import hashlib
+import http.client
 import os
 import urllib.error
 import urllib.parse
@@ -65,7 +66,7 @@ def fetch_url(url: str) -> Path:
     try:
         with urllib.request.urlopen(url, timeout=DOWNLOAD_TIMEOUT_S) as response:  # noqa: S310
             data = response.read(MAX_DOWNLOAD_BYTES + 1)
-    except (urllib.error.URLError, OSError, ValueError) as error:
+    except (urllib.error.URLError, http.client.HTTPException, OSError, ValueError) as error:
         reason = getattr(error, "reason", error)
         raise ProtoUnavailableError(f"{url}: cannot be downloaded ({reason}): {advice}") from None
     if len(data) > MAX_DOWNLOAD_BYTES:

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 
 from mazesim.errors import WorldFormatError
 
-__all__ = ["Field", "Node", "Token", "parse_nodes", "tokenize", "line_of"]
+__all__ = ["Field", "Node", "Token", "line_of", "located_error", "parse_nodes", "tokenize"]
 
 _TOKEN = re.compile(
     r'(?P<space>[\s,\ufeff]+)|(?P<comment>#[^\n\r]*)|(?P<string>"(?:[^"\\]|\\.)*")'
@@ -64,9 +64,18 @@ def line_of(text: str, position: int) -> int:
     return before.count("\n") + before.count("\r") - before.count("\r\n") + 1
 
 
-def _error(text: str, position: int, source: str, message: str) -> WorldFormatError:
+def located_error(message: str, source: str, text: str = "", position: int = 0) -> WorldFormatError:
+    """A ``WorldFormatError`` at a position of a text (line and column 1-based)."""
     line = line_of(text, position)
-    return WorldFormatError(f"{source}:{line}: {message}")
+    start = max(text.rfind("\n", 0, position), text.rfind("\r", 0, position)) + 1
+    column = position - start + 1
+    return WorldFormatError(
+        f"{source}:{line}:{column}: {message}", source=source, line=line, column=column
+    )
+
+
+def _error(text: str, position: int, source: str, message: str) -> WorldFormatError:
+    return located_error(message, source, text, position)
 
 
 @dataclass

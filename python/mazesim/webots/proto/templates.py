@@ -11,8 +11,7 @@ import os
 import re
 from typing import Any
 
-from mazesim.errors import WorldFormatError
-
+from .syntax import located_error
 from .template_modules import JAVASCRIPT_MODULES, LUA_MODULES
 from .values import to_javascript, to_lua
 
@@ -27,7 +26,7 @@ _IMPORT = re.compile(
 )
 
 
-def _pieces(body: str, opening: str, closing: str) -> list[tuple[str, str]]:
+def _pieces(body: str, opening: str, closing: str, origin: str) -> list[tuple[str, str]]:
     """The body as ("text" | "code" | "expression", content) pieces."""
     pieces: list[tuple[str, str]] = []
     position = 0
@@ -39,8 +38,11 @@ def _pieces(body: str, opening: str, closing: str) -> list[tuple[str, str]]:
         pieces.append(("text", body[position:start]))
         end = body.find(closing, start + len(opening))
         if end < 0:
-            raise WorldFormatError(
-                f"expected '{closing}' closing the template opened by '{opening}'"
+            raise located_error(
+                f"expected '{closing}' closing the template opened by '{opening}'",
+                origin,
+                body,
+                start,
             )
         code = body[start + len(opening) : end]
         if code.startswith("="):
@@ -58,8 +60,8 @@ def _javascript(body: str, fields: dict[str, Any], context: dict[str, Any], orig
     def hoist(match: re.Match[str]) -> str:
         module = match.group("module").rsplit("/", 1)[-1]
         if module not in JAVASCRIPT_MODULES:
-            raise WorldFormatError(
-                f"{origin}: the template imports '{module}.js', which mazesim does not provide"
+            raise located_error(
+                f"the template imports '{module}.js', which mazesim does not provide", origin
             )
         if match.group("alias"):
             imports.append(f"const {match.group('alias')} = __modules[{json.dumps(module)}];")
@@ -68,7 +70,7 @@ def _javascript(body: str, fields: dict[str, Any], context: dict[str, Any], orig
         return ""
 
     script = []
-    for kind, content in _pieces(body, "%<", ">%"):
+    for kind, content in _pieces(body, "%<", ">%", origin):
         if kind == "text":
             script.append(f"__out.push({json.dumps(content)});")
         elif kind == "expression":
@@ -106,7 +108,8 @@ def _javascript(body: str, fields: dict[str, Any], context: dict[str, Any], orig
     try:
         result = engine.eval(program)
     except quickjs.JSException as error:
-        raise WorldFormatError(f"{origin}: its JavaScript template fails: {error}") from None
+        first = str(error).strip().splitlines()[0] if str(error).strip() else repr(error)
+        raise located_error(f"its JavaScript template fails: {first}", origin) from None
     return str(result)
 
 
@@ -132,7 +135,7 @@ def _lua(body: str, fields: dict[str, Any], context: dict[str, Any], origin: str
         f"fields = {to_lua(fields)}",
         f"context = {to_lua(context)}",
     ]
-    for kind, content in _pieces(body, "%{", "}%"):
+    for kind, content in _pieces(body, "%{", "}%", origin):
         if kind == "text":
             script.append(f"__out[#__out + 1] = {to_lua(content)}")
         elif kind == "expression":
@@ -144,7 +147,7 @@ def _lua(body: str, fields: dict[str, Any], context: dict[str, Any], origin: str
         chunk = runtime.execute("return function() " + "\n".join(script) + "\nend")
         return str(chunk())
     except lupa.LuaError as error:
-        raise WorldFormatError(f"{origin}: its Lua template fails: {error}") from None
+        raise located_error(f"its Lua template fails: {error}", origin) from None
 
 
 def evaluate_template(
