@@ -12,6 +12,7 @@ from collections.abc import Iterator, Mapping
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import pytest
 
 from mazesim.webots.importer import import_wbt, import_wbt_text
@@ -185,3 +186,37 @@ def test_template_error_names_the_proto(tmp_path: Path) -> None:
         WorldFormatError, match=r"Broken.proto:1:1: its JavaScript template fails: ReferenceError"
     ):
         import_wbt_text("#VRML_SIM R2023b utf8\nBroken { }\n", str(tmp_path / "worlds" / "b.wbt"))
+
+
+def test_floor_texture_url_is_fetched_through_the_cache(remote: str, tmp_path: Path) -> None:
+    from PIL import Image
+
+    grey = np.full((48, 64), 255, dtype=np.uint8)
+    grey[:, 20:28] = 0  # a black band: a line to follow
+    Image.fromarray(grey).save(tmp_path / "served" / "track.png")
+    text = (
+        "#VRML_SIM R2023b utf8\nRectangleArena {\n  floorSize 1.6 1.2\n  floorTileSize 1.6 1.2\n"
+        "  floorAppearance PBRAppearance {\n    baseColorMap ImageTexture {\n"
+        f'      url [ "{remote}/track.png" ]\n    }}\n  }}\n}}\n'
+    )
+    source = str(tmp_path / "worlds" / "floor.wbt")
+    world, report = import_wbt_text(text, source)
+    assert report["floor_paint"] > 0
+    assert not [w for w in report["warnings"] if "texture" in w]
+    # Column 24 of 64 across the 1.6 m floor: x = -0.8 + 24.5 / 64 * 1.6, on the black band.
+    assert world.floor_reflectance(-0.8 + 24.5 / 64 * 1.6, 0.0) <= 0.2
+    assert world.floor_reflectance(0.5, 0.0) > 0.8
+    (tmp_path / "served" / "track.png").unlink()
+    _, again = import_wbt_text(text, source)
+    assert again["floor_paint"] == report["floor_paint"]
+
+
+def test_unreachable_floor_texture_url_is_a_warning_naming_it(tmp_path: Path) -> None:
+    closed = next(_serve(tmp_path))
+    text = (
+        "#VRML_SIM R2023b utf8\nRectangleArena { floorAppearance PBRAppearance { "
+        f'baseColorMap ImageTexture {{ url [ "{closed}/gone.png" ] }} }} }}\n'
+    )
+    _, report = import_wbt_text(text, str(tmp_path / "w.wbt"))
+    assert report["floor_paint"] == 0
+    assert any(f"{closed}/gone.png: cannot be downloaded" in w for w in report["warnings"])

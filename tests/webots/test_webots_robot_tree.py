@@ -95,3 +95,34 @@ def test_downward_ground_sensor_reads_the_line() -> None:
     finally:
         controller.Robot.created = None
         simulations.release()
+
+
+def test_supervisor_reads_a_proto_instances_own_fields(tmp_path: Path) -> None:
+    world_file = tmp_path / "beacon.wbt"
+    world_file.write_text(
+        "#VRML_SIM R2023b utf8\n"
+        "DEF BEACON Beacon { translation 0.3 0 0 receiver_channel 2 range 0.25 enabled TRUE "
+        'label "b1" tint 1 0 0\n  hidden position_0_0 4\n}\n'
+        'E-puck { supervisor TRUE controller "<extern>" }\n'
+    )
+    from mazesim.webots.scene import read_scene
+
+    prepare(
+        mazesim.load_world(str(world_file)), seconds=1.0, scene=read_scene(world_file.read_text())
+    )
+    controller.Robot.created = None
+    try:
+        supervisor = controller.Supervisor()
+        beacon = supervisor.getFromDef("BEACON")
+        channel = beacon.getField("receiver_channel")
+        assert channel.getType() == controller.Field.SF_INT32 and channel.getSFInt32() == 2
+        assert beacon.getField("range").getSFFloat() == 0.25
+        assert beacon.getField("enabled").getSFBool() is True
+        assert beacon.getField("label").getSFString() == "b1"
+        assert beacon.getField("tint").getSFColor() == [1.0, 0.0, 0.0]
+        assert beacon.getField("position_0_0") is None  # engine state, not a field
+        channel.setSFInt32(5)
+        assert channel.value == 5
+    finally:
+        controller.Robot.created = None
+        simulations.release()

@@ -163,18 +163,35 @@ def _floor_images(report: dict[str, Any]) -> tuple[dict[str, npt.NDArray[np.floa
     images: dict[str, npt.NDArray[np.float64]] = {}
     problems: list[str] = []
     for texture in report["floor_textures"]:
-        for candidate in texture["candidates"]:
-            if not os.path.isfile(candidate):
-                continue
+        files = [(c, c) for c in texture["candidates"] if os.path.isfile(c)]
+        if not files and texture["candidates"]:
+            files = _downloaded(texture, problems)
+        for key, candidate in files[:1]:
             try:
-                images[candidate] = grey_levels(candidate)
+                images[key] = grey_levels(candidate)
             except OSError as error:
                 problems.append(
                     f"{texture['owner']}: floor texture {candidate}: expected a PNG or JPEG "
                     f"image, cannot decode it ({error})"
                 )
-            break
     return images, problems
+
+
+def _downloaded(texture: dict[str, Any], problems: list[str]) -> list[tuple[str, str]]:
+    """A floor texture given by an http(s) URL, through the PROTO engine's download cache:
+    [(the candidate the core looks the image up by, the cached file)], or [] with a warning
+    naming the URL."""
+    from mazesim.webots.proto import ProtoUnavailableError, fetch_url
+
+    for url in texture["urls"]:
+        if not str(url).startswith(("http://", "https://")):
+            continue
+        try:
+            return [(texture["candidates"][0], str(fetch_url(str(url))))]
+        except ProtoUnavailableError as error:
+            problems.append(f"{texture['owner']}: floor texture: {error}")
+            return []
+    return []
 
 
 def _with_floor(

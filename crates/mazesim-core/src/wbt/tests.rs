@@ -415,3 +415,13 @@ fn webots_7_epuck_and_a_downward_sensor() {
     let sensor = &w.extension_devices[0];
     assert!((sensor.pitch - FRAC_PI_2).abs() < 1e-4, "{}", sensor.pitch);
 }
+
+#[test]
+fn cr_line_ends_read_as_lines() {
+    let lf = "#VRML_SIM R2023b utf8\n# a comment\nWoodenBox { translation 0.3 0 0.05 size 0.1 0.1 0.1 }\nE-puck { }\n";
+    let cr = import(&lf.replace('\n', "\r"));
+    let lf = import(lf);
+    assert_eq!(cr.obstacles, lf.obstacles);
+    assert_eq!(cr.obstacles.len(), 1);
+    assert_eq!(cr.robot_line, Some(4));
+}
