@@ -220,3 +220,23 @@ def test_unreachable_floor_texture_url_is_a_warning_naming_it(tmp_path: Path) ->
     _, report = import_wbt_text(text, str(tmp_path / "w.wbt"))
     assert report["floor_paint"] == 0
     assert any(f"{closed}/gone.png: cannot be downloaded" in w for w in report["warnings"])
+
+
+def test_balls_and_barrels_stand_in_with_their_documented_geometry(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    monkeypatch.setenv("MAZESIM_OFFLINE", "1")
+    base = "webots://projects/objects"
+    text = (
+        "#VRML_SIM R2023b utf8\n"
+        f'EXTERNPROTO "{base}/balls/protos/SoccerBall.proto"\n'
+        f'EXTERNPROTO "{base}/obstacles/protos/OilBarrel.proto"\n'
+        "SoccerBall { translation 0.5 0 0.113 }\nOilBarrel { translation -1 0 0.44 }\nE-puck { }\n"
+    )
+    _, report = import_wbt_text(text, str(tmp_path / "objects.wbt"))
+    assert set(report["protos"]["stand_ins"]) == {"SoccerBall", "OilBarrel"}
+    # The ball (0.6 kg, 0.226 m across) is a movable body; the barrel a static disc.
+    (ball,) = report["bodies"]
+    assert ball["center"] == [0.5, 0.0] and ball["radius"] == pytest.approx(0.113)
+    assert ball["mass"] == pytest.approx(0.6)
+    assert report["obstacles"] == [{"kind": "circle", "center": [-1.0, 0.0], "radius": 0.305}]

@@ -4,8 +4,10 @@ documents for each (its fields and their defaults), written here as procedural P
 own PROTO files are licensed for use with Webots only and are not shipped.
 
 Sources: Webots user guide, "Floors" (``CircleArena``: radius 1, wallThickness 0.01,
-wallHeight 0.1, subdivision 48) and "Kitchen" (``CerealBox``: size 0.08 x 0.3 x 0.2 with the
-height second in the Y-up versions, mass 1 kg).
+wallHeight 0.1, subdivision 48), "Kitchen" (``CerealBox``: size 0.08 x 0.3 x 0.2 with the
+height second in the Y-up versions, mass 1 kg), "Balls" (``SoccerBall``: radius 0.113, mass 0.6
+kg; ``Ball``: radius 0.0325, mass 0.055 kg) and "Obstacles" (``OilBarrel``: height 0.88, radius
+0.305, centred on its translation, physics NULL by default).
 """
 
 from __future__ import annotations
@@ -108,6 +110,54 @@ PROTO CerealBox [
 }
 """
 
+
+def _ball(name: str, label: str, radius: float, mass: float) -> str:
+    return f"""#VRML_SIM R2023b utf8
+PROTO {name} [
+  field SFVec3f translation 0 0 {radius}
+  field SFRotation rotation 0 0 1 0
+  field SFString name "{label}"
+  field SFColor color 1 1 1
+  field SFFloat radius {radius}
+  field SFFloat mass {mass}
+  field MFVec3f centerOfMass []
+  field SFFloat linearDamping 0.17
+  field SFFloat angularDamping 0.33
+  field SFString contactMaterial "default"
+]
+{{
+  Solid {{
+    translation IS translation
+    rotation IS rotation
+    name IS name
+    boundingObject Sphere {{ radius IS radius }}
+    physics Physics {{ density -1 mass IS mass }}
+  }}
+}}
+"""
+
+
+_OIL_BARREL = """#VRML_SIM R2023b utf8
+PROTO OilBarrel [
+  field SFVec3f translation 0 0 0.44
+  field SFRotation rotation 0 0 1 0
+  field SFString name "oil barrel"
+  field SFFloat height 0.88
+  field SFFloat radius 0.305
+  field SFNode physics NULL
+  field MFNode immersionProperties []
+]
+{
+  Solid {
+    translation IS translation
+    rotation IS rotation
+    name IS name
+    boundingObject Cylinder { height IS height radius IS radius }
+    physics IS physics
+  }
+}
+"""
+
 #: The stand-ins, by PROTO name.
 STAND_INS: dict[str, StandIn] = {
     "CircleArena": StandIn(
@@ -115,4 +165,11 @@ STAND_INS: dict[str, StandIn] = {
         "a ring of `subdivision` wall boxes of the documented radius, thickness and height",
     ),
     "CerealBox": StandIn(_CEREAL_BOX, "a box of the documented size and mass"),
+    "SoccerBall": StandIn(
+        _ball("SoccerBall", "soccer ball", 0.113, 0.6), "a ball of the documented radius and mass"
+    ),
+    "Ball": StandIn(
+        _ball("Ball", "ball", 0.0325, 0.055), "a ball of the documented radius and mass"
+    ),
+    "OilBarrel": StandIn(_OIL_BARREL, "an upright cylinder of the documented height and radius"),
 }
