@@ -240,3 +240,13 @@ def test_balls_and_barrels_stand_in_with_their_documented_geometry(
     assert ball["center"] == [0.5, 0.0] and ball["radius"] == pytest.approx(0.113)
     assert ball["mass"] == pytest.approx(0.6)
     assert report["obstacles"] == [{"kind": "circle", "center": [-1.0, 0.0], "radius": 0.305}]
+
+
+def test_a_projects_robot_proto_is_the_robot_with_its_devices() -> None:
+    _, report = import_wbt(DATA / "project" / "worlds" / "robot_proto.wbt")
+    assert report["robot_model"] == "E-puck" and report["robot_line"] == 4
+    assert report["robot"] == pytest.approx({"x": 0.3, "y": 0.1, "yaw": 1.5708})
+    assert [d["name"] for d in report["extension_devices"]] == ["heading"]
+    # The controller field given by the PROTO's default picks the robot for that controller.
+    _, chosen = import_wbt(DATA / "project" / "worlds" / "robot_proto.wbt", "course_controller")
+    assert chosen["robot"] == report["robot"]
