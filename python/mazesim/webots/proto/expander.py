@@ -7,6 +7,7 @@ rest of the world (and of every warning) stay those of the file."""
 from __future__ import annotations
 
 import os
+import re
 import sys
 from dataclasses import dataclass, field
 from typing import Any
@@ -48,6 +49,9 @@ CORE_TYPES = frozenset(
 )
 #: Fields whose nodes only draw (their PROTOs, e.g. appearances, need no expansion).
 VISUAL_FIELDS = frozenset({"appearance", "material", "texture", "textureTransform"})
+#: A node type before its body (a word then ``{``), and comments to leave out before looking.
+_NODE_TYPE = re.compile(r"(?<![\w-])([A-Za-z_][\w-]*)\s*\{")
+_COMMENT = re.compile(r'"(?:[^"\\\n]|\\.)*"|#[^\n]*')
 #: Deepest nesting of PROTOs in PROTOs (a PROTO that uses itself stops here).
 MAX_NESTING = 24
 #: Most instances expanded in one world.
@@ -100,6 +104,9 @@ class Expander:
 
     def expand_world(self) -> str:
         """The world's text with every PROTO instance that can be read expanded."""
+        types = {m.group(1) for m in _NODE_TYPE.finditer(_COMMENT.sub("", self.text))}
+        if not any(self._expandable(t) for t in types):
+            return self.text  # nothing to expand: a large mesh world is not tokenized for it
         scope = _Scope(self.world, externproto_urls(self.text))
         text = self._expand(self.text, scope, 0, keep_lines=True)
         self.report.cache_hits = list(self.resolver.cache_hits)
