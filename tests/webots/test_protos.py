@@ -36,8 +36,11 @@ def _boxes(report: Mapping[str, Any]) -> list[tuple[list[float], list[float]]]:
     return [(o["center"], o["size"]) for o in report["obstacles"] if o["kind"] == "box"]
 
 
-def test_project_protos_plain_javascript_lua_and_nested_are_expanded() -> None:
+def test_project_protos_plain_javascript_lua_and_nested_are_expanded(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
     _, report = import_wbt(DATA / "project" / "worlds" / "local.wbt")
+    assert capsys.readouterr().out == "", "templates print to Webots' console, not stdout"
     assert set(report["protos"]["expanded"]) == {
         "BoxWall",
         "PillarRowJs",

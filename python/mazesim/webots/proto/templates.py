@@ -26,6 +26,22 @@ _IMPORT = re.compile(
 )
 
 
+def without_comments(body: str) -> str:
+    """The body without its ``#`` comments, which prevail over template statements in Webots
+    (a ``#`` inside a double-quoted string is kept)."""
+    lines = []
+    for line in body.split("\n"):
+        quoted = False
+        for index, char in enumerate(line):
+            if char == '"' and (index == 0 or line[index - 1] != "\\"):
+                quoted = not quoted
+            elif char == "#" and not quoted:
+                line = line[:index]
+                break
+        lines.append(line)
+    return "\n".join(lines)
+
+
 def _pieces(body: str, opening: str, closing: str, origin: str) -> list[tuple[str, str]]:
     """The body as ("text" | "code" | "expression", content) pieces."""
     pieces: list[tuple[str, str]] = []
@@ -122,9 +138,12 @@ def _lua(body: str, fields: dict[str, Any], context: dict[str, Any], origin: str
     import lupa
 
     runtime = lupa.LuaRuntime(unpack_returned_tuples=True, register_eval=False)
+    # Webots' Lua has io and os; files may be read here, not written, and nothing run.
     sandbox = runtime.eval(
-        "function() io = nil; os.execute = nil; os.remove = nil; "
-        "os.rename = nil; os.exit = nil; dofile = nil; loadfile = nil end"
+        "function() local open = io.open; "
+        "io = {open = function(name, mode) if mode == nil or mode:sub(1, 1) == 'r' then "
+        "return open(name, mode) end return nil end}; print = function() end; "
+        "os.execute = nil; os.remove = nil; os.rename = nil; os.exit = nil; os.tmpname = nil end"
     )
     sandbox()
     preload = runtime.eval("package.preload")
@@ -165,6 +184,7 @@ def evaluate_template(
     Raises:
         WorldFormatError: The template does not run (with the engine's message).
     """
+    body = without_comments(body)
     if language == "javascript":
         return _javascript(body, fields, context, origin)
     return _lua(body, fields, context, origin)
