@@ -253,3 +253,21 @@ def test_a_projects_robot_proto_is_the_robot_with_its_devices() -> None:
     # The controller field given by the PROTO's default picks the robot for that controller.
     _, chosen = import_wbt(DATA / "project" / "worlds" / "robot_proto.wbt", "course_controller")
     assert chosen["robot"] == report["robot"]
+
+
+def test_hidden_engine_state_in_an_instance_is_skipped(tmp_path: Path) -> None:
+    protos = tmp_path / "protos"
+    protos.mkdir()
+    shutil.copy(DATA / "project" / "protos" / "BoxWall.proto", protos)
+    shutil.copy(DATA / "project" / "protos" / "Corridor.proto", protos)
+    text = (
+        "#VRML_SIM R2023b utf8\n"
+        "Corridor {\n  translation 0 0 0\n  hidden linearVelocity_0 0 0 0\n"
+        "  wallSize 0.5 0.02 0.1\n}\n"
+        "Pose { children [\n  BoxWall {\n    translation 0.4 0.4 0.05\n"
+        "    hidden rotation_1 0 0 1 0.2\n  }\n] }\nE-puck { }\n"
+    )
+    _, report = import_wbt_text(text, str(tmp_path / "worlds" / "hidden.wbt"))
+    assert not [w for w in report["warnings"] if "is not a field" in w], report["warnings"]
+    assert len(_boxes(report)) == 3
+    assert report["robot_line"] == 13  # the lines after the expansions are the file's

@@ -52,6 +52,7 @@ VISUAL_FIELDS = frozenset({"appearance", "material", "texture", "textureTransfor
 #: A node type before its body (a word then ``{``), and comments to leave out before looking.
 _NODE_TYPE = re.compile(r"(?<![\w-])([A-Za-z_][\w-]*)\s*\{")
 _COMMENT = re.compile(r'"(?:[^"\\\n]|\\.)*"|#[^\n]*')
+_HIDDEN_LINE = re.compile(r"^[ \t]*hidden[ \t][^\n]*$", re.MULTILINE)
 #: Deepest nesting of PROTOs in PROTOs (a PROTO that uses itself stops here).
 MAX_NESTING = 24
 #: Most instances expanded in one world.
@@ -226,12 +227,22 @@ class Expander:
         for name, declaration in definition.fields.items():
             given = node.field(name)
             if given is not None and given.is_reference is None:
-                value = text[given.value_start : given.value_end]
+                # `hidden` lines are engine state; the core's reader skips the rest of their line,
+                # which on an expansion's single line would be the rest of the expansion.
+                value = _HIDDEN_LINE.sub("", text[given.value_start : given.value_end])
                 values[name] = self._expand(value, scope, depth + 1)
             else:
                 values[name] = declaration.default
+        # `hidden name value` lines (engine state) read as a field `hidden` and the next one.
+        hidden = {
+            later.name
+            for earlier, later in zip(node.fields, node.fields[1:])
+            if earlier.name == "hidden"
+        }
         unknown = [
-            f.name for f in node.fields if f.name not in definition.fields and f.name != "hidden"
+            f.name
+            for f in node.fields
+            if f.name not in definition.fields and f.name != "hidden" and f.name not in hidden
         ]
         for name in unknown:
             self._say(
