@@ -234,14 +234,17 @@ def test_balls_and_barrels_stand_in_with_their_documented_geometry(
         "#VRML_SIM R2023b utf8\n"
         f'EXTERNPROTO "{base}/balls/protos/SoccerBall.proto"\n'
         f'EXTERNPROTO "{base}/obstacles/protos/OilBarrel.proto"\n'
-        "SoccerBall { translation 0.5 0 0.113 }\nOilBarrel { translation -1 0 0.44 }\nE-puck { }\n"
+        f'EXTERNPROTO "{base}/drinks/protos/Can.proto"\n'
+        "SoccerBall { translation 0.5 0 0.113 }\nOilBarrel { translation -1 0 0.44 }\n"
+        "Can { translation 0 0.5 0.0611 }\nE-puck { }\n"
     )
     _, report = import_wbt_text(text, str(tmp_path / "objects.wbt"))
-    assert set(report["protos"]["stand_ins"]) == {"SoccerBall", "OilBarrel"}
-    # The ball (0.6 kg, 0.226 m across) is a movable body; the barrel a static disc.
-    (ball,) = report["bodies"]
+    assert set(report["protos"]["stand_ins"]) == {"SoccerBall", "OilBarrel", "Can"}
+    # The ball (0.6 kg, 0.226 m across) and the can are movable bodies; the barrel a static disc.
+    ball, can = report["bodies"]
     assert ball["center"] == [0.5, 0.0] and ball["radius"] == pytest.approx(0.113)
     assert ball["mass"] == pytest.approx(0.6)
+    assert can["center"] == [0.0, 0.5] and can["radius"] == pytest.approx(0.03175)
     assert report["obstacles"] == [{"kind": "circle", "center": [-1.0, 0.0], "radius": 0.305}]
 
 

@@ -36,7 +36,9 @@ _NODE = re.compile(r"(?:\bDEF\s+([^\s{}\[\]]+)\s+)?(?<![\w-])([A-Za-z_][\w-]*)\s
 _ROTATION = re.compile(r"\brotation" + r"\s+".join([""] + [_NUMBER] * 4))
 _TRANSLATION = re.compile(r"\btranslation\s+" + _NUMBER + r"\s+" + _NUMBER + r"\s+" + _NUMBER)
 #: Webots' ground sensors module of the E-puck (its gs0..gs2), in its groundSensorsSlot.
-_GROUND_SENSORS_MODULE = re.compile(r"(?<![\w-])E-puckGroundSensors\s*\{")
+_GROUND_SENSORS_MODULE = re.compile(
+    r"(?<![\w-])(?:E-puckGroundSensors|EPuck_GroundSensorsModule)\s*\{"
+)
 #: A wheel joint's position saved in a world file: ``hidden position_0_<joint> <rad>``.
 _HIDDEN_WHEEL = re.compile(r"\bhidden\s+position_0_([01])\s+" + _NUMBER)
 _NORTH = re.compile(r"\bnorthDirection\s+" + _NUMBER + r"\s+" + _NUMBER + r"\s+" + _NUMBER)

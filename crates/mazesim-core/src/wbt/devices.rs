@@ -38,8 +38,9 @@ const DEVICE_TYPES: &[(&str, &str)] = &[
     ("VacuumGripper", "vacuum gripper"),
 ];
 /// Extension PROTOs of the E-puck whose devices every mazesim e-puck has: the
-/// `E-puckGroundSensors` of the `groundSensorsSlot` are its `gs0`, `gs1`, `gs2`.
-const BUILT_IN_EXTENSIONS: &[&str] = &["E-puckGroundSensors"];
+/// `E-puckGroundSensors` of the `groundSensorsSlot` (Webots 7's `EPuck_GroundSensorsModule`)
+/// are its `gs0`, `gs1`, `gs2`.
+const BUILT_IN_EXTENSIONS: &[&str] = &["E-puckGroundSensors", "EPuck_GroundSensorsModule"];
 /// The devices of mazesim's e-puck: a plain `Robot` e-puck saved expanded lists them among its
 /// children, and they are simulated as the e-puck's own.
 const BUILT_IN_NAMES: &[&str] = &[

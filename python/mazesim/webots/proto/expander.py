@@ -41,7 +41,8 @@ BASE_NODES = frozenset(
 #: PROTOs the core imports by name (the e-puck, its ground sensors, arenas and boxes, the
 #: robots it stands the e-puck in for, backgrounds): left as they are.
 CORE_TYPES = frozenset(
-    "E-puck E-puck_enu E-Puck_enu EPuck E-puckGroundSensors RectangleArena Floor Wall WoodenBox "
+    "E-puck E-puck_enu E-Puck_enu EPuck E-puckGroundSensors EPuck_GroundSensorsModule "
+    "RectangleArena Floor Wall WoodenBox "
     "CardboardBox SolidBox LegoTallWall LegoTallInterval TexturedBackground "
     "TexturedBackgroundLight Thymio2 Khepera1 Khepera3 Khepera4 Elisa3 Hemisson Pioneer2 "
     "Pioneer3dx Pioneer3at Create TurtleBot3Burger Rosbot Robotino3 Moose Mir100 Tiago BB-8 "

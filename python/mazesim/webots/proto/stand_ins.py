@@ -7,7 +7,8 @@ Sources: Webots user guide, "Floors" (``CircleArena``: radius 1, wallThickness 0
 wallHeight 0.1, subdivision 48), "Kitchen" (``CerealBox``: size 0.08 x 0.3 x 0.2 with the
 height second in the Y-up versions, mass 1 kg), "Balls" (``SoccerBall``: radius 0.113, mass 0.6
 kg; ``Ball``: radius 0.0325, mass 0.055 kg) and "Obstacles" (``OilBarrel``: height 0.88, radius
-0.305, centred on its translation, physics NULL by default).
+0.305, centred on its translation, physics NULL by default) and "Drinks" (``Can``: 0.03175 m
+radius, 0.1222 m high, 0.35 kg).
 """
 
 from __future__ import annotations
@@ -137,6 +138,26 @@ PROTO {name} [
 """
 
 
+_CAN = """#VRML_SIM R2023b utf8
+PROTO Can [
+  field SFVec3f translation 0 0 0.0611
+  field SFRotation rotation 0 0 1 0
+  field SFString name "can"
+  field SFColor color 1 1 1
+  field MFString textureUrl []
+  field SFFloat mass 0.35
+]
+{
+  Solid {
+    translation IS translation
+    rotation IS rotation
+    name IS name
+    boundingObject Cylinder { height 0.1222 radius 0.03175 }
+    physics Physics { density -1 mass IS mass }
+  }
+}
+"""
+
 _OIL_BARREL = """#VRML_SIM R2023b utf8
 PROTO OilBarrel [
   field SFVec3f translation 0 0 0.44
@@ -172,4 +193,5 @@ STAND_INS: dict[str, StandIn] = {
         _ball("Ball", "ball", 0.0325, 0.055), "a ball of the documented radius and mass"
     ),
     "OilBarrel": StandIn(_OIL_BARREL, "an upright cylinder of the documented height and radius"),
+    "Can": StandIn(_CAN, "an upright cylinder of the documented size and mass"),
 }
