@@ -179,7 +179,7 @@ impl<'d> Importer<'d> {
                 }
             }
             let mut below: Vec<&'d Node> = Vec::new();
-            for field in ["children", "endPoint", "device"] {
+            for field in ["children", "device", "endPoint"] {
                 below.extend(self.nodes(node, field).iter().map(|&id| self.node(id)));
             }
             for child in below.into_iter().rev() {
