@@ -187,6 +187,10 @@ class Expander:
             if not official:
                 raise
             source = None  # Webots' own PROTO while offline: a stand-in, if mazesim has one
+        except (OSError, UnicodeError, ValueError) as error:
+            # Not a MazesimError: a location the file system cannot even look up.
+            self._say(f"{where}: its PROTO file cannot be read ({error}); not expanded")
+            source = None
         definition = None
         if source is not None:
             definition = parse_definition(source.text, source.origin)

@@ -42,7 +42,7 @@ def cache_dir() -> Path:
 
 
 def _cached_path(url: str) -> Path:
-    digest = hashlib.sha256(url.encode("utf-8")).hexdigest()[:20]
+    digest = hashlib.sha256(url.encode("utf-8", "surrogatepass")).hexdigest()[:20]
     name = urllib.parse.urlsplit(url).path.rsplit("/", 1)[-1] or "file"
     return cache_dir() / digest / name
 
