@@ -8,7 +8,7 @@ PYTHON_MIN := 3.9
 VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
-PY_PACKAGES := maturin numpy matplotlib tqdm pytest hypothesis ruff mypy typing_extensions gymnasium ray \
+PY_PACKAGES := maturin numpy matplotlib tqdm quickjs lupa pytest hypothesis ruff mypy typing_extensions gymnasium ray \
 	imageio imageio-ffmpeg selenium tensorboardX
 PY_SOURCES := python tests examples
 # Only `make bench-peers` needs these: the peers mazesim is measured against, and its

@@ -2,12 +2,29 @@
 
 from __future__ import annotations
 
+import os
 from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
 
 from mazesim.ros.local_master import LocalMaster
+
+
+@pytest.fixture(autouse=True, scope="session")
+def offline_protos(tmp_path_factory: pytest.TempPathFactory) -> Iterator[None]:
+    """Webots worlds' PROTO URLs are never downloaded by the tests (only tests that serve them
+    from 127.0.0.1 allow it), and no user's download cache is read."""
+    saved = {name: os.environ.get(name) for name in ("MAZESIM_OFFLINE", "MAZESIM_PROTO_CACHE")}
+    os.environ["MAZESIM_OFFLINE"] = "1"
+    os.environ["MAZESIM_PROTO_CACHE"] = str(tmp_path_factory.mktemp("proto-cache"))
+    yield
+    for name, value in saved.items():
+        if value is None:
+            os.environ.pop(name, None)
+        else:
+            os.environ[name] = value
+
 
 #: The worlds every installed mazesim carries.
 BUILTIN_WORLDS = ("seed-maze", "line-follow", "arena")

@@ -49,3 +49,35 @@ def test_save_trajectory_png_rejects_mismatched_coordinates(tmp_path: Path) -> N
     with pytest.raises(InvalidArgumentError, match="3 and 2"):
         save_trajectory_png(mazesim.load_world("arena"), [0, 1, 2], [0, 1], tmp_path / "x.png")
     assert not (tmp_path / "x.png").exists()
+
+
+def test_trajectory_of_a_world_without_walls_is_framed_by_the_path(tmp_path: Path) -> None:
+    from mazesim.plotting import trajectory_limits
+    from mazesim.webots.importer import import_wbt_text
+
+    world, _ = import_wbt_text("#VRML_SIM R2023b utf8\nE-puck { }\n", "empty.wbt")
+    xs, ys = np.linspace(0.0, 0.5, 20), np.linspace(0.0, 0.1, 20)
+    xmin, xmax, ymin, ymax = trajectory_limits(world, xs, ys) or (0.0, 0.0, 0.0, 0.0)
+    # The whole path, with a margin, and no less than 0.2 m across (it was +-30 micrometres).
+    assert xmin < 0.0 and xmax > 0.5 and xmax - xmin < 0.6
+    assert ymin < 0.0 and ymax > 0.1 and ymax - ymin >= 0.2
+    assert trajectory_limits(world, [np.nan], [np.nan]) is None
+    save_trajectory_png(world, xs, ys, tmp_path / "t.png")
+    assert (tmp_path / "t.png").read_bytes()[:4] == b"\x89PNG"
+
+
+def test_trajectory_picture_outlines_movable_bodies(tmp_path: Path) -> None:
+    from mazesim.webots.importer import import_wbt_text
+
+    text = (
+        "#VRML_SIM R2023b utf8\nSolid { translation 0.3 0 0.05 "
+        "boundingObject Box { size 0.1 0.1 0.1 } physics Physics { mass 0.2 } }\nE-puck { }\n"
+    )
+    world, report = import_wbt_text(text, "push.wbt")
+    assert len(report["bodies"]) == 1
+    figure = Figure()
+    from mazesim.plotting import draw_bodies
+
+    ax = figure.add_subplot()
+    (entry,) = draw_bodies(ax, world)
+    assert entry.get_label() == "movable body (start)" and len(ax.patches) == 1

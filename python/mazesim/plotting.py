@@ -273,6 +273,57 @@ def plot_world(ax: Axes, world: World) -> None:
     ax.set_ylabel("y (m)")
 
 
+#: The least span a trajectory picture shows, metres (a world without walls has no extent).
+MIN_PICTURE_SPAN = 0.2
+BODY_COLOR = "#b5651d"
+
+
+def trajectory_limits(
+    world: World, xs: npt.ArrayLike, ys: npt.ArrayLike
+) -> tuple[float, float, float, float] | None:
+    """The extent of a trajectory picture, (xmin, xmax, ymin, ymax): the world's walls and the
+    whole path, at least :data:`MIN_PICTURE_SPAN` across (a world without walls is framed by the
+    path alone); None without a finite point."""
+    path_x = np.asarray(xs, dtype=np.float64).ravel()
+    path_y = np.asarray(ys, dtype=np.float64).ravel()
+    finite = np.isfinite(path_x) & np.isfinite(path_y)
+    if not finite.any():
+        return None
+    xmin, ymin, xmax, ymax = world.bounds
+    if not world.wall_boxes().size:  # no walls: the bounds say nothing of the scene
+        xmin, ymin, xmax, ymax = math.inf, math.inf, -math.inf, -math.inf
+    xmin, xmax = min(xmin, path_x[finite].min()), max(xmax, path_x[finite].max())
+    ymin, ymax = min(ymin, path_y[finite].min()), max(ymax, path_y[finite].max())
+    span = max(xmax - xmin, ymax - ymin, MIN_PICTURE_SPAN)
+    cx, cy = (xmin + xmax) / 2.0, (ymin + ymax) / 2.0
+    half_x = max(xmax - xmin, MIN_PICTURE_SPAN) / 2.0 + 0.03 * span
+    half_y = max(ymax - ymin, MIN_PICTURE_SPAN) / 2.0 + 0.03 * span
+    return (float(cx - half_x), float(cx + half_x), float(cy - half_y), float(cy + half_y))
+
+
+def draw_bodies(ax: Axes, world: World) -> list[Artist]:
+    """Outlines the world's movable bodies at their start poses; returns their legend entry
+    (none without bodies)."""
+    bodies = world.bodies()
+    for body in bodies:
+        cx, cy = (float(v) for v in cast("Sequence[float]", body["center"]))
+        if body.get("shape") == "circle":
+            radius = float(cast(float, body["radius"]))
+            ax.add_patch(Circle((cx, cy), radius, fill=False, edgecolor=BODY_COLOR, zorder=6))
+            continue
+        sx, sy = (float(v) / 2.0 for v in cast("Sequence[float]", body["size"]))
+        yaw = float(cast(float, body.get("yaw", 0.0)))
+        c, s = math.cos(yaw), math.sin(yaw)
+        corners = [
+            (cx + c * dx - s * dy, cy + s * dx + c * dy)
+            for dx, dy in ((sx, sy), (-sx, sy), (-sx, -sy), (sx, -sy))
+        ]
+        ax.add_patch(Polygon(corners, closed=True, fill=False, edgecolor=BODY_COLOR, zorder=6))
+    if not bodies:
+        return []
+    return [Patch(facecolor="none", edgecolor=BODY_COLOR, label="movable body (start)")]
+
+
 def world_figure(
     world: World, width: float, heights: tuple[float, float], margin: float
 ) -> tuple[Figure, Axes]:
@@ -327,8 +378,12 @@ def save_trajectory_png(
             f"a trajectory needs as many x as y coordinates; found {path_x.size} and {path_y.size}"
         )
     figure, ax = world_figure(world, 8.0, (3.0, 9.0), 0.6)
-    extra: list[Artist] = []
+    extra: list[Artist] = draw_bodies(ax, world)
     if path_x.size:
+        limits = trajectory_limits(world, path_x, path_y)
+        if limits is not None:
+            ax.set_xlim(limits[0], limits[1])
+            ax.set_ylim(limits[2], limits[3])
         extra += ax.plot(path_x, path_y, color=PATH_COLOR, linewidth=1.2, zorder=7, label="path")
         extra += ax.plot(
             path_x[:1],

@@ -253,7 +253,9 @@ def test_cli_json_layout(tmp_path: Path) -> None:
         "extension_devices",
         "floor_textures",
         "floor_paint",
+        "protos",
     }
+    assert set(report["protos"]) == {"expanded", "stand_ins", "cache_hits", "downloads"}
     for obstacle in report["obstacles"]:
         if obstacle["kind"] == "box":
             assert set(obstacle) == {"kind", "center", "size", "yaw"}

@@ -312,12 +312,41 @@ def test_import_warnings_are_printed_and_strict_refuses_them(tmp_path: Path) -> 
     assert result.returncode == 0, result.stderr
     printed = [line for line in result.stderr.splitlines() if line.startswith("mazesim: warning: ")]
     assert printed == [f"mazesim: warning: {warning}" for warning in warnings]
+    # One summary comes first: the robot recognised and how many things were not imported.
+    first = next(line for line in result.stderr.splitlines() if line.startswith("mazesim: "))
+    assert first == (
+        "mazesim: warned.wbt: robot: E-puck, simulated as the e-puck; "
+        f"{len(warnings)} thing(s) not imported as in Webots, listed below"
+    )
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert summary["import"]["not_imported"] == warnings
+    assert summary["import"]["robot_model"] == "E-puck"
     strict = webots_run(
         "multi_step_counter.py", "--world", str(world), "--strict", "--out", "strict", cwd=tmp_path
     )
     assert strict.returncode == 2
     assert "--strict" in strict.stderr and "mazesim: error: " in strict.stderr
     assert not (tmp_path / "strict").exists(), "nothing runs under --strict"
+
+
+def test_a_stand_in_is_named_in_the_summary_and_strict_refuses_it(tmp_path: Path) -> None:
+    world = tmp_path / "circle.wbt"
+    world.write_text(
+        "#VRML_SIM R2023b utf8\n"
+        'EXTERNPROTO "webots://projects/objects/floors/protos/CircleArena.proto"\n'
+        "CircleArena { radius 0.4 }\nE-puck { }\n"
+    )
+    result = webots_run(
+        "multi_step_counter.py", "--world", str(world), "--seconds", "1", cwd=tmp_path
+    )
+    assert result.returncode == 0, result.stderr
+    assert "stood in for by mazesim's stand-ins: CircleArena" in result.stderr.splitlines()[0]
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert list(summary["import"]["stand_ins"]) == ["CircleArena"]
+    strict = webots_run(
+        "multi_step_counter.py", "--world", str(world), "--strict", "--out", "strict", cwd=tmp_path
+    )
+    assert strict.returncode == 2 and "stand-in" in strict.stderr
 
 
 def test_help_documents_the_exit_codes(tmp_path: Path) -> None:

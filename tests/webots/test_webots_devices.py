@@ -306,6 +306,21 @@ def test_keyboard_gives_each_held_key_once_per_step() -> None:
     assert keyboard.getKey() == controller.Keyboard.UP
 
 
+def test_keyboard_is_read_once_per_sampling_period() -> None:
+    prepare(mazesim.load_world("arena"), seconds=2.0, keys=KeyScript.parse("0 UP\n"))
+    controller.Robot.created = None
+    robot = controller.Robot()
+    keyboard = robot.getKeyboard()
+    keyboard.enable(160)  # five basic steps of 32 ms
+    keys = []
+    for _ in range(20):
+        robot.step(32)
+        keys.append(keyboard.getKey())
+    # Held all along, the key is returned at each 160 ms sampling, -1 at the steps between.
+    assert [i for i, k in enumerate(keys) if k == controller.Keyboard.UP] == [4, 9, 14, 19]
+    assert keys.count(-1) == 16
+
+
 def test_a_robot_that_is_not_an_e_puck_is_warned_about() -> None:
     assert robot_warnings({"robot_model": "Pioneer3dx", "warnings": []}) == [
         "the world's robot is a Pioneer3dx, not an e-puck: mazesim runs it as the e-puck"

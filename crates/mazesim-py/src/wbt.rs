@@ -50,6 +50,7 @@ fn robot_and_floor(out: &Bound<'_, PyDict>, import: &WbtImport) -> PyResult<()> 
         d.set_item("slot", &device.slot)?;
         d.set_item("translation", device.translation.to_vec())?;
         d.set_item("yaw", device.yaw)?;
+        d.set_item("pitch", device.pitch)?;
         let fields = PyDict::new(py);
         for (name, value) in &device.fields {
             fields.set_item(name, device_field(py, value)?)?;

@@ -180,6 +180,38 @@ def run_import(args: argparse.Namespace, out: TextIO) -> int:
     return 0
 
 
+def import_summary(spec: str, report: dict[str, Any], warnings: list[str]) -> dict[str, Any]:
+    """The one summary of a world's import that a run starts with (and keeps in summary.json):
+    the robot recognised, the PROTOs expanded and stood in for, and how many things were not
+    imported as Webots simulates them (each is one warning line)."""
+    protos = report.get("protos") or {}
+    expanded = sorted(protos.get("expanded") or {})
+    stand_ins = protos.get("stand_ins") or {}
+    model = report.get("robot_model")
+    robot = (
+        f"robot: {model}, simulated as the {report.get('robot_profile') or 'e-puck'}"
+        if model
+        else "no robot: the e-puck starts at (0, 0)"
+    )
+    parts = [f"{os.path.basename(spec)}: {robot}"]
+    if expanded:
+        parts.append(f"PROTOs expanded: {', '.join(expanded)}")
+    if stand_ins:
+        parts.append(f"stood in for by mazesim's stand-ins: {', '.join(sorted(stand_ins))}")
+    parts.append(
+        f"{len(warnings)} thing(s) not imported as in Webots, listed below"
+        if warnings
+        else "everything imported"
+    )
+    return {
+        "sentence": "; ".join(parts),
+        "robot_model": model,
+        "protos_expanded": expanded,
+        "stand_ins": stand_ins,
+        "not_imported": list(warnings),
+    }
+
+
 def _load_world(
     spec: str, strict: bool, controller: str | None = None
 ) -> tuple[Any, dict[str, Any] | None, Any]:
@@ -196,6 +228,8 @@ def _load_world(
     report: dict[str, Any] = dict(imported)
     report["path"] = os.path.abspath(spec)
     warnings = [*report.get("warnings", []), *robot_warnings(report)]
+    report["import_summary"] = import_summary(spec, report, warnings)
+    print(f"mazesim: {report['import_summary']['sentence']}", file=sys.stderr)
     for warning in warnings:
         print(f"mazesim: warning: {warning}", file=sys.stderr)
     if strict and warnings:
@@ -205,7 +239,8 @@ def _load_world(
             source=spec,
         )
     with open(spec, encoding="utf-8", errors="replace") as handle:
-        scene = read_scene(handle.read(), report.get("robot_model"), report.get("robot_line"))
+        text = handle.read().replace("\r\n", "\n").replace("\r", "\n")
+    scene = read_scene(text, report.get("robot_model"), report.get("robot_line"))
     return world, report, scene
 
 
@@ -275,6 +310,10 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
         "real_time_factor": result.simulated_seconds / wall_clock if wall_clock > 0 else None,
         "mazesim_version": mazesim.__version__,
     }
+    if report is not None and "import_summary" in report:
+        summary["import"] = {
+            key: value for key, value in report["import_summary"].items() if key != "sentence"
+        }
     picture = os.path.join(out_dir, "trajectory.png")
     save_trajectory_png(
         world,

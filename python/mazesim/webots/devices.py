@@ -8,8 +8,10 @@ clamped with Webots' warning. Messages printed on stderr are Webots' own.
 
 from __future__ import annotations
 
+import functools
 import math
 import sys
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, ClassVar
 
 from mazesim.webots.node_types import node_type
@@ -71,12 +73,40 @@ class Sampled:
             self.disable()
 
 
+def _internal(cls: type) -> bool:
+    """Whether a class is one of mazesim's own device classes (not a controller's subclass)."""
+    return cls.__module__.startswith("mazesim.")
+
+
+def _already_built(init: Callable[..., None]) -> Callable[..., None]:
+    """Wraps a mazesim device class's ``__init__`` so that a controller's subclass may call
+    ``super().__init__(name)`` as in Webots: on a device the robot already built, it does
+    nothing."""
+
+    @functools.wraps(init)
+    def initialise(self: Any, *args: Any, **kwargs: Any) -> None:
+        if len(args) <= 1 and not kwargs and "_simulation" in vars(self):
+            return
+        init(self, *args, **kwargs)
+
+    return initialise
+
+
 class _DeviceType(type):
     """Lets a controller write ``DistanceSensor("ps0")``, as older Webots controllers do: a
-    device class called with only a name gives the robot's device of that name."""
+    device class called with only a name gives the robot's device of that name. A controller's
+    own subclass (``class EpuckMotor(Motor)``) called with a name and any other arguments gives
+    that device too, made an instance of the subclass, whose ``__init__`` runs on it."""
+
+    def __init__(cls, name: str, bases: tuple[type, ...], namespace: dict[str, Any]) -> None:
+        super().__init__(name, bases, namespace)
+        if "__init__" in namespace and _internal(cls):
+            cls.__init__ = _already_built(namespace["__init__"])  # type: ignore[misc]
 
     def __call__(cls, *args: Any, **kwargs: Any) -> Any:
-        if len(args) == 1 and not kwargs and isinstance(args[0], str | int):
+        subclass = not _internal(cls)
+        by_name = len(args) == 1 and not kwargs and isinstance(args[0], str | int)
+        if by_name or (subclass and args and isinstance(args[0], str | int)):
             from mazesim.webots.robot import Robot
 
             robot = Robot.created
@@ -86,8 +116,20 @@ class _DeviceType(type):
                 )
                 return None
             if isinstance(args[0], int):
-                return robot.getDeviceByIndex(args[0])
-            return robot.getDevice(args[0])
+                device = robot.getDeviceByIndex(args[0])
+            else:
+                device = robot.getDevice(args[0])
+            if device is None or not subclass or isinstance(device, cls):
+                return device
+            if not issubclass(cls, type(device)):
+                _print_error(
+                    f'Error: {cls.__name__}("{args[0]}"): the device "{args[0]}" is a '
+                    f"{type(device).__name__}, not a {cls.__mro__[1].__name__}."
+                )
+                return None
+            device.__class__ = cls
+            cls.__init__(device, *args, **kwargs)  # type: ignore[misc]
+            return device
         return super().__call__(*args, **kwargs)
 
 

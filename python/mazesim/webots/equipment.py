@@ -76,7 +76,11 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
     kind = str(entry.get("type", ""))
     name = str(entry.get("name") or kind.lower())
     fields: Mapping[str, Any] = entry.get("fields") or {}
-    mount = DeviceMount(entry.get("translation") or (0.0, 0.0, 0.0), float(entry.get("yaw", 0.0)))
+    mount = DeviceMount(
+        entry.get("translation") or (0.0, 0.0, 0.0),
+        float(entry.get("yaw", 0.0)),
+        float(entry.get("pitch", 0.0)),
+    )
     table = _table(fields)
     north = simulation.scene.north or (0.0, 1.0)
     builders: dict[str, Callable[[], Device]] = {

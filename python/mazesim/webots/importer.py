@@ -34,8 +34,11 @@ __all__ = [
     "robot_warnings",
 ]
 
+#: Largest world file the PROTO engine reads (a larger one goes to the core, which refuses it).
+MAX_WORLD_BYTES = 64 * 1024 * 1024
+
 #: Robot node types that mazesim simulates as they are.
-E_PUCK_MODELS = ("E-puck", "e-puck", "e-puck2", "E-puck2")
+E_PUCK_MODELS = ("E-puck", "e-puck", "e-puck2", "E-puck2", "EPuck")
 
 
 class BoxObstacle(TypedDict):
@@ -68,10 +71,13 @@ DeviceFieldValue = Union[float, list[float], list[list[float]], str, list[str], 
 
 
 class ExtensionDevice(TypedDict):
-    """A device in the robot's ``turretSlot``, ``groundSensorsSlot`` or ``bodySlot``.
+    """A device in the robot's ``turretSlot``, ``groundSensorsSlot`` or ``bodySlot``, or (slot
+    ``children``) anywhere among a plain ``Robot`` e-puck's children that is not one of the
+    e-puck's own devices.
 
     ``translation`` is in the robot's frame (x forward, y left, z up; metres, the slot's origin
-    taken as the robot's), ``yaw`` the direction of the device's x axis in that frame, and
+    taken as the robot's), ``yaw`` the direction of the device's x axis in that frame, ``pitch``
+    how far that axis points below the horizontal (pi/2: at the floor), and
     ``fields`` its other fields (``lookupTable`` as rows of three numbers).
     """
 
@@ -80,6 +86,7 @@ class ExtensionDevice(TypedDict):
     slot: str
     translation: list[float]
     yaw: float
+    pitch: float
     fields: dict[str, DeviceFieldValue]
 
 
@@ -117,6 +124,18 @@ class ImportReport(TypedDict):
     extension_devices: list[ExtensionDevice]
     floor_textures: list[FloorTexture]
     floor_paint: int
+    protos: ProtoReport
+
+
+class ProtoReport(TypedDict):
+    """What the PROTO engine did: the PROTO types expanded (with the file or URL each was read
+    from), those replaced by mazesim's stand-ins (with what the stand-in models), the URLs
+    read from the download cache and those downloaded."""
+
+    expanded: dict[str, str]
+    stand_ins: dict[str, str]
+    cache_hits: list[str]
+    downloads: list[str]
 
 
 def grey_levels(path: str) -> npt.NDArray[np.float64]:
@@ -144,18 +163,35 @@ def _floor_images(report: dict[str, Any]) -> tuple[dict[str, npt.NDArray[np.floa
     images: dict[str, npt.NDArray[np.float64]] = {}
     problems: list[str] = []
     for texture in report["floor_textures"]:
-        for candidate in texture["candidates"]:
-            if not os.path.isfile(candidate):
-                continue
+        files = [(c, c) for c in texture["candidates"] if os.path.isfile(c)]
+        if not files and texture["candidates"]:
+            files = _downloaded(texture, problems)
+        for key, candidate in files[:1]:
             try:
-                images[candidate] = grey_levels(candidate)
+                images[key] = grey_levels(candidate)
             except OSError as error:
                 problems.append(
                     f"{texture['owner']}: floor texture {candidate}: expected a PNG or JPEG "
                     f"image, cannot decode it ({error})"
                 )
-            break
     return images, problems
+
+
+def _downloaded(texture: dict[str, Any], problems: list[str]) -> list[tuple[str, str]]:
+    """A floor texture given by an http(s) URL, through the PROTO engine's download cache:
+    [(the candidate the core looks the image up by, the cached file)], or [] with a warning
+    naming the URL."""
+    from mazesim.webots.proto import ProtoUnavailableError, fetch_url
+
+    for url in texture["urls"]:
+        if not str(url).startswith(("http://", "https://")):
+            continue
+        try:
+            return [(texture["candidates"][0], str(fetch_url(str(url))))]
+        except ProtoUnavailableError as error:
+            problems.append(f"{texture['owner']}: floor texture: {error}")
+            return []
+    return []
 
 
 def _with_floor(
@@ -176,8 +212,13 @@ def import_wbt(
 ) -> tuple[World, ImportReport]:
     """Imports a Webots world file.
 
+    PROTO instances are first expanded by mazesim's PROTO engine (:mod:`mazesim.webots.proto`):
+    the world's ``EXTERNPROTO`` files (relative paths, ``webots://`` and https URLs, through a
+    download cache), the project's ``protos/`` folder and ``$WEBOTS_HOME``; stock objects that
+    cannot be read get a stand-in, named in the warnings.
+
     Args:
-        path: A ``.wbt`` file of any Webots version from V8.5 to R2025a.
+        path: A ``.wbt`` file of any Webots version from V8.5 to R2025a (any line ends).
         controller: The name of the controller that will run (its file name without
             ``.py``): of several e-pucks, the first whose ``controller`` field names it is the
             robot, as Webots runs each robot's own controller; by default, the first e-puck.
@@ -187,24 +228,44 @@ def import_wbt(
         read from beside the file (the url, then ``textures/`` and the url's file name).
 
     Raises:
-        WorldFormatError: The file is not a readable Webots world; ``line`` and ``column`` say
-            where.
-        MazesimIOError: The file cannot be read.
+        WorldFormatError: The file is not a readable Webots world, or one of its PROTOs is
+            malformed; ``line`` and ``column`` say where.
+        MazesimIOError: The file cannot be read; a ``ProtoUnavailableError`` when an
+            ``EXTERNPROTO`` URL can be neither downloaded nor found in the cache.
     """
     file = os.fspath(path)
-    return _with_floor(
-        _core.import_wbt(file, controller=controller),
-        lambda images: _core.import_wbt(file, floor_images=images, controller=controller),
-    )
+    text = _world_text(file)
+    if text is None:  # not UTF-8 or not readable: the core says why, with the place
+        return _with_floor(
+            _core.import_wbt(file, controller=controller),
+            lambda images: _core.import_wbt(file, floor_images=images, controller=controller),
+        )
+    return import_wbt_text(text, file, controller=controller)
 
 
-def import_wbt_text(text: str, source: str = "<string>") -> tuple[World, ImportReport]:
-    """Imports the text of a Webots world file.
+def _world_text(file: str) -> str | None:
+    """The text of a world file, or None when the core should read it (and report why not)."""
+    try:
+        with open(file, "rb") as handle:
+            data = handle.read(MAX_WORLD_BYTES + 1)
+        if len(data) > MAX_WORLD_BYTES:
+            return None
+        return data.decode("utf-8")
+    except (OSError, UnicodeDecodeError):
+        return None
+
+
+def import_wbt_text(
+    text: str, source: str = "<string>", controller: str | None = None
+) -> tuple[World, ImportReport]:
+    """Imports the text of a Webots world file (its PROTOs expanded as in :func:`import_wbt`).
 
     Args:
         text: The file's text.
         source: A name for error messages (and for the world, from its file stem); floor
-            textures are looked for beside it.
+            textures, relative ``EXTERNPROTO`` paths and the project's ``protos/`` folder are
+            looked for beside it.
+        controller: As for :func:`import_wbt`.
 
     Returns:
         The mazesim world and the import report.
@@ -212,10 +273,23 @@ def import_wbt_text(text: str, source: str = "<string>") -> tuple[World, ImportR
     Raises:
         WorldFormatError: The text is not a readable Webots world.
     """
-    return _with_floor(
-        _core.import_wbt_text(text, source),
-        lambda images: _core.import_wbt_text(text, source, floor_images=images),
+    from mazesim.webots.proto import expand_world
+
+    expanded, protos = expand_world(text, source)
+    world, report = _with_floor(
+        _core.import_wbt_text(expanded, source, controller=controller),
+        lambda images: _core.import_wbt_text(
+            expanded, source, floor_images=images, controller=controller
+        ),
     )
+    report["warnings"][:0] = protos.warnings
+    report["protos"] = {
+        "expanded": protos.expanded,
+        "stand_ins": protos.stand_ins,
+        "cache_hits": protos.cache_hits,
+        "downloads": protos.downloads,
+    }
+    return world, report
 
 
 def robot_warnings(report: Mapping[str, Any]) -> list[str]:

@@ -215,7 +215,8 @@ class Keyboard(_Polled):
             simulation = simulations.current()
         super().__init__(simulation)
         self._warned_disabled = False
-        self._served_time = -1.0
+        self._served_sample = -1
+        self._enabled_at_ms = 0.0
         if samplingPeriod:
             self.enable(samplingPeriod)
 
@@ -232,12 +233,23 @@ class Keyboard(_Polled):
                     "Please use: wb_keyboard_enable()."
                 )
             return -1
-        now = simulation.time
-        if now == self._served_time:
+        # As in Webots, the keyboard is read once per sampling period (counted from enable):
+        # a key held down is returned once per period, not at every step between.
+        now_ms = round(simulation.time * 1000.0, 6)
+        sample = int((now_ms - self._enabled_at_ms + 1e-6) // self._period_ms)
+        if sample < 1 or sample == self._served_sample:
             return -1
-        self._served_time = now
-        key = simulation.keys.key_at(now)
+        self._served_sample = sample
+        sampled_at = (self._enabled_at_ms + sample * self._period_ms) / 1000.0
+        key = simulation.keys.key_at(sampled_at)
         return -1 if key is None else key
+
+    def enable(self, samplingPeriod: int) -> None:
+        """Reads the keyboard every ``samplingPeriod`` ms, from now on."""
+        super().enable(samplingPeriod)
+        if self._simulation is not None:
+            self._enabled_at_ms = round(self._simulation.time * 1000.0, 6)
+        self._served_sample = -1
 
 
 class MouseState(NamedTuple):

@@ -374,7 +374,13 @@ class Robot(NotSimulated):
     @property
     def keyboard(self) -> Keyboard:
         """The keyboard."""
-        return self._equipment.keyboard
+        chosen: Keyboard = self.__dict__.get("_keyboard_set", self._equipment.keyboard)
+        return chosen
+
+    @keyboard.setter
+    def keyboard(self, value: Keyboard) -> None:
+        """A controller's ``Robot`` subclass may keep its own ``self.keyboard``, as in Webots."""
+        self.__dict__["_keyboard_set"] = value
 
     def keyboardEnable(self, samplingPeriod: int) -> None:
         """Webots' API before R2018a: ``getKeyboard().enable(samplingPeriod)``."""
@@ -395,7 +401,13 @@ class Robot(NotSimulated):
     @property
     def mouse(self) -> Mouse:
         """The mouse."""
-        return self._equipment.mouse
+        chosen: Mouse = self.__dict__.get("_mouse_set", self._equipment.mouse)
+        return chosen
+
+    @mouse.setter
+    def mouse(self, value: Mouse) -> None:
+        """A controller's ``Robot`` subclass may keep its own ``self.mouse``, as in Webots."""
+        self.__dict__["_mouse_set"] = value
 
     def getJoystick(self) -> Joystick:
         """The joystick (never connected)."""
@@ -404,7 +416,13 @@ class Robot(NotSimulated):
     @property
     def joystick(self) -> Joystick:
         """The joystick."""
-        return self._equipment.joystick
+        chosen: Joystick = self.__dict__.get("_joystick_set", self._equipment.joystick)
+        return chosen
+
+    @joystick.setter
+    def joystick(self, value: Joystick) -> None:
+        """A controller's ``Robot`` subclass may keep its own ``self.joystick``, as in Webots."""
+        self.__dict__["_joystick_set"] = value
 
 
 for _getter in DEPRECATED_GETTERS:

@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 import re
 from dataclasses import dataclass, field
+from typing import Any
 
 from mazesim.webots.frames import nue_to_enu
 from mazesim.webots.lights import Light, read_lights
@@ -35,20 +36,23 @@ _NODE = re.compile(r"(?:\bDEF\s+([^\s{}\[\]]+)\s+)?(?<![\w-])([A-Za-z_][\w-]*)\s
 _ROTATION = re.compile(r"\brotation" + r"\s+".join([""] + [_NUMBER] * 4))
 _TRANSLATION = re.compile(r"\btranslation\s+" + _NUMBER + r"\s+" + _NUMBER + r"\s+" + _NUMBER)
 #: Webots' ground sensors module of the E-puck (its gs0..gs2), in its groundSensorsSlot.
-_GROUND_SENSORS_MODULE = re.compile(r"(?<![\w-])E-puckGroundSensors\s*\{")
+_GROUND_SENSORS_MODULE = re.compile(
+    r"(?<![\w-])(?:E-puckGroundSensors|EPuck_GroundSensorsModule)\s*\{"
+)
 #: A wheel joint's position saved in a world file: ``hidden position_0_<joint> <rad>``.
 _HIDDEN_WHEEL = re.compile(r"\bhidden\s+position_0_([01])\s+" + _NUMBER)
 _NORTH = re.compile(r"\bnorthDirection\s+" + _NUMBER + r"\s+" + _NUMBER + r"\s+" + _NUMBER)
 #: Node types that are robots.
-ROBOT_TYPES = {"E-puck", "Robot", "e-puck2", "Epuck", "E-puck2"}
+ROBOT_TYPES = {"E-puck", "Robot", "e-puck2", "Epuck", "EPuck", "E-puck2"}
 #: The E-puck PROTOs, whose hidden joint positions are their wheels'.
-EPUCK_TYPES = {"E-puck", "E-puck2", "e-puck2", "Epuck"}
+EPUCK_TYPES = {"E-puck", "E-puck2", "e-puck2", "Epuck", "EPuck"}
 #: The base node of the common PROTOs (``Node.getBaseTypeName``); a built-in node is its own.
 BASE_TYPES = {
     "E-puck": "Robot",
     "E-puck2": "Robot",
     "e-puck2": "Robot",
     "Epuck": "Robot",
+    "EPuck": "Robot",
     "RectangleArena": "Solid",
     "CircleArena": "Solid",
     "Floor": "Solid",
@@ -74,6 +78,9 @@ class SceneNode:
         rotation: Its ``rotation`` field (axis x, y, z and angle, world frame), if it has one.
         name: Its ``name`` field, if it has one.
         robot: Whether it is the robot of the run.
+        numbers: Its other fields of numbers (a PROTO instance's own fields too), as written.
+        flags: Its fields of ``TRUE`` / ``FALSE``.
+        strings: Its fields of one string.
     """
 
     type_name: str
@@ -82,6 +89,9 @@ class SceneNode:
     rotation: tuple[float, float, float, float] | None = None
     name: str | None = None
     robot: bool = False
+    numbers: dict[str, tuple[float, ...]] = field(default_factory=dict)
+    flags: dict[str, bool] = field(default_factory=dict)
+    strings: dict[str, str] = field(default_factory=dict)
 
     @property
     def base_type(self) -> str:
@@ -243,9 +253,37 @@ def _top_nodes(text: str, robot: re.Match[str] | None, nue: bool) -> list[SceneN
                 rotation=_rotation(_ROTATION.search(own), nue),
                 name=found.group(1) if (found := _NAME.search(own)) else None,
                 robot=robot is not None and match.start() == robot.start(),
+                **_own_fields(own),
             )
         )
     return nodes
+
+
+_OWN_NUMBERS = re.compile(r"(?<![\w-])([A-Za-z_]\w*)((?:\s+" + _NUMBER + r")+)(?![\w.])")
+_OWN_FLAG = re.compile(r"(?<![\w-])([A-Za-z_]\w*)\s+(TRUE|FALSE)\b")
+_OWN_STRING = re.compile(r'(?<![\w-])([A-Za-z_]\w*)\s+"((?:[^"\\]|\\.)*)"')
+_HIDDEN = re.compile(r"\bhidden\s+\S+[^\n]*")
+#: Fields read on their own (the frame) or not fields (``hidden`` engine state).
+_NOT_OWN = {"translation", "rotation", "name", "hidden"}
+
+
+def _own_fields(own: str) -> dict[str, dict[str, Any]]:
+    """A node's own fields of numbers, flags and strings (for the supervisor's ``getField``)."""
+    own = _HIDDEN.sub("", own)
+    numbers = {
+        m.group(1): tuple(float(v) for v in m.group(2).split())
+        for m in _OWN_NUMBERS.finditer(own)
+        if m.group(1) not in _NOT_OWN
+    }
+    flags = {
+        m.group(1): m.group(2) == "TRUE"
+        for m in _OWN_FLAG.finditer(own)
+        if m.group(1) not in _NOT_OWN
+    }
+    strings = {
+        m.group(1): m.group(2) for m in _OWN_STRING.finditer(own) if m.group(1) not in _NOT_OWN
+    }
+    return {"numbers": numbers, "flags": flags, "strings": strings}
 
 
 def _vector(found: re.Match[str] | None, nue: bool) -> tuple[float, float, float] | None:

@@ -86,10 +86,14 @@ class LookupTable:
 class DeviceMount:
     """Where a device sits on the robot: translation (m) and yaw (rad) in the robot's frame."""
 
-    def __init__(self, translation: Sequence[float] = (0.0, 0.0, 0.0), yaw: float = 0.0) -> None:
+    def __init__(
+        self, translation: Sequence[float] = (0.0, 0.0, 0.0), yaw: float = 0.0, pitch: float = 0.0
+    ) -> None:
         padded = [*(float(v) for v in translation), 0.0, 0.0, 0.0][:3]
         self.x, self.y, self.z = padded
         self.yaw = float(yaw)
+        #: How far the device's x axis points below the horizontal (rad).
+        self.pitch = float(pitch)
 
     def world_pose(self, pose: tuple[float, float, float]) -> tuple[float, float, float]:
         """The device's x, y, heading in the world for a robot pose."""
@@ -364,6 +368,11 @@ class TouchSensor(_ScalarSensor):
         return []
 
 
+#: A distance sensor whose x axis points more than this below the horizontal (rad, 45 degrees)
+#: reads the floor under it rather than the walls.
+DOWNWARD_PITCH = math.pi / 4
+
+
 class RayDistanceSensor(_Tabled, DistanceSensor):
     """A distance sensor the world adds: one ray from its mount against the walls (a
     :class:`DistanceSensor`, with the world's table and type)."""
@@ -386,6 +395,8 @@ class RayDistanceSensor(_Tabled, DistanceSensor):
         self._rng = _noise_stream(simulation, name)
 
     def _read(self) -> float:
+        if self._mount.pitch > DOWNWARD_PITCH:
+            return self._read_floor()
         if self._walls is None:
             self._walls = WallBoxes(self._simulation.world)
         x, y, heading = self._mount.world_pose(self._simulation.simulator.pose)
@@ -396,6 +407,21 @@ class RayDistanceSensor(_Tabled, DistanceSensor):
         if self._type == self.INFRA_RED and math.isfinite(d):
             d = d / max(float(reflectance[0]), 1e-6)
         return self._table(min(d, reach), self._rng)
+
+    def _read_floor(self) -> float:
+        """A sensor pointed at the floor (a ground sensor of the ``groundSensorsSlot``): its ray
+        meets the floor ``z / sin(pitch)`` away, ahead of the mount by ``z / tan(pitch)``; an
+        infra-red sensor's distance is divided by the floor's reflectance there, as for walls."""
+        mount = self._mount
+        height = max(mount.z, 0.0005)
+        sine = math.sin(mount.pitch)
+        ahead = height * math.cos(mount.pitch) / sine
+        x, y, heading = mount.world_pose(self._simulation.simulator.pose)
+        x, y = x + ahead * math.cos(heading), y + ahead * math.sin(heading)
+        d = height / sine
+        if self._type == self.INFRA_RED:
+            d = d / max(float(self._simulation.world.floor_reflectance(x, y)), 1e-6)
+        return self._table(min(d, self.getMaxRange()), self._rng)
 
     def getMinValue(self) -> float:
         """The smallest value the table gives."""

@@ -159,10 +159,10 @@ class Field(NotSimulated):
         )
 
     def getSFVec3f(self) -> list[float] | None:
-        """The node's translation [x, y, z] in metres (world frame; the robot's is live)."""
+        """The node's translation [x, y, z] in metres (world frame; the robot's is live), or
+        another field of three numbers as the world file gives it."""
         if self._name != "translation":
-            self._wrong("get_sf_vec3f")
-            return None
+            return self._numbers("get_sf_vec3f", (self.SF_VEC3F, self.SF_COLOR))
         node = self._node
         return node.getPosition() if node._robot else _out(list(node._translation or ()))
 
@@ -203,6 +203,59 @@ class Field(NotSimulated):
         else:
             node._rotation = (ax, ay, az, angle)
 
+    def _numbers(self, function: str, types: tuple[int, ...]) -> list[float] | None:
+        if self._type not in types or self._name not in self._node._numbers:
+            self._wrong(function)
+            return None
+        return list(self._node._numbers[self._name])
+
+    def getSFInt32(self) -> int | None:
+        """The value of an integer field the world file gives (a PROTO's ``channel 2``)."""
+        values = self._numbers("get_sf_int32", (self.SF_INT32,))
+        return None if values is None else int(values[0])
+
+    def getSFFloat(self) -> float | None:
+        """The value of a number field the world file gives."""
+        values = self._numbers("get_sf_float", (self.SF_FLOAT, self.SF_INT32))
+        return None if values is None else values[0]
+
+    def getSFBool(self) -> bool | None:
+        """The value of a ``TRUE`` / ``FALSE`` field the world file gives."""
+        if self._type != self.SF_BOOL:
+            self._wrong("get_sf_bool")
+            return None
+        return self._node._flags.get(self._name, False)
+
+    def getSFVec2f(self) -> list[float] | None:
+        """The value of a field of two numbers the world file gives."""
+        return self._numbers("get_sf_vec2f", (self.SF_VEC2F,))
+
+    def getSFColor(self) -> list[float] | None:
+        """The value of a colour field the world file gives."""
+        # The file does not say whether three numbers are a colour or a vector: both read.
+        return self._numbers("get_sf_color", (self.SF_COLOR, self.SF_VEC3F))
+
+    def _set_numbers(self, function: str, types: tuple[int, ...], values: list[float]) -> None:
+        if self._type not in types or self._name not in self._node._numbers:
+            self._wrong(function)
+            return
+        self._node._numbers[self._name] = [float(v) for v in values]
+
+    def setSFInt32(self, value: int) -> None:
+        """Records a new value of an integer field."""
+        self._set_numbers("set_sf_int32", (self.SF_INT32,), [int(value)])
+
+    def setSFFloat(self, value: float) -> None:
+        """Records a new value of a number field."""
+        self._set_numbers("set_sf_float", (self.SF_FLOAT, self.SF_INT32), [float(value)])
+
+    def setSFBool(self, value: bool) -> None:
+        """Records a new value of a ``TRUE`` / ``FALSE`` field."""
+        if self._type != self.SF_BOOL:
+            self._wrong("set_sf_bool")
+            return
+        self._node._flags[self._name] = bool(value)
+
     def getSFString(self) -> str | None:
         """The value of a string field (``name``, ``customData``, ``controller``)."""
         if self._type != self.SF_STRING:
@@ -222,8 +275,18 @@ class Field(NotSimulated):
         """The field's value (property style)."""
         if self._type == self.SF_VEC3F:
             return self.getSFVec3f()
-        if self._type == self.SF_ROTATION:
+        if self._type == self.SF_ROTATION and self._name == "rotation":
             return self.getSFRotation()
+        getters = {
+            self.SF_INT32: self.getSFInt32,
+            self.SF_FLOAT: self.getSFFloat,
+            self.SF_BOOL: self.getSFBool,
+            self.SF_VEC2F: self.getSFVec2f,
+            self.SF_COLOR: self.getSFColor,
+            self.SF_ROTATION: lambda: self._numbers("get_sf_rotation", (self.SF_ROTATION,)),
+        }
+        if self._type in getters:
+            return getters[self._type]()
         return self.getSFString()
 
     @value.setter
@@ -295,6 +358,9 @@ class Node(NotSimulated):
             self._strings = {} if name is None else {"name": name}
         self._parent: Node | None = None
         self._children: list[Node] = []
+        #: Other fields the world file gives the node (a PROTO instance's own fields too).
+        self._numbers: dict[str, list[float]] = {}
+        self._flags: dict[str, bool] = {}
 
     @classmethod
     def from_scene(cls, node: SceneNode, node_id: int) -> Node:
@@ -304,7 +370,7 @@ class Node(NotSimulated):
         if node.base_type in _POSED_TYPES:
             translation = translation or (0.0, 0.0, 0.0)
             rotation = rotation or (0.0, 0.0, 1.0, 0.0)
-        return cls(
+        made = cls(
             node.type_name,
             node.def_name,
             node_id,
@@ -313,6 +379,10 @@ class Node(NotSimulated):
             base_type=node.base_type,
             name=node.name,
         )
+        made._numbers = {name: list(values) for name, values in node.numbers.items()}
+        made._flags = dict(node.flags)
+        made._strings.update(node.strings)
+        return made
 
     def _adopt(self, children: list[Node]) -> None:
         """Makes ``children`` the node's ``children`` field."""
@@ -378,6 +448,15 @@ class Node(NotSimulated):
         if self._id == 0:
             return {"children": Field.MF_NODE}
         types = dict.fromkeys(self._strings, Field.SF_STRING)
+        types.update(dict.fromkeys(self._flags, Field.SF_BOOL))
+        for name, values in self._numbers.items():
+            kinds = {1: Field.SF_FLOAT, 2: Field.SF_VEC2F, 3: Field.SF_VEC3F, 4: Field.SF_ROTATION}
+            if len(values) in kinds:
+                types[name] = kinds[len(values)]
+            if len(values) == 1 and values[0].is_integer():
+                types[name] = Field.SF_INT32
+            if len(values) == 3 and name.lower().endswith("color"):
+                types[name] = Field.SF_COLOR
         if self._robot or self._translation is not None:
             types["translation"] = Field.SF_VEC3F
         if self._robot or self._rotation is not None:

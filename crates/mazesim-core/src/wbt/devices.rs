@@ -38,8 +38,55 @@ const DEVICE_TYPES: &[(&str, &str)] = &[
     ("VacuumGripper", "vacuum gripper"),
 ];
 /// Extension PROTOs of the E-puck whose devices every mazesim e-puck has: the
-/// `E-puckGroundSensors` of the `groundSensorsSlot` are its `gs0`, `gs1`, `gs2`.
-const BUILT_IN_EXTENSIONS: &[&str] = &["E-puckGroundSensors"];
+/// `E-puckGroundSensors` of the `groundSensorsSlot` (Webots 7's `EPuck_GroundSensorsModule`)
+/// are its `gs0`, `gs1`, `gs2`.
+const BUILT_IN_EXTENSIONS: &[&str] = &["E-puckGroundSensors", "EPuck_GroundSensorsModule"];
+/// The devices of mazesim's e-puck: a plain `Robot` e-puck saved expanded lists them among its
+/// children, and they are simulated as the e-puck's own.
+const BUILT_IN_NAMES: &[&str] = &[
+    "ps0",
+    "ps1",
+    "ps2",
+    "ps3",
+    "ps4",
+    "ps5",
+    "ps6",
+    "ps7",
+    "ls0",
+    "ls1",
+    "ls2",
+    "ls3",
+    "ls4",
+    "ls5",
+    "ls6",
+    "ls7",
+    "gs0",
+    "gs1",
+    "gs2",
+    "led0",
+    "led1",
+    "led2",
+    "led3",
+    "led4",
+    "led5",
+    "led6",
+    "led7",
+    "led8",
+    "led9",
+    "left wheel motor",
+    "right wheel motor",
+    "left wheel sensor",
+    "right wheel sensor",
+    "camera",
+    "accelerometer",
+    "gyro",
+    "emitter",
+    "receiver",
+    "speaker",
+];
+/// Joint nodes: the devices of their `device` field and the solid of their `endPoint` belong to
+/// the robot.
+const JOINTS: &[&str] = &["HingeJoint", "Hinge2Joint", "SliderJoint", "BallJoint"];
 /// Nodes that only hold and place other nodes.
 const CONTAINERS: &[&str] = &["Solid", "Pose", "Transform", "Group"];
 /// Fields that place or hold a node rather than describe the device.
@@ -83,6 +130,9 @@ pub struct ExtensionDevice {
     pub translation: [f64; 3],
     /// Direction of its x axis in the robot's frame, radians counter-clockwise from forward.
     pub yaw: f64,
+    /// How far its x axis points below the horizontal, radians (pi/2: straight at the floor, as
+    /// a ground sensor; negative: upwards).
+    pub pitch: f64,
     /// Its other fields with values (numbers, strings, booleans), in file order.
     pub fields: Vec<(String, DeviceField)>,
 }
@@ -96,6 +146,44 @@ impl<'d> Importer<'d> {
             }
             for &id in &field.value.nodes {
                 self.slot_node(self.node(id), &field.name, &Frame::IDENTITY, 0);
+            }
+        }
+    }
+
+    /// Lists the devices among a plain robot node's children (anywhere below them, through
+    /// solids, poses, groups and joints) that are not the e-puck's own, under the slot name
+    /// `children`.
+    pub fn robot_children(&mut self, robot: &'d Node) {
+        let mut stack: Vec<(&'d Node, Frame, usize)> = self
+            .nodes(robot, "children")
+            .iter()
+            .rev()
+            .map(|&id| (self.node(id), Frame::IDENTITY, 0))
+            .collect();
+        while let Some((node, frame, depth)) = stack.pop() {
+            if !self.enter(depth) {
+                continue;
+            }
+            let kind = node.type_name.as_str();
+            let local = if JOINTS.contains(&kind) {
+                Frame::IDENTITY
+            } else {
+                self.local_frame(node, [0.0; 3])
+            };
+            let frame = frame.then(&local);
+            if let Some(&(_, default_name)) = DEVICE_TYPES.iter().find(|(t, _)| *t == kind) {
+                let name = self.strings(node, "name").first().cloned();
+                let name = name.unwrap_or_else(|| default_name.to_string());
+                if !BUILT_IN_NAMES.contains(&name.as_str()) {
+                    self.device(node, "children", &frame, default_name);
+                }
+            }
+            let mut below: Vec<&'d Node> = Vec::new();
+            for field in ["children", "device", "endPoint"] {
+                below.extend(self.nodes(node, field).iter().map(|&id| self.node(id)));
+            }
+            for child in below.into_iter().rev() {
+                stack.push((child, frame, depth + 1));
             }
         }
     }
@@ -174,6 +262,7 @@ impl<'d> Importer<'d> {
             slot: slot.to_string(),
             translation: origin.map(snap),
             yaw: snap(x_axis[1].atan2(x_axis[0])),
+            pitch: snap((-x_axis[2]).atan2(x_axis[0].hypot(x_axis[1]))),
             fields,
         });
     }

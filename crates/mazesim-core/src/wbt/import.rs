@@ -60,7 +60,8 @@ const OTHER_ROBOT_PROTOS: &[&str] = &[
     "Nao",
 ];
 /// The e-puck PROTOs of Webots and webots_ros2.
-const EPUCK_PROTOS: &[&str] = &["E-puck", "E-puck_enu", "E-Puck_enu"];
+/// Webots 7 named it `EPuck`.
+const EPUCK_PROTOS: &[&str] = &["E-puck", "E-puck_enu", "E-Puck_enu", "EPuck"];
 /// Nodes whose `endPoint` holds a Solid placed in the parent's frame.
 const JOINT_NODES: &[&str] = &[
     "HingeJoint",
@@ -550,8 +551,12 @@ impl<'d> Importer<'d> {
             return;
         }
         let version_2 = self.strings(node, "version").iter().any(|v| v == "2");
+        // A plain robot node recognised as an e-puck, and Webots 7's `EPuck`, are the E-puck.
+        let plain = ROBOT_NODES.contains(&node.type_name.as_str());
         let (model, profile) = match (node.type_name.as_str(), version_2) {
             (_, true) => ("e-puck2".to_string(), "e-puck2"),
+            ("EPuck", false) => ("E-puck".to_string(), "e-puck"),
+            (_, false) if plain => ("E-puck".to_string(), "e-puck"),
             (kind, false) => (kind.to_string(), "e-puck"),
         };
         if let Some(pose) = self.robot_pose(node, frame) {
@@ -562,6 +567,9 @@ impl<'d> Importer<'d> {
                 line: node.line,
             });
             self.extension_slots(node);
+            if plain {
+                self.robot_children(node);
+            }
         }
     }
 

@@ -1,5 +1,6 @@
 //! The tokens of a `.wbt` text (VRML97 syntax as Webots writes it): braces, brackets, numbers,
 //! double-quoted strings and words. `#` starts a comment outside strings; commas are white space.
+//! Lines end with `\n`, `\r\n` or a lone `\r`.
 
 use crate::error::{Error, Location, Result};
 
@@ -83,7 +84,8 @@ pub fn tokenize(text: &str, source: &str) -> Result<Vec<Token>> {
     while i < chars.len() {
         let c = chars[i];
         let (start_line, start_column) = (line, column);
-        if c == '\n' {
+        // `\n`, `\r\n` and a lone `\r` (old-Mac files) each end a line.
+        if c == '\n' || (c == '\r' && chars.get(i + 1) != Some(&'\n')) {
             i += 1;
             line += 1;
             column = 1;
@@ -95,7 +97,7 @@ pub fn tokenize(text: &str, source: &str) -> Result<Vec<Token>> {
             continue;
         }
         if c == '#' {
-            while i < chars.len() && chars[i] != '\n' {
+            while i < chars.len() && chars[i] != '\n' && chars[i] != '\r' {
                 i += 1;
                 column += 1;
             }

@@ -375,3 +375,53 @@ fn the_e_puck_of_the_controller_that_runs_is_the_robot() {
         assert!(warned(&first, "line 3: E-puck: a second e-puck: ignored"));
     }
 }
+
+#[test]
+fn plain_robot_epuck_lists_its_children_devices_but_not_its_own() {
+    let w = import(
+        "#VRML_SIM R2023b utf8\nRobot { name \"e-puck\" children [\n\
+           Pose { translation 0 0 0.04 children [ Compass { } ] }\n\
+           DistanceSensor { name \"ps0\" }\n\
+           HingeJoint { device [ RotationalMotor { name \"left wheel motor\" }\n\
+             TouchSensor { name \"bumper\" } ] endPoint Solid { children [ GPS { } ] } }\n\
+         ] }\n",
+    );
+    assert_eq!(w.robot_model.as_deref(), Some("E-puck"));
+    let names: Vec<(&str, &str)> = w
+        .extension_devices
+        .iter()
+        .map(|d| (d.name.as_str(), d.slot.as_str()))
+        .collect();
+    assert_eq!(
+        names,
+        [
+            ("compass", "children"),
+            ("bumper", "children"),
+            ("gps", "children")
+        ]
+    );
+    assert!(close(w.extension_devices[0].translation[2], 0.04));
+    assert!(!warned(&w, "not an e-puck"));
+}
+
+#[test]
+fn webots_7_epuck_and_a_downward_sensor() {
+    let w = import(
+        "#VRML_SIM R2023b utf8\nEPuck { groundSensorsSlot [\n\
+           DistanceSensor { name \"ir0\" rotation 0 1 0 1.5708 } ] }\n",
+    );
+    assert_eq!(w.robot_model.as_deref(), Some("E-puck"));
+    assert_eq!(w.robot_profile, "e-puck");
+    let sensor = &w.extension_devices[0];
+    assert!((sensor.pitch - FRAC_PI_2).abs() < 1e-4, "{}", sensor.pitch);
+}
+
+#[test]
+fn cr_line_ends_read_as_lines() {
+    let lf = "#VRML_SIM R2023b utf8\n# a comment\nWoodenBox { translation 0.3 0 0.05 size 0.1 0.1 0.1 }\nE-puck { }\n";
+    let cr = import(&lf.replace('\n', "\r"));
+    let lf = import(lf);
+    assert_eq!(cr.obstacles, lf.obstacles);
+    assert_eq!(cr.obstacles.len(), 1);
+    assert_eq!(cr.robot_line, Some(4));
+}

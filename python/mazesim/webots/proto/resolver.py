@@ -1,0 +1,187 @@
+"""Where a PROTO's file is, found as Webots finds it: the ``EXTERNPROTO`` declaration of the file
+that uses it (a path relative to that file, ``webots://`` or an http(s) URL), the project's
+``protos/`` folder, the Webots installation named by ``WEBOTS_HOME``. URLs are downloaded once
+into a cache (``MAZESIM_PROTO_CACHE``, by default ``~/.cache/mazesim/protos``) and read from it
+afterwards; ``MAZESIM_OFFLINE=1`` forbids downloads. ``webots://`` is Webots' own repository at
+the world's version when no installation has the file."""
+
+from __future__ import annotations
+
+import hashlib
+import http.client
+import os
+import urllib.error
+import urllib.parse
+import urllib.request
+from dataclasses import dataclass
+from pathlib import Path
+
+from mazesim._atomic import atomic_file
+from mazesim.errors import MazesimIOError
+
+__all__ = ["ProtoSource", "ProtoUnavailableError", "Resolver", "cache_dir", "fetch_url"]
+
+#: Largest PROTO file or texture read or downloaded, bytes.
+MAX_DOWNLOAD_BYTES = 16 * 1024 * 1024
+#: Seconds a download may take.
+DOWNLOAD_TIMEOUT_S = 20.0
+_WEBOTS_RAW = "https://raw.githubusercontent.com/cyberbotics/webots/{version}/"
+
+
+class ProtoUnavailableError(MazesimIOError):
+    """A PROTO or texture URL that cannot be downloaded and is not in the cache."""
+
+
+def cache_dir() -> Path:
+    """The download cache: ``$MAZESIM_PROTO_CACHE`` or ``~/.cache/mazesim/protos``."""
+    configured = os.environ.get("MAZESIM_PROTO_CACHE")
+    if configured:
+        return Path(configured)
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return Path(base) / "mazesim" / "protos"
+
+
+def _cached_path(url: str) -> Path:
+    digest = hashlib.sha256(url.encode("utf-8", "surrogatepass")).hexdigest()[:20]
+    name = urllib.parse.urlsplit(url).path.rsplit("/", 1)[-1] or "file"
+    return cache_dir() / digest / name
+
+
+def fetch_url(url: str) -> Path:
+    """The local copy of a URL: from the cache, else downloaded into it.
+
+    Raises:
+        ProtoUnavailableError: Not in the cache and cannot be downloaded (offline, unreachable,
+            not found); the message names the URL and where to put the file instead.
+    """
+    target = _cached_path(url)
+    if target.is_file():
+        return target
+    advice = (
+        f"download it into the project's protos/ folder (or to {target}), set WEBOTS_HOME to a "
+        "Webots installation, or run once with a network"
+    )
+    if os.environ.get("MAZESIM_OFFLINE", "") not in ("", "0"):
+        raise ProtoUnavailableError(f"{url}: not in the cache and MAZESIM_OFFLINE is set: {advice}")
+    try:
+        with urllib.request.urlopen(url, timeout=DOWNLOAD_TIMEOUT_S) as response:  # noqa: S310
+            data = response.read(MAX_DOWNLOAD_BYTES + 1)
+    except (urllib.error.URLError, http.client.HTTPException, OSError, ValueError) as error:
+        reason = getattr(error, "reason", error)
+        raise ProtoUnavailableError(f"{url}: cannot be downloaded ({reason}): {advice}") from None
+    if len(data) > MAX_DOWNLOAD_BYTES:
+        raise ProtoUnavailableError(f"{url}: larger than {MAX_DOWNLOAD_BYTES} bytes: {advice}")
+    target.parent.mkdir(parents=True, exist_ok=True)
+    with atomic_file(target) as handle:
+        handle.write(data)
+    return target
+
+
+@dataclass(frozen=True)
+class ProtoSource:
+    """A PROTO file found: its text and where it came from (a path or URL; the base for its own
+    relative ``EXTERNPROTO``)."""
+
+    text: str
+    origin: str
+
+
+def is_url(location: str) -> bool:
+    """Whether a location is an http(s) URL (else a path)."""
+    return location.startswith(("http://", "https://"))
+
+
+def _read(path: Path) -> str:
+    with open(path, "rb") as file:
+        data = file.read(MAX_DOWNLOAD_BYTES + 1)
+    if len(data) > MAX_DOWNLOAD_BYTES:
+        raise MazesimIOError(f"{path}: a PROTO file larger than {MAX_DOWNLOAD_BYTES} bytes")
+    return data.decode("utf-8", errors="replace")
+
+
+class Resolver:
+    """Finds PROTO files for one world.
+
+    Args:
+        world: The world file's path.
+        version: The world's Webots version tag (``R2023b``), for ``webots://`` URLs.
+    """
+
+    def __init__(self, world: str, version: str) -> None:
+        self.world = os.path.abspath(world)
+        self.version = version
+        worlds_dir = os.path.dirname(self.world)
+        self.project = os.path.dirname(worlds_dir)
+        self._project_protos: dict[str, str] | None = None
+        self._webots_protos: dict[str, str] | None = None
+        #: URLs read from the cache (not downloaded) by this resolver.
+        self.cache_hits: list[str] = []
+        #: URLs downloaded by this resolver.
+        self.downloads: list[str] = []
+
+    def webots_url(self, url: str) -> str:
+        """``webots://path`` as Webots' repository URL at the world's version."""
+        return _WEBOTS_RAW.format(version=self.version) + url[len("webots://") :]
+
+    def declared(self, url: str, base: str) -> ProtoSource | None:
+        """The file of an ``EXTERNPROTO`` URL written in a file at ``base``.
+
+        Returns None for a relative path that does not exist.
+
+        Raises:
+            ProtoUnavailableError: A URL cannot be downloaded.
+        """
+        if url.startswith("webots://"):
+            home = os.environ.get("WEBOTS_HOME")
+            if home:
+                local = Path(home) / url[len("webots://") :]
+                if local.is_file():
+                    return ProtoSource(_read(local), str(local))
+            return self.url(self.webots_url(url))
+        if is_url(url):
+            return self.url(url)
+        if is_url(base):
+            return self.url(urllib.parse.urljoin(base, url))
+        path = Path(os.path.dirname(base)) / url
+        if path.is_file():
+            return ProtoSource(_read(path), str(path.resolve()))
+        return None
+
+    def url(self, url: str) -> ProtoSource:
+        """A PROTO file at a URL, through the cache."""
+        was_cached = _cached_path(url).is_file()
+        path = fetch_url(url)
+        (self.cache_hits if was_cached else self.downloads).append(url)
+        return ProtoSource(_read(path), url)
+
+    def undeclared(self, name: str) -> ProtoSource | None:
+        """A PROTO no ``EXTERNPROTO`` names: the project's ``protos/`` folder, then
+        ``$WEBOTS_HOME/projects``."""
+        if self._project_protos is None:
+            self._project_protos = _index(Path(self.project) / "protos")
+        found = self._project_protos.get(name)
+        if found is None:
+            home = os.environ.get("WEBOTS_HOME")
+            if home and self._webots_protos is None:
+                self._webots_protos = _index(Path(home) / "projects")
+            found = (self._webots_protos or {}).get(name)
+        if found is None:
+            return None
+        return ProtoSource(_read(Path(found)), found)
+
+
+def _index(root: Path, limit: int = 20_000) -> dict[str, str]:
+    """Every ``Name.proto`` under a folder, by name (the first found, in sorted order)."""
+    found: dict[str, str] = {}
+    if not root.is_dir():
+        return found
+    seen = 0
+    for folder, directories, files in os.walk(root):
+        directories.sort()
+        for file in sorted(files):
+            seen += 1
+            if file.endswith(".proto"):
+                found.setdefault(file[: -len(".proto")], os.path.join(folder, file))
+        if seen > limit:
+            break
+    return found

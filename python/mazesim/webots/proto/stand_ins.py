@@ -1,0 +1,197 @@
+"""mazesim's own PROTOs for stock Webots objects, used when the real file cannot be read (no
+Webots installation, no cache, no network): the collision geometry that the Webots user guide
+documents for each (its fields and their defaults), written here as procedural PROTOs. Webots'
+own PROTO files are licensed for use with Webots only and are not shipped.
+
+Sources: Webots user guide, "Floors" (``CircleArena``: radius 1, wallThickness 0.01,
+wallHeight 0.1, subdivision 48), "Kitchen" (``CerealBox``: size 0.08 x 0.3 x 0.2 with the
+height second in the Y-up versions, mass 1 kg), "Balls" (``SoccerBall``: radius 0.113, mass 0.6
+kg; ``Ball``: radius 0.0325, mass 0.055 kg) and "Obstacles" (``OilBarrel``: height 0.88, radius
+0.305, centred on its translation, physics NULL by default) and "Drinks" (``Can``: 0.03175 m
+radius, 0.1222 m high, 0.35 kg).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+__all__ = ["STAND_INS", "StandIn"]
+
+
+@dataclass(frozen=True)
+class StandIn:
+    """A stand-in PROTO: its text and what it models, as the warning says."""
+
+    text: str
+    description: str
+
+
+_CIRCLE_ARENA = """#VRML_SIM R2023b utf8
+# template language: javascript
+PROTO CircleArena [
+  field SFVec3f translation 0 0 0
+  field SFRotation rotation 0 0 1 0
+  field SFString name "circle arena"
+  field SFFloat radius 1.0
+  field SFString contactMaterial "default"
+  field SFNode floorAppearance NULL
+  field SFVec2f floorTileSize 0.5 0.5
+  field SFFloat wallThickness 0.01
+  field SFFloat wallHeight 0.1
+  field SFNode wallAppearance NULL
+  field SFInt32 subdivision 48
+]
+{
+  %<
+    const yUp = context.coordinate_system === 'NUE';
+    const radius = fields.radius.value > 0 ? fields.radius.value : 1.0;
+    const thickness = fields.wallThickness.value > 0 ? fields.wallThickness.value : 0.01;
+    const height = fields.wallHeight.value > 0 ? fields.wallHeight.value : 0.1;
+    const sides = Math.max(8, fields.subdivision.value);
+    const centre = radius + thickness / 2;
+    const length = 2 * (radius + thickness) * Math.tan(Math.PI / sides);
+  >%
+  Solid {
+    translation IS translation
+    rotation IS rotation
+    name IS name
+    boundingObject Group {
+      children [
+        %< for (let i = 0; i < sides; ++i) {
+             const a = 2 * Math.PI * (i + 0.5) / sides;
+             const c = Math.cos(a), s = Math.sin(a); >%
+          Pose {
+            %< if (yUp) { >%
+              translation %<= centre * c >% %<= height / 2 >% %<= -centre * s >%
+              rotation 0 1 0 %<= a >%
+              children [ Box { size %<= thickness >% %<= height >% %<= length >% } ]
+            %< } else { >%
+              translation %<= centre * c >% %<= centre * s >% %<= height / 2 >%
+              rotation 0 0 1 %<= a >%
+              children [ Box { size %<= thickness >% %<= length >% %<= height >% } ]
+            %< } >%
+          }
+        %< } >%
+      ]
+    }
+  }
+}
+"""
+
+_CEREAL_BOX = """#VRML_SIM R2023b utf8
+# template language: javascript
+PROTO CerealBox [
+  field SFVec3f translation 0 0 0
+  field SFRotation rotation 0 0 1 0
+  field SFString name "cereal box"
+  field SFVec3f size 0.08 0.2 0.3
+  field MFString textureUrl []
+  field SFFloat mass 1
+]
+{
+  %< const yUp = context.coordinate_system === 'NUE'; const s = fields.size.value; >%
+  Solid {
+    translation IS translation
+    rotation IS rotation
+    name IS name
+    children [
+      Pose {
+        translation %< if (yUp) { >% 0 %<= s.y / 2 >% 0 %< } else { >% 0 0 %<= s.z / 2 >% %< } >%
+        children [
+          Shape { geometry Box { size %<= s.x >% %<= s.y >% %<= s.z >% } }
+        ]
+      }
+    ]
+    boundingObject Pose {
+      translation %< if (yUp) { >% 0 %<= s.y / 2 >% 0 %< } else { >% 0 0 %<= s.z / 2 >% %< } >%
+      children [ Box { size %<= s.x >% %<= s.y >% %<= s.z >% } ]
+    }
+    physics Physics { density -1 mass IS mass }
+  }
+}
+"""
+
+
+def _ball(name: str, label: str, radius: float, mass: float) -> str:
+    return f"""#VRML_SIM R2023b utf8
+PROTO {name} [
+  field SFVec3f translation 0 0 {radius}
+  field SFRotation rotation 0 0 1 0
+  field SFString name "{label}"
+  field SFColor color 1 1 1
+  field SFFloat radius {radius}
+  field SFFloat mass {mass}
+  field MFVec3f centerOfMass []
+  field SFFloat linearDamping 0.17
+  field SFFloat angularDamping 0.33
+  field SFString contactMaterial "default"
+]
+{{
+  Solid {{
+    translation IS translation
+    rotation IS rotation
+    name IS name
+    boundingObject Sphere {{ radius IS radius }}
+    physics Physics {{ density -1 mass IS mass }}
+  }}
+}}
+"""
+
+
+_CAN = """#VRML_SIM R2023b utf8
+PROTO Can [
+  field SFVec3f translation 0 0 0.0611
+  field SFRotation rotation 0 0 1 0
+  field SFString name "can"
+  field SFColor color 1 1 1
+  field MFString textureUrl []
+  field SFFloat mass 0.35
+]
+{
+  Solid {
+    translation IS translation
+    rotation IS rotation
+    name IS name
+    boundingObject Cylinder { height 0.1222 radius 0.03175 }
+    physics Physics { density -1 mass IS mass }
+  }
+}
+"""
+
+_OIL_BARREL = """#VRML_SIM R2023b utf8
+PROTO OilBarrel [
+  field SFVec3f translation 0 0 0.44
+  field SFRotation rotation 0 0 1 0
+  field SFString name "oil barrel"
+  field SFFloat height 0.88
+  field SFFloat radius 0.305
+  field SFNode physics NULL
+  field MFNode immersionProperties []
+]
+{
+  Solid {
+    translation IS translation
+    rotation IS rotation
+    name IS name
+    boundingObject Cylinder { height IS height radius IS radius }
+    physics IS physics
+  }
+}
+"""
+
+#: The stand-ins, by PROTO name.
+STAND_INS: dict[str, StandIn] = {
+    "CircleArena": StandIn(
+        _CIRCLE_ARENA,
+        "a ring of `subdivision` wall boxes of the documented radius, thickness and height",
+    ),
+    "CerealBox": StandIn(_CEREAL_BOX, "a box of the documented size and mass"),
+    "SoccerBall": StandIn(
+        _ball("SoccerBall", "soccer ball", 0.113, 0.6), "a ball of the documented radius and mass"
+    ),
+    "Ball": StandIn(
+        _ball("Ball", "ball", 0.0325, 0.055), "a ball of the documented radius and mass"
+    ),
+    "OilBarrel": StandIn(_OIL_BARREL, "an upright cylinder of the documented height and radius"),
+    "Can": StandIn(_CAN, "an upright cylinder of the documented size and mass"),
+}

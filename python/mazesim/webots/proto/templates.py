@@ -1,0 +1,190 @@
+"""Procedural PROTO bodies evaluated with real template engines: JavaScript (``%< >%``,
+``%<= >%``; Webots R2022b and later) with QuickJS (PyPI ``quickjs``), Lua (``%{ }%``,
+``%{= }%``; earlier versions) with Lua 5.4 (PyPI ``lupa``). The body is turned into a script
+that appends its text pieces and the values of its expressions to an output; ``import`` lines
+of the helper modules become constants defined from ``template_modules``."""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+from typing import Any
+
+from .syntax import located_error
+from .template_modules import JAVASCRIPT_MODULES, LUA_MODULES
+from .values import to_javascript, to_lua
+
+__all__ = ["evaluate_template"]
+
+#: Seconds a template may run, and bytes of memory it may use (a hostile PROTO stays bounded).
+TIME_LIMIT_S = 10.0
+MEMORY_LIMIT_BYTES = 256 * 1024 * 1024
+
+_IMPORT = re.compile(
+    r"""import\s+(?:\*\s+as\s+(?P<alias>\w+)|\{(?P<names>[^}]*)\})\s+from\s+['"](?P<module>[\w./-]+?)(?:\.js)?['"]\s*;?"""
+)
+
+
+def without_comments(body: str) -> str:
+    """The body without its ``#`` comments, which prevail over template statements in Webots
+    (a ``#`` inside a double-quoted string is kept)."""
+    lines = []
+    for line in body.split("\n"):
+        quoted = False
+        for index, char in enumerate(line):
+            if char == '"' and (index == 0 or line[index - 1] != "\\"):
+                quoted = not quoted
+            elif char == "#" and not quoted:
+                line = line[:index]
+                break
+        lines.append(line)
+    return "\n".join(lines)
+
+
+def _pieces(body: str, opening: str, closing: str, origin: str) -> list[tuple[str, str]]:
+    """The body as ("text" | "code" | "expression", content) pieces."""
+    pieces: list[tuple[str, str]] = []
+    position = 0
+    while True:
+        start = body.find(opening, position)
+        if start < 0:
+            pieces.append(("text", body[position:]))
+            return pieces
+        pieces.append(("text", body[position:start]))
+        end = body.find(closing, start + len(opening))
+        if end < 0:
+            raise located_error(
+                f"expected '{closing}' closing the template opened by '{opening}'",
+                origin,
+                body,
+                start,
+            )
+        code = body[start + len(opening) : end]
+        if code.startswith("="):
+            pieces.append(("expression", code[1:]))
+        else:
+            pieces.append(("code", code))
+        position = end + len(closing)
+
+
+def _javascript(body: str, fields: dict[str, Any], context: dict[str, Any], origin: str) -> str:
+    import quickjs
+
+    imports: list[str] = []
+
+    def hoist(match: re.Match[str]) -> str:
+        module = match.group("module").rsplit("/", 1)[-1]
+        if module not in JAVASCRIPT_MODULES:
+            raise located_error(
+                f"the template imports '{module}.js', which mazesim does not provide", origin
+            )
+        if match.group("alias"):
+            imports.append(f"const {match.group('alias')} = __modules[{json.dumps(module)}];")
+        else:
+            imports.append(f"const {{{match.group('names')}}} = __modules[{json.dumps(module)}];")
+        return ""
+
+    script = []
+    for kind, content in _pieces(body, "%<", ">%", origin):
+        if kind == "text":
+            script.append(f"__out.push({json.dumps(content)});")
+        elif kind == "expression":
+            script.append(f"__out.push(__text({content}));")
+        else:
+            script.append(_IMPORT.sub(hoist, content))
+    modules = ", ".join(
+        f"{json.dumps(name)}: {source}" for name, source in JAVASCRIPT_MODULES.items()
+    )
+    program = "\n".join(
+        [
+            "(function () {",
+            '"use strict";',
+            "const __out = [];",
+            "const __text = (v) => String(v);",
+            "const console = {log: () => {}, debug: () => {}, info: () => {}, warn: () => {}, "
+            "error: (...a) => __errors.push(a.join(' '))};",
+            f"const __modules = {{{modules}}};",
+            f"const fields = {to_javascript(fields)};",
+            f"const context = {to_javascript(context)};",
+            "const wbfile = {fileExists: (p) => __file_exists(p), "
+            "readTextFile: (p) => __read_text(p), writeTextFile: () => false};",
+            *imports,
+            *script,
+            "return __out.join('');",
+            "})()",
+        ]
+    )
+    engine = quickjs.Context()
+    engine.set_time_limit(TIME_LIMIT_S)
+    engine.set_memory_limit(MEMORY_LIMIT_BYTES)
+    engine.add_callable("__file_exists", lambda path: os.path.isfile(str(path)))
+    engine.add_callable("__read_text", _read_text)
+    engine.eval("var __errors = [];")
+    try:
+        result = engine.eval(program)
+    except quickjs.JSException as error:
+        first = str(error).strip().splitlines()[0] if str(error).strip() else repr(error)
+        raise located_error(f"its JavaScript template fails: {first}", origin) from None
+    return str(result)
+
+
+def _read_text(path: Any) -> str:
+    with open(str(path), encoding="utf-8") as file:
+        return file.read(4 * 1024 * 1024)
+
+
+def _lua(body: str, fields: dict[str, Any], context: dict[str, Any], origin: str) -> str:
+    import lupa
+
+    runtime = lupa.LuaRuntime(unpack_returned_tuples=True, register_eval=False)
+    # Webots' Lua has io and os; files may be read here, not written, and nothing run.
+    sandbox = runtime.eval(
+        "function() local open = io.open; "
+        "io = {open = function(name, mode) if mode == nil or mode:sub(1, 1) == 'r' then "
+        "return open(name, mode) end return nil end}; print = function() end; "
+        "os.execute = nil; os.remove = nil; os.rename = nil; os.exit = nil; os.tmpname = nil end"
+    )
+    sandbox()
+    preload = runtime.eval("package.preload")
+    for name, source in LUA_MODULES.items():
+        preload[name] = runtime.eval(f"function(...) {source} end")
+    script = [
+        "local __out = {}",
+        f"fields = {to_lua(fields)}",
+        f"context = {to_lua(context)}",
+    ]
+    for kind, content in _pieces(body, "%{", "}%", origin):
+        if kind == "text":
+            script.append(f"__out[#__out + 1] = {to_lua(content)}")
+        elif kind == "expression":
+            script.append(f"__out[#__out + 1] = tostring({content})")
+        else:
+            script.append(content)
+    script.append("return table.concat(__out)")
+    try:
+        chunk = runtime.execute("return function() " + "\n".join(script) + "\nend")
+        return str(chunk())
+    except lupa.LuaError as error:
+        raise located_error(f"its Lua template fails: {error}", origin) from None
+
+
+def evaluate_template(
+    language: str, body: str, fields: dict[str, Any], context: dict[str, Any], origin: str
+) -> str:
+    """The text a procedural PROTO body generates.
+
+    Args:
+        language: ``"javascript"`` or ``"lua"``.
+        body: The body with its template statements.
+        fields: Each field's ``{"value": ..., "defaultValue": ...}``.
+        context: Webots' ``context`` object (``world``, ``proto``, ``os``, ``id``...).
+        origin: The PROTO's file or URL, for messages.
+
+    Raises:
+        WorldFormatError: The template does not run (with the engine's message).
+    """
+    body = without_comments(body)
+    if language == "javascript":
+        return _javascript(body, fields, context, origin)
+    return _lua(body, fields, context, origin)

@@ -1,0 +1,276 @@
+"""The PROTO engine: project PROTOs (plain, JavaScript and Lua templates), nested PROTOs, IS
+fields, EXTERNPROTO by relative path and by URL (a 127.0.0.1 server, then the cache), an
+unreachable URL, stand-ins for stock objects, CR line ends."""
+
+from __future__ import annotations
+
+import functools
+import http.server
+import shutil
+import threading
+from collections.abc import Iterator, Mapping
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+from mazesim.webots.importer import import_wbt, import_wbt_text
+from mazesim.webots.proto import ProtoUnavailableError
+
+pytest.importorskip("quickjs", reason="the PROTO engine's JavaScript templates need quickjs")
+pytest.importorskip("lupa", reason="the PROTO engine's Lua templates need lupa")
+
+DATA = Path(__file__).resolve().parents[1] / "data" / "webots-protos"
+
+
+@pytest.fixture(autouse=True)
+def _private_cache(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Each test downloads into its own cache, and never sees a Webots installation."""
+    monkeypatch.setenv("MAZESIM_PROTO_CACHE", str(tmp_path / "cache"))
+    monkeypatch.delenv("WEBOTS_HOME", raising=False)
+    monkeypatch.delenv("MAZESIM_OFFLINE", raising=False)
+
+
+def _boxes(report: Mapping[str, Any]) -> list[tuple[list[float], list[float]]]:
+    return [(o["center"], o["size"]) for o in report["obstacles"] if o["kind"] == "box"]
+
+
+def test_project_protos_plain_javascript_lua_and_nested_are_expanded(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    _, report = import_wbt(DATA / "project" / "worlds" / "local.wbt")
+    assert capsys.readouterr().out == "", "templates print to Webots' console, not stdout"
+    assert set(report["protos"]["expanded"]) == {
+        "BoxWall",
+        "PillarRowJs",
+        "PillarRowLua",
+        "Corridor",
+    }
+    boxes = _boxes(report)
+    # BoxWall through EXTERNPROTO "../protos/BoxWall.proto": its size field replaces the default.
+    assert ([0.5, 0.0], [0.02, 0.6]) in boxes
+    # PillarRowJs (found in protos/ without EXTERNPROTO): count 4 pillars, 0.2 m apart.
+    circles = sorted(o["center"][0] for o in report["obstacles"] if o["kind"] == "circle")
+    assert circles == pytest.approx([-0.5, -0.3, -0.1, 0.1])
+    # PillarRowLua: its default count 2, 0.3 m apart.
+    assert ([-0.5, -0.3], [0.04, 0.04]) in boxes and ([-0.2, -0.3], [0.04, 0.04]) in boxes
+    # Corridor: two nested BoxWalls, width 0.4 apart, wallSize passed on through IS.
+    assert ([0.0, -0.6], [1.0, 0.02]) in boxes and ([0.0, -1.0], [1.0, 0.02]) in boxes
+    assert report["robot"] == {"x": 0.1, "y": 0.2, "yaw": 0.0}
+    assert not any("unknown PROTO" in w for w in report["warnings"])
+
+
+def test_warnings_keep_the_lines_of_the_file() -> None:
+    _, report = import_wbt(DATA / "project" / "worlds" / "local.wbt")
+    pillars = [w for w in report["warnings"] if '"pillars"' in w]
+    assert pillars and all(w.startswith("line 14:") for w in pillars)
+
+
+def _serve(folder: Path) -> Iterator[str]:
+    class QuietHandler(http.server.SimpleHTTPRequestHandler):
+        def log_message(self, format: str, *args: Any) -> None:
+            pass
+
+    handler = functools.partial(QuietHandler, directory=str(folder))
+    server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
+    thread = threading.Thread(target=server.serve_forever, daemon=True)
+    thread.start()
+    try:
+        yield f"http://127.0.0.1:{server.server_address[1]}"
+    finally:
+        server.shutdown()
+        server.server_close()
+
+
+@pytest.fixture
+def remote(tmp_path: Path) -> Iterator[str]:
+    folder = tmp_path / "served"
+    shutil.copytree(DATA / "remote", folder)
+    yield from _serve(folder)
+
+
+def _url_world(url: str) -> str:
+    return (
+        "#VRML_SIM R2023b utf8\n"
+        f'EXTERNPROTO "{url}/RemoteBox.proto"\n'
+        "RemoteBox { translation 0.3 0.4 0.05 }\n"
+    )
+
+
+def test_externproto_url_is_downloaded_then_read_from_the_cache(
+    remote: str, tmp_path: Path
+) -> None:
+    world = tmp_path / "project" / "worlds" / "remote.wbt"
+    world.parent.mkdir(parents=True)
+    world.write_text(_url_world(remote))
+    _, first = import_wbt(world)
+    assert first["protos"]["downloads"] == [
+        f"{remote}/RemoteBox.proto",
+        f"{remote}/RemotePart.proto",
+    ]
+    assert _boxes(first) == [([0.3, 0.4], [0.1, 0.1])]
+    # The server is gone: the second run reads both files from the cache.
+    (tmp_path / "served" / "RemoteBox.proto").unlink()
+    _, second = import_wbt(world)
+    assert second["protos"]["downloads"] == []
+    assert len(second["protos"]["cache_hits"]) == 2
+    assert _boxes(second) == _boxes(first)
+
+
+def test_unreachable_url_fails_naming_the_url_and_what_to_do(tmp_path: Path) -> None:
+    closed = next(_serve(tmp_path))  # a port that nothing listens on once the server stops
+    url = f"{closed}/Missing.proto"
+    text = f'#VRML_SIM R2023b utf8\nEXTERNPROTO "{url}"\nMissing {{ }}\n'
+    with pytest.raises(ProtoUnavailableError) as error:
+        import_wbt_text(text, str(tmp_path / "w.wbt"))
+    message = str(error.value)
+    assert url in message and "protos/ folder" in message and "WEBOTS_HOME" in message
+
+
+def test_stock_object_without_a_file_gets_a_named_stand_in(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    monkeypatch.setenv("MAZESIM_OFFLINE", "1")
+    text = (
+        "#VRML_SIM R2023b utf8\n"
+        'EXTERNPROTO "webots://projects/objects/floors/protos/CircleArena.proto"\n'
+        "CircleArena { radius 0.5 subdivision 16 }\n"
+    )
+    _, report = import_wbt_text(text, str(tmp_path / "arena.wbt"))
+    assert "CircleArena" in report["protos"]["stand_ins"]
+    assert any("stand-in" in w and "CircleArena" in w for w in report["warnings"])
+    boxes = _boxes(report)
+    assert len(boxes) == 16
+    for centre, _ in boxes:
+        assert (centre[0] ** 2 + centre[1] ** 2) ** 0.5 == pytest.approx(0.505, abs=1e-6)
+
+
+def test_webots_home_is_searched_before_a_stand_in(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    home = tmp_path / "webots"
+    protos = home / "projects" / "objects" / "floors" / "protos"
+    protos.mkdir(parents=True)
+    shutil.copy(DATA / "project" / "protos" / "BoxWall.proto", protos / "CircleArena.proto")
+    (protos / "CircleArena.proto").write_text(
+        (protos / "CircleArena.proto").read_text().replace("PROTO BoxWall", "PROTO CircleArena")
+    )
+    monkeypatch.setenv("WEBOTS_HOME", str(home))
+    text = (
+        "#VRML_SIM R2023b utf8\n"
+        'EXTERNPROTO "webots://projects/objects/floors/protos/CircleArena.proto"\n'
+        "CircleArena { }\n"
+    )
+    _, report = import_wbt_text(text, str(tmp_path / "arena.wbt"))
+    assert report["protos"]["stand_ins"] == {}
+    assert _boxes(report) == [([0.0, 0.0], [0.5, 0.02])]
+
+
+def test_cr_line_ends_import_like_lf() -> None:
+    text = (DATA / "project" / "worlds" / "local.wbt").read_text()
+    source = str(DATA / "project" / "worlds" / "local.wbt")
+    _, lf = import_wbt_text(text, source)
+    _, cr = import_wbt_text(text.replace("\n", "\r"), source)
+    assert cr["obstacles"] == lf["obstacles"] and cr["robot"] == lf["robot"]
+    assert len(cr["obstacles"]) == 9
+
+
+def test_template_error_names_the_proto(tmp_path: Path) -> None:
+    protos = tmp_path / "protos"
+    protos.mkdir()
+    (protos / "Broken.proto").write_text(
+        "#VRML_SIM R2023b utf8\nPROTO Broken [ ]\n"
+        "{\n  %< undefinedName.call(); >%\n  Group { }\n}\n"
+    )
+    from mazesim.errors import WorldFormatError
+
+    with pytest.raises(
+        WorldFormatError, match=r"Broken.proto:1:1: its JavaScript template fails: ReferenceError"
+    ):
+        import_wbt_text("#VRML_SIM R2023b utf8\nBroken { }\n", str(tmp_path / "worlds" / "b.wbt"))
+
+
+def test_floor_texture_url_is_fetched_through_the_cache(remote: str, tmp_path: Path) -> None:
+    from PIL import Image
+
+    grey = np.full((48, 64), 255, dtype=np.uint8)
+    grey[:, 20:28] = 0  # a black band: a line to follow
+    Image.fromarray(grey).save(tmp_path / "served" / "track.png")
+    text = (
+        "#VRML_SIM R2023b utf8\nRectangleArena {\n  floorSize 1.6 1.2\n  floorTileSize 1.6 1.2\n"
+        "  floorAppearance PBRAppearance {\n    baseColorMap ImageTexture {\n"
+        f'      url [ "{remote}/track.png" ]\n    }}\n  }}\n}}\n'
+    )
+    source = str(tmp_path / "worlds" / "floor.wbt")
+    world, report = import_wbt_text(text, source)
+    assert report["floor_paint"] > 0
+    assert not [w for w in report["warnings"] if "texture" in w]
+    # Column 24 of 64 across the 1.6 m floor: x = -0.8 + 24.5 / 64 * 1.6, on the black band.
+    assert world.floor_reflectance(-0.8 + 24.5 / 64 * 1.6, 0.0) <= 0.2
+    assert world.floor_reflectance(0.5, 0.0) > 0.8
+    (tmp_path / "served" / "track.png").unlink()
+    _, again = import_wbt_text(text, source)
+    assert again["floor_paint"] == report["floor_paint"]
+
+
+def test_unreachable_floor_texture_url_is_a_warning_naming_it(tmp_path: Path) -> None:
+    closed = next(_serve(tmp_path))
+    text = (
+        "#VRML_SIM R2023b utf8\nRectangleArena { floorAppearance PBRAppearance { "
+        f'baseColorMap ImageTexture {{ url [ "{closed}/gone.png" ] }} }} }}\n'
+    )
+    _, report = import_wbt_text(text, str(tmp_path / "w.wbt"))
+    assert report["floor_paint"] == 0
+    assert any(f"{closed}/gone.png: cannot be downloaded" in w for w in report["warnings"])
+
+
+def test_balls_and_barrels_stand_in_with_their_documented_geometry(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    monkeypatch.setenv("MAZESIM_OFFLINE", "1")
+    base = "webots://projects/objects"
+    text = (
+        "#VRML_SIM R2023b utf8\n"
+        f'EXTERNPROTO "{base}/balls/protos/SoccerBall.proto"\n'
+        f'EXTERNPROTO "{base}/obstacles/protos/OilBarrel.proto"\n'
+        f'EXTERNPROTO "{base}/drinks/protos/Can.proto"\n'
+        "SoccerBall { translation 0.5 0 0.113 }\nOilBarrel { translation -1 0 0.44 }\n"
+        "Can { translation 0 0.5 0.0611 }\nE-puck { }\n"
+    )
+    _, report = import_wbt_text(text, str(tmp_path / "objects.wbt"))
+    assert set(report["protos"]["stand_ins"]) == {"SoccerBall", "OilBarrel", "Can"}
+    # The ball (0.6 kg, 0.226 m across) and the can are movable bodies; the barrel a static disc.
+    ball, can = report["bodies"]
+    assert ball["center"] == [0.5, 0.0] and ball["radius"] == pytest.approx(0.113)
+    assert ball["mass"] == pytest.approx(0.6)
+    assert can["center"] == [0.0, 0.5] and can["radius"] == pytest.approx(0.03175)
+    assert report["obstacles"] == [{"kind": "circle", "center": [-1.0, 0.0], "radius": 0.305}]
+
+
+def test_a_projects_robot_proto_is_the_robot_with_its_devices() -> None:
+    _, report = import_wbt(DATA / "project" / "worlds" / "robot_proto.wbt")
+    assert report["robot_model"] == "E-puck" and report["robot_line"] == 4
+    assert report["robot"] == pytest.approx({"x": 0.3, "y": 0.1, "yaw": 1.5708})
+    assert [d["name"] for d in report["extension_devices"]] == ["heading"]
+    # The controller field given by the PROTO's default picks the robot for that controller.
+    _, chosen = import_wbt(DATA / "project" / "worlds" / "robot_proto.wbt", "course_controller")
+    assert chosen["robot"] == report["robot"]
+
+
+def test_hidden_engine_state_in_an_instance_is_skipped(tmp_path: Path) -> None:
+    protos = tmp_path / "protos"
+    protos.mkdir()
+    shutil.copy(DATA / "project" / "protos" / "BoxWall.proto", protos)
+    shutil.copy(DATA / "project" / "protos" / "Corridor.proto", protos)
+    text = (
+        "#VRML_SIM R2023b utf8\n"
+        "Corridor {\n  translation 0 0 0\n  hidden linearVelocity_0 0 0 0\n"
+        "  wallSize 0.5 0.02 0.1\n}\n"
+        "Pose { children [\n  BoxWall {\n    translation 0.4 0.4 0.05\n"
+        "    hidden rotation_1 0 0 1 0.2\n  }\n] }\nE-puck { }\n"
+    )
+    _, report = import_wbt_text(text, str(tmp_path / "worlds" / "hidden.wbt"))
+    assert not [w for w in report["warnings"] if "is not a field" in w], report["warnings"]
+    assert len(_boxes(report)) == 3
+    assert report["robot_line"] == 13  # the lines after the expansions are the file's
