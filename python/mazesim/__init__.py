@@ -95,8 +95,10 @@ def load_world(name_or_path: str | os.PathLike[str]) -> World:
         return World.builtin(name_or_path)
     try:
         path = os.fspath(name_or_path)
-    except TypeError as error:  # a PathLike whose __fspath__ gives neither str nor bytes
-        raise InvalidArgumentError(f"expected name_or_path to be a path, found: {error}") from None
+    except TypeError as bad_path:  # a PathLike whose __fspath__ gives neither str nor bytes
+        raise InvalidArgumentError(
+            f"expected name_or_path to be a path, found: {bad_path}"
+        ) from None
     if isinstance(path, bytes):
         path = os.fsdecode(path)
     if os.path.isfile(path):
