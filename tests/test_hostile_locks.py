@@ -54,7 +54,7 @@ def test_a_signal_handler_that_reads_the_batch_runs_once_the_batch_is_free() -> 
         """
         seen = []
         signal.signal(signal.SIGALRM, lambda *_: seen.append(int(batch.steps().sum())))
-        signal.setitimer(signal.ITIMER_REAL, 0.05, 0.05)
+        signal.setitimer(signal.ITIMER_REAL, 0.01, 0.01)
         long_run()
         signal.setitimer(signal.ITIMER_REAL, 0, 0)
         total = int(batch.steps().sum())
@@ -93,9 +93,10 @@ def test_ctrl_c_ends_the_wait_for_a_batch_busy_on_another_thread() -> None:
         """
         import time
         running = threading.Event()
-        runner = threading.Thread(target=lambda: (running.set(), long_run(20000)))
-        runner.start(); running.wait(); time.sleep(0.2)
-        threading.Timer(0.3, os.kill, (os.getpid(), signal.SIGINT)).start()
+        # 2.5 million env-steps: a second or more, however quiet the machine.
+        runner = threading.Thread(target=lambda: (running.set(), long_run(40000)))
+        runner.start(); running.wait(); time.sleep(0.1)
+        threading.Timer(0.1, os.kill, (os.getpid(), signal.SIGINT)).start()
         started = time.monotonic()
         try:
             batch.steps()
@@ -138,8 +139,9 @@ def test_a_forked_child_refuses_a_batch_its_parent_was_stepping(threads: int) ->
         batch = _core.BatchSimulator(world, num_envs=64, threads={threads})
         out = buffers(batch)
         running = threading.Event()
-        runner = threading.Thread(target=lambda: (running.set(), long_run(6000)))
-        runner.start(); running.wait(); time.sleep(0.2)
+        # 2.5 million env-steps: a second or more, however quiet the machine.
+        runner = threading.Thread(target=lambda: (running.set(), long_run(40000)))
+        runner.start(); running.wait(); time.sleep(0.1)
         pid = os.fork()
         if pid == 0:
             code = 1
