@@ -28,7 +28,7 @@ export PYO3_PYTHON := $(CURDIR)/$(BIN)/python
 
 .PHONY: help venv build test demo lint typecheck fmt bench wheel clean ros-deps ros2-deps ros2-peer ros-demo bench-peers \
 	bench-transfer webots-compat \
-	browser-deps replay-screenshot docs docs-deps sb3-deps
+	browser-deps replay-screenshot docs docs-deps sb3-deps fuzz
 
 help: ## list the targets
 	@echo "mazesim make targets:"
@@ -54,6 +54,15 @@ test: build ros-deps ros2-deps ros2-peer browser-deps docs-deps sb3-deps ## run 
 	cargo test --release --locked --quiet --manifest-path $(ROS2_PEER_MANIFEST) --target-dir $(ROS2_PEER_TARGET)
 	$(BIN)/python -m pytest
 	$(BIN)/python -m mypy.stubtest mazesim._core
+
+# `make fuzz`: the readers' fuzz tests with more mutated inputs, and hostile calls over every module
+# of the public surface (docs/reliability.md).
+FUZZ_CASES ?= 20000
+FUZZ_CALLS ?= 5
+
+fuzz: build ## fuzz the readers (FUZZ_CASES inputs each) and every public entry point (FUZZ_CALLS hostile calls each)
+	PROPTEST_CASES=$(FUZZ_CASES) cargo test -p mazesim-core --release --test parser_fuzz --test wbt_fuzz
+	MAZESIM_SURFACE=all MAZESIM_SURFACE_CALLS=$(FUZZ_CALLS) $(BIN)/python -m pytest tests/test_public_surface.py
 
 demo: build ## the shipped hierarchical navigator drives seed-maze to its goal; writes mazesim-demo/ (replay.html: watch it)
 	$(BIN)/mazesim demo --controller hrl --out mazesim-demo --html mazesim-demo/replay.html

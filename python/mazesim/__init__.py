@@ -35,6 +35,7 @@ from mazesim.errors import (
     InvalidArgumentError,
     MazesimError,
     MazesimIOError,
+    SimulatorBusyError,
     SnapshotError,
     UnknownNameError,
     WorldFormatError,
@@ -49,6 +50,7 @@ __all__ = [
     "MazesimIOError",
     "RobotProfile",
     "Simulator",
+    "SimulatorBusyError",
     "SnapshotError",
     "UnknownNameError",
     "World",
@@ -82,10 +84,23 @@ def load_world(name_or_path: str | os.PathLike[str]) -> World:
             ``available`` attribute list the built-in names.
         WorldFormatError: The file is not a valid world (the message names file, line and field).
         MazesimIOError: The file exists but cannot be read.
+        InvalidArgumentError: ``name_or_path`` is neither a str nor an ``os.PathLike``.
     """
+    if not isinstance(name_or_path, (str, os.PathLike)):
+        raise InvalidArgumentError(
+            "expected name_or_path to be a built-in world name or a path (str or os.PathLike), "
+            f"found a {type(name_or_path).__name__}"
+        )
     if isinstance(name_or_path, str) and name_or_path in builtin_world_names():
         return World.builtin(name_or_path)
-    path = os.fspath(name_or_path)
+    try:
+        path = os.fspath(name_or_path)
+    except TypeError as bad_path:  # a PathLike whose __fspath__ gives neither str nor bytes
+        raise InvalidArgumentError(
+            f"expected name_or_path to be a path, found: {bad_path}"
+        ) from None
+    if isinstance(path, bytes):
+        path = os.fsdecode(path)
     if os.path.isfile(path):
         if path.lower().endswith(".wbt"):
             from mazesim.webots.importer import import_wbt

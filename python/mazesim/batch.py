@@ -30,6 +30,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import BatchSimulator, RobotProfile, World
+from mazesim._sizes import MOST_ENVS, bounded_array, bounded_list
 from mazesim.actions import WHEEL_SPEED_FRACTIONS
 from mazesim.errors import InvalidArgumentError
 
@@ -91,8 +92,9 @@ class RobotBatch:
         control_step_ms: float = CONTROL_STEP_MS,
         threads: int = 0,
     ) -> None:
-        self.worlds = list(worlds)
-        self.world_of_env = np.asarray(world_of_env, dtype=np.int64).ravel().copy()
+        self.worlds = bounded_list(worlds, "worlds", MOST_ENVS)
+        self.world_of_env = bounded_array(world_of_env, "world_of_env", np.int64, MOST_ENVS)
+        self.world_of_env = self.world_of_env.ravel().copy()
         count = self.world_of_env.size
         if not self.worlds or count < 1:
             raise InvalidArgumentError(
@@ -150,7 +152,7 @@ class RobotBatch:
             mask: (N,) bool, the robots to reset.
             seeds: (N,) noise seeds of the reset robots (the others' are ignored).
         """
-        rows = None if seeds is None else np.asarray(seeds, dtype=np.uint64)
+        rows = None if seeds is None else bounded_array(seeds, "seeds", np.uint64, self.num_envs)
         self.simulator.reset(
             self.observations, self.poses, self.colliding, self.crossings, mask=mask, seeds=rows
         )
@@ -173,13 +175,13 @@ class RobotBatch:
         Their counters restart and their rows of the buffers hold their first observations;
         the other robots are not touched.
         """
-        robots = np.asarray(envs, dtype=np.int64).ravel()
-        starts = np.asarray(poses, dtype=np.float64).reshape(robots.size, 3)
+        robots = bounded_array(envs, "envs", np.int64, self.num_envs).ravel()
+        starts = bounded_array(poses, "poses", np.float64, 3 * robots.size).reshape(robots.size, 3)
         self.simulator.set_starts_at(robots, np.ascontiguousarray(starts))
         mask = np.zeros(self.num_envs, dtype=bool)
         mask[robots] = True
         all_seeds = np.zeros(self.num_envs, dtype=np.uint64)
-        all_seeds[robots] = np.asarray(seeds, dtype=np.uint64).ravel()
+        all_seeds[robots] = bounded_array(seeds, "seeds", np.uint64, robots.size).ravel()
         self.reset(mask, all_seeds)
 
     def collisions(self) -> npt.NDArray[np.int64]:

@@ -21,6 +21,7 @@ __all__ = [
     "MissingDependencyError",
     "PolicyFormatError",
     "RunFormatError",
+    "SimulatorBusyError",
     "SnapshotError",
     "UnknownNameError",
     "WorldFormatError",
@@ -102,6 +103,13 @@ class SnapshotError(InvalidArgumentError):
 class InternalError(MazesimError, RuntimeError):
     """A bug in mazesim: the compiled core panicked. The message starts with "internal error,
     please report" and carries the panic's message; the process goes on."""
+
+
+class SimulatorBusyError(MazesimError, RuntimeError):
+    """A simulator or batch is in the middle of a call that cannot be waited for: a call on the
+    same thread (from a property of one of the arguments, or from a signal handler), or, in a
+    child made by ``fork()``, a call of a parent's thread the child does not have. A call from
+    another thread is not refused: it waits (the GIL released) until the object is free."""
 
 
 class MissingDependencyError(MazesimError, ImportError):

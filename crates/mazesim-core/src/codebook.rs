@@ -18,10 +18,19 @@ pub fn default_codes() -> Vec<String> {
     out
 }
 
-/// Checks a code book: codes of 0/1 of one length, no palindrome, no duplicate, and no code whose
+/// Most codes in a book (a book of 12-bit codes has fewer than 2,048 usable ones).
+pub const MAX_CODES: usize = 4096;
+
+/// Checks a code book (at most [`MAX_CODES`] codes): codes of 0/1 of one length, no palindrome, no duplicate, and no code whose
 /// reverse is another code of the book.
 pub fn validate(codes: &[String]) -> Result<()> {
     let bad = |msg: String| Err(Error::InvalidArgument(msg));
+    if codes.len() > MAX_CODES {
+        return bad(format!(
+            "expected a book of at most {MAX_CODES} codes, found {}",
+            codes.len()
+        ));
+    }
     for (i, c) in codes.iter().enumerate() {
         if c.is_empty() || !c.chars().all(|b| b == '0' || b == '1') {
             return bad(format!(

@@ -67,6 +67,11 @@ pub enum Error {
     /// A long call stopped because the caller asked (Ctrl-C).
     #[error("interrupted")]
     Interrupted,
+
+    /// A simulator or batch is in use by a call that cannot be waited for (a re-entrant call on
+    /// the same thread, or a call of a thread that a forked child does not have).
+    #[error("{0}")]
+    Busy(String),
     /// A bug in mazesim: a panic caught before it reached the caller.
     #[error("internal error, please report: {0}")]
     Internal(String),

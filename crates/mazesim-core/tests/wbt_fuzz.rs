@@ -10,6 +10,9 @@ use mazesim_core::Error;
 use proptest::prelude::*;
 use proptest::sample::Index;
 
+mod mutate;
+use mutate::{apply, mutation};
+
 /// Time one mutated file may take to read, import and build (debug build, slow machine).
 const TIME_LIMIT: Duration = Duration::from_secs(5);
 
@@ -109,60 +112,6 @@ fn check(bytes: &[u8], source: &str) {
     assert!(took < TIME_LIMIT, "{source}: took {took:?}");
 }
 
-#[derive(Debug, Clone)]
-enum Mutation {
-    Flip(Index, u8),
-    Truncate(Index),
-    Insert(Index, usize),
-    InsertBytes(Index, Vec<u8>),
-    Delete(Index, usize),
-    Duplicate(Index, usize, Index),
-}
-
-fn mutation() -> impl Strategy<Value = Mutation> {
-    prop_oneof![
-        (any::<Index>(), any::<u8>()).prop_map(|(i, b)| Mutation::Flip(i, b)),
-        any::<Index>().prop_map(Mutation::Truncate),
-        (any::<Index>(), 0..SNIPPETS.len()).prop_map(|(i, s)| Mutation::Insert(i, s)),
-        (any::<Index>(), prop::collection::vec(any::<u8>(), 1..8))
-            .prop_map(|(i, b)| Mutation::InsertBytes(i, b)),
-        (any::<Index>(), 1usize..64).prop_map(|(i, n)| Mutation::Delete(i, n)),
-        (any::<Index>(), 1usize..400, any::<Index>())
-            .prop_map(|(i, n, j)| Mutation::Duplicate(i, n, j)),
-    ]
-}
-
-fn apply(bytes: &mut Vec<u8>, m: &Mutation) {
-    let len = bytes.len();
-    let at = |i: &Index| if len == 0 { 0 } else { i.index(len + 1) };
-    match m {
-        Mutation::Flip(i, b) if len > 0 => {
-            let k = i.index(len);
-            bytes[k] ^= b | 1;
-        }
-        Mutation::Flip(..) => {}
-        Mutation::Truncate(i) => bytes.truncate(at(i)),
-        Mutation::Insert(i, s) => {
-            let k = at(i);
-            bytes.splice(k..k, SNIPPETS[*s].bytes());
-        }
-        Mutation::InsertBytes(i, b) => {
-            let k = at(i);
-            bytes.splice(k..k, b.iter().copied());
-        }
-        Mutation::Delete(i, n) => {
-            let k = at(i);
-            bytes.drain(k..(k + n).min(len));
-        }
-        Mutation::Duplicate(i, n, j) => {
-            let k = at(i);
-            let piece: Vec<u8> = bytes[k..(k + n).min(len)].to_vec();
-            let to = at(j);
-            bytes.splice(to..to, piece);
-        }
-    }
-}
-
 proptest! {
     // 512 cases unless PROPTEST_CASES asks for another number (a longer fuzzing run).
     #![proptest_config(ProptestConfig {
@@ -173,13 +122,13 @@ proptest! {
     #[test]
     fn mutated_real_worlds_never_panic_or_hang(
         file in any::<Index>(),
-        mutations in prop::collection::vec(mutation(), 1..8),
+        mutations in prop::collection::vec(mutation(SNIPPETS.len()), 1..8),
     ) {
         let corpus = corpus();
         let (name, original) = &corpus[file.index(corpus.len())];
         let mut bytes = original.clone();
         for m in &mutations {
-            apply(&mut bytes, m);
+            apply(&mut bytes, m, SNIPPETS);
         }
         check(&bytes, name);
     }

@@ -221,3 +221,82 @@ pub fn type_name(obj: &Bound<'_, PyAny>) -> String {
         .map(|n| n.to_string())
         .unwrap_or_default()
 }
+
+/// The items of a sequence argument (a list, tuple, range or other sized iterable; not a str or
+/// bytes), its `len()` checked against `most` BEFORE anything is reserved: every sequence taken
+/// from Python goes through here, so that `seeds=range(10**9)` is an `InvalidArgumentError`
+/// saying the bound and the length found, not an attempt to allocate for a billion items.
+/// `expected` says what the items should be ("ints in 0..2**64"); an iterator that yields more
+/// than its `len()` said is cut at `most` too.
+pub fn bounded_items<'py>(
+    obj: &Bound<'py, PyAny>,
+    name: &str,
+    expected: &str,
+    most: usize,
+) -> PyResult<Vec<Bound<'py, PyAny>>> {
+    let refuse = |found: String| {
+        invalid(format!(
+            "expected {name} to be a sequence of at most {most} {expected}, found {found}"
+        ))
+    };
+    let textual = obj.is_instance_of::<pyo3::types::PyString>()
+        || obj.is_instance_of::<pyo3::types::PyBytes>()
+        || obj.is_instance_of::<pyo3::types::PyByteArray>();
+    let len = match obj.len() {
+        Ok(len) if !textual => len,
+        // No length, or one beyond `sys.maxsize` (OverflowError).
+        _ => return Err(refuse(format!("a {}", type_name(obj)))),
+    };
+    if len > most {
+        return Err(refuse(format!("a {} of {len} items", type_name(obj))));
+    }
+    let mut items = Vec::with_capacity(len);
+    let iter = obj
+        .try_iter()
+        .map_err(|_| refuse(format!("a {} that cannot be iterated", type_name(obj))))?;
+    for item in iter {
+        if items.len() == most {
+            return Err(refuse(format!(
+                "a {} of more than {most} items",
+                type_name(obj)
+            )));
+        }
+        items.push(item.map_err(|e| not_ours(obj.py(), e, name))?);
+    }
+    Ok(items)
+}
+
+/// An error raised by the user's own code while an argument was read (its `__iter__`, a
+/// property): KeyboardInterrupt and the package's errors as they are, anything else as an
+/// `InvalidArgumentError` naming the argument and carrying the original as its cause.
+pub fn not_ours(py: Python<'_>, error: PyErr, name: &str) -> PyErr {
+    let ours = py
+        .import("mazesim.errors")
+        .and_then(|m| m.getattr("MazesimError"))
+        .is_ok_and(|root| error.is_instance(py, &root));
+    if ours || !error.is_instance_of::<pyo3::exceptions::PyException>(py) {
+        return error;
+    }
+    let wrapped = invalid(format!("reading {name} failed: {error}"));
+    wrapped.set_cause(py, Some(error));
+    wrapped
+}
+
+/// Most dimensions of a shape (numpy's own limit is 64).
+pub const MOST_DIMENSIONS: usize = 64;
+
+/// The `.shape` of an array-like argument as sizes, or `None` when it has none that is a short
+/// sequence of ints (a shape of more than [`MOST_DIMENSIONS`] entries, `range(10**9)`, is not
+/// read item by item).
+pub fn shape_of(obj: &Bound<'_, PyAny>) -> Option<Vec<usize>> {
+    let shape = obj.getattr("shape").ok()?;
+    let items = bounded_items(&shape, "shape", "sizes", MOST_DIMENSIONS).ok()?;
+    items.iter().map(|d| d.extract::<usize>().ok()).collect()
+}
+
+/// The error of calling a class that is made by its factories, `how` naming them.
+pub fn made_elsewhere(class: &str, how: &str) -> PyErr {
+    invalid(format!(
+        "expected a {class} to be made by {how}, not by calling mazesim.{class}()"
+    ))
+}

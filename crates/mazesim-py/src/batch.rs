@@ -1,7 +1,7 @@
 //! `BatchSimulator` for Python: N environments stepped in parallel into caller-owned numpy buffers,
 //! with the GIL released while they run.
 
-use std::sync::{Arc, Mutex};
+use std::sync::Arc;
 
 use mazesim_core::control::avoid_collision::EPUCK_MAX_SPEED;
 use mazesim_core::limits::{MAX_ENVS, MAX_THREADS};
@@ -11,10 +11,11 @@ use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::{type_name, Bytes, Flag, IntArg, Real, Text};
+use crate::args::{bounded_items, type_name, Bytes, Flag, IntArg, Real, Text};
 use crate::buffers::{copied, writable};
 use crate::errors::{invalid, IntoPy};
-use crate::guard::{enter, enter_detached};
+use crate::guard::{ctrl_c_pressed, enter, enter_detached};
+use crate::lock::Exclusive;
 use crate::lower;
 use crate::profile::RobotArg;
 use crate::run::{self, TabularArgs, Traces};
@@ -24,7 +25,7 @@ use crate::world::{world_argument, PyWorld};
 /// N independent environments stepped together.
 #[pyclass(name = "BatchSimulator", module = "mazesim._core", frozen)]
 pub struct PyBatch {
-    inner: Mutex<Batch>,
+    inner: Exclusive<Batch>,
     n: usize,
     distance_width: usize,
     ground_width: usize,
@@ -38,11 +39,6 @@ fn bad(msg: String) -> PyErr {
 }
 
 impl PyBatch {
-    fn with<T>(&self, f: impl FnOnce(&mut Batch) -> T) -> T {
-        let mut guard = self.inner.lock().unwrap_or_else(|p| p.into_inner());
-        f(&mut guard)
-    }
-
     /// Runs `work` on the batch with the four output buffers (observations, poses, colliding,
     /// crossings) borrowed and checked, the GIL released.
     fn with_outputs<'py, T: Send>(
@@ -54,7 +50,7 @@ impl PyBatch {
         let [observations, poses, colliding, crossings] = buffers;
         let mut borrowed = Borrowed::new(self, observations, poses, colliding, crossings)?;
         let out = borrowed.outputs()?;
-        enter_detached(py, || self.with(|b| work(b, out)))
+        enter_detached(py, || self.inner.with_detached(|b| work(b, out)))
     }
 
     /// One value per environment as a numpy array.
@@ -64,7 +60,7 @@ impl PyBatch {
         value: impl Fn(&mazesim_core::Simulator) -> T,
     ) -> PyResult<Bound<'py, PyArray1<T>>> {
         enter(|| {
-            let v: Vec<T> = self.with(|b| b.envs().iter().map(value).collect());
+            let v: Vec<T> = self.inner.with(|b| b.envs().iter().map(value).collect())?;
             Ok(PyArray1::from_vec(py, v))
         })
     }
@@ -143,23 +139,19 @@ fn seeds_from(seeds: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<u64>> {
         let base = seeds.extract::<IntArg>()?.seed("seeds")?;
         return Ok((0..n as u64).map(|i| base.wrapping_add(i)).collect());
     }
-    let list: Vec<IntArg> = seeds.extract().map_err(|_| {
-        bad(format!(
-            "expected seeds as one int (env i gets seed + i) or {n} ints in 0..2**64"
-        ))
-    })?;
-    if list.len() != n {
-        return Err(bad(format!("expected {n} seeds, found {}", list.len())));
+    let expected = "ints in 0..2**64 (one per environment), or one int (env i gets seed + i)";
+    let items = bounded_items(seeds, "seeds", expected, n)?;
+    if items.len() != n {
+        return Err(bad(format!("expected {n} seeds, found {}", items.len())));
     }
+    let list = items
+        .iter()
+        .map(|s| s.extract::<IntArg>())
+        .collect::<PyResult<Vec<_>>>()?;
     list.iter()
         .enumerate()
         .map(|(i, s)| s.seed(&format!("seeds[{i}]")))
         .collect()
-}
-
-/// Asks Python whether Ctrl-C was pressed (on the main thread; elsewhere never).
-fn interrupted() -> bool {
-    Python::attach(|py| py.check_signals().is_err())
 }
 
 #[pymethods]
@@ -194,9 +186,14 @@ impl PyBatch {
                 mazesim_core::batch::check_size(n, walls).py()?;
                 vec![world.clone(); n]
             } else {
-                let list: Vec<Bound<'_, PyWorld>> = worlds.extract().map_err(|_| {
-                    bad("expected worlds to be a World or a sequence of World".into())
-                })?;
+                let list: Vec<Bound<'_, PyWorld>> =
+                    bounded_items(worlds, "worlds", "mazesim.World (or one World)", MAX_ENVS)?
+                        .into_iter()
+                        .map(|w| w.cast_into::<PyWorld>())
+                        .collect::<Result<_, _>>()
+                        .map_err(|_| {
+                            bad("expected worlds to be a World or a sequence of World".into())
+                        })?;
                 if let Some(n) = num_envs {
                     if n != list.len() {
                         return Err(bad(format!(
@@ -221,9 +218,9 @@ impl PyBatch {
             let mut batch = enter_detached(py, move || {
                 Batch::with_robots(worlds, &profiles, &seeds, noise, control, threads)
             })?;
-            batch.set_interrupt(Box::new(interrupted));
+            batch.set_interrupt(Box::new(ctrl_c_pressed));
             Ok(Self {
-                inner: Mutex::new(batch),
+                inner: Exclusive::new(batch, "this BatchSimulator"),
                 n,
                 distance_width: dw,
                 ground_width: gw,
@@ -254,7 +251,7 @@ impl PyBatch {
     /// (envs of equal worlds share one copy) and each distinct robot profile's sensing set-up
     /// counted once.
     fn bytes_per_env(&self) -> PyResult<usize> {
-        enter(|| Ok(self.with(|b| b.bytes_per_env())))
+        enter(|| self.inner.with(|b| b.bytes_per_env()))
     }
 
     /// Steps every environment with `actions` ((N, 2) float32 wheel speeds, rad/s).
@@ -468,7 +465,9 @@ impl PyBatch {
             let index = index.count("index", self.n.saturating_sub(1))?;
             let seed = seed.seed("seed")?;
             let w = world_argument(world, "world")?;
-            enter_detached(py, || self.with(|b| b.set_world(index, w, seed)))
+            enter_detached(py, || {
+                self.inner.with_detached(|b| b.set_world(index, w, seed))
+            })
         })
     }
 
@@ -477,7 +476,7 @@ impl PyBatch {
     fn set_starts(&self, starts: &Bound<'_, PyAny>) -> PyResult<()> {
         enter(|| {
             let rows = copied::<f64>(starts, "starts", "float64", &[self.n, 3])?;
-            self.with(|b| b.set_starts(&rows)).py()
+            self.inner.with(|b| b.set_starts(&rows))?.py()
         })
     }
 
@@ -490,7 +489,7 @@ impl PyBatch {
     ) -> PyResult<Bound<'py, pyo3::types::PyBytes>> {
         enter(|| {
             let index = index.count("index", self.n.saturating_sub(1))?;
-            let bytes = self.with(|b| b.envs()[index].snapshot());
+            let bytes = self.inner.with(|b| b.envs()[index].snapshot())?;
             Ok(pyo3::types::PyBytes::new(py, &bytes))
         })
     }
@@ -501,7 +500,8 @@ impl PyBatch {
         enter(|| {
             let index = index.count("index", self.n.saturating_sub(1))?;
             let snapshot = snapshot.value("snapshot", "bytes")?.0;
-            self.with(|b| b.env_mut(index).and_then(|env| env.restore(&snapshot)))
+            self.inner
+                .with(|b| b.env_mut(index).and_then(|env| env.restore(&snapshot)))?
                 .py()
         })
     }
@@ -511,7 +511,7 @@ impl PyBatch {
     fn set_starts_at(&self, envs: &Bound<'_, PyAny>, starts: &Bound<'_, PyAny>) -> PyResult<()> {
         enter(|| {
             let (indices, rows) = self.listed_rows(envs, starts, "starts")?;
-            self.with(|b| b.set_starts_at(&indices, &rows)).py()
+            self.inner.with(|b| b.set_starts_at(&indices, &rows))?.py()
         })
     }
 
@@ -521,14 +521,14 @@ impl PyBatch {
     fn set_goals_at(&self, envs: &Bound<'_, PyAny>, goals: &Bound<'_, PyAny>) -> PyResult<()> {
         enter(|| {
             let (indices, rows) = self.listed_rows(envs, goals, "goals")?;
-            self.with(|b| b.set_goals_at(&indices, &rows)).py()
+            self.inner.with(|b| b.set_goals_at(&indices, &rows))?.py()
         })
     }
 
     /// The goal disc of each environment, (N, 3) float64 x, y, radius; NaN rows for none.
     fn goals<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
         enter(|| {
-            let v: Vec<f64> = self.with(|b| {
+            let v: Vec<f64> = self.inner.with(|b| {
                 b.envs()
                     .iter()
                     .flat_map(|e| match e.goal() {
@@ -536,7 +536,7 @@ impl PyBatch {
                         None => [f64::NAN; 3],
                     })
                     .collect()
-            });
+            })?;
             PyArray1::from_vec(py, v).reshape([self.n, 3])
         })
     }
@@ -545,7 +545,9 @@ impl PyBatch {
     /// quantised to the profile's encoder resolution.
     fn encoders<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
         enter(|| {
-            let v: Vec<f64> = self.with(|b| b.envs().iter().flat_map(|e| e.encoders()).collect());
+            let v: Vec<f64> = self
+                .inner
+                .with(|b| b.envs().iter().flat_map(|e| e.encoders()).collect())?;
             PyArray1::from_vec(py, v).reshape([self.n, 2])
         })
     }

@@ -11,20 +11,18 @@ use pyo3::prelude::*;
 use crate::errors::to_py;
 
 fn describe(obj: &Bound<'_, PyAny>) -> String {
+    // Both read the object's own attributes, which may be anything: the dtype's text is cut
+    // short, and a shape is shown only when it is a short sequence of sizes.
     let dtype = obj
         .getattr("dtype")
-        .map(|d| d.to_string())
+        .map(|d| d.to_string().chars().take(80).collect::<String>())
         .unwrap_or_else(|_| "no dtype".into());
-    let shape = obj
-        .getattr("shape")
-        .map(|s| s.to_string())
-        .unwrap_or_else(|_| "no shape".into());
+    let shape = crate::args::shape_of(obj)
+        .map(|s| shape_text(&s))
+        .unwrap_or_else(|| "no usable shape".into());
     format!(
         "{} of dtype {dtype} and shape {shape}",
-        obj.get_type()
-            .name()
-            .map(|n| n.to_string())
-            .unwrap_or_default()
+        crate::args::type_name(obj)
     )
 }
 

@@ -7,7 +7,16 @@ use pyo3::prelude::*;
 /// Builds the Python exception for a core error.
 pub fn to_py(err: Error) -> PyErr {
     if let Error::Interrupted = err {
-        return PyKeyboardInterrupt::new_err("interrupted");
+        // Ctrl-C was taken from Python without running its handler (see `guard::ctrl_c_pressed`):
+        // handed back, so that the SIGINT handler (by default: raise KeyboardInterrupt) runs now.
+        return Python::attach(|py| {
+            // SAFETY: called with the GIL held, as the C API asks.
+            unsafe { pyo3::ffi::PyErr_SetInterrupt() };
+            match py.check_signals() {
+                Err(raised) => raised,
+                Ok(()) => PyKeyboardInterrupt::new_err("interrupted"),
+            }
+        });
     }
     Python::attach(|py| match build(py, &err) {
         Ok(e) => e,
@@ -26,6 +35,7 @@ fn build(py: Python<'_>, err: &Error) -> PyResult<PyErr> {
         Error::InvalidArgument(_) => "InvalidArgumentError",
         Error::Io { .. } => "MazesimIOError",
         Error::Snapshot(_) => "SnapshotError",
+        Error::Busy(_) => "SimulatorBusyError",
         Error::Internal(_) | Error::Interrupted => "InternalError",
     };
     let instance = errors.getattr(class_name)?.call1((err.to_string(),))?;

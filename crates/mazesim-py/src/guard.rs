@@ -43,6 +43,16 @@ pub fn enter_detached<T: Send>(
     }
 }
 
+/// Whether Ctrl-C was pressed since the last call (asked on the main thread; elsewhere never),
+/// WITHOUT running Python's signal handlers: long calls ask it while they hold their simulator's
+/// lock, where a handler that used the same simulator would wait for itself. The press is handed
+/// back to Python when the call ends (`errors::to_py` of `Error::Interrupted`), so the handler
+/// runs then, the lock free.
+pub fn ctrl_c_pressed() -> bool {
+    // SAFETY: called with the GIL held (`attach`), as the C API asks.
+    Python::attach(|_| unsafe { pyo3::ffi::PyOS_InterruptOccurred() } != 0)
+}
+
 /// Panics with `message` inside the core's reach: on the calling thread, or on a helper thread
 /// of a batch when `on_helper_thread`. Only the tests of the panic guard call it.
 #[pyfunction]

@@ -9,6 +9,7 @@ mod batch;
 mod buffers;
 mod errors;
 mod guard;
+mod lock;
 mod lower;
 mod profile;
 mod run;
@@ -19,7 +20,7 @@ mod world;
 
 use pyo3::prelude::*;
 
-use args::{Flag, Given, IntArg, Real};
+use args::{bounded_items, Flag, Given, IntArg, Real};
 use errors::IntoPy;
 use guard::enter;
 
@@ -82,9 +83,17 @@ fn default_codes() -> PyResult<Vec<String>> {
 
 /// Checks a barcode book (no palindrome, duplicate or reverse clash); raises InvalidArgumentError.
 #[pyfunction]
-fn validate_codes(codes: Given<Vec<String>>) -> PyResult<()> {
+fn validate_codes(codes: &Bound<'_, PyAny>) -> PyResult<()> {
     enter(|| {
-        let codes = codes.value("codes", "a list of str")?;
+        let expected = "str of 0 and 1";
+        let most = mazesim_core::codebook::MAX_CODES;
+        let codes = bounded_items(codes, "codes", expected, most)?
+            .iter()
+            .map(|c| {
+                c.extract::<Given<String>>()?
+                    .value("each of codes", "a str")
+            })
+            .collect::<PyResult<Vec<String>>>()?;
         mazesim_core::codebook::validate(&codes).py()
     })
 }

@@ -6,6 +6,7 @@ use std::sync::Arc;
 
 use mazesim_core::control::door::NUM_SUBTASKS;
 use mazesim_core::control::tabular::NUM_ACTIONS;
+use mazesim_core::limits::MAX_ENVS;
 use mazesim_core::lower_training::{
     LowerRound, Rewards, RoundCounts, RoundSettings, StartQueues, Symmetry, PATH_WIDTH, ROWS,
 };
@@ -15,7 +16,7 @@ use numpy::{PyReadonlyArrayDyn, PyReadwriteArrayDyn};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::{type_name, Real};
+use crate::args::{bounded_items, type_name, Real};
 use crate::buffers::{copied, readable, writable};
 use crate::errors::{invalid, IntoPy};
 use crate::world::world_argument;
@@ -150,9 +151,7 @@ pub struct RoundArrays<'py> {
 }
 
 fn shape_of(obj: &Bound<'_, PyAny>) -> Vec<usize> {
-    obj.getattr("shape")
-        .and_then(|s| s.extract::<Vec<usize>>())
-        .unwrap_or_default()
+    crate::args::shape_of(obj).unwrap_or_default()
 }
 
 fn indices<const K: usize>(values: Vec<i64>, name: &str, below: usize) -> PyResult<[usize; K]> {
@@ -185,15 +184,9 @@ impl<'py> RoundArrays<'py> {
         allowed: &Bound<'py, PyAny>,
         wheel_speeds: &Bound<'py, PyAny>,
     ) -> PyResult<Self> {
-        let worlds = worlds
-            .try_iter()
-            .map_err(|_| {
-                invalid(format!(
-                    "expected worlds to be a list of mazesim.World, found a {}",
-                    type_name(worlds)
-                ))
-            })?
-            .map(|w| world_argument(&w?, "each of worlds"))
+        let worlds = bounded_items(worlds, "worlds", "mazesim.World", MAX_ENVS)?
+            .iter()
+            .map(|w| world_argument(w, "each of worlds"))
             .collect::<PyResult<Vec<_>>>()?;
         let starts = as_dict(starts, "starts")?;
         let start_world = entry(starts, "starts", "world")?;

@@ -4,12 +4,13 @@
 
 use std::sync::Arc;
 
+use mazesim_core::limits::MAX_ENVS;
 use mazesim_core::{Perturbation, RobotProfile};
 use numpy::PyArray2;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString, PyTuple};
 
-use crate::args::{type_name, IntArg, Label, Real, SourceName, Text};
+use crate::args::{bounded_items, type_name, IntArg, Label, Real, SourceName, Text};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::enter;
 use crate::world::rows_to_array;
@@ -99,7 +100,7 @@ impl<'a, 'py> FromPyObject<'a, 'py> for RobotArg {
             return Ok(RobotArg::Name(text.to_cow()?.into_owned()));
         }
         if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
-            let items: Vec<Bound<'py, PyAny>> = obj.extract()?;
+            let items = bounded_items(&obj.to_owned(), "robot", "robot profiles", MAX_ENVS)?;
             let one = |item: &Bound<'py, PyAny>| match item.extract::<RobotArg>() {
                 Ok(RobotArg::Many(_)) => RobotArg::Other(type_name(item)),
                 Ok(arg) => arg,
@@ -118,9 +119,10 @@ fn gains_argument(gains: &Bound<'_, PyAny>) -> PyResult<[f64; 2]> {
             "expected motor_gains to be a (left, right) pair of real numbers, found {found}"
         ))
     };
-    let items: Vec<Real> = gains
-        .extract()
-        .map_err(|_| refuse(format!("a {}", type_name(gains))))?;
+    let items: Vec<Real> = bounded_items(gains, "motor_gains", "real numbers (left, right)", 2)?
+        .iter()
+        .map(|g| g.extract::<Real>())
+        .collect::<PyResult<_>>()?;
     match items.as_slice() {
         [left, right] => Ok([
             left.value("motor_gains[0]")?,
@@ -139,6 +141,17 @@ fn sensor_index_error(kind: &str, count: usize, index: usize) -> PyErr {
 
 #[pymethods]
 impl PyRobotProfile {
+    /// Profiles are made by `RobotProfile.builtin`, `RobotProfile.from_toml` or `perturbed`:
+    /// calling the class is an `InvalidArgumentError` saying so.
+    #[new]
+    #[pyo3(signature = (*_args, **_kwargs), text_signature = None)]
+    fn new(_args: &Bound<'_, PyTuple>, _kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
+        Err(crate::args::made_elsewhere(
+            "RobotProfile",
+            "RobotProfile.builtin(name), RobotProfile.from_toml(text) or profile.perturbed(...)",
+        ))
+    }
+
     /// A built-in profile by name (see `robot_profile_names()`).
     #[staticmethod]
     fn builtin(name: Text) -> PyResult<Self> {

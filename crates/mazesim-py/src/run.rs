@@ -7,7 +7,7 @@ use numpy::{PyArray1, PyReadwriteArrayDyn};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::{Flag, Real};
+use crate::args::{shape_of, Flag, Real};
 use crate::buffers::{copied, writable};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::enter;
@@ -67,10 +67,7 @@ fn tabular_policy(n: usize, args: TabularArgs<'_, '_>) -> PyResult<TabularPolicy
              or (tables, {states}, {actions})"
         ))
     })?;
-    let shape = table
-        .getattr("shape")
-        .and_then(|s| s.extract::<Vec<usize>>())
-        .unwrap_or_default();
+    let shape = shape_of(table).unwrap_or_default();
     let tables = if shape.len() == 3 { shape[0] } else { 1 };
     let table_shape: Vec<usize> = if shape.len() == 3 {
         vec![tables, states, actions]
@@ -216,10 +213,7 @@ pub fn lower_level_states<'py>(
     observations: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyArray1<i64>>> {
     enter(|| {
-        let shape = observations
-            .getattr("shape")
-            .and_then(|s| s.extract::<Vec<usize>>())
-            .unwrap_or_default();
+        let shape = shape_of(observations).unwrap_or_default();
         let sensors = tabular::NUM_SENSORS;
         let (rows, width) = match shape[..] {
             [rows, width] if width >= sensors => (rows, width),

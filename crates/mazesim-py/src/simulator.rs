@@ -1,7 +1,5 @@
 //! `Simulator` for Python: one robot in one world.
 
-use std::sync::Mutex;
-
 use mazesim_core::{SimConfig, Simulator};
 use numpy::PyArray1;
 use pyo3::prelude::*;
@@ -11,27 +9,23 @@ use crate::args::{Bytes, Flag, IntArg, Real};
 use crate::buffers::readable;
 use crate::errors::{invalid, IntoPy};
 use crate::guard::{enter, enter_detached};
+use crate::lock::Exclusive;
 use crate::profile::{PyRobotProfile, RobotArg};
 use crate::world::{world_argument, PyWorld};
+
+/// What a busy simulator is called in `SimulatorBusyError`.
+const SIMULATOR: &str = "this Simulator";
 
 /// One robot in one world, stepped in control steps.
 #[pyclass(name = "Simulator", module = "mazesim._core", frozen)]
 pub struct PySimulator {
-    inner: Mutex<Simulator>,
+    inner: Exclusive<Simulator>,
 }
 
 impl PySimulator {
-    fn with<T>(&self, f: impl FnOnce(&mut Simulator) -> T) -> T {
-        let mut guard = self
-            .inner
-            .lock()
-            .unwrap_or_else(|poisoned| poisoned.into_inner());
-        f(&mut guard)
-    }
-
     /// `with` for a Python entry point: a panic becomes `InternalError`.
     fn read<T>(&self, f: impl FnOnce(&mut Simulator) -> T) -> PyResult<T> {
-        enter(|| Ok(self.with(f)))
+        enter(|| self.inner.with(f))
     }
 }
 
@@ -61,7 +55,7 @@ impl PySimulator {
             };
             let sim = Simulator::new(world, profile, config).py()?;
             Ok(Self {
-                inner: Mutex::new(sim),
+                inner: Exclusive::new(sim, SIMULATOR),
             })
         })
     }
@@ -71,15 +65,14 @@ impl PySimulator {
     fn reset(&self, seed: Option<IntArg>) -> PyResult<()> {
         enter(|| {
             let seed = seed.map(|s| s.seed("seed")).transpose()?;
-            self.with(|s| s.reset(seed));
-            Ok(())
+            self.inner.with(|s| s.reset(seed))
         })
     }
 
     /// Advances one control step with wheel speeds in rad/s (clamped to the motor limit).
     fn step(&self, py: Python<'_>, left: Real, right: Real) -> PyResult<()> {
         let (left, right) = (left.value("left")?, right.value("right")?);
-        enter_detached(py, || self.with(|s| s.step(left, right)))
+        enter_detached(py, || self.inner.with_detached(|s| s.step(left, right)))
     }
 
     /// `step`, then what a gym step returns, in one call: the readings (float32, the distance
@@ -102,13 +95,17 @@ impl PySimulator {
     )> {
         let (left, right) = (left.value("left")?, right.value("right")?);
         enter(|| {
-            self.with(|s| {
-                let width = s.distance_sensors().len() + s.ground_sensors().len();
-                let low = readable::<f32>(low, "low", "float32", &[width])?;
-                let high = readable::<f32>(high, "high", "float32", &[width])?;
-                let contiguous = |name: &str| invalid(format!("expected {name} to be contiguous"));
-                let low = low.as_slice().map_err(|_| contiguous("low"))?;
-                let high = high.as_slice().map_err(|_| contiguous("high"))?;
+            // The bounds are read before the simulator is taken: reading them may run Python
+            // code (a property of the argument) that uses this simulator.
+            let width = self
+                .inner
+                .with(|s| s.distance_sensors().len() + s.ground_sensors().len())?;
+            let low = readable::<f32>(low, "low", "float32", &[width])?;
+            let high = readable::<f32>(high, "high", "float32", &[width])?;
+            let contiguous = |name: &str| invalid(format!("expected {name} to be contiguous"));
+            let low = low.as_slice().map_err(|_| contiguous("low"))?;
+            let high = high.as_slice().map_err(|_| contiguous("high"))?;
+            self.inner.with(|s| {
                 s.step(left, right).py()?;
                 let readings: Vec<f32> = (s.distance_sensors().iter())
                     .chain(s.ground_sensors())
@@ -122,32 +119,35 @@ impl PySimulator {
                     s.colliding(),
                     s.last_crossing(),
                 ))
-            })
+            })?
         })
     }
 
     /// Sets the pose every later reset starts from (instead of the world's start).
     fn set_start(&self, x: Real, y: Real, yaw: Real) -> PyResult<()> {
         let (x, y, yaw) = (x.value("x")?, y.value("y")?, yaw.value("yaw")?);
-        enter(|| self.with(|s| s.set_start(x, y, yaw)).py())
+        enter(|| self.inner.with(|s| s.set_start(x, y, yaw))?.py())
     }
 
     /// Sets the goal disc, centre (x, y) and radius in metres, instead of the world's.
     fn set_goal(&self, x: Real, y: Real, radius: Real) -> PyResult<()> {
         let (x, y, radius) = (x.value("x")?, y.value("y")?, radius.value("radius")?);
-        enter(|| self.with(|s| s.set_goal(x, y, radius)).py())
+        enter(|| self.inner.with(|s| s.set_goal(x, y, radius))?.py())
     }
 
     /// The goal disc (x, y, radius) the episodes end at (`set_goal`'s, else the world's), or None.
     #[getter]
     fn goal(&self) -> PyResult<Option<(f64, f64, f64)>> {
-        enter(|| Ok(self.with(|s| s.goal().map(|g| (g.center[0], g.center[1], g.radius)))))
+        enter(|| {
+            self.inner
+                .with(|s| s.goal().map(|g| (g.center[0], g.center[1], g.radius)))
+        })
     }
 
     /// Moves the robot to (x, y, yaw) at rest and reads the sensors there.
     fn set_pose(&self, x: Real, y: Real, yaw: Real) -> PyResult<()> {
         let (x, y, yaw) = (x.value("x")?, y.value("y")?, yaw.value("yaw")?);
-        enter(|| self.with(|s| s.set_pose(x, y, yaw)).py())
+        enter(|| self.inner.with(|s| s.set_pose(x, y, yaw))?.py())
     }
 
     /// Distance sensor readings (float32), device order.
@@ -258,15 +258,15 @@ impl PySimulator {
     /// profile, control step and noise setting; it then goes on exactly as that one would.
     fn restore(&self, py: Python<'_>, snapshot: Bytes) -> PyResult<()> {
         let snapshot = enter(|| snapshot.value("snapshot", "bytes"))?.0;
-        enter_detached(py, || self.with(|s| s.restore(&snapshot)))
+        enter_detached(py, || self.inner.with_detached(|s| s.restore(&snapshot)))
     }
 
     /// An independent simulator in the same state, sharing the (immutable) world.
     fn __copy__(&self) -> PyResult<Self> {
         enter(|| {
-            let copy = self.with(|s| s.duplicate()).py()?;
+            let copy = self.inner.with(|s| s.duplicate())?.py()?;
             Ok(Self {
-                inner: Mutex::new(copy),
+                inner: Exclusive::new(copy, SIMULATOR),
             })
         })
     }

@@ -29,6 +29,21 @@ pub(crate) fn rows_to_array<'py, const N: usize>(
 
 #[pymethods]
 impl PyWorld {
+    /// Worlds are made by `World.builtin`, `World.load`, `World.from_toml` or `generate_maze`:
+    /// calling the class is an `InvalidArgumentError` saying so.
+    #[new]
+    #[pyo3(signature = (*_args, **_kwargs), text_signature = None)]
+    fn new(
+        _args: &Bound<'_, pyo3::types::PyTuple>,
+        _kwargs: Option<&Bound<'_, pyo3::types::PyDict>>,
+    ) -> PyResult<Self> {
+        Err(crate::args::made_elsewhere(
+            "World",
+            "World.builtin(name), World.load(path), World.from_toml(text) or \
+             mazesim.generate_maze(...)",
+        ))
+    }
+
     /// A built-in world by name (see `builtin_world_names()`).
     #[staticmethod]
     fn builtin(name: Text) -> PyResult<Self> {

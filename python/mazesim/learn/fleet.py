@@ -19,6 +19,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import RobotProfile, World
+from mazesim._sizes import bounded_array
 from mazesim.batch import RobotBatch, RobotChoice
 from mazesim.errors import InvalidArgumentError
 from mazesim.learn.discretise import NUM_SENSORS
@@ -147,9 +148,10 @@ class FleetBatch:
     def place(self, envs: npt.ArrayLike, poses: npt.ArrayLike, seeds: npt.ArrayLike) -> None:
         """Starts robots ``envs`` afresh at ``poses`` with noise ``seeds`` (see
         :meth:`RobotBatch.place`); the other robots are not touched."""
-        robots = np.asarray(envs, dtype=np.int64).ravel()
-        starts = np.asarray(poses, dtype=np.float64).reshape(robots.size, 3)
-        noise = np.asarray(seeds, dtype=np.uint64).ravel()
+        robots = bounded_array(envs, "envs", np.int64, self.num_envs).ravel()
+        starts = bounded_array(poses, "poses", np.float64, 3 * robots.size)
+        starts = starts.reshape(robots.size, 3)
+        noise = bounded_array(seeds, "seeds", np.uint64, robots.size).ravel()
         for index, batch in enumerate(self.batches):
             mine = self.group[robots] == index
             if batch is not None and mine.any():

@@ -1,0 +1,84 @@
+"""Sizes before allocation on the Python side: a sequence or array-like the package converts
+itself (``np.asarray(seeds)``) is checked against its bound before numpy reserves anything, so that
+``seeds=range(10**9)`` is an :class:`~mazesim.errors.InvalidArgumentError` saying the bound and the
+length found, not a ``MemoryError`` or an abort. The compiled core checks what it takes the same
+way (``bounded_items`` in the binding crate).
+
+Example:
+    >>> from mazesim._sizes import bounded_array
+    >>> bounded_array([1, 2], "seeds", "uint64", most=4).tolist()
+    [1, 2]
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from mazesim.errors import InvalidArgumentError
+
+__all__ = ["MOST_ENVS", "bounded_array", "bounded_list", "size_of"]
+
+#: Most environments of a batch (the core's ``limits::MAX_ENVS``).
+MOST_ENVS = 1 << 24
+
+
+def size_of(value: Any) -> int | None:
+    """The number of values ``value`` would give numpy, as far as it says without being read: a
+    ``.shape``'s product, else its ``len()``; ``None`` for a scalar or an object of no size."""
+    shape = getattr(value, "shape", None)
+    if isinstance(shape, tuple) and len(shape) <= 64 and all(isinstance(d, int) for d in shape):
+        return math.prod(shape)
+    if isinstance(value, (str, bytes, bytearray)) or not hasattr(value, "__len__"):
+        return None
+    try:
+        return len(value)
+    except OverflowError:  # a length beyond sys.maxsize
+        return 1 << 63
+    except Exception:  # noqa: BLE001 - a __len__ that fails: no size known
+        return None
+
+
+def bounded_array(value: Any, name: str, dtype: npt.DTypeLike, most: int) -> npt.NDArray[Any]:
+    """``value`` as a numpy array of ``dtype``, refused before conversion when it holds more than
+    ``most`` values; one numpy cannot convert is refused too, naming ``name``."""
+    size = size_of(value)
+    if size is not None and size > most:
+        raise InvalidArgumentError(
+            f"expected {name} to hold at most {most} values, found {size} "
+            f"(a {type(value).__name__})"
+        )
+    try:
+        array = np.asarray(value, dtype=dtype)
+    except (TypeError, ValueError, OverflowError) as error:
+        raise InvalidArgumentError(
+            f"expected {name} to be {most} or fewer values of {np.dtype(dtype)}, "
+            f"found a {type(value).__name__}: {str(error)[:200]}"
+        ) from error
+    if array.size > most:
+        raise InvalidArgumentError(
+            f"expected {name} to hold at most {most} values, found {array.size}"
+        )
+    return array
+
+
+def bounded_list(value: Any, name: str, most: int) -> list[Any]:
+    """``list(value)``, refused before it is read when it holds more than ``most`` items (or
+    is not a sized collection)."""
+    size = size_of(value)
+    if size is None or isinstance(value, (str, bytes, bytearray)):
+        raise InvalidArgumentError(
+            f"expected {name} to be a list of at most {most} items, found a {type(value).__name__}"
+        )
+    if size > most:
+        raise InvalidArgumentError(
+            f"expected {name} to hold at most {most} items, found {size} (a {type(value).__name__})"
+        )
+    items = list(itertools.islice(value, most + 1))  # a __len__ that lied is cut short too
+    if len(items) > most:
+        raise InvalidArgumentError(f"expected {name} to hold at most {most} items, found more")
+    return items

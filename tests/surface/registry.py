@@ -1,0 +1,176 @@
+"""The registry of mazesim's public surface: every public function, class and method of every
+module of the ``mazesim`` package (``mazesim._core`` included), and every command of the
+``mazesim`` command line with its options, found by walking the package and the argument parser.
+A new entry point is in the registry as soon as it exists; the tests feed each one hostile values
+(``hostile.py``) through hypothesis and check how it ends (``runner.py``).
+
+A method needs an instance to be called on: :data:`INSTANCES` says how to make one of each public
+class that has methods, and a class missing from it fails ``test_public_surface`` (add it there).
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import inspect
+import pkgutil
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass, field
+from typing import Any
+
+import mazesim
+
+#: Modules not walked: the program entry point (running it is the CLI's entries) and the parts
+#: that start outside processes (ROS masters, Ray clusters, Webots controllers over a socket),
+#: whose entry points are reached through the command line's entries instead.
+SKIPPED_MODULES = (
+    "mazesim.__main__",
+    "mazesim.ros",
+    "mazesim.distributed",
+    "mazesim.webots.controller",
+)
+
+#: How to make an instance of each public class whose methods are entry points: Python source
+#: evaluated by the runner (``world`` is seed-maze, ``tmp`` a scratch folder).
+INSTANCES: dict[str, str] = {
+    "mazesim._core.World": "world",
+    "mazesim._core.Simulator": "mazesim.Simulator(world)",
+    "mazesim._core.BatchSimulator": "mazesim.BatchSimulator(world, num_envs=2)",
+    "mazesim._core.RobotProfile": "mazesim.RobotProfile.builtin('e-puck')",
+}
+
+
+@dataclass(frozen=True)
+class EntryPoint:
+    """One public entry point: ``path`` says how the runner reaches it (``module:qualname``, or
+    ``cli:command``); ``parameters`` are the names hostile values may be given to, ``required``
+    those without a default (given a value in every call)."""
+
+    path: str
+    parameters: tuple[str, ...]
+    required: tuple[str, ...] = field(default=())
+    #: Those that cannot be given by keyword.
+    positional: tuple[str, ...] = field(default=())
+    #: For a command: the value each option takes ("" for a flag).
+    options: tuple[tuple[str, bool], ...] = field(default=())
+
+
+def _modules() -> Iterator[Any]:
+    yield importlib.import_module("mazesim._core")
+    yield mazesim
+    for info in pkgutil.walk_packages(mazesim.__path__, "mazesim."):
+        if info.name.startswith(SKIPPED_MODULES) or info.name == "mazesim._core":
+            continue
+        try:
+            yield importlib.import_module(info.name)
+        except mazesim.errors.MissingDependencyError:
+            continue  # an optional extra that is not installed
+
+
+def _public(module: Any) -> Iterator[tuple[str, Any]]:
+    names = getattr(module, "__all__", None)
+    for name in names if names is not None else dir(module):
+        if name.startswith("_"):
+            continue
+        obj = getattr(module, name, None)
+        if not (inspect.isfunction(obj) or inspect.isclass(obj) or inspect.isbuiltin(obj)):
+            continue
+        if getattr(obj, "__module__", None) != module.__name__:
+            continue  # re-exported: registered where it is defined
+        if inspect.isclass(obj) and issubclass(obj, BaseException):
+            continue
+        yield name, obj
+
+
+def _signature(target: Callable[..., Any], skip_first: bool) -> EntryPoint | None:
+    try:
+        params = list(inspect.signature(target).parameters.values())
+    except (TypeError, ValueError):
+        return None
+    if skip_first and params and params[0].name in ("self", "cls"):
+        params = params[1:]
+    usable = [p for p in params if p.kind not in (p.VAR_POSITIONAL, p.VAR_KEYWORD)]
+    return EntryPoint(
+        "",
+        tuple(p.name for p in usable),
+        tuple(p.name for p in usable if p.default is p.empty),
+        positional=tuple(p.name for p in usable if p.kind is p.POSITIONAL_ONLY),
+    )
+
+
+def _with_path(entry: EntryPoint | None, path: str) -> EntryPoint:
+    if entry is None:
+        return EntryPoint(path, ())
+    return EntryPoint(path, entry.parameters, entry.required, positional=entry.positional)
+
+
+def python_entry_points() -> list[EntryPoint]:
+    """Every public function, class (its constructor) and method of the package."""
+    found: dict[str, EntryPoint] = {}
+    for module in _modules():
+        for name, obj in _public(module):
+            path = f"{module.__name__}:{name}"
+            if not inspect.isclass(obj):
+                found[path] = _with_path(_signature(obj, False), path)
+                continue
+            found[path] = _with_path(_signature(obj, False), path)
+            for member, value in sorted(vars(obj).items()):
+                if member.startswith("_") or isinstance(value, property):
+                    continue
+                if isinstance(value, (staticmethod, classmethod)):
+                    target = getattr(obj, member)
+                    entry = _signature(target, False)
+                elif inspect.isfunction(value) or inspect.ismethoddescriptor(value):
+                    entry = _signature(value, True)
+                else:
+                    continue
+                method = f"{path}.{member}"
+                found[method] = _with_path(entry, method)
+    return sorted(found.values(), key=lambda e: e.path)
+
+
+def needs_instance(entry: EntryPoint) -> str | None:
+    """The class an entry point is a method of (``module:Class``), when it needs an instance."""
+    module, _, qualname = entry.path.partition(":")
+    if "." not in qualname or entry.path.startswith("cli:"):
+        return None
+    cls_name, member = qualname.split(".", 1)
+    cls = getattr(importlib.import_module(module), cls_name)
+    raw = vars(cls).get(member)
+    if isinstance(raw, (staticmethod, classmethod)):
+        return None
+    return f"{module}.{cls_name}"
+
+
+def cli_entry_points() -> list[EntryPoint]:
+    """Every command of the ``mazesim`` command line (sub-commands included) with its options."""
+    from mazesim.cli import build_parser
+
+    found: list[EntryPoint] = []
+
+    def walk(parser: argparse.ArgumentParser, words: tuple[str, ...]) -> None:
+        options: list[tuple[str, bool]] = []
+        positionals: list[str] = []
+        for action in parser._actions:  # noqa: SLF001 - argparse offers no public walk
+            if isinstance(action, argparse._SubParsersAction):  # noqa: SLF001
+                for word, sub in action.choices.items():
+                    walk(sub, (*words, word))
+                continue
+            if isinstance(action, (argparse._HelpAction, argparse._VersionAction)):  # noqa: SLF001
+                continue
+            if action.option_strings:
+                options.append((action.option_strings[-1], action.nargs != 0))
+            else:
+                positionals.append(action.dest)
+        if words:
+            found.append(
+                EntryPoint(
+                    f"cli:{' '.join(words)}",
+                    tuple(positionals),
+                    tuple(positionals),
+                    options=tuple(options),
+                )
+            )
+
+    walk(build_parser(), ())
+    return found

@@ -1,0 +1,109 @@
+"""Runs plans of hostile calls (``python -m surface.runner PLANS.json``, from ``tests/``) under
+a 4 GiB address-space cap, and prints one line per call saying how it ended. Before each call
+it prints which one it is about to make, so that an abort or a hang names its call. Each call
+has a watchdog that presses Ctrl-C after :data:`CALL_LIMIT` seconds: long work that Ctrl-C stops
+is allowed (asking for 2**70 steps is not a bug); a call that ignores Ctrl-C is caught by the
+caller's time limit."""
+
+from __future__ import annotations
+
+import contextlib
+import importlib
+import io
+import json
+import os
+import resource
+import signal
+import sys
+import tempfile
+import threading
+from pathlib import Path
+from typing import Any
+
+CALL_LIMIT = 2.0
+ADDRESS_SPACE_CAP = 4 << 30
+
+
+def _target(path: str, instance: str | None, world: Any, tmp: Path) -> Any:
+    import mazesim
+
+    module_name, _, qualname = path.partition(":")
+    if instance is not None:
+        owner = eval(instance, {"mazesim": mazesim, "world": world, "tmp": tmp})  # noqa: S307
+        return getattr(owner, qualname.split(".", 1)[1])
+    obj: Any = importlib.import_module(module_name)
+    for part in qualname.split("."):
+        obj = getattr(obj, part)
+    return obj
+
+
+def _allowed(error: BaseException) -> bool:
+    import mazesim
+
+    if isinstance(error, mazesim.MazesimError):
+        return True
+    try:
+        import gymnasium.error
+
+        return isinstance(error, gymnasium.error.Error)
+    except ImportError:
+        return False
+
+
+def run_one(plan: dict[str, Any], world: Any, tmp: Path) -> dict[str, Any]:
+    """Makes one call of the plan; says how it ended."""
+    from surface.values import make, word
+
+    timer = threading.Timer(CALL_LIMIT, os.kill, (os.getpid(), signal.SIGINT))
+    out, err = io.StringIO(), io.StringIO()
+    try:
+        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+            if plan["path"].startswith("cli:"):
+                from mazesim.cli import main
+
+                argv = [w if not w.startswith("=") else word(w[1:], tmp) for w in plan["argv"]]
+                timer.start()
+                code = main(argv)
+                timer.cancel()
+                text = err.getvalue()
+                if "internal error" in text or code not in (0, 1, 2, 130):
+                    return {"how": "escaped", "what": f"exit {code}: {text[-600:]}"}
+                return {"how": "ended", "what": f"exit {code}"}
+            target = _target(plan["path"], plan["instance"], world, tmp)
+            args = {name: make(key, tmp) for name, key in plan["args"].items()}
+            positional = [args.pop(name) for name in plan["positional"] if name in args]
+            timer.start()
+            target(*positional, **args)
+            timer.cancel()
+            return {"how": "ended", "what": "returned"}
+    except KeyboardInterrupt:
+        return {"how": "ended", "what": "stopped by Ctrl-C after the call limit"}
+    except BaseException as error:  # noqa: BLE001 - any other exception is the finding
+        how = "refused" if _allowed(error) else "escaped"
+        return {
+            "how": how,
+            "what": f"{type(error).__module__}.{type(error).__name__}: {str(error)[:300]}",
+        }
+    finally:
+        timer.cancel()
+
+
+def main() -> None:
+    resource.setrlimit(resource.RLIMIT_AS, (ADDRESS_SPACE_CAP, ADDRESS_SPACE_CAP))
+    plans = json.loads(Path(sys.argv[1]).read_text(encoding="utf-8"))
+    import mazesim
+
+    world = mazesim.World.builtin("seed-maze")
+    with tempfile.TemporaryDirectory() as scratch:
+        tmp = Path(scratch)
+        os.chdir(tmp)
+        for index, plan in enumerate(plans):
+            print(f"CALL {index}", flush=True)
+            outcome = run_one(plan, world, tmp)
+            print("RESULT " + json.dumps({"index": index, **outcome}), flush=True)
+        os.chdir("/")
+    print("ALL DONE", flush=True)
+
+
+if __name__ == "__main__":
+    main()

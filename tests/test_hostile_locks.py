@@ -1,0 +1,168 @@
+"""Concurrency and signal stress, each case in a child process under a time limit (``hostile.py``):
+no call waits for a busy simulator while holding the GIL, re-entrant use is refused or served,
+Python's signal handlers never run while a batch holds its lock (they run once it is free), a
+forked child never waits for a lock its parent's thread held, and Ctrl-C still stops a long
+step and the wait for a busy batch."""
+
+from __future__ import annotations
+
+import textwrap
+
+import pytest
+
+from hostile import run_hostile
+
+#: A batch, and a call on it long enough (about a second or more) that the others meet it busy.
+LONG_RUN = """
+import os, signal, threading
+world = mazesim.World.builtin('seed-maze')
+batch = _core.BatchSimulator(world, num_envs=64, threads=1)
+out = buffers(batch)
+def long_run(steps=4000):
+    return batch.run(steps, 'braitenberg', *out, autoreset=True)
+"""
+
+
+def _run(body: str) -> list[str]:
+    outcome = run_hostile(LONG_RUN + textwrap.dedent(body))
+    assert outcome.ok, outcome.describe()
+    assert "DONE" in outcome.stdout, outcome.describe()
+    return outcome.stdout.splitlines()
+
+
+def test_another_thread_reads_a_stepping_batch_without_a_deadlock() -> None:
+    lines = _run(
+        """
+        seen = []
+        running = threading.Event()
+        def reader():
+            running.wait()
+            while runner.is_alive():
+                seen.append(int(batch.steps().sum()))
+        runner = threading.Thread(target=lambda: (running.set(), long_run()))
+        watcher = threading.Thread(target=reader)
+        watcher.start(); runner.start(); runner.join(); watcher.join()
+        print('READS', len(seen), 'STEPS', int(batch.steps().sum()))
+        """
+    )
+    reads = next(line for line in lines if line.startswith("READS")).split()
+    assert int(reads[1]) >= 1 and int(reads[3]) > 0
+
+
+def test_a_signal_handler_that_reads_the_batch_runs_once_the_batch_is_free() -> None:
+    lines = _run(
+        """
+        seen = []
+        signal.signal(signal.SIGALRM, lambda *_: seen.append(int(batch.steps().sum())))
+        signal.setitimer(signal.ITIMER_REAL, 0.01, 0.01)
+        long_run()
+        signal.setitimer(signal.ITIMER_REAL, 0, 0)
+        total = int(batch.steps().sum())
+        print('HANDLED', len(seen), 'ALL_AFTER', all(s == total for s in seen))
+        """
+    )
+    handled = next(line for line in lines if line.startswith("HANDLED")).split()
+    assert int(handled[1]) >= 1
+    # The handler never saw the batch half-way: it ran when the call had returned.
+    assert handled[3] == "True"
+
+
+def test_ctrl_c_stops_a_long_run_and_its_handler_may_read_the_batch() -> None:
+    lines = _run(
+        """
+        seen = []
+        def on_ctrl_c(*_):
+            seen.append(int(batch.steps().sum()))
+            raise KeyboardInterrupt
+        signal.signal(signal.SIGINT, on_ctrl_c)
+        threading.Timer(0.3, os.kill, (os.getpid(), signal.SIGINT)).start()
+        try:
+            long_run(10**6)
+            print('NOT STOPPED')
+        except KeyboardInterrupt:
+            print('STOPPED', len(seen), int(batch.steps().max()))
+        """
+    )
+    stopped = next(line for line in lines if line.startswith(("STOPPED", "NOT"))).split()
+    assert stopped[0] == "STOPPED"
+    assert int(stopped[1]) == 1 and 0 < int(stopped[2]) < 10**6
+
+
+def test_ctrl_c_ends_the_wait_for_a_batch_busy_on_another_thread() -> None:
+    lines = _run(
+        """
+        import time
+        running = threading.Event()
+        # 2.5 million env-steps: a second or more, however quiet the machine.
+        runner = threading.Thread(target=lambda: (running.set(), long_run(40000)))
+        runner.start(); running.wait(); time.sleep(0.1)
+        threading.Timer(0.1, os.kill, (os.getpid(), signal.SIGINT)).start()
+        started = time.monotonic()
+        try:
+            batch.steps()
+            print('WAITED', runner.is_alive())
+        except KeyboardInterrupt:
+            print('INTERRUPTED', runner.is_alive(), round(time.monotonic() - started, 2))
+        runner.join()
+        """
+    )
+    line = next(line for line in lines if line.startswith(("WAITED", "INTERRUPTED"))).split()
+    # Still running when Ctrl-C came: the wait ended, not the other thread's call.
+    assert line[:2] == ["INTERRUPTED", "True"], line
+
+
+def test_a_property_of_an_argument_may_read_the_same_simulator() -> None:
+    lines = _run(
+        """
+        sim = mazesim.Simulator(world)
+        class Sneaky:
+            @property
+            def dtype(self):
+                return sim.pose
+            shape = (11,)
+        high = np.full(11, 5000.0, np.float32)
+        try:
+            sim.step_observe(1.0, 1.0, Sneaky(), high)
+            print('ACCEPTED')
+        except mazesim.InvalidArgumentError as e:
+            print('REFUSED_ARG', 'low' in str(e))
+        """
+    )
+    assert "REFUSED_ARG True" in lines
+
+
+@pytest.mark.parametrize("threads", [1, 2])
+def test_a_forked_child_refuses_a_batch_its_parent_was_stepping(threads: int) -> None:
+    lines = _run(
+        f"""
+        import time
+        batch = _core.BatchSimulator(world, num_envs=64, threads={threads})
+        out = buffers(batch)
+        running = threading.Event()
+        # 2.5 million env-steps: a second or more, however quiet the machine.
+        runner = threading.Thread(target=lambda: (running.set(), long_run(40000)))
+        runner.start(); running.wait(); time.sleep(0.1)
+        pid = os.fork()
+        if pid == 0:
+            code = 1
+            try:
+                batch.steps()
+            except mazesim.SimulatorBusyError as e:
+                code = 0 if 'forked' in str(e) else 2
+            fresh = _core.BatchSimulator(world, num_envs=2)
+            fresh.step(np.zeros((2, 2), np.float32), *buffers(fresh))
+            os._exit(code)
+        for _ in range(400):
+            done, status = os.waitpid(pid, os.WNOHANG)
+            if done:
+                break
+            time.sleep(0.05)
+        else:
+            os.kill(pid, signal.SIGKILL)
+            status = -1
+        runner.join()
+        print('CHILD', os.waitstatus_to_exitcode(status) if status != -1 else 'HUNG')
+        batch.steps()
+        """
+    )
+    assert "CHILD 0" in lines, lines

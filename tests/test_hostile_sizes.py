@@ -1,0 +1,107 @@
+"""Sizes before allocation: a sequence, buffer or shape whose length is huge is refused with an
+``InvalidArgumentError`` saying the bound and what was found, before anything is reserved. Each
+entry point used to abort the process ("memory allocation of 32000000000 bytes failed"); the
+cases run in a child process under a 4 GiB address-space cap (see ``hostile.py``)."""
+
+from __future__ import annotations
+
+import re
+
+from hostile import run_hostile
+
+#: name -> (statement with `world`, `batch`, `HUGE` and `Shaped` in scope, what the message says)
+CASES = {
+    "batch seeds": (
+        "_core.BatchSimulator(world, num_envs=2, seeds=HUGE)",
+        r"seeds .*at most 2 .*1000000000 items",
+    ),
+    "run seeds": (
+        "batch.run(3, 'braitenberg', *buffers(batch), seeds=HUGE)",
+        r"seeds .*at most 2 .*1000000000 items",
+    ),
+    "motor gains": (
+        "mazesim.RobotProfile.builtin('e-puck').perturbed(motor_gains=HUGE)",
+        r"motor_gains .*at most 2 .*1000000000 items",
+    ),
+    "batch worlds": (
+        "_core.BatchSimulator(worlds=HUGE)",
+        r"worlds .*at most 16777216 .*1000000000 items",
+    ),
+    "batch robots": (
+        "_core.BatchSimulator(world, num_envs=2, robot=HugeTuple())",
+        r"robot .*at most 16777216 .*1000000000 items",
+    ),
+    "validate codes": (
+        "mazesim.validate_codes(HUGE)",
+        r"codes .*at most 4096 .*1000000000 items",
+    ),
+    "lower level states shape": (
+        "_core.lower_level_states(Shaped())",
+        r"observations of shape",
+    ),
+    "tabular table shape": (
+        "batch.run(3, 'tabular', *buffers(batch), table=Shaped())",
+        r"table .*no usable shape",
+    ),
+    "train lower round worlds": (
+        "batch.train_lower_round(*buffers(batch), worlds=HUGE, world_of_env=None, role=None, "
+        "starts=None, explore=None, random_action=None, q=None, visits=None, symmetry=None, "
+        "allowed=None, wheel_speeds=None, settings=SETTINGS)",
+        r"worlds .*at most 16777216 .*1000000000 items",
+    ),
+    "robot batch reset seeds": (
+        "RobotBatch([world], [0, 0]).reset(seeds=HUGE)",
+        r"seeds .*at most 2 values, found 1000000000",
+    ),
+    "robot batch worlds": (
+        "RobotBatch(HUGE, [0, 0])",
+        r"worlds .*at most 16777216 items, found 1000000000",
+    ),
+    "robot batch envs": (
+        "RobotBatch([world], HUGE)",
+        r"world_of_env .*at most 16777216 values, found 1000000000",
+    ),
+    "robot batch place": (
+        "RobotBatch([world], [0, 0]).place(HUGE, HUGE, HUGE)",
+        r"envs .*at most 2 values, found 1000000000",
+    ),
+}
+
+BODY = """
+from mazesim.batch import RobotBatch
+HUGE = range(10**9)
+class HugeTuple(tuple):
+    def __len__(self):
+        return 10**9
+class Shaped:
+    shape = range(10**9)
+    dtype = 'float32'
+world = mazesim.World.builtin('seed-maze')
+batch = _core.BatchSimulator(world, num_envs=2)
+SETTINGS = {k: 0.5 for k in ('gamma', 'epsilon', 'rate_initial', 'rate_floor', 'rate_power',
+    'progress_reward', 'collision_penalty', 'corridor_step_reward', 'door_step_reward',
+    'heading_reward', 'door_success_reward', 'door_failure_reward', 'door_path_exit',
+    'success_past_centre', 'success_across')}
+SETTINGS.update(decision_steps=10, corridor_episode_steps=350)
+for name, statement in CASES.items():
+    try:
+        eval(statement)
+        print('CASE', name, '|ACCEPTED')
+    except mazesim.MazesimError as e:
+        print('CASE', name, '|' + type(e).__name__ + ': ' + str(e).replace(chr(10), ' ')[:400])
+"""
+
+
+def test_huge_lengths_are_refused_before_allocation() -> None:
+    statements = {name: statement for name, (statement, _) in CASES.items()}
+    outcome = run_hostile(f"CASES = {statements!r}\n" + BODY)
+    assert outcome.ok, outcome.describe()
+    found = dict(
+        line[len("CASE ") :].split(" |", 1)
+        for line in outcome.stdout.splitlines()
+        if line.startswith("CASE ")
+    )
+    assert sorted(found) == sorted(CASES), outcome.describe()
+    for name, (_, says) in CASES.items():
+        assert found[name].startswith("InvalidArgumentError: "), f"{name}: {found[name]}"
+        assert re.search(says, found[name]), f"{name}: {found[name]}"
