@@ -11,6 +11,7 @@ from __future__ import annotations
 import argparse
 import os
 import resource
+import stat
 import subprocess
 import sys
 import time
@@ -149,6 +150,8 @@ def files(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
         "sweep": folder / "sweep.toml",
         "controller": folder / "controller.py",
     }
+    made["fifo"] = folder / "no-writer.fifo"
+    os.mkfifo(made["fifo"])
     made["folder"].mkdir()
     made["unreadable"].write_text("[world]\n")
     made["unreadable"].chmod(0)
@@ -417,3 +420,79 @@ def test_an_output_name_the_terminal_cannot_show_is_printed_escaped(
     assert target.exists()
     printed = result.stdout.decode("ascii")
     assert "wrote" in printed and ("\\x" in printed or "\\udc" in printed)
+
+
+def _input_options(parser: argparse.ArgumentParser) -> list[argparse.Action]:
+    return [action for action in _value_options(parser) if _kind(action) == "input"]
+
+
+#: Commands with inputs (files or folders they read), ROS's aside (they need ROS 1).
+INPUT_COMMANDS = sorted(
+    command
+    for command, parser in COMMANDS.items()
+    if _input_options(parser) and not command.startswith("ros ")
+)
+
+
+def test_input_commands_are_found() -> None:
+    assert {"show", "import-wbt", "replay", "sweep", "webots run", "eval"} <= set(INPUT_COMMANDS)
+
+
+@pytest.mark.parametrize("command", INPUT_COMMANDS)
+def test_issue_35_a_fifo_without_a_writer_as_any_input_is_refused_at_once(
+    command: str, files: dict[str, Path], tmp_path: Path
+) -> None:
+    """Each input given a FIFO no process writes to: refused in one line, exit 2, instead of
+    waiting for ever (6 of 9 commands hung, ``import-wbt`` deaf to Ctrl-C)."""
+    parser = COMMANDS[command]
+    runs = []
+    for number, action in enumerate(_input_options(parser)):
+        folder = tmp_path / f"run-{number}"
+        folder.mkdir()
+        runs.append((_arguments(command, parser, (action, "fifo"), files, folder), folder))
+    problems = [
+        f"mazesim {' '.join(ending.arguments)}: {problem or 'ran'}"
+        for ending in run_limited(runs, tmp_path)
+        if (problem := _problem(ending)) or ending.returncode != 2
+    ]
+    assert not problems, "\n".join(problems)
+
+
+def test_issue_35_special_outputs_are_written_into_never_replaced(tmp_path: Path) -> None:
+    """``show -o`` at a device node, a link to ``/dev/null`` and ``/dev/stdout``: written into
+    (as root, ``-o /dev/null`` used to replace the system's /dev/null with a PNG)."""
+    link = tmp_path / "null.png"
+    link.symlink_to(os.devnull)
+    targets = [str(link), "/dev/stdout"]
+    if os.geteuid() == 0:
+        node = tmp_path / "device.png"
+        os.mknod(node, stat.S_IFCHR | 0o666, os.makedev(1, 3))  # a null device of its own
+        targets.append(str(node))
+    for target in targets:
+        result = subprocess.run(
+            [sys.executable, "-m", "mazesim", "show", "arena", "-o", target],
+            capture_output=True,
+            timeout=TIME_LIMIT_S,
+            cwd=tmp_path,
+            check=False,
+        )
+        assert result.returncode == 0, result.stderr
+        if target == "/dev/stdout":
+            assert result.stdout.startswith(b"\x89PNG"), result.stdout[:40]
+    assert link.is_symlink() and stat.S_ISCHR(os.stat(os.devnull).st_mode)
+    if os.geteuid() == 0:
+        assert stat.S_ISCHR((tmp_path / "device.png").lstat().st_mode)
+    assert sorted(os.listdir(tmp_path)) == sorted(
+        ["null.png"] + (["device.png"] if os.geteuid() == 0 else [])
+    )
+    fifo = tmp_path / "picture.fifo"
+    os.mkfifo(fifo)
+    result = subprocess.run(
+        [sys.executable, "-m", "mazesim", "show", "arena", "-o", str(fifo)],
+        capture_output=True,
+        text=True,
+        timeout=TIME_LIMIT_S,
+        check=False,
+    )
+    assert result.returncode == 2 and "FIFO that no process reads" in result.stderr
+    assert stat.S_ISFIFO(fifo.lstat().st_mode)
