@@ -20,8 +20,9 @@ What the path names decides how it is written (:func:`output_target`):
 - a symbolic link: it is followed, and the file it leads to is replaced; the link stays a link;
 - a device, a FIFO or a terminal (``/dev/null``, ``/dev/tty``), or a path that leads through
   ``/proc`` (``/dev/stdout``, ``/proc/self/fd/1``, whatever they are open on): the content is
-  written into it as a stream, appended, never replaced; a FIFO no process reads is refused at
-  once rather than waited on;
+  written into it as a stream, appended (a descriptor of this process, such as ``/dev/stdout``,
+  through a copy of itself), never replaced; a FIFO no process reads is refused at once rather
+  than waited on;
 - a folder or a socket: refused.
 
 Temporary names fit the file system's limit of 255 bytes a name: a long target name is cut and
@@ -260,9 +261,41 @@ def output_target(path: str | os.PathLike[str]) -> OutputTarget:
     return OutputTarget(name, True)
 
 
+def _own_descriptor(path: str) -> int | None:
+    """The descriptor of this process that ``path`` leads to, if it does (``/dev/stdout``
+    leads to ``/proc/self/fd/1``)."""
+    own = re.compile(rf"/proc/(?:self|thread-self|{os.getpid()})/fd/([0-9]+)")
+    for step in _link_chain(path):
+        found = own.fullmatch(step)
+        if found is not None:
+            return int(found[1])
+    return None
+
+
+def _descriptor_of(stream: IO[str]) -> int | None:
+    try:
+        return stream.fileno()
+    except (OSError, ValueError, AttributeError):
+        return None
+
+
 def _open_stream(path: str) -> int:
     """Opens a device, FIFO or system path to write into, appending, without waiting for a FIFO
-    reader that is not there; the descriptor is then blocking, like any file's."""
+    reader that is not there; the descriptor is then blocking, like any file's. A descriptor of
+    this process (``/dev/stdout``) is written through a copy of itself, at its own position, so
+    that what the process prints to it afterwards follows the content instead of overwriting
+    it."""
+    own = _own_descriptor(path)
+    if own is not None:
+        # What Python printed there before comes first.
+        for stream in (sys.stdout, sys.stderr):
+            if stream is not None and _descriptor_of(stream) == own:
+                with contextlib.suppress(OSError, ValueError):
+                    stream.flush()
+        try:
+            return os.dup(own)
+        except OSError as error:
+            raise write_failure(path, error) from None
     flags = os.O_WRONLY | os.O_APPEND | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0)
     try:
         descriptor = os.open(path, flags)
