@@ -334,12 +334,13 @@ def test_issue_35_a_gzip_of_empty_lists_is_refused_before_parsing(tmp_path: Path
     assert bomb.stat().st_size < 400_000
     tracemalloc.start()
     try:
-        with pytest.raises(RunFormatError, match="at most 4194304 lists and objects, found"):
+        with pytest.raises(RunFormatError, match="at most 4194304 lists and objects, found more"):
             load_run(bomb)
         peak = tracemalloc.get_traced_memory()[1]
     finally:
         tracemalloc.stop()
-    assert peak < 2 * MAX_RUN_BYTES, f"{peak / 2**20:.0f} MiB"
+    # Refused after the first pieces are decompressed: 0.1 s and 75 MB in all, measured.
+    assert peak < 64 * 2**20, f"{peak / 2**20:.0f} MiB"
 
 
 def test_issue_35_a_run_far_away_never_reaches_a_replay_page(tmp_path: Path) -> None:

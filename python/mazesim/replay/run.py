@@ -281,7 +281,7 @@ def load_run(path: str | os.PathLike[str]) -> RecordedRun:
     )
     try:
         if data[:2] == b"\x1f\x8b":
-            data = _decompressed(data, MAX_RUN_BYTES, too_large)
+            data = _decompressed(data, MAX_RUN_BYTES, too_large, name)
         if len(data) > MAX_RUN_BYTES:
             raise too_large
         _check_structure(data, name)
@@ -295,16 +295,24 @@ def load_run(path: str | os.PathLike[str]) -> RecordedRun:
     return run_from_json(values, name)
 
 
+def _too_many_containers(name: str) -> RunFormatError:
+    return RunFormatError(
+        f"{name}: expected a run of at most {MAX_RUN_CONTAINERS} lists and objects, found more"
+    )
+
+
+def _containers(data: bytes) -> int:
+    """The lists and objects of JSON text, counted by their brackets (those inside strings count
+    too: the bound is only ever reached by files no recorder writes)."""
+    return data.count(b"[") + data.count(b"{")
+
+
 def _check_structure(data: bytes, name: str) -> None:
     """Refuses JSON with more lists and objects, or more values, than a run may hold, counting
-    brackets and commas before anything is parsed (those inside strings count too: the bound is
-    only ever reached by files no recorder writes)."""
-    containers = data.count(b"[") + data.count(b"{")
+    brackets and commas before anything is parsed."""
+    containers = _containers(data)
     if containers > MAX_RUN_CONTAINERS:
-        raise RunFormatError(
-            f"{name}: expected a run of at most {MAX_RUN_CONTAINERS} lists and objects, found "
-            f"{containers}"
-        )
+        raise _too_many_containers(name)
     values = data.count(b",") + containers
     if values > MAX_RUN_VALUES:
         raise RunFormatError(
@@ -312,16 +320,34 @@ def _check_structure(data: bytes, name: str) -> None:
         )
 
 
-def _decompressed(data: bytes, largest: int, too_large: RunFormatError) -> bytes:
+#: Bytes decompressed at a time: a file of too many lists is refused after the first pieces,
+#: before the whole text is held.
+_PIECE = 16 * 1024 * 1024
+
+
+def _decompressed(data: bytes, largest: int, too_large: RunFormatError, name: str) -> bytes:
     """The gzip stream ``data`` decompressed, refused with ``too_large`` past ``largest`` bytes
-    (a small file may expand a thousandfold)."""
+    (a small file may expand a thousandfold), or as soon as it holds more lists and objects than
+    a run may."""
     stream = zlib.decompressobj(wbits=16 + zlib.MAX_WBITS)
-    text = stream.decompress(data, largest + 1)
-    if len(text) > largest or stream.unconsumed_tail:
-        raise too_large
+    pieces: list[bytes] = []
+    size = containers = 0
+    pending = data
+    while not stream.eof:
+        piece = stream.decompress(pending, _PIECE)
+        pending = stream.unconsumed_tail
+        if not piece and not pending:
+            break
+        size += len(piece)
+        containers += _containers(piece)
+        if size > largest:
+            raise too_large
+        if containers > MAX_RUN_CONTAINERS:
+            raise _too_many_containers(name)
+        pieces.append(piece)
     if not stream.eof:
         raise EOFError("the compressed file ends before its end")
-    return text + stream.flush()
+    return b"".join(pieces)
 
 
 def run_from_json(values: Any, source: str = "<run>") -> RecordedRun:
