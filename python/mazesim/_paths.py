@@ -95,6 +95,10 @@ def open_input(path: str | os.PathLike[str], what: str) -> BinaryIO:
         raise
 
 
+#: Bytes read at a time by :func:`read_input`.
+_READ_PIECE = 1024 * 1024
+
+
 def read_input(path: str | os.PathLike[str], limit: int, what: str) -> bytes:
     """The bytes of a regular file mazesim reads (:func:`open_input`), at most ``limit + 1`` of
     them: a caller refuses a file whose result is longer than ``limit``.
@@ -104,7 +108,16 @@ def read_input(path: str | os.PathLike[str], limit: int, what: str) -> bytes:
     """
     with open_input(path, what) as handle:
         try:
-            return handle.read(limit + 1)
+            # In pieces: one read of ``limit + 1`` bytes would reserve that much for any file.
+            pieces: list[bytes] = []
+            left = limit + 1
+            while left > 0:
+                piece = handle.read(min(left, _READ_PIECE))
+                if not piece:
+                    break
+                pieces.append(piece)
+                left -= len(piece)
+            return b"".join(pieces)
         except OSError as error:
             file = os.fspath(path)
             raise _read_failure(file, what, error.strerror or str(error), error.errno) from None
