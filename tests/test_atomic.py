@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
+import errno
 import os
+import socket
 import stat
 import subprocess
 import sys
+import threading
 import time
 import types
 from pathlib import Path
@@ -14,6 +17,7 @@ import pytest
 
 from mazesim import _atomic
 from mazesim._atomic import atomic_file, remove_stale_temporaries, temporary_name
+from mazesim.errors import MazesimIOError
 
 
 def _hidden(folder: Path) -> list[str]:
@@ -136,3 +140,143 @@ def test_macos_files_are_flushed_with_full_fsync(
         handle.write(b"tables")
     assert calls == [51]
     assert (tmp_path / "tables.npz").read_bytes() == b"tables"
+
+
+# Issue 35: what the output path names decides how it is written; nothing but a regular file is
+# ever replaced.
+
+
+def test_a_symbolic_link_is_followed_and_kept(tmp_path: Path) -> None:
+    target = tmp_path / "real.json"
+    target.write_text("old")
+    link = tmp_path / "link.json"
+    link.symlink_to(target)
+    with atomic_file(link) as handle:
+        handle.write(b"new")
+    assert link.is_symlink() and os.readlink(link) == str(target)
+    assert target.read_text() == "new"
+    dangling = tmp_path / "dangling.json"
+    dangling.symlink_to(tmp_path / "made.json")
+    with atomic_file(dangling) as handle:
+        handle.write(b"made")
+    assert dangling.is_symlink() and (tmp_path / "made.json").read_text() == "made"
+
+
+def test_a_link_to_dev_null_writes_into_it_and_stays(tmp_path: Path) -> None:
+    link = tmp_path / "null.png"
+    link.symlink_to(os.devnull)
+    with atomic_file(link) as handle:
+        handle.write(b"picture")
+    assert link.is_symlink()
+    assert stat.S_ISCHR(os.stat(os.devnull).st_mode)
+    assert _hidden(tmp_path) == []
+
+
+@pytest.mark.skipif(os.geteuid() != 0, reason="making a device node needs root")
+def test_a_device_node_is_written_into_not_replaced(tmp_path: Path) -> None:
+    node = tmp_path / "null"
+    os.mknod(node, stat.S_IFCHR | 0o666, os.makedev(1, 3))
+    try:
+        with atomic_file(node) as handle:
+            handle.write(b"picture")
+    except MazesimIOError as error:  # a file system mounted nodev refuses to open it
+        assert error.filename == str(node)
+    assert stat.S_ISCHR(node.lstat().st_mode)
+
+
+def test_a_fifo_is_written_into_when_read_and_refused_at_once_when_not(tmp_path: Path) -> None:
+    fifo = tmp_path / "out.fifo"
+    os.mkfifo(fifo)
+    started = time.monotonic()
+    with pytest.raises(MazesimIOError, match="FIFO that no process reads") as caught:
+        with atomic_file(fifo) as handle:
+            handle.write(b"lost")
+    assert time.monotonic() - started < 5.0
+    assert caught.value.filename == str(fifo)
+    received: list[bytes] = []
+    reader = threading.Thread(target=lambda: received.append(fifo.read_bytes()))
+    reader.start()
+    deadline = time.monotonic() + 5.0
+    while time.monotonic() < deadline:  # the reader opens its end first
+        try:
+            with atomic_file(fifo) as handle:
+                handle.write(b"through")
+            break
+        except MazesimIOError:
+            time.sleep(0.01)
+    reader.join(5.0)
+    assert received == [b"through"]
+    assert stat.S_ISFIFO(fifo.lstat().st_mode)
+
+
+def test_proc_self_fd_is_written_into_whatever_it_is_open_on(tmp_path: Path) -> None:
+    read_end, write_end = os.pipe()
+    try:
+        with atomic_file(f"/proc/self/fd/{write_end}") as handle:
+            handle.write(b"piped")
+        assert os.read(read_end, 100) == b"piped"
+    finally:
+        os.close(read_end)
+        os.close(write_end)
+    log = tmp_path / "log.txt"
+    log.write_bytes(b"before\n")
+    with open(log, "ab") as stdout:
+        with atomic_file(f"/proc/self/fd/{stdout.fileno()}") as handle:
+            handle.write(b"appended\n")
+    assert log.read_bytes() == b"before\nappended\n"
+
+
+def test_a_folder_or_a_socket_is_refused_naming_it(tmp_path: Path) -> None:
+    with pytest.raises(MazesimIOError, match="it is a folder") as caught:
+        with atomic_file(tmp_path) as handle:
+            handle.write(b"x")
+    assert caught.value.filename == str(tmp_path)
+    address = tmp_path / "s.sock"
+    with socket.socket(socket.AF_UNIX) as server:
+        server.bind(str(address))
+        with pytest.raises(MazesimIOError, match="found a socket"):
+            with atomic_file(address) as handle:
+                handle.write(b"x")
+        assert stat.S_ISSOCK(address.lstat().st_mode)
+
+
+def test_names_up_to_the_file_system_limit_work(tmp_path: Path) -> None:
+    for length in (200, 236, 250, 255):
+        target = tmp_path / ("é" * ((length - 5) // 2) + "x" * ((length - 5) % 2) + ".json")
+        assert len(target.name.encode()) == length
+        with atomic_file(target) as handle:
+            handle.write(b"whole")
+        assert target.read_bytes() == b"whole"
+        assert len(os.path.basename(temporary_name(str(target))).encode()) <= 255 - 8
+    assert _hidden(tmp_path) == []
+    long = tmp_path / ("y" * 240)
+    stale = Path(temporary_name(str(long)))
+    stale.write_bytes(b"partial")
+    with atomic_file(long) as handle:
+        handle.write(b"whole")
+    assert not stale.exists()
+
+
+def test_a_full_disk_names_the_users_file_not_the_temporary(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    with pytest.raises(MazesimIOError, match="No space left on device") as caught:
+        with atomic_file("/dev/full") as handle:
+            handle.write(b"x" * 100)
+    assert str(caught.value) == "/dev/full: cannot write the file: No space left on device"
+
+    def full(descriptor: int) -> None:
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+
+    monkeypatch.setattr(_atomic, "_sync_file", full)
+    target = tmp_path / "summary.json"
+    with pytest.raises(MazesimIOError) as caught:
+        with atomic_file(target) as handle:
+            handle.write(b"x")
+    assert str(caught.value) == f"{target}: cannot write the file: No space left on device"
+    assert caught.value.errno == errno.ENOSPC and caught.value.filename == str(target)
+    assert not target.exists() and _hidden(tmp_path) == []
+    with pytest.raises(MazesimIOError, match="No such file or directory") as missing:
+        with atomic_file(tmp_path / "no" / "such.json") as handle:
+            handle.write(b"x")
+    assert ".tmp" not in str(missing.value)

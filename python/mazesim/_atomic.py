@@ -13,25 +13,53 @@ flushed with ``F_FULLFSYNC`` where it exists (macOS) and ``fsync`` elsewhere; th
 flushed by syncing the folder only where folders can be opened (POSIX); and a process id is
 probed only where that is harmless (POSIX: ``os.kill(pid, 0)``; on Windows it would end the
 process).
+
+What the path names decides how it is written (:func:`output_target`):
+
+- a regular file, or nothing yet: the file is replaced (or created) atomically as above;
+- a symbolic link: it is followed, and the file it leads to is replaced; the link stays a link;
+- a device, a FIFO or a terminal (``/dev/null``, ``/dev/tty``), or a path that leads through
+  ``/proc`` (``/dev/stdout``, ``/proc/self/fd/1``, whatever they are open on): the content is
+  written into it as a stream, appended (a descriptor of this process, such as ``/dev/stdout``,
+  through a copy of itself), never replaced; a FIFO no process reads is refused at once rather
+  than waited on;
+- a folder or a socket: refused.
+
+Temporary names fit the file system's limit of 255 bytes a name: a long target name is cut and
+marked with a digest of the whole name. Every failure is a :class:`~mazesim.errors.MazesimIOError`
+naming the user's path (never the temporary file) with the system's reason, a full disk included.
 """
 
 from __future__ import annotations
 
 import contextlib
+import errno
+import hashlib
+import io
 import os
 import re
 import secrets
+import stat
 import sys
 import time
 from collections.abc import Iterator
-from typing import IO
+from typing import IO, NamedTuple
+
+from mazesim.errors import MazesimIOError
 
 try:
     import fcntl
 except ImportError:  # Windows
     fcntl = None  # type: ignore[assignment]
 
-__all__ = ["atomic_file", "remove_stale_temporaries", "temporary_name"]
+__all__ = [
+    "OutputTarget",
+    "atomic_file",
+    "output_target",
+    "remove_stale_temporaries",
+    "temporary_name",
+    "write_failure",
+]
 
 #: True on Windows, where folders cannot be opened to sync them and ``os.kill`` is not a probe.
 _WINDOWS = sys.platform == "win32"
@@ -42,17 +70,42 @@ _WRITING: set[str] = set()
 _SUFFIX = ".tmp"
 
 
+#: The longest file name (in bytes) of the usual file systems (ext4, XFS, APFS, NTFS).
+NAME_MAX = 255
+#: Bytes a temporary name adds to its stem: the dot before it, ``.<10 digits>-<8 hex>.tmp``,
+#: and room for a suffix of up to 8 bytes a writer may add (``.mp4``).
+_ADDED = 1 + 1 + 10 + 1 + 8 + len(_SUFFIX) + 8
+#: Where the system shows the files processes have open (``/dev/stdout`` leads there): a path
+#: through it is written into, never replaced.
+_PROCESS_FILES = "/proc/"
+
+
+def _temporary_stem(base: str) -> str:
+    """The part of a temporary name taken from the target's name ``base``: the name itself, or
+    when the temporary name would pass :data:`NAME_MAX` bytes, its start cut at a character
+    boundary and marked with ``~`` and 8 hex digits of a digest of the whole name."""
+    encoded = base.encode("utf-8", "surrogateescape")
+    if len(encoded) + _ADDED <= NAME_MAX:
+        return base
+    digest = hashlib.sha256(encoded).hexdigest()[:8]
+    room = NAME_MAX - _ADDED - 1 - len(digest)
+    start = encoded[:room].decode("utf-8", "ignore")
+    return f"{start}~{digest}"
+
+
 def temporary_name(target: str) -> str:
-    """A fresh temporary path for ``target``, in its folder, named after it and this process."""
+    """A fresh temporary path for ``target``, in its folder, named after it and this process
+    (at most :data:`NAME_MAX` bytes long less 8, whatever the target's name)."""
     folder, base = os.path.split(os.path.abspath(target))
-    return os.path.join(folder, f".{base}.{os.getpid()}-{secrets.token_hex(4)}{_SUFFIX}")
+    stem = _temporary_stem(base)
+    return os.path.join(folder, f".{stem}.{os.getpid()}-{secrets.token_hex(4)}{_SUFFIX}")
 
 
 def _temporary_pattern(base: str) -> re.Pattern[str]:
     """Names of this module's temporaries of ``base``: group ``pid`` set unless of old style."""
     return re.compile(
-        rf"\.{re.escape(base)}\.(?:(?P<pid>[0-9]{{1,10}})-[0-9a-f]{{8}}|[a-z0-9_]{{8}})"
-        rf"{re.escape(_SUFFIX)}"
+        rf"\.{re.escape(_temporary_stem(base))}\.(?:(?P<pid>[0-9]{{1,10}})-[0-9a-f]{{8}}"
+        rf"|[a-z0-9_]{{8}}){re.escape(_SUFFIX)}"
     )
 
 
@@ -135,32 +188,204 @@ def _sync_folder(folder: str) -> None:
         os.close(descriptor)
 
 
+class OutputTarget(NamedTuple):
+    """What an output path names, and so how it is written.
+
+    Attributes:
+        path: The file to write: the path itself for a stream, else the regular file (existing
+            or not yet) it leads to once symbolic links are followed.
+        stream: Whether it is written into as a stream (a device, a FIFO, a terminal, a path
+            through ``/proc``) instead of replaced.
+    """
+
+    path: str
+    stream: bool
+
+
+def write_failure(path: str | os.PathLike[str], error: OSError, what: str = "") -> MazesimIOError:
+    """The error of a failed write of ``path``: its message names the user's path (not a
+    temporary file) and the system's reason; ``errno``, ``strerror`` and ``filename`` are set.
+
+    Args:
+        path: The path as the user gave it.
+        error: What the system raised.
+        what: Why, when the system's reason alone would not say (``"it is a folder"``).
+    """
+    name = os.fspath(path)
+    reason = what or error.strerror or str(error)
+    failure = MazesimIOError(f"{name}: cannot write the file: {reason}")
+    failure.errno = error.errno
+    failure.strerror = reason
+    failure.filename = name
+    return failure
+
+
+def _link_chain(path: str) -> list[str]:
+    """``path`` made absolute and each path its symbolic links lead to in turn (at most 40, as
+    the system follows)."""
+    chain = [os.path.abspath(path)]
+    for _ in range(40):
+        try:
+            following = os.readlink(chain[-1])
+        except (OSError, ValueError):
+            break
+        chain.append(os.path.normpath(os.path.join(os.path.dirname(chain[-1]), following)))
+    return chain
+
+
+def output_target(path: str | os.PathLike[str]) -> OutputTarget:
+    """How ``path`` is written (see the module's docs).
+
+    Raises:
+        MazesimIOError: ``path`` is a folder or a socket, or cannot be looked at.
+    """
+    name = os.fspath(path)
+    if any(step.startswith(_PROCESS_FILES) for step in _link_chain(name)):
+        return OutputTarget(name, True)
+    try:
+        mode = os.stat(name).st_mode
+    except FileNotFoundError:
+        return OutputTarget(os.path.realpath(name), False)
+    except OSError as error:
+        raise write_failure(name, error) from None
+    if stat.S_ISDIR(mode):
+        raise write_failure(name, IsADirectoryError(errno.EISDIR, "is a folder"), "it is a folder")
+    if stat.S_ISSOCK(mode):
+        raise write_failure(
+            name,
+            OSError(errno.ENXIO, "is a socket"),
+            "expected a file, a device or a FIFO, found a socket",
+        )
+    if stat.S_ISREG(mode):
+        return OutputTarget(os.path.realpath(name), False)
+    return OutputTarget(name, True)
+
+
+def _own_descriptor(path: str) -> int | None:
+    """The descriptor of this process that ``path`` leads to, if it does (``/dev/stdout``
+    leads to ``/proc/self/fd/1``)."""
+    own = re.compile(rf"/proc/(?:self|thread-self|{os.getpid()})/fd/([0-9]+)")
+    for step in _link_chain(path):
+        found = own.fullmatch(step)
+        if found is not None:
+            return int(found[1])
+    return None
+
+
+def _descriptor_of(stream: IO[str]) -> int | None:
+    try:
+        return stream.fileno()
+    except (OSError, ValueError, AttributeError):
+        return None
+
+
+def _open_stream(path: str) -> int:
+    """Opens a device, FIFO or system path to write into, appending, without waiting for a FIFO
+    reader that is not there; the descriptor is then blocking, like any file's. A descriptor of
+    this process (``/dev/stdout``) is written through a copy of itself, at its own position, so
+    that what the process prints to it afterwards follows the content instead of overwriting
+    it."""
+    own = _own_descriptor(path)
+    if own is not None:
+        # What Python printed there before comes first.
+        for stream in (sys.stdout, sys.stderr):
+            if stream is not None and _descriptor_of(stream) == own:
+                with contextlib.suppress(OSError, ValueError):
+                    stream.flush()
+        try:
+            return os.dup(own)
+        except OSError as error:
+            raise write_failure(path, error) from None
+    flags = os.O_WRONLY | os.O_APPEND | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0)
+    try:
+        descriptor = os.open(path, flags)
+    except OSError as error:
+        if error.errno == errno.ENXIO:
+            raise write_failure(
+                path, error, "it is a FIFO that no process reads (start its reader first)"
+            ) from None
+        raise write_failure(path, error) from None
+    if fcntl is not None:
+        status = fcntl.fcntl(descriptor, fcntl.F_GETFL)
+        fcntl.fcntl(descriptor, fcntl.F_SETFL, status & ~os.O_NONBLOCK)
+    return descriptor
+
+
+def _write_all(descriptor: int, data: bytes) -> None:
+    view = memoryview(data)
+    while view:
+        view = view[os.write(descriptor, view) :]
+
+
+@contextlib.contextmanager
+def _streamed(path: str) -> Iterator[IO[bytes]]:
+    """Collects what the block writes, then writes it into the stream ``path`` in one go."""
+    descriptor = _open_stream(path)
+    try:
+        buffer = io.BytesIO()
+        yield buffer
+        try:
+            _write_all(descriptor, buffer.getvalue())
+        except OSError as error:
+            raise write_failure(path, error) from None
+    finally:
+        os.close(descriptor)
+
+
+def _own_failure(error: OSError, temporary: str) -> bool:
+    """Whether an error inside a write block came from writing the temporary file (a full disk,
+    a quota) rather than from something else the block did."""
+    return error.errno is not None and error.filename in (None, temporary)
+
+
 @contextlib.contextmanager
 def atomic_file(path: str | os.PathLike[str]) -> Iterator[IO[bytes]]:
-    """Opens a temporary file that replaces ``path`` when the block ends without an error.
+    """Opens a file object whose content replaces ``path`` when the block ends without an error.
 
-    Readers of ``path`` see either the old content or the complete new one, never a partial
-    file. If the block raises, the temporary file is removed and ``path`` is left untouched.
-    Orphaned temporaries of ``path`` from interrupted runs are removed first.
+    Readers of a regular file see either the old content or the complete new one, never a
+    partial file. If the block raises, the temporary file is removed and ``path`` is left
+    untouched. Orphaned temporaries of ``path`` from interrupted runs are removed first. A
+    symbolic link is followed; a device, FIFO or system path is written into, not replaced (see
+    the module's docs).
 
     Args:
         path: The file to (re)write; its folder must exist.
 
     Yields:
         A binary file object to write the new content to.
+
+    Raises:
+        MazesimIOError: The file cannot be written (naming ``path`` and the system's reason).
     """
-    target = os.path.abspath(os.fspath(path))
-    remove_stale_temporaries(target)
-    temporary = temporary_name(target)
+    user_path = os.fspath(path)
+    target = output_target(user_path)
+    if target.stream:
+        with _streamed(target.path) as buffer:
+            yield buffer
+        return
+    remove_stale_temporaries(target.path)
+    temporary = temporary_name(target.path)
     _WRITING.add(temporary)
     try:
-        # Created with the user's usual permissions (``0o666`` less the umask): no chmod needed.
-        with open(temporary, "xb") as handle:
-            yield handle
-            handle.flush()
-            _sync_file(handle.fileno())
-        os.replace(temporary, target)
-        _sync_folder(os.path.dirname(target))
+        try:
+            # Created with the user's usual permissions (``0o666`` less the umask): no chmod.
+            handle = open(temporary, "xb")  # noqa: SIM115 - closed below, before the rename
+        except OSError as error:
+            raise write_failure(user_path, error) from None
+        with handle:
+            try:
+                yield handle
+                handle.flush()
+                _sync_file(handle.fileno())
+            except OSError as error:
+                if _own_failure(error, temporary):
+                    raise write_failure(user_path, error) from None
+                raise
+        try:
+            os.replace(temporary, target.path)
+        except OSError as error:
+            raise write_failure(user_path, error) from None
+        _sync_folder(os.path.dirname(target.path))
     except BaseException:
         with contextlib.suppress(OSError):
             os.unlink(temporary)

@@ -1,22 +1,29 @@
-"""Guards on the files a command reads and writes: no command writes over one of its inputs."""
+"""Guards on the files a command reads and writes: inputs are regular files read within a bound
+(:func:`open_input`, :func:`read_input`), and no command writes over one of its inputs."""
 
 from __future__ import annotations
 
 import argparse
 import contextlib
+import errno
 import fcntl
+import io
 import os
 import re
+import stat
 from collections.abc import Callable, Iterable, Iterator
+from typing import BinaryIO
 
 from mazesim.errors import InvalidArgumentError, MazesimError, MazesimIOError
 
 __all__ = [
     "MAX_TEXT_CHARACTERS",
     "file_name_of",
+    "open_input",
     "output_file",
     "output_files",
     "output_path",
+    "read_input",
     "read_text",
     "refuse_overwriting_inputs",
     "same_file",
@@ -28,6 +35,92 @@ __all__ = [
 #: randomisation file): far beyond any real one, and refused before an endless file such as
 #: ``/dev/zero`` fills the memory.
 MAX_TEXT_CHARACTERS = 64 * 1024 * 1024
+
+
+def _kind_of(mode: int) -> str:
+    """What a file that is not a regular file is, in words."""
+    kinds = (
+        (stat.S_ISDIR, "a folder"),
+        (stat.S_ISFIFO, "a FIFO (named pipe)"),
+        (stat.S_ISCHR, "a character device"),
+        (stat.S_ISBLK, "a block device"),
+        (stat.S_ISSOCK, "a socket"),
+    )
+    return next((word for test, word in kinds if test(mode)), "not a regular file")
+
+
+def _read_failure(file: str, what: str, reason: str, number: int | None) -> MazesimIOError:
+    failure = MazesimIOError(f"{file}: cannot read {what}: {reason}")
+    failure.errno = number
+    failure.strerror = reason
+    failure.filename = file
+    return failure
+
+
+def open_input(path: str | os.PathLike[str], what: str) -> BinaryIO:
+    """Opens a file mazesim reads, for reading in binary: a regular file only.
+
+    The file is opened without waiting (a FIFO no process writes to would otherwise block the
+    open for ever, deaf to Ctrl-C), then looked at through the open descriptor: a folder, FIFO,
+    device or socket is refused before a byte is read.
+
+    Args:
+        path: The file.
+        what: What the file is, for messages (``"the run"``).
+
+    Raises:
+        MazesimIOError: The file cannot be opened, or is not a regular file (``filename`` is the
+            path, ``strerror`` the reason).
+    """
+    file = os.fspath(path)
+    flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0)
+    try:
+        descriptor = os.open(file, flags | getattr(os, "O_BINARY", 0))
+    except OSError as error:
+        raise _read_failure(file, what, error.strerror or str(error), error.errno) from None
+    except ValueError as error:  # a NUL in the path
+        raise _read_failure(file, what, str(error), None) from None
+    try:
+        mode = os.fstat(descriptor).st_mode
+        if not stat.S_ISREG(mode):
+            raise _read_failure(
+                file, what, f"expected a regular file, found {_kind_of(mode)}", errno.EINVAL
+            )
+        if hasattr(os, "O_NONBLOCK"):
+            status = fcntl.fcntl(descriptor, fcntl.F_GETFL)
+            fcntl.fcntl(descriptor, fcntl.F_SETFL, status & ~os.O_NONBLOCK)
+        return os.fdopen(descriptor, "rb")
+    except BaseException:
+        os.close(descriptor)
+        raise
+
+
+#: Bytes read at a time by :func:`read_input`.
+_READ_PIECE = 1024 * 1024
+
+
+def read_input(path: str | os.PathLike[str], limit: int, what: str) -> bytes:
+    """The bytes of a regular file mazesim reads (:func:`open_input`), at most ``limit + 1`` of
+    them: a caller refuses a file whose result is longer than ``limit``.
+
+    Raises:
+        MazesimIOError: The file cannot be opened or read, or is not a regular file.
+    """
+    with open_input(path, what) as handle:
+        try:
+            # In pieces: one read of ``limit + 1`` bytes would reserve that much for any file.
+            pieces: list[bytes] = []
+            left = limit + 1
+            while left > 0:
+                piece = handle.read(min(left, _READ_PIECE))
+                if not piece:
+                    break
+                pieces.append(piece)
+                left -= len(piece)
+            return b"".join(pieces)
+        except OSError as error:
+            file = os.fspath(path)
+            raise _read_failure(file, what, error.strerror or str(error), error.errno) from None
 
 
 def read_text(
@@ -44,26 +137,27 @@ def read_text(
             message (:class:`~mazesim.errors.InvalidArgumentError` unless a format has its own).
 
     Raises:
-        MazesimIOError: The file cannot be read (its ``filename`` is the path).
+        MazesimIOError: The file cannot be read, or is not a regular file (its ``filename`` is
+            the path).
         MazesimError: What ``not_text`` builds, when the file is not UTF-8 text or too long.
     """
     file = os.fspath(path)
     try:
-        with open(file, encoding="utf-8") as handle:
+        with io.TextIOWrapper(open_input(file, what), encoding="utf-8") as handle:
             text = handle.read(MAX_TEXT_CHARACTERS + 1)
-        if len(text) > MAX_TEXT_CHARACTERS:
-            raise not_text(
-                f"{file}: expected {what} of at most {MAX_TEXT_CHARACTERS} characters, found more"
-            )
-        return text
-    except OSError as error:
-        failure = MazesimIOError(f"{file}: cannot read {what}: {error.strerror or error}")
-        failure.filename = file
-        raise failure from None
     except UnicodeDecodeError as error:
         raise not_text(
             f"{file}: expected {what} in UTF-8 text, found other bytes: {error}"
         ) from None
+    except MazesimIOError:
+        raise
+    except OSError as error:
+        raise _read_failure(file, what, error.strerror or str(error), error.errno) from None
+    if len(text) > MAX_TEXT_CHARACTERS:
+        raise not_text(
+            f"{file}: expected {what} of at most {MAX_TEXT_CHARACTERS} characters, found more"
+        )
+    return text
 
 
 def same_file(first: str | os.PathLike[str], second: str | os.PathLike[str]) -> bool:

@@ -11,8 +11,10 @@ from __future__ import annotations
 import argparse
 import os
 import resource
+import stat
 import subprocess
 import sys
+import threading
 import time
 from collections.abc import Iterator
 from dataclasses import dataclass
@@ -21,7 +23,7 @@ from typing import IO
 
 import pytest
 
-from mazesim.cli import build_parser
+from mazesim.cli import build_parser, main
 from ros_support import needs_ros
 
 REPO = Path(__file__).resolve().parents[2]
@@ -151,6 +153,8 @@ def files(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
         "sweep": folder / "sweep.toml",
         "controller": folder / "controller.py",
     }
+    made["fifo"] = folder / "no-writer.fifo"
+    os.mkfifo(made["fifo"])
     made["folder"].mkdir()
     made["unreadable"].write_text("[world]\n")
     made["unreadable"].chmod(0)
@@ -419,3 +423,90 @@ def test_an_output_name_the_terminal_cannot_show_is_printed_escaped(
     assert target.exists()
     printed = result.stdout.decode("ascii")
     assert "wrote" in printed and ("\\x" in printed or "\\udc" in printed)
+
+
+def _input_options(parser: argparse.ArgumentParser) -> list[argparse.Action]:
+    return [action for action in _value_options(parser) if _kind(action) == "input"]
+
+
+#: Commands with inputs (files or folders they read), ROS's aside (they need ROS 1).
+INPUT_COMMANDS = sorted(
+    command
+    for command, parser in COMMANDS.items()
+    if _input_options(parser) and not command.startswith("ros ")
+)
+
+
+def test_input_commands_are_found() -> None:
+    assert {"show", "import-wbt", "replay", "sweep", "webots run"} <= set(INPUT_COMMANDS)
+
+
+def _main_within(arguments: list[str], folder: Path, seconds: float) -> int | None:
+    """``mazesim ARGUMENTS`` run in this process from ``folder``: its exit code, or None when it
+    has not ended after ``seconds`` (it then stays blocked in a thread of its own)."""
+    ended: list[int] = []
+
+    def run() -> None:
+        ended.append(main(arguments))
+
+    saved = os.getcwd()
+    os.chdir(folder)
+    try:
+        worker = threading.Thread(target=run, daemon=True)
+        worker.start()
+        worker.join(seconds)
+    finally:
+        os.chdir(saved)
+    return ended[0] if ended else None
+
+
+def test_issue_35_a_fifo_without_a_writer_as_any_input_is_refused_at_once(
+    files: dict[str, Path], tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Each input of each command given a FIFO no process writes to: refused in one line, exit
+    2, at once, instead of waiting for ever (6 of 9 commands hung, ``import-wbt`` deaf to
+    Ctrl-C)."""
+    problems = []
+    for command in INPUT_COMMANDS:
+        parser = COMMANDS[command]
+        for number, action in enumerate(_input_options(parser)):
+            folder = tmp_path / f"{command.replace(' ', '-')}-{number}"
+            folder.mkdir()
+            arguments = _arguments(command, parser, (action, "fifo"), files, folder)
+            if command == "replay":
+                arguments += ["-o", str(folder / "page.html")]
+            code = _main_within(arguments, folder, 30.0)
+            error = capsys.readouterr().err.strip()
+            if code != 2 or not error.splitlines()[-1].startswith("mazesim: error: "):
+                problems.append(f"mazesim {' '.join(arguments)}: exit {code}: {error[-500:]}")
+    assert not problems, "\n".join(problems)
+
+
+def test_issue_35_special_outputs_are_written_into_never_replaced(
+    tmp_path: Path, capfdbinary: pytest.CaptureFixture[bytes]
+) -> None:
+    """``show -o`` at a device node, a link to ``/dev/null`` and ``/dev/stdout``: written into
+    (as root, ``-o /dev/null`` used to replace the system's /dev/null with a PNG)."""
+    link = tmp_path / "null.png"
+    link.symlink_to(os.devnull)
+    targets = [str(link), "/dev/stdout"]
+    if os.geteuid() == 0:
+        node = tmp_path / "device.png"
+        os.mknod(node, stat.S_IFCHR | 0o666, os.makedev(1, 3))  # a null device of its own
+        targets.append(str(node))
+    for target in targets:
+        assert _main_within(["show", "arena", "-o", target], tmp_path, 60.0) == 0
+        written = capfdbinary.readouterr().out
+        if target == "/dev/stdout":
+            assert written.startswith(b"\x89PNG"), written[:40]
+    assert link.is_symlink() and stat.S_ISCHR(os.stat(os.devnull).st_mode)
+    if os.geteuid() == 0:
+        assert stat.S_ISCHR((tmp_path / "device.png").lstat().st_mode)
+    assert sorted(os.listdir(tmp_path)) == sorted(
+        ["null.png"] + (["device.png"] if os.geteuid() == 0 else [])
+    )
+    fifo = tmp_path / "picture.fifo"
+    os.mkfifo(fifo)
+    assert _main_within(["show", "arena", "-o", str(fifo)], tmp_path, 60.0) == 2
+    assert b"FIFO that no process reads" in capfdbinary.readouterr().err
+    assert stat.S_ISFIFO(fifo.lstat().st_mode)

@@ -191,7 +191,7 @@ def test_close_twice_is_safe() -> None:
     env.close()
     unwrapped = EPuckMazeEnv()
     unwrapped.close()
-    with pytest.raises(ResetNeeded):
+    with pytest.raises(ClosedEnvironmentError):
         unwrapped.step(np.zeros(2, dtype=np.float32))
     vector = gymnasium.make_vec(ENV_ID, num_envs=4)
     vector.reset(seed=0)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import gzip
 import json
 import os
+import tracemalloc
 from pathlib import Path
 from typing import Any
 
@@ -234,6 +235,11 @@ HOSTILE_FIELDS = [
     (("episodes", 0, "events"), [[1, 2, 3]], "episodes[0].events[0]"),
     (("episodes", 0, "events"), [[99, 2]], "episodes[0].events[0][0]"),
     (("episodes", 0, "actions"), [], "episodes[0].actions"),
+    # Issue 35: finite but beyond the worlds' limits, or past what an int64 holds.
+    (("episodes", 0, "x"), [1e300] * 21, "episodes[0].x"),
+    (("episodes", 0, "y"), [2e7] * 21, "episodes[0].y"),
+    (("episodes", 0, "yaw"), [1e30] * 21, "episodes[0].yaw"),
+    (("episodes", 0, "rays"), [[1e300]] * 21, "episodes[0].rays"),
     (("episodes", 0, "wheel_speeds"), [[1, 2, 3]] * 21, "episodes[0].wheel_speeds"),
     (("episodes", 0, "subtasks"), "9" * 21, "episodes[0].subtasks"),
     (("episodes", 0, "levels"), ["x"] * 21, "episodes[0].levels"),
@@ -313,3 +319,36 @@ def test_a_controller_name_cannot_break_out_of_the_page_script() -> None:
     block = block[: block.index("</script>")]
     assert "<" not in block
     assert json.loads(block)["run"]["controller"] == run.controller
+
+
+def test_issue_35_a_gzip_of_empty_lists_is_refused_before_parsing(tmp_path: Path) -> None:
+    # 255 MiB of empty lists, under the byte limit, in a file of about 250 KiB: parsed, it took
+    # 3.9 GB.
+    bomb = tmp_path / "lists.json.gz"
+    chunk = b"[]," * (1 << 20)
+    with gzip.open(bomb, "wb", compresslevel=9) as handle:
+        handle.write(b"[")
+        for _ in range(85):
+            handle.write(chunk)
+        handle.write(b"[]]")
+    assert bomb.stat().st_size < 400_000
+    tracemalloc.start()
+    try:
+        with pytest.raises(RunFormatError, match="at most 4194304 lists and objects, found more"):
+            load_run(bomb)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    # Refused after the first pieces are decompressed: 0.1 s and 75 MB in all, measured.
+    assert peak < 64 * 2**20, f"{peak / 2**20:.0f} MiB"
+
+
+def test_issue_35_a_run_far_away_never_reaches_a_replay_page(tmp_path: Path) -> None:
+    path = _hostile_run_file(tmp_path, ("episodes", 0, "x"), [1e300] * 21)
+    page = tmp_path / "page.html"
+    assert main(["replay", str(path), "-o", str(page), "--no-progress"]) == 2
+    assert not page.exists()
+    run = long_run(20)
+    run.episodes[0].poses[:, 0] = 999.9
+    write_html(run, page)
+    assert "-9223372036854775808" not in page.read_text()

@@ -7,6 +7,7 @@ import json
 import math
 import subprocess
 import sys
+import time
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -18,6 +19,7 @@ from mazesim.webots import prepare, run_controller
 from mazesim.webots import simulation as simulations
 from mazesim.webots.controller import ControllerStopped, Robot
 from mazesim.webots.devices import LED, DistanceSensor, Motor, PositionSensor
+from mazesim.webots.termination import GRACE_SECONDS
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLE = ROOT / "examples" / "webots" / "avoid_collision.py"
@@ -200,6 +202,34 @@ def test_a_controller_ignoring_minus_one_is_stopped(tmp_path: Path) -> None:
     )
     run = run_controller(script, mazesim.load_world("arena"), seconds=1.0)
     assert run.reached_end and run.simulated_seconds == pytest.approx(1.024)
+
+
+@pytest.mark.parametrize(
+    "body",
+    [
+        # Catches everything, ControllerStopped too, and goes on stepping.
+        "while True:\n    try:\n        robot.step(32)\n    except:\n        pass\n",
+        # The same, one function call deeper, its loop inside another bare except.
+        "def spin():\n    while True:\n        try:\n            robot.step(32)\n"
+        "        except BaseException:\n            continue\n"
+        "while True:\n    try:\n        spin()\n    except:\n        pass\n",
+    ],
+    ids=["bare-except", "nested"],
+)
+def test_issue_35_a_runaway_controller_is_stopped_after_the_grace_as_webots_does(
+    tmp_path: Path, body: str
+) -> None:
+    script = tmp_path / "runaway.py"
+    script.write_text(f"from controller import Robot\nrobot = Robot()\n{body}")
+    tracing = sys.gettrace()
+    started = time.monotonic()
+    run = run_controller(script, mazesim.load_world("arena"), seconds=0.5)
+    took = time.monotonic() - started
+    assert run.reached_end and run.stopped
+    assert GRACE_SECONDS <= took < GRACE_SECONDS + 20.0
+    assert run.exit_status == 0 and sys.gettrace() is tracing
+    # The process goes on normally: code run afterwards is not unwound.
+    assert [n * 2 for n in range(3)] == [0, 2, 4]
 
 
 def mazesim_command(*args: str, cwd: Path) -> subprocess.CompletedProcess[str]:

@@ -1,18 +1,93 @@
 //! Reading input files within a size bound, and writing files the user cares about without ever
 //! leaving them half-written.
+//!
+//! Inputs are regular files only: a file is opened without waiting (a FIFO no process writes to
+//! would block the open for ever) and a folder, FIFO, device or socket is refused before a byte
+//! is read. Outputs follow what the path names, as mazesim's Python writer does: a regular file
+//! (or a new path) is replaced atomically, through its symbolic links (the link stays); a device,
+//! FIFO or terminal, or a path through `/proc` (`/dev/stdout`), is written into, never replaced;
+//! a folder or a socket is refused. Temporary names fit the 255-byte limit of a file name.
 
-use std::io::{Read, Write};
-use std::path::Path;
+use std::fs::{File, FileType, OpenOptions};
+use std::io::{ErrorKind, Read, Write};
+use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use crate::error::{Error, Location, Result};
 
+/// The longest file name, in bytes, of the usual file systems (ext4, XFS, APFS, NTFS).
+const NAME_MAX: usize = 255;
+/// The error number a refused kind of file carries (`EINVAL`: not a file that can be used).
+const NOT_A_FILE: i32 = 22;
+
+/// What a file that is not a regular file is, in words.
+fn kind_of(kind: FileType) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if kind.is_fifo() {
+            return "a FIFO (named pipe)";
+        }
+        if kind.is_char_device() {
+            return "a character device";
+        }
+        if kind.is_block_device() {
+            return "a block device";
+        }
+        if kind.is_socket() {
+            return "a socket";
+        }
+    }
+    if kind.is_dir() {
+        "a folder"
+    } else {
+        "not a regular file"
+    }
+}
+
+/// The error of a file refused for what it is, or for what the OS said.
+fn refused(path: &Path, what: &str, reason: String) -> Error {
+    Error::Io {
+        path: path.display().to_string(),
+        message: format!("{what}: {reason}"),
+        errno: Some(NOT_A_FILE),
+        reason: Some(reason),
+    }
+}
+
+/// `options` made not to wait when the file opened is a FIFO (no effect on other files).
+fn without_waiting(options: &mut OpenOptions) -> &mut OpenOptions {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::OpenOptionsExt;
+        options.custom_flags(libc::O_NONBLOCK);
+    }
+    options
+}
+
+/// Opens `path` for reading, if it is a regular file (see the module's docs).
+fn open_regular(path: &Path, what: &str) -> Result<File> {
+    let io_err = |e: std::io::Error| Error::io(path, &format!("cannot read {what}"), &e);
+    let file = without_waiting(OpenOptions::new().read(true))
+        .open(path)
+        .map_err(io_err)?;
+    let kind = file.metadata().map_err(io_err)?.file_type();
+    if !kind.is_file() {
+        return Err(refused(
+            path,
+            &format!("cannot read {what}"),
+            format!("expected a regular file, found {}", kind_of(kind)),
+        ));
+    }
+    Ok(file)
+}
+
 /// Reads the bytes of `path` (`what` names it in errors: "the world file"), at most `limit` of
-/// them: a longer file, or an endless one such as `/dev/zero`, is refused once `limit + 1` bytes
-/// are read, before it can fill the memory.
+/// them: a regular file only (see the module's docs); a longer one is refused once `limit + 1`
+/// bytes are read, before it can fill the memory.
 pub fn read_limited(path: &Path, limit: u64, what: &str) -> Result<Vec<u8>> {
     let io_err = |e: std::io::Error| Error::io(path, &format!("cannot read {what}"), &e);
-    let file = std::fs::File::open(path).map_err(io_err)?;
+    let file = open_regular(path, what)?;
     let mut bytes = Vec::new();
     file.take(limit.saturating_add(1))
         .read_to_end(&mut bytes)
@@ -35,16 +110,128 @@ pub fn read_limited(path: &Path, limit: u64, what: &str) -> Result<Vec<u8>> {
 /// threads write the same path at once.
 static TEMPORARY_FILES: AtomicU64 = AtomicU64::new(0);
 
-/// Writes `bytes` to `path` through a temporary file of its own in the same folder, synced, then
-/// renamed: a reader sees the old file or the new one whole, and two writers of one path (two
-/// threads of one process too) never write into each other's temporary file.
+/// How an output path is written.
+enum Output {
+    /// Replaced atomically: the regular file (existing or not) the path leads to.
+    File(PathBuf),
+    /// Written into: a device, FIFO, terminal or a path through `/proc`.
+    Stream,
+}
+
+/// The paths a chain of symbolic links goes through from `path` (itself first), at most 40.
+fn link_chain(path: &Path) -> Vec<PathBuf> {
+    let absolute = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
+    let mut chain = vec![absolute];
+    while chain.len() <= 40 {
+        let last = &chain[chain.len() - 1];
+        let Ok(next) = std::fs::read_link(last) else {
+            break;
+        };
+        let joined = last.parent().unwrap_or(Path::new("/")).join(next);
+        chain.push(std::path::absolute(&joined).unwrap_or(joined));
+    }
+    chain
+}
+
+/// What `path` names, and so how it is written (see the module's docs).
+fn output_of(path: &Path) -> Result<Output> {
+    let what = "cannot write the file";
+    let chain = link_chain(path);
+    if chain.iter().any(|step| step.starts_with("/proc")) {
+        return Ok(Output::Stream);
+    }
+    let kind = match std::fs::metadata(path) {
+        Ok(metadata) => metadata.file_type(),
+        // Nothing there yet: the file the last link names (the path itself without links).
+        Err(e) if e.kind() == ErrorKind::NotFound => {
+            return Ok(Output::File(chain[chain.len() - 1].clone()));
+        }
+        Err(e) => return Err(Error::io(path, what, &e)),
+    };
+    if kind.is_file() {
+        let real = std::fs::canonicalize(path).map_err(|e| Error::io(path, what, &e))?;
+        return Ok(Output::File(real));
+    }
+    if kind.is_dir() {
+        return Err(refused(path, what, "it is a folder".into()));
+    }
+    #[cfg(unix)]
+    if std::os::unix::fs::FileTypeExt::is_socket(&kind) {
+        return Err(refused(
+            path,
+            what,
+            "expected a file, a device or a FIFO, found a socket".into(),
+        ));
+    }
+    Ok(Output::Stream)
+}
+
+/// Writes `bytes` into the device, FIFO or terminal `path`, appending; a FIFO no process reads
+/// is refused at once instead of waited on.
+fn write_stream(path: &Path, bytes: &[u8]) -> Result<()> {
+    let what = "cannot write the file";
+    let mut file = without_waiting(OpenOptions::new().append(true))
+        .open(path)
+        .map_err(|e| {
+            #[cfg(unix)]
+            if e.raw_os_error() == Some(libc::ENXIO) {
+                return refused(
+                    path,
+                    what,
+                    "it is a FIFO that no process reads (start its reader first)".into(),
+                );
+            }
+            Error::io(path, what, &e)
+        })?;
+    let mut rest = bytes;
+    while !rest.is_empty() {
+        match file.write(rest) {
+            Ok(0) => return Err(Error::io(path, what, &ErrorKind::WriteZero.into())),
+            Ok(written) => rest = &rest[written..],
+            // The descriptor does not wait: a full pipe is waited on here.
+            Err(e) if e.kind() == ErrorKind::WouldBlock => {
+                std::thread::sleep(std::time::Duration::from_millis(1));
+            }
+            Err(e) if e.kind() == ErrorKind::Interrupted => {}
+            Err(e) => return Err(Error::io(path, what, &e)),
+        }
+    }
+    Ok(())
+}
+
+/// The part of a temporary name taken from the target's name: the name itself, or when the
+/// temporary name would pass [`NAME_MAX`] bytes, its start (cut at a character boundary) and
+/// `~` with 16 hex digits of a hash of the whole name.
+fn temporary_stem(name: &str) -> String {
+    // `.NAME.tmp-<pid, 10 digits>-<count, 20 digits>`
+    let added = 1 + 5 + 10 + 1 + 20;
+    if name.len() + added <= NAME_MAX {
+        return name.to_string();
+    }
+    let hash = crate::fingerprint::fnv1a(name.as_bytes());
+    let mut room = NAME_MAX - added - 17;
+    while !name.is_char_boundary(room) {
+        room -= 1;
+    }
+    format!("{}~{hash:016x}", &name[..room])
+}
+
+/// Writes `bytes` to `path` as the module's docs say: a regular file through a temporary file
+/// of its own in the same folder, synced, then renamed (a reader sees the old file or the new
+/// one whole, and two writers of one path, two threads of one process too, never write into
+/// each other's temporary file); a device, FIFO or terminal by writing into it. Errors name
+/// `path` as given, never the temporary file.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+    let target = match output_of(path)? {
+        Output::Stream => return write_stream(path, bytes),
+        Output::File(target) => target,
+    };
     let io_err = |e: std::io::Error| Error::io(path, "cannot write the file", &e);
-    let dir = path
+    let dir = target
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
-    let name = path.file_name().ok_or_else(|| Error::Io {
+    let name = target.file_name().ok_or_else(|| Error::Io {
         path: path.display().to_string(),
         message: "expected a file path, found a folder".into(),
         errno: None,
@@ -52,18 +239,15 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     })?;
     let tmp = dir.join(format!(
         ".{}.tmp-{}-{}",
-        name.to_string_lossy(),
+        temporary_stem(&name.to_string_lossy()),
         std::process::id(),
         TEMPORARY_FILES.fetch_add(1, Ordering::Relaxed)
     ));
     let result = (|| {
-        let mut f = std::fs::OpenOptions::new()
-            .write(true)
-            .create_new(true)
-            .open(&tmp)?;
+        let mut f = OpenOptions::new().write(true).create_new(true).open(&tmp)?;
         f.write_all(bytes)?;
         f.sync_all()?;
-        std::fs::rename(&tmp, path)
+        std::fs::rename(&tmp, &target)
     })();
     if result.is_err() {
         let _ = std::fs::remove_file(&tmp);
@@ -119,18 +303,107 @@ mod tests {
 
     #[cfg(unix)]
     #[test]
-    fn an_endless_file_stops_at_the_limit() {
-        let error = read_limited(Path::new("/dev/zero"), 1 << 20, "the world file").unwrap_err();
-        assert!(matches!(error, Error::Format { .. }), "{error}");
-        let error = crate::world::World::load(Path::new("/dev/zero")).unwrap_err();
+    fn only_regular_files_are_read_and_a_fifo_without_writer_does_not_wait() {
+        let dir = std::env::temp_dir().join(format!("mazesim-read-kinds-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let fifo = dir.join("world.fifo");
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        let mut refused_paths = vec![
+            (PathBuf::from("/dev/zero"), "a character device"),
+            (dir.clone(), "a folder"),
+        ];
+        if made.is_ok_and(|status| status.success()) {
+            refused_paths.push((fifo, "a FIFO (named pipe)"));
+        }
+        for (path, kind) in refused_paths {
+            for error in [
+                read_limited(&path, 1 << 20, "the world file").unwrap_err(),
+                crate::world::World::load(&path).unwrap_err(),
+                crate::wbt::WbtImport::load(&path).unwrap_err(),
+            ] {
+                let text = error.to_string();
+                assert!(matches!(error, Error::Io { .. }), "{text}");
+                assert!(
+                    text.contains(&format!("expected a regular file, found {kind}")),
+                    "{text}"
+                );
+            }
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn outputs_that_are_not_regular_files_are_written_into_not_replaced() {
+        let dir = std::env::temp_dir().join(format!("mazesim-write-kinds-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        // A link to /dev/null: written through, the link kept, /dev/null a device still.
+        let link = dir.join("null.toml");
+        std::os::unix::fs::symlink("/dev/null", &link).unwrap();
+        write_atomic(&link, b"name = 'x'\n").unwrap();
+        assert!(std::fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink());
+        use std::os::unix::fs::FileTypeExt;
+        assert!(std::fs::metadata("/dev/null")
+            .unwrap()
+            .file_type()
+            .is_char_device());
+        // A link to a regular file: the file is replaced, the link stays.
+        let real = dir.join("real.toml");
+        std::fs::write(&real, b"old").unwrap();
+        let to_real = dir.join("to-real.toml");
+        std::os::unix::fs::symlink(&real, &to_real).unwrap();
+        write_atomic(&to_real, b"new").unwrap();
+        assert_eq!(std::fs::read(&real).unwrap(), b"new");
+        assert!(std::fs::symlink_metadata(&to_real)
+            .unwrap()
+            .file_type()
+            .is_symlink());
+        // A FIFO no process reads: refused at once.
+        let fifo = dir.join("out.fifo");
+        if std::process::Command::new("mkfifo")
+            .arg(&fifo)
+            .status()
+            .is_ok_and(|s| s.success())
+        {
+            let error = write_atomic(&fifo, b"x").unwrap_err().to_string();
+            assert!(error.contains("FIFO that no process reads"), "{error}");
+            assert!(std::fs::metadata(&fifo).unwrap().file_type().is_fifo());
+        }
+        // A full disk names the user's file.
+        let error = write_atomic(Path::new("/dev/full"), b"x")
+            .unwrap_err()
+            .to_string();
+        assert_eq!(
+            error,
+            "/dev/full: cannot write the file: No space left on device"
+        );
+        // A folder is refused.
+        let error = write_atomic(&dir, b"x").unwrap_err().to_string();
         assert!(
-            error.to_string().contains("at most 67108864 bytes"),
+            error.ends_with("cannot write the file: it is a folder"),
             "{error}"
         );
-        let error = crate::wbt::WbtImport::load(Path::new("/dev/zero")).unwrap_err();
-        assert!(
-            error.to_string().contains("at most 268435456 bytes"),
-            "{error}"
-        );
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn names_up_to_the_file_system_limit_are_written() {
+        let dir = std::env::temp_dir().join(format!("mazesim-long-names-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        for length in [200, 236, 250, 255] {
+            let name = format!(
+                "{}{}.toml",
+                "é".repeat((length - 5) / 2),
+                "x".repeat((length - 5) % 2)
+            );
+            assert_eq!(name.len(), length);
+            write_atomic(&dir.join(&name), b"whole").unwrap();
+            assert_eq!(std::fs::read(dir.join(&name)).unwrap(), b"whole");
+        }
+        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 4);
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

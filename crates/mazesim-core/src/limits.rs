@@ -46,6 +46,11 @@ pub const MAX_ROBOT_SPEED: f64 = 10.0;
 /// second: a control step never turns it by more than an `f32` angle can hold.
 pub const MAX_TURN_RATE: f64 = 10_000.0;
 
+/// Largest noise scale of a robot (each sensor model's relative noise is multiplied by it): a
+/// hundred times the measured noise, far beyond any real sensor, and its readings stay finite
+/// (a scale of 1e300 made every noisy reading infinite).
+pub const MAX_NOISE_SCALE: f64 = 100.0;
+
 /// Most threads of a batch (0 means one per core).
 pub const MAX_THREADS: usize = 256;
 

@@ -184,6 +184,13 @@ impl Scene {
                     .to_string(),
             );
         }
+        // The same limits as a world file's bodies: a state edited far away is refused.
+        for (_, body) in world.bodies.iter() {
+            let t = body.translation();
+            let angle = body.rotation().angle();
+            crate::limits::check_pose("physics body", t.x.into(), t.y.into(), angle.into())
+                .map_err(|e| e.to_string())?;
+        }
         self.world.islands = world.islands;
         self.world.broad_phase = world.broad_phase;
         self.world.narrow_phase = world.narrow_phase;
@@ -316,9 +323,8 @@ impl Body {
         use serde::Deserialize;
         let (pose, world): ([f32; 3], Option<PhysicsWorld>) =
             Deserialize::deserialize(deserializer).map_err(|e| e.to_string())?;
-        if !pose.iter().all(|v| v.is_finite()) {
-            return Err(format!("expected a finite pose, found {pose:?}"));
-        }
+        let [x, y, yaw] = pose.map(f64::from);
+        crate::limits::check_pose("robot", x, y, yaw).map_err(|e| e.to_string())?;
         match (self.scene.as_mut(), world) {
             (Some(scene), Some(world)) => scene.load(world)?,
             (None, None) => {}

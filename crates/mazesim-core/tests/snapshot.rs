@@ -178,3 +178,57 @@ fn truncated_corrupt_or_foreign_bytes_are_refused() {
     refused(&mut s, &longer);
     s.restore(&snapshot).unwrap();
 }
+
+/// `bytes` with every occurrence of the robot's pose (three `f32`, as postcard writes them)
+/// replaced by `pose`, and the checksum recomputed as the snapshot writer does.
+fn edited(bytes: &[u8], from: [f32; 3], pose: [f32; 3]) -> Vec<u8> {
+    let encode = |p: [f32; 3]| p.iter().flat_map(|v| v.to_le_bytes()).collect::<Vec<u8>>();
+    let (old, new) = (encode(from), encode(pose));
+    let mut out = bytes.to_vec();
+    let mut at = 0;
+    let mut found = 0;
+    while let Some(offset) = out[at..]
+        .windows(old.len())
+        .position(|w| w == old.as_slice())
+    {
+        out[at + offset..at + offset + new.len()].copy_from_slice(&new);
+        at += offset + new.len();
+        found += 1;
+    }
+    assert!(
+        found >= 2,
+        "the pose is in the state and in the physics body"
+    );
+    // The header: magic, version, world, robot, physics steps, noise, length, then the checksum.
+    let fixed = 8 + 4 + 8 + 8 + 4 + 1 + 8 + 8;
+    let hash = mazesim_core::fingerprint::fnv1a_extend(
+        mazesim_core::fingerprint::fnv1a(&out[..fixed - 8]),
+        &out[fixed..],
+    );
+    out[fixed - 8..fixed].copy_from_slice(&hash.to_le_bytes());
+    out
+}
+
+#[test]
+fn issue_35_a_snapshot_edited_far_away_is_refused_like_set_start() {
+    let arena = Arc::new(World::builtin("arena").unwrap());
+    let mut s = sim(arena.clone(), "e-puck", 3, true);
+    for k in 0..5 {
+        let (left, right) = speeds(k);
+        s.step(left, right).unwrap();
+    }
+    let pose = s.pose();
+    let snapshot = s.snapshot();
+    let mut fresh = sim(arena, "e-puck", 3, true);
+    let control = edited(&snapshot, pose, pose);
+    fresh.restore(&control).unwrap();
+    for far in [[1e30, 0.0, 0.0], [0.0, 2000.0, 0.0], [0.0, 0.0, 1e9]] {
+        let message = refused(&mut fresh, &edited(&snapshot, pose, far));
+        assert!(
+            message.contains("robot pose") && message.contains("1000"),
+            "{message}"
+        );
+    }
+    let message = refused(&mut fresh, &edited(&snapshot, pose, [f32::NAN, 0.0, 0.0]));
+    assert!(message.contains("finite"), "{message}");
+}

@@ -13,10 +13,12 @@ optional ``tensorboardX`` package (``pip install 'mazesim[tensorboard]'``).
 from __future__ import annotations
 
 import csv
+import io
 from pathlib import Path
 from types import TracebackType
 from typing import Any
 
+from mazesim._atomic import atomic_file
 from mazesim.errors import MissingDependencyError
 from mazesim.learn.train import CURVE_VALUES
 
@@ -60,20 +62,21 @@ class LearningCurve:
         self._writer_class = _tensorboard_writer_class() if tensorboard else None
         self.writer: Any = None
         self.path = folder / CURVE_FILE
-        self._file: Any = None
+        self._rows = io.StringIO()
         self._csv: Any = None
 
     def __call__(self, stage: str, values: dict[str, float]) -> None:
-        if self._file is None:
+        if self._csv is None:
             # The hierarchical training has made the folder by now; the flat one makes it last.
             self.folder.mkdir(parents=True, exist_ok=True)
-            self._file = self.path.open("w", newline="", encoding="utf-8")
-            self._csv = csv.DictWriter(self._file, fieldnames=CSV_COLUMNS, restval="")
+            self._csv = csv.DictWriter(self._rows, fieldnames=CSV_COLUMNS, restval="")
             self._csv.writeheader()
             if self._writer_class is not None:
                 self.writer = self._writer_class(logdir=str(self.folder / TENSORBOARD_FOLDER))
         self._csv.writerow({"stage": stage, **values})
-        self._file.flush()
+        # Written whole at each point (a few hundred short rows at most), as every output is.
+        with atomic_file(self.path) as handle:
+            handle.write(self._rows.getvalue().encode("utf-8"))
         if self.writer is not None:
             step = int(values["index"])
             for name, value in values.items():
@@ -81,9 +84,7 @@ class LearningCurve:
                     self.writer.add_scalar(f"{stage}/{name}", value, step)
 
     def close(self) -> None:
-        """Closes the files."""
-        if self._file is not None:
-            self._file.close()
+        """Closes the TensorBoard files (the CSV file is complete after each point)."""
         if self.writer is not None:
             self.writer.close()
 

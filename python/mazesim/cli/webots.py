@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import io
 import json
 import math
 import os
@@ -11,7 +12,12 @@ import sys
 from typing import Any, TextIO
 
 from mazesim._atomic import atomic_file
-from mazesim._paths import output_files, output_path, refuse_overwriting_inputs
+from mazesim._paths import (
+    open_input,
+    output_files,
+    output_path,
+    refuse_overwriting_inputs,
+)
 from mazesim.cli._args import positive_seconds, seed_argument
 from mazesim.cli._help import examples
 from mazesim.cli.progress import ProgressDisplay, add_progress_option, progress_display
@@ -238,7 +244,10 @@ def _load_world(
             f"{len(warnings)} (listed above)",
             source=spec,
         )
-    with open(spec, encoding="utf-8", errors="replace") as handle:
+    # The import has checked the file's size; it is read again only for the scene's fields.
+    with io.TextIOWrapper(
+        open_input(spec, "the Webots world"), encoding="utf-8", errors="replace"
+    ) as handle:
         text = handle.read().replace("\r\n", "\n").replace("\r", "\n")
     scene = read_scene(text, report.get("robot_model"), report.get("robot_line"))
     return world, report, scene
@@ -305,6 +314,7 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
         "exit_status": result.exit_status,
         "controller_error": result.error.strip().splitlines()[-1] if result.error else None,
         "quit_requested": result.quit_requested,
+        "stopped_after_end": result.stopped,
         "final_pose": list(result.final_pose),
         "wall_clock_seconds": wall_clock,
         "real_time_factor": result.simulated_seconds / wall_clock if wall_clock > 0 else None,
@@ -384,4 +394,6 @@ def _ending(result: Any) -> str:
         return "the controller raised an exception"
     if result.exit_status:
         return f"the controller exited with status {result.exit_status}"
+    if result.stopped:
+        return "stopped 1 s after robot.step returned -1, as Webots stops it"
     return "robot.step returned -1" if result.reached_end else "the controller returned"

@@ -37,16 +37,15 @@ import itertools
 import json
 import math
 import os
-import sys
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
 from mazesim._core import World, builtin_world_names, generate_maze
 from mazesim._paths import read_text
+from mazesim._toml import load_toml
 from mazesim.errors import (
     InvalidArgumentError,
-    MissingDependencyError,
     UnknownNameError,
     WorldFormatError,
 )
@@ -231,23 +230,6 @@ class SweepConfig:
     settings: tuple[Setting, ...]
 
 
-def _toml_loads(text: str, source: str) -> dict[str, Any]:
-    if sys.version_info >= (3, 11):
-        import tomllib
-    else:  # pragma: no cover - Python 3.9 and 3.10
-        try:
-            import tomli as tomllib
-        except ImportError:
-            raise MissingDependencyError(
-                "reading a sweep file on Python < 3.11 needs 'tomli': "
-                "pip install 'mazesim[ray]' (or pip install tomli)"
-            ) from None
-    try:
-        return tomllib.loads(text)
-    except tomllib.TOMLDecodeError as error:
-        raise InvalidArgumentError(f"{source}: not a valid TOML file: {error}") from None
-
-
 def _check_value(parameter: Parameter, value: Any, where: str) -> Any:
     """The value converted to the parameter's kind, or an error naming ``where``."""
     kind = parameter.kind
@@ -377,7 +359,7 @@ def parse_sweep_config(
 
     if resolve_trainer is None:
         resolve_trainer = tasks.resolve_trainer
-    document = _toml_loads(text, source)
+    document = load_toml(text, source)
     for key in document:
         if key not in ("sweep", "grid"):
             raise _unknown(source, "", key, ["sweep", "grid"])

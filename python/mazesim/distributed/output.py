@@ -32,6 +32,7 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
 from mazesim._atomic import atomic_file
+from mazesim._paths import read_input
 from mazesim.distributed.config import Setting
 from mazesim.distributed.tasks import RUN_FILE
 from mazesim.errors import InvalidArgumentError, MazesimIOError
@@ -154,8 +155,7 @@ def read_finished_run(out_dir: str, setting: Setting) -> dict[str, Any] | None:
     """
     path = os.path.join(out_dir, RUNS_DIR, setting.id, RUN_FILE)
     try:
-        with open(path, "rb") as handle:
-            text = handle.read(MAX_RUN_FILE_BYTES + 1)
+        text = read_input(path, MAX_RUN_FILE_BYTES, "a finished run")
         metadata = json.loads(text.decode("utf-8")) if len(text) <= MAX_RUN_FILE_BYTES else None
     except (OSError, ValueError, RecursionError):
         return None

@@ -27,6 +27,7 @@ if importlib.util.find_spec("gymnasium") is None:
         "or pip install gymnasium"
     )
 
+from mazesim.envs.errors import EnvClosedError, ResetNeededError  # noqa: E402
 from mazesim.envs.maze_env import EPuckMazeEnv  # noqa: E402
 from mazesim.envs.options import DEFAULT_MAX_EPISODE_STEPS  # noqa: E402
 from mazesim.envs.reward import RewardWeights  # noqa: E402
@@ -39,6 +40,8 @@ __all__ = [
     "ENV_ID",
     "EPuckMazeEnv",
     "EPuckMazeVectorEnv",
+    "EnvClosedError",
+    "ResetNeededError",
     "RewardWeights",
     "TASKS",
     "Task",

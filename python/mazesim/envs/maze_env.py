@@ -8,9 +8,9 @@ from typing import Any, SupportsFloat
 import gymnasium
 import numpy as np
 import numpy.typing as npt
-from gymnasium.error import ResetNeeded
 
 from mazesim._core import Simulator, World
+from mazesim.envs.errors import EnvClosedError, ResetNeededError, check_options, check_seed
 from mazesim.envs.navigation import StartAndGoal, navigation_features
 from mazesim.envs.options import EnvOptions, draw_seed
 from mazesim.envs.spaces import ActionConverter, ObservationLayout, sensor_ranges
@@ -100,6 +100,7 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
 
     def __init__(self, render_mode: str | None = None, **options: Any) -> None:
         check_render_mode(render_mode)
+        self._closed = False
         self.render_mode = render_mode
         self.options = EnvOptions.from_keywords(options)
         self.world = self.options.sample_world()
@@ -147,8 +148,16 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
     def reset(
         self, *, seed: int | None = None, options: dict[str, Any] | None = None
     ) -> tuple[npt.NDArray[np.float32], dict[str, Any]]:
-        """Starts a new episode; ``options`` are accepted and unused."""
-        super().reset(seed=seed)
+        """Starts a new episode; ``options`` (a dict) are accepted and unused.
+
+        Raises:
+            InvalidArgumentError: ``seed`` is not None or an int in ``0..=2**64-1``, or
+                ``options`` is not None or a dict.
+            EnvClosedError: The env is closed.
+        """
+        self._check_open()
+        check_options(options)
+        super().reset(seed=check_seed(seed))
         world, drawn = self.options.next_world(self.np_random)
         episode_seed = draw_seed(self.np_random)
         simulator = self._simulator
@@ -206,11 +215,13 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         Raises:
             InvalidActionError: The action has a wrong shape or dtype, is NaN or infinite, or is
                 outside the space (a continuous one only with ``clip_actions=False``).
-            ResetNeeded: :meth:`reset` has not been called since the env was made or closed.
+            ResetNeededError: :meth:`reset` has not been called since the env was made.
+            EnvClosedError: The env is closed.
         """
+        self._check_open()
         simulator = self._simulator
         if simulator is None:
-            raise ResetNeeded("call reset() before step() (and after close())")
+            raise ResetNeededError("call reset() before step()")
         left, right = self._actions.single(action)
         observation, pose, colliding, crossing = simulator.step_observe(
             left, right, self._low, self._high
@@ -269,6 +280,7 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         The image shows the start pose and the goal, the robot's trail since the reset, and the
         time, step, last reward (and the episode's return) and last event at the top left.
         """
+        self._check_open()
         if self.render_mode is None:
             gymnasium.logger.warn(
                 'render() needs a render mode: make the env with render_mode="rgb_array"'
@@ -318,8 +330,15 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         state["_renderer"] = None
         return state
 
+    def _check_open(self) -> None:
+        if self._closed:
+            raise EnvClosedError("the env is closed: make a new one")
+
     def close(self) -> None:
-        """Releases the simulator and the renderer; safe to call more than once."""
+        """Releases the simulator and the renderer; safe to call more than once. A closed env
+        raises :class:`~mazesim.envs.errors.EnvClosedError` from then on, as the vector env
+        does."""
+        self._closed = True
         self._simulator = None
         self._renderer = None
         if self._live is not None:

@@ -30,6 +30,7 @@ from mazesim.errors import InvalidArgumentError
 __all__ = [
     "ACTION_MODES",
     "DEFAULT_MAX_EPISODE_STEPS",
+    "MAX_ENV_CELLS",
     "EnvOptions",
     "WorldOption",
     "draw_seed",
@@ -43,6 +44,11 @@ ACTION_MODES = ("continuous", "discrete")
 #: lets a robot at the report's cruise speed (0.064 m/s on the e-puck) drive 6 m, more than the
 #: longest shortest path of a 5 x 5 maze of 0.25 m cells.
 DEFAULT_MAX_EPISODE_STEPS = 3000
+
+#: The most maze cells of an env's world (a 500 x 500 grid). The env keeps Python tables per cell
+#: (the distance to the goal, the navigation features): an open 300 x 300 grid takes 5 s to make,
+#: 6 s to reset and 150 MB; a 2,500 x 2,500 one, legal for the simulators, ran out of memory.
+MAX_ENV_CELLS = 250_000
 
 #: What the ``world`` option accepts: a built-in name, a path, ``"random"`` or a World.
 WorldOption = Union[str, "os.PathLike[str]", World]
@@ -167,10 +173,14 @@ class EnvOptions:
                 f"found {control_step_ms!r}"
             )
         sizes = _items(maze_size)
-        if len(sizes) != 2 or not all(_is_count(n) and n >= 2 for n in sizes):
+        if (
+            len(sizes) != 2
+            or not all(_is_count(n) and n >= 2 for n in sizes)
+            or int(sizes[0]) * int(sizes[1]) > MAX_ENV_CELLS
+        ):
             raise InvalidArgumentError(
-                f"expected maze_size to be (width, height) of at least 2 cells each, "
-                f"found {maze_size!r}"
+                f"expected maze_size to be (width, height) of at least 2 cells each and at most "
+                f"{MAX_ENV_CELLS} cells in all, found {maze_size!r}"
             )
         sides = (render_size, render_size) if _is_count(render_size) else _items(render_size)
         if len(sides) != 2 or not all(_is_count(n) and 16 <= n <= 4096 for n in sides):
@@ -179,6 +189,8 @@ class EnvOptions:
                 f"found {render_size!r}"
             )
         resolved = None if _is_random(world) else _resolve_world(world)
+        if resolved is not None:
+            _check_cells(resolved)
         if resolved is not None and start_goal == "random":
             start_and_goal_cells(resolved)  # refused now, not at the first reset
         return cls(
@@ -229,6 +241,21 @@ class EnvOptions:
         world = self.world if self.world is not None else self.random_maze(draw_seed(rng))
         drawn = draw_start_and_goal(world, rng) if self.start_goal == "random" else None
         return (None if self.world is not None else world), drawn
+
+
+def _check_cells(world: World) -> None:
+    """Refuses a world whose cell maze has more than :data:`MAX_ENV_CELLS` cells."""
+    maze = world.cell_maze()
+    if maze is None:
+        return
+    cells = int(maze["rows"]) * int(maze["cols"])  # type: ignore[call-overload]
+    if cells > MAX_ENV_CELLS:
+        raise InvalidArgumentError(
+            f"expected a world of at most {MAX_ENV_CELLS} maze cells for a gymnasium env (its "
+            f"distance tables take about 2 kB and 60 us a cell), found {maze['rows']} x "
+            f"{maze['cols']} = {cells} in {world.name!r}; the simulators (Simulator, "
+            f"BatchSimulator) take larger worlds"
+        )
 
 
 def option_names() -> list[str]:

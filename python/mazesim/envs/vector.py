@@ -16,19 +16,24 @@ a boolean mask ``_k`` of the environments that have it.
 from __future__ import annotations
 
 import dataclasses
-import numbers
 from typing import Any
 
 import gymnasium
 import numpy as np
 import numpy.typing as npt
 from gymnasium.envs.registration import EnvSpec
-from gymnasium.error import ClosedEnvironmentError, ResetNeeded
 from gymnasium.utils import seeding
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
 from mazesim._core import BatchSimulator, World
+from mazesim.envs.errors import (
+    MAX_SEED,
+    EnvClosedError,
+    ResetNeededError,
+    check_options,
+    is_seed,
+)
 from mazesim.envs.maze_env import VECTOR_RENDER_MODES, check_render_mode, step_length_ms
 from mazesim.envs.navigation import StartAndGoal, navigation_features
 from mazesim.envs.options import DEFAULT_MAX_EPISODE_STEPS, EnvOptions, draw_seed
@@ -197,14 +202,15 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         """Resets all environments, or those of ``options["reset_mask"]``.
 
         Raises:
-            InvalidArgumentError: The seeds or the reset mask do not match ``num_envs``.
-            ClosedEnvironmentError: The env is closed.
+            InvalidArgumentError: The seeds or the reset mask do not match ``num_envs``, or
+                ``options`` is not a dict.
+            EnvClosedError: The env is closed.
         """
         batch = self._open_batch()
         n = self.num_envs
         seeds = self._seeds(seed)
-        super().reset(seed=seeds[0] if _is_seed(seed) else None)
-        mask = self._reset_mask(dict(options or {}).get("reset_mask"))
+        mask = self._reset_mask(check_options(options).get("reset_mask"))
+        super().reset(seed=seeds[0] if is_seed(seed) else None)
         envs = np.flatnonzero(mask) if mask is not None else np.arange(n)
         for i in envs:
             if seeds[i] is not None or self._rngs[i] is None:
@@ -230,12 +236,12 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
             InvalidActionError: The actions have a wrong shape or dtype, are NaN or infinite, or
                 lie outside the space (continuous ones only with ``clip_actions=False``); the
                 message names the environment.
-            ResetNeeded: :meth:`reset` has not been called yet.
-            ClosedEnvironmentError: The env is closed.
+            ResetNeededError: :meth:`reset` has not been called yet.
+            EnvClosedError: The env is closed.
         """
         batch = self._open_batch()
         if self._needs_reset:
-            raise ResetNeeded("call reset() before step()")
+            raise ResetNeededError("call reset() before step()")
         speeds = self._actions.batch(actions, self.num_envs)
         if self._features is not None:
             self._previous = speeds / self._actions.max_speed
@@ -348,29 +354,31 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
 
     def _open_batch(self) -> BatchSimulator:
         if self._batch is None:
-            raise ClosedEnvironmentError("the vector env is closed")
+            raise EnvClosedError("the vector env is closed: make a new one")
         return self._batch
 
     def _seeds(self, seed: Any) -> list[int | None]:
         """One seed (or None) per environment: ``seed + i``, or the list's, checked.
 
         Numpy integers count as the ints they hold; anything else is refused by name (gymnasium
-        documents ``seed`` as an int or a list of ``num_envs`` ints or None)."""
+        documents ``seed`` as an int or a list of ``num_envs`` ints or None). The seeds accepted
+        are the single env's (:func:`mazesim.envs.errors.is_seed`); ``seed + i`` wraps around
+        past :data:`~mazesim.envs.errors.MAX_SEED`."""
         n = self.num_envs
         if seed is None:
             return [None] * n
-        if _is_seed(seed):
-            return [int(seed) + i for i in range(n)]
+        if is_seed(seed):
+            return [(int(seed) + i) % (MAX_SEED + 1) for i in range(n)]
         if not isinstance(seed, (list, tuple)) or len(seed) != n:
             found = f"{len(seed)}" if isinstance(seed, (list, tuple)) else repr(seed)
             raise InvalidArgumentError(
-                f"expected seed to be an int of at least 0, None or a list of {n} of them "
+                f"expected seed to be None, an int in 0..={MAX_SEED} or a list of {n} of them "
                 f"(one per env), found {found}"
             )
         for i, one in enumerate(seed):
-            if one is not None and not _is_seed(one):
+            if one is not None and not is_seed(one):
                 raise InvalidArgumentError(
-                    f"expected seed {i} to be an int of at least 0 or None, found {one!r}"
+                    f"expected seed {i} to be None or an int in 0..={MAX_SEED}, found {one!r}"
                 )
         return [None if one is None else int(one) for one in seed]
 
@@ -472,11 +480,6 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
             start=None if drawn is None else drawn.start,
             goal=None if drawn is None else drawn.goal,
         )
-
-
-def _is_seed(seed: Any) -> bool:
-    """Whether ``seed`` is one seed: a Python or numpy integer of at least 0, not a bool."""
-    return isinstance(seed, numbers.Integral) and not isinstance(seed, bool) and int(seed) >= 0
 
 
 def _autoreset_mode(mode: AutoresetMode | str) -> AutoresetMode:

@@ -11,6 +11,7 @@ checked metadata), the archive's size against them, its sha256, and every member
 
 from __future__ import annotations
 
+import errno
 import hashlib
 import io
 import json
@@ -23,7 +24,8 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._atomic import atomic_file
-from mazesim.errors import PolicyFormatError
+from mazesim._paths import read_input
+from mazesim.errors import MazesimIOError, PolicyFormatError
 from mazesim.learn.archive import MAX_HEADER_BYTES, ArraySpec, read_arrays
 from mazesim.learn.schema import (
     MAX_METADATA_BYTES,
@@ -122,13 +124,12 @@ def read_limited(path: Path, limit: int, what: str) -> bytes:
         PolicyFormatError: The file is missing, not a file, unreadable or larger than ``limit``.
     """
     try:
-        with open(path, "rb") as handle:
-            data = handle.read(limit + 1)
-    except FileNotFoundError:
-        raise PolicyFormatError(f"{path}: no such file (expected {what})") from None
-    except IsADirectoryError:
-        raise PolicyFormatError(f"{path}: expected {what}, found a folder") from None
-    except OSError as error:
+        data = read_input(path, limit, what)
+    except MazesimIOError as error:
+        if error.errno == errno.ENOENT:
+            raise PolicyFormatError(f"{path}: no such file (expected {what})") from None
+        if error.strerror and error.strerror.endswith("found a folder"):
+            raise PolicyFormatError(f"{path}: expected {what}, found a folder") from None
         raise PolicyFormatError(f"{path}: cannot be read: {error.strerror or error}") from None
     if len(data) > limit:
         raise PolicyFormatError(f"{path}: expected {what} of at most {limit} bytes, found more")

@@ -30,7 +30,8 @@ import numpy.typing as npt
 
 from mazesim._atomic import atomic_file
 from mazesim._core import RobotProfile, World, robot_profile_names
-from mazesim.errors import MazesimIOError, RunFormatError
+from mazesim._paths import read_input
+from mazesim.errors import RunFormatError
 from mazesim.replay.run_fields import RunFields
 
 __all__ = [
@@ -52,6 +53,16 @@ POSITION_UNIT = 1e-4
 YAW_UNIT = 1e-3
 RAY_UNIT = 1e-3
 WHEEL_SPEED_UNIT = 1e-2
+#: The largest x or y of a run file, in its units: the worlds' limit, 1 km from the origin.
+POSITION_BOUND = 1_000.0 / POSITION_UNIT
+#: The largest yaw of a run file, in its units: the worlds' limit, 1000 radians.
+YAW_BOUND = 1_000.0 / YAW_UNIT
+#: The most lists and objects a run file may hold: 3 per frame (a frame's readings, rays and
+#: wheel speeds) for over a million frames, hundreds of long episodes; counted before the JSON is
+#: parsed, so that a small file inflating to millions of empty lists is refused at once.
+MAX_RUN_CONTAINERS = 4 * 1024 * 1024
+#: The most values (numbers, strings, lists) a run file may hold, counted likewise.
+MAX_RUN_VALUES = 32 * 1024 * 1024
 #: The most bytes of JSON a run file may hold (once decompressed): a 4,000-step episode takes a
 #: few hundred kB, so this is hundreds of long episodes, and parsing it stays within a few GB.
 MAX_RUN_BYTES = 256 * 1024 * 1024
@@ -264,21 +275,16 @@ def load_run(path: str | os.PathLike[str]) -> RecordedRun:
             field is missing or malformed (the message names the field).
     """
     name = os.fspath(path)
-    try:
-        with open(name, "rb") as handle:
-            data = handle.read(MAX_RUN_BYTES + 1)
-    except OSError as error:
-        failure = MazesimIOError(f"{name}: cannot read the run: {error.strerror or error}")
-        failure.filename = name
-        raise failure from None
+    data = read_input(name, MAX_RUN_BYTES, "the run")
     too_large = RunFormatError(
         f"{name}: expected a run of at most {MAX_RUN_BYTES} bytes of JSON, found more"
     )
     try:
         if data[:2] == b"\x1f\x8b":
-            data = _decompressed(data, MAX_RUN_BYTES, too_large)
+            data = _decompressed(data, MAX_RUN_BYTES, too_large, name)
         if len(data) > MAX_RUN_BYTES:
             raise too_large
+        _check_structure(data, name)
         values = json.loads(data.decode("utf-8"))
     except RecursionError:
         raise RunFormatError(
@@ -289,16 +295,59 @@ def load_run(path: str | os.PathLike[str]) -> RecordedRun:
     return run_from_json(values, name)
 
 
-def _decompressed(data: bytes, largest: int, too_large: RunFormatError) -> bytes:
+def _too_many_containers(name: str) -> RunFormatError:
+    return RunFormatError(
+        f"{name}: expected a run of at most {MAX_RUN_CONTAINERS} lists and objects, found more"
+    )
+
+
+def _containers(data: bytes) -> int:
+    """The lists and objects of JSON text, counted by their brackets (those inside strings count
+    too: the bound is only ever reached by files no recorder writes)."""
+    return data.count(b"[") + data.count(b"{")
+
+
+def _check_structure(data: bytes, name: str) -> None:
+    """Refuses JSON with more lists and objects, or more values, than a run may hold, counting
+    brackets and commas before anything is parsed."""
+    containers = _containers(data)
+    if containers > MAX_RUN_CONTAINERS:
+        raise _too_many_containers(name)
+    values = data.count(b",") + containers
+    if values > MAX_RUN_VALUES:
+        raise RunFormatError(
+            f"{name}: expected a run of at most {MAX_RUN_VALUES} values, found about {values}"
+        )
+
+
+#: Bytes decompressed at a time: a file of too many lists is refused after the first pieces,
+#: before the whole text is held.
+_PIECE = 16 * 1024 * 1024
+
+
+def _decompressed(data: bytes, largest: int, too_large: RunFormatError, name: str) -> bytes:
     """The gzip stream ``data`` decompressed, refused with ``too_large`` past ``largest`` bytes
-    (a small file may expand a thousandfold)."""
+    (a small file may expand a thousandfold), or as soon as it holds more lists and objects than
+    a run may."""
     stream = zlib.decompressobj(wbits=16 + zlib.MAX_WBITS)
-    text = stream.decompress(data, largest + 1)
-    if len(text) > largest or stream.unconsumed_tail:
-        raise too_large
+    pieces: list[bytes] = []
+    size = containers = 0
+    pending = data
+    while not stream.eof:
+        piece = stream.decompress(pending, _PIECE)
+        pending = stream.unconsumed_tail
+        if not piece and not pending:
+            break
+        size += len(piece)
+        containers += _containers(piece)
+        if size > largest:
+            raise too_large
+        if containers > MAX_RUN_CONTAINERS:
+            raise _too_many_containers(name)
+        pieces.append(piece)
     if not stream.eof:
         raise EOFError("the compressed file ends before its end")
-    return text + stream.flush()
+    return b"".join(pieces)
 
 
 def run_from_json(values: Any, source: str = "<run>") -> RecordedRun:
@@ -366,9 +415,9 @@ def _episode_from_json(
     frames = fields.whole(get("frames"), f"{where}.frames", 1, 2**40)
     poses = np.column_stack(
         [
-            fields.table(get("x"), f"{where}.x", frames) * POSITION_UNIT,
-            fields.table(get("y"), f"{where}.y", frames) * POSITION_UNIT,
-            fields.table(get("yaw"), f"{where}.yaw", frames) * YAW_UNIT,
+            fields.table(get("x"), f"{where}.x", frames, bound=POSITION_BOUND) * POSITION_UNIT,
+            fields.table(get("y"), f"{where}.y", frames, bound=POSITION_BOUND) * POSITION_UNIT,
+            fields.table(get("yaw"), f"{where}.yaw", frames, bound=YAW_BOUND) * YAW_UNIT,
         ]
     )
     colliding = np.zeros(frames, dtype=bool)

@@ -18,6 +18,10 @@ import numpy.typing as npt
 
 from mazesim.errors import RunFormatError
 
+#: The largest magnitude of a number in a run's tables: whole numbers up to it are exact in a
+#: float and in a 64-bit integer, so a run written again or shown in a replay keeps them.
+MAX_TABLE_NUMBER = float(2**53)
+
 __all__ = ["RunFields", "describe"]
 
 #: Marks a field without a default: it must be present.
@@ -97,15 +101,21 @@ class RunFields:
         return [self.text(item, f"{field}[{index}]") for index, item in enumerate(value)]
 
     def table(
-        self, value: Any, field: str, rows: int, columns: int | None = None
+        self,
+        value: Any,
+        field: str,
+        rows: int,
+        columns: int | None = None,
+        bound: float = MAX_TABLE_NUMBER,
     ) -> npt.NDArray[np.float64]:
-        """Finite numbers: ``rows`` of them (``columns`` None), or ``rows`` rows of ``columns``
-        each (``columns`` -1: of any one width)."""
+        """Numbers within ``[-bound, bound]``: ``rows`` of them (``columns`` None), or ``rows``
+        rows of ``columns`` each (``columns`` -1: of any one width)."""
+        numbers = f"numbers in [-{bound:g}, {bound:g}]"
         if columns is None:
-            expected = f"a list of {rows} finite numbers"
+            expected = f"a list of {rows} {numbers}"
         else:
             width = "one width" if columns < 0 else f"{columns}"
-            expected = f"a list of {rows} rows of {width} finite numbers"
+            expected = f"a list of {rows} rows of {width} {numbers}"
         if not isinstance(value, list) or len(value) != rows:
             raise self.fail(field, expected, value)
         try:
@@ -118,7 +128,7 @@ class RunFields:
         if (
             array.ndim != wanted_ndim
             or (columns is not None and columns >= 0 and array.shape[1] != columns)
-            or not np.all(np.isfinite(array))
+            or not np.all(np.abs(array) <= bound)
         ):
             raise self.fail(field, expected, value)
         return array

@@ -17,6 +17,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+from mazesim._atomic import atomic_file
 from mazesim.errors import MissingDependencyError
 
 __all__ = ["chromium_problem", "headless_chromium", "main", "save_screenshot"]
@@ -98,7 +99,9 @@ def save_screenshot(
                 )
             )
         driver.execute_script("window.mazesimReplay.show(arguments[0]);", step)
-        Path(png).write_bytes(driver.get_screenshot_as_png())
+        picture = driver.get_screenshot_as_png()
+        with atomic_file(png) as handle:
+            handle.write(picture)
     finally:
         driver.quit()
 

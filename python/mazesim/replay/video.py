@@ -13,6 +13,7 @@ from __future__ import annotations
 import math
 import os
 import shutil
+import tempfile
 from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import IO
@@ -20,7 +21,7 @@ from typing import IO
 import numpy as np
 import numpy.typing as npt
 
-from mazesim._atomic import atomic_file, temporary_name
+from mazesim._atomic import atomic_file
 from mazesim.errors import InvalidArgumentError, MissingDependencyError
 from mazesim.render.topdown import TopDownRenderer
 from mazesim.replay.run import RecordedEpisode, RecordedRun
@@ -146,14 +147,13 @@ def write_video(
     with atomic_file(path) as handle:
         if suffix == ".gif":
             return _write_gif(frames, handle, fps)
-        # ffmpeg names its container from the file name: it writes a file of its own, copied in.
-        encoded = Path(f"{temporary_name(os.fspath(path))}{suffix}")
-        try:
+        # ffmpeg names its container from the file name: it writes a file of its own, in a
+        # private folder (never beside a device or FIFO the user named), copied in.
+        with tempfile.TemporaryDirectory(prefix="mazesim-video-") as folder:
+            encoded = Path(folder) / f"video{suffix}"
             count = _write_mp4(frames, encoded, fps)
             with open(encoded, "rb") as video:
                 shutil.copyfileobj(video, handle)
-        finally:
-            encoded.unlink(missing_ok=True)
         return count
 
 

@@ -30,7 +30,6 @@ from __future__ import annotations
 
 import math
 import os
-import sys
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -41,8 +40,9 @@ import numpy as np
 from mazesim._core import RobotProfile
 from mazesim._paths import read_text
 from mazesim._seeding import stream
+from mazesim._toml import load_toml
 from mazesim.batch import RobotChoice
-from mazesim.errors import InvalidArgumentError, MissingDependencyError, UnknownNameError
+from mazesim.errors import InvalidArgumentError, UnknownNameError
 from mazesim.learn.fleet import Fleet, ReadingsMap
 from mazesim.transfer.axes import AXIS_NAMES, Setting, axis_named
 from mazesim.transfer.cells import SEED_ROBOT, profile_of
@@ -203,20 +203,8 @@ def _inline(text: str) -> dict[str, Any]:
 
 
 def _toml_table(path: Path) -> Mapping[str, Any]:
-    if sys.version_info >= (3, 11):
-        import tomllib as toml
-    else:  # pragma: no cover - Python 3.9 and 3.10
-        try:
-            import tomli as toml
-        except ImportError:
-            raise MissingDependencyError(
-                "a randomisation file on Python < 3.11 needs 'tomli' (pip install tomli)"
-            ) from None
     text = read_text(path, "the randomisation file (a TOML [randomise] table)")
-    try:
-        document = toml.loads(text)
-    except toml.TOMLDecodeError as error:
-        raise InvalidArgumentError(f"{path}: not a valid TOML file: {error}") from None
+    document = load_toml(text, str(path))
     table = document.get("randomise")
     if not isinstance(table, dict) or set(document) != {"randomise"}:
         raise InvalidArgumentError(

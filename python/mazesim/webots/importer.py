@@ -21,6 +21,7 @@ import numpy.typing as npt
 
 from mazesim import _core
 from mazesim._core import World
+from mazesim._paths import open_input
 
 __all__ = [
     "BoxObstacle",
@@ -152,7 +153,7 @@ def grey_levels(path: str) -> npt.NDArray[np.float64]:
     """
     from PIL import Image
 
-    with Image.open(path) as image:
+    with open_input(path, "the floor texture") as raw, Image.open(raw) as image:
         grey = image.convert("L")
     return np.ascontiguousarray(np.asarray(grey, dtype=np.float64) / 255.0)
 

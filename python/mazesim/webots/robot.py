@@ -6,6 +6,7 @@ import difflib
 import math
 import os
 import sys
+import time
 import warnings
 from typing import Any, ClassVar
 
@@ -15,6 +16,7 @@ from mazesim.webots.equipment import Equipment
 from mazesim.webots.inert import NotSimulated
 from mazesim.webots.keyboard import Joystick, Keyboard, Mouse
 from mazesim.webots.node_types import node_type
+from mazesim.webots.termination import GRACE_SECONDS, unwind_controller
 
 __all__ = ["ControllerStopped", "Robot"]
 
@@ -26,6 +28,12 @@ class ControllerStopped(BaseException):
     swallow it; ``mazesim webots run`` treats it as the controller's normal end.
     """
 
+
+#: Why a controller that went on after its run's end was stopped.
+STOPPED_MESSAGE = (
+    f"the controller went on for more than {GRACE_SECONDS:g} s of real time after Robot.step "
+    "returned -1: stopped, as Webots ends such a controller"
+)
 
 #: The e-puck's ground sensors, which Webots' E-puck has only with its ground sensors module.
 GROUND_SENSOR_NAMES = ("gs0", "gs1", "gs2")
@@ -299,10 +307,16 @@ class Robot(NotSimulated):
                 f"Robot.step expects a duration in ms >= 0, found {duration!r}"
             )
         if simulation.ended:
+            ended_at = simulation.ended_at if simulation.ended_at is not None else 0.0
+            if time.monotonic() - ended_at > GRACE_SECONDS:
+                # Webots kills such a controller; here its frames are unwound instead.
+                simulation.stopped = True
+                unwind_controller(ControllerStopped, STOPPED_MESSAGE)
             raise ControllerStopped("the run is over: Robot.step returned -1 before")
         for _ in range(max(1, math.ceil(duration / basic - 1e-9))):
             if simulation.time_is_up or simulation.quit_status is not None:
                 simulation.ended = True
+                simulation.ended_at = time.monotonic()
                 return -1
             self._equipment.advance()
         return 0

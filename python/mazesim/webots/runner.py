@@ -8,6 +8,7 @@ if it was not) until the controller returns or ``Robot.step`` reports the end.
 
 from __future__ import annotations
 
+import io
 import os
 import sys
 import time
@@ -19,9 +20,11 @@ from types import ModuleType, TracebackType
 from typing import Any
 
 from mazesim._core import World
+from mazesim._paths import MAX_TEXT_CHARACTERS, read_input
 from mazesim.errors import InvalidArgumentError, MazesimIOError
 from mazesim.webots import controller as controller_module
 from mazesim.webots import simulation as simulations
+from mazesim.webots import termination
 from mazesim.webots.keyboard import KeyScript
 from mazesim.webots.scene import Scene
 
@@ -63,6 +66,9 @@ class ControllerRun:
         quit_requested: Whether a supervisor called ``simulationQuit``.
         final_pose: The robot's x, y, yaw at the end.
         robot_model: The robot profile that ran.
+        stopped: Whether the controller went on for more than
+            :data:`~mazesim.webots.termination.GRACE_SECONDS` of real time after ``Robot.step``
+            returned -1 and was stopped, as Webots ends such a controller.
     """
 
     world: World
@@ -81,6 +87,7 @@ class ControllerRun:
     quit_requested: bool = False
     final_pose: tuple[float, float, float] = (0.0, 0.0, 0.0)
     robot_model: str = "e-puck"
+    stopped: bool = False
 
 
 def controller_file(path: str | os.PathLike[str]) -> str:
@@ -108,13 +115,15 @@ def controller_file(path: str | os.PathLike[str]) -> str:
 def _read_source(path: str) -> str:
     """The controller's source text, decoded as Python decodes a source file (UTF-8, or the
     encoding its coding comment declares)."""
+    source = read_input(path, MAX_TEXT_CHARACTERS, "the controller")
+    if len(source) > MAX_TEXT_CHARACTERS:
+        raise InvalidArgumentError(
+            f"{path}: expected a controller of at most {MAX_TEXT_CHARACTERS} bytes, found more"
+        )
     try:
-        with tokenize.open(path) as handle:
+        encoding, _ = tokenize.detect_encoding(io.BytesIO(source).readline)
+        with io.TextIOWrapper(io.BytesIO(source), encoding) as handle:
             return handle.read()
-    except OSError as error:
-        failure = MazesimIOError(f"{path}: cannot read the controller: {error.strerror or error}")
-        failure.filename = path
-        raise failure from None
     except (UnicodeDecodeError, SyntaxError, LookupError) as error:
         raise InvalidArgumentError(
             f"{path}: expected a Python controller file (text in UTF-8 or the encoding its "
@@ -179,7 +188,10 @@ def run_controller(
         os.chdir(folder)
         # Compiled with its real file name, so that tracebacks show its own lines.
         code = compile(source, file, "exec")
-        exec(code, {"__name__": "__main__", "__file__": file, "__builtins__": __builtins__})
+        try:
+            exec(code, {"__name__": "__main__", "__file__": file, "__builtins__": __builtins__})
+        finally:
+            termination.end_unwinding()
     except controller_module.ControllerStopped:
         pass
     except SystemExit as request:
@@ -209,6 +221,7 @@ def run_controller(
         collisions=int(simulator.collisions),
         longest_stop_s=simulation.longest_stop_steps * simulation.basic_time_step_ms / 1000.0,
         reached_end=simulation.ended,
+        stopped=simulation.stopped,
         wall_clock_seconds=time.perf_counter() - started,
         xs=simulation.xs,
         ys=simulation.ys,

@@ -64,6 +64,9 @@ class RobotSimulation:
         step_limit: The number of basic steps after which the run ends, or None for no limit.
         steps: Basic steps taken so far.
         ended: Whether ``Robot.step`` has returned -1.
+        ended_at: When it did (``time.monotonic()``), or None.
+        stopped: Whether the controller went on past :data:`~mazesim.webots.termination.
+            GRACE_SECONDS` after the end and was stopped.
         xs: The robot's x after each step (the start first).
         ys: The robot's y after each step (the start first).
         longest_stop_steps: The longest run of consecutive steps in which the robot moved less
@@ -131,6 +134,8 @@ class RobotSimulation:
         )
         self.steps = 0
         self.ended = False
+        self.ended_at: float | None = None
+        self.stopped = False
         x, y, _ = self.simulator.pose
         self.xs: list[float] = [x]
         self.ys: list[float] = [y]

@@ -301,6 +301,9 @@ impl RobotProfile {
         profile
             .check_top_speeds()
             .map_err(|message| bad("wheel_radius".into(), message))?;
+        profile
+            .check_noise_scale()
+            .map_err(|message| bad("noise_scale".into(), message))?;
         Ok(profile)
     }
 
@@ -330,6 +333,21 @@ impl RobotProfile {
             ));
         }
         Ok(())
+    }
+
+    /// Refuses a noise scale above `limits::MAX_NOISE_SCALE`: the readings would not stay
+    /// finite.
+    pub(crate) fn check_noise_scale(&self) -> std::result::Result<(), String> {
+        use crate::limits::MAX_NOISE_SCALE;
+        let scale = self.noise_scale;
+        if (0.0..=MAX_NOISE_SCALE).contains(&scale) {
+            Ok(())
+        } else {
+            Err(format!(
+                "expected a robot whose noise scale is a number in [0, {MAX_NOISE_SCALE}], \
+                 found {scale}"
+            ))
+        }
     }
 
     /// Unit of the distance sensors' readings ("raw" or "volts"), or "" without any.

@@ -115,8 +115,8 @@ impl Perturbation {
         check_value(
             "noise_scale",
             self.noise_scale,
-            "a finite number at or above zero",
-            |v| v >= 0.0,
+            &format!("a number in [0, {}]", crate::limits::MAX_NOISE_SCALE),
+            |v| (0.0..=crate::limits::MAX_NOISE_SCALE).contains(&v),
         )?;
         check_value(
             "ir_angle_error",
@@ -199,9 +199,11 @@ impl RobotProfile {
                 v > 0.0
             })?;
         }
-        out.check_top_speeds().map_err(|message| {
-            Error::InvalidArgument(format!("{message} after the perturbation"))
-        })?;
+        out.check_top_speeds()
+            .and_then(|()| out.check_noise_scale())
+            .map_err(|message| {
+                Error::InvalidArgument(format!("{message} after the perturbation"))
+            })?;
         Ok(out)
     }
 }
@@ -305,6 +307,13 @@ mod tests {
             ),
             (
                 Perturbation {
+                    noise_scale: 1e300,
+                    ..Default::default()
+                },
+                "noise_scale",
+            ),
+            (
+                Perturbation {
                     ir_angle_error: f64::INFINITY,
                     ..Default::default()
                 },
@@ -357,5 +366,31 @@ mod tests {
             let err = seed().perturbed(&p).unwrap_err().to_string();
             assert!(err.contains(name) && err.contains("found"), "{err}");
         }
+    }
+
+    #[test]
+    fn issue_35_noise_stays_bounded_through_repeated_perturbations() {
+        let loud = Perturbation {
+            noise_scale: crate::limits::MAX_NOISE_SCALE,
+            ..Default::default()
+        };
+        let once = seed().perturbed(&loud).unwrap();
+        assert_eq!(once.noise_scale, 100.0);
+        let err = once.perturbed(&loud).unwrap_err().to_string();
+        assert!(
+            err.contains("noise scale") && err.contains("after the perturbation"),
+            "{err}"
+        );
+        let text = seed()
+            .to_toml()
+            .unwrap()
+            .replace("noise_scale = 1.0", "noise_scale = 1e300");
+        let err = RobotProfile::from_toml(&text, "<test>")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("noise_scale") && err.contains("[0, 100]"),
+            "{err}"
+        );
     }
 }

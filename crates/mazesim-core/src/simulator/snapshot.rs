@@ -345,9 +345,52 @@ impl Simulator {
                 self.world.checkpoints().len()
             )));
         }
-        let pose_ok = |p: &[f32; 3]| p.iter().all(|v| v.is_finite());
-        if !pose_ok(&state.pose) || !state.start_override.as_ref().is_none_or(pose_ok) {
-            return Err(corrupt("expected finite poses, found others"));
+        // The same limits as the API's: a snapshot edited with its checksum recomputed is
+        // refused as `set_start` would refuse its values.
+        let pose = |what: &str, p: &[f32; 3]| {
+            let [x, y, yaw] = p.map(f64::from);
+            crate::limits::check_pose(what, x, y, yaw).map_err(|e| corrupt(e.to_string()))
+        };
+        pose("robot pose", &state.pose)?;
+        if let Some(start) = &state.start_override {
+            pose("start pose", start)?;
+        }
+        let top = self.robot.max_wheel_speed * crate::robot::perturb::MAX_FACTOR;
+        let checks: [(&str, f64, f64, f64); 6] = [
+            ("time (s)", state.time, 0.0, f64::MAX),
+            (
+                "distance travelled (m)",
+                state.distance_travelled,
+                0.0,
+                f64::MAX,
+            ),
+            ("left wheel speed", state.wheel_speeds[0].into(), -top, top),
+            ("right wheel speed", state.wheel_speeds[1].into(), -top, top),
+            (
+                "left wheel angle",
+                state.wheel_angles[0],
+                f64::MIN,
+                f64::MAX,
+            ),
+            (
+                "right wheel angle",
+                state.wheel_angles[1],
+                f64::MIN,
+                f64::MAX,
+            ),
+        ];
+        for (what, value, low, high) in checks {
+            if !(value.is_finite() && (low..=high).contains(&value)) {
+                return Err(corrupt(format!(
+                    "expected its {what} to be a finite number in [{low:e}, {high:e}], found {value}"
+                )));
+            }
+        }
+        let readings = state.distance_readings.iter().chain(&state.ground_readings);
+        if let Some(bad) = readings.copied().find(|v| !v.is_finite()) {
+            return Err(corrupt(format!(
+                "expected finite sensor readings, found {bad}"
+            )));
         }
         if let Some([x, y, radius]) = state.goal_override {
             super::check_goal(x, y, radius).map_err(|e| corrupt(e.to_string()))?;

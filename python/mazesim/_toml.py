@@ -1,0 +1,124 @@
+"""Reading the TOML files of commands (sweep files, randomisation files) with their nesting bounded.
+
+Python's TOML reader parses nested arrays and inline tables by recursion: a file of ten thousand
+``[`` ends in a ``RecursionError``. :func:`load_toml` first measures how deep the values nest, and
+refuses a file nested deeper than :data:`MAX_TOML_NESTING` with an error naming the line and the
+field, before the reader sees it.
+"""
+
+from __future__ import annotations
+
+import re
+import sys
+from typing import Any
+
+from mazesim.errors import InvalidArgumentError, MissingDependencyError
+
+__all__ = ["MAX_TOML_NESTING", "load_toml"]
+
+#: The deepest nesting of arrays and inline tables a command's TOML file may have: far beyond any
+#: real one (a sweep's values nest two deep), far below Python's recursion limit.
+MAX_TOML_NESTING = 32
+
+#: The characters the nesting scan stops at: brackets, braces, string quotes, comments, lines.
+_SPECIAL = re.compile(r"[\[\]{}\"'#\n]")
+
+
+def _string_end(text: str, index: int) -> int:
+    """Where the string starting at ``index`` (at its opening quote) ends, just past it."""
+    quote = text[index]
+    delimiter = quote * 3 if text.startswith(quote * 3, index) else quote
+    index += len(delimiter)
+    while True:
+        end = text.find(delimiter, index)
+        if end < 0:
+            return len(text)
+        if quote == "'" or not _escaped(text, end):
+            return end + len(delimiter)
+        index = end + 1
+
+
+def _escaped(text: str, index: int) -> bool:
+    """Whether the character at ``index`` follows an odd number of backslashes."""
+    backslashes = 0
+    while index - backslashes - 1 >= 0 and text[index - backslashes - 1] == "\\":
+        backslashes += 1
+    return backslashes % 2 == 1
+
+
+def _deepest_field(text: str) -> tuple[int, str] | None:
+    """The line and key of the first value nested deeper than :data:`MAX_TOML_NESTING`, or None.
+
+    Strings and comments are skipped; table headers (``[a]``, ``[[a]]``) do not nest.
+    """
+    depth, key = 0, ""
+    index = 0
+    while True:
+        if depth == 0:
+            # At the top level: a line is a header, a key = value, a comment or blank.
+            line_end = text.find("\n", index)
+            line_text = text[index : len(text) if line_end < 0 else line_end]
+            stripped = line_text.lstrip()
+            if stripped.startswith("["):
+                if line_end < 0:
+                    return None
+                index = line_end + 1
+                continue
+            if "=" in stripped and not stripped.startswith("#"):
+                key = stripped.split("=", 1)[0].strip()
+        found = _SPECIAL.search(text, index)
+        if found is None:
+            return None
+        char, index = found.group(), found.start()
+        if char in "\"'":
+            index = _string_end(text, index)
+        elif char == "#":
+            line_end = text.find("\n", index)
+            index = len(text) if line_end < 0 else line_end
+        elif char == "\n":
+            index += 1
+        elif char in "[{":
+            depth += 1
+            if depth > MAX_TOML_NESTING:
+                return text.count("\n", 0, index) + 1, key
+            index += 1
+        else:
+            depth = max(0, depth - 1)
+            index += 1
+            if depth == 0:
+                line_end = text.find("\n", index)
+                index = len(text) if line_end < 0 else line_end + 1
+
+
+def load_toml(text: str, source: str) -> dict[str, Any]:
+    """The TOML document ``text``; ``source`` (a file name) names it in errors.
+
+    Raises:
+        InvalidArgumentError: Not valid TOML, or nested deeper than :data:`MAX_TOML_NESTING`
+            (the message names the line and the field).
+        MissingDependencyError: Python < 3.11 without the ``tomli`` package.
+    """
+    if sys.version_info >= (3, 11):
+        import tomllib
+    else:  # pragma: no cover - Python 3.9 and 3.10
+        try:
+            import tomli as tomllib
+        except ImportError:
+            raise MissingDependencyError(
+                f"reading {source} on Python < 3.11 needs 'tomli': pip install tomli"
+            ) from None
+    deepest = _deepest_field(text)
+    if deepest is not None:
+        line, key = deepest
+        raise InvalidArgumentError(
+            f"{source}:{line}: field `{key}`: expected values nested at most "
+            f"{MAX_TOML_NESTING} deep (arrays and inline tables), found deeper"
+        )
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as error:
+        raise InvalidArgumentError(f"{source}: not a valid TOML file: {error}") from None
+    except RecursionError:
+        raise InvalidArgumentError(
+            f"{source}: expected values nested at most {MAX_TOML_NESTING} deep, found deeper"
+        ) from None

@@ -1,0 +1,80 @@
+"""The errors of the gymnasium environments, and the checks of ``reset``'s arguments that the single
+and the vector env share, so that both refuse the same misuse with the same error.
+
+Each error is a :class:`mazesim.MazesimError` and also the error gymnasium defines for the case
+(``except gymnasium.error.ClosedEnvironmentError`` keeps working):
+
+- :class:`EnvClosedError`: ``reset``, ``step`` or ``render`` after ``close()``;
+- :class:`ResetNeededError`: ``step`` before the first ``reset``;
+- :class:`~mazesim.errors.InvalidArgumentError`: a seed that is not an int in ``0..=2**64-1``
+  (or, for the vector env, a list of them), or options that are not a dict.
+"""
+
+from __future__ import annotations
+
+import numbers
+from collections.abc import Mapping
+from typing import Any
+
+from gymnasium.error import ClosedEnvironmentError, ResetNeeded
+
+from mazesim.errors import InvalidArgumentError, MazesimError
+
+__all__ = [
+    "MAX_SEED",
+    "EnvClosedError",
+    "ResetNeededError",
+    "check_options",
+    "check_seed",
+    "is_seed",
+]
+
+#: The largest seed an env takes: the simulators' seeds are 64-bit.
+MAX_SEED = 2**64 - 1
+
+
+class EnvClosedError(MazesimError, ClosedEnvironmentError):
+    """The env was closed: make a new one."""
+
+
+class ResetNeededError(MazesimError, ResetNeeded):
+    """``step`` was called before ``reset``."""
+
+
+def is_seed(seed: Any) -> bool:
+    """Whether ``seed`` is one seed: a Python or numpy integer in ``0..=MAX_SEED``, not a bool."""
+    return (
+        isinstance(seed, numbers.Integral)
+        and not isinstance(seed, bool)
+        and 0 <= int(seed) <= MAX_SEED
+    )
+
+
+def check_seed(seed: Any) -> int | None:
+    """``seed`` as an int, or None.
+
+    Raises:
+        InvalidArgumentError: Not None and not a seed (:func:`is_seed`).
+    """
+    if seed is None:
+        return None
+    if not is_seed(seed):
+        raise InvalidArgumentError(
+            f"expected seed to be None or an int in 0..={MAX_SEED}, found {seed!r}"
+        )
+    return int(seed)
+
+
+def check_options(options: Any) -> Mapping[str, Any]:
+    """``reset``'s options as a mapping (empty for None).
+
+    Raises:
+        InvalidArgumentError: Neither None nor a dict.
+    """
+    if options is None:
+        return {}
+    if not isinstance(options, Mapping):
+        raise InvalidArgumentError(
+            f"expected options to be None or a dict, found {type(options).__name__}"
+        )
+    return options

@@ -1,0 +1,56 @@
+"""Issue 35: a command's TOML file nested deeper than any real one is refused with the line and the
+field named, never with a RecursionError."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from mazesim._toml import MAX_TOML_NESTING, load_toml
+from mazesim.distributed.config import load_sweep_config
+from mazesim.errors import InvalidArgumentError
+from mazesim.transfer.randomise import parse_spec
+
+DEEP = 10_000
+
+
+def test_nesting_up_to_the_limit_is_read_and_past_it_refused_naming_the_field() -> None:
+    depth = MAX_TOML_NESTING
+    document = load_toml(f"[a]\nvalues = {'[' * depth}1{']' * depth}\n", "x.toml")
+    values = document["a"]["values"]
+    for _ in range(depth - 1):
+        values = values[0]
+    assert values == [1]
+    with pytest.raises(InvalidArgumentError) as caught:
+        load_toml(f"[a]\nok = 1\nvalues = {'[' * (depth + 1)}1{']' * (depth + 1)}\n", "x.toml")
+    assert str(caught.value).startswith("x.toml:3: field `values`: expected values nested")
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        # Brackets in strings, comments and table headers do not nest.
+        'name = "' + "[" * DEEP + '"\n',
+        "name = '''\n" + "{" * DEEP + "\n'''\n",
+        "# " + "[" * DEEP + '\nname = "a\\"["\n',
+        "[[runs]]\nname = 'x'\n[[runs]]\nname = 'y'\n",
+    ],
+    ids=["basic-string", "literal-multiline", "comment", "headers"],
+)
+def test_brackets_that_do_not_nest_are_not_counted(text: str) -> None:
+    assert load_toml(text, "x.toml")
+
+
+def test_a_deeply_nested_sweep_file_names_its_field(tmp_path: Path) -> None:
+    sweep = tmp_path / "sweep.toml"
+    sweep.write_text(f"[sweep]\nseeds = {'[' * DEEP}{']' * DEEP}\n")
+    with pytest.raises(InvalidArgumentError, match=r"sweep.toml:2: field `seeds`: expected"):
+        load_sweep_config(sweep)
+
+
+def test_a_deeply_nested_randomisation_file_names_its_field(tmp_path: Path) -> None:
+    spec = tmp_path / "randomise.toml"
+    spec.write_text(f"[randomise]\nwheel_radius_scale = {{ a = {'{b = ' * DEEP}1{'}' * DEEP} }}\n")
+    with pytest.raises(InvalidArgumentError, match="field `wheel_radius_scale`"):
+        parse_spec(spec)
