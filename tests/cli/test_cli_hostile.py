@@ -460,7 +460,7 @@ def _main_within(arguments: list[str], folder: Path, seconds: float) -> int | No
     return ended[0] if ended else None
 
 
-def test_issue_35_a_fifo_without_a_writer_as_any_input_is_refused_at_once(
+def test_a_fifo_without_a_writer_as_any_input_is_refused_at_once(
     files: dict[str, Path], tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
     """Each input of each command given a FIFO no process writes to: refused in one line, exit
@@ -482,7 +482,7 @@ def test_issue_35_a_fifo_without_a_writer_as_any_input_is_refused_at_once(
     assert not problems, "\n".join(problems)
 
 
-def test_issue_35_special_outputs_are_written_into_never_replaced(
+def test_special_outputs_are_written_into_never_replaced(
     tmp_path: Path, capfdbinary: pytest.CaptureFixture[bytes]
 ) -> None:
     """``show -o`` at a device node, a link to ``/dev/null`` and ``/dev/stdout``: written into

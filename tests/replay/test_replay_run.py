@@ -321,7 +321,7 @@ def test_a_controller_name_cannot_break_out_of_the_page_script() -> None:
     assert json.loads(block)["run"]["controller"] == run.controller
 
 
-def test_issue_35_a_gzip_of_empty_lists_is_refused_before_parsing(tmp_path: Path) -> None:
+def test_a_gzip_of_empty_lists_is_refused_before_parsing(tmp_path: Path) -> None:
     # 255 MiB of empty lists, under the byte limit, in a file of about 250 KiB: parsed, it took
     # 3.9 GB.
     bomb = tmp_path / "lists.json.gz"
@@ -343,7 +343,7 @@ def test_issue_35_a_gzip_of_empty_lists_is_refused_before_parsing(tmp_path: Path
     assert peak < 64 * 2**20, f"{peak / 2**20:.0f} MiB"
 
 
-def test_issue_35_a_run_far_away_never_reaches_a_replay_page(tmp_path: Path) -> None:
+def test_a_run_far_away_never_reaches_a_replay_page(tmp_path: Path) -> None:
     path = _hostile_run_file(tmp_path, ("episodes", 0, "x"), [1e300] * 21)
     page = tmp_path / "page.html"
     assert main(["replay", str(path), "-o", str(page), "--no-progress"]) == 2

@@ -216,7 +216,7 @@ def test_a_controller_ignoring_minus_one_is_stopped(tmp_path: Path) -> None:
     ],
     ids=["bare-except", "nested"],
 )
-def test_issue_35_a_runaway_controller_is_stopped_after_the_grace_as_webots_does(
+def test_a_runaway_controller_is_stopped_after_the_grace_as_webots_does(
     tmp_path: Path, body: str
 ) -> None:
     script = tmp_path / "runaway.py"

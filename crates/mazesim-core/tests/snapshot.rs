@@ -210,7 +210,7 @@ fn edited(bytes: &[u8], from: [f32; 3], pose: [f32; 3]) -> Vec<u8> {
 }
 
 #[test]
-fn issue_35_a_snapshot_edited_far_away_is_refused_like_set_start() {
+fn a_snapshot_edited_far_away_is_refused_like_set_start() {
     let arena = Arc::new(World::builtin("arena").unwrap());
     let mut s = sim(arena.clone(), "e-puck", 3, true);
     for k in 0..5 {

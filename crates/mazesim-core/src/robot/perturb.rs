@@ -369,7 +369,7 @@ mod tests {
     }
 
     #[test]
-    fn issue_35_noise_stays_bounded_through_repeated_perturbations() {
+    fn noise_stays_bounded_through_repeated_perturbations() {
         let loud = Perturbation {
             noise_scale: crate::limits::MAX_NOISE_SCALE,
             ..Default::default()
