@@ -9,7 +9,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 PY_PACKAGES := maturin numpy matplotlib tqdm pytest hypothesis ruff mypy typing_extensions gymnasium ray \
-	imageio imageio-ffmpeg selenium tensorboardX
+	imageio imageio-ffmpeg moviepy selenium tensorboardX
 PY_SOURCES := python tests examples
 # Only `make bench-peers` needs these: the peers mazesim is measured against, and its
 # options (e.g. PEER_ARGS="--envs 64,1024 --json").

@@ -29,6 +29,7 @@ from mazesim.learn.report import trace_text
 from mazesim.learn.subtasks import CONTROL_STEP_MS, SUBTASK_NAMES
 from mazesim.learn.summary import summarise
 from mazesim.learn.tables import load_policy
+from mazesim.maze import navigator_problems
 from mazesim.replay.navigator import Recording
 from mazesim.replay.options import play_live, recording_requested, write_views
 
@@ -38,9 +39,10 @@ __all__ = ["run_hrl_demo"]
 def run_hrl_demo(args: argparse.Namespace, out: TextIO) -> int:
     """Runs the navigator demo (``args``: world, seconds, seed, out)."""
     world = mazesim.load_world(args.world)
-    if world.goal is None or world.cell_maze() is None:
+    problems = navigator_problems(world)
+    if problems:
         raise InvalidArgumentError(
-            f"the navigator needs a maze world with a goal; {world.name!r} has none"
+            f"the navigator cannot drive world {world.name!r}: " + "; ".join(problems)
         )
     policy = load_policy()
     os.makedirs(args.out, exist_ok=True)

@@ -33,6 +33,7 @@ from mazesim.learn.schema import (
     Text,
     Whole,
     describe,
+    differing,
     parse_metadata,
 )
 
@@ -158,8 +159,7 @@ def _check_described(described: Any, expected: Mapping[str, ArraySpec], where: s
     }
     if described != wanted:
         raise PolicyFormatError(
-            f"{where}: tables.arrays: expected {json.dumps(wanted)[:200]}, "
-            f"found {json.dumps(described)[:200]}"
+            f"{where}: tables.arrays: {differing(json.dumps(wanted), json.dumps(described))}"
         )
 
 
