@@ -137,3 +137,23 @@ def test_the_shipped_navigator_names_a_builtin_world_and_no_file() -> None:
     policy = load_policy()
     assert policy.world_file is None
     assert policy.learned_world().name == "seed-maze"
+
+
+def test_the_hrl_demo_in_a_new_maze_says_it_trains_and_when_time_ran_out(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from mazesim.cli.demo import HRL_DEFAULT_SECONDS
+    from mazesim.episodes import MAX_STEPS
+    from mazesim.learn.subtasks import CONTROL_STEP_MS
+
+    assert HRL_DEFAULT_SECONDS == MAX_STEPS * CONTROL_STEP_MS / 1000
+    monkeypatch.chdir(tmp_path)
+    mazesim.generate_maze(4, 4, seed=3).save("my-maze.toml")
+    args = ["demo", "--controller", "hrl", "--world", "my-maze.toml", "--no-progress"]
+    assert main([*args, "--seconds", "5", "--out", "short"]) == 0
+    printed = capsys.readouterr().out
+    assert printed.startswith("training the higher level in maze-4x4-seed3 first")
+    assert "goal reached       no: the time limit of 5 simulated seconds ended the run" in printed
+    assert "--seconds 10" in printed and "s training the higher level" in printed
+    summary = json.loads((tmp_path / "short" / "summary.json").read_text())
+    assert summary["goal_reached"] is False and summary["steps"] == 79
