@@ -569,7 +569,6 @@ mod tests {
 
     #[test]
     fn every_approach_to_every_junction_is_marked_when_the_book_suffices() {
-        let book = codebook::default_codes().len();
         let mut corners = 0;
         for seed in 0..200 {
             for loops in [0.0, 0.2] {
