@@ -8,8 +8,14 @@ PYTHON_MIN := 3.9
 VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
-PY_PACKAGES := maturin numpy matplotlib tqdm quickjs lupa pytest hypothesis ruff mypy typing_extensions gymnasium ray \
-	imageio imageio-ffmpeg selenium tensorboardX
+# What `make demo` needs: maturin, which builds the extension, and mazesim's own dependencies
+# (pyproject's [project] dependencies), installed here so that `maturin develop` finds them.
+PY_PACKAGES := maturin numpy matplotlib pillow tqdm quickjs lupa
+# What `make test`, `lint`, `typecheck` and `fmt` need beside (pyproject's extra "dev", plus Ray):
+# installed by `make dev-deps` (a stamp of its own), so `make demo` does not pay for them.
+DEV_PACKAGES := pytest hypothesis ruff mypy typing_extensions gymnasium ray imageio imageio-ffmpeg \
+	moviepy selenium tensorboardX
+DEV_STAMP := $(VENV)/.dev-installed
 PY_SOURCES := python tests examples
 # Only `make bench-peers` needs these: the peers mazesim is measured against, and its
 # options (e.g. PEER_ARGS="--envs 64,1024 --json").
@@ -28,13 +34,13 @@ export PYO3_PYTHON := $(CURDIR)/$(BIN)/python
 
 .PHONY: help venv build test demo lint typecheck fmt bench wheel clean ros-deps ros2-deps ros2-peer ros-demo bench-peers \
 	bench-transfer webots-compat \
-	browser-deps replay-screenshot docs docs-deps sb3-deps fuzz
+	browser-deps replay-screenshot docs docs-deps sb3-deps fuzz dev-deps wheel-deps
 
 help: ## list the targets
 	@echo "mazesim make targets:"
 	@grep -E '^[a-z-]+:.*## ' $(MAKEFILE_LIST) | sed -E 's/^([a-z-]+):.*## (.*)/  \1\t\2/' | expand -t 14
 
-venv: $(STAMP) ## create .venv (python3.11, else python3 >= 3.9) with maturin, numpy, matplotlib and the dev tools
+venv: $(STAMP) ## create .venv (python3.11, else python3 >= 3.9) with maturin, numpy, matplotlib, pillow, tqdm
 
 $(STAMP): Makefile
 	@test -x $(BIN)/python || $(PYTHON) -c 'import sys; sys.exit(sys.version_info < (3, 9))' 2>/dev/null \
@@ -43,13 +49,25 @@ $(STAMP): Makefile
 			"python3 >= $(PYTHON_MIN)), or run 'make PYTHON=/path/to/python3.x ...'" >&2; exit 1; }
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet $(PY_PACKAGES)
-	@touch $@
+	@echo "make venv: installing $(PY_PACKAGES) into $(VENV) (about 55 MB to download the first time, 225 MB in $(VENV))"
+	$(BIN)/python -m pip install --progress-bar on $(PY_PACKAGES) | grep -v '^Requirement already satisfied' || true
+	@$(BIN)/python -c 'import maturin, numpy, matplotlib, PIL, tqdm' && touch $@
 
+# pip's "Ignoring ...: markers 'extra == ...'" lines (the extras maturin develop does not install)
+# are no warnings: PIP_QUIET keeps them out. Cargo's progress shows.
 build: venv ## build the extension in release mode and install mazesim into .venv
-	VIRTUAL_ENV=$(CURDIR)/$(VENV) $(BIN)/maturin develop --release --quiet
+	@test -f $(VENV)/.built || echo "make build: compiling the Rust core and its dependencies in release mode; the first build takes about 2 minutes on 2 quiet cores (more on a busy machine), later ones seconds"
+	PIP_QUIET=1 VIRTUAL_ENV=$(CURDIR)/$(VENV) $(BIN)/maturin develop --release
+	@touch $(VENV)/.built
 
-test: build ros-deps ros2-deps ros2-peer browser-deps docs-deps sb3-deps ## run the Rust tests, then the Python tests (ROS 1 and ROS 2 bridges, browser and SB3 tests included)
+dev-deps: $(DEV_STAMP) ## install the developer tools into .venv (pytest, hypothesis, ruff, mypy, gymnasium, Ray, selenium, ...)
+
+$(DEV_STAMP): $(STAMP)
+	@echo "make dev-deps: installing the developer tools into $(VENV): $(DEV_PACKAGES) (about 600 MB in $(VENV), Ray and its dependencies most of it)"
+	$(BIN)/python -m pip install --progress-bar on $(DEV_PACKAGES) | grep -v '^Requirement already satisfied' || true
+	@$(BIN)/python -c 'import pytest, hypothesis, mypy, gymnasium, ray, selenium, moviepy' && touch $@
+
+test: build dev-deps ros-deps ros2-deps ros2-peer browser-deps docs-deps sb3-deps ## run the Rust tests, then the Python tests (ROS 1 and ROS 2 bridges, browser and SB3 tests included)
 	cargo test --workspace --exclude mazesim-py
 	cargo test --release --locked --quiet --manifest-path $(ROS2_PEER_MANIFEST) --target-dir $(ROS2_PEER_TARGET)
 	$(BIN)/python -m pytest
@@ -60,7 +78,7 @@ test: build ros-deps ros2-deps ros2-peer browser-deps docs-deps sb3-deps ## run 
 FUZZ_CASES ?= 20000
 FUZZ_CALLS ?= 5
 
-fuzz: build ## fuzz the readers (FUZZ_CASES inputs each) and every public entry point (FUZZ_CALLS hostile calls each)
+fuzz: build dev-deps ## fuzz the readers (FUZZ_CASES inputs each) and every public entry point (FUZZ_CALLS hostile calls each)
 	PROPTEST_CASES=$(FUZZ_CASES) cargo test -p mazesim-core --release --test parser_fuzz --test wbt_fuzz
 	MAZESIM_SURFACE=all MAZESIM_SURFACE_CALLS=$(FUZZ_CALLS) $(BIN)/python -m pytest tests/test_public_surface.py
 
@@ -119,7 +137,7 @@ replay-screenshot: build browser-deps ## the shipped navigator's demo replayed i
 	$(BIN)/mazesim demo --controller hrl --out mazesim-demo --html mazesim-demo/replay.html
 	$(BIN)/python -m mazesim.replay.screenshot mazesim-demo/replay.html docs/replay.png
 
-lint: venv ## rustfmt, clippy (warnings are errors), ruff check and ruff format
+lint: dev-deps ## rustfmt, clippy (warnings are errors), ruff check and ruff format
 	cargo fmt --all --check
 	cargo clippy --workspace --all-targets -- -D warnings
 	cargo fmt --check --manifest-path $(ROS2_PEER_MANIFEST)
@@ -128,11 +146,11 @@ lint: venv ## rustfmt, clippy (warnings are errors), ruff check and ruff format
 	$(BIN)/ruff check $(PY_SOURCES)
 	$(BIN)/ruff format --check $(PY_SOURCES)
 
-typecheck: build ## mypy on the package, stubtest of _core.pyi against the built extension
+typecheck: build dev-deps ## mypy on the package, stubtest of _core.pyi against the built extension
 	$(BIN)/python -m mypy
 	$(BIN)/python -m mypy.stubtest mazesim._core
 
-fmt: venv ## format Rust and Python sources in place
+fmt: dev-deps ## format Rust and Python sources in place
 	cargo fmt --all
 	$(BIN)/ruff check --fix --quiet $(PY_SOURCES)
 	$(BIN)/ruff format $(PY_SOURCES)
@@ -156,21 +174,33 @@ bench-peers: build ## mazesim against hand-written numpy, pymunk and JAX peers (
 	$(BIN)/python benches/bench_vs_peers.py $(PEER_ARGS)
 
 sb3-deps: venv ## install Stable-Baselines3 and torch into .venv (mazesim[sb3]: the SB3 adapter, the PPO examples)
-	$(BIN)/python -m pip install --quiet $(SB3_PACKAGES)
+	@$(BIN)/python -c 'import stable_baselines3' 2>/dev/null || echo "make sb3-deps: installing Stable-Baselines3 and torch: torch from PyPI brings its CUDA libraries, about 3 GB to download and 5.2 GB in $(VENV) the first time (pip's cache makes later installs quick)"
+	$(BIN)/python -m pip install --progress-bar on $(SB3_PACKAGES) | grep -v '^Requirement already satisfied' || true
+	@$(BIN)/python -c 'import stable_baselines3'
 
 docs-deps: venv ## install the docs tools (mkdocs, Material, mkdocstrings) into .venv
+	@$(BIN)/python -c 'import mkdocs, material, mkdocstrings' 2>/dev/null || echo "make docs-deps: installing mkdocs, mkdocs-material and mkdocstrings (about 80 MB in $(VENV))"
 	$(BIN)/python -m pip install --quiet $(DOCS_PACKAGES)
 
 docs: docs-deps sb3-deps ## build the documentation site into site/ (mkdocs --strict; the API page shows the SB3 adapter)
 	NO_MKDOCS_2_WARNING=1 $(BIN)/mkdocs build --strict --quiet
 
-# The oldest glibc whose symbols the extension needs when built here (Debian 12, glibc 2.36):
-# hypot@GLIBC_2.35 is the newest. An older tag needs an older build host (a manylinux container).
-WHEEL_COMPATIBILITY ?= manylinux_2_35
+# manylinux2014 (glibc 2.17 and newer: Ubuntu 20.04, Debian 11, RHEL 8, ...): maturin links the
+# extension with zig's linker against glibc 2.17's symbols (`--zig`; ziglang from PyPI), then
+# auditwheel checks the wheel against the tag's policy. `make wheel-deps` installs both.
+WHEEL_COMPATIBILITY ?= manylinux2014
+WHEEL_PACKAGES := ziglang auditwheel
 DIST ?= dist
 
-wheel: venv ## build the release wheel (abi3, manylinux_2_35, checked by maturin) and the sdist into dist/
-	$(BIN)/maturin build --release --compatibility $(WHEEL_COMPATIBILITY) --out $(DIST)
+wheel-deps: venv ## install ziglang (zig's linker for maturin --zig, about 410 MB) and auditwheel into .venv
+	@$(BIN)/python -c 'import ziglang, auditwheel' 2>/dev/null || echo "make wheel-deps: installing ziglang (zig's toolchain, about 410 MB installed) and auditwheel"
+	$(BIN)/python -m pip install --quiet $(WHEEL_PACKAGES)
+
+# The zig build is a build of its own in target/ (the first takes as long as `make build`'s first).
+wheel: wheel-deps ## build the release wheel (abi3, manylinux2014 via zig, checked by auditwheel) and the sdist into dist/
+	@rm -f $(DIST)/mazesim-*.whl
+	PATH="$(CURDIR)/$(BIN):$$PATH" $(BIN)/maturin build --release --zig --compatibility $(WHEEL_COMPATIBILITY) --out $(DIST)
+	$(BIN)/auditwheel show $(DIST)/mazesim-*.whl
 	$(BIN)/maturin sdist --out $(DIST)
 
 clean: ## remove build products, .venv, dist and demo output

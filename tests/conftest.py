@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -81,3 +82,15 @@ def navigator_demo(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
     )
     assert code == 0
     return paths
+
+
+@pytest.fixture(scope="module")
+def browser() -> Iterator[Any]:
+    """A headless Chromium driven by selenium (the browser tests skip where there is none)."""
+    from mazesim.replay.screenshot import headless_chromium
+
+    driver = headless_chromium()
+    try:
+        yield driver
+    finally:
+        driver.quit()

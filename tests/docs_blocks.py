@@ -6,6 +6,9 @@ its language. The line directly above its opening fence may carry a marker:
 - ``<!-- no-test: REASON -->``: the block is not run; the tests show it as skipped with REASON.
 - ``<!-- world -->``: a ``toml`` block that is a whole world file, loaded with
   ``mazesim.World.from_toml`` (other ``toml`` blocks are only parsed).
+- ``<!-- output -->``: a ``text`` block that shows what the page's previous runnable block
+  prints: each of its lines, but those that are ``...``, must be a line of that output (spaces
+  between words do not count).
 
 In a ``console`` block only the lines that start with the prompt ``$ `` are commands; the other
 lines are their output.
@@ -31,6 +34,7 @@ TOML_LANGUAGES = frozenset({"toml"})
 _FENCE = re.compile(r"^(?P<indent>[ \t]*)(?P<fence>`{3,}|~{3,})[ \t]*(?P<info>[^`]*)$")
 _NO_TEST = re.compile(r"^\s*<!--\s*no-test:\s*(?P<reason>.+?)\s*-->\s*$")
 _WORLD = re.compile(r"^\s*<!--\s*world\s*-->\s*$")
+_OUTPUT = re.compile(r"^\s*<!--\s*output\s*-->\s*$")
 _SNIPPET = re.compile(r"^\s*--8<--\s+\"(?P<path>[^\"]+)\"\s*$")
 
 
@@ -80,6 +84,7 @@ class Block:
         text: The block's text, its indentation removed and snippets expanded.
         skip_reason: The reason of a ``no-test`` marker, or ``None``.
         is_world: Whether a ``world`` marker says the block is a whole world file.
+        is_output: Whether an ``output`` marker says the block shows the previous block's output.
     """
 
     page: Path
@@ -88,6 +93,7 @@ class Block:
     text: str
     skip_reason: str | None
     is_world: bool
+    is_output: bool = False
 
     @property
     def where(self) -> str:
@@ -163,7 +169,19 @@ def parse_blocks(page: Path, text: str, root: Path) -> list[Block]:
                 text=expand_snippets("\n".join(body) + "\n", root),
                 skip_reason=no_test["reason"] if no_test else None,
                 is_world=bool(_WORLD.match(previous)),
+                is_output=bool(_OUTPUT.match(previous)),
             )
         )
         index = end + 1
     return blocks
+
+
+def missing_output_lines(shown: str, printed: str) -> list[str]:
+    """The lines of an ``output`` block that are not lines of what was printed (``...`` lines
+    stand for any lines; runs of spaces count as one)."""
+    printed_lines = {" ".join(line.split()) for line in printed.splitlines()}
+    return [
+        line
+        for line in shown.splitlines()
+        if line.strip() not in ("", "...") and " ".join(line.split()) not in printed_lines
+    ]

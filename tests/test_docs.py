@@ -24,6 +24,7 @@ from docs_blocks import (
     Block,
     console_commands,
     expand_snippets,
+    missing_output_lines,
     parse_blocks,
     run_command,
 )
@@ -58,6 +59,12 @@ def page_folders(tmp_path_factory: pytest.TempPathFactory) -> dict[Path, Path]:
     return {}
 
 
+@pytest.fixture(scope="module")
+def printed_by() -> dict[Path, tuple[Block, str]]:
+    """The last block run of each page and what it printed (for the ``output`` blocks)."""
+    return {}
+
+
 def _page_folder(page: Path, folders: dict[Path, Path], factory: pytest.TempPathFactory) -> Path:
     if page not in folders:
         folder = factory.mktemp(page.stem)
@@ -78,16 +85,27 @@ def run_block(block: Block, cwd: Path) -> subprocess.CompletedProcess[str]:
 
 @pytest.mark.parametrize(
     "block",
-    [block for block in BLOCKS if block.language in RUNNABLE],
+    [block for block in BLOCKS if block.language in RUNNABLE or block.is_output],
     ids=lambda block: block.where,
 )
 def test_code_block_runs(
     block: Block,
     page_folders: dict[Path, Path],
+    printed_by: dict[Path, tuple[Block, str]],
     tmp_path_factory: pytest.TempPathFactory,
 ) -> None:
     if block.skip_reason is not None:
         pytest.skip(f"{block.where}: {block.skip_reason}")
+    if block.is_output:
+        if block.page not in printed_by:
+            pytest.skip(f"{block.where}: shows the output of a block that did not run here")
+        source, printed = printed_by[block.page]
+        missing = missing_output_lines(block.text, printed)
+        assert missing == [], (
+            f"{block.where} shows lines that {source.where} did not print: {missing}\n"
+            f"--- it printed\n{printed}"
+        )
+        return
     if block.language in TOML_LANGUAGES:
         tomllib.loads(block.text)
         if block.is_world:
@@ -95,6 +113,7 @@ def test_code_block_runs(
         return
     cwd = _page_folder(block.page, page_folders, tmp_path_factory)
     finished = run_block(block, cwd)
+    printed_by[block.page] = (block, finished.stdout)
     assert finished.returncode == 0, (
         f"{block.where} ({block.language}) exited with {finished.returncode}\n"
         f"--- stdout\n{finished.stdout}\n--- stderr\n{finished.stderr}"
@@ -182,3 +201,12 @@ def test_api_reference_reads_the_core_stub() -> None:
     assert str(core["World"]["wall_boxes"].returns) == "npt.NDArray[np.float64]"
     mask = core["BatchSimulator"]["reset"].parameters["mask"]
     assert str(mask.annotation) == "npt.NDArray[np.bool_] | None"
+
+
+def test_output_blocks_name_the_lines_that_differ(tmp_path: Path) -> None:
+    page = tmp_path / "page.md"
+    text = "```bash\necho hi\n```\n\n<!-- output -->\n```text\nhi   there\n...\nbye\n```\n"
+    blocks = parse_blocks(page, text, tmp_path)
+    assert [b.is_output for b in blocks] == [False, True]
+    assert missing_output_lines(blocks[1].text, "hi there\nmore\n") == ["bye"]
+    assert missing_output_lines(blocks[1].text, "hi there\nbye\n") == []

@@ -46,3 +46,66 @@ def test_venv_refuses_a_python_older_than_39(tmp_path: Path) -> None:
     assert "Python 3.8.18" in refused.stderr and "make PYTHON=" in refused.stderr
     assert "should not be used" not in refused.stderr
     assert not (tmp_path / "venv").exists()
+
+
+#: The developer tools: `make demo` must not install them, the targets that use them must.
+DEV_TOOLS = ("pytest", "hypothesis", "ruff", "mypy", "selenium", "ray", "tensorboardX")
+
+
+def _dry_run(target: str, tmp_path: Path) -> str:
+    """The commands ``make TARGET`` would run for a new venv in ``tmp_path``."""
+    dry_run = _make("-n", target, f"VENV={tmp_path / 'venv'}")
+    assert dry_run.returncode == 0, dry_run.stderr
+    return dry_run.stdout
+
+
+def _installed_by(commands: str) -> set[str]:
+    """The packages the ``pip install`` lines of a dry run name."""
+    names: set[str] = set()
+    for line in commands.splitlines():
+        if "-m pip install" in line:
+            words = line.split("|")[0].split()
+            names.update(w for w in words[words.index("install") + 1 :] if not w.startswith("-"))
+    return names
+
+
+@pytest.mark.skipif(shutil.which("make") is None, reason="needs make")
+def test_make_demo_installs_what_the_demo_needs_and_no_developer_tool(tmp_path: Path) -> None:
+    commands = _dry_run("demo", tmp_path)
+    installed = _installed_by(commands)
+    assert {"maturin", "numpy", "matplotlib"} <= installed
+    assert installed.isdisjoint(DEV_TOOLS), installed & set(DEV_TOOLS)
+    assert "torch" not in commands and "stable-baselines3" not in commands
+
+
+@pytest.mark.skipif(shutil.which("make") is None, reason="needs make")
+@pytest.mark.parametrize("target", ["test", "lint", "typecheck", "fmt"])
+def test_the_targets_that_use_the_developer_tools_install_them(target: str, tmp_path: Path) -> None:
+    assert set(DEV_TOOLS) <= _installed_by(_dry_run(target, tmp_path))
+
+
+@pytest.mark.skipif(shutil.which("make") is None, reason="needs make")
+def test_long_steps_say_what_they_cost_and_show_their_progress(tmp_path: Path) -> None:
+    demo = _dry_run("demo", tmp_path)
+    lines = demo.splitlines()
+    develop = next(i for i, line in enumerate(lines) if "maturin develop" in line)
+    # Before the Rust build: what it does and how long the first one takes; cargo's progress
+    # shows (no --quiet), pip's "Ignoring ... markers" lines do not (PIP_QUIET).
+    assert any("takes about 2 minutes" in line for line in lines[:develop])
+    assert "--quiet" not in lines[develop] and "PIP_QUIET=1" in lines[develop]
+    for line in lines:
+        if "-m pip install" in line and "--upgrade pip" not in line and "DOCS" not in line:
+            assert "--quiet" not in line or "mkdocs" in line, line
+    # The largest download says so before it starts.
+    sb3 = _dry_run("sb3-deps", tmp_path).splitlines()
+    install = next(i for i, line in enumerate(sb3) if "stable-baselines3" in line and "pip" in line)
+    assert any("3 GB to download" in line for line in sb3[:install])
+
+
+@pytest.mark.skipif(shutil.which("make") is None, reason="needs make")
+def test_make_wheel_links_with_zig_for_manylinux2014_and_asks_auditwheel(tmp_path: Path) -> None:
+    commands = _dry_run("wheel", tmp_path)
+    assert {"ziglang", "auditwheel"} <= _installed_by(commands)
+    (build,) = [line for line in commands.splitlines() if "maturin build" in line]
+    assert "--zig" in build and "--compatibility manylinux2014" in build
+    assert commands.index("maturin build") < commands.index("auditwheel show")

@@ -37,6 +37,7 @@ __all__ = [
     "assumed_open_sides",
     "breadth_first_distances",
     "checkpoint_ids",
+    "navigator_problems",
     "next_cells",
     "world_hash",
 ]
@@ -54,6 +55,49 @@ _STEP = {EAST: (1, 0), NORTH: (0, -1), WEST: (-1, 0), SOUTH: (0, 1)}
 def checkpoint_ids(world: World) -> list[int]:
     """The ids of a world's checkpoints, in increasing order."""
     return sorted(int(cast(int, checkpoint["id"])) for checkpoint in world.checkpoints())
+
+
+def navigator_problems(world: World) -> list[str]:
+    """What keeps the hierarchical navigator (and the flat baseline) from learning ``world``,
+    each said with what to change; empty when it can learn it.
+
+    The navigator needs a ``[grid]`` cell maze, a goal, a start cell from which the goal can be
+    reached along the cells, and barcode checkpoints: its higher level decides only where it reads
+    one, so in a world without any it would drive, learn nothing and save a navigator that
+    cannot be evaluated.
+    """
+    if world.cell_maze() is None:
+        return [
+            "it has no [grid] cell maze: draw the maze as a [grid] map (docs/world-format.md) or "
+            "generate one with mazesim.generate_maze"
+        ]
+    problems = []
+    maze = CellMaze(world)
+    if world.goal is None or maze.goal_cell is None:
+        problems.append(
+            "it has no goal: put a G in a cell of the [grid] map, or add a [goal] table with a "
+            "center inside the maze"
+        )
+    elif maze.start_cell is None:
+        problems.append(
+            "its start is in no cell of the maze: put an S in a cell of the [grid] map, or a "
+            "[start] pose inside it"
+        )
+    else:
+        column, row = maze.goal_cell
+        if maze.distances_from(maze.start_cell)[row, column] < 0:
+            problems.append(
+                f"its goal (cell column {column}, row {row}) cannot be reached from the start "
+                f"(cell column {maze.start_cell[0]}, row {maze.start_cell[1]}): open a way "
+                "through the walls of the [grid] map, or move S or G"
+            )
+    if not world.checkpoints():
+        problems.append(
+            "it has no barcode checkpoints, and the navigator decides only where it reads one: "
+            "add [[checkpoints]] on the ways into its junctions (docs/world-format.md), or draw "
+            "it with mazesim.generate_maze, which places one on every way into every junction"
+        )
+    return problems
 
 
 def world_hash(world: World) -> str:

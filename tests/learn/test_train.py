@@ -122,6 +122,7 @@ def test_eval_command_prints_json(capsys: pytest.CaptureFixture[str], tmp_path: 
     text = trace.read_text()
     assert "checkpoint +1 (arrival) -> higher level:" in text
     assert "# goal reached after" in text
+    assert "yaw: degrees" in text
 
 
 def test_train_and_eval_help_name_their_options(capsys: pytest.CaptureFixture[str]) -> None:

@@ -6,27 +6,17 @@ Skipped, with the reason, where no Chromium can be driven (``make browser-deps``
 from __future__ import annotations
 
 import time
-from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
 import pytest
 
-from mazesim.replay.screenshot import chromium_problem, headless_chromium
+from mazesim.replay.screenshot import chromium_problem
 
 pytestmark = pytest.mark.skipif(
     chromium_problem() is not None,
     reason=f"browser tests of the HTML replay need Chromium: {chromium_problem()}",
 )
-
-
-@pytest.fixture(scope="module")
-def browser() -> Iterator[Any]:
-    driver = headless_chromium()
-    try:
-        yield driver
-    finally:
-        driver.quit()
 
 
 @pytest.fixture()

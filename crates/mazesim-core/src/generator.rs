@@ -2,6 +2,11 @@
 //! loops, with a barcode checkpoint on every way into every junction (as long as the code book
 //! lasts) and a goal in the cell farthest from the start. Cheap enough to draw thousands of
 //! distinct mazes for training.
+//!
+//! A carved maze can be one single corridor from the start to the goal, with no junction and so
+//! nowhere for a checkpoint (of the first draws, about 55 % of 3 x 3 mazes, 10 % of 4 x 4 and 3 %
+//! of 5 x 5): with [`MazeParams::junction`] such a draw is replaced by the next one, so every maze
+//! larger than 2 x 2 (which never has a junction) has checkpoints.
 
 use std::collections::VecDeque;
 
@@ -27,6 +32,9 @@ pub struct MazeParams {
     pub loops: f64,
     /// Place barcode checkpoints on the ways into junctions.
     pub checkpoints: bool,
+    /// Draw again while the maze is a single corridor without a junction (see the module); false
+    /// keeps the first draw, as the pools of mazes drawn before this option existed.
+    pub junction: bool,
     /// Floor reflectance (grey, so codes show their ends).
     pub floor_reflectance: f64,
 }
@@ -40,6 +48,7 @@ impl Default for MazeParams {
             wall_thickness: 0.01,
             loops: 0.0,
             checkpoints: true,
+            junction: true,
             floor_reflectance: 0.36,
         }
     }
@@ -133,6 +142,15 @@ fn openings(m: &CellMaze, c: usize, r: usize) -> usize {
     (0..4).filter(|&d| m.open(c, r, d)).count()
 }
 
+/// Whether some cell of the maze is a junction (three or four openings).
+fn has_junction(m: &CellMaze) -> bool {
+    (0..m.rows).any(|r| (0..m.cols).any(|c| openings(m, c, r) >= 3))
+}
+
+/// The most draws [`generate`] makes for a maze with a junction (a 3 x 3 maze, the likeliest to
+/// be a single corridor, is one about 55 % of the time: 1000 draws all failing is beyond chance).
+const MAX_DRAWS: usize = 1000;
+
 /// A generated maze world.
 pub fn generate(params: &MazeParams, seed: u64) -> Result<World> {
     if params.width < 2 || params.height < 2 || params.width > 200 || params.height > 200 {
@@ -160,6 +178,16 @@ pub fn generate(params: &MazeParams, seed: u64) -> Result<World> {
     }
     let mut rng = Rng::new(seed);
     let mut m = carve(params, &mut rng);
+    // A 2 x 2 maze is a ring of four cells at most: no cell can have three openings.
+    let junction_possible = params.width.max(params.height) > 2;
+    if params.junction && junction_possible {
+        for _ in 1..MAX_DRAWS {
+            if has_junction(&m) {
+                break;
+            }
+            m = carve(params, &mut rng);
+        }
+    }
     let start = m.start.expect("carve sets the start");
     let dist = distances(&m, start);
     let goal_index = (0..dist.len())
@@ -438,6 +466,83 @@ mod tests {
         out
     }
 
+    /// Every approach of `w`'s junctions is marked (or lies between two doors, where the other
+    /// door's code serves it), unless the book ran short.
+    fn assert_every_approach_marked(w: &World, label: &str) {
+        let m = &w.maze().unwrap().maze;
+        if w.checkpoints().len() >= codebook::default_codes().len() {
+            return;
+        }
+        let marked = marked(w);
+        for a in approaches(m) {
+            let between_doors = openings(m, a.0 .0, a.0 .1) >= 3 && marked.contains(&(a.1, a.0));
+            assert!(
+                marked.contains(&a) || between_doors,
+                "{label}: approach {a:?} unmarked"
+            );
+        }
+    }
+
+    #[test]
+    fn the_4_by_4_maze_of_seed_3_has_junctions_and_checkpoints() {
+        // Its first draw is one corridor from the start to the goal, without a junction.
+        let p = MazeParams {
+            width: 4,
+            height: 4,
+            ..Default::default()
+        };
+        let first = carve(&p, &mut Rng::new(3));
+        assert!(!has_junction(&first));
+        let w = generate(&p, 3).unwrap();
+        assert!(has_junction(&w.maze().unwrap().maze));
+        assert!(!w.checkpoints().is_empty());
+        assert_every_approach_marked(&w, "4 x 4 seed 3");
+        // Asked to keep the first draw, it does.
+        let kept = generate(
+            &MazeParams {
+                junction: false,
+                ..p
+            },
+            3,
+        )
+        .unwrap();
+        assert!(kept.checkpoints().is_empty());
+        assert_eq!(kept.maze().unwrap().maze.horizontal, first.horizontal);
+    }
+
+    #[test]
+    fn a_2_by_2_maze_has_no_junction_and_no_checkpoint() {
+        let p = MazeParams {
+            width: 2,
+            height: 2,
+            ..Default::default()
+        };
+        for seed in 0..20 {
+            assert!(generate(&p, seed).unwrap().checkpoints().is_empty());
+        }
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(200))]
+        /// The documented promise, for every size and seed: a maze larger than 2 x 2 has a
+        /// junction, and every way into every junction has a checkpoint while the codes last.
+        #[test]
+        fn every_maze_larger_than_2_by_2_has_checkpoints_at_its_junctions(
+            width in 2usize..=12,
+            height in 2usize..=12,
+            seed in proptest::prelude::any::<u64>(),
+            loops in proptest::prop_oneof![proptest::strategy::Just(0.0), 0.0f64..0.5],
+        ) {
+            proptest::prop_assume!(width.max(height) > 2);
+            let p = MazeParams { width, height, loops, ..Default::default() };
+            let w = generate(&p, seed).unwrap();
+            let label = format!("{width} x {height} seed {seed} loops {loops}");
+            proptest::prop_assert!(has_junction(&w.maze().unwrap().maze), "{}", label);
+            proptest::prop_assert!(!w.checkpoints().is_empty(), "{}", label);
+            assert_every_approach_marked(&w, &label);
+        }
+    }
+
     #[test]
     fn checkpoints_sit_before_junctions_with_valid_codes() {
         let mut total = 0;
@@ -464,24 +569,12 @@ mod tests {
 
     #[test]
     fn every_approach_to_every_junction_is_marked_when_the_book_suffices() {
-        let book = codebook::default_codes().len();
         let mut corners = 0;
         for seed in 0..200 {
             for loops in [0.0, 0.2] {
                 let w = with_loops(loops, seed);
                 let m = &w.maze().unwrap().maze;
-                let marked = marked(&w);
-                let all = approaches(m);
-                if w.checkpoints().len() < book {
-                    for a in &all {
-                        let between_doors =
-                            openings(m, a.0 .0, a.0 .1) >= 3 && marked.contains(&(a.1, a.0));
-                        assert!(
-                            marked.contains(a) || between_doors,
-                            "seed {seed} loops {loops}: approach {a:?} unmarked"
-                        );
-                    }
-                }
+                assert_every_approach_marked(&w, &format!("seed {seed} loops {loops}"));
                 // Codes on edges: the approach is a corner (or a door).
                 corners += w
                     .checkpoints()

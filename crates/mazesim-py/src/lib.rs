@@ -45,8 +45,8 @@ fn sharp_volts_to_cm(volts: Real) -> PyResult<f64> {
 
 /// A generated maze world (seeded; see mazesim-core's generator).
 #[pyfunction]
-#[pyo3(signature = (width = IntArg::Int(5), height = IntArg::Int(5), seed = IntArg::ZERO, cell_size = Real::Number(0.25), wall_thickness = Real::Number(0.01), loops = Real::Number(0.0), checkpoints = Flag::Value(true), floor_reflectance = Real::Number(0.36)),
-    text_signature = "(width=5, height=5, seed=0, cell_size=0.25, wall_thickness=0.01, loops=0.0, checkpoints=True, floor_reflectance=0.36)")]
+#[pyo3(signature = (width = IntArg::Int(5), height = IntArg::Int(5), seed = IntArg::ZERO, cell_size = Real::Number(0.25), wall_thickness = Real::Number(0.01), loops = Real::Number(0.0), checkpoints = Flag::Value(true), floor_reflectance = Real::Number(0.36), junction = Flag::Value(true)),
+    text_signature = "(width=5, height=5, seed=0, cell_size=0.25, wall_thickness=0.01, loops=0.0, checkpoints=True, floor_reflectance=0.36, junction=True)")]
 fn generate_maze(
     width: IntArg,
     height: IntArg,
@@ -56,6 +56,7 @@ fn generate_maze(
     loops: Real,
     checkpoints: Flag,
     floor_reflectance: Real,
+    junction: Flag,
 ) -> PyResult<world::PyWorld> {
     enter(|| {
         let params = mazesim_core::generator::MazeParams {
@@ -65,6 +66,7 @@ fn generate_maze(
             wall_thickness: wall_thickness.value("wall_thickness")?,
             loops: loops.value("loops")?,
             checkpoints: checkpoints.value("checkpoints", "a bool")?,
+            junction: junction.value("junction", "a bool")?,
             floor_reflectance: floor_reflectance.value("floor_reflectance")?,
         };
         let seed = seed.seed("seed")?;

@@ -22,7 +22,13 @@ from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
 from mazesim.replay.views import add_viewing_options, viewing_outputs
 
-__all__ = ["register", "run_demo"]
+__all__ = ["DEFAULT_SECONDS", "HRL_DEFAULT_SECONDS", "register", "run_demo"]
+
+#: Simulated seconds a demo runs without ``--seconds``.
+DEFAULT_SECONDS = 60.0
+#: The same for ``--controller hrl``: an evaluation episode's 4,000 control steps of 64 ms
+#: (:data:`mazesim.episodes.MAX_STEPS`), so the demo gives up where an evaluation would.
+HRL_DEFAULT_SECONDS = 256.0
 
 
 def register(commands: Any) -> None:
@@ -54,9 +60,10 @@ def register(commands: Any) -> None:
     demo.add_argument(
         "--seconds",
         type=positive_seconds,
-        default=60.0,
+        default=None,
         metavar="S",
-        help="simulated seconds to run (default: %(default)s)",
+        help=f"simulated seconds to run (default: {DEFAULT_SECONDS:.0f}; with --controller hrl: "
+        f"{HRL_DEFAULT_SECONDS:.0f}, the 4,000 control steps an evaluation episode may take)",
     )
     demo.add_argument(
         "--seed",
@@ -136,7 +143,8 @@ def run_avoid_collision_demo(args: argparse.Namespace, out: TextIO) -> int:
     controller = AvoidCollision(max_speed=robot.max_wheel_speed)
     # Fail before the run, not after it, if the output folder cannot be made.
     os.makedirs(args.out, exist_ok=True)
-    steps = max(1, math.ceil(args.seconds * 1000.0 / simulator.control_step_ms - 1e-9))
+    seconds = DEFAULT_SECONDS if args.seconds is None else args.seconds
+    steps = max(1, math.ceil(seconds * 1000.0 / simulator.control_step_ms - 1e-9))
 
     xs = np.empty(steps + 1, dtype=np.float64)
     ys = np.empty(steps + 1, dtype=np.float64)

@@ -20,15 +20,18 @@ import numpy.typing as npt
 
 import mazesim
 from mazesim._atomic import atomic_file
+from mazesim.cli.demo import HRL_DEFAULT_SECONDS
+from mazesim.cli.progress import progress_display
 from mazesim.episodes import StartJitter, shortest_path_steps
 from mazesim.errors import InvalidArgumentError
-from mazesim.learn.evaluate import EvaluationRecord, evaluate, navigator_for
+from mazesim.learn.evaluate import ADAPT_EPISODES, EvaluationRecord, evaluate, navigator_for
 from mazesim.learn.evaluation_text import trace_text
 from mazesim.learn.figures import save_episodes_png
 from mazesim.learn.policy import HierarchicalPolicy
 from mazesim.learn.subtasks import CONTROL_STEP_MS, SUBTASK_NAMES
 from mazesim.learn.summary import summarise
 from mazesim.learn.tables import load_policy
+from mazesim.maze import navigator_problems, world_hash
 from mazesim.replay.navigator import Recording
 from mazesim.replay.views import play_live, recording_requested, write_views
 
@@ -38,20 +41,34 @@ __all__ = ["run_hrl_demo"]
 def run_hrl_demo(args: argparse.Namespace, out: TextIO) -> int:
     """Runs the navigator demo (``args``: world, seconds, seed, out)."""
     world = mazesim.load_world(args.world)
-    if world.goal is None or world.cell_maze() is None:
+    problems = navigator_problems(world)
+    if problems:
         raise InvalidArgumentError(
-            f"the navigator needs a maze world with a goal; {world.name!r} has none"
+            f"the navigator cannot drive world {world.name!r}: " + "; ".join(problems)
         )
     policy = load_policy()
     os.makedirs(args.out, exist_ok=True)
-    level, adapted = navigator_for(policy, [world], seed=args.seed)
+    adapt_seconds = None
+    if world_hash(world) != policy.world_sha256:
+        out.write(
+            f"training the higher level in {world.name} first (at most {ADAPT_EPISODES} "
+            "episodes; the shipped lower level is kept)\n"
+        )
+        out.flush()
+        adapting = time.perf_counter()
+        with progress_display(args, units={"adapt": "episodes"}) as progress:
+            level, adapted = navigator_for(policy, [world], seed=args.seed, progress=progress)
+        adapt_seconds = time.perf_counter() - adapting
+    else:
+        level, adapted = navigator_for(policy, [world], seed=args.seed)
     lower_q = policy.lower_q
     assert lower_q is not None
 
     def make_navigator(world_of_env: npt.NDArray[np.int64]) -> HierarchicalPolicy:
         return HierarchicalPolicy(lower_q, level, world_of_env, hold_heading=policy.hold_heading)
 
-    steps = max(1, math.ceil(args.seconds * 1000.0 / CONTROL_STEP_MS - 1e-9))
+    seconds = HRL_DEFAULT_SECONDS if args.seconds is None else args.seconds
+    steps = max(1, math.ceil(seconds * 1000.0 / CONTROL_STEP_MS - 1e-9))
     started = time.perf_counter()
     live = getattr(args, "live", False)
     record = EvaluationRecord(
@@ -93,7 +110,14 @@ def run_hrl_demo(args: argparse.Namespace, out: TextIO) -> int:
         "mazesim_version": mazesim.__version__,
     }
     picture = os.path.join(args.out, "trajectory.png")
-    outcome = "reached the goal" if result.arrived else "did not reach the goal"
+    cut = not result.arrived and result.steps >= steps
+    outcome = (
+        "reached the goal"
+        if result.arrived
+        else f"stopped by the time limit ({seconds:g} s) before the goal"
+        if cut
+        else "did not reach the goal"
+    )
     save_episodes_png(
         world,
         record.episode_paths,
@@ -113,15 +137,24 @@ def run_hrl_demo(args: argparse.Namespace, out: TextIO) -> int:
     views = [] if record.run is None else write_views(args, record.run, title)
     if live and record.run is not None:
         play_live(record.run, title)
+    limit = (
+        f": the time limit of {seconds:g} simulated seconds ended the run first; "
+        f"give it longer with --seconds {2 * seconds:g}"
+        if cut
+        else ""
+    )
+    adapt = (
+        "" if adapt_seconds is None else f", and {adapt_seconds:.1f} s training the higher level"
+    )
     chosen = ", ".join(f"{d['event']:+d}: {d['subtask']}" for d in decisions) or "none"
     out.write(
         f"world              {world.name} (robot seed, hierarchical navigator, seed {args.seed})\n"
         f"simulated time     {simulated:.2f} s ({result.steps} steps of {CONTROL_STEP_MS:.0f} ms)\n"
         f"distance travelled {distance:.2f} m\n"
         f"collisions         {result.bumps}\n"
-        f"goal reached       {'yes' if result.arrived else 'no'}\n"
+        f"goal reached       {'yes' if result.arrived else 'no'}{limit}\n"
         f"decisions          {chosen}\n"
-        f"wall-clock time    {wall_clock:.3f} s\n"
+        f"wall-clock time    {wall_clock:.3f} s (the run){adapt}\n"
         f"wrote              {', '.join([picture, trace, summary_path, *views])}\n"
     )
     return 0

@@ -20,6 +20,7 @@ from typing import Any, TextIO
 from mazesim import load_world
 from mazesim._paths import refuse_overwriting_inputs
 from mazesim.cli._args import add_setting_options, output_path, positive_int, seed_argument
+from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
 from mazesim.replay.navigator import Recording
 from mazesim.replay.views import (
@@ -81,7 +82,15 @@ def register(commands: Any) -> None:
             "and report the success rate, collisions, steps against the shortest path and the "
             "sub-tasks chosen at each checkpoint. In a world the navigator's higher level did "
             "not learn (a file, or 'random': unseen generated 5 x 5 mazes), only the higher level "
-            f"is trained there first, for at most {ADAPT_EPISODES} episodes per maze."
+            f"is trained there first, for at most {ADAPT_EPISODES} episodes per maze. A navigator "
+            "trained by 'mazesim train --world FILE' is evaluated in that file's world."
+        ),
+        epilog=examples(
+            "mazesim eval",
+            "mazesim eval --policy my-navigator",
+            "mazesim eval --world random --mazes 10 --episodes 100",
+            "mazesim eval --policy randomised --episodes 100 --events robust",
+            "mazesim eval --episodes 1 --html run.html --trace trace.txt",
         ),
     )
     add_setting_options(
@@ -152,7 +161,7 @@ def run_eval(args: argparse.Namespace, out: TextIO) -> int:
         per_world = max(1, math.ceil(args.episodes / len(worlds)))
         label = f"{len(worlds)} unseen generated 5 x 5 mazes"
     else:
-        worlds = [load_world(args.world if args.world is not None else policy.world_name)]
+        worlds = [load_world(args.world) if args.world is not None else policy.learned_world()]
         per_world = args.episodes
         label = worlds[0].name
     settings = EvalSettings(**{f.name: getattr(args, f.name) for f in fields(EvalSettings)})

@@ -28,7 +28,9 @@ def register(commands: Any) -> None:
         description=(
             "Draw a world with a legend: walls, floor paint, checkpoints with their codes and "
             "reading directions, start, goal and the maze grid when there is one; for a .wbt "
-            "world the importer's warnings are listed beside it. Writes -o FILE (default: "
+            "world the importer's warnings are listed beside it. For a cell maze it says whether "
+            "the navigator can learn it (a goal in reach, barcode checkpoints). Writes -o FILE "
+            "(default: "
             "NAME.png in this folder), or opens the picture with --open."
         ),
         epilog=examples(
@@ -63,7 +65,18 @@ def run_show(args: argparse.Namespace, out: TextIO) -> int:
         else:
             path = file_name_of(world.name, ".png")
     save_world_preview(world, path, warnings)
-    out.write(f"wrote {path} ({len(warnings)} importer warnings)\n")
+    imported = Path(args.world).suffix.lower() == ".wbt"
+    out.write(f"wrote {path}" + (f" ({len(warnings)} importer warnings)\n" if imported else "\n"))
+    if world.cell_maze() is not None:
+        from mazesim.maze import navigator_problems
+
+        problems = navigator_problems(world)
+        out.write(
+            f"the navigator cannot learn it: {'; '.join(problems)}\n"
+            if problems
+            else f"{len(world.checkpoints())} checkpoints and a goal in reach: the navigator can "
+            f"learn it (mazesim train --world {args.world})\n"
+        )
     if args.open and not webbrowser.open(Path(path).resolve().as_uri()):
         out.write(f"no viewer could be started here; open {path} yourself\n")
     return 0

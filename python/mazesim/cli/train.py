@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any, TextIO
 
 from mazesim._paths import output_files, output_path, refuse_overwriting_inputs, writing_alone
 from mazesim.cli._args import add_setting_options, positive_int, seed_argument
+from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
 from mazesim.errors import InvalidArgumentError
 
@@ -67,8 +68,18 @@ def register(commands: Any) -> None:
             "generated mazes with many robots at once, then the higher level on --world. "
             "Checkpoints are written to --out as it goes; --resume continues a stopped run to the "
             "same tables as an uninterrupted one. The navigator is saved as "
-            "--out/tables.npz and --out/policy.json. Progress shows on stderr with the time "
-            "left (ETA)."
+            "--out/tables.npz and --out/policy.json (which keeps the path of a --world file, so "
+            "'mazesim eval --policy DIR' finds it again). Progress shows on stderr with the time "
+            "left (ETA). A world the navigator cannot learn (no goal, a goal out of reach, no "
+            "barcode checkpoints) is refused before training, with what to change."
+        ),
+        epilog=examples(
+            "mazesim train --out my-policy",
+            "mazesim train --world my-maze.toml --out my-navigator --steps 4M",
+            "mazesim train --out my-policy --resume",
+            "mazesim train --flat --out flat-policy",
+            notes="A full run of the defaults takes about a minute on 2 cores; --steps sets the "
+            "lower level's budget (the shipped navigator: 36M).",
         ),
     )
     option_types = {"envs": positive_int, "steps": step_count, "seed": seed_argument}
@@ -136,6 +147,7 @@ def run_train(args: argparse.Namespace, out: TextIO) -> int:
     from mazesim.learn.train import (
         TrainSettings,
         command_line_fields,
+        navigator_world,
         train,
         train_flat_policy,
     )
@@ -145,6 +157,7 @@ def run_train(args: argparse.Namespace, out: TextIO) -> int:
         [("--world", args.world)],
     )
     settings = TrainSettings(**{f.name: getattr(args, f.name) for f in command_line_fields()})
+    navigator_world(settings.world)  # a world it cannot learn is refused before any training
     if args.door_distance or args.blind_forward or args.hold_heading:
         if args.flat:
             raise InvalidArgumentError(
@@ -183,6 +196,7 @@ def run_train(args: argparse.Namespace, out: TextIO) -> int:
             f"trained the flat baseline for {policy.world_name} in {seconds:.0f} s "
             f"({settings.steps} env-steps)\nwrote {Path(args.out) / 'tables.npz'}, "
             f"{Path(args.out) / 'policy.json'}, {curve.path}\n"
+            f"evaluate it with: mazesim eval --policy {args.out}\n"
         )
         return 0
     with writing_alone(args.out, "mazesim train", create=not args.resume), curve:

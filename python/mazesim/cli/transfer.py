@@ -165,7 +165,6 @@ def _table(result: Any) -> str:
 
 def run_transfer_study(args: argparse.Namespace, out: TextIO) -> int:
     """Runs the study, writes its files and prints the table or the JSON object."""
-    from mazesim import load_world
     from mazesim.learn.tables import load_policy
     from mazesim.transfer import StudyOptions, parse_axes, run_study
     from mazesim.transfer.heatmap import write_study_files
@@ -173,7 +172,7 @@ def run_transfer_study(args: argparse.Namespace, out: TextIO) -> int:
 
     os.makedirs(args.out, exist_ok=True)  # a bad --out fails before the study runs
     policy = load_policy(args.policy)
-    world = load_world(policy.world_name)
+    world = policy.learned_world()
     options = StudyOptions(
         axes=parse_axes(args.axes),
         episodes=args.episodes if args.episodes is not None else DEFAULT_EPISODES,

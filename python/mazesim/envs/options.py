@@ -230,9 +230,10 @@ class EnvOptions:
         return self.world if self.world is not None else self.random_maze(0)
 
     def random_maze(self, seed: int) -> World:
-        """The random maze of one episode, generated from ``seed``."""
+        """The random maze of one episode, generated from ``seed`` (a single-corridor draw is
+        kept, ``junction=False``, as when the documented RL results were measured)."""
         width, height = self.maze_size
-        return generate_maze(width, height, seed=seed)
+        return generate_maze(width, height, seed=seed, junction=False)
 
     def next_world(self, rng: np.random.Generator) -> tuple[World | None, StartAndGoal | None]:
         """The world of the next episode, a random maze drawn from ``rng`` (None to keep the

@@ -35,6 +35,7 @@ from mazesim.learn.schema import (
     Text,
     Whole,
     describe,
+    differing,
     parse_metadata,
 )
 
@@ -159,8 +160,7 @@ def _check_described(described: Any, expected: Mapping[str, ArraySpec], where: s
     }
     if described != wanted:
         raise PolicyFormatError(
-            f"{where}: tables.arrays: expected {json.dumps(wanted)[:200]}, "
-            f"found {json.dumps(described)[:200]}"
+            f"{where}: tables.arrays: {differing(json.dumps(wanted), json.dumps(described))}"
         )
 
 

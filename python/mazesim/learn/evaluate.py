@@ -194,7 +194,8 @@ MAX_UNSEEN_MAZES = 10_000
 
 def unseen_mazes(count: int, seed: int) -> list[World]:
     """``count`` generated 5 x 5 perfect mazes for testing; their seeds derive from ``seed`` on a
-    stream no training run uses.
+    stream no training run uses. Single-corridor draws are kept (``junction=False``), as when the
+    documented figures were measured.
 
     Raises:
         InvalidArgumentError: ``count`` is not in 1 to :data:`MAX_UNSEEN_MAZES`.
@@ -202,7 +203,7 @@ def unseen_mazes(count: int, seed: int) -> list[World]:
     if not 1 <= count <= MAX_UNSEEN_MAZES:
         raise InvalidArgumentError(f"expected 1 to {MAX_UNSEEN_MAZES} unseen mazes, found {count}")
     maze_seeds = stream_seeds(seed, "evaluate/mazes", count)
-    return [generate_maze(5, 5, seed=int(maze_seed)) for maze_seed in maze_seeds]
+    return [generate_maze(5, 5, seed=int(maze_seed), junction=False) for maze_seed in maze_seeds]
 
 
 def navigator_for(

@@ -24,6 +24,7 @@ def trace_text(lines: Sequence[str], world: World, seed: int, events: str) -> st
         "# sub-task: CC Corridors and Corners, R / L right / left turn on a door, "
         "F going forward on a door; then its phase (a navigator trained with --door-distance: "
         "heading phase + 3 x distance bin)",
+        "# time_s: simulated seconds; x, y: metres; yaw: degrees, counter-clockwise from +x",
         "# step  time_s      x      y    yaw  levels              state  sub-task  action",
     ]
     return "\n".join([*header, *lines]) + "\n"

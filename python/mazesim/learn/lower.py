@@ -238,10 +238,19 @@ class RoundStats:
 
 
 def training_mazes(seed: int, count: int) -> list[World]:
-    """The pool of generated 5 x 5 mazes a run trains on; their seeds derive from ``seed``."""
+    """The pool of generated 5 x 5 mazes a run trains on; their seeds derive from ``seed``.
+
+    A draw that is a single corridor stays in the pool (``junction=False``), as when the shipped
+    navigator was trained: the pool, and so training from scratch, gives its tables bit for bit."""
     maze_seeds = stream_seeds(seed, "lower/mazes", count)
     return [
-        generate_maze(5, 5, seed=int(maze_seed), loops=POOL_LOOPS[index % len(POOL_LOOPS)])
+        generate_maze(
+            5,
+            5,
+            seed=int(maze_seed),
+            loops=POOL_LOOPS[index % len(POOL_LOOPS)],
+            junction=False,
+        )
         for index, maze_seed in enumerate(maze_seeds)
     ]
 

@@ -33,6 +33,7 @@ __all__ = [
     "Text",
     "Whole",
     "describe",
+    "differing",
     "parse_metadata",
 ]
 
@@ -50,6 +51,29 @@ def describe(value: Any) -> str:
     if len(text) > 60:
         text = text[:57] + "..."
     return f"{kind} {text}" if value is not None else kind
+
+
+def differing(expected: str, found: str, width: int = 120) -> str:
+    """``expected X, found Y`` for two renderings that differ, each clipped to about ``width``
+    characters around the first character where they differ (marked ``...`` where cut), so a
+    long message shows the difference rather than the common start of both."""
+    if len(expected) <= width and len(found) <= width:
+        return f"expected {expected}, found {found}"
+    at = next(
+        (i for i, (a, b) in enumerate(zip(expected, found)) if a != b),
+        min(len(expected), len(found)),
+    )
+    start = max(0, at - width // 3)
+
+    def clipped(text: str) -> str:
+        head = "..." if start > 0 else ""
+        tail = "..." if start + width < len(text) else ""
+        return f"{head}{text[start : start + width]}{tail}"
+
+    return (
+        f"expected {clipped(expected)}, found {clipped(found)} "
+        f"(they differ from character {at + 1} on)"
+    )
 
 
 def _depth(document: Any) -> int:

@@ -40,7 +40,7 @@ import numpy.typing as npt
 
 from mazesim._core import World
 from mazesim.actions import ACTION_CODES, WHEEL_SPEED_FRACTIONS
-from mazesim.errors import InvalidArgumentError, PolicyFormatError
+from mazesim.errors import InvalidArgumentError, PolicyFormatError, UnknownNameError
 from mazesim.learn.archive import ArraySpec
 from mazesim.learn.bundle import (
     FORMAT_VERSION,
@@ -52,7 +52,7 @@ from mazesim.learn.bundle import (
 from mazesim.learn.discretise import LEVEL_EDGES_CM, NUM_STATES, SENSOR_ORDER, SHARP_TABLE
 from mazesim.learn.higher import event_state_names
 from mazesim.learn.lower import lower_table_shape
-from mazesim.learn.schema import AnyJson, ListOf, Record, Text, Whole
+from mazesim.learn.schema import AnyJson, ListOf, Record, Text, Whole, differing
 from mazesim.learn.subtasks import (
     CONTROL_STEP_MS,
     DISTANCE_EDGES,
@@ -184,6 +184,8 @@ class TrainedPolicy:
         flat_q: The flat baseline's table.
         world_name: The world the higher level (or the flat table) learned.
         world_sha256: That world's sha256 (see :func:`mazesim.maze.world_hash`).
+        world_file: The absolute path of the world file it learned, or None for a built-in world
+            (navigators saved before mazesim kept it have none either).
         checkpoint_ids: That world's checkpoint ids, in table order.
         training: The training settings and measurements.
         source: The folder it was loaded from, if any.
@@ -193,6 +195,7 @@ class TrainedPolicy:
     world_name: str
     world_sha256: str
     checkpoint_ids: list[int]
+    world_file: str | None = None
     lower_q: npt.NDArray[np.float64] | None = None
     higher_q: npt.NDArray[np.float64] | None = None
     flat_q: npt.NDArray[np.float64] | None = None
@@ -238,6 +241,29 @@ class TrainedPolicy:
         if self._driver is None:
             self.reset()
         return str(self._driver.act(distances_cm, checkpoint))
+
+    def learned_world(self) -> World:
+        """The world it learned: the built-in world of its name, or the world file it was trained
+        on (:attr:`world_file`).
+
+        Raises:
+            UnknownNameError: Neither is there (the file was moved or deleted); the message says
+                where it was and how to name the world instead.
+            WorldFormatError: The file is no longer a valid world.
+        """
+        from mazesim import load_world
+        from mazesim._core import builtin_world_names
+
+        if self.world_name in builtin_world_names() or self.world_file is None:
+            return load_world(self.world_name)
+        if not os.path.isfile(self.world_file):
+            where = f" {self.source}" if self.source else ""
+            raise UnknownNameError(
+                f"the navigator{where} learned world {self.world_name!r} from "
+                f"{self.world_file}, which is no longer there: put the file back, or name the "
+                "world with --world FILE"
+            )
+        return load_world(self.world_file)
 
     def check_world(self, world: World) -> None:
         """Raises :class:`PolicyFormatError` unless ``world`` is the world it learned."""
@@ -295,6 +321,8 @@ def save_policy(policy: TrainedPolicy, folder: str | os.PathLike[str]) -> None:
         "checkpoints": list(policy.checkpoint_ids),
         "higher_states": event_state_names(policy.checkpoint_ids),
     }
+    if policy.world_file is not None:
+        metadata["world"]["file"] = policy.world_file
     metadata["training"] = policy.training
     write_bundle(folder, TABLES_FILE, METADATA_FILE, arrays, metadata)
 
@@ -321,7 +349,9 @@ def policy_schema() -> Record:
                     "sha256": Text(length=64, alphabet=HEX_DIGITS),
                     "checkpoints": ListOf(Whole(1, MAX_CHECKPOINT_ID), 0, MAX_CHECKPOINTS),
                     "higher_states": ListOf(Text(max_length=16), 0, 2 * MAX_CHECKPOINTS),
-                }
+                    "file": Text(max_length=4096),
+                },
+                optional=frozenset({"file"}),
             ),
             "training": Record({}, open=True, others=AnyJson()),
             "tables": tables_schema(TABLES_FILE),
@@ -347,8 +377,7 @@ def _check_encoding(metadata: dict[str, Any], where: Path) -> bool:
     if key is not None:
         raise PolicyFormatError(
             f"{where}: made for another {key.replace('_', ' ')} than this mazesim uses "
-            f"(expected {json.dumps(plain[key])[:160]}..., "
-            f"found {json.dumps(metadata.get(key))[:160]}...)"
+            f"({differing(json.dumps(plain[key]), json.dumps(metadata.get(key)))})"
         )
     return False
 
@@ -360,9 +389,9 @@ def _check_world(world: dict[str, Any], where: Path) -> None:
             f"{where}: world.checkpoints: expected distinct ids, found {checkpoints[:20]}"
         )
     if world["higher_states"] != event_state_names(checkpoints):
+        expected, found = event_state_names(checkpoints), world["higher_states"]
         raise PolicyFormatError(
-            f"{where}: world.higher_states: expected {event_state_names(checkpoints)[:8]}..., "
-            f"found {world['higher_states'][:8]}..."
+            f"{where}: world.higher_states: {differing(json.dumps(expected), json.dumps(found))}"
         )
 
 
@@ -417,6 +446,7 @@ def load_policy(folder: str | os.PathLike[str] | None = None) -> TrainedPolicy:
         world_name=str(world["name"]),
         world_sha256=str(world["sha256"]),
         checkpoint_ids=checkpoints,
+        world_file=str(world["file"]) if "file" in world else None,
         training=dict(metadata["training"]),
         source=str(path),
     )

@@ -34,10 +34,11 @@ import os
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import Field, asdict, dataclass, field, fields
+from pathlib import Path
 from typing import Any, Protocol, Union
 
 from mazesim import load_world
-from mazesim._core import World
+from mazesim._core import World, builtin_world_names
 from mazesim.batch import RobotChoice
 from mazesim.episodes import EpisodeResult, shortest_path_steps
 from mazesim.errors import InvalidArgumentError
@@ -55,7 +56,7 @@ from mazesim.learn.lower import (
 )
 from mazesim.learn.summary import summarise
 from mazesim.learn.tables import TrainedPolicy
-from mazesim.maze import checkpoint_ids, world_hash
+from mazesim.maze import checkpoint_ids, navigator_problems, world_hash
 
 __all__ = [
     "CHECKPOINT_FORMAT",
@@ -68,9 +69,11 @@ __all__ = [
     "TrainSettings",
     "TrainingRun",
     "command_line_fields",
+    "navigator_world",
     "run_training",
     "train",
     "train_flat_policy",
+    "world_file",
 ]
 
 
@@ -346,13 +349,31 @@ def run_training(
     )
 
 
-def _navigator_world(name: str) -> World:
+def navigator_world(name: str) -> World:
+    """Loads the world a navigator is to learn (a built-in name or a world file).
+
+    Raises:
+        InvalidArgumentError: The navigator cannot learn it (no cell maze, no goal, a goal out of
+            reach, no checkpoints: :func:`mazesim.maze.navigator_problems`); the message says
+            what to change.
+        UnknownNameError, WorldFormatError: The world cannot be loaded.
+    """
     world = load_world(name)
-    if world.goal is None or world.cell_maze() is None:
+    problems = navigator_problems(world)
+    if problems:
+        shown = name if name == world.name else f"{world.name!r} ({name})"
         raise InvalidArgumentError(
-            f"world {world.name!r} needs a [grid] maze and a goal to train a navigator for"
+            f"the navigator cannot learn world {shown}: " + "; ".join(problems)
         )
     return world
+
+
+def world_file(name: str) -> str | None:
+    """The absolute path of the world file ``name`` names, or None for a built-in world (a
+    saved navigator keeps it, so that ``mazesim eval --policy`` finds the world again)."""
+    if name in builtin_world_names():
+        return None
+    return str(Path(name).resolve())
 
 
 def _machine() -> dict[str, Any]:
@@ -421,7 +442,7 @@ def train(
             "expected a robot draw exactly with randomisation ranges in the settings, found "
             f"randomise={settings.randomise!r} and robot={robot!r}"
         )
-    world = _navigator_world(settings.world)
+    world = navigator_world(settings.world)
     lower_settings = settings.lower()
     saved = None if checkpoint is None else checkpoint.start(settings.identity())
     if saved is not None:
@@ -480,6 +501,7 @@ def train(
         kind="hierarchical",
         world_name=world.name,
         world_sha256=world_hash(world),
+        world_file=world_file(settings.world),
         checkpoint_ids=run.level.checkpoint_ids[0],
         lower_q=run.tables.q,
         higher_q=run.level.q[0],
@@ -502,7 +524,7 @@ def train_flat_policy(
     :meth:`~RunWriter.finish` (``None``: it is only returned); ``curve`` receives ``("flat",
     {"index": env-steps done, "goal_rate": share of the last episodes that reached the
     goal})``."""
-    world = _navigator_world(settings.world)
+    world = navigator_world(settings.world)
     started = time.perf_counter()
 
     def flat_progress(done: int, total: int, recent: float) -> None:
@@ -524,6 +546,7 @@ def train_flat_policy(
         kind="flat",
         world_name=world.name,
         world_sha256=world_hash(world),
+        world_file=world_file(settings.world),
         checkpoint_ids=checkpoint_ids(world),
         flat_q=q,
         training={

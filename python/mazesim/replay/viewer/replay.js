@@ -302,7 +302,7 @@
         '</td><td class="num" id="level-' + k + '">' + level + '</td><td class="num">' + ray + "</td></tr>");
     });
     body.innerHTML = rows.join("");
-    text("levels-note", episode.levels ? "level: Table 4.1 of the report, 0 (< 7 cm), 1 (< 13 cm), 2 (< 20 cm), 3 (farther); ray: distance to the wall the sensor faces" :
+    text("levels-note", episode.levels ? "level: Table 4.1 of the report (Integration of a Webots Mobile Robot Simulation in ROS), 0 (< 7 cm), 1 (< 13 cm), 2 (< 20 cm), 3 (farther); ray: distance to the wall the sensor faces" :
       "ray: distance to the wall the sensor faces (Table 4.1 levels apply to the six Sharp sensors of the seed robot)");
     var action = "\u2014";
     if (episode.actions && episode.actions[frame]) {

@@ -1,0 +1,159 @@
+"""Issue 37: one's own maze, end to end. A world the navigator cannot learn is refused before
+training with what to change; a trained navigator keeps the world file it learned, so the
+command ``mazesim train`` prints works as printed; long comparisons show where they differ."""
+
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+
+import pytest
+
+import mazesim
+from mazesim.cli import main
+from mazesim.errors import PolicyFormatError, UnknownNameError
+from mazesim.learn.schema import differing
+from mazesim.learn.tables import load_policy
+from mazesim.maze import navigator_problems
+
+#: A small, quick training: 32 robots, 16,000 env-steps of the lower level.
+QUICK = ["--envs", "32", "--steps", "16000", "--no-progress"]
+#: A quicker one: the flat baseline, 4 robots for 10,000 steps each.
+FLAT = ["--flat", "--envs", "4", "--steps", "40k", "--no-progress"]
+
+WALLED = '''format = "mazesim-world"
+version = 1
+name = "walled"
+
+[grid]
+cell_size = 0.25
+wall_thickness = 0.01
+map = """
++--+--+--+
+|S    |G |
++  +--+  +
+|     |  |
++--+--+--+
+"""
+'''
+
+
+def _corridor() -> mazesim.World:
+    """4 x 4, seed 3, first draw: one corridor from the start to the goal, no junction."""
+    return mazesim.generate_maze(4, 4, seed=3, junction=False)
+
+
+def test_the_generated_4_by_4_maze_of_seed_3_now_has_checkpoints() -> None:
+    assert _corridor().checkpoints() == []
+    maze = mazesim.generate_maze(4, 4, seed=3)
+    assert len(maze.checkpoints()) > 0
+    assert navigator_problems(maze) == []
+
+
+def test_the_problems_of_a_world_say_what_to_change() -> None:
+    (corridor,) = navigator_problems(_corridor())
+    assert "no barcode checkpoints" in corridor and "mazesim.generate_maze" in corridor
+    walled = navigator_problems(mazesim.World.from_toml(WALLED, source="walled.toml"))
+    assert any("cannot be reached from the start" in p and "open a way" in p for p in walled)
+    assert any("no barcode checkpoints" in p for p in walled)
+    no_goal = WALLED.replace("|S    |G |", "|S    |  |")
+    assert any(
+        "no goal" in p for p in navigator_problems(mazesim.World.from_toml(no_goal, source="x"))
+    )
+    assert "no [grid] cell maze" in navigator_problems(mazesim.load_world("arena"))[0]
+    assert navigator_problems(mazesim.load_world("seed-maze")) == []
+
+
+@pytest.mark.parametrize("flat", [False, True])
+def test_a_world_the_navigator_cannot_learn_is_refused_before_training(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], flat: bool
+) -> None:
+    world = tmp_path / "corridor.toml"
+    _corridor().save(str(world))
+    out = tmp_path / "run"
+    args = ["train", "--world", str(world), "--out", str(out), *QUICK]
+    assert main([*args, *(["--flat"] if flat else [])]) == 2
+    error = capsys.readouterr().err
+    assert "the navigator cannot learn world 'maze-4x4-seed3'" in error
+    assert "no barcode checkpoints" in error and str(world) in error
+    assert not out.exists()
+
+
+def test_differing_shows_where_two_long_values_differ() -> None:
+    common = '{"lower": {"shape": [4096, 12], "dtype": "float64"}, ' * 6
+    expected = common + '"higher": {"shape": [14, 4], "dtype": "float64"}}'
+    found = common + '"higher": {"shape": [0], "dtype": "float64"}}'
+    text = differing(expected, found)
+    assert "[14, 4]" in text and "[0]" in text
+    first = len(common) + len('"higher": {"shape": [') + 1
+    assert f"from character {first} on" in text
+    assert text.count("...") == 2  # both cut before the difference; the rest of each fits
+    assert differing("[1, 2]", "[1, 3]") == "expected [1, 2], found [1, 3]"
+
+
+def test_a_mismatched_table_description_names_the_difference(tmp_path: Path) -> None:
+    from mazesim.learn.tables import save_policy
+
+    policy = load_policy()
+    save_policy(policy, tmp_path)
+    meta = json.loads((tmp_path / "policy.json").read_text())
+    meta["tables"]["arrays"]["higher"]["dtype"] = "int64"
+    (tmp_path / "policy.json").write_text(json.dumps(meta))
+    with pytest.raises(PolicyFormatError) as raised:
+        load_policy(tmp_path)
+    message = str(raised.value)
+    assert '"higher": {"shape": [14, 4], "dtype": "float64"}' in message
+    assert '"higher": {"shape": [14, 4], "dtype": "int64"}' in message
+
+
+def test_a_navigator_keeps_its_world_file_and_eval_finds_it(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    mazesim.generate_maze(4, 4, seed=3).save("my-maze.toml")
+    assert main(["train", "--world", "my-maze.toml", "--out", "nav", *FLAT]) == 0
+    printed = capsys.readouterr().out
+    assert printed.splitlines()[-1] == "evaluate it with: mazesim eval --policy nav"
+    policy = load_policy("nav")
+    assert policy.world_file == str(tmp_path / "my-maze.toml")
+    # From another folder, the printed command (with the folder's path) still works.
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    monkeypatch.chdir(elsewhere)
+    short = ["--episodes", "2", "--max-steps", "200"]
+    assert main(["eval", "--policy", "../nav", *short, "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["episodes"] == 2
+    os.remove(tmp_path / "my-maze.toml")
+    with pytest.raises(UnknownNameError) as raised:
+        load_policy("../nav").learned_world()
+    assert str(tmp_path / "my-maze.toml") in str(raised.value)
+    assert "--world FILE" in str(raised.value)
+    assert main(["eval", "--policy", "../nav", *short]) == 2
+    assert "no longer there" in capsys.readouterr().err
+
+
+def test_the_shipped_navigator_names_a_builtin_world_and_no_file() -> None:
+    policy = load_policy()
+    assert policy.world_file is None
+    assert policy.learned_world().name == "seed-maze"
+
+
+def test_the_hrl_demo_in_a_new_maze_says_it_trains_and_when_time_ran_out(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from mazesim.cli.demo import HRL_DEFAULT_SECONDS
+    from mazesim.episodes import MAX_STEPS
+    from mazesim.learn.subtasks import CONTROL_STEP_MS
+
+    assert HRL_DEFAULT_SECONDS == MAX_STEPS * CONTROL_STEP_MS / 1000
+    monkeypatch.chdir(tmp_path)
+    mazesim.generate_maze(4, 4, seed=3).save("my-maze.toml")
+    args = ["demo", "--controller", "hrl", "--world", "my-maze.toml", "--no-progress"]
+    assert main([*args, "--seconds", "5", "--out", "short"]) == 0
+    printed = capsys.readouterr().out
+    assert printed.startswith("training the higher level in maze-4x4-seed3 first")
+    assert "goal reached       no: the time limit of 5 simulated seconds ended the run" in printed
+    assert "--seconds 10" in printed and "s training the higher level" in printed
+    summary = json.loads((tmp_path / "short" / "summary.json").read_text())
+    assert summary["goal_reached"] is False and summary["steps"] == 79

@@ -1,0 +1,58 @@
+"""Issue 37: the own-maze recipe (docs/own-maze.md) runs as printed, and what the page says the
+commands print is what they print."""
+
+from __future__ import annotations
+
+import re
+import shlex
+from pathlib import Path
+
+from docs_blocks import console_commands, parse_blocks, run_command
+
+REPO = Path(__file__).resolve().parents[2]
+PAGE = REPO / "docs" / "own-maze.md"
+#: A guard against a command that hangs, not a speed requirement.
+COMMAND_TIMEOUT_S = 900
+
+
+def _blocks() -> tuple[list[str], str]:
+    """The recipe's commands and the output the page shows for ``mazesim show``."""
+    blocks = parse_blocks(PAGE, PAGE.read_text(encoding="utf-8"), REPO)
+    (recipe,) = [block for block in blocks if block.language == "console"]
+    (shown,) = [block for block in blocks if block.language == "text"]
+    return console_commands(recipe.text).splitlines(), shown.text
+
+
+def test_the_recipe_is_five_commands_that_make_train_evaluate_and_watch() -> None:
+    commands, _ = _blocks()
+    assert len(commands) == 5
+    assert [shlex.split(command)[:2] for command in commands[1:]] == [
+        ["mazesim", "show"],
+        ["mazesim", "train"],
+        ["mazesim", "eval"],
+        ["mazesim", "eval"],
+    ]
+
+
+def test_the_recipe_runs_as_printed(tmp_path: Path) -> None:
+    commands, shown = _blocks()
+    printed = []
+    for command in commands:
+        finished = run_command(["bash", "-e", "-c", command], tmp_path, COMMAND_TIMEOUT_S)
+        assert finished.returncode == 0, f"{command}\n{finished.stdout}\n{finished.stderr}"
+        printed.append(finished.stdout)
+    make, show, train, evaluate, watch = printed
+    assert make == ""
+    assert show == shown
+    # The command train ends with is the recipe's next one, up to the options it adds.
+    advised = train.splitlines()[-1]
+    assert advised == "evaluate it with: mazesim eval --policy my-navigator"
+    assert commands[3].startswith(advised.split(": ", 1)[1])
+    # The page's measured success is this run's (the run is deterministic).
+    success = re.search(r"success rate\s+([\d.]+)%", evaluate)
+    assert success is not None, evaluate
+    reached = round(float(success.group(1)) * 20 / 100)
+    page = PAGE.read_text(encoding="utf-8")
+    assert f"reached the goal in {reached} of the 20 episodes" in page
+    assert (tmp_path / "my-run.html").read_text(encoding="utf-8").lstrip().startswith("<!")
+    assert "my-run.html" in watch
