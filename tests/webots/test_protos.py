@@ -274,3 +274,25 @@ def test_hidden_engine_state_in_an_instance_is_skipped(tmp_path: Path) -> None:
     assert not [w for w in report["warnings"] if "is not a field" in w], report["warnings"]
     assert len(_boxes(report)) == 3
     assert report["robot_line"] == 13  # the lines after the expansions are the file's
+
+
+def test_maze_blocks_stand_in_as_thin_wall_boxes_of_their_length(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    monkeypatch.setenv("MAZESIM_OFFLINE", "1")
+    url = (
+        "https://raw.githubusercontent.com/cyberbotics/webots/R2023b/projects/samples/"
+        "robotbenchmark/maze_runner/protos/MazeBlock.proto"
+    )
+    text = (
+        f'#VRML_SIM R2023b utf8\nEXTERNPROTO "{url}"\n'
+        'MazeBlock { name "a" length 0.2 }\n'
+        'MazeBlock { translation 0 -0.21 0 rotation 0 0 1 1.5708 name "b" }\n'
+        "E-puck { translation 0.3 0 0 }\n"
+    )
+    _, report = import_wbt_text(text, str(tmp_path / "maze.wbt"))
+    assert set(report["protos"]["stand_ins"]) == {"MazeBlock"}
+    assert [(o["center"], o["size"], o["yaw"]) for o in report["obstacles"]] == [
+        ([0.0, 0.0], [0.015, 0.2], 0.0),
+        ([0.0, -0.21], [0.015, 0.1], 1.5708),
+    ]

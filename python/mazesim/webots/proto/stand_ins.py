@@ -8,7 +8,9 @@ wallHeight 0.1, subdivision 48), "Kitchen" (``CerealBox``: size 0.08 x 0.3 x 0.2
 height second in the Y-up versions, mass 1 kg), "Balls" (``SoccerBall``: radius 0.113, mass 0.6
 kg; ``Ball``: radius 0.0325, mass 0.055 kg) and "Obstacles" (``OilBarrel``: height 0.88, radius
 0.305, centred on its translation, physics NULL by default) and "Drinks" (``Can``: 0.03175 m
-radius, 0.1222 m high, 0.35 kg).
+radius, 0.1222 m high, 0.35 kg); the robotbenchmark "Maze Runner" sample's ``MazeBlock`` (its
+PROTO interface: a wall block 0.015 m thick, ``length`` long (default 0.1) and 0.065 m high,
+standing on its translation, of density 200 kg/m^3).
 """
 
 from __future__ import annotations
@@ -179,6 +181,34 @@ PROTO OilBarrel [
 }
 """
 
+_MAZE_BLOCK = """#VRML_SIM R2023b utf8
+# template language: javascript
+PROTO MazeBlock [
+  field SFVec3f translation 0 0 0
+  field SFRotation rotation 0 0 1 0
+  field SFString name "maze block"
+  field SFFloat length 0.1
+]
+{
+  %< const yUp = context.coordinate_system === 'NUE'; const l = fields.length.value; >%
+  Solid {
+    translation IS translation
+    rotation IS rotation
+    name IS name
+    boundingObject Pose {
+      %< if (yUp) { >%
+        translation 0 0.0325 0
+        children [ Box { size 0.015 0.065 %<= l >% } ]
+      %< } else { >%
+        translation 0 0 0.0325
+        children [ Box { size 0.015 %<= l >% 0.065 } ]
+      %< } >%
+    }
+    physics Physics { density 200 }
+  }
+}
+"""
+
 #: The stand-ins, by PROTO name.
 STAND_INS: dict[str, StandIn] = {
     "CircleArena": StandIn(
@@ -194,4 +224,7 @@ STAND_INS: dict[str, StandIn] = {
     ),
     "OilBarrel": StandIn(_OIL_BARREL, "an upright cylinder of the documented height and radius"),
     "Can": StandIn(_CAN, "an upright cylinder of the documented size and mass"),
+    "MazeBlock": StandIn(
+        _MAZE_BLOCK, "a wall block 0.015 m thick and 0.065 m high of the given length"
+    ),
 }
