@@ -12,7 +12,7 @@ from gymnasium.error import ResetNeeded
 
 from mazesim._core import Simulator, World
 from mazesim.envs.navigation import StartAndGoal, navigation_features
-from mazesim.envs.options import EnvOptions, draw_seed
+from mazesim.envs.options import EnvOptions, draw_seed, json_world_spec
 from mazesim.envs.render import TopDownRenderer
 from mazesim.envs.spaces import ActionConverter, ObservationLayout, sensor_ranges
 from mazesim.errors import InvalidArgumentError
@@ -143,6 +143,10 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         """What each index of the observation holds (sensor names, then x, y, yaw, or the
         navigation features)."""
         return list(self._layout.names if self._features is None else self._features.names)
+
+    #: The spec ``gymnasium.make`` recorded, a ``World`` given as ``world`` in its JSON form
+    #: (:func:`~mazesim.envs.options.world_as_json`) so that ``spec.to_json()`` works.
+    spec = json_world_spec()
 
     def reset(
         self, *, seed: int | None = None, options: dict[str, Any] | None = None

@@ -45,7 +45,11 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
-__all__ = ["LONG_STEP_MS", "TASKS", "Task", "register_tasks"]
+__all__ = ["LONG_STEP_MS", "REWARD_THRESHOLD", "TASKS", "Task", "register_tasks"]
+
+
+#: The registered ``reward_threshold`` of every task: the default goal bonus.
+REWARD_THRESHOLD = 10.0
 
 
 @dataclass(frozen=True)
@@ -59,6 +63,13 @@ class Task:
         max_episode_steps: The time limit in control steps (of 32 ms, or of the task's
             ``control_step_ms``: 128 ms for tiers 1 to 3 of version 1).
         options: The env options that make the task (see ``EnvOptions.create``).
+        reward_threshold: The mean episode return gymnasium's spec calls solved: the goal
+            bonus of the default reward (:class:`~mazesim.envs.RewardWeights`, 10). An episode
+            that reaches the goal earns the bonus plus the progress along the shortest path
+            from its start, less its collisions; one that does not earns at most its progress,
+            so a mean return at or above the bonus is what a policy reaching the goal in most
+            episodes earns. The success rate (``info["is_success"]``) stays the measure the
+            docs report.
     """
 
     env_id: str
@@ -66,6 +77,7 @@ class Task:
     summary: str
     max_episode_steps: int
     options: dict[str, Any] = field(default_factory=dict)
+    reward_threshold: float = REWARD_THRESHOLD
 
 
 #: The control step of tiers 1 to 3 in ms: four physics steps of 32 ms per action, so that a
@@ -137,5 +149,6 @@ def register_tasks() -> None:
             entry_point="mazesim.envs.maze_env:EPuckMazeEnv",
             vector_entry_point="mazesim.envs.vector:EPuckMazeVectorEnv",
             max_episode_steps=task.max_episode_steps,
+            reward_threshold=task.reward_threshold,
             kwargs=dict(task.options),
         )
