@@ -265,6 +265,13 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         elif simulator.colliding:
             self._last_event = f"touching a wall at step {simulator.steps}"
 
+    @property
+    def goal_disc(self) -> tuple[float, float, float] | None:
+        """x, y and radius (metres) of this episode's goal disc, or None in a world without a
+        goal."""
+        drawn = getattr(self, "_drawn", None)
+        return drawn.goal if drawn is not None else self.world.goal
+
     def render(self) -> npt.NDArray[np.uint8] | None:
         """A top-down (height, width, 3) uint8 image with ``render_mode="rgb_array"``; with
         ``"human"``, the same image shown in a window (:class:`mazesim.replay.live.LiveView`,
