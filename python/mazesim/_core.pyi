@@ -197,6 +197,9 @@ class RobotProfile:
     def __copy__(self) -> RobotProfile:
         """A profile is immutable: a copy is the profile itself."""
     def __deepcopy__(self, memo: dict[int, Any], /) -> RobotProfile: ...
+    def __eq__(self, other: object, /) -> bool:
+        """Equal when they hold the same values, wherever they were loaded from."""
+    def __hash__(self) -> int: ...
     @property
     def body_radius(self) -> float: ...
     @property

@@ -68,7 +68,7 @@ def test_a_copied_vector_env_goes_on_as_the_original(how: str) -> None:
 def test_a_world_object_keeps_the_spec_and_runs_in_subprocesses() -> None:
     world = mazesim.generate_maze(4, 4, seed=3)
     env = gymnasium.make(ENV_ID, world=world)
-    assert env.spec is not None and env.spec.kwargs["world"] == world
+    assert env.spec is not None and env.unwrapped.options.world == world
     options = {"world": world, "max_episode_steps": 30}
     parallel = gymnasium.make_vec(ENV_ID, 2, vectorization_mode="async", **options)
     serial = gymnasium.make_vec(ENV_ID, 2, vectorization_mode="sync", **options)

@@ -172,3 +172,30 @@ def test_env_method_calls_each_environments_method_not_the_whole_engines() -> No
     for method in ("reset", "step", "close"):  # would act on all three environments at once
         with pytest.raises(InvalidArgumentError, match=f"found '{method}'"):
             fast.env_method(method, indices=[0])
+
+
+def test_make_vec_env_takes_sb3s_arguments(tmp_path: Any) -> None:
+    options = {"world": "random", "max_episode_steps": 20}
+    shifted = make_vec_env(
+        ENV_ID,
+        2,
+        seed=3,
+        start_index=4,
+        env_kwargs=options,
+        vec_env_kwargs={"threads": 1},
+        monitor_dir=str(tmp_path),
+        monitor_kwargs={"info_keywords": ("is_success",)},
+    )
+    same = make_vec_env(ENV_ID, n_envs=2, seed=7, monitor=False, **options)
+    assert np.array_equal(shifted.reset(), same.reset())
+    actions = np.zeros((2, 2), dtype=np.float32)
+    for _ in range(20):
+        shifted.step(actions)
+    shifted.close()
+    log = (tmp_path / "monitor.monitor.csv").read_text().splitlines()
+    assert log[1] == "r,l,t,is_success" and len(log) == 4  # two episodes of 20 steps
+    assert make_vec_env(ENV_ID).num_envs == 1
+    with pytest.raises(InvalidArgumentError, match="wrapper_class"):
+        make_vec_env(ENV_ID, 2, wrapper_class=gymnasium.wrappers.ClipAction)
+    with pytest.raises(InvalidArgumentError, match="vec_env_cls"):
+        make_vec_env(ENV_ID, 2, vec_env_cls=DummyVecEnv)

@@ -225,6 +225,25 @@ impl PyRobotProfile {
     }
 
     /// Pickles as its built-in name when it is that built-in profile, otherwise as its TOML text.
+    /// Profiles are equal when they hold the same values (name included), wherever they were
+    /// loaded from.
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> PyResult<bool> {
+        enter(|| {
+            Ok(other
+                .cast::<PyRobotProfile>()
+                .map(|o| *o.get().inner == *self.inner)
+                .unwrap_or(false))
+        })
+    }
+
+    /// Hashes the name: equal profiles have the same name.
+    fn __hash__(&self) -> u64 {
+        use std::hash::{Hash, Hasher};
+        let mut hasher = std::collections::hash_map::DefaultHasher::new();
+        self.inner.name.hash(&mut hasher);
+        hasher.finish()
+    }
+
     fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyTuple>> {
         let py = slf.py();
         let profile = &slf.get().inner;

@@ -12,7 +12,7 @@ import numpy.typing as npt
 from mazesim._core import Simulator, World
 from mazesim.envs.errors import EnvClosedError, ResetNeededError, check_options, check_seed
 from mazesim.envs.navigation import StartAndGoal, navigation_features
-from mazesim.envs.options import EnvOptions, draw_seed
+from mazesim.envs.options import EnvOptions, draw_seed, json_world_spec
 from mazesim.envs.spaces import ActionConverter, ObservationLayout, sensor_ranges
 from mazesim.errors import InvalidArgumentError
 from mazesim.maze import GoalDistance, PathDistanceTable
@@ -145,6 +145,10 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         navigation features)."""
         return list(self._layout.names if self._features is None else self._features.names)
 
+    #: The spec ``gymnasium.make`` recorded, a ``World`` given as ``world`` in its JSON form
+    #: (:func:`~mazesim.envs.options.world_as_json`) so that ``spec.to_json()`` works.
+    spec = json_world_spec()
+
     def reset(
         self, *, seed: int | None = None, options: dict[str, Any] | None = None
     ) -> tuple[npt.NDArray[np.float32], dict[str, Any]]:
@@ -271,6 +275,13 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
             self._last_event = f"checkpoint {abs(crossing)} ({direction}) at step {simulator.steps}"
         elif simulator.colliding:
             self._last_event = f"touching a wall at step {simulator.steps}"
+
+    @property
+    def goal_disc(self) -> tuple[float, float, float] | None:
+        """x, y and radius (metres) of this episode's goal disc, or None in a world without a
+        goal."""
+        drawn = getattr(self, "_drawn", None)
+        return drawn.goal if drawn is not None else self.world.goal
 
     def render(self) -> npt.NDArray[np.uint8] | None:
         """A top-down (height, width, 3) uint8 image with ``render_mode="rgb_array"``; with

@@ -7,6 +7,7 @@ documentation; both environments pass their keywords straight to it.
 
 from __future__ import annotations
 
+import dataclasses
 import inspect
 import numbers
 import os
@@ -14,6 +15,7 @@ from dataclasses import dataclass, field
 from typing import Any, Union
 
 import numpy as np
+from gymnasium.envs.registration import EnvSpec
 
 import mazesim
 from mazesim._core import RobotProfile, World, generate_maze
@@ -50,8 +52,14 @@ DEFAULT_MAX_EPISODE_STEPS = 3000
 #: 6 s to reset and 150 MB; a 2,500 x 2,500 one, legal for the simulators, ran out of memory.
 MAX_ENV_CELLS = 250_000
 
-#: What the ``world`` option accepts: a built-in name, a path, ``"random"`` or a World.
-WorldOption = Union[str, "os.PathLike[str]", World]
+#: What the ``world`` option accepts: a built-in name, a path, ``"random"``, a World or a World's
+#: JSON form (:func:`world_as_json`).
+WorldOption = Union[str, "os.PathLike[str]", World, dict[str, str]]
+
+
+#: Keywords of a vector env that reach a single env when given to ``make_vec`` in sync or async
+#: mode, where gymnasium takes them in ``vector_kwargs``.
+_VECTOR_ENV_KEYWORDS = ("autoreset_mode", "copy", "observation_mode", "shared_memory", "context")
 
 
 def draw_seed(rng: np.random.Generator) -> int:
@@ -113,7 +121,8 @@ class EnvOptions:
         """Checks the keyword arguments of the environments and resolves the world and robot.
 
         Args:
-            world: A built-in world name, a path to a world file, a ``World``, or ``"random"``
+            world: A built-in world name, a path to a world file, a ``World`` (or its JSON form,
+                :func:`world_as_json`), or ``"random"``
                 for a fresh random maze at each reset (``maze_size`` cells, drawn from the env's
                 RNG).
             robot: The robot profile (``mazesim.robot_profile_names()``): ``"e-puck"``,
@@ -214,9 +223,16 @@ class EnvOptions:
         InvalidArgumentError naming the options there are."""
         unknown = sorted(set(keywords) - set(option_names()))
         if unknown:
+            vector = [key for key in unknown if key in _VECTOR_ENV_KEYWORDS]
+            hint = (
+                f" ({', '.join(vector)} belong to the vector env: with "
+                'vectorization_mode="sync" or "async" pass them as vector_kwargs={...})'
+                if vector
+                else ""
+            )
             raise InvalidArgumentError(
                 f"expected options among {', '.join(option_names())}; "
-                f"found unknown {', '.join(map(repr, unknown))}"
+                f"found unknown {', '.join(map(repr, unknown))}{hint}"
             )
         return cls.create(**keywords)
 
@@ -281,12 +297,44 @@ def _is_random(world: WorldOption) -> bool:
     return isinstance(world, str) and world == "random"
 
 
+def world_as_json(world: World) -> dict[str, str]:
+    """The JSON form of a ``World`` that the ``world`` option accepts too: ``{"toml": its world
+    file text, "source": its name}``."""
+    return {"toml": world.to_toml(), "source": world.name}
+
+
+def spec_with_json_world(spec: EnvSpec | None) -> EnvSpec | None:
+    """``spec`` with a ``World`` given as ``world`` replaced by :func:`world_as_json`, so that
+    ``spec.to_json()`` works and ``gymnasium.make(spec)`` makes the same env."""
+    if spec is None or not isinstance(spec.kwargs.get("world"), World):
+        return spec
+    kwargs = {**spec.kwargs, "world": world_as_json(spec.kwargs["world"])}
+    return dataclasses.replace(spec, kwargs=kwargs)
+
+
+def json_world_spec() -> Any:
+    """An env's ``spec`` property: it stores what ``gymnasium.make`` records through
+    :func:`spec_with_json_world`."""
+
+    def get(env: Any) -> EnvSpec | None:
+        spec: EnvSpec | None = env.__dict__.get("_spec")
+        return spec
+
+    def put(env: Any, spec: EnvSpec | None) -> None:
+        env.__dict__["_spec"] = spec_with_json_world(spec)
+
+    return property(get, put, doc="The env's spec, its world in JSON form (world_as_json).")
+
+
 def _resolve_world(world: WorldOption) -> World:
     if isinstance(world, World):
         return world
+    if isinstance(world, dict) and set(world) == {"toml", "source"}:
+        return World.from_toml(str(world["toml"]), str(world["source"]))
     if not isinstance(world, (str, os.PathLike)):
         raise InvalidArgumentError(
-            f'expected world to be a built-in world name, a path, "random" or a World; '
+            f'expected world to be a built-in world name, a path, "random", a World or '
+            f'{{"toml": ..., "source": ...}}; '
             f"found {world!r}"
         )
     return mazesim.load_world(world)

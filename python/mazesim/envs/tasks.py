@@ -19,6 +19,11 @@ id                                     task
 ``mazesim/UnseenMazeGuided-v0``        tier 4: as tier 3, plus the next waypoint of the
                                        shortest path through the true maze (a map-given,
                                        privileged task)
+``mazesim/EPuckGoal-v0``               goal-conditioned (:mod:`mazesim.envs.goal`): seed-maze,
+                                       random start and goal, sparse reward; ``...Dense-v0``
+                                       with the dense reward
+``mazesim/UnseenMazeGoal-v0``          goal-conditioned: a new 5 x 5 maze every episode, the
+                                       explored map observed, sparse; ``...Dense-v0`` dense
 =====================================  ======================================================
 
 The observations are those of :mod:`mazesim.envs.navigation`; the reward is the one of every
@@ -45,7 +50,11 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
-__all__ = ["LONG_STEP_MS", "TASKS", "Task", "register_tasks"]
+__all__ = ["GOAL_TASKS", "LONG_STEP_MS", "REWARD_THRESHOLD", "TASKS", "Task", "register_tasks"]
+
+
+#: The registered ``reward_threshold`` of every task: the default goal bonus.
+REWARD_THRESHOLD = 10.0
 
 
 @dataclass(frozen=True)
@@ -59,6 +68,16 @@ class Task:
         max_episode_steps: The time limit in control steps (of 32 ms, or of the task's
             ``control_step_ms``: 128 ms for tiers 1 to 3 of version 1).
         options: The env options that make the task (see ``EnvOptions.create``).
+        entry_point: The single env's class.
+        vector_entry_point: The native vector env's class, or None (``make_vec`` then runs
+            gymnasium's ``SyncVectorEnv``).
+        reward_threshold: The mean episode return gymnasium's spec calls solved: the goal
+            bonus of the default reward (:class:`~mazesim.envs.RewardWeights`, 10). An episode
+            that reaches the goal earns the bonus plus the progress along the shortest path
+            from its start, less its collisions; one that does not earns at most its progress,
+            so a mean return at or above the bonus is what a policy reaching the goal in most
+            episodes earns. The success rate (``info["is_success"]``) stays the measure the
+            docs report. None for the goal-conditioned tasks.
     """
 
     env_id: str
@@ -66,6 +85,9 @@ class Task:
     summary: str
     max_episode_steps: int
     options: dict[str, Any] = field(default_factory=dict)
+    reward_threshold: float | None = REWARD_THRESHOLD
+    entry_point: str = "mazesim.envs.maze_env:EPuckMazeEnv"
+    vector_entry_point: str | None = "mazesim.envs.vector:EPuckMazeVectorEnv"
 
 
 #: The control step of tiers 1 to 3 in ms: four physics steps of 32 ms per action, so that a
@@ -125,17 +147,85 @@ TASKS: tuple[Task, ...] = (
 )
 
 
+_GOAL_ENV = "mazesim.envs.goal:MazeGoalEnv"
+#: Seed-maze with random start and goal cells, at the 128 ms step of tiers 1 to 3.
+_SEED_MAZE_GOALS = {
+    "world": "seed-maze",
+    "observation": "goal",
+    "start_goal": "random",
+    "control_step_ms": LONG_STEP_MS,
+}
+#: A new 5 x 5 maze every episode, the explored map observed, as ``UnseenMaze-v1``.
+_UNSEEN_MAZE_GOALS = {
+    "world": "random",
+    "observation": "explore",
+    "start_goal": "random",
+    "control_step_ms": LONG_STEP_MS,
+}
+
+#: The goal-conditioned tasks (:mod:`mazesim.envs.goal`): the sparse reward (0 at the goal, -1
+#: elsewhere; a solved episode returns more than -``max_episode_steps``) and the dense one (minus
+#: the distance to the goal). Their ``reward_threshold`` is None: the success rate is the measure.
+GOAL_TASKS: tuple[Task, ...] = tuple(
+    Task(
+        env_id,
+        tier,
+        summary,
+        steps,
+        {**options, "reward_type": reward_type},
+        reward_threshold=None,
+        entry_point=_GOAL_ENV,
+        vector_entry_point=None,
+    )
+    for env_id, tier, summary, steps, options, reward_type in (
+        (
+            "mazesim/EPuckGoal-v0",
+            2,
+            "seed-maze, random goal, sparse",
+            500,
+            _SEED_MAZE_GOALS,
+            "sparse",
+        ),
+        (
+            "mazesim/EPuckGoalDense-v0",
+            2,
+            "seed-maze, random goal, dense",
+            500,
+            _SEED_MAZE_GOALS,
+            "dense",
+        ),
+        (
+            "mazesim/UnseenMazeGoal-v0",
+            3,
+            "a new 5 x 5 maze, random goal, sparse",
+            1000,
+            _UNSEEN_MAZE_GOALS,
+            "sparse",
+        ),
+        (
+            "mazesim/UnseenMazeGoalDense-v0",
+            3,
+            "a new 5 x 5 maze, random goal, dense",
+            1000,
+            _UNSEEN_MAZE_GOALS,
+            "dense",
+        ),
+    )
+)
+
+
 def register_tasks() -> None:
     """Registers every task (single and vector entry points) that is not registered yet."""
     from gymnasium.envs.registration import register, registry
 
-    for task in TASKS:
+    for task in TASKS + GOAL_TASKS:
         if task.env_id in registry:
             continue
         register(
             id=task.env_id,
-            entry_point="mazesim.envs.maze_env:EPuckMazeEnv",
-            vector_entry_point="mazesim.envs.vector:EPuckMazeVectorEnv",
+            entry_point=task.entry_point,
+            vector_entry_point=task.vector_entry_point,
             max_episode_steps=task.max_episode_steps,
+            reward_threshold=task.reward_threshold,
             kwargs=dict(task.options),
         )

@@ -36,7 +36,12 @@ from mazesim.envs.errors import (
 )
 from mazesim.envs.maze_env import VECTOR_RENDER_MODES, check_render_mode, step_length_ms
 from mazesim.envs.navigation import StartAndGoal, navigation_features
-from mazesim.envs.options import DEFAULT_MAX_EPISODE_STEPS, EnvOptions, draw_seed
+from mazesim.envs.options import (
+    DEFAULT_MAX_EPISODE_STEPS,
+    EnvOptions,
+    draw_seed,
+    json_world_spec,
+)
 from mazesim.envs.reward import step_reward
 from mazesim.envs.spaces import ActionConverter, ObservationLayout, sensor_ranges
 from mazesim.errors import InvalidArgumentError
@@ -82,7 +87,13 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
             next one. SAME_STEP (what Stable-Baselines3 expects): the step that ends an episode
             returns the first observation of the next one, and the last observation and info of
             the ended episode in ``info["final_obs"]`` and ``info["final_info"]`` (masks
-            ``_final_obs``, ``_final_info``), as ``SyncVectorEnv`` does in that mode.
+            ``_final_obs``, ``_final_info``), as ``SyncVectorEnv`` does in that mode. DISABLED:
+            no environment restarts by itself; reset the ended ones with
+            ``reset(options={"reset_mask": terminated | truncated})`` before the next step
+            (stepping an ended environment raises ResetNeeded).
+        vector_kwargs: The vector env's own keywords as a dict (``threads``,
+            ``autoreset_mode``, ...), as ``SyncVectorEnv`` takes them; merged with the
+            keywords above.
         **options: The options of :meth:`mazesim.envs.options.EnvOptions.create`, as for
             :class:`~mazesim.envs.EPuckMazeEnv`; with ``world="random"`` every environment draws
             its own maze at each reset.
@@ -105,8 +116,21 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         render_mode: str | None = None,
         threads: int = 0,
         autoreset_mode: AutoresetMode | str = AutoresetMode.NEXT_STEP,
+        vector_kwargs: dict[str, Any] | None = None,
         **options: Any,
     ) -> None:
+        if vector_kwargs:
+            merged = _vector_keywords(
+                vector_kwargs,
+                max_episode_steps=max_episode_steps,
+                render_mode=render_mode,
+                threads=threads,
+                autoreset_mode=autoreset_mode,
+            )
+            max_episode_steps = merged["max_episode_steps"]
+            render_mode = merged["render_mode"]
+            threads = merged["threads"]
+            autoreset_mode = merged["autoreset_mode"]
         if not isinstance(num_envs, (int, np.integer)) or num_envs < 1:
             raise InvalidArgumentError(f"expected num_envs to be at least 1, found {num_envs!r}")
         if max_episode_steps is not None and (
@@ -172,7 +196,12 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         self._reached = np.zeros(n, dtype=bool)
         self._elapsed = np.zeros(n, dtype=np.int64)
         self._autoreset = np.zeros(n, dtype=bool)
+        self._ended = np.zeros(n, dtype=bool)
         self._needs_reset = True
+
+    #: The spec ``gymnasium.make`` recorded, a ``World`` given as ``world`` in its JSON form
+    #: (:func:`~mazesim.envs.options.world_as_json`) so that ``spec.to_json()`` works.
+    spec = json_world_spec()
 
     @property
     def single_env_spec(self) -> EnvSpec | None:
@@ -218,6 +247,7 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         self._reset_envs(batch, envs)
         self._distance[envs] = self._goal.evaluate(self._poses)[0][envs]
         self._reached[envs] = False
+        self._ended[envs] = False
         self._needs_reset = False
         return self._observations(), self._info(mask)
 
@@ -242,6 +272,12 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         batch = self._open_batch()
         if self._needs_reset:
             raise ResetNeededError("call reset() before step()")
+        if self.autoreset_mode == AutoresetMode.DISABLED and self._ended.any():
+            raise ResetNeededError(
+                "expected the ended environments to be reset with "
+                'reset(options={"reset_mask": ...}) before step() (autoreset_mode=DISABLED); '
+                f"found environments {np.flatnonzero(self._ended).tolist()} not reset"
+            )
         speeds = self._actions.batch(actions, self.num_envs)
         if self._features is not None:
             self._previous = speeds / self._actions.max_speed
@@ -269,6 +305,9 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
             self._elapsed[restarting] = 0
         self._reached = terminated.copy()
         observations = self._observations()
+        if self.autoreset_mode == AutoresetMode.DISABLED:
+            self._ended = terminated | truncated
+            return observations, rewards, terminated, truncated, self._info(None)
         if self.autoreset_mode == AutoresetMode.NEXT_STEP:
             self._autoreset = terminated | truncated
             return observations, rewards, terminated, truncated, self._info(None)
@@ -482,9 +521,24 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         )
 
 
+def _vector_keywords(vector_kwargs: Any, **given: Any) -> dict[str, Any]:
+    """``given`` updated with ``vector_kwargs``, which may hold only the vector env's own
+    keywords."""
+    if not isinstance(vector_kwargs, dict):
+        raise InvalidArgumentError(
+            f"expected vector_kwargs to be a dict, found {type(vector_kwargs).__name__}"
+        )
+    unknown = sorted(str(key) for key in vector_kwargs if key not in given)
+    if unknown:
+        raise InvalidArgumentError(
+            f"expected vector_kwargs among {', '.join(given)}; found unknown {', '.join(unknown)}"
+        )
+    return {**given, **vector_kwargs}
+
+
 def _autoreset_mode(mode: AutoresetMode | str) -> AutoresetMode:
-    """The autoreset mode of ``mode``; raises InvalidArgumentError for DISABLED or a stranger."""
-    modes = (AutoresetMode.NEXT_STEP, AutoresetMode.SAME_STEP)
+    """The autoreset mode of ``mode``; raises InvalidArgumentError for a stranger."""
+    modes = (AutoresetMode.NEXT_STEP, AutoresetMode.SAME_STEP, AutoresetMode.DISABLED)
     for known in modes:
         if mode is known or mode == known.value:
             return known

@@ -18,6 +18,7 @@ Needs the optional extra ``mazesim[sb3]`` (Stable-Baselines3 2.x and torch).
 from __future__ import annotations
 
 import importlib.util
+import os
 from collections.abc import Iterable, Sequence
 from typing import Any
 
@@ -59,17 +60,40 @@ _PER_ENVIRONMENT = {
 
 def make_vec_env(
     env_id: str = "mazesim/EPuckMaze-v0",
-    n_envs: int = 8,
+    n_envs: int = 1,
     seed: int | None = None,
+    start_index: int = 0,
+    monitor_dir: str | None = None,
+    wrapper_class: Any = None,
+    env_kwargs: dict[str, Any] | None = None,
+    vec_env_cls: Any = None,
+    vec_env_kwargs: dict[str, Any] | None = None,
+    monitor_kwargs: dict[str, Any] | None = None,
+    wrapper_kwargs: dict[str, Any] | None = None,
+    *,
     monitor: bool = True,
     **options: Any,
 ) -> VecEnv:
     """SB3's vectorised environment of a mazesim task, stepped by the batch engine.
 
+    It takes the arguments of SB3's ``stable_baselines3.common.env_util.make_vec_env`` with their
+    meaning, except the two that wrap single envs, which the batch engine does not have.
+
     Args:
         env_id: A registered mazesim task (its options and time limit are used).
         n_envs: Number of environments.
-        seed: Environment i is seeded with ``seed + i`` at the first reset (as SB3 does).
+        seed: Environment i is seeded with ``seed + start_index + i`` at the first reset (as SB3
+            does).
+        start_index: Added to the seeds, as in SB3.
+        monitor_dir: Where ``VecMonitor`` writes its CSV log (``<monitor_dir>/monitor.csv``);
+            None for none.
+        wrapper_class: Must be None: the environments are not single envs that could be wrapped
+            one by one (use SB3's own ``make_vec_env`` for that).
+        env_kwargs: Keyword arguments of the task, as ``options``.
+        vec_env_cls: None or :class:`MazesimVecEnv`: the batch engine is the vector env.
+        vec_env_kwargs: Keyword arguments of the native vector env (``threads``).
+        monitor_kwargs: Keyword arguments of ``VecMonitor`` (``info_keywords``).
+        wrapper_kwargs: Must be None or empty, as ``wrapper_class``.
         monitor: Whether to wrap it in SB3's ``VecMonitor`` (episode returns and lengths in
             ``info["episode"]``, as ``Monitor`` gives with ``DummyVecEnv``).
         **options: More keyword arguments of the task (``threads`` included).
@@ -78,22 +102,40 @@ def make_vec_env(
         A :class:`MazesimVecEnv`, in a ``VecMonitor`` if ``monitor``.
 
     Raises:
-        InvalidArgumentError: An option has a wrong type or value.
+        InvalidArgumentError: An option has a wrong type or value, or a single-env wrapper or
+            another vector env class was asked for.
     """
+    if wrapper_class is not None or wrapper_kwargs:
+        raise InvalidArgumentError(
+            "expected wrapper_class and wrapper_kwargs to be None: the batch engine steps every "
+            "environment at once, so there is no single env to wrap (use "
+            "stable_baselines3.common.env_util.make_vec_env for that); "
+            f"found wrapper_class={wrapper_class!r}, wrapper_kwargs={wrapper_kwargs!r}"
+        )
+    if vec_env_cls is not None and vec_env_cls is not MazesimVecEnv:
+        raise InvalidArgumentError(
+            f"expected vec_env_cls to be None or MazesimVecEnv, found {vec_env_cls!r}"
+        )
+    keywords = {**(env_kwargs or {}), **(vec_env_kwargs or {}), **options}
     vector = gymnasium.make_vec(
         env_id,
         n_envs,
         vectorization_mode="vector_entry_point",
         autoreset_mode=AutoresetMode.SAME_STEP,
-        **options,
+        **keywords,
     )
     native = vector.unwrapped
     if not isinstance(native, EPuckMazeVectorEnv):
         raise InvalidArgumentError(f"expected a mazesim task, found {env_id!r}")
     venv: VecEnv = MazesimVecEnv(native)
     if seed is not None:
-        venv.seed(seed)
-    return VecMonitor(venv) if monitor else venv
+        venv.seed(seed + start_index)
+    if not monitor:
+        return venv
+    filename = None if monitor_dir is None else os.path.join(monitor_dir, "monitor")
+    if monitor_dir is not None:
+        os.makedirs(monitor_dir, exist_ok=True)
+    return VecMonitor(venv, filename=filename, **(monitor_kwargs or {}))
 
 
 class MazesimVecEnv(VecEnv):
