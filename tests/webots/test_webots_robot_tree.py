@@ -14,7 +14,7 @@ from mazesim.webots import controller, prepare
 from mazesim.webots import simulation as simulations
 from mazesim.webots.importer import import_wbt, import_wbt_text, robot_warnings
 
-WORLD = Path(__file__).resolve().parents[1] / "data" / "webots-worlds"
+WORLD = Path(__file__).resolve().parents[1] / "data" / "controllers" / "worlds"
 PLAIN = WORLD / "plain-robot-epuck-devices.wbt"
 
 

@@ -50,7 +50,7 @@ pub mod wbt;
 
 // Utilities: errors, fingerprints, memory accounting, file access, limits, random streams.
 mod error;
-mod fingerprint;
+pub mod fingerprint;
 mod footprint;
 mod io;
 pub mod limits;
