@@ -21,7 +21,8 @@ import numpy.typing as npt
 
 from mazesim import _core
 from mazesim._core import World
-from mazesim._paths import open_input
+from mazesim._paths import open_input, read_input
+from mazesim.errors import MazesimIOError
 
 __all__ = [
     "BoxObstacle",
@@ -247,12 +248,11 @@ def import_wbt(
 def _world_text(file: str) -> str | None:
     """The text of a world file, or None when the core should read it (and report why not)."""
     try:
-        with open(file, "rb") as handle:
-            data = handle.read(MAX_WORLD_BYTES + 1)
+        data = read_input(file, MAX_WORLD_BYTES, "the Webots world")
         if len(data) > MAX_WORLD_BYTES:
             return None
         return data.decode("utf-8")
-    except (OSError, UnicodeDecodeError):
+    except (MazesimIOError, UnicodeDecodeError):
         return None
 
 

@@ -17,6 +17,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from mazesim._atomic import atomic_file
+from mazesim._paths import read_input
 from mazesim.errors import MazesimIOError
 
 __all__ = ["ProtoSource", "ProtoUnavailableError", "Resolver", "cache_dir", "fetch_url"]
@@ -92,8 +93,7 @@ def is_url(location: str) -> bool:
 
 
 def _read(path: Path) -> str:
-    with open(path, "rb") as file:
-        data = file.read(MAX_DOWNLOAD_BYTES + 1)
+    data = read_input(path, MAX_DOWNLOAD_BYTES, "the PROTO file")
     if len(data) > MAX_DOWNLOAD_BYTES:
         raise MazesimIOError(f"{path}: a PROTO file larger than {MAX_DOWNLOAD_BYTES} bytes")
     return data.decode("utf-8", errors="replace")

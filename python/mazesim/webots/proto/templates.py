@@ -11,6 +11,8 @@ import os
 import re
 from typing import Any
 
+from mazesim._paths import read_input
+
 from .syntax import located_error
 from .template_modules import JAVASCRIPT_MODULES, LUA_MODULES
 from .values import to_javascript, to_lua
@@ -130,8 +132,9 @@ def _javascript(body: str, fields: dict[str, Any], context: dict[str, Any], orig
 
 
 def _read_text(path: Any) -> str:
-    with open(str(path), encoding="utf-8") as file:
-        return file.read(4 * 1024 * 1024)
+    return read_input(str(path), 4 * 1024 * 1024, "a file a PROTO template reads")[
+        : 4 * 1024 * 1024
+    ].decode("utf-8", errors="replace")
 
 
 def _lua(body: str, fields: dict[str, Any], context: dict[str, Any], origin: str) -> str:
