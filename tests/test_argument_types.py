@@ -103,6 +103,7 @@ def samples(tmp: Path) -> dict[str, Any]:
         "wall_thickness": 0.01,
         "loops": 0.0,
         "checkpoints": True,
+        "junction": True,
         "floor_reflectance": 0.36,
         "envs": np.arange(NUM_ENVS, dtype=np.int64),
         "low": np.zeros(11, np.float32),
