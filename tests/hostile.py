@@ -13,8 +13,11 @@ ADDRESS_SPACE_CAP = 4 << 30
 TIME_LIMIT_S = 30.0
 
 _PRELUDE = """
-import resource, sys, time
+import resource, signal, sys, time
 resource.setrlimit(resource.RLIMIT_AS, ({cap}, {cap}))
+# Ctrl-C raises KeyboardInterrupt as in a terminal, even where the tests were started as a
+# background job (whose children inherit SIGINT ignored, so Python installs no handler).
+signal.signal(signal.SIGINT, signal.default_int_handler)
 import numpy as np
 import mazesim
 from mazesim import _core

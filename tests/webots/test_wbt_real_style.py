@@ -77,7 +77,7 @@ EPUCK2 = (
 @pytest.fixture
 def maze(tmp_path: Path) -> Path:
     (tmp_path / "textures").mkdir()
-    Image.fromarray(track_image(), mode="L").save(tmp_path / "textures" / "track.png")
+    Image.fromarray(track_image()).save(tmp_path / "textures" / "track.png")
     return write_world(tmp_path, EPUCK2)
 
 
@@ -183,7 +183,7 @@ def test_a_missing_texture_is_a_warning_naming_the_files(tmp_path: Path) -> None
 def test_a_jpeg_in_textures_beside_the_world_is_found(tmp_path: Path) -> None:
     (tmp_path / "textures").mkdir()
     jpeg = tmp_path / "textures" / "track.jpg"
-    Image.fromarray(track_image(), mode="L").save(jpeg, quality=95)
+    Image.fromarray(track_image()).save(jpeg, quality=95)
     # A url as Webots' own worlds write them: a web address whose file name is beside the world.
     path = write_world(tmp_path, EPUCK2, url="https://example.org/worlds/textures/track.jpg")
     world, report = import_wbt(path)
@@ -213,7 +213,7 @@ def test_a_robot_that_is_not_an_e_puck_is_replaced_with_a_warning(tmp_path: Path
 
 
 def test_a_floor_proto_tiles_its_texture(tmp_path: Path) -> None:
-    Image.fromarray(np.array([[0, 255]], dtype=np.uint8), mode="L").save(tmp_path / "bars.png")
+    Image.fromarray(np.array([[0, 255]], dtype=np.uint8)).save(tmp_path / "bars.png")
     floor = (
         "Floor {\n  size 1 1\n  tileSize 0.5 0.5\n  appearance PBRAppearance {\n"
         '    baseColorMap ImageTexture { url [ "bars.png" ] }\n'
@@ -234,7 +234,7 @@ def test_a_textured_plane_on_the_floor_is_paint(tmp_path: Path) -> None:
     # Line-follower worlds often draw the track on a Plane of their own, turned on the floor.
     grey = np.full((10, 20), 255, dtype=np.uint8)
     grey[:, 10:] = 0
-    Image.fromarray(grey, mode="L").save(tmp_path / "line.png")
+    Image.fromarray(grey).save(tmp_path / "line.png")
     plane = (
         "Solid {\n  translation 0.5 0.2 0.0005\n  rotation 0 0 1 1.5708\n  children [\n"
         "    Shape {\n      appearance Appearance {\n"
