@@ -11,6 +11,9 @@ Last, in the same sitting, where ROS 1 is installed, ``benches/ros_lockstep.py``
 ROS 1 bridge the same way.
 
     .venv/bin/python benches/ros2_lockstep.py [--steps N] [--repeats K] [--distro humble|jazzy]
+        [--goal STEPS_PER_S] [--no-ros1]
+
+It exits 1 when the best repeat is below the goal (2,000 lockstep steps/s by default).
 """
 
 from __future__ import annotations
@@ -30,6 +33,8 @@ from mazesim.ros2.qos import COMMAND, SENSOR
 from mazesim.ros2.state import StateTopics
 
 FLOAT64_ARRAY = "std_msgs/msg/Float64MultiArray"
+#: The issue's goal for full-topic-set lockstep round trips over ROS 2, in steps per second.
+GOAL = 2000
 
 
 def ros2_rates(steps: int, repeats: int, distro: str) -> list[float]:
@@ -118,19 +123,27 @@ def main() -> int:
     parser.add_argument("--steps", type=int, default=5000, help="round trips per repeat")
     parser.add_argument("--repeats", type=int, default=3, help="number of repeats")
     parser.add_argument("--distro", default="humble", choices=("humble", "jazzy"))
+    parser.add_argument(
+        "--goal", type=float, default=GOAL, help=f"steps/s the best repeat must reach ({GOAL:,})"
+    )
+    parser.add_argument("--no-ros1", action="store_true", help="leave out the ROS 1 comparison")
     args = parser.parse_args()
     rates = ros2_rates(args.steps, args.repeats, args.distro)
-    print(f"best: {max(rates):,.0f} lockstep control steps/s over ROS 2 ({args.distro}, DDS)")
+    best = max(rates)
+    print(f"best: {best:,.0f} lockstep control steps/s over ROS 2 ({args.distro}, DDS)")
     costs = bridge_costs(args.steps, args.distro)
     print("bridge per step: " + ", ".join(f"{k} {v:.0f} µs" for k, v in costs.items()))
-    if importlib.util.find_spec("rospy") is not None:
+    if not args.no_ros1 and importlib.util.find_spec("rospy") is not None:
         ros1 = Path(__file__).with_name("ros_lockstep.py")
         subprocess.run(
             [sys.executable, str(ros1), "--steps", str(args.steps), "--repeats", str(args.repeats)],
             check=False,
         )
-    else:
+    elif not args.no_ros1:
         print("ROS 1 is not installed here: make ros-deps to compare with the ROS 1 bridge")
+    if best < args.goal:
+        print(f"below the goal: {best:,.0f} < {args.goal:,.0f} lockstep steps/s")
+        return 1
     return 0
 
 
