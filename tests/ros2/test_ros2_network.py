@@ -11,6 +11,7 @@ import pytest
 from mazesim.errors import InvalidArgumentError
 from mazesim.ros2.clock import FreeRunning, stamp_nanoseconds
 from mazesim.ros2.network import LOCALHOST, SUBNET, cyclone_config, discovery_from_environment
+from ros2_support import MAZESIM, needs_namespace, needs_ros2
 
 
 @pytest.mark.parametrize(
@@ -108,3 +109,19 @@ def test_the_pages_topic_table_says_what_the_bridge_publishes() -> None:
             kind, qos = described[name]
             assert f"`{topic.msgtype}`" in kind, (name, kind)
             assert qos == topic.qos.describe(), (name, qos)
+
+
+@needs_ros2
+@needs_namespace
+def test_no_usable_network_interface_is_a_clear_error() -> None:
+    """In a network namespace whose loopback is down, Cyclone DDS cannot start: the command
+    says so and what to check, as the package's error, not as an internal one."""
+    result = subprocess.run(
+        ["unshare", "-n", *MAZESIM, "ros2", "bridge", "--stop-after", "1"],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    last = result.stderr.strip().splitlines()[-1]
+    assert result.returncode != 0 and last.startswith("mazesim: error: Cyclone DDS could not"), last
+    assert "'lo' up" in last and "internal error" not in result.stderr

@@ -105,7 +105,7 @@ class Node:
         namespace: str = "/",
     ) -> None:
         require_ros2()
-        from cyclonedds.core import Policy
+        from cyclonedds.core import DDSException, Policy
         from cyclonedds.domain import Domain, DomainParticipant
         from cyclonedds.qos import Qos
         from cyclonedds.topic import Topic
@@ -116,10 +116,17 @@ class Node:
         self.distro = messages.check_distro(distro)
         self.discovery = discovery or network.discovery_from_environment()
         config = network.cyclone_config(self.discovery)
-        self._domain = Domain(self.discovery.domain_id, config) if config else None
-        self.participant: Any = DomainParticipant(
-            self.discovery.domain_id, qos=Qos(Policy.Userdata(graph.PARTICIPANT_USER_DATA))
-        )
+        try:
+            self._domain = Domain(self.discovery.domain_id, config) if config else None
+            self.participant: Any = DomainParticipant(
+                self.discovery.domain_id, qos=Qos(Policy.Userdata(graph.PARTICIPANT_USER_DATA))
+            )
+        except DDSException as e:
+            raise MazesimIOError(
+                f"Cyclone DDS could not join ROS 2 domain {self.discovery.domain_id} ({e}): "
+                "expected a usable network interface (the loopback interface 'lo' up, or the "
+                "network with --network); check `ip link`, or the CYCLONEDDS_URI you set"
+            ) from None
         self._topics: dict[str, Any] = {}
         self.readers: list[Reader] = []
         self.writers: list[Writer] = []
