@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 
 from mazesim.controllers import AvoidCollision
-from mazesim.errors import InvalidActionError
+from mazesim.errors import InvalidArgumentError
 from mazesim.ros import topics
 from mazesim.ros2 import cdr, network
 from mazesim.ros2.node import Node, Reader
@@ -126,7 +126,7 @@ def run_avoid_collision(
         stop: Stops the node when set (SIGINT and SIGTERM by default).
     """
     if not period_ms >= 0.0:
-        raise InvalidActionError(f"expected a timer period >= 0 ms; found {period_ms}")
+        raise InvalidArgumentError(f"expected a timer period >= 0 ms; found {period_ms}")
     controller = AvoidCollision()
     stop = stop or stop_on_signals()
     node = Node("avoid_collision", distro, network.discovery_from_environment(network=network_wide))
