@@ -14,6 +14,7 @@ import argparse
 import importlib
 import inspect
 import pkgutil
+import warnings
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from typing import Any
@@ -22,9 +23,11 @@ import mazesim
 
 #: Modules not walked: the program entry point (running it is the CLI's entries) and the parts
 #: that start outside processes (ROS masters, Ray clusters, Webots controllers over a socket),
-#: whose entry points are reached through the command line's entries instead.
+#: whose entry points are reached through the command line's entries instead; and the deprecated
+#: ``mazesim.hrl``, whose names are ``mazesim.learn``'s own objects (importing it warns).
 SKIPPED_MODULES = (
     "mazesim.__main__",
+    "mazesim.hrl",
     "mazesim.ros",
     "mazesim.distributed",
     "mazesim.webots.controller",
@@ -58,7 +61,11 @@ class EntryPoint:
 def _modules() -> Iterator[Any]:
     yield importlib.import_module("mazesim._core")
     yield mazesim
-    for info in pkgutil.walk_packages(mazesim.__path__, "mazesim."):
+    # The walk imports every package to look inside it, the deprecated ``mazesim.hrl`` too.
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", "mazesim.hrl is deprecated", DeprecationWarning)
+        found = list(pkgutil.walk_packages(mazesim.__path__, "mazesim."))
+    for info in found:
         if info.name.startswith(SKIPPED_MODULES) or info.name == "mazesim._core":
             continue
         try:
