@@ -1,21 +1,29 @@
-"""The lower level's training rounds in the core against the same rounds stepped from Python.
+"""The lower level's training rounds in the core, for the default and the randomised navigator.
 
 Not a test: run it by hand::
 
     .venv/bin/python benches/bench_train.py [--envs 2048] [--rounds 3] [--threads 2] [--json]
 
-Two trainers of ``mazesim train``'s lower-level settings (2,048 robots, rounds of 500 control
-steps, the pool of 200 generated mazes) run the same rounds in turns, one round each: one in the
-core (``BatchSimulator.train_lower_round``, what ``mazesim train`` runs), one stepped from Python
-one control step at a time (``run_round(k, stepwise=True)``, what a fleet of several sensor sets
-runs). Taking turns puts other load on the machine on both alike. Every round's counts must be
-equal (the two give the same tables bit for bit); the figures are the medians of the rounds'
-wall times, in env-steps per second, and their ratio.
+Three trainers of ``mazesim train``'s lower-level settings (2,048 robots, rounds of 500 control
+steps, the pool of 200 generated mazes) run the same rounds in turns, one round each:
+
+- ``default``: the default navigator's options in the core (``BatchSimulator.train_lower_round``);
+- ``randomised``: the shipped randomised navigator's options (``--randomise`` with its ranges,
+  ``--door-distance --hold-heading --seed 11``, robots drawn anew each round) in the core, what
+  ``mazesim train`` runs for it;
+- ``stepwise``: the same randomised rounds stepped from Python one control step at a time
+  (``run_round(k, stepwise=True)``, how those options trained before the core knew them, and how a
+  fleet of several sensor sets still trains).
+
+Taking turns puts other load on the machine on all alike. The randomised rounds' counts must be
+equal in the core and stepped from Python (the two give the same tables bit for bit); the figures
+are the medians of the rounds' wall times, in env-steps per second, and their ratios.
 """
 
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import os
 import platform
@@ -24,23 +32,40 @@ import time
 from typing import Any
 
 from mazesim.learn.lower import LowerSettings, LowerTrainer
+from mazesim.learn.tables import load_policy
+from mazesim.transfer.randomise import parse_spec, robot_draw
 
 
 def measure(envs: int, rounds: int, threads: int) -> dict[str, Any]:
     """Times ``rounds`` rounds of each loop, in turns; see the module."""
     settings = LowerSettings(num_envs=envs, total_steps=envs * 500 * rounds)
-    in_core = LowerTrainer(settings, threads=threads)
-    stepwise = LowerTrainer(settings, threads=threads)
-    seconds: dict[str, list[float]] = {"core": [], "stepwise": []}
+    shipped = load_policy("randomised").training["settings"]
+    randomised = dataclasses.replace(
+        settings,
+        seed=shipped["seed"],
+        door_distance=True,
+        blind_forward=True,
+        hold_heading=True,
+    )
+    draw = robot_draw(parse_spec(shipped["randomise"]), shipped["seed"])
+    trainers = {
+        "default": LowerTrainer(settings, threads=threads),
+        "randomised": LowerTrainer(randomised, threads=threads),
+        "stepwise": LowerTrainer(randomised, threads=threads),
+    }
+    seconds: dict[str, list[float]] = {name: [] for name in trainers}
     for k in range(rounds):
-        start = time.perf_counter()
-        core_stats = in_core.run_round(k)
-        seconds["core"].append(time.perf_counter() - start)
-        start = time.perf_counter()
-        step_stats = stepwise.run_round(k, stepwise=True)
-        seconds["stepwise"].append(time.perf_counter() - start)
-        if core_stats != step_stats:
-            raise SystemExit(f"round {k}: the loops differ: {core_stats} against {step_stats}")
+        stats = {}
+        for name, trainer in trainers.items():
+            if name != "default":
+                trainer.use_robots(draw(k, envs))
+            start = time.perf_counter()
+            stats[name] = trainer.run_round(k, stepwise=name == "stepwise")
+            seconds[name].append(time.perf_counter() - start)
+        if stats["randomised"] != stats["stepwise"]:
+            raise SystemExit(
+                f"round {k}: the loops differ: {stats['randomised']} against {stats['stepwise']}"
+            )
     env_steps = envs * settings.round_steps
     median = {name: statistics.median(times) for name, times in seconds.items()}
     return {
@@ -50,7 +75,8 @@ def measure(envs: int, rounds: int, threads: int) -> dict[str, Any]:
         "threads": threads,
         "seconds_per_round": median,
         "env_steps_per_second": {name: env_steps / t for name, t in median.items()},
-        "speedup": median["stepwise"] / median["core"],
+        "randomised_against_default": median["default"] / median["randomised"],
+        "speedup": median["stepwise"] / median["randomised"],
         "load_average": os.getloadavg()[0],
         "machine": platform.machine(),
         "cpus": os.cpu_count(),
@@ -71,14 +97,17 @@ def main() -> None:
     rate = result["env_steps_per_second"]
     per_round = result["seconds_per_round"]
     print(f"lower-level rounds, {args.envs} robots x 500 steps, {args.threads} threads")
+    labels = {
+        "default": "default, in the core",
+        "randomised": "randomised, in the core",
+        "stepwise": "randomised, from Python",
+    }
+    for name, label in labels.items():
+        print(f"  {label:26} {per_round[name]:6.2f} s a round  {rate[name]:12,.0f} env-steps/s")
     print(
-        f"  in the core     {per_round['core']:6.2f} s a round  {rate['core']:12,.0f} env-steps/s"
+        f"  randomised/default {result['randomised_against_default']:.2f}x the speed, core/Python "
+        f"{result['speedup']:.2f}x (load average {result['load_average']:.1f})"
     )
-    print(
-        f"  from Python     {per_round['stepwise']:6.2f} s a round  "
-        f"{rate['stepwise']:12,.0f} env-steps/s"
-    )
-    print(f"  speed-up        {result['speedup']:.2f}x (load average {result['load_average']:.1f})")
 
 
 if __name__ == "__main__":

@@ -504,14 +504,18 @@ class BatchSimulator:
         symmetry: dict[str, npt.NDArray[np.int64]],
         allowed: npt.NDArray[np.bool_],
         wheel_speeds: npt.NDArray[np.float32],
-        settings: dict[str, float],
+        settings: dict[str, float | str],
     ) -> dict[str, Any]:
         """One round of the lower level's Q-learning in the core, as
         ``mazesim.learn.lower.LowerTrainer`` steps it from Python, bit for bit: ``explore``
         ((steps, N) uniforms) and ``random_action`` ((steps, N)) are the exploration draws,
         ``starts`` each robot's (N, K) queue of episode starts (``world``, ``pose`` (N, K, 3),
-        ``seed`` uint64, ``path`` (N, K, 9)); ``q`` and ``visits`` ((4, 12288, 12)) and
-        ``world_of_env`` are updated in place. Returns the round's counts (``success``,
+        ``seed`` uint64, ``path`` (N, K, 9)); ``q`` and ``visits`` ((4, 12288, 12), or
+        (4, 73728, 12) with ``settings["phases"] == "heading_and_distance"``) and
+        ``world_of_env`` are updated in place. Besides its numbers, ``settings`` may name the
+        door sub-tasks' ``phases`` (``"heading"``, the default, or ``"heading_and_distance"``) and
+        the ``blind`` rule of Corridors and Corners where no sensor sees a wall (``"table"``, the
+        default, ``"forward"`` or ``"hold_heading"``). Returns the round's counts (``success``,
         ``failure``, ``cut`` per sub-task, ``corridor_metres``, ``contact_steps``). The GIL is
         released while it runs."""
     def set_world(self, index: int, world: World, seed: int) -> None: ...

@@ -3,9 +3,12 @@ tables of the round stepped from Python bit for bit, whatever the thread count."
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 
+from mazesim import RobotProfile
 from mazesim.errors import InvalidArgumentError, MazesimError
 from mazesim.learn.fleet import Fleet
 from mazesim.learn.lower import (
@@ -15,6 +18,7 @@ from mazesim.learn.lower import (
     draw_exploration,
     draw_starts,
 )
+from mazesim.learn.subtasks import BLIND_STATE
 from mazesim.transfer.randomise import parse_spec, robot_draw
 
 SMALL = LowerSettings(num_envs=120, total_steps=120 * 200 * 2, round_steps=200, maze_pool=12)
@@ -52,6 +56,42 @@ def test_randomised_robots_learn_in_the_core_as_stepped_from_python() -> None:
     assert in_core.in_core
     assert stepwise.run_round(0, stepwise=True) == in_core.run_round(0)
     _same_trainers(stepwise, in_core)
+
+
+def _robots_of_two_motor_limits(count: int) -> list[RobotProfile]:
+    """Seed robots, a third of them slower, and half of the others at dark walls (blind in many
+    places)."""
+    seed = RobotProfile.builtin("seed")
+    slower = RobotProfile.from_toml(
+        seed.to_toml().replace("max_wheel_speed = 6.28", "max_wheel_speed = 5.0")
+    )
+    dark = seed.perturbed(wall_reflectance=0.2, motor_gains=(0.95, 1.0))
+    return [slower if i % 3 == 1 else dark if i % 2 else seed for i in range(count)]
+
+
+@pytest.mark.parametrize(
+    "options",
+    [
+        {"door_distance": True},
+        {"blind_forward": True},
+        {"door_distance": True, "blind_forward": True, "hold_heading": True},
+    ],
+)
+def test_the_navigator_options_learn_in_the_core_as_stepped_from_python(
+    options: dict[str, bool],
+) -> None:
+    # The randomised navigator's options, with robots of two motor limits.
+    settings = dataclasses.replace(SMALL, **options)
+    robots = _robots_of_two_motor_limits(SMALL.num_envs)
+    stepwise = LowerTrainer(settings, threads=1, robot=robots)
+    in_core = LowerTrainer(settings, threads=2, robot=robots)
+    assert in_core.in_core and not in_core.batch.one_motor_limit  # type: ignore[union-attr]
+    assert stepwise.run_round(0, stepwise=True) == in_core.run_round(0)
+    _same_trainers(stepwise, in_core)
+    assert in_core.tables.visits[0, BLIND_STATE].sum() > 0
+    if settings.door_distance:
+        # Door sub-tasks learned in phases past the first distance bin (phase 3 and beyond).
+        assert in_core.tables.visits[1:, 3 * 4096 :].sum() > 0
 
 
 def test_robots_of_other_sensors_train_one_step_at_a_time() -> None:
@@ -96,7 +136,7 @@ def _round_arguments(trainer: LowerTrainer) -> dict[str, object]:
     starts, exploration = trainer.draws(0)
     batch = trainer.batch
     core_settings = trainer._core_settings(0.1)
-    from mazesim.learn.lower import _MIRRORED_ROWS
+    from mazesim.learn.lower import _mirrored_rows
     from mazesim.learn.subtasks import SUBTASK_ACTIONS
     from mazesim.learn.symmetry import MIRRORED_ACTION, MIRRORED_SUBTASK
 
@@ -110,7 +150,7 @@ def _round_arguments(trainer: LowerTrainer) -> dict[str, object]:
         "q": trainer.tables.q,
         "visits": trainer.tables.visits,
         "symmetry": {
-            "states": _MIRRORED_ROWS,
+            "states": _mirrored_rows(False),
             "actions": MIRRORED_ACTION,
             "subtasks": MIRRORED_SUBTASK,
         },

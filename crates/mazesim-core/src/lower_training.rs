@@ -13,16 +13,15 @@
 use std::sync::Arc;
 
 use crate::batch::{Row, StepOutputs, CHUNK_ENVS};
-use crate::control::door::{self, SubTaskEnd, SubTaskState};
-use crate::control::tabular::{NUM_ACTIONS, NUM_SENSORS, NUM_STATES};
+use crate::control::door::{self, Phases, SubTaskEnd, SubTaskState};
+use crate::control::heading_hold::BlindRule;
+use crate::control::tabular::{NUM_ACTIONS, NUM_SENSORS};
 use crate::control::Discretiser;
 use crate::error::{Error, Result};
 use crate::qlearning::{best_action, LearningRate, QTable, Transition};
 use crate::rollout::chunks_of;
 use crate::{Batch, Simulator, World};
 
-/// Rows of each sub-task's table: the distance state of each phase.
-pub const ROWS: usize = door::MAX_PHASES * NUM_STATES;
 /// Values of each door-path row: start (2), door centre (2), heading in (2), heading out (2), and
 /// the length of the first leg.
 pub const PATH_WIDTH: usize = 9;
@@ -67,6 +66,10 @@ pub struct RoundSettings {
     pub success_past_centre: f64,
     /// ...and at most this far off the opening's centre line (metres).
     pub success_across: f64,
+    /// What the door sub-tasks' phases count; the tables have `phases.rows()` rows each.
+    pub phases: Phases,
+    /// What Corridors and Corners does where no sensor sees a wall, exploring or not.
+    pub blind: BlindRule,
 }
 
 /// Each robot's queue of episode starts for the round, `(n, per_env)` rows; robot i's k-th
@@ -86,7 +89,7 @@ pub struct StartQueues<'a> {
 
 /// The left-right mirror image of the lower level (`mazesim.learn.symmetry`).
 pub struct Symmetry<'a> {
-    /// `(4, ROWS)`: the mirror image of each row of each sub-task's table.
+    /// `(4, rows)`: the mirror image of each row of each sub-task's table.
     pub states: &'a [i64],
     /// The mirror image of each action.
     pub actions: [usize; NUM_ACTIONS],
@@ -111,7 +114,7 @@ pub struct LowerRound<'a> {
     pub explore: &'a [f64],
     /// `(steps, n)` the action a deciding robot takes when it explores.
     pub random_action: &'a [i64],
-    /// `(4, ROWS, NUM_ACTIONS)` values, updated in place.
+    /// `(4, rows, NUM_ACTIONS)` values (`rows` of [`RoundSettings::phases`]), updated in place.
     pub q: &'a mut [f64],
     /// Update counts of the same shape, updated in place.
     pub visits: &'a mut [i64],
@@ -240,9 +243,10 @@ impl Pass<'_> {
         random: i64,
     ) {
         let settings = self.settings;
-        let per_table = ROWS * NUM_ACTIONS;
+        let rows = settings.phases.rows();
+        let per_table = rows * NUM_ACTIONS;
         if learner.deciding {
-            learner.action = if draw < settings.epsilon {
+            let chosen = if draw < settings.epsilon {
                 random as usize
             } else {
                 let table = &self.q[learner.role * per_table..][..per_table];
@@ -250,6 +254,11 @@ impl Pass<'_> {
                 let allowed = &self.allowed[learner.role];
                 best_action(values, (0..NUM_ACTIONS).filter(|&a| allowed[a]))
             };
+            let yaw = f64::from(env.pose()[2]);
+            learner.action =
+                settings
+                    .blind
+                    .action(learner.role, learner.state, yaw, learner.action, chosen);
             learner.reward = 0.0;
             learner.discount = 1.0;
             learner.decided_steps = 0;
@@ -268,7 +277,7 @@ impl Pass<'_> {
         let done = end == SubTaskEnd::Done;
         let out_of_steps = gave_up && is_door && learner.task.steps >= door::MAX_DOOR_STEPS;
         let distance = self.discretiser.state(env.distance_sensors());
-        let next_state = learner.task.table_row(distance);
+        let next_state = settings.phases.table_row(&learner.task, pose, distance);
 
         let forward = (here[0] - bx) * byaw.cos() + (here[1] - by) * byaw.sin();
         let new_progress = learner.path.progress(here, settings.door_path_exit);
@@ -312,7 +321,7 @@ impl Pass<'_> {
             || learner.decided_steps >= settings.decision_steps;
         let transitions = learner.deciding.then(|| {
             let bootstrap = if ended { 0.0 } else { learner.discount };
-            let mirror = |row: usize| self.symmetry.states[learner.role * ROWS + row] as usize;
+            let mirror = |row: usize| self.symmetry.states[learner.role * rows + row] as usize;
             [
                 Transition {
                     state: learner.state,
@@ -377,13 +386,14 @@ impl LowerRound<'_> {
         let steps = self.explore.len() / n;
         expect("explore", self.explore.len(), steps * n)?;
         expect("random_action", self.random_action.len(), steps * n)?;
-        let per_table = ROWS * NUM_ACTIONS;
+        let rows = self.settings.phases.rows();
+        let per_table = rows * NUM_ACTIONS;
         expect("q", self.q.len(), door::NUM_SUBTASKS * per_table)?;
         expect("visits", self.visits.len(), door::NUM_SUBTASKS * per_table)?;
         expect(
             "mirrored states",
             self.symmetry.states.len(),
-            door::NUM_SUBTASKS * ROWS,
+            door::NUM_SUBTASKS * rows,
         )?;
         if let Some(r) = self.role.iter().find(|&&r| !(0..4).contains(&r)) {
             return Err(Error::InvalidArgument(format!(
@@ -420,10 +430,10 @@ impl LowerRound<'_> {
             .symmetry
             .states
             .iter()
-            .find(|&&s| !(0..ROWS as i64).contains(&s))
+            .find(|&&s| !(0..rows as i64).contains(&s))
         {
             return Err(Error::InvalidArgument(format!(
-                "expected mirrored states in [0, {ROWS}), found {s}"
+                "expected mirrored states in [0, {rows}), found {s}"
             )));
         }
         if let Some(v) = self.visits.iter().find(|&&v| v < 0) {
@@ -482,6 +492,7 @@ impl Batch {
             starts,
             worlds,
             door_path_exit: settings.door_path_exit,
+            phases: settings.phases,
             discretiser: Discretiser::new()?,
         };
         let width = self.observation_width();
@@ -511,7 +522,7 @@ impl Batch {
         let mut mirrors: Vec<Vec<Transition>> = vec![Vec::new(); door::NUM_SUBTASKS];
         let mut targets = Vec::new();
         let mut restart = Vec::new();
-        let per_table = ROWS * NUM_ACTIONS;
+        let per_table = settings.phases.rows() * NUM_ACTIONS;
 
         starter.start(self, &everyone, &mut learners, world_of_env, &mut out)?;
         for step in 0..steps {
@@ -595,6 +606,7 @@ struct Starter<'a> {
     starts: StartQueues<'a>,
     worlds: &'a [Arc<World>],
     door_path_exit: f64,
+    phases: Phases,
     discretiser: Discretiser,
 }
 
@@ -639,7 +651,7 @@ impl Starter<'_> {
             learner.progress = learner.path.progress(position(pose), self.door_path_exit);
             learner.previous_error = 0.0;
             let distance = self.discretiser.state(&out.observations[i * width..]);
-            learner.state = learner.task.table_row(distance);
+            learner.state = self.phases.table_row(&learner.task, pose, distance);
             learner.episode_steps = 0;
         }
         Ok(())

@@ -4,11 +4,12 @@
 
 use std::sync::Arc;
 
-use mazesim_core::control::door::NUM_SUBTASKS;
+use mazesim_core::control::door::{Phases, NUM_SUBTASKS};
+use mazesim_core::control::heading_hold::BlindRule;
 use mazesim_core::control::tabular::NUM_ACTIONS;
 use mazesim_core::generator::{generate, MazeParams};
 use mazesim_core::lower_training::{
-    LowerRound, Rewards, RoundCounts, RoundSettings, StartQueues, Symmetry, PATH_WIDTH, ROWS,
+    LowerRound, Rewards, RoundCounts, RoundSettings, StartQueues, Symmetry, PATH_WIDTH,
 };
 use mazesim_core::qlearning::LearningRate;
 use mazesim_core::rng::Rng;
@@ -17,6 +18,7 @@ use mazesim_core::{Batch, Error, RobotProfile, StepOutputs, World};
 const ENVS: usize = 20;
 const PER_ENV: usize = 6;
 const STEPS: usize = 260;
+const ROWS: usize = Phases::Heading.rows();
 const TABLE: usize = NUM_SUBTASKS * ROWS * NUM_ACTIONS;
 
 struct Setup {
@@ -88,6 +90,8 @@ fn settings(epsilon: f64) -> RoundSettings {
         door_path_exit: 0.25,
         success_past_centre: 0.04,
         success_across: 0.08,
+        phases: Phases::Heading,
+        blind: BlindRule::Table,
     }
 }
 

@@ -4,11 +4,12 @@
 
 use std::sync::Arc;
 
-use mazesim_core::control::door::NUM_SUBTASKS;
+use mazesim_core::control::door::{Phases, NUM_SUBTASKS};
+use mazesim_core::control::heading_hold::BlindRule;
 use mazesim_core::control::tabular::NUM_ACTIONS;
 use mazesim_core::limits::MAX_ENVS;
 use mazesim_core::lower_training::{
-    LowerRound, Rewards, RoundCounts, RoundSettings, StartQueues, Symmetry, PATH_WIDTH, ROWS,
+    LowerRound, Rewards, RoundCounts, RoundSettings, StartQueues, Symmetry, PATH_WIDTH,
 };
 use mazesim_core::qlearning::{LearningRate, QTable, Transition};
 use mazesim_core::World;
@@ -21,8 +22,9 @@ use crate::buffers::{copied, readable, writable};
 use crate::errors::{invalid, IntoPy};
 use crate::world::world_argument;
 
-/// The keys of a round's `settings` dict.
-const SETTINGS: [&str; 17] = [
+/// The keys of a round's `settings` dict (`phases` and `blind` may be left out: heading phases,
+/// the table in the blind state).
+const SETTINGS: [&str; 19] = [
     "gamma",
     "epsilon",
     "decision_steps",
@@ -40,7 +42,48 @@ const SETTINGS: [&str; 17] = [
     "door_path_exit",
     "success_past_centre",
     "success_across",
+    "phases",
+    "blind",
 ];
+
+/// The names a round's `settings["phases"]` and `settings["blind"]` may take.
+const PHASES: [(&str, Phases); 2] = [
+    ("heading", Phases::Heading),
+    ("heading_and_distance", Phases::HeadingAndDistance),
+];
+const BLIND_RULES: [(&str, BlindRule); 3] = [
+    ("table", BlindRule::Table),
+    ("forward", BlindRule::Forward),
+    ("hold_heading", BlindRule::HoldHeading),
+];
+
+/// `settings[key]`, one of `names` (`default` when absent).
+fn named<T: Copy>(
+    dict: &Bound<'_, PyDict>,
+    key: &str,
+    names: &[(&str, T)],
+    default: T,
+) -> PyResult<T> {
+    let Some(value) = dict.get_item(key)? else {
+        return Ok(default);
+    };
+    let known: Vec<&str> = names.iter().map(|(name, _)| *name).collect();
+    let name = value.extract::<String>().map_err(|_| {
+        invalid(format!(
+            "expected settings[{key:?}] to be one of {known:?}, found a {}",
+            type_name(&value)
+        ))
+    })?;
+    names
+        .iter()
+        .find(|(known, _)| *known == name)
+        .map(|&(_, item)| item)
+        .ok_or_else(|| {
+            invalid(format!(
+                "expected settings[{key:?}] to be one of {known:?}, found {name:?}"
+            ))
+        })
+}
 
 fn as_dict<'a, 'py>(obj: &'a Bound<'py, PyAny>, name: &str) -> PyResult<&'a Bound<'py, PyDict>> {
     obj.cast::<PyDict>().map_err(|_| {
@@ -126,6 +169,8 @@ pub fn round_settings(settings: &Bound<'_, PyAny>) -> PyResult<RoundSettings> {
         door_path_exit: number(dict, "door_path_exit")?,
         success_past_centre: number(dict, "success_past_centre")?,
         success_across: number(dict, "success_across")?,
+        phases: named(dict, "phases", &PHASES, Phases::Heading)?,
+        blind: named(dict, "blind", &BLIND_RULES, BlindRule::Table)?,
     })
 }
 
@@ -168,7 +213,8 @@ fn indices<const K: usize>(values: Vec<i64>, name: &str, below: usize) -> PyResu
 }
 
 impl<'py> RoundArrays<'py> {
-    /// Borrows and checks the arrays of a round of `n` robots.
+    /// Borrows and checks the arrays of a round of `n` robots (its tables' rows as many as `q`
+    /// has: the round checks them against its phases).
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         n: usize,
@@ -209,7 +255,13 @@ impl<'py> RoundArrays<'py> {
                 )))
             }
         };
-        let table_shape = [NUM_SUBTASKS, ROWS, NUM_ACTIONS];
+        // Tables of either phase count (the round checks them against its own); any other
+        // shape is refused below as one of heading phases.
+        let rows = match shape_of(q).get(1) {
+            Some(&rows) if rows == Phases::HeadingAndDistance.rows() => rows,
+            _ => Phases::Heading.rows(),
+        };
+        let table_shape = [NUM_SUBTASKS, rows, NUM_ACTIONS];
         let symmetry = as_dict(symmetry, "symmetry")?;
         let flags = copied::<bool>(allowed, "allowed", "bool", &[NUM_SUBTASKS, NUM_ACTIONS])?;
         let mut allowed = [[false; NUM_ACTIONS]; NUM_SUBTASKS];
@@ -258,7 +310,7 @@ impl<'py> RoundArrays<'py> {
                 &item("states")?,
                 "symmetry['states']",
                 "int64",
-                &[NUM_SUBTASKS, ROWS],
+                &[NUM_SUBTASKS, rows],
             )?,
             mirrored_action: indices(
                 copied::<i64>(

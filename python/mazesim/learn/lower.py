@@ -35,12 +35,12 @@ of episode starts (:func:`draw_starts`), then every step's exploration draws
 the settings alone: a run resumed from a checkpoint after round k ends with the same tables as one
 never stopped.
 
-**In the core.** A round runs in one call of ``BatchSimulator.train_lower_round`` when its robots
-share one batch and one motor limit and none of ``door_distance``, ``blind_forward`` and
-``hold_heading`` is set; otherwise (a :class:`~mazesim.learn.fleet.Fleet` of several sensor sets,
-or any of those options) it steps from Python, ``run_round(k, stepwise=True)``. The core follows
-the Python loop operation for operation, so both give the same tables bit for bit from the same
-draws.
+**In the core.** A round runs in one call of ``BatchSimulator.train_lower_round`` whenever its
+robots share one batch (whatever their motor limits), with every option of the navigator handed in
+as data: the phases the door sub-tasks count (``"heading"`` or ``"heading_and_distance"``) and what
+Corridors and Corners does in the blind state (``"table"``, ``"forward"`` or ``"hold_heading"``).
+Only a :class:`~mazesim.learn.fleet.Fleet` of several sensor sets steps from Python,
+``run_round(k, stepwise=True)``; both give the same tables bit for bit from the same draws.
 """
 
 from __future__ import annotations
@@ -70,7 +70,6 @@ from mazesim.learn.subtasks import (
     DOOR_STEP_REWARD,
     DOOR_SUCCESS_REWARD,
     HEADING_REWARD,
-    MAX_PHASES,
     NUM_SUBTASKS,
     PROGRESS_REWARD,
     SUBTASK_ACTIONS,
@@ -122,13 +121,14 @@ _CORRIDOR_ACTIONS = np.flatnonzero(SUBTASK_ACTIONS[SubTask.CORRIDOR])
 STARTS_PER_ROUND = 64
 #: Exact unit vectors of the four grid directions (east, north, west, south).
 _UNIT = np.array([[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]])
-#: The mirror image of every row of every sub-task's table, for the core's round.
-_MIRRORED_ROWS = np.stack(
-    [
-        mirrored_states(np.arange(MAX_PHASES * NUM_STATES), np.full(MAX_PHASES * NUM_STATES, k))
-        for k in range(NUM_SUBTASKS)
-    ]
-).astype(np.int64)
+
+
+def _mirrored_rows(door_distance: bool) -> npt.NDArray[np.int64]:
+    """The mirror image of every row of every sub-task's table, for the core's round."""
+    rows = lower_table_shape(door_distance)[1]
+    return np.stack(
+        [mirrored_states(np.arange(rows), np.full(rows, k)) for k in range(NUM_SUBTASKS)]
+    ).astype(np.int64)
 
 
 def lower_table_shape(door_distance: bool = False) -> tuple[int, int, int]:
@@ -473,17 +473,9 @@ class LowerTrainer:
 
     @property
     def in_core(self) -> bool:
-        """Whether rounds run in the core: robots of one batch, of one motor limit, and the
-        heading phases without a blind rule (the core knows none of ``door_distance``,
-        ``blind_forward`` and ``hold_heading``)."""
-        settings = self.settings
-        return (
-            isinstance(self.batch, RobotBatch)
-            and self.batch.one_motor_limit
-            and not settings.door_distance
-            and not settings.blind_forward
-            and not settings.hold_heading
-        )
+        """Whether rounds run in the core: robots of one batch (every robot of a
+        :class:`~mazesim.learn.fleet.Fleet` of several sensor sets steps from Python)."""
+        return isinstance(self.batch, RobotBatch)
 
     def draws(self, round_index: int) -> tuple[EpisodeStarts, Exploration]:
         """Round ``round_index``'s random draws: the episode starts, then the exploration, from
@@ -525,9 +517,17 @@ class LowerTrainer:
             contact_share=int(counts["contact_steps"]) / (count * settings.round_steps),
         )
 
-    def _core_settings(self, epsilon: float) -> dict[str, float]:
+    def _core_settings(self, epsilon: float) -> dict[str, float | str]:
         settings = self.settings
+        if settings.hold_heading:
+            blind = "hold_heading"
+        elif settings.blind_forward:
+            blind = "forward"
+        else:
+            blind = "table"
         return {
+            "phases": "heading_and_distance" if settings.door_distance else "heading",
+            "blind": blind,
             "gamma": settings.gamma,
             "epsilon": epsilon,
             "decision_steps": settings.decision_steps,
@@ -566,7 +566,7 @@ class LowerTrainer:
             q=self.tables.q,
             visits=self.tables.visits,
             symmetry={
-                "states": _MIRRORED_ROWS,
+                "states": _mirrored_rows(self.settings.door_distance),
                 "actions": MIRRORED_ACTION,
                 "subtasks": MIRRORED_SUBTASK,
             },

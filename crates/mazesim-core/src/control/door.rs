@@ -35,6 +35,60 @@ pub const MAX_DOOR_STEPS: u64 = 200;
 pub const TURN_EXIT_DISTANCE: f64 = 0.08;
 /// Metres ahead of its start at which "Going forward on a door" ends.
 pub const FORWARD_DISTANCE: f64 = 0.40;
+/// Edges (metres ahead of the sub-task's start, along the heading it began with) of the door
+/// sub-tasks' distance bins, when their phases count the distance ([`Phases::HeadingAndDistance`]).
+pub const DISTANCE_EDGES: [f64; 5] = [0.12, 0.18, 0.22, 0.26, 0.30];
+
+/// What a door sub-task's phase counts (`mazesim.learn.subtasks.phase_counts`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Phases {
+    /// The heading change alone: [`MAX_PHASES`] phases.
+    #[default]
+    Heading,
+    /// The heading phase plus [`MAX_PHASES`] times the distance bin ([`DISTANCE_EDGES`]) of how
+    /// far the odometry has carried the robot ahead of the sub-task's start: 18 phases
+    /// (`mazesim train --door-distance`).
+    HeadingAndDistance,
+}
+
+impl Phases {
+    /// The most phases of a sub-task.
+    pub const fn count(self) -> usize {
+        match self {
+            Self::Heading => MAX_PHASES,
+            Self::HeadingAndDistance => MAX_PHASES * (DISTANCE_EDGES.len() + 1),
+        }
+    }
+
+    /// Rows of each sub-task's table: the distance state of each phase.
+    pub const fn rows(self) -> usize {
+        self.count() * NUM_STATES
+    }
+
+    /// The phase of `task` at `pose` (the pose its last update saw).
+    pub fn phase(self, task: &SubTaskState, pose: [f32; 3]) -> usize {
+        match self {
+            Self::Heading => task.phase,
+            Self::HeadingAndDistance if task.subtask == CORRIDOR => 0,
+            Self::HeadingAndDistance => {
+                let [x, y, _] = pose.map(f64::from);
+                let [x0, y0, yaw0] = task.start;
+                let driven = (x - x0) * yaw0.cos() + (y - y0) * yaw0.sin();
+                let bin = DISTANCE_EDGES
+                    .iter()
+                    .filter(|&&edge| edge <= driven)
+                    .count();
+                task.phase + MAX_PHASES * bin
+            }
+        }
+    }
+
+    /// The row of its sub-task's table a robot running `task` acts from at `pose`:
+    /// `distance_state + 4096 * phase`.
+    pub fn table_row(self, task: &SubTaskState, pose: [f32; 3], distance_state: usize) -> usize {
+        distance_state + NUM_STATES * self.phase(task, pose)
+    }
+}
 
 /// Turn towards its side (radians) at which a turn enters phase 1 and phase 2.
 fn turn_phase_angles() -> [f64; 2] {
@@ -217,6 +271,8 @@ impl SubTaskState {
 mod tests {
     use super::*;
 
+    const FRAC_PI_2_F32: f32 = std::f32::consts::FRAC_PI_2;
+
     #[test]
     fn wrap_takes_angles_into_minus_pi_to_pi() {
         assert_eq!(wrap(0.0), 0.0);
@@ -261,6 +317,27 @@ mod tests {
         assert_eq!(task.update([0.0, -0.09, -1.55]), SubTaskEnd::Done);
         assert_eq!(task.table_row(7), 7 + 2 * NUM_STATES);
         assert_eq!(task.table(), RIGHT * MAX_PHASES + 2);
+    }
+
+    #[test]
+    fn distance_phases_count_the_bins_driven_ahead_of_the_start() {
+        let counting = Phases::HeadingAndDistance;
+        assert_eq!(
+            (Phases::Heading.rows(), counting.rows()),
+            (3 * NUM_STATES, 18 * NUM_STATES)
+        );
+        // Facing +y: 0.2 m ahead is bin 2 (18-22 cm), sideways distance does not count.
+        let mut task = SubTaskState::begin(FORWARD, [0.5, 0.5, FRAC_PI_2_F32]);
+        let pose = [0.6, 0.7, FRAC_PI_2_F32];
+        task.update(pose);
+        assert_eq!(task.phase, 1);
+        assert_eq!(counting.phase(&task, pose), 1 + 3 * 2);
+        assert_eq!(Phases::Heading.phase(&task, pose), 1);
+        assert_eq!(counting.table_row(&task, pose, 5), 5 + 7 * NUM_STATES);
+        let far = [0.5, 0.9, FRAC_PI_2_F32];
+        assert_eq!(counting.phase(&task, far), 1 + 3 * 5);
+        let corridor = SubTaskState::begin(CORRIDOR, [0.5, 0.5, 0.0]);
+        assert_eq!(counting.phase(&corridor, [0.9, 0.5, 0.0]), 0);
     }
 
     #[test]

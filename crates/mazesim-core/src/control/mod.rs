@@ -7,6 +7,7 @@
 pub mod avoid_collision;
 pub mod braitenberg;
 pub mod door;
+pub mod heading_hold;
 pub mod random_wheels;
 pub mod tabular;
 
