@@ -205,15 +205,18 @@ def test_the_blind_rule_and_distance_phases_train_alike_at_any_thread_count() ->
     assert blind.sum() > blind[FORWARD]
 
 
-def test_either_option_alone_trains_from_python() -> None:
+def test_either_option_alone_trains_in_the_core() -> None:
     plain = dataclasses.replace(E_PUCK_ROUND, door_distance=False, blind_forward=False)
-    assert LowerTrainer(plain).in_core
-    for door_distance, blind_forward in ((True, False), (False, True)):
+    for door_distance, blind_forward in ((False, False), (True, False), (False, True)):
         settings = dataclasses.replace(
             plain, door_distance=door_distance, blind_forward=blind_forward
         )
         trainer = LowerTrainer(settings)
-        assert not trainer.in_core
+        assert trainer.in_core
+        assert trainer._core_settings(0.1)["phases"] == (
+            "heading_and_distance" if door_distance else "heading"
+        )
+        assert trainer._core_settings(0.1)["blind"] == ("forward" if blind_forward else "table")
         assert trainer.tables.q.shape == lower_table_shape(door_distance)
 
 
