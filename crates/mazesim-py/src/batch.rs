@@ -11,7 +11,7 @@ use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::{bounded_items, type_name, Bytes, Flag, IntArg, Real, Text};
+use crate::args::{bounded_items, type_name, Bytes, Flag, IntArg, Keywords, Real, Text};
 use crate::buffers::{copied, writable};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::{ctrl_c_pressed, enter, enter_detached};
@@ -274,38 +274,51 @@ impl PyBatch {
     /// Runs `steps` control steps of every environment in one call, the GIL released, each
     /// environment's wheel speeds from the built-in `controller` ('braitenberg',
     /// 'avoid-collision', 'tabular' or 'random'); see `docs/performance.md` and the stub.
-    #[pyo3(signature = (steps, controller, observations, poses, colliding, crossings, *, seeds = None,
-        max_episode_steps = IntArg::ZERO, end_at_goal = Flag::Value(false), end_at_crossing = Flag::Value(false), autoreset = Flag::Value(true), trace = None,
-        table = None, allowed_actions = None, table_index = None, epsilon = Real::Number(0.0),
-        threshold = Real::Number(80.0), max_speed = Real::Number(EPUCK_MAX_SPEED), active = None, hold_spins = Flag::Value(false),
-        subtasks = None),
+    #[pyo3(signature = (steps, controller, observations, poses, colliding, crossings, **options),
         text_signature = "($self, steps, controller, observations, poses, colliding, crossings, *, seeds=None, max_episode_steps=0, end_at_goal=False, end_at_crossing=False, autoreset=True, trace=None, table=None, allowed_actions=None, table_index=None, epsilon=0.0, threshold=80.0, max_speed=6.28, active=None, hold_spins=False, subtasks=None)")]
     fn run<'py>(
         &self,
-        py: Python<'py>,
         steps: IntArg,
         controller: Text,
         observations: &Bound<'py, PyAny>,
         poses: &Bound<'py, PyAny>,
         colliding: &Bound<'py, PyAny>,
         crossings: &Bound<'py, PyAny>,
-        seeds: Option<&Bound<'py, PyAny>>,
-        max_episode_steps: IntArg,
-        end_at_goal: Flag,
-        end_at_crossing: Flag,
-        autoreset: Flag,
-        trace: Option<&Bound<'py, PyAny>>,
-        table: Option<&Bound<'py, PyAny>>,
-        allowed_actions: Option<&Bound<'py, PyAny>>,
-        table_index: Option<&Bound<'py, PyAny>>,
-        epsilon: Real,
-        threshold: Real,
-        max_speed: Real,
-        active: Option<&Bound<'py, PyAny>>,
-        hold_spins: Flag,
-        subtasks: Option<&Bound<'py, PyAny>>,
+        options: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyDict>> {
+        let py = observations.py();
         enter(|| {
+            let kw = Keywords::new(options, "run", run::KEYWORDS)?;
+            let (max_episode_steps, seeds) = (
+                kw.get("max_episode_steps", IntArg::ZERO)?,
+                kw.object("seeds")?,
+            );
+            let (end_at_goal, end_at_crossing) = (
+                kw.get("end_at_goal", Flag::Value(false))?,
+                kw.get("end_at_crossing", Flag::Value(false))?,
+            );
+            let autoreset = kw.get("autoreset", Flag::Value(true))?;
+            let (threshold, max_speed) = (
+                kw.get("threshold", Real::Number(80.0))?,
+                kw.get("max_speed", Real::Number(EPUCK_MAX_SPEED))?,
+            );
+            let (trace, active, subtasks) = (
+                kw.object("trace")?,
+                kw.object("active")?,
+                kw.object("subtasks")?,
+            );
+            let (table, allowed_actions, table_index) = (
+                kw.object("table")?,
+                kw.object("allowed_actions")?,
+                kw.object("table_index")?,
+            );
+            let tabular = TabularArgs {
+                table: table.as_ref(),
+                allowed_actions: allowed_actions.as_ref(),
+                table_index: table_index.as_ref(),
+                epsilon: kw.get("epsilon", Real::Number(0.0))?,
+                hold_spins: kw.get("hold_spins", Flag::Value(false))?,
+            };
             let n = self.n;
             let options = RunOptions {
                 steps: steps.count("steps", MAX_RUN_STEPS)?,
@@ -319,6 +332,7 @@ impl PyBatch {
             threshold.value("threshold")?;
             max_speed.value("max_speed")?;
             let trace = trace
+                .as_ref()
                 .map(|t| {
                     t.cast::<PyDict>().map_err(|_| {
                         invalid(format!(
@@ -328,23 +342,20 @@ impl PyBatch {
                     })
                 })
                 .transpose()?;
-            let tabular = TabularArgs {
-                table,
-                allowed_actions,
-                table_index,
-                epsilon,
-                hold_spins,
-            };
             let controller = run::controller(&controller, n, threshold, max_speed, tabular)?;
-            let seeds = match seeds {
+            let seeds = match &seeds {
                 Some(s) => seeds_from(s, n)?,
                 None => (0..n as u64).collect(),
             };
             let active = active
+                .as_ref()
                 .map(|a| copied::<bool>(a, "active", "bool", &[n]))
                 .transpose()?;
             let mut traces = Traces::new(trace, options.steps, n, self.width())?;
-            let mut subtask_arrays = subtasks.map(|s| SubTaskArrays::new(s, n)).transpose()?;
+            let mut subtask_arrays = subtasks
+                .as_ref()
+                .map(|s| SubTaskArrays::new(s, n))
+                .transpose()?;
             let mut states = subtask_arrays.as_ref().map(|a| a.states()).transpose()?;
             let trace = traces.slices();
             let envs = RunEnvs {
@@ -407,43 +418,21 @@ impl PyBatch {
     /// `lower_training`): `explore` ((steps, N) float64) sets its length; `q` and `visits`
     /// ((4, 12288, 12)) and `world_of_env` are updated in place, the buffers hold the last step.
     /// Returns the round's counts as a dict. The GIL is released while it runs.
-    #[pyo3(signature = (observations, poses, colliding, crossings, *, worlds, world_of_env, role, starts, explore, random_action, q, visits, symmetry, allowed, wheel_speeds, settings))]
+    #[pyo3(signature = (observations, poses, colliding, crossings, **round),
+        text_signature = "($self, observations, poses, colliding, crossings, *, worlds, world_of_env, role, starts, explore, random_action, q, visits, symmetry, allowed, wheel_speeds, settings)")]
     fn train_lower_round<'py>(
         &self,
-        py: Python<'py>,
         observations: &Bound<'py, PyAny>,
         poses: &Bound<'py, PyAny>,
         colliding: &Bound<'py, PyAny>,
         crossings: &Bound<'py, PyAny>,
-        worlds: &Bound<'py, PyAny>,
-        world_of_env: &Bound<'py, PyAny>,
-        role: &Bound<'py, PyAny>,
-        starts: &Bound<'py, PyAny>,
-        explore: &Bound<'py, PyAny>,
-        random_action: &Bound<'py, PyAny>,
-        q: &Bound<'py, PyAny>,
-        visits: &Bound<'py, PyAny>,
-        symmetry: &Bound<'py, PyAny>,
-        allowed: &Bound<'py, PyAny>,
-        wheel_speeds: &Bound<'py, PyAny>,
-        settings: &Bound<'py, PyAny>,
+        round: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyDict>> {
+        let py = observations.py();
         enter(|| {
-            let settings = lower::round_settings(settings)?;
-            let mut arrays = lower::RoundArrays::new(
-                self.n,
-                worlds,
-                world_of_env,
-                role,
-                starts,
-                explore,
-                random_action,
-                q,
-                visits,
-                symmetry,
-                allowed,
-                wheel_speeds,
-            )?;
+            let round = Keywords::new(round, "train_lower_round", lower::KEYWORDS)?;
+            let settings = lower::round_settings(&round.required("settings")?)?;
+            let mut arrays = lower::RoundArrays::new(self.n, &round)?;
             let buffers = [observations, poses, colliding, crossings];
             let round = arrays.round(settings);
             let counts =

@@ -16,10 +16,15 @@ use numpy::{PyReadonlyArrayDyn, PyReadwriteArrayDyn};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::{bounded_items, type_name, Real};
+use crate::args::{bounded_items, type_name, Keywords, Real};
 use crate::buffers::{copied, readable, writable};
 use crate::errors::{invalid, IntoPy};
 use crate::world::world_argument;
+
+/// The keywords of `train_lower_round` after its four buffers: the round's arrays, then its
+/// settings.
+pub const KEYWORDS: &str = "worlds world_of_env role starts explore random_action q visits \
+    symmetry allowed wheel_speeds settings";
 
 /// The keys of a round's `settings` dict.
 const SETTINGS: [&str; 17] = [
@@ -169,21 +174,18 @@ fn indices<const K: usize>(values: Vec<i64>, name: &str, below: usize) -> PyResu
 
 impl<'py> RoundArrays<'py> {
     /// Borrows and checks the arrays of a round of `n` robots.
-    #[allow(clippy::too_many_arguments)]
-    pub fn new(
-        n: usize,
-        worlds: &Bound<'py, PyAny>,
-        world_of_env: &Bound<'py, PyAny>,
-        role: &Bound<'py, PyAny>,
-        starts: &Bound<'py, PyAny>,
-        explore: &Bound<'py, PyAny>,
-        random_action: &Bound<'py, PyAny>,
-        q: &Bound<'py, PyAny>,
-        visits: &Bound<'py, PyAny>,
-        symmetry: &Bound<'py, PyAny>,
-        allowed: &Bound<'py, PyAny>,
-        wheel_speeds: &Bound<'py, PyAny>,
-    ) -> PyResult<Self> {
+    pub fn new(n: usize, round: &Keywords<'py>) -> PyResult<Self> {
+        let worlds = &round.required("worlds")?;
+        let world_of_env = &round.required("world_of_env")?;
+        let role = &round.required("role")?;
+        let starts = &round.required("starts")?;
+        let explore = &round.required("explore")?;
+        let random_action = &round.required("random_action")?;
+        let q = &round.required("q")?;
+        let visits = &round.required("visits")?;
+        let symmetry = &round.required("symmetry")?;
+        let allowed = &round.required("allowed")?;
+        let wheel_speeds = &round.required("wheel_speeds")?;
         let worlds = bounded_items(worlds, "worlds", "mazesim.World", MAX_ENVS)?
             .iter()
             .map(|w| world_argument(w, "each of worlds"))
@@ -325,26 +327,40 @@ pub fn counts_dict<'py>(py: Python<'py>, counts: &RoundCounts) -> PyResult<Bound
     Ok(dict)
 }
 
+/// The learning rate `(initial, floor, power)` of `q_batch_update`.
+fn learning_rate(rate: &Bound<'_, PyAny>) -> PyResult<LearningRate> {
+    let items = bounded_items(rate, "rate", "real numbers (initial, floor, power)", 3)?;
+    let [initial, floor, power] = &items[..] else {
+        return Err(invalid(format!(
+            "expected rate to be (initial, floor, power), found {} items",
+            items.len()
+        )));
+    };
+    let value = |item: &Bound<'_, PyAny>, name: &str| item.extract::<Real>()?.value(name);
+    LearningRate::new(
+        value(initial, "rate's initial")?,
+        value(floor, "rate's floor")?,
+        value(power, "rate's power")?,
+    )
+    .py()
+}
+
 /// Applies N Q-learning updates to one table in place (`mazesim.learn.qlearning.batch_update`):
 /// the targets read the table as it was before the call, then the updates apply one after the
 /// other in the given order, each at its pair's learning rate
-/// `max(floor, initial * (visits + 1) ** -power)`.
+/// `max(floor, initial * (visits + 1) ** -power)`. `transitions` holds the N `states`,
+/// `actions`, `rewards`, `next_states` and `bootstrap` factors; `rate` is
+/// `(initial, floor, power)`.
 #[pyfunction]
-#[pyo3(signature = (q, visits, states, actions, rewards, next_states, bootstrap, allowed, initial, floor, power))]
+#[pyo3(signature = (q, visits, transitions, allowed, rate))]
 pub fn q_batch_update(
-    py: Python<'_>,
     q: &Bound<'_, PyAny>,
     visits: &Bound<'_, PyAny>,
-    states: &Bound<'_, PyAny>,
-    actions: &Bound<'_, PyAny>,
-    rewards: &Bound<'_, PyAny>,
-    next_states: &Bound<'_, PyAny>,
-    bootstrap: &Bound<'_, PyAny>,
+    transitions: &Bound<'_, PyAny>,
     allowed: &Bound<'_, PyAny>,
-    initial: Real,
-    floor: Real,
-    power: Real,
+    rate: &Bound<'_, PyAny>,
 ) -> PyResult<()> {
+    let py = q.py();
     crate::guard::enter(|| {
         let shape = shape_of(q);
         let [rows, columns] = shape[..] else {
@@ -352,12 +368,11 @@ pub fn q_batch_update(
                 "expected q to be a (states, actions) float64 array, found shape {shape:?}"
             )));
         };
-        let rate = LearningRate::new(
-            initial.value("initial")?,
-            floor.value("floor")?,
-            power.value("power")?,
-        )
-        .py()?;
+        let rate = learning_rate(rate)?;
+        let transitions = as_dict(transitions, "transitions")?;
+        let item = |key: &str| entry(transitions, "transitions", key);
+        let (states, actions, rewards) = (&item("states")?, &item("actions")?, &item("rewards")?);
+        let (next_states, bootstrap) = (&item("next_states")?, &item("bootstrap")?);
         let m = shape_of(states).first().copied().unwrap_or(0);
         let states = copied::<i64>(states, "states", "int64", &[m])?;
         let actions = copied::<i64>(actions, "actions", "int64", &[m])?;
