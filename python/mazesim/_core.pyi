@@ -362,6 +362,17 @@ class BatchSimulator:
         """Bytes the batch holds per environment: each env's own state, plus each distinct world
         (envs of equal worlds share one copy) and each distinct robot profile's sensing set-up
         counted once."""
+    def output_buffers(
+        self,
+    ) -> tuple[
+        npt.NDArray[np.float32],
+        npt.NDArray[np.float32],
+        npt.NDArray[np.bool_],
+        npt.NDArray[np.int32],
+    ]:
+        """New zeroed output buffers of the shapes and dtypes every call checks, for the caller
+        to hold: observations (N, observation_width) float32, poses (N, 3) float32, colliding
+        (N,) bool and crossings (N,) int32."""
     def step(
         self,
         actions: npt.NDArray[np.float32],

@@ -7,7 +7,7 @@ use mazesim_core::control::avoid_collision::EPUCK_MAX_SPEED;
 use mazesim_core::limits::{MAX_ENVS, MAX_THREADS};
 use mazesim_core::rollout::RunEnvs;
 use mazesim_core::{Batch, RunOptions, StepOutputs, World};
-use numpy::{PyArray1, PyArrayMethods};
+use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -33,6 +33,14 @@ pub struct PyBatch {
 
 /// Most control steps one `run` call takes.
 const MAX_RUN_STEPS: usize = 1 << 40;
+
+/// The four output buffers of a batch: observations, poses, colliding, crossings.
+type OutputBuffers<'py> = (
+    Bound<'py, PyArray2<f32>>,
+    Bound<'py, PyArray2<f32>>,
+    Bound<'py, PyArray1<bool>>,
+    Bound<'py, PyArray1<i32>>,
+);
 
 fn bad(msg: String) -> PyErr {
     invalid(msg)
@@ -252,6 +260,19 @@ impl PyBatch {
     /// counted once.
     fn bytes_per_env(&self) -> PyResult<usize> {
         enter(|| self.inner.with(|b| b.bytes_per_env()))
+    }
+
+    /// New zeroed output buffers of the shapes and dtypes every call checks, for the caller to
+    /// hold: observations (N, observation_width) float32, poses (N, 3) float32, colliding (N,)
+    /// bool and crossings (N,) int32.
+    fn output_buffers<'py>(&self, py: Python<'py>) -> OutputBuffers<'py> {
+        let n = self.n;
+        (
+            PyArray2::zeros(py, [n, self.width()], false),
+            PyArray2::zeros(py, [n, 3], false),
+            PyArray1::zeros(py, n, false),
+            PyArray1::zeros(py, n, false),
+        )
     }
 
     /// Steps every environment with `actions` ((N, 2) float32 wheel speeds, rad/s).
