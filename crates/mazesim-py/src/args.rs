@@ -301,6 +301,31 @@ pub fn made_elsewhere(class: &str, how: &str) -> PyErr {
     ))
 }
 
+/// `obj` as a dict; `name` names the argument and `holding` says what it maps (" of name -> array").
+pub fn dict_argument<'a, 'py>(
+    obj: &'a Bound<'py, PyAny>,
+    name: &str,
+    holding: &str,
+) -> PyResult<&'a Bound<'py, pyo3::types::PyDict>> {
+    obj.cast::<pyo3::types::PyDict>().map_err(|_| {
+        invalid(format!(
+            "expected {name} to be a dict{holding}, found a {}",
+            type_name(obj)
+        ))
+    })
+}
+
+/// The first key of `dict` that is not among `known` (names separated by white space), if any.
+pub fn unknown_key(dict: &Bound<'_, pyo3::types::PyDict>, known: &str) -> PyResult<Option<String>> {
+    for key in dict.keys() {
+        let key = key.str()?.to_string();
+        if !known.split_whitespace().any(|name| name == key) {
+            return Ok(Some(key));
+        }
+    }
+    Ok(None)
+}
+
 /// The keyword arguments of a call taken as `**options` and read once into the typed settings of
 /// the core (`RunOptions`, `Perturbation`, `MazeParams`...), so a Rust function stays narrow
 /// whatever the number of keywords its Python signature documents. A keyword the function does
@@ -317,15 +342,10 @@ impl<'py> Keywords<'py> {
         function: &'static str,
         known: &str,
     ) -> PyResult<Self> {
-        if let Some(given) = given {
-            for key in given.keys() {
-                let key = key.str()?.to_string();
-                if !known.split_whitespace().any(|name| name == key) {
-                    return Err(pyo3::exceptions::PyTypeError::new_err(format!(
-                        "{function}() got an unexpected keyword argument '{key}'"
-                    )));
-                }
-            }
+        if let Some(key) = given.map(|g| unknown_key(g, known)).transpose()?.flatten() {
+            return Err(pyo3::exceptions::PyTypeError::new_err(format!(
+                "{function}() got an unexpected keyword argument '{key}'"
+            )));
         }
         Ok(Self {
             given: given.cloned(),

@@ -11,7 +11,9 @@ use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::{bounded_items, type_name, Bytes, Flag, IntArg, Keywords, Real, Text};
+use crate::args::{
+    bounded_items, dict_argument, type_name, Bytes, Flag, IntArg, Keywords, Real, Text,
+};
 use crate::buffers::{copied, writable};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::{ctrl_c_pressed, enter, enter_detached};
@@ -310,68 +312,47 @@ impl PyBatch {
         let py = observations.py();
         enter(|| {
             let kw = Keywords::new(options, "run", run::KEYWORDS)?;
-            let (max_episode_steps, seeds) = (
-                kw.get("max_episode_steps", IntArg::ZERO)?,
-                kw.object("seeds")?,
-            );
-            let (end_at_goal, end_at_crossing) = (
-                kw.get("end_at_goal", Flag::Value(false))?,
-                kw.get("end_at_crossing", Flag::Value(false))?,
-            );
-            let autoreset = kw.get("autoreset", Flag::Value(true))?;
-            let (threshold, max_speed) = (
-                kw.get("threshold", Real::Number(80.0))?,
-                kw.get("max_speed", Real::Number(EPUCK_MAX_SPEED))?,
-            );
-            let (trace, active, subtasks) = (
-                kw.object("trace")?,
-                kw.object("active")?,
-                kw.object("subtasks")?,
-            );
-            let (table, allowed_actions, table_index) = (
-                kw.object("table")?,
-                kw.object("allowed_actions")?,
-                kw.object("table_index")?,
-            );
+            let flag = |key: &str, default| kw.get(key, Flag::Value(default))?.value(key, "a bool");
+            let n = self.n;
+            let options = RunOptions {
+                steps: steps.count("steps", MAX_RUN_STEPS)?,
+                max_episode_steps: kw
+                    .get("max_episode_steps", IntArg::ZERO)?
+                    .seed("max_episode_steps")?,
+                end_at_goal: flag("end_at_goal", false)?,
+                end_at_crossing: flag("end_at_crossing", false)?,
+                autoreset: flag("autoreset", true)?,
+            };
+            let controller = controller.value("controller", "a str")?;
+            // Checked whatever the controller, so that a wrong one is never silently ignored.
+            let threshold = kw.get("threshold", Real::Number(80.0))?;
+            let max_speed = kw.get("max_speed", Real::Number(EPUCK_MAX_SPEED))?;
+            threshold.value("threshold")?;
+            max_speed.value("max_speed")?;
+            let trace = kw.object("trace")?;
+            let trace = trace
+                .as_ref()
+                .map(|t| dict_argument(t, "trace", " of name -> array"))
+                .transpose()?;
+            let (table, allowed) = (kw.object("table")?, kw.object("allowed_actions")?);
+            let table_index = kw.object("table_index")?;
             let tabular = TabularArgs {
                 table: table.as_ref(),
-                allowed_actions: allowed_actions.as_ref(),
+                allowed_actions: allowed.as_ref(),
                 table_index: table_index.as_ref(),
                 epsilon: kw.get("epsilon", Real::Number(0.0))?,
                 hold_spins: kw.get("hold_spins", Flag::Value(false))?,
             };
-            let n = self.n;
-            let options = RunOptions {
-                steps: steps.count("steps", MAX_RUN_STEPS)?,
-                max_episode_steps: max_episode_steps.seed("max_episode_steps")?,
-                end_at_goal: end_at_goal.value("end_at_goal", "a bool")?,
-                end_at_crossing: end_at_crossing.value("end_at_crossing", "a bool")?,
-                autoreset: autoreset.value("autoreset", "a bool")?,
-            };
-            let controller = controller.value("controller", "a str")?;
-            // Checked whatever the controller, so that a wrong one is never silently ignored.
-            threshold.value("threshold")?;
-            max_speed.value("max_speed")?;
-            let trace = trace
-                .as_ref()
-                .map(|t| {
-                    t.cast::<PyDict>().map_err(|_| {
-                        invalid(format!(
-                            "expected trace to be a dict of name -> array, found a {}",
-                            type_name(t)
-                        ))
-                    })
-                })
-                .transpose()?;
             let controller = run::controller(&controller, n, threshold, max_speed, tabular)?;
-            let seeds = match &seeds {
-                Some(s) => seeds_from(s, n)?,
+            let seeds = match kw.object("seeds")? {
+                Some(s) => seeds_from(&s, n)?,
                 None => (0..n as u64).collect(),
             };
+            let active = kw.object("active")?;
             let active = active
-                .as_ref()
-                .map(|a| copied::<bool>(a, "active", "bool", &[n]))
+                .map(|a| copied::<bool>(&a, "active", "bool", &[n]))
                 .transpose()?;
+            let subtasks = kw.object("subtasks")?;
             let mut traces = Traces::new(trace, options.steps, n, self.width())?;
             let mut subtask_arrays = subtasks
                 .as_ref()

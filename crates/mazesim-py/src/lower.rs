@@ -16,7 +16,7 @@ use numpy::{PyReadonlyArrayDyn, PyReadwriteArrayDyn};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::{bounded_items, type_name, Keywords, Real};
+use crate::args::{bounded_items, dict_argument, type_name, unknown_key, Keywords, Real};
 use crate::buffers::{copied, readable, writable};
 use crate::errors::{invalid, IntoPy};
 use crate::world::world_argument;
@@ -27,34 +27,10 @@ pub const KEYWORDS: &str = "worlds world_of_env role starts explore random_actio
     symmetry allowed wheel_speeds settings";
 
 /// The keys of a round's `settings` dict.
-const SETTINGS: [&str; 17] = [
-    "gamma",
-    "epsilon",
-    "decision_steps",
-    "corridor_episode_steps",
-    "rate_initial",
-    "rate_floor",
-    "rate_power",
-    "progress_reward",
-    "collision_penalty",
-    "corridor_step_reward",
-    "door_step_reward",
-    "heading_reward",
-    "door_success_reward",
-    "door_failure_reward",
-    "door_path_exit",
-    "success_past_centre",
-    "success_across",
-];
-
-fn as_dict<'a, 'py>(obj: &'a Bound<'py, PyAny>, name: &str) -> PyResult<&'a Bound<'py, PyDict>> {
-    obj.cast::<PyDict>().map_err(|_| {
-        invalid(format!(
-            "expected {name} to be a dict, found a {}",
-            type_name(obj)
-        ))
-    })
-}
+const SETTINGS: &str = "gamma epsilon decision_steps corridor_episode_steps rate_initial \
+    rate_floor rate_power progress_reward collision_penalty corridor_step_reward door_step_reward \
+    heading_reward door_success_reward door_failure_reward door_path_exit success_past_centre \
+    success_across";
 
 fn entry<'py>(dict: &Bound<'py, PyDict>, name: &str, key: &str) -> PyResult<Bound<'py, PyAny>> {
     dict.get_item(key)?.ok_or_else(|| {
@@ -92,14 +68,11 @@ fn steps_setting(dict: &Bound<'_, PyDict>, key: &str) -> PyResult<u64> {
 
 /// Reads and checks a round's settings.
 pub fn round_settings(settings: &Bound<'_, PyAny>) -> PyResult<RoundSettings> {
-    let dict = as_dict(settings, "settings")?;
-    for key in dict.keys() {
-        let key: String = key.extract().unwrap_or_default();
-        if !SETTINGS.contains(&key.as_str()) {
-            return Err(invalid(format!(
-                "expected settings to hold only {SETTINGS:?}, found {key:?}"
-            )));
-        }
+    let dict = dict_argument(settings, "settings", "")?;
+    if let Some(key) = unknown_key(dict, SETTINGS)? {
+        return Err(invalid(format!(
+            "expected settings to hold only {SETTINGS:?}, found {key:?}"
+        )));
     }
     let gamma = number(dict, "gamma")?;
     let epsilon = number(dict, "epsilon")?;
@@ -190,7 +163,7 @@ impl<'py> RoundArrays<'py> {
             .iter()
             .map(|w| world_argument(w, "each of worlds"))
             .collect::<PyResult<Vec<_>>>()?;
-        let starts = as_dict(starts, "starts")?;
+        let starts = dict_argument(starts, "starts", "")?;
         let start_world = entry(starts, "starts", "world")?;
         let per_env = match shape_of(&start_world)[..] {
             [rows, k] if rows == n && k > 0 => k,
@@ -212,7 +185,7 @@ impl<'py> RoundArrays<'py> {
             }
         };
         let table_shape = [NUM_SUBTASKS, ROWS, NUM_ACTIONS];
-        let symmetry = as_dict(symmetry, "symmetry")?;
+        let symmetry = dict_argument(symmetry, "symmetry", "")?;
         let flags = copied::<bool>(allowed, "allowed", "bool", &[NUM_SUBTASKS, NUM_ACTIONS])?;
         let mut allowed = [[false; NUM_ACTIONS]; NUM_SUBTASKS];
         for (row, chunk) in allowed.iter_mut().zip(flags.chunks_exact(NUM_ACTIONS)) {
@@ -369,7 +342,7 @@ pub fn q_batch_update(
             )));
         };
         let rate = learning_rate(rate)?;
-        let transitions = as_dict(transitions, "transitions")?;
+        let transitions = dict_argument(transitions, "transitions", "")?;
         let item = |key: &str| entry(transitions, "transitions", key);
         let (states, actions, rewards) = (&item("states")?, &item("actions")?, &item("rewards")?);
         let (next_states, bootstrap) = (&item("next_states")?, &item("bootstrap")?);
