@@ -14,11 +14,5 @@ Buffers = tuple[
 
 
 def buffers(batch: mazesim.BatchSimulator) -> Buffers:
-    """Zeroed output buffers of the shapes ``batch`` writes."""
-    n = batch.num_envs
-    return (
-        np.zeros((n, batch.observation_width), np.float32),
-        np.zeros((n, 3), np.float32),
-        np.zeros(n, bool),
-        np.zeros(n, np.int32),
-    )
+    """Zeroed output buffers of the shapes ``batch`` writes, as the binding makes them."""
+    return batch.output_buffers()

@@ -140,15 +140,15 @@ def samples(tmp: Path) -> dict[str, Any]:
             "q_batch_update": {
                 "q": np.zeros((4, 3)),
                 "visits": np.zeros((4, 3), np.int64),
-                "states": np.array([0, 1], np.int64),
-                "actions": np.array([0, 2], np.int64),
-                "rewards": np.array([1.0, -1.0]),
-                "next_states": np.array([1, 2], np.int64),
-                "bootstrap": np.array([0.9, 0.0]),
+                "transitions": {
+                    "states": np.array([0, 1], np.int64),
+                    "actions": np.array([0, 2], np.int64),
+                    "rewards": np.array([1.0, -1.0]),
+                    "next_states": np.array([1, 2], np.int64),
+                    "bootstrap": np.array([0.9, 0.0]),
+                },
                 "allowed": np.ones(3, bool),
-                "initial": 0.5,
-                "floor": 0.02,
-                "power": 0.5,
+                "rate": (0.5, 0.02, 0.5),
             },
         },
     }

@@ -40,19 +40,15 @@ def sharp_volts_to_cm(volts: float) -> float:
 def q_batch_update(
     q: npt.NDArray[np.float64],
     visits: npt.NDArray[np.int64],
-    states: npt.NDArray[np.int64],
-    actions: npt.NDArray[np.int64],
-    rewards: npt.NDArray[np.float64],
-    next_states: npt.NDArray[np.int64],
-    bootstrap: npt.NDArray[np.float64],
+    transitions: dict[str, npt.NDArray[Any]],
     allowed: npt.NDArray[np.bool_],
-    initial: float,
-    floor: float,
-    power: float,
+    rate: tuple[float, float, float],
 ) -> None:
     """N Q-learning updates of one (states, actions) table in place
-    (``mazesim.learn.qlearning.batch_update``): targets read the table before the call, the
-    updates apply in order, each at ``max(floor, initial * (visits + 1) ** -power)``."""
+    (``mazesim.learn.qlearning.batch_update``): ``transitions`` holds the N ``states``,
+    ``actions``, ``rewards`` (float64), ``next_states`` and ``bootstrap`` factors (float64);
+    targets read the table before the call, the updates apply in order, each at
+    ``max(floor, initial * (visits + 1) ** -power)`` with ``rate = (initial, floor, power)``."""
 
 def lower_level_states(observations: npt.NDArray[np.float32]) -> npt.NDArray[np.int64]:
     """The lower level's state (Table 4.1 levels of the first six distance readings, in volts)
@@ -66,6 +62,7 @@ def generate_maze(
     width: int = 5,
     height: int = 5,
     seed: int = 0,
+    *,
     cell_size: float = 0.25,
     wall_thickness: float = 0.01,
     loops: float = 0.0,
@@ -365,6 +362,17 @@ class BatchSimulator:
         """Bytes the batch holds per environment: each env's own state, plus each distinct world
         (envs of equal worlds share one copy) and each distinct robot profile's sensing set-up
         counted once."""
+    def output_buffers(
+        self,
+    ) -> tuple[
+        npt.NDArray[np.float32],
+        npt.NDArray[np.float32],
+        npt.NDArray[np.bool_],
+        npt.NDArray[np.int32],
+    ]:
+        """New zeroed output buffers of the shapes and dtypes every call checks, for the caller
+        to hold: observations (N, observation_width) float32, poses (N, 3) float32, colliding
+        (N,) bool and crossings (N,) int32."""
     def step(
         self,
         actions: npt.NDArray[np.float32],

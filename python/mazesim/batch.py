@@ -4,7 +4,9 @@ A :class:`RobotBatch` holds a :class:`mazesim.BatchSimulator` of N robots togeth
 buffers every call writes into (observations, poses, contact flags, checkpoint crossings), and the
 table turning the twelve discrete actions (:mod:`mazesim.actions`) into wheel speeds. Everything
 above it (:mod:`mazesim.episodes`, :mod:`mazesim.learn`) steps, resets and places robots through
-it and reads the buffers; nothing else allocates them.
+it and reads the buffers. The buffers themselves come from the simulator
+(:meth:`mazesim.BatchSimulator.output_buffers`), the one place that knows their shapes and dtypes,
+as do those of the batches beside it (the native vector env, the reading study, the bench).
 
 :meth:`RobotBatch.place` puts robots at given poses with given noise seeds: the binding's per-env
 start (:meth:`mazesim.BatchSimulator.set_starts_at`) and a masked reset, so a world is never
@@ -126,10 +128,9 @@ class RobotBatch:
             np.float32
         )
         self.distance_width = self.simulator.distance_width
-        self.observations = np.zeros((count, self.simulator.observation_width), dtype=np.float32)
-        self.poses = np.zeros((count, 3), dtype=np.float32)
-        self.colliding = np.zeros(count, dtype=bool)
-        self.crossings = np.zeros(count, dtype=np.int32)
+        self.observations, self.poses, self.colliding, self.crossings = (
+            self.simulator.output_buffers()
+        )
 
     def speeds_of(self, actions: npt.ArrayLike) -> npt.NDArray[np.float32]:
         """(N, 2) wheel speeds of discrete actions (indices into the action table)."""

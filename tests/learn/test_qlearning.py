@@ -162,10 +162,14 @@ def test_the_core_update_names_a_negative_index_and_ignores_an_unread_next_state
     ones = np.ones(2, dtype=bool)
 
     def update(states: list[int], next_states: list[int], bootstrap: list[float]) -> None:
-        q_batch_update(
-            q, visits, np.array(states), np.array([0, 1]), np.array([1.0, 2.0]),
-            np.array(next_states), np.array(bootstrap), ones, 0.5, 0.02, 0.5,
-        )  # fmt: skip
+        transitions = {
+            "states": np.array(states),
+            "actions": np.array([0, 1]),
+            "rewards": np.array([1.0, 2.0]),
+            "next_states": np.array(next_states),
+            "bootstrap": np.array(bootstrap),
+        }
+        q_batch_update(q, visits, transitions, ones, (0.5, 0.02, 0.5))
 
     with pytest.raises(InvalidArgumentError, match="states of 0 or more, found -4 at transition 1"):
         update([0, -4], [0, 0], [0.9, 0.9])

@@ -24,6 +24,7 @@ from mazesim.controllers import AvoidCollision
 from mazesim.errors import InvalidActionError, InvalidArgumentError, MazesimIOError
 from mazesim.learn import load_policy
 from mazesim.ros import demo, topics
+from mazesim.ros._ros import subscriber_count
 from mazesim.ros.bridge import BridgeSettings, resolve_settings
 from mazesim.ros.demo import goal_step
 from mazesim.ros.local_master import LocalMaster
@@ -116,6 +117,15 @@ def test_control_step_of_the_perform_learning_node_is_checked() -> None:
     for bad in (0, -32, math.nan, math.inf, "fast", None, True):
         with pytest.raises(InvalidArgumentError, match="parameter control_step_ms"):
             control_step_value("control_step_ms", bad, allow_zero=False)
+
+
+def test_the_nodes_wait_for_a_whole_number_of_subscribers() -> None:
+    assert subscriber_count(_Parameters(), None) == 1
+    assert subscriber_count(_Parameters(wait_for_subscribers=3), None) == 3
+    assert subscriber_count(_Parameters(wait_for_subscribers=3), 2) == 2
+    for bad in (0, -1, 1.5, "2", True):
+        with pytest.raises(InvalidArgumentError, match="parameter wait_for_subscribers"):
+            subscriber_count(_Parameters(wait_for_subscribers=bad), None)
 
 
 def test_goal_step_is_the_first_pose_in_the_goal_disc() -> None:

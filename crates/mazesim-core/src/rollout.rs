@@ -373,8 +373,9 @@ impl Batch {
                     }
                     let index = k * CHUNK_ENVS + j;
                     for s in 0..block {
+                        let at = (s, j);
                         step_one(
-                            controller, options, index, env, stream, count, &mut rows, s, j,
+                            controller, options, index, env, stream, count, &mut rows, at,
                         );
                     }
                     row.write(env);
@@ -396,8 +397,8 @@ impl Batch {
     }
 }
 
-/// One control step of environment `index` (row `j` of its chunk, step `s` of the block).
-#[allow(clippy::too_many_arguments)]
+/// One control step of environment `index` at `(s, j)`: step `s` of the block, row `j` of its
+/// chunk.
 #[inline]
 fn step_one(
     controller: &Controller,
@@ -407,8 +408,7 @@ fn step_one(
     stream: &mut Rng,
     count: &mut Counts,
     rows: &mut ChunkTrace<'_>,
-    s: usize,
-    j: usize,
+    (s, j): (usize, usize),
 ) {
     let standing = count.held
         || (!options.autoreset && (count.stopped || episode_over(env, options, false).0));

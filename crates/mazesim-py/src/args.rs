@@ -300,3 +300,91 @@ pub fn made_elsewhere(class: &str, how: &str) -> PyErr {
         "expected a {class} to be made by {how}, not by calling mazesim.{class}()"
     ))
 }
+
+/// `obj` as a dict; `name` names the argument and `holding` says what it maps (" of name -> array").
+pub fn dict_argument<'a, 'py>(
+    obj: &'a Bound<'py, PyAny>,
+    name: &str,
+    holding: &str,
+) -> PyResult<&'a Bound<'py, pyo3::types::PyDict>> {
+    obj.cast::<pyo3::types::PyDict>().map_err(|_| {
+        invalid(format!(
+            "expected {name} to be a dict{holding}, found a {}",
+            type_name(obj)
+        ))
+    })
+}
+
+/// The first key of `dict` that is not among `known` (names separated by white space), if any.
+pub fn unknown_key(dict: &Bound<'_, pyo3::types::PyDict>, known: &str) -> PyResult<Option<String>> {
+    for key in dict.keys() {
+        let key = key.str()?.to_string();
+        if !known.split_whitespace().any(|name| name == key) {
+            return Ok(Some(key));
+        }
+    }
+    Ok(None)
+}
+
+/// The keyword arguments of a call taken as `**options` and read once into the typed settings of
+/// the core (`RunOptions`, `Perturbation`, `MazeParams`...), so a Rust function stays narrow
+/// whatever the number of keywords its Python signature documents. A keyword the function does
+/// not know is a `TypeError`, as Python says of any other function.
+pub struct Keywords<'py> {
+    given: Option<Bound<'py, pyo3::types::PyDict>>,
+    function: &'static str,
+}
+
+impl<'py> Keywords<'py> {
+    /// The keywords of `function`, each among `known` (names separated by white space).
+    pub fn new(
+        given: Option<&Bound<'py, pyo3::types::PyDict>>,
+        function: &'static str,
+        known: &str,
+    ) -> PyResult<Self> {
+        if let Some(key) = given.map(|g| unknown_key(g, known)).transpose()?.flatten() {
+            return Err(pyo3::exceptions::PyTypeError::new_err(format!(
+                "{function}() got an unexpected keyword argument '{key}'"
+            )));
+        }
+        Ok(Self {
+            given: given.cloned(),
+            function,
+        })
+    }
+
+    /// The value of `key` as a `T` (the argument types above take anything, `None` included),
+    /// or `default` when it was not given.
+    pub fn get<T>(&self, key: &str, default: T) -> PyResult<T>
+    where
+        T: for<'a> FromPyObject<'a, 'py>,
+        for<'a> <T as FromPyObject<'a, 'py>>::Error: Into<PyErr>,
+    {
+        match self.item(key)? {
+            Some(value) => value.extract::<T>().map_err(Into::into),
+            None => Ok(default),
+        }
+    }
+
+    /// The object given for `key`; `None` when it was not given or was `None`.
+    pub fn object(&self, key: &str) -> PyResult<Option<Bound<'py, PyAny>>> {
+        Ok(self.item(key)?.filter(|v| !v.is_none()))
+    }
+
+    /// The object given for `key`, which the call needs.
+    pub fn required(&self, key: &str) -> PyResult<Bound<'py, PyAny>> {
+        self.item(key)?.ok_or_else(|| {
+            pyo3::exceptions::PyTypeError::new_err(format!(
+                "{}() missing required keyword argument: '{key}'",
+                self.function
+            ))
+        })
+    }
+
+    fn item(&self, key: &str) -> PyResult<Option<Bound<'py, PyAny>>> {
+        match &self.given {
+            Some(given) => given.get_item(key),
+            None => Ok(None),
+        }
+    }
+}

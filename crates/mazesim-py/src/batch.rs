@@ -7,11 +7,13 @@ use mazesim_core::control::avoid_collision::EPUCK_MAX_SPEED;
 use mazesim_core::limits::{MAX_ENVS, MAX_THREADS};
 use mazesim_core::rollout::RunEnvs;
 use mazesim_core::{Batch, RunOptions, StepOutputs, World};
-use numpy::{PyArray1, PyArrayMethods};
+use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::{bounded_items, type_name, Bytes, Flag, IntArg, Real, Text};
+use crate::args::{
+    bounded_items, dict_argument, type_name, Bytes, Flag, IntArg, Keywords, Real, Text,
+};
 use crate::buffers::{copied, writable};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::{ctrl_c_pressed, enter, enter_detached};
@@ -33,6 +35,14 @@ pub struct PyBatch {
 
 /// Most control steps one `run` call takes.
 const MAX_RUN_STEPS: usize = 1 << 40;
+
+/// The four output buffers of a batch: observations, poses, colliding, crossings.
+type OutputBuffers<'py> = (
+    Bound<'py, PyArray2<f32>>,
+    Bound<'py, PyArray2<f32>>,
+    Bound<'py, PyArray1<bool>>,
+    Bound<'py, PyArray1<i32>>,
+);
 
 fn bad(msg: String) -> PyErr {
     invalid(msg)
@@ -254,6 +264,19 @@ impl PyBatch {
         enter(|| self.inner.with(|b| b.bytes_per_env()))
     }
 
+    /// New zeroed output buffers of the shapes and dtypes every call checks, for the caller to
+    /// hold: observations (N, observation_width) float32, poses (N, 3) float32, colliding (N,)
+    /// bool and crossings (N,) int32.
+    fn output_buffers<'py>(&self, py: Python<'py>) -> OutputBuffers<'py> {
+        let n = self.n;
+        (
+            PyArray2::zeros(py, [n, self.width()], false),
+            PyArray2::zeros(py, [n, 3], false),
+            PyArray1::zeros(py, n, false),
+            PyArray1::zeros(py, n, false),
+        )
+    }
+
     /// Steps every environment with `actions` ((N, 2) float32 wheel speeds, rad/s).
     fn step<'py>(
         &self,
@@ -274,77 +297,67 @@ impl PyBatch {
     /// Runs `steps` control steps of every environment in one call, the GIL released, each
     /// environment's wheel speeds from the built-in `controller` ('braitenberg',
     /// 'avoid-collision', 'tabular' or 'random'); see `docs/performance.md` and the stub.
-    #[pyo3(signature = (steps, controller, observations, poses, colliding, crossings, *, seeds = None,
-        max_episode_steps = IntArg::ZERO, end_at_goal = Flag::Value(false), end_at_crossing = Flag::Value(false), autoreset = Flag::Value(true), trace = None,
-        table = None, allowed_actions = None, table_index = None, epsilon = Real::Number(0.0),
-        threshold = Real::Number(80.0), max_speed = Real::Number(EPUCK_MAX_SPEED), active = None, hold_spins = Flag::Value(false),
-        subtasks = None),
+    #[pyo3(signature = (steps, controller, observations, poses, colliding, crossings, **options),
         text_signature = "($self, steps, controller, observations, poses, colliding, crossings, *, seeds=None, max_episode_steps=0, end_at_goal=False, end_at_crossing=False, autoreset=True, trace=None, table=None, allowed_actions=None, table_index=None, epsilon=0.0, threshold=80.0, max_speed=6.28, active=None, hold_spins=False, subtasks=None)")]
     fn run<'py>(
         &self,
-        py: Python<'py>,
         steps: IntArg,
         controller: Text,
         observations: &Bound<'py, PyAny>,
         poses: &Bound<'py, PyAny>,
         colliding: &Bound<'py, PyAny>,
         crossings: &Bound<'py, PyAny>,
-        seeds: Option<&Bound<'py, PyAny>>,
-        max_episode_steps: IntArg,
-        end_at_goal: Flag,
-        end_at_crossing: Flag,
-        autoreset: Flag,
-        trace: Option<&Bound<'py, PyAny>>,
-        table: Option<&Bound<'py, PyAny>>,
-        allowed_actions: Option<&Bound<'py, PyAny>>,
-        table_index: Option<&Bound<'py, PyAny>>,
-        epsilon: Real,
-        threshold: Real,
-        max_speed: Real,
-        active: Option<&Bound<'py, PyAny>>,
-        hold_spins: Flag,
-        subtasks: Option<&Bound<'py, PyAny>>,
+        options: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyDict>> {
+        let py = observations.py();
         enter(|| {
+            let kw = Keywords::new(options, "run", run::KEYWORDS)?;
+            let flag = |key: &str, default| kw.get(key, Flag::Value(default))?.value(key, "a bool");
             let n = self.n;
             let options = RunOptions {
                 steps: steps.count("steps", MAX_RUN_STEPS)?,
-                max_episode_steps: max_episode_steps.seed("max_episode_steps")?,
-                end_at_goal: end_at_goal.value("end_at_goal", "a bool")?,
-                end_at_crossing: end_at_crossing.value("end_at_crossing", "a bool")?,
-                autoreset: autoreset.value("autoreset", "a bool")?,
+                max_episode_steps: kw
+                    .get("max_episode_steps", IntArg::ZERO)?
+                    .seed("max_episode_steps")?,
+                end_at_goal: flag("end_at_goal", false)?,
+                end_at_crossing: flag("end_at_crossing", false)?,
+                autoreset: flag("autoreset", true)?,
             };
             let controller = controller.value("controller", "a str")?;
             // Checked whatever the controller, so that a wrong one is never silently ignored.
+            let threshold = kw.get("threshold", Real::Number(80.0))?;
+            let max_speed = kw.get("max_speed", Real::Number(EPUCK_MAX_SPEED))?;
             threshold.value("threshold")?;
             max_speed.value("max_speed")?;
+            let trace = kw.object("trace")?;
             let trace = trace
-                .map(|t| {
-                    t.cast::<PyDict>().map_err(|_| {
-                        invalid(format!(
-                            "expected trace to be a dict of name -> array, found a {}",
-                            type_name(t)
-                        ))
-                    })
-                })
+                .as_ref()
+                .map(|t| dict_argument(t, "trace", " of name -> array"))
                 .transpose()?;
+            let (table, allowed) = (kw.object("table")?, kw.object("allowed_actions")?);
+            let table_index = kw.object("table_index")?;
             let tabular = TabularArgs {
-                table,
-                allowed_actions,
-                table_index,
-                epsilon,
-                hold_spins,
+                table: table.as_ref(),
+                allowed_actions: allowed.as_ref(),
+                table_index: table_index.as_ref(),
+                epsilon: kw.get("epsilon", Real::Number(0.0))?,
+                hold_spins: kw.get("hold_spins", Flag::Value(false))?,
             };
             let controller = run::controller(&controller, n, threshold, max_speed, tabular)?;
-            let seeds = match seeds {
-                Some(s) => seeds_from(s, n)?,
+            let seeds = match kw.object("seeds")? {
+                Some(s) => seeds_from(&s, n)?,
                 None => (0..n as u64).collect(),
             };
+            let active = kw.object("active")?;
             let active = active
-                .map(|a| copied::<bool>(a, "active", "bool", &[n]))
+                .map(|a| copied::<bool>(&a, "active", "bool", &[n]))
                 .transpose()?;
+            let subtasks = kw.object("subtasks")?;
             let mut traces = Traces::new(trace, options.steps, n, self.width())?;
-            let mut subtask_arrays = subtasks.map(|s| SubTaskArrays::new(s, n)).transpose()?;
+            let mut subtask_arrays = subtasks
+                .as_ref()
+                .map(|s| SubTaskArrays::new(s, n))
+                .transpose()?;
             let mut states = subtask_arrays.as_ref().map(|a| a.states()).transpose()?;
             let trace = traces.slices();
             let envs = RunEnvs {
@@ -407,43 +420,21 @@ impl PyBatch {
     /// `lower_training`): `explore` ((steps, N) float64) sets its length; `q` and `visits`
     /// ((4, 12288, 12)) and `world_of_env` are updated in place, the buffers hold the last step.
     /// Returns the round's counts as a dict. The GIL is released while it runs.
-    #[pyo3(signature = (observations, poses, colliding, crossings, *, worlds, world_of_env, role, starts, explore, random_action, q, visits, symmetry, allowed, wheel_speeds, settings))]
+    #[pyo3(signature = (observations, poses, colliding, crossings, **round),
+        text_signature = "($self, observations, poses, colliding, crossings, *, worlds, world_of_env, role, starts, explore, random_action, q, visits, symmetry, allowed, wheel_speeds, settings)")]
     fn train_lower_round<'py>(
         &self,
-        py: Python<'py>,
         observations: &Bound<'py, PyAny>,
         poses: &Bound<'py, PyAny>,
         colliding: &Bound<'py, PyAny>,
         crossings: &Bound<'py, PyAny>,
-        worlds: &Bound<'py, PyAny>,
-        world_of_env: &Bound<'py, PyAny>,
-        role: &Bound<'py, PyAny>,
-        starts: &Bound<'py, PyAny>,
-        explore: &Bound<'py, PyAny>,
-        random_action: &Bound<'py, PyAny>,
-        q: &Bound<'py, PyAny>,
-        visits: &Bound<'py, PyAny>,
-        symmetry: &Bound<'py, PyAny>,
-        allowed: &Bound<'py, PyAny>,
-        wheel_speeds: &Bound<'py, PyAny>,
-        settings: &Bound<'py, PyAny>,
+        round: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyDict>> {
+        let py = observations.py();
         enter(|| {
-            let settings = lower::round_settings(settings)?;
-            let mut arrays = lower::RoundArrays::new(
-                self.n,
-                worlds,
-                world_of_env,
-                role,
-                starts,
-                explore,
-                random_action,
-                q,
-                visits,
-                symmetry,
-                allowed,
-                wheel_speeds,
-            )?;
+            let round = Keywords::new(round, "train_lower_round", lower::KEYWORDS)?;
+            let settings = lower::round_settings(&round.required("settings")?)?;
+            let mut arrays = lower::RoundArrays::new(self.n, &round)?;
             let buffers = [observations, poses, colliding, crossings];
             let round = arrays.round(settings);
             let counts =

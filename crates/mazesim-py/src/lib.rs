@@ -1,9 +1,6 @@
 //! The `mazesim._core` extension module: a thin pyo3 layer over `mazesim-core`
 //! (type conversion, numpy buffers, error mapping). No simulation logic lives here.
 
-// Python functions take their keyword arguments as Rust parameters; many is normal here.
-#![allow(clippy::too_many_arguments)]
-
 mod args;
 mod batch;
 mod buffers;
@@ -20,9 +17,10 @@ mod world;
 
 use pyo3::prelude::*;
 
-use args::{bounded_items, Flag, Given, IntArg, Real};
+use args::{bounded_items, Flag, Given, IntArg, Keywords, Real};
 use errors::IntoPy;
 use guard::enter;
+use pyo3::types::PyDict;
 
 /// Names of the worlds embedded in the package.
 #[pyfunction]
@@ -45,29 +43,29 @@ fn sharp_volts_to_cm(volts: Real) -> PyResult<f64> {
 
 /// A generated maze world (seeded; see mazesim-core's generator).
 #[pyfunction]
-#[pyo3(signature = (width = IntArg::Int(5), height = IntArg::Int(5), seed = IntArg::ZERO, cell_size = Real::Number(0.25), wall_thickness = Real::Number(0.01), loops = Real::Number(0.0), checkpoints = Flag::Value(true), floor_reflectance = Real::Number(0.36), junction = Flag::Value(true)),
-    text_signature = "(width=5, height=5, seed=0, cell_size=0.25, wall_thickness=0.01, loops=0.0, checkpoints=True, floor_reflectance=0.36, junction=True)")]
+#[pyo3(signature = (width = IntArg::Int(5), height = IntArg::Int(5), seed = IntArg::ZERO, **layout),
+    text_signature = "(width=5, height=5, seed=0, *, cell_size=0.25, wall_thickness=0.01, loops=0.0, checkpoints=True, floor_reflectance=0.36, junction=True)")]
 fn generate_maze(
     width: IntArg,
     height: IntArg,
     seed: IntArg,
-    cell_size: Real,
-    wall_thickness: Real,
-    loops: Real,
-    checkpoints: Flag,
-    floor_reflectance: Real,
-    junction: Flag,
+    layout: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<world::PyWorld> {
     enter(|| {
+        const LAYOUT: &str =
+            "cell_size wall_thickness loops checkpoints floor_reflectance junction";
+        let kw = Keywords::new(layout, "generate_maze", LAYOUT)?;
+        let real = |key: &str, default: f64| kw.get(key, Real::Number(default))?.value(key);
+        let flag = |key: &str| kw.get(key, Flag::Value(true))?.value(key, "a bool");
         let params = mazesim_core::generator::MazeParams {
             width: width.count("width", usize::MAX)?,
             height: height.count("height", usize::MAX)?,
-            cell_size: cell_size.value("cell_size")?,
-            wall_thickness: wall_thickness.value("wall_thickness")?,
-            loops: loops.value("loops")?,
-            checkpoints: checkpoints.value("checkpoints", "a bool")?,
-            junction: junction.value("junction", "a bool")?,
-            floor_reflectance: floor_reflectance.value("floor_reflectance")?,
+            cell_size: real("cell_size", 0.25)?,
+            wall_thickness: real("wall_thickness", 0.01)?,
+            loops: real("loops", 0.0)?,
+            checkpoints: flag("checkpoints")?,
+            junction: flag("junction")?,
+            floor_reflectance: real("floor_reflectance", 0.36)?,
         };
         let seed = seed.seed("seed")?;
         let w = mazesim_core::generator::generate(&params, seed).py()?;

@@ -17,34 +17,22 @@ use numpy::{PyReadonlyArrayDyn, PyReadwriteArrayDyn};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::{bounded_items, type_name, Real};
+use crate::args::{bounded_items, dict_argument, type_name, unknown_key, Keywords, Real};
 use crate::buffers::{copied, readable, writable};
 use crate::errors::{invalid, IntoPy};
 use crate::world::world_argument;
 
+/// The keywords of `train_lower_round` after its four buffers: the round's arrays, then its
+/// settings.
+pub const KEYWORDS: &str = "worlds world_of_env role starts explore random_action q visits \
+    symmetry allowed wheel_speeds settings";
+
 /// The keys of a round's `settings` dict (`phases` and `blind` may be left out: heading phases,
 /// the table in the blind state).
-const SETTINGS: [&str; 19] = [
-    "gamma",
-    "epsilon",
-    "decision_steps",
-    "corridor_episode_steps",
-    "rate_initial",
-    "rate_floor",
-    "rate_power",
-    "progress_reward",
-    "collision_penalty",
-    "corridor_step_reward",
-    "door_step_reward",
-    "heading_reward",
-    "door_success_reward",
-    "door_failure_reward",
-    "door_path_exit",
-    "success_past_centre",
-    "success_across",
-    "phases",
-    "blind",
-];
+const SETTINGS: &str = "gamma epsilon decision_steps corridor_episode_steps rate_initial \
+    rate_floor rate_power progress_reward collision_penalty corridor_step_reward door_step_reward \
+    heading_reward door_success_reward door_failure_reward door_path_exit success_past_centre \
+    success_across phases blind";
 
 /// The names a round's `settings["phases"]` and `settings["blind"]` may take.
 const PHASES: [(&str, Phases); 2] = [
@@ -85,15 +73,6 @@ fn named<T: Copy>(
         })
 }
 
-fn as_dict<'a, 'py>(obj: &'a Bound<'py, PyAny>, name: &str) -> PyResult<&'a Bound<'py, PyDict>> {
-    obj.cast::<PyDict>().map_err(|_| {
-        invalid(format!(
-            "expected {name} to be a dict, found a {}",
-            type_name(obj)
-        ))
-    })
-}
-
 fn entry<'py>(dict: &Bound<'py, PyDict>, name: &str, key: &str) -> PyResult<Bound<'py, PyAny>> {
     dict.get_item(key)?.ok_or_else(|| {
         invalid(format!(
@@ -130,14 +109,11 @@ fn steps_setting(dict: &Bound<'_, PyDict>, key: &str) -> PyResult<u64> {
 
 /// Reads and checks a round's settings.
 pub fn round_settings(settings: &Bound<'_, PyAny>) -> PyResult<RoundSettings> {
-    let dict = as_dict(settings, "settings")?;
-    for key in dict.keys() {
-        let key: String = key.extract().unwrap_or_default();
-        if !SETTINGS.contains(&key.as_str()) {
-            return Err(invalid(format!(
-                "expected settings to hold only {SETTINGS:?}, found {key:?}"
-            )));
-        }
+    let dict = dict_argument(settings, "settings", "")?;
+    if let Some(key) = unknown_key(dict, SETTINGS)? {
+        return Err(invalid(format!(
+            "expected settings to hold only {SETTINGS:?}, found {key:?}"
+        )));
     }
     let gamma = number(dict, "gamma")?;
     let epsilon = number(dict, "epsilon")?;
@@ -215,26 +191,23 @@ fn indices<const K: usize>(values: Vec<i64>, name: &str, below: usize) -> PyResu
 impl<'py> RoundArrays<'py> {
     /// Borrows and checks the arrays of a round of `n` robots (its tables' rows as many as `q`
     /// has: the round checks them against its phases).
-    #[allow(clippy::too_many_arguments)]
-    pub fn new(
-        n: usize,
-        worlds: &Bound<'py, PyAny>,
-        world_of_env: &Bound<'py, PyAny>,
-        role: &Bound<'py, PyAny>,
-        starts: &Bound<'py, PyAny>,
-        explore: &Bound<'py, PyAny>,
-        random_action: &Bound<'py, PyAny>,
-        q: &Bound<'py, PyAny>,
-        visits: &Bound<'py, PyAny>,
-        symmetry: &Bound<'py, PyAny>,
-        allowed: &Bound<'py, PyAny>,
-        wheel_speeds: &Bound<'py, PyAny>,
-    ) -> PyResult<Self> {
+    pub fn new(n: usize, round: &Keywords<'py>) -> PyResult<Self> {
+        let worlds = &round.required("worlds")?;
+        let world_of_env = &round.required("world_of_env")?;
+        let role = &round.required("role")?;
+        let starts = &round.required("starts")?;
+        let explore = &round.required("explore")?;
+        let random_action = &round.required("random_action")?;
+        let q = &round.required("q")?;
+        let visits = &round.required("visits")?;
+        let symmetry = &round.required("symmetry")?;
+        let allowed = &round.required("allowed")?;
+        let wheel_speeds = &round.required("wheel_speeds")?;
         let worlds = bounded_items(worlds, "worlds", "mazesim.World", MAX_ENVS)?
             .iter()
             .map(|w| world_argument(w, "each of worlds"))
             .collect::<PyResult<Vec<_>>>()?;
-        let starts = as_dict(starts, "starts")?;
+        let starts = dict_argument(starts, "starts", "")?;
         let start_world = entry(starts, "starts", "world")?;
         let per_env = match shape_of(&start_world)[..] {
             [rows, k] if rows == n && k > 0 => k,
@@ -262,7 +235,7 @@ impl<'py> RoundArrays<'py> {
             _ => Phases::Heading.rows(),
         };
         let table_shape = [NUM_SUBTASKS, rows, NUM_ACTIONS];
-        let symmetry = as_dict(symmetry, "symmetry")?;
+        let symmetry = dict_argument(symmetry, "symmetry", "")?;
         let flags = copied::<bool>(allowed, "allowed", "bool", &[NUM_SUBTASKS, NUM_ACTIONS])?;
         let mut allowed = [[false; NUM_ACTIONS]; NUM_SUBTASKS];
         for (row, chunk) in allowed.iter_mut().zip(flags.chunks_exact(NUM_ACTIONS)) {
@@ -377,26 +350,40 @@ pub fn counts_dict<'py>(py: Python<'py>, counts: &RoundCounts) -> PyResult<Bound
     Ok(dict)
 }
 
+/// The learning rate `(initial, floor, power)` of `q_batch_update`.
+fn learning_rate(rate: &Bound<'_, PyAny>) -> PyResult<LearningRate> {
+    let items = bounded_items(rate, "rate", "real numbers (initial, floor, power)", 3)?;
+    let [initial, floor, power] = &items[..] else {
+        return Err(invalid(format!(
+            "expected rate to be (initial, floor, power), found {} items",
+            items.len()
+        )));
+    };
+    let value = |item: &Bound<'_, PyAny>, name: &str| item.extract::<Real>()?.value(name);
+    LearningRate::new(
+        value(initial, "rate's initial")?,
+        value(floor, "rate's floor")?,
+        value(power, "rate's power")?,
+    )
+    .py()
+}
+
 /// Applies N Q-learning updates to one table in place (`mazesim.learn.qlearning.batch_update`):
 /// the targets read the table as it was before the call, then the updates apply one after the
 /// other in the given order, each at its pair's learning rate
-/// `max(floor, initial * (visits + 1) ** -power)`.
+/// `max(floor, initial * (visits + 1) ** -power)`. `transitions` holds the N `states`,
+/// `actions`, `rewards`, `next_states` and `bootstrap` factors; `rate` is
+/// `(initial, floor, power)`.
 #[pyfunction]
-#[pyo3(signature = (q, visits, states, actions, rewards, next_states, bootstrap, allowed, initial, floor, power))]
+#[pyo3(signature = (q, visits, transitions, allowed, rate))]
 pub fn q_batch_update(
-    py: Python<'_>,
     q: &Bound<'_, PyAny>,
     visits: &Bound<'_, PyAny>,
-    states: &Bound<'_, PyAny>,
-    actions: &Bound<'_, PyAny>,
-    rewards: &Bound<'_, PyAny>,
-    next_states: &Bound<'_, PyAny>,
-    bootstrap: &Bound<'_, PyAny>,
+    transitions: &Bound<'_, PyAny>,
     allowed: &Bound<'_, PyAny>,
-    initial: Real,
-    floor: Real,
-    power: Real,
+    rate: &Bound<'_, PyAny>,
 ) -> PyResult<()> {
+    let py = q.py();
     crate::guard::enter(|| {
         let shape = shape_of(q);
         let [rows, columns] = shape[..] else {
@@ -404,12 +391,11 @@ pub fn q_batch_update(
                 "expected q to be a (states, actions) float64 array, found shape {shape:?}"
             )));
         };
-        let rate = LearningRate::new(
-            initial.value("initial")?,
-            floor.value("floor")?,
-            power.value("power")?,
-        )
-        .py()?;
+        let rate = learning_rate(rate)?;
+        let transitions = dict_argument(transitions, "transitions", "")?;
+        let item = |key: &str| entry(transitions, "transitions", key);
+        let (states, actions, rewards) = (&item("states")?, &item("actions")?, &item("rewards")?);
+        let (next_states, bootstrap) = (&item("next_states")?, &item("bootstrap")?);
         let m = shape_of(states).first().copied().unwrap_or(0);
         let states = copied::<i64>(states, "states", "int64", &[m])?;
         let actions = copied::<i64>(actions, "actions", "int64", &[m])?;

@@ -10,7 +10,7 @@ use numpy::PyArray2;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString, PyTuple};
 
-use crate::args::{bounded_items, type_name, IntArg, Label, Real, SourceName, Text};
+use crate::args::{bounded_items, type_name, IntArg, Keywords, Label, Real, SourceName, Text};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::enter;
 use crate::world::rows_to_array;
@@ -113,6 +113,10 @@ impl<'a, 'py> FromPyObject<'a, 'py> for RobotArg {
 }
 
 /// The left and right gains of a `motor_gains` argument: a sequence of two real numbers.
+/// The keywords of `RobotProfile.perturbed`.
+const PERTURBATIONS: &str = "wheel_radius_scale axle_length_scale motor_gains noise_scale \
+    ir_angle_error ir_offset_error wall_reflectance ground_gain slip_on_contact";
+
 fn gains_argument(gains: &Bound<'_, PyAny>) -> PyResult<[f64; 2]> {
     let refuse = |found: String| {
         invalid(format!(
@@ -179,35 +183,24 @@ impl PyRobotProfile {
 
     /// A copy of the profile as a real robot may differ from it, named `"<name>~perturbed"`:
     /// see `docs/perturbations.md`. Neutral arguments simulate exactly as this profile.
-    #[pyo3(signature = (*, wheel_radius_scale = Real::Number(1.0), axle_length_scale = Real::Number(1.0),
-        motor_gains = None, noise_scale = Real::Number(1.0), ir_angle_error = Real::Number(0.0),
-        ir_offset_error = Real::Number(0.0), wall_reflectance = Real::Number(1.0),
-        ground_gain = Real::Number(1.0), slip_on_contact = Real::Number(0.0)),
+    #[pyo3(signature = (**changes),
         text_signature = "($self, *, wheel_radius_scale=1.0, axle_length_scale=1.0, motor_gains=(1.0, 1.0), noise_scale=1.0, ir_angle_error=0.0, ir_offset_error=0.0, wall_reflectance=1.0, ground_gain=1.0, slip_on_contact=0.0)")]
-    #[allow(clippy::too_many_arguments)]
-    fn perturbed(
-        &self,
-        wheel_radius_scale: Real,
-        axle_length_scale: Real,
-        motor_gains: Option<&Bound<'_, PyAny>>,
-        noise_scale: Real,
-        ir_angle_error: Real,
-        ir_offset_error: Real,
-        wall_reflectance: Real,
-        ground_gain: Real,
-        slip_on_contact: Real,
-    ) -> PyResult<Self> {
+    fn perturbed(&self, changes: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
         enter(|| {
+            let kw = Keywords::new(changes, "perturbed", PERTURBATIONS)?;
+            let real = |key: &str, neutral: f64| kw.get(key, Real::Number(neutral))?.value(key);
             let perturbation = Perturbation {
-                wheel_radius_scale: wheel_radius_scale.value("wheel_radius_scale")?,
-                axle_length_scale: axle_length_scale.value("axle_length_scale")?,
-                motor_gains: motor_gains.map_or(Ok([1.0, 1.0]), gains_argument)?,
-                noise_scale: noise_scale.value("noise_scale")?,
-                ir_angle_error: ir_angle_error.value("ir_angle_error")?,
-                ir_offset_error: ir_offset_error.value("ir_offset_error")?,
-                wall_reflectance: wall_reflectance.value("wall_reflectance")?,
-                ground_gain: ground_gain.value("ground_gain")?,
-                slip_on_contact: slip_on_contact.value("slip_on_contact")?,
+                wheel_radius_scale: real("wheel_radius_scale", 1.0)?,
+                axle_length_scale: real("axle_length_scale", 1.0)?,
+                motor_gains: kw
+                    .object("motor_gains")?
+                    .map_or(Ok([1.0, 1.0]), |g| gains_argument(&g))?,
+                noise_scale: real("noise_scale", 1.0)?,
+                ir_angle_error: real("ir_angle_error", 0.0)?,
+                ir_offset_error: real("ir_offset_error", 0.0)?,
+                wall_reflectance: real("wall_reflectance", 1.0)?,
+                ground_gain: real("ground_gain", 1.0)?,
+                slip_on_contact: real("slip_on_contact", 0.0)?,
             };
             Ok(Self {
                 inner: Arc::new(self.inner.perturbed(&perturbation).py()?),

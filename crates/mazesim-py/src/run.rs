@@ -15,6 +15,10 @@ use crate::guard::enter;
 /// The names `run` accepts for its controller.
 const CONTROLLERS: &str = "'braitenberg', 'avoid-collision', 'tabular' or 'random'";
 
+/// The keywords `run` takes after its six positional arguments.
+pub const KEYWORDS: &str = "seeds max_episode_steps end_at_goal end_at_crossing autoreset trace \
+    table allowed_actions table_index epsilon threshold max_speed active hold_spins subtasks";
+
 /// The keys of `run`'s `trace` dict.
 const TRACE_KEYS: [&str; 7] = [
     "observations",

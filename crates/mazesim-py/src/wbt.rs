@@ -13,7 +13,7 @@ use numpy::{PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString};
 
-use crate::args::{Label, PathArg, SourceName, Text};
+use crate::args::{dict_argument, Label, PathArg, SourceName, Text};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::{enter, enter_detached};
 use crate::world::PyWorld;
@@ -87,12 +87,11 @@ fn grey_images(images: Option<&Bound<'_, PyAny>>) -> PyResult<BTreeMap<String, G
     };
     let images = match images {
         None => None,
-        Some(obj) => Some(obj.cast::<PyDict>().map_err(|_| {
-            invalid(format!(
-                "expected floor_images to be a dict of file name -> grey-level array, found a {}",
-                type_name(obj)
-            ))
-        })?),
+        Some(obj) => Some(dict_argument(
+            obj,
+            "floor_images",
+            " of file name -> grey-level array",
+        )?),
     };
     let mut out = BTreeMap::new();
     for (key, value) in images.into_iter().flat_map(|d| d.iter()) {

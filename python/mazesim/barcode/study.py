@@ -297,10 +297,7 @@ def run_setting(
         noise=True,
         control_step_ms=step_ms,
     )
-    observations = np.zeros((envs, batch.observation_width), dtype=np.float32)
-    poses = np.zeros((envs, 3), dtype=np.float32)
-    colliding = np.zeros(envs, dtype=bool)
-    crossings = np.zeros(envs, dtype=np.int32)
+    observations, poses, colliding, crossings = batch.output_buffers()
     batch.observe(observations, poses, colliding, crossings)
     distance_width = batch.distance_width
     ground_column = distance_width + barcode_sensor_index(robot)

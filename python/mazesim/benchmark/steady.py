@@ -234,10 +234,7 @@ class SteadyState:
             threads=settings.threads,
         )
         del worlds
-        self.observations = np.zeros((n, self.batch.observation_width), np.float32)
-        self.poses = np.zeros((n, 3), np.float32)
-        self.colliding = np.zeros(n, np.bool_)
-        self.crossings = np.zeros(n, np.int32)
+        self.observations, self.poses, self.colliding, self.crossings = self.batch.output_buffers()
         self.actions = np.zeros((n, 2), np.float32)
         # Env i starts i * limit // n steps into its first episode, so that resets spread
         # evenly; the envs of offset v, whose episodes all end at the same steps, are a slice of

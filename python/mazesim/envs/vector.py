@@ -171,7 +171,7 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         n = self.num_envs
         # The batch first: it checks num_envs against the memory it needs before the spaces
         # below allocate per-environment bounds.
-        self._batch: BatchSimulator | None = BatchSimulator(
+        batch = BatchSimulator(
             first,
             n,
             robot=self.options.robot.name,
@@ -180,12 +180,10 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
             control_step_ms=self.options.control_step_ms,
             threads=threads,
         )
+        self._batch: BatchSimulator | None = batch
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self.action_space = batch_space(self.single_action_space, self.num_envs)
-        self._sensors = np.zeros((n, self._layout.sensor_width), dtype=np.float32)
-        self._poses = np.zeros((n, 3), dtype=np.float32)
-        self._colliding = np.zeros(n, dtype=bool)
-        self._crossings = np.zeros(n, dtype=np.int32)
+        self._sensors, self._poses, self._colliding, self._crossings = batch.output_buffers()
         self._worlds: list[World] = [first] * n
         self._renderers: list[TopDownRenderer | None] = [None] * n
         self._drawn: list[StartAndGoal | None] = [None] * n

@@ -292,10 +292,11 @@ def evaluate(
     :class:`~mazesim.learn.policy.HierarchicalPolicy` with events from the ground truth runs in
     the core's multi-step call from one checkpoint event to the next, door sub-tasks included
     (:func:`mazesim.learn.core_episodes.run_navigator_episodes`); the episodes to record (paths,
-    trace, replay) then run once more, one step at a time. Any other navigator (a flat one, one
-    that wraps ``act``), robots of different motor limits and decoder events run one step at a
-    time. The results are the same either way; the multi-step call is the faster (see
-    ``docs/performance.md``).
+    trace, replay) then run once more, one step at a time, unless they are all the episodes (one
+    world, as the demo): then every episode runs once, one step at a time. Any other navigator
+    (a flat one, one that wraps ``act``), robots of different motor limits and decoder events
+    run one step at a time. The results are the same either way; the multi-step call is the
+    faster (see ``docs/performance.md``).
 
     Args:
         make_navigator: Builds the navigator of the robots from their world numbers (a
@@ -342,7 +343,9 @@ def evaluate(
             progress("evaluate", min(finished[0], total), total)
 
     shortest = [shortest_path_steps(world) for world in worlds]
-    if multi_step and stretches_apply(nav, navigator):
+    # When every episode is to be recorded (the demo's one), the loop below runs each once.
+    records_all = record is not None and len(worlds) == 1 and record.episodes >= episodes_per_world
+    if multi_step and not records_all and stretches_apply(nav, navigator):
         results = run_navigator_episodes(nav, navigator, episodes_per_world, on_end)
         options: dict[str, Any] = {"seed": seed, "events": events, "jitter": jitter}
         options.update(max_steps=max_steps, threads=threads, controller=controller, robot=robot)

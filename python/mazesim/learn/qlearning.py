@@ -212,16 +212,11 @@ def batch_update(
         if allowed is None
         else np.ascontiguousarray(allowed, dtype=bool)
     )
-    q_batch_update(
-        q,
-        visits,
-        np.ascontiguousarray(state_array),
-        np.ascontiguousarray(action_array),
-        reward_array,
-        following,
-        factors,
-        mask,
-        rate.initial,
-        rate.floor,
-        rate.power,
-    )
+    transitions = {
+        "states": np.ascontiguousarray(state_array),
+        "actions": np.ascontiguousarray(action_array),
+        "rewards": reward_array,
+        "next_states": following,
+        "bootstrap": factors,
+    }
+    q_batch_update(q, visits, transitions, mask, (rate.initial, rate.floor, rate.power))

@@ -17,7 +17,7 @@ import warnings
 from types import FrameType, SimpleNamespace
 from typing import Any
 
-from mazesim.errors import MazesimError, MissingDependencyError
+from mazesim.errors import InvalidArgumentError, MazesimError, MissingDependencyError
 
 #: Seconds after which a node says it is still waiting for the bridge.
 WAITING_NOTICE_S = 5.0
@@ -27,8 +27,13 @@ __all__ = [
     "install_shutdown_handlers",
     "publisher",
     "require_ros",
+    "start_node",
+    "subscriber_count",
     "wait_for_master",
 ]
+
+#: Seconds a node waits for the ROS master before giving up.
+MASTER_TIMEOUT_S = 10.0
 
 #: Debian's packages that give ``rospy``, the message types and the command-line tools.
 DEBIAN_PACKAGES = (
@@ -169,6 +174,47 @@ def install_shutdown_handlers(stop: threading.Event) -> None:
 
     signal.signal(signal.SIGINT, request_stop)
     signal.signal(signal.SIGTERM, request_stop)
+
+
+def start_node(
+    program: str, node_name: str, remappings: list[str], time_source: bool = False
+) -> tuple[Any, threading.Event]:
+    """Starts this process's node once the master answers: ``node_name`` (unless a ``__name:=``
+    remapping overrides it) with ``program`` and ``remappings`` as its arguments, rospy's signal
+    handling off and SIGINT and SIGTERM setting the returned event instead
+    (:func:`install_shutdown_handlers`). A ``time_source`` (the bridge) first sets
+    ``/use_sim_time`` unless the launch decided otherwise, so nodes started after it run on the
+    simulated time.
+
+    Returns:
+        The namespace of :func:`require_ros` and the stop event.
+
+    Raises:
+        MazesimError: No master answered within :data:`MASTER_TIMEOUT_S` seconds.
+    """
+    ros = require_ros()
+    wait_for_master(ros, MASTER_TIMEOUT_S)
+    if time_source and not ros.rospy.has_param("/use_sim_time"):
+        ros.rospy.set_param("/use_sim_time", True)
+    ros.rospy.init_node(node_name, argv=[program, *remappings], disable_signals=True)
+    stop = threading.Event()
+    install_shutdown_handlers(stop)
+    return ros, stop
+
+
+def subscriber_count(rospy: Any, given: Any) -> int:
+    """How many subscribers of its output a node waits for: ``given`` (from the command line),
+    else its private parameter ``wait_for_subscribers`` (default 1).
+
+    Raises:
+        InvalidArgumentError: Not a whole number >= 1.
+    """
+    count = rospy.get_param("~wait_for_subscribers", 1) if given is None else given
+    if isinstance(count, bool) or not isinstance(count, int) or count < 1:
+        raise InvalidArgumentError(
+            f"expected parameter wait_for_subscribers to be a whole number >= 1; found {count!r}"
+        )
+    return count
 
 
 def publisher(

@@ -14,24 +14,15 @@ the bridge; 2 when a recorder must not miss the first commands either).
 from __future__ import annotations
 
 import math
-import threading
 from typing import Any
 
 from mazesim.controllers import AvoidCollision
 from mazesim.errors import InvalidArgumentError
 from mazesim.ros import topics
-from mazesim.ros._ros import (
-    install_shutdown_handlers,
-    publisher,
-    require_ros,
-    wait_for_master,
-    wait_for_subscribers,
-)
+from mazesim.ros._ros import publisher, start_node, subscriber_count, wait_for_subscribers
 
 __all__ = ["run_avoid_collision"]
 
-#: Seconds a node waits for the ROS master before giving up.
-MASTER_TIMEOUT_S = 10.0
 #: The names of the values the controller reads, first on ``sensors``.
 PS_NAMES = [f"ps{index}" for index in range(8)]
 
@@ -61,27 +52,14 @@ def run_avoid_collision(
     Returns:
         The exit code, 0 once the node has stopped.
     """
-    ros = require_ros()
+    ros, stop = start_node("mazesim-ros-avoid-collision", node_name, remappings)
     rospy = ros.rospy
-    wait_for_master(ros, MASTER_TIMEOUT_S)
-    rospy.init_node(
-        node_name, argv=["mazesim-ros-avoid-collision", *remappings], disable_signals=True
-    )
-    stop = threading.Event()
-    install_shutdown_handlers(stop)
     try:
         threshold = _positive(rospy, "threshold", options.get("threshold"), 80.0)
         max_speed = _positive(
             rospy, "max_speed", options.get("max_speed"), AvoidCollision.MAX_SPEED
         )
-        subscribers = options.get("wait_for_subscribers")
-        if subscribers is None:
-            subscribers = rospy.get_param("~wait_for_subscribers", 1)
-        if not isinstance(subscribers, int) or subscribers < 1:
-            raise InvalidArgumentError(
-                f"expected parameter wait_for_subscribers to be a whole number >= 1; "
-                f"found {subscribers!r}"
-            )
+        subscribers = subscriber_count(rospy, options.get("wait_for_subscribers"))
     except InvalidArgumentError as error:
         rospy.signal_shutdown(f"bad parameters: {error}")
         raise

@@ -43,20 +43,13 @@ from mazesim._core import Simulator
 from mazesim.actions import wheel_speeds
 from mazesim.errors import InvalidArgumentError, MazesimError
 from mazesim.ros import standard, topics
-from mazesim.ros._ros import (
-    install_shutdown_handlers,
-    publisher,
-    require_ros,
-    wait_for_master,
-)
+from mazesim.ros._ros import publisher, start_node
 from mazesim.ros.standard import StandardPublishers
 
 __all__ = ["MODES", "Bridge", "BridgeSettings", "run_bridge"]
 
 #: The bridge's modes.
 MODES = ("lockstep", "realtime")
-#: Seconds a node waits for the ROS master before giving up.
-MASTER_TIMEOUT_S = 10.0
 #: Seconds without a command after which a lockstep bridge says it is waiting for one.
 IDLE_WARNING_S = 5.0
 #: How many control steps a real-time bridge may fall behind before it stops catching up.
@@ -325,16 +318,8 @@ def run_bridge(
     Returns:
         The exit code, 0 once the bridge has stopped.
     """
-    ros = require_ros()
+    ros, stop = start_node("mazesim-ros-bridge", node_name, remappings, time_source=True)
     rospy = ros.rospy
-    wait_for_master(ros, MASTER_TIMEOUT_S)
-    # The bridge is the time source: unless the launch decided otherwise, nodes started after it
-    # run on the simulated time.
-    if not rospy.has_param("/use_sim_time"):
-        rospy.set_param("/use_sim_time", True)
-    rospy.init_node(node_name, argv=["mazesim-ros-bridge", *remappings], disable_signals=True)
-    stop = threading.Event()
-    install_shutdown_handlers(stop)
     try:
         settings = resolve_settings(rospy, options)
         for field in fields(BridgeSettings):

@@ -41,18 +41,10 @@ import numpy as np
 
 from mazesim.errors import InvalidArgumentError, MazesimError
 from mazesim.ros import topics
-from mazesim.ros._ros import (
-    install_shutdown_handlers,
-    publisher,
-    require_ros,
-    wait_for_master,
-    wait_for_subscribers,
-)
+from mazesim.ros._ros import publisher, start_node, subscriber_count, wait_for_subscribers
 
 __all__ = ["load_policy", "run_perform_learning"]
 
-#: Seconds a node waits for the ROS master before giving up.
-MASTER_TIMEOUT_S = 10.0
 #: Seconds the node waits for the bridge's ``control_step_ms`` once the bridge listens.
 CONTROL_STEP_TIMEOUT_S = 10.0
 
@@ -125,14 +117,8 @@ def run_perform_learning(
     Returns:
         The exit code, 0 once the node has stopped.
     """
-    ros = require_ros()
+    ros, stop = start_node("mazesim-ros-perform-learning", node_name, remappings)
     rospy = ros.rospy
-    wait_for_master(ros, MASTER_TIMEOUT_S)
-    rospy.init_node(
-        node_name, argv=["mazesim-ros-perform-learning", *remappings], disable_signals=True
-    )
-    stop = threading.Event()
-    install_shutdown_handlers(stop)
     try:
         policy_path = options.get("policy")
         if policy_path is None:
@@ -141,14 +127,7 @@ def run_perform_learning(
         if step_option is None:
             step_option = rospy.get_param("~control_step_ms", 0.0)
         control_step_ms = control_step_value("control_step_ms", step_option, allow_zero=True)
-        subscribers = options.get("wait_for_subscribers")
-        if subscribers is None:
-            subscribers = rospy.get_param("~wait_for_subscribers", 1)
-        if isinstance(subscribers, bool) or not isinstance(subscribers, int) or subscribers < 1:
-            raise InvalidArgumentError(
-                f"expected parameter wait_for_subscribers to be a whole number >= 1; "
-                f"found {subscribers!r}"
-            )
+        subscribers = subscriber_count(rospy, options.get("wait_for_subscribers"))
         policy = load_policy(policy_path or None)
     except MazesimError as error:
         rospy.signal_shutdown(f"bad parameters: {error}")
