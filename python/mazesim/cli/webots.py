@@ -262,10 +262,17 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
     import mazesim
     from mazesim.plotting import save_trajectory_png
     from mazesim.webots.keyboard import read_keys
+    from mazesim.webots.requirements import prepare_controller
     from mazesim.webots.runner import controller_file, run_controller
 
-    controller = os.path.splitext(os.path.basename(controller_file(args.controller)))[0]
+    file = controller_file(args.controller)
+    controller = os.path.splitext(os.path.basename(file))[0]
     world, report, scene = _load_world(args.world, args.strict, controller)
+    prepared = prepare_controller(file)
+    for note in prepared.notes:
+        print(f"mazesim: {note}", file=sys.stderr)
+    for missing in prepared.missing:
+        print(f"mazesim: missing: {missing}", file=sys.stderr)
     keys = read_keys(args.keys) if args.keys else None
     out_dir = os.path.abspath(args.out)
     refuse_overwriting_inputs(
@@ -295,6 +302,7 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
             report=report,
             keys=keys,
             scene=scene,
+            prepared=prepared,
         )
         if result.reached_end:
             steps.finish()
@@ -319,6 +327,7 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
         "wall_clock_seconds": wall_clock,
         "real_time_factor": result.simulated_seconds / wall_clock if wall_clock > 0 else None,
         "mazesim_version": mazesim.__version__,
+        "missing_features": list(prepared.missing),
     }
     if report is not None and "import_summary" in report:
         summary["import"] = {

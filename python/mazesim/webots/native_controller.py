@@ -1,0 +1,247 @@
+"""Webots controllers written in C, built with the system's compiler and driven in lockstep.
+
+:func:`build` compiles a controller folder's ``.c`` files (as Webots' default Makefile does)
+with mazesim's controller library (``capi/``: Webots' C API headers and their implementation,
+written for mazesim) into a program kept in the build cache (``$XDG_CACHE_HOME/mazesim/
+controllers``, by default ``~/.cache/mazesim/controllers``; ``MAZESIM_CACHE`` overrides it), so
+a second run of the same sources starts at once. A controller that calls a Webots function the
+library does not implement does not link; the build then names those functions as missing
+Webots features instead of failing. :func:`drive` runs the program as a child process and
+serves it over :mod:`mazesim.webots.native_link`.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import re
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from mazesim.errors import ControllerBuildError, MissingDependencyError
+from mazesim.webots import native_link
+from mazesim.webots.termination import GRACE_SECONDS
+
+__all__ = ["CAPI", "Build", "build", "cache_folder", "drive"]
+
+#: mazesim's controller library: ``include/webots/*.h`` and ``src/*.c``.
+CAPI = Path(__file__).with_name("capi")
+#: Seconds a build may take.
+BUILD_TIMEOUT_S = 300
+#: The compiler's options (besides include folders and files).
+FLAGS = ("-O2", "-w")
+#: Exit status of a controller killed by a signal, or that broke the link.
+EXIT_CRASHED = 1
+
+_UNDEFINED = re.compile(r"undefined reference to [`'‘](wb_\w+)['’]")
+_NO_HEADER = re.compile(r"fatal error: (webots/[\w/.]+): No such file or directory")
+
+
+@dataclass
+class Build:
+    """A C controller's build.
+
+    Attributes:
+        program: The built program, or None when it could not be linked.
+        missing: Webots API functions the controller calls that mazesim does not implement.
+        headers: Webots API headers the controller includes that mazesim does not provide.
+        note: What the build did, for the run's log (compiled, or taken from the cache).
+    """
+
+    program: str | None
+    missing: list[str] = field(default_factory=list)
+    headers: list[str] = field(default_factory=list)
+    note: str = ""
+
+
+def cache_folder() -> Path:
+    """The folder of built controllers: ``$MAZESIM_CACHE/controllers`` if set, else
+    ``$XDG_CACHE_HOME/mazesim/controllers``, else ``~/.cache/mazesim/controllers``."""
+    own = os.environ.get("MAZESIM_CACHE")
+    if own:
+        return Path(own) / "controllers"
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return Path(base) / "mazesim" / "controllers"
+
+
+def _compiler() -> str:
+    name = os.environ.get("CC") or "gcc"
+    found = shutil.which(name)
+    if found is None:
+        raise MissingDependencyError(
+            f"expected a C compiler ({name}, or the one $CC names) on PATH to build the C "
+            f"controller, found none: install gcc (Debian: apt-get install gcc)"
+        )
+    return found
+
+
+def _sources(folder: Path) -> tuple[list[Path], list[Path]]:
+    """The controller's ``.c`` files (its folder's, as Webots builds them) and the headers its
+    folder holds (for the cache key)."""
+    sources = sorted(p for p in folder.glob("*.c") if p.is_file())
+    headers = sorted(p for p in folder.rglob("*.h") if p.is_file())
+    return sources, headers
+
+
+def _key(compiler: str, files: list[Path]) -> str:
+    digest = hashlib.sha256()
+    digest.update(compiler.encode() + b"\0" + " ".join(FLAGS).encode() + b"\0")
+    version = subprocess.run([compiler, "--version"], capture_output=True, check=False)
+    digest.update(version.stdout)
+    for path in files:
+        digest.update(str(path).encode() + b"\0" + path.read_bytes() + b"\0")
+    return digest.hexdigest()[:20]
+
+
+def build(source: str | os.PathLike[str]) -> Build:
+    """Builds the C controller whose main file is ``source`` (with its folder's other ``.c``
+    files), or takes it from the cache.
+
+    Raises:
+        MissingDependencyError: No C compiler.
+        ControllerBuildError: The sources do not compile (the message quotes the compiler).
+    """
+    main = Path(source).resolve()
+    folder = main.parent
+    compiler = _compiler()
+    sources, headers = _sources(folder)
+    if main not in sources:
+        sources.append(main)
+    library = sorted((CAPI / "src").glob("*.c"))
+    library_headers = sorted((CAPI / "include").rglob("*.h"))
+    files = [*sources, *headers, *library, *(CAPI / "src").glob("*.h"), *library_headers]
+    key = _key(compiler, files)
+    target = cache_folder() / f"{main.stem}-{key}" / main.stem
+    if target.is_file():
+        return Build(str(target), note=f"built earlier, taken from the cache {target.parent}")
+    target.parent.mkdir(parents=True, exist_ok=True)
+    temporary = target.with_name(f".{target.name}.{os.getpid()}")
+    command = [
+        compiler, *FLAGS, "-I", str(folder), "-I", str(CAPI / "include"),
+        *map(str, sources), *map(str, library), "-o", str(temporary), "-lm",
+    ]  # fmt: skip
+    try:
+        done = subprocess.run(
+            command, capture_output=True, text=True, timeout=BUILD_TIMEOUT_S, check=False
+        )
+    except subprocess.TimeoutExpired:
+        raise ControllerBuildError(
+            f"{main}: expected the C controller to build within {BUILD_TIMEOUT_S} s, found the "
+            f"compiler still running"
+        ) from None
+    if done.returncode != 0:
+        temporary.unlink(missing_ok=True)
+        missing = sorted(set(_UNDEFINED.findall(done.stderr)))
+        absent = sorted(set(_NO_HEADER.findall(done.stderr)))
+        if missing or absent:
+            return Build(None, missing, absent, note=f"{compiler} cannot build it")
+        message = done.stderr.strip().replace(f"{folder}{os.sep}", "")
+        raise ControllerBuildError(
+            f"{main}: expected a C controller that compiles, found compiler errors "
+            f"({os.path.basename(compiler)} {' '.join(FLAGS)}):\n{message}"
+        )
+    os.replace(temporary, target)
+    return Build(str(target), note=f"compiled with {compiler} into the cache {target.parent}")
+
+
+def _signal_name(status: int) -> str:
+    try:
+        return signal.Signals(-status).name
+    except ValueError:
+        return f"signal {-status}"
+
+
+def drive(
+    program: str, robot: Any, arguments: list[str], facts: tuple[str, str, str], folder: str
+) -> tuple[int, str, bool]:
+    """Runs a built controller as a child process and serves its steps until it exits.
+
+    Args:
+        program: The built controller.
+        robot: The :class:`~mazesim.webots.robot.Robot` it drives.
+        arguments: The controller's arguments (the world's ``controllerArgs``).
+        facts: Controller name, project path and world path, for the API's getters.
+        folder: The controller's folder, where it runs (as in Webots).
+
+    Returns:
+        The exit status, the error (a crash, or "" ), and whether the controller was stopped
+        because it went on after the run's end.
+    """
+    ours, theirs = socket.socketpair()
+    environment = dict(os.environ, MAZESIM_CONTROLLER_FD=str(theirs.fileno()))
+    sys.stdout.flush()
+    sys.stderr.flush()
+    process = subprocess.Popen(
+        [program, *arguments],
+        cwd=folder,
+        env=environment,
+        pass_fds=(theirs.fileno(),),
+        stdin=subprocess.DEVNULL,
+    )
+    theirs.close()
+    link = native_link.RobotLink(ours, robot, facts)
+    stopped = False
+    try:
+        stopped = _serve(link, robot)
+    except native_link.LinkClosed:
+        pass
+    except KeyboardInterrupt:
+        process.kill()
+        process.wait()
+        ours.close()
+        raise
+    finally:
+        ours.close()
+    try:
+        status = process.wait(timeout=GRACE_SECONDS)
+    except subprocess.TimeoutExpired:
+        process.kill()
+        status = process.wait()
+        stopped = True
+    if stopped:
+        return 0, "", True
+    if status < 0:
+        name = _signal_name(status)
+        return EXIT_CRASHED, f"the C controller crashed: killed by {name}\n", False
+    return status, "", False
+
+
+def _serve(link: native_link.RobotLink, robot: Any) -> bool:
+    """Serves the controller's messages; True when it was stopped for going on after the end."""
+    simulation = robot._simulation
+    ended_at: float | None = None
+    while True:
+        if ended_at is not None:
+            left = GRACE_SECONDS - (time.monotonic() - ended_at)
+            if left <= 0:
+                simulation.stopped = True
+                return True
+            link.channel.settimeout(left)
+        try:
+            kind = link.receive_kind()
+        except TimeoutError:
+            simulation.stopped = True
+            return True
+        if kind == native_link.HELLO:
+            link.receive_hello()
+        elif kind == native_link.STEP:
+            duration, commands = link.receive_step()
+            if simulation.ended:
+                link.answer_step(-1)
+                continue
+            link.apply(commands)
+            result = robot.step(duration)
+            if result == -1:
+                ended_at = time.monotonic()
+            link.answer_step(result)
+        elif kind == native_link.CLEANUP:
+            return False
+        else:
+            raise native_link.LinkClosed

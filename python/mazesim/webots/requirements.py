@@ -1,0 +1,129 @@
+"""What a Webots controller needs that mazesim lacks, known before the run starts.
+
+:func:`prepare_controller` finds a controller's language, builds a C controller
+(:mod:`mazesim.webots.native_controller`) and lists the Webots features and Python packages the
+controller needs and this installation does not have: the run states them at its start and keeps
+them in its ``summary.json`` (``missing_features``). A controller that cannot run at all (C++, or
+C calling functions mazesim does not implement) is not started; one that lacks a Python package
+is, and fails as it would in Webots.
+"""
+
+from __future__ import annotations
+
+import ast
+import importlib.util
+import os
+import sys
+from dataclasses import dataclass, field
+
+from mazesim._paths import MAX_TEXT_CHARACTERS, read_input
+
+__all__ = ["LANGUAGES", "PreparedController", "missing_packages", "prepare_controller"]
+
+#: Controller languages by file suffix.
+LANGUAGES = {".py": "python", ".c": "c", ".cpp": "cpp", ".cc": "cpp", ".cxx": "cpp"}
+#: The statement for C++ controllers.
+CPP_MISSING = "C++ controller API not supported (webots/Robot.hpp and the other C++ classes)"
+
+
+@dataclass
+class PreparedController:
+    """A controller file ready to run.
+
+    Attributes:
+        file: The controller's main file.
+        language: ``"python"``, ``"c"`` or ``"cpp"``.
+        missing: What it needs that mazesim lacks, one statement each.
+        runnable: Whether it can be started at all.
+        program: A C controller's built program.
+        notes: What was done to prepare it (a C build and where it is cached).
+    """
+
+    file: str
+    language: str
+    missing: list[str] = field(default_factory=list)
+    runnable: bool = True
+    program: str | None = None
+    notes: list[str] = field(default_factory=list)
+
+
+def _guarded(tree: ast.AST) -> set[int]:
+    """The ids of import statements inside a ``try`` (optional imports)."""
+    guarded: set[int] = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Try):
+            for inner in node.body:
+                guarded |= {id(n) for n in ast.walk(inner)}
+    return guarded
+
+
+def _top_imports(path: str) -> set[str]:
+    try:
+        source = read_input(path, MAX_TEXT_CHARACTERS, "the controller")
+        tree = ast.parse(source)
+    except (SyntaxError, ValueError, OSError):
+        return set()
+    guarded = _guarded(tree)
+    names: set[str] = set()
+    for node in ast.walk(tree):
+        if id(node) in guarded:
+            continue
+        if isinstance(node, ast.Import):
+            names |= {alias.name.split(".")[0] for alias in node.names}
+        elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
+            names.add(node.module.split(".")[0])
+    return names
+
+
+def missing_packages(path: str) -> list[str]:
+    """The Python packages a controller file imports (outside ``try``) that are neither in its
+    folder nor installed; ``controller`` and Webots' ``vehicle`` modules count as present."""
+    folder = os.path.dirname(os.path.abspath(path))
+    missing = []
+    for name in sorted(_top_imports(path)):
+        if name in {"controller", "__future__"} or name in sys.builtin_module_names:
+            continue
+        local = os.path.join(folder, name)
+        if os.path.isfile(local + ".py") or os.path.isdir(local):
+            continue
+        try:
+            found = importlib.util.find_spec(name) is not None
+        except (ImportError, ValueError):
+            found = False
+        if not found:
+            missing.append(name)
+    return missing
+
+
+def prepare_controller(file: str) -> PreparedController:
+    """Prepares the controller file ``file`` (see :func:`mazesim.webots.runner.controller_file`).
+
+    Raises:
+        MissingDependencyError: A C controller and no C compiler.
+        ControllerBuildError: A C controller that does not compile.
+    """
+    language = LANGUAGES.get(os.path.splitext(file)[1].lower(), "python")
+    prepared = PreparedController(file, language)
+    if language == "cpp":
+        prepared.missing.append(CPP_MISSING)
+        prepared.runnable = False
+    elif language == "c":
+        from mazesim.webots.native_controller import build
+
+        built = build(file)
+        prepared.program = built.program
+        prepared.notes.append(f"C controller {os.path.basename(file)}: {built.note}")
+        if built.headers:
+            prepared.missing.append(
+                "Webots C API header(s) mazesim does not provide: " + ", ".join(built.headers)
+            )
+        if built.missing:
+            prepared.missing.append(
+                "Webots C API function(s) mazesim does not implement: " + ", ".join(built.missing)
+            )
+        prepared.runnable = built.program is not None
+    else:
+        names = missing_packages(file)
+        if names:
+            prepared.missing.append(f"Python package(s) not installed: {', '.join(names)}")
+    return prepared

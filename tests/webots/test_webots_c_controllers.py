@@ -1,0 +1,216 @@
+"""Webots controllers written in C: built with gcc against mazesim's controller library, run as
+a child process in lockstep, and compared step for step with the same logic in Python."""
+
+from __future__ import annotations
+
+import json
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+import mazesim
+from mazesim.errors import ControllerBuildError, MissingDependencyError
+from mazesim.webots import run_controller
+from mazesim.webots.native_controller import CAPI, build
+from mazesim.webots.node_types import NODE_TYPES
+from mazesim.webots.requirements import CPP_MISSING, prepare_controller
+
+CONTROLLERS = Path(__file__).resolve().parents[1] / "data" / "controllers"
+AVOIDER = CONTROLLERS / "c_wall_avoider" / "c_wall_avoider.c"
+
+pytestmark = pytest.mark.skipif(shutil.which("gcc") is None, reason="needs gcc")
+
+
+@pytest.fixture(scope="module")
+def module_cache(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """The build cache of this module's tests (each build is keyed by its files' paths and
+    contents, so the tests share it without seeing each other's builds)."""
+    return tmp_path_factory.mktemp("cache")
+
+
+@pytest.fixture(autouse=True)
+def own_cache(module_cache: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
+    """Builds go to the module's cache, not the user's."""
+    monkeypatch.setenv("MAZESIM_CACHE", str(module_cache))
+    return module_cache
+
+
+def write_controller(folder: Path, name: str, body: str) -> Path:
+    """A C controller ``folder/name/name.c`` whose ``main`` runs ``body``."""
+    (folder / name).mkdir(parents=True)
+    source = folder / name / f"{name}.c"
+    source.write_text(
+        "#include <stdio.h>\n#include <webots/robot.h>\n#include <webots/motor.h>\n"
+        "#include <webots/distance_sensor.h>\n#include <webots/utils/ansi_codes.h>\n"
+        f"int main(void) {{\n  wb_robot_init();\n{body}\n  wb_robot_cleanup();\n  return 0;\n}}\n"
+    )
+    return source
+
+
+def test_a_c_controller_drives_bit_for_bit_as_its_python_twin(
+    capfd: pytest.CaptureFixture[str],
+) -> None:
+    world = mazesim.load_world("arena")
+    in_c = run_controller(AVOIDER, world, seconds=4.0, seed=3)
+    c_out = capfd.readouterr().out
+    in_python = run_controller(CONTROLLERS / "wall_avoider_twin.py", world, seconds=4.0, seed=3)
+    python_out = capfd.readouterr().out
+    assert (in_c.exit_status, in_c.error) == (0, "")
+    assert in_python.exit_status == 0, in_python.error
+    assert in_c.steps == in_python.steps > 100
+    assert in_c.distance_m > 0.2
+    # The same noisy readings, the same commands: the same trajectory, bit for bit.
+    assert in_c.xs == in_python.xs
+    assert in_c.ys == in_python.ys
+    assert in_c.final_pose == in_python.final_pose
+    assert c_out == python_out
+    assert c_out.startswith("devices ") and " ps0 is a distance sensor\n" in c_out
+    assert re.search(r"^t 0\.992 encoder -?\d+\.\d{4}$", c_out, re.MULTILINE)
+
+
+def test_a_build_is_cached_and_rebuilt_when_a_source_changes(tmp_path: Path) -> None:
+    folder = tmp_path / "controllers" / "copy"
+    shutil.copytree(AVOIDER.parent, folder)
+    main = folder / "copy.c"
+    (folder / "c_wall_avoider.c").rename(main)
+    first = build(main)
+    assert first.program is not None and "compiled with" in first.note
+    second = build(main)
+    assert second.program == first.program and "taken from the cache" in second.note
+    (folder / "steering.h").write_text((folder / "steering.h").read_text() + "\n/* edited */\n")
+    third = build(main)
+    assert third.program != first.program and "compiled with" in third.note
+
+
+def test_a_compile_error_quotes_the_compiler(tmp_path: Path) -> None:
+    source = write_controller(tmp_path, "broken", "  int x = ;")
+    with pytest.raises(ControllerBuildError) as caught:
+        prepare_controller(str(source))
+    message = str(caught.value)
+    assert "expected a C controller that compiles, found compiler errors" in message
+    assert re.search(r"broken\.c:\d+:\d+: error: expected expression", message)
+
+
+def test_without_a_compiler_the_error_says_what_to_install(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setenv("CC", "no-such-cc-for-mazesim")
+    with pytest.raises(MissingDependencyError, match=r"expected a C compiler \(no-such-cc"):
+        build(AVOIDER)
+
+
+def test_a_crashing_controller_is_reported_with_its_signal(tmp_path: Path) -> None:
+    source = write_controller(
+        tmp_path,
+        "crasher",
+        "  for (int i = 0; i < 3; i++) wb_robot_step(32);\n"
+        "  volatile int *nowhere = 0;\n  *nowhere = 1;",
+    )
+    run = run_controller(source, mazesim.load_world("arena"), seconds=2.0)
+    assert run.exit_status == 1
+    assert run.error == "the C controller crashed: killed by SIGSEGV\n"
+    assert run.steps == 3
+
+
+def test_a_controller_that_steps_on_after_the_end_is_stopped(tmp_path: Path) -> None:
+    source = write_controller(tmp_path, "forever", "  for (;;) wb_robot_step(32);")
+    run = run_controller(source, mazesim.load_world("arena"), seconds=0.5)
+    assert run.reached_end and run.stopped
+    assert run.exit_status == 0
+    assert run.simulated_seconds == pytest.approx(0.512)
+
+
+def test_functions_the_library_lacks_are_named_and_the_controller_is_not_started(
+    tmp_path: Path,
+) -> None:
+    source = write_controller(
+        tmp_path,
+        "radio",
+        "  extern void wb_receiver_enable(unsigned short, int);\n"
+        "  extern void wb_emitter_send(unsigned short, const void *, int);\n"
+        '  wb_receiver_enable(1, 32);\n  wb_emitter_send(2, "x", 1);',
+    )
+    prepared = prepare_controller(str(source))
+    assert not prepared.runnable
+    assert prepared.missing == [
+        "Webots C API function(s) mazesim does not implement: wb_emitter_send, wb_receiver_enable"
+    ]
+    run = run_controller(source, mazesim.load_world("arena"), seconds=1.0, prepared=prepared)
+    assert (run.steps, run.exit_status) == (0, 1)
+    assert run.error.startswith("controller not run: Webots C API function(s)")
+
+
+def test_headers_the_library_lacks_are_named(tmp_path: Path) -> None:
+    source = write_controller(tmp_path, "radio", "")
+    source.write_text("#include <webots/receiver.h>\n" + source.read_text())
+    prepared = prepare_controller(str(source))
+    assert not prepared.runnable
+    assert prepared.missing == [
+        "Webots C API header(s) mazesim does not provide: webots/receiver.h"
+    ]
+
+
+def test_a_cpp_controller_says_the_cpp_api_is_missing(tmp_path: Path) -> None:
+    source = tmp_path / "bt" / "bt.cpp"
+    source.parent.mkdir()
+    source.write_text("#include <webots/Robot.hpp>\nint main() { return 0; }\n")
+    prepared = prepare_controller(str(source))
+    assert (prepared.language, prepared.runnable, prepared.missing) == ("cpp", False, [CPP_MISSING])
+
+
+def test_the_run_says_at_its_start_what_is_missing_and_keeps_it_in_its_summary(
+    tmp_path: Path,
+) -> None:
+    folder = tmp_path / "controllers" / "fuzzy"
+    folder.mkdir(parents=True)
+    (folder / "helpers.py").write_text("GAIN = 2\n")
+    (folder / "fuzzy.py").write_text(
+        "import math\nimport helpers\nfrom controller import Robot\n"
+        "try:\n    import optional_package_for_mazesim_tests\nexcept ImportError:\n    pass\n"
+        "import skfuzzy_not_installed_here\n"
+    )
+    result = subprocess.run(
+        [sys.executable, "-m", "mazesim", "webots", "run", str(folder), "--seconds", "1"]
+        + ["--out", str(tmp_path / "out")],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=False,
+    )
+    assert result.returncode == 1
+    statement = "mazesim: missing: Python package(s) not installed: skfuzzy_not_installed_here"
+    lines = result.stderr.splitlines()
+    assert lines[0] == statement
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert summary["missing_features"] == [statement.removeprefix("mazesim: missing: ")]
+
+
+def test_the_cli_runs_a_c_controller_folder_and_logs_its_build(tmp_path: Path) -> None:
+    build(AVOIDER)  # built already by the twin test when the module runs whole
+    result = subprocess.run(
+        [sys.executable, "-m", "mazesim", "webots", "run", str(AVOIDER.parent), "--seconds", "1"]
+        + ["--out", str(tmp_path / "out")],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=False,
+    )
+    assert result.returncode == 0, result.stderr
+    assert result.stderr.splitlines()[0].startswith(
+        "mazesim: C controller c_wall_avoider.c: built earlier, taken from the cache "
+    )
+    assert result.stdout.splitlines()[0].startswith("devices ")
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert summary["missing_features"] == [] and summary["distance_m"] > 0.05
+
+
+def test_the_node_type_header_numbers_the_types_as_the_python_module_does() -> None:
+    text = (CAPI / "include" / "webots" / "nodes.h").read_text()
+    numbers = dict(re.findall(r"WB_NODE_(\w+) = (\d+),", text))
+    assert {name: int(numbers[name]) for name in NODE_TYPES} == {
+        name: i for i, name in enumerate(NODE_TYPES)
+    }
