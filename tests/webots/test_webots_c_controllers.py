@@ -167,11 +167,10 @@ def test_the_run_says_at_its_start_what_is_missing_and_keeps_it_in_its_summary(
 ) -> None:
     folder = tmp_path / "controllers" / "fuzzy"
     folder.mkdir(parents=True)
-    (folder / "helpers.py").write_text("GAIN = 2\n")
+    (folder / "helpers.py").write_text("import skfuzzy_not_installed_here\nGAIN = 2\n")
     (folder / "fuzzy.py").write_text(
         "import math\nimport helpers\nfrom controller import Robot\n"
         "try:\n    import optional_package_for_mazesim_tests\nexcept ImportError:\n    pass\n"
-        "import skfuzzy_not_installed_here\n"
     )
     result = subprocess.run(
         [sys.executable, "-m", "mazesim", "webots", "run", str(folder), "--seconds", "1"]

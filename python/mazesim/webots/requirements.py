@@ -22,6 +22,8 @@ __all__ = ["LANGUAGES", "PreparedController", "missing_packages", "prepare_contr
 
 #: Controller languages by file suffix.
 LANGUAGES = {".py": "python", ".c": "c", ".cpp": "cpp", ".cc": "cpp", ".cxx": "cpp"}
+#: Most of a controller's own modules read for their imports.
+MAX_OWN_MODULES = 200
 #: The statement for C++ controllers.
 CPP_MISSING = "C++ controller API not supported (webots/Robot.hpp and the other C++ classes)"
 
@@ -76,23 +78,32 @@ def _top_imports(path: str) -> set[str]:
 
 
 def missing_packages(path: str) -> list[str]:
-    """The Python packages a controller file imports (outside ``try``) that are neither in its
-    folder nor installed; ``controller`` and Webots' ``vehicle`` modules count as present."""
+    """The Python packages a controller file imports (outside ``try``), or its own modules beside
+    it import, that are neither in its folder nor installed; ``controller`` counts as present."""
     folder = os.path.dirname(os.path.abspath(path))
-    missing = []
-    for name in sorted(_top_imports(path)):
-        if name in {"controller", "__future__"} or name in sys.builtin_module_names:
+    missing: set[str] = set()
+    files, seen = [os.path.abspath(path)], set()
+    while files and len(seen) < MAX_OWN_MODULES:
+        file = files.pop()
+        if file in seen:
             continue
-        local = os.path.join(folder, name)
-        if os.path.isfile(local + ".py") or os.path.isdir(local):
-            continue
-        try:
-            found = importlib.util.find_spec(name) is not None
-        except (ImportError, ValueError):
-            found = False
-        if not found:
-            missing.append(name)
-    return missing
+        seen.add(file)
+        for name in _top_imports(file):
+            if name in {"controller", "__future__"} or name in sys.builtin_module_names:
+                continue
+            local = os.path.join(folder, name)
+            if os.path.isfile(local + ".py"):
+                files.append(local + ".py")
+                continue
+            if os.path.isdir(local):
+                continue
+            try:
+                found = importlib.util.find_spec(name) is not None
+            except (ImportError, ValueError):
+                found = False
+            if not found:
+                missing.add(name)
+    return sorted(missing)
 
 
 def prepare_controller(file: str) -> PreparedController:

@@ -2,6 +2,8 @@
 #ifndef WB_ANSI_CODES_H
 #define WB_ANSI_CODES_H
 
+#include <stdio.h>
+
 #define ANSI_RESET "\x1b[0m"
 #define ANSI_BOLD "\x1b[1m"
 #define ANSI_UNDERLINE "\x1b[4m"
@@ -22,5 +24,27 @@
 #define ANSI_CYAN_FOREGROUND "\x1b[36m"
 #define ANSI_WHITE_FOREGROUND "\x1b[37m"
 #define ANSI_CLEAR_SCREEN "\x1b[2J"
+
+/* Clearing Webots' console: an expression (printf's result), as controllers use it. */
+#define ANSI_CLEAR_CONSOLE() printf("%s", ANSI_CLEAR_SCREEN)
+#define ANSI_CONSOLE_CLEAR ANSI_CLEAR_CONSOLE()
+
+/* printf in a colour, then back to the default style. */
+#define ANSI_PRINTF_IN_BLACK(...) \
+  (printf("%s", ANSI_BLACK_FOREGROUND), printf(__VA_ARGS__), printf("%s", ANSI_RESET))
+#define ANSI_PRINTF_IN_RED(...) \
+  (printf("%s", ANSI_RED_FOREGROUND), printf(__VA_ARGS__), printf("%s", ANSI_RESET))
+#define ANSI_PRINTF_IN_GREEN(...) \
+  (printf("%s", ANSI_GREEN_FOREGROUND), printf(__VA_ARGS__), printf("%s", ANSI_RESET))
+#define ANSI_PRINTF_IN_YELLOW(...) \
+  (printf("%s", ANSI_YELLOW_FOREGROUND), printf(__VA_ARGS__), printf("%s", ANSI_RESET))
+#define ANSI_PRINTF_IN_BLUE(...) \
+  (printf("%s", ANSI_BLUE_FOREGROUND), printf(__VA_ARGS__), printf("%s", ANSI_RESET))
+#define ANSI_PRINTF_IN_MAGENTA(...) \
+  (printf("%s", ANSI_MAGENTA_FOREGROUND), printf(__VA_ARGS__), printf("%s", ANSI_RESET))
+#define ANSI_PRINTF_IN_CYAN(...) \
+  (printf("%s", ANSI_CYAN_FOREGROUND), printf(__VA_ARGS__), printf("%s", ANSI_RESET))
+#define ANSI_PRINTF_IN_WHITE(...) \
+  (printf("%s", ANSI_WHITE_FOREGROUND), printf(__VA_ARGS__), printf("%s", ANSI_RESET))
 
 #endif
