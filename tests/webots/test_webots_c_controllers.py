@@ -17,7 +17,7 @@ from mazesim.errors import ControllerBuildError, MissingDependencyError
 from mazesim.webots import run_controller
 from mazesim.webots.native_controller import CAPI, build
 from mazesim.webots.node_types import NODE_TYPES
-from mazesim.webots.requirements import CPP_MISSING, prepare_controller
+from mazesim.webots.requirements import CPP_MISSING, NO_DISPLAY, prepare_controller
 
 CONTROLLERS = Path(__file__).resolve().parents[1] / "data" / "controllers"
 AVOIDER = CONTROLLERS / "c_wall_avoider" / "c_wall_avoider.c"
@@ -213,3 +213,14 @@ def test_the_node_type_header_numbers_the_types_as_the_python_module_does() -> N
     assert {name: int(numbers[name]) for name in NODE_TYPES} == {
         name: i for i, name in enumerate(NODE_TYPES)
     }
+
+
+def test_a_tk_window_without_a_display_is_named_before_the_run(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.delenv("DISPLAY", raising=False)
+    (tmp_path / "view.py").write_text("import tkinter as tk\n")
+    (tmp_path / "mouse.py").write_text("import view\nfrom controller import Robot\n")
+    assert NO_DISPLAY in prepare_controller(str(tmp_path / "mouse.py")).missing
+    monkeypatch.setenv("DISPLAY", ":0")
+    assert NO_DISPLAY not in prepare_controller(str(tmp_path / "mouse.py")).missing

@@ -81,7 +81,10 @@ def register(commands: Any) -> None:
             "DIR/trajectory.csv "
             "(also when the controller raises, exits or is interrupted). The importer's "
             "warnings about a .wbt world are printed on stderr, each line prefixed with "
-            "'mazesim: warning: '."
+            "'mazesim: warning: ', and what the controller needs that is missing (a Webots "
+            "feature, a Python package) with 'mazesim: missing: '. A C controller is built "
+            "with gcc against mazesim's Webots C API (cached in ~/.cache/mazesim/controllers) "
+            "and run in lockstep."
         ),
         epilog=examples(
             "mazesim webots run my_controller.py",
@@ -89,15 +92,17 @@ def register(commands: Any) -> None:
             "mazesim webots run my_controller.py --keys keys.txt --html run.html",
             notes="exit status: 0 the controller ended (or robot.step returned -1); N the "
             "controller's sys.exit(N) or a supervisor's simulationQuit(N); 1 the controller "
-            "raised an exception or does not compile (its traceback is printed); 2 a "
-            "mazesim error before the run (unreadable controller, world or key script, "
+            "raised an exception or, in Python, does not compile; a C controller crashed or could "
+            "not be started (what it lacks is printed); 2 a mazesim error before the run "
+            "(unreadable controller, world or key script, a C controller that does not compile, "
             "--strict with import warnings); 130 interrupted (Ctrl-C).",
         ),
     )
     run.add_argument(
         "controller",
         metavar="CONTROLLER.py",
-        help="the controller's Python file, or its Webots folder controllers/NAME (NAME.py in it)",
+        help="the controller's Python or C file, or its Webots folder controllers/NAME "
+        "(NAME.py or NAME.c in it)",
     )
     run.add_argument(
         "--world",

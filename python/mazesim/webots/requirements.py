@@ -18,12 +18,20 @@ from dataclasses import dataclass, field
 
 from mazesim._paths import MAX_TEXT_CHARACTERS, read_input
 
-__all__ = ["LANGUAGES", "PreparedController", "missing_packages", "prepare_controller"]
+__all__ = [
+    "LANGUAGES",
+    "PreparedController",
+    "imported_names",
+    "missing_packages",
+    "prepare_controller",
+]
 
 #: Controller languages by file suffix.
 LANGUAGES = {".py": "python", ".c": "c", ".cpp": "cpp", ".cc": "cpp", ".cxx": "cpp"}
 #: Most of a controller's own modules read for their imports.
 MAX_OWN_MODULES = 200
+#: The statement for a controller that opens Tk windows where there is no display.
+NO_DISPLAY = "a display for the controller's tkinter windows ($DISPLAY is not set)"
 #: The statement for C++ controllers.
 CPP_MISSING = "C++ controller API not supported (webots/Robot.hpp and the other C++ classes)"
 
@@ -77,11 +85,11 @@ def _top_imports(path: str) -> set[str]:
     return names
 
 
-def missing_packages(path: str) -> list[str]:
-    """The Python packages a controller file imports (outside ``try``), or its own modules beside
-    it import, that are neither in its folder nor installed; ``controller`` counts as present."""
+def imported_names(path: str) -> set[str]:
+    """The top-level names of the modules a controller file imports (outside ``try``), and those
+    its own modules beside it import, but not its own modules' names."""
     folder = os.path.dirname(os.path.abspath(path))
-    missing: set[str] = set()
+    names: set[str] = set()
     files, seen = [os.path.abspath(path)], set()
     while files and len(seen) < MAX_OWN_MODULES:
         file = files.pop()
@@ -89,21 +97,28 @@ def missing_packages(path: str) -> list[str]:
             continue
         seen.add(file)
         for name in _top_imports(file):
-            if name in {"controller", "__future__"} or name in sys.builtin_module_names:
-                continue
             local = os.path.join(folder, name)
             if os.path.isfile(local + ".py"):
                 files.append(local + ".py")
-                continue
-            if os.path.isdir(local):
-                continue
-            try:
-                found = importlib.util.find_spec(name) is not None
-            except (ImportError, ValueError):
-                found = False
-            if not found:
-                missing.add(name)
-    return sorted(missing)
+            elif not os.path.isdir(local):
+                names.add(name)
+    return names
+
+
+def missing_packages(path: str) -> list[str]:
+    """The Python packages a controller imports (see :func:`imported_names`) that are not
+    installed; ``controller`` counts as present."""
+    missing = []
+    for name in sorted(imported_names(path)):
+        if name in {"controller", "__future__"} or name in sys.builtin_module_names:
+            continue
+        try:
+            found = importlib.util.find_spec(name) is not None
+        except (ImportError, ValueError):
+            found = False
+        if not found:
+            missing.append(name)
+    return missing
 
 
 def prepare_controller(file: str) -> PreparedController:
@@ -137,4 +152,6 @@ def prepare_controller(file: str) -> PreparedController:
         names = missing_packages(file)
         if names:
             prepared.missing.append(f"Python package(s) not installed: {', '.join(names)}")
+        if "tkinter" in imported_names(file) and not os.environ.get("DISPLAY"):
+            prepared.missing.append(NO_DISPLAY)
     return prepared
