@@ -15,6 +15,7 @@ import pytest
 import mazesim
 from mazesim.errors import ControllerBuildError, MissingDependencyError
 from mazesim.webots import run_controller
+from mazesim.webots.keyboard import KeyScript
 from mazesim.webots.native_controller import CAPI, build
 from mazesim.webots.node_types import NODE_TYPES
 from mazesim.webots.requirements import CPP_MISSING, NO_DISPLAY, prepare_controller
@@ -72,6 +73,25 @@ def test_a_c_controller_drives_bit_for_bit_as_its_python_twin(
     assert re.search(r"^t 0\.992 encoder -?\d+\.\d{4}$", c_out, re.MULTILINE)
 
 
+def test_cameras_inertial_sensors_light_sensors_and_keys_read_as_in_python(
+    capfd: pytest.CaptureFixture[str],
+) -> None:
+    world = mazesim.load_world("arena")
+    keys = KeyScript.parse("0.2 A 0.1\n0.5 UP 0.05\n")
+    runs, outputs = [], []
+    for controller in ("c_every_device/c_every_device.c", "every_device_twin.py"):
+        runs.append(run_controller(CONTROLLERS / controller, world, seconds=1.0, keys=keys))
+        outputs.append(capfd.readouterr().out)
+    assert [(r.exit_status, r.error) for r in runs] == [(0, ""), (0, "")]
+    assert outputs[0] == outputs[1]
+    lines = outputs[0].splitlines()
+    assert lines[0] == "camera 52x39"
+    assert "key 65 at 0.224" in lines and any(line.startswith("key 315 ") for line in lines)
+    images = [line for line in lines if line.startswith("image ")]
+    assert len(images) == 4 and all(int(line.split()[1]) > 0 for line in images)
+    assert runs[0].xs == runs[1].xs and runs[0].final_pose == runs[1].final_pose
+
+
 def test_a_build_is_cached_and_rebuilt_when_a_source_changes(tmp_path: Path) -> None:
     folder = tmp_path / "controllers" / "copy"
     shutil.copytree(AVOIDER.parent, folder)
@@ -114,6 +134,13 @@ def test_a_crashing_controller_is_reported_with_its_signal(tmp_path: Path) -> No
     assert run.exit_status == 1
     assert run.error == "the C controller crashed: killed by SIGSEGV\n"
     assert run.steps == 3
+
+
+def test_a_step_the_api_refuses_ends_the_run_with_its_message(tmp_path: Path) -> None:
+    source = write_controller(tmp_path, "negative", "  wb_robot_step(32);\n  wb_robot_step(-5);")
+    run = run_controller(source, mazesim.load_world("arena"), seconds=1.0)
+    assert (run.exit_status, run.steps) == (1, 1)
+    assert run.error.startswith("InvalidArgumentError: Robot.step expects a duration in ms >= 0")
 
 
 def test_a_controller_that_steps_on_after_the_end_is_stopped(tmp_path: Path) -> None:

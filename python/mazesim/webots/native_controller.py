@@ -25,7 +25,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from mazesim.errors import ControllerBuildError, MissingDependencyError
+from mazesim.errors import ControllerBuildError, MazesimError, MissingDependencyError
 from mazesim.webots import native_link
 from mazesim.webots.termination import GRACE_SECONDS
 
@@ -187,15 +187,18 @@ def drive(
     )
     theirs.close()
     link = native_link.RobotLink(ours, robot, facts)
-    stopped = False
+    stopped, failure = False, ""
     try:
         stopped = _serve(link, robot)
     except native_link.LinkClosed:
         pass
-    except KeyboardInterrupt:
+    except MazesimError as error:
+        # A malformed message or a call the API refuses (a negative step...): the run's error.
+        process.kill()
+        failure = f"{type(error).__name__}: {error}\n"
+    except BaseException:
         process.kill()
         process.wait()
-        ours.close()
         raise
     finally:
         ours.close()
@@ -205,6 +208,8 @@ def drive(
         process.kill()
         status = process.wait()
         stopped = True
+    if failure:
+        return EXIT_CRASHED, failure, False
     if stopped:
         return 0, "", True
     if status < 0:
