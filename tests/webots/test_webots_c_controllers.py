@@ -246,7 +246,7 @@ def test_a_tk_window_without_a_display_is_named_before_the_run(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     monkeypatch.delenv("DISPLAY", raising=False)
-    (tmp_path / "view.py").write_text("import tkinter as tk\n")
+    (tmp_path / "view.py").write_text("from turtle import *\n")
     (tmp_path / "mouse.py").write_text("import view\nfrom controller import Robot\n")
     assert NO_DISPLAY in prepare_controller(str(tmp_path / "mouse.py")).missing
     monkeypatch.setenv("DISPLAY", ":0")

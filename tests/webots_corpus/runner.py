@@ -155,6 +155,8 @@ def _run_project(project: Project, mirrors: Path, work: Path, census: Census) ->
         world_obj, report = _import(world, controller)
     except Exception as error:  # noqa: BLE001 - any import failure is the row's result
         census.add(f"{project.repo}:{project.world}", text, set(), set())
+        if project.broken:
+            return Row(project, "broken itself", project.broken)
         message = str(error).replace(f"{root}{os.sep}", "")
         return Row(project, "error", f"import: {type(error).__name__}: {message}")
     warnings = list(report.get("warnings", []))

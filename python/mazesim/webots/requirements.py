@@ -31,7 +31,9 @@ LANGUAGES = {".py": "python", ".c": "c", ".cpp": "cpp", ".cc": "cpp", ".cxx": "c
 #: Most of a controller's own modules read for their imports.
 MAX_OWN_MODULES = 200
 #: The statement for a controller that opens Tk windows where there is no display.
-NO_DISPLAY = "a display for the controller's tkinter windows ($DISPLAY is not set)"
+NO_DISPLAY = "a display for the controller's Tk windows (tkinter, turtle; $DISPLAY is not set)"
+#: Modules that open Tk windows.
+TK_MODULES = {"tkinter", "turtle"}
 #: The statement for C++ controllers.
 CPP_MISSING = "C++ controller API not supported (webots/Robot.hpp and the other C++ classes)"
 
@@ -152,6 +154,6 @@ def prepare_controller(file: str) -> PreparedController:
         names = missing_packages(file)
         if names:
             prepared.missing.append(f"Python package(s) not installed: {', '.join(names)}")
-        if "tkinter" in imported_names(file) and not os.environ.get("DISPLAY"):
+        if TK_MODULES & imported_names(file) and not os.environ.get("DISPLAY"):
             prepared.missing.append(NO_DISPLAY)
     return prepared
