@@ -195,8 +195,12 @@ def test_the_run_says_at_its_start_what_is_missing_and_keeps_it_in_its_summary(
     folder = tmp_path / "controllers" / "fuzzy"
     folder.mkdir(parents=True)
     (folder / "helpers.py").write_text("import skfuzzy_not_installed_here\nGAIN = 2\n")
+    (folder / "models").mkdir()
+    (folder / "models" / "__init__.py").write_text("from .fit import *\n")
+    (folder / "models" / "fit.py").write_text("import pandas_not_installed_here\n")
+    (folder / "models" / "unused.py").write_text("import never_imported_package\n")
     (folder / "fuzzy.py").write_text(
-        "import math\nimport helpers\nfrom controller import Robot\n"
+        "import math\nimport helpers\nfrom models import fit\nfrom controller import Robot\n"
         "try:\n    import optional_package_for_mazesim_tests\nexcept ImportError:\n    pass\n"
     )
     result = subprocess.run(
@@ -208,7 +212,10 @@ def test_the_run_says_at_its_start_what_is_missing_and_keeps_it_in_its_summary(
         check=False,
     )
     assert result.returncode == 1
-    statement = "mazesim: missing: Python package(s) not installed: skfuzzy_not_installed_here"
+    statement = (
+        "mazesim: missing: Python package(s) not installed: pandas_not_installed_here, "
+        "skfuzzy_not_installed_here"
+    )
     lines = result.stderr.splitlines()
     assert lines[0] == statement
     summary = json.loads((tmp_path / "out" / "summary.json").read_text())

@@ -69,41 +69,75 @@ def _guarded(tree: ast.AST) -> set[int]:
     return guarded
 
 
-def _top_imports(path: str) -> set[str]:
+def _imports(path: str) -> list[tuple[str, str]]:
+    """The modules a file imports outside ``try``: (the folder the name starts from, the dotted
+    name); ``from a import b`` gives ``a.b`` (``b`` may be a submodule)."""
     try:
         source = read_input(path, MAX_TEXT_CHARACTERS, "the controller")
         tree = ast.parse(source)
     except (SyntaxError, ValueError, OSError):
-        return set()
+        return []
     guarded = _guarded(tree)
-    names: set[str] = set()
+    here = os.path.dirname(path)
+    found: list[tuple[str, str]] = []
     for node in ast.walk(tree):
         if id(node) in guarded:
             continue
         if isinstance(node, ast.Import):
-            names |= {alias.name.split(".")[0] for alias in node.names}
-        elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
-            names.add(node.module.split(".")[0])
-    return names
+            found += [("", alias.name) for alias in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            base = ""
+            if node.level:
+                base = here
+                for _ in range(node.level - 1):
+                    base = os.path.dirname(base)
+            module = node.module or ""
+            for alias in node.names:
+                tail = "" if alias.name == "*" else alias.name
+                found.append((base, ".".join(p for p in (module, tail) if p)))
+    return found
+
+
+def _own_files(base: str, dotted: str) -> list[str] | None:
+    """The controller's own files that ``dotted`` loads from ``base`` (packages' ``__init__.py``
+    and the module), or None when its first part is not there."""
+    parts = dotted.split(".")
+    first = os.path.join(base, parts[0])
+    if not (os.path.isdir(first) or os.path.isfile(first + ".py")):
+        return None
+    files: list[str] = []
+    for part in parts:
+        candidate = os.path.join(base, part)
+        if os.path.isdir(candidate):
+            init = os.path.join(candidate, "__init__.py")
+            if os.path.isfile(init):
+                files.append(init)
+            base = candidate
+        elif os.path.isfile(candidate + ".py"):
+            files.append(candidate + ".py")
+            break
+        else:
+            break
+    return files
 
 
 def imported_names(path: str) -> set[str]:
     """The top-level names of the modules a controller file imports (outside ``try``), and those
-    its own modules beside it import, but not its own modules' names."""
+    its own modules and packages beside it import, but not its own modules' names."""
     folder = os.path.dirname(os.path.abspath(path))
     names: set[str] = set()
-    files, seen = [os.path.abspath(path)], set()
+    files, seen = [os.path.abspath(path)], set[str]()
     while files and len(seen) < MAX_OWN_MODULES:
         file = files.pop()
         if file in seen:
             continue
         seen.add(file)
-        for name in _top_imports(file):
-            local = os.path.join(folder, name)
-            if os.path.isfile(local + ".py"):
-                files.append(local + ".py")
-            elif not os.path.isdir(local):
-                names.add(name)
+        for base, dotted in _imports(file):
+            own = _own_files(base or folder, dotted)
+            if own is None and not base:
+                names.add(dotted.split(".")[0])
+            else:
+                files += own or []
     return names
 
 
