@@ -18,12 +18,15 @@ from mazesim.webots import run_controller
 from mazesim.webots.keyboard import KeyScript
 from mazesim.webots.native_controller import CAPI, build
 from mazesim.webots.node_types import NODE_TYPES
-from mazesim.webots.requirements import CPP_MISSING, NO_DISPLAY, prepare_controller
+from mazesim.webots.requirements import NO_DISPLAY, prepare_controller
 
 CONTROLLERS = Path(__file__).resolve().parents[1] / "data" / "controllers"
 AVOIDER = CONTROLLERS / "c_wall_avoider" / "c_wall_avoider.c"
+CPP_AVOIDER = CONTROLLERS / "cpp_wall_avoider" / "cpp_wall_avoider.cpp"
 
-pytestmark = pytest.mark.skipif(shutil.which("gcc") is None, reason="needs gcc")
+pytestmark = pytest.mark.skipif(
+    shutil.which("gcc") is None or shutil.which("g++") is None, reason="needs gcc and g++"
+)
 
 
 @pytest.fixture(scope="module")
@@ -181,12 +184,24 @@ def test_headers_the_library_lacks_are_named(tmp_path: Path) -> None:
     ]
 
 
-def test_a_cpp_controller_says_the_cpp_api_is_missing(tmp_path: Path) -> None:
+def test_a_cpp_controller_drives_as_the_c_one_and_names_classes_it_lacks(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str]
+) -> None:
+    world = mazesim.load_world("arena")
+    in_cpp = run_controller(CPP_AVOIDER, world, seconds=2.0, seed=5)
+    cpp_out = capfd.readouterr().out
+    in_c = run_controller(AVOIDER, world, seconds=2.0, seed=5)
+    assert (in_cpp.exit_status, in_cpp.error) == (0, "")
+    assert (in_cpp.xs, in_cpp.ys) == (in_c.xs, in_c.ys) and in_cpp.distance_m > 0.1
+    assert cpp_out == capfd.readouterr().out
     source = tmp_path / "bt" / "bt.cpp"
     source.parent.mkdir()
-    source.write_text("#include <webots/Robot.hpp>\nint main() { return 0; }\n")
+    source.write_text("#include <webots/Supervisor.hpp>\nint main() { return 0; }\n")
     prepared = prepare_controller(str(source))
-    assert (prepared.language, prepared.runnable, prepared.missing) == ("cpp", False, [CPP_MISSING])
+    assert (prepared.language, prepared.runnable) == ("cpp", False)
+    assert prepared.missing == [
+        "Webots C++ API header(s) mazesim does not provide: webots/Supervisor.hpp"
+    ]
 
 
 def test_the_run_says_at_its_start_what_is_missing_and_keeps_it_in_its_summary(

@@ -18,9 +18,9 @@ wall and line followers, fuzzy and PID controllers, supervisors, course mazes an
 repository, commit and paths and the behaviour a run in Webots shows, as facts; no third-party
 code is kept here. `make webots-compat MIRRORS=DIR` exports each project from a local git mirror
 (DIR holds one per repository; a missing one is skipped and named), imports its world, runs its
-first controller with `mazesim webots run` for the project's simulated time (a C controller is
-built with gcc against mazesim's implementation of Webots' C API), checks the facts against the
-run's `summary.json` and `trajectory.csv`, and writes this page.
+first controller with `mazesim webots run` for the project's simulated time (a C or C++
+controller is built with gcc or g++ against mazesim's implementation of Webots' C API), checks
+the facts against the run's `summary.json` and `trajectory.csv`, and writes this page.
 
 Measured on {stamp} at commit `{revision}`: {counts}; the whole corpus took {elapsed:.0f} s.
 

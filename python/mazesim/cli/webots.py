@@ -82,9 +82,9 @@ def register(commands: Any) -> None:
             "(also when the controller raises, exits or is interrupted). The importer's "
             "warnings about a .wbt world are printed on stderr, each line prefixed with "
             "'mazesim: warning: ', and what the controller needs that is missing (a Webots "
-            "feature, a Python package) with 'mazesim: missing: '. A C controller is built "
-            "with gcc against mazesim's Webots C API (cached in ~/.cache/mazesim/controllers) "
-            "and run in lockstep."
+            "feature, a Python package) with 'mazesim: missing: '. A C or C++ controller is "
+            "built with gcc or g++ against mazesim's Webots C API (cached in "
+            "~/.cache/mazesim/controllers) and run in lockstep."
         ),
         epilog=examples(
             "mazesim webots run my_controller.py",
@@ -92,17 +92,18 @@ def register(commands: Any) -> None:
             "mazesim webots run my_controller.py --keys keys.txt --html run.html",
             notes="exit status: 0 the controller ended (or robot.step returned -1); N the "
             "controller's sys.exit(N) or a supervisor's simulationQuit(N); 1 the controller "
-            "raised an exception or, in Python, does not compile; a C controller crashed or could "
-            "not be started (what it lacks is printed); 2 a mazesim error before the run "
-            "(unreadable controller, world or key script, a C controller that does not compile, "
+            "raised an exception or, in Python, does not compile; a C/C++ controller crashed or "
+            "could not be started (what it lacks is printed); 2 a mazesim error before the run "
+            "(unreadable controller, world or key script, a C/C++ controller that does not "
+            "compile, "
             "--strict with import warnings); 130 interrupted (Ctrl-C).",
         ),
     )
     run.add_argument(
         "controller",
         metavar="CONTROLLER.py",
-        help="the controller's Python or C file, or its Webots folder controllers/NAME "
-        "(NAME.py or NAME.c in it)",
+        help="the controller's Python, C or C++ file, or its Webots folder controllers/NAME "
+        "(NAME.py, NAME.c or NAME.cpp in it)",
     )
     run.add_argument(
         "--world",

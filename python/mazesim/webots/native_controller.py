@@ -20,6 +20,7 @@ import signal
 import socket
 import subprocess
 import sys
+import tempfile
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -71,84 +72,117 @@ def cache_folder() -> Path:
     return Path(base) / "mazesim" / "controllers"
 
 
-def _compiler() -> str:
-    name = os.environ.get("CC") or "gcc"
+#: Source suffixes by language, as Webots' default Makefile compiles them.
+C_SUFFIXES = (".c",)
+CPP_SUFFIXES = (".cpp", ".cc", ".cxx")
+#: The compiler of each language, and the variable that names another one.
+COMPILERS = {"c": ("CC", "gcc"), "cpp": ("CXX", "g++")}
+LANGUAGE_NAMES = {"c": "C", "cpp": "C++"}
+
+
+def _compiler(language: str) -> str:
+    variable, default = COMPILERS[language]
+    name = os.environ.get(variable) or default
     found = shutil.which(name)
     if found is None:
         raise MissingDependencyError(
-            f"expected a C compiler ({name}, or the one $CC names) on PATH to build the C "
-            f"controller, found none: install gcc (Debian: apt-get install gcc)"
+            f"expected a {LANGUAGE_NAMES[language]} compiler ({name}, or the one ${variable} "
+            f"names) on PATH to build the {LANGUAGE_NAMES[language]} controller, found none: "
+            f"install {default} (Debian: apt-get install {default})"
         )
     return found
 
 
-def _sources(folder: Path) -> tuple[list[Path], list[Path]]:
-    """The controller's ``.c`` files (its folder's, as Webots builds them) and the headers its
-    folder holds (for the cache key)."""
-    sources = sorted(p for p in folder.glob("*.c") if p.is_file())
-    headers = sorted(p for p in folder.rglob("*.h") if p.is_file())
-    return sources, headers
+def _files(folder: Path, suffixes: tuple[str, ...], recursive: bool = False) -> list[Path]:
+    found = folder.rglob("*") if recursive else folder.glob("*")
+    return sorted(p for p in found if p.suffix.lower() in suffixes and p.is_file())
 
 
-def _key(compiler: str, files: list[Path]) -> str:
+def _key(compilers: list[str], files: list[Path]) -> str:
     digest = hashlib.sha256()
-    digest.update(compiler.encode() + b"\0" + " ".join(FLAGS).encode() + b"\0")
-    version = subprocess.run([compiler, "--version"], capture_output=True, check=False)
-    digest.update(version.stdout)
+    for compiler in compilers:
+        digest.update(compiler.encode() + b"\0" + " ".join(FLAGS).encode() + b"\0")
+        version = subprocess.run([compiler, "--version"], capture_output=True, check=False)
+        digest.update(version.stdout)
     for path in files:
         digest.update(str(path).encode() + b"\0" + path.read_bytes() + b"\0")
     return digest.hexdigest()[:20]
 
 
+def _compile(main: Path, command: list[str], cwd: str) -> subprocess.CompletedProcess[str]:
+    try:
+        return subprocess.run(
+            command, cwd=cwd, capture_output=True, text=True, timeout=BUILD_TIMEOUT_S, check=False
+        )
+    except subprocess.TimeoutExpired:
+        raise ControllerBuildError(
+            f"{main}: expected the controller to build within {BUILD_TIMEOUT_S} s, found the "
+            f"compiler still running"
+        ) from None
+
+
 def build(source: str | os.PathLike[str]) -> Build:
-    """Builds the C controller whose main file is ``source`` (with its folder's other ``.c``
-    files), or takes it from the cache.
+    """Builds the C or C++ controller whose main file is ``source`` (with its folder's other
+    ``.c``, and for C++ ``.cpp``, ``.cc`` and ``.cxx``, files), or takes it from the cache.
 
     Raises:
-        MissingDependencyError: No C compiler.
+        MissingDependencyError: No compiler.
         ControllerBuildError: The sources do not compile (the message quotes the compiler).
     """
     main = Path(source).resolve()
     folder = main.parent
-    compiler = _compiler()
-    sources, headers = _sources(folder)
-    if main not in sources:
-        sources.append(main)
+    language = "cpp" if main.suffix.lower() in CPP_SUFFIXES else "c"
+    c_compiler = _compiler("c")
+    compilers = [c_compiler] + ([_compiler("cpp")] if language == "cpp" else [])
+    c_sources = _files(folder, C_SUFFIXES)
+    cpp_sources = _files(folder, CPP_SUFFIXES) if language == "cpp" else []
+    own = cpp_sources if language == "cpp" else c_sources
+    if main not in own:
+        own.append(main)
+    headers = _files(folder, (".h", ".hpp", ".hh"), recursive=True)
     library = sorted((CAPI / "src").glob("*.c"))
-    library_headers = sorted((CAPI / "include").rglob("*.h"))
-    files = [*sources, *headers, *library, *(CAPI / "src").glob("*.h"), *library_headers]
-    key = _key(compiler, files)
+    library_headers = sorted((CAPI / "include").rglob("*.h*"))
+    files = [*c_sources, *cpp_sources, *headers, *library, *(CAPI / "src").glob("*.h")]
+    key = _key(compilers, [*files, *library_headers])
     target = cache_folder() / f"{main.stem}-{key}" / main.stem
     if target.is_file():
         return Build(str(target), note=f"built earlier, taken from the cache {target.parent}")
     target.parent.mkdir(parents=True, exist_ok=True)
     temporary = target.with_name(f".{target.name}.{os.getpid()}")
-    command = [
-        compiler, *FLAGS, "-I", str(folder), "-I", str(CAPI / "include"),
-        *map(str, sources), *map(str, library), "-o", str(temporary), "-lm",
-    ]  # fmt: skip
-    try:
-        done = subprocess.run(
-            command, capture_output=True, text=True, timeout=BUILD_TIMEOUT_S, check=False
-        )
-    except subprocess.TimeoutExpired:
-        raise ControllerBuildError(
-            f"{main}: expected the C controller to build within {BUILD_TIMEOUT_S} s, found the "
-            f"compiler still running"
-        ) from None
+    includes = ["-I", str(folder), "-I", str(CAPI / "include")]
+    with tempfile.TemporaryDirectory(prefix="mazesim-build-") as work:
+        if language == "c":
+            steps = [[c_compiler, *FLAGS, *includes, *map(str, [*c_sources, *library])]]
+            steps[0] += ["-o", str(temporary), "-lm"]
+        else:
+            # The C parts (the library, the project's .c files) as C, then the C++ program.
+            c_parts = [*c_sources, *library]
+            objects = [os.path.join(work, f"{i}.o") for i in range(len(c_parts))]
+            steps = [
+                [c_compiler, *FLAGS, *includes, "-c", str(path), "-o", obj]
+                for path, obj in zip(c_parts, objects)
+            ]
+            steps.append([compilers[1], *FLAGS, *includes, *map(str, cpp_sources), *objects])
+            steps[-1] += ["-o", str(temporary), "-lm"]
+        for command in steps:
+            done = _compile(main, command, work)
+            if done.returncode != 0:
+                break
     if done.returncode != 0:
         temporary.unlink(missing_ok=True)
         missing = sorted(set(_UNDEFINED.findall(done.stderr)))
         absent = sorted(set(_NO_HEADER.findall(done.stderr)))
+        compiler = command[0]
         if missing or absent:
             return Build(None, missing, absent, note=f"{compiler} cannot build it")
         message = done.stderr.strip().replace(f"{folder}{os.sep}", "")
         raise ControllerBuildError(
-            f"{main}: expected a C controller that compiles, found compiler errors "
-            f"({os.path.basename(compiler)} {' '.join(FLAGS)}):\n{message}"
+            f"{main}: expected a {LANGUAGE_NAMES[language]} controller that compiles, found "
+            f"compiler errors ({os.path.basename(compiler)} {' '.join(FLAGS)}):\n{message}"
         )
     os.replace(temporary, target)
-    return Build(str(target), note=f"compiled with {compiler} into the cache {target.parent}")
+    names = " and ".join(compilers)
+    return Build(str(target), note=f"compiled with {names} into the cache {target.parent}")
 
 
 def _signal_name(status: int) -> str:

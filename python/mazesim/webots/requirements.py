@@ -1,11 +1,11 @@
 """What a Webots controller needs that mazesim lacks, known before the run starts.
 
-:func:`prepare_controller` finds a controller's language, builds a C controller
+:func:`prepare_controller` finds a controller's language, builds a C or C++ controller
 (:mod:`mazesim.webots.native_controller`) and lists the Webots features and Python packages the
 controller needs and this installation does not have: the run states them at its start and keeps
-them in its ``summary.json`` (``missing_features``). A controller that cannot run at all (C++, or
-C calling functions mazesim does not implement) is not started; one that lacks a Python package
-is, and fails as it would in Webots.
+them in its ``summary.json`` (``missing_features``). A controller that cannot run at all (C or
+C++ needing Webots headers or functions mazesim does not implement) is not started; one that
+lacks a Python package is, and fails as it would in Webots.
 """
 
 from __future__ import annotations
@@ -34,8 +34,6 @@ MAX_OWN_MODULES = 200
 NO_DISPLAY = "a display for the controller's Tk windows (tkinter, turtle; $DISPLAY is not set)"
 #: Modules that open Tk windows.
 TK_MODULES = {"tkinter", "turtle"}
-#: The statement for C++ controllers.
-CPP_MISSING = "C++ controller API not supported (webots/Robot.hpp and the other C++ classes)"
 
 
 @dataclass
@@ -166,22 +164,21 @@ def prepare_controller(file: str) -> PreparedController:
     """
     language = LANGUAGES.get(os.path.splitext(file)[1].lower(), "python")
     prepared = PreparedController(file, language)
-    if language == "cpp":
-        prepared.missing.append(CPP_MISSING)
-        prepared.runnable = False
-    elif language == "c":
-        from mazesim.webots.native_controller import build
+    if language in ("c", "cpp"):
+        from mazesim.webots.native_controller import LANGUAGE_NAMES, build
 
         built = build(file)
         prepared.program = built.program
-        prepared.notes.append(f"C controller {os.path.basename(file)}: {built.note}")
+        kind = LANGUAGE_NAMES[language]
+        prepared.notes.append(f"{kind} controller {os.path.basename(file)}: {built.note}")
         if built.headers:
             prepared.missing.append(
-                "Webots C API header(s) mazesim does not provide: " + ", ".join(built.headers)
+                f"Webots {kind} API header(s) mazesim does not provide: " + ", ".join(built.headers)
             )
         if built.missing:
             prepared.missing.append(
-                "Webots C API function(s) mazesim does not implement: " + ", ".join(built.missing)
+                f"Webots {kind} API function(s) mazesim does not implement: "
+                + ", ".join(built.missing)
             )
         prepared.runnable = built.program is not None
     else:

@@ -164,9 +164,9 @@ def run_controller(
         scene: DEF names, supervisor flag, camera fields and controller arguments of the world
             file (``sys.argv[1:]`` of the controller).
         prepared: The controller as :func:`~mazesim.webots.requirements.prepare_controller`
-            prepared it (a C controller built); prepared here when not given. A controller
-            that cannot run (C++, or C calling Webots functions mazesim lacks) is not started:
-            the run has no steps and its error says what is missing.
+            prepared it (a C or C++ controller built); prepared here when not given. A
+            controller that cannot run (C or C++ needing Webots headers or functions mazesim
+            lacks) is not started: the run has no steps and its error says what is missing.
 
     Returns:
         What the run did.

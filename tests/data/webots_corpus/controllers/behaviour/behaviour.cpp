@@ -1,9 +1,9 @@
-// A C++ controller of the tiny corpus project: its run says the C++ API is missing.
-#include <webots/Robot.hpp>
+// A C++ supervisor of the tiny corpus project: its run says which Webots header is missing.
+#include <webots/Supervisor.hpp>
 
 int main() {
-  webots::Robot robot;
-  while (robot.step(32) != -1) {
+  webots::Supervisor supervisor;
+  while (supervisor.step(32) != -1) {
   }
   return 0;
 }
