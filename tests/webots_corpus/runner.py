@@ -22,6 +22,9 @@ from webots_corpus.facts import MOVED, Outcome, check, parse_fact
 from webots_corpus.manifest import Project
 from webots_corpus.mirrors import MirrorError, export, find_mirror, has_commit, read_file
 
+#: Words of an import warning that says something of the world was lost (a dropped node, an
+#: unknown one, a floor texture that could not be read).
+LOST_WORDS = (*DROPPED_WORDS, "unknown", "left bare")
 #: Wall-clock seconds a run may take beyond its simulated time before it is stopped.
 GRACE_S = 30.0
 #: Wall-clock seconds a stopped run has to write its outputs before it is killed.
@@ -65,7 +68,7 @@ def _robots_moving(summary: dict[str, Any]) -> int | None:
 def _significant(warnings: list[str]) -> list[str]:
     """The warnings that say something of the world was lost (without the list of known PROTOs
     some of them end with)."""
-    lost = [w for w in warnings if any(word in w.lower() for word in (*DROPPED_WORDS, "unknown"))]
+    lost = [w for w in warnings if any(word in w.lower() for word in LOST_WORDS)]
     return [re.sub(r" \(known PROTOs: [^)]*\)", "", w) for w in lost]
 
 
