@@ -146,6 +146,24 @@ def test_a_step_the_api_refuses_ends_the_run_with_its_message(tmp_path: Path) ->
     assert run.error.startswith("InvalidArgumentError: Robot.step expects a duration in ms >= 0")
 
 
+def test_a_tag_of_another_kind_of_device_gets_webots_message(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str]
+) -> None:
+    source = write_controller(
+        tmp_path,
+        "mixup",
+        "  extern void wb_led_set(unsigned short, int);\n"
+        '  WbDeviceTag motor = wb_robot_get_device("left wheel motor");\n'
+        "  wb_led_set(motor, 1);\n  wb_distance_sensor_enable(motor, 32);\n"
+        "  while (wb_robot_step(32) != -1) {}",
+    )
+    run = run_controller(source, mazesim.load_world("arena"), seconds=0.5)
+    assert (run.exit_status, run.error) == (0, "")
+    errors = capfd.readouterr().err.splitlines()
+    assert "Error: wb_led_set() called with an invalid device tag." in errors
+    assert "Error: wb_device_enable() called with an invalid device tag." in errors
+
+
 def test_a_controller_that_steps_on_after_the_end_is_stopped(tmp_path: Path) -> None:
     source = write_controller(tmp_path, "forever", "  for (;;) wb_robot_step(32);")
     run = run_controller(source, mazesim.load_world("arena"), seconds=0.5)

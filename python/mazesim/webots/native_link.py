@@ -45,6 +45,7 @@ from __future__ import annotations
 
 import socket
 import struct
+import sys
 from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import Any
@@ -70,6 +71,16 @@ ENABLE, DISABLE, SET_POSITION, SET_VELOCITY, SET_ACCELERATION, LED_SET = 1, 2, 3
 KEYBOARD_TAG = 0
 #: Most commands one step may carry (a controller queues a few per device).
 MAX_COMMANDS = 1 << 20
+
+#: The device method each command calls, and the C function it stands for.
+_METHODS = {
+    ENABLE: ("enable", "wb_device_enable"),
+    DISABLE: ("disable", "wb_device_disable"),
+    SET_POSITION: ("setPosition", "wb_motor_set_position"),
+    SET_VELOCITY: ("setVelocity", "wb_motor_set_velocity"),
+    SET_ACCELERATION: ("setAcceleration", "wb_motor_set_acceleration"),
+    LED_SET: ("set", "wb_led_set"),
+}
 
 _INT = struct.Struct("=i")
 _DOUBLE = struct.Struct("=d")
@@ -233,23 +244,26 @@ class RobotLink:
 
     def _apply(self, command: Command, device: Any) -> None:
         op, value = command.op, command.a
+        method = _METHODS.get(op)
+        call = getattr(device, method[0], None) if method else None
+        if call is None:
+            # A tag of another kind of device (wb_led_set on a motor...): Webots' message.
+            function = method[1] if method else "wb_robot_step"
+            print(f"Error: {function}() called with an invalid device tag.", file=sys.stderr)
+            return
         if op == ENABLE:
-            device.enable(int(value))
+            call(int(value))
             if int(value) > 0:
                 self.enabled[command.tag] = device
             else:
                 self.enabled.pop(command.tag, None)
         elif op == DISABLE:
-            device.disable()
+            call()
             self.enabled.pop(command.tag, None)
-        elif op == SET_POSITION:
-            device.setPosition(value)
-        elif op == SET_VELOCITY:
-            device.setVelocity(value)
-        elif op == SET_ACCELERATION:
-            device.setAcceleration(value)
         elif op == LED_SET:
-            device.set(int(value))
+            call(int(value))
+        else:
+            call(value)
 
     def answer_step(self, result: int) -> None:
         """Sends a step's result, the time and the enabled devices' readings."""
