@@ -192,13 +192,14 @@ def test_functions_the_library_lacks_are_named_and_the_controller_is_not_started
     assert run.error.startswith("controller not run: Webots C API function(s)")
 
 
-def test_headers_the_library_lacks_are_named(tmp_path: Path) -> None:
+def test_every_header_the_library_lacks_is_named_before_building(tmp_path: Path) -> None:
     source = write_controller(tmp_path, "radio", "")
-    source.write_text("#include <webots/receiver.h>\n" + source.read_text())
+    (source.parent / "radio.h").write_text("#include <webots/emitter.h>\n")
+    source.write_text('#include <webots/receiver.h>\n#include "radio.h"\n' + source.read_text())
     prepared = prepare_controller(str(source))
     assert not prepared.runnable
     assert prepared.missing == [
-        "Webots C API header(s) mazesim does not provide: webots/receiver.h"
+        "Webots C API header(s) mazesim does not provide: webots/emitter.h, webots/receiver.h"
     ]
 
 

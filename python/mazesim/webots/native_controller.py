@@ -43,6 +43,9 @@ EXIT_CRASHED = 1
 
 _UNDEFINED = re.compile(r"undefined reference to [`'‘](wb_\w+)['’]")
 _NO_HEADER = re.compile(r"fatal error: (webots/[\w/.]+): No such file or directory")
+_INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]', re.MULTILINE)
+#: Most files read for their includes before a build.
+MAX_SCANNED = 500
 
 
 @dataclass
@@ -121,6 +124,30 @@ def _compile(main: Path, command: list[str], cwd: str) -> subprocess.CompletedPr
         ) from None
 
 
+def absent_headers(files: list[Path]) -> list[str]:
+    """The Webots headers (``webots/...``) that ``files``, and the files they include by a
+    relative path, include and the controller library does not provide: all of them, where the
+    compiler would stop at the first."""
+    provided = CAPI / "include"
+    absent: set[str] = set()
+    queue, seen = list(files), set[Path]()
+    while queue and len(seen) < MAX_SCANNED:
+        path = queue.pop()
+        if path in seen or not path.is_file():
+            continue
+        seen.add(path)
+        text = path.read_text(encoding="utf-8", errors="replace")
+        for quote, name in _INCLUDE.findall(text):
+            local = (path.parent / name).resolve()
+            if quote == '"' and local.is_file():
+                queue.append(local)
+            elif name.startswith("webots/") and not any(
+                (folder / name).is_file() for folder in (provided, path.parent)
+            ):
+                absent.add(name)
+    return sorted(absent)
+
+
 def build(source: str | os.PathLike[str]) -> Build:
     """Builds the C or C++ controller whose main file is ``source`` (with its folder's other
     ``.c``, and for C++ ``.cpp``, ``.cc`` and ``.cxx``, files), or takes it from the cache.
@@ -143,6 +170,9 @@ def build(source: str | os.PathLike[str]) -> Build:
     library = sorted((CAPI / "src").glob("*.c"))
     library_headers = sorted((CAPI / "include").rglob("*.h*"))
     files = [*c_sources, *cpp_sources, *headers, *library, *(CAPI / "src").glob("*.h")]
+    absent = absent_headers([*c_sources, *cpp_sources, *headers])
+    if absent:
+        return Build(None, [], absent, note="it includes Webots headers mazesim does not provide")
     key = _key(compilers, [*files, *library_headers])
     target = cache_folder() / f"{main.stem}-{key}" / main.stem
     if target.is_file():
