@@ -102,6 +102,20 @@ def test_wheel_carries_the_shipped_navigators(built: tuple[Path, Path]) -> None:
         assert files <= names, sorted(files - names)
 
 
+def test_wheel_carries_the_c_controller_library(built: tuple[Path, Path]) -> None:
+    # A pip-installed mazesim compiles C controllers against these files.
+    wheel, _ = built
+    with zipfile.ZipFile(wheel) as archive:
+        names = set(archive.namelist())
+    library = ROOT / "python" / "mazesim" / "webots" / "capi"
+    files = {
+        f"mazesim/webots/capi/{path.relative_to(library).as_posix()}"
+        for path in library.rglob("*")
+        if path.suffix in (".c", ".h")
+    }
+    assert len(files) > 20 and files <= names, sorted(files - names)
+
+
 def test_release_wheel_runs_the_demo_and_the_quick_start_from_anywhere(
     built: tuple[Path, Path], tmp_path: Path
 ) -> None:

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 __all__ = [
     "ClusterConnectionError",
+    "ControllerBuildError",
     "InternalError",
     "InvalidActionError",
     "InvalidArgumentError",
@@ -115,6 +116,10 @@ class SimulatorBusyError(MazesimError, RuntimeError):
 class MissingDependencyError(MazesimError, ImportError):
     """An optional part of mazesim needs a package that is not installed (for example ROS 1's
     ``rospy`` for :mod:`mazesim.ros`); the message names the package and how to install it."""
+
+
+class ControllerBuildError(MazesimError, RuntimeError):
+    """A compiled Webots controller (C) could not be built: the message quotes the compiler."""
 
 
 class ClusterConnectionError(MazesimError, ConnectionError):

@@ -13,9 +13,9 @@ it. Each ``[[project]]`` table has these fields:
 - ``seconds``: the simulated time a run lasts;
 - ``expect``: the facts a run in Webots shows (see :mod:`webots_corpus.facts`);
 - ``broken``: empty when the project works in Webots as published, else why it does not;
-- optional ``packages``: third-party Python packages its controller imports (the run is skipped,
-  and says which, when one is missing); ``keys``: a keyboard script (``time_s key [duration_s]``
-  lines, ``mazesim webots run --keys``).
+- optional ``packages``: third-party Python packages its controller imports (for the reader: the
+  run itself says at its start which of them are missing); ``keys``: a keyboard script
+  (``time_s key [duration_s]`` lines, ``mazesim webots run --keys``).
 """
 
 from __future__ import annotations

@@ -18,16 +18,19 @@ wall and line followers, fuzzy and PID controllers, supervisors, course mazes an
 repository, commit and paths and the behaviour a run in Webots shows, as facts; no third-party
 code is kept here. `make webots-compat MIRRORS=DIR` exports each project from a local git mirror
 (DIR holds one per repository; a missing one is skipped and named), imports its world, runs its
-first controller with `mazesim webots run` for the project's simulated time, checks the facts
-against the run's `summary.json` and `trajectory.csv`, and writes this page.
+first controller with `mazesim webots run` for the project's simulated time (a C or C++
+controller is built with gcc or g++ against mazesim's implementation of Webots' C API), checks
+the facts against the run's `summary.json` and `trajectory.csv`, and writes this page.
 
 Measured on {stamp} at commit `{revision}`: {counts}; the whole corpus took {elapsed:.0f} s.
 
 Results: **pass**, every fact held; **fail**, a fact did not (the cause says which and what
-was measured); **timeout**, the run was stopped; **not run**, a C or C++ controller, or a Python
-package the controller imports is missing; **broken itself**, the project does not work in
-Webots either (the cause says why); **skipped**, no mirror; **error**, the world could not be
-exported or imported. A cause also quotes the first thing the import said it lost.
+was measured); **timeout**, the run was stopped; **not run**, the run said at its start that a
+Webots feature or a Python package the controller needs is missing, and the facts did not hold
+(the cause is that statement, the run's `missing_features`); **broken itself**, the project does
+not work in Webots either (the cause says why); **skipped**, no mirror; **error**, the world
+could not be exported or imported, or the controller could not be built. A cause also quotes the
+first thing the import said it lost.
 """
 
 CENSUS_INTRO = """\

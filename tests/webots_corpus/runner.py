@@ -4,7 +4,6 @@ controller with ``mazesim webots run`` for the project's simulated time, and che
 from __future__ import annotations
 
 import csv
-import importlib.util
 import json
 import os
 import re
@@ -23,11 +22,13 @@ from webots_corpus.facts import MOVED, Outcome, check, parse_fact
 from webots_corpus.manifest import Project
 from webots_corpus.mirrors import MirrorError, export, find_mirror, has_commit, read_file
 
+#: Words of an import warning that says something of the world was lost (a dropped node, an
+#: unknown one, a floor texture that could not be read).
+LOST_WORDS = (*DROPPED_WORDS, "unknown", "left bare")
 #: Wall-clock seconds a run may take beyond its simulated time before it is stopped.
 GRACE_S = 30.0
 #: Wall-clock seconds a stopped run has to write its outputs before it is killed.
 INTERRUPT_GRACE_S = 5.0
-LANGUAGE_NAMES = {"c": "C controller", "cpp": "C++ controller"}
 
 
 @dataclass
@@ -64,14 +65,10 @@ def _robots_moving(summary: dict[str, Any]) -> int | None:
     return sum(1 for r in robots if isinstance(r, dict) and float(r.get("distance_m", 0)) > MOVED)
 
 
-def _missing_packages(project: Project) -> list[str]:
-    return [p for p in project.packages if importlib.util.find_spec(p) is None]
-
-
 def _significant(warnings: list[str]) -> list[str]:
     """The warnings that say something of the world was lost (without the list of known PROTOs
     some of them end with)."""
-    lost = [w for w in warnings if any(word in w.lower() for word in (*DROPPED_WORDS, "unknown"))]
+    lost = [w for w in warnings if any(word in w.lower() for word in LOST_WORDS)]
     return [re.sub(r" \(known PROTOs: [^)]*\)", "", w) for w in lost]
 
 
@@ -83,6 +80,7 @@ class RunResult:
     exit_status: int | None
     stdout: str
     last_error: str
+    failure: str = ""
 
 
 def _last_error(stderr: str) -> str:
@@ -128,7 +126,9 @@ def _run(project: Project, root: Path, world: Path, out: Path) -> RunResult:
         os.killpg(process.pid, signal.SIGKILL)
         raise
     text = stderr.decode("utf-8", "replace")
-    return RunResult(status, stdout.decode("utf-8", "replace"), _last_error(text))
+    failures = [line for line in text.splitlines() if line.startswith("mazesim: error: ")]
+    failure = failures[-1].removeprefix("mazesim: error: ") if failures else ""
+    return RunResult(status, stdout.decode("utf-8", "replace"), _last_error(text), failure)
 
 
 def run_project(project: Project, mirrors: Path, work: Path, census: Census) -> Row:
@@ -158,25 +158,14 @@ def _run_project(project: Project, mirrors: Path, work: Path, census: Census) ->
         world_obj, report = _import(world, controller)
     except Exception as error:  # noqa: BLE001 - any import failure is the row's result
         census.add(f"{project.repo}:{project.world}", text, set(), set())
+        if project.broken:
+            return Row(project, "broken itself", project.broken)
         message = str(error).replace(f"{root}{os.sep}", "")
         return Row(project, "error", f"import: {type(error).__name__}: {message}")
     warnings = list(report.get("warnings", []))
     if project.language != "python" and project.broken:
         census.add(f"{project.repo}:{project.world}", text, *losses(warnings))
         return Row(project, "broken itself", project.broken, warnings=warnings)
-    if project.language != "python":
-        dropped, stood_in = losses(warnings)
-        census.add(f"{project.repo}:{project.world}", text, dropped, stood_in)
-        lost = _significant(warnings)
-        cause = LANGUAGE_NAMES[project.language] + (f"; import: {lost[0]}" if lost else "")
-        return Row(project, "not run", cause, warnings=warnings)
-    missing = _missing_packages(project)
-    if missing:
-        dropped, stood_in = losses(warnings)
-        census.add(f"{project.repo}:{project.world}", text, dropped, stood_in)
-        return Row(
-            project, "not run", f"needs Python package {', '.join(missing)}", warnings=warnings
-        )
     out = root.parent / f"{root.name}.out"
     run = _run(project, root, world, out)
     summary: dict[str, Any] = {}
@@ -184,6 +173,9 @@ def _run_project(project: Project, mirrors: Path, work: Path, census: Census) ->
         summary = json.loads((out / "summary.json").read_text(encoding="utf-8"))
     dropped, stood_in = losses(warnings, summary)
     census.add(f"{project.repo}:{project.world}", text, dropped, stood_in)
+    if not summary and run.exit_status is not None and run.failure:
+        # The run stopped before simulating (a controller that does not compile...).
+        return Row(project, "error", f"run: {run.failure[:400]}", warnings=warnings)
     boxes = np.asarray(world_obj.wall_boxes(), dtype=np.float64).reshape(-1, 6)[:, :5]
     outcome = Outcome(
         exit_status=run.exit_status,
@@ -199,7 +191,8 @@ def _run_project(project: Project, mirrors: Path, work: Path, census: Census) ->
     for line in project.expect:
         ok, measured = check(parse_fact(line), outcome)
         checks.append((line, ok, measured))
-    return _judge(project, checks, warnings, outcome, run)
+    missing = [str(m) for m in summary.get("missing_features") or []]
+    return _judge(project, checks, warnings, outcome, run, missing)
 
 
 def _judge(
@@ -208,9 +201,17 @@ def _judge(
     warnings: list[str],
     outcome: Outcome,
     run: RunResult,
+    missing: list[str],
 ) -> Row:
+    """The row of a run: pass, fail or timeout, or not run when the run said at its start what
+    it lacks (its statement is the cause, so the table and the run agree)."""
     failed = [f"{line} ({measured})" for line, ok, measured in checks if not ok]
     parts: list[str] = []
+    if missing and (failed or run.exit_status is None):
+        lost = _significant(warnings)
+        cause = "missing: " + "; ".join(missing) + (f"; import: {lost[0]}" if lost else "")
+        result = "broken itself" if project.broken else "not run"
+        return Row(project, result, project.broken or cause, checks, warnings)
     stopped = run.exit_status is None
     if stopped:
         parts.append(f"stopped after {project.seconds + GRACE_S:.0f} s of wall-clock time")

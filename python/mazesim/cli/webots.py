@@ -81,7 +81,10 @@ def register(commands: Any) -> None:
             "DIR/trajectory.csv "
             "(also when the controller raises, exits or is interrupted). The importer's "
             "warnings about a .wbt world are printed on stderr, each line prefixed with "
-            "'mazesim: warning: '."
+            "'mazesim: warning: ', and what the controller needs that is missing (a Webots "
+            "feature, a Python package) with 'mazesim: missing: '. A C or C++ controller is "
+            "built with gcc or g++ against mazesim's Webots C API (cached in "
+            "~/.cache/mazesim/controllers) and run in lockstep."
         ),
         epilog=examples(
             "mazesim webots run my_controller.py",
@@ -89,15 +92,18 @@ def register(commands: Any) -> None:
             "mazesim webots run my_controller.py --keys keys.txt --html run.html",
             notes="exit status: 0 the controller ended (or robot.step returned -1); N the "
             "controller's sys.exit(N) or a supervisor's simulationQuit(N); 1 the controller "
-            "raised an exception or does not compile (its traceback is printed); 2 a "
-            "mazesim error before the run (unreadable controller, world or key script, "
+            "raised an exception or, in Python, does not compile; a C/C++ controller crashed or "
+            "could not be started (what it lacks is printed); 2 a mazesim error before the run "
+            "(unreadable controller, world or key script, a C/C++ controller that does not "
+            "compile, "
             "--strict with import warnings); 130 interrupted (Ctrl-C).",
         ),
     )
     run.add_argument(
         "controller",
         metavar="CONTROLLER.py",
-        help="the controller's Python file, or its Webots folder controllers/NAME (NAME.py in it)",
+        help="the controller's Python, C or C++ file, or its Webots folder controllers/NAME "
+        "(NAME.py, NAME.c or NAME.cpp in it)",
     )
     run.add_argument(
         "--world",
@@ -262,10 +268,17 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
     import mazesim
     from mazesim.plotting import save_trajectory_png
     from mazesim.webots.keyboard import read_keys
+    from mazesim.webots.requirements import prepare_controller
     from mazesim.webots.runner import controller_file, run_controller
 
-    controller = os.path.splitext(os.path.basename(controller_file(args.controller)))[0]
+    file = controller_file(args.controller)
+    controller = os.path.splitext(os.path.basename(file))[0]
     world, report, scene = _load_world(args.world, args.strict, controller)
+    prepared = prepare_controller(file)
+    for note in prepared.notes:
+        print(f"mazesim: {note}", file=sys.stderr)
+    for missing in prepared.missing:
+        print(f"mazesim: missing: {missing}", file=sys.stderr)
     keys = read_keys(args.keys) if args.keys else None
     out_dir = os.path.abspath(args.out)
     refuse_overwriting_inputs(
@@ -295,6 +308,7 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
             report=report,
             keys=keys,
             scene=scene,
+            prepared=prepared,
         )
         if result.reached_end:
             steps.finish()
@@ -319,6 +333,7 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
         "wall_clock_seconds": wall_clock,
         "real_time_factor": result.simulated_seconds / wall_clock if wall_clock > 0 else None,
         "mazesim_version": mazesim.__version__,
+        "missing_features": list(prepared.missing),
     }
     if report is not None and "import_summary" in report:
         summary["import"] = {

@@ -23,9 +23,10 @@ from mazesim._core import World
 from mazesim._paths import MAX_TEXT_CHARACTERS, read_input
 from mazesim.errors import InvalidArgumentError, MazesimIOError
 from mazesim.webots import controller as controller_module
+from mazesim.webots import native_controller, termination
 from mazesim.webots import simulation as simulations
-from mazesim.webots import termination
 from mazesim.webots.keyboard import KeyScript
+from mazesim.webots.requirements import PreparedController, prepare_controller
 from mazesim.webots.scene import Scene
 
 __all__ = [
@@ -92,24 +93,27 @@ class ControllerRun:
 
 def controller_file(path: str | os.PathLike[str]) -> str:
     """The controller file to run: ``path`` itself, or for a Webots controller folder
-    ``controllers/NAME`` the ``NAME.py`` in it, which Webots runs for a Python controller.
+    ``controllers/NAME`` the ``NAME.py``, ``NAME.c`` or ``NAME.cpp`` in it, as Webots looks for
+    them.
 
     Raises:
-        MazesimIOError: ``path`` is a folder without that file.
+        MazesimIOError: ``path`` is a folder without such a file.
     """
     file = os.path.abspath(os.fspath(path))
     if not os.path.isdir(file):
         return file
     name = os.path.basename(file)
-    inside = os.path.join(file, f"{name}.py")
-    if not os.path.isfile(inside):
-        failure = MazesimIOError(
-            f"{file}: expected a controller file, or a Webots controller folder holding "
-            f"{name}.py (Webots runs controllers/NAME/NAME.py), found a folder without it"
-        )
-        failure.filename = file
-        raise failure
-    return inside
+    for suffix in (".py", ".c", ".cpp"):
+        inside = os.path.join(file, f"{name}{suffix}")
+        if os.path.isfile(inside):
+            return inside
+    failure = MazesimIOError(
+        f"{file}: expected a controller file, or a Webots controller folder holding "
+        f"{name}.py, {name}.c or {name}.cpp (Webots runs controllers/NAME/NAME.*), found a "
+        f"folder without them"
+    )
+    failure.filename = file
+    raise failure
 
 
 def _read_source(path: str) -> str:
@@ -141,6 +145,7 @@ def run_controller(
     report: Mapping[str, Any] | None = None,
     keys: KeyScript | None = None,
     scene: Scene | None = None,
+    prepared: PreparedController | None = None,
 ) -> ControllerRun:
     """Runs a Webots-style controller file on the robot in ``world``.
 
@@ -158,6 +163,10 @@ def run_controller(
         keys: The keyboard script.
         scene: DEF names, supervisor flag, camera fields and controller arguments of the world
             file (``sys.argv[1:]`` of the controller).
+        prepared: The controller as :func:`~mazesim.webots.requirements.prepare_controller`
+            prepared it (a C or C++ controller built); prepared here when not given. A
+            controller that cannot run (C or C++ needing Webots headers or functions mazesim
+            lacks) is not started: the run has no steps and its error says what is missing.
 
     Returns:
         What the run did.
@@ -165,8 +174,14 @@ def run_controller(
     Raises:
         MazesimIOError: The file cannot be read.
         InvalidArgumentError: ``seconds`` is not positive.
+        ControllerBuildError: A C controller does not compile.
+        MissingDependencyError: A C controller and no C compiler.
     """
     file = controller_file(path)
+    if prepared is None or prepared.file != file:
+        prepared = prepare_controller(file)
+    if prepared.language != "python":
+        return _run_native(prepared, world, seconds, seed, noise, report, keys, scene)
     source = _read_source(file)
     simulation = simulations.prepare(
         world, seconds=seconds, seed=seed, noise=noise, report=report, keys=keys, scene=scene
@@ -211,6 +226,56 @@ def run_controller(
         _restore_modules(saved_modules)
         controller_module.Robot.created = None
         simulations.release()
+    return _outcome(world, file, simulation, started, status, error)
+
+
+def _run_native(
+    prepared: PreparedController,
+    world: World,
+    seconds: float,
+    seed: int,
+    noise: bool,
+    report: Mapping[str, Any] | None,
+    keys: KeyScript | None,
+    scene: Scene | None,
+) -> ControllerRun:
+    """Runs a compiled controller as a child process (or, when it cannot run, says why)."""
+    simulation = simulations.prepare(
+        world, seconds=seconds, seed=seed, noise=noise, report=report, keys=keys, scene=scene
+    )
+    controller_module.Robot.created = None
+    started = time.perf_counter()
+    status, error = EXIT_CONTROLLER_ERROR, ""
+    try:
+        if not prepared.runnable or prepared.program is None:
+            error = "controller not run: " + "; ".join(prepared.missing) + "\n"
+        else:
+            robot = controller_module.Robot()
+            folder = os.path.dirname(prepared.file)
+            name = os.path.basename(folder)
+            world_path = str((report or {}).get("path") or "")
+            project = os.path.join(os.path.dirname(os.path.dirname(folder)), "")
+            arguments = list(scene.controller_args) if scene else []
+            status, error, _ = native_controller.drive(
+                prepared.program, robot, arguments, (name, project, world_path), folder
+            )
+    except KeyboardInterrupt:
+        status = EXIT_INTERRUPTED
+    finally:
+        controller_module.Robot.created = None
+        simulations.release()
+    return _outcome(world, prepared.file, simulation, started, status, error)
+
+
+def _outcome(
+    world: World,
+    file: str,
+    simulation: simulations.RobotSimulation,
+    started: float,
+    status: int,
+    error: str,
+) -> ControllerRun:
+    """The run's :class:`ControllerRun`."""
     simulator = simulation.simulator
     return ControllerRun(
         world=world,

@@ -1,0 +1,2 @@
+// Webots' C++ Motor class (<webots/Motor.hpp>): defined with mazesim's other device classes.
+#include <webots/Devices.hpp>

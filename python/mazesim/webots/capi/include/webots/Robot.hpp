@@ -1,0 +1,101 @@
+// Webots' C++ Robot class (<webots/Robot.hpp>), over mazesim's C library: getDevice gives the
+// device of its node type (a Motor*, a DistanceSensor*...), made once and owned by the robot.
+#ifndef WB_ROBOT_HPP
+#define WB_ROBOT_HPP
+
+#include <map>
+#include <string>
+
+#include <webots/Devices.hpp>
+#include <webots/robot.h>
+
+namespace webots {
+  class Robot {
+  public:
+    Robot() { wb_robot_init(); }
+    virtual ~Robot() {
+      for (std::map<WbDeviceTag, Device *>::iterator i = devices.begin(); i != devices.end(); ++i)
+        delete i->second;
+      wb_robot_cleanup();
+    }
+    virtual int step(int duration) { return wb_robot_step(duration); }
+    double getBasicTimeStep() const { return wb_robot_get_basic_time_step(); }
+    double getTime() const { return wb_robot_get_time(); }
+    std::string getName() const { return wb_robot_get_name(); }
+    std::string getModel() const { return wb_robot_get_model(); }
+    std::string getCustomData() const { return wb_robot_get_custom_data(); }
+    void setCustomData(const std::string &data) { wb_robot_set_custom_data(data.c_str()); }
+    bool getSupervisor() const { return wb_robot_get_supervisor(); }
+    int getMode() const { return wb_robot_get_mode(); }
+    int getNumberOfDevices() const { return wb_robot_get_number_of_devices(); }
+    Device *getDeviceByIndex(int index) { return device(wb_robot_get_device_by_index(index)); }
+    Device *getDevice(const std::string &name) { return device(wb_robot_get_device(name.c_str())); }
+    Keyboard *getKeyboard() { return &keyboard; }
+    Motor *getMotor(const std::string &name) { return dynamic_cast<Motor *>(getDevice(name)); }
+    DistanceSensor *getDistanceSensor(const std::string &name) {
+      return dynamic_cast<DistanceSensor *>(getDevice(name));
+    }
+    PositionSensor *getPositionSensor(const std::string &name) {
+      return dynamic_cast<PositionSensor *>(getDevice(name));
+    }
+    LightSensor *getLightSensor(const std::string &name) {
+      return dynamic_cast<LightSensor *>(getDevice(name));
+    }
+    TouchSensor *getTouchSensor(const std::string &name) {
+      return dynamic_cast<TouchSensor *>(getDevice(name));
+    }
+    LED *getLED(const std::string &name) { return dynamic_cast<LED *>(getDevice(name)); }
+    GPS *getGPS(const std::string &name) { return dynamic_cast<GPS *>(getDevice(name)); }
+    Compass *getCompass(const std::string &name) { return dynamic_cast<Compass *>(getDevice(name)); }
+    Accelerometer *getAccelerometer(const std::string &name) {
+      return dynamic_cast<Accelerometer *>(getDevice(name));
+    }
+    Gyro *getGyro(const std::string &name) { return dynamic_cast<Gyro *>(getDevice(name)); }
+    Camera *getCamera(const std::string &name) { return dynamic_cast<Camera *>(getDevice(name)); }
+
+  private:
+    Device *device(WbDeviceTag tag) {
+      if (!tag)
+        return 0;
+      std::map<WbDeviceTag, Device *>::iterator found = devices.find(tag);
+      if (found != devices.end())
+        return found->second;
+      Device *made = make(tag);
+      devices[tag] = made;
+      return made;
+    }
+    static Device *make(WbDeviceTag tag) {
+      switch (wb_device_get_node_type(tag)) {
+        case WB_NODE_ROTATIONAL_MOTOR:
+        case WB_NODE_LINEAR_MOTOR:
+          return new Motor(tag);
+        case WB_NODE_DISTANCE_SENSOR:
+          return new DistanceSensor(tag);
+        case WB_NODE_POSITION_SENSOR:
+          return new PositionSensor(tag);
+        case WB_NODE_LIGHT_SENSOR:
+          return new LightSensor(tag);
+        case WB_NODE_TOUCH_SENSOR:
+          return new TouchSensor(tag);
+        case WB_NODE_LED:
+          return new LED(tag);
+        case WB_NODE_GPS:
+          return new GPS(tag);
+        case WB_NODE_COMPASS:
+          return new Compass(tag);
+        case WB_NODE_ACCELEROMETER:
+          return new Accelerometer(tag);
+        case WB_NODE_GYRO:
+          return new Gyro(tag);
+        case WB_NODE_CAMERA:
+          return new Camera(tag);
+        default:
+          return new Device(tag);
+      }
+    }
+    std::map<WbDeviceTag, Device *> devices;
+    Keyboard keyboard;
+  };
+}  // namespace webots
+
+#endif

@@ -1,0 +1,72 @@
+/* The controller's side of mazesim's lockstep link (see mazesim/webots/native_link.py for the
+   protocol): the robot's description, the commands waiting for the next step, and the readings
+   of the last one. */
+#ifndef MAZESIM_LINK_H
+#define MAZESIM_LINK_H
+
+#include <webots/nodes.h>
+#include <webots/types.h>
+
+/* The protocol's version; both ends check it. */
+#define LINK_VERSION 1
+
+/* What the controller sends. */
+enum { LINK_HELLO = 1, LINK_STEP = 2, LINK_CLEANUP = 3 };
+
+/* The commands a step carries. */
+enum {
+  COMMAND_ENABLE = 1,
+  COMMAND_DISABLE = 2,
+  COMMAND_SET_POSITION = 3,
+  COMMAND_SET_VELOCITY = 4,
+  COMMAND_SET_ACCELERATION = 5,
+  COMMAND_LED_SET = 6
+};
+
+/* The tag that stands for the keyboard in enable commands and readings. */
+#define KEYBOARD_TAG 0
+
+typedef struct {
+  char *name;
+  char *model;
+  WbNodeType node_type;
+  int info_count;
+  double *info;           /* fixed facts of the device, by node type (see native_link.py) */
+  int sampling_period;    /* ms, 0 when disabled */
+  int value_count;
+  double values[3];       /* the last reading */
+  int image_size;
+  unsigned char *image;   /* a camera's last image */
+  double set_point[3];    /* a motor's target position, velocity and acceleration */
+  int led;
+} Device;
+
+typedef struct {
+  int ready;
+  double basic_time_step;
+  double time;
+  char *name;
+  char *model;
+  char *custom_data;
+  char *controller_name;
+  char *project_path;
+  char *world_path;
+  int supervisor;
+  int device_count;
+  Device *devices;
+  int keyboard_period;
+  int key_count;
+  int key_next;
+  int keys[64];
+} Robot;
+
+extern Robot link_robot;
+
+/* Connects on first use (wb_robot_init does, and any call made before it). */
+void link_start(void);
+/* Queues a command for the next step. */
+void link_command(int op, int tag, double a, double b);
+/* The device of a tag, or NULL after printing Webots' message naming `function`. */
+Device *link_device(WbDeviceTag tag, const char *function);
+
+#endif

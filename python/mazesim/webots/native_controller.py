@@ -1,0 +1,316 @@
+"""Webots controllers written in C, built with the system's compiler and driven in lockstep.
+
+:func:`build` compiles a controller folder's ``.c`` files (as Webots' default Makefile does)
+with mazesim's controller library (``capi/``: Webots' C API headers and their implementation,
+written for mazesim) into a program kept in the build cache (``$XDG_CACHE_HOME/mazesim/
+controllers``, by default ``~/.cache/mazesim/controllers``; ``MAZESIM_CACHE`` overrides it), so
+a second run of the same sources starts at once. A controller that calls a Webots function the
+library does not implement does not link; the build then names those functions as missing
+Webots features instead of failing. :func:`drive` runs the program as a child process and
+serves it over :mod:`mazesim.webots.native_link`.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import re
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from mazesim.errors import ControllerBuildError, MazesimError, MissingDependencyError
+from mazesim.webots import native_link
+from mazesim.webots.termination import GRACE_SECONDS
+
+__all__ = ["CAPI", "Build", "build", "cache_folder", "drive"]
+
+#: mazesim's controller library: ``include/webots/*.h`` and ``src/*.c``.
+CAPI = Path(__file__).with_name("capi")
+#: Seconds a build may take.
+BUILD_TIMEOUT_S = 300
+#: The compiler's options (besides include folders and files).
+FLAGS = ("-O2", "-w")
+#: Exit status of a controller killed by a signal, or that broke the link.
+EXIT_CRASHED = 1
+
+_UNDEFINED = re.compile(r"undefined reference to [`'‘](wb_\w+)['’]")
+_NO_HEADER = re.compile(r"fatal error: (webots/[\w/.]+): No such file or directory")
+_INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]', re.MULTILINE)
+#: Most files read for their includes before a build.
+MAX_SCANNED = 500
+
+
+@dataclass
+class Build:
+    """A C controller's build.
+
+    Attributes:
+        program: The built program, or None when it could not be linked.
+        missing: Webots API functions the controller calls that mazesim does not implement.
+        headers: Webots API headers the controller includes that mazesim does not provide.
+        note: What the build did, for the run's log (compiled, or taken from the cache).
+    """
+
+    program: str | None
+    missing: list[str] = field(default_factory=list)
+    headers: list[str] = field(default_factory=list)
+    note: str = ""
+
+
+def cache_folder() -> Path:
+    """The folder of built controllers: ``$MAZESIM_CACHE/controllers`` if set, else
+    ``$XDG_CACHE_HOME/mazesim/controllers``, else ``~/.cache/mazesim/controllers``."""
+    own = os.environ.get("MAZESIM_CACHE")
+    if own:
+        return Path(own) / "controllers"
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return Path(base) / "mazesim" / "controllers"
+
+
+#: Source suffixes by language, as Webots' default Makefile compiles them.
+C_SUFFIXES = (".c",)
+CPP_SUFFIXES = (".cpp", ".cc", ".cxx")
+#: The compiler of each language, and the variable that names another one.
+COMPILERS = {"c": ("CC", "gcc"), "cpp": ("CXX", "g++")}
+LANGUAGE_NAMES = {"c": "C", "cpp": "C++"}
+
+
+def _compiler(language: str) -> str:
+    variable, default = COMPILERS[language]
+    name = os.environ.get(variable) or default
+    found = shutil.which(name)
+    if found is None:
+        raise MissingDependencyError(
+            f"expected a {LANGUAGE_NAMES[language]} compiler ({name}, or the one ${variable} "
+            f"names) on PATH to build the {LANGUAGE_NAMES[language]} controller, found none: "
+            f"install {default} (Debian: apt-get install {default})"
+        )
+    return found
+
+
+def _files(folder: Path, suffixes: tuple[str, ...], recursive: bool = False) -> list[Path]:
+    found = folder.rglob("*") if recursive else folder.glob("*")
+    return sorted(p for p in found if p.suffix.lower() in suffixes and p.is_file())
+
+
+def _key(compilers: list[str], files: list[Path]) -> str:
+    digest = hashlib.sha256()
+    for compiler in compilers:
+        digest.update(compiler.encode() + b"\0" + " ".join(FLAGS).encode() + b"\0")
+        version = subprocess.run([compiler, "--version"], capture_output=True, check=False)
+        digest.update(version.stdout)
+    for path in files:
+        digest.update(str(path).encode() + b"\0" + path.read_bytes() + b"\0")
+    return digest.hexdigest()[:20]
+
+
+def _compile(main: Path, command: list[str], cwd: str) -> subprocess.CompletedProcess[str]:
+    try:
+        return subprocess.run(
+            command, cwd=cwd, capture_output=True, text=True, timeout=BUILD_TIMEOUT_S, check=False
+        )
+    except subprocess.TimeoutExpired:
+        raise ControllerBuildError(
+            f"{main}: expected the controller to build within {BUILD_TIMEOUT_S} s, found the "
+            f"compiler still running"
+        ) from None
+
+
+def absent_headers(files: list[Path]) -> list[str]:
+    """The Webots headers (``webots/...``) that ``files``, and the files they include by a
+    relative path, include and the controller library does not provide: all of them, where the
+    compiler would stop at the first."""
+    provided = CAPI / "include"
+    absent: set[str] = set()
+    queue, seen = list(files), set[Path]()
+    while queue and len(seen) < MAX_SCANNED:
+        path = queue.pop()
+        if path in seen or not path.is_file():
+            continue
+        seen.add(path)
+        text = path.read_text(encoding="utf-8", errors="replace")
+        for quote, name in _INCLUDE.findall(text):
+            local = (path.parent / name).resolve()
+            if quote == '"' and local.is_file():
+                queue.append(local)
+            elif name.startswith("webots/") and not any(
+                (folder / name).is_file() for folder in (provided, path.parent)
+            ):
+                absent.add(name)
+    return sorted(absent)
+
+
+def build(source: str | os.PathLike[str]) -> Build:
+    """Builds the C or C++ controller whose main file is ``source`` (with its folder's other
+    ``.c``, and for C++ ``.cpp``, ``.cc`` and ``.cxx``, files), or takes it from the cache.
+
+    Raises:
+        MissingDependencyError: No compiler.
+        ControllerBuildError: The sources do not compile (the message quotes the compiler).
+    """
+    main = Path(source).resolve()
+    folder = main.parent
+    language = "cpp" if main.suffix.lower() in CPP_SUFFIXES else "c"
+    c_compiler = _compiler("c")
+    compilers = [c_compiler] + ([_compiler("cpp")] if language == "cpp" else [])
+    c_sources = _files(folder, C_SUFFIXES)
+    cpp_sources = _files(folder, CPP_SUFFIXES) if language == "cpp" else []
+    own = cpp_sources if language == "cpp" else c_sources
+    if main not in own:
+        own.append(main)
+    headers = _files(folder, (".h", ".hpp", ".hh"), recursive=True)
+    library = sorted((CAPI / "src").glob("*.c"))
+    library_headers = sorted((CAPI / "include").rglob("*.h*"))
+    files = [*c_sources, *cpp_sources, *headers, *library, *(CAPI / "src").glob("*.h")]
+    absent = absent_headers([*c_sources, *cpp_sources, *headers])
+    if absent:
+        return Build(None, [], absent, note="it includes Webots headers mazesim does not provide")
+    key = _key(compilers, [*files, *library_headers])
+    target = cache_folder() / f"{main.stem}-{key}" / main.stem
+    if target.is_file():
+        return Build(str(target), note=f"built earlier, taken from the cache {target.parent}")
+    target.parent.mkdir(parents=True, exist_ok=True)
+    temporary = target.with_name(f".{target.name}.{os.getpid()}")
+    includes = ["-I", str(folder), "-I", str(CAPI / "include")]
+    with tempfile.TemporaryDirectory(prefix="mazesim-build-") as work:
+        if language == "c":
+            steps = [[c_compiler, *FLAGS, *includes, *map(str, [*c_sources, *library])]]
+            steps[0] += ["-o", str(temporary), "-lm"]
+        else:
+            # The C parts (the library, the project's .c files) as C, then the C++ program.
+            c_parts = [*c_sources, *library]
+            objects = [os.path.join(work, f"{i}.o") for i in range(len(c_parts))]
+            steps = [
+                [c_compiler, *FLAGS, *includes, "-c", str(path), "-o", obj]
+                for path, obj in zip(c_parts, objects)
+            ]
+            steps.append([compilers[1], *FLAGS, *includes, *map(str, cpp_sources), *objects])
+            steps[-1] += ["-o", str(temporary), "-lm"]
+        for command in steps:
+            done = _compile(main, command, work)
+            if done.returncode != 0:
+                break
+    if done.returncode != 0:
+        temporary.unlink(missing_ok=True)
+        missing = sorted(set(_UNDEFINED.findall(done.stderr)))
+        absent = sorted(set(_NO_HEADER.findall(done.stderr)))
+        compiler = command[0]
+        if missing or absent:
+            return Build(None, missing, absent, note=f"{compiler} cannot build it")
+        message = done.stderr.strip().replace(f"{folder}{os.sep}", "")
+        raise ControllerBuildError(
+            f"{main}: expected a {LANGUAGE_NAMES[language]} controller that compiles, found "
+            f"compiler errors ({os.path.basename(compiler)} {' '.join(FLAGS)}):\n{message}"
+        )
+    os.replace(temporary, target)
+    names = " and ".join(compilers)
+    return Build(str(target), note=f"compiled with {names} into the cache {target.parent}")
+
+
+def _signal_name(status: int) -> str:
+    try:
+        return signal.Signals(-status).name
+    except ValueError:
+        return f"signal {-status}"
+
+
+def drive(
+    program: str, robot: Any, arguments: list[str], facts: tuple[str, str, str], folder: str
+) -> tuple[int, str, bool]:
+    """Runs a built controller as a child process and serves its steps until it exits.
+
+    Args:
+        program: The built controller.
+        robot: The :class:`~mazesim.webots.robot.Robot` it drives.
+        arguments: The controller's arguments (the world's ``controllerArgs``).
+        facts: Controller name, project path and world path, for the API's getters.
+        folder: The controller's folder, where it runs (as in Webots).
+
+    Returns:
+        The exit status, the error (a crash, or "" ), and whether the controller was stopped
+        because it went on after the run's end.
+    """
+    ours, theirs = socket.socketpair()
+    environment = dict(os.environ, MAZESIM_CONTROLLER_FD=str(theirs.fileno()))
+    sys.stdout.flush()
+    sys.stderr.flush()
+    process = subprocess.Popen(
+        [program, *arguments],
+        cwd=folder,
+        env=environment,
+        pass_fds=(theirs.fileno(),),
+        stdin=subprocess.DEVNULL,
+    )
+    theirs.close()
+    link = native_link.RobotLink(ours, robot, facts)
+    stopped, failure = False, ""
+    try:
+        stopped = _serve(link, robot)
+    except native_link.LinkClosed:
+        pass
+    except MazesimError as error:
+        # A malformed message or a call the API refuses (a negative step...): the run's error.
+        process.kill()
+        failure = f"{type(error).__name__}: {error}\n"
+    except BaseException:
+        process.kill()
+        process.wait()
+        raise
+    finally:
+        ours.close()
+    try:
+        status = process.wait(timeout=GRACE_SECONDS)
+    except subprocess.TimeoutExpired:
+        process.kill()
+        status = process.wait()
+        stopped = True
+    if failure:
+        return EXIT_CRASHED, failure, False
+    if stopped:
+        return 0, "", True
+    if status < 0:
+        name = _signal_name(status)
+        return EXIT_CRASHED, f"the C controller crashed: killed by {name}\n", False
+    return status, "", False
+
+
+def _serve(link: native_link.RobotLink, robot: Any) -> bool:
+    """Serves the controller's messages; True when it was stopped for going on after the end."""
+    simulation = robot._simulation
+    ended_at: float | None = None
+    while True:
+        if ended_at is not None:
+            left = GRACE_SECONDS - (time.monotonic() - ended_at)
+            if left <= 0:
+                simulation.stopped = True
+                return True
+            link.channel.settimeout(left)
+        try:
+            kind = link.receive_kind()
+        except TimeoutError:
+            simulation.stopped = True
+            return True
+        if kind == native_link.HELLO:
+            link.receive_hello()
+        elif kind == native_link.STEP:
+            duration, commands = link.receive_step()
+            if simulation.ended:
+                link.answer_step(-1)
+                continue
+            link.apply(commands)
+            result = robot.step(duration)
+            if result == -1:
+                ended_at = time.monotonic()
+            link.answer_step(result)
+        elif kind == native_link.CLEANUP:
+            return False
+        else:
+            raise native_link.LinkClosed

@@ -1,0 +1,297 @@
+"""The lockstep link between mazesim and a compiled Webots controller running as a child process.
+
+A C controller is linked to mazesim's controller library (``mazesim/webots/capi``), which
+implements Webots' C API over this link; mazesim serves the link with the Python ``controller``
+module's :class:`~mazesim.webots.robot.Robot`, so a C controller's devices behave as a Python
+controller's do, reading for reading.
+
+Transport: one end of a ``socketpair`` (a stream), whose file descriptor the child finds in the
+environment variable ``MAZESIM_CONTROLLER_FD``. Numbers are in the machine's own byte order
+(both ends run on one machine): ``i32`` a 32-bit signed integer, ``f64`` a double, ``str`` an
+``i32`` length then that many UTF-8 bytes.
+
+Messages from the controller, each starting with an ``i32`` kind:
+
+``HELLO`` (1), ``i32`` version
+    Sent once, by ``wb_robot_init`` (or the first API call). mazesim answers with the robot's
+    description: ``i32`` version, ``f64`` basic time step (ms), ``str`` name, model, custom data,
+    controller name, project path, world path, ``i32`` supervisor (0/1), ``i32`` device count,
+    then per device (tag 1, 2... in this order) ``str`` name, ``str`` model, ``i32`` node type
+    (Webots' ``WbNodeType`` numbers, :mod:`mazesim.webots.node_types`), ``i32`` count and that
+    many ``f64`` facts: for a DistanceSensor its min value, max value, aperture, type, then its
+    lookup table's rows (3 numbers each); for a RotationalMotor its max velocity, min position,
+    max position, acceleration and its position sensor's tag (0 for none); for a
+    PositionSensor its motor's tag; for a Camera its width, height and field of view.
+
+``STEP`` (2), ``i32`` duration (ms), ``i32`` command count, commands
+    Sent by ``wb_robot_step`` with the commands queued since the last step, each ``i32`` op,
+    ``i32`` tag, ``f64`` a, ``f64`` b: ENABLE (1, sampling period a), DISABLE (2),
+    SET_POSITION (3, a), SET_VELOCITY (4, a), SET_ACCELERATION (5, a), LED_SET (6, a). Tag 0
+    in ENABLE and DISABLE is the keyboard. mazesim applies them in order, steps the simulation
+    as ``Robot.step(duration)`` does and answers ``i32`` result (0, or -1 when the run's time is
+    up), ``f64`` time (s), ``i32`` reading count, and per enabled device ``i32`` tag, ``i32``
+    value count, ``i32`` byte count, the values as ``f64`` and the bytes (a camera's image,
+    B G R A per pixel). The keyboard's reading (tag 0) holds the keys of this step.
+
+``CLEANUP`` (3)
+    Sent by ``wb_robot_cleanup``; no answer. The controller then exits.
+
+Once a step has answered -1, the controller has
+:data:`~mazesim.webots.termination.GRACE_SECONDS` of real time to exit, as in Webots; then it is
+killed. Closing the link (mazesim ending) makes the controller exit.
+"""
+
+from __future__ import annotations
+
+import socket
+import struct
+import sys
+from collections.abc import Iterator
+from dataclasses import dataclass
+from typing import Any
+
+from mazesim.errors import MazesimIOError
+from mazesim.webots.node_types import node_type
+
+__all__ = [
+    "CLEANUP",
+    "HELLO",
+    "STEP",
+    "VERSION",
+    "Command",
+    "LinkClosed",
+    "RobotLink",
+]
+
+#: The protocol's version (``LINK_VERSION`` in ``capi/src/link.h``).
+VERSION = 1
+HELLO, STEP, CLEANUP = 1, 2, 3
+ENABLE, DISABLE, SET_POSITION, SET_VELOCITY, SET_ACCELERATION, LED_SET = 1, 2, 3, 4, 5, 6
+#: The tag of the keyboard in ENABLE, DISABLE and readings.
+KEYBOARD_TAG = 0
+#: Most commands one step may carry (a controller queues a few per device).
+MAX_COMMANDS = 1 << 20
+
+#: The device method each command calls, and the C function it stands for.
+_METHODS = {
+    ENABLE: ("enable", "wb_device_enable"),
+    DISABLE: ("disable", "wb_device_disable"),
+    SET_POSITION: ("setPosition", "wb_motor_set_position"),
+    SET_VELOCITY: ("setVelocity", "wb_motor_set_velocity"),
+    SET_ACCELERATION: ("setAcceleration", "wb_motor_set_acceleration"),
+    LED_SET: ("set", "wb_led_set"),
+}
+
+_INT = struct.Struct("=i")
+_DOUBLE = struct.Struct("=d")
+_COMMAND = struct.Struct("=iidd")
+_READING = struct.Struct("=iii")
+
+
+class LinkClosed(Exception):
+    """The controller closed the link (it exited, crashed, or called ``wb_robot_cleanup``)."""
+
+
+@dataclass(frozen=True)
+class Command:
+    """One command of a step: ``op`` on the device ``tag`` with the arguments ``a``, ``b``."""
+
+    op: int
+    tag: int
+    a: float
+    b: float
+
+
+def _text(value: str) -> bytes:
+    data = value.encode("utf-8")
+    return _INT.pack(len(data)) + data
+
+
+class RobotLink:
+    """mazesim's end of the link: a :class:`~mazesim.webots.robot.Robot` served to a child.
+
+    Args:
+        channel: mazesim's end of the socket pair.
+        robot: The robot the controller drives.
+        facts: The controller name, project path and world path the description reports.
+    """
+
+    def __init__(self, channel: socket.socket, robot: Any, facts: tuple[str, str, str]) -> None:
+        self.channel = channel
+        self.robot = robot
+        self.facts = facts
+        count = int(robot.getNumberOfDevices())
+        self.devices = [robot.getDeviceByIndex(i) for i in range(count)]
+        self.tags = {id(device): i + 1 for i, device in enumerate(self.devices)}
+        self.enabled: dict[int, Any] = {}
+        self.keyboard_enabled = False
+
+    # --- reading and writing ---------------------------------------------------------------
+
+    def _receive(self, size: int) -> bytes:
+        chunks, left = [], size
+        while left:
+            chunk = self.channel.recv(min(left, 1 << 16))
+            if not chunk:
+                raise LinkClosed
+            chunks.append(chunk)
+            left -= len(chunk)
+        return b"".join(chunks)
+
+    def _int(self) -> int:
+        return int(_INT.unpack(self._receive(_INT.size))[0])
+
+    def receive_kind(self) -> int:
+        """The kind of the controller's next message (:data:`HELLO`, :data:`STEP`...).
+
+        Raises:
+            LinkClosed: The controller closed the link.
+        """
+        return self._int()
+
+    def receive_hello(self) -> None:
+        """Reads a HELLO's version and sends the robot's description.
+
+        Raises:
+            MazesimIOError: The controller's library speaks another version.
+        """
+        version = self._int()
+        if version != VERSION:
+            raise MazesimIOError(
+                f"expected a controller built with mazesim's controller library, link version "
+                f"{VERSION}, found version {version}"
+            )
+        self.channel.sendall(self.description())
+
+    def receive_step(self) -> tuple[int, list[Command]]:
+        """A STEP's duration (ms) and commands.
+
+        Raises:
+            MazesimIOError: The message is malformed.
+        """
+        duration, count = self._int(), self._int()
+        if not 0 <= count <= MAX_COMMANDS:
+            raise MazesimIOError(
+                f"expected at most {MAX_COMMANDS} commands in a step from the controller, "
+                f"found {count}"
+            )
+        data = self._receive(count * _COMMAND.size)
+        return duration, [Command(*fields) for fields in _COMMAND.iter_unpack(data)]
+
+    # --- the robot's side ------------------------------------------------------------------
+
+    def description(self) -> bytes:
+        """The HELLO's answer: the robot and its devices."""
+        robot = self.robot
+        name, project, world = self.facts
+        parts = [
+            _INT.pack(VERSION),
+            _DOUBLE.pack(float(robot.getBasicTimeStep())),
+            *(_text(str(v)) for v in (robot.getName(), robot.getModel(), robot.getCustomData())),
+            *(_text(v) for v in (name, project, world)),
+            _INT.pack(1 if robot.getSupervisor() else 0),
+            _INT.pack(len(self.devices)),
+        ]
+        for device in self.devices:
+            facts = self._facts(device)
+            parts += [
+                _text(str(device.getName())),
+                _text(str(device.getModel())),
+                _INT.pack(int(device.getNodeType())),
+                _INT.pack(len(facts)),
+                *(_DOUBLE.pack(float(f)) for f in facts),
+            ]
+        return b"".join(parts)
+
+    def _tag(self, device: Any) -> int:
+        return self.tags.get(id(device), 0) if device is not None else 0
+
+    def _facts(self, device: Any) -> list[float]:
+        kind = int(device.getNodeType())
+        if kind == node_type("DISTANCE_SENSOR"):
+            table = list(device.getLookupTable())
+            head = [device.getMinValue(), device.getMaxValue(), device.getAperture()]
+            return [*head, device.getType(), *table]
+        if kind == node_type("ROTATIONAL_MOTOR"):
+            return [
+                device.getMaxVelocity(),
+                device.getMinPosition(),
+                device.getMaxPosition(),
+                device.getAcceleration(),
+                self._tag(device.getPositionSensor()),
+            ]
+        if kind == node_type("POSITION_SENSOR"):
+            return [self._tag(device.getMotor())]
+        if kind == node_type("CAMERA"):
+            return [device.getWidth(), device.getHeight(), device.getFov()]
+        return []
+
+    def apply(self, commands: list[Command]) -> None:
+        """Applies a step's commands in order, as the Python API calls would."""
+        for command in commands:
+            if command.tag == KEYBOARD_TAG and command.op in (ENABLE, DISABLE):
+                keyboard = self.robot.getKeyboard()
+                if command.op == ENABLE:
+                    keyboard.enable(int(command.a))
+                else:
+                    keyboard.disable()
+                self.keyboard_enabled = command.op == ENABLE and int(command.a) > 0
+                continue
+            if not 1 <= command.tag <= len(self.devices):
+                continue
+            device = self.devices[command.tag - 1]
+            self._apply(command, device)
+
+    def _apply(self, command: Command, device: Any) -> None:
+        op, value = command.op, command.a
+        method = _METHODS.get(op)
+        call = getattr(device, method[0], None) if method else None
+        if call is None:
+            # A tag of another kind of device (wb_led_set on a motor...): Webots' message.
+            function = method[1] if method else "wb_robot_step"
+            print(f"Error: {function}() called with an invalid device tag.", file=sys.stderr)
+            return
+        if op == ENABLE:
+            call(int(value))
+            if int(value) > 0:
+                self.enabled[command.tag] = device
+            else:
+                self.enabled.pop(command.tag, None)
+        elif op == DISABLE:
+            call()
+            self.enabled.pop(command.tag, None)
+        elif op == LED_SET:
+            call(int(value))
+        else:
+            call(value)
+
+    def answer_step(self, result: int) -> None:
+        """Sends a step's result, the time and the enabled devices' readings."""
+        readings = list(self._readings())
+        parts = [_INT.pack(result), _DOUBLE.pack(float(self.robot.getTime()))]
+        parts.append(_INT.pack(len(readings)))
+        for tag, values, data in readings:
+            parts.append(_READING.pack(tag, len(values), len(data)))
+            parts += [_DOUBLE.pack(v) for v in values]
+            parts.append(data)
+        self.channel.sendall(b"".join(parts))
+
+    def _readings(self) -> Iterator[tuple[int, list[float], bytes]]:
+        if self.keyboard_enabled:
+            keyboard = self.robot.getKeyboard()
+            keys: list[float] = []
+            while len(keys) < 64:
+                key = int(keyboard.getKey())
+                if key < 0:
+                    break
+                keys.append(float(key))
+            yield KEYBOARD_TAG, keys, b""
+        for tag, device in self.enabled.items():
+            kind = int(device.getNodeType())
+            if kind == node_type("CAMERA"):
+                image = device.getImage()
+                yield tag, [], bytes(image) if image is not None else b""
+            elif hasattr(device, "getValues") and kind != node_type("TOUCH_SENSOR"):
+                yield tag, [float(v) for v in device.getValues()], b""
+            else:
+                yield tag, [float(device.getValue())], b""

@@ -1,0 +1,294 @@
+"""Webots controllers written in C: built with gcc against mazesim's controller library, run as
+a child process in lockstep, and compared step for step with the same logic in Python."""
+
+from __future__ import annotations
+
+import json
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+import mazesim
+from mazesim.errors import ControllerBuildError, MissingDependencyError
+from mazesim.webots import run_controller
+from mazesim.webots.keyboard import KeyScript
+from mazesim.webots.native_controller import CAPI, build
+from mazesim.webots.node_types import NODE_TYPES
+from mazesim.webots.requirements import NO_DISPLAY, prepare_controller
+
+CONTROLLERS = Path(__file__).resolve().parents[1] / "data" / "controllers"
+AVOIDER = CONTROLLERS / "c_wall_avoider" / "c_wall_avoider.c"
+CPP_AVOIDER = CONTROLLERS / "cpp_wall_avoider" / "cpp_wall_avoider.cpp"
+
+pytestmark = pytest.mark.skipif(
+    shutil.which("gcc") is None or shutil.which("g++") is None, reason="needs gcc and g++"
+)
+
+
+@pytest.fixture(scope="module")
+def module_cache(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """The build cache of this module's tests (each build is keyed by its files' paths and
+    contents, so the tests share it without seeing each other's builds)."""
+    return tmp_path_factory.mktemp("cache")
+
+
+@pytest.fixture(autouse=True)
+def own_cache(module_cache: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
+    """Builds go to the module's cache, not the user's."""
+    monkeypatch.setenv("MAZESIM_CACHE", str(module_cache))
+    return module_cache
+
+
+def write_controller(folder: Path, name: str, body: str) -> Path:
+    """A C controller ``folder/name/name.c`` whose ``main`` runs ``body``."""
+    (folder / name).mkdir(parents=True)
+    source = folder / name / f"{name}.c"
+    source.write_text(
+        "#include <stdio.h>\n#include <webots/robot.h>\n#include <webots/motor.h>\n"
+        "#include <webots/distance_sensor.h>\n#include <webots/utils/ansi_codes.h>\n"
+        f"int main(void) {{\n  wb_robot_init();\n{body}\n  wb_robot_cleanup();\n  return 0;\n}}\n"
+    )
+    return source
+
+
+def test_a_c_controller_drives_bit_for_bit_as_its_python_twin(
+    capfd: pytest.CaptureFixture[str],
+) -> None:
+    world = mazesim.load_world("arena")
+    in_c = run_controller(AVOIDER, world, seconds=4.0, seed=3)
+    c_out = capfd.readouterr().out
+    in_python = run_controller(CONTROLLERS / "wall_avoider_twin.py", world, seconds=4.0, seed=3)
+    python_out = capfd.readouterr().out
+    assert (in_c.exit_status, in_c.error) == (0, "")
+    assert in_python.exit_status == 0, in_python.error
+    assert in_c.steps == in_python.steps > 100
+    assert in_c.distance_m > 0.2
+    # The same noisy readings, the same commands: the same trajectory, bit for bit.
+    assert in_c.xs == in_python.xs
+    assert in_c.ys == in_python.ys
+    assert in_c.final_pose == in_python.final_pose
+    assert c_out == python_out
+    assert c_out.startswith("devices ") and " ps0 is a distance sensor\n" in c_out
+    assert re.search(r"^t 0\.992 encoder -?\d+\.\d{4}$", c_out, re.MULTILINE)
+
+
+def test_cameras_inertial_sensors_light_sensors_and_keys_read_as_in_python(
+    capfd: pytest.CaptureFixture[str],
+) -> None:
+    world = mazesim.load_world("arena")
+    keys = KeyScript.parse("0.2 A 0.1\n0.5 UP 0.05\n")
+    runs, outputs = [], []
+    for controller in ("c_every_device/c_every_device.c", "every_device_twin.py"):
+        runs.append(run_controller(CONTROLLERS / controller, world, seconds=1.0, keys=keys))
+        outputs.append(capfd.readouterr().out)
+    assert [(r.exit_status, r.error) for r in runs] == [(0, ""), (0, "")]
+    assert outputs[0] == outputs[1]
+    lines = outputs[0].splitlines()
+    assert lines[0] == "camera 52x39"
+    assert "key 65 at 0.224" in lines and any(line.startswith("key 315 ") for line in lines)
+    images = [line for line in lines if line.startswith("image ")]
+    assert len(images) == 4 and all(int(line.split()[1]) > 0 for line in images)
+    assert runs[0].xs == runs[1].xs and runs[0].final_pose == runs[1].final_pose
+
+
+def test_a_build_is_cached_and_rebuilt_when_a_source_changes(tmp_path: Path) -> None:
+    folder = tmp_path / "controllers" / "copy"
+    shutil.copytree(AVOIDER.parent, folder)
+    main = folder / "copy.c"
+    (folder / "c_wall_avoider.c").rename(main)
+    first = build(main)
+    assert first.program is not None and "compiled with" in first.note
+    second = build(main)
+    assert second.program == first.program and "taken from the cache" in second.note
+    (folder / "steering.h").write_text((folder / "steering.h").read_text() + "\n/* edited */\n")
+    third = build(main)
+    assert third.program != first.program and "compiled with" in third.note
+
+
+def test_a_compile_error_quotes_the_compiler(tmp_path: Path) -> None:
+    source = write_controller(tmp_path, "broken", "  int x = ;")
+    with pytest.raises(ControllerBuildError) as caught:
+        prepare_controller(str(source))
+    message = str(caught.value)
+    assert "expected a C controller that compiles, found compiler errors" in message
+    assert re.search(r"broken\.c:\d+:\d+: error: expected expression", message)
+
+
+def test_without_a_compiler_the_error_says_what_to_install(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setenv("CC", "no-such-cc-for-mazesim")
+    with pytest.raises(MissingDependencyError, match=r"expected a C compiler \(no-such-cc"):
+        build(AVOIDER)
+
+
+def test_a_crashing_controller_is_reported_with_its_signal(tmp_path: Path) -> None:
+    source = write_controller(
+        tmp_path,
+        "crasher",
+        "  for (int i = 0; i < 3; i++) wb_robot_step(32);\n"
+        "  volatile int *nowhere = 0;\n  *nowhere = 1;",
+    )
+    run = run_controller(source, mazesim.load_world("arena"), seconds=2.0)
+    assert run.exit_status == 1
+    assert run.error == "the C controller crashed: killed by SIGSEGV\n"
+    assert run.steps == 3
+
+
+def test_a_step_the_api_refuses_ends_the_run_with_its_message(tmp_path: Path) -> None:
+    source = write_controller(tmp_path, "negative", "  wb_robot_step(32);\n  wb_robot_step(-5);")
+    run = run_controller(source, mazesim.load_world("arena"), seconds=1.0)
+    assert (run.exit_status, run.steps) == (1, 1)
+    assert run.error.startswith("InvalidArgumentError: Robot.step expects a duration in ms >= 0")
+
+
+def test_a_tag_of_another_kind_of_device_gets_webots_message(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str]
+) -> None:
+    source = write_controller(
+        tmp_path,
+        "mixup",
+        "  extern void wb_led_set(unsigned short, int);\n"
+        '  WbDeviceTag motor = wb_robot_get_device("left wheel motor");\n'
+        "  wb_led_set(motor, 1);\n  wb_distance_sensor_enable(motor, 32);\n"
+        "  while (wb_robot_step(32) != -1) {}",
+    )
+    run = run_controller(source, mazesim.load_world("arena"), seconds=0.5)
+    assert (run.exit_status, run.error) == (0, "")
+    errors = capfd.readouterr().err.splitlines()
+    assert "Error: wb_led_set() called with an invalid device tag." in errors
+    assert "Error: wb_device_enable() called with an invalid device tag." in errors
+
+
+def test_a_controller_that_steps_on_after_the_end_is_stopped(tmp_path: Path) -> None:
+    source = write_controller(tmp_path, "forever", "  for (;;) wb_robot_step(32);")
+    run = run_controller(source, mazesim.load_world("arena"), seconds=0.5)
+    assert run.reached_end and run.stopped
+    assert run.exit_status == 0
+    assert run.simulated_seconds == pytest.approx(0.512)
+
+
+def test_functions_the_library_lacks_are_named_and_the_controller_is_not_started(
+    tmp_path: Path,
+) -> None:
+    source = write_controller(
+        tmp_path,
+        "radio",
+        "  extern void wb_receiver_enable(unsigned short, int);\n"
+        "  extern void wb_emitter_send(unsigned short, const void *, int);\n"
+        '  wb_receiver_enable(1, 32);\n  wb_emitter_send(2, "x", 1);',
+    )
+    prepared = prepare_controller(str(source))
+    assert not prepared.runnable
+    assert prepared.missing == [
+        "Webots C API function(s) mazesim does not implement: wb_emitter_send, wb_receiver_enable"
+    ]
+    run = run_controller(source, mazesim.load_world("arena"), seconds=1.0, prepared=prepared)
+    assert (run.steps, run.exit_status) == (0, 1)
+    assert run.error.startswith("controller not run: Webots C API function(s)")
+
+
+def test_every_header_the_library_lacks_is_named_before_building(tmp_path: Path) -> None:
+    source = write_controller(tmp_path, "radio", "")
+    (source.parent / "radio.h").write_text("#include <webots/emitter.h>\n")
+    source.write_text('#include <webots/receiver.h>\n#include "radio.h"\n' + source.read_text())
+    prepared = prepare_controller(str(source))
+    assert not prepared.runnable
+    assert prepared.missing == [
+        "Webots C API header(s) mazesim does not provide: webots/emitter.h, webots/receiver.h"
+    ]
+
+
+def test_a_cpp_controller_drives_as_the_c_one_and_names_classes_it_lacks(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str]
+) -> None:
+    world = mazesim.load_world("arena")
+    in_cpp = run_controller(CPP_AVOIDER, world, seconds=2.0, seed=5)
+    cpp_out = capfd.readouterr().out
+    in_c = run_controller(AVOIDER, world, seconds=2.0, seed=5)
+    assert (in_cpp.exit_status, in_cpp.error) == (0, "")
+    assert (in_cpp.xs, in_cpp.ys) == (in_c.xs, in_c.ys) and in_cpp.distance_m > 0.1
+    assert cpp_out == capfd.readouterr().out
+    source = tmp_path / "bt" / "bt.cpp"
+    source.parent.mkdir()
+    source.write_text("#include <webots/Supervisor.hpp>\nint main() { return 0; }\n")
+    prepared = prepare_controller(str(source))
+    assert (prepared.language, prepared.runnable) == ("cpp", False)
+    assert prepared.missing == [
+        "Webots C++ API header(s) mazesim does not provide: webots/Supervisor.hpp"
+    ]
+
+
+def test_the_run_says_at_its_start_what_is_missing_and_keeps_it_in_its_summary(
+    tmp_path: Path,
+) -> None:
+    folder = tmp_path / "controllers" / "fuzzy"
+    folder.mkdir(parents=True)
+    (folder / "helpers.py").write_text("import skfuzzy_not_installed_here\nGAIN = 2\n")
+    (folder / "models").mkdir()
+    (folder / "models" / "__init__.py").write_text("from .fit import *\n")
+    (folder / "models" / "fit.py").write_text("import pandas_not_installed_here\n")
+    (folder / "models" / "unused.py").write_text("import never_imported_package\n")
+    (folder / "fuzzy.py").write_text(
+        "import math\nimport helpers\nfrom models import fit\nfrom controller import Robot\n"
+        "try:\n    import optional_package_for_mazesim_tests\nexcept ImportError:\n    pass\n"
+    )
+    result = subprocess.run(
+        [sys.executable, "-m", "mazesim", "webots", "run", str(folder), "--seconds", "1"]
+        + ["--out", str(tmp_path / "out")],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=False,
+    )
+    assert result.returncode == 1
+    statement = (
+        "mazesim: missing: Python package(s) not installed: pandas_not_installed_here, "
+        "skfuzzy_not_installed_here"
+    )
+    lines = result.stderr.splitlines()
+    assert lines[0] == statement
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert summary["missing_features"] == [statement.removeprefix("mazesim: missing: ")]
+
+
+def test_the_cli_runs_a_c_controller_folder_and_logs_its_build(tmp_path: Path) -> None:
+    build(AVOIDER)  # built already by the twin test when the module runs whole
+    result = subprocess.run(
+        [sys.executable, "-m", "mazesim", "webots", "run", str(AVOIDER.parent), "--seconds", "1"]
+        + ["--out", str(tmp_path / "out")],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=False,
+    )
+    assert result.returncode == 0, result.stderr
+    assert result.stderr.splitlines()[0].startswith(
+        "mazesim: C controller c_wall_avoider.c: built earlier, taken from the cache "
+    )
+    assert result.stdout.splitlines()[0].startswith("devices ")
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert summary["missing_features"] == [] and summary["distance_m"] > 0.05
+
+
+def test_the_node_type_header_numbers_the_types_as_the_python_module_does() -> None:
+    text = (CAPI / "include" / "webots" / "nodes.h").read_text()
+    numbers = dict(re.findall(r"WB_NODE_(\w+) = (\d+),", text))
+    assert {name: int(numbers[name]) for name in NODE_TYPES} == {
+        name: i for i, name in enumerate(NODE_TYPES)
+    }
+
+
+def test_a_tk_window_without_a_display_is_named_before_the_run(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.delenv("DISPLAY", raising=False)
+    (tmp_path / "view.py").write_text("from turtle import *\n")
+    (tmp_path / "mouse.py").write_text("import view\nfrom controller import Robot\n")
+    assert NO_DISPLAY in prepare_controller(str(tmp_path / "mouse.py")).missing
+    monkeypatch.setenv("DISPLAY", ":0")
+    assert NO_DISPLAY not in prepare_controller(str(tmp_path / "mouse.py")).missing
