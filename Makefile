@@ -209,8 +209,9 @@ wheel: wheel-deps ## build the release wheel (abi3, manylinux2014 via zig, check
 # The wheel on the oldest glibc reachable here (tests/oldest_glibc.py; docs/install.md): Debian
 # bullseye (glibc 2.31, Python 3.9), the oldest release deb.debian.org serves, in a chroot that
 # debootstrap makes once into OLDEST_CACHE, outside the checkout, beside the wheel's dependencies
-# fetched from PyPI for its Python. Needs root; the first time about 100 MB from deb.debian.org
-# and 50 MB from PyPI, 400 MB on disk. Installing and running there needs no network.
+# fetched from PyPI for its Python. Needs root; the first time about 45 MB from deb.debian.org
+# and 45 MB from PyPI, 450 MB on disk, 11 minutes on a loaded 2-core machine. Installing and
+# running there needs no network.
 OLDEST_CACHE ?= $(HOME)/.cache/mazesim/oldest-glibc
 
 oldest-glibc-deps: venv ## make the Debian bullseye chroot (glibc 2.31) the wheel is tried on, once, in OLDEST_CACHE

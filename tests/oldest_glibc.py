@@ -94,13 +94,15 @@ def prepare(cache: Path, suite: str = SUITE, mirror: str = MIRROR) -> None:
     cache.mkdir(parents=True, exist_ok=True)
     root = chroot_root(cache, suite)
     if not (root / ".mazesim-ready").exists():
-        print(f"oldest-glibc: debootstrap {suite} into {root} (about 60 MB to download)")
+        print(f"oldest-glibc: debootstrap {suite} into {root} (about 45 MB to download)")
         building = Path(tempfile.mkdtemp(prefix=f".{suite}-", dir=cache))
         include = ",".join(CHROOT_PACKAGES)
         subprocess.run(
             ["debootstrap", "--variant=minbase", f"--include={include}", suite, building, mirror],
             check=True,
         )
+        for package in (building / "var" / "cache" / "apt" / "archives").glob("*.deb"):
+            package.unlink()  # installed already: 45 MB less on disk
         (building / ".mazesim-ready").write_text(f"{suite} {mirror}\n")
         if root.exists():
             shutil.rmtree(root)
