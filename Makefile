@@ -34,7 +34,8 @@ export PYO3_PYTHON := $(CURDIR)/$(BIN)/python
 
 .PHONY: help venv build test demo lint typecheck fmt bench wheel clean ros-deps ros2-deps ros2-peer ros-demo bench-peers \
 	bench-transfer webots-compat \
-	browser-deps replay-screenshot docs docs-deps sb3-deps fuzz dev-deps wheel-deps
+	browser-deps replay-screenshot docs docs-deps sb3-deps fuzz dev-deps wheel-deps oldest-glibc-deps \
+	wheel-oldest newcomer-check
 
 help: ## list the targets
 	@echo "mazesim make targets:"
@@ -50,14 +51,16 @@ $(STAMP): Makefile
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 	@echo "make venv: installing $(PY_PACKAGES) into $(VENV) (about 55 MB to download the first time, 225 MB in $(VENV))"
-	$(BIN)/python -m pip install --progress-bar on $(PY_PACKAGES) | grep -v '^Requirement already satisfied' || true
+	@start=$$(date +%s); $(BIN)/python -m pip install --progress-bar on $(PY_PACKAGES) | grep -v '^Requirement already satisfied' || true; \
+		echo "make venv: installed in $$(( $$(date +%s) - start )) s"
 	@$(BIN)/python -c 'import maturin, numpy, matplotlib, PIL, tqdm' && touch $@
 
 # pip's "Ignoring ...: markers 'extra == ...'" lines (the extras maturin develop does not install)
 # are no warnings: PIP_QUIET keeps them out. Cargo's progress shows.
 build: venv ## build the extension in release mode and install mazesim into .venv
 	@test -f $(VENV)/.built || echo "make build: compiling the Rust core and its dependencies in release mode; the first build takes about 2 minutes on 2 quiet cores (more on a busy machine), later ones seconds"
-	PIP_QUIET=1 VIRTUAL_ENV=$(CURDIR)/$(VENV) $(BIN)/maturin develop --release
+	@start=$$(date +%s); PIP_QUIET=1 VIRTUAL_ENV=$(CURDIR)/$(VENV) $(BIN)/maturin develop --release \
+		&& echo "make build: built and installed in $$(( $$(date +%s) - start )) s"
 	@touch $(VENV)/.built
 
 dev-deps: $(DEV_STAMP) ## install the developer tools into .venv (pytest, hypothesis, ruff, mypy, gymnasium, Ray, selenium, ...)
@@ -67,7 +70,7 @@ $(DEV_STAMP): $(STAMP)
 	$(BIN)/python -m pip install --progress-bar on $(DEV_PACKAGES) | grep -v '^Requirement already satisfied' || true
 	@$(BIN)/python -c 'import pytest, hypothesis, mypy, gymnasium, ray, selenium, moviepy' && touch $@
 
-test: build dev-deps ros-deps ros2-deps ros2-peer browser-deps docs-deps sb3-deps ## run the Rust tests, then the Python tests (ROS 1 and ROS 2 bridges, browser and SB3 tests included)
+test: build dev-deps ros-deps ros2-deps ros2-peer browser-deps docs-deps sb3-deps oldest-glibc-deps ## run the Rust tests, then the Python tests (ROS 1 and ROS 2 bridges, browser, SB3 and oldest-glibc tests included)
 	cargo test --workspace --exclude mazesim-py
 	cargo test --release --locked --quiet --manifest-path $(ROS2_PEER_MANIFEST) --target-dir $(ROS2_PEER_TARGET)
 	$(BIN)/python -m pytest
@@ -202,6 +205,31 @@ wheel: wheel-deps ## build the release wheel (abi3, manylinux2014 via zig, check
 	PATH="$(CURDIR)/$(BIN):$$PATH" $(BIN)/maturin build --release --zig --compatibility $(WHEEL_COMPATIBILITY) --out $(DIST)
 	$(BIN)/auditwheel show $(DIST)/mazesim-*.whl
 	$(BIN)/maturin sdist --out $(DIST)
+
+# The wheel on the oldest glibc reachable here (tests/oldest_glibc.py; docs/install.md): Debian
+# bullseye (glibc 2.31, Python 3.9), the oldest release deb.debian.org serves, in a chroot that
+# debootstrap makes once into OLDEST_CACHE, outside the checkout, beside the wheel's dependencies
+# fetched from PyPI for its Python. Needs root; the first time about 45 MB from deb.debian.org
+# and 45 MB from PyPI, 450 MB on disk, 11 minutes on a loaded 2-core machine. Installing and
+# running there needs no network.
+OLDEST_CACHE ?= $(HOME)/.cache/mazesim/oldest-glibc
+
+oldest-glibc-deps: venv ## make the Debian bullseye chroot (glibc 2.31) the wheel is tried on, once, in OLDEST_CACHE
+	@if [ "$$(id -u)" -ne 0 ]; then \
+		echo "oldest-glibc-deps: needs root (debootstrap, chroot); the wheel's test on the oldest glibc is skipped"; \
+	elif [ -f "$(OLDEST_CACHE)/bullseye/.mazesim-ready" ] && [ -f "$(OLDEST_CACHE)/bullseye-wheelhouse/.mazesim-ready" ]; then :; \
+	else { command -v debootstrap >/dev/null || { apt-get update && apt-get install -y --no-install-recommends debootstrap; }; } \
+		&& MAZESIM_OLDEST_CACHE="$(OLDEST_CACHE)" $(BIN)/python tests/oldest_glibc.py prepare \
+		|| echo "oldest-glibc-deps: the chroot could not be made (above); the wheel's test on the oldest glibc is skipped"; fi
+
+wheel-oldest: wheel oldest-glibc-deps ## build the wheel, install it in the bullseye chroot, run the quick start and mazesim eval there
+	MAZESIM_OLDEST_CACHE="$(OLDEST_CACHE)" $(BIN)/python tests/oldest_glibc.py check $(DIST)/mazesim-*.whl
+
+# A newcomer's path (tests/newcomer_path.py): a fresh clone of HEAD in a temporary folder, `make
+# demo` there (its own .venv, the Rust core built from nothing), the own-maze recipe of
+# docs/own-maze.md as printed, and a maze without checkpoints that `mazesim train` must refuse.
+newcomer-check: ## replay a newcomer's path on a fresh clone: make demo, the own-maze recipe, a maze refused (30 min or more)
+	$(PYTHON) tests/newcomer_path.py
 
 clean: ## remove build products, .venv, dist and demo output
 	cargo clean

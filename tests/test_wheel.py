@@ -1,6 +1,8 @@
 """`make wheel`: a manylinux2014 abi3 wheel (glibc 2.17 and newer, linked with zig's linker) that
 auditwheel accepts, that installs into a new virtual environment and runs from another directory,
-and an sdist that carries everything the Rust core embeds.
+and an sdist that carries everything the Rust core embeds; the wheel installed on the oldest
+glibc reachable here (Debian bullseye's, in a chroot `make oldest-glibc-deps` makes) runs the
+quick start and an evaluation as this machine does.
 
 `make wheel` builds with zig in ``target/`` beside `make build`'s release build: the first build
 compiles the dependencies (minutes), later ones take seconds; the new virtual environment and the
@@ -20,6 +22,8 @@ import zipfile
 from pathlib import Path
 
 import pytest
+
+import oldest_glibc
 
 ROOT = Path(__file__).resolve().parents[1]
 QUICKSTART = ROOT / "examples" / "quickstart.py"
@@ -172,3 +176,25 @@ def test_release_wheel_runs_the_demo_and_the_quick_start_from_anywhere(
         [sys.executable, str(QUICKSTART)], capture_output=True, text=True, check=True
     )
     assert quickstart.stdout == here.stdout
+
+
+def test_release_wheel_runs_on_the_oldest_glibc_here_as_it_does_here(
+    built: tuple[Path, Path],
+) -> None:
+    cache = oldest_glibc.cache_dir()
+    missing = oldest_glibc.missing_tools()
+    if missing:
+        pytest.skip(f"the chroot of the oldest glibc needs {', '.join(missing)}")
+    if not oldest_glibc.is_prepared(cache):
+        pytest.skip(f"no {oldest_glibc.SUITE} chroot in {cache}: `make oldest-glibc-deps` makes it")
+    # A new venv of the chroot's own Python, the wheel installed without network; the
+    # dependencies come from the venv `make oldest-glibc-deps` installed them into.
+    there = oldest_glibc.run_in_chroot(built[0], cache, quick=True)
+    here = oldest_glibc.run_here()
+    assert there.glibc == "2.31" and there.python.startswith("3.9."), there
+    assert there.mazesim.startswith("/tmp/mazesim-oldest-") and "/venv/" in there.mazesim
+    assert there.quickstart.startswith("after 32.00 s (1000 steps): x ")
+    assert "success rate        100.0%" in there.evaluation
+    # The same seed, the same run, bit for bit, whatever the glibc and the Python.
+    assert there.quickstart == here.quickstart
+    assert there.evaluation == here.evaluation
