@@ -69,6 +69,9 @@ class ControllerRun:
         stopped: Whether the controller went on for more than
             :data:`~mazesim.webots.termination.GRACE_SECONDS` of real time after ``Robot.step``
             returned -1 and was stopped, as Webots ends such a controller.
+        stalled: Whether the controller took no step for ``stall_seconds`` of real time before
+            the end (a loop that never calls ``Robot.step``) and was stopped; ``error`` says so
+            and ``exit_status`` is :data:`EXIT_CONTROLLER_ERROR`.
     """
 
     world: World
@@ -88,6 +91,7 @@ class ControllerRun:
     final_pose: tuple[float, float, float] = (0.0, 0.0, 0.0)
     robot_model: str = "e-puck"
     stopped: bool = False
+    stalled: bool = False
 
 
 def controller_file(path: str | os.PathLike[str]) -> str:
@@ -141,6 +145,7 @@ def run_controller(
     report: Mapping[str, Any] | None = None,
     keys: KeyScript | None = None,
     scene: Scene | None = None,
+    stall_seconds: float = termination.STALL_SECONDS,
 ) -> ControllerRun:
     """Runs a Webots-style controller file on the robot in ``world``.
 
@@ -158,14 +163,22 @@ def run_controller(
         keys: The keyboard script.
         scene: DEF names, supervisor flag, camera fields and controller arguments of the world
             file (``sys.argv[1:]`` of the controller).
+        stall_seconds: Real seconds the controller may run without taking a step before the
+            run's end (its set-up before the first step included) before it is stopped; after
+            the end it is stopped :data:`~mazesim.webots.termination.GRACE_SECONDS` later, as
+            Webots does, whether it calls ``Robot.step`` or not.
 
     Returns:
         What the run did.
 
     Raises:
         MazesimIOError: The file cannot be read.
-        InvalidArgumentError: ``seconds`` is not positive.
+        InvalidArgumentError: ``seconds`` or ``stall_seconds`` is not positive.
     """
+    if not (isinstance(stall_seconds, (int, float)) and 0.0 < stall_seconds <= 1e9):
+        raise InvalidArgumentError(
+            f"expected stall_seconds to be a number of seconds in (0, 1e9], found {stall_seconds!r}"
+        )
     file = controller_file(path)
     source = _read_source(file)
     simulation = simulations.prepare(
@@ -184,16 +197,22 @@ def run_controller(
         os.environ["WEBOTS_HOME"] = os.path.dirname(os.path.dirname(controller_module.__file__))
     started = time.perf_counter()
     status, error = 0, ""
+    watchdog = termination.Watchdog(simulation, controller_module.ControllerStopped, stall_seconds)
     try:
         os.chdir(folder)
         # Compiled with its real file name, so that tracebacks show its own lines.
         code = compile(source, file, "exec")
         try:
+            watchdog.start()
             exec(code, {"__name__": "__main__", "__file__": file, "__builtins__": __builtins__})
         finally:
-            termination.end_unwinding()
-    except controller_module.ControllerStopped:
-        pass
+            try:
+                watchdog.stop()
+            finally:
+                termination.end_unwinding()
+    except controller_module.ControllerStopped as stop:
+        if watchdog.stalled:
+            status, error = EXIT_CONTROLLER_ERROR, f"{stop}\n"
     except SystemExit as request:
         status, error = _exit_status(request)
     except KeyboardInterrupt:
@@ -222,6 +241,7 @@ def run_controller(
         longest_stop_s=simulation.longest_stop_steps * simulation.basic_time_step_ms / 1000.0,
         reached_end=simulation.ended,
         stopped=simulation.stopped,
+        stalled=watchdog.stalled,
         wall_clock_seconds=time.perf_counter() - started,
         xs=simulation.xs,
         ys=simulation.ys,
