@@ -28,7 +28,7 @@ from mazesim.replay.views import (
     viewing_requested,
 )
 
-__all__ = ["register"]
+__all__: list[str] = []
 
 
 def register(commands: Any) -> None:
