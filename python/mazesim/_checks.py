@@ -74,6 +74,8 @@ SMALLEST_INT, LARGEST_INT = -(1 << 63), (1 << 64) - 1
 
 _NUMBERS = (int, float, np.integer, np.floating)
 _CONTAINERS = {list, tuple, set, frozenset, dict}
+#: numpy's protocols of array-likes (the parts of ``numpy.typing.ArrayLike``).
+_ARRAY_PROTOCOLS = ("_NestedSequence", "_SupportsArray")
 _ARRAY_LIKE = (np.ndarray, np.generic, abc.Sequence, int, float, complex, bool)
 
 
@@ -230,7 +232,7 @@ def _bound_of(hint: Any) -> int | None:
         bounds = [b for arg in typing.get_args(hint) if (b := _bound_of(arg)) is not None]
         return max(bounds) if bounds else None
     kind = origin if origin is not None else hint
-    if kind is np.ndarray:
+    if kind is np.ndarray or getattr(kind, "__name__", "") in _ARRAY_PROTOCOLS:
         return MOST_ARRAY_VALUES
     if kind in _CONTAINERS or (isinstance(kind, type) and kind.__module__ == "collections.abc"):
         return None if kind is abc.Callable else MOST_ITEMS
