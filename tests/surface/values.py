@@ -41,6 +41,16 @@ class HugeShape:
         return 10**9
 
 
+class HugeMapping(dict[str, int]):
+    """A mapping that says it holds a billion items (it holds one)."""
+
+    def __init__(self) -> None:
+        super().__init__(a=1)
+
+    def __len__(self) -> int:
+        return 10**9
+
+
 def _nested_list(depth: int) -> list[Any]:
     value: list[Any] = []
     for _ in range(depth):
@@ -78,6 +88,9 @@ BUILDERS: dict[str, Any] = {
     "huge_range": lambda: range(10**9),
     "huge_tuple": lambda: HugeTuple((1, 2)),
     "huge_shape": HugeShape,
+    "huge_mapping": HugeMapping,
+    "non_finite_pose": lambda: (math.nan, math.inf, -math.inf),
+    "non_finite_list": lambda: [math.nan, math.inf, 1.0, -math.inf],
     "nested_list": lambda: _nested_list(100_000),
     "nested_dict": lambda: _nested_dict(100_000),
     "nan": lambda: math.nan,
