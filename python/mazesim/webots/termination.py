@@ -33,7 +33,7 @@ import time
 from types import FrameType
 from typing import Any, Protocol
 
-__all__ = ["GRACE_SECONDS", "STALL_SECONDS", "Watchdog", "end_unwinding", "unwind_controller"]
+__all__ = ["GRACE_SECONDS", "STALL_SECONDS", "Watchdog"]
 
 #: Real seconds a controller may go on after ``Robot.step`` returned -1, as in Webots.
 GRACE_SECONDS = 1.0
