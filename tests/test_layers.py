@@ -24,7 +24,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("episodes.py", "integrations"),
     ("envs", "batch.py", "barcode"),
     ("maze.py", "odometry.py", "_seeding.py", "render", "plotting.py", "webots", "benchmark",
-     "controllers.py", "actions.py"),
+     "controllers.py", "actions.py", "_checks.py"),
     ("sensor_rays.py", "_atomic.py", "_paths.py", "_sizes.py", "_toml.py"),
     ("errors.py", "_core.pyi"),
 )  # fmt: skip

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import os
 
+from mazesim import _checks
 from mazesim._core import (
     BatchSimulator,
     RobotProfile,
@@ -40,6 +41,9 @@ from mazesim.errors import (
     UnknownNameError,
     WorldFormatError,
 )
+
+# Every public module imported from here on gets the argument check (mazesim._checks).
+_checks.install()
 
 __all__ = [
     "BatchSimulator",
@@ -118,6 +122,8 @@ def load_world(name_or_path: str | os.PathLike[str]) -> World:
     error.available = available
     raise error
 
+
+_checks.guard_module(_checks.sys.modules[__name__])
 
 # gymnasium is optional (pip install "mazesim[gym]"): with it, importing mazesim registers
 # mazesim/EPuckMaze-v0 (see mazesim.envs).

@@ -4,13 +4,15 @@ module of the ``mazesim`` package (``mazesim._core`` included), and every comman
 A new entry point is in the registry as soon as it exists; the tests feed each one hostile values
 (``hostile.py``) through hypothesis and check how it ends (``runner.py``).
 
-A method needs an instance to be called on: :data:`INSTANCES` says how to make one of each public
-class that has methods, and a class missing from it fails ``test_public_surface`` (add it there).
+A method needs an instance to be called on: :data:`INSTANCES` says how to make one of a class when
+the generic recipe (``values.sample_instance``: each required constructor parameter given a valid
+value of its annotated type) cannot; a class neither can make fails ``test_public_surface``.
 """
 
 from __future__ import annotations
 
 import argparse
+import enum
 import importlib
 import inspect
 import pkgutil
@@ -20,6 +22,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import mazesim
+from mazesim._checks import is_public_module, public_names
 
 #: Modules not walked: the program entry point (running it is the CLI's entries) and the parts
 #: that start outside processes (ROS masters, Ray clusters, Webots controllers over a socket),
@@ -66,8 +69,8 @@ def _modules() -> Iterator[Any]:
         warnings.filterwarnings("ignore", "mazesim.hrl is deprecated", DeprecationWarning)
         found = list(pkgutil.walk_packages(mazesim.__path__, "mazesim."))
     for info in found:
-        if info.name.startswith(SKIPPED_MODULES) or info.name == "mazesim._core":
-            continue
+        if info.name.startswith(SKIPPED_MODULES) or not is_public_module(info.name):
+            continue  # mazesim._core came first; private modules are helpers, not the surface
         try:
             yield importlib.import_module(info.name)
         except mazesim.errors.MissingDependencyError:
@@ -75,16 +78,15 @@ def _modules() -> Iterator[Any]:
 
 
 def _public(module: Any) -> Iterator[tuple[str, Any]]:
-    names = getattr(module, "__all__", None)
-    for name in names if names is not None else dir(module):
-        if name.startswith("_"):
-            continue
-        obj = getattr(module, name, None)
-        if not (inspect.isfunction(obj) or inspect.isclass(obj) or inspect.isbuiltin(obj)):
-            continue
-        if getattr(obj, "__module__", None) != module.__name__:
-            continue  # re-exported: registered where it is defined
-        if inspect.isclass(obj) and issubclass(obj, BaseException):
+    """The module's public functions and classes, as mazesim._checks defines them (exceptions,
+    protocols, abstract classes and enums are types to catch or to match, not to call)."""
+    for name in public_names(module):
+        obj = getattr(module, name)
+        if inspect.isclass(obj) and (
+            issubclass(obj, (BaseException, enum.Enum))
+            or getattr(obj, "_is_protocol", False)
+            or inspect.isabstract(obj)
+        ):
             continue
         yield name, obj
 
@@ -134,6 +136,26 @@ def python_entry_points() -> list[EntryPoint]:
                 method = f"{path}.{member}"
                 found[method] = _with_path(entry, method)
     return sorted(found.values(), key=lambda e: e.path)
+
+
+def instance_recipe(owner: str) -> str:
+    """How the runner makes an instance of the class ``owner`` (``module.Class``): its entry in
+    :data:`INSTANCES`, else ``auto:`` and the generic recipe."""
+    return INSTANCES.get(owner, f"auto:{owner}")
+
+
+def can_make(owner: str, world: Any, tmp: Any) -> bool:
+    """Whether the generic recipe makes an instance of ``owner`` (True for those in INSTANCES)."""
+    if owner in INSTANCES:
+        return True
+    from surface.values import sample_instance
+
+    module, _, name = owner.rpartition(".")
+    try:
+        sample_instance(getattr(importlib.import_module(module), name), world, tmp)
+    except Exception:  # noqa: BLE001 - any failure means the class needs a recipe
+        return False
+    return True
 
 
 def needs_instance(entry: EntryPoint) -> str | None:

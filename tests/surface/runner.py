@@ -28,6 +28,12 @@ def _target(path: str, instance: str | None, world: Any, tmp: Path) -> Any:
     import mazesim
 
     module_name, _, qualname = path.partition(":")
+    if instance is not None and instance.startswith("auto:"):
+        from surface.values import sample_instance
+
+        module, _, name = instance[len("auto:") :].rpartition(".")
+        owner = sample_instance(getattr(importlib.import_module(module), name), world, tmp)
+        return getattr(owner, qualname.split(".", 1)[1])
     if instance is not None:
         owner = eval(instance, {"mazesim": mazesim, "world": world, "tmp": tmp})  # noqa: S307
         return getattr(owner, qualname.split(".", 1)[1])

@@ -41,6 +41,16 @@ class HugeShape:
         return 10**9
 
 
+class HugeMapping(dict[str, int]):
+    """A mapping that says it holds a billion items (it holds one)."""
+
+    def __init__(self) -> None:
+        super().__init__(a=1)
+
+    def __len__(self) -> int:
+        return 10**9
+
+
 def _nested_list(depth: int) -> list[Any]:
     value: list[Any] = []
     for _ in range(depth):
@@ -78,6 +88,9 @@ BUILDERS: dict[str, Any] = {
     "huge_range": lambda: range(10**9),
     "huge_tuple": lambda: HugeTuple((1, 2)),
     "huge_shape": HugeShape,
+    "huge_mapping": HugeMapping,
+    "non_finite_pose": lambda: (math.nan, math.inf, -math.inf),
+    "non_finite_list": lambda: [math.nan, math.inf, 1.0, -math.inf],
     "nested_list": lambda: _nested_list(100_000),
     "nested_dict": lambda: _nested_dict(100_000),
     "nan": lambda: math.nan,
@@ -140,3 +153,59 @@ def word(key: str, tmp: Path) -> str:
     """The command-line word of ``key`` (files in ``tmp``)."""
     text = ARGUMENT_WORDS[key]
     return _files(tmp)[text[1:]] if text.startswith("@") else text
+
+
+#: Valid values of the annotations a constructor's required parameters have, by type name, for
+#: the generic instance recipe (``world`` is seed-maze, ``tmp`` the scratch folder).
+def _samples(world: Any, tmp: Path) -> dict[Any, Any]:
+    import mazesim
+    from mazesim.webots import simulation
+
+    return {
+        simulation.RobotSimulation: lambda: simulation.prepare(world),
+        mazesim.World: world,
+        mazesim.Simulator: lambda: mazesim.Simulator(world),
+        mazesim.BatchSimulator: lambda: mazesim.BatchSimulator(world, num_envs=2),
+        mazesim.RobotProfile: lambda: mazesim.RobotProfile.builtin("e-puck"),
+        int: 1,
+        float: 1.0,
+        bool: False,
+        str: "seed-maze",
+        bytes: b"",
+        Path: tmp / "sample",
+    }
+
+
+def sample_instance(cls: type, world: Any, tmp: Path, depth: int = 0) -> Any:
+    """An instance of ``cls`` made from its constructor's annotations: each required parameter
+    is given a valid value of its annotated type (the package's classes made the same way, a
+    level deeper). Raises when a parameter's type has no sample."""
+    import inspect
+    import typing
+
+    samples = _samples(world, tmp)
+
+    def value_of(hint: Any) -> Any:
+        if hint in samples:
+            sample = samples[hint]
+            return sample() if callable(sample) and not isinstance(sample, type) else sample
+        origin, args = typing.get_origin(hint), typing.get_args(hint)
+        if origin is typing.Union or str(origin) == "<class 'types.UnionType'>":
+            if type(None) in args:
+                return None
+            return value_of(args[0])
+        if origin in (list, tuple) or str(origin).startswith("<class 'collections.abc"):
+            return [value_of(args[0])] if args and args[0] is not Ellipsis else []
+        if origin is dict:
+            return {}
+        if isinstance(hint, type) and hint.__module__.startswith("mazesim") and depth < 3:
+            return sample_instance(hint, world, tmp, depth + 1)
+        raise TypeError(f"no sample of {hint!r}")
+
+    init = inspect.unwrap(cls.__init__)  # type: ignore[misc]
+    hints = typing.get_type_hints(init, vars(inspect.getmodule(cls)))
+    arguments = {}
+    for p in list(inspect.signature(init).parameters.values())[1:]:
+        if p.default is p.empty and p.kind not in (p.VAR_POSITIONAL, p.VAR_KEYWORD):
+            arguments[p.name] = value_of(hints.get(p.name, Any))
+    return cls(**arguments)

@@ -232,6 +232,68 @@ def test_a_runaway_controller_is_stopped_after_the_grace_as_webots_does(
     assert [n * 2 for n in range(3)] == [0, 2, 4]
 
 
+#: Runs a controller file in a child process under a time limit and prints its run's outcome, so
+#: that a controller the watchdog fails to end fails the test instead of hanging it.
+RUN_IN_CHILD = """
+import json, sys, time
+import mazesim
+from mazesim.webots import run_controller
+started = time.monotonic()
+run = run_controller(sys.argv[1], mazesim.load_world("arena"), seconds=0.5, stall_seconds=0.5)
+print(json.dumps({"reached_end": run.reached_end, "stopped": run.stopped,
+                  "stalled": run.stalled, "exit_status": run.exit_status, "error": run.error,
+                  "took": time.monotonic() - started, "tracing": sys.gettrace() is not None,
+                  "after": [n * 2 for n in range(3)]}))
+"""
+
+
+@pytest.mark.parametrize(
+    ("body", "after_end"),
+    [
+        # Spins after the end without calling the API, inside a bare except.
+        (
+            "while robot.step(32) != -1:\n    pass\n"
+            "while True:\n    try:\n        while True:\n            pass\n"
+            "    except:\n        pass\n",
+            True,
+        ),
+        # Spins before its first step, one function deeper, catching everything.
+        (
+            "def spin():\n    while True:\n        try:\n            pass\n"
+            "        except BaseException:\n            continue\n"
+            "while True:\n    try:\n        spin()\n    except:\n        pass\n",
+            False,
+        ),
+    ],
+    ids=["after-the-end", "before-the-first-step"],
+)
+def test_a_controller_looping_without_the_api_is_stopped(
+    tmp_path: Path, body: str, after_end: bool
+) -> None:
+    script = tmp_path / "spin.py"
+    script.write_text(f"from controller import Robot\nrobot = Robot()\n{body}")
+    done = subprocess.run(
+        [sys.executable, "-c", RUN_IN_CHILD, str(script)],
+        capture_output=True,
+        text=True,
+        timeout=60,
+        check=False,
+    )
+    assert done.returncode == 0, done.stderr
+    run = json.loads(done.stdout.splitlines()[-1])
+    assert run["after"] == [0, 2, 4] and not run["tracing"]
+    if after_end:
+        assert run["reached_end"] and run["stopped"] and not run["stalled"]
+        assert run["exit_status"] == 0
+        assert GRACE_SECONDS <= run["took"] < GRACE_SECONDS + 20.0
+    else:
+        assert not run["reached_end"] and run["stalled"] and not run["stopped"]
+        assert run["exit_status"] == 1 and "took no step for 0.5 s" in run["error"]
+        assert 0.5 <= run["took"] < 20.0
+    with pytest.raises(InvalidArgumentError, match="stall_seconds"):
+        run_controller(script, mazesim.load_world("arena"), stall_seconds=math.nan)
+
+
 def mazesim_command(*args: str, cwd: Path) -> subprocess.CompletedProcess[str]:
     return subprocess.run(
         [sys.executable, "-m", "mazesim", *args],

@@ -10,7 +10,7 @@ from __future__ import annotations
 import os
 from typing import Any
 
-__all__ = ["engine_bytes", "resident_bytes"]
+__all__ = ["resident_bytes"]
 
 
 def resident_bytes() -> int:

@@ -33,7 +33,7 @@ from mazesim.cli._args import name_list, output_path, positive_int, seed_argumen
 from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
 
-__all__ = ["register", "run_barcode_study"]
+__all__ = ["run_barcode_study"]
 
 #: Largest wheel speed the study accepts, rad/s (the e-puck's motor limit).
 MAX_SPEED = 6.28

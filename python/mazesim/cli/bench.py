@@ -25,7 +25,7 @@ from mazesim.cli._args import (
 from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
 
-__all__ = ["register", "run_bench"]
+__all__ = ["run_bench"]
 
 #: The one default of each setting: the bench's own.
 DEFAULTS = BenchSettings()

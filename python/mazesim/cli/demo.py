@@ -22,7 +22,7 @@ from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
 from mazesim.replay.views import add_viewing_options, viewing_outputs
 
-__all__ = ["DEFAULT_SECONDS", "HRL_DEFAULT_SECONDS", "register", "run_demo"]
+__all__ = ["DEFAULT_SECONDS", "HRL_DEFAULT_SECONDS", "run_demo"]
 
 #: Simulated seconds a demo runs without ``--seconds``.
 DEFAULT_SECONDS = 60.0

@@ -30,7 +30,7 @@ from mazesim.replay.views import (
     write_views,
 )
 
-__all__ = ["register", "run_eval"]
+__all__ = ["run_eval"]
 
 #: Episodes that ``eval --html/--video/--record`` records (the first ones of the first world).
 RECORDED_EPISODES = 3

@@ -16,7 +16,7 @@ from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
 from mazesim.errors import InvalidArgumentError
 
-__all__ = ["register", "run_replay"]
+__all__ = ["run_replay"]
 
 
 def register(commands: Any) -> None:

@@ -27,7 +27,7 @@ from mazesim.cli._help import examples
 from mazesim.replay.views import add_viewing_options
 from mazesim.ros._ros import check_ros_installed
 
-__all__ = ["check_before_parsing", "register"]
+__all__ = ["check_before_parsing"]
 
 #: The ROS commands ``mazesim ros demo`` runs: the master and the recorder.
 DEMO_COMMANDS = ("roscore", "rosbag")

@@ -18,7 +18,7 @@ from mazesim.cli._help import examples
 from mazesim.episodes import MAX_STEPS
 from mazesim.ros2._deps import require_ros2
 
-__all__ = ["check_before_parsing", "register"]
+__all__ = ["check_before_parsing"]
 
 DISTROS = ("humble", "jazzy")
 

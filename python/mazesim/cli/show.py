@@ -17,7 +17,7 @@ from typing import Any, TextIO
 from mazesim._paths import file_name_of, refuse_overwriting_inputs
 from mazesim.cli._help import examples
 
-__all__ = ["register", "run_show"]
+__all__ = ["run_show"]
 
 
 def register(commands: Any) -> None:

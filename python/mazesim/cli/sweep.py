@@ -18,7 +18,7 @@ from mazesim.cli._args import positive_int
 from mazesim.cli.progress import add_progress_option, progress_display
 from mazesim.distributed.config import PARAMETERS, TRAINER_DEFAULTS, load_sweep_config
 
-__all__ = ["register", "run_sweep_command"]
+__all__ = ["run_sweep_command"]
 
 #: Exit code of a sweep that finished with failed runs (the others are all written).
 EXIT_RUNS_FAILED = 1

@@ -24,7 +24,7 @@ if TYPE_CHECKING:
     from mazesim.batch import RobotChoice
     from mazesim.learn.train import RobotDraw
 
-__all__ = ["register", "run_train", "step_count"]
+__all__ = ["run_train", "step_count"]
 
 DEFAULT_OUT = "mazesim-policy"
 #: What each training stage counts.

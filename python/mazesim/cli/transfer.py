@@ -24,7 +24,7 @@ from mazesim.cli._args import (
 from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
 
-__all__ = ["axes_argument", "register", "run_transfer_study"]
+__all__ = ["axes_argument", "run_transfer_study"]
 
 #: The axes' names (kept here so that building the parser imports no simulator).
 AXIS_NAMES = (

@@ -28,7 +28,7 @@ from mazesim.replay.views import (
     viewing_requested,
 )
 
-__all__ = ["register"]
+__all__: list[str] = []
 
 
 def register(commands: Any) -> None:
@@ -329,6 +329,7 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
         "controller_error": result.error.strip().splitlines()[-1] if result.error else None,
         "quit_requested": result.quit_requested,
         "stopped_after_end": result.stopped,
+        "stalled": result.stalled,
         "final_pose": list(result.final_pose),
         "wall_clock_seconds": wall_clock,
         "real_time_factor": result.simulated_seconds / wall_clock if wall_clock > 0 else None,
@@ -403,6 +404,8 @@ def _ending(result: Any) -> str:
 
     if result.quit_requested:
         return f"simulationQuit({result.exit_status})"
+    if result.stalled:
+        return "stopped: the controller took no step for too long"
     if result.exit_status == EXIT_INTERRUPTED:
         return "interrupted"
     if result.error and result.exit_status == EXIT_CONTROLLER_ERROR:

@@ -7,7 +7,7 @@ from typing import Any, TextIO
 
 from mazesim.cli._help import examples
 
-__all__ = ["register", "run_worlds"]
+__all__ = ["run_worlds"]
 
 
 def register(commands: Any) -> None:

@@ -34,11 +34,13 @@ forward (action 0, ``00``).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 import numpy.typing as npt
 
+from mazesim._checks import MOST_ARRAY_VALUES
 from mazesim._core import q_batch_update
 from mazesim.errors import InvalidArgumentError
 
@@ -87,8 +89,18 @@ def greedy(
 ) -> IntArray:
     """The greedy action of each state (ties go to the lowest action index), among the
     ``allowed`` actions only when given (a boolean mask over the columns, or one mask per state
-    broadcast against the rows)."""
-    return best_allowed(q[np.asarray(states, dtype=np.int64)], allowed)
+    broadcast against the rows).
+
+    Raises:
+        InvalidArgumentError: The rows asked for would hold more than ``MOST_ARRAY_VALUES`` values.
+    """
+    indices = np.asarray(states, dtype=np.int64)
+    if indices.size * max(1, math.prod(np.shape(q)[1:])) > MOST_ARRAY_VALUES:
+        raise InvalidArgumentError(
+            f"greedy: expected states to ask for at most {MOST_ARRAY_VALUES} Q-values, found "
+            f"{indices.size} states of {math.prod(np.shape(q)[1:])} values each"
+        )
+    return best_allowed(q[indices], allowed)
 
 
 def epsilon_greedy(

@@ -70,6 +70,9 @@ class ControllerRun:
         stopped: Whether the controller went on for more than
             :data:`~mazesim.webots.termination.GRACE_SECONDS` of real time after ``Robot.step``
             returned -1 and was stopped, as Webots ends such a controller.
+        stalled: Whether the controller took no step for ``stall_seconds`` of real time before
+            the end (a loop that never calls ``Robot.step``) and was stopped; ``error`` says so
+            and ``exit_status`` is :data:`EXIT_CONTROLLER_ERROR`.
     """
 
     world: World
@@ -89,6 +92,7 @@ class ControllerRun:
     final_pose: tuple[float, float, float] = (0.0, 0.0, 0.0)
     robot_model: str = "e-puck"
     stopped: bool = False
+    stalled: bool = False
 
 
 def controller_file(path: str | os.PathLike[str]) -> str:
@@ -146,6 +150,7 @@ def run_controller(
     keys: KeyScript | None = None,
     scene: Scene | None = None,
     prepared: PreparedController | None = None,
+    stall_seconds: float = termination.STALL_SECONDS,
 ) -> ControllerRun:
     """Runs a Webots-style controller file on the robot in ``world``.
 
@@ -167,16 +172,24 @@ def run_controller(
             prepared it (a C or C++ controller built); prepared here when not given. A
             controller that cannot run (C or C++ needing Webots headers or functions mazesim
             lacks) is not started: the run has no steps and its error says what is missing.
+        stall_seconds: Real seconds the controller may run without taking a step before the
+            run's end (its set-up before the first step included) before it is stopped; after
+            the end it is stopped :data:`~mazesim.webots.termination.GRACE_SECONDS` later, as
+            Webots does, whether it calls ``Robot.step`` or not.
 
     Returns:
         What the run did.
 
     Raises:
         MazesimIOError: The file cannot be read.
-        InvalidArgumentError: ``seconds`` is not positive.
+        InvalidArgumentError: ``seconds`` or ``stall_seconds`` is not positive.
         ControllerBuildError: A C controller does not compile.
         MissingDependencyError: A C controller and no C compiler.
     """
+    if not (isinstance(stall_seconds, (int, float)) and 0.0 < stall_seconds <= 1e9):
+        raise InvalidArgumentError(
+            f"expected stall_seconds to be a number of seconds in (0, 1e9], found {stall_seconds!r}"
+        )
     file = controller_file(path)
     if prepared is None or prepared.file != file:
         prepared = prepare_controller(file)
@@ -199,16 +212,22 @@ def run_controller(
         os.environ["WEBOTS_HOME"] = os.path.dirname(os.path.dirname(controller_module.__file__))
     started = time.perf_counter()
     status, error = 0, ""
+    watchdog = termination.Watchdog(simulation, controller_module.ControllerStopped, stall_seconds)
     try:
         os.chdir(folder)
         # Compiled with its real file name, so that tracebacks show its own lines.
         code = compile(source, file, "exec")
         try:
+            watchdog.start()
             exec(code, {"__name__": "__main__", "__file__": file, "__builtins__": __builtins__})
         finally:
-            termination.end_unwinding()
-    except controller_module.ControllerStopped:
-        pass
+            try:
+                watchdog.stop()
+            finally:
+                termination.end_unwinding()
+    except controller_module.ControllerStopped as stop:
+        if watchdog.stalled:
+            status, error = EXIT_CONTROLLER_ERROR, f"{stop}\n"
     except SystemExit as request:
         status, error = _exit_status(request)
     except KeyboardInterrupt:
@@ -287,6 +306,7 @@ def _outcome(
         longest_stop_s=simulation.longest_stop_steps * simulation.basic_time_step_ms / 1000.0,
         reached_end=simulation.ended,
         stopped=simulation.stopped,
+        stalled=watchdog.stalled,
         wall_clock_seconds=time.perf_counter() - started,
         xs=simulation.xs,
         ys=simulation.ys,

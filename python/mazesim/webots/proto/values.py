@@ -9,7 +9,7 @@ from typing import Any
 
 from .syntax import Field, Node, Token, parse_nodes
 
-__all__ = ["field_value", "to_javascript", "to_lua"]
+__all__ = ["field_value"]
 
 _KEYS = {
     "Vec2f": ("x", "y"),

@@ -1,0 +1,508 @@
+"""The one argument check at mazesim's public surface.
+
+What is public: a module of the package whose dotted name has no part starting with ``_``, and in
+it each function and class its ``__all__`` names (defined there, not re-exported), with each
+class's constructor and its methods whose names do not start with ``_``. ``mazesim._core`` checks
+its own arguments in the binding; private modules (``mazesim._paths``, ``mazesim.cli._args``) and
+private names are helpers the package calls with values it made itself.
+
+:func:`install` (called once by ``mazesim/__init__.py``) adds an import hook: when a public module
+has been executed, every public function and method in it is replaced by a wrapper that checks
+each argument against the parameter's type annotation before the call, through one conversion
+helper (:func:`refusal`): the type (``int``, ``float``, ``str``, paths, sequences, mappings,
+arrays, callables, the package's own classes, ``Literal`` choices, unions, ``None``) and the range
+of integers (what a 64-bit integer holds). The length of a sized value (at most
+:data:`MOST_ITEMS`, read from ``len()`` or ``.shape`` before anything is converted) is checked
+before the call; the rest when the call fails with a built-in exception (``TypeError``,
+``ValueError``, ``AttributeError``, ``MemoryError``...), so that valid calls pay nothing for it and
+the function's own, more precise messages are kept: an argument that does not fit then raises
+:class:`~mazesim.errors.InvalidArgumentError` ("expected X, found Y") naming the function and the
+parameter, and so does a call with missing or unknown arguments. A failure whose arguments all fit
+their annotations is left as it was (a bug to report, or a bound the annotations cannot say).
+A new public function is checked without any code of its own. The check is made once per call
+from outside: calls a checked function makes to other public functions of the package are not
+checked again, and the compiled core's per-step work is not touched.
+
+Annotations the check cannot read (names imported for type checkers only, type variables,
+protocols that are not runtime-checkable) are not checked; everything the check lets through
+behaves exactly as before.
+"""
+
+from __future__ import annotations
+
+import collections.abc as abc
+import functools
+import importlib.abc
+import importlib.machinery
+import inspect
+import os
+import sys
+import threading
+import types
+import typing
+from collections.abc import Callable
+from pathlib import PurePath
+from typing import Any
+
+import numpy as np
+
+from mazesim._sizes import MOST_ENVS, size_of
+from mazesim.errors import InvalidArgumentError, MazesimError
+
+__all__ = [
+    "MOST_ARRAY_VALUES",
+    "MOST_ITEMS",
+    "SAMPLED_ITEMS",
+    "checked",
+    "guard_module",
+    "install",
+    "is_public_module",
+    "public_names",
+    "refusal",
+]
+
+#: Most items a sequence or mapping argument may hold: the package's bound on what it takes from
+#: callers (``mazesim._sizes.MOST_ENVS``).
+MOST_ITEMS = MOST_ENVS
+#: Most values an array argument may hold (an image of 8K by 8K pixels holds 2**26 x 3).
+MOST_ARRAY_VALUES = 1 << 28
+#: Items of a sequence argument whose types are checked (the first ones: a check per call must not
+#: read a long sequence).
+SAMPLED_ITEMS = 8
+#: The integers an argument may be: what a signed or unsigned 64-bit integer holds.
+SMALLEST_INT, LARGEST_INT = -(1 << 63), (1 << 64) - 1
+
+_NUMBERS = (int, float, np.integer, np.floating)
+_CONTAINERS = {list, tuple, set, frozenset, dict}
+#: numpy's protocols of array-likes (the parts of ``numpy.typing.ArrayLike``).
+_ARRAY_PROTOCOLS = ("_NestedSequence", "_SupportsArray")
+_ARRAY_LIKE = (np.ndarray, np.generic, abc.Sequence, int, float, complex, bool)
+
+
+def is_public_module(name: str) -> bool:
+    """Whether the module ``name`` is part of the public surface."""
+    parts = name.split(".")
+    return parts[0] == "mazesim" and not any(p.startswith("_") for p in parts[1:])
+
+
+def _describe(value: Any) -> str:
+    """A short description of a value for a message: its type, and its repr if short."""
+    kind = type(value).__name__
+    try:
+        text = repr(value) if isinstance(value, (int, float, str, bytes)) else ""
+    except Exception:  # noqa: BLE001 - a repr that fails is not described
+        text = ""
+    return f"{kind} {text}" if text and len(text) <= 60 else f"a {kind}"
+
+
+def _hint_name(hint: Any) -> str:
+    if isinstance(hint, type):
+        return hint.__name__
+    return str(hint).replace("typing.", "").replace("collections.abc.", "")
+
+
+def refusal(value: Any, hint: Any) -> str | None:
+    """Why ``value`` is not a valid value of the annotation ``hint`` ("expected X, found Y"), or
+    None when it is (or when ``hint`` says nothing the check can test)."""
+    try:
+        return _refusal(value, hint)
+    except Exception:  # noqa: BLE001 - a value whose inspection fails is refused, not raised
+        return f"expected {_hint_name(hint)}, found {_describe(value)}"
+
+
+def _too_many(value: Any, most: int = MOST_ITEMS) -> str | None:
+    size = size_of(value)
+    if size is not None and size > most:
+        return f"expected at most {most} items, found {size} (a {type(value).__name__})"
+    return None
+
+
+def _refusal(value: Any, hint: Any) -> str | None:  # noqa: C901, PLR0911, PLR0912 - one table
+    if hint is Any or hint is object or isinstance(hint, (str, typing.TypeVar)):
+        return None
+    if hint is None or hint is type(None):
+        return None if value is None else f"expected None, found {_describe(value)}"
+    origin = typing.get_origin(hint)
+    args = typing.get_args(hint)
+    if origin is typing.Union or origin is types.UnionType:
+        if any(_refusal(value, arg) is None for arg in args):
+            return None
+        return f"expected {_hint_name(hint)}, found {_describe(value)}"
+    if origin is typing.Annotated:
+        return _refusal(value, args[0])
+    if origin is typing.Literal:
+        if isinstance(value, (str, int, float, bool, bytes, type(None))) and any(
+            value == a and type(value) is type(a) for a in args
+        ):
+            return None
+        return f"expected one of {', '.join(repr(a) for a in args)}, found {_describe(value)}"
+    if origin is type:
+        return None if isinstance(value, type) else f"expected a class, found {_describe(value)}"
+    if origin is abc.Callable or hint is abc.Callable or hint is typing.Callable:
+        return None if callable(value) else f"expected a callable, found {_describe(value)}"
+    if origin is not None:
+        return _container_refusal(value, hint, origin, args)
+    if not isinstance(hint, type):
+        return None  # a NewType, a ParamSpec...: not checked
+    return _class_refusal(value, hint)
+
+
+def _class_refusal(value: Any, hint: type) -> str | None:  # noqa: PLR0911 - one table
+    if hint is bool:
+        ok = isinstance(value, (bool, np.bool_))
+    elif hint is int:
+        if isinstance(value, (int, np.integer)) and not isinstance(value, bool | np.bool_):
+            if not SMALLEST_INT <= int(value) <= LARGEST_INT:
+                return f"expected an integer that fits in 64 bits, found {_describe(value)}"
+            return None
+        ok = isinstance(value, bool)
+    elif hint is float or hint is complex:
+        ok = isinstance(value, (*_NUMBERS, np.bool_, complex if hint is complex else float))
+        if ok and isinstance(value, int) and not SMALLEST_INT <= value <= LARGEST_INT:
+            return f"expected a number, found an integer of {value.bit_length()} bits"
+    elif hint is str:
+        ok = isinstance(value, str)
+    elif hint is bytes:
+        ok = isinstance(value, (bytes, bytearray, memoryview))
+    elif issubclass(hint, (PurePath, os.PathLike)):
+        ok = isinstance(value, (str, os.PathLike))
+    elif hint is np.ndarray:
+        if not isinstance(value, _ARRAY_LIKE):
+            return f"expected an array, found {_describe(value)}"
+        return _too_many(value, MOST_ARRAY_VALUES)
+    elif hint in _CONTAINERS or (hint.__module__ == "collections.abc"):
+        return _container_refusal(value, hint, hint, ())
+    elif getattr(hint, "_is_protocol", False):
+        if not getattr(hint, "_is_runtime_protocol", False):
+            return None
+        ok = isinstance(value, hint)
+    else:
+        ok = isinstance(value, hint)
+    return None if ok else f"expected {_hint_name(hint)}, found {_describe(value)}"
+
+
+def _container_refusal(value: Any, hint: Any, origin: Any, args: tuple[Any, ...]) -> str | None:
+    if origin is np.ndarray:
+        return _refusal(value, np.ndarray)
+    if not isinstance(origin, type):
+        return None
+    if origin in (dict, abc.Mapping, abc.MutableMapping):
+        if not isinstance(value, abc.Mapping):
+            return f"expected a mapping, found {_describe(value)}"
+        return _too_many(value)
+    if origin in (tuple, list, abc.Sequence, abc.MutableSequence, set, frozenset, abc.Set,
+                  abc.Collection, abc.Iterable, abc.Iterator, abc.Sized):  # fmt: skip
+        if isinstance(value, (str, bytes)) and not _takes_text(args):
+            return f"expected {_hint_name(hint)}, found {_describe(value)}"
+        if origin is abc.Iterator:
+            return (
+                None
+                if isinstance(value, abc.Iterator)
+                else f"expected an iterator, found {_describe(value)}"
+            )
+        if not isinstance(value, abc.Iterable):
+            return f"expected {_hint_name(hint)}, found {_describe(value)}"
+        too_many = _too_many(value)
+        if too_many is not None:
+            return too_many
+        if origin is tuple and args and args[-1] is not Ellipsis and isinstance(value, abc.Sized):
+            if len(value) != len(args):
+                return f"expected {len(args)} items ({_hint_name(hint)}), found {len(value)}"
+            for item, arg in zip(value, args, strict=True):
+                reason = _refusal(item, arg)
+                if reason is not None:
+                    return reason
+        elif len(args) == 1 or (origin is tuple and len(args) == 2 and args[1] is Ellipsis):
+            return _items_refusal(value, args[0])
+        return None
+    if issubclass(origin, os.PathLike):
+        ok = isinstance(value, (str, os.PathLike))
+    elif getattr(origin, "_is_protocol", False):
+        return None  # numpy's _NestedSequence, _SupportsArray...: structural, not checked
+    else:
+        ok = isinstance(value, origin)
+    return None if ok else f"expected {_hint_name(hint)}, found {_describe(value)}"
+
+
+def _bound_of(hint: Any) -> int | None:
+    """The length bound of an annotation's values, or None for one of no length (a sequence or
+    mapping: :data:`MOST_ITEMS`; an array: :data:`MOST_ARRAY_VALUES`)."""
+    origin = typing.get_origin(hint)
+    if origin is typing.Union or origin is types.UnionType or origin is typing.Annotated:
+        bounds = [b for arg in typing.get_args(hint) if (b := _bound_of(arg)) is not None]
+        return max(bounds) if bounds else None
+    kind = origin if origin is not None else hint
+    if kind is np.ndarray or getattr(kind, "__name__", "") in _ARRAY_PROTOCOLS:
+        return MOST_ARRAY_VALUES
+    if kind in _CONTAINERS or (isinstance(kind, type) and kind.__module__ == "collections.abc"):
+        return None if kind is abc.Callable else MOST_ITEMS
+    return None
+
+
+def _items_refusal(value: Any, hint: Any) -> str | None:
+    """Why the first :data:`SAMPLED_ITEMS` items of a sequence are not values of ``hint``."""
+    if not isinstance(value, (abc.Sequence, np.ndarray)) or isinstance(value, (str, bytes)):
+        return None  # an iterator is not read ahead; text is a sequence of itself
+    for index in range(min(len(value), SAMPLED_ITEMS)):
+        reason = _refusal(value[index], hint)
+        if reason is not None:
+            return f"item {index}: {reason}"
+    return None
+
+
+def _takes_text(args: tuple[Any, ...]) -> bool:
+    """Whether a container's item annotations take strings (a ``Sequence[str]`` takes "ab")."""
+    return any(a is str or a is Any for a in args)
+
+
+#: Per thread, whether a checked call is running: the calls it makes to other public functions
+#: are the package's own and are not checked again (the check costs once per call from outside,
+#: not once per helper in a step).
+_STATE = threading.local()
+
+
+#: What a function's code raises when an argument is not what it expects (its own errors aside):
+#: the arguments are then checked against the annotations, and a refusal is raised instead.
+_ARGUMENT_FAILURES = (
+    TypeError,
+    ValueError,
+    AttributeError,
+    IndexError,
+    KeyError,
+    OverflowError,
+    MemoryError,
+    RecursionError,
+)
+
+
+class _Names(dict[str, Any]):
+    """The names an annotation may use: its module's, then a public class of that name defined in
+    a module of the package already imported (names imported for type checkers only)."""
+
+    def __init__(self, module_globals: dict[str, Any]) -> None:
+        super().__init__(module_globals)
+
+    def __missing__(self, name: str) -> Any:
+        for module_name, module in list(sys.modules.items()):
+            if module_name.startswith("mazesim") and module is not None:
+                found = vars(module).get(name)
+                if isinstance(found, type) and found.__name__ == name:
+                    return found
+        raise KeyError(name)
+
+
+class _Parameters:
+    """The checks of one callable's parameters, read from its annotations at its first call."""
+
+    def __init__(self, func: Callable[..., Any], skip_first: bool) -> None:
+        self.func = func
+        self.skip_first = skip_first
+        self.ready = False
+        self.positional: list[tuple[str, Any]] = []
+        self.by_name: dict[str, Any] = {}
+        #: Parameters without a default: (position, name, keyword-only).
+        self.required: list[tuple[int, str, bool]] = []
+        self.any_keyword = True
+        #: Parameters whose values have a length bound: (position, name, bound).
+        self.sized: list[tuple[int, str, int]] = []
+
+    def prepare(self) -> None:
+        func = inspect.unwrap(self.func)
+        try:
+            hints = typing.get_type_hints(func, include_extras=True)
+        except Exception:  # noqa: BLE001 - names for type checkers only: read one by one
+            hints = {}
+            names = _Names(func.__globals__)
+            for name, text in getattr(func, "__annotations__", {}).items():
+                try:
+                    hints[name] = eval(text, {}, names) if isinstance(text, str) else text  # noqa: S307
+                except Exception:  # noqa: BLE001, S112 - an annotation that cannot be read
+                    continue
+        try:
+            parameters = list(inspect.signature(func).parameters.values())
+        except (TypeError, ValueError):
+            parameters = []
+        self.any_keyword = not parameters
+        for index, p in enumerate(parameters):
+            hint = hints.get(p.name, Any)
+            if index == 0 and self.skip_first:
+                hint = Any
+            elif p.default is p.empty and p.kind not in (p.VAR_POSITIONAL, p.VAR_KEYWORD):
+                self.required.append((len(self.positional), p.name, p.kind is p.KEYWORD_ONLY))
+            if p.kind is p.VAR_KEYWORD:
+                self.any_keyword = True
+            if p.kind in (p.VAR_POSITIONAL, p.VAR_KEYWORD):
+                continue
+            if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD):
+                self.positional.append((p.name, hint))
+            if p.kind is not p.POSITIONAL_ONLY:
+                self.by_name[p.name] = hint
+        for index, p in enumerate(parameters):
+            most = _bound_of(hints.get(p.name, Any))
+            if most is not None and not (index == 0 and self.skip_first):
+                position = index if p.kind is not p.KEYWORD_ONLY else 1 << 30
+                self.sized.append((position, p.name, most))
+        self.ready = True
+
+    def check_sizes(self, args: tuple[Any, ...], kwargs: dict[str, Any]) -> None:
+        """Refuses, before the call, a sized argument longer than its bound."""
+        if not self.ready:
+            self.prepare()
+        for index, name, most in self.sized:
+            value = args[index] if index < len(args) else kwargs.get(name)
+            if value is not None and not isinstance(value, (str, bytes)):
+                reason = _too_many(value, most)
+                if reason is not None:
+                    where = self.func.__qualname__
+                    raise InvalidArgumentError(f"{where}: {name} refused: {reason}")
+
+    def check(self, args: tuple[Any, ...], kwargs: dict[str, Any]) -> None:
+        """Refuses an argument that is not a value of its annotation, a missing one or an
+        unknown one."""
+        if not self.ready:
+            self.prepare()
+        for (name, hint), value in zip(self.positional, args, strict=False):
+            if hint is not Any:
+                self.refuse(name, value, hint)
+        for name, value in kwargs.items():
+            hint = self.by_name.get(name, Any)
+            if hint is not Any:
+                self.refuse(name, value, hint)
+            elif not self.any_keyword and name not in self.by_name:
+                raise InvalidArgumentError(
+                    f"{self.func.__qualname__}: expected no argument named {name!r}, found one"
+                )
+        for index, name, keyword_only in self.required:
+            if name not in kwargs and (keyword_only or index >= len(args)):
+                raise InvalidArgumentError(
+                    f"{self.func.__qualname__}: expected the argument {name!r}, found none"
+                )
+
+    def refuse(self, name: str, value: Any, hint: Any) -> None:
+        reason = refusal(value, hint)
+        if reason is not None:
+            raise InvalidArgumentError(f"{self.func.__qualname__}: {name} refused: {reason}")
+
+
+def checked(func: Callable[..., Any], *, method: bool = False) -> Callable[..., Any]:
+    """``func`` with its arguments checked against its annotations before each call (``method``:
+    its first parameter, ``self`` or ``cls``, is not checked). The wrapper runs in ``func``'s
+    module's globals, so doctest and ``inspect`` see it as that module's function."""
+    if getattr(func, "__mazesim_checked__", False):
+        return func
+    parameters = _Parameters(func, method)
+    # The wrapper runs in func's globals: everything it uses is bound here.
+    error, own, failures = InvalidArgumentError, MazesimError, _ARGUMENT_FAILURES
+    state = _STATE
+
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
+        if getattr(state, "inside", False):
+            return func(*args, **kwargs)  # called by the package itself: checked at the surface
+        if parameters.sized or not parameters.ready:
+            parameters.check_sizes(args, kwargs)
+        state.inside = True
+        try:
+            return func(*args, **kwargs)
+        except (own, KeyboardInterrupt):
+            raise
+        except failures as failure:
+            parameters.check(args, kwargs)  # raises InvalidArgumentError naming the argument
+            trace = failure.__traceback__
+            if isinstance(failure, TypeError) and trace is not None and trace.tb_next is None:
+                raise error(f"{func.__qualname__}: {failure}") from None  # wrong arguments
+            raise
+        finally:
+            state.inside = False
+
+    code = wrapper.__code__
+    made = types.FunctionType(code, func.__globals__, func.__name__, None, wrapper.__closure__)
+    functools.update_wrapper(made, func)
+    made.__kwdefaults__ = None
+    made.__mazesim_checked__ = True  # type: ignore[attr-defined]
+    return made
+
+
+def _guard_class(cls: type) -> None:
+    if issubclass(cls, BaseException) or getattr(cls, "_is_protocol", False):
+        return
+    import enum
+
+    if issubclass(cls, enum.Enum):
+        return
+    inherited = cls.__init__
+    if "__init__" not in vars(cls) and inspect.isfunction(inherited):
+        cls.__init__ = checked(inherited, method=True)  # type: ignore[method-assign]
+    for name, raw in list(vars(cls).items()):
+        if name.startswith("_") and name != "__init__":
+            continue
+        if isinstance(raw, staticmethod):
+            setattr(cls, name, staticmethod(checked(raw.__func__)))
+        elif isinstance(raw, classmethod):
+            setattr(cls, name, classmethod(checked(raw.__func__, method=True)))
+        elif inspect.isfunction(raw):
+            setattr(cls, name, checked(raw, method=True))
+
+
+def public_names(module: types.ModuleType) -> list[str]:
+    """The public functions and classes of a public module: those its ``__all__`` names (every
+    name not starting with ``_`` when it has none) that are defined in it, not re-exported."""
+    names = getattr(module, "__all__", None)
+    found = []
+    for name in names if names is not None else dir(module):
+        obj = getattr(module, name, None)
+        if name.startswith("_") or getattr(obj, "__module__", None) != module.__name__:
+            continue
+        if inspect.isfunction(obj) or inspect.isclass(obj) or inspect.isbuiltin(obj):
+            found.append(name)
+    return found
+
+
+def guard_module(module: types.ModuleType) -> None:
+    """Puts the check on every public function and method of ``module``."""
+    for name in public_names(module):
+        obj = getattr(module, name)
+        if inspect.isfunction(obj):
+            setattr(module, name, checked(obj))
+        elif inspect.isclass(obj):
+            _guard_class(obj)
+
+
+class _CheckingLoader(importlib.abc.Loader):
+    """Executes a public module with its own loader, then puts the check on its surface."""
+
+    def __init__(self, loader: Any) -> None:
+        self._loader = loader
+
+    def create_module(self, spec: importlib.machinery.ModuleSpec) -> types.ModuleType | None:
+        return self._loader.create_module(spec)
+
+    def exec_module(self, module: types.ModuleType) -> None:
+        self._loader.exec_module(module)
+        guard_module(module)
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._loader, name)
+
+
+class _CheckingFinder(importlib.abc.MetaPathFinder):
+    """Finds mazesim's public modules as usual and gives them the checking loader."""
+
+    def find_spec(
+        self, fullname: str, path: Any, target: types.ModuleType | None = None
+    ) -> importlib.machinery.ModuleSpec | None:
+        if not is_public_module(fullname) or fullname == "mazesim":
+            return None
+        spec = importlib.machinery.PathFinder.find_spec(fullname, path, target)
+        if spec is None or spec.loader is None or isinstance(spec.loader, _CheckingLoader):
+            return spec
+        spec.loader = _CheckingLoader(spec.loader)
+        return spec
+
+
+def install() -> None:
+    """Adds the import hook (once), and checks the public modules imported before it."""
+    if not any(isinstance(f, _CheckingFinder) for f in sys.meta_path):
+        sys.meta_path.insert(0, _CheckingFinder())
+    for name, module in list(sys.modules.items()):
+        if is_public_module(name) and name != "mazesim" and module is not None:
+            guard_module(module)
