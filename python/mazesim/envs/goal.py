@@ -126,7 +126,8 @@ class MazeGoalEnv(gymnasium.Env[Observation, Any]):
             "achieved_goal": pose[:2],
             "desired_goal": self._desired.copy(),
         }
-        return goal_observation, reward, terminated, truncated, {**info, "is_success": not outside}
+        info["is_success"] = not outside  # the maze env's info is new every step
+        return goal_observation, reward, terminated, truncated, info
 
     def render(self) -> npt.NDArray[np.uint8] | None:
         """The maze env's picture."""

@@ -11,7 +11,7 @@ import numpy.typing as npt
 
 from mazesim._core import Simulator, World
 from mazesim.envs.errors import EnvClosedError, ResetNeededError, check_options, check_seed
-from mazesim.envs.navigation import StartAndGoal, navigation_features
+from mazesim.envs.navigation import StartAndGoal, distance_table, navigation_features
 from mazesim.envs.options import EnvOptions, draw_seed, json_world_spec
 from mazesim.envs.spaces import ActionConverter, ObservationLayout, sensor_ranges
 from mazesim.errors import InvalidArgumentError
@@ -182,10 +182,11 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         if drawn is not None or not fresh:
             simulator.reset(seed=episode_seed)
         if fresh or drawn is not None:
-            table = PathDistanceTable.of_world(self.world, None if drawn is None else drawn.goal)
-            self._goal.set(0, table)
+            table = distance_table(self.world, None if drawn is None else drawn.goal)
             if self._features is not None:
-                self._features.set(0, self.world, table)
+                self._features.set(0, self.world, table)  # the goal distance too
+            else:
+                self._goal.set(0, table)
             self._renderer = None
         self._drawn = drawn
         readings = np.concatenate((simulator.distance_sensors(), simulator.ground_sensors()))
@@ -222,9 +223,9 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
             ResetNeededError: :meth:`reset` has not been called since the env was made.
             EnvClosedError: The env is closed.
         """
-        self._check_open()
         simulator = self._simulator
-        if simulator is None:
+        if simulator is None or self._closed:
+            self._check_open()
             raise ResetNeededError("call reset() before step()")
         left, right = self._actions.single(action)
         observation, pose, colliding, crossing = simulator.step_observe(

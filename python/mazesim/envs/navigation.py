@@ -101,6 +101,7 @@ __all__ = [
     "START_GOALS",
     "NavigationFeatures",
     "StartAndGoal",
+    "distance_table",
     "draw_start_and_goal",
     "navigation_features",
     "planned_waypoints",
@@ -169,7 +170,7 @@ def draw_start_and_goal(world: World, rng: np.random.Generator) -> StartAndGoal:
     Raises:
         InvalidArgumentError: The world has no cell maze, or no two cells join.
     """
-    maze, cells = start_and_goal_cells(world)
+    maze, cells = _cells_of(_Same(world))
     start = int(rng.integers(len(cells)))
     goal = int(rng.integers(len(cells) - 1))
     goal += goal >= start
@@ -178,6 +179,44 @@ def draw_start_and_goal(world: World, rng: np.random.Generator) -> StartAndGoal:
     start_x, start_y = maze.center((start_col, start_row))
     goal_x, goal_y = maze.center((goal_col, goal_row))
     return StartAndGoal((start_x, start_y, yaw), (goal_x, goal_y, maze.cell_size / 3.0))
+
+
+class _Same:
+    """A world as a cache key: equal only to itself (worlds are immutable and not hashable); the
+    key holds the world, so its id is not reused while it is cached."""
+
+    __slots__ = ("world",)
+
+    def __init__(self, world: World) -> None:
+        self.world = world
+
+    def __hash__(self) -> int:
+        return id(self.world)
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, _Same) and other.world is self.world
+
+
+#: Worlds whose start and goal cells and distance tables are kept (a fixed world's are drawn
+#: again every episode; a random maze's episode is long beside the cost of making them).
+_CACHED_WORLDS = 32
+
+
+@functools.lru_cache(maxsize=_CACHED_WORLDS)
+def _cells_of(world: _Same) -> tuple[CellMaze, list[tuple[int, int]]]:
+    return start_and_goal_cells(world.world)
+
+
+@functools.lru_cache(maxsize=4 * _CACHED_WORLDS)
+def _table_of(world: _Same, goal: tuple[float, float, float] | None) -> PathDistanceTable:
+    return PathDistanceTable.of_world(world.world, goal)
+
+
+def distance_table(world: World, goal: tuple[float, float, float] | None) -> PathDistanceTable:
+    """:meth:`PathDistanceTable.of_world` of ``world`` and ``goal`` (None: the world's own),
+    kept for the worlds used lately: every episode of a fixed world with random goals asks for
+    one of a few tables again. The table is shared: read it, do not change it."""
+    return _table_of(_Same(world), goal)
 
 
 def start_and_goal_cells(world: World) -> tuple[CellMaze, list[tuple[int, int]]]:

@@ -35,7 +35,7 @@ from mazesim.envs.errors import (
     is_seed,
 )
 from mazesim.envs.maze_env import VECTOR_RENDER_MODES, check_render_mode, step_length_ms
-from mazesim.envs.navigation import StartAndGoal, navigation_features
+from mazesim.envs.navigation import StartAndGoal, distance_table, navigation_features
 from mazesim.envs.options import (
     DEFAULT_MAX_EPISODE_STEPS,
     EnvOptions,
@@ -497,7 +497,7 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
                 self._drawn[i] = drawn
                 self._renderers[i] = None
                 goal = None if drawn is None else drawn.goal
-                table = PathDistanceTable.of_world(self._worlds[i], goal)
+                table = distance_table(self._worlds[i], goal)
                 self._goal.set(int(i), table)
                 if self._features is not None:
                     self._features.set(int(i), self._worlds[i], table)
