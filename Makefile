@@ -33,7 +33,7 @@ export PYO3_PYTHON := $(CURDIR)/$(BIN)/python
 .DEFAULT_GOAL := help
 
 .PHONY: help venv build test demo lint typecheck fmt bench wheel clean ros-deps ros2-deps ros2-peer ros-demo bench-peers \
-	bench-transfer webots-compat \
+	bench-tasks bench-transfer webots-compat \
 	browser-deps replay-screenshot docs docs-deps sb3-deps fuzz dev-deps wheel-deps oldest-glibc-deps \
 	wheel-oldest newcomer-check
 
@@ -160,6 +160,9 @@ fmt: dev-deps ## format Rust and Python sources in place
 
 bench: ## run the criterion benches
 	cargo bench
+
+bench-tasks: build dev-deps ## one env of every registered task through gymnasium.make against CartPole-v1; fails if any is slower
+	$(BIN)/python benches/bench_tasks.py
 
 bench-transfer: build ## time the full default transfer study of the shipped and randomised navigators (budget 10 min each)
 	$(BIN)/python benches/bench_transfer.py

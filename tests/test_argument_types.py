@@ -21,6 +21,16 @@ import mazesim._core as core
 WEBOTS_WORLD = sorted((Path(__file__).parent / "data" / "webots-worlds").glob("*.wbt"))[0]
 NUM_ENVS = 2
 
+#: The arguments of a ``TaskFeatures`` of ``NUM_ENVS`` e-pucks observing ``"plan"``.
+TASK_FEATURES = (
+    NUM_ENVS,
+    "plan",
+    False,
+    np.array([4095.0] * 8 + [1000.0] * 3),
+    np.full(26, -2.0, np.float32),
+    np.full(26, 2.0, np.float32),
+)
+
 #: Private entry points kept for tests of the panic guard.
 PRIVATE = {"_panic_for_tests"}
 
@@ -57,12 +67,14 @@ def samples(tmp: Path) -> dict[str, Any]:
     saved = tmp / "world.toml"
     world.save(saved)
     simulator = core.Simulator(world)
+    features = core.TaskFeatures(*TASK_FEATURES)
     return {
         "instances": {
             "World": world,
             "Simulator": simulator,
             "BatchSimulator": batch,
             "RobotProfile": core.RobotProfile.builtin("e-puck"),
+            "TaskFeatures": features,
         },
         "name": {"World": "seed-maze", "RobotProfile": "e-puck"},
         "path": {"load": saved, "save": tmp / "out.toml", "import_wbt": WEBOTS_WORLD},
@@ -134,8 +146,28 @@ def samples(tmp: Path) -> dict[str, Any]:
         "wall_reflectance": 0.5,
         "ground_gain": 0.9,
         "slip_on_contact": 0.2,
+        "observation": TASK_FEATURES[1],
+        "include_pose": TASK_FEATURES[2],
+        "sensor_scale": TASK_FEATURES[3],
+        "feature_low": TASK_FEATURES[4],
+        "feature_high": TASK_FEATURES[5],
+        "env": 0,
+        "place": np.array([0.1, 0.1, 1.0, 0.0, 0.0, 0.25, 0.0, 0.0]),
+        "rows": 2,
+        "cols": 2,
+        "waypoints": np.zeros((4, 2)),
+        "open_sides": np.ones((4, 4)),
+        "goal_cell": 3,
+        "mode": "maze",
+        "goal": np.array([0.3, 0.3, 0.05]),
+        "origin": np.zeros(2),
+        "targets": np.zeros((4, 5)),
+        "readings": np.zeros((NUM_ENVS, 11), np.float32),
+        "previous": np.zeros((NUM_ENVS, 2), np.float32),
+        "state": features.state(),
         # Parameters whose name means something else for one callable.
         "overrides": {
+            "observe_env": {"readings": np.zeros(11, np.float32), "pose": np.zeros(3, np.float32)},
             "train_lower_round": lower_round_samples(world, x, y, yaw),
             "q_batch_update": {
                 "q": np.zeros((4, 3)),

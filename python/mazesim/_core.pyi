@@ -11,6 +11,7 @@ __all__ = [
     "BatchSimulator",
     "RobotProfile",
     "Simulator",
+    "TaskFeatures",
     "World",
     "__version__",
     "_panic_for_tests",
@@ -542,3 +543,80 @@ class BatchSimulator:
     def collisions(self) -> npt.NDArray[np.uint64]: ...
     def distances_travelled(self) -> npt.NDArray[np.float64]: ...
     def __len__(self) -> int: ...
+
+@final
+class TaskFeatures:
+    """The navigation features (goal, explored map, waypoint, pose, previous action) of N
+    environments, computed per step in the core."""
+
+    def __new__(
+        cls,
+        num_envs: int,
+        observation: str,
+        include_pose: bool,
+        sensor_scale: npt.NDArray[np.float64],
+        feature_low: npt.NDArray[np.float32],
+        feature_high: npt.NDArray[np.float32],
+    ) -> TaskFeatures: ...
+    @property
+    def width(self) -> int:
+        """Values of one observation."""
+    def state(self) -> bytes:
+        """The state of every environment as bytes, for `restore` (pickling, copies)."""
+    def restore(self, state: bytes) -> None:
+        """Puts every environment in the `state` of TaskFeatures of the same kind and number of
+        environments."""
+    def set_env(
+        self,
+        env: int,
+        place: npt.NDArray[np.float64],
+        rows: int,
+        cols: int,
+        waypoints: npt.NDArray[np.float64],
+        open_sides: npt.NDArray[np.float64] | None,
+        goal_cell: int | None,
+    ) -> None:
+        """Puts environment `env` into a world: `place` (float64: goal x, y, the world's larger
+        side, its south-west corner x, y, the cell size, the grid's south-west corner x, y), its
+        grid of `rows` x `cols` cells, the next `waypoints` of its cells ((n, 2) float64), the
+        true `open_sides` of its cells ((rows * cols, 4) float64, 1.0 open) or None, and the
+        `goal_cell` (row-major) to plan towards or None. Restarts the episode's map."""
+    def set_goal(
+        self,
+        env: int,
+        mode: str,
+        goal: npt.NDArray[np.float64],
+        cell_size: float,
+        origin: npt.NDArray[np.float64],
+        rows: int,
+        cols: int,
+        targets: npt.NDArray[np.float64],
+    ) -> None:
+        """Sets the distance table of environment `env`'s goal: `mode` (`"maze"`, `"straight"` or
+        `"none"`), the `goal` disc (float64 x, y, radius), the grid's `cell_size`, south-west
+        `origin` (float64 x, y), `rows` and `cols`, and the (rows * cols, 5) float64 `targets`
+        of its cells (east, north, west, south, goal; NaN where none)."""
+    def restart(self, env: int) -> None:
+        """Forgets the explored map's visits of environment `env` (a new episode)."""
+    def observe(
+        self,
+        readings: npt.NDArray[np.float32],
+        poses: npt.NDArray[np.float32],
+        previous: npt.NDArray[np.float32],
+    ) -> npt.NDArray[np.float32]:
+        """The (N, width) float32 observations of every environment from their (N, sensors)
+        float32 raw `readings`, (N, 3) float32 `poses` and (N, 2) float32 `previous` actions
+        (wheel speed fractions)."""
+    def observe_env(
+        self,
+        env: int,
+        readings: npt.NDArray[np.float32],
+        pose: npt.NDArray[np.float32],
+        left: float,
+        right: float,
+        max_speed: float,
+    ) -> tuple[npt.NDArray[np.float32], float, bool]:
+        """The (width,) float32 observation of environment `env` from its float32 raw `readings`
+        and `pose`, the previous action being the wheel speeds `left` and `right` (rad/s, float32
+        values) over `max_speed` in float32; then the distance in metres from the pose to the
+        goal (`set_goal`) and whether the pose is in the goal disc."""

@@ -43,6 +43,10 @@ INSTANCES: dict[str, str] = {
     "mazesim._core.Simulator": "mazesim.Simulator(world)",
     "mazesim._core.BatchSimulator": "mazesim.BatchSimulator(world, num_envs=2)",
     "mazesim._core.RobotProfile": "mazesim.RobotProfile.builtin('e-puck')",
+    "mazesim._core.TaskFeatures": (
+        "(lambda np: mazesim._core.TaskFeatures(2, 'plan', False, np.ones(11),"
+        " np.zeros(26, 'float32'), np.ones(26, 'float32')))(__import__('numpy'))"
+    ),
 }
 
 

@@ -45,6 +45,9 @@ pub mod simulator;
 pub mod lower_training;
 pub mod qlearning;
 
+// Task observations of the gymnasium tasks.
+pub mod tasks;
+
 // Webots import.
 pub mod wbt;
 

@@ -55,6 +55,10 @@ impl<'a, 'py> FromPyObject<'a, 'py> for IntArg {
     type Error = PyErr;
 
     fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        // Most ints fit 64 bits, read in one C call; pyo3 reads an i128 with Python arithmetic.
+        if let Ok(v) = obj.extract::<i64>() {
+            return Ok(IntArg::Int(i128::from(v)));
+        }
         if let Ok(v) = obj.extract::<i128>() {
             return Ok(IntArg::Int(v));
         }

@@ -12,6 +12,7 @@ mod profile;
 mod run;
 mod simulator;
 mod subtasks;
+mod tasks;
 mod wbt;
 mod world;
 
@@ -116,5 +117,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<world::PyWorld>()?;
     m.add_class::<profile::PyRobotProfile>()?;
     m.add_class::<simulator::PySimulator>()?;
+    m.add_class::<tasks::PyTaskFeatures>()?;
     Ok(())
 }

@@ -11,11 +11,12 @@ import numpy.typing as npt
 
 from mazesim._core import Simulator, World
 from mazesim.envs.errors import EnvClosedError, ResetNeededError, check_options, check_seed
-from mazesim.envs.navigation import StartAndGoal, navigation_features
+from mazesim.envs.navigation import StartAndGoal, distance_table, navigation_features
 from mazesim.envs.options import EnvOptions, draw_seed, json_world_spec
 from mazesim.envs.spaces import ActionConverter, ObservationLayout, sensor_ranges
 from mazesim.errors import InvalidArgumentError
 from mazesim.maze import GoalDistance, PathDistanceTable
+from mazesim.render.episode import EpisodeTrace
 from mazesim.render.topdown import TopDownRenderer
 
 __all__ = [
@@ -121,7 +122,9 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
             table,
             self.options.include_pose,
         )
-        self._previous = np.zeros((1, 2), dtype=np.float32)
+        self._max_speed = float(self._actions.max_speed)
+        weights = self.options.reward
+        self._weights = (weights.progress, weights.collision, weights.goal)
         features = self._features
         self.observation_space = self._layout.space if features is None else features.space
         self.action_space = self._actions.space
@@ -134,10 +137,7 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         self._simulator: Simulator | None = None
         self._renderer: TopDownRenderer | None = None
         self._live: Any = None
-        self._trail: list[tuple[float, float]] = []
-        self._last_reward = 0.0
-        self._episode_return = 0.0
-        self._last_event = "none"
+        self._trace = EpisodeTrace()
 
     @property
     def observation_names(self) -> list[str]:
@@ -182,24 +182,25 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         if drawn is not None or not fresh:
             simulator.reset(seed=episode_seed)
         if fresh or drawn is not None:
-            table = PathDistanceTable.of_world(self.world, None if drawn is None else drawn.goal)
-            self._goal.set(0, table)
+            table = distance_table(self.world, None if drawn is None else drawn.goal)
             if self._features is not None:
-                self._features.set(0, self.world, table)
+                self._features.set(0, self.world, table)  # the goal distance too
+            else:
+                self._goal.set(0, table)
             self._renderer = None
         self._drawn = drawn
         readings = np.concatenate((simulator.distance_sensors(), simulator.ground_sensors()))
         pose = np.array(simulator.pose, dtype=np.float32)
         observation = self._layout.assemble_one(readings, pose)
-        if self._features is not None:
-            self._previous[:] = 0.0
-            self._features.restart(0)
-            observation = self._features.observe(readings[None], pose[None], self._previous)[0]
         x, y, yaw = pose.tolist()
-        self._distance, reached = self._goal.evaluate_one(x, y)
-        self._trail = [(x, y)]
-        self._last_reward = self._episode_return = 0.0
-        self._last_event = "none"
+        if self._features is not None:
+            self._features.restart(0)
+            observation, self._distance, _ = self._features.observe_one(
+                readings, pose, 0.0, 0.0, self._max_speed
+            )
+        else:
+            self._distance, _ = self._goal.evaluate_one(x, y)
+        self._trace.restart(x, y)
         if self.render_mode == "human":
             self.render()
         info = {
@@ -222,27 +223,28 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
             ResetNeededError: :meth:`reset` has not been called since the env was made.
             EnvClosedError: The env is closed.
         """
-        self._check_open()
         simulator = self._simulator
-        if simulator is None:
+        if simulator is None or self._closed:
+            self._check_open()
             raise ResetNeededError("call reset() before step()")
         left, right = self._actions.single(action)
         observation, pose, colliding, crossing = simulator.step_observe(
             left, right, self._low, self._high
         )
         if self._features is not None:
-            self._previous[0] = (left, right)
-            self._previous /= self._actions.max_speed
-            observation = self._features.observe(observation[None], pose[None], self._previous)[0]
-        elif self._layout.include_pose:
-            observation = self._layout.assemble_one(observation, pose)
-        x, y, _ = pose.tolist()
-        distance, reached = self._goal.evaluate_one(x, y)
-        weights = self.options.reward
+            # The observation, the distance to the goal and whether it is reached, in one call.
+            observation, distance, reached = self._features.observe_one(
+                observation, pose, left, right, self._max_speed
+            )
+        else:
+            if self._layout.include_pose:
+                observation = self._layout.assemble_one(observation, pose)
+            distance, reached = self._goal.evaluate_one(float(pose[0]), float(pose[1]))
+        progress, collision, goal = self._weights
         reward = (
-            weights.progress * (self._distance - distance)
-            - weights.collision * float(colliding)
-            + weights.goal * float(reached)
+            progress * (self._distance - distance)
+            - collision * float(colliding)
+            + goal * float(reached)
         )
         self._distance = distance
         info = {
@@ -255,26 +257,18 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         if crossing != 0:
             info["checkpoint"] = crossing
         if self.render_mode is not None:
-            self._note_step(simulator, x, y, reward, reached)
+            self._trace.note(
+                float(pose[0]),
+                float(pose[1]),
+                reward,
+                reached,
+                crossing,
+                colliding,
+                simulator.steps,
+            )
             if self.render_mode == "human":
                 self.render()
         return observation, reward, reached, False, info
-
-    def _note_step(
-        self, simulator: Simulator, x: float, y: float, reward: float, reached: bool
-    ) -> None:
-        """Keeps what the rendered overlay shows: the trail, the reward, the last event."""
-        self._trail.append((x, y))
-        self._last_reward = reward
-        self._episode_return += reward
-        crossing = simulator.last_crossing
-        if reached:
-            self._last_event = f"goal reached at step {simulator.steps}"
-        elif crossing != 0:
-            direction = "arrival" if crossing > 0 else "departure"
-            self._last_event = f"checkpoint {abs(crossing)} ({direction}) at step {simulator.steps}"
-        elif simulator.colliding:
-            self._last_event = f"touching a wall at step {simulator.steps}"
 
     @property
     def goal_disc(self) -> tuple[float, float, float] | None:
@@ -323,13 +317,8 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         if self._simulator is None:
             return self._renderer.frame(self.world.start)
         simulator = self._simulator
-        overlay = [
-            f"t {simulator.time:6.2f} s   step {simulator.steps}",
-            f"reward {self._last_reward:+.3f}   return {self._episode_return:+.2f}",
-            f"last event: {self._last_event}",
-        ]
-        return self._renderer.frame(
-            simulator.pose, simulator.colliding, trail=self._trail, overlay=overlay
+        return self._trace.frame(
+            self._renderer, simulator.pose, simulator.colliding, simulator.time, simulator.steps
         )
 
     def __getstate__(self) -> dict[str, Any]:

@@ -31,8 +31,9 @@ Observations (``observation=``)
     the sides of the cells it has visited are as they are, every side it has not seen is assumed
     open (the free-space assumption of a mapping robot, as in D* Lite), the outer wall is known
     (:func:`mazesim.maze.assumed_open_sides`). The path is planned again whenever the robot
-    enters a cell for the first time (the only moment its map changes), with the maze model's one
-    breadth-first search, for all the environments that need it at once; the waypoint is the
+    enters a cell for the first time (the only moment its map changes), by a breadth-first search
+    in the core (the maze model's :func:`~mazesim.maze.next_cells`, done there per environment
+    and step as every feature here: :class:`mazesim._core.TaskFeatures`); the waypoint is the
     centre of the neighbouring cell on that path, or the goal in the goal cell. Following it the
     robot reaches the goal of any maze whose goal can be reached: each plan either gets there or
     leads into a cell not visited yet.
@@ -73,6 +74,7 @@ Observations (``observation=``)
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 from typing import Any, cast
@@ -81,7 +83,7 @@ import numpy as np
 import numpy.typing as npt
 from gymnasium import spaces
 
-from mazesim._core import RobotProfile, World
+from mazesim._core import RobotProfile, TaskFeatures, World
 from mazesim.envs.spaces import NOISE_MARGIN, sensor_ranges
 from mazesim.errors import InvalidArgumentError
 from mazesim.maze import (
@@ -91,7 +93,6 @@ from mazesim.maze import (
     WEST,
     CellMaze,
     PathDistanceTable,
-    assumed_open_sides,
     next_cells,
 )
 
@@ -100,6 +101,7 @@ __all__ = [
     "START_GOALS",
     "NavigationFeatures",
     "StartAndGoal",
+    "distance_table",
     "draw_start_and_goal",
     "navigation_features",
     "planned_waypoints",
@@ -114,8 +116,6 @@ START_GOALS = ("world", "random")
 _WAYPOINT_BOUND = 2.0
 #: The sides of the explored map's observation, relative to the robot's heading.
 _RELATIVE_SIDES = ("ahead", "left", "behind", "right")
-#: Visits of a cell the explored map tells apart (more read as this many).
-_VISITS_SEEN = 3.0
 #: The (column, row-up) step across each side of a cell, by maze's direction codes (the side
 #: order of the distance table).
 _SIDE_STEPS = {EAST: (1.0, 0.0), NORTH: (0.0, 1.0), WEST: (-1.0, 0.0), SOUTH: (0.0, -1.0)}
@@ -170,7 +170,7 @@ def draw_start_and_goal(world: World, rng: np.random.Generator) -> StartAndGoal:
     Raises:
         InvalidArgumentError: The world has no cell maze, or no two cells join.
     """
-    maze, cells = start_and_goal_cells(world)
+    maze, cells = _cells_of(_Same(world))
     start = int(rng.integers(len(cells)))
     goal = int(rng.integers(len(cells) - 1))
     goal += goal >= start
@@ -179,6 +179,44 @@ def draw_start_and_goal(world: World, rng: np.random.Generator) -> StartAndGoal:
     start_x, start_y = maze.center((start_col, start_row))
     goal_x, goal_y = maze.center((goal_col, goal_row))
     return StartAndGoal((start_x, start_y, yaw), (goal_x, goal_y, maze.cell_size / 3.0))
+
+
+class _Same:
+    """A world as a cache key: equal only to itself (worlds are immutable and not hashable); the
+    key holds the world, so its id is not reused while it is cached."""
+
+    __slots__ = ("world",)
+
+    def __init__(self, world: World) -> None:
+        self.world = world
+
+    def __hash__(self) -> int:
+        return id(self.world)
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, _Same) and other.world is self.world
+
+
+#: Worlds whose start and goal cells and distance tables are kept (a fixed world's are drawn
+#: again every episode; a random maze's episode is long beside the cost of making them).
+_CACHED_WORLDS = 32
+
+
+@functools.lru_cache(maxsize=_CACHED_WORLDS)
+def _cells_of(world: _Same) -> tuple[CellMaze, list[tuple[int, int]]]:
+    return start_and_goal_cells(world.world)
+
+
+@functools.lru_cache(maxsize=4 * _CACHED_WORLDS)
+def _table_of(world: _Same, goal: tuple[float, float, float] | None) -> PathDistanceTable:
+    return PathDistanceTable.of_world(world.world, goal)
+
+
+def distance_table(world: World, goal: tuple[float, float, float] | None) -> PathDistanceTable:
+    """:meth:`PathDistanceTable.of_world` of ``world`` and ``goal`` (None: the world's own),
+    kept for the worlds used lately: every episode of a fixed world with random goals asks for
+    one of a few tables again. The table is shared: read it, do not change it."""
+    return _table_of(_Same(world), goal)
 
 
 def start_and_goal_cells(world: World) -> tuple[CellMaze, list[tuple[int, int]]]:
@@ -219,9 +257,10 @@ def _largest_connected_cells(maze: CellMaze) -> list[tuple[int, int]]:
 
 class NavigationFeatures:
     """The ``"goal"``, ``"explore"``, ``"guided"`` and ``"plan"`` observations of N environments
-    (see the module).
+    (see the module), computed per step in the core (:class:`mazesim._core.TaskFeatures`).
 
-    The single env runs it with N = 1, so single and vector envs agree bit for bit.
+    The single env runs it with N = 1 (``observe_one``), so single and vector envs agree bit
+    for bit; each environment's values depend on its own state alone.
 
     Args:
         num_envs: Number of environments.
@@ -246,17 +285,16 @@ class NavigationFeatures:
         distance, ground = robot.distance_sensor_names, robot.ground_sensor_names
         scale = [ranges.distance_max] * len(distance) + [ranges.ground_max] * len(ground)
         self.sensor_width = len(scale)
-        self._scale = np.array(scale, dtype=np.float64)
         self.guided = guided
         self.plan = plan
         self.pose = pose
+        self.explore = explore
         extra = ["goal_forward", "goal_left"]
         low, high = [-1.5, -1.5], [1.5, 1.5]
         if guided or plan:
             extra += ["waypoint_forward", "waypoint_left"]
             low += [-_WAYPOINT_BOUND, -_WAYPOINT_BOUND]
             high += [_WAYPOINT_BOUND, _WAYPOINT_BOUND]
-        self.explore = explore
         if explore:
             extra += [f"open_{side}" for side in _RELATIVE_SIDES]
             extra += [f"visits_{side}" for side in _RELATIVE_SIDES] + ["visits_here"]
@@ -272,22 +310,51 @@ class NavigationFeatures:
         self.names = [*distance, *ground, *extra]
         self.low = np.array([0.0] * self.sensor_width + low, dtype=np.float32)
         self.high = np.array([NOISE_MARGIN] * self.sensor_width + high, dtype=np.float32)
-        self._goal = np.zeros((num_envs, 2))
-        self._extent = np.ones(num_envs)
-        self._corner = np.zeros((num_envs, 2))
-        self._size = np.ones(num_envs)
-        self._origin = np.zeros((num_envs, 2))
-        self._shape = np.ones((num_envs, 2), dtype=np.intp)  # rows, cols
-        self._cells = 1
-        self._waypoints = np.zeros((num_envs, 1, 2))
-        # The explored map: which sides of each cell are open (direction order), the visits of
-        # each cell this episode, and the cell each robot was last seen in (-1: none yet).
-        self._open = np.zeros((num_envs, 1, 4))
-        self._visits = np.zeros((num_envs, 1))
-        self._last = np.full(num_envs, -1, dtype=np.intp)
-        # The plan: whether each environment has a cell maze to plan in, and its goal cell.
-        self._plannable = np.zeros(num_envs, dtype=bool)
-        self._goal_cells = np.zeros((num_envs, 2), dtype=np.int64)  # column, row
+        kind = "plan" if plan else "explore" if explore else "guided" if guided else "goal"
+        self._arguments = (num_envs, kind, pose, np.array(scale, dtype=np.float64))
+        self._core = TaskFeatures(*self._arguments, self.low, self.high)
+        self._tables: list[PathDistanceTable | None] = [None] * num_envs
+        self._bind()
+
+    def _bind(self) -> None:
+        """Binds ``observe_one(readings, pose, left, right, max_speed)``: the observation of
+        environment 0 from its float32 readings and pose, the previous action being the wheel
+        speeds ``left`` and ``right`` over ``max_speed`` in float32 (as the vector env's
+        ``speeds / max_speed``); then the shortest-path distance in metres from the pose to the
+        goal and whether the pose is in the goal disc, as
+        :meth:`mazesim.maze.GoalDistance.evaluate_one` gives them. The core's method itself, with
+        no Python call between (a single env calls it every step)."""
+        self.observe_one = functools.partial(self._core.observe_env, 0)
+
+    def __getstate__(self) -> dict[str, Any]:
+        """What pickling and copying keep: everything, the core's features as their state."""
+        state = self.__dict__.copy()
+        state["_core"] = self._core.state()
+        state.pop("observe_one", None)
+        return state
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        core_state = state.pop("_core")
+        self.__dict__.update(state)
+        self._core = TaskFeatures(*self._arguments, self.low, self.high)
+        self._core.restore(core_state)
+        self._bind()
+        for env, table in enumerate(self._tables):
+            if table is not None:
+                self._set_goal(env, table)
+
+    def _set_goal(self, env: int, table: PathDistanceTable) -> None:
+        self._tables[env] = table
+        self._core.set_goal(
+            env,
+            table.mode,
+            np.array(table.goal, dtype=np.float64),
+            table.cell_size,
+            np.array(table.origin, dtype=np.float64),
+            table.rows,
+            table.cols,
+            np.ascontiguousarray(table.targets, dtype=np.float64),
+        )
 
     @property
     def space(self) -> spaces.Space[npt.NDArray[np.float32]]:
@@ -297,43 +364,36 @@ class NavigationFeatures:
 
     def set(self, env: int | npt.NDArray[np.intp], world: World, table: PathDistanceTable) -> None:
         """Puts environment(s) ``env`` into ``world`` (whose distance table is ``table``)."""
-        self._goal[env] = table.goal[:2]
         xmin, ymin, xmax, ymax = world.bounds
-        self._extent[env] = max(xmax - xmin, ymax - ymin, 1e-6)
-        self._corner[env] = (xmin, ymin)
-        self._size[env] = table.cell_size
-        self._origin[env] = table.origin
-        self._shape[env] = (table.rows, table.cols)
-        waypoints = _waypoints(table)
-        cells = max(len(waypoints), table.rows * table.cols)
-        if cells > self._cells:
-            n = len(self._goal)
-            grown = np.zeros((n, cells, 2))
-            grown[:, : self._cells] = self._waypoints
-            opened = np.zeros((n, cells, 4))
-            opened[:, : self._cells] = self._open
-            visits = np.zeros((n, cells))
-            visits[:, : self._cells] = self._visits
-            self._waypoints, self._open, self._visits = grown, opened, visits
-            self._cells = cells
-        self._waypoints[env, : len(waypoints)] = waypoints
-        # The true open sides of the cells (all closed without a cell maze).
+        extent = max(xmax - xmin, ymax - ymin, 1e-6)
+        place = np.array(
+            [*table.goal[:2], extent, xmin, ymin, table.cell_size, *table.origin], dtype=np.float64
+        )
+        # The true shortest path's waypoints ("guided"; the plan makes its own before it is
+        # first read, and the other kinds observe none).
+        goal = np.array([table.goal[:2]], dtype=np.float64)
+        waypoints = _waypoints(table) if self.guided else goal
+        # The true open sides of the cells (all closed without a cell maze), and the goal cell
+        # the plan heads for.
         maze = CellMaze(world) if self.explore and table.mode == "maze" else None
+        sides: npt.NDArray[np.float64] | None = None
         if self.explore:
-            sides = 0.0 if maze is None else maze.open_sides().reshape(-1, 4)
-            self._open[env, : table.rows * table.cols] = sides
-        if self.plan:
-            self._plannable[env] = maze is not None
-            if maze is not None:
-                column, row = maze.cell_at(table.goal[0], table.goal[1])
-                self._goal_cells[env] = (int(column), int(row))
-        self.restart(env)
+            cells = table.rows * table.cols
+            known = np.zeros((cells, 4)) if maze is None else maze.open_sides().reshape(-1, 4)
+            sides = np.ascontiguousarray(known, dtype=np.float64)
+        goal_cell = None
+        if self.plan and maze is not None:
+            column, row = maze.cell_at(table.goal[0], table.goal[1])
+            goal_cell = int(row) * table.cols + int(column)
+        for one in np.atleast_1d(env).tolist():
+            self._core.set_env(one, place, table.rows, table.cols, waypoints, sides, goal_cell)
+            self._set_goal(one, table)
 
     def restart(self, env: int | npt.NDArray[np.intp]) -> None:
         """Forgets the explored map's visits of environment(s) ``env`` (a new episode); the plan
         is made again at the next observation, from the robot's first cell."""
-        self._visits[env] = 0.0
-        self._last[env] = -1
+        for one in np.atleast_1d(env).tolist():
+            self._core.restart(one)
 
     def observe(
         self,
@@ -342,100 +402,8 @@ class NavigationFeatures:
         previous: npt.NDArray[np.float32],
     ) -> npt.NDArray[np.float32]:
         """(N, width) observations from (N, sensor_width) raw readings, (N, 3) poses and the
-        (N, 2) previous actions as wheel speed fractions."""
-        x = poses[:, 0].astype(np.float64)
-        y = poses[:, 1].astype(np.float64)
-        yaw = poses[:, 2].astype(np.float64)
-        cos, sin = np.cos(yaw), np.sin(yaw)
-        cell = self._cell(x, y)
-        if self.explore:
-            discovered = self._visit(cell)
-            if self.plan and discovered.size:
-                self._replan(discovered)
-        parts: list[npt.NDArray[Any]] = [readings / self._scale]
-        for target, unit in self._targets(cell):
-            dx, dy = target[:, 0] - x, target[:, 1] - y
-            parts += [
-                ((cos * dx + sin * dy) / unit)[:, None],
-                ((cos * dy - sin * dx) / unit)[:, None],
-            ]
-        if self.explore:
-            parts.append(self._explored(cell, yaw))
-        if self.pose:
-            parts += [
-                ((x - self._corner[:, 0]) / self._extent)[:, None],
-                ((y - self._corner[:, 1]) / self._extent)[:, None],
-                cos[:, None],
-                sin[:, None],
-            ]
-        parts.append(previous)
-        out = np.concatenate(parts, axis=1).astype(np.float32)
-        np.maximum(out, self.low, out=out)
-        np.minimum(out, self.high, out=out)
-        return out
-
-    def _cell(self, x: npt.NDArray[np.float64], y: npt.NDArray[np.float64]) -> npt.NDArray[np.intp]:
-        """The cell (row-major from the north-west) each robot is in."""
-        rows, cols = self._shape[:, 0], self._shape[:, 1]
-        col = np.clip(np.floor((x - self._origin[:, 0]) / self._size), 0, cols - 1)
-        up = np.clip(np.floor((y - self._origin[:, 1]) / self._size), 0, rows - 1)
-        return (rows - 1 - up.astype(np.intp)) * cols + col.astype(np.intp)
-
-    def _targets(
-        self, cell: npt.NDArray[np.intp]
-    ) -> list[tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]]:
-        targets = [(self._goal, self._extent)]
-        if self.guided or self.plan:
-            waypoint = self._waypoints[np.arange(len(cell)), cell]
-            targets.append((waypoint, self._size))
-        return targets
-
-    def _visit(self, cell: npt.NDArray[np.intp]) -> npt.NDArray[np.intp]:
-        """Counts a visit of each robot that entered ``cell`` since the last observation; the
-        environments whose robot entered a cell for the first time this episode."""
-        envs = np.arange(len(cell))
-        entered = envs[cell != self._last]
-        first = entered[self._visits[entered, cell[entered]] == 0.0]
-        self._visits[entered, cell[entered]] += 1.0
-        self._last = cell
-        return first
-
-    def _replan(self, envs: npt.NDArray[np.intp]) -> None:
-        """Plans again the waypoints of environments ``envs`` through their mazes as their robots
-        know them now (their visited cells), all mazes of a shape at once."""
-        envs = envs[self._plannable[envs]]
-        shapes = self._shape[envs]
-        same = envs.size == 0 or bool((shapes == shapes[0]).all())  # as a rule, one shape
-        for rows, cols in (shapes[:1] if same else np.unique(shapes, axis=0)).tolist():
-            group = envs[(shapes[:, 0] == rows) & (shapes[:, 1] == cols)]
-            cells = rows * cols
-            opened = self._open[group, :cells].reshape(-1, rows, cols, 4) > 0.0
-            visited = self._visits[group, :cells].reshape(-1, rows, cols) > 0.0
-            self._waypoints[group, :cells] = planned_waypoints(
-                assumed_open_sides(opened, visited),
-                self._goal_cells[group],
-                self._goal[group],
-                self._origin[group],
-                self._size[group],
-            )
-
-    def _explored(
-        self, cell: npt.NDArray[np.intp], yaw: npt.NDArray[np.float64]
-    ) -> npt.NDArray[np.float64]:
-        """(N, 9): the sides of each robot's cell ahead, left, behind and right of it (the side
-        its heading is nearest first), open or not; the visits this episode of the cells across
-        them (0 across a wall) and of its own cell, each up to ``_VISITS_SEEN`` and scaled to 1.
-        Entering a cell counts a visit (:meth:`_visit`, before)."""
-        envs = np.arange(len(cell))
-        facing = np.round(yaw / (0.5 * math.pi)).astype(np.intp) % 4
-        sides = (facing[:, None] + np.arange(4)[None, :]) % 4  # ahead, left, behind, right
-        opened = self._open[envs[:, None], cell[:, None], sides]
-        cols = self._shape[:, 1]
-        steps = np.array([1, -1, -1, 1])[sides] * np.where(sides % 2 == 0, 1, cols[:, None])
-        across = np.clip(cell[:, None] + steps, 0, self._cells - 1)
-        seen = np.minimum(self._visits[envs[:, None], across], _VISITS_SEEN) / _VISITS_SEEN
-        here = np.minimum(self._visits[envs, cell], _VISITS_SEEN) / _VISITS_SEEN
-        return np.concatenate((opened, opened * seen, here[:, None]), axis=1)
+        (N, 2) previous actions as wheel speed fractions (float32 arrays)."""
+        return self._core.observe(readings, poses, previous)
 
 
 def planned_waypoints(

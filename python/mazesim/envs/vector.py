@@ -35,7 +35,7 @@ from mazesim.envs.errors import (
     is_seed,
 )
 from mazesim.envs.maze_env import VECTOR_RENDER_MODES, check_render_mode, step_length_ms
-from mazesim.envs.navigation import StartAndGoal, navigation_features
+from mazesim.envs.navigation import StartAndGoal, distance_table, navigation_features
 from mazesim.envs.options import (
     DEFAULT_MAX_EPISODE_STEPS,
     EnvOptions,
@@ -46,6 +46,7 @@ from mazesim.envs.reward import step_reward
 from mazesim.envs.spaces import ActionConverter, ObservationLayout, sensor_ranges
 from mazesim.errors import InvalidArgumentError
 from mazesim.maze import GoalDistance, PathDistanceTable
+from mazesim.render.episode import EpisodeTrace
 from mazesim.render.topdown import TopDownRenderer
 
 __all__ = ["EPuckMazeVectorEnv"]
@@ -186,6 +187,8 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         self._sensors, self._poses, self._colliding, self._crossings = batch.output_buffers()
         self._worlds: list[World] = [first] * n
         self._renderers: list[TopDownRenderer | None] = [None] * n
+        # Each environment's trail and overlay, kept only when frames are rendered.
+        self._traces = [EpisodeTrace() for _ in range(n)] if self.render_mode else None
         self._drawn: list[StartAndGoal | None] = [None] * n
         self._goal = GoalDistance(n, table)
         self._previous = np.zeros((n, 2), dtype=np.float32)
@@ -302,6 +305,8 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
             truncated[restarting] = False
             self._elapsed[restarting] = 0
         self._reached = terminated.copy()
+        if self._traces is not None:
+            self._note_steps(rewards, terminated, restarting if any_restart else None)
         observations = self._observations()
         if self.autoreset_mode == AutoresetMode.DISABLED:
             self._ended = terminated | truncated
@@ -343,8 +348,36 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
                 renderer = self._renderer_for(i)
                 self._renderers[i] = renderer
             x, y, yaw = (float(v) for v in self._poses[i])
-            frames.append(renderer.frame((x, y, yaw), bool(self._colliding[i])))
+            steps = int(self._elapsed[i])
+            seconds = steps * step_length_ms(self.options, self._worlds[i]) / 1000.0
+            trace = self._traces[i] if self._traces is not None else EpisodeTrace(x, y)
+            frames.append(
+                trace.frame(renderer, (x, y, yaw), bool(self._colliding[i]), seconds, steps)
+            )
         return tuple(frames)
+
+    def _note_steps(
+        self,
+        rewards: npt.NDArray[np.float64],
+        reached: npt.NDArray[np.bool_],
+        restarted: npt.NDArray[np.bool_] | None,
+    ) -> None:
+        """Counts the step in each environment's trace (those just restarted have begun anew)."""
+        assert self._traces is not None
+        poses = self._poses.tolist()
+        for i, trace in enumerate(self._traces):
+            if restarted is not None and restarted[i]:
+                continue
+            x, y, _ = poses[i]
+            trace.note(
+                x,
+                y,
+                float(rewards[i]),
+                bool(reached[i]),
+                int(self._crossings[i]),
+                bool(self._colliding[i]),
+                int(self._elapsed[i]),
+            )
 
     def close_extras(self, **kwargs: Any) -> None:
         """Releases the batch engine and the renderers."""
@@ -462,7 +495,7 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
                 self._drawn[i] = drawn
                 self._renderers[i] = None
                 goal = None if drawn is None else drawn.goal
-                table = PathDistanceTable.of_world(self._worlds[i], goal)
+                table = distance_table(self._worlds[i], goal)
                 self._goal.set(int(i), table)
                 if self._features is not None:
                     self._features.set(int(i), self._worlds[i], table)
@@ -476,6 +509,9 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         self._previous[envs] = 0.0
         self._elapsed[envs] = 0
         self._autoreset[envs] = False
+        if self._traces is not None:
+            for i in envs.tolist():
+                self._traces[i].restart(float(self._poses[i, 0]), float(self._poses[i, 1]))
 
     def _info(self, mask: npt.NDArray[np.bool_] | None) -> dict[str, Any]:
         """The infos of the envs in ``mask`` (all without one), laid out as ``SyncVectorEnv``
