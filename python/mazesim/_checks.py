@@ -54,6 +54,7 @@ __all__ = [
     "MOST_ITEMS",
     "SAMPLED_ITEMS",
     "checked",
+    "checks_own_arguments",
     "guard_module",
     "install",
     "is_public_module",
@@ -420,6 +421,14 @@ def checked(func: Callable[..., Any], *, method: bool = False) -> Callable[..., 
     made.__kwdefaults__ = None
     made.__mazesim_checked__ = True  # type: ignore[attr-defined]
     return made
+
+
+def checks_own_arguments(func: Callable[..., Any]) -> Callable[..., Any]:
+    """Marks ``func`` as a per-step hot path that checks its own arguments (an env's ``step``
+    refuses a bad action itself): the surface's check leaves it unwrapped, so a step pays
+    nothing for it. The public-surface registry still feeds it hostile arguments."""
+    func.__mazesim_checked__ = True  # type: ignore[attr-defined]
+    return func
 
 
 def _guard_class(cls: type) -> None:

@@ -31,6 +31,7 @@ from typing import Union
 import numpy as np
 import numpy.typing as npt
 
+from mazesim._checks import checks_own_arguments
 from mazesim._core import BatchSimulator, RobotProfile, World
 from mazesim._sizes import MOST_ENVS, bounded_array, bounded_list
 from mazesim.actions import WHEEL_SPEED_FRACTIONS
@@ -136,6 +137,7 @@ class RobotBatch:
         """(N, 2) wheel speeds of discrete actions (indices into the action table)."""
         return self.wheel_speeds[np.asarray(actions, dtype=np.int64)]
 
+    @checks_own_arguments
     def step(self, actions: npt.ArrayLike) -> None:
         """Steps every robot with discrete actions; the buffers hold the results."""
         self.step_speeds(self.speeds_of(actions))

@@ -22,6 +22,7 @@ import gymnasium
 import numpy as np
 import numpy.typing as npt
 
+from mazesim._checks import checks_own_arguments
 from mazesim.envs.maze_env import EPuckMazeEnv
 from mazesim.errors import InvalidArgumentError
 
@@ -109,6 +110,7 @@ class MazeGoalEnv(gymnasium.Env[Observation, Any]):
         self._desired_x, self._desired_y = (float(v) for v in self._desired)
         return self._goal_observation(observation, info), self._goal_info(info)
 
+    @checks_own_arguments
     def step(self, action: Any) -> tuple[Observation, SupportsFloat, bool, bool, dict[str, Any]]:
         """Steps the maze env; the reward is :meth:`compute_reward` of the step's goals."""
         observation, _, terminated, truncated, info = self.maze.step(action)

@@ -9,6 +9,7 @@ import gymnasium
 import numpy as np
 import numpy.typing as npt
 
+from mazesim._checks import checks_own_arguments
 from mazesim._core import Simulator, World
 from mazesim.envs.errors import EnvClosedError, ResetNeededError, check_options, check_seed
 from mazesim.envs.navigation import StartAndGoal, distance_table, navigation_features
@@ -212,6 +213,7 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         }
         return observation, info
 
+    @checks_own_arguments
     def step(
         self, action: Any
     ) -> tuple[npt.NDArray[np.float32], SupportsFloat, bool, bool, dict[str, Any]]:

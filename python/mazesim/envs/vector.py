@@ -26,6 +26,7 @@ from gymnasium.utils import seeding
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
+from mazesim._checks import checks_own_arguments
 from mazesim._core import BatchSimulator, World
 from mazesim.envs.errors import (
     MAX_SEED,
@@ -252,6 +253,7 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         self._needs_reset = False
         return self._observations(), self._info(mask)
 
+    @checks_own_arguments
     def step(
         self, actions: npt.NDArray[Any]
     ) -> tuple[

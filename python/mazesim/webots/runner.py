@@ -245,7 +245,7 @@ def run_controller(
         _restore_modules(saved_modules)
         controller_module.Robot.created = None
         simulations.release()
-    return _outcome(world, file, simulation, started, status, error)
+    return _outcome(world, file, simulation, started, status, error, stalled=watchdog.stalled)
 
 
 def _run_native(
@@ -293,8 +293,10 @@ def _outcome(
     started: float,
     status: int,
     error: str,
+    stalled: bool = False,
 ) -> ControllerRun:
-    """The run's :class:`ControllerRun`."""
+    """The run's :class:`ControllerRun` (``stalled``: the watchdog stopped a controller that took
+    no step)."""
     simulator = simulation.simulator
     return ControllerRun(
         world=world,
@@ -306,7 +308,7 @@ def _outcome(
         longest_stop_s=simulation.longest_stop_steps * simulation.basic_time_step_ms / 1000.0,
         reached_end=simulation.ended,
         stopped=simulation.stopped,
-        stalled=watchdog.stalled,
+        stalled=stalled,
         wall_clock_seconds=time.perf_counter() - started,
         xs=simulation.xs,
         ys=simulation.ys,
