@@ -278,8 +278,8 @@ class Simulator:
     def step_robots(self, commands: npt.NDArray[np.float64]) -> None:
         """Advances one control step with every robot's wheel speeds: an (R, 2) float64 array."""
     def set_wheel_speeds(self, left: float, right: float, robot_index: int = 0) -> None:
-        """Sets robot `robot_index`'s wheel speeds (rad/s) for the next steps, as a Webots controller
-        sets its motors' velocities."""
+        """Sets robot `robot_index`'s wheel speeds (rad/s) for the next steps, as a Webots
+        controller sets its motors' velocities."""
     @property
     def num_robots(self) -> int:
         """Number of robots in the world."""
@@ -303,10 +303,11 @@ class Simulator:
         width), the pose (float32 x, y, yaw), whether the body touches a wall and the signed
         checkpoint crossed in this step (0: none)."""
     def set_start(self, x: float, y: float, yaw: float, robot_index: int = 0) -> None:
-        """Sets the pose every later reset starts robot `robot_index` from (instead of the world's)."""
+        """Sets the pose every later reset starts robot `robot_index` from (instead of the
+        world's)."""
     def set_goal(self, x: float, y: float, radius: float, robot_index: int = 0) -> None:
-        """Sets robot `robot_index`'s goal disc, centre (x, y) and radius in metres, instead of the
-        world's."""
+        """Sets robot `robot_index`'s goal disc, centre (x, y) and radius in metres, instead of
+        the world's."""
     @property
     def goal(self) -> tuple[float, float, float] | None:
         """The goal disc (x, y, radius) the episodes end at (`set_goal`'s, else the world's)."""
@@ -379,6 +380,10 @@ class BatchSimulator:
     ) -> BatchSimulator: ...
     @property
     def num_envs(self) -> int: ...
+    @property
+    def robots_per_env(self) -> int:
+        """Robots per environment: 1, but in a batch of worlds of several robots, whose buffers
+        then have a robot axis ((N, R, width), (N, R, 3), (N, R), (N, R); actions (N, R, 2))."""
     @property
     def observation_width(self) -> int: ...
     @property

@@ -121,7 +121,7 @@ impl PySimulator {
 
     /// Sets robot `robot_index`'s wheel speeds (rad/s) for the next steps, as a Webots controller sets
     /// its motors' velocities.
-    #[pyo3(signature = (left, right, robot_index = IntArg::ZERO))]
+    #[pyo3(signature = (left, right, robot_index = IntArg::ZERO), text_signature = "($self, left, right, robot_index=0)")]
     fn set_wheel_speeds(&self, left: Real, right: Real, robot_index: IntArg) -> PyResult<()> {
         let (left, right) = (left.value("left")?, right.value("right")?);
         enter(|| {
@@ -153,7 +153,7 @@ impl PySimulator {
 
     /// Robot `robot`'s state as a dict: pose, colliding, touching_robot, collisions,
     /// distance_travelled, wheel_speeds, encoders, wall_clearance, last_crossing, goal.
-    #[pyo3(signature = (robot_index = IntArg::ZERO))]
+    #[pyo3(signature = (robot_index = IntArg::ZERO), text_signature = "($self, robot_index=0)")]
     fn robot_state<'py>(
         &self,
         py: Python<'py>,
@@ -235,7 +235,7 @@ impl PySimulator {
     }
 
     /// Sets the pose every later reset starts robot `robot_index` from (instead of the world's start).
-    #[pyo3(signature = (x, y, yaw, robot_index = IntArg::ZERO))]
+    #[pyo3(signature = (x, y, yaw, robot_index = IntArg::ZERO), text_signature = "($self, x, y, yaw, robot_index=0)")]
     fn set_start(&self, x: Real, y: Real, yaw: Real, robot_index: IntArg) -> PyResult<()> {
         let (x, y, yaw) = (x.value("x")?, y.value("y")?, yaw.value("yaw")?);
         enter(|| {
@@ -245,7 +245,7 @@ impl PySimulator {
     }
 
     /// Sets robot `robot_index`'s goal disc, centre (x, y) and radius in metres, instead of the world's.
-    #[pyo3(signature = (x, y, radius, robot_index = IntArg::ZERO))]
+    #[pyo3(signature = (x, y, radius, robot_index = IntArg::ZERO), text_signature = "($self, x, y, radius, robot_index=0)")]
     fn set_goal(&self, x: Real, y: Real, radius: Real, robot_index: IntArg) -> PyResult<()> {
         let (x, y, radius) = (x.value("x")?, y.value("y")?, radius.value("radius")?);
         enter(|| {
@@ -268,7 +268,7 @@ impl PySimulator {
     }
 
     /// Moves robot `robot_index` to (x, y, yaw) at rest and reads the sensors there.
-    #[pyo3(signature = (x, y, yaw, robot_index = IntArg::ZERO))]
+    #[pyo3(signature = (x, y, yaw, robot_index = IntArg::ZERO), text_signature = "($self, x, y, yaw, robot_index=0)")]
     fn set_pose(&self, x: Real, y: Real, yaw: Real, robot_index: IntArg) -> PyResult<()> {
         let (x, y, yaw) = (x.value("x")?, y.value("y")?, yaw.value("yaw")?);
         enter(|| {
@@ -278,7 +278,7 @@ impl PySimulator {
     }
 
     /// Robot `robot`'s distance sensor readings (float32), device order.
-    #[pyo3(signature = (robot_index = IntArg::ZERO))]
+    #[pyo3(signature = (robot_index = IntArg::ZERO), text_signature = "($self, robot_index=0)")]
     fn distance_sensors<'py>(
         &self,
         py: Python<'py>,
@@ -290,7 +290,7 @@ impl PySimulator {
     }
 
     /// Robot `robot`'s ground sensor readings (float32), device order.
-    #[pyo3(signature = (robot_index = IntArg::ZERO))]
+    #[pyo3(signature = (robot_index = IntArg::ZERO), text_signature = "($self, robot_index=0)")]
     fn ground_sensors<'py>(
         &self,
         py: Python<'py>,
@@ -357,7 +357,7 @@ impl PySimulator {
 
     /// Robot `robot`'s barcode crossings since reset: dicts of checkpoint, direction ("arrival"
     /// along the checkpoint's yaw, "departure" against it), step and time.
-    #[pyo3(signature = (robot_index = IntArg::ZERO))]
+    #[pyo3(signature = (robot_index = IntArg::ZERO), text_signature = "($self, robot_index=0)")]
     fn crossings<'py>(
         &self,
         py: Python<'py>,
