@@ -370,18 +370,22 @@ impl Simulator {
         } else {
             (drive.linear, drive.angular)
         };
-        if others.is_empty() {
-            self.body
-                .step(linear, angular, self.clearance, self.world.wall_index());
+        let [s, c] = self.heading;
+        let held = if others.is_empty() {
+            None
         } else {
-            let [s, c] = self.heading;
-            let wanted = [c * linear, s * linear];
             let centre = [self.pose[0], self.pose[1]];
             let radius = self.robot.body_radius as f32;
-            let v = others.yield_velocity(centre, radius, wanted, self.dt as f32);
-            let speed = (v[0] * v[0] + v[1] * v[1]).sqrt();
-            let walls = self.world.wall_index();
-            self.body.drive(v, speed, angular, self.clearance, walls);
+            let wanted = [c * linear, s * linear];
+            others.yield_velocity(centre, radius, wanted, self.dt as f32)
+        };
+        let walls = self.world.wall_index();
+        match held {
+            None => self.body.step(linear, angular, self.clearance, walls),
+            Some(v) => {
+                let speed = (v[0] * v[0] + v[1] * v[1]).sqrt();
+                self.body.drive(v, speed, angular, self.clearance, walls);
+            }
         }
         self.pose = self.body.pose();
         self.heading = self.body.heading();
@@ -411,11 +415,10 @@ impl Simulator {
             // The last physics step: contact and every sensor together.
             self.sense_among_robots(others);
         }
-        if !others.is_empty() {
+        self.touching_robot = !others.is_empty() && {
             let radius = self.robot.body_radius as f32;
-            let gap = others.gap([self.pose[0], self.pose[1]], radius);
-            self.touching_robot = gap < ROBOT_CONTACT_GAP;
-        }
+            others.gap([self.pose[0], self.pose[1]], radius) < ROBOT_CONTACT_GAP
+        };
         let touching = self.touching || self.touching_robot;
         if touching && !was_touching {
             self.collisions += 1;
@@ -512,6 +515,12 @@ impl Simulator {
         let gap = others.gap([self.pose[0], self.pose[1]], radius);
         self.touching_robot = gap < ROBOT_CONTACT_GAP;
         self.colliding |= self.touching_robot;
+    }
+
+    /// How far from the robot's centre its sensor rays and contacts reach in a step, metres:
+    /// another robot farther than this plus its radius neither touches it nor meets its rays.
+    pub fn reach(&self) -> f32 {
+        self.rig.reach + crate::contact::CONTACT_MARGIN
     }
 
     /// Whether the body touches another robot now.

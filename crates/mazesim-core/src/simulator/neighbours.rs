@@ -75,15 +75,16 @@ impl<'a> Others<'a> {
     }
 
     /// `velocity` of a disc of `radius` at `center`, held back by the other robots for a step of
-    /// `dt` seconds (see the module notes).
+    /// `dt` seconds (see the module notes); `None` when no other robot holds it back.
     pub fn yield_velocity(
         &self,
         center: [f32; 2],
         radius: f32,
         velocity: [f32; 2],
         dt: f32,
-    ) -> [f32; 2] {
+    ) -> Option<[f32; 2]> {
         let mut v = velocity;
+        let mut held = false;
         for _ in 0..PASSES {
             let mut changed = false;
             for n in self.iter() {
@@ -104,8 +105,20 @@ impl<'a> Others<'a> {
             if !changed {
                 break;
             }
+            held = true;
         }
-        v
+        held.then_some(v)
+    }
+
+    /// Whether another robot is within `reach` of the centre of robot `me` plus its own radius:
+    /// beyond, it can neither touch robot `me` nor meet its rays.
+    pub fn any_within(&self, reach: f32) -> bool {
+        let at = self.all[self.me].center;
+        self.iter().any(|n| {
+            let (dx, dy) = (at[0] - n.center[0], at[1] - n.center[1]);
+            let limit = reach + n.radius;
+            dx * dx + dy * dy < limit * limit
+        })
     }
 
     /// The nearest other robot a ray from `origin` along the unit `dir` meets within `limit`
@@ -176,12 +189,16 @@ mod tests {
     fn two_robots_driven_together_close_half_the_gap_each() {
         let all = pair(0.002);
         let dt = 0.032;
-        let a = Others { all: &all, me: 0 }.yield_velocity(all[0].center, 0.037, [0.126, 0.03], dt);
+        let a = Others { all: &all, me: 0 }
+            .yield_velocity(all[0].center, 0.037, [0.126, 0.03], dt)
+            .unwrap();
         assert!((a[0] * dt - 0.001).abs() < 1e-7, "{a:?}");
         assert_eq!(a[1], 0.03, "the motion along the other goes through");
         // Overlapping robots are pushed apart by half the overlap each.
         let all = pair(-0.004);
-        let a = Others { all: &all, me: 0 }.yield_velocity(all[0].center, 0.037, [0.0, 0.0], dt);
+        let a = Others { all: &all, me: 0 }
+            .yield_velocity(all[0].center, 0.037, [0.0, 0.0], dt)
+            .unwrap();
         assert!((a[0] * dt + 0.002).abs() < 1e-7, "{a:?}");
     }
 }

@@ -60,6 +60,18 @@ fn discs_of(robots: &[Simulator], discs: &mut Vec<Neighbour>) {
     }));
 }
 
+/// The robots of `all` as robot `me` sees them: none when every other is beyond `reach` of it
+/// (then it steps exactly as a robot alone does), else all of them.
+#[inline]
+fn near(all: &[Neighbour], me: usize, reach: f32) -> Others<'_> {
+    let others = Others { all, me };
+    if others.any_within(reach) {
+        others
+    } else {
+        Others::NONE
+    }
+}
+
 /// Steps the robots of one world one control step together, robot `i` with wheel speeds
 /// `command(i)` (rad/s, left and right). Every command is checked before any robot moves.
 pub fn step_robots(robots: &mut [Simulator], command: impl Fn(usize) -> [f64; 2]) -> Result<()> {
@@ -86,19 +98,13 @@ pub fn step_robots(robots: &mut [Simulator], command: impl Fn(usize) -> [f64; 2]
             discs_of(robots, &mut w.discs);
             w.before.clear();
             for (i, (robot, drive)) in robots.iter_mut().zip(&w.drives).enumerate() {
-                let others = Others {
-                    all: &w.discs,
-                    me: i,
-                };
+                let others = near(&w.discs, i, robot.reach());
                 w.before.push(robot.physics_move(drive, others));
             }
             discs_of(robots, &mut w.discs);
             let moved = robots.iter_mut().zip(w.drives.iter_mut()).zip(&w.before);
             for (i, ((robot, drive), &before)) in moved.enumerate() {
-                let others = Others {
-                    all: &w.discs,
-                    me: i,
-                };
+                let others = near(&w.discs, i, robot.reach());
                 robot.physics_settle(drive, k, before, others);
             }
         }
