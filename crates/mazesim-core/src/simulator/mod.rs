@@ -325,12 +325,55 @@ impl Simulator {
     /// then turns at its motor's gain (the profile's `motor_gains`) times its clamped speed, and
     /// while the body touches a wall it moves only `1 - slip_on_contact` of the wheels' motion.
     pub fn step(&mut self, left: f64, right: f64) -> Result<()> {
-        let mut drive = self.command(left, right)?;
+        // The path of a robot alone, kept apart from the lockstep of `physics_move` and
+        // `physics_settle` (which give the same results) so that it costs nothing more.
+        let drive = self.command(left, right)?;
+        let [wl, wr] = drive.wheels;
+        let (linear, angular) = (drive.linear, drive.angular);
+        let slip = self.robot.slip_on_contact;
+        let kept = (1.0 - slip) as f32;
+        let mut any_contact = false;
         for k in 1..=self.physics_steps {
-            let before = self.physics_move(&drive, Others::NONE);
-            self.physics_settle(&mut drive, k, before, Others::NONE);
+            let before = self.pose;
+            // In contact with a wall, the wheels slip: the body moves `kept` of their motion.
+            let (linear, angular) = if slip > 0.0 && self.touching {
+                (linear * kept, angular * kept)
+            } else {
+                (linear, angular)
+            };
+            self.body
+                .step(linear, angular, self.clearance, self.world.wall_index());
+            self.pose = self.body.pose();
+            self.heading = self.body.heading();
+            let dx = (self.pose[0] - before[0]) as f64;
+            let dy = (self.pose[1] - before[1]) as f64;
+            self.distance_travelled += (dx * dx + dy * dy).sqrt();
+            self.wheel_angles[0] += wl as f64 * self.dt;
+            self.wheel_angles[1] += wr as f64 * self.dt;
+            let was_touching = self.touching;
+            if k < self.physics_steps {
+                self.update_contact();
+            } else {
+                // The last physics step: contact and every sensor together.
+                self.sense();
+            }
+            if self.touching && !was_touching {
+                self.collisions += 1;
+            }
+            any_contact |= self.touching;
+            if let Some(at) = self.barcode_sensor_position() {
+                if let Some(c) = self
+                    .tracker
+                    .update(self.world.checkpoints(), at, self.steps + 1)
+                {
+                    self.last_crossing = c.signed_id();
+                    self.crossings.push(c);
+                }
+            }
         }
-        self.finish_step(&drive);
+        self.colliding = any_contact;
+        self.steps += 1;
+        self.time = self.steps as f64 * self.physics_steps as f64 * self.dt;
         Ok(())
     }
 
@@ -447,7 +490,7 @@ impl Simulator {
     /// walls near the robot are gathered once, over a square holding every sensor ray and the
     /// clearance search square, and all those queries run against them.
     fn sense(&mut self) {
-        self.sense_among_robots(Others::NONE);
+        rig::NEARBY.with_borrow_mut(|near| self.sense_among(near, Others::NONE));
     }
 
     /// `sense`, the infra-red rays meeting the `others` robots as well as the walls.
@@ -481,14 +524,7 @@ impl Simulator {
             }
         }
         if !others.is_empty() {
-            for (hit, &[px, py, dx, dy, length]) in self.ray_hits.iter_mut().zip(&rig.sensor_rays) {
-                let origin = [x + c * px - s * py, y + s * px + c * py];
-                let dir = [c * dx - s * dy, s * dx + c * dy];
-                let limit = hit.map_or(length, |h| h.distance);
-                if let Some(robot_hit) = others.cast_ray(origin, dir, limit) {
-                    *hit = Some(robot_hit);
-                }
-            }
+            cast_among_robots(&mut self.ray_hits, &rig.sensor_rays, [x, y], [s, c], others);
         }
         let readings = self.distance_readings.iter_mut();
         let sensors = robot.distance_sensors.iter().zip(&rig.infrared_miss);
@@ -662,6 +698,28 @@ impl Simulator {
     /// The robot's sensing set-up (shared with the other simulators of a batch).
     pub fn rig(&self) -> &Arc<Rig> {
         &self.rig
+    }
+}
+
+/// Lets the rays `sensor_rays` (in the frame of a robot at `at` heading `[sin, cos]`) meet the
+/// `others` robots nearer than what they met before (`hits`). Kept out of line: a robot alone
+/// never calls it.
+#[inline(never)]
+fn cast_among_robots(
+    hits: &mut [Option<RayHit>],
+    sensor_rays: &[[f32; 5]],
+    at: [f32; 2],
+    heading: [f32; 2],
+    others: Others<'_>,
+) {
+    let ([x, y], [s, c]) = (at, heading);
+    for (hit, &[px, py, dx, dy, length]) in hits.iter_mut().zip(sensor_rays) {
+        let origin = [x + c * px - s * py, y + s * px + c * py];
+        let dir = [c * dx - s * dy, s * dx + c * dy];
+        let limit = hit.map_or(length, |h| h.distance);
+        if let Some(robot_hit) = others.cast_ray(origin, dir, limit) {
+            *hit = Some(robot_hit);
+        }
     }
 }
 
