@@ -73,7 +73,7 @@ fn helper_pool(threads: usize) -> Result<Option<ThreadPool>> {
 }
 
 /// Who steps a batch besides the calling thread.
-enum Helpers {
+pub(crate) enum Helpers {
     /// The pool shared by batches that use every core.
     Shared(Option<&'static ThreadPool>),
     /// A pool of the batch's own, for an explicit thread count.
@@ -82,7 +82,7 @@ enum Helpers {
 
 impl Helpers {
     /// The helpers for `threads` (0: every core), made in this process.
-    fn new(threads: usize) -> Result<Helpers> {
+    pub(crate) fn new(threads: usize) -> Result<Helpers> {
         if threads > MAX_THREADS {
             return Err(Error::InvalidArgument(format!(
                 "expected threads in 0..={MAX_THREADS} (0 = one per core), found {threads}"
@@ -95,7 +95,7 @@ impl Helpers {
         })
     }
 
-    fn pool(&self) -> Option<&ThreadPool> {
+    pub(crate) fn pool(&self) -> Option<&ThreadPool> {
         match self {
             Helpers::Shared(p) => *p,
             Helpers::Own(p, _) => p.as_ref(),
@@ -173,7 +173,7 @@ pub fn check_size(envs: usize, walls: u128) -> Result<()> {
 /// The sensing rigs of a batch of `n` envs: one per env of `robots` (or one for all when
 /// `robots` holds one profile), equal profiles sharing one rig. Every profile must have sensors
 /// to observe, and as many of each kind as the first.
-fn rigs_of(robots: &[Arc<RobotProfile>], n: usize) -> Result<Vec<Arc<Rig>>> {
+pub(crate) fn rigs_of(robots: &[Arc<RobotProfile>], n: usize) -> Result<Vec<Arc<Rig>>> {
     if robots.len() != 1 && robots.len() != n {
         return Err(Error::InvalidArgument(format!(
             "expected one robot profile, or one per environment ({n}), found {}",
@@ -280,16 +280,19 @@ impl<'a> StepOutputs<'a> {
 
 /// N environments stepped together.
 pub struct Batch {
-    envs: Vec<Simulator>,
-    distance_width: usize,
-    ground_width: usize,
-    helpers: Helpers,
+    /// The robots of every environment, environment after environment (`robots` each).
+    pub(crate) envs: Vec<Simulator>,
+    /// Robots per environment: 1 but in a batch of worlds of several robots (`crate::swarm`).
+    pub(crate) robots: usize,
+    pub(crate) distance_width: usize,
+    pub(crate) ground_width: usize,
+    pub(crate) helpers: Helpers,
     /// Counts the batch's parallel runs; lingering helpers stop waiting when it moves.
-    runs: Arc<AtomicU64>,
+    pub(crate) runs: Arc<AtomicU64>,
     /// The process that made `helpers` (see `guard_fork`).
-    pid: u32,
+    pub(crate) pid: u32,
     /// Asked between chunks whether to stop (see `set_interrupt`).
-    interrupt: Option<Box<dyn Fn() -> bool + Send + Sync>>,
+    pub(crate) interrupt: Option<Box<dyn Fn() -> bool + Send + Sync>>,
 }
 
 impl Batch {
@@ -365,6 +368,7 @@ impl Batch {
         };
         Ok(Batch {
             envs: envs?,
+            robots: 1,
             distance_width: robot.distance_sensors.len(),
             ground_width: robot.ground_sensors.len(),
             helpers,

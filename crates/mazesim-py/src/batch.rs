@@ -29,6 +29,8 @@ use crate::world::{world_argument, PyWorld};
 pub struct PyBatch {
     inner: Exclusive<Batch>,
     n: usize,
+    /// Robots per environment: 1 but in a batch of worlds of several robots.
+    robots: usize,
     distance_width: usize,
     ground_width: usize,
 }
@@ -79,6 +81,52 @@ impl PyBatch {
         self.distance_width + self.ground_width
     }
 
+    /// The shape of a buffer of one row of `tail` per robot: `(n, *tail)` with one robot per
+    /// environment, `(n, robots, *tail)` with several.
+    fn shape(&self, tail: &[usize]) -> Vec<usize> {
+        let mut shape = vec![self.n];
+        if self.robots > 1 {
+            shape.push(self.robots);
+        }
+        shape.extend_from_slice(tail);
+        shape
+    }
+
+    /// `run` in a batch of worlds of several robots: every robot driven by `controller` on its
+    /// own readings for `steps` control steps; returns a dict of "steps_in_contact", an
+    /// (n, robots) uint64 array.
+    fn run_robots<'py>(
+        &self,
+        py: Python<'py>,
+        controller: &mazesim_core::Controller,
+        steps: usize,
+        max_speed: f64,
+        buffers: [&Bound<'py, PyAny>; 4],
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let contacts = self.with_outputs(py, buffers, |b, out| {
+            b.run_swarms(controller, steps, max_speed, out)
+        })?;
+        let d = PyDict::new(py);
+        d.set_item(
+            "steps_in_contact",
+            PyArray1::from_vec(py, contacts).reshape([self.n, self.robots])?,
+        )?;
+        Ok(d)
+    }
+
+    /// Refuses `what` in a batch of worlds of several robots.
+    fn one_robot(&self, what: &str) -> PyResult<()> {
+        if self.robots == 1 {
+            Ok(())
+        } else {
+            Err(bad(format!(
+                "expected a batch of worlds of one robot for {what} (not supported yet with \
+                 several), found {} robots per environment",
+                self.robots
+            )))
+        }
+    }
+
     /// The (M,) int64 indices `envs` as checked env indices, and the (M, 3) float64 rows of
     /// `values` (named `what`) that go with them.
     fn listed_rows(
@@ -115,12 +163,16 @@ impl<'py> Borrowed<'py> {
         colliding: &Bound<'py, PyAny>,
         crossings: &Bound<'py, PyAny>,
     ) -> PyResult<Self> {
-        let n = b.n;
         Ok(Self {
-            obs: writable(observations, "observations", "float32", &[n, b.width()])?,
-            poses: writable(poses, "poses", "float32", &[n, 3])?,
-            colliding: writable(colliding, "colliding", "bool", &[n])?,
-            crossings: writable(crossings, "crossings", "int32", &[n])?,
+            obs: writable(
+                observations,
+                "observations",
+                "float32",
+                &b.shape(&[b.width()]),
+            )?,
+            poses: writable(poses, "poses", "float32", &b.shape(&[3]))?,
+            colliding: writable(colliding, "colliding", "bool", &b.shape(&[]))?,
+            crossings: writable(crossings, "crossings", "int32", &b.shape(&[]))?,
         })
     }
 
@@ -225,11 +277,18 @@ impl PyBatch {
                 profiles[0].ground_sensors.len(),
             );
             let control = control_step_ms.map(|ms| ms / 1000.0);
+            let robots = worlds[0].robots().len();
             let mut batch = enter_detached(py, move || {
-                Batch::with_robots(worlds, &profiles, &seeds, noise, control, threads)
+                if robots > 1 {
+                    let robot = profiles[0].clone();
+                    Batch::with_swarms(worlds, robot, &seeds, noise, control, threads)
+                } else {
+                    Batch::with_robots(worlds, &profiles, &seeds, noise, control, threads)
+                }
             })?;
             batch.set_interrupt(Box::new(ctrl_c_pressed));
             Ok(Self {
+                robots: batch.robots_per_env(),
                 inner: Exclusive::new(batch, "this BatchSimulator"),
                 n,
                 distance_width: dw,
@@ -242,6 +301,11 @@ impl PyBatch {
     #[getter]
     fn num_envs(&self) -> usize {
         self.n
+    }
+    /// Robots per environment (1 but in a batch of worlds of several robots).
+    #[getter]
+    fn robots_per_env(&self) -> usize {
+        self.robots
     }
     /// Floats per observation row (distance sensors then ground sensors).
     #[getter]
@@ -288,8 +352,11 @@ impl PyBatch {
         crossings: &Bound<'py, PyAny>,
     ) -> PyResult<()> {
         enter(|| {
-            let actions = copied::<f32>(actions, "actions", "float32", &[self.n, 2])?;
+            let actions = copied::<f32>(actions, "actions", "float32", &self.shape(&[2]))?;
             let buffers = [observations, poses, colliding, crossings];
+            if self.robots > 1 {
+                return self.with_outputs(py, buffers, |b, out| b.step_swarms(&actions, out));
+            }
             self.with_outputs(py, buffers, |b, out| b.step(&actions, out))
         })
     }
@@ -328,7 +395,7 @@ impl PyBatch {
             let threshold = kw.get("threshold", Real::Number(80.0))?;
             let max_speed = kw.get("max_speed", Real::Number(EPUCK_MAX_SPEED))?;
             threshold.value("threshold")?;
-            max_speed.value("max_speed")?;
+            let top_speed = max_speed.value("max_speed")?;
             let trace = kw.object("trace")?;
             let trace = trace
                 .as_ref()
@@ -344,6 +411,15 @@ impl PyBatch {
                 hold_spins: kw.get("hold_spins", Flag::Value(false))?,
             };
             let controller = run::controller(&controller, n, threshold, max_speed, tabular)?;
+            if self.robots > 1 {
+                return self.run_robots(
+                    py,
+                    &controller,
+                    options.steps,
+                    top_speed,
+                    [observations, poses, colliding, crossings],
+                );
+            }
             let seeds = match kw.object("seeds")? {
                 Some(s) => seeds_from(&s, n)?,
                 None => (0..n as u64).collect(),
@@ -397,6 +473,9 @@ impl PyBatch {
                 .transpose()?;
             let (m, s) = (mask.as_deref(), seeds.as_deref());
             let buffers = [observations, poses, colliding, crossings];
+            if self.robots > 1 {
+                return self.with_outputs(py, buffers, |b, out| b.reset_swarms(m, s, out));
+            }
             self.with_outputs(py, buffers, |b, out| b.reset(m, s, out))
         })
     }
@@ -432,6 +511,7 @@ impl PyBatch {
     ) -> PyResult<Bound<'py, PyDict>> {
         let py = observations.py();
         enter(|| {
+            self.one_robot("train_lower_round")?;
             let round = Keywords::new(round, "train_lower_round", lower::KEYWORDS)?;
             let settings = lower::round_settings(&round.required("settings")?)?;
             let mut arrays = lower::RoundArrays::new(self.n, &round)?;
@@ -453,6 +533,7 @@ impl PyBatch {
         seed: IntArg,
     ) -> PyResult<()> {
         enter(|| {
+            self.one_robot("set_world")?;
             let index = index.count("index", self.n.saturating_sub(1))?;
             let seed = seed.seed("seed")?;
             let w = world_argument(world, "world")?;
@@ -466,6 +547,7 @@ impl PyBatch {
     /// x, y, yaw. Every row is checked before any is applied.
     fn set_starts(&self, starts: &Bound<'_, PyAny>) -> PyResult<()> {
         enter(|| {
+            self.one_robot("set_starts")?;
             let rows = copied::<f64>(starts, "starts", "float64", &[self.n, 3])?;
             self.inner.with(|b| b.set_starts(&rows))?.py()
         })
@@ -479,6 +561,7 @@ impl PyBatch {
         index: IntArg,
     ) -> PyResult<Bound<'py, pyo3::types::PyBytes>> {
         enter(|| {
+            self.one_robot("snapshot_env")?;
             let index = index.count("index", self.n.saturating_sub(1))?;
             let bytes = self.inner.with(|b| b.envs()[index].snapshot())?;
             Ok(pyo3::types::PyBytes::new(py, &bytes))
@@ -489,6 +572,7 @@ impl PyBatch {
     /// environment of the same world, robot profile, control step and noise setting.
     fn restore_env(&self, index: IntArg, snapshot: Bytes) -> PyResult<()> {
         enter(|| {
+            self.one_robot("restore_env")?;
             let index = index.count("index", self.n.saturating_sub(1))?;
             let snapshot = snapshot.value("snapshot", "bytes")?.0;
             self.inner
@@ -501,6 +585,7 @@ impl PyBatch {
     /// resets: an (M, 3) float64 array of x, y, yaw; the other environments keep theirs.
     fn set_starts_at(&self, envs: &Bound<'_, PyAny>, starts: &Bound<'_, PyAny>) -> PyResult<()> {
         enter(|| {
+            self.one_robot("set_starts_at")?;
             let (indices, rows) = self.listed_rows(envs, starts, "starts")?;
             self.inner.with(|b| b.set_starts_at(&indices, &rows))?.py()
         })
@@ -511,6 +596,7 @@ impl PyBatch {
     /// keep theirs, and `set_world` goes back to the world's.
     fn set_goals_at(&self, envs: &Bound<'_, PyAny>, goals: &Bound<'_, PyAny>) -> PyResult<()> {
         enter(|| {
+            self.one_robot("set_goals_at")?;
             let (indices, rows) = self.listed_rows(envs, goals, "goals")?;
             self.inner.with(|b| b.set_goals_at(&indices, &rows))?.py()
         })
@@ -528,7 +614,7 @@ impl PyBatch {
                     })
                     .collect()
             })?;
-            PyArray1::from_vec(py, v).reshape([self.n, 3])
+            PyArray1::from_vec(py, v).reshape([self.n * self.robots, 3])
         })
     }
 
@@ -539,7 +625,7 @@ impl PyBatch {
             let v: Vec<f64> = self
                 .inner
                 .with(|b| b.envs().iter().flat_map(|e| e.encoders()).collect())?;
-            PyArray1::from_vec(py, v).reshape([self.n, 2])
+            PyArray1::from_vec(py, v).reshape([self.n * self.robots, 2])
         })
     }
 

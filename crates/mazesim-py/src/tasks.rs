@@ -161,9 +161,9 @@ impl PyTaskFeatures {
 
     /// Sets the distance table of environment `env`'s goal: `mode` (`"maze"`, `"straight"` or
     /// `"none"`), the `goal` disc (float64 x, y, radius), the grid's `cell_size`, south-west
-    /// `origin` (float64 x, y), `rows` and `cols`, and the (rows * cols, 5) float64 `targets`
-    /// of its cells (east, north, west, south, goal; NaN where none).
-    #[pyo3(signature = (env, mode, goal, cell_size, origin, rows, cols, targets))]
+    /// `origin` (float64 x, y), its `shape` (rows, cols), and the (rows * cols, 5) float64
+    /// `targets` of its cells (east, north, west, south, goal; NaN where none).
+    #[pyo3(signature = (env, mode, goal, cell_size, origin, shape, targets))]
     fn set_goal(
         &self,
         env: IntArg,
@@ -171,10 +171,10 @@ impl PyTaskFeatures {
         goal: &Bound<'_, PyAny>,
         cell_size: Real,
         origin: &Bound<'_, PyAny>,
-        rows: IntArg,
-        cols: IntArg,
+        shape: (IntArg, IntArg),
         targets: &Bound<'_, PyAny>,
     ) -> PyResult<()> {
+        let (rows, cols) = shape;
         enter(|| {
             let env = env.count("env", usize::MAX)?;
             let mode = match mode.value("mode", "a str")?.as_str() {

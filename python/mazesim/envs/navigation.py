@@ -351,8 +351,7 @@ class NavigationFeatures:
             np.array(table.goal, dtype=np.float64),
             table.cell_size,
             np.array(table.origin, dtype=np.float64),
-            table.rows,
-            table.cols,
+            (table.rows, table.cols),
             np.ascontiguousarray(table.targets, dtype=np.float64),
         )
 

@@ -1,0 +1,197 @@
+"""Several robots in one world: the world file, the Simulator's robot index, contacts and infra-red
+rays between robots, the batch's robot axis and its determinism."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import mazesim
+from mazesim.controllers import AvoidCollision
+
+#: Reflection factor of a robot's body for the infra-red sensors (docs/multi-robot.md).
+ROBOT_REFLECTANCE = 0.5
+RADIUS = 0.037
+
+
+def corridor(gap: float, *, robots: int = 2, extra: str = "") -> mazesim.World:
+    """Two e-pucks facing each other across ``gap`` (between their bodies) in a corridor 0.2 m
+    wide; with ``robots`` > 2, the others parked along it behind the west one."""
+    half = RADIUS + gap / 2
+    lines = [
+        'format = "mazesim-world"',
+        "version = 1",
+        "[[walls]]\ncenter = [0.0, 0.105]\nsize = [4.0, 0.01]",
+        "[[walls]]\ncenter = [0.0, -0.105]\nsize = [4.0, 0.01]",
+        f'[[robots]]\nname = "west"\nx = {-half}\ny = 0.0',
+        f'[[robots]]\nname = "east"\nx = {half}\ny = 0.0\nyaw = {math.pi}',
+    ]
+    for k in range(robots - 2):
+        lines.append(f'[[robots]]\nname = "parked{k}"\nx = {-half - 0.1 * (k + 1)}\ny = 0.0')
+    return mazesim.World.from_toml("\n".join(lines) + "\n" + extra)
+
+
+def ray_to_disc(origin: np.ndarray, direction: np.ndarray, centre: np.ndarray) -> float:
+    """Distance along a unit ray from ``origin`` to a disc of ``RADIUS`` at ``centre``."""
+    m = origin - centre
+    b = float(m @ direction)
+    c = float(m @ m) - RADIUS**2
+    return -b - math.sqrt(b * b - c)
+
+
+def test_front_sensors_read_the_other_robot_as_the_reflectance_predicts() -> None:
+    profile = mazesim.RobotProfile.builtin("e-puck")
+    poses = profile.distance_sensor_poses()
+    for gap in (0.004, 0.01, 0.02):
+        sim = mazesim.Simulator(corridor(gap), noise=False)
+        for robot, other in ((0, 1), (1, 0)):
+            x, y, yaw = sim.robot_state(robot)["pose"]
+            ox, oy, _ = sim.robot_state(other)["pose"]
+            readings = sim.distance_sensors(robot_index=robot)
+            for sensor in (0, 7):  # ps0 and ps7, the two front sensors
+                px, py, heading = poses[sensor]
+                c, s = math.cos(yaw), math.sin(yaw)
+                origin = np.array([x + c * px - s * py, y + s * px + c * py])
+                direction = np.array([math.cos(yaw + heading), math.sin(yaw + heading)])
+                expected = ray_to_disc(origin, direction, np.array([ox, oy]))
+                # The table read at d / f: a white wall at twice the distance.
+                seen = ROBOT_REFLECTANCE * profile.distance_from_reading(
+                    sensor, float(readings[sensor])
+                )
+                assert seen == pytest.approx(expected, abs=2e-4), (gap, robot, sensor)
+            # The rear sensors see nothing (the last row of the table).
+            assert readings[3] == readings[4] == pytest.approx(67.19, abs=0.01)
+        # Ground sensors see the floor only: as far from any robot.
+        alone = mazesim.Simulator(mazesim.World.builtin("arena"), noise=False)
+        assert np.array_equal(sim.ground_sensors(1), alone.ground_sensors())
+
+
+def test_the_avoid_collision_rule_turns_both_away_before_contact() -> None:
+    """Each robot's front sensors see the other in time for the report's rule to start turning
+    away while a gap is left; with the shell's reflectance of 0.5 the turn then grazes the other
+    robot (docs/multi-robot.md), and the two leave each other behind."""
+    sim = mazesim.Simulator(corridor(0.1), noise=False)
+    rule = AvoidCollision()
+    gap_at_turn: list[float | None] = [None, None]
+    touched = 0
+    for _ in range(120):
+        poses = sim.poses()
+        gap = float(np.hypot(*(poses[0, :2] - poses[1, :2]))) - 2 * RADIUS
+        commands = np.array([rule(sim.distance_sensors(robot_index=i)) for i in range(2)])
+        for i in range(2):
+            if commands[i, 0] != commands[i, 1] and gap_at_turn[i] is None:
+                gap_at_turn[i] = gap
+        sim.step_robots(commands)
+        touched += sim.robot_state(0)["touching_robot"]
+    assert all(g is not None and g > 0.005 for g in gap_at_turn), gap_at_turn
+    assert touched < 20, "a graze, not a push"
+    poses = sim.poses()
+    assert float(np.hypot(*(poses[0, :2] - poses[1, :2]))) > 2 * RADIUS + 0.01
+    # Both turned away from the other: neither heads at it any more.
+    assert math.cos(poses[0, 2]) < 0.9 and math.cos(poses[1, 2] - math.pi) < 0.9
+
+
+def test_robots_driven_into_each_other_stop_in_contact() -> None:
+    sim = mazesim.Simulator(corridor(0.02))
+    for _ in range(40):
+        sim.step_robots(np.full((2, 2), 6.0))
+    poses = sim.poses()
+    gap = np.hypot(*(poses[0, :2] - poses[1, :2])) - 2 * RADIUS
+    assert -1e-3 < gap < 1e-3
+    for i in range(2):
+        state = sim.robot_state(i)
+        assert state["touching_robot"] and state["colliding"] and state["collisions"] == 1
+
+
+def batch_rows(envs: int, threads: int, steps: int = 30) -> list[np.ndarray]:
+    """Every buffer of a batch of corridors whose robots meet and press on each other."""
+    world = corridor(0.01, robots=3)
+    batch = mazesim.BatchSimulator(world, num_envs=envs, seeds=7, threads=threads)
+    assert batch.robots_per_env == 3
+    obs = np.zeros((envs, 3, batch.observation_width), np.float32)
+    poses = np.zeros((envs, 3, 3), np.float32)
+    colliding = np.zeros((envs, 3), bool)
+    crossings = np.zeros((envs, 3), np.int32)
+    batch.reset(obs, poses, colliding, crossings)
+    rng = np.random.default_rng(3)
+    seen = []
+    touching = 0
+    for _ in range(steps):
+        # The first three environments' actions do not depend on the batch size.
+        actions = np.resize(rng.uniform(2.0, 6.0, (3, 3, 2)), (envs, 3, 2)).astype(np.float32)
+        batch.step(actions, obs, poses, colliding, crossings)
+        touching += int(colliding[:, :2].sum())
+        seen.append(np.concatenate([obs[:3].ravel(), poses[:3].ravel(), colliding[:3].ravel()]))
+    assert touching > steps, "the robots press on each other"
+    return seen
+
+
+def test_same_seed_same_run_whatever_the_threads_and_batch_size() -> None:
+    reference = batch_rows(3, 1)
+    for envs, threads in ((3, 2), (40, 1), (40, 2)):
+        for a, b in zip(reference, batch_rows(envs, threads)):
+            assert np.array_equal(a.view(np.uint8), b.view(np.uint8)), (envs, threads)
+
+
+def test_the_batch_steps_each_environment_as_a_simulator_does() -> None:
+    world = corridor(0.01, robots=3)
+    batch = mazesim.BatchSimulator(world, num_envs=2, seeds=[5, 9])
+    obs = np.zeros((2, 3, batch.observation_width), np.float32)
+    poses = np.zeros((2, 3, 3), np.float32)
+    colliding = np.zeros((2, 3), bool)
+    crossings = np.zeros((2, 3), np.int32)
+    batch.reset(obs, poses, colliding, crossings)
+    sim = mazesim.Simulator(world, seed=9)
+    for k in range(20):
+        actions = np.full((2, 3, 2), 3.0 + k % 3, np.float32)
+        batch.step(actions, obs, poses, colliding, crossings)
+        sim.step_robots(actions[1].astype(np.float64))
+        assert np.array_equal(poses[1], sim.poses())
+        for i in range(3):
+            assert np.array_equal(obs[1, i, :8], sim.distance_sensors(robot_index=i))
+
+
+def test_the_avoid_collision_controller_runs_per_robot_in_the_batch() -> None:
+    batch = mazesim.BatchSimulator(corridor(0.1), num_envs=4, noise=False)
+    obs = np.zeros((4, 2, batch.observation_width), np.float32)
+    poses = np.zeros((4, 2, 3), np.float32)
+    colliding = np.zeros((4, 2), bool)
+    crossings = np.zeros((4, 2), np.int32)
+    batch.reset(obs, poses, colliding, crossings)
+    counts = batch.run(100, "avoid-collision", obs, poses, colliding, crossings)
+    assert counts["steps_in_contact"].shape == (4, 2)
+    assert (counts["steps_in_contact"] < 20).all(), "grazes at most"
+    assert (np.abs(np.cos(poses[:, :, 2])) < 0.999).any(axis=1).all(), "every pair turned"
+
+
+def test_a_world_file_of_several_robots_round_trips() -> None:
+    world = corridor(0.05, robots=3)
+    again = mazesim.World.from_toml(world.to_toml())
+    assert again.robots == world.robots
+    assert [r["name"] for r in again.robots] == ["west", "east", "parked0"]
+    assert again.start == world.robots[0]["start"]
+    assert mazesim.Simulator(again).robot_names == ["west", "east", "parked0"]
+    # A world of one robot still has one, named "robot".
+    assert [r["name"] for r in mazesim.World.builtin("arena").robots] == ["robot"]
+
+
+def test_bad_worlds_and_robot_indices_are_package_errors() -> None:
+    with pytest.raises(mazesim.InvalidArgumentError, match="overlapping robot 1"):
+        mazesim.Simulator(corridor(-0.01))
+    crowd = "\n".join(f'[[robots]]\nname = "r{k}"\nx = {0.1 * k}\ny = 1.0' for k in range(65))
+    with pytest.raises(mazesim.MazesimError, match="at most 64 robots"):
+        mazesim.World.from_toml(f'format = "mazesim-world"\nversion = 1\n{crowd}\n')
+    twice = '[[robots]]\nname = "a"\nx = 0.0\ny = 0.0\n[[robots]]\nname = "a"\nx = 1.0\ny = 0.0\n'
+    with pytest.raises(mazesim.MazesimError, match="unique"):
+        mazesim.World.from_toml(f'format = "mazesim-world"\nversion = 1\n{twice}')
+    sim = mazesim.Simulator(corridor(0.05))
+    with pytest.raises(mazesim.InvalidArgumentError, match="robot index from 0 to 1"):
+        sim.distance_sensors(robot_index=2)
+    with pytest.raises(mazesim.InvalidArgumentError, match="overlapping"):
+        sim.set_pose(0.05, 0.0, 0.0, robot_index=0)
+    with pytest.raises(mazesim.InvalidArgumentError, match="commands"):
+        sim.step_robots(np.zeros((3, 2)))
+    with pytest.raises(mazesim.InvalidActionError):
+        sim.step_robots(np.array([[np.nan, 0.0], [0.0, 0.0]]))
