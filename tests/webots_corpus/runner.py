@@ -1,5 +1,9 @@
 """Runs one corpus project from a local mirror: exports it, imports its world, runs its first
-controller with ``mazesim webots run`` for the project's simulated time, and checks its facts."""
+controller with ``mazesim webots run`` for the project's simulated time, and checks its facts.
+
+A world in which several robots have a controller runs whole (``mazesim webots run WORLD``:
+every robot with its own controller, in lockstep); the facts about one robot's path are then
+checked on the robot that runs the project's first controller."""
 
 from __future__ import annotations
 
@@ -49,11 +53,37 @@ def _import(world: Path, controller: str) -> tuple[Any, dict[str, Any]]:
     return world_obj, dict(report)
 
 
-def _trajectory(path: Path) -> np.ndarray:
+#: ``controller`` fields that name no controller.
+NO_CONTROLLER = ("", "void", "<generic>", "<none>")
+
+
+def _runs_whole(project: Project, report: dict[str, Any]) -> bool:
+    """Whether the world runs whole: a Python project without a key script in which several
+    robots have a controller."""
+    robots = report.get("robots") or []
+    running = [r for r in robots if (r.get("controller") or "") not in NO_CONTROLLER]
+    return project.language == "python" and not project.keys and len(running) > 1
+
+
+def _own_robot(summary: dict[str, Any], controller: str) -> dict[str, Any]:
+    """The entry of a whole world's summary of the robot that ran ``controller`` (the first
+    robot when none did)."""
+    robots = [r for r in summary.get("robots") or [] if isinstance(r, dict)]
+    for robot in robots:
+        if Path(str(robot.get("controller") or "")).name == Path(controller).name:
+            return robot
+    return robots[0] if robots else {}
+
+
+def _trajectory(path: Path, robot: str | None = None) -> np.ndarray:
     if not path.is_file():
         return np.zeros((0, 2))
     with path.open(encoding="utf-8") as handle:
-        rows = [(float(r["x_m"]), float(r["y_m"])) for r in csv.DictReader(handle)]
+        rows = [
+            (float(r["x_m"]), float(r["y_m"]))
+            for r in csv.DictReader(handle)
+            if robot is None or r.get("robot") == robot
+        ]
     return np.array(rows, dtype=np.float64).reshape(-1, 2)
 
 
@@ -91,12 +121,17 @@ def _last_error(stderr: str) -> str:
     return errors[-1] if errors else ""
 
 
-def _run(project: Project, root: Path, world: Path, out: Path) -> RunResult:
-    """Runs the project's first controller."""
+def _run(project: Project, root: Path, world: Path, out: Path, whole: bool) -> RunResult:
+    """Runs the project's first controller, or the whole world."""
     command = [
         sys.executable, "-m", "mazesim", "webots", "run", str(root / project.controllers[0]),
         "--world", str(world), "--seconds", f"{project.seconds:g}", "--out", str(out),
     ]  # fmt: skip
+    if whole:
+        command = [
+            sys.executable, "-m", "mazesim", "webots", "run", str(world),
+            "--seconds", f"{project.seconds:g}", "--out", str(out),
+        ]  # fmt: skip
     if project.keys:
         keys = out.parent / "keys.txt"
         keys.write_text("\n".join(project.keys) + "\n", encoding="utf-8")
@@ -178,10 +213,17 @@ def _run_project(project: Project, mirrors: Path, work: Path, census: Census) ->
             project, "not run", f"needs Python package {', '.join(missing)}", warnings=warnings
         )
     out = root.parent / f"{root.name}.out"
-    run = _run(project, root, world, out)
+    whole = _runs_whole(project, report)
+    run = _run(project, root, world, out, whole)
     summary: dict[str, Any] = {}
     if (out / "summary.json").is_file():
         summary = json.loads((out / "summary.json").read_text(encoding="utf-8"))
+    own: str | None = None
+    if whole:
+        robot = _own_robot(summary, project.controllers[0])
+        own = robot.get("name")
+        errors = [r.get("controller_error") for r in summary.get("robots") or []]
+        summary["controller_error"] = next((e for e in errors if e), None)
     dropped, stood_in = losses(warnings, summary)
     census.add(f"{project.repo}:{project.world}", text, dropped, stood_in)
     boxes = np.asarray(world_obj.wall_boxes(), dtype=np.float64).reshape(-1, 6)[:, :5]
@@ -189,7 +231,7 @@ def _run_project(project: Project, mirrors: Path, work: Path, census: Census) ->
         exit_status=run.exit_status,
         error=str(summary.get("controller_error") or ""),
         stdout=run.stdout,
-        path=_trajectory(out / "trajectory.csv"),
+        path=_trajectory(out / "trajectory.csv", own),
         walls=boxes,
         floor=world_obj.floor_reflectance,
         robots_moving=_robots_moving(summary),

@@ -17,8 +17,14 @@ from typing import Any
 
 from mazesim.webots.camera import Camera, CameraView
 from mazesim.webots.devices import LED, Device, DistanceSensor, Motor, PositionSensor, _Sensor
-from mazesim.webots.inert import Display, Emitter, Pen, Receiver, Speaker
+from mazesim.webots.inert import Display, Pen, Speaker
 from mazesim.webots.keyboard import Joystick, Keyboard, Mouse
+from mazesim.webots.radio_devices import (
+    Emitter,
+    Receiver,
+    emitter_from_fields,
+    receiver_from_fields,
+)
 from mazesim.webots.sensors import (
     GPS,
     Accelerometer,
@@ -110,8 +116,8 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
                 z=max(mount.z, 0.001),
             ),
         ),
-        "Emitter": lambda: Emitter(name, simulation),
-        "Receiver": lambda: Receiver(name, simulation),
+        "Emitter": lambda: emitter_from_fields(name, simulation, fields),
+        "Receiver": lambda: receiver_from_fields(name, simulation, fields),
         "Speaker": lambda: Speaker(name, simulation),
         "Display": lambda: Display(name, simulation),
         "Pen": lambda: Pen(name, simulation),
@@ -125,6 +131,10 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
         )
         return None
     return build()
+
+
+#: Devices a robot's own node of the same name replaces (the e-puck's emitter and receiver).
+RADIO_DEVICES = (Emitter, Receiver)
 
 
 class Equipment:
@@ -184,7 +194,11 @@ class Equipment:
                 devices.append(device)
         self.devices: dict[str, Device] = {}
         for device in devices:
-            self.devices.setdefault(device.getName(), device)
+            known = self.devices.get(device.getName())
+            # A robot's own Emitter or Receiver node replaces the e-puck's of the same name.
+            if known is None or (type(known) is type(device) and type(known) in RADIO_DEVICES):
+                self.devices[device.getName()] = device
+        devices = list(self.devices.values())
         self._sampled = [device for device in devices if isinstance(device, _Sensor)]
         self.keyboard = Keyboard(simulation=simulation)
         self.mouse = Mouse()

@@ -141,6 +141,7 @@ def run_controller(
     report: Mapping[str, Any] | None = None,
     keys: KeyScript | None = None,
     scene: Scene | None = None,
+    **world_of_several: Any,
 ) -> ControllerRun:
     """Runs a Webots-style controller file on the robot in ``world``.
 
@@ -158,6 +159,9 @@ def run_controller(
         keys: The keyboard script.
         scene: DEF names, supervisor flag, camera fields and controller arguments of the world
             file (``sys.argv[1:]`` of the controller).
+        **world_of_several: For a robot of a world with several robots, whose process owns
+            the world: ``simulator``, ``radio``, ``fleet`` and ``robot_index`` (see
+            :class:`~mazesim.webots.simulation.RobotSimulation`).
 
     Returns:
         What the run did.
@@ -169,7 +173,14 @@ def run_controller(
     file = controller_file(path)
     source = _read_source(file)
     simulation = simulations.prepare(
-        world, seconds=seconds, seed=seed, noise=noise, report=report, keys=keys, scene=scene
+        world,
+        seconds=seconds,
+        seed=seed,
+        noise=noise,
+        report=report,
+        keys=keys,
+        scene=scene,
+        **world_of_several,
     )
     controller_module.Robot.created = None
     folder = os.path.dirname(file)

@@ -5,9 +5,9 @@ nodes (their type, DEF name and, read from the file, their ``translation``, ``ro
 ``name``: snapshots that can be set but move nothing in the simulation), the robot's node among
 them (``getSelf``, ``getFromDef`` of its DEF name) and the file's other DEF nodes (their type).
 It reads and sets the robot's ``translation`` and ``rotation`` (moving the robot in the
-simulation), reads its position, orientation and velocity, resets the simulation (the robot
-back at its start) or the robot's motion, and quits it with a status (``mazesim webots run``
-exits with it).
+simulation), and in a world with several robots those of every other robot too, reads its
+position, orientation and velocity, resets the simulation (the robot back at its start) or
+the robot's motion, and quits it with a status (``mazesim webots run`` exits with it).
 """
 
 from __future__ import annotations
@@ -164,7 +164,7 @@ class Field(NotSimulated):
         if self._name != "translation":
             return self._numbers("get_sf_vec3f", (self.SF_VEC3F, self.SF_COLOR))
         node = self._node
-        return node.getPosition() if node._robot else _out(list(node._translation or ()))
+        return node.getPosition() if node._live else _out(list(node._translation or ()))
 
     def setSFVec3f(self, values: list[float]) -> None:
         """Moves the robot to [x, y, z] (z is ignored: the robot stays on the floor); another
@@ -174,7 +174,7 @@ class Field(NotSimulated):
             return
         node = self._node
         x, y, z = _in([float(v) for v in values[:3]])
-        if node._robot:
+        if node._live:
             node._move(x, y, node._pose()[2])
         else:
             node._translation = (x, y, z)
@@ -185,7 +185,7 @@ class Field(NotSimulated):
             self._wrong("get_sf_rotation")
             return None
         node = self._node
-        rotation = [0.0, 0.0, 1.0, node._pose()[2]] if node._robot else list(node._rotation or ())
+        rotation = [0.0, 0.0, 1.0, node._pose()[2]] if node._live else list(node._rotation or ())
         return [*_out(rotation[:3]), rotation[3]] if rotation else rotation
 
     def setSFRotation(self, values: list[float]) -> None:
@@ -197,7 +197,7 @@ class Field(NotSimulated):
         node = self._node
         ax, ay, az = _in([float(v) for v in values[:3]])
         angle = float(values[3])
-        if node._robot:
+        if node._live:
             x, y, _ = node._pose()
             node._move(x, y, _yaw_of_rotation([ax, ay, az, angle]))
         else:
@@ -351,6 +351,8 @@ class Node(NotSimulated):
         self._def = def_name
         self._id = node_id
         self._robot = robot
+        #: The index among the world's robots of another robot (live pose), else None.
+        self._fleet_index: int | None = None
         self._translation = translation
         self._rotation = rotation
         self._strings = {"name": "e-puck", "customData": "", "controller": "<extern>"}
@@ -393,7 +395,15 @@ class Node(NotSimulated):
     def _simulation(self) -> _simulations.RobotSimulation:
         return _simulations.current()
 
+    @property
+    def _live(self) -> bool:
+        """Whether the node's pose is a robot's in the simulation (its own or another's)."""
+        return self._robot or self._fleet_index is not None
+
     def _pose(self) -> tuple[float, float, float]:
+        if self._fleet_index is not None:
+            x, y, yaw = self._simulation().fleet.pose(self._fleet_index)
+            return float(x), float(y), float(yaw)
         if self._robot:
             x, y, yaw = self._simulation().simulator.pose
             return float(x), float(y), float(yaw)
@@ -404,6 +414,9 @@ class Node(NotSimulated):
 
     def _move(self, x: float, y: float, yaw: float) -> None:
         """Moves the robot in the simulation, at rest."""
+        if self._fleet_index is not None:
+            self._simulation().fleet.move(self._fleet_index, x, y, yaw)
+            return
         self._simulation().move_robot(x, y, yaw)
 
     def getId(self) -> int:
@@ -479,14 +492,14 @@ class Node(NotSimulated):
     def getPosition(self) -> list[float]:
         """The node's position [x, y, z] in metres (world frame; NaN for a node whose position
         the world file does not give)."""
-        if self._robot:
+        if self._live:
             x, y, _ = self._pose()
             return _out([x, y, 0.0])
         return _out(list(self._translation)) if self._translation else [math.nan] * 3
 
     def getOrientation(self) -> list[float]:
         """The node's rotation matrix, row after row (9 numbers)."""
-        if self._robot or self._rotation is None:
+        if self._live or self._rotation is None:
             matrix = _rotation_matrix(0.0, 0.0, 1.0, self._pose()[2])
         else:
             matrix = _rotation_matrix(*self._rotation)
@@ -543,6 +556,22 @@ class Node(NotSimulated):
         return True
 
 
+def _follow_robots(nodes: list[Node], robots: list[dict[str, Any]], own: int) -> None:
+    """Gives the nodes of the world's other robots their live poses: a node is a robot's when
+    its DEF name, or else its ``name`` field, is that robot's."""
+    for robot in robots:
+        if robot["index"] == own:
+            continue
+        for node in nodes:
+            if node._robot or node._fleet_index is not None:
+                continue
+            same_def = bool(robot.get("def_name")) and node.getDef() == robot["def_name"]
+            same_name = not robot.get("def_name") and robot.get("name") is not None
+            if same_def or (same_name and node._strings.get("name") == robot["name"]):
+                node._fleet_index = int(robot["index"])
+                break
+
+
 def _constant_name(type_name: str) -> str:
     """``"DistanceSensor"`` -> ``"DISTANCE_SENSOR"``."""
     out = []
@@ -581,6 +610,8 @@ class Supervisor(Robot):
             child._id = node_id
         self._root._adopt(children)
         self._nodes: dict[str, Node] = {}
+        if self._simulation.fleet is not None:
+            _follow_robots(children, self._simulation.fleet.robots(), self._simulation.robot_index)
 
     def getSelf(self) -> Node:
         """The robot's own node."""
