@@ -3,13 +3,19 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator
+from typing import Any
 
 import pytest
 
 import mazesim
 from mazesim._core import Simulator
+from mazesim.webots import controller, prepare
+from mazesim.webots import simulation as simulations
+from mazesim.webots.importer import import_wbt_text
 from mazesim.webots.radio import Radio
 from mazesim.webots.radio_devices import Emitter, Receiver, emitter_from_fields
+from mazesim.webots.scene import read_scene
 from mazesim.webots.simulation import RobotSimulation
 
 HERE = (0.0, 0.0, 0.0)
@@ -181,3 +187,30 @@ def test_an_emitters_buffer_size_and_max_range_and_the_e_pucks_defaults() -> Non
     e_puck = Emitter("emitter", pair.robots[0])
     assert (e_puck.getChannel(), e_puck.getRange(), e_puck.getBufferSize()) == (1, 0.8, -1)
     assert e_puck.send(b"") == 0
+
+
+# --- the channels a world file gives --------------------------------------------------------
+
+WITH_CHANNELS = """#VRML_SIM R2023b utf8
+E-puck { controller "x" emitter_channel 4 receiver_channel 5 }
+E-puck { translation 0.5 0 0 name "other" controller "x" }
+"""
+
+
+@pytest.fixture
+def robot_of_world() -> Iterator[Any]:
+    world, report = import_wbt_text(WITH_CHANNELS)
+    scene = read_scene(WITH_CHANNELS, report["robot_model"], report["robot_line"])
+    prepare(world, seconds=1.0, report=dict(report), scene=scene)
+    controller.Robot.created = None
+    yield controller.Supervisor()
+    controller.Robot.created = None
+    simulations.release()
+
+
+def test_the_e_puck_protos_channel_fields_tune_its_radio(robot_of_world: Any) -> None:
+    assert robot_of_world.getDevice("emitter").getChannel() == 4
+    assert robot_of_world.getDevice("receiver").getChannel() == 5
+    # Another e-puck that sets none has the PROTO's default, as a supervisor reads it.
+    other = robot_of_world.getRoot().getField("children").getMFNode(1)
+    assert other.getField("receiver_channel").getSFInt32() == 1

@@ -20,6 +20,7 @@ from mazesim.webots.devices import LED, Device, DistanceSensor, Motor, PositionS
 from mazesim.webots.inert import Display, Pen, Speaker
 from mazesim.webots.keyboard import Joystick, Keyboard, Mouse
 from mazesim.webots.radio_devices import (
+    E_PUCK_CHANNEL,
     Emitter,
     Receiver,
     emitter_from_fields,
@@ -133,6 +134,14 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
     return build()
 
 
+def _proto_channel(scene: Any, name: str) -> int:
+    """The E-puck PROTO's ``emitter_channel`` or ``receiver_channel`` field of the robot's own
+    node (the PROTO's default, 1, when the file does not set it)."""
+    own = next((node for node in scene.nodes if node.robot), None)
+    values = own.numbers.get(name) if own is not None else None
+    return int(values[0]) if values else E_PUCK_CHANNEL
+
+
 #: Devices a robot's own node of the same name replaces (the e-puck's emitter and receiver).
 RADIO_DEVICES = (Emitter, Receiver)
 
@@ -185,8 +194,8 @@ class Equipment:
             Camera("camera", simulation, view),
             Accelerometer("accelerometer", simulation),
             Gyro("gyro", simulation),
-            Emitter("emitter", simulation),
-            Receiver("receiver", simulation),
+            Emitter("emitter", simulation, channel=_proto_channel(scene, "emitter_channel")),
+            Receiver("receiver", simulation, channel=_proto_channel(scene, "receiver_channel")),
             Speaker("speaker", simulation),
         ]
         for entry in simulation.report.get("extension_devices") or []:

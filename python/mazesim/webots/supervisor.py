@@ -20,8 +20,9 @@ from mazesim.webots import simulation as _simulations
 from mazesim.webots.frames import enu_to_nue, enu_to_nue_matrix, nue_to_enu
 from mazesim.webots.inert import ContactPoint, NotSimulated
 from mazesim.webots.node_types import NODE_TYPES
+from mazesim.webots.radio_devices import E_PUCK_CHANNEL
 from mazesim.webots.robot import Robot
-from mazesim.webots.scene import SceneNode
+from mazesim.webots.scene import EPUCK_TYPES, SceneNode
 
 __all__ = ["Field", "Node", "Supervisor"]
 
@@ -382,6 +383,10 @@ class Node(NotSimulated):
             name=node.name,
         )
         made._numbers = {name: list(values) for name, values in node.numbers.items()}
+        if node.type_name in EPUCK_TYPES:
+            # The E-puck PROTO's radio channels, at its default where the file sets none.
+            for channel in ("emitter_channel", "receiver_channel"):
+                made._numbers.setdefault(channel, [float(E_PUCK_CHANNEL)])
         made._flags = dict(node.flags)
         made._strings.update(node.strings)
         return made
