@@ -219,16 +219,24 @@ def _run_project(project: Project, mirrors: Path, work: Path, census: Census) ->
     if (out / "summary.json").is_file():
         summary = json.loads((out / "summary.json").read_text(encoding="utf-8"))
     own: str | None = None
+    exit_status = run.exit_status
+    others = ""
     if whole:
+        # The facts are the robot's that runs the project's first controller; the others'
+        # failures are said in the cause.
         robot = _own_robot(summary, project.controllers[0])
         own = robot.get("name")
-        errors = [r.get("controller_error") for r in summary.get("robots") or []]
-        summary["controller_error"] = next((e for e in errors if e), None)
+        summary["controller_error"] = robot.get("controller_error")
+        if exit_status is not None:
+            exit_status = int(robot.get("exit_status") or 0)
+        failed = [r for r in summary.get("robots") or [] if r is not robot and r.get("exit_status")]
+        if failed:
+            others = f"robot {failed[0].get('name')}: {failed[0].get('controller_error')}"
     dropped, stood_in = losses(warnings, summary)
     census.add(f"{project.repo}:{project.world}", text, dropped, stood_in)
     boxes = np.asarray(world_obj.wall_boxes(), dtype=np.float64).reshape(-1, 6)[:, :5]
     outcome = Outcome(
-        exit_status=run.exit_status,
+        exit_status=exit_status,
         error=str(summary.get("controller_error") or ""),
         stdout=run.stdout,
         path=_trajectory(out / "trajectory.csv", own),
@@ -241,7 +249,7 @@ def _run_project(project: Project, mirrors: Path, work: Path, census: Census) ->
     for line in project.expect:
         ok, measured = check(parse_fact(line), outcome)
         checks.append((line, ok, measured))
-    return _judge(project, checks, warnings, outcome, run)
+    return _judge(project, checks, warnings, outcome, run, others)
 
 
 def _judge(
@@ -250,6 +258,7 @@ def _judge(
     warnings: list[str],
     outcome: Outcome,
     run: RunResult,
+    others: str = "",
 ) -> Row:
     failed = [f"{line} ({measured})" for line, ok, measured in checks if not ok]
     parts: list[str] = []
@@ -260,6 +269,8 @@ def _judge(
             parts.append(f"its last error: {run.last_error}")
     if outcome.error:
         parts.append(f"controller: {outcome.error}")
+    if others:
+        parts.append(f"another controller failed: {others}")
     if failed:
         parts.append("expected " + "; ".join(failed))
     lost = _significant(warnings)

@@ -174,7 +174,7 @@ class Field(NotSimulated):
             self._wrong("set_sf_vec3f")
             return
         node = self._node
-        x, y, z = _in([float(v) for v in values[:3]])
+        x, y, z = _in(_padded(values, 3))
         if node._live:
             node._move(x, y, node._pose()[2])
         else:
@@ -196,8 +196,8 @@ class Field(NotSimulated):
             self._wrong("set_sf_rotation")
             return
         node = self._node
-        ax, ay, az = _in([float(v) for v in values[:3]])
-        angle = float(values[3])
+        ax, ay, az, angle = _padded(values, 4)
+        ax, ay, az = _in([ax, ay, az])
         if node._live:
             x, y, _ = node._pose()
             node._move(x, y, _yaw_of_rotation([ax, ay, az, angle]))
@@ -298,6 +298,14 @@ class Field(NotSimulated):
             self.setSFRotation(value)
         else:
             self.setSFString(value)
+
+
+def _padded(values: list[float], count: int) -> list[float]:
+    """The first ``count`` values as floats, missing ones 0: Webots' Python API copies the list
+    into a C array of ``count`` doubles, whose missing elements are 0
+    (``setSFRotation([0, 0, -1])`` is the rotation by angle 0)."""
+    numbers = [float(v) for v in list(values)[:count]]
+    return numbers + [0.0] * (count - len(numbers))
 
 
 def _rotation_matrix(ax: float, ay: float, az: float, angle: float) -> list[float]:
