@@ -70,6 +70,8 @@ def samples(tmp: Path) -> dict[str, Any]:
         "world": world,
         "num_envs": NUM_ENVS,
         "robot": "e-puck",
+        "robot_index": 0,
+        "commands": np.zeros((1, 2)),
         "seeds": None,
         "noise": True,
         "control_step_ms": None,

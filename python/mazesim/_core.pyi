@@ -130,6 +130,10 @@ class World:
     @property
     def start(self) -> tuple[float, float, float]: ...
     @property
+    def robots(self) -> list[dict[str, Any]]:
+        """The robots the world places, in order: dicts of "name", "start" (x, y, yaw) and
+        "profile" (a built-in profile's name, or None for the simulator's)."""
+    @property
     def goal(self) -> tuple[float, float, float] | None:
         """(x, y, radius) of the goal disc, or None."""
     def wall_boxes(self) -> npt.NDArray[np.float64]:
@@ -259,7 +263,8 @@ class RobotProfile:
 
 @final
 class Simulator:
-    """One robot in one world, stepped in control steps."""
+    """The robots of one world (one in most worlds), stepped in control steps. Per-robot calls
+    take a robot index, robot 0 by default; properties are robot 0's (see `robot_state`)."""
 
     def __new__(
         cls,
@@ -271,7 +276,24 @@ class Simulator:
     ) -> Simulator: ...
     def reset(self, seed: int | None = None) -> None: ...
     def step(self, left: float, right: float) -> None:
-        """Advances one control step with wheel speeds in rad/s (clamped to the motor limit)."""
+        """Advances one control step with robot 0's wheel speeds in rad/s (clamped to the motor
+        limit); the other robots keep their wheel commands."""
+    def step_robots(self, commands: npt.NDArray[np.float64]) -> None:
+        """Advances one control step with every robot's wheel speeds: an (R, 2) float64 array."""
+    def set_wheel_speeds(self, left: float, right: float, robot_index: int = 0) -> None:
+        """Sets robot `robot_index`'s wheel speeds (rad/s) for the next steps, as a Webots controller
+        sets its motors' velocities."""
+    @property
+    def num_robots(self) -> int:
+        """Number of robots in the world."""
+    @property
+    def robot_names(self) -> list[str]:
+        """The robots' names, in world order."""
+    def poses(self) -> npt.NDArray[np.float32]:
+        """Every robot's pose, an (R, 3) float32 array of x, y, yaw."""
+    def robot_state(self, robot_index: int = 0) -> dict[str, Any]:
+        """Robot `robot`'s state as a dict: pose, colliding, touching_robot, collisions,
+        distance_travelled, wheel_speeds, encoders, wall_clearance, last_crossing, goal."""
     def step_observe(
         self,
         left: float,
@@ -283,16 +305,17 @@ class Simulator:
         sensors then the ground sensors) clamped to [`low`, `high`] (float32 arrays of that
         width), the pose (float32 x, y, yaw), whether the body touches a wall and the signed
         checkpoint crossed in this step (0: none)."""
-    def set_start(self, x: float, y: float, yaw: float) -> None:
-        """Sets the pose every later reset starts from (instead of the world's start)."""
-    def set_goal(self, x: float, y: float, radius: float) -> None:
-        """Sets the goal disc, centre (x, y) and radius in metres, instead of the world's."""
+    def set_start(self, x: float, y: float, yaw: float, robot_index: int = 0) -> None:
+        """Sets the pose every later reset starts robot `robot_index` from (instead of the world's)."""
+    def set_goal(self, x: float, y: float, radius: float, robot_index: int = 0) -> None:
+        """Sets robot `robot_index`'s goal disc, centre (x, y) and radius in metres, instead of the
+        world's."""
     @property
     def goal(self) -> tuple[float, float, float] | None:
         """The goal disc (x, y, radius) the episodes end at (`set_goal`'s, else the world's)."""
-    def set_pose(self, x: float, y: float, yaw: float) -> None: ...
-    def distance_sensors(self) -> npt.NDArray[np.float32]: ...
-    def ground_sensors(self) -> npt.NDArray[np.float32]: ...
+    def set_pose(self, x: float, y: float, yaw: float, robot_index: int = 0) -> None: ...
+    def distance_sensors(self, robot_index: int = 0) -> npt.NDArray[np.float32]: ...
+    def ground_sensors(self, robot_index: int = 0) -> npt.NDArray[np.float32]: ...
     def body_poses(self) -> list[tuple[float, float, float]]:
         """Current poses (x, y, yaw) of the world's movable bodies, in world order."""
     @property
@@ -317,8 +340,9 @@ class Simulator:
     @property
     def last_crossing(self) -> int:
         """Barcode crossed in the last step: +id arriving (along its yaw), -id departing, 0 none."""
-    def crossings(self) -> list[dict[str, object]]:
-        """Crossings since reset: dicts of "checkpoint", "direction", "step", "time"."""
+    def crossings(self, robot_index: int = 0) -> list[dict[str, object]]:
+        """Robot `robot`'s crossings since reset: dicts of "checkpoint", "direction", "step",
+        "time"."""
     @property
     def control_step_ms(self) -> float: ...
     @property

@@ -215,6 +215,7 @@ pub fn generate(params: &MazeParams, seed: u64) -> Result<World> {
             y: Finite((m.rows as f64 - start.1 as f64 - 0.5) * cs),
             yaw: Finite(start_dir as f64 * std::f64::consts::FRAC_PI_2),
         }),
+        robots: Vec::new(),
         goal: None,
         grid: Some(GridSpec {
             cell_size: Positive(cs),

@@ -40,6 +40,7 @@ pub mod batch;
 pub mod control;
 pub mod rollout;
 pub mod simulator;
+pub mod swarm;
 
 // Navigator: tabular Q-learning and the lower level's training round.
 pub mod lower_training;
@@ -65,6 +66,7 @@ pub use lut::LookupTable;
 pub use robot::{robot_profile_names, Perturbation, RobotProfile};
 pub use rollout::{RunCounters, RunOptions, RunTrace};
 pub use simulator::{SimConfig, Simulator};
+pub use swarm::Swarm;
 pub use world::{builtin_world_names, World};
 
 /// The types most programs start from: `use mazesim_core::prelude::*;`.

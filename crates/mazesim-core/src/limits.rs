@@ -29,6 +29,12 @@ pub const MAX_PAINT_REGIONS: usize = 100_000;
 /// Most movable bodies of a world (each is a rapier body in every environment).
 pub const MAX_BODIES: usize = 1_000;
 
+/// Most robots of a world. Every control step each robot's contacts and sensor rays are checked
+/// against every other robot (a cost that grows with the square of the count), and the swarms of
+/// the e-puck literature and of Webots' sample worlds hold from 2 to a few dozen robots; 64 leaves
+/// room for the largest of them.
+pub const MAX_ROBOTS: usize = 64;
+
 /// Most checkpoints of a world.
 pub const MAX_CHECKPOINTS: usize = 10_000;
 

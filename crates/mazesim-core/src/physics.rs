@@ -234,9 +234,28 @@ impl Body {
     /// `clearance` is the current gap between the body and the nearest of `walls` (the world's
     /// wall index, the same walls the body was made among).
     pub fn step(&mut self, linear: f32, angular: f32, clearance: f32, walls: &WallIndex) {
-        let [x, y, yaw] = self.pose;
         let [s, c] = self.heading;
-        let velocity = [c * linear, s * linear];
+        self.drive(
+            [c * linear, s * linear],
+            linear.abs(),
+            angular,
+            clearance,
+            walls,
+        );
+    }
+
+    /// `step` with the body's velocity given as a vector (m/s) of length `speed`, turning at
+    /// `angular` rad/s: how a robot that other robots hold back moves.
+    #[inline]
+    pub fn drive(
+        &mut self,
+        velocity: [f32; 2],
+        speed: f32,
+        angular: f32,
+        clearance: f32,
+        walls: &WallIndex,
+    ) {
+        let [x, y, yaw] = self.pose;
         let turned = wrap_angle(yaw + angular * self.dt);
         if let Some(scene) = self.scene.as_mut() {
             let body = &mut scene.world.bodies[scene.robot];
@@ -245,7 +264,7 @@ impl Body {
             scene.world.step();
             let pose = scene.robot_pose();
             self.set_pose(pose);
-        } else if clearance - linear.abs() * self.dt > FREE_FLIGHT_MARGIN {
+        } else if clearance - speed * self.dt > FREE_FLIGHT_MARGIN {
             self.set_pose([x + velocity[0] * self.dt, y + velocity[1] * self.dt, turned]);
         } else {
             let [nx, ny] = contact::slide(walls, [x, y], self.radius, velocity, self.dt);

@@ -1,12 +1,13 @@
-//! `Simulator` for Python: one robot in one world.
+//! `Simulator` for Python: the robots of one world (one in most worlds), per-robot calls taking
+//! a robot index that defaults to robot 0.
 
-use mazesim_core::{SimConfig, Simulator};
-use numpy::PyArray1;
+use mazesim_core::{SimConfig, Simulator, Swarm};
+use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyTuple};
 
 use crate::args::{Bytes, Flag, IntArg, Real};
-use crate::buffers::readable;
+use crate::buffers::{copied, readable};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::{enter, enter_detached};
 use crate::lock::Exclusive;
@@ -16,16 +17,45 @@ use crate::world::{world_argument, PyWorld};
 /// What a busy simulator is called in `SimulatorBusyError`.
 const SIMULATOR: &str = "this Simulator";
 
-/// One robot in one world, stepped in control steps.
+/// The robots of one world, stepped in control steps.
 #[pyclass(name = "Simulator", module = "mazesim._core", frozen)]
 pub struct PySimulator {
-    inner: Exclusive<Simulator>,
+    inner: Exclusive<Swarm>,
 }
 
+/// What snapshots do not cover yet.
+const ONE_ROBOT_ONLY: &str = "snapshots (snapshot, restore, pickling)";
+
 impl PySimulator {
-    /// `with` for a Python entry point: a panic becomes `InternalError`.
-    fn read<T>(&self, f: impl FnOnce(&mut Simulator) -> T) -> PyResult<T> {
+    /// `with` on robot 0 for a Python entry point: a panic becomes `InternalError`.
+    fn read<T>(&self, f: impl FnOnce(&Simulator) -> T) -> PyResult<T> {
+        enter(|| self.inner.with(|s| f(&s.robots()[0])))
+    }
+
+    /// `with` on robot `robot_index` (checked) for a Python entry point.
+    fn read_robot<T>(&self, robot_index: IntArg, f: impl FnOnce(&Simulator) -> T) -> PyResult<T> {
+        enter(|| {
+            let index = robot_index.count("robot_index", usize::MAX)?;
+            self.inner.with(|s| s.robot(index).map(f))?.py()
+        })
+    }
+
+    /// `with` on the whole swarm for a Python entry point.
+    fn swarm<T>(&self, f: impl FnOnce(&mut Swarm) -> T) -> PyResult<T> {
         enter(|| self.inner.with(f))
+    }
+
+    /// Refuses what only a world of one robot supports yet.
+    fn one_robot(&self, what: &str) -> PyResult<()> {
+        let n = self.swarm(|s| s.len())?;
+        if n == 1 {
+            Ok(())
+        } else {
+            Err(invalid(format!(
+                "expected a world of one robot: {what} are not supported yet in a world of \
+                 several, found {n} robots"
+            )))
+        }
     }
 }
 
@@ -53,7 +83,7 @@ impl PySimulator {
                 noise,
                 control_step: control_step_ms.map(|ms| ms / 1000.0),
             };
-            let sim = Simulator::new(world, profile, config).py()?;
+            let sim = Swarm::new(world, profile, config).py()?;
             Ok(Self {
                 inner: Exclusive::new(sim, SIMULATOR),
             })
@@ -69,10 +99,88 @@ impl PySimulator {
         })
     }
 
-    /// Advances one control step with wheel speeds in rad/s (clamped to the motor limit).
+    /// Advances one control step with robot 0's wheel speeds in rad/s (clamped to the motor
+    /// limit); the other robots keep their wheel commands.
     fn step(&self, py: Python<'_>, left: Real, right: Real) -> PyResult<()> {
         let (left, right) = (left.value("left")?, right.value("right")?);
-        enter_detached(py, || self.inner.with_detached(|s| s.step(left, right)))
+        enter_detached(py, || {
+            self.inner.with_detached(|s| {
+                s.set_command(0, left, right)?;
+                s.step_commanded()
+            })
+        })
+    }
+
+    /// Advances one control step with every robot's wheel speeds: an (R, 2) float64 array.
+    fn step_robots(&self, py: Python<'_>, commands: &Bound<'_, PyAny>) -> PyResult<()> {
+        let n = self.swarm(|s| s.len())?;
+        let rows = enter(|| copied::<f64>(commands, "commands", "float64", &[n, 2]))?;
+        let commands: Vec<[f64; 2]> = rows.chunks_exact(2).map(|r| [r[0], r[1]]).collect();
+        enter_detached(py, || self.inner.with_detached(|s| s.step(&commands)))
+    }
+
+    /// Sets robot `robot_index`'s wheel speeds (rad/s) for the next steps, as a Webots controller sets
+    /// its motors' velocities.
+    #[pyo3(signature = (left, right, robot_index = IntArg::ZERO))]
+    fn set_wheel_speeds(&self, left: Real, right: Real, robot_index: IntArg) -> PyResult<()> {
+        let (left, right) = (left.value("left")?, right.value("right")?);
+        enter(|| {
+            let index = robot_index.count("robot_index", usize::MAX)?;
+            self.inner.with(|s| s.set_command(index, left, right))?.py()
+        })
+    }
+
+    /// Number of robots in the world.
+    #[getter]
+    fn num_robots(&self) -> PyResult<usize> {
+        self.swarm(|s| s.len())
+    }
+
+    /// The robots' names, in world order.
+    #[getter]
+    fn robot_names(&self) -> PyResult<Vec<String>> {
+        self.swarm(|s| s.names().to_vec())
+    }
+
+    /// Every robot's pose, an (R, 3) float32 array of x, y, yaw.
+    fn poses<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f32>>> {
+        let (v, n) = self.swarm(|s| {
+            let v: Vec<f32> = s.robots().iter().flat_map(|r| r.pose()).collect();
+            (v, s.len())
+        })?;
+        PyArray1::from_vec(py, v).reshape([n, 3])
+    }
+
+    /// Robot `robot`'s state as a dict: pose, colliding, touching_robot, collisions,
+    /// distance_travelled, wheel_speeds, encoders, wall_clearance, last_crossing, goal.
+    #[pyo3(signature = (robot_index = IntArg::ZERO))]
+    fn robot_state<'py>(
+        &self,
+        py: Python<'py>,
+        robot_index: IntArg,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        self.read_robot(robot_index, |s| -> PyResult<()> {
+            let p = s.pose();
+            d.set_item("pose", (p[0] as f64, p[1] as f64, p[2] as f64))?;
+            d.set_item("colliding", s.colliding())?;
+            d.set_item("touching_robot", s.touching_robot())?;
+            d.set_item("collisions", s.collisions())?;
+            d.set_item("distance_travelled", s.distance_travelled())?;
+            let w = s.wheel_speeds();
+            d.set_item("wheel_speeds", (w[0] as f64, w[1] as f64))?;
+            let e = s.encoders();
+            d.set_item("encoders", (e[0], e[1]))?;
+            d.set_item("wall_clearance", s.wall_clearance() as f64)?;
+            d.set_item("last_crossing", s.last_crossing())?;
+            d.set_item(
+                "goal",
+                s.goal().map(|g| (g.center[0], g.center[1], g.radius)),
+            )?;
+            d.set_item("profile", s.robot().name.clone())?;
+            Ok(())
+        })??;
+        Ok(d)
     }
 
     /// `step`, then what a gym step returns, in one call: the readings (float32, the distance
@@ -97,16 +205,19 @@ impl PySimulator {
         enter(|| {
             // The bounds are read before the simulator is taken: reading them may run Python
             // code (a property of the argument) that uses this simulator.
-            let width = self
-                .inner
-                .with(|s| s.distance_sensors().len() + s.ground_sensors().len())?;
+            let width = self.inner.with(|s| {
+                let r = &s.robots()[0];
+                r.distance_sensors().len() + r.ground_sensors().len()
+            })?;
             let low = readable::<f32>(low, "low", "float32", &[width])?;
             let high = readable::<f32>(high, "high", "float32", &[width])?;
             let contiguous = |name: &str| invalid(format!("expected {name} to be contiguous"));
             let low = low.as_slice().map_err(|_| contiguous("low"))?;
             let high = high.as_slice().map_err(|_| contiguous("high"))?;
             self.inner.with(|s| {
-                s.step(left, right).py()?;
+                s.set_command(0, left, right).py()?;
+                s.step_commanded().py()?;
+                let s = &s.robots()[0];
                 let readings: Vec<f32> = (s.distance_sensors().iter())
                     .chain(s.ground_sensors())
                     .zip(low.iter().zip(high))
@@ -123,41 +234,71 @@ impl PySimulator {
         })
     }
 
-    /// Sets the pose every later reset starts from (instead of the world's start).
-    fn set_start(&self, x: Real, y: Real, yaw: Real) -> PyResult<()> {
+    /// Sets the pose every later reset starts robot `robot_index` from (instead of the world's start).
+    #[pyo3(signature = (x, y, yaw, robot_index = IntArg::ZERO))]
+    fn set_start(&self, x: Real, y: Real, yaw: Real, robot_index: IntArg) -> PyResult<()> {
         let (x, y, yaw) = (x.value("x")?, y.value("y")?, yaw.value("yaw")?);
-        enter(|| self.inner.with(|s| s.set_start(x, y, yaw))?.py())
+        enter(|| {
+            let index = robot_index.count("robot_index", usize::MAX)?;
+            self.inner.with(|s| s.set_start(index, x, y, yaw))?.py()
+        })
     }
 
-    /// Sets the goal disc, centre (x, y) and radius in metres, instead of the world's.
-    fn set_goal(&self, x: Real, y: Real, radius: Real) -> PyResult<()> {
+    /// Sets robot `robot_index`'s goal disc, centre (x, y) and radius in metres, instead of the world's.
+    #[pyo3(signature = (x, y, radius, robot_index = IntArg::ZERO))]
+    fn set_goal(&self, x: Real, y: Real, radius: Real, robot_index: IntArg) -> PyResult<()> {
         let (x, y, radius) = (x.value("x")?, y.value("y")?, radius.value("radius")?);
-        enter(|| self.inner.with(|s| s.set_goal(x, y, radius))?.py())
+        enter(|| {
+            let index = robot_index.count("robot_index", usize::MAX)?;
+            self.inner
+                .with(|s| s.robot_mut(index).and_then(|r| r.set_goal(x, y, radius)))?
+                .py()
+        })
     }
 
     /// The goal disc (x, y, radius) the episodes end at (`set_goal`'s, else the world's), or None.
     #[getter]
     fn goal(&self) -> PyResult<Option<(f64, f64, f64)>> {
         enter(|| {
-            self.inner
-                .with(|s| s.goal().map(|g| (g.center[0], g.center[1], g.radius)))
+            self.inner.with(|s| {
+                let goal = s.robots()[0].goal();
+                goal.map(|g| (g.center[0], g.center[1], g.radius))
+            })
         })
     }
 
-    /// Moves the robot to (x, y, yaw) at rest and reads the sensors there.
-    fn set_pose(&self, x: Real, y: Real, yaw: Real) -> PyResult<()> {
+    /// Moves robot `robot_index` to (x, y, yaw) at rest and reads the sensors there.
+    #[pyo3(signature = (x, y, yaw, robot_index = IntArg::ZERO))]
+    fn set_pose(&self, x: Real, y: Real, yaw: Real, robot_index: IntArg) -> PyResult<()> {
         let (x, y, yaw) = (x.value("x")?, y.value("y")?, yaw.value("yaw")?);
-        enter(|| self.inner.with(|s| s.set_pose(x, y, yaw))?.py())
+        enter(|| {
+            let index = robot_index.count("robot_index", usize::MAX)?;
+            self.inner.with(|s| s.set_pose(index, x, y, yaw))?.py()
+        })
     }
 
-    /// Distance sensor readings (float32), device order.
-    fn distance_sensors<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f32>>> {
-        self.read(|s| PyArray1::from_slice(py, s.distance_sensors()))
+    /// Robot `robot`'s distance sensor readings (float32), device order.
+    #[pyo3(signature = (robot_index = IntArg::ZERO))]
+    fn distance_sensors<'py>(
+        &self,
+        py: Python<'py>,
+        robot_index: IntArg,
+    ) -> PyResult<Bound<'py, PyArray1<f32>>> {
+        self.read_robot(robot_index, |s| {
+            PyArray1::from_slice(py, s.distance_sensors())
+        })
     }
 
-    /// Ground sensor readings (float32), device order.
-    fn ground_sensors<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f32>>> {
-        self.read(|s| PyArray1::from_slice(py, s.ground_sensors()))
+    /// Robot `robot`'s ground sensor readings (float32), device order.
+    #[pyo3(signature = (robot_index = IntArg::ZERO))]
+    fn ground_sensors<'py>(
+        &self,
+        py: Python<'py>,
+        robot_index: IntArg,
+    ) -> PyResult<Bound<'py, PyArray1<f32>>> {
+        self.read_robot(robot_index, |s| {
+            PyArray1::from_slice(py, s.ground_sensors())
+        })
     }
 
     #[getter]
@@ -214,10 +355,16 @@ impl PySimulator {
         self.read(|s| s.last_crossing())
     }
 
-    /// Barcode crossings since reset: dicts of checkpoint, direction ("arrival" along the
-    /// checkpoint's yaw, "departure" against it), step and time.
-    fn crossings<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
-        let (list, dt) = self.read(|s| (s.crossings().to_vec(), s.control_step()))?;
+    /// Robot `robot`'s barcode crossings since reset: dicts of checkpoint, direction ("arrival"
+    /// along the checkpoint's yaw, "departure" against it), step and time.
+    #[pyo3(signature = (robot_index = IntArg::ZERO))]
+    fn crossings<'py>(
+        &self,
+        py: Python<'py>,
+        robot_index: IntArg,
+    ) -> PyResult<Vec<Bound<'py, PyDict>>> {
+        let (list, dt) =
+            self.read_robot(robot_index, |s| (s.crossings().to_vec(), s.control_step()))?;
         list.iter()
             .map(|c| {
                 let d = PyDict::new(py);
@@ -250,6 +397,7 @@ impl PySimulator {
     /// The whole state as bytes, for `restore` (pose, velocities, rapier's contact state, noise
     /// stream, time, counters, barcode tracker, readings).
     fn snapshot<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyBytes>> {
+        self.one_robot(ONE_ROBOT_ONLY)?;
         let bytes = self.read(|s| s.snapshot())?;
         Ok(PyBytes::new(py, &bytes))
     }
@@ -257,8 +405,12 @@ impl PySimulator {
     /// Puts the simulator in the state of a `snapshot` of a simulator of the same world, robot
     /// profile, control step and noise setting; it then goes on exactly as that one would.
     fn restore(&self, py: Python<'_>, snapshot: Bytes) -> PyResult<()> {
+        self.one_robot(ONE_ROBOT_ONLY)?;
         let snapshot = enter(|| snapshot.value("snapshot", "bytes"))?.0;
-        enter_detached(py, || self.inner.with_detached(|s| s.restore(&snapshot)))
+        enter_detached(py, || {
+            self.inner
+                .with_detached(|s| s.robot_mut(0)?.restore(&snapshot))
+        })
     }
 
     /// An independent simulator in the same state, sharing the (immutable) world.
@@ -279,6 +431,7 @@ impl PySimulator {
     fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyTuple>> {
         let py = slf.py();
         let this = slf.get();
+        this.one_robot(ONE_ROBOT_ONLY)?;
         let (world, robot, config, snapshot) = this.read(|s| {
             (
                 s.world().clone(),
@@ -303,9 +456,15 @@ impl PySimulator {
     }
 
     fn __repr__(&self) -> PyResult<String> {
-        self.read(|s| {
+        self.swarm(|w| {
+            let s = &w.robots()[0];
+            let robots = if w.len() > 1 {
+                format!(", robots={}", w.len())
+            } else {
+                String::new()
+            };
             format!(
-                "Simulator(world={:?}, robot={:?}, time={:.3})",
+                "Simulator(world={:?}, robot={:?}{robots}, time={:.3})",
                 s.world().name(),
                 s.robot().name,
                 s.time()

@@ -134,6 +134,25 @@ impl PyWorld {
         })
     }
 
+    /// The robots the world places, in order: dicts of "name", "start" (x, y, yaw) and
+    /// "profile" (a built-in profile's name, or None for the simulator's).
+    #[getter]
+    fn robots<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, pyo3::types::PyDict>>> {
+        enter(|| {
+            self.inner
+                .robots()
+                .iter()
+                .map(|r| {
+                    let d = pyo3::types::PyDict::new(py);
+                    d.set_item("name", &r.name)?;
+                    d.set_item("start", (r.start[0], r.start[1], r.start[2]))?;
+                    d.set_item("profile", r.profile.as_deref())?;
+                    Ok(d)
+                })
+                .collect()
+        })
+    }
+
     #[getter]
     fn goal(&self) -> PyResult<Option<(f64, f64, f64)>> {
         enter(|| {

@@ -1,8 +1,10 @@
 //! One robot in one world: physics, sensors, time and counters, stepped in control steps.
 
+mod neighbours;
 mod rig;
 mod snapshot;
 
+pub use neighbours::{Neighbour, Others, ROBOT_CONTACT_GAP, ROBOT_REFLECTANCE};
 pub use rig::Rig;
 
 use std::sync::Arc;
@@ -52,6 +54,19 @@ fn check_free(world: &World, robot: &RobotProfile, what: &str, pose: [f64; 3]) -
     Ok(())
 }
 
+/// The wheel command of one control step, between `Simulator::command` and `finish_step`.
+#[derive(Debug, Clone, Copy)]
+pub struct Drive {
+    /// Wheel speeds (rad/s) after the motors' gains.
+    wheels: [f32; 2],
+    /// Forward speed, m/s.
+    linear: f32,
+    /// Turn rate, rad/s.
+    angular: f32,
+    /// Whether the body touched a wall or a robot in a physics step so far.
+    any_contact: bool,
+}
+
 /// How a simulator is set up.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SimConfig {
@@ -96,7 +111,10 @@ pub struct Simulator {
     steps: u64,
     collisions: u64,
     colliding: bool,
+    /// Touching a wall now.
     touching: bool,
+    /// Touching another robot now (always false in a world of one robot).
+    touching_robot: bool,
     clearance: f32,
     distance_travelled: f64,
     wheel_speeds: [f32; 2],
@@ -183,6 +201,7 @@ impl Simulator {
             collisions: 0,
             colliding: false,
             touching: false,
+            touching_robot: false,
             clearance: 0.0,
             distance_travelled: 0.0,
             wheel_speeds: [0.0; 2],
@@ -264,6 +283,7 @@ impl Simulator {
         self.pose = self.body.pose();
         self.heading = self.body.heading();
         self.update_contact();
+        self.touching_robot = false;
         self.colliding = self.touching;
         if let Some(at) = self.barcode_sensor_position() {
             self.tracker.place(self.world.checkpoints(), at);
@@ -305,6 +325,22 @@ impl Simulator {
     /// then turns at its motor's gain (the profile's `motor_gains`) times its clamped speed, and
     /// while the body touches a wall it moves only `1 - slip_on_contact` of the wheels' motion.
     pub fn step(&mut self, left: f64, right: f64) -> Result<()> {
+        let mut drive = self.command(left, right)?;
+        for k in 1..=self.physics_steps {
+            let before = self.physics_move(&drive, Others::NONE);
+            self.physics_settle(&mut drive, k, before, Others::NONE);
+        }
+        self.finish_step(&drive);
+        Ok(())
+    }
+
+    /// Physics steps per control step.
+    pub fn physics_steps(&self) -> u32 {
+        self.physics_steps
+    }
+
+    /// Takes the wheel speeds of a control step (see `step`) and starts it.
+    pub fn command(&mut self, left: f64, right: f64) -> Result<Drive> {
         let wl = self.clamp_speed("left", left)?;
         let wr = self.clamp_speed("right", right)?;
         self.wheel_speeds = [wl, wr];
@@ -312,65 +348,112 @@ impl Simulator {
         let [gl, gr] = self.robot.motor_gains;
         let (wl, wr) = ((wl as f64 * gl) as f32, (wr as f64 * gr) as f32);
         let r = self.robot.wheel_radius as f32;
-        let linear = r * (wl + wr) / 2.0;
-        let angular = r * (wr - wl) / self.robot.axle_length as f32;
-        let slip = self.robot.slip_on_contact;
-        let kept = (1.0 - slip) as f32;
-        let mut any_contact = false;
         self.last_crossing = 0;
-        for k in 1..=self.physics_steps {
-            let before = self.pose;
-            // In contact with a wall, the wheels slip: the body moves `kept` of their motion.
-            let (linear, angular) = if slip > 0.0 && self.touching {
-                (linear * kept, angular * kept)
-            } else {
-                (linear, angular)
-            };
+        Ok(Drive {
+            wheels: [wl, wr],
+            linear: r * (wl + wr) / 2.0,
+            angular: r * (wr - wl) / self.robot.axle_length as f32,
+            any_contact: false,
+        })
+    }
+
+    /// Moves the body one physics step of `drive`, held back by the `others` robots at their
+    /// poses before the step; returns the pose before it.
+    #[inline]
+    pub fn physics_move(&mut self, drive: &Drive, others: Others<'_>) -> [f32; 3] {
+        let before = self.pose;
+        let slip = self.robot.slip_on_contact;
+        // In contact with a wall, the wheels slip: the body moves `kept` of their motion.
+        let (linear, angular) = if slip > 0.0 && self.touching {
+            let kept = (1.0 - slip) as f32;
+            (drive.linear * kept, drive.angular * kept)
+        } else {
+            (drive.linear, drive.angular)
+        };
+        if others.is_empty() {
             self.body
                 .step(linear, angular, self.clearance, self.world.wall_index());
-            self.pose = self.body.pose();
-            self.heading = self.body.heading();
-            let dx = (self.pose[0] - before[0]) as f64;
-            let dy = (self.pose[1] - before[1]) as f64;
-            self.distance_travelled += (dx * dx + dy * dy).sqrt();
-            self.wheel_angles[0] += wl as f64 * self.dt;
-            self.wheel_angles[1] += wr as f64 * self.dt;
-            let was_touching = self.touching;
-            if k < self.physics_steps {
-                self.update_contact();
-            } else {
-                // The last physics step: contact and every sensor together.
-                self.sense();
-            }
-            if self.touching && !was_touching {
-                self.collisions += 1;
-            }
-            any_contact |= self.touching;
-            if let Some(at) = self.barcode_sensor_position() {
-                if let Some(c) = self
-                    .tracker
-                    .update(self.world.checkpoints(), at, self.steps + 1)
-                {
-                    self.last_crossing = c.signed_id();
-                    self.crossings.push(c);
-                }
+        } else {
+            let [s, c] = self.heading;
+            let wanted = [c * linear, s * linear];
+            let centre = [self.pose[0], self.pose[1]];
+            let radius = self.robot.body_radius as f32;
+            let v = others.yield_velocity(centre, radius, wanted, self.dt as f32);
+            let speed = (v[0] * v[0] + v[1] * v[1]).sqrt();
+            let walls = self.world.wall_index();
+            self.body.drive(v, speed, angular, self.clearance, walls);
+        }
+        self.pose = self.body.pose();
+        self.heading = self.body.heading();
+        before
+    }
+
+    /// Ends physics step `k` of the control step (its last: every sensor is read) once every
+    /// robot has moved: contacts with the walls and the `others` robots, bumps, distance, wheel
+    /// angles and barcode crossings.
+    #[inline]
+    pub fn physics_settle(
+        &mut self,
+        drive: &mut Drive,
+        k: u32,
+        before: [f32; 3],
+        others: Others<'_>,
+    ) {
+        let dx = (self.pose[0] - before[0]) as f64;
+        let dy = (self.pose[1] - before[1]) as f64;
+        self.distance_travelled += (dx * dx + dy * dy).sqrt();
+        self.wheel_angles[0] += drive.wheels[0] as f64 * self.dt;
+        self.wheel_angles[1] += drive.wheels[1] as f64 * self.dt;
+        let was_touching = self.touching || self.touching_robot;
+        if k < self.physics_steps {
+            self.update_contact();
+        } else {
+            // The last physics step: contact and every sensor together.
+            self.sense_among_robots(others);
+        }
+        if !others.is_empty() {
+            let radius = self.robot.body_radius as f32;
+            let gap = others.gap([self.pose[0], self.pose[1]], radius);
+            self.touching_robot = gap < ROBOT_CONTACT_GAP;
+        }
+        let touching = self.touching || self.touching_robot;
+        if touching && !was_touching {
+            self.collisions += 1;
+        }
+        drive.any_contact |= touching;
+        if let Some(at) = self.barcode_sensor_position() {
+            if let Some(c) = self
+                .tracker
+                .update(self.world.checkpoints(), at, self.steps + 1)
+            {
+                self.last_crossing = c.signed_id();
+                self.crossings.push(c);
             }
         }
-        self.colliding = any_contact;
+    }
+
+    /// Ends the control step that `command` started.
+    #[inline]
+    pub fn finish_step(&mut self, drive: &Drive) {
+        self.colliding = drive.any_contact;
         self.steps += 1;
         self.time = self.steps as f64 * self.physics_steps as f64 * self.dt;
-        Ok(())
     }
 
     /// Updates the clearance (as `update_contact`) and reads every sensor at the current pose. The
     /// walls near the robot are gathered once, over a square holding every sensor ray and the
     /// clearance search square, and all those queries run against them.
     fn sense(&mut self) {
-        rig::NEARBY.with_borrow_mut(|near| self.sense_among(near));
+        self.sense_among_robots(Others::NONE);
     }
 
-    /// `sense` with `near` to gather the walls into.
-    fn sense_among(&mut self, near: &mut NearbyWalls) {
+    /// `sense`, the infra-red rays meeting the `others` robots as well as the walls.
+    fn sense_among_robots(&mut self, others: Others<'_>) {
+        rig::NEARBY.with_borrow_mut(|near| self.sense_among(near, others));
+    }
+
+    /// `sense_among_robots` with `near` to gather the walls into.
+    fn sense_among(&mut self, near: &mut NearbyWalls, others: Others<'_>) {
         let [x, y, _] = self.pose;
         let [s, c] = self.heading;
         let robot = &*self.robot;
@@ -394,6 +477,16 @@ impl Simulator {
                 }
             }
         }
+        if !others.is_empty() {
+            for (hit, &[px, py, dx, dy, length]) in self.ray_hits.iter_mut().zip(&rig.sensor_rays) {
+                let origin = [x + c * px - s * py, y + s * px + c * py];
+                let dir = [c * dx - s * dy, s * dx + c * dy];
+                let limit = hit.map_or(length, |h| h.distance);
+                if let Some(robot_hit) = others.cast_ray(origin, dir, limit) {
+                    *hit = Some(robot_hit);
+                }
+            }
+        }
         let readings = self.distance_readings.iter_mut();
         let sensors = robot.distance_sensors.iter().zip(&rig.infrared_miss);
         for ((reading, (sensor, &miss)), &hit) in readings.zip(sensors).zip(&self.ray_hits) {
@@ -409,6 +502,27 @@ impl Simulator {
             self.ground_readings[i] =
                 reader.read(&sensor.model, world.floor(), at, [cd, sd], imperfect, rng);
         }
+    }
+
+    /// Reads every sensor again at the current pose with the `others` robots where they stand,
+    /// and whether the body touches one of them.
+    pub fn sense_robots(&mut self, others: Others<'_>) {
+        self.sense_among_robots(others);
+        let radius = self.robot.body_radius as f32;
+        let gap = others.gap([self.pose[0], self.pose[1]], radius);
+        self.touching_robot = gap < ROBOT_CONTACT_GAP;
+        self.colliding |= self.touching_robot;
+    }
+
+    /// Whether the body touches another robot now.
+    pub fn touching_robot(&self) -> bool {
+        self.touching_robot
+    }
+
+    /// The pose `reset` starts from (`set_start`'s, else the world's start).
+    pub fn start_pose(&self) -> [f64; 3] {
+        self.start_override
+            .map_or(self.world.start(), |p| p.map(f64::from))
     }
 
     /// Reads the memory the next step reads first (the walls near the robot), so that a batch can

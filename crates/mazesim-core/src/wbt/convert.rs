@@ -83,6 +83,7 @@ impl WbtImport {
                 y: Finite(y),
                 yaw: Finite(yaw),
             }),
+            robots: Vec::new(),
             goal: None,
             grid: None,
             barcode: None,

@@ -51,6 +51,11 @@ pub(super) fn line_offset(text: &str, prefix: &str, nth: usize) -> usize {
 }
 
 impl ExtentCheck<'_> {
+    /// The format error of `field` at `place`, saying `message`.
+    pub fn refused(&self, place: Place<'_>, field: &str, message: String) -> Error {
+        self.refuse(place, field, message)
+    }
+
     fn refuse(&self, place: Place<'_>, field: &str, message: String) -> Error {
         let offset = match place {
             Place::Array(name, n) => line_offset(self.text, &format!("[[{name}]]"), n),

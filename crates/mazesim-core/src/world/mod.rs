@@ -10,6 +10,7 @@ pub mod geometry;
 pub mod grid;
 pub mod locate;
 pub mod nearby;
+pub mod robots;
 pub mod spec;
 pub mod values;
 pub mod walls;
@@ -22,6 +23,7 @@ pub use floor::{FloorPaint, PaintRegion};
 pub use geometry::{Bounds, PaintShape, WallBox};
 pub use grid::CellMaze;
 pub use nearby::{NearbyWalls, RayFan};
+pub use robots::RobotPlacement;
 pub use spec::WorldSpec;
 pub use walls::{RayHit, WallIndex};
 
@@ -84,6 +86,8 @@ pub struct World {
     checkpoints: Vec<Checkpoint>,
     goal: Option<Goal>,
     start: [f64; 3],
+    /// The robots: one at `start`, or those of `[[robots]]` (the first at `start`).
+    robots: Vec<RobotPlacement>,
     bounds: Bounds,
     maze: Option<PlacedMaze>,
     /// Movable bodies at their start poses, in file order.
@@ -380,14 +384,18 @@ impl World {
             goal = Some(Goal { center, radius });
         }
         let start = start.unwrap_or([0.0, 0.0, 0.0]);
+        let robots = robots::compile(&spec.robots, start, spec.start.is_some(), &check)?;
+        let start = robots[0].start;
         let bodies = bodies::compile(&spec.bodies, &check)?;
         let mut bounds = walls.iter().fold(Bounds::EMPTY, |b, w| b.union(w.bounds()));
         bounds = regions
             .iter()
             .fold(bounds, |b, r| b.union(r.shape.bounds()));
-        bounds = bounds.union(Bounds {
-            min: [start[0], start[1]],
-            max: [start[0], start[1]],
+        bounds = robots.iter().fold(bounds, |b, r| {
+            b.union(Bounds {
+                min: [r.start[0], r.start[1]],
+                max: [r.start[0], r.start[1]],
+            })
         });
         if let Some(g) = goal {
             bounds = bounds.union(Bounds {
@@ -418,6 +426,7 @@ impl World {
             checkpoints,
             goal,
             start,
+            robots,
             bounds,
             maze,
             bodies,
@@ -452,6 +461,7 @@ impl World {
             + vec_bytes(&spec.paint)
             + vec_bytes(&spec.checkpoints)
             + vec_bytes(&spec.bodies)
+            + vec_bytes(&spec.robots)
             + spec
                 .checkpoints
                 .iter()
@@ -475,6 +485,7 @@ impl World {
                 .sum::<usize>()
             + maze
             + vec_bytes(&self.bodies)
+            + vec_bytes(&self.robots)
     }
 
     /// Writes the world file atomically (a temporary file in the same folder, then a rename).
@@ -532,9 +543,14 @@ impl World {
         self.goal
     }
 
-    /// Start pose (x, y, yaw).
+    /// Start pose (x, y, yaw): that of the first robot.
     pub fn start(&self) -> [f64; 3] {
         self.start
+    }
+
+    /// The robots the world places, at least one (see `robots`).
+    pub fn robots(&self) -> &[RobotPlacement] {
+        &self.robots
     }
 
     /// Bounds of walls, paint, start and goal.

@@ -35,9 +35,13 @@ pub struct WorldSpec {
     /// Background floor.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub floor: Option<FloorSpec>,
-    /// Robot start pose.
+    /// Robot start pose (a world of one robot).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub start: Option<StartSpec>,
+    /// The robots of a world of several, each with its name, start and profile (instead of
+    /// `start`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub robots: Vec<RobotSpec>,
     /// The goal disc.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub goal: Option<GoalSpec>,
@@ -83,6 +87,24 @@ pub struct StartSpec {
     /// Heading in radians.
     #[serde(default = "zero")]
     pub yaw: Finite,
+}
+
+/// `[[robots]]`: one robot of a world of several.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RobotSpec {
+    /// Its name, unique in the world.
+    pub name: String,
+    /// Start x in metres.
+    pub x: Finite,
+    /// Start y in metres.
+    pub y: Finite,
+    /// Start heading in radians.
+    #[serde(default = "zero")]
+    pub yaw: Finite,
+    /// The name of a built-in robot profile; the simulator's profile when absent.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub profile: Option<String>,
 }
 
 fn zero() -> Finite {

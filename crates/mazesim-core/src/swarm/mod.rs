@@ -1,0 +1,385 @@
+//! Several robots in one world, stepped together: each with its own profile, start, noise stream
+//! and wheel command; they collide with each other and their infra-red rays see each other
+//! (`crate::simulator::Others`).
+//!
+//! A swarm is a list of simulators of one world, one per robot the world places
+//! (`World::robots`), stepped in lockstep: every physics step, each robot moves held back by the
+//! others at their poses before the step, then each settles its contacts and, at the end of the
+//! control step, reads its sensors with every robot where it ended. A world of one robot is
+//! stepped by that robot's own `Simulator::step`, at no extra cost.
+//!
+//! Noise streams: robot 0 draws from the seed itself (so a world of one robot runs as a plain
+//! simulator does); robot `i > 0` from [`robot_seed`], a stream derived from the seed and the
+//! robot's name.
+
+mod batch;
+
+use std::cell::RefCell;
+use std::sync::Arc;
+
+use crate::error::{Error, Result};
+use crate::fingerprint::fnv1a;
+use crate::robot::RobotProfile;
+use crate::simulator::{Drive, Neighbour, Others, Rig, SimConfig, Simulator, START_OVERLAP};
+use crate::world::World;
+
+/// The seed of the noise stream of robot `index`, named `name`, of a world run with `seed`: the
+/// seed itself for robot 0, and for the others the first SplitMix64 output of the seed mixed with
+/// a hash of `robot/NAME`, so that each robot's stream depends on its name, not on its place in
+/// the list.
+pub fn robot_seed(seed: u64, index: usize, name: &str) -> u64 {
+    if index == 0 {
+        seed
+    } else {
+        crate::rng::next_seed(seed ^ fnv1a(format!("robot/{name}").as_bytes()))
+    }
+}
+
+thread_local! {
+    /// Per-step workspace of the lockstep (robots' discs, drives, poses before the step), one per
+    /// thread, so that a swarm holds none of it.
+    static WORKSPACE: RefCell<Workspace> = RefCell::new(Workspace::default());
+}
+
+#[derive(Default)]
+struct Workspace {
+    discs: Vec<Neighbour>,
+    drives: Vec<Drive>,
+    before: Vec<[f32; 3]>,
+}
+
+/// The robots' discs at their current poses.
+fn discs_of(robots: &[Simulator], discs: &mut Vec<Neighbour>) {
+    discs.clear();
+    discs.extend(robots.iter().map(|r| {
+        let [x, y, _] = r.pose();
+        Neighbour {
+            center: [x, y],
+            radius: r.robot().body_radius as f32,
+        }
+    }));
+}
+
+/// Steps the robots of one world one control step together, robot `i` with wheel speeds
+/// `command(i)` (rad/s, left and right). Every command is checked before any robot moves.
+pub fn step_robots(robots: &mut [Simulator], command: impl Fn(usize) -> [f64; 2]) -> Result<()> {
+    if let [only] = robots {
+        let [left, right] = command(0);
+        return only.step(left, right);
+    }
+    for i in 0..robots.len() {
+        let [left, right] = command(i);
+        if !(left.is_finite() && right.is_finite()) {
+            return Err(Error::InvalidAction(format!(
+                "expected finite wheel speeds in rad/s, found ({left}, {right}) for robot {i}"
+            )));
+        }
+    }
+    WORKSPACE.with_borrow_mut(|w| {
+        w.drives.clear();
+        for (i, robot) in robots.iter_mut().enumerate() {
+            let [left, right] = command(i);
+            w.drives.push(robot.command(left, right)?);
+        }
+        let steps = robots[0].physics_steps();
+        for k in 1..=steps {
+            discs_of(robots, &mut w.discs);
+            w.before.clear();
+            for (i, (robot, drive)) in robots.iter_mut().zip(&w.drives).enumerate() {
+                let others = Others {
+                    all: &w.discs,
+                    me: i,
+                };
+                w.before.push(robot.physics_move(drive, others));
+            }
+            discs_of(robots, &mut w.discs);
+            let moved = robots.iter_mut().zip(w.drives.iter_mut()).zip(&w.before);
+            for (i, ((robot, drive), &before)) in moved.enumerate() {
+                let others = Others {
+                    all: &w.discs,
+                    me: i,
+                };
+                robot.physics_settle(drive, k, before, others);
+            }
+        }
+        for (robot, drive) in robots.iter_mut().zip(&w.drives) {
+            robot.finish_step(drive);
+        }
+        Ok(())
+    })
+}
+
+/// Reads every robot's sensors again with the others where they stand (after a reset or a move).
+pub fn sense_robots(robots: &mut [Simulator]) {
+    if robots.len() < 2 {
+        return;
+    }
+    WORKSPACE.with_borrow_mut(|w| {
+        discs_of(robots, &mut w.discs);
+        for (i, robot) in robots.iter_mut().enumerate() {
+            robot.sense_robots(Others {
+                all: &w.discs,
+                me: i,
+            });
+        }
+    });
+}
+
+/// Resets the robots of one world, each with its stream of `seed` when given (see
+/// [`robot_seed`]).
+pub fn reset_robots(robots: &mut [Simulator], names: &[String], seed: Option<u64>) {
+    for (i, robot) in robots.iter_mut().enumerate() {
+        robot.reset(seed.map(|s| robot_seed(s, i, &names[i])));
+    }
+    sense_robots(robots);
+}
+
+/// The simulators of the robots of `world`, robot `i` with `rigs[i]` and its stream of `config`'s
+/// seed. Refused: more rigs than robots or fewer, a world of several robots with movable bodies,
+/// robots whose bodies overlap at their starts.
+pub fn make_robots(
+    world: &Arc<World>,
+    rigs: &[Arc<Rig>],
+    config: SimConfig,
+) -> Result<Vec<Simulator>> {
+    let placements = world.robots();
+    if rigs.len() != placements.len() {
+        return Err(Error::InvalidArgument(format!(
+            "expected one robot profile per robot of world {:?} ({}), found {}",
+            world.name(),
+            placements.len(),
+            rigs.len()
+        )));
+    }
+    if placements.len() == 1 {
+        return Ok(vec![Simulator::with_rig(
+            world.clone(),
+            rigs[0].clone(),
+            config,
+        )?]);
+    }
+    if !world.bodies().is_empty() {
+        return Err(Error::InvalidArgument(format!(
+            "expected a world of several robots without movable bodies (not supported yet), found \
+             {} robots and {} movable bodies in {:?}",
+            placements.len(),
+            world.bodies().len(),
+            world.name()
+        )));
+    }
+    let mut robots = Vec::with_capacity(placements.len());
+    for (i, (placement, rig)) in placements.iter().zip(rigs).enumerate() {
+        let seed = robot_seed(config.seed, i, &placement.name);
+        let mut sim =
+            Simulator::with_rig(world.clone(), rig.clone(), SimConfig { seed, ..config })?;
+        let [x, y, yaw] = placement.start;
+        sim.set_start(x, y, yaw)
+            .map_err(|e| name_robot(e, &placement.name))?;
+        sim.reset(None);
+        robots.push(sim);
+    }
+    let starts: Vec<[f64; 3]> = placements.iter().map(|p| p.start).collect();
+    for i in 0..robots.len() {
+        check_apart(&robots, i, starts[i], |j| starts[j], "start")?;
+    }
+    sense_robots(&mut robots);
+    Ok(robots)
+}
+
+/// `error` with the robot named in its message.
+fn name_robot(error: Error, name: &str) -> Error {
+    match error {
+        Error::InvalidArgument(m) => Error::InvalidArgument(format!("robot {name:?}: {m}")),
+        other => other,
+    }
+}
+
+/// Refuses pose `at` of robot `i` when its body would overlap another robot's at `pose_of(j)`
+/// by more than `START_OVERLAP` (`what` names the poses).
+fn check_apart(
+    robots: &[Simulator],
+    i: usize,
+    at: [f64; 3],
+    pose_of: impl Fn(usize) -> [f64; 3],
+    what: &str,
+) -> Result<()> {
+    let ri = robots[i].robot().body_radius;
+    for (j, other) in robots.iter().enumerate() {
+        if j == i {
+            continue;
+        }
+        let p = pose_of(j);
+        let d = ((at[0] - p[0]).powi(2) + (at[1] - p[1]).powi(2)).sqrt();
+        let overlap = ri + other.robot().body_radius - d;
+        if overlap > START_OVERLAP {
+            return Err(Error::InvalidArgument(format!(
+                "expected robots whose bodies do not overlap, found robot {i} at {what} ({}, {}) \
+                 overlapping robot {j} at ({}, {}) by {overlap:.4} m",
+                at[0], at[1], p[0], p[1]
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// Several robots in one world (see the module notes).
+pub struct Swarm {
+    robots: Vec<Simulator>,
+    names: Vec<String>,
+    /// Each robot's wheel command, kept from step to step (as a Webots motor keeps its velocity).
+    commands: Vec<[f64; 2]>,
+}
+
+impl Swarm {
+    /// The robots of `world`: each of the profile its placement names, else `robot`.
+    pub fn new(world: Arc<World>, robot: Arc<RobotProfile>, config: SimConfig) -> Result<Swarm> {
+        let mut rigs: Vec<Arc<Rig>> = Vec::new();
+        let default = Rig::new(robot);
+        for placement in world.robots() {
+            let rig = match &placement.profile {
+                None => default.clone(),
+                Some(name) => match rigs.iter().find(|r| &r.robot().name == name) {
+                    Some(r) => r.clone(),
+                    None => Rig::new(Arc::new(RobotProfile::builtin(name)?)),
+                },
+            };
+            rigs.push(rig);
+        }
+        Self::with_rigs(world, &rigs, config)
+    }
+
+    /// The robots of `world`, robot `i` with `rigs[i]`.
+    pub fn with_rigs(world: Arc<World>, rigs: &[Arc<Rig>], config: SimConfig) -> Result<Swarm> {
+        let robots = make_robots(&world, rigs, config)?;
+        let names = world.robots().iter().map(|p| p.name.clone()).collect();
+        Ok(Swarm {
+            commands: vec![[0.0; 2]; robots.len()],
+            robots,
+            names,
+        })
+    }
+
+    /// Number of robots, at least 1.
+    pub fn len(&self) -> usize {
+        self.robots.len()
+    }
+
+    /// Never true: a swarm has a robot at least.
+    pub fn is_empty(&self) -> bool {
+        self.robots.is_empty()
+    }
+
+    /// The robots' names, in world order.
+    pub fn names(&self) -> &[String] {
+        &self.names
+    }
+
+    /// The robots' simulators, in world order.
+    pub fn robots(&self) -> &[Simulator] {
+        &self.robots
+    }
+
+    /// Robot `index`, or an error naming the valid indices.
+    pub fn robot(&self, index: usize) -> Result<&Simulator> {
+        let n = self.robots.len();
+        self.robots.get(index).ok_or_else(|| bad_index(index, n))
+    }
+
+    /// Robot `index` to change (its goal, say); moving it goes through `set_pose`.
+    pub fn robot_mut(&mut self, index: usize) -> Result<&mut Simulator> {
+        let n = self.robots.len();
+        self.robots
+            .get_mut(index)
+            .ok_or_else(|| bad_index(index, n))
+    }
+
+    /// Sets robot `index`'s wheel command for the next steps (rad/s; checked when stepped).
+    pub fn set_command(&mut self, index: usize, left: f64, right: f64) -> Result<()> {
+        self.robot(index)?;
+        self.commands[index] = [left, right];
+        Ok(())
+    }
+
+    /// Robot `index`'s wheel command.
+    pub fn command(&self, index: usize) -> Result<[f64; 2]> {
+        self.robot(index)?;
+        Ok(self.commands[index])
+    }
+
+    /// One control step with every robot at its wheel command.
+    pub fn step_commanded(&mut self) -> Result<()> {
+        let commands = &self.commands;
+        step_robots(&mut self.robots, |i| commands[i])
+    }
+
+    /// One control step, robot `i` at wheel speeds `commands[i]` (kept as its command).
+    pub fn step(&mut self, commands: &[[f64; 2]]) -> Result<()> {
+        if commands.len() != self.robots.len() {
+            return Err(Error::InvalidArgument(format!(
+                "expected wheel speeds for each of the {} robots, found {}",
+                self.robots.len(),
+                commands.len()
+            )));
+        }
+        step_robots(&mut self.robots, |i| commands[i])?;
+        self.commands.copy_from_slice(commands);
+        Ok(())
+    }
+
+    /// Back to the starts, time and counters zeroed; new streams of `seed` when given.
+    pub fn reset(&mut self, seed: Option<u64>) {
+        reset_robots(&mut self.robots, &self.names, seed);
+        self.commands.fill([0.0; 2]);
+    }
+
+    /// The seed of the last reset (robot 0's stream).
+    pub fn seed(&self) -> u64 {
+        self.robots[0].config().seed
+    }
+
+    /// Sets robot `index`'s start for later resets; it must be clear of the walls and of the
+    /// other robots' starts.
+    pub fn set_start(&mut self, index: usize, x: f64, y: f64, yaw: f64) -> Result<()> {
+        self.robot(index)?;
+        let starts: Vec<[f64; 3]> = self.robots.iter().map(Simulator::start_pose).collect();
+        check_apart(&self.robots, index, [x, y, yaw], |j| starts[j], "start")?;
+        self.robots[index].set_start(x, y, yaw)
+    }
+
+    /// Moves robot `index` to a pose at rest, clear of the walls and of the other robots; every
+    /// robot's sensors are read again.
+    pub fn set_pose(&mut self, index: usize, x: f64, y: f64, yaw: f64) -> Result<()> {
+        self.robot(index)?;
+        let poses: Vec<[f64; 3]> = (self.robots.iter())
+            .map(|r| r.pose().map(f64::from))
+            .collect();
+        check_apart(&self.robots, index, [x, y, yaw], |j| poses[j], "pose")?;
+        self.robots[index].set_pose(x, y, yaw)?;
+        sense_robots(&mut self.robots);
+        Ok(())
+    }
+
+    /// An independent copy in the same state.
+    pub fn duplicate(&self) -> Result<Swarm> {
+        let robots = self
+            .robots
+            .iter()
+            .map(Simulator::duplicate)
+            .collect::<Result<Vec<_>>>()?;
+        Ok(Swarm {
+            robots,
+            names: self.names.clone(),
+            commands: self.commands.clone(),
+        })
+    }
+}
+
+fn bad_index(index: usize, n: usize) -> Error {
+    Error::InvalidArgument(format!(
+        "expected a robot index from 0 to {}, found {index}",
+        n - 1
+    ))
+}
+
+#[cfg(test)]
+mod tests;
