@@ -129,3 +129,20 @@ def test_the_command_runs_the_whole_world_and_reports_every_robot(tmp_path: Path
     assert {row.split(",")[0] for row in rows[1:]} == set(names)
     assert (out / "trajectory.png").stat().st_size > 0
     assert "far" in result.stdout and "leader.py" in result.stdout
+
+
+def test_e_pucks_driving_head_on_see_each_other_and_do_not_pass_through(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setenv("SWARM_LOG", str(tmp_path))
+    run = run_world(str(SWARM / "worlds" / "head_on.wbt"), seconds=5.0)
+    west, east = run.robots
+    # 0.3 m apart at 4 rad/s (about 8 cm/s each) they meet within 2 s and push, neither passes.
+    assert west.final_pose[0] < east.final_pose[0]
+    gap = east.final_pose[0] - west.final_pose[0]
+    assert 0.06 < gap < 0.09, "bodies of about 7.4 cm touching"
+    for name in ("west", "east"):
+        seen = json.loads((tmp_path / f"{name}.json").read_text())["highest_front_reading"]
+        # Alone in the arena the front sensors read under 120 (the lookup table's 5 cm and
+        # beyond); touching the other e-puck's grey shell they read several hundred.
+        assert seen > 300.0, f"{name}'s front sensors see the other e-puck's body"

@@ -11,15 +11,17 @@ whose controller has ended. A robot that is not an e-puck runs its controller on
 does not move. A supervisor sees and moves every robot through the :class:`Fleet`; its
 ``simulationQuit`` ends every controller's run (``Robot.step`` returns -1).
 
-Until the core simulates several robots in one world, each robot has a simulator of its own in
-the world's walls: robots do not collide with or see each other; the radio and the supervisor
-see them all.
+The e-pucks share one simulator (:mod:`mazesim.webots.shared_world`): they collide with and
+see each other. A world the shared simulator refuses (movable bodies, robots overlapping at
+their starts) runs each robot in a simulator of its own, with a warning: there robots neither
+collide with nor see each other; the radio and the supervisor see them all.
 """
 
 from __future__ import annotations
 
 import multiprocessing
 import os
+import sys
 import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -32,6 +34,7 @@ from mazesim._core import Simulator, World
 from mazesim.errors import MazesimIOError
 from mazesim.webots.controller_process import ControllerJob, answer, controller_main
 from mazesim.webots.radio import Radio
+from mazesim.webots.shared_world import RobotView, shared_simulator
 from mazesim.webots.simulation import robot_profile_name
 
 __all__ = ["Fleet", "RobotRun", "WorldRun", "controller_of", "run_world"]
@@ -105,7 +108,7 @@ class WorldRun:
 class Fleet:
     """The world's robots as a supervisor sees them (answered over the controllers' pipes)."""
 
-    def __init__(self, robots: list[Mapping[str, Any]], simulators: list[Simulator]) -> None:
+    def __init__(self, robots: list[Mapping[str, Any]], simulators: list[Any]) -> None:
         self._robots = robots
         self._simulators = simulators
         self.moved: set[int] = set()
@@ -188,12 +191,24 @@ def run_world(
     if not robots:
         raise MazesimIOError(f"{world_path}: expected a world with robots, found none")
     streams = np.random.SeedSequence(seed).spawn(len(robots))
-    simulators, runs, jobs = [], [], {}
+    e_pucks = [i for i, robot in enumerate(robots) if robot.get("profile") is not None]
+    shared, refusal = shared_simulator(world, robots, e_pucks, seed=seed, noise=noise)
+    if refusal:
+        print(
+            f"mazesim: warning: the e-pucks run in simulators of their own, without seeing or "
+            f"touching each other: {refusal}",
+            file=sys.stderr,
+        )
+    simulators: list[Any] = []
+    runs, jobs = [], {}
     for index, robot in enumerate(robots):
         profile = robot_profile_name({"robot_profile": robot.get("profile")})
-        own_world, _ = import_wbt(world_path, robot_line=int(robot["line"]))
-        robot_seed = int(streams[index].generate_state(1)[0])
-        simulators.append(Simulator(own_world, robot=profile, seed=robot_seed, noise=noise))
+        if shared is not None and index in e_pucks:
+            simulators.append(RobotView(shared, e_pucks.index(index)))
+        else:
+            own_world, _ = import_wbt(world_path, robot_line=int(robot["line"]))
+            robot_seed = int(streams[index].generate_state(1)[0])
+            simulators.append(Simulator(own_world, robot=profile, seed=robot_seed, noise=noise))
         file, note = controller_of(robot, world_path, controllers or {})
         label = robot.get("name") or robot.get("def_name") or robot.get("model")
         runs.append(RobotRun(index, str(label), str(robot.get("model")), file, note))
@@ -220,7 +235,7 @@ def run_world(
 
 def _lockstep(
     jobs: Mapping[int, ControllerJob],
-    simulators: list[Simulator],
+    simulators: list[Any],
     movable: list[bool],
     fleet: Fleet,
     runs: list[RobotRun],
@@ -293,16 +308,21 @@ def _lockstep(
 
 
 def _step_world(
-    simulators: list[Simulator],
+    simulators: list[Any],
     wheels: Mapping[int, tuple[float, float]],
     radio: Radio,
     runs: list[RobotRun],
 ) -> None:
     """One basic step of every robot: the radio's packets, then the motion."""
     radio.transmit({i: tuple(float(v) for v in s.pose) for i, s in enumerate(simulators)})  # type: ignore[misc]
+    views = [(i, s) for i, s in enumerate(simulators) if isinstance(s, RobotView)]
+    if views:
+        commands = np.array([wheels.get(i, (0.0, 0.0)) for i, _ in views], dtype=np.float64)
+        views[0][1].simulator.step_robots(commands)
     for index, simulator in enumerate(simulators):
-        left, right = wheels.get(index, (0.0, 0.0))
-        simulator.step(left, right)
+        if not isinstance(simulator, RobotView):
+            simulator.step(*wheels.get(index, (0.0, 0.0)))
+    for index, simulator in enumerate(simulators):
         x, y, _ = simulator.pose
         runs[index].xs.append(float(x))
         runs[index].ys.append(float(y))
