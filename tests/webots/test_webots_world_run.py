@@ -146,3 +146,14 @@ def test_e_pucks_driving_head_on_see_each_other_and_do_not_pass_through(
         # Alone in the arena the front sensors read under 120 (the lookup table's 5 cm and
         # beyond); touching the other e-puck's grey shell they read several hundred.
         assert seen > 300.0, f"{name}'s front sensors see the other e-puck's body"
+
+
+def test_the_same_seed_gives_the_same_run_whatever_the_processes_timing(
+    leader_and_followers: tuple[object, Path], tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    first, _ = leader_and_followers
+    monkeypatch.setenv("SWARM_LOG", str(tmp_path))
+    again = run_world(str(WORLD), seconds=10.0, seed=3)
+    for one, other in zip(first.robots, again.robots):  # type: ignore[attr-defined]
+        assert (one.xs, one.ys) == (other.xs, other.ys)
+    assert json.loads((tmp_path / "near.json").read_text())["orders"][:31] == ["go"] * 30 + ["stop"]
