@@ -124,6 +124,7 @@ def samples(tmp: Path) -> dict[str, Any]:
         "high": np.full(11, 5000.0, np.float32),
         "steps": 3,
         "controller": "tabular",
+        "robot_line": None,
         "max_episode_steps": 0,
         "end_at_goal": False,
         "end_at_crossing": False,

@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, cast
 
 import numpy as np
 import numpy.typing as npt
+from matplotlib import colormaps
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.collections import PolyCollection
 from matplotlib.figure import Figure
@@ -418,6 +419,44 @@ def save_trajectory_png(
                 zorder=9,
                 label=f"touching a wall ({len(contacts)} steps)",
             )
+    trajectory_legend(ax, world, extra)
+    ax.set_title(world.name if title is None else title)
+    figure.tight_layout()
+    with atomic_file(path) as handle:
+        figure.savefig(handle, format="png")
+
+
+def save_robot_paths_png(
+    world: World,
+    paths: Sequence[tuple[str, npt.ArrayLike, npt.ArrayLike]],
+    path: str | os.PathLike[str],
+    title: str | None = None,
+) -> None:
+    """Draws a world with several robots' paths, one colour each, and writes it as a PNG file
+    (atomically).
+
+    Args:
+        world: The world the robots drove in.
+        paths: Each robot's name, x and y coordinates (metres).
+        path: The PNG file to write; its folder must exist.
+        title: A title above the picture; by default the world's name.
+    """
+    figure, ax = world_figure(world, 8.0, (3.0, 9.0), 0.6)
+    extra: list[Artist] = draw_bodies(ax, world)
+    every_x = np.concatenate([np.asarray(xs, dtype=np.float64).ravel() for _, xs, _ in paths])
+    every_y = np.concatenate([np.asarray(ys, dtype=np.float64).ravel() for _, _, ys in paths])
+    limits = trajectory_limits(world, every_x, every_y) if every_x.size else None
+    if limits is not None:
+        ax.set_xlim(limits[0], limits[1])
+        ax.set_ylim(limits[2], limits[3])
+    colours = colormaps["tab10"]
+    for number, (name, xs, ys) in enumerate(paths):
+        path_x = np.asarray(xs, dtype=np.float64).ravel()
+        path_y = np.asarray(ys, dtype=np.float64).ravel()
+        colour = colours(number % 10)
+        extra += ax.plot(path_x, path_y, color=colour, linewidth=1.2, zorder=7, label=name)
+        ax.plot(path_x[:1], path_y[:1], marker="s", markersize=4, color=colour, zorder=8)
+        ax.plot(path_x[-1:], path_y[-1:], marker="o", markersize=4, color=colour, zorder=8)
     trajectory_legend(ax, world, extra)
     ax.set_title(world.name if title is None else title)
     figure.tight_layout()

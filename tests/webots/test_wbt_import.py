@@ -250,11 +250,15 @@ def test_cli_json_layout(tmp_path: Path) -> None:
         "robot_model",
         "robot_line",
         "robot_profile",
+        "robots",
         "extension_devices",
         "floor_textures",
         "floor_paint",
         "protos",
     }
+    (robot,) = report["robots"]
+    assert set(robot) == {"pose", "model", "profile", "controller", "name", "def_name", "line"}
+    assert robot["line"] == report["robot_line"]
     assert set(report["protos"]) == {"expanded", "stand_ins", "cache_hits", "downloads"}
     for obstacle in report["obstacles"]:
         if obstacle["kind"] == "box":

@@ -251,6 +251,10 @@ def test_supervisor_reads_and_sets_the_robots_fields(capsys: pytest.CaptureFixtu
     assert me.getOrientation()[0] == pytest.approx(math.cos(-1.0), abs=1e-6)
     assert translation.getSFRotation() is None
     assert "called with a field of type SFVec3f" in capsys.readouterr().err
+    # Missing values are 0, as in the C array Webots' Python API copies the list into.
+    rotation.setSFRotation([0.0, 0.0, -1.0])
+    assert rotation.getSFRotation()[3] == pytest.approx(0.0, abs=1e-9)
+    rotation.setSFRotation([0.0, 0.0, -1.0, 1.0])
     assert me.getField("mass") is None
     supervisor.simulationReset()
     assert me.getPosition() == pytest.approx([0.0, 0.0, 0.0], abs=1e-6)

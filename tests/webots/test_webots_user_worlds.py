@@ -353,7 +353,7 @@ def test_the_e_puck_whose_controller_runs_is_the_robot(tmp_path: Path) -> None:
     result = run_webots(tmp_path, WHO_AM_I, LEADER_FOLLOWER, controller="follower.py")
     assert "name: follower" in result.stdout
     assert "args: ['--gap', '0.1']" in result.stdout
-    assert "an e-puck of another controller: ignored" in result.stderr
+    assert 'an e-puck running "leader": a run of the controller "follower" alone' in result.stderr
     trajectory = (tmp_path / "out" / "trajectory.csv").read_text().splitlines()
     assert trajectory[1].split(",")[1:] == ["-0.30000", "0.20000"], "the follower's start"
     # The Python API: the first e-puck unless a controller is named.

@@ -1,5 +1,9 @@
 """Runs one corpus project from a local mirror: exports it, imports its world, runs its first
-controller with ``mazesim webots run`` for the project's simulated time, and checks its facts."""
+controller with ``mazesim webots run`` for the project's simulated time, and checks its facts.
+
+A world in which several robots have a controller runs whole (``mazesim webots run WORLD``:
+every robot with its own controller, in lockstep); the facts about one robot's path are then
+checked on the robot that runs the project's first controller."""
 
 from __future__ import annotations
 
@@ -50,11 +54,37 @@ def _import(world: Path, controller: str) -> tuple[Any, dict[str, Any]]:
     return world_obj, dict(report)
 
 
-def _trajectory(path: Path) -> np.ndarray:
+#: ``controller`` fields that name no controller.
+NO_CONTROLLER = ("", "void", "<generic>", "<none>")
+
+
+def _runs_whole(project: Project, report: dict[str, Any]) -> bool:
+    """Whether the world runs whole: a Python project without a key script in which several
+    robots have a controller."""
+    robots = report.get("robots") or []
+    running = [r for r in robots if (r.get("controller") or "") not in NO_CONTROLLER]
+    return project.language == "python" and not project.keys and len(running) > 1
+
+
+def _own_robot(summary: dict[str, Any], controller: str) -> dict[str, Any]:
+    """The entry of a whole world's summary of the robot that ran ``controller`` (the first
+    robot when none did)."""
+    robots = [r for r in summary.get("robots") or [] if isinstance(r, dict)]
+    for robot in robots:
+        if Path(str(robot.get("controller") or "")).name == Path(controller).name:
+            return robot
+    return robots[0] if robots else {}
+
+
+def _trajectory(path: Path, robot: str | None = None) -> np.ndarray:
     if not path.is_file():
         return np.zeros((0, 2))
     with path.open(encoding="utf-8") as handle:
-        rows = [(float(r["x_m"]), float(r["y_m"])) for r in csv.DictReader(handle)]
+        rows = [
+            (float(r["x_m"]), float(r["y_m"]))
+            for r in csv.DictReader(handle)
+            if robot is None or r.get("robot") == robot
+        ]
     return np.array(rows, dtype=np.float64).reshape(-1, 2)
 
 
@@ -89,12 +119,17 @@ def _last_error(stderr: str) -> str:
     return errors[-1] if errors else ""
 
 
-def _run(project: Project, root: Path, world: Path, out: Path) -> RunResult:
-    """Runs the project's first controller."""
+def _run(project: Project, root: Path, world: Path, out: Path, whole: bool) -> RunResult:
+    """Runs the project's first controller, or the whole world."""
     command = [
         sys.executable, "-m", "mazesim", "webots", "run", str(root / project.controllers[0]),
         "--world", str(world), "--seconds", f"{project.seconds:g}", "--out", str(out),
     ]  # fmt: skip
+    if whole:
+        command = [
+            sys.executable, "-m", "mazesim", "webots", "run", str(world),
+            "--seconds", f"{project.seconds:g}", "--out", str(out),
+        ]  # fmt: skip
     if project.keys:
         keys = out.parent / "keys.txt"
         keys.write_text("\n".join(project.keys) + "\n", encoding="utf-8")
@@ -167,10 +202,25 @@ def _run_project(project: Project, mirrors: Path, work: Path, census: Census) ->
         census.add(f"{project.repo}:{project.world}", text, *losses(warnings))
         return Row(project, "broken itself", project.broken, warnings=warnings)
     out = root.parent / f"{root.name}.out"
-    run = _run(project, root, world, out)
+    whole = _runs_whole(project, report)
+    run = _run(project, root, world, out, whole)
     summary: dict[str, Any] = {}
     if (out / "summary.json").is_file():
         summary = json.loads((out / "summary.json").read_text(encoding="utf-8"))
+    own: str | None = None
+    exit_status = run.exit_status
+    others = ""
+    if whole:
+        # The facts are the robot's that runs the project's first controller; the others'
+        # failures are said in the cause.
+        robot = _own_robot(summary, project.controllers[0])
+        own = robot.get("name")
+        summary["controller_error"] = robot.get("controller_error")
+        if exit_status is not None:
+            exit_status = int(robot.get("exit_status") or 0)
+        failed = [r for r in summary.get("robots") or [] if r is not robot and r.get("exit_status")]
+        if failed:
+            others = f"robot {failed[0].get('name')}: {failed[0].get('controller_error')}"
     dropped, stood_in = losses(warnings, summary)
     census.add(f"{project.repo}:{project.world}", text, dropped, stood_in)
     if not summary and run.exit_status is not None and run.failure:
@@ -178,10 +228,10 @@ def _run_project(project: Project, mirrors: Path, work: Path, census: Census) ->
         return Row(project, "error", f"run: {run.failure[:400]}", warnings=warnings)
     boxes = np.asarray(world_obj.wall_boxes(), dtype=np.float64).reshape(-1, 6)[:, :5]
     outcome = Outcome(
-        exit_status=run.exit_status,
+        exit_status=exit_status,
         error=str(summary.get("controller_error") or ""),
         stdout=run.stdout,
-        path=_trajectory(out / "trajectory.csv"),
+        path=_trajectory(out / "trajectory.csv", own),
         walls=boxes,
         floor=world_obj.floor_reflectance,
         robots_moving=_robots_moving(summary),
@@ -192,7 +242,7 @@ def _run_project(project: Project, mirrors: Path, work: Path, census: Census) ->
         ok, measured = check(parse_fact(line), outcome)
         checks.append((line, ok, measured))
     missing = [str(m) for m in summary.get("missing_features") or []]
-    return _judge(project, checks, warnings, outcome, run, missing)
+    return _judge(project, checks, warnings, outcome, run, missing, others)
 
 
 def _judge(
@@ -202,6 +252,7 @@ def _judge(
     outcome: Outcome,
     run: RunResult,
     missing: list[str],
+    others: str = "",
 ) -> Row:
     """The row of a run: pass, fail or timeout, or not run when the run said at its start what
     it lacks (its statement is the cause, so the table and the run agree)."""
@@ -219,6 +270,8 @@ def _judge(
             parts.append(f"its last error: {run.last_error}")
     if outcome.error:
         parts.append(f"controller: {outcome.error}")
+    if others:
+        parts.append(f"another controller failed: {others}")
     if failed:
         parts.append("expected " + "; ".join(failed))
     lost = _significant(warnings)

@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use mazesim_core::wbt::{DeviceField, GreyImage, Obstacle, WbtImport};
+use mazesim_core::wbt::{DeviceField, GreyImage, Obstacle, RobotChoice, WbtImport};
 use mazesim_core::world::spec::BodySpec;
 use mazesim_core::world::values::xy;
 use mazesim_core::Error;
@@ -13,7 +13,7 @@ use numpy::{PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString};
 
-use crate::args::{dict_argument, Label, PathArg, SourceName, Text};
+use crate::args::{dict_argument, IntArg, Label, PathArg, SourceName, Text};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::{enter, enter_detached};
 use crate::world::PyWorld;
@@ -42,6 +42,19 @@ fn robot_and_floor(out: &Bound<'_, PyDict>, import: &WbtImport) -> PyResult<()> 
     out.set_item("robot_model", import.robot_model.clone())?;
     out.set_item("robot_line", import.robot_line)?;
     out.set_item("robot_profile", &import.robot_profile)?;
+    let robots = PyList::empty(py);
+    for robot in &import.robots {
+        let d = PyDict::new(py);
+        d.set_item("pose", robot.pose.to_vec())?;
+        d.set_item("model", &robot.model)?;
+        d.set_item("profile", robot.profile)?;
+        d.set_item("controller", robot.controller.clone())?;
+        d.set_item("name", robot.name.clone())?;
+        d.set_item("def_name", robot.def_name.clone())?;
+        d.set_item("line", robot.line)?;
+        robots.append(d)?;
+    }
+    out.set_item("robots", robots)?;
     let devices = PyList::empty(py);
     for device in &import.extension_devices {
         let d = PyDict::new(py);
@@ -234,36 +247,56 @@ fn finish<'py>(
 /// `floor_images` maps texture files (as the report's `floor_textures` candidates name them) to
 /// their grey levels; the textures without one are reported missing. `controller` names the
 /// controller that will run: of several e-pucks, the first whose `controller` field is it is
-/// the robot.
+/// the robot; `robot_line` picks the robot (an e-puck or not) whose node is on that line (the
+/// `line` of an entry of the report's `robots`).
 #[pyfunction]
-#[pyo3(signature = (path, floor_images = None, controller = None))]
+#[pyo3(signature = (path, floor_images = None, controller = None, robot_line = None))]
 pub fn import_wbt<'py>(
     py: Python<'py>,
     path: PathArg,
     floor_images: Option<&Bound<'py, PyAny>>,
     controller: Option<Text>,
+    robot_line: Option<IntArg>,
 ) -> PyResult<(PyWorld, Bound<'py, PyDict>)> {
     enter(|| {
         let path: PathBuf = path.value("path", "a str or os.PathLike")?;
         let controller = controller
             .map(|c| c.value("controller", "a str or None"))
             .transpose()?;
-        let import = enter_detached(py, || WbtImport::load_for(&path, controller.as_deref()))?;
+        let line = line_number(robot_line)?;
+        let import = enter_detached(py, || {
+            let choice = RobotChoice {
+                controller: controller.as_deref(),
+                line,
+            };
+            WbtImport::load_for(&path, choice)
+        })?;
         finish(py, import, &path, floor_images)
     })
+}
+
+/// The `robot_line` argument: a line number of the file (from 1), or None.
+fn line_number(robot_line: Option<IntArg>) -> PyResult<Option<usize>> {
+    robot_line
+        .map(|line| {
+            line.within("robot_line", 1u64, u64::from(u32::MAX))
+                .map(|l| l as usize)
+        })
+        .transpose()
 }
 
 /// Imports the text of a `.wbt` file; `source` names it in error messages and names the world.
 /// Lone surrogates (not UTF-8) are read as U+FFFD, so that they end in a located format error.
 #[pyfunction]
-#[pyo3(signature = (text, source = SourceName::Value(Label("<string>".into())), floor_images = None, controller = None),
-    text_signature = "(text, source='<string>', floor_images=None, controller=None)")]
+#[pyo3(signature = (text, source = SourceName::Value(Label("<string>".into())), floor_images = None, controller = None, robot_line = None),
+    text_signature = "(text, source='<string>', floor_images=None, controller=None, robot_line=None)")]
 pub fn import_wbt_text<'py>(
     py: Python<'py>,
     text: &Bound<'py, PyAny>,
     source: SourceName,
     floor_images: Option<&Bound<'py, PyAny>>,
     controller: Option<Text>,
+    robot_line: Option<IntArg>,
 ) -> PyResult<(PyWorld, Bound<'py, PyDict>)> {
     enter(|| {
         let text = text.cast::<PyString>().map_err(|_| {
@@ -280,8 +313,13 @@ pub fn import_wbt_text<'py>(
         let controller = controller
             .map(|c| c.value("controller", "a str or None"))
             .transpose()?;
+        let line = line_number(robot_line)?;
         let import = enter_detached(py, || {
-            WbtImport::from_text_for(&text, &source, controller.as_deref())
+            let choice = RobotChoice {
+                controller: controller.as_deref(),
+                line,
+            };
+            WbtImport::from_text_for(&text, &source, choice)
         })?;
         finish(py, import, Path::new(&source), floor_images)
     })

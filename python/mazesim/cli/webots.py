@@ -90,6 +90,7 @@ def register(commands: Any) -> None:
             "mazesim webots run my_controller.py",
             "mazesim webots run my_controller.py --world Maze.wbt --seconds 120 --strict",
             "mazesim webots run my_controller.py --keys keys.txt --html run.html",
+            "mazesim webots run worlds/swarm.wbt --robot-controller leader=my_leader.py",
             notes="exit status: 0 the controller ended (or robot.step returned -1); N the "
             "controller's sys.exit(N) or a supervisor's simulationQuit(N); 1 the controller "
             "raised an exception or, in Python, does not compile; a C/C++ controller crashed or "
@@ -101,9 +102,18 @@ def register(commands: Any) -> None:
     )
     run.add_argument(
         "controller",
-        metavar="CONTROLLER.py",
+        metavar="CONTROLLER|WORLD.wbt",
         help="the controller's Python, C or C++ file, or its Webots folder controllers/NAME "
-        "(NAME.py, NAME.c or NAME.cpp in it)",
+        "(NAME.py, NAME.c or NAME.cpp in it); or a Webots world, whose robots all run, each with "
+        "the controller its 'controller' field names (controllers/NAME/NAME.py of the world's "
+        "project), each in its own process, in lockstep",
+    )
+    run.add_argument(
+        "--robot-controller",
+        action="append",
+        metavar="NAME=FILE",
+        help="with WORLD.wbt: the robot whose name, DEF name or controller field is NAME runs "
+        "FILE (for an <extern> controller, or instead of its own); repeat for several robots",
     )
     run.add_argument(
         "--world",
@@ -270,6 +280,11 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
     from mazesim.webots.keyboard import read_keys
     from mazesim.webots.requirements import prepare_controller
     from mazesim.webots.runner import controller_file, run_controller
+
+    if args.controller.lower().endswith(".wbt"):
+        from mazesim.cli.webots_world import run_world_command
+
+        return run_world_command(args, out)
 
     file = controller_file(args.controller)
     controller = os.path.splitext(os.path.basename(file))[0]

@@ -17,8 +17,15 @@ from typing import Any
 
 from mazesim.webots.camera import Camera, CameraView
 from mazesim.webots.devices import LED, Device, DistanceSensor, Motor, PositionSensor, _Sensor
-from mazesim.webots.inert import Display, Emitter, Pen, Receiver, Speaker
+from mazesim.webots.inert import Display, Pen, Speaker
 from mazesim.webots.keyboard import Joystick, Keyboard, Mouse
+from mazesim.webots.radio_devices import (
+    E_PUCK_CHANNEL,
+    Emitter,
+    Receiver,
+    emitter_from_fields,
+    receiver_from_fields,
+)
 from mazesim.webots.sensors import (
     GPS,
     Accelerometer,
@@ -110,8 +117,8 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
                 z=max(mount.z, 0.001),
             ),
         ),
-        "Emitter": lambda: Emitter(name, simulation),
-        "Receiver": lambda: Receiver(name, simulation),
+        "Emitter": lambda: emitter_from_fields(name, simulation, fields),
+        "Receiver": lambda: receiver_from_fields(name, simulation, fields),
         "Speaker": lambda: Speaker(name, simulation),
         "Display": lambda: Display(name, simulation),
         "Pen": lambda: Pen(name, simulation),
@@ -125,6 +132,18 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
         )
         return None
     return build()
+
+
+def _proto_channel(scene: Any, name: str) -> int:
+    """The E-puck PROTO's ``emitter_channel`` or ``receiver_channel`` field of the robot's own
+    node (the PROTO's default, 1, when the file does not set it)."""
+    own = next((node for node in scene.nodes if node.robot), None)
+    values = own.numbers.get(name) if own is not None else None
+    return int(values[0]) if values else E_PUCK_CHANNEL
+
+
+#: Devices a robot's own node of the same name replaces (the e-puck's emitter and receiver).
+RADIO_DEVICES = (Emitter, Receiver)
 
 
 class Equipment:
@@ -175,8 +194,8 @@ class Equipment:
             Camera("camera", simulation, view),
             Accelerometer("accelerometer", simulation),
             Gyro("gyro", simulation),
-            Emitter("emitter", simulation),
-            Receiver("receiver", simulation),
+            Emitter("emitter", simulation, channel=_proto_channel(scene, "emitter_channel")),
+            Receiver("receiver", simulation, channel=_proto_channel(scene, "receiver_channel")),
             Speaker("speaker", simulation),
         ]
         for entry in simulation.report.get("extension_devices") or []:
@@ -184,7 +203,11 @@ class Equipment:
                 devices.append(device)
         self.devices: dict[str, Device] = {}
         for device in devices:
-            self.devices.setdefault(device.getName(), device)
+            known = self.devices.get(device.getName())
+            # A robot's own Emitter or Receiver node replaces the e-puck's of the same name.
+            if known is None or (type(known) is type(device) and type(known) in RADIO_DEVICES):
+                self.devices[device.getName()] = device
+        devices = list(self.devices.values())
         self._sampled = [device for device in devices if isinstance(device, _Sensor)]
         self.keyboard = Keyboard(simulation=simulation)
         self.mouse = Mouse()

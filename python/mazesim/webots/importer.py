@@ -31,6 +31,7 @@ __all__ = [
     "FloorTexture",
     "ImportReport",
     "RobotPose",
+    "WorldRobot",
     "import_wbt",
     "import_wbt_text",
     "robot_warnings",
@@ -104,13 +105,29 @@ class FloorTexture(TypedDict):
     candidates: list[str]
 
 
+class WorldRobot(TypedDict):
+    """A robot of the world file, as listed in the report's ``robots``: its start ``pose``,
+    ``model``, the ``profile`` that simulates it (``None`` for a robot that is not an e-puck:
+    its controller runs, its body does not move), its ``controller``, ``name`` and ``def_name``
+    fields and the ``line`` of its node."""
+
+    pose: list[float]
+    model: str
+    profile: str | None
+    controller: str | None
+    name: str | None
+    def_name: str | None
+    line: int
+
+
 class ImportReport(TypedDict):
     """What ``mazesim import-wbt --json`` prints.
 
     ``robot_model`` is the robot as found (``"E-puck"``, ``"e-puck2"`` for ``version "2"``, the
     type name of another robot, ``None`` without one); ``robot_line`` the line of its node in
     the file (``None`` without one); ``robot_profile`` the mazesim profile
-    that simulates it (``"e-puck"`` or ``"e-puck2"``); ``floor_paint`` the number of paint
+    that simulates it (``"e-puck"`` or ``"e-puck2"``); ``robots`` every robot of the file
+    (see :class:`WorldRobot`); ``floor_paint`` the number of paint
     rectangles the floor textures gave; ``bodies`` the movable bodies (``kind``, ``center``,
     ``size`` and ``yaw`` or ``radius``, ``mass`` in kg, floor ``friction``).
     """
@@ -123,6 +140,7 @@ class ImportReport(TypedDict):
     robot_model: str | None
     robot_line: int | None
     robot_profile: str
+    robots: list[WorldRobot]
     extension_devices: list[ExtensionDevice]
     floor_textures: list[FloorTexture]
     floor_paint: int
@@ -210,7 +228,7 @@ def _with_floor(
 
 
 def import_wbt(
-    path: str | os.PathLike[str], controller: str | None = None
+    path: str | os.PathLike[str], controller: str | None = None, robot_line: int | None = None
 ) -> tuple[World, ImportReport]:
     """Imports a Webots world file.
 
@@ -224,6 +242,8 @@ def import_wbt(
         controller: The name of the controller that will run (its file name without
             ``.py``): of several e-pucks, the first whose ``controller`` field names it is the
             robot, as Webots runs each robot's own controller; by default, the first e-puck.
+        robot_line: The line of the robot that runs (an e-puck or not; the ``line`` of an
+            entry of the report's ``robots``), instead of ``controller``'s.
 
     Returns:
         The mazesim world (named after the file) and the import report. Floor textures are
@@ -239,10 +259,12 @@ def import_wbt(
     text = _world_text(file)
     if text is None:  # not UTF-8 or not readable: the core says why, with the place
         return _with_floor(
-            _core.import_wbt(file, controller=controller),
-            lambda images: _core.import_wbt(file, floor_images=images, controller=controller),
+            _core.import_wbt(file, controller=controller, robot_line=robot_line),
+            lambda images: _core.import_wbt(
+                file, floor_images=images, controller=controller, robot_line=robot_line
+            ),
         )
-    return import_wbt_text(text, file, controller=controller)
+    return import_wbt_text(text, file, controller=controller, robot_line=robot_line)
 
 
 def _world_text(file: str) -> str | None:
@@ -257,7 +279,10 @@ def _world_text(file: str) -> str | None:
 
 
 def import_wbt_text(
-    text: str, source: str = "<string>", controller: str | None = None
+    text: str,
+    source: str = "<string>",
+    controller: str | None = None,
+    robot_line: int | None = None,
 ) -> tuple[World, ImportReport]:
     """Imports the text of a Webots world file (its PROTOs expanded as in :func:`import_wbt`).
 
@@ -267,6 +292,7 @@ def import_wbt_text(
             textures, relative ``EXTERNPROTO`` paths and the project's ``protos/`` folder are
             looked for beside it.
         controller: As for :func:`import_wbt`.
+        robot_line: As for :func:`import_wbt`.
 
     Returns:
         The mazesim world and the import report.
@@ -278,9 +304,9 @@ def import_wbt_text(
 
     expanded, protos = expand_world(text, source)
     world, report = _with_floor(
-        _core.import_wbt_text(expanded, source, controller=controller),
+        _core.import_wbt_text(expanded, source, controller=controller, robot_line=robot_line),
         lambda images: _core.import_wbt_text(
-            expanded, source, floor_images=images, controller=controller
+            expanded, source, floor_images=images, controller=controller, robot_line=robot_line
         ),
     )
     report["warnings"][:0] = protos.warnings

@@ -1,7 +1,7 @@
 """Devices of Webots' ``controller`` module that the e-puck's simulation keeps inert.
 
-The e-puck's ``emitter``, ``receiver`` and ``speaker`` exist and accept every call: a run has
-one robot, so nothing sent is received and the receiver's queue stays empty; no sound is played.
+The e-puck's ``speaker`` exists and accepts every call; no sound is played (its ``emitter`` and
+``receiver`` are in :mod:`mazesim.webots.radio_devices`).
 The other classes (Display, Pen, Lidar, RangeFinder, Radar, Connector, Brake, Altimeter,
 VacuumGripper, Skin, Motion) can be imported and constructed as in Webots, but the e-puck has no
 such device: their readings are Webots' values for a missing device.
@@ -18,7 +18,7 @@ import sys
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
-from mazesim.webots.devices import Device, _print_error, _ScalarSensor
+from mazesim.webots.devices import Device, _ScalarSensor
 from mazesim.webots.node_types import node_type
 
 if TYPE_CHECKING:
@@ -31,7 +31,6 @@ __all__ = [
     "Connector",
     "ContactPoint",
     "Display",
-    "Emitter",
     "Lidar",
     "LidarPoint",
     "Motion",
@@ -40,7 +39,6 @@ __all__ = [
     "RadarTarget",
     "Radar",
     "RangeFinder",
-    "Receiver",
     "Skin",
     "Speaker",
     "VacuumGripper",
@@ -70,119 +68,6 @@ class _Inert(NotSimulated, _ScalarSensor):
 
     def _read(self) -> float:
         return math.nan
-
-
-class Emitter(NotSimulated, Device):
-    """The e-puck's radio emitter: packets are accepted and go nowhere (no other robot)."""
-
-    _node_type = node_type("EMITTER")
-
-    CHANNEL_BROADCAST = -1
-
-    def __init__(self, name: str, simulation: RobotSimulation) -> None:
-        super().__init__(name, simulation)
-        self._channel = 1
-        self._range = 0.8
-
-    def send(self, message: Any, length: int | None = None) -> int:
-        """Queues a packet (bytes, str or a list of numbers); returns 1 (accepted)."""
-        return 1
-
-    def getChannel(self) -> int:
-        """The channel (the e-puck's default, 1)."""
-        return self._channel
-
-    def setChannel(self, channel: int) -> None:
-        """Sets the channel."""
-        self._channel = int(channel)
-
-    def getRange(self) -> float:
-        """The range in metres (the e-puck's 0.8)."""
-        return self._range
-
-    def setRange(self, range: float) -> None:
-        """Sets the range in metres."""
-        self._range = float(range)
-
-    def getBufferSize(self) -> int:
-        """The buffer size in bytes (-1: unlimited)."""
-        return -1
-
-    @property
-    def channel(self) -> int:
-        """The channel (property style)."""
-        return self._channel
-
-    @channel.setter
-    def channel(self, channel: int) -> None:
-        self.setChannel(channel)
-
-
-class Receiver(NotSimulated, _ScalarSensor):
-    """The e-puck's radio receiver: its queue stays empty (no other robot sends)."""
-
-    _node_type = node_type("RECEIVER")
-
-    CHANNEL_BROADCAST = -1
-    _api = "wb_receiver"
-
-    def __init__(self, name: str, simulation: RobotSimulation) -> None:
-        super().__init__(name, simulation)
-        self._channel = 1
-
-    def _read(self) -> float:
-        return 0.0
-
-    def getQueueLength(self) -> int:
-        """0: nothing is ever received."""
-        return 0
-
-    def _empty(self, function: str) -> None:
-        _print_error(f"Error: wb_receiver_{function}(): the receiver queue is empty.")
-
-    def nextPacket(self) -> None:
-        """Webots' error: the queue is empty."""
-        self._empty("next_packet")
-
-    def getData(self) -> None:
-        """None, with Webots' error: the queue is empty."""
-        self._empty("get_data")
-
-    def getBytes(self) -> None:
-        """None, with Webots' error: the queue is empty."""
-        self._empty("get_data")
-
-    def getString(self) -> None:
-        """None, with Webots' error: the queue is empty."""
-        self._empty("get_data")
-
-    def getDataSize(self) -> int:
-        """-1, with Webots' error: the queue is empty."""
-        self._empty("get_data_size")
-        return -1
-
-    def getSignalStrength(self) -> float:
-        """NaN: the queue is empty."""
-        self._empty("get_signal_strength")
-        return math.nan
-
-    def getEmitterDirection(self) -> list[float]:
-        """NaNs: the queue is empty."""
-        self._empty("get_emitter_direction")
-        return [math.nan] * 3
-
-    def getChannel(self) -> int:
-        """The channel (the e-puck's default, 1)."""
-        return self._channel
-
-    def setChannel(self, channel: int) -> None:
-        """Sets the channel."""
-        self._channel = int(channel)
-
-    @property
-    def queue_length(self) -> int:
-        """0: nothing is ever received."""
-        return 0
 
 
 class Speaker(NotSimulated, Device):

@@ -151,6 +151,7 @@ def run_controller(
     scene: Scene | None = None,
     prepared: PreparedController | None = None,
     stall_seconds: float = termination.STALL_SECONDS,
+    **world_of_several: Any,
 ) -> ControllerRun:
     """Runs a Webots-style controller file on the robot in ``world``.
 
@@ -176,6 +177,9 @@ def run_controller(
             run's end (its set-up before the first step included) before it is stopped; after
             the end it is stopped :data:`~mazesim.webots.termination.GRACE_SECONDS` later, as
             Webots does, whether it calls ``Robot.step`` or not.
+        **world_of_several: For a robot of a world with several robots, whose process owns
+            the world: ``simulator``, ``radio``, ``fleet`` and ``robot_index`` (see
+            :class:`~mazesim.webots.simulation.RobotSimulation`).
 
     Returns:
         What the run did.
@@ -197,7 +201,14 @@ def run_controller(
         return _run_native(prepared, world, seconds, seed, noise, report, keys, scene)
     source = _read_source(file)
     simulation = simulations.prepare(
-        world, seconds=seconds, seed=seed, noise=noise, report=report, keys=keys, scene=scene
+        world,
+        seconds=seconds,
+        seed=seed,
+        noise=noise,
+        report=report,
+        keys=keys,
+        scene=scene,
+        **world_of_several,
     )
     controller_module.Robot.created = None
     folder = os.path.dirname(file)

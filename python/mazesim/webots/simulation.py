@@ -19,6 +19,7 @@ import numpy.typing as npt
 from mazesim._core import RobotProfile, Simulator, World
 from mazesim.errors import InvalidArgumentError, UnknownNameError
 from mazesim.webots.keyboard import KeyScript
+from mazesim.webots.radio import Radio
 from mazesim.webots.scene import Scene
 
 __all__ = [
@@ -82,6 +83,14 @@ class RobotSimulation:
         velocity: The robot's world-frame velocity over the last step: vx, vy (m/s), yaw rate
             (rad/s).
         acceleration: The robot's world-frame acceleration over the last step: ax, ay (m/s^2).
+        robot_index: The robot's index among the world's robots (0 in a run of one robot).
+        radio: The world's radio, which carries the packets of Emitters to Receivers.
+        fleet: The world's robots when another process owns the world (for a supervisor), or
+            None.
+        world_over: Whether the world's run is over (a supervisor of another robot quit it).
+        owns_world: Whether this simulation steps the world itself (a run of one robot), and
+            so transmits the radio's packets at each step; a robot of a world with several
+            robots has the world stepped for it in lockstep with the others.
     """
 
     def __init__(
@@ -95,6 +104,10 @@ class RobotSimulation:
         keys: KeyScript | None = None,
         supervisor: bool = False,
         scene: Scene | None = None,
+        simulator: Any = None,
+        radio: Any = None,
+        fleet: Any = None,
+        robot_index: int = 0,
     ) -> None:
         """Creates the simulator of the run.
 
@@ -109,6 +122,12 @@ class RobotSimulation:
             supervisor: Whether the robot is a supervisor even if the controller creates a
                 plain ``Robot``.
             scene: DEF names, camera fields and north read from the world file.
+            simulator: The robot's simulator when another process owns the world (a stand-in
+                with the :class:`~mazesim.Simulator` methods), else None: a new one.
+            radio: The world's radio when another process owns the world, else None: a new one.
+            fleet: The world's robots (:class:`~mazesim.webots.lockstep.Fleet`) when another
+                process owns the world, for a supervisor; None in a run of one robot.
+            robot_index: The robot's index among the world's robots.
 
         Raises:
             InvalidArgumentError: ``seconds`` is not a positive number.
@@ -123,7 +142,16 @@ class RobotSimulation:
         self.noise = noise
         self.seed = seed
         self.quit_status: int | None = None
-        self.simulator = Simulator(world, robot=robot_profile_name(report), seed=seed, noise=noise)
+        self.owns_world = simulator is None
+        self.simulator = (
+            Simulator(world, robot=robot_profile_name(report), seed=seed, noise=noise)
+            if simulator is None
+            else simulator
+        )
+        self.radio = Radio() if radio is None else radio
+        self.robot_index = robot_index
+        self.fleet = fleet
+        self.world_over = False
         self.velocity = (0.0, 0.0, 0.0)
         self.acceleration = (0.0, 0.0)
         self.basic_time_step_ms = float(self.simulator.control_step_ms)
@@ -148,14 +176,18 @@ class RobotSimulation:
     @property
     def time_is_up(self) -> bool:
         """Whether the time limit has been reached."""
-        return self.step_limit is not None and self.steps >= self.step_limit
+        return self.world_over or (self.step_limit is not None and self.steps >= self.step_limit)
 
     def advance(self, left: float, right: float) -> None:
         """Runs one basic time step with these wheel speeds (rad/s), after showing the
         observers (:func:`observing_steps`) the state before it."""
         for observer in _observers:
             observer(self, left, right)
-        self.simulator.step(left, right)
+        if self.owns_world:
+            self.radio.transmit({self.robot_index: self.simulator.pose})
+        if self.simulator.step(left, right) is True:
+            self.world_over = True
+            return
         self.steps += 1
         self._distance = None
         self._ground = None

@@ -5,9 +5,9 @@ nodes (their type, DEF name and, read from the file, their ``translation``, ``ro
 ``name``: snapshots that can be set but move nothing in the simulation), the robot's node among
 them (``getSelf``, ``getFromDef`` of its DEF name) and the file's other DEF nodes (their type).
 It reads and sets the robot's ``translation`` and ``rotation`` (moving the robot in the
-simulation), reads its position, orientation and velocity, resets the simulation (the robot
-back at its start) or the robot's motion, and quits it with a status (``mazesim webots run``
-exits with it).
+simulation), and in a world with several robots those of every other robot too, reads its
+position, orientation and velocity, resets the simulation (the robot back at its start) or
+the robot's motion, and quits it with a status (``mazesim webots run`` exits with it).
 """
 
 from __future__ import annotations
@@ -20,8 +20,9 @@ from mazesim.webots import simulation as _simulations
 from mazesim.webots.frames import enu_to_nue, enu_to_nue_matrix, nue_to_enu
 from mazesim.webots.inert import ContactPoint, NotSimulated
 from mazesim.webots.node_types import NODE_TYPES
+from mazesim.webots.radio_devices import E_PUCK_CHANNEL
 from mazesim.webots.robot import Robot
-from mazesim.webots.scene import SceneNode
+from mazesim.webots.scene import EPUCK_TYPES, SceneNode
 
 __all__ = ["Field", "Node", "Supervisor"]
 
@@ -164,7 +165,7 @@ class Field(NotSimulated):
         if self._name != "translation":
             return self._numbers("get_sf_vec3f", (self.SF_VEC3F, self.SF_COLOR))
         node = self._node
-        return node.getPosition() if node._robot else _out(list(node._translation or ()))
+        return node.getPosition() if node._live else _out(list(node._translation or ()))
 
     def setSFVec3f(self, values: list[float]) -> None:
         """Moves the robot to [x, y, z] (z is ignored: the robot stays on the floor); another
@@ -173,8 +174,8 @@ class Field(NotSimulated):
             self._wrong("set_sf_vec3f")
             return
         node = self._node
-        x, y, z = _in([float(v) for v in values[:3]])
-        if node._robot:
+        x, y, z = _in(_padded(values, 3))
+        if node._live:
             node._move(x, y, node._pose()[2])
         else:
             node._translation = (x, y, z)
@@ -185,7 +186,7 @@ class Field(NotSimulated):
             self._wrong("get_sf_rotation")
             return None
         node = self._node
-        rotation = [0.0, 0.0, 1.0, node._pose()[2]] if node._robot else list(node._rotation or ())
+        rotation = [0.0, 0.0, 1.0, node._pose()[2]] if node._live else list(node._rotation or ())
         return [*_out(rotation[:3]), rotation[3]] if rotation else rotation
 
     def setSFRotation(self, values: list[float]) -> None:
@@ -195,9 +196,9 @@ class Field(NotSimulated):
             self._wrong("set_sf_rotation")
             return
         node = self._node
-        ax, ay, az = _in([float(v) for v in values[:3]])
-        angle = float(values[3])
-        if node._robot:
+        ax, ay, az, angle = _padded(values, 4)
+        ax, ay, az = _in([ax, ay, az])
+        if node._live:
             x, y, _ = node._pose()
             node._move(x, y, _yaw_of_rotation([ax, ay, az, angle]))
         else:
@@ -299,6 +300,14 @@ class Field(NotSimulated):
             self.setSFString(value)
 
 
+def _padded(values: list[float], count: int) -> list[float]:
+    """The first ``count`` values as floats, missing ones 0: Webots' Python API copies the list
+    into a C array of ``count`` doubles, whose missing elements are 0
+    (``setSFRotation([0, 0, -1])`` is the rotation by angle 0)."""
+    numbers = [float(v) for v in list(values)[:count]]
+    return numbers + [0.0] * (count - len(numbers))
+
+
 def _rotation_matrix(ax: float, ay: float, az: float, angle: float) -> list[float]:
     """The 3 x 3 matrix of an axis-angle rotation, row after row."""
     norm = math.sqrt(ax * ax + ay * ay + az * az) or 1.0
@@ -351,6 +360,8 @@ class Node(NotSimulated):
         self._def = def_name
         self._id = node_id
         self._robot = robot
+        #: The index among the world's robots of another robot (live pose), else None.
+        self._fleet_index: int | None = None
         self._translation = translation
         self._rotation = rotation
         self._strings = {"name": "e-puck", "customData": "", "controller": "<extern>"}
@@ -380,6 +391,10 @@ class Node(NotSimulated):
             name=node.name,
         )
         made._numbers = {name: list(values) for name, values in node.numbers.items()}
+        if node.type_name in EPUCK_TYPES:
+            # The E-puck PROTO's radio channels, at its default where the file sets none.
+            for channel in ("emitter_channel", "receiver_channel"):
+                made._numbers.setdefault(channel, [float(E_PUCK_CHANNEL)])
         made._flags = dict(node.flags)
         made._strings.update(node.strings)
         return made
@@ -393,7 +408,15 @@ class Node(NotSimulated):
     def _simulation(self) -> _simulations.RobotSimulation:
         return _simulations.current()
 
+    @property
+    def _live(self) -> bool:
+        """Whether the node's pose is a robot's in the simulation (its own or another's)."""
+        return self._robot or self._fleet_index is not None
+
     def _pose(self) -> tuple[float, float, float]:
+        if self._fleet_index is not None:
+            x, y, yaw = self._simulation().fleet.pose(self._fleet_index)
+            return float(x), float(y), float(yaw)
         if self._robot:
             x, y, yaw = self._simulation().simulator.pose
             return float(x), float(y), float(yaw)
@@ -404,6 +427,9 @@ class Node(NotSimulated):
 
     def _move(self, x: float, y: float, yaw: float) -> None:
         """Moves the robot in the simulation, at rest."""
+        if self._fleet_index is not None:
+            self._simulation().fleet.move(self._fleet_index, x, y, yaw)
+            return
         self._simulation().move_robot(x, y, yaw)
 
     def getId(self) -> int:
@@ -479,14 +505,14 @@ class Node(NotSimulated):
     def getPosition(self) -> list[float]:
         """The node's position [x, y, z] in metres (world frame; NaN for a node whose position
         the world file does not give)."""
-        if self._robot:
+        if self._live:
             x, y, _ = self._pose()
             return _out([x, y, 0.0])
         return _out(list(self._translation)) if self._translation else [math.nan] * 3
 
     def getOrientation(self) -> list[float]:
         """The node's rotation matrix, row after row (9 numbers)."""
-        if self._robot or self._rotation is None:
+        if self._live or self._rotation is None:
             matrix = _rotation_matrix(0.0, 0.0, 1.0, self._pose()[2])
         else:
             matrix = _rotation_matrix(*self._rotation)
@@ -543,6 +569,22 @@ class Node(NotSimulated):
         return True
 
 
+def _follow_robots(nodes: list[Node], robots: list[dict[str, Any]], own: int) -> None:
+    """Gives the nodes of the world's other robots their live poses: a node is a robot's when
+    its DEF name, or else its ``name`` field, is that robot's."""
+    for robot in robots:
+        if robot["index"] == own:
+            continue
+        for node in nodes:
+            if node._robot or node._fleet_index is not None:
+                continue
+            same_def = bool(robot.get("def_name")) and node.getDef() == robot["def_name"]
+            same_name = not robot.get("def_name") and robot.get("name") is not None
+            if same_def or (same_name and node._strings.get("name") == robot["name"]):
+                node._fleet_index = int(robot["index"])
+                break
+
+
 def _constant_name(type_name: str) -> str:
     """``"DistanceSensor"`` -> ``"DISTANCE_SENSOR"``."""
     out = []
@@ -581,6 +623,8 @@ class Supervisor(Robot):
             child._id = node_id
         self._root._adopt(children)
         self._nodes: dict[str, Node] = {}
+        if self._simulation.fleet is not None:
+            _follow_robots(children, self._simulation.fleet.robots(), self._simulation.robot_index)
 
     def getSelf(self) -> Node:
         """The robot's own node."""

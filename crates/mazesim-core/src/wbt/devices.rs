@@ -151,9 +151,9 @@ impl<'d> Importer<'d> {
     }
 
     /// Lists the devices among a plain robot node's children (anywhere below them, through
-    /// solids, poses, groups and joints) that are not the e-puck's own, under the slot name
-    /// `children`.
-    pub fn robot_children(&mut self, robot: &'d Node) {
+    /// solids, poses, groups and joints), under the slot name `children`: for an e-puck
+    /// (`e_puck`), those that are not the e-puck's own; for another robot, all of them.
+    pub fn robot_children(&mut self, robot: &'d Node, e_puck: bool) {
         let mut stack: Vec<(&'d Node, Frame, usize)> = self
             .nodes(robot, "children")
             .iter()
@@ -174,7 +174,7 @@ impl<'d> Importer<'d> {
             if let Some(&(_, default_name)) = DEVICE_TYPES.iter().find(|(t, _)| *t == kind) {
                 let name = self.strings(node, "name").first().cloned();
                 let name = name.unwrap_or_else(|| default_name.to_string());
-                if !BUILT_IN_NAMES.contains(&name.as_str()) {
+                if !(e_puck && BUILT_IN_NAMES.contains(&name.as_str())) {
                     self.device(node, "children", &frame, default_name);
                 }
             }

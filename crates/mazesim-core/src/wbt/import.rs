@@ -7,7 +7,7 @@ use super::floor_texture::FloorTexture;
 use super::frames::{axis_angle, tilt, Frame, Vec3, ENU_TO_NUE, IDENTITY, NUE_TO_ENU};
 use super::shapes::snap;
 use super::tree::{Document, Node, NodeId};
-use super::{Obstacle, WbtImport};
+use super::{Obstacle, RobotChoice, WbtImport, WorldRobot};
 use crate::world::spec::{BodySpec, DEFAULT_BODY_FRICTION};
 use crate::world::values::{Finite, NonNegative, Positive, Reflectance};
 
@@ -75,6 +75,7 @@ const JOINT_NODES: &[&str] = &[
 pub const STAND_IN_PROFILE: &str = "e-puck";
 
 /// A robot found in the world: its start pose, model and the profile that simulates it.
+#[derive(Clone)]
 pub struct FoundRobot {
     pub pose: [f64; 3],
     pub model: String,
@@ -109,6 +110,9 @@ pub struct Importer<'d> {
     pub other_robot: Option<FoundRobot>,
     /// Where its warning is in `warnings`, and what the warning says of it (`line L: Type`).
     other_robot_warning: Option<(usize, String)>,
+    /// Every robot of the world, in file order, with the collision shapes of those that are not
+    /// e-pucks (kept as static obstacles unless the e-puck stands in for that robot).
+    pub robots: Vec<(WorldRobot, Vec<Obstacle>)>,
     pub devices: Vec<ExtensionDevice>,
     pub floor_textures: Vec<FloorTexture>,
     pub warnings: Vec<String>,
@@ -122,7 +126,7 @@ pub struct Importer<'d> {
 }
 
 /// Imports a parsed world.
-pub fn import(doc: &Document, controller: Option<&str>) -> WbtImport {
+pub fn import(doc: &Document, choice: RobotChoice<'_>) -> WbtImport {
     let mut importer = Importer {
         doc,
         y_up: !doc.version.has_z_up_protos(),
@@ -131,6 +135,7 @@ pub fn import(doc: &Document, controller: Option<&str>) -> WbtImport {
         robot: None,
         other_robot: None,
         other_robot_warning: None,
+        robots: Vec::new(),
         devices: Vec::new(),
         floor_textures: Vec::new(),
         warnings: doc.warnings.clone(),
@@ -139,16 +144,33 @@ pub fn import(doc: &Document, controller: Option<&str>) -> WbtImport {
         too_deep: false,
         chosen: None,
     };
-    importer.chosen = controller.and_then(|name| importer.epuck_of_controller(name));
+    importer.chosen = match choice.line {
+        Some(line) => importer.robot_on_line(line),
+        None => choice
+            .controller
+            .and_then(|name| importer.epuck_of_controller(name)),
+    };
     let (basic_time_step_ms, root) = importer.world_info();
     for &id in &doc.roots {
         importer.scene(id, &root, 0);
     }
     if let (Some(_), Some((index, what))) = (&importer.robot, &importer.other_robot_warning) {
-        importer.warnings[*index] =
-            format!("{what}: a robot that is not an e-puck: not simulated, the world's e-puck is");
+        importer.warnings[*index] = format!(
+            "{what}: a robot that is not an e-puck: its controller runs, its body does not move; its collision shapes (those of a plain Robot node) are static obstacles"
+        );
     }
     let robot = importer.robot.take().or(importer.other_robot.take());
+    let stand_in_line = robot
+        .as_ref()
+        .filter(|r| r.profile == STAND_IN_PROFILE)
+        .map(|r| r.line);
+    let mut robots = Vec::with_capacity(importer.robots.len());
+    for (found, shapes) in std::mem::take(&mut importer.robots) {
+        if found.profile.is_none() && Some(found.line) != stand_in_line {
+            importer.obstacles.extend(shapes);
+        }
+        robots.push(found);
+    }
     if robot.is_none() {
         importer
             .warnings
@@ -161,6 +183,7 @@ pub fn import(doc: &Document, controller: Option<&str>) -> WbtImport {
         robot_model: robot.as_ref().map(|r| r.model.clone()),
         robot_line: robot.as_ref().map(|r| r.line),
         robot_profile: robot.map_or(STAND_IN_PROFILE, |r| r.profile).to_string(),
+        robots,
         extension_devices: importer.devices,
         floor_textures: importer.floor_textures,
         paint: Vec::new(),
@@ -522,6 +545,17 @@ impl<'d> Importer<'d> {
         OTHER_ROBOT_PROTOS.contains(&node.type_name.as_str()) || node.field("controller").is_some()
     }
 
+    /// The robot node (an e-puck or another robot) whose node type is on `line`.
+    fn robot_on_line(&self, line: usize) -> Option<&'d Node> {
+        self.doc.nodes.iter().find(|node| {
+            let kind = node.type_name.as_str();
+            node.line == line
+                && (EPUCK_PROTOS.contains(&kind)
+                    || ROBOT_NODES.contains(&kind)
+                    || self.is_robot_proto(node))
+        })
+    }
+
     /// The first e-puck whose `controller` field is `name`.
     fn epuck_of_controller(&self, name: &str) -> Option<&'d Node> {
         self.doc.nodes.iter().find(|node| {
@@ -532,24 +566,10 @@ impl<'d> Importer<'d> {
         })
     }
 
-    /// The e-puck (or e-puck2): its start pose, model and the devices in its slots.
+    /// The e-puck (or e-puck2): its start pose, model and the devices in its slots. Every e-puck
+    /// is listed in `robots`; the first (or the one of the chosen controller) is `robot`.
     fn epuck(&mut self, node: &'d Node, frame: &Frame) {
         let label = self.label(node);
-        if let Some(chosen) = self.chosen.filter(|chosen| !std::ptr::eq(*chosen, node)) {
-            let controller = self.strings(chosen, "controller").first().cloned();
-            self.warn(format!(
-                "{label}: an e-puck of another controller: ignored, mazesim simulates the e-puck whose controller is \"{}\" (line {})",
-                controller.unwrap_or_default(),
-                chosen.line
-            ));
-            return;
-        }
-        if self.robot.is_some() {
-            self.warn(format!(
-                "{label}: a second e-puck: ignored, mazesim simulates one robot"
-            ));
-            return;
-        }
         let version_2 = self.strings(node, "version").iter().any(|v| v == "2");
         // A plain robot node recognised as an e-puck, and Webots 7's `EPuck`, are the E-puck.
         let plain = ROBOT_NODES.contains(&node.type_name.as_str());
@@ -559,33 +579,100 @@ impl<'d> Importer<'d> {
             (_, false) if plain => ("E-puck".to_string(), "e-puck"),
             (kind, false) => (kind.to_string(), "e-puck"),
         };
-        if let Some(pose) = self.robot_pose(node, frame) {
-            self.robot = Some(FoundRobot {
-                pose,
-                model,
-                profile,
-                line: node.line,
-            });
-            self.extension_slots(node);
-            if plain {
-                self.robot_children(node);
-            }
-        }
-    }
-
-    /// A robot that is not an e-puck: the e-puck stands in for it at its pose (if the world has
-    /// no e-puck), with a warning.
-    fn other_robot(&mut self, node: &'d Node, frame: &Frame) {
-        let label = self.label(node);
-        if self.robot.is_some() {
+        let Some(pose) = self.robot_pose(node, frame) else {
+            return;
+        };
+        let found = FoundRobot {
+            pose,
+            model,
+            profile,
+            line: node.line,
+        };
+        self.list_robot(node, &found, Some(profile), Vec::new());
+        let controller = |n: &'d Node| self.strings(n, "controller").first().cloned();
+        if let Some(chosen) = self.chosen.filter(|chosen| !std::ptr::eq(*chosen, node)) {
+            let (mine, theirs) = (controller(node), controller(chosen).unwrap_or_default());
+            let runs = if mine.as_deref() == Some(theirs.as_str()) {
+                format!("another e-puck running \"{theirs}\" too")
+            } else {
+                format!("an e-puck running \"{}\"", mine.unwrap_or_default())
+            };
             self.warn(format!(
-                "{label}: a robot that is not an e-puck: not simulated, the world's e-puck is"
+                "{label}: {runs}: a run of the controller \"{theirs}\" alone simulates only its first e-puck (line {}); a run of the whole world runs every robot",
+                chosen.line
             ));
             return;
         }
-        if self.other_robot_warning.is_some() {
+        if let Some(first) = &self.robot {
+            let line = first.line;
             self.warn(format!(
-                "{label}: a robot that is not an e-puck, beside another robot: ignored, mazesim simulates one robot"
+                "{label}: a second e-puck: a run of one controller simulates only the first (line {line}); a run of the whole world runs every robot"
+            ));
+            return;
+        }
+        self.robot = Some(found);
+        self.extension_slots(node);
+        if plain {
+            self.robot_children(node, true);
+        }
+    }
+
+    /// Lists a robot in `robots`, with its controller and name, and for a robot that is not an
+    /// e-puck the collision shapes that stand for it.
+    fn list_robot(
+        &mut self,
+        node: &'d Node,
+        found: &FoundRobot,
+        profile: Option<&'static str>,
+        shapes: Vec<Obstacle>,
+    ) {
+        let robot = WorldRobot {
+            pose: found.pose,
+            model: found.model.clone(),
+            profile,
+            controller: self.strings(node, "controller").first().cloned(),
+            name: self.strings(node, "name").first().cloned(),
+            def_name: node.def_name.clone(),
+            line: node.line,
+        };
+        self.robots.push((robot, shapes));
+    }
+
+    /// A robot that is not an e-puck: the e-puck stands in for it at its pose (if the world has
+    /// no e-puck), with a warning; otherwise its own collision shapes (those of a plain `Robot`
+    /// node) are static obstacles.
+    fn other_robot(&mut self, node: &'d Node, frame: &Frame) {
+        let label = self.label(node);
+        let Some(pose) = self.robot_pose(node, frame) else {
+            return;
+        };
+        let found = FoundRobot {
+            pose,
+            model: node.type_name.clone(),
+            profile: STAND_IN_PROFILE,
+            line: node.line,
+        };
+        let shapes = self.robot_shapes(node, frame, &label);
+        let kept = if shapes.is_empty() {
+            "it has no collision shape mazesim reads (a PROTO's are inside the PROTO), so it is no obstacle"
+        } else {
+            "its collision shapes are static obstacles"
+        };
+        self.list_robot(node, &found, None, shapes);
+        if self.chosen.is_some_and(|chosen| std::ptr::eq(chosen, node)) {
+            // The robot of the run: its controller runs on a robot that stays where it is.
+            self.warn(format!(
+                "{label}: a robot that is not an e-puck ({}): its controller runs, its body does not move; its devices are those of its children",
+                node.type_name
+            ));
+            self.robot = Some(found);
+            self.robot_children(node, false);
+            return;
+        }
+        if self.robot.is_some() || self.other_robot_warning.is_some() || self.chosen.is_some() {
+            self.warn(format!(
+                "{label}: a robot that is not an e-puck ({}): its controller runs, its body does not move; {kept}",
+                node.type_name
             ));
             return;
         }
@@ -595,14 +682,18 @@ impl<'d> Importer<'d> {
             "{label}: a robot that is not an e-puck ({}): mazesim simulates the e-puck in its place, at its pose; its own body, wheels and devices are not imported",
             node.type_name
         ));
-        if let Some(pose) = self.robot_pose(node, frame) {
-            self.other_robot = Some(FoundRobot {
-                pose,
-                model: node.type_name.clone(),
-                profile: STAND_IN_PROFILE,
-                line: node.line,
-            });
+        self.other_robot = Some(found);
+    }
+
+    /// The collision shapes of a plain robot node (its `boundingObject`), in the world frame.
+    fn robot_shapes(&mut self, node: &'d Node, frame: &Frame, label: &str) -> Vec<Obstacle> {
+        let local = self.local_frame(node, [0.0; 3]);
+        let frame = frame.then(&local);
+        let first = self.obstacles.len();
+        for &shape in self.nodes(node, "boundingObject") {
+            self.bounding(shape, &frame, label, 1);
         }
+        self.obstacles.split_off(first)
     }
 
     /// A robot's start pose: its origin and where its forward axis points.

@@ -75,6 +75,48 @@ pub enum Obstacle {
     },
 }
 
+/// Which robot of a world a run simulates: by default the first e-puck; with `controller`, the
+/// first e-puck whose `controller` field names it; with `line`, the robot (any robot node, an
+/// e-puck or not) whose node type is on that line of the file, as [`WorldRobot::line`] gives it.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct RobotChoice<'a> {
+    /// The controller whose first e-puck runs.
+    pub controller: Option<&'a str>,
+    /// The line of the robot that runs (wins over `controller`).
+    pub line: Option<usize>,
+}
+
+impl<'a> From<Option<&'a str>> for RobotChoice<'a> {
+    fn from(controller: Option<&'a str>) -> Self {
+        RobotChoice {
+            controller,
+            line: None,
+        }
+    }
+}
+
+/// A robot of a `.wbt` world, as Webots runs it: its own node, controller and start pose.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WorldRobot {
+    /// Start pose (x, y, yaw).
+    pub pose: [f64; 3],
+    /// The model as found: `E-puck`, `e-puck2`, or the type name of another robot.
+    pub model: String,
+    /// The profile that simulates it (`e-puck`, `e-puck2`), or `None` for a robot that is not
+    /// an e-puck: its controller runs, its body stays where it is (its collision shapes, when
+    /// the file gives them, are static obstacles).
+    pub profile: Option<&'static str>,
+    /// Its `controller` field (`None` when the field is absent: Webots' default, `<generic>`
+    /// in old files, `void` since R2022b).
+    pub controller: Option<String>,
+    /// Its `name` field, when the file gives one.
+    pub name: Option<String>,
+    /// Its DEF name, when it has one.
+    pub def_name: Option<String>,
+    /// The line of its node type in the file.
+    pub line: usize,
+}
+
 /// What a `.wbt` world holds for mazesim.
 #[derive(Debug, Clone, PartialEq)]
 pub struct WbtImport {
@@ -92,6 +134,8 @@ pub struct WbtImport {
     pub robot_line: Option<usize>,
     /// The mazesim robot profile that simulates it: `e-puck` or `e-puck2`.
     pub robot_profile: String,
+    /// Every robot of the world, in file order: e-pucks and others (see [`WorldRobot`]).
+    pub robots: Vec<WorldRobot>,
     /// Devices in the robot's extension slots.
     pub extension_devices: Vec<ExtensionDevice>,
     /// Image textures on the floor, painted by [`WbtImport::paint_floor`].
@@ -108,32 +152,37 @@ impl WbtImport {
     /// Imports a world file's text; `source` names it in error messages, and floor textures
     /// are looked for beside it.
     pub fn from_text(text: &str, source: &str) -> Result<WbtImport> {
-        Self::from_text_for(text, source, None)
+        Self::from_text_for(text, source, RobotChoice::default())
     }
 
-    /// [`WbtImport::from_text`] for the run of one controller: of several e-pucks, the first
-    /// whose `controller` field names it is the robot (Webots runs each robot's own controller).
-    pub fn from_text_for(text: &str, source: &str, controller: Option<&str>) -> Result<WbtImport> {
+    /// [`WbtImport::from_text`] for the run of one robot (see [`RobotChoice`]): of several
+    /// e-pucks, the first whose `controller` field names the controller is the robot (Webots
+    /// runs each robot's own controller), or the robot on the chosen line.
+    pub fn from_text_for<'a>(
+        text: &str,
+        source: &str,
+        choice: impl Into<RobotChoice<'a>>,
+    ) -> Result<WbtImport> {
         let document = Document::parse(text, source)?;
-        let mut import = import::import(&document, controller);
+        let mut import = import::import(&document, choice.into());
         import.locate_textures(Path::new(source).parent().unwrap_or(Path::new("")));
         Ok(import)
     }
 
     /// Imports a world file's bytes, which must be UTF-8 text.
     pub fn from_bytes(bytes: &[u8], source: &str) -> Result<WbtImport> {
-        Self::from_bytes_for(bytes, source, None)
+        Self::from_bytes_for(bytes, source, RobotChoice::default())
     }
 
     /// [`WbtImport::from_bytes`] for the run of one controller (see
     /// [`WbtImport::from_text_for`]).
-    pub fn from_bytes_for(
+    pub fn from_bytes_for<'a>(
         bytes: &[u8],
         source: &str,
-        controller: Option<&str>,
+        choice: impl Into<RobotChoice<'a>>,
     ) -> Result<WbtImport> {
         match std::str::from_utf8(bytes) {
-            Ok(text) => Self::from_text_for(text, source, controller),
+            Ok(text) => Self::from_text_for(text, source, choice),
             Err(e) => {
                 let valid = std::str::from_utf8(&bytes[..e.valid_up_to()]).unwrap_or_default();
                 let line = valid.matches('\n').count() + 1;
@@ -154,14 +203,14 @@ impl WbtImport {
 
     /// Reads and imports a `.wbt` file.
     pub fn load(path: &Path) -> Result<WbtImport> {
-        Self::load_for(path, None)
+        Self::load_for(path, RobotChoice::default())
     }
 
     /// [`WbtImport::load`] for the run of one controller (see [`WbtImport::from_text_for`]).
-    pub fn load_for(path: &Path, controller: Option<&str>) -> Result<WbtImport> {
+    pub fn load_for<'a>(path: &Path, choice: impl Into<RobotChoice<'a>>) -> Result<WbtImport> {
         let limit = crate::limits::MAX_WBT_FILE_BYTES;
         let bytes = crate::io::read_limited(path, limit, "the Webots world")?;
-        Self::from_bytes_for(&bytes, &path.display().to_string(), controller)
+        Self::from_bytes_for(&bytes, &path.display().to_string(), choice)
     }
 }
 

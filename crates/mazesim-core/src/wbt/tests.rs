@@ -4,7 +4,7 @@
 use std::f64::consts::{FRAC_PI_2, PI};
 
 use super::convert::polygon_sides;
-use super::{Document, Obstacle, WbtImport};
+use super::{Document, Obstacle, RobotChoice, WbtImport};
 use crate::error::{Error, Result};
 
 fn import(text: &str) -> WbtImport {
@@ -110,7 +110,7 @@ fn a_known_robot_proto_without_a_controller_field_is_a_robot() {
     assert_eq!(w.robot_line, Some(3));
     assert!(warned(
         &w,
-        "line 2: Pioneer3dx: a robot that is not an e-puck: not simulated, the world's e-puck is"
+        "line 2: Pioneer3dx: a robot that is not an e-puck: its controller runs, its body does not move"
     ));
     assert!(!warned(&w, "in its place"), "{:?}", w.warnings);
     let alone =
@@ -365,14 +365,17 @@ fn the_e_puck_of_the_controller_that_runs_is_the_robot() {
     assert_eq!(follower.robot_line, Some(3));
     assert!(warned(
         &follower,
-        "line 2: E-puck: an e-puck of another controller: ignored"
+        "line 2: E-puck: an e-puck running \"leader\": a run of the controller \"follower\" alone simulates only its first e-puck (line 3)"
     ));
     assert!(!warned(&follower, "a second e-puck"));
     // Without a controller, or one no e-puck names, the first e-puck runs, as before.
     for controller in [None, Some("nobody")] {
         let first = WbtImport::from_text_for(text, "two.wbt", controller).unwrap();
         assert_eq!(first.robot, Some([0.1, 0.0, 0.0]));
-        assert!(warned(&first, "line 3: E-puck: a second e-puck: ignored"));
+        assert!(warned(
+            &first,
+            "line 3: E-puck: a second e-puck: a run of one controller simulates only the first (line 2)"
+        ));
     }
 }
 
@@ -424,4 +427,88 @@ fn cr_line_ends_read_as_lines() {
     assert_eq!(cr.obstacles, lf.obstacles);
     assert_eq!(cr.obstacles.len(), 1);
     assert_eq!(cr.robot_line, Some(4));
+}
+
+#[test]
+fn issue_33_every_robot_is_listed_with_its_controller() {
+    let text = "#VRML_SIM R2023b utf8\n\
+        DEF BOSS Robot { translation 0 0 0.5 name \"boss\" controller \"boss\" supervisor TRUE }\n\
+        E-puck { translation 0.1 0 0 name \"a\" controller \"worker\" }\n\
+        E-puck { translation 0.3 0 0 name \"b\" controller \"worker\" version \"2\" }\n\
+        Robot { translation 0.5 0.5 0 controller \"post\" boundingObject Box { size 0.1 0.1 0.1 } }\n";
+    let w = WbtImport::from_text_for(text, "swarm.wbt", Some("worker")).unwrap();
+    let listed: Vec<_> = w
+        .robots
+        .iter()
+        .map(|r| {
+            (
+                r.line,
+                r.controller.as_deref(),
+                r.profile,
+                r.name.as_deref(),
+            )
+        })
+        .collect();
+    assert_eq!(
+        listed,
+        [
+            (2, Some("boss"), None, Some("boss")),
+            (3, Some("worker"), Some("e-puck"), Some("a")),
+            (4, Some("worker"), Some("e-puck2"), Some("b")),
+            (5, Some("post"), None, None),
+        ]
+    );
+    assert_eq!(w.robots[0].def_name.as_deref(), Some("BOSS"));
+    assert_eq!(w.robots[2].pose, [0.3, 0.0, 0.0]);
+    // The run of one controller simulates the first e-puck running it.
+    assert_eq!(w.robot_line, Some(3));
+    // A second e-puck of the same controller is not called one "of another controller".
+    assert!(warned(
+        &w,
+        "line 4: E-puck \"b\": another e-puck running \"worker\" too"
+    ));
+    assert!(!warned(&w, "another controller"), "{:?}", w.warnings);
+    // The plain Robot's collision shape stays, as a static obstacle; the bodiless one adds none.
+    assert_eq!(w.obstacles.len(), 1, "{:?}", w.obstacles);
+    let Obstacle::Box { center, .. } = w.obstacles[0] else {
+        panic!("a box")
+    };
+    assert!((center[0] - 0.5).abs() < 1e-12 && (center[1] - 0.5).abs() < 1e-12);
+}
+
+#[test]
+fn issue_33_a_run_of_one_robot_chosen_by_its_line() {
+    let text = "#VRML_SIM R2023b utf8\n\
+        Robot { name \"boss\" controller \"boss\" children [ Emitter { channel 3 } ] }\n\
+        E-puck { translation 0.1 0 0 controller \"worker\" }\n\
+        E-puck { translation 0.3 0 0 controller \"worker\" }\n";
+    let second = RobotChoice {
+        controller: None,
+        line: Some(4),
+    };
+    let w = WbtImport::from_text_for(text, "swarm.wbt", second).unwrap();
+    assert_eq!(w.robot, Some([0.3, 0.0, 0.0]));
+    assert_eq!(w.robot_line, Some(4));
+    let boss = RobotChoice {
+        controller: None,
+        line: Some(2),
+    };
+    let w = WbtImport::from_text_for(text, "swarm.wbt", boss).unwrap();
+    assert_eq!(w.robot_line, Some(2));
+    assert_eq!(w.robot_model.as_deref(), Some("Robot"));
+    // The supervisor's own emitter is its device, with its channel.
+    assert_eq!(w.extension_devices.len(), 1, "{:?}", w.extension_devices);
+    assert_eq!(w.extension_devices[0].kind, "Emitter");
+    let channel = w.extension_devices[0]
+        .fields
+        .iter()
+        .find(|(name, _)| name == "channel");
+    assert_eq!(
+        channel.map(|(_, v)| v),
+        Some(&super::DeviceField::Number(3.0))
+    );
+    assert!(warned(
+        &w,
+        "line 2: Robot \"boss\": a robot that is not an e-puck (Robot): its controller runs"
+    ));
 }

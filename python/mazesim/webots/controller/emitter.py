@@ -2,6 +2,6 @@
 
 from __future__ import annotations
 
-from mazesim.webots.inert import Emitter
+from mazesim.webots.radio_devices import Emitter
 
 __all__ = ["Emitter"]

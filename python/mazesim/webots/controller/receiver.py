@@ -2,6 +2,6 @@
 
 from __future__ import annotations
 
-from mazesim.webots.inert import Receiver
+from mazesim.webots.radio_devices import Receiver
 
 __all__ = ["Receiver"]

@@ -1,0 +1,172 @@
+"""One robot's controller in its own process, talking to the process that owns the world.
+
+Webots starts each robot's controller in a process of its own, so controllers share no
+module-level state; ``mazesim webots run WORLD`` does the same. The process that owns the world
+(:mod:`mazesim.webots.lockstep`) starts one process per robot with :func:`controller_main` and a
+pipe (``multiprocessing.connection.Connection``; messages are pickled tuples). The protocol,
+from the controller's side:
+
+- ``("call", target, name, args)``: calls ``name(*args)`` on ``target`` (``"simulator"``: the
+  robot's simulator; ``"radio"``: the world's :class:`~mazesim.webots.radio.Radio`; ``"fleet"``:
+  the world's robots, for a supervisor) and answers ``("ok", value)`` or ``("error",
+  exception)``; ``name`` may also be an attribute, whose value is answered;
+- ``("step", left, right)``: this robot's wheel speeds (rad/s) for the next basic step; answered
+  ``("ok", False)`` once every robot whose controller still runs has asked for the step and the
+  world has taken it (lockstep), or ``("ok", True)`` without a step when a supervisor has
+  quit the simulation (``Robot.step`` then returns -1);
+- ``("done", summary)``: the controller has ended (a dict of :class:`ControllerSummary`'s
+  fields); no answer. From then on the robot's wheels stay still.
+
+The controller itself runs as in a run of one robot (:func:`mazesim.webots.runner.run_controller`)
+against a :class:`RemoteSimulator`, which forwards the simulator's methods over the pipe.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+from dataclasses import asdict, dataclass
+from multiprocessing.connection import Connection
+from typing import Any
+
+__all__ = ["ControllerJob", "ControllerSummary", "Remote", "RemoteSimulator", "controller_main"]
+
+
+@dataclass(frozen=True)
+class ControllerJob:
+    """What a controller process runs.
+
+    Attributes:
+        world_path: The ``.wbt`` file.
+        robot_index: The robot's index among the world's robots.
+        robot_line: The line of the robot's node in the file.
+        controller: The controller's file or Webots folder.
+        profile: The robot profile that simulates it.
+        seconds: Simulated seconds after which ``Robot.step`` returns -1.
+        noise: Whether the sensors are noisy.
+    """
+
+    world_path: str
+    robot_index: int
+    robot_line: int
+    controller: str
+    profile: str
+    seconds: float
+    noise: bool
+
+
+@dataclass(frozen=True)
+class ControllerSummary:
+    """What a controller's run reports back to the world's process when it ends."""
+
+    exit_status: int
+    error: str
+    reached_end: bool
+    stopped: bool
+    quit_requested: bool
+    steps: int
+
+
+class Remote:
+    """A stand-in for an object of the world's process: attribute reads and method calls are
+    forwarded over the pipe."""
+
+    def __init__(self, connection: Connection, target: str) -> None:
+        self._connection = connection
+        self._target = target
+        self._methods: dict[str, Any] = {}
+
+    def _ask(self, message: tuple[Any, ...]) -> Any:
+        self._connection.send(message)
+        status, value = self._connection.recv()
+        if status == "error":
+            raise value
+        return value
+
+    def __getattr__(self, name: str) -> Any:
+        if name.startswith("_"):
+            raise AttributeError(name)
+        if name in self._methods:
+            return self._methods[name]
+        value = self._ask(("call", self._target, name, None))
+        if isinstance(value, _Method):
+            method = self._methods[name] = lambda *args: self._ask(
+                ("call", self._target, name, args)
+            )
+            return method
+        return value
+
+
+@dataclass(frozen=True)
+class _Method:
+    """The answer to reading an attribute that is a method: call it with arguments."""
+
+
+#: The answer to reading a method's name.
+METHOD = _Method()
+
+
+class RemoteSimulator(Remote):
+    """The robot's simulator in the world's process; ``step`` waits for the lockstep."""
+
+    def __init__(self, connection: Connection, profile: str) -> None:
+        from mazesim._core import RobotProfile
+
+        super().__init__(connection, "simulator")
+        #: The profile, built here: it does not cross the pipe.
+        self.robot = RobotProfile.builtin(profile)
+
+    def step(self, left: float, right: float) -> bool:
+        """Asks for the next basic step with these wheel speeds; returns once taken, True when
+        the world's run is over instead (a supervisor quit it)."""
+        return bool(self._ask(("step", float(left), float(right))))
+
+
+def answer(target: Any, name: str, args: tuple[Any, ...] | None) -> tuple[str, Any]:
+    """The world's process's answer to ``("call", target, name, args)`` on ``target``."""
+    try:
+        value = getattr(target, name)
+        if args is None:
+            return ("ok", METHOD if callable(value) else value)
+        return ("ok", value(*args))
+    except Exception as failure:  # noqa: BLE001 - the error is raised in the controller
+        return ("error", failure)
+
+
+def controller_main(connection: Connection, job: ControllerJob) -> None:
+    """Runs one robot's controller against the world of the process at the other end of
+    ``connection`` (the entry point of a controller process)."""
+    from mazesim.webots.importer import import_wbt
+    from mazesim.webots.runner import run_controller
+    from mazesim.webots.scene import read_scene
+
+    world, imported = import_wbt(job.world_path, robot_line=job.robot_line)
+    report: dict[str, Any] = dict(imported)
+    report["path"] = os.path.abspath(job.world_path)
+    with open(job.world_path, encoding="utf-8", errors="replace") as handle:
+        text = handle.read().replace("\r\n", "\n").replace("\r", "\n")
+    scene = read_scene(text, report.get("robot_model"), report.get("robot_line"))
+    summary = ControllerSummary(1, "", False, False, False, 0)
+    try:
+        run = run_controller(
+            job.controller,
+            world,
+            seconds=job.seconds,
+            noise=job.noise,
+            report=report,
+            scene=scene,
+            simulator=RemoteSimulator(connection, job.profile),
+            radio=Remote(connection, "radio"),
+            fleet=Remote(connection, "fleet"),
+            robot_index=job.robot_index,
+        )
+        summary = ControllerSummary(
+            run.exit_status, run.error, run.reached_end, run.stopped, run.quit_requested, run.steps
+        )
+        if run.error:
+            sys.stderr.write(run.error)
+    finally:
+        sys.stdout.flush()
+        sys.stderr.flush()
+        connection.send(("done", asdict(summary)))
+        connection.close()

@@ -1,0 +1,328 @@
+"""Running a Webots world with several robots, as Webots runs it.
+
+Each robot's ``controller`` field names a folder of the project's ``controllers/`` (a Python
+controller ``controllers/NAME/NAME.py``); each controller runs in a process of its own
+(:mod:`mazesim.webots.controller_process`), so controllers share no module-level state, and this
+process owns the world: every basic time step waits until every running controller has asked
+for it (lockstep), transmits the radio's packets (:mod:`mazesim.webots.radio`), then steps every
+robot. A robot without a controller (``void``, ``<generic>``, none), with an ``<extern>`` one
+not given on the command line, or with one that is not Python, stands still; so does a robot
+whose controller has ended. A robot that is not an e-puck runs its controller on a body that
+does not move. A supervisor sees and moves every robot through the :class:`Fleet`; its
+``simulationQuit`` ends every controller's run (``Robot.step`` returns -1).
+
+The e-pucks share one simulator (:mod:`mazesim.webots.shared_world`): they collide with and
+see each other. A world the shared simulator refuses (movable bodies, robots overlapping at
+their starts) runs each robot in a simulator of its own, with a warning: there robots neither
+collide with nor see each other; the radio and the supervisor see them all.
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import os
+import sys
+import time
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from multiprocessing.connection import Connection, wait
+from typing import Any
+
+import numpy as np
+
+from mazesim._core import Simulator, World
+from mazesim.errors import MazesimIOError
+from mazesim.webots.controller_process import ControllerJob, answer, controller_main
+from mazesim.webots.radio import Radio
+from mazesim.webots.shared_world import RobotView, shared_simulator
+from mazesim.webots.simulation import robot_profile_name
+
+__all__ = ["Fleet", "RobotRun", "WorldRun", "controller_of", "run_world"]
+
+#: ``controller`` fields that name no controller: the robot stands still.
+NO_CONTROLLER = {"", "void", "<generic>", "<none>"}
+#: The controller field of a robot whose controller is started outside the simulation.
+EXTERN = "<extern>"
+#: Real seconds a controller process may take to exit after its run ended, before it is killed.
+EXIT_WAIT_SECONDS = 5.0
+
+
+@dataclass
+class RobotRun:
+    """What one robot did in a run of a world.
+
+    Attributes:
+        index: Its index among the world's robots (file order).
+        name: Its ``name`` field (or DEF name, or model).
+        model: Its model as found (``E-puck``, ``e-puck2``, ``Robot``...).
+        controller: The controller file that ran, or None.
+        note: Why no controller ran, or "".
+        xs: Its x after each step, the start first.
+        ys: Its y after each step, the start first.
+        distance_m: Distance it travelled.
+        collisions: Contacts with walls that began during the run.
+        final_pose: x, y, yaw at the end.
+        exit_status: Its controller's exit status (0 without a controller).
+        error: Its controller's traceback, or "".
+        reached_end: Whether its ``Robot.step`` returned -1.
+        stopped: Whether its controller went on after the end and was stopped.
+        quit_requested: Whether it (a supervisor) quit the simulation.
+    """
+
+    index: int
+    name: str
+    model: str
+    controller: str | None
+    note: str = ""
+    xs: list[float] = field(default_factory=list, repr=False)
+    ys: list[float] = field(default_factory=list, repr=False)
+    distance_m: float = 0.0
+    collisions: int = 0
+    final_pose: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    exit_status: int = 0
+    error: str = field(default="", repr=False)
+    reached_end: bool = False
+    stopped: bool = False
+    quit_requested: bool = False
+
+
+@dataclass
+class WorldRun:
+    """What a run of a world did: its robots' runs, the simulated time and the real time."""
+
+    world: World
+    robots: list[RobotRun]
+    steps: int
+    simulated_seconds: float
+    wall_clock_seconds: float
+
+    @property
+    def exit_status(self) -> int:
+        """A supervisor's quit status, else the first non-zero exit status, else 0."""
+        for robot in self.robots:
+            if robot.quit_requested:
+                return robot.exit_status
+        return next((r.exit_status for r in self.robots if r.exit_status), 0)
+
+
+class Fleet:
+    """The world's robots as a supervisor sees them (answered over the controllers' pipes)."""
+
+    def __init__(self, robots: list[Mapping[str, Any]], simulators: list[Any]) -> None:
+        self._robots = robots
+        self._simulators = simulators
+        self.moved: set[int] = set()
+
+    def robots(self) -> list[dict[str, Any]]:
+        """Each robot's index, ``def_name``, ``name``, ``model`` and ``line``."""
+        keys = ("def_name", "name", "model", "line")
+        return [{"index": i, **{k: r.get(k) for k in keys}} for i, r in enumerate(self._robots)]
+
+    def pose(self, index: int) -> tuple[float, float, float]:
+        """A robot's x, y, yaw now."""
+        x, y, yaw = self._simulators[index].pose
+        return float(x), float(y), float(yaw)
+
+    def move(self, index: int, x: float, y: float, yaw: float) -> None:
+        """Puts a robot at a new pose, at rest."""
+        self._simulators[index].set_pose(x, y, yaw)
+        self.moved.add(index)
+
+
+def controller_of(
+    robot: Mapping[str, Any], world_path: str, given: Mapping[str, str]
+) -> tuple[str | None, str]:
+    """The controller file a robot runs, or None and why not.
+
+    Args:
+        robot: The robot's entry of the import report's ``robots``.
+        world_path: The world file; controllers are looked for in ``../controllers/`` of its
+            folder (Webots' project layout), then beside it.
+        given: Controller files given on the command line, by robot name, DEF name or
+            controller field.
+    """
+    for key in (robot.get("name"), robot.get("def_name"), robot.get("controller")):
+        if key and key in given:
+            return os.path.abspath(given[key]), ""
+    name = str(robot.get("controller") or "")
+    if name in NO_CONTROLLER:
+        return None, "no controller"
+    if name == EXTERN:
+        return None, (
+            "an <extern> controller: give it with --robot-controller "
+            f"{robot.get('name') or robot.get('def_name') or '<name>'}=FILE"
+        )
+    folder = os.path.dirname(os.path.abspath(world_path))
+    for project in (os.path.dirname(folder), folder):
+        candidate = os.path.join(project, "controllers", name, f"{name}.py")
+        if os.path.isfile(candidate):
+            return candidate, ""
+    return None, f"no Python controller controllers/{name}/{name}.py (a C controller?)"
+
+
+def run_world(
+    world_path: str,
+    *,
+    seconds: float = 60.0,
+    seed: int = 0,
+    noise: bool = True,
+    controllers: Mapping[str, str] | None = None,
+) -> WorldRun:
+    """Runs every robot of a ``.wbt`` world with its own controller, in lockstep.
+
+    Args:
+        world_path: The world file.
+        seconds: Simulated seconds after which every ``Robot.step`` returns -1.
+        seed: Seed of the sensor noise (each robot gets a stream of its own).
+        noise: Whether the sensors are noisy.
+        controllers: Controller files for some robots, by robot name, DEF name or controller
+            field (they win over the world's ``controller`` fields).
+
+    Returns:
+        What each robot did.
+
+    Raises:
+        MazesimIOError: The world has no robot.
+    """
+    from mazesim.webots.importer import import_wbt
+
+    world, report = import_wbt(world_path)
+    robots: list[Mapping[str, Any]] = list(report.get("robots") or [])
+    if not robots:
+        raise MazesimIOError(f"{world_path}: expected a world with robots, found none")
+    streams = np.random.SeedSequence(seed).spawn(len(robots))
+    e_pucks = [i for i, robot in enumerate(robots) if robot.get("profile") is not None]
+    shared, refusal = shared_simulator(world, robots, e_pucks, seed=seed, noise=noise)
+    if refusal:
+        print(
+            f"mazesim: warning: the e-pucks run in simulators of their own, without seeing or "
+            f"touching each other: {refusal}",
+            file=sys.stderr,
+        )
+    simulators: list[Any] = []
+    runs, jobs = [], {}
+    for index, robot in enumerate(robots):
+        profile = robot_profile_name({"robot_profile": robot.get("profile")})
+        if shared is not None and index in e_pucks:
+            simulators.append(RobotView(shared, e_pucks.index(index)))
+        else:
+            own_world, _ = import_wbt(world_path, robot_line=int(robot["line"]))
+            robot_seed = int(streams[index].generate_state(1)[0])
+            simulators.append(Simulator(own_world, robot=profile, seed=robot_seed, noise=noise))
+        file, note = controller_of(robot, world_path, controllers or {})
+        label = robot.get("name") or robot.get("def_name") or robot.get("model")
+        runs.append(RobotRun(index, str(label), str(robot.get("model")), file, note))
+        if file is not None:
+            jobs[index] = ControllerJob(
+                world_path, index, int(robot["line"]), file, profile, seconds, noise
+            )
+    fleet = Fleet(robots, simulators)
+    movable = [robot.get("profile") is not None for robot in robots]
+    started = time.perf_counter()
+    steps = _lockstep(jobs, simulators, movable, fleet, runs)
+    for run, simulator in zip(runs, simulators):
+        run.distance_m = float(simulator.distance_travelled)
+        run.collisions = int(simulator.collisions)
+        run.final_pose = tuple(float(v) for v in simulator.pose)  # type: ignore[assignment]
+    return WorldRun(
+        world=world,
+        robots=runs,
+        steps=steps,
+        simulated_seconds=float(simulators[0].time),
+        wall_clock_seconds=time.perf_counter() - started,
+    )
+
+
+def _lockstep(
+    jobs: Mapping[int, ControllerJob],
+    simulators: list[Any],
+    movable: list[bool],
+    fleet: Fleet,
+    runs: list[RobotRun],
+) -> int:
+    """Starts the controller processes and steps the world whenever every running controller
+    has asked for the step; returns the number of steps."""
+    context = multiprocessing.get_context("spawn")
+    radio = Radio()
+    connections: dict[int, Connection] = {}
+    processes = []
+    for index, job in jobs.items():
+        mine, theirs = context.Pipe()
+        process = context.Process(target=controller_main, args=(theirs, job), daemon=True)
+        process.start()
+        theirs.close()
+        connections[index] = mine
+        processes.append(process)
+    for run, simulator in zip(runs, simulators):
+        x, y, _ = simulator.pose
+        run.xs.append(float(x))
+        run.ys.append(float(y))
+    by_connection = {id(c): i for i, c in connections.items()}
+    live = set(connections)
+    wheels: dict[int, tuple[float, float]] = {}
+    over, steps = False, 0
+    try:
+        while live:
+            for ready in wait([connections[i] for i in sorted(live)]):
+                index = by_connection[id(ready)]
+                connection = connections[index]
+                targets = {"simulator": simulators[index], "radio": radio, "fleet": fleet}
+                try:
+                    message: Any = connection.recv()
+                except (EOFError, OSError):
+                    live.discard(index)
+                    wheels.pop(index, None)
+                    if not runs[index].error:
+                        runs[index].exit_status = runs[index].exit_status or 1
+                        runs[index].error = "the controller's process ended without a report\n"
+                    continue
+                if message[0] == "call":
+                    _, target, name, args = message
+                    connection.send(answer(targets[target], name, args))
+                elif message[0] == "step":
+                    wheels[index] = (message[1], message[2]) if movable[index] else (0.0, 0.0)
+                elif message[0] == "done":
+                    summary = message[1]
+                    live.discard(index)
+                    wheels.pop(index, None)
+                    for key in ("exit_status", "error", "reached_end", "stopped"):
+                        setattr(runs[index], key, summary[key])
+                    runs[index].quit_requested = bool(summary["quit_requested"])
+                    over = over or runs[index].quit_requested
+            if live and live <= set(wheels):
+                if not over:
+                    _step_world(simulators, wheels, radio, runs)
+                    steps += 1
+                for index in sorted(wheels):
+                    connections[index].send(("ok", over))
+                wheels.clear()
+    finally:
+        for process in processes:
+            process.join(EXIT_WAIT_SECONDS)
+            if process.is_alive():
+                process.kill()
+                process.join()
+        for connection in connections.values():
+            connection.close()
+    return steps
+
+
+def _step_world(
+    simulators: list[Any],
+    wheels: Mapping[int, tuple[float, float]],
+    radio: Radio,
+    runs: list[RobotRun],
+) -> None:
+    """One basic step of every robot: the radio's packets, then the motion."""
+    radio.transmit({i: tuple(float(v) for v in s.pose) for i, s in enumerate(simulators)})  # type: ignore[misc]
+    views = [(i, s) for i, s in enumerate(simulators) if isinstance(s, RobotView)]
+    if views:
+        commands = np.array([wheels.get(i, (0.0, 0.0)) for i, _ in views], dtype=np.float64)
+        views[0][1].simulator.step_robots(commands)
+    for index, simulator in enumerate(simulators):
+        if not isinstance(simulator, RobotView):
+            simulator.step(*wheels.get(index, (0.0, 0.0)))
+    for index, simulator in enumerate(simulators):
+        x, y, _ = simulator.pose
+        runs[index].xs.append(float(x))
+        runs[index].ys.append(float(y))

@@ -1,0 +1,160 @@
+"""The radio between the robots of a world: what Webots' Emitter and Receiver nodes carry.
+
+A :class:`Radio` is the medium of one world. Emitters :meth:`~Radio.send` packets; once per basic
+time step the process that owns the world calls :meth:`~Radio.transmit` with every robot's
+pose, before the step, and each packet sent since the last transmission reaches the listening
+receivers of the other robots: those on its channel (or listening to all, channel -1; a packet
+sent on channel -1 reaches every channel) and within its range (-1: no limit). Receivers
+:meth:`~Radio.collect` what arrived at their next sampling instant. The rules follow Webots'
+reference manual (https://cyberbotics.com/doc/reference/emitter and
+https://cyberbotics.com/doc/reference/receiver):
+
+- "the Emitter node will need at least one basic time step to send the packet but the Receiver
+  node will receive it immediately": a packet sent before ``Robot.step`` is in the queue of a
+  receiver sampling every basic step when that step returns;
+- "a packet will not be sent to its emitter robot";
+- "A value of -1 (the default) for range is considered to be an infinite range"; the distance
+  is the one between the two robots' centres at the time of sending;
+- the signal strength is "the inverse of the distance between the emitter and the receiver
+  squared", the emitter's direction "a normalized (length=1) vector that indicates the direction
+  of the emitter with respect to the receiver's coordinate system" (x forward, y left, z up);
+- packets are "received in the same order they were sent"; packets of several robots sent in
+  the same step arrive in the order of the robots, then of sending, so a run is repeatable.
+
+A run of one robot has a radio too: nothing reaches its own receiver.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+
+__all__ = ["CHANNEL_BROADCAST", "UNLIMITED", "Packet", "Radio"]
+
+#: The channel of an emitter that sends on every channel, or a receiver that listens to all.
+CHANNEL_BROADCAST = -1
+#: A range, buffer size or maximum range without limit.
+UNLIMITED = -1
+
+
+@dataclass(frozen=True)
+class Packet:
+    """A packet in a receiver's queue.
+
+    Attributes:
+        data: The bytes sent.
+        channel: The channel it was sent on.
+        signal_strength: 1 / r^2 for the distance r (metres) between the robots when it was
+            sent; infinite at distance 0.
+        direction: Unit vector toward the emitter in the receiver's frame (x forward, y left,
+            z up).
+    """
+
+    data: bytes
+    channel: int
+    signal_strength: float
+    direction: tuple[float, float, float]
+
+
+@dataclass
+class _Sent:
+    """A packet on its way: who sent it, on which channel, how far it carries."""
+
+    robot: int
+    order: int
+    channel: int
+    range_m: float
+    data: bytes
+
+
+@dataclass
+class _Tuning:
+    """A receiver's channel and whether it listens (is enabled)."""
+
+    channel: int
+    listening: bool
+    arrived: list[Packet] = field(default_factory=list)
+
+
+def _reaches(sent: _Sent, channel: int) -> bool:
+    """Whether a packet sent on ``sent.channel`` is heard on ``channel``."""
+    return CHANNEL_BROADCAST in (sent.channel, channel) or sent.channel == channel
+
+
+class Radio:
+    """The medium of one world: packets in transit and the receivers that listen.
+
+    Robots are numbered (their index in the world); receivers are named by robot and device
+    name.
+    """
+
+    def __init__(self) -> None:
+        self._in_transit: list[_Sent] = []
+        self._receivers: dict[tuple[int, str], _Tuning] = {}
+        self._sent = 0
+
+    def send(self, robot: int, channel: int, range_m: float, data: bytes) -> None:
+        """Puts a packet on its way; it arrives at the next :meth:`transmit`.
+
+        Args:
+            robot: The sending robot.
+            channel: The emitter's channel (-1: every channel).
+            range_m: The emitter's range in metres (-1: no limit).
+            data: The packet.
+        """
+        self._sent += 1
+        self._in_transit.append(_Sent(robot, self._sent, channel, float(range_m), bytes(data)))
+
+    def tune(self, robot: int, receiver: str, channel: int, listening: bool) -> None:
+        """Sets a receiver's channel and whether it listens; a receiver that stops listening
+        keeps what arrived before."""
+        tuning = self._receivers.setdefault((robot, receiver), _Tuning(channel, listening))
+        tuning.channel = channel
+        tuning.listening = listening
+
+    def transmit(self, poses: Mapping[int, tuple[float, float, float]]) -> None:
+        """Delivers the packets sent since the last call to the listening receivers they reach.
+
+        Args:
+            poses: Each robot's x, y (metres) and yaw (radians) when the packets were sent.
+        """
+        sent = sorted(self._in_transit, key=lambda p: (p.robot, p.order))
+        self._in_transit = []
+        for (robot, _), tuning in sorted(self._receivers.items()):
+            if not tuning.listening or robot not in poses:
+                continue
+            for packet in sent:
+                if packet.robot == robot or packet.robot not in poses:
+                    continue
+                if not _reaches(packet, tuning.channel):
+                    continue
+                arrived = _arrival(packet, poses[packet.robot], poses[robot])
+                if arrived is not None:
+                    tuning.arrived.append(arrived)
+
+    def collect(self, robot: int, receiver: str) -> list[Packet]:
+        """The packets that reached a receiver since it last collected (emptied)."""
+        tuning = self._receivers.get((robot, receiver))
+        if tuning is None:
+            return []
+        arrived, tuning.arrived = tuning.arrived, []
+        return arrived
+
+
+def _arrival(
+    sent: _Sent, sender: tuple[float, float, float], receiver: tuple[float, float, float]
+) -> Packet | None:
+    """The packet as a receiver at ``receiver`` gets it, or None when out of range."""
+    dx, dy = sender[0] - receiver[0], sender[1] - receiver[1]
+    distance = math.hypot(dx, dy)
+    if sent.range_m != UNLIMITED and distance > sent.range_m:
+        return None
+    if distance > 0.0:
+        bearing = math.atan2(dy, dx) - receiver[2]
+        direction = (math.cos(bearing), math.sin(bearing), 0.0)
+        strength = 1.0 / (distance * distance)
+    else:
+        direction = (1.0, 0.0, 0.0)
+        strength = math.inf
+    return Packet(sent.data, sent.channel, strength, direction)

@@ -1,0 +1,300 @@
+"""Webots' ``Emitter`` and ``Receiver`` devices, carried by the world's
+:class:`~mazesim.webots.radio.Radio`.
+
+The e-puck's own ``emitter`` and ``receiver`` use the E-puck PROTO's channel 1 and range 0.8 m;
+an Emitter or Receiver node of the world file (in an extension slot, or among a robot's children)
+brings its own ``channel``, ``range``, ``maxRange`` and ``bufferSize`` fields, with the node's
+defaults (channel 0, range -1, unlimited buffers) where the file gives none.
+
+Semantics follow Webots' reference manual (https://cyberbotics.com/doc/reference/emitter,
+https://cyberbotics.com/doc/reference/receiver): ``send`` returns 0 when the packets queued in
+the current step would exceed the emitter's ``bufferSize``; a receiver listens from ``enable``
+on and makes what arrived available at each end of its sampling period; a packet that would
+make the queue's bytes exceed the receiver's ``bufferSize`` is lost; reading an empty queue
+prints Webots' error.
+"""
+
+from __future__ import annotations
+
+import math
+import struct
+from collections import deque
+from collections.abc import Mapping
+from typing import TYPE_CHECKING, Any
+
+from mazesim.webots.devices import Device, _print_error, _Sensor
+from mazesim.webots.inert import NotSimulated
+from mazesim.webots.node_types import node_type
+from mazesim.webots.radio import CHANNEL_BROADCAST, UNLIMITED, Packet
+
+if TYPE_CHECKING:
+    from mazesim.webots.simulation import RobotSimulation
+
+__all__ = ["Emitter", "Receiver", "emitter_from_fields", "receiver_from_fields"]
+
+#: The E-puck PROTO's emitter and receiver channel.
+E_PUCK_CHANNEL = 1
+#: The E-puck PROTO's emitter range, metres.
+E_PUCK_RANGE = 0.8
+
+
+def _packet_bytes(message: Any, length: int | None) -> bytes:
+    """A message as the bytes sent: str as UTF-8, bytes as they are, a list of numbers as
+    doubles (native order); ``length`` keeps only the first bytes."""
+    if isinstance(message, str):
+        data = message.encode("utf-8")
+    elif isinstance(message, (bytes, bytearray, memoryview)):
+        data = bytes(message)
+    else:
+        data = struct.pack(f"{len(message)}d", *(float(v) for v in message))
+    return data if length is None else data[: max(0, int(length))]
+
+
+class _Tuned:
+    """What an emitter and a receiver share: a channel, read with ``getChannel`` or the
+    ``channel`` property (assigning it calls ``setChannel``)."""
+
+    CHANNEL_BROADCAST = CHANNEL_BROADCAST
+    _channel: int
+
+    def setChannel(self, channel: int) -> None:
+        raise NotImplementedError
+
+    def getChannel(self) -> int:
+        """The channel (-1: every channel)."""
+        return self._channel
+
+    @property
+    def channel(self) -> int:
+        """The channel (property style)."""
+        return self._channel
+
+    @channel.setter
+    def channel(self, channel: int) -> None:
+        self.setChannel(channel)
+
+
+class Emitter(_Tuned, NotSimulated, Device):
+    """A radio emitter: ``send``, channel, range and buffer size."""
+
+    _node_type = node_type("EMITTER")
+
+    def __init__(
+        self,
+        name: str,
+        simulation: RobotSimulation,
+        channel: int = E_PUCK_CHANNEL,
+        range_m: float = E_PUCK_RANGE,
+        max_range: float = UNLIMITED,
+        buffer_size: int = UNLIMITED,
+    ) -> None:
+        super().__init__(name, simulation)
+        self._channel = int(channel)
+        self._max_range = float(max_range)
+        self._range = self._clamped(float(range_m))
+        self._buffer_size = int(buffer_size)
+        self._queued_bytes = 0
+        self._queued_at = -1
+
+    def _clamped(self, range_m: float) -> float:
+        """A range no longer than ``maxRange`` (-1 counts as infinite for both)."""
+        if self._max_range == UNLIMITED:
+            return range_m
+        if range_m == UNLIMITED or range_m > self._max_range:
+            return self._max_range
+        return range_m
+
+    def send(self, message: Any, length: int | None = None) -> int:
+        """Sends a packet (str, bytes, or a list of numbers sent as doubles).
+
+        Returns:
+            1 when the packet was queued, 0 when the emitter's buffer is full (or the packet is
+            empty: a packet has at least 1 byte).
+        """
+        data = _packet_bytes(message, length)
+        if not data:
+            _print_error("Error: wb_emitter_send(): a packet must have at least 1 byte.")
+            return 0
+        simulation = self._simulation
+        if self._queued_at != simulation.steps:
+            self._queued_at, self._queued_bytes = simulation.steps, 0
+        if self._buffer_size != UNLIMITED and self._queued_bytes + len(data) > self._buffer_size:
+            return 0
+        self._queued_bytes += len(data)
+        simulation.radio.send(simulation.robot_index, self._channel, self._range, data)
+        return 1
+
+    def setChannel(self, channel: int) -> None:
+        """Sets the channel (:attr:`CHANNEL_BROADCAST` sends on every channel)."""
+        self._channel = int(channel)
+
+    def getRange(self) -> float:
+        """The range in metres (-1: no limit)."""
+        return self._range
+
+    def setRange(self, range: float) -> None:
+        """Sets the range in metres, at most the node's ``maxRange``."""
+        self._range = self._clamped(float(range))
+
+    def getBufferSize(self) -> int:
+        """The bytes the emitter may queue in one step (-1: unlimited)."""
+        return self._buffer_size
+
+    @property
+    def range(self) -> float:
+        """The range (property style)."""
+        return self._range
+
+    @range.setter
+    def range(self, range: float) -> None:
+        self.setRange(range)
+
+    @property
+    def buffer_size(self) -> int:
+        """The buffer size (property style)."""
+        return self._buffer_size
+
+
+class Receiver(_Tuned, NotSimulated, _Sensor):
+    """A radio receiver: its queue of packets, sampled every sampling period."""
+
+    _node_type = node_type("RECEIVER")
+
+    _api = "wb_receiver"
+
+    def __init__(
+        self,
+        name: str,
+        simulation: RobotSimulation,
+        channel: int = E_PUCK_CHANNEL,
+        buffer_size: int = UNLIMITED,
+    ) -> None:
+        super().__init__(name, simulation)
+        self._channel = int(channel)
+        self._buffer_size = int(buffer_size)
+        self._queue: deque[Packet] = deque()
+        self._queued_bytes = 0
+
+    def _tune(self) -> None:
+        simulation = self._simulation
+        listening = self._period_ms > 0
+        simulation.radio.tune(simulation.robot_index, self._name, self._channel, listening)
+
+    def enable(self, samplingPeriod: int) -> None:
+        """Listens from now on; what arrives is in the queue at each end of a sampling period."""
+        super().enable(samplingPeriod)
+        self._tune()
+
+    def disable(self) -> None:
+        """Stops listening; the queue keeps its packets."""
+        super().disable()
+        self._tune()
+
+    def _read(self) -> float:
+        """At the end of a sampling period: queues what arrived, losing a packet that would
+        overflow the buffer."""
+        simulation = self._simulation
+        for packet in simulation.radio.collect(simulation.robot_index, self._name):
+            size = len(packet.data)
+            if self._buffer_size != UNLIMITED and self._queued_bytes + size > self._buffer_size:
+                continue
+            self._queue.append(packet)
+            self._queued_bytes += size
+        return math.nan
+
+    def _head(self, function: str) -> Packet | None:
+        """The head packet, or None with Webots' error when the queue is empty."""
+        if not self._queue:
+            _print_error(f"Error: wb_receiver_{function}(): the receiver queue is empty.")
+            return None
+        return self._queue[0]
+
+    def getQueueLength(self) -> int:
+        """The number of packets in the queue."""
+        return len(self._queue)
+
+    def nextPacket(self) -> None:
+        """Drops the head packet (Webots' error when the queue is empty)."""
+        if self._head("next_packet") is not None:
+            self._queued_bytes -= len(self._queue.popleft().data)
+
+    def getBytes(self) -> bytes | None:
+        """The head packet's bytes (None with Webots' error when the queue is empty)."""
+        head = self._head("get_data")
+        return None if head is None else head.data
+
+    def getData(self) -> bytes | None:
+        """The head packet's bytes, as :meth:`getBytes`."""
+        return self.getBytes()
+
+    def getString(self) -> str | None:
+        """The head packet as UTF-8 text, without the NUL a C controller ends a string with."""
+        head = self._head("get_data")
+        if head is None:
+            return None
+        data = head.data[:-1] if head.data.endswith(b"\0") else head.data
+        return data.decode("utf-8", errors="replace")
+
+    def getDataSize(self) -> int:
+        """The head packet's size in bytes (-1 with Webots' error when the queue is empty)."""
+        head = self._head("get_data_size")
+        return -1 if head is None else len(head.data)
+
+    def getSignalStrength(self) -> float:
+        """1 / r^2 for the distance r at which the head packet was sent (NaN when empty)."""
+        head = self._head("get_signal_strength")
+        return math.nan if head is None else head.signal_strength
+
+    def getEmitterDirection(self) -> list[float]:
+        """Unit vector toward the head packet's emitter in the robot's frame (NaNs when
+        empty)."""
+        head = self._head("get_emitter_direction")
+        return [math.nan] * 3 if head is None else list(head.direction)
+
+    def setChannel(self, channel: int) -> None:
+        """Sets the channel (:attr:`CHANNEL_BROADCAST` listens to every channel)."""
+        self._channel = int(channel)
+        self._tune()
+
+    @property
+    def queue_length(self) -> int:
+        """The number of packets in the queue."""
+        return len(self._queue)
+
+
+def _int_field(fields: Mapping[str, Any], name: str, default: int) -> int:
+    value = fields.get(name, default)
+    return int(value) if isinstance(value, (int, float)) and math.isfinite(value) else default
+
+
+def _float_field(fields: Mapping[str, Any], name: str, default: float) -> float:
+    value = fields.get(name, default)
+    return float(value) if isinstance(value, (int, float)) and math.isfinite(value) else default
+
+
+def emitter_from_fields(
+    name: str, simulation: RobotSimulation, fields: Mapping[str, Any]
+) -> Emitter:
+    """An Emitter node of the world file, with its fields (Webots' node defaults: channel 0,
+    range -1, maxRange -1, bufferSize -1)."""
+    return Emitter(
+        name,
+        simulation,
+        channel=_int_field(fields, "channel", 0),
+        range_m=_float_field(fields, "range", UNLIMITED),
+        max_range=_float_field(fields, "maxRange", UNLIMITED),
+        buffer_size=_int_field(fields, "bufferSize", UNLIMITED),
+    )
+
+
+def receiver_from_fields(
+    name: str, simulation: RobotSimulation, fields: Mapping[str, Any]
+) -> Receiver:
+    """A Receiver node of the world file, with its fields (Webots' node defaults: channel 0,
+    bufferSize -1)."""
+    return Receiver(
+        name,
+        simulation,
+        channel=_int_field(fields, "channel", 0),
+        buffer_size=_int_field(fields, "bufferSize", UNLIMITED),
+    )

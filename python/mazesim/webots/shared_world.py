@@ -1,0 +1,117 @@
+"""The e-pucks of a Webots world in one simulator, where they collide with and see each other.
+
+:func:`shared_simulator` puts every e-puck of an imported world into one
+:class:`~mazesim.Simulator` (the world's ``[[robots]]``, see ``docs/multi-robot.md``); a
+:class:`RobotView` is one of them with the calls of a one-robot simulator, which is what a
+controller's process asks for over its pipe (:mod:`mazesim.webots.controller_process`). A world
+the shared simulator refuses (movable bodies, robots overlapping at their starts, more robots
+than it holds) is run with a simulator per robot instead, with a warning.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+from mazesim._core import Simulator, World
+from mazesim.errors import MazesimError
+
+__all__ = ["RobotView", "shared_simulator"]
+
+#: The ``[start]`` table of a world file, up to the next table.
+_START_TABLE = re.compile(r"^\[start\]\n(?:(?!\[).*\n)*", re.MULTILINE)
+
+
+class RobotView:
+    """Robot ``index`` of a shared simulator, read and moved as a one-robot simulator is."""
+
+    def __init__(self, simulator: Simulator, index: int) -> None:
+        self.simulator = simulator
+        self.index = index
+
+    def _state(self, key: str) -> Any:
+        return self.simulator.robot_state(self.index)[key]
+
+    @property
+    def pose(self) -> tuple[float, float, float]:
+        """x, y, yaw now."""
+        x, y, yaw = self._state("pose")
+        return float(x), float(y), float(yaw)
+
+    @property
+    def time(self) -> float:
+        """Simulated seconds since the start."""
+        return float(self.simulator.time)
+
+    @property
+    def control_step_ms(self) -> float:
+        """The control step in milliseconds."""
+        return float(self.simulator.control_step_ms)
+
+    @property
+    def colliding(self) -> bool:
+        """Whether the body touches a wall or another robot."""
+        return bool(self._state("colliding"))
+
+    @property
+    def collisions(self) -> int:
+        """Contacts begun since the start."""
+        return int(self._state("collisions"))
+
+    @property
+    def distance_travelled(self) -> float:
+        """Metres travelled."""
+        return float(self._state("distance_travelled"))
+
+    @property
+    def encoders(self) -> tuple[float, float]:
+        """The wheels' turns (rad)."""
+        left, right = self._state("encoders")
+        return float(left), float(right)
+
+    def set_pose(self, x: float, y: float, yaw: float) -> None:
+        """Puts the robot at a pose, at rest."""
+        self.simulator.set_pose(x, y, yaw, robot_index=self.index)
+
+    def distance_sensors(self) -> Any:
+        """The proximity readings."""
+        return self.simulator.distance_sensors(robot_index=self.index)
+
+    def ground_sensors(self) -> Any:
+        """The ground readings."""
+        return self.simulator.ground_sensors(robot_index=self.index)
+
+
+def shared_simulator(
+    world: World,
+    robots: Sequence[Mapping[str, Any]],
+    indices: Sequence[int],
+    *,
+    seed: int,
+    noise: bool,
+) -> tuple[Simulator | None, str]:
+    """One simulator of the robots ``indices`` of a world's ``robots`` (import report entries),
+    in that order, or None and why not.
+
+    Args:
+        world: The imported world (its walls, paint and movable bodies).
+        robots: The import report's ``robots``.
+        indices: The robots to put in the simulator (the e-pucks).
+        seed: Seed of the sensor noise; each robot's stream derives from it and its name.
+        noise: Whether the sensors are noisy.
+    """
+    tables = []
+    for index in indices:
+        x, y, yaw = (float(v) for v in robots[index]["pose"])
+        profile = robots[index].get("profile") or "e-puck"
+        tables.append(
+            f'\n[[robots]]\nname = "robot-{index}"\nx = {x!r}\ny = {y!r}\nyaw = {yaw!r}\n'
+            f'profile = "{profile}"\n'
+        )
+    text = _START_TABLE.sub("", world.to_toml()) + "".join(tables)
+    try:
+        shared = World.from_toml(text, source=f"{world.name} (every e-puck)")
+        return Simulator(shared, seed=seed, noise=noise), ""
+    except MazesimError as refusal:
+        return None, str(refusal)

@@ -1,0 +1,216 @@
+"""Emitter and Receiver between robots: Webots' channels, range, queue and next-step delivery."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+from typing import Any
+
+import pytest
+
+import mazesim
+from mazesim._core import Simulator
+from mazesim.webots import controller, prepare
+from mazesim.webots import simulation as simulations
+from mazesim.webots.importer import import_wbt_text
+from mazesim.webots.radio import Radio
+from mazesim.webots.radio_devices import Emitter, Receiver, emitter_from_fields
+from mazesim.webots.scene import read_scene
+from mazesim.webots.simulation import RobotSimulation
+
+HERE = (0.0, 0.0, 0.0)
+
+
+def _radio_with_receiver(channel: int = 1) -> Radio:
+    radio = Radio()
+    radio.tune(1, "receiver", channel, listening=True)
+    return radio
+
+
+def test_a_packet_arrives_at_the_next_transmission_not_before() -> None:
+    radio = _radio_with_receiver()
+    radio.send(0, 1, -1, b"hello")
+    assert radio.collect(1, "receiver") == []
+    radio.transmit({0: HERE, 1: (0.5, 0.0, 0.0)})
+    (packet,) = radio.collect(1, "receiver")
+    assert packet.data == b"hello"
+    assert radio.collect(1, "receiver") == [], "collecting empties"
+
+
+@pytest.mark.parametrize(
+    ("sent_on", "listening_on", "heard"),
+    [(1, 1, True), (1, 2, False), (-1, 2, True), (3, -1, True), (-1, -1, True)],
+)
+def test_channels_and_the_broadcast_channel(sent_on: int, listening_on: int, heard: bool) -> None:
+    radio = _radio_with_receiver(listening_on)
+    radio.send(0, sent_on, -1, b"x")
+    radio.transmit({0: HERE, 1: (0.1, 0.0, 0.0)})
+    assert bool(radio.collect(1, "receiver")) is heard
+
+
+def test_range_is_the_distance_between_robots_and_minus_one_has_no_limit() -> None:
+    radio = _radio_with_receiver()
+    radio.send(0, 1, 0.5, b"near")
+    radio.send(0, 1, 0.3, b"short")
+    radio.send(0, 1, -1, b"anywhere")
+    radio.transmit({0: HERE, 1: (0.3, 0.4, 0.0)})  # 0.5 m away
+    assert [p.data for p in radio.collect(1, "receiver")] == [b"near", b"anywhere"]
+
+
+def test_no_packet_to_its_own_robot_nor_to_a_receiver_not_listening() -> None:
+    radio = _radio_with_receiver()
+    radio.tune(0, "receiver", 1, listening=True)
+    radio.tune(2, "receiver", 1, listening=False)
+    radio.send(0, 1, -1, b"x")
+    radio.transmit({0: HERE, 1: (1.0, 0.0, 0.0), 2: (1.0, 1.0, 0.0)})
+    assert radio.collect(0, "receiver") == []
+    assert radio.collect(2, "receiver") == []
+    assert len(radio.collect(1, "receiver")) == 1
+
+
+def test_signal_strength_and_direction_in_the_receivers_frame() -> None:
+    radio = _radio_with_receiver()
+    radio.send(0, 1, -1, b"x")
+    # The receiver is 2 m east of the sender and faces north: the sender is on its left (+y).
+    radio.transmit({0: HERE, 1: (2.0, 0.0, math.pi / 2)})
+    (packet,) = radio.collect(1, "receiver")
+    assert packet.signal_strength == pytest.approx(0.25)
+    assert packet.direction == pytest.approx((0.0, 1.0, 0.0), abs=1e-12)
+
+
+def test_order_is_robot_then_sending_whatever_the_order_of_arrival() -> None:
+    radio = _radio_with_receiver()
+    radio.send(2, 1, -1, b"c1")
+    radio.send(0, 1, -1, b"a1")
+    radio.send(2, 1, -1, b"c2")
+    radio.transmit({0: HERE, 1: (0.1, 0.0, 0.0), 2: (0.2, 0.0, 0.0)})
+    assert [p.data for p in radio.collect(1, "receiver")] == [b"a1", b"c1", b"c2"]
+
+
+# --- the devices, two robots sharing one radio -------------------------------------------------
+
+
+class _TwoRobots:
+    """Two e-pucks 0.3 m apart sharing a radio, stepped as the world's owner steps them."""
+
+    def __init__(self) -> None:
+        world = mazesim.World.builtin("arena")
+        self.radio = Radio()
+        self.robots = []
+        for index in range(2):
+            simulator = Simulator(world, seed=index)
+            x, y, _ = simulator.pose
+            simulator.set_pose(x + 0.3 * index, y, 0.0)
+            self.robots.append(
+                RobotSimulation(world, simulator=simulator, radio=self.radio, robot_index=index)
+            )
+        self.receivers: list[Receiver] = []
+
+    def step(self) -> None:
+        self.radio.transmit({r.robot_index: r.simulator.pose for r in self.robots})
+        for robot in self.robots:
+            robot.advance(0.0, 0.0)
+        for receiver in self.receivers:
+            receiver._after_step()
+
+
+def test_a_packet_sent_before_a_step_is_in_the_queue_after_it() -> None:
+    pair = _TwoRobots()
+    emitter = Emitter("emitter", pair.robots[0])
+    receiver = Receiver("receiver", pair.robots[1])
+    pair.receivers.append(receiver)
+    receiver.enable(int(pair.robots[1].basic_time_step_ms))
+    emitter.send("hello")
+    assert receiver.getQueueLength() == 0
+    pair.step()
+    assert receiver.getQueueLength() == 1
+    assert receiver.getString() == "hello"
+    assert receiver.getDataSize() == 5
+    assert receiver.getSignalStrength() == pytest.approx(1 / 0.3**2)
+    assert receiver.getEmitterDirection()[0] == pytest.approx(-1.0)
+    receiver.nextPacket()
+    assert receiver.getQueueLength() == 0
+
+
+def test_the_sampling_period_holds_packets_until_it_ends(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    pair = _TwoRobots()
+    basic = int(pair.robots[1].basic_time_step_ms)
+    emitter = Emitter("emitter", pair.robots[0])
+    receiver = Receiver("receiver", pair.robots[1])
+    pair.receivers.append(receiver)
+    receiver.enable(3 * basic)
+    emitter.send(b"\x01\x02")
+    pair.step()
+    pair.step()
+    assert receiver.getQueueLength() == 0, "the first sampling period has not ended"
+    assert receiver.getBytes() is None
+    assert "the receiver queue is empty" in capsys.readouterr().err
+    pair.step()
+    assert receiver.getQueueLength() == 1
+    assert receiver.getBytes() == b"\x01\x02"
+
+
+def test_a_disabled_receiver_hears_nothing_and_buffers_overflow_by_losing_packets() -> None:
+    pair = _TwoRobots()
+    basic = int(pair.robots[1].basic_time_step_ms)
+    emitter = Emitter("emitter", pair.robots[0])
+    receiver = Receiver("receiver", pair.robots[1], buffer_size=6)
+    pair.receivers.append(receiver)
+    emitter.send("lost")
+    pair.step()
+    receiver.enable(basic)
+    pair.step()
+    assert receiver.getQueueLength() == 0, "sent while the receiver was disabled"
+    for word in ("abc", "def", "ghi"):
+        emitter.send(word)
+    pair.step()
+    assert receiver.getQueueLength() == 2, "the third packet overflows 6 bytes"
+    assert receiver.getString() == "abc"
+    receiver.nextPacket()
+    assert receiver.getString() == "def"
+
+
+def test_an_emitters_buffer_size_and_max_range_and_the_e_pucks_defaults() -> None:
+    pair = _TwoRobots()
+    own = emitter_from_fields(
+        "radio", pair.robots[0], {"channel": 4, "range": 2.0, "maxRange": 1.0, "bufferSize": 4}
+    )
+    assert (own.getChannel(), own.getRange(), own.getBufferSize()) == (4, 1.0, 4)
+    own.setRange(-1)
+    assert own.getRange() == 1.0, "-1 is infinite, more than maxRange"
+    assert own.send(b"abc") == 1
+    assert own.send(b"de") == 0, "5 bytes in one step exceed the buffer of 4"
+    pair.step()
+    assert own.send(b"de") == 1, "the buffer empties as the packets leave"
+    e_puck = Emitter("emitter", pair.robots[0])
+    assert (e_puck.getChannel(), e_puck.getRange(), e_puck.getBufferSize()) == (1, 0.8, -1)
+    assert e_puck.send(b"") == 0
+
+
+# --- the channels a world file gives --------------------------------------------------------
+
+WITH_CHANNELS = """#VRML_SIM R2023b utf8
+E-puck { controller "x" emitter_channel 4 receiver_channel 5 }
+E-puck { translation 0.5 0 0 name "other" controller "x" }
+"""
+
+
+@pytest.fixture
+def robot_of_world() -> Iterator[Any]:
+    world, report = import_wbt_text(WITH_CHANNELS)
+    scene = read_scene(WITH_CHANNELS, report["robot_model"], report["robot_line"])
+    prepare(world, seconds=1.0, report=dict(report), scene=scene)
+    controller.Robot.created = None
+    yield controller.Supervisor()
+    controller.Robot.created = None
+    simulations.release()
+
+
+def test_the_e_puck_protos_channel_fields_tune_its_radio(robot_of_world: Any) -> None:
+    assert robot_of_world.getDevice("emitter").getChannel() == 4
+    assert robot_of_world.getDevice("receiver").getChannel() == 5
+    # Another e-puck that sets none has the PROTO's default, as a supervisor reads it.
+    other = robot_of_world.getRoot().getField("children").getMFNode(1)
+    assert other.getField("receiver_channel").getSFInt32() == 1

@@ -1,0 +1,159 @@
+"""A Webots world with several robots, run as Webots runs it: each robot's controller in its own
+process, in lockstep, talking over Emitter and Receiver."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from mazesim.webots.lockstep import controller_of, run_world
+
+SWARM = Path(__file__).resolve().parent.parent / "data" / "webots-swarm"
+WORLD = SWARM / "worlds" / "leader_followers.wbt"
+
+
+@pytest.fixture(scope="module")
+def leader_and_followers(tmp_path_factory: pytest.TempPathFactory) -> tuple[object, Path]:
+    logs = tmp_path_factory.mktemp("swarm")
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setenv("SWARM_LOG", str(logs))
+        run = run_world(str(WORLD), seconds=10.0, seed=3)
+    return run, logs
+
+
+def test_every_robot_runs_its_own_controller(leader_and_followers: tuple[object, Path]) -> None:
+    run, logs = leader_and_followers
+    assert [r.name for r in run.robots] == ["leader", "near", "far"]  # type: ignore[attr-defined]
+    assert [Path(str(r.controller)).name for r in run.robots] == [  # type: ignore[attr-defined]
+        "leader.py",
+        "follower.py",
+        "follower.py",
+    ]
+    assert [r.exit_status for r in run.robots] == [0, 0, 0]  # type: ignore[attr-defined]
+    assert run.steps == 60  # type: ignore[attr-defined]
+    # Module-level state is each process's own: each follower heard only its own orders.
+    near = json.loads((logs / "near.json").read_text())
+    assert near["orders"] == ["go"] * 30 + ["stop"] * 29
+
+
+def test_orders_arrive_one_step_later_and_only_within_range(
+    leader_and_followers: tuple[object, Path],
+) -> None:
+    run, logs = leader_and_followers
+    near = json.loads((logs / "near.json").read_text())
+    far = json.loads((logs / "far.json").read_text())
+    # Sent after the leader's first step, heard when the follower's second step returns.
+    assert near["first_heard"] == 2
+    strength, direction = near["strengths"]
+    assert strength == pytest.approx(1 / 0.3**2)
+    assert direction == pytest.approx([0.0, -1.0, 0.0], abs=1e-9), "the leader is on its right"
+    # 0.9 m away, beyond the e-puck emitter's 0.8 m: nothing arrives.
+    assert far["first_heard"] is None and far["orders"] == []
+    leader = json.loads((logs / "leader.json").read_text())
+    # Acknowledgements on channel 2 come from the near follower only, one step after each order
+    # it heard (the last order's acknowledgement is still on its way when the leader stops).
+    assert set(leader["acknowledgements"]) == {"near go", "near stop"}
+    assert leader["acknowledgements"].count("near go") == 30
+
+
+def test_the_followers_obey(leader_and_followers: tuple[object, Path]) -> None:
+    run, _ = leader_and_followers
+    leader, near, far = run.robots  # type: ignore[attr-defined]
+    assert leader.distance_m < 1e-6, "the leader does not drive"
+    assert far.distance_m < 1e-6, "the far follower heard no order"
+    # The near follower drove forward (+x) while told "go", then stopped.
+    assert 0.04 < near.final_pose[0] < 0.12
+    assert near.final_pose[1] == pytest.approx(0.3, abs=0.01)
+    assert near.xs[-1] == pytest.approx(near.xs[-10], abs=1e-4), "stopped at the end"
+    assert len(near.xs) == run.steps + 1  # type: ignore[attr-defined]
+
+
+def test_controllers_are_found_in_the_project_or_given() -> None:
+    robot = {"name": "near", "def_name": "NEAR", "controller": "follower"}
+    found, _ = controller_of(robot, str(WORLD), {})
+    assert found == str(SWARM / "controllers" / "follower" / "follower.py")
+    given, _ = controller_of(robot, str(WORLD), {"NEAR": "other.py"})
+    assert Path(str(given)).name == "other.py"
+    none, why = controller_of({**robot, "controller": "<extern>"}, str(WORLD), {})
+    assert none is None and "--robot-controller near=FILE" in why
+    none, why = controller_of({**robot, "controller": "void"}, str(WORLD), {})
+    assert none is None and why == "no controller"
+
+
+def test_a_supervisor_sees_and_moves_every_robot_and_its_own_emitter_reaches_them(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setenv("SWARM_LOG", str(tmp_path))
+    run = run_world(str(SWARM / "worlds" / "shepherd.wbt"), seconds=10.0)
+    shepherd, stray, flock = run.robots
+    assert [r.exit_status for r in run.robots] == [0, 0, 0]
+    assert stray.controller is None and stray.note == "no controller"
+    seen = json.loads((tmp_path / "shepherd.json").read_text())
+    assert seen["stray"] == pytest.approx([-1.0, -1.0, 0.0], abs=1e-6)
+    assert seen["flock_start"] == pytest.approx([1.0, 1.0, 0.0], abs=1e-6)
+    # The Emitter node's own fields: channel 1, and Webots' default range -1 (no limit).
+    assert (seen["channel"], seen["range"]) == (1, -1.0)
+    assert stray.final_pose[:2] == pytest.approx((0.5, -0.5), abs=1e-6)
+    # The flock e-puck, 1.4 m from the shepherd, heard "go" and drove; the shepherd saw it move.
+    assert flock.final_pose[0] > 1.03
+    assert seen["flock_end"][0] == pytest.approx(flock.xs[40], abs=1e-6)
+    assert shepherd.distance_m == 0.0
+
+
+def test_the_command_runs_the_whole_world_and_reports_every_robot(tmp_path: Path) -> None:
+    out = tmp_path / "run"
+    env = dict(os.environ, SWARM_LOG=str(tmp_path), MPLBACKEND="Agg")
+    result = subprocess.run(
+        [sys.executable, "-m", "mazesim", "webots", "run", str(WORLD), "--seconds", "3"]
+        + ["--robot-controller", f"far={SWARM / 'controllers' / 'leader' / 'leader.py'}"]
+        + ["--out", str(out)],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=120,
+        check=False,
+    )
+    assert result.returncode == 0, result.stderr
+    summary = json.loads((out / "summary.json").read_text())
+    names = [robot["name"] for robot in summary["robots"]]
+    assert names == ["leader", "near", "far"]
+    assert Path(summary["robots"][2]["controller"]).name == "leader.py", "given on the command"
+    assert summary["steps"] == 60
+    rows = (out / "trajectory.csv").read_text().splitlines()
+    assert rows[0] == "robot,time_s,x_m,y_m"
+    assert {row.split(",")[0] for row in rows[1:]} == set(names)
+    assert (out / "trajectory.png").stat().st_size > 0
+    assert "far" in result.stdout and "leader.py" in result.stdout
+
+
+def test_e_pucks_driving_head_on_see_each_other_and_do_not_pass_through(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setenv("SWARM_LOG", str(tmp_path))
+    run = run_world(str(SWARM / "worlds" / "head_on.wbt"), seconds=5.0)
+    west, east = run.robots
+    # 0.3 m apart at 4 rad/s (about 8 cm/s each) they meet within 2 s and push, neither passes.
+    assert west.final_pose[0] < east.final_pose[0]
+    gap = east.final_pose[0] - west.final_pose[0]
+    assert 0.06 < gap < 0.09, "bodies of about 7.4 cm touching"
+    for name in ("west", "east"):
+        seen = json.loads((tmp_path / f"{name}.json").read_text())["highest_front_reading"]
+        # Alone in the arena the front sensors read under 120 (the lookup table's 5 cm and
+        # beyond); touching the other e-puck's grey shell they read several hundred.
+        assert seen > 300.0, f"{name}'s front sensors see the other e-puck's body"
+
+
+def test_the_same_seed_gives_the_same_run_whatever_the_processes_timing(
+    leader_and_followers: tuple[object, Path], tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    first, _ = leader_and_followers
+    monkeypatch.setenv("SWARM_LOG", str(tmp_path))
+    again = run_world(str(WORLD), seconds=10.0, seed=3)
+    for one, other in zip(first.robots, again.robots):  # type: ignore[attr-defined]
+        assert (one.xs, one.ys) == (other.xs, other.ys)
+    assert json.loads((tmp_path / "near.json").read_text())["orders"][:31] == ["go"] * 30 + ["stop"]
