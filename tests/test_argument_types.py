@@ -158,6 +158,7 @@ def samples(tmp: Path) -> dict[str, Any]:
         "place": np.array([0.1, 0.1, 1.0, 0.0, 0.0, 0.25, 0.0, 0.0]),
         "rows": 2,
         "cols": 2,
+        "shape": (2, 2),
         "waypoints": np.zeros((4, 2)),
         "open_sides": np.ones((4, 4)),
         "goal_cell": 3,

@@ -8,7 +8,7 @@ use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyBytes;
 
-use crate::args::{Bytes, Flag, IntArg, Real, Text};
+use crate::args::{type_name, Bytes, Flag, IntArg, Real, Text};
 use crate::buffers::copied;
 use crate::errors::{invalid, IntoPy};
 use crate::guard::enter;
@@ -171,10 +171,15 @@ impl PyTaskFeatures {
         goal: &Bound<'_, PyAny>,
         cell_size: Real,
         origin: &Bound<'_, PyAny>,
-        shape: (IntArg, IntArg),
+        shape: &Bound<'_, PyAny>,
         targets: &Bound<'_, PyAny>,
     ) -> PyResult<()> {
-        let (rows, cols) = shape;
+        let (rows, cols) = shape.extract::<(IntArg, IntArg)>().map_err(|_| {
+            invalid(format!(
+                "expected shape to be a (rows, cols) pair of ints, found a {}",
+                type_name(shape)
+            ))
+        })?;
         enter(|| {
             let env = env.count("env", usize::MAX)?;
             let mode = match mode.value("mode", "a str")?.as_str() {
