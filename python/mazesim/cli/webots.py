@@ -21,6 +21,7 @@ from mazesim._paths import (
 from mazesim.cli._args import positive_seconds, seed_argument
 from mazesim.cli._help import examples
 from mazesim.cli.progress import ProgressDisplay, add_progress_option, progress_display
+from mazesim.errors import InvalidArgumentError
 from mazesim.replay.views import (
     DeferredWatch,
     add_viewing_options,
@@ -286,6 +287,12 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
 
         return run_world_command(args, out)
 
+    if args.robot_controller:
+        raise InvalidArgumentError(
+            "--robot-controller NAME=FILE chooses a robot's controller in a world run "
+            "(mazesim webots run WORLD.wbt ...); found it with the controller file "
+            f"{args.controller!r}: give the world as the first argument, or leave the option out"
+        )
     file = controller_file(args.controller)
     controller = os.path.splitext(os.path.basename(file))[0]
     world, report, scene = _load_world(args.world, args.strict, controller)

@@ -39,6 +39,7 @@ def run_world_command(args: argparse.Namespace, out: TextIO) -> int:
         A supervisor's quit status, else the first controller's non-zero exit status, else 0.
     """
     import mazesim
+    from mazesim._paths import open_input
     from mazesim.plotting import save_robot_paths_png
     from mazesim.webots.lockstep import run_world
     from mazesim.webots.runner import controller_file
@@ -47,6 +48,8 @@ def run_world_command(args: argparse.Namespace, out: TextIO) -> int:
         name: controller_file(file)
         for name, file in robot_controllers(args.robot_controller).items()
     }
+    for file in given.values():
+        open_input(file, "the controller").close()  # a regular file, readable, before any run
     out_dir = os.path.abspath(args.out)
     os.makedirs(out_dir, exist_ok=True)
     run = run_world(
