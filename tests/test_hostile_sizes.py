@@ -51,7 +51,7 @@ CASES = {
     ),
     "robot batch reset seeds": (
         "RobotBatch([world], [0, 0]).reset(seeds=HUGE)",
-        r"seeds .*at most 2 values, found 1000000000",
+        r"seeds .*at most \d+ (values|items), found 1000000000",
     ),
     "robot batch worlds": (
         "RobotBatch(HUGE, [0, 0])",
@@ -59,11 +59,11 @@ CASES = {
     ),
     "robot batch envs": (
         "RobotBatch([world], HUGE)",
-        r"world_of_env .*at most 16777216 values, found 1000000000",
+        r"world_of_env .*at most \d+ (values|items), found 1000000000",
     ),
     "robot batch place": (
         "RobotBatch([world], [0, 0]).place(HUGE, HUGE, HUGE)",
-        r"envs .*at most 2 values, found 1000000000",
+        r"envs .*at most \d+ (values|items), found 1000000000",
     ),
 }
 
