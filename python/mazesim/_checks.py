@@ -74,6 +74,8 @@ SAMPLED_ITEMS = 8
 SMALLEST_INT, LARGEST_INT = -(1 << 63), (1 << 64) - 1
 
 _NUMBERS = (int, float, np.integer, np.floating)
+#: The origins of union annotations (``X | Y`` is a ``types.UnionType`` from Python 3.10 on).
+_UNIONS = (typing.Union, getattr(types, "UnionType", typing.Union))
 _CONTAINERS = {list, tuple, set, frozenset, dict}
 #: numpy's protocols of array-likes (the parts of ``numpy.typing.ArrayLike``).
 _ARRAY_PROTOCOLS = ("_NestedSequence", "_SupportsArray")
@@ -125,7 +127,7 @@ def _refusal(value: Any, hint: Any) -> str | None:  # noqa: C901, PLR0911, PLR09
         return None if value is None else f"expected None, found {_describe(value)}"
     origin = typing.get_origin(hint)
     args = typing.get_args(hint)
-    if origin is typing.Union or origin is types.UnionType:
+    if origin in _UNIONS:
         if any(_refusal(value, arg) is None for arg in args):
             return None
         return f"expected {_hint_name(hint)}, found {_describe(value)}"
@@ -209,7 +211,7 @@ def _container_refusal(value: Any, hint: Any, origin: Any, args: tuple[Any, ...]
         if origin is tuple and args and args[-1] is not Ellipsis and isinstance(value, abc.Sized):
             if len(value) != len(args):
                 return f"expected {len(args)} items ({_hint_name(hint)}), found {len(value)}"
-            for item, arg in zip(value, args, strict=True):
+            for item, arg in zip(value, args):  # noqa: B905 - equal lengths (above); no strict= in 3.9
                 reason = _refusal(item, arg)
                 if reason is not None:
                     return reason
@@ -229,7 +231,7 @@ def _bound_of(hint: Any) -> int | None:
     """The length bound of an annotation's values, or None for one of no length (a sequence or
     mapping: :data:`MOST_ITEMS`; an array: :data:`MOST_ARRAY_VALUES`)."""
     origin = typing.get_origin(hint)
-    if origin is typing.Union or origin is types.UnionType or origin is typing.Annotated:
+    if origin in _UNIONS or origin is typing.Annotated:
         bounds = [b for arg in typing.get_args(hint) if (b := _bound_of(arg)) is not None]
         return max(bounds) if bounds else None
     kind = origin if origin is not None else hint
@@ -362,7 +364,7 @@ class _Parameters:
         unknown one."""
         if not self.ready:
             self.prepare()
-        for (name, hint), value in zip(self.positional, args, strict=False):
+        for (name, hint), value in zip(self.positional, args):  # noqa: B905 - extras: TypeError
             if hint is not Any:
                 self.refuse(name, value, hint)
         for name, value in kwargs.items():
