@@ -1,4 +1,9 @@
-"""``mazesim webots run WORLD.wbt``: every robot of a Webots world with its own controller."""
+"""``mazesim webots run WORLD.wbt``: every robot of a Webots world with its own controller.
+
+The summary, the picture, the table and ``--html``/``--video``/``--record`` cover every robot
+(:class:`WorldRecorder`); ``--keys`` and ``--live``, which drive or show one robot, are refused
+with what to do instead.
+"""
 
 from __future__ import annotations
 
@@ -6,12 +11,81 @@ import argparse
 import json
 import os
 import sys
+from collections.abc import Mapping
 from typing import Any, TextIO
 
 from mazesim._atomic import atomic_file
+from mazesim._core import RobotProfile, World
 from mazesim.errors import InvalidArgumentError
 
-__all__ = ["robot_controllers", "run_world_command"]
+__all__ = ["WorldRecorder", "refuse_one_robot_options", "robot_controllers", "run_world_command"]
+
+
+class WorldRecorder:
+    """Records every robot of a world run, step by step, for ``--html``, ``--video`` and
+    ``--record`` (a :data:`mazesim.webots.lockstep.StepObserver`).
+
+    Args:
+        seed: The run's seed.
+    """
+
+    def __init__(self, seed: int) -> None:
+        self.seed = seed
+        self.fleet: Any = None
+
+    def __call__(
+        self,
+        world: World,
+        runs: list[Any],
+        simulators: list[Any],
+        wheels: Mapping[int, tuple[float, float]] | None,
+    ) -> None:
+        """Records every robot's frame before a step (after the last: ``wheels`` None)."""
+        import numpy as np
+
+        from mazesim.replay.recorder import FleetRecorder
+
+        if self.fleet is None:
+            robots = [
+                (run.name, _profile_of(simulator)) for run, simulator in zip(runs, simulators)
+            ]
+            step_ms = float(simulators[0].control_step_ms)
+            self.fleet = FleetRecorder(world, robots, "world controllers", self.seed, step_ms)
+        for index, simulator in enumerate(simulators):
+            readings = np.concatenate((simulator.distance_sensors(), simulator.ground_sensors()))
+            self.fleet.capture(index, simulator.pose, readings, bool(simulator.colliding))
+            if wheels is not None:
+                self.fleet.acted(index, *wheels.get(index, (0.0, 0.0)))
+
+
+def _profile_of(simulator: Any) -> RobotProfile:
+    """The profile of a simulator of one robot, or of a shared simulator's robot."""
+    shared = getattr(simulator, "simulator", None)
+    if shared is not None:
+        return RobotProfile.builtin(str(shared.robot_state(simulator.index)["profile"]))
+    profile: RobotProfile = simulator.robot
+    return profile
+
+
+def refuse_one_robot_options(args: argparse.Namespace) -> None:
+    """Refuses ``--keys`` and ``--live`` in a world run: they drive or show one robot.
+
+    Raises:
+        InvalidArgumentError: One of them was given.
+    """
+    if getattr(args, "keys", None):
+        raise InvalidArgumentError(
+            "--keys types on one controller's Keyboard; a world run (WORLD.wbt as the first "
+            "argument) runs every robot's controller: give the controller to type to instead, "
+            f"'mazesim webots run CONTROLLER --world {args.controller} --keys {args.keys}', "
+            "or leave --keys out"
+        )
+    if getattr(args, "live", False):
+        raise InvalidArgumentError(
+            "--live shows one robot as it goes; a world run (WORLD.wbt as the first argument) "
+            "runs every robot: leave --live out and give --html FILE (a replay of every robot, "
+            "with a time slider) or --video FILE"
+        )
 
 
 def robot_controllers(pairs: list[str] | None) -> dict[str, str]:
@@ -39,11 +113,14 @@ def run_world_command(args: argparse.Namespace, out: TextIO) -> int:
         A supervisor's quit status, else the first controller's non-zero exit status, else 0.
     """
     import mazesim
-    from mazesim._paths import open_input
+    from mazesim._paths import open_input, refuse_overwriting_inputs
     from mazesim.plotting import save_robot_paths_png
+    from mazesim.replay.views import recording_requested, viewing_outputs, write_views
     from mazesim.webots.lockstep import run_world
     from mazesim.webots.runner import controller_file
 
+    refuse_one_robot_options(args)
+    refuse_overwriting_inputs(viewing_outputs(args), [("the Webots world", args.controller)])
     given = {
         name: controller_file(file)
         for name, file in robot_controllers(args.robot_controller).items()
@@ -52,12 +129,14 @@ def run_world_command(args: argparse.Namespace, out: TextIO) -> int:
         open_input(file, "the controller").close()  # a regular file, readable, before any run
     out_dir = os.path.abspath(args.out)
     os.makedirs(out_dir, exist_ok=True)
+    recorder = WorldRecorder(args.seed) if recording_requested(args) else None
     run = run_world(
         args.controller,
         seconds=args.seconds,
         seed=args.seed,
         noise=not args.no_noise,
         controllers=given,
+        observer=recorder,
     )
     for robot in run.robots:
         if robot.note:
@@ -124,5 +203,12 @@ def run_world_command(args: argparse.Namespace, out: TextIO) -> int:
             f"  {robot.name:<16} {ran}: {robot.distance_m:.2f} m, "
             f"{robot.collisions} collisions, exit {robot.exit_status}\n"
         )
-    out.write(f"wrote              {', '.join([picture, summary_path, table])}\n")
+    views: list[str] = []
+    if recorder is not None and recorder.fleet is not None:
+        views = write_views(
+            args,
+            recorder.fleet.run(f"{run.simulated_seconds:.0f} s"),
+            f"{run.world.name}: {len(run.robots)} robots, seed {args.seed}",
+        )
+    out.write(f"wrote              {', '.join([picture, summary_path, table, *views])}\n")
     return run.exit_status

@@ -3,7 +3,8 @@
 An :class:`EpisodeRecorder` collects the frames of one episode (pose, readings, contact,
 checkpoint event, and the ray lengths it works out from the pose) and what the controller did
 from each; :class:`SimulatorRecorder` does this for a :class:`mazesim.Simulator` stepped by a
-command (``mazesim demo``, ``mazesim webots run``) and returns the :class:`RecordedRun`. The
+command (``mazesim demo``, ``mazesim webots run``) and returns the :class:`RecordedRun`;
+:class:`FleetRecorder` records every robot of a world of several robots, one track each. The
 recorder of the hierarchical navigator is :mod:`mazesim.replay.navigator`.
 """
 
@@ -18,13 +19,19 @@ import numpy.typing as npt
 from mazesim._core import RobotProfile, Simulator, World
 from mazesim.learn import qlearning
 from mazesim.learn.discretise import NUM_SENSORS, distance_levels, volts_to_cm
-from mazesim.replay.run import Decision, RecordedEpisode, RecordedRun
+from mazesim.replay.run import Decision, RecordedEpisode, RecordedRun, RunRobot
 from mazesim.sensor_rays import SensorRays
 
 if TYPE_CHECKING:
     from mazesim.learn.higher import HigherLevel
 
-__all__ = ["EpisodeRecorder", "SimulatorRecorder", "reading_scale", "table_levels"]
+__all__ = [
+    "EpisodeRecorder",
+    "FleetRecorder",
+    "SimulatorRecorder",
+    "reading_scale",
+    "table_levels",
+]
 
 
 def reading_scale(robot: RobotProfile) -> float:
@@ -225,4 +232,94 @@ class SimulatorRecorder:
             control_step_ms=float(self.simulator.control_step_ms),
             episodes=[self.recorder.episode(outcome)],
             reading_scale=reading_scale(robot),
+        )
+
+
+class FleetRecorder:
+    """Records every robot of a world of several robots, one :class:`EpisodeRecorder` each.
+
+    Call :meth:`capture` (or :meth:`capture_simulator` for one simulator of every robot) at the
+    start and after every step, and :meth:`acted` with each robot's wheel speeds.
+
+    Args:
+        world: The world (its walls stop the sensor rays).
+        robots: Each robot's name and profile, in the world's order.
+        controller: What drives the robots.
+        seed: The run's seed.
+        control_step_ms: The time between frames.
+    """
+
+    def __init__(
+        self,
+        world: World,
+        robots: Sequence[tuple[str, RobotProfile]],
+        controller: str,
+        seed: int,
+        control_step_ms: float,
+    ) -> None:
+        self.world = world
+        self.robots = list(robots)
+        self.controller = controller
+        self.seed = seed
+        self.control_step_ms = float(control_step_ms)
+        self.recorders = [EpisodeRecorder(world, profile) for _, profile in self.robots]
+
+    @staticmethod
+    def of_simulator(simulator: Simulator, controller: str, seed: int) -> FleetRecorder:
+        """A recorder of every robot of one simulator."""
+        robots = [
+            (name, RobotProfile.builtin(str(simulator.robot_state(index)["profile"])))
+            for index, name in enumerate(simulator.robot_names)
+        ]
+        return FleetRecorder(
+            simulator.world, robots, controller, seed, float(simulator.control_step_ms)
+        )
+
+    def capture(
+        self,
+        index: int,
+        pose: Sequence[float],
+        readings: npt.ArrayLike,
+        colliding: bool = False,
+        event: int = 0,
+    ) -> None:
+        """Adds robot ``index``'s next frame (see :meth:`EpisodeRecorder.add_frame`)."""
+        self.recorders[index].add_frame(pose, readings, colliding, event)
+
+    def capture_simulator(self, simulator: Simulator) -> None:
+        """Adds a frame of every robot of ``simulator`` as it is now."""
+        for index, recorder in enumerate(self.recorders):
+            state = simulator.robot_state(index)
+            readings = np.concatenate(
+                (
+                    simulator.distance_sensors(robot_index=index),
+                    simulator.ground_sensors(robot_index=index),
+                )
+            )
+            event = int(state["last_crossing"]) if recorder.frames else 0
+            recorder.add_frame(state["pose"], readings, bool(state["colliding"]), event)
+
+    def acted(self, index: int, left: float, right: float) -> None:
+        """Records the wheel speeds robot ``index`` set from its last frame."""
+        self.recorders[index].set_action(wheel_speeds=(left, right))
+
+    def run(self, outcome: str = "") -> RecordedRun:
+        """The recorded run: robot 0's track as the episode, the others' in its ``robots``
+        (a run of one robot when the world holds one)."""
+        episode = self.recorders[0].episode(outcome)
+        episode.robots = [recorder.episode(outcome) for recorder in self.recorders[1:]]
+        profile = self.robots[0][1]
+        return RecordedRun(
+            world=self.world,
+            robot=profile.name,
+            controller=self.controller,
+            seed=self.seed,
+            control_step_ms=self.control_step_ms,
+            episodes=[episode],
+            reading_scale=max(reading_scale(robot) for _, robot in self.robots),
+            robots=(
+                [RunRobot(name, robot.name) for name, robot in self.robots]
+                if len(self.robots) > 1
+                else []
+            ),
         )

@@ -16,6 +16,7 @@ from typing import Any, TextIO
 
 from mazesim._core import Simulator
 from mazesim._paths import output_file
+from mazesim.errors import InvalidArgumentError
 from mazesim.replay.run import RecordedRun
 
 __all__ = [
@@ -23,6 +24,7 @@ __all__ = [
     "add_viewing_options",
     "play_live",
     "recording_requested",
+    "refuse_live_view",
     "viewing_outputs",
     "viewing_requested",
     "write_views",
@@ -84,6 +86,19 @@ def recording_requested(args: argparse.Namespace) -> bool:
 def viewing_requested(args: argparse.Namespace) -> bool:
     """Whether the command records its run or shows it live."""
     return recording_requested(args) or bool(getattr(args, "live", False))
+
+
+def refuse_live_view(args: argparse.Namespace, robots: int) -> None:
+    """Refuses ``--live`` for a world of several robots, saying what shows them all.
+
+    Raises:
+        InvalidArgumentError: ``--live`` was given and the world holds more than one robot.
+    """
+    if getattr(args, "live", False) and robots > 1:
+        raise InvalidArgumentError(
+            f"--live shows one robot; this world holds {robots} robots: leave --live out and "
+            "give --html FILE (a replay of every robot, with a time slider) or --video FILE"
+        )
 
 
 def write_views(args: argparse.Namespace, run: RecordedRun, title: str | None = None) -> list[str]:
