@@ -114,19 +114,13 @@ class TopDownRenderer:
         image = self.background.copy()
         for index, (other, touching, path) in enumerate(others or []):
             rgb = OTHER_ROBOT_RGB[index % len(OTHER_ROBOT_RGB)]
-            self._draw_body(image, other, COLLIDING_RGB if touching else rgb, path, rgb)
+            self._draw_trail(image, path, rgb)
+            self._draw_disc(image, other, COLLIDING_RGB if touching else rgb)
+            self._draw_heading(image, other)
         if trail is not None:
-            points = np.asarray(trail, dtype=np.float64).reshape(-1, 2)
-            if len(points) > 1:
-                colour = np.array([TRAIL_RGB] * (len(points) - 1), dtype=np.uint8)
-                self._segments(
-                    image, (points[:-1, 0], points[:-1, 1]), (points[1:, 0], points[1:, 1]), colour
-                )
+            self._draw_trail(image, trail, TRAIL_RGB)
         x, y, yaw = (float(v) for v in pose)
-        rows = int(self._y0 - y * self.scale) + self._stamp[0]
-        cols = int(self._x0 + x * self.scale) + self._stamp[1]
-        keep = (rows >= 0) & (rows < self.height) & (cols >= 0) & (cols < self.width)
-        image[rows[keep], cols[keep]] = COLLIDING_RGB if colliding else ROBOT_RGB
+        self._draw_disc(image, (x, y, yaw), COLLIDING_RGB if colliding else ROBOT_RGB)
         origins_x, origins_y, angles = self.rays.origins((x, y, yaw))
         cos_a, sin_a = np.cos(angles), np.sin(angles)
         reach = self.rays.hits(origins_x, origins_y, cos_a, sin_a)
@@ -137,38 +131,38 @@ class TopDownRenderer:
             (origins_x + cos_a * reach, origins_y + sin_a * reach),
             ray_colour,
         )
-        rim = np.array([self._body_radius])
-        self._segments(
-            image,
-            (np.array([x]), np.array([y])),
-            (x + math.cos(yaw) * rim, y + math.sin(yaw) * rim),
-            np.array([HEADING_RGB], dtype=np.uint8),
-            width=HEADING_WIDTH,
-        )
+        self._draw_heading(image, (x, y, yaw))
         if overlay:
             image = overlay_text(image, overlay)
         return image
 
-    def _draw_body(
+    def _draw_trail(
+        self, image: npt.NDArray[np.uint8], trail: npt.ArrayLike, rgb: tuple[int, int, int]
+    ) -> None:
+        """Draws the line through a robot's past positions ((K, 2))."""
+        points = np.asarray(trail, dtype=np.float64).reshape(-1, 2)
+        if len(points) > 1:
+            colour = np.array([rgb] * (len(points) - 1), dtype=np.uint8)
+            self._segments(
+                image, (points[:-1, 0], points[:-1, 1]), (points[1:, 0], points[1:, 1]), colour
+            )
+
+    def _draw_disc(
         self,
         image: npt.NDArray[np.uint8],
         pose: tuple[float, float, float],
         rgb: tuple[int, int, int],
-        trail: npt.ArrayLike,
-        trail_rgb: tuple[int, int, int],
     ) -> None:
-        """Draws another robot: its trail, its body and its heading mark."""
-        points = np.asarray(trail, dtype=np.float64).reshape(-1, 2)
-        if len(points) > 1:
-            colour = np.array([trail_rgb] * (len(points) - 1), dtype=np.uint8)
-            self._segments(
-                image, (points[:-1, 0], points[:-1, 1]), (points[1:, 0], points[1:, 1]), colour
-            )
-        x, y, yaw = (float(v) for v in pose)
+        """Draws a robot's body at ``pose``."""
+        x, y, _ = pose
         rows = int(self._y0 - y * self.scale) + self._stamp[0]
         cols = int(self._x0 + x * self.scale) + self._stamp[1]
         keep = (rows >= 0) & (rows < self.height) & (cols >= 0) & (cols < self.width)
         image[rows[keep], cols[keep]] = rgb
+
+    def _draw_heading(self, image: npt.NDArray[np.uint8], pose: tuple[float, float, float]) -> None:
+        """Draws a robot's heading mark, from its centre to its rim."""
+        x, y, yaw = (float(v) for v in pose)
         rim = np.array([self._body_radius])
         self._segments(
             image,
