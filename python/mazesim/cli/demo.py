@@ -43,7 +43,9 @@ def register(commands: Any) -> None:
             "and write DIR/trajectory.png and DIR/summary.json. With --controller hrl the "
             "shipped hierarchical navigator drives the report's seed robot to the goal instead "
             "(a maze world with a goal), and DIR/trace.txt lists its steps as the report's "
-            "Fig. 4.7."
+            "Fig. 4.7. On a world of several robots ([[robots]]) every robot runs the "
+            "avoid-collision controller, and the summary, the picture, --html, --video and "
+            "--record cover them all."
         ),
         epilog=examples(
             "mazesim demo",
