@@ -172,3 +172,25 @@ def test_the_video_draws_every_robot_in_its_own_colour(three: dict[str, Path]) -
     for rgb in OTHER_ROBOT_RGB[:2]:  # the first is also the rays' orange: count what is added
         added = np.all(image == rgb, axis=2).sum() - np.all(without == rgb, axis=2).sum()
         assert added > 50, f"no robot drawn in {rgb}"
+
+
+def test_a_robots_rays_stop_at_the_other_robots_body() -> None:
+    from mazesim.replay.recorder import FleetRecorder
+
+    world = mazesim.World.from_toml(
+        'format = "mazesim-world"\nversion = 1\n'
+        '[[robots]]\nname = "west"\nx = -0.05\ny = 0.0\n'
+        '[[robots]]\nname = "east"\nx = 0.05\ny = 0.0\nyaw = 3.141592653589793\n'
+    )
+    simulator = mazesim.Simulator(world, seed=0)
+    recorder = FleetRecorder.of_simulator(simulator, "still", 0)
+    recorder.capture_simulator(simulator)
+    run = recorder.run()
+    names = run.robots[0].sensor_names()
+    reach = run.robot_profile.distance_sensor_range
+    for track in (run.episodes[0], run.episodes[0].robots[0]):
+        rays = dict(zip(names, track.rays[0]))
+        # The front sensors, 17 degrees off the heading, meet the other body 2.6 cm of gap
+        # between the rims away (about 4 cm along their rays), well within their 7 cm.
+        assert 0.026 < rays["ps0"] < 0.05 and 0.026 < rays["ps7"] < 0.05
+        assert rays["ps3"] == pytest.approx(reach, abs=1e-3)  # behind: nothing in range

@@ -305,7 +305,10 @@ class FleetRecorder:
 
     def run(self, outcome: str = "") -> RecordedRun:
         """The recorded run: robot 0's track as the episode, the others' in its ``robots``
-        (a run of one robot when the world holds one)."""
+        (a run of one robot when the world holds one). Each robot's rays stop at the other
+        robots' bodies as well as at the walls."""
+        if len(self.recorders) > 1:
+            self._cut_rays_at_robots()
         episode = self.recorders[0].episode(outcome)
         episode.robots = [recorder.episode(outcome) for recorder in self.recorders[1:]]
         profile = self.robots[0][1]
@@ -323,3 +326,28 @@ class FleetRecorder:
                 else []
             ),
         )
+
+    def _cut_rays_at_robots(self) -> None:
+        """Shortens every recorded ray to where it first meets another robot's body (a disc of
+        its radius), frame by frame."""
+        frames = min(recorder.frames for recorder in self.recorders)
+        poses = [np.array(recorder.poses[:frames]) for recorder in self.recorders]
+        for index, recorder in enumerate(self.recorders):
+            lengths = np.array(recorder.ray_lengths[:frames], dtype=np.float64)
+            origins = [recorder.rays.origins(tuple(pose)) for pose in poses[index]]
+            origin_x = np.array([origin[0] for origin in origins]).reshape(lengths.shape)
+            origin_y = np.array([origin[1] for origin in origins]).reshape(lengths.shape)
+            angles = np.array([origin[2] for origin in origins]).reshape(lengths.shape)
+            cos_ray, sin_ray = np.cos(angles), np.sin(angles)
+            for other, (_, profile) in enumerate(self.robots):
+                if other == index:
+                    continue
+                rel_x = origin_x - poses[other][:, :1]
+                rel_y = origin_y - poses[other][:, 1:2]
+                along = rel_x * cos_ray + rel_y * sin_ray
+                apart = rel_x * rel_x + rel_y * rel_y - profile.body_radius**2
+                room = along * along - apart
+                entry = np.maximum(-along - np.sqrt(np.maximum(room, 0.0)), 0.0)
+                meets = (room >= 0.0) & ((along <= 0.0) | (apart <= 0.0))
+                lengths = np.where(meets & (entry < lengths), entry, lengths)
+            recorder.ray_lengths[:frames] = list(lengths)

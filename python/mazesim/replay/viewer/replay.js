@@ -307,7 +307,7 @@
       var track = k ? episode.others[k - 1] : episode, where = state.robots[k];
       var speeds = track.wheelSpeeds ? track.wheelSpeeds[frame] : null;
       return '<tr id="robot-row-' + k + '" class="' + (k === state.selected ? "selected" : "") + '"><td><span class="swatch" style="background:' +
-        view.colour + '"></span>' + escapeHtml(view.name) + '</td><td class="num">' + fixed(where.x, 3) + '</td><td class="num">' +
+        view.colour + '"></span>' + escapeHtml(view.name) + '</td><td class="num">' + fixed(where.x, 3) + ", " +
         fixed(where.y, 3) + '</td><td class="num">' + fixed(degrees(where.yaw), 0) + '&deg;</td><td class="num">' +
         (speeds ? fixed(speeds[0] / 100, 1) + " / " + fixed(speeds[1] / 100, 1) : "\u2014") + "</td><td>" + (where.touching ? "touching" : "") + "</td></tr>";
     });
@@ -358,7 +358,8 @@
     });
     body.innerHTML = rows.join("");
     text("levels-note", episode.levels ? "level: Table 4.1 of the report (Integration of a Webots Mobile Robot Simulation in ROS), 0 (< 7 cm), 1 (< 13 cm), 2 (< 20 cm), 3 (farther); ray: distance to the wall the sensor faces" :
-      "ray: distance to the wall the sensor faces (Table 4.1 levels apply to the six Sharp sensors of the seed robot)");
+      (fleet ? "ray: distance to the wall or robot the sensor faces" : "ray: distance to the wall the sensor faces") +
+      " (Table 4.1 levels apply to the six Sharp sensors of the seed robot)");
     var action = "\u2014";
     if (episode.actions && episode.actions[frame]) {
       var code = episode.actions[frame];
