@@ -72,3 +72,43 @@ def test_two_robots_each_move_on_their_own_cmd_vel(tmp_path: Path) -> None:
     east_x, east_y, east_yaw = poses["/east_1"]
     assert math.hypot(east_x - 0.2, east_y) < 5e-3
     assert abs(math.remainder(east_yaw - math.pi, 2 * math.pi)) > 1.0
+
+
+@needs_ros2
+@needs_namespace
+def test_an_avoid_collision_node_per_robot_drives_each_in_its_namespace(tmp_path: Path) -> None:
+    world = tmp_path / "two.toml"
+    world.write_text(TWO_ROBOTS)
+    bag = tmp_path / "bag"
+    steps = 120
+    bridge = [*MAZESIM, "ros2", "bridge", "--world", str(world), "--stop-after", str(steps)]
+    nodes = [[*MAZESIM, "ros2", "avoid-collision", "--robot", name] for name in ("west", "east-1")]
+    result = run_in_namespace(nodes, [*bridge, "--bag", str(bag)], timeout=90, grace=1.0)
+    assert result.returncode == 0, result.stderr
+    assert f"stopped after {steps} steps" in result.stderr
+    # Each node answered every state of its own robot: the reset state and each step's.
+    assert result.stderr.count(f"avoid_collision: stopped after {steps + 1} commands") == 2
+    make_reader = pytest.importorskip("mcap.reader").make_reader
+    decoder_factory = pytest.importorskip("mcap_ros2.decoder").DecoderFactory
+    poses: dict[str, list[list[float]]] = {}
+    with next(bag.glob("*.mcap")).open("rb") as stream:
+        reader = make_reader(stream, decoder_factories=[decoder_factory()])
+        for _schema, channel, _message, decoded in reader.iter_decoded_messages():
+            if channel.topic.endswith("/pose"):
+                poses.setdefault(channel.topic, []).append(list(decoded.data))
+    assert sorted(poses) == ["/east_1/pose", "/west/pose"]
+    for track in poses.values():
+        assert len(track) == steps + 1
+        travelled = sum(math.dist(a[:2], b[:2]) for a, b in zip(track, track[1:]))
+        assert travelled > 0.1, travelled
+
+
+def test_the_ros2_demo_refuses_a_world_of_several_robots(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from mazesim.cli import main
+
+    world = tmp_path / "two.toml"
+    world.write_text(TWO_ROBOTS)
+    assert main(["ros2", "demo", "--world", str(world), "--out", str(tmp_path / "d")]) == 2
+    assert "mazesim ros2 demo drives one robot" in capsys.readouterr().err
