@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 import pytest
-from robots_world import record_three_robots
+from robots_world import THREE_ROBOTS, record_three_robots
 
 import mazesim
 from mazesim.cli import main
@@ -149,14 +149,25 @@ def test_a_1_0_reader_field_set_still_reads_robot_0(three: dict[str, Path]) -> N
     assert np.array_equal(run.episodes[0].poses, load_run(three["run"]).episodes[0].poses)
 
 
-def test_live_view_of_several_robots_is_refused_naming_the_options(
+def test_the_live_view_of_several_robots_shows_them_all(
     three: dict[str, Path], tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    code = main(["demo", "--world", str(three["world"]), "--live", "--out", str(tmp_path / "d")])
-    assert code == 2
-    error = capsys.readouterr().err
-    assert "--live shows one robot; this world holds 3 robots" in error
-    assert "--html FILE" in error
+    from mazesim.render.topdown import OTHER_ROBOT_RGB, TopDownRenderer
+    from mazesim.replay.views import FleetLiveView
+
+    args = ["demo", "--world", str(three["world"]), "--live", "--seconds", "1"]
+    assert main([*args, "--out", str(tmp_path / "d")]) == 0  # headless here: it carries on
+    assert "live view off" in capsys.readouterr().err
+    world = mazesim.World.from_toml(THREE_ROBOTS)
+    simulator = mazesim.Simulator(world, seed=0)
+    view = FleetLiveView(world, simulator.robot, simulator.control_step_ms, "three")
+    view.renderer = TopDownRenderer(world, simulator.robot)  # drawn even without a display
+    states = [simulator.robot_state(i) for i in range(3)]
+    view.show([state["pose"] for state in states], [False] * 3, "t 0.00 s")
+    frame = view.live.last_frame
+    assert frame is not None
+    for rgb in OTHER_ROBOT_RGB[1:2]:
+        assert np.all(frame == rgb, axis=2).sum() > 50
 
 
 def test_the_video_draws_every_robot_in_its_own_colour(three: dict[str, Path]) -> None:

@@ -44,7 +44,7 @@ def register(commands: Any) -> None:
             "shipped hierarchical navigator drives the report's seed robot to the goal instead "
             "(a maze world with a goal), and DIR/trace.txt lists its steps as the report's "
             "Fig. 4.7. On a world of several robots ([[robots]]) every robot runs the "
-            "avoid-collision controller, and the summary, the picture, --html, --video and "
+            "avoid-collision controller, and the summary, the picture, --html, --video, --live and "
             "--record cover them all."
         ),
         epilog=examples(

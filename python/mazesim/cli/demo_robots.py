@@ -2,8 +2,7 @@
 
 Every robot runs the report's avoid-collision controller (Alg. 1) on its own proximity sensors,
 all in lockstep in one simulator, for ``--seconds``; ``DIR/summary.json``, ``DIR/trajectory.png``
-and ``--html``/``--video``/``--record`` cover every robot. ``--live`` shows one robot and is
-refused here.
+and ``--html``/``--video``/``--record`` cover every robot, as does the ``--live`` window.
 """
 
 from __future__ import annotations
@@ -54,9 +53,8 @@ def run_robots_demo(
     from mazesim.controllers import AvoidCollision
     from mazesim.plotting import save_robot_paths_png
     from mazesim.replay.recorder import FleetRecorder
-    from mazesim.replay.views import recording_requested, refuse_live_view, write_views
+    from mazesim.replay.views import FleetLiveView, recording_requested, write_views
 
-    refuse_live_view(args, simulator.num_robots)
     world = simulator.world
     names = list(simulator.robot_names)
     count = len(names)
@@ -72,6 +70,11 @@ def run_robots_demo(
         if recording_requested(args)
         else None
     )
+    live = (
+        FleetLiveView(world, profiles[0], simulator.control_step_ms, f"mazesim: {world.name}")
+        if getattr(args, "live", False)
+        else None
+    )
     paths = np.empty((count, steps + 1, 2), dtype=np.float64)
     paths[:, 0] = simulator.poses()[:, :2]
     commands = np.zeros((count, 2), dtype=np.float64)
@@ -85,10 +88,15 @@ def run_robots_demo(
                 recorder.capture_simulator(simulator)
                 for index in range(count):
                     recorder.acted(index, commands[index, 0], commands[index, 1])
+            if live is not None:
+                _show(live, simulator)
             simulator.step_robots(commands)
             paths[:, step] = simulator.poses()[:, :2]
             progress("simulating", step, steps)
     wall_clock = time.perf_counter() - started
+    if live is not None:
+        _show(live, simulator)
+        live.close()
     states = [simulator.robot_state(i) for i in range(count)]
     summary: dict[str, Any] = {
         "world": world.name,
@@ -135,3 +143,13 @@ def run_robots_demo(
         )
     out.write(f"wrote              {', '.join([picture, summary_path, *views])}\n")
     return 0
+
+
+def _show(live: Any, simulator: Simulator) -> None:
+    """Shows every robot of ``simulator`` as it is now in the live window."""
+    states = [simulator.robot_state(i) for i in range(simulator.num_robots)]
+    live.show(
+        [tuple(float(v) for v in state["pose"]) for state in states],
+        [bool(state["colliding"]) for state in states],
+        f"t {simulator.time:6.2f} s   step {simulator.steps}",
+    )

@@ -1,8 +1,8 @@
 """``mazesim webots run WORLD.wbt``: every robot of a Webots world with its own controller.
 
-The summary, the picture, the table and ``--html``/``--video``/``--record`` cover every robot
-(:class:`WorldRecorder`); ``--keys`` and ``--live``, which drive or show one robot, are refused
-with what to do instead.
+The summary, the picture, the table, ``--html``/``--video``/``--record`` and the ``--live``
+window cover every robot (:class:`WorldWatch`); ``--keys``, which types on one controller's
+Keyboard, is refused with what to do instead.
 """
 
 from __future__ import annotations
@@ -18,20 +18,25 @@ from mazesim._atomic import atomic_file
 from mazesim._core import RobotProfile, World
 from mazesim.errors import InvalidArgumentError
 
-__all__ = ["WorldRecorder", "refuse_one_robot_options", "robot_controllers", "run_world_command"]
+__all__ = ["WorldWatch", "refuse_keys", "robot_controllers", "run_world_command"]
 
 
-class WorldRecorder:
+class WorldWatch:
     """Records every robot of a world run, step by step, for ``--html``, ``--video`` and
-    ``--record`` (a :data:`mazesim.webots.lockstep.StepObserver`).
+    ``--record``, and shows them ``--live`` (a :data:`mazesim.webots.lockstep.StepObserver`).
 
     Args:
         seed: The run's seed.
+        record: Whether to record.
+        live: Whether to show the run in the live window.
     """
 
-    def __init__(self, seed: int) -> None:
+    def __init__(self, seed: int, record: bool = True, live: bool = False) -> None:
         self.seed = seed
+        self.record = record
+        self.live = live
         self.fleet: Any = None
+        self.view: Any = None
 
     def __call__(
         self,
@@ -40,10 +45,12 @@ class WorldRecorder:
         simulators: list[Any],
         wheels: Mapping[int, tuple[float, float]] | None,
     ) -> None:
-        """Records every robot's frame before a step (after the last: ``wheels`` None)."""
+        """Records (and shows) every robot's frame before a step (after the last: ``wheels``
+        None)."""
         import numpy as np
 
         from mazesim.replay.recorder import FleetRecorder
+        from mazesim.replay.views import FleetLiveView
 
         if self.fleet is None:
             robots = [
@@ -51,6 +58,18 @@ class WorldRecorder:
             ]
             step_ms = float(simulators[0].control_step_ms)
             self.fleet = FleetRecorder(world, robots, "world controllers", self.seed, step_ms)
+            if self.live:
+                self.view = FleetLiveView(world, robots[0][1], step_ms, f"mazesim: {world.name}")
+        if self.view is not None:
+            self.view.show(
+                [simulator.pose for simulator in simulators],
+                [bool(simulator.colliding) for simulator in simulators],
+                f"t {simulators[0].time:6.2f} s",
+            )
+            if wheels is None:
+                self.view.close()
+        if not self.record:
+            return
         for index, simulator in enumerate(simulators):
             readings = np.concatenate((simulator.distance_sensors(), simulator.ground_sensors()))
             self.fleet.capture(index, simulator.pose, readings, bool(simulator.colliding))
@@ -67,11 +86,11 @@ def _profile_of(simulator: Any) -> RobotProfile:
     return profile
 
 
-def refuse_one_robot_options(args: argparse.Namespace) -> None:
-    """Refuses ``--keys`` and ``--live`` in a world run: they drive or show one robot.
+def refuse_keys(args: argparse.Namespace) -> None:
+    """Refuses ``--keys`` in a world run: it types on one controller's Keyboard.
 
     Raises:
-        InvalidArgumentError: One of them was given.
+        InvalidArgumentError: It was given.
     """
     if getattr(args, "keys", None):
         raise InvalidArgumentError(
@@ -79,12 +98,6 @@ def refuse_one_robot_options(args: argparse.Namespace) -> None:
             "argument) runs every robot's controller: give the controller to type to instead, "
             f"'mazesim webots run CONTROLLER --world {args.controller} --keys {args.keys}', "
             "or leave --keys out"
-        )
-    if getattr(args, "live", False):
-        raise InvalidArgumentError(
-            "--live shows one robot as it goes; a world run (WORLD.wbt as the first argument) "
-            "runs every robot: leave --live out and give --html FILE (a replay of every robot, "
-            "with a time slider) or --video FILE"
         )
 
 
@@ -119,7 +132,7 @@ def run_world_command(args: argparse.Namespace, out: TextIO) -> int:
     from mazesim.webots.lockstep import run_world
     from mazesim.webots.runner import controller_file
 
-    refuse_one_robot_options(args)
+    refuse_keys(args)
     refuse_overwriting_inputs(viewing_outputs(args), [("the Webots world", args.controller)])
     given = {
         name: controller_file(file)
@@ -129,7 +142,12 @@ def run_world_command(args: argparse.Namespace, out: TextIO) -> int:
         open_input(file, "the controller").close()  # a regular file, readable, before any run
     out_dir = os.path.abspath(args.out)
     os.makedirs(out_dir, exist_ok=True)
-    recorder = WorldRecorder(args.seed) if recording_requested(args) else None
+    live = bool(getattr(args, "live", False))
+    recorder = (
+        WorldWatch(args.seed, recording_requested(args), live)
+        if recording_requested(args) or live
+        else None
+    )
     run = run_world(
         args.controller,
         seconds=args.seconds,
@@ -204,7 +222,7 @@ def run_world_command(args: argparse.Namespace, out: TextIO) -> int:
             f"{robot.collisions} collisions, exit {robot.exit_status}\n"
         )
     views: list[str] = []
-    if recorder is not None and recorder.fleet is not None:
+    if recorder is not None and recorder.record and recorder.fleet is not None:
         views = write_views(
             args,
             recorder.fleet.run(f"{run.simulated_seconds:.0f} s"),
