@@ -14,4 +14,14 @@ batch engine, with (N, R, ...) arrays). They need PettingZoo: ``pip install "maz
 
 from __future__ import annotations
 
+import importlib.util
+
+from mazesim.errors import MissingDependencyError
+
+if importlib.util.find_spec("pettingzoo") is None:
+    raise MissingDependencyError(
+        'mazesim.marl needs PettingZoo (1.24 or newer): pip install "mazesim[marl]" '
+        "or pip install pettingzoo"
+    )
+
 __all__ = ["aggregation_v0", "maze_goals_v0"]
