@@ -10,6 +10,8 @@ import pytest
 
 pytest.importorskip("pettingzoo", reason="needs mazesim[marl] (make marl-deps)")
 
+import mazesim  # noqa: E402
+from mazesim.errors import InvalidArgumentError  # noqa: E402
 from mazesim.marl import aggregation_v0, maze_goals_v0  # noqa: E402
 from mazesim.marl.batch import MultiRobotBatch  # noqa: E402
 
@@ -96,3 +98,18 @@ def test_set_world_puts_an_env_of_several_robots_into_a_new_world() -> None:
     starts = np.array([robot["start"] for robot in fresh.world.robots], np.float32)
     assert np.allclose(poses[1], starts, atol=1e-6)
     assert not np.allclose(poses[0], poses[1])
+
+
+def test_set_world_refuses_a_world_of_another_number_of_robots() -> None:
+    two = maze_goals_v0.task(num_robots=2, maze_size=(3, 3))
+    three = maze_goals_v0.task(num_robots=3, maze_size=(3, 3))
+    batch = MultiRobotBatch(two, 2, threads=1)
+    batch.reset(0)
+    assert batch.simulator is not None
+    with pytest.raises(InvalidArgumentError, match="expected a world placing 2 robots"):
+        batch.simulator.set_world(0, three.draw(np.random.default_rng(1)).world, 3)
+    single = mazesim.BatchSimulator(mazesim.World.builtin("arena"), num_envs=2)
+    with pytest.raises(InvalidArgumentError, match="expected a world placing 1 robots"):
+        single.set_world(1, two.draw(np.random.default_rng(1)).world, 3)
+    with pytest.raises(InvalidArgumentError, match="expected num_envs from 1 to"):
+        MultiRobotBatch(two, 0)

@@ -19,6 +19,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import BatchSimulator, RobotProfile
+from mazesim._sizes import MOST_ENVS
 from mazesim.errors import InvalidActionError, InvalidArgumentError
 from mazesim.marl.tasks import EpisodeDraw, MultiRobotTask, RobotStates, agent_names
 
@@ -63,8 +64,9 @@ class MultiRobotBatch:
         threads: int = 0,
         autoreset: bool = True,
     ) -> None:
-        if num_envs < 1:
-            raise InvalidArgumentError(f"expected num_envs >= 1, found {num_envs}")
+        most = MOST_ENVS // task.num_robots
+        if not 1 <= num_envs <= most:
+            raise InvalidArgumentError(f"expected num_envs from 1 to {most}, found {num_envs}")
         self.task = task
         self.num_envs = num_envs
         self.num_robots = task.num_robots
