@@ -3,7 +3,7 @@ environments x R robots, a task's rules on (N, R, ...) arrays, and an API of arr
 
 A PettingZoo env of :mod:`mazesim.marl` is this batch with one environment, so N of them
 reset with seeds ``s, s + 1, ...`` and stepped one by one give, bit for bit, what one batch of N
-reset with seed ``s`` gives (``tests/marl/test_batch.py``).
+reset with seed ``s`` gives (``tests/marl/test_native_batch.py``).
 
 Seeding: environment ``i`` draws its episodes (world, starts, goals, the simulator's noise seed)
 from its own stream ``numpy.random.default_rng(seed + i)``; every later reset continues that
