@@ -109,3 +109,11 @@ def test_make_wheel_links_with_zig_for_manylinux2014_and_asks_auditwheel(tmp_pat
     (build,) = [line for line in commands.splitlines() if "maturin build" in line]
     assert "--zig" in build and "--compatibility manylinux2014" in build
     assert commands.index("maturin build") < commands.index("auditwheel show")
+
+
+@pytest.mark.skipif(shutil.which("make") is None, reason="needs make")
+@pytest.mark.parametrize("target", ["test", "typecheck"])
+def test_the_targets_that_check_mazesim_marl_install_pettingzoo(
+    target: str, tmp_path: Path
+) -> None:
+    assert '"pettingzoo>=1.24"' in _installed_by(_dry_run(target, tmp_path))

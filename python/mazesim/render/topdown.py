@@ -172,6 +172,26 @@ class TopDownRenderer:
             width=HEADING_WIDTH,
         )
 
+    def mark_disc(
+        self,
+        image: npt.NDArray[np.uint8],
+        centre: tuple[float, float],
+        radius: float,
+        rgb: tuple[int, int, int] = GOAL_RGB,
+        alpha: float = GOAL_ALPHA,
+    ) -> None:
+        """Paints a disc of ``radius`` metres round ``centre`` (x, y) into ``image`` (a goal of
+        one of several robots), blended with ``alpha``."""
+        x, y = centre
+        r2 = radius * radius
+
+        def inside(
+            xs: npt.NDArray[np.float64], ys: npt.NDArray[np.float64]
+        ) -> npt.NDArray[np.bool_]:
+            return (xs - x) ** 2 + (ys - y) ** 2 <= r2
+
+        self._fill(image, (x - radius, y - radius, x + radius, y + radius), inside, rgb, alpha)
+
     # -- geometry ------------------------------------------------------------------------------
 
     def _pixel_box(
