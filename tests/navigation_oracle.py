@@ -12,9 +12,10 @@ import numpy.typing as npt
 
 from mazesim._core import World
 from mazesim.envs.navigation import NavigationFeatures, _waypoints, planned_waypoints
-from mazesim.maze import CellMaze, PathDistanceTable, assumed_open_sides
+from mazesim.maze import EAST, NORTH, SOUTH, WEST, CellMaze, PathDistanceTable, assumed_open_sides
 
 _VISITS_SEEN = 3.0
+_SIDES = 4
 
 
 class NumpyNavigationFeatures:
@@ -186,3 +187,54 @@ class NumpyNavigationFeatures:
         seen = np.minimum(self._visits[envs[:, None], across], _VISITS_SEEN) / _VISITS_SEEN
         here = np.minimum(self._visits[envs, cell], _VISITS_SEEN) / _VISITS_SEEN
         return np.concatenate((opened, opened * seen, here[:, None]), axis=1)
+
+
+#: Ties between sides in a dead end's back-wall test go north, east, south, west.
+_TIE_ORDER = {NORTH: 0, EAST: 1, SOUTH: 2, WEST: 3}
+
+
+def cell_targets(maze: CellMaze, goal: tuple[int, int]) -> npt.NDArray[np.float64]:
+    """The goal-distance table's interpolation targets of every cell, as Python computed them
+    before the core did (``World.distance_targets``): sides in direction order, then the goal
+    point."""
+    steps = maze.distances_from(goal)
+    size = maze.cell_size
+    unreachable = (int(steps.max()) + 1) * size
+    targets = []
+    for cell in maze.cells():
+        column, row = cell
+        values = [math.nan] * (_SIDES + 1)
+        targets.append(values)
+        if steps[row, column] < 0:
+            values[:_SIDES] = [unreachable] * _SIDES
+            continue
+        here = float(steps[row, column]) * size
+        for direction in maze.openings(cell):
+            next_column, next_row = maze.neighbour(cell, direction)
+            if steps[next_row, next_column] >= 0:
+                values[direction] = 0.5 * (here + float(steps[next_row, next_column]) * size)
+        if cell == goal:
+            values[_SIDES] = 0.0
+            continue
+        known = [(v, side) for side, v in enumerate(values[:_SIDES]) if not math.isnan(v)]
+        if known and all(value <= here for value, _ in known):
+            nearest = min(known, key=lambda item: (item[0], _TIE_ORDER[item[1]]))[1]
+            back = (nearest + 2) % _SIDES
+            if math.isnan(values[back]):
+                values[back] = here + 0.5 * size
+    return np.array(targets, dtype=np.float64)
+
+
+def largest_connected_cells(maze: CellMaze) -> list[tuple[int, int]]:
+    """The (row, column) cells of the largest set of cells joined by open sides, as Python found
+    them before the core did (``World.connected_cells``)."""
+    best: list[tuple[int, int]] = []
+    seen = np.zeros((maze.rows, maze.cols), dtype=bool)
+    for column, row in maze.cells():
+        if seen[row, column]:
+            continue
+        reach = maze.distances_from((column, row)) >= 0
+        seen |= reach
+        if int(reach.sum()) > len(best):
+            best = [(int(r), int(c)) for r, c in zip(*np.nonzero(reach), strict=True)]
+    return best

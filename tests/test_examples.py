@@ -33,6 +33,7 @@ COVERED = {
     "worlds/boxes.wbt": "test_boxes_wbt_imports_without_warnings",
     "ppo_sb3.py": "test_ppo_sb3_trains_and_evaluates_on_held_out_mazes",
     "marl_ppo.py": "test_marl_ppo_trains_and_compares_with_random_and_hand_rule",
+    "her_sb3.py": "test_her_sb3_trains_and_writes_its_held_out_results",
 }
 
 
@@ -147,6 +148,22 @@ def test_ppo_sb3_trains_and_evaluates_on_held_out_mazes(tmp_path: Path) -> None:
     argv = [sys.executable, str(EXAMPLES / "ppo_sb3.py"), "--plot", "run", "run"]
     run_example([*argv, "--picture", "both.png"], tmp_path)
     assert (tmp_path / "both.png").read_bytes()[:4] == b"\x89PNG"
+
+
+def test_her_sb3_trains_and_writes_its_held_out_results(tmp_path: Path) -> None:
+    pytest.importorskip("stable_baselines3", reason="needs mazesim[sb3] (make sb3-deps)")
+    task = "mazesim/UnseenMazeGoal-v0"
+    argv = [sys.executable, str(EXAMPLES / "her_sb3.py"), "--task", task, "--out", "run"]
+    out = run_example(argv, tmp_path).stdout  # fast mode: 300 env-steps, 2 held-out episodes
+    pattern = rf"{task} seed 0: 300 env-steps in \d+ s; success on 2 held-out episodes: \d+ %"
+    assert re.search(pattern, out), out
+    results = json.loads((tmp_path / "run" / "results.json").read_text())
+    assert results["task"] == task and results["steps"] == 300
+    assert [step for step, _ in results["curve"]] == [150, 300]  # held out every 150 steps
+    assert all(0.0 <= rate <= 1.0 for _, rate in results["curve"])
+    assert results["success"] == results["curve"][-1][1]
+    assert results["wall_seconds"] > 0 and len(results["load_average"]) == 3
+    assert (tmp_path / "run" / "curve.png").read_bytes()[:4] == b"\x89PNG"
 
 
 def test_bench_sb3_prints_both_training_rates_and_their_ratio(tmp_path: Path) -> None:

@@ -148,6 +148,11 @@ class World:
     def cell_maze(self) -> dict[str, object] | None:
         """The cell maze of a [grid] world: rows, cols, cell_size, origin, horizontal
         ((rows + 1, cols) bool), vertical ((rows, cols + 1) bool), start and goal cells."""
+    def distance_targets(self, goal_cell: int) -> npt.NDArray[np.float64]:
+        """(rows * cols, 5): the goal-distance table's interpolation targets of every cell
+        towards the cell ``goal_cell`` (its row-major index)."""
+    def connected_cells(self) -> npt.NDArray[np.int64]:
+        """(n, 2): the (row, column) cells of the largest set of cells joined by open sides."""
     @property
     def floor_background(self) -> float:
         """Background floor reflectance (where nothing is painted)."""

@@ -410,44 +410,10 @@ class PathDistanceTable:
             goal_cell = (int(columns), int(rows))
         else:
             goal_cell = cells.goal_cell
-        targets = _cell_targets(cells, goal_cell)
+        # The interpolation targets of every cell, computed in the core (a new random maze
+        # every episode makes a table every reset).
+        targets = world.distance_targets(goal_cell[1] * cells.cols + goal_cell[0])
         return cls("maze", cells.rows, cells.cols, cells.cell_size, cells.origin, goal, targets)
-
-
-#: Ties between sides in a dead end's back-wall test go north, east, south, west.
-_TIE_ORDER = {NORTH: 0, EAST: 1, SOUTH: 2, WEST: 3}
-
-
-def _cell_targets(maze: CellMaze, goal: tuple[int, int]) -> npt.NDArray[np.float64]:
-    """The interpolation targets of every cell (see :class:`GoalDistance`), sides in direction
-    order, then the goal point."""
-    steps = maze.distances_from(goal)
-    size = maze.cell_size
-    unreachable = (int(steps.max()) + 1) * size
-    nan = math.nan
-    targets = []
-    for cell in maze.cells():
-        column, row = cell
-        values = [nan] * _TARGETS
-        targets.append(values)
-        if steps[row, column] < 0:
-            values[:_SIDES] = [unreachable] * _SIDES
-            continue
-        here = float(steps[row, column]) * size
-        for direction in maze.openings(cell):
-            next_column, next_row = maze.neighbour(cell, direction)
-            if steps[next_row, next_column] >= 0:
-                values[direction] = 0.5 * (here + float(steps[next_row, next_column]) * size)
-        if cell == goal:
-            values[_SIDES] = 0.0
-            continue
-        known = [(v, side) for side, v in enumerate(values[:_SIDES]) if not math.isnan(v)]
-        if known and all(value <= here for value, _ in known):
-            nearest = min(known, key=lambda item: (item[0], _TIE_ORDER[item[1]]))[1]
-            back = (nearest + 2) % _SIDES
-            if math.isnan(values[back]):
-                values[back] = here + 0.5 * size
-    return np.array(targets, dtype=np.float64)
 
 
 class GoalDistance:

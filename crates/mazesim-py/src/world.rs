@@ -2,20 +2,33 @@
 
 use std::sync::Arc;
 
-use mazesim_core::world::{BodyShape, PaintShape};
+use mazesim_core::tasks::{cell_targets, grid_of, largest_connected_cells, open_sides};
+use mazesim_core::world::{BodyShape, PaintShape, PlacedMaze};
 use mazesim_core::World;
 use numpy::{PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::{Label, PathArg, Real, SourceName, Text};
-use crate::errors::IntoPy;
+use crate::args::{IntArg, Label, PathArg, Real, SourceName, Text};
+use crate::errors::{invalid, IntoPy};
 use crate::guard::{enter, enter_detached};
 
 /// A maze world: walls, floor paint, checkpoints, goal and start pose.
 #[pyclass(name = "World", module = "mazesim._core", frozen)]
 pub struct PyWorld {
     pub inner: Arc<World>,
+}
+
+impl PyWorld {
+    /// The world's cell maze, or InvalidArgumentError naming `method` when it has none.
+    fn placed_maze(&self, method: &str) -> PyResult<&PlacedMaze> {
+        self.inner.maze().ok_or_else(|| {
+            invalid(format!(
+                "World.{method}: expected a world with a [grid] cell maze, found none in {:?}",
+                self.inner.name()
+            ))
+        })
+    }
 }
 
 /// Rows of `N` numbers as an `(len, N)` numpy array.
@@ -288,6 +301,39 @@ impl PyWorld {
             d.set_item("start", m.start)?;
             d.set_item("goal", m.goal)?;
             Ok(Some(d))
+        })
+    }
+
+    /// (rows * cols, 5) float64: the goal-distance table's interpolation targets of every cell
+    /// (row-major from the north-west) towards the cell `goal_cell` (its row-major index): per
+    /// side (east, north, west, south) the path distance at the side's midpoint, then the goal
+    /// point's.
+    fn distance_targets<'py>(
+        &self,
+        py: Python<'py>,
+        goal_cell: IntArg,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        enter(|| {
+            let placed = self.placed_maze("distance_targets")?;
+            let maze = &placed.maze;
+            let cells = maze.rows * maze.cols;
+            let goal = goal_cell.count("goal_cell", cells.saturating_sub(1))?;
+            let targets = cell_targets(grid_of(maze), &open_sides(maze), placed.cell_size, goal);
+            rows_to_array(py, targets)
+        })
+    }
+
+    /// (n, 2) int64: the (row, column) cells of the largest set of cells joined by open sides,
+    /// row-major from the north-west (the first such set if two are as large).
+    fn connected_cells<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<i64>>> {
+        enter(|| {
+            let maze = &self.placed_maze("connected_cells")?.maze;
+            let cells = largest_connected_cells(grid_of(maze), &open_sides(maze));
+            let flat: Vec<i64> = cells
+                .iter()
+                .flat_map(|&cell| [(cell / maze.cols) as i64, (cell % maze.cols) as i64])
+                .collect();
+            numpy::PyArray1::from_vec(py, flat).reshape([cells.len(), 2])
         })
     }
 

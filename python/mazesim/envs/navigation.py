@@ -231,28 +231,15 @@ def start_and_goal_cells(world: World) -> tuple[CellMaze, list[tuple[int, int]]]
             f'expected a world with a cell maze for start_goal="random", found {world.name!r}'
         )
     maze = CellMaze(world)
-    cells = _largest_connected_cells(maze)
+    # The largest set of cells joined by open sides, row-major from the north-west (the first
+    # such set if two are as large), found in the core.
+    cells = [(row, column) for row, column in world.connected_cells().tolist()]
     if len(cells) < 2:
         raise InvalidArgumentError(
             f'expected two cells that join each other for start_goal="random", found none in '
             f"{world.name!r}"
         )
     return maze, cells
-
-
-def _largest_connected_cells(maze: CellMaze) -> list[tuple[int, int]]:
-    """The (row, column) cells of the largest set of cells joined by open sides, row-major from
-    the north-west (the first such set if two are as large)."""
-    best: list[tuple[int, int]] = []
-    seen = np.zeros((maze.rows, maze.cols), dtype=bool)
-    for column, row in maze.cells():
-        if seen[row, column]:
-            continue
-        reach = maze.distances_from((column, row)) >= 0
-        seen |= reach
-        if int(reach.sum()) > len(best):
-            best = [(int(r), int(c)) for r, c in zip(*np.nonzero(reach), strict=True)]
-    return best
 
 
 class NavigationFeatures:

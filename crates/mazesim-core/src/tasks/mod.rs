@@ -8,11 +8,13 @@
 
 mod goal;
 mod plan;
+mod setup;
 mod state;
 
 pub use goal::{GoalMode, GoalTable, TARGETS};
 
 pub use plan::{assumed_open, next_cells, steps_from, Grid, SIDES};
+pub use setup::{cell_targets, grid_of, largest_connected_cells, open_sides};
 
 use crate::{Error, Result};
 
