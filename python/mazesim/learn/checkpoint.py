@@ -205,10 +205,10 @@ def _settings_difference(asked: dict[str, Any], saved: dict[str, Any]) -> str:
     for name in names:
         theirs, ours = saved.get(name, missing), asked.get(name, missing)
         if theirs != ours:
-            shown = [
+            expected, found = (
                 "(not set)" if value is missing else json.dumps(value) for value in (theirs, ours)
-            ]
-            parts.append(f"{name}: {differing(*shown)}")
+            )
+            parts.append(f"{name}: {differing(expected, found)}")
     return "; ".join(parts)
 
 
