@@ -244,3 +244,14 @@ def test_the_report_citation_finder() -> None:
     )
     assert first_report_citation("the report above lists the warnings") is None
     assert (REPO / "docs" / "report.md").read_text(encoding="utf-8").startswith("# The report")
+
+
+def test_the_rl_page_says_how_to_set_torchs_threads() -> None:
+    # Issue 37: torch's default threads slowed PPO several times on 2 cores; the advice was in a
+    # code comment only.
+    page = (REPO / "docs" / "rl.md").read_text(encoding="utf-8")
+    prose = re.sub(r"```.*?```", "", page, flags=re.DOTALL)
+    assert "**Set torch's threads.**" in prose
+    assert "torch.set_num_threads(1)" in prose and "OMP_NUM_THREADS=1" in prose
+    python = [b.text for b in BLOCKS if b.page.name == "rl.md" and b.language == "python"]
+    assert any("torch.set_num_threads(1)" in text for text in python)
