@@ -187,9 +187,8 @@ def units(text: str) -> list[Unit]:
             output = first > 0 and _OUTPUT.match(lines[first - 1])
             if language in ("text", "console") and not output:
                 body = [
-                    line
+                    "" if language == "console" and line.lstrip().startswith("$ ") else line
                     for line in block[1:-1]
-                    if not (language == "console" and line.lstrip().startswith("$ "))
                 ]
                 found.append(
                     Unit(

@@ -145,6 +145,13 @@ def test_a_page_is_read_in_units_and_each_accounted_for_as_a_whole(tmp_path: Pat
     assert len(headings) == 1
 
 
+def test_a_console_blocks_commands_are_not_read_and_its_output_is(tmp_path: Path) -> None:
+    page = tmp_path / "page.md"
+    page.write_text("```console\n$ sleep 5s\n$ mazesim bench\n12,345 steps/s\n```\n")
+    figures, _ = unaccounted_figures(page, tmp_path)
+    assert [(figure.line, figure.figure) for figure in figures] == [(4, "12,345 steps/s")]
+
+
 def test_a_checked_marker_names_tests_that_exist(tmp_path: Path) -> None:
     page = tmp_path / "page.md"
     page.write_text("<!-- checked: tests/no_such_test.py -->\nIt took 25 s.\n", encoding="utf-8")
