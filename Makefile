@@ -27,6 +27,9 @@ DOCS_PACKAGES := "mkdocs>=1.6" "mkdocs-material>=9.5" "mkdocstrings[python]>=0.2
 # 2.x and torch, for mazesim.integrations.sb3, its tests and the examples' PPO scripts. torch from
 # PyPI is a large download the first time (pip's cache makes later installs quick).
 SB3_PACKAGES := "stable-baselines3>=2.3,<3"
+# What `make marl-deps` (and so `make test` and `make typecheck`) installs (pyproject's extra
+# "marl"): PettingZoo, for mazesim.marl's multi-robot environments, their tests and examples.
+MARL_PACKAGES := "pettingzoo>=1.24"
 # The binding crate's build script asks this interpreter for its configuration.
 export PYO3_PYTHON := $(CURDIR)/$(BIN)/python
 
@@ -34,7 +37,7 @@ export PYO3_PYTHON := $(CURDIR)/$(BIN)/python
 
 .PHONY: help venv build test demo lint typecheck fmt bench wheel clean ros-deps ros2-deps ros2-peer ros-demo bench-peers \
 	bench-tasks bench-transfer webots-compat \
-	browser-deps replay-screenshot docs docs-deps sb3-deps fuzz dev-deps wheel-deps oldest-glibc-deps \
+	browser-deps replay-screenshot docs docs-deps sb3-deps marl-deps fuzz dev-deps wheel-deps oldest-glibc-deps \
 	wheel-oldest newcomer-check
 
 help: ## list the targets
@@ -70,7 +73,7 @@ $(DEV_STAMP): $(STAMP)
 	$(BIN)/python -m pip install --progress-bar on $(DEV_PACKAGES) | grep -v '^Requirement already satisfied' || true
 	@$(BIN)/python -c 'import pytest, hypothesis, mypy, gymnasium, ray, selenium, moviepy' && touch $@
 
-test: build dev-deps ros-deps ros2-deps ros2-peer browser-deps docs-deps sb3-deps oldest-glibc-deps ## run the Rust tests, then the Python tests (ROS 1 and ROS 2 bridges, browser, SB3 and oldest-glibc tests included)
+test: build dev-deps ros-deps ros2-deps ros2-peer browser-deps docs-deps sb3-deps marl-deps oldest-glibc-deps ## run the Rust tests, then the Python tests (ROS 1 and ROS 2 bridges, browser, SB3 and oldest-glibc tests included)
 	cargo test --workspace --exclude mazesim-py
 	cargo test --release --locked --quiet --manifest-path $(ROS2_PEER_MANIFEST) --target-dir $(ROS2_PEER_TARGET)
 	$(BIN)/python -m pytest
@@ -149,7 +152,7 @@ lint: dev-deps ## rustfmt, clippy (warnings are errors), ruff check and ruff for
 	$(BIN)/ruff check $(PY_SOURCES)
 	$(BIN)/ruff format --check $(PY_SOURCES)
 
-typecheck: build dev-deps ## mypy on the package, stubtest of _core.pyi against the built extension
+typecheck: build dev-deps marl-deps ## mypy on the package, stubtest of _core.pyi against the built extension
 	$(BIN)/python -m mypy
 	$(BIN)/python -m mypy.stubtest mazesim._core
 
@@ -185,11 +188,16 @@ sb3-deps: venv ## install Stable-Baselines3 and torch into .venv (mazesim[sb3]: 
 	$(BIN)/python -m pip install --progress-bar on $(SB3_PACKAGES) | grep -v '^Requirement already satisfied' || true
 	@$(BIN)/python -c 'import stable_baselines3'
 
+marl-deps: venv ## install PettingZoo into .venv (mazesim[marl]: the multi-robot RL environments)
+	@$(BIN)/python -c 'import pettingzoo' 2>/dev/null || echo "make marl-deps: installing PettingZoo into $(VENV) (about 5 MB)"
+	$(BIN)/python -m pip install --quiet $(MARL_PACKAGES)
+	@$(BIN)/python -c 'import pettingzoo'
+
 docs-deps: venv ## install the docs tools (mkdocs, Material, mkdocstrings) into .venv
 	@$(BIN)/python -c 'import mkdocs, material, mkdocstrings' 2>/dev/null || echo "make docs-deps: installing mkdocs, mkdocs-material and mkdocstrings (about 80 MB in $(VENV))"
 	$(BIN)/python -m pip install --quiet $(DOCS_PACKAGES)
 
-docs: docs-deps sb3-deps ## build the documentation site into site/ (mkdocs --strict; the API page shows the SB3 adapter)
+docs: docs-deps sb3-deps marl-deps ## build the documentation site into site/ (mkdocs --strict; the API page shows the SB3 adapter)
 	NO_MKDOCS_2_WARNING=1 $(BIN)/mkdocs build --strict --quiet
 
 # manylinux2014 (glibc 2.17 and newer: Ubuntu 20.04, Debian 11, RHEL 8, ...): maturin links the

@@ -65,6 +65,10 @@ PAGE_CONSTANTS: dict[str, dict[str, str]] = {
         "30 s": "the progress lines' interval",
     },
     "design.md": {"30 s": "the documentation blocks' time budget, a rule"},
+    "multi-robot.md": {
+        "128 ms": "the multi-robot tasks' control step",
+        "38 s": "the multi-robot tasks' time limit, 300 steps of 128 ms",
+    },
     "perturbations.md": {"5 %": "an example of a scale (1.05), not a result"},
     "transfer.md": {
         "5 %": "a level of the motor-mismatch axis",

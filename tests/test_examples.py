@@ -32,6 +32,7 @@ COVERED = {
     "worlds/two-rooms.toml": "test_two_rooms_world_loads_with_its_goal_and_checkpoint",
     "worlds/boxes.wbt": "test_boxes_wbt_imports_without_warnings",
     "ppo_sb3.py": "test_ppo_sb3_trains_and_evaluates_on_held_out_mazes",
+    "marl_ppo.py": "test_marl_ppo_trains_and_compares_with_random_and_hand_rule",
 }
 
 
@@ -157,3 +158,23 @@ def test_bench_sb3_prints_both_training_rates_and_their_ratio(tmp_path: Path) ->
     assert re.search(r"DummyVecEnv x 8 single envs +[\d,]+ env-steps/s", out), out
     assert re.search(r"make_vec_env, 16 envs \(batch\) +[\d,]+ env-steps/s", out), out
     assert re.search(r"ratio +\d+\.\d x", out), out
+
+
+def test_marl_ppo_trains_and_compares_with_random_and_hand_rule(tmp_path: Path) -> None:
+    pytest.importorskip("torch", reason="needs mazesim[sb3] (make sb3-deps)")
+    pytest.importorskip("pettingzoo", reason="needs mazesim[marl] (make marl-deps)")
+    argv = [sys.executable, str(EXAMPLES / "marl_ppo.py"), "--task", "maze_goals_v0"]
+    argv += ["--steps", "600", "--envs", "4", "--rollout", "50", "--eval-envs", "4"]
+    out = run_example([*argv, "--out", "run"], tmp_path).stdout
+    assert re.search(r"^maze_goals_v0 seed 0: 600 robot-steps in \d+ s", out, re.MULTILINE), out
+    for name in ("ppo", "random", "hand rule"):
+        assert re.search(rf"^  {name}: mean return -?[\d.]+, at goal [\d.]+", out, re.MULTILINE)
+    summary = json.loads((tmp_path / "run" / "summary.json").read_text())
+    assert summary["robot_steps"] == 600 and set(summary["evaluation"]) == {
+        "ppo",
+        "random",
+        "hand rule",
+    }
+    assert all(found["episodes"] == 4 for found in summary["evaluation"].values())
+    assert (tmp_path / "run" / "curve.png").read_bytes().startswith(b"\x89PNG")
+    assert (tmp_path / "run" / "progress.csv").read_text().startswith("robot_steps,return,measure")

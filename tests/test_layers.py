@@ -21,7 +21,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("ros", "distributed", "hrl"),
     ("transfer", "replay"),
     ("learn",),
-    ("episodes.py", "integrations"),
+    ("episodes.py", "integrations", "marl"),
     ("envs", "batch.py", "barcode"),
     ("maze.py", "odometry.py", "_seeding.py", "render", "plotting.py", "webots", "benchmark",
      "controllers.py", "actions.py", "_checks.py"),

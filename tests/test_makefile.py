@@ -130,3 +130,11 @@ def test_a_large_download_says_so_before_it_starts(target: str, tmp_path: Path) 
     )
     said = [line for line in lines[:install] if LARGE_DOWNLOADS[target] in line]
     assert said and "echo" in said[-1], lines[: install + 1]
+
+
+@pytest.mark.skipif(shutil.which("make") is None, reason="needs make")
+@pytest.mark.parametrize("target", ["test", "typecheck"])
+def test_the_targets_that_check_mazesim_marl_install_pettingzoo(
+    target: str, tmp_path: Path
+) -> None:
+    assert '"pettingzoo>=1.24"' in _installed_by(_dry_run(target, tmp_path))

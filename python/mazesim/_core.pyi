@@ -559,7 +559,10 @@ class BatchSimulator:
         default, ``"forward"`` or ``"hold_heading"``). Returns the round's counts (``success``,
         ``failure``, ``cut`` per sub-task, ``corridor_metres``, ``contact_steps``). The GIL is
         released while it runs."""
-    def set_world(self, index: int, world: World, seed: int) -> None: ...
+    def set_world(self, index: int, world: World, seed: int) -> None:
+        """Puts environment ``index`` into ``world``, reset to its start with ``seed``; its rows of
+        the buffers change at the next observe, step or reset. In a batch of worlds of several
+        robots the world must place as many robots; each robot keeps its profile."""
     def set_starts(self, starts: npt.NDArray[np.float64]) -> None:
         """Start poses ((N, 3) float64 x, y, yaw) of each env for its later resets."""
     def set_starts_at(self, envs: npt.NDArray[np.int64], starts: npt.NDArray[np.float64]) -> None:

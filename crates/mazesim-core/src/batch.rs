@@ -721,19 +721,28 @@ impl Batch {
     }
 
     /// Puts environment `index` into another world, reset to its start with `seed`. Its rows of the
-    /// outputs change at the next `observe`, `step` or `reset`.
+    /// outputs change at the next `observe`, `step` or `reset`. In a batch of worlds of several
+    /// robots the new world must place as many robots; robot `i` keeps its profile.
     pub fn set_world(&mut self, index: usize, world: Arc<World>, seed: u64) -> Result<()> {
-        let n = self.envs.len();
-        let env = self.envs.get_mut(index).ok_or_else(|| {
-            Error::InvalidArgument(format!(
+        let (n, r) = (self.num_envs(), self.robots);
+        if index >= n {
+            return Err(Error::InvalidArgument(format!(
                 "expected an environment index below {n}, found {index}"
-            ))
-        })?;
+            )));
+        }
+        let placed = world.robots().len();
+        if placed != r {
+            return Err(Error::InvalidArgument(format!(
+                "expected a world placing {r} robots (as every world of the batch), found \
+                 {placed} in world {:?}",
+                world.name()
+            )));
+        }
+        let group = index * r..(index + 1) * r;
         let config = SimConfig {
             seed,
-            ..env.config()
+            ..self.envs[index * r].config()
         };
-        let rig = env.rig().clone();
         // An env of an equal world lends its copy.
         let world = self
             .envs
@@ -742,7 +751,17 @@ impl Batch {
             .find(|w| w.fingerprint() == world.fingerprint() && ***w == *world)
             .cloned()
             .unwrap_or(world);
-        self.envs[index] = Simulator::with_rig(world, rig, config)?;
+        if r == 1 {
+            let rig = self.envs[index].rig().clone();
+            self.envs[index] = Simulator::with_rig(world, rig, config)?;
+            return Ok(());
+        }
+        let rigs: Vec<Arc<Rig>> = self.envs[group.clone()]
+            .iter()
+            .map(|robot| robot.rig().clone())
+            .collect();
+        let robots = crate::swarm::make_robots(&world, &rigs, config)?;
+        self.envs.splice(group, robots);
         Ok(())
     }
 

@@ -150,3 +150,53 @@ fn masked_reset_touches_only_the_masked_envs() {
     assert_eq!(steps, vec![10, 0, 10]);
     assert_eq!(buf.poses[3..6], b.envs()[1].pose());
 }
+
+/// A corridor with `robots` e-pucks along it, `gap` metres apart, the first at `x`.
+fn corridor_of(robots: usize, x: f64, gap: f64) -> Arc<World> {
+    let mut text = String::from(
+        "format = \"mazesim-world\"\nversion = 1\n\n[[walls]]\ncenter = [0.0, 0.105]\n\
+         size = [2.0, 0.01]\n\n[[walls]]\ncenter = [0.0, -0.105]\nsize = [2.0, 0.01]\n",
+    );
+    for i in 0..robots {
+        let yaw = if i % 2 == 0 { 0.0 } else { 3.0 };
+        text += &format!(
+            "\n[[robots]]\nname = \"r{i}\"\nx = {}\ny = 0.0\nyaw = {yaw}\n",
+            x + gap * i as f64
+        );
+    }
+    Arc::new(World::from_toml(&text, "corridor").unwrap())
+}
+
+/// Observation bits of env `watch` of a swarm batch over 40 steps of the same actions.
+fn swarm_trace(b: &mut Batch, watch: usize) -> Vec<u32> {
+    let (n, r, w) = (b.num_envs(), b.robots_per_env(), b.observation_width());
+    let mut buf = Buffers::new(n * r, w);
+    b.observe(buf.out()).unwrap();
+    let mut trace = Vec::new();
+    for step in 0..40 {
+        let actions: Vec<f32> = (0..n * r).flat_map(|i| action(i % r, step)).collect();
+        b.step_swarms(&actions, buf.out()).unwrap();
+        let rows = watch * r * w..(watch + 1) * r * w;
+        trace.extend(buf.obs[rows].iter().map(|v| v.to_bits()));
+    }
+    trace
+}
+
+#[test]
+fn set_world_puts_an_env_of_several_robots_into_another_world() {
+    let robot = Arc::new(RobotProfile::builtin("e-puck").unwrap());
+    let (first, second) = (corridor_of(2, -0.1, 0.2), corridor_of(2, -0.3, 0.15));
+    let worlds = vec![first.clone(), first];
+    let mut b = Batch::with_swarms(worlds, robot.clone(), &[1, 2], true, None, 1).unwrap();
+    b.set_world(1, second.clone(), 5).unwrap();
+    let fresh_worlds = vec![second.clone(), second];
+    let mut fresh = Batch::with_swarms(fresh_worlds, robot, &[5, 5], true, None, 1).unwrap();
+    assert_eq!(swarm_trace(&mut b, 1), swarm_trace(&mut fresh, 0));
+    let three = corridor_of(3, -0.3, 0.15);
+    let refused = b.set_world(0, three, 5).unwrap_err().to_string();
+    assert!(
+        refused.contains("expected a world placing 2 robots"),
+        "{refused}"
+    );
+    assert!(b.set_world(2, corridor_of(2, 0.0, 0.2), 5).is_err());
+}

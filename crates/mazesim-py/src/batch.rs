@@ -524,7 +524,8 @@ impl PyBatch {
     }
 
     /// Puts environment `index` into `world`, reset to its start with `seed`; its rows of the
-    /// buffers change at the next observe, step or reset.
+    /// buffers change at the next observe, step or reset. In a batch of worlds of several robots
+    /// the world must place as many robots; each robot keeps its profile.
     fn set_world(
         &self,
         py: Python<'_>,
@@ -533,7 +534,6 @@ impl PyBatch {
         seed: IntArg,
     ) -> PyResult<()> {
         enter(|| {
-            self.one_robot("set_world")?;
             let index = index.count("index", self.n.saturating_sub(1))?;
             let seed = seed.seed("seed")?;
             let w = world_argument(world, "world")?;

@@ -3,7 +3,8 @@
 By default the e-puck runs the report's avoid-collision controller (Alg. 1) for ``--seconds``;
 ``--controller hrl`` hands the run to :mod:`mazesim.cli.demo_hrl`, the shipped hierarchical
 navigator driving the seed robot to the goal. Both print a summary and write
-``DIR/trajectory.png`` and ``DIR/summary.json``.
+``DIR/trajectory.png`` and ``DIR/summary.json``. A world of several robots runs every robot
+(:mod:`mazesim.cli.demo_robots`).
 """
 
 from __future__ import annotations
@@ -42,7 +43,9 @@ def register(commands: Any) -> None:
             "and write DIR/trajectory.png and DIR/summary.json. With --controller hrl the "
             "shipped hierarchical navigator drives the report's seed robot to the goal instead "
             "(a maze world with a goal), and DIR/trace.txt lists its steps as the report's "
-            "Fig. 4.7."
+            "Fig. 4.7. On a world of several robots ([[robots]]) every robot runs the "
+            "avoid-collision controller, and the summary, the picture, --html, --video, --live and "
+            "--record cover them all."
         ),
         epilog=examples(
             "mazesim demo",
@@ -122,28 +125,22 @@ def run_avoid_collision_demo(args: argparse.Namespace, out: TextIO) -> int:
 
     import mazesim
     from mazesim._atomic import atomic_file
+    from mazesim.cli.demo_robots import proximity_columns, run_robots_demo
     from mazesim.controllers import AvoidCollision
-    from mazesim.errors import InvalidArgumentError
     from mazesim.plotting import save_trajectory_png
     from mazesim.replay.views import SimulatorWatch
 
     world = mazesim.load_world(args.world)
     simulator = mazesim.Simulator(world, robot=args.robot, seed=args.seed)
+    seconds = DEFAULT_SECONDS if args.seconds is None else args.seconds
+    if simulator.num_robots > 1:
+        return run_robots_demo(args, out, simulator, seconds)
     robot = simulator.robot
-    proximity = [f"ps{i}" for i in range(8)]
-    names = list(robot.distance_sensor_names)
-    if robot.distance_sensor_unit != "raw" or not set(proximity) <= set(names):
-        raise InvalidArgumentError(
-            f"the demo's avoid-collision controller needs the e-puck's 8 raw proximity sensors "
-            f"ps0-ps7; robot {robot.name!r} has {', '.join(names)} "
-            f"in {robot.distance_sensor_unit!r}"
-        )
     # ps0-ps7, wherever the profile lists them (the e-puck2 has its ToF beside them).
-    columns = [names.index(name) for name in proximity]
+    columns = proximity_columns(robot)
     controller = AvoidCollision(max_speed=robot.max_wheel_speed)
     # Fail before the run, not after it, if the output folder cannot be made.
     os.makedirs(args.out, exist_ok=True)
-    seconds = DEFAULT_SECONDS if args.seconds is None else args.seconds
     steps = max(1, math.ceil(seconds * 1000.0 / simulator.control_step_ms - 1e-9))
 
     xs = np.empty(steps + 1, dtype=np.float64)

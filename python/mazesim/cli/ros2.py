@@ -16,6 +16,7 @@ from mazesim._paths import output_path
 from mazesim.cli._args import non_negative_int, positive_number, seed_argument
 from mazesim.cli._help import examples
 from mazesim.episodes import MAX_STEPS
+from mazesim.errors import InvalidArgumentError
 from mazesim.ros2._deps import require_ros2
 
 __all__ = ["check_before_parsing"]
@@ -60,6 +61,15 @@ def _policy(text: str) -> str:
     if not text or "\0" in text:
         raise argparse.ArgumentTypeError(f"expected a folder of trained tables; found {text!r}")
     return text
+
+
+def _robot_namespace(text: str) -> str:
+    """A robot's name as its namespace (``east-1``: ``/east_1``), as the bridge names it."""
+    from mazesim.ros2.robots import robot_namespaces
+
+    if not text or "\0" in text:
+        raise argparse.ArgumentTypeError(f"expected a robot's name; found {text!r}")
+    return robot_namespaces([text.lstrip("/")])[0]
 
 
 def _add_common(parser: argparse.ArgumentParser) -> None:
@@ -107,7 +117,9 @@ def _run_perform_learning(args: argparse.Namespace) -> int:
 def _run_avoid_collision(args: argparse.Namespace) -> int:
     from mazesim.ros2.nodes import run_avoid_collision
 
-    return run_avoid_collision(args.ros_distro, args.period_ms, args.network)
+    return run_avoid_collision(
+        args.ros_distro, args.period_ms, args.network, namespace=args.namespace or ""
+    )
 
 
 def _run_demo(args: argparse.Namespace) -> int:
@@ -116,7 +128,13 @@ def _run_demo(args: argparse.Namespace) -> int:
     from mazesim.ros2.demo import run_demo
 
     refuse_overwriting_inputs(output_files(args.out, ("bag",)), [("--world", args.world)])
-    mazesim.load_world(args.world)  # a bad world fails here, before any process starts
+    world = mazesim.load_world(args.world)  # a bad world fails here, before any process starts
+    if len(world.robots) > 1:
+        raise InvalidArgumentError(
+            f"mazesim ros2 demo drives one robot; world {world.name!r} holds "
+            f"{len(world.robots)}: run 'mazesim ros2 bridge --world {args.world}' and a node per "
+            "robot, such as 'mazesim ros2 avoid-collision --robot NAME'"
+        )
     result = run_demo(
         Path(args.out), args.controller, args.ros_distro, args.seed, args.steps, args.world
     )
@@ -208,6 +226,7 @@ def register(commands: Any) -> None:
         epilog=examples(
             "mazesim ros2 avoid-collision",
             "mazesim ros2 avoid-collision --period-ms 64",
+            "mazesim ros2 avoid-collision --robot west",
         ),
     )
     avoid.add_argument(
@@ -216,6 +235,15 @@ def register(commands: Any) -> None:
         default=0.0,
         help="0: answer each reading; else a timer of this period on simulation time (/clock) "
         "(default: %(default)s)",
+    )
+    avoid.add_argument(
+        "--robot",
+        dest="namespace",
+        type=_robot_namespace,
+        default=None,
+        metavar="NAME",
+        help="in a world of several robots, drive robot NAME: its /NAME/sensors and "
+        "/NAME/motor (default: the topics of a world of one robot)",
     )
     _add_common(avoid)
     avoid.set_defaults(run=_run_avoid_collision)

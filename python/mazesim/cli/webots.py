@@ -151,7 +151,8 @@ def register(commands: Any) -> None:
         metavar="FILE",
         help="key script for the Keyboard: lines of 'time_s key [duration_s]' (key: one "
         "character, a Webots key name such as UP, DOWN, LEFT, RIGHT, with modifiers such "
-        "as SHIFT+A, or '-' to release); without it getKey() returns -1",
+        "as SHIFT+A, or '-' to release); without it getKey() returns -1; a run of one "
+        "controller only (refused with WORLD.wbt)",
     )
     run.add_argument(
         "--strict",

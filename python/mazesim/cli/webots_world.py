@@ -1,4 +1,9 @@
-"""``mazesim webots run WORLD.wbt``: every robot of a Webots world with its own controller."""
+"""``mazesim webots run WORLD.wbt``: every robot of a Webots world with its own controller.
+
+The summary, the picture, the table, ``--html``/``--video``/``--record`` and the ``--live``
+window cover every robot (:class:`WorldWatch`); ``--keys``, which types on one controller's
+Keyboard, is refused with what to do instead.
+"""
 
 from __future__ import annotations
 
@@ -6,12 +11,94 @@ import argparse
 import json
 import os
 import sys
+from collections.abc import Mapping
 from typing import Any, TextIO
 
 from mazesim._atomic import atomic_file
+from mazesim._core import RobotProfile, World
 from mazesim.errors import InvalidArgumentError
 
-__all__ = ["robot_controllers", "run_world_command"]
+__all__ = ["WorldWatch", "refuse_keys", "robot_controllers", "run_world_command"]
+
+
+class WorldWatch:
+    """Records every robot of a world run, step by step, for ``--html``, ``--video`` and
+    ``--record``, and shows them ``--live`` (a :data:`mazesim.webots.lockstep.StepObserver`).
+
+    Args:
+        seed: The run's seed.
+        record: Whether to record.
+        live: Whether to show the run in the live window.
+    """
+
+    def __init__(self, seed: int, record: bool = True, live: bool = False) -> None:
+        self.seed = seed
+        self.record = record
+        self.live = live
+        self.fleet: Any = None
+        self.view: Any = None
+
+    def __call__(
+        self,
+        world: World,
+        runs: list[Any],
+        simulators: list[Any],
+        wheels: Mapping[int, tuple[float, float]] | None,
+    ) -> None:
+        """Records (and shows) every robot's frame before a step (after the last: ``wheels``
+        None)."""
+        import numpy as np
+
+        from mazesim.replay.recorder import FleetRecorder
+        from mazesim.replay.views import FleetLiveView
+
+        if self.fleet is None:
+            robots = [
+                (run.name, _profile_of(simulator)) for run, simulator in zip(runs, simulators)
+            ]
+            step_ms = float(simulators[0].control_step_ms)
+            self.fleet = FleetRecorder(world, robots, "world controllers", self.seed, step_ms)
+            if self.live:
+                self.view = FleetLiveView(world, robots[0][1], step_ms, f"mazesim: {world.name}")
+        if self.view is not None:
+            self.view.show(
+                [simulator.pose for simulator in simulators],
+                [bool(simulator.colliding) for simulator in simulators],
+                f"t {simulators[0].time:6.2f} s",
+            )
+            if wheels is None:
+                self.view.close()
+        if not self.record:
+            return
+        for index, simulator in enumerate(simulators):
+            readings = np.concatenate((simulator.distance_sensors(), simulator.ground_sensors()))
+            self.fleet.capture(index, simulator.pose, readings, bool(simulator.colliding))
+            if wheels is not None:
+                self.fleet.acted(index, *wheels.get(index, (0.0, 0.0)))
+
+
+def _profile_of(simulator: Any) -> RobotProfile:
+    """The profile of a simulator of one robot, or of a shared simulator's robot."""
+    shared = getattr(simulator, "simulator", None)
+    if shared is not None:
+        return RobotProfile.builtin(str(shared.robot_state(simulator.index)["profile"]))
+    profile: RobotProfile = simulator.robot
+    return profile
+
+
+def refuse_keys(args: argparse.Namespace) -> None:
+    """Refuses ``--keys`` in a world run: it types on one controller's Keyboard.
+
+    Raises:
+        InvalidArgumentError: It was given.
+    """
+    if getattr(args, "keys", None):
+        raise InvalidArgumentError(
+            "--keys types on one controller's Keyboard; a world run (WORLD.wbt as the first "
+            "argument) runs every robot's controller: give the controller to type to instead, "
+            f"'mazesim webots run CONTROLLER --world {args.controller} --keys {args.keys}', "
+            "or leave --keys out"
+        )
 
 
 def robot_controllers(pairs: list[str] | None) -> dict[str, str]:
@@ -39,11 +126,14 @@ def run_world_command(args: argparse.Namespace, out: TextIO) -> int:
         A supervisor's quit status, else the first controller's non-zero exit status, else 0.
     """
     import mazesim
-    from mazesim._paths import open_input
+    from mazesim._paths import open_input, refuse_overwriting_inputs
     from mazesim.plotting import save_robot_paths_png
+    from mazesim.replay.views import recording_requested, viewing_outputs, write_views
     from mazesim.webots.lockstep import run_world
     from mazesim.webots.runner import controller_file
 
+    refuse_keys(args)
+    refuse_overwriting_inputs(viewing_outputs(args), [("the Webots world", args.controller)])
     given = {
         name: controller_file(file)
         for name, file in robot_controllers(args.robot_controller).items()
@@ -52,12 +142,19 @@ def run_world_command(args: argparse.Namespace, out: TextIO) -> int:
         open_input(file, "the controller").close()  # a regular file, readable, before any run
     out_dir = os.path.abspath(args.out)
     os.makedirs(out_dir, exist_ok=True)
+    live = bool(getattr(args, "live", False))
+    recorder = (
+        WorldWatch(args.seed, recording_requested(args), live)
+        if recording_requested(args) or live
+        else None
+    )
     run = run_world(
         args.controller,
         seconds=args.seconds,
         seed=args.seed,
         noise=not args.no_noise,
         controllers=given,
+        observer=recorder,
     )
     for robot in run.robots:
         if robot.note:
@@ -124,5 +221,12 @@ def run_world_command(args: argparse.Namespace, out: TextIO) -> int:
             f"  {robot.name:<16} {ran}: {robot.distance_m:.2f} m, "
             f"{robot.collisions} collisions, exit {robot.exit_status}\n"
         )
-    out.write(f"wrote              {', '.join([picture, summary_path, table])}\n")
+    views: list[str] = []
+    if recorder is not None and recorder.record and recorder.fleet is not None:
+        views = write_views(
+            args,
+            recorder.fleet.run(f"{run.simulated_seconds:.0f} s"),
+            f"{run.world.name}: {len(run.robots)} robots, seed {args.seed}",
+        )
+    out.write(f"wrote              {', '.join([picture, summary_path, table, *views])}\n")
     return run.exit_status

@@ -5,8 +5,9 @@ outlines, the goal and the start pose) is rasterised once into a background imag
 copies it and draws the robot's trail, its body, a bold heading mark and its distance-sensor rays,
 each ray cut where it meets a wall (:class:`mazesim.sensor_rays.SensorRays`). Optional text lines
 (time, step, reward, the last event...) go in a box at the top left (:func:`overlay_text`, with
-Pillow, which matplotlib already needs). Colours follow :mod:`mazesim.plotting`. At the default
-400 x 400 pixels a frame takes about a millisecond, fast enough to record videos of training.
+Pillow, which matplotlib already needs). Other robots of the world are drawn too, each body and
+trail in a colour of its own. Colours follow :mod:`mazesim.plotting`. At the default 400 x 400
+pixels a frame takes about a millisecond, fast enough to record videos of training.
 """
 
 from __future__ import annotations
@@ -34,6 +35,18 @@ HEADING_RGB = (0xFF, 0xFF, 0xFF)
 RAY_RGB = (0xFF, 0x7F, 0x0E)
 START_RGB = (0x1F, 0x77, 0xB4)
 TRAIL_RGB = (0xD6, 0x27, 0x28)
+#: The bodies and trails of the other robots of a world, in turn (as the HTML replay's).
+OTHER_ROBOT_RGB = (
+    (0xFF, 0x7F, 0x0E),
+    (0x94, 0x67, 0xBD),
+    (0x8C, 0x56, 0x4B),
+    (0xE3, 0x77, 0xC2),
+    (0x17, 0xBE, 0xCF),
+    (0xBC, 0xBD, 0x22),
+    (0x7F, 0x7F, 0x7F),
+)
+#: Another robot: its pose, whether it touches something, and its trail ((K, 2) positions).
+OtherRobot = tuple[tuple[float, float, float], bool, npt.ArrayLike]
 #: Thickness of the heading mark, in pixels.
 HEADING_WIDTH = 3
 GOAL_ALPHA = 0.45
@@ -87,6 +100,7 @@ class TopDownRenderer:
         colliding: bool = False,
         trail: npt.ArrayLike | None = None,
         overlay: list[str] | None = None,
+        others: list[OtherRobot] | None = None,
     ) -> npt.NDArray[np.uint8]:
         """A new (height, width, 3) uint8 image of the world with the robot at ``pose``.
 
@@ -95,20 +109,18 @@ class TopDownRenderer:
             colliding: Draws the body red when True.
             trail: (K, 2) positions the robot passed, drawn as a line under it.
             overlay: Text lines shown at the top left (see :func:`overlay_text`).
+            others: The world's other robots (drawn with this robot's body radius).
         """
         image = self.background.copy()
+        for index, (other, touching, path) in enumerate(others or []):
+            rgb = OTHER_ROBOT_RGB[index % len(OTHER_ROBOT_RGB)]
+            self._draw_trail(image, path, rgb)
+            self._draw_disc(image, other, COLLIDING_RGB if touching else rgb)
+            self._draw_heading(image, other)
         if trail is not None:
-            points = np.asarray(trail, dtype=np.float64).reshape(-1, 2)
-            if len(points) > 1:
-                colour = np.array([TRAIL_RGB] * (len(points) - 1), dtype=np.uint8)
-                self._segments(
-                    image, (points[:-1, 0], points[:-1, 1]), (points[1:, 0], points[1:, 1]), colour
-                )
+            self._draw_trail(image, trail, TRAIL_RGB)
         x, y, yaw = (float(v) for v in pose)
-        rows = int(self._y0 - y * self.scale) + self._stamp[0]
-        cols = int(self._x0 + x * self.scale) + self._stamp[1]
-        keep = (rows >= 0) & (rows < self.height) & (cols >= 0) & (cols < self.width)
-        image[rows[keep], cols[keep]] = COLLIDING_RGB if colliding else ROBOT_RGB
+        self._draw_disc(image, (x, y, yaw), COLLIDING_RGB if colliding else ROBOT_RGB)
         origins_x, origins_y, angles = self.rays.origins((x, y, yaw))
         cos_a, sin_a = np.cos(angles), np.sin(angles)
         reach = self.rays.hits(origins_x, origins_y, cos_a, sin_a)
@@ -119,6 +131,38 @@ class TopDownRenderer:
             (origins_x + cos_a * reach, origins_y + sin_a * reach),
             ray_colour,
         )
+        self._draw_heading(image, (x, y, yaw))
+        if overlay:
+            image = overlay_text(image, overlay)
+        return image
+
+    def _draw_trail(
+        self, image: npt.NDArray[np.uint8], trail: npt.ArrayLike, rgb: tuple[int, int, int]
+    ) -> None:
+        """Draws the line through a robot's past positions ((K, 2))."""
+        points = np.asarray(trail, dtype=np.float64).reshape(-1, 2)
+        if len(points) > 1:
+            colour = np.array([rgb] * (len(points) - 1), dtype=np.uint8)
+            self._segments(
+                image, (points[:-1, 0], points[:-1, 1]), (points[1:, 0], points[1:, 1]), colour
+            )
+
+    def _draw_disc(
+        self,
+        image: npt.NDArray[np.uint8],
+        pose: tuple[float, float, float],
+        rgb: tuple[int, int, int],
+    ) -> None:
+        """Draws a robot's body at ``pose``."""
+        x, y, _ = pose
+        rows = int(self._y0 - y * self.scale) + self._stamp[0]
+        cols = int(self._x0 + x * self.scale) + self._stamp[1]
+        keep = (rows >= 0) & (rows < self.height) & (cols >= 0) & (cols < self.width)
+        image[rows[keep], cols[keep]] = rgb
+
+    def _draw_heading(self, image: npt.NDArray[np.uint8], pose: tuple[float, float, float]) -> None:
+        """Draws a robot's heading mark, from its centre to its rim."""
+        x, y, yaw = (float(v) for v in pose)
         rim = np.array([self._body_radius])
         self._segments(
             image,
@@ -127,9 +171,26 @@ class TopDownRenderer:
             np.array([HEADING_RGB], dtype=np.uint8),
             width=HEADING_WIDTH,
         )
-        if overlay:
-            image = overlay_text(image, overlay)
-        return image
+
+    def mark_disc(
+        self,
+        image: npt.NDArray[np.uint8],
+        centre: tuple[float, float],
+        radius: float,
+        rgb: tuple[int, int, int] = GOAL_RGB,
+        alpha: float = GOAL_ALPHA,
+    ) -> None:
+        """Paints a disc of ``radius`` metres round ``centre`` (x, y) into ``image`` (a goal of
+        one of several robots), blended with ``alpha``."""
+        x, y = centre
+        r2 = radius * radius
+
+        def inside(
+            xs: npt.NDArray[np.float64], ys: npt.NDArray[np.float64]
+        ) -> npt.NDArray[np.bool_]:
+            return (xs - x) ** 2 + (ys - y) ** 2 <= r2
+
+        self._fill(image, (x - radius, y - radius, x + radius, y + radius), inside, rgb, alpha)
 
     # -- geometry ------------------------------------------------------------------------------
 

@@ -19,6 +19,7 @@ from mazesim.replay.run import (
     Decision,
     RecordedEpisode,
     RecordedRun,
+    RunRobot,
     load_run,
     save_run,
 )
@@ -28,6 +29,7 @@ __all__ = [
     "Decision",
     "RecordedEpisode",
     "RecordedRun",
+    "RunRobot",
     "load_run",
     "save_run",
 ]

@@ -8,6 +8,8 @@ its heading, its trail and its sensor rays coloured by reading; a panel of the r
 step shown (raw and Table 4.1 levels), the action, the running sub-task and the higher level's
 decisions with the value of each sub-task; a timeline of sub-tasks, barcode reads and decisions;
 and play/pause, speed, a time slider, step buttons, keyboard shortcuts and an episode selector.
+A run of several robots draws each robot, its trail and its rays in a colour of its own, with a
+legend and a row per robot in the panel; the sensor table shows the robot chosen there.
 """
 
 from __future__ import annotations
@@ -20,7 +22,7 @@ from typing import Any
 
 import mazesim
 from mazesim._atomic import atomic_file
-from mazesim._core import World
+from mazesim._core import RobotProfile, World
 from mazesim.actions import ACTIONS
 from mazesim.replay.run import RecordedRun
 
@@ -82,26 +84,36 @@ def world_scene(world: World) -> dict[str, Any]:
     }
 
 
+def _robot_scene(profile: RobotProfile) -> dict[str, Any]:
+    """What the viewer draws of a robot profile: body, sensors and their readings' names."""
+    return {
+        "name": profile.name,
+        "radius": profile.body_radius,
+        "sensors": _rounded(profile.distance_sensor_poses().tolist()),
+        "names": [*profile.distance_sensor_names, *profile.ground_sensor_names],
+        "distance_count": len(profile.distance_sensor_names),
+        "unit": profile.distance_sensor_unit,
+        "distance_max": profile.distance_sensor_max,
+    }
+
+
 def scene_of(run: RecordedRun) -> dict[str, Any]:
     """The JSON the viewer reads: the world, the robot, the action table and the run (without
-    the world's TOML text, which the page does not need)."""
-    profile = run.robot_profile
+    the world's TOML text, which the page does not need); for a run of several robots also
+    ``robots``, each robot's name and profile, robot 0 first."""
     values = run.as_json()
     values["world"] = {"name": run.world.name}
-    return {
+    scene: dict[str, Any] = {
         "world": world_scene(run.world),
-        "robot": {
-            "name": profile.name,
-            "radius": profile.body_radius,
-            "sensors": _rounded(profile.distance_sensor_poses().tolist()),
-            "names": run.sensor_names(),
-            "distance_count": len(profile.distance_sensor_names),
-            "unit": profile.distance_sensor_unit,
-            "distance_max": profile.distance_sensor_max,
-        },
+        "robot": _robot_scene(run.robot_profile),
         "actions": {code: action.description for code, action in ACTIONS.items()},
         "run": values,
     }
+    if run.robots:
+        scene["robots"] = [
+            {**_robot_scene(robot.robot_profile), "robot_name": robot.name} for robot in run.robots
+        ]
+    return scene
 
 
 def replay_html(run: RecordedRun, title: str | None = None) -> str:

@@ -3,7 +3,8 @@
 An :class:`EpisodeRecorder` collects the frames of one episode (pose, readings, contact,
 checkpoint event, and the ray lengths it works out from the pose) and what the controller did
 from each; :class:`SimulatorRecorder` does this for a :class:`mazesim.Simulator` stepped by a
-command (``mazesim demo``, ``mazesim webots run``) and returns the :class:`RecordedRun`. The
+command (``mazesim demo``, ``mazesim webots run``) and returns the :class:`RecordedRun`;
+:class:`FleetRecorder` records every robot of a world of several robots, one track each. The
 recorder of the hierarchical navigator is :mod:`mazesim.replay.navigator`.
 """
 
@@ -18,13 +19,19 @@ import numpy.typing as npt
 from mazesim._core import RobotProfile, Simulator, World
 from mazesim.learn import qlearning
 from mazesim.learn.discretise import NUM_SENSORS, distance_levels, volts_to_cm
-from mazesim.replay.run import Decision, RecordedEpisode, RecordedRun
+from mazesim.replay.run import Decision, RecordedEpisode, RecordedRun, RunRobot
 from mazesim.sensor_rays import SensorRays
 
 if TYPE_CHECKING:
     from mazesim.learn.higher import HigherLevel
 
-__all__ = ["EpisodeRecorder", "SimulatorRecorder", "reading_scale", "table_levels"]
+__all__ = [
+    "EpisodeRecorder",
+    "FleetRecorder",
+    "SimulatorRecorder",
+    "reading_scale",
+    "table_levels",
+]
 
 
 def reading_scale(robot: RobotProfile) -> float:
@@ -226,3 +233,121 @@ class SimulatorRecorder:
             episodes=[self.recorder.episode(outcome)],
             reading_scale=reading_scale(robot),
         )
+
+
+class FleetRecorder:
+    """Records every robot of a world of several robots, one :class:`EpisodeRecorder` each.
+
+    Call :meth:`capture` (or :meth:`capture_simulator` for one simulator of every robot) at the
+    start and after every step, and :meth:`acted` with each robot's wheel speeds.
+
+    Args:
+        world: The world (its walls stop the sensor rays).
+        robots: Each robot's name and profile, in the world's order.
+        controller: What drives the robots.
+        seed: The run's seed.
+        control_step_ms: The time between frames.
+    """
+
+    def __init__(
+        self,
+        world: World,
+        robots: Sequence[tuple[str, RobotProfile]],
+        controller: str,
+        seed: int,
+        control_step_ms: float,
+    ) -> None:
+        self.world = world
+        self.robots = list(robots)
+        self.controller = controller
+        self.seed = seed
+        self.control_step_ms = float(control_step_ms)
+        self.recorders = [EpisodeRecorder(world, profile) for _, profile in self.robots]
+
+    @staticmethod
+    def of_simulator(simulator: Simulator, controller: str, seed: int) -> FleetRecorder:
+        """A recorder of every robot of one simulator."""
+        robots = [
+            (name, RobotProfile.builtin(str(simulator.robot_state(index)["profile"])))
+            for index, name in enumerate(simulator.robot_names)
+        ]
+        return FleetRecorder(
+            simulator.world, robots, controller, seed, float(simulator.control_step_ms)
+        )
+
+    def capture(
+        self,
+        index: int,
+        pose: Sequence[float],
+        readings: npt.ArrayLike,
+        colliding: bool = False,
+        event: int = 0,
+    ) -> None:
+        """Adds robot ``index``'s next frame (see :meth:`EpisodeRecorder.add_frame`)."""
+        self.recorders[index].add_frame(pose, readings, colliding, event)
+
+    def capture_simulator(self, simulator: Simulator) -> None:
+        """Adds a frame of every robot of ``simulator`` as it is now."""
+        for index, recorder in enumerate(self.recorders):
+            state = simulator.robot_state(index)
+            readings = np.concatenate(
+                (
+                    simulator.distance_sensors(robot_index=index),
+                    simulator.ground_sensors(robot_index=index),
+                )
+            )
+            event = int(state["last_crossing"]) if recorder.frames else 0
+            recorder.add_frame(state["pose"], readings, bool(state["colliding"]), event)
+
+    def acted(self, index: int, left: float, right: float) -> None:
+        """Records the wheel speeds robot ``index`` set from its last frame."""
+        self.recorders[index].set_action(wheel_speeds=(left, right))
+
+    def run(self, outcome: str = "") -> RecordedRun:
+        """The recorded run: robot 0's track as the episode, the others' in its ``robots``
+        (a run of one robot when the world holds one). Each robot's rays stop at the other
+        robots' bodies as well as at the walls."""
+        if len(self.recorders) > 1:
+            self._cut_rays_at_robots()
+        episode = self.recorders[0].episode(outcome)
+        episode.robots = [recorder.episode(outcome) for recorder in self.recorders[1:]]
+        profile = self.robots[0][1]
+        return RecordedRun(
+            world=self.world,
+            robot=profile.name,
+            controller=self.controller,
+            seed=self.seed,
+            control_step_ms=self.control_step_ms,
+            episodes=[episode],
+            reading_scale=max(reading_scale(robot) for _, robot in self.robots),
+            robots=(
+                [RunRobot(name, robot.name) for name, robot in self.robots]
+                if len(self.robots) > 1
+                else []
+            ),
+        )
+
+    def _cut_rays_at_robots(self) -> None:
+        """Shortens every recorded ray to where it first meets another robot's body (a disc of
+        its radius), frame by frame."""
+        frames = min(recorder.frames for recorder in self.recorders)
+        poses = [np.array(recorder.poses[:frames]) for recorder in self.recorders]
+        for index, recorder in enumerate(self.recorders):
+            lengths = np.array(recorder.ray_lengths[:frames], dtype=np.float64)
+            origins = [recorder.rays.origins(tuple(pose)) for pose in poses[index]]
+            origin_x = np.array([origin[0] for origin in origins]).reshape(lengths.shape)
+            origin_y = np.array([origin[1] for origin in origins]).reshape(lengths.shape)
+            angles = np.array([origin[2] for origin in origins]).reshape(lengths.shape)
+            cos_ray, sin_ray = np.cos(angles), np.sin(angles)
+            for other, (_, profile) in enumerate(self.robots):
+                if other == index:
+                    continue
+                rel_x = origin_x - poses[other][:, :1]
+                rel_y = origin_y - poses[other][:, 1:2]
+                along = rel_x * cos_ray + rel_y * sin_ray
+                apart = rel_x * rel_x + rel_y * rel_y - profile.body_radius**2
+                room = along * along - apart
+                entry = np.maximum(-along - np.sqrt(np.maximum(room, 0.0)), 0.0)
+                meets = (room >= 0.0) & ((along <= 0.0) | (apart <= 0.0))
+                lengths = np.where(meets & (entry < lengths), entry, lengths)
+            recorder.ray_lengths[:frames] = list(lengths)

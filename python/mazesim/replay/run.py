@@ -14,6 +14,11 @@ takes a few hundred kB. The format is versioned (:data:`FORMAT_VERSION`, ``"majo
 a reader accepts any minor version of its own major version, ignores fields it does not know,
 and refuses a newer major version with :class:`RunFormatError`. ``docs/watching.md`` describes
 every field.
+
+A run of several robots (a world's ``[[robots]]``, a Webots world of several robots) is version
+1.1: the run's ``robots`` lists every robot (:class:`RunRobot`), each episode's own fields are
+robot 0's, and its ``robots`` holds the tracks of the others, each with the fields of an episode.
+A run of one robot is written as version 1.0, byte for byte as before.
 """
 
 from __future__ import annotations
@@ -40,14 +45,20 @@ __all__ = [
     "Decision",
     "RecordedEpisode",
     "RecordedRun",
+    "RunRobot",
     "load_run",
     "save_run",
 ]
 
 #: The ``format`` field of every run file.
 FORMAT_NAME = "mazesim-run"
-#: The version this module writes: ``(major, minor)``. A newer minor version only adds fields.
-FORMAT_VERSION = (1, 0)
+#: The newest version this module writes: ``(major, minor)``. A newer minor version only adds
+#: fields. Runs of several robots are 1.1 (the ``robots`` fields); runs of one robot 1.0.
+FORMAT_VERSION = (1, 1)
+#: The version of a run of one robot, which needs none of 1.1's fields.
+ONE_ROBOT_VERSION = (1, 0)
+#: The most robots a run may hold: a world's limit (``mazesim_core::limits::MAX_ROBOTS``).
+MAX_RUN_ROBOTS = 64
 #: Positions are stored in units of 0.1 mm, headings in milliradians, ray lengths in mm.
 POSITION_UNIT = 1e-4
 YAW_UNIT = 1e-3
@@ -157,11 +168,35 @@ class RecordedEpisode:
     levels: npt.NDArray[np.int64] | None = None
     decisions: list[Decision] = field(default_factory=list)
     outcome: str = ""
+    robots: list[RecordedEpisode] = field(default_factory=list)
 
     @property
     def frames(self) -> int:
         """The number of frames."""
         return len(self.poses)
+
+
+@dataclass
+class RunRobot:
+    """One robot of a run of several robots.
+
+    Attributes:
+        name: Its name in the world.
+        profile: Its robot profile's name.
+    """
+
+    name: str
+    profile: str
+
+    @property
+    def robot_profile(self) -> RobotProfile:
+        """The robot's profile."""
+        return RobotProfile.builtin(self.profile)
+
+    def sensor_names(self) -> list[str]:
+        """Names of its readings' columns: the distance sensors, then the ground sensors."""
+        profile = self.robot_profile
+        return [*profile.distance_sensor_names, *profile.ground_sensor_names]
 
 
 @dataclass
@@ -177,6 +212,8 @@ class RecordedRun:
         episodes: The recorded episodes.
         subtask_names: The higher level's sub-tasks, in table order (hierarchical runs).
         reading_scale: Readings are stored as whole multiples of ``1 / reading_scale``.
+        robots: Every robot of a run of several robots, robot 0 (``robot``) first; empty for a
+            run of one robot. Each episode's ``robots`` then holds robots 1, 2... in this order.
     """
 
     world: World
@@ -187,6 +224,7 @@ class RecordedRun:
     episodes: list[RecordedEpisode] = field(default_factory=list)
     subtask_names: list[str] = field(default_factory=list)
     reading_scale: float = 1.0
+    robots: list[RunRobot] = field(default_factory=list)
 
     @property
     def robot_profile(self) -> RobotProfile:
@@ -200,8 +238,8 @@ class RecordedRun:
 
     def as_json(self) -> dict[str, Any]:
         """The run as the JSON object of its file."""
-        major, minor = FORMAT_VERSION
-        return {
+        major, minor = FORMAT_VERSION if self.robots else ONE_ROBOT_VERSION
+        values: dict[str, Any] = {
             "format": FORMAT_NAME,
             "version": f"{major}.{minor}",
             "world": {"name": self.world.name, "toml": self.world.to_toml()},
@@ -214,6 +252,12 @@ class RecordedRun:
             "reading_scale": self.reading_scale,
             "episodes": [self._episode_json(episode) for episode in self.episodes],
         }
+        if self.robots:
+            values["robots"] = [
+                {"name": robot.name, "profile": robot.profile, "sensor_names": robot.sensor_names()}
+                for robot in self.robots
+            ]
+        return values
 
     def _episode_json(self, episode: RecordedEpisode) -> dict[str, Any]:
         values: dict[str, Any] = {
@@ -239,6 +283,8 @@ class RecordedRun:
             values["subtasks"] = "".join(_subtask_letter(int(s)) for s in episode.subtasks)
         if episode.levels is not None:
             values["levels"] = ["".join(str(int(v)) for v in row) for row in episode.levels]
+        if episode.robots:
+            values["robots"] = [self._episode_json(track) for track in episode.robots]
         return values
 
 
@@ -394,6 +440,7 @@ def run_from_json(values: Any, source: str = "<run>") -> RecordedRun:
         subtask_names=subtask_names,
         reading_scale=scale,
     )
+    run.robots = _robots_from_json(fields, fields.get(values, "robots", "robots", []), robot)
     episodes = fields.get(values, "episodes", "episodes")
     if not isinstance(episodes, list):
         raise fields.fail("episodes", "a list of episodes", episodes)
@@ -401,7 +448,37 @@ def run_from_json(values: Any, source: str = "<run>") -> RecordedRun:
         _episode_from_json(fields, episode, f"episodes[{index}]", scale, len(subtask_names))
         for index, episode in enumerate(episodes)
     ]
+    for index, episode in enumerate(run.episodes):
+        if run.robots and len(episode.robots) != len(run.robots) - 1:
+            raise fields.fail(
+                f"episodes[{index}].robots",
+                f"the tracks of the run's {len(run.robots) - 1} other robots",
+                episodes[index].get("robots"),
+            )
     return run
+
+
+def _robots_from_json(fields: RunFields, values: Any, robot: str) -> list[RunRobot]:
+    """The run's ``robots`` (none, or 2 to :data:`MAX_RUN_ROBOTS`, the first of profile
+    ``robot``)."""
+    if not isinstance(values, list) or len(values) == 1 or len(values) > MAX_RUN_ROBOTS:
+        raise fields.fail("robots", f"a list of 2 to {MAX_RUN_ROBOTS} robots (or none)", values)
+    robots = []
+    for index, entry in enumerate(values):
+        where = f"robots[{index}]"
+        robots.append(
+            RunRobot(
+                name=fields.text(fields.get(entry, "name", f"{where}.name"), f"{where}.name"),
+                profile=fields.text(
+                    fields.get(entry, "profile", f"{where}.profile"),
+                    f"{where}.profile",
+                    robot_profile_names(),
+                ),
+            )
+        )
+    if robots and robots[0].profile != robot:
+        raise fields.fail("robots[0].profile", f"the run's robot {robot!r}", robots[0].profile)
+    return robots
 
 
 def _episode_from_json(
@@ -475,6 +552,17 @@ def _episode_from_json(
                 f"{where}.levels", f"{frames} strings of {NUM_LEVELS} digits 0-3", values["levels"]
             )
         episode.levels = np.array([[int(v) for v in row] for row in rows], dtype=np.int64)
+    if "robots" in values:
+        tracks = values["robots"]
+        if not isinstance(tracks, list) or len(tracks) > MAX_RUN_ROBOTS - 1:
+            raise fields.fail(f"{where}.robots", "a list of the other robots' tracks", tracks)
+        for index, track in enumerate(tracks):
+            other = _episode_from_json(
+                fields, track, f"{where}.robots[{index}]", reading_scale, subtasks
+            )
+            if other.frames != frames or other.robots:
+                raise fields.fail(f"{where}.robots[{index}]", f"a track of {frames} frames", track)
+            episode.robots.append(other)
     return episode
 
 

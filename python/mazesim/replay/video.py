@@ -102,6 +102,18 @@ def video_frames(
             bool(recorded.colliding[frame]),
             trail=recorded.poses[: frame + 1, :2],
             overlay=frame_overlay(run, recorded, frame),
+            others=[
+                (
+                    (
+                        float(track.poses[frame, 0]),
+                        float(track.poses[frame, 1]),
+                        float(track.poses[frame, 2]),
+                    ),
+                    bool(track.colliding[frame]),
+                    track.poses[: frame + 1, :2],
+                )
+                for track in recorded.robots
+            ],
         )
 
 

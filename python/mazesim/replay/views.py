@@ -5,7 +5,7 @@
 their parser, record the run when :func:`recording_requested`, and hand the recorded run to
 :func:`write_views`, which writes the replay page and the video and says where. Commands that step
 a :class:`mazesim.Simulator` themselves use a :class:`SimulatorWatch` for both the recording and
-the live view.
+the live view; :class:`FleetLiveView` shows every robot of a world of several.
 """
 
 from __future__ import annotations
@@ -14,11 +14,12 @@ import argparse
 import os
 from typing import Any, TextIO
 
-from mazesim._core import Simulator
+from mazesim._core import RobotProfile, Simulator, World
 from mazesim._paths import output_file
 from mazesim.replay.run import RecordedRun
 
 __all__ = [
+    "FleetLiveView",
     "SimulatorWatch",
     "add_viewing_options",
     "play_live",
@@ -216,3 +217,51 @@ class DeferredWatch:
     def finish(self, outcome: str = "", title: str | None = None) -> list[str]:
         """See :meth:`SimulatorWatch.finish`; nothing when no step was taken."""
         return [] if self.watch is None else self.watch.finish(outcome, title)
+
+
+class FleetLiveView:
+    """The live window of a run of several robots: robot 0 with its rays, the others each in a
+    colour of its own, every trail.
+
+    Args:
+        world: The world.
+        robot: Robot 0's profile (its rays are drawn).
+        control_step_ms: Simulated time between two frames (the window keeps to real time).
+        title: The window's title.
+    """
+
+    def __init__(
+        self, world: World, robot: RobotProfile, control_step_ms: float, title: str
+    ) -> None:
+        from mazesim.render.live import LiveView
+        from mazesim.render.topdown import TopDownRenderer
+
+        self.live = LiveView(title, control_step_ms / 1000.0)
+        self.renderer: Any = None
+        if not self.live.headless:
+            self.renderer = TopDownRenderer(world, robot, ray_length=robot.distance_sensor_range)
+        self.trails: list[list[tuple[float, float]]] = []
+
+    def show(
+        self, poses: list[tuple[float, float, float]], colliding: list[bool], overlay: str
+    ) -> None:
+        """Shows every robot at its pose (robot 0 first), with a line of text."""
+        if self.renderer is None:
+            return
+        while len(self.trails) < len(poses):
+            self.trails.append([])
+        for trail, (x, y, _) in zip(self.trails, poses):
+            trail.append((x, y))
+        others = [
+            (pose, touching, trail)
+            for pose, touching, trail in zip(poses[1:], colliding[1:], self.trails[1:])
+        ]
+        self.live.show(
+            self.renderer.frame(
+                poses[0], colliding[0], trail=self.trails[0], overlay=[overlay], others=others
+            )
+        )
+
+    def close(self) -> None:
+        """Closes the window."""
+        self.live.close()

@@ -39,14 +39,14 @@ from dataclasses import dataclass, fields
 from typing import Any
 
 import mazesim
-from mazesim._core import Simulator
+from mazesim._core import Simulator, World
 from mazesim.actions import wheel_speeds
 from mazesim.errors import InvalidArgumentError, MazesimError
 from mazesim.ros import standard, topics
 from mazesim.ros._ros import publisher, start_node
 from mazesim.ros.standard import StandardPublishers
 
-__all__ = ["MODES", "Bridge", "BridgeSettings", "run_bridge"]
+__all__ = ["MODES", "Bridge", "BridgeSettings", "refuse_several_robots", "run_bridge"]
 
 #: The bridge's modes.
 MODES = ("lockstep", "realtime")
@@ -304,6 +304,22 @@ class Bridge:
                 next_step = time.monotonic()
 
 
+def refuse_several_robots(world: World) -> None:
+    """Refuses a world of several robots: the ROS 1 bridge simulates one.
+
+    Raises:
+        InvalidArgumentError: The world lists more than one robot.
+    """
+    robots = world.robots
+    if len(robots) > 1:
+        names = ", ".join(str(robot["name"]) for robot in robots)
+        raise InvalidArgumentError(
+            f"the ROS 1 bridge simulates one robot; world {world.name!r} holds {len(robots)} "
+            f"({names}): run it with 'mazesim ros2 bridge', which publishes each robot in its "
+            "own namespace, or give a world of one robot"
+        )
+
+
 def run_bridge(
     options: dict[str, Any], remappings: list[str], node_name: str = "mazesim_bridge"
 ) -> int:
@@ -325,6 +341,7 @@ def run_bridge(
         for field in fields(BridgeSettings):
             rospy.set_param("~" + field.name, getattr(settings, field.name))
         world = mazesim.load_world(settings.world)
+        refuse_several_robots(world)
         if settings.stop_at_goal and world.goal is None:
             raise InvalidArgumentError(
                 f"parameter stop_at_goal is true but world {world.name!r} has no goal"

@@ -32,6 +32,7 @@ from mazesim.errors import (
     MissingDependencyError,
     PolicyFormatError,
 )
+from mazesim.ros.bridge import refuse_several_robots
 from mazesim.ros.local_master import LocalMaster
 
 __all__ = [
@@ -104,6 +105,7 @@ def run_demo(args: argparse.Namespace, out: TextIO) -> int:
         )
     hrl = controller == "hrl"
     world = mazesim.load_world(args.world)  # fail early on a bad world
+    refuse_several_robots(world)
     if hrl:
         from mazesim.ros.perform_learning import load_policy
 

@@ -6,6 +6,11 @@ Before the first command the bridge publishes the reset state once (stamped 1 ns
 on one of its command topics has matched and a grace period has passed. Free-running: the bridge
 steps on its own at ``speed`` (see :mod:`mazesim.ros2.clock`), with the last commanded wheel
 speeds. Topics and QoS: :mod:`mazesim.ros2.state`; the page ``docs/ros2.md``.
+
+A world of several robots publishes each robot's topics in its own namespace and reads each
+robot's commands there (:mod:`mazesim.ros2.robots`), with one ``/clock``. In lockstep the world
+steps once every robot whose command topics have a writer has sent its command for the step; a
+robot nobody drives keeps its last wheel speeds (at first, none).
 """
 
 from __future__ import annotations
@@ -16,6 +21,7 @@ import signal
 import sys
 import threading
 import time
+from collections import deque
 from typing import Any
 
 from mazesim._core import Simulator
@@ -26,8 +32,9 @@ from mazesim.ros2 import cdr, network
 from mazesim.ros2.bag import BagRecorder
 from mazesim.ros2.clock import SIM_CONTROL_TOPIC, FreeRunning, stamp_nanoseconds
 from mazesim.ros2.node import Node, Reader
-from mazesim.ros2.qos import COMMAND
-from mazesim.ros2.state import StateTopics
+from mazesim.ros2.qos import CLOCK, COMMAND
+from mazesim.ros2.robots import RobotOf, robot_namespaces
+from mazesim.ros2.state import CLOCK_TOPIC, CLOCK_TYPE, StateTopics
 
 __all__ = ["BridgeSettings", "Ros2Bridge", "run_bridge"]
 
@@ -78,94 +85,36 @@ def _motor_speeds(data: bytes) -> tuple[float, float]:
     return topics.motor_command(cdr.decode_float64_array(data))
 
 
-class Ros2Bridge:
-    """The bridge node around one simulator.
+class RobotChannel:
+    """One robot's topics on a node: the writers of its state, the readers of its commands and
+    the commands received but not yet stepped.
 
     Args:
-        simulator: The simulator to drive.
-        settings: Mode, distribution, stop conditions, bag.
-        node: The ROS 2 node to publish on (a new one by default).
+        node: The bridge's node.
+        state: The robot's state topics (their namespace is the commands' too).
+        distro: ``humble`` or ``jazzy`` (Jazzy's ``cmd_vel`` is a TwistStamped).
     """
 
-    def __init__(
-        self, simulator: Simulator, settings: BridgeSettings, node: Node | None = None
-    ) -> None:
-        self.simulator = simulator
-        self.settings = settings
-        self.node = node or Node(
-            NODE_NAME,
-            settings.distro,
-            network.discovery_from_environment(network=settings.network),
-        )
-        self.state = StateTopics(simulator, settings.distro)
-        self.writers = [self.node.writer(t.name, t.msgtype, t.qos) for t in self.state.topics]
-        static = self.state.static_topic()
-        self.static_writer = self.node.writer(static.name, static.msgtype, static.qos)
-        jazzy = settings.distro != "humble"
-        self.cmd_vel = self.node.reader(
-            "/" + standard.CMD_VEL_TOPIC, TWIST_STAMPED if jazzy else TWIST, COMMAND
+    def __init__(self, node: Node, state: StateTopics, distro: str) -> None:
+        self.state = state
+        self.writers = [node.writer(t.name, t.msgtype, t.qos) for t in state.topics]
+        static = state.static_topic()
+        self.static_writer = node.writer(static.name, static.msgtype, static.qos)
+        jazzy = distro != "humble"
+        ns = state.namespace
+        self.cmd_vel = node.reader(
+            f"{ns}/{standard.CMD_VEL_TOPIC}", TWIST_STAMPED if jazzy else TWIST, COMMAND
         )
         self._decode_twist = cdr.decode_twist_stamped if jazzy else cdr.decode_twist
-        self.motor = self.node.reader("/" + topics.MOTOR_TOPIC, FLOAT64_ARRAY, COMMAND)
-        self.action = self.node.reader("/" + topics.ACTION_TOPIC, STRING, COMMAND)
-        self.control: Reader | None = None
-        if settings.mode == "free":
-            self.control = self.node.reader(SIM_CONTROL_TOPIC, STRING, COMMAND)
-        self.node.announce()
-        self.bag = BagRecorder(settings.bag, settings.distro) if settings.bag else None
-        self.goal = simulator.world.goal
-        self.goal_step: int | None = None
-        self.stop = threading.Event()
-        self.rejected = 0
+        self.motor = node.reader(f"{ns}/{topics.MOTOR_TOPIC}", FLOAT64_ARRAY, COMMAND)
+        self.action = node.reader(f"{ns}/{topics.ACTION_TOPIC}", STRING, COMMAND)
+        self.pending: deque[tuple[float, float]] = deque()
         self.wheel_speeds = (0.0, 0.0)
-        self.published_steps = 0
-        self._waitset = self._make_waitset()
+        self.rejected = 0
 
-    def _make_waitset(self) -> Any:
-        from cyclonedds.core import InstanceState, ReadCondition, SampleState, ViewState, WaitSet
-
-        waitset = WaitSet(self.node.participant)
-        mask = SampleState.Any | ViewState.Any | InstanceState.Any
-        for reader in self.node.readers:
-            waitset.attach(ReadCondition(reader.dds, mask))
-        return waitset
-
-    def _send(self, writer: Any, nanoseconds: int, data: bytes) -> None:
-        writer.publish(data)
-        if self.bag is not None:
-            self.bag.write(writer.topic, writer.msgtype, nanoseconds, data)
-
-    def publish_static(self) -> None:
-        """Publishes ``/tf_static`` (transient local: late subscribers get it too)."""
-        nanoseconds = stamp_nanoseconds(self.simulator.time)
-        data = self.state.static_transforms(cdr.stamp_of(nanoseconds))
-        self._send(self.static_writer, nanoseconds, data)
-
-    def publish_state(self, step_seconds: float) -> None:
-        """Publishes every state topic for the current step, ``/clock`` last."""
-        nanoseconds = stamp_nanoseconds(self.simulator.time)
-        encoded = self.state.messages(cdr.stamp_of(nanoseconds), step_seconds)
-        for writer, data in zip(self.writers, encoded):
-            self._send(writer, nanoseconds, data)
-        self.published_steps += 1
-
-    def _note_goal(self) -> None:
-        if self.goal is not None and self.goal_step is None:
-            x, y, _ = self.simulator.pose
-            goal_x, goal_y, radius = self.goal
-            if math.hypot(x - goal_x, y - goal_y) <= radius:
-                self.goal_step = self.simulator.steps
-        settings = self.settings
-        if settings.stop_at_goal and self.goal_step is not None:
-            self.stop.set()
-        if settings.stop_after and self.simulator.steps >= settings.stop_after:
-            self.stop.set()
-
-    def step(self, left: float, right: float) -> None:
-        """One control step with these wheel speeds, then the state topics."""
-        self.simulator.step(left, right)
-        self.publish_state(self.simulator.control_step_ms / 1000.0)
-        self._note_goal()
+    def driven(self) -> bool:
+        """Whether a writer on one of the robot's command topics has matched."""
+        return any(reader.publishers() for reader in (self.cmd_vel, self.motor, self.action))
 
     def commands(self) -> list[tuple[float, float]]:
         """The wheel speeds of every command received since the last call; bad ones are
@@ -190,13 +139,150 @@ class Ros2Bridge:
             speeds.append(read(data))
         except (MazesimError, ValueError, KeyError) as error:
             self.rejected += 1
-            print(f"mazesim ros2 bridge: ignored a command: {error}", file=sys.stderr, flush=True)
+            where = f" for {self.state.namespace[1:]}" if self.state.namespace else ""
+            print(
+                f"mazesim ros2 bridge: ignored a command{where}: {error}",
+                file=sys.stderr,
+                flush=True,
+            )
+
+
+class Ros2Bridge:
+    """The bridge node around one simulator.
+
+    Args:
+        simulator: The simulator to drive.
+        settings: Mode, distribution, stop conditions, bag.
+        node: The ROS 2 node to publish on (a new one by default).
+    """
+
+    def __init__(
+        self, simulator: Simulator, settings: BridgeSettings, node: Node | None = None
+    ) -> None:
+        self.simulator = simulator
+        self.settings = settings
+        self.node = node or Node(
+            NODE_NAME,
+            settings.distro,
+            network.discovery_from_environment(network=settings.network),
+        )
+        if simulator.num_robots == 1:
+            states = [StateTopics(simulator, settings.distro)]
+        else:
+            namespaces = robot_namespaces(simulator.robot_names)
+            states = [
+                StateTopics(RobotOf(simulator, i), settings.distro, namespace, clock=False)  # type: ignore[arg-type]
+                for i, namespace in enumerate(namespaces)
+            ]
+        self.robots = [RobotChannel(self.node, state, settings.distro) for state in states]
+        self.state = states[0]
+        #: ``/clock`` for a world of several robots (a world of one has it among its topics).
+        self.clock_writer = (
+            None if simulator.num_robots == 1 else self.node.writer(CLOCK_TOPIC, CLOCK_TYPE, CLOCK)
+        )
+        self.control: Reader | None = None
+        if settings.mode == "free":
+            self.control = self.node.reader(SIM_CONTROL_TOPIC, STRING, COMMAND)
+        self.node.announce()
+        self.bag = BagRecorder(settings.bag, settings.distro) if settings.bag else None
+        self.goal = simulator.world.goal
+        self.goal_step: int | None = None
+        self.stop = threading.Event()
+        self.rejected_controls = 0
+        self.published_steps = 0
+        self._waitset = self._make_waitset()
+
+    def _make_waitset(self) -> Any:
+        from cyclonedds.core import InstanceState, ReadCondition, SampleState, ViewState, WaitSet
+
+        waitset = WaitSet(self.node.participant)
+        mask = SampleState.Any | ViewState.Any | InstanceState.Any
+        for reader in self.node.readers:
+            waitset.attach(ReadCondition(reader.dds, mask))
+        return waitset
+
+    def _send(self, writer: Any, nanoseconds: int, data: bytes) -> None:
+        writer.publish(data)
+        if self.bag is not None:
+            self.bag.write(writer.topic, writer.msgtype, nanoseconds, data)
+
+    @property
+    def rejected(self) -> int:
+        """Commands refused, over every robot, and simulation controls refused."""
+        return sum(robot.rejected for robot in self.robots) + self.rejected_controls
+
+    def publish_static(self) -> None:
+        """Publishes ``/tf_static`` (transient local: late subscribers get it too)."""
+        nanoseconds = stamp_nanoseconds(self.simulator.time)
+        for robot in self.robots:
+            data = robot.state.static_transforms(cdr.stamp_of(nanoseconds))
+            self._send(robot.static_writer, nanoseconds, data)
+
+    def publish_state(self, step_seconds: float) -> None:
+        """Publishes every state topic for the current step, ``/clock`` last."""
+        nanoseconds = stamp_nanoseconds(self.simulator.time)
+        stamp = cdr.stamp_of(nanoseconds)
+        for robot in self.robots:
+            encoded = robot.state.messages(stamp, step_seconds)
+            for writer, data in zip(robot.writers, encoded):
+                self._send(writer, nanoseconds, data)
+        if self.clock_writer is not None:
+            self._send(self.clock_writer, nanoseconds, cdr.encode_clock(stamp))
+        self.published_steps += 1
+
+    def _note_goal(self) -> None:
+        if self.goal is not None and self.goal_step is None:
+            x, y, _ = self.simulator.pose
+            goal_x, goal_y, radius = self.goal
+            if math.hypot(x - goal_x, y - goal_y) <= radius:
+                self.goal_step = self.simulator.steps
+        settings = self.settings
+        if settings.stop_at_goal and self.goal_step is not None:
+            self.stop.set()
+        if settings.stop_after and self.simulator.steps >= settings.stop_after:
+            self.stop.set()
+
+    def step(self, left: float, right: float) -> None:
+        """One control step with these wheel speeds (robot 0's; the others keep theirs), then
+        the state topics."""
+        self.robots[0].wheel_speeds = (left, right)
+        self.step_robots()
+
+    def step_robots(self) -> None:
+        """One control step with each robot's wheel speeds, then the state topics."""
+        if len(self.robots) == 1:
+            self.simulator.step(*self.robots[0].wheel_speeds)
+        else:
+            import numpy as np
+
+            commands = np.array([robot.wheel_speeds for robot in self.robots], dtype=np.float64)
+            self.simulator.step_robots(commands)
+        self.publish_state(self.simulator.control_step_ms / 1000.0)
+        self._note_goal()
+
+    def commands(self) -> list[tuple[float, float]]:
+        """Robot 0's commands received since the last call (see :meth:`RobotChannel.commands`)."""
+        return self.robots[0].commands()
+
+    def _step_pending(self) -> None:
+        """Lockstep: steps the world while every robot that is driven has a command waiting
+        (robots that are not keep their wheel speeds)."""
+        for robot in self.robots:
+            robot.pending.extend(robot.commands())
+        while not self.stop.is_set():
+            if not any(robot.pending for robot in self.robots):
+                return
+            if not all(robot.pending or not robot.driven() for robot in self.robots):
+                return
+            for robot in self.robots:
+                if robot.pending:
+                    robot.wheel_speeds = robot.pending.popleft()
+            self.step_robots()
 
     def wait_for_driver(self) -> None:
         """Lockstep: waits until a command writer has matched, then the grace period."""
-        readers = (self.cmd_vel, self.motor, self.action)
         while not self.stop.is_set():
-            if any(reader.publishers() for reader in readers):
+            if any(robot.driven() for robot in self.robots):
                 self.stop.wait(READY_GRACE_S)
                 return
             self.stop.wait(0.02)
@@ -210,10 +296,7 @@ class Ros2Bridge:
                 self.publish_state(0.0)
             while not self.stop.is_set():
                 self._waitset.wait(100_000_000)
-                for left, right in self.commands():
-                    self.step(left, right)
-                    if self.stop.is_set():
-                        break
+                self._step_pending()
             return
         self._run_free()
 
@@ -227,10 +310,11 @@ class Ros2Bridge:
                 try:
                     pace.control(cdr.decode_string(data))
                 except InvalidActionError as error:
-                    self.rejected += 1
+                    self.rejected_controls += 1
                     print(f"mazesim ros2 bridge: ignored: {error}", file=sys.stderr, flush=True)
-            for speeds in self.commands():
-                self.wheel_speeds = speeds
+            for robot in self.robots:
+                for speeds in robot.commands():
+                    robot.wheel_speeds = speeds
             delay = pace.due(self.simulator.time, control_step_s)
             if delay is None:
                 self._waitset.wait(50_000_000)
@@ -238,7 +322,7 @@ class Ros2Bridge:
             if delay > 0.0:
                 self._waitset.wait(int(delay * 1e9))
                 continue
-            self.step(*self.wheel_speeds)
+            self.step_robots()
             pace.stepped()
 
     def close(self) -> None:
@@ -270,8 +354,14 @@ def run_bridge(settings: BridgeSettings) -> int:
     signal.signal(signal.SIGINT, on_signal)
     signal.signal(signal.SIGTERM, on_signal)
     started = time.monotonic()
+    robots = (
+        settings.robot
+        if simulator.num_robots == 1
+        else f"{simulator.num_robots} robots (namespaces "
+        f"{', '.join(robot.state.namespace for robot in bridge.robots)})"
+    )
     print(
-        f"mazesim ros2 bridge: {settings.robot} in {world.name}, ROS 2 {settings.distro}, "
+        f"mazesim ros2 bridge: {robots} in {world.name}, ROS 2 {settings.distro}, "
         f"{settings.mode}, domain {bridge.node.discovery.domain_id} "
         f"({bridge.node.discovery.reach.lower()})",
         file=sys.stderr,

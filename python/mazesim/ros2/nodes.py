@@ -115,6 +115,7 @@ def run_avoid_collision(
     period_ms: float = 0.0,
     network_wide: bool = False,
     stop: threading.Event | None = None,
+    namespace: str = "",
 ) -> int:
     """Runs the avoid-collision node until stopped; returns the exit code.
 
@@ -124,15 +125,17 @@ def run_avoid_collision(
             time (``/clock``) with this period, using the latest reading.
         network_wide: Discover over the network rather than this machine only.
         stop: Stops the node when set (SIGINT and SIGTERM by default).
+        namespace: The robot's namespace (``"/west"``) in a world of several robots, whose
+            ``sensors`` and ``motor`` it uses; ``""`` for a world of one.
     """
     if not period_ms >= 0.0:
         raise InvalidArgumentError(f"expected a timer period >= 0 ms; found {period_ms}")
     controller = AvoidCollision()
     stop = stop or stop_on_signals()
     node = Node("avoid_collision", distro, network.discovery_from_environment(network=network_wide))
-    sensors = node.reader(f"/{topics.SENSORS_TOPIC}", FLOAT64_ARRAY, SENSOR)
+    sensors = node.reader(f"{namespace}/{topics.SENSORS_TOPIC}", FLOAT64_ARRAY, SENSOR)
     clock: Reader | None = node.reader("/clock", CLOCK_TYPE, CLOCK) if period_ms else None
-    motor = node.writer(f"/{topics.MOTOR_TOPIC}", FLOAT64_ARRAY, COMMAND)
+    motor = node.writer(f"{namespace}/{topics.MOTOR_TOPIC}", FLOAT64_ARRAY, COMMAND)
     node.announce()
     latest: list[float] | None = None
     next_tick_ns = 0

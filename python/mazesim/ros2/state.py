@@ -5,7 +5,9 @@ As Webots' e-puck driver and the real robot's publish them (``webots_ros2_epuck`
 frames named after the sensors) and per ground sensor (``/gs0`` .. ``/gs2``), ``/scan`` built from
 them, ``/odom``, ``/tf``, ``/tf_static`` once and ``/clock``; and the report's own topics as the
 ROS 1 bridge has them (``/sensors``, ``/sensor_data``, ``/pose``). The numbers are those of
-:mod:`mazesim.ros.standard` and :mod:`mazesim.ros.topics`, so both bridges say the same.
+:mod:`mazesim.ros.standard` and :mod:`mazesim.ros.topics`, so both bridges say the same. A robot
+of a world of several robots publishes the same topics in its own namespace (``/west/ps0``,
+``/west/tf``...), without ``/clock``, which the bridge publishes once for all.
 """
 
 from __future__ import annotations
@@ -112,12 +114,19 @@ class StateTopics:
     """The state topics of one simulator, and their messages after each step.
 
     Args:
-        simulator: The simulator whose state is published.
+        simulator: The simulator whose state is published (or one robot of a simulator of
+            several, :class:`mazesim.ros2.robots.RobotOf`).
         distro: ``humble`` or ``jazzy`` (Jazzy's Range carries a variance).
+        namespace: The robot's namespace (``"/west"``), or ``""`` for a world of one robot.
+        clock: Whether ``/clock`` is among the topics (not for a robot in a namespace).
     """
 
-    def __init__(self, simulator: Simulator, distro: str) -> None:
+    def __init__(
+        self, simulator: Simulator, distro: str, namespace: str = "", clock: bool = True
+    ) -> None:
         self.simulator = simulator
+        self.namespace = namespace
+        self.clock = clock
         self.robot = robot = simulator.robot
         self.jazzy = distro != "humble"
         self.frames = standard.sensor_frames(robot)
@@ -135,27 +144,27 @@ class StateTopics:
             "checkpoint"
         ]
         self.before = simulator.pose
+        ns = namespace
         self.topics: list[Topic] = [
-            *(Topic(f"/{frame.frame}", RANGE, SENSOR) for frame in self.frames),
-            *(Topic(f"/{name}", RANGE, SENSOR) for name in self.ground_names),
+            *(Topic(f"{ns}/{frame.frame}", RANGE, SENSOR) for frame in self.frames),
+            *(Topic(f"{ns}/{name}", RANGE, SENSOR) for name in self.ground_names),
         ]
         if self.has_scan:
-            self.topics.append(Topic(SCAN_TOPIC, LASER_SCAN, SENSOR))
+            self.topics.append(Topic(ns + SCAN_TOPIC, LASER_SCAN, SENSOR))
         self.topics += [
-            Topic("/odom", ODOMETRY, SENSOR),
-            Topic("/tf", TF_MESSAGE, TF),
-            Topic(f"/{topics.SENSORS_TOPIC}", FLOAT64_ARRAY, SENSOR),
+            Topic(f"{ns}/odom", ODOMETRY, SENSOR),
+            Topic(f"{ns}/tf", TF_MESSAGE, TF),
+            Topic(f"{ns}/{topics.SENSORS_TOPIC}", FLOAT64_ARRAY, SENSOR),
         ]
         if self.sharp:
-            self.topics.append(Topic(f"/{topics.SENSOR_DATA_TOPIC}", FLOAT64_ARRAY, SENSOR))
-        self.topics += [
-            Topic(f"/{topics.POSE_TOPIC}", FLOAT64_ARRAY, SENSOR),
-            Topic(CLOCK_TOPIC, CLOCK_TYPE, CLOCK),
-        ]
+            self.topics.append(Topic(f"{ns}/{topics.SENSOR_DATA_TOPIC}", FLOAT64_ARRAY, SENSOR))
+        self.topics.append(Topic(f"{ns}/{topics.POSE_TOPIC}", FLOAT64_ARRAY, SENSOR))
+        if clock:
+            self.topics.append(Topic(CLOCK_TOPIC, CLOCK_TYPE, CLOCK))
 
     def static_topic(self) -> Topic:
-        """``/tf_static``."""
-        return Topic(TF_STATIC_TOPIC, TF_MESSAGE, TF_STATIC)
+        """``/tf_static`` (in the robot's namespace)."""
+        return Topic(self.namespace + TF_STATIC_TOPIC, TF_MESSAGE, TF_STATIC)
 
     def static_transforms(self, stamp: cdr.Stamp) -> bytes:
         """The ``/tf_static`` message: ``base_link`` -> every sensor frame (and the scan's)."""
@@ -271,5 +280,6 @@ class StateTopics:
         out.append(
             cdr.encode_float64_multi_array(("x", "y", "yaw", "time"), topics.pose_values(simulator))
         )
-        out.append(cdr.encode_clock(stamp))
+        if self.clock:
+            out.append(cdr.encode_clock(stamp))
         return out

@@ -23,7 +23,7 @@ import multiprocessing
 import os
 import sys
 import time
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from multiprocessing.connection import Connection, wait
 from typing import Any
@@ -37,7 +37,14 @@ from mazesim.webots.radio import Radio
 from mazesim.webots.shared_world import RobotView, shared_simulator
 from mazesim.webots.simulation import robot_profile_name
 
-__all__ = ["Fleet", "RobotRun", "WorldRun", "controller_of", "run_world"]
+__all__ = ["Fleet", "RobotRun", "StepObserver", "WorldRun", "controller_of", "run_world"]
+
+#: Called before every step with the world, the robots' runs, their simulators and the wheel
+#: speeds each steps with, and once after the last step with ``None`` for the wheel speeds
+#: (what ``--html``, ``--video`` and ``--record`` record).
+StepObserver = Callable[
+    [World, "list[RobotRun]", "list[Any]", "Mapping[int, tuple[float, float]] | None"], None
+]
 
 #: ``controller`` fields that name no controller: the robot stands still.
 NO_CONTROLLER = {"", "void", "<generic>", "<none>"}
@@ -167,6 +174,7 @@ def run_world(
     seed: int = 0,
     noise: bool = True,
     controllers: Mapping[str, str] | None = None,
+    observer: StepObserver | None = None,
 ) -> WorldRun:
     """Runs every robot of a ``.wbt`` world with its own controller, in lockstep.
 
@@ -177,6 +185,7 @@ def run_world(
         noise: Whether the sensors are noisy.
         controllers: Controller files for some robots, by robot name, DEF name or controller
             field (they win over the world's ``controller`` fields).
+        observer: Called before every step and after the last (:data:`StepObserver`).
 
     Returns:
         What each robot did.
@@ -219,7 +228,10 @@ def run_world(
     fleet = Fleet(robots, simulators)
     movable = [robot.get("profile") is not None for robot in robots]
     started = time.perf_counter()
-    steps = _lockstep(jobs, simulators, movable, fleet, runs)
+    watch = None if observer is None else lambda *state: observer(world, runs, *state)
+    steps = _lockstep(jobs, simulators, movable, fleet, runs, watch)
+    if watch is not None:
+        watch(simulators, None)
     for run, simulator in zip(runs, simulators):
         run.distance_m = float(simulator.distance_travelled)
         run.collisions = int(simulator.collisions)
@@ -239,6 +251,7 @@ def _lockstep(
     movable: list[bool],
     fleet: Fleet,
     runs: list[RobotRun],
+    watch: Callable[[list[Any], Mapping[int, tuple[float, float]] | None], None] | None = None,
 ) -> int:
     """Starts the controller processes and steps the world whenever every running controller
     has asked for the step; returns the number of steps."""
@@ -291,6 +304,8 @@ def _lockstep(
                     over = over or runs[index].quit_requested
             if live and live <= set(wheels):
                 if not over:
+                    if watch is not None:
+                        watch(simulators, wheels)
                     _step_world(simulators, wheels, radio, runs)
                     steps += 1
                 for index in sorted(wheels):

@@ -7,6 +7,9 @@
   var run = scene.run;
   var world = scene.world;
   var robot = scene.robot;
+  // A run of several robots lists them all (robot 0 first); each episode holds the others' tracks.
+  var fleet = scene.robots || null;
+  var ROBOT_COLOURS = ["#1f77b4", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf", "#bcbd22", "#7f7f7f"];
   var stepSeconds = run.control_step_ms / 1000;
   var SUBTASK_COLOURS = ["#7f7f7f", "#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#8c564b"];
   var LEVEL_COLOURS = ["#d62728", "#ff7f0e", "#e6c000", "#2ca02c"];
@@ -36,7 +39,8 @@
       rays: values.rays.map(function (row) { return row.map(function (v) { return v * 1e-3; }); }),
       contacts: {}, events: {}, eventFrames: [], decisions: values.decisions || [],
       actions: values.actions || null, wheelSpeeds: values.wheel_speeds || null,
-      subtasks: values.subtasks || null, levels: values.levels || null
+      subtasks: values.subtasks || null, levels: values.levels || null,
+      others: (values.robots || []).map(decode)
     };
     values.contacts.forEach(function (frame) { episode.contacts[frame] = true; });
     values.events.forEach(function (pair) {
@@ -119,19 +123,39 @@
   el("circle", { id: "start", cx: start[0], cy: -start[1], r: robot.radius, fill: "none", stroke: "#1f77b4", "stroke-width": 2 * unit }, map);
   el("line", { x1: start[0], y1: -start[1], x2: start[0] + 1.6 * robot.radius * Math.cos(start[2]),
     y2: -(start[1] + 1.6 * robot.radius * Math.sin(start[2])), stroke: "#1f77b4", "stroke-width": 2 * unit }, map);
-  var trail = el("polyline", { id: "trail", fill: "none", stroke: "#d62728", "stroke-width": 2 * unit, "stroke-opacity": 0.8 }, map);
+  var trail = el("polyline", { id: "trail", fill: "none", stroke: fleet ? ROBOT_COLOURS[0] : "#d62728", "stroke-width": 2 * unit, "stroke-opacity": 0.8 }, map);
   var decisionMarks = el("g", { id: "decision-marks" }, map);
   var rays = el("g", { id: "rays", "stroke-width": 1.5 * unit }, map);
   var rayLines = robot.sensors.map(function () { return el("line", {}, rays); });
   var body = el("g", { id: "robot" }, map);
   var bodyDisc = el("circle", { cx: 0, cy: 0, r: robot.radius, fill: "#1f77b4", stroke: "#0b3c5d", "stroke-width": unit }, body);
   el("line", { x1: 0, y1: 0, x2: robot.radius * 1.15, y2: 0, stroke: "#fff", "stroke-width": 3.5 * unit, "stroke-linecap": "round" }, body);
+  // What is drawn of each robot: robot 0's elements above, then one set per other robot.
+  var views = [{ profile: robot, body: body, disc: bodyDisc, trail: trail, rays: rayLines, colour: "#1f77b4", name: robot.name }];
+  if (fleet) {
+    views[0].name = fleet[0].robot_name;
+    fleet.slice(1).forEach(function (profile, i) {
+      var k = i + 1, colour = ROBOT_COLOURS[k % ROBOT_COLOURS.length];
+      var otherTrail = el("polyline", { id: "trail-" + k, fill: "none", stroke: colour, "stroke-width": 2 * unit, "stroke-opacity": 0.8 }, map);
+      map.insertBefore(otherTrail, decisionMarks);
+      var otherRays = el("g", { id: "rays-" + k, "stroke-width": 1.5 * unit }, map);
+      var otherBody = el("g", { id: "robot-" + k, "class": "robot" }, map);
+      var disc = el("circle", { cx: 0, cy: 0, r: profile.radius, fill: colour, stroke: "#0b3c5d", "stroke-width": unit }, otherBody);
+      el("line", { x1: 0, y1: 0, x2: profile.radius * 1.15, y2: 0, stroke: "#fff", "stroke-width": 3.5 * unit, "stroke-linecap": "round" }, otherBody);
+      el("title", {}, otherBody).textContent = profile.robot_name;
+      views.push({ profile: profile, body: otherBody, disc: disc, trail: otherTrail, colour: colour, name: profile.robot_name,
+        rays: profile.sensors.map(function () { return el("line", {}, otherRays); }) });
+    });
+    el("title", {}, body).textContent = fleet[0].robot_name;
+  }
 
   var legend = document.getElementById("legend");
-  [["#8c3b1f", "walls"], [grey(0.2), "floor paint (grey = reflectance)"], ["#ffd92f", "checkpoint (id; arrow: arrival direction)"],
-   ["#1f77b4", "start / robot (white line: heading)"], ["#2ca02c", "goal"], ["#d62728", "trail"],
+  var robotItems = fleet ? views.map(function (view) { return [view.colour, "robot " + view.name + " and its trail (red when touching)"]; }) :
+    [["#1f77b4", "start / robot (white line: heading)"]];
+  [["#8c3b1f", "walls"], [grey(0.2), "floor paint (grey = reflectance)"], ["#ffd92f", "checkpoint (id; arrow: arrival direction)"]].concat(robotItems,
+   [["#2ca02c", "goal"]], fleet ? [] : [["#d62728", "trail"]], [
    ["linear-gradient(90deg,#d62728,#2ca02c)", "sensor rays: red near, green far"],
-   ["#08519c", "D1, D2...: decisions of the higher level (not checkpoint ids)"]].forEach(function (item) {
+   ["#08519c", "D1, D2...: decisions of the higher level (not checkpoint ids)"]]).forEach(function (item) {
     var li = document.createElement("li");
     var swatch = document.createElement("span");
     swatch.className = "swatch";
@@ -142,7 +166,7 @@
   });
 
   // -- the state of the view -------------------------------------------------------------------
-  var state = { episode: 0, frame: 0, playing: false, speed: 1, robot: { x: 0, y: 0, yaw: 0 }, frames: 0, draws: 0 };
+  var state = { episode: 0, frame: 0, playing: false, speed: 1, robot: { x: 0, y: 0, yaw: 0 }, robots: [], selected: 0, frames: 0, draws: 0 };
   window.mazesimReplay = state;
   var slider = document.getElementById("slider");
   var timeline = document.getElementById("timeline");
@@ -240,9 +264,9 @@
     el("rect", { id: "cursor", x: 0, y: 0, width: Math.max(frames / 300, 1), height: 46, fill: "#000", "fill-opacity": 0.6 }, timeline);
   }
 
-  function rayColour(episode, frame, sensor) {
+  function rayColour(episode, frame, sensor, profile) {
     if (episode.levels) { return LEVEL_COLOURS[Number(episode.levels[frame][sensor])]; }
-    var near = Math.min(Math.max(episode.readings[frame][sensor] / robot.distance_max, 0), 1);
+    var near = Math.min(Math.max(episode.readings[frame][sensor] / profile.distance_max, 0), 1);
     var hue = Math.round(120 * (1 - Math.pow(near, 0.5)));
     return "hsl(" + hue + ",80%,45%)";
   }
@@ -253,43 +277,74 @@
     return found;
   }
 
+  function drawRobot(view, track, frame) {
+    var x = track.x[frame], y = track.y[frame], yaw = track.yaw[frame];
+    view.body.setAttribute("transform", "translate(" + x + "," + (-y) + ") rotate(" + (-degrees(yaw)) + ")");
+    view.body.setAttribute("data-x", fixed(x, 4));
+    view.body.setAttribute("data-y", fixed(y, 4));
+    view.disc.setAttribute("fill", track.contacts[frame] ? "#d62728" : view.colour);
+    var points = [];
+    var stride = Math.max(1, Math.floor(frame / 2000));
+    for (var i = 0; i <= frame; i += stride) { points.push(fixed(track.x[i], 4) + "," + fixed(-track.y[i], 4)); }
+    points.push(fixed(x, 4) + "," + fixed(-y, 4));
+    view.trail.setAttribute("points", points.join(" "));
+    view.profile.sensors.forEach(function (sensor, k) {
+      var c = Math.cos(yaw), s = Math.sin(yaw);
+      var ox = x + c * sensor[0] - s * sensor[1], oy = y + s * sensor[0] + c * sensor[1];
+      var reach = track.rays[frame][k];
+      var line = view.rays[k];
+      line.setAttribute("x1", ox); line.setAttribute("y1", -oy);
+      line.setAttribute("x2", ox + reach * Math.cos(yaw + sensor[2]));
+      line.setAttribute("y2", -(oy + reach * Math.sin(yaw + sensor[2])));
+      line.setAttribute("stroke", rayColour(track, frame, k, view.profile));
+    });
+    return { name: view.name, x: x, y: y, yaw: yaw, touching: !!track.contacts[frame] };
+  }
+
+  function drawRobotsTable(episode, frame) {
+    if (!fleet) { return; }
+    var rows = views.map(function (view, k) {
+      var track = k ? episode.others[k - 1] : episode, where = state.robots[k];
+      var speeds = track.wheelSpeeds ? track.wheelSpeeds[frame] : null;
+      return '<tr id="robot-row-' + k + '" class="' + (k === state.selected ? "selected" : "") + '"><td><span class="swatch" style="background:' +
+        view.colour + '"></span>' + escapeHtml(view.name) + '</td><td class="num">' + fixed(where.x, 3) + ", " +
+        fixed(where.y, 3) + '</td><td class="num">' + fixed(degrees(where.yaw), 0) + '&deg;</td><td class="num">' +
+        (speeds ? fixed(speeds[0] / 100, 1) + " / " + fixed(speeds[1] / 100, 1) : "\u2014") + "</td><td>" + (where.touching ? "touching" : "") + "</td></tr>";
+    });
+    var tableBody = document.querySelector("#robots tbody");
+    tableBody.innerHTML = rows.join("");
+    Array.prototype.forEach.call(tableBody.querySelectorAll("tr"), function (row, k) {
+      row.addEventListener("click", function () { selectRobot(k); });
+    });
+  }
+
+  function selectRobot(index) {
+    state.selected = Math.max(0, Math.min(index, views.length - 1));
+    show(state.frame);
+  }
+
   function show(frame) {
     var episode = episodes[state.episode];
     frame = Math.max(0, Math.min(Math.round(frame), episode.frames - 1));
     state.frame = frame;
-    var x = episode.x[frame], y = episode.y[frame], yaw = episode.yaw[frame];
-    state.robot = { x: x, y: y, yaw: yaw };
-    body.setAttribute("transform", "translate(" + x + "," + (-y) + ") rotate(" + (-degrees(yaw)) + ")");
-    body.setAttribute("data-x", fixed(x, 4));
-    body.setAttribute("data-y", fixed(y, 4));
-    bodyDisc.setAttribute("fill", episode.contacts[frame] ? "#d62728" : "#1f77b4");
-    var points = [];
-    var stride = Math.max(1, Math.floor(frame / 2000));
-    for (var i = 0; i <= frame; i += stride) { points.push(fixed(episode.x[i], 4) + "," + fixed(-episode.y[i], 4)); }
-    points.push(fixed(x, 4) + "," + fixed(-y, 4));
-    trail.setAttribute("points", points.join(" "));
-    robot.sensors.forEach(function (sensor, k) {
-      var c = Math.cos(yaw), s = Math.sin(yaw);
-      var ox = x + c * sensor[0] - s * sensor[1], oy = y + s * sensor[0] + c * sensor[1];
-      var reach = episode.rays[frame][k];
-      var line = rayLines[k];
-      line.setAttribute("x1", ox); line.setAttribute("y1", -oy);
-      line.setAttribute("x2", ox + reach * Math.cos(yaw + sensor[2]));
-      line.setAttribute("y2", -(oy + reach * Math.sin(yaw + sensor[2])));
-      line.setAttribute("stroke", rayColour(episode, frame, k));
-    });
+    state.robots = views.map(function (view, k) { return drawRobot(view, k ? episode.others[k - 1] : episode, frame); });
+    state.robot = state.robots[0];
     slider.value = frame;
     text("frame-label", "step " + frame + " / " + (episode.frames - 1) + "   t = " + fixed(frame * stepSeconds, 2) + " s");
     text("clock", "t = " + fixed(frame * stepSeconds, 2) + " s, step " + frame + " of " + (episode.frames - 1) +
       (episode.contacts[frame] ? "  (touching a wall)" : "") +
       (frame === episode.frames - 1 ? "  \u2014 " + episode.outcome : ""));
+    drawRobotsTable(episode, frame);
     drawPanel(episode, frame);
     var cursor = document.getElementById("cursor");
     if (cursor) { cursor.setAttribute("x", frame); }
     state.draws += 1;
   }
 
-  function drawPanel(episode, frame) {
+  function drawPanel(robotZero, frame) {
+    var episode = state.selected ? robotZero.others[state.selected - 1] : robotZero;
+    var robot = views[state.selected].profile;
+    if (fleet) { text("sensors-of", "of " + views[state.selected].name); }
     var body = document.querySelector("#readings tbody");
     var rows = [];
     robot.names.forEach(function (name, k) {
@@ -303,7 +358,8 @@
     });
     body.innerHTML = rows.join("");
     text("levels-note", episode.levels ? "level: Table 4.1 of the report (Integration of a Webots Mobile Robot Simulation in ROS), 0 (< 7 cm), 1 (< 13 cm), 2 (< 20 cm), 3 (farther); ray: distance to the wall the sensor faces" :
-      "ray: distance to the wall the sensor faces (Table 4.1 levels apply to the six Sharp sensors of the seed robot)");
+      (fleet ? "ray: distance to the wall or robot the sensor faces" : "ray: distance to the wall the sensor faces") +
+      " (Table 4.1 levels apply to the six Sharp sensors of the seed robot)");
     var action = "\u2014";
     if (episode.actions && episode.actions[frame]) {
       var code = episode.actions[frame];
@@ -328,7 +384,7 @@
     } else {
       text("barcode", "none yet");
     }
-    var decisions = episode.decisions;
+    var decisions = robotZero.decisions;
     var current = -1;
     for (var i = 0; i < decisions.length && decisions[i].frame <= frame; i++) { current = i; }
     Array.prototype.forEach.call(document.querySelectorAll("#decisions li"), function (li, k) {
@@ -446,5 +502,7 @@
   state.play = play;
   state.pause = pause;
   state.selectEpisode = selectEpisode;
+  state.selectRobot = selectRobot;
+  if (fleet) { document.getElementById("robots-box").style.display = ""; }
   selectEpisode(0);
 })();

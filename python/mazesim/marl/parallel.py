@@ -1,0 +1,147 @@
+"""The PettingZoo ParallelEnv of a multi-robot task: every e-puck an agent, stepped together.
+
+Agents are named ``epuck_0`` ... ``epuck_{R-1}`` (the robots' names in the world). An agent
+leaves ``env.agents`` on the step that terminates or truncates it (PettingZoo's convention); its
+robot then stands still, still an obstacle to the others, until the episode ends with the last
+agent. Actions are ``Box(-1, 1, (2,))`` wheel speed fractions of the motor limit (clipped);
+observations and rewards are the task's (:mod:`mazesim.marl.tasks`).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import gymnasium
+import numpy as np
+import numpy.typing as npt
+from pettingzoo import ParallelEnv
+
+from mazesim.errors import InvalidActionError, InvalidArgumentError
+from mazesim.marl.batch import MultiRobotBatch
+from mazesim.marl.render import SwarmRenderer
+from mazesim.marl.tasks import MultiRobotTask
+
+__all__ = ["MultiRobotParallelEnv"]
+
+Observation = npt.NDArray[np.float32]
+
+
+class MultiRobotParallelEnv(ParallelEnv[str, Observation, npt.NDArray[np.float32]]):
+    """A multi-robot task as a PettingZoo ParallelEnv (a :class:`MultiRobotBatch` of one).
+
+    Args:
+        task: The task's rules.
+        render_mode: None or ``"rgb_array"`` (a top-down picture of the world and every robot).
+        control_step_ms: Control step in milliseconds.
+        noise: Whether sensors and wheels are noisy.
+    """
+
+    metadata: dict[str, Any] = {
+        "name": "mazesim_multi_robot",
+        "render_modes": ["rgb_array"],
+        "is_parallelizable": True,
+        "render_fps": 8,
+    }
+
+    def __init__(
+        self,
+        task: MultiRobotTask,
+        render_mode: str | None = None,
+        control_step_ms: float = 128.0,
+        noise: bool = True,
+    ) -> None:
+        if render_mode not in (None, "rgb_array"):
+            raise InvalidArgumentError(
+                f'expected render_mode None or "rgb_array", found {render_mode!r}'
+            )
+        self.metadata = {**type(self).metadata, "name": task.name}
+        self.render_mode = render_mode
+        self.batch = MultiRobotBatch(
+            task, 1, control_step_ms=control_step_ms, noise=noise, threads=1, autoreset=False
+        )
+        self.possible_agents = list(self.batch.agents)
+        self.agents: list[str] = []
+        width = self.batch.observation_width
+        limit = np.float32(np.finfo(np.float32).max)
+        self._observation_space = gymnasium.spaces.Box(-limit, limit, (width,), np.float32)
+        self._action_space = gymnasium.spaces.Box(-1.0, 1.0, (2,), np.float32)
+        self._observation_spaces = {a: self._observation_space for a in self.possible_agents}
+        self._action_spaces = {a: self._action_space for a in self.possible_agents}
+        self._renderer: SwarmRenderer | None = None
+
+    def observation_space(self, agent: str) -> gymnasium.spaces.Space[Any]:
+        """Every agent's observation space: ``Box`` of the task's width, float32."""
+        return self._observation_spaces[agent]
+
+    def action_space(self, agent: str) -> gymnasium.spaces.Space[Any]:
+        """Every agent's action space: ``Box(-1, 1, (2,))`` wheel speed fractions."""
+        return self._action_spaces[agent]
+
+    def reset(
+        self, seed: int | None = None, options: dict[str, Any] | None = None
+    ) -> tuple[dict[str, Observation], dict[str, dict[str, Any]]]:
+        """Starts an episode (a new world drawn from the env's stream, seeded by ``seed``)."""
+        observations, _ = self.batch.reset(seed)
+        self.agents = list(self.possible_agents)
+        self._renderer = None
+        return self._per_agent(observations[0]), {a: {} for a in self.agents}
+
+    def step(
+        self, actions: dict[str, Any]
+    ) -> tuple[
+        dict[str, Observation],
+        dict[str, float],
+        dict[str, bool],
+        dict[str, bool],
+        dict[str, dict[str, Any]],
+    ]:
+        """Steps every live agent with its action (an agent without one: an error)."""
+        if not self.agents:
+            raise InvalidArgumentError("expected reset() before step(): no agent is live")
+        missing = [a for a in self.agents if a not in actions]
+        if missing:
+            raise InvalidActionError(f"expected an action for every live agent, missing {missing}")
+        wheels = np.zeros((1, len(self.possible_agents), 2), np.float32)
+        for i, agent in enumerate(self.possible_agents):
+            if agent in self.agents:
+                action = np.asarray(actions[agent], dtype=np.float32)
+                if action.shape != (2,):
+                    raise InvalidActionError(
+                        f"expected the action of {agent} of shape (2,), found {action.shape}"
+                    )
+                wheels[0, i] = action
+        observations, rewards, terminations, truncations, infos = self.batch.step(wheels)
+        live = self.agents
+        index = {a: self.possible_agents.index(a) for a in live}
+        result = (
+            {a: observations[0, index[a]] for a in live},
+            {a: float(rewards[0, index[a]]) for a in live},
+            {a: bool(terminations[0, index[a]]) for a in live},
+            {a: bool(truncations[0, index[a]]) for a in live},
+            {a: _agent_info(infos, index[a]) for a in live},
+        )
+        self.agents = [a for a in live if not (result[2][a] or result[3][a])]
+        return result
+
+    def render(self) -> npt.NDArray[np.uint8] | None:
+        """A top-down RGB picture (``render_mode="rgb_array"``), else None."""
+        if self.render_mode != "rgb_array":
+            return None
+        draw = self.batch.draws[0]
+        if draw is None:
+            raise InvalidArgumentError("expected reset() before render()")
+        if self._renderer is None:
+            self._renderer = SwarmRenderer(draw.world, self.batch.profile, draw.goals)
+        return self._renderer.frame(self.batch.poses[0], self.batch.colliding[0])
+
+    def close(self) -> None:
+        """Releases the picture (the simulator holds no outside resource)."""
+        self._renderer = None
+
+    def _per_agent(self, observations: Observation) -> dict[str, Observation]:
+        return {a: observations[i] for i, a in enumerate(self.possible_agents)}
+
+
+def _agent_info(infos: dict[str, npt.NDArray[Any]], robot: int) -> dict[str, Any]:
+    """One agent's info: its values of the (1, R) arrays, as Python scalars."""
+    return {key: value[0, robot].item() for key, value in infos.items() if value.ndim == 2}

@@ -1,0 +1,54 @@
+"""PettingZoo's own API and seeding tests pass on every multi-robot task, parallel and AEC."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import pytest
+
+pytest.importorskip("pettingzoo", reason="needs mazesim[marl] (make marl-deps)")
+
+from pettingzoo.test import api_test, parallel_api_test, parallel_seed_test, seed_test  # noqa: E402
+
+from mazesim.marl import aggregation_v0, maze_goals_v0  # noqa: E402
+
+#: Every task's module, with small settings that keep the tests quick.
+TASKS: dict[str, tuple[Any, dict[str, Any]]] = {
+    "maze_goals_v0": (maze_goals_v0, {"num_robots": 2, "maze_size": (3, 3), "max_cycles": 30}),
+    "aggregation_v0": (aggregation_v0, {"num_robots": 3, "max_cycles": 30}),
+}
+
+
+@pytest.mark.parametrize("name", TASKS)
+def test_parallel_api_test_passes(name: str) -> None:
+    module, options = TASKS[name]
+    env = module.parallel_env(**options)
+    assert env.metadata["name"] == name
+    parallel_api_test(env, num_cycles=70)
+
+
+@pytest.mark.parametrize("name", TASKS)
+def test_parallel_seed_test_passes(name: str) -> None:
+    module, options = TASKS[name]
+    parallel_seed_test(lambda: module.parallel_env(**options))
+
+
+@pytest.mark.parametrize("name", TASKS)
+def test_aec_api_and_seed_tests_pass(name: str) -> None:
+    module, options = TASKS[name]
+    api_test(module.env(**options), num_cycles=40)
+    seed_test(lambda: module.env(**options), num_cycles=40)
+
+
+@pytest.mark.parametrize("name", TASKS)
+def test_render_draws_every_robot(name: str) -> None:
+    module, options = TASKS[name]
+    env = module.parallel_env(render_mode="rgb_array", **options)
+    env.reset(seed=3)
+    frame = env.render()
+    assert frame is not None and frame.dtype == np.uint8 and frame.shape == (400, 400, 3)
+    env.step({agent: np.array([1.0, 1.0], np.float32) for agent in env.agents})
+    moved = env.render()
+    assert moved is not None and not np.array_equal(frame, moved)
+    assert module.parallel_env(**options).render() is None

@@ -1,0 +1,114 @@
+"""The ROS 2 bridge on a world of two robots: each robot's topics in its own namespace, each
+moved by its own cmd_vel, one /clock; driven over DDS from another process in a private network
+namespace."""
+
+from __future__ import annotations
+
+import json
+import math
+import sys
+from pathlib import Path
+
+import pytest
+
+import mazesim
+from mazesim.errors import InvalidArgumentError
+from mazesim.ros2 import cdr
+from mazesim.ros2.robots import RobotOf, robot_namespaces
+from mazesim.ros2.state import StateTopics
+from ros2_support import MAZESIM, needs_namespace, needs_ros2, run_in_namespace
+
+SWARM_DRIVER = Path(__file__).parent / "swarm_driver.py"
+
+TWO_ROBOTS = """format = "mazesim-world"
+version = 1
+name = "two-robots"
+
+[[robots]]
+name = "west"
+x = -0.2
+y = 0.0
+
+[[robots]]
+name = "east-1"
+x = 0.2
+y = 0.0
+yaw = 3.141592653589793
+"""
+
+
+def test_namespaces_are_ros_names_and_distinct() -> None:
+    assert robot_namespaces(["west", "east-1", "2nd robot"]) == ["/west", "/east_1", "/r_2nd_robot"]
+    with pytest.raises(InvalidArgumentError, match="'a-b' and 'a_b', both /a_b"):
+        robot_namespaces(["a-b", "a_b"])
+
+
+def test_a_robot_in_a_namespace_has_every_topic_there_but_the_clock() -> None:
+    simulator = mazesim.Simulator(mazesim.World.from_toml(TWO_ROBOTS), seed=0)
+    alone = [t.name for t in StateTopics(simulator, "humble").topics]
+    east = StateTopics(RobotOf(simulator, 1), "humble", "/east_1", clock=False)  # type: ignore[arg-type]
+    assert [t.name for t in east.topics] == [f"/east_1{name}" for name in alone if name != "/clock"]
+    assert east.static_topic().name == "/east_1/tf_static"
+    assert len(east.messages(cdr.stamp_of(1), 0.0)) == len(east.topics)
+
+
+@needs_ros2
+@needs_namespace
+def test_two_robots_each_move_on_their_own_cmd_vel(tmp_path: Path) -> None:
+    world = tmp_path / "two.toml"
+    world.write_text(TWO_ROBOTS)
+    steps = 60
+    bridge = [*MAZESIM, "ros2", "bridge", "--world", str(world), "--stop-after", str(steps)]
+    driver = [sys.executable, str(SWARM_DRIVER), "--world", str(world), "--steps", str(steps)]
+    result = run_in_namespace([bridge], driver, timeout=90)
+    assert result.returncode == 0, result.stderr
+    assert f"{steps} steps, every robot equal on its own topics" in result.stdout
+    assert "2 robots (namespaces /west, /east_1)" in result.stderr
+    assert f"stopped after {steps} steps" in result.stderr
+    poses = json.loads(result.stdout.strip().splitlines()[-1])
+    # West drove straight on along +x; east turned where it stood.
+    west_x, west_y, west_yaw = poses["/west"]
+    assert west_x > -0.2 + 0.1 and west_y == pytest.approx(0.0, abs=5e-3)
+    east_x, east_y, east_yaw = poses["/east_1"]
+    assert math.hypot(east_x - 0.2, east_y) < 5e-3
+    assert abs(math.remainder(east_yaw - math.pi, 2 * math.pi)) > 1.0
+
+
+@needs_ros2
+@needs_namespace
+def test_an_avoid_collision_node_per_robot_drives_each_in_its_namespace(tmp_path: Path) -> None:
+    world = tmp_path / "two.toml"
+    world.write_text(TWO_ROBOTS)
+    bag = tmp_path / "bag"
+    steps = 120
+    bridge = [*MAZESIM, "ros2", "bridge", "--world", str(world), "--stop-after", str(steps)]
+    nodes = [[*MAZESIM, "ros2", "avoid-collision", "--robot", name] for name in ("west", "east-1")]
+    result = run_in_namespace(nodes, [*bridge, "--bag", str(bag)], timeout=90, grace=1.0)
+    assert result.returncode == 0, result.stderr
+    assert f"stopped after {steps} steps" in result.stderr
+    # Each node answered every state of its own robot: the reset state and each step's.
+    assert result.stderr.count(f"avoid_collision: stopped after {steps + 1} commands") == 2
+    make_reader = pytest.importorskip("mcap.reader").make_reader
+    decoder_factory = pytest.importorskip("mcap_ros2.decoder").DecoderFactory
+    poses: dict[str, list[list[float]]] = {}
+    with next(bag.glob("*.mcap")).open("rb") as stream:
+        reader = make_reader(stream, decoder_factories=[decoder_factory()])
+        for _schema, channel, _message, decoded in reader.iter_decoded_messages():
+            if channel.topic.endswith("/pose"):
+                poses.setdefault(channel.topic, []).append(list(decoded.data))
+    assert sorted(poses) == ["/east_1/pose", "/west/pose"]
+    for track in poses.values():
+        assert len(track) == steps + 1
+        travelled = sum(math.dist(a[:2], b[:2]) for a, b in zip(track, track[1:]))
+        assert travelled > 0.1, travelled
+
+
+def test_the_ros2_demo_refuses_a_world_of_several_robots(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from mazesim.cli import main
+
+    world = tmp_path / "two.toml"
+    world.write_text(TWO_ROBOTS)
+    assert main(["ros2", "demo", "--world", str(world), "--out", str(tmp_path / "d")]) == 2
+    assert "mazesim ros2 demo drives one robot" in capsys.readouterr().err
