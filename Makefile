@@ -179,6 +179,7 @@ webots-compat: build ## run the Webots compatibility corpus from local git mirro
 	$(BIN)/python tests/webots_corpus/run_corpus.py --mirrors $(MIRRORS)
 
 bench-peers: build ## mazesim against hand-written numpy, pymunk and JAX peers (installs pymunk and jax)
+	@$(BIN)/python -c 'import jax, pymunk' 2>/dev/null || echo "make bench-peers: installing pymunk and jax[cpu] (about 140 MB to download the first time: jaxlib 85 MB, scipy 35 MB)"
 	$(BIN)/python -m pip install --quiet $(PEER_PACKAGES)
 	$(BIN)/python benches/bench_vs_peers.py $(PEER_ARGS)
 

@@ -210,3 +210,48 @@ def test_output_blocks_name_the_lines_that_differ(tmp_path: Path) -> None:
     assert [b.is_output for b in blocks] == [False, True]
     assert missing_output_lines(blocks[1].text, "hi there\nmore\n") == ["bye"]
     assert missing_output_lines(blocks[1].text, "hi there\nbye\n") == []
+
+
+#: What cites the report: "the report('s)", its algorithms, listings, chapters, Table 4.1 and
+#: the figures of its chapter 4 ("the report above" on the Webots page is the import's report).
+REPORT_CITATION = re.compile(
+    r"\bthe (?:source )?report's\b|\bthe report\b(?! above)|\bAlg\. \d|\bTable 4\.\d"
+    r"|\bFigs?\. 4\.\d|\bListing 3\.\d|\bchapter [2-5]\b"
+)
+
+
+def first_report_citation(text: str) -> str | None:
+    """The paragraph (or table) of a page's first citation of the report, if any."""
+    for paragraph in re.split(r"\n[ \t]*\n", text):
+        if REPORT_CITATION.search(paragraph):
+            return paragraph
+    return None
+
+
+@pytest.mark.parametrize("page", [p for p in PAGES if p.name != "report.md"], ids=lambda p: p.name)
+def test_a_page_that_cites_the_report_links_it_where_it_first_does(page: Path) -> None:
+    paragraph = first_report_citation(page.read_text(encoding="utf-8"))
+    target = "report.md" if page.parent.name == "docs" else "docs/report.md"
+    if paragraph is not None:
+        assert f"]({target})" in paragraph, (
+            f"{page.name}: cites the report here, unlinked:\n{paragraph}"
+        )
+
+
+def test_the_report_citation_finder() -> None:
+    assert first_report_citation("intro\n\nAs in Alg. 7, it reads.\nmore\n\nTable 4.1") == (
+        "As in Alg. 7, it reads.\nmore"
+    )
+    assert first_report_citation("the report above lists the warnings") is None
+    assert (REPO / "docs" / "report.md").read_text(encoding="utf-8").startswith("# The report")
+
+
+def test_the_rl_page_says_how_to_set_torchs_threads() -> None:
+    # Issue 37: torch's default threads slowed PPO several times on 2 cores; the advice was in a
+    # code comment only.
+    page = (REPO / "docs" / "rl.md").read_text(encoding="utf-8")
+    prose = re.sub(r"```.*?```", "", page, flags=re.DOTALL)
+    assert "**Set torch's threads.**" in prose
+    assert "torch.set_num_threads(1)" in prose and "OMP_NUM_THREADS=1" in prose
+    python = [b.text for b in BLOCKS if b.page.name == "rl.md" and b.language == "python"]
+    assert any("torch.set_num_threads(1)" in text for text in python)

@@ -111,6 +111,27 @@ def test_make_wheel_links_with_zig_for_manylinux2014_and_asks_auditwheel(tmp_pat
     assert commands.index("maturin build") < commands.index("auditwheel show")
 
 
+#: The targets that download more than about 100 MB the first time, and what they say first.
+LARGE_DOWNLOADS = {
+    "sb3-deps": "3 GB to download",
+    "dev-deps": "600 MB in",
+    "wheel-deps": "410 MB installed",
+    "bench-peers": "140 MB to download",
+}
+
+
+@pytest.mark.skipif(shutil.which("make") is None, reason="needs make")
+@pytest.mark.parametrize("target", sorted(LARGE_DOWNLOADS))
+def test_a_large_download_says_so_before_it_starts(target: str, tmp_path: Path) -> None:
+    lines = _dry_run(target, tmp_path).splitlines()
+    # The target's own install: the last pip install of the dry run (the venv's come first).
+    install = max(
+        i for i, line in enumerate(lines) if "-m pip install" in line and "--upgrade" not in line
+    )
+    said = [line for line in lines[:install] if LARGE_DOWNLOADS[target] in line]
+    assert said and "echo" in said[-1], lines[: install + 1]
+
+
 @pytest.mark.skipif(shutil.which("make") is None, reason="needs make")
 @pytest.mark.parametrize("target", ["test", "typecheck"])
 def test_the_targets_that_check_mazesim_marl_install_pettingzoo(

@@ -15,8 +15,6 @@ import pytest
 from mazesim.cli import COMMANDS, build_parser
 from mazesim.cli._help import HelpFormatter, examples
 
-#: Commands whose help has no examples yet (its module is being reworked).
-WITHOUT_EXAMPLES = {"sweep"}
 #: Commands whose parsers read their defaults from the learning modules (not yet import-light).
 LEARNING_PARSERS = {"sweep", "train", "eval"}
 #: Modules no parser may import: plotting, learning, Ray, images, ROS.
@@ -81,9 +79,7 @@ def test_every_default_is_shown(command: str) -> None:
     assert unshown == []
 
 
-@pytest.mark.parametrize(
-    "command", sorted(c for c in LEAVES if c.split()[0] not in WITHOUT_EXAMPLES)
-)
+@pytest.mark.parametrize("command", sorted(LEAVES))
 def test_the_examples_of_a_command_parse(command: str) -> None:
     parser = LEAVES[command]
     help_text = parser.format_help()

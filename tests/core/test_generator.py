@@ -3,12 +3,16 @@
 from __future__ import annotations
 
 import math
+import re
+from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import mazesim
-from mazesim.maze import CellMaze
+from mazesim.maze import CellMaze, navigator_problems
 
 CODE_LENGTH = 5 * 0.017
 
@@ -83,3 +87,42 @@ def test_a_straight_cell_between_two_doors_has_one_code() -> None:
     assert shared, "expected a code in a straight cell between two doors"
     codes = [str(c["code"]) for c in world.checkpoints()]
     mazesim.validate_codes(codes)
+
+
+# --- issue 37: the Worlds page's promise, through the public surface -----------------------------
+
+WORLDS_PAGE = Path(__file__).resolve().parents[2] / "docs" / "worlds.md"
+
+
+@settings(max_examples=300, deadline=None)
+@given(
+    width=st.integers(2, 12),
+    height=st.integers(2, 12),
+    seed=st.integers(0, 2**64 - 1),
+    loops=st.one_of(st.just(0.0), st.floats(0.0, 0.5)),
+)
+def test_issue_37_every_generated_maze_larger_than_2_by_2_is_one_the_navigator_can_learn(
+    width: int, height: int, seed: int, loops: float
+) -> None:
+    world = mazesim.generate_maze(width, height, seed=seed, loops=loops)
+    problems = navigator_problems(world)
+    if max(width, height) > 2:
+        assert problems == [], f"{width} x {height} seed {seed} loops {loops}: {problems}"
+        assert world.checkpoints()
+    else:
+        assert not world.checkpoints()  # a ring of four cells has no junction
+
+
+def test_issue_37_the_share_of_single_corridor_first_draws_is_the_pages() -> None:
+    shown = re.search(
+        r"about (\d+) % of first draws at 3 x 3, (\d+) % at 4 x 4, (\d+) %\s+at 5 x 5",
+        WORLDS_PAGE.read_text(encoding="utf-8"),
+    )
+    assert shown is not None
+    draws = 2000
+    for size, percent in zip((3, 4, 5), shown.groups()):
+        corridors = sum(
+            not mazesim.generate_maze(size, size, seed=seed, junction=False).checkpoints()
+            for seed in range(draws)
+        )
+        assert round(100 * corridors / draws) == int(percent), (size, corridors)

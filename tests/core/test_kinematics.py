@@ -1,4 +1,5 @@
-"""The e-puck profiles drive as Webots' simulated e-puck does (issue #16).
+"""The e-puck profiles drive as Webots' simulated e-puck does (issue #16); the figures of
+docs/robots.md's table of moves and its odometry's drift are these tests'.
 
 Webots simulates its E-puck PROTO with wheels of radius 0.02 m, and it turns as if the wheels
 were 0.05685 m apart (Cyberbotics' webots_ros2_epuck driver constants). Controllers calibrated in

@@ -190,3 +190,26 @@ def test_other_settings_cannot_resume(tmp_path: Path) -> None:
     other = dataclasses.replace(RUN, seed=RUN.seed + 1)
     with pytest.raises(PolicyFormatError, match="other settings"):
         train(other, RunFolder(tmp_path, resume=True), progress=None, threads=1)
+
+
+def test_issue_37_other_settings_name_each_setting_that_differs(tmp_path: Path) -> None:
+    assert train(RUN, RunFolder(tmp_path), progress=None, threads=1, stop_after_rounds=1) is None
+    other = dataclasses.replace(RUN, seed=RUN.seed + 1)
+    with pytest.raises(PolicyFormatError) as refused:
+        train(other, RunFolder(tmp_path, resume=True), progress=None, threads=1)
+    message = str(refused.value)
+    assert f"(seed: expected {RUN.seed}, found {RUN.seed + 1})" in message
+    # Only the setting that differs, however long the others are.
+    assert "steps" not in message.split("other settings", 1)[1]
+
+
+def test_a_long_setting_that_differs_is_shown_where_it_differs() -> None:
+    from mazesim.learn.checkpoint import _settings_difference
+
+    saved = {"pool": list(range(100)), "seed": 1, "old": True}
+    asked = {"pool": [*range(99), 7], "seed": 1, "new": 2}
+    shown = _settings_difference(asked, saved)
+    assert shown.startswith("new: expected (not set), found 2; old: expected true, found (not set)")
+    pool = shown.split("pool: ", 1)[1]
+    assert "99]" in pool and "7]" in pool and "differ from character" in pool
+    assert "seed" not in shown

@@ -54,5 +54,10 @@ def test_the_recipe_runs_as_printed(tmp_path: Path) -> None:
     reached = round(float(success.group(1)) * 20 / 100)
     page = PAGE.read_text(encoding="utf-8")
     assert f"reached the goal in {reached} of the 20 episodes" in page
+    ratio = re.search(r"mean path ratio\s+([\d.]+)", evaluate)
+    clean = re.search(r"without collision\s+([\d.]+)%", evaluate)
+    assert ratio is not None and clean is not None, evaluate
+    contacts = "no wall contact" if float(clean.group(1)) == 100.0 else "wall contacts"
+    assert f"(path ratio {ratio.group(1)}, {contacts};" in " ".join(page.split())
     assert (tmp_path / "my-run.html").read_text(encoding="utf-8").lstrip().startswith("<!")
     assert "my-run.html" in watch

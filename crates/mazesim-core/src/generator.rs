@@ -4,7 +4,7 @@
 //! distinct mazes for training.
 //!
 //! A carved maze can be one single corridor from the start to the goal, with no junction and so
-//! nowhere for a checkpoint (of the first draws, about 55 % of 3 x 3 mazes, 10 % of 4 x 4 and 3 %
+//! nowhere for a checkpoint (of the first draws, about 55 % of 3 x 3 mazes, 12 % of 4 x 4 and 3 %
 //! of 5 x 5): with [`MazeParams::junction`] such a draw is replaced by the next one, so every maze
 //! larger than 2 x 2 (which never has a junction) has checkpoints.
 

@@ -15,6 +15,7 @@ from typing import Any, TextIO
 
 from mazesim._paths import output_files, output_path, refuse_overwriting_inputs
 from mazesim.cli._args import positive_int
+from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
 from mazesim.distributed.config import PARAMETERS, TRAINER_DEFAULTS, load_sweep_config
 
@@ -50,7 +51,12 @@ def register(commands: Any) -> None:
             "reported and the others are kept. Runs already finished in DIR are not run again. "
             "Exit code 0: all runs ok; 1: some failed; 2: an error in the input."
         ),
-        epilog="Grid parameters: " + _parameter_help() + ". See examples/sweep.toml.",
+        epilog=examples(
+            "mazesim sweep examples/sweep.toml --sequential --out my-sweep",
+            "mazesim sweep examples/sweep.toml --cpus 2",
+            "mazesim sweep examples/sweep.toml --address auto --out runs/sweep",
+            notes="Grid parameters: " + _parameter_help() + ". See examples/sweep.toml.",
+        ),
     )
     parser.add_argument("config", metavar="CONFIG", help="the sweep file (.toml)")
     parser.add_argument(

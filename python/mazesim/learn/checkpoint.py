@@ -43,6 +43,7 @@ from mazesim.learn.schema import (
     Record,
     Text,
     Whole,
+    differing,
     parse_metadata,
 )
 from mazesim.learn.tables import TrainedPolicy, save_policy
@@ -194,6 +195,23 @@ def _read_tables_or_none(
         return None
 
 
+def _settings_difference(asked: dict[str, Any], saved: dict[str, Any]) -> str:
+    """The settings that differ between a run asked for and a checkpoint's, each as
+    ``name: expected <the checkpoint's>, found <asked>`` (long values clipped where they differ,
+    by :func:`mazesim.learn.schema.differing`)."""
+    missing = object()
+    names = sorted(set(asked) | set(saved))
+    parts = []
+    for name in names:
+        theirs, ours = saved.get(name, missing), asked.get(name, missing)
+        if theirs != ours:
+            expected, found = (
+                "(not set)" if value is missing else json.dumps(value) for value in (theirs, ours)
+            )
+            parts.append(f"{name}: {differing(expected, found)}")
+    return "; ".join(parts)
+
+
 def read_checkpoint(folder: Path, settings: dict[str, Any]) -> Checkpoint:
     """Reads and checks the checkpoint in ``folder``.
 
@@ -218,7 +236,7 @@ def read_checkpoint(folder: Path, settings: dict[str, Any]) -> Checkpoint:
     if metadata["settings"] != settings:
         raise PolicyFormatError(
             f"{path}: the checkpoint is of a run with other settings "
-            f"({json.dumps(metadata['settings'])[:300]}); resume it with those, "
+            f"({_settings_difference(settings, metadata['settings'])}); resume it with those, "
             "or start afresh in another folder"
         )
     if not np.all(np.isfinite(arrays["q"])) or np.any(arrays["visits"] < 0):
