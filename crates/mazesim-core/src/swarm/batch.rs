@@ -9,7 +9,7 @@ use std::sync::Arc;
 use rayon::prelude::*;
 
 use super::{make_robots, reset_robots, step_robots};
-use crate::batch::{check_size, rigs_of, Batch, Helpers, StepOutputs, CHUNK_ENVS};
+use crate::batch::{check_actions, check_size, rigs_of, Batch, Helpers, StepOutputs, CHUNK_ENVS};
 use crate::control::Controller;
 use crate::error::{Error, Result};
 use crate::limits::MAX_ROBOTS;
@@ -171,21 +171,8 @@ impl Batch {
     /// in rad/s) and writes every robot's row of `out`. Non-finite speeds are refused before any
     /// robot moves.
     pub fn step_swarms(&mut self, actions: &[f32], out: StepOutputs<'_>) -> Result<()> {
-        let (n, r) = (self.num_envs(), self.robots);
-        if actions.len() != 2 * n * r {
-            return Err(Error::InvalidArgument(format!(
-                "expected actions of shape ({n}, {r}, 2), found {} values",
-                actions.len()
-            )));
-        }
-        if let Some(i) = actions.iter().position(|a| !a.is_finite()) {
-            return Err(Error::InvalidAction(format!(
-                "expected finite wheel speeds, found {} in environment {}, robot {}",
-                actions[i],
-                i / (2 * r),
-                (i / 2) % r
-            )));
-        }
+        let r = self.robots;
+        check_actions(actions, self.num_envs(), r)?;
         self.check_outputs(&out)?;
         self.run_groups(out, |e, group, write| {
             let base = 2 * r * e;
