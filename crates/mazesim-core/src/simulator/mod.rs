@@ -332,55 +332,13 @@ impl Simulator {
     /// then turns at its motor's gain (the profile's `motor_gains`) times its clamped speed, and
     /// while the body touches a wall it moves only `1 - slip_on_contact` of the wheels' motion.
     pub fn step(&mut self, left: f64, right: f64) -> Result<()> {
-        // The path of a robot alone, kept apart from the lockstep of `physics_move` and
-        // `physics_settle` (which give the same results) so that it costs nothing more.
-        let drive = self.command(left, right)?;
-        let [wl, wr] = drive.wheels;
-        let (linear, angular) = (drive.linear, drive.angular);
-        let slip = self.robot.slip_on_contact;
-        let kept = (1.0 - slip) as f32;
-        let mut any_contact = false;
+        // A robot alone steps as one of several does, with no other robot to meet.
+        let mut drive = self.command(left, right)?;
         for k in 1..=self.physics_steps {
-            let before = self.pose;
-            // In contact with a wall, the wheels slip: the body moves `kept` of their motion.
-            let (linear, angular) = if slip > 0.0 && self.touching {
-                (linear * kept, angular * kept)
-            } else {
-                (linear, angular)
-            };
-            self.body
-                .step(linear, angular, self.clearance, self.world.wall_index());
-            self.pose = self.body.pose();
-            self.heading = self.body.heading();
-            let dx = (self.pose[0] - before[0]) as f64;
-            let dy = (self.pose[1] - before[1]) as f64;
-            self.distance_travelled += (dx * dx + dy * dy).sqrt();
-            self.wheel_angles[0] += wl as f64 * self.dt;
-            self.wheel_angles[1] += wr as f64 * self.dt;
-            let was_touching = self.touching;
-            if k < self.physics_steps {
-                self.update_contact();
-            } else {
-                // The last physics step: contact and every sensor together.
-                self.sense();
-            }
-            if self.touching && !was_touching {
-                self.collisions += 1;
-            }
-            any_contact |= self.touching;
-            if let Some(at) = self.barcode_sensor_position() {
-                if let Some(c) = self
-                    .tracker
-                    .update(self.world.checkpoints(), at, self.steps + 1)
-                {
-                    self.last_crossing = c.signed_id();
-                    self.crossings.push(c);
-                }
-            }
+            let before = self.physics_move(&drive, Others::NONE);
+            self.physics_settle(&mut drive, k, before, Others::NONE, None);
         }
-        self.colliding = any_contact;
-        self.steps += 1;
-        self.time = self.steps as f64 * self.physics_steps as f64 * self.dt;
+        self.finish_step(&drive);
         Ok(())
     }
 
