@@ -58,7 +58,12 @@ impl Batch {
             )));
         }
         let n = worlds.len();
-        check_size(n.saturating_mul(robots), 0)?;
+        // An environment of a world with movable bodies holds a rapier scene of all its walls.
+        let scene_walls: u128 = (worlds.iter())
+            .filter(|w| !w.bodies().is_empty())
+            .map(|w| w.solid_walls().len() as u128)
+            .sum();
+        check_size(n.saturating_mul(robots), scene_walls)?;
         let worlds = crate::batch::share_equal_worlds(worlds);
         // The profiles named anywhere, each made once, then one rig per distinct profile.
         let mut profiles: Vec<Arc<RobotProfile>> = vec![robot.clone()];
