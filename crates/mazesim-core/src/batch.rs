@@ -570,8 +570,13 @@ impl Batch {
 
     /// Steps every environment with `actions` (`(n, 2)` wheel speeds in rad/s, left then right)
     /// and writes the results into `out`. NaN or infinite speeds are refused before any
-    /// environment moves; the error names the first bad environment.
+    /// environment moves; the error names the first bad environment. A batch of worlds of
+    /// several robots is stepped as [`Batch::step_swarms`] steps it.
     pub fn step(&mut self, actions: &[f32], out: StepOutputs<'_>) -> Result<()> {
+        if self.robots > 1 {
+            // Robots of one world move together (`crate::swarm`), never one alone.
+            return self.step_swarms(actions, out);
+        }
         check_actions(actions, self.envs.len(), 1)?;
         self.check_outputs(&out)?;
         // Actions are checked above, so a step cannot fail.

@@ -367,9 +367,6 @@ impl PyBatch {
         enter(|| {
             let actions = copied::<f32>(actions, "actions", "float32", &self.shape(&[2]))?;
             let buffers = [observations, poses, colliding, crossings];
-            if self.robots > 1 {
-                return self.with_outputs(py, buffers, |b, out| b.step_swarms(&actions, out));
-            }
             self.with_outputs(py, buffers, |b, out| b.step(&actions, out))
         })
     }

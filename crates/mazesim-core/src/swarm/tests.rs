@@ -190,7 +190,7 @@ fn robots_in_contact_with_each_other_and_a_box_run_the_same_in_any_batch() {
                 colliding: &mut colliding,
                 crossings: &mut crossings,
             };
-            batch.step_swarms(&actions, out).unwrap();
+            batch.step(&actions, out).unwrap();
             seen.extend_from_slice(&obs[..2 * width]);
             seen.extend_from_slice(&poses[..6]);
             seen.extend(batch.envs()[0].body_poses().iter().flatten());
