@@ -9,12 +9,24 @@ cells of the maze) with ``--envs * --robots`` environments of one robot, taking 
 their ratio. ``docs/multi-robot.md`` quotes its figures.
 
     python benches/bench_robots.py [--envs 1024] [--robots 4] [--steps 200] [--repeats 5]
+
+With ``--baseline-python PYTHON`` (the interpreter of another build of mazesim, say a checkout of
+the main branch), it measures instead whether worlds of one robot got slower: the single-robot
+workload of ``--envs * --robots`` environments runs ``--pairs`` times under each interpreter, in
+alternation (each run in a fresh process, the order swapped every pair, so that a load that comes
+and goes on the machine falls on both alike), and it prints both medians and the median of the
+per-pair ratios.
+
+    python benches/bench_robots.py --baseline-python ../main/.venv/bin/python [--pairs 7]
 """
 
 from __future__ import annotations
 
 import argparse
 import re
+import statistics
+import subprocess
+import sys
 import time
 
 import numpy as np
@@ -60,6 +72,30 @@ def robot_steps_per_second(envs: int, robots: int, steps: int, repeats: int) -> 
     return best
 
 
+def single_robot_run(python: str, envs: int, steps: int, repeats: int) -> float:
+    """Robot-steps per second of ``envs`` single-robot environments, measured by ``python`` (an
+    interpreter with its own build of mazesim) in a fresh process running this script."""
+    command = [python, __file__, "--single-only", "--envs", str(envs), "--robots", "1"]
+    command += ["--steps", str(steps), "--repeats", str(repeats)]
+    out = subprocess.run(command, check=True, capture_output=True, text=True).stdout
+    return float(out.split()[-1])
+
+
+def paired(baseline: str, envs: int, steps: int, repeats: int, pairs: int) -> None:
+    """Single-robot robot-steps per second of this build against ``baseline``'s, in alternation."""
+    mine, theirs, ratios = [], [], []
+    for k in range(pairs):
+        order = [(sys.executable, mine), (baseline, theirs)]
+        for python, into in order if k % 2 == 0 else order[::-1]:
+            into.append(single_robot_run(python, envs, steps, repeats))
+        ratios.append(mine[-1] / theirs[-1])
+        print(f"pair {k + 1}: this build {mine[-1]:,.0f}, baseline {theirs[-1]:,.0f}", flush=True)
+    print(f"{envs} envs x 1 robot, median of {pairs} runs each:")
+    print(f"this build: {statistics.median(mine):,.0f} robot-steps/s")
+    print(f"baseline:   {statistics.median(theirs):,.0f} robot-steps/s")
+    print(f"median ratio (this / baseline): {statistics.median(ratios):.3f}")
+
+
 def main() -> None:
     """Runs the comparison and prints it."""
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
@@ -67,7 +103,17 @@ def main() -> None:
     parser.add_argument("--robots", type=int, default=4)
     parser.add_argument("--steps", type=int, default=200)
     parser.add_argument("--repeats", type=int, default=5)
+    parser.add_argument("--baseline-python", help="another build's interpreter: paired A/B runs")
+    parser.add_argument("--pairs", type=int, default=7)
+    parser.add_argument("--single-only", action="store_true", help=argparse.SUPPRESS)
     args = parser.parse_args()
+    if args.single_only:
+        print(robot_steps_per_second(args.envs, 1, args.steps, args.repeats))
+        return
+    if args.baseline_python:
+        envs = args.envs * args.robots
+        paired(args.baseline_python, envs, args.steps, args.repeats, args.pairs)
+        return
     many = robot_steps_per_second(args.envs, args.robots, args.steps, args.repeats)
     single = robot_steps_per_second(args.envs * args.robots, 1, args.steps, args.repeats)
     print(f"{args.envs} envs x {args.robots} robots: {many:,.0f} robot-steps/s")

@@ -355,10 +355,12 @@ class Simulator:
     def world(self) -> World: ...
     def snapshot(self) -> bytes:
         """The whole state as bytes, for `restore` (pose, velocities, rapier's contact state, noise
-        stream, time, counters, barcode tracker, readings)."""
+        stream, time, counters, barcode tracker, readings), of every robot of the world with
+        their wheel commands."""
     def restore(self, snapshot: bytes) -> None:
         """Puts the simulator in the state of a `snapshot` of a simulator of the same world, robot
-        profile, control step and noise setting; it then goes on exactly as that one would."""
+        profiles, control step and noise setting; it then goes on exactly as that one would. The
+        snapshot is checked against the API's limits; a refused one changes nothing."""
     def __copy__(self) -> Simulator:
         """An independent simulator in the same state, sharing the (immutable) world."""
     def __deepcopy__(self, memo: dict[int, Any], /) -> Simulator: ...
@@ -410,7 +412,7 @@ class BatchSimulator:
     ]:
         """New zeroed output buffers of the shapes and dtypes every call checks, for the caller
         to hold: observations (N, observation_width) float32, poses (N, 3) float32, colliding
-        (N,) bool and crossings (N,) int32."""
+        (N,) bool and crossings (N,) int32; with R robots per env, (N, R, ...) each."""
     def step(
         self,
         actions: npt.NDArray[np.float32],
@@ -575,13 +577,18 @@ class BatchSimulator:
     def set_goals_at(self, envs: npt.NDArray[np.int64], goals: npt.NDArray[np.float64]) -> None:
         """Goal discs ((M, 3) float64 x, y, radius) of envs ``envs``, instead of their worlds'."""
     def goals(self) -> npt.NDArray[np.float64]:
-        """(N, 3) goal disc (x, y, radius) of each env; NaN rows for none."""
+        """(N, 3) goal disc (x, y, radius) of each env; NaN rows for none; (N, R, 3) with R
+        robots per env."""
     def encoders(self) -> npt.NDArray[np.float64]:
-        """(N, 2) wheel positions in radians (left, right)."""
-    def times(self) -> npt.NDArray[np.float64]: ...
-    def steps(self) -> npt.NDArray[np.uint64]: ...
-    def collisions(self) -> npt.NDArray[np.uint64]: ...
-    def distances_travelled(self) -> npt.NDArray[np.float64]: ...
+        """(N, 2) wheel positions in radians (left, right); (N, R, 2) with R robots per env."""
+    def times(self) -> npt.NDArray[np.float64]:
+        """(N,) simulated seconds of each env since its reset; (N, R) with R robots per env."""
+    def steps(self) -> npt.NDArray[np.uint64]:
+        """(N,) control steps of each env since its reset; (N, R) with R robots per env."""
+    def collisions(self) -> npt.NDArray[np.uint64]:
+        """(N,) bumps of each env since its reset; (N, R) with R robots per env."""
+    def distances_travelled(self) -> npt.NDArray[np.float64]:
+        """(N,) path length of each env since its reset, metres; (N, R) with R robots per env."""
     def __len__(self) -> int: ...
 
 @final

@@ -93,6 +93,26 @@ def test_the_avoid_collision_rule_turns_both_away_before_contact() -> None:
     assert math.cos(poses[0, 2]) < 0.9 and math.cos(poses[1, 2] - math.pi) < 0.9
 
 
+def test_no_threshold_of_the_rule_clears_a_head_on_e_puck() -> None:
+    """Why the rule grazes (docs/multi-robot.md): ps0 and ps7 meet a head-on e-puck obliquely and
+    read nothing of it beyond a gap of about 2 cm, less than the 3 cm two pivoting e-pucks need
+    to clear each other, so the rule touches whatever its threshold."""
+    no_hit = 67.19
+    near = mazesim.Simulator(corridor(0.019), noise=False).distance_sensors()
+    far = mazesim.Simulator(corridor(0.021), noise=False).distance_sensors()
+    assert near[0] > no_hit and near[7] > no_hit
+    assert far[0] == far[7] == pytest.approx(no_hit, abs=0.01)
+    for threshold in (67.5, 70.0, 80.0, 100.0):
+        sim = mazesim.Simulator(corridor(0.1), noise=False)
+        rule = AvoidCollision(threshold=threshold)
+        touched = 0
+        for _ in range(120):
+            commands = [rule(sim.distance_sensors(robot_index=i)) for i in range(2)]
+            sim.step_robots(np.array(commands))
+            touched += sim.robot_state(0)["touching_robot"]
+        assert 0 < touched < 20, threshold
+
+
 def test_robots_driven_into_each_other_stop_in_contact() -> None:
     sim = mazesim.Simulator(corridor(0.02))
     for _ in range(40):

@@ -148,6 +148,22 @@ def test_e_pucks_driving_head_on_see_each_other_and_do_not_pass_through(
         assert seen > 300.0, f"{name}'s front sensors see the other e-puck's body"
 
 
+def test_e_pucks_push_a_box_between_them_in_one_shared_world(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    monkeypatch.setenv("SWARM_LOG", str(tmp_path))
+    run = run_world(str(SWARM / "worlds" / "box_between.wbt"), seconds=5.0)
+    assert "simulators of their own" not in capsys.readouterr().err, "one shared world"
+    west, east = run.robots
+    # Both push the 5 cm crate from either side: it stays between them, nobody passes through
+    # (each alone with a crate of its own would push it past the other's start).
+    gap = east.final_pose[0] - west.final_pose[0]
+    assert 0.11 < gap < 0.14, "two bodies of 3.7 cm radius either side of a 5 cm crate"
+    for name in ("west", "east"):
+        seen = json.loads((tmp_path / f"{name}.json").read_text())["highest_front_reading"]
+        assert seen > 1000.0, f"{name}'s front sensors see the crate at contact"
+
+
 def test_the_same_seed_gives_the_same_run_whatever_the_processes_timing(
     leader_and_followers: tuple[object, Path], tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:

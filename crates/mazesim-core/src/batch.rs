@@ -570,23 +570,14 @@ impl Batch {
 
     /// Steps every environment with `actions` (`(n, 2)` wheel speeds in rad/s, left then right)
     /// and writes the results into `out`. NaN or infinite speeds are refused before any
-    /// environment moves; the error names the first bad environment.
+    /// environment moves; the error names the first bad environment. A batch of worlds of
+    /// several robots is stepped as [`Batch::step_swarms`] steps it.
     pub fn step(&mut self, actions: &[f32], out: StepOutputs<'_>) -> Result<()> {
-        let n = self.envs.len();
-        if actions.len() != 2 * n {
-            return Err(Error::InvalidArgument(format!(
-                "expected actions of shape ({n}, 2), found {} values",
-                actions.len()
-            )));
+        if self.robots > 1 {
+            // Robots of one world move together (`crate::swarm`), never one alone.
+            return self.step_swarms(actions, out);
         }
-        if let Some(i) = actions.iter().position(|a| !a.is_finite()) {
-            return Err(Error::InvalidAction(format!(
-                "expected finite wheel speeds, found {} in environment {} ({} wheel)",
-                actions[i],
-                i / 2,
-                if i % 2 == 0 { "left" } else { "right" }
-            )));
-        }
+        check_actions(actions, self.envs.len(), 1)?;
         self.check_outputs(&out)?;
         // Actions are checked above, so a step cannot fail.
         self.run(out, |i, env, row| {
@@ -770,6 +761,37 @@ impl Batch {
         self.check_outputs(&out)?;
         self.run(out, |_, env, row| row.write(env))
     }
+}
+
+/// Checks the wheel speeds of one batch step: `(envs, 2)` values, or `(envs, robots, 2)` with
+/// several robots per environment, all finite; the error names the first bad environment (and
+/// robot, or wheel).
+pub(crate) fn check_actions(actions: &[f32], envs: usize, robots: usize) -> Result<()> {
+    if actions.len() != 2 * envs * robots {
+        let shape = if robots == 1 {
+            format!("({envs}, 2)")
+        } else {
+            format!("({envs}, {robots}, 2)")
+        };
+        return Err(Error::InvalidArgument(format!(
+            "expected actions of shape {shape}, found {} values",
+            actions.len()
+        )));
+    }
+    if let Some(i) = actions.iter().position(|a| !a.is_finite()) {
+        let (env, robot) = (i / (2 * robots), (i / 2) % robots);
+        let which = if robots == 1 {
+            format!("({} wheel)", if i % 2 == 0 { "left" } else { "right" })
+        } else {
+            format!(", robot {robot}")
+        };
+        let space = if robots == 1 { " " } else { "" };
+        return Err(Error::InvalidAction(format!(
+            "expected finite wheel speeds, found {} in environment {env}{space}{which}",
+            actions[i]
+        )));
+    }
+    Ok(())
 }
 
 /// One environment's rows of the outputs.

@@ -53,14 +53,17 @@ pub struct Body {
     heading: [f32; 2],
     dt: f32,
     radius: f32,
-    /// Rapier's scene, for a world with movable bodies.
+    /// Rapier's scene, for a world with movable bodies (held by robot 0 of a world of several).
     scene: Option<Box<Scene>>,
+    /// Whether the body is one of several robots' in one scene (`Body::shared`).
+    shared: bool,
 }
 
 /// The robot, the walls and the movable bodies in rapier.
 struct Scene {
     world: PhysicsWorld,
-    robot: RigidBodyHandle,
+    /// The robots' bodies, in world order (one but in a world of several robots).
+    robots: Vec<RigidBodyHandle>,
     /// The movable bodies with their reflectance, in world order.
     movables: Vec<(RigidBodyHandle, ColliderHandle, f32)>,
 }
@@ -77,14 +80,9 @@ fn wrap_angle(a: f32) -> f32 {
 }
 
 impl Scene {
-    /// Rapier's world of `walls`, the robot's ball and the movable `bodies`.
-    fn new(
-        walls: &[WallBox],
-        bodies: &[MovableBody],
-        radius: f32,
-        pose: [f32; 3],
-        dt: f32,
-    ) -> Self {
+    /// Rapier's world of `walls`, the balls of `robots` (radius and pose of each) and the movable
+    /// `bodies`, made in that order.
+    fn new(walls: &[WallBox], bodies: &[MovableBody], robots: &[(f32, [f32; 3])], dt: f32) -> Self {
         let mut world = PhysicsWorld::new();
         world.gravity = Vector::ZERO;
         world.integration_parameters.dt = dt;
@@ -102,21 +100,27 @@ impl Scene {
                 .restitution(0.0);
             world.colliders.insert(collider);
         }
-        let body = RigidBodyBuilder::dynamic()
-            .translation(Vector::new(pose[0], pose[1]))
-            .rotation(pose[2])
-            .can_sleep(false)
-            .build();
-        let robot = world.bodies.insert(body);
-        // e-puck mass is about 0.16 kg; only the ratio to walls (infinite) matters here.
-        let ball = ColliderBuilder::ball(radius)
-            .mass(0.16)
-            .friction(0.0)
-            .friction_combine_rule(CoefficientCombineRule::Min)
-            .restitution(0.0);
-        world
-            .colliders
-            .insert_with_parent(ball, robot, &mut world.bodies);
+        let robots = robots
+            .iter()
+            .map(|&(radius, pose)| {
+                let body = RigidBodyBuilder::dynamic()
+                    .translation(Vector::new(pose[0], pose[1]))
+                    .rotation(pose[2])
+                    .can_sleep(false)
+                    .build();
+                let robot = world.bodies.insert(body);
+                // e-puck mass is about 0.16 kg; only the ratio to walls (infinite) matters here.
+                let ball = ColliderBuilder::ball(radius)
+                    .mass(0.16)
+                    .friction(0.0)
+                    .friction_combine_rule(CoefficientCombineRule::Min)
+                    .restitution(0.0);
+                world
+                    .colliders
+                    .insert_with_parent(ball, robot, &mut world.bodies);
+                robot
+            })
+            .collect();
         let movables = bodies
             .iter()
             .map(|m| {
@@ -150,13 +154,14 @@ impl Scene {
             .collect();
         Scene {
             world,
-            robot,
+            robots,
             movables,
         }
     }
 
-    fn robot_pose(&self) -> [f32; 3] {
-        let b = &self.world.bodies[self.robot];
+    /// The pose of robot `index`'s body.
+    fn robot_pose(&self, index: usize) -> [f32; 3] {
+        let b = &self.world.bodies[self.robots[index]];
         let t = b.translation();
         [t.x, t.y, b.rotation().angle()]
     }
@@ -173,13 +178,13 @@ impl Scene {
                 world.colliders.len()
             ));
         }
-        let handles_known = world.bodies.get(self.robot).is_some()
+        let handles_known = self.robots.iter().all(|&r| world.bodies.get(r).is_some())
             && self.movables.iter().all(|&(body, collider, _)| {
                 world.bodies.get(body).is_some() && world.colliders.get(collider).is_some()
             });
         if !handles_known {
             return Err(
-                "expected the robot's and every movable body's handles, found a \
+                "expected every robot's and every movable body's handles, found a \
                         physics state without them"
                     .to_string(),
             );
@@ -216,18 +221,95 @@ impl Body {
         pose: [f32; 3],
         dt: f32,
     ) -> Body {
-        let scene =
-            (!bodies.is_empty()).then(|| Box::new(Scene::new(walls, bodies, radius, pose, dt)));
+        let robot = [(radius, pose)];
+        let scene = (!bodies.is_empty()).then(|| Box::new(Scene::new(walls, bodies, &robot, dt)));
         let mut body = Body {
             pose,
             heading: [0.0, 1.0],
             dt,
             radius,
             scene,
+            shared: false,
         };
-        let start = body.scene.as_ref().map_or(pose, |s| s.robot_pose());
+        let start = body.scene.as_ref().map_or(pose, |s| s.robot_pose(0));
         body.set_pose(start);
         body
+    }
+
+    /// The bodies of several robots (radius and pose of each) among `walls` and the movable
+    /// `bodies` at their start poses, all in one rapier scene that the first body holds: robots
+    /// push the bodies, the bodies push robots, and everything meets the walls. The others follow
+    /// the poses [`Body::step_shared`] gives them.
+    pub fn shared(
+        walls: &[WallBox],
+        bodies: &[MovableBody],
+        robots: &[(f32, [f32; 3])],
+        dt: f32,
+    ) -> Vec<Body> {
+        let scene = Scene::new(walls, bodies, robots, dt);
+        let mut made: Vec<Body> = (robots.iter().enumerate())
+            .map(|(i, &(radius, _))| {
+                let mut body = Body {
+                    pose: [0.0; 3],
+                    heading: [0.0, 1.0],
+                    dt,
+                    radius,
+                    scene: None,
+                    shared: true,
+                };
+                body.set_pose(scene.robot_pose(i));
+                body
+            })
+            .collect();
+        if let Some(first) = made.first_mut() {
+            first.scene = Some(Box::new(scene));
+        }
+        made
+    }
+
+    /// Whether the body is one of several robots' in one scene.
+    pub fn is_shared(&self) -> bool {
+        self.shared
+    }
+
+    /// One physics step of the scene this body holds (see [`Body::shared`]): robot `i` driven at
+    /// `drives[i]` (velocity vector in m/s, turn rate in rad/s); `poses` receives every robot's
+    /// pose after the step, and this body takes robot 0's.
+    pub fn step_shared(&mut self, drives: &[([f32; 2], f32)], poses: &mut Vec<[f32; 3]>) {
+        poses.clear();
+        let Some(scene) = self.scene.as_mut() else {
+            return;
+        };
+        for (&handle, &(v, angular)) in scene.robots.iter().zip(drives) {
+            let body = &mut scene.world.bodies[handle];
+            body.set_linvel(Vector::new(v[0], v[1]), true);
+            body.set_angvel(angular, true);
+        }
+        scene.world.step();
+        poses.extend((0..scene.robots.len()).map(|i| scene.robot_pose(i)));
+        let first = poses[0];
+        self.set_pose(first);
+    }
+
+    /// Puts robot `index` of the scene this body holds at `pose`, at rest (a robot moved by hand).
+    pub fn place_shared(&mut self, index: usize, pose: [f32; 3]) {
+        if let Some(scene) = self.scene.as_mut() {
+            if let Some(&handle) = scene.robots.get(index) {
+                let body = &mut scene.world.bodies[handle];
+                body.set_translation(Vector::new(pose[0], pose[1]), true);
+                body.set_rotation(Rotation::new(pose[2]), true);
+                body.set_linvel(Vector::ZERO, true);
+                body.set_angvel(0.0, true);
+            }
+        }
+        if index == 0 || self.scene.is_none() {
+            self.set_pose(pose);
+        }
+    }
+
+    /// Takes `pose` as this body's own (a body that follows a shared scene).
+    pub fn follow(&mut self, pose: [f32; 3]) {
+        self.set_pose(pose);
     }
 
     /// Advances one physics step with the body driven at `linear` m/s forward and `angular` rad/s;
@@ -258,11 +340,11 @@ impl Body {
         let [x, y, yaw] = self.pose;
         let turned = wrap_angle(yaw + angular * self.dt);
         if let Some(scene) = self.scene.as_mut() {
-            let body = &mut scene.world.bodies[scene.robot];
+            let body = &mut scene.world.bodies[scene.robots[0]];
             body.set_linvel(Vector::new(velocity[0], velocity[1]), true);
             body.set_angvel(angular, true);
             scene.world.step();
-            let pose = scene.robot_pose();
+            let pose = scene.robot_pose(0);
             self.set_pose(pose);
         } else if clearance - speed * self.dt > FREE_FLIGHT_MARGIN {
             self.set_pose([x + velocity[0] * self.dt, y + velocity[1] * self.dt, turned]);
@@ -367,6 +449,7 @@ impl Body {
                 + s.world.bodies.len() * size_of::<RigidBody>()
                 + s.world.colliders.len() * (size_of::<Collider>() + size_of::<Cuboid>())
                 + s.movables.capacity() * size_of::<(RigidBodyHandle, ColliderHandle, f32)>()
+                + s.robots.capacity() * size_of::<RigidBodyHandle>()
         })
     }
 

@@ -7,7 +7,7 @@ use mazesim_core::control::avoid_collision::EPUCK_MAX_SPEED;
 use mazesim_core::limits::{MAX_ENVS, MAX_THREADS};
 use mazesim_core::rollout::RunEnvs;
 use mazesim_core::{Batch, RunOptions, StepOutputs, World};
-use numpy::{PyArray1, PyArray2, PyArrayMethods};
+use numpy::{IxDyn, PyArray1, PyArrayDyn, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -40,10 +40,10 @@ const MAX_RUN_STEPS: usize = 1 << 40;
 
 /// The four output buffers of a batch: observations, poses, colliding, crossings.
 type OutputBuffers<'py> = (
-    Bound<'py, PyArray2<f32>>,
-    Bound<'py, PyArray2<f32>>,
-    Bound<'py, PyArray1<bool>>,
-    Bound<'py, PyArray1<i32>>,
+    Bound<'py, PyArrayDyn<f32>>,
+    Bound<'py, PyArrayDyn<f32>>,
+    Bound<'py, PyArrayDyn<bool>>,
+    Bound<'py, PyArrayDyn<i32>>,
 );
 
 fn bad(msg: String) -> PyErr {
@@ -65,15 +65,28 @@ impl PyBatch {
         enter_detached(py, || self.inner.with_detached(|b| work(b, out)))
     }
 
-    /// One value per environment as a numpy array.
+    /// One value per environment (`(N,)`), or per robot of each (`(N, R)`), as a numpy array.
     fn per_env<'py, T: numpy::Element>(
         &self,
         py: Python<'py>,
         value: impl Fn(&mazesim_core::Simulator) -> T,
-    ) -> PyResult<Bound<'py, PyArray1<T>>> {
+    ) -> PyResult<Bound<'py, PyArrayDyn<T>>> {
+        self.per_robot(py, &[], |e| [value(e)])
+    }
+
+    /// `K` values per environment (`(N, *tail)`), or per robot of each (`(N, R, *tail)`), as a
+    /// numpy array; `tail` is `[]` for one value, `[K]` for several.
+    fn per_robot<'py, T: numpy::Element, const K: usize>(
+        &self,
+        py: Python<'py>,
+        tail: &[usize],
+        value: impl Fn(&mazesim_core::Simulator) -> [T; K],
+    ) -> PyResult<Bound<'py, PyArrayDyn<T>>> {
         enter(|| {
-            let v: Vec<T> = self.inner.with(|b| b.envs().iter().map(value).collect())?;
-            Ok(PyArray1::from_vec(py, v))
+            let v: Vec<T> = self
+                .inner
+                .with(|b| b.envs().iter().flat_map(value).collect())?;
+            PyArray1::from_vec(py, v).reshape(IxDyn(&self.shape(tail)))
         })
     }
 
@@ -330,14 +343,14 @@ impl PyBatch {
 
     /// New zeroed output buffers of the shapes and dtypes every call checks, for the caller to
     /// hold: observations (N, observation_width) float32, poses (N, 3) float32, colliding (N,)
-    /// bool and crossings (N,) int32.
+    /// bool and crossings (N,) int32; with several robots per environment, (N, R, ...) each.
     fn output_buffers<'py>(&self, py: Python<'py>) -> OutputBuffers<'py> {
-        let n = self.n;
+        let shape = |tail: &[usize]| IxDyn(&self.shape(tail));
         (
-            PyArray2::zeros(py, [n, self.width()], false),
-            PyArray2::zeros(py, [n, 3], false),
-            PyArray1::zeros(py, n, false),
-            PyArray1::zeros(py, n, false),
+            PyArrayDyn::zeros(py, shape(&[self.width()]), false),
+            PyArrayDyn::zeros(py, shape(&[3]), false),
+            PyArrayDyn::zeros(py, shape(&[]), false),
+            PyArrayDyn::zeros(py, shape(&[]), false),
         )
     }
 
@@ -354,9 +367,6 @@ impl PyBatch {
         enter(|| {
             let actions = copied::<f32>(actions, "actions", "float32", &self.shape(&[2]))?;
             let buffers = [observations, poses, colliding, crossings];
-            if self.robots > 1 {
-                return self.with_outputs(py, buffers, |b, out| b.step_swarms(&actions, out));
-            }
             self.with_outputs(py, buffers, |b, out| b.step(&actions, out))
         })
     }
@@ -602,50 +612,40 @@ impl PyBatch {
         })
     }
 
-    /// The goal disc of each environment, (N, 3) float64 x, y, radius; NaN rows for none.
-    fn goals<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
-        enter(|| {
-            let v: Vec<f64> = self.inner.with(|b| {
-                b.envs()
-                    .iter()
-                    .flat_map(|e| match e.goal() {
-                        Some(g) => [g.center[0], g.center[1], g.radius],
-                        None => [f64::NAN; 3],
-                    })
-                    .collect()
-            })?;
-            PyArray1::from_vec(py, v).reshape([self.n * self.robots, 3])
+    /// The goal disc of each environment, (N, 3) float64 x, y, radius; NaN rows for none; with
+    /// several robots per environment, each robot's, (N, R, 3).
+    fn goals<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+        self.per_robot(py, &[3], |e| match e.goal() {
+            Some(g) => [g.center[0], g.center[1], g.radius],
+            None => [f64::NAN; 3],
         })
     }
 
     /// Wheel position sensors of each environment, (N, 2) float64 radians (left, right),
-    /// quantised to the profile's encoder resolution.
-    fn encoders<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
-        enter(|| {
-            let v: Vec<f64> = self
-                .inner
-                .with(|b| b.envs().iter().flat_map(|e| e.encoders()).collect())?;
-            PyArray1::from_vec(py, v).reshape([self.n * self.robots, 2])
-        })
+    /// quantised to the profile's encoder resolution; with several robots per environment,
+    /// (N, R, 2).
+    fn encoders<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+        self.per_robot(py, &[2], |e| e.encoders())
     }
 
-    /// Simulated seconds of each environment since its reset.
-    fn times<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    /// Simulated seconds of each environment since its reset ((N,), or (N, R) with several
+    /// robots per environment, as the other per-environment read-outs).
+    fn times<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
         self.per_env(py, |e| e.time())
     }
 
     /// Control steps of each environment since its reset.
-    fn steps<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<u64>>> {
+    fn steps<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArrayDyn<u64>>> {
         self.per_env(py, |e| e.steps())
     }
 
     /// Bumps of each environment since its reset.
-    fn collisions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<u64>>> {
+    fn collisions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArrayDyn<u64>>> {
         self.per_env(py, |e| e.collisions())
     }
 
     /// Path length of each environment since its reset, metres.
-    fn distances_travelled<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    fn distances_travelled<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
         self.per_env(py, |e| e.distance_travelled())
     }
 

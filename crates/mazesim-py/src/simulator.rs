@@ -23,9 +23,6 @@ pub struct PySimulator {
     inner: Exclusive<Swarm>,
 }
 
-/// What snapshots do not cover yet.
-const ONE_ROBOT_ONLY: &str = "snapshots (snapshot, restore, pickling)";
-
 impl PySimulator {
     /// `with` on robot 0 for a Python entry point: a panic becomes `InternalError`.
     fn read<T>(&self, f: impl FnOnce(&Simulator) -> T) -> PyResult<T> {
@@ -35,27 +32,27 @@ impl PySimulator {
     /// `with` on robot `robot_index` (checked) for a Python entry point.
     fn read_robot<T>(&self, robot_index: IntArg, f: impl FnOnce(&Simulator) -> T) -> PyResult<T> {
         enter(|| {
-            let index = robot_index.count("robot_index", usize::MAX)?;
+            let index = self.robot_index(&robot_index)?;
             self.inner.with(|s| s.robot(index).map(f))?.py()
         })
+    }
+
+    /// `robot_index` checked against the number of robots: an error names that number.
+    fn robot_index(&self, robot_index: &IntArg) -> PyResult<usize> {
+        let n = self.inner.with(|s| s.len())?;
+        let found = match robot_index {
+            IntArg::Int(v) => match usize::try_from(*v) {
+                Ok(i) if i < n => return Ok(i),
+                _ => v.to_string(),
+            },
+            IntArg::Other(what) => what.clone(),
+        };
+        Err(mazesim_core::swarm::bad_index(found, n)).py()
     }
 
     /// `with` on the whole swarm for a Python entry point.
     fn swarm<T>(&self, f: impl FnOnce(&mut Swarm) -> T) -> PyResult<T> {
         enter(|| self.inner.with(f))
-    }
-
-    /// Refuses what only a world of one robot supports yet.
-    fn one_robot(&self, what: &str) -> PyResult<()> {
-        let n = self.swarm(|s| s.len())?;
-        if n == 1 {
-            Ok(())
-        } else {
-            Err(invalid(format!(
-                "expected a world of one robot: {what} are not supported yet in a world of \
-                 several, found {n} robots"
-            )))
-        }
     }
 }
 
@@ -125,7 +122,7 @@ impl PySimulator {
     fn set_wheel_speeds(&self, left: Real, right: Real, robot_index: IntArg) -> PyResult<()> {
         let (left, right) = (left.value("left")?, right.value("right")?);
         enter(|| {
-            let index = robot_index.count("robot_index", usize::MAX)?;
+            let index = self.robot_index(&robot_index)?;
             self.inner.with(|s| s.set_command(index, left, right))?.py()
         })
     }
@@ -239,7 +236,7 @@ impl PySimulator {
     fn set_start(&self, x: Real, y: Real, yaw: Real, robot_index: IntArg) -> PyResult<()> {
         let (x, y, yaw) = (x.value("x")?, y.value("y")?, yaw.value("yaw")?);
         enter(|| {
-            let index = robot_index.count("robot_index", usize::MAX)?;
+            let index = self.robot_index(&robot_index)?;
             self.inner.with(|s| s.set_start(index, x, y, yaw))?.py()
         })
     }
@@ -249,7 +246,7 @@ impl PySimulator {
     fn set_goal(&self, x: Real, y: Real, radius: Real, robot_index: IntArg) -> PyResult<()> {
         let (x, y, radius) = (x.value("x")?, y.value("y")?, radius.value("radius")?);
         enter(|| {
-            let index = robot_index.count("robot_index", usize::MAX)?;
+            let index = self.robot_index(&robot_index)?;
             self.inner
                 .with(|s| s.robot_mut(index).and_then(|r| r.set_goal(x, y, radius)))?
                 .py()
@@ -272,7 +269,7 @@ impl PySimulator {
     fn set_pose(&self, x: Real, y: Real, yaw: Real, robot_index: IntArg) -> PyResult<()> {
         let (x, y, yaw) = (x.value("x")?, y.value("y")?, yaw.value("yaw")?);
         enter(|| {
-            let index = robot_index.count("robot_index", usize::MAX)?;
+            let index = self.robot_index(&robot_index)?;
             self.inner.with(|s| s.set_pose(index, x, y, yaw))?.py()
         })
     }
@@ -397,20 +394,15 @@ impl PySimulator {
     /// The whole state as bytes, for `restore` (pose, velocities, rapier's contact state, noise
     /// stream, time, counters, barcode tracker, readings).
     fn snapshot<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyBytes>> {
-        self.one_robot(ONE_ROBOT_ONLY)?;
-        let bytes = self.read(|s| s.snapshot())?;
+        let bytes = self.swarm(|s| s.snapshot())?;
         Ok(PyBytes::new(py, &bytes))
     }
 
     /// Puts the simulator in the state of a `snapshot` of a simulator of the same world, robot
     /// profile, control step and noise setting; it then goes on exactly as that one would.
     fn restore(&self, py: Python<'_>, snapshot: Bytes) -> PyResult<()> {
-        self.one_robot(ONE_ROBOT_ONLY)?;
         let snapshot = enter(|| snapshot.value("snapshot", "bytes"))?.0;
-        enter_detached(py, || {
-            self.inner
-                .with_detached(|s| s.robot_mut(0)?.restore(&snapshot))
-        })
+        enter_detached(py, || self.inner.with_detached(|s| s.restore(&snapshot)))
     }
 
     /// An independent simulator in the same state, sharing the (immutable) world.
@@ -431,14 +423,16 @@ impl PySimulator {
     fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyTuple>> {
         let py = slf.py();
         let this = slf.get();
-        this.one_robot(ONE_ROBOT_ONLY)?;
-        let (world, robot, config, snapshot) = this.read(|s| {
-            (
-                s.world().clone(),
-                s.robot().clone(),
-                s.config(),
-                s.snapshot(),
-            )
+        let (world, robot, config, snapshot) = this.swarm(|s| {
+            let first = &s.robots()[0];
+            // A world of one robot pickles its robot's profile; one of several the profile of
+            // the robots whose placement names none.
+            let robot = if s.len() == 1 {
+                first.robot().clone()
+            } else {
+                s.default_profile().clone()
+            };
+            (first.world().clone(), robot, first.config(), s.snapshot())
         })?;
         let control_step_ms = config.control_step.map(|c| c * 1000.0);
         let args = (

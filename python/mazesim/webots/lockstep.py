@@ -12,9 +12,10 @@ does not move. A supervisor sees and moves every robot through the :class:`Fleet
 ``simulationQuit`` ends every controller's run (``Robot.step`` returns -1).
 
 The e-pucks share one simulator (:mod:`mazesim.webots.shared_world`): they collide with and
-see each other. A world the shared simulator refuses (movable bodies, robots overlapping at
-their starts) runs each robot in a simulator of its own, with a warning: there robots neither
-collide with nor see each other; the radio and the supervisor see them all.
+see each other and the world's movable bodies, which they push. A world the shared simulator
+refuses (robots overlapping at their starts, more robots than a world holds) runs each robot in
+a simulator of its own, with a warning: there robots neither collide with nor see each other;
+the radio and the supervisor see them all.
 """
 
 from __future__ import annotations

@@ -3,9 +3,10 @@
 :func:`shared_simulator` puts every e-puck of an imported world into one
 :class:`~mazesim.Simulator` (the world's ``[[robots]]``, see ``docs/multi-robot.md``); a
 :class:`RobotView` is one of them with the calls of a one-robot simulator, which is what a
-controller's process asks for over its pipe (:mod:`mazesim.webots.controller_process`). A world
-the shared simulator refuses (movable bodies, robots overlapping at their starts, more robots
-than it holds) is run with a simulator per robot instead, with a warning.
+controller's process asks for over its pipe (:mod:`mazesim.webots.controller_process`). The
+world's movable bodies are in the shared simulator too: every e-puck pushes them and sees them
+where they are. A world the shared simulator refuses (robots overlapping at their starts, more
+robots than it holds) is run with a simulator per robot instead, with a warning.
 """
 
 from __future__ import annotations

@@ -2,10 +2,12 @@
 
 mod neighbours;
 mod rig;
+mod shared_scene;
 mod snapshot;
 
 pub use neighbours::{Neighbour, Others, ROBOT_CONTACT_GAP, ROBOT_REFLECTANCE};
 pub use rig::Rig;
+pub use shared_scene::{move_in_scene, place_in_scene, share_scene, SceneStep};
 
 use std::sync::Arc;
 
@@ -273,13 +275,18 @@ impl Simulator {
     }
 
     fn place(&mut self, pose: [f32; 3]) {
-        self.body = Body::new(
-            self.world.solid_walls(),
-            self.world.bodies(),
-            self.robot.body_radius as f32,
-            pose,
-            self.dt as f32,
-        );
+        if self.body.is_shared() {
+            // One of several robots in one scene: the swarm moves its ball there.
+            self.body.place_shared(0, pose);
+        } else {
+            self.body = Body::new(
+                self.world.solid_walls(),
+                self.world.bodies(),
+                self.robot.body_radius as f32,
+                pose,
+                self.dt as f32,
+            );
+        }
         self.pose = self.body.pose();
         self.heading = self.body.heading();
         self.update_contact();
@@ -325,55 +332,13 @@ impl Simulator {
     /// then turns at its motor's gain (the profile's `motor_gains`) times its clamped speed, and
     /// while the body touches a wall it moves only `1 - slip_on_contact` of the wheels' motion.
     pub fn step(&mut self, left: f64, right: f64) -> Result<()> {
-        // The path of a robot alone, kept apart from the lockstep of `physics_move` and
-        // `physics_settle` (which give the same results) so that it costs nothing more.
-        let drive = self.command(left, right)?;
-        let [wl, wr] = drive.wheels;
-        let (linear, angular) = (drive.linear, drive.angular);
-        let slip = self.robot.slip_on_contact;
-        let kept = (1.0 - slip) as f32;
-        let mut any_contact = false;
+        // A robot alone steps as one of several does, with no other robot to meet.
+        let mut drive = self.command(left, right)?;
         for k in 1..=self.physics_steps {
-            let before = self.pose;
-            // In contact with a wall, the wheels slip: the body moves `kept` of their motion.
-            let (linear, angular) = if slip > 0.0 && self.touching {
-                (linear * kept, angular * kept)
-            } else {
-                (linear, angular)
-            };
-            self.body
-                .step(linear, angular, self.clearance, self.world.wall_index());
-            self.pose = self.body.pose();
-            self.heading = self.body.heading();
-            let dx = (self.pose[0] - before[0]) as f64;
-            let dy = (self.pose[1] - before[1]) as f64;
-            self.distance_travelled += (dx * dx + dy * dy).sqrt();
-            self.wheel_angles[0] += wl as f64 * self.dt;
-            self.wheel_angles[1] += wr as f64 * self.dt;
-            let was_touching = self.touching;
-            if k < self.physics_steps {
-                self.update_contact();
-            } else {
-                // The last physics step: contact and every sensor together.
-                self.sense();
-            }
-            if self.touching && !was_touching {
-                self.collisions += 1;
-            }
-            any_contact |= self.touching;
-            if let Some(at) = self.barcode_sensor_position() {
-                if let Some(c) = self
-                    .tracker
-                    .update(self.world.checkpoints(), at, self.steps + 1)
-                {
-                    self.last_crossing = c.signed_id();
-                    self.crossings.push(c);
-                }
-            }
+            let before = self.physics_move(&drive, Others::NONE);
+            self.physics_settle(&mut drive, k, before, Others::NONE, None);
         }
-        self.colliding = any_contact;
-        self.steps += 1;
-        self.time = self.steps as f64 * self.physics_steps as f64 * self.dt;
+        self.finish_step(&drive);
         Ok(())
     }
 
@@ -405,6 +370,25 @@ impl Simulator {
     #[inline]
     pub fn physics_move(&mut self, drive: &Drive, others: Others<'_>) -> [f32; 3] {
         let before = self.pose;
+        let (linear, angular, held) = self.driven(drive, others);
+        let walls = self.world.wall_index();
+        match held {
+            None => self.body.step(linear, angular, self.clearance, walls),
+            Some(v) => {
+                let speed = (v[0] * v[0] + v[1] * v[1]).sqrt();
+                self.body.drive(v, speed, angular, self.clearance, walls);
+            }
+        }
+        self.pose = self.body.pose();
+        self.heading = self.body.heading();
+        before
+    }
+
+    /// The motion `drive` asks of the body in a physics step: forward speed and turn rate (less
+    /// the wheels' slip on a wall), and the velocity vector the `others` robots leave it when
+    /// they hold it back (`None` when they do not).
+    #[inline]
+    fn driven(&self, drive: &Drive, others: Others<'_>) -> (f32, f32, Option<[f32; 2]>) {
         let slip = self.robot.slip_on_contact;
         // In contact with a wall, the wheels slip: the body moves `kept` of their motion.
         let (linear, angular) = if slip > 0.0 && self.touching {
@@ -422,22 +406,13 @@ impl Simulator {
             let wanted = [c * linear, s * linear];
             others.yield_velocity(centre, radius, wanted, self.dt as f32)
         };
-        let walls = self.world.wall_index();
-        match held {
-            None => self.body.step(linear, angular, self.clearance, walls),
-            Some(v) => {
-                let speed = (v[0] * v[0] + v[1] * v[1]).sqrt();
-                self.body.drive(v, speed, angular, self.clearance, walls);
-            }
-        }
-        self.pose = self.body.pose();
-        self.heading = self.body.heading();
-        before
+        (linear, angular, held)
     }
 
     /// Ends physics step `k` of the control step (its last: every sensor is read) once every
     /// robot has moved: contacts with the walls and the `others` robots, bumps, distance, wheel
-    /// angles and barcode crossings.
+    /// angles and barcode crossings. `scene` is the robot holding the rapier scene this one's
+    /// rays meet the movable bodies in, when not this one (`shared`).
     #[inline]
     pub fn physics_settle(
         &mut self,
@@ -445,6 +420,7 @@ impl Simulator {
         k: u32,
         before: [f32; 3],
         others: Others<'_>,
+        scene: Option<&Simulator>,
     ) {
         let dx = (self.pose[0] - before[0]) as f64;
         let dy = (self.pose[1] - before[1]) as f64;
@@ -456,7 +432,7 @@ impl Simulator {
             self.update_contact();
         } else {
             // The last physics step: contact and every sensor together.
-            self.sense_among_robots(others);
+            self.sense_among_robots(others, scene);
         }
         self.touching_robot = !others.is_empty() && {
             let radius = self.robot.body_radius as f32;
@@ -490,16 +466,22 @@ impl Simulator {
     /// walls near the robot are gathered once, over a square holding every sensor ray and the
     /// clearance search square, and all those queries run against them.
     fn sense(&mut self) {
-        rig::NEARBY.with_borrow_mut(|near| self.sense_among(near, Others::NONE));
+        rig::NEARBY.with_borrow_mut(|near| self.sense_among(near, Others::NONE, None));
     }
 
-    /// `sense`, the infra-red rays meeting the `others` robots as well as the walls.
-    fn sense_among_robots(&mut self, others: Others<'_>) {
-        rig::NEARBY.with_borrow_mut(|near| self.sense_among(near, others));
+    /// `sense`, the infra-red rays meeting the `others` robots as well as the walls, and the
+    /// movable bodies of `scene`'s rapier scene when given (else of this robot's own).
+    fn sense_among_robots(&mut self, others: Others<'_>, scene: Option<&Simulator>) {
+        rig::NEARBY.with_borrow_mut(|near| self.sense_among(near, others, scene));
     }
 
     /// `sense_among_robots` with `near` to gather the walls into.
-    fn sense_among(&mut self, near: &mut NearbyWalls, others: Others<'_>) {
+    fn sense_among(
+        &mut self,
+        near: &mut NearbyWalls,
+        others: Others<'_>,
+        scene: Option<&Simulator>,
+    ) {
         let [x, y, _] = self.pose;
         let [s, c] = self.heading;
         let robot = &*self.robot;
@@ -513,12 +495,13 @@ impl Simulator {
         let noise = self.config.noise;
         let imperfect = &SensorImperfections::of(robot);
         near.cast_fan(index, &rig.rays, [x, y], [s, c], &mut self.ray_hits);
-        if self.body.has_movables() {
+        let movables = scene.map_or(&self.body, |holder| &holder.body);
+        if movables.has_movables() {
             for (hit, &[px, py, dx, dy, length]) in self.ray_hits.iter_mut().zip(&rig.sensor_rays) {
                 let origin = [x + c * px - s * py, y + s * px + c * py];
                 let dir = [c * dx - s * dy, s * dx + c * dy];
                 let limit = hit.map_or(length, |h| h.distance);
-                if let Some(body_hit) = self.body.cast_ray_movables(origin, dir, limit) {
+                if let Some(body_hit) = movables.cast_ray_movables(origin, dir, limit) {
                     *hit = Some(body_hit);
                 }
             }
@@ -543,10 +526,11 @@ impl Simulator {
         }
     }
 
-    /// Reads every sensor again at the current pose with the `others` robots where they stand,
-    /// and whether the body touches one of them.
-    pub fn sense_robots(&mut self, others: Others<'_>) {
-        self.sense_among_robots(others);
+    /// Reads every sensor again at the current pose with the `others` robots where they stand
+    /// (and the movable bodies of `scene`'s rapier scene, when not this robot's own), and whether
+    /// the body touches one of them.
+    pub fn sense_robots(&mut self, others: Others<'_>, scene: Option<&Simulator>) {
+        self.sense_among_robots(others, scene);
         let radius = self.robot.body_radius as f32;
         let gap = others.gap([self.pose[0], self.pose[1]], radius);
         self.touching_robot = gap < ROBOT_CONTACT_GAP;

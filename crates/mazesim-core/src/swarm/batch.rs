@@ -9,7 +9,7 @@ use std::sync::Arc;
 use rayon::prelude::*;
 
 use super::{make_robots, reset_robots, step_robots};
-use crate::batch::{check_size, rigs_of, Batch, Helpers, StepOutputs, CHUNK_ENVS};
+use crate::batch::{check_actions, check_size, rigs_of, Batch, Helpers, StepOutputs, CHUNK_ENVS};
 use crate::control::Controller;
 use crate::error::{Error, Result};
 use crate::limits::MAX_ROBOTS;
@@ -58,7 +58,12 @@ impl Batch {
             )));
         }
         let n = worlds.len();
-        check_size(n.saturating_mul(robots), 0)?;
+        // An environment of a world with movable bodies holds a rapier scene of all its walls.
+        let scene_walls: u128 = (worlds.iter())
+            .filter(|w| !w.bodies().is_empty())
+            .map(|w| w.solid_walls().len() as u128)
+            .sum();
+        check_size(n.saturating_mul(robots), scene_walls)?;
         let worlds = crate::batch::share_equal_worlds(worlds);
         // The profiles named anywhere, each made once, then one rig per distinct profile.
         let mut profiles: Vec<Arc<RobotProfile>> = vec![robot.clone()];
@@ -171,21 +176,8 @@ impl Batch {
     /// in rad/s) and writes every robot's row of `out`. Non-finite speeds are refused before any
     /// robot moves.
     pub fn step_swarms(&mut self, actions: &[f32], out: StepOutputs<'_>) -> Result<()> {
-        let (n, r) = (self.num_envs(), self.robots);
-        if actions.len() != 2 * n * r {
-            return Err(Error::InvalidArgument(format!(
-                "expected actions of shape ({n}, {r}, 2), found {} values",
-                actions.len()
-            )));
-        }
-        if let Some(i) = actions.iter().position(|a| !a.is_finite()) {
-            return Err(Error::InvalidAction(format!(
-                "expected finite wheel speeds, found {} in environment {}, robot {}",
-                actions[i],
-                i / (2 * r),
-                (i / 2) % r
-            )));
-        }
+        let r = self.robots;
+        check_actions(actions, self.num_envs(), r)?;
         self.check_outputs(&out)?;
         self.run_groups(out, |e, group, write| {
             let base = 2 * r * e;

@@ -8,11 +8,16 @@
 //! control step, reads its sensors with every robot where it ended. A world of one robot is
 //! stepped by that robot's own `Simulator::step`, at no extra cost.
 //!
+//! In a world with movable bodies the robots share one rapier scene
+//! (`crate::simulator::share_scene`): they push the bodies, the bodies push them, and their rays
+//! meet the bodies where they are.
+//!
 //! Noise streams: robot 0 draws from the seed itself (so a world of one robot runs as a plain
 //! simulator does); robot `i > 0` from [`robot_seed`], a stream derived from the seed and the
 //! robot's name.
 
 mod batch;
+mod snapshot;
 
 use std::cell::RefCell;
 use std::sync::Arc;
@@ -20,7 +25,10 @@ use std::sync::Arc;
 use crate::error::{Error, Result};
 use crate::fingerprint::fnv1a;
 use crate::robot::RobotProfile;
-use crate::simulator::{Drive, Neighbour, Others, Rig, SimConfig, Simulator, START_OVERLAP};
+use crate::simulator::{
+    move_in_scene, place_in_scene, share_scene, Drive, Neighbour, Others, Rig, SceneStep,
+    SimConfig, Simulator, START_OVERLAP,
+};
 use crate::world::World;
 
 /// The seed of the noise stream of robot `index`, named `name`, of a world run with `seed`: the
@@ -46,6 +54,7 @@ struct Workspace {
     discs: Vec<Neighbour>,
     drives: Vec<Drive>,
     before: Vec<[f32; 3]>,
+    scene: SceneStep,
 }
 
 /// The robots' discs at their current poses.
@@ -94,18 +103,31 @@ pub fn step_robots(robots: &mut [Simulator], command: impl Fn(usize) -> [f64; 2]
             w.drives.push(robot.command(left, right)?);
         }
         let steps = robots[0].physics_steps();
+        let shared = robots[0].in_shared_scene();
         for k in 1..=steps {
             discs_of(robots, &mut w.discs);
-            w.before.clear();
-            for (i, (robot, drive)) in robots.iter_mut().zip(&w.drives).enumerate() {
-                let others = near(&w.discs, i, robot.reach());
-                w.before.push(robot.physics_move(drive, others));
+            if shared {
+                let discs = &w.discs;
+                let others = |i: usize, r: &Simulator| near(discs, i, r.reach());
+                move_in_scene(robots, &w.drives, others, &mut w.before, &mut w.scene);
+            } else {
+                w.before.clear();
+                for (i, (robot, drive)) in robots.iter_mut().zip(&w.drives).enumerate() {
+                    let others = near(&w.discs, i, robot.reach());
+                    w.before.push(robot.physics_move(drive, others));
+                }
             }
             discs_of(robots, &mut w.discs);
-            let moved = robots.iter_mut().zip(w.drives.iter_mut()).zip(&w.before);
-            for (i, ((robot, drive), &before)) in moved.enumerate() {
-                let others = near(&w.discs, i, robot.reach());
-                robot.physics_settle(drive, k, before, others);
+            // Robot 0 holds a shared scene: the others' rays meet its movable bodies.
+            let (first, rest) = robots.split_at_mut(1);
+            let robot = &mut first[0];
+            let others = near(&w.discs, 0, robot.reach());
+            robot.physics_settle(&mut w.drives[0], k, w.before[0], others, None);
+            let scene = shared.then_some(&first[0]);
+            let moved = rest.iter_mut().zip(&mut w.drives[1..]).zip(&w.before[1..]);
+            for (j, ((robot, drive), &before)) in moved.enumerate() {
+                let others = near(&w.discs, j + 1, robot.reach());
+                robot.physics_settle(drive, k, before, others, scene);
             }
         }
         for (robot, drive) in robots.iter_mut().zip(&w.drives) {
@@ -122,11 +144,12 @@ pub fn sense_robots(robots: &mut [Simulator]) {
     }
     WORKSPACE.with_borrow_mut(|w| {
         discs_of(robots, &mut w.discs);
-        for (i, robot) in robots.iter_mut().enumerate() {
-            robot.sense_robots(Others {
-                all: &w.discs,
-                me: i,
-            });
+        let all = &w.discs;
+        let (first, rest) = robots.split_at_mut(1);
+        first[0].sense_robots(Others { all, me: 0 }, None);
+        let scene = first[0].in_shared_scene().then_some(&first[0]);
+        for (j, robot) in rest.iter_mut().enumerate() {
+            robot.sense_robots(Others { all, me: j + 1 }, scene);
         }
     });
 }
@@ -137,12 +160,16 @@ pub fn reset_robots(robots: &mut [Simulator], names: &[String], seed: Option<u64
     for (i, robot) in robots.iter_mut().enumerate() {
         robot.reset(seed.map(|s| robot_seed(s, i, &names[i])));
     }
+    if robots[0].in_shared_scene() {
+        // Every robot at its start and every movable body at its own.
+        share_scene(robots);
+    }
     sense_robots(robots);
 }
 
 /// The simulators of the robots of `world`, robot `i` with `rigs[i]` and its stream of `config`'s
-/// seed. Refused: more rigs than robots or fewer, a world of several robots with movable bodies,
-/// robots whose bodies overlap at their starts.
+/// seed; in a world with movable bodies, all in one rapier scene. Refused: more rigs than robots
+/// or fewer, robots whose bodies overlap at their starts.
 pub fn make_robots(
     world: &Arc<World>,
     rigs: &[Arc<Rig>],
@@ -164,15 +191,6 @@ pub fn make_robots(
             config,
         )?]);
     }
-    if !world.bodies().is_empty() {
-        return Err(Error::InvalidArgument(format!(
-            "expected a world of several robots without movable bodies (not supported yet), found \
-             {} robots and {} movable bodies in {:?}",
-            placements.len(),
-            world.bodies().len(),
-            world.name()
-        )));
-    }
     let mut robots = Vec::with_capacity(placements.len());
     for (i, (placement, rig)) in placements.iter().zip(rigs).enumerate() {
         let seed = robot_seed(config.seed, i, &placement.name);
@@ -187,6 +205,9 @@ pub fn make_robots(
     let starts: Vec<[f64; 3]> = placements.iter().map(|p| p.start).collect();
     for i in 0..robots.len() {
         check_apart(&robots, i, starts[i], |j| starts[j], "start")?;
+    }
+    if !world.bodies().is_empty() {
+        share_scene(&mut robots);
     }
     sense_robots(&mut robots);
     Ok(robots)
@@ -234,6 +255,8 @@ pub struct Swarm {
     names: Vec<String>,
     /// Each robot's wheel command, kept from step to step (as a Webots motor keeps its velocity).
     commands: Vec<[f64; 2]>,
+    /// The profile of the robots whose placement names none.
+    profile: Arc<RobotProfile>,
 }
 
 impl Swarm {
@@ -251,7 +274,9 @@ impl Swarm {
             };
             rigs.push(rig);
         }
-        Self::with_rigs(world, &rigs, config)
+        let mut swarm = Self::with_rigs(world, &rigs, config)?;
+        swarm.profile = default.robot().clone();
+        Ok(swarm)
     }
 
     /// The robots of `world`, robot `i` with `rigs[i]`.
@@ -260,6 +285,7 @@ impl Swarm {
         let names = world.robots().iter().map(|p| p.name.clone()).collect();
         Ok(Swarm {
             commands: vec![[0.0; 2]; robots.len()],
+            profile: rigs[0].robot().clone(),
             robots,
             names,
         })
@@ -273,6 +299,11 @@ impl Swarm {
     /// Never true: a swarm has a robot at least.
     pub fn is_empty(&self) -> bool {
         self.robots.is_empty()
+    }
+
+    /// The profile of the robots whose placement names none (`Swarm::new`'s `robot`).
+    pub fn default_profile(&self) -> &Arc<RobotProfile> {
+        &self.profile
     }
 
     /// The robots' names, in world order.
@@ -361,29 +392,20 @@ impl Swarm {
             .collect();
         check_apart(&self.robots, index, [x, y, yaw], |j| poses[j], "pose")?;
         self.robots[index].set_pose(x, y, yaw)?;
+        if self.robots[0].in_shared_scene() {
+            place_in_scene(&mut self.robots, index);
+        }
         sense_robots(&mut self.robots);
         Ok(())
     }
-
-    /// An independent copy in the same state.
-    pub fn duplicate(&self) -> Result<Swarm> {
-        let robots = self
-            .robots
-            .iter()
-            .map(Simulator::duplicate)
-            .collect::<Result<Vec<_>>>()?;
-        Ok(Swarm {
-            robots,
-            names: self.names.clone(),
-            commands: self.commands.clone(),
-        })
-    }
 }
 
-fn bad_index(index: usize, n: usize) -> Error {
+/// The error of robot index `index` in a world of `n` robots.
+pub fn bad_index(index: impl std::fmt::Display, n: usize) -> Error {
     Error::InvalidArgument(format!(
-        "expected a robot index from 0 to {}, found {index}",
-        n - 1
+        "expected a robot index from 0 to {} (the world has {n} robot{}), found {index}",
+        n - 1,
+        if n == 1 { "" } else { "s" }
     ))
 }
 

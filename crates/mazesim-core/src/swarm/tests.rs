@@ -76,3 +76,143 @@ fn overlapping_starts_are_refused() {
         .unwrap();
     assert!(err.to_string().contains("overlapping robot"), "{err}");
 }
+
+/// A corridor 0.2 m wide: robot "pusher" at x = -0.3 behind a box at x = -0.2, robot "crosser"
+/// at `crosser` facing +y, the box's way along the corridor running through its path.
+fn box_world(crosser: [f64; 2]) -> Arc<World> {
+    let [cx, cy] = crosser;
+    let text = format!(
+        r#"format = "mazesim-world"
+version = 1
+name = "box-in-the-way"
+
+[[walls]]
+center = [0.0, 0.105]
+size = [1.2, 0.01]
+
+[[walls]]
+center = [0.0, -0.105]
+size = [1.2, 0.01]
+
+[[bodies]]
+shape = "box"
+center = [-0.2, 0.0]
+size = [0.04, 0.04]
+mass = 0.05
+
+[[robots]]
+name = "pusher"
+x = -0.3
+y = 0.0
+
+[[robots]]
+name = "crosser"
+x = {cx}
+y = {cy}
+yaw = 1.5707963267948966
+"#
+    );
+    Arc::new(World::from_toml(&text, "box-in-the-way").unwrap())
+}
+
+#[test]
+fn a_robot_pushes_a_box_into_another_robots_path() {
+    let config = SimConfig {
+        noise: false,
+        ..SimConfig::default()
+    };
+    let mut swarm = Swarm::new(box_world([0.1, -0.06]), epuck(), config).unwrap();
+    let start = swarm.robots()[0].body_poses()[0];
+    // The crosser waits while the pusher drives the box along the corridor.
+    let mut crosser_saw = 0.0f32;
+    for _ in 0..120 {
+        swarm.step(&[[5.0, 5.0], [0.0, 0.0]]).unwrap();
+        let ps = swarm.robots()[1].distance_sensors();
+        crosser_saw = crosser_saw.max(ps[0].max(ps[7]).max(ps[1]).max(ps[6]));
+    }
+    let pushed = swarm.robots()[0].body_poses()[0];
+    assert!(
+        pushed[0] - start[0] > 0.15,
+        "the box was pushed: {pushed:?}"
+    );
+    // The box went past the crosser's front, which saw it.
+    assert!(
+        crosser_saw > 200.0,
+        "the crosser saw the box: {crosser_saw}"
+    );
+    // Now the crosser drives across: the box, held by the pusher, or the pusher stops it.
+    let before = swarm.robots()[1].pose();
+    for _ in 0..60 {
+        swarm.step(&[[0.0, 0.0], [5.0, 5.0]]).unwrap();
+    }
+    let after = swarm.robots()[1].pose();
+    let box_now = swarm.robots()[0].body_poses()[0];
+    // Nothing went through anything: the crosser is not inside the box's square.
+    let inside = (after[0] - box_now[0]).abs() < 0.02 + 0.037 - 1e-3
+        && (after[1] - box_now[1]).abs() < 0.02 + 0.037 - 1e-3;
+    assert!(!inside, "crosser {after:?} inside the box at {box_now:?}");
+    assert!(
+        after[1] > before[1],
+        "the crosser moved: {before:?} -> {after:?}"
+    );
+    for robot in swarm.robots() {
+        assert!(robot.wall_clearance() > -1e-3, "{}", robot.wall_clearance());
+    }
+}
+
+#[test]
+fn robots_in_contact_with_each_other_and_a_box_run_the_same_in_any_batch() {
+    use crate::batch::{Batch, StepOutputs};
+    let world = box_world([-0.2, -0.06]);
+    let run = |envs: usize, threads: usize| -> Vec<f32> {
+        let seeds: Vec<u64> = (0..envs as u64).map(|k| 7 + k % 3).collect();
+        let mut batch = Batch::with_swarms(
+            vec![world.clone(); envs],
+            epuck(),
+            &seeds,
+            true,
+            None,
+            threads,
+        )
+        .unwrap();
+        let width = batch.observation_width();
+        let mut obs = vec![0.0; envs * 2 * width];
+        let mut poses = vec![0.0; envs * 2 * 3];
+        let mut colliding = vec![false; envs * 2];
+        let mut crossings = vec![0; envs * 2];
+        let mut seen = Vec::new();
+        let (mut robots_touching, start) = (0, batch.envs()[0].body_poses()[0]);
+        for k in 0..80 {
+            let actions: Vec<f32> = (0..envs * 4).map(|i| 3.0 + ((i + k) % 4) as f32).collect();
+            let out = StepOutputs {
+                observations: &mut obs,
+                poses: &mut poses,
+                colliding: &mut colliding,
+                crossings: &mut crossings,
+            };
+            batch.step(&actions, out).unwrap();
+            seen.extend_from_slice(&obs[..2 * width]);
+            seen.extend_from_slice(&poses[..6]);
+            seen.extend(batch.envs()[0].body_poses().iter().flatten());
+            robots_touching += usize::from(batch.envs()[0].touching_robot());
+        }
+        let moved = batch.envs()[0].body_poses()[0];
+        assert!(
+            robots_touching > 10,
+            "robots in contact {robots_touching} steps"
+        );
+        assert!(
+            (moved[0] - start[0]).abs() + (moved[1] - start[1]).abs() > 0.02,
+            "{moved:?}"
+        );
+        seen
+    };
+    let reference = run(1, 1);
+    for (envs, threads) in [(1, 2), (9, 1), (9, 2)] {
+        assert_eq!(
+            reference,
+            run(envs, threads),
+            "{envs} envs, {threads} threads"
+        );
+    }
+}
