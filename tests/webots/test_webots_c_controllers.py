@@ -289,6 +289,23 @@ def test_a_tk_window_without_a_display_is_named_before_the_run(
     monkeypatch.delenv("DISPLAY", raising=False)
     (tmp_path / "view.py").write_text("from turtle import *\n")
     (tmp_path / "mouse.py").write_text("import view\nfrom controller import Robot\n")
-    assert NO_DISPLAY in prepare_controller(str(tmp_path / "mouse.py")).missing
+    prepared = prepare_controller(str(tmp_path / "mouse.py"))
+    assert NO_DISPLAY in prepared.missing and not prepared.runnable
     monkeypatch.setenv("DISPLAY", ":0")
     assert NO_DISPLAY not in prepare_controller(str(tmp_path / "mouse.py")).missing
+
+
+def test_issue_32_a_tk_controller_without_a_display_is_not_started(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # Started, it would wait forever for the thread whose window Tk refuses.
+    monkeypatch.delenv("DISPLAY", raising=False)
+    (tmp_path / "mouse.py").write_text(
+        "import threading, turtle\nfrom controller import Robot\n"
+        "ready = threading.Event()\n"
+        "threading.Thread(target=lambda: (turtle.Turtle(), ready.set())).start()\n"
+        "ready.wait()\nRobot().step(32)\n"
+    )
+    run = run_controller(str(tmp_path / "mouse.py"), mazesim.load_world("arena"), seconds=1.0)
+    assert run.steps == 0 and run.exit_status != 0
+    assert run.error.startswith("controller not run: ") and NO_DISPLAY in run.error

@@ -10,7 +10,9 @@ it. Each ``[[project]]`` table has these fields:
 - ``controllers``: the controller files' paths (the first is the one run: the robot's own);
 - ``language``: ``python``, ``c`` or ``cpp`` (what the first controller is written in);
 - ``does``: what the project does, in a sentence;
-- ``seconds``: the simulated time a run lasts;
+- ``seconds``: the simulated time a run lasts; the run may take 30 s of wall-clock time more
+  (``runner.GRACE_S``), so a controller whose own ``time.sleep`` calls cost wall-clock time (in
+  Webots too: the simulation waits for its next step) is given a simulated time it reaches;
 - ``expect``: the facts a run in Webots shows (see :mod:`webots_corpus.facts`);
 - ``broken``: empty when the project works in Webots as published, else why it does not;
 - optional ``packages``: third-party Python packages its controller imports (for the reader: the

@@ -209,7 +209,7 @@ def _downloaded(texture: dict[str, Any], problems: list[str]) -> list[tuple[str,
         try:
             return [(texture["candidates"][0], str(fetch_url(str(url))))]
         except ProtoUnavailableError as error:
-            problems.append(f"{texture['owner']}: floor texture: {error}")
+            problems.append(f"{texture['owner']}: floor texture: {error}; the floor is left bare")
             return []
     return []
 
@@ -223,7 +223,20 @@ def _with_floor(
     images, problems = _floor_images(report)
     if images:
         world, report = again(images)
-    report["warnings"].extend(problems)
+    warnings: list[str] = report["warnings"]
+    for problem in problems:
+        # A texture that could not be downloaded is said once, with why, where the import
+        # said it was not found.
+        owner = problem.split(": floor texture", 1)[0]
+        found = [
+            i
+            for i, w in enumerate(warnings)
+            if w.startswith(f"{owner}: floor texture ") and "not found (looked for" in w
+        ]
+        if found:
+            warnings[found[0]] = problem
+        else:
+            warnings.append(problem)
     return world, cast(ImportReport, report)
 
 

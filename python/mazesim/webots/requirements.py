@@ -4,8 +4,9 @@
 (:mod:`mazesim.webots.native_controller`) and lists the Webots features and Python packages the
 controller needs and this installation does not have: the run states them at its start and keeps
 them in its ``summary.json`` (``missing_features``). A controller that cannot run at all (C or
-C++ needing Webots headers or functions mazesim does not implement) is not started; one that
-lacks a Python package is, and fails as it would in Webots.
+C++ needing Webots headers or functions mazesim does not implement, or a Python controller
+that opens Tk windows where there is no display) is not started; one that lacks a Python
+package is, and fails as it would in Webots.
 """
 
 from __future__ import annotations
@@ -186,5 +187,8 @@ def prepare_controller(file: str) -> PreparedController:
         if names:
             prepared.missing.append(f"Python package(s) not installed: {', '.join(names)}")
         if TK_MODULES & imported_names(file) and not os.environ.get("DISPLAY"):
+            # Tk raises at its first window; a controller that waits for the thread that
+            # draws would never return, so it is not started.
             prepared.missing.append(NO_DISPLAY)
+            prepared.runnable = False
     return prepared

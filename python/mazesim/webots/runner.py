@@ -172,7 +172,8 @@ def run_controller(
         prepared: The controller as :func:`~mazesim.webots.requirements.prepare_controller`
             prepared it (a C or C++ controller built); prepared here when not given. A
             controller that cannot run (C or C++ needing Webots headers or functions mazesim
-            lacks) is not started: the run has no steps and its error says what is missing.
+            lacks, Tk windows and no display) is not started: the run has no steps and its
+            error says what is missing.
         stall_seconds: Real seconds the controller may run without taking a step before the
             run's end (its set-up before the first step included) before it is stopped; after
             the end it is stopped :data:`~mazesim.webots.termination.GRACE_SECONDS` later, as
@@ -197,7 +198,7 @@ def run_controller(
     file = controller_file(path)
     if prepared is None or prepared.file != file:
         prepared = prepare_controller(file)
-    if prepared.language != "python":
+    if prepared.language != "python" or not prepared.runnable:
         return _run_native(prepared, world, seconds, seed, noise, report, keys, scene)
     source = _read_source(file)
     simulation = simulations.prepare(

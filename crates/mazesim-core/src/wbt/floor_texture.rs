@@ -206,6 +206,8 @@ impl WbtImport {
     /// read from (the first candidate found counts); a texture with no image, or one that cannot
     /// be painted, gets a warning naming the files looked for. Call it once, after the import.
     pub fn paint_floor(&mut self, images: &BTreeMap<String, GreyImage>) {
+        // Texture paint goes under the marks of visual-only shapes already painted.
+        let marks = std::mem::take(&mut self.paint);
         for texture in &self.floor_textures {
             let found = texture
                 .candidates
@@ -231,6 +233,7 @@ impl WbtImport {
                 )),
             }
         }
+        self.paint.extend(marks);
     }
 
     /// Fills each texture's candidate files for a world file in `dir`.

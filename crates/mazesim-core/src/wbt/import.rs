@@ -3,6 +3,7 @@
 //! Collision shapes are in `shapes.rs`, PROTO expansions in `protos.rs`.
 
 use super::devices::ExtensionDevice;
+use super::floor_marks::FloorMesh;
 use super::floor_texture::FloorTexture;
 use super::frames::{axis_angle, tilt, Frame, Vec3, ENU_TO_NUE, IDENTITY, NUE_TO_ENU};
 use super::shapes::snap;
@@ -115,6 +116,13 @@ pub struct Importer<'d> {
     pub robots: Vec<(WorldRobot, Vec<Obstacle>)>,
     pub devices: Vec<ExtensionDevice>,
     pub floor_textures: Vec<FloorTexture>,
+    /// Paint of the visual-only shapes lying on the floor (see `floor_marks.rs`).
+    pub floor_marks: Vec<crate::world::spec::PaintSpec>,
+    /// Meshes of visual-only shapes, read after the walk.
+    pub floor_meshes: Vec<FloorMesh>,
+    /// Whether the nearest Solid around the walk has a `boundingObject` (its shapes are then
+    /// simulated through it).
+    pub bounded: bool,
     pub warnings: Vec<String>,
     /// Set while reading the collision shapes of an object with physics: it falls onto the
     /// floor in Webots, so its height does not let the robot pass under it.
@@ -138,6 +146,9 @@ pub fn import(doc: &Document, choice: RobotChoice<'_>) -> WbtImport {
         robots: Vec::new(),
         devices: Vec::new(),
         floor_textures: Vec::new(),
+        floor_marks: Vec::new(),
+        floor_meshes: Vec::new(),
+        bounded: false,
         warnings: doc.warnings.clone(),
         falls: false,
         visits: 0,
@@ -186,7 +197,8 @@ pub fn import(doc: &Document, choice: RobotChoice<'_>) -> WbtImport {
         robots,
         extension_devices: importer.devices,
         floor_textures: importer.floor_textures,
-        paint: Vec::new(),
+        floor_meshes: importer.floor_meshes,
+        paint: importer.floor_marks,
         basic_time_step_ms,
         warnings: importer.warnings,
     }
@@ -363,8 +375,10 @@ impl<'d> Importer<'d> {
         if kind == "WorldInfo" || VISUAL_NODES.contains(&kind) {
             return;
         }
-        if kind == "Shape" {
+        if kind == "Shape" && self.bounded {
             self.textured_shape(node, frame);
+        } else if kind == "Shape" {
+            self.visual_shape(node, frame);
         } else if kind == "Floor" {
             self.floor(node, frame);
         } else if EPUCK_PROTOS.contains(&kind)
@@ -434,7 +448,10 @@ impl<'d> Importer<'d> {
                 self.warn_static(node);
             }
         }
+        let outer = self.bounded;
+        self.bounded = !self.nodes(node, "boundingObject").is_empty();
         self.scene_children(node, &frame, depth);
+        self.bounded = outer;
     }
 
     /// The mass of a Solid with physics, kilograms: its Physics `mass` when positive, otherwise

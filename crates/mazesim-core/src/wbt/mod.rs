@@ -13,8 +13,10 @@
 //! with physics are kept as static obstacles, with a warning. The robot's model picks the
 //! profile (`e-puck`, or `e-puck2` for `version "2"`; another robot gets the e-puck in its place,
 //! with a warning), the devices in its extension slots are listed, and floor image textures are
-//! found for [`WbtImport::paint_floor`]. Anything not understood (an unknown PROTO, a tilted
-//! shape, a mesh) becomes a warning.
+//! found for [`WbtImport::paint_floor`]. Visual-only shapes lying on the floor (a line given as
+//! a thin Box or an `.obj` Mesh outside any Solid) become floor paint, as Webots' infra-red
+//! sensors see them. Anything not understood (an unknown PROTO, a tilted shape, a mesh bounding
+//! object, a visual-only shape above the floor) becomes a warning.
 //!
 //! ```
 //! use mazesim_core::wbt::{Obstacle, WbtImport};
@@ -34,6 +36,7 @@
 
 mod convert;
 mod devices;
+mod floor_marks;
 mod floor_texture;
 mod frames;
 mod header;
@@ -50,6 +53,7 @@ use crate::error::Result;
 
 pub use convert::polygon_sides;
 pub use devices::{DeviceField, ExtensionDevice};
+pub use floor_marks::{colour_reflectance, obj_triangles, FloorMesh};
 pub use floor_texture::{grey_reflectance, FloorTexture, GreyImage};
 pub use header::WbtVersion;
 pub use tree::{Document, Field, Node, NodeId, Value};
@@ -140,7 +144,11 @@ pub struct WbtImport {
     pub extension_devices: Vec<ExtensionDevice>,
     /// Image textures on the floor, painted by [`WbtImport::paint_floor`].
     pub floor_textures: Vec<FloorTexture>,
-    /// Floor paint from the textures painted so far.
+    /// Meshes of visual-only shapes (`Mesh` in a `Shape` that no `Solid` with a
+    /// `boundingObject` owns), painted on the floor when they lie on it; read by the import.
+    pub floor_meshes: Vec<FloorMesh>,
+    /// Floor paint: the textures painted so far, then the marks of visual-only shapes lying
+    /// on the floor.
     pub paint: Vec<crate::world::spec::PaintSpec>,
     /// `WorldInfo.basicTimeStep` (Webots' default 32 ms when absent).
     pub basic_time_step_ms: f64,
@@ -165,7 +173,9 @@ impl WbtImport {
     ) -> Result<WbtImport> {
         let document = Document::parse(text, source)?;
         let mut import = import::import(&document, choice.into());
-        import.locate_textures(Path::new(source).parent().unwrap_or(Path::new("")));
+        let dir = Path::new(source).parent().unwrap_or(Path::new(""));
+        import.locate_textures(dir);
+        import.paint_floor_meshes(dir);
         Ok(import)
     }
 

@@ -512,3 +512,105 @@ fn issue_33_a_run_of_one_robot_chosen_by_its_line() {
         "line 2: Robot \"boss\": a robot that is not an e-puck (Robot): its controller runs"
     ));
 }
+
+/// The reflectance the import paints at (x, y), the last paint on top; `None` for bare floor.
+fn painted_at(import: &WbtImport, x: f64, y: f64) -> Option<f64> {
+    use crate::world::spec::PaintSpec;
+    import.paint.iter().rev().find_map(|p| match p {
+        PaintSpec::Rect {
+            center,
+            size,
+            yaw,
+            reflectance,
+        } => {
+            let (s, c) = yaw.0.sin_cos();
+            let (dx, dy) = (x - center[0].0, y - center[1].0);
+            let (u, v) = (c * dx + s * dy, -s * dx + c * dy);
+            let inside = u.abs() < size[0].0 / 2.0 && v.abs() < size[1].0 / 2.0;
+            inside.then_some(reflectance.0)
+        }
+        PaintSpec::Circle {
+            center,
+            radius,
+            reflectance,
+        } => ((x - center[0].0).hypot(y - center[1].0) < radius.0).then_some(reflectance.0),
+        PaintSpec::Polyline { .. } => None,
+    })
+}
+
+#[test]
+fn test_issue_32_a_line_given_as_an_obj_mesh_outside_any_solid_is_floor_paint() {
+    // A black strip 0.6 m long and 2 cm wide, 2 mm thick, as a Wavefront file beside the world,
+    // scaled and moved by the Transform as Webots does.
+    let dir = std::env::temp_dir().join(format!("mazesim-obj-mesh-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("line")).unwrap();
+    std::fs::create_dir_all(dir.join("worlds")).unwrap();
+    std::fs::write(
+        dir.join("line/strip.obj"),
+        "# strip\no strip\nv -30 -1 0\nv 30 -1 0\nv 30 1 0\nv -30 1 0\n\
+         v -30 -1 0.1\nv 30 -1 0.1\nv 30 1 0.1\nv -30 1 0.1\nf 1 2 3 4\nf 5/1 6/1 7/1 8/1\n",
+    )
+    .unwrap();
+    let world = dir.join("worlds/line.wbt");
+    let text = "#VRML_SIM R2025a utf8\nWorldInfo { }\n\
+        Transform { translation 0.2 0.1 0 scale 0.01 0.01 0.02 children [\n\
+          Shape { appearance PBRAppearance { baseColor 0 0 0 } geometry Mesh { url [ \"../line/strip.obj\" ] } }\n\
+        ] }\n\
+        Transform { translation 0 -0.3 0.1 children [ Shape { geometry Box { size 0.1 0.1 0.1 } } ] }\n\
+        Pose { translation 0 0.4 0.0005 children [ Shape { appearance Appearance { material Material { diffuseColor 0.5 0.5 0.5 } } geometry Box { size 0.1 0.1 0.001 } } ] }\n\
+        Solid { translation 0.5 0.5 0.05 children [ Shape { geometry Box { size 0.1 0.1 0.1 } } ] boundingObject Box { size 0.1 0.1 0.1 } }\n\
+        E-puck { }\n";
+    let import = WbtImport::from_text(text, &world.display().to_string()).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    // The strip spans x 0.2 +- 0.3, y 0.1 +- 0.01: black (0.2) on it, bare floor beside it.
+    for x in [-0.05, 0.2, 0.45] {
+        assert_eq!(
+            painted_at(&import, x, 0.1),
+            Some(0.2),
+            "on the line at x {x}"
+        );
+    }
+    assert_eq!(painted_at(&import, 0.2, 0.13), None);
+    assert_eq!(painted_at(&import, 0.55, 0.1), None);
+    // A grey tile 1 mm thick is a mark too: 0.2 + 0.8 * 0.5.
+    assert!((painted_at(&import, 0.0, 0.4).unwrap() - 0.6).abs() < 1e-12);
+    // A visual-only box that stands on the floor is named, not lost; the Solid's is simulated.
+    let dropped: Vec<_> = import
+        .warnings
+        .iter()
+        .filter(|w| w.contains("not imported"))
+        .collect();
+    assert_eq!(dropped.len(), 1, "{:?}", import.warnings);
+    assert!(
+        dropped[0].contains("line 6: Shape") && dropped[0].contains("outside any Solid"),
+        "{dropped:?}"
+    );
+    assert_eq!(import.obstacles.len(), 1);
+}
+
+#[test]
+fn a_mesh_that_cannot_be_read_or_rises_above_the_floor_is_named() {
+    let dir = std::env::temp_dir().join(format!("mazesim-obj-tall-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("tall.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 1\nf 1 2 3\n").unwrap();
+    let text = "#VRML_SIM R2025a utf8\nWorldInfo { }\n\
+        Shape { geometry Mesh { url [ \"tall.obj\" ] } }\n\
+        Shape { geometry Mesh { url [ \"absent.obj\" ] } }\n\
+        Shape { geometry Mesh { url [ \"https://example.org/m.obj\" ] } }\n\
+        Shape { geometry Mesh { url [ \"part.stl\" ] } }\n";
+    let import = WbtImport::from_text(text, &dir.join("w.wbt").display().to_string()).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert!(import.paint.is_empty());
+    for (line, words) in [
+        (3, "reaching 1.000 m above the floor"),
+        (4, "absent.obj"),
+        (5, "not URLs"),
+        (6, "only Wavefront .obj"),
+    ] {
+        let found = import
+            .warnings
+            .iter()
+            .any(|w| w.starts_with(&format!("line {line}: Mesh")) && w.contains(words));
+        assert!(found, "line {line}: {words}: {:?}", import.warnings);
+    }
+}

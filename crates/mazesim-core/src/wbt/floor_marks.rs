@@ -1,0 +1,523 @@
+//! Visual-only shapes: a `Shape` that belongs to no `Solid` with a `boundingObject` collides
+//! with nothing in Webots, but its infra-red distance sensors still see it (the reference
+//! manual's DistanceSensor page: "infra-red rays collision detection uses the Solid nodes
+//! themselves"; the sensor picks the colour of the first shape its ray meets, reflection factor
+//! `0.2 + 0.8 red`). A line drawn on the floor as a thin `Box`, `Cylinder`, `IndexedFaceSet` or
+//! `Mesh` (a Wavefront `.obj` file) is such a shape.
+//!
+//! Shapes no taller than [`FLOOR_MARK_HEIGHT`] that lie on the floor become floor paint of
+//! their colour's reflection factor, seen by the ground sensors; a mesh's triangles are read
+//! from its `.obj` file and painted cell by cell. Every other visual-only shape is named in a
+//! warning (nothing of the world is lost without a word).
+
+use super::frames::{tilt, Frame, Vec3};
+use super::import::{Importer, TILT_TOLERANCE};
+use super::shapes::snap;
+use super::tree::Node;
+use super::WbtImport;
+use crate::world::spec::PaintSpec;
+use crate::world::values::{Finite, Positive, Reflectance};
+
+/// A visual-only shape whose top is at most this high (metres) and whose bottom is on the floor
+/// is a mark on the floor (the e-puck's proximity sensors, about 3 cm up, pass over it).
+pub const FLOOR_MARK_HEIGHT: f64 = 0.005;
+/// Tolerance below the floor (metres) for the bottom of a floor mark.
+const BELOW_FLOOR: f64 = 0.001;
+/// Side of the cells a floor mesh is painted in (metres), at the finest.
+pub const MARK_CELL: f64 = 0.002;
+/// Most cells along one side of a mesh's painted area; a larger mesh gets larger cells.
+const MAX_MARK_CELLS: usize = 1024;
+/// Largest `.obj` file read, bytes.
+pub const MAX_MESH_BYTES: u64 = 32 << 20;
+
+/// A `Mesh` of a visual-only shape, read after the walk (see [`WbtImport::paint_floor_meshes`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FloorMesh {
+    /// The `url` entries of the `Mesh`, in order.
+    pub urls: Vec<String>,
+    /// `line L: Mesh` for messages.
+    pub owner: String,
+    /// The shape's Z-up frame in the world.
+    pub frame: Frame,
+    /// The reflection factor of its colour.
+    pub reflectance: f64,
+}
+
+/// The reflection factor Webots' infra-red sensors give a colour: `0.2 + 0.8 red`.
+pub fn colour_reflectance(rgb: [f64; 3]) -> f64 {
+    0.2 + 0.8 * rgb[0].clamp(0.0, 1.0)
+}
+
+/// Triangles of a Wavefront `.obj` text (`v` and `f` lines; polygons fanned into triangles,
+/// negative indices counted from the end), or why not, with the line.
+pub fn obj_triangles(text: &str) -> Result<Vec<[Vec3; 3]>, String> {
+    let mut vertices: Vec<Vec3> = Vec::new();
+    let mut triangles = Vec::new();
+    for (number, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some("v") => {
+                let mut v = [0.0; 3];
+                for c in &mut v {
+                    *c = words
+                        .next()
+                        .and_then(|w| w.parse::<f64>().ok())
+                        .filter(|x| x.is_finite())
+                        .ok_or_else(|| {
+                            format!(
+                                "line {}: expected a vertex of three numbers, found {line:?}",
+                                number + 1
+                            )
+                        })?;
+                }
+                vertices.push(v);
+            }
+            Some("f") => {
+                let mut corners = Vec::new();
+                for word in words {
+                    let index = word.split('/').next().unwrap_or("");
+                    let resolved = index.parse::<i64>().ok().and_then(|i| match i {
+                        i if i > 0 => usize::try_from(i - 1).ok(),
+                        i if i < 0 => vertices.len().checked_sub(i.unsigned_abs() as usize),
+                        _ => None,
+                    });
+                    match resolved.and_then(|i| vertices.get(i)) {
+                        Some(v) => corners.push(*v),
+                        None => {
+                            return Err(format!(
+                                "line {}: expected a vertex index from 1 to {}, found {word:?}",
+                                number + 1,
+                                vertices.len()
+                            ))
+                        }
+                    }
+                }
+                for k in 2..corners.len() {
+                    triangles.push([corners[0], corners[k - 1], corners[k]]);
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(triangles)
+}
+
+/// Paint covering the cells whose centres fall inside the triangles seen from above
+/// (world frame, z up), at `reflectance`: rows of covered cells joined into rectangles.
+pub fn triangles_paint(triangles: &[[Vec3; 3]], reflectance: f64) -> Vec<PaintSpec> {
+    let points = triangles.iter().flatten();
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for p in points {
+        for i in 0..2 {
+            lo[i] = lo[i].min(p[i]);
+            hi[i] = hi[i].max(p[i]);
+        }
+    }
+    if !(lo[0] < hi[0] && lo[1] < hi[1]) {
+        return Vec::new();
+    }
+    let extent = (hi[0] - lo[0]).max(hi[1] - lo[1]);
+    let cell = MARK_CELL.max(extent / MAX_MARK_CELLS as f64);
+    let width = ((hi[0] - lo[0]) / cell).ceil() as usize + 1;
+    let height = ((hi[1] - lo[1]) / cell).ceil() as usize + 1;
+    let mut covered = vec![false; width * height];
+    let centre = |i: usize, lo: f64| lo + (i as f64 + 0.5) * cell;
+    for t in triangles {
+        let [a, b, c] = t.map(|p| [p[0], p[1]]);
+        let cross = |o: [f64; 2], p: [f64; 2], q: [f64; 2]| {
+            (p[0] - o[0]) * (q[1] - o[1]) - (p[1] - o[1]) * (q[0] - o[0])
+        };
+        let area = cross(a, b, c);
+        if area.abs() < 1e-18 {
+            continue;
+        }
+        let index =
+            |v: f64, lo: f64, n: usize| (((v - lo) / cell).floor().max(0.0) as usize).min(n - 1);
+        let (c0, c1) = (
+            index(a[0].min(b[0]).min(c[0]), lo[0], width),
+            index(a[0].max(b[0]).max(c[0]), lo[0], width),
+        );
+        let (r0, r1) = (
+            index(a[1].min(b[1]).min(c[1]), lo[1], height),
+            index(a[1].max(b[1]).max(c[1]), lo[1], height),
+        );
+        for r in r0..=r1 {
+            for col in c0..=c1 {
+                let p = [centre(col, lo[0]), centre(r, lo[1])];
+                let s = area.signum();
+                let inside = s * cross(a, b, p) >= 0.0
+                    && s * cross(b, c, p) >= 0.0
+                    && s * cross(c, a, p) >= 0.0;
+                if inside {
+                    covered[r * width + col] = true;
+                }
+            }
+        }
+    }
+    covered_rects(&covered, width, height)
+        .into_iter()
+        .map(|[c0, c1, r0, r1]| PaintSpec::Rect {
+            center: [
+                Finite(snap(lo[0] + (c0 + c1) as f64 * cell / 2.0)),
+                Finite(snap(lo[1] + (r0 + r1) as f64 * cell / 2.0)),
+            ],
+            size: [
+                Positive((c1 - c0) as f64 * cell),
+                Positive((r1 - r0) as f64 * cell),
+            ],
+            yaw: Finite(0.0),
+            reflectance: Reflectance(reflectance),
+        })
+        .collect()
+}
+
+/// Rectangles `[c0, c1, r0, r1]` (end exclusive) of covered cells: runs along each row joined
+/// with the same run of the row before.
+fn covered_rects(covered: &[bool], width: usize, height: usize) -> Vec<[usize; 4]> {
+    let mut done = Vec::new();
+    let mut open: std::collections::BTreeMap<(usize, usize), usize> = Default::default();
+    for r in 0..=height {
+        let mut next = std::collections::BTreeMap::new();
+        if r < height {
+            let row = &covered[r * width..(r + 1) * width];
+            let mut c0 = 0;
+            while c0 < width {
+                let run = row[c0..].iter().take_while(|&&v| v == row[c0]).count();
+                if row[c0] {
+                    let start = open.remove(&(c0, c0 + run)).unwrap_or(r);
+                    next.insert((c0, c0 + run), start);
+                }
+                c0 += run;
+            }
+        }
+        for ((c0, c1), r0) in std::mem::replace(&mut open, next) {
+            done.push([c0, c1, r0, r]);
+        }
+    }
+    done
+}
+
+impl<'d> Importer<'d> {
+    /// The colour of an appearance as Webots' infra-red sensors pick it: a `PBRAppearance`'s
+    /// `baseColor` (default white), an `Appearance`'s `Material.diffuseColor` (default 0.8 grey;
+    /// white without a material); no appearance is white.
+    fn appearance_colour(&mut self, shape: &'d Node) -> [f64; 3] {
+        let Some(&appearance) = self.nodes(shape, "appearance").first() else {
+            return [1.0; 3];
+        };
+        let appearance = self.node(appearance);
+        match appearance.type_name.as_str() {
+            "PBRAppearance" => self.vector(appearance, "baseColor", [1.0; 3]),
+            "Appearance" => match self.nodes(appearance, "material").first() {
+                Some(&material) => self.vector(self.node(material), "diffuseColor", [0.8; 3]),
+                None => [1.0; 3],
+            },
+            _ => [1.0; 3],
+        }
+    }
+
+    /// Warns that a visual-only shape is not imported.
+    fn drop_visual(&mut self, shape: &'d Node, geometry: &'d Node, why: &str) {
+        let label = self.label(shape);
+        self.warn(format!(
+            "{label}: a {} shape outside any Solid with a boundingObject (nothing collides with it in Webots, but its infra-red sensors see it) {why}: not imported",
+            geometry.type_name
+        ));
+    }
+
+    /// A `Shape` of the scene that no `Solid` with a `boundingObject` owns (`frame` is its
+    /// parent's): a floor texture, a floor mark, or a warning.
+    pub fn visual_shape(&mut self, node: &'d Node, frame: &Frame) {
+        let Some(&geometry) = self.nodes(node, "geometry").first() else {
+            return; // a Shape without geometry draws nothing
+        };
+        let geometry = self.node(geometry);
+        let parent = *frame;
+        // Primitives are defined Z-up (turned in Y-up files); points are taken as written.
+        let frame = self.z_up(frame);
+        let rgb = self.appearance_colour(node);
+        let reflectance = colour_reflectance(rgb);
+        match geometry.type_name.as_str() {
+            "Plane" => {
+                if self.has_texture(node) {
+                    self.textured_shape(node, &parent);
+                } else {
+                    self.plain_plane(node, geometry, &frame, reflectance);
+                }
+            }
+            "Box" => {
+                let mut size = self.vector(geometry, "size", [2.0; 3]);
+                if self.y_up {
+                    size = super::frames::y_up_size(size);
+                }
+                let half = [0, 1, 2].map(|i| frame.axis(i).map(|c| c * size[i] / 2.0));
+                let half_z: f64 = half.iter().map(|a| a[2].abs()).sum();
+                if !self.on_floor(frame.origin[2], half_z) || tilt(frame.axis(2)) > TILT_TOLERANCE {
+                    return self.drop_visual(node, geometry, "above the floor");
+                }
+                let width = half[0][0].hypot(half[0][1]) * 2.0;
+                let depth = half[1][0].hypot(half[1][1]) * 2.0;
+                self.mark(PaintSpec::Rect {
+                    center: [Finite(snap(frame.origin[0])), Finite(snap(frame.origin[1]))],
+                    size: [Positive(width), Positive(depth)],
+                    yaw: Finite(snap(half[0][1].atan2(half[0][0]))),
+                    reflectance: Reflectance(reflectance),
+                });
+            }
+            "Cylinder" => {
+                let radius = self.number(geometry, "radius", 1.0);
+                let height = self.number(geometry, "height", 2.0);
+                let axis = frame.axis(2);
+                let half_z = (axis[2] * height / 2.0).abs();
+                let scale = frame.axis(0)[0].hypot(frame.axis(0)[1]);
+                if !self.on_floor(frame.origin[2], half_z) || tilt(axis) > TILT_TOLERANCE {
+                    return self.drop_visual(node, geometry, "above the floor");
+                }
+                self.mark(PaintSpec::Circle {
+                    center: [Finite(snap(frame.origin[0])), Finite(snap(frame.origin[1]))],
+                    radius: Positive(radius * scale),
+                    reflectance: Reflectance(reflectance),
+                });
+            }
+            "IndexedFaceSet" => {
+                let triangles = self.face_set_triangles(geometry, &parent);
+                self.mark_triangles(node, geometry, &triangles, reflectance);
+            }
+            "Mesh" => {
+                let label = self.label(geometry);
+                let urls = self.strings(geometry, "url").to_vec();
+                self.floor_meshes.push(FloorMesh {
+                    urls,
+                    owner: label,
+                    frame: parent,
+                    reflectance,
+                });
+            }
+            _ => self.drop_visual(
+                node,
+                geometry,
+                "(only Plane, Box, Cylinder, IndexedFaceSet and Mesh marks on the floor are read)",
+            ),
+        }
+    }
+
+    /// Whether a shape spanning `center_z +- half_z` lies on the floor as a mark.
+    fn on_floor(&self, center_z: f64, half_z: f64) -> bool {
+        on_floor(center_z + half_z)
+    }
+
+    /// Whether a Shape's appearance holds an `ImageTexture` (a `PBRAppearance`'s `baseColorMap`,
+    /// an `Appearance`'s `texture`).
+    fn has_texture(&self, shape: &'d Node) -> bool {
+        self.nodes(shape, "appearance").iter().any(|&a| {
+            let appearance = self.node(a);
+            ["baseColorMap", "texture"]
+                .iter()
+                .flat_map(|field| self.nodes(appearance, field))
+                .any(|&t| self.node(t).type_name == "ImageTexture")
+        })
+    }
+
+    fn mark(&mut self, paint: PaintSpec) {
+        let valid = match &paint {
+            PaintSpec::Rect { size, .. } => size.iter().all(|s| s.0 > 0.0 && s.0.is_finite()),
+            PaintSpec::Circle { radius, .. } => radius.0 > 0.0 && radius.0.is_finite(),
+            PaintSpec::Polyline { .. } => true,
+        };
+        if valid {
+            self.floor_marks.push(paint);
+        }
+    }
+
+    /// Paints `triangles` (world frame) when they lie on the floor; warns otherwise.
+    pub fn mark_triangles(
+        &mut self,
+        shape: &'d Node,
+        geometry: &'d Node,
+        triangles: &[[Vec3; 3]],
+        reflectance: f64,
+    ) {
+        let high = triangles
+            .iter()
+            .flatten()
+            .fold(f64::NEG_INFINITY, |h, p| h.max(p[2]));
+        if triangles.is_empty() {
+            return self.drop_visual(shape, geometry, "without faces");
+        }
+        if !on_floor(high) {
+            let why = format!("reaching {high:.3} m above the floor");
+            return self.drop_visual(shape, geometry, &why);
+        }
+        let paint = triangles_paint(triangles, reflectance);
+        self.floor_marks.extend(paint);
+    }
+
+    /// The triangles of an `IndexedFaceSet` (its `Coordinate.point` and `coordIndex`, faces
+    /// ended by -1 and fanned), in the world frame `frame`.
+    fn face_set_triangles(&mut self, geometry: &'d Node, frame: &Frame) -> Vec<[Vec3; 3]> {
+        let Some(&coord) = self.nodes(geometry, "coord").first() else {
+            return Vec::new();
+        };
+        let points: Vec<Vec3> = self
+            .numbers(self.node(coord), "point")
+            .unwrap_or(&[])
+            .chunks_exact(3)
+            .map(|p| world_point(frame, [p[0], p[1], p[2]]))
+            .collect();
+        let indices = self.numbers(geometry, "coordIndex").unwrap_or(&[]);
+        let mut triangles = Vec::new();
+        for face in indices.split(|&i| i < 0.0) {
+            let corners: Vec<Vec3> = face
+                .iter()
+                .filter_map(|&i| points.get(i as usize).copied())
+                .collect();
+            for k in 2..corners.len() {
+                triangles.push([corners[0], corners[k - 1], corners[k]]);
+            }
+        }
+        triangles
+    }
+
+    /// A horizontal `Plane` at floor level without a texture: paint of its colour (white paints
+    /// nothing: the floor is white already).
+    fn plain_plane(
+        &mut self,
+        shape: &'d Node,
+        geometry: &'d Node,
+        frame: &Frame,
+        reflectance: f64,
+    ) {
+        if tilt(frame.axis(2)) > TILT_TOLERANCE || frame.origin[2].abs() > FLOOR_MARK_HEIGHT {
+            return self.drop_visual(shape, geometry, "not lying on the floor");
+        }
+        if reflectance >= 1.0 {
+            return;
+        }
+        let mut size = self.vector(geometry, "size", [1.0, 1.0]);
+        if self.y_up {
+            size = [size[1], size[0]];
+        }
+        let (x, y) = (frame.axis(0), frame.axis(1));
+        self.mark(PaintSpec::Rect {
+            center: [Finite(snap(frame.origin[0])), Finite(snap(frame.origin[1]))],
+            size: [
+                Positive(size[0] * x[0].hypot(x[1])),
+                Positive(size[1] * y[0].hypot(y[1])),
+            ],
+            yaw: Finite(snap(x[1].atan2(x[0]))),
+            reflectance: Reflectance(reflectance),
+        });
+    }
+}
+
+/// Whether a shape whose top is at `top` (metres) is a mark on the floor.
+fn on_floor(top: f64) -> bool {
+    (-BELOW_FLOOR..=FLOOR_MARK_HEIGHT).contains(&top)
+}
+
+/// A point of a shape's local frame in the world.
+fn world_point(frame: &Frame, p: Vec3) -> Vec3 {
+    let v = frame.vector(p);
+    [0, 1, 2].map(|i| v[i] + frame.origin[i])
+}
+
+impl WbtImport {
+    /// Reads the `.obj` files of the visual-only meshes (urls relative to `dir`) and paints
+    /// those lying on the floor; each mesh that cannot be read or does not lie on the floor
+    /// gets a warning.
+    pub(super) fn paint_floor_meshes(&mut self, dir: &std::path::Path) {
+        for mesh in std::mem::take(&mut self.floor_meshes) {
+            let url = mesh.urls.first().cloned().unwrap_or_default();
+            let owner = &mesh.owner;
+            if url.contains("://") {
+                self.warnings.push(format!(
+                    "{owner}: mesh {url:?}: only files beside the world are read, not URLs: not imported"
+                ));
+                continue;
+            }
+            if !url.to_ascii_lowercase().ends_with(".obj") {
+                self.warnings.push(format!(
+                    "{owner}: mesh {url:?}: only Wavefront .obj meshes are read: not imported"
+                ));
+                continue;
+            }
+            let path = dir.join(&url);
+            let text = crate::io::read_limited(&path, MAX_MESH_BYTES, "the mesh")
+                .map_err(|e| e.to_string())
+                .and_then(|bytes| {
+                    String::from_utf8(bytes).map_err(|_| "expected UTF-8 text".to_string())
+                })
+                .and_then(|text| obj_triangles(&text));
+            let triangles = match text {
+                Ok(t) => t,
+                Err(why) => {
+                    self.warnings.push(format!(
+                        "{owner}: mesh {}: {why}: not imported",
+                        path.display()
+                    ));
+                    continue;
+                }
+            };
+            let world: Vec<[Vec3; 3]> = triangles
+                .iter()
+                .map(|t| t.map(|p| world_point(&mesh.frame, p)))
+                .collect();
+            let high = world
+                .iter()
+                .flatten()
+                .fold(f64::NEG_INFINITY, |h, p| h.max(p[2]));
+            if world.is_empty() || !on_floor(high) {
+                self.warnings.push(format!(
+                    "{owner}: mesh {url:?} outside any Solid with a boundingObject (nothing collides with it in Webots, but its infra-red sensors see it) reaching {high:.3} m above the floor: not imported"
+                ));
+                continue;
+            }
+            self.paint.extend(triangles_paint(&world, mesh.reflectance));
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn obj_faces_fan_into_triangles_with_relative_indices() {
+        let text = "# a square\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1 -1\n";
+        let triangles = obj_triangles(text).unwrap();
+        assert_eq!(triangles.len(), 2);
+        assert_eq!(triangles[1][2], [0.0, 1.0, 0.0]);
+        let bad = obj_triangles("v 0 0 0\nf 1 2 3\n").unwrap_err();
+        assert!(
+            bad.contains("line 2") && bad.contains("from 1 to 1"),
+            "{bad}"
+        );
+        assert!(obj_triangles("v 0 x 0\n").unwrap_err().contains("line 1"));
+    }
+
+    #[test]
+    fn a_painted_triangle_covers_its_half_of_the_square() {
+        let t = [[0.0, 0.0, 0.0], [0.1, 0.0, 0.0], [0.0, 0.1, 0.0]];
+        let paint = triangles_paint(&[t], 0.2);
+        let area: f64 = paint
+            .iter()
+            .map(|p| match p {
+                PaintSpec::Rect { size, .. } => size[0].0 * size[1].0,
+                _ => 0.0,
+            })
+            .sum();
+        // Half of 0.01 m^2, to the cells along the 0.14 m hypotenuse.
+        assert!((area - 0.005).abs() < 0.15 * MARK_CELL, "{area}");
+        let inside = |x: f64, y: f64| {
+            paint.iter().any(|p| match p {
+                PaintSpec::Rect { center, size, .. } => {
+                    (x - center[0].0).abs() < size[0].0 / 2.0
+                        && (y - center[1].0).abs() < size[1].0 / 2.0
+                }
+                _ => false,
+            })
+        };
+        assert!(inside(0.021, 0.021));
+        assert!(!inside(0.08, 0.08));
+    }
+}
