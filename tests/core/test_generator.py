@@ -101,7 +101,7 @@ WORLDS_PAGE = Path(__file__).resolve().parents[2] / "docs" / "worlds.md"
     seed=st.integers(0, 2**64 - 1),
     loops=st.one_of(st.just(0.0), st.floats(0.0, 0.5)),
 )
-def test_issue_37_every_generated_maze_larger_than_2_by_2_is_one_the_navigator_can_learn(
+def test_every_generated_maze_larger_than_2_by_2_is_one_the_navigator_can_learn(
     width: int, height: int, seed: int, loops: float
 ) -> None:
     world = mazesim.generate_maze(width, height, seed=seed, loops=loops)
@@ -113,7 +113,7 @@ def test_issue_37_every_generated_maze_larger_than_2_by_2_is_one_the_navigator_c
         assert not world.checkpoints()  # a ring of four cells has no junction
 
 
-def test_issue_37_the_share_of_single_corridor_first_draws_is_the_pages() -> None:
+def test_the_share_of_single_corridor_first_draws_is_the_pages() -> None:
     shown = re.search(
         r"about (\d+) % of first draws at 3 x 3, (\d+) % at 4 x 4, (\d+) %\s+at 5 x 5",
         WORLDS_PAGE.read_text(encoding="utf-8"),

@@ -192,7 +192,7 @@ def test_other_settings_cannot_resume(tmp_path: Path) -> None:
         train(other, RunFolder(tmp_path, resume=True), progress=None, threads=1)
 
 
-def test_issue_37_other_settings_name_each_setting_that_differs(tmp_path: Path) -> None:
+def test_other_settings_name_each_setting_that_differs(tmp_path: Path) -> None:
     assert train(RUN, RunFolder(tmp_path), progress=None, threads=1, stop_after_rounds=1) is None
     other = dataclasses.replace(RUN, seed=RUN.seed + 1)
     with pytest.raises(PolicyFormatError) as refused:

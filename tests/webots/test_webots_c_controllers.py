@@ -295,7 +295,7 @@ def test_a_tk_window_without_a_display_is_named_before_the_run(
     assert NO_DISPLAY not in prepare_controller(str(tmp_path / "mouse.py")).missing
 
 
-def test_issue_32_a_tk_controller_without_a_display_is_not_started(
+def test_a_tk_controller_without_a_display_is_not_started(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     # Started, it would wait forever for the thread whose window Tk refuses.

@@ -539,7 +539,7 @@ fn painted_at(import: &WbtImport, x: f64, y: f64) -> Option<f64> {
 }
 
 #[test]
-fn test_issue_32_a_line_given_as_an_obj_mesh_outside_any_solid_is_floor_paint() {
+fn test_a_line_given_as_an_obj_mesh_outside_any_solid_is_floor_paint() {
     // A black strip 0.6 m long and 2 cm wide, 2 mm thick, as a Wavefront file beside the world,
     // scaled and moved by the Transform as Webots does.
     let dir = std::env::temp_dir().join(format!("mazesim-obj-mesh-{}", std::process::id()));
