@@ -403,7 +403,7 @@ impl Swarm {
 /// The error of robot index `index` in a world of `n` robots.
 pub fn bad_index(index: impl std::fmt::Display, n: usize) -> Error {
     Error::InvalidArgument(format!(
-        "expected a robot index from 0 to {} (the world has {n} robot{}), found {index}",
+        "robot_index: expected a robot index from 0 to {} (the world has {n} robot{}), found {index}",
         n - 1,
         if n == 1 { "" } else { "s" }
     ))
