@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 import mazesim
+from lower_oracle import SteppedFleet
 from mazesim._core import RobotProfile
 from mazesim.batch import RobotBatch
 from mazesim.errors import InvalidArgumentError, UnknownNameError
@@ -22,7 +23,6 @@ from mazesim.learn.train import train
 from mazesim.transfer.axes import Setting
 from mazesim.transfer.randomise import parse_spec, robot_draw, sample_settings
 from mazesim.transfer.readings import SeedReadings
-from lower_oracle import SteppedFleet
 from training_settings import TINY
 
 ROBOTS = ("seed", "e-puck", "e-puck2", "e-puck-hardware")
