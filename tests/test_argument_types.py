@@ -172,7 +172,7 @@ def samples(tmp: Path) -> dict[str, Any]:
         # Parameters whose name means something else for one callable.
         "overrides": {
             "observe_env": {"readings": np.zeros(11, np.float32), "pose": np.zeros(3, np.float32)},
-            "train_lower_round": lower_round_samples(world, x, y, yaw),
+            "train_lower_round": lower_round_samples(world, x, y, yaw, batch),
             "q_batch_update": {
                 "q": np.zeros((4, 3)),
                 "visits": np.zeros((4, 3), np.int64),
@@ -190,12 +190,24 @@ def samples(tmp: Path) -> dict[str, Any]:
     }
 
 
-def lower_round_samples(world: Any, x: float, y: float, yaw: float) -> dict[str, Any]:
-    """A valid round of one step of ``BatchSimulator.train_lower_round`` for ``NUM_ENVS``."""
+def lower_round_samples(world: Any, x: float, y: float, yaw: float, batch: Any) -> dict[str, Any]:
+    """A valid round of one step of ``train_lower_round`` for the ``NUM_ENVS`` robots of
+    ``batch``."""
     rows = 3 * 4096
     return {
+        "crews": [
+            {
+                "simulator": batch,
+                "observations": np.zeros((NUM_ENVS, batch.observation_width), np.float32),
+                "poses": np.zeros((NUM_ENVS, 3), np.float32),
+                "colliding": np.zeros(NUM_ENVS, bool),
+                "crossings": np.zeros(NUM_ENVS, np.int32),
+                "world_of_env": np.zeros(NUM_ENVS, np.int64),
+                "wheel_speeds": np.zeros((12, 2), np.float32),
+                "members": np.arange(NUM_ENVS, dtype=np.int64),
+            }
+        ],
         "worlds": [world],
-        "world_of_env": np.zeros(NUM_ENVS, np.int64),
         "role": np.arange(NUM_ENVS, dtype=np.int64) % 4,
         "starts": {
             "world": np.zeros((NUM_ENVS, 1), np.int64),
@@ -213,7 +225,6 @@ def lower_round_samples(world: Any, x: float, y: float, yaw: float) -> dict[str,
             "subtasks": np.arange(4, dtype=np.int64),
         },
         "allowed": np.ones((4, 12), bool),
-        "wheel_speeds": np.zeros((12, 2), np.float32),
         "settings": {
             "gamma": 0.99,
             "epsilon": 0.0,

@@ -43,11 +43,11 @@ CASES = {
         "batch.run(3, 'tabular', *buffers(batch), table=Shaped())",
         r"table .*no usable shape",
     ),
-    "train lower round worlds": (
-        "batch.train_lower_round(*buffers(batch), worlds=HUGE, world_of_env=None, role=None, "
-        "starts=None, explore=None, random_action=None, q=None, visits=None, symmetry=None, "
-        "allowed=None, wheel_speeds=None, settings=SETTINGS)",
-        r"worlds .*at most 16777216 .*1000000000 items",
+    "train lower round crews": (
+        "_core.train_lower_round(HUGE, worlds=None, role=np.zeros(2, np.int64), starts=None, "
+        "explore=None, random_action=None, q=None, visits=None, symmetry=None, allowed=None, "
+        "settings=SETTINGS)",
+        r"crews .*at most 16777216 .*1000000000 items",
     ),
     "robot batch reset seeds": (
         "RobotBatch([world], [0, 0]).reset(seeds=HUGE)",
@@ -68,6 +68,7 @@ CASES = {
 }
 
 BODY = """
+import numpy as np
 from mazesim.batch import RobotBatch
 HUGE = range(10**9)
 class HugeTuple(tuple):

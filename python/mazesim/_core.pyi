@@ -24,6 +24,7 @@ __all__ = [
     "q_batch_update",
     "robot_profile_names",
     "sharp_volts_to_cm",
+    "train_lower_round",
     "validate_codes",
 ]
 __version__: str
@@ -37,6 +38,38 @@ def robot_profile_names() -> list[str]:
 def sharp_volts_to_cm(volts: float) -> float:
     """Converts a Sharp GP2Y0A41SK0F reading in volts to a distance in cm (inverted table); NaN or
     infinite volts raise InvalidArgumentError."""
+
+def train_lower_round(
+    crews: Sequence[dict[str, Any]],
+    *,
+    worlds: Sequence[World],
+    role: npt.NDArray[np.int64],
+    starts: dict[str, npt.NDArray[Any]],
+    explore: npt.NDArray[np.float64],
+    random_action: npt.NDArray[np.int64],
+    q: npt.NDArray[np.float64],
+    visits: npt.NDArray[np.int64],
+    symmetry: dict[str, npt.NDArray[np.int64]],
+    allowed: npt.NDArray[np.bool_],
+    settings: dict[str, float | str],
+) -> dict[str, Any]:
+    """One round of the lower level's Q-learning in the core, as
+    ``mazesim.learn.lower.LowerTrainer`` runs it. Its N robots are in ``crews``, each a dict of a
+    ``BatchSimulator`` (``simulator``) of one robot per environment, its four buffers
+    (``observations``, ``poses``, ``colliding``, ``crossings``), its ``world_of_env``, the
+    (12, 2) float32 ``wheel_speeds`` of the actions, its robots' numbers in the round
+    (``members``, int64, increasing) and, for robots that do not read the seed robot's six volts,
+    ``readings``: the map into them as data (``mazesim.transfer.readings.SeedReadings.tables``).
+    ``explore`` ((steps, N) uniforms) and ``random_action`` ((steps, N)) are the exploration
+    draws, ``starts`` each robot's (N, K) queue of episode starts (``world``, ``pose``
+    (N, K, 3), ``seed`` uint64, ``path`` (N, K, 9)); ``q`` and ``visits`` ((4, 12288, 12), or
+    (4, 73728, 12) with ``settings["phases"] == "heading_and_distance"``) and each crew's
+    ``world_of_env`` are updated in place. Besides its numbers, ``settings`` may name the door
+    sub-tasks' ``phases`` (``"heading"``, the default, or ``"heading_and_distance"``) and the
+    ``blind`` rule of Corridors and Corners where no sensor sees a wall (``"table"``, the
+    default, ``"forward"`` or ``"hold_heading"``). Returns the round's counts (``success``,
+    ``failure``, ``cut`` per sub-task, ``corridor_metres``, ``contact_steps``). The GIL is
+    released while it runs."""
 
 def q_batch_update(
     q: npt.NDArray[np.float64],
@@ -534,38 +567,6 @@ class BatchSimulator:
     def restore_env(self, index: int, snapshot: bytes) -> None:
         """Puts environment `index` in the state of a `snapshot_env` (or `Simulator.snapshot`) of an
         environment of the same world, robot profile, control step and noise setting."""
-    def train_lower_round(
-        self,
-        observations: npt.NDArray[np.float32],
-        poses: npt.NDArray[np.float32],
-        colliding: npt.NDArray[np.bool_],
-        crossings: npt.NDArray[np.int32],
-        *,
-        worlds: Sequence[World],
-        world_of_env: npt.NDArray[np.int64],
-        role: npt.NDArray[np.int64],
-        starts: dict[str, npt.NDArray[Any]],
-        explore: npt.NDArray[np.float64],
-        random_action: npt.NDArray[np.int64],
-        q: npt.NDArray[np.float64],
-        visits: npt.NDArray[np.int64],
-        symmetry: dict[str, npt.NDArray[np.int64]],
-        allowed: npt.NDArray[np.bool_],
-        wheel_speeds: npt.NDArray[np.float32],
-        settings: dict[str, float | str],
-    ) -> dict[str, Any]:
-        """One round of the lower level's Q-learning in the core, as
-        ``mazesim.learn.lower.LowerTrainer`` steps it from Python, bit for bit: ``explore``
-        ((steps, N) uniforms) and ``random_action`` ((steps, N)) are the exploration draws,
-        ``starts`` each robot's (N, K) queue of episode starts (``world``, ``pose`` (N, K, 3),
-        ``seed`` uint64, ``path`` (N, K, 9)); ``q`` and ``visits`` ((4, 12288, 12), or
-        (4, 73728, 12) with ``settings["phases"] == "heading_and_distance"``) and
-        ``world_of_env`` are updated in place. Besides its numbers, ``settings`` may name the
-        door sub-tasks' ``phases`` (``"heading"``, the default, or ``"heading_and_distance"``) and
-        the ``blind`` rule of Corridors and Corners where no sensor sees a wall (``"table"``, the
-        default, ``"forward"`` or ``"hold_heading"``). Returns the round's counts (``success``,
-        ``failure``, ``cut`` per sub-task, ``corridor_metres``, ``contact_steps``). The GIL is
-        released while it runs."""
     def set_world(self, index: int, world: World, seed: int) -> None:
         """Puts environment ``index`` into ``world``, reset to its start with ``seed``; its rows of
         the buffers change at the next observe, step or reset. In a batch of worlds of several

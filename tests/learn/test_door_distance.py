@@ -183,7 +183,7 @@ def _e_pucks() -> Fleet:
 def test_the_blind_rule_and_distance_phases_train_alike_at_any_thread_count() -> None:
     one = LowerTrainer(E_PUCK_ROUND, threads=1, robot=_e_pucks())
     two = LowerTrainer(E_PUCK_ROUND, threads=2, robot=_e_pucks())
-    assert not one.in_core and one.tables.q.shape == lower_table_shape(True)
+    assert one.tables.q.shape == lower_table_shape(True)
     for k in range(E_PUCK_ROUND.rounds):
         assert one.run_round(k) == two.run_round(k)
     assert np.array_equal(one.tables.q, two.tables.q)
@@ -212,7 +212,6 @@ def test_either_option_alone_trains_in_the_core() -> None:
             plain, door_distance=door_distance, blind_forward=blind_forward
         )
         trainer = LowerTrainer(settings)
-        assert trainer.in_core
         assert trainer._core_settings(0.1)["phases"] == (
             "heading_and_distance" if door_distance else "heading"
         )

@@ -154,7 +154,6 @@ def _e_pucks() -> Fleet:
 def test_training_holds_the_heading_where_blind_at_any_thread_count() -> None:
     one = LowerTrainer(HOLD_ROUND, threads=1, robot=_e_pucks())
     two = LowerTrainer(HOLD_ROUND, threads=2, robot=_e_pucks())
-    assert not one.in_core
     for k in range(HOLD_ROUND.rounds):
         assert one.run_round(k) == two.run_round(k)
     assert np.array_equal(one.tables.q, two.tables.q)

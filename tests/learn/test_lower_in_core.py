@@ -1,5 +1,6 @@
-"""Issue 18: the lower level's Q-learning runs in the core, one call per round, and gives the
-tables of the round stepped from Python bit for bit, whatever the thread count."""
+"""The lower level's Q-learning runs in the core, one call per round, and gives the tables of the
+round stepped from Python bit for bit, whatever the thread count: for robots of one batch and
+for fleets of several sensor sets alike."""
 
 from __future__ import annotations
 
@@ -8,9 +9,12 @@ import dataclasses
 import numpy as np
 import pytest
 
+from lower_oracle import stepwise_round
 from mazesim import RobotProfile
+from mazesim._core import train_lower_round
+from mazesim.batch import RobotBatch
 from mazesim.errors import InvalidArgumentError, MazesimError
-from mazesim.learn.fleet import Fleet
+from mazesim.learn.fleet import FleetBatch
 from mazesim.learn.lower import (
     STARTS_PER_ROUND,
     LowerSettings,
@@ -25,22 +29,36 @@ SMALL = LowerSettings(num_envs=120, total_steps=120 * 200 * 2, round_steps=200, 
 
 
 def _rounds(trainer: LowerTrainer, stepwise: bool) -> list[object]:
-    return [trainer.run_round(k, stepwise=stepwise) for k in range(trainer.settings.rounds)]
+    rounds = range(trainer.settings.rounds)
+    if stepwise:
+        return [stepwise_round(trainer, k) for k in rounds]
+    return [trainer.run_round(k) for k in rounds]
 
 
 def _same_trainers(first: LowerTrainer, second: LowerTrainer) -> None:
     assert np.array_equal(first.tables.q, second.tables.q)
     assert np.array_equal(first.tables.visits, second.tables.visits)
-    assert np.array_equal(first.poses, second.poses)
-    assert np.array_equal(first.observations, second.observations)
-    assert np.array_equal(first.batch.world_of_env, second.batch.world_of_env)  # type: ignore[union-attr]
+    assert isinstance(first.batch, RobotBatch) and isinstance(second.batch, RobotBatch)
+    assert np.array_equal(first.batch.poses, second.batch.poses)
+    assert np.array_equal(first.batch.observations, second.batch.observations)
+    assert np.array_equal(first.batch.world_of_env, second.batch.world_of_env)
+
+
+def _same_fleets(first: LowerTrainer, second: LowerTrainer) -> None:
+    assert np.array_equal(first.tables.q, second.tables.q)
+    assert np.array_equal(first.tables.visits, second.tables.visits)
+    assert isinstance(first.batch, FleetBatch) and isinstance(second.batch, FleetBatch)
+    for (one, members, _), (other, again, _) in zip(first.batch.crews(), second.batch.crews()):
+        assert np.array_equal(members, again)
+        assert np.array_equal(one.poses, other.poses)
+        assert np.array_equal(one.observations, other.observations)
+        assert np.array_equal(one.world_of_env, other.world_of_env)
 
 
 @pytest.mark.parametrize("threads", [1, 2])
 def test_a_round_in_the_core_is_the_round_stepped_from_python(threads: int) -> None:
     stepwise = LowerTrainer(SMALL, threads=1)
     in_core = LowerTrainer(SMALL, threads=threads)
-    assert in_core.in_core
     assert _rounds(stepwise, True) == _rounds(in_core, False)
     _same_trainers(stepwise, in_core)
     # The round learned something, and Corridors and Corners never tried its forbidden action.
@@ -53,8 +71,7 @@ def test_randomised_robots_learn_in_the_core_as_stepped_from_python() -> None:
     draw = robot_draw(spec, 3)
     stepwise = LowerTrainer(SMALL, threads=2, robot=draw(0, SMALL.num_envs))
     in_core = LowerTrainer(SMALL, threads=2, robot=draw(0, SMALL.num_envs))
-    assert in_core.in_core
-    assert stepwise.run_round(0, stepwise=True) == in_core.run_round(0)
+    assert stepwise_round(stepwise, 0) == in_core.run_round(0)
     _same_trainers(stepwise, in_core)
 
 
@@ -85,8 +102,8 @@ def test_the_navigator_options_learn_in_the_core_as_stepped_from_python(
     robots = _robots_of_two_motor_limits(SMALL.num_envs)
     stepwise = LowerTrainer(settings, threads=1, robot=robots)
     in_core = LowerTrainer(settings, threads=2, robot=robots)
-    assert in_core.in_core and not in_core.batch.one_motor_limit  # type: ignore[union-attr]
-    assert stepwise.run_round(0, stepwise=True) == in_core.run_round(0)
+    assert not in_core.batch.one_motor_limit  # type: ignore[union-attr]
+    assert stepwise_round(stepwise, 0) == in_core.run_round(0)
     _same_trainers(stepwise, in_core)
     assert in_core.tables.visits[0, BLIND_STATE].sum() > 0
     if settings.door_distance:
@@ -94,11 +111,28 @@ def test_the_navigator_options_learn_in_the_core_as_stepped_from_python(
         assert in_core.tables.visits[1:, 3 * 4096 :].sum() > 0
 
 
-def test_robots_of_other_sensors_train_one_step_at_a_time() -> None:
-    draw = robot_draw(parse_spec("robot=seed|e-puck2"), 0)
-    robots = draw(0, SMALL.num_envs)
-    assert isinstance(robots, Fleet)
-    assert not LowerTrainer(SMALL, threads=1, robot=robots).in_core
+@pytest.mark.parametrize(
+    ("robots", "options"),
+    [
+        ("seed|e-puck2", {}),
+        ("seed|e-puck|alphabot2", {"door_distance": True, "blind_forward": True}),
+        ("e-puck|seed|e-puck-hardware", {"blind_forward": True, "hold_heading": True}),
+    ],
+)
+def test_fleets_of_other_sensors_learn_in_the_core_as_stepped_from_python(
+    robots: str, options: dict[str, bool]
+) -> None:
+    # Each group's readings reach the tables through the core's map into seed volts.
+    settings = dataclasses.replace(SMALL, **options)
+    draw = robot_draw(parse_spec(f"robot={robots},wheel_radius=0.95:1.05"), 1)
+    stepwise = LowerTrainer(settings, threads=1, robot=draw(0, SMALL.num_envs))
+    in_core = LowerTrainer(settings, threads=2, robot=draw(0, SMALL.num_envs))
+    assert isinstance(in_core.batch, FleetBatch) and len(in_core.batch.crews()) == 3 - (
+        robots == "seed|e-puck2"
+    )
+    assert stepwise_round(stepwise, 0) == in_core.run_round(0)
+    _same_fleets(stepwise, in_core)
+    assert in_core.tables.visits.sum() > 0
 
 
 def test_a_round_draws_only_from_its_own_stream() -> None:
@@ -142,7 +176,6 @@ def _round_arguments(trainer: LowerTrainer) -> dict[str, object]:
 
     return {
         "worlds": batch.worlds,  # type: ignore[union-attr]
-        "world_of_env": batch.world_of_env,  # type: ignore[union-attr]
         "role": trainer.role,
         "starts": starts.as_dict(),
         "explore": exploration.uniform[:5],
@@ -155,7 +188,6 @@ def _round_arguments(trainer: LowerTrainer) -> dict[str, object]:
             "subtasks": MIRRORED_SUBTASK,
         },
         "allowed": SUBTASK_ACTIONS,
-        "wheel_speeds": batch.wheel_speeds,  # type: ignore[union-attr]
         "settings": core_settings,
     }
 
@@ -178,17 +210,24 @@ def _round_arguments(trainer: LowerTrainer) -> dict[str, object]:
         (lambda a: a["settings"].update(extra=1.0), "extra"),
         (lambda a: a.update(worlds=[1, 2]), "World"),
         (lambda a: a.update(role=np.full(SMALL.num_envs, 7)), "sub-tasks"),
+        (lambda a: a["crews"][0].update(members=np.zeros(SMALL.num_envs, np.int64)), "increasing"),
+        (lambda a: a["crews"][0].update(members=np.full(SMALL.num_envs, 999)), "members"),
+        (
+            lambda a: a["crews"][0].update(wheel_speeds=np.full((12, 2), np.nan, np.float32)),
+            "wheel",
+        ),
+        (lambda a: a["crews"].append(dict(a["crews"][0])), "crew 1's twice"),
+        (lambda a: a["crews"][0].update(readings={"far": 0.4}), "directions"),
+        (lambda a: a["crews"][0].update(world_of_env=np.full(SMALL.num_envs, 99)), "world"),
     ],
 )
 def test_bad_round_arguments_are_refused_before_anything_moves(change, message) -> None:
     trainer = LowerTrainer(SMALL, threads=1)
     arguments = _round_arguments(trainer)
     q_before = trainer.tables.q.copy()
+    arguments["crews"] = trainer._crews()
     change(arguments)
-    batch = trainer.batch
     with pytest.raises(InvalidArgumentError, match=message) as raised:
-        batch.simulator.train_lower_round(  # type: ignore[union-attr]
-            batch.observations, batch.poses, batch.colliding, batch.crossings, **arguments
-        )
+        train_lower_round(**arguments)
     assert isinstance(raised.value, MazesimError)
     assert np.array_equal(trainer.tables.q, q_before)

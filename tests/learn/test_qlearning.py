@@ -1,4 +1,4 @@
-"""Issue 6: tabular Q-learning, one update and a batch of them."""
+"""Tabular Q-learning: a batch of updates in the core against a loop of scalar updates."""
 
 from __future__ import annotations
 
@@ -13,19 +13,13 @@ from mazesim.learn.qlearning import (
     batch_update,
     epsilon_greedy,
     greedy,
-    learning_rates,
-    scalar_update,
-    td_targets,
 )
 
 
-def test_scalar_update_equals_the_formula() -> None:
-    q = np.array([[1.0, 2.0], [3.0, 4.0]])
-    scalar_update(q, state=0, action=1, reward=0.5, next_state=1, bootstrap=0.9, alpha=0.1)
-    assert q[0, 1] == pytest.approx(2.0 + 0.1 * (0.5 + 0.9 * 4.0 - 2.0))
-    scalar_update(q, state=1, action=0, reward=-1.0, next_state=0, bootstrap=0.0, alpha=0.5)
-    assert q[1, 0] == pytest.approx(3.0 + 0.5 * (-1.0 - 3.0))
-    assert q[0, 0] == 1.0 and q[1, 1] == 4.0
+def learning_rates(visits: object, rate: LearningRate) -> object:
+    """The learning rate of the update that follows ``visits`` earlier updates of a pair."""
+    counts = np.asarray(visits, dtype=np.float64)
+    return np.maximum(rate.floor, rate.initial * (counts + 1.0) ** -rate.power)
 
 
 def test_one_batch_update_equals_the_formula() -> None:
@@ -109,8 +103,6 @@ def test_greedy_and_targets_keep_to_the_allowed_actions() -> None:
     # One mask per state, broadcast against the rows.
     per_state = np.array([[True, True, False], [True, True, True]])
     assert greedy(q, [0, 1], per_state).tolist() == [1, 2]
-    targets = td_targets(q, [0.5, 0.5], [0, 1], [0.9, 0.0], allowed)
-    assert targets.tolist() == pytest.approx([0.5 + 0.9 * 1.0, 0.5])
     unmasked = q.copy()
     visits = np.zeros(q.shape, dtype=np.int64)
     batch_update(unmasked, visits.copy(), [1], [0], [0.0], [0], [1.0], LearningRate())

@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 import mazesim
+from lower_oracle import SteppedFleet
 from mazesim._core import RobotProfile
 from mazesim.batch import RobotBatch
 from mazesim.errors import InvalidArgumentError, UnknownNameError
@@ -133,12 +134,13 @@ def test_the_draw_is_a_fleet_led_by_each_profile_unperturbed() -> None:
         assert fleet.higher[env].wheel_radius == pytest.approx(scale * seed_radius)
 
 
-def test_a_fleet_batch_shows_each_robot_as_its_own_batch_in_seed_volts() -> None:
+def test_a_stepped_fleet_shows_each_robot_as_its_own_batch_in_seed_volts() -> None:
+    # The reference the core's fleet rounds are checked against (tests/lower_oracle.py).
     world = mazesim.load_world("seed-maze")
     profiles = [RobotProfile.builtin(name) for name in ("seed", "e-puck", "e-puck", "seed")]
     mapping = SeedReadings(RobotProfile.builtin("e-puck"))
-    fleet = Fleet(profiles, np.array([0, 1, 1, 0]), [None, mapping.volts], "seed")
-    mixed = FleetBatch([world], fleet, control_step_ms=64.0, threads=1)
+    fleet = Fleet(profiles, np.array([0, 1, 1, 0]), [None, mapping], "seed")
+    mixed = SteppedFleet(FleetBatch([world], fleet, control_step_ms=64.0, threads=1))
     alone = {
         name: RobotBatch([world], np.zeros(2, dtype=np.int64), robot=name, threads=1)
         for name in ("seed", "e-puck")

@@ -9,18 +9,25 @@
 //! before the round: each robot's queue of episode starts and each step's exploration draws. The
 //! robots step in parallel; everything between two steps runs in robot order on the calling
 //! thread, so the result does not depend on the thread count.
+//!
+//! A round may drive several batches at once, one [`Crew`] each: a fleet of robots of different
+//! sensor sets (a batch holds robots of one set), each crew with its wheel speeds and, for robots
+//! other than the seed robot, the map of its readings into the seed robot's volts
+//! ([`SeedVolts`]). Its robots are numbered across the crews, and the tables learn from them in
+//! that order, as from one batch.
 
 use std::sync::Arc;
 
-use crate::batch::{Row, StepOutputs, CHUNK_ENVS};
+use crate::batch::{Row, CHUNK_ENVS};
 use crate::control::door::{self, Phases, SubTaskEnd, SubTaskState};
 use crate::control::heading_hold::BlindRule;
+use crate::control::seed_volts::SeedVolts;
 use crate::control::tabular::{NUM_ACTIONS, NUM_SENSORS};
 use crate::control::Discretiser;
 use crate::error::{Error, Result};
 use crate::qlearning::{best_action, LearningRate, QTable, Transition};
 use crate::rollout::chunks_of;
-use crate::{Batch, Simulator, World};
+use crate::{Batch, Simulator, StepOutputs as Outputs, World};
 
 /// Values of each door-path row: start (2), door centre (2), heading in (2), heading out (2), and
 /// the length of the first leg.
@@ -103,8 +110,6 @@ pub struct LowerRound<'a> {
     pub settings: RoundSettings,
     /// The worlds the starts name.
     pub worlds: &'a [Arc<World>],
-    /// The world each robot is in (updated as robots move to other worlds).
-    pub world_of_env: &'a mut [i64],
     /// Each robot's sub-task.
     pub role: &'a [i64],
     /// The episode starts.
@@ -122,8 +127,65 @@ pub struct LowerRound<'a> {
     pub allowed: [[bool; NUM_ACTIONS]; door::NUM_SUBTASKS],
     /// The mirror image.
     pub symmetry: Symmetry<'a>,
+}
+
+/// The robots of one batch in a round, and what is particular to them.
+pub struct Crew<'a> {
+    /// The robots.
+    pub batch: &'a mut Batch,
+    /// The batch's buffers, left holding the last step.
+    pub out: Outputs<'a>,
+    /// The round's number of each of the batch's robots, in increasing order.
+    pub members: Vec<usize>,
+    /// The world each of the batch's robots is in (updated as robots move to other worlds).
+    pub world_of_env: &'a mut [i64],
     /// Left and right wheel speeds (rad/s) of each action.
     pub wheel_speeds: [[f32; 2]; NUM_ACTIONS],
+    /// How their distance readings become the seed robot's six volts; `None`: the first six
+    /// readings are those volts.
+    pub volts: Option<&'a SeedVolts>,
+}
+
+impl Crew<'_> {
+    fn check(&self) -> Result<()> {
+        let batch = &*self.batch;
+        batch.check_outputs(&self.out)?;
+        if self.members.len() != batch.len() || self.world_of_env.len() != batch.len() {
+            return Err(Error::InvalidArgument(format!(
+                "expected a round number and a world for each of a crew's {} robots, found {} \
+                 and {}",
+                batch.len(),
+                self.members.len(),
+                self.world_of_env.len()
+            )));
+        }
+        if self.members.windows(2).any(|pair| pair[0] >= pair[1]) {
+            return Err(Error::InvalidArgument(
+                "expected a crew's round numbers in increasing order".into(),
+            ));
+        }
+        let width = batch.envs()[0].distance_sensors().len();
+        match self.volts {
+            None if width < NUM_SENSORS => Err(Error::InvalidArgument(format!(
+                "the lower level reads {NUM_SENSORS} distance sensors, the robots have {width}"
+            ))),
+            Some(map) if map.sensor_count() != width => Err(Error::InvalidArgument(format!(
+                "expected a map of the readings of {width} distance sensors into seed volts, \
+                 found one of {}",
+                map.sensor_count()
+            ))),
+            _ => Ok(()),
+        }
+    }
+}
+
+/// The Table 4.1 state of a robot's distance `readings`, through `volts` when it reads otherwise
+/// than the seed robot.
+fn distance_state(discretiser: &Discretiser, volts: Option<&SeedVolts>, readings: &[f32]) -> usize {
+    match volts {
+        Some(map) => discretiser.state(&map.volts(readings)),
+        None => discretiser.state(readings),
+    }
 }
 
 /// What happened in a round.
@@ -229,6 +291,7 @@ struct Pass<'a> {
     wheel_speeds: &'a [[f32; 2]; NUM_ACTIONS],
     settings: &'a RoundSettings,
     discretiser: &'a Discretiser,
+    volts: Option<&'a SeedVolts>,
 }
 
 impl Pass<'_> {
@@ -276,7 +339,7 @@ impl Pass<'_> {
         let gave_up = end == SubTaskEnd::GaveUp;
         let done = end == SubTaskEnd::Done;
         let out_of_steps = gave_up && is_door && learner.task.steps >= door::MAX_DOOR_STEPS;
-        let distance = self.discretiser.state(env.distance_sensors());
+        let distance = distance_state(self.discretiser, self.volts, env.distance_sensors());
         let next_state = settings.phases.table_row(&learner.task, pose, distance);
 
         let forward = (here[0] - bx) * byaw.cos() + (here[1] - by) * byaw.sin();
@@ -377,7 +440,6 @@ impl LowerRound<'_> {
                 "expected at least one start per robot, found 0".into(),
             ));
         }
-        expect("world_of_env", self.world_of_env.len(), n)?;
         expect("role", self.role.len(), n)?;
         expect("start worlds", self.starts.world.len(), n * k)?;
         expect("start poses", self.starts.pose.len(), 3 * n * k)?;
@@ -401,7 +463,10 @@ impl LowerRound<'_> {
             )));
         }
         let worlds = self.worlds.len() as i64;
-        if let Some(w) = (self.starts.world.iter().chain(self.world_of_env.iter()))
+        if let Some(w) = self
+            .starts
+            .world
+            .iter()
             .find(|&&w| !(0..worlds).contains(&w))
         {
             return Err(Error::InvalidArgument(format!(
@@ -456,97 +521,134 @@ impl LowerRound<'_> {
     }
 }
 
-impl Batch {
-    /// Runs one round of the lower level's Q-learning (see the module): `round.explore` sets the
-    /// number of control steps; the tables, `world_of_env` and the batch's robots are left as the
-    /// round leaves them, and `out` holds the last step's outputs.
-    pub fn train_lower_round(
-        &mut self,
-        round: LowerRound<'_>,
-        mut out: StepOutputs<'_>,
-    ) -> Result<RoundCounts> {
-        let n = self.len();
-        round.check(n)?;
-        self.check_outputs(&out)?;
-        if self.observation_width() < NUM_SENSORS {
+/// Runs one round of the lower level's Q-learning (see the module) with the robots of `crews`,
+/// numbered across them: `round.explore` sets the number of control steps; the tables, each
+/// crew's `world_of_env` and robots are left as the round leaves them, and each crew's buffers
+/// hold its last step.
+pub fn train_lower_round(round: LowerRound<'_>, crews: &mut [Crew<'_>]) -> Result<RoundCounts> {
+    let n = round.role.len();
+    round.check(n)?;
+    // Where each robot of the round is: its crew and its row there.
+    let mut place = vec![None; n];
+    for (c, crew) in crews.iter().enumerate() {
+        crew.check()?;
+        for (r, &i) in crew.members.iter().enumerate() {
+            let slot = place.get_mut(i).ok_or_else(|| {
+                Error::InvalidArgument(format!(
+                    "expected round numbers in [0, {n}) in the crews, found {i}"
+                ))
+            })?;
+            if slot.replace((c, r)).is_some() {
+                return Err(Error::InvalidArgument(format!(
+                    "expected each robot of the round in one crew, found robot {i} twice"
+                )));
+            }
+        }
+        let worlds = round.worlds.len() as i64;
+        if let Some(w) = crew
+            .world_of_env
+            .iter()
+            .find(|&&w| !(0..worlds).contains(&w))
+        {
             return Err(Error::InvalidArgument(format!(
-                "the lower level reads {NUM_SENSORS} distance sensors, the robots have {}",
-                self.observation_width()
+                "expected world indices in [0, {worlds}), found {w}"
             )));
         }
-        let LowerRound {
-            settings,
-            worlds,
-            world_of_env,
-            role,
-            starts,
-            explore,
-            random_action,
-            q,
-            visits,
-            allowed,
-            symmetry,
-            wheel_speeds,
-        } = round;
-        let starter = Starter {
-            starts,
-            worlds,
-            door_path_exit: settings.door_path_exit,
-            phases: settings.phases,
-            discretiser: Discretiser::new()?,
-        };
-        let width = self.observation_width();
-        let steps = explore.len() / n;
-        let mut learners: Vec<Learner> = (0..n)
-            .map(|i| Learner {
-                role: role[i] as usize,
-                task: SubTaskState::begin(role[i] as usize, [0.0; 3]),
-                path: DoorPath::default(),
-                progress: 0.0,
-                previous_error: 0.0,
-                state: 0,
-                action: 0,
-                reward: 0.0,
-                discount: 1.0,
-                decided_steps: 0,
-                deciding: true,
-                episode_steps: 0,
-                next_start: 0,
-                step: StepDone::default(),
+    }
+    let place: Vec<(usize, usize)> = place
+        .into_iter()
+        .enumerate()
+        .map(|(i, at)| {
+            at.ok_or_else(|| {
+                Error::InvalidArgument(format!(
+                    "expected robot {i} of the round in a crew, found it in none"
+                ))
             })
-            .collect();
-        let everyone: Vec<usize> = (0..n).collect();
-        let mut counts = RoundCounts::default();
-        let distance_width = self.envs()[0].distance_sensors().len();
-        let mut originals: Vec<Vec<Transition>> = vec![Vec::new(); door::NUM_SUBTASKS];
-        let mut mirrors: Vec<Vec<Transition>> = vec![Vec::new(); door::NUM_SUBTASKS];
-        let mut targets = Vec::new();
-        let mut restart = Vec::new();
-        let per_table = settings.phases.rows() * NUM_ACTIONS;
+        })
+        .collect::<Result<_>>()?;
+    let LowerRound {
+        settings,
+        worlds,
+        role,
+        starts,
+        explore,
+        random_action,
+        q,
+        visits,
+        allowed,
+        symmetry,
+    } = round;
+    let starter = Starter {
+        starts,
+        worlds,
+        door_path_exit: settings.door_path_exit,
+        phases: settings.phases,
+        discretiser: Discretiser::new()?,
+    };
+    let steps = explore.len() / n.max(1);
+    let learner = |i: usize| Learner {
+        role: role[i] as usize,
+        task: SubTaskState::begin(role[i] as usize, [0.0; 3]),
+        path: DoorPath::default(),
+        progress: 0.0,
+        previous_error: 0.0,
+        state: 0,
+        action: 0,
+        reward: 0.0,
+        discount: 1.0,
+        decided_steps: 0,
+        deciding: true,
+        episode_steps: 0,
+        next_start: 0,
+        step: StepDone::default(),
+    };
+    let mut learners: Vec<Vec<Learner>> = crews
+        .iter()
+        .map(|crew| crew.members.iter().map(|&i| learner(i)).collect())
+        .collect();
+    let everyone: Vec<usize> = (0..n).collect();
+    let mut counts = RoundCounts::default();
+    let mut originals: Vec<Vec<Transition>> = vec![Vec::new(); door::NUM_SUBTASKS];
+    let mut mirrors: Vec<Vec<Transition>> = vec![Vec::new(); door::NUM_SUBTASKS];
+    let mut targets = Vec::new();
+    let mut restart = Vec::new();
+    let per_table = settings.phases.rows() * NUM_ACTIONS;
 
-        starter.start(self, &everyone, &mut learners, world_of_env, &mut out)?;
-        for step in 0..steps {
-            let draws = &explore[step * n..(step + 1) * n];
-            let randoms = &random_action[step * n..(step + 1) * n];
+    starter.start(crews, &everyone, &place, &mut learners)?;
+    for step in 0..steps {
+        let draws = &explore[step * n..(step + 1) * n];
+        let randoms = &random_action[step * n..(step + 1) * n];
+        // Every robot decides (reading the tables as the last step left them), steps and
+        // scores its step, in parallel; what the step taught is gathered below in order.
+        for (crew, learners) in crews.iter_mut().zip(&mut learners) {
+            let Crew {
+                batch,
+                out,
+                members,
+                wheel_speeds,
+                volts,
+                ..
+            } = crew;
             let pass = Pass {
                 q: &*q,
                 allowed: &allowed,
                 symmetry: &symmetry,
-                wheel_speeds: &wheel_speeds,
+                wheel_speeds,
                 settings: &settings,
                 discretiser: &starter.discretiser,
+                volts: *volts,
             };
-            // Every robot decides (reading the tables as the last step left them), steps and
-            // scores its step, in parallel; what the step taught is gathered below in order.
+            let width = batch.observation_width();
+            let distance_width = batch.envs()[0].distance_sensors().len();
             let outputs = out.reborrow();
-            let learners_ref = &mut learners;
+            let members = &*members;
             let chunks = chunks_of(move |envs| {
                 envs.chunks_mut(CHUNK_ENVS)
-                    .zip(learners_ref.chunks_mut(CHUNK_ENVS))
+                    .zip(learners.chunks_mut(CHUNK_ENVS))
                     .zip(outputs.chunks(width))
                     .enumerate()
             });
-            self.par_chunks(chunks, |(k, ((envs, learners), outputs)), stop| {
+            batch.par_chunks(chunks, |(k, ((envs, learners), outputs)), stop| {
                 let rows = outputs.rows(width, distance_width);
                 for (j, ((env, learner), row)) in
                     envs.iter_mut().zip(learners).zip(rows).enumerate()
@@ -554,51 +656,52 @@ impl Batch {
                     if stop() {
                         return;
                     }
-                    let i = k * CHUNK_ENVS + j;
+                    let i = members[k * CHUNK_ENVS + j];
                     pass.step(env, learner, row, draws[i], randoms[i]);
                 }
             })?;
+        }
 
-            let mut corridor_metres = 0.0;
-            for (i, learner) in learners.iter().enumerate() {
-                let done = &learner.step;
-                if let Some([own, mirrored]) = done.transitions {
-                    originals[learner.role].push(own);
-                    mirrors[symmetry.subtasks[learner.role]].push(mirrored);
-                }
-                if learner.role != door::CORRIDOR {
-                    counts.success[learner.role] += u64::from(done.good);
-                    counts.failure[learner.role] += u64::from(done.ended && !done.good);
-                    counts.cut[learner.role] += u64::from(done.cut_short);
-                } else {
-                    corridor_metres += done.forward;
-                }
-                counts.contact_steps += u64::from(done.colliding);
-                if done.restart {
-                    restart.push(i);
-                }
+        let mut corridor_metres = 0.0;
+        for (i, &(c, r)) in place.iter().enumerate() {
+            let learner = &learners[c][r];
+            let done = &learner.step;
+            if let Some([own, mirrored]) = done.transitions {
+                originals[learner.role].push(own);
+                mirrors[symmetry.subtasks[learner.role]].push(mirrored);
             }
-            counts.corridor_metres += corridor_metres;
-            // Each table learns from its robots' decisions, then from the mirror images.
-            for (subtask, (own, mirrored)) in originals.iter_mut().zip(&mut mirrors).enumerate() {
-                own.append(mirrored);
-                if !own.is_empty() {
-                    let mut table = QTable {
-                        values: &mut q[subtask * per_table..][..per_table],
-                        visits: &mut visits[subtask * per_table..][..per_table],
-                        actions: NUM_ACTIONS,
-                    };
-                    table.update(own, &allowed[subtask], &settings.rate, &mut targets);
-                    own.clear();
-                }
+            if learner.role != door::CORRIDOR {
+                counts.success[learner.role] += u64::from(done.good);
+                counts.failure[learner.role] += u64::from(done.ended && !done.good);
+                counts.cut[learner.role] += u64::from(done.cut_short);
+            } else {
+                corridor_metres += done.forward;
             }
-            if !restart.is_empty() {
-                starter.start(self, &restart, &mut learners, world_of_env, &mut out)?;
-                restart.clear();
+            counts.contact_steps += u64::from(done.colliding);
+            if done.restart {
+                restart.push(i);
             }
         }
-        Ok(counts)
+        counts.corridor_metres += corridor_metres;
+        // Each table learns from its robots' decisions, then from the mirror images.
+        for (subtask, (own, mirrored)) in originals.iter_mut().zip(&mut mirrors).enumerate() {
+            own.append(mirrored);
+            if !own.is_empty() {
+                let mut table = QTable {
+                    values: &mut q[subtask * per_table..][..per_table],
+                    visits: &mut visits[subtask * per_table..][..per_table],
+                    actions: NUM_ACTIONS,
+                };
+                table.update(own, &allowed[subtask], &settings.rate, &mut targets);
+                own.clear();
+            }
+        }
+        if !restart.is_empty() {
+            starter.start(crews, &restart, &place, &mut learners)?;
+            restart.clear();
+        }
     }
+    Ok(counts)
 }
 
 /// Where the robots' episodes start: their queues, the worlds they name, and what a start sets.
@@ -611,46 +714,49 @@ struct Starter<'a> {
 }
 
 impl Starter<'_> {
-    /// Starts the next episode of each robot of `envs` (in increasing order) from its queue: into
-    /// its world (when it is elsewhere), at its pose with its noise seed, its sub-task begun
-    /// there and its decision open.
+    /// Starts the next episode of each robot of `envs` (round numbers, in increasing order) from
+    /// its queue: into its world (when it is elsewhere), at its pose with its noise seed, its
+    /// sub-task begun there and its decision open.
     fn start(
         &self,
-        batch: &mut Batch,
+        crews: &mut [Crew<'_>],
         envs: &[usize],
-        learners: &mut [Learner],
-        world_of_env: &mut [i64],
-        out: &mut StepOutputs<'_>,
+        place: &[(usize, usize)],
+        learners: &mut [Vec<Learner>],
     ) -> Result<()> {
-        let width = batch.observation_width();
-        let distance_width = batch.envs()[0].distance_sensors().len();
         for &i in envs {
-            let learner = &mut learners[i];
+            let (c, r) = place[i];
+            let crew = &mut crews[c];
+            let learner = &mut learners[c][r];
             let starts = &self.starts;
             let row = i * starts.per_env + learner.next_start % starts.per_env;
             learner.next_start += 1;
             let world = starts.world[row];
-            if world_of_env[i] != world {
-                batch.set_world(i, self.worlds[world as usize].clone(), 0)?;
-                world_of_env[i] = world;
+            let batch = &mut *crew.batch;
+            if crew.world_of_env[r] != world {
+                batch.set_world(r, self.worlds[world as usize].clone(), 0)?;
+                crew.world_of_env[r] = world;
             }
-            batch.set_starts_at(&[i], &starts.pose[3 * row..3 * row + 3])?;
-            let env = batch.env_mut(i)?;
+            batch.set_starts_at(&[r], &starts.pose[3 * row..3 * row + 3])?;
+            let width = batch.observation_width();
+            let distance_width = batch.envs()[0].distance_sensors().len();
+            let out = &mut crew.out;
+            let env = batch.env_mut(r)?;
             env.reset(Some(starts.seed[row]));
             Row {
-                observation: &mut out.observations[i * width..(i + 1) * width],
+                observation: &mut out.observations[r * width..(r + 1) * width],
                 distance_width,
-                pose: &mut out.poses[3 * i..3 * i + 3],
-                colliding: &mut out.colliding[i],
-                crossing: &mut out.crossings[i],
+                pose: &mut out.poses[3 * r..3 * r + 3],
+                colliding: &mut out.colliding[r],
+                crossing: &mut out.crossings[r],
             }
             .write(env);
-            let pose = pose_of(out.poses, i);
+            let pose = pose_of(out.poses, r);
             learner.path = DoorPath::of(&starts.path[PATH_WIDTH * row..PATH_WIDTH * (row + 1)]);
             learner.task = SubTaskState::begin(learner.role, pose);
             learner.progress = learner.path.progress(position(pose), self.door_path_exit);
             learner.previous_error = 0.0;
-            let distance = self.discretiser.state(&out.observations[i * width..]);
+            let distance = distance_state(&self.discretiser, crew.volts, env.distance_sensors());
             learner.state = self.phases.table_row(&learner.task, pose, distance);
             learner.episode_steps = 0;
         }

@@ -9,7 +9,8 @@ use mazesim_core::control::heading_hold::BlindRule;
 use mazesim_core::control::tabular::NUM_ACTIONS;
 use mazesim_core::generator::{generate, MazeParams};
 use mazesim_core::lower_training::{
-    LowerRound, Rewards, RoundCounts, RoundSettings, StartQueues, Symmetry, PATH_WIDTH,
+    train_lower_round, Crew, LowerRound, Rewards, RoundCounts, RoundSettings, StartQueues,
+    Symmetry, PATH_WIDTH,
 };
 use mazesim_core::qlearning::LearningRate;
 use mazesim_core::rng::Rng;
@@ -103,27 +104,81 @@ struct Outcome {
 }
 
 fn round(threads: usize, epsilon: f64, spoil: impl FnOnce(&mut Setup)) -> Outcome {
+    round_in_crews(threads, epsilon, 1, spoil)
+}
+
+/// A batch's observations, poses, contact flags and crossings.
+type Buffers = (Vec<f32>, Vec<f32>, Vec<bool>, Vec<i32>);
+
+/// The round with its robots dealt out to `crews` batches in turn (robot i to crew i % crews).
+fn round_in_crews(
+    threads: usize,
+    epsilon: f64,
+    crews: usize,
+    spoil: impl FnOnce(&mut Setup),
+) -> Outcome {
     let mut s = setup();
     spoil(&mut s);
     let profile = Arc::new(RobotProfile::builtin("seed").unwrap());
-    let seeds: Vec<u64> = (0..ENVS as u64).collect();
-    let worlds = (0..ENVS).map(|i| s.worlds[i % 3].clone()).collect();
-    let mut batch = Batch::new(worlds, profile.clone(), &seeds, true, None, threads).unwrap();
-    let mut world_of_env: Vec<i64> = (0..ENVS as i64).map(|i| i % 3).collect();
     let (mut q, mut visits) = (vec![0.0; TABLE], vec![0i64; TABLE]);
     let mut allowed = [[true; NUM_ACTIONS]; NUM_SUBTASKS];
     allowed[0][11] = false;
     let limit = profile.max_wheel_speed as f32;
     let fractions = mazesim_core::control::tabular::WHEEL_SPEED_FRACTIONS;
     let wheel_speeds = fractions.map(|[l, r]| [l as f32 * limit, r as f32 * limit]);
-    let n = ENVS;
-    let mut obs = vec![0.0; n * batch.observation_width()];
-    let (mut poses, mut colliding, mut crossings) = (vec![0.0; 3 * n], vec![false; n], vec![0; n]);
-    let counts = batch.train_lower_round(
+    let members: Vec<Vec<usize>> = (0..crews)
+        .map(|c| (c..ENVS).step_by(crews).collect())
+        .collect();
+    let mut batches: Vec<Batch> = members
+        .iter()
+        .map(|envs| {
+            let seeds: Vec<u64> = envs.iter().map(|&i| i as u64).collect();
+            let worlds = envs.iter().map(|&i| s.worlds[i % 3].clone()).collect();
+            Batch::new(worlds, profile.clone(), &seeds, true, None, threads).unwrap()
+        })
+        .collect();
+    let mut world_of_env: Vec<Vec<i64>> = members
+        .iter()
+        .map(|envs| envs.iter().map(|&i| (i % 3) as i64).collect())
+        .collect();
+    let width = batches[0].observation_width();
+    let mut buffers: Vec<Buffers> = members
+        .iter()
+        .map(|envs| {
+            let n = envs.len();
+            (
+                vec![0.0; n * width],
+                vec![0.0; 3 * n],
+                vec![false; n],
+                vec![0; n],
+            )
+        })
+        .collect();
+    let mut crews: Vec<Crew<'_>> = batches
+        .iter_mut()
+        .zip(&mut buffers)
+        .zip(&mut world_of_env)
+        .zip(&members)
+        .map(
+            |(((batch, (obs, poses, colliding, crossings)), world_of_env), envs)| Crew {
+                batch,
+                out: StepOutputs {
+                    observations: obs,
+                    poses,
+                    colliding,
+                    crossings,
+                },
+                members: envs.clone(),
+                world_of_env,
+                wheel_speeds,
+                volts: None,
+            },
+        )
+        .collect();
+    let counts = train_lower_round(
         LowerRound {
             settings: settings(epsilon),
             worlds: &s.worlds,
-            world_of_env: &mut world_of_env,
             role: &s.role,
             starts: StartQueues {
                 per_env: PER_ENV,
@@ -142,15 +197,17 @@ fn round(threads: usize, epsilon: f64, spoil: impl FnOnce(&mut Setup)) -> Outcom
                 actions: std::array::from_fn(|a| a),
                 subtasks: [0, 2, 1, 3],
             },
-            wheel_speeds,
         },
-        StepOutputs {
-            observations: &mut obs,
-            poses: &mut poses,
-            colliding: &mut colliding,
-            crossings: &mut crossings,
-        },
+        &mut crews,
     );
+    drop(crews);
+    // Each robot's pose, in the round's order.
+    let mut poses = vec![0.0; 3 * ENVS];
+    for (envs, (_, crew_poses, _, _)) in members.iter().zip(&buffers) {
+        for (r, &i) in envs.iter().enumerate() {
+            poses[3 * i..3 * i + 3].copy_from_slice(&crew_poses[3 * r..3 * r + 3]);
+        }
+    }
     Outcome {
         q,
         visits,
@@ -167,6 +224,17 @@ fn a_round_gives_the_same_tables_whatever_the_threads() {
     assert_eq!(one.visits, two.visits);
     assert_eq!(one.poses, two.poses);
     assert_eq!(one.counts.unwrap(), two.counts.unwrap());
+}
+
+#[test]
+fn robots_dealt_out_to_several_batches_learn_as_in_one() {
+    // A fleet's crews: the tables learn from the robots in the round's order, wherever they are.
+    let one = round(2, 0.3, |_| {});
+    let three = round_in_crews(2, 0.3, 3, |_| {});
+    assert_eq!(one.q, three.q);
+    assert_eq!(one.visits, three.visits);
+    assert_eq!(one.poses, three.poses);
+    assert_eq!(one.counts.unwrap(), three.counts.unwrap());
 }
 
 #[test]

@@ -18,7 +18,6 @@ use crate::buffers::{copied, writable};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::{ctrl_c_pressed, enter, enter_detached};
 use crate::lock::Exclusive;
-use crate::lower;
 use crate::profile::RobotArg;
 use crate::run::{self, TabularArgs, Traces};
 use crate::subtasks::SubTaskArrays;
@@ -27,7 +26,7 @@ use crate::world::{world_argument, PyWorld};
 /// N independent environments stepped together.
 #[pyclass(name = "BatchSimulator", module = "mazesim._core", frozen)]
 pub struct PyBatch {
-    inner: Exclusive<Batch>,
+    pub(crate) inner: Exclusive<Batch>,
     n: usize,
     /// Robots per environment: 1 but in a batch of worlds of several robots.
     robots: usize,
@@ -90,6 +89,16 @@ impl PyBatch {
         })
     }
 
+    /// Environments in the batch.
+    pub(crate) fn len(&self) -> usize {
+        self.n
+    }
+
+    /// Distance sensors of each robot.
+    pub(crate) fn distance_sensor_count(&self) -> usize {
+        self.distance_width
+    }
+
     fn width(&self) -> usize {
         self.distance_width + self.ground_width
     }
@@ -128,7 +137,7 @@ impl PyBatch {
     }
 
     /// Refuses `what` in a batch of worlds of several robots.
-    fn one_robot(&self, what: &str) -> PyResult<()> {
+    pub(crate) fn one_robot(&self, what: &str) -> PyResult<()> {
         if self.robots == 1 {
             Ok(())
         } else {
@@ -161,7 +170,7 @@ impl PyBatch {
 }
 
 /// The buffers of one call, borrowed.
-struct Borrowed<'py> {
+pub(crate) struct Borrowed<'py> {
     obs: numpy::PyReadwriteArrayDyn<'py, f32>,
     poses: numpy::PyReadwriteArrayDyn<'py, f32>,
     colliding: numpy::PyReadwriteArrayDyn<'py, bool>,
@@ -169,7 +178,7 @@ struct Borrowed<'py> {
 }
 
 impl<'py> Borrowed<'py> {
-    fn new(
+    pub(crate) fn new(
         b: &PyBatch,
         observations: &Bound<'py, PyAny>,
         poses: &Bound<'py, PyAny>,
@@ -189,7 +198,7 @@ impl<'py> Borrowed<'py> {
         })
     }
 
-    fn outputs(&mut self) -> PyResult<StepOutputs<'_>> {
+    pub(crate) fn outputs(&mut self) -> PyResult<StepOutputs<'_>> {
         let unusable = |name: &str| bad(format!("expected {name} to be a contiguous array"));
         Ok(StepOutputs {
             observations: self
@@ -502,34 +511,6 @@ impl PyBatch {
         enter(|| {
             let buffers = [observations, poses, colliding, crossings];
             self.with_outputs(py, buffers, |b, out| b.observe(out))
-        })
-    }
-
-    /// Runs one round of the lower level's Q-learning in the core (see `mazesim-core`'s
-    /// `lower_training`): `explore` ((steps, N) float64) sets its length; `q` and `visits`
-    /// ((4, 12288, 12)) and `world_of_env` are updated in place, the buffers hold the last step.
-    /// Returns the round's counts as a dict. The GIL is released while it runs.
-    #[pyo3(signature = (observations, poses, colliding, crossings, **round),
-        text_signature = "($self, observations, poses, colliding, crossings, *, worlds, world_of_env, role, starts, explore, random_action, q, visits, symmetry, allowed, wheel_speeds, settings)")]
-    fn train_lower_round<'py>(
-        &self,
-        observations: &Bound<'py, PyAny>,
-        poses: &Bound<'py, PyAny>,
-        colliding: &Bound<'py, PyAny>,
-        crossings: &Bound<'py, PyAny>,
-        round: Option<&Bound<'py, PyDict>>,
-    ) -> PyResult<Bound<'py, PyDict>> {
-        let py = observations.py();
-        enter(|| {
-            self.one_robot("train_lower_round")?;
-            let round = Keywords::new(round, "train_lower_round", lower::KEYWORDS)?;
-            let settings = lower::round_settings(&round.required("settings")?)?;
-            let mut arrays = lower::RoundArrays::new(self.n, &round)?;
-            let buffers = [observations, poses, colliding, crossings];
-            let round = arrays.round(settings);
-            let counts =
-                self.with_outputs(py, buffers, move |b, out| b.train_lower_round(round, out))?;
-            lower::counts_dict(py, &counts)
         })
     }
 

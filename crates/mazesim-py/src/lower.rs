@@ -1,15 +1,16 @@
-//! `BatchSimulator.train_lower_round` and `q_batch_update` for Python: the arrays of a round of
-//! the lower level's Q-learning borrowed and checked, its settings read from a dict, its counts
-//! returned as a dict.
+//! `train_lower_round` and `q_batch_update` for Python: the arrays of a round of the lower
+//! level's Q-learning borrowed and checked, its crews (batches of robots, each with its buffers,
+//! wheel speeds and readings map) and settings read from dicts, its counts returned as a dict.
 
 use std::sync::Arc;
 
 use mazesim_core::control::door::{Phases, NUM_SUBTASKS};
 use mazesim_core::control::heading_hold::BlindRule;
-use mazesim_core::control::tabular::NUM_ACTIONS;
+use mazesim_core::control::seed_volts::{Interpolation, SeedVolts, SensorDistance};
+use mazesim_core::control::tabular::{NUM_ACTIONS, NUM_SENSORS};
 use mazesim_core::limits::MAX_ENVS;
 use mazesim_core::lower_training::{
-    LowerRound, Rewards, RoundCounts, RoundSettings, StartQueues, Symmetry, PATH_WIDTH,
+    self, Crew, LowerRound, Rewards, RoundCounts, RoundSettings, StartQueues, Symmetry, PATH_WIDTH,
 };
 use mazesim_core::qlearning::{LearningRate, QTable, Transition};
 use mazesim_core::World;
@@ -18,14 +19,23 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::args::{bounded_items, dict_argument, type_name, unknown_key, Keywords, Real};
+use crate::batch::{Borrowed, PyBatch};
 use crate::buffers::{copied, readable, writable};
 use crate::errors::{invalid, IntoPy};
+use crate::guard::{enter, enter_detached};
 use crate::world::world_argument;
 
-/// The keywords of `train_lower_round` after its four buffers: the round's arrays, then its
-/// settings.
-pub const KEYWORDS: &str = "worlds world_of_env role starts explore random_action q visits \
-    symmetry allowed wheel_speeds settings";
+/// The keywords of `train_lower_round` after its crews: the round's arrays, then its settings.
+const KEYWORDS: &str = "worlds role starts explore random_action q visits symmetry allowed \
+    settings";
+
+/// The keys of each crew of `train_lower_round` (`readings` may be left out: the seed robot's
+/// own volts).
+const CREW: &str = "simulator observations poses colliding crossings world_of_env wheel_speeds \
+    members readings";
+
+/// The keys of a crew's `readings`: a map of its distance readings into the seed robot's volts.
+const READINGS: &str = "directions readings distances seen_up_to far table_distances table_volts";
 
 /// The keys of a round's `settings` dict (`phases` and `blind` may be left out: heading phases,
 /// the table in the blind state).
@@ -82,16 +92,21 @@ fn entry<'py>(dict: &Bound<'py, PyDict>, name: &str, key: &str) -> PyResult<Boun
 }
 
 fn number(dict: &Bound<'_, PyDict>, key: &str) -> PyResult<f64> {
-    let value = entry(dict, "settings", key)?;
+    number_of(dict, "settings", key)
+}
+
+/// `dict[key]` (`name` naming the dict), a finite number.
+fn number_of(dict: &Bound<'_, PyDict>, name: &str, key: &str) -> PyResult<f64> {
+    let value = entry(dict, name, key)?;
     let number = value.extract::<f64>().map_err(|_| {
         invalid(format!(
-            "expected settings[{key:?}] to be a number, found a {}",
+            "expected {name}[{key:?}] to be a number, found a {}",
             type_name(&value)
         ))
     })?;
     if !number.is_finite() {
         return Err(invalid(format!(
-            "expected settings[{key:?}] to be finite, found {number}"
+            "expected {name}[{key:?}] to be finite, found {number}"
         )));
     }
     Ok(number)
@@ -153,7 +168,6 @@ pub fn round_settings(settings: &Bound<'_, PyAny>) -> PyResult<RoundSettings> {
 /// The arrays of a round, borrowed (the inputs that are not copied, and the outputs).
 pub struct RoundArrays<'py> {
     worlds: Vec<Arc<World>>,
-    world_of_env: PyReadwriteArrayDyn<'py, i64>,
     role: Vec<i64>,
     per_env: usize,
     start_world: PyReadonlyArrayDyn<'py, i64>,
@@ -168,7 +182,6 @@ pub struct RoundArrays<'py> {
     mirrored_states: Vec<i64>,
     mirrored_action: [usize; NUM_ACTIONS],
     mirrored_subtask: [usize; NUM_SUBTASKS],
-    wheel_speeds: [[f32; 2]; NUM_ACTIONS],
 }
 
 fn shape_of(obj: &Bound<'_, PyAny>) -> Vec<usize> {
@@ -193,7 +206,6 @@ impl<'py> RoundArrays<'py> {
     /// has: the round checks them against its phases).
     pub fn new(n: usize, round: &Keywords<'py>) -> PyResult<Self> {
         let worlds = &round.required("worlds")?;
-        let world_of_env = &round.required("world_of_env")?;
         let role = &round.required("role")?;
         let starts = &round.required("starts")?;
         let explore = &round.required("explore")?;
@@ -202,7 +214,6 @@ impl<'py> RoundArrays<'py> {
         let visits = &round.required("visits")?;
         let symmetry = &round.required("symmetry")?;
         let allowed = &round.required("allowed")?;
-        let wheel_speeds = &round.required("wheel_speeds")?;
         let worlds = bounded_items(worlds, "worlds", "mazesim.World", MAX_ENVS)?
             .iter()
             .map(|w| world_argument(w, "each of worlds"))
@@ -241,18 +252,9 @@ impl<'py> RoundArrays<'py> {
         for (row, chunk) in allowed.iter_mut().zip(flags.chunks_exact(NUM_ACTIONS)) {
             row.copy_from_slice(chunk);
         }
-        let speeds = copied::<f32>(wheel_speeds, "wheel_speeds", "float32", &[NUM_ACTIONS, 2])?;
-        let mut wheel_speeds = [[0f32; 2]; NUM_ACTIONS];
-        for (row, chunk) in wheel_speeds.iter_mut().zip(speeds.chunks_exact(2)) {
-            row.copy_from_slice(chunk);
-        }
-        if let Some(s) = speeds.iter().find(|s| !s.is_finite()) {
-            return Err(invalid(format!("expected finite wheel speeds, found {s}")));
-        }
         let item = |key: &str| entry(symmetry, "symmetry", key);
         Ok(Self {
             worlds,
-            world_of_env: writable(world_of_env, "world_of_env", "int64", &[n])?,
             role: copied::<i64>(role, "role", "int64", &[n])?,
             per_env,
             start_world: readable(&start_world, "starts['world']", "int64", &[n, per_env])?,
@@ -305,7 +307,6 @@ impl<'py> RoundArrays<'py> {
                 "mirrored sub-tasks",
                 NUM_SUBTASKS,
             )?,
-            wheel_speeds,
         })
     }
 
@@ -315,7 +316,6 @@ impl<'py> RoundArrays<'py> {
         LowerRound {
             settings,
             worlds: &self.worlds,
-            world_of_env: self.world_of_env.as_slice_mut().unwrap_or_default(),
             role: &self.role,
             starts: StartQueues {
                 per_env: self.per_env,
@@ -334,9 +334,255 @@ impl<'py> RoundArrays<'py> {
                 actions: self.mirrored_action,
                 subtasks: self.mirrored_subtask,
             },
-            wheel_speeds: self.wheel_speeds,
         }
     }
+}
+
+/// A (`rows`, `columns`) float64 array's rows, `columns` taken from the array.
+fn float_rows(obj: &Bound<'_, PyAny>, name: &str, rows: usize) -> PyResult<Vec<Vec<f64>>> {
+    let columns = match shape_of(obj)[..] {
+        [r, columns] if r == rows => columns,
+        _ => {
+            return Err(invalid(format!(
+                "expected {name} to be a ({rows}, K) float64 array, found shape {:?}",
+                shape_of(obj)
+            )))
+        }
+    };
+    let values = copied::<f64>(obj, name, "float64", &[rows, columns])?;
+    Ok(values.chunks(columns.max(1)).map(<[f64]>::to_vec).collect())
+}
+
+/// A crew's map of its `width` distance readings into the seed robot's volts
+/// (`mazesim.transfer.readings.SeedReadings.tables`).
+fn seed_volts(obj: &Bound<'_, PyAny>, width: usize) -> PyResult<SeedVolts> {
+    let dict = dict_argument(obj, "readings", " of the tables of a map into seed volts")?;
+    if let Some(key) = unknown_key(dict, READINGS)? {
+        return Err(invalid(format!(
+            "expected readings to hold only {READINGS:?}, found {key:?}"
+        )));
+    }
+    let item = |key: &str| entry(dict, "readings", key);
+    let taken = copied::<bool>(
+        &item("directions")?,
+        "readings['directions']",
+        "bool",
+        &[NUM_SENSORS, width],
+    )?;
+    let mut directions: [Vec<usize>; NUM_SENSORS] = Default::default();
+    for (sensors, row) in directions.iter_mut().zip(taken.chunks(width.max(1))) {
+        *sensors = (0..width).filter(|&s| row[s]).collect();
+    }
+    let readings = float_rows(&item("readings")?, "readings['readings']", width)?;
+    let distances = float_rows(&item("distances")?, "readings['distances']", width)?;
+    let seen = copied::<f64>(
+        &item("seen_up_to")?,
+        "readings['seen_up_to']",
+        "float64",
+        &[width],
+    )?;
+    let sensors = readings
+        .into_iter()
+        .zip(distances)
+        .zip(seen)
+        .map(|((xs, ys), seen_up_to)| {
+            Ok(SensorDistance {
+                distance: Interpolation::new(xs, ys, "a sensor's readings and distances").py()?,
+                seen_up_to,
+            })
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    let table = |key: &str| -> PyResult<Vec<f64>> {
+        let value = item(key)?;
+        let length = shape_of(&value).first().copied().unwrap_or(0);
+        copied::<f64>(&value, &format!("readings[{key:?}]"), "float64", &[length])
+    };
+    let volts = Interpolation::new(
+        table("table_distances")?,
+        table("table_volts")?,
+        "the seed volts table",
+    )
+    .py()?;
+    SeedVolts::new(
+        directions,
+        sensors,
+        number_of(dict, "readings", "far")?,
+        volts,
+    )
+    .py()
+}
+
+/// One crew of `train_lower_round`, read and its buffers borrowed.
+struct CrewArgs<'py> {
+    simulator: Bound<'py, PyBatch>,
+    buffers: Borrowed<'py>,
+    world_of_env: PyReadwriteArrayDyn<'py, i64>,
+    wheel_speeds: [[f32; 2]; NUM_ACTIONS],
+    members: Vec<usize>,
+    volts: Option<SeedVolts>,
+}
+
+impl<'py> CrewArgs<'py> {
+    fn new(obj: &Bound<'py, PyAny>, round_size: usize) -> PyResult<Self> {
+        let dict = dict_argument(obj, "each of crews", " of a batch's robots and buffers")?;
+        if let Some(key) = unknown_key(dict, CREW)? {
+            return Err(invalid(format!(
+                "expected each of crews to hold only {CREW:?}, found {key:?}"
+            )));
+        }
+        let item = |key: &str| entry(dict, "each of crews", key);
+        let simulator = item("simulator")?;
+        let simulator = simulator.cast::<PyBatch>().map_err(|_| {
+            invalid(format!(
+                "expected crews' 'simulator' to be a mazesim.BatchSimulator, found a {}",
+                type_name(&simulator)
+            ))
+        })?;
+        let batch = simulator.get();
+        batch.one_robot("train_lower_round")?;
+        let n = batch.len();
+        let buffers = Borrowed::new(
+            batch,
+            &item("observations")?,
+            &item("poses")?,
+            &item("colliding")?,
+            &item("crossings")?,
+        )?;
+        let speeds = copied::<f32>(
+            &item("wheel_speeds")?,
+            "wheel_speeds",
+            "float32",
+            &[NUM_ACTIONS, 2],
+        )?;
+        if let Some(s) = speeds.iter().find(|s| !s.is_finite()) {
+            return Err(invalid(format!("expected finite wheel speeds, found {s}")));
+        }
+        let mut wheel_speeds = [[0f32; 2]; NUM_ACTIONS];
+        for (row, chunk) in wheel_speeds.iter_mut().zip(speeds.chunks_exact(2)) {
+            row.copy_from_slice(chunk);
+        }
+        let members = copied::<i64>(&item("members")?, "members", "int64", &[n])?;
+        let members = members
+            .into_iter()
+            .map(|m| {
+                usize::try_from(m)
+                    .ok()
+                    .filter(|&m| m < round_size)
+                    .ok_or_else(|| {
+                        invalid(format!("expected members in [0, {round_size}), found {m}"))
+                    })
+            })
+            .collect::<PyResult<Vec<_>>>()?;
+        let volts = match dict.get_item("readings")?.filter(|v| !v.is_none()) {
+            Some(readings) => Some(seed_volts(&readings, batch.distance_sensor_count())?),
+            None => None,
+        };
+        Ok(Self {
+            world_of_env: writable(&item("world_of_env")?, "world_of_env", "int64", &[n])?,
+            simulator: simulator.clone(),
+            buffers,
+            wheel_speeds,
+            members,
+            volts,
+        })
+    }
+}
+
+/// Runs one round of the lower level's Q-learning in the core (see `mazesim-core`'s
+/// `lower_training`) with the robots of `crews`: each a dict of a `BatchSimulator` of one robot
+/// per environment, its four buffers, its `world_of_env`, the (12, 2) float32 `wheel_speeds` of
+/// its actions, the `members` (its robots' numbers in the round) and, for robots that do not read
+/// the seed robot's volts, the `readings` map into them. `explore` ((steps, N) float64) sets the
+/// round's length; `q` and `visits` and each `world_of_env` are updated in place, the buffers
+/// hold the last step. Returns the round's counts as a dict. The GIL is released while it runs.
+#[pyfunction]
+#[pyo3(signature = (crews, **round),
+    text_signature = "(crews, *, worlds, role, starts, explore, random_action, q, visits, symmetry, allowed, settings)")]
+pub fn train_lower_round<'py>(
+    crews: &Bound<'py, PyAny>,
+    round: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let py = crews.py();
+    enter(|| {
+        let round = Keywords::new(round, "train_lower_round", KEYWORDS)?;
+        let settings = round_settings(&round.required("settings")?)?;
+        let role = round.required("role")?;
+        let n = match shape_of(&role)[..] {
+            [n] if n > 0 => n,
+            _ => {
+                return Err(invalid(format!(
+                    "expected role to be an (N,) int64 array with N >= 1, found shape {:?}",
+                    shape_of(&role)
+                )))
+            }
+        };
+        let items = bounded_items(crews, "crews", "dicts of a batch's robots", MAX_ENVS)?;
+        let mut parts: Vec<CrewArgs<'py>> = Vec::with_capacity(items.len());
+        for (k, crew) in items.iter().enumerate() {
+            // Each crew's own simulator, checked before its buffers are borrowed.
+            let simulator = crew.get_item("simulator").ok();
+            if let Some(simulator) = &simulator {
+                if parts.iter().any(|other| other.simulator.is(simulator)) {
+                    return Err(invalid(format!(
+                        "expected a different BatchSimulator in each crew, found crew {k}'s \
+                         twice"
+                    )));
+                }
+            }
+            parts.push(CrewArgs::new(crew, n)?);
+        }
+        let mut arrays = RoundArrays::new(n, &round)?;
+        let round = arrays.round(settings);
+        let owners: Vec<Bound<'py, PyBatch>> = parts.iter().map(|p| p.simulator.clone()).collect();
+        let simulators: Vec<&PyBatch> = owners.iter().map(Bound::get).collect();
+        let mut sides = Vec::with_capacity(parts.len());
+        for part in &mut parts {
+            let CrewArgs {
+                buffers,
+                world_of_env,
+                wheel_speeds,
+                members,
+                volts,
+                ..
+            } = part;
+            let world_of_env = world_of_env
+                .as_slice_mut()
+                .map_err(|_| invalid("expected world_of_env to be a contiguous array".into()))?;
+            sides.push((
+                buffers.outputs()?,
+                world_of_env,
+                *wheel_speeds,
+                members.clone(),
+                volts.as_ref(),
+            ));
+        }
+        let counts = enter_detached(py, move || {
+            // Locks taken in one order (by address), so two rounds never wait for each other.
+            let mut order: Vec<usize> = (0..simulators.len()).collect();
+            order.sort_by_key(|&k| std::ptr::from_ref(simulators[k]) as usize);
+            let mut held: Vec<_> = (0..simulators.len()).map(|_| None).collect();
+            for k in order {
+                held[k] = Some(simulators[k].inner.wait()?);
+            }
+            let mut crews: Vec<Crew<'_>> = held
+                .iter_mut()
+                .flatten()
+                .zip(sides)
+                .map(
+                    |(batch, (out, world_of_env, wheel_speeds, members, volts))| Crew {
+                        batch,
+                        out,
+                        members,
+                        world_of_env,
+                        wheel_speeds,
+                        volts,
+                    },
+                )
+                .collect();
+            lower_training::train_lower_round(round, &mut crews)
+        })?;
+        counts_dict(py, &counts)
+    })
 }
 
 /// A round's counts as a dict of plain values.

@@ -5,29 +5,36 @@ robot of another profile (the e-puck's eight infra-red sensors, say) can train t
 a mapping of its readings into those volts, the one the transfer study drives it with. A
 :class:`Fleet` names, for each env, its profile and its group (the robots of one base profile);
 each group has a mapping of its distance readings into the seed robot's six volts (none for the
-seed robot's own sensors). :class:`FleetBatch` steps each group in its own
-:class:`~mazesim.batch.RobotBatch` (a batch holds robots of one set of sensors) and shows the
-whole fleet as one batch of seed-robot observations.
+seed robot's own sensors). :class:`FleetBatch` holds each group in its own
+:class:`~mazesim.batch.RobotBatch` (a batch holds robots of one set of sensors); the core's
+training round drives them all at once, each group a crew with its mapping as data.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Any, Protocol
 
 import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import RobotProfile, World
-from mazesim._sizes import bounded_array
 from mazesim.batch import RobotBatch, RobotChoice
 from mazesim.errors import InvalidArgumentError
-from mazesim.learn.discretise import NUM_SENSORS
 
 __all__ = ["Fleet", "FleetBatch", "ReadingsMap"]
 
-#: Maps (M, W) distance readings of a group's robots to (M, 6) seed-robot volts.
-ReadingsMap = Callable[[npt.NDArray[np.float32]], npt.ArrayLike]
+
+class ReadingsMap(Protocol):
+    """Maps (M, W) distance readings of a group's robots to (M, 6) seed-robot volts
+    (:class:`mazesim.transfer.readings.SeedReadings`)."""
+
+    def volts(self, readings: npt.ArrayLike) -> npt.NDArray[np.float64]:
+        """(M, 6) seed-robot volts of (M, W) readings."""
+
+    def tables(self) -> dict[str, Any]:
+        """The map as data, for the core's training round."""
 
 
 @dataclass(frozen=True)
@@ -65,8 +72,7 @@ class Fleet:
 
 
 class FleetBatch:
-    """A :class:`Fleet` stepped as one batch: the attributes a lower-level trainer reads of a
-    :class:`~mazesim.batch.RobotBatch`, with observations in seed volts.
+    """A :class:`Fleet` as one batch per group, the crews of the core's training round.
 
     Args:
         worlds: The worlds; every robot starts in ``worlds[0]``.
@@ -77,9 +83,9 @@ class FleetBatch:
 
     Attributes:
         profile: The first env's profile.
-        observations: (N, 6) float32 seed-robot volts of each robot's distance sensors.
-        poses: (N, 3) float32 x, y, yaw.
-        colliding: (N,) bool, in contact with a wall.
+        members: Each group's robots (their numbers in the fleet).
+        batches: Each group's batch (None for a group without robots).
+        readings: Each group's mapping into seed volts (None: the seed robot's own).
     """
 
     def __init__(
@@ -90,8 +96,7 @@ class FleetBatch:
         threads: int = 0,
     ) -> None:
         group = np.asarray(fleet.group, dtype=np.int64)
-        count = group.size
-        self.num_envs = count
+        self.num_envs = group.size
         self.members = [np.flatnonzero(group == g) for g in range(len(fleet.readings))]
         self.readings = list(fleet.readings)
         self.batches: list[RobotBatch | None] = [
@@ -106,54 +111,16 @@ class FleetBatch:
             else None
             for envs in self.members
         ]
-        # Each env's group and its row in that group's batch.
-        self.group = group
-        self.row = np.zeros(count, dtype=np.int64)
-        for envs in self.members:
-            self.row[envs] = np.arange(envs.size)
         self.profile = fleet.profiles[0]
-        self.observations = np.zeros((count, NUM_SENSORS), dtype=np.float32)
-        self.poses = np.zeros((count, 3), dtype=np.float32)
-        self.colliding = np.zeros(count, dtype=bool)
-
-    def _parts(self) -> list[tuple[npt.NDArray[np.int64], RobotBatch, ReadingsMap | None]]:
-        return [
-            (envs, batch, readings)
-            for envs, batch, readings in zip(self.members, self.batches, self.readings)
-            if batch is not None
+        self._tables = [
+            None if readings is None else readings.tables() for readings in self.readings
         ]
 
-    def _gather(self) -> None:
-        for envs, batch, readings in self._parts():
-            distances = batch.observations[:, : batch.distance_width]
-            volts = distances[:, :NUM_SENSORS] if readings is None else readings(distances)
-            self.observations[envs] = np.asarray(volts, dtype=np.float32)
-            self.poses[envs] = batch.poses
-            self.colliding[envs] = batch.colliding
-
-    def step(self, actions: npt.ArrayLike) -> None:
-        """Steps every robot with discrete actions (each group's wheel speeds are fractions of
-        its first robot's motor limit); the buffers hold the results."""
-        chosen = np.asarray(actions, dtype=np.int64)
-        for envs, batch, _ in self._parts():
-            batch.step(chosen[envs])
-        self._gather()
-
-    def move_to_world(self, env: int, world: int) -> None:
-        """Puts robot ``env`` into ``worlds[world]`` (see :meth:`RobotBatch.move_to_world`)."""
-        batch = self.batches[int(self.group[env])]
-        assert batch is not None  # an env's group has that env
-        batch.move_to_world(int(self.row[env]), world)
-
-    def place(self, envs: npt.ArrayLike, poses: npt.ArrayLike, seeds: npt.ArrayLike) -> None:
-        """Starts robots ``envs`` afresh at ``poses`` with noise ``seeds`` (see
-        :meth:`RobotBatch.place`); the other robots are not touched."""
-        robots = bounded_array(envs, "envs", np.int64, self.num_envs).ravel()
-        starts = bounded_array(poses, "poses", np.float64, 3 * robots.size)
-        starts = starts.reshape(robots.size, 3)
-        noise = bounded_array(seeds, "seeds", np.uint64, robots.size).ravel()
-        for index, batch in enumerate(self.batches):
-            mine = self.group[robots] == index
-            if batch is not None and mine.any():
-                batch.place(self.row[robots[mine]], starts[mine], noise[mine])
-        self._gather()
+    def crews(self) -> list[tuple[RobotBatch, npt.NDArray[np.int64], dict[str, Any] | None]]:
+        """Each group's batch, its robots' numbers in the fleet and its readings map as data
+        (None for the seed robot's own volts): the crews of the core's training round."""
+        return [
+            (batch, envs, tables)
+            for envs, batch, tables in zip(self.members, self.batches, self._tables)
+            if batch is not None
+        ]

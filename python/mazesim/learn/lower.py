@@ -12,7 +12,7 @@ every kind of door occurs):
 - A door sub-task starts in a straight corridor cell next to a door that has the opening it needs
   (on the right, the left or straight ahead), between 3 cm short of and 5 cm past the cell's
   centre (where a checkpoint's code ends), up to 3 cm off the centre line and 11 degrees off the
-  corridor's heading; it runs until :class:`mazesim.learn.subtasks.SubTaskTracker` says it ended.
+  corridor's heading; it runs until its sub-task ends (:mod:`mazesim.learn.subtasks`).
 
 **Decisions.** The discretised state changes only every few control steps, so a decision holds
 its action until the state changes (or for at most ``decision_steps`` steps) and is learned as
@@ -25,7 +25,7 @@ linearly from ``epsilon_start`` to 0 over the rounds but the last
 greedy policy that loops between two states loses the value of the loop.
 
 **Updates.** Every transition and its mirror image (:mod:`mazesim.learn.symmetry`) update the tables
-with :func:`mazesim.learn.qlearning.batch_update`.
+with the core's batch update (:func:`mazesim.learn.qlearning.batch_update`).
 
 **Rounds.** Training runs in rounds of ``round_steps`` control steps; every robot starts a fresh
 episode at the start of a round (episodes still running at its end are cut short, not failed).
@@ -35,12 +35,13 @@ of episode starts (:func:`draw_starts`), then every step's exploration draws
 the settings alone: a run resumed from a checkpoint after round k ends with the same tables as one
 never stopped.
 
-**In the core.** A round runs in one call of ``BatchSimulator.train_lower_round`` whenever its
-robots share one batch (whatever their motor limits), with every option of the navigator handed in
-as data: the phases the door sub-tasks count (``"heading"`` or ``"heading_and_distance"``) and what
-Corridors and Corners does in the blind state (``"table"``, ``"forward"`` or ``"hold_heading"``).
-Only a :class:`~mazesim.learn.fleet.Fleet` of several sensor sets steps from Python,
-``run_round(k, stepwise=True)``; both give the same tables bit for bit from the same draws.
+**In the core.** A round runs in one call of :func:`mazesim._core.train_lower_round`, with every
+option of the navigator handed in as data: the phases the door sub-tasks count (``"heading"`` or
+``"heading_and_distance"``), what Corridors and Corners does in the blind state (``"table"``,
+``"forward"`` or ``"hold_heading"``), each batch's wheel speeds (robots of several motor limits)
+and, for a :class:`~mazesim.learn.fleet.Fleet` of several sensor sets, each group's map of its
+readings into the seed robot's volts. ``tests/lower_oracle.py`` keeps the same round
+stepped in numpy, the reference the core's is checked against bit for bit.
 """
 
 from __future__ import annotations
@@ -52,7 +53,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from mazesim._core import World, generate_maze, lower_level_states
+from mazesim._core import World, generate_maze, train_lower_round
 from mazesim._seeding import stream, stream_seeds
 from mazesim.actions import ACTION_CODES
 from mazesim.batch import RobotBatch, RobotChoice
@@ -60,7 +61,6 @@ from mazesim.errors import InvalidArgumentError
 from mazesim.learn import qlearning
 from mazesim.learn.discretise import NUM_STATES
 from mazesim.learn.fleet import Fleet, FleetBatch
-from mazesim.learn.heading_hold import hold_actions
 from mazesim.learn.subtasks import (
     BLIND_STATE,
     COLLISION_PENALTY,
@@ -74,7 +74,6 @@ from mazesim.learn.subtasks import (
     PROGRESS_REWARD,
     SUBTASK_ACTIONS,
     SubTask,
-    SubTaskTracker,
     cruise_step_length,
     phase_counts,
 )
@@ -405,20 +404,12 @@ def draw_exploration(
     return Exploration(uniform, np.where(door, door_action, corridor_action).astype(np.int64))
 
 
-def _along(
-    points: npt.NDArray[np.float64], origin: npt.NDArray[np.float64], unit: npt.NDArray[np.float64]
-) -> npt.NDArray[np.float64]:
-    """Each row's ``(point - origin) . unit``, as the core sums it."""
-    return (points[:, 0] - origin[:, 0]) * unit[:, 0] + (points[:, 1] - origin[:, 1]) * unit[:, 1]
-
-
 class LowerTrainer:
     """Trains the lower-level tables round by round.
 
-    A round runs in the core (``BatchSimulator.train_lower_round``) when the robots are one
-    :class:`~mazesim.batch.RobotBatch` whose robots share one motor limit, and otherwise (a
-    :class:`~mazesim.learn.fleet.Fleet`) one step at a time here; both give the same tables bit for
-    bit from the same draws.
+    Each round runs in the core (:func:`mazesim._core.train_lower_round`), whatever the robots:
+    one :class:`~mazesim.batch.RobotBatch`, or a :class:`~mazesim.learn.fleet.Fleet` of several
+    sensor sets, a batch per group.
 
     Args:
         settings: The run's settings.
@@ -467,15 +458,6 @@ class LowerTrainer:
                 control_step_ms=self.settings.control_step_ms,
                 threads=self.threads,
             )
-        self.observations = self.batch.observations
-        self.poses = self.batch.poses
-        self.colliding = self.batch.colliding
-
-    @property
-    def in_core(self) -> bool:
-        """Whether rounds run in the core: robots of one batch (every robot of a
-        :class:`~mazesim.learn.fleet.Fleet` of several sensor sets steps from Python)."""
-        return isinstance(self.batch, RobotBatch)
 
     def draws(self, round_index: int) -> tuple[EpisodeStarts, Exploration]:
         """Round ``round_index``'s random draws: the episode starts, then the exploration, from
@@ -486,27 +468,38 @@ class LowerTrainer:
 
     # -- one round --------------------------------------------------------------------------
 
-    def run_round(self, round_index: int, stepwise: bool = False) -> RoundStats:
-        """Runs round ``round_index`` (0-based) and returns what happened in it.
-
-        Args:
-            round_index: The round.
-            stepwise: Step it from Python one control step at a time even when the core could
-                run it (the same tables and counts, slower).
-        """
-        settings = self.settings
-        epsilon = settings.epsilon(round_index)
+    def run_round(self, round_index: int) -> RoundStats:
+        """Runs round ``round_index`` (0-based) in the core and returns what happened in it."""
+        epsilon = self.settings.epsilon(round_index)
         starts, exploration = self.draws(round_index)
-        if self.in_core and not stepwise:
-            counts = self._round_in_core(starts, exploration, epsilon)
-        else:
-            counts = self._round_stepwise(starts, exploration, epsilon)
+        counts = train_lower_round(
+            self._crews(),
+            worlds=self.mazes,
+            role=self.role,
+            starts=starts.as_dict(),
+            explore=exploration.uniform,
+            random_action=exploration.action,
+            q=self.tables.q,
+            visits=self.tables.visits,
+            symmetry={
+                "states": _mirrored_rows(self.settings.door_distance),
+                "actions": MIRRORED_ACTION,
+                "subtasks": MIRRORED_SUBTASK,
+            },
+            allowed=SUBTASK_ACTIONS,
+            settings=self._core_settings(epsilon),
+        )
+        return self.round_stats(round_index, counts)
+
+    def round_stats(self, round_index: int, counts: dict[str, Any]) -> RoundStats:
+        """The stats of round ``round_index`` from the counts of its round."""
+        settings = self.settings
         count = settings.num_envs
         door = self.role != SubTask.CORRIDOR
         corridor_robot_steps = int(np.count_nonzero(~door)) * settings.round_steps
         return RoundStats(
             round_index=round_index,
-            epsilon=epsilon,
+            epsilon=settings.epsilon(round_index),
             env_steps=count * settings.round_steps,
             door_success=[int(v) for v in counts["success"]],
             door_failure=[int(v) for v in counts["failure"]],
@@ -547,230 +540,25 @@ class LowerTrainer:
             "success_across": SUCCESS_ACROSS,
         }
 
-    def _round_in_core(
-        self, starts: EpisodeStarts, exploration: Exploration, epsilon: float
-    ) -> dict[str, Any]:
+    def _crews(self) -> list[dict[str, Any]]:
+        """The batches of the round's robots, as the core's round takes them."""
         batch = self.batch
-        assert isinstance(batch, RobotBatch)
-        return batch.simulator.train_lower_round(
-            batch.observations,
-            batch.poses,
-            batch.colliding,
-            batch.crossings,
-            worlds=batch.worlds,
-            world_of_env=batch.world_of_env,
-            role=self.role,
-            starts=starts.as_dict(),
-            explore=exploration.uniform,
-            random_action=exploration.action,
-            q=self.tables.q,
-            visits=self.tables.visits,
-            symmetry={
-                "states": _mirrored_rows(self.settings.door_distance),
-                "actions": MIRRORED_ACTION,
-                "subtasks": MIRRORED_SUBTASK,
-            },
-            allowed=SUBTASK_ACTIONS,
-            wheel_speeds=batch.wheel_speeds,
-            settings=self._core_settings(epsilon),
-        )
-
-    def _round_stepwise(
-        self, starts: EpisodeStarts, exploration: Exploration, epsilon: float
-    ) -> dict[str, Any]:
-        """The round one control step at a time; the core's round follows it operation for
-        operation."""
-        settings = self.settings
-        count = settings.num_envs
-        q = self.tables.q
-        role = self.role
-        door = role != SubTask.CORRIDOR
-        episode = _Episodes(self, starts)
-        tracker = episode.tracker
-        everyone = np.arange(count)
-
-        episode.start(everyone)
-        progress = episode.progress()
-        previous_error = np.zeros(count)
-        state = tracker.states(lower_level_states(self.observations))
-        action = np.zeros(count, dtype=np.int64)
-        decided_reward = np.zeros(count)
-        decided_discount = np.ones(count)
-        decided_steps = np.zeros(count, dtype=np.int64)
-        deciding = np.ones(count, dtype=bool)
-
-        success = [0] * NUM_SUBTASKS
-        failure = [0] * NUM_SUBTASKS
-        cut = [0] * NUM_SUBTASKS
-        corridor_metres = 0.0
-        contact_steps = 0
-
-        for step in range(settings.round_steps):
-            explore = exploration.uniform[step] < epsilon
-            greedy = qlearning.best_allowed(q[role, state], SUBTASK_ACTIONS[role])
-            chosen = np.where(explore, exploration.action[step], greedy)
-            if settings.blind_forward or settings.hold_heading:
-                blind = (role == SubTask.CORRIDOR) & (state == BLIND_STATE)
-                if settings.hold_heading:
-                    rule = hold_actions(self.poses[:, 2], action)
-                else:
-                    rule = np.full(count, _FORWARD)
-                chosen = np.where(blind, rule, chosen)
-            action = np.where(deciding, chosen, action)
-            decided_reward[deciding] = 0.0
-            decided_discount[deciding] = 1.0
-            decided_steps[deciding] = 0
-
-            before = self.poses.astype(np.float64)
-            self.batch.step(action)
-            positions = self.poses.astype(np.float64)
-            episode.steps += 1
-            done, gave_up = tracker.update(positions)
-            out_of_steps = gave_up & tracker.out_of_steps
-            next_state = tracker.states(lower_level_states(self.observations))
-
-            heading = np.stack([np.cos(before[:, 2]), np.sin(before[:, 2])], axis=1)
-            forward = _along(positions, before, heading)
-            new_progress = episode.progress()
-            reward = np.where(
-                door,
-                PROGRESS_REWARD * (new_progress - progress) + DOOR_STEP_REWARD,
-                PROGRESS_REWARD * forward + CORRIDOR_STEP_REWARD,
-            )
-            reward += COLLISION_PENALTY * self.colliding
-            progress = new_progress
-            heading_error = np.abs(tracker.heading_change)
-            reward += np.where(
-                role == SubTask.FORWARD, HEADING_REWARD * (previous_error - heading_error), 0.0
-            )
-            previous_error = heading_error
-            entered = episode.entered_opening()
-            ended = door & (done | (gave_up & ~out_of_steps))
-            good = ended & done & entered
-            reward += np.where(ended, np.where(good, DOOR_SUCCESS_REWARD, DOOR_FAILURE_REWARD), 0.0)
-            cut_short = door & out_of_steps
-            corridor_over = ~door & (episode.steps >= settings.corridor_episode_steps)
-
-            decided_reward += decided_discount * reward
-            decided_discount *= settings.gamma
-            decided_steps += 1
-            deciding = (
-                ended
-                | cut_short
-                | corridor_over
-                | (next_state != state)
-                | (decided_steps >= settings.decision_steps)
-            )
-            bootstrap = np.where(ended, 0.0, decided_discount)
-            self._learn(deciding, state, action, decided_reward, next_state, bootstrap)
-
-            for subtask in (SubTask.RIGHT, SubTask.LEFT, SubTask.FORWARD):
-                mine = role == subtask
-                success[subtask] += int(np.count_nonzero(mine & good))
-                failure[subtask] += int(np.count_nonzero(mine & ended & ~good))
-                cut[subtask] += int(np.count_nonzero(mine & cut_short))
-            if np.any(~door):
-                # Summed in robot order, as the core sums it.
-                corridor_metres += float(np.cumsum(forward[~door])[-1])
-            contact_steps += int(np.count_nonzero(self.colliding))
-
-            state = next_state
-            restart = np.flatnonzero(ended | cut_short | corridor_over)
-            if restart.size:
-                episode.start(restart)
-                fresh = np.zeros(count, dtype=bool)
-                fresh[restart] = True
-                progress[fresh] = episode.progress()[fresh]
-                previous_error[fresh] = 0.0
-                state[fresh] = tracker.states(lower_level_states(self.observations))[fresh]
-
-        return {
-            "success": success,
-            "failure": failure,
-            "cut": cut,
-            "corridor_metres": corridor_metres,
-            "contact_steps": contact_steps,
-        }
-
-    def _learn(
-        self,
-        deciding: npt.NDArray[np.bool_],
-        state: npt.NDArray[np.int64],
-        action: npt.NDArray[np.int64],
-        reward: npt.NDArray[np.float64],
-        next_state: npt.NDArray[np.int64],
-        bootstrap: npt.NDArray[np.float64],
-    ) -> None:
-        """Feeds the finished decisions, then their mirror images, to the tables."""
-        envs = np.flatnonzero(deciding)
-        if envs.size == 0:
-            return
-        table = self.role[envs]
-        table = np.concatenate([table, MIRRORED_SUBTASK[table]])
-        states = np.concatenate([state[envs], mirrored_states(state[envs], self.role[envs])])
-        actions = np.concatenate([action[envs], MIRRORED_ACTION[action[envs]]])
-        rewards = np.concatenate([reward[envs], reward[envs]])
-        following = np.concatenate(
-            [next_state[envs], mirrored_states(next_state[envs], self.role[envs])]
-        )
-        factors = np.concatenate([bootstrap[envs], bootstrap[envs]])
-        for subtask in range(NUM_SUBTASKS):
-            mine = table == subtask
-            if np.any(mine):
-                qlearning.batch_update(
-                    self.tables.q[subtask],
-                    self.tables.visits[subtask],
-                    states[mine],
-                    actions[mine],
-                    rewards[mine],
-                    following[mine],
-                    factors[mine],
-                    self.settings.rate,
-                    SUBTASK_ACTIONS[subtask],
-                )
-
-
-class _Episodes:
-    """The robots' running episodes in a round stepped from Python: where each started, its door
-    path and its sub-task's odometry."""
-
-    def __init__(self, trainer: LowerTrainer, starts: EpisodeStarts) -> None:
-        count = trainer.settings.num_envs
-        self.trainer = trainer
-        self.starts = starts
-        self.tracker = SubTaskTracker(count, trainer.settings.door_distance)
-        self.taken = np.zeros(count, dtype=np.int64)
-        self.steps = np.zeros(count, dtype=np.int64)
-        self.path = np.zeros((count, 9))
-
-    def start(self, envs: npt.NDArray[np.int64]) -> None:
-        """Starts the next episode of each robot of ``envs`` from its queue."""
-        trainer = self.trainer
-        per_env = self.starts.world.shape[1]
-        rows = self.taken[envs] % per_env
-        self.taken[envs] += 1
-        for env, world in zip(envs, self.starts.world[envs, rows]):
-            trainer.batch.move_to_world(int(env), int(world))
-        trainer.batch.place(envs, self.starts.pose[envs, rows], self.starts.seed[envs, rows])
-        self.path[envs] = self.starts.path[envs, rows]
-        self.steps[envs] = 0
-        fresh = np.zeros(trainer.settings.num_envs, dtype=bool)
-        fresh[envs] = True
-        self.tracker.begin(fresh, trainer.role, trainer.poses.astype(np.float64))
-
-    def progress(self) -> npt.NDArray[np.float64]:
-        """Metres along each robot's door path (first leg clipped to its length)."""
-        positions = self.trainer.poses.astype(np.float64)
-        path = self.path
-        first = _along(positions, path[:, 0:2], path[:, 4:6])
-        second = _along(positions, path[:, 2:4], path[:, 6:8])
-        return np.minimum(first, path[:, 8]) + np.clip(second, 0.0, DOOR_PATH_EXIT)
-
-    def entered_opening(self) -> npt.NDArray[np.bool_]:
-        """Whether each robot is past its door's centre into the opening, near its centre line."""
-        positions = self.trainer.poses.astype(np.float64)
-        centre, heading_out = self.path[:, 2:4], self.path[:, 6:8]
-        along = _along(positions, centre, heading_out)
-        relative = positions[:, :2] - centre
-        across = np.abs(relative[:, 0] * heading_out[:, 1] - relative[:, 1] * heading_out[:, 0])
-        return (along >= SUCCESS_PAST_CENTRE) & (across <= SUCCESS_ACROSS)
+        parts: list[tuple[RobotBatch, npt.NDArray[np.int64], dict[str, Any] | None]]
+        if isinstance(batch, RobotBatch):
+            parts = [(batch, np.arange(batch.world_of_env.size, dtype=np.int64), None)]
+        else:
+            parts = batch.crews()
+        return [
+            {
+                "simulator": part.simulator,
+                "observations": part.observations,
+                "poses": part.poses,
+                "colliding": part.colliding,
+                "crossings": part.crossings,
+                "world_of_env": part.world_of_env,
+                "wheel_speeds": part.wheel_speeds,
+                "members": members,
+                "readings": readings,
+            }
+            for part, members, readings in parts
+        ]

@@ -17,7 +17,7 @@ order::
     before = q.copy()
     for i in range(N):
         target = rewards[i] + bootstrap[i] * before[next_states[i]].max()
-        alpha = learning_rates(visits[states[i], actions[i]], rate)
+        alpha = max(rate.floor, rate.initial * (visits[states[i], actions[i]] + 1) ** -rate.power)
         q[states[i], actions[i]] += alpha * (target - q[states[i], actions[i]])
         visits[states[i], actions[i]] += 1
 
@@ -50,9 +50,6 @@ __all__ = [
     "best_allowed",
     "epsilon_greedy",
     "greedy",
-    "learning_rates",
-    "scalar_update",
-    "td_targets",
 ]
 
 FloatArray = npt.NDArray[np.float64]
@@ -124,48 +121,6 @@ def epsilon_greedy(
     explore = rng.random(indices.shape) < epsilon
     random_actions = rng.integers(0, q.shape[-1], size=indices.shape)
     return np.where(explore, random_actions, greedy(q, indices)).astype(np.int64)
-
-
-def scalar_update(
-    q: FloatArray,
-    state: int,
-    action: int,
-    reward: float,
-    next_state: int,
-    bootstrap: float,
-    alpha: float,
-) -> None:
-    """One Q-learning update in place (the module's formula) with learning rate ``alpha``."""
-    target = reward + bootstrap * float(np.max(q[next_state])) if bootstrap else reward
-    q[state, action] += alpha * (target - q[state, action])
-
-
-def td_targets(
-    q: FloatArray,
-    rewards: npt.ArrayLike,
-    next_states: npt.ArrayLike,
-    bootstrap: npt.ArrayLike,
-    allowed: npt.NDArray[np.bool_] | None = None,
-) -> FloatArray:
-    """The targets ``r + bootstrap * max_b Q[s', b]`` of N transitions (0 * max where bootstrap is
-    0, so a terminal next state is never read); the max runs over the ``allowed`` actions only
-    (a boolean mask over the table's columns; all by default)."""
-    rewards_array = np.asarray(rewards, dtype=np.float64)
-    factors = np.broadcast_to(np.asarray(bootstrap, dtype=np.float64), rewards_array.shape)
-    following = np.asarray(next_states, dtype=np.int64)
-    best = np.zeros_like(rewards_array)
-    live = factors != 0.0
-    values = q[following[live]]
-    if allowed is not None:
-        values = values[:, allowed]
-    best[live] = values.max(axis=-1)
-    return rewards_array + factors * best
-
-
-def learning_rates(visits: npt.ArrayLike, rate: LearningRate) -> FloatArray:
-    """The learning rate of the update that follows ``visits`` earlier updates of a pair."""
-    counts = np.asarray(visits, dtype=np.float64)
-    return np.maximum(rate.floor, rate.initial * (counts + 1.0) ** -rate.power)
 
 
 def batch_update(

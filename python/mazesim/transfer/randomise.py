@@ -297,7 +297,7 @@ def robot_draw(spec: RandomisationSpec, seed: int) -> Callable[[int, int], Robot
     def readings_of(name: str) -> ReadingsMap | None:
         if name not in readings:
             mapped = None if name == SEED_ROBOT else SeedReadings(RobotProfile.builtin(name))
-            readings[name] = None if mapped is None else mapped.volts
+            readings[name] = mapped
         return readings[name]
 
     def draw(round_index: int, count: int) -> RobotChoice | Fleet:

@@ -97,6 +97,22 @@ class SeedReadings:
         """(N, 6) seed-robot volts at the distances the readings show."""
         return np.interp(self.distances_m(readings), _SHARP_DISTANCES, _SHARP_VOLTS)
 
+    def tables(self) -> dict[str, Any]:
+        """The map as data, for the core's training round (``readings`` of a crew of
+        :func:`mazesim._core.train_lower_round`), which computes :meth:`volts` from it."""
+        directions = np.zeros((NUM_SENSORS, len(self.grids)), dtype=bool)
+        for place, sensors in enumerate(self.sensors):
+            directions[place, sensors] = True
+        return {
+            "directions": directions,
+            "readings": np.stack(self.grids),
+            "distances": np.stack(self.distances),
+            "seen_up_to": np.ascontiguousarray(self.seen_up_to, dtype=np.float64),
+            "far": float(FAR_M),
+            "table_distances": _SHARP_DISTANCES,
+            "table_volts": _SHARP_VOLTS,
+        }
+
 
 class SeedReadingsNavigator:
     """A navigator of the seed robot driving another profile through :class:`SeedReadings`.

@@ -9,6 +9,7 @@ pub mod braitenberg;
 pub mod door;
 pub mod heading_hold;
 pub mod random_wheels;
+pub mod seed_volts;
 pub mod tabular;
 
 pub use avoid_collision::AvoidCollision;
