@@ -1,0 +1,264 @@
+"""Hand-written baseline agents for the unseen-maze tasks: a wall follower and a frontier explorer.
+
+Both act on the observation of ``mazesim/UnseenMaze-v1`` made with ``include_pose=True`` (the
+``"explore"`` observation plus the pose, x and y in the maze from 0 to 1 and the heading's cosine
+and sine: what wheel odometry gives a real robot), as ``agent.act(observation) -> action``,
+continuous wheel speeds in [-1, 1]. They read nothing else: the open sides of the robot's own
+cell (``open_ahead`` ... ``open_right``), the goal's direction and the pose. Neither ever sees a
+wall of a cell the robot has not been in.
+
+Each moves from cell centre to cell centre: on reaching the centre of the cell it was heading
+for it picks a neighbour whose side is open and drives there (turn towards the cell's centre,
+drive when it is ahead). They differ in the choice:
+
+- :class:`WallFollower`: the left-hand rule (Pledge's and Trémaux's predecessor, as old as
+  mazes): turn left if that side is open, else go straight, else right, else back. In a maze
+  without loops (every generated maze) it walks round the walls and passes every cell, the goal's
+  among them, in at most two visits each; it ignores the goal's direction.
+- :class:`FrontierExplorer`: frontier-based exploration (Yamauchi, 1997) on a map of cells it
+  builds from its observations: the sides of every cell it has been in. When the goal's cell
+  (known from the goal's direction and the pose) is joined to the robot's through that map, or is
+  the cell across an open side of a cell it has been in, it goes there by the shortest known
+  path; otherwise it goes to the nearest frontier (a cell it has not been in, across an open side
+  of one it has), the frontier nearest the goal among equally near ones.
+
+:func:`evaluate` runs an agent (or uniformly random actions) on the held-out episodes of
+``examples/ppo_sb3.py`` and gives the success rate and the mean length of the episodes.
+"""
+
+from __future__ import annotations
+
+import math
+from collections import deque
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+
+from mazesim.errors import InvalidArgumentError
+
+__all__ = ["BaselineResult", "CellAgent", "FrontierExplorer", "WallFollower", "evaluate"]
+
+#: A cell as (column, row), row 0 at the bottom (y up), as the pose's x and y.
+Cell = tuple[int, int]
+#: The (column, row) step across each side, indexed by direction: east, north, west, south.
+_STEPS: tuple[Cell, ...] = ((1, 0), (0, 1), (-1, 0), (0, -1))
+#: The observation's sides, relative to the robot: ahead, left, behind, right (counter-clockwise).
+_SIDES = ("open_ahead", "open_left", "open_behind", "open_right")
+#: The observation names the agents read.
+_NEEDED = ("goal_forward", "goal_left", "x", "y", "heading_cos", "heading_sin", *_SIDES)
+#: A cell's centre counts as reached within this fraction of a cell.
+_ARRIVED = 0.15
+#: The largest heading error (radians) at which the robot drives forward; beyond it, it turns.
+_AHEAD = 0.5
+#: Forward speed (fraction of the motor limit) when the target is ahead.
+_DRIVE = 0.8
+
+
+class CellAgent:
+    """An agent that drives from cell centre to cell centre, choosing each next cell from what it
+    has observed (:meth:`choose`, the rule of a subclass).
+
+    Args:
+        observation_names: The env's ``observation_names`` (``env.unwrapped.observation_names``):
+            the agent finds its values by name.
+        maze_size: The maze's columns and rows (5 x 5 for the unseen-maze tasks).
+
+    Raises:
+        InvalidArgumentError: A value the agent reads is not in the observation (make the task
+            with ``observation="explore"`` and ``include_pose=True``).
+    """
+
+    def __init__(self, observation_names: Sequence[str], maze_size: tuple[int, int] = (5, 5)):
+        missing = [name for name in _NEEDED if name not in observation_names]
+        if missing:
+            raise InvalidArgumentError(
+                f"a baseline agent reads {', '.join(_NEEDED)} from the observation; missing: "
+                f"{', '.join(missing)} (make the task with include_pose=True)"
+            )
+        self._index = {name: list(observation_names).index(name) for name in _NEEDED}
+        self.columns, self.rows = (int(size) for size in maze_size)
+        self.reset()
+
+    def reset(self) -> None:
+        """Forgets the episode: call it before the first action of each episode."""
+        self._target: Cell | None = None
+        #: The open sides (by direction: east, north, west, south) of each cell the robot has
+        #: been in, as its observations gave them.
+        self.known: dict[Cell, tuple[bool, bool, bool, bool]] = {}
+        self._heading_of_travel: int | None = None
+
+    def act(self, observation: npt.ArrayLike) -> npt.NDArray[np.float32]:
+        """The wheel speeds (left, right, fractions of the motor limit) for ``observation``."""
+        values = np.asarray(observation, dtype=np.float64)
+        x, y = values[self._index["x"]], values[self._index["y"]]
+        yaw = math.atan2(values[self._index["heading_sin"]], values[self._index["heading_cos"]])
+        here = (
+            self._clamp(int(x * self.columns), self.columns),
+            self._clamp(int(y * self.rows), self.rows),
+        )
+        if self._target is None or (here == self._target and self._near_centre(x, y, here)):
+            facing = round(yaw / (math.pi / 2)) % 4
+            sides = [values[self._index[side]] > 0.5 for side in _SIDES]
+            opened = tuple(sides[(direction - facing) % 4] for direction in range(4))
+            self.known[here] = (opened[0], opened[1], opened[2], opened[3])
+            travel = facing if self._heading_of_travel is None else self._heading_of_travel
+            direction = self.choose(here, travel, self._goal_cell(values, x, y, yaw))
+            self._heading_of_travel = direction
+            step = _STEPS[direction]
+            self._target = (here[0] + step[0], here[1] + step[1])
+        return self._drive_to(self._target, x, y, yaw)
+
+    def choose(self, here: Cell, travel: int, goal: Cell) -> int:
+        """The direction (0 east, 1 north, 2 west, 3 south) of the next cell, through an open side
+        of ``here`` (``self.known[here]``); ``travel`` is the direction of the last move."""
+        raise NotImplementedError
+
+    @staticmethod
+    def _clamp(index: int, size: int) -> int:
+        return min(max(index, 0), size - 1)
+
+    def _near_centre(self, x: float, y: float, cell: Cell) -> bool:
+        dx = x * self.columns - (cell[0] + 0.5)
+        dy = y * self.rows - (cell[1] + 0.5)
+        return math.hypot(dx, dy) < _ARRIVED
+
+    def _goal_cell(self, values: npt.NDArray[np.float64], x: float, y: float, yaw: float) -> Cell:
+        """The goal's cell, from its direction in the robot's frame (in units of the maze's larger
+        side) and the pose."""
+        forward, left = values[self._index["goal_forward"]], values[self._index["goal_left"]]
+        side = max(self.columns, self.rows)
+        east = (math.cos(yaw) * forward - math.sin(yaw) * left) * side
+        north = (math.sin(yaw) * forward + math.cos(yaw) * left) * side
+        return (
+            self._clamp(math.floor(x * self.columns + east), self.columns),
+            self._clamp(math.floor(y * self.rows + north), self.rows),
+        )
+
+    def _drive_to(self, cell: Cell, x: float, y: float, yaw: float) -> npt.NDArray[np.float32]:
+        """Turn towards ``cell``'s centre, drive when it is ahead."""
+        dx = cell[0] + 0.5 - x * self.columns
+        dy = cell[1] + 0.5 - y * self.rows
+        error = math.remainder(math.atan2(dy, dx) - yaw, math.tau)
+        drive = 0.0 if abs(error) > _AHEAD else _DRIVE
+        return np.clip([drive - error, drive + error], -1.0, 1.0).astype(np.float32)
+
+
+class WallFollower(CellAgent):
+    """The left-hand rule over the cells: left if open, else straight, else right, else back."""
+
+    def choose(self, here: Cell, travel: int, goal: Cell) -> int:
+        opened = self.known[here]
+        for turn in (1, 0, 3, 2):  # left, straight, right, back
+            direction = (travel + turn) % 4
+            if opened[direction]:
+                return direction
+        return (travel + 2) % 4  # walled in on every side: nothing to do but turn
+
+
+class FrontierExplorer(CellAgent):
+    """Goes to the goal's cell once its map joins it to the robot, else to the nearest frontier
+    cell (the one nearest the goal among equally near ones)."""
+
+    def choose(self, here: Cell, travel: int, goal: Cell) -> int:
+        first_steps = self._first_steps(here)
+        if goal in first_steps:
+            return first_steps[goal][1]
+        frontier = [cell for cell in first_steps if cell not in self.known]
+        if not frontier:
+            return travel  # nothing left to explore: the map holds no way on
+        best = min(
+            frontier,
+            key=lambda cell: (
+                first_steps[cell][0],
+                abs(cell[0] - goal[0]) + abs(cell[1] - goal[1]),
+                cell,
+            ),
+        )
+        return first_steps[best][1]
+
+    def _first_steps(self, here: Cell) -> dict[Cell, tuple[int, int]]:
+        """Every cell reachable through the open sides of cells the robot has been in (the
+        frontier included), with its distance in cells and the direction of the first step."""
+        found: dict[Cell, tuple[int, int]] = {here: (0, -1)}
+        queue = deque([here])
+        while queue:
+            cell = queue.popleft()
+            if cell not in self.known:
+                continue  # a frontier cell: its sides are not known
+            distance, first = found[cell]
+            for direction, is_open in enumerate(self.known[cell]):
+                step = _STEPS[direction]
+                across = (cell[0] + step[0], cell[1] + step[1])
+                if is_open and across not in found:
+                    found[across] = (distance + 1, direction if first < 0 else first)
+                    queue.append(across)
+        return found
+
+
+@dataclass(frozen=True)
+class BaselineResult:
+    """What :func:`evaluate` measured.
+
+    Attributes:
+        episodes: The number of episodes (one per held-out environment).
+        success: The fraction of them that reached the goal.
+        mean_steps: The mean length (control steps) of all episodes, the failed ones at the limit.
+        mean_success_steps: The mean length of the episodes that reached the goal (NaN if none).
+    """
+
+    episodes: int
+    success: float
+    mean_steps: float
+    mean_success_steps: float
+
+
+def evaluate(
+    task: str,
+    agent: Callable[[Sequence[str]], CellAgent] | None,
+    episodes: int = 100,
+    seed: int = 10**6,
+) -> BaselineResult:
+    """Runs one episode in each of ``episodes`` environments of ``task`` seeded ``seed``,
+    ``seed + 1``, ... (``examples/ppo_sb3.py``'s held-out episodes for ``seed = 10**6 + its
+    seed``), made with ``include_pose=True``, each driven by its own ``agent(observation_names)``,
+    or by uniformly random actions (the action space seeded with ``seed``) if ``agent`` is None.
+    """
+    import gymnasium
+
+    envs = gymnasium.make_vec(task, num_envs=episodes, include_pose=True)
+    try:
+        observations, _ = envs.reset(seed=seed)
+        names = _observation_names(envs)
+        agents = [agent(names) for _ in range(episodes)] if agent is not None else []
+        envs.action_space.seed(seed)
+        steps = np.zeros(episodes, dtype=np.int64)
+        success = np.zeros(episodes, dtype=bool)
+        finished = np.zeros(episodes, dtype=bool)
+        while not finished.all():
+            if agents:
+                actions = np.stack([each.act(obs) for each, obs in zip(agents, observations)])
+            else:
+                actions = envs.action_space.sample()
+            observations, _, terminated, truncated, infos = envs.step(actions)
+            steps += ~finished
+            ended = (terminated | truncated) & ~finished
+            success |= ended & infos["is_success"]
+            finished |= ended
+    finally:
+        envs.close()
+    lengths = steps[success]
+    return BaselineResult(
+        episodes,
+        float(success.mean()),
+        float(steps.mean()),
+        float(lengths.mean()) if lengths.size else math.nan,
+    )
+
+
+def _observation_names(envs: object) -> list[str]:
+    names = getattr(getattr(envs, "unwrapped", envs), "observation_names", None)
+    if names is None:
+        raise InvalidArgumentError("the vector env does not name its observation's values")
+    return list(names)
