@@ -18,11 +18,11 @@ AGENTS = [WallFollower, FrontierExplorer]
 
 
 def run_episode(
-    agent_class: type[CellAgent], seed: int
+    agent_class: type[CellAgent], seed: int, include_pose: bool = False
 ) -> tuple[CellAgent, list[np.ndarray], set[tuple[int, int]], dict]:
-    """One episode of ``TASK`` with the pose observed: the agent, its actions, the cells the
-    robot's true pose was in, and the last info."""
-    env = gymnasium.make(TASK, include_pose=True)
+    """One episode of ``TASK``: the agent, its actions, the cells the robot's true pose was in,
+    and the last info."""
+    env = gymnasium.make(TASK, include_pose=include_pose)
     agent = agent_class(env.get_wrapper_attr("observation_names"))
     observation, info = env.reset(seed=seed)
     actions, cells = [], set()
@@ -38,11 +38,12 @@ def run_episode(
 
 
 @pytest.mark.parametrize("agent_class", AGENTS)
-@pytest.mark.parametrize("seed", [3, 11])
+@pytest.mark.parametrize(("seed", "include_pose"), [(3, False), (11, False), (3, True)])
 def test_a_baseline_reaches_the_goal_of_an_unseen_maze(
-    agent_class: type[CellAgent], seed: int
+    agent_class: type[CellAgent], seed: int, include_pose: bool
 ) -> None:
-    _, actions, _, info = run_episode(agent_class, seed)
+    agent, actions, _, info = run_episode(agent_class, seed, include_pose)
+    assert agent.uses_pose == include_pose
     assert info["is_success"]
     assert len(actions) < 1000
 
@@ -56,10 +57,14 @@ def test_a_baseline_is_deterministic(agent_class: type[CellAgent]) -> None:
 
 
 def test_the_frontier_explorer_maps_only_cells_it_has_been_in() -> None:
-    agent, _, cells, info = run_episode(FrontierExplorer, 7)
+    agent, _, cells, info = run_episode(FrontierExplorer, 7, include_pose=True)
     assert info["is_success"]
     assert agent.known, "it mapped nothing"
     assert set(agent.known) <= cells
+    # Without the pose its cells are relative to the goal's, in axes of its own: as many.
+    agent, _, cells, info = run_episode(FrontierExplorer, 7)
+    assert info["is_success"]
+    assert 0 < len(agent.known) <= len(cells)
 
 
 def test_the_frontier_explorer_goes_to_an_open_unexplored_side_first() -> None:
@@ -74,9 +79,9 @@ def test_the_frontier_explorer_goes_to_an_open_unexplored_side_first() -> None:
     assert agent.known == {(2, 2): (False, True, False, False)}
 
 
-def test_an_observation_without_the_pose_is_refused() -> None:
-    names = gymnasium.make(TASK).get_wrapper_attr("observation_names")
-    with pytest.raises(InvalidArgumentError, match="include_pose=True"):
+def test_an_observation_without_the_explored_map_is_refused() -> None:
+    names = gymnasium.make("mazesim/MazeFixed-v1").get_wrapper_attr("observation_names")
+    with pytest.raises(InvalidArgumentError, match="missing: open_ahead"):
         WallFollower(names)
 
 
