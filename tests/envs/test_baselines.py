@@ -89,7 +89,7 @@ def test_evaluate_counts_successes_and_lengths() -> None:
     result = evaluate(TASK, WallFollower, episodes=4, seed=10**6)
     assert result.episodes == 4
     assert result.success == 1.0
-    assert result.mean_steps == result.mean_success_steps
+    assert result.mean_length == result.mean_success_length
     random = evaluate(TASK, None, episodes=4, seed=10**6)
     assert random.success < 1.0
-    assert random.mean_steps > result.mean_steps
+    assert random.mean_length > result.mean_length

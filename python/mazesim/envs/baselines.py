@@ -262,14 +262,14 @@ class BaselineResult:
     Attributes:
         episodes: The number of episodes (one per held-out environment).
         success: The fraction of them that reached the goal.
-        mean_steps: The mean length (control steps) of all episodes, the failed ones at the limit.
-        mean_success_steps: The mean length of the episodes that reached the goal (NaN if none).
+        mean_length: The mean length (control steps) of all episodes, the failed ones at the limit.
+        mean_success_length: The mean length of the episodes that reached the goal (NaN if none).
     """
 
     episodes: int
     success: float
-    mean_steps: float
-    mean_success_steps: float
+    mean_length: float
+    mean_success_length: float
 
 
 def evaluate(
