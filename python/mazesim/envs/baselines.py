@@ -11,10 +11,10 @@ Each moves from cell centre to cell centre: on reaching the centre of the cell i
 for it picks a neighbour whose side is open and drives there (turn towards the cell's centre,
 drive when it is ahead). They differ in the choice:
 
-- :class:`WallFollower`: the left-hand rule (Pledge's and Trémaux's predecessor, as old as
-  mazes): turn left if that side is open, else go straight, else right, else back. In a maze
-  without loops (every generated maze) it walks round the walls and passes every cell, the goal's
-  among them, in at most two visits each; it ignores the goal's direction.
+- :class:`WallFollower`: the left-hand rule of maze solving: turn left if that side is open,
+  else go straight, else right, else back. In a maze without loops (every maze of the unseen-maze
+  tasks: the generator's default) it walks round the walls through every cell, the goal's among
+  them, taking each passage at most once each way; it ignores the goal's direction.
 - :class:`FrontierExplorer`: frontier-based exploration (Yamauchi, 1997) on a map of cells it
   builds from its observations: the sides of every cell it has been in. When the goal's cell
   (known from the goal's direction and the pose) is joined to the robot's through that map, or is
