@@ -18,7 +18,8 @@ before the call; the rest when the call fails with a built-in exception (``TypeE
 the function's own, more precise messages are kept: an argument that does not fit then raises
 :class:`~mazesim.errors.InvalidArgumentError` ("expected X, found Y") naming the function and the
 parameter, and so does a call with missing or unknown arguments. A failure whose arguments all fit
-their annotations is left as it was (a bug to report, or a bound the annotations cannot say).
+their annotations (a bound the annotations cannot say, or a bug), and any other exception from
+below the surface, is put into the package's error tree by :mod:`mazesim._error_tree`.
 A new public function is checked without any code of its own. The check is made once per call
 from outside: calls a checked function makes to other public functions of the package are not
 checked again, and the compiled core's per-step work is not touched.

@@ -405,7 +405,8 @@ class BatchSimulator:
     ]:
         """New zeroed output buffers of the shapes and dtypes every call checks, for the caller
         to hold: observations (N, observation_width) float32, poses (N, 3) float32, colliding
-        (N,) bool and crossings (N,) int32."""
+        (N,) bool and crossings (N,) int32; in a batch of worlds of several robots, each with
+        the robot axis after the environments' ((N, R, observation_width), ...)."""
     def step(
         self,
         actions: npt.NDArray[np.float32],

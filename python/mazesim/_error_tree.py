@@ -33,7 +33,7 @@ from typing import Any
 
 from mazesim.errors import InternalError, InvalidArgumentError, MazesimError, MazesimIOError
 
-__all__ = ["in_the_tree"]
+__all__ = ["in_the_tree", "io_error"]
 
 #: The longest part of an original message quoted (a message may quote a huge value).
 QUOTED_CHARACTERS = 300
@@ -103,7 +103,12 @@ def _quoted(error: BaseException) -> str:
     return f"{type(error).__name__}: {text}" if text else type(error).__name__
 
 
-def _io_error(where: str, error: OSError) -> MazesimIOError:
+def io_error(error: OSError, where: str = "") -> MazesimIOError:
+    """``error`` as a :class:`~mazesim.errors.MazesimIOError` whose message is the file and the
+    system's reason ("/dev/null: File exists", not "[Errno 17] File exists: '/dev/null'"), or
+    ``where`` and the reason when the system named no file; itself if it is one already."""
+    if isinstance(error, MazesimIOError):
+        return error
     name = error.filename if error.filename is not None else where
     reason = error.strerror or _quoted(error)
     made = _made(MazesimIOError, type(error), f"{name}: {reason}")
@@ -128,7 +133,7 @@ def in_the_tree(where: str, error: BaseException, argument_failure: bool) -> Bas
     if _left_alone(error):
         return error
     if isinstance(error, OSError):
-        return _io_error(where, error)
+        return io_error(error, where)
     if argument_failure:
         message = f"{where}: the arguments do not fit: {_quoted(error)}"
         return _made(InvalidArgumentError, type(error), message)

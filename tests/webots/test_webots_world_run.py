@@ -157,3 +157,17 @@ def test_the_same_seed_gives_the_same_run_whatever_the_processes_timing(
     for one, other in zip(first.robots, again.robots):  # type: ignore[attr-defined]
         assert (one.xs, one.ys) == (other.xs, other.ys)
     assert json.loads((tmp_path / "near.json").read_text())["orders"][:31] == ["go"] * 30 + ["stop"]
+
+
+@pytest.mark.parametrize(
+    "option", ["--html=run.html", "--video=run.mp4", "--record=run.json", "--live"]
+)
+def test_issue_35_a_world_run_refuses_a_replay_it_would_not_write(
+    option: str, tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from mazesim.cli import main
+
+    monkeypatch.chdir(tmp_path)
+    assert main(["webots", "run", str(WORLD), "--out", "out", option]) == 2
+    assert "expected a run of one controller, found a run of the world" in capsys.readouterr().err
+    assert list(tmp_path.iterdir()) == [], "refused before anything ran or was written"

@@ -7,7 +7,7 @@ use mazesim_core::control::avoid_collision::EPUCK_MAX_SPEED;
 use mazesim_core::limits::{MAX_ENVS, MAX_THREADS};
 use mazesim_core::rollout::RunEnvs;
 use mazesim_core::{Batch, RunOptions, StepOutputs, World};
-use numpy::{PyArray1, PyArray2, PyArrayMethods};
+use numpy::{PyArray1, PyArrayDyn, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -40,10 +40,10 @@ const MAX_RUN_STEPS: usize = 1 << 40;
 
 /// The four output buffers of a batch: observations, poses, colliding, crossings.
 type OutputBuffers<'py> = (
-    Bound<'py, PyArray2<f32>>,
-    Bound<'py, PyArray2<f32>>,
-    Bound<'py, PyArray1<bool>>,
-    Bound<'py, PyArray1<i32>>,
+    Bound<'py, PyArrayDyn<f32>>,
+    Bound<'py, PyArrayDyn<f32>>,
+    Bound<'py, PyArrayDyn<bool>>,
+    Bound<'py, PyArrayDyn<i32>>,
 );
 
 fn bad(msg: String) -> PyErr {
@@ -330,14 +330,15 @@ impl PyBatch {
 
     /// New zeroed output buffers of the shapes and dtypes every call checks, for the caller to
     /// hold: observations (N, observation_width) float32, poses (N, 3) float32, colliding (N,)
-    /// bool and crossings (N,) int32.
+    /// bool and crossings (N,) int32; in a batch of worlds of several robots, each with the
+    /// robot axis after the environments' ((N, R, observation_width), ...).
     fn output_buffers<'py>(&self, py: Python<'py>) -> OutputBuffers<'py> {
-        let n = self.n;
+        // A batch of worlds of several robots has a robot axis after the environments'.
         (
-            PyArray2::zeros(py, [n, self.width()], false),
-            PyArray2::zeros(py, [n, 3], false),
-            PyArray1::zeros(py, n, false),
-            PyArray1::zeros(py, n, false),
+            PyArrayDyn::zeros(py, self.shape(&[self.width()]), false),
+            PyArrayDyn::zeros(py, self.shape(&[3]), false),
+            PyArrayDyn::zeros(py, self.shape(&[]), false),
+            PyArrayDyn::zeros(py, self.shape(&[]), false),
         )
     }
 

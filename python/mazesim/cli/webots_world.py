@@ -44,6 +44,15 @@ def run_world_command(args: argparse.Namespace, out: TextIO) -> int:
     from mazesim.webots.lockstep import run_world
     from mazesim.webots.runner import controller_file
 
+    asked = [
+        f"--{name}" for name in ("html", "video", "record", "live", "keys") if getattr(args, name)
+    ]
+    if asked:  # a world run writes no replay yet: refused rather than silently not written
+        raise InvalidArgumentError(
+            f"{', '.join(asked)}: expected a run of one controller, found a run of the world "
+            f"{args.controller!r}, which writes only DIR/trajectory.png, DIR/summary.json and "
+            f"DIR/trajectory.csv; for a replay, run one robot's controller with --world"
+        )
     given = {
         name: controller_file(file)
         for name, file in robot_controllers(args.robot_controller).items()
