@@ -11,19 +11,18 @@ runs more calls over every module of the package.
 
 from __future__ import annotations
 
-import json
 import os
-import subprocess
-import sys
+import random
 from pathlib import Path
 from typing import Any
 
-import pytest
 from hypothesis import HealthCheck, Phase, given, settings
 from hypothesis import strategies as st
 
+from mazesim._checks import is_public_module
 from surface.registry import (
     INSTANCES,
+    SKIPPED_MODULES,
     EntryPoint,
     can_make,
     cli_entry_points,
@@ -32,14 +31,15 @@ from surface.registry import (
     python_entry_points,
 )
 from surface.values import ARGUMENT_WORDS, BUILDERS
+from surface.walk import walk
 
-HERE = Path(__file__).resolve().parent
 #: Calls per entry point, and which part of the surface (``core``: the compiled core, the
 #: ``mazesim`` namespace and the command line; ``all``: every module too).
 CALLS = int(os.environ.get("MAZESIM_SURFACE_CALLS", "1"))
 PART = os.environ.get("MAZESIM_SURFACE", "core")
-#: Seconds the runner may take for all its calls (each has a 2 s Ctrl-C watchdog).
-TIME_LIMIT = 600.0
+#: The seed of the calls' values (``MAZESIM_SURFACE_SEED``; else hypothesis draws it, the same
+#: every run).
+SEED = os.environ.get("MAZESIM_SURFACE_SEED", "")
 
 
 def _makeable(owner: str) -> bool:
@@ -69,61 +69,105 @@ def entry_points() -> list[EntryPoint]:
     return python_entry_points() + cli_entry_points()
 
 
-def python_call(entry: EntryPoint) -> st.SearchStrategy[dict[str, Any]]:
+def python_call(entry: EntryPoint, rng: random.Random) -> dict[str, Any]:
     """One call: every required parameter and one other (if any) given a hostile value."""
-    keys = st.sampled_from(sorted(BUILDERS))
+    keys = sorted(BUILDERS)
     optional = [p for p in entry.parameters if p not in entry.required]
-    chosen = st.sampled_from(optional).map(lambda p: [p]) if optional else st.just([])
-    return st.tuples(
-        st.fixed_dictionaries({p: keys for p in entry.required}),
-        chosen,
-        keys,
-    ).map(
-        lambda t: {
-            "path": entry.path,
-            "instance": instance_recipe(owner) if (owner := needs_instance(entry)) else None,
-            "positional": list(entry.positional),
-            "args": {**t[0], **{p: t[2] for p in t[1]}},
-        }
-    )
+    chosen = [*entry.required, *([rng.choice(optional)] if optional else [])]
+    owner = needs_instance(entry)
+    return {
+        "path": entry.path,
+        "instance": instance_recipe(owner) if owner else None,
+        "positional": list(entry.positional),
+        "args": {p: rng.choice(keys) for p in chosen},
+    }
 
 
-def cli_call(entry: EntryPoint) -> st.SearchStrategy[dict[str, Any]]:
+def cli_call(entry: EntryPoint, rng: random.Random) -> dict[str, Any]:
     """One command line: its words, its positionals and one option given hostile words."""
-    words = st.sampled_from(sorted(ARGUMENT_WORDS)).map(lambda k: "=" + k)
-    command = entry.path[len("cli:") :].split()
-    options = st.sampled_from(entry.options) if entry.options else st.none()
-
-    def argv(positionals: list[str], option: Any, value: str) -> dict[str, Any]:
-        extra = [] if option is None else [option[0], *([value] if option[1] else [])]
-        return {"path": entry.path, "argv": [*command, *positionals, *extra]}
-
-    return st.builds(
-        argv,
-        st.lists(words, min_size=len(entry.required), max_size=len(entry.required)),
-        options,
-        words,
-    )
+    words = ["=" + k for k in sorted(ARGUMENT_WORDS)]
+    positionals = [rng.choice(words) for _ in entry.required]
+    extra: list[str] = []
+    if entry.options:
+        option, takes_value = rng.choice(entry.options)
+        extra = [option, *([rng.choice(words)] if takes_value else [])]
+    return {"path": entry.path, "argv": [*entry.path[len("cli:") :].split(), *positionals, *extra]}
 
 
-def call(entry: EntryPoint) -> st.SearchStrategy[dict[str, Any]]:
-    return cli_call(entry) if entry.path.startswith("cli:") else python_call(entry)
-
-
-def _in_part_of_its_class(entry: EntryPoint) -> bool:
-    return PART == "all" or _in_part(EntryPoint(entry.path, ()))
+def plans_of(entries: list[EntryPoint], seed: int, calls: int) -> list[dict[str, Any]]:
+    """``calls`` hostile calls of each entry point. Each call's values come from its own stream,
+    named by the seed, the entry point and the call's number: a call is the same whatever else is
+    in the walk, and adding an entry point changes no other's calls."""
+    plans = []
+    for entry in entries:
+        for number in range(calls):
+            rng = random.Random(f"{seed}:{entry.path}:{number}")
+            is_cli = entry.path.startswith("cli:")
+            plans.append(cli_call(entry, rng) if is_cli else python_call(entry, rng))
+    return plans
 
 
 def test_every_method_has_a_way_to_make_its_instance() -> None:
+    """Every public class whose methods are entry points, in every module (whatever part of the
+    surface the walk calls), has an instance recipe: its own in INSTANCES or the generic one."""
     missing = sorted(
         {
             owner
             for e in python_entry_points()
-            if (owner := needs_instance(e)) and _in_part_of_its_class(e) and not _makeable(owner)
+            if (owner := needs_instance(e)) and not _makeable(owner)
         }
     )
     assert not missing, f"add a way to make an instance of each to INSTANCES: {missing}"
     assert INSTANCES, "the compiled core's classes have their recipes"
+
+
+def _modules_on_disk() -> list[str]:
+    """Every public module of the package, found from its files (not through the registry)."""
+    import mazesim
+
+    root = Path(mazesim.__file__).resolve().parent
+    names = []
+    for file in sorted(root.rglob("*.py")):
+        parts = ("mazesim", *file.relative_to(root).with_suffix("").parts)
+        if parts[-1] == "__init__":
+            parts = parts[:-1]
+        name = ".".join(parts)
+        if is_public_module(name) and not name.startswith(SKIPPED_MODULES):
+            names.append(name)
+    return names
+
+
+def test_every_checked_function_is_in_the_registry() -> None:
+    """Every function and method the import hook checks, in every public module found on disk,
+    is an entry point of the registry (an inherited method counts in the class it is defined
+    in, whose instance comes from one of its implementations)."""
+    import importlib
+    import inspect
+
+    from mazesim.errors import MissingDependencyError
+
+    paths = {e.path for e in python_entry_points()}
+    missing = []
+    for name in _modules_on_disk():
+        try:
+            module = importlib.import_module(name)
+        except MissingDependencyError:
+            continue  # an optional extra that is not installed
+        for member, obj in vars(module).items():
+            if getattr(obj, "__module__", None) != name or member.startswith("_"):
+                continue
+            if getattr(obj, "__mazesim_checked__", False) and f"{name}:{member}" not in paths:
+                missing.append(f"{name}:{member}")
+            if inspect.isclass(obj) and any(
+                getattr(raw, "__mazesim_checked__", False) for raw in vars(obj).values()
+            ):
+                for method, raw in vars(obj).items():
+                    target = getattr(raw, "__func__", raw)
+                    checked = getattr(target, "__mazesim_checked__", False)
+                    path = f"{name}:{member}.{method}"
+                    if checked and not method.startswith("_") and path not in paths:
+                        missing.append(path)
+    assert not missing, f"checked but never walked: {missing}"
 
 
 def test_the_registry_finds_the_whole_surface() -> None:
@@ -147,34 +191,12 @@ def test_the_registry_finds_the_whole_surface() -> None:
     database=None,
     phases=[Phase.explicit, Phase.generate],
 )
-@given(st.data())
-def test_hostile_values_end_in_a_result_or_a_mazesim_error(
-    tmp_path_factory: pytest.TempPathFactory, data: st.DataObject
-) -> None:
-    entries = [e for e in entry_points() if _in_part(e)]
-    plans = [data.draw(call(e)) for e in entries for _ in range(CALLS)]
-    plan_file = tmp_path_factory.mktemp("surface") / "plans.json"
-    plan_file.write_text(json.dumps(plans), encoding="utf-8")
-    try:
-        done = subprocess.run(
-            [sys.executable, "-m", "surface.runner", str(plan_file)],
-            cwd=HERE,
-            capture_output=True,
-            text=True,
-            timeout=TIME_LIMIT,
-        )
-        stdout, code = done.stdout, done.returncode
-    except subprocess.TimeoutExpired as e:
-        stdout = e.stdout.decode() if isinstance(e.stdout, bytes) else (e.stdout or "")
-        code = None
-    results = [
-        json.loads(line[len("RESULT ") :])
-        for line in stdout.splitlines()
-        if line.startswith("RESULT ")
-    ]
-    failures = [f"{plans[r['index']]}: {r['what']}" for r in results if r["how"] == "escaped"]
-    if "ALL DONE" not in stdout:
-        last = len(results)
-        how = "hung" if code is None else f"ended with exit {code}"
-        failures.append(f"{plans[last] if last < len(plans) else '?'}: the process {how}")
-    assert not failures, f"{len(failures)} of {len(plans)} calls:\n" + "\n".join(failures)
+@given(st.integers(0, 2**32 - 1))
+def test_hostile_values_end_in_a_result_or_a_mazesim_error(drawn_seed: int) -> None:
+    seed = int(SEED) if SEED else drawn_seed
+    plans = plans_of([e for e in entry_points() if _in_part(e)], seed, CALLS)
+    results = walk(plans)
+    failures = [f"{plan}: {r['what']}" for plan, r in zip(plans, results) if r["how"] == "escaped"]
+    assert not failures, f"seed {seed}: {len(failures)} of {len(plans)} calls:\n" + "\n".join(
+        failures
+    )

@@ -112,9 +112,12 @@ def load_world(name_or_path: str | os.PathLike[str]) -> World:
             return import_wbt(path)[0]
         return World.load(path)
     available = sorted(builtin_world_names())
-    found = (
-        "it is a folder or a device, not a world file" if os.path.exists(path) else "no such file"
-    )
+    from mazesim._paths import _kind_of
+
+    try:
+        found = f"it is {_kind_of(os.stat(path).st_mode)}, not a world file"
+    except OSError as unreadable:
+        found = unreadable.strerror.lower() if unreadable.strerror else "no such file"
     error = UnknownNameError(
         f"no built-in world named {path!r} and {found}; "
         f"built-in worlds: {', '.join(available)} (or a path to a .toml or .wbt world file)"

@@ -18,7 +18,8 @@ before the call; the rest when the call fails with a built-in exception (``TypeE
 the function's own, more precise messages are kept: an argument that does not fit then raises
 :class:`~mazesim.errors.InvalidArgumentError` ("expected X, found Y") naming the function and the
 parameter, and so does a call with missing or unknown arguments. A failure whose arguments all fit
-their annotations is left as it was (a bug to report, or a bound the annotations cannot say).
+their annotations (a bound the annotations cannot say, or a bug), and any other exception from
+below the surface, is put into the package's error tree by :mod:`mazesim._error_tree`.
 A new public function is checked without any code of its own. The check is made once per call
 from outside: calls a checked function makes to other public functions of the package are not
 checked again, and the compiled core's per-step work is not touched.
@@ -46,13 +47,16 @@ from typing import Any
 
 import numpy as np
 
+from mazesim._error_tree import in_the_tree
 from mazesim._sizes import MOST_ENVS, size_of
 from mazesim.errors import InvalidArgumentError, MazesimError
 
 __all__ = [
     "MOST_ARRAY_VALUES",
+    "MOST_DIMENSIONS",
     "MOST_ITEMS",
     "SAMPLED_ITEMS",
+    "annotations_of",
     "checked",
     "checks_own_arguments",
     "guard_module",
@@ -128,6 +132,8 @@ def _refusal(value: Any, hint: Any) -> str | None:  # noqa: C901, PLR0911, PLR09
     origin = typing.get_origin(hint)
     args = typing.get_args(hint)
     if origin in _UNIONS:
+        if _is_array_like(args) and value is not None:
+            return _array_like_refusal(value, args)
         if any(_refusal(value, arg) is None for arg in args):
             return None
         return f"expected {_hint_name(hint)}, found {_describe(value)}"
@@ -158,7 +164,7 @@ def _class_refusal(value: Any, hint: type) -> str | None:  # noqa: PLR0911 - one
             if not SMALLEST_INT <= int(value) <= LARGEST_INT:
                 return f"expected an integer that fits in 64 bits, found {_describe(value)}"
             return None
-        ok = isinstance(value, bool)
+        ok = False  # True and False are ints to Python, not counts or indices to mazesim
     elif hint is float or hint is complex:
         ok = isinstance(value, (*_NUMBERS, np.bool_, complex if hint is complex else float))
         if ok and isinstance(value, int) and not SMALLEST_INT <= value <= LARGEST_INT:
@@ -168,11 +174,11 @@ def _class_refusal(value: Any, hint: type) -> str | None:  # noqa: PLR0911 - one
     elif hint is bytes:
         ok = isinstance(value, (bytes, bytearray, memoryview))
     elif issubclass(hint, (PurePath, os.PathLike)):
-        ok = isinstance(value, (str, os.PathLike))
+        return _path_refusal(value)
     elif hint is np.ndarray:
-        if not isinstance(value, _ARRAY_LIKE):
+        if not isinstance(value, _ARRAY_LIKE) or isinstance(value, (str, bytes)):
             return f"expected an array, found {_describe(value)}"
-        return _too_many(value, MOST_ARRAY_VALUES)
+        return _too_many(value, MOST_ARRAY_VALUES) or _numbers_refusal(value)
     elif hint in _CONTAINERS or (hint.__module__ == "collections.abc"):
         return _container_refusal(value, hint, hint, ())
     elif getattr(hint, "_is_protocol", False):
@@ -219,12 +225,60 @@ def _container_refusal(value: Any, hint: Any, origin: Any, args: tuple[Any, ...]
             return _items_refusal(value, args[0])
         return None
     if issubclass(origin, os.PathLike):
-        ok = isinstance(value, (str, os.PathLike))
+        return _path_refusal(value)
     elif getattr(origin, "_is_protocol", False):
         return None  # numpy's _NestedSequence, _SupportsArray...: structural, not checked
     else:
         ok = isinstance(value, origin)
     return None if ok else f"expected {_hint_name(hint)}, found {_describe(value)}"
+
+
+def _path_refusal(value: Any) -> str | None:
+    """Why ``value`` is not a path: not text or a path object, or text with a NUL character
+    (which no file system takes)."""
+    if not isinstance(value, (str, os.PathLike)):
+        return f"expected a path, found {_describe(value)}"
+    if "\x00" in str(os.fspath(value)):
+        return "expected a path, found one with a NUL character"
+    return None
+
+
+def _is_array_like(args: tuple[Any, ...]) -> bool:
+    """Whether a union's members are numpy's ``ArrayLike`` (or one of its parts with None)."""
+    names = {getattr(typing.get_origin(a) or a, "__name__", "") for a in args}
+    return bool(names & set(_ARRAY_PROTOCOLS))
+
+
+def _array_like_refusal(value: Any, args: tuple[Any, ...]) -> str | None:
+    """Why ``value`` is not an array of numbers for an ``ArrayLike`` (with None if the union
+    takes it): text, a mapping, a value of another kind, too deep, or not numbers."""
+    if isinstance(value, (str, bytes, abc.Mapping)) or not isinstance(value, _ARRAY_LIKE):
+        if hasattr(value, "__array__") or hasattr(value, "__array_interface__"):
+            return _too_many(value, MOST_ARRAY_VALUES) or _numbers_refusal(value)
+        return f"expected an array of numbers, found {_describe(value)}"
+    return _too_many(value, MOST_ARRAY_VALUES) or _numbers_refusal(value)
+
+
+#: Dimensions an array argument may have (numpy's own limit is 64).
+MOST_DIMENSIONS = 32
+
+
+def _numbers_refusal(value: Any) -> str | None:
+    """Why ``value`` (within its length bound) is not an array of real numbers or booleans:
+    ragged, nested too deep, or holding text or objects. Read only after a call failed."""
+    if isinstance(value, np.ndarray):
+        array = value
+    else:
+        try:
+            array = np.asarray(value)
+        except (ValueError, TypeError, RecursionError, OverflowError) as error:
+            kind = type(value).__name__
+            return f"expected an array of numbers, found a {kind} numpy cannot read ({error})"
+    if array.ndim > MOST_DIMENSIONS:
+        return f"expected an array of at most {MOST_DIMENSIONS} dimensions, found {array.ndim}"
+    if array.dtype.kind not in "biuf":
+        return f"expected an array of numbers, found an array of dtype {array.dtype}"
+    return None
 
 
 def _bound_of(hint: Any) -> int | None:
@@ -294,6 +348,23 @@ class _Names(dict[str, Any]):
         raise KeyError(name)
 
 
+def annotations_of(func: Callable[..., Any]) -> dict[str, Any]:
+    """``func``'s annotations as objects; a name imported for type checkers only is looked up
+    among the package's public classes, and an annotation that cannot be read is left out."""
+    try:
+        return typing.get_type_hints(func, include_extras=True)
+    except Exception:  # noqa: BLE001 - names for type checkers only: read one by one
+        pass
+    hints = {}
+    names = _Names(getattr(func, "__globals__", {}))
+    for name, text in getattr(func, "__annotations__", {}).items():
+        try:
+            hints[name] = eval(text, {}, names) if isinstance(text, str) else text  # noqa: S307
+        except Exception:  # noqa: BLE001, S112 - an annotation that cannot be read
+            continue
+    return hints
+
+
 class _Parameters:
     """The checks of one callable's parameters, read from its annotations at its first call."""
 
@@ -311,16 +382,7 @@ class _Parameters:
 
     def prepare(self) -> None:
         func = inspect.unwrap(self.func)
-        try:
-            hints = typing.get_type_hints(func, include_extras=True)
-        except Exception:  # noqa: BLE001 - names for type checkers only: read one by one
-            hints = {}
-            names = _Names(func.__globals__)
-            for name, text in getattr(func, "__annotations__", {}).items():
-                try:
-                    hints[name] = eval(text, {}, names) if isinstance(text, str) else text  # noqa: S307
-                except Exception:  # noqa: BLE001, S112 - an annotation that cannot be read
-                    continue
+        hints = annotations_of(func)
         try:
             parameters = list(inspect.signature(func).parameters.values())
         except (TypeError, ValueError):
@@ -396,6 +458,7 @@ def checked(func: Callable[..., Any], *, method: bool = False) -> Callable[..., 
     parameters = _Parameters(func, method)
     # The wrapper runs in func's globals: everything it uses is bound here.
     error, own, failures = InvalidArgumentError, MazesimError, _ARGUMENT_FAILURES
+    tree = in_the_tree
     state = _STATE
 
     def wrapper(*args: Any, **kwargs: Any) -> Any:
@@ -413,7 +476,15 @@ def checked(func: Callable[..., Any], *, method: bool = False) -> Callable[..., 
             trace = failure.__traceback__
             if isinstance(failure, TypeError) and trace is not None and trace.tb_next is None:
                 raise error(f"{func.__qualname__}: {failure}") from None  # wrong arguments
-            raise
+            instead = tree(func.__qualname__, failure, True)
+            if instead is failure:
+                raise
+            raise instead from failure
+        except Exception as failure:
+            instead = tree(func.__qualname__, failure, False)
+            if instead is failure:
+                raise
+            raise instead from failure
         finally:
             state.inside = False
 

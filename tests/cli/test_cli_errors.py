@@ -155,3 +155,12 @@ def test_an_output_file_that_is_a_folder_is_refused_before_the_run(
 ) -> None:
     assert main(["eval", "--episodes", "1", "--trace", str(tmp_path)]) == 2
     assert "is a folder; expected the path of a file" in capsys.readouterr().err
+
+
+def test_an_os_error_names_the_file_and_the_reason_not_its_errno(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    device = Path(os.devnull)
+    assert main(["webots", "run", str(WBT), "--seconds", "1", "--out", str(device)]) == 2
+    assert capsys.readouterr().err == f"mazesim: error: {device}: File exists\n"
+    assert device.is_char_device()

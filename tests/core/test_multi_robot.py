@@ -215,3 +215,20 @@ def test_bad_worlds_and_robot_indices_are_package_errors() -> None:
         sim.step_robots(np.zeros((3, 2)))
     with pytest.raises(mazesim.InvalidActionError):
         sim.step_robots(np.array([[np.nan, 0.0], [0.0, 0.0]]))
+
+
+def test_output_buffers_of_a_batch_of_several_robots_have_the_robot_axis() -> None:
+    batch = mazesim.BatchSimulator(corridor(0.1, robots=3), num_envs=4, noise=False)
+    obs, poses, colliding, crossings = batch.output_buffers()
+    assert obs.shape == (4, 3, batch.observation_width) and obs.dtype == np.float32
+    assert poses.shape == (4, 3, 3) and colliding.shape == (4, 3) and crossings.shape == (4, 3)
+    batch.reset(obs, poses, colliding, crossings)
+    batch.run(5, "braitenberg", obs, poses, colliding, crossings)
+    assert np.isfinite(poses).all() and (poses[:, 0, 0] != 0).all()
+    single = mazesim.BatchSimulator(mazesim.World.builtin("arena"), num_envs=4)
+    assert [b.shape for b in single.output_buffers()] == [
+        (4, single.observation_width),
+        (4, 3),
+        (4,),
+        (4,),
+    ]

@@ -198,8 +198,14 @@ def test_unknown_builtin_name_lists_the_available_names() -> None:
 
 
 def test_a_folder_or_device_given_as_a_world_says_it_is_not_a_world_file(tmp_path: Path) -> None:
-    for where in (tmp_path, Path(os.devnull)):
-        with pytest.raises(UnknownNameError, match="a folder or a device, not a world file"):
+    fifo = tmp_path / "world.toml"
+    os.mkfifo(fifo)
+    for where, kind in (
+        (tmp_path, "a folder"),
+        (Path(os.devnull), "a character device"),
+        (fifo, "a FIFO \\(named pipe\\)"),
+    ):
+        with pytest.raises(UnknownNameError, match=f"it is {kind}, not a world file"):
             mazesim.load_world(where)
     with pytest.raises(UnknownNameError, match="and no such file"):
         mazesim.load_world(tmp_path / "missing.toml")

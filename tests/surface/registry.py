@@ -47,6 +47,20 @@ INSTANCES: dict[str, str] = {
         "(lambda np: mazesim._core.TaskFeatures(2, 'plan', False, np.ones(11),"
         " np.zeros(26, 'float32'), np.ones(26, 'float32')))(__import__('numpy'))"
     ),
+    # Optional tables that its kind makes required: the shipped navigator's.
+    "mazesim.learn.episode_ranges.NavigatorEpisodes": (
+        "(lambda p, m: m.NavigatorEpisodes('hierarchical', (world.to_toml(),), 1, 0, 'truth', 50,"
+        " (tuple(p.checkpoint_ids),), lower_q=p.lower_q, higher_q=p.higher_q[None]))("
+        "__import__('mazesim.learn', fromlist=['x']).load_policy(),"
+        " __import__('mazesim.learn.episode_ranges', fromlist=['x']))"
+    ),
+    # The link to a C controller: a socket whose other end is closed, and the robot it drives.
+    "mazesim.webots.native_link.RobotLink": (
+        "(lambda s, w: w.native_link.RobotLink(s.socketpair()[0],"
+        " (w.simulation.prepare(world), w.robot.Robot())[1], ('e-puck', 'c', 'test')))("
+        "__import__('socket'), __import__('mazesim.webots.robot', fromlist=['x']) and"
+        " __import__('mazesim.webots', fromlist=['native_link', 'simulation', 'robot']))"
+    ),
 }
 
 
@@ -83,13 +97,12 @@ def _modules() -> Iterator[Any]:
 
 def _public(module: Any) -> Iterator[tuple[str, Any]]:
     """The module's public functions and classes, as mazesim._checks defines them (exceptions,
-    protocols, abstract classes and enums are types to catch or to match, not to call)."""
+    protocols and enums are types to catch or to match, not to call; an abstract class's methods
+    are called on one of its implementations)."""
     for name in public_names(module):
         obj = getattr(module, name)
         if inspect.isclass(obj) and (
-            issubclass(obj, (BaseException, enum.Enum))
-            or getattr(obj, "_is_protocol", False)
-            or inspect.isabstract(obj)
+            issubclass(obj, (BaseException, enum.Enum)) or getattr(obj, "_is_protocol", False)
         ):
             continue
         yield name, obj
@@ -126,7 +139,8 @@ def python_entry_points() -> list[EntryPoint]:
             if not inspect.isclass(obj):
                 found[path] = _with_path(_signature(obj, False), path)
                 continue
-            found[path] = _with_path(_signature(obj, False), path)
+            if not inspect.isabstract(obj):
+                found[path] = _with_path(_signature(obj, False), path)
             for member, value in sorted(vars(obj).items()):
                 if member.startswith("_") or isinstance(value, property):
                     continue

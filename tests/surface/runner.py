@@ -84,12 +84,17 @@ def run_one(plan: dict[str, Any], world: Any, tmp: Path) -> dict[str, Any]:
             return {"how": "ended", "what": "returned"}
     except KeyboardInterrupt:
         return {"how": "ended", "what": "stopped by Ctrl-C after the call limit"}
+    except SystemExit as stop:
+        # A command's main(argv) ends as a command does; nothing else may end the process.
+        ok = plan["path"].endswith(":main") and stop.code in (0, 1, 2, 130)
+        return {"how": "ended" if ok else "escaped", "what": f"SystemExit({stop.code})"}
     except BaseException as error:  # noqa: BLE001 - any other exception is the finding
         how = "refused" if _allowed(error) else "escaped"
-        return {
-            "how": how,
-            "what": f"{type(error).__module__}.{type(error).__name__}: {str(error)[:300]}",
-        }
+        try:
+            text = str(error)[:300]
+        except Exception as unreadable:  # noqa: BLE001 - an error whose message fails is a finding
+            how, text = "escaped", f"(its message raised {type(unreadable).__name__})"
+        return {"how": how, "what": f"{type(error).__module__}.{type(error).__name__}: {text}"}
     finally:
         timer.cancel()
 

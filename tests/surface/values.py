@@ -155,9 +155,11 @@ def word(key: str, tmp: Path) -> str:
     return _files(tmp)[text[1:]] if text.startswith("@") else text
 
 
-#: Valid values of the annotations a constructor's required parameters have, by type name, for
-#: the generic instance recipe (``world`` is seed-maze, ``tmp`` the scratch folder).
+#: Valid values of the annotations a constructor's required parameters have, by type (``world``
+#: is seed-maze, ``tmp`` the scratch folder).
 def _samples(world: Any, tmp: Path) -> dict[Any, Any]:
+    import argparse
+
     import mazesim
     from mazesim.webots import simulation
 
@@ -166,7 +168,8 @@ def _samples(world: Any, tmp: Path) -> dict[Any, Any]:
         mazesim.World: world,
         mazesim.Simulator: lambda: mazesim.Simulator(world),
         mazesim.BatchSimulator: lambda: mazesim.BatchSimulator(world, num_envs=2),
-        mazesim.RobotProfile: lambda: mazesim.RobotProfile.builtin("e-puck"),
+        mazesim.RobotProfile: lambda: mazesim.RobotProfile.builtin("seed"),
+        argparse.Namespace: argparse.Namespace,
         int: 1,
         float: 1.0,
         bool: False,
@@ -176,10 +179,149 @@ def _samples(world: Any, tmp: Path) -> dict[Any, Any]:
     }
 
 
+def _shipped() -> Any:
+    from mazesim.learn import load_policy
+
+    return load_policy()
+
+
+def _navigator() -> Any:
+    """The shipped navigator driving two robots of seed-maze."""
+    from mazesim.learn.higher import HigherLevel
+    from mazesim.learn.policy import HierarchicalPolicy
+
+    policy = _shipped()
+    higher = HigherLevel([policy.checkpoint_ids], q=policy.higher_q[None])
+    return HierarchicalPolicy(policy.lower_q, higher, np.zeros(2, np.int64))
+
+
+#: Valid values by parameter name, for parameters whose annotation cannot say what fits (an
+#: array's shape, a navigator typed ``Any``): the shipped navigator's tables, two robots of
+#: seed-maze. A name is the domain's word for its value, the same in every signature.
+BY_NAME: dict[str, Any] = {
+    "lower_q": lambda: _shipped().lower_q,
+    "higher_q": lambda: _shipped().higher_q,
+    "q": lambda: _shipped().higher_q,
+    "flat_q": lambda: np.zeros((14, 4)),
+    "navigator": lambda: _navigator(),
+    "group": lambda: np.zeros(2, np.int64),
+    "profiles": lambda: [__import__("mazesim").RobotProfile.builtin("seed")] * 2,
+    "readings": lambda: [None],
+    "checkpoint_ids": lambda: list(_shipped().checkpoint_ids),
+    "world_of_env": lambda: np.zeros(2, np.int64),
+    "num_envs": lambda: 2,
+    "episodes": lambda: 1,
+    "episodes_per_world": lambda: 1,
+    "delays": lambda: np.zeros(2, np.int64),
+    "linked": lambda: np.zeros(2, bool),
+    "codes": lambda: ["10110", "11010"],
+    "kind": lambda: "hierarchical",
+    "worlds": lambda: [__import__("mazesim").World.builtin("seed-maze")],
+    "world_tomls": lambda: (__import__("mazesim").World.builtin("seed-maze").to_toml(),),
+    "events": lambda: "truth",
+    "stall_seconds": lambda: 1.0,
+    "stop": lambda: KeyboardInterrupt,
+    "read_encoders": lambda: lambda: np.zeros(2),
+    "wheel_radius": lambda: 0.02,
+    "axle_length": lambda: 0.05685,
+    "ray_length": lambda: 0.07,
+    "control_step_ms": lambda: 64.0,
+    "controller": lambda: "braitenberg",
+    "robots": lambda: [{"name": "e-puck"}],
+    "simulators": lambda: [
+        __import__("mazesim").Simulator(__import__("mazesim").World.builtin("seed-maze"))
+    ],
+}
+
+
+def _public_classes() -> list[type]:
+    """The public classes of the modules of the package imported so far."""
+    import inspect
+    import sys
+
+    from mazesim._checks import is_public_module, public_names
+
+    found = []
+    for name, module in list(sys.modules.items()):
+        if module is None or not is_public_module(name):
+            continue
+        for member in public_names(module):
+            obj = getattr(module, member, None)
+            if inspect.isclass(obj) and not inspect.isabstract(obj):
+                found.append(obj)
+    return found
+
+
+def _implementations(hint: type) -> list[type]:
+    """The package's concrete classes that are, or structurally fit, the class ``hint`` (an
+    abstract base class or a protocol)."""
+    if getattr(hint, "_is_protocol", False):
+        wanted = [n for n in vars(hint) if not n.startswith("_")]
+        return [c for c in _public_classes() if all(callable(getattr(c, n, None)) for n in wanted)]
+    return [c for c in _public_classes() if issubclass(c, hint) and c is not hint]
+
+
+_FACTORIES: dict[Any, list[Any]] = {}
+
+
+def _factories(hint: type) -> list[Any]:
+    """The package's public functions, static and class methods whose result is a ``hint``
+    (every public module imported first, so the answer is the same in every process)."""
+    import inspect
+    import sys
+
+    from mazesim._checks import is_public_module, public_names
+
+    if not _FACTORIES:
+        from surface.registry import python_entry_points
+
+        python_entry_points()  # imports every public module
+        found = []
+        for cls in _public_classes():
+            for member in vars(cls).values():
+                if isinstance(member, (staticmethod, classmethod)):
+                    found.append(getattr(cls, member.__func__.__name__))
+        for name, module in list(sys.modules.items()):
+            if module is not None and is_public_module(name):
+                found += [getattr(module, n) for n in public_names(module)]
+        for f in found:
+            if inspect.isroutine(f):
+                _FACTORIES.setdefault(_hints(f).get("return"), []).append(f)
+        _FACTORIES.setdefault(None, [])
+    return _FACTORIES.get(hint, [])
+
+
+def _sampled_arguments(function: Any, value_of: Any) -> dict[str, Any]:
+    """Valid values of ``function``'s required parameters: by name (:data:`BY_NAME`), else by
+    annotation (``value_of``)."""
+    import inspect
+
+    from mazesim._checks import refusal
+
+    hints = _hints(function)
+    arguments = {}
+    for p in inspect.signature(function).parameters.values():
+        if p.name in ("self", "cls"):
+            continue
+        if p.default is p.empty and p.kind not in (p.VAR_POSITIONAL, p.VAR_KEYWORD):
+            hint = hints.get(p.name, Any)
+            named = BY_NAME[p.name]() if p.name in BY_NAME else None
+            fits = p.name in BY_NAME and refusal(named, hint) is None
+            arguments[p.name] = named if fits else value_of(hint)
+    return arguments
+
+
+def _hints(function: Any) -> dict[str, Any]:
+    from mazesim._checks import annotations_of
+
+    return annotations_of(function)
+
+
 def sample_instance(cls: type, world: Any, tmp: Path, depth: int = 0) -> Any:
     """An instance of ``cls`` made from its constructor's annotations: each required parameter
-    is given a valid value of its annotated type (the package's classes made the same way, a
-    level deeper). Raises when a parameter's type has no sample."""
+    is given a valid value, by its name (:data:`BY_NAME`), else by its annotated type (the
+    package's classes made the same way, a level deeper; an abstract class or a protocol by one
+    of the package's classes that implements it). Raises when a parameter has no sample."""
     import inspect
     import typing
 
@@ -198,14 +340,28 @@ def sample_instance(cls: type, world: Any, tmp: Path, depth: int = 0) -> Any:
             return [value_of(args[0])] if args and args[0] is not Ellipsis else []
         if origin is dict:
             return {}
-        if isinstance(hint, type) and hint.__module__.startswith("mazesim") and depth < 3:
+        if origin is type:
+            return args[0] if args and isinstance(args[0], type) else object
+        if isinstance(hint, type) and hint.__module__.startswith("mazesim") and depth < 4:
+            if inspect.isabstract(hint) or getattr(hint, "_is_protocol", False):
+                for concrete in _implementations(hint):
+                    try:
+                        return sample_instance(concrete, world, tmp, depth + 1)
+                    except Exception:  # noqa: BLE001, S112 - try the next implementation
+                        continue
+                raise TypeError(f"no implementation of {hint!r} could be made")
             return sample_instance(hint, world, tmp, depth + 1)
         raise TypeError(f"no sample of {hint!r}")
 
+    if inspect.isabstract(cls) or getattr(cls, "_is_protocol", False):
+        return value_of(cls)  # one of its implementations
     init = inspect.unwrap(cls.__init__)  # type: ignore[misc]
-    hints = typing.get_type_hints(init, vars(inspect.getmodule(cls)))
-    arguments = {}
-    for p in list(inspect.signature(init).parameters.values())[1:]:
-        if p.default is p.empty and p.kind not in (p.VAR_POSITIONAL, p.VAR_KEYWORD):
-            arguments[p.name] = value_of(hints.get(p.name, Any))
-    return cls(**arguments)
+    try:
+        return cls(**_sampled_arguments(init, value_of))
+    except Exception:
+        for factory in _factories(cls):  # else the package's own functions that make one
+            try:
+                return factory(**_sampled_arguments(factory, value_of))
+            except Exception:  # noqa: BLE001, S112 - try the next factory
+                continue
+        raise

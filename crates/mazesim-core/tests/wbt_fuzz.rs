@@ -97,7 +97,13 @@ fn check(bytes: &[u8], source: &str) {
                 .unwrap_or_else(|e| panic!("an import that succeeded must build a world: {e}"));
         }
         Err(Error::Format { location, .. }) => {
-            let lines = bytes.iter().filter(|&&b| b == b'\n').count() + 1;
+            // Lines end as the reader ends them: at a line feed, or at a lone carriage return
+            // (the line ends of classic Mac OS files).
+            let ends = bytes
+                .iter()
+                .enumerate()
+                .filter(|&(i, &b)| b == b'\n' || (b == b'\r' && bytes.get(i + 1) != Some(&b'\n')));
+            let lines = ends.count() + 1;
             assert_eq!(location.source, source);
             assert!(
                 location.line >= 1 && location.line <= lines,

@@ -16,6 +16,7 @@ import sys
 from collections.abc import Sequence
 
 import mazesim
+from mazesim._error_tree import io_error
 from mazesim.cli._help import CommandParser, examples
 from mazesim.errors import MazesimError
 
@@ -186,6 +187,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return EXIT_BROKEN_PIPE
     except (MazesimError, OSError) as error:
+        if isinstance(error, OSError):
+            error = io_error(error)  # the file and the system's reason, not "[Errno 17] ..."
         print(f"mazesim: error: {_one_line(str(error))}", file=sys.stderr)
         return EXIT_ERROR
     except MemoryError:

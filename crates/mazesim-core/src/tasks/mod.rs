@@ -117,6 +117,25 @@ impl Features {
                 high.len()
             )));
         }
+        // Every observation is a reading over its scale, clamped to [low, high]: bounds that are
+        // finite and ordered, and scales finite and positive, keep every value finite.
+        if let Some((i, s)) = scale
+            .iter()
+            .enumerate()
+            .find(|(_, s)| !(s.is_finite() && **s > 0.0))
+        {
+            return Err(Error::InvalidArgument(format!(
+                "expected every sensor scale to be a finite positive number, found {s} at {i}"
+            )));
+        }
+        if let Some(i) =
+            (0..width).find(|&i| !(low[i].is_finite() && high[i].is_finite() && low[i] <= high[i]))
+        {
+            return Err(Error::InvalidArgument(format!(
+                "expected finite feature bounds with low <= high, found low[{i}] = {}, high[{i}] = {}",
+                low[i], high[i]
+            )));
+        }
         let place = Place {
             goal: [0.0; 2],
             extent: 1.0,

@@ -101,3 +101,23 @@ fn a_restored_state_goes_on_as_the_original() {
     assert!(copy.restore(&f.state()[1..]).is_err());
     assert!(copy.restore(&[]).is_err());
 }
+
+#[test]
+fn issue_35_non_finite_scales_and_bounds_are_refused_so_every_feature_stays_finite() {
+    let kinds = FeatureKinds::default();
+    let width = Features::width_of(kinds, 1);
+    let (low, high) = (vec![-1.0_f32; width], vec![1.0_f32; width]);
+    for scale in [f64::NAN, f64::INFINITY, 0.0, -1.0] {
+        let made = Features::new(1, kinds, vec![scale], low.clone(), high.clone());
+        assert!(made.is_err(), "scale {scale}");
+    }
+    for bad in [f32::NAN, f32::INFINITY, 2.0] {
+        let mut low = low.clone();
+        low[width - 1] = bad;
+        assert!(
+            Features::new(1, kinds, vec![1.0], low, high.clone()).is_err(),
+            "low {bad}"
+        );
+    }
+    assert!(Features::new(1, kinds, vec![1.0], low, high).is_ok());
+}

@@ -2,9 +2,19 @@
 
 use crate::error::{Error, Location};
 
+/// `offset` within `text`, moved back to the start of the character it falls in (a parser may
+/// point inside a character of several bytes, such as the replacement of an invalid byte).
+fn char_start(text: &str, offset: usize) -> usize {
+    let mut offset = offset.min(text.len());
+    while !text.is_char_boundary(offset) {
+        offset -= 1;
+    }
+    offset
+}
+
 /// 1-based line and column of byte `offset` in `text`.
 pub fn line_column(text: &str, offset: usize) -> (usize, usize) {
-    let offset = offset.min(text.len());
+    let offset = char_start(text, offset);
     let before = &text[..offset];
     let line = before.matches('\n').count() + 1;
     let line_start = before.rfind('\n').map_or(0, |i| i + 1);
@@ -15,7 +25,7 @@ pub fn line_column(text: &str, offset: usize) -> (usize, usize) {
 /// The dotted field path at `offset`: the enclosing `[table]` / `[[array]]` (with its index)
 /// and the key on that line, e.g. `walls[2].size`.
 pub fn field_at(text: &str, offset: usize) -> String {
-    let offset = offset.min(text.len());
+    let offset = char_start(text, offset);
     let line_start = text[..offset].rfind('\n').map_or(0, |i| i + 1);
     let line_end = text[offset..].find('\n').map_or(text.len(), |i| offset + i);
     let line = &text[line_start..line_end];
@@ -99,5 +109,14 @@ mod tests {
         assert_eq!(field_at(text, text.find("size").unwrap()), "walls[0].size");
         assert_eq!(field_at(text, text.find("radius").unwrap()), "goal.radius");
         assert_eq!(field_at(text, 0), "a");
+    }
+
+    #[test]
+    fn issue_35_an_offset_inside_a_character_points_at_its_start() {
+        // The reader's error span may start inside the replacement of an invalid byte.
+        let text = "[goal]\nname = \"\u{FFFD}x\"\n";
+        let inside = text.find('\u{FFFD}').unwrap() + 2;
+        assert_eq!(line_column(text, inside), (2, 9));
+        assert_eq!(field_at(text, inside), "goal.name");
     }
 }
