@@ -61,6 +61,34 @@ INSTANCES: dict[str, str] = {
         "__import__('socket'), __import__('mazesim.webots.robot', fromlist=['x']) and"
         " __import__('mazesim.webots', fromlist=['native_link', 'simulation', 'robot']))"
     ),
+    # The hand-written baselines read a task's observation names.
+    **{
+        f"mazesim.envs.baselines.{name}": (
+            f"getattr(__import__('mazesim.envs.baselines', fromlist=['x']), {name!r})("
+            "__import__('gymnasium').make("
+            "'mazesim/UnseenMaze-v1').unwrapped.observation_names)"
+        )
+        for name in ("CellAgent", "FrontierExplorer", "WallFollower")
+    },
+    # SB3's VecEnv over the native vector env, made as its own make_vec_env makes it.
+    "mazesim.integrations.sb3.MazesimVecEnv": (
+        "__import__('mazesim.integrations.sb3', fromlist=['x']).make_vec_env("
+        "'mazesim/MazeFixed-v1', n_envs=2, monitor=False)"
+    ),
+    # The multi-robot tasks, their batch, env and renderer: maze_goals_v0's three robots.
+    "mazesim.marl.tasks.MultiRobotTask": (
+        "__import__('mazesim.marl.maze_goals_v0', fromlist=['x']).task()"
+    ),
+    "mazesim.marl.batch.MultiRobotBatch": (
+        "__import__('mazesim.marl.maze_goals_v0', fromlist=['x']).batch_env(2)"
+    ),
+    "mazesim.marl.parallel.MultiRobotParallelEnv": (
+        "__import__('mazesim.marl.maze_goals_v0', fromlist=['x']).parallel_env()"
+    ),
+    "mazesim.marl.render.SwarmRenderer": (
+        "__import__('mazesim.marl.render', fromlist=['x']).SwarmRenderer(world,"
+        " mazesim.RobotProfile.builtin('e-puck'), __import__('numpy').zeros((2, 3)))"
+    ),
 }
 
 
