@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import os
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -15,6 +16,7 @@ from mazesim.webots.lockstep import controller_of, run_world
 
 SWARM = Path(__file__).resolve().parent.parent / "data" / "webots-swarm"
 WORLD = SWARM / "worlds" / "leader_followers.wbt"
+C_CONTROLLERS = Path(__file__).resolve().parent.parent / "data" / "controllers"
 
 
 @pytest.fixture(scope="module")
@@ -85,6 +87,68 @@ def test_controllers_are_found_in_the_project_or_given() -> None:
     assert none is None and why == "no controller"
 
 
+def test_a_c_controller_is_found_in_its_webots_folder(tmp_path: Path) -> None:
+    (tmp_path / "worlds").mkdir()
+    (tmp_path / "controllers" / "avoid").mkdir(parents=True)
+    (tmp_path / "controllers" / "avoid" / "avoid.c").write_text("int main(void) { return 0; }\n")
+    world = str(tmp_path / "worlds" / "w.wbt")
+    found, _ = controller_of({"name": "e", "controller": "avoid"}, world, {})
+    assert found == str(tmp_path / "controllers" / "avoid" / "avoid.c")
+    none, why = controller_of({"name": "e", "controller": "absent"}, world, {})
+    assert none is None and "absent.py, .c or .cpp" in why
+
+
+@pytest.mark.skipif(shutil.which("gcc") is None, reason="needs gcc")
+def test_c_controllers_drive_every_robot_of_a_world_of_several(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Each robot's C controller runs in its own process against the shared world, as a Python
+    one does (not on a world of its own, which left the other robots standing)."""
+    monkeypatch.setenv("MAZESIM_CACHE", str(tmp_path / "cache"))
+    avoider = str(C_CONTROLLERS / "c_wall_avoider" / "c_wall_avoider.c")
+    run = run_world(
+        str(SWARM / "worlds" / "head_on.wbt"),
+        seconds=3.0,
+        controllers={"west": avoider, "east": avoider},
+    )
+    west, east = run.robots
+    for robot in (west, east):
+        assert robot.controller == avoider and robot.exit_status == 0, robot.error
+        assert robot.distance_m > 0.05, f"{robot.name} moved under its C controller"
+        assert len(robot.xs) == len(west.xs), "both stepped in lockstep"
+    closest = min(
+        ((x0 - x1) ** 2 + (y0 - y1) ** 2) ** 0.5
+        for x0, y0, x1, y1 in zip(west.xs, west.ys, east.xs, east.ys)
+    )
+    assert closest > 0.065, "bodies of about 7.4 cm across never pass through each other"
+
+
+@pytest.mark.skipif(shutil.which("gcc") is None, reason="needs gcc")
+def test_a_world_run_says_at_its_start_what_a_robots_controller_lacks(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    monkeypatch.setenv("MAZESIM_CACHE", str(tmp_path / "cache"))
+    radio = tmp_path / "controllers" / "radio" / "radio.c"
+    radio.parent.mkdir(parents=True)
+    radio.write_text(
+        "#include <webots/robot.h>\n#include <webots/emitter.h>\n"
+        "int main(void) { wb_robot_init(); while (wb_robot_step(32) != -1) {} return 0; }\n"
+    )
+    avoider = str(C_CONTROLLERS / "c_wall_avoider" / "c_wall_avoider.c")
+    run = run_world(
+        str(SWARM / "worlds" / "head_on.wbt"),
+        seconds=1.0,
+        controllers={"west": str(radio), "east": avoider},
+    )
+    west, east = run.robots
+    assert any("webots/emitter.h" in missing for missing in west.missing)
+    assert east.missing == ()
+    said = capsys.readouterr().err
+    assert "mazesim: missing: robot 'west':" in said and "webots/emitter.h" in said
+    assert "controller not run" in west.error and west.distance_m == 0.0
+    assert east.distance_m > 0.0, "the other robot runs on"
+
+
 def test_a_supervisor_sees_and_moves_every_robot_and_its_own_emitter_reaches_them(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
@@ -124,6 +188,8 @@ def test_the_command_runs_the_whole_world_and_reports_every_robot(tmp_path: Path
     assert names == ["leader", "near", "far"]
     assert Path(summary["robots"][2]["controller"]).name == "leader.py", "given on the command"
     assert summary["steps"] == 60
+    assert summary["missing_features"] == [], "every controller has what it needs"
+    assert all(robot["missing_features"] == [] for robot in summary["robots"])
     rows = (out / "trajectory.csv").read_text().splitlines()
     assert rows[0] == "robot,time_s,x_m,y_m"
     assert {row.split(",")[0] for row in rows[1:]} == set(names)

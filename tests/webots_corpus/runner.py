@@ -59,11 +59,11 @@ NO_CONTROLLER = ("", "void", "<generic>", "<none>")
 
 
 def _runs_whole(project: Project, report: dict[str, Any]) -> bool:
-    """Whether the world runs whole: a Python project without a key script in which several
-    robots have a controller."""
+    """Whether the world runs whole: a project without a key script in which several robots
+    have a controller (Python, C or C++)."""
     robots = report.get("robots") or []
     running = [r for r in robots if (r.get("controller") or "") not in NO_CONTROLLER]
-    return project.language == "python" and not project.keys and len(running) > 1
+    return not project.keys and len(running) > 1
 
 
 def _own_robot(summary: dict[str, Any], controller: str) -> dict[str, Any]:
@@ -242,6 +242,8 @@ def _run_project(project: Project, mirrors: Path, work: Path, census: Census) ->
         ok, measured = check(parse_fact(line), outcome)
         checks.append((line, ok, measured))
     missing = [str(m) for m in summary.get("missing_features") or []]
+    if whole:  # what the robot of the project's first controller lacks, as its run said
+        missing = [str(m) for m in robot.get("missing_features") or []]
     return _judge(project, checks, warnings, outcome, run, missing, others)
 
 

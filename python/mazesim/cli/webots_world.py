@@ -178,6 +178,7 @@ def run_world_command(args: argparse.Namespace, out: TextIO) -> int:
             "reached_end": robot.reached_end,
             "stopped_after_end": robot.stopped,
             "quit_requested": robot.quit_requested,
+            "missing_features": list(robot.missing),
         }
         for robot in run.robots
     ]
@@ -187,6 +188,9 @@ def run_world_command(args: argparse.Namespace, out: TextIO) -> int:
         "simulated_seconds": run.simulated_seconds,
         "steps": run.steps,
         "robots": robots,
+        "missing_features": [
+            f"robot {robot.name}: {missing}" for robot in run.robots for missing in robot.missing
+        ],
         "exit_status": run.exit_status,
         "wall_clock_seconds": run.wall_clock_seconds,
         "mazesim_version": mazesim.__version__,

@@ -75,6 +75,7 @@ class RobotRun:
         reached_end: Whether its ``Robot.step`` returned -1.
         stopped: Whether its controller went on after the end and was stopped.
         quit_requested: Whether it (a supervisor) quit the simulation.
+        missing: What its controller needs that mazesim lacks (said at the run's start).
     """
 
     index: int
@@ -92,6 +93,7 @@ class RobotRun:
     reached_end: bool = False
     stopped: bool = False
     quit_requested: bool = False
+    missing: tuple[str, ...] = ()
 
 
 @dataclass
@@ -137,6 +139,11 @@ class Fleet:
         self.moved.add(index)
 
 
+#: The files a Webots controller folder ``controllers/NAME`` may run, in the order Webots
+#: looks for them (Python, C, C++).
+CONTROLLER_SUFFIXES = (".py", ".c", ".cpp")
+
+
 def controller_of(
     robot: Mapping[str, Any], world_path: str, given: Mapping[str, str]
 ) -> tuple[str | None, str]:
@@ -162,10 +169,11 @@ def controller_of(
         )
     folder = os.path.dirname(os.path.abspath(world_path))
     for project in (os.path.dirname(folder), folder):
-        candidate = os.path.join(project, "controllers", name, f"{name}.py")
-        if os.path.isfile(candidate):
-            return candidate, ""
-    return None, f"no Python controller controllers/{name}/{name}.py (a C controller?)"
+        for suffix in CONTROLLER_SUFFIXES:  # as Webots looks for them
+            candidate = os.path.join(project, "controllers", name, f"{name}{suffix}")
+            if os.path.isfile(candidate):
+                return candidate, ""
+    return None, f"no controller controllers/{name}/{name}.py, .c or .cpp"
 
 
 def run_world(
@@ -226,6 +234,7 @@ def run_world(
             jobs[index] = ControllerJob(
                 world_path, index, int(robot["line"]), file, profile, seconds, noise
             )
+    _say_what_is_missing(runs)
     fleet = Fleet(robots, simulators)
     movable = [robot.get("profile") is not None for robot in robots]
     started = time.perf_counter()
@@ -244,6 +253,25 @@ def run_world(
         simulated_seconds=float(simulators[0].time),
         wall_clock_seconds=time.perf_counter() - started,
     )
+
+
+def _say_what_is_missing(runs: list[RobotRun]) -> None:
+    """Prepares each robot's controller once (a C or C++ one is built into the cache, which its
+    process then takes) and says at the run's start what each one lacks, as a run of one robot
+    does; the list is kept on its robot's run."""
+    from mazesim.webots.requirements import prepare_controller
+
+    prepared: dict[str, Any] = {}
+    for run in runs:
+        if run.controller is None:
+            continue
+        if run.controller not in prepared:
+            prepared[run.controller] = done = prepare_controller(run.controller)
+            for note in done.notes:
+                print(f"mazesim: {note}", file=sys.stderr)
+        run.missing = tuple(prepared[run.controller].missing)
+        for missing in run.missing:
+            print(f"mazesim: missing: robot {run.name!r}: {missing}", file=sys.stderr)
 
 
 def _lockstep(

@@ -199,7 +199,9 @@ def run_controller(
     if prepared is None or prepared.file != file:
         prepared = prepare_controller(file)
     if prepared.language != "python" or not prepared.runnable:
-        return _run_native(prepared, world, seconds, seed, noise, report, keys, scene)
+        return _run_native(
+            prepared, world, (seconds, seed, noise), report, keys, scene, world_of_several
+        )
     source = _read_source(file)
     simulation = simulations.prepare(
         world,
@@ -263,16 +265,25 @@ def run_controller(
 def _run_native(
     prepared: PreparedController,
     world: World,
-    seconds: float,
-    seed: int,
-    noise: bool,
+    timing: tuple[float, int, bool],
     report: Mapping[str, Any] | None,
     keys: KeyScript | None,
     scene: Scene | None,
+    world_of_several: Mapping[str, Any],
 ) -> ControllerRun:
-    """Runs a compiled controller as a child process (or, when it cannot run, says why)."""
+    """Runs a compiled controller as a child process (or, when it cannot run, says why);
+    ``timing`` is the run's seconds, seed and noise, ``world_of_several`` as for
+    :func:`run_controller` (a robot of a world of several, driven from its own process)."""
+    seconds, seed, noise = timing
     simulation = simulations.prepare(
-        world, seconds=seconds, seed=seed, noise=noise, report=report, keys=keys, scene=scene
+        world,
+        seconds=seconds,
+        seed=seed,
+        noise=noise,
+        report=report,
+        keys=keys,
+        scene=scene,
+        **world_of_several,
     )
     controller_module.Robot.created = None
     started = time.perf_counter()
