@@ -336,11 +336,11 @@ class Simulator:
         right: float,
         low: npt.NDArray[np.float32],
         high: npt.NDArray[np.float32],
-    ) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.float32], bool, int]:
+    ) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.float32], bool, int, int]:
         """`step`, then what a gym step returns, in one call: the readings (float32, the distance
         sensors then the ground sensors) clamped to [`low`, `high`] (float32 arrays of that
-        width), the pose (float32 x, y, yaw), whether the body touches a wall and the signed
-        checkpoint crossed in this step (0: none)."""
+        width), the pose (float32 x, y, yaw), whether the body touches a wall, the signed
+        checkpoint crossed in this step (0: none) and the collisions so far (as `collisions`)."""
     def set_start(self, x: float, y: float, yaw: float, robot_index: int = 0) -> None:
         """Sets the pose every later reset starts robot `robot_index` from (instead of the
         world's)."""

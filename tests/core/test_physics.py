@@ -73,6 +73,22 @@ def test_driving_into_a_wall_for_10_s_stays_within_a_millimetre() -> None:
     assert sim.pose[0] < 0.295
 
 
+def test_step_observe_reports_the_contact_and_the_collisions_the_getters_give() -> None:
+    sim = Simulator(
+        world("[[walls]]\ncenter = [0.3, 0.0]\nsize = [0.01, 1.0]\n", step_ms=32.0), noise=False
+    )
+    width = len(sim.distance_sensors()) + len(sim.ground_sensors())
+    low = np.full(width, -np.inf, dtype=np.float32)
+    high = np.full(width, np.inf, dtype=np.float32)
+    seen = set()
+    for _ in range(int(10 / 0.032)):
+        readings, pose, colliding, _, collisions = sim.step_observe(6.28, 6.28, low, high)
+        assert (colliding, collisions) == (sim.colliding, sim.collisions)
+        assert pose.tolist() == np.array(sim.pose, dtype=np.float32).tolist()
+        seen.add(collisions)
+    assert min(seen) == 0 and max(seen) >= 1
+
+
 def test_same_seed_same_stream_and_another_seed_differs() -> None:
     def run(seed: int) -> np.ndarray:
         sim = Simulator(mazesim.load_world("seed-maze"), seed=seed)

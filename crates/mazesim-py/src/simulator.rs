@@ -182,8 +182,8 @@ impl PySimulator {
 
     /// `step`, then what a gym step returns, in one call: the readings (float32, the distance
     /// sensors then the ground sensors) clamped to [`low`, `high`] (float32 arrays of that
-    /// width), the pose (float32 x, y, yaw), whether the body touches a wall and the signed
-    /// checkpoint crossed in this step (0: none).
+    /// width), the pose (float32 x, y, yaw), whether the body touches a wall, the signed
+    /// checkpoint crossed in this step (0: none) and the collisions so far (as `collisions`).
     #[allow(clippy::type_complexity)]
     fn step_observe<'py>(
         &self,
@@ -197,6 +197,7 @@ impl PySimulator {
         Bound<'py, PyArray1<f32>>,
         bool,
         i32,
+        u64,
     )> {
         let (left, right) = (left.value("left")?, right.value("right")?);
         enter(|| {
@@ -226,6 +227,7 @@ impl PySimulator {
                     PyArray1::from_slice(py, &p),
                     s.colliding(),
                     s.last_crossing(),
+                    s.collisions(),
                 ))
             })?
         })

@@ -58,6 +58,7 @@ class MazeGoalEnv(gymnasium.Env[Observation, Any]):
                 f"found {reward_type!r}"
             )
         self.reward_type = reward_type
+        self._dense = reward_type == "dense"
         self.maze = EPuckMazeEnv(render_mode=render_mode, **options)
         if self.maze.goal_disc is None and self.maze.options.start_goal != "random":
             raise InvalidArgumentError(
@@ -114,22 +115,28 @@ class MazeGoalEnv(gymnasium.Env[Observation, Any]):
     def step(self, action: Any) -> tuple[Observation, SupportsFloat, bool, bool, dict[str, Any]]:
         """Steps the maze env; the reward is :meth:`compute_reward` of the step's goals."""
         observation, _, terminated, truncated, info = self.maze.step(action)
-        pose = info["pose"]
+        # The achieved goal is a view of the pose the core made new this step; the desired goal
+        # is copied, as a caller may change an observation it was given.
+        achieved = info["pose"][:2]
         # compute_reward's float64 operations on one pair, as Python floats (numpy's array
         # calls cost more than the step here): the same values bit for bit.
-        x, y, _ = pose.tolist()
+        x, y = achieved.tolist()
         dx = x - self._desired_x
         dy = y - self._desired_y
         distance = math.sqrt(dx * dx + dy * dy)
         outside = distance > self._radius
-        reward = -distance if self.reward_type == "dense" else -float(outside)
-        goal_observation = {
-            "observation": observation,
-            "achieved_goal": pose[:2],
-            "desired_goal": self._desired.copy(),
-        }
         info["is_success"] = not outside  # the maze env's info is new every step
-        return goal_observation, reward, terminated, truncated, info
+        return (
+            {
+                "observation": observation,
+                "achieved_goal": achieved,
+                "desired_goal": self._desired.copy(),
+            },
+            -distance if self._dense else -float(outside),
+            terminated,
+            truncated,
+            info,
+        )
 
     def render(self) -> npt.NDArray[np.uint8] | None:
         """The maze env's picture."""

@@ -230,7 +230,7 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
             self._check_open()
             raise ResetNeededError("call reset() before step()")
         left, right = self._actions.single(action)
-        observation, pose, colliding, crossing = simulator.step_observe(
+        observation, pose, colliding, crossing, collisions = simulator.step_observe(
             left, right, self._low, self._high
         )
         if self._features is not None:
@@ -251,7 +251,7 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         self._distance = distance
         info = {
             "pose": pose,
-            "collisions": simulator.collisions,
+            "collisions": collisions,
             "colliding": colliding,
             "distance_to_goal": distance,
             "is_success": reached,

@@ -79,6 +79,8 @@ NOISE_MARGIN = 1.25
 
 #: Margin in metres round the world's bounds for the pose in the observation.
 _POSE_MARGIN = 0.5
+#: The dtype of the actions the continuous space samples (numpy's one instance of it).
+_FLOAT32 = np.dtype(np.float32)
 _YAW_BOUND = float(np.float32(math.pi)) * 1.0001
 
 
@@ -183,8 +185,10 @@ class ActionConverter:
         The speeds are the exact products of float32 values in double precision; the simulator
         rounds them to float32, which gives the float32 products the vector env computes.
         """
-        array = np.asarray(action)
-        if not self.discrete and array.dtype == np.float32 and array.shape == (2,):
+        # The common action (a native float32 array of two fractions, as the space samples it)
+        # is read without conversions; any other goes through the full check below.
+        array = action if type(action) is np.ndarray else np.asarray(action)
+        if not self.discrete and array.dtype is _FLOAT32 and array.shape == (2,):
             left, right = array.tolist()
             if -1.0 <= left <= 1.0 and -1.0 <= right <= 1.0:  # False for NaN too
                 return left * self._max, right * self._max
