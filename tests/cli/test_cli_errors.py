@@ -105,6 +105,22 @@ def test_an_unexpected_error_is_one_line_not_a_traceback(
     ]
 
 
+def test_a_package_error_that_is_also_an_os_error_keeps_its_own_message(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    import mazesim.cli.worlds
+    from mazesim.errors import ClusterConnectionError
+
+    def unreachable(out: object) -> int:
+        raise ClusterConnectionError("could not join the Ray cluster at 127.0.0.1:1: set X")
+
+    monkeypatch.setattr(mazesim.cli.worlds, "run_worlds", unreachable)
+    assert main(["worlds"]) == 2
+    assert capsys.readouterr().err.strip().splitlines() == [
+        "mazesim: error: could not join the Ray cluster at 127.0.0.1:1: set X"
+    ]
+
+
 def test_running_out_of_memory_is_one_line(
     monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
 ) -> None:

@@ -187,8 +187,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return EXIT_BROKEN_PIPE
     except (MazesimError, OSError) as error:
-        if isinstance(error, OSError):
-            error = io_error(error)  # the file and the system's reason, not "[Errno 17] ..."
+        if isinstance(error, OSError) and not isinstance(error, MazesimError):
+            # The file and the system's reason, not "[Errno 17] ..."; the package's own errors
+            # that are also OSErrors (ClusterConnectionError...) say what to do themselves.
+            error = io_error(error)
         print(f"mazesim: error: {_one_line(str(error))}", file=sys.stderr)
         return EXIT_ERROR
     except MemoryError:
