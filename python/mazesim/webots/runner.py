@@ -198,11 +198,8 @@ def run_controller(
     file = controller_file(path)
     if prepared is None or prepared.file != file:
         prepared = prepare_controller(file)
-    if prepared.language != "python" or not prepared.runnable:
-        return _run_native(
-            prepared, world, (seconds, seed, noise), report, keys, scene, world_of_several
-        )
-    source = _read_source(file)
+    native = prepared.language != "python" or not prepared.runnable
+    source = "" if native else _read_source(file)
     simulation = simulations.prepare(
         world,
         seconds=seconds,
@@ -213,6 +210,8 @@ def run_controller(
         scene=scene,
         **world_of_several,
     )
+    if native:
+        return _run_native(prepared, world, simulation, report, scene)
     controller_module.Robot.created = None
     folder = os.path.dirname(file)
     saved_modules = _install_controller_package()
@@ -265,26 +264,12 @@ def run_controller(
 def _run_native(
     prepared: PreparedController,
     world: World,
-    timing: tuple[float, int, bool],
+    simulation: simulations.RobotSimulation,
     report: Mapping[str, Any] | None,
-    keys: KeyScript | None,
     scene: Scene | None,
-    world_of_several: Mapping[str, Any],
 ) -> ControllerRun:
-    """Runs a compiled controller as a child process (or, when it cannot run, says why);
-    ``timing`` is the run's seconds, seed and noise, ``world_of_several`` as for
-    :func:`run_controller` (a robot of a world of several, driven from its own process)."""
-    seconds, seed, noise = timing
-    simulation = simulations.prepare(
-        world,
-        seconds=seconds,
-        seed=seed,
-        noise=noise,
-        report=report,
-        keys=keys,
-        scene=scene,
-        **world_of_several,
-    )
+    """Runs a compiled controller as a child process on ``simulation`` (or, when it cannot run,
+    says why)."""
     controller_module.Robot.created = None
     started = time.perf_counter()
     status, error = EXIT_CONTROLLER_ERROR, ""
