@@ -17,8 +17,6 @@ import numpy as np
 import pytest
 
 from mazesim.errors import PolicyFormatError
-from mazesim.learn.archive import write_archive
-from mazesim.learn.bundle import write_bundle
 from mazesim.learn.checkpoint import (
     CHECKPOINT_FILE,
     CHECKPOINT_FORMAT,
@@ -26,7 +24,13 @@ from mazesim.learn.checkpoint import (
     checkpoint_exists,
     read_checkpoint,
 )
-from mazesim.learn.tables import FORMAT_VERSION, TrainedPolicy, load_policy
+from mazesim.learn.tables import (
+    FORMAT_VERSION,
+    TrainedPolicy,
+    load_policy,
+    write_archive,
+    write_bundle,
+)
 from mazesim.learn.train import TrainSettings, train
 
 #: Three lower-level rounds, a checkpoint after each.
