@@ -301,17 +301,40 @@ def read_archive(
         ) from None
 
 
-def write_archive(arrays: Mapping[str, npt.NDArray[Any]], documents: Mapping[str, bytes]) -> bytes:
-    """An ``.npz`` archive (deflated, as :func:`numpy.savez_compressed` writes) of ``arrays``,
-    with ``documents`` as further members."""
+def write_archive(
+    arrays: Mapping[str, npt.ArrayLike],
+    documents: Mapping[str, bytes] | None = None,
+    compression: int = zipfile.ZIP_DEFLATED,
+) -> bytes:
+    """An ``.npz`` archive of ``arrays`` (C order, no Python objects), with ``documents`` as
+    further members, the same bytes for the same arrays: unlike :func:`numpy.savez`, every
+    member carries a fixed date.
+
+    Args:
+        arrays: The arrays by name.
+        documents: Members that are not arrays, by member name.
+        compression: :data:`zipfile.ZIP_DEFLATED` (checkpoints) or :data:`zipfile.ZIP_STORED`.
+
+    Raises:
+        InvalidArgumentError: An array holds Python objects.
+    """
     buffer = io.BytesIO()
-    with zipfile.ZipFile(buffer, "w", compression=zipfile.ZIP_DEFLATED) as archive:
-        for name, array in arrays.items():
-            member = io.BytesIO()
-            np.lib.format.write_array(member, np.asanyarray(array), allow_pickle=False)
-            archive.writestr(f"{name}.npy", member.getvalue())
-        for member_name, text in documents.items():
-            archive.writestr(member_name, text)
+    with zipfile.ZipFile(buffer, "w") as archive:
+
+        def member(name: str) -> IO[bytes]:
+            info = zipfile.ZipInfo(name, date_time=(1980, 1, 1, 0, 0, 0))
+            info.compress_type = compression
+            return archive.open(info, "w", force_zip64=True)
+
+        for name, values in arrays.items():
+            array = np.ascontiguousarray(values)
+            if array.dtype.hasobject:
+                raise InvalidArgumentError(f"table {name!r}: expected numbers, found objects")
+            with member(f"{name}.npy") as handle:
+                np.lib.format.write_array(handle, array, allow_pickle=False)
+        for member_name, text in (documents or {}).items():
+            with member(member_name) as handle:
+                handle.write(text)
     return buffer.getvalue()
 
 
