@@ -5,10 +5,11 @@ says what the arrays mean; this module is the one place that knows their bytes.
 
 A saved navigator is a folder with two files:
 
-- ``tables.npz``: the Q-tables, written with :func:`numpy.savez_compressed`. A hierarchical
-  navigator holds ``corridor`` (4096 x 12), ``right``, ``left`` and ``forward`` (12288 x 12: 4096
-  distance states times 3 phases; 36864 x 12 with the door distance) and ``higher`` (states x 4,
-  the rows of :func:`mazesim.learn.higher.event_state_names`); the flat baseline holds ``flat``
+- ``tables.npz``: the Q-tables, deflated (the bytes :func:`numpy.savez_compressed` writes). A
+  hierarchical navigator holds ``corridor`` (4096 x 12), ``right``, ``left`` and ``forward``
+  (12288 x 12: 4096 distance states times 3 phases; 73728 x 12, 18 phases, with the door
+  distance) and ``higher`` (states x 4, the rows of
+  :func:`mazesim.learn.higher.event_state_names`); the flat baseline holds ``flat``
   ((1 + 2 * checkpoints) * 4096 x 12).
 - ``policy.json``: what the tables mean, checked on loading. ``format`` (``"mazesim-policy"``)
   and ``version`` (:data:`FORMAT_VERSION`); ``kind`` (``"hierarchical"`` or ``"flat"``);
@@ -374,15 +375,13 @@ def write_bundle(
 ) -> None:
     """Writes ``npz_name`` and ``json_name`` into ``folder`` (created if missing), atomically.
 
-    The JSON gets a ``tables`` entry with each array's shape and dtype and the ``.npz``'s size
-    and sha256; it is written after the ``.npz``.
+    The ``.npz`` is deflated (the bytes :func:`numpy.savez_compressed` writes); the JSON gets a
+    ``tables`` entry with each array's shape and dtype and the ``.npz``'s size and sha256, and
+    is written after the ``.npz``.
     """
     path = Path(folder)
     path.mkdir(parents=True, exist_ok=True)
-    buffer = io.BytesIO()
-    savez: Any = np.savez_compressed
-    savez(buffer, **arrays)
-    data = buffer.getvalue()
+    data = write_archive(arrays)
     described = dict(metadata)
     described["tables"] = {
         "file": npz_name,
