@@ -32,12 +32,13 @@ def test_a_turn_in_place_from_rest_takes_more_than_one_8_ms_step_to_start() -> N
     kinematic = RADIUS * 2 * TOP / AXLE
     left, right = traction.drive(-TOP, TOP, 0.008)
     first = RADIUS * (right - left) / AXLE
-    # The friction allows about 430 rad/s^2: 3.5 rad/s at the step's end, half that on average.
-    assert 0.35 * kinematic < first < 0.45 * kinematic
+    # The friction allows about 430 rad/s^2: 3.5 rad/s at the step's end, which ODE's step
+    # moves the body by.
+    assert 0.75 * kinematic < first < 0.82 * kinematic
     assert traction.turn_rate == pytest.approx(0.008 * 433, rel=0.02)
-    # At that rate the full turn rate takes about 10 ms to reach; the first step turns 0.8 deg.
+    # At that rate the full turn rate takes about 10 ms to reach; the first step turns 1.6 deg.
     assert kinematic / (traction.turn_rate / 0.008) == pytest.approx(0.010, abs=0.0005)
-    assert math.degrees(first * 0.008) == pytest.approx(0.8, abs=0.05)
+    assert math.degrees(first * 0.008) == pytest.approx(1.6, abs=0.05)
     for _ in range(3):
         left, right = traction.drive(-TOP, TOP, 0.008)
     assert (left, right) == pytest.approx((-TOP, TOP))
@@ -46,16 +47,19 @@ def test_a_turn_in_place_from_rest_takes_more_than_one_8_ms_step_to_start() -> N
     assert right > left
 
 
-def test_straight_driving_reaches_the_wheels_speed_within_two_steps() -> None:
+def test_a_full_speed_start_takes_two_8_ms_steps_and_any_change_one_32_ms_step() -> None:
     traction = epuck_traction("1", RADIUS, AXLE, TOP)
-    speeds = [traction.drive(3.0, 3.0, 0.008) for _ in range(3)]
-    assert speeds[0][0] < 3.0 and speeds[0] == pytest.approx((speeds[0][1], speeds[0][0]))
-    assert speeds[2] == pytest.approx((3.0, 3.0))
-    # Commands past the motors' limit are clamped first, as Webots' motors clamp them.
-    assert traction.drive(50.0, 50.0, 0.032)[0] < TOP
-    assert traction.drive(50.0, 50.0, 0.032) == pytest.approx((TOP, TOP))
+    speeds = [traction.drive(TOP, TOP, 0.008) for _ in range(2)]
+    assert speeds[0][0] < TOP and speeds[0] == pytest.approx((speeds[0][1], speeds[0][0]))
+    assert speeds[1] == pytest.approx((TOP, TOP))
+    # At Webots' default 32 ms the friction allows any change within the step: a reversal of
+    # a full-speed turn is made at once, so a 32 ms world moves as a kinematic one.
     traction.stop()
     assert (traction.speed, traction.turn_rate) == (0.0, 0.0)
+    assert traction.drive(-TOP, TOP, 0.032) == pytest.approx((-TOP, TOP))
+    assert traction.drive(TOP, -TOP, 0.032) == pytest.approx((TOP, -TOP))
+    # Commands past the motors' limit are clamped first, as Webots' motors clamp them.
+    assert traction.drive(50.0, 50.0, 0.032) == pytest.approx((TOP, TOP))
 
 
 def test_only_an_e_puck_proto_with_physics_has_traction() -> None:
@@ -90,7 +94,7 @@ def test_an_imported_e_puck_turns_less_in_its_first_step_than_a_mazesim_world_s(
     kinematic = turned_in_first_step(None)
     assert kinematic == pytest.approx(RADIUS * 2 * TOP / AXLE * 0.008, rel=1e-5)
     imported = turned_in_first_step("#VRML_SIM R2023b utf8\nE-puck { }\n")
-    assert 0.35 * kinematic < imported < 0.45 * kinematic
+    assert 0.75 * kinematic < imported < 0.82 * kinematic
 
 
 #: An R2020a (Y-up) world: an unturned e-puck with a Compass in its turret slot.
@@ -148,9 +152,15 @@ def test_a_controller_that_limits_its_motors_is_told_at_its_start(tmp_path: Path
         m.startswith("motor acceleration") and "setAcceleration" in m for m in prepared.missing
     )
     (tmp_path / "ramp.c").write_text(
-        "#include <webots/motor.h>\nvoid f(WbDeviceTag m) { wb_motor_set_available_torque (m, 1); }\n"
+        "#include <webots/motor.h>\n"
+        "void f(WbDeviceTag m) { wb_motor_set_available_torque (m, 1); }\n"
     )
     assert motor_limits(str(tmp_path / "ramp.c"), "c") == ["wb_motor_set_available_torque"]
     (tmp_path / "plain.py").write_text("from controller import Robot\nrobot = Robot()\n")
     (tmp_path / "ramp.py").unlink()
     assert prepare_controller(str(tmp_path / "plain.py")).missing == []
+
+
+def test_a_differential_wheels_e_puck_of_webots_8_keeps_its_kinematic_wheels() -> None:
+    assert read_scene("#VRML_SIM V8.6 utf8\nE-puck { }\n").traction_version is None
+    assert read_scene("#VRML_SIM R2018a utf8\nE-puck { }\n").traction_version == "1"

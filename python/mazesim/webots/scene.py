@@ -130,8 +130,9 @@ class Scene:
             a run holds (the E-puck's ``hidden position_0_0`` and ``position_0_1``): where
             Webots restores them, so where its wheel sensors start; 0 otherwise.
         traction_version: The E-puck PROTO's ``version`` ("1" or "2") when the robot is one
-            with physics (not ``kinematic TRUE``): its body then starts and stops as its wheels'
-            friction allows (:mod:`mazesim.webots.traction`); None otherwise.
+            with physics (not ``kinematic TRUE``) on HingeJoint wheels (a file of R2018a or
+            later; before, a DifferentialWheels robot): its body then starts and stops as its
+            wheels' friction allows (:mod:`mazesim.webots.traction`); None otherwise.
         y_up_devices: Whether the robot's PROTOs are Webots' Y-up ones (a file before
             R2022a): an accelerometer, gyro or compass then reads in the device frame x
             right, y up, z back.
@@ -157,6 +158,12 @@ class Scene:
     nodes: list[SceneNode] = field(default_factory=list)
 
 
+def _hinge_wheels(year: str | None) -> bool:
+    """Whether an E-puck of a file of this release year turns its wheels on HingeJoints, moved
+    by their friction: since R2018a (before, the PROTO was a DifferentialWheels robot)."""
+    return year is not None and int(year) >= 2018
+
+
 def read_scene(text: str, robot_model: str | None = None, robot_line: int | None = None) -> Scene:
     """Reads the scene facts of a world file's text (comments skipped).
 
@@ -173,6 +180,7 @@ def read_scene(text: str, robot_model: str | None = None, robot_line: int | None
     text = text.lstrip("\ufeff")
     header = _HEADER.match(text.lstrip())
     scene = Scene()
+    year = None
     if header is not None:
         year = header.group(1)
         scene.nue = int(year) < 2022 if year else header.group(3) is not None
@@ -198,7 +206,7 @@ def read_scene(text: str, robot_model: str | None = None, robot_line: int | None
             # The E-puck PROTO's first HingeJoint is its left wheel's, the second its right's.
             scene.wheel_positions = (saved.get(0, 0.0), saved.get(1, 0.0))
             scene.ground_sensors_module = bool(_GROUND_SENSORS_MODULE.search(body))
-        if robot.group(2) == "E-puck" and not _KINEMATIC.search(own):
+        if robot.group(2) == "E-puck" and _hinge_wheels(year) and not _KINEMATIC.search(own):
             scene.traction_version = "2" if _VERSION_2.search(own) else "1"
     scene.supervisor = bool(_SUPERVISOR.search(own))
     scene.lights = read_lights(text, scene.nue)

@@ -9,13 +9,15 @@ only by the wheels' friction on the floor, which Coulomb's law bounds: each whee
 to 9.81 m/s^2). With the PROTO's masses (body 0.15 kg, 0.13 kg for the e-puck2, wheels 0.005 kg),
 its yaw inertia (``inertiaMatrix``: 8.74869e-5 kg m^2) and wheels 0.026 m either side of its
 centre, the body gains at most 9.81 m/s^2 of forward speed and about 430 rad/s^2 of turn rate:
-a full-speed turn in place takes about 10 ms to start, longer than one 8 ms basic time step,
-where a kinematic model turns its whole 2 degrees in that step.
+a full-speed turn in place takes about 10 ms to start, longer than one 8 ms basic time step: in
+that step the body turns 1.6 degrees, where a kinematic model turns its whole 2 degrees.
 
 :class:`Traction` holds the body's forward speed and turn rate and moves them toward what the
-wheels ask, no faster than those forces allow, and gives the wheel speeds that drive the body by
-the mean of that motion over the step. It applies to an imported world's E-puck PROTO (not a
-``kinematic TRUE`` one); mazesim's own worlds keep their kinematic robots. The wheels' encoders
+wheels ask, no faster than those forces allow, and gives the wheel speeds that drive the body at
+its speeds at the step's end, as ODE's semi-implicit step moves it: a change the friction allows
+within one basic time step (any change at Webots' default 32 ms) is made at once, as before. It
+applies to an imported world's E-puck PROTO (not a ``kinematic TRUE`` one, nor Webots 8's
+DifferentialWheels E-puck); mazesim's own worlds keep their kinematic robots. The wheels' encoders
 count the wheels that drive the body (in Webots they count the motors' rotation, slip included).
 """
 
@@ -62,8 +64,8 @@ class Traction:
 
     def drive(self, left: float, right: float, dt: float) -> tuple[float, float]:
         """Takes one step of ``dt`` seconds toward the wheel speeds ``left``, ``right`` (rad/s,
-        clamped to the motors' limit) and returns the wheel speeds that move the body by its
-        mean motion over the step."""
+        clamped to the motors' limit) and returns the wheel speeds that move the body as it
+        moves at the step's end."""
         limit = self.max_wheel_speed
         left, right = (min(max(w, -limit), limit) for w in (left, right))
         r, axle = self.wheel_radius, self.axle_length
@@ -76,16 +78,13 @@ class Traction:
         most = FRICTION * self.mass * GRAVITY / 2.0
         share = needed / most if needed > 0.0 else 0.0
         if share <= 1.0:
-            # Reached within the step, after share * dt of it.
-            mean = (speed - d_speed * share / 2.0, turn_rate - d_turn * share / 2.0)
             self.speed, self.turn_rate = speed, turn_rate
         else:
-            mean = (self.speed + d_speed / (2.0 * share), self.turn_rate + d_turn / (2.0 * share))
             self.speed += d_speed / share
             self.turn_rate += d_turn / share
-        mean_speed, mean_turn = mean
-        half = mean_turn * axle / 2.0
-        return (mean_speed - half) / r, (mean_speed + half) / r
+        # ODE's semi-implicit step moves the body by its speeds at the step's end.
+        half = self.turn_rate * axle / 2.0
+        return (self.speed - half) / r, (self.speed + half) / r
 
     def stop(self) -> None:
         """Puts the body at rest (a supervisor moved it)."""
