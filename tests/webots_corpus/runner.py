@@ -171,6 +171,10 @@ def run_project(project: Project, mirrors: Path, work: Path, census: Census) -> 
     started = time.monotonic()
     row = _run_project(project, mirrors, work, census)
     row.wall_s = time.monotonic() - started
+    # Paths in the project's temporary export are named from the project's root, so that a
+    # cause reads the same from one run to the next.
+    root = work / project.name.replace("/", "+")
+    row.cause = row.cause.replace(f"{root}{os.sep}", "")
     return row
 
 

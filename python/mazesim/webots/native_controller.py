@@ -28,9 +28,10 @@ from typing import Any
 
 from mazesim.errors import ControllerBuildError, MazesimError, MissingDependencyError
 from mazesim.webots import native_link
+from mazesim.webots import simulation as simulations
 from mazesim.webots.termination import GRACE_SECONDS
 
-__all__ = ["CAPI", "Build", "build", "cache_folder", "drive"]
+__all__ = ["CAPI", "Build", "build", "cache_folder", "drive", "native_robot"]
 
 #: mazesim's controller library: ``include/webots/*.h`` and ``src/*.c``.
 CAPI = Path(__file__).with_name("capi")
@@ -43,6 +44,13 @@ EXIT_CRASHED = 1
 
 _UNDEFINED = re.compile(r"undefined reference to [`'‘](wb_\w+)['’]")
 _NO_HEADER = re.compile(r"fatal error: (webots/[\w/.]+): No such file or directory")
+#: A header of the project that is not in the controller's folder (a library the project's own
+#: build, CMake or a Makefile, adds with its include folders).
+_NO_PROJECT_HEADER = re.compile(r"fatal error: ((?!webots/)[\w/.+-]+): No such file or directory")
+#: A method of Webots' C++ classes that the library's classes lack.
+_NO_MEMBER = re.compile(
+    r"error: ['‘](?:class |struct )?(webots::\w+)['’] has no member named ['‘](\w+)['’]"
+)
 _INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]', re.MULTILINE)
 #: Most files read for their includes before a build.
 MAX_SCANNED = 500
@@ -57,12 +65,15 @@ class Build:
         missing: Webots API functions the controller calls that mazesim does not implement.
         headers: Webots API headers the controller includes that mazesim does not provide.
         note: What the build did, for the run's log (compiled, or taken from the cache).
+        elsewhere: The project's own headers the controller includes that are not in its
+            folder (a library its own build adds), which mazesim's build does not find.
     """
 
     program: str | None
     missing: list[str] = field(default_factory=list)
     headers: list[str] = field(default_factory=list)
     note: str = ""
+    elsewhere: list[str] = field(default_factory=list)
 
 
 def cache_folder() -> Path:
@@ -124,12 +135,25 @@ def _compile(main: Path, command: list[str], cwd: str) -> subprocess.CompletedPr
         ) from None
 
 
-def absent_headers(files: list[Path]) -> list[str]:
+def _provided_headers() -> dict[str, str]:
+    """The library's Webots headers, by lower-case name (``webots/motor.hpp`` ->
+    ``webots/Motor.hpp``)."""
+    root = CAPI / "include"
+    return {
+        path.relative_to(root).as_posix().lower(): path.relative_to(root).as_posix()
+        for path in root.rglob("*.h*")
+    }
+
+
+def scan_headers(files: list[Path]) -> tuple[list[str], dict[str, str]]:
     """The Webots headers (``webots/...``) that ``files``, and the files they include by a
-    relative path, include and the controller library does not provide: all of them, where the
-    compiler would stop at the first."""
-    provided = CAPI / "include"
+    relative path, include: those the controller library does not provide (all of them, where
+    the compiler would stop at the first), and those it provides under another case
+    (``webots/motor.hpp`` for ``webots/Motor.hpp``, which Windows and macOS, whose file names
+    ignore case, find), mapped to the header they stand for."""
+    provided = _provided_headers()
     absent: set[str] = set()
+    other_case: dict[str, str] = {}
     queue, seen = list(files), set[Path]()
     while queue and len(seen) < MAX_SCANNED:
         path = queue.pop()
@@ -141,11 +165,30 @@ def absent_headers(files: list[Path]) -> list[str]:
             local = (path.parent / name).resolve()
             if quote == '"' and local.is_file():
                 queue.append(local)
-            elif name.startswith("webots/") and not any(
-                (folder / name).is_file() for folder in (provided, path.parent)
-            ):
+            elif not name.startswith("webots/") or (path.parent / name).is_file():
+                continue
+            elif provided.get(name.lower()) == name:
+                continue
+            elif name.lower() in provided:
+                other_case[name] = provided[name.lower()]
+            else:
                 absent.add(name)
-    return sorted(absent)
+    return sorted(absent), other_case
+
+
+def absent_headers(files: list[Path]) -> list[str]:
+    """The Webots headers ``files`` include that the controller library does not provide (see
+    :func:`scan_headers`)."""
+    return scan_headers(files)[0]
+
+
+def _write_case_aliases(folder: Path, aliases: dict[str, str]) -> None:
+    """Headers in ``folder`` under the names a controller spells in another case, each
+    including the library's header."""
+    for name, header in aliases.items():
+        alias = folder / name
+        alias.parent.mkdir(parents=True, exist_ok=True)
+        alias.write_text(f"#include <{header}>\n", encoding="utf-8")
 
 
 def build(source: str | os.PathLike[str]) -> Build:
@@ -170,7 +213,7 @@ def build(source: str | os.PathLike[str]) -> Build:
     library = sorted((CAPI / "src").glob("*.c"))
     library_headers = sorted((CAPI / "include").rglob("*.h*"))
     files = [*c_sources, *cpp_sources, *headers, *library, *(CAPI / "src").glob("*.h")]
-    absent = absent_headers([*c_sources, *cpp_sources, *headers])
+    absent, aliases = scan_headers([*c_sources, *cpp_sources, *headers])
     if absent:
         return Build(None, [], absent, note="it includes Webots headers mazesim does not provide")
     key = _key(compilers, [*files, *library_headers])
@@ -179,8 +222,9 @@ def build(source: str | os.PathLike[str]) -> Build:
         return Build(str(target), note=f"built earlier, taken from the cache {target.parent}")
     target.parent.mkdir(parents=True, exist_ok=True)
     temporary = target.with_name(f".{target.name}.{os.getpid()}")
-    includes = ["-I", str(folder), "-I", str(CAPI / "include")]
     with tempfile.TemporaryDirectory(prefix="mazesim-build-") as work:
+        _write_case_aliases(Path(work) / "aliases", aliases)
+        includes = ["-I", str(folder), "-I", str(CAPI / "include"), "-I", f"{work}/aliases"]
         if language == "c":
             steps = [[c_compiler, *FLAGS, *includes, *map(str, [*c_sources, *library])]]
             steps[0] += ["-o", str(temporary), "-lm"]
@@ -201,10 +245,13 @@ def build(source: str | os.PathLike[str]) -> Build:
     if done.returncode != 0:
         temporary.unlink(missing_ok=True)
         missing = sorted(set(_UNDEFINED.findall(done.stderr)))
+        missing += sorted({f"{owner}::{name}" for owner, name in _NO_MEMBER.findall(done.stderr)})
         absent = sorted(set(_NO_HEADER.findall(done.stderr)))
+        elsewhere = sorted(set(_NO_PROJECT_HEADER.findall(done.stderr)))
         compiler = command[0]
-        if missing or absent:
-            return Build(None, missing, absent, note=f"{compiler} cannot build it")
+        if missing or absent or elsewhere:
+            note = f"{compiler} cannot build it"
+            return Build(None, missing, absent, note=note, elsewhere=elsewhere)
         message = done.stderr.strip().replace(f"{folder}{os.sep}", "")
         raise ControllerBuildError(
             f"{main}: expected a {LANGUAGE_NAMES[language]} controller that compiles, found "
@@ -212,7 +259,25 @@ def build(source: str | os.PathLike[str]) -> Build:
         )
     os.replace(temporary, target)
     names = " and ".join(compilers)
-    return Build(str(target), note=f"compiled with {names} into the cache {target.parent}")
+    note = f"compiled with {names} into the cache {target.parent}"
+    if aliases:
+        spelled = ", ".join(f"{name} as {header}" for name, header in sorted(aliases.items()))
+        note += f" (headers in another case read as on Windows and macOS: {spelled})"
+    return Build(str(target), note=note)
+
+
+def native_robot() -> Any:
+    """The robot a compiled controller drives, on the prepared simulation: a
+    :class:`~mazesim.webots.supervisor.Supervisor`, whose powers the supervisor functions use;
+    the robot counts as a supervisor when the world says so, or from the controller's first
+    supervisor function on (as a Python controller's does from its ``Supervisor()``)."""
+    from mazesim.webots.supervisor import Supervisor
+
+    simulation = simulations.current()
+    said = simulation.supervisor
+    robot = Supervisor()
+    simulation.supervisor = said
+    return robot
 
 
 def _signal_name(status: int) -> str:
@@ -310,6 +375,8 @@ def _serve(link: native_link.RobotLink, robot: Any) -> bool:
             if result == -1:
                 ended_at = time.monotonic()
             link.answer_step(result)
+        elif kind == native_link.CALL:
+            link.receive_call()
         elif kind == native_link.CLEANUP:
             return False
         else:

@@ -14,6 +14,7 @@ from __future__ import annotations
 import ast
 import importlib.util
 import os
+import re
 import sys
 from dataclasses import dataclass, field
 
@@ -35,6 +36,19 @@ MAX_OWN_MODULES = 200
 NO_DISPLAY = "a display for the controller's Tk windows (tkinter, turtle; $DISPLAY is not set)"
 #: Modules that open Tk windows.
 TK_MODULES = {"tkinter", "turtle"}
+#: What the run says of a compiled controller that draws on a Display.
+DISPLAY_NOTE = (
+    "its Display drawings are accepted and not drawn: mazesim has no view to show a display "
+    "on (images keep their size only, wb_display_image_save writes no file)"
+)
+#: The include of Webots' display header, in C or C++.
+DISPLAY_INCLUDE = re.compile(r'#\s*include\s*[<"]webots/(display\.h|Display\.hpp)[>"]', re.I)
+#: Source files of a compiled controller's folder.
+SOURCE_SUFFIXES = (".c", ".cpp", ".cc", ".cxx", ".h", ".hpp", ".hh")
+#: Headers of Windows' own API, which a build elsewhere does not find.
+WINDOWS_HEADERS = {"windows.h", "winsock2.h", "conio.h", "direct.h", "io.h", "tchar.h"}
+#: A compiled controller's own build files.
+BUILD_FILES = ("CMakeLists.txt", "Makefile", "makefile")
 
 
 @dataclass
@@ -156,6 +170,25 @@ def missing_packages(path: str) -> list[str]:
     return missing
 
 
+def _project_build(file: str) -> str:
+    """The build files of a compiled controller's folder (``CMakeLists.txt``, ``Makefile``)."""
+    folder = os.path.dirname(os.path.abspath(file))
+    found = [name for name in BUILD_FILES if os.path.isfile(os.path.join(folder, name))]
+    return "its own " + " and ".join(found) if found else "a build of its own"
+
+
+def _includes_display(file: str) -> bool:
+    """Whether a compiled controller's folder includes Webots' display header."""
+    folder = os.path.dirname(os.path.abspath(file))
+    for name in sorted(os.listdir(folder))[:MAX_OWN_MODULES]:
+        path = os.path.join(folder, name)
+        if os.path.splitext(name)[1].lower() in SOURCE_SUFFIXES and os.path.isfile(path):
+            text = read_input(path, MAX_TEXT_CHARACTERS, "the controller")
+            if DISPLAY_INCLUDE.search(text.decode("utf-8", errors="replace")):
+                return True
+    return False
+
+
 def prepare_controller(file: str) -> PreparedController:
     """Prepares the controller file ``file`` (see :func:`mazesim.webots.runner.controller_file`).
 
@@ -181,6 +214,21 @@ def prepare_controller(file: str) -> PreparedController:
                 f"Webots {kind} API function(s) mazesim does not implement: "
                 + ", ".join(built.missing)
             )
+        windows = [name for name in built.elsewhere if name.lower() in WINDOWS_HEADERS]
+        others = [name for name in built.elsewhere if name not in windows]
+        if windows:
+            prepared.missing.append(
+                "Windows' own header(s), which only a Windows build finds (the controller is "
+                "written for Windows): " + ", ".join(windows)
+            )
+        if others:
+            prepared.missing.append(
+                "header(s) found neither in the controller's folder nor on this system: "
+                + ", ".join(others)
+                + f" (the project builds the controller with {_project_build(file)})"
+            )
+        if built.program is not None and _includes_display(file):
+            prepared.notes.append(f"{kind} controller {os.path.basename(file)}: {DISPLAY_NOTE}")
         prepared.runnable = built.program is not None
     else:
         names = missing_packages(file)

@@ -52,6 +52,15 @@ namespace webots {
     }
     Gyro *getGyro(const std::string &name) { return dynamic_cast<Gyro *>(getDevice(name)); }
     Camera *getCamera(const std::string &name) { return dynamic_cast<Camera *>(getDevice(name)); }
+    Emitter *getEmitter(const std::string &name) {
+      return dynamic_cast<Emitter *>(getDevice(name));
+    }
+    Receiver *getReceiver(const std::string &name) {
+      return dynamic_cast<Receiver *>(getDevice(name));
+    }
+    Display *getDisplay(const std::string &name) {
+      return dynamic_cast<Display *>(getDevice(name));
+    }
 
   private:
     Device *device(WbDeviceTag tag) {
@@ -89,6 +98,12 @@ namespace webots {
           return new Gyro(tag);
         case WB_NODE_CAMERA:
           return new Camera(tag);
+        case WB_NODE_EMITTER:
+          return new Emitter(tag);
+        case WB_NODE_RECEIVER:
+          return new Receiver(tag);
+        case WB_NODE_DISPLAY:
+          return new Display(tag);
         default:
           return new Device(tag);
       }
