@@ -266,3 +266,42 @@ def test_windows_headers_are_named_as_windows_ones(tmp_path: Path) -> None:
         "Windows' own header(s), which only a Windows build finds (the controller is written "
         "for Windows): windows.h"
     ]
+
+
+def test_a_header_included_from_outside_the_folder_is_part_of_the_build(tmp_path: Path) -> None:
+    common = tmp_path / "common" / "speed.h"
+    common.parent.mkdir()
+    common.write_text("#define SPEED 1.0\n")
+    source = _write(
+        tmp_path,
+        "mover",
+        '#include "../common/speed.h"\n#include <webots/robot.h>\nint main(void) { return 0; }\n',
+    )
+    first = build(source)
+    assert first.program is not None and build(source).program == first.program
+    common.write_text("#define SPEED 2.0\n")
+    again = build(source)
+    assert again.program != first.program and "compiled with" in again.note
+
+
+def test_other_programs_and_files_a_controller_copied_are_left_out_of_its_build(
+    tmp_path: Path,
+) -> None:
+    source = _write(
+        tmp_path,
+        "swarm",
+        "#include <webots/robot.h>\ndouble half(double x) { return x / 2; }\n"
+        "int main(void) { wb_robot_init(); wb_robot_step(32); wb_robot_cleanup(); "
+        "return half(0.0); }\n",
+    )
+    # A tool with a main of its own, and the file the controller copied half() from.
+    (source.parent / "kmeans.c").write_text("int main(void) { return 1; }\n")
+    (source.parent / "maths.c").write_text("double half(double x) { return 0.5 * x; }\n")
+    built = build(source)
+    assert built.program is not None
+    assert built.note.endswith(
+        "(left out, each a program with a main of its own: kmeans.c) "
+        "(left out, their functions defined again by the controller's files: maths.c)"
+    )
+    run = run_controller(source, mazesim.load_world("arena"), seconds=0.5)
+    assert (run.exit_status, run.error, run.steps) == (0, "", 1)

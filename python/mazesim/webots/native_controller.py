@@ -52,6 +52,12 @@ _NO_MEMBER = re.compile(
     r"error: ['‘](?:class |struct )?(webots::\w+)['’] has no member named ['‘](\w+)['’]"
 )
 _INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]', re.MULTILINE)
+#: A file named in a linker's "multiple definition" or "first defined here" message.
+_DEFINED_TWICE = re.compile(
+    r"([\w.+-]+\.(?:c|cpp|cc|cxx)):\([^)]*\): (?:multiple definition of|first defined here)"
+)
+#: The definition of a program's ``main`` function, at the start of a line.
+_MAIN = re.compile(r"^[ \t]*(?:int|void)[ \t]+main[ \t]*\(", re.MULTILINE)
 #: Most files read for their includes before a build.
 MAX_SCANNED = 500
 
@@ -112,6 +118,11 @@ def _files(folder: Path, suffixes: tuple[str, ...], recursive: bool = False) -> 
     return sorted(p for p in found if p.suffix.lower() in suffixes and p.is_file())
 
 
+def _defines_main(path: Path) -> bool:
+    """Whether a source file defines a ``main`` function."""
+    return _MAIN.search(path.read_text(encoding="utf-8", errors="replace")) is not None
+
+
 def _key(compilers: list[str], files: list[Path]) -> str:
     digest = hashlib.sha256()
     for compiler in compilers:
@@ -151,6 +162,13 @@ def scan_headers(files: list[Path]) -> tuple[list[str], dict[str, str]]:
     the compiler would stop at the first), and those it provides under another case
     (``webots/motor.hpp`` for ``webots/Motor.hpp``, which Windows and macOS, whose file names
     ignore case, find), mapped to the header they stand for."""
+    absent, other_case, _ = _scan(files)
+    return absent, other_case
+
+
+def _scan(files: list[Path]) -> tuple[list[str], dict[str, str], set[Path]]:
+    """:func:`scan_headers`'s answer and every file read (those included from outside the
+    controller's folder too, which a build depends on)."""
     provided = _provided_headers()
     absent: set[str] = set()
     other_case: dict[str, str] = {}
@@ -173,7 +191,7 @@ def scan_headers(files: list[Path]) -> tuple[list[str], dict[str, str]]:
                 other_case[name] = provided[name.lower()]
             else:
                 absent.add(name)
-    return sorted(absent), other_case
+    return sorted(absent), other_case, seen
 
 
 def absent_headers(files: list[Path]) -> list[str]:
@@ -191,6 +209,49 @@ def _write_case_aliases(folder: Path, aliases: dict[str, str]) -> None:
         alias.write_text(f"#include <{header}>\n", encoding="utf-8")
 
 
+def _compile_all(
+    main: Path,
+    language: str,
+    compilers: list[str],
+    c_sources: list[Path],
+    cpp_sources: list[Path],
+    aliases: dict[str, str],
+    target: Path,
+) -> tuple[subprocess.CompletedProcess[str], list[str]]:
+    """Compiles and links the controller into ``target``; the last step's result and command."""
+    folder = main.parent
+    library = sorted((CAPI / "src").glob("*.c"))
+    c_compiler = compilers[0]
+    with tempfile.TemporaryDirectory(prefix="mazesim-build-") as work:
+        _write_case_aliases(Path(work) / "aliases", aliases)
+        includes = ["-I", str(folder), "-I", str(CAPI / "include"), "-I", f"{work}/aliases"]
+        if language == "c":
+            steps = [[c_compiler, *FLAGS, *includes, *map(str, [*c_sources, *library])]]
+            steps[0] += ["-o", str(target), "-lm"]
+        else:
+            # The C parts (the library, the project's .c files) as C, then the C++ program.
+            c_parts = [*c_sources, *library]
+            objects = [os.path.join(work, f"{i}.o") for i in range(len(c_parts))]
+            steps = [
+                [c_compiler, *FLAGS, *includes, "-c", str(path), "-o", obj]
+                for path, obj in zip(c_parts, objects)
+            ]
+            steps.append([compilers[1], *FLAGS, *includes, *map(str, cpp_sources), *objects])
+            steps[-1] += ["-o", str(target), "-lm"]
+        for command in steps:
+            done = _compile(main, command, work)
+            if done.returncode != 0:
+                break
+    return done, command
+
+
+def _defined_twice(errors: str, main: Path) -> list[str]:
+    """The controller's files (not its main file) that a link found defining a function another
+    file defines too."""
+    names = set(_DEFINED_TWICE.findall(errors))
+    return sorted(name for name in names if name != main.name and (main.parent / name).is_file())
+
+
 def build(source: str | os.PathLike[str]) -> Build:
     """Builds the C or C++ controller whose main file is ``source`` (with its folder's other
     ``.c``, and for C++ ``.cpp``, ``.cc`` and ``.cxx``, files), or takes it from the cache.
@@ -206,42 +267,40 @@ def build(source: str | os.PathLike[str]) -> Build:
     compilers = [c_compiler] + ([_compiler("cpp")] if language == "cpp" else [])
     c_sources = _files(folder, C_SUFFIXES)
     cpp_sources = _files(folder, CPP_SUFFIXES) if language == "cpp" else []
+    # Another file with a main of its own is another program (a tool, a test): left out.
+    apart = [p for p in [*c_sources, *cpp_sources] if p != main and _defines_main(p)]
+    c_sources = [p for p in c_sources if p not in apart]
+    cpp_sources = [p for p in cpp_sources if p not in apart]
     own = cpp_sources if language == "cpp" else c_sources
     if main not in own:
         own.append(main)
     headers = _files(folder, (".h", ".hpp", ".hh"), recursive=True)
     library = sorted((CAPI / "src").glob("*.c"))
     library_headers = sorted((CAPI / "include").rglob("*.h*"))
-    files = [*c_sources, *cpp_sources, *headers, *library, *(CAPI / "src").glob("*.h")]
-    absent, aliases = scan_headers([*c_sources, *cpp_sources, *headers])
+    absent, aliases, read = _scan([*c_sources, *cpp_sources, *headers])
     if absent:
         return Build(None, [], absent, note="it includes Webots headers mazesim does not provide")
+    # The files the build reads, those its sources include from outside their folder too.
+    files = [*c_sources, *cpp_sources, *headers, *library, *(CAPI / "src").glob("*.h")]
+    files += sorted(path for path in read if path not in set(files))
     key = _key(compilers, [*files, *library_headers])
     target = cache_folder() / f"{main.stem}-{key}" / main.stem
     if target.is_file():
         return Build(str(target), note=f"built earlier, taken from the cache {target.parent}")
     target.parent.mkdir(parents=True, exist_ok=True)
     temporary = target.with_name(f".{target.name}.{os.getpid()}")
-    with tempfile.TemporaryDirectory(prefix="mazesim-build-") as work:
-        _write_case_aliases(Path(work) / "aliases", aliases)
-        includes = ["-I", str(folder), "-I", str(CAPI / "include"), "-I", f"{work}/aliases"]
-        if language == "c":
-            steps = [[c_compiler, *FLAGS, *includes, *map(str, [*c_sources, *library])]]
-            steps[0] += ["-o", str(temporary), "-lm"]
-        else:
-            # The C parts (the library, the project's .c files) as C, then the C++ program.
-            c_parts = [*c_sources, *library]
-            objects = [os.path.join(work, f"{i}.o") for i in range(len(c_parts))]
-            steps = [
-                [c_compiler, *FLAGS, *includes, "-c", str(path), "-o", obj]
-                for path, obj in zip(c_parts, objects)
-            ]
-            steps.append([compilers[1], *FLAGS, *includes, *map(str, cpp_sources), *objects])
-            steps[-1] += ["-o", str(temporary), "-lm"]
-        for command in steps:
-            done = _compile(main, command, work)
-            if done.returncode != 0:
-                break
+    done, command = _compile_all(
+        main, language, compilers, c_sources, cpp_sources, aliases, temporary
+    )
+    twice = _defined_twice(done.stderr, main) if done.returncode != 0 else []
+    if twice:
+        # Files whose functions another file defines again (copies the main file took in):
+        # the program is built without them, as it must have been.
+        c_sources = [p for p in c_sources if p.name not in twice]
+        cpp_sources = [p for p in cpp_sources if p.name not in twice]
+        done, command = _compile_all(
+            main, language, compilers, c_sources, cpp_sources, aliases, temporary
+        )
     if done.returncode != 0:
         temporary.unlink(missing_ok=True)
         missing = sorted(set(_UNDEFINED.findall(done.stderr)))
@@ -263,6 +322,12 @@ def build(source: str | os.PathLike[str]) -> Build:
     if aliases:
         spelled = ", ".join(f"{name} as {header}" for name, header in sorted(aliases.items()))
         note += f" (headers in another case read as on Windows and macOS: {spelled})"
+    if apart:
+        names = ", ".join(path.name for path in apart)
+        note += f" (left out, each a program with a main of its own: {names})"
+    if twice:
+        names = ", ".join(twice)
+        note += f" (left out, their functions defined again by the controller's files: {names})"
     return Build(str(target), note=note)
 
 

@@ -14,7 +14,8 @@ namespace webots {
   public:
     Robot() { wb_robot_init(); }
     virtual ~Robot() {
-      for (std::map<WbDeviceTag, Device *>::iterator i = devices.begin(); i != devices.end(); ++i)
+      typedef std::map<WbDeviceTag, Device *>::iterator Owned;
+      for (Owned i = ownDevices.begin(); i != ownDevices.end(); ++i)
         delete i->second;
       wb_robot_cleanup();
     }
@@ -30,7 +31,7 @@ namespace webots {
     int getNumberOfDevices() const { return wb_robot_get_number_of_devices(); }
     Device *getDeviceByIndex(int index) { return device(wb_robot_get_device_by_index(index)); }
     Device *getDevice(const std::string &name) { return device(wb_robot_get_device(name.c_str())); }
-    Keyboard *getKeyboard() { return &keyboard; }
+    Keyboard *getKeyboard() { return &ownKeyboard; }
     Motor *getMotor(const std::string &name) { return dynamic_cast<Motor *>(getDevice(name)); }
     DistanceSensor *getDistanceSensor(const std::string &name) {
       return dynamic_cast<DistanceSensor *>(getDevice(name));
@@ -66,11 +67,11 @@ namespace webots {
     Device *device(WbDeviceTag tag) {
       if (!tag)
         return 0;
-      std::map<WbDeviceTag, Device *>::iterator found = devices.find(tag);
-      if (found != devices.end())
+      std::map<WbDeviceTag, Device *>::iterator found = ownDevices.find(tag);
+      if (found != ownDevices.end())
         return found->second;
       Device *made = make(tag);
-      devices[tag] = made;
+      ownDevices[tag] = made;
       return made;
     }
     static Device *make(WbDeviceTag tag) {
@@ -108,8 +109,8 @@ namespace webots {
           return new Device(tag);
       }
     }
-    std::map<WbDeviceTag, Device *> devices;
-    Keyboard keyboard;
+    std::map<WbDeviceTag, Device *> ownDevices;
+    Keyboard ownKeyboard;
   };
 }  // namespace webots
 
