@@ -63,18 +63,26 @@ int wb_receiver_get_channel(WbDeviceTag tag) {
            : -1;
 }
 
+/* An enabled receiver's queue length comes with each step's readings; wb_receiver_next_packet
+   is the only other change to it. */
 int wb_receiver_get_queue_length(WbDeviceTag tag) {
-  return link_device(tag, "wb_receiver_get_queue_length")
-           ? call_device_int("wb_receiver_get_queue_length", tag)
-           : 0;
+  Device *device = link_device(tag, "wb_receiver_get_queue_length");
+  if (!device)
+    return 0;
+  if (device->sampling_period > 0 && device->value_count > 0)
+    return (int)device->values[0];
+  return call_device_int("wb_receiver_get_queue_length", tag);
 }
 
 void wb_receiver_next_packet(WbDeviceTag tag) {
-  if (!link_device(tag, "wb_receiver_next_packet"))
+  Device *device = link_device(tag, "wb_receiver_next_packet");
+  if (!device)
     return;
   call_begin("wb_receiver_next_packet");
   call_int(tag);
   call_end();
+  if (device->value_count > 0 && device->values[0] > 0)
+    device->values[0] -= 1;
 }
 
 int wb_receiver_get_data_size(WbDeviceTag tag) {
