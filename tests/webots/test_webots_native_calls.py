@@ -266,6 +266,10 @@ def test_windows_headers_are_named_as_windows_ones(tmp_path: Path) -> None:
         "Windows' own header(s), which only a Windows build finds (the controller is written "
         "for Windows): windows.h"
     ]
+    # The cache keeps what a failed build lacked: the next run says it without compiling.
+    again = prepare_controller(str(source))
+    assert again.missing == prepared.missing and not again.runnable
+    assert "built earlier without success" in again.notes[0]
 
 
 def test_a_header_included_from_outside_the_folder_is_part_of_the_build(tmp_path: Path) -> None:

@@ -13,6 +13,7 @@ serves it over :mod:`mazesim.webots.native_link`.
 from __future__ import annotations
 
 import hashlib
+import json
 import os
 import re
 import shutil
@@ -26,6 +27,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from mazesim._atomic import atomic_file
 from mazesim.errors import ControllerBuildError, MazesimError, MissingDependencyError
 from mazesim.webots import native_link
 from mazesim.webots import simulation as simulations
@@ -287,6 +289,12 @@ def build(source: str | os.PathLike[str]) -> Build:
     target = cache_folder() / f"{main.stem}-{key}" / main.stem
     if target.is_file():
         return Build(str(target), note=f"built earlier, taken from the cache {target.parent}")
+    # What a build that failed for lack of Webots features lacked, kept beside its program.
+    lacking = target.with_name("missing.json")
+    if lacking.is_file():
+        known = json.loads(lacking.read_text(encoding="utf-8"))
+        note = f"built earlier without success, as the cache {target.parent} says"
+        return Build(None, known["missing"], known["headers"], note, known["elsewhere"])
     target.parent.mkdir(parents=True, exist_ok=True)
     temporary = target.with_name(f".{target.name}.{os.getpid()}")
     done, command = _compile_all(
@@ -309,6 +317,9 @@ def build(source: str | os.PathLike[str]) -> Build:
         elsewhere = sorted(set(_NO_PROJECT_HEADER.findall(done.stderr)))
         compiler = command[0]
         if missing or absent or elsewhere:
+            known = {"missing": missing, "headers": absent, "elsewhere": elsewhere}
+            with atomic_file(lacking) as handle:
+                handle.write(json.dumps(known).encode("utf-8"))
             note = f"{compiler} cannot build it"
             return Build(None, missing, absent, note=note, elsewhere=elsewhere)
         message = done.stderr.strip().replace(f"{folder}{os.sep}", "")
