@@ -222,14 +222,16 @@ def _compile_all(
 ) -> tuple[subprocess.CompletedProcess[str], list[str]]:
     """Compiles and links the controller into ``target``; the last step's result and command."""
     folder = main.parent
-    library = sorted((CAPI / "src").glob("*.c"))
     c_compiler = compilers[0]
+    library = _library(main, c_compiler)
+    archived = [str(path) for path in library if path.suffix == ".a"]
+    library = [path for path in library if path.suffix != ".a"]
     with tempfile.TemporaryDirectory(prefix="mazesim-build-") as work:
         _write_case_aliases(Path(work) / "aliases", aliases)
         includes = ["-I", str(folder), "-I", str(CAPI / "include"), "-I", f"{work}/aliases"]
         if language == "c":
             steps = [[c_compiler, *FLAGS, *includes, *map(str, [*c_sources, *library])]]
-            steps[0] += ["-o", str(target), "-lm"]
+            steps[0] += [*archived, "-o", str(target), "-lm"]
         else:
             # The C parts (the library, the project's .c files) as C, then the C++ program.
             c_parts = [*c_sources, *library]
@@ -239,12 +241,42 @@ def _compile_all(
                 for path, obj in zip(c_parts, objects)
             ]
             steps.append([compilers[1], *FLAGS, *includes, *map(str, cpp_sources), *objects])
-            steps[-1] += ["-o", str(target), "-lm"]
+            steps[-1] += [*archived, "-o", str(target), "-lm"]
         for command in steps:
             done = _compile(main, command, work)
             if done.returncode != 0:
                 break
     return done, command
+
+
+def _library(main: Path, c_compiler: str) -> list[Path]:
+    """The controller library compiled once into an archive of the build cache
+    (``capi-KEY/libmazesim_controller.a``), or its sources when no archiver (``ar``) is
+    there or the archive cannot be made."""
+    sources = sorted((CAPI / "src").glob("*.c"))
+    archiver = shutil.which("ar")
+    if archiver is None:
+        return sources
+    headers = [*(CAPI / "src").glob("*.h"), *(CAPI / "include").rglob("*.h")]
+    key = _key([c_compiler], [*sources, *sorted(headers)])
+    archive = cache_folder() / f"capi-{key}" / "libmazesim_controller.a"
+    if archive.is_file():
+        return [archive]
+    archive.parent.mkdir(parents=True, exist_ok=True)
+    temporary = archive.with_name(f".{archive.name}.{os.getpid()}")
+    with tempfile.TemporaryDirectory(prefix="mazesim-build-") as work:
+        objects = [os.path.join(work, f"{path.stem}.o") for path in sources]
+        steps = [
+            [c_compiler, *FLAGS, "-I", str(CAPI / "include"), "-c", str(path), "-o", obj]
+            for path, obj in zip(sources, objects)
+        ]
+        steps.append([archiver, "rcs", str(temporary), *objects])
+        for command in steps:
+            if _compile(main, command, work).returncode != 0:
+                temporary.unlink(missing_ok=True)
+                return sources
+    os.replace(temporary, archive)
+    return [archive]
 
 
 def _defined_twice(errors: str, main: Path) -> list[str]:
