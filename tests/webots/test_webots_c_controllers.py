@@ -177,15 +177,16 @@ def test_functions_the_library_lacks_are_named_and_the_controller_is_not_started
 ) -> None:
     source = write_controller(
         tmp_path,
-        "radio",
-        "  extern void wb_receiver_enable(unsigned short, int);\n"
-        "  extern void wb_emitter_send(unsigned short, const void *, int);\n"
-        '  wb_receiver_enable(1, 32);\n  wb_emitter_send(2, "x", 1);',
+        "lidar",
+        "  extern void wb_lidar_enable(unsigned short, int);\n"
+        "  extern const float *wb_lidar_get_range_image(unsigned short);\n"
+        "  wb_lidar_enable(1, 32);\n  wb_lidar_get_range_image(1);",
     )
     prepared = prepare_controller(str(source))
     assert not prepared.runnable
     assert prepared.missing == [
-        "Webots C API function(s) mazesim does not implement: wb_emitter_send, wb_receiver_enable"
+        "Webots C API function(s) mazesim does not implement: wb_lidar_enable, "
+        "wb_lidar_get_range_image"
     ]
     run = run_controller(source, mazesim.load_world("arena"), seconds=1.0, prepared=prepared)
     assert (run.steps, run.exit_status) == (0, 1)
@@ -193,13 +194,13 @@ def test_functions_the_library_lacks_are_named_and_the_controller_is_not_started
 
 
 def test_every_header_the_library_lacks_is_named_before_building(tmp_path: Path) -> None:
-    source = write_controller(tmp_path, "radio", "")
-    (source.parent / "radio.h").write_text("#include <webots/emitter.h>\n")
-    source.write_text('#include <webots/receiver.h>\n#include "radio.h"\n' + source.read_text())
+    source = write_controller(tmp_path, "ranging", "")
+    (source.parent / "ranging.h").write_text("#include <webots/lidar.h>\n")
+    source.write_text('#include <webots/radar.h>\n#include "ranging.h"\n' + source.read_text())
     prepared = prepare_controller(str(source))
     assert not prepared.runnable
     assert prepared.missing == [
-        "Webots C API header(s) mazesim does not provide: webots/emitter.h, webots/receiver.h"
+        "Webots C API header(s) mazesim does not provide: webots/lidar.h, webots/radar.h"
     ]
 
 
@@ -215,11 +216,11 @@ def test_a_cpp_controller_drives_as_the_c_one_and_names_classes_it_lacks(
     assert cpp_out == capfd.readouterr().out
     source = tmp_path / "bt" / "bt.cpp"
     source.parent.mkdir()
-    source.write_text("#include <webots/Supervisor.hpp>\nint main() { return 0; }\n")
+    source.write_text("#include <webots/Lidar.hpp>\nint main() { return 0; }\n")
     prepared = prepare_controller(str(source))
     assert (prepared.language, prepared.runnable) == ("cpp", False)
     assert prepared.missing == [
-        "Webots C++ API header(s) mazesim does not provide: webots/Supervisor.hpp"
+        "Webots C++ API header(s) mazesim does not provide: webots/Lidar.hpp"
     ]
 
 

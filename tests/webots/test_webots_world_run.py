@@ -128,23 +128,23 @@ def test_a_world_run_says_at_its_start_what_a_robots_controller_lacks(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
 ) -> None:
     monkeypatch.setenv("MAZESIM_CACHE", str(tmp_path / "cache"))
-    radio = tmp_path / "controllers" / "radio" / "radio.c"
-    radio.parent.mkdir(parents=True)
-    radio.write_text(
-        "#include <webots/robot.h>\n#include <webots/emitter.h>\n"
+    ranging = tmp_path / "controllers" / "ranging" / "ranging.c"
+    ranging.parent.mkdir(parents=True)
+    ranging.write_text(
+        "#include <webots/robot.h>\n#include <webots/lidar.h>\n"
         "int main(void) { wb_robot_init(); while (wb_robot_step(32) != -1) {} return 0; }\n"
     )
     avoider = str(C_CONTROLLERS / "c_wall_avoider" / "c_wall_avoider.c")
     run = run_world(
         str(SWARM / "worlds" / "head_on.wbt"),
         seconds=1.0,
-        controllers={"west": str(radio), "east": avoider},
+        controllers={"west": str(ranging), "east": avoider},
     )
     west, east = run.robots
-    assert any("webots/emitter.h" in missing for missing in west.missing)
+    assert any("webots/lidar.h" in missing for missing in west.missing)
     assert east.missing == ()
     said = capsys.readouterr().err
-    assert "mazesim: missing: robot 'west':" in said and "webots/emitter.h" in said
+    assert "mazesim: missing: robot 'west':" in said and "webots/lidar.h" in said
     assert "controller not run" in west.error and west.distance_m == 0.0
     assert east.distance_m > 0.0, "the other robot runs on"
 

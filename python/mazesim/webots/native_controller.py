@@ -13,6 +13,7 @@ serves it over :mod:`mazesim.webots.native_link`.
 from __future__ import annotations
 
 import hashlib
+import json
 import os
 import re
 import shutil
@@ -26,11 +27,13 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from mazesim._atomic import atomic_file
 from mazesim.errors import ControllerBuildError, MazesimError, MissingDependencyError
 from mazesim.webots import native_link
+from mazesim.webots import simulation as simulations
 from mazesim.webots.termination import GRACE_SECONDS
 
-__all__ = ["CAPI", "Build", "build", "cache_folder", "drive"]
+__all__ = ["CAPI", "Build", "build", "cache_folder", "drive", "native_robot"]
 
 #: mazesim's controller library: ``include/webots/*.h`` and ``src/*.c``.
 CAPI = Path(__file__).with_name("capi")
@@ -43,7 +46,20 @@ EXIT_CRASHED = 1
 
 _UNDEFINED = re.compile(r"undefined reference to [`'‘](wb_\w+)['’]")
 _NO_HEADER = re.compile(r"fatal error: (webots/[\w/.]+): No such file or directory")
+#: A header of the project that is not in the controller's folder (a library the project's own
+#: build, CMake or a Makefile, adds with its include folders).
+_NO_PROJECT_HEADER = re.compile(r"fatal error: ((?!webots/)[\w/.+-]+): No such file or directory")
+#: A method of Webots' C++ classes that the library's classes lack.
+_NO_MEMBER = re.compile(
+    r"error: ['‘](?:class |struct )?(webots::\w+)['’] has no member named ['‘](\w+)['’]"
+)
 _INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]', re.MULTILINE)
+#: A file named in a linker's "multiple definition" or "first defined here" message.
+_DEFINED_TWICE = re.compile(
+    r"([\w.+-]+\.(?:c|cpp|cc|cxx)):\([^)]*\): (?:multiple definition of|first defined here)"
+)
+#: The definition of a program's ``main`` function, at the start of a line.
+_MAIN = re.compile(r"^[ \t]*(?:int|void)[ \t]+main[ \t]*\(", re.MULTILINE)
 #: Most files read for their includes before a build.
 MAX_SCANNED = 500
 
@@ -57,12 +73,15 @@ class Build:
         missing: Webots API functions the controller calls that mazesim does not implement.
         headers: Webots API headers the controller includes that mazesim does not provide.
         note: What the build did, for the run's log (compiled, or taken from the cache).
+        elsewhere: The project's own headers the controller includes that are not in its
+            folder (a library its own build adds), which mazesim's build does not find.
     """
 
     program: str | None
     missing: list[str] = field(default_factory=list)
     headers: list[str] = field(default_factory=list)
     note: str = ""
+    elsewhere: list[str] = field(default_factory=list)
 
 
 def cache_folder() -> Path:
@@ -101,6 +120,11 @@ def _files(folder: Path, suffixes: tuple[str, ...], recursive: bool = False) -> 
     return sorted(p for p in found if p.suffix.lower() in suffixes and p.is_file())
 
 
+def _defines_main(path: Path) -> bool:
+    """Whether a source file defines a ``main`` function."""
+    return _MAIN.search(path.read_text(encoding="utf-8", errors="replace")) is not None
+
+
 def _key(compilers: list[str], files: list[Path]) -> str:
     digest = hashlib.sha256()
     for compiler in compilers:
@@ -124,12 +148,32 @@ def _compile(main: Path, command: list[str], cwd: str) -> subprocess.CompletedPr
         ) from None
 
 
-def absent_headers(files: list[Path]) -> list[str]:
+def _provided_headers() -> dict[str, str]:
+    """The library's Webots headers, by lower-case name (``webots/motor.hpp`` ->
+    ``webots/Motor.hpp``)."""
+    root = CAPI / "include"
+    return {
+        path.relative_to(root).as_posix().lower(): path.relative_to(root).as_posix()
+        for path in root.rglob("*.h*")
+    }
+
+
+def scan_headers(files: list[Path]) -> tuple[list[str], dict[str, str]]:
     """The Webots headers (``webots/...``) that ``files``, and the files they include by a
-    relative path, include and the controller library does not provide: all of them, where the
-    compiler would stop at the first."""
-    provided = CAPI / "include"
+    relative path, include: those the controller library does not provide (all of them, where
+    the compiler would stop at the first), and those it provides under another case
+    (``webots/motor.hpp`` for ``webots/Motor.hpp``, which Windows and macOS, whose file names
+    ignore case, find), mapped to the header they stand for."""
+    absent, other_case, _ = _scan(files)
+    return absent, other_case
+
+
+def _scan(files: list[Path]) -> tuple[list[str], dict[str, str], set[Path]]:
+    """:func:`scan_headers`'s answer and every file read (those included from outside the
+    controller's folder too, which a build depends on)."""
+    provided = _provided_headers()
     absent: set[str] = set()
+    other_case: dict[str, str] = {}
     queue, seen = list(files), set[Path]()
     while queue and len(seen) < MAX_SCANNED:
         path = queue.pop()
@@ -141,11 +185,105 @@ def absent_headers(files: list[Path]) -> list[str]:
             local = (path.parent / name).resolve()
             if quote == '"' and local.is_file():
                 queue.append(local)
-            elif name.startswith("webots/") and not any(
-                (folder / name).is_file() for folder in (provided, path.parent)
-            ):
+            elif not name.startswith("webots/") or (path.parent / name).is_file():
+                continue
+            elif provided.get(name.lower()) == name:
+                continue
+            elif name.lower() in provided:
+                other_case[name] = provided[name.lower()]
+            else:
                 absent.add(name)
-    return sorted(absent)
+    return sorted(absent), other_case, seen
+
+
+def absent_headers(files: list[Path]) -> list[str]:
+    """The Webots headers ``files`` include that the controller library does not provide (see
+    :func:`scan_headers`)."""
+    return scan_headers(files)[0]
+
+
+def _write_case_aliases(folder: Path, aliases: dict[str, str]) -> None:
+    """Headers in ``folder`` under the names a controller spells in another case, each
+    including the library's header."""
+    for name, header in aliases.items():
+        alias = folder / name
+        alias.parent.mkdir(parents=True, exist_ok=True)
+        alias.write_text(f"#include <{header}>\n", encoding="utf-8")
+
+
+def _compile_all(
+    main: Path,
+    language: str,
+    compilers: list[str],
+    c_sources: list[Path],
+    cpp_sources: list[Path],
+    aliases: dict[str, str],
+    target: Path,
+) -> tuple[subprocess.CompletedProcess[str], list[str]]:
+    """Compiles and links the controller into ``target``; the last step's result and command."""
+    folder = main.parent
+    c_compiler = compilers[0]
+    library = _library(main, c_compiler)
+    archived = [str(path) for path in library if path.suffix == ".a"]
+    library = [path for path in library if path.suffix != ".a"]
+    with tempfile.TemporaryDirectory(prefix="mazesim-build-") as work:
+        _write_case_aliases(Path(work) / "aliases", aliases)
+        includes = ["-I", str(folder), "-I", str(CAPI / "include"), "-I", f"{work}/aliases"]
+        if language == "c":
+            steps = [[c_compiler, *FLAGS, *includes, *map(str, [*c_sources, *library])]]
+            steps[0] += [*archived, "-o", str(target), "-lm"]
+        else:
+            # The C parts (the library, the project's .c files) as C, then the C++ program.
+            c_parts = [*c_sources, *library]
+            objects = [os.path.join(work, f"{i}.o") for i in range(len(c_parts))]
+            steps = [
+                [c_compiler, *FLAGS, *includes, "-c", str(path), "-o", obj]
+                for path, obj in zip(c_parts, objects)
+            ]
+            steps.append([compilers[1], *FLAGS, *includes, *map(str, cpp_sources), *objects])
+            steps[-1] += [*archived, "-o", str(target), "-lm"]
+        for command in steps:
+            done = _compile(main, command, work)
+            if done.returncode != 0:
+                break
+    return done, command
+
+
+def _library(main: Path, c_compiler: str) -> list[Path]:
+    """The controller library compiled once into an archive of the build cache
+    (``capi-KEY/libmazesim_controller.a``), or its sources when no archiver (``ar``) is
+    there or the archive cannot be made."""
+    sources = sorted((CAPI / "src").glob("*.c"))
+    archiver = shutil.which("ar")
+    if archiver is None:
+        return sources
+    headers = [*(CAPI / "src").glob("*.h"), *(CAPI / "include").rglob("*.h")]
+    key = _key([c_compiler], [*sources, *sorted(headers)])
+    archive = cache_folder() / f"capi-{key}" / "libmazesim_controller.a"
+    if archive.is_file():
+        return [archive]
+    archive.parent.mkdir(parents=True, exist_ok=True)
+    temporary = archive.with_name(f".{archive.name}.{os.getpid()}")
+    with tempfile.TemporaryDirectory(prefix="mazesim-build-") as work:
+        objects = [os.path.join(work, f"{path.stem}.o") for path in sources]
+        steps = [
+            [c_compiler, *FLAGS, "-I", str(CAPI / "include"), "-c", str(path), "-o", obj]
+            for path, obj in zip(sources, objects)
+        ]
+        steps.append([archiver, "rcs", str(temporary), *objects])
+        for command in steps:
+            if _compile(main, command, work).returncode != 0:
+                temporary.unlink(missing_ok=True)
+                return sources
+    os.replace(temporary, archive)
+    return [archive]
+
+
+def _defined_twice(errors: str, main: Path) -> list[str]:
+    """The controller's files (not its main file) that a link found defining a function another
+    file defines too."""
+    names = set(_DEFINED_TWICE.findall(errors))
+    return sorted(name for name in names if name != main.name and (main.parent / name).is_file())
 
 
 def build(source: str | os.PathLike[str]) -> Build:
@@ -163,48 +301,59 @@ def build(source: str | os.PathLike[str]) -> Build:
     compilers = [c_compiler] + ([_compiler("cpp")] if language == "cpp" else [])
     c_sources = _files(folder, C_SUFFIXES)
     cpp_sources = _files(folder, CPP_SUFFIXES) if language == "cpp" else []
+    # Another file with a main of its own is another program (a tool, a test): left out.
+    apart = [p for p in [*c_sources, *cpp_sources] if p != main and _defines_main(p)]
+    c_sources = [p for p in c_sources if p not in apart]
+    cpp_sources = [p for p in cpp_sources if p not in apart]
     own = cpp_sources if language == "cpp" else c_sources
     if main not in own:
         own.append(main)
     headers = _files(folder, (".h", ".hpp", ".hh"), recursive=True)
     library = sorted((CAPI / "src").glob("*.c"))
     library_headers = sorted((CAPI / "include").rglob("*.h*"))
-    files = [*c_sources, *cpp_sources, *headers, *library, *(CAPI / "src").glob("*.h")]
-    absent = absent_headers([*c_sources, *cpp_sources, *headers])
+    absent, aliases, read = _scan([*c_sources, *cpp_sources, *headers])
     if absent:
         return Build(None, [], absent, note="it includes Webots headers mazesim does not provide")
+    # The files the build reads, those its sources include from outside their folder too.
+    files = [*c_sources, *cpp_sources, *headers, *library, *(CAPI / "src").glob("*.h")]
+    files += sorted(path for path in read if path not in set(files))
     key = _key(compilers, [*files, *library_headers])
     target = cache_folder() / f"{main.stem}-{key}" / main.stem
     if target.is_file():
         return Build(str(target), note=f"built earlier, taken from the cache {target.parent}")
+    # What a build that failed for lack of Webots features lacked, kept beside its program.
+    lacking = target.with_name("missing.json")
+    if lacking.is_file():
+        known = json.loads(lacking.read_text(encoding="utf-8"))
+        note = f"built earlier without success, as the cache {target.parent} says"
+        return Build(None, known["missing"], known["headers"], note, known["elsewhere"])
     target.parent.mkdir(parents=True, exist_ok=True)
     temporary = target.with_name(f".{target.name}.{os.getpid()}")
-    includes = ["-I", str(folder), "-I", str(CAPI / "include")]
-    with tempfile.TemporaryDirectory(prefix="mazesim-build-") as work:
-        if language == "c":
-            steps = [[c_compiler, *FLAGS, *includes, *map(str, [*c_sources, *library])]]
-            steps[0] += ["-o", str(temporary), "-lm"]
-        else:
-            # The C parts (the library, the project's .c files) as C, then the C++ program.
-            c_parts = [*c_sources, *library]
-            objects = [os.path.join(work, f"{i}.o") for i in range(len(c_parts))]
-            steps = [
-                [c_compiler, *FLAGS, *includes, "-c", str(path), "-o", obj]
-                for path, obj in zip(c_parts, objects)
-            ]
-            steps.append([compilers[1], *FLAGS, *includes, *map(str, cpp_sources), *objects])
-            steps[-1] += ["-o", str(temporary), "-lm"]
-        for command in steps:
-            done = _compile(main, command, work)
-            if done.returncode != 0:
-                break
+    done, command = _compile_all(
+        main, language, compilers, c_sources, cpp_sources, aliases, temporary
+    )
+    twice = _defined_twice(done.stderr, main) if done.returncode != 0 else []
+    if twice:
+        # Files whose functions another file defines again (copies the main file took in):
+        # the program is built without them, as it must have been.
+        c_sources = [p for p in c_sources if p.name not in twice]
+        cpp_sources = [p for p in cpp_sources if p.name not in twice]
+        done, command = _compile_all(
+            main, language, compilers, c_sources, cpp_sources, aliases, temporary
+        )
     if done.returncode != 0:
         temporary.unlink(missing_ok=True)
         missing = sorted(set(_UNDEFINED.findall(done.stderr)))
+        missing += sorted({f"{owner}::{name}" for owner, name in _NO_MEMBER.findall(done.stderr)})
         absent = sorted(set(_NO_HEADER.findall(done.stderr)))
+        elsewhere = sorted(set(_NO_PROJECT_HEADER.findall(done.stderr)))
         compiler = command[0]
-        if missing or absent:
-            return Build(None, missing, absent, note=f"{compiler} cannot build it")
+        if missing or absent or elsewhere:
+            known = {"missing": missing, "headers": absent, "elsewhere": elsewhere}
+            with atomic_file(lacking) as handle:
+                handle.write(json.dumps(known).encode("utf-8"))
+            note = f"{compiler} cannot build it"
+            return Build(None, missing, absent, note=note, elsewhere=elsewhere)
         message = done.stderr.strip().replace(f"{folder}{os.sep}", "")
         raise ControllerBuildError(
             f"{main}: expected a {LANGUAGE_NAMES[language]} controller that compiles, found "
@@ -212,7 +361,31 @@ def build(source: str | os.PathLike[str]) -> Build:
         )
     os.replace(temporary, target)
     names = " and ".join(compilers)
-    return Build(str(target), note=f"compiled with {names} into the cache {target.parent}")
+    note = f"compiled with {names} into the cache {target.parent}"
+    if aliases:
+        spelled = ", ".join(f"{name} as {header}" for name, header in sorted(aliases.items()))
+        note += f" (headers in another case read as on Windows and macOS: {spelled})"
+    if apart:
+        names = ", ".join(path.name for path in apart)
+        note += f" (left out, each a program with a main of its own: {names})"
+    if twice:
+        names = ", ".join(twice)
+        note += f" (left out, their functions defined again by the controller's files: {names})"
+    return Build(str(target), note=note)
+
+
+def native_robot() -> Any:
+    """The robot a compiled controller drives, on the prepared simulation: a
+    :class:`~mazesim.webots.supervisor.Supervisor`, whose powers the supervisor functions use;
+    the robot counts as a supervisor when the world says so, or from the controller's first
+    supervisor function on (as a Python controller's does from its ``Supervisor()``)."""
+    from mazesim.webots.supervisor import Supervisor
+
+    simulation = simulations.current()
+    said = simulation.supervisor
+    robot = Supervisor()
+    simulation.supervisor = said
+    return robot
 
 
 def _signal_name(status: int) -> str:
@@ -310,6 +483,8 @@ def _serve(link: native_link.RobotLink, robot: Any) -> bool:
             if result == -1:
                 ended_at = time.monotonic()
             link.answer_step(result)
+        elif kind == native_link.CALL:
+            link.receive_call()
         elif kind == native_link.CLEANUP:
             return False
         else:

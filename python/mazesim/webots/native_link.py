@@ -30,11 +30,20 @@ Messages from the controller, each starting with an ``i32`` kind:
     in ENABLE and DISABLE is the keyboard. mazesim applies them in order, steps the simulation
     as ``Robot.step(duration)`` does and answers ``i32`` result (0, or -1 when the run's time is
     up), ``f64`` time (s), ``i32`` reading count, and per enabled device ``i32`` tag, ``i32``
-    value count, ``i32`` byte count, the values as ``f64`` and the bytes (a camera's image,
-    B G R A per pixel). The keyboard's reading (tag 0) holds the keys of this step.
+    value count, ``i32`` byte count, the values as ``f64`` (a receiver's: the length of its
+    queue) and the bytes (a camera's image, B G R A per pixel). The keyboard's reading (tag 0)
+    holds the keys of this step.
 
 ``CLEANUP`` (3)
     Sent by ``wb_robot_cleanup``; no answer. The controller then exits.
+
+``CALL`` (4), ``i32`` command count, commands, ``str`` function, ``i32`` value count, values
+    Sent by the functions a controller waits for (the radio's and the supervisor's, see
+    :mod:`mazesim.webots.native_calls`), after the commands queued so far, which mazesim
+    applies first (as a step would) so that they keep their order. Each value is an ``i32``
+    type then: nothing (0, no value or ``NULL``), an ``i32`` (1), an ``f64`` (2), ``i32``
+    size and bytes (3), ``i32`` count and that many ``f64`` (4). mazesim answers ``i32``
+    value count and the values.
 
 Once a step has answered -1, the controller has
 :data:`~mazesim.webots.termination.GRACE_SECONDS` of real time to exit, as in Webots; then it is
@@ -51,9 +60,11 @@ from dataclasses import dataclass
 from typing import Any
 
 from mazesim.errors import MazesimIOError
+from mazesim.webots.native_calls import NativeCalls
 from mazesim.webots.node_types import node_type
 
 __all__ = [
+    "CALL",
     "CLEANUP",
     "HELLO",
     "STEP",
@@ -64,11 +75,17 @@ __all__ = [
 ]
 
 #: The protocol's version (``LINK_VERSION`` in ``capi/src/link.h``).
-VERSION = 1
-HELLO, STEP, CLEANUP = 1, 2, 3
+VERSION = 2
+HELLO, STEP, CLEANUP, CALL = 1, 2, 3, 4
 ENABLE, DISABLE, SET_POSITION, SET_VELOCITY, SET_ACCELERATION, LED_SET = 1, 2, 3, 4, 5, 6
 #: The tag of the keyboard in ENABLE, DISABLE and readings.
 KEYBOARD_TAG = 0
+#: Value types of a CALL and its answer.
+VALUE_NONE, VALUE_INT, VALUE_DOUBLE, VALUE_BYTES, VALUE_DOUBLES = 0, 1, 2, 3, 4
+#: Most values a CALL carries, and most bytes a value holds.
+MAX_VALUES, MAX_VALUE_BYTES = 64, 1 << 26
+#: Devices that give no reading at a step (their functions are calls).
+_UNREAD_TYPES = {node_type(name) for name in ("EMITTER", "DISPLAY")}
 #: Most commands one step may carry (a controller queues a few per device).
 MAX_COMMANDS = 1 << 20
 
@@ -102,6 +119,21 @@ class Command:
     b: float
 
 
+def _encoded(value: Any) -> bytes:
+    """A value of a CALL's answer: None, an int, a float, bytes or a list of numbers."""
+    if value is None:
+        return _INT.pack(VALUE_NONE)
+    if isinstance(value, int):
+        return _INT.pack(VALUE_INT) + _INT.pack(max(-(2**31), min(2**31 - 1, value)))
+    if isinstance(value, float):
+        return _INT.pack(VALUE_DOUBLE) + _DOUBLE.pack(value)
+    if isinstance(value, (bytes, bytearray)):
+        return _INT.pack(VALUE_BYTES) + _INT.pack(len(value)) + bytes(value)
+    numbers = [float(v) for v in value]
+    packed = struct.pack(f"={len(numbers)}d", *numbers)
+    return _INT.pack(VALUE_DOUBLES) + _INT.pack(len(numbers)) + packed
+
+
 def _text(value: str) -> bytes:
     data = value.encode("utf-8")
     return _INT.pack(len(data)) + data
@@ -125,6 +157,7 @@ class RobotLink:
         self.tags = {id(device): i + 1 for i, device in enumerate(self.devices)}
         self.enabled: dict[int, Any] = {}
         self.keyboard_enabled = False
+        self.calls = NativeCalls(robot, self.devices)
 
     # --- reading and writing ---------------------------------------------------------------
 
@@ -169,14 +202,65 @@ class RobotLink:
         Raises:
             MazesimIOError: The message is malformed.
         """
-        duration, count = self._int(), self._int()
+        duration = self._int()
+        return duration, self._commands()
+
+    def receive_call(self) -> None:
+        """Reads a CALL, applies the commands before it, runs it and sends its answer.
+
+        Raises:
+            MazesimIOError: The message is malformed or names a function mazesim does not
+                serve.
+        """
+        self.apply(self._commands())
+        name = self._bytes(256).decode("utf-8", errors="replace")
+        count = self._int()
+        if not 0 <= count <= MAX_VALUES:
+            raise MazesimIOError(
+                f"expected at most {MAX_VALUES} values in a call from the controller, found {count}"
+            )
+        values = [self._value() for _ in range(count)]
+        answer = self.calls.call(name, values)
+        self.channel.sendall(_INT.pack(len(answer)) + b"".join(map(_encoded, answer)))
+
+    def _bytes(self, limit: int) -> bytes:
+        size = self._int()
+        if not 0 <= size <= limit:
+            raise MazesimIOError(
+                f"expected at most {limit} bytes in a value from the controller, found {size}"
+            )
+        return self._receive(size)
+
+    def _value(self) -> Any:
+        kind = self._int()
+        if kind == VALUE_INT:
+            return self._int()
+        if kind == VALUE_DOUBLE:
+            return float(_DOUBLE.unpack(self._receive(_DOUBLE.size))[0])
+        if kind == VALUE_BYTES:
+            return self._bytes(MAX_VALUE_BYTES)
+        if kind == VALUE_DOUBLES:
+            count = self._int()
+            if not 0 <= count <= MAX_VALUE_BYTES // _DOUBLE.size:
+                raise MazesimIOError(
+                    f"expected at most {MAX_VALUE_BYTES // _DOUBLE.size} numbers in a value "
+                    f"from the controller, found {count}"
+                )
+            data = self._receive(count * _DOUBLE.size)
+            return [float(v) for (v,) in _DOUBLE.iter_unpack(data)]
+        if kind != VALUE_NONE:
+            raise MazesimIOError(f"expected a value type 0 to 4 from the controller, found {kind}")
+        return None
+
+    def _commands(self) -> list[Command]:
+        count = self._int()
         if not 0 <= count <= MAX_COMMANDS:
             raise MazesimIOError(
                 f"expected at most {MAX_COMMANDS} commands in a step from the controller, "
                 f"found {count}"
             )
         data = self._receive(count * _COMMAND.size)
-        return duration, [Command(*fields) for fields in _COMMAND.iter_unpack(data)]
+        return [Command(*fields) for fields in _COMMAND.iter_unpack(data)]
 
     # --- the robot's side ------------------------------------------------------------------
 
@@ -224,6 +308,8 @@ class RobotLink:
             return [self._tag(device.getMotor())]
         if kind == node_type("CAMERA"):
             return [device.getWidth(), device.getHeight(), device.getFov()]
+        if kind == node_type("DISPLAY"):
+            return [device.getWidth(), device.getHeight()]
         return []
 
     def apply(self, commands: list[Command]) -> None:
@@ -288,7 +374,12 @@ class RobotLink:
             yield KEYBOARD_TAG, keys, b""
         for tag, device in self.enabled.items():
             kind = int(device.getNodeType())
-            if kind == node_type("CAMERA"):
+            if kind in _UNREAD_TYPES:
+                continue
+            if kind == node_type("RECEIVER"):
+                # Its queue's length, which only a step and wb_receiver_next_packet change.
+                yield tag, [float(device.getQueueLength())], b""
+            elif kind == node_type("CAMERA"):
                 image = device.getImage()
                 yield tag, [], bytes(image) if image is not None else b""
             elif hasattr(device, "getValues") and kind != node_type("TOUCH_SENSOR"):

@@ -52,6 +52,19 @@ MOTOR_LIMITS = (
 )
 #: Source files of each language read for those calls, beside the controller's main file.
 _SOURCES = {"python": (".py",), "c": (".c", ".h"), "cpp": (".cpp", ".cc", ".cxx", ".hpp", ".h")}
+#: What the run says of a compiled controller that draws on a Display.
+DISPLAY_NOTE = (
+    "its Display drawings are accepted and not drawn: mazesim has no view to show a display "
+    "on (images keep their size only, wb_display_image_save writes no file)"
+)
+#: The include of Webots' display header, in C or C++.
+DISPLAY_INCLUDE = re.compile(r'#\s*include\s*[<"]webots/(display\.h|Display\.hpp)[>"]', re.I)
+#: Source files of a compiled controller's folder.
+SOURCE_SUFFIXES = (".c", ".cpp", ".cc", ".cxx", ".h", ".hpp", ".hh")
+#: Headers of Windows' own API, which a build elsewhere does not find.
+WINDOWS_HEADERS = {"windows.h", "winsock2.h", "conio.h", "direct.h", "io.h", "tchar.h"}
+#: A compiled controller's own build files.
+BUILD_FILES = ("CMakeLists.txt", "Makefile", "makefile")
 
 
 @dataclass
@@ -173,24 +186,46 @@ def missing_packages(path: str) -> list[str]:
     return missing
 
 
-def motor_limits(file: str, language: str) -> list[str]:
-    """The motor acceleration and torque limit calls (see ``_MOTOR_LIMITS``) in the controller's
-    source files: its main file and the files of its language beside it."""
+def _folder_texts(file: str, suffixes: tuple[str, ...]) -> list[str]:
+    """The texts of the controller's source files with one of ``suffixes`` (lower case): its
+    main file and those beside it, at most ``MAX_OWN_MODULES`` of them; unreadable ones are
+    left out."""
     folder = os.path.dirname(os.path.abspath(file))
     try:
         names = sorted(os.listdir(folder))
     except OSError:
-        names = []
-    suffixes = _SOURCES.get(language, (".py",))
+        return []
     paths = [os.path.join(folder, n) for n in names if n.lower().endswith(suffixes)]
-    found: set[str] = set()
+    texts = []
     for path in paths[:MAX_OWN_MODULES]:
+        if not os.path.isfile(path):
+            continue
         try:
-            text = read_input(path, MAX_TEXT_CHARACTERS, "controller source")
+            texts.append(read_input(path, MAX_TEXT_CHARACTERS, "controller source"))
         except OSError:
             continue
-        found.update(_MOTOR_LIMITS.findall(text.decode("utf-8", "replace")))
+    return [text.decode("utf-8", "replace") for text in texts]
+
+
+def motor_limits(file: str, language: str) -> list[str]:
+    """The motor acceleration and torque limit calls (see ``_MOTOR_LIMITS``) in the controller's
+    source files: its main file and the files of its language beside it."""
+    found: set[str] = set()
+    for text in _folder_texts(file, _SOURCES.get(language, (".py",))):
+        found.update(_MOTOR_LIMITS.findall(text))
     return sorted(found)
+
+
+def _project_build(file: str) -> str:
+    """The build files of a compiled controller's folder (``CMakeLists.txt``, ``Makefile``)."""
+    folder = os.path.dirname(os.path.abspath(file))
+    found = [name for name in BUILD_FILES if os.path.isfile(os.path.join(folder, name))]
+    return "its own " + " and ".join(found) if found else "a build of its own"
+
+
+def _includes_display(file: str) -> bool:
+    """Whether a compiled controller's folder includes Webots' display header."""
+    return any(DISPLAY_INCLUDE.search(text) for text in _folder_texts(file, SOURCE_SUFFIXES))
 
 
 def prepare_controller(file: str) -> PreparedController:
@@ -218,6 +253,21 @@ def prepare_controller(file: str) -> PreparedController:
                 f"Webots {kind} API function(s) mazesim does not implement: "
                 + ", ".join(built.missing)
             )
+        windows = [name for name in built.elsewhere if name.lower() in WINDOWS_HEADERS]
+        others = [name for name in built.elsewhere if name not in windows]
+        if windows:
+            prepared.missing.append(
+                "Windows' own header(s), which only a Windows build finds (the controller is "
+                "written for Windows): " + ", ".join(windows)
+            )
+        if others:
+            prepared.missing.append(
+                "header(s) found neither in the controller's folder nor on this system: "
+                + ", ".join(others)
+                + f" (the project builds the controller with {_project_build(file)})"
+            )
+        if built.program is not None and _includes_display(file):
+            prepared.notes.append(f"{kind} controller {os.path.basename(file)}: {DISPLAY_NOTE}")
         prepared.runnable = built.program is not None
     else:
         names = missing_packages(file)

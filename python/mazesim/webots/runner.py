@@ -277,7 +277,7 @@ def _run_native(
         if not prepared.runnable or prepared.program is None:
             error = "controller not run: " + "; ".join(prepared.missing) + "\n"
         else:
-            robot = controller_module.Robot()
+            robot = native_controller.native_robot()
             folder = os.path.dirname(prepared.file)
             name = os.path.basename(folder)
             world_path = str((report or {}).get("path") or "")

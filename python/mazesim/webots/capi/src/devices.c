@@ -17,6 +17,7 @@
 #include <webots/light_sensor.h>
 #include <webots/motor.h>
 #include <webots/position_sensor.h>
+#include <webots/receiver.h>
 #include <webots/robot.h>
 #include <webots/touch_sensor.h>
 
@@ -118,6 +119,7 @@ VECTOR_SENSOR(wb_compass)
 VECTOR_SENSOR(wb_accelerometer)
 VECTOR_SENSOR(wb_gyro)
 SAMPLED(wb_camera)
+SAMPLED(wb_receiver)
 
 /* A distance sensor's facts: min value, max value, aperture, type, lookup table rows. */
 double wb_distance_sensor_get_min_value(WbDeviceTag tag) {
@@ -294,4 +296,16 @@ int wb_keyboard_get_key(void) {
   if (link_robot.key_next >= link_robot.key_count)
     return -1;
   return link_robot.keys[link_robot.key_next++];
+}
+
+void wb_robot_keyboard_enable(int period) {
+  wb_keyboard_enable(period);
+}
+
+void wb_robot_keyboard_disable(void) {
+  wb_keyboard_disable();
+}
+
+int wb_robot_keyboard_get_key(void) {
+  return wb_keyboard_get_key();
 }

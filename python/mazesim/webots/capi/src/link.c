@@ -25,7 +25,7 @@ typedef struct {
 static Command *pending;
 static int pending_count, pending_capacity;
 
-static void link_failed(const char *what) {
+void link_failed(const char *what) {
   fprintf(stderr, "mazesim controller library: %s; the controller stops\n", what);
   fflush(stderr);
   _exit(1);
@@ -189,6 +189,20 @@ static void receive_readings(void) {
       receive_all(device->image, (size_t)bytes);
     }
   }
+}
+
+void link_send_with_commands(int kind, const void *message, size_t size) {
+  link_start();
+  int32_t header[2] = {kind, pending_count};
+  send_all(header, sizeof header);
+  if (pending_count)
+    send_all(pending, sizeof(Command) * (size_t)pending_count);
+  pending_count = 0;
+  send_all(message, size);
+}
+
+void link_receive(void *data, size_t size) {
+  receive_all(data, size);
 }
 
 int wb_robot_init(void) {

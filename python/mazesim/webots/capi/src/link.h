@@ -4,14 +4,16 @@
 #ifndef MAZESIM_LINK_H
 #define MAZESIM_LINK_H
 
+#include <stddef.h>
+
 #include <webots/nodes.h>
 #include <webots/types.h>
 
 /* The protocol's version; both ends check it. */
-#define LINK_VERSION 1
+#define LINK_VERSION 2
 
 /* What the controller sends. */
-enum { LINK_HELLO = 1, LINK_STEP = 2, LINK_CLEANUP = 3 };
+enum { LINK_HELLO = 1, LINK_STEP = 2, LINK_CLEANUP = 3, LINK_CALL = 4 };
 
 /* The commands a step carries. */
 enum {
@@ -39,6 +41,8 @@ typedef struct {
   unsigned char *image;   /* a camera's last image */
   double set_point[3];    /* a motor's target position, velocity and acceleration */
   int led;
+  unsigned char *packet;  /* a receiver's head packet, as the last wb_receiver_get_data read it */
+  double direction[3];    /* a receiver's head packet's emitter direction */
 } Device;
 
 typedef struct {
@@ -62,10 +66,16 @@ typedef struct {
 
 extern Robot link_robot;
 
+/* Prints why the controller cannot go on and exits. */
+void link_failed(const char *what);
 /* Connects on first use (wb_robot_init does, and any call made before it). */
 void link_start(void);
 /* Queues a command for the next step. */
 void link_command(int op, int tag, double a, double b);
+/* Sends the commands queued so far and `size` bytes of a message after them, unanswered yet. */
+void link_send_with_commands(int kind, const void *message, size_t size);
+/* Reads `size` bytes of mazesim's answer. */
+void link_receive(void *data, size_t size);
 /* The device of a tag, or NULL after printing Webots' message naming `function`. */
 Device *link_device(WbDeviceTag tag, const char *function);
 

@@ -8,7 +8,9 @@
 #include <webots/accelerometer.h>
 #include <webots/camera.h>
 #include <webots/compass.h>
+#include <webots/display.h>
 #include <webots/distance_sensor.h>
+#include <webots/emitter.h>
 #include <webots/gps.h>
 #include <webots/gyro.h>
 #include <webots/keyboard.h>
@@ -16,6 +18,7 @@
 #include <webots/light_sensor.h>
 #include <webots/motor.h>
 #include <webots/position_sensor.h>
+#include <webots/receiver.h>
 #include <webots/touch_sensor.h>
 
 // A sensor class: enable, disable, getSamplingPeriod and its reading `Method` (C's `function`).
@@ -102,6 +105,108 @@ namespace webots {
     explicit LED(const std::string &name) : Device(name) {}
     virtual void set(int value) { wb_led_set(tag, value); }
     int get() const { return wb_led_get(tag); }
+  };
+
+  // The radio (reference manual, Emitter and Receiver pages).
+  class Emitter : public Device {
+  public:
+    enum { CHANNEL_BROADCAST = WB_CHANNEL_BROADCAST };
+    explicit Emitter(WbDeviceTag tag) : Device(tag) {}
+    explicit Emitter(const std::string &name) : Device(name) {}
+    virtual int send(const void *data, int size) { return wb_emitter_send(tag, data, size); }
+    int getBufferSize() const { return wb_emitter_get_buffer_size(tag); }
+    virtual void setChannel(int channel) { wb_emitter_set_channel(tag, channel); }
+    int getChannel() const { return wb_emitter_get_channel(tag); }
+    double getRange() const { return wb_emitter_get_range(tag); }
+    virtual void setRange(double range) { wb_emitter_set_range(tag, range); }
+  };
+
+  class Receiver : public Device {
+  public:
+    enum { CHANNEL_BROADCAST = WB_CHANNEL_BROADCAST };
+    explicit Receiver(WbDeviceTag tag) : Device(tag) {}
+    explicit Receiver(const std::string &name) : Device(name) {}
+    virtual void enable(int samplingPeriod) { wb_receiver_enable(tag, samplingPeriod); }
+    virtual void disable() { wb_receiver_disable(tag); }
+    int getSamplingPeriod() const { return wb_receiver_get_sampling_period(tag); }
+    int getQueueLength() const { return wb_receiver_get_queue_length(tag); }
+    virtual void nextPacket() { wb_receiver_next_packet(tag); }
+    const void *getData() const { return wb_receiver_get_data(tag); }
+    std::string getString() const { return text(wb_receiver_get_string(tag)); }
+    int getDataSize() const { return wb_receiver_get_data_size(tag); }
+    double getSignalStrength() const { return wb_receiver_get_signal_strength(tag); }
+    const double *getEmitterDirection() const { return wb_receiver_get_emitter_direction(tag); }
+    virtual void setChannel(int channel) { wb_receiver_set_channel(tag, channel); }
+    int getChannel() const { return wb_receiver_get_channel(tag); }
+  };
+
+  // A display whose drawings are accepted and not drawn (see <webots/display.h>).
+  class ImageRef {
+  public:
+    explicit ImageRef(WbImageRef image) : image(image) {}
+    WbImageRef getImageRef() const { return image; }
+
+  private:
+    WbImageRef image;
+  };
+
+  class Display : public Device {
+  public:
+    enum { RGB = WB_IMAGE_RGB, RGBA = WB_IMAGE_RGBA, ARGB = WB_IMAGE_ARGB, BGRA = WB_IMAGE_BGRA,
+           ABGR = WB_IMAGE_ABGR };
+    explicit Display(WbDeviceTag tag) : Device(tag) {}
+    explicit Display(const std::string &name) : Device(name) {}
+    int getWidth() const { return wb_display_get_width(tag); }
+    int getHeight() const { return wb_display_get_height(tag); }
+    virtual void setColor(int color) { wb_display_set_color(tag, color); }
+    virtual void setAlpha(double alpha) { wb_display_set_alpha(tag, alpha); }
+    virtual void setOpacity(double opacity) { wb_display_set_opacity(tag, opacity); }
+    virtual void setFont(const std::string &font, int size, bool antiAliasing) {
+      wb_display_set_font(tag, font.c_str(), size, antiAliasing);
+    }
+    void attachCamera(Device *camera) { wb_display_attach_camera(tag, camera->getTag()); }
+    void detachCamera() { wb_display_detach_camera(tag); }
+    virtual void drawPixel(int x, int y) { wb_display_draw_pixel(tag, x, y); }
+    virtual void drawLine(int x1, int y1, int x2, int y2) {
+      wb_display_draw_line(tag, x1, y1, x2, y2);
+    }
+    virtual void drawRectangle(int x, int y, int width, int height) {
+      wb_display_draw_rectangle(tag, x, y, width, height);
+    }
+    virtual void drawOval(int cx, int cy, int a, int b) { wb_display_draw_oval(tag, cx, cy, a, b); }
+    virtual void drawPolygon(const int *x, const int *y, int size) {
+      wb_display_draw_polygon(tag, x, y, size);
+    }
+    virtual void drawText(const std::string &text, int x, int y) {
+      wb_display_draw_text(tag, text.c_str(), x, y);
+    }
+    virtual void fillRectangle(int x, int y, int width, int height) {
+      wb_display_fill_rectangle(tag, x, y, width, height);
+    }
+    virtual void fillOval(int cx, int cy, int a, int b) { wb_display_fill_oval(tag, cx, cy, a, b); }
+    virtual void fillPolygon(const int *x, const int *y, int size) {
+      wb_display_fill_polygon(tag, x, y, size);
+    }
+    ImageRef *imageNew(int width, int height, const void *data, int format) const {
+      return new ImageRef(wb_display_image_new(tag, width, height, data, format));
+    }
+    ImageRef *imageLoad(const std::string &filename) const {
+      return new ImageRef(wb_display_image_load(tag, filename.c_str()));
+    }
+    ImageRef *imageCopy(int x, int y, int width, int height) const {
+      return new ImageRef(wb_display_image_copy(tag, x, y, width, height));
+    }
+    virtual void imagePaste(ImageRef *ir, int x, int y, bool blend = false) {
+      wb_display_image_paste(tag, ir ? ir->getImageRef() : 0, x, y, blend);
+    }
+    void imageSave(ImageRef *ir, const std::string &filename) const {
+      wb_display_image_save(tag, ir ? ir->getImageRef() : 0, filename.c_str());
+    }
+    void imageDelete(ImageRef *ir) const {
+      if (ir)
+        wb_display_image_delete(tag, ir->getImageRef());
+      delete ir;
+    }
   };
 
   class Keyboard {

@@ -14,7 +14,8 @@ namespace webots {
   public:
     Robot() { wb_robot_init(); }
     virtual ~Robot() {
-      for (std::map<WbDeviceTag, Device *>::iterator i = devices.begin(); i != devices.end(); ++i)
+      typedef std::map<WbDeviceTag, Device *>::iterator Owned;
+      for (Owned i = ownDevices.begin(); i != ownDevices.end(); ++i)
         delete i->second;
       wb_robot_cleanup();
     }
@@ -30,7 +31,7 @@ namespace webots {
     int getNumberOfDevices() const { return wb_robot_get_number_of_devices(); }
     Device *getDeviceByIndex(int index) { return device(wb_robot_get_device_by_index(index)); }
     Device *getDevice(const std::string &name) { return device(wb_robot_get_device(name.c_str())); }
-    Keyboard *getKeyboard() { return &keyboard; }
+    Keyboard *getKeyboard() { return &ownKeyboard; }
     Motor *getMotor(const std::string &name) { return dynamic_cast<Motor *>(getDevice(name)); }
     DistanceSensor *getDistanceSensor(const std::string &name) {
       return dynamic_cast<DistanceSensor *>(getDevice(name));
@@ -52,16 +53,25 @@ namespace webots {
     }
     Gyro *getGyro(const std::string &name) { return dynamic_cast<Gyro *>(getDevice(name)); }
     Camera *getCamera(const std::string &name) { return dynamic_cast<Camera *>(getDevice(name)); }
+    Emitter *getEmitter(const std::string &name) {
+      return dynamic_cast<Emitter *>(getDevice(name));
+    }
+    Receiver *getReceiver(const std::string &name) {
+      return dynamic_cast<Receiver *>(getDevice(name));
+    }
+    Display *getDisplay(const std::string &name) {
+      return dynamic_cast<Display *>(getDevice(name));
+    }
 
   private:
     Device *device(WbDeviceTag tag) {
       if (!tag)
         return 0;
-      std::map<WbDeviceTag, Device *>::iterator found = devices.find(tag);
-      if (found != devices.end())
+      std::map<WbDeviceTag, Device *>::iterator found = ownDevices.find(tag);
+      if (found != ownDevices.end())
         return found->second;
       Device *made = make(tag);
-      devices[tag] = made;
+      ownDevices[tag] = made;
       return made;
     }
     static Device *make(WbDeviceTag tag) {
@@ -89,12 +99,18 @@ namespace webots {
           return new Gyro(tag);
         case WB_NODE_CAMERA:
           return new Camera(tag);
+        case WB_NODE_EMITTER:
+          return new Emitter(tag);
+        case WB_NODE_RECEIVER:
+          return new Receiver(tag);
+        case WB_NODE_DISPLAY:
+          return new Display(tag);
         default:
           return new Device(tag);
       }
     }
-    std::map<WbDeviceTag, Device *> devices;
-    Keyboard keyboard;
+    std::map<WbDeviceTag, Device *> ownDevices;
+    Keyboard ownKeyboard;
   };
 }  // namespace webots
 

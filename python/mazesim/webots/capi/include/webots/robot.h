@@ -30,6 +30,10 @@ void wb_robot_set_mode(WbRobotMode mode, const char *argument);
 WbDeviceTag wb_robot_get_device(const char *name);
 int wb_robot_get_number_of_devices(void);
 WbDeviceTag wb_robot_get_device_by_index(int index);
+/* The keyboard functions of Webots 7 and before (now those of <webots/keyboard.h>). */
+void wb_robot_keyboard_enable(int sampling_period);
+void wb_robot_keyboard_disable(void);
+int wb_robot_keyboard_get_key(void);
 
 #ifdef __cplusplus
 }

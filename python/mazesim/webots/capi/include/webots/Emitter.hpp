@@ -1,0 +1,2 @@
+// Webots' C++ Emitter class (<webots/Emitter.hpp>): defined with mazesim's other device classes.
+#include <webots/Devices.hpp>

@@ -1,0 +1,267 @@
+"""The Webots functions a compiled controller waits for, run on the robot's Python objects.
+
+A C or C++ controller's radio and supervisor functions are calls over the link
+(:mod:`mazesim.webots.native_link`, message ``CALL``): a Webots C function's name and typed
+values. :class:`NativeCalls` runs each on the object that implements it for Python controllers
+(an :class:`~mazesim.webots.radio_devices.Emitter` or
+:class:`~mazesim.webots.radio_devices.Receiver` of the robot, or its
+:class:`~mazesim.webots.supervisor.Supervisor` and the nodes and fields it hands out), so
+channels, ranges, queues, nodes and fields behave for a compiled controller as they do for a
+Python one, and answers typed values. The functions follow Webots' reference manual
+(https://cyberbotics.com/doc/reference/emitter, /receiver and /supervisor).
+
+Nodes and fields cross the link as handles (1, 2... in the order they are first handed out; 0
+is ``NULL``); a field's handle comes with its type (``WB_SF_VEC3F``...).
+"""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+from mazesim.errors import MazesimIOError
+from mazesim.webots.supervisor import Field, Node, Supervisor
+
+__all__ = ["FUNCTIONS", "Function", "NativeCalls"]
+
+
+@dataclass(frozen=True)
+class Function:
+    """How a Webots C function maps onto the Python API.
+
+    Attributes:
+        target: What its first argument is: ``"device"`` (a device tag), ``"node"`` or
+            ``"field"`` (a handle), or ``"supervisor"`` (no argument: the robot's supervisor).
+        method: The Python method that implements it.
+        arguments: The kinds of its other arguments, one letter each: ``i`` an integer, ``f``
+            a number, ``s`` a text, ``b`` bytes, ``v`` numbers, ``n`` a node handle, ``t`` a
+            device tag.
+    """
+
+    target: str
+    method: str
+    arguments: str = ""
+
+
+def _table(target: str, prefix: str, rows: dict[str, tuple[str, str]]) -> dict[str, Function]:
+    return {f"{prefix}{name}": Function(target, *row) for name, row in rows.items()}
+
+
+#: The functions served, by C name.
+FUNCTIONS: dict[str, Function] = {
+    **_table(
+        "device",
+        "wb_emitter_",
+        {
+            "send": ("send", "b"),
+            "get_buffer_size": ("getBufferSize", ""),
+            "get_channel": ("getChannel", ""),
+            "set_channel": ("setChannel", "i"),
+            "get_range": ("getRange", ""),
+            "set_range": ("setRange", "f"),
+        },
+    ),
+    **_table(
+        "device",
+        "wb_receiver_",
+        {
+            "get_channel": ("getChannel", ""),
+            "set_channel": ("setChannel", "i"),
+            "get_queue_length": ("getQueueLength", ""),
+            "next_packet": ("nextPacket", ""),
+            "get_data_size": ("getDataSize", ""),
+            "get_data": ("getBytes", ""),
+            "get_signal_strength": ("getSignalStrength", ""),
+            "get_emitter_direction": ("getEmitterDirection", ""),
+        },
+    ),
+    **_table(
+        "supervisor",
+        "wb_supervisor_",
+        {
+            "simulation_quit": ("simulationQuit", "i"),
+            "simulation_reset": ("simulationReset", ""),
+            "simulation_reset_physics": ("simulationResetPhysics", ""),
+            "simulation_get_mode": ("simulationGetMode", ""),
+            "simulation_set_mode": ("simulationSetMode", "i"),
+            "world_load": ("worldLoad", "s"),
+            "world_save": ("worldSave", "s"),
+            "world_reload": ("worldReload", ""),
+            "set_label": ("setLabel", "isfffifs"),
+            "export_image": ("exportImage", "si"),
+            "node_get_root": ("getRoot", ""),
+            "node_get_self": ("getSelf", ""),
+            "node_get_from_def": ("getFromDef", "s"),
+            "node_get_from_id": ("getFromId", "i"),
+            "node_get_from_device": ("getFromDevice", "t"),
+            "node_get_selected": ("getSelected", ""),
+        },
+    ),
+    **_table(
+        "node",
+        "wb_supervisor_node_",
+        {
+            "get_parent_node": ("getParentNode", ""),
+            "get_id": ("getId", ""),
+            "get_def": ("getDef", ""),
+            "get_type": ("getType", ""),
+            "get_type_name": ("getTypeName", ""),
+            "get_base_type_name": ("getBaseTypeName", ""),
+            "is_proto": ("isProto", ""),
+            "get_field": ("getField", "s"),
+            "get_proto_field": ("getProtoField", "s"),
+            "get_number_of_fields": ("getNumberOfFields", ""),
+            "get_position": ("getPosition", ""),
+            "get_orientation": ("getOrientation", ""),
+            "get_pose": ("getPose", "n"),
+            "get_center_of_mass": ("getCenterOfMass", ""),
+            "get_velocity": ("getVelocity", ""),
+            "set_velocity": ("setVelocity", "v"),
+            "reset_physics": ("resetPhysics", ""),
+            "restart_controller": ("restartController", ""),
+            "get_static_balance": ("getStaticBalance", ""),
+            "remove": ("remove", ""),
+        },
+    ),
+    **_table(
+        "field",
+        "wb_supervisor_field_",
+        {
+            "get_type_name": ("getTypeName", ""),
+            "get_count": ("getCount", ""),
+            "get_sf_bool": ("getSFBool", ""),
+            "get_sf_int32": ("getSFInt32", ""),
+            "get_sf_float": ("getSFFloat", ""),
+            "get_sf_vec2f": ("getSFVec2f", ""),
+            "get_sf_vec3f": ("getSFVec3f", ""),
+            "get_sf_rotation": ("getSFRotation", ""),
+            "get_sf_color": ("getSFColor", ""),
+            "get_sf_string": ("getSFString", ""),
+            "get_sf_node": ("getSFNode", ""),
+            "get_mf_node": ("getMFNode", "i"),
+            "set_sf_bool": ("setSFBool", "i"),
+            "set_sf_int32": ("setSFInt32", "i"),
+            "set_sf_float": ("setSFFloat", "f"),
+            "set_sf_vec2f": ("setSFVec2f", "v"),
+            "set_sf_vec3f": ("setSFVec3f", "v"),
+            "set_sf_rotation": ("setSFRotation", "v"),
+            "set_sf_color": ("setSFColor", "v"),
+            "set_sf_string": ("setSFString", "s"),
+            "import_mf_node_from_string": ("importMFNodeFromString", "is"),
+            "remove_mf": ("removeMF", "i"),
+        },
+    ),
+}
+
+
+def _print_error(message: str) -> None:
+    print(message, file=sys.stderr)
+
+
+class NativeCalls:
+    """Runs a compiled controller's calls on its robot.
+
+    Args:
+        robot: The robot (a :class:`~mazesim.webots.supervisor.Supervisor` serves the
+            supervisor's functions).
+        devices: The robot's devices, by tag - 1.
+    """
+
+    def __init__(self, robot: Any, devices: list[Any]) -> None:
+        self.robot = robot
+        self.devices = devices
+        self._nodes: list[Node] = []
+        self._node_handles: dict[int, int] = {}
+        self._fields: list[Field] = []
+        self._field_handles: dict[tuple[int, str], int] = {}
+
+    def call(self, name: str, values: list[Any]) -> list[Any]:
+        """Runs the function ``name`` with the call's values; returns the answer's values.
+
+        Raises:
+            MazesimIOError: ``name`` is not a function mazesim serves (a library of another
+                version).
+        """
+        function = FUNCTIONS.get(name)
+        if function is None:
+            raise MazesimIOError(
+                f"expected a call of a Webots function mazesim serves, found {name!r}"
+            )
+        values = list(values)
+        first = values.pop(0) if function.target in ("device", "node", "field") and values else 0
+        target = self._target(function, name, first)
+        if target is None:
+            return [None]
+        method: Callable[..., Any] = getattr(target, function.method)
+        arguments = [self._argument(kind, value) for kind, value in zip(function.arguments, values)]
+        return self._answer(method(*arguments))
+
+    # --- the first argument ----------------------------------------------------------------
+
+    def _target(self, function: Function, name: str, first: Any) -> Any:
+        if function.target == "supervisor":
+            if not isinstance(self.robot, Supervisor):
+                _print_error(f"Error: {name}() can only be called by a supervisor.")
+                return None
+            # As a Python controller that makes a Supervisor, the robot becomes one.
+            self.robot._simulation.supervisor = True
+            return self.robot
+        if function.target == "device":
+            device = self._device(first)
+            # A tag of a device of another kind: Webots' message for a wrong tag.
+            if device is None or getattr(type(device), function.method, None) is None:
+                _print_error(f"Error: {name}() called with an invalid device tag.")
+                return None
+            return device
+        handles: list[Any] = self._nodes if function.target == "node" else self._fields
+        index = int(first) if isinstance(first, (int, float)) else 0
+        if not 1 <= index <= len(handles):
+            _print_error(f"Error: {name}() called with a NULL '{function.target}' argument.")
+            return None
+        return handles[index - 1]
+
+    def _device(self, tag: Any) -> Any:
+        index = int(tag) if isinstance(tag, (int, float)) else 0
+        return self.devices[index - 1] if 1 <= index <= len(self.devices) else None
+
+    def _argument(self, kind: str, value: Any) -> Any:
+        if kind == "s":
+            return None if value is None else bytes(value).decode("utf-8", errors="replace")
+        if kind == "n":
+            index = int(value or 0)
+            return self._nodes[index - 1] if 1 <= index <= len(self._nodes) else None
+        if kind == "t":
+            return self._device(value)
+        if kind == "i":
+            return int(value or 0)
+        if kind == "f":
+            return float(value)
+        return value
+
+    # --- the answer ------------------------------------------------------------------------
+
+    def _answer(self, result: Any) -> list[Any]:
+        if isinstance(result, Node):
+            return [self._node_handle(result)]
+        if isinstance(result, Field):
+            key = (id(result._node), result.getName())
+            if key not in self._field_handles:
+                self._node_handle(result._node)  # keeps the node, and so its id
+                self._fields.append(result)
+                self._field_handles[key] = len(self._fields)
+            return [self._field_handles[key], result.getType()]
+        if isinstance(result, bool):
+            return [int(result)]
+        if isinstance(result, str):
+            return [result.encode("utf-8")]
+        if isinstance(result, (list, tuple)):
+            return [[float(v) for v in result]]
+        return [result]
+
+    def _node_handle(self, node: Node) -> int:
+        if id(node) not in self._node_handles:
+            self._nodes.append(node)
+            self._node_handles[id(node)] = len(self._nodes)
+        return self._node_handles[id(node)]
