@@ -61,6 +61,13 @@ INSTANCES: dict[str, str] = {
         "__import__('socket'), __import__('mazesim.webots.robot', fromlist=['x']) and"
         " __import__('mazesim.webots', fromlist=['native_link', 'simulation', 'robot']))"
     ),
+    # A compiled controller's calls, served by a supervisor robot of a prepared world.
+    "mazesim.webots.native_calls.NativeCalls": (
+        "(lambda w: w.native_calls.NativeCalls("
+        "(w.simulation.prepare(world), w.supervisor.Supervisor())[1], []))("
+        "__import__('mazesim.webots.supervisor', fromlist=['x']) and"
+        " __import__('mazesim.webots', fromlist=['native_calls', 'simulation', 'supervisor']))"
+    ),
     # The hand-written baselines read a task's observation names.
     **{
         f"mazesim.envs.baselines.{name}": (
