@@ -20,7 +20,7 @@ use rayon::ThreadPool;
 
 use crate::error::{Error, Result};
 use crate::limits::{check_count, MAX_ENVS, MAX_THREADS};
-use crate::robot::RobotProfile;
+use crate::robot::{RobotProfile, SensorModel};
 use crate::simulator::{Rig, SimConfig, Simulator};
 use crate::world::World;
 
@@ -189,6 +189,7 @@ pub(crate) fn rigs_of(robots: &[Arc<RobotProfile>], n: usize) -> Result<Vec<Arc<
     }
     let widths = |r: &RobotProfile| (r.distance_sensors.len(), r.ground_sensors.len());
     let mut made: Vec<Arc<Rig>> = Vec::new();
+    let mut models: Vec<Arc<SensorModel>> = Vec::new();
     let mut rigs = Vec::with_capacity(robots.len());
     for (i, robot) in robots.iter().enumerate() {
         if widths(robot) != widths(first) {
@@ -209,7 +210,7 @@ pub(crate) fn rigs_of(robots: &[Arc<RobotProfile>], n: usize) -> Result<Vec<Arc<
         let rig = match same {
             Some(rig) => rig.clone(),
             None => {
-                let rig = Rig::new(robot.clone());
+                let rig = Rig::new(share_models(robot, &mut models));
                 made.push(rig.clone());
                 rig
             }
@@ -217,6 +218,46 @@ pub(crate) fn rigs_of(robots: &[Arc<RobotProfile>], n: usize) -> Result<Vec<Arc<
         rigs.push(rig);
     }
     Ok(rigs)
+}
+
+/// `robot`, its sensor models replaced by the equal ones of `models` (the models of the rigs made
+/// so far, to which it adds its new ones): profiles perturbed from copies of one profile read
+/// one table, which every step of every robot then finds in cache, instead of one copy each.
+fn share_models(
+    robot: &Arc<RobotProfile>,
+    models: &mut Vec<Arc<SensorModel>>,
+) -> Arc<RobotProfile> {
+    let mut shared = None::<RobotProfile>;
+    let mut intern = |model: &Arc<SensorModel>| -> Option<Arc<SensorModel>> {
+        match models
+            .iter()
+            .find(|m| Arc::ptr_eq(m, model) || ***m == **model)
+        {
+            Some(m) if Arc::ptr_eq(m, model) => None,
+            Some(m) => Some(m.clone()),
+            None => {
+                models.push(model.clone());
+                None
+            }
+        }
+    };
+    for (k, sensor) in robot.distance_sensors.iter().enumerate() {
+        if let Some(m) = intern(&sensor.model) {
+            shared
+                .get_or_insert_with(|| (**robot).clone())
+                .distance_sensors[k]
+                .model = m;
+        }
+    }
+    for (k, sensor) in robot.ground_sensors.iter().enumerate() {
+        if let Some(m) = intern(&sensor.model) {
+            shared
+                .get_or_insert_with(|| (**robot).clone())
+                .ground_sensors[k]
+                .model = m;
+        }
+    }
+    shared.map_or_else(|| robot.clone(), Arc::new)
 }
 
 /// Per-step outputs of a batch, one row per environment, in buffers the caller owns.
@@ -912,6 +953,74 @@ mod tests {
         assert!(started.elapsed() < Duration::from_secs(30));
     }
 
+    /// Steps `batch` (one env per robot of `robots`, all in `world`, seeded `seeds`) `steps`
+    /// times with wheel speeds `actions`, and each env alone in a batch of its own as many times:
+    /// both end at the same pose with the same readings.
+    fn assert_each_steps_as_alone(
+        batch: &mut Batch,
+        world: &Arc<World>,
+        robots: &[Arc<RobotProfile>],
+        seeds: &[u64],
+        actions: &[f32],
+        steps: usize,
+    ) {
+        let mut out = Buffers::new(batch);
+        for _ in 0..steps {
+            batch.step(actions, out.outputs()).unwrap();
+        }
+        for (i, robot) in robots.iter().enumerate() {
+            let mut alone = Batch::new(
+                vec![world.clone()],
+                robot.clone(),
+                &seeds[i..=i],
+                true,
+                None,
+                1,
+            )
+            .unwrap();
+            let mut one = Buffers::new(&alone);
+            for _ in 0..steps {
+                alone
+                    .step(&actions[2 * i..2 * i + 2], one.outputs())
+                    .unwrap();
+            }
+            assert_eq!(&out.1[3 * i..3 * i + 3], &one.1[..], "env {i}");
+            assert_eq!(&out.0[7 * i..7 * i + 7], &one.0[..], "env {i}");
+        }
+    }
+
+    #[test]
+    fn profiles_parsed_apart_share_their_sensor_models_and_step_as_each_alone() {
+        // Each robot of a randomised batch is perturbed from its own parse of a profile: the
+        // batch reads one copy of their equal tables, and each steps as in a batch of its own.
+        let world = Arc::new(World::builtin("seed-maze").unwrap());
+        let robots: Vec<Arc<RobotProfile>> = (0..3)
+            .map(|k| {
+                let parsed = RobotProfile::builtin("seed").unwrap();
+                let p = crate::Perturbation {
+                    ground_gain: 0.9 + 0.1 * k as f64,
+                    ir_angle_error: 0.02 * k as f64,
+                    ..Default::default()
+                };
+                Arc::new(parsed.perturbed(&p).unwrap())
+            })
+            .collect();
+        let model = |robot: &RobotProfile, k: usize| robot.distance_sensors[k].model.clone();
+        assert!(!Arc::ptr_eq(&model(&robots[0], 0), &model(&robots[1], 0)));
+        let seeds = [7, 8, 9];
+        let mut batch =
+            Batch::with_robots(vec![world.clone(); 3], &robots, &seeds, true, None, 2).unwrap();
+        let first = model(batch.envs()[0].robot(), 0);
+        for (env, robot) in batch.envs().iter().zip(&robots) {
+            assert_eq!(**env.robot(), **robot);
+            for k in 0..robot.distance_sensors.len() {
+                assert!(Arc::ptr_eq(&model(env.robot(), k), &first), "sensor {k}");
+            }
+        }
+        let actions: Vec<f32> = (0..6).map(|k| 2.0 + (k % 4) as f32).collect();
+        assert_each_steps_as_alone(&mut batch, &world, &robots, &seeds, &actions, 40);
+    }
+
     #[test]
     fn envs_of_several_profiles_step_as_each_alone() {
         let world = Arc::new(World::builtin("seed-maze").unwrap());
@@ -931,30 +1040,8 @@ mod tests {
         // Equal profiles share one rig.
         assert!(Arc::ptr_eq(mixed.envs()[0].rig(), mixed.envs()[2].rig()));
         assert!(!Arc::ptr_eq(mixed.envs()[0].rig(), mixed.envs()[1].rig()));
-        let mut out = Buffers::new(&mixed);
         let actions: Vec<f32> = (0..8).map(|k| 3.0 + (k % 3) as f32).collect();
-        for _ in 0..30 {
-            mixed.step(&actions, out.outputs()).unwrap();
-        }
-        for (i, robot) in robots.iter().enumerate() {
-            let mut alone = Batch::new(
-                vec![world.clone()],
-                robot.clone(),
-                &seeds[i..=i],
-                true,
-                None,
-                1,
-            )
-            .unwrap();
-            let mut one = Buffers::new(&alone);
-            for _ in 0..30 {
-                alone
-                    .step(&actions[2 * i..2 * i + 2], one.outputs())
-                    .unwrap();
-            }
-            assert_eq!(&out.1[3 * i..3 * i + 3], &one.1[..], "env {i}");
-            assert_eq!(&out.0[7 * i..7 * i + 7], &one.0[..], "env {i}");
-        }
+        assert_each_steps_as_alone(&mut mixed, &world, &robots, &seeds, &actions, 30);
         let epuck = Arc::new(RobotProfile::builtin("e-puck").unwrap());
         let err = Batch::with_robots(vec![world; 2], &[seed, epuck], &[0, 1], true, None, 1)
             .err()

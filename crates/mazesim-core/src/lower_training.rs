@@ -52,6 +52,20 @@ pub struct Rewards {
     pub door_failure: f64,
 }
 
+impl Rewards {
+    /// The navigator's rewards, as `mazesim.learn.subtasks` sets them (the binding takes them
+    /// from the caller; this copy serves the core's own tests and benches).
+    pub const NAVIGATOR: Rewards = Rewards {
+        progress: 10.0,
+        collision: -2.0,
+        corridor_step: -0.02,
+        door_step: -0.03,
+        heading: 2.0,
+        door_success: 5.0,
+        door_failure: -5.0,
+    };
+}
+
 /// How a round learns.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RoundSettings {
