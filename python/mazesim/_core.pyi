@@ -477,6 +477,7 @@ class BatchSimulator:
         max_speed: float = 6.28,
         active: npt.NDArray[np.bool_] | None = None,
         hold_spins: bool = False,
+        hold_heading: bool = False,
         subtasks: dict[str, npt.NDArray[Any]] | None = None,
     ) -> dict[str, npt.NDArray[np.uint64]]:
         """Runs ``steps`` control steps of every env in one call, the GIL released, each env's
@@ -527,13 +528,20 @@ class BatchSimulator:
                 step turned (action ``aa`` or ``bb``, read from its wheel speeds) rather than
                 turn back (``mazesim.learn.policy.hold_spins``); with ``subtasks``, in Corridors
                 and Corners only.
+            hold_heading: With ``subtasks``, Corridors and Corners in the blind state (no
+                sensor sees a wall) holds its heading on the grid as
+                :func:`mazesim.learn.heading_hold.hold_actions` does (the last step's turn on
+                the spot read from its wheel speeds), after ``hold_spins``.
             subtasks: The navigator's running sub-task of each env, the arrays of
                 :class:`mazesim.learn.subtasks.SubTaskTracker` by key (``subtask``, ``steps``
                 and ``phase`` (N,) int64, ``start`` (N, 3), ``previous_yaw`` and
                 ``heading_change`` (N,), ``turn_point`` (N, 2) float64), read and written in
                 place. The tabular controller then takes ``table`` as the 12 stacked tables of
-                the sub-tasks' phases ``(12, 4096, 12)`` (no ``table_index``), acts from table
-                ``3 * subtask + phase`` and follows the odometry after every step as
+                the sub-tasks' phases ``(12, 4096, 12)`` (no ``table_index``) and acts from
+                table ``3 * subtask + phase``, or as the 72 of a tracker that counts the
+                distance (``door_distance``, ``(72, 4096, 12)``) and acts from table
+                ``18 * subtask + phase`` (the distance bin computed from the pose; the heading
+                phase alone is written back), and follows the odometry after every step as
                 :meth:`~mazesim.learn.subtasks.SubTaskTracker.update` does; a door sub-task that
                 ends (or gives up) hands over to Corridors and Corners there. The states are
                 taken as left after following the last step and left with the call's last step

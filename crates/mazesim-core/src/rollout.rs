@@ -423,7 +423,7 @@ fn step_one(
         }
         let max_speed = env.robot().max_wheel_speed;
         let last = env.wheel_speeds();
-        let task = count.task.as_ref();
+        let task = count.task.as_ref().map(|task| (task, env.pose()));
         decision = controller.decide(index, env.distance_sensors(), last, max_speed, stream, task);
         let [left, right] = decision.wheel_speeds;
         // The controllers give finite speeds, so a step cannot fail.

@@ -123,7 +123,13 @@ fn door_sub_tasks_run_as_stepped_from_outside() {
                 }
             }
             let volts = env.distance_sensors();
-            let action = tabular.action_in_task(task, volts, env.wheel_speeds(), &mut streams[i]);
+            let action = tabular.action_in_task(
+                task,
+                env.pose(),
+                volts,
+                env.wheel_speeds(),
+                &mut streams[i],
+            );
             assert_eq!(
                 ran.actions[step * n + i],
                 action as i32,

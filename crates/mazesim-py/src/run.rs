@@ -1,6 +1,7 @@
 //! `BatchSimulator.run` for Python: the built-in controller named by its arguments, the optional
 //! per-step output arrays (`trace`) borrowed and checked, the counters returned as numpy arrays.
 
+use mazesim_core::control::heading_hold::BlindRule;
 use mazesim_core::control::{tabular, AvoidCollision, Discretiser, TabularPolicy};
 use mazesim_core::{Controller, RunCounters, RunTrace};
 use numpy::{PyArray1, PyReadwriteArrayDyn};
@@ -17,7 +18,8 @@ const CONTROLLERS: &str = "'braitenberg', 'avoid-collision', 'tabular' or 'rando
 
 /// The keywords `run` takes after its six positional arguments.
 pub const KEYWORDS: &str = "seeds max_episode_steps end_at_goal end_at_crossing autoreset trace \
-    table allowed_actions table_index epsilon threshold max_speed active hold_spins subtasks";
+    table allowed_actions table_index epsilon threshold max_speed active hold_spins hold_heading \
+    subtasks";
 
 /// The keys of `run`'s `trace` dict.
 const TRACE_KEYS: [&str; 7] = [
@@ -37,6 +39,7 @@ pub struct TabularArgs<'a, 'py> {
     pub table_index: Option<&'a Bound<'py, PyAny>>,
     pub epsilon: Real,
     pub hold_spins: Flag,
+    pub hold_heading: Flag,
 }
 
 /// The controller `name` with its arguments, for `n` environments.
@@ -109,10 +112,16 @@ fn tabular_policy(n: usize, args: TabularArgs<'_, '_>) -> PyResult<TabularPolicy
         .transpose()?;
     let epsilon = args.epsilon.value("epsilon")?;
     let hold_spins = args.hold_spins.value("hold_spins", "a bool")?;
+    let blind = if args.hold_heading.value("hold_heading", "a bool")? {
+        BlindRule::HoldHeading
+    } else {
+        BlindRule::Table
+    };
     Ok(
         TabularPolicy::new(values, tables, allowed.as_deref(), table_of_env, epsilon)
             .py()?
-            .with_held_spins(hold_spins),
+            .with_held_spins(hold_spins)
+            .with_blind_rule(blind),
     )
 }
 

@@ -5,8 +5,10 @@ from the sub-task's table on the distance state and the phase, and a door sub-ta
 hands over to "Corridors and Corners". The core's ``tabular`` controller does all of this
 itself when handed the sub-task tracker's arrays (:meth:`mazesim.BatchSimulator.run` with
 ``subtasks``): it computes the distance state, follows each robot's odometry after every step
-as :meth:`~mazesim.learn.subtasks.SubTaskTracker.update` does (the same f64 operations), and
-keeps a corridor robot's turn on the spot as :func:`mazesim.learn.policy.hold_spins` does.
+as :meth:`~mazesim.learn.subtasks.SubTaskTracker.update` does (the same f64 operations, the
+distance bins of ``door_distance`` too), keeps a corridor robot's turn on the spot as
+:func:`mazesim.learn.policy.hold_spins` does and, with ``hold_heading``, holds a blind corridor
+robot's heading as :func:`mazesim.learn.heading_hold.hold_actions` does.
 :func:`run_navigator_episodes` therefore lets the core drive each robot for up to
 :data:`STRETCH_STEPS` control steps in one call, until it crosses a barcode, reaches the goal or
 runs out of steps; the higher level then decides in Python, as
@@ -31,7 +33,7 @@ from mazesim.episodes import EpisodeBatch, EpisodeResult, EpisodeSchedule
 from mazesim.errors import InvalidArgumentError
 from mazesim.learn.discretise import NUM_STATES
 from mazesim.learn.policy import HierarchicalPolicy
-from mazesim.learn.subtasks import MAX_PHASES, NUM_SUBTASKS, SUBTASK_ACTIONS
+from mazesim.learn.subtasks import NUM_SUBTASKS, SUBTASK_ACTIONS
 
 __all__ = ["STRETCH_STEPS", "run_navigator_episodes", "stretches_apply"]
 
@@ -41,14 +43,12 @@ STRETCH_STEPS = 256
 
 def stretches_apply(nav: EpisodeBatch, navigator: object) -> bool:
     """Whether :func:`run_navigator_episodes` can run ``navigator``'s episodes in ``nav``: a
-    :class:`HierarchicalPolicy` of heading phases that does not hold its heading (the core
-    neither counts the distance nor holds the heading), choosing greedily, with events from the
-    ground truth, on robots of one motor limit (the per-step loop drives every robot at the
-    first one's fractions)."""
+    :class:`HierarchicalPolicy` (of heading phases or of heading and distance phases, holding
+    its heading where blind or not) choosing greedily, with events from the ground truth, on
+    robots of one motor limit (the per-step loop drives every robot at the first one's
+    fractions)."""
     return (
         type(navigator) is HierarchicalPolicy
-        and not navigator.tracker.door_distance
-        and not navigator.hold_heading
         and navigator.chooser is None
         and nav.events_from == "truth"
         and nav.batch.one_motor_limit
@@ -83,7 +83,7 @@ def run_navigator_episodes(
     """
     if not stretches_apply(nav, policy):
         raise InvalidArgumentError(
-            "expected a greedy HierarchicalPolicy of heading phases, events from the ground "
+            "expected a greedy HierarchicalPolicy, events from the ground "
             f"truth and robots of one motor limit, found a {type(policy).__name__} with events "
             f"from {nav.events_from!r} and one_motor_limit={nav.batch.one_motor_limit}"
         )
@@ -91,10 +91,11 @@ def run_navigator_episodes(
         raise InvalidArgumentError(f"expected a stretch of at least 1 step, found {stretch_steps}")
     # One table per (sub-task, phase): the core reads the distance state, the sub-task and its
     # phase pick the table ("Corridors and Corners" has one phase).
+    phases = policy.lower_q.shape[1] // NUM_STATES
     tables = np.ascontiguousarray(
-        policy.lower_q.reshape(NUM_SUBTASKS * MAX_PHASES, NUM_STATES, len(ACTION_CODES))
+        policy.lower_q.reshape(NUM_SUBTASKS * phases, NUM_STATES, len(ACTION_CODES))
     )
-    allowed = np.ascontiguousarray(np.repeat(SUBTASK_ACTIONS, MAX_PHASES, axis=0))
+    allowed = np.ascontiguousarray(np.repeat(SUBTASK_ACTIONS, phases, axis=0))
     batch = nav.batch
     count = nav.num_envs
     schedule = EpisodeSchedule(nav, policy, episodes_per_world)
@@ -121,6 +122,7 @@ def run_navigator_episodes(
             allowed_actions=allowed,
             active=active,
             hold_spins=True,
+            hold_heading=policy.hold_heading,
             subtasks=policy.tracker.arrays(),
         )
         nav.episode_steps += counters["steps"].astype(np.int64)

@@ -90,7 +90,8 @@ impl Controller {
 
     /// The decision for environment `env` from its distance readings, the wheel speeds of its
     /// last step (`[0, 0]` after a reset), its robot's motor limit `max_speed` (rad/s), its
-    /// stream and, for the tabular controller, its running sub-task `task` if it has one.
+    /// stream and, for the tabular controller, its running sub-task `task` with its pose if it
+    /// has one.
     #[inline]
     pub fn decide(
         &self,
@@ -99,7 +100,7 @@ impl Controller {
         last_wheel_speeds: [f32; 2],
         max_speed: f64,
         stream: &mut Rng,
-        task: Option<&SubTaskState>,
+        task: Option<(&SubTaskState, [f32; 3])>,
     ) -> Decision {
         let free = |wheel_speeds| Decision {
             wheel_speeds,
@@ -111,7 +112,9 @@ impl Controller {
             Controller::RandomWheels => free(random_wheels::wheel_speeds(stream, max_speed)),
             Controller::Tabular(policy) => {
                 let action = match task {
-                    Some(task) => policy.action_in_task(task, readings, last_wheel_speeds, stream),
+                    Some((task, pose)) => {
+                        policy.action_in_task(task, pose, readings, last_wheel_speeds, stream)
+                    }
                     None => policy.action_after(env, readings, last_wheel_speeds, stream),
                 };
                 let [l, r] = tabular::WHEEL_SPEED_FRACTIONS[action];
