@@ -515,7 +515,10 @@ class BatchSimulator:
             trace: Per-step outputs to fill, by key: ``observations`` (steps, N, width) float32,
                 ``poses`` (steps, N, 3) float32, ``colliding`` and ``episode_ends``
                 (steps, N) bool, ``crossings`` and ``actions`` (steps, N) int32,
-                ``wheel_speeds`` (steps, N, 2) float32.
+                ``wheel_speeds`` (steps, N, 2) float32; with ``subtasks``, ``subtasks`` and
+                ``phases`` (steps, N) int32 (the sub-task and phase each step's action was
+                chosen in, -1 for an env that stood still) and ``subtask_ends`` (steps, N) bool
+                (a door sub-task ended or gave up before the step's action was chosen).
             table: The Q-table(s) of the tabular controller.
             allowed_actions: The actions the tabular controller may take.
             table_index: (N,) int64, the table of each env.

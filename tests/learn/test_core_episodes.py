@@ -19,6 +19,7 @@ from mazesim.learn.higher import HigherLevel
 from mazesim.learn.policy import HierarchicalPolicy, hold_spins
 from mazesim.learn.tables import load_policy
 from mazesim.maze import checkpoint_ids
+from mazesim.replay.navigator import Recording
 
 RIGHT, LEFT, FORWARD = (ACTION_CODES.index(code) for code in ("aa", "bb", "00"))
 
@@ -111,18 +112,20 @@ def test_stretches_equal_single_steps_in_unseen_mazes(
 def test_evaluation_is_the_same_either_way_with_trace_and_paths() -> None:
     policy = load_policy(None)
     world = mazesim.load_world("seed-maze")
-    fast, slow = EvaluationRecord(paths=2, trace=True), EvaluationRecord(paths=2, trace=True)
+    fast, slow = (EvaluationRecord(paths=2, trace=True, recorder=Recording(3)) for _ in "ab")
     summaries = [
         evaluate_navigator(policy, [world], 12, seed=3, record=record, multi_step=multi)
         for record, multi in ((fast, True), (slow, False))
     ]
     assert summaries[0] == summaries[1]
-    assert fast.outcomes == slow.outcomes and sorted(fast.outcomes) == [0, 1]
+    assert fast.outcomes == slow.outcomes and sorted(fast.outcomes) == [0, 1, 2]
     assert fast.trace_lines == slow.trace_lines and len(fast.trace_lines) > 100
     assert fast.episode_paths.keys() == slow.episode_paths.keys() == {0, 1}
     for episode in fast.episode_paths:
         np.testing.assert_array_equal(fast.episode_paths[episode], slow.episode_paths[episode])
     assert fast.marks == slow.marks
+    assert fast.run is not None and slow.run is not None
+    assert fast.run.as_json() == slow.run.as_json()
 
 
 def test_what_stretches_cannot_run_is_refused() -> None:

@@ -13,12 +13,13 @@ import pytest
 import mazesim
 from mazesim.episodes import EpisodeBatch, run_episodes
 from mazesim.learn.core_episodes import run_navigator_episodes, stretches_apply
-from mazesim.learn.evaluate import evaluate_navigator
+from mazesim.learn.evaluate import EvaluationRecord, evaluate_navigator
 from mazesim.learn.higher import HigherLevel
 from mazesim.learn.policy import HierarchicalPolicy
 from mazesim.learn.subtasks import BLIND_STATE
 from mazesim.learn.tables import load_policy
 from mazesim.maze import checkpoint_ids
+from mazesim.replay.navigator import Recording
 
 
 def decisions_of(policy: HierarchicalPolicy) -> tuple[np.ndarray, np.ndarray]:
@@ -81,8 +82,17 @@ def test_the_randomised_navigators_evaluation_is_the_same_either_way() -> None:
     policy = load_policy("randomised")
     assert policy.hold_heading
     world = mazesim.load_world("seed-maze")
+    fast, slow = (EvaluationRecord(paths=2, trace=True, recorder=Recording(2)) for _ in "ab")
     summaries = [
-        evaluate_navigator(policy, [world], 6, seed=2, multi_step=multi) for multi in (True, False)
+        evaluate_navigator(policy, [world], 6, seed=2, record=record, multi_step=multi)
+        for record, multi in ((fast, True), (slow, False))
     ]
     assert summaries[0] == summaries[1]
+    assert fast.outcomes == slow.outcomes and sorted(fast.outcomes) == [0, 1]
+    assert fast.trace_lines == slow.trace_lines and len(fast.trace_lines) > 100
+    for episode in (0, 1):
+        np.testing.assert_array_equal(fast.episode_paths[episode], slow.episode_paths[episode])
+    assert fast.marks == slow.marks
+    assert fast.run is not None and slow.run is not None
+    assert fast.run.as_json() == slow.run.as_json()
     assert summaries[0]["truth"].success_rate > 0.5

@@ -22,7 +22,7 @@ pub const KEYWORDS: &str = "seeds max_episode_steps end_at_goal end_at_crossing 
     subtasks";
 
 /// The keys of `run`'s `trace` dict.
-const TRACE_KEYS: [&str; 7] = [
+const TRACE_KEYS: [&str; 10] = [
     "observations",
     "poses",
     "colliding",
@@ -30,6 +30,9 @@ const TRACE_KEYS: [&str; 7] = [
     "wheel_speeds",
     "actions",
     "episode_ends",
+    "subtasks",
+    "phases",
+    "subtask_ends",
 ];
 
 /// The arguments of the tabular controller, as given.
@@ -135,6 +138,9 @@ pub struct Traces<'py> {
     wheel_speeds: Option<PyReadwriteArrayDyn<'py, f32>>,
     actions: Option<PyReadwriteArrayDyn<'py, i32>>,
     episode_ends: Option<PyReadwriteArrayDyn<'py, bool>>,
+    subtasks: Option<PyReadwriteArrayDyn<'py, i32>>,
+    phases: Option<PyReadwriteArrayDyn<'py, i32>>,
+    subtask_ends: Option<PyReadwriteArrayDyn<'py, bool>>,
 }
 
 impl<'py> Traces<'py> {
@@ -171,6 +177,11 @@ impl<'py> Traces<'py> {
                 "episode_ends" => {
                     t.episode_ends = Some(writable(&value, &name, "bool", &[steps, n])?)
                 }
+                "subtasks" => t.subtasks = Some(writable(&value, &name, "int32", &[steps, n])?),
+                "phases" => t.phases = Some(writable(&value, &name, "int32", &[steps, n])?),
+                "subtask_ends" => {
+                    t.subtask_ends = Some(writable(&value, &name, "bool", &[steps, n])?)
+                }
                 other => {
                     return Err(invalid(format!(
                         "expected trace keys among {TRACE_KEYS:?}, found {other:?}"
@@ -197,6 +208,9 @@ impl<'py> Traces<'py> {
             wheel_speeds: slice(&mut self.wheel_speeds),
             actions: slice(&mut self.actions),
             episode_ends: slice(&mut self.episode_ends),
+            subtasks: slice(&mut self.subtasks),
+            phases: slice(&mut self.phases),
+            subtask_ends: slice(&mut self.subtask_ends),
         }
     }
 }

@@ -88,6 +88,15 @@ impl Controller {
         }
     }
 
+    /// The phase whose table the tabular controller acts from for a robot running `task` at
+    /// `pose` ([`TabularPolicy::task_phase`]); the heading phase for the others.
+    pub fn task_phase(&self, task: &SubTaskState, pose: [f32; 3]) -> usize {
+        match self {
+            Controller::Tabular(policy) => policy.task_phase(task, pose),
+            _ => task.phase,
+        }
+    }
+
     /// The decision for environment `env` from its distance readings, the wheel speeds of its
     /// last step (`[0, 0]` after a reset), its robot's motor limit `max_speed` (rad/s), its
     /// stream and, for the tabular controller, its running sub-task `task` with its pose if it

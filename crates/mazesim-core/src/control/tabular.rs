@@ -213,6 +213,12 @@ impl TabularPolicy {
             .find(|p| self.tables == door::NUM_SUBTASKS * p.count())
     }
 
+    /// The phase whose table a robot running `task` at `pose` acts from: its heading phase, plus
+    /// the distance bin times 3 when the door sub-tasks count the distance.
+    pub fn task_phase(&self, task: &SubTaskState, pose: [f32; 3]) -> usize {
+        self.phases().unwrap_or_default().phase(task, pose)
+    }
+
     /// The action of a robot running door sub-task state `task` at `pose` (see [`super::door`]):
     /// from the table of its sub-task's phase (table `subtask * phases + phase` of the stacked
     /// tables, [`TabularPolicy::phases`]), a turn on the spot kept, when the policy holds spins,
@@ -227,7 +233,7 @@ impl TabularPolicy {
         stream: &mut Rng,
     ) -> usize {
         let phases = self.phases().unwrap_or_default();
-        let table = task.subtask * phases.count() + phases.phase(task, pose);
+        let table = task.subtask * phases.count() + self.task_phase(task, pose);
         let action = self.action_from(table, volts, stream);
         let corridor = task.subtask == door::CORRIDOR;
         let action = self.held(action, last, self.hold_spins && corridor);
