@@ -478,6 +478,7 @@ class BatchSimulator:
         active: npt.NDArray[np.bool_] | None = None,
         hold_spins: bool = False,
         hold_heading: bool = False,
+        wheel_speed_limit: float | None = None,
         subtasks: dict[str, npt.NDArray[Any]] | None = None,
     ) -> dict[str, npt.NDArray[np.uint64]]:
         """Runs ``steps`` control steps of every env in one call, the GIL released, each env's
@@ -535,6 +536,10 @@ class BatchSimulator:
                 sensor sees a wall) holds its heading on the grid as
                 :func:`mazesim.learn.heading_hold.hold_actions` does (the last step's turn on
                 the spot read from its wheel speeds), after ``hold_spins``.
+            wheel_speed_limit: The tabular controller drives every env at the fractions of
+                this motor limit (rad/s, clamped to each robot's own by its step), as
+                :meth:`mazesim.batch.RobotBatch.speeds_of` does for a batch; each robot's own
+                limit when ``None``.
             subtasks: The navigator's running sub-task of each env, the arrays of
                 :class:`mazesim.learn.subtasks.SubTaskTracker` by key (``subtask``, ``steps``
                 and ``phase`` (N,) int64, ``start`` (N, 3), ``previous_yaw`` and

@@ -19,7 +19,7 @@ const CONTROLLERS: &str = "'braitenberg', 'avoid-collision', 'tabular' or 'rando
 /// The keywords `run` takes after its six positional arguments.
 pub const KEYWORDS: &str = "seeds max_episode_steps end_at_goal end_at_crossing autoreset trace \
     table allowed_actions table_index epsilon threshold max_speed active hold_spins hold_heading \
-    subtasks";
+    wheel_speed_limit subtasks";
 
 /// The keys of `run`'s `trace` dict.
 const TRACE_KEYS: [&str; 10] = [
@@ -43,6 +43,7 @@ pub struct TabularArgs<'a, 'py> {
     pub epsilon: Real,
     pub hold_spins: Flag,
     pub hold_heading: Flag,
+    pub wheel_speed_limit: Option<Real>,
 }
 
 /// The controller `name` with its arguments, for `n` environments.
@@ -115,17 +116,21 @@ fn tabular_policy(n: usize, args: TabularArgs<'_, '_>) -> PyResult<TabularPolicy
         .transpose()?;
     let epsilon = args.epsilon.value("epsilon")?;
     let hold_spins = args.hold_spins.value("hold_spins", "a bool")?;
+    let speed_limit = args
+        .wheel_speed_limit
+        .map(|l| l.value("wheel_speed_limit"))
+        .transpose()?;
     let blind = if args.hold_heading.value("hold_heading", "a bool")? {
         BlindRule::HoldHeading
     } else {
         BlindRule::Table
     };
-    Ok(
-        TabularPolicy::new(values, tables, allowed.as_deref(), table_of_env, epsilon)
-            .py()?
-            .with_held_spins(hold_spins)
-            .with_blind_rule(blind),
-    )
+    TabularPolicy::new(values, tables, allowed.as_deref(), table_of_env, epsilon)
+        .py()?
+        .with_held_spins(hold_spins)
+        .with_blind_rule(blind)
+        .with_speed_limit(speed_limit)
+        .py()
 }
 
 /// The per-step output arrays of one call, borrowed.

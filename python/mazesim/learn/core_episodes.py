@@ -182,14 +182,13 @@ def _record_of(
 def stretches_apply(nav: EpisodeBatch, navigator: object) -> bool:
     """Whether :func:`run_navigator_episodes` can run ``navigator``'s episodes in ``nav``: a
     :class:`HierarchicalPolicy` (of heading phases or of heading and distance phases, holding
-    its heading where blind or not) choosing greedily, with events from the ground truth, on
-    robots of one motor limit (the per-step loop drives every robot at the first one's
-    fractions)."""
+    its heading where blind or not) choosing greedily, with events from the ground truth.
+    Robots of several motor limits drive, as in the per-step loop, at the fractions of the
+    first one's (``BatchSimulator.run``'s ``wheel_speed_limit``)."""
     return (
         type(navigator) is HierarchicalPolicy
         and navigator.chooser is None
         and nav.events_from == "truth"
-        and nav.batch.one_motor_limit
     )
 
 
@@ -218,14 +217,13 @@ def run_navigator_episodes(
         The results, in order of episode number, with the decisions of each episode.
 
     Raises:
-        InvalidArgumentError: Events from the decoder, a navigator that explores, robots of
-            different motor limits, or a stretch of fewer than one step.
+        InvalidArgumentError: Events from the decoder, a navigator that explores, or a stretch
+            of fewer than one step.
     """
     if not stretches_apply(nav, policy):
         raise InvalidArgumentError(
-            "expected a greedy HierarchicalPolicy, events from the ground "
-            f"truth and robots of one motor limit, found a {type(policy).__name__} with events "
-            f"from {nav.events_from!r} and one_motor_limit={nav.batch.one_motor_limit}"
+            "expected a greedy HierarchicalPolicy and events from the ground truth, found a "
+            f"{type(policy).__name__} with events from {nav.events_from!r}"
         )
     if stretch_steps < 1:
         raise InvalidArgumentError(f"expected a stretch of at least 1 step, found {stretch_steps}")
@@ -266,6 +264,7 @@ def run_navigator_episodes(
             active=active,
             hold_spins=True,
             hold_heading=policy.hold_heading,
+            wheel_speed_limit=batch.profile.max_wheel_speed,
             subtasks=policy.tracker.arrays(),
             trace=trace,
         )

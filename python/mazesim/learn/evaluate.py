@@ -294,8 +294,8 @@ def evaluate(
     (:func:`mazesim.learn.core_episodes.run_navigator_episodes`); the episodes to record (paths,
     trace, replay) are recorded from the core's per-step trace of the same run
     (:class:`~mazesim.learn.core_episodes.StretchReplay`), so every episode runs once. Any
-    other navigator (a flat one, one that wraps ``act``), robots of different motor limits and
-    decoder events run one step at a time. The results are the same either way; the multi-step
+    other navigator (a flat one, one that wraps ``act``) and decoder events run one step at a
+    time. The results are the same either way; the multi-step
     call is the faster (see ``docs/performance.md``).
 
     Args:

@@ -127,6 +127,7 @@ impl Controller {
                     None => policy.action_after(env, readings, last_wheel_speeds, stream),
                 };
                 let [l, r] = tabular::WHEEL_SPEED_FRACTIONS[action];
+                let max_speed = policy.speed_limit(max_speed);
                 Decision {
                     wheel_speeds: [(l * max_speed) as f32, (r * max_speed) as f32],
                     action: action as i32,

@@ -88,6 +88,8 @@ pub struct TabularPolicy {
     hold_spins: bool,
     /// What Corridors and Corners does where no sensor sees a wall, in sub-tasks.
     blind: BlindRule,
+    /// The motor limit whose fractions every robot drives at (each robot's own when `None`).
+    speed_limit: Option<f64>,
     discretiser: Discretiser,
 }
 
@@ -172,6 +174,7 @@ impl TabularPolicy {
             epsilon,
             hold_spins: false,
             blind: BlindRule::Table,
+            speed_limit: None,
             discretiser: Discretiser::new()?,
         })
     }
@@ -203,6 +206,24 @@ impl TabularPolicy {
     pub fn with_blind_rule(mut self, rule: BlindRule) -> Self {
         self.blind = rule;
         self
+    }
+
+    /// The policy driving every robot at the fractions of the motor limit `limit` (rad/s;
+    /// clamped to each robot's own by its step), as a loop that turns actions into wheel speeds
+    /// for a whole batch does; each robot's own limit when `None`.
+    pub fn with_speed_limit(mut self, limit: Option<f64>) -> Result<Self> {
+        if let Some(limit) = limit.filter(|l| !(l.is_finite() && *l > 0.0)) {
+            return Err(Error::InvalidArgument(format!(
+                "expected a wheel speed limit above 0 rad/s, found {limit}"
+            )));
+        }
+        self.speed_limit = limit;
+        Ok(self)
+    }
+
+    /// The motor limit whose fractions a robot of limit `own` drives at.
+    pub fn speed_limit(&self, own: f64) -> f64 {
+        self.speed_limit.unwrap_or(own)
     }
 
     /// What the door sub-tasks' phases count, from the number of stacked tables: `NUM_SUBTASKS`
@@ -422,6 +443,18 @@ mod tests {
         assert_eq!(act(&holding, &blind, [0.0; 2], &mut stream), 1);
         assert_eq!(act(&holding, &blind, spun_left, &mut stream), SPIN_LEFT);
         assert_eq!(act(&holding, &near, spun_left, &mut stream), FORWARD);
+    }
+
+    #[test]
+    fn a_speed_limit_given_replaces_each_robots_own() {
+        let policy = TabularPolicy::new(vec![0.0; NUM_STATES * NUM_ACTIONS], 1, None, None, 0.0);
+        let policy = policy.unwrap();
+        assert_eq!(policy.speed_limit(7.5), 7.5);
+        let limited = policy.clone().with_speed_limit(Some(5.5)).unwrap();
+        assert_eq!(limited.speed_limit(7.5), 5.5);
+        for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            assert!(policy.clone().with_speed_limit(Some(bad)).is_err());
+        }
     }
 
     #[test]
