@@ -32,6 +32,9 @@ SB3_PACKAGES := "stable-baselines3>=2.3,<3"
 MARL_PACKAGES := "pettingzoo>=1.24"
 # The binding crate's build script asks this interpreter for its configuration.
 export PYO3_PYTHON := $(CURDIR)/$(BIN)/python
+# matplotlib's font cache lives with the environment, so that a checkout's tests never read one
+# that another checkout's matplotlib is rewriting (a half-written cache adds warnings to stderr).
+export MPLCONFIGDIR := $(CURDIR)/$(VENV)/matplotlib
 
 .DEFAULT_GOAL := help
 

@@ -579,20 +579,25 @@ class BatchSimulator:
     ) -> None: ...
     def snapshot_env(self, index: int) -> bytes:
         """The whole state of environment `index` as bytes (as `Simulator.snapshot`), for
-        `restore_env`: what pickling a vector env keeps of each environment."""
+        `restore_env`: what pickling a vector env keeps of each environment; with R robots per
+        env, every robot's (as a simulator of the world saves them, wheel commands zero)."""
     def restore_env(self, index: int, snapshot: bytes) -> None:
         """Puts environment `index` in the state of a `snapshot_env` (or `Simulator.snapshot`) of an
-        environment of the same world, robot profile, control step and noise setting."""
+        environment of the same world, robot profile, control step and noise setting; with R
+        robots per env every robot's (a simulator's kept wheel commands are left)."""
     def set_world(self, index: int, world: World, seed: int) -> None:
         """Puts environment ``index`` into ``world``, reset to its start with ``seed``; its rows of
         the buffers change at the next observe, step or reset. In a batch of worlds of several
         robots the world must place as many robots; each robot keeps its profile."""
     def set_starts(self, starts: npt.NDArray[np.float64]) -> None:
-        """Start poses ((N, 3) float64 x, y, yaw) of each env for its later resets."""
+        """Start poses ((N, 3) float64 x, y, yaw) of each env for its later resets; (N, R, 3)
+        with R robots per env."""
     def set_starts_at(self, envs: npt.NDArray[np.int64], starts: npt.NDArray[np.float64]) -> None:
-        """Start poses ((M, 3) float64 x, y, yaw) of envs ``envs`` for their later resets."""
+        """Start poses ((M, 3) float64 x, y, yaw) of envs ``envs`` for their later resets;
+        (M, R, 3) with R robots per env."""
     def set_goals_at(self, envs: npt.NDArray[np.int64], goals: npt.NDArray[np.float64]) -> None:
-        """Goal discs ((M, 3) float64 x, y, radius) of envs ``envs``, instead of their worlds'."""
+        """Goal discs ((M, 3) float64 x, y, radius) of envs ``envs``, instead of their worlds';
+        (M, R, 3) with R robots per env."""
     def goals(self) -> npt.NDArray[np.float64]:
         """(N, 3) goal disc (x, y, radius) of each env; NaN rows for none; (N, R, 3) with R
         robots per env."""

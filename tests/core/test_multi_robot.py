@@ -12,7 +12,7 @@ import mazesim
 from mazesim.controllers import AvoidCollision
 
 #: Reflection factor of a robot's body for the infra-red sensors (docs/multi-robot.md).
-ROBOT_REFLECTANCE = 0.5
+ROBOT_REFLECTANCE = 0.38
 RADIUS = 0.037
 
 
@@ -44,7 +44,7 @@ def ray_to_disc(origin: np.ndarray, direction: np.ndarray, centre: np.ndarray) -
 def test_front_sensors_read_the_other_robot_as_the_reflectance_predicts() -> None:
     profile = mazesim.RobotProfile.builtin("e-puck")
     poses = profile.distance_sensor_poses()
-    for gap in (0.004, 0.01, 0.02):
+    for gap in (0.004, 0.008, 0.012):
         sim = mazesim.Simulator(corridor(gap), noise=False)
         for robot, other in ((0, 1), (1, 0)):
             x, y, yaw = sim.robot_state(robot)["pose"]
@@ -56,7 +56,7 @@ def test_front_sensors_read_the_other_robot_as_the_reflectance_predicts() -> Non
                 origin = np.array([x + c * px - s * py, y + s * px + c * py])
                 direction = np.array([math.cos(yaw + heading), math.sin(yaw + heading)])
                 expected = ray_to_disc(origin, direction, np.array([ox, oy]))
-                # The table read at d / f: a white wall at twice the distance.
+                # The table read at d / f: a white wall at 1 / 0.38 times the distance.
                 seen = ROBOT_REFLECTANCE * profile.distance_from_reading(
                     sensor, float(readings[sensor])
                 )
@@ -70,7 +70,7 @@ def test_front_sensors_read_the_other_robot_as_the_reflectance_predicts() -> Non
 
 def test_the_avoid_collision_rule_turns_both_away_before_contact() -> None:
     """Each robot's front sensors see the other in time for the report's rule to start turning
-    away while a gap is left; with the shell's reflectance of 0.5 the turn then grazes the other
+    away while a gap is left; with the shell's reflectance of 0.38 the turn then grazes the other
     robot (docs/multi-robot.md), and the two leave each other behind."""
     sim = mazesim.Simulator(corridor(0.1), noise=False)
     rule = AvoidCollision()
@@ -95,11 +95,11 @@ def test_the_avoid_collision_rule_turns_both_away_before_contact() -> None:
 
 def test_no_threshold_of_the_rule_clears_a_head_on_e_puck() -> None:
     """Why the rule grazes (docs/multi-robot.md): ps0 and ps7 meet a head-on e-puck obliquely and
-    read nothing of it beyond a gap of about 2 cm, less than the 3 cm two pivoting e-pucks need
+    read nothing of it beyond a gap of about 1.35 cm, less than the 3 cm two pivoting e-pucks need
     to clear each other, so the rule touches whatever its threshold."""
     no_hit = 67.19
-    near = mazesim.Simulator(corridor(0.019), noise=False).distance_sensors()
-    far = mazesim.Simulator(corridor(0.021), noise=False).distance_sensors()
+    near = mazesim.Simulator(corridor(0.013), noise=False).distance_sensors()
+    far = mazesim.Simulator(corridor(0.014), noise=False).distance_sensors()
     assert near[0] > no_hit and near[7] > no_hit
     assert far[0] == far[7] == pytest.approx(no_hit, abs=0.01)
     for threshold in (67.5, 70.0, 80.0, 100.0):

@@ -32,6 +32,7 @@ from mazesim.errors import (
     UnknownNameError,
     WorldFormatError,
 )
+from mazesim.learn.learning_curve import CURVE_VALUES
 
 REPO = Path(__file__).resolve().parents[2]
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
@@ -211,9 +212,12 @@ def test_navigator_trainers_are_the_same_with_1_or_2_threads(trainer: str) -> No
         assert tables["lower_q"] == [4, 12288, 12] and tables["higher_q"][1] == 4
         # the lower level's 4 x 40 env-steps, then 4 higher-level episodes of at most 60 steps
         assert 4 * 40 + 4 <= one.result["env_steps"] <= 4 * 40 + 4 * 60
-        curves = one.files["curves.csv"].decode().splitlines()
-        assert curves[0] == "stage,env_steps,success_rate,contact_share,corridor_speed"
-        assert [row[0] for row in curves[1:]] == ["1"] + ["2"] * 4
+        # The learning curve of ``mazesim train``: one lower-level round, then the higher level
+        # each time episodes end, up to its 4 episodes.
+        curves = [row.split(",") for row in one.files["curves.csv"].decode().splitlines()]
+        assert tuple(curves[0]) == ("stage", *CURVE_VALUES)
+        assert [row[:3] for row in curves[1:2]] == [["lower", "1", "160.0"]]
+        assert {row[0] for row in curves[2:]} == {"higher"} and curves[-1][1] == "4"
     else:
         assert set(tables) == {"flat_q", "checkpoint_ids"} and one.result["env_steps"] == 4 * 40
 

@@ -17,16 +17,23 @@ import numpy as np
 import pytest
 
 from mazesim.errors import PolicyFormatError
-from mazesim.learn.archive import write_archive
-from mazesim.learn.bundle import write_bundle
 from mazesim.learn.checkpoint import (
     CHECKPOINT_FILE,
     CHECKPOINT_FORMAT,
+    Checkpoint,
     RunFolder,
     checkpoint_exists,
     read_checkpoint,
+    write_checkpoint,
 )
-from mazesim.learn.tables import FORMAT_VERSION, TrainedPolicy, load_policy
+from mazesim.learn.lower import LowerTables
+from mazesim.learn.tables import (
+    FORMAT_VERSION,
+    TrainedPolicy,
+    load_policy,
+    write_archive,
+    write_bundle,
+)
 from mazesim.learn.train import TrainSettings, train
 
 #: Three lower-level rounds, a checkpoint after each.
@@ -213,3 +220,20 @@ def test_a_long_setting_that_differs_is_shown_where_it_differs() -> None:
     pool = shown.split("pool: ", 1)[1]
     assert "99]" in pool and "7]" in pool and "differ from character" in pool
     assert "seed" not in shown
+
+
+def test_the_same_checkpoint_is_written_as_the_same_bytes(tmp_path: Path) -> None:
+    tables = LowerTables.zeros(False)
+    tables.q[1, 2, 3] = -0.25
+    tables.visits[1, 2, 3] = 7
+    saved = Checkpoint(tables, 3, [{"round": 2}], 1.5)
+    written = []
+    for name in ("one", "two"):
+        (tmp_path / name).mkdir()
+        write_checkpoint(tmp_path / name, {"seed": 4}, saved)
+        written.append((tmp_path / name / CHECKPOINT_FILE).read_bytes())
+    assert written[0] == written[1]
+    again = read_checkpoint(tmp_path / "two", {"seed": 4})
+    assert again.next_round == 3 and again.history == [{"round": 2}]
+    assert np.array_equal(again.tables.q, tables.q)
+    assert np.array_equal(again.tables.visits, tables.visits)

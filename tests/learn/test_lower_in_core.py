@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from lower_oracle import stepwise_round
-from mazesim import RobotProfile
+from mazesim import BatchSimulator, RobotProfile, World
 from mazesim._core import train_lower_round
 from mazesim.batch import RobotBatch
 from mazesim.errors import InvalidArgumentError, MazesimError
@@ -192,6 +192,15 @@ def _round_arguments(trainer: LowerTrainer) -> dict[str, object]:
     }
 
 
+def _two_robots_batch() -> BatchSimulator:
+    """A batch of worlds of two robots, whose robots no crew drives."""
+    world = World.from_toml(
+        'format = "mazesim-world"\nversion = 1\n[[robots]]\nname = "a"\nx = 0.0\ny = 0.0\n'
+        '[[robots]]\nname = "b"\nx = 0.3\ny = 0.0\n'
+    )
+    return BatchSimulator(world, num_envs=SMALL.num_envs)
+
+
 @pytest.mark.parametrize(
     ("change", "message"),
     [
@@ -219,6 +228,7 @@ def _round_arguments(trainer: LowerTrainer) -> dict[str, object]:
         (lambda a: a["crews"].append(dict(a["crews"][0])), "crew 1's twice"),
         (lambda a: a["crews"][0].update(readings={"far": 0.4}), "directions"),
         (lambda a: a["crews"][0].update(world_of_env=np.full(SMALL.num_envs, 99)), "world"),
+        (lambda a: a["crews"][0].update(simulator=_two_robots_batch()), "with one robot each"),
     ],
 )
 def test_bad_round_arguments_are_refused_before_anything_moves(change, message) -> None:

@@ -21,9 +21,8 @@ from hypothesis import strategies as st
 
 import mazesim
 from mazesim.errors import PolicyFormatError
-from mazesim.learn.bundle import sha256
 from mazesim.learn.lower import lower_table_shape
-from mazesim.learn.tables import TrainedPolicy, load_policy, save_policy
+from mazesim.learn.tables import TrainedPolicy, load_policy, save_policy, sha256
 from mazesim.maze import world_hash
 
 POLICY_JSON = "policy.json"

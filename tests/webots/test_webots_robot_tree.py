@@ -86,12 +86,13 @@ def test_downward_ground_sensor_reads_the_line() -> None:
         simulation = simulations.current()
         readings = []
         for y in (0.22, 0.30):  # the black line (reflectance 0.2) at y = 0.22, white beside it
-            simulation.simulator.set_pose(0.69, y, 0.0)  # the sensor 1 cm ahead, over x = 0.7
+            # The PROTO mounts the slot 3 cm ahead, 0.3 mm up: the sensor is 4 cm ahead.
+            simulation.simulator.set_pose(0.66, y, 0.0)
             robot.step(32)
             readings.append(sensor.getValue())
         on_line, off_line = readings
-        # 5 mm above the floor: 900 on white (d = 5 mm), 500 on the line (d = 5 mm / 0.2).
-        assert off_line == pytest.approx(900, abs=5) and on_line == pytest.approx(500, abs=5)
+        # 5.3 mm above the floor: 894 on white (d = 5.3 mm), 470 on the line (d = 5.3 mm / 0.2).
+        assert off_line == pytest.approx(894, abs=5) and on_line == pytest.approx(470, abs=5)
     finally:
         controller.Robot.created = None
         simulations.release()

@@ -187,7 +187,13 @@ def test_devices_of_a_world_before_r2022a_read_in_the_y_up_protos_frames() -> No
     # reads it in the device frame x right, y up, z back.
     scene = read_scene("#VRML_SIM R2021b utf8\nE-puck { }\n")
     assert scene.y_up_devices and scene.north == pytest.approx((0.0, -1.0))
-    compass_entry = {"type": "Compass", "name": "compass", "translation": [0.0, 0.0, 0.03]}
+    # As the import reports an unturned device of a Y-up PROTO: its x axis is the robot's right.
+    compass_entry = {
+        "type": "Compass",
+        "name": "compass",
+        "translation": [0.0, 0.0, 0.03],
+        "yaw": -math.pi / 2,
+    }
     report = {"extension_devices": [compass_entry]}
     prepare(mazesim.load_world("arena"), seconds=2.0, noise=False, report=report, scene=scene)
     controller.Robot.created = None

@@ -1,6 +1,6 @@
 """A Webots world run of several robots with ``--record`` and ``--html``: the run file and the
-replay hold every robot, where the summary has it (``--live`` alongside, headless here);
-``--keys`` is refused there."""
+replay hold every robot, where the summary has it (``--live`` alongside, headless here), also
+when one controller runs in such a world; ``--keys`` is refused in a world run."""
 
 from __future__ import annotations
 
@@ -54,6 +54,39 @@ def test_the_run_file_and_the_replay_hold_every_robot(tmp_path: Path) -> None:
     page = (tmp_path / "replay.html").read_text()
     assert '"robot_name":"far"' in page
     assert str(tmp_path / "replay.html") in result.stdout
+
+
+def test_one_controller_run_in_a_world_of_several_records_every_robot(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """``webots run CONTROLLER --world WORLD.toml`` of several robots: the controller drives
+    robot 0, the others stand still, and the run file and the replay hold them all."""
+    monkeypatch.setenv("SWARM_LOG", str(tmp_path))
+    world = tmp_path / "pair.toml"
+    world.write_text(
+        'format = "mazesim-world"\nversion = 1\n'
+        '[[robots]]\nname = "west"\nx = -0.3\ny = 0.0\n'
+        '[[robots]]\nname = "east"\nx = 0.3\ny = 0.05\nyaw = 3.141592653589793\n'
+    )
+    controller = SWARM / "controllers" / "forward" / "forward.py"
+    record, page = tmp_path / "run.json.gz", tmp_path / "replay.html"
+    code = main(
+        ["webots", "run", str(controller), "--world", str(world), "--seconds", "2"]
+        + ["--out", str(tmp_path / "out"), "--record", str(record), "--html", str(page)]
+    )
+    assert code == 0, capsys.readouterr().err
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    run = load_run(record)
+    assert [robot.name for robot in run.robots] == ["west", "east"]
+    episode = run.episodes[0]
+    (east,) = episode.robots
+    assert episode.frames == east.frames == summary["steps"] + 1
+    assert episode.poses[-1, :2] == pytest.approx(summary["final_pose"][:2], abs=1e-4)
+    assert episode.poses[-1, 0] - episode.poses[0, 0] > 0.1, "west drove ahead"
+    assert east.poses[0, :2] == pytest.approx([0.3, 0.05], abs=1e-6)
+    assert np.array_equal(east.poses, np.repeat(east.poses[:1], east.frames, axis=0))
+    assert east.wheel_speeds is not None and not east.wheel_speeds.any(), "east stood still"
+    assert '"robot_name":"east"' in page.read_text()
 
 
 def test_keys_are_refused_in_a_world_run_naming_what_to_give(

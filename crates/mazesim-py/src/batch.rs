@@ -136,21 +136,21 @@ impl PyBatch {
         Ok(d)
     }
 
-    /// Refuses `what` in a batch of worlds of several robots.
-    pub(crate) fn one_robot(&self, what: &str) -> PyResult<()> {
+    /// Refuses `what` in a batch of worlds of several robots, saying what to do instead.
+    pub(crate) fn one_robot(&self, what: &str, instead: &str) -> PyResult<()> {
         if self.robots == 1 {
             Ok(())
         } else {
             Err(bad(format!(
-                "expected a batch of worlds of one robot for {what} (not supported yet with \
-                 several), found {} robots per environment",
+                "expected a batch of worlds of one robot for {what}, found {} robots per \
+                 environment: {instead}",
                 self.robots
             )))
         }
     }
 
     /// The (M,) int64 indices `envs` as checked env indices, and the (M, 3) float64 rows of
-    /// `values` (named `what`) that go with them.
+    /// `values` (named `what`) that go with them, (M, R, 3) with several robots per environment.
     fn listed_rows(
         &self,
         envs: &Bound<'_, PyAny>,
@@ -164,7 +164,12 @@ impl PyBatch {
             ))
         })?;
         let indices = copied::<i64>(envs, "envs", "int64", &[m])?;
-        let rows = copied::<f64>(values, what, "float64", &[m, 3])?;
+        let mut shape = vec![m];
+        if self.robots > 1 {
+            shape.push(self.robots);
+        }
+        shape.push(3);
+        let rows = copied::<f64>(values, what, "float64", &shape)?;
         Ok((env_indices(&indices, self.n)?, rows))
     }
 }
@@ -540,11 +545,19 @@ impl PyBatch {
     }
 
     /// Sets the start pose of each environment for its later resets: an (N, 3) float64 array of
-    /// x, y, yaw. Every row is checked before any is applied.
+    /// x, y, yaw; with several robots per environment, each robot's, (N, R, 3), every start
+    /// clear of the walls and of the environment's other robots. Every row is checked before
+    /// any is applied.
     fn set_starts(&self, starts: &Bound<'_, PyAny>) -> PyResult<()> {
         enter(|| {
-            self.one_robot("set_starts")?;
-            let rows = copied::<f64>(starts, "starts", "float64", &[self.n, 3])?;
+            let rows = copied::<f64>(starts, "starts", "float64", &self.shape(&[3]))?;
+            if self.robots > 1 {
+                let everyone: Vec<usize> = (0..self.n).collect();
+                return self
+                    .inner
+                    .with(|b| b.set_swarm_starts_at(&everyone, &rows))?
+                    .py();
+            }
             self.inner.with(|b| b.set_starts(&rows))?.py()
         })
     }
@@ -557,20 +570,27 @@ impl PyBatch {
         index: IntArg,
     ) -> PyResult<Bound<'py, pyo3::types::PyBytes>> {
         enter(|| {
-            self.one_robot("snapshot_env")?;
             let index = index.count("index", self.n.saturating_sub(1))?;
-            let bytes = self.inner.with(|b| b.envs()[index].snapshot())?;
+            let bytes = if self.robots > 1 {
+                self.inner.with(|b| b.snapshot_swarm(index))?.py()?
+            } else {
+                self.inner.with(|b| b.envs()[index].snapshot())?
+            };
             Ok(pyo3::types::PyBytes::new(py, &bytes))
         })
     }
 
     /// Puts environment `index` in the state of a `snapshot_env` (or `Simulator.snapshot`) of an
-    /// environment of the same world, robot profile, control step and noise setting.
+    /// environment of the same world, robot profile, control step and noise setting. With
+    /// several robots per environment, a simulator's kept wheel commands are left: the batch
+    /// takes every robot's at each step.
     fn restore_env(&self, index: IntArg, snapshot: Bytes) -> PyResult<()> {
         enter(|| {
-            self.one_robot("restore_env")?;
             let index = index.count("index", self.n.saturating_sub(1))?;
             let snapshot = snapshot.value("snapshot", "bytes")?.0;
+            if self.robots > 1 {
+                return self.inner.with(|b| b.restore_swarm(index, &snapshot))?.py();
+            }
             self.inner
                 .with(|b| b.env_mut(index).and_then(|env| env.restore(&snapshot)))?
                 .py()
@@ -578,22 +598,34 @@ impl PyBatch {
     }
 
     /// Sets the start pose of the environments `envs` ((M,) int64 indices) for their later
-    /// resets: an (M, 3) float64 array of x, y, yaw; the other environments keep theirs.
+    /// resets: an (M, 3) float64 array of x, y, yaw, or (M, R, 3) with several robots per
+    /// environment; the other environments keep theirs.
     fn set_starts_at(&self, envs: &Bound<'_, PyAny>, starts: &Bound<'_, PyAny>) -> PyResult<()> {
         enter(|| {
-            self.one_robot("set_starts_at")?;
             let (indices, rows) = self.listed_rows(envs, starts, "starts")?;
+            if self.robots > 1 {
+                return self
+                    .inner
+                    .with(|b| b.set_swarm_starts_at(&indices, &rows))?
+                    .py();
+            }
             self.inner.with(|b| b.set_starts_at(&indices, &rows))?.py()
         })
     }
 
     /// Sets the goal disc of the environments `envs` ((M,) int64 indices): an (M, 3) float64
-    /// array of x, y, radius in metres, instead of their worlds' goals; the other environments
-    /// keep theirs, and `set_world` goes back to the world's.
+    /// array of x, y, radius in metres (or (M, R, 3), each robot's, with several robots per
+    /// environment), instead of their worlds' goals; the other environments keep theirs, and
+    /// `set_world` goes back to the world's.
     fn set_goals_at(&self, envs: &Bound<'_, PyAny>, goals: &Bound<'_, PyAny>) -> PyResult<()> {
         enter(|| {
-            self.one_robot("set_goals_at")?;
             let (indices, rows) = self.listed_rows(envs, goals, "goals")?;
+            if self.robots > 1 {
+                return self
+                    .inner
+                    .with(|b| b.set_swarm_goals_at(&indices, &rows))?
+                    .py();
+            }
             self.inner.with(|b| b.set_goals_at(&indices, &rows))?.py()
         })
     }

@@ -439,7 +439,11 @@ impl<'py> CrewArgs<'py> {
             ))
         })?;
         let batch = simulator.get();
-        batch.one_robot("train_lower_round")?;
+        batch.one_robot(
+            "train_lower_round",
+            "its crews drive one robot per environment; train on a BatchSimulator of the \
+             same worlds with one robot each (a [start] instead of [[robots]])",
+        )?;
         let n = batch.len();
         let buffers = Borrowed::new(
             batch,

@@ -142,8 +142,8 @@ def register(commands: Any) -> None:
 
 def run_train(args: argparse.Namespace, out: TextIO) -> int:
     """Runs ``mazesim train``."""
-    from mazesim.cli.learning_curve import CURVE_FILE, LearningCurve
     from mazesim.learn.checkpoint import RunFolder
+    from mazesim.learn.learning_curve import CURVE_FILE, LearningCurve
     from mazesim.learn.train import (
         TrainSettings,
         command_line_fields,

@@ -1,5 +1,5 @@
 """The sweep's trainers ``hrl`` and ``baseline``: a setting mapped onto the learning layer's
-configs, trained and evaluated there, and its curves gathered.
+configs, trained and evaluated there, and its learning curve gathered.
 
 ``hrl`` runs :func:`mazesim.learn.train.run_training` (the pipeline of ``mazesim train``), then
 greedy episodes (:func:`mazesim.learn.evaluate.evaluate`). The setting maps onto it as follows:
@@ -38,15 +38,16 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import World
-from mazesim.episodes import MAX_STEPS, shortest_path_steps
+from mazesim.episodes import MAX_STEPS
 from mazesim.errors import InvalidArgumentError
 from mazesim.learn.baseline import FlatConfig, FlatNavigator, train_flat
 from mazesim.learn.evaluate import evaluate
 from mazesim.learn.higher_training import HigherTraining
+from mazesim.learn.learning_curve import CurvePoints, episode_progress
 from mazesim.learn.lower import LowerSettings
 from mazesim.learn.policy import HierarchicalPolicy
 from mazesim.learn.qlearning import LearningRate
-from mazesim.learn.summary import Summary, summarise
+from mazesim.learn.summary import Summary
 from mazesim.learn.train import TrainSettings, run_training
 from mazesim.maze import checkpoint_ids
 
@@ -54,7 +55,6 @@ if TYPE_CHECKING:
     from mazesim.distributed.config import Setting
 
 __all__ = [
-    "CURVE_POINTS",
     "FLAT_DEFAULTS",
     "HRL_DEFAULTS",
     "flat_config",
@@ -81,9 +81,6 @@ FLAT_DEFAULTS: dict[str, Any] = {
     "collision_penalty": -_FLAT.contact_reward,
     "episode_steps": _FLAT.max_steps,
 }
-#: Points of a curve over training episodes (windows of nearly equal numbers of episodes).
-CURVE_POINTS = 20
-_STAGE_LOWER, _STAGE_HIGHER = 1, 2
 
 
 def _maze_world(setting: Setting, trainer: str) -> World:
@@ -142,13 +139,6 @@ def _evaluation(summary: Summary) -> dict[str, float]:
     }
 
 
-def _windows(count: int, points: int) -> list[tuple[int, int]]:
-    """Up to ``points`` consecutive windows of nearly equal length covering ``range(count)``."""
-    points = min(points, count)
-    bounds = [count * index // points for index in range(points + 1)] if points else [0]
-    return list(zip(bounds[:-1], bounds[1:]))
-
-
 def train_hrl(setting: Setting, threads: int = 1) -> dict[str, Any]:
     """Trains the hierarchical navigator for one setting (:func:`mazesim.learn.train.run_training`)
     and evaluates it greedily (:func:`mazesim.learn.evaluate.evaluate`).
@@ -160,11 +150,11 @@ def train_hrl(setting: Setting, threads: int = 1) -> dict[str, Any]:
     Returns:
         A dict with ``tables`` (``lower_q`` and ``lower_visits``, stacked as
         :class:`mazesim.learn.lower.LowerTables`; ``higher_q``, ``higher_visits`` and the world's
-        ``checkpoint_ids``), ``curves`` (one row per lower-level round, ``stage`` 1, then one per
-        window of higher-level episodes, ``stage`` 2: cumulative ``env_steps``,
-        ``success_rate`` of the door sub-tasks or of reaching the goal, ``contact_share``, and
-        the lower level's ``corridor_speed``), ``evaluation``, ``env_steps`` (both stages),
-        ``eval_env_steps``, ``training_seconds`` and ``evaluation_seconds``.
+        ``checkpoint_ids``), ``curves`` (the learning curve of ``mazesim train``,
+        :mod:`mazesim.learn.learning_curve`: a row per lower-level round, ``stage`` ``lower``,
+        then one each time higher-level episodes end, ``stage`` ``higher``), ``evaluation``,
+        ``env_steps`` (both stages), ``eval_env_steps``, ``training_seconds`` and
+        ``evaluation_seconds``.
 
     Raises:
         InvalidArgumentError: The world has no cell maze or no goal.
@@ -180,31 +170,11 @@ def train_hrl(setting: Setting, threads: int = 1) -> dict[str, Any]:
         max_steps=max_steps,
         seed=setting.seed,
     )
-    run = run_training(lower, higher, world, threads=threads)
+    curve = CurvePoints()
+    run = run_training(lower, higher, world, threads=threads, curve=curve)
     assert run is not None  # no checkpoint callback, so it runs to its end
-    curve: dict[str, list[float]] = {
-        name: []
-        for name in ("stage", "env_steps", "success_rate", "contact_share", "corridor_speed")
-    }
-    env_steps = 0
-    for stats in run.round_stats:
-        env_steps += stats.env_steps
-        curve["stage"].append(_STAGE_LOWER)
-        curve["env_steps"].append(env_steps)
-        curve["success_rate"].append(stats.door_success_rate())
-        curve["contact_share"].append(stats.contact_share)
-        curve["corridor_speed"].append(stats.corridor_speed)
-    results = run.higher_results
-    shortest = [shortest_path_steps(world)]
-    for first, end in _windows(len(results), CURVE_POINTS):
-        window = results[first:end]
-        steps = sum(r.steps for r in window)
-        env_steps += steps
-        curve["stage"].append(_STAGE_HIGHER)
-        curve["env_steps"].append(env_steps)
-        curve["success_rate"].append(summarise(window, shortest).success_rate)
-        curve["contact_share"].append(sum(r.contact_steps for r in window) / max(1, steps))
-        curve["corridor_speed"].append(math.nan)
+    env_steps = sum(stats.env_steps for stats in run.round_stats)
+    env_steps += sum(result.steps for result in run.higher_results)
     training_seconds = time.perf_counter() - started
 
     started = time.perf_counter()
@@ -230,7 +200,7 @@ def train_hrl(setting: Setting, threads: int = 1) -> dict[str, Any]:
             "higher_visits": level.visits[0],
             "checkpoint_ids": np.array(level.checkpoint_ids[0], dtype=np.int64),
         },
-        "curves": {name: np.asarray(values) for name, values in curve.items()},
+        "curves": {name: np.asarray(values) for name, values in curve.columns().items()},
         "evaluation": _evaluation(summary),
         "env_steps": env_steps,
         "eval_env_steps": summary.env_steps,
@@ -248,9 +218,9 @@ def train_baseline(setting: Setting, threads: int = 1) -> dict[str, Any]:
         threads: Threads of the batch engine (the result does not depend on them).
 
     Returns:
-        A dict with ``tables`` (``flat_q`` and the world's ``checkpoint_ids``), ``curves`` (per
-        window of finished training episodes: cumulative ``episodes`` and their
-        ``success_rate``), ``evaluation``, ``env_steps``, ``eval_env_steps``,
+        A dict with ``tables`` (``flat_q`` and the world's ``checkpoint_ids``), ``curves``
+        (the learning curve of ``mazesim train --flat``: a row each time training episodes end,
+        ``stage`` ``flat``), ``evaluation``, ``env_steps``, ``eval_env_steps``,
         ``training_seconds`` and ``evaluation_seconds``.
 
     Raises:
@@ -260,13 +230,16 @@ def train_baseline(setting: Setting, threads: int = 1) -> dict[str, Any]:
     world = _maze_world(setting, "baseline")
     envs, steps = int(setting.params["envs"]), int(setting.params["steps"])
     config = flat_config(setting)
-    q, outcomes = train_flat(
-        world, envs * steps, num_envs=envs, seed=setting.seed, threads=threads, config=config
+    curve = CurvePoints()
+    q, _ = train_flat(
+        world,
+        envs * steps,
+        num_envs=envs,
+        seed=setting.seed,
+        threads=threads,
+        config=config,
+        progress=episode_progress("flat", None, curve),
     )
-    curve: dict[str, list[float]] = {"episodes": [], "success_rate": []}
-    for first, end in _windows(len(outcomes), CURVE_POINTS):
-        curve["episodes"].append(end)
-        curve["success_rate"].append(float(np.mean(outcomes[first:end])))
     training_seconds = time.perf_counter() - started
 
     started = time.perf_counter()
@@ -286,7 +259,7 @@ def train_baseline(setting: Setting, threads: int = 1) -> dict[str, Any]:
     evaluation_seconds = time.perf_counter() - started
     return {
         "tables": {"flat_q": q, "checkpoint_ids": np.array(sorted(ids), dtype=np.int64)},
-        "curves": {name: np.asarray(values) for name, values in curve.items()},
+        "curves": {name: np.asarray(values) for name, values in curve.columns().items()},
         "evaluation": _evaluation(summary),
         "env_steps": envs * steps,
         "eval_env_steps": summary.env_steps,

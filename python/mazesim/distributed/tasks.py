@@ -159,21 +159,11 @@ def check_parameters(params: Mapping[str, Any], where: str = "grid") -> None:
 
 
 def npz_bytes(arrays: Mapping[str, npt.ArrayLike]) -> bytes:
-    """An ``.npz`` archive of the arrays, the same bytes for the same arrays.
+    """An ``.npz`` archive of the arrays, stored uncompressed, the same bytes for the same arrays
+    (:func:`mazesim.learn.tables.write_archive`); :func:`numpy.load` reads it."""
+    from mazesim.learn.tables import write_archive
 
-    Unlike :func:`numpy.savez`, the archive's members carry a fixed date, so two runs that
-    produce equal arrays produce equal files. :func:`numpy.load` reads it.
-    """
-    buffer = io.BytesIO()
-    with zipfile.ZipFile(buffer, "w", compression=zipfile.ZIP_STORED) as archive:
-        for name, values in arrays.items():
-            member = zipfile.ZipInfo(f"{name}.npy", date_time=(1980, 1, 1, 0, 0, 0))
-            with archive.open(member, "w", force_zip64=True) as handle:
-                array = np.ascontiguousarray(values)
-                if array.dtype.hasobject:
-                    raise InvalidArgumentError(f"table {name!r}: expected numbers, found objects")
-                np.lib.format.write_array(handle, array, allow_pickle=False)
-    return buffer.getvalue()
+    return write_archive(arrays, compression=zipfile.ZIP_STORED)
 
 
 def curves_csv(curves: Mapping[str, npt.ArrayLike]) -> bytes:

@@ -1,12 +1,16 @@
-"""Saving and loading navigators: Q-tables as ``.npz`` (no pickle) plus JSON metadata.
+"""The Q-table file format: how navigators and training checkpoints are written, read and checked.
+
+Both are ``.npz`` archives of float64 (and int64) arrays, never pickled, with JSON metadata that
+says what the arrays mean; this module is the one place that knows their bytes.
 
 A saved navigator is a folder with two files:
 
-- ``tables.npz``: the Q-tables as float64 arrays, written with :func:`numpy.savez_compressed` and
-  read with ``allow_pickle=False``. A hierarchical navigator holds ``corridor`` (4096 x 12),
-  ``right``, ``left`` and ``forward`` (12288 x 12: 4096 distance states times 3 phases) and
-  ``higher`` (states x 4, the rows of :func:`mazesim.learn.higher.event_state_names`); the flat
-  baseline holds ``flat`` ((1 + 2 * checkpoints) * 4096 x 12).
+- ``tables.npz``: the Q-tables, deflated (the bytes :func:`numpy.savez_compressed` writes). A
+  hierarchical navigator holds ``corridor`` (4096 x 12), ``right``, ``left`` and ``forward``
+  (12288 x 12: 4096 distance states times 3 phases; 73728 x 12, 18 phases, with the door
+  distance) and ``higher`` (states x 4, the rows of
+  :func:`mazesim.learn.higher.event_state_names`); the flat baseline holds ``flat``
+  ((1 + 2 * checkpoints) * 4096 x 12).
 - ``policy.json``: what the tables mean, checked on loading. ``format`` (``"mazesim-policy"``)
   and ``version`` (:data:`FORMAT_VERSION`); ``kind`` (``"hierarchical"`` or ``"flat"``);
   ``state_encoding`` (sensor order, Table 4.1 level edges in cm, the base-4 formula, the Sharp
@@ -16,43 +20,67 @@ A saved navigator is a folder with two files:
   state names); ``training`` (the settings and measurements of the run); ``tables`` (each array's
   shape, and the size and sha256 of ``tables.npz``).
 
-Both files are written atomically, the metadata last (:mod:`mazesim.learn.bundle`).
-:func:`load_policy` checks the metadata against a schema (:func:`policy_schema`) before it reads
-the tables, and the tables' headers against the shapes the metadata allows before it reads their
-data, so no file decides how much memory is used. It raises
-:class:`mazesim.errors.PolicyFormatError` naming the file, the field and the reason when a file is
+The archive is written first and the metadata last, each atomically, so a reader never takes a
+half-written pair for a whole one (:func:`write_bundle`).
+
+A training checkpoint is one file, ``DIR/checkpoint.npz``: the lower-level tables (``q``), their
+update counts (``visits``) and a ``checkpoint.json`` member with the run's settings, the round to
+continue from, the rounds' summaries and the seconds spent, switched in with one atomic rename
+(:func:`mazesim._atomic.atomic_file`). Checkpoints of mazesim 0.1 (``checkpoint.npz`` with the
+tables and a separate ``checkpoint.json``, a bundle like a navigator's) are still read; the next
+checkpoint replaces them with the one-file form.
+
+Reading lets no file decide how much memory is used: the metadata's size and depth
+(:func:`mazesim.learn.schema.parse_metadata`), its format and version, its schema; then the arrays
+it must describe, the archive's size against them, its sha256, and every member's ``.npy`` header
+(shape, dtype, order; no Python objects), before exactly the bytes of the expected shapes are read
+(:func:`read_archive`). :func:`load_policy` also checks the state and action encoding against this
+mazesim's, and that the tables are finite. Anything else raises
+:class:`mazesim.errors.PolicyFormatError` naming the file, the field and the reason: a file
 missing, truncated, corrupt (its sha256 differs), malformed, of another format or version, made
-for another state or action encoding, or has tables of the wrong shape or non-finite values.
-:meth:`TrainedPolicy.check_world` refuses a world other than the one the higher level learned.
+for another state or action encoding, or with tables of the wrong shape or non-finite values.
 """
 
 from __future__ import annotations
 
+import contextlib
+import errno
+import hashlib
+import io
 import json
 import os
-from dataclasses import dataclass, field
-from importlib import resources
+import struct
+import tokenize
+import zipfile
+import zlib
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import IO, Any
 
 import numpy as np
 import numpy.typing as npt
 
-from mazesim._core import World
+from mazesim._atomic import atomic_file, remove_stale_temporaries
+from mazesim._paths import read_input
 from mazesim.actions import ACTION_CODES, WHEEL_SPEED_FRACTIONS
-from mazesim.errors import InvalidArgumentError, PolicyFormatError, UnknownNameError
-from mazesim.learn.archive import ArraySpec
-from mazesim.learn.bundle import (
-    FORMAT_VERSION,
-    HEX_DIGITS,
-    read_bundle,
-    tables_schema,
-    write_bundle,
-)
+from mazesim.errors import InvalidArgumentError, MazesimIOError, PolicyFormatError
 from mazesim.learn.discretise import LEVEL_EDGES_CM, NUM_STATES, SENSOR_ORDER, SHARP_TABLE
 from mazesim.learn.higher import event_state_names
-from mazesim.learn.lower import lower_table_shape
-from mazesim.learn.schema import AnyJson, ListOf, Record, Text, Whole, differing
+from mazesim.learn.lower import LowerTables, lower_table_shape
+from mazesim.learn.schema import (
+    MAX_METADATA_BYTES,
+    AnyJson,
+    ListOf,
+    Node,
+    Number,
+    Record,
+    Text,
+    Whole,
+    describe,
+    differing,
+    parse_metadata,
+)
 from mazesim.learn.subtasks import (
     CONTROL_STEP_MS,
     DISTANCE_EDGES,
@@ -65,32 +93,408 @@ from mazesim.learn.subtasks import (
     door_distance_of,
     phase_counts,
 )
-from mazesim.maze import world_hash
+from mazesim.learn.trained_policy import (
+    SHIPPED_NAVIGATORS,
+    TrainedPolicy,
+    navigator_folder,
+    shipped_policy_dir,
+)
 
 __all__ = [
+    "CHECKPOINT_FILE",
+    "CHECKPOINT_FORMAT",
     "FORMAT",
     "FORMAT_VERSION",
     "METADATA_FILE",
     "SHIPPED_NAVIGATORS",
     "TABLES_FILE",
+    "ArraySpec",
+    "Checkpoint",
     "TrainedPolicy",
+    "checkpoint_exists",
     "encoding_metadata",
     "load_policy",
     "navigator_folder",
     "policy_arrays",
     "policy_schema",
+    "read_archive",
     "read_bundle",
+    "read_checkpoint_file",
+    "remove_checkpoint_leftovers",
     "save_policy",
+    "sha256",
     "shipped_policy_dir",
+    "write_archive",
     "write_bundle",
+    "write_checkpoint",
 ]
 
+#: The version of the file formats written by this mazesim.
+FORMAT_VERSION = 1
 FORMAT = "mazesim-policy"
 METADATA_FILE = "policy.json"
 TABLES_FILE = "tables.npz"
+CHECKPOINT_FORMAT = "mazesim-training-checkpoint"
+CHECKPOINT_FILE = "checkpoint.npz"
+#: The metadata member inside the checkpoint (and the separate file of mazesim 0.1).
+CHECKPOINT_MEMBER = "checkpoint.json"
 #: The lower-level table of each sub-task, by number.
 SUBTASK_TABLES = ("corridor", "right", "left", "forward")
 KINDS = ("hierarchical", "flat")
+HEX_DIGITS = "0123456789abcdef"
+#: The most checkpoints a navigator's world may have, and the largest checkpoint id.
+MAX_CHECKPOINTS = 1024
+MAX_CHECKPOINT_ID = 65535
+#: The most lower-level rounds a run may have.
+MAX_ROUNDS = 10**9
+#: The most dimensions a table may have.
+_MAX_DIMENSIONS = 4
+#: Bytes an archive may hold beyond its arrays' data (zip headers and directory, .npy headers).
+_ARCHIVE_OVERHEAD = 4096
+#: The longest ``.npy`` header read (numpy writes 128 bytes for these tables).
+MAX_HEADER_BYTES = 4096
+#: What reading a malformed archive can raise, besides the checks here.
+_MALFORMED = (
+    zipfile.BadZipFile,
+    zipfile.LargeZipFile,
+    zlib.error,
+    struct.error,
+    EOFError,
+    OSError,
+    ValueError,
+    KeyError,
+    NotImplementedError,
+    RuntimeError,
+    SyntaxError,
+    tokenize.TokenError,
+    TypeError,
+    UnicodeDecodeError,
+)
+
+
+@dataclass(frozen=True)
+class ArraySpec:
+    """The shape and dtype an archive member must have.
+
+    Attributes:
+        shape: The array's shape.
+        dtype: Its dtype's name (``"float64"``, ``"int64"``, ``"uint8"``).
+    """
+
+    shape: tuple[int, ...]
+    dtype: str
+
+    @property
+    def nbytes(self) -> int:
+        """The size of the array's data in bytes."""
+        return int(np.prod(self.shape, dtype=np.int64)) * np.dtype(self.dtype).itemsize
+
+
+def _read_header(
+    stream: IO[bytes], name: str, where: str
+) -> tuple[tuple[int, ...], np.dtype[Any], bool]:
+    version = np.lib.format.read_magic(stream)
+    if version == (1, 0):
+        header = np.lib.format.read_array_header_1_0(stream, max_header_size=MAX_HEADER_BYTES)
+    elif version in ((2, 0), (3, 0)):
+        header = np.lib.format.read_array_header_2_0(stream, max_header_size=MAX_HEADER_BYTES)
+    else:
+        raise PolicyFormatError(f"{where}: member {name!r}: unknown .npy version {version}")
+    shape, fortran_order, dtype = header
+    return tuple(shape), dtype, bool(fortran_order)
+
+
+def _read_member(
+    archive: zipfile.ZipFile, info: zipfile.ZipInfo, spec: ArraySpec, where: str
+) -> npt.NDArray[Any]:
+    name = info.filename[: -len(".npy")]
+    if info.compress_type not in (zipfile.ZIP_STORED, zipfile.ZIP_DEFLATED):
+        raise PolicyFormatError(
+            f"{where}: member {name!r}: expected stored or deflated data, "
+            f"found compression method {info.compress_type}"
+        )
+    largest = spec.nbytes + MAX_HEADER_BYTES + 16
+    if not spec.nbytes <= info.file_size <= largest:
+        raise PolicyFormatError(
+            f"{where}: member {name!r}: expected {spec.nbytes} to {largest} bytes for "
+            f"{spec.dtype} {list(spec.shape)}, found a declared size of {info.file_size}"
+        )
+    with archive.open(info) as stream:
+        shape, dtype, fortran_order = _read_header(stream, name, where)
+        if dtype.hasobject:
+            raise PolicyFormatError(
+                f"{where}: member {name!r}: expected {spec.dtype} numbers, found Python objects"
+            )
+        if shape != spec.shape or dtype != np.dtype(spec.dtype) or fortran_order:
+            found = f"{dtype} {list(shape)}{' (Fortran order)' if fortran_order else ''}"
+            raise PolicyFormatError(
+                f"{where}: member {name!r}: expected {spec.dtype} {list(spec.shape)}, found {found}"
+            )
+        data = stream.read(spec.nbytes)
+        if len(data) != spec.nbytes or stream.read(1):
+            raise PolicyFormatError(
+                f"{where}: member {name!r}: expected {spec.nbytes} bytes of data, "
+                f"found {len(data)}{' and more' if len(data) == spec.nbytes else ''}"
+            )
+    return np.frombuffer(data, dtype=dtype).reshape(spec.shape).copy()
+
+
+def _read_document(archive: zipfile.ZipFile, member: str, limit: int, where: str) -> bytes:
+    info = archive.getinfo(member)
+    if info.file_size > limit:
+        raise PolicyFormatError(
+            f"{where}: member {member!r}: expected at most {limit} bytes, "
+            f"found a declared size of {info.file_size}"
+        )
+    with archive.open(info) as stream:
+        data = stream.read(limit + 1)
+    if len(data) > limit:
+        raise PolicyFormatError(f"{where}: member {member!r}: expected at most {limit} bytes")
+    return data
+
+
+def read_archive(
+    data: bytes,
+    expected: Mapping[str, ArraySpec],
+    where: str,
+    documents: Mapping[str, int] | None = None,
+) -> tuple[dict[str, npt.NDArray[Any]], dict[str, bytes]]:
+    """Reads an ``.npz`` archive that must hold exactly ``expected`` (and ``documents``).
+
+    Args:
+        data: The archive's bytes.
+        expected: Each array's name and its shape and dtype.
+        where: The file, for messages.
+        documents: Members that are not arrays (``"checkpoint.json"``), each with the most
+            bytes it may hold.
+
+    Returns:
+        The arrays by name, and the documents' bytes by member name.
+
+    Raises:
+        PolicyFormatError: The archive is malformed or its members are not the expected ones.
+    """
+    documents = documents or {}
+    wanted = sorted([f"{name}.npy" for name in expected] + list(documents))
+    try:
+        with zipfile.ZipFile(io.BytesIO(data)) as archive:
+            infos = archive.infolist()
+            names = sorted(info.filename for info in infos)
+            if names != wanted:
+                raise PolicyFormatError(
+                    f"{where}: expected the members {wanted}, found {names[:8]}"
+                    f"{' ...' if len(names) > 8 else ''}"
+                )
+            texts = {
+                member: _read_document(archive, member, limit, where)
+                for member, limit in documents.items()
+            }
+            arrays = {
+                name: _read_member(archive, archive.getinfo(f"{name}.npy"), spec, where)
+                for name, spec in expected.items()
+            }
+            return arrays, texts
+    except PolicyFormatError:
+        raise
+    except _MALFORMED as error:
+        raise PolicyFormatError(
+            f"{where}: not a readable .npz file: {type(error).__name__}: {error}"
+        ) from None
+
+
+def write_archive(
+    arrays: Mapping[str, npt.ArrayLike],
+    documents: Mapping[str, bytes] | None = None,
+    compression: int = zipfile.ZIP_DEFLATED,
+) -> bytes:
+    """An ``.npz`` archive of ``arrays`` (C order, no Python objects), with ``documents`` as
+    further members, the same bytes for the same arrays: unlike :func:`numpy.savez`, every
+    member carries a fixed date.
+
+    Args:
+        arrays: The arrays by name.
+        documents: Members that are not arrays, by member name.
+        compression: :data:`zipfile.ZIP_DEFLATED` (checkpoints) or :data:`zipfile.ZIP_STORED`.
+
+    Raises:
+        InvalidArgumentError: An array holds Python objects.
+    """
+    buffer = io.BytesIO()
+    with zipfile.ZipFile(buffer, "w") as archive:
+
+        def member(name: str) -> IO[bytes]:
+            info = zipfile.ZipInfo(name, date_time=(1980, 1, 1, 0, 0, 0))
+            info.compress_type = compression
+            return archive.open(info, "w", force_zip64=True)
+
+        for name, values in arrays.items():
+            array = np.ascontiguousarray(values)
+            if array.dtype.hasobject:
+                raise InvalidArgumentError(f"table {name!r}: expected numbers, found objects")
+            with member(f"{name}.npy") as handle:
+                np.lib.format.write_array(handle, array, allow_pickle=False)
+        for member_name, text in (documents or {}).items():
+            with member(member_name) as handle:
+                handle.write(text)
+    return buffer.getvalue()
+
+
+#: Computes the arrays an archive must hold from its checked metadata.
+ArraysOf = Callable[[dict[str, Any]], Mapping[str, ArraySpec]]
+
+
+def sha256(data: bytes) -> str:
+    """The hex sha256 of some bytes."""
+    return hashlib.sha256(data).hexdigest()
+
+
+def tables_schema(npz_name: str) -> Record:
+    """The schema of the metadata's ``tables`` entry, describing the archive ``npz_name``."""
+    array = Record(
+        {
+            "shape": ListOf(Whole(0, 2**31), 0, _MAX_DIMENSIONS),
+            "dtype": Text(choices=("float64", "int64")),
+        }
+    )
+    return Record(
+        {
+            "file": Text(choices=(npz_name,)),
+            "bytes": Whole(0, 2**40),
+            "sha256": Text(length=64, alphabet=HEX_DIGITS),
+            "arrays": Record({}, open=True, others=array),
+        }
+    )
+
+
+def write_bundle(
+    folder: str | os.PathLike[str],
+    npz_name: str,
+    json_name: str,
+    arrays: dict[str, npt.NDArray[Any]],
+    metadata: dict[str, Any],
+) -> None:
+    """Writes ``npz_name`` and ``json_name`` into ``folder`` (created if missing), atomically.
+
+    The ``.npz`` is deflated (the bytes :func:`numpy.savez_compressed` writes); the JSON gets a
+    ``tables`` entry with each array's shape and dtype and the ``.npz``'s size and sha256, and
+    is written after the ``.npz``.
+    """
+    path = Path(folder)
+    path.mkdir(parents=True, exist_ok=True)
+    data = write_archive(arrays)
+    described = dict(metadata)
+    described["tables"] = {
+        "file": npz_name,
+        "bytes": len(data),
+        "sha256": sha256(data),
+        "arrays": {
+            name: {"shape": list(array.shape), "dtype": str(array.dtype)}
+            for name, array in arrays.items()
+        },
+    }
+    with atomic_file(path / npz_name) as handle:
+        handle.write(data)
+    with atomic_file(path / json_name) as handle:
+        handle.write((json.dumps(described, indent=2) + "\n").encode("utf-8"))
+
+
+def read_limited(path: Path, limit: int, what: str) -> bytes:
+    """Reads a whole file of at most ``limit`` bytes.
+
+    Raises:
+        PolicyFormatError: The file is missing, not a file, unreadable or larger than ``limit``.
+    """
+    try:
+        data = read_input(path, limit, what)
+    except MazesimIOError as error:
+        if error.errno == errno.ENOENT:
+            raise PolicyFormatError(f"{path}: no such file (expected {what})") from None
+        if error.strerror and error.strerror.endswith("found a folder"):
+            raise PolicyFormatError(f"{path}: expected {what}, found a folder") from None
+        raise PolicyFormatError(f"{path}: cannot be read: {error.strerror or error}") from None
+    if len(data) > limit:
+        raise PolicyFormatError(f"{path}: expected {what} of at most {limit} bytes, found more")
+    return data
+
+
+def _check_format(metadata: Any, where: str, expected_format: str) -> dict[str, Any]:
+    if not isinstance(metadata, dict):
+        raise PolicyFormatError(f"{where}: expected a JSON object, found {describe(metadata)}")
+    found = metadata.get("format")
+    if found != expected_format:
+        raise PolicyFormatError(
+            f"{where}: expected format {expected_format!r}, found {describe(found)}"
+        )
+    version = metadata.get("version")
+    if isinstance(version, bool) or version != FORMAT_VERSION:
+        raise PolicyFormatError(
+            f"{where}: expected format version {FORMAT_VERSION}, found {describe(version)}"
+        )
+    return metadata
+
+
+def _check_described(described: Any, expected: Mapping[str, ArraySpec], where: str) -> None:
+    """The metadata's ``tables.arrays`` must name exactly the expected arrays."""
+    wanted = {
+        name: {"shape": list(spec.shape), "dtype": spec.dtype} for name, spec in expected.items()
+    }
+    if described != wanted:
+        raise PolicyFormatError(
+            f"{where}: tables.arrays: {differing(json.dumps(wanted), json.dumps(described))}"
+        )
+
+
+def read_bundle(
+    folder: str | os.PathLike[str],
+    npz_name: str,
+    json_name: str,
+    expected_format: str,
+    schema: Node,
+    arrays_of: ArraysOf,
+) -> tuple[dict[str, npt.NDArray[Any]], dict[str, Any]]:
+    """Reads and checks what :func:`write_bundle` wrote.
+
+    Args:
+        folder: The folder of the two files.
+        npz_name: The archive's file name.
+        json_name: The metadata's file name.
+        expected_format: The metadata's ``format``.
+        schema: The metadata's schema (``format``, ``version`` and ``tables`` are checked in
+            any case).
+        arrays_of: The arrays the archive must hold, computed from the checked metadata.
+
+    Raises:
+        PolicyFormatError: A file is missing, unreadable, truncated, corrupt or of another
+            format or version, or the metadata or an array differs from what is expected.
+    """
+    path = Path(folder)
+    meta_path = path / json_name
+    npz_path = path / npz_name
+    where = str(meta_path)
+    text = read_limited(meta_path, MAX_METADATA_BYTES, "a saved navigator's metadata")
+    metadata = _check_format(parse_metadata(text, where), where, expected_format)
+    schema.check(metadata, where, "")
+    Record({"tables": tables_schema(npz_name)}, open=True).check(metadata, where, "")
+    described = metadata["tables"]
+    expected = arrays_of(metadata)
+    _check_described(described["arrays"], expected, where)
+    largest = sum(spec.nbytes + MAX_HEADER_BYTES for spec in expected.values()) + _ARCHIVE_OVERHEAD
+    declared = described["bytes"]
+    if declared > largest:
+        raise PolicyFormatError(
+            f"{where}: tables.bytes: expected at most {largest} bytes for its arrays, "
+            f"found {declared}"
+        )
+    data = read_limited(npz_path, largest, f"the tables of {meta_path.name}")
+    if len(data) != declared:
+        raise PolicyFormatError(
+            f"{npz_path}: truncated or overwritten: expected {declared} bytes, found {len(data)}"
+        )
+    if sha256(data) != described["sha256"]:
+        raise PolicyFormatError(
+            f"{npz_path}: corrupt: its sha256 differs from the one in {meta_path.name}"
+        )
+    return read_archive(data, expected, str(npz_path))[0], metadata
 
 
 def encoding_metadata(door_distance: bool = False) -> dict[str, Any]:
@@ -149,149 +553,6 @@ def encoding_metadata(door_distance: bool = False) -> dict[str, Any]:
     }
 
 
-def shipped_policy_dir(world_name: str = "seed-maze") -> Path:
-    """The folder of the navigator shipped in the package for a built-in world."""
-    return Path(str(resources.files("mazesim.learn").joinpath("data", world_name)))
-
-
-#: Navigators shipped beside the default one, by the name ``load_policy`` (and ``--policy``)
-#: takes for them when no folder of that name exists: their folders in the package's data.
-SHIPPED_NAVIGATORS = {"randomised": "seed-maze-randomised"}
-
-
-def navigator_folder(folder: str | os.PathLike[str] | None = None) -> Path:
-    """The folder of a navigator: ``folder`` itself, the shipped seed-maze navigator's for None,
-    or a shipped navigator's for its name in :data:`SHIPPED_NAVIGATORS` (``"randomised"``)
-    when no folder of that name exists."""
-    if folder is None:
-        return shipped_policy_dir()
-    path = Path(folder)
-    name = os.fspath(folder)
-    if name in SHIPPED_NAVIGATORS and not path.exists():
-        return shipped_policy_dir(SHIPPED_NAVIGATORS[name])
-    return path
-
-
-@dataclass
-class TrainedPolicy:
-    """A navigator loaded from (or about to be saved to) a folder.
-
-    Attributes:
-        kind: ``"hierarchical"`` or ``"flat"``.
-        lower_q: The stacked lower-level tables (hierarchical), shape
-            :func:`mazesim.learn.lower.lower_table_shape`.
-        higher_q: The higher level's table for its world, ``(2 * checkpoints, 4)``.
-        flat_q: The flat baseline's table.
-        world_name: The world the higher level (or the flat table) learned.
-        world_sha256: That world's sha256 (see :func:`mazesim.maze.world_hash`).
-        world_file: The absolute path of the world file it learned, or None for a built-in world
-            (navigators saved before mazesim kept it have none either).
-        checkpoint_ids: That world's checkpoint ids, in table order.
-        training: The training settings and measurements.
-        source: The folder it was loaded from, if any.
-    """
-
-    kind: str
-    world_name: str
-    world_sha256: str
-    checkpoint_ids: list[int]
-    world_file: str | None = None
-    lower_q: npt.NDArray[np.float64] | None = None
-    higher_q: npt.NDArray[np.float64] | None = None
-    flat_q: npt.NDArray[np.float64] | None = None
-    training: dict[str, Any] = field(default_factory=dict)
-    source: str | None = None
-    _driver: Any = field(default=None, repr=False, compare=False)
-
-    @property
-    def hold_heading(self) -> bool:
-        """Whether its "Corridors and Corners" holds the heading on the grid where no sensor
-        sees a wall, as it was trained to (``mazesim train --hold-heading``, recorded in
-        :attr:`training` ``["lower"]``; :mod:`mazesim.learn.heading_hold`). Every runner of the
-        navigator in mazesim applies the rule when this is true."""
-        lower = self.training.get("lower")
-        return isinstance(lower, dict) and lower.get("hold_heading") is True
-
-    def reset(self, control_step_ms: float = CONTROL_STEP_MS) -> None:
-        """Starts an episode of :meth:`act`: one robot driven step by step (the hook of the ROS
-        perform-learning node, :mod:`mazesim.ros.perform_learning`).
-
-        Args:
-            control_step_ms: How long each action runs on the robot; the sub-tasks' odometry is
-                dead-reckoned from the actions with it.
-        """
-        if self.kind == "flat":
-            from mazesim.learn.baseline import FlatNavigator
-
-            assert self.flat_q is not None
-            self._driver = _FlatDriver(FlatNavigator(self.flat_q, self.checkpoint_ids, 1))
-            return
-        from mazesim.learn.higher import HigherLevel
-        from mazesim.learn.policy import DeadReckoningNavigator
-
-        assert self.lower_q is not None and self.higher_q is not None
-        level = HigherLevel([self.checkpoint_ids], q=self.higher_q[None])
-        self._driver = DeadReckoningNavigator(
-            self.lower_q, level, control_step_ms, hold_heading=self.hold_heading
-        )
-
-    def act(self, distances_cm: npt.ArrayLike, checkpoint: int) -> str:
-        """The action code for one robot's six distances in cm (front, back, left, right,
-        left-front, right-front) and the checkpoint event of its last step (+id, -id or 0)."""
-        if self._driver is None:
-            self.reset()
-        return str(self._driver.act(distances_cm, checkpoint))
-
-    def learned_world(self) -> World:
-        """The world it learned: the built-in world of its name, or the world file it was trained
-        on (:attr:`world_file`).
-
-        Raises:
-            UnknownNameError: Neither is there (the file was moved or deleted); the message says
-                where it was and how to name the world instead.
-            WorldFormatError: The file is no longer a valid world.
-        """
-        from mazesim import load_world
-        from mazesim._core import builtin_world_names
-
-        if self.world_name in builtin_world_names() or self.world_file is None:
-            return load_world(self.world_name)
-        if not os.path.isfile(self.world_file):
-            where = f" {self.source}" if self.source else ""
-            raise UnknownNameError(
-                f"the navigator{where} learned world {self.world_name!r} from "
-                f"{self.world_file}, which is no longer there: put the file back, or name the "
-                "world with --world FILE"
-            )
-        return load_world(self.world_file)
-
-    def check_world(self, world: World) -> None:
-        """Raises :class:`PolicyFormatError` unless ``world`` is the world it learned."""
-        digest = world_hash(world)
-        if digest != self.world_sha256:
-            where = f" ({self.source})" if self.source else ""
-            raise PolicyFormatError(
-                f"the navigator{where} learned world {self.world_name!r} "
-                f"(sha256 {self.world_sha256[:12]}...), "
-                f"not {world.name!r} (sha256 {digest[:12]}...)"
-            )
-
-
-class _FlatDriver:
-    """The flat baseline driving one robot from distances in cm (see :meth:`TrainedPolicy.act`)."""
-
-    def __init__(self, navigator: Any) -> None:
-        self.navigator = navigator
-        self.navigator.reset([0], None)
-
-    def act(self, distances_cm: npt.ArrayLike, checkpoint: int) -> str:
-        from mazesim.learn.discretise import distance_levels
-
-        levels = distance_levels(np.asarray(distances_cm, dtype=np.float64).reshape(1, 6))
-        state = self.navigator.states_from_levels(levels, np.array([int(checkpoint)]))
-        return ACTION_CODES[int(np.argmax(self.navigator.q[state[0]]))]
-
-
 def save_policy(policy: TrainedPolicy, folder: str | os.PathLike[str]) -> None:
     """Writes a navigator into ``folder`` as ``tables.npz`` and ``policy.json``."""
     arrays: dict[str, npt.NDArray[Any]] = {}
@@ -325,11 +586,6 @@ def save_policy(policy: TrainedPolicy, folder: str | os.PathLike[str]) -> None:
         metadata["world"]["file"] = policy.world_file
     metadata["training"] = policy.training
     write_bundle(folder, TABLES_FILE, METADATA_FILE, arrays, metadata)
-
-
-#: The most checkpoints a navigator's world may have, and the largest checkpoint id.
-MAX_CHECKPOINTS = 1024
-MAX_CHECKPOINT_ID = 65535
 
 
 def policy_schema() -> Record:
@@ -463,28 +719,152 @@ def load_policy(folder: str | os.PathLike[str] | None = None) -> TrainedPolicy:
         door_distance = tuple(s["phases"] for s in metadata["subtasks"]) == DISTANCE_PHASES
         lower = np.zeros(lower_table_shape(door_distance))
         for number, name in enumerate(SUBTASK_TABLES):
-            expected = (phase_counts(door_distance)[number] * NUM_STATES, len(ACTION_CODES))
-            table = _table(arrays, name, expected, npz_path)
-            lower[number, : expected[0]] = table
+            rows = phase_counts(door_distance)[number] * NUM_STATES
+            lower[number, :rows] = _finite(arrays[name], name, npz_path)
         policy.lower_q = lower
-        policy.higher_q = _table(arrays, "higher", (2 * len(checkpoints), 4), npz_path)
+        policy.higher_q = _finite(arrays["higher"], "higher", npz_path)
     else:
-        rows = (1 + 2 * len(checkpoints)) * NUM_STATES
-        policy.flat_q = _table(arrays, "flat", (rows, len(ACTION_CODES)), npz_path)
+        policy.flat_q = _finite(arrays["flat"], "flat", npz_path)
     return policy
 
 
-def _table(
-    arrays: dict[str, npt.NDArray[Any]], name: str, shape: tuple[int, int], where: Path
-) -> npt.NDArray[np.float64]:
-    if name not in arrays:
-        raise PolicyFormatError(f"{where}: the table {name!r} is missing")
-    table = arrays[name]
-    if table.shape != shape or table.dtype != np.float64:
-        raise PolicyFormatError(
-            f"{where}: expected table {name!r} of shape {shape} float64, "
-            f"found {table.shape} {table.dtype}"
-        )
+def _finite(table: npt.NDArray[Any], name: str, where: Path) -> npt.NDArray[np.float64]:
+    """A table of the archive (its shape and dtype checked by :func:`read_archive`), if finite."""
     if not np.all(np.isfinite(table)):
         raise PolicyFormatError(f"{where}: table {name!r} holds NaN or infinite values")
-    return np.array(table, dtype=np.float64)
+    return table
+
+
+@dataclass
+class Checkpoint:
+    """What a checkpoint holds.
+
+    Attributes:
+        tables: The lower-level tables and their update counts.
+        next_round: The lower-level round to continue from.
+        history: One summary per round done.
+        lower_seconds: Wall-clock seconds spent on the lower level so far.
+    """
+
+    tables: LowerTables
+    next_round: int
+    history: list[dict[str, Any]]
+    lower_seconds: float
+
+
+def _checkpoint_arrays(door_distance: bool = False) -> dict[str, ArraySpec]:
+    shape = lower_table_shape(door_distance)
+    return {"q": ArraySpec(shape, "float64"), "visits": ArraySpec(shape, "int64")}
+
+
+def _checkpoint_schema() -> Record:
+    return Record(
+        {
+            "format": Text(choices=(CHECKPOINT_FORMAT,)),
+            "version": Whole(FORMAT_VERSION, FORMAT_VERSION),
+            "settings": Record({}, open=True, others=AnyJson()),
+            "next_round": Whole(0, MAX_ROUNDS),
+            "history": ListOf(Record({}, open=True, others=AnyJson()), 0, MAX_ROUNDS),
+            "lower_seconds": Number(0.0, 1e12),
+            # Only in a mazesim 0.1 checkpoint's separate file (checked by read_bundle).
+            "tables": AnyJson(),
+        },
+        optional=frozenset({"tables"}),
+    )
+
+
+def checkpoint_exists(folder: Path) -> bool:
+    """Whether ``folder`` holds a checkpoint (of this or an older mazesim)."""
+    return (folder / CHECKPOINT_FILE).exists() or (folder / CHECKPOINT_MEMBER).exists()
+
+
+def remove_checkpoint_leftovers(folder: Path) -> None:
+    """Removes the temporary files an interrupted checkpoint write left in ``folder``."""
+    remove_stale_temporaries(folder / CHECKPOINT_FILE)
+    remove_stale_temporaries(folder / CHECKPOINT_MEMBER)
+
+
+def write_checkpoint(folder: Path, settings: dict[str, Any], checkpoint: Checkpoint) -> None:
+    """Writes ``folder/checkpoint.npz`` in one atomic step (the folder must exist).
+
+    Args:
+        folder: The run's folder.
+        settings: The run's settings that must match to continue it.
+        checkpoint: What to save.
+    """
+    metadata = {
+        "format": CHECKPOINT_FORMAT,
+        "version": FORMAT_VERSION,
+        "settings": settings,
+        "next_round": checkpoint.next_round,
+        "history": checkpoint.history,
+        "lower_seconds": checkpoint.lower_seconds,
+    }
+    data = write_archive(
+        {"q": checkpoint.tables.q, "visits": checkpoint.tables.visits},
+        {CHECKPOINT_MEMBER: (json.dumps(metadata, indent=1) + "\n").encode("utf-8")},
+    )
+    with atomic_file(folder / CHECKPOINT_FILE) as handle:
+        handle.write(data)
+    # A checkpoint of mazesim 0.1 kept its metadata beside it; the new file supersedes it.
+    with contextlib.suppress(FileNotFoundError):
+        (folder / CHECKPOINT_MEMBER).unlink()
+
+
+def _holds_metadata(data: bytes) -> bool:
+    """Whether an archive has the metadata member (False for a mazesim 0.1 checkpoint)."""
+    try:
+        with zipfile.ZipFile(io.BytesIO(data)) as archive:
+            return CHECKPOINT_MEMBER in archive.namelist()
+    except (zipfile.BadZipFile, OSError, ValueError, EOFError):
+        return True  # malformed: read as a one-file checkpoint, which says what is wrong
+
+
+def _read_one_file(
+    path: Path, door_distance: bool = False
+) -> tuple[dict[str, Any], dict[str, Any]] | None:
+    """The arrays and metadata of a one-file checkpoint, or None for a mazesim 0.1 one."""
+    arrays = _checkpoint_arrays(door_distance)
+    largest = sum(spec.nbytes + MAX_HEADER_BYTES for spec in arrays.values()) + MAX_METADATA_BYTES
+    data = read_limited(path, largest, "a training checkpoint")
+    if (path.parent / CHECKPOINT_MEMBER).exists() and not _holds_metadata(data):
+        return None
+    tables, documents = read_archive(
+        data, arrays, str(path), documents={CHECKPOINT_MEMBER: MAX_METADATA_BYTES}
+    )
+    where = f"{path}:{CHECKPOINT_MEMBER}"
+    metadata = parse_metadata(documents[CHECKPOINT_MEMBER], where)
+    _checkpoint_schema().check(metadata, where, "")
+    return tables, metadata
+
+
+def read_checkpoint_file(folder: Path, door_distance: bool) -> tuple[Checkpoint, dict[str, Any]]:
+    """The checkpoint in ``folder`` and the settings of its run, checked against the tables of a
+    run with or without the door distance's phases (``mazesim train --door-distance``).
+
+    Raises:
+        PolicyFormatError: No checkpoint, or a malformed one (the message says why).
+    """
+    path = folder / CHECKPOINT_FILE
+    found = _read_one_file(path, door_distance) if path.exists() else None
+    if found is None:
+        found = read_bundle(
+            folder,
+            CHECKPOINT_FILE,
+            CHECKPOINT_MEMBER,
+            CHECKPOINT_FORMAT,
+            schema=_checkpoint_schema(),
+            arrays_of=lambda metadata: _checkpoint_arrays(door_distance),
+        )
+    arrays, metadata = found
+    if not np.all(np.isfinite(arrays["q"])) or np.any(arrays["visits"] < 0):
+        raise PolicyFormatError(
+            f"{path}: expected finite tables and counts of at least 0, found others"
+        )
+    checkpoint = Checkpoint(
+        tables=LowerTables(arrays["q"], arrays["visits"]),
+        next_round=int(metadata["next_round"]),
+        history=list(metadata["history"]),
+        lower_seconds=float(metadata["lower_seconds"]),
+    )
+    return checkpoint, metadata["settings"]

@@ -47,6 +47,7 @@ from mazesim.learn.checkpoint import CHECKPOINT_FORMAT, Checkpoint
 from mazesim.learn.fleet import Fleet
 from mazesim.learn.higher import HigherLevel
 from mazesim.learn.higher_training import HigherTraining, train_higher
+from mazesim.learn.learning_curve import CURVE_VALUES, CurveFn, episode_progress, lower_point
 from mazesim.learn.lower import (
     LowerSettings,
     LowerTables,
@@ -177,36 +178,12 @@ def _round_summary(stats: RoundStats) -> dict[str, Any]:
     }
 
 
-#: The learning curve's values, in order: what :data:`CurveFn` reports for each point.
-#: ``index`` is the lower level's round (1-based) or the higher level's episodes finished;
-#: ``env_steps`` the lower level's env-steps so far; ``epsilon`` its exploration rate;
-#: ``door_success_right``/``_left``/``_forward`` the share of each door sub-task's episodes of
-#: the round that ended in their opening; ``corridor_speed`` "Corridors and Corners"' mean
-#: forward speed over the round as a share of the cruise speed; ``contact_share`` the share of
-#: the round's steps in contact with a wall; ``goal_rate`` the share of the higher level's last
-#: 200 episodes that reached the goal. A value a stage does not measure is absent.
-CURVE_VALUES = (
-    "index",
-    "env_steps",
-    "epsilon",
-    "door_success_right",
-    "door_success_left",
-    "door_success_forward",
-    "corridor_speed",
-    "contact_share",
-    "goal_rate",
-)
-
 #: Reports progress as ``progress(stage, done, total)``: stage ``"lower"`` counts rounds,
 #: ``"higher"`` and ``"flat"`` count episodes or steps.
 ProgressFn = Callable[[str, int, int], None]
 #: Called after each lower-level round with the tables, the next round and the history so far;
 #: returns True to stop there (as if interrupted).
 CheckpointFn = Callable[[LowerTables, int, list[dict[str, Any]]], bool]
-#: Receives the learning curve point by point as ``curve(stage, values)``: stage ``"lower"``
-#: after each round (the rounds of a resumed run's checkpoint first), ``"higher"`` each time
-#: episodes end; ``values`` maps names of :data:`CURVE_VALUES` to numbers.
-CurveFn = Callable[[str, dict[str, float]], None]
 #: Draws the robots of a randomised run as ``draw(round_index, count)``: the lower level's
 #: robots for each round (``round_index`` from 0), and the higher level's once, with
 #: ``round_index`` the lower level's number of rounds. The same arguments must give the same
@@ -224,22 +201,6 @@ def _robots_of(robot: RobotChoice | RobotDraw, round_index: int, count: int) -> 
 def _higher_robots(robot: RobotChoice | RobotDraw, round_index: int, count: int) -> RobotChoice:
     robots = _robots_of(robot, round_index, count)
     return robots.higher if isinstance(robots, Fleet) else robots
-
-
-def _lower_point(summary: dict[str, Any], lower: LowerSettings) -> dict[str, float]:
-    """The learning curve's point of a lower-level round from its summary."""
-    done = int(summary["round"]) + 1
-    right, left, forward = summary["door_success"]
-    return {
-        "index": done,
-        "env_steps": done * lower.num_envs * lower.round_steps,
-        "epsilon": summary["epsilon"],
-        "door_success_right": right,
-        "door_success_left": left,
-        "door_success_forward": forward,
-        "corridor_speed": summary["corridor_speed"],
-        "contact_share": summary["contact_share"],
-    }
 
 
 @dataclass
@@ -299,7 +260,7 @@ def run_training(
     rounds = lower.rounds
     if curve is not None:
         for summary in summaries:
-            curve("lower", _lower_point(summary, lower))
+            curve("lower", lower_point(summary, lower))
     if next_round < rounds:
         draws = callable(robot)
         first = _robots_of(robot, next_round, lower.num_envs)
@@ -311,7 +272,7 @@ def run_training(
             stats_seen.append(stats)
             summaries.append(_round_summary(stats))
             if curve is not None:
-                curve("lower", _lower_point(summaries[-1], lower))
+                curve("lower", lower_point(summaries[-1], lower))
             if progress is not None:
                 progress("lower", round_index + 1, rounds)
             stop = checkpoint is not None and checkpoint(trainer.tables, round_index + 1, summaries)
@@ -323,18 +284,12 @@ def run_training(
     lower_seconds = time.perf_counter() - started
     started = time.perf_counter()
 
-    def higher_progress(done: int, total: int, recent: float) -> None:
-        if progress is not None:
-            progress("higher", done, total)
-        if curve is not None:
-            curve("higher", {"index": done, "goal_rate": recent})
-
     level, results = train_higher(
         tables.q,
         [world],
         higher,
         threads=threads,
-        progress=higher_progress,
+        progress=episode_progress("higher", progress, curve),
         robot=_higher_robots(robot, rounds, higher.envs_per_world),
         hold_heading=lower.hold_heading,
     )
@@ -527,19 +482,13 @@ def train_flat_policy(
     world = navigator_world(settings.world)
     started = time.perf_counter()
 
-    def flat_progress(done: int, total: int, recent: float) -> None:
-        if progress is not None:
-            progress("flat", done, total)
-        if curve is not None:
-            curve("flat", {"index": done, "goal_rate": recent})
-
     q, outcomes = train_flat(
         world,
         settings.steps,
         num_envs=settings.envs,
         seed=settings.seed,
         threads=threads,
-        progress=flat_progress,
+        progress=episode_progress("flat", progress, curve),
     )
     last = outcomes[-100:]
     policy = TrainedPolicy(

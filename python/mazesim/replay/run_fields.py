@@ -17,25 +17,16 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim.errors import RunFormatError
+from mazesim.learn.schema import describe
 
 #: The largest magnitude of a number in a run's tables: whole numbers up to it are exact in a
 #: float and in a 64-bit integer, so a run written again or shown in a replay keeps them.
 MAX_TABLE_NUMBER = float(2**53)
 
-__all__ = ["RunFields", "describe"]
+__all__ = ["RunFields"]
 
 #: Marks a field without a default: it must be present.
 _REQUIRED = object()
-
-
-def describe(value: Any) -> str:
-    """A JSON value for a message: its kind and a clipped rendering."""
-    kinds = {dict: "an object", list: "a list", str: "a string", bool: "a boolean"}
-    if value is None:
-        return "null"
-    kind = kinds.get(type(value), "a number")
-    text = f"of {len(value)} items" if isinstance(value, (dict, list)) else repr(value)
-    return f"{kind} {text[:57] + '...' if len(text) > 60 else text}"
 
 
 class RunFields:

@@ -125,7 +125,8 @@ class SimulatorWatch:
     """Records a :class:`mazesim.Simulator` for ``--html``/``--video`` and shows it ``--live``.
 
     Call :meth:`before_step` with the wheel speeds of every step before the step, and
-    :meth:`finish` after the last.
+    :meth:`finish` after the last. In a world of several robots the command drives robot 0
+    and every robot is recorded and shown (the others with the wheel speeds they keep).
 
     Args:
         args: The command's arguments (``html``, ``video``, ``live``).
@@ -137,16 +138,29 @@ class SimulatorWatch:
     def __init__(
         self, args: argparse.Namespace, simulator: Simulator, controller: str, seed: int
     ) -> None:
-        from mazesim.replay.recorder import SimulatorRecorder
+        from mazesim.replay.recorder import FleetRecorder, SimulatorRecorder
 
         self.args = args
         self.simulator = simulator
-        self.recorder = (
-            SimulatorRecorder(simulator, controller, seed) if recording_requested(args) else None
-        )
+        several = simulator.num_robots > 1
+        self.recorder: Any = None
+        if recording_requested(args):
+            self.recorder = (
+                FleetRecorder.of_simulator(simulator, controller, seed)
+                if several
+                else SimulatorRecorder(simulator, controller, seed)
+            )
         self.live: Any = None
         self.renderer: Any = None
-        if getattr(args, "live", False):
+        self.fleet_view: FleetLiveView | None = None
+        if getattr(args, "live", False) and several:
+            self.live = self.fleet_view = FleetLiveView(
+                simulator.world,
+                simulator.robot,
+                simulator.control_step_ms,
+                f"mazesim: {simulator.world.name}",
+            )
+        elif getattr(args, "live", False):
             from mazesim.render.live import LiveView
             from mazesim.render.topdown import TopDownRenderer
 
@@ -163,11 +177,35 @@ class SimulatorWatch:
     def before_step(self, left: float, right: float) -> None:
         """Records the frame before a step and the wheel speeds it runs with; shows it live."""
         if self.recorder is not None:
-            self.recorder.capture()
-            self.recorder.acted(left, right)
+            self._capture()
+            if not self.fleet:
+                self.recorder.acted(left, right)
+            else:
+                self.recorder.acted(0, left, right)
+                for index in range(1, self.simulator.num_robots):
+                    self.recorder.acted(index, *self.simulator.robot_state(index)["wheel_speeds"])
         self._show()
 
+    @property
+    def fleet(self) -> bool:
+        """Whether every robot of a world of several is recorded."""
+        return self.simulator.num_robots > 1
+
+    def _capture(self) -> None:
+        if self.fleet:
+            self.recorder.capture_simulator(self.simulator)
+        else:
+            self.recorder.capture()
+
     def _show(self) -> None:
+        if self.fleet_view is not None:
+            states = [self.simulator.robot_state(i) for i in range(self.simulator.num_robots)]
+            self.fleet_view.show(
+                [state["pose"] for state in states],
+                [bool(state["colliding"]) for state in states],
+                f"t {self.simulator.time:6.2f} s   step {self.simulator.steps}",
+            )
+            return
         if self.renderer is None:
             return
         x, y, yaw = self.simulator.pose
@@ -188,7 +226,7 @@ class SimulatorWatch:
             self.live.close()
         if self.recorder is None:
             return []
-        self.recorder.capture()
+        self._capture()
         return write_views(self.args, self.recorder.run(outcome), title)
 
 

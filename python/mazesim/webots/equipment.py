@@ -77,15 +77,25 @@ def light_sensor_mount(profile: Any, index: int) -> DeviceMount:
     return DeviceMount((x, y, LIGHT_SENSOR_HEIGHT), heading)
 
 
+#: Devices reading a vector in their own frame (``_TableVector._device_frame``).
+_DEVICE_FRAME_KINDS = frozenset({"Compass", "Accelerometer", "Gyro"})
+
+
 def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> Device | None:
     """The device for one entry of the import report's ``extension_devices``, or None when
     mazesim has no such device type (a warning is printed)."""
     kind = str(entry.get("type", ""))
     name = str(entry.get("name") or kind.lower())
     fields: Mapping[str, Any] = entry.get("fields") or {}
+    yaw = float(entry.get("yaw", 0.0))
+    if simulation.scene.y_up_devices and kind in _DEVICE_FRAME_KINDS:
+        # The import gives the direction of the device's x axis; a Y-up PROTO's device reads
+        # in a frame whose x is the robot's right when unturned (forward is its -z), which the
+        # reading converts from the robot's frame: its forward is a quarter turn left of x.
+        yaw += math.pi / 2
     mount = DeviceMount(
         entry.get("translation") or (0.0, 0.0, 0.0),
-        float(entry.get("yaw", 0.0)),
+        yaw,
         float(entry.get("pitch", 0.0)),
     )
     table = _table(fields)

@@ -14,6 +14,7 @@ from __future__ import annotations
 import ast
 import importlib.util
 import os
+import re
 import sys
 from dataclasses import dataclass, field
 
@@ -24,6 +25,7 @@ __all__ = [
     "PreparedController",
     "imported_names",
     "missing_packages",
+    "motor_limits",
     "prepare_controller",
 ]
 
@@ -35,6 +37,21 @@ MAX_OWN_MODULES = 200
 NO_DISPLAY = "a display for the controller's Tk windows (tkinter, turtle; $DISPLAY is not set)"
 #: Modules that open Tk windows.
 TK_MODULES = {"tkinter", "turtle"}
+#: Calls that limit a motor's acceleration or torque (Python and C API; Webots reference manual,
+#: Motor), which mazesim does not model.
+_MOTOR_LIMITS = re.compile(
+    r"\b(setAcceleration|setAvailableTorque|setAvailableForce|"
+    r"wb_motor_set_acceleration|wb_motor_set_available_torque|wb_motor_set_available_force)"
+    r"\s*\("
+)
+#: The statement for a controller that sets them.
+MOTOR_LIMITS = (
+    "motor acceleration and torque limits ({calls}): mazesim's wheels reach their commanded "
+    "speed at once, as Webots' motors do by default; only the floor's friction limits how fast "
+    "an imported E-puck's body starts"
+)
+#: Source files of each language read for those calls, beside the controller's main file.
+_SOURCES = {"python": (".py",), "c": (".c", ".h"), "cpp": (".cpp", ".cc", ".cxx", ".hpp", ".h")}
 
 
 @dataclass
@@ -156,6 +173,26 @@ def missing_packages(path: str) -> list[str]:
     return missing
 
 
+def motor_limits(file: str, language: str) -> list[str]:
+    """The motor acceleration and torque limit calls (see ``_MOTOR_LIMITS``) in the controller's
+    source files: its main file and the files of its language beside it."""
+    folder = os.path.dirname(os.path.abspath(file))
+    try:
+        names = sorted(os.listdir(folder))
+    except OSError:
+        names = []
+    suffixes = _SOURCES.get(language, (".py",))
+    paths = [os.path.join(folder, n) for n in names if n.lower().endswith(suffixes)]
+    found: set[str] = set()
+    for path in paths[:MAX_OWN_MODULES]:
+        try:
+            text = read_input(path, MAX_TEXT_CHARACTERS, "controller source")
+        except OSError:
+            continue
+        found.update(_MOTOR_LIMITS.findall(text.decode("utf-8", "replace")))
+    return sorted(found)
+
+
 def prepare_controller(file: str) -> PreparedController:
     """Prepares the controller file ``file`` (see :func:`mazesim.webots.runner.controller_file`).
 
@@ -191,4 +228,7 @@ def prepare_controller(file: str) -> PreparedController:
             # draws would never return, so it is not started.
             prepared.missing.append(NO_DISPLAY)
             prepared.runnable = False
+    calls = motor_limits(file, language)
+    if calls:
+        prepared.missing.append(MOTOR_LIMITS.format(calls=", ".join(calls)))
     return prepared

@@ -40,6 +40,8 @@ _GROUND_SENSORS_MODULE = re.compile(
     r"(?<![\w-])(?:E-puckGroundSensors|EPuck_GroundSensorsModule)\s*\{"
 )
 #: A wheel joint's position saved in a world file: ``hidden position_0_<joint> <rad>``.
+_KINEMATIC = re.compile(r"\bkinematic\s+TRUE\b")
+_VERSION_2 = re.compile(r'\bversion\s+"2"')
 _HIDDEN_WHEEL = re.compile(r"\bhidden\s+position_0_([01])\s+" + _NUMBER)
 _NORTH = re.compile(r"\bnorthDirection\s+" + _NUMBER + r"\s+" + _NUMBER + r"\s+" + _NUMBER)
 #: Node types that are robots.
@@ -127,6 +129,10 @@ class Scene:
         wheel_positions: The left and right wheel joints' positions (rad) a world saved after
             a run holds (the E-puck's ``hidden position_0_0`` and ``position_0_1``): where
             Webots restores them, so where its wheel sensors start; 0 otherwise.
+        traction_version: The E-puck PROTO's ``version`` ("1" or "2") when the robot is one
+            with physics (not ``kinematic TRUE``) on HingeJoint wheels (a file of R2018a or
+            later; before, a DifferentialWheels robot): its body then starts and stops as its
+            wheels' friction allows (:mod:`mazesim.webots.traction`); None otherwise.
         y_up_devices: Whether the robot's PROTOs are Webots' Y-up ones (a file before
             R2022a): an accelerometer, gyro or compass then reads in the device frame x
             right, y up, z back.
@@ -146,9 +152,16 @@ class Scene:
     nue: bool = False
     y_up_devices: bool = False
     wheel_positions: tuple[float, float] = (0.0, 0.0)
+    traction_version: str | None = None
     ground_sensors_module: bool | None = None
     lights: list[Light] = field(default_factory=list)
     nodes: list[SceneNode] = field(default_factory=list)
+
+
+def _hinge_wheels(year: str | None) -> bool:
+    """Whether an E-puck of a file of this release year turns its wheels on HingeJoints, moved
+    by their friction: since R2018a (before, the PROTO was a DifferentialWheels robot)."""
+    return year is not None and int(year) >= 2018
 
 
 def read_scene(text: str, robot_model: str | None = None, robot_line: int | None = None) -> Scene:
@@ -167,6 +180,7 @@ def read_scene(text: str, robot_model: str | None = None, robot_line: int | None
     text = text.lstrip("\ufeff")
     header = _HEADER.match(text.lstrip())
     scene = Scene()
+    year = None
     if header is not None:
         year = header.group(1)
         scene.nue = int(year) < 2022 if year else header.group(3) is not None
@@ -192,6 +206,8 @@ def read_scene(text: str, robot_model: str | None = None, robot_line: int | None
             # The E-puck PROTO's first HingeJoint is its left wheel's, the second its right's.
             scene.wheel_positions = (saved.get(0, 0.0), saved.get(1, 0.0))
             scene.ground_sensors_module = bool(_GROUND_SENSORS_MODULE.search(body))
+        if robot.group(2) == "E-puck" and _hinge_wheels(year) and not _KINEMATIC.search(own):
+            scene.traction_version = "2" if _VERSION_2.search(own) else "1"
     scene.supervisor = bool(_SUPERVISOR.search(own))
     scene.lights = read_lights(text, scene.nue)
     if found := _CONTROLLER_ARGS.search(body):

@@ -21,6 +21,7 @@ from mazesim.errors import InvalidArgumentError, UnknownNameError
 from mazesim.webots.keyboard import KeyScript
 from mazesim.webots.radio import Radio
 from mazesim.webots.scene import Scene
+from mazesim.webots.traction import Traction, epuck_traction
 
 __all__ = [
     "RobotSimulation",
@@ -149,6 +150,15 @@ class RobotSimulation:
             else simulator
         )
         self.radio = Radio() if radio is None else radio
+        self.traction: Traction | None = None
+        if self.scene.traction_version is not None:
+            robot = self.simulator.robot
+            self.traction = epuck_traction(
+                self.scene.traction_version,
+                float(robot.wheel_radius),
+                float(robot.axle_length),
+                float(robot.max_wheel_speed),
+            )
         self.robot_index = robot_index
         self.fleet = fleet
         self.world_over = False
@@ -185,6 +195,8 @@ class RobotSimulation:
             observer(self, left, right)
         if self.owns_world:
             self.radio.transmit({self.robot_index: self.simulator.pose})
+        if self.traction is not None:
+            left, right = self.traction.drive(left, right, self.basic_time_step_ms / 1000.0)
         if self.simulator.step(left, right) is True:
             self.world_over = True
             return
@@ -217,6 +229,8 @@ class RobotSimulation:
         distance travelled.
         """
         self.simulator.set_pose(x, y, yaw)
+        if self.traction is not None:
+            self.traction.stop()
         self._distance = None
         self._ground = None
         self.velocity = (0.0, 0.0, 0.0)

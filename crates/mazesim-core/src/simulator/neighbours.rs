@@ -14,13 +14,15 @@
 
 use crate::world::RayHit;
 
-/// Infra-red reflection factor of a robot's body: 0.5, Webots' infra-red model
-/// (`f = 0.2 + 0.8 * red * (1 - 0.5 * roughness)`) of the e-puck's shell, whose appearance in
-/// Webots' E-puck PROTO (`EPUCK_TRANSPARENT_APPEARANCE`) is a grey of base colour 0.5 and
-/// roughness 0.5: `0.2 + 0.8 * 0.5 * 0.75 = 0.5`. (The shell's transparency, 0.4, is not part of
-/// the model.) Every profile's body reads so: a robot of another colour is a profile option to
-/// come.
-pub const ROBOT_REFLECTANCE: f32 = 0.5;
+/// Infra-red reflection factor of a robot's body: 0.38, what Webots' infra-red model gives the
+/// e-puck's shell. Webots reads a sensor ray's hit through `f = 0.2 + 0.8 * red * (1 - 0.5 *
+/// roughness) * (1 - 0.5 * occlusion)` (reference manual, DistanceSensor, "Infra-Red Sensors"),
+/// where `red` is the red of the hit shape's base colour times `1 - transparency`. At the
+/// sensors' height (3.3 cm) the E-puck PROTO's body is its `EPUCK_BODY_LED` shell, a
+/// `PBRAppearance` of base colour 0.5 grey, transparency 0.4, roughness 0.5 and no occlusion
+/// map: `red = 0.5 * 0.6 = 0.3`, `f = 0.2 + 0.8 * 0.3 * 0.75 = 0.38`. Every profile's body reads
+/// so: a robot of another colour is a profile option to come.
+pub const ROBOT_REFLECTANCE: f32 = 0.38;
 
 /// Passes of the velocity projection: a robot pressed by several others settles in a few.
 const PASSES: usize = 8;

@@ -19,10 +19,10 @@
 //! `Simulator::restore`, the commands finite and within the motors' reach) and changes nothing
 //! when any part is refused.
 
-use super::Swarm;
+use super::{make_robots, Swarm};
 use crate::error::{Error, Result};
 use crate::fingerprint::fnv1a;
-use crate::simulator::Rig;
+use crate::simulator::{Rig, Simulator};
 
 const MAGIC: &[u8; 8] = b"MZSWARMS";
 
@@ -57,23 +57,7 @@ impl Swarm {
         if let [only] = &self.robots[..] {
             return only.snapshot();
         }
-        let mut body = Vec::new();
-        for [left, right] in &self.commands {
-            body.extend_from_slice(&left.to_le_bytes());
-            body.extend_from_slice(&right.to_le_bytes());
-        }
-        for robot in &self.robots {
-            let part = robot.snapshot();
-            body.extend_from_slice(&(part.len() as u64).to_le_bytes());
-            body.extend_from_slice(&part);
-        }
-        let mut out = Vec::with_capacity(HEADER + body.len());
-        out.extend_from_slice(MAGIC);
-        out.extend_from_slice(&SWARM_SNAPSHOT_VERSION.to_le_bytes());
-        out.extend_from_slice(&(self.robots.len() as u32).to_le_bytes());
-        out.extend_from_slice(&fnv1a(&body).to_le_bytes());
-        out.extend_from_slice(&body);
-        out
+        snapshot_robots(&self.robots, &self.commands)
     }
 
     /// Puts the swarm in the state `snapshot` holds, taken by [`Swarm::snapshot`] of a swarm of
@@ -84,80 +68,9 @@ impl Swarm {
         if self.robots.len() == 1 {
             return self.robots[0].restore(snapshot);
         }
-        let mut rest = snapshot;
-        let magic = take(&mut rest, MAGIC.len(), "the magic")?;
-        if magic != MAGIC {
-            return Err(refused(format!(
-                "bytes starting with {:?} (not {:?})",
-                String::from_utf8_lossy(magic),
-                String::from_utf8_lossy(MAGIC)
-            )));
-        }
-        let u32_of = |b: &[u8]| u32::from_le_bytes(b.try_into().expect("4 bytes"));
-        let u64_of = |b: &[u8]| u64::from_le_bytes(b.try_into().expect("8 bytes"));
-        let version = u32_of(take(&mut rest, 4, "the version")?);
-        if version != SWARM_SNAPSHOT_VERSION {
-            return Err(refused(format!(
-                "format version {version} (this build reads version {SWARM_SNAPSHOT_VERSION})"
-            )));
-        }
-        let count = u32_of(take(&mut rest, 4, "the robot count")?) as usize;
-        let n = self.robots.len();
-        if count != n {
-            return Err(refused(format!(
-                "one of {count} robots (this world has {n})"
-            )));
-        }
-        let checksum = u64_of(take(&mut rest, 8, "the checksum")?);
-        if fnv1a(rest) != checksum {
-            return Err(refused("corrupt bytes: the checksum does not match"));
-        }
-        let mut commands = Vec::with_capacity(n);
-        for (i, robot) in self.robots.iter().enumerate() {
-            let pair = take(&mut rest, 16, "the wheel commands")?;
-            let [left, right] = [&pair[..8], &pair[8..]]
-                .map(|b| f64::from_le_bytes(b.try_into().expect("8 bytes")));
-            let top = robot.robot().max_wheel_speed * crate::robot::perturb::MAX_FACTOR;
-            if !(left.abs() <= top && right.abs() <= top) {
-                return Err(refused(format!(
-                    "robot {i}'s wheel command ({left}, {right}) beyond the finite range \
-                     [-{top}, {top}] rad/s"
-                )));
-            }
-            commands.push([left, right]);
-        }
-        // Restored into a fresh swarm, taken only when every part is accepted.
-        let rigs: Vec<std::sync::Arc<Rig>> = self.robots.iter().map(|r| r.rig().clone()).collect();
-        let world = self.robots[0].world().clone();
-        let mut fresh = Swarm::with_rigs(world, &rigs, self.robots[0].config())?;
-        for (i, robot) in fresh.robots.iter_mut().enumerate() {
-            let length = u64_of(take(&mut rest, 8, "a robot's snapshot length")?);
-            let part = usize::try_from(length)
-                .ok()
-                .filter(|&l| l <= rest.len())
-                .ok_or_else(|| {
-                    refused(format!(
-                        "robot {i}'s part of {length} bytes where {} are left (truncated)",
-                        rest.len()
-                    ))
-                })?;
-            let part = take(&mut rest, part, "a robot's snapshot")?;
-            robot.restore(part).map_err(|e| match e {
-                Error::Snapshot(m) => {
-                    Error::Snapshot(format!("robot {i} ({:?}): {m}", self.names[i]))
-                }
-                other => other,
-            })?;
-        }
-        if !rest.is_empty() {
-            return Err(refused(format!(
-                "{} bytes after the last robot",
-                rest.len()
-            )));
-        }
-        fresh.commands = commands;
-        self.robots = fresh.robots;
-        self.commands = fresh.commands;
+        let (robots, commands) = restored_robots(&self.robots, &self.names, snapshot)?;
+        self.robots = robots;
+        self.commands = commands;
         Ok(())
     }
 
@@ -178,4 +91,106 @@ impl Swarm {
         copy.restore(&self.snapshot())?;
         Ok(copy)
     }
+}
+
+/// The snapshot bytes of the robots of one world of several robots with their wheel commands
+/// (see the module notes for the layout).
+pub(crate) fn snapshot_robots(robots: &[Simulator], commands: &[[f64; 2]]) -> Vec<u8> {
+    let mut body = Vec::new();
+    for [left, right] in commands {
+        body.extend_from_slice(&left.to_le_bytes());
+        body.extend_from_slice(&right.to_le_bytes());
+    }
+    for robot in robots {
+        let part = robot.snapshot();
+        body.extend_from_slice(&(part.len() as u64).to_le_bytes());
+        body.extend_from_slice(&part);
+    }
+    let mut out = Vec::with_capacity(HEADER + body.len());
+    out.extend_from_slice(MAGIC);
+    out.extend_from_slice(&SWARM_SNAPSHOT_VERSION.to_le_bytes());
+    out.extend_from_slice(&(robots.len() as u32).to_le_bytes());
+    out.extend_from_slice(&fnv1a(&body).to_le_bytes());
+    out.extend_from_slice(&body);
+    out
+}
+
+/// New simulators of the robots `robots` (of one world of several robots, named `names`) in the
+/// state `snapshot` holds, with the wheel commands it holds; `robots` are left as they are.
+/// Refused as [`Swarm::restore`] refuses.
+pub(crate) fn restored_robots(
+    robots: &[Simulator],
+    names: &[String],
+    snapshot: &[u8],
+) -> Result<(Vec<Simulator>, Vec<[f64; 2]>)> {
+    let mut rest = snapshot;
+    let magic = take(&mut rest, MAGIC.len(), "the magic")?;
+    if magic != MAGIC {
+        return Err(refused(format!(
+            "bytes starting with {:?} (not {:?})",
+            String::from_utf8_lossy(magic),
+            String::from_utf8_lossy(MAGIC)
+        )));
+    }
+    let u32_of = |b: &[u8]| u32::from_le_bytes(b.try_into().expect("4 bytes"));
+    let u64_of = |b: &[u8]| u64::from_le_bytes(b.try_into().expect("8 bytes"));
+    let version = u32_of(take(&mut rest, 4, "the version")?);
+    if version != SWARM_SNAPSHOT_VERSION {
+        return Err(refused(format!(
+            "format version {version} (this build reads version {SWARM_SNAPSHOT_VERSION})"
+        )));
+    }
+    let count = u32_of(take(&mut rest, 4, "the robot count")?) as usize;
+    let n = robots.len();
+    if count != n {
+        return Err(refused(format!(
+            "one of {count} robots (this world has {n})"
+        )));
+    }
+    let checksum = u64_of(take(&mut rest, 8, "the checksum")?);
+    if fnv1a(rest) != checksum {
+        return Err(refused("corrupt bytes: the checksum does not match"));
+    }
+    let mut commands = Vec::with_capacity(n);
+    for (i, robot) in robots.iter().enumerate() {
+        let pair = take(&mut rest, 16, "the wheel commands")?;
+        let [left, right] =
+            [&pair[..8], &pair[8..]].map(|b| f64::from_le_bytes(b.try_into().expect("8 bytes")));
+        let top = robot.robot().max_wheel_speed * crate::robot::perturb::MAX_FACTOR;
+        if !(left.abs() <= top && right.abs() <= top) {
+            return Err(refused(format!(
+                "robot {i}'s wheel command ({left}, {right}) beyond the finite range \
+                 [-{top}, {top}] rad/s"
+            )));
+        }
+        commands.push([left, right]);
+    }
+    // Restored into a fresh swarm, taken only when every part is accepted.
+    let rigs: Vec<std::sync::Arc<Rig>> = robots.iter().map(|r| r.rig().clone()).collect();
+    let world = robots[0].world().clone();
+    let mut fresh = make_robots(&world, &rigs, robots[0].config())?;
+    for (i, robot) in fresh.iter_mut().enumerate() {
+        let length = u64_of(take(&mut rest, 8, "a robot's snapshot length")?);
+        let part = usize::try_from(length)
+            .ok()
+            .filter(|&l| l <= rest.len())
+            .ok_or_else(|| {
+                refused(format!(
+                    "robot {i}'s part of {length} bytes where {} are left (truncated)",
+                    rest.len()
+                ))
+            })?;
+        let part = take(&mut rest, part, "a robot's snapshot")?;
+        robot.restore(part).map_err(|e| match e {
+            Error::Snapshot(m) => Error::Snapshot(format!("robot {i} ({:?}): {m}", names[i])),
+            other => other,
+        })?;
+    }
+    if !rest.is_empty() {
+        return Err(refused(format!(
+            "{} bytes after the last robot",
+            rest.len()
+        )));
+    }
+    Ok((fresh, commands))
 }

@@ -4,7 +4,7 @@
 //! forward, y left, z up, metres; the slot's origin taken as the robot's) and its other fields;
 //! anything else in a slot is a warning.
 
-use super::frames::{apply, Frame, NUE_TO_ENU};
+use super::frames::{apply, axis_angle, Frame, IDENTITY, NUE_TO_ENU};
 use super::import::Importer;
 use super::shapes::snap;
 use super::tree::Node;
@@ -137,6 +137,23 @@ pub struct ExtensionDevice {
     pub fields: Vec<(String, DeviceField)>,
 }
 
+/// Where the E-puck PROTO mounts its `groundSensorsSlot`, in the robot's frame: since R2022a
+/// (Z-up) 3 cm forward and 0.3 mm above the floor, unrotated; before (Y-up, e.g. V8.6's
+/// E-puck.proto) at the same place but turned by -1.57 rad about z, so that a child's x axis
+/// points at the floor (and its y axis to the robot's right). Any other slot, or robot, is
+/// taken at the robot's origin.
+fn slot_frame(robot_type: &str, slot: &str, y_up: bool) -> Frame {
+    if robot_type != "E-puck" || slot != "groundSensorsSlot" {
+        return Frame::IDENTITY;
+    }
+    if y_up {
+        let turn = axis_angle([0.0, 0.0, 1.0], -1.57).unwrap_or(IDENTITY);
+        Frame::new([0.0, 0.0003, -0.03], turn, [1.0; 3])
+    } else {
+        Frame::translation([0.03, 0.0, 0.0003])
+    }
+}
+
 impl<'d> Importer<'d> {
     /// Lists the devices in every `...Slot` field of a robot node.
     pub fn extension_slots(&mut self, robot: &'d Node) {
@@ -144,8 +161,9 @@ impl<'d> Importer<'d> {
             if !field.name.ends_with("Slot") {
                 continue;
             }
+            let frame = slot_frame(&robot.type_name, &field.name, self.y_up);
             for &id in &field.value.nodes {
-                self.slot_node(self.node(id), &field.name, &Frame::IDENTITY, 0);
+                self.slot_node(self.node(id), &field.name, &frame, 0);
             }
         }
     }

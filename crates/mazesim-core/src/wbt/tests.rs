@@ -420,6 +420,36 @@ fn webots_7_epuck_and_a_downward_sensor() {
 }
 
 #[test]
+fn the_e_pucks_ground_slot_is_mounted_as_its_proto_mounts_it() {
+    // Before R2022a the slot is turned so that a plain DistanceSensor in it points at the floor,
+    // its y axis to the robot's right; since R2022a it is unrotated. Both sit 3 cm forward.
+    let old = import(
+        "#VRML_SIM R2021a utf8\nE-puck { groundSensorsSlot [\n\
+           DistanceSensor { translation 0 0.01 0 name \"ir1\" } ] }\n",
+    );
+    let sensor = &old.extension_devices[0];
+    assert!((sensor.pitch - FRAC_PI_2).abs() < 1e-3, "{}", sensor.pitch);
+    let [x, y, _] = sensor.translation;
+    assert!(
+        (x - 0.03).abs() < 1e-6 && (y + 0.01).abs() < 1e-6,
+        "{:?}",
+        sensor.translation
+    );
+    let new = import(
+        "#VRML_SIM R2023b utf8\nE-puck { groundSensorsSlot [\n\
+           DistanceSensor { translation 0 0.01 0 name \"ir1\" } ] }\n",
+    );
+    let sensor = &new.extension_devices[0];
+    assert!(sensor.pitch.abs() < 1e-9, "{}", sensor.pitch);
+    let [x, y, _] = sensor.translation;
+    assert!(
+        (x - 0.03).abs() < 1e-6 && (y - 0.01).abs() < 1e-6,
+        "{:?}",
+        sensor.translation
+    );
+}
+
+#[test]
 fn cr_line_ends_read_as_lines() {
     let lf = "#VRML_SIM R2023b utf8\n# a comment\nWoodenBox { translation 0.3 0 0.05 size 0.1 0.1 0.1 }\nE-puck { }\n";
     let cr = import(&lf.replace('\n', "\r"));

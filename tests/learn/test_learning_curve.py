@@ -1,4 +1,5 @@
-"""``mazesim train``'s learning curve: a CSV file always, TensorBoard with ``--tensorboard``."""
+"""The learning curve (``mazesim.learn.learning_curve``): ``mazesim train`` writes a CSV file
+always, TensorBoard with ``--tensorboard``."""
 
 from __future__ import annotations
 
@@ -10,8 +11,8 @@ from pathlib import Path
 import pytest
 
 from mazesim.cli import main
-from mazesim.cli.learning_curve import CSV_COLUMNS, CURVE_FILE, TENSORBOARD_FOLDER, LearningCurve
 from mazesim.learn.checkpoint import RunFolder
+from mazesim.learn.learning_curve import CSV_COLUMNS, CURVE_FILE, TENSORBOARD_FOLDER, LearningCurve
 from mazesim.learn.train import train
 from training_settings import TINY
 
