@@ -477,6 +477,8 @@ class BatchSimulator:
         max_speed: float = 6.28,
         active: npt.NDArray[np.bool_] | None = None,
         hold_spins: bool = False,
+        hold_heading: bool = False,
+        wheel_speed_limit: float | None = None,
         subtasks: dict[str, npt.NDArray[Any]] | None = None,
     ) -> dict[str, npt.NDArray[np.uint64]]:
         """Runs ``steps`` control steps of every env in one call, the GIL released, each env's
@@ -514,7 +516,10 @@ class BatchSimulator:
             trace: Per-step outputs to fill, by key: ``observations`` (steps, N, width) float32,
                 ``poses`` (steps, N, 3) float32, ``colliding`` and ``episode_ends``
                 (steps, N) bool, ``crossings`` and ``actions`` (steps, N) int32,
-                ``wheel_speeds`` (steps, N, 2) float32.
+                ``wheel_speeds`` (steps, N, 2) float32; with ``subtasks``, ``subtasks`` and
+                ``phases`` (steps, N) int32 (the sub-task and phase each step's action was
+                chosen in, -1 for an env that stood still) and ``subtask_ends`` (steps, N) bool
+                (a door sub-task ended or gave up before the step's action was chosen).
             table: The Q-table(s) of the tabular controller.
             allowed_actions: The actions the tabular controller may take.
             table_index: (N,) int64, the table of each env.
@@ -527,13 +532,24 @@ class BatchSimulator:
                 step turned (action ``aa`` or ``bb``, read from its wheel speeds) rather than
                 turn back (``mazesim.learn.policy.hold_spins``); with ``subtasks``, in Corridors
                 and Corners only.
+            hold_heading: With ``subtasks``, Corridors and Corners in the blind state (no
+                sensor sees a wall) holds its heading on the grid as
+                :func:`mazesim.learn.heading_hold.hold_actions` does (the last step's turn on
+                the spot read from its wheel speeds), after ``hold_spins``.
+            wheel_speed_limit: The tabular controller drives every env at the fractions of
+                this motor limit (rad/s, clamped to each robot's own by its step), as
+                :meth:`mazesim.batch.RobotBatch.speeds_of` does for a batch; each robot's own
+                limit when ``None``.
             subtasks: The navigator's running sub-task of each env, the arrays of
                 :class:`mazesim.learn.subtasks.SubTaskTracker` by key (``subtask``, ``steps``
                 and ``phase`` (N,) int64, ``start`` (N, 3), ``previous_yaw`` and
                 ``heading_change`` (N,), ``turn_point`` (N, 2) float64), read and written in
                 place. The tabular controller then takes ``table`` as the 12 stacked tables of
-                the sub-tasks' phases ``(12, 4096, 12)`` (no ``table_index``), acts from table
-                ``3 * subtask + phase`` and follows the odometry after every step as
+                the sub-tasks' phases ``(12, 4096, 12)`` (no ``table_index``) and acts from
+                table ``3 * subtask + phase``, or as the 72 of a tracker that counts the
+                distance (``door_distance``, ``(72, 4096, 12)``) and acts from table
+                ``18 * subtask + phase`` (the distance bin computed from the pose; the heading
+                phase alone is written back), and follows the odometry after every step as
                 :meth:`~mazesim.learn.subtasks.SubTaskTracker.update` does; a door sub-task that
                 ends (or gives up) hands over to Corridors and Corners there. The states are
                 taken as left after following the last step and left with the call's last step

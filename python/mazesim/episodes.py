@@ -219,16 +219,18 @@ class EpisodeBatch:
         out_of_time = ~arrived & (self.episode_steps >= self.max_steps)
         return arrived, out_of_time
 
-    def at_goal(self) -> npt.NDArray[np.bool_]:
-        """(N,) bool: robots whose centre is inside their world's goal disc.
+    def at_goal(self, poses: npt.NDArray[np.float32] | None = None) -> npt.NDArray[np.bool_]:
+        """(N,) bool: robots whose centre (at ``poses``, by default their poses now) is inside
+        their world's goal disc.
 
         The squared distance from the float32 pose to the goal, in float64, against the squared
         radius: the core's own goal test (``BatchSimulator.run``'s ``end_at_goal``), so that an
         episode ends on the same step whichever way it is stepped.
         """
         goal = self.goals[self.world_of_env]
-        dx = self.poses[:, 0].astype(np.float64) - goal[:, 0]
-        dy = self.poses[:, 1].astype(np.float64) - goal[:, 1]
+        rows = self.poses if poses is None else poses
+        dx = rows[:, 0].astype(np.float64) - goal[:, 0]
+        dy = rows[:, 1].astype(np.float64) - goal[:, 1]
         return np.asarray(dx * dx + dy * dy <= goal[:, 2] * goal[:, 2])
 
     def bumps(self) -> npt.NDArray[np.int64]:

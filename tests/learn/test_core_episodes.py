@@ -19,6 +19,7 @@ from mazesim.learn.higher import HigherLevel
 from mazesim.learn.policy import HierarchicalPolicy, hold_spins
 from mazesim.learn.tables import load_policy
 from mazesim.maze import checkpoint_ids
+from mazesim.replay.navigator import Recording
 
 RIGHT, LEFT, FORWARD = (ACTION_CODES.index(code) for code in ("aa", "bb", "00"))
 
@@ -111,18 +112,53 @@ def test_stretches_equal_single_steps_in_unseen_mazes(
 def test_evaluation_is_the_same_either_way_with_trace_and_paths() -> None:
     policy = load_policy(None)
     world = mazesim.load_world("seed-maze")
-    fast, slow = EvaluationRecord(paths=2, trace=True), EvaluationRecord(paths=2, trace=True)
+    fast, slow = (EvaluationRecord(paths=2, trace=True, recorder=Recording(3)) for _ in "ab")
     summaries = [
         evaluate_navigator(policy, [world], 12, seed=3, record=record, multi_step=multi)
         for record, multi in ((fast, True), (slow, False))
     ]
     assert summaries[0] == summaries[1]
-    assert fast.outcomes == slow.outcomes and sorted(fast.outcomes) == [0, 1]
+    assert fast.outcomes == slow.outcomes and sorted(fast.outcomes) == [0, 1, 2]
     assert fast.trace_lines == slow.trace_lines and len(fast.trace_lines) > 100
     assert fast.episode_paths.keys() == slow.episode_paths.keys() == {0, 1}
     for episode in fast.episode_paths:
         np.testing.assert_array_equal(fast.episode_paths[episode], slow.episode_paths[episode])
     assert fast.marks == slow.marks
+    assert fast.run is not None and slow.run is not None
+    assert fast.run.as_json() == slow.run.as_json()
+
+
+def robots_of_two_motor_limits() -> list[mazesim.RobotProfile]:
+    seed = mazesim.RobotProfile.builtin("seed")
+    slower = mazesim.RobotProfile.from_toml(
+        seed.to_toml().replace(f"max_wheel_speed = {seed.max_wheel_speed}", "max_wheel_speed = 5.5")
+    )
+    assert slower.max_wheel_speed == 5.5
+    return [seed, slower]
+
+
+@pytest.mark.parametrize("first", [0, 1])
+def test_robots_of_two_motor_limits_drive_at_the_first_ones_fractions_either_way(
+    first: int,
+) -> None:
+    policy = load_policy(None)
+    assert policy.lower_q is not None and policy.higher_q is not None
+    world = mazesim.load_world("seed-maze")
+    level = HigherLevel([policy.checkpoint_ids], q=policy.higher_q[None])
+    robots = robots_of_two_motor_limits()
+    robots = robots[first:] + robots[:first]
+    results = []
+    for multi in (True, False):
+        nav = EpisodeBatch([world], num_envs=4, robot=robots * 2, seed=4, max_steps=1500)
+        greedy = HierarchicalPolicy(policy.lower_q, level, np.zeros(4, dtype=np.int64))
+        if multi:
+            results.append(run_navigator_episodes(nav, greedy, 6))
+        else:
+            results.append(
+                run_episodes(nav, greedy, 6, None, None, lambda p=greedy: decisions_of(p))
+            )
+    assert results[0] == results[1]
+    assert any(r.arrived for r in results[0])
 
 
 def test_what_stretches_cannot_run_is_refused() -> None:
@@ -136,17 +172,11 @@ def test_what_stretches_cannot_run_is_refused() -> None:
     )
     truth = EpisodeBatch([world], num_envs=1)
     robust = EpisodeBatch([world], num_envs=1, events="robust")
-    seed = mazesim.RobotProfile.builtin("seed")
-    faster = mazesim.RobotProfile.from_toml(
-        seed.to_toml().replace(f"max_wheel_speed = {seed.max_wheel_speed}", "max_wheel_speed = 7.5")
-    )
-    assert faster.max_wheel_speed == 7.5
-    mixed = EpisodeBatch([world], num_envs=2, robot=[seed, faster])
+    mixed = EpisodeBatch([world], num_envs=2, robot=robots_of_two_motor_limits())
     assert stretches_apply(truth, greedy)
-    assert stretches_apply(EpisodeBatch([world], num_envs=2, robot=[seed, seed]), greedy)
+    assert stretches_apply(mixed, greedy)
     assert not stretches_apply(robust, greedy)
     assert not stretches_apply(truth, exploring)
-    assert not stretches_apply(mixed, greedy)
     with pytest.raises(InvalidArgumentError, match="ground truth"):
         run_navigator_episodes(robust, greedy, 1)
     with pytest.raises(InvalidArgumentError, match="at least 1 step"):

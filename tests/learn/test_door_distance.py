@@ -113,12 +113,6 @@ def test_a_turn_driven_straight_on_passes_through_every_bin() -> None:
     assert int(tracker.phase[0]) == 1 + 3 * 5
 
 
-def test_the_core_is_not_handed_a_tracker_that_counts_the_distance() -> None:
-    assert set(SubTaskTracker(2).arrays()) >= {"phase", "subtask"}
-    with pytest.raises(InvalidArgumentError, match="door_distance"):
-        SubTaskTracker(2, door_distance=True).arrays()
-
-
 def test_mirror_images_keep_the_distance_and_swap_forward_sides() -> None:
     rng = np.random.default_rng(3)
     subtasks = rng.integers(1, 4, 2000)
@@ -272,7 +266,7 @@ def test_a_policy_file_whose_phases_do_not_match_its_tables_is_refused(tmp_path:
         load_policy(tmp_path / "plain")
 
 
-def test_stretches_are_left_to_navigators_of_heading_phases() -> None:
+def test_stretches_take_navigators_of_distance_phases_too() -> None:
     from mazesim.episodes import EpisodeBatch
 
     world = mazesim.load_world("seed-maze")
@@ -280,7 +274,7 @@ def test_stretches_are_left_to_navigators_of_heading_phases() -> None:
     level = HigherLevel([load_policy().checkpoint_ids])
     plain = HierarchicalPolicy(np.zeros(lower_table_shape()), level, [0, 0])
     counted = HierarchicalPolicy(np.zeros(lower_table_shape(True)), level, [0, 0])
-    assert stretches_apply(nav, plain) and not stretches_apply(nav, counted)
+    assert stretches_apply(nav, plain) and stretches_apply(nav, counted)
 
 
 def test_train_options_reach_the_help_and_flat_refuses_them(

@@ -201,7 +201,7 @@ def test_a_holding_navigator_records_it_and_every_runner_holds(tmp_path: Path) -
         load_policy(tmp_path / "again")
 
 
-def test_stretches_are_left_to_navigators_that_do_not_hold() -> None:
+def test_stretches_take_navigators_that_hold_too() -> None:
     import mazesim
     from mazesim.episodes import EpisodeBatch
 
@@ -209,7 +209,7 @@ def test_stretches_are_left_to_navigators_that_do_not_hold() -> None:
     level = HigherLevel([load_policy().checkpoint_ids])
     q = np.zeros(lower_table_shape())
     assert stretches_apply(nav, HierarchicalPolicy(q, level, [0, 0]))
-    assert not stretches_apply(nav, HierarchicalPolicy(q, level, [0, 0], hold_heading=True))
+    assert stretches_apply(nav, HierarchicalPolicy(q, level, [0, 0], hold_heading=True))
 
 
 def test_the_option_reaches_the_help_and_implies_the_blind_rule(

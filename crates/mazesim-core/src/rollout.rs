@@ -64,6 +64,13 @@ pub struct RunTrace<'a> {
     pub actions: Option<&'a mut [i32]>,
     /// The episode ended with the step, `(steps, n)`.
     pub episode_ends: Option<&'a mut [bool]>,
+    /// With sub-tasks, the sub-task the step's action was chosen in, -1 for none, `(steps, n)`.
+    pub subtasks: Option<&'a mut [i32]>,
+    /// With sub-tasks, the phase whose table the action came from, -1 for none, `(steps, n)`.
+    pub phases: Option<&'a mut [i32]>,
+    /// With sub-tasks, a door sub-task ended (or gave up) before the step's action was chosen,
+    /// `(steps, n)`.
+    pub subtask_ends: Option<&'a mut [bool]>,
 }
 
 /// Which environments a multi-step call moves, and the sub-tasks its tabular controller follows.
@@ -127,6 +134,9 @@ struct ChunkTrace<'a> {
     wheel_speeds: Vec<&'a mut [f32]>,
     actions: Vec<&'a mut [i32]>,
     episode_ends: Vec<&'a mut [bool]>,
+    subtasks: Vec<&'a mut [i32]>,
+    phases: Vec<&'a mut [i32]>,
+    subtask_ends: Vec<&'a mut [bool]>,
 }
 
 /// Per chunk of `CHUNK_ENVS` environments, its rows of each step of `block` (`(steps, n, width)`
@@ -161,6 +171,9 @@ impl RunTrace<'_> {
         let mut wheel_speeds = part(&mut self.wheel_speeds, &steps, n, 2);
         let mut actions = part(&mut self.actions, &steps, n, 1);
         let mut episode_ends = part(&mut self.episode_ends, &steps, n, 1);
+        let mut subtasks = part(&mut self.subtasks, &steps, n, 1);
+        let mut phases = part(&mut self.phases, &steps, n, 1);
+        let mut subtask_ends = part(&mut self.subtask_ends, &steps, n, 1);
         (0..n.div_ceil(CHUNK_ENVS))
             .map(|_| ChunkTrace {
                 observations: observations.next().unwrap_or_default(),
@@ -170,6 +183,9 @@ impl RunTrace<'_> {
                 wheel_speeds: wheel_speeds.next().unwrap_or_default(),
                 actions: actions.next().unwrap_or_default(),
                 episode_ends: episode_ends.next().unwrap_or_default(),
+                subtasks: subtasks.next().unwrap_or_default(),
+                phases: phases.next().unwrap_or_default(),
+                subtask_ends: subtask_ends.next().unwrap_or_default(),
             })
             .collect()
     }
@@ -279,6 +295,9 @@ impl Batch {
         check_trace("wheel_speeds trace", &trace.wheel_speeds, [steps, n, 2])?;
         check_trace("actions trace", &trace.actions, [steps, n, 1])?;
         check_trace("episode_ends trace", &trace.episode_ends, [steps, n, 1])?;
+        check_trace("subtasks trace", &trace.subtasks, [steps, n, 1])?;
+        check_trace("phases trace", &trace.phases, [steps, n, 1])?;
+        check_trace("subtask_ends trace", &trace.subtask_ends, [steps, n, 1])?;
 
         let mut streams: Vec<Rng> = seeds.iter().map(|&s| Rng::new(s)).collect();
         if let Some(flags) = active {
@@ -417,14 +436,20 @@ fn step_one(
         action: -1,
     };
     let mut ended = false;
+    let mut task_ended = false;
     if !standing {
         if count.steps > 0 {
-            follow_subtask(count, env.pose());
+            task_ended = follow_subtask(count, env.pose());
         }
         let max_speed = env.robot().max_wheel_speed;
         let last = env.wheel_speeds();
-        let task = count.task.as_ref();
+        let task = count.task.as_ref().map(|task| (task, env.pose()));
         decision = controller.decide(index, env.distance_sensors(), last, max_speed, stream, task);
+        if let Some((task, pose)) = task {
+            let phase = controller.task_phase(task, pose);
+            put(&mut rows.subtasks, s, j, &[task.subtask as i32]);
+            put(&mut rows.phases, s, j, &[phase as i32]);
+        }
         let [left, right] = decision.wheel_speeds;
         // The controllers give finite speeds, so a step cannot fail.
         let _ = env.step(left as f64, right as f64);
@@ -454,6 +479,11 @@ fn step_one(
     put(&mut rows.wheel_speeds, s, j, &decision.wheel_speeds);
     put(&mut rows.actions, s, j, &[decision.action]);
     put(&mut rows.episode_ends, s, j, &[ended]);
+    put(&mut rows.subtask_ends, s, j, &[task_ended]);
+    if standing || count.task.is_none() {
+        put(&mut rows.subtasks, s, j, &[-1]);
+        put(&mut rows.phases, s, j, &[-1]);
+    }
     if ended && options.autoreset {
         let seed = next_seed(env.config().seed);
         env.reset(Some(seed));
@@ -464,15 +494,16 @@ fn step_one(
 }
 
 /// Follows the step that ended at `pose` in the running sub-task, if any; a door sub-task that
-/// ends hands over to Corridors and Corners there.
-fn follow_subtask(count: &mut Counts, pose: [f32; 3]) {
+/// ends hands over to Corridors and Corners there (and the answer is true).
+fn follow_subtask(count: &mut Counts, pose: [f32; 3]) -> bool {
     let Some(task) = &mut count.task else {
-        return;
+        return false;
     };
     match task.update(pose) {
-        SubTaskEnd::Running => return,
+        SubTaskEnd::Running => return false,
         SubTaskEnd::Done => count.subtasks_done += 1,
         SubTaskEnd::GaveUp => count.subtasks_given_up += 1,
     }
     *task = SubTaskState::begin(door::CORRIDOR, pose);
+    true
 }

@@ -47,6 +47,10 @@ fn tasks(b: &Batch) -> Vec<SubTaskState> {
 struct Ran {
     poses: Vec<f32>,
     actions: Vec<i32>,
+    /// Per step and robot: the sub-task and phase acted in, and whether a door sub-task ended.
+    subtasks: Vec<i32>,
+    phases: Vec<i32>,
+    ends: Vec<bool>,
     tasks: Vec<SubTaskState>,
     counters: RunCounters,
 }
@@ -70,9 +74,17 @@ fn run(b: &mut Batch, tasks: &mut [SubTaskState], steps: usize) -> Ran {
         colliding: &mut colliding,
         crossings: &mut crossings,
     };
+    let (mut subtasks, mut phases, mut ends) = (
+        vec![0; steps * n],
+        vec![0; steps * n],
+        vec![false; steps * n],
+    );
     let trace = RunTrace {
         poses: Some(&mut poses),
         actions: Some(&mut actions),
+        subtasks: Some(&mut subtasks),
+        phases: Some(&mut phases),
+        subtask_ends: Some(&mut ends),
         ..Default::default()
     };
     let envs = RunEnvs {
@@ -86,6 +98,9 @@ fn run(b: &mut Batch, tasks: &mut [SubTaskState], steps: usize) -> Ran {
     Ran {
         poses,
         actions,
+        subtasks,
+        phases,
+        ends,
         tasks: tasks.to_vec(),
         counters,
     }
@@ -112,6 +127,7 @@ fn door_sub_tasks_run_as_stepped_from_outside() {
         let mut speeds = vec![];
         for (i, env) in outside.envs().iter().enumerate() {
             let task = &mut tasks[i];
+            let mut ended = false;
             if step > 0 {
                 match task.update(env.pose()) {
                     SubTaskEnd::Running => {}
@@ -119,11 +135,22 @@ fn door_sub_tasks_run_as_stepped_from_outside() {
                         done += u64::from(end == SubTaskEnd::Done);
                         gave_up += u64::from(end == SubTaskEnd::GaveUp);
                         *task = SubTaskState::begin(door::CORRIDOR, env.pose());
+                        ended = true;
                     }
                 }
             }
+            let at = step * n + i;
+            let acted_in = (ran.subtasks[at], ran.phases[at], ran.ends[at]);
+            let expected = (task.subtask as i32, task.phase as i32, ended);
+            assert_eq!(acted_in, expected, "step {step}, env {i}");
             let volts = env.distance_sensors();
-            let action = tabular.action_in_task(task, volts, env.wheel_speeds(), &mut streams[i]);
+            let action = tabular.action_in_task(
+                task,
+                env.pose(),
+                volts,
+                env.wheel_speeds(),
+                &mut streams[i],
+            );
             assert_eq!(
                 ran.actions[step * n + i],
                 action as i32,

@@ -389,7 +389,7 @@ impl PyBatch {
     /// environment's wheel speeds from the built-in `controller` ('braitenberg',
     /// 'avoid-collision', 'tabular' or 'random'); see `docs/performance.md` and the stub.
     #[pyo3(signature = (steps, controller, observations, poses, colliding, crossings, **options),
-        text_signature = "($self, steps, controller, observations, poses, colliding, crossings, *, seeds=None, max_episode_steps=0, end_at_goal=False, end_at_crossing=False, autoreset=True, trace=None, table=None, allowed_actions=None, table_index=None, epsilon=0.0, threshold=80.0, max_speed=6.28, active=None, hold_spins=False, subtasks=None)")]
+        text_signature = "($self, steps, controller, observations, poses, colliding, crossings, *, seeds=None, max_episode_steps=0, end_at_goal=False, end_at_crossing=False, autoreset=True, trace=None, table=None, allowed_actions=None, table_index=None, epsilon=0.0, threshold=80.0, max_speed=6.28, active=None, hold_spins=False, hold_heading=False, wheel_speed_limit=None, subtasks=None)")]
     fn run<'py>(
         &self,
         steps: IntArg,
@@ -433,6 +433,8 @@ impl PyBatch {
                 table_index: table_index.as_ref(),
                 epsilon: kw.get("epsilon", Real::Number(0.0))?,
                 hold_spins: kw.get("hold_spins", Flag::Value(false))?,
+                hold_heading: kw.get("hold_heading", Flag::Value(false))?,
+                wheel_speed_limit: kw.get("wheel_speed_limit", None)?,
             };
             let controller = run::controller(&controller, n, threshold, max_speed, tabular)?;
             if self.robots > 1 {
@@ -458,7 +460,10 @@ impl PyBatch {
                 .as_ref()
                 .map(|s| SubTaskArrays::new(s, n))
                 .transpose()?;
-            let mut states = subtask_arrays.as_ref().map(|a| a.states()).transpose()?;
+            let mut states = subtask_arrays
+                .as_ref()
+                .map(|a| a.states(&controller))
+                .transpose()?;
             let trace = traces.slices();
             let envs = RunEnvs {
                 active: active.as_deref(),

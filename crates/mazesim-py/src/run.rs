@@ -1,6 +1,7 @@
 //! `BatchSimulator.run` for Python: the built-in controller named by its arguments, the optional
 //! per-step output arrays (`trace`) borrowed and checked, the counters returned as numpy arrays.
 
+use mazesim_core::control::heading_hold::BlindRule;
 use mazesim_core::control::{tabular, AvoidCollision, Discretiser, TabularPolicy};
 use mazesim_core::{Controller, RunCounters, RunTrace};
 use numpy::{PyArray1, PyReadwriteArrayDyn};
@@ -17,10 +18,11 @@ const CONTROLLERS: &str = "'braitenberg', 'avoid-collision', 'tabular' or 'rando
 
 /// The keywords `run` takes after its six positional arguments.
 pub const KEYWORDS: &str = "seeds max_episode_steps end_at_goal end_at_crossing autoreset trace \
-    table allowed_actions table_index epsilon threshold max_speed active hold_spins subtasks";
+    table allowed_actions table_index epsilon threshold max_speed active hold_spins hold_heading \
+    wheel_speed_limit subtasks";
 
 /// The keys of `run`'s `trace` dict.
-const TRACE_KEYS: [&str; 7] = [
+const TRACE_KEYS: [&str; 10] = [
     "observations",
     "poses",
     "colliding",
@@ -28,6 +30,9 @@ const TRACE_KEYS: [&str; 7] = [
     "wheel_speeds",
     "actions",
     "episode_ends",
+    "subtasks",
+    "phases",
+    "subtask_ends",
 ];
 
 /// The arguments of the tabular controller, as given.
@@ -37,6 +42,8 @@ pub struct TabularArgs<'a, 'py> {
     pub table_index: Option<&'a Bound<'py, PyAny>>,
     pub epsilon: Real,
     pub hold_spins: Flag,
+    pub hold_heading: Flag,
+    pub wheel_speed_limit: Option<Real>,
 }
 
 /// The controller `name` with its arguments, for `n` environments.
@@ -109,11 +116,21 @@ fn tabular_policy(n: usize, args: TabularArgs<'_, '_>) -> PyResult<TabularPolicy
         .transpose()?;
     let epsilon = args.epsilon.value("epsilon")?;
     let hold_spins = args.hold_spins.value("hold_spins", "a bool")?;
-    Ok(
-        TabularPolicy::new(values, tables, allowed.as_deref(), table_of_env, epsilon)
-            .py()?
-            .with_held_spins(hold_spins),
-    )
+    let speed_limit = args
+        .wheel_speed_limit
+        .map(|l| l.value("wheel_speed_limit"))
+        .transpose()?;
+    let blind = if args.hold_heading.value("hold_heading", "a bool")? {
+        BlindRule::HoldHeading
+    } else {
+        BlindRule::Table
+    };
+    TabularPolicy::new(values, tables, allowed.as_deref(), table_of_env, epsilon)
+        .py()?
+        .with_held_spins(hold_spins)
+        .with_blind_rule(blind)
+        .with_speed_limit(speed_limit)
+        .py()
 }
 
 /// The per-step output arrays of one call, borrowed.
@@ -126,6 +143,9 @@ pub struct Traces<'py> {
     wheel_speeds: Option<PyReadwriteArrayDyn<'py, f32>>,
     actions: Option<PyReadwriteArrayDyn<'py, i32>>,
     episode_ends: Option<PyReadwriteArrayDyn<'py, bool>>,
+    subtasks: Option<PyReadwriteArrayDyn<'py, i32>>,
+    phases: Option<PyReadwriteArrayDyn<'py, i32>>,
+    subtask_ends: Option<PyReadwriteArrayDyn<'py, bool>>,
 }
 
 impl<'py> Traces<'py> {
@@ -162,6 +182,11 @@ impl<'py> Traces<'py> {
                 "episode_ends" => {
                     t.episode_ends = Some(writable(&value, &name, "bool", &[steps, n])?)
                 }
+                "subtasks" => t.subtasks = Some(writable(&value, &name, "int32", &[steps, n])?),
+                "phases" => t.phases = Some(writable(&value, &name, "int32", &[steps, n])?),
+                "subtask_ends" => {
+                    t.subtask_ends = Some(writable(&value, &name, "bool", &[steps, n])?)
+                }
                 other => {
                     return Err(invalid(format!(
                         "expected trace keys among {TRACE_KEYS:?}, found {other:?}"
@@ -188,6 +213,9 @@ impl<'py> Traces<'py> {
             wheel_speeds: slice(&mut self.wheel_speeds),
             actions: slice(&mut self.actions),
             episode_ends: slice(&mut self.episode_ends),
+            subtasks: slice(&mut self.subtasks),
+            phases: slice(&mut self.phases),
+            subtask_ends: slice(&mut self.subtask_ends),
         }
     }
 }

@@ -1,8 +1,11 @@
 //! The navigator's sub-task states for `BatchSimulator.run`: the arrays of
 //! `mazesim.learn.subtasks.SubTaskTracker` (a dict of name -> array) borrowed writable, read
-//! into the core's states and written back after the call.
+//! into the core's states and written back after the call. A tracker whose phases count the
+//! distance holds `heading phase + 3 * distance bin`; the core keeps the heading phase alone
+//! (it computes the distance bin from the pose), which is what is written back.
 
-use mazesim_core::control::door::SubTaskState;
+use mazesim_core::control::door::{Phases, SubTaskState, MAX_PHASES};
+use mazesim_core::Controller;
 use numpy::PyReadwriteArrayDyn;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -84,8 +87,13 @@ impl<'py> SubTaskArrays<'py> {
         })
     }
 
-    /// The core's states (checked by the core), or an error naming the first negative count.
-    pub fn states(&self) -> PyResult<Vec<SubTaskState>> {
+    /// The core's states for `controller` (checked by the core), or an error naming the first
+    /// negative count.
+    pub fn states(&self, controller: &Controller) -> PyResult<Vec<SubTaskState>> {
+        let counts_distance = match controller {
+            Controller::Tabular(policy) => policy.phases() == Some(Phases::HeadingAndDistance),
+            _ => false,
+        };
         let (subtask, steps, phase) =
             (slice(&self.subtask), slice(&self.steps), slice(&self.phase));
         let (start, turn_point) = (slice(&self.start), slice(&self.turn_point));
@@ -107,7 +115,13 @@ impl<'py> SubTaskArrays<'py> {
                     previous_yaw: previous_yaw[i],
                     heading_change: heading_change[i],
                     steps: count("steps", steps[i], i)? as u64,
-                    phase: count("phase", phase[i], i)?,
+                    phase: count("phase", phase[i], i).map(|phase| {
+                        if counts_distance {
+                            phase % MAX_PHASES
+                        } else {
+                            phase
+                        }
+                    })?,
                     turn_point: [turn_point[2 * i], turn_point[2 * i + 1]],
                 })
             })

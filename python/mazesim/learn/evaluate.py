@@ -54,7 +54,7 @@ from mazesim.episodes import (
     shortest_path_steps,
 )
 from mazesim.errors import InvalidArgumentError
-from mazesim.learn.core_episodes import run_navigator_episodes, stretches_apply
+from mazesim.learn.core_episodes import StretchReplay, run_navigator_episodes, stretches_apply
 from mazesim.learn.discretise import format_levels
 from mazesim.learn.episode_ranges import NavigatorEpisodes
 from mazesim.learn.higher import HigherLevel
@@ -292,11 +292,11 @@ def evaluate(
     :class:`~mazesim.learn.policy.HierarchicalPolicy` with events from the ground truth runs in
     the core's multi-step call from one checkpoint event to the next, door sub-tasks included
     (:func:`mazesim.learn.core_episodes.run_navigator_episodes`); the episodes to record (paths,
-    trace, replay) then run once more, one step at a time, unless they are all the episodes (one
-    world, as the demo): then every episode runs once, one step at a time. Any other navigator
-    (a flat one, one that wraps ``act``), robots of different motor limits and decoder events
-    run one step at a time. The results are the same either way; the multi-step call is the
-    faster (see ``docs/performance.md``).
+    trace, replay) are recorded from the core's per-step trace of the same run
+    (:class:`~mazesim.learn.core_episodes.StretchReplay`), so every episode runs once. Any
+    other navigator (a flat one, one that wraps ``act``) and decoder events run one step at a
+    time. The results are the same either way; the multi-step
+    call is the faster (see ``docs/performance.md``).
 
     Args:
         make_navigator: Builds the navigator of the robots from their world numbers (a
@@ -343,16 +343,15 @@ def evaluate(
             progress("evaluate", min(finished[0], total), total)
 
     shortest = [shortest_path_steps(world) for world in worlds]
-    # When every episode is to be recorded (the demo's one), the loop below runs each once.
-    records_all = record is not None and len(worlds) == 1 and record.episodes >= episodes_per_world
-    if multi_step and not records_all and stretches_apply(nav, navigator):
-        results = run_navigator_episodes(nav, navigator, episodes_per_world, on_end)
-        options: dict[str, Any] = {"seed": seed, "events": events, "jitter": jitter}
-        options.update(max_steps=max_steps, threads=threads, controller=controller, robot=robot)
-        _record_here(record, make_navigator, worlds, episodes_per_world, options)
-        return summarise(results, shortest, events)
     record = record if record is not None else EvaluationRecord()
-    recording = None if record.recorder is None else record.recorder(nav, navigator)
+    replay = None
+    if multi_step and stretches_apply(nav, navigator):
+        replay = StretchReplay(nav, navigator, record.episodes)
+    # What the watcher and the recorder read: the batch and the navigator, step by step, or
+    # their replay from the core's trace.
+    stepper: Any = navigator if replay is None else replay.navigator
+    shown: Any = nav if replay is None else replay.view
+    recording = None if record.recorder is None else record.recorder(shown, stepper)
     paths: dict[int, list[tuple[float, float]]] = {}
     ended: set[int] = set()
     marks = record.marks
@@ -368,7 +367,7 @@ def evaluate(
             recording.after_step(arrived, out_of_time)
         if not record.paths and not record.trace:
             return
-        steps = navigator.record
+        steps = stepper.record
         # A robot left without an episode is still stepped: record its episode's steps only.
         running = ~np.isin(batch.episode, list(ended))
         for env in np.flatnonzero(running & (batch.episode < record.paths)):
@@ -392,14 +391,12 @@ def evaluate(
         robots = np.flatnonzero(navigator.record.chosen >= 0)
         return robots, navigator.record.chosen[robots]
 
-    results = run_episodes(
-        nav,
-        navigator if recording is None else recording,
-        episodes_per_world,
-        watch,
-        on_end,
-        decisions_of,
-    )
+    driver = stepper if recording is None else recording
+    if replay is not None:
+        replay.driver, replay.watch = driver, watch
+        results = run_navigator_episodes(nav, navigator, episodes_per_world, on_end, replay=replay)
+    else:
+        results = run_episodes(nav, driver, episodes_per_world, watch, on_end, decisions_of)
     record.episode_paths = {k: np.array(v) for k, v in paths.items()}
     recorded = [r for r in results if r.world == 0 and r.episode < record.episodes]
     record.outcomes = {r.episode: r for r in recorded}

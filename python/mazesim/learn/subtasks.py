@@ -331,16 +331,10 @@ class SubTaskTracker:
     def arrays(self) -> dict[str, npt.NDArray[Any]]:
         """The tracker's state by name, for the core's multi-step call
         (``BatchSimulator.run(..., subtasks=...)``), which follows the sub-tasks step by step
-        as :meth:`update` does and writes the arrays in place.
-
-        Raises:
-            InvalidArgumentError: The tracker counts the distance, which the core does not.
+        as :meth:`update` does and writes the arrays in place. With ``door_distance`` the core
+        writes back the heading phase alone (it computes the distance bin from each pose): the
+        next :meth:`update` counts the distance again.
         """
-        if self.door_distance:
-            raise InvalidArgumentError(
-                "expected a tracker of heading phases for the core's multi-step call, found one "
-                "that counts the distance (door_distance): step it from Python"
-            )
         return {
             "subtask": self.subtask,
             "start": self.start,

@@ -88,9 +88,19 @@ impl Controller {
         }
     }
 
+    /// The phase whose table the tabular controller acts from for a robot running `task` at
+    /// `pose` ([`TabularPolicy::task_phase`]); the heading phase for the others.
+    pub fn task_phase(&self, task: &SubTaskState, pose: [f32; 3]) -> usize {
+        match self {
+            Controller::Tabular(policy) => policy.task_phase(task, pose),
+            _ => task.phase,
+        }
+    }
+
     /// The decision for environment `env` from its distance readings, the wheel speeds of its
     /// last step (`[0, 0]` after a reset), its robot's motor limit `max_speed` (rad/s), its
-    /// stream and, for the tabular controller, its running sub-task `task` if it has one.
+    /// stream and, for the tabular controller, its running sub-task `task` with its pose if it
+    /// has one.
     #[inline]
     pub fn decide(
         &self,
@@ -99,7 +109,7 @@ impl Controller {
         last_wheel_speeds: [f32; 2],
         max_speed: f64,
         stream: &mut Rng,
-        task: Option<&SubTaskState>,
+        task: Option<(&SubTaskState, [f32; 3])>,
     ) -> Decision {
         let free = |wheel_speeds| Decision {
             wheel_speeds,
@@ -111,10 +121,13 @@ impl Controller {
             Controller::RandomWheels => free(random_wheels::wheel_speeds(stream, max_speed)),
             Controller::Tabular(policy) => {
                 let action = match task {
-                    Some(task) => policy.action_in_task(task, readings, last_wheel_speeds, stream),
+                    Some((task, pose)) => {
+                        policy.action_in_task(task, pose, readings, last_wheel_speeds, stream)
+                    }
                     None => policy.action_after(env, readings, last_wheel_speeds, stream),
                 };
                 let [l, r] = tabular::WHEEL_SPEED_FRACTIONS[action];
+                let max_speed = policy.speed_limit(max_speed);
                 Decision {
                     wheel_speeds: [(l * max_speed) as f32, (r * max_speed) as f32],
                     action: action as i32,

@@ -3,7 +3,8 @@
 //! `mazesim.actions` lists them), acting greedily, optionally within a mask of allowed actions and
 //! with epsilon-greedy exploration from each environment's own stream.
 
-use super::door::{self, SubTaskState};
+use super::door::{self, Phases, SubTaskState};
+use super::heading_hold::BlindRule;
 use crate::error::{Error, Result};
 use crate::lut::LookupTable;
 use crate::qlearning::best_action;
@@ -85,9 +86,15 @@ pub struct TabularPolicy {
     epsilon: f64,
     /// Keep turning on the spot the way the last step turned rather than turn back.
     hold_spins: bool,
+    /// What Corridors and Corners does where no sensor sees a wall, in sub-tasks.
+    blind: BlindRule,
+    /// The motor limit whose fractions every robot drives at (each robot's own when `None`).
+    speed_limit: Option<f64>,
     discretiser: Discretiser,
 }
 
+/// Forward (`00`).
+const FORWARD: usize = 0;
 /// The action that turns right on the spot (`aa`) and the one that turns left (`bb`).
 const SPIN_RIGHT: usize = 9;
 const SPIN_LEFT: usize = 10;
@@ -166,6 +173,8 @@ impl TabularPolicy {
             table_of_env,
             epsilon,
             hold_spins: false,
+            blind: BlindRule::Table,
+            speed_limit: None,
             discretiser: Discretiser::new()?,
         })
     }
@@ -192,42 +201,84 @@ impl TabularPolicy {
         self.held(action, last, self.hold_spins)
     }
 
-    /// The action of a robot running door sub-task state `task` (see [`super::door`]): from
-    /// the table of its sub-task's phase (`task.table()` of the `door::NUM_TABLES` stacked
-    /// tables), a turn on the spot kept, when the policy holds spins, in Corridors and Corners
-    /// only (as `mazesim.learn.policy.HierarchicalPolicy.act` does).
+    /// The policy with Corridors and Corners following `rule` in the blind state, in
+    /// sub-tasks ([`TabularPolicy::action_in_task`]).
+    pub fn with_blind_rule(mut self, rule: BlindRule) -> Self {
+        self.blind = rule;
+        self
+    }
+
+    /// The policy driving every robot at the fractions of the motor limit `limit` (rad/s;
+    /// clamped to each robot's own by its step), as a loop that turns actions into wheel speeds
+    /// for a whole batch does; each robot's own limit when `None`.
+    pub fn with_speed_limit(mut self, limit: Option<f64>) -> Result<Self> {
+        if let Some(limit) = limit.filter(|l| !(l.is_finite() && *l > 0.0)) {
+            return Err(Error::InvalidArgument(format!(
+                "expected a wheel speed limit above 0 rad/s, found {limit}"
+            )));
+        }
+        self.speed_limit = limit;
+        Ok(self)
+    }
+
+    /// The motor limit whose fractions a robot of limit `own` drives at.
+    pub fn speed_limit(&self, own: f64) -> f64 {
+        self.speed_limit.unwrap_or(own)
+    }
+
+    /// What the door sub-tasks' phases count, from the number of stacked tables: `NUM_SUBTASKS`
+    /// times the phases of [`Phases::Heading`] or of [`Phases::HeadingAndDistance`].
+    pub fn phases(&self) -> Option<Phases> {
+        [Phases::Heading, Phases::HeadingAndDistance]
+            .into_iter()
+            .find(|p| self.tables == door::NUM_SUBTASKS * p.count())
+    }
+
+    /// The phase whose table a robot running `task` at `pose` acts from: its heading phase, plus
+    /// the distance bin times 3 when the door sub-tasks count the distance.
+    pub fn task_phase(&self, task: &SubTaskState, pose: [f32; 3]) -> usize {
+        self.phases().unwrap_or_default().phase(task, pose)
+    }
+
+    /// The action of a robot running door sub-task state `task` at `pose` (see [`super::door`]):
+    /// from the table of its sub-task's phase (table `subtask * phases + phase` of the stacked
+    /// tables, [`TabularPolicy::phases`]), a turn on the spot kept, when the policy holds spins,
+    /// in Corridors and Corners only, and in Corridors and Corners' blind state what the blind
+    /// rule says (as `mazesim.learn.policy.HierarchicalPolicy.act` does).
     pub fn action_in_task(
         &self,
         task: &SubTaskState,
+        pose: [f32; 3],
         volts: &[f32],
         last: [f32; 2],
         stream: &mut Rng,
     ) -> usize {
-        let action = self.action_from(task.table(), volts, stream);
-        self.held(
-            action,
-            last,
-            self.hold_spins && task.subtask == door::CORRIDOR,
-        )
+        let phases = self.phases().unwrap_or_default();
+        let table = task.subtask * phases.count() + self.task_phase(task, pose);
+        let action = self.action_from(table, volts, stream);
+        let corridor = task.subtask == door::CORRIDOR;
+        let action = self.held(action, last, self.hold_spins && corridor);
+        if !corridor || self.blind == BlindRule::Table {
+            return action;
+        }
+        let state = self.discretiser.state(volts);
+        // The blind rule reads only whether the last step turned on the spot, and which way.
+        let previous = last_spin(last).unwrap_or(FORWARD);
+        let yaw = f64::from(pose[2]);
+        self.blind
+            .action(door::CORRIDOR, state, yaw, previous, action)
     }
 
-    /// `action`, or, when `hold` and the last step (wheel speeds `last`) turned the other way
-    /// on the spot, that turn again.
-    ///
-    /// The wheel speeds tell the turn as the last action does: `aa` is the only action with the
-    /// left wheel forward and the right one backward, `bb` the only one the other way round,
-    /// and the motor limit (positive) keeps the signs; after a reset both are 0 (no turn).
+    /// `action`, or, when `hold` and the last step (wheel speeds `last`, see [`last_spin`])
+    /// turned the other way on the spot, that turn again.
     fn held(&self, action: usize, last: [f32; 2], hold: bool) -> usize {
         if !hold {
             return action;
         }
-        let [left, right] = last;
-        if action == SPIN_LEFT && left > 0.0 && right < 0.0 {
-            SPIN_RIGHT
-        } else if action == SPIN_RIGHT && left < 0.0 && right > 0.0 {
-            SPIN_LEFT
-        } else {
-            action
+        match last_spin(last) {
+            Some(SPIN_RIGHT) if action == SPIN_LEFT => SPIN_RIGHT,
+            Some(SPIN_LEFT) if action == SPIN_RIGHT => SPIN_LEFT,
+            _ => action,
         }
     }
 
@@ -272,16 +323,16 @@ impl TabularPolicy {
         self.tables
     }
 
-    /// Checks that the policy can drive robots through door sub-tasks: the `door::NUM_TABLES`
-    /// stacked tables of the sub-tasks' phases, and no fixed table per environment.
+    /// Checks that the policy can drive robots through door sub-tasks: the stacked tables of the
+    /// sub-tasks' phases ([`TabularPolicy::phases`]), and no fixed table per environment.
     pub fn check_subtasks(&self) -> Result<()> {
-        if self.tables != door::NUM_TABLES || self.table_of_env.is_some() {
+        if self.phases().is_none() || self.table_of_env.is_some() {
+            let [heading, distance] = [Phases::Heading, Phases::HeadingAndDistance]
+                .map(|p| door::NUM_SUBTASKS * p.count());
             return Err(Error::InvalidArgument(format!(
-                "expected, with subtasks, the {} stacked tables of the sub-tasks' phases \
-                 (shape ({}, {NUM_STATES}, {NUM_ACTIONS})) and no table_index, found {} \
-                 tables{}",
-                door::NUM_TABLES,
-                door::NUM_TABLES,
+                "expected, with subtasks, the {heading} stacked tables of the sub-tasks' heading \
+                 phases (shape ({heading}, {NUM_STATES}, {NUM_ACTIONS})) or the {distance} of \
+                 their heading and distance phases, and no table_index, found {} tables{}",
                 self.tables,
                 if self.table_of_env.is_some() {
                     " and a table_index"
@@ -291,6 +342,20 @@ impl TabularPolicy {
             )));
         }
         Ok(())
+    }
+}
+
+/// The turn on the spot of a last step with wheel speeds `last`: `aa` is the only action with
+/// the left wheel forward and the right one backward, `bb` the only one the other way round, and
+/// the motor limit (positive) keeps the signs; after a reset both are 0 (no turn).
+fn last_spin(last: [f32; 2]) -> Option<usize> {
+    let [left, right] = last;
+    if left > 0.0 && right < 0.0 {
+        Some(SPIN_RIGHT)
+    } else if left < 0.0 && right > 0.0 {
+        Some(SPIN_LEFT)
+    } else {
+        None
     }
 }
 
@@ -336,6 +401,60 @@ mod tests {
         values[NUM_ACTIONS * 5 + 2] = f64::NAN;
         let err = TabularPolicy::new(values, 1, None, None, 0.0).unwrap_err();
         assert!(err.to_string().contains("state 5, action 2"), "{err}");
+    }
+
+    #[test]
+    fn sub_tasks_act_from_the_table_of_their_phase_and_distance_and_hold_when_blind() {
+        let per_table = NUM_STATES * NUM_ACTIONS;
+        let (near, blind) = ([3.5f32; 6], [0.2f32; 6]); // states 0 and 4095
+        let mut stream = Rng::new(1);
+        // Going forward, 20 cm ahead of its start (distance bin 2), heading phase 1.
+        let task = SubTaskState::begin(door::FORWARD, [0.0, 0.0, 0.0]);
+        let pose = [0.2, 0.0, 0.0];
+        for (phases, table) in [
+            (Phases::Heading, 3 * 3 + 1),
+            (Phases::HeadingAndDistance, 3 * 18 + 7),
+        ] {
+            let tables = door::NUM_SUBTASKS * phases.count();
+            let mut values = vec![0.0; tables * per_table];
+            values[table * per_table + 4] = 1.0;
+            let policy = TabularPolicy::new(values, tables, None, None, 0.0).unwrap();
+            assert_eq!(policy.phases(), Some(phases));
+            assert!(policy.check_subtasks().is_ok());
+            assert_eq!(
+                policy.action_in_task(&task, pose, &near, [0.0; 2], &mut stream),
+                4
+            );
+        }
+        let policy = TabularPolicy::new(vec![0.0; 5 * per_table], 5, None, None, 0.0).unwrap();
+        assert!(policy.phases().is_none() && policy.check_subtasks().is_err());
+
+        // Corridors and Corners, blind, 10 degrees left of the grid: the table says forward.
+        let corridor = SubTaskState::begin(door::CORRIDOR, [0.0, 0.0, 0.0]);
+        let values = vec![0.0; door::NUM_TABLES * per_table];
+        let table = TabularPolicy::new(values, door::NUM_TABLES, None, None, 0.0).unwrap();
+        let holding = table.clone().with_blind_rule(BlindRule::HoldHeading);
+        let yawed = [0.0, 0.0, 10f32.to_radians()];
+        let spun_left = [-1.0, 1.0];
+        let act = |p: &TabularPolicy, volts: &[f32], last, stream: &mut Rng| {
+            p.action_in_task(&corridor, yawed, volts, last, stream)
+        };
+        assert_eq!(act(&table, &blind, [0.0; 2], &mut stream), FORWARD);
+        assert_eq!(act(&holding, &blind, [0.0; 2], &mut stream), 1);
+        assert_eq!(act(&holding, &blind, spun_left, &mut stream), SPIN_LEFT);
+        assert_eq!(act(&holding, &near, spun_left, &mut stream), FORWARD);
+    }
+
+    #[test]
+    fn a_speed_limit_given_replaces_each_robots_own() {
+        let policy = TabularPolicy::new(vec![0.0; NUM_STATES * NUM_ACTIONS], 1, None, None, 0.0);
+        let policy = policy.unwrap();
+        assert_eq!(policy.speed_limit(7.5), 7.5);
+        let limited = policy.clone().with_speed_limit(Some(5.5)).unwrap();
+        assert_eq!(limited.speed_limit(7.5), 5.5);
+        for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            assert!(policy.clone().with_speed_limit(Some(bad)).is_err());
+        }
     }
 
     #[test]
