@@ -531,7 +531,7 @@ mod tests {
         // One face of MAX_MESH_TRIANGLES + 5 corners: MAX_MESH_TRIANGLES + 3 triangles.
         let face: String = " 1 2 3".repeat(MAX_MESH_TRIANGLES / 3 + 2);
         let text = format!("v 0 0 0\nv 1 0 0\nv 0 1 0\nf{face}\n");
-        let refused = obj_triangles(&text).err().expect("a refusal");
+        let refused = obj_triangles(&text).expect_err("a refusal");
         assert!(refused.contains("at most 1048576 triangles"), "{refused}");
         let large = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
         let refused = triangles_paint(&[large; 2000], 0.2).unwrap_err();
