@@ -313,3 +313,79 @@ def test_simulator_robot_of_a_wrong_type(robot: Any) -> None:
     world = mazesim.World.builtin("seed-maze")
     with pytest.raises(mazesim.InvalidArgumentError, match=r"expected robot to be .*found a"):
         mazesim.Simulator(world, robot=robot)
+
+
+def wrong_counts(
+    target: Callable[..., Any], valid: dict[str, Any]
+) -> Iterator[tuple[str, tuple[Any, ...], dict[str, Any]]]:
+    """Calls of ``target`` with the wrong number of arguments: each required one left out, one
+    positional value too many, and a keyword it does not know."""
+    params = [p for p in inspect.signature(target).parameters.values() if p.name != "self"]
+    for p in params:
+        if p.default is p.empty:
+            yield f"without {p.name}", (), {k: v for k, v in valid.items() if k != p.name}
+    yield "with one value too many", (*(valid[p.name] for p in params), 0), {}
+    yield "with an unknown keyword", (), {**valid, "not_a_parameter": 0}
+
+
+def test_every_wrong_number_of_arguments_is_an_invalid_argument_error(tmp_path: Path) -> None:
+    """pyo3 and CPython refuse a call with too many, too few or unknown arguments before the
+    entry point runs; the refusal is ``InvalidArgumentError`` (a ``MazesimError``) with their
+    message, never a bare ``TypeError``: for every constructor, function, method, static and
+    class method of the extension, those without parameters included."""
+    failures = []
+    seen = set()
+    for label, target, valid, _ in cases(tmp_path):
+        entry = label.split("(")[0]
+        if entry in seen:
+            continue
+        seen.add(entry)
+        for how, args, kwargs in wrong_counts(target, valid):
+            try:
+                target(*args, **kwargs)
+            except mazesim.InvalidArgumentError as error:
+                if type(error).__name__ != "InvalidArgumentError" or not str(error):
+                    failures.append(f"{entry} {how}: {type(error).__name__}: {error}")
+            except BaseException as error:  # noqa: BLE001 - any other exception is the failure
+                failures.append(f"{entry} {how}: {type(error).__name__}: {error}")
+            else:
+                failures.append(f"{entry} {how}: accepted")
+    assert not failures, "\n".join(failures)
+    assert len(seen) >= 20
+
+
+@pytest.mark.parametrize(
+    ("call", "message"),
+    [
+        (lambda w: mazesim.Simulator(w, 1, 2, 3, 4, 5), "takes from 1 to 5 positional"),
+        (lambda w: mazesim.Simulator(), "missing 1 required positional argument: 'world'"),
+        (lambda w: mazesim.Simulator(w, bogus=1), "unexpected keyword argument 'bogus'"),
+        (lambda w: mazesim.Simulator(w).step(1.0), "missing 1 required positional argument"),
+        (lambda w: mazesim.Simulator(w).snapshot(1), r"snapshot\(\) takes no arguments"),
+        (lambda w: mazesim.builtin_world_names(w), r"builtin_world_names\(\) takes no arguments"),
+        (lambda w: mazesim.World.builtin(), "missing 1 required positional argument: 'name'"),
+        (lambda w: mazesim.Simulator.__new__(int), "expected the class Simulator"),
+    ],
+)
+def test_a_wrong_number_of_arguments_names_what_was_expected(
+    call: Callable[[Any], Any], message: str
+) -> None:
+    with pytest.raises(mazesim.InvalidArgumentError, match=message):
+        call(mazesim.World.builtin("arena"))
+
+
+def test_a_bound_method_and_a_valid_call_are_served_as_before() -> None:
+    """The guard changes only a refused call: a method taken as a value refuses extra arguments
+    the same way, and valid calls of every kind return as before."""
+    world = mazesim.World.builtin("arena")
+    simulator = mazesim.Simulator(world, seed=3)
+    step, snapshot = simulator.step, simulator.snapshot
+    with pytest.raises(mazesim.InvalidArgumentError, match="unexpected keyword"):
+        step(1.0, 1.0, x=2)
+    with pytest.raises(mazesim.InvalidArgumentError, match="takes no arguments"):
+        snapshot(x=2)
+    step(1.0, 1.0)
+    other = mazesim.Simulator(world, seed=3)
+    other.restore(core.Simulator.snapshot(simulator))
+    assert other.pose == simulator.pose
+    assert mazesim.World.builtin(name="arena").to_toml() == world.to_toml()

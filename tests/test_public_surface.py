@@ -83,6 +83,38 @@ def python_call(entry: EntryPoint, rng: random.Random) -> dict[str, Any]:
     }
 
 
+#: Name of a keyword no entry point takes.
+UNKNOWN_KEYWORD = "not_a_parameter"
+
+
+def arity_calls(entry: EntryPoint, rng: random.Random) -> list[dict[str, Any]]:
+    """Calls with the wrong number of arguments: a required one left out, one positional value
+    more than the entry point takes, a keyword it does not know (each where it applies). They
+    must be refused with a ``MazesimError`` (``InvalidArgumentError``) like any other bad
+    argument, for a compiled entry point as for one written in Python."""
+    keys = sorted(BUILDERS)
+    owner = needs_instance(entry)
+    base = {
+        "path": entry.path,
+        "instance": instance_recipe(owner) if owner else None,
+        "positional": list(entry.positional),
+        "arity": True,
+    }
+    given = {p: rng.choice(keys) for p in entry.required}
+    calls = []
+    if entry.required:
+        missing = entry.required[rng.randrange(len(entry.required))]
+        calls.append({**base, "args": {p: k for p, k in given.items() if p != missing}})
+    if not entry.any_positional:
+        every = {p: rng.choice(keys) for p in entry.ordered}
+        calls.append(
+            {**base, "positional": list(entry.ordered), "args": every, "more": [rng.choice(keys)]}
+        )
+    if not entry.any_keyword:
+        calls.append({**base, "args": {**given, UNKNOWN_KEYWORD: rng.choice(keys)}})
+    return calls
+
+
 def cli_call(entry: EntryPoint, rng: random.Random) -> dict[str, Any]:
     """One command line: its words, its positionals and one option given hostile words."""
     words = ["=" + k for k in sorted(ARGUMENT_WORDS)]
@@ -104,6 +136,8 @@ def plans_of(entries: list[EntryPoint], seed: int, calls: int) -> list[dict[str,
             rng = random.Random(f"{seed}:{entry.path}:{number}")
             is_cli = entry.path.startswith("cli:")
             plans.append(cli_call(entry, rng) if is_cli else python_call(entry, rng))
+        if not entry.path.startswith("cli:"):
+            plans.extend(arity_calls(entry, random.Random(f"{seed}:{entry.path}:arity")))
     return plans
 
 
@@ -197,6 +231,12 @@ def test_hostile_values_end_in_a_result_or_a_mazesim_error(drawn_seed: int) -> N
     plans = plans_of([e for e in entry_points() if _in_part(e)], seed, CALLS)
     results = walk(plans)
     failures = [f"{plan}: {r['what']}" for plan, r in zip(plans, results) if r["how"] == "escaped"]
+    # A call with the wrong number of arguments is refused as a bad argument, never run.
+    failures += [
+        f"{plan}: {r['what']}"
+        for plan, r in zip(plans, results)
+        if plan.get("arity") and r["how"] == "ended" and r["what"] == "returned"
+    ]
     assert not failures, f"seed {seed}: {len(failures)} of {len(plans)} calls:\n" + "\n".join(
         failures
     )

@@ -489,7 +489,9 @@ def checked(func: Callable[..., Any], *, method: bool = False) -> Callable[..., 
             state.inside = False
 
     code = wrapper.__code__
-    made = types.FunctionType(code, func.__globals__, func.__name__, None, wrapper.__closure__)
+    # A function made by exec without builtins (a NamedTuple's __new__) keeps this module's.
+    home = func.__globals__ if func.__globals__.get("__builtins__") else globals()
+    made = types.FunctionType(code, home, func.__name__, None, wrapper.__closure__)
     functools.update_wrapper(made, func)
     made.__kwdefaults__ = None
     made.__mazesim_checked__ = True  # type: ignore[attr-defined]
@@ -498,10 +500,38 @@ def checked(func: Callable[..., Any], *, method: bool = False) -> Callable[..., 
 
 def checks_own_arguments(func: Callable[..., Any]) -> Callable[..., Any]:
     """Marks ``func`` as a per-step hot path that checks its own arguments (an env's ``step``
-    refuses a bad action itself): the surface's check leaves it unwrapped, so a step pays
-    nothing for it. The public-surface registry still feeds it hostile arguments."""
-    func.__mazesim_checked__ = True  # type: ignore[attr-defined]
-    return func
+    refuses a bad action itself): the surface's check leaves it out, so a step pays nothing for
+    it. Only a call with the wrong number of arguments (refused by Python before ``func`` runs,
+    with a ``TypeError``) is turned into :class:`~mazesim.errors.InvalidArgumentError`, by a thin
+    wrapper that does nothing else. The public-surface registry still feeds it hostile
+    arguments."""
+    error = InvalidArgumentError
+
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
+        try:
+            return func(*args, **kwargs)
+        except TypeError as failure:
+            trace = failure.__traceback__
+            if trace is not None and trace.tb_next is None:  # raised by the call itself
+                raise error(f"{func.__qualname__}: {failure}") from None
+            raise
+
+    functools.update_wrapper(wrapper, func)
+    wrapper.__mazesim_checked__ = True  # type: ignore[attr-defined]
+    return wrapper
+
+
+def _refuse_any_argument(cls: type) -> Callable[..., None]:
+    """An ``__init__`` for a class that takes no arguments (its ``__init__`` and ``__new__``
+    are ``object``'s), so that a call with some is refused by the check as any other. Not for
+    a class with subclasses (a mixin's ``__init__`` would hide the next class's)."""
+
+    def __init__(self: Any) -> None:
+        pass
+
+    __init__.__qualname__ = f"{cls.__qualname__}.__init__"
+    __init__.__module__ = cls.__module__
+    return __init__
 
 
 def _guard_class(cls: type) -> None:
@@ -514,6 +544,13 @@ def _guard_class(cls: type) -> None:
     inherited = cls.__init__
     if "__init__" not in vars(cls) and inspect.isfunction(inherited):
         cls.__init__ = checked(inherited, method=True)  # type: ignore[method-assign]
+    elif (
+        inherited is object.__init__ and cls.__new__ is object.__new__ and not cls.__subclasses__()
+    ):
+        cls.__init__ = checked(_refuse_any_argument(cls), method=True)  # type: ignore[method-assign]
+    made_by = getattr(vars(cls).get("__new__"), "__func__", None)
+    if inspect.isfunction(made_by):  # a NamedTuple's constructor
+        cls.__new__ = staticmethod(checked(made_by, method=True))  # type: ignore[method-assign]
     for name, raw in list(vars(cls).items()):
         if name.startswith("_") and name != "__init__":
             continue

@@ -93,3 +93,22 @@ def test_evaluate_counts_successes_and_lengths() -> None:
     random = evaluate(TASK, None, episodes=4, seed=10**6)
     assert random.success < 1.0
     assert random.mean_length > result.mean_length
+
+
+@pytest.mark.parametrize(
+    ("change", "found"),
+    [
+        (lambda o: np.full_like(o, np.nan), "NaN or infinity"),
+        (lambda o: np.full_like(o, np.inf), "NaN or infinity"),
+        (lambda o: o[:3], r"shape \(3,\)"),
+        (lambda o: np.stack([o, o]), r"shape \(2, "),
+    ],
+)
+def test_an_observation_of_another_shape_or_not_finite_is_refused(change, found) -> None:  # type: ignore[no-untyped-def]
+    env = gymnasium.make("mazesim/UnseenMaze-v1")
+    observation, _ = env.reset(seed=0)
+    for agent_class in (WallFollower, FrontierExplorer):
+        agent = agent_class(env.get_wrapper_attr("observation_names"))
+        with pytest.raises(InvalidArgumentError, match=found):
+            agent.act(change(observation))
+        assert agent.act(observation).shape == (2,)

@@ -110,3 +110,21 @@ def test_sb3s_checker_and_her_accept_every_goal_task() -> None:
         None,
     )
     assert np.allclose(sample.rewards.numpy().ravel(), recomputed)
+
+
+@pytest.mark.parametrize(
+    ("achieved", "desired", "found"),
+    [
+        (np.zeros(7), np.zeros(2), r"shape \(7,\)"),
+        (np.zeros((4, 2)), np.zeros((4, 3)), r"shape \(4, 3\)"),
+        (5.0, np.zeros(2), r"shape \(\)"),
+        (np.array([np.nan, 0.0]), np.zeros(2), "NaN or infinity"),
+        (np.zeros((3, 2)), np.array([[0.0, np.inf]]), "NaN or infinity"),
+    ],
+)
+def test_compute_reward_refuses_goals_that_are_not_finite_pairs(
+    achieved: object, desired: object, found: str
+) -> None:
+    goal_env = gymnasium.make("mazesim/EPuckGoalDense-v0").unwrapped
+    with pytest.raises(InvalidArgumentError, match=found):
+        goal_env.compute_reward(achieved, desired, {})

@@ -1,9 +1,11 @@
 """Fuzzing the run-file reader: a real run's JSON with a field replaced by a hostile value
 (non-finite and extreme numbers, wrong types, deep nesting, long lists), fields deleted, or its
-bytes mutated, is read into a run or refused with a ``MazesimError``; never another exception."""
+bytes mutated, is read into a run or refused with a ``MazesimError``; never another exception.
+Both formats are fuzzed: a run of one robot (1.0) and a run of three robots (1.1)."""
 
 from __future__ import annotations
 
+import gzip
 import json
 import math
 from pathlib import Path
@@ -12,6 +14,7 @@ from typing import Any
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from robots_world import record_three_robots
 from test_replay_run import long_run
 
 import mazesim
@@ -39,9 +42,15 @@ HOSTILE: list[Any] = [
 ]
 
 
-@pytest.fixture(scope="module")
-def run_json() -> dict[str, Any]:
-    values: dict[str, Any] = json.loads(json.dumps(long_run(60).as_json()))
+@pytest.fixture(scope="module", params=["one robot", "three robots"])
+def run_json(request: pytest.FixtureRequest, tmp_path_factory: pytest.TempPathFactory) -> Any:
+    """A run of one robot (format 1.0) and one of three robots (1.1: its ``robots`` and each
+    episode's tracks of the others), as their JSON."""
+    if request.param == "one robot":
+        return json.loads(json.dumps(long_run(60).as_json()))
+    recorded = record_three_robots(tmp_path_factory.mktemp("three"))
+    values = json.loads(gzip.decompress(recorded["run"].read_bytes()))
+    assert values["version"] == "1.1"
     return values
 
 

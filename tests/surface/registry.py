@@ -12,6 +12,7 @@ value of its annotated type) cannot; a class neither can make fails ``test_publi
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import enum
 import importlib
 import inspect
@@ -112,6 +113,11 @@ class EntryPoint:
     positional: tuple[str, ...] = field(default=())
     #: For a command: the value each option takes ("" for a flag).
     options: tuple[tuple[str, bool], ...] = field(default=())
+    #: Those that can be given by position, in order.
+    ordered: tuple[str, ...] = field(default=())
+    #: Whether it takes any number of positional (``*args``) and keyword (``**kwargs``) values.
+    any_positional: bool = False
+    any_keyword: bool = False
 
 
 def _modules() -> Iterator[Any]:
@@ -156,13 +162,18 @@ def _signature(target: Callable[..., Any], skip_first: bool) -> EntryPoint | Non
         tuple(p.name for p in usable),
         tuple(p.name for p in usable if p.default is p.empty),
         positional=tuple(p.name for p in usable if p.kind is p.POSITIONAL_ONLY),
+        ordered=tuple(
+            p.name for p in usable if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)
+        ),
+        any_positional=any(p.kind is p.VAR_POSITIONAL for p in params),
+        any_keyword=any(p.kind is p.VAR_KEYWORD for p in params),
     )
 
 
 def _with_path(entry: EntryPoint | None, path: str) -> EntryPoint:
-    if entry is None:
-        return EntryPoint(path, ())
-    return EntryPoint(path, entry.parameters, entry.required, positional=entry.positional)
+    if entry is None:  # a signature Python cannot read: called with no arguments
+        return EntryPoint(path, (), any_positional=True, any_keyword=True)
+    return dataclasses.replace(entry, path=path)
 
 
 def python_entry_points() -> list[EntryPoint]:

@@ -78,6 +78,7 @@ def run_one(plan: dict[str, Any], world: Any, tmp: Path) -> dict[str, Any]:
             target = _target(plan["path"], plan["instance"], world, tmp)
             args = {name: make(key, tmp) for name, key in plan["args"].items()}
             positional = [args.pop(name) for name in plan["positional"] if name in args]
+            positional += [make(key, tmp) for key in plan.get("more", [])]
             timer.start()
             target(*positional, **args)
             timer.cancel()

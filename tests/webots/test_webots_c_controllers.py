@@ -310,3 +310,25 @@ def test_a_tk_controller_without_a_display_is_not_started(
     run = run_controller(str(tmp_path / "mouse.py"), mazesim.load_world("arena"), seconds=1.0)
     assert run.steps == 0 and run.exit_status != 0
     assert run.error.startswith("controller not run: ") and NO_DISPLAY in run.error
+
+
+def test_a_controller_that_is_a_fifo_or_too_long_is_refused_before_it_is_read(
+    tmp_path: Path,
+) -> None:
+    """A C controller that is a FIFO no process writes to is refused at once (its read would
+    block for ever), and one longer than the text bound before it is read whole."""
+    import os
+
+    from mazesim._paths import MAX_TEXT_CHARACTERS
+
+    (tmp_path / "fifo").mkdir()
+    fifo = tmp_path / "fifo" / "fifo.c"
+    os.mkfifo(fifo)
+    with pytest.raises(mazesim.MazesimIOError, match="expected a regular file, found a FIFO"):
+        build(fifo)
+    (tmp_path / "long").mkdir()
+    long = tmp_path / "long" / "long.c"
+    with long.open("wb") as handle:
+        handle.truncate(MAX_TEXT_CHARACTERS + 1)  # sparse: takes no room on the disk
+    with pytest.raises(ControllerBuildError, match="at most 67108864 bytes"):
+        build(long)

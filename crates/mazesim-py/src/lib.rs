@@ -2,6 +2,7 @@
 //! (type conversion, numpy buffers, error mapping). No simulation logic lives here.
 
 mod args;
+mod arity;
 mod batch;
 mod buffers;
 mod errors;
@@ -119,5 +120,13 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<profile::PyRobotProfile>()?;
     m.add_class::<simulator::PySimulator>()?;
     m.add_class::<tasks::PyTaskFeatures>()?;
-    Ok(())
+    // Wrong arguments (how many, which names) raise InvalidArgumentError, not pyo3's TypeError.
+    let classes = [
+        m.py().get_type::<batch::PyBatch>(),
+        m.py().get_type::<world::PyWorld>(),
+        m.py().get_type::<profile::PyRobotProfile>(),
+        m.py().get_type::<simulator::PySimulator>(),
+        m.py().get_type::<tasks::PyTaskFeatures>(),
+    ];
+    arity::guard_module(m, &classes)
 }

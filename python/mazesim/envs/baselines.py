@@ -106,6 +106,7 @@ class CellAgent:
                 f"{', '.join(missing)} (make the task with observation='explore')"
             )
         self._index = {name: names.index(name) for name in needed}
+        self._width = len(names)
         self.columns, self.rows = (int(size) for size in maze_size)
         self.turn_per_step = float(turn_per_step)
         self.reset()
@@ -128,6 +129,12 @@ class CellAgent:
     def act(self, observation: npt.ArrayLike) -> npt.NDArray[np.float32]:
         """The wheel speeds (left, right, fractions of the motor limit) for ``observation``."""
         values = np.asarray(observation, dtype=np.float64)
+        if values.shape != (self._width,) or not np.isfinite(values).all():
+            found = f"shape {values.shape}" if values.shape != (self._width,) else "NaN or infinity"
+            raise InvalidArgumentError(
+                f"expected observation to be {self._width} finite numbers (one per name of "
+                f"observation_names), found {found}"
+            )
         sides = tuple(bool(values[self._index[side]] > 0.5) for side in _SIDES)
         if self.uses_pose:
             x, y, yaw, goal = self._pose(values)

@@ -91,6 +91,13 @@ class MazeGoalEnv(gymnasium.Env[Observation, Any]):
         leading batch dimensions (the last one holds x, y); a float for one pair."""
         achieved = np.asarray(achieved_goal, dtype=np.float64)
         desired = np.asarray(desired_goal, dtype=np.float64)
+        for name, goals in (("achieved_goal", achieved), ("desired_goal", desired)):
+            if goals.shape[-1:] != (2,) or not np.isfinite(goals).all():
+                found = f"shape {goals.shape}" if goals.shape[-1:] != (2,) else "NaN or infinity"
+                raise InvalidArgumentError(
+                    f"expected {name} to be finite (x, y) pairs (a last dimension of 2), "
+                    f"found {found}"
+                )
         distance = np.linalg.norm(achieved - desired, axis=-1)
         if self.reward_type == "dense":
             reward = -distance

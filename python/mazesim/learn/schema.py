@@ -14,6 +14,7 @@ before the schema is applied.
 
 from __future__ import annotations
 
+import abc
 import json
 import math
 from collections.abc import Mapping
@@ -119,9 +120,10 @@ def parse_metadata(data: bytes, where: str) -> Any:
     return document
 
 
-class Node:
-    """One node of a schema."""
+class Node(abc.ABC):
+    """One node of a schema (an abstract base: each kind of node is a subclass)."""
 
+    @abc.abstractmethod
     def check(self, value: Any, where: str, path: str) -> None:
         """Raises :class:`PolicyFormatError` unless ``value`` fits.
 

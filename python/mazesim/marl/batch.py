@@ -6,8 +6,9 @@ reset with seeds ``s, s + 1, ...`` and stepped one by one give, bit for bit, wha
 reset with seed ``s`` gives (``tests/marl/test_native_batch.py``).
 
 Seeding: environment ``i`` draws its episodes (world, starts, goals, the simulator's noise seed)
-from its own stream ``numpy.random.default_rng(seed + i)``; every later reset continues that
-stream, so a run is replayed exactly from its seed.
+from its own stream ``numpy.random.default_rng(seed + i)`` (wrapping past ``2**64 - 1``, as the
+single-robot vector env); every later reset continues that stream, so a run is replayed exactly
+from its seed.
 """
 
 from __future__ import annotations
@@ -20,6 +21,7 @@ import numpy.typing as npt
 
 from mazesim._core import BatchSimulator, RobotProfile
 from mazesim._sizes import MOST_ENVS
+from mazesim.envs.errors import MAX_SEED, is_seed
 from mazesim.errors import InvalidActionError, InvalidArgumentError
 from mazesim.marl.tasks import EpisodeDraw, MultiRobotTask, RobotStates, agent_names
 
@@ -109,9 +111,16 @@ class MultiRobotBatch:
         """
         n = self.num_envs
         if seed is not None:
-            seeds = [int(seed) + i for i in range(n)] if np.isscalar(seed) else list(seed)  # type: ignore[arg-type]
-            if len(seeds) != n:
-                raise InvalidArgumentError(f"expected {n} seeds, found {len(seeds)}")
+            seeds: list[Any] = []
+            if is_seed(seed):
+                seeds = [(int(seed) + i) % (MAX_SEED + 1) for i in range(n)]  # type: ignore[arg-type]
+            elif isinstance(seed, Sequence) and not isinstance(seed, str) and len(seed) == n:
+                seeds = list(seed)
+            if len(seeds) != n or not all(is_seed(s) for s in seeds):
+                raise InvalidArgumentError(
+                    f"expected seed to be None, an int in 0..={MAX_SEED} or {n} of them, "
+                    f"found {seed!r:.200}"
+                )
             self._rngs = [np.random.default_rng(s) for s in seeds]
         elif not self._rngs:
             entropy = np.random.SeedSequence().spawn(n)

@@ -8,8 +8,10 @@ from collections.abc import Callable
 from typing import Any, NamedTuple
 
 from pettingzoo import AECEnv
-from pettingzoo.utils.conversions import parallel_to_aec
+from pettingzoo.utils.conversions import parallel_to_aec_wrapper
+from pettingzoo.utils.wrappers import OrderEnforcingWrapper
 
+from mazesim.envs.errors import ResetNeededError
 from mazesim.marl.batch import MultiRobotBatch
 from mazesim.marl.parallel import MultiRobotParallelEnv
 from mazesim.marl.tasks import MultiRobotTask
@@ -40,7 +42,7 @@ def entry_points(task: Callable[..., MultiRobotTask]) -> EntryPoints:
 
     def raw_env(**options: Any) -> AECEnv:
         """The AEC version (PettingZoo's ``parallel_to_aec`` of ``parallel_env``)."""
-        return parallel_to_aec(parallel_env(**options))
+        return _OrderEnforcing(parallel_to_aec_wrapper(parallel_env(**options)))
 
     def env(**options: Any) -> AECEnv:
         """The AEC version, as PettingZoo's own modules' ``env()`` gives it."""
@@ -64,3 +66,34 @@ def entry_points(task: Callable[..., MultiRobotTask]) -> EntryPoints:
         )
 
     return EntryPoints(parallel_env, raw_env, env, batch_env)
+
+
+class _OrderEnforcing(OrderEnforcingWrapper[Any, Any, Any]):
+    """PettingZoo's order check of an AEC env (what ``parallel_to_aec`` adds), raising the
+    package's :class:`~mazesim.envs.ResetNeededError` (also gymnasium's ``ResetNeeded``) where
+    PettingZoo raises a bare ``AssertionError``: ``step``, ``observe``, ``state``, ``render`` or
+    ``agent_iter`` before the first ``reset``."""
+
+    def _reset_first(self, what: str) -> None:
+        if not self._has_reset:
+            raise ResetNeededError(f"expected reset() before {what}()")
+
+    def step(self, action: Any) -> None:
+        self._reset_first("step")
+        super().step(action)
+
+    def observe(self, agent: Any) -> Any:
+        self._reset_first("observe")
+        return super().observe(agent)
+
+    def state(self) -> Any:
+        self._reset_first("state")
+        return super().state()
+
+    def render(self) -> Any:
+        self._reset_first("render")
+        return super().render()
+
+    def agent_iter(self, max_iter: int = 2**63) -> Any:
+        self._reset_first("agent_iter")
+        return super().agent_iter(max_iter)

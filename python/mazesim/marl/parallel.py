@@ -16,6 +16,7 @@ import numpy as np
 import numpy.typing as npt
 from pettingzoo import ParallelEnv
 
+from mazesim.envs.errors import EnvClosedError, ResetNeededError, check_options, check_seed
 from mazesim.errors import InvalidActionError, InvalidArgumentError
 from mazesim.marl.batch import MultiRobotBatch
 from mazesim.marl.render import SwarmRenderer
@@ -68,6 +69,7 @@ class MultiRobotParallelEnv(ParallelEnv[str, Observation, npt.NDArray[np.float32
         self._observation_spaces = {a: self._observation_space for a in self.possible_agents}
         self._action_spaces = {a: self._action_space for a in self.possible_agents}
         self._renderer: SwarmRenderer | None = None
+        self._closed = False
 
     def observation_space(self, agent: str) -> gymnasium.spaces.Space[Any]:
         """Every agent's observation space: ``Box`` of the task's width, float32."""
@@ -80,7 +82,16 @@ class MultiRobotParallelEnv(ParallelEnv[str, Observation, npt.NDArray[np.float32
     def reset(
         self, seed: int | None = None, options: dict[str, Any] | None = None
     ) -> tuple[dict[str, Observation], dict[str, dict[str, Any]]]:
-        """Starts an episode (a new world drawn from the env's stream, seeded by ``seed``)."""
+        """Starts an episode (a new world drawn from the env's stream, seeded by ``seed``).
+
+        Raises:
+            InvalidArgumentError: ``seed`` is not None or an int in ``0..=2**64-1``, or
+                ``options`` is not None or a dict (as the single-robot envs).
+            EnvClosedError: The env is closed.
+        """
+        self._check_open()
+        seed = check_seed(seed)
+        check_options(options)
         observations, _ = self.batch.reset(seed)
         self.agents = list(self.possible_agents)
         self._renderer = None
@@ -95,9 +106,16 @@ class MultiRobotParallelEnv(ParallelEnv[str, Observation, npt.NDArray[np.float32
         dict[str, bool],
         dict[str, dict[str, Any]],
     ]:
-        """Steps every live agent with its action (an agent without one: an error)."""
+        """Steps every live agent with its action (an agent without one: an error).
+
+        Raises:
+            ResetNeededError: No agent is live (before the first ``reset``, or after the episode
+                ended).
+            EnvClosedError: The env is closed.
+        """
+        self._check_open()
         if not self.agents:
-            raise InvalidArgumentError("expected reset() before step(): no agent is live")
+            raise ResetNeededError("expected reset() before step(): no agent is live")
         missing = [a for a in self.agents if a not in actions]
         if missing:
             raise InvalidActionError(f"expected an action for every live agent, missing {missing}")
@@ -125,6 +143,7 @@ class MultiRobotParallelEnv(ParallelEnv[str, Observation, npt.NDArray[np.float32
 
     def render(self) -> npt.NDArray[np.uint8] | None:
         """A top-down RGB picture (``render_mode="rgb_array"``), else None."""
+        self._check_open()
         if self.render_mode != "rgb_array":
             return None
         draw = self.batch.draws[0]
@@ -135,8 +154,14 @@ class MultiRobotParallelEnv(ParallelEnv[str, Observation, npt.NDArray[np.float32
         return self._renderer.frame(self.batch.poses[0], self.batch.colliding[0])
 
     def close(self) -> None:
-        """Releases the picture (the simulator holds no outside resource)."""
+        """Releases the picture (the simulator holds no outside resource); ``reset``, ``step``
+        and ``render`` raise :class:`~mazesim.envs.EnvClosedError` from then on."""
         self._renderer = None
+        self._closed = True
+
+    def _check_open(self) -> None:
+        if self._closed:
+            raise EnvClosedError("the env is closed: make a new one")
 
     def _per_agent(self, observations: Observation) -> dict[str, Observation]:
         return {a: observations[i] for i, a in enumerate(self.possible_agents)}

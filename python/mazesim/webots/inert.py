@@ -34,7 +34,6 @@ __all__ = [
     "Lidar",
     "LidarPoint",
     "Motion",
-    "NotSimulated",
     "Pen",
     "RadarTarget",
     "Radar",

@@ -28,6 +28,7 @@ from pathlib import Path
 from typing import Any
 
 from mazesim._atomic import atomic_file
+from mazesim._paths import MAX_TEXT_CHARACTERS, read_input
 from mazesim.errors import ControllerBuildError, MazesimError, MissingDependencyError
 from mazesim.webots import native_link
 from mazesim.webots import simulation as simulations
@@ -132,8 +133,24 @@ def _key(compilers: list[str], files: list[Path]) -> str:
         version = subprocess.run([compiler, "--version"], capture_output=True, check=False)
         digest.update(version.stdout)
     for path in files:
-        digest.update(str(path).encode() + b"\0" + path.read_bytes() + b"\0")
+        digest.update(str(path).encode() + b"\0" + _source(path) + b"\0")
     return digest.hexdigest()[:20]
+
+
+def _source(path: Path) -> bytes:
+    """The bytes of a source file of the build: a regular file (a FIFO would block the read for
+    ever) of at most :data:`~mazesim._paths.MAX_TEXT_CHARACTERS` bytes.
+
+    Raises:
+        MazesimIOError: Not a regular file, or unreadable.
+        ControllerBuildError: Longer than the bound.
+    """
+    data = read_input(path, MAX_TEXT_CHARACTERS, "a source of the controller")
+    if len(data) > MAX_TEXT_CHARACTERS:
+        raise ControllerBuildError(
+            f"{path}: expected a source file of at most {MAX_TEXT_CHARACTERS} bytes, found more"
+        )
+    return data
 
 
 def _compile(main: Path, command: list[str], cwd: str) -> subprocess.CompletedProcess[str]:
@@ -180,7 +197,7 @@ def _scan(files: list[Path]) -> tuple[list[str], dict[str, str], set[Path]]:
         if path in seen or not path.is_file():
             continue
         seen.add(path)
-        text = path.read_text(encoding="utf-8", errors="replace")
+        text = _source(path).decode("utf-8", errors="replace")
         for quote, name in _INCLUDE.findall(text):
             local = (path.parent / name).resolve()
             if quote == '"' and local.is_file():
@@ -292,9 +309,12 @@ def build(source: str | os.PathLike[str]) -> Build:
 
     Raises:
         MissingDependencyError: No compiler.
-        ControllerBuildError: The sources do not compile (the message quotes the compiler).
+        ControllerBuildError: The sources do not compile (the message quotes the compiler), or
+            one is longer than :data:`~mazesim._paths.MAX_TEXT_CHARACTERS` bytes.
+        MazesimIOError: A source is not a regular file (a FIFO, a folder) or cannot be read.
     """
     main = Path(source).resolve()
+    _source(main)  # a regular file of a bounded size, before anything waits on it
     folder = main.parent
     language = "cpp" if main.suffix.lower() in CPP_SUFFIXES else "c"
     c_compiler = _compiler("c")

@@ -29,6 +29,12 @@ pub const MARK_CELL: f64 = 0.002;
 const MAX_MARK_CELLS: usize = 1024;
 /// Largest `.obj` file read, bytes.
 pub const MAX_MESH_BYTES: u64 = 32 << 20;
+/// Most triangles of one mesh (a `.obj` file, or an `IndexedFaceSet`'s faces once fanned): a
+/// face of n corners is n - 2 triangles, so a short line could otherwise ask for millions.
+pub const MAX_MESH_TRIANGLES: usize = 1 << 20;
+/// Most cell tests painting one mesh may make (each triangle tests the cells of its bounding
+/// box on the mark grid): a million large triangles would otherwise take hours.
+const MAX_MARK_TESTS: usize = 1 << 26;
 
 /// A `Mesh` of a visual-only shape, read after the walk (see [`WbtImport::paint_floor_meshes`]).
 #[derive(Debug, Clone, PartialEq)]
@@ -92,6 +98,12 @@ pub fn obj_triangles(text: &str) -> Result<Vec<[Vec3; 3]>, String> {
                         }
                     }
                 }
+                if triangles.len() + corners.len().saturating_sub(2) > MAX_MESH_TRIANGLES {
+                    return Err(format!(
+                        "line {}: expected a mesh of at most {MAX_MESH_TRIANGLES} triangles, found more",
+                        number + 1
+                    ));
+                }
                 for k in 2..corners.len() {
                     triangles.push([corners[0], corners[k - 1], corners[k]]);
                 }
@@ -103,8 +115,19 @@ pub fn obj_triangles(text: &str) -> Result<Vec<[Vec3; 3]>, String> {
 }
 
 /// Paint covering the cells whose centres fall inside the triangles seen from above
-/// (world frame, z up), at `reflectance`: rows of covered cells joined into rectangles.
-pub fn triangles_paint(triangles: &[[Vec3; 3]], reflectance: f64) -> Vec<PaintSpec> {
+/// (world frame, z up), at `reflectance`: rows of covered cells joined into rectangles; or why
+/// not, when the mesh has more than [`MAX_MESH_TRIANGLES`] triangles or would take more than
+/// [`MAX_MARK_TESTS`] cell tests.
+pub fn triangles_paint(
+    triangles: &[[Vec3; 3]],
+    reflectance: f64,
+) -> Result<Vec<PaintSpec>, String> {
+    if triangles.len() > MAX_MESH_TRIANGLES {
+        return Err(format!(
+            "with more than {MAX_MESH_TRIANGLES} triangles ({} found)",
+            triangles.len()
+        ));
+    }
     let points = triangles.iter().flatten();
     let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
     for p in points {
@@ -114,7 +137,7 @@ pub fn triangles_paint(triangles: &[[Vec3; 3]], reflectance: f64) -> Vec<PaintSp
         }
     }
     if !(lo[0] < hi[0] && lo[1] < hi[1]) {
-        return Vec::new();
+        return Ok(Vec::new());
     }
     let extent = (hi[0] - lo[0]).max(hi[1] - lo[1]);
     let cell = MARK_CELL.max(extent / MAX_MARK_CELLS as f64);
@@ -122,6 +145,16 @@ pub fn triangles_paint(triangles: &[[Vec3; 3]], reflectance: f64) -> Vec<PaintSp
     let height = ((hi[1] - lo[1]) / cell).ceil() as usize + 1;
     let mut covered = vec![false; width * height];
     let centre = |i: usize, lo: f64| lo + (i as f64 + 0.5) * cell;
+    let span = |a: f64, b: f64, c: f64| ((a.max(b).max(c) - a.min(b).min(c)) / cell) as usize + 2;
+    let tests = triangles.iter().fold(0usize, |total, t| {
+        let cells = span(t[0][0], t[1][0], t[2][0]).saturating_mul(span(t[0][1], t[1][1], t[2][1]));
+        total.saturating_add(cells)
+    });
+    if tests > MAX_MARK_TESTS {
+        return Err(format!(
+            "too detailed to paint (its triangles cover {tests} cells of {cell:.4} m, at most {MAX_MARK_TESTS})"
+        ));
+    }
     for t in triangles {
         let [a, b, c] = t.map(|p| [p[0], p[1]]);
         let cross = |o: [f64; 2], p: [f64; 2], q: [f64; 2]| {
@@ -154,7 +187,7 @@ pub fn triangles_paint(triangles: &[[Vec3; 3]], reflectance: f64) -> Vec<PaintSp
             }
         }
     }
-    covered_rects(&covered, width, height)
+    Ok(covered_rects(&covered, width, height)
         .into_iter()
         .map(|[c0, c1, r0, r1]| PaintSpec::Rect {
             center: [
@@ -168,7 +201,7 @@ pub fn triangles_paint(triangles: &[[Vec3; 3]], reflectance: f64) -> Vec<PaintSp
             yaw: Finite(0.0),
             reflectance: Reflectance(reflectance),
         })
-        .collect()
+        .collect())
 }
 
 /// Rectangles `[c0, c1, r0, r1]` (end exclusive) of covered cells: runs along each row joined
@@ -348,8 +381,10 @@ impl<'d> Importer<'d> {
             let why = format!("reaching {high:.3} m above the floor");
             return self.drop_visual(shape, geometry, &why);
         }
-        let paint = triangles_paint(triangles, reflectance);
-        self.floor_marks.extend(paint);
+        match triangles_paint(triangles, reflectance) {
+            Ok(paint) => self.floor_marks.extend(paint),
+            Err(why) => self.drop_visual(shape, geometry, &why),
+        }
     }
 
     /// The triangles of an `IndexedFaceSet` (its `Coordinate.point` and `coordIndex`, faces
@@ -371,6 +406,10 @@ impl<'d> Importer<'d> {
                 .iter()
                 .filter_map(|&i| points.get(i as usize).copied())
                 .collect();
+            if triangles.len() + corners.len().saturating_sub(2) > MAX_MESH_TRIANGLES {
+                triangles.push(triangles.first().copied().unwrap_or([corners[0]; 3]));
+                break; // one more than the bound: refused by `triangles_paint`, with a warning
+            }
             for k in 2..corners.len() {
                 triangles.push([corners[0], corners[k - 1], corners[k]]);
             }
@@ -472,7 +511,13 @@ impl WbtImport {
                 ));
                 continue;
             }
-            self.paint.extend(triangles_paint(&world, mesh.reflectance));
+            match triangles_paint(&world, mesh.reflectance) {
+                Ok(paint) => self.paint.extend(paint),
+                Err(why) => self.warnings.push(format!(
+                    "{owner}: mesh {}: {why}: not imported",
+                    path.display()
+                )),
+            }
         }
     }
 }
@@ -480,6 +525,19 @@ impl WbtImport {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_mesh_that_fans_into_too_many_triangles_or_cell_tests_is_refused() {
+        // One face of MAX_MESH_TRIANGLES + 5 corners: MAX_MESH_TRIANGLES + 3 triangles.
+        let face: String = " 1 2 3".repeat(MAX_MESH_TRIANGLES / 3 + 2);
+        let text = format!("v 0 0 0\nv 1 0 0\nv 0 1 0\nf{face}\n");
+        let refused = obj_triangles(&text).expect_err("a refusal");
+        assert!(refused.contains("at most 1048576 triangles"), "{refused}");
+        let large = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+        let refused = triangles_paint(&[large; 2000], 0.2).unwrap_err();
+        assert!(refused.contains("too detailed"), "{refused}");
+        assert!(triangles_paint(&[large; 20], 0.2).is_ok());
+    }
 
     #[test]
     fn obj_faces_fan_into_triangles_with_relative_indices() {
@@ -498,7 +556,7 @@ mod tests {
     #[test]
     fn a_painted_triangle_covers_its_half_of_the_square() {
         let t = [[0.0, 0.0, 0.0], [0.1, 0.0, 0.0], [0.0, 0.1, 0.0]];
-        let paint = triangles_paint(&[t], 0.2);
+        let paint = triangles_paint(&[t], 0.2).unwrap();
         let area: f64 = paint
             .iter()
             .map(|p| match p {

@@ -1,0 +1,69 @@
+"""Misuse of the multi-robot envs raises the package's errors, the same as the single-robot
+gymnasium envs: bad seeds and options, ``step`` before ``reset``, any call after ``close()``,
+for the parallel env, the AEC env and the native batch."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import pytest
+
+pytest.importorskip("pettingzoo", reason="needs mazesim[marl] (make marl-deps)")
+
+from gymnasium.error import ClosedEnvironmentError, ResetNeeded  # noqa: E402
+
+import mazesim  # noqa: E402
+from mazesim.envs import EnvClosedError, ResetNeededError  # noqa: E402
+from mazesim.marl import maze_goals_v0  # noqa: E402
+
+OPTIONS = {"num_robots": 2, "maze_size": (3, 3), "max_cycles": 10}
+BAD_SEEDS = [-1, 2**64, 1.5, True, "7", [1]]
+
+
+@pytest.mark.parametrize("seed", BAD_SEEDS)
+def test_a_bad_seed_is_refused_by_the_parallel_env_and_the_batch(seed: Any) -> None:
+    env = maze_goals_v0.parallel_env(**OPTIONS)
+    with pytest.raises(mazesim.InvalidArgumentError, match="expected seed"):
+        env.reset(seed=seed)
+    batch = maze_goals_v0.batch_env(2, **OPTIONS)
+    with pytest.raises(mazesim.InvalidArgumentError, match="expected seed"):
+        batch.reset(seed=seed)
+
+
+def test_options_that_are_not_a_dict_are_refused() -> None:
+    env = maze_goals_v0.parallel_env(**OPTIONS)
+    with pytest.raises(mazesim.InvalidArgumentError, match="expected options"):
+        env.reset(options=123)  # type: ignore[arg-type]
+
+
+def test_the_largest_seed_is_taken_and_the_batch_wraps_past_it() -> None:
+    batch = maze_goals_v0.batch_env(2, **OPTIONS)
+    wrapped, _ = batch.reset(seed=2**64 - 1)
+    listed, _ = batch.reset(seed=[2**64 - 1, 0])
+    assert np.array_equal(wrapped, listed)
+    observations, _ = maze_goals_v0.parallel_env(**OPTIONS).reset(seed=np.uint64(2**64 - 1))
+    assert len(observations) == 2
+
+
+def test_step_before_reset_and_after_close() -> None:
+    env = maze_goals_v0.parallel_env(**OPTIONS)
+    with pytest.raises(ResetNeededError):
+        env.step({})
+    env.reset(seed=0)
+    env.close()
+    for call in (lambda: env.reset(seed=0), lambda: env.step({}), env.render):
+        with pytest.raises(EnvClosedError) as raised:
+            call()
+        assert isinstance(raised.value, ClosedEnvironmentError)
+
+
+def test_the_aec_env_asks_for_reset_with_the_package_error() -> None:
+    env = maze_goals_v0.env(**OPTIONS)
+    for call in (lambda: env.step(np.zeros(2, np.float32)), lambda: env.observe("epuck_0")):
+        with pytest.raises(ResetNeededError) as raised:
+            call()
+        assert isinstance(raised.value, ResetNeeded)
+    env.reset(seed=0)
+    env.step(np.zeros(2, np.float32))
+    assert env.agent_selection == "epuck_1"
