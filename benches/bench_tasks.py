@@ -2,15 +2,21 @@
 
 Not a test: run it by hand or with ``make bench-tasks`` (gymnasium must be installed)::
 
-    .venv/bin/python benches/bench_tasks.py [--steps 20000] [--round 1000] [--json]
+    .venv/bin/python benches/bench_tasks.py [--rounds 15] [--round 3000] [--json]
 
-Each task (:data:`mazesim.envs.tasks.TASKS` and :data:`~mazesim.envs.tasks.GOAL_TASKS`) and
-CartPole-v1 are made with ``gymnasium.make`` (so with its wrappers: the time limit, the order
-and passive checks), reset with seed 0 and stepped with uniformly random actions from a pool drawn
-beforehand (the policy costs nothing); an episode that ends is reset, so resets (new random mazes
-included) are timed with the steps. The contenders run in alternating rounds of ``--round`` steps,
-so that other load on the machine falls on all alike; a rate is ``--round`` over the median round
-time, and the ratio to CartPole-v1's is the figure to read.
+Each task (every id of gymnasium's registry that starts with ``mazesim/``) and CartPole-v1 are
+made with ``gymnasium.make`` (so with its wrappers: the time limit, the order and passive checks),
+reset with seed 0 and stepped with uniformly random actions from a pool drawn beforehand (the
+policy costs nothing); an episode that ends is reset (new random mazes included).
+
+The measure is the processor time of one step (``time.process_time``), which other jobs on the
+machine disturb far less than the wall clock: each task runs ``--rounds`` rounds of ``--round``
+steps, each round followed by a round of its own CartPole-v1, so that both see the same machine.
+A step's cost is the median round's processor time over its steps, the resets in the round
+included: a reset's cost is amortised over the steps of its episode. Every registered time limit
+(500, 1000, 1500, 3000 steps) divides the default round of 3,000 steps, so each round of a task
+holds as many resets as any other (random actions seldom end an episode before its limit). The
+figure to read is CartPole-v1's time over the task's: its rate as a multiple of CartPole-v1's.
 
 Exits with status 1 if any task steps slower than CartPole-v1 (a ratio below 1).
 """
@@ -21,87 +27,129 @@ import argparse
 import json
 import os
 import platform
+import statistics
 import sys
 import time
-from collections.abc import Callable
+import warnings
+from dataclasses import dataclass, field
 from typing import Any
 
 import gymnasium
-import numpy as np
 
 import mazesim  # noqa: F401  (registers the tasks)
-from mazesim.envs.tasks import GOAL_TASKS, TASKS
 
 POOL = 16
 REFERENCE = "CartPole-v1"
+PREFIX = "mazesim/"
 
 
-def stepper(env_id: str) -> Callable[[int], None]:
-    """A function stepping one env made by ``gymnasium.make(env_id)`` a given number of steps."""
-    env: Any = gymnasium.make(env_id)
-    env.reset(seed=0)
-    env.action_space.seed(0)
-    pool = [env.action_space.sample() for _ in range(POOL)]
+def task_ids() -> list[str]:
+    """Every registered mazesim id, in registration order."""
+    return [env_id for env_id in gymnasium.registry if env_id.startswith(PREFIX)]
 
-    def run(count: int) -> None:
+
+@dataclass
+class Runner:
+    """One env made by ``gymnasium.make`` and the processor time of its rounds."""
+
+    env_id: str
+    env: Any = None
+    pool: list[Any] = field(default_factory=list)
+    times: list[float] = field(default_factory=list)
+    resets: int = 0
+    steps: int = 0
+
+    def __post_init__(self) -> None:
+        self.env = gymnasium.make(self.env_id)
+        self.env.reset(seed=0)
+        self.env.action_space.seed(0)
+        self.pool = [self.env.action_space.sample() for _ in range(POOL)]
+
+    def run(self, count: int, record: bool = True) -> None:
+        """Steps ``count`` times, resetting ended episodes; records the round's processor time
+        per step."""
+        env, pool = self.env, self.pool
+        resets = 0
+        start = time.process_time()
         for k in range(count):
             _, _, terminated, truncated, _ = env.step(pool[k % POOL])
             if terminated or truncated:
                 env.reset()
+                resets += 1
+        elapsed = time.process_time() - start
+        if record:
+            self.times.append(elapsed / count)
+            self.resets += resets
+            self.steps += count
 
-    return run
+    def result(self) -> dict[str, float]:
+        """Microseconds of processor time of a step (its share of the resets included) and the
+        mean episode length of the recorded rounds."""
+        return {
+            "step_us": statistics.median(self.times) * 1e6,
+            "episode_steps": self.steps / max(self.resets, 1),
+        }
 
 
-def rates(env_ids: list[str], steps: int, round_steps: int) -> dict[str, float]:
-    """Steps per second of each env, from the median of alternating rounds."""
-    runs = {env_id: stepper(env_id) for env_id in env_ids}
-    for run in runs.values():
-        run(min(round_steps, 200))  # warm up
-    times: dict[str, list[float]] = {env_id: [] for env_id in runs}
-    for _ in range(max(3, steps // round_steps)):
-        for env_id, run in runs.items():
-            start = time.perf_counter()
-            run(round_steps)
-            times[env_id].append(time.perf_counter() - start)
-    return {env_id: round_steps / float(np.median(ts)) for env_id, ts in times.items()}
+def paired(env_id: str, rounds: int, round_steps: int) -> tuple[dict[str, float], dict[str, float]]:
+    """The task's and its own CartPole-v1's times, from alternating rounds."""
+    task, reference = Runner(env_id), Runner(REFERENCE)
+    for runner in (task, reference):
+        runner.run(100, record=False)  # warm up
+    for _ in range(rounds):
+        task.run(round_steps)
+        reference.run(round_steps)
+    task.env.close()
+    reference.env.close()
+    return task.result(), reference.result()
 
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--steps", type=int, default=20_000, help="steps of each env")
-    parser.add_argument("--round", type=int, default=1_000, help="steps between switches")
+    parser.add_argument("--rounds", type=int, default=15, help="rounds of each env")
+    parser.add_argument("--round", type=int, default=3_000, help="steps of a round")
     parser.add_argument("--json", action="store_true", help="print the result as JSON")
     args = parser.parse_args()
-    tasks = [task.env_id for task in TASKS + GOAL_TASKS]
-    with_warnings = sys.warnoptions
-    if not with_warnings:
-        import warnings
-
+    if args.rounds < 1 or args.round < 1:
+        parser.error("--rounds and --round must be at least 1")
+    if not sys.warnoptions:
         warnings.filterwarnings("ignore", category=DeprecationWarning)  # UnseenMaze-v1 is old
-    measured = rates([*tasks, REFERENCE], args.steps, args.round)
-    reference = measured[REFERENCE]
+    rows: dict[str, Any] = {}
+    for env_id in task_ids():
+        task, reference = paired(env_id, args.rounds, args.round)
+        rows[env_id] = {
+            **task,
+            "cartpole_step_us": reference["step_us"],
+            "over_cartpole": reference["step_us"] / task["step_us"],
+        }
+    try:
+        load = f"load average {os.getloadavg()[0]:.1f}"
+    except OSError:
+        load = "load average unknown"
     result: dict[str, Any] = {
-        "date": time.strftime("%Y-%m-%d", time.gmtime()),
+        "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
         "machine": f"{platform.machine()}, {os.cpu_count()} cores, {platform.python_version()}",
-        "cartpole_steps_per_s": reference,
-        "tasks": {
-            env_id: {"steps_per_s": measured[env_id], "over_cartpole": measured[env_id] / reference}
-            for env_id in tasks
-        },
+        "load": load,
+        "rounds": args.rounds,
+        "round_steps": args.round,
+        "tasks": rows,
     }
-    slow = [env_id for env_id in tasks if measured[env_id] < reference]
+    slow = [env_id for env_id, row in rows.items() if row["over_cartpole"] < 1.0]
     if args.json:
         print(json.dumps(result, indent=2))
     else:
-        print(f"{result['date']}, {result['machine']}: one env through gymnasium.make")
-        print(f"  {REFERENCE:<34} {reference:>10,.0f} steps/s")
-        for env_id, row in result["tasks"].items():
+        print(
+            f"{result['date']}, {result['machine']}, {load}: one env through gymnasium.make, "
+            f"microseconds of processor time ({args.rounds} rounds of {args.round} steps)"
+        )
+        print(f"  {'task':<32} {'a step':>7} {'CartPole':>8} {'ratio':>6} {'episode':>8}")
+        for env_id, row in rows.items():
             print(
-                f"  {env_id:<34} {row['steps_per_s']:>10,.0f} steps/s "
-                f"{row['over_cartpole']:>6.2f} x CartPole-v1"
+                f"  {env_id:<32} {row['step_us']:>7.2f} {row['cartpole_step_us']:>8.2f} "
+                f"{row['over_cartpole']:>5.2f}x {row['episode_steps']:>8.0f}"
             )
     if slow:
-        print(f"below CartPole-v1's rate: {', '.join(slow)}", file=sys.stderr)
+        print(f"slower than CartPole-v1: {', '.join(slow)}", file=sys.stderr)
         return 1
     return 0
 
