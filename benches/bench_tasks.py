@@ -18,7 +18,14 @@ included: a reset's cost is amortised over the steps of its episode. Every regis
 holds as many resets as any other (random actions seldom end an episode before its limit). The
 figure to read is CartPole-v1's time over the task's: its rate as a multiple of CartPole-v1's.
 
-Exits with status 1 if any task steps slower than CartPole-v1 (a ratio below 1).
+The native vector env's lead: each task with a vector entry point is also made with
+``gymnasium.make_vec(..., vectorization_mode="vector_entry_point")`` of ``--vector-envs``
+environments and stepped in rounds of as many env-steps, alternating with the single env; the
+lead is the single env's processor time per step over the vector env's per env-step (its
+threads' time included).
+
+Exits with status 1 if any task steps slower than CartPole-v1 (a ratio below 1), or its native
+vector env is not faster per env-step than its single env (a lead below 1).
 """
 
 from __future__ import annotations
@@ -91,6 +98,50 @@ class Runner:
         }
 
 
+@dataclass
+class VectorRunner:
+    """A native vector env made by ``gymnasium.make_vec`` and its processor time per env-step."""
+
+    env_id: str
+    num_envs: int
+    env: Any = None
+    pool: list[Any] = field(default_factory=list)
+    times: list[float] = field(default_factory=list)
+
+    def __post_init__(self) -> None:
+        self.env = gymnasium.make_vec(
+            self.env_id, num_envs=self.num_envs, vectorization_mode="vector_entry_point"
+        )
+        self.env.reset(seed=0)
+        self.env.action_space.seed(0)
+        self.pool = [self.env.action_space.sample() for _ in range(POOL)]
+
+    def run(self, env_steps: int, record: bool = True) -> None:
+        """Steps every env (autoreset included) about ``env_steps`` env-steps in all."""
+        count = max(1, env_steps // self.num_envs)
+        env, pool = self.env, self.pool
+        start = time.process_time()
+        for k in range(count):
+            env.step(pool[k % POOL])
+        if record:
+            self.times.append((time.process_time() - start) / (count * self.num_envs))
+
+
+def vector_lead(env_id: str, num_envs: int, rounds: int, round_steps: int) -> dict[str, float]:
+    """Microseconds of processor time per env-step of the native vector env and of the single
+    env, from alternating rounds, and the single env's over the vector env's."""
+    single, vector = Runner(env_id), VectorRunner(env_id, num_envs)
+    single.run(100, record=False)
+    vector.run(num_envs, record=False)
+    for _ in range(rounds):
+        single.run(round_steps)
+        vector.run(round_steps)
+    single.env.close()
+    vector.env.close()
+    one, each = statistics.median(single.times), statistics.median(vector.times)
+    return {"single_us": one * 1e6, "vector_us": each * 1e6, "lead": one / each}
+
+
 def paired(env_id: str, rounds: int, round_steps: int) -> tuple[dict[str, float], dict[str, float]]:
     """The task's and its own CartPole-v1's times, from alternating rounds."""
     task, reference = Runner(env_id), Runner(REFERENCE)
@@ -108,6 +159,9 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--rounds", type=int, default=15, help="rounds of each env")
     parser.add_argument("--round", type=int, default=3_000, help="steps of a round")
+    parser.add_argument(
+        "--vector-envs", type=int, default=256, help="envs of the native vector env (0: skip it)"
+    )
     parser.add_argument("--json", action="store_true", help="print the result as JSON")
     args = parser.parse_args()
     if args.rounds < 1 or args.round < 1:
@@ -122,6 +176,11 @@ def main() -> int:
             "cartpole_step_us": reference["step_us"],
             "over_cartpole": reference["step_us"] / task["step_us"],
         }
+    vectors: dict[str, Any] = {}
+    if args.vector_envs > 0:
+        for env_id in task_ids():
+            if gymnasium.registry[env_id].vector_entry_point is not None:
+                vectors[env_id] = vector_lead(env_id, args.vector_envs, args.rounds, args.round)
     try:
         load = f"load average {os.getloadavg()[0]:.1f}"
     except OSError:
@@ -133,8 +192,11 @@ def main() -> int:
         "rounds": args.rounds,
         "round_steps": args.round,
         "tasks": rows,
+        "vector_envs": args.vector_envs,
+        "vector": vectors,
     }
     slow = [env_id for env_id, row in rows.items() if row["over_cartpole"] < 1.0]
+    behind = [env_id for env_id, row in vectors.items() if row["lead"] < 1.0]
     if args.json:
         print(json.dumps(result, indent=2))
     else:
@@ -148,10 +210,22 @@ def main() -> int:
                 f"  {env_id:<32} {row['step_us']:>7.2f} {row['cartpole_step_us']:>8.2f} "
                 f"{row['over_cartpole']:>5.2f}x {row['episode_steps']:>8.0f}"
             )
+        if vectors:
+            print(
+                f"native vector env of {args.vector_envs} envs, microseconds of processor time "
+                f"per env-step"
+            )
+            print(f"  {'task':<32} {'single':>7} {'vector':>8} {'lead':>6}")
+            for env_id, row in vectors.items():
+                print(
+                    f"  {env_id:<32} {row['single_us']:>7.2f} {row['vector_us']:>8.2f} "
+                    f"{row['lead']:>5.2f}x"
+                )
     if slow:
         print(f"slower than CartPole-v1: {', '.join(slow)}", file=sys.stderr)
-        return 1
-    return 0
+    if behind:
+        print(f"native vector env not ahead: {', '.join(behind)}", file=sys.stderr)
+    return 1 if slow or behind else 0
 
 
 if __name__ == "__main__":
