@@ -6,7 +6,7 @@ use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyTuple};
 
-use crate::args::{Bytes, Flag, IntArg, Real};
+use crate::args::{type_name, Bytes, Flag, IntArg, Real};
 use crate::buffers::{copied, readable};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::{enter, enter_detached};
@@ -276,7 +276,7 @@ impl PySimulator {
     fn step_task<'py>(
         &self,
         py: Python<'py>,
-        features: &Bound<'py, PyTaskFeatures>,
+        features: &Bound<'py, PyAny>,
         left: Real,
         right: Real,
         low: &Bound<'py, PyAny>,
@@ -295,6 +295,12 @@ impl PySimulator {
         let previous = previous_action(&left, &right, &max_speed)?;
         let (left, right) = (left.value("left")?, right.value("right")?);
         let observe = observe.value("observe", "a bool")?;
+        let features = features.cast::<PyTaskFeatures>().map_err(|_| {
+            invalid(format!(
+                "expected features to be a TaskFeatures, found a {}",
+                type_name(features)
+            ))
+        })?;
         let features = features.get();
         let (mut stepped, (observation, distance, reached)) = enter(|| {
             let stepped = self.stepped(left, right, low, high)?;
