@@ -2,17 +2,30 @@
 
 Not a test: run it by hand or with ``make bench-tasks`` (gymnasium must be installed)::
 
-    .venv/bin/python benches/bench_tasks.py [--steps 20000] [--round 1000] [--json]
+    .venv/bin/python benches/bench_tasks.py [--rounds 15] [--round 3000] [--json]
 
-Each task (:data:`mazesim.envs.tasks.TASKS` and :data:`~mazesim.envs.tasks.GOAL_TASKS`) and
-CartPole-v1 are made with ``gymnasium.make`` (so with its wrappers: the time limit, the order
-and passive checks), reset with seed 0 and stepped with uniformly random actions from a pool drawn
-beforehand (the policy costs nothing); an episode that ends is reset, so resets (new random mazes
-included) are timed with the steps. The contenders run in alternating rounds of ``--round`` steps,
-so that other load on the machine falls on all alike; a rate is ``--round`` over the median round
-time, and the ratio to CartPole-v1's is the figure to read.
+Each task (every id of gymnasium's registry that starts with ``mazesim/``) and CartPole-v1 are
+made with ``gymnasium.make`` (so with its wrappers: the time limit, the order and passive checks),
+reset with seed 0 and stepped with uniformly random actions from a pool drawn beforehand (the
+policy costs nothing); an episode that ends is reset (new random mazes included).
 
-Exits with status 1 if any task steps slower than CartPole-v1 (a ratio below 1).
+The measure is the processor time of one step (``time.process_time``), which other jobs on the
+machine disturb far less than the wall clock: each task runs ``--rounds`` rounds of ``--round``
+steps, each round followed by a round of its own CartPole-v1, so that both see the same machine.
+A step's cost is the median round's processor time over its steps, the resets in the round
+included: a reset's cost is amortised over the steps of its episode. Every registered time limit
+(500, 1000, 1500, 3000 steps) divides the default round of 3,000 steps, so each round of a task
+holds as many resets as any other (random actions seldom end an episode before its limit). The
+figure to read is CartPole-v1's time over the task's: its rate as a multiple of CartPole-v1's.
+
+The native vector env's lead: each task with a vector entry point is also made with
+``gymnasium.make_vec(..., vectorization_mode="vector_entry_point")`` of ``--vector-envs``
+environments and stepped in rounds of as many env-steps, alternating with the single env; the
+lead is the single env's processor time per step over the vector env's per env-step (its
+threads' time included).
+
+Exits with status 1 if any task steps slower than CartPole-v1 (a ratio below 1), or its native
+vector env is not faster per env-step than its single env (a lead below 1).
 """
 
 from __future__ import annotations
@@ -21,89 +34,198 @@ import argparse
 import json
 import os
 import platform
+import statistics
 import sys
 import time
-from collections.abc import Callable
+import warnings
+from dataclasses import dataclass, field
 from typing import Any
 
 import gymnasium
-import numpy as np
 
 import mazesim  # noqa: F401  (registers the tasks)
-from mazesim.envs.tasks import GOAL_TASKS, TASKS
 
 POOL = 16
 REFERENCE = "CartPole-v1"
+PREFIX = "mazesim/"
 
 
-def stepper(env_id: str) -> Callable[[int], None]:
-    """A function stepping one env made by ``gymnasium.make(env_id)`` a given number of steps."""
-    env: Any = gymnasium.make(env_id)
-    env.reset(seed=0)
-    env.action_space.seed(0)
-    pool = [env.action_space.sample() for _ in range(POOL)]
+def task_ids() -> list[str]:
+    """Every registered mazesim id, in registration order."""
+    return [env_id for env_id in gymnasium.registry if env_id.startswith(PREFIX)]
 
-    def run(count: int) -> None:
+
+@dataclass
+class Runner:
+    """One env made by ``gymnasium.make`` and the processor time of its rounds."""
+
+    env_id: str
+    env: Any = None
+    pool: list[Any] = field(default_factory=list)
+    times: list[float] = field(default_factory=list)
+    resets: int = 0
+    steps: int = 0
+
+    def __post_init__(self) -> None:
+        self.env = gymnasium.make(self.env_id)
+        self.env.reset(seed=0)
+        self.env.action_space.seed(0)
+        self.pool = [self.env.action_space.sample() for _ in range(POOL)]
+
+    def run(self, count: int, record: bool = True) -> None:
+        """Steps ``count`` times, resetting ended episodes; records the round's processor time
+        per step."""
+        env, pool = self.env, self.pool
+        resets = 0
+        start = time.process_time()
         for k in range(count):
             _, _, terminated, truncated, _ = env.step(pool[k % POOL])
             if terminated or truncated:
                 env.reset()
+                resets += 1
+        elapsed = time.process_time() - start
+        if record:
+            self.times.append(elapsed / count)
+            self.resets += resets
+            self.steps += count
 
-    return run
+    def result(self) -> dict[str, float]:
+        """Microseconds of processor time of a step (its share of the resets included) and the
+        mean episode length of the recorded rounds."""
+        return {
+            "step_us": statistics.median(self.times) * 1e6,
+            "episode_steps": self.steps / max(self.resets, 1),
+        }
 
 
-def rates(env_ids: list[str], steps: int, round_steps: int) -> dict[str, float]:
-    """Steps per second of each env, from the median of alternating rounds."""
-    runs = {env_id: stepper(env_id) for env_id in env_ids}
-    for run in runs.values():
-        run(min(round_steps, 200))  # warm up
-    times: dict[str, list[float]] = {env_id: [] for env_id in runs}
-    for _ in range(max(3, steps // round_steps)):
-        for env_id, run in runs.items():
-            start = time.perf_counter()
-            run(round_steps)
-            times[env_id].append(time.perf_counter() - start)
-    return {env_id: round_steps / float(np.median(ts)) for env_id, ts in times.items()}
+@dataclass
+class VectorRunner:
+    """A native vector env made by ``gymnasium.make_vec`` and its processor time per env-step."""
+
+    env_id: str
+    num_envs: int
+    env: Any = None
+    pool: list[Any] = field(default_factory=list)
+    times: list[float] = field(default_factory=list)
+
+    def __post_init__(self) -> None:
+        self.env = gymnasium.make_vec(
+            self.env_id, num_envs=self.num_envs, vectorization_mode="vector_entry_point"
+        )
+        self.env.reset(seed=0)
+        self.env.action_space.seed(0)
+        self.pool = [self.env.action_space.sample() for _ in range(POOL)]
+
+    def run(self, env_steps: int, record: bool = True) -> None:
+        """Steps every env (autoreset included) about ``env_steps`` env-steps in all."""
+        count = max(1, env_steps // self.num_envs)
+        env, pool = self.env, self.pool
+        start = time.process_time()
+        for k in range(count):
+            env.step(pool[k % POOL])
+        if record:
+            self.times.append((time.process_time() - start) / (count * self.num_envs))
+
+
+def vector_lead(env_id: str, num_envs: int, rounds: int, round_steps: int) -> dict[str, float]:
+    """Microseconds of processor time per env-step of the native vector env and of the single
+    env, from alternating rounds, and the single env's over the vector env's."""
+    single, vector = Runner(env_id), VectorRunner(env_id, num_envs)
+    single.run(100, record=False)
+    vector.run(num_envs, record=False)
+    for _ in range(rounds):
+        single.run(round_steps)
+        vector.run(round_steps)
+    single.env.close()
+    vector.env.close()
+    one, each = statistics.median(single.times), statistics.median(vector.times)
+    return {"single_us": one * 1e6, "vector_us": each * 1e6, "lead": one / each}
+
+
+def paired(env_id: str, rounds: int, round_steps: int) -> tuple[dict[str, float], dict[str, float]]:
+    """The task's and its own CartPole-v1's times, from alternating rounds."""
+    task, reference = Runner(env_id), Runner(REFERENCE)
+    for runner in (task, reference):
+        runner.run(100, record=False)  # warm up
+    for _ in range(rounds):
+        task.run(round_steps)
+        reference.run(round_steps)
+    task.env.close()
+    reference.env.close()
+    return task.result(), reference.result()
 
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--steps", type=int, default=20_000, help="steps of each env")
-    parser.add_argument("--round", type=int, default=1_000, help="steps between switches")
+    parser.add_argument("--rounds", type=int, default=15, help="rounds of each env")
+    parser.add_argument("--round", type=int, default=3_000, help="steps of a round")
+    parser.add_argument(
+        "--vector-envs", type=int, default=256, help="envs of the native vector env (0: skip it)"
+    )
     parser.add_argument("--json", action="store_true", help="print the result as JSON")
     args = parser.parse_args()
-    tasks = [task.env_id for task in TASKS + GOAL_TASKS]
-    with_warnings = sys.warnoptions
-    if not with_warnings:
-        import warnings
-
+    if args.rounds < 1 or args.round < 1:
+        parser.error("--rounds and --round must be at least 1")
+    if not sys.warnoptions:
         warnings.filterwarnings("ignore", category=DeprecationWarning)  # UnseenMaze-v1 is old
-    measured = rates([*tasks, REFERENCE], args.steps, args.round)
-    reference = measured[REFERENCE]
+    rows: dict[str, Any] = {}
+    for env_id in task_ids():
+        task, reference = paired(env_id, args.rounds, args.round)
+        rows[env_id] = {
+            **task,
+            "cartpole_step_us": reference["step_us"],
+            "over_cartpole": reference["step_us"] / task["step_us"],
+        }
+    vectors: dict[str, Any] = {}
+    if args.vector_envs > 0:
+        for env_id in task_ids():
+            if gymnasium.registry[env_id].vector_entry_point is not None:
+                vectors[env_id] = vector_lead(env_id, args.vector_envs, args.rounds, args.round)
+    try:
+        load = f"load average {os.getloadavg()[0]:.1f}"
+    except OSError:
+        load = "load average unknown"
     result: dict[str, Any] = {
-        "date": time.strftime("%Y-%m-%d", time.gmtime()),
+        "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
         "machine": f"{platform.machine()}, {os.cpu_count()} cores, {platform.python_version()}",
-        "cartpole_steps_per_s": reference,
-        "tasks": {
-            env_id: {"steps_per_s": measured[env_id], "over_cartpole": measured[env_id] / reference}
-            for env_id in tasks
-        },
+        "load": load,
+        "rounds": args.rounds,
+        "round_steps": args.round,
+        "tasks": rows,
+        "vector_envs": args.vector_envs,
+        "vector": vectors,
     }
-    slow = [env_id for env_id in tasks if measured[env_id] < reference]
+    slow = [env_id for env_id, row in rows.items() if row["over_cartpole"] < 1.0]
+    behind = [env_id for env_id, row in vectors.items() if row["lead"] < 1.0]
     if args.json:
         print(json.dumps(result, indent=2))
     else:
-        print(f"{result['date']}, {result['machine']}: one env through gymnasium.make")
-        print(f"  {REFERENCE:<34} {reference:>10,.0f} steps/s")
-        for env_id, row in result["tasks"].items():
+        print(
+            f"{result['date']}, {result['machine']}, {load}: one env through gymnasium.make, "
+            f"microseconds of processor time ({args.rounds} rounds of {args.round} steps)"
+        )
+        print(f"  {'task':<32} {'a step':>7} {'CartPole':>8} {'ratio':>6} {'episode':>8}")
+        for env_id, row in rows.items():
             print(
-                f"  {env_id:<34} {row['steps_per_s']:>10,.0f} steps/s "
-                f"{row['over_cartpole']:>6.2f} x CartPole-v1"
+                f"  {env_id:<32} {row['step_us']:>7.2f} {row['cartpole_step_us']:>8.2f} "
+                f"{row['over_cartpole']:>5.2f}x {row['episode_steps']:>8.0f}"
             )
+        if vectors:
+            print(
+                f"native vector env of {args.vector_envs} envs, microseconds of processor time "
+                f"per env-step"
+            )
+            print(f"  {'task':<32} {'single':>7} {'vector':>8} {'lead':>6}")
+            for env_id, row in vectors.items():
+                print(
+                    f"  {env_id:<32} {row['single_us']:>7.2f} {row['vector_us']:>8.2f} "
+                    f"{row['lead']:>5.2f}x"
+                )
     if slow:
-        print(f"below CartPole-v1's rate: {', '.join(slow)}", file=sys.stderr)
-        return 1
-    return 0
+        print(f"slower than CartPole-v1: {', '.join(slow)}", file=sys.stderr)
+    if behind:
+        print(f"native vector env not ahead: {', '.join(behind)}", file=sys.stderr)
+    return 1 if slow or behind else 0
 
 
 if __name__ == "__main__":

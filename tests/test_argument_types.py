@@ -169,6 +169,8 @@ def samples(tmp: Path) -> dict[str, Any]:
         "readings": np.zeros((NUM_ENVS, 11), np.float32),
         "previous": np.zeros((NUM_ENVS, 2), np.float32),
         "state": features.state(),
+        "features": features,
+        "observe": True,
         # Parameters whose name means something else for one callable.
         "overrides": {
             "observe_env": {"readings": np.zeros(11, np.float32), "pose": np.zeros(3, np.float32)},

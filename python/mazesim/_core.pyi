@@ -341,6 +341,25 @@ class Simulator:
         sensors then the ground sensors) clamped to [`low`, `high`] (float32 arrays of that
         width), the pose (float32 x, y, yaw), whether the body touches a wall, the signed
         checkpoint crossed in this step (0: none) and the collisions so far (as `collisions`)."""
+    def step_task(
+        self,
+        features: TaskFeatures,
+        left: float,
+        right: float,
+        low: npt.NDArray[np.float32],
+        high: npt.NDArray[np.float32],
+        max_speed: float,
+        observe: bool = True,
+    ) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.float32], bool, int, int, float, bool]:
+        """`step_observe`, then the task observation of environment 0 of `features` (a
+        `TaskFeatures` of this robot's sensors) in the same call: the observation from the
+        clamped readings, the pose and the previous action (`left` and `right` over `max_speed`,
+        in float32), in place of the readings; then the pose, whether the body touches a wall,
+        the signed checkpoint crossed (0: none), the collisions so far, the distance in metres
+        to the features' goal and whether the pose is in the goal disc. The same values as
+        `step_observe` followed by `features.observe_env(0, ...)`. With `observe=False` the
+        first value is the clamped readings themselves, and the features only give the goal's
+        distance (their explored map is left as it is)."""
     def set_start(self, x: float, y: float, yaw: float, robot_index: int = 0) -> None:
         """Sets the pose every later reset starts robot `robot_index` from (instead of the
         world's)."""

@@ -6,12 +6,13 @@ use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyTuple};
 
-use crate::args::{Bytes, Flag, IntArg, Real};
+use crate::args::{type_name, Bytes, Flag, IntArg, Real};
 use crate::buffers::{copied, readable};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::{enter, enter_detached};
 use crate::lock::Exclusive;
 use crate::profile::{PyRobotProfile, RobotArg};
+use crate::tasks::{previous_action, PyTaskFeatures};
 use crate::world::{world_argument, PyWorld};
 
 /// What a busy simulator is called in `SimulatorBusyError`.
@@ -53,6 +54,56 @@ impl PySimulator {
     /// `with` on the whole swarm for a Python entry point.
     fn swarm<T>(&self, f: impl FnOnce(&mut Swarm) -> T) -> PyResult<T> {
         enter(|| self.inner.with(f))
+    }
+}
+
+/// What one control step of robot 0 gives a gym step (see `Simulator.step_observe`).
+struct Stepped {
+    readings: Vec<f32>,
+    pose: [f32; 3],
+    colliding: bool,
+    crossing: i32,
+    collisions: u64,
+}
+
+impl PySimulator {
+    /// Steps robot 0 with the wheel speeds `left` and `right`; its readings clamped to [`low`,
+    /// `high`] and the rest of a gym step.
+    fn stepped(
+        &self,
+        left: f64,
+        right: f64,
+        low: &Bound<'_, PyAny>,
+        high: &Bound<'_, PyAny>,
+    ) -> PyResult<Stepped> {
+        // The bounds are read before the simulator is taken: reading them may run Python code
+        // (a property of the argument) that uses this simulator.
+        let width = self.inner.with(|s| {
+            let r = &s.robots()[0];
+            r.distance_sensors().len() + r.ground_sensors().len()
+        })?;
+        let low = readable::<f32>(low, "low", "float32", &[width])?;
+        let high = readable::<f32>(high, "high", "float32", &[width])?;
+        let contiguous = |name: &str| invalid(format!("expected {name} to be contiguous"));
+        let low = low.as_slice().map_err(|_| contiguous("low"))?;
+        let high = high.as_slice().map_err(|_| contiguous("high"))?;
+        self.inner.with(|s| {
+            s.set_command(0, left, right).py()?;
+            s.step_commanded().py()?;
+            let s = &s.robots()[0];
+            let readings: Vec<f32> = (s.distance_sensors().iter())
+                .chain(s.ground_sensors())
+                .zip(low.iter().zip(high))
+                .map(|(value, (least, most))| value.max(*least).min(*most))
+                .collect();
+            Ok(Stepped {
+                readings,
+                pose: s.pose(),
+                colliding: s.colliding(),
+                crossing: s.last_crossing(),
+                collisions: s.collisions(),
+            })
+        })?
     }
 }
 
@@ -200,37 +251,81 @@ impl PySimulator {
         u64,
     )> {
         let (left, right) = (left.value("left")?, right.value("right")?);
-        enter(|| {
-            // The bounds are read before the simulator is taken: reading them may run Python
-            // code (a property of the argument) that uses this simulator.
-            let width = self.inner.with(|s| {
-                let r = &s.robots()[0];
-                r.distance_sensors().len() + r.ground_sensors().len()
-            })?;
-            let low = readable::<f32>(low, "low", "float32", &[width])?;
-            let high = readable::<f32>(high, "high", "float32", &[width])?;
-            let contiguous = |name: &str| invalid(format!("expected {name} to be contiguous"));
-            let low = low.as_slice().map_err(|_| contiguous("low"))?;
-            let high = high.as_slice().map_err(|_| contiguous("high"))?;
-            self.inner.with(|s| {
-                s.set_command(0, left, right).py()?;
-                s.step_commanded().py()?;
-                let s = &s.robots()[0];
-                let readings: Vec<f32> = (s.distance_sensors().iter())
-                    .chain(s.ground_sensors())
-                    .zip(low.iter().zip(high))
-                    .map(|(value, (least, most))| value.max(*least).min(*most))
-                    .collect();
-                let p = s.pose();
-                Ok((
-                    PyArray1::from_vec(py, readings),
-                    PyArray1::from_slice(py, &p),
-                    s.colliding(),
-                    s.last_crossing(),
-                    s.collisions(),
-                ))
-            })?
-        })
+        let stepped = enter(|| self.stepped(left, right, low, high))?;
+        Ok((
+            PyArray1::from_vec(py, stepped.readings),
+            PyArray1::from_slice(py, &stepped.pose),
+            stepped.colliding,
+            stepped.crossing,
+            stepped.collisions,
+        ))
+    }
+
+    /// `step_observe`, then the task observation of environment 0 of `features` (a
+    /// `TaskFeatures` of this robot's sensors) in the same call: the observation from the
+    /// clamped readings, the pose and the previous action (`left` and `right` over `max_speed`,
+    /// in float32), in place of the readings; then the pose, whether the body touches a wall,
+    /// the signed checkpoint crossed (0: none), the collisions so far, the distance in metres
+    /// to the features' goal and whether the pose is in the goal disc. The same values as
+    /// `step_observe` followed by `features.observe_env(0, ...)`. With `observe=False` the
+    /// first value is the clamped readings themselves, and the features only give the goal's
+    /// distance (their explored map is left as it is).
+    #[pyo3(signature = (features, left, right, low, high, max_speed, observe = Flag::Value(true)),
+        text_signature = "($self, features, left, right, low, high, max_speed, observe=True)")]
+    #[allow(clippy::type_complexity, clippy::too_many_arguments)]
+    fn step_task<'py>(
+        &self,
+        py: Python<'py>,
+        features: &Bound<'py, PyAny>,
+        left: Real,
+        right: Real,
+        low: &Bound<'py, PyAny>,
+        high: &Bound<'py, PyAny>,
+        max_speed: Real,
+        observe: Flag,
+    ) -> PyResult<(
+        Bound<'py, PyArray1<f32>>,
+        Bound<'py, PyArray1<f32>>,
+        bool,
+        i32,
+        u64,
+        f64,
+        bool,
+    )> {
+        let previous = previous_action(&left, &right, &max_speed)?;
+        let (left, right) = (left.value("left")?, right.value("right")?);
+        let observe = observe.value("observe", "a bool")?;
+        let features = features.cast::<PyTaskFeatures>().map_err(|_| {
+            invalid(format!(
+                "expected features to be a TaskFeatures, found a {}",
+                type_name(features)
+            ))
+        })?;
+        let features = features.get();
+        let (mut stepped, (observation, distance, reached)) = enter(|| {
+            let stepped = self.stepped(left, right, low, high)?;
+            let task = if observe {
+                features.observe_one(0, &stepped.readings, stepped.pose, previous)?
+            } else {
+                let (distance, reached) = features.goal_of(0, stepped.pose)?;
+                (Vec::new(), distance, reached)
+            };
+            Ok((stepped, task))
+        })?;
+        let observation = if observe {
+            observation
+        } else {
+            std::mem::take(&mut stepped.readings)
+        };
+        Ok((
+            PyArray1::from_vec(py, observation),
+            PyArray1::from_slice(py, &stepped.pose),
+            stepped.colliding,
+            stepped.crossing,
+            stepped.collisions,
+            distance,
+            reached,
+        ))
     }
 
     /// Sets the pose every later reset starts robot `robot_index` from (instead of the world's start).

@@ -270,19 +270,53 @@ impl PyTaskFeatures {
             let env = env.count("env", usize::MAX)?;
             let readings = copied::<f32>(readings, "readings", "float32", &[self.sensors])?;
             let pose = copied::<f32>(pose, "pose", "float32", &[3])?;
-            let most = max_speed.value("max_speed")? as f32;
-            let previous = [
-                left.value("left")? as f32 / most,
-                right.value("right")? as f32 / most,
-            ];
-            let mut out = vec![0.0f32; self.width];
-            let pose = [pose[0], pose[1], pose[2]];
-            let (distance, reached) = self.inner.with(|f| {
-                f.observe(env, &readings, pose, previous, &mut out).py()?;
-                let (x, y) = (f64::from(pose[0]), f64::from(pose[1]));
-                f.goal_distance(env, x, y).py()
-            })??;
+            let previous = previous_action(&left, &right, &max_speed)?;
+            let (out, distance, reached) =
+                self.observe_one(env, &readings, [pose[0], pose[1], pose[2]], previous)?;
             Ok((PyArray1::from_vec(py, out), distance, reached))
         })
+    }
+}
+
+/// The previous action of an observation: the wheel speeds `left` and `right` (rad/s) over
+/// `max_speed`, each in float32.
+pub(crate) fn previous_action(left: &Real, right: &Real, max_speed: &Real) -> PyResult<[f32; 2]> {
+    let most = max_speed.value("max_speed")? as f32;
+    Ok([
+        left.value("left")? as f32 / most,
+        right.value("right")? as f32 / most,
+    ])
+}
+
+impl PyTaskFeatures {
+    /// The observation of environment `env` from its clamped `readings`, `pose` and `previous`
+    /// action; then the distance in metres from the pose to the goal and whether the pose is in
+    /// the goal disc.
+    pub(crate) fn observe_one(
+        &self,
+        env: usize,
+        readings: &[f32],
+        pose: [f32; 3],
+        previous: [f32; 2],
+    ) -> PyResult<(Vec<f32>, f64, bool)> {
+        if readings.len() != self.sensors {
+            return Err(invalid(format!(
+                "expected {} sensor readings (these TaskFeatures' robot), found {}",
+                self.sensors,
+                readings.len()
+            )));
+        }
+        let mut out = vec![0.0f32; self.width];
+        self.inner
+            .with(|f| f.observe(env, readings, pose, previous, &mut out).py())??;
+        let (distance, reached) = self.goal_of(env, pose)?;
+        Ok((out, distance, reached))
+    }
+
+    /// The distance in metres from `pose` to environment `env`'s goal and whether the pose is in
+    /// the goal disc.
+    pub(crate) fn goal_of(&self, env: usize, pose: [f32; 3]) -> PyResult<(f64, bool)> {
+        let (x, y) = (f64::from(pose[0]), f64::from(pose[1]));
+        self.inner.with(|f| f.goal_distance(env, x, y).py())?
     }
 }

@@ -12,11 +12,16 @@ import numpy.typing as npt
 from mazesim._checks import checks_own_arguments
 from mazesim._core import Simulator, World
 from mazesim.envs.errors import EnvClosedError, ResetNeededError, check_options, check_seed
-from mazesim.envs.navigation import StartAndGoal, distance_table, navigation_features
+from mazesim.envs.navigation import (
+    NavigationFeatures,
+    StartAndGoal,
+    distance_table,
+    navigation_features,
+)
 from mazesim.envs.options import EnvOptions, draw_seed, json_world_spec
 from mazesim.envs.spaces import ActionConverter, ObservationLayout, sensor_ranges
 from mazesim.errors import InvalidArgumentError
-from mazesim.maze import GoalDistance, PathDistanceTable
+from mazesim.maze import PathDistanceTable
 from mazesim.render.episode import EpisodeTrace
 from mazesim.render.topdown import TopDownRenderer
 
@@ -123,6 +128,14 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
             table,
             self.options.include_pose,
         )
+        # The features whose core computes each step's goal distance, in the same call as the
+        # step: the observation's own, or (for the raw readings) the goal's alone.
+        self._observes = self._features is not None
+        task = self._features or navigation_features(
+            "goal", 1, self.options.robot, self.world, table
+        )
+        assert task is not None  # the "goal" kind has features
+        self._task: NavigationFeatures = task
         self._max_speed = float(self._actions.max_speed)
         weights = self.options.reward
         self._weights = (weights.progress, weights.collision, weights.goal)
@@ -132,7 +145,6 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         width = self._layout.sensor_width
         self._low = np.ascontiguousarray(self._layout.low[:width])
         self._high = np.ascontiguousarray(self._layout.high[:width])
-        self._goal = GoalDistance(1, table)
         self._drawn: StartAndGoal | None = None
         self._distance = 0.0
         self._simulator: Simulator | None = None
@@ -184,23 +196,17 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
             simulator.reset(seed=episode_seed)
         if fresh or drawn is not None:
             table = distance_table(self.world, None if drawn is None else drawn.goal)
-            if self._features is not None:
-                self._features.set(0, self.world, table)  # the goal distance too
-            else:
-                self._goal.set(0, table)
+            self._task.set(0, self.world, table)  # the goal distance too
             self._renderer = None
         self._drawn = drawn
         readings = np.concatenate((simulator.distance_sensors(), simulator.ground_sensors()))
         pose = np.array(simulator.pose, dtype=np.float32)
-        observation = self._layout.assemble_one(readings, pose)
         x, y, yaw = pose.tolist()
-        if self._features is not None:
-            self._features.restart(0)
-            observation, self._distance, _ = self._features.observe_one(
-                readings, pose, 0.0, 0.0, self._max_speed
-            )
-        else:
-            self._distance, _ = self._goal.evaluate_one(x, y)
+        self._task.restart(0)
+        features, self._distance, _ = self._task.observe_one(
+            readings, pose, 0.0, 0.0, self._max_speed
+        )
+        observation = features if self._observes else self._layout.assemble_one(readings, pose)
         self._trace.restart(x, y)
         if self.render_mode == "human":
             self.render()
@@ -230,18 +236,13 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
             self._check_open()
             raise ResetNeededError("call reset() before step()")
         left, right = self._actions.single(action)
-        observation, pose, colliding, crossing, collisions = simulator.step_observe(
-            left, right, self._low, self._high
+        # The step, the observation (the task's, or the clamped readings), the distance to the
+        # goal and whether it is reached, in one call into the core.
+        observation, pose, colliding, crossing, collisions, distance, reached = simulator.step_task(
+            self._task.core, left, right, self._low, self._high, self._max_speed, self._observes
         )
-        if self._features is not None:
-            # The observation, the distance to the goal and whether it is reached, in one call.
-            observation, distance, reached = self._features.observe_one(
-                observation, pose, left, right, self._max_speed
-            )
-        else:
-            if self._layout.include_pose:
-                observation = self._layout.assemble_one(observation, pose)
-            distance, reached = self._goal.evaluate_one(float(pose[0]), float(pose[1]))
+        if not self._observes and self._layout.include_pose:
+            observation = self._layout.assemble_one(observation, pose)
         progress, collision, goal = self._weights
         reward = (
             progress * (self._distance - distance)

@@ -303,6 +303,12 @@ class NavigationFeatures:
         self._tables: list[PathDistanceTable | None] = [None] * num_envs
         self._bind()
 
+    @property
+    def core(self) -> TaskFeatures:
+        """The core's features, for :meth:`mazesim._core.Simulator.step_task`: a single env's
+        step and its observation in one call."""
+        return self._core
+
     def _bind(self) -> None:
         """Binds ``observe_one(readings, pose, left, right, max_speed)``: the observation of
         environment 0 from its float32 readings and pose, the previous action being the wheel
