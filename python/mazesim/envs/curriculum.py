@@ -129,10 +129,11 @@ class MazeSizeCurriculum:
                 f"expected a mazesim maze env or its native vector env, found "
                 f"{type(target).__name__}"
             )
-        if not target.options.random_world:
+        world = target.options.world
+        if world is not None:
             raise InvalidArgumentError(
                 "expected an env of random mazes (world='random'); found the fixed world "
-                f"{target.options.world.name!r}"
+                f"{world.name!r}"
             )
         target.options = dataclasses.replace(target.options, maze_size=self.size)
 
