@@ -26,7 +26,7 @@ DOCS_PACKAGES := "mkdocs>=1.6" "mkdocs-material>=9.5" "mkdocstrings[python]>=0.2
 # Only `make sb3-deps` (and so `make test`) needs these (pyproject's extra "sb3"): Stable-Baselines3
 # 2.x and torch, for mazesim.integrations.sb3, its tests and the examples' PPO scripts. torch from
 # PyPI is a large download the first time (pip's cache makes later installs quick).
-SB3_PACKAGES := "stable-baselines3>=2.3,<3"
+SB3_PACKAGES := "stable-baselines3>=2.3,<3" "sb3-contrib>=2.3,<3"
 # What `make marl-deps` (and so `make test` and `make typecheck`) installs (pyproject's extra
 # "marl"): PettingZoo, for mazesim.marl's multi-robot environments, their tests and examples.
 MARL_PACKAGES := "pettingzoo>=1.24"
@@ -189,7 +189,7 @@ bench-peers: build ## mazesim against hand-written numpy, pymunk and JAX peers (
 sb3-deps: venv ## install Stable-Baselines3 and torch into .venv (mazesim[sb3]: the SB3 adapter, the PPO examples)
 	@$(BIN)/python -c 'import stable_baselines3' 2>/dev/null || echo "make sb3-deps: installing Stable-Baselines3 and torch: torch from PyPI brings its CUDA libraries, about 3 GB to download and 5.2 GB in $(VENV) the first time (pip's cache makes later installs quick)"
 	$(BIN)/python -m pip install --progress-bar on $(SB3_PACKAGES) | grep -v '^Requirement already satisfied' || true
-	@$(BIN)/python -c 'import stable_baselines3'
+	@$(BIN)/python -c 'import stable_baselines3, sb3_contrib'
 
 marl-deps: venv ## install PettingZoo into .venv (mazesim[marl]: the multi-robot RL environments)
 	@$(BIN)/python -c 'import pettingzoo' 2>/dev/null || echo "make marl-deps: installing PettingZoo into $(VENV) (about 5 MB)"

@@ -34,7 +34,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import torch  # noqa: E402
-from stable_baselines3 import SAC, HerReplayBuffer  # noqa: E402
+from stable_baselines3 import SAC, TD3, HerReplayBuffer  # noqa: E402
+from stable_baselines3.common.base_class import BaseAlgorithm  # noqa: E402
 from stable_baselines3.common.callbacks import BaseCallback  # noqa: E402
 
 import mazesim  # noqa: E402, F401  (registers the tasks)
@@ -48,12 +49,45 @@ TASKS = (
 )
 #: The held-out episodes' env is seeded from here on (training uses ``seed``).
 HELD_OUT_SEED = 10**6
+#: The observation's values that point at the episode's own goal, which a relabelled
+#: ``desired_goal`` contradicts: ``--observation pose`` leaves them out.
+GOAL_DIRECTION = ("goal_forward", "goal_left")
 
 
-def evaluate(model: SAC, task: str, episodes: int, seed: int, limit: int) -> tuple[float, float]:
+class PoseObservation(gymnasium.ObservationWrapper):  # type: ignore[type-arg]
+    """The task made with ``include_pose=True``, without the goal's direction in ``observation``:
+    the readings, the pose (x, y, heading) and the previous action, so that the policy learns where
+    a goal lies from ``desired_goal`` and the pose alone, the same for a relabelled goal as for the
+    episode's own."""
+
+    def __init__(self, env: gymnasium.Env) -> None:  # type: ignore[type-arg]
+        super().__init__(env)
+        names = list(env.unwrapped.maze.observation_names)  # type: ignore[attr-defined]
+        self.keep = np.array([i for i, name in enumerate(names) if name not in GOAL_DIRECTION])
+        inner = env.observation_space["observation"]  # type: ignore[index]
+        spaces = dict(env.observation_space.spaces)  # type: ignore[attr-defined]
+        spaces["observation"] = gymnasium.spaces.Box(
+            inner.low[self.keep], inner.high[self.keep], dtype=np.float32
+        )
+        self.observation_space = gymnasium.spaces.Dict(spaces)
+
+    def observation(self, observation: dict[str, Any]) -> dict[str, Any]:
+        return {**observation, "observation": observation["observation"][self.keep]}
+
+
+def make_env(task: str, limit: int, observation: str) -> gymnasium.Env:  # type: ignore[type-arg]
+    """One env of ``task`` with a time limit of ``limit`` steps, its observation as chosen."""
+    if observation == "pose":
+        return PoseObservation(gymnasium.make(task, max_episode_steps=limit, include_pose=True))
+    return gymnasium.make(task, max_episode_steps=limit)
+
+
+def evaluate(
+    model: BaseAlgorithm, task: str, episodes: int, seed: int, limit: int, observation: str
+) -> tuple[float, float]:
     """Success rate of ``model``'s deterministic policy over ``episodes`` held-out episodes, and
     the mean length (control steps) of the successful ones (NaN without any)."""
-    env = gymnasium.make(task, max_episode_steps=limit)
+    env = make_env(task, limit, observation)
     observation, _ = env.reset(seed=HELD_OUT_SEED + seed)
     successes, lengths = 0, []
     for _ in range(episodes):
@@ -75,15 +109,19 @@ def evaluate(model: SAC, task: str, episodes: int, seed: int, limit: int) -> tup
 class HeldOutCurve(BaseCallback):
     """Evaluates the policy on the held-out episodes every ``every`` env-steps."""
 
-    def __init__(self, task: str, every: int, episodes: int, seed: int, limit: int) -> None:
+    def __init__(
+        self, task: str, every: int, episodes: int, seed: int, limit: int, observation: str
+    ) -> None:
         super().__init__()
         self.task, self.every, self.episodes = task, every, episodes
-        self.seed_, self.limit = seed, limit
+        self.seed_, self.limit, self.observation = seed, limit, observation
         self.points: list[tuple[int, float]] = []
 
     def _on_step(self) -> bool:
         if self.num_timesteps % self.every == 0:
-            rate, _ = evaluate(self.model, self.task, self.episodes, self.seed_, self.limit)
+            rate, _ = evaluate(
+                self.model, self.task, self.episodes, self.seed_, self.limit, self.observation
+            )
             self.points.append((self.num_timesteps, rate))
         return True
 
@@ -103,8 +141,19 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
     parser.add_argument("--task", default="mazesim/EPuckGoal-v0", choices=TASKS)
     parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--algo", choices=("sac", "td3"), default="sac")
     parser.add_argument("--steps", type=int, default=10_000, help="env-steps of training")
     parser.add_argument("--episode-steps", type=int, default=100, help="training time limit")
+    parser.add_argument(
+        "--eval-steps", type=int, default=None, help="held-out time limit (default: training's)"
+    )
+    parser.add_argument("--observation", choices=("task", "pose"), default="task")
+    parser.add_argument("--gamma", type=float, default=0.95)
+    parser.add_argument("--train-freq", type=int, default=4, help="env-steps per gradient step")
+    parser.add_argument("--net", type=int, default=64, help="width of the two hidden layers")
+    parser.add_argument("--batch", type=int, default=128)
+    parser.add_argument("--n-sampled-goal", type=int, default=4)
+    parser.add_argument("--learning-starts", type=int, default=1_000)
     parser.add_argument("--eval-every", type=int, default=2_500)
     parser.add_argument("--eval-episodes", type=int, default=50)
     parser.add_argument("--out", type=Path, default=Path("her-run"))
@@ -114,21 +163,26 @@ def main() -> int:
         args.eval_every = min(args.eval_every, 150)
         args.eval_episodes = min(args.eval_episodes, 2)
         args.episode_steps = min(args.episode_steps, 50)
+        args.eval_steps = min(args.eval_steps or 50, 50)
+    eval_steps = args.eval_steps or args.episode_steps
 
     # One torch thread: a shared machine's cores fought over by torch's threads slow SAC down.
     torch.set_num_threads(1)
-    env = gymnasium.make(args.task, max_episode_steps=args.episode_steps)
+    env = make_env(args.task, args.episode_steps, args.observation)
     settings: dict[str, Any] = {
+        "algo": args.algo,
+        "observation": args.observation,
         "buffer_size": 200_000,
-        "batch_size": 128,
-        "learning_starts": min(1_000, args.steps // 2),
-        "gamma": 0.95,
-        "train_freq": 4,
-        "n_sampled_goal": 4,
+        "batch_size": args.batch,
+        "learning_starts": min(args.learning_starts, args.steps // 2),
+        "gamma": args.gamma,
+        "train_freq": args.train_freq,
+        "n_sampled_goal": args.n_sampled_goal,
         "goal_selection_strategy": "future",
-        "net_arch": [64, 64],
+        "net_arch": [args.net, args.net],
     }
-    model = SAC(
+    algorithm = SAC if args.algo == "sac" else TD3
+    model = algorithm(
         "MultiInputPolicy",
         env,
         replay_buffer_class=HerReplayBuffer,
@@ -147,13 +201,15 @@ def main() -> int:
         verbose=0,
     )
     curve = HeldOutCurve(
-        args.task, args.eval_every, args.eval_episodes, args.seed, args.episode_steps
+        args.task, args.eval_every, args.eval_episodes, args.seed, eval_steps, args.observation
     )
     start = time.perf_counter()
     model.learn(total_timesteps=args.steps, callback=curve)
     seconds = time.perf_counter() - start
     env.close()
-    success, length = evaluate(model, args.task, args.eval_episodes, args.seed, args.episode_steps)
+    success, length = evaluate(
+        model, args.task, args.eval_episodes, args.seed, eval_steps, args.observation
+    )
     args.out.mkdir(parents=True, exist_ok=True)
     points = [point for point in curve.points if point[0] < args.steps] + [(args.steps, success)]
     plot_curve(points, args.out / "curve.png", f"{args.task} seed {args.seed}")
@@ -162,6 +218,7 @@ def main() -> int:
         "seed": args.seed,
         "steps": args.steps,
         "episode_steps": args.episode_steps,
+        "eval_steps": eval_steps,
         "eval_episodes": args.eval_episodes,
         "settings": settings,
         "curve": points,

@@ -34,6 +34,7 @@ COVERED = {
     "ppo_sb3.py": "test_ppo_sb3_trains_and_evaluates_on_held_out_mazes",
     "marl_ppo.py": "test_marl_ppo_trains_and_compares_with_random_and_hand_rule",
     "her_sb3.py": "test_her_sb3_trains_and_writes_its_held_out_results",
+    "learning_tier.py": "test_learning_tier_trains_each_agent_and_tables_them_with_the_baselines",
 }
 
 
@@ -164,6 +165,43 @@ def test_her_sb3_trains_and_writes_its_held_out_results(tmp_path: Path) -> None:
     assert results["success"] == results["curve"][-1][1]
     assert results["wall_seconds"] > 0 and len(results["load_average"]) == 3
     assert (tmp_path / "run" / "curve.png").read_bytes()[:4] == b"\x89PNG"
+
+
+def test_learning_tier_trains_each_agent_and_tables_them_with_the_baselines(
+    tmp_path: Path,
+) -> None:
+    pytest.importorskip("sb3_contrib", reason="needs mazesim[sb3] (make sb3-deps)")
+    script = [sys.executable, str(EXAMPLES / "learning_tier.py")]
+    for agent in ("ppo", "recurrent", "curriculum"):
+        argv = [*script, "train", "--agent", agent, "--maze-size", "4", "--out", f"runs/{agent}"]
+        out = run_example(argv, tmp_path).stdout  # fast mode: 512 env-steps, 4 held-out mazes
+        pattern = rf"{agent} seed 0: 512 env-steps in \d+ s; success on 4 held-out mazes: "
+        assert re.search(pattern + r"4x4 \d+ %, 5x5 \d+ %", out), out
+        results = json.loads((tmp_path / "runs" / agent / "results.json").read_text())
+        assert results["env_steps"] == 512 and results["maze_size"] == [4, 4]
+        assert [step for step, _ in results["curve"]] == [256, 512]
+        assert set(results["held_out"]) == {"4x4", "5x5"}
+        assert results["wall_seconds"] > 0 and len(results["load_average"]) == 3
+        if agent == "curriculum":  # it starts on 3 x 3 mazes
+            assert results["stages"][0] == [0, [3, 3]]
+    argv = [*script, "baselines", "--maze-size", "4", "--out", "runs/baselines"]
+    out = run_example(argv, tmp_path).stdout
+    assert re.search(
+        r"^frontier explorer seed 2: success on 4 held-out mazes: 4x4 \d+ %", out, re.M
+    )
+    out = run_example([*script, "table", "runs", "--picture", "curves.png"], tmp_path).stdout
+    rows = [line for line in out.splitlines() if line.startswith("| ")]
+    assert rows[0].startswith("| agent | seeds | success 4x4")
+    agents = {row.split(" | ")[0][2:] for row in rows[1:]}
+    assert agents == {
+        "ppo",
+        "recurrent",
+        "curriculum",
+        "wall follower",
+        "frontier explorer",
+        "random",
+    }
+    assert (tmp_path / "curves.png").read_bytes()[:4] == b"\x89PNG"
 
 
 def test_bench_sb3_prints_both_training_rates_and_their_ratio(tmp_path: Path) -> None:

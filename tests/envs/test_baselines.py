@@ -112,3 +112,18 @@ def test_an_observation_of_another_shape_or_not_finite_is_refused(change, found)
         with pytest.raises(InvalidArgumentError, match=found):
             agent.act(change(observation))
         assert agent.act(observation).shape == (2,)
+
+
+def test_evaluate_runs_mazes_of_another_size_with_agents_that_know_it() -> None:
+    sizes = []
+
+    def agent(names: list[str], maze_size: tuple[int, int]) -> CellAgent:
+        sizes.append(maze_size)
+        return FrontierExplorer(names, maze_size)
+
+    small = evaluate(TASK, agent, episodes=3, seed=10**6, maze_size=(3, 3))
+    assert sizes == [(3, 3)] * 3
+    assert small.success == 1.0
+    usual = evaluate(TASK, FrontierExplorer, episodes=3, seed=10**6)
+    # Three cells a side instead of five: shorter ways to the goal.
+    assert small.mean_length < usual.mean_length

@@ -281,24 +281,27 @@ class BaselineResult:
 
 def evaluate(
     task: str,
-    agent: Callable[[Sequence[str]], CellAgent] | None,
+    agent: Callable[[Sequence[str], tuple[int, int]], CellAgent] | None,
     episodes: int = 100,
     seed: int = 10**6,
     include_pose: bool = False,
+    maze_size: tuple[int, int] | None = None,
 ) -> BaselineResult:
     """Runs one episode in each of ``episodes`` environments of ``task`` seeded ``seed``,
     ``seed + 1``, ... (``examples/ppo_sb3.py``'s held-out episodes for ``seed = 10**6 + its
-    seed``), each driven by its own ``agent(observation_names)``,
+    seed``), each driven by its own ``agent(observation_names, maze_size)``,
     or by uniformly random actions (the action space seeded with ``seed``) if ``agent`` is None;
-    with ``include_pose`` the observations hold the pose (the episodes are the same).
+    with ``include_pose`` the observations hold the pose (the episodes are the same); with
+    ``maze_size`` the random mazes have that many cells (the task's own, 5 x 5, without).
     """
     import gymnasium
 
-    envs = gymnasium.make_vec(task, num_envs=episodes, include_pose=include_pose)
+    size = (5, 5) if maze_size is None else (int(maze_size[0]), int(maze_size[1]))
+    envs = gymnasium.make_vec(task, num_envs=episodes, include_pose=include_pose, maze_size=size)
     try:
         observations, _ = envs.reset(seed=seed)
         names = _observation_names(envs)
-        agents = [agent(names) for _ in range(episodes)] if agent is not None else []
+        agents = [agent(names, size) for _ in range(episodes)] if agent is not None else []
         envs.action_space.seed(seed)
         steps = np.zeros(episodes, dtype=np.int64)
         success = np.zeros(episodes, dtype=bool)
