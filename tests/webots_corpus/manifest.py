@@ -15,6 +15,8 @@ it. Each ``[[project]]`` table has these fields:
   Webots too: the simulation waits for its next step) is given a simulated time it reaches;
 - ``expect``: the facts a run in Webots shows (see :mod:`webots_corpus.facts`);
 - ``broken``: empty when the project works in Webots as published, else why it does not;
+- optional ``known``: what is known of why a run here does not show the expected facts, with
+  its figures (a row that does not pass ends its cause with it);
 - optional ``packages``: third-party Python packages its controller imports (for the reader: the
   run itself says at its start which of them are missing); ``keys``: a keyboard script
   (``time_s key [duration_s]`` lines, ``mazesim webots run --keys``).
@@ -61,6 +63,7 @@ class Project:
     seconds: float
     expect: tuple[str, ...]
     broken: str = ""
+    known: str = ""
     packages: tuple[str, ...] = ()
     keys: tuple[str, ...] = field(default=())
 
@@ -108,6 +111,9 @@ def _check(index: int, table: dict[str, Any]) -> Project:
     broken = table.get("broken", "")
     if not isinstance(broken, str):
         raise ManifestError(f"{where}: expected broken a string, found {broken!r}")
+    known = table.get("known", "")
+    if not isinstance(known, str):
+        raise ManifestError(f"{where}: expected known a string, found {known!r}")
     if "broken" not in table:
         raise ManifestError(f"{where}: expected the field 'broken' ('' when it works in Webots)")
     if not table.get("expect") and not broken:
@@ -128,6 +134,7 @@ def _check(index: int, table: dict[str, Any]) -> Project:
         seconds=float(seconds),
         expect=tuple(table.get("expect", [])),
         broken=broken,
+        known=known,
         packages=tuple(table.get("packages", [])),
         keys=tuple(table.get("keys", [])),
     )

@@ -25,7 +25,8 @@ the facts against the run's `summary.json` and `trajectory.csv`, and writes this
 Measured on {stamp} at commit `{revision}`: {counts}; the whole corpus took {elapsed:.0f} s.
 
 Results: **pass**, every fact held; **fail**, a fact did not (the cause says which and what
-was measured); **timeout**, the run was stopped; **not run**, the run said at its start that a
+was measured, and ends with what is known of why, `known:`, when the manifest says it);
+**timeout**, the run was stopped; **not run**, the run said at its start that a
 Webots feature or a Python package the controller needs is missing, and the facts did not hold
 (the cause is that statement, the run's `missing_features`); **broken itself**, the project does
 not work in Webots either (the cause says why); **skipped**, no mirror; **error**, the world

@@ -302,4 +302,6 @@ def _judge(
     if project.broken:
         return Row(project, "broken itself", project.broken, checks, warnings)
     result = "pass" if not failed and not stopped else ("timeout" if stopped else "fail")
+    if result != "pass" and project.known:
+        parts.append(f"known: {project.known}")
     return Row(project, result, "; ".join(parts), checks, warnings)

@@ -186,10 +186,14 @@ def test_the_runner_exports_runs_and_checks_a_project(tmp_path: Path) -> None:
     assert [ok for _, ok, _ in row.checks] == [True] * 6 + [False]
     assert "expected travels 1.0 (travelled 0.1" in row.cause
     assert "line 7: Mystery" in " ".join(row.warnings)
+    known = run_project(replace(project, known="turns too far"), mirrors, work, Census())
+    assert known.result == "fail" and known.cause.endswith("; known: turns too far")
     assert census.types["Mystery"].dropped == 1 and census.types["E-puck"].imported == 1
 
-    passing = run_project(replace(project, expect=project.expect[:-1]), mirrors, work, Census())
-    assert passing.result == "pass"
+    passing = run_project(
+        replace(project, expect=project.expect[:-1], known="turns too far"), mirrors, work, Census()
+    )
+    assert passing.result == "pass" and "known" not in passing.cause
     assert passing.cause.startswith("import: line 7: Mystery")  # what the import lost
     c_project = replace(
         project,
