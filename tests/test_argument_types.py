@@ -138,6 +138,8 @@ def samples(tmp: Path) -> dict[str, Any]:
         "max_speed": 6.28,
         "active": None,
         "hold_spins": False,
+        "hold_heading": False,
+        "wheel_speed_limit": None,
         "subtasks": None,
         "snapshot": {"restore": simulator.snapshot(), "restore_env": batch.snapshot_env(0)},
         "wheel_radius_scale": 1.05,

@@ -69,6 +69,12 @@ INSTANCES: dict[str, str] = {
         "__import__('mazesim.webots.supervisor', fromlist=['x']) and"
         " __import__('mazesim.webots', fromlist=['native_calls', 'simulation', 'supervisor']))"
     ),
+    # The curriculum wraps a native vector env of an unseen-maze task.
+    "mazesim.envs.curriculum.MazeSizeCurriculumWrapper": (
+        "(lambda c: c.MazeSizeCurriculumWrapper(__import__('gymnasium').make_vec("
+        "'mazesim/UnseenMaze-v1', num_envs=2), c.MazeSizeCurriculum(((3, 3), (4, 4)))))("
+        "__import__('mazesim.envs.curriculum', fromlist=['x']))"
+    ),
     # The hand-written baselines read a task's observation names.
     **{
         f"mazesim.envs.baselines.{name}": (
