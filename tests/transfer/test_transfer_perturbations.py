@@ -9,7 +9,7 @@ import pytest
 
 from mazesim import RobotProfile
 from mazesim.transfer.axes import Setting
-from mazesim.transfer.cells import CellRun, profile_of
+from mazesim.transfer.cells import CellRun, profile_changes, profile_of
 
 
 def test_a_settings_profile_carries_its_scales() -> None:
@@ -18,6 +18,14 @@ def test_a_settings_profile_carries_its_scales() -> None:
     assert wider.wheel_radius == pytest.approx(1.05 * seed.wheel_radius)
     assert wider.axle_length == pytest.approx(0.95 * seed.axle_length)
     assert profile_of(Setting.of({"robot": "alphabot2"})).name == "alphabot2"
+
+
+def test_settings_on_one_robot_share_its_one_parse_and_perturb_it_as_a_fresh_one() -> None:
+    setting = Setting.of({"wheel_radius": 1.05, "ir_angle": 10.0, "noise_scale": 2.0})
+    fresh = RobotProfile.builtin("seed").perturbed(**profile_changes(setting))
+    assert profile_of(setting).to_toml() == fresh.to_toml()
+    assert profile_of(Setting()) is profile_of(Setting.of({"robot": "seed"}))
+    assert profile_of(Setting()).to_toml() == RobotProfile.builtin("seed").to_toml()
 
 
 def _straight_travel(run: CellRun, settings: list[Setting], steps: int) -> np.ndarray:

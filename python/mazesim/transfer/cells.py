@@ -16,6 +16,7 @@ other cells share its batch.
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
@@ -75,9 +76,16 @@ def profile_changes(setting: Setting) -> dict[str, Any]:
     return changes
 
 
+@functools.cache
+def _builtin(name: str) -> RobotProfile:
+    """The built-in profile ``name``, parsed once: a profile is immutable, so every setting on
+    that robot may share it (a randomised run draws thousands of robots a round)."""
+    return RobotProfile.builtin(name)
+
+
 def profile_of(setting: Setting) -> RobotProfile:
     """The robot profile a setting drives: its ``robot`` level, perturbed by its other axes."""
-    base = RobotProfile.builtin(str(setting.get("robot")))
+    base = _builtin(str(setting.get("robot")))
     changes = profile_changes(setting)
     if not changes:
         return base
