@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import functools
 import os
+import sys
 import sysconfig
 from typing import Any
 
@@ -38,6 +39,9 @@ __all__ = ["in_the_tree", "io_error"]
 #: The longest part of an original message quoted (a message may quote a huge value).
 QUOTED_CHARACTERS = 300
 
+#: Folders that hold installed packages, wherever they are on ``sys.path``.
+_PACKAGE_FOLDERS = ("site-packages", "dist-packages")
+
 #: Folders of code that is mazesim's or a library's: an exception raised elsewhere was raised by
 #: the caller's own code.
 _LIBRARY_FOLDERS = tuple(
@@ -45,6 +49,8 @@ _LIBRARY_FOLDERS = tuple(
     for folder in {
         os.path.dirname(os.path.abspath(__file__)),
         *(sysconfig.get_paths().get(k, "") for k in ("stdlib", "platstdlib", "purelib", "platlib")),
+        # Packages outside the environment it reads too (Debian's ROS 1 in dist-packages).
+        *(p for p in sys.path if os.path.basename(p.rstrip(os.sep)) in _PACKAGE_FOLDERS),
     }
     if folder
 )

@@ -420,7 +420,7 @@ def test_bad_perturbations_are_refused_naming_the_argument(
 
 
 def test_perturbed_takes_keywords_only() -> None:
-    with pytest.raises(TypeError):
+    with pytest.raises(mazesim.InvalidArgumentError, match="positional"):
         SEED.perturbed(1.05)  # type: ignore[misc]
 
 

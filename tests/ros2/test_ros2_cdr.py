@@ -218,3 +218,8 @@ def test_type_hashes_and_graph_gids_per_distro() -> None:
     assert info.node_entities_info_seq[0].node_name == "mazesim_bridge"
     assert messages.dds_type_name("sensor_msgs/msg/Range") == "sensor_msgs::msg::dds_::Range_"
     assert math.isfinite(len(messages.DISTROS))
+
+
+def test_a_string_keeps_its_own_nul_characters() -> None:
+    for text in ("\x00", "a\x00", "a\x00\x00b", ""):
+        assert cdr.decode_string(cdr.encode_string(text)) == text

@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 
 from mazesim._core import RobotProfile, World
+from mazesim._paths import open_input
 from mazesim.errors import MissingDependencyError
 from mazesim.learn.subtasks import SUBTASK_NAMES
 from mazesim.replay.recorder import EpisodeRecorder, reading_scale
@@ -34,7 +35,8 @@ def read_topics(bag_path: str, topics: tuple[str, ...]) -> dict[str, list[Any]]:
             f"reading a bag needs ROS 1's rosbag package ({error}); on Debian 'make ros-deps'"
         ) from error
     messages: dict[str, list[Any]] = {topic: [] for topic in topics}
-    with rosbag.Bag(bag_path) as bag:
+    # Opened by mazesim (a regular file only, a path that is a path), then read by rosbag.
+    with open_input(bag_path, "the bag") as file, rosbag.Bag(file) as bag:
         for topic, message, _ in bag.read_messages(topics=list(topics)):
             data = message.data
             messages[topic].append(data if isinstance(data, str) else list(data))

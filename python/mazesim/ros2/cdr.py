@@ -326,7 +326,9 @@ class _Reader:
         (length,) = self.unpack("I", 4)
         start = self.offset
         self.offset += int(length)
-        return bytes(self.data[start : self.offset]).rstrip(b"\x00").decode()
+        raw = bytes(self.data[start : self.offset])
+        # The length counts the closing NUL: only that one is dropped (the text may hold NULs).
+        return (raw[:-1] if raw.endswith(b"\x00") else raw).decode()
 
 
 def decode_clock(data: bytes) -> int:
