@@ -32,6 +32,7 @@ from mazesim.ros2 import cdr, network
 from mazesim.ros2.bag import BagRecorder
 from mazesim.ros2.clock import SIM_CONTROL_TOPIC, FreeRunning, stamp_nanoseconds
 from mazesim.ros2.node import Node, Reader
+from mazesim.ros2.nodes import leaves_signals_as_found
 from mazesim.ros2.qos import CLOCK, COMMAND
 from mazesim.ros2.robots import RobotOf, robot_namespaces
 from mazesim.ros2.state import CLOCK_TOPIC, CLOCK_TYPE, StateTopics
@@ -333,6 +334,7 @@ class Ros2Bridge:
         self.node.close()
 
 
+@leaves_signals_as_found
 def run_bridge(settings: BridgeSettings) -> int:
     """Runs the bridge from the command line until SIGINT/SIGTERM, ``stop_after`` or the goal.
 

@@ -13,6 +13,7 @@ Each node creates its readers before its command writer, as the bridge's lockste
 
 from __future__ import annotations
 
+import functools
 import signal
 import sys
 import threading
@@ -33,6 +34,24 @@ __all__ = ["run_avoid_collision", "run_perform_learning", "stop_on_signals"]
 FLOAT64_ARRAY = "std_msgs/msg/Float64MultiArray"
 STRING = "std_msgs/msg/String"
 CLOCK_TYPE = "rosgraph_msgs/msg/Clock"
+
+
+def leaves_signals_as_found(run: Callable[..., int]) -> Callable[..., int]:
+    """Makes ``run`` (a node or the bridge, which may set SIGINT's and SIGTERM's handlers with
+    :func:`stop_on_signals`) put back the handlers it found when it ends, however it ends: a
+    process that goes on afterwards (a caller of the command line's ``main``) keeps its Ctrl-C."""
+
+    @functools.wraps(run)
+    def wrapper(*args: Any, **kwargs: Any) -> int:
+        found = [(number, signal.getsignal(number)) for number in (signal.SIGINT, signal.SIGTERM)]
+        try:
+            return run(*args, **kwargs)
+        finally:
+            for number, handler in found:
+                if handler is not None and signal.getsignal(number) is not handler:
+                    signal.signal(number, handler)
+
+    return wrapper
 
 
 def stop_on_signals() -> threading.Event:
@@ -59,6 +78,7 @@ def _spin(node: Node, stop: threading.Event, handle: Callable[[], None]) -> None
         handle()
 
 
+@leaves_signals_as_found
 def run_perform_learning(
     distro: str,
     policy_path: str | None = None,
@@ -110,6 +130,7 @@ def run_perform_learning(
     return 0
 
 
+@leaves_signals_as_found
 def run_avoid_collision(
     distro: str,
     period_ms: float = 0.0,
