@@ -239,3 +239,85 @@ def test_the_same_seed_gives_the_same_run_whatever_the_processes_timing(
     for one, other in zip(first.robots, again.robots):  # type: ignore[attr-defined]
         assert (one.xs, one.ys) == (other.xs, other.ys)
     assert json.loads((tmp_path / "near.json").read_text())["orders"][:31] == ["go"] * 30 + ["stop"]
+
+
+BODILESS_WORLD = """#VRML_SIM R2023b utf8
+WorldInfo {
+  basicTimeStep 32
+}
+RectangleArena {
+  floorSize 2 2
+}
+Solid {
+  children [
+    Shape {
+      geometry DEF BRICK Box {
+        size 0.6 0.01 0.1
+      }
+    }
+  ]
+  boundingObject USE BRICK
+}
+Supervisor {
+  children [
+    Emitter {
+      channel 1
+    }
+  ]
+  controller "orders"
+}
+E-puck {
+  translation 0 -0.4 0
+  name "runner"
+  controller "runner"
+}
+"""
+
+ORDERS = """from controller import Supervisor
+
+robot = Supervisor()
+emitter = robot.getDevice("emitter")
+for _ in range(20):
+    emitter.send("go")
+    if robot.step(32) == -1:
+        break
+"""
+
+RUNNER = """from controller import Robot
+
+robot = Robot()
+receiver = robot.getDevice("receiver")
+receiver.enable(32)
+left, right = robot.getDevice("left wheel motor"), robot.getDevice("right wheel motor")
+for motor in (left, right):
+    motor.setPosition(float("inf"))
+    motor.setVelocity(0.0)
+while robot.step(32) != -1:
+    while receiver.getQueueLength() > 0:
+        if receiver.getString() == "go":
+            left.setVelocity(4.0)
+            right.setVelocity(4.0)
+        receiver.nextPacket()
+"""
+
+
+def test_a_bodiless_supervisor_inside_a_wall_runs_beside_the_e_pucks(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """A Supervisor node without a body, left at the origin where a thin wall stands (a common
+    way of saving a world), runs its controller: an e-puck's body there would overlap the wall,
+    so its stand-in stands in a world without walls instead of the run being refused."""
+    (tmp_path / "worlds").mkdir()
+    (tmp_path / "worlds" / "w.wbt").write_text(BODILESS_WORLD)
+    for name, text in (("orders", ORDERS), ("runner", RUNNER)):
+        (tmp_path / "controllers" / name).mkdir(parents=True)
+        (tmp_path / "controllers" / name / f"{name}.py").write_text(text)
+    run = run_world(str(tmp_path / "worlds" / "w.wbt"), seconds=1.5, seed=1)
+    supervisor, runner = run.robots
+    assert [supervisor.exit_status, runner.exit_status] == [0, 0], runner.error
+    assert supervisor.distance_m == 0.0
+    assert supervisor.final_pose[:2] == pytest.approx((0.0, 0.0))
+    assert runner.distance_m > 0.05, "the e-puck heard the supervisor's orders"
+    warning = capsys.readouterr().err
+    assert "its stand-in stands there without walls" in warning
+    assert "Supervisor" in warning

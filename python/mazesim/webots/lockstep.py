@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import multiprocessing
 import os
+import re
 import sys
 import time
 from collections.abc import Callable, Mapping
@@ -32,7 +33,7 @@ from typing import Any
 import numpy as np
 
 from mazesim._core import Simulator, World
-from mazesim.errors import MazesimIOError
+from mazesim.errors import InvalidArgumentError, MazesimIOError
 from mazesim.webots.controller_process import ControllerJob, answer, controller_main
 from mazesim.webots.radio import Radio
 from mazesim.webots.shared_world import RobotView, shared_simulator
@@ -224,9 +225,8 @@ def run_world(
         if shared is not None and index in e_pucks:
             simulators.append(RobotView(shared, e_pucks.index(index)))
         else:
-            own_world, _ = import_wbt(world_path, robot_line=int(robot["line"]))
             robot_seed = int(streams[index].generate_state(1)[0])
-            simulators.append(Simulator(own_world, robot=profile, seed=robot_seed, noise=noise))
+            simulators.append(_own_simulator(world_path, robot, profile, robot_seed, noise))
         file, note = controller_of(robot, world_path, controllers or {})
         label = robot.get("name") or robot.get("def_name") or robot.get("model")
         runs.append(RobotRun(index, str(label), str(robot.get("model")), file, note))
@@ -253,6 +253,47 @@ def run_world(
         simulated_seconds=float(simulators[0].time),
         wall_clock_seconds=time.perf_counter() - started,
     )
+
+
+#: The tables of a world file that a robot's body meets: walls and movable bodies.
+_SOLID_TABLES = re.compile(r"^\[\[(?:walls|segments|bodies)\]\]\n(?:(?!\[).*\n)*", re.MULTILINE)
+
+
+def _own_simulator(
+    world_path: str | os.PathLike[str],
+    robot: Mapping[str, Any],
+    profile: str,
+    seed: int,
+    noise: bool,
+) -> Simulator:
+    """A simulator of one robot of the world alone.
+
+    A robot that is not an e-puck is not simulated: its controller runs and its stand-in body
+    stays at its pose. Such a robot often has no body at all (a Supervisor that only sends
+    orders, at the origin): where an e-puck's disc at its pose would overlap a wall, its
+    stand-in stands there in a copy of the world without walls or movable bodies (which it
+    would not touch, since it does not move), and a warning says so, instead of the run being
+    refused. An e-puck whose start overlaps a wall is refused as ever.
+    """
+    from mazesim.webots.importer import import_wbt
+
+    own_world, _ = import_wbt(world_path, robot_line=int(robot["line"]))
+    try:
+        return Simulator(own_world, robot=profile, seed=seed, noise=noise)
+    except InvalidArgumentError as refusal:
+        if robot.get("profile") is not None:
+            raise
+        reason = str(refusal)
+    label = robot.get("name") or robot.get("def_name") or robot.get("model")
+    print(
+        f"mazesim: warning: robot {label!r} ({robot.get('model')}, not simulated): an e-puck's "
+        f"body at its pose would overlap a wall ({reason}); its stand-in stands there without "
+        f"walls (it does not move, and its devices see no walls)",
+        file=sys.stderr,
+    )
+    text = _SOLID_TABLES.sub("", own_world.to_toml())
+    bare = World.from_toml(text, source=f"{own_world.name} (without walls)")
+    return Simulator(bare, robot=profile, seed=seed, noise=noise)
 
 
 def _say_what_is_missing(runs: list[RobotRun]) -> None:
