@@ -300,3 +300,45 @@ def test_maze_blocks_stand_in_as_thin_wall_boxes_of_their_length(
         ([0.0, 0.0], [0.015, 0.2], 0.0),
         ([0.0, -0.21], [0.015, 0.1], 1.5708),
     ]
+
+
+def test_fridges_and_tables_stand_in_as_their_documented_body_and_legs(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    """A fridge is a 0.7 m box an e-puck drives around; a table is four legs it drives between
+    (its top is above the robot), in the corners of the given size, feet and padding."""
+    monkeypatch.setenv("MAZESIM_OFFLINE", "1")
+    base = "webots://projects/objects"
+    text = (
+        "#VRML_SIM R2023b utf8\n"
+        f'EXTERNPROTO "{base}/kitchen/fridge/protos/Fridge.proto"\n'
+        f'EXTERNPROTO "{base}/tables/protos/Table.proto"\n'
+        "Fridge { translation 2 0 0 }\n"
+        "Table { translation -1 0 0 size 0.8 0.6 0.7 feetSize 0.04 0.06 feetPadding 0.01 }\n"
+        "E-puck { }\n"
+    )
+    _, report = import_wbt_text(text, str(tmp_path / "kitchen.wbt"))
+    assert set(report["protos"]["stand_ins"]) == {"Fridge", "Table"}
+    fridge, *legs = _boxes(report)
+    assert fridge == ([2.0, 0.0], [0.7, 0.7])
+    centres = sorted((round(c[0], 6), round(c[1], 6)) for c, _ in legs)
+    # 0.4 - 0.01 - 0.02 across, 0.3 - 0.01 - 0.03 along.
+    assert centres == [(-1.37, -0.26), (-1.37, 0.26), (-0.63, -0.26), (-0.63, 0.26)]
+    assert all(size == [0.04, 0.06] for _, size in legs)
+
+
+def test_a_table_of_a_y_up_world_keeps_the_y_up_default_size(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    """Before R2022a a Table's default size is 1.8 x 0.74 x 1 (the height second): its legs
+    stand 1.8 m apart across and 1 m along, not 1 m and 1.8 m."""
+    monkeypatch.setenv("MAZESIM_OFFLINE", "1")
+    text = (
+        '#VRML_SIM R2021a utf8\nWorldInfo { coordinateSystem "NUE" }\nTable { }\n'
+        "E-puck { translation 0 0 2 }\n"
+    )
+    _, report = import_wbt_text(text, str(tmp_path / "old.wbt"))
+    # The file's x (across) is mazesim's y, its z (along) mazesim's x.
+    xs = sorted({round(c[0], 6) for c, _ in _boxes(report)})
+    ys = sorted({round(c[1], 6) for c, _ in _boxes(report)})
+    assert ys == [-0.85, 0.85] and xs == [-0.45, 0.45]

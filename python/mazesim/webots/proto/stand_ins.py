@@ -10,7 +10,11 @@ kg; ``Ball``: radius 0.0325, mass 0.055 kg) and "Obstacles" (``OilBarrel``: heig
 0.305, centred on its translation, physics NULL by default) and "Drinks" (``Can``: 0.03175 m
 radius, 0.1222 m high, 0.35 kg); the robotbenchmark "Maze Runner" sample's ``MazeBlock`` (its
 PROTO interface: a wall block 0.015 m thick, ``length`` long (default 0.1) and 0.065 m high,
-standing on its translation, of density 200 kg/m^3).
+standing on its translation, of density 200 kg/m^3); "Kitchen" (``Fridge``: 0.7 x 0.7 x 1.8 m,
+standing on its translation, centred on it across) and "Tables" (``Table``: ``size`` 1 x 1.8 x
+0.74 m since R2022a, 1.8 x 0.74 x 1 with the height second before; four ``feetSize`` legs, 0.1
+x 0.1 m by default, in the corners, ``feetPadding`` in from the edges, under a top
+``frameThickness`` thick, 0.05 m by default).
 """
 
 from __future__ import annotations
@@ -181,6 +185,22 @@ PROTO OilBarrel [
 }
 """
 
+
+def _standing_box(across: str, along: str, height: float) -> str:
+    """A boundingObject: a box standing on its Solid's origin, ``across`` x ``along`` wide (values
+    or template expressions) and ``height`` high, in a Y-up or a Z-up file (the template's
+    ``yUp``)."""
+    return f"""boundingObject Pose {{
+      %< if (yUp) {{ >%
+        translation 0 {height / 2} 0
+        children [ Box {{ size {across} {height} {along} }} ]
+      %< }} else {{ >%
+        translation 0 0 {height / 2}
+        children [ Box {{ size {across} {along} {height} }} ]
+      %< }} >%
+    }}"""
+
+
 _MAZE_BLOCK = """#VRML_SIM R2023b utf8
 # template language: javascript
 PROTO MazeBlock [
@@ -195,16 +215,92 @@ PROTO MazeBlock [
     translation IS translation
     rotation IS rotation
     name IS name
-    boundingObject Pose {
-      %< if (yUp) { >%
-        translation 0 0.0325 0
-        children [ Box { size 0.015 0.065 %<= l >% } ]
-      %< } else { >%
-        translation 0 0 0.0325
-        children [ Box { size 0.015 %<= l >% 0.065 } ]
-      %< } >%
-    }
+    BOUNDING_OBJECT
     physics Physics { density 200 }
+  }
+}
+""".replace("BOUNDING_OBJECT", _standing_box("0.015", "%<= l >%", 0.065))
+
+_FRIDGE = """#VRML_SIM R2023b utf8
+# template language: javascript
+PROTO Fridge [
+  field SFVec3f translation 0 0 0
+  field SFRotation rotation 0 0 1 0
+  field SFString name "fridge"
+  field SFColor mainColor 1 1 1
+]
+{
+  %< const yUp = context.coordinate_system === 'NUE'; >%
+  Solid {
+    translation IS translation
+    rotation IS rotation
+    name IS name
+    BOUNDING_OBJECT
+  }
+}
+""".replace("BOUNDING_OBJECT", _standing_box("0.7", "0.7", 1.8))
+
+_TABLE = """#VRML_SIM R2023b utf8
+# template language: javascript
+PROTO Table [
+  field SFVec3f translation 0 0 0
+  field SFRotation rotation 0 0 1 0
+  field SFString name "table"
+  field SFVec3f size 1 1.8 0.74
+  field SFVec2f feetSize 0.1 0.1
+  field SFFloat feetPadding 0
+  field SFFloat frameThickness 0.05
+  field SFNode trayAppearance NULL
+  field SFNode legAppearance NULL
+]
+{
+  %<
+    const yUp = context.coordinate_system === 'NUE';
+    const given = fields.size.value;
+    const unset = given.x === 1 && given.y === 1.8 && given.z === 0.74;
+    // Across, along and up, whichever axis is up in the file.
+    const size = yUp
+      ? (unset ? {a: 1.8, b: 1, h: 0.74} : {a: given.x, b: given.z, h: given.y})
+      : {a: given.x, b: given.y, h: given.z};
+    const feet = fields.feetSize.value;
+    const pad = fields.feetPadding.value;
+    const frame = fields.frameThickness.value > 0 ? fields.frameThickness.value : 0.05;
+    const legHeight = size.h - frame;
+    const fa = 0.5 * size.a - pad - 0.5 * feet.x;
+    const fb = 0.5 * size.b - pad - 0.5 * feet.y;
+    const corners = feet.x > 0 && feet.y > 0 ? [[fa, fb], [-fa, fb], [fa, -fb], [-fa, -fb]] : [];
+  >%
+  Solid {
+    translation IS translation
+    rotation IS rotation
+    name IS name
+    boundingObject Group {
+      children [
+        %< if (yUp) { >%
+          Pose {
+            translation 0 %<= size.h - 0.5 * frame >% 0
+            children [ Box { size %<= size.a >% %<= frame >% %<= size.b >% } ]
+          }
+          %< for (const [a, b] of corners) { >%
+            Pose {
+              translation %<= a >% %<= 0.5 * legHeight >% %<= b >%
+              children [ Box { size %<= feet.x >% %<= legHeight >% %<= feet.y >% } ]
+            }
+          %< } >%
+        %< } else { >%
+          Pose {
+            translation 0 0 %<= size.h - 0.5 * frame >%
+            children [ Box { size %<= size.a >% %<= size.b >% %<= frame >% } ]
+          }
+          %< for (const [a, b] of corners) { >%
+            Pose {
+              translation %<= a >% %<= b >% %<= 0.5 * legHeight >%
+              children [ Box { size %<= feet.x >% %<= feet.y >% %<= legHeight >% } ]
+            }
+          %< } >%
+        %< } >%
+      ]
+    }
   }
 }
 """
@@ -227,4 +323,6 @@ STAND_INS: dict[str, StandIn] = {
     "MazeBlock": StandIn(
         _MAZE_BLOCK, "a wall block 0.015 m thick and 0.065 m high of the given length"
     ),
+    "Fridge": StandIn(_FRIDGE, "a box of the documented 0.7 x 0.7 x 1.8 m"),
+    "Table": StandIn(_TABLE, "its top and four legs of the given size, feet and padding"),
 }
