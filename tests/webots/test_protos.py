@@ -342,3 +342,29 @@ def test_a_table_of_a_y_up_world_keeps_the_y_up_default_size(
     xs = sorted({round(c[0], 6) for c, _ in _boxes(report)})
     ys = sorted({round(c[1], 6) for c, _ in _boxes(report)})
     assert ys == [-0.85, 0.85] and xs == [-0.45, 0.45]
+
+
+def test_a_cabinet_stands_in_as_the_envelope_of_its_frame(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    """A cabinet reaches from its origin forward by its depth, is as wide as its columns and
+    frame and centred across; one hung on a wall (its rows above the robot) is not a wall."""
+    monkeypatch.setenv("MAZESIM_OFFLINE", "1")
+    text = (
+        "#VRML_SIM R2023b utf8\n"
+        'EXTERNPROTO "webots://projects/objects/cabinet/protos/Cabinet.proto"\n'
+        'Cabinet { translation 1 0 0 name "default" }\n'
+        'Cabinet { translation -1 0 0 rotation 0 0 1 3.14159 name "small" depth 0.3 '
+        "outerThickness 0.02 rowsHeights [ 0.2 0.2 ] columnsWidths [ 0.5 ] "
+        'layout [ "Shelf (1, 2, 1, 0)" ] handle CabinetHandle { } }\n'
+        'Cabinet { translation 0 1 0.9 name "hung" }\n'
+        "E-puck { }\n"
+    )
+    _, report = import_wbt_text(text, str(tmp_path / "cabinets.wbt"))
+    assert set(report["protos"]["stand_ins"]) == {"Cabinet"}
+    default, small = _boxes(report)
+    # 0.5 deep forward of (1, 0); 0.06 + 0.74 wide.
+    assert default[0] == pytest.approx([1.25, 0.0]) and default[1] == pytest.approx([0.5, 0.8])
+    # Turned to face -x: 0.3 deep toward -x; 0.04 + 0.5 wide.
+    assert small[0] == pytest.approx([-1.15, 0.0], abs=1e-5)
+    assert small[1] == pytest.approx([0.3, 0.54])

@@ -14,7 +14,11 @@ standing on its translation, of density 200 kg/m^3); "Kitchen" (``Fridge``: 0.7 
 standing on its translation, centred on it across) and "Tables" (``Table``: ``size`` 1 x 1.8 x
 0.74 m since R2022a, 1.8 x 0.74 x 1 with the height second before; four ``feetSize`` legs, 0.1
 x 0.1 m by default, in the corners, ``feetPadding`` in from the edges, under a top
-``frameThickness`` thick, 0.05 m by default).
+``frameThickness`` thick, 0.05 m by default) and "Cabinet" (``Cabinet``: a frame ``depth`` deep
+(0.5 m by default) from its origin forward, ``outerThickness`` (0.03) plus the
+``columnsWidths`` (0.4, 0.17, 0.17) wide, centred across, and ``outerThickness`` plus the
+``rowsHeights`` (0.24, 0.2, 0.2, 0.4, 0.4) high on each side, from the floor up, its doors,
+drawers and shelves inside that envelope).
 """
 
 from __future__ import annotations
@@ -305,6 +309,48 @@ PROTO Table [
 }
 """
 
+_CABINET = """#VRML_SIM R2023b utf8
+# template language: javascript
+PROTO Cabinet [
+  field SFVec3f translation 0 0 0
+  field SFRotation rotation 0 0 1 0
+  field SFString name "cabinet"
+  field SFFloat depth 0.5
+  field SFFloat innerThickness 0.02
+  field SFFloat outerThickness 0.03
+  field MFFloat rowsHeights [ 0.24 0.2 0.2 0.4 0.4 ]
+  field MFFloat columnsWidths [ 0.4 0.17 0.17 ]
+  field MFString layout []
+  field SFNode handle NULL
+  field SFNode primaryAppearance NULL
+  field SFNode secondaryAppearance NULL
+]
+{
+  %<
+    const yUp = context.coordinate_system === 'NUE';
+    const outer = fields.outerThickness.value > 0 ? fields.outerThickness.value : 0.03;
+    const depth = fields.depth.value > 0 ? fields.depth.value : 0.5;
+    const sum = (values) => values.reduce((total, value) => total + value, 0);
+    const width = 2 * outer + sum(fields.columnsWidths.value);
+    const height = 2 * outer + sum(fields.rowsHeights.value);
+  >%
+  Solid {
+    translation IS translation
+    rotation IS rotation
+    name IS name
+    boundingObject Pose {
+      %< if (yUp) { >%
+        translation %<= depth / 2 >% %<= height / 2 >% 0
+        children [ Box { size %<= depth >% %<= height >% %<= width >% } ]
+      %< } else { >%
+        translation %<= depth / 2 >% 0 %<= height / 2 >%
+        children [ Box { size %<= depth >% %<= width >% %<= height >% } ]
+      %< } >%
+    }
+  }
+}
+"""
+
 #: The stand-ins, by PROTO name.
 STAND_INS: dict[str, StandIn] = {
     "CircleArena": StandIn(
@@ -325,4 +371,7 @@ STAND_INS: dict[str, StandIn] = {
     ),
     "Fridge": StandIn(_FRIDGE, "a box of the documented 0.7 x 0.7 x 1.8 m"),
     "Table": StandIn(_TABLE, "its top and four legs of the given size, feet and padding"),
+    "Cabinet": StandIn(
+        _CABINET, "a box of its frame's envelope: depth, rows' heights and columns' widths"
+    ),
 }
