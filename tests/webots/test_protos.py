@@ -302,29 +302,36 @@ def test_maze_blocks_stand_in_as_thin_wall_boxes_of_their_length(
     ]
 
 
-def test_fridges_and_tables_stand_in_as_their_documented_body_and_legs(
+def test_fridges_tables_and_chairs_stand_in_as_their_documented_body_and_legs(
     monkeypatch: pytest.MonkeyPatch, tmp_path: Path
 ) -> None:
     """A fridge is a 0.7 m box an e-puck drives around; a table is four legs it drives between
-    (its top is above the robot), in the corners of the given size, feet and padding."""
+    (its top is above the robot), in the corners of the given size, feet and padding; a chair
+    four static legs, with physics or not."""
     monkeypatch.setenv("MAZESIM_OFFLINE", "1")
     base = "webots://projects/objects"
     text = (
         "#VRML_SIM R2023b utf8\n"
         f'EXTERNPROTO "{base}/kitchen/fridge/protos/Fridge.proto"\n'
         f'EXTERNPROTO "{base}/tables/protos/Table.proto"\n'
+        f'EXTERNPROTO "{base}/chairs/protos/Chair.proto"\n'
         "Fridge { translation 2 0 0 }\n"
         "Table { translation -1 0 0 size 0.8 0.6 0.7 feetSize 0.04 0.06 feetPadding 0.01 }\n"
+        "Chair { translation 1 1 0 physics Physics { } }\n"
         "E-puck { }\n"
     )
     _, report = import_wbt_text(text, str(tmp_path / "kitchen.wbt"))
-    assert set(report["protos"]["stand_ins"]) == {"Fridge", "Table"}
+    assert set(report["protos"]["stand_ins"]) == {"Fridge", "Table", "Chair"}
+    assert not report["bodies"]
     fridge, *legs = _boxes(report)
     assert fridge == ([2.0, 0.0], [0.7, 0.7])
-    centres = sorted((round(c[0], 6), round(c[1], 6)) for c, _ in legs)
+    table = sorted((round(c[0], 6), round(c[1], 6)) for c, _ in legs[:4])
     # 0.4 - 0.01 - 0.02 across, 0.3 - 0.01 - 0.03 along.
-    assert centres == [(-1.37, -0.26), (-1.37, 0.26), (-0.63, -0.26), (-0.63, 0.26)]
-    assert all(size == [0.04, 0.06] for _, size in legs)
+    assert table == [(-1.37, -0.26), (-1.37, 0.26), (-0.63, -0.26), (-0.63, 0.26)]
+    assert all(size == [0.04, 0.06] for _, size in legs[:4])
+    chair = sorted((round(c[0], 6), round(c[1], 6)) for c, _ in legs[4:])
+    assert chair == [(0.78, 0.78), (0.78, 1.22), (1.22, 0.78), (1.22, 1.22)]
+    assert all(size == [0.06, 0.06] for _, size in legs[4:])
 
 
 def test_a_table_of_a_y_up_world_keeps_the_y_up_default_size(

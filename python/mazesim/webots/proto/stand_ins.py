@@ -18,7 +18,9 @@ x 0.1 m by default, in the corners, ``feetPadding`` in from the edges, under a t
 (0.5 m by default) from its origin forward, ``outerThickness`` (0.03) plus the
 ``columnsWidths`` (0.4, 0.17, 0.17) wide, centred across, and ``outerThickness`` plus the
 ``rowsHeights`` (0.24, 0.2, 0.2, 0.4, 0.4) high on each side, from the floor up, its doors,
-drawers and shelves inside that envelope).
+drawers and shelves inside that envelope); the ``Chair`` PROTO's published collision shape
+(legs 0.06 x 0.06 x 0.4 m centred 0.22 m from its origin on both horizontal axes, under a
+seat; kept static: at the default density its 40-odd kg is beyond an e-puck's push).
 """
 
 from __future__ import annotations
@@ -351,6 +353,40 @@ PROTO Cabinet [
 }
 """
 
+_CHAIR = """#VRML_SIM R2023b utf8
+# template language: javascript
+PROTO Chair [
+  field SFVec3f translation 0 0 0
+  field SFRotation rotation 0 0 1 0
+  field SFString name "chair"
+  field SFColor color 1 1 1
+  field SFNode physics NULL
+]
+{
+  %< const yUp = context.coordinate_system === 'NUE'; >%
+  Solid {
+    translation IS translation
+    rotation IS rotation
+    name IS name
+    boundingObject Group {
+      children [
+        %< for (const [a, b] of [[0.22, 0.22], [-0.22, 0.22], [0.22, -0.22], [-0.22, -0.22]]) { >%
+          Pose {
+            %< if (yUp) { >%
+              translation %<= a >% 0.2 %<= b >%
+              children [ Box { size 0.06 0.4 0.06 } ]
+            %< } else { >%
+              translation %<= a >% %<= b >% 0.2
+              children [ Box { size 0.06 0.06 0.4 } ]
+            %< } >%
+          }
+        %< } >%
+      ]
+    }
+  }
+}
+"""
+
 #: The stand-ins, by PROTO name.
 STAND_INS: dict[str, StandIn] = {
     "CircleArena": StandIn(
@@ -371,6 +407,7 @@ STAND_INS: dict[str, StandIn] = {
     ),
     "Fridge": StandIn(_FRIDGE, "a box of the documented 0.7 x 0.7 x 1.8 m"),
     "Table": StandIn(_TABLE, "its top and four legs of the given size, feet and padding"),
+    "Chair": StandIn(_CHAIR, "its four legs, static"),
     "Cabinet": StandIn(
         _CABINET, "a box of its frame's envelope: depth, rows' heights and columns' widths"
     ),
