@@ -6,7 +6,7 @@ exported from its repository's mirror in DIR into a temporary folder, its world 
 first controller run with ``mazesim webots run`` for the project's simulated time; the facts it is
 expected to show are checked against the run's ``summary.json`` and ``trajectory.csv``. A
 project whose mirror is missing is skipped, and the table says which. The whole run stops
-starting projects once ``--budget`` wall-clock seconds (default 840) have passed.
+starting projects once ``--budget`` wall-clock seconds (default 1500) have passed.
 """
 
 from __future__ import annotations
@@ -29,7 +29,7 @@ from webots_corpus.runner import Row, run_project
 
 ROOT = Path(__file__).resolve().parents[2]
 DEFAULT_OUT = ROOT / "docs" / "webots-compat.md"
-DEFAULT_BUDGET_S = 840.0
+DEFAULT_BUDGET_S = 1500.0
 
 
 def _revision() -> str:
