@@ -8,9 +8,14 @@ import numpy as np
 import numpy.typing as npt
 
 __all__ = [
+    "AvoidCollisionSettings",
     "BatchSimulator",
+    "EpisodeLimits",
     "RobotProfile",
+    "RunSettings",
     "Simulator",
+    "StepBounds",
+    "TabularSettings",
     "TaskFeatures",
     "World",
     "__version__",
@@ -607,7 +612,7 @@ class EpisodeLimits:
     @property
     def autoreset(self) -> bool:
         """Whether an ended episode is reset at once (else the env stands still until reset)."""
-    def __eq__(self, other: object) -> bool: ...
+    def __eq__(self, value: object, /) -> bool: ...
     def __hash__(self) -> int: ...
 
 @final
