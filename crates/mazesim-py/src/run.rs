@@ -1,4 +1,5 @@
-//! `BatchSimulator.run` for Python: the built-in controller named by its arguments, the optional
+//! `BatchSimulator.run` for Python: the built-in controller from its name or settings and the
+//! call's `RunSettings` (or, deprecated, from the keywords `run` took before them), the optional
 //! per-step output arrays (`trace`) borrowed and checked, the counters returned as numpy arrays.
 
 use std::ffi::CString;
