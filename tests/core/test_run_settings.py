@@ -82,6 +82,9 @@ def test_former_avoid_collision_keywords_warn_and_still_check_their_values() -> 
     out = buffers(batch)
     with pytest.warns(DeprecationWarning, match="'threshold'"):
         batch.run(5, "avoid-collision", *out, threshold=70.0)
+    with pytest.warns(DeprecationWarning, match="'seeds'"):
+        counters = batch.run(5, AvoidCollisionSettings(), *out, seeds=[4, 5])
+    assert counters["steps"].tolist() == [5, 5]
     with (
         pytest.warns(DeprecationWarning),
         pytest.raises(mazesim.InvalidArgumentError, match="threshold"),

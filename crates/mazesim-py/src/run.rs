@@ -116,11 +116,9 @@ impl RunCall {
             kw.get("threshold", Real::Number(80.0))?,
             kw.get("max_speed", Real::Number(EPUCK_MAX_SPEED))?,
         )?;
-        let name = controller
-            .extract::<crate::args::Text>()?
-            .value("controller", "a str")?;
-        let controller = match name.as_str() {
-            "tabular" => {
+        let name = controller.extract::<String>().ok();
+        let (controller, max_speed) = match name.as_deref() {
+            Some("tabular") => {
                 let table = kw.object("table")?.ok_or_else(|| {
                     invalid(format!(
                         "the tabular controller needs table, a float64 array of shape ({}, {}) \
@@ -138,10 +136,15 @@ impl RunCall {
                     kw.get("hold_heading", Flag::Value(false))?,
                     kw.get("wheel_speed_limit", None)?,
                 )?;
-                Controller::Tabular(Box::new(settings.policy))
+                let policy = Controller::Tabular(Box::new(settings.policy));
+                (policy, avoid.rule.max_speed)
             }
-            "avoid-collision" => Controller::AvoidCollision(avoid.rule),
-            _ => controller_of(controller)?.0,
+            Some("avoid-collision") => {
+                (Controller::AvoidCollision(avoid.rule), avoid.rule.max_speed)
+            }
+            Some(_) => (controller_of(controller)?.0, avoid.rule.max_speed),
+            // A controller's settings with the former keywords for the rest of the call.
+            None => controller_of(controller)?,
         };
         let flag = |key: &str, default| kw.get(key, Flag::Value(default));
         let limits = PyEpisodeLimits::new(
@@ -161,7 +164,7 @@ impl RunCall {
         )?;
         Ok(Self {
             controller,
-            max_speed: avoid.rule.max_speed,
+            max_speed,
             settings: Py::new(py, settings)?,
         })
     }
