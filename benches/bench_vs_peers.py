@@ -109,6 +109,7 @@ class MazesimRunner:
         self.crossings = np.zeros(n, np.int32)
         self.actions = np.zeros((n, 2), np.float32)
         self.scratch = np.zeros((8, n), np.float32)
+        self.no_autoreset = mazesim.RunSettings(mazesim.EpisodeLimits(autoreset=False))
 
     def reset(self) -> None:
         self.batch.reset(self.obs, self.pose, self.colliding, self.crossings)
@@ -123,7 +124,7 @@ class MazesimRunner:
                 self.pose,
                 self.colliding,
                 self.crossings,
-                autoreset=False,
+                settings=self.no_autoreset,
             )
             return
         wl.braitenberg(self.obs[:, :8].T, self.actions[:, 0], self.actions[:, 1], self.scratch)

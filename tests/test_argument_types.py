@@ -123,9 +123,11 @@ def samples(tmp: Path) -> dict[str, Any]:
         "low": np.zeros(11, np.float32),
         "high": np.full(11, 5000.0, np.float32),
         "steps": 3,
-        "controller": "tabular",
+        "controller": "braitenberg",
         "robot_line": None,
-        "max_episode_steps": 0,
+        "settings": core.RunSettings(),
+        "limits": core.EpisodeLimits(),
+        "max_steps": 0,
         "end_at_goal": False,
         "end_at_crossing": False,
         "autoreset": True,
@@ -173,9 +175,11 @@ def samples(tmp: Path) -> dict[str, Any]:
         "state": features.state(),
         "features": features,
         "observe": True,
+        "bounds": core.StepBounds(np.zeros(11, np.float32), np.full(11, 5000.0, np.float32), 6.28),
         # Parameters whose name means something else for one callable.
         "overrides": {
             "observe_env": {"readings": np.zeros(11, np.float32), "pose": np.zeros(3, np.float32)},
+            "run": {"controller": core.TabularSettings(np.zeros((4096, 12)))},
             "train_lower_round": lower_round_samples(world, x, y, yaw, batch),
             "q_batch_update": {
                 "q": np.zeros((4, 3)),

@@ -19,7 +19,7 @@ world = mazesim.World.builtin('seed-maze')
 batch = _core.BatchSimulator(world, num_envs=64, threads=1)
 out = buffers(batch)
 def long_run(steps=4000):
-    return batch.run(steps, 'braitenberg', *out, autoreset=True)
+    return batch.run(steps, 'braitenberg', *out)
 """
 
 

@@ -16,8 +16,8 @@ CASES = {
         r"seeds .*at most 2 .*1000000000 items",
     ),
     "run seeds": (
-        "batch.run(3, 'braitenberg', *buffers(batch), seeds=HUGE)",
-        r"seeds .*at most 2 .*1000000000 items",
+        "_core.RunSettings(seeds=HUGE)",
+        r"seeds .*at most 16777216 .*1000000000 items",
     ),
     "motor gains": (
         "mazesim.RobotProfile.builtin('e-puck').perturbed(motor_gains=HUGE)",
@@ -40,7 +40,7 @@ CASES = {
         r"observations of shape",
     ),
     "tabular table shape": (
-        "batch.run(3, 'tabular', *buffers(batch), table=Shaped())",
+        "_core.TabularSettings(Shaped())",
         r"table .*no usable shape",
     ),
     "train lower round crews": (

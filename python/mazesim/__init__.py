@@ -18,9 +18,13 @@ import os
 
 from mazesim import _checks
 from mazesim._core import (
+    AvoidCollisionSettings,
     BatchSimulator,
+    EpisodeLimits,
     RobotProfile,
+    RunSettings,
     Simulator,
+    TabularSettings,
     World,
     __version__,
     builtin_world_names,
@@ -46,16 +50,20 @@ from mazesim.errors import (
 _checks.install()
 
 __all__ = [
+    "AvoidCollisionSettings",
     "BatchSimulator",
+    "EpisodeLimits",
     "InternalError",
     "InvalidActionError",
     "InvalidArgumentError",
     "MazesimError",
     "MazesimIOError",
     "RobotProfile",
+    "RunSettings",
     "Simulator",
     "SimulatorBusyError",
     "SnapshotError",
+    "TabularSettings",
     "UnknownNameError",
     "World",
     "WorldFormatError",

@@ -8,9 +8,14 @@ import numpy as np
 import numpy.typing as npt
 
 __all__ = [
+    "AvoidCollisionSettings",
     "BatchSimulator",
+    "EpisodeLimits",
     "RobotProfile",
+    "RunSettings",
     "Simulator",
+    "StepBounds",
+    "TabularSettings",
     "TaskFeatures",
     "World",
     "__version__",
@@ -344,22 +349,21 @@ class Simulator:
     def step_task(
         self,
         features: TaskFeatures,
+        bounds: StepBounds,
         left: float,
         right: float,
-        low: npt.NDArray[np.float32],
-        high: npt.NDArray[np.float32],
-        max_speed: float,
         observe: bool = True,
     ) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.float32], bool, int, int, float, bool]:
         """`step_observe`, then the task observation of environment 0 of `features` (a
         `TaskFeatures` of this robot's sensors) in the same call: the observation from the
-        clamped readings, the pose and the previous action (`left` and `right` over `max_speed`,
-        in float32), in place of the readings; then the pose, whether the body touches a wall,
-        the signed checkpoint crossed (0: none), the collisions so far, the distance in metres
-        to the features' goal and whether the pose is in the goal disc. The same values as
-        `step_observe` followed by `features.observe_env(0, ...)`. With `observe=False` the
-        first value is the clamped readings themselves, and the features only give the goal's
-        distance (their explored map is left as it is)."""
+        readings clamped to `bounds` (a `StepBounds` of this robot's width), the pose and the
+        previous action (`left` and `right` over the bounds' `max_speed`, in float32), in place
+        of the readings; then the pose, whether the body touches a wall, the signed checkpoint
+        crossed (0: none), the collisions so far, the distance in metres to the features' goal
+        and whether the pose is in the goal disc. The same values as `step_observe` followed by
+        `features.observe_env(0, ...)`. With `observe=False` the first value is the clamped
+        readings themselves, and the features only give the goal's distance (their explored map
+        is left as it is)."""
     def set_start(self, x: float, y: float, yaw: float, robot_index: int = 0) -> None:
         """Sets the pose every later reset starts robot `robot_index` from (instead of the
         world's)."""
@@ -476,109 +480,53 @@ class BatchSimulator:
     def run(
         self,
         steps: int,
-        controller: Literal["braitenberg", "avoid-collision", "tabular", "random"],
+        controller: Literal["braitenberg", "avoid-collision", "random"]
+        | AvoidCollisionSettings
+        | TabularSettings,
         observations: npt.NDArray[np.float32],
         poses: npt.NDArray[np.float32],
         colliding: npt.NDArray[np.bool_],
         crossings: npt.NDArray[np.int32],
         *,
-        seeds: int | Sequence[int] | None = None,
-        max_episode_steps: int = 0,
-        end_at_goal: bool = False,
-        end_at_crossing: bool = False,
-        autoreset: bool = True,
-        trace: dict[str, npt.NDArray[Any]] | None = None,
-        table: npt.NDArray[np.float64] | None = None,
-        allowed_actions: npt.NDArray[np.bool_] | None = None,
-        table_index: npt.NDArray[np.int64] | None = None,
-        epsilon: float = 0.0,
-        threshold: float = 80.0,
-        max_speed: float = 6.28,
-        active: npt.NDArray[np.bool_] | None = None,
-        hold_spins: bool = False,
-        hold_heading: bool = False,
-        wheel_speed_limit: float | None = None,
-        subtasks: dict[str, npt.NDArray[Any]] | None = None,
+        settings: RunSettings | None = None,
     ) -> dict[str, npt.NDArray[np.uint64]]:
         """Runs ``steps`` control steps of every env in one call, the GIL released, each env's
         wheel speeds chosen in the core by a built-in controller.
 
         Controllers (each equal, bit for bit, to its Python counterpart on the same readings):
         ``"braitenberg"`` (:func:`mazesim.benchmark.braitenberg` on ps0-7), ``"avoid-collision"``
-        (:class:`mazesim.controllers.AvoidCollision` with ``threshold`` and ``max_speed``),
-        ``"tabular"`` (greedy over ``table``, a float64 ``(4096, 12)`` Q-table or
-        ``(tables, 4096, 12)`` tables with env ``i`` acting from ``table[table_index[i]]``, on
-        the Table 4.1 state of the first six distance sensors; ties go to the first maximum;
-        only ``allowed_actions`` (``(12,)`` or ``(tables, 12)`` bool) are taken; with
-        probability ``epsilon`` a uniformly random allowed action) and ``"random"`` (wheel
-        speeds uniform within the motor limit). Env ``i`` draws its random numbers from its own
-        stream seeded with ``seeds[i]`` (an int ``s`` gives ``s + i``; ``0..N`` by default).
+        or an :class:`AvoidCollisionSettings` (:class:`mazesim.controllers.AvoidCollision` with
+        its ``threshold`` and ``max_speed``), a :class:`TabularSettings` (the tabular
+        controller over its Q-tables) and ``"random"`` (wheel speeds uniform within the motor
+        limit). Env ``i`` draws its random numbers from its own stream seeded with
+        ``settings.seeds[i]`` (an int ``s`` gives ``s + i``; ``0..N`` by default).
 
-        An episode ends after ``max_episode_steps`` steps since its reset (0: no limit) or, with
-        ``end_at_goal``, on the step the robot's centre enters the goal disc, or, with
-        ``end_at_crossing``, on a step that crosses a barcode. With ``autoreset`` an env is reset
-        at once with the seed that follows its last one (SplitMix64); without, it stands still
-        until reset (stopped by a crossing: for the rest of the call only).
+        An episode ends as ``settings.limits`` (an :class:`EpisodeLimits`) says: after its step
+        limit, at the goal, at a crossing; with ``autoreset`` an env is reset at once with the
+        seed that follows its last one (SplitMix64); without, it stands still until reset
+        (stopped by a crossing: for the rest of the call only).
+
+        The keywords ``run`` took before its settings objects (``seeds``,
+        ``max_episode_steps``, ``end_at_goal``, ``end_at_crossing``, ``autoreset``, ``trace``,
+        ``table``, ``allowed_actions``, ``table_index``, ``epsilon``, ``threshold``,
+        ``max_speed``, ``active``, ``hold_spins``, ``hold_heading``, ``wheel_speed_limit``,
+        ``subtasks``) are still read for one release, with a :class:`DeprecationWarning`.
 
         Args:
             steps: Control steps of every env.
-            controller: The built-in controller.
+            controller: The built-in controller: its name, or its settings.
             observations: (N, observation_width) float32, the final observations.
             poses: (N, 3) float32, the final poses.
             colliding: (N,) bool, the final step's contact flags.
             crossings: (N,) int32, the final step's barcode crossings.
-            seeds: Seeds of the envs' controller streams.
-            max_episode_steps: Step limit of an episode (0: none).
-            end_at_goal: Whether reaching the goal ends an episode.
-            end_at_crossing: Whether crossing a barcode ends an episode.
-            autoreset: Whether an ended episode is reset at once.
-            trace: Per-step outputs to fill, by key: ``observations`` (steps, N, width) float32,
-                ``poses`` (steps, N, 3) float32, ``colliding`` and ``episode_ends``
-                (steps, N) bool, ``crossings`` and ``actions`` (steps, N) int32,
-                ``wheel_speeds`` (steps, N, 2) float32; with ``subtasks``, ``subtasks`` and
-                ``phases`` (steps, N) int32 (the sub-task and phase each step's action was
-                chosen in, -1 for an env that stood still) and ``subtask_ends`` (steps, N) bool
-                (a door sub-task ended or gave up before the step's action was chosen).
-            table: The Q-table(s) of the tabular controller.
-            allowed_actions: The actions the tabular controller may take.
-            table_index: (N,) int64, the table of each env.
-            epsilon: The tabular controller's exploration rate in [0, 1].
-            threshold: Avoid-collision's obstacle threshold (raw reading).
-            max_speed: Avoid-collision's maximum wheel speed, rad/s.
-            active: (N,) bool, the envs that step; the others stand still for the whole call
-                (as an env whose episode ended does, its stream untouched). All by default.
-            hold_spins: The tabular controller keeps turning on the spot the way an env's last
-                step turned (action ``aa`` or ``bb``, read from its wheel speeds) rather than
-                turn back (``mazesim.learn.policy.hold_spins``); with ``subtasks``, in Corridors
-                and Corners only.
-            hold_heading: With ``subtasks``, Corridors and Corners in the blind state (no
-                sensor sees a wall) holds its heading on the grid as
-                :func:`mazesim.learn.heading_hold.hold_actions` does (the last step's turn on
-                the spot read from its wheel speeds), after ``hold_spins``.
-            wheel_speed_limit: The tabular controller drives every env at the fractions of
-                this motor limit (rad/s, clamped to each robot's own by its step), as
-                :meth:`mazesim.batch.RobotBatch.speeds_of` does for a batch; each robot's own
-                limit when ``None``.
-            subtasks: The navigator's running sub-task of each env, the arrays of
-                :class:`mazesim.learn.subtasks.SubTaskTracker` by key (``subtask``, ``steps``
-                and ``phase`` (N,) int64, ``start`` (N, 3), ``previous_yaw`` and
-                ``heading_change`` (N,), ``turn_point`` (N, 2) float64), read and written in
-                place. The tabular controller then takes ``table`` as the 12 stacked tables of
-                the sub-tasks' phases ``(12, 4096, 12)`` (no ``table_index``) and acts from
-                table ``3 * subtask + phase``, or as the 72 of a tracker that counts the
-                distance (``door_distance``, ``(72, 4096, 12)``) and acts from table
-                ``18 * subtask + phase`` (the distance bin computed from the pose; the heading
-                phase alone is written back), and follows the odometry after every step as
-                :meth:`~mazesim.learn.subtasks.SubTaskTracker.update` does; a door sub-task that
-                ends (or gives up) hands over to Corridors and Corners there. The states are
-                taken as left after following the last step and left with the call's last step
-                not yet followed (as :meth:`mazesim.learn.policy.HierarchicalPolicy.act`
-                follows it); an env reset by ``autoreset`` begins Corridors and Corners.
+            settings: The call's episode limits, seeds, active envs, sub-tasks and trace
+                (:class:`RunSettings`; its defaults when None).
 
         Returns:
             (N,) uint64 counters of the call: ``steps``, ``steps_in_contact``,
-            ``episodes_finished``, ``goals_reached`` and, with ``subtasks``, the door sub-tasks
-            that reached their end (``subtasks_done``) or gave up (``subtasks_given_up``).
+            ``episodes_finished``, ``goals_reached`` and, with ``settings.subtasks``, the door
+            sub-tasks that reached their end (``subtasks_done``) or gave up
+            (``subtasks_given_up``).
         """
     def reset(
         self,
@@ -631,6 +579,210 @@ class BatchSimulator:
     def distances_travelled(self) -> npt.NDArray[np.float64]:
         """(N,) path length of each env since its reset, metres; (N, R) with R robots per env."""
     def __len__(self) -> int: ...
+
+@final
+class EpisodeLimits:
+    """How the episodes of a :meth:`BatchSimulator.run` call end, and what follows the end.
+
+    An episode ends after ``max_steps`` control steps since its reset (0: no limit) or, with
+    ``end_at_goal``, on the step the robot's centre enters the goal disc, or, with
+    ``end_at_crossing``, on a step that crosses a barcode. With ``autoreset`` an ended episode
+    is reset at once; without, the env stands still until reset.
+
+    Raises:
+        InvalidArgumentError: ``max_steps`` is not an int in ``0..2**64``, or a flag not a bool.
+    """
+
+    def __new__(
+        cls,
+        max_steps: int = 0,
+        end_at_goal: bool = False,
+        end_at_crossing: bool = False,
+        autoreset: bool = True,
+    ) -> EpisodeLimits: ...
+    @property
+    def max_steps(self) -> int:
+        """Control steps after which an episode ends (0: no limit)."""
+    @property
+    def end_at_goal(self) -> bool:
+        """Whether an episode ends on the step the robot's centre enters its goal disc."""
+    @property
+    def end_at_crossing(self) -> bool:
+        """Whether an episode ends on a step that crosses a barcode."""
+    @property
+    def autoreset(self) -> bool:
+        """Whether an ended episode is reset at once (else the env stands still until reset)."""
+    def __eq__(self, value: object, /) -> bool: ...
+    def __hash__(self) -> int: ...
+
+@final
+class AvoidCollisionSettings:
+    """The avoid-collision controller of the report's Algorithm 1, as
+    :meth:`BatchSimulator.run`'s controller: a sensor above ``threshold`` (raw reading) sees an
+    obstacle, the wheels turn at fractions of ``max_speed`` (rad/s).
+
+    Raises:
+        InvalidArgumentError: ``threshold`` or ``max_speed`` is not a finite real number.
+    """
+
+    def __new__(
+        cls, threshold: float = 80.0, max_speed: float = 6.28
+    ) -> AvoidCollisionSettings: ...
+    @property
+    def threshold(self) -> float:
+        """The raw proximity reading above which a sensor sees an obstacle."""
+    @property
+    def max_speed(self) -> float:
+        """The wheel speed the rule scales, rad/s."""
+
+@final
+class TabularSettings:
+    """The tabular controller, as :meth:`BatchSimulator.run`'s controller: greedy over
+    ``table``, a float64 ``(4096, 12)`` Q-table or ``(tables, 4096, 12)`` tables with env ``i``
+    acting from ``table[table_index[i]]``, on the Table 4.1 state of the first six distance
+    sensors; ties go to the first maximum; only ``allowed_actions`` (``(12,)`` or
+    ``(tables, 12)`` bool) are taken; with probability ``epsilon`` a uniformly random allowed
+    action. The tables are copied when the settings are made.
+
+    With ``RunSettings.subtasks`` it takes ``table`` as the 12 stacked tables of the
+    sub-tasks' phases ``(12, 4096, 12)`` (no ``table_index``) and acts from table
+    ``3 * subtask + phase``, or as the 72 of a tracker that counts the distance
+    (``door_distance``, ``(72, 4096, 12)``) and acts from table ``18 * subtask + phase``.
+
+    Args:
+        table: The Q-table(s).
+        allowed_actions: The actions the controller may take (all when None).
+        table_index: (N,) int64, the table of each env (table 0 for all when None).
+        epsilon: The exploration rate in [0, 1].
+        hold_spins: Keep turning on the spot the way an env's last step turned (action ``aa``
+            or ``bb``, read from its wheel speeds) rather than turn back
+            (``mazesim.learn.policy.hold_spins``); with sub-tasks, in Corridors and Corners
+            only.
+        hold_heading: With sub-tasks, Corridors and Corners in the blind state (no sensor sees
+            a wall) holds its heading on the grid as
+            :func:`mazesim.learn.heading_hold.hold_actions` does, after ``hold_spins``.
+        wheel_speed_limit: Drive every env at the fractions of this motor limit (rad/s,
+            clamped to each robot's own by its step), as
+            :meth:`mazesim.batch.RobotBatch.speeds_of` does for a batch; each robot's own limit
+            when None.
+
+    Raises:
+        InvalidArgumentError: A table of another shape or dtype or with a value that is not
+            finite, allowed actions of another shape or allowing none, a table index out of
+            range, an epsilon outside [0, 1], a limit not above 0.
+    """
+
+    def __new__(
+        cls,
+        table: npt.NDArray[np.float64],
+        allowed_actions: npt.NDArray[np.bool_] | None = None,
+        table_index: npt.NDArray[np.int64] | None = None,
+        epsilon: float = 0.0,
+        hold_spins: bool = False,
+        hold_heading: bool = False,
+        wheel_speed_limit: float | None = None,
+    ) -> TabularSettings: ...
+    @property
+    def tables(self) -> int:
+        """How many Q-tables the controller acts from."""
+    @property
+    def epsilon(self) -> float:
+        """The rate of uniformly random allowed actions, in [0, 1]."""
+    @property
+    def hold_spins(self) -> bool:
+        """Whether a spin on the spot goes on the way the last step turned."""
+    @property
+    def hold_heading(self) -> bool:
+        """Whether Corridors and Corners holds its heading where no sensor sees a wall."""
+    @property
+    def wheel_speed_limit(self) -> float | None:
+        """The motor limit whose fractions every robot drives at (each robot's own when None)."""
+
+@final
+class RunSettings:
+    """The per-env inputs and outputs of one :meth:`BatchSimulator.run` call beside its
+    controller. The arrays are the caller's own, read (and written) by the call and checked
+    against the batch when it runs.
+
+    Args:
+        limits: How the call's episodes end (``EpisodeLimits()`` when None).
+        seeds: Seeds of the envs' controller streams: one per env, or an int ``s`` (env ``i``
+            gets ``s + i``); ``0..N`` when None.
+        active: (N,) bool, the envs that step; the others stand still for the whole call (as
+            an env whose episode ended does, its stream untouched). All when None.
+        subtasks: The navigator's running sub-task of each env, the arrays of
+            :class:`mazesim.learn.subtasks.SubTaskTracker` by key (``subtask``, ``steps`` and
+            ``phase`` (N,) int64, ``start`` (N, 3), ``previous_yaw`` and ``heading_change``
+            (N,), ``turn_point`` (N, 2) float64), read and written in place, for the tabular
+            controller: it follows the odometry after every step as
+            :meth:`~mazesim.learn.subtasks.SubTaskTracker.update` does; a door sub-task that
+            ends (or gives up) hands over to Corridors and Corners there. The states are taken
+            as left after following the last step and left with the call's last step not yet
+            followed (as :meth:`mazesim.learn.policy.HierarchicalPolicy.act` follows it); an env
+            reset by ``autoreset`` begins Corridors and Corners.
+        trace: Per-step outputs to fill, by key: ``observations`` (steps, N, width) float32,
+            ``poses`` (steps, N, 3) float32, ``colliding`` and ``episode_ends`` (steps, N)
+            bool, ``crossings`` and ``actions`` (steps, N) int32, ``wheel_speeds``
+            (steps, N, 2) float32; with ``subtasks``, ``subtasks`` and ``phases`` (steps, N)
+            int32 (the sub-task and phase each step's action was chosen in, -1 for an env that
+            stood still) and ``subtask_ends`` (steps, N) bool (a door sub-task ended or gave up
+            before the step's action was chosen).
+
+    Raises:
+        InvalidArgumentError: ``limits`` is not an EpisodeLimits, or ``subtasks`` or ``trace``
+            not a dict.
+    """
+
+    def __new__(
+        cls,
+        limits: EpisodeLimits | None = None,
+        seeds: int | Sequence[int] | npt.NDArray[np.uint64] | None = None,
+        active: npt.NDArray[np.bool_] | None = None,
+        subtasks: dict[str, npt.NDArray[Any]] | None = None,
+        trace: dict[str, npt.NDArray[Any]] | None = None,
+    ) -> RunSettings: ...
+    @property
+    def limits(self) -> EpisodeLimits:
+        """How the episodes of the call end."""
+    @property
+    def seeds(self) -> int | Sequence[int] | npt.NDArray[np.uint64] | None:
+        """The seeds of the envs' controller streams (an int ``s`` gives env ``i`` ``s + i``)."""
+    @property
+    def active(self) -> npt.NDArray[np.bool_] | None:
+        """(N,) bool, the envs that step (all when None)."""
+    @property
+    def subtasks(self) -> dict[str, npt.NDArray[Any]] | None:
+        """The navigator's running sub-task of each env, arrays by key, read and written in
+        place."""
+    @property
+    def trace(self) -> dict[str, npt.NDArray[Any]] | None:
+        """The per-step outputs to fill, arrays by key."""
+
+@final
+class StepBounds:
+    """What a single env's task step (:meth:`Simulator.step_task`) keeps for the whole
+    episode: the float32 bounds ``low`` and ``high`` its readings are clamped to (the distance
+    sensors then the ground ones) and the motor limit ``max_speed`` (rad/s) its previous action
+    is scaled by.
+
+    Raises:
+        InvalidArgumentError: ``low`` or ``high`` is not a float32 vector (of one width), or
+            ``max_speed`` not above 0.
+    """
+
+    def __new__(
+        cls, low: npt.NDArray[np.float32], high: npt.NDArray[np.float32], max_speed: float
+    ) -> StepBounds: ...
+    @property
+    def low(self) -> npt.NDArray[np.float32]:
+        """The lower bounds of the readings (float32, the distance sensors then the ground
+        ones)."""
+    @property
+    def high(self) -> npt.NDArray[np.float32]:
+        """The upper bounds of the readings."""
+    @property
+    def max_speed(self) -> float:
+        """The motor limit (rad/s) the previous action's wheel speeds are divided by."""
 
 @final
 class TaskFeatures:

@@ -8,7 +8,7 @@ speeds the run recorded), bit for bit, over thread counts and batch sizes.
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import Any
+from typing import Any, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -26,6 +26,11 @@ from mazesim.learn.discretise import SHARP_TABLE, observation_states
 from mazesim.learn.qlearning import best_allowed
 
 LIMIT = 40
+#: What ``run`` takes as its controller.
+Controller = Union[str, mazesim.AvoidCollisionSettings, mazesim.TabularSettings]
+#: Episodes that end at the goal, or at a crossing, and stand still then.
+AT_GOAL = mazesim.RunSettings(mazesim.EpisodeLimits(end_at_goal=True, autoreset=False))
+AT_CROSSING = mazesim.RunSettings(mazesim.EpisodeLimits(end_at_crossing=True, autoreset=False))
 MASK64 = (1 << 64) - 1
 
 
@@ -59,12 +64,14 @@ def trace_buffers(batch: mazesim.BatchSimulator, steps: int) -> dict[str, npt.ND
 
 
 def run(
-    batch: mazesim.BatchSimulator, steps: int, controller: str, **options: Any
+    batch: mazesim.BatchSimulator, steps: int, controller: Controller, seeds: int | None = None
 ) -> tuple[dict[str, npt.NDArray[Any]], Buffers, dict[str, npt.NDArray[np.uint64]]]:
     out = buffers(batch)
     batch.observe(*out)
     trace = trace_buffers(batch, steps)
-    counters = batch.run(steps, controller, *out, trace=trace, max_episode_steps=LIMIT, **options)
+    limits = mazesim.EpisodeLimits(max_steps=LIMIT)
+    settings = mazesim.RunSettings(limits, seeds=seeds, trace=trace)
+    counters = batch.run(steps, controller, *out, settings=settings)
     return trace, out, counters
 
 
@@ -104,7 +111,8 @@ def test_braitenberg_run_equals_python_steps(n: int, threads: int) -> None:
 def test_avoid_collision_run_equals_python_steps() -> None:
     # A low threshold: sensor noise alone turns the robots both ways.
     controller = AvoidCollision(threshold=70.0)
-    trace, _, _ = run(make_batch(24, threads=2), 90, "avoid-collision", threshold=70.0)
+    rule = mazesim.AvoidCollisionSettings(threshold=70.0)
+    trace, _, _ = run(make_batch(24, threads=2), 90, rule)
     stepped = step_from_python(make_batch(24), 90, lambda _, obs: controller.batch(obs[:, :8]))
     np.testing.assert_array_equal(trace["observations"], stepped)
     wheels = trace["wheel_speeds"]
@@ -123,9 +131,8 @@ def test_tabular_run_acts_as_numpy_argmax_over_table_4_1(table_seed: int) -> Non
     batch = make_batch(n, robot="seed", threads=2)
     start = buffers(batch)
     batch.observe(*start)
-    trace, _, _ = run(
-        batch, steps, "tabular", table=tables, allowed_actions=allowed, table_index=roles
-    )
+    tabular = mazesim.TabularSettings(tables, allowed_actions=allowed, table_index=roles)
+    trace, _, _ = run(batch, steps, tabular)
     ends = trace["episode_ends"]
     assert not ends[: LIMIT - 1].any() and ends[LIMIT - 1].all()
     before = np.concatenate([start[0][None], trace["observations"][:-1]])
@@ -150,15 +157,15 @@ def test_random_draws_replay_from_python_and_ignore_threads_and_batch_size(
     table = np.random.default_rng(0).random((4096, 12))
     allowed = np.ones(12, bool)
     allowed[[3, 11]] = False
-    options: dict[str, Any] = {"seeds": 77}
+    rule: Controller = controller
     if controller == "tabular":
-        options |= {"table": table, "epsilon": 0.5, "allowed_actions": allowed}
-    one, _, _ = run(make_batch(30, robot, threads=1), 80, controller, **options)
-    two, _, _ = run(make_batch(30, robot, threads=2), 80, controller, **options)
+        rule = mazesim.TabularSettings(table, epsilon=0.5, allowed_actions=allowed)
+    one, _, _ = run(make_batch(30, robot, threads=1), 80, rule, seeds=77)
+    two, _, _ = run(make_batch(30, robot, threads=2), 80, rule, seeds=77)
     for key in one:
         np.testing.assert_array_equal(one[key], two[key])
     # Env 17 alone, in a batch of one, with the seeds env 17 had in the batch of 30.
-    alone, _, _ = run(make_batch(1, robot, first=17), 80, controller, **(options | {"seeds": 94}))
+    alone, _, _ = run(make_batch(1, robot, first=17), 80, rule, seeds=94)
     for key in one:
         np.testing.assert_array_equal(alone[key][:, 0], one[key][:, 17])
     wheels = one["wheel_speeds"]
@@ -180,7 +187,9 @@ def test_goal_ends_episodes_and_without_autoreset_envs_stand_still() -> None:
     out = buffers(batch)
     batch.reset(*out)
     trace = trace_buffers(batch, 30)
-    counters = batch.run(30, "braitenberg", *out, trace=trace, end_at_goal=True, autoreset=False)
+    limits = AT_GOAL.limits
+    settings = mazesim.RunSettings(limits, trace=trace)
+    counters = batch.run(30, "braitenberg", *out, settings=settings)
     assert counters["goals_reached"].tolist() == [1, 1, 1]
     ended = int(np.argmax(trace["episode_ends"][:, 0]))
     assert 0 < ended < 29 and counters["steps"].tolist() == [ended + 1] * 3
@@ -189,9 +198,10 @@ def test_goal_ends_episodes_and_without_autoreset_envs_stand_still() -> None:
     assert (inside <= radius).all()
     np.testing.assert_array_equal(trace["poses"][-1], trace["poses"][ended])
     assert (trace["actions"] == -1).all() and (trace["wheel_speeds"][ended + 1 :] == 0).all()
-    again = batch.run(5, "braitenberg", *out, end_at_goal=True, autoreset=False)
+    again = batch.run(5, "braitenberg", *out, settings=AT_GOAL)
     assert again["steps"].tolist() == [0, 0, 0]
-    moving = batch.run(5, "braitenberg", *out, end_at_goal=False, autoreset=False)
+    standing = mazesim.RunSettings(mazesim.EpisodeLimits(autoreset=False))
+    moving = batch.run(5, "braitenberg", *out, settings=standing)
     assert moving["steps"].tolist() == [5, 5, 5]
 
 
@@ -208,7 +218,7 @@ def test_each_env_ends_at_its_own_goal_from_set_goals_at() -> None:
     assert goals[1].tolist() == [gx - 0.25, gy, 0.08] and goals[2].tolist() == [0.125, 0.125, 0.08]
     out = buffers(batch)
     batch.reset(*out)
-    counters = batch.run(30, "braitenberg", *out, end_at_goal=True, autoreset=False)
+    counters = batch.run(30, "braitenberg", *out, settings=AT_GOAL)
     assert counters["goals_reached"].tolist() == [1, 0, 0]
     # A bad row changes nothing and names its environment.
     with pytest.raises(mazesim.InvalidArgumentError, match="environment 2: .*radius"):
@@ -229,34 +239,46 @@ def test_each_env_ends_at_its_own_goal_from_set_goals_at() -> None:
     assert mazesim.Simulator(mazesim.load_world("arena")).goal is None
 
 
-def _bad_calls() -> list[tuple[str, dict[str, Any], str]]:
+def _bad_calls() -> list[tuple[Any, dict[str, Any], str]]:
+    """(the controller, or a function that makes it; the keywords of RunSettings; what the
+    error says)."""
     q = np.zeros((4096, 12))
+
+    def tabular(table: Any, **options: Any) -> Callable[[], mazesim.TabularSettings]:
+        return lambda: mazesim.TabularSettings(table, **options)
+
     return [
         ("spin", {}, "expected controller to be"),
-        ("tabular", {}, "needs table"),
-        ("tabular", {"table": np.zeros((4096, 11))}, "table"),
-        ("tabular", {"table": q.astype(np.float32)}, "float64"),
-        ("tabular", {"table": np.full((4096, 12), np.nan)}, "state 0, action 0"),
-        ("tabular", {"table": q, "allowed_actions": np.zeros(12, bool)}, "allowed action"),
-        ("tabular", {"table": q, "table_index": np.array([0, 1, 0, 0])}, "table indices"),
-        ("tabular", {"table": q, "table_index": np.array([0, -1, 0, 0])}, "table_index"),
-        ("tabular", {"table": q, "epsilon": 2.0}, "epsilon"),
+        (7, {}, "expected controller to be"),
+        ("tabular", {}, "needs its tables"),
+        (tabular(np.zeros((4096, 11))), {}, "table"),
+        (tabular(q.astype(np.float32)), {}, "float64"),
+        (tabular(np.full((4096, 12), np.nan)), {}, "state 0, action 0"),
+        (tabular(q, allowed_actions=np.zeros(12, bool)), {}, "allowed action"),
+        (tabular(q, table_index=np.array([0, 1, 0, 0])), {}, "table indices"),
+        (tabular(q, table_index=np.array([0, -1, 0, 0])), {}, "table_index"),
+        (tabular(q, table_index=np.array([0, 0])), {}, "one table index per environment (4)"),
+        (tabular(q, epsilon=2.0), {}, "epsilon"),
+        (tabular(q, wheel_speed_limit=0.0), {}, "wheel speed limit"),
         ("braitenberg", {"seeds": [1, 2]}, "expected 4 seeds"),
+        ("braitenberg", {"limits": 40}, "expected limits to be an EpisodeLimits"),
+        ("braitenberg", {"trace": [np.zeros((3, 4), bool)]}, "expected trace to be a dict"),
         ("braitenberg", {"trace": {"speeds": np.zeros((3, 4, 2), np.float32)}}, "trace keys"),
         ("braitenberg", {"trace": {"poses": np.zeros((3, 4, 3))}}, 'trace["poses"]'),
         ("braitenberg", {"trace": {"poses": np.zeros((2, 4, 3), np.float32)}}, "(3, 4, 3)"),
-        ("avoid-collision", {"threshold": float("nan")}, "threshold"),
+        (lambda: mazesim.AvoidCollisionSettings(threshold=float("nan")), {}, "threshold"),
     ]
 
 
 @pytest.mark.parametrize(("controller", "options", "says"), _bad_calls())
 def test_bad_arguments_raise_before_anything_moves(
-    controller: str, options: dict[str, Any], says: str
+    controller: Any, options: dict[str, Any], says: str
 ) -> None:
-    batch = make_batch(4, robot="seed" if controller == "tabular" else "e-puck")
+    batch = make_batch(4, robot="e-puck" if isinstance(controller, str) else "seed")
     out = buffers(batch)
     with pytest.raises(mazesim.InvalidArgumentError) as caught:
-        batch.run(3, controller, *out, **options)
+        made = controller() if callable(controller) else controller
+        batch.run(3, made, *out, settings=mazesim.RunSettings(**options))
     assert says in str(caught.value)
     assert (batch.steps() == 0).all()
 
@@ -322,9 +344,8 @@ def test_a_crossing_stops_an_env_for_the_rest_of_the_call_only() -> None:
     out = buffers(batch)
     batch.reset(*out)
     trace = trace_buffers(batch, 400)
-    counters = batch.run(
-        400, "braitenberg", *out, trace=trace, end_at_crossing=True, autoreset=False
-    )
+    settings = mazesim.RunSettings(AT_CROSSING.limits, trace=trace)
+    counters = batch.run(400, "braitenberg", *out, settings=settings)
     crossed = (trace["crossings"] != 0).any(axis=0)
     assert crossed.any() and not crossed.all()
     first = np.argmax(trace["crossings"] != 0, axis=0)
@@ -333,5 +354,5 @@ def test_a_crossing_stops_an_env_for_the_rest_of_the_call_only() -> None:
     env = int(np.flatnonzero(crossed)[0])
     np.testing.assert_array_equal(trace["poses"][-1, env], trace["poses"][first[env], env])
     # The next call moves the stopped envs on.
-    again = batch.run(10, "braitenberg", *out, end_at_crossing=True, autoreset=False)
+    again = batch.run(10, "braitenberg", *out, settings=AT_CROSSING)
     assert (again["steps"][crossed] > 0).all()

@@ -13,7 +13,7 @@ import pytest
 
 import mazesim
 from batch_buffers import buffers
-from mazesim import BatchSimulator, RobotProfile, Simulator, World
+from mazesim import BatchSimulator, RobotProfile, RunSettings, Simulator, TabularSettings, World
 
 SEED = RobotProfile.builtin("seed")
 #: The wall of `facing_wall` is this far ahead of the seed robot's front sensor (metres).
@@ -301,11 +301,11 @@ def ran(robots: list[Any], threads: int, controller: str = "random") -> dict[str
     out = buffers(batch)
     batch.reset(*out)
     trace = {"poses": np.zeros((30, n, 3), np.float32)}
-    extra: dict[str, Any] = {}
+    rule: Any = controller
     if controller == "tabular":
-        extra["table"] = np.random.default_rng(2).uniform(0.0, 1.0, (4096, 12))
+        rule = TabularSettings(np.random.default_rng(2).uniform(0.0, 1.0, (4096, 12)))
     seeds = np.arange(n, dtype=np.uint64) + 7
-    counters = batch.run(30, controller, *out, seeds=seeds, trace=trace, **extra)
+    counters = batch.run(30, rule, *out, settings=RunSettings(seeds=seeds, trace=trace))
     return {"poses": trace["poses"], "obs": out[0].copy(), "counters": counters}
 
 
@@ -350,7 +350,8 @@ def test_run_steps_match_single_steps_for_a_perturbed_profile() -> None:
     out = buffers(batch)
     batch.reset(*out)
     trace = {"wheel_speeds": np.zeros((25, 2, 2), np.float32)}
-    batch.run(25, "random", *out, seeds=np.array([1, 2], np.uint64), trace=trace)
+    settings = RunSettings(seeds=np.array([1, 2], np.uint64), trace=trace)
+    batch.run(25, "random", *out, settings=settings)
     stepper = BatchSimulator(world, num_envs=2, robot=profile, seeds=[3, 4])
     again = buffers(stepper)
     stepper.reset(*again)

@@ -34,8 +34,7 @@ def run(
         batch.poses,
         batch.colliding,
         batch.crossings,
-        seeds=5,
-        active=active,
+        settings=mazesim.RunSettings(seeds=5, active=active),
     )
 
 

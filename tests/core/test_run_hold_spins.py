@@ -24,14 +24,12 @@ def actions(batch: RobotBatch, table: np.ndarray, steps: int, hold: bool) -> lis
     trace = {"actions": np.zeros((steps, batch.num_envs), np.int32)}
     batch.simulator.run(
         steps,
-        "tabular",
+        mazesim.TabularSettings(table, hold_spins=hold),
         batch.observations,
         batch.poses,
         batch.colliding,
         batch.crossings,
-        table=table,
-        trace=trace,
-        hold_spins=hold,
+        settings=mazesim.RunSettings(trace=trace),
     )
     return [int(a) for a in trace["actions"][:, 0]]
 

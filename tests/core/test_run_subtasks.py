@@ -58,22 +58,17 @@ def run_in_core(
         "actions": np.zeros((steps, n), dtype=np.int32),
         "poses": np.zeros((steps, n, 3), dtype=np.float32),
     }
-    arguments: dict[str, Any] = {
-        "table": TABLES,
-        "allowed_actions": ALLOWED,
-        "hold_spins": True,
-        "subtasks": tracker.arrays(),
-        **options,
-    }
+    tabular: dict[str, Any] = {"table": TABLES, "allowed_actions": ALLOWED, "hold_spins": True}
+    tabular |= {key: value for key, value in options.items() if key != "subtasks"}
+    subtasks = options.get("subtasks", tracker.arrays())
     counters = batch.simulator.run(
         steps,
-        "tabular",
+        mazesim.TabularSettings(**tabular),
         batch.observations,
         batch.poses,
         batch.colliding,
         batch.crossings,
-        trace=trace,
-        **arguments,
+        settings=mazesim.RunSettings(subtasks=subtasks, trace=trace),
     )
     return trace, counters
 
@@ -210,5 +205,5 @@ def test_sub_tasks_need_the_stacked_tables(options: dict[str, Any], match: str) 
             batch.poses,
             batch.colliding,
             batch.crossings,
-            subtasks=tracker.arrays(),
+            settings=mazesim.RunSettings(subtasks=tracker.arrays()),
         )

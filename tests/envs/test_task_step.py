@@ -108,4 +108,4 @@ def test_step_task_refuses_features_of_another_sensor_count() -> None:
     bounds = np.zeros(width, dtype=np.float32), np.ones(width, dtype=np.float32)
     three = TaskFeatures(1, "goal", False, np.ones(3), *bounds)
     with pytest.raises(mazesim.InvalidArgumentError, match="expected 3 sensor readings"):
-        env._simulator.step_task(three, 0.0, 0.0, env._low, env._high, env._max_speed)
+        env._simulator.step_task(three, env._bounds, 0.0, 0.0)

@@ -48,6 +48,18 @@ INSTANCES: dict[str, str] = {
         "(lambda np: mazesim._core.TaskFeatures(2, 'plan', False, np.ones(11),"
         " np.zeros(26, 'float32'), np.ones(26, 'float32')))(__import__('numpy'))"
     ),
+    # The settings of BatchSimulator.run and Simulator.step_task: frozen values, checked when
+    # made (a Q-table of the shape the tabular controller reads; the e-puck's eleven readings).
+    "mazesim._core.EpisodeLimits": "mazesim.EpisodeLimits(max_steps=50, end_at_goal=True)",
+    "mazesim._core.AvoidCollisionSettings": "mazesim.AvoidCollisionSettings(threshold=70.0)",
+    "mazesim._core.TabularSettings": (
+        "mazesim.TabularSettings(__import__('numpy').zeros((4096, 12)), epsilon=0.1)"
+    ),
+    "mazesim._core.RunSettings": "mazesim.RunSettings(mazesim.EpisodeLimits(), seeds=3)",
+    "mazesim._core.StepBounds": (
+        "(lambda np: mazesim._core.StepBounds(np.zeros(11, 'float32'),"
+        " np.full(11, 5000.0, 'float32'), 6.28))(__import__('numpy'))"
+    ),
     # Optional tables that its kind makes required: the shipped navigator's.
     "mazesim.learn.episode_ranges.NavigatorEpisodes": (
         "(lambda p, m: m.NavigatorEpisodes('hierarchical', (world.to_toml(),), 1, 0, 'truth', 50,"

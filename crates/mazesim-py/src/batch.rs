@@ -3,23 +3,20 @@
 
 use std::sync::Arc;
 
-use mazesim_core::control::avoid_collision::EPUCK_MAX_SPEED;
 use mazesim_core::limits::{MAX_ENVS, MAX_THREADS};
 use mazesim_core::rollout::RunEnvs;
-use mazesim_core::{Batch, RunOptions, StepOutputs, World};
+use mazesim_core::{Batch, StepOutputs, World};
 use numpy::{IxDyn, PyArray1, PyArrayDyn, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::{
-    bounded_items, dict_argument, type_name, Bytes, Flag, IntArg, Keywords, Real, Text,
-};
+use crate::args::{bounded_items, dict_argument, type_name, Bytes, Flag, IntArg, Real};
 use crate::buffers::{copied, writable};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::{ctrl_c_pressed, enter, enter_detached};
 use crate::lock::Exclusive;
 use crate::profile::RobotArg;
-use crate::run::{self, TabularArgs, Traces};
+use crate::run::{self, RunCall, Traces};
 use crate::subtasks::SubTaskArrays;
 use crate::world::{world_argument, PyWorld};
 
@@ -224,23 +221,44 @@ impl<'py> Borrowed<'py> {
 }
 
 fn seeds_from(seeds: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<u64>> {
-    if seeds.is_instance_of::<pyo3::types::PyInt>() {
-        let base = seeds.extract::<IntArg>()?.seed("seeds")?;
-        return Ok((0..n as u64).map(|i| base.wrapping_add(i)).collect());
+    Seeds::given(seeds, n)?.of(n)
+}
+
+/// Seeds as given: one int (env `i` gets `seed + i`) or one per environment.
+#[derive(Clone, Debug)]
+pub(crate) enum Seeds {
+    From(u64),
+    Each(Vec<u64>),
+}
+
+impl Seeds {
+    /// The seeds of `seeds`, an int or at most `most` ints, each in `0..2**64`.
+    pub(crate) fn given(seeds: &Bound<'_, PyAny>, most: usize) -> PyResult<Self> {
+        if seeds.is_instance_of::<pyo3::types::PyInt>() {
+            return Ok(Seeds::From(seeds.extract::<IntArg>()?.seed("seeds")?));
+        }
+        let expected = "ints in 0..2**64 (one per environment), or one int (env i gets seed + i)";
+        let items = bounded_items(seeds, "seeds", expected, most)?;
+        let list = items
+            .iter()
+            .map(|s| s.extract::<IntArg>())
+            .collect::<PyResult<Vec<_>>>()?;
+        let each = list
+            .iter()
+            .enumerate()
+            .map(|(i, s)| s.seed(&format!("seeds[{i}]")))
+            .collect::<PyResult<Vec<u64>>>()?;
+        Ok(Seeds::Each(each))
     }
-    let expected = "ints in 0..2**64 (one per environment), or one int (env i gets seed + i)";
-    let items = bounded_items(seeds, "seeds", expected, n)?;
-    if items.len() != n {
-        return Err(bad(format!("expected {n} seeds, found {}", items.len())));
+
+    /// The seed of each of `n` environments.
+    pub(crate) fn of(&self, n: usize) -> PyResult<Vec<u64>> {
+        match self {
+            Seeds::From(base) => Ok((0..n as u64).map(|i| base.wrapping_add(i)).collect()),
+            Seeds::Each(list) if list.len() == n => Ok(list.clone()),
+            Seeds::Each(list) => Err(bad(format!("expected {n} seeds, found {}", list.len()))),
+        }
     }
-    let list = items
-        .iter()
-        .map(|s| s.extract::<IntArg>())
-        .collect::<PyResult<Vec<_>>>()?;
-    list.iter()
-        .enumerate()
-        .map(|(i, s)| s.seed(&format!("seeds[{i}]")))
-        .collect()
 }
 
 #[pymethods]
@@ -387,78 +405,52 @@ impl PyBatch {
 
     /// Runs `steps` control steps of every environment in one call, the GIL released, each
     /// environment's wheel speeds from the built-in `controller` ('braitenberg',
-    /// 'avoid-collision', 'tabular' or 'random'); see `docs/performance.md` and the stub.
-    #[pyo3(signature = (steps, controller, observations, poses, colliding, crossings, **options),
-        text_signature = "($self, steps, controller, observations, poses, colliding, crossings, *, seeds=None, max_episode_steps=0, end_at_goal=False, end_at_crossing=False, autoreset=True, trace=None, table=None, allowed_actions=None, table_index=None, epsilon=0.0, threshold=80.0, max_speed=6.28, active=None, hold_spins=False, hold_heading=False, wheel_speed_limit=None, subtasks=None)")]
+    /// 'avoid-collision' or 'random', or the settings of avoid-collision or the tabular
+    /// controller), with `settings` (a `RunSettings`); see `docs/performance.md` and the stub.
+    #[pyo3(signature = (steps, controller, observations, poses, colliding, crossings, **settings),
+        text_signature = "($self, steps, controller, observations, poses, colliding, crossings, *, settings=None)")]
     fn run<'py>(
         &self,
         steps: IntArg,
-        controller: Text,
+        controller: &Bound<'py, PyAny>,
         observations: &Bound<'py, PyAny>,
         poses: &Bound<'py, PyAny>,
         colliding: &Bound<'py, PyAny>,
         crossings: &Bound<'py, PyAny>,
-        options: Option<&Bound<'py, PyDict>>,
+        settings: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let py = observations.py();
         enter(|| {
-            let kw = Keywords::new(options, "run", run::KEYWORDS)?;
-            let flag = |key: &str, default| kw.get(key, Flag::Value(default))?.value(key, "a bool");
+            let steps = steps.count("steps", MAX_RUN_STEPS)?;
+            let call = RunCall::new(controller, settings)?;
+            let (controller, settings) = (call.controller, call.settings.get());
             let n = self.n;
-            let options = RunOptions {
-                steps: steps.count("steps", MAX_RUN_STEPS)?,
-                max_episode_steps: kw
-                    .get("max_episode_steps", IntArg::ZERO)?
-                    .seed("max_episode_steps")?,
-                end_at_goal: flag("end_at_goal", false)?,
-                end_at_crossing: flag("end_at_crossing", false)?,
-                autoreset: flag("autoreset", true)?,
-            };
-            let controller = controller.value("controller", "a str")?;
-            // Checked whatever the controller, so that a wrong one is never silently ignored.
-            let threshold = kw.get("threshold", Real::Number(80.0))?;
-            let max_speed = kw.get("max_speed", Real::Number(EPUCK_MAX_SPEED))?;
-            threshold.value("threshold")?;
-            let top_speed = max_speed.value("max_speed")?;
-            let trace = kw.object("trace")?;
-            let trace = trace
-                .as_ref()
-                .map(|t| dict_argument(t, "trace", " of name -> array"))
-                .transpose()?;
-            let (table, allowed) = (kw.object("table")?, kw.object("allowed_actions")?);
-            let table_index = kw.object("table_index")?;
-            let tabular = TabularArgs {
-                table: table.as_ref(),
-                allowed_actions: allowed.as_ref(),
-                table_index: table_index.as_ref(),
-                epsilon: kw.get("epsilon", Real::Number(0.0))?,
-                hold_spins: kw.get("hold_spins", Flag::Value(false))?,
-                hold_heading: kw.get("hold_heading", Flag::Value(false))?,
-                wheel_speed_limit: kw.get("wheel_speed_limit", None)?,
-            };
-            let controller = run::controller(&controller, n, threshold, max_speed, tabular)?;
             if self.robots > 1 {
                 return self.run_robots(
                     py,
                     &controller,
-                    options.steps,
-                    top_speed,
+                    steps,
+                    call.max_speed,
                     [observations, poses, colliding, crossings],
                 );
             }
-            let seeds = match kw.object("seeds")? {
-                Some(s) => seeds_from(&s, n)?,
+            let options = settings.limits.get().options(steps);
+            let given = |value: &Option<Py<PyAny>>| value.as_ref().map(|v| v.bind(py).clone());
+            let seeds = match &settings.seeds {
+                Some(s) => s.of(n)?,
                 None => (0..n as u64).collect(),
             };
-            let active = kw.object("active")?;
-            let active = active
+            let active = given(&settings.active)
                 .map(|a| copied::<bool>(&a, "active", "bool", &[n]))
                 .transpose()?;
-            let subtasks = kw.object("subtasks")?;
-            let mut traces = Traces::new(trace, options.steps, n, self.width())?;
-            let mut subtask_arrays = subtasks
+            let trace = given(&settings.trace);
+            let trace = trace
                 .as_ref()
-                .map(|s| SubTaskArrays::new(s, n))
+                .map(|t| dict_argument(t, "trace", " of name -> array"))
+                .transpose()?;
+            let mut traces = Traces::new(trace, options.steps, n, self.width())?;
+            let mut subtask_arrays = given(&settings.subtasks)
+                .map(|s| SubTaskArrays::new(&s, n))
                 .transpose()?;
             let mut states = subtask_arrays
                 .as_ref()

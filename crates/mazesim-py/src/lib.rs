@@ -11,6 +11,7 @@ mod lock;
 mod lower;
 mod profile;
 mod run;
+mod run_settings;
 mod simulator;
 mod subtasks;
 mod tasks;
@@ -120,6 +121,11 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<profile::PyRobotProfile>()?;
     m.add_class::<simulator::PySimulator>()?;
     m.add_class::<tasks::PyTaskFeatures>()?;
+    m.add_class::<tasks::PyStepBounds>()?;
+    m.add_class::<run_settings::PyEpisodeLimits>()?;
+    m.add_class::<run_settings::PyAvoidCollisionSettings>()?;
+    m.add_class::<run_settings::PyTabularSettings>()?;
+    m.add_class::<run_settings::PyRunSettings>()?;
     // Wrong arguments (how many, which names) raise InvalidArgumentError, not pyo3's TypeError.
     let classes = [
         m.py().get_type::<batch::PyBatch>(),
@@ -127,6 +133,11 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
         m.py().get_type::<profile::PyRobotProfile>(),
         m.py().get_type::<simulator::PySimulator>(),
         m.py().get_type::<tasks::PyTaskFeatures>(),
+        m.py().get_type::<tasks::PyStepBounds>(),
+        m.py().get_type::<run_settings::PyEpisodeLimits>(),
+        m.py().get_type::<run_settings::PyAvoidCollisionSettings>(),
+        m.py().get_type::<run_settings::PyTabularSettings>(),
+        m.py().get_type::<run_settings::PyRunSettings>(),
     ];
     arity::guard_module(m, &classes)
 }

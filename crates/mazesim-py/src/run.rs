@@ -1,25 +1,34 @@
-//! `BatchSimulator.run` for Python: the built-in controller named by its arguments, the optional
+//! `BatchSimulator.run` for Python: the built-in controller from its name or settings and the
+//! call's `RunSettings` (or, deprecated, from the keywords `run` took before them), the optional
 //! per-step output arrays (`trace`) borrowed and checked, the counters returned as numpy arrays.
 
-use mazesim_core::control::heading_hold::BlindRule;
-use mazesim_core::control::{tabular, AvoidCollision, Discretiser, TabularPolicy};
+use std::ffi::CString;
+
+use mazesim_core::control::avoid_collision::EPUCK_MAX_SPEED;
+use mazesim_core::control::{tabular, AvoidCollision, Discretiser};
 use mazesim_core::{Controller, RunCounters, RunTrace};
 use numpy::{PyArray1, PyReadwriteArrayDyn};
+use pyo3::exceptions::PyDeprecationWarning;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::{shape_of, Flag, Real};
+use crate::args::{shape_of, type_name, unknown_key, Flag, IntArg, Keywords, Real};
 use crate::buffers::{copied, writable};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::enter;
+use crate::run_settings::{
+    PyAvoidCollisionSettings, PyEpisodeLimits, PyRunSettings, PyTabularSettings,
+};
 
-/// The names `run` accepts for its controller.
-const CONTROLLERS: &str = "'braitenberg', 'avoid-collision', 'tabular' or 'random'";
+/// What `run` accepts as its controller.
+const CONTROLLERS: &str = "'braitenberg', 'avoid-collision' or 'random', an \
+    AvoidCollisionSettings or a TabularSettings";
 
-/// The keywords `run` takes after its six positional arguments.
-pub const KEYWORDS: &str = "seeds max_episode_steps end_at_goal end_at_crossing autoreset trace \
-    table allowed_actions table_index epsilon threshold max_speed active hold_spins hold_heading \
-    wheel_speed_limit subtasks";
+/// The keywords `run` took before its settings objects: still read, with a DeprecationWarning,
+/// for one release.
+const DEPRECATED_KEYWORDS: &str = "seeds max_episode_steps end_at_goal end_at_crossing autoreset \
+    trace table allowed_actions table_index epsilon threshold max_speed active hold_spins \
+    hold_heading wheel_speed_limit subtasks";
 
 /// The keys of `run`'s `trace` dict.
 const TRACE_KEYS: [&str; 10] = [
@@ -35,102 +44,171 @@ const TRACE_KEYS: [&str; 10] = [
     "subtask_ends",
 ];
 
-/// The arguments of the tabular controller, as given.
-pub struct TabularArgs<'a, 'py> {
-    pub table: Option<&'a Bound<'py, PyAny>>,
-    pub allowed_actions: Option<&'a Bound<'py, PyAny>>,
-    pub table_index: Option<&'a Bound<'py, PyAny>>,
-    pub epsilon: Real,
-    pub hold_spins: Flag,
-    pub hold_heading: Flag,
-    pub wheel_speed_limit: Option<Real>,
+/// One `run` call's controller and settings, from its `controller` argument and keywords.
+pub struct RunCall {
+    pub controller: Controller,
+    /// The wheel speed of avoid-collision (its default when another controller drives).
+    pub max_speed: f64,
+    pub settings: Py<PyRunSettings>,
 }
 
-/// The controller `name` with its arguments, for `n` environments.
-pub fn controller(
-    name: &str,
-    n: usize,
-    threshold: Real,
-    max_speed: Real,
-    tabular: TabularArgs<'_, '_>,
-) -> PyResult<Controller> {
-    Ok(match name {
-        "braitenberg" => Controller::Braitenberg,
-        "random" => Controller::RandomWheels,
-        "avoid-collision" => Controller::AvoidCollision(
-            AvoidCollision::new(threshold.value("threshold")?, max_speed.value("max_speed")?)
-                .py()?,
-        ),
-        "tabular" => Controller::Tabular(Box::new(tabular_policy(n, tabular)?)),
-        other => {
-            return Err(invalid(format!(
-                "expected controller to be {CONTROLLERS}, found {other:?}"
-            )))
+impl RunCall {
+    /// Reads `controller` (a name or a controller's settings) and `keywords` (`settings`, or
+    /// the deprecated keywords of `run`, which warn).
+    pub fn new(
+        controller: &Bound<'_, PyAny>,
+        keywords: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<Self> {
+        let py = controller.py();
+        let deprecated = keywords
+            .map(|k| unknown_key(k, "settings"))
+            .transpose()?
+            .flatten();
+        if let Some(key) = deprecated {
+            return Self::from_keywords(controller, keywords, &key);
         }
-    })
+        let kw = Keywords::new(keywords, "run", "settings")?;
+        let settings = match kw.object("settings")? {
+            None => Py::new(py, PyRunSettings::new(py, None, None, None, None, None)?)?,
+            Some(s) => s
+                .cast::<PyRunSettings>()
+                .map_err(|_| {
+                    invalid(format!(
+                        "expected settings to be a RunSettings or None, found a {}",
+                        type_name(&s)
+                    ))
+                })?
+                .clone()
+                .unbind(),
+        };
+        let (controller, max_speed) = controller_of(controller)?;
+        Ok(Self {
+            controller,
+            max_speed,
+            settings,
+        })
+    }
+
+    /// The call of the keywords `run` took before its settings objects, after a
+    /// DeprecationWarning that names `key`, one of them.
+    fn from_keywords(
+        controller: &Bound<'_, PyAny>,
+        keywords: Option<&Bound<'_, PyDict>>,
+        key: &str,
+    ) -> PyResult<Self> {
+        let py = controller.py();
+        let known = format!("settings {DEPRECATED_KEYWORDS}");
+        let kw = Keywords::new(keywords, "run", &known)?;
+        if kw.object("settings")?.is_some() {
+            return Err(invalid(format!(
+                "expected either settings or run's former keywords, found settings and '{key}'"
+            )));
+        }
+        let message = format!(
+            "BatchSimulator.run's keyword '{key}' is deprecated and will be removed: pass \
+             settings=RunSettings(...), with the controller's own settings (TabularSettings, \
+             AvoidCollisionSettings) as the controller"
+        );
+        let message = CString::new(message).map_err(|e| invalid(e.to_string()))?;
+        PyErr::warn(py, &py.get_type::<PyDeprecationWarning>(), &message, 1)?;
+        // Checked whatever the controller, so that a wrong one is never silently ignored.
+        let avoid = PyAvoidCollisionSettings::new(
+            kw.get("threshold", Real::Number(80.0))?,
+            kw.get("max_speed", Real::Number(EPUCK_MAX_SPEED))?,
+        )?;
+        let name = controller.extract::<String>().ok();
+        let (controller, max_speed) = match name.as_deref() {
+            Some("tabular") => {
+                let table = kw.object("table")?.ok_or_else(|| {
+                    invalid(format!(
+                        "the tabular controller needs table, a float64 array of shape ({}, {}) \
+                         or (tables, {0}, {1})",
+                        tabular::NUM_STATES,
+                        tabular::NUM_ACTIONS
+                    ))
+                })?;
+                let settings = PyTabularSettings::new(
+                    &table,
+                    kw.object("allowed_actions")?.as_ref(),
+                    kw.object("table_index")?.as_ref(),
+                    kw.get("epsilon", Real::Number(0.0))?,
+                    kw.get("hold_spins", Flag::Value(false))?,
+                    kw.get("hold_heading", Flag::Value(false))?,
+                    kw.get("wheel_speed_limit", None)?,
+                )?;
+                let policy = Controller::Tabular(Box::new(settings.policy));
+                (policy, avoid.rule.max_speed)
+            }
+            Some("avoid-collision") => {
+                (Controller::AvoidCollision(avoid.rule), avoid.rule.max_speed)
+            }
+            Some(_) => (controller_of(controller)?.0, avoid.rule.max_speed),
+            // A controller's settings with the former keywords for the rest of the call.
+            None => controller_of(controller)?,
+        };
+        let flag = |key: &str, default| kw.get(key, Flag::Value(default));
+        let limits = PyEpisodeLimits::new(
+            kw.get("max_episode_steps", IntArg::ZERO)?,
+            flag("end_at_goal", false)?,
+            flag("end_at_crossing", false)?,
+            flag("autoreset", true)?,
+        )?;
+        let limits = Py::new(py, limits)?.into_bound(py).into_any();
+        let settings = PyRunSettings::new(
+            py,
+            Some(&limits),
+            kw.object("seeds")?.as_ref(),
+            kw.object("active")?.as_ref(),
+            kw.object("subtasks")?.as_ref(),
+            kw.object("trace")?.as_ref(),
+        )?;
+        Ok(Self {
+            controller,
+            max_speed,
+            settings: Py::new(py, settings)?,
+        })
+    }
 }
 
-fn tabular_policy(n: usize, args: TabularArgs<'_, '_>) -> PyResult<TabularPolicy> {
-    let (states, actions) = (tabular::NUM_STATES, tabular::NUM_ACTIONS);
-    let table = args.table.ok_or_else(|| {
+/// The controller `controller` names or sets, and the wheel speed of avoid-collision.
+fn controller_of(controller: &Bound<'_, PyAny>) -> PyResult<(Controller, f64)> {
+    if let Ok(tabular) = controller.cast::<PyTabularSettings>() {
+        let policy = tabular.get().policy.clone();
+        return Ok((Controller::Tabular(Box::new(policy)), EPUCK_MAX_SPEED));
+    }
+    if let Ok(avoid) = controller.cast::<PyAvoidCollisionSettings>() {
+        let rule = avoid.get().rule;
+        return Ok((Controller::AvoidCollision(rule), rule.max_speed));
+    }
+    let name = controller.extract::<String>().map_err(|_| {
         invalid(format!(
-            "the tabular controller needs table, a float64 array of shape ({states}, {actions}) \
-             or (tables, {states}, {actions})"
+            "expected controller to be {CONTROLLERS}, found a {}",
+            type_name(controller)
         ))
     })?;
-    let shape = shape_of(table).unwrap_or_default();
-    let tables = if shape.len() == 3 { shape[0] } else { 1 };
-    let table_shape: Vec<usize> = if shape.len() == 3 {
-        vec![tables, states, actions]
-    } else {
-        vec![states, actions]
+    let controller = match name.as_str() {
+        "braitenberg" => Controller::Braitenberg,
+        "random" => Controller::RandomWheels,
+        "avoid-collision" => Controller::AvoidCollision(default_avoid_collision()?),
+        "tabular" => {
+            return Err(invalid(format!(
+                "expected controller to be {CONTROLLERS}, found 'tabular': the tabular \
+                 controller needs its tables, given as a TabularSettings"
+            )))
+        }
+        other => {
+            return Err(invalid(format!(
+                "expected controller to be {CONTROLLERS}, found {:?}",
+                other.chars().take(80).collect::<String>()
+            )))
+        }
     };
-    let values = copied::<f64>(table, "table", "float64", &table_shape)?;
-    let allowed = args
-        .allowed_actions
-        .map(|a| {
-            let shape: &[usize] = if table_shape.len() == 3 {
-                &[tables, actions]
-            } else {
-                &[actions]
-            };
-            copied::<bool>(a, "allowed_actions", "bool", shape)
-        })
-        .transpose()?;
-    let table_of_env = args
-        .table_index
-        .map(|t| {
-            let index = copied::<i64>(t, "table_index", "int64", &[n])?;
-            index
-                .iter()
-                .enumerate()
-                .map(|(i, &t)| {
-                    u32::try_from(t).map_err(|_| {
-                        invalid(format!(
-                            "expected table_index values in 0..{tables}, found {t} for environment {i}"
-                        ))
-                    })
-                })
-                .collect::<PyResult<Vec<u32>>>()
-        })
-        .transpose()?;
-    let epsilon = args.epsilon.value("epsilon")?;
-    let hold_spins = args.hold_spins.value("hold_spins", "a bool")?;
-    let speed_limit = args
-        .wheel_speed_limit
-        .map(|l| l.value("wheel_speed_limit"))
-        .transpose()?;
-    let blind = if args.hold_heading.value("hold_heading", "a bool")? {
-        BlindRule::HoldHeading
-    } else {
-        BlindRule::Table
-    };
-    TabularPolicy::new(values, tables, allowed.as_deref(), table_of_env, epsilon)
-        .py()?
-        .with_held_spins(hold_spins)
-        .with_blind_rule(blind)
-        .with_speed_limit(speed_limit)
-        .py()
+    Ok((controller, EPUCK_MAX_SPEED))
+}
+
+/// Avoid-collision with its defaults (the report's threshold 80, the e-puck's 6.28 rad/s).
+fn default_avoid_collision() -> PyResult<AvoidCollision> {
+    Ok(PyAvoidCollisionSettings::new(Real::Number(80.0), Real::Number(EPUCK_MAX_SPEED))?.rule)
 }
 
 /// The per-step output arrays of one call, borrowed.

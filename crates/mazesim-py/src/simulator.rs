@@ -12,7 +12,7 @@ use crate::errors::{invalid, IntoPy};
 use crate::guard::{enter, enter_detached};
 use crate::lock::Exclusive;
 use crate::profile::{PyRobotProfile, RobotArg};
-use crate::tasks::{previous_action, PyTaskFeatures};
+use crate::tasks::{PyStepBounds, PyTaskFeatures};
 use crate::world::{world_argument, PyWorld};
 
 /// What a busy simulator is called in `SimulatorBusyError`.
@@ -87,7 +87,27 @@ impl PySimulator {
         let contiguous = |name: &str| invalid(format!("expected {name} to be contiguous"));
         let low = low.as_slice().map_err(|_| contiguous("low"))?;
         let high = high.as_slice().map_err(|_| contiguous("high"))?;
+        self.stepped_within(left, right, low, high)
+    }
+
+    /// One step of robot 0 with wheel speeds `left` and `right`, its readings clamped to
+    /// [`low`, `high`] (each of the robot's width).
+    fn stepped_within(
+        &self,
+        left: f64,
+        right: f64,
+        low: &[f32],
+        high: &[f32],
+    ) -> PyResult<Stepped> {
         self.inner.with(|s| {
+            let r = &s.robots()[0];
+            let width = r.distance_sensors().len() + r.ground_sensors().len();
+            if low.len() != width {
+                return Err(invalid(format!(
+                    "expected bounds of {width} readings (this robot's), found {}",
+                    low.len()
+                )));
+            }
             s.set_command(0, left, right).py()?;
             s.step_commanded().py()?;
             let s = &s.robots()[0];
@@ -263,25 +283,24 @@ impl PySimulator {
 
     /// `step_observe`, then the task observation of environment 0 of `features` (a
     /// `TaskFeatures` of this robot's sensors) in the same call: the observation from the
-    /// clamped readings, the pose and the previous action (`left` and `right` over `max_speed`,
-    /// in float32), in place of the readings; then the pose, whether the body touches a wall,
-    /// the signed checkpoint crossed (0: none), the collisions so far, the distance in metres
-    /// to the features' goal and whether the pose is in the goal disc. The same values as
-    /// `step_observe` followed by `features.observe_env(0, ...)`. With `observe=False` the
-    /// first value is the clamped readings themselves, and the features only give the goal's
-    /// distance (their explored map is left as it is).
-    #[pyo3(signature = (features, left, right, low, high, max_speed, observe = Flag::Value(true)),
-        text_signature = "($self, features, left, right, low, high, max_speed, observe=True)")]
-    #[allow(clippy::type_complexity, clippy::too_many_arguments)]
+    /// readings clamped to `bounds` (a `StepBounds` of this robot's width), the pose and the
+    /// previous action (`left` and `right` over the bounds' `max_speed`, in float32), in place
+    /// of the readings; then the pose, whether the body touches a wall, the signed checkpoint
+    /// crossed (0: none), the collisions so far, the distance in metres to the features' goal
+    /// and whether the pose is in the goal disc. The same values as `step_observe` followed by
+    /// `features.observe_env(0, ...)`. With `observe=False` the first value is the clamped
+    /// readings themselves, and the features only give the goal's distance (their explored map
+    /// is left as it is).
+    #[pyo3(signature = (features, bounds, left, right, observe = Flag::Value(true)),
+        text_signature = "($self, features, bounds, left, right, observe=True)")]
+    #[allow(clippy::type_complexity)]
     fn step_task<'py>(
         &self,
         py: Python<'py>,
         features: &Bound<'py, PyAny>,
+        bounds: &Bound<'py, PyAny>,
         left: Real,
         right: Real,
-        low: &Bound<'py, PyAny>,
-        high: &Bound<'py, PyAny>,
-        max_speed: Real,
         observe: Flag,
     ) -> PyResult<(
         Bound<'py, PyArray1<f32>>,
@@ -292,7 +311,6 @@ impl PySimulator {
         f64,
         bool,
     )> {
-        let previous = previous_action(&left, &right, &max_speed)?;
         let (left, right) = (left.value("left")?, right.value("right")?);
         let observe = observe.value("observe", "a bool")?;
         let features = features.cast::<PyTaskFeatures>().map_err(|_| {
@@ -301,9 +319,18 @@ impl PySimulator {
                 type_name(features)
             ))
         })?;
+        let bounds = bounds.cast::<PyStepBounds>().map_err(|_| {
+            invalid(format!(
+                "expected bounds to be a StepBounds, found a {}",
+                type_name(bounds)
+            ))
+        })?;
+        let bounds = bounds.get();
+        let previous = bounds.previous_action(left, right);
         let features = features.get();
         let (mut stepped, (observation, distance, reached)) = enter(|| {
-            let stepped = self.stepped(left, right, low, high)?;
+            let (low, high) = bounds.readings();
+            let stepped = self.stepped_within(left, right, low, high)?;
             let task = if observe {
                 features.observe_one(0, &stepped.readings, stepped.pose, previous)?
             } else {

@@ -281,11 +281,103 @@ impl PyTaskFeatures {
 /// The previous action of an observation: the wheel speeds `left` and `right` (rad/s) over
 /// `max_speed`, each in float32.
 pub(crate) fn previous_action(left: &Real, right: &Real, max_speed: &Real) -> PyResult<[f32; 2]> {
-    let most = max_speed.value("max_speed")? as f32;
-    Ok([
-        left.value("left")? as f32 / most,
-        right.value("right")? as f32 / most,
-    ])
+    let most = max_speed.value("max_speed")?;
+    Ok(scaled(left.value("left")?, right.value("right")?, most))
+}
+
+/// The wheel speeds `left` and `right` over `max_speed`, each in float32.
+fn scaled(left: f64, right: f64, max_speed: f64) -> [f32; 2] {
+    let most = max_speed as f32;
+    [left as f32 / most, right as f32 / most]
+}
+
+/// What a single env's task step (`Simulator.step_task`) keeps for the whole episode: the
+/// bounds its readings are clamped to and the motor limit its previous action is scaled by.
+#[pyclass(name = "StepBounds", module = "mazesim._core", frozen)]
+pub struct PyStepBounds {
+    low: Vec<f32>,
+    high: Vec<f32>,
+    max_speed: f64,
+}
+
+#[pymethods]
+impl PyStepBounds {
+    #[new]
+    #[pyo3(signature = (low, high, max_speed))]
+    fn new(low: &Bound<'_, PyAny>, high: &Bound<'_, PyAny>, max_speed: Real) -> PyResult<Self> {
+        enter(|| {
+            let width = crate::args::shape_of(low)
+                .filter(|s| s.len() == 1)
+                .map_or(0, |s| s[0]);
+            let low = copied::<f32>(low, "low", "float32", &[width])?;
+            let high = copied::<f32>(high, "high", "float32", &[width])?;
+            let max_speed = max_speed.value("max_speed")?;
+            if !(max_speed.is_finite() && max_speed > 0.0) {
+                return Err(invalid(format!(
+                    "expected max_speed to be a wheel speed above 0 rad/s, found {max_speed}"
+                )));
+            }
+            Ok(Self {
+                low,
+                high,
+                max_speed,
+            })
+        })
+    }
+
+    /// The lower bounds of the readings (float32, the distance sensors then the ground ones).
+    #[getter]
+    fn low<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
+        PyArray1::from_slice(py, &self.low)
+    }
+
+    /// The upper bounds of the readings.
+    #[getter]
+    fn high<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
+        PyArray1::from_slice(py, &self.high)
+    }
+
+    /// The motor limit (rad/s) the previous action's wheel speeds are divided by.
+    #[getter]
+    fn max_speed(&self) -> f64 {
+        self.max_speed
+    }
+
+    /// Pickles (and copies) as the constructor's arguments.
+    #[allow(clippy::type_complexity)]
+    fn __reduce__<'py>(
+        slf: &Bound<'py, Self>,
+    ) -> (
+        Bound<'py, pyo3::types::PyType>,
+        (Bound<'py, PyArray1<f32>>, Bound<'py, PyArray1<f32>>, f64),
+    ) {
+        let (py, this) = (slf.py(), slf.get());
+        (
+            slf.get_type(),
+            (this.low(py), this.high(py), this.max_speed),
+        )
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "StepBounds(width={}, max_speed={:?})",
+            self.low.len(),
+            self.max_speed
+        )
+    }
+}
+
+impl PyStepBounds {
+    /// The readings' bounds, low then high.
+    pub(crate) fn readings(&self) -> (&[f32], &[f32]) {
+        (&self.low, &self.high)
+    }
+
+    /// The previous action of wheel speeds `left` and `right` (rad/s): each over the motor
+    /// limit, in float32.
+    pub(crate) fn previous_action(&self, left: f64, right: f64) -> [f32; 2] {
+        scaled(left, right, self.max_speed)
+    }
 }
 
 impl PyTaskFeatures {

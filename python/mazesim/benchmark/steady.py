@@ -300,9 +300,8 @@ class SteadyState:
         left = steps
         while left > 0:
             k = min(per_call, left)
-            counts = batch.run(
-                k, controller, obs, poses, colliding, crossings, seeds=self.controller_seed
-            )
+            settings = mazesim.RunSettings(seeds=self.controller_seed)
+            counts = batch.run(k, controller, obs, poses, colliding, crossings, settings=settings)
             self.controller_seed += self.settings.envs
             contacts += int(counts["steps_in_contact"].sum())
             # The envs whose episodes reached the limit during the call are reset after it.

@@ -10,7 +10,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._checks import checks_own_arguments
-from mazesim._core import Simulator, World
+from mazesim._core import Simulator, StepBounds, World
 from mazesim.envs.errors import EnvClosedError, ResetNeededError, check_options, check_seed
 from mazesim.envs.navigation import (
     NavigationFeatures,
@@ -145,6 +145,7 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         width = self._layout.sensor_width
         self._low = np.ascontiguousarray(self._layout.low[:width])
         self._high = np.ascontiguousarray(self._layout.high[:width])
+        self._bounds = StepBounds(self._low, self._high, self._max_speed)
         self._drawn: StartAndGoal | None = None
         self._distance = 0.0
         self._simulator: Simulator | None = None
@@ -239,7 +240,7 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
         # The step, the observation (the task's, or the clamped readings), the distance to the
         # goal and whether it is reached, in one call into the core.
         observation, pose, colliding, crossing, collisions, distance, reached = simulator.step_task(
-            self._task.core, left, right, self._low, self._high, self._max_speed, self._observes
+            self._task.core, self._bounds, left, right, self._observes
         )
         if not self._observes and self._layout.include_pose:
             observation = self._layout.assemble_one(observation, pose)

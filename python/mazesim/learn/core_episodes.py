@@ -33,6 +33,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from mazesim._core import EpisodeLimits, RunSettings, TabularSettings
 from mazesim.actions import ACTION_CODES
 from mazesim.episodes import EpisodeBatch, EpisodeResult, EpisodeSchedule, Watcher
 from mazesim.errors import InvalidArgumentError
@@ -237,6 +238,16 @@ def run_navigator_episodes(
     )
     allowed = np.ascontiguousarray(np.repeat(SUBTASK_ACTIONS, phases, axis=0))
     batch = nav.batch
+    controller = TabularSettings(
+        tables,
+        allowed_actions=allowed,
+        hold_spins=True,
+        hold_heading=policy.hold_heading,
+        wheel_speed_limit=batch.profile.max_wheel_speed,
+    )
+    limits = EpisodeLimits(
+        max_steps=nav.max_steps, end_at_goal=True, end_at_crossing=True, autoreset=False
+    )
     count = nav.num_envs
     schedule = EpisodeSchedule(nav, policy, episodes_per_world)
     active = schedule.active
@@ -250,23 +261,14 @@ def run_navigator_episodes(
         trace = None if replay is None else replay.begin(active, policy.record, events)
         counters = batch.simulator.run(
             stretch_steps,
-            "tabular",
+            controller,
             batch.observations,
             batch.poses,
             batch.colliding,
             batch.crossings,
-            max_episode_steps=nav.max_steps,
-            end_at_goal=True,
-            end_at_crossing=True,
-            autoreset=False,
-            table=tables,
-            allowed_actions=allowed,
-            active=active,
-            hold_spins=True,
-            hold_heading=policy.hold_heading,
-            wheel_speed_limit=batch.profile.max_wheel_speed,
-            subtasks=policy.tracker.arrays(),
-            trace=trace,
+            settings=RunSettings(
+                limits, active=active, subtasks=policy.tracker.arrays(), trace=trace
+            ),
         )
         if trace is not None and replay is not None:
             replay.show(counters["steps"].astype(np.int64), trace)

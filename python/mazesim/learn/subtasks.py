@@ -329,9 +329,9 @@ class SubTaskTracker:
         return done, gave_up
 
     def arrays(self) -> dict[str, npt.NDArray[Any]]:
-        """The tracker's state by name, for the core's multi-step call
-        (``BatchSimulator.run(..., subtasks=...)``), which follows the sub-tasks step by step
-        as :meth:`update` does and writes the arrays in place. With ``door_distance`` the core
+        """The tracker's state by name, for the core's multi-step call (``BatchSimulator.run``
+        with ``RunSettings(subtasks=...)``), which follows the sub-tasks step by step as
+        :meth:`update` does and writes the arrays in place. With ``door_distance`` the core
         writes back the heading phase alone (it computes the distance bin from each pose): the
         next :meth:`update` counts the distance again.
         """
