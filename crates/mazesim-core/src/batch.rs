@@ -102,6 +102,19 @@ impl Helpers {
         }
     }
 
+    /// `make` of every item, in order, on the helpers where there are some; the error of an
+    /// item that fails.
+    pub(crate) fn make_all<T: Send, U: Send>(
+        &self,
+        items: Vec<T>,
+        make: impl Fn(T) -> Result<U> + Sync + Send,
+    ) -> Result<Vec<U>> {
+        match self.pool() {
+            Some(p) => p.install(|| items.into_par_iter().map(make).collect()),
+            None => items.into_iter().map(make).collect(),
+        }
+    }
+
     /// The same helpers made again in a forked child; the parent's pool, whose threads do not
     /// exist in the child, is forgotten rather than dropped (dropping would signal them).
     fn remade(self) -> Result<Helpers> {
@@ -143,6 +156,17 @@ pub fn share_equal_worlds(worlds: Vec<Arc<World>>) -> Vec<Arc<World>> {
             }
         })
         .collect()
+}
+
+/// Refuses a batch of `envs` environments without one seed each.
+pub(crate) fn check_seeds(envs: usize, seeds: &[u64]) -> Result<()> {
+    if seeds.len() != envs {
+        return Err(Error::InvalidArgument(format!(
+            "expected one seed per environment ({envs}), found {}",
+            seeds.len()
+        )));
+    }
+    Ok(())
 }
 
 /// Refuses a batch of `envs` environments holding `walls` solid walls in all (summed over the
@@ -368,13 +392,7 @@ impl Batch {
                 "expected at least one environment, found 0".into(),
             ));
         }
-        if seeds.len() != worlds.len() {
-            return Err(Error::InvalidArgument(format!(
-                "expected one seed per environment ({}), found {}",
-                worlds.len(),
-                seeds.len()
-            )));
-        }
+        check_seeds(worlds.len(), seeds)?;
         let rigs = rigs_of(robots, worlds.len())?;
         let robot = rigs[0].robot().clone();
         let worlds = share_equal_worlds(worlds);
@@ -403,20 +421,28 @@ impl Batch {
         let pairs: Vec<(Arc<World>, u64, Arc<Rig>)> = (worlds.into_iter().zip(seeds).enumerate())
             .map(|(i, (world, &seed))| (world, seed, rig_of(i)))
             .collect();
-        let envs: Result<Vec<Simulator>> = match helpers.pool() {
-            Some(p) => p.install(|| pairs.into_par_iter().map(make).collect()),
-            None => pairs.into_iter().map(make).collect(),
-        };
-        Ok(Batch {
-            envs: envs?,
-            robots: 1,
+        let envs = helpers.make_all(pairs, make)?;
+        Ok(Batch::assemble(envs, 1, &robot, helpers))
+    }
+
+    /// A batch of the simulators `envs`, `robots` per environment, each with the sensors of
+    /// `robot`, stepped on `helpers`.
+    pub(crate) fn assemble(
+        envs: Vec<Simulator>,
+        robots: usize,
+        robot: &RobotProfile,
+        helpers: Helpers,
+    ) -> Batch {
+        Batch {
+            envs,
+            robots,
             distance_width: robot.distance_sensors.len(),
             ground_width: robot.ground_sensors.len(),
             helpers,
             runs: Arc::new(AtomicU64::new(0)),
             pid: std::process::id(),
             interrupt: None,
-        })
+        }
     }
 
     /// Bytes the batch holds per environment, rounded down: each env's simulator, each distinct
