@@ -1,41 +1,18 @@
 //! The batch engine: env i of a batch equals a lone simulator with the same seed and actions,
 //! whatever the thread count or the batch size.
 
+mod common;
+
 use std::sync::Arc;
 
-use mazesim_core::{Batch, RobotProfile, SimConfig, Simulator, StepOutputs, World};
+use common::{seed_maze_epuck, Buffers};
+use mazesim_core::{Batch, RobotProfile, World};
 
 const STEPS: usize = 300;
 
 fn action(env: usize, step: usize) -> [f32; 2] {
     let t = step as f32 * 0.05 + env as f32;
     [4.0 + 2.5 * t.sin(), 4.0 + 2.5 * (1.7 * t).cos()]
-}
-
-struct Buffers {
-    obs: Vec<f32>,
-    poses: Vec<f32>,
-    colliding: Vec<bool>,
-    crossings: Vec<i32>,
-}
-
-impl Buffers {
-    fn new(n: usize, width: usize) -> Self {
-        Self {
-            obs: vec![0.0; n * width],
-            poses: vec![0.0; n * 3],
-            colliding: vec![false; n],
-            crossings: vec![0; n],
-        }
-    }
-    fn out(&mut self) -> StepOutputs<'_> {
-        StepOutputs {
-            observations: &mut self.obs,
-            poses: &mut self.poses,
-            colliding: &mut self.colliding,
-            crossings: &mut self.crossings,
-        }
-    }
 }
 
 /// Observation and pose bits of env `watch` over the run, from a batch of `n` envs.
@@ -66,18 +43,7 @@ fn batch_trace(n: usize, threads: usize, watch: usize) -> Vec<u32> {
 }
 
 fn lone_trace(env: usize) -> Vec<u32> {
-    let world = Arc::new(World::builtin("seed-maze").unwrap());
-    let robot = Arc::new(RobotProfile::builtin("e-puck").unwrap());
-    let mut s = Simulator::new(
-        world,
-        robot,
-        SimConfig {
-            seed: 1000 + env as u64,
-            noise: true,
-            control_step: None,
-        },
-    )
-    .unwrap();
+    let mut s = seed_maze_epuck(1000 + env as u64);
     let mut trace = Vec::new();
     for step in 0..STEPS {
         let [l, r] = action(env, step);

@@ -1,15 +1,16 @@
 //! The multi-step call: `run_steps(k)` equals `k` calls of `step` with the controller computed
 //! outside, bit for bit, whatever the thread count or the batch size.
 
+mod common;
+
 use std::sync::Arc;
 
+use common::Buffers;
 use mazesim_core::control::avoid_collision::EPUCK_MAX_SPEED;
 use mazesim_core::control::{braitenberg, AvoidCollision, TabularPolicy};
 use mazesim_core::generator::{generate, MazeParams};
 use mazesim_core::rng::{next_seed, Rng};
-use mazesim_core::{
-    Batch, Controller, RobotProfile, RunCounters, RunOptions, RunTrace, StepOutputs, World,
-};
+use mazesim_core::{Batch, Controller, RobotProfile, RunCounters, RunOptions, RunTrace, World};
 
 fn mazes(n: usize) -> Vec<Arc<World>> {
     let p = MazeParams {
@@ -26,33 +27,6 @@ fn batch(worlds: Vec<Arc<World>>, robot: &str, seeds: &[u64], threads: usize) ->
     Batch::new(worlds, profile, seeds, true, None, threads).unwrap()
 }
 
-struct State {
-    obs: Vec<f32>,
-    poses: Vec<f32>,
-    colliding: Vec<bool>,
-    crossings: Vec<i32>,
-}
-
-impl State {
-    fn new(b: &Batch) -> Self {
-        let n = b.len();
-        Self {
-            obs: vec![0.0; n * b.observation_width()],
-            poses: vec![0.0; n * 3],
-            colliding: vec![false; n],
-            crossings: vec![0; n],
-        }
-    }
-    fn out(&mut self) -> StepOutputs<'_> {
-        StepOutputs {
-            observations: &mut self.obs,
-            poses: &mut self.poses,
-            colliding: &mut self.colliding,
-            crossings: &mut self.crossings,
-        }
-    }
-}
-
 /// The per-step outputs of a run.
 struct Traced {
     obs: Vec<f32>,
@@ -61,7 +35,7 @@ struct Traced {
     wheels: Vec<f32>,
     actions: Vec<i32>,
     ends: Vec<bool>,
-    final_state: State,
+    final_state: Buffers,
     counters: RunCounters,
 }
 
@@ -74,7 +48,7 @@ fn run(b: &mut Batch, controller: &Controller, seeds: &[u64], options: RunOption
         wheels: vec![0.0; k * n * 2],
         actions: vec![0; k * n],
         ends: vec![false; k * n],
-        final_state: State::new(b),
+        final_state: Buffers::of(b),
         counters: RunCounters::default(),
     };
     let trace = RunTrace {
@@ -122,7 +96,7 @@ fn step_outside(
     choose: impl Fn(usize, usize, &[f32]) -> [f32; 2],
 ) -> Vec<f32> {
     let (n, w) = (b.len(), b.observation_width());
-    let mut state = State::new(b);
+    let mut state = Buffers::of(b);
     b.observe(state.out()).unwrap();
     let mut trace = vec![];
     for step in 0..steps {
@@ -299,7 +273,7 @@ fn without_autoreset_an_ended_episode_stands_still() {
 fn bad_arguments_are_refused_before_anything_moves() {
     let seeds: Vec<u64> = (0..3).collect();
     let mut b = batch(mazes(3), "e-puck", &seeds, 1);
-    let mut state = State::new(&b);
+    let mut state = Buffers::of(&b);
     let policy = TabularPolicy::new(random_table(0, 1), 1, None, None, 0.0).unwrap();
     let tabular = Controller::Tabular(Box::new(policy.clone()));
     let opts = options(5);
@@ -325,7 +299,7 @@ fn bad_arguments_are_refused_before_anything_moves() {
     // A per-env table map of the wrong length.
     let mapped = TabularPolicy::new(random_table(0, 1), 1, None, Some(vec![0; 4]), 0.0).unwrap();
     let mut seed_batch = batch(mazes(3), "seed", &seeds, 1);
-    let mut seed_state = State::new(&seed_batch);
+    let mut seed_state = Buffers::of(&seed_batch);
     let mapped = Controller::Tabular(Box::new(mapped));
     assert!(seed_batch
         .run_steps(
@@ -366,7 +340,7 @@ fn an_interrupt_stops_a_long_run() {
     let seeds: Vec<u64> = (0..64).collect();
     let mut b = batch(mazes(64), "e-puck", &seeds, 2);
     b.set_interrupt(Box::new(|| true));
-    let mut state = State::new(&b);
+    let mut state = Buffers::of(&b);
     let started = std::time::Instant::now();
     let result = b.run_steps(
         &Controller::Braitenberg,
