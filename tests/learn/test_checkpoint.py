@@ -133,6 +133,18 @@ def test_a_crash_at_any_file_replacement_resumes_to_the_same_tables(
         assert [name for name in os.listdir(folder) if name.endswith(".tmp")] == []
 
 
+def _metadata(saved: Checkpoint) -> dict[str, Any]:
+    """The metadata of a checkpoint of ``RUN`` that holds ``saved``."""
+    return {
+        "format": CHECKPOINT_FORMAT,
+        "version": FORMAT_VERSION,
+        "settings": RUN.identity(),
+        "next_round": saved.next_round,
+        "history": saved.history,
+        "lower_seconds": saved.lower_seconds,
+    }
+
+
 def test_a_checkpoint_of_mazesim_0_1_still_resumes(
     tmp_path: Path, uninterrupted: TrainedPolicy
 ) -> None:
@@ -145,14 +157,7 @@ def test_a_checkpoint_of_mazesim_0_1_still_resumes(
         CHECKPOINT_FILE,
         "checkpoint.json",
         {"q": saved.tables.q, "visits": saved.tables.visits},
-        {
-            "format": CHECKPOINT_FORMAT,
-            "version": FORMAT_VERSION,
-            "settings": RUN.identity(),
-            "next_round": saved.next_round,
-            "history": saved.history,
-            "lower_seconds": saved.lower_seconds,
-        },
+        _metadata(saved),
     )
     assert train(RUN, RunFolder(folder, resume=True), progress=None, threads=1) is not None
     _assert_same_navigator(load_policy(folder), uninterrupted)
@@ -175,17 +180,9 @@ def test_a_checkpoint_of_mazesim_0_1_still_resumes(
 def test_a_malformed_checkpoint_is_refused(tmp_path: Path, change: Any, reason: str) -> None:
     assert train(RUN, RunFolder(tmp_path), progress=None, threads=1, stop_after_rounds=1) is None
     saved = read_checkpoint(tmp_path, RUN.identity())
-    metadata = {
-        "format": CHECKPOINT_FORMAT,
-        "version": FORMAT_VERSION,
-        "settings": RUN.identity(),
-        "next_round": saved.next_round,
-        "history": saved.history,
-        "lower_seconds": saved.lower_seconds,
-    }
     data = write_archive(
         {"q": saved.tables.q, "visits": saved.tables.visits},
-        {"checkpoint.json": json.dumps(change(metadata)).encode()},
+        {"checkpoint.json": json.dumps(change(_metadata(saved))).encode()},
     )
     (tmp_path / CHECKPOINT_FILE).write_bytes(data)
     with pytest.raises(PolicyFormatError, match=reason):
