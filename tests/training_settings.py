@@ -6,10 +6,18 @@ import numpy as np
 
 from mazesim.learn.fleet import Fleet
 from mazesim.learn.lower import LowerSettings, LowerTrainer
+from mazesim.learn.tables import TrainedPolicy
 from mazesim.learn.train import TrainSettings
 from mazesim.transfer.randomise import parse_spec, robot_draw
 
-__all__ = ["E_PUCK_ROUND", "TINY", "e_pucks", "trained", "trained_alike_at_one_and_two_threads"]
+__all__ = [
+    "E_PUCK_ROUND",
+    "TINY",
+    "assert_same_navigator",
+    "e_pucks",
+    "trained",
+    "trained_alike_at_one_and_two_threads",
+]
 
 #: Three lower-level rounds of 64 robots, four higher-level episodes.
 TINY = TrainSettings(
@@ -58,3 +66,12 @@ def trained_alike_at_one_and_two_threads(settings: LowerSettings) -> LowerTraine
         assert one.run_round(k) == two.run_round(k)
     assert np.array_equal(one.tables.q, two.tables.q)
     return one
+
+
+def assert_same_navigator(first: TrainedPolicy, second: TrainedPolicy) -> None:
+    """Asserts that two trained navigators hold the same tables and training history."""
+    assert first.lower_q is not None and second.lower_q is not None
+    assert np.array_equal(first.lower_q, second.lower_q)
+    assert first.higher_q is not None and second.higher_q is not None
+    assert np.array_equal(first.higher_q, second.higher_q)
+    assert first.training["history"] == second.training["history"]
