@@ -55,6 +55,13 @@ def task_ids() -> list[str]:
     return [env_id for env_id in gymnasium.registry if env_id.startswith(PREFIX)]
 
 
+def action_pool(env: Any) -> list[Any]:
+    """Resets ``env`` with seed 0 and draws the pool of random actions it is stepped with."""
+    env.reset(seed=0)
+    env.action_space.seed(0)
+    return [env.action_space.sample() for _ in range(POOL)]
+
+
 @dataclass
 class Runner:
     """One env made by ``gymnasium.make`` and the processor time of its rounds."""
@@ -68,9 +75,7 @@ class Runner:
 
     def __post_init__(self) -> None:
         self.env = gymnasium.make(self.env_id)
-        self.env.reset(seed=0)
-        self.env.action_space.seed(0)
-        self.pool = [self.env.action_space.sample() for _ in range(POOL)]
+        self.pool = action_pool(self.env)
 
     def run(self, count: int, record: bool = True) -> None:
         """Steps ``count`` times, resetting ended episodes; records the round's processor time
@@ -112,9 +117,7 @@ class VectorRunner:
         self.env = gymnasium.make_vec(
             self.env_id, num_envs=self.num_envs, vectorization_mode="vector_entry_point"
         )
-        self.env.reset(seed=0)
-        self.env.action_space.seed(0)
-        self.pool = [self.env.action_space.sample() for _ in range(POOL)]
+        self.pool = action_pool(self.env)
 
     def run(self, env_steps: int, record: bool = True) -> None:
         """Steps every env (autoreset included) about ``env_steps`` env-steps in all."""
@@ -127,17 +130,23 @@ class VectorRunner:
             self.times.append((time.process_time() - start) / (count * self.num_envs))
 
 
+def alternate(runners: tuple[Runner | VectorRunner, ...], rounds: int, round_steps: int) -> None:
+    """Runs ``rounds`` rounds of ``round_steps`` steps of each runner in turn, so that all see the
+    same machine, then closes their envs."""
+    for _ in range(rounds):
+        for runner in runners:
+            runner.run(round_steps)
+    for runner in runners:
+        runner.env.close()
+
+
 def vector_lead(env_id: str, num_envs: int, rounds: int, round_steps: int) -> dict[str, float]:
     """Microseconds of processor time per env-step of the native vector env and of the single
     env, from alternating rounds, and the single env's over the vector env's."""
     single, vector = Runner(env_id), VectorRunner(env_id, num_envs)
     single.run(100, record=False)
     vector.run(num_envs, record=False)
-    for _ in range(rounds):
-        single.run(round_steps)
-        vector.run(round_steps)
-    single.env.close()
-    vector.env.close()
+    alternate((single, vector), rounds, round_steps)
     one, each = statistics.median(single.times), statistics.median(vector.times)
     return {"single_us": one * 1e6, "vector_us": each * 1e6, "lead": one / each}
 
@@ -147,11 +156,7 @@ def paired(env_id: str, rounds: int, round_steps: int) -> tuple[dict[str, float]
     task, reference = Runner(env_id), Runner(REFERENCE)
     for runner in (task, reference):
         runner.run(100, record=False)  # warm up
-    for _ in range(rounds):
-        task.run(round_steps)
-        reference.run(round_steps)
-    task.env.close()
-    reference.env.close()
+    alternate((task, reference), rounds, round_steps)
     return task.result(), reference.result()
 
 

@@ -8,16 +8,13 @@ mod common;
 use std::sync::Arc;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use mazesim_core::{Batch, RobotProfile, StepOutputs};
+use mazesim_core::{Batch, OutputBuffers, RobotProfile};
 
 const ENVS: usize = 1024;
 
 struct Workload {
     batch: Batch,
-    observations: Vec<f32>,
-    poses: Vec<f32>,
-    colliding: Vec<bool>,
-    crossings: Vec<i32>,
+    out: OutputBuffers,
     actions: Vec<f32>,
     step: usize,
 }
@@ -27,13 +24,9 @@ impl Workload {
         let robot = Arc::new(RobotProfile::builtin("e-puck").unwrap());
         let seeds: Vec<u64> = (0..ENVS as u64).collect();
         let batch = Batch::new(common::distinct_mazes(ENVS), robot, &seeds, true, None, 0).unwrap();
-        let width = batch.observation_width();
         Workload {
+            out: OutputBuffers::of(&batch),
             batch,
-            observations: vec![0.0; ENVS * width],
-            poses: vec![0.0; ENVS * 3],
-            colliding: vec![false; ENVS],
-            crossings: vec![0; ENVS],
             actions: vec![0.0; 2 * ENVS],
             step: 0,
         }
@@ -45,18 +38,12 @@ impl Workload {
             let (l, r) = if pushing {
                 common::pushing(self.step, i)
             } else {
-                common::braitenberg(&self.observations[i * width..i * width + 8])
+                common::braitenberg(&self.out.observations[i * width..i * width + 8])
             };
             self.actions[2 * i] = l as f32;
             self.actions[2 * i + 1] = r as f32;
         }
-        let out = StepOutputs {
-            observations: &mut self.observations,
-            poses: &mut self.poses,
-            colliding: &mut self.colliding,
-            crossings: &mut self.crossings,
-        };
-        self.batch.step(&self.actions, out).unwrap();
+        self.batch.step(&self.actions, self.out.outputs()).unwrap();
         self.step += 1;
     }
 }

@@ -58,7 +58,7 @@ fn body_step(c: &mut Criterion) {
 criterion_group!(physics_benches, body_step);
 
 fn batch_step(c: &mut Criterion) {
-    use mazesim_core::{Batch, RobotProfile, StepOutputs};
+    use mazesim_core::{Batch, OutputBuffers, RobotProfile};
     use std::sync::Arc;
     let robot = Arc::new(RobotProfile::builtin("e-puck").unwrap());
     let mut g = c.benchmark_group("batch_step");
@@ -67,24 +67,17 @@ fn batch_step(c: &mut Criterion) {
         let seeds: Vec<u64> = (0..n as u64).collect();
         let mut b = Batch::new(worlds, robot.clone(), &seeds, true, None, 0).unwrap();
         let w = b.observation_width();
-        let (mut obs, mut poses) = (vec![0f32; n * w], vec![0f32; n * 3]);
-        let (mut col, mut cr) = (vec![false; n], vec![0i32; n]);
+        let mut out = OutputBuffers::new(n, w);
         let mut actions = vec![0f32; 2 * n];
         g.throughput(Throughput::Elements(n as u64));
         g.bench_function(format!("{n}_envs"), |bench| {
             bench.iter(|| {
                 for i in 0..n {
-                    let (l, r) = common::braitenberg(&obs[i * w..i * w + 8]);
+                    let (l, r) = common::braitenberg(&out.observations[i * w..i * w + 8]);
                     actions[2 * i] = l as f32;
                     actions[2 * i + 1] = r as f32;
                 }
-                let out = StepOutputs {
-                    observations: &mut obs,
-                    poses: &mut poses,
-                    colliding: &mut col,
-                    crossings: &mut cr,
-                };
-                b.step(&actions, out).unwrap();
+                b.step(&actions, out.outputs()).unwrap();
             })
         });
     }

@@ -10,34 +10,10 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Through
 use mazesim_core::control::avoid_collision::EPUCK_MAX_SPEED;
 use mazesim_core::control::{braitenberg, TabularPolicy};
 use mazesim_core::rng::Rng;
-use mazesim_core::{Batch, Controller, RobotProfile, RunOptions, RunTrace, StepOutputs};
+use mazesim_core::{Batch, Controller, OutputBuffers, RobotProfile, RunOptions, RunTrace};
 
 const ENVS: usize = 1024;
 const STEPS: usize = 100;
-
-/// The final-state buffers of a batch: observations, poses, colliding, crossings.
-type State = (Vec<f32>, Vec<f32>, Vec<bool>, Vec<i32>);
-
-fn final_state(b: &Batch) -> State {
-    let n = b.len();
-    let width = b.observation_width();
-    (
-        vec![0.0; n * width],
-        vec![0.0; n * 3],
-        vec![false; n],
-        vec![0; n],
-    )
-}
-
-fn outputs(s: &mut State) -> StepOutputs<'_> {
-    let (observations, poses, colliding, crossings) = s;
-    StepOutputs {
-        observations,
-        poses,
-        colliding,
-        crossings,
-    }
-}
 
 fn batch(robot: &str) -> Batch {
     let profile = Arc::new(RobotProfile::builtin(robot).unwrap());
@@ -74,17 +50,17 @@ fn run_against_steps(c: &mut Criterion) {
     ];
     for (name, robot, controller) in controllers {
         let mut b = batch(robot);
-        let mut state = final_state(&b);
+        let mut state = OutputBuffers::of(&b);
         g.bench_function(BenchmarkId::new("run", name), |bench| {
             bench.iter(|| {
                 let trace = RunTrace::default();
-                b.run_steps(&controller, &seeds, &options, outputs(&mut state), trace)
+                b.run_steps(&controller, &seeds, &options, state.outputs(), trace)
                     .unwrap()
             })
         });
         let mut b = batch(robot);
-        let mut state = final_state(&b);
-        b.observe(outputs(&mut state)).unwrap();
+        let mut state = OutputBuffers::of(&b);
+        b.observe(state.outputs()).unwrap();
         let w = b.observation_width();
         let mut streams: Vec<Rng> = seeds.iter().map(|&s| Rng::new(s)).collect();
         let mut actions = vec![0f32; 2 * ENVS];
@@ -92,7 +68,7 @@ fn run_against_steps(c: &mut Criterion) {
             bench.iter(|| {
                 for _ in 0..STEPS {
                     for i in 0..ENVS {
-                        let obs = &state.0[i * w..(i + 1) * w];
+                        let obs = &state.observations[i * w..(i + 1) * w];
                         let [l, r] = match &controller {
                             Controller::Tabular(p) => {
                                 let a = p.action(i, obs, &mut streams[i]);
@@ -105,10 +81,10 @@ fn run_against_steps(c: &mut Criterion) {
                         actions[2 * i] = l;
                         actions[2 * i + 1] = r;
                     }
-                    b.step(&actions, outputs(&mut state)).unwrap();
+                    b.step(&actions, state.outputs()).unwrap();
                     let ended: Vec<bool> = b.envs().iter().map(|e| e.steps() >= 1000).collect();
                     if ended.iter().any(|&e| e) {
-                        b.reset(Some(&ended), None, outputs(&mut state)).unwrap();
+                        b.reset(Some(&ended), None, state.outputs()).unwrap();
                     }
                 }
             })

@@ -10,6 +10,7 @@ from typing import Any
 import pytest
 
 from mazesim.ros.local_master import LocalMaster
+from recorded_demos import record_demo
 
 
 @pytest.fixture(autouse=True, scope="session")
@@ -56,8 +57,6 @@ def master(tmp_path: Path) -> Iterator[LocalMaster]:
 def navigator_demo(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
     """The shipped navigator's demo run once with ``--record``, ``--html`` and a GIF: the paths
     of its outputs (``run``, ``html``, ``gif``, ``out``)."""
-    from mazesim.cli import main
-
     folder = tmp_path_factory.mktemp("navigator-demo")
     paths = {
         "run": folder / "run.json.gz",
@@ -65,23 +64,7 @@ def navigator_demo(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
         "gif": folder / "run.gif",
         "out": folder / "demo",
     }
-    code = main(
-        [
-            "demo",
-            "--controller",
-            "hrl",
-            "--out",
-            str(paths["out"]),
-            "--record",
-            str(paths["run"]),
-            "--html",
-            str(paths["html"]),
-            "--video",
-            str(paths["gif"]),
-        ]
-    )
-    assert code == 0
-    return paths
+    return record_demo(["--controller", "hrl"], paths)
 
 
 @pytest.fixture(scope="module")

@@ -56,3 +56,15 @@ TRAP = grid_world(
 +--+--+--+
 """,
 )
+
+
+#: The two walls of a straight corridor 1.2 m long and 0.2 m wide, along x through the origin.
+CORRIDOR_WALLS = """
+[[walls]]
+center = [0.0, 0.105]
+size = [1.2, 0.01]
+
+[[walls]]
+center = [0.0, -0.105]
+size = [1.2, 0.01]
+"""

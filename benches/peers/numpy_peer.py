@@ -47,6 +47,31 @@ _BIG = np.float32(1.0e9)
 _MAX_INV = np.float32(1.0e30)
 
 
+def _rotate(
+    c: np.ndarray,
+    s: np.ndarray,
+    px: np.ndarray,
+    py: np.ndarray,
+    out_x: np.ndarray,
+    out_y: np.ndarray,
+    scratch: np.ndarray,
+    at: tuple[np.ndarray, np.ndarray] | None = None,
+) -> None:
+    """Writes the robot-frame vectors (``px``, ``py``) turned by the heading of cosine ``c`` and
+    sine ``s`` into ``out_x``, ``out_y``, moved to the robot's position ``at`` when given (points
+    rather than directions); ``scratch`` is a buffer of their shape."""
+    np.multiply(c, px, out=out_x)
+    np.multiply(s, py, out=scratch)
+    out_x -= scratch
+    if at is not None:
+        out_x += at[0]
+    np.multiply(s, px, out=out_y)
+    np.multiply(c, py, out=scratch)
+    out_y += scratch
+    if at is not None:
+        out_y += at[1]
+
+
 class UniformLut:
     """A piecewise-linear table resampled exactly on a uniform grid (its breakpoints must lie on
     the grid): one multiply, one truncation and two small gathers per column read."""
@@ -257,20 +282,8 @@ class _Chunk:
         if noise:
             self.rng.standard_normal(dtype=np.float32, out=self.noise)
         # Ray origins and directions in the world frame.
-        np.multiply(c, self.ps_x, out=ox)
-        np.multiply(s, self.ps_y, out=r8)
-        ox -= r8
-        ox += x
-        np.multiply(s, self.ps_x, out=oy)
-        np.multiply(c, self.ps_y, out=r8)
-        oy += r8
-        oy += y
-        np.multiply(c, self.ps_cos, out=dx)
-        np.multiply(s, self.ps_sin, out=r8)
-        dx -= r8
-        np.multiply(s, self.ps_cos, out=dy)
-        np.multiply(c, self.ps_sin, out=r8)
-        dy += r8
+        _rotate(c, s, self.ps_x, self.ps_y, ox, oy, r8, at=(x, y))
+        _rotate(c, s, self.ps_cos, self.ps_sin, dx, dy, r8)
         np.divide(1.0, dx, out=dx)  # inverse directions, finite
         np.clip(dx, -_MAX_INV, _MAX_INV, out=dx)
         np.divide(1.0, dy, out=dy)
@@ -316,14 +329,7 @@ class _Chunk:
         x, y = self.pose[0], self.pose[1]
         c, s = self.cos, self.sin
         gx, gy, g3 = self.gx, self.gy, self.g3
-        np.multiply(c, self.gs_x, out=gx)
-        np.multiply(s, self.gs_y, out=g3)
-        gx -= g3
-        gx += x
-        np.multiply(s, self.gs_x, out=gy)
-        np.multiply(c, self.gs_y, out=g3)
-        gy += g3
-        gy += y
+        _rotate(c, s, self.gs_x, self.gs_y, gx, gy, g3, at=(x, y))
         inside, other = self.inside, self.inside2
         np.greater_equal(gx, self.px0, out=inside)
         np.less_equal(gx, self.px1, out=other)

@@ -10,20 +10,10 @@ from pathlib import Path
 import pytest
 
 from mazesim.cli import main
+from mazesim_process import mazesim_command
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 BUILTIN_WORLDS = ("seed-maze", "line-follow", "arena")
-
-
-def mazesim_command(*args: str, cwd: Path) -> subprocess.CompletedProcess[str]:
-    return subprocess.run(
-        [sys.executable, "-m", "mazesim", *args],
-        cwd=cwd,
-        capture_output=True,
-        text=True,
-        timeout=300,
-        check=False,
-    )
 
 
 def assert_one_line_error(result: subprocess.CompletedProcess[str]) -> str:

@@ -5,27 +5,16 @@ from __future__ import annotations
 import os
 import shutil
 import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
 from mazesim.cli import main
+from mazesim_process import mazesim_command
 from ros_support import needs_ros
 
 REPO = Path(__file__).resolve().parents[2]
 WBT = REPO / "tests" / "data" / "webots-worlds" / "e-puck.R2023b.wbt"
-
-
-def _mazesim(*arguments: str, cwd: Path) -> subprocess.CompletedProcess[str]:
-    return subprocess.run(
-        [sys.executable, "-m", "mazesim", *arguments],
-        capture_output=True,
-        text=True,
-        timeout=120,
-        cwd=cwd,
-        check=False,
-    )
 
 
 def _one_error_line(result: subprocess.CompletedProcess[str]) -> str:
@@ -58,14 +47,16 @@ def test_import_wbt_refuses_to_overwrite_the_webots_source(tmp_path: Path, spell
         (tmp_path / "linked").symlink_to(source.parent, target_is_directory=True)
     elif spelling == "hard link":
         os.link(source, tmp_path / "hard.wbt")
-    line = _one_error_line(_mazesim("import-wbt", "worlds/x.wbt", "--out", out, cwd=tmp_path))
+    line = _one_error_line(
+        mazesim_command("import-wbt", "worlds/x.wbt", "--out", out, cwd=tmp_path)
+    )
     assert "is the same file as the Webots world" in line
     assert "choose another --out" in line
     assert source.read_bytes() == original
 
 
 def test_import_wbt_still_writes_another_file(tmp_path: Path) -> None:
-    result = _mazesim("import-wbt", str(WBT), "--out", "x.toml", cwd=tmp_path)
+    result = mazesim_command("import-wbt", str(WBT), "--out", "x.toml", cwd=tmp_path)
     assert result.returncode == 0, result.stderr
     assert (tmp_path / "x.toml").read_text().startswith('format = "mazesim-world"')
 
@@ -84,7 +75,7 @@ def test_eval_refuses_to_write_its_trace_over_the_navigator(tmp_path: Path) -> N
 def test_sweep_refuses_an_output_folder_holding_its_sweep_file(tmp_path: Path) -> None:
     config = tmp_path / "sweep.toml"
     config.write_text('[sweep]\nname = "x"\n[grid]\ntrainer = "flat-q"\n')
-    result = _mazesim("sweep", "sweep.toml", "--out", ".", "--sequential", cwd=tmp_path)
+    result = mazesim_command("sweep", "sweep.toml", "--out", ".", "--sequential", cwd=tmp_path)
     assert "is the same file as the sweep file" in _one_error_line(result)
 
 

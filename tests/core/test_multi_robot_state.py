@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 import mazesim
+from env_worlds import CORRIDOR_WALLS
 
 #: The box's half side and the e-puck's body radius, metres.
 HALF, RADIUS = 0.02, 0.037
@@ -24,12 +25,7 @@ def box_world(crosser: tuple[float, float] = (-0.2, -0.06)) -> mazesim.World:
         f"""
 format = "mazesim-world"
 version = 1
-[[walls]]
-center = [0.0, 0.105]
-size = [1.2, 0.01]
-[[walls]]
-center = [0.0, -0.105]
-size = [1.2, 0.01]
+{CORRIDOR_WALLS}
 [[bodies]]
 shape = "box"
 center = [-0.2, 0.0]

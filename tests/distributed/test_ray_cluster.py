@@ -24,6 +24,7 @@ import pytest
 from mazesim.distributed.cluster import connection_advice
 from mazesim.errors import ClusterConnectionError
 from mazesim.ros.local_master import free_loopback_port
+from mazesim_process import mazesim_command
 from ros_support import processes_with
 
 pytest.importorskip("ray", reason="Ray is optional: pip install 'mazesim[ray]'")
@@ -125,18 +126,6 @@ def cluster(tmp_path: Path) -> Iterator[tuple[str, dict[str, str]]]:
     assert processes_with(TAG_VARIABLE, tag) == []
 
 
-def _mazesim(env: dict[str, str], cwd: Path, *args: str) -> subprocess.CompletedProcess[str]:
-    return subprocess.run(
-        [sys.executable, "-m", "mazesim", *args],
-        cwd=cwd,
-        env=env,
-        capture_output=True,
-        text=True,
-        timeout=300,
-        check=False,
-    )
-
-
 def test_documented_cluster_recipe_on_loopback(
     cluster: tuple[str, dict[str, str]], tmp_path: Path
 ) -> None:
@@ -145,16 +134,16 @@ def test_documented_cluster_recipe_on_loopback(
     # (Ray's connection window shortened from about 20 s to 2.)
     no_token = {key: value for key, value in env.items() if key != "RAY_AUTH_MODE"}
     no_token["RAY_gcs_server_port_wait_time_s"] = "2"
-    refused = _mazesim(no_token, tmp_path, "eval", "--episodes", "2", "--address", address)
+    refused = mazesim_command(
+        "eval", "--episodes", "2", "--address", address, cwd=tmp_path, env=no_token
+    )
     assert refused.returncode == 2
     error = refused.stderr.strip().splitlines()[-1]
     assert error.startswith(f"mazesim: error: could not join the Ray cluster at {address}")
     assert "set RAY_AUTH_MODE=token here too (it is unset)" in error
 
     # With it, as the recipe says, eval and sweep run on the cluster.
-    evaluation = _mazesim(
-        env,
-        tmp_path,
+    evaluation = mazesim_command(
         "eval",
         "--episodes",
         "4",
@@ -163,15 +152,21 @@ def test_documented_cluster_recipe_on_loopback(
         "--json",
         "--address",
         address,
+        cwd=tmp_path,
+        env=env,
     )
     assert evaluation.returncode == 0, evaluation.stderr
     assert '"episodes": 4' in evaluation.stdout
-    alone = _mazesim(env, tmp_path, "eval", "--episodes", "4", "--max-steps", "50", "--json")
+    alone = mazesim_command(
+        "eval", "--episodes", "4", "--max-steps", "50", "--json", cwd=tmp_path, env=env
+    )
     assert alone.returncode == 0, alone.stderr
     assert evaluation.stdout == alone.stdout  # the same episodes wherever they run
 
     (tmp_path / "tiny.toml").write_text(TINY_SWEEP)
-    sweep = _mazesim(env, tmp_path, "sweep", "tiny.toml", "--address", address, "--out", "sw")
+    sweep = mazesim_command(
+        "sweep", "tiny.toml", "--address", address, "--out", "sw", cwd=tmp_path, env=env
+    )
     assert sweep.returncode == 0, sweep.stderr
     assert f"2 runs on Ray ({address})" in sweep.stdout
     assert (tmp_path / "sw" / "results.json").is_file()

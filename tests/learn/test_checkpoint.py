@@ -35,6 +35,7 @@ from mazesim.learn.tables import (
     write_bundle,
 )
 from mazesim.learn.train import TrainSettings, train
+from training_settings import assert_same_navigator
 
 #: Three lower-level rounds, a checkpoint after each.
 RUN = TrainSettings(
@@ -97,14 +98,6 @@ def _crash_at(folder: Path, crash_call: int, monkeypatch: pytest.MonkeyPatch) ->
             train(RUN, RunFolder(folder), progress=None, threads=1)
 
 
-def _assert_same_navigator(first: TrainedPolicy, second: TrainedPolicy) -> None:
-    assert first.lower_q is not None and second.lower_q is not None
-    assert np.array_equal(first.lower_q, second.lower_q)
-    assert first.higher_q is not None and second.higher_q is not None
-    assert np.array_equal(first.higher_q, second.higher_q)
-    assert first.training["history"] == second.training["history"]
-
-
 def test_a_crash_at_any_file_replacement_resumes_to_the_same_tables(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch, uninterrupted: TrainedPolicy
 ) -> None:
@@ -129,8 +122,20 @@ def test_a_crash_at_any_file_replacement_resumes_to_the_same_tables(
             assert len(saved.history) == whole_checkpoints
             resumed = train(RUN, RunFolder(folder, resume=True), progress=None, threads=1)
         assert resumed is not None
-        _assert_same_navigator(load_policy(folder), uninterrupted)
+        assert_same_navigator(load_policy(folder), uninterrupted)
         assert [name for name in os.listdir(folder) if name.endswith(".tmp")] == []
+
+
+def _metadata(saved: Checkpoint) -> dict[str, Any]:
+    """The metadata of a checkpoint of ``RUN`` that holds ``saved``."""
+    return {
+        "format": CHECKPOINT_FORMAT,
+        "version": FORMAT_VERSION,
+        "settings": RUN.identity(),
+        "next_round": saved.next_round,
+        "history": saved.history,
+        "lower_seconds": saved.lower_seconds,
+    }
 
 
 def test_a_checkpoint_of_mazesim_0_1_still_resumes(
@@ -145,17 +150,10 @@ def test_a_checkpoint_of_mazesim_0_1_still_resumes(
         CHECKPOINT_FILE,
         "checkpoint.json",
         {"q": saved.tables.q, "visits": saved.tables.visits},
-        {
-            "format": CHECKPOINT_FORMAT,
-            "version": FORMAT_VERSION,
-            "settings": RUN.identity(),
-            "next_round": saved.next_round,
-            "history": saved.history,
-            "lower_seconds": saved.lower_seconds,
-        },
+        _metadata(saved),
     )
     assert train(RUN, RunFolder(folder, resume=True), progress=None, threads=1) is not None
-    _assert_same_navigator(load_policy(folder), uninterrupted)
+    assert_same_navigator(load_policy(folder), uninterrupted)
     # The first new checkpoint replaced the two old files with one.
     assert not (folder / "checkpoint.json").exists()
 
@@ -175,17 +173,9 @@ def test_a_checkpoint_of_mazesim_0_1_still_resumes(
 def test_a_malformed_checkpoint_is_refused(tmp_path: Path, change: Any, reason: str) -> None:
     assert train(RUN, RunFolder(tmp_path), progress=None, threads=1, stop_after_rounds=1) is None
     saved = read_checkpoint(tmp_path, RUN.identity())
-    metadata = {
-        "format": CHECKPOINT_FORMAT,
-        "version": FORMAT_VERSION,
-        "settings": RUN.identity(),
-        "next_round": saved.next_round,
-        "history": saved.history,
-        "lower_seconds": saved.lower_seconds,
-    }
     data = write_archive(
         {"q": saved.tables.q, "visits": saved.tables.visits},
-        {"checkpoint.json": json.dumps(change(metadata)).encode()},
+        {"checkpoint.json": json.dumps(change(_metadata(saved))).encode()},
     )
     (tmp_path / CHECKPOINT_FILE).write_bytes(data)
     with pytest.raises(PolicyFormatError, match=reason):

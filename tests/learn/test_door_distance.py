@@ -19,10 +19,8 @@ from mazesim.learn.checkpoint import RunFolder
 from mazesim.learn.core_episodes import stretches_apply
 from mazesim.learn.discretise import NUM_STATES
 from mazesim.learn.evaluate import evaluate_navigator
-from mazesim.learn.fleet import Fleet
 from mazesim.learn.higher import HigherLevel
 from mazesim.learn.lower import (
-    LowerSettings,
     LowerTrainer,
     drive_on_when_blind,
     lower_table_shape,
@@ -42,8 +40,7 @@ from mazesim.learn.subtasks import (
 from mazesim.learn.symmetry import mirrored_states
 from mazesim.learn.tables import load_policy, save_policy
 from mazesim.learn.train import train
-from mazesim.transfer.randomise import parse_spec, robot_draw
-from training_settings import TINY
+from training_settings import E_PUCK_ROUND, TINY, trained, trained_alike_at_one_and_two_threads
 
 FORWARD = ACTION_CODES.index("00")
 
@@ -156,31 +153,9 @@ def test_driving_on_when_blind_changes_the_blind_row_alone() -> None:
     assert np.array_equal(again, q)
 
 
-E_PUCK_ROUND = LowerSettings(
-    num_envs=40,
-    total_steps=40 * 200 * 2,
-    round_steps=200,
-    maze_pool=6,
-    seed=5,
-    door_distance=True,
-    blind_forward=True,
-)
-
-
-def _e_pucks() -> Fleet:
-    """E-pucks reading in the seed robot's volts, as ``--randomise robot=e-puck`` trains them."""
-    fleet = robot_draw(parse_spec("robot=e-puck"), E_PUCK_ROUND.seed)(0, E_PUCK_ROUND.num_envs)
-    assert isinstance(fleet, Fleet)
-    return fleet
-
-
 def test_the_blind_rule_and_distance_phases_train_alike_at_any_thread_count() -> None:
-    one = LowerTrainer(E_PUCK_ROUND, threads=1, robot=_e_pucks())
-    two = LowerTrainer(E_PUCK_ROUND, threads=2, robot=_e_pucks())
+    one = trained_alike_at_one_and_two_threads(E_PUCK_ROUND)
     assert one.tables.q.shape == lower_table_shape(True)
-    for k in range(E_PUCK_ROUND.rounds):
-        assert one.run_round(k) == two.run_round(k)
-    assert np.array_equal(one.tables.q, two.tables.q)
     visits = one.tables.visits
     # The e-puck sees no wall from a corridor's middle: there it only ever drove forward.
     assert visits[0, BLIND_STATE, FORWARD] > 0
@@ -191,9 +166,7 @@ def test_the_blind_rule_and_distance_phases_train_alike_at_any_thread_count() ->
     # Without the options a trainer of the same robots keeps the heading phases and learns
     # other actions in the blind state.
     plain = dataclasses.replace(E_PUCK_ROUND, door_distance=False, blind_forward=False)
-    other = LowerTrainer(plain, threads=1, robot=_e_pucks())
-    for k in range(plain.rounds):
-        other.run_round(k)
+    other = trained(plain, threads=1)
     assert other.tables.q.shape == lower_table_shape()
     blind = other.tables.visits[0, BLIND_STATE]
     assert blind.sum() > blind[FORWARD]

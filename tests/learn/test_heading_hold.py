@@ -18,16 +18,14 @@ from mazesim.errors import PolicyFormatError
 from mazesim.learn.checkpoint import RunFolder
 from mazesim.learn.core_episodes import stretches_apply
 from mazesim.learn.discretise import NUM_SENSORS, distance_levels, encode_state
-from mazesim.learn.fleet import Fleet
 from mazesim.learn.heading_hold import HOLD_TOLERANCE, grid_error, hold_actions
 from mazesim.learn.higher import HigherLevel
-from mazesim.learn.lower import LowerSettings, LowerTrainer, lower_table_shape
+from mazesim.learn.lower import lower_table_shape
 from mazesim.learn.policy import DeadReckoningNavigator, HierarchicalPolicy
 from mazesim.learn.subtasks import BLIND_STATE, SubTask
 from mazesim.learn.tables import load_policy, save_policy
 from mazesim.learn.train import train
-from mazesim.transfer.randomise import parse_spec, robot_draw
-from training_settings import TINY
+from training_settings import E_PUCK_ROUND, TINY, trained, trained_alike_at_one_and_two_threads
 
 FORWARD, GENTLE_RIGHT, GENTLE_LEFT = (ACTION_CODES.index(c) for c in ("00", "11", "55"))
 SPIN_RIGHT, SPIN_LEFT = ACTION_CODES.index("aa"), ACTION_CODES.index("bb")
@@ -133,38 +131,17 @@ def test_the_dead_reckoned_frame_starts_at_the_episode_start() -> None:
     assert navigator.act(BLIND_CM, 0) == "00"
 
 
-HOLD_ROUND = LowerSettings(
-    num_envs=40,
-    total_steps=40 * 200 * 2,
-    round_steps=200,
-    maze_pool=6,
-    seed=5,
-    door_distance=True,
-    blind_forward=True,
-    hold_heading=True,
-)
-
-
-def _e_pucks() -> Fleet:
-    fleet = robot_draw(parse_spec("robot=e-puck"), HOLD_ROUND.seed)(0, HOLD_ROUND.num_envs)
-    assert isinstance(fleet, Fleet)
-    return fleet
+HOLD_ROUND = dataclasses.replace(E_PUCK_ROUND, hold_heading=True)
 
 
 def test_training_holds_the_heading_where_blind_at_any_thread_count() -> None:
-    one = LowerTrainer(HOLD_ROUND, threads=1, robot=_e_pucks())
-    two = LowerTrainer(HOLD_ROUND, threads=2, robot=_e_pucks())
-    for k in range(HOLD_ROUND.rounds):
-        assert one.run_round(k) == two.run_round(k)
-    assert np.array_equal(one.tables.q, two.tables.q)
+    one = trained_alike_at_one_and_two_threads(HOLD_ROUND)
     blind = one.tables.visits[SubTask.CORRIDOR, BLIND_STATE]
     rule = [FORWARD, GENTLE_RIGHT, GENTLE_LEFT, SPIN_RIGHT, SPIN_LEFT]
     assert blind[rule].sum() == blind.sum() > 0
     assert blind[GENTLE_RIGHT] + blind[GENTLE_LEFT] > 0
     # With the plain blind rule the same robots only ever drove straight on there.
-    forward = LowerTrainer(dataclasses.replace(HOLD_ROUND, hold_heading=False), robot=_e_pucks())
-    for k in range(HOLD_ROUND.rounds):
-        forward.run_round(k)
+    forward = trained(dataclasses.replace(HOLD_ROUND, hold_heading=False))
     plain = forward.tables.visits[SubTask.CORRIDOR, BLIND_STATE]
     assert plain.sum() == plain[FORWARD] > 0
     assert not np.array_equal(forward.tables.q, one.tables.q)

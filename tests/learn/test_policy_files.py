@@ -6,8 +6,6 @@ from __future__ import annotations
 import io
 import json
 import shutil
-import subprocess
-import sys
 import tracemalloc
 import zipfile
 from collections.abc import Callable
@@ -24,6 +22,7 @@ from mazesim.errors import PolicyFormatError
 from mazesim.learn.lower import lower_table_shape
 from mazesim.learn.tables import TrainedPolicy, load_policy, save_policy, sha256
 from mazesim.maze import world_hash
+from mazesim_process import mazesim_command
 
 POLICY_JSON = "policy.json"
 TABLES_NPZ = "tables.npz"
@@ -308,12 +307,8 @@ def test_eval_command_reports_malformed_metadata_in_one_line(saved: Path, tmp_pa
     metadata = json.loads((tmp_path / POLICY_JSON).read_text())
     metadata["world"] = ["not", "an", "object"]
     (tmp_path / POLICY_JSON).write_text(json.dumps(metadata))
-    result = subprocess.run(
-        [sys.executable, "-m", "mazesim", "eval", "--policy", str(tmp_path), "--episodes", "1"],
-        capture_output=True,
-        text=True,
-        timeout=120,
-        check=False,
+    result = mazesim_command(
+        "eval", "--policy", str(tmp_path), "--episodes", "1", cwd=tmp_path, timeout=120
     )
     assert result.returncode == 2, result.stderr
     lines = result.stderr.strip().splitlines()

@@ -3,8 +3,6 @@
 from __future__ import annotations
 
 import json
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -15,6 +13,7 @@ from mazesim.errors import MazesimError, PolicyFormatError
 from mazesim.learn.lower import lower_table_shape
 from mazesim.learn.tables import TrainedPolicy, load_policy, save_policy
 from mazesim.maze import world_hash
+from mazesim_process import mazesim_command
 
 
 def random_policy(seed: int = 0) -> TrainedPolicy:
@@ -126,12 +125,8 @@ def test_missing_folder_is_refused(tmp_path: Path) -> None:
 def test_eval_command_reports_a_damaged_policy_in_one_line(tmp_path: Path) -> None:
     save_policy(random_policy(), tmp_path)
     (tmp_path / "tables.npz").write_bytes(b"not an archive")
-    result = subprocess.run(
-        [sys.executable, "-m", "mazesim", "eval", "--policy", str(tmp_path), "--episodes", "1"],
-        capture_output=True,
-        text=True,
-        timeout=120,
-        check=False,
+    result = mazesim_command(
+        "eval", "--policy", str(tmp_path), "--episodes", "1", cwd=tmp_path, timeout=120
     )
     assert result.returncode == 2
     lines = result.stderr.strip().splitlines()

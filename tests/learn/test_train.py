@@ -18,7 +18,7 @@ from mazesim.learn.evaluate import evaluate_navigator
 from mazesim.learn.lower import LowerSettings, LowerTrainer
 from mazesim.learn.tables import load_policy
 from mazesim.learn.train import train, train_flat_policy
-from training_settings import TINY
+from training_settings import TINY, assert_same_navigator
 
 SHORT = LowerSettings(
     num_envs=192, total_steps=192 * 300 * 4, round_steps=300, maze_pool=16, seed=0
@@ -57,12 +57,7 @@ def test_interrupted_training_resumes_to_the_same_tables(tmp_path: Path) -> None
     )
     resumed = train(TINY, RunFolder(tmp_path / "parts", resume=True), progress=None)
     assert resumed is not None
-    first, second = load_policy(tmp_path / "whole"), load_policy(tmp_path / "parts")
-    assert first.lower_q is not None and second.lower_q is not None
-    assert np.array_equal(first.lower_q, second.lower_q)
-    assert first.higher_q is not None and second.higher_q is not None
-    assert np.array_equal(first.higher_q, second.higher_q)
-    assert first.training["history"] == second.training["history"]
+    assert_same_navigator(load_policy(tmp_path / "whole"), load_policy(tmp_path / "parts"))
 
 
 def test_training_without_a_writer_writes_no_file(

@@ -7,6 +7,7 @@ import math
 import numpy as np
 import pytest
 
+from env_worlds import CORRIDOR_WALLS
 from mazesim.marl.batch import MultiRobotBatch
 from mazesim.marl.tasks import (
     AggregationTask,
@@ -16,18 +17,10 @@ from mazesim.marl.tasks import (
     robots_world,
 )
 
-CORRIDOR = """format = "mazesim-world"
+CORRIDOR = f"""format = "mazesim-world"
 version = 1
 name = "corridor"
-
-[[walls]]
-center = [0.0, 0.105]
-size = [1.2, 0.01]
-
-[[walls]]
-center = [0.0, -0.105]
-size = [1.2, 0.01]
-"""
+{CORRIDOR_WALLS}"""
 
 
 class FixedMazeGoals(MazeGoalsTask):

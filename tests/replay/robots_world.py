@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from recorded_demos import record_demo
+
 THREE_ROBOTS = """format = "mazesim-world"
 version = 1
 name = "three-robots"
@@ -48,8 +50,6 @@ profile = "e-puck2"
 def record_three_robots(folder: Path) -> dict[str, Path]:
     """Runs ``mazesim demo`` on the three robots for 4 s with ``--record`` and ``--html``; the
     paths of the world, the run, the page and the output folder."""
-    from mazesim.cli import main
-
     paths = {
         "world": folder / "three.toml",
         "run": folder / "three.json.gz",
@@ -57,20 +57,6 @@ def record_three_robots(folder: Path) -> dict[str, Path]:
         "out": folder / "demo",
     }
     paths["world"].write_text(THREE_ROBOTS)
-    code = main(
-        [
-            "demo",
-            "--world",
-            str(paths["world"]),
-            "--seconds",
-            "4",
-            "--out",
-            str(paths["out"]),
-            "--record",
-            str(paths["run"]),
-            "--html",
-            str(paths["html"]),
-        ]
-    )
-    assert code == 0
+    outputs = {key: path for key, path in paths.items() if key != "world"}
+    record_demo(["--world", str(paths["world"]), "--seconds", "4"], outputs)
     return paths

@@ -6,8 +6,6 @@ from __future__ import annotations
 import json
 import math
 import os
-import subprocess
-import sys
 import tempfile
 from pathlib import Path
 from typing import Any
@@ -19,6 +17,7 @@ from hypothesis import strategies as st
 import mazesim
 from mazesim.errors import MazesimError, MazesimIOError, WorldFormatError
 from mazesim.webots import import_wbt, import_wbt_text
+from mazesim_process import mazesim_command
 
 CORPUS = Path(__file__).parents[1] / "data" / "webots-worlds"
 LENGTH = 1e-3
@@ -224,19 +223,8 @@ def test_text_import_and_errors_carry_line_and_column() -> None:
         import_wbt(CORPUS / "no-such-world.wbt")
 
 
-def run_cli(*args: str, cwd: Path) -> subprocess.CompletedProcess[str]:
-    return subprocess.run(
-        [sys.executable, "-m", "mazesim", *args],
-        cwd=cwd,
-        capture_output=True,
-        text=True,
-        timeout=120,
-        check=False,
-    )
-
-
 def test_cli_json_layout(tmp_path: Path) -> None:
-    result = run_cli(
+    result = mazesim_command(
         "import-wbt", str(corpus_file("collision_avoidance.wbt")), "--json", cwd=tmp_path
     )
     assert result.returncode == 0, result.stderr
@@ -276,14 +264,16 @@ def test_cli_json_layout(tmp_path: Path) -> None:
         "#VRML_SIM R2023b utf8\nSolid { translation 0.1 0 0.05 boundingObject "
         "Cylinder { radius 0.02 height 0.1 } }\n"
     )
-    report = json.loads(run_cli("import-wbt", str(round_world), "--json", cwd=tmp_path).stdout)
+    report = json.loads(
+        mazesim_command("import-wbt", str(round_world), "--json", cwd=tmp_path).stdout
+    )
     assert report["robot"] is None
     assert report["obstacles"] == [{"kind": "circle", "center": [0.1, 0.0], "radius": 0.02}]
 
 
 def test_cli_summary_and_world_file(tmp_path: Path) -> None:
     out = tmp_path / "arena.toml"
-    result = run_cli(
+    result = mazesim_command(
         "import-wbt", str(corpus_file("e-puck.R2021c_NUE.wbt")), "--out", str(out), cwd=tmp_path
     )
     assert result.returncode == 0, result.stderr
@@ -293,7 +283,7 @@ def test_cli_summary_and_world_file(tmp_path: Path) -> None:
     assert out.is_file()
     saved = mazesim.load_world(out)
     assert saved == import_wbt(corpus_file("e-puck.R2021c_NUE.wbt"))[0]
-    moved = run_cli("import-wbt", str(corpus_file("collision_avoidance.wbt")), cwd=tmp_path)
+    moved = mazesim_command("import-wbt", str(corpus_file("collision_avoidance.wbt")), cwd=tmp_path)
     assert "movable bodies     1\n" in moved.stdout
     assert "an object with physics" not in moved.stdout
 
@@ -301,12 +291,12 @@ def test_cli_summary_and_world_file(tmp_path: Path) -> None:
 def test_cli_errors_are_one_line_with_exit_2(tmp_path: Path) -> None:
     bad = tmp_path / "bad.wbt"
     bad.write_text("#VRML_SIM R2023b utf8\nSolid { translation 1 2 3\n")
-    result = run_cli("import-wbt", str(bad), cwd=tmp_path)
+    result = mazesim_command("import-wbt", str(bad), cwd=tmp_path)
     assert result.returncode == 2
     lines = result.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("mazesim: error: ")
     assert f"{bad}:3:1:" in lines[0]
-    missing = run_cli("import-wbt", str(tmp_path / "none.wbt"), cwd=tmp_path)
+    missing = mazesim_command("import-wbt", str(tmp_path / "none.wbt"), cwd=tmp_path)
     assert missing.returncode == 2 and "Traceback" not in missing.stderr
 
 

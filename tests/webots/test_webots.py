@@ -20,6 +20,7 @@ from mazesim.webots import simulation as simulations
 from mazesim.webots.controller import ControllerStopped, Robot
 from mazesim.webots.devices import LED, DistanceSensor, Motor, PositionSensor
 from mazesim.webots.termination import GRACE_SECONDS
+from mazesim_process import mazesim_command
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLE = ROOT / "examples" / "webots" / "avoid_collision.py"
@@ -292,17 +293,6 @@ def test_a_controller_looping_without_the_api_is_stopped(
         assert 0.5 <= run["took"] < 20.0
     with pytest.raises(InvalidArgumentError, match="stall_seconds"):
         run_controller(script, mazesim.load_world("arena"), stall_seconds=math.nan)
-
-
-def mazesim_command(*args: str, cwd: Path) -> subprocess.CompletedProcess[str]:
-    return subprocess.run(
-        [sys.executable, "-m", "mazesim", *args],
-        cwd=cwd,
-        capture_output=True,
-        text=True,
-        timeout=300,
-        check=False,
-    )
 
 
 def test_example_controller_avoids_collisions_in_the_arena(tmp_path: Path) -> None:

@@ -19,40 +19,24 @@ from mazesim.webots.keyboard import KeyScript
 from mazesim.webots.native_controller import CAPI, build
 from mazesim.webots.node_types import NODE_TYPES
 from mazesim.webots.requirements import NO_DISPLAY, prepare_controller
+from native_controllers import NEEDS_COMPILERS, write_source
 
 CONTROLLERS = Path(__file__).resolve().parents[1] / "data" / "controllers"
 AVOIDER = CONTROLLERS / "c_wall_avoider" / "c_wall_avoider.c"
 CPP_AVOIDER = CONTROLLERS / "cpp_wall_avoider" / "cpp_wall_avoider.cpp"
 
-pytestmark = pytest.mark.skipif(
-    shutil.which("gcc") is None or shutil.which("g++") is None, reason="needs gcc and g++"
-)
-
-
-@pytest.fixture(scope="module")
-def module_cache(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """The build cache of this module's tests (each build is keyed by its files' paths and
-    contents, so the tests share it without seeing each other's builds)."""
-    return tmp_path_factory.mktemp("cache")
-
-
-@pytest.fixture(autouse=True)
-def own_cache(module_cache: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
-    """Builds go to the module's cache, not the user's."""
-    monkeypatch.setenv("MAZESIM_CACHE", str(module_cache))
-    return module_cache
+pytestmark = [NEEDS_COMPILERS, pytest.mark.usefixtures("own_cache")]
 
 
 def write_controller(folder: Path, name: str, body: str) -> Path:
     """A C controller ``folder/name/name.c`` whose ``main`` runs ``body``."""
-    (folder / name).mkdir(parents=True)
-    source = folder / name / f"{name}.c"
-    source.write_text(
+    return write_source(
+        folder,
+        name,
         "#include <stdio.h>\n#include <webots/robot.h>\n#include <webots/motor.h>\n"
         "#include <webots/distance_sensor.h>\n#include <webots/utils/ansi_codes.h>\n"
-        f"int main(void) {{\n  wb_robot_init();\n{body}\n  wb_robot_cleanup();\n  return 0;\n}}\n"
+        f"int main(void) {{\n  wb_robot_init();\n{body}\n  wb_robot_cleanup();\n  return 0;\n}}\n",
     )
-    return source
 
 
 def test_a_c_controller_drives_bit_for_bit_as_its_python_twin(

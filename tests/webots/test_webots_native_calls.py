@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import json
 import re
-import shutil
 from pathlib import Path
 
 import pytest
@@ -18,20 +17,13 @@ from mazesim.webots.lockstep import run_world
 from mazesim.webots.native_controller import build
 from mazesim.webots.requirements import DISPLAY_NOTE, prepare_controller
 from mazesim.webots.scene import read_scene
+from native_controllers import NEEDS_COMPILERS, write_source
 
 DATA = Path(__file__).resolve().parents[1] / "data"
 CONTROLLERS = DATA / "controllers"
 SWARM = DATA / "webots-swarm"
 
-pytestmark = pytest.mark.skipif(
-    shutil.which("gcc") is None or shutil.which("g++") is None, reason="needs gcc and g++"
-)
-
-
-@pytest.fixture(autouse=True)
-def own_cache(tmp_path_factory: pytest.TempPathFactory, monkeypatch: pytest.MonkeyPatch) -> None:
-    """Builds go to a cache of these tests, not the user's."""
-    monkeypatch.setenv("MAZESIM_CACHE", str(tmp_path_factory.getbasetemp() / "native-cache"))
+pytestmark = [NEEDS_COMPILERS, pytest.mark.usefixtures("own_cache")]
 
 
 def _logs(folder: Path) -> dict[str, object]:
@@ -128,18 +120,10 @@ def test_a_c_supervisor_moves_its_own_robot_and_quits_as_the_python_one_does(
     assert [round(v, 3) for v in numbers["velocity"]] == python["velocity"][0]
 
 
-def _write(folder: Path, name: str, text: str, suffix: str = ".c") -> Path:
-    """A controller ``folder/name/name.c`` (or ``.cpp``) of ``text``."""
-    source = folder / name / f"{name}{suffix}"
-    source.parent.mkdir(parents=True)
-    source.write_text(text)
-    return source
-
-
 def test_wrong_tags_null_nodes_and_empty_queues_get_webots_messages(
     tmp_path: Path, capfd: pytest.CaptureFixture[str]
 ) -> None:
-    source = _write(
+    source = write_source(
         tmp_path,
         "mistakes",
         "#include <stdio.h>\n#include <webots/robot.h>\n#include <webots/emitter.h>\n"
@@ -180,7 +164,7 @@ def test_wrong_tags_null_nodes_and_empty_queues_get_webots_messages(
 def test_a_display_draws_nothing_and_the_run_says_so_at_its_start(
     tmp_path: Path, capfd: pytest.CaptureFixture[str]
 ) -> None:
-    source = _write(
+    source = write_source(
         tmp_path,
         "plotter",
         "#include <stdio.h>\n#include <webots/robot.h>\n#include <webots/display.h>\n"
@@ -207,7 +191,7 @@ def test_a_display_draws_nothing_and_the_run_says_so_at_its_start(
 
 
 def test_headers_spelled_in_another_case_build_as_on_windows(tmp_path: Path) -> None:
-    source = _write(
+    source = write_source(
         tmp_path,
         "flocking",
         "#include <webots/supervisor.hpp>\n#include <webots/motor.hpp>\n"
@@ -226,7 +210,7 @@ def test_headers_spelled_in_another_case_build_as_on_windows(tmp_path: Path) -> 
 
 
 def test_missing_cpp_methods_and_headers_of_a_project_library_are_named(tmp_path: Path) -> None:
-    source = _write(
+    source = write_source(
         tmp_path,
         "recorder",
         "#include <webots/Supervisor.hpp>\n"
@@ -239,7 +223,7 @@ def test_missing_cpp_methods_and_headers_of_a_project_library_are_named(tmp_path
         "Webots C++ API function(s) mazesim does not implement: "
         "webots::Supervisor::movieStartRecording"
     ]
-    library = _write(
+    library = write_source(
         tmp_path,
         "planner",
         '#include <webots/Robot.hpp>\n#include "bt/blackboard.hpp"\nint main() { return 0; }\n',
@@ -255,7 +239,7 @@ def test_missing_cpp_methods_and_headers_of_a_project_library_are_named(tmp_path
 
 
 def test_windows_headers_are_named_as_windows_ones(tmp_path: Path) -> None:
-    source = _write(
+    source = write_source(
         tmp_path,
         "visualizer",
         "#include <windows.h>\n#include <webots/robot.h>\nint main(void) { return 0; }\n",
@@ -276,7 +260,7 @@ def test_a_header_included_from_outside_the_folder_is_part_of_the_build(tmp_path
     common = tmp_path / "common" / "speed.h"
     common.parent.mkdir()
     common.write_text("#define SPEED 1.0\n")
-    source = _write(
+    source = write_source(
         tmp_path,
         "mover",
         '#include "../common/speed.h"\n#include <webots/robot.h>\nint main(void) { return 0; }\n',
@@ -291,7 +275,7 @@ def test_a_header_included_from_outside_the_folder_is_part_of_the_build(tmp_path
 def test_other_programs_and_files_a_controller_copied_are_left_out_of_its_build(
     tmp_path: Path,
 ) -> None:
-    source = _write(
+    source = write_source(
         tmp_path,
         "swarm",
         "#include <webots/robot.h>\ndouble half(double x) { return x / 2; }\n"

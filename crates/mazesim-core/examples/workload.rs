@@ -6,7 +6,7 @@
 //!
 //! `cargo run --release --example workload -- <contact|free|random> <envs> <steps> <threads>`
 use mazesim_core::rng::Rng;
-use mazesim_core::{Batch, RobotProfile, StepOutputs};
+use mazesim_core::{Batch, OutputBuffers, RobotProfile};
 use std::sync::Arc;
 #[path = "../../../benches/common/mod.rs"]
 mod common;
@@ -28,8 +28,7 @@ fn main() {
     )
     .unwrap();
     let w = b.observation_width();
-    let (mut obs, mut poses) = (vec![0f32; n * w], vec![0f32; n * 3]);
-    let (mut col, mut cr) = (vec![false; n], vec![0i32; n]);
+    let mut out = OutputBuffers::new(n, w);
     let mut actions = vec![0f32; 2 * n];
     let mut rng = Rng::new(1);
     let max = b.envs()[0].robot().max_wheel_speed;
@@ -39,21 +38,15 @@ fn main() {
         for i in 0..n {
             let (l, r) = match workload.as_str() {
                 "contact" => common::pushing(k, i),
-                "free" => common::braitenberg(&obs[i * w..i * w + 8]),
+                "free" => common::braitenberg(&out.observations[i * w..i * w + 8]),
                 _ if k % 25 == 0 => (rng.uniform_range(-max, max), rng.uniform_range(-max, max)),
                 _ => (actions[2 * i] as f64, actions[2 * i + 1] as f64),
             };
             actions[2 * i] = l as f32;
             actions[2 * i + 1] = r as f32;
         }
-        let out = StepOutputs {
-            observations: &mut obs,
-            poses: &mut poses,
-            colliding: &mut col,
-            crossings: &mut cr,
-        };
-        b.step(&actions, out).unwrap();
-        contact += col.iter().filter(|&&c| c).count() as u64;
+        b.step(&actions, out.outputs()).unwrap();
+        contact += out.colliding.iter().filter(|&&c| c).count() as u64;
         for env in b.envs() {
             deepest = deepest.min(env.wall_clearance());
         }

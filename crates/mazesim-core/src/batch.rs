@@ -102,6 +102,19 @@ impl Helpers {
         }
     }
 
+    /// `make` of every item, in order, on the helpers where there are some; the error of an
+    /// item that fails.
+    pub(crate) fn make_all<T: Send, U: Send>(
+        &self,
+        items: Vec<T>,
+        make: impl Fn(T) -> Result<U> + Sync + Send,
+    ) -> Result<Vec<U>> {
+        match self.pool() {
+            Some(p) => p.install(|| items.into_par_iter().map(make).collect()),
+            None => items.into_iter().map(make).collect(),
+        }
+    }
+
     /// The same helpers made again in a forked child; the parent's pool, whose threads do not
     /// exist in the child, is forgotten rather than dropped (dropping would signal them).
     fn remade(self) -> Result<Helpers> {
@@ -143,6 +156,17 @@ pub fn share_equal_worlds(worlds: Vec<Arc<World>>) -> Vec<Arc<World>> {
             }
         })
         .collect()
+}
+
+/// Refuses a batch of `envs` environments without one seed each.
+pub(crate) fn check_seeds(envs: usize, seeds: &[u64]) -> Result<()> {
+    if seeds.len() != envs {
+        return Err(Error::InvalidArgument(format!(
+            "expected one seed per environment ({envs}), found {}",
+            seeds.len()
+        )));
+    }
+    Ok(())
 }
 
 /// Refuses a batch of `envs` environments holding `walls` solid walls in all (summed over the
@@ -272,6 +296,48 @@ pub struct StepOutputs<'a> {
     pub crossings: &'a mut [i32],
 }
 
+/// Owned buffers of a batch's per-step outputs, zeroed, for callers in Rust (Python hands in
+/// numpy arrays instead).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct OutputBuffers {
+    /// `(rows, observation_width)`: distance sensors then ground sensors.
+    pub observations: Vec<f32>,
+    /// `(rows, 3)`: x, y, yaw.
+    pub poses: Vec<f32>,
+    /// `(rows,)`: touched a wall during the step.
+    pub colliding: Vec<bool>,
+    /// `(rows,)`: barcode crossed in the step as a signed checkpoint id, 0 for none.
+    pub crossings: Vec<i32>,
+}
+
+impl OutputBuffers {
+    /// Buffers of `rows` rows, observations `width` floats wide.
+    pub fn new(rows: usize, width: usize) -> Self {
+        Self {
+            observations: vec![0.0; rows * width],
+            poses: vec![0.0; rows * 3],
+            colliding: vec![false; rows],
+            crossings: vec![0; rows],
+        }
+    }
+
+    /// Buffers of the shape of `batch`'s outputs: a row per simulator (per robot of every
+    /// environment in a batch of several robots per environment).
+    pub fn of(batch: &Batch) -> Self {
+        Self::new(batch.envs.len(), batch.observation_width())
+    }
+
+    /// The buffers as the outputs of a call of the batch.
+    pub fn outputs(&mut self) -> StepOutputs<'_> {
+        StepOutputs {
+            observations: &mut self.observations,
+            poses: &mut self.poses,
+            colliding: &mut self.colliding,
+            crossings: &mut self.crossings,
+        }
+    }
+}
+
 impl<'a> StepOutputs<'a> {
     /// The same buffers, borrowed again for a shorter time.
     pub(crate) fn reborrow(&mut self) -> StepOutputs<'_> {
@@ -368,13 +434,7 @@ impl Batch {
                 "expected at least one environment, found 0".into(),
             ));
         }
-        if seeds.len() != worlds.len() {
-            return Err(Error::InvalidArgument(format!(
-                "expected one seed per environment ({}), found {}",
-                worlds.len(),
-                seeds.len()
-            )));
-        }
+        check_seeds(worlds.len(), seeds)?;
         let rigs = rigs_of(robots, worlds.len())?;
         let robot = rigs[0].robot().clone();
         let worlds = share_equal_worlds(worlds);
@@ -403,20 +463,28 @@ impl Batch {
         let pairs: Vec<(Arc<World>, u64, Arc<Rig>)> = (worlds.into_iter().zip(seeds).enumerate())
             .map(|(i, (world, &seed))| (world, seed, rig_of(i)))
             .collect();
-        let envs: Result<Vec<Simulator>> = match helpers.pool() {
-            Some(p) => p.install(|| pairs.into_par_iter().map(make).collect()),
-            None => pairs.into_iter().map(make).collect(),
-        };
-        Ok(Batch {
-            envs: envs?,
-            robots: 1,
+        let envs = helpers.make_all(pairs, make)?;
+        Ok(Batch::assemble(envs, 1, &robot, helpers))
+    }
+
+    /// A batch of the simulators `envs`, `robots` per environment, each with the sensors of
+    /// `robot`, stepped on `helpers`.
+    pub(crate) fn assemble(
+        envs: Vec<Simulator>,
+        robots: usize,
+        robot: &RobotProfile,
+        helpers: Helpers,
+    ) -> Batch {
+        Batch {
+            envs,
+            robots,
             distance_width: robot.distance_sensors.len(),
             ground_width: robot.ground_sensors.len(),
             helpers,
             runs: Arc::new(AtomicU64::new(0)),
             pid: std::process::id(),
             interrupt: None,
-        })
+        }
     }
 
     /// Bytes the batch holds per environment, rounded down: each env's simulator, each distinct
@@ -866,38 +934,16 @@ mod tests {
         Batch::new(vec![world; n], robot, &seeds, true, control_step, threads).unwrap()
     }
 
-    struct Buffers(Vec<f32>, Vec<f32>, Vec<bool>, Vec<i32>);
-
-    impl Buffers {
-        fn new(b: &Batch) -> Self {
-            let n = b.len();
-            Self(
-                vec![0.0; n * b.observation_width()],
-                vec![0.0; n * 3],
-                vec![false; n],
-                vec![0; n],
-            )
-        }
-        fn outputs(&mut self) -> StepOutputs<'_> {
-            StepOutputs {
-                observations: &mut self.0,
-                poses: &mut self.1,
-                colliding: &mut self.2,
-                crossings: &mut self.3,
-            }
-        }
-    }
-
     #[test]
     fn set_starts_at_moves_the_listed_envs_only() {
         let mut b = batch(3, 1, None);
-        let mut out = Buffers::new(&b);
+        let mut out = OutputBuffers::of(&b);
         b.reset(None, None, out.outputs()).unwrap();
-        let before = out.1.clone();
+        let before = out.poses.clone();
         b.set_starts_at(&[2], &[0.1, -0.1, 1.0]).unwrap();
         b.reset(None, None, out.outputs()).unwrap();
-        assert_eq!(&out.1[..6], &before[..6]);
-        assert!((out.1[6] - 0.1).abs() < 1e-6 && (out.1[7] + 0.1).abs() < 1e-6);
+        assert_eq!(&out.poses[..6], &before[..6]);
+        assert!((out.poses[6] - 0.1).abs() < 1e-6 && (out.poses[7] + 0.1).abs() < 1e-6);
         let bad = b.set_starts_at(&[0, 3], &[0.0; 6]).unwrap_err().to_string();
         assert!(bad.contains("below 3, found 3"), "{bad}");
         let short = b.set_starts_at(&[0, 1], &[0.0; 3]).unwrap_err().to_string();
@@ -932,7 +978,7 @@ mod tests {
     #[test]
     fn a_panic_while_stepping_reaches_the_caller_and_the_batch_goes_on() {
         let mut b = batch(96, 3, None);
-        let mut out = Buffers::new(&b);
+        let mut out = OutputBuffers::of(&b);
         let caught = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
             b.run(out.outputs(), |i, _, _| assert!(i != 70, "env {i} broke"))
         }));
@@ -946,7 +992,7 @@ mod tests {
         // 64 environments of 10,000 physics steps each: minutes without the interrupt.
         let mut b = batch(64, 2, Some(320.0));
         b.set_interrupt(Box::new(|| true));
-        let mut out = Buffers::new(&b);
+        let mut out = OutputBuffers::of(&b);
         let started = Instant::now();
         let result = b.step(&vec![6.0; 128], out.outputs());
         assert!(matches!(result, Err(Error::Interrupted)));
@@ -964,7 +1010,7 @@ mod tests {
         actions: &[f32],
         steps: usize,
     ) {
-        let mut out = Buffers::new(batch);
+        let mut out = OutputBuffers::of(batch);
         for _ in 0..steps {
             batch.step(actions, out.outputs()).unwrap();
         }
@@ -978,14 +1024,18 @@ mod tests {
                 1,
             )
             .unwrap();
-            let mut one = Buffers::new(&alone);
+            let mut one = OutputBuffers::of(&alone);
             for _ in 0..steps {
                 alone
                     .step(&actions[2 * i..2 * i + 2], one.outputs())
                     .unwrap();
             }
-            assert_eq!(&out.1[3 * i..3 * i + 3], &one.1[..], "env {i}");
-            assert_eq!(&out.0[7 * i..7 * i + 7], &one.0[..], "env {i}");
+            assert_eq!(&out.poses[3 * i..3 * i + 3], &one.poses[..], "env {i}");
+            assert_eq!(
+                &out.observations[7 * i..7 * i + 7],
+                &one.observations[..],
+                "env {i}"
+            );
         }
     }
 

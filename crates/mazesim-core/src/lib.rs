@@ -61,7 +61,7 @@ pub mod limits;
 mod memory;
 pub mod rng;
 
-pub use batch::{Batch, StepOutputs};
+pub use batch::{Batch, OutputBuffers, StepOutputs};
 pub use control::Controller;
 pub use crossing::{Crossing, CrossingTracker};
 pub use error::{Error, Location, Result};

@@ -1,41 +1,18 @@
 //! The batch engine: env i of a batch equals a lone simulator with the same seed and actions,
 //! whatever the thread count or the batch size.
 
+mod common;
+
 use std::sync::Arc;
 
-use mazesim_core::{Batch, RobotProfile, SimConfig, Simulator, StepOutputs, World};
+use common::seed_maze_epuck;
+use mazesim_core::{Batch, OutputBuffers, RobotProfile, World};
 
 const STEPS: usize = 300;
 
 fn action(env: usize, step: usize) -> [f32; 2] {
     let t = step as f32 * 0.05 + env as f32;
     [4.0 + 2.5 * t.sin(), 4.0 + 2.5 * (1.7 * t).cos()]
-}
-
-struct Buffers {
-    obs: Vec<f32>,
-    poses: Vec<f32>,
-    colliding: Vec<bool>,
-    crossings: Vec<i32>,
-}
-
-impl Buffers {
-    fn new(n: usize, width: usize) -> Self {
-        Self {
-            obs: vec![0.0; n * width],
-            poses: vec![0.0; n * 3],
-            colliding: vec![false; n],
-            crossings: vec![0; n],
-        }
-    }
-    fn out(&mut self) -> StepOutputs<'_> {
-        StepOutputs {
-            observations: &mut self.obs,
-            poses: &mut self.poses,
-            colliding: &mut self.colliding,
-            crossings: &mut self.crossings,
-        }
-    }
 }
 
 /// Observation and pose bits of env `watch` over the run, from a batch of `n` envs.
@@ -45,14 +22,14 @@ fn batch_trace(n: usize, threads: usize, watch: usize) -> Vec<u32> {
     let seeds: Vec<u64> = (0..n as u64).map(|i| 1000 + i).collect();
     let mut b = Batch::new(vec![world; n], robot, &seeds, true, None, threads).unwrap();
     let w = b.observation_width();
-    let mut buf = Buffers::new(n, w);
-    b.reset(None, None, buf.out()).unwrap();
+    let mut buf = OutputBuffers::new(n, w);
+    b.reset(None, None, buf.outputs()).unwrap();
     let mut trace = Vec::new();
     for step in 0..STEPS {
         let actions: Vec<f32> = (0..n).flat_map(|i| action(i, step)).collect();
-        b.step(&actions, buf.out()).unwrap();
+        b.step(&actions, buf.outputs()).unwrap();
         trace.extend(
-            buf.obs[watch * w..(watch + 1) * w]
+            buf.observations[watch * w..(watch + 1) * w]
                 .iter()
                 .map(|v| v.to_bits()),
         );
@@ -66,18 +43,7 @@ fn batch_trace(n: usize, threads: usize, watch: usize) -> Vec<u32> {
 }
 
 fn lone_trace(env: usize) -> Vec<u32> {
-    let world = Arc::new(World::builtin("seed-maze").unwrap());
-    let robot = Arc::new(RobotProfile::builtin("e-puck").unwrap());
-    let mut s = Simulator::new(
-        world,
-        robot,
-        SimConfig {
-            seed: 1000 + env as u64,
-            noise: true,
-            control_step: None,
-        },
-    )
-    .unwrap();
+    let mut s = seed_maze_epuck(1000 + env as u64);
     let mut trace = Vec::new();
     for step in 0..STEPS {
         let [l, r] = action(env, step);
@@ -118,9 +84,9 @@ fn bad_actions_and_masks_are_refused_before_anything_moves() {
     let world = Arc::new(World::builtin("arena").unwrap());
     let robot = Arc::new(RobotProfile::builtin("e-puck").unwrap());
     let mut b = Batch::new(vec![world; 3], robot, &[1, 2, 3], false, None, 1).unwrap();
-    let mut buf = Buffers::new(3, b.observation_width());
+    let mut buf = OutputBuffers::new(3, b.observation_width());
     let err = b
-        .step(&[1.0, 1.0, f32::NAN, 1.0, 1.0, 1.0], buf.out())
+        .step(&[1.0, 1.0, f32::NAN, 1.0, 1.0, 1.0], buf.outputs())
         .unwrap_err()
         .to_string();
     assert!(
@@ -128,11 +94,11 @@ fn bad_actions_and_masks_are_refused_before_anything_moves() {
         "{err}"
     );
     assert!(b.envs().iter().all(|e| e.steps() == 0));
-    assert!(b.step(&[1.0; 4], buf.out()).is_err());
-    assert!(b.reset(Some(&[true, false]), None, buf.out()).is_err());
-    assert!(b.reset(None, Some(&[1, 2]), buf.out()).is_err());
-    let mut short = Buffers::new(2, b.observation_width());
-    assert!(b.step(&[1.0; 6], short.out()).is_err());
+    assert!(b.step(&[1.0; 4], buf.outputs()).is_err());
+    assert!(b.reset(Some(&[true, false]), None, buf.outputs()).is_err());
+    assert!(b.reset(None, Some(&[1, 2]), buf.outputs()).is_err());
+    let mut short = OutputBuffers::new(2, b.observation_width());
+    assert!(b.step(&[1.0; 6], short.outputs()).is_err());
 }
 
 #[test]
@@ -140,11 +106,11 @@ fn masked_reset_touches_only_the_masked_envs() {
     let world = Arc::new(World::builtin("arena").unwrap());
     let robot = Arc::new(RobotProfile::builtin("e-puck").unwrap());
     let mut b = Batch::new(vec![world; 3], robot, &[1, 2, 3], true, None, 0).unwrap();
-    let mut buf = Buffers::new(3, b.observation_width());
+    let mut buf = OutputBuffers::new(3, b.observation_width());
     for _ in 0..10 {
-        b.step(&[5.0; 6], buf.out()).unwrap();
+        b.step(&[5.0; 6], buf.outputs()).unwrap();
     }
-    b.reset(Some(&[false, true, false]), Some(&[9, 9, 9]), buf.out())
+    b.reset(Some(&[false, true, false]), Some(&[9, 9, 9]), buf.outputs())
         .unwrap();
     let steps: Vec<u64> = b.envs().iter().map(|e| e.steps()).collect();
     assert_eq!(steps, vec![10, 0, 10]);
@@ -170,14 +136,14 @@ fn corridor_of(robots: usize, x: f64, gap: f64) -> Arc<World> {
 /// Observation bits of env `watch` of a swarm batch over 40 steps of the same actions.
 fn swarm_trace(b: &mut Batch, watch: usize) -> Vec<u32> {
     let (n, r, w) = (b.num_envs(), b.robots_per_env(), b.observation_width());
-    let mut buf = Buffers::new(n * r, w);
-    b.observe(buf.out()).unwrap();
+    let mut buf = OutputBuffers::new(n * r, w);
+    b.observe(buf.outputs()).unwrap();
     let mut trace = Vec::new();
     for step in 0..40 {
         let actions: Vec<f32> = (0..n * r).flat_map(|i| action(i % r, step)).collect();
-        b.step_swarms(&actions, buf.out()).unwrap();
+        b.step_swarms(&actions, buf.outputs()).unwrap();
         let rows = watch * r * w..(watch + 1) * r * w;
-        trace.extend(buf.obs[rows].iter().map(|v| v.to_bits()));
+        trace.extend(buf.observations[rows].iter().map(|v| v.to_bits()));
     }
     trace
 }

@@ -4,21 +4,11 @@ mod common;
 
 use std::sync::Arc;
 
-use mazesim_core::{RobotProfile, SimConfig, Simulator, World};
+use common::{seed_maze_epuck, sim};
+use mazesim_core::World;
 
 fn run(seed: u64) -> Vec<u32> {
-    let world = Arc::new(World::builtin("seed-maze").unwrap());
-    let robot = Arc::new(RobotProfile::builtin("e-puck").unwrap());
-    let mut s = Simulator::new(
-        world,
-        robot,
-        SimConfig {
-            seed,
-            noise: true,
-            control_step: None,
-        },
-    )
-    .unwrap();
+    let mut s = seed_maze_epuck(seed);
     let mut out = Vec::new();
     for i in 0..1000 {
         let t = i as f64 * 0.05;
@@ -40,18 +30,12 @@ fn same_seed_same_stream_other_seed_differs() {
 
 #[test]
 fn reset_replays_the_episode() {
-    let world = Arc::new(World::builtin("arena").unwrap());
-    let robot = Arc::new(RobotProfile::builtin("e-puck").unwrap());
-    let mut s = Simulator::new(
-        world,
-        robot,
-        SimConfig {
-            seed: 5,
-            noise: true,
-            control_step: None,
-        },
-    )
-    .unwrap();
+    let mut s = sim(
+        Arc::new(World::builtin("arena").unwrap()),
+        "e-puck",
+        5,
+        true,
+    );
     let mut first = Vec::new();
     for _ in 0..200 {
         s.step(5.0, 4.0).unwrap();

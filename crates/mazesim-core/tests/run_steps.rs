@@ -1,6 +1,8 @@
 //! The multi-step call: `run_steps(k)` equals `k` calls of `step` with the controller computed
 //! outside, bit for bit, whatever the thread count or the batch size.
 
+mod common;
+
 use std::sync::Arc;
 
 use mazesim_core::control::avoid_collision::EPUCK_MAX_SPEED;
@@ -8,7 +10,7 @@ use mazesim_core::control::{braitenberg, AvoidCollision, TabularPolicy};
 use mazesim_core::generator::{generate, MazeParams};
 use mazesim_core::rng::{next_seed, Rng};
 use mazesim_core::{
-    Batch, Controller, RobotProfile, RunCounters, RunOptions, RunTrace, StepOutputs, World,
+    Batch, Controller, OutputBuffers, RobotProfile, RunCounters, RunOptions, RunTrace, World,
 };
 
 fn mazes(n: usize) -> Vec<Arc<World>> {
@@ -26,33 +28,6 @@ fn batch(worlds: Vec<Arc<World>>, robot: &str, seeds: &[u64], threads: usize) ->
     Batch::new(worlds, profile, seeds, true, None, threads).unwrap()
 }
 
-struct State {
-    obs: Vec<f32>,
-    poses: Vec<f32>,
-    colliding: Vec<bool>,
-    crossings: Vec<i32>,
-}
-
-impl State {
-    fn new(b: &Batch) -> Self {
-        let n = b.len();
-        Self {
-            obs: vec![0.0; n * b.observation_width()],
-            poses: vec![0.0; n * 3],
-            colliding: vec![false; n],
-            crossings: vec![0; n],
-        }
-    }
-    fn out(&mut self) -> StepOutputs<'_> {
-        StepOutputs {
-            observations: &mut self.obs,
-            poses: &mut self.poses,
-            colliding: &mut self.colliding,
-            crossings: &mut self.crossings,
-        }
-    }
-}
-
 /// The per-step outputs of a run.
 struct Traced {
     obs: Vec<f32>,
@@ -61,7 +36,7 @@ struct Traced {
     wheels: Vec<f32>,
     actions: Vec<i32>,
     ends: Vec<bool>,
-    final_state: State,
+    final_state: OutputBuffers,
     counters: RunCounters,
 }
 
@@ -74,7 +49,7 @@ fn run(b: &mut Batch, controller: &Controller, seeds: &[u64], options: RunOption
         wheels: vec![0.0; k * n * 2],
         actions: vec![0; k * n],
         ends: vec![false; k * n],
-        final_state: State::new(b),
+        final_state: OutputBuffers::of(b),
         counters: RunCounters::default(),
     };
     let trace = RunTrace {
@@ -86,7 +61,7 @@ fn run(b: &mut Batch, controller: &Controller, seeds: &[u64], options: RunOption
         episode_ends: Some(&mut t.ends),
         ..Default::default()
     };
-    let out = t.final_state.out();
+    let out = t.final_state.outputs();
     let counters = b
         .run_steps(controller, seeds, &options, out, trace)
         .unwrap();
@@ -122,15 +97,15 @@ fn step_outside(
     choose: impl Fn(usize, usize, &[f32]) -> [f32; 2],
 ) -> Vec<f32> {
     let (n, w) = (b.len(), b.observation_width());
-    let mut state = State::new(b);
-    b.observe(state.out()).unwrap();
+    let mut state = OutputBuffers::of(b);
+    b.observe(state.outputs()).unwrap();
     let mut trace = vec![];
     for step in 0..steps {
         let actions: Vec<f32> = (0..n)
-            .flat_map(|i| choose(i, step, &state.obs[i * w..(i + 1) * w]))
+            .flat_map(|i| choose(i, step, &state.observations[i * w..(i + 1) * w]))
             .collect();
-        b.step(&actions, state.out()).unwrap();
-        trace.extend_from_slice(&state.obs);
+        b.step(&actions, state.outputs()).unwrap();
+        trace.extend_from_slice(&state.observations);
         let ended: Vec<bool> = b
             .envs()
             .iter()
@@ -146,7 +121,8 @@ fn step_outside(
             .iter()
             .map(|e| next_seed(e.config().seed))
             .collect();
-        b.reset(Some(&ended), Some(&seeds), state.out()).unwrap();
+        b.reset(Some(&ended), Some(&seeds), state.outputs())
+            .unwrap();
     }
     trace
 }
@@ -269,7 +245,10 @@ fn runs_do_not_depend_on_threads_batch_size_or_blocks() {
     let mut twice = batch(mazes(40), "e-puck", &seeds, 2);
     run(&mut twice, &Controller::Braitenberg, &seeds, options(70));
     let second = run(&mut twice, &Controller::Braitenberg, &seeds, options(70));
-    assert_eq!(whole.final_state.obs, second.final_state.obs);
+    assert_eq!(
+        whole.final_state.observations,
+        second.final_state.observations
+    );
     assert_eq!(whole.obs[whole.obs.len() / 2..], second.obs[..]);
 }
 
@@ -286,7 +265,7 @@ fn without_autoreset_an_ended_episode_stands_still() {
     assert_eq!(ran.counters.episodes_finished, vec![1; 5]);
     let w = b.observation_width();
     let last = &ran.obs[79 * 5 * w..];
-    assert_eq!(last, &ran.final_state.obs[..]);
+    assert_eq!(last, &ran.final_state.observations[..]);
     assert_eq!(
         &ran.obs[(LIMIT as usize - 1) * 5 * w..LIMIT as usize * 5 * w],
         last
@@ -299,7 +278,7 @@ fn without_autoreset_an_ended_episode_stands_still() {
 fn bad_arguments_are_refused_before_anything_moves() {
     let seeds: Vec<u64> = (0..3).collect();
     let mut b = batch(mazes(3), "e-puck", &seeds, 1);
-    let mut state = State::new(&b);
+    let mut state = OutputBuffers::of(&b);
     let policy = TabularPolicy::new(random_table(0, 1), 1, None, None, 0.0).unwrap();
     let tabular = Controller::Tabular(Box::new(policy.clone()));
     let opts = options(5);
@@ -308,7 +287,7 @@ fn bad_arguments_are_refused_before_anything_moves() {
             &Controller::Braitenberg,
             &seeds[..2],
             &opts,
-            state.out(),
+            state.outputs(),
             RunTrace::default()
         )
         .is_err());
@@ -318,21 +297,27 @@ fn bad_arguments_are_refused_before_anything_moves() {
         ..Default::default()
     };
     let err = b
-        .run_steps(&Controller::Braitenberg, &seeds, &opts, state.out(), trace)
+        .run_steps(
+            &Controller::Braitenberg,
+            &seeds,
+            &opts,
+            state.outputs(),
+            trace,
+        )
         .unwrap_err();
     assert!(err.to_string().contains("poses trace"), "{err}");
     assert!(b.envs().iter().all(|e| e.steps() == 0));
     // A per-env table map of the wrong length.
     let mapped = TabularPolicy::new(random_table(0, 1), 1, None, Some(vec![0; 4]), 0.0).unwrap();
     let mut seed_batch = batch(mazes(3), "seed", &seeds, 1);
-    let mut seed_state = State::new(&seed_batch);
+    let mut seed_state = OutputBuffers::of(&seed_batch);
     let mapped = Controller::Tabular(Box::new(mapped));
     assert!(seed_batch
         .run_steps(
             &mapped,
             &seeds,
             &opts,
-            seed_state.out(),
+            seed_state.outputs(),
             RunTrace::default()
         )
         .is_err());
@@ -341,7 +326,7 @@ fn bad_arguments_are_refused_before_anything_moves() {
             &tabular,
             &seeds,
             &opts,
-            seed_state.out(),
+            seed_state.outputs(),
             RunTrace::default()
         )
         .is_ok());
@@ -351,7 +336,7 @@ fn bad_arguments_are_refused_before_anything_moves() {
             &Controller::Braitenberg,
             &seeds,
             &opts,
-            seed_state.out(),
+            seed_state.outputs(),
             RunTrace::default(),
         )
         .unwrap_err();
@@ -366,13 +351,13 @@ fn an_interrupt_stops_a_long_run() {
     let seeds: Vec<u64> = (0..64).collect();
     let mut b = batch(mazes(64), "e-puck", &seeds, 2);
     b.set_interrupt(Box::new(|| true));
-    let mut state = State::new(&b);
+    let mut state = OutputBuffers::of(&b);
     let started = std::time::Instant::now();
     let result = b.run_steps(
         &Controller::Braitenberg,
         &seeds,
         &options(10_000_000),
-        state.out(),
+        state.outputs(),
         RunTrace::default(),
     );
     assert!(matches!(result, Err(mazesim_core::Error::Interrupted)));

@@ -66,11 +66,7 @@ impl<'a, 'py> FromPyObject<'a, 'py> for IntArg {
             let digits = obj.str().map(|s| s.to_string()).unwrap_or_default();
             return Ok(IntArg::Other(format!("an int of {} digits", digits.len())));
         }
-        let kind = obj
-            .get_type()
-            .name()
-            .map(|n| n.to_string())
-            .unwrap_or_default();
+        let kind = type_name(&obj);
         Ok(IntArg::Other(format!("a {kind}")))
     }
 }
@@ -113,11 +109,7 @@ impl<'a, 'py> FromPyObject<'a, 'py> for Real {
                 f64::INFINITY
             }));
         }
-        let kind = obj
-            .get_type()
-            .name()
-            .map(|n| n.to_string())
-            .unwrap_or_default();
+        let kind = type_name(&obj);
         Ok(Real::Other(kind))
     }
 }
@@ -155,11 +147,7 @@ where
         if let Ok(v) = obj.extract::<T>() {
             return Ok(Given::Value(v));
         }
-        let kind = obj
-            .get_type()
-            .name()
-            .map(|n| n.to_string())
-            .unwrap_or_default();
+        let kind = type_name(&obj);
         Ok(Given::Other(kind))
     }
 }

@@ -49,13 +49,7 @@ pub fn writable<'py, T: Element>(
     dtype: &str,
     shape: &[usize],
 ) -> PyResult<PyReadwriteArrayDyn<'py, T>> {
-    let expected = format!("dtype {dtype} and shape {}", shape_text(shape));
-    let Ok(array) = obj.cast::<PyArrayDyn<T>>() else {
-        return wrong(name, &expected, obj);
-    };
-    if !usable(array, shape) {
-        return wrong(name, &expected, obj);
-    }
+    let (array, expected) = usable_array::<T>(obj, name, dtype, shape)?;
     array.try_readwrite().or_else(|_| {
         wrong(
             name,
@@ -72,13 +66,7 @@ pub fn readable<'py, T: Element>(
     dtype: &str,
     shape: &[usize],
 ) -> PyResult<PyReadonlyArrayDyn<'py, T>> {
-    let expected = format!("dtype {dtype} and shape {}", shape_text(shape));
-    let Ok(array) = obj.cast::<PyArrayDyn<T>>() else {
-        return wrong(name, &expected, obj);
-    };
-    if !usable(array, shape) {
-        return wrong(name, &expected, obj);
-    }
+    let (array, expected) = usable_array::<T>(obj, name, dtype, shape)?;
     array
         .try_readonly()
         .or_else(|_| wrong(name, &expected, obj))
@@ -95,11 +83,27 @@ pub fn copied<T: Element + Copy>(
     let array = readable::<T>(obj, name, dtype, shape)?;
     match array.as_slice() {
         Ok(values) => Ok(values.to_vec()),
-        Err(_) => wrong(
-            name,
-            &format!("dtype {dtype} and shape {}", shape_text(shape)),
-            obj,
-        ),
+        Err(_) => wrong(name, &expected_array(dtype, shape), obj),
+    }
+}
+
+/// What an array argument must be: "dtype float32 and shape (4, 2)".
+fn expected_array(dtype: &str, shape: &[usize]) -> String {
+    format!("dtype {dtype} and shape {}", shape_text(shape))
+}
+
+/// `obj` as an array of dtype `T` that `usable` finds fit for `shape`, and what was expected of
+/// it, for the messages of the checks that follow.
+fn usable_array<'a, 'py, T: Element>(
+    obj: &'a Bound<'py, PyAny>,
+    name: &str,
+    dtype: &str,
+    shape: &[usize],
+) -> PyResult<(&'a Bound<'py, PyArrayDyn<T>>, String)> {
+    let expected = expected_array(dtype, shape);
+    match obj.cast::<PyArrayDyn<T>>() {
+        Ok(array) if usable(array, shape) => Ok((array, expected)),
+        _ => wrong(name, &expected, obj),
     }
 }
 

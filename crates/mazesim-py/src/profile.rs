@@ -5,7 +5,7 @@
 use std::sync::Arc;
 
 use mazesim_core::limits::MAX_ENVS;
-use mazesim_core::{Perturbation, RobotProfile};
+use mazesim_core::{LookupTable, Perturbation, RobotProfile};
 use numpy::PyArray2;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString, PyTuple};
@@ -141,6 +141,14 @@ fn sensor_index_error(kind: &str, count: usize, index: usize) -> PyErr {
     crate::errors::to_py(mazesim_core::Error::InvalidArgument(format!(
         "expected a {kind} sensor index below {count}, found {index}"
     )))
+}
+
+/// The largest `value` of any of `tables` (0 without a table).
+fn largest<'a>(
+    tables: impl Iterator<Item = &'a LookupTable>,
+    value: impl Fn(&LookupTable) -> f64,
+) -> f64 {
+    tables.map(value).fold(0.0, f64::max)
 }
 
 #[pymethods]
@@ -323,30 +331,30 @@ impl PyRobotProfile {
     #[getter]
     fn distance_sensor_max(&self) -> PyResult<f64> {
         enter(|| {
-            Ok({
-                let tables = self.inner.distance_sensors.iter().map(|s| &s.model.table);
-                tables.map(|t| t.max_output()).fold(0.0, f64::max)
-            })
+            Ok(largest(
+                self.inner.distance_sensors.iter().map(|s| &s.model.table),
+                LookupTable::max_output,
+            ))
         })
     }
     /// Range of the distance sensors in metres (the longest table's last input).
     #[getter]
     fn distance_sensor_range(&self) -> PyResult<f64> {
         enter(|| {
-            Ok({
-                let tables = self.inner.distance_sensors.iter().map(|s| &s.model.table);
-                tables.map(|t| t.max_input()).fold(0.0, f64::max)
-            })
+            Ok(largest(
+                self.inner.distance_sensors.iter().map(|s| &s.model.table),
+                LookupTable::max_input,
+            ))
         })
     }
     /// Largest noise-free reading of any ground sensor (its table's largest output).
     #[getter]
     fn ground_sensor_max(&self) -> PyResult<f64> {
         enter(|| {
-            Ok({
-                let tables = self.inner.ground_sensors.iter().map(|s| &s.model.table);
-                tables.map(|t| t.max_output()).fold(0.0, f64::max)
-            })
+            Ok(largest(
+                self.inner.ground_sensors.iter().map(|s| &s.model.table),
+                LookupTable::max_output,
+            ))
         })
     }
     #[getter]

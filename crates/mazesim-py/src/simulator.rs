@@ -57,6 +57,11 @@ impl PySimulator {
     }
 }
 
+/// A pose (x, y, yaw) as Python floats.
+fn pose_tuple(p: [f32; 3]) -> (f64, f64, f64) {
+    (p[0] as f64, p[1] as f64, p[2] as f64)
+}
+
 /// What one control step of robot 0 gives a gym step (see `Simulator.step_observe`).
 struct Stepped {
     readings: Vec<f32>,
@@ -229,8 +234,7 @@ impl PySimulator {
     ) -> PyResult<Bound<'py, PyDict>> {
         let d = PyDict::new(py);
         self.read_robot(robot_index, |s| -> PyResult<()> {
-            let p = s.pose();
-            d.set_item("pose", (p[0] as f64, p[1] as f64, p[2] as f64))?;
+            d.set_item("pose", pose_tuple(s.pose()))?;
             d.set_item("colliding", s.colliding())?;
             d.set_item("touching_robot", s.touching_robot())?;
             d.set_item("collisions", s.collisions())?;
@@ -424,16 +428,12 @@ impl PySimulator {
 
     #[getter]
     fn pose(&self) -> PyResult<(f64, f64, f64)> {
-        let p = self.read(|s| s.pose())?;
-        Ok((p[0] as f64, p[1] as f64, p[2] as f64))
+        self.read(|s| pose_tuple(s.pose()))
     }
     /// Current poses (x, y, yaw) of the world's movable bodies, in world order.
     fn body_poses(&self) -> PyResult<Vec<(f64, f64, f64)>> {
         let poses = self.read(|s| s.body_poses())?;
-        Ok(poses
-            .iter()
-            .map(|p| (p[0] as f64, p[1] as f64, p[2] as f64))
-            .collect())
+        Ok(poses.into_iter().map(pose_tuple).collect())
     }
     #[getter]
     fn time(&self) -> PyResult<f64> {

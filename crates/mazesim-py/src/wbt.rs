@@ -13,7 +13,7 @@ use numpy::{PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString};
 
-use crate::args::{dict_argument, IntArg, Label, PathArg, SourceName, Text};
+use crate::args::{dict_argument, type_name, IntArg, Label, PathArg, SourceName, Text};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::{enter, enter_detached};
 use crate::world::PyWorld;
@@ -92,12 +92,6 @@ fn robot_and_floor(out: &Bound<'_, PyDict>, import: &WbtImport) -> PyResult<()> 
 /// The grey images handed in for the floor textures: `{file: (height, width) float64 array of
 /// grey levels in [0, 1]}`.
 fn grey_images(images: Option<&Bound<'_, PyAny>>) -> PyResult<BTreeMap<String, GreyImage>> {
-    let type_name = |obj: &Bound<'_, PyAny>| {
-        obj.get_type()
-            .name()
-            .map(|n| n.to_string())
-            .unwrap_or_default()
-    };
     let images = match images {
         None => None,
         Some(obj) => Some(dict_argument(
@@ -260,19 +254,33 @@ pub fn import_wbt<'py>(
 ) -> PyResult<(PyWorld, Bound<'py, PyDict>)> {
     enter(|| {
         let path: PathBuf = path.value("path", "a str or os.PathLike")?;
-        let controller = controller
-            .map(|c| c.value("controller", "a str or None"))
-            .transpose()?;
-        let line = line_number(robot_line)?;
-        let import = enter_detached(py, || {
-            let choice = RobotChoice {
-                controller: controller.as_deref(),
-                line,
-            };
+        let robot = (controller, robot_line);
+        import_chosen(py, robot, floor_images, &path, |choice| {
             WbtImport::load_for(&path, choice)
-        })?;
-        finish(py, import, &path, floor_images)
+        })
     })
+}
+
+/// Imports with `load`, the GIL released, the robot that the `controller` and `robot_line`
+/// arguments choose, and makes the world named after `source` and the report.
+fn import_chosen<'py>(
+    py: Python<'py>,
+    (controller, robot_line): (Option<Text>, Option<IntArg>),
+    floor_images: Option<&Bound<'py, PyAny>>,
+    source: &Path,
+    load: impl FnOnce(RobotChoice<'_>) -> mazesim_core::Result<WbtImport> + Send,
+) -> PyResult<(PyWorld, Bound<'py, PyDict>)> {
+    let controller = controller
+        .map(|c| c.value("controller", "a str or None"))
+        .transpose()?;
+    let line = line_number(robot_line)?;
+    let import = enter_detached(py, || {
+        load(RobotChoice {
+            controller: controller.as_deref(),
+            line,
+        })
+    })?;
+    finish(py, import, source, floor_images)
 }
 
 /// The `robot_line` argument: a line number of the file (from 1), or None.
@@ -302,25 +310,14 @@ pub fn import_wbt_text<'py>(
         let text = text.cast::<PyString>().map_err(|_| {
             invalid(format!(
                 "expected text to be a str, found a {}",
-                text.get_type()
-                    .name()
-                    .map(|n| n.to_string())
-                    .unwrap_or_default()
+                type_name(text)
             ))
         })?;
         let text = text.to_string_lossy();
         let source = source.value("source", "a str")?.0;
-        let controller = controller
-            .map(|c| c.value("controller", "a str or None"))
-            .transpose()?;
-        let line = line_number(robot_line)?;
-        let import = enter_detached(py, || {
-            let choice = RobotChoice {
-                controller: controller.as_deref(),
-                line,
-            };
+        let robot = (controller, robot_line);
+        import_chosen(py, robot, floor_images, Path::new(&source), |choice| {
             WbtImport::from_text_for(&text, &source, choice)
-        })?;
-        finish(py, import, Path::new(&source), floor_images)
+        })
     })
 }

@@ -380,11 +380,7 @@ pub fn world_argument(world: &Bound<'_, PyAny>, name: &str) -> PyResult<Arc<Worl
     match world.cast::<PyWorld>() {
         Ok(w) => Ok(w.get().inner.clone()),
         Err(_) => {
-            let kind = world
-                .get_type()
-                .name()
-                .map(|n| n.to_string())
-                .unwrap_or_default();
+            let kind = crate::args::type_name(world);
             Err(crate::errors::invalid(format!(
                 "expected {name} to be a mazesim.World, found a {kind}"
             )))

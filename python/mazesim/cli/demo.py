@@ -32,6 +32,18 @@ DEFAULT_SECONDS = 60.0
 HRL_DEFAULT_SECONDS = 256.0
 
 
+def speed_summary(simulated_seconds: float, wall_clock: float) -> dict[str, Any]:
+    """The summary entries of a run's speed: its wall-clock seconds, the simulated seconds per
+    wall-clock second (None when no time could be measured) and the mazesim version that ran."""
+    import mazesim
+
+    return {
+        "wall_clock_seconds": wall_clock,
+        "real_time_factor": simulated_seconds / wall_clock if wall_clock > 0 else None,
+        "mazesim_version": mazesim.__version__,
+    }
+
+
 def register(commands: Any) -> None:
     """Adds ``demo`` to the ``mazesim`` command's subparsers."""
     demo = commands.add_parser(
@@ -174,9 +186,7 @@ def run_avoid_collision_demo(args: argparse.Namespace, out: TextIO) -> int:
         "distance_m": simulator.distance_travelled,
         "collisions": simulator.collisions,
         "goal_reached": goal_reached,
-        "wall_clock_seconds": wall_clock,
-        "real_time_factor": simulator.time / wall_clock if wall_clock > 0 else None,
-        "mazesim_version": mazesim.__version__,
+        **speed_summary(simulator.time, wall_clock),
     }
 
     picture = os.path.join(args.out, "trajectory.png")

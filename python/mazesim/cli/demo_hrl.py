@@ -20,7 +20,7 @@ import numpy.typing as npt
 
 import mazesim
 from mazesim._atomic import atomic_file
-from mazesim.cli.demo import HRL_DEFAULT_SECONDS
+from mazesim.cli.demo import HRL_DEFAULT_SECONDS, speed_summary
 from mazesim.cli.progress import progress_display
 from mazesim.episodes import StartJitter, shortest_path_steps
 from mazesim.errors import InvalidArgumentError
@@ -105,9 +105,7 @@ def run_hrl_demo(args: argparse.Namespace, out: TextIO) -> int:
         "goal_reached": result.arrived,
         "path_ratio": summarise([result], [shortest_path_steps(world)]).mean_path_ratio,
         "decisions": decisions,
-        "wall_clock_seconds": wall_clock,
-        "real_time_factor": simulated / wall_clock if wall_clock > 0 else None,
-        "mazesim_version": mazesim.__version__,
+        **speed_summary(simulated, wall_clock),
     }
     picture = os.path.join(args.out, "trajectory.png")
     cut = not result.arrived and result.steps >= steps

@@ -18,6 +18,7 @@ import numpy as np
 
 from mazesim._atomic import atomic_file
 from mazesim._core import RobotProfile, Simulator
+from mazesim.cli.demo import speed_summary
 from mazesim.cli.progress import progress_display
 from mazesim.errors import InvalidArgumentError
 
@@ -49,7 +50,6 @@ def run_robots_demo(
 ) -> int:
     """Drives every robot of ``simulator`` with the avoid-collision controller for ``seconds``
     and writes the picture, the summary and the views asked for."""
-    import mazesim
     from mazesim.controllers import AvoidCollision
     from mazesim.plotting import save_robot_paths_png
     from mazesim.replay.recorder import FleetRecorder
@@ -114,9 +114,7 @@ def run_robots_demo(
             }
             for name, profile, state in zip(names, profiles, states)
         ],
-        "wall_clock_seconds": wall_clock,
-        "real_time_factor": simulator.time / wall_clock if wall_clock > 0 else None,
-        "mazesim_version": mazesim.__version__,
+        **speed_summary(simulator.time, wall_clock),
     }
     picture = os.path.join(args.out, "trajectory.png")
     save_robot_paths_png(

@@ -277,7 +277,7 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
     Returns:
         The run's exit status (see the command's epilog).
     """
-    import mazesim
+    from mazesim.cli.demo import speed_summary
     from mazesim.plotting import save_trajectory_png
     from mazesim.webots.keyboard import read_keys
     from mazesim.webots.requirements import prepare_controller
@@ -354,9 +354,7 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
         "stopped_after_end": result.stopped,
         "stalled": result.stalled,
         "final_pose": list(result.final_pose),
-        "wall_clock_seconds": wall_clock,
-        "real_time_factor": result.simulated_seconds / wall_clock if wall_clock > 0 else None,
-        "mazesim_version": mazesim.__version__,
+        **speed_summary(result.simulated_seconds, wall_clock),
         "missing_features": list(prepared.missing),
     }
     if report is not None and "import_summary" in report:

@@ -103,14 +103,7 @@ impl<'de> DeserializeSeed<'de> for RangeLayout {
     type Value = Range;
 
     fn deserialize<D: Deserializer<'de>>(self, deserializer: D) -> Result<Range, D::Error> {
-        const HUMBLE: &[&str] = &[
-            "header",
-            "radiation_type",
-            "field_of_view",
-            "min_range",
-            "max_range",
-            "range",
-        ];
+        // Jazzy's fields; Humble's lack the last, `variance`.
         const JAZZY: &[&str] = &[
             "header",
             "radiation_type",
@@ -120,7 +113,11 @@ impl<'de> DeserializeSeed<'de> for RangeLayout {
             "range",
             "variance",
         ];
-        let fields = if self.with_variance { JAZZY } else { HUMBLE };
+        let fields = if self.with_variance {
+            JAZZY
+        } else {
+            &JAZZY[..JAZZY.len() - 1]
+        };
         deserializer.deserialize_struct("Range", fields, self)
     }
 }

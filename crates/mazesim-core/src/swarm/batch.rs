@@ -6,11 +6,11 @@
 use std::sync::atomic::AtomicU64;
 use std::sync::Arc;
 
-use rayon::prelude::*;
-
 use super::snapshot::{restored_robots, snapshot_robots};
 use super::{check_apart, make_robots, reset_robots, step_robots};
-use crate::batch::{check_actions, check_size, rigs_of, Batch, Helpers, StepOutputs, CHUNK_ENVS};
+use crate::batch::{
+    check_actions, check_seeds, check_size, rigs_of, Batch, Helpers, StepOutputs, CHUNK_ENVS,
+};
 use crate::control::Controller;
 use crate::error::{Error, Result};
 use crate::limits::MAX_ROBOTS;
@@ -51,13 +51,7 @@ impl Batch {
         if robots == 1 {
             return Batch::new(worlds, robot, seeds, noise, control_step, threads);
         }
-        if seeds.len() != worlds.len() {
-            return Err(Error::InvalidArgument(format!(
-                "expected one seed per environment ({}), found {}",
-                worlds.len(),
-                seeds.len()
-            )));
-        }
+        check_seeds(worlds.len(), seeds)?;
         let n = worlds.len();
         // An environment of a world with movable bodies holds a rapier scene of all its walls.
         let scene_walls: u128 = (worlds.iter())
@@ -95,21 +89,9 @@ impl Batch {
             make_robots(&world, &env_rigs, config)
         };
         let pairs: Vec<(Arc<World>, u64)> = worlds.into_iter().zip(seeds.iter().copied()).collect();
-        let groups: Result<Vec<Vec<Simulator>>> = match helpers.pool() {
-            Some(p) => p.install(|| pairs.into_par_iter().map(make).collect()),
-            None => pairs.into_iter().map(make).collect(),
-        };
-        let envs: Vec<Simulator> = groups?.into_iter().flatten().collect();
-        Ok(Batch {
-            envs,
-            robots,
-            distance_width: robot.distance_sensors.len(),
-            ground_width: robot.ground_sensors.len(),
-            helpers,
-            runs: Arc::new(AtomicU64::new(0)),
-            pid: std::process::id(),
-            interrupt: None,
-        })
+        let groups = helpers.make_all(pairs, make)?;
+        let envs: Vec<Simulator> = groups.into_iter().flatten().collect();
+        Ok(Batch::assemble(envs, robots, &robot, helpers))
     }
 
     /// Robots per environment (1 in a batch of worlds of one robot).

@@ -1,4 +1,4 @@
-//! Shared set-up of the integration tests: small worlds written as text.
+//! Shared set-up of the integration tests: small worlds written as text, and simulators.
 #![allow(dead_code)]
 
 use std::sync::Arc;
@@ -26,4 +26,14 @@ pub fn sim(world: Arc<World>, robot: &str, seed: u64, noise: bool) -> Simulator 
         },
     )
     .unwrap()
+}
+
+/// A simulator of the e-puck in the built-in seed maze, with noise.
+pub fn seed_maze_epuck(seed: u64) -> Simulator {
+    sim(
+        Arc::new(World::builtin("seed-maze").unwrap()),
+        "e-puck",
+        seed,
+        true,
+    )
 }
