@@ -105,6 +105,31 @@ def test_one_controller_run_in_a_world_of_several_records_every_robot(
     assert "east             no controller: 0.00 m" in capsys.readouterr().out
 
 
+def test_a_controller_that_fails_at_once_in_a_world_of_several_lists_every_robot(
+    tmp_path: Path,
+) -> None:
+    world = tmp_path / "pair.toml"
+    world.write_text(
+        'format = "mazesim-world"\nversion = 1\n'
+        '[[robots]]\nname = "west"\nx = -0.3\ny = 0.0\n'
+        '[[robots]]\nname = "east"\nx = 0.3\ny = 0.05\nprofile = "e-puck2"\n'
+    )
+    controller = tmp_path / "broken.py"
+    controller.write_text("raise RuntimeError('no robot today')\n")
+    code = main(["webots", "run", str(controller), "--world", str(world), "--out", str(tmp_path)])
+    assert code == 1
+    summary = json.loads((tmp_path / "summary.json").read_text())
+    assert [(r["name"], r["robot"], r["distance_m"]) for r in summary["robots"]] == [
+        ("west", "e-puck", 0.0),
+        ("east", "e-puck2", 0.0),
+    ]
+    assert summary["robots"][1]["final_pose"] == pytest.approx([0.3, 0.05, 0.0])
+    assert (tmp_path / "trajectory.csv").read_text().splitlines()[1:] == [
+        "west,0.000,-0.30000,0.00000",
+        "east,0.000,0.30000,0.05000",
+    ]
+
+
 def test_keys_are_refused_in_a_world_run_naming_what_to_give(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

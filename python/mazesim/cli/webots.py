@@ -317,7 +317,7 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
     from mazesim.webots.simulation import observing_steps
 
     watch = DeferredWatch(args, os.path.basename(args.controller), args.seed)
-    fleet = RobotPaths()
+    fleet = RobotPaths(world)
     with contextlib.ExitStack() as viewing:
         if viewing_requested(args):
             viewing.enter_context(observing_steps(watch))
@@ -373,7 +373,9 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
     table = os.path.join(out_dir, "trajectory.csv")
     if fleet.several:
         # A mazesim world of several robots: the controller drove robot 0, the others stood.
-        summary["robots"], paths = fleet.robots(result.controller, result.xs, result.ys)
+        summary["robots"], paths = fleet.robots(
+            result.controller, str(result.robot_model), result.xs, result.ys
+        )
         title = f"{world.name}: {name} on {paths[0][0]}, {len(paths)} robots, {ran}"
         save_robot_paths_png(world, paths, picture, title=title)
         write_paths_table(table, paths, step_s)

@@ -90,9 +90,14 @@ class RobotPaths:
     """Every robot's path in a run of one controller in a world of several robots, where the
     controller drives robot 0 and the others stand where they start (an observer of
     :func:`mazesim.webots.simulation.observing_steps`): robot 0's path is the run's own, the
-    others' are their poses before each step and at the end."""
+    others' are their poses before each step and at the end.
 
-    def __init__(self) -> None:
+    Args:
+        world: The run's world.
+    """
+
+    def __init__(self, world: World) -> None:
+        self.world = world
         self.simulator: Any = None
         self._points: dict[int, Any] = {}
 
@@ -106,25 +111,38 @@ class RobotPaths:
     @property
     def several(self) -> bool:
         """Whether the run's world holds several robots."""
-        return self.simulator is not None and int(getattr(self.simulator, "num_robots", 1)) > 1
+        return len(self.world.robots) > 1
 
     def robots(
-        self, controller: str, xs: list[float], ys: list[float]
+        self, controller: str, profile: str, xs: list[float], ys: list[float]
     ) -> tuple[list[dict[str, Any]], list[tuple[str, Any, Any]]]:
         """Each robot's entry of the summary (name, profile, controller, distance, collisions,
         final pose) and its path (name, xs, ys), after the run; robot 0 drove along ``xs``,
-        ``ys`` with ``controller``."""
+        ``ys`` with ``controller``. Before any step (a controller that failed at once) every
+        robot is where it starts, with the world's profile or ``profile``."""
         import numpy as np
 
         simulator = self.simulator
-        self._points.setdefault(int(simulator.steps), simulator.poses()[:, :2])
+        if simulator is None:
+            states = [
+                {
+                    "profile": robot["profile"] or profile,
+                    "distance_travelled": 0.0,
+                    "collisions": 0,
+                    "pose": robot["start"],
+                }
+                for robot in self.world.robots
+            ]
+            self._points[0] = np.array([robot["start"][:2] for robot in self.world.robots])
+        else:
+            states = [simulator.robot_state(i) for i in range(simulator.num_robots)]
+            self._points.setdefault(int(simulator.steps), simulator.poses()[:, :2])
         points = np.stack([self._points[step] for step in sorted(self._points)])
         entries, paths = [], []
-        for index, name in enumerate(simulator.robot_names):
-            state = simulator.robot_state(index)
+        for index, (robot, state) in enumerate(zip(self.world.robots, states)):
             entries.append(
                 {
-                    "name": name,
+                    "name": robot["name"],
                     "robot": str(state["profile"]),
                     "controller": controller if index == 0 else None,
                     "distance_m": float(state["distance_travelled"]),
@@ -133,7 +151,7 @@ class RobotPaths:
                 }
             )
             path_x, path_y = (xs, ys) if index == 0 else (points[:, index, 0], points[:, index, 1])
-            paths.append((str(name), path_x, path_y))
+            paths.append((str(robot["name"]), path_x, path_y))
         return entries, paths
 
 
