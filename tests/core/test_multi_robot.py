@@ -95,8 +95,8 @@ def test_the_avoid_collision_rule_turns_both_away_before_contact() -> None:
 
 def test_no_threshold_of_the_rule_clears_a_head_on_e_puck() -> None:
     """Why the rule grazes (docs/multi-robot.md): ps0 and ps7 meet a head-on e-puck obliquely and
-    read nothing of it beyond a gap of about 1.35 cm, less than the 3 cm two pivoting e-pucks need
-    to clear each other, so the rule touches whatever its threshold."""
+    read nothing of it beyond a gap of about 1.35 cm, less than the 4.4 cm two pivoting e-pucks
+    need to clear each other, so the rule touches whatever its threshold."""
     no_hit = 67.19
     near = mazesim.Simulator(corridor(0.013), noise=False).distance_sensors()
     far = mazesim.Simulator(corridor(0.014), noise=False).distance_sensors()
@@ -111,6 +111,51 @@ def test_no_threshold_of_the_rule_clears_a_head_on_e_puck() -> None:
             sim.step_robots(np.array(commands))
             touched += sim.robot_state(0)["touching_robot"]
         assert 0 < touched < 20, threshold
+
+
+def head_on_with_the_rule(turn_in_place: bool) -> tuple[float, int, float]:
+    """The gap at which the rule first turns, the control steps robot 0 touches robot 1 and the
+    smallest gap, for two e-pucks driven at each other by the rule; with ``turn_in_place`` the
+    rule's turns (a pivot on the inner wheel) are made as spins on the spot to the same side."""
+    sim = mazesim.Simulator(corridor(0.1), noise=False)
+    rule = AvoidCollision()
+    half = 0.5 * rule.max_speed
+    turned_at, touched, closest = math.inf, 0, math.inf
+    for _ in range(120):
+        poses = sim.poses()
+        gap = float(np.hypot(*(poses[0, :2] - poses[1, :2]))) - 2 * RADIUS
+        closest = min(closest, gap)
+        commands = []
+        for i in range(2):
+            left, right = rule(sim.distance_sensors(robot_index=i))
+            if left != right:
+                turned_at = gap if turned_at == math.inf else turned_at
+                if turn_in_place:
+                    left, right = (half, -half) if left > right else (-half, half)
+            commands.append((left, right))
+        sim.step_robots(np.array(commands))
+        touched += sim.robot_state(0)["touching_robot"]
+    return turned_at, touched, closest
+
+
+def test_the_contact_comes_from_the_rule_s_pivot_not_from_seeing_late() -> None:
+    """The report's rule turns by stopping one wheel and driving the other at full speed: a
+    pivot on the stopped wheel, which keeps moving the body forward (at 6.3 cm/s at first). The
+    same readings with the turns made on the spot keep the robots apart; two e-pucks pivoting at
+    each other need a gap of about 4.4 cm (each centre swings on a circle of half the wheel
+    distance, 2.84 cm, round its stopped wheel) where the rule sees the other at 1.16 cm."""
+    turned_at, touched, _ = head_on_with_the_rule(turn_in_place=False)
+    assert turned_at == pytest.approx(0.0116, abs=5e-4) and touched > 0
+    turned_at, touched, closest = head_on_with_the_rule(turn_in_place=True)
+    assert turned_at == pytest.approx(0.0116, abs=5e-4)
+    assert touched == 0 and closest > 0.009
+    for gap, touches in ((0.042, True), (0.048, False)):
+        sim = mazesim.Simulator(corridor(gap), noise=False)
+        contact = 0
+        for _ in range(60):
+            sim.step_robots(np.array([[6.28, 0.0], [6.28, 0.0]]))  # both pivot to their right
+            contact += sim.robot_state(0)["touching_robot"]
+        assert (contact > 0) is touches, gap
 
 
 def test_robots_driven_into_each_other_stop_in_contact() -> None:

@@ -97,6 +97,46 @@ def test_an_imported_e_puck_turns_less_in_its_first_step_than_a_mazesim_world_s(
     assert 0.75 * kinematic < imported < 0.82 * kinematic
 
 
+#: Turns in place at full speed for one 8 ms step, then ends.
+TURN_ONE_STEP = """from controller import Robot
+robot = Robot()
+for name, speed in (("left wheel motor", -6.28), ("right wheel motor", 6.28)):
+    motor = robot.getDevice(name)
+    motor.setPosition(float("inf"))
+    motor.setVelocity(speed)
+robot.step(8)
+"""
+
+
+def test_every_e_puck_of_a_world_of_several_has_its_own_traction(tmp_path: Path) -> None:
+    """In a world run (each robot's controller in its own process, in lockstep) each imported
+    E-puck's first step turns as that robot's PROTO would alone: a kinematic one by the whole
+    kinematic turn, an e-puck and an e-puck2 by what their own masses' friction allows."""
+    from mazesim.webots.lockstep import run_world
+
+    robots = {
+        "stiff": "kinematic TRUE",
+        "one": "",
+        "two": 'version "2"',
+    }
+    header = "#VRML_SIM R2023b utf8\nWorldInfo { basicTimeStep 8 }\n"
+    nodes = [
+        f'E-puck {{ translation {0.3 * k} 0 0 name "{name}" controller "turn" {fields} }}\n'
+        for k, (name, fields) in enumerate(robots.items())
+    ]
+    (tmp_path / "worlds").mkdir()
+    (tmp_path / "worlds" / "turns.wbt").write_text(header + "".join(nodes))
+    (tmp_path / "controllers" / "turn").mkdir(parents=True)
+    (tmp_path / "controllers" / "turn" / "turn.py").write_text(TURN_ONE_STEP)
+    run = run_world(str(tmp_path / "worlds" / "turns.wbt"), seconds=0.1, noise=False)
+    turned = {robot.name: robot.final_pose[2] for robot in run.robots}
+    for name, fields in robots.items():
+        alone = turned_in_first_step(f"{header}E-puck {{ {fields} }}\n")
+        assert turned[name] == pytest.approx(alone, abs=1e-6), name
+    assert turned["stiff"] == pytest.approx(turned_in_first_step(None), abs=1e-6)
+    assert turned["two"] < turned["one"] < 0.82 * turned["stiff"]
+
+
 #: An R2020a (Y-up) world: an unturned e-puck with a Compass in its turret slot.
 NUE_COMPASS_WORLD = """#VRML_SIM R2020a utf8
 WorldInfo { basicTimeStep 8 }

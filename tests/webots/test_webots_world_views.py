@@ -60,7 +60,8 @@ def test_one_controller_run_in_a_world_of_several_records_every_robot(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
 ) -> None:
     """``webots run CONTROLLER --world WORLD.toml`` of several robots: the controller drives
-    robot 0, the others stand still, and the run file and the replay hold them all."""
+    robot 0, the others stand still, and the run file, the replay, the summary, the picture and
+    the table hold them all."""
     monkeypatch.setenv("SWARM_LOG", str(tmp_path))
     world = tmp_path / "pair.toml"
     world.write_text(
@@ -87,6 +88,46 @@ def test_one_controller_run_in_a_world_of_several_records_every_robot(
     assert np.array_equal(east.poses, np.repeat(east.poses[:1], east.frames, axis=0))
     assert east.wheel_speeds is not None and not east.wheel_speeds.any(), "east stood still"
     assert '"robot_name":"east"' in page.read_text()
+    # The summary, the picture and the table hold every robot too.
+    west_entry, east_entry = summary["robots"]
+    assert west_entry["name"] == "west" and west_entry["controller"] == str(controller)
+    assert west_entry["final_pose"] == pytest.approx(summary["final_pose"])
+    assert west_entry["distance_m"] == pytest.approx(summary["distance_m"])
+    assert east_entry["name"] == "east" and east_entry["controller"] is None
+    assert east_entry["distance_m"] == 0.0 and east_entry["robot"] == west_entry["robot"]
+    assert east_entry["final_pose"][:2] == pytest.approx([0.3, 0.05], abs=1e-6)
+    rows = (tmp_path / "out" / "trajectory.csv").read_text().splitlines()
+    assert rows[0] == "robot,time_s,x_m,y_m"
+    for robot, track in (("west", episode), ("east", east)):
+        points = np.array([row.split(",")[2:] for row in rows[1:] if row.startswith(robot + ",")])
+        assert points.astype(float) == pytest.approx(track.poses[:, :2], abs=1e-4)
+    assert (tmp_path / "out" / "trajectory.png").stat().st_size > 0
+    assert "east             no controller: 0.00 m" in capsys.readouterr().out
+
+
+def test_a_controller_that_fails_at_once_in_a_world_of_several_lists_every_robot(
+    tmp_path: Path,
+) -> None:
+    world = tmp_path / "pair.toml"
+    world.write_text(
+        'format = "mazesim-world"\nversion = 1\n'
+        '[[robots]]\nname = "west"\nx = -0.3\ny = 0.0\n'
+        '[[robots]]\nname = "east"\nx = 0.3\ny = 0.05\nprofile = "e-puck2"\n'
+    )
+    controller = tmp_path / "broken.py"
+    controller.write_text("raise RuntimeError('no robot today')\n")
+    code = main(["webots", "run", str(controller), "--world", str(world), "--out", str(tmp_path)])
+    assert code == 1
+    summary = json.loads((tmp_path / "summary.json").read_text())
+    assert [(r["name"], r["robot"], r["distance_m"]) for r in summary["robots"]] == [
+        ("west", "e-puck", 0.0),
+        ("east", "e-puck2", 0.0),
+    ]
+    assert summary["robots"][1]["final_pose"] == pytest.approx([0.3, 0.05, 0.0])
+    assert (tmp_path / "trajectory.csv").read_text().splitlines()[1:] == [
+        "west,0.000,-0.30000,0.00000",
+        "east,0.000,0.30000,0.05000",
+    ]
 
 
 def test_keys_are_refused_in_a_world_run_naming_what_to_give(

@@ -278,7 +278,8 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
         The run's exit status (see the command's epilog).
     """
     from mazesim.cli.demo import speed_summary
-    from mazesim.plotting import save_trajectory_png
+    from mazesim.cli.webots_world import RobotPaths, write_paths_table
+    from mazesim.plotting import save_robot_paths_png, save_trajectory_png
     from mazesim.webots.keyboard import read_keys
     from mazesim.webots.requirements import prepare_controller
     from mazesim.webots.runner import controller_file, run_controller
@@ -316,9 +317,11 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
     from mazesim.webots.simulation import observing_steps
 
     watch = DeferredWatch(args, os.path.basename(args.controller), args.seed)
+    fleet = RobotPaths(world)
     with contextlib.ExitStack() as viewing:
         if viewing_requested(args):
             viewing.enter_context(observing_steps(watch))
+        viewing.enter_context(observing_steps(fleet))
         display = viewing.enter_context(progress_display(args, unit="steps"))
         steps = _StepProgress(display, args.seconds)
         viewing.enter_context(observing_steps(steps))
@@ -361,23 +364,28 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
         summary["import"] = {
             key: value for key, value in report["import_summary"].items() if key != "sentence"
         }
+    ran = f"{result.simulated_seconds:.0f} s, seed {args.seed}"
+    title = f"{world.name}: {name}, {ran}"
     picture = os.path.join(out_dir, "trajectory.png")
-    save_trajectory_png(
-        world,
-        result.xs,
-        result.ys,
-        picture,
-        title=f"{world.name}: {name}, {result.simulated_seconds:.0f} s, seed {args.seed}",
-    )
+    step_s = result.simulated_seconds / result.steps if result.steps else 0.0
+    table = os.path.join(out_dir, "trajectory.csv")
+    if fleet.several:
+        # A mazesim world of several robots: the controller drove robot 0, the others stood.
+        summary["robots"], paths = fleet.robots(
+            result.controller, str(result.robot_model), result.xs, result.ys
+        )
+        title = f"{world.name}: {name} on {paths[0][0]}, {len(paths)} robots, {ran}"
+        save_robot_paths_png(world, paths, picture, title=title)
+        write_paths_table(table, paths, step_s)
+    else:
+        save_trajectory_png(world, result.xs, result.ys, picture, title=title)
+        with atomic_file(table) as handle:
+            points = enumerate(zip(result.xs, result.ys))
+            rows = (f"{i * step_s:.3f},{x:.5f},{y:.5f}" for i, (x, y) in points)
+            handle.write(("time_s,x_m,y_m\n" + "\n".join(rows) + "\n").encode("utf-8"))
     summary_path = os.path.join(out_dir, "summary.json")
     with atomic_file(summary_path) as handle:
         handle.write((json.dumps(summary, indent=2) + "\n").encode("utf-8"))
-    step_s = result.simulated_seconds / result.steps if result.steps else 0.0
-    table = os.path.join(out_dir, "trajectory.csv")
-    with atomic_file(table) as handle:
-        points = enumerate(zip(result.xs, result.ys))
-        rows = (f"{i * step_s:.3f},{x:.5f},{y:.5f}" for i, (x, y) in points)
-        handle.write(("time_s,x_m,y_m\n" + "\n".join(rows) + "\n").encode("utf-8"))
     if result.error:
         sys.stderr.write(result.error)
     views = watch.finish(
@@ -393,8 +401,13 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
         f"collisions         {result.collisions}\n"
         f"longest stop       {result.longest_stop_s:.2f} s\n"
         f"wall-clock time    {wall_clock:.3f} s ({speed} real time)\n"
-        f"wrote              {', '.join([picture, summary_path, table, *views])}\n"
     )
+    for robot in summary.get("robots", [])[1:]:
+        out.write(
+            f"  {robot['name']:<16} no controller: {robot['distance_m']:.2f} m, "
+            f"{robot['collisions']} collisions\n"
+        )
+    out.write(f"wrote              {', '.join([picture, summary_path, table, *views])}\n")
     return result.exit_status
 
 

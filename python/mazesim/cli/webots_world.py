@@ -2,7 +2,9 @@
 
 The summary, the picture, the table, ``--html``/``--video``/``--record`` and the ``--live``
 window cover every robot (:class:`WorldWatch`); ``--keys``, which types on one controller's
-Keyboard, is refused with what to do instead.
+Keyboard, is refused with what to do instead. A run of one controller in a mazesim world of
+several robots (``webots run CONTROLLER --world WORLD.toml``) covers them all too
+(:class:`RobotPaths`).
 """
 
 from __future__ import annotations
@@ -18,7 +20,14 @@ from mazesim._atomic import atomic_file
 from mazesim._core import RobotProfile, World
 from mazesim.errors import InvalidArgumentError
 
-__all__ = ["WorldWatch", "refuse_keys", "robot_controllers", "run_world_command"]
+__all__ = [
+    "RobotPaths",
+    "WorldWatch",
+    "refuse_keys",
+    "robot_controllers",
+    "run_world_command",
+    "write_paths_table",
+]
 
 
 class WorldWatch:
@@ -75,6 +84,86 @@ class WorldWatch:
             self.fleet.capture(index, simulator.pose, readings, bool(simulator.colliding))
             if wheels is not None:
                 self.fleet.acted(index, *wheels.get(index, (0.0, 0.0)))
+
+
+class RobotPaths:
+    """Every robot's path in a run of one controller in a world of several robots, where the
+    controller drives robot 0 and the others stand where they start (an observer of
+    :func:`mazesim.webots.simulation.observing_steps`): robot 0's path is the run's own, the
+    others' are their poses before each step and at the end.
+
+    Args:
+        world: The run's world.
+    """
+
+    def __init__(self, world: World) -> None:
+        self.world = world
+        self.simulator: Any = None
+        self._points: dict[int, Any] = {}
+
+    def __call__(self, simulation: Any, left: float, right: float) -> None:
+        """Keeps every robot's position before a step of ``simulation`` (its ``simulator``)."""
+        if self.simulator is None:
+            self.simulator = simulation.simulator
+        if simulation.simulator is self.simulator and self.several:
+            self._points.setdefault(int(self.simulator.steps), self.simulator.poses()[:, :2])
+
+    @property
+    def several(self) -> bool:
+        """Whether the run's world holds several robots."""
+        return len(self.world.robots) > 1
+
+    def robots(
+        self, controller: str, profile: str, xs: list[float], ys: list[float]
+    ) -> tuple[list[dict[str, Any]], list[tuple[str, Any, Any]]]:
+        """Each robot's entry of the summary (name, profile, controller, distance, collisions,
+        final pose) and its path (name, xs, ys), after the run; robot 0 drove along ``xs``,
+        ``ys`` with ``controller``. Before any step (a controller that failed at once) every
+        robot is where it starts, with the world's profile or ``profile``."""
+        import numpy as np
+
+        simulator = self.simulator
+        if simulator is None:
+            states = [
+                {
+                    "profile": robot["profile"] or profile,
+                    "distance_travelled": 0.0,
+                    "collisions": 0,
+                    "pose": robot["start"],
+                }
+                for robot in self.world.robots
+            ]
+            self._points[0] = np.array([robot["start"][:2] for robot in self.world.robots])
+        else:
+            states = [simulator.robot_state(i) for i in range(simulator.num_robots)]
+            self._points.setdefault(int(simulator.steps), simulator.poses()[:, :2])
+        points = np.stack([self._points[step] for step in sorted(self._points)])
+        entries, paths = [], []
+        for index, (robot, state) in enumerate(zip(self.world.robots, states)):
+            entries.append(
+                {
+                    "name": robot["name"],
+                    "robot": str(state["profile"]),
+                    "controller": controller if index == 0 else None,
+                    "distance_m": float(state["distance_travelled"]),
+                    "collisions": int(state["collisions"]),
+                    "final_pose": [float(v) for v in state["pose"]],
+                }
+            )
+            path_x, path_y = (xs, ys) if index == 0 else (points[:, index, 0], points[:, index, 1])
+            paths.append((str(robot["name"]), path_x, path_y))
+        return entries, paths
+
+
+def write_paths_table(path: str, paths: list[tuple[str, Any, Any]], step_s: float) -> None:
+    """Writes every robot's path as the table ``robot,time_s,x_m,y_m`` (atomically)."""
+    with atomic_file(path) as handle:
+        rows = [
+            f"{name},{i * step_s:.3f},{x:.5f},{y:.5f}"
+            for name, xs, ys in paths
+            for i, (x, y) in enumerate(zip(xs, ys))
+        ]
+        handle.write(("robot,time_s,x_m,y_m\n" + "\n".join(rows) + "\n").encode("utf-8"))
 
 
 def _profile_of(simulator: Any) -> RobotProfile:
@@ -208,13 +297,7 @@ def run_world_command(args: argparse.Namespace, out: TextIO) -> int:
         handle.write((json.dumps(summary, indent=2) + "\n").encode("utf-8"))
     table = os.path.join(out_dir, "trajectory.csv")
     step_s = run.simulated_seconds / run.steps if run.steps else 0.0
-    with atomic_file(table) as handle:
-        rows = [
-            f"{robot.name},{i * step_s:.3f},{x:.5f},{y:.5f}"
-            for robot in run.robots
-            for i, (x, y) in enumerate(zip(robot.xs, robot.ys))
-        ]
-        handle.write(("robot,time_s,x_m,y_m\n" + "\n".join(rows) + "\n").encode("utf-8"))
+    write_paths_table(table, [(robot.name, robot.xs, robot.ys) for robot in run.robots], step_s)
     out.write(
         f"world              {run.world.name} (seed {args.seed}, {len(run.robots)} robots)\n"
         f"simulated time     {run.simulated_seconds:.2f} s ({run.steps} steps)\n"
