@@ -27,6 +27,7 @@ __all__ = [
     "missing_packages",
     "motor_limits",
     "prepare_controller",
+    "turn_in_place_speed",
 ]
 
 #: Controller languages by file suffix.
@@ -49,6 +50,22 @@ MOTOR_LIMITS = (
     "motor acceleration and torque limits ({calls}): mazesim's wheels reach their commanded "
     "speed at once, as Webots' motors do by default; only the floor's friction limits how fast "
     "an imported E-puck's body starts"
+)
+#: Wheel speed (rad/s) of a turn in place above which Webots' E-puck has been seen to turn
+#: more slowly than its wheels' kinematics say. Controllers tuned in Webots agree with the
+#: 0.05685 m wheel distance at 0.2 x 6.28 rad/s (a half turn timed in 111 steps of 32 ms),
+#: but at 3.1-3.2 rad/s they find about 7.5 % less turn: 47 steps of 32 ms at 3.14 rad/s that
+#: their author ends short of the half turn (176 degrees at 2.04 rad/s; the wheel distance gives
+#: 190), 24 steps for a right angle (90 degrees; the wheel distance gives 97), and an
+#: encoder-timed half turn at 3.2 rad/s that needs a 0.063 m wheel distance with 0.0205 m wheels.
+FAST_TURN_IN_PLACE = 1.26
+#: The statement for a Python controller that turns in place faster than that.
+TURN_SLIP = (
+    "Webots' wheel slip when an E-puck turns in place fast (the controller sets its wheels to "
+    "-{speed:g} and {speed:g} rad/s): mazesim turns it at the rate its wheels give for a "
+    "0.05685 m wheel distance, as Webots does at 1.26 rad/s; controllers tuned in Webots at "
+    "3.1-3.2 rad/s find about 7.5 % less turn (47 steps of 32 ms at 3.14 rad/s for nearly a "
+    "half turn, 24 for a right angle), so a turn timed in steps goes farther round here"
 )
 #: Source files of each language read for those calls, beside the controller's main file.
 _SOURCES = {"python": (".py",), "c": (".c", ".h"), "cpp": (".cpp", ".cc", ".cxx", ".hpp", ".h")}
@@ -216,6 +233,67 @@ def motor_limits(file: str, language: str) -> list[str]:
     return sorted(found)
 
 
+def _constant(node: ast.AST, known: dict[str, float]) -> float | None:
+    """The value of a constant expression of numbers and ``known`` names (+, -, *, /), or
+    None."""
+    if isinstance(node, ast.Constant) and isinstance(node.value, (int, float)):
+        return None if isinstance(node.value, bool) else float(node.value)
+    if isinstance(node, ast.Name):
+        return known.get(node.id)
+    if isinstance(node, ast.UnaryOp) and isinstance(node.op, (ast.USub, ast.UAdd)):
+        inner = _constant(node.operand, known)
+        return None if inner is None else (-inner if isinstance(node.op, ast.USub) else inner)
+    if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Add, ast.Sub, ast.Mult, ast.Div)):
+        left, right = _constant(node.left, known), _constant(node.right, known)
+        if left is None or right is None:
+            return None
+        if isinstance(node.op, ast.Add):
+            return left + right
+        if isinstance(node.op, ast.Sub):
+            return left - right
+        if isinstance(node.op, ast.Mult):
+            return left * right
+        return left / right if right != 0.0 else None
+    return None
+
+
+def _velocity(statement: ast.stmt, known: dict[str, float]) -> float | None:
+    """The wheel speed a ``motor.setVelocity(E)`` statement sets, when its constants give it."""
+    if not isinstance(statement, ast.Expr) or not isinstance(statement.value, ast.Call):
+        return None
+    call = statement.value
+    if not (isinstance(call.func, ast.Attribute) and call.func.attr == "setVelocity"):
+        return None
+    return _constant(call.args[0], known) if len(call.args) == 1 else None
+
+
+def turn_in_place_speed(path: str) -> float | None:
+    """The fastest turn in place a Python controller file commands: a wheel speed ``v`` that
+    two ``setVelocity`` statements of one block set as ``-v`` and ``v``, as its module-level
+    constants give them (rad/s); None when it commands none."""
+    try:
+        tree = ast.parse(read_input(path, MAX_TEXT_CHARACTERS, "the controller"))
+    except (SyntaxError, ValueError, OSError):
+        return None
+    known: dict[str, float] = {}
+    for statement in tree.body:
+        if isinstance(statement, ast.Assign) and len(statement.targets) == 1:
+            target = statement.targets[0]
+            value = _constant(statement.value, known)
+            if isinstance(target, ast.Name) and value is not None:
+                known[target.id] = value
+    fastest: float | None = None
+    for node in ast.walk(tree):
+        for block in (getattr(node, "body", None), getattr(node, "orelse", None)):
+            if not isinstance(block, list):
+                continue
+            speeds = {_velocity(statement, known) for statement in block}
+            turns = [v for v in speeds if v is not None and v > 0.0 and -v in speeds]
+            if turns:
+                fastest = max([*turns, *([fastest] if fastest is not None else [])])
+    return fastest
+
+
 def _project_build(file: str) -> str:
     """The build files of a compiled controller's folder (``CMakeLists.txt``, ``Makefile``)."""
     folder = os.path.dirname(os.path.abspath(file))
@@ -278,6 +356,9 @@ def prepare_controller(file: str) -> PreparedController:
             # draws would never return, so it is not started.
             prepared.missing.append(NO_DISPLAY)
             prepared.runnable = False
+        speed = turn_in_place_speed(file)
+        if speed is not None and speed > FAST_TURN_IN_PLACE:
+            prepared.missing.append(TURN_SLIP.format(speed=round(speed, 4)))
     calls = motor_limits(file, language)
     if calls:
         prepared.missing.append(MOTOR_LIMITS.format(calls=", ".join(calls)))
