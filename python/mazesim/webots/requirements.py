@@ -35,9 +35,24 @@ LANGUAGES = {".py": "python", ".c": "c", ".cpp": "cpp", ".cc": "cpp", ".cxx": "c
 #: Most of a controller's own modules read for their imports.
 MAX_OWN_MODULES = 200
 #: The statement for a controller that opens Tk windows where there is no display.
-NO_DISPLAY = "a display for the controller's Tk windows (tkinter, turtle; $DISPLAY is not set)"
+NO_DISPLAY = (
+    "a display for the controller's Tk windows (tkinter, turtle; $DISPLAY is not set, and "
+    "Xvfb, which would draw them on a virtual display, is not installed)"
+)
+#: What the run says of a controller whose Tk windows it draws on a virtual display.
+VIRTUAL_DISPLAY_NOTE = (
+    "its Tk windows (tkinter, turtle) are drawn on a virtual display (Xvfb) and not shown: "
+    "$DISPLAY is not set"
+)
 #: Modules that open Tk windows.
 TK_MODULES = {"tkinter", "turtle"}
+#: Modules that open Qt windows.
+QT_MODULES = {"PySide6", "PySide2", "PyQt6", "PyQt5"}
+#: What the run says of a controller whose Qt windows it draws off screen.
+QT_OFFSCREEN_NOTE = (
+    "its Qt windows are drawn off screen (QT_QPA_PLATFORM=offscreen) and not shown: $DISPLAY "
+    "is not set"
+)
 #: Calls that limit a motor's acceleration or torque (Python and C API; Webots reference manual,
 #: Motor), which mazesim does not model.
 _MOTOR_LIMITS = re.compile(
@@ -95,6 +110,9 @@ class PreparedController:
         runnable: Whether it can be started at all.
         program: A C controller's built program.
         notes: What was done to prepare it (a C build and where it is cached).
+        virtual_display: Whether its run draws its Tk windows on a virtual display
+            (:mod:`mazesim.webots.virtual_display`): it opens some and ``$DISPLAY`` is not set.
+        environment: Environment variables its run sets (Qt's windows drawn off screen).
     """
 
     file: str
@@ -103,6 +121,8 @@ class PreparedController:
     runnable: bool = True
     program: str | None = None
     notes: list[str] = field(default_factory=list)
+    virtual_display: bool = False
+    environment: dict[str, str] = field(default_factory=dict)
 
 
 def _guarded(tree: ast.AST) -> set[int]:
@@ -351,11 +371,22 @@ def prepare_controller(file: str) -> PreparedController:
         names = missing_packages(file)
         if names:
             prepared.missing.append(f"Python package(s) not installed: {', '.join(names)}")
-        if TK_MODULES & imported_names(file) and not os.environ.get("DISPLAY"):
-            # Tk raises at its first window; a controller that waits for the thread that
-            # draws would never return, so it is not started.
-            prepared.missing.append(NO_DISPLAY)
-            prepared.runnable = False
+        imported = imported_names(file)
+        if QT_MODULES & imported and not os.environ.get("DISPLAY"):
+            if "QT_QPA_PLATFORM" not in os.environ:
+                prepared.notes.append(QT_OFFSCREEN_NOTE)
+                prepared.environment["QT_QPA_PLATFORM"] = "offscreen"
+        if TK_MODULES & imported and not os.environ.get("DISPLAY"):
+            from mazesim.webots.virtual_display import xvfb_program
+
+            if xvfb_program() is not None:
+                prepared.notes.append(VIRTUAL_DISPLAY_NOTE)
+                prepared.virtual_display = True
+            else:
+                # Tk raises at its first window; a controller that waits for the thread that
+                # draws would never return, so it is not started.
+                prepared.missing.append(NO_DISPLAY)
+                prepared.runnable = False
         speed = turn_in_place_speed(file)
         if speed is not None and speed > FAST_TURN_IN_PLACE:
             prepared.missing.append(TURN_SLIP.format(speed=round(speed, 4)))
