@@ -144,13 +144,13 @@ browser-deps: ## install Debian's chromium and chromium-driver if missing (the H
 		|| echo "browser-deps: could not install $(BROWSER_DEBS); the browser tests of the HTML replay will be skipped"; \
 	else echo "browser-deps: no apt-get; install Chromium and chromedriver yourself (the browser tests of the HTML replay are skipped without them)"; fi
 
-display-deps: ## install Debian's xvfb if missing (the virtual display of Webots controllers' Tk windows)
-	@if command -v Xvfb >/dev/null; then :; \
+display-deps: ## install Debian's xvfb and cmake if missing (Webots controllers' Tk windows on a virtual display; controllers built by their project's CMakeLists.txt)
+	@if command -v Xvfb >/dev/null && command -v cmake >/dev/null; then :; \
 	elif command -v apt-get >/dev/null; then \
 		sudo=; [ "$$(id -u)" -eq 0 ] || sudo=sudo; \
-		$$sudo apt-get update && $$sudo apt-get install -y --no-install-recommends xvfb \
-		|| echo "display-deps: could not install xvfb; the Tk controllers' tests will be skipped"; \
-	else echo "display-deps: no apt-get; install Xvfb yourself (the Tk controllers' tests are skipped without it)"; fi
+		$$sudo apt-get update && $$sudo apt-get install -y --no-install-recommends xvfb cmake \
+		|| echo "display-deps: could not install xvfb and cmake; the Tk and CMake controllers' tests will be skipped"; \
+	else echo "display-deps: no apt-get; install Xvfb and cmake yourself (the Tk and CMake controllers' tests are skipped without them)"; fi
 
 replay-screenshot: build browser-deps ## the shipped navigator's demo replayed in headless Chromium: docs/replay.png
 	$(BIN)/mazesim demo --controller hrl --out mazesim-demo --html mazesim-demo/replay.html

@@ -202,6 +202,7 @@ def _run_project(project: Project, mirrors: Path, work: Path, census: Census) ->
         return Row(project, "skipped", f"the mirror lacks commit {project.commit[:12]}")
     root = work / project.name.replace("/", "+")
     folders = [project.root, *(str(Path(c).parent) for c in project.controllers)]
+    folders += list(project.exports)
     try:
         export(git_dir, project.commit, ["" if f == "." else f for f in folders], root)
         text = read_file(git_dir, project.commit, project.world).decode("utf-8", "replace")

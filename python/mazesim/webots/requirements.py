@@ -318,7 +318,13 @@ def _project_build(file: str) -> str:
     """The build files of a compiled controller's folder (``CMakeLists.txt``, ``Makefile``)."""
     folder = os.path.dirname(os.path.abspath(file))
     found = [name for name in BUILD_FILES if os.path.isfile(os.path.join(folder, name))]
-    return "its own " + " and ".join(found) if found else "a build of its own"
+    said = "its own " + " and ".join(found) if found else "a build of its own"
+    if "CMakeLists.txt" in found:
+        from mazesim.webots.cmake_build import cmake_program
+
+        if cmake_program() is None:
+            said += ", which cmake, not installed here, would run"
+    return said
 
 
 def _includes_display(file: str) -> bool:
