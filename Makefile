@@ -30,6 +30,8 @@ SB3_PACKAGES := "stable-baselines3>=2.3,<3" "sb3-contrib>=2.3,<3"
 # What `make marl-deps` (and so `make test` and `make typecheck`) installs (pyproject's extra
 # "marl"): PettingZoo, for mazesim.marl's multi-robot environments, their tests and examples.
 MARL_PACKAGES := "pettingzoo>=1.24"
+# The packages the compatibility corpus's controllers import (pyproject's webots-corpus extra).
+WEBOTS_CORPUS_PACKAGES := "scikit-fuzzy>=0.5" "scipy>=1.8" "networkx>=2.6"
 # The binding crate's build script asks this interpreter for its configuration.
 export PYO3_PYTHON := $(CURDIR)/$(BIN)/python
 # matplotlib's font cache lives with the environment, so that a checkout's tests never read one
@@ -76,7 +78,7 @@ $(DEV_STAMP): $(STAMP)
 	$(BIN)/python -m pip install --progress-bar on $(DEV_PACKAGES) | grep -v '^Requirement already satisfied' || true
 	@$(BIN)/python -c 'import pytest, hypothesis, mypy, gymnasium, ray, selenium, moviepy' && touch $@
 
-test: build dev-deps ros-deps ros2-deps ros2-peer browser-deps docs-deps sb3-deps marl-deps oldest-glibc-deps ## run the Rust tests, then the Python tests (ROS 1 and ROS 2 bridges, browser, SB3 and oldest-glibc tests included)
+test: build dev-deps ros-deps ros2-deps ros2-peer browser-deps display-deps docs-deps sb3-deps marl-deps oldest-glibc-deps ## run the Rust tests, then the Python tests (ROS 1 and ROS 2 bridges, browser, SB3 and oldest-glibc tests included)
 	cargo test --workspace --exclude mazesim-py
 	cargo test --release --locked --quiet --manifest-path $(ROS2_PEER_MANIFEST) --target-dir $(ROS2_PEER_TARGET)
 	$(BIN)/python -m pytest
@@ -142,6 +144,14 @@ browser-deps: ## install Debian's chromium and chromium-driver if missing (the H
 		|| echo "browser-deps: could not install $(BROWSER_DEBS); the browser tests of the HTML replay will be skipped"; \
 	else echo "browser-deps: no apt-get; install Chromium and chromedriver yourself (the browser tests of the HTML replay are skipped without them)"; fi
 
+display-deps: ## install Debian's xvfb and cmake if missing (Webots controllers' Tk windows on a virtual display; controllers built by their project's CMakeLists.txt)
+	@if command -v Xvfb >/dev/null && command -v cmake >/dev/null; then :; \
+	elif command -v apt-get >/dev/null; then \
+		sudo=; [ "$$(id -u)" -eq 0 ] || sudo=sudo; \
+		$$sudo apt-get update && $$sudo apt-get install -y --no-install-recommends xvfb cmake \
+		|| echo "display-deps: could not install xvfb and cmake; the Tk and CMake controllers' tests will be skipped"; \
+	else echo "display-deps: no apt-get; install Xvfb and cmake yourself (the Tk and CMake controllers' tests are skipped without them)"; fi
+
 replay-screenshot: build browser-deps ## the shipped navigator's demo replayed in headless Chromium: docs/replay.png
 	$(BIN)/mazesim demo --controller hrl --out mazesim-demo --html mazesim-demo/replay.html
 	$(BIN)/python -m mazesim.replay.screenshot mazesim-demo/replay.html docs/replay.png
@@ -178,7 +188,9 @@ bench-transfer: build ## time the full default transfer study of the shipped and
 # clone; tests/webots_corpus/mirrors.py lists the names looked for). A missing one is skipped.
 MIRRORS ?= mirrors
 
-webots-compat: build ## run the Webots compatibility corpus from local git mirrors (MIRRORS=DIR); writes docs/webots-compat.md
+webots-compat: build display-deps ## run the Webots compatibility corpus from local git mirrors (MIRRORS=DIR); writes docs/webots-compat.md
+	@$(BIN)/python -c 'import skfuzzy, scipy, networkx' 2>/dev/null || echo "make webots-compat: installing the Python packages the corpus's controllers import (mazesim[webots-corpus]: scikit-fuzzy, SciPy, NetworkX; about 40 MB to download, 135 MB in $(VENV))"
+	$(BIN)/python -m pip install --quiet $(WEBOTS_CORPUS_PACKAGES)
 	$(BIN)/python tests/webots_corpus/run_corpus.py --mirrors $(MIRRORS)
 
 bench-peers: build ## mazesim against hand-written numpy, pymunk and JAX peers (installs pymunk and jax)

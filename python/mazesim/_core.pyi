@@ -215,6 +215,13 @@ class RobotProfile:
         """Parses a profile file's text; ``source`` names it in error messages."""
     def to_toml(self) -> str:
         """The profile as the TOML text of a profile file (``from_toml`` reads it back)."""
+    def with_infrared_elevation(self, elevation: float) -> RobotProfile:
+        """A copy of the profile whose distance sensors' rays rise `elevation` radians above the
+        floor's plane (0 to pi/3): a wall at horizontal distance `h` reads as `h / cos(elevation)`
+        away, and a ray reaches `cos(elevation)` of its length across the floor. Webots' E-puck
+        PROTO tilts its proximity sensors by 0.16 rad."""
+    def distance_sensor_elevations(self) -> list[float]:
+        """Each distance sensor's ray elevation above the floor's plane, radians (0: level)."""
     def perturbed(
         self,
         *,

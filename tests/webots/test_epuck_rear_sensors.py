@@ -5,10 +5,11 @@ The PROTO mounts ps0..ps7 as ``E-puckDistanceSensor`` nodes at a translation and
 rotation each (facts quoted below, Webots R2025a ``E-puck.proto``); the sensor's ray is its x
 axis. Each ``E-puckDistanceSensor`` holds one ray (``numberOfRays 1``, aperture 0.1) of type
 infra-red with the lookup table mazesim's ``e-puck`` profile carries. It also turns its
-DistanceSensor 0.16 rad about the sensor's own z axis, which tilts the ray 9 degrees upward;
-mazesim's rays are level, so a wall at a given horizontal distance reads as if 1.3 % nearer
-than in Webots. Here that cancels: the controller stops by its front sensors' readings, so with
-the tilt the best rear pair reads 79.9986 instead of 80.0000 (same geometry, computed by hand).
+DistanceSensor 0.16 rad about the sensor's own z axis, which tilts the ray 9 degrees upward
+(an imported E-puck's rays tilt so; the ``e-puck`` profile's, checked here, are level, and read a
+wall at a given horizontal distance as if 1.3 % nearer). Here that cancels: the controller stops
+by its front sensors' readings, so with the tilt it stops 0.7 mm nearer and the best rear pair
+reads 80.06 instead of 80.00, still below the controller's 82.2.
 """
 
 from __future__ import annotations
@@ -109,3 +110,17 @@ def test_forty_seven_fast_steps_turn_the_e_puck_past_the_half_turn() -> None:
     # Past the half turn ps3 looks beside the box (free space) and ps4 nearly straight at it.
     assert ps[3] == pytest.approx(67.19, abs=0.01)
     assert ps[4] > FRONT_STOP_THRESHOLD
+
+
+def test_the_proto_s_tilted_rays_leave_the_rear_pair_below_the_threshold_too() -> None:
+    tilted = mazesim.RobotProfile.builtin("e-puck").with_infrared_elevation(0.16)
+    sim = Simulator(_box_ahead(), robot=tilted, noise=False)
+    x = _front_stop(sim)
+    assert x == pytest.approx(0.6724, abs=2e-4)
+    best = 0.0
+    for tenth in range(1700, 1901):
+        sim.set_pose(x, 0.0, math.radians(tenth / 10))
+        ps = sim.distance_sensors()
+        best = max(best, float(min(ps[3], ps[4])))
+    assert best == pytest.approx(80.06, abs=0.05)
+    assert best < REAR_ALIGN_THRESHOLD

@@ -6,7 +6,10 @@ from __future__ import annotations
 
 import functools
 import http.server
+import json
 import shutil
+import subprocess
+import sys
 import threading
 from collections.abc import Iterator, Mapping
 from pathlib import Path
@@ -227,6 +230,35 @@ def test_unreachable_floor_texture_url_is_a_warning_naming_it(tmp_path: Path) ->
     assert len(about) == 1, about
     assert f"{closed}/gone.png: cannot be downloaded" in about[0]
     assert about[0].endswith("the floor is left bare")
+
+
+def test_a_run_says_at_its_start_which_floor_texture_it_could_not_download(
+    tmp_path: Path,
+) -> None:
+    closed = next(_serve(tmp_path))
+    (tmp_path / "worlds").mkdir()
+    (tmp_path / "worlds" / "line.wbt").write_text(
+        "#VRML_SIM R2023b utf8\nRectangleArena { floorAppearance PBRAppearance { "
+        f'baseColorMap ImageTexture {{ url [ "{closed}/line.png" ] }} }} }}\nE-puck {{ }}\n'
+    )
+    (tmp_path / "still.py").write_text("from controller import Robot\nRobot().step(32)\n")
+    result = subprocess.run(
+        [sys.executable, "-m", "mazesim", "webots", "run", "still.py", "--world"]
+        + ["worlds/line.wbt", "--seconds", "0.1", "--out", "out", "--no-progress"],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=False,
+    )
+    assert result.returncode == 0, result.stderr
+    statement = (
+        f"the floor texture {closed}/line.png, which cannot be downloaded here and is not in "
+        "the download cache (no network): the floor's paint is left out"
+    )
+    assert f"mazesim: missing: {statement}" in result.stderr.splitlines()
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert summary["missing_features"] == [statement]
 
 
 def test_balls_and_barrels_stand_in_with_their_documented_geometry(

@@ -272,6 +272,7 @@ def test_a_tk_window_without_a_display_is_named_before_the_run(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     monkeypatch.delenv("DISPLAY", raising=False)
+    monkeypatch.setattr("mazesim.webots.virtual_display.xvfb_program", lambda: None)
     (tmp_path / "view.py").write_text("from turtle import *\n")
     (tmp_path / "mouse.py").write_text("import view\nfrom controller import Robot\n")
     prepared = prepare_controller(str(tmp_path / "mouse.py"))
@@ -285,6 +286,7 @@ def test_a_tk_controller_without_a_display_is_not_started(
 ) -> None:
     # Started, it would wait forever for the thread whose window Tk refuses.
     monkeypatch.delenv("DISPLAY", raising=False)
+    monkeypatch.setattr("mazesim.webots.virtual_display.xvfb_program", lambda: None)
     (tmp_path / "mouse.py").write_text(
         "import threading, turtle\nfrom controller import Robot\n"
         "ready = threading.Event()\n"

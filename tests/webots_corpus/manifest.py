@@ -17,6 +17,9 @@ it. Each ``[[project]]`` table has these fields:
 - ``broken``: empty when the project works in Webots as published, else why it does not;
 - optional ``known``: what is known of why a run here does not show the expected facts, with
   its figures (a row that does not pass ends its cause with it);
+- optional ``exports``: repository paths the run needs besides the project's folder and its
+  controllers' (``""``: the whole repository), such as the library a controller's own
+  ``CMakeLists.txt`` builds from the repository's root;
 - optional ``packages``: third-party Python packages its controller imports (for the reader: the
   run itself says at its start which of them are missing); ``keys``: a keyboard script
   (``time_s key [duration_s]`` lines, ``mazesim webots run --keys``).
@@ -66,6 +69,7 @@ class Project:
     known: str = ""
     packages: tuple[str, ...] = ()
     keys: tuple[str, ...] = field(default=())
+    exports: tuple[str, ...] = ()
 
     @property
     def root(self) -> str:
@@ -108,6 +112,9 @@ def _check(index: int, table: dict[str, Any]) -> Project:
         values = table.get(key, [])
         if not isinstance(values, list) or not all(isinstance(v, str) and v for v in values):
             raise ManifestError(f"{where}: expected {key} a list of strings, found {values!r}")
+    exports = table.get("exports", [])
+    if not isinstance(exports, list) or not all(isinstance(v, str) for v in exports):
+        raise ManifestError(f"{where}: expected exports a list of paths, found {exports!r}")
     broken = table.get("broken", "")
     if not isinstance(broken, str):
         raise ManifestError(f"{where}: expected broken a string, found {broken!r}")
@@ -137,6 +144,7 @@ def _check(index: int, table: dict[str, Any]) -> Project:
         known=known,
         packages=tuple(table.get("packages", [])),
         keys=tuple(table.get("keys", [])),
+        exports=tuple(exports),
     )
 
 

@@ -71,6 +71,13 @@ def test_a_broken_field_is_required_and_facts_must_parse() -> None:
             parse_manifest(PROJECT_TOML.replace(old, replacements[old]))
     with pytest.raises(ManifestError, match="found twice"):
         parse_manifest(PROJECT_TOML + PROJECT_TOML)
+    # Paths a project's build needs besides its folders: "" is the whole repository.
+    exported = parse_manifest(
+        PROJECT_TOML.replace('broken = ""\n', 'broken = ""\nexports = [""]\n')
+    )
+    assert exported[0].exports == ("",)
+    with pytest.raises(ManifestError, match="expected exports a list of paths"):
+        parse_manifest(PROJECT_TOML.replace('broken = ""\n', 'broken = ""\nexports = "src"\n'))
 
 
 def _outcome(path: list[tuple[float, float]], **overrides: Any) -> Outcome:

@@ -136,3 +136,98 @@ fn sharp_sensors_read_volts_and_convert_back_to_cm() {
     assert!((mazesim_core::sharp_volts_to_cm(2.01).unwrap() - 6.0).abs() < 1e-6);
     assert!(mazesim_core::sharp_volts_to_cm(f64::NAN).is_err());
 }
+
+/// A simulator of the e-puck whose infra-red rays rise `elevation` radians.
+fn tilted(world: Arc<World>, elevation: f64) -> mazesim_core::Simulator {
+    use mazesim_core::{RobotProfile, SimConfig, Simulator};
+    let profile = RobotProfile::builtin("e-puck")
+        .unwrap()
+        .with_infrared_elevation(elevation)
+        .unwrap();
+    let config = SimConfig {
+        seed: 1,
+        noise: false,
+        control_step: None,
+    };
+    Simulator::new(world, Arc::new(profile), config).unwrap()
+}
+
+#[test]
+fn a_tilted_ray_reads_a_wall_as_far_as_its_slant_to_it() {
+    // Webots' E-puck PROTO tilts its rays 0.16 rad: a wall 0.03 m away across the floor is met
+    // 0.03 / cos(0.16) = 0.030386 m along the ray.
+    let e = 0.16f64;
+    for (sensor, index) in [(PS0, 0usize), (PS7, 7usize)] {
+        for d in [0.01, 0.03, 0.05] {
+            let level = sim(wall_in_front(sensor, d, 1.0), "e-puck", 1, false);
+            let tilt = tilted(wall_in_front(sensor, d, 1.0), e);
+            let (flat, up) = (
+                level.distance_sensors()[index] as f64,
+                tilt.distance_sensors()[index] as f64,
+            );
+            let expected = lut(d / e.cos());
+            assert!(
+                (up - expected).abs() <= 0.005 * expected,
+                "{up} vs {expected}"
+            );
+            assert!(
+                up < flat,
+                "ps{index} at {d}: the slant reads farther ({up} vs {flat})"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_tilted_ray_reaches_less_far_across_the_floor() {
+    // The 0.07 m ray tilted 0.5 rad reaches 0.0614 m across the floor: a wall 0.065 m away is
+    // out of its reach (the last row), where the level ray still meets it.
+    let world = wall_in_front(PS0, 0.065, 1.0);
+    let level = sim(world.clone(), "e-puck", 1, false).distance_sensors()[0];
+    let tilt = tilted(world, 0.5).distance_sensors()[0];
+    assert!(level > 67.19 + 1.0, "{level}");
+    assert_eq!(tilt, 67.19f32);
+}
+
+#[test]
+fn a_level_profile_is_unchanged_by_a_zero_elevation() {
+    use mazesim_core::RobotProfile;
+    let plain = RobotProfile::builtin("e-puck").unwrap();
+    let zero = plain.with_infrared_elevation(0.0).unwrap();
+    assert_eq!(format!("{zero:?}"), format!("{plain:?}"));
+    assert!(!format!("{plain:?}").contains("elevation"));
+    let world = wall_in_front(PS7, 0.02, 1.0);
+    let a = sim(world.clone(), "e-puck", 1, false)
+        .distance_sensors()
+        .to_vec();
+    let b = tilted(world, 0.0).distance_sensors().to_vec();
+    assert_eq!(a, b);
+}
+
+#[test]
+fn elevations_round_trip_through_toml_and_bad_ones_are_refused() {
+    use mazesim_core::RobotProfile;
+    let tilt = RobotProfile::builtin("e-puck")
+        .unwrap()
+        .with_infrared_elevation(0.16)
+        .unwrap();
+    let text = tilt.to_toml().unwrap();
+    assert!(text.contains("elevation = 0.16"), "{text}");
+    assert_eq!(RobotProfile::from_toml(&text, "t.toml").unwrap(), tilt);
+    for bad in [-0.1, 1.2, f64::NAN] {
+        let err = RobotProfile::builtin("e-puck")
+            .unwrap()
+            .with_infrared_elevation(bad)
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("infra-red elevation"), "{err}");
+    }
+    let steep = text.replacen("elevation = 0.16", "elevation = 1.5", 1);
+    let err = RobotProfile::from_toml(&steep, "t.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("distance_sensors[0].elevation") && err.contains("1.5"),
+        "{err}"
+    );
+}

@@ -280,6 +280,7 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
     from mazesim.cli.demo import speed_summary
     from mazesim.cli.webots_world import RobotPaths, write_paths_table
     from mazesim.plotting import save_robot_paths_png, save_trajectory_png
+    from mazesim.webots.importer import undownloaded_textures
     from mazesim.webots.keyboard import read_keys
     from mazesim.webots.requirements import prepare_controller
     from mazesim.webots.runner import controller_file, run_controller
@@ -299,6 +300,8 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
     controller = os.path.splitext(os.path.basename(file))[0]
     world, report, scene = _load_world(args.world, args.strict, controller)
     prepared = prepare_controller(file)
+    if report is not None:
+        prepared.missing += undownloaded_textures(list(report.get("warnings", [])))
     for note in prepared.notes:
         print(f"mazesim: {note}", file=sys.stderr)
     for missing in prepared.missing:

@@ -13,6 +13,7 @@ metres and radians, world frame, z up.
 from __future__ import annotations
 
 import os
+import re
 from collections.abc import Callable, Mapping
 from typing import Any, Literal, TypedDict, Union, cast
 
@@ -35,6 +36,7 @@ __all__ = [
     "import_wbt",
     "import_wbt_text",
     "robot_warnings",
+    "undownloaded_textures",
 ]
 
 #: Largest world file the PROTO engine reads (a larger one goes to the core, which refuses it).
@@ -212,6 +214,26 @@ def _downloaded(texture: dict[str, Any], problems: list[str]) -> list[tuple[str,
             problems.append(f"{texture['owner']}: floor texture: {error}; the floor is left bare")
             return []
     return []
+
+
+#: What a warning of :func:`_downloaded` holds between the owner and the download's failure.
+_UNDOWNLOADED = re.compile(r": floor texture: (https?://\S+?): cannot be downloaded \(")
+
+
+def undownloaded_textures(warnings: list[str]) -> list[str]:
+    """What an import's ``warnings`` say the world needs from the network and did not get: one
+    statement for each floor texture given by an http(s) URL that could neither be downloaded
+    nor found in the download cache (the run says them at its start, with what the
+    controller lacks)."""
+    statements = []
+    for warning in warnings:
+        found = _UNDOWNLOADED.search(warning)
+        if found is not None:
+            statements.append(
+                f"the floor texture {found.group(1)}, which cannot be downloaded here and is not "
+                f"in the download cache (no network): the floor's paint is left out"
+            )
+    return statements
 
 
 def _with_floor(

@@ -20,6 +20,7 @@ the radio and the supervisor see them all.
 
 from __future__ import annotations
 
+import contextlib
 import multiprocessing
 import os
 import re
@@ -38,6 +39,7 @@ from mazesim.webots.controller_process import ControllerJob, answer, controller_
 from mazesim.webots.radio import Radio
 from mazesim.webots.shared_world import RobotView, shared_simulator
 from mazesim.webots.simulation import robot_profile_name
+from mazesim.webots.virtual_display import virtual_display, window_environment
 
 __all__ = ["Fleet", "RobotRun", "StepObserver", "WorldRun", "controller_of", "run_world"]
 
@@ -234,12 +236,17 @@ def run_world(
             jobs[index] = ControllerJob(
                 world_path, index, int(robot["line"]), file, profile, seconds, noise
             )
-    _say_what_is_missing(runs)
+    drawn, environment = _say_what_is_missing(runs)
     fleet = Fleet(robots, simulators)
     movable = [robot.get("profile") is not None for robot in robots]
     started = time.perf_counter()
     watch = None if observer is None else lambda *state: observer(world, runs, *state)
-    steps = _lockstep(jobs, simulators, movable, fleet, runs, watch)
+    # The controllers' processes inherit the display their windows need.
+    with contextlib.ExitStack() as display:
+        if drawn:
+            display.enter_context(virtual_display())
+        display.enter_context(window_environment(environment))
+        steps = _lockstep(jobs, simulators, movable, fleet, runs, watch)
     if watch is not None:
         watch(simulators, None)
     for run, simulator in zip(runs, simulators):
@@ -296,10 +303,11 @@ def _own_simulator(
     return Simulator(bare, robot=profile, seed=seed, noise=noise)
 
 
-def _say_what_is_missing(runs: list[RobotRun]) -> None:
+def _say_what_is_missing(runs: list[RobotRun]) -> tuple[bool, dict[str, str]]:
     """Prepares each robot's controller once (a C or C++ one is built into the cache, which its
     process then takes) and says at the run's start what each one lacks, as a run of one robot
-    does; the list is kept on its robot's run."""
+    does; the list is kept on its robot's run. Returns whether a controller's Tk windows need
+    a virtual display, and the environment the controllers' windows need."""
     from mazesim.webots.requirements import prepare_controller
 
     prepared: dict[str, Any] = {}
@@ -313,6 +321,10 @@ def _say_what_is_missing(runs: list[RobotRun]) -> None:
         run.missing = tuple(prepared[run.controller].missing)
         for missing in run.missing:
             print(f"mazesim: missing: robot {run.name!r}: {missing}", file=sys.stderr)
+    environment: dict[str, str] = {}
+    for done in prepared.values():
+        environment.update(done.environment)
+    return any(done.virtual_display for done in prepared.values()), environment
 
 
 def _lockstep(

@@ -32,6 +32,7 @@ from mazesim._paths import MAX_TEXT_CHARACTERS, read_input
 from mazesim.errors import ControllerBuildError, MazesimError, MissingDependencyError
 from mazesim.webots import native_link
 from mazesim.webots import simulation as simulations
+from mazesim.webots.cmake_build import cmake_build, cmake_program
 from mazesim.webots.termination import GRACE_SECONDS
 
 __all__ = ["CAPI", "Build", "build", "cache_folder", "drive", "native_robot"]
@@ -303,9 +304,25 @@ def _defined_twice(errors: str, main: Path) -> list[str]:
     return sorted(name for name in names if name != main.name and (main.parent / name).is_file())
 
 
+def _project_cmake(main: Path, c_compiler: str) -> Build | None:
+    """The controller built by its project's ``CMakeLists.txt`` beside it
+    (:mod:`mazesim.webots.cmake_build`), or None when there is none, or no ``cmake`` or archiver
+    to build it with."""
+    if not (main.parent / "CMakeLists.txt").is_file() or cmake_program() is None:
+        return None
+    archive = [path for path in _library(main, c_compiler) if path.suffix == ".a"]
+    if not archive:
+        return None
+    program, note = cmake_build(main.parent, cache_folder(), CAPI, archive[0])
+    return Build(program, note=note)
+
+
 def build(source: str | os.PathLike[str]) -> Build:
     """Builds the C or C++ controller whose main file is ``source`` (with its folder's other
-    ``.c``, and for C++ ``.cpp``, ``.cc`` and ``.cxx``, files), or takes it from the cache.
+    ``.c``, and for C++ ``.cpp``, ``.cc`` and ``.cxx``, files), or takes it from the cache. One
+    that includes headers of its project found neither in its folder nor on the system is built
+    by the project's ``CMakeLists.txt`` in its folder when there is one and ``cmake`` is
+    installed (:mod:`mazesim.webots.cmake_build`).
 
     Raises:
         MissingDependencyError: No compiler.
@@ -345,6 +362,9 @@ def build(source: str | os.PathLike[str]) -> Build:
     lacking = target.with_name("missing.json")
     if lacking.is_file():
         known = json.loads(lacking.read_text(encoding="utf-8"))
+        built = _project_cmake(main, c_compiler) if known["elsewhere"] else None
+        if built is not None:
+            return built
         note = f"built earlier without success, as the cache {target.parent} says"
         return Build(None, known["missing"], known["headers"], note, known["elsewhere"])
     target.parent.mkdir(parents=True, exist_ok=True)
@@ -368,6 +388,9 @@ def build(source: str | os.PathLike[str]) -> Build:
         absent = sorted(set(_NO_HEADER.findall(done.stderr)))
         elsewhere = sorted(set(_NO_PROJECT_HEADER.findall(done.stderr)))
         compiler = command[0]
+        built = _project_cmake(main, c_compiler) if elsewhere and not missing else None
+        if built is not None:
+            return built
         if missing or absent or elsewhere:
             known = {"missing": missing, "headers": absent, "elsewhere": elsewhere}
             with atomic_file(lacking) as handle:

@@ -27,6 +27,7 @@ __all__ = [
     "missing_packages",
     "motor_limits",
     "prepare_controller",
+    "turn_in_place_speed",
 ]
 
 #: Controller languages by file suffix.
@@ -34,9 +35,24 @@ LANGUAGES = {".py": "python", ".c": "c", ".cpp": "cpp", ".cc": "cpp", ".cxx": "c
 #: Most of a controller's own modules read for their imports.
 MAX_OWN_MODULES = 200
 #: The statement for a controller that opens Tk windows where there is no display.
-NO_DISPLAY = "a display for the controller's Tk windows (tkinter, turtle; $DISPLAY is not set)"
+NO_DISPLAY = (
+    "a display for the controller's Tk windows (tkinter, turtle; $DISPLAY is not set, and "
+    "Xvfb, which would draw them on a virtual display, is not installed)"
+)
+#: What the run says of a controller whose Tk windows it draws on a virtual display.
+VIRTUAL_DISPLAY_NOTE = (
+    "its Tk windows (tkinter, turtle) are drawn on a virtual display (Xvfb) and not shown: "
+    "$DISPLAY is not set"
+)
 #: Modules that open Tk windows.
 TK_MODULES = {"tkinter", "turtle"}
+#: Modules that open Qt windows.
+QT_MODULES = {"PySide6", "PySide2", "PyQt6", "PyQt5"}
+#: What the run says of a controller whose Qt windows it draws off screen.
+QT_OFFSCREEN_NOTE = (
+    "its Qt windows are drawn off screen (QT_QPA_PLATFORM=offscreen) and not shown: $DISPLAY "
+    "is not set"
+)
 #: Calls that limit a motor's acceleration or torque (Python and C API; Webots reference manual,
 #: Motor), which mazesim does not model.
 _MOTOR_LIMITS = re.compile(
@@ -49,6 +65,22 @@ MOTOR_LIMITS = (
     "motor acceleration and torque limits ({calls}): mazesim's wheels reach their commanded "
     "speed at once, as Webots' motors do by default; only the floor's friction limits how fast "
     "an imported E-puck's body starts"
+)
+#: Wheel speed (rad/s) of a turn in place above which Webots' E-puck has been seen to turn
+#: more slowly than its wheels' kinematics say. Controllers tuned in Webots agree with the
+#: 0.05685 m wheel distance at 0.2 x 6.28 rad/s (a half turn timed in 111 steps of 32 ms),
+#: but at 3.1-3.2 rad/s they find about 7.5 % less turn: 47 steps of 32 ms at 3.14 rad/s that
+#: their author ends short of the half turn (176 degrees at 2.04 rad/s; the wheel distance gives
+#: 190), 24 steps for a right angle (90 degrees; the wheel distance gives 97), and an
+#: encoder-timed half turn at 3.2 rad/s that needs a 0.063 m wheel distance with 0.0205 m wheels.
+FAST_TURN_IN_PLACE = 1.26
+#: The statement for a Python controller that turns in place faster than that.
+TURN_SLIP = (
+    "Webots' wheel slip when an E-puck turns in place fast (the controller sets its wheels to "
+    "-{speed:g} and {speed:g} rad/s): mazesim turns it at the rate its wheels give for a "
+    "0.05685 m wheel distance, as Webots does at 1.26 rad/s; controllers tuned in Webots at "
+    "3.1-3.2 rad/s find about 7.5 % less turn (47 steps of 32 ms at 3.14 rad/s for nearly a "
+    "half turn, 24 for a right angle), so a turn timed in steps goes farther round here"
 )
 #: Source files of each language read for those calls, beside the controller's main file.
 _SOURCES = {"python": (".py",), "c": (".c", ".h"), "cpp": (".cpp", ".cc", ".cxx", ".hpp", ".h")}
@@ -78,6 +110,9 @@ class PreparedController:
         runnable: Whether it can be started at all.
         program: A C controller's built program.
         notes: What was done to prepare it (a C build and where it is cached).
+        virtual_display: Whether its run draws its Tk windows on a virtual display
+            (:mod:`mazesim.webots.virtual_display`): it opens some and ``$DISPLAY`` is not set.
+        environment: Environment variables its run sets (Qt's windows drawn off screen).
     """
 
     file: str
@@ -86,6 +121,8 @@ class PreparedController:
     runnable: bool = True
     program: str | None = None
     notes: list[str] = field(default_factory=list)
+    virtual_display: bool = False
+    environment: dict[str, str] = field(default_factory=dict)
 
 
 def _guarded(tree: ast.AST) -> set[int]:
@@ -216,11 +253,78 @@ def motor_limits(file: str, language: str) -> list[str]:
     return sorted(found)
 
 
+def _constant(node: ast.AST, known: dict[str, float]) -> float | None:
+    """The value of a constant expression of numbers and ``known`` names (+, -, *, /), or
+    None."""
+    if isinstance(node, ast.Constant) and isinstance(node.value, (int, float)):
+        return None if isinstance(node.value, bool) else float(node.value)
+    if isinstance(node, ast.Name):
+        return known.get(node.id)
+    if isinstance(node, ast.UnaryOp) and isinstance(node.op, (ast.USub, ast.UAdd)):
+        inner = _constant(node.operand, known)
+        return None if inner is None else (-inner if isinstance(node.op, ast.USub) else inner)
+    if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Add, ast.Sub, ast.Mult, ast.Div)):
+        left, right = _constant(node.left, known), _constant(node.right, known)
+        if left is None or right is None:
+            return None
+        if isinstance(node.op, ast.Add):
+            return left + right
+        if isinstance(node.op, ast.Sub):
+            return left - right
+        if isinstance(node.op, ast.Mult):
+            return left * right
+        return left / right if right != 0.0 else None
+    return None
+
+
+def _velocity(statement: ast.stmt, known: dict[str, float]) -> float | None:
+    """The wheel speed a ``motor.setVelocity(E)`` statement sets, when its constants give it."""
+    if not isinstance(statement, ast.Expr) or not isinstance(statement.value, ast.Call):
+        return None
+    call = statement.value
+    if not (isinstance(call.func, ast.Attribute) and call.func.attr == "setVelocity"):
+        return None
+    return _constant(call.args[0], known) if len(call.args) == 1 else None
+
+
+def turn_in_place_speed(path: str) -> float | None:
+    """The fastest turn in place a Python controller file commands: a wheel speed ``v`` that
+    two ``setVelocity`` statements of one block set as ``-v`` and ``v``, as its module-level
+    constants give them (rad/s); None when it commands none."""
+    try:
+        tree = ast.parse(read_input(path, MAX_TEXT_CHARACTERS, "the controller"))
+    except (SyntaxError, ValueError, OSError):
+        return None
+    known: dict[str, float] = {}
+    for statement in tree.body:
+        if isinstance(statement, ast.Assign) and len(statement.targets) == 1:
+            target = statement.targets[0]
+            value = _constant(statement.value, known)
+            if isinstance(target, ast.Name) and value is not None:
+                known[target.id] = value
+    fastest: float | None = None
+    for node in ast.walk(tree):
+        for block in (getattr(node, "body", None), getattr(node, "orelse", None)):
+            if not isinstance(block, list):
+                continue
+            speeds = {_velocity(statement, known) for statement in block}
+            turns = [v for v in speeds if v is not None and v > 0.0 and -v in speeds]
+            if turns:
+                fastest = max([*turns, *([fastest] if fastest is not None else [])])
+    return fastest
+
+
 def _project_build(file: str) -> str:
     """The build files of a compiled controller's folder (``CMakeLists.txt``, ``Makefile``)."""
     folder = os.path.dirname(os.path.abspath(file))
     found = [name for name in BUILD_FILES if os.path.isfile(os.path.join(folder, name))]
-    return "its own " + " and ".join(found) if found else "a build of its own"
+    said = "its own " + " and ".join(found) if found else "a build of its own"
+    if "CMakeLists.txt" in found:
+        from mazesim.webots.cmake_build import cmake_program
+
+        if cmake_program() is None:
+            said += ", which cmake, not installed here, would run"
+    return said
 
 
 def _includes_display(file: str) -> bool:
@@ -273,11 +377,25 @@ def prepare_controller(file: str) -> PreparedController:
         names = missing_packages(file)
         if names:
             prepared.missing.append(f"Python package(s) not installed: {', '.join(names)}")
-        if TK_MODULES & imported_names(file) and not os.environ.get("DISPLAY"):
-            # Tk raises at its first window; a controller that waits for the thread that
-            # draws would never return, so it is not started.
-            prepared.missing.append(NO_DISPLAY)
-            prepared.runnable = False
+        imported = imported_names(file)
+        if QT_MODULES & imported and not os.environ.get("DISPLAY"):
+            if "QT_QPA_PLATFORM" not in os.environ:
+                prepared.notes.append(QT_OFFSCREEN_NOTE)
+                prepared.environment["QT_QPA_PLATFORM"] = "offscreen"
+        if TK_MODULES & imported and not os.environ.get("DISPLAY"):
+            from mazesim.webots.virtual_display import xvfb_program
+
+            if xvfb_program() is not None:
+                prepared.notes.append(VIRTUAL_DISPLAY_NOTE)
+                prepared.virtual_display = True
+            else:
+                # Tk raises at its first window; a controller that waits for the thread that
+                # draws would never return, so it is not started.
+                prepared.missing.append(NO_DISPLAY)
+                prepared.runnable = False
+        speed = turn_in_place_speed(file)
+        if speed is not None and speed > FAST_TURN_IN_PLACE:
+            prepared.missing.append(TURN_SLIP.format(speed=round(speed, 4)))
     calls = motor_limits(file, language)
     if calls:
         prepared.missing.append(MOTOR_LIMITS.format(calls=", ".join(calls)))

@@ -8,6 +8,7 @@ if it was not) until the controller returns or ``Robot.step`` reports the end.
 
 from __future__ import annotations
 
+import contextlib
 import io
 import os
 import sys
@@ -28,6 +29,7 @@ from mazesim.webots import simulation as simulations
 from mazesim.webots.keyboard import KeyScript
 from mazesim.webots.requirements import PreparedController, prepare_controller
 from mazesim.webots.scene import Scene
+from mazesim.webots.virtual_display import virtual_display, window_environment
 
 __all__ = [
     "EXIT_CONTROLLER_ERROR",
@@ -226,7 +228,11 @@ def run_controller(
     started = time.perf_counter()
     status, error = 0, ""
     watchdog = termination.Watchdog(simulation, controller_module.ControllerStopped, stall_seconds)
+    display = contextlib.ExitStack()
     try:
+        if prepared.virtual_display:
+            display.enter_context(virtual_display())
+        display.enter_context(window_environment(prepared.environment))
         os.chdir(folder)
         # Compiled with its real file name, so that tracebacks show its own lines.
         code = compile(source, file, "exec")
@@ -249,6 +255,7 @@ def run_controller(
         status = EXIT_CONTROLLER_ERROR
         error = _controller_traceback(failure)
     finally:
+        display.close()
         if saved_home is None:
             os.environ.pop("WEBOTS_HOME", None)
         _forget_own_modules(saved_module_names, sys.path, saved_path, folder, saved_cwd)

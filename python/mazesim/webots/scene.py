@@ -47,6 +47,10 @@ _NORTH = re.compile(r"\bnorthDirection\s+" + _NUMBER + r"\s+" + _NUMBER + r"\s+"
 #: Node types that are robots.
 ROBOT_TYPES = {"E-puck", "Robot", "e-puck2", "Epuck", "EPuck", "E-puck2"}
 #: The E-puck PROTOs, whose hidden joint positions are their wheels'.
+#: The upward tilt of the E-puck PROTO's proximity sensor rays, radians: its
+#: ``E-puckDistanceSensor`` holds its DistanceSensor at ``rotation 0 0 1 0.16``, about the axis
+#: the mounts lay horizontal (Webots 8.6 to R2025a), so each ray rises 9.17 degrees.
+EPUCK_IR_ELEVATION = 0.16
 EPUCK_TYPES = {"E-puck", "E-puck2", "e-puck2", "Epuck", "EPuck"}
 #: The base node of the common PROTOs (``Node.getBaseTypeName``); a built-in node is its own.
 BASE_TYPES = {
@@ -133,6 +137,10 @@ class Scene:
             with physics (not ``kinematic TRUE``) on HingeJoint wheels (a file of R2018a or
             later; before, a DifferentialWheels robot): its body then starts and stops as its
             wheels' friction allows (:mod:`mazesim.webots.traction`); None otherwise.
+        infrared_elevation: How far the robot's proximity sensor rays rise above the floor's
+            plane, radians: :data:`EPUCK_IR_ELEVATION` for an ``E-puck`` PROTO node (its
+            ``E-puckDistanceSensor`` turns each DistanceSensor 0.16 rad about the mount's z
+            axis, since Webots 8 at least), 0 otherwise (level rays).
         y_up_devices: Whether the robot's PROTOs are Webots' Y-up ones (a file before
             R2022a): an accelerometer, gyro or compass then reads in the device frame x
             right, y up, z back.
@@ -153,6 +161,7 @@ class Scene:
     y_up_devices: bool = False
     wheel_positions: tuple[float, float] = (0.0, 0.0)
     traction_version: str | None = None
+    infrared_elevation: float = 0.0
     ground_sensors_module: bool | None = None
     lights: list[Light] = field(default_factory=list)
     nodes: list[SceneNode] = field(default_factory=list)
@@ -206,6 +215,8 @@ def read_scene(text: str, robot_model: str | None = None, robot_line: int | None
             # The E-puck PROTO's first HingeJoint is its left wheel's, the second its right's.
             scene.wheel_positions = (saved.get(0, 0.0), saved.get(1, 0.0))
             scene.ground_sensors_module = bool(_GROUND_SENSORS_MODULE.search(body))
+        if robot.group(2) == "E-puck":
+            scene.infrared_elevation = EPUCK_IR_ELEVATION
         if robot.group(2) == "E-puck" and _hinge_wheels(year) and not _KINEMATIC.search(own):
             scene.traction_version = "2" if _VERSION_2.search(own) else "1"
     scene.supervisor = bool(_SUPERVISOR.search(own))

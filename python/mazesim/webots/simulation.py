@@ -30,6 +30,7 @@ __all__ = [
     "observing_steps",
     "prepare",
     "release",
+    "robot_profile",
     "robot_profile_name",
 ]
 
@@ -54,6 +55,18 @@ def robot_profile_name(report: Mapping[str, Any] | None) -> str:
     except UnknownNameError:
         return DEFAULT_PROFILE
     return str(name)
+
+
+def robot_profile(report: Mapping[str, Any] | None, scene: Scene | None) -> str | RobotProfile:
+    """The robot profile to simulate for an import report and the world's scene facts: the
+    report's profile (see :func:`robot_profile_name`), its proximity sensors' rays tilted as
+    the scene says (an ``E-puck`` PROTO's rise 0.16 rad); the profile's name when they are
+    level."""
+    name = robot_profile_name(report)
+    elevation = scene.infrared_elevation if scene is not None else 0.0
+    if elevation == 0.0:
+        return name
+    return RobotProfile.builtin(name).with_infrared_elevation(elevation)
 
 
 class RobotSimulation:
@@ -145,7 +158,7 @@ class RobotSimulation:
         self.quit_status: int | None = None
         self.owns_world = simulator is None
         self.simulator = (
-            Simulator(world, robot=robot_profile_name(report), seed=seed, noise=noise)
+            Simulator(world, robot=robot_profile(report, scene), seed=seed, noise=noise)
             if simulator is None
             else simulator
         )

@@ -68,7 +68,7 @@ pub struct SensorModel {
 }
 
 /// A ray sensor on the robot.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Clone, PartialEq)]
 pub struct DistanceSensor {
     /// Device name, e.g. `ps0`.
     pub name: String,
@@ -78,8 +78,46 @@ pub struct DistanceSensor {
     pub heading: f64,
     /// The same direction as a unit vector (cos, sin) in the robot frame.
     pub direction: [f64; 2],
+    /// How far the ray rises above the floor's plane, radians in [0, `MAX_ELEVATION`] (0: a
+    /// level ray). A ray tilted by `e` meets a wall at horizontal distance `h` after `h / cos e`
+    /// of its length, so it reads the wall as that far, and it reaches `cos e` of its length
+    /// across the floor. Webots' E-puck PROTO tilts each proximity sensor's ray by 0.16 rad
+    /// (`E-puckDistanceSensor`: its DistanceSensor turned 0.16 rad about the mount's z axis).
+    pub elevation: f64,
     /// Its model.
     pub model: Arc<SensorModel>,
+}
+
+/// The largest elevation of a distance sensor's ray, radians (60 degrees).
+pub const MAX_ELEVATION: f64 = std::f64::consts::FRAC_PI_3;
+
+impl DistanceSensor {
+    /// What the sensor's ray reads as the distance of a wall met at horizontal distance
+    /// `horizontal`: `horizontal / cos(elevation)` (the same value, untouched, for a level ray).
+    #[inline]
+    pub fn slant_distance(&self, horizontal: f32) -> f32 {
+        if self.elevation == 0.0 {
+            horizontal
+        } else {
+            (horizontal as f64 / self.elevation.cos()) as f32
+        }
+    }
+}
+
+impl std::fmt::Debug for DistanceSensor {
+    /// Written as before elevations existed when the ray is level, so the fingerprints of level
+    /// profiles (which snapshots carry) stay as they were.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let mut out = f.debug_struct("DistanceSensor");
+        out.field("name", &self.name)
+            .field("position", &self.position)
+            .field("heading", &self.heading)
+            .field("direction", &self.direction);
+        if self.elevation != 0.0 {
+            out.field("elevation", &self.elevation);
+        }
+        out.field("model", &self.model).finish()
+    }
 }
 
 /// A downward floor sensor on the robot.
@@ -181,6 +219,8 @@ struct SensorFile {
     position: [Finite; 2],
     #[serde(default, skip_serializing_if = "Option::is_none")]
     heading: Option<Finite>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    elevation: Option<Finite>,
     model: String,
 }
 
@@ -266,13 +306,34 @@ impl RobotProfile {
         let mut distance_sensors = Vec::new();
         for (i, s) in file.distance_sensors.iter().enumerate() {
             let heading = s.heading.map_or(0.0, |h| h.0);
+            let elevation = s.elevation.map_or(0.0, |e| e.0);
+            if !(0.0..=MAX_ELEVATION).contains(&elevation) {
+                return Err(bad(
+                    format!("distance_sensors[{i}].elevation"),
+                    format!(
+                        "expected an elevation in [0, {MAX_ELEVATION:.6}] rad, found {elevation}"
+                    ),
+                ));
+            }
             distance_sensors.push(DistanceSensor {
                 name: s.name.clone(),
                 position: [s.position[0].0, s.position[1].0],
                 heading,
                 direction: [heading.cos(), heading.sin()],
+                elevation,
                 model: find(s, SensorKind::Infrared, "distance_sensors", i)?,
             });
+        }
+        if let Some(extra) = file
+            .ground_sensors
+            .iter()
+            .position(|s| s.elevation.is_some())
+        {
+            return Err(bad(
+                format!("ground_sensors[{extra}].elevation"),
+                "expected no elevation on a ground sensor (it looks straight down), found one"
+                    .into(),
+            ));
         }
         let mut ground_sensors = Vec::new();
         for (i, s) in file.ground_sensors.iter().enumerate() {
@@ -305,6 +366,21 @@ impl RobotProfile {
             .check_noise_scale()
             .map_err(|message| bad("noise_scale".into(), message))?;
         Ok(profile)
+    }
+
+    /// This profile with every distance sensor's ray rising `elevation` radians above the
+    /// floor's plane (see [`DistanceSensor::elevation`]); 0 gives level rays.
+    pub fn with_infrared_elevation(&self, elevation: f64) -> Result<RobotProfile> {
+        if !(elevation.is_finite() && (0.0..=MAX_ELEVATION).contains(&elevation)) {
+            return Err(Error::InvalidArgument(format!(
+                "expected an infra-red elevation in [0, {MAX_ELEVATION:.6}] rad, found {elevation}"
+            )));
+        }
+        let mut tilted = self.clone();
+        for sensor in &mut tilted.distance_sensors {
+            sensor.elevation = elevation;
+        }
+        Ok(tilted)
     }
 
     /// Top speed (m/s) and top turn rate (rad/s) of the robot: its wheel radius times its motor

@@ -52,6 +52,7 @@ impl RobotProfile {
                 name: s.name.clone(),
                 position: s.position.map(Finite),
                 heading: Some(Finite(s.heading)),
+                elevation: (s.elevation != 0.0).then_some(Finite(s.elevation)),
                 model: names.name_of(&s.model),
             })
             .collect();
@@ -62,6 +63,7 @@ impl RobotProfile {
                 name: s.name.clone(),
                 position: s.position.map(Finite),
                 heading: None,
+                elevation: None,
                 model: names.name_of(&s.model),
             })
             .collect();

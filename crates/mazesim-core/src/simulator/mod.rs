@@ -512,6 +512,10 @@ impl Simulator {
         let readings = self.distance_readings.iter_mut();
         let sensors = robot.distance_sensors.iter().zip(&rig.infrared_miss);
         for ((reading, (sensor, &miss)), &hit) in readings.zip(sensors).zip(&self.ray_hits) {
+            let hit = hit.map(|h| RayHit {
+                distance: sensor.slant_distance(h.distance),
+                ..h
+            });
             let rng = noise.then_some(&mut self.rng);
             *reading = infrared_reading_with(&sensor.model, hit, miss, imperfect, rng);
         }

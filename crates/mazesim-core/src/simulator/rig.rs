@@ -23,7 +23,8 @@ thread_local! {
 pub struct Rig {
     /// The profile it was made for.
     pub(super) robot: Arc<RobotProfile>,
-    /// The distance sensors' rays in the robot frame (position, unit direction, length).
+    /// The distance sensors' rays in the robot frame (position, unit direction, length across the
+    /// floor: a tilted ray's length times the cosine of its elevation).
     pub(super) rays: RayFan,
     /// The same rays as plain numbers `[px, py, dx, dy, length]`, cast against movable bodies.
     pub(super) sensor_rays: Vec<[f32; 5]>,
@@ -57,7 +58,11 @@ impl Rig {
             .map(|d| {
                 let [px, py] = d.position;
                 let [dx, dy] = d.direction;
-                let range = d.model.table.max_input();
+                // A tilted ray reaches across the floor cos(elevation) of its length.
+                let mut range = d.model.table.max_input();
+                if d.elevation != 0.0 {
+                    range *= d.elevation.cos();
+                }
                 [px, py, dx, dy, range].map(|v| v as f32)
             })
             .collect();
