@@ -20,8 +20,8 @@ use rayon::ThreadPool;
 
 use crate::error::{Error, Result};
 use crate::limits::{check_count, MAX_ENVS, MAX_THREADS};
-use crate::robot::{RobotProfile, SensorModel};
-use crate::simulator::{Rig, SimConfig, Simulator};
+use crate::robot::RobotProfile;
+use crate::simulator::{Rig, SharedChannels, SimConfig, Simulator};
 use crate::world::World;
 
 /// Environments per chunk of work: enough to amortise taking it from the queue, few enough that
@@ -195,7 +195,9 @@ pub fn check_size(envs: usize, walls: u128) -> Result<()> {
 }
 
 /// The sensing rigs of a batch of `n` envs: one per env of `robots` (or one for all when
-/// `robots` holds one profile), equal profiles sharing one rig. Every profile must have sensors
+/// `robots` holds one profile), equal profiles sharing one rig and the rigs sharing their equal
+/// channel lists (profiles perturbed from copies of one profile read one copy of their sensor
+/// models, which every step of every robot then finds in cache). Every profile must have sensors
 /// to observe, and as many of each kind as the first.
 pub(crate) fn rigs_of(robots: &[Arc<RobotProfile>], n: usize) -> Result<Vec<Arc<Rig>>> {
     if robots.len() != 1 && robots.len() != n {
@@ -213,7 +215,7 @@ pub(crate) fn rigs_of(robots: &[Arc<RobotProfile>], n: usize) -> Result<Vec<Arc<
     }
     let widths = |r: &RobotProfile| (r.distance_sensors.len(), r.ground_sensors.len());
     let mut made: Vec<Arc<Rig>> = Vec::new();
-    let mut models: Vec<Arc<SensorModel>> = Vec::new();
+    let mut channels = SharedChannels::default();
     let mut rigs = Vec::with_capacity(robots.len());
     for (i, robot) in robots.iter().enumerate() {
         if widths(robot) != widths(first) {
@@ -234,7 +236,7 @@ pub(crate) fn rigs_of(robots: &[Arc<RobotProfile>], n: usize) -> Result<Vec<Arc<
         let rig = match same {
             Some(rig) => rig.clone(),
             None => {
-                let rig = Rig::new(share_models(robot, &mut models));
+                let rig = Rig::sharing(robot.clone(), &mut channels);
                 made.push(rig.clone());
                 rig
             }
@@ -242,46 +244,6 @@ pub(crate) fn rigs_of(robots: &[Arc<RobotProfile>], n: usize) -> Result<Vec<Arc<
         rigs.push(rig);
     }
     Ok(rigs)
-}
-
-/// `robot`, its sensor models replaced by the equal ones of `models` (the models of the rigs made
-/// so far, to which it adds its new ones): profiles perturbed from copies of one profile read
-/// one table, which every step of every robot then finds in cache, instead of one copy each.
-fn share_models(
-    robot: &Arc<RobotProfile>,
-    models: &mut Vec<Arc<SensorModel>>,
-) -> Arc<RobotProfile> {
-    let mut shared = None::<RobotProfile>;
-    let mut intern = |model: &Arc<SensorModel>| -> Option<Arc<SensorModel>> {
-        match models
-            .iter()
-            .find(|m| Arc::ptr_eq(m, model) || ***m == **model)
-        {
-            Some(m) if Arc::ptr_eq(m, model) => None,
-            Some(m) => Some(m.clone()),
-            None => {
-                models.push(model.clone());
-                None
-            }
-        }
-    };
-    for (k, sensor) in robot.distance_sensors.iter().enumerate() {
-        if let Some(m) = intern(&sensor.model) {
-            shared
-                .get_or_insert_with(|| (**robot).clone())
-                .distance_sensors[k]
-                .model = m;
-        }
-    }
-    for (k, sensor) in robot.ground_sensors.iter().enumerate() {
-        if let Some(m) = intern(&sensor.model) {
-            shared
-                .get_or_insert_with(|| (**robot).clone())
-                .ground_sensors[k]
-                .model = m;
-        }
-    }
-    shared.map_or_else(|| robot.clone(), Arc::new)
 }
 
 /// Per-step outputs of a batch, one row per environment, in buffers the caller owns.
@@ -492,6 +454,7 @@ impl Batch {
     pub fn bytes_per_env(&self) -> usize {
         let mut worlds = std::collections::HashSet::new();
         let mut rigs = std::collections::HashSet::new();
+        let mut channels = std::collections::HashSet::new();
         let shared: usize = self
             .envs
             .iter()
@@ -502,7 +465,7 @@ impl Batch {
                     0
                 };
                 let rig = if rigs.insert(Arc::as_ptr(env.rig())) {
-                    env.rig().heap_bytes()
+                    env.rig().heap_bytes() + env.rig().channel_bytes(&mut channels)
                 } else {
                     0
                 };
@@ -1040,9 +1003,10 @@ mod tests {
     }
 
     #[test]
-    fn profiles_parsed_apart_share_their_sensor_models_and_step_as_each_alone() {
+    fn profiles_parsed_apart_share_their_sensor_channels_and_step_as_each_alone() {
         // Each robot of a randomised batch is perturbed from its own parse of a profile: the
-        // batch reads one copy of their equal tables, and each steps as in a batch of its own.
+        // batch reads one copy of their equal sensor channels (models and all), each robot its
+        // own rays and imperfections, and each steps as in a batch of its own.
         let world = Arc::new(World::builtin("seed-maze").unwrap());
         let robots: Vec<Arc<RobotProfile>> = (0..3)
             .map(|k| {
@@ -1060,13 +1024,14 @@ mod tests {
         let seeds = [7, 8, 9];
         let mut batch =
             Batch::with_robots(vec![world.clone(); 3], &robots, &seeds, true, None, 2).unwrap();
-        let first = model(batch.envs()[0].robot(), 0);
-        for (env, robot) in batch.envs().iter().zip(&robots) {
-            assert_eq!(**env.robot(), **robot);
-            for k in 0..robot.distance_sensors.len() {
-                assert!(Arc::ptr_eq(&model(env.robot(), k), &first), "sensor {k}");
-            }
+        let first = batch.envs()[0].rig().clone();
+        for (i, (env, robot)) in batch.envs().iter().zip(&robots).enumerate() {
+            assert!(Arc::ptr_eq(env.robot(), robot));
+            assert!(env.rig().shares_channels_with(&first), "env {i}");
+            assert_eq!(Arc::ptr_eq(env.rig(), &first), i == 0, "env {i}");
         }
+        // A rig made alone has channel lists of its own.
+        assert!(!Rig::new(robots[0].clone()).shares_channels_with(&first));
         let actions: Vec<f32> = (0..6).map(|k| 2.0 + (k % 4) as f32).collect();
         assert_each_steps_as_alone(&mut batch, &world, &robots, &seeds, &actions, 40);
     }

@@ -441,7 +441,7 @@ fn step_one(
         if count.steps > 0 {
             task_ended = follow_subtask(count, env.pose());
         }
-        let max_speed = env.robot().max_wheel_speed;
+        let max_speed = env.max_wheel_speed();
         let last = env.wheel_speeds();
         let task = count.task.as_ref().map(|task| (task, env.pose()));
         decision = controller.decide(index, env.distance_sensors(), last, max_speed, stream, task);

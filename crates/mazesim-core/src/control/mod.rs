@@ -100,8 +100,9 @@ impl Controller {
     /// The decision for environment `env` from its distance readings, the wheel speeds of its
     /// last step (`[0, 0]` after a reset), its robot's motor limit `max_speed` (rad/s), its
     /// stream and, for the tabular controller, its running sub-task `task` with its pose if it
-    /// has one.
-    #[inline]
+    /// has one. Inlined into both batch loops that call it once a robot-step (one robot's and
+    /// the swarm's), which two callers had stopped.
+    #[inline(always)]
     pub fn decide(
         &self,
         env: usize,

@@ -91,16 +91,15 @@ pub struct DistanceSensor {
 /// The largest elevation of a distance sensor's ray, radians (60 degrees).
 pub const MAX_ELEVATION: f64 = std::f64::consts::FRAC_PI_3;
 
-impl DistanceSensor {
-    /// What the sensor's ray reads as the distance of a wall met at horizontal distance
-    /// `horizontal`: `horizontal / cos(elevation)` (the same value, untouched, for a level ray).
-    #[inline]
-    pub fn slant_distance(&self, horizontal: f32) -> f32 {
-        if self.elevation == 0.0 {
-            horizontal
-        } else {
-            (horizontal as f64 / self.elevation.cos()) as f32
-        }
+/// What a ray rising `elevation` radians reads as the distance of a wall met at horizontal
+/// distance `horizontal`: `horizontal / cos(elevation)` (the same value, untouched, for a level
+/// ray).
+#[inline]
+pub fn slant_distance(elevation: f64, horizontal: f32) -> f32 {
+    if elevation == 0.0 {
+        horizontal
+    } else {
+        (horizontal as f64 / elevation.cos()) as f32
     }
 }
 

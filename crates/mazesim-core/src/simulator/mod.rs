@@ -6,7 +6,7 @@ mod shared_scene;
 mod snapshot;
 
 pub use neighbours::{Neighbour, Others, ROBOT_CONTACT_GAP, ROBOT_REFLECTANCE};
-pub use rig::Rig;
+pub use rig::{Rig, SharedChannels};
 pub use shared_scene::{move_in_scene, place_in_scene, share_scene, SceneStep};
 
 use std::sync::Arc;
@@ -16,8 +16,8 @@ use crate::error::{Error, Result};
 use crate::limits::{self, MAX_PHYSICS_STEPS_PER_CONTROL_STEP};
 use crate::physics::Body;
 use crate::rng::Rng;
-use crate::robot::RobotProfile;
-use crate::sensors::{infrared_reading_with, GroundReader, SensorImperfections};
+use crate::robot::{slant_distance, RobotProfile};
+use crate::sensors::{infrared_reading_with, GroundReader};
 use crate::world::{Goal, NearbyWalls, RayHit, World};
 
 /// A gap to a wall below this (metres) counts as touching it.
@@ -94,8 +94,7 @@ impl Default for SimConfig {
 /// A robot in a world.
 pub struct Simulator {
     world: Arc<World>,
-    robot: Arc<RobotProfile>,
-    /// The robot's sensing set-up, shared with the other simulators of a batch.
+    /// What a step reads of the robot, shared with the other simulators of its profile.
     rig: Arc<Rig>,
     config: SimConfig,
     physics_steps: u32,
@@ -175,7 +174,6 @@ impl Simulator {
             dt as f32,
         );
         let mut sim = Simulator {
-            rig,
             tracker: CrossingTracker::new(),
             crossings: Vec::new(),
             last_crossing: 0,
@@ -190,7 +188,7 @@ impl Simulator {
                 .collect(),
             ground_readings: vec![0.0; robot.ground_sensors.len()],
             world,
-            robot,
+            rig,
             config,
             physics_steps: ratio.round() as u32,
             dt,
@@ -262,13 +260,13 @@ impl Simulator {
 
     /// Whether `set_start(x, y, yaw)` would accept the pose (it changes nothing).
     pub fn check_start(&self, x: f64, y: f64, yaw: f64) -> Result<()> {
-        check_free(&self.world, &self.robot, "start pose", [x, y, yaw])
+        check_free(&self.world, &self.rig.robot, "start pose", [x, y, yaw])
     }
 
     /// Moves the robot to a pose (x, y, yaw), at rest; sensors are read there. Time and counters go on.
     /// The pose must lie within the limits (`crate::limits`) and leave the body clear of every wall.
     pub fn set_pose(&mut self, x: f64, y: f64, yaw: f64) -> Result<()> {
-        check_free(&self.world, &self.robot, "pose", [x, y, yaw])?;
+        check_free(&self.world, &self.rig.robot, "pose", [x, y, yaw])?;
         self.place([x as f32, y as f32, yaw as f32]);
         self.sense();
         Ok(())
@@ -282,7 +280,7 @@ impl Simulator {
             self.body = Body::new(
                 self.world.solid_walls(),
                 self.world.bodies(),
-                self.robot.body_radius as f32,
+                self.rig.drivetrain.body_radius,
                 pose,
                 self.dt as f32,
             );
@@ -299,15 +297,14 @@ impl Simulator {
 
     /// World position of the barcode-reading ground sensor.
     fn barcode_sensor_position(&self) -> Option<[f64; 2]> {
-        let sensor = &self.robot.ground_sensors[self.rig.barcode_sensor?];
+        let (_, [px, py]) = self.rig.barcode_sensor?;
         let [x, y, _] = self.pose.map(|v| v as f64);
         let [s, c] = self.heading.map(|v| v as f64);
-        let [px, py] = sensor.position;
         Some([x + c * px - s * py, y + s * px + c * py])
     }
 
     fn update_contact(&mut self) {
-        let r = self.robot.body_radius as f32;
+        let r = self.rig.drivetrain.body_radius;
         let gap = self
             .world
             .wall_index()
@@ -323,7 +320,7 @@ impl Simulator {
                 "expected a finite {which} wheel speed in rad/s, found {w}"
             )));
         }
-        let m = self.robot.max_wheel_speed;
+        let m = self.rig.drivetrain.max_wheel_speed;
         Ok(w.clamp(-m, m) as f32)
     }
 
@@ -353,14 +350,15 @@ impl Simulator {
         let wr = self.clamp_speed("right", right)?;
         self.wheel_speeds = [wl, wr];
         // The wheels turn at the motors' gains times the command.
-        let [gl, gr] = self.robot.motor_gains;
+        let drivetrain = &self.rig.drivetrain;
+        let [gl, gr] = drivetrain.motor_gains;
         let (wl, wr) = ((wl as f64 * gl) as f32, (wr as f64 * gr) as f32);
-        let r = self.robot.wheel_radius as f32;
+        let r = drivetrain.wheel_radius;
         self.last_crossing = 0;
         Ok(Drive {
             wheels: [wl, wr],
             linear: r * (wl + wr) / 2.0,
-            angular: r * (wr - wl) / self.robot.axle_length as f32,
+            angular: r * (wr - wl) / drivetrain.axle_length,
             any_contact: false,
         })
     }
@@ -389,7 +387,7 @@ impl Simulator {
     /// they hold it back (`None` when they do not).
     #[inline]
     fn driven(&self, drive: &Drive, others: Others<'_>) -> (f32, f32, Option<[f32; 2]>) {
-        let slip = self.robot.slip_on_contact;
+        let slip = self.rig.drivetrain.slip_on_contact;
         // In contact with a wall, the wheels slip: the body moves `kept` of their motion.
         let (linear, angular) = if slip > 0.0 && self.touching {
             let kept = (1.0 - slip) as f32;
@@ -402,7 +400,7 @@ impl Simulator {
             None
         } else {
             let centre = [self.pose[0], self.pose[1]];
-            let radius = self.robot.body_radius as f32;
+            let radius = self.rig.drivetrain.body_radius;
             let wanted = [c * linear, s * linear];
             others.yield_velocity(centre, radius, wanted, self.dt as f32)
         };
@@ -435,7 +433,7 @@ impl Simulator {
             self.sense_among_robots(others, scene);
         }
         self.touching_robot = !others.is_empty() && {
-            let radius = self.robot.body_radius as f32;
+            let radius = self.rig.drivetrain.body_radius;
             others.gap([self.pose[0], self.pose[1]], radius) < ROBOT_CONTACT_GAP
         };
         let touching = self.touching || self.touching_robot;
@@ -484,16 +482,15 @@ impl Simulator {
     ) {
         let [x, y, _] = self.pose;
         let [s, c] = self.heading;
-        let robot = &*self.robot;
         let world = &*self.world;
-        let r = robot.body_radius as f32;
-        let index = world.wall_index();
         let rig = &*self.rig;
+        let r = rig.drivetrain.body_radius;
+        let index = world.wall_index();
         near.gather(index, [x, y], rig.reach);
         self.clearance = near.signed_distance(index, [x, y], r + CLEARANCE_SEARCH) - r;
         self.touching = self.clearance < CONTACT_GAP;
         let noise = self.config.noise;
-        let imperfect = &SensorImperfections::of(robot);
+        let imperfect = &rig.imperfections;
         near.cast_fan(index, &rig.rays, [x, y], [s, c], &mut self.ray_hits);
         let movables = scene.map_or(&self.body, |holder| &holder.body);
         if movables.has_movables() {
@@ -510,23 +507,21 @@ impl Simulator {
             cast_among_robots(&mut self.ray_hits, &rig.sensor_rays, [x, y], [s, c], others);
         }
         let readings = self.distance_readings.iter_mut();
-        let sensors = robot.distance_sensors.iter().zip(&rig.infrared_miss);
-        for ((reading, (sensor, &miss)), &hit) in readings.zip(sensors).zip(&self.ray_hits) {
+        for ((reading, channel), &hit) in readings.zip(&*rig.infrared).zip(&self.ray_hits) {
             let hit = hit.map(|h| RayHit {
-                distance: sensor.slant_distance(h.distance),
+                distance: slant_distance(channel.elevation, h.distance),
                 ..h
             });
             let rng = noise.then_some(&mut self.rng);
-            *reading = infrared_reading_with(&sensor.model, hit, miss, imperfect, rng);
+            *reading = infrared_reading_with(&channel.model, hit, channel.miss, imperfect, rng);
         }
         let (sd, cd) = (s as f64, c as f64);
-        for (i, sensor) in robot.ground_sensors.iter().enumerate() {
-            let [px, py] = sensor.position;
+        let ground = rig.ground.iter().zip(&mut self.ground_readers);
+        for ((channel, reader), reading) in ground.zip(&mut self.ground_readings) {
+            let [px, py] = channel.position;
             let at = [x as f64 + cd * px - sd * py, y as f64 + sd * px + cd * py];
             let rng = noise.then_some(&mut self.rng);
-            let reader = &mut self.ground_readers[i];
-            self.ground_readings[i] =
-                reader.read(&sensor.model, world.floor(), at, [cd, sd], imperfect, rng);
+            *reading = reader.read(&channel.model, world.floor(), at, [cd, sd], imperfect, rng);
         }
     }
 
@@ -535,7 +530,7 @@ impl Simulator {
     /// the body touches one of them.
     pub fn sense_robots(&mut self, others: Others<'_>, scene: Option<&Simulator>) {
         self.sense_among_robots(others, scene);
-        let radius = self.robot.body_radius as f32;
+        let radius = self.rig.drivetrain.body_radius;
         let gap = others.gap([self.pose[0], self.pose[1]], radius);
         self.touching_robot = gap < ROBOT_CONTACT_GAP;
         self.colliding |= self.touching_robot;
@@ -578,7 +573,7 @@ impl Simulator {
 
     /// Index of the ground sensor whose crossings are tracked (nearest the robot's centre line).
     pub fn barcode_sensor(&self) -> Option<usize> {
-        self.rig.barcode_sensor
+        self.rig.barcode_sensor.map(|(index, _)| index)
     }
 
     /// Current poses (x, y, yaw) of the world's movable bodies, in world order.
@@ -640,7 +635,7 @@ impl Simulator {
     /// Wheel position sensors (radians): the wheels' true rotation (motor gains included, slip
     /// not taken off), quantised to the profile's encoder resolution.
     pub fn encoders(&self) -> [f64; 2] {
-        let q = self.robot.encoder_resolution;
+        let q = self.rig.robot.encoder_resolution;
         self.wheel_angles
             .map(|a| if q > 0.0 { (a / q).round() * q } else { a })
     }
@@ -665,7 +660,13 @@ impl Simulator {
 
     /// The robot profile.
     pub fn robot(&self) -> &Arc<RobotProfile> {
-        &self.robot
+        &self.rig.robot
+    }
+
+    /// The robot's motor limit, rad/s (the profile's `max_wheel_speed`).
+    #[inline]
+    pub fn max_wheel_speed(&self) -> f64 {
+        self.rig.drivetrain.max_wheel_speed
     }
 
     /// Bytes this simulator holds of its own: its size and its buffers on the heap, rapier's scene

@@ -25,7 +25,7 @@ pub fn share_scene(robots: &mut [Simulator]) {
     let world = first.world.clone();
     let dt = first.dt as f32;
     let placed: Vec<(f32, [f32; 3])> = (robots.iter())
-        .map(|r| (r.robot.body_radius as f32, r.pose))
+        .map(|r| (r.rig.drivetrain.body_radius, r.pose))
         .collect();
     let bodies = Body::shared(world.solid_walls(), world.bodies(), &placed, dt);
     for (robot, body) in robots.iter_mut().zip(bodies) {

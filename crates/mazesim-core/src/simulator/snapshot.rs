@@ -212,7 +212,7 @@ impl Simulator {
         out.extend_from_slice(&(payload.len() as u64).to_le_bytes());
         out.extend_from_slice(&[0; 8]);
         push_name(&mut out, self.world.name());
-        push_name(&mut out, &self.robot.name);
+        push_name(&mut out, &self.rig.robot.name);
         out.extend_from_slice(&payload);
         let sum = checksum(&out);
         out[FIXED_HEADER - 8..FIXED_HEADER].copy_from_slice(&sum.to_le_bytes());
@@ -246,7 +246,7 @@ impl Simulator {
             return Err(Error::Snapshot(format!(
                 "expected a snapshot of robot profile {:?} (fingerprint {:016x}), found one of \
                  robot profile {:?} (fingerprint {:016x})",
-                self.robot.name, self.rig.fingerprint, header.robot_name, header.robot
+                self.rig.robot.name, self.rig.fingerprint, header.robot_name, header.robot
             )));
         }
         let noise = u8::from(self.config.noise);
@@ -355,7 +355,7 @@ impl Simulator {
         if let Some(start) = &state.start_override {
             pose("start pose", start)?;
         }
-        let top = self.robot.max_wheel_speed * crate::robot::perturb::MAX_FACTOR;
+        let top = self.max_wheel_speed() * crate::robot::perturb::MAX_FACTOR;
         let checks: [(&str, f64, f64, f64); 6] = [
             ("time (s)", state.time, 0.0, f64::MAX),
             (
