@@ -497,7 +497,8 @@ impl<'py> CrewArgs<'py> {
 /// `lower_training`) with the robots of `crews`: each a dict of a `BatchSimulator` of one robot
 /// per environment, its four buffers, its `world_of_env`, the (12, 2) float32 `wheel_speeds` of
 /// its actions, the `members` (its robots' numbers in the round) and, for robots that do not read
-/// the seed robot's volts, the `readings` map into them. `explore` ((steps, N) float64) sets the
+/// the seed robot's volts, the `readings` map into them. `settings` (a `LowerRoundSettings`)
+/// holds what stays the same from round to round; `explore` ((steps, N) float64) sets the
 /// round's length; `q` and `visits` and each `world_of_env` are updated in place, the buffers
 /// hold the last step. Returns the round's counts as a dict. The GIL is released while it runs.
 #[pyfunction]
