@@ -119,6 +119,9 @@ def samples(tmp: Path) -> dict[str, Any]:
         "checkpoints": True,
         "junction": True,
         "floor_reflectance": 0.36,
+        "layout": core.MazeLayout(),
+        "drive": core.DrivePerturbation(),
+        "sensing": core.SensingPerturbation(),
         "envs": np.arange(NUM_ENVS, dtype=np.int64),
         "low": np.zeros(11, np.float32),
         "high": np.full(11, 5000.0, np.float32),
@@ -181,6 +184,7 @@ def samples(tmp: Path) -> dict[str, Any]:
             "observe_env": {"readings": np.zeros(11, np.float32), "pose": np.zeros(3, np.float32)},
             "run": {"controller": core.TabularSettings(np.zeros((4096, 12)))},
             "train_lower_round": lower_round_samples(world, x, y, yaw, batch),
+            "LowerRoundSettings": lower_round_samples(world, x, y, yaw, batch),
             "q_batch_update": {
                 "q": np.zeros((4, 3)),
                 "visits": np.zeros((4, 3), np.int64),
@@ -200,9 +204,9 @@ def samples(tmp: Path) -> dict[str, Any]:
 
 def lower_round_samples(world: Any, x: float, y: float, yaw: float, batch: Any) -> dict[str, Any]:
     """A valid round of one step of ``train_lower_round`` for the ``NUM_ENVS`` robots of
-    ``batch``."""
+    ``batch``, with the arguments of its ``LowerRoundSettings``."""
     rows = 3 * 4096
-    return {
+    samples: dict[str, Any] = {
         "crews": [
             {
                 "simulator": batch,
@@ -233,7 +237,7 @@ def lower_round_samples(world: Any, x: float, y: float, yaw: float, batch: Any) 
             "subtasks": np.arange(4, dtype=np.int64),
         },
         "allowed": np.ones((4, 12), bool),
-        "settings": {
+        "learning": {
             "gamma": 0.99,
             "epsilon": 0.0,
             "decision_steps": 10,
@@ -253,6 +257,10 @@ def lower_round_samples(world: Any, x: float, y: float, yaw: float, batch: Any) 
             "success_across": 0.08,
         },
     }
+    samples["settings"] = core.LowerRoundSettings(
+        *(samples[k] for k in ("learning", "worlds", "role", "symmetry", "allowed"))
+    )
+    return samples
 
 
 def sample(table: dict[str, Any], param: str, owner: str, name: str) -> Any:

@@ -57,7 +57,7 @@ def test_bad_placements_name_the_robot() -> None:
 def test_robots_may_be_a_profile_or_one_per_robot() -> None:
     world = mazesim.load_world("seed-maze")
     seed = mazesim.RobotProfile.builtin("seed")
-    faster = seed.perturbed(wheel_radius_scale=1.05)
+    faster = seed.perturbed(drive=mazesim.DrivePerturbation(wheel_radius_scale=1.05))
     mixed = RobotBatch([world], np.zeros(2, dtype=np.int64), robot=[seed, faster], noise=False)
     assert mixed.profile.name == "seed"
     alone = RobotBatch([world], np.zeros(1, dtype=np.int64), robot=faster, noise=False)

@@ -63,7 +63,9 @@ def test_the_goal_test_ends_an_episode_on_arrival() -> None:
 
 def test_episodes_run_on_the_robot_given() -> None:
     world = mazesim.load_world("seed-maze")
-    smaller = mazesim.RobotProfile.builtin("seed").perturbed(wheel_radius_scale=0.9)
+    smaller = mazesim.RobotProfile.builtin("seed").perturbed(
+        drive=mazesim.DrivePerturbation(wheel_radius_scale=0.9)
+    )
     travelled = []
     for robot in ("seed", smaller):
         nav = EpisodeBatch([world], num_envs=1, jitter=StartJitter(0.0, 0.0), robot=robot)

@@ -103,7 +103,8 @@ CASES = {
     "missing_world_file": "_core.World.load('/nonexistent/world.toml')",
     "perturbed_to_a_runaway_robot": (
         "p = _core.RobotProfile.builtin('seed')\n"
-        "for _ in range(400):\n    p = p.perturbed(wheel_radius_scale=10.0)\n"
+        "faster = _core.DrivePerturbation(wheel_radius_scale=10.0)\n"
+        "for _ in range(400):\n    p = p.perturbed(faster)\n"
         "s = _core.Simulator(_core.World.builtin('arena'), robot=p)\ns.step(6.0, 6.0)"
     ),
     "profile_of_huge_wheels": (
@@ -113,7 +114,8 @@ CASES = {
         "s.step(6.0, 6.0)"
     ),
     "perturbed_offset_1e300": (
-        "_core.RobotProfile.builtin('seed').perturbed(ir_offset_error=1e300)"
+        "_core.RobotProfile.builtin('seed').perturbed("
+        "sensing=_core.SensingPerturbation(ir_offset_error=1e300))"
     ),
     "robot_list_of_other_things": (
         "_core.BatchSimulator(_core.World.builtin('arena'), num_envs=2, robot=[None, b'x'])"
@@ -308,7 +310,7 @@ def test_large_integers_and_non_numbers_are_invalid_arguments() -> None:
         lambda: _core.BatchSimulator(world, num_envs=2, threads=2**70),
         lambda: _core.BatchSimulator(world, num_envs=2, seeds=[0, 2**64]),
         lambda: _core.generate_maze(width=2**80),
-        lambda: _core.generate_maze(cell_size=10**400),
+        lambda: _core.MazeLayout(cell_size=10**400),
         lambda: _core.Simulator(world, control_step_ms=10**400),
         lambda: _core.Simulator(world).set_start(10**400, 0.0, 0.0),
         lambda: _core.Simulator(world).step("fast", 1.0),  # type: ignore[arg-type]

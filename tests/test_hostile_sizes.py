@@ -20,7 +20,7 @@ CASES = {
         r"seeds .*at most 16777216 .*1000000000 items",
     ),
     "motor gains": (
-        "mazesim.RobotProfile.builtin('e-puck').perturbed(motor_gains=HUGE)",
+        "mazesim.DrivePerturbation(motor_gains=HUGE)",
         r"motor_gains .*at most 2 .*1000000000 items",
     ),
     "batch worlds": (
@@ -44,10 +44,13 @@ CASES = {
         r"table .*no usable shape",
     ),
     "train lower round crews": (
-        "_core.train_lower_round(HUGE, worlds=None, role=np.zeros(2, np.int64), starts=None, "
-        "explore=None, random_action=None, q=None, visits=None, symmetry=None, allowed=None, "
-        "settings=SETTINGS)",
+        "_core.train_lower_round(HUGE, ROUND, {}, 0, 0, 0, 0)",
         r"crews .*at most 16777216 .*1000000000 items",
+    ),
+    "lower round settings worlds": (
+        "_core.LowerRoundSettings(SETTINGS, HUGE, np.zeros(2, np.int64), {}, "
+        "np.ones((4, 12), bool))",
+        r"worlds .*at most 16777216 .*1000000000 items",
     ),
     "robot batch reset seeds": (
         "RobotBatch([world], [0, 0]).reset(seeds=HUGE)",
@@ -84,6 +87,9 @@ SETTINGS = {k: 0.5 for k in ('gamma', 'epsilon', 'rate_initial', 'rate_floor', '
     'heading_reward', 'door_success_reward', 'door_failure_reward', 'door_path_exit',
     'success_past_centre', 'success_across')}
 SETTINGS.update(decision_steps=10, corridor_episode_steps=350)
+ROUND = _core.LowerRoundSettings(
+    SETTINGS, [world], np.zeros(2, np.int64), {}, np.ones((4, 12), bool)
+)
 for name, statement in CASES.items():
     try:
         eval(statement)

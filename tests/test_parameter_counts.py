@@ -1,5 +1,8 @@
 """No function of the core or the binding takes more than eight parameters (``self`` counted, as
-clippy's ``too_many_arguments`` counts): a function that needs more takes a settings struct.
+clippy's ``too_many_arguments`` counts): a function that needs more takes a settings struct. The
+limit holds for what Python sees too: every function and method of the binding's stub
+(``python/mazesim/_core.pyi``, which stubtest keeps equal to the compiled signatures) counts its
+parameters the same way, ``self``, ``cls``, ``*args`` and ``**kwargs`` included.
 
 The sources are read with a small scanner of Rust's tokens (comments, strings, raw strings,
 character literals and lifetimes skipped), so that a signature split over lines, with generics,
@@ -9,6 +12,7 @@ limit for ``cargo clippy``, and no source may switch the lint off.
 
 from __future__ import annotations
 
+import ast
 import functools
 import re
 from dataclasses import dataclass
@@ -19,6 +23,8 @@ import pytest
 REPO = Path(__file__).resolve().parents[1]
 #: The crates whose functions are counted.
 SOURCES = (REPO / "crates" / "mazesim-core" / "src", REPO / "crates" / "mazesim-py" / "src")
+#: The stub of the binding: the signatures Python sees.
+STUB = REPO / "python" / "mazesim" / "_core.pyi"
 #: Most parameters a function may take.
 LIMIT = 8
 
@@ -152,6 +158,48 @@ def rust_sources() -> list[Path]:
 def test_no_function_takes_more_than_eight_parameters() -> None:
     wide = [s for p in rust_sources() for s in signatures(p) if s.parameters > LIMIT]
     assert not wide, f"functions of more than {LIMIT} parameters:\n" + "\n".join(map(str, wide))
+
+
+def stub_signatures(text: str) -> list[tuple[str, int, int]]:
+    """(qualified name, line, parameter count) of every function and method of the stub text
+    ``text``: positional-only, positional, keyword-only, ``*args`` and ``**kwargs`` each count."""
+    found = []
+
+    def visit(body: list[ast.stmt], owner: str) -> None:
+        for node in body:
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                a = node.args
+                count = len(a.posonlyargs) + len(a.args) + len(a.kwonlyargs)
+                count += (a.vararg is not None) + (a.kwarg is not None)
+                found.append((owner + node.name, node.lineno, count))
+            elif isinstance(node, ast.ClassDef):
+                visit(node.body, f"{owner}{node.name}.")
+
+    visit(ast.parse(text).body, "")
+    return found
+
+
+def test_no_function_python_sees_takes_more_than_eight_parameters() -> None:
+    wide = [
+        f"{STUB.relative_to(REPO)}:{line}: def {name} ({count})"
+        for name, line, count in stub_signatures(STUB.read_text())
+        if count > LIMIT
+    ]
+    assert not wide, f"functions of more than {LIMIT} parameters:\n" + "\n".join(wide)
+
+
+def test_the_stub_scanner_counts_every_kind_of_parameter() -> None:
+    text = (
+        "def f(a, /, b, *args, c, **kwargs) -> None: ...\n"
+        "class C:\n"
+        "    def __new__(cls, x: int = 0) -> C: ...\n"
+        "    @property\n"
+        "    def p(self) -> int: ...\n"
+    )
+    assert stub_signatures(text) == [("f", 1, 5), ("C.__new__", 3, 2), ("C.p", 5, 1)]
+    names = {name for name, _, _ in stub_signatures(STUB.read_text())}
+    assert {"generate_maze", "train_lower_round", "RobotProfile.perturbed"} <= names
+    assert {"BatchSimulator.run", "MazeLayout.__new__", "LowerRoundSettings.__new__"} <= names
 
 
 def test_the_lint_stays_on() -> None:

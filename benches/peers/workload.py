@@ -54,9 +54,8 @@ def make_worlds(envs: int) -> list[mazesim.World]:
             width=MAZE_CELLS,
             height=MAZE_CELLS,
             seed=i,
-            cell_size=CELL_SIZE,
-            wall_thickness=WALL_THICKNESS,
             loops=LOOPS,
+            layout=mazesim.MazeLayout(cell_size=CELL_SIZE, wall_thickness=WALL_THICKNESS),
         )
         for i in range(envs)
     ]

@@ -10,9 +10,13 @@ import numpy.typing as npt
 __all__ = [
     "AvoidCollisionSettings",
     "BatchSimulator",
+    "DrivePerturbation",
     "EpisodeLimits",
+    "LowerRoundSettings",
+    "MazeLayout",
     "RobotProfile",
     "RunSettings",
+    "SensingPerturbation",
     "Simulator",
     "StepBounds",
     "TabularSettings",
@@ -46,17 +50,12 @@ def sharp_volts_to_cm(volts: float) -> float:
 
 def train_lower_round(
     crews: Sequence[dict[str, Any]],
-    *,
-    worlds: Sequence[World],
-    role: npt.NDArray[np.int64],
+    settings: LowerRoundSettings,
     starts: dict[str, npt.NDArray[Any]],
     explore: npt.NDArray[np.float64],
     random_action: npt.NDArray[np.int64],
     q: npt.NDArray[np.float64],
     visits: npt.NDArray[np.int64],
-    symmetry: dict[str, npt.NDArray[np.int64]],
-    allowed: npt.NDArray[np.bool_],
-    settings: dict[str, float | str],
 ) -> dict[str, Any]:
     """One round of the lower level's Q-learning in the core, as
     ``mazesim.learn.lower.LowerTrainer`` runs it. Its N robots are in ``crews``, each a dict of a
@@ -69,10 +68,8 @@ def train_lower_round(
     draws, ``starts`` each robot's (N, K) queue of episode starts (``world``, ``pose``
     (N, K, 3), ``seed`` uint64, ``path`` (N, K, 9)); ``q`` and ``visits`` ((4, 12288, 12), or
     (4, 73728, 12) with ``settings["phases"] == "heading_and_distance"``) and each crew's
-    ``world_of_env`` are updated in place. Besides its numbers, ``settings`` may name the door
-    sub-tasks' ``phases`` (``"heading"``, the default, or ``"heading_and_distance"``) and the
-    ``blind`` rule of Corridors and Corners where no sensor sees a wall (``"table"``, the
-    default, ``"forward"`` or ``"hold_heading"``). Returns the round's counts (``success``,
+    ``world_of_env`` are updated in place; the rest of the round (its worlds, each robot's
+    sub-task, the learning's numbers) is ``settings``'s. Returns the round's counts (``success``,
     ``failure``, ``cut`` per sub-task, ``corridor_metres``, ``contact_steps``). The GIL is
     released while it runs."""
 
@@ -102,18 +99,17 @@ def generate_maze(
     height: int = 5,
     seed: int = 0,
     *,
-    cell_size: float = 0.25,
-    wall_thickness: float = 0.01,
     loops: float = 0.0,
-    checkpoints: bool = True,
-    floor_reflectance: float = 0.36,
     junction: bool = True,
+    layout: MazeLayout | None = None,
 ) -> World:
     """A seeded maze: perfect (loops=0) or with a share of extra openings, a barcode checkpoint on
     every way into its junctions (while the 12 codes last), the goal in the cell farthest from
     the start. A draw that is one single corridor (no junction, so no checkpoint) is replaced by
     the next draw of the seed, so every maze larger than 2 x 2 has checkpoints; junction=False
-    keeps the first draw (the mazes the shipped navigator trained and was measured on)."""
+    keeps the first draw (the mazes the shipped navigator trained and was measured on). The
+    cells' and walls' sizes, the floor and the barcodes are ``layout``'s (the defaults of
+    :class:`MazeLayout` when None)."""
 
 def default_codes() -> list[str]:
     """The default five-bit barcode book (12 codes)."""
@@ -224,23 +220,13 @@ class RobotProfile:
         """Each distance sensor's ray elevation above the floor's plane, radians (0: level)."""
     def perturbed(
         self,
-        *,
-        wheel_radius_scale: float = 1.0,
-        axle_length_scale: float = 1.0,
-        motor_gains: tuple[float, float] | Sequence[float] = (1.0, 1.0),
-        noise_scale: float = 1.0,
-        ir_angle_error: float = 0.0,
-        ir_offset_error: float = 0.0,
-        wall_reflectance: float = 1.0,
-        ground_gain: float = 1.0,
-        slip_on_contact: float = 0.0,
+        drive: DrivePerturbation | None = None,
+        sensing: SensingPerturbation | None = None,
     ) -> RobotProfile:
-        """A copy of the profile as a real robot may differ from it, named ``"<name>~perturbed"``.
-
-        Scales and gains multiply the profile's own; ``ir_angle_error`` (radians) turns each
-        infra-red sensor outward, ``ir_offset_error`` (metres) moves it along its heading;
-        ``wall_reflectance`` in (0, 1], ``slip_on_contact`` in [0, 1). Neutral arguments simulate
-        exactly as this profile. Bad values raise InvalidArgumentError naming them.
+        """A copy of the profile as a real robot may differ from it, named ``"<name>~perturbed"``:
+        its drive perturbed as ``drive`` says and its senses as ``sensing`` says (neutral when
+        None). Neutral perturbations simulate exactly as this profile. An ``ir_offset_error``
+        beyond this profile's body radius raises InvalidArgumentError naming it.
         """
     @property
     def name(self) -> str: ...
@@ -619,6 +605,159 @@ class EpisodeLimits:
     @property
     def autoreset(self) -> bool:
         """Whether an ended episode is reset at once (else the env stands still until reset)."""
+    def __eq__(self, value: object, /) -> bool: ...
+    def __hash__(self) -> int: ...
+
+@final
+class LowerRoundSettings:
+    """What stays the same from round to round of :func:`train_lower_round` but for the
+    exploration rate: ``learning``, the learning's numbers (``gamma``, ``epsilon``,
+    ``decision_steps``, ``corridor_episode_steps``, ``rate_initial``, ``rate_floor``,
+    ``rate_power``, the rewards ``progress_reward``, ``collision_penalty``,
+    ``corridor_step_reward``, ``door_step_reward``, ``heading_reward``, ``door_success_reward``,
+    ``door_failure_reward``, the door sub-tasks' bounds ``door_path_exit``,
+    ``success_past_centre``, ``success_across``, and perhaps their ``phases`` (``"heading"``,
+    the default, or ``"heading_and_distance"``) and the ``blind`` rule of Corridors and Corners
+    where no sensor sees a wall (``"table"``, the default, ``"forward"`` or ``"hold_heading"``));
+    the ``worlds`` the robots' starts index; each robot's sub-task (``role``, (N,) int64); the
+    tables' mirror ``symmetry`` (``states`` (4, rows), ``actions`` (12,), ``subtasks`` (4,),
+    int64) and the ``allowed`` actions of each sub-task ((4, 12) bool). The arrays are the
+    caller's own, checked when made and again by each round.
+
+    Raises:
+        InvalidArgumentError: a number missing, unknown or out of range, a world that is not a
+            ``World``, or an array of another shape or type, naming it.
+    """
+
+    def __new__(
+        cls,
+        learning: dict[str, float | str],
+        worlds: Sequence[World],
+        role: npt.NDArray[np.int64],
+        symmetry: dict[str, npt.NDArray[np.int64]],
+        allowed: npt.NDArray[np.bool_],
+    ) -> LowerRoundSettings: ...
+    @property
+    def learning(self) -> dict[str, float | str]:
+        """The learning's numbers, as given."""
+    @property
+    def worlds(self) -> Sequence[World]:
+        """The worlds the robots' starts index."""
+    @property
+    def role(self) -> npt.NDArray[np.int64]:
+        """(N,) int64, each robot's sub-task."""
+    @property
+    def symmetry(self) -> dict[str, npt.NDArray[np.int64]]:
+        """The tables' mirror symmetry, arrays by key (``states``, ``actions``, ``subtasks``)."""
+    @property
+    def allowed(self) -> npt.NDArray[np.bool_]:
+        """(4, 12) bool, the actions each sub-task may take."""
+
+@final
+class MazeLayout:
+    """How :func:`generate_maze` builds a maze: the side of its cells and the thickness of its
+    walls (metres), whether barcode checkpoints are painted on the ways into its junctions, and
+    its floor's reflectance (grey, so that codes show their ends).
+
+    Raises:
+        InvalidArgumentError: not ``0 < wall_thickness < cell_size`` (finite), a reflectance
+            outside (0, 1], or ``checkpoints`` not a bool.
+    """
+
+    def __new__(
+        cls,
+        cell_size: float = 0.25,
+        wall_thickness: float = 0.01,
+        checkpoints: bool = True,
+        floor_reflectance: float = 0.36,
+    ) -> MazeLayout: ...
+    @property
+    def cell_size(self) -> float:
+        """Side of a cell, metres."""
+    @property
+    def wall_thickness(self) -> float:
+        """Thickness of a wall, metres (less than the cell's side)."""
+    @property
+    def checkpoints(self) -> bool:
+        """Whether barcode checkpoints are painted on the ways into junctions."""
+    @property
+    def floor_reflectance(self) -> float:
+        """Reflectance of the floor, in (0, 1] (grey, so that codes show their ends)."""
+    def __eq__(self, value: object, /) -> bool: ...
+    def __hash__(self) -> int: ...
+
+@final
+class DrivePerturbation:
+    """How a real robot's drive may differ from its profile (:meth:`RobotProfile.perturbed`):
+    the wheel radius and the effective wheel distance scaled, the motors' gains (left, right)
+    and the share of the wheels' motion lost while the body touches a wall. Scales and gains
+    multiply the profile's own; the neutral values change nothing.
+
+    Raises:
+        InvalidArgumentError: a scale or gain outside (0, 10] or a slip outside [0, 1) (each
+            finite), naming it.
+    """
+
+    def __new__(
+        cls,
+        wheel_radius_scale: float = 1.0,
+        axle_length_scale: float = 1.0,
+        motor_gains: tuple[float, float] | Sequence[float] = (1.0, 1.0),
+        slip_on_contact: float = 0.0,
+    ) -> DrivePerturbation: ...
+    @property
+    def wheel_radius_scale(self) -> float:
+        """Multiplies the wheel radius, in (0, 10]."""
+    @property
+    def axle_length_scale(self) -> float:
+        """Multiplies the effective wheel distance, in (0, 10]."""
+    @property
+    def motor_gains(self) -> tuple[float, float]:
+        """Multiply the (left, right) motor gains, each in (0, 10]."""
+    @property
+    def slip_on_contact(self) -> float:
+        """Fraction of the wheels' motion lost while the body touches a wall, in [0, 1)."""
+    def __eq__(self, value: object, /) -> bool: ...
+    def __hash__(self) -> int: ...
+
+@final
+class SensingPerturbation:
+    """How a real robot's senses may differ from its profile (:meth:`RobotProfile.perturbed`):
+    every sensor's noise scaled, each infra-red sensor turned outward by ``ir_angle_error``
+    (radians) and moved along its heading by ``ir_offset_error`` (metres), the walls'
+    reflection factor as those sensors see it and every ground reading's gain. The neutral
+    values change nothing.
+
+    Raises:
+        InvalidArgumentError: a noise scale outside [0, 100], an angle beyond pi either way, a
+            reflectance outside (0, 1], a ground gain outside (0, 10] or a value not finite,
+            naming it (the offset's bound, the body radius, is checked by ``perturbed``).
+    """
+
+    def __new__(
+        cls,
+        noise_scale: float = 1.0,
+        ir_angle_error: float = 0.0,
+        ir_offset_error: float = 0.0,
+        wall_reflectance: float = 1.0,
+        ground_gain: float = 1.0,
+    ) -> SensingPerturbation: ...
+    @property
+    def noise_scale(self) -> float:
+        """Multiplies every sensor model's relative noise, in [0, 100]."""
+    @property
+    def ir_angle_error(self) -> float:
+        """Turns every infra-red sensor outward by this many radians (negative: inward)."""
+    @property
+    def ir_offset_error(self) -> float:
+        """Moves every infra-red sensor along its heading by this many metres (negative:
+        inward); at most the body radius of the profile it perturbs either way."""
+    @property
+    def wall_reflectance(self) -> float:
+        """Multiplies the walls' reflection factor, in (0, 1]."""
+    @property
+    def ground_gain(self) -> float:
+        """Multiplies every ground sensor reading, in (0, 10]."""
     def __eq__(self, value: object, /) -> bool: ...
     def __hash__(self) -> int: ...
 

@@ -4,6 +4,7 @@ simulator, and neutral ones change nothing at all.
 
 from __future__ import annotations
 
+import copy
 import math
 import pickle
 from typing import Any
@@ -48,7 +49,7 @@ def drive(sim: Simulator, left: float, right: float, steps: int) -> None:
 
 def test_a_5_percent_wheel_radius_error_changes_straight_travel_by_5_percent() -> None:
     travelled = []
-    for profile in (SEED, SEED.perturbed(wheel_radius_scale=1.05)):
+    for profile in (SEED, SEED.perturbed(drive=mazesim.DrivePerturbation(wheel_radius_scale=1.05))):
         sim = Simulator(open_floor(), robot=profile, noise=False)
         drive(sim, 4.0, 4.0, 100)
         x, y, _ = sim.pose
@@ -65,13 +66,16 @@ def spun(profile: RobotProfile, steps: int = 40) -> float:
 
 
 def test_an_axle_error_changes_the_turn_rate_by_the_inverse_ratio() -> None:
-    base, wider = spun(SEED), spun(SEED.perturbed(axle_length_scale=1.05))
+    base, wider = (
+        spun(SEED),
+        spun(SEED.perturbed(drive=mazesim.DrivePerturbation(axle_length_scale=1.05))),
+    )
     assert base == pytest.approx(2 * 0.0205 * 1.0 * 40 * 0.032 / 0.052, rel=1e-5)
     assert wider / base == pytest.approx(1 / 1.05, rel=1e-5)
 
 
 def test_a_weaker_right_motor_curves_a_straight_command_right_by_the_predicted_radius() -> None:
-    profile = SEED.perturbed(motor_gains=(1.0, 0.95))
+    profile = SEED.perturbed(drive=mazesim.DrivePerturbation(motor_gains=(1.0, 0.95)))
     sim = Simulator(open_floor(), robot=profile, noise=False)
     drive(sim, 4.0, 4.0, 100)
     x, y, yaw = sim.pose
@@ -91,7 +95,11 @@ def test_slip_on_contact_shortens_travel_along_a_wall_and_not_the_encoders() -> 
     start = (0.0, -0.09 + SEED.body_radius + 1e-4, -0.17)
     ends = []
     for slip in (0.0, 0.3):
-        sim = Simulator(wall_below(), robot=SEED.perturbed(slip_on_contact=slip), noise=False)
+        sim = Simulator(
+            wall_below(),
+            robot=SEED.perturbed(drive=mazesim.DrivePerturbation(slip_on_contact=slip)),
+            noise=False,
+        )
         sim.set_pose(*start)
         drive(sim, 4.0, 4.0, 60)
         assert sim.colliding
@@ -105,7 +113,11 @@ def test_slip_on_contact_shortens_travel_along_a_wall_and_not_the_encoders() -> 
 def test_slip_on_contact_does_nothing_away_from_walls() -> None:
     poses = []
     for slip in (0.0, 0.5):
-        sim = Simulator(open_floor(), robot=SEED.perturbed(slip_on_contact=slip), noise=False)
+        sim = Simulator(
+            open_floor(),
+            robot=SEED.perturbed(drive=mazesim.DrivePerturbation(slip_on_contact=slip)),
+            noise=False,
+        )
         drive(sim, 3.0, 4.0, 50)
         poses.append(sim.pose)
     assert poses[0] == poses[1]
@@ -120,7 +132,7 @@ def front_reading(profile: RobotProfile, noise: bool = False, seed: int = 0) -> 
 
 
 def test_noise_scale_zero_reads_as_noise_off() -> None:
-    quiet = SEED.perturbed(noise_scale=0.0)
+    quiet = SEED.perturbed(sensing=mazesim.SensingPerturbation(noise_scale=0.0))
     a = Simulator(World.builtin("seed-maze"), robot=quiet, seed=5)
     b = Simulator(World.builtin("seed-maze"), robot=SEED, seed=5, noise=False)
     for k in range(60):
@@ -134,7 +146,10 @@ def test_noise_scale_zero_reads_as_noise_off() -> None:
 def test_noise_scale_two_doubles_the_spread_of_readings_at_a_fixed_distance() -> None:
     spread = []
     for scale in (1.0, 2.0):
-        sim = Simulator(facing_wall(), robot=SEED.perturbed(noise_scale=scale))
+        sim = Simulator(
+            facing_wall(),
+            robot=SEED.perturbed(sensing=mazesim.SensingPerturbation(noise_scale=scale)),
+        )
         readings = []
         for seed in range(3000):
             sim.reset(seed=seed)
@@ -147,7 +162,7 @@ def test_noise_scale_two_doubles_the_spread_of_readings_at_a_fixed_distance() ->
 
 
 def test_an_ir_offset_error_moves_each_sensor_along_its_heading() -> None:
-    moved = SEED.perturbed(ir_offset_error=0.01)
+    moved = SEED.perturbed(sensing=mazesim.SensingPerturbation(ir_offset_error=0.01))
     before, after = SEED.distance_sensor_poses(), moved.distance_sensor_poses()
     np.testing.assert_allclose(after[:, 2], before[:, 2])
     shift = after[:, :2] - before[:, :2]
@@ -160,7 +175,7 @@ def test_an_ir_offset_error_moves_each_sensor_along_its_heading() -> None:
 
 
 def test_an_ir_angle_error_turns_each_sensor_outward() -> None:
-    turned = SEED.perturbed(ir_angle_error=0.2)
+    turned = SEED.perturbed(sensing=mazesim.SensingPerturbation(ir_angle_error=0.2))
     before, after = SEED.distance_sensor_poses(), turned.distance_sensor_poses()
     # front, back (on the axis: counter-clockwise), left, right, left-front, right-front.
     np.testing.assert_allclose(after[:, 2] - before[:, 2], [0.2, 0.2, 0.2, -0.2, 0.2, -0.2])
@@ -173,17 +188,23 @@ def test_an_ir_angle_error_turns_each_sensor_outward() -> None:
 def test_a_darker_wall_reads_as_a_white_wall_farther_away() -> None:
     # Webots' model: a wall of reflection factor r at distance d reads as white at d / r.
     for reflectance in (0.8, 0.5):
-        profile = SEED.perturbed(wall_reflectance=reflectance)
+        profile = SEED.perturbed(sensing=mazesim.SensingPerturbation(wall_reflectance=reflectance))
         assert profile.wall_reflectance == reflectance
         seen = SEED.distance_from_reading(0, front_reading(profile))
         assert seen == pytest.approx(FRONT_GAP / reflectance, abs=1e-5)
-    assert front_reading(SEED.perturbed(wall_reflectance=0.5)) < front_reading(SEED)
+    assert front_reading(
+        SEED.perturbed(sensing=mazesim.SensingPerturbation(wall_reflectance=0.5))
+    ) < front_reading(SEED)
 
 
 def test_ground_gain_scales_the_ground_readings() -> None:
     world = World.builtin("seed-maze")
     base = Simulator(world, robot=SEED, noise=False)
-    drifted = Simulator(world, robot=SEED.perturbed(ground_gain=0.8), noise=False)
+    drifted = Simulator(
+        world,
+        robot=SEED.perturbed(sensing=mazesim.SensingPerturbation(ground_gain=0.8)),
+        noise=False,
+    )
     for k in range(80):
         base.step(5.0, 5.0 - k % 2)
         drifted.step(5.0, 5.0 - k % 2)
@@ -229,7 +250,10 @@ def test_profile_fields_read_from_toml_and_written_back() -> None:
 
 
 def test_a_perturbed_profile_and_its_simulator_pickle() -> None:
-    profile = SEED.perturbed(wheel_radius_scale=0.97, ir_angle_error=0.05, ground_gain=1.1)
+    profile = SEED.perturbed(
+        drive=mazesim.DrivePerturbation(wheel_radius_scale=0.97),
+        sensing=mazesim.SensingPerturbation(ir_angle_error=0.05, ground_gain=1.1),
+    )
     copy = pickle.loads(pickle.dumps(profile))
     assert copy.to_toml() == profile.to_toml()
     assert pickle.loads(pickle.dumps(SEED)).to_toml() == SEED.to_toml()
@@ -254,9 +278,18 @@ def test_a_snapshot_of_a_perturbed_profile_does_not_restore_into_the_original() 
 
 PROFILES = [
     SEED,
-    SEED.perturbed(wheel_radius_scale=1.05, motor_gains=(0.97, 1.0)),
-    SEED.perturbed(noise_scale=3.0, wall_reflectance=0.4, slip_on_contact=0.2),
-    SEED.perturbed(ir_angle_error=-0.1, ir_offset_error=0.003, ground_gain=0.9),
+    SEED.perturbed(
+        drive=mazesim.DrivePerturbation(wheel_radius_scale=1.05, motor_gains=(0.97, 1.0))
+    ),
+    SEED.perturbed(
+        drive=mazesim.DrivePerturbation(slip_on_contact=0.2),
+        sensing=mazesim.SensingPerturbation(noise_scale=3.0, wall_reflectance=0.4),
+    ),
+    SEED.perturbed(
+        sensing=mazesim.SensingPerturbation(
+            ir_angle_error=-0.1, ir_offset_error=0.003, ground_gain=0.9
+        )
+    ),
 ]
 
 
@@ -321,8 +354,14 @@ def test_every_controller_runs_mixed_profiles_as_each_alone(
 ) -> None:
     robots = [
         base,
-        base.perturbed(wheel_radius_scale=0.95, noise_scale=2.0),
-        base.perturbed(motor_gains=(1.0, 0.9), wall_reflectance=0.5),
+        base.perturbed(
+            drive=mazesim.DrivePerturbation(wheel_radius_scale=0.95),
+            sensing=mazesim.SensingPerturbation(noise_scale=2.0),
+        ),
+        base.perturbed(
+            drive=mazesim.DrivePerturbation(motor_gains=(1.0, 0.9)),
+            sensing=mazesim.SensingPerturbation(wall_reflectance=0.5),
+        ),
     ]
     mixed = ran(robots, threads=2, controller=controller)
     for i, robot in enumerate(robots):
@@ -338,7 +377,10 @@ def test_run_of_mixed_profiles_equals_each_profile_run_in_its_slot() -> None:
         np.testing.assert_array_equal(mixed["poses"][:, i], alone["poses"][:, i])
         np.testing.assert_array_equal(mixed["obs"][i], alone["obs"][i])
     # A profile of faster wheels drives farther on the same random wheel speeds.
-    fast = ran([PROFILES[0].perturbed(wheel_radius_scale=2.0)] * 4, threads=1)
+    fast = ran(
+        [PROFILES[0].perturbed(drive=mazesim.DrivePerturbation(wheel_radius_scale=2.0))] * 4,
+        threads=1,
+    )
     slow = ran([PROFILES[0]] * 4, threads=1)
     assert not np.array_equal(fast["poses"], slow["poses"])
 
@@ -416,13 +458,73 @@ def test_set_world_and_resets_keep_each_envs_profile() -> None:
 def test_bad_perturbations_are_refused_naming_the_argument(
     arguments: dict[str, Any], named: str
 ) -> None:
+    drive = {k: v for k, v in arguments.items() if k in DRIVE}
+    sensing = {k: v for k, v in arguments.items() if k not in DRIVE}
     with pytest.raises(mazesim.InvalidArgumentError, match=rf"expected {named}.*found"):
-        SEED.perturbed(**arguments)
+        # The offset's bound is the robot's body radius: checked by perturbed.
+        SEED.perturbed(mazesim.DrivePerturbation(**drive), mazesim.SensingPerturbation(**sensing))
 
 
-def test_perturbed_takes_keywords_only() -> None:
-    with pytest.raises(mazesim.InvalidArgumentError, match="positional"):
-        SEED.perturbed(1.05)  # type: ignore[misc]
+#: The parameters of DrivePerturbation (the others are SensingPerturbation's).
+DRIVE = ("wheel_radius_scale", "axle_length_scale", "motor_gains", "slip_on_contact")
+
+
+def test_perturbed_takes_perturbations_only() -> None:
+    with pytest.raises(mazesim.InvalidArgumentError, match="expected drive to be a Drive"):
+        SEED.perturbed(1.05)  # type: ignore[arg-type]
+    with pytest.raises(mazesim.InvalidArgumentError, match="expected sensing to be a Sensing"):
+        SEED.perturbed(sensing=mazesim.DrivePerturbation())  # type: ignore[arg-type]
+    with pytest.raises(mazesim.InvalidArgumentError, match="not_a_keyword"):
+        SEED.perturbed(not_a_keyword=1.0)  # type: ignore[call-arg]
+
+
+def test_former_keywords_warn_and_perturb_as_the_perturbations_do() -> None:
+    changes = {
+        "wheel_radius_scale": 0.97,
+        "axle_length_scale": 1.02,
+        "motor_gains": (1.0, 0.95),
+        "slip_on_contact": 0.1,
+        "noise_scale": 2.0,
+        "ir_angle_error": 0.05,
+        "ir_offset_error": 0.002,
+        "wall_reflectance": 0.6,
+        "ground_gain": 1.1,
+    }
+    drive = mazesim.DrivePerturbation(**{k: v for k, v in changes.items() if k in DRIVE})
+    sensing = mazesim.SensingPerturbation(**{k: v for k, v in changes.items() if k not in DRIVE})
+    with pytest.warns(DeprecationWarning, match="perturbed's keyword .* is deprecated"):
+        former = SEED.perturbed(**changes)  # type: ignore[call-arg]
+    assert former == SEED.perturbed(drive, sensing)
+    assert former.to_toml() == SEED.perturbed(drive=drive, sensing=sensing).to_toml()
+    with pytest.raises(mazesim.InvalidArgumentError, match="either drive and sensing or"):
+        SEED.perturbed(drive, noise_scale=2.0)  # type: ignore[call-arg]
+    with (
+        pytest.warns(DeprecationWarning),
+        pytest.raises(mazesim.InvalidArgumentError, match="ir_offset_error"),
+    ):
+        SEED.perturbed(ir_offset_error=0.05)  # type: ignore[call-arg]
+
+
+def test_the_perturbations_show_and_keep_their_values() -> None:
+    drive = mazesim.DrivePerturbation(wheel_radius_scale=1.05, motor_gains=[1.0, 0.9])
+    assert repr(drive) == (
+        "DrivePerturbation(wheel_radius_scale=1.05, axle_length_scale=1.0, "
+        "motor_gains=(1.0, 0.9), slip_on_contact=0.0)"
+    )
+    assert drive.motor_gains == (1.0, 0.9) and drive.wheel_radius_scale == 1.05
+    sensing = mazesim.SensingPerturbation(noise_scale=0.0, ground_gain=0.8)
+    assert repr(sensing) == (
+        "SensingPerturbation(noise_scale=0.0, ir_angle_error=0.0, ir_offset_error=0.0, "
+        "wall_reflectance=1.0, ground_gain=0.8)"
+    )
+    assert drive == mazesim.DrivePerturbation(1.05, motor_gains=(1.0, 0.9))
+    assert drive != mazesim.DrivePerturbation() and sensing != mazesim.SensingPerturbation()
+    assert hash(sensing) == hash(mazesim.SensingPerturbation(0.0, ground_gain=0.8))
+    for value in (drive, sensing):
+        for again in (pickle.loads(pickle.dumps(value)), copy.deepcopy(value)):
+            assert again == value and repr(again) == repr(value)
+    with pytest.raises(AttributeError):
+        drive.slip_on_contact = 0.5  # type: ignore[misc]
 
 
 def test_a_batch_of_profiles_of_other_sensors_or_count_is_refused() -> None:

@@ -93,5 +93,5 @@ def test_robot_profiles_compare_by_value() -> None:
     again = mazesim.RobotProfile.from_toml(toml)
     assert again == mazesim.RobotProfile.builtin("e-puck")
     assert hash(again) == hash(mazesim.RobotProfile.builtin("e-puck"))
-    assert again != again.perturbed(wheel_radius_scale=1.1)
+    assert again != again.perturbed(drive=mazesim.DrivePerturbation(wheel_radius_scale=1.1))
     assert again != "e-puck"

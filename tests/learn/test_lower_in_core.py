@@ -5,13 +5,20 @@ for fleets of several sensor sets alike."""
 from __future__ import annotations
 
 import dataclasses
+from typing import Any
 
 import numpy as np
 import pytest
 
 from lower_oracle import stepwise_round
-from mazesim import BatchSimulator, RobotProfile, World
-from mazesim._core import train_lower_round
+from mazesim import (
+    BatchSimulator,
+    DrivePerturbation,
+    RobotProfile,
+    SensingPerturbation,
+    World,
+)
+from mazesim._core import LowerRoundSettings, train_lower_round
 from mazesim.batch import RobotBatch
 from mazesim.errors import InvalidArgumentError, MazesimError
 from mazesim.learn.fleet import FleetBatch
@@ -82,7 +89,10 @@ def _robots_of_two_motor_limits(count: int) -> list[RobotProfile]:
     slower = RobotProfile.from_toml(
         seed.to_toml().replace("max_wheel_speed = 6.28", "max_wheel_speed = 5.0")
     )
-    dark = seed.perturbed(wall_reflectance=0.2, motor_gains=(0.95, 1.0))
+    dark = seed.perturbed(
+        drive=DrivePerturbation(motor_gains=(0.95, 1.0)),
+        sensing=SensingPerturbation(wall_reflectance=0.2),
+    )
     return [slower if i % 3 == 1 else dark if i % 2 else seed for i in range(count)]
 
 
@@ -238,6 +248,59 @@ def test_bad_round_arguments_are_refused_before_anything_moves(change, message) 
     arguments["crews"] = trainer._crews()
     change(arguments)
     with pytest.raises(InvalidArgumentError, match=message) as raised:
-        train_lower_round(**arguments)
+        _train_round(arguments)
     assert isinstance(raised.value, MazesimError)
     assert np.array_equal(trainer.tables.q, q_before)
+
+
+def _train_round(arguments: dict[str, Any]) -> dict[str, Any]:
+    """``train_lower_round`` of ``_round_arguments`` (with crews), its settings made first."""
+    settings = LowerRoundSettings(
+        arguments["settings"],
+        arguments["worlds"],
+        arguments["role"],
+        arguments["symmetry"],
+        arguments["allowed"],
+    )
+    return train_lower_round(
+        arguments["crews"],
+        settings,
+        arguments["starts"],
+        arguments["explore"],
+        arguments["random_action"],
+        arguments["q"],
+        arguments["visits"],
+    )
+
+
+def test_former_keywords_warn_and_train_as_the_settings_do() -> None:
+    runs = []
+    for former in (False, True):
+        trainer = LowerTrainer(SMALL, threads=1)
+        arguments = _round_arguments(trainer)
+        arguments["crews"] = trainer._crews()
+        if former:
+            with pytest.warns(DeprecationWarning, match="train_lower_round's keyword .* is dep"):
+                counts = train_lower_round(**arguments)  # type: ignore[call-arg]
+        else:
+            counts = _train_round(arguments)
+        runs.append((counts, trainer.tables.q.copy(), trainer.tables.visits.copy()))
+    (counts, q, visits), (old_counts, old_q, old_visits) = runs
+    assert counts == old_counts
+    np.testing.assert_array_equal(q, old_q)
+    np.testing.assert_array_equal(visits, old_visits)
+    assert visits.sum() > 0
+    settings = LowerRoundSettings(
+        *(arguments[k] for k in ("settings", "worlds", "role", "symmetry", "allowed"))
+    )
+    assert repr(settings) == (
+        f"LowerRoundSettings(robots={SMALL.num_envs}, worlds={len(arguments['worlds'])}, "
+        f"gamma={arguments['settings']['gamma']!r}, epsilon=0.1)"
+    )
+    assert settings.role is arguments["role"] and settings.learning is arguments["settings"]
+    with pytest.raises(InvalidArgumentError, match="either a LowerRoundSettings or"):
+        train_lower_round(arguments["crews"], settings, worlds=arguments["worlds"])  # type: ignore[call-arg]
+    with pytest.raises(InvalidArgumentError, match="missing required argument: 'q'"):
+        train_lower_round(arguments["crews"], settings, {}, 0, 0)  # type: ignore[call-arg]
+    with pytest.raises(InvalidArgumentError, match="expected settings to be a LowerRoundSettings"):
+        train_lower_round(arguments["crews"], arguments["settings"], {}, 0, 0, 0, 0)  # type: ignore[arg-type]

@@ -56,6 +56,18 @@ INSTANCES: dict[str, str] = {
         "mazesim.TabularSettings(__import__('numpy').zeros((4096, 12)), epsilon=0.1)"
     ),
     "mazesim._core.RunSettings": "mazesim.RunSettings(mazesim.EpisodeLimits(), seeds=3)",
+    "mazesim._core.MazeLayout": "mazesim.MazeLayout(cell_size=0.3, checkpoints=False)",
+    "mazesim._core.DrivePerturbation": "mazesim.DrivePerturbation(wheel_radius_scale=1.05)",
+    "mazesim._core.SensingPerturbation": "mazesim.SensingPerturbation(noise_scale=2.0)",
+    # The settings of the lower level's training rounds: its numbers, one world, two robots.
+    "mazesim._core.LowerRoundSettings": (
+        "(lambda np: mazesim._core.LowerRoundSettings(dict.fromkeys(('gamma', 'epsilon',"
+        " 'rate_initial', 'rate_floor', 'rate_power', 'progress_reward', 'collision_penalty',"
+        " 'corridor_step_reward', 'door_step_reward', 'heading_reward', 'door_success_reward',"
+        " 'door_failure_reward', 'door_path_exit', 'success_past_centre', 'success_across'), 0.5)"
+        " | {'decision_steps': 10, 'corridor_episode_steps': 350}, [world],"
+        " np.zeros(2, np.int64), {}, np.ones((4, 12), bool)))(__import__('numpy'))"
+    ),
     "mazesim._core.StepBounds": (
         "(lambda np: mazesim._core.StepBounds(np.zeros(11, 'float32'),"
         " np.full(11, 5000.0, 'float32'), 6.28))(__import__('numpy'))"

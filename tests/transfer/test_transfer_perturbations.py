@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from mazesim import RobotProfile
+from mazesim import DrivePerturbation, RobotProfile, SensingPerturbation
 from mazesim.transfer.axes import Setting
 from mazesim.transfer.cells import CellRun, profile_changes, profile_of
 
@@ -22,7 +22,15 @@ def test_a_settings_profile_carries_its_scales() -> None:
 
 def test_settings_on_one_robot_share_its_one_parse_and_perturb_it_as_a_fresh_one() -> None:
     setting = Setting.of({"wheel_radius": 1.05, "ir_angle": 10.0, "noise_scale": 2.0})
-    fresh = RobotProfile.builtin("seed").perturbed(**profile_changes(setting))
+    assert profile_changes(setting) == {
+        "wheel_radius_scale": 1.05,
+        "ir_angle_error": math.radians(10.0),
+        "noise_scale": 2.0,
+    }
+    fresh = RobotProfile.builtin("seed").perturbed(
+        DrivePerturbation(wheel_radius_scale=1.05),
+        SensingPerturbation(ir_angle_error=math.radians(10.0), noise_scale=2.0),
+    )
     assert profile_of(setting).to_toml() == fresh.to_toml()
     assert profile_of(Setting()) is profile_of(Setting.of({"robot": "seed"}))
     assert profile_of(Setting()).to_toml() == RobotProfile.builtin("seed").to_toml()

@@ -151,31 +151,41 @@ fn has_junction(m: &CellMaze) -> bool {
 /// be a single corridor, is one about 55 % of the time: 1000 draws all failing is beyond chance).
 const MAX_DRAWS: usize = 1000;
 
+impl MazeParams {
+    /// Checks the sizes, the share of loops and the floor reflectance: 2 to 200 cells a side,
+    /// 0 < wall thickness < cell size, loops in [0, 1], reflectance in (0, 1].
+    pub fn check(&self) -> Result<()> {
+        let params = self;
+        if params.width < 2 || params.height < 2 || params.width > 200 || params.height > 200 {
+            return Err(Error::InvalidArgument(format!(
+                "expected a maze of 2 to 200 cells a side, found {} x {}",
+                params.width, params.height
+            )));
+        }
+        if !(params.cell_size.is_finite() && params.wall_thickness.is_finite())
+            || params.cell_size <= 0.0
+            || params.wall_thickness <= 0.0
+            || params.wall_thickness >= params.cell_size
+        {
+            return Err(Error::InvalidArgument(format!(
+                "expected 0 < wall thickness < cell size, found {} and {}",
+                params.wall_thickness, params.cell_size
+            )));
+        }
+        let reflectance_ok = params.floor_reflectance > 0.0 && params.floor_reflectance <= 1.0;
+        if !(0.0..=1.0).contains(&params.loops) || !reflectance_ok {
+            return Err(Error::InvalidArgument(format!(
+                "expected loops in [0, 1] and floor reflectance in (0, 1], found {} and {}",
+                params.loops, params.floor_reflectance
+            )));
+        }
+        Ok(())
+    }
+}
+
 /// A generated maze world.
 pub fn generate(params: &MazeParams, seed: u64) -> Result<World> {
-    if params.width < 2 || params.height < 2 || params.width > 200 || params.height > 200 {
-        return Err(Error::InvalidArgument(format!(
-            "expected a maze of 2 to 200 cells a side, found {} x {}",
-            params.width, params.height
-        )));
-    }
-    if !(params.cell_size.is_finite() && params.wall_thickness.is_finite())
-        || params.cell_size <= 0.0
-        || params.wall_thickness <= 0.0
-        || params.wall_thickness >= params.cell_size
-    {
-        return Err(Error::InvalidArgument(format!(
-            "expected 0 < wall thickness < cell size, found {} and {}",
-            params.wall_thickness, params.cell_size
-        )));
-    }
-    let reflectance_ok = params.floor_reflectance > 0.0 && params.floor_reflectance <= 1.0;
-    if !(0.0..=1.0).contains(&params.loops) || !reflectance_ok {
-        return Err(Error::InvalidArgument(format!(
-            "expected loops in [0, 1] and floor reflectance in (0, 1], found {} and {}",
-            params.loops, params.floor_reflectance
-        )));
-    }
+    params.check()?;
     let mut rng = Rng::new(seed);
     let mut m = carve(params, &mut rng);
     // A 2 x 2 maze is a ring of four cells at most: no cell can have three openings.

@@ -380,3 +380,14 @@ impl<'py> Keywords<'py> {
         }
     }
 }
+
+/// Warns (`DeprecationWarning`, at the caller's line) that a former way of calling is going.
+pub fn warn_deprecated(py: Python<'_>, message: String) -> PyResult<()> {
+    let message = std::ffi::CString::new(message).map_err(|e| invalid(e.to_string()))?;
+    PyErr::warn(
+        py,
+        &py.get_type::<pyo3::exceptions::PyDeprecationWarning>(),
+        &message,
+        1,
+    )
+}

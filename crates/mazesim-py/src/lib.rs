@@ -9,6 +9,9 @@ mod errors;
 mod guard;
 mod lock;
 mod lower;
+mod lower_settings;
+mod maze;
+mod perturbation;
 mod profile;
 mod run;
 mod run_settings;
@@ -20,10 +23,9 @@ mod world;
 
 use pyo3::prelude::*;
 
-use args::{bounded_items, Flag, Given, IntArg, Keywords, Real};
+use args::{bounded_items, Given, Real};
 use errors::IntoPy;
 use guard::enter;
-use pyo3::types::PyDict;
 
 /// Names of the worlds embedded in the package.
 #[pyfunction]
@@ -42,40 +44,6 @@ fn robot_profile_names() -> PyResult<Vec<String>> {
 #[pyfunction]
 fn sharp_volts_to_cm(volts: Real) -> PyResult<f64> {
     enter(|| mazesim_core::sharp_volts_to_cm(volts.value("volts")?).py())
-}
-
-/// A generated maze world (seeded; see mazesim-core's generator).
-#[pyfunction]
-#[pyo3(signature = (width = IntArg::Int(5), height = IntArg::Int(5), seed = IntArg::ZERO, **layout),
-    text_signature = "(width=5, height=5, seed=0, *, cell_size=0.25, wall_thickness=0.01, loops=0.0, checkpoints=True, floor_reflectance=0.36, junction=True)")]
-fn generate_maze(
-    width: IntArg,
-    height: IntArg,
-    seed: IntArg,
-    layout: Option<&Bound<'_, PyDict>>,
-) -> PyResult<world::PyWorld> {
-    enter(|| {
-        const LAYOUT: &str =
-            "cell_size wall_thickness loops checkpoints floor_reflectance junction";
-        let kw = Keywords::new(layout, "generate_maze", LAYOUT)?;
-        let real = |key: &str, default: f64| kw.get(key, Real::Number(default))?.value(key);
-        let flag = |key: &str| kw.get(key, Flag::Value(true))?.value(key, "a bool");
-        let params = mazesim_core::generator::MazeParams {
-            width: width.count("width", usize::MAX)?,
-            height: height.count("height", usize::MAX)?,
-            cell_size: real("cell_size", 0.25)?,
-            wall_thickness: real("wall_thickness", 0.01)?,
-            loops: real("loops", 0.0)?,
-            checkpoints: flag("checkpoints")?,
-            junction: flag("junction")?,
-            floor_reflectance: real("floor_reflectance", 0.36)?,
-        };
-        let seed = seed.seed("seed")?;
-        let w = mazesim_core::generator::generate(&params, seed).py()?;
-        Ok(world::PyWorld {
-            inner: std::sync::Arc::new(w),
-        })
-    })
 }
 
 /// The default five-bit barcode book: 12 codes, none a palindrome or another's reverse.
@@ -107,7 +75,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(builtin_world_names, m)?)?;
     m.add_function(wrap_pyfunction!(robot_profile_names, m)?)?;
     m.add_function(wrap_pyfunction!(sharp_volts_to_cm, m)?)?;
-    m.add_function(wrap_pyfunction!(generate_maze, m)?)?;
+    m.add_function(wrap_pyfunction!(maze::generate_maze, m)?)?;
     m.add_function(wrap_pyfunction!(default_codes, m)?)?;
     m.add_function(wrap_pyfunction!(validate_codes, m)?)?;
     m.add_function(wrap_pyfunction!(wbt::import_wbt, m)?)?;
@@ -126,6 +94,10 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<run_settings::PyAvoidCollisionSettings>()?;
     m.add_class::<run_settings::PyTabularSettings>()?;
     m.add_class::<run_settings::PyRunSettings>()?;
+    m.add_class::<maze::PyMazeLayout>()?;
+    m.add_class::<lower_settings::PyLowerRoundSettings>()?;
+    m.add_class::<perturbation::PyDrivePerturbation>()?;
+    m.add_class::<perturbation::PySensingPerturbation>()?;
     // Wrong arguments (how many, which names) raise InvalidArgumentError, not pyo3's TypeError.
     let classes = [
         m.py().get_type::<batch::PyBatch>(),
@@ -138,6 +110,10 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
         m.py().get_type::<run_settings::PyAvoidCollisionSettings>(),
         m.py().get_type::<run_settings::PyTabularSettings>(),
         m.py().get_type::<run_settings::PyRunSettings>(),
+        m.py().get_type::<maze::PyMazeLayout>(),
+        m.py().get_type::<lower_settings::PyLowerRoundSettings>(),
+        m.py().get_type::<perturbation::PyDrivePerturbation>(),
+        m.py().get_type::<perturbation::PySensingPerturbation>(),
     ];
     arity::guard_module(m, &classes)
 }

@@ -23,6 +23,7 @@ use crate::batch::{Borrowed, PyBatch};
 use crate::buffers::{copied, readable, writable};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::{enter, enter_detached};
+use crate::lower_settings::round_keywords;
 use crate::world::world_argument;
 
 /// The keywords of `train_lower_round` after its crews: the round's arrays, then its settings.
@@ -496,19 +497,34 @@ impl<'py> CrewArgs<'py> {
 /// `lower_training`) with the robots of `crews`: each a dict of a `BatchSimulator` of one robot
 /// per environment, its four buffers, its `world_of_env`, the (12, 2) float32 `wheel_speeds` of
 /// its actions, the `members` (its robots' numbers in the round) and, for robots that do not read
-/// the seed robot's volts, the `readings` map into them. `explore` ((steps, N) float64) sets the
+/// the seed robot's volts, the `readings` map into them. `settings` (a `LowerRoundSettings`)
+/// holds what stays the same from round to round; `explore` ((steps, N) float64) sets the
 /// round's length; `q` and `visits` and each `world_of_env` are updated in place, the buffers
 /// hold the last step. Returns the round's counts as a dict. The GIL is released while it runs.
 #[pyfunction]
-#[pyo3(signature = (crews, **round),
-    text_signature = "(crews, *, worlds, role, starts, explore, random_action, q, visits, symmetry, allowed, settings)")]
+#[pyo3(signature = (crews, settings = None, starts = None, explore = None, random_action = None, q = None, visits = None, **former),
+    text_signature = "(crews, settings, starts, explore, random_action, q, visits)")]
 pub fn train_lower_round<'py>(
     crews: &Bound<'py, PyAny>,
-    round: Option<&Bound<'py, PyDict>>,
+    settings: Option<&Bound<'py, PyAny>>,
+    starts: Option<&Bound<'py, PyAny>>,
+    explore: Option<&Bound<'py, PyAny>>,
+    random_action: Option<&Bound<'py, PyAny>>,
+    q: Option<&Bound<'py, PyAny>>,
+    visits: Option<&Bound<'py, PyAny>>,
+    former: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let py = crews.py();
     enter(|| {
-        let round = Keywords::new(round, "train_lower_round", KEYWORDS)?;
+        let arrays = [
+            ("starts", starts),
+            ("explore", explore),
+            ("random_action", random_action),
+            ("q", q),
+            ("visits", visits),
+        ];
+        let round = round_keywords(py, settings, arrays, former)?;
+        let round = Keywords::new(Some(&round), "train_lower_round", KEYWORDS)?;
         let settings = round_settings(&round.required("settings")?)?;
         let role = round.required("role")?;
         let n = match shape_of(&role)[..] {

@@ -5,14 +5,15 @@
 use std::sync::Arc;
 
 use mazesim_core::limits::MAX_ENVS;
-use mazesim_core::{LookupTable, Perturbation, RobotProfile};
+use mazesim_core::{LookupTable, RobotProfile};
 use numpy::PyArray2;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString, PyTuple};
 
-use crate::args::{bounded_items, type_name, IntArg, Keywords, Label, Real, SourceName, Text};
+use crate::args::{bounded_items, type_name, IntArg, Label, Real, SourceName, Text};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::enter;
+use crate::perturbation::perturbation_of;
 use crate::world::rows_to_array;
 
 /// A robot's body, wheels and sensors.
@@ -114,28 +115,6 @@ impl<'a, 'py> FromPyObject<'a, 'py> for RobotArg {
 
 /// The left and right gains of a `motor_gains` argument: a sequence of two real numbers.
 /// The keywords of `RobotProfile.perturbed`.
-const PERTURBATIONS: &str = "wheel_radius_scale axle_length_scale motor_gains noise_scale \
-    ir_angle_error ir_offset_error wall_reflectance ground_gain slip_on_contact";
-
-fn gains_argument(gains: &Bound<'_, PyAny>) -> PyResult<[f64; 2]> {
-    let refuse = |found: String| {
-        invalid(format!(
-            "expected motor_gains to be a (left, right) pair of real numbers, found {found}"
-        ))
-    };
-    let items: Vec<Real> = bounded_items(gains, "motor_gains", "real numbers (left, right)", 2)?
-        .iter()
-        .map(|g| g.extract::<Real>())
-        .collect::<PyResult<_>>()?;
-    match items.as_slice() {
-        [left, right] => Ok([
-            left.value("motor_gains[0]")?,
-            right.value("motor_gains[1]")?,
-        ]),
-        other => Err(refuse(format!("{} values", other.len()))),
-    }
-}
-
 /// The error for a sensor index at or above the robot's `count` sensors of that `kind`.
 fn sensor_index_error(kind: &str, count: usize, index: usize) -> PyErr {
     crate::errors::to_py(mazesim_core::Error::InvalidArgument(format!(
@@ -190,26 +169,18 @@ impl PyRobotProfile {
     }
 
     /// A copy of the profile as a real robot may differ from it, named `"<name>~perturbed"`:
-    /// see `docs/perturbations.md`. Neutral arguments simulate exactly as this profile.
-    #[pyo3(signature = (**changes),
-        text_signature = "($self, *, wheel_radius_scale=1.0, axle_length_scale=1.0, motor_gains=(1.0, 1.0), noise_scale=1.0, ir_angle_error=0.0, ir_offset_error=0.0, wall_reflectance=1.0, ground_gain=1.0, slip_on_contact=0.0)")]
-    fn perturbed(&self, changes: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
+    /// its `drive` (a `DrivePerturbation`) and `sensing` (a `SensingPerturbation`) perturbed,
+    /// see `docs/perturbations.md`. Neutral perturbations simulate exactly as this profile.
+    #[pyo3(signature = (drive = None, sensing = None, **former),
+        text_signature = "($self, drive=None, sensing=None)")]
+    fn perturbed(
+        &self,
+        drive: Option<&Bound<'_, PyAny>>,
+        sensing: Option<&Bound<'_, PyAny>>,
+        former: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<Self> {
         enter(|| {
-            let kw = Keywords::new(changes, "perturbed", PERTURBATIONS)?;
-            let real = |key: &str, neutral: f64| kw.get(key, Real::Number(neutral))?.value(key);
-            let perturbation = Perturbation {
-                wheel_radius_scale: real("wheel_radius_scale", 1.0)?,
-                axle_length_scale: real("axle_length_scale", 1.0)?,
-                motor_gains: kw
-                    .object("motor_gains")?
-                    .map_or(Ok([1.0, 1.0]), |g| gains_argument(&g))?,
-                noise_scale: real("noise_scale", 1.0)?,
-                ir_angle_error: real("ir_angle_error", 0.0)?,
-                ir_offset_error: real("ir_offset_error", 0.0)?,
-                wall_reflectance: real("wall_reflectance", 1.0)?,
-                ground_gain: real("ground_gain", 1.0)?,
-                slip_on_contact: real("slip_on_contact", 0.0)?,
-            };
+            let perturbation = perturbation_of(drive, sensing, former)?;
             Ok(Self {
                 inner: Arc::new(self.inner.perturbed(&perturbation).py()?),
             })

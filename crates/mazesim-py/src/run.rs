@@ -2,17 +2,16 @@
 //! call's `RunSettings` (or, deprecated, from the keywords `run` took before them), the optional
 //! per-step output arrays (`trace`) borrowed and checked, the counters returned as numpy arrays.
 
-use std::ffi::CString;
-
 use mazesim_core::control::avoid_collision::EPUCK_MAX_SPEED;
 use mazesim_core::control::{tabular, AvoidCollision, Discretiser};
 use mazesim_core::{Controller, RunCounters, RunTrace};
 use numpy::{PyArray1, PyReadwriteArrayDyn};
-use pyo3::exceptions::PyDeprecationWarning;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::{shape_of, type_name, unknown_key, Flag, IntArg, Keywords, Real};
+use crate::args::{
+    shape_of, type_name, unknown_key, warn_deprecated, Flag, IntArg, Keywords, Real,
+};
 use crate::buffers::{copied, writable};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::enter;
@@ -109,8 +108,7 @@ impl RunCall {
              settings=RunSettings(...), with the controller's own settings (TabularSettings, \
              AvoidCollisionSettings) as the controller"
         );
-        let message = CString::new(message).map_err(|e| invalid(e.to_string()))?;
-        PyErr::warn(py, &py.get_type::<PyDeprecationWarning>(), &message, 1)?;
+        warn_deprecated(py, message)?;
         // Checked whatever the controller, so that a wrong one is never silently ignored.
         let avoid = PyAvoidCollisionSettings::new(
             kw.get("threshold", Real::Number(80.0))?,

@@ -53,7 +53,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from mazesim._core import World, generate_maze, train_lower_round
+from mazesim._core import LowerRoundSettings, World, generate_maze, train_lower_round
 from mazesim._seeding import stream, stream_seeds
 from mazesim.actions import ACTION_CODES
 from mazesim.batch import RobotBatch, RobotChoice
@@ -472,22 +472,25 @@ class LowerTrainer:
         """Runs round ``round_index`` (0-based) in the core and returns what happened in it."""
         epsilon = self.settings.epsilon(round_index)
         starts, exploration = self.draws(round_index)
-        counts = train_lower_round(
-            self._crews(),
-            worlds=self.mazes,
-            role=self.role,
-            starts=starts.as_dict(),
-            explore=exploration.uniform,
-            random_action=exploration.action,
-            q=self.tables.q,
-            visits=self.tables.visits,
-            symmetry={
+        settings = LowerRoundSettings(
+            self._core_settings(epsilon),
+            self.mazes,
+            self.role,
+            {
                 "states": _mirrored_rows(self.settings.door_distance),
                 "actions": MIRRORED_ACTION,
                 "subtasks": MIRRORED_SUBTASK,
             },
-            allowed=SUBTASK_ACTIONS,
-            settings=self._core_settings(epsilon),
+            SUBTASK_ACTIONS,
+        )
+        counts = train_lower_round(
+            self._crews(),
+            settings,
+            starts.as_dict(),
+            exploration.uniform,
+            exploration.action,
+            self.tables.q,
+            self.tables.visits,
         )
         return self.round_stats(round_index, counts)
 

@@ -31,10 +31,13 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from mazesim._core import World, generate_maze
+from mazesim._core import MazeLayout, World, generate_maze
 from mazesim.envs.navigation import start_and_goal_cells
 from mazesim.errors import InvalidArgumentError
 from mazesim.maze import GoalDistance, PathDistanceTable
+
+#: The layout of the tasks' mazes: the default one, without barcode checkpoints.
+_WITHOUT_CHECKPOINTS = MazeLayout(checkpoints=False)
 
 __all__ = [
     "AggregationTask",
@@ -275,7 +278,7 @@ class MazeGoalsTask(MultiRobotTask):
         maze_seed = int(rng.integers(2**31))
         sim_seed = int(rng.integers(2**63))
         maze_world = generate_maze(
-            columns, rows, seed=maze_seed, loops=self.loops, checkpoints=False
+            columns, rows, seed=maze_seed, loops=self.loops, layout=_WITHOUT_CHECKPOINTS
         )
         maze, cells = start_and_goal_cells(maze_world)
         r = self.num_robots

@@ -25,7 +25,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from mazesim._core import RobotProfile, World
+from mazesim._core import DrivePerturbation, RobotProfile, SensingPerturbation, World
 from mazesim._seeding import stream_seeds
 from mazesim.batch import cruise_step_length
 from mazesim.episodes import (
@@ -51,8 +51,14 @@ BATCH_ENVS = 500
 SEED_ROBOT = "seed"
 
 
+#: The changes of :func:`profile_changes` that perturb the drive (a
+#: :class:`mazesim.DrivePerturbation`); the others perturb the senses.
+_DRIVE_CHANGES = ("wheel_radius_scale", "axle_length_scale", "motor_gains", "slip_on_contact")
+
+
 def profile_changes(setting: Setting) -> dict[str, Any]:
-    """The keywords of :meth:`mazesim.RobotProfile.perturbed` a setting asks for (none: the
+    """The perturbations a setting asks for, by the name of their parameter of
+    :class:`mazesim.DrivePerturbation` or :class:`mazesim.SensingPerturbation` (none: the
     profile as it is)."""
     changes: dict[str, Any] = {}
     scales = {
@@ -95,7 +101,9 @@ def profile_of(setting: Setting) -> RobotProfile:
             f"the setting {setting.label()!r} needs RobotProfile.perturbed, which this build of "
             "mazesim lacks; study the axes robot, latency and link only"
         )
-    profile: RobotProfile = perturbed(**changes)
+    drive = DrivePerturbation(**{k: v for k, v in changes.items() if k in _DRIVE_CHANGES})
+    sensing = SensingPerturbation(**{k: v for k, v in changes.items() if k not in _DRIVE_CHANGES})
+    profile: RobotProfile = perturbed(drive, sensing)
     return profile
 
 

@@ -95,6 +95,20 @@ impl Perturbation {
     /// offset error of at most the body radius either way, reflectance in (0, 1], slip in
     /// [0, 1). The error names the first bad field.
     pub fn check(&self, robot: &RobotProfile) -> Result<()> {
+        self.check_values()?;
+        let radius = robot.body_radius;
+        check_value(
+            "ir_offset_error",
+            self.ir_offset_error,
+            &format!("a distance of at most the body radius ({radius} m) either way"),
+            |v| v.abs() <= radius,
+        )
+    }
+
+    /// Checks every field that does not depend on the robot (all but the offset error's bound
+    /// by the body radius; the offset error must be finite). The error names the first bad
+    /// field.
+    pub fn check_values(&self) -> Result<()> {
         let positive = |v: f64| v > 0.0 && v <= MAX_FACTOR;
         check_value(
             "wheel_radius_scale",
@@ -124,12 +138,11 @@ impl Perturbation {
             "an angle in [-pi, pi] (radians)",
             |v| v.abs() <= std::f64::consts::PI,
         )?;
-        let radius = robot.body_radius;
         check_value(
             "ir_offset_error",
             self.ir_offset_error,
-            &format!("a distance of at most the body radius ({radius} m) either way"),
-            |v| v.abs() <= radius,
+            "a finite distance (metres)",
+            |_| true,
         )?;
         check_value(
             "wall_reflectance",
