@@ -223,11 +223,6 @@ def lower_round_samples(world: Any, x: float, y: float, yaw: float, batch: Any) 
         "random_action": np.zeros((1, NUM_ENVS), np.int64),
         "q": np.zeros((4, rows, 12)),
         "visits": np.zeros((4, rows, 12), np.int64),
-        "symmetry": {
-            "states": np.tile(np.arange(rows, dtype=np.int64), (4, 1)),
-            "actions": np.arange(12, dtype=np.int64),
-            "subtasks": np.arange(4, dtype=np.int64),
-        },
         "allowed": np.ones((4, 12), bool),
         "settings": {
             "gamma": 0.99,

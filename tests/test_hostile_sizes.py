@@ -45,7 +45,7 @@ CASES = {
     ),
     "train lower round crews": (
         "_core.train_lower_round(HUGE, worlds=None, role=np.zeros(2, np.int64), starts=None, "
-        "explore=None, random_action=None, q=None, visits=None, symmetry=None, allowed=None, "
+        "explore=None, random_action=None, q=None, visits=None, allowed=None, "
         "settings=SETTINGS)",
         r"crews .*at most 16777216 .*1000000000 items",
     ),

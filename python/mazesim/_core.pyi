@@ -49,7 +49,6 @@ def train_lower_round(
     random_action: npt.NDArray[np.int64],
     q: npt.NDArray[np.float64],
     visits: npt.NDArray[np.int64],
-    symmetry: dict[str, npt.NDArray[np.int64]],
     allowed: npt.NDArray[np.bool_],
     settings: dict[str, float | str],
 ) -> dict[str, Any]:
@@ -64,7 +63,8 @@ def train_lower_round(
     draws, ``starts`` each robot's (N, K) queue of episode starts (``world``, ``pose``
     (N, K, 3), ``seed`` uint64, ``path`` (N, K, 9)); ``q`` and ``visits`` ((4, 12288, 12), or
     (4, 73728, 12) with ``settings["phases"] == "heading_and_distance"``) and each crew's
-    ``world_of_env`` are updated in place. Besides its numbers, ``settings`` may name the door
+    ``world_of_env`` are updated in place; each decision and its left-right mirror image (the
+    core's) teach them. Besides its numbers, ``settings`` may name the door
     sub-tasks' ``phases`` (``"heading"``, the default, or ``"heading_and_distance"``) and the
     ``blind`` rule of Corridors and Corners where no sensor sees a wall (``"table"``, the
     default, ``"forward"`` or ``"hold_heading"``). Returns the round's counts (``success``,

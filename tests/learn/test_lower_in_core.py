@@ -170,9 +170,7 @@ def _round_arguments(trainer: LowerTrainer) -> dict[str, object]:
     starts, exploration = trainer.draws(0)
     batch = trainer.batch
     core_settings = trainer._core_settings(0.1)
-    from mazesim.learn.lower import _mirrored_rows
     from mazesim.learn.subtasks import SUBTASK_ACTIONS
-    from mazesim.learn.symmetry import MIRRORED_ACTION, MIRRORED_SUBTASK
 
     return {
         "worlds": batch.worlds,  # type: ignore[union-attr]
@@ -182,11 +180,6 @@ def _round_arguments(trainer: LowerTrainer) -> dict[str, object]:
         "random_action": exploration.action[:5],
         "q": trainer.tables.q,
         "visits": trainer.tables.visits,
-        "symmetry": {
-            "states": _mirrored_rows(False),
-            "actions": MIRRORED_ACTION,
-            "subtasks": MIRRORED_SUBTASK,
-        },
         "allowed": SUBTASK_ACTIONS,
         "settings": core_settings,
     }

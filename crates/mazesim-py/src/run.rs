@@ -1,8 +1,9 @@
 //! `BatchSimulator.run` for Python: the built-in controller named by its arguments, the optional
 //! per-step output arrays (`trace`) borrowed and checked, the counters returned as numpy arrays.
 
-use mazesim_core::control::heading_hold::BlindRule;
-use mazesim_core::control::{tabular, AvoidCollision, Discretiser, TabularPolicy};
+use mazesim_core::control::AvoidCollision;
+use mazesim_core::navigator::heading_hold::BlindRule;
+use mazesim_core::navigator::{self, Discretiser, TabularPolicy};
 use mazesim_core::{Controller, RunCounters, RunTrace};
 use numpy::{PyArray1, PyReadwriteArrayDyn};
 use pyo3::prelude::*;
@@ -71,7 +72,7 @@ pub fn controller(
 }
 
 fn tabular_policy(n: usize, args: TabularArgs<'_, '_>) -> PyResult<TabularPolicy> {
-    let (states, actions) = (tabular::NUM_STATES, tabular::NUM_ACTIONS);
+    let (states, actions) = (navigator::NUM_STATES, navigator::NUM_ACTIONS);
     let table = args.table.ok_or_else(|| {
         invalid(format!(
             "the tabular controller needs table, a float64 array of shape ({states}, {actions}) \
@@ -246,7 +247,7 @@ pub fn lower_level_states<'py>(
 ) -> PyResult<Bound<'py, PyArray1<i64>>> {
     enter(|| {
         let shape = shape_of(observations).unwrap_or_default();
-        let sensors = tabular::NUM_SENSORS;
+        let sensors = navigator::NUM_SENSORS;
         let (rows, width) = match shape[..] {
             [rows, width] if width >= sensors => (rows, width),
             _ => {

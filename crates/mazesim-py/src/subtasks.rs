@@ -4,7 +4,7 @@
 //! distance holds `heading phase + 3 * distance bin`; the core keeps the heading phase alone
 //! (it computes the distance bin from the pose), which is what is written back.
 
-use mazesim_core::control::door::{Phases, SubTaskState, MAX_PHASES};
+use mazesim_core::navigator::door::{Phases, SubTaskState, MAX_PHASES};
 use mazesim_core::Controller;
 use numpy::PyReadwriteArrayDyn;
 use pyo3::prelude::*;

@@ -24,8 +24,8 @@ linearly from ``epsilon_start`` to 0 over the rounds but the last
 ``greedy_share`` of them, which are greedy: the tables then learn from their own mistakes, so a
 greedy policy that loops between two states loses the value of the loop.
 
-**Updates.** Every transition and its mirror image (:mod:`mazesim.learn.symmetry`) update the tables
-with the core's batch update (:func:`mazesim.learn.qlearning.batch_update`).
+**Updates.** Every transition and its left-right mirror image (the core's
+``navigator::symmetry``) update the tables with the core's Q update.
 
 **Rounds.** Training runs in rounds of ``round_steps`` control steps; every robot starts a fresh
 episode at the start of a round (episodes still running at its end are cut short, not failed).
@@ -77,7 +77,6 @@ from mazesim.learn.subtasks import (
     cruise_step_length,
     phase_counts,
 )
-from mazesim.learn.symmetry import MIRRORED_ACTION, MIRRORED_SUBTASK, mirrored_states
 from mazesim.maze import CellMaze
 
 __all__ = [
@@ -120,14 +119,6 @@ _CORRIDOR_ACTIONS = np.flatnonzero(SUBTASK_ACTIONS[SubTask.CORRIDOR])
 STARTS_PER_ROUND = 64
 #: Exact unit vectors of the four grid directions (east, north, west, south).
 _UNIT = np.array([[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]])
-
-
-def _mirrored_rows(door_distance: bool) -> npt.NDArray[np.int64]:
-    """The mirror image of every row of every sub-task's table, for the core's round."""
-    rows = lower_table_shape(door_distance)[1]
-    return np.stack(
-        [mirrored_states(np.arange(rows), np.full(rows, k)) for k in range(NUM_SUBTASKS)]
-    ).astype(np.int64)
 
 
 def lower_table_shape(door_distance: bool = False) -> tuple[int, int, int]:
@@ -481,11 +472,6 @@ class LowerTrainer:
             random_action=exploration.action,
             q=self.tables.q,
             visits=self.tables.visits,
-            symmetry={
-                "states": _mirrored_rows(self.settings.door_distance),
-                "actions": MIRRORED_ACTION,
-                "subtasks": MIRRORED_SUBTASK,
-            },
             allowed=SUBTASK_ACTIONS,
             settings=self._core_settings(epsilon),
         )

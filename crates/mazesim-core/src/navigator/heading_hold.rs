@@ -6,7 +6,7 @@
 
 use std::f64::consts::FRAC_PI_2;
 
-use super::tabular::NUM_STATES;
+use super::discretiser::NUM_STATES;
 
 /// The distance state in which no sensor sees a wall (every level 3).
 pub const BLIND_STATE: usize = NUM_STATES - 1;

@@ -7,7 +7,7 @@
 
 use std::f64::consts::PI;
 
-use super::tabular::NUM_STATES;
+use super::discretiser::NUM_STATES;
 use crate::error::{Error, Result};
 
 /// Corridors and Corners: one phase, never ends by itself.
