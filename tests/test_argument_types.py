@@ -68,6 +68,7 @@ def samples(tmp: Path) -> dict[str, Any]:
     world.save(saved)
     simulator = core.Simulator(world)
     features = core.TaskFeatures(*TASK_FEATURES)
+    navigator = core.Navigator(np.zeros((4, 3 * 4096, 12)), NUM_ENVS)
     return {
         "instances": {
             "World": world,
@@ -75,6 +76,7 @@ def samples(tmp: Path) -> dict[str, Any]:
             "BatchSimulator": batch,
             "RobotProfile": core.RobotProfile.builtin("e-puck"),
             "TaskFeatures": features,
+            "Navigator": navigator,
         },
         "name": {"World": "seed-maze", "RobotProfile": "e-puck"},
         "path": {"load": saved, "save": tmp / "out.toml", "import_wbt": WEBOTS_WORLD},
@@ -173,10 +175,15 @@ def samples(tmp: Path) -> dict[str, Any]:
         "state": features.state(),
         "features": features,
         "observe": True,
+        "lower_q": np.zeros((4, 3 * 4096, 12)),
+        "distances_cm": np.full((NUM_ENVS, 6), 30.0),
+        "odometry": np.zeros((NUM_ENVS, 3)),
+        "chosen": np.full(NUM_ENVS, -1, np.int64),
         # Parameters whose name means something else for one callable.
         "overrides": {
             "observe_env": {"readings": np.zeros(11, np.float32), "pose": np.zeros(3, np.float32)},
             "train_lower_round": lower_round_samples(world, x, y, yaw, batch),
+            "set_subtask_arrays": {"subtasks": navigator.subtask_arrays()},
             "q_batch_update": {
                 "q": np.zeros((4, 3)),
                 "visits": np.zeros((4, 3), np.int64),

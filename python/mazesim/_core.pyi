@@ -9,6 +9,7 @@ import numpy.typing as npt
 
 __all__ = [
     "BatchSimulator",
+    "Navigator",
     "RobotProfile",
     "Simulator",
     "TaskFeatures",
@@ -549,18 +550,18 @@ class BatchSimulator:
                 (as an env whose episode ended does, its stream untouched). All by default.
             hold_spins: The tabular controller keeps turning on the spot the way an env's last
                 step turned (action ``aa`` or ``bb``, read from its wheel speeds) rather than
-                turn back (``mazesim.learn.policy.hold_spins``); with ``subtasks``, in Corridors
-                and Corners only.
+                turn back (as :class:`Navigator` does); with ``subtasks``, in Corridors and
+                Corners only.
             hold_heading: With ``subtasks``, Corridors and Corners in the blind state (no
-                sensor sees a wall) holds its heading on the grid as
-                :func:`mazesim.learn.heading_hold.hold_actions` does (the last step's turn on
-                the spot read from its wheel speeds), after ``hold_spins``.
+                sensor sees a wall) holds its heading on the grid as :class:`Navigator` does
+                (the last step's turn on the spot read from its wheel speeds), after
+                ``hold_spins``.
             wheel_speed_limit: The tabular controller drives every env at the fractions of
                 this motor limit (rad/s, clamped to each robot's own by its step), as
                 :meth:`mazesim.batch.RobotBatch.speeds_of` does for a batch; each robot's own
                 limit when ``None``.
             subtasks: The navigator's running sub-task of each env, the arrays of
-                :class:`mazesim.learn.subtasks.SubTaskTracker` by key (``subtask``, ``steps``
+                :meth:`Navigator.subtask_arrays` by key (``subtask``, ``steps``
                 and ``phase`` (N,) int64, ``start`` (N, 3), ``previous_yaw`` and
                 ``heading_change`` (N,), ``turn_point`` (N, 2) float64), read and written in
                 place. The tabular controller then takes ``table`` as the 12 stacked tables of
@@ -569,7 +570,7 @@ class BatchSimulator:
                 distance (``door_distance``, ``(72, 4096, 12)``) and acts from table
                 ``18 * subtask + phase`` (the distance bin computed from the pose; the heading
                 phase alone is written back), and follows the odometry after every step as
-                :meth:`~mazesim.learn.subtasks.SubTaskTracker.update` does; a door sub-task that
+                :meth:`Navigator.decide` does; a door sub-task that
                 ends (or gives up) hands over to Corridors and Corners there. The states are
                 taken as left after following the last step and left with the call's last step
                 not yet followed (as :meth:`mazesim.learn.policy.HierarchicalPolicy.act`
@@ -707,3 +708,37 @@ class TaskFeatures:
         and `pose`, the previous action being the wheel speeds `left` and `right` (rad/s, float32
         values) over `max_speed` in float32; then the distance in metres from the pose to the
         goal (`set_goal`) and whether the pose is in the goal disc."""
+
+@final
+class Navigator:
+    """The lower level of the report's navigator for N robots, stepped in the core: Table 4.1
+    levels of six distances, each robot's running sub-task with the odometry its phase and end
+    read, and the action from the sub-task's table (``mazesim.learn.policy.HierarchicalPolicy``
+    runs it below the higher level)."""
+
+    def __new__(
+        cls, lower_q: npt.NDArray[np.float64], num_envs: int, hold_heading: bool = False
+    ) -> Navigator: ...
+    @property
+    def num_envs(self) -> int:
+        """Number of robots."""
+    def reset(self, envs: npt.NDArray[np.int64], odometry: npt.NDArray[np.float64]) -> None:
+        """Starts the robots ``envs`` (int64) afresh in Corridors and Corners at their rows of the
+        (N, 3) float64 ``odometry`` (x, y, yaw)."""
+    def decide(
+        self,
+        distances_cm: npt.NDArray[np.float64],
+        odometry: npt.NDArray[np.float64],
+        chosen: npt.NDArray[np.int64],
+    ) -> dict[str, npt.NDArray[Any]]:
+        """One step of every robot: the (N, 6) float64 ``distances_cm`` (front, back, left,
+        right, left-front, right-front), the (N, 3) float64 ``odometry`` after the last step and
+        the (N,) int64 sub-task the higher level ``chosen`` for each robot (-1: none). Returns a
+        dict of arrays: ``action``, ``state``, ``subtask``, ``phase`` (int64, (N,)), ``levels``
+        (int64, (N, 6)) and ``ended`` (bool, (N,): a door sub-task ended)."""
+    def subtask_arrays(self) -> dict[str, npt.NDArray[Any]]:
+        """Each robot's running sub-task as the arrays ``BatchSimulator.run`` takes as
+        ``subtasks`` (copies: hand them back with ``set_subtask_arrays`` after the run)."""
+    def set_subtask_arrays(self, subtasks: dict[str, npt.NDArray[Any]]) -> None:
+        """Sets each robot's running sub-task from arrays of ``subtask_arrays``' layout (after
+        ``BatchSimulator.run`` followed the sub-tasks); the robots' last actions stay."""

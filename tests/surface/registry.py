@@ -48,6 +48,9 @@ INSTANCES: dict[str, str] = {
         "(lambda np: mazesim._core.TaskFeatures(2, 'plan', False, np.ones(11),"
         " np.zeros(26, 'float32'), np.ones(26, 'float32')))(__import__('numpy'))"
     ),
+    "mazesim._core.Navigator": (
+        "(lambda np: mazesim._core.Navigator(np.zeros((4, 3 * 4096, 12)), 2))(__import__('numpy'))"
+    ),
     # Optional tables that its kind makes required: the shipped navigator's.
     "mazesim.learn.episode_ranges.NavigatorEpisodes": (
         "(lambda p, m: m.NavigatorEpisodes('hierarchical', (world.to_toml(),), 1, 0, 'truth', 50,"

@@ -9,6 +9,7 @@ mod errors;
 mod guard;
 mod lock;
 mod lower;
+mod navigator;
 mod profile;
 mod run;
 mod simulator;
@@ -120,6 +121,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<profile::PyRobotProfile>()?;
     m.add_class::<simulator::PySimulator>()?;
     m.add_class::<tasks::PyTaskFeatures>()?;
+    m.add_class::<navigator::PyNavigator>()?;
     // Wrong arguments (how many, which names) raise InvalidArgumentError, not pyo3's TypeError.
     let classes = [
         m.py().get_type::<batch::PyBatch>(),
@@ -127,6 +129,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
         m.py().get_type::<profile::PyRobotProfile>(),
         m.py().get_type::<simulator::PySimulator>(),
         m.py().get_type::<tasks::PyTaskFeatures>(),
+        m.py().get_type::<navigator::PyNavigator>(),
     ];
     arity::guard_module(m, &classes)
 }

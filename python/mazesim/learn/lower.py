@@ -163,7 +163,7 @@ class LowerSettings:
     #: after it (``mazesim train --blind-forward``, :func:`drive_on_when_blind`).
     blind_forward: bool = False
     #: There, it holds its heading on the maze's grid instead of driving straight on (``mazesim
-    #: train --hold-heading``, :mod:`mazesim.learn.heading_hold`); set with ``blind_forward``.
+    #: train --hold-heading``, the core's ``navigator::heading_hold``); set with ``blind_forward``.
     hold_heading: bool = False
 
     @property

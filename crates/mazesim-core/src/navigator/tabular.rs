@@ -137,7 +137,7 @@ impl TabularPolicy {
         })
     }
 
-    /// The policy keeping a turn on the spot (`mazesim.learn.policy.hold_spins`): an
+    /// The policy keeping a turn on the spot (as [`super::step::Navigator`] does): an
     /// environment whose last step turned one way on the spot (its wheel speeds, see
     /// [`TabularPolicy::action_after`]) and whose action now turns the other way keeps turning
     /// as before.
@@ -410,7 +410,7 @@ mod tests {
             for (last, &[l, r]) in WHEEL_SPEED_FRACTIONS.iter().enumerate() {
                 let speeds = [(l * max_speed) as f32, (r * max_speed) as f32];
                 for action in 0..NUM_ACTIONS {
-                    // `mazesim.learn.policy.hold_spins` on the actions themselves.
+                    // The turn kept, read from the actions themselves.
                     let expected = match (last, action) {
                         (SPIN_RIGHT, SPIN_LEFT) => SPIN_RIGHT,
                         (SPIN_LEFT, SPIN_RIGHT) => SPIN_LEFT,
