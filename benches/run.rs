@@ -8,7 +8,8 @@ use std::sync::Arc;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use mazesim_core::control::avoid_collision::EPUCK_MAX_SPEED;
-use mazesim_core::control::{braitenberg, TabularPolicy};
+use mazesim_core::control::braitenberg;
+use mazesim_core::navigator::TabularPolicy;
 use mazesim_core::rng::Rng;
 use mazesim_core::{Batch, Controller, OutputBuffers, RobotProfile, RunOptions, RunTrace};
 
@@ -72,8 +73,7 @@ fn run_against_steps(c: &mut Criterion) {
                         let [l, r] = match &controller {
                             Controller::Tabular(p) => {
                                 let a = p.action(i, obs, &mut streams[i]);
-                                let [l, r] =
-                                    mazesim_core::control::tabular::WHEEL_SPEED_FRACTIONS[a];
+                                let [l, r] = mazesim_core::navigator::WHEEL_SPEED_FRACTIONS[a];
                                 [(l * EPUCK_MAX_SPEED) as f32, (r * EPUCK_MAX_SPEED) as f32]
                             }
                             _ => braitenberg::wheel_speeds(&obs[..8]),

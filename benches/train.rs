@@ -1,5 +1,5 @@
 //! Criterion bench of a round of the lower level's Q-learning in the core
-//! (`mazesim_core::lower_training`): 1,024 robots of the four sub-tasks in 16 generated mazes,
+//! (`mazesim_core::navigator::training`): 1,024 robots of the four sub-tasks in 16 generated mazes,
 //! 100 control steps per iteration, with the default navigator's options (the seed robot, phases
 //! of the heading, Corridors and Corners acting from its table where blind) and with the
 //! randomised navigator's (door sub-tasks that count the distance, the heading held where blind,
@@ -10,14 +10,15 @@
 use std::sync::Arc;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use mazesim_core::control::door::{Phases, NUM_SUBTASKS};
-use mazesim_core::control::heading_hold::BlindRule;
-use mazesim_core::control::tabular::{NUM_ACTIONS, WHEEL_SPEED_FRACTIONS};
 use mazesim_core::generator::{generate, MazeParams};
-use mazesim_core::lower_training::{
-    train_lower_round, Crew, LowerRound, Rewards, RoundSettings, StartQueues, Symmetry,
+use mazesim_core::navigator::door::{Phases, NUM_SUBTASKS};
+use mazesim_core::navigator::heading_hold::BlindRule;
+use mazesim_core::navigator::qlearning::LearningRate;
+use mazesim_core::navigator::symmetry::Symmetry;
+use mazesim_core::navigator::training::{
+    train_lower_round, Crew, LowerRound, Rewards, RoundSettings, StartQueues,
 };
-use mazesim_core::qlearning::LearningRate;
+use mazesim_core::navigator::{NUM_ACTIONS, WHEEL_SPEED_FRACTIONS};
 use mazesim_core::rng::Rng;
 use mazesim_core::{Batch, Perturbation, RobotProfile, StepOutputs, World};
 
@@ -166,7 +167,11 @@ fn round(d: &Draws, robots: &mut Robots, tables: &mut Tables, settings: RoundSet
     let rows = settings.phases.rows();
     tables.q.fill(0.0);
     tables.visits.fill(0);
-    let mirrored: Vec<i64> = (0..NUM_SUBTASKS).flat_map(|_| 0..rows as i64).collect();
+    let symmetry = Symmetry {
+        states: (0..NUM_SUBTASKS).flat_map(|_| 0..rows).collect(),
+        actions: std::array::from_fn(|a| a),
+        subtasks: [0, 2, 1, 3],
+    };
     let mut allowed = [[true; NUM_ACTIONS]; NUM_SUBTASKS];
     allowed[0][NUM_ACTIONS - 1] = false;
     let limit = robots.batch.envs()[0].robot().max_wheel_speed;
@@ -200,11 +205,7 @@ fn round(d: &Draws, robots: &mut Robots, tables: &mut Tables, settings: RoundSet
         q: &mut tables.q,
         visits: &mut tables.visits,
         allowed,
-        symmetry: Symmetry {
-            states: &mirrored,
-            actions: std::array::from_fn(|a| a),
-            subtasks: [0, 2, 1, 3],
-        },
+        symmetry: &symmetry,
     };
     train_lower_round(round, &mut crews).unwrap();
 }

@@ -20,7 +20,6 @@ from mazesim._core import lower_level_states
 from mazesim.batch import RobotBatch
 from mazesim.learn import qlearning
 from mazesim.learn.fleet import FleetBatch
-from mazesim.learn.heading_hold import hold_actions
 from mazesim.learn.lower import (
     _FORWARD,
     DOOR_PATH_EXIT,
@@ -43,9 +42,14 @@ from mazesim.learn.subtasks import (
     PROGRESS_REWARD,
     SUBTASK_ACTIONS,
     SubTask,
-    SubTaskTracker,
 )
-from mazesim.learn.symmetry import MIRRORED_ACTION, MIRRORED_SUBTASK, mirrored_states
+from navigator_oracle import (
+    MIRRORED_ACTION,
+    MIRRORED_SUBTASK,
+    SubTaskTracker,
+    hold_actions,
+    mirrored_states,
+)
 
 NUM_SENSORS = 6
 

@@ -68,6 +68,7 @@ def samples(tmp: Path) -> dict[str, Any]:
     world.save(saved)
     simulator = core.Simulator(world)
     features = core.TaskFeatures(*TASK_FEATURES)
+    navigator = core.Navigator(np.zeros((4, 3 * 4096, 12)), NUM_ENVS)
     return {
         "instances": {
             "World": world,
@@ -75,6 +76,7 @@ def samples(tmp: Path) -> dict[str, Any]:
             "BatchSimulator": batch,
             "RobotProfile": core.RobotProfile.builtin("e-puck"),
             "TaskFeatures": features,
+            "Navigator": navigator,
         },
         "name": {"World": "seed-maze", "RobotProfile": "e-puck"},
         "path": {"load": saved, "save": tmp / "out.toml", "import_wbt": WEBOTS_WORLD},
@@ -179,12 +181,17 @@ def samples(tmp: Path) -> dict[str, Any]:
         "features": features,
         "observe": True,
         "bounds": core.StepBounds(np.zeros(11, np.float32), np.full(11, 5000.0, np.float32), 6.28),
+        "lower_q": np.zeros((4, 3 * 4096, 12)),
+        "distances_cm": np.full((NUM_ENVS, 6), 30.0),
+        "odometry": np.zeros((NUM_ENVS, 3)),
+        "chosen": np.full(NUM_ENVS, -1, np.int64),
         # Parameters whose name means something else for one callable.
         "overrides": {
             "observe_env": {"readings": np.zeros(11, np.float32), "pose": np.zeros(3, np.float32)},
             "run": {"controller": core.TabularSettings(np.zeros((4096, 12)))},
             "train_lower_round": lower_round_samples(world, x, y, yaw, batch),
             "LowerRoundSettings": lower_round_samples(world, x, y, yaw, batch),
+            "set_subtask_arrays": {"subtasks": navigator.subtask_arrays()},
             "q_batch_update": {
                 "q": np.zeros((4, 3)),
                 "visits": np.zeros((4, 3), np.int64),
@@ -231,11 +238,6 @@ def lower_round_samples(world: Any, x: float, y: float, yaw: float, batch: Any) 
         "random_action": np.zeros((1, NUM_ENVS), np.int64),
         "q": np.zeros((4, rows, 12)),
         "visits": np.zeros((4, rows, 12), np.int64),
-        "symmetry": {
-            "states": np.tile(np.arange(rows, dtype=np.int64), (4, 1)),
-            "actions": np.arange(12, dtype=np.int64),
-            "subtasks": np.arange(4, dtype=np.int64),
-        },
         "allowed": np.ones((4, 12), bool),
         "learning": {
             "gamma": 0.99,
@@ -258,7 +260,7 @@ def lower_round_samples(world: Any, x: float, y: float, yaw: float, batch: Any) 
         },
     }
     samples["settings"] = core.LowerRoundSettings(
-        *(samples[k] for k in ("learning", "worlds", "role", "symmetry", "allowed"))
+        *(samples[k] for k in ("learning", "worlds", "role", "allowed"))
     )
     return samples
 

@@ -30,12 +30,12 @@ def _raised(call: object) -> BaseException:
 
 
 def test_an_array_of_the_wrong_shape_is_an_invalid_argument_and_still_an_index_error() -> None:
-    from mazesim.learn.subtasks import SubTaskTracker
+    from mazesim.odometry import advance
 
     with pytest.raises(
-        InvalidArgumentError, match="SubTaskTracker.update: the arguments do not fit: IndexError"
+        InvalidArgumentError, match="advance: the arguments do not fit: IndexError"
     ) as caught:
-        SubTaskTracker(2).update(np.zeros(0))
+        advance(np.zeros(0), [1.0], [1.0], 0.05)
     assert isinstance(caught.value, IndexError)
     assert isinstance(caught.value.__cause__, IndexError)
     again = pickle.loads(pickle.dumps(caught.value))
@@ -53,13 +53,13 @@ def test_text_for_an_array_is_named_as_not_numbers() -> None:
 
 
 def test_a_nesting_deeper_than_numpy_reads_is_named() -> None:
-    from mazesim.learn.heading_hold import grid_error
+    from mazesim.odometry import wrap_angle
 
     nested: list[object] = []
     for _ in range(1000):
         nested = [nested]
-    with pytest.raises(InvalidArgumentError, match="yaw refused: expected an array of numbers"):
-        grid_error(nested)  # type: ignore[arg-type]
+    with pytest.raises(InvalidArgumentError, match="angle refused: expected an array of numbers"):
+        wrap_angle(nested)  # type: ignore[arg-type]
 
 
 def test_a_library_key_error_is_an_invalid_argument_that_is_still_a_key_error() -> None:

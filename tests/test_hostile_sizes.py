@@ -48,8 +48,7 @@ CASES = {
         r"crews .*at most 16777216 .*1000000000 items",
     ),
     "lower round settings worlds": (
-        "_core.LowerRoundSettings(SETTINGS, HUGE, np.zeros(2, np.int64), {}, "
-        "np.ones((4, 12), bool))",
+        "_core.LowerRoundSettings(SETTINGS, HUGE, np.zeros(2, np.int64), np.ones((4, 12), bool))",
         r"worlds .*at most 16777216 .*1000000000 items",
     ),
     "robot batch reset seeds": (
@@ -88,7 +87,7 @@ SETTINGS = {k: 0.5 for k in ('gamma', 'epsilon', 'rate_initial', 'rate_floor', '
     'success_past_centre', 'success_across')}
 SETTINGS.update(decision_steps=10, corridor_episode_steps=350)
 ROUND = _core.LowerRoundSettings(
-    SETTINGS, [world], np.zeros(2, np.int64), {}, np.ones((4, 12), bool)
+    SETTINGS, [world], np.zeros(2, np.int64), np.ones((4, 12), bool)
 )
 for name, statement in CASES.items():
     try:

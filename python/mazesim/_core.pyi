@@ -14,6 +14,7 @@ __all__ = [
     "EpisodeLimits",
     "LowerRoundSettings",
     "MazeLayout",
+    "Navigator",
     "RobotProfile",
     "RunSettings",
     "SensingPerturbation",
@@ -68,8 +69,12 @@ def train_lower_round(
     draws, ``starts`` each robot's (N, K) queue of episode starts (``world``, ``pose``
     (N, K, 3), ``seed`` uint64, ``path`` (N, K, 9)); ``q`` and ``visits`` ((4, 12288, 12), or
     (4, 73728, 12) with ``settings["phases"] == "heading_and_distance"``) and each crew's
-    ``world_of_env`` are updated in place; the rest of the round (its worlds, each robot's
-    sub-task, the learning's numbers) is ``settings``'s. Returns the round's counts (``success``,
+    ``world_of_env`` are updated in place; each decision and its left-right mirror image (the
+    core's) teach them. The rest of the round (its worlds, each robot's sub-task, the learning's
+    numbers) is ``settings``'s; its numbers may name the door sub-tasks' ``phases``
+    (``"heading"``, the default, or ``"heading_and_distance"``) and the ``blind`` rule of
+    Corridors and Corners where no sensor sees a wall (``"table"``, the default, ``"forward"`` or
+    ``"hold_heading"``). Returns the round's counts (``success``,
     ``failure``, ``cut`` per sub-task, ``corridor_metres``, ``contact_steps``). The GIL is
     released while it runs."""
 
@@ -619,9 +624,8 @@ class LowerRoundSettings:
     ``success_past_centre``, ``success_across``, and perhaps their ``phases`` (``"heading"``,
     the default, or ``"heading_and_distance"``) and the ``blind`` rule of Corridors and Corners
     where no sensor sees a wall (``"table"``, the default, ``"forward"`` or ``"hold_heading"``));
-    the ``worlds`` the robots' starts index; each robot's sub-task (``role``, (N,) int64); the
-    tables' mirror ``symmetry`` (``states`` (4, rows), ``actions`` (12,), ``subtasks`` (4,),
-    int64) and the ``allowed`` actions of each sub-task ((4, 12) bool). The arrays are the
+    the ``worlds`` the robots' starts index; each robot's sub-task (``role``, (N,) int64) and the
+    ``allowed`` actions of each sub-task ((4, 12) bool). The arrays are the
     caller's own, checked when made and again by each round.
 
     Raises:
@@ -634,7 +638,6 @@ class LowerRoundSettings:
         learning: dict[str, float | str],
         worlds: Sequence[World],
         role: npt.NDArray[np.int64],
-        symmetry: dict[str, npt.NDArray[np.int64]],
         allowed: npt.NDArray[np.bool_],
     ) -> LowerRoundSettings: ...
     @property
@@ -646,9 +649,6 @@ class LowerRoundSettings:
     @property
     def role(self) -> npt.NDArray[np.int64]:
         """(N,) int64, each robot's sub-task."""
-    @property
-    def symmetry(self) -> dict[str, npt.NDArray[np.int64]]:
-        """The tables' mirror symmetry, arrays by key (``states``, ``actions``, ``subtasks``)."""
     @property
     def allowed(self) -> npt.NDArray[np.bool_]:
         """(4, 12) bool, the actions each sub-task may take."""
@@ -802,11 +802,11 @@ class TabularSettings:
         epsilon: The exploration rate in [0, 1].
         hold_spins: Keep turning on the spot the way an env's last step turned (action ``aa``
             or ``bb``, read from its wheel speeds) rather than turn back
-            (``mazesim.learn.policy.hold_spins``); with sub-tasks, in Corridors and Corners
+            (as :class:`Navigator` does); with sub-tasks, in Corridors and Corners
             only.
         hold_heading: With sub-tasks, Corridors and Corners in the blind state (no sensor sees
-            a wall) holds its heading on the grid as
-            :func:`mazesim.learn.heading_hold.hold_actions` does, after ``hold_spins``.
+            a wall) holds its heading on the grid as :class:`Navigator` does (the last step's
+            turn on the spot read from its wheel speeds), after ``hold_spins``.
         wheel_speed_limit: Drive every env at the fractions of this motor limit (rad/s,
             clamped to each robot's own by its step), as
             :meth:`mazesim.batch.RobotBatch.speeds_of` does for a batch; each robot's own limit
@@ -857,11 +857,11 @@ class RunSettings:
         active: (N,) bool, the envs that step; the others stand still for the whole call (as
             an env whose episode ended does, its stream untouched). All when None.
         subtasks: The navigator's running sub-task of each env, the arrays of
-            :class:`mazesim.learn.subtasks.SubTaskTracker` by key (``subtask``, ``steps`` and
+            :meth:`Navigator.subtask_arrays` by key (``subtask``, ``steps`` and
             ``phase`` (N,) int64, ``start`` (N, 3), ``previous_yaw`` and ``heading_change``
             (N,), ``turn_point`` (N, 2) float64), read and written in place, for the tabular
             controller: it follows the odometry after every step as
-            :meth:`~mazesim.learn.subtasks.SubTaskTracker.update` does; a door sub-task that
+            :meth:`Navigator.decide` does; a door sub-task that
             ends (or gives up) hands over to Corridors and Corners there. The states are taken
             as left after following the last step and left with the call's last step not yet
             followed (as :meth:`mazesim.learn.policy.HierarchicalPolicy.act` follows it); an env
@@ -1005,3 +1005,37 @@ class TaskFeatures:
         and `pose`, the previous action being the wheel speeds `left` and `right` (rad/s, float32
         values) over `max_speed` in float32; then the distance in metres from the pose to the
         goal (`set_goal`) and whether the pose is in the goal disc."""
+
+@final
+class Navigator:
+    """The lower level of the report's navigator for N robots, stepped in the core: Table 4.1
+    levels of six distances, each robot's running sub-task with the odometry its phase and end
+    read, and the action from the sub-task's table (``mazesim.learn.policy.HierarchicalPolicy``
+    runs it below the higher level)."""
+
+    def __new__(
+        cls, lower_q: npt.NDArray[np.float64], num_envs: int, hold_heading: bool = False
+    ) -> Navigator: ...
+    @property
+    def num_envs(self) -> int:
+        """Number of robots."""
+    def reset(self, envs: npt.NDArray[np.int64], odometry: npt.NDArray[np.float64]) -> None:
+        """Starts the robots ``envs`` (int64) afresh in Corridors and Corners at their rows of the
+        (N, 3) float64 ``odometry`` (x, y, yaw)."""
+    def decide(
+        self,
+        distances_cm: npt.NDArray[np.float64],
+        odometry: npt.NDArray[np.float64],
+        chosen: npt.NDArray[np.int64],
+    ) -> dict[str, npt.NDArray[Any]]:
+        """One step of every robot: the (N, 6) float64 ``distances_cm`` (front, back, left,
+        right, left-front, right-front), the (N, 3) float64 ``odometry`` after the last step and
+        the (N,) int64 sub-task the higher level ``chosen`` for each robot (-1: none). Returns a
+        dict of arrays: ``action``, ``state``, ``subtask``, ``phase`` (int64, (N,)), ``levels``
+        (int64, (N, 6)) and ``ended`` (bool, (N,): a door sub-task ended)."""
+    def subtask_arrays(self) -> dict[str, npt.NDArray[Any]]:
+        """Each robot's running sub-task as the arrays ``BatchSimulator.run`` takes as
+        ``subtasks`` (copies: hand them back with ``set_subtask_arrays`` after the run)."""
+    def set_subtask_arrays(self, subtasks: dict[str, npt.NDArray[Any]]) -> None:
+        """Sets each robot's running sub-task from arrays of ``subtask_arrays``' layout (after
+        ``BatchSimulator.run`` followed the sub-tasks); the robots' last actions stay."""

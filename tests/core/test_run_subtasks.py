@@ -18,16 +18,10 @@ import mazesim
 from mazesim.actions import ACTION_CODES
 from mazesim.batch import RobotBatch
 from mazesim.learn.discretise import NUM_STATES, observation_states
-from mazesim.learn.policy import hold_spins
 from mazesim.learn.qlearning import best_allowed
-from mazesim.learn.subtasks import (
-    MAX_PHASES,
-    NUM_SUBTASKS,
-    SUBTASK_ACTIONS,
-    SubTask,
-    SubTaskTracker,
-)
+from mazesim.learn.subtasks import MAX_PHASES, NUM_SUBTASKS, SUBTASK_ACTIONS, SubTask
 from mazesim.learn.tables import load_policy
+from navigator_oracle import SubTaskTracker, hold_spins
 
 STEPS = 260
 LOWER_Q = load_policy(None).lower_q

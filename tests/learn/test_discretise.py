@@ -17,8 +17,14 @@ from mazesim.learn.discretise import (
     observation_states,
     volts_to_cm,
 )
-from mazesim.learn.subtasks import SubTask, heading_phases
-from mazesim.learn.symmetry import MIRRORED_ACTION, MIRRORED_SUBTASK, mirrored_states
+from mazesim.learn.subtasks import SubTask
+from navigator_oracle import (
+    MIRRORED_ACTION,
+    MIRRORED_SUBTASK,
+    begin_subtask,
+    heading_phases,
+    mirrored_states,
+)
 
 
 def test_table_4_1_levels_at_the_boundaries() -> None:
@@ -128,6 +134,6 @@ def test_corridors_and_corners_never_reverses() -> None:
     policy = HierarchicalPolicy(lower, HigherLevel([[1, 2]]), np.zeros(2, dtype=np.int64))
     poses = np.zeros((2, 3))
     policy.reset([0, 1], poses)
-    policy.tracker.begin(np.array([False, True]), SubTask.RIGHT, poses)
+    begin_subtask(policy, 1, SubTask.RIGHT)
     actions = policy.act_on_distances(np.full((2, 6), 30.0), poses, np.zeros(2, dtype=np.int64))
     assert actions.tolist() == [3, backward]

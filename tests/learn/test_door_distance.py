@@ -33,13 +33,11 @@ from mazesim.learn.subtasks import (
     MAX_PHASES,
     NUM_PHASES,
     SubTask,
-    SubTaskTracker,
-    distance_bins,
     door_distance_of,
 )
-from mazesim.learn.symmetry import mirrored_states
 from mazesim.learn.tables import load_policy, save_policy
 from mazesim.learn.train import train
+from navigator_oracle import SubTaskTracker, distance_bins, mirrored_states
 from training_settings import E_PUCK_ROUND, TINY, trained, trained_alike_at_one_and_two_threads
 
 FORWARD = ACTION_CODES.index("00")
@@ -131,8 +129,8 @@ def test_the_tables_shape_says_which_phases_they_use() -> None:
     with pytest.raises(InvalidArgumentError, match="rows per sub-task"):
         door_distance_of(5 * NUM_STATES)
     level = HigherLevel([[1, 2]])
-    assert HierarchicalPolicy(np.zeros(lower_table_shape(True)), level, [0]).tracker.door_distance
-    assert not HierarchicalPolicy(np.zeros(lower_table_shape()), level, [0]).tracker.door_distance
+    assert HierarchicalPolicy(np.zeros(lower_table_shape(True)), level, [0]).door_distance
+    assert not HierarchicalPolicy(np.zeros(lower_table_shape()), level, [0]).door_distance
     with pytest.raises(InvalidArgumentError, match="door_distance"):
         HierarchicalPolicy(np.zeros((4, 5 * NUM_STATES, 12)), level, [0])
 

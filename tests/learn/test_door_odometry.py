@@ -16,7 +16,8 @@ from pathlib import Path
 
 import numpy as np
 
-from mazesim.learn.subtasks import MAX_DOOR_STEPS, TARGET_TURN, SubTaskTracker
+from mazesim.learn.subtasks import MAX_DOOR_STEPS, TARGET_TURN
+from navigator_oracle import SubTaskTracker
 
 FIXTURE = Path(__file__).resolve().parents[2] / "crates/mazesim-core/tests/data/door_subtasks.txt"
 SEQUENCES = 60

@@ -18,13 +18,13 @@ from mazesim.errors import PolicyFormatError
 from mazesim.learn.checkpoint import RunFolder
 from mazesim.learn.core_episodes import stretches_apply
 from mazesim.learn.discretise import NUM_SENSORS, distance_levels, encode_state
-from mazesim.learn.heading_hold import HOLD_TOLERANCE, grid_error, hold_actions
 from mazesim.learn.higher import HigherLevel
 from mazesim.learn.lower import lower_table_shape
 from mazesim.learn.policy import DeadReckoningNavigator, HierarchicalPolicy
 from mazesim.learn.subtasks import BLIND_STATE, SubTask
 from mazesim.learn.tables import load_policy, save_policy
 from mazesim.learn.train import train
+from navigator_oracle import HOLD_TOLERANCE, begin_subtask, grid_error, hold_actions
 from training_settings import E_PUCK_ROUND, TINY, trained, trained_alike_at_one_and_two_threads
 
 FORWARD, GENTLE_RIGHT, GENTLE_LEFT = (ACTION_CODES.index(c) for c in ("00", "11", "55"))
@@ -105,7 +105,7 @@ def test_the_navigator_holds_only_in_corridors_and_corners_where_blind() -> None
     held = _policy(True)
     held.reset(np.arange(4), poses)
     # Robot 3 runs a door sub-task: its table decides, blind or not.
-    held.tracker.begin(np.array([False, False, False, True]), SubTask.RIGHT, poses)
+    begin_subtask(held, 3, SubTask.RIGHT)
     action = held.act_on_distances(distances, poses, events)
     assert held.record.state[0] == BLIND_STATE
     assert action.tolist() == [GENTLE_RIGHT, SPIN_RIGHT, GENTLE_RIGHT, SPIN_RIGHT]

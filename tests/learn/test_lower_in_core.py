@@ -180,9 +180,7 @@ def _round_arguments(trainer: LowerTrainer) -> dict[str, object]:
     starts, exploration = trainer.draws(0)
     batch = trainer.batch
     core_settings = trainer._core_settings(0.1)
-    from mazesim.learn.lower import _mirrored_rows
     from mazesim.learn.subtasks import SUBTASK_ACTIONS
-    from mazesim.learn.symmetry import MIRRORED_ACTION, MIRRORED_SUBTASK
 
     return {
         "worlds": batch.worlds,  # type: ignore[union-attr]
@@ -192,11 +190,6 @@ def _round_arguments(trainer: LowerTrainer) -> dict[str, object]:
         "random_action": exploration.action[:5],
         "q": trainer.tables.q,
         "visits": trainer.tables.visits,
-        "symmetry": {
-            "states": _mirrored_rows(False),
-            "actions": MIRRORED_ACTION,
-            "subtasks": MIRRORED_SUBTASK,
-        },
         "allowed": SUBTASK_ACTIONS,
         "settings": core_settings,
     }
@@ -259,7 +252,6 @@ def _train_round(arguments: dict[str, Any]) -> dict[str, Any]:
         arguments["settings"],
         arguments["worlds"],
         arguments["role"],
-        arguments["symmetry"],
         arguments["allowed"],
     )
     return train_lower_round(
@@ -291,7 +283,7 @@ def test_former_keywords_warn_and_train_as_the_settings_do() -> None:
     np.testing.assert_array_equal(visits, old_visits)
     assert visits.sum() > 0
     settings = LowerRoundSettings(
-        *(arguments[k] for k in ("settings", "worlds", "role", "symmetry", "allowed"))
+        *(arguments[k] for k in ("settings", "worlds", "role", "allowed"))
     )
     assert repr(settings) == (
         f"LowerRoundSettings(robots={SMALL.num_envs}, worlds={len(arguments['worlds'])}, "

@@ -66,11 +66,14 @@ INSTANCES: dict[str, str] = {
         " 'corridor_step_reward', 'door_step_reward', 'heading_reward', 'door_success_reward',"
         " 'door_failure_reward', 'door_path_exit', 'success_past_centre', 'success_across'), 0.5)"
         " | {'decision_steps': 10, 'corridor_episode_steps': 350}, [world],"
-        " np.zeros(2, np.int64), {}, np.ones((4, 12), bool)))(__import__('numpy'))"
+        " np.zeros(2, np.int64), np.ones((4, 12), bool)))(__import__('numpy'))"
     ),
     "mazesim._core.StepBounds": (
         "(lambda np: mazesim._core.StepBounds(np.zeros(11, 'float32'),"
         " np.full(11, 5000.0, 'float32'), 6.28))(__import__('numpy'))"
+    ),
+    "mazesim._core.Navigator": (
+        "(lambda np: mazesim._core.Navigator(np.zeros((4, 3 * 4096, 12)), 2))(__import__('numpy'))"
     ),
     # Optional tables that its kind makes required: the shipped navigator's.
     "mazesim.learn.episode_ranges.NavigatorEpisodes": (

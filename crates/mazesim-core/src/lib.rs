@@ -17,7 +17,7 @@
 //!
 //! Modules are grouped by subsystem below, from the ground up; `Batch` has one `impl` per concern
 //! (stepping in [`batch`], the multi-step call in [`rollout`], the navigator's training round in
-//! [`lower_training`]), and [`prelude`] brings the types most programs start from.
+//! [`navigator::training`]), and [`prelude`] brings the types most programs start from.
 #![warn(missing_docs)]
 
 // World and geometry: the format and walls, seeded mazes, barcode code books.
@@ -42,9 +42,9 @@ pub mod rollout;
 pub mod simulator;
 pub mod swarm;
 
-// Navigator: tabular Q-learning and the lower level's training round.
-pub mod lower_training;
-pub mod qlearning;
+// Navigator: the report's hierarchical navigator, from the distance state and the sub-tasks to
+// the tabular controller, the Q update and the lower level's training round.
+pub mod navigator;
 
 // Task observations of the gymnasium tasks.
 pub mod tasks;

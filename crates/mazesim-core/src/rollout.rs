@@ -14,9 +14,9 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use crate::batch::{CHUNK_ENVS, INTERRUPT_POLL};
-use crate::control::door::{self, SubTaskEnd, SubTaskState};
 use crate::control::Controller;
 use crate::error::{Error, Result};
+use crate::navigator::door::{self, SubTaskEnd, SubTaskState};
 use crate::rng::{next_seed, Rng};
 use crate::{Batch, Simulator, StepOutputs};
 

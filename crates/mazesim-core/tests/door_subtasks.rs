@@ -1,9 +1,9 @@
-//! The door sub-tasks' odometry replays, bit for bit, what `mazesim.learn.subtasks.SubTaskTracker`
+//! The door sub-tasks' odometry replays, bit for bit, what the oracle `SubTaskTracker` in `tests/navigator_oracle.py`
 //! did on the same poses (`tests/data/door_subtasks.txt`, written and checked against the
 //! tracker by `tests/learn/test_door_odometry.py`): the phase, the end and the heading change of
 //! every step.
 
-use mazesim_core::control::door::{SubTaskEnd, SubTaskState};
+use mazesim_core::navigator::door::{SubTaskEnd, SubTaskState};
 
 fn pose(fields: &[&str]) -> [f32; 3] {
     [0, 1, 2].map(|i| f32::from_bits(fields[i].parse().unwrap()))

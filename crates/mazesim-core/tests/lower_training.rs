@@ -4,15 +4,16 @@
 
 use std::sync::Arc;
 
-use mazesim_core::control::door::{Phases, NUM_SUBTASKS};
-use mazesim_core::control::heading_hold::BlindRule;
-use mazesim_core::control::tabular::NUM_ACTIONS;
 use mazesim_core::generator::{generate, MazeParams};
-use mazesim_core::lower_training::{
+use mazesim_core::navigator::door::{Phases, NUM_SUBTASKS};
+use mazesim_core::navigator::heading_hold::BlindRule;
+use mazesim_core::navigator::qlearning::LearningRate;
+use mazesim_core::navigator::symmetry::Symmetry;
+use mazesim_core::navigator::training::{
     train_lower_round, Crew, LowerRound, Rewards, RoundCounts, RoundSettings, StartQueues,
-    Symmetry, PATH_WIDTH,
+    PATH_WIDTH,
 };
-use mazesim_core::qlearning::LearningRate;
+use mazesim_core::navigator::NUM_ACTIONS;
 use mazesim_core::rng::Rng;
 use mazesim_core::{Batch, Error, RobotProfile, StepOutputs, World};
 
@@ -31,7 +32,7 @@ struct Setup {
     start_path: Vec<f64>,
     explore: Vec<f64>,
     random_action: Vec<i64>,
-    mirrored: Vec<i64>,
+    mirrored: Vec<usize>,
 }
 
 fn setup() -> Setup {
@@ -58,7 +59,7 @@ fn setup() -> Setup {
     let random_action = (0..STEPS * ENVS)
         .map(|i| (rng.uniform() * if i % 4 == 0 { 11.0 } else { 12.0 }) as i64)
         .collect();
-    let mirrored = (0..NUM_SUBTASKS).flat_map(|_| 0..ROWS as i64).collect();
+    let mirrored = (0..NUM_SUBTASKS).flat_map(|_| 0..ROWS).collect();
     Setup {
         worlds,
         role,
@@ -116,7 +117,7 @@ fn round_in_crews(
     let mut allowed = [[true; NUM_ACTIONS]; NUM_SUBTASKS];
     allowed[0][11] = false;
     let limit = profile.max_wheel_speed as f32;
-    let fractions = mazesim_core::control::tabular::WHEEL_SPEED_FRACTIONS;
+    let fractions = mazesim_core::navigator::WHEEL_SPEED_FRACTIONS;
     let wheel_speeds = fractions.map(|[l, r]| [l as f32 * limit, r as f32 * limit]);
     let members: Vec<Vec<usize>> = (0..crews)
         .map(|c| (c..ENVS).step_by(crews).collect())
@@ -184,8 +185,8 @@ fn round_in_crews(
             q: &mut q,
             visits: &mut visits,
             allowed,
-            symmetry: Symmetry {
-                states: &s.mirrored,
+            symmetry: &Symmetry {
+                states: s.mirrored.clone(),
                 actions: std::array::from_fn(|a| a),
                 subtasks: [0, 2, 1, 3],
             },
@@ -273,7 +274,7 @@ fn bad_arrays_are_refused_before_anything_moves() {
             "robot 0 (sub-task 0) at step 2",
         ),
         (Box::new(|s| s.role[0] = 4), "sub-tasks"),
-        (Box::new(|s| s.mirrored[5] = -1), "mirrored states"),
+        (Box::new(|s| s.mirrored[5] = ROWS), "mirrored states"),
         (
             Box::new(|s| s.start_path.truncate(PATH_WIDTH)),
             "door paths",

@@ -6,8 +6,9 @@ mod common;
 use std::sync::Arc;
 
 use mazesim_core::control::avoid_collision::EPUCK_MAX_SPEED;
-use mazesim_core::control::{braitenberg, AvoidCollision, TabularPolicy};
+use mazesim_core::control::{braitenberg, AvoidCollision};
 use mazesim_core::generator::{generate, MazeParams};
+use mazesim_core::navigator::TabularPolicy;
 use mazesim_core::rng::{next_seed, Rng};
 use mazesim_core::{
     Batch, Controller, OutputBuffers, RobotProfile, RunCounters, RunOptions, RunTrace, World,

@@ -4,10 +4,10 @@
 
 use std::sync::Arc;
 
-use mazesim_core::control::door::{self, SubTaskEnd, SubTaskState};
-use mazesim_core::control::tabular::{NUM_ACTIONS, NUM_STATES, WHEEL_SPEED_FRACTIONS};
-use mazesim_core::control::TabularPolicy;
 use mazesim_core::generator::{generate, MazeParams};
+use mazesim_core::navigator::door::{self, SubTaskEnd, SubTaskState};
+use mazesim_core::navigator::TabularPolicy;
+use mazesim_core::navigator::{NUM_ACTIONS, NUM_STATES, WHEEL_SPEED_FRACTIONS};
 use mazesim_core::rng::Rng;
 use mazesim_core::rollout::RunEnvs;
 use mazesim_core::{

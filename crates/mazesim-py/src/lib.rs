@@ -11,6 +11,7 @@ mod lock;
 mod lower;
 mod lower_settings;
 mod maze;
+mod navigator;
 mod perturbation;
 mod profile;
 mod run;
@@ -98,6 +99,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<lower_settings::PyLowerRoundSettings>()?;
     m.add_class::<perturbation::PyDrivePerturbation>()?;
     m.add_class::<perturbation::PySensingPerturbation>()?;
+    m.add_class::<navigator::PyNavigator>()?;
     // Wrong arguments (how many, which names) raise InvalidArgumentError, not pyo3's TypeError.
     let classes = [
         m.py().get_type::<batch::PyBatch>(),
@@ -114,6 +116,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
         m.py().get_type::<lower_settings::PyLowerRoundSettings>(),
         m.py().get_type::<perturbation::PyDrivePerturbation>(),
         m.py().get_type::<perturbation::PySensingPerturbation>(),
+        m.py().get_type::<navigator::PyNavigator>(),
     ];
     arity::guard_module(m, &classes)
 }

@@ -4,15 +4,16 @@
 
 use std::sync::Arc;
 
-use mazesim_core::control::door::{Phases, NUM_SUBTASKS};
-use mazesim_core::control::heading_hold::BlindRule;
-use mazesim_core::control::seed_volts::{Interpolation, SeedVolts, SensorDistance};
-use mazesim_core::control::tabular::{NUM_ACTIONS, NUM_SENSORS};
 use mazesim_core::limits::MAX_ENVS;
-use mazesim_core::lower_training::{
-    self, Crew, LowerRound, Rewards, RoundCounts, RoundSettings, StartQueues, Symmetry, PATH_WIDTH,
+use mazesim_core::navigator::door::{Phases, NUM_SUBTASKS};
+use mazesim_core::navigator::heading_hold::BlindRule;
+use mazesim_core::navigator::qlearning::{LearningRate, QTable, Transition};
+use mazesim_core::navigator::seed_volts::{Interpolation, SeedVolts, SensorDistance};
+use mazesim_core::navigator::symmetry::Symmetry;
+use mazesim_core::navigator::training::{
+    self, Crew, LowerRound, Rewards, RoundCounts, RoundSettings, StartQueues, PATH_WIDTH,
 };
-use mazesim_core::qlearning::{LearningRate, QTable, Transition};
+use mazesim_core::navigator::{NUM_ACTIONS, NUM_SENSORS};
 use mazesim_core::World;
 use numpy::{PyReadonlyArrayDyn, PyReadwriteArrayDyn};
 use pyo3::prelude::*;
@@ -27,7 +28,7 @@ use crate::lower_settings::round_keywords;
 use crate::world::world_argument;
 
 /// The keywords of `train_lower_round` after its crews: the round's arrays, then its settings.
-const KEYWORDS: &str = "worlds role starts explore random_action q visits symmetry allowed \
+const KEYWORDS: &str = "worlds role starts explore random_action q visits allowed \
     settings";
 
 /// The keys of each crew of `train_lower_round` (`readings` may be left out: the seed robot's
@@ -180,26 +181,12 @@ pub struct RoundArrays<'py> {
     q: PyReadwriteArrayDyn<'py, f64>,
     visits: PyReadwriteArrayDyn<'py, i64>,
     allowed: [[bool; NUM_ACTIONS]; NUM_SUBTASKS],
-    mirrored_states: Vec<i64>,
-    mirrored_action: [usize; NUM_ACTIONS],
-    mirrored_subtask: [usize; NUM_SUBTASKS],
+    /// The mirror image of the tables' phases.
+    symmetry: Symmetry,
 }
 
 fn shape_of(obj: &Bound<'_, PyAny>) -> Vec<usize> {
     crate::args::shape_of(obj).unwrap_or_default()
-}
-
-fn indices<const K: usize>(values: Vec<i64>, name: &str, below: usize) -> PyResult<[usize; K]> {
-    let mut out = [0; K];
-    for (slot, &v) in out.iter_mut().zip(&values) {
-        if v < 0 || v as usize >= below {
-            return Err(invalid(format!(
-                "expected {name} in [0, {below}), found {v}"
-            )));
-        }
-        *slot = v as usize;
-    }
-    Ok(out)
 }
 
 impl<'py> RoundArrays<'py> {
@@ -213,7 +200,6 @@ impl<'py> RoundArrays<'py> {
         let random_action = &round.required("random_action")?;
         let q = &round.required("q")?;
         let visits = &round.required("visits")?;
-        let symmetry = &round.required("symmetry")?;
         let allowed = &round.required("allowed")?;
         let worlds = bounded_items(worlds, "worlds", "mazesim.World", MAX_ENVS)?
             .iter()
@@ -242,18 +228,17 @@ impl<'py> RoundArrays<'py> {
         };
         // Tables of either phase count (the round checks them against its own); any other
         // shape is refused below as one of heading phases.
-        let rows = match shape_of(q).get(1) {
-            Some(&rows) if rows == Phases::HeadingAndDistance.rows() => rows,
-            _ => Phases::Heading.rows(),
+        let phases = match shape_of(q).get(1) {
+            Some(&rows) if rows == Phases::HeadingAndDistance.rows() => Phases::HeadingAndDistance,
+            _ => Phases::Heading,
         };
+        let rows = phases.rows();
         let table_shape = [NUM_SUBTASKS, rows, NUM_ACTIONS];
-        let symmetry = dict_argument(symmetry, "symmetry", "")?;
         let flags = copied::<bool>(allowed, "allowed", "bool", &[NUM_SUBTASKS, NUM_ACTIONS])?;
         let mut allowed = [[false; NUM_ACTIONS]; NUM_SUBTASKS];
         for (row, chunk) in allowed.iter_mut().zip(flags.chunks_exact(NUM_ACTIONS)) {
             row.copy_from_slice(chunk);
         }
-        let item = |key: &str| entry(symmetry, "symmetry", key);
         Ok(Self {
             worlds,
             role: copied::<i64>(role, "role", "int64", &[n])?,
@@ -282,32 +267,7 @@ impl<'py> RoundArrays<'py> {
             q: writable(q, "q", "float64", &table_shape)?,
             visits: writable(visits, "visits", "int64", &table_shape)?,
             allowed,
-            mirrored_states: copied::<i64>(
-                &item("states")?,
-                "symmetry['states']",
-                "int64",
-                &[NUM_SUBTASKS, rows],
-            )?,
-            mirrored_action: indices(
-                copied::<i64>(
-                    &item("actions")?,
-                    "symmetry['actions']",
-                    "int64",
-                    &[NUM_ACTIONS],
-                )?,
-                "mirrored actions",
-                NUM_ACTIONS,
-            )?,
-            mirrored_subtask: indices(
-                copied::<i64>(
-                    &item("subtasks")?,
-                    "symmetry['subtasks']",
-                    "int64",
-                    &[NUM_SUBTASKS],
-                )?,
-                "mirrored sub-tasks",
-                NUM_SUBTASKS,
-            )?,
+            symmetry: Symmetry::new(phases),
         })
     }
 
@@ -330,11 +290,7 @@ impl<'py> RoundArrays<'py> {
             q: self.q.as_slice_mut().unwrap_or_default(),
             visits: self.visits.as_slice_mut().unwrap_or_default(),
             allowed: self.allowed,
-            symmetry: Symmetry {
-                states: &self.mirrored_states,
-                actions: self.mirrored_action,
-                subtasks: self.mirrored_subtask,
-            },
+            symmetry: &self.symmetry,
         }
     }
 }
@@ -494,7 +450,7 @@ impl<'py> CrewArgs<'py> {
 }
 
 /// Runs one round of the lower level's Q-learning in the core (see `mazesim-core`'s
-/// `lower_training`) with the robots of `crews`: each a dict of a `BatchSimulator` of one robot
+/// `navigator::training`) with the robots of `crews`: each a dict of a `BatchSimulator` of one robot
 /// per environment, its four buffers, its `world_of_env`, the (12, 2) float32 `wheel_speeds` of
 /// its actions, the `members` (its robots' numbers in the round) and, for robots that do not read
 /// the seed robot's volts, the `readings` map into them. `settings` (a `LowerRoundSettings`)
@@ -599,7 +555,7 @@ pub fn train_lower_round<'py>(
                     },
                 )
                 .collect();
-            lower_training::train_lower_round(round, &mut crews)
+            training::train_lower_round(round, &mut crews)
         })?;
         counts_dict(py, &counts)
     })

@@ -1,12 +1,12 @@
 //! What stays the same from round to round of the lower level's training in the core, as one
 //! typed, frozen value checked when it is made (`LowerRoundSettings`: the learning's numbers,
-//! the worlds, each robot's sub-task, the tables' mirror symmetry and allowed actions), and the
-//! arguments of `train_lower_round` read from it and the round's own arrays. The keywords
+//! the worlds, each robot's sub-task and the allowed actions; the tables' mirror symmetry is the
+//! core's own), and the arguments of `train_lower_round` read from it and the round's own arrays. The keywords
 //! `train_lower_round` took before it still work, with a `DeprecationWarning`, for one release.
 
-use mazesim_core::control::door::NUM_SUBTASKS;
-use mazesim_core::control::tabular::NUM_ACTIONS;
 use mazesim_core::limits::MAX_ENVS;
+use mazesim_core::navigator::door::NUM_SUBTASKS;
+use mazesim_core::navigator::NUM_ACTIONS;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -19,7 +19,7 @@ use crate::lower::round_settings;
 use crate::world::world_argument;
 
 /// The keywords `train_lower_round` took before its settings, beside its round's arrays.
-const FORMER_KEYWORDS: &str = "worlds role symmetry allowed settings starts explore \
+const FORMER_KEYWORDS: &str = "worlds role allowed settings starts explore \
     random_action q visits";
 
 /// The arrays of one round of `train_lower_round`, by name, in its order.
@@ -29,7 +29,7 @@ pub type RoundArguments<'a, 'py> = [(&'static str, Option<&'a Bound<'py, PyAny>>
 /// round to round but for the exploration rate: the learning's numbers (`learning`, a dict of
 /// `gamma`, `epsilon`, the learning rate, the rewards, the door sub-tasks' bounds, and perhaps
 /// their `phases` and the `blind` rule), the `worlds` the robots' starts index, each robot's
-/// sub-task (`role`, (N,) int64), the tables' mirror `symmetry` and the `allowed` actions of
+/// sub-task (`role`, (N,) int64) and the `allowed` actions of
 /// each sub-task ((4, 12) bool). The arrays are the caller's own, checked when made and again by
 /// each round.
 #[pyclass(name = "LowerRoundSettings", module = "mazesim._core", frozen)]
@@ -37,7 +37,6 @@ pub struct PyLowerRoundSettings {
     learning: Py<PyAny>,
     worlds: Py<PyAny>,
     role: Py<PyAny>,
-    symmetry: Py<PyAny>,
     allowed: Py<PyAny>,
     robots: usize,
     world_count: usize,
@@ -48,13 +47,12 @@ pub struct PyLowerRoundSettings {
 #[pymethods]
 impl PyLowerRoundSettings {
     #[new]
-    #[pyo3(signature = (learning, worlds, role, symmetry, allowed),
-        text_signature = "(learning, worlds, role, symmetry, allowed)")]
+    #[pyo3(signature = (learning, worlds, role, allowed),
+        text_signature = "(learning, worlds, role, allowed)")]
     pub fn new(
         learning: &Bound<'_, PyAny>,
         worlds: &Bound<'_, PyAny>,
         role: &Bound<'_, PyAny>,
-        symmetry: &Bound<'_, PyAny>,
         allowed: &Bound<'_, PyAny>,
     ) -> PyResult<Self> {
         enter(|| {
@@ -74,13 +72,11 @@ impl PyLowerRoundSettings {
                 }
             };
             copied::<i64>(role, "role", "int64", &[robots])?;
-            dict_argument(symmetry, "symmetry", " of name -> array")?;
             copied::<bool>(allowed, "allowed", "bool", &[NUM_SUBTASKS, NUM_ACTIONS])?;
             Ok(Self {
                 learning: learning.clone().unbind(),
                 worlds: worlds.clone().unbind(),
                 role: role.clone().unbind(),
-                symmetry: symmetry.clone().unbind(),
                 allowed: allowed.clone().unbind(),
                 robots,
                 world_count: given.len(),
@@ -106,12 +102,6 @@ impl PyLowerRoundSettings {
     #[getter]
     fn role(&self, py: Python<'_>) -> Py<PyAny> {
         self.role.clone_ref(py)
-    }
-
-    /// The tables' mirror symmetry, arrays by key (`states`, `actions`, `subtasks`).
-    #[getter]
-    fn symmetry(&self, py: Python<'_>) -> Py<PyAny> {
-        self.symmetry.clone_ref(py)
     }
 
     /// (4, 12) bool, the actions each sub-task may take.
@@ -184,7 +174,6 @@ pub fn round_keywords<'py>(
     round.set_item("settings", s.learning.bind(py))?;
     round.set_item("worlds", s.worlds.bind(py))?;
     round.set_item("role", s.role.bind(py))?;
-    round.set_item("symmetry", s.symmetry.bind(py))?;
     round.set_item("allowed", s.allowed.bind(py))?;
     Ok(round)
 }

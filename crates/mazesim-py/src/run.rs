@@ -3,7 +3,8 @@
 //! per-step output arrays (`trace`) borrowed and checked, the counters returned as numpy arrays.
 
 use mazesim_core::control::avoid_collision::EPUCK_MAX_SPEED;
-use mazesim_core::control::{tabular, AvoidCollision, Discretiser};
+use mazesim_core::control::AvoidCollision;
+use mazesim_core::navigator::{self, Discretiser};
 use mazesim_core::{Controller, RunCounters, RunTrace};
 use numpy::{PyArray1, PyReadwriteArrayDyn};
 use pyo3::prelude::*;
@@ -121,8 +122,8 @@ impl RunCall {
                     invalid(format!(
                         "the tabular controller needs table, a float64 array of shape ({}, {}) \
                          or (tables, {0}, {1})",
-                        tabular::NUM_STATES,
-                        tabular::NUM_ACTIONS
+                        navigator::NUM_STATES,
+                        navigator::NUM_ACTIONS
                     ))
                 })?;
                 let settings = PyTabularSettings::new(
@@ -322,7 +323,7 @@ pub fn lower_level_states<'py>(
 ) -> PyResult<Bound<'py, PyArray1<i64>>> {
     enter(|| {
         let shape = shape_of(observations).unwrap_or_default();
-        let sensors = tabular::NUM_SENSORS;
+        let sensors = navigator::NUM_SENSORS;
         let (rows, width) = match shape[..] {
             [rows, width] if width >= sensors => (rows, width),
             _ => {

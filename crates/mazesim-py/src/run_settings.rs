@@ -4,9 +4,10 @@
 //! inputs and outputs of one call (`RunSettings`).
 
 use mazesim_core::control::avoid_collision::EPUCK_MAX_SPEED;
-use mazesim_core::control::heading_hold::BlindRule;
-use mazesim_core::control::{tabular, AvoidCollision, TabularPolicy};
+use mazesim_core::control::AvoidCollision;
 use mazesim_core::limits::MAX_ENVS;
+use mazesim_core::navigator::heading_hold::BlindRule;
+use mazesim_core::navigator::{self, TabularPolicy};
 use mazesim_core::RunOptions;
 use pyo3::prelude::*;
 
@@ -182,9 +183,9 @@ impl PyTabularSettings {
                 .filter(|a| !a.is_none())
                 .map(|a| {
                     let shape: &[usize] = if stacked {
-                        &[tables, tabular::NUM_ACTIONS]
+                        &[tables, navigator::NUM_ACTIONS]
                     } else {
-                        &[tabular::NUM_ACTIONS]
+                        &[navigator::NUM_ACTIONS]
                     };
                     copied::<bool>(a, "allowed_actions", "bool", shape)
                 })
@@ -271,7 +272,7 @@ impl PyTabularSettings {
 /// The values of `table`, a float64 `(4096, 12)` array or `(tables, 4096, 12)` stack, how many
 /// tables it holds and whether it is a stack.
 fn tables_of(table: &Bound<'_, PyAny>) -> PyResult<(Vec<f64>, usize, bool)> {
-    let (states, actions) = (tabular::NUM_STATES, tabular::NUM_ACTIONS);
+    let (states, actions) = (navigator::NUM_STATES, navigator::NUM_ACTIONS);
     let shape = shape_of(table).unwrap_or_default();
     let (tables, table_shape) = if shape.len() == 3 {
         (shape[0], vec![shape[0], states, actions])

@@ -1,10 +1,10 @@
 //! The navigator's sub-task states for `BatchSimulator.run`: the arrays of
-//! `mazesim.learn.subtasks.SubTaskTracker` (a dict of name -> array) borrowed writable, read
+//! `Navigator.subtask_arrays` (a dict of name -> array) borrowed writable, read
 //! into the core's states and written back after the call. A tracker whose phases count the
 //! distance holds `heading phase + 3 * distance bin`; the core keeps the heading phase alone
 //! (it computes the distance bin from the pose), which is what is written back.
 
-use mazesim_core::control::door::{Phases, SubTaskState, MAX_PHASES};
+use mazesim_core::navigator::door::{Phases, SubTaskState, MAX_PHASES};
 use mazesim_core::Controller;
 use numpy::PyReadwriteArrayDyn;
 use pyo3::prelude::*;
@@ -90,10 +90,14 @@ impl<'py> SubTaskArrays<'py> {
     /// The core's states for `controller` (checked by the core), or an error naming the first
     /// negative count.
     pub fn states(&self, controller: &Controller) -> PyResult<Vec<SubTaskState>> {
-        let counts_distance = match controller {
+        self.read(match controller {
             Controller::Tabular(policy) => policy.phases() == Some(Phases::HeadingAndDistance),
             _ => false,
-        };
+        })
+    }
+
+    /// The states, each phase taken modulo the heading phases when they `counts_distance`.
+    pub fn read(&self, counts_distance: bool) -> PyResult<Vec<SubTaskState>> {
         let (subtask, steps, phase) =
             (slice(&self.subtask), slice(&self.steps), slice(&self.phase));
         let (start, turn_point) = (slice(&self.start), slice(&self.turn_point));

@@ -3,12 +3,11 @@
 Between two checkpoint events the navigator's lower level acts alone: a robot runs its sub-task
 from the sub-task's table on the distance state and the phase, and a door sub-task that ends
 hands over to "Corridors and Corners". The core's ``tabular`` controller does all of this
-itself when handed the sub-task tracker's arrays (:meth:`mazesim.BatchSimulator.run` with
+itself when handed the navigator's sub-task arrays (:meth:`mazesim.BatchSimulator.run` with
 ``subtasks``): it computes the distance state, follows each robot's odometry after every step
-as :meth:`~mazesim.learn.subtasks.SubTaskTracker.update` does (the same f64 operations, the
-distance bins of ``door_distance`` too), keeps a corridor robot's turn on the spot as
-:func:`mazesim.learn.policy.hold_spins` does and, with ``hold_heading``, holds a blind corridor
-robot's heading as :func:`mazesim.learn.heading_hold.hold_actions` does.
+as the core's navigator (:class:`mazesim._core.Navigator`) does at every step (the same
+sub-task code, the distance bins of ``door_distance`` too), keeps a corridor robot's turn on the
+spot and, with ``hold_heading``, holds a blind corridor robot's heading.
 :func:`run_navigator_episodes` therefore lets the core drive each robot for up to
 :data:`STRETCH_STEPS` control steps in one call, until it crosses a barcode, reaches the goal or
 runs out of steps; the higher level then decides in Python, as
@@ -259,6 +258,7 @@ def run_navigator_episodes(
         chosen = np.flatnonzero(policy.record.chosen >= 0)
         schedule.decide(chosen, policy.record.chosen[chosen], events)
         trace = None if replay is None else replay.begin(active, policy.record, events)
+        subtasks = policy.subtask_arrays()
         counters = batch.simulator.run(
             stretch_steps,
             controller,
@@ -266,10 +266,9 @@ def run_navigator_episodes(
             batch.poses,
             batch.colliding,
             batch.crossings,
-            settings=RunSettings(
-                limits, active=active, subtasks=policy.tracker.arrays(), trace=trace
-            ),
+            settings=RunSettings(limits, active=active, subtasks=subtasks, trace=trace),
         )
+        policy.set_subtask_arrays(subtasks)
         if trace is not None and replay is not None:
             replay.show(counters["steps"].astype(np.int64), trace)
         nav.episode_steps += counters["steps"].astype(np.int64)

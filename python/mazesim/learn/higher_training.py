@@ -73,7 +73,7 @@ def train_higher(
         progress: Called as ``progress(episodes_done, episodes_total, recent_success)``.
         robot: The robots (:data:`mazesim.batch.RobotChoice`), handed to the batch as given.
         hold_heading: The lower level holds its heading where blind
-            (:mod:`mazesim.learn.heading_hold`), as the navigator was trained.
+            (the core's ``navigator::heading_hold``), as the navigator was trained.
 
     Returns:
         The higher level and the training episodes' results.

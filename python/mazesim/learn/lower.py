@@ -24,8 +24,8 @@ linearly from ``epsilon_start`` to 0 over the rounds but the last
 ``greedy_share`` of them, which are greedy: the tables then learn from their own mistakes, so a
 greedy policy that loops between two states loses the value of the loop.
 
-**Updates.** Every transition and its mirror image (:mod:`mazesim.learn.symmetry`) update the tables
-with the core's batch update (:func:`mazesim.learn.qlearning.batch_update`).
+**Updates.** Every transition and its left-right mirror image (the core's
+``navigator::symmetry``) update the tables with the core's Q update.
 
 **Rounds.** Training runs in rounds of ``round_steps`` control steps; every robot starts a fresh
 episode at the start of a round (episodes still running at its end are cut short, not failed).
@@ -77,7 +77,6 @@ from mazesim.learn.subtasks import (
     cruise_step_length,
     phase_counts,
 )
-from mazesim.learn.symmetry import MIRRORED_ACTION, MIRRORED_SUBTASK, mirrored_states
 from mazesim.maze import CellMaze
 
 __all__ = [
@@ -122,14 +121,6 @@ STARTS_PER_ROUND = 64
 _UNIT = np.array([[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]])
 
 
-def _mirrored_rows(door_distance: bool) -> npt.NDArray[np.int64]:
-    """The mirror image of every row of every sub-task's table, for the core's round."""
-    rows = lower_table_shape(door_distance)[1]
-    return np.stack(
-        [mirrored_states(np.arange(rows), np.full(rows, k)) for k in range(NUM_SUBTASKS)]
-    ).astype(np.int64)
-
-
 def lower_table_shape(door_distance: bool = False) -> tuple[int, int, int]:
     """Shape of the stacked lower-level tables: (sub-task, state with phase, action); with
     ``door_distance`` the door sub-tasks' phases count the distance too
@@ -172,7 +163,7 @@ class LowerSettings:
     #: after it (``mazesim train --blind-forward``, :func:`drive_on_when_blind`).
     blind_forward: bool = False
     #: There, it holds its heading on the maze's grid instead of driving straight on (``mazesim
-    #: train --hold-heading``, :mod:`mazesim.learn.heading_hold`); set with ``blind_forward``.
+    #: train --hold-heading``, the core's ``navigator::heading_hold``); set with ``blind_forward``.
     hold_heading: bool = False
 
     @property
@@ -473,15 +464,7 @@ class LowerTrainer:
         epsilon = self.settings.epsilon(round_index)
         starts, exploration = self.draws(round_index)
         settings = LowerRoundSettings(
-            self._core_settings(epsilon),
-            self.mazes,
-            self.role,
-            {
-                "states": _mirrored_rows(self.settings.door_distance),
-                "actions": MIRRORED_ACTION,
-                "subtasks": MIRRORED_SUBTASK,
-            },
-            SUBTASK_ACTIONS,
+            self._core_settings(epsilon), self.mazes, self.role, SUBTASK_ACTIONS
         )
         counts = train_lower_round(
             self._crews(),

@@ -2,13 +2,15 @@
 
 Each control step, for every robot (:meth:`HierarchicalPolicy.act`):
 
-1. the sensor distances become levels and a state (:mod:`mazesim.learn.discretise`);
-2. the running sub-task's odometry advances; a door sub-task that ended (or gave up) hands over
-   to "Corridors and Corners";
-3. if a checkpoint was crossed (``checkpoint != 0``), the higher level chooses the sub-task
+1. if a checkpoint was crossed (``checkpoint != 0``), the higher level chooses the sub-task
    (:mod:`mazesim.learn.higher`), which starts there;
-4. the running sub-task's table gives the action (greedy among the actions the sub-task may take,
-   :data:`mazesim.learn.subtasks.SUBTASK_ACTIONS`).
+2. the core's navigator (:class:`mazesim._core.Navigator`) does the rest: the sensor distances
+   become levels and a state (Table 4.1), the running sub-task's odometry advances, a door
+   sub-task that ended (or gave up) hands over to "Corridors and Corners", the chosen sub-task
+   begins, and the running sub-task's table gives the action (greedy among the actions the
+   sub-task may take, :data:`mazesim.learn.subtasks.SUBTASK_ACTIONS`; a turn on the spot kept
+   rather than reversed in "Corridors and Corners"; with ``hold_heading``, its blind state holds
+   the heading on the grid).
 
 Alg. 5 runs "Corridors and Corners" on every step without a checkpoint; here a door sub-task the
 higher level chose keeps running until its own end (its turn needs more than the one step on the
@@ -18,56 +20,24 @@ code), then "Corridors and Corners" takes over, as in the report.
 from __future__ import annotations
 
 from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
 
-from mazesim._core import RobotProfile
+from mazesim._core import Navigator, RobotProfile
 from mazesim.actions import ACTION_CODES, WHEEL_SPEED_FRACTIONS
 from mazesim.errors import InvalidArgumentError
-from mazesim.learn.discretise import NUM_SENSORS, distance_levels, volts_to_cm
-from mazesim.learn.heading_hold import hold_actions
+from mazesim.learn.discretise import NUM_SENSORS, volts_to_cm
 from mazesim.learn.higher import HigherLevel
 from mazesim.learn.lower import lower_table_shape
-from mazesim.learn.qlearning import best_allowed
-from mazesim.learn.subtasks import (
-    BLIND_STATE,
-    CONTROL_STEP_MS,
-    SUBTASK_ACTIONS,
-    SubTask,
-    SubTaskTracker,
-)
+from mazesim.learn.subtasks import CONTROL_STEP_MS
 from mazesim.odometry import advance
 
-__all__ = ["Chooser", "DeadReckoningNavigator", "HierarchicalPolicy", "StepRecord", "hold_spins"]
-
-_PLACE = 4 ** np.arange(NUM_SENSORS, dtype=np.int64)
+__all__ = ["Chooser", "DeadReckoningNavigator", "HierarchicalPolicy", "StepRecord"]
 
 #: Picks sub-tasks for robots at a checkpoint event: ``(envs, higher states) -> sub-tasks``.
 Chooser = Callable[[npt.NDArray[np.int64], npt.NDArray[np.int64]], npt.NDArray[np.int64]]
-
-
-_SPIN_RIGHT = ACTION_CODES.index("aa")
-_SPIN_LEFT = ACTION_CODES.index("bb")
-
-
-def hold_spins(
-    actions: npt.NDArray[np.int64],
-    previous: npt.NDArray[np.int64],
-    where: npt.NDArray[np.bool_],
-) -> npt.NDArray[np.int64]:
-    """``actions`` with a turn on the spot kept where ``where`` is true: a robot that turned one
-    way on the spot in its last step and would turn the other way now keeps turning as before.
-
-    "Corridors and Corners" facing a wall between two openings can see a state whose best action
-    turns it right and, one step later, a state whose best turns it left: without this it would
-    turn back and forth on the spot until its time runs out.
-    """
-    reverses = where & (
-        ((previous == _SPIN_RIGHT) & (actions == _SPIN_LEFT))
-        | ((previous == _SPIN_LEFT) & (actions == _SPIN_RIGHT))
-    )
-    return np.where(reverses, previous, actions)
 
 
 class StepRecord:
@@ -90,13 +60,13 @@ class HierarchicalPolicy:
 
     Args:
         lower_q: The stacked lower-level tables, shape :func:`lower_table_shape` (with or
-            without ``door_distance``: the tracker's phases follow the shape).
+            without ``door_distance``: the sub-tasks' phases follow the shape).
         higher: The higher level (its tables for the robots' worlds).
         world_of_env: (N,) each robot's world in ``higher``.
         chooser: Picks sub-tasks at events; by default the higher level's greedy choice.
         hold_heading: "Corridors and Corners" holds its heading on the grid where no sensor sees
-            a wall (:mod:`mazesim.learn.heading_hold`), as a navigator trained with
-            ``--hold-heading`` does (:attr:`mazesim.learn.tables.TrainedPolicy.hold_heading`).
+            a wall, as a navigator trained with ``--hold-heading`` does
+            (:attr:`mazesim.learn.tables.TrainedPolicy.hold_heading`).
     """
 
     def __init__(
@@ -114,21 +84,31 @@ class HierarchicalPolicy:
                 f"{lower_table_shape(True)}, with door_distance), found {lower_q.shape}"
             )
         self.lower_q = lower_q
+        #: Whether the door sub-tasks' phases count the distance (the tables' shape says).
+        self.door_distance = door_distance
         self.higher = higher
         self.world_of_env = np.asarray(world_of_env, dtype=np.int64).ravel()
         self.num_envs = self.world_of_env.size
         self.chooser = chooser
         self.hold_heading = hold_heading
-        self.tracker = SubTaskTracker(self.num_envs, door_distance)
+        self.navigator = Navigator(
+            np.ascontiguousarray(lower_q, dtype=np.float64), self.num_envs, hold_heading
+        )
         self.record = StepRecord(self.num_envs)
-        self.previous_action = np.full(self.num_envs, -1, dtype=np.int64)
 
     def reset(self, envs: npt.ArrayLike, poses: npt.ArrayLike) -> None:
         """Starts robots ``envs`` afresh, in "Corridors and Corners", at their poses."""
-        mask = np.zeros(self.num_envs, dtype=bool)
-        mask[np.asarray(envs, dtype=np.int64)] = True
-        self.tracker.begin(mask, SubTask.CORRIDOR, poses)
-        self.previous_action[mask] = -1
+        robots = np.ascontiguousarray(np.asarray(envs, dtype=np.int64).ravel())
+        self.navigator.reset(robots, np.ascontiguousarray(poses, dtype=np.float64))
+
+    def subtask_arrays(self) -> dict[str, npt.NDArray[Any]]:
+        """Each robot's running sub-task as :meth:`mazesim.BatchSimulator.run` takes them
+        (``subtasks``); hand them back with :meth:`set_subtask_arrays` after the run."""
+        return self.navigator.subtask_arrays()
+
+    def set_subtask_arrays(self, arrays: dict[str, npt.NDArray[Any]]) -> None:
+        """Sets each robot's running sub-task from :meth:`subtask_arrays` after a run."""
+        self.navigator.set_subtask_arrays(arrays)
 
     def act(
         self,
@@ -156,17 +136,12 @@ class HierarchicalPolicy:
         events: npt.ArrayLike,
     ) -> npt.NDArray[np.int64]:
         """:meth:`act` from the six distances in cm of each robot, ``(N, 6)``."""
-        pose_rows = np.asarray(poses, dtype=np.float64)
+        pose_rows = np.ascontiguousarray(poses, dtype=np.float64)
         event = np.asarray(events, dtype=np.int64)
         record = self.record
-        record.distances_cm = np.asarray(distances_cm, dtype=np.float64).reshape(-1, NUM_SENSORS)
-        record.levels = distance_levels(record.distances_cm)
-        distance_state = record.levels @ _PLACE
-
-        done, gave_up = self.tracker.update(pose_rows)
-        record.ended = done | gave_up
-        self.tracker.begin(record.ended, SubTask.CORRIDOR, pose_rows)
-
+        record.distances_cm = np.ascontiguousarray(distances_cm, dtype=np.float64).reshape(
+            -1, NUM_SENSORS
+        )
         record.event = event
         record.chosen[:] = -1
         at_event = np.flatnonzero(event != 0)
@@ -179,27 +154,15 @@ class HierarchicalPolicy:
                     chosen = self.higher.choose(states)
                 else:
                     chosen = self.chooser(robots, states)
-                mask = np.zeros(self.num_envs, dtype=bool)
-                mask[robots] = True
-                options = np.zeros(self.num_envs, dtype=np.int64)
-                options[robots] = chosen
-                self.tracker.begin(mask, options, pose_rows)
                 record.chosen[robots] = chosen
-
-        state = self.tracker.states(distance_state)
-        subtask = self.tracker.subtask
-        action = best_allowed(self.lower_q[subtask, state], SUBTASK_ACTIONS[subtask])
-        action = hold_spins(action, self.previous_action, subtask == SubTask.CORRIDOR)
-        if self.hold_heading:
-            blind = (subtask == SubTask.CORRIDOR) & (distance_state == BLIND_STATE)
-            held = hold_actions(pose_rows[:, 2], self.previous_action)
-            action = np.where(blind, held, action)
-        self.previous_action = action
-        record.state = distance_state
-        record.subtask = self.tracker.subtask.copy()
-        record.phase = self.tracker.phase.copy()
-        record.action = action
-        return action
+        step = self.navigator.decide(record.distances_cm, pose_rows, record.chosen.copy())
+        record.levels = step["levels"]
+        record.state = step["state"]
+        record.subtask = step["subtask"]
+        record.phase = step["phase"]
+        record.ended = step["ended"]
+        record.action = step["action"]
+        return record.action
 
 
 class DeadReckoningNavigator:
@@ -213,7 +176,7 @@ class DeadReckoningNavigator:
         lower_q: The stacked lower-level tables.
         higher: The higher level (one world).
         control_step_ms: How long each action runs.
-        hold_heading: Hold the heading where blind (:mod:`mazesim.learn.heading_hold`), on the
+        hold_heading: Hold the heading where blind (the core's ``navigator::heading_hold``), on the
             grid of the dead-reckoned frame, whose heading 0 is the episode's start.
     """
 

@@ -31,9 +31,10 @@ infra-red sensors, or the Sharp ones at dark walls) finds its doors so. Which a 
 follows from its tables' shape (:func:`door_distance_of`).
 
 **Odometry.** The phases and the ends use what the robot's wheel odometry knows: the heading
-change and the displacement since the sub-task began. :class:`SubTaskTracker` takes them from the
-poses a :class:`mazesim.BatchSimulator` reports, which stand in for noise-free wheel odometry (they
-differ from it only when a wheel slips against a wall).
+change and the displacement since the sub-task began. The core's navigator
+(:class:`mazesim._core.Navigator`) takes them from the poses a :class:`mazesim.BatchSimulator`
+reports, which stand in for noise-free wheel odometry (they differ from it only when a wheel
+slips against a wall).
 
 **Actions.** The door sub-tasks choose among all 12 primitive actions. Corridors and Corners
 chooses among the 11 that do not reverse (:data:`SUBTASK_ACTIONS`): it follows corridors forward
@@ -43,7 +44,7 @@ training runs with other seeds or noise streams it did, and then reached the goa
 of unseen mazes. Its table keeps the ``99`` column (never updated) so that all tables share one
 shape.
 
-**Ends** (:meth:`SubTaskTracker.update`):
+**Ends**:
 
 - Corridors and Corners never ends by itself; a checkpoint event or the goal ends it.
 - Right / Left turn: done when the heading is within 10 degrees of 90 degrees to that side of the
@@ -76,7 +77,6 @@ from __future__ import annotations
 
 import math
 from enum import IntEnum
-from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -85,7 +85,6 @@ from mazesim.actions import ACTION_CODES
 from mazesim.batch import CONTROL_STEP_MS, cruise_step_length
 from mazesim.errors import InvalidArgumentError
 from mazesim.learn.discretise import NUM_STATES
-from mazesim.odometry import wrap_angle
 
 __all__ = [
     "BLIND_STATE",
@@ -114,13 +113,9 @@ __all__ = [
     "TURN_EXIT_DISTANCE",
     "TURN_PHASE_ANGLES",
     "SubTask",
-    "SubTaskTracker",
     "cruise_step_length",
-    "distance_bins",
     "door_distance_of",
-    "heading_phases",
     "phase_counts",
-    "subtask_states",
 ]
 
 
@@ -191,29 +186,6 @@ DOOR_SUCCESS_REWARD = 5.0
 DOOR_FAILURE_REWARD = -5.0
 
 
-def heading_phases(subtasks: npt.ArrayLike, heading_change: npt.ArrayLike) -> npt.NDArray[np.int64]:
-    """The phase of each robot from its sub-task and heading change (radians, CCW positive)."""
-    kinds = np.asarray(subtasks, dtype=np.int64)
-    change = np.asarray(heading_change, dtype=np.float64)
-    turn = np.asarray(TARGET_TURN)[kinds]
-    towards = change * np.sign(turn)
-    turn_phase = np.searchsorted(np.asarray(TURN_PHASE_ANGLES), towards, side="right")
-    forward_phase = (
-        1
-        + (change > FORWARD_PHASE_ANGLE).astype(np.int64)
-        - (change < -FORWARD_PHASE_ANGLE).astype(np.int64)
-    )
-    phases = np.where(turn != 0.0, turn_phase, forward_phase)
-    return np.where(kinds == SubTask.CORRIDOR, 0, phases).astype(np.int64)
-
-
-def distance_bins(distances: npt.ArrayLike) -> npt.NDArray[np.int64]:
-    """The distance bin (0 to 5, :data:`DISTANCE_EDGES`) of distances in metres ahead."""
-    return np.searchsorted(
-        np.asarray(DISTANCE_EDGES), np.asarray(distances, dtype=np.float64), side="right"
-    ).astype(np.int64)
-
-
 def phase_counts(door_distance: bool) -> tuple[int, ...]:
     """Phases per sub-task: :data:`NUM_PHASES`, or :data:`DISTANCE_PHASES` with distance."""
     return DISTANCE_PHASES if door_distance else NUM_PHASES
@@ -232,129 +204,3 @@ def door_distance_of(rows: int) -> bool:
         f"expected lower-level tables of {NUM_STATES * MAX_PHASES} rows per sub-task (heading "
         f"phases) or {NUM_STATES * max(DISTANCE_PHASES)} (with distance), found {rows}"
     )
-
-
-def subtask_states(distance_states: npt.ArrayLike, phases: npt.ArrayLike) -> npt.NDArray[np.int64]:
-    """A sub-task's state: ``distance_state + 4096 * phase``."""
-    return np.asarray(distance_states, dtype=np.int64) + NUM_STATES * np.asarray(
-        phases, dtype=np.int64
-    )
-
-
-class SubTaskTracker:
-    """The running sub-task of N robots, with the odometry its phase and end read.
-
-    Args:
-        num_envs: Number of robots.
-        door_distance: Whether the door sub-tasks' phases also count the distance driven
-            (:data:`DISTANCE_PHASES`).
-
-    Attributes:
-        phase: Each robot's phase: its heading phase, plus 3 times its distance bin with
-            ``door_distance``.
-    """
-
-    def __init__(self, num_envs: int, door_distance: bool = False) -> None:
-        self.num_envs = num_envs
-        self.door_distance = door_distance
-        self.subtask = np.zeros(num_envs, dtype=np.int64)
-        self.start = np.zeros((num_envs, 3), dtype=np.float64)
-        self.previous_yaw = np.zeros(num_envs, dtype=np.float64)
-        self.heading_change = np.zeros(num_envs, dtype=np.float64)
-        self.steps = np.zeros(num_envs, dtype=np.int64)
-        self.phase = np.zeros(num_envs, dtype=np.int64)
-        self.turn_point = np.zeros((num_envs, 2), dtype=np.float64)
-
-    def begin(self, mask: npt.ArrayLike, subtasks: npt.ArrayLike, poses: npt.ArrayLike) -> None:
-        """Starts sub-tasks for the robots in ``mask`` at their current poses.
-
-        Args:
-            mask: (N,) bool, the robots that begin a sub-task.
-            subtasks: (N,) or scalar sub-task numbers (read where ``mask`` is true).
-            poses: (N, 3) poses x, y, yaw.
-        """
-        flags = np.asarray(mask, dtype=bool)
-        pose_rows = np.asarray(poses, dtype=np.float64)
-        chosen = np.broadcast_to(np.asarray(subtasks, dtype=np.int64), flags.shape)
-        self.subtask[flags] = chosen[flags]
-        self.start[flags] = pose_rows[flags]
-        self.previous_yaw[flags] = pose_rows[flags, 2]
-        self.heading_change[flags] = 0.0
-        self.steps[flags] = 0
-        self.phase[flags] = heading_phases(self.subtask[flags], 0.0)
-        self.turn_point[flags] = pose_rows[flags, :2]
-
-    def update(self, poses: npt.ArrayLike) -> tuple[npt.NDArray[np.bool_], npt.NDArray[np.bool_]]:
-        """Follows one control step of every robot.
-
-        Args:
-            poses: (N, 3) poses after the step.
-
-        Returns:
-            ``(done, gave_up)``: (N,) bool, the door sub-tasks that reached their end, and those
-            that gave up (turned round, or ran out of steps: see :attr:`out_of_steps`). Corridors
-            and Corners is never in either.
-        """
-        pose_rows = np.asarray(poses, dtype=np.float64)
-        self.heading_change += wrap_angle(pose_rows[:, 2] - self.previous_yaw)
-        self.previous_yaw = pose_rows[:, 2].copy()
-        self.steps += 1
-        turn = np.asarray(TARGET_TURN)[self.subtask]
-        is_turn = turn != 0.0
-        phase = heading_phases(self.subtask, self.heading_change)
-        entering = is_turn & (phase == 2) & (self.heading_phase != 2)
-        self.turn_point[entering] = pose_rows[entering, :2]
-        if self.door_distance:
-            heading = np.stack([np.cos(self.start[:, 2]), np.sin(self.start[:, 2])], axis=1)
-            driven = np.einsum("ij,ij->i", pose_rows[:, :2] - self.start[:, :2], heading)
-            bins = distance_bins(driven)
-            self.phase = np.where(
-                self.subtask == SubTask.CORRIDOR, 0, phase + MAX_PHASES * bins
-            ).astype(np.int64)
-        else:
-            self.phase = phase
-
-        target_heading = self.start[:, 2] + turn
-        direction = np.stack([np.cos(target_heading), np.sin(target_heading)], axis=1)
-        aligned = np.abs(self.heading_change - turn) <= HEADING_TOLERANCE
-        turned_out = np.einsum("ij,ij->i", pose_rows[:, :2] - self.turn_point, direction)
-        ahead = np.einsum("ij,ij->i", pose_rows[:, :2] - self.start[:, :2], direction)
-        turn_done = is_turn & (phase == 2) & aligned & (turned_out >= TURN_EXIT_DISTANCE)
-        forward_done = (self.subtask == SubTask.FORWARD) & aligned & (ahead >= FORWARD_DISTANCE)
-        door = self.subtask != SubTask.CORRIDOR
-        gave_up = door & (
-            (self.steps >= MAX_DOOR_STEPS) | (np.abs(self.heading_change) > GIVE_UP_ANGLE)
-        )
-        done = (turn_done | forward_done) & ~gave_up
-        return done, gave_up
-
-    def arrays(self) -> dict[str, npt.NDArray[Any]]:
-        """The tracker's state by name, for the core's multi-step call (``BatchSimulator.run``
-        with ``RunSettings(subtasks=...)``), which follows the sub-tasks step by step as
-        :meth:`update` does and writes the arrays in place. With ``door_distance`` the core
-        writes back the heading phase alone (it computes the distance bin from each pose): the
-        next :meth:`update` counts the distance again.
-        """
-        return {
-            "subtask": self.subtask,
-            "start": self.start,
-            "previous_yaw": self.previous_yaw,
-            "heading_change": self.heading_change,
-            "steps": self.steps,
-            "phase": self.phase,
-            "turn_point": self.turn_point,
-        }
-
-    @property
-    def heading_phase(self) -> npt.NDArray[np.int64]:
-        """(N,) each robot's heading phase alone (:func:`heading_phases`)."""
-        return self.phase % MAX_PHASES
-
-    @property
-    def out_of_steps(self) -> npt.NDArray[np.bool_]:
-        """(N,) bool: door sub-tasks that have used up :data:`MAX_DOOR_STEPS`."""
-        return (self.subtask != SubTask.CORRIDOR) & (self.steps >= MAX_DOOR_STEPS)
-
-    def states(self, distance_states: npt.ArrayLike) -> npt.NDArray[np.int64]:
-        """Each robot's state in its running sub-task's table."""
-        return subtask_states(distance_states, self.phase)

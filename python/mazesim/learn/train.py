@@ -121,7 +121,8 @@ class TrainSettings:
     #: --blind-forward``; :func:`mazesim.learn.lower.drive_on_when_blind`).
     blind_forward: bool = False
     #: There, it holds its heading on the maze's grid (``mazesim train --hold-heading``;
-    #: :mod:`mazesim.learn.heading_hold`), in the lower level's training and the higher level's.
+    #: the core's ``navigator::heading_hold``), in the lower level's training and the higher
+    #: level's.
     hold_heading: bool = False
 
     def lower(self) -> LowerSettings:

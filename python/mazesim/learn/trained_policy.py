@@ -87,7 +87,7 @@ class TrainedPolicy:
     def hold_heading(self) -> bool:
         """Whether its "Corridors and Corners" holds the heading on the grid where no sensor
         sees a wall, as it was trained to (``mazesim train --hold-heading``, recorded in
-        :attr:`training` ``["lower"]``; :mod:`mazesim.learn.heading_hold`). Every runner of the
+        :attr:`training` ``["lower"]``; the core's ``navigator::heading_hold``). Every runner of the
         navigator in mazesim applies the rule when this is true."""
         lower = self.training.get("lower")
         return isinstance(lower, dict) and lower.get("hold_heading") is True

@@ -6,19 +6,15 @@
 
 pub mod avoid_collision;
 pub mod braitenberg;
-pub mod door;
-pub mod heading_hold;
 pub mod random_wheels;
-pub mod seed_volts;
-pub mod tabular;
 
 pub use avoid_collision::AvoidCollision;
-pub use tabular::{Discretiser, TabularPolicy};
 
 use crate::error::{Error, Result};
+use crate::navigator::door::SubTaskState;
+use crate::navigator::{self, TabularPolicy};
 use crate::rng::Rng;
 use crate::robot::RobotProfile;
-use door::SubTaskState;
 
 /// A built-in controller.
 #[derive(Debug, Clone, PartialEq)]
@@ -38,7 +34,7 @@ pub enum Controller {
 pub struct Decision {
     /// Left and right wheel speeds, rad/s.
     pub wheel_speeds: [f32; 2],
-    /// The primitive action (index into `tabular::WHEEL_SPEED_FRACTIONS`), -1 for controllers
+    /// The primitive action (index into `navigator::WHEEL_SPEED_FRACTIONS`), -1 for controllers
     /// that do not choose among primitive actions.
     pub action: i32,
 }
@@ -61,7 +57,7 @@ impl Controller {
             Controller::Braitenberg | Controller::AvoidCollision(_) => 8,
             Controller::Tabular(policy) => {
                 policy.check_envs(envs)?;
-                tabular::NUM_SENSORS
+                navigator::NUM_SENSORS
             }
             Controller::RandomWheels => 0,
         };
@@ -127,7 +123,7 @@ impl Controller {
                     }
                     None => policy.action_after(env, readings, last_wheel_speeds, stream),
                 };
-                let [l, r] = tabular::WHEEL_SPEED_FRACTIONS[action];
+                let [l, r] = navigator::WHEEL_SPEED_FRACTIONS[action];
                 let max_speed = policy.speed_limit(max_speed);
                 Decision {
                     wheel_speeds: [(l * max_speed) as f32, (r * max_speed) as f32],

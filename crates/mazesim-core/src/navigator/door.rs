@@ -1,13 +1,12 @@
 //! The door sub-tasks of the navigator's lower level (`mazesim.learn.subtasks`): the phase a
 //! robot is in, from the heading change its odometry saw since the sub-task began, and the end
-//! of the sub-task, from that heading change and the displacement. The arithmetic follows
-//! `SubTaskTracker.update` operation for operation in f64 (the same angles, the same wrap as
-//! numpy's floor remainder, the same order of products and sums), so that both give the same
-//! phases and ends bit for bit.
+//! of the sub-task, from that heading change and the displacement, in f64 (the wrap is numpy's
+//! floor remainder, as the navigator was trained with; `tests/navigator_oracle.py` keeps a numpy
+//! reference that the tests check it against bit for bit).
 
 use std::f64::consts::PI;
 
-use super::tabular::NUM_STATES;
+use super::discretiser::NUM_STATES;
 use crate::error::{Error, Result};
 
 /// Corridors and Corners: one phase, never ends by itself.
@@ -67,11 +66,16 @@ impl Phases {
 
     /// The phase of `task` at `pose` (the pose its last update saw).
     pub fn phase(self, task: &SubTaskState, pose: [f32; 3]) -> usize {
+        self.phase_at(task, pose.map(f64::from))
+    }
+
+    /// [`Phases::phase`] at a pose of f64 odometry.
+    pub fn phase_at(self, task: &SubTaskState, pose: [f64; 3]) -> usize {
         match self {
             Self::Heading => task.phase,
             Self::HeadingAndDistance if task.subtask == CORRIDOR => 0,
             Self::HeadingAndDistance => {
-                let [x, y, _] = pose.map(f64::from);
+                let [x, y, _] = pose;
                 let [x0, y0, yaw0] = task.start;
                 let driven = (x - x0) * yaw0.cos() + (y - y0) * yaw0.sin();
                 let bin = DISTANCE_EDGES
@@ -177,7 +181,12 @@ pub struct SubTaskState {
 impl SubTaskState {
     /// Sub-task `subtask` beginning at `pose` (x, y, yaw as the batch reports them).
     pub fn begin(subtask: usize, pose: [f32; 3]) -> Self {
-        let [x, y, yaw] = pose.map(f64::from);
+        Self::begin_at(subtask, pose.map(f64::from))
+    }
+
+    /// [`SubTaskState::begin`] at a pose of f64 odometry (a dead-reckoned one, say).
+    pub fn begin_at(subtask: usize, pose: [f64; 3]) -> Self {
+        let [x, y, yaw] = pose;
         Self {
             subtask,
             start: [x, y, yaw],
@@ -232,9 +241,14 @@ impl SubTaskState {
         }
     }
 
-    /// Follows one control step that ended at `pose`, as `SubTaskTracker.update` does.
+    /// Follows one control step that ended at `pose`.
     pub fn update(&mut self, pose: [f32; 3]) -> SubTaskEnd {
-        let [x, y, yaw] = pose.map(f64::from);
+        self.update_at(pose.map(f64::from))
+    }
+
+    /// [`SubTaskState::update`] to a pose of f64 odometry.
+    pub fn update_at(&mut self, pose: [f64; 3]) -> SubTaskEnd {
+        let [x, y, yaw] = pose;
         self.heading_change += wrap(yaw - self.previous_yaw);
         self.previous_yaw = yaw;
         self.steps += 1;

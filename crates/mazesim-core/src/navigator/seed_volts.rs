@@ -7,8 +7,8 @@
 //! The interpolation is numpy's `interp` (the same search, products and sums in f64), so a round
 //! of a fleet reads, bit for bit, the volts that `SeedReadings.volts` gives.
 
-use crate::control::tabular::NUM_SENSORS;
 use crate::error::{Error, Result};
+use crate::navigator::NUM_SENSORS;
 
 /// A piecewise-linear map `x -> y` through the points `(xs[k], ys[k])`, `xs` increasing; clamped
 /// to the first and last `y` outside them.

@@ -3,8 +3,8 @@
 //! learn from every finished decision and its mirror image, for a whole round in one call.
 //!
 //! The round follows `LowerTrainer.run_round(stepwise=True)` operation for operation in f64 (the same
-//! products and sums in the same order, the sub-tasks' odometry of [`crate::control::door`], the
-//! Table 4.1 state of [`crate::control::Discretiser`], the batch updates of [`crate::qlearning`]),
+//! products and sums in the same order, the sub-tasks' odometry of [`crate::navigator::door`], the
+//! Table 4.1 state of [`crate::navigator::Discretiser`], the batch updates of [`crate::navigator::qlearning`]),
 //! so that both give the same tables bit for bit. Its random numbers come from the caller, drawn
 //! before the round: each robot's queue of episode starts and each step's exploration draws. The
 //! robots step in parallel; everything between two steps runs in robot order on the calling
@@ -19,13 +19,14 @@
 use std::sync::Arc;
 
 use crate::batch::{Row, CHUNK_ENVS};
-use crate::control::door::{self, Phases, SubTaskEnd, SubTaskState};
-use crate::control::heading_hold::BlindRule;
-use crate::control::seed_volts::SeedVolts;
-use crate::control::tabular::{NUM_ACTIONS, NUM_SENSORS};
-use crate::control::Discretiser;
 use crate::error::{Error, Result};
-use crate::qlearning::{best_action, LearningRate, QTable, Transition};
+use crate::navigator::door::{self, Phases, SubTaskEnd, SubTaskState};
+use crate::navigator::heading_hold::BlindRule;
+use crate::navigator::qlearning::{best_action, LearningRate, QTable, Transition};
+use crate::navigator::seed_volts::SeedVolts;
+use crate::navigator::symmetry::Symmetry;
+use crate::navigator::Discretiser;
+use crate::navigator::{NUM_ACTIONS, NUM_SENSORS};
 use crate::rollout::chunks_of;
 use crate::{Batch, Simulator, StepOutputs as Outputs, World};
 
@@ -108,16 +109,6 @@ pub struct StartQueues<'a> {
     pub path: &'a [f64],
 }
 
-/// The left-right mirror image of the lower level (`mazesim.learn.symmetry`).
-pub struct Symmetry<'a> {
-    /// `(4, rows)`: the mirror image of each row of each sub-task's table.
-    pub states: &'a [i64],
-    /// The mirror image of each action.
-    pub actions: [usize; NUM_ACTIONS],
-    /// The mirror image of each sub-task.
-    pub subtasks: [usize; door::NUM_SUBTASKS],
-}
-
 /// Everything a round reads and writes.
 pub struct LowerRound<'a> {
     /// How it learns.
@@ -139,8 +130,8 @@ pub struct LowerRound<'a> {
     pub visits: &'a mut [i64],
     /// The actions each sub-task may take.
     pub allowed: [[bool; NUM_ACTIONS]; door::NUM_SUBTASKS],
-    /// The mirror image.
-    pub symmetry: Symmetry<'a>,
+    /// The mirror image ([`Symmetry::new`] of the round's phases, or another for tests).
+    pub symmetry: &'a Symmetry,
 }
 
 /// The robots of one batch in a round, and what is particular to them.
@@ -301,7 +292,7 @@ struct StepDone {
 struct Pass<'a> {
     q: &'a [f64],
     allowed: &'a [[bool; NUM_ACTIONS]; door::NUM_SUBTASKS],
-    symmetry: &'a Symmetry<'a>,
+    symmetry: &'a Symmetry,
     wheel_speeds: &'a [[f32; 2]; NUM_ACTIONS],
     settings: &'a RoundSettings,
     discretiser: &'a Discretiser,
@@ -398,7 +389,7 @@ impl Pass<'_> {
             || learner.decided_steps >= settings.decision_steps;
         let transitions = learner.deciding.then(|| {
             let bootstrap = if ended { 0.0 } else { learner.discount };
-            let mirror = |row: usize| self.symmetry.states[learner.role * rows + row] as usize;
+            let mirror = |row: usize| self.symmetry.states[learner.role * rows + row];
             [
                 Transition {
                     state: learner.state,
@@ -505,12 +496,7 @@ impl LowerRound<'_> {
                 self.role[env]
             )));
         }
-        if let Some(s) = self
-            .symmetry
-            .states
-            .iter()
-            .find(|&&s| !(0..rows as i64).contains(&s))
-        {
+        if let Some(s) = self.symmetry.states.iter().find(|&&s| s >= rows) {
             return Err(Error::InvalidArgument(format!(
                 "expected mirrored states in [0, {rows}), found {s}"
             )));
@@ -646,7 +632,7 @@ pub fn train_lower_round(round: LowerRound<'_>, crews: &mut [Crew<'_>]) -> Resul
             let pass = Pass {
                 q: &*q,
                 allowed: &allowed,
-                symmetry: &symmetry,
+                symmetry,
                 wheel_speeds,
                 settings: &settings,
                 discretiser: &starter.discretiser,

@@ -3,23 +3,13 @@
 //! `mazesim.actions` lists them), acting greedily, optionally within a mask of allowed actions and
 //! with epsilon-greedy exploration from each environment's own stream.
 
+use super::discretiser::{Discretiser, NUM_STATES};
 use super::door::{self, Phases, SubTaskState};
 use super::heading_hold::BlindRule;
+use super::qlearning::best_action;
 use crate::error::{Error, Result};
-use crate::lut::LookupTable;
-use crate::qlearning::best_action;
 use crate::rng::Rng;
-use crate::RobotProfile;
 
-/// Distance sensors in the state: front, back, left, right, left-front, right-front.
-pub const NUM_SENSORS: usize = 6;
-/// Table 4.1: a distance is at level k when it is at least `LEVEL_EDGES_CM[k - 1]` cm and below
-/// `LEVEL_EDGES_CM[k]` cm.
-pub const LEVEL_EDGES_CM: [f64; 3] = [7.0, 13.0, 20.0];
-/// Levels per sensor.
-pub const NUM_LEVELS: usize = LEVEL_EDGES_CM.len() + 1;
-/// States of the lower level, `4^6`.
-pub const NUM_STATES: usize = 4096;
 /// The primitive actions.
 pub const NUM_ACTIONS: usize = 12;
 
@@ -39,38 +29,6 @@ pub const WHEEL_SPEED_FRACTIONS: [[f64; 2]; NUM_ACTIONS] = [
     [-0.25, 0.25],
     [-0.25, -0.25],
 ];
-
-/// Turns Sharp readings in volts into the lower level's state number.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Discretiser {
-    /// The Sharp GP2Y0A41SK0F table (metres to volts) of the `seed` robot.
-    sharp: LookupTable,
-}
-
-impl Discretiser {
-    /// The discretiser of the `seed` robot's Sharp sensors.
-    pub fn new() -> Result<Self> {
-        let seed = RobotProfile::builtin("seed")?;
-        Ok(Self {
-            sharp: seed.distance_sensors[0].model.table.clone(),
-        })
-    }
-
-    /// The level (0 to 3) of one reading in volts: volts to cm by inverting the Sharp table (the
-    /// arithmetic of `mazesim.sharp_volts_to_cm`), then Table 4.1.
-    pub fn level(&self, volts: f32) -> usize {
-        let cm = self.sharp.invert(volts as f64) * 100.0;
-        LEVEL_EDGES_CM.iter().filter(|&&edge| edge <= cm).count()
-    }
-
-    /// The state `sum(level[i] * 4^i)` of the first six readings (volts, in the report's order).
-    pub fn state(&self, volts: &[f32]) -> usize {
-        volts[..NUM_SENSORS]
-            .iter()
-            .rev()
-            .fold(0, |state, &v| state * NUM_LEVELS + self.level(v))
-    }
-}
 
 /// Greedy (or epsilon-greedy) actions from one or several Q-tables of shape
 /// `(NUM_STATES, NUM_ACTIONS)`.
@@ -179,7 +137,7 @@ impl TabularPolicy {
         })
     }
 
-    /// The policy keeping a turn on the spot (`mazesim.learn.policy.hold_spins`): an
+    /// The policy keeping a turn on the spot (as [`super::step::Navigator`] does): an
     /// environment whose last step turned one way on the spot (its wheel speeds, see
     /// [`TabularPolicy::action_after`]) and whose action now turns the other way keeps turning
     /// as before.
@@ -364,19 +322,6 @@ mod tests {
     use super::*;
 
     #[test]
-    fn levels_follow_table_4_1() {
-        let d = Discretiser::new().unwrap();
-        // 3.03 V and more read 3 cm, 0.31 V and less 40 cm; 1.76 V is 7 cm, 1.04 V 12 cm.
-        assert_eq!(d.level(3.5), 0);
-        assert_eq!(d.level(1.76), 1);
-        assert_eq!(d.level(1.04), 1);
-        assert_eq!(d.level(0.82), 2);
-        assert_eq!(d.level(0.2), 3);
-        assert_eq!(d.state(&[0.2, 3.5, 3.5, 3.5, 3.5, 3.5]), 3);
-        assert_eq!(d.state(&[3.5, 3.5, 3.5, 3.5, 3.5, 0.2]), 3 * 4usize.pow(5));
-    }
-
-    #[test]
     fn greedy_takes_the_first_best_allowed_action() {
         let mut values = vec![0.0; NUM_STATES * NUM_ACTIONS];
         values[3] = 1.0;
@@ -465,7 +410,7 @@ mod tests {
             for (last, &[l, r]) in WHEEL_SPEED_FRACTIONS.iter().enumerate() {
                 let speeds = [(l * max_speed) as f32, (r * max_speed) as f32];
                 for action in 0..NUM_ACTIONS {
-                    // `mazesim.learn.policy.hold_spins` on the actions themselves.
+                    // The turn kept, read from the actions themselves.
                     let expected = match (last, action) {
                         (SPIN_RIGHT, SPIN_LEFT) => SPIN_RIGHT,
                         (SPIN_LEFT, SPIN_RIGHT) => SPIN_LEFT,

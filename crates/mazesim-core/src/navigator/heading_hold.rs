@@ -1,12 +1,12 @@
-//! What Corridors and Corners does in the blind state, where no sensor sees a wall
-//! (`mazesim.learn.heading_hold`): act from its table, drive straight on (`mazesim train
-//! --blind-forward`), or hold its heading on the maze's grid (`--hold-heading`): finish a turn on
-//! the spot it began, steer gently back onto the nearest multiple of 90 degrees while more than
-//! [`hold_tolerance`] off, and drive forward within it.
+//! What Corridors and Corners does in the blind state, where no sensor sees a wall: act from
+//! its table, drive straight on (`mazesim train --blind-forward`), or hold its heading on the
+//! maze's grid (`--hold-heading`): finish a turn on the spot it began, steer gently back onto the
+//! nearest multiple of 90 degrees while more than [`hold_tolerance`] off, and drive forward
+//! within it.
 
 use std::f64::consts::FRAC_PI_2;
 
-use super::tabular::NUM_STATES;
+use super::discretiser::NUM_STATES;
 
 /// The distance state in which no sensor sees a wall (every level 3).
 pub const BLIND_STATE: usize = NUM_STATES - 1;
