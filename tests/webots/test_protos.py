@@ -262,6 +262,37 @@ def test_a_projects_robot_proto_is_the_robot_with_its_devices() -> None:
     assert chosen["robot"] == report["robot"]
 
 
+def test_a_projects_own_e_puck_proto_adds_its_devices_to_the_e_puck(tmp_path: Path) -> None:
+    """Webots reads the project's protos/E-puck.proto before its own: the devices it adds (a GPS,
+    a Compass named otherwise) are found by getDevice, the stock ones are not doubled, and the
+    world's lines keep their numbers."""
+    (tmp_path / "protos").mkdir()
+    (tmp_path / "protos" / "E-puck.proto").write_text(
+        "#VRML_SIM R2021a utf8\n"
+        "PROTO E-puck [\n  field SFVec3f translation 0 0 0\n  field SFBool kinematic FALSE\n]\n"
+        "{\n%{ local k = fields.kinematic.value }%\nRobot {\n  translation IS translation\n"
+        '  children [\n    DistanceSensor { name "ps0" }\n'
+        '    DEF HERE GPS { name "gps" }\n    Compass { name "heading" }\n  ]\n}\n}\n'
+    )
+    text = (
+        "#VRML_SIM R2021a utf8\n"
+        'E-puck {\n  name "a"\n  translation 0.1 0 0.2\n  turretSlot [\n    Compass { }\n  ]\n}\n'
+        'E-puck {\n  name "b"\n  translation 0.5 0 0.5\n}\n'
+    )
+    world = tmp_path / "worlds" / "own.wbt"
+    world.parent.mkdir()
+    world.write_text(text)
+    _, report = import_wbt(world)
+    assert sorted(d["name"] for d in report["extension_devices"]) == ["compass", "gps", "heading"]
+    assert report["robot_line"] == 2
+    said = [w for w in report["warnings"] if "project's own E-puck PROTO" in w]
+    assert len(said) == 1 and 'GPS "gps", Compass "heading"' in said[0]
+    # The other e-puck, without a turretSlot of its own, gets one.
+    _, other = import_wbt(world, robot_line=9)
+    assert sorted(d["name"] for d in other["extension_devices"]) == ["gps", "heading"]
+    assert other["robot_line"] == 9
+
+
 def test_hidden_engine_state_in_an_instance_is_skipped(tmp_path: Path) -> None:
     protos = tmp_path / "protos"
     protos.mkdir()
