@@ -294,6 +294,37 @@ def test_a_projects_robot_proto_is_the_robot_with_its_devices() -> None:
     assert chosen["robot"] == report["robot"]
 
 
+def test_a_projects_own_e_puck_proto_adds_its_devices_to_the_e_puck(tmp_path: Path) -> None:
+    """Webots reads the project's protos/E-puck.proto before its own: the devices it adds (a GPS,
+    a Compass named otherwise) are found by getDevice, the stock ones are not doubled, and the
+    world's lines keep their numbers."""
+    (tmp_path / "protos").mkdir()
+    (tmp_path / "protos" / "E-puck.proto").write_text(
+        "#VRML_SIM R2021a utf8\n"
+        "PROTO E-puck [\n  field SFVec3f translation 0 0 0\n  field SFBool kinematic FALSE\n]\n"
+        "{\n%{ local k = fields.kinematic.value }%\nRobot {\n  translation IS translation\n"
+        '  children [\n    DistanceSensor { name "ps0" }\n'
+        '    DEF HERE GPS { name "gps" }\n    Compass { name "heading" }\n  ]\n}\n}\n'
+    )
+    text = (
+        "#VRML_SIM R2021a utf8\n"
+        'E-puck {\n  name "a"\n  translation 0.1 0 0.2\n  turretSlot [\n    Compass { }\n  ]\n}\n'
+        'E-puck {\n  name "b"\n  translation 0.5 0 0.5\n}\n'
+    )
+    world = tmp_path / "worlds" / "own.wbt"
+    world.parent.mkdir()
+    world.write_text(text)
+    _, report = import_wbt(world)
+    assert sorted(d["name"] for d in report["extension_devices"]) == ["compass", "gps", "heading"]
+    assert report["robot_line"] == 2
+    said = [w for w in report["warnings"] if "project's own E-puck PROTO" in w]
+    assert len(said) == 1 and 'GPS "gps", Compass "heading"' in said[0]
+    # The other e-puck, without a turretSlot of its own, gets one.
+    _, other = import_wbt(world, robot_line=9)
+    assert sorted(d["name"] for d in other["extension_devices"]) == ["gps", "heading"]
+    assert other["robot_line"] == 9
+
+
 def test_hidden_engine_state_in_an_instance_is_skipped(tmp_path: Path) -> None:
     protos = tmp_path / "protos"
     protos.mkdir()
@@ -366,21 +397,91 @@ def test_fridges_tables_and_chairs_stand_in_as_their_documented_body_and_legs(
     assert all(size == [0.06, 0.06] for _, size in legs[4:])
 
 
-def test_a_table_of_a_y_up_world_keeps_the_y_up_default_size(
-    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+@pytest.mark.parametrize(
+    ("proto", "ys", "xs"),
+    [
+        # Before R2022a a Table's default size is 1.8 x 0.74 x 1 (the height second): its legs
+        # stand 1.8 m apart across and 1 m along, not 1 m and 1.8 m.
+        ("Table", [-0.85, 0.85], [-0.45, 0.45]),
+        # The desk of those releases is 1.2 m along its x: its legs 1.07 m apart there.
+        ("Desk", [-0.535, 0.535], [-0.32, 0.32]),
+    ],
+)
+def test_tables_and_desks_of_a_y_up_world_keep_their_y_up_layout(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path, proto: str, ys: list[float], xs: list[float]
 ) -> None:
-    """Before R2022a a Table's default size is 1.8 x 0.74 x 1 (the height second): its legs
-    stand 1.8 m apart across and 1 m along, not 1 m and 1.8 m."""
     monkeypatch.setenv("MAZESIM_OFFLINE", "1")
     text = (
-        '#VRML_SIM R2021a utf8\nWorldInfo { coordinateSystem "NUE" }\nTable { }\n'
+        f'#VRML_SIM R2021a utf8\nWorldInfo {{ coordinateSystem "NUE" }}\n{proto} {{ }}\n'
         "E-puck { translation 0 0 2 }\n"
     )
     _, report = import_wbt_text(text, str(tmp_path / "old.wbt"))
     # The file's x (across) is mazesim's y, its z (along) mazesim's x.
-    xs = sorted({round(c[0], 6) for c, _ in _boxes(report)})
-    ys = sorted({round(c[1], 6) for c, _ in _boxes(report)})
-    assert ys == [-0.85, 0.85] and xs == [-0.45, 0.45]
+    assert sorted({round(c[1], 6) for c, _ in _boxes(report)}) == ys
+    assert sorted({round(c[0], 6) for c, _ in _boxes(report)}) == xs
+
+
+def test_apartment_furniture_stands_in_as_what_reaches_below_the_robots_top(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    """A sofa and an armchair are their feet (the robot drives under the seat), a desk and a
+    wooden chair their legs, a window the wall below its sill; with the long side of each where
+    the PROTO puts it."""
+    monkeypatch.setenv("MAZESIM_OFFLINE", "1")
+    base = "webots://projects/objects"
+    text = (
+        "#VRML_SIM R2023b utf8\n"
+        f'EXTERNPROTO "{base}/living_room_furniture/protos/Sofa.proto"\n'
+        f'EXTERNPROTO "{base}/living_room_furniture/protos/Armchair.proto"\n'
+        f'EXTERNPROTO "{base}/tables/protos/Desk.proto"\n'
+        f'EXTERNPROTO "{base}/chairs/protos/WoodenChair.proto"\n'
+        f'EXTERNPROTO "{base}/apartment_structure/protos/Window.proto"\n'
+        "Sofa { translation 2 0 0 }\n"
+        "Armchair { translation -2 0 0 rotation 0 0 1 1.5708 }\n"
+        "Desk { translation 0 2 0 }\n"
+        "WoodenChair { translation 0 -2 0 physics Physics { } }\n"
+        'Window { translation 3 3 0 size 0.3 1 2.4 name "low" }\n'
+        'Window { translation -3 3 0 bottomWallHeight 0 name "none" }\n'
+        "E-puck { }\n"
+    )
+    _, report = import_wbt_text(text, str(tmp_path / "apartment.wbt"))
+    assert set(report["protos"]["stand_ins"]) == {
+        "Sofa",
+        "Armchair",
+        "Desk",
+        "WoodenChair",
+        "Window",
+    }
+    assert not report["bodies"]
+
+    def near(x: float, y: float) -> list[tuple[tuple[float, float], tuple[float, float]]]:
+        return sorted(
+            ((round(c[0], 4), round(c[1], 4)), (round(s[0], 4), round(s[1], 4)))
+            for c, s in _boxes(report)
+            if abs(c[0] - x) < 1 and abs(c[1] - y) < 1
+        )
+
+    feet = [(0.1, 0.1)] * 4
+    sofa = near(2, 0)
+    assert [c for c, _ in sofa] == [(1.65, -0.75), (1.65, 0.75), (2.35, -0.75), (2.35, 0.75)]
+    assert [s for _, s in sofa] == feet
+    # Turned a quarter: its 0.8 m between feet now along x.
+    armchair = near(-2, 0)
+    assert [c for c, _ in armchair] == [(-2.4, -0.35), (-2.4, 0.35), (-1.6, -0.35), (-1.6, 0.35)]
+    desk = near(0, 2)
+    assert [c for c, _ in desk] == [(-0.32, 1.465), (-0.32, 2.535), (0.32, 1.465), (0.32, 2.535)]
+    assert all(s == (0.046, 0.046) for _, s in desk)
+    chair = near(0, -2)
+    assert [c for c, _ in chair] == [
+        (-0.178, -2.17),
+        (-0.178, -1.815),
+        (0.178, -2.17),
+        (0.178, -1.815),
+    ]
+    assert near(3, 3) == [((3.0, 3.0), (0.3, 1.0))]
+    assert near(-3, 3) == []
+    # Nothing of them passes over the robot: the stand-ins keep only what it meets.
+    assert not [w for w in report["warnings"] if "above the floor passes over" in w]
 
 
 def test_a_cabinet_stands_in_as_the_envelope_of_its_frame(

@@ -18,9 +18,11 @@ use super::WbtImport;
 use crate::world::spec::PaintSpec;
 use crate::world::values::{Finite, Positive, Reflectance};
 
-/// A visual-only shape whose top is at most this high (metres) and whose bottom is on the floor
-/// is a mark on the floor (the e-puck's proximity sensors, about 3 cm up, pass over it).
-pub const FLOOR_MARK_HEIGHT: f64 = 0.005;
+/// A visual-only shape whose top is at most this high (metres) is a mark on the floor: a line
+/// painted on it, or a track modelled as a sheet a few millimetres above it (one public course
+/// raises its track 7.5 mm); the e-puck's proximity sensors, about 3 cm up, pass over it, and its
+/// ground sensors and a camera tilted at the floor see it.
+pub const FLOOR_MARK_HEIGHT: f64 = 0.01;
 /// Tolerance below the floor (metres) for the bottom of a floor mark.
 const BELOW_FLOOR: f64 = 0.001;
 /// Side of the cells a floor mesh is painted in (metres), at the finest.

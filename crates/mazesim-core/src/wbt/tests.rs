@@ -619,6 +619,39 @@ fn test_a_line_given_as_an_obj_mesh_outside_any_solid_is_floor_paint() {
 }
 
 #[test]
+fn a_track_sheet_raised_a_few_millimetres_in_a_solid_without_bounding_object_is_floor_paint() {
+    // A dark sheet 7.5 mm above the floor in a Solid that collides with nothing, as a course's
+    // track PROTO models it; the same sheet 2 cm up is named instead.
+    let sheet = |y: f64, z: f64| {
+        format!(
+            "Solid {{ translation 0 {y} {z} children [ Shape {{ appearance PBRAppearance {{ \
+             baseColor 0.17 0.18 0.19 }} geometry IndexedFaceSet {{ coord Coordinate {{ point [ \
+             -0.3 -0.01 0, 0.3 -0.01 0, 0.3 0.01 0, -0.3 0.01 0 ] }} coordIndex [ 0 1 2 3 -1 ] \
+             }} }} ] }}\n"
+        )
+    };
+    let text = format!(
+        "#VRML_SIM R2022b utf8\nWorldInfo {{ }}\n{}{}E-puck {{ }}\n",
+        sheet(0.0, 0.0075),
+        sheet(0.5, 0.02)
+    );
+    let import = WbtImport::from_text(&text, "track.wbt").unwrap();
+    let on_track = painted_at(&import, 0.1, 0.0).expect("the raised track is paint");
+    assert!((on_track - (0.2 + 0.8 * 0.17)).abs() < 1e-9, "{on_track}");
+    assert_eq!(painted_at(&import, 0.1, 0.05), None);
+    assert_eq!(painted_at(&import, 0.1, 0.5), None);
+    assert!(
+        import
+            .warnings
+            .iter()
+            .any(|w| w.starts_with("line 4: Shape") && w.contains("0.020 m above the floor")),
+        "{:?}",
+        import.warnings
+    );
+    assert!(import.obstacles.is_empty());
+}
+
+#[test]
 fn a_mesh_that_cannot_be_read_or_rises_above_the_floor_is_named() {
     let dir = std::env::temp_dir().join(format!("mazesim-obj-tall-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();

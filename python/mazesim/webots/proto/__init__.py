@@ -5,7 +5,7 @@ core imports it (see ``docs/webots.md``, "PROTOs").
 evaluates a procedural body with a JavaScript or Lua engine (``templates``, with the helper
 modules of ``template_modules``), replaces ``IS`` references by the instance's fields and expands
 nested PROTOs (``expander``); stock objects that cannot be read get mazesim's stand-ins
-(``stand_ins``).
+(``stand_ins``, the apartment's furniture and window in ``furniture``).
 """
 
 from __future__ import annotations

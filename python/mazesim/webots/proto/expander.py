@@ -15,6 +15,7 @@ from typing import Any
 from mazesim.errors import WorldFormatError
 
 from .definition import ProtoDefinition, externproto_urls, parse_definition
+from .own_robot import OWN_ROBOT_TYPES, added_devices, outermost, with_devices
 from .resolver import ProtoSource, ProtoUnavailableError, Resolver, is_url
 from .stand_ins import STAND_INS
 from .syntax import Node, line_of, located_error, parse_nodes, tokenize
@@ -107,12 +108,37 @@ class Expander:
     def expand_world(self) -> str:
         """The world's text with every PROTO instance that can be read expanded."""
         types = {m.group(1) for m in _NODE_TYPE.finditer(_COMMENT.sub("", self.text))}
+        if types & OWN_ROBOT_TYPES:
+            self.text = self._own_robot_devices(self.text)
         if not any(self._expandable(t) for t in types):
             return self.text  # nothing to expand: a large mesh world is not tokenized for it
         scope = _Scope(self.world, externproto_urls(self.text))
         text = self._expand(self.text, scope, 0, keep_lines=True)
         self.report.cache_hits = list(self.resolver.cache_hits)
         self.report.downloads = list(self.resolver.downloads)
+        return text
+
+    def _own_robot_devices(self, text: str) -> str:
+        """The world with the devices its project's own e-puck PROTO adds put into each
+        instance's ``turretSlot`` (see :mod:`.own_robot`)."""
+        try:
+            nodes = parse_nodes(text, self.world)
+        except WorldFormatError:
+            return text  # the core says where the world is malformed
+        inserts: list[tuple[int, str]] = []
+        for node in outermost(nodes, OWN_ROBOT_TYPES):
+            source = self.resolver.project_proto(node.type_name)
+            devices = added_devices(source.text, source.origin) if source else []
+            if source is None or not devices:
+                continue
+            inserts.append(with_devices(text, node, devices))
+            names = ", ".join(f'{kind} "{name}"' for name, kind in _kinds(devices))
+            self._say(
+                f"the project's own {node.type_name} PROTO ({source.origin}) adds "
+                f"{names} to Webots' e-puck: mounted in its turretSlot"
+            )
+        for at, insert in sorted(inserts, reverse=True):
+            text = text[:at] + insert + text[at:]
         return text
 
     def _say(self, message: str) -> None:
@@ -327,3 +353,8 @@ def _with_def(flat: str, def_name: str) -> str:
 def is_remote(location: str) -> bool:
     """Whether a PROTO came from a URL."""
     return is_url(location)
+
+
+def _kinds(devices: list[tuple[str, str]]) -> list[tuple[str, str]]:
+    """``(name, node type)`` of each ``(name, node text)``."""
+    return [(name, node.split("{", 1)[0].split()[-1]) for name, node in devices]

@@ -154,17 +154,23 @@ class Resolver:
         (self.cache_hits if was_cached else self.downloads).append(url)
         return ProtoSource(_read(path), url)
 
-    def undeclared(self, name: str) -> ProtoSource | None:
-        """A PROTO no ``EXTERNPROTO`` names: the project's ``protos/`` folder, then
-        ``$WEBOTS_HOME/projects``."""
+    def project_proto(self, name: str) -> ProtoSource | None:
+        """The PROTO of that name in the project's ``protos/`` folder, or None."""
         if self._project_protos is None:
             self._project_protos = _index(Path(self.project) / "protos")
         found = self._project_protos.get(name)
-        if found is None:
-            home = os.environ.get("WEBOTS_HOME")
-            if home and self._webots_protos is None:
-                self._webots_protos = _index(Path(home) / "projects")
-            found = (self._webots_protos or {}).get(name)
+        return None if found is None else ProtoSource(_read(Path(found)), found)
+
+    def undeclared(self, name: str) -> ProtoSource | None:
+        """A PROTO no ``EXTERNPROTO`` names: the project's ``protos/`` folder, then
+        ``$WEBOTS_HOME/projects``."""
+        own = self.project_proto(name)
+        if own is not None:
+            return own
+        home = os.environ.get("WEBOTS_HOME")
+        if home and self._webots_protos is None:
+            self._webots_protos = _index(Path(home) / "projects")
+        found = (self._webots_protos or {}).get(name)
         if found is None:
             return None
         return ProtoSource(_read(Path(found)), found)

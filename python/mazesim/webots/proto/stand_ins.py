@@ -27,6 +27,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from .furniture import ARMCHAIR, DESK, SOFA, WINDOW, WOODEN_CHAIR
+
 __all__ = ["STAND_INS", "StandIn"]
 
 
@@ -411,4 +413,9 @@ STAND_INS: dict[str, StandIn] = {
     "Cabinet": StandIn(
         _CABINET, "a box of its frame's envelope: depth, rows' heights and columns' widths"
     ),
+    "Sofa": StandIn(SOFA, "its four published feet; its seat passes over the robot"),
+    "Armchair": StandIn(ARMCHAIR, "its four published feet; its seat passes over the robot"),
+    "Desk": StandIn(DESK, "its four published legs where they meet the floor"),
+    "WoodenChair": StandIn(WOODEN_CHAIR, "its four published legs, static"),
+    "Window": StandIn(WINDOW, "the wall below its sill, of the given size"),
 }
