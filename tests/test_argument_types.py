@@ -181,6 +181,7 @@ def samples(tmp: Path) -> dict[str, Any]:
         "features": features,
         "observe": True,
         "bounds": core.StepBounds(np.zeros(11, np.float32), np.full(11, 5000.0, np.float32), 6.28),
+        "elevation": 0.16,
         "lower_q": np.zeros((4, 3 * 4096, 12)),
         "distances_cm": np.full((NUM_ENVS, 6), 30.0),
         "odometry": np.zeros((NUM_ENVS, 3)),
