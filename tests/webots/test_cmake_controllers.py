@@ -104,3 +104,24 @@ def test_without_cmake_the_statement_says_it_would_build_the_controller(
         "project builds the controller with its own CMakeLists.txt, which cmake, not installed "
         "here, would run)"
     ]
+
+
+def test_a_windows_project_is_not_handed_to_its_cmake_lists_and_the_run_says_why(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from mazesim.webots.requirements import prepare_controller
+
+    monkeypatch.setenv("MAZESIM_CACHE", str(tmp_path / "cache"))
+    main = _project(tmp_path / "project")
+    main.write_text("#include <windows.h>\n" + CONTROLLER)
+    ran = []
+    monkeypatch.setattr(
+        "mazesim.webots.native_controller.cmake_build", lambda *a: ran.append(a) or (None, "")
+    )
+    for _ in range(2):  # the first build, then the cache's record of it
+        prepared = prepare_controller(str(main))
+        assert not prepared.runnable and ran == []
+        assert prepared.missing[0] == (
+            "Windows' own header(s), which only a Windows build finds (the controller is "
+            "written for Windows): windows.h"
+        )

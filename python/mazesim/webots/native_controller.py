@@ -304,6 +304,15 @@ def _defined_twice(errors: str, main: Path) -> list[str]:
     return sorted(name for name in names if name != main.name and (main.parent / name).is_file())
 
 
+def _buildable(elsewhere: list[str]) -> bool:
+    """Whether a controller whose headers ``elsewhere`` are found neither in its folder nor on
+    the system may be built by its project's CMake: not when one is Windows' own (a project
+    written for Windows does not build here, whatever its CMakeLists.txt says)."""
+    from mazesim.webots.requirements import WINDOWS_HEADERS
+
+    return bool(elsewhere) and not any(name.lower() in WINDOWS_HEADERS for name in elsewhere)
+
+
 def _project_cmake(main: Path, c_compiler: str) -> Build | None:
     """The controller built by its project's ``CMakeLists.txt`` beside it
     (:mod:`mazesim.webots.cmake_build`), or None when there is none, or no ``cmake`` or archiver
@@ -362,7 +371,7 @@ def build(source: str | os.PathLike[str]) -> Build:
     lacking = target.with_name("missing.json")
     if lacking.is_file():
         known = json.loads(lacking.read_text(encoding="utf-8"))
-        built = _project_cmake(main, c_compiler) if known["elsewhere"] else None
+        built = _project_cmake(main, c_compiler) if _buildable(known["elsewhere"]) else None
         if built is not None:
             return built
         note = f"built earlier without success, as the cache {target.parent} says"
@@ -388,7 +397,7 @@ def build(source: str | os.PathLike[str]) -> Build:
         absent = sorted(set(_NO_HEADER.findall(done.stderr)))
         elsewhere = sorted(set(_NO_PROJECT_HEADER.findall(done.stderr)))
         compiler = command[0]
-        built = _project_cmake(main, c_compiler) if elsewhere and not missing else None
+        built = _project_cmake(main, c_compiler) if _buildable(elsewhere) and not missing else None
         if built is not None:
             return built
         if missing or absent or elsewhere:
