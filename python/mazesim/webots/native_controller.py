@@ -313,16 +313,24 @@ def _buildable(elsewhere: list[str]) -> bool:
     return bool(elsewhere) and not any(name.lower() in WINDOWS_HEADERS for name in elsewhere)
 
 
-def _project_cmake(main: Path, c_compiler: str) -> Build | None:
+def _project_cmake(main: Path, c_compiler: str, elsewhere: list[str]) -> Build | None:
     """The controller built by its project's ``CMakeLists.txt`` beside it
     (:mod:`mazesim.webots.cmake_build`), or None when there is none, or no ``cmake`` or archiver
-    to build it with."""
+    to build it with. A CMake build that fails or makes no program is a build without a program
+    that still lacks the project's headers ``elsewhere``, its note quoting CMake's complaint, so
+    that the run says at its start what is missing instead of stopping."""
     if not (main.parent / "CMakeLists.txt").is_file() or cmake_program() is None:
         return None
     archive = [path for path in _library(main, c_compiler) if path.suffix == ".a"]
     if not archive:
         return None
-    program, note = cmake_build(main.parent, cache_folder(), CAPI, archive[0])
+    try:
+        program, note = cmake_build(main.parent, cache_folder(), CAPI, archive[0])
+    except ControllerBuildError as failed:
+        complaint = str(failed).splitlines()[0][:300]
+        return Build(
+            None, note=f"its project's CMake build failed: {complaint}", elsewhere=elsewhere
+        )
     return Build(program, note=note)
 
 
@@ -371,7 +379,11 @@ def build(source: str | os.PathLike[str]) -> Build:
     lacking = target.with_name("missing.json")
     if lacking.is_file():
         known = json.loads(lacking.read_text(encoding="utf-8"))
-        built = _project_cmake(main, c_compiler) if _buildable(known["elsewhere"]) else None
+        built = (
+            _project_cmake(main, c_compiler, known["elsewhere"])
+            if _buildable(known["elsewhere"])
+            else None
+        )
         if built is not None:
             return built
         note = f"built earlier without success, as the cache {target.parent} says"
@@ -397,7 +409,11 @@ def build(source: str | os.PathLike[str]) -> Build:
         absent = sorted(set(_NO_HEADER.findall(done.stderr)))
         elsewhere = sorted(set(_NO_PROJECT_HEADER.findall(done.stderr)))
         compiler = command[0]
-        built = _project_cmake(main, c_compiler) if _buildable(elsewhere) and not missing else None
+        built = (
+            _project_cmake(main, c_compiler, elsewhere)
+            if _buildable(elsewhere) and not missing
+            else None
+        )
         if built is not None:
             return built
         if missing or absent or elsewhere:
