@@ -35,6 +35,7 @@ from __future__ import annotations
 import math
 import threading
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, fields
 from typing import Any
 
@@ -219,37 +220,31 @@ class Bridge:
 
     def on_motor(self, message: Any) -> None:
         """Handles a ``motor`` message: ``[left, right]`` in rad/s."""
-        try:
-            left, right = topics.motor_command(message.data)
-        except MazesimError as error:
-            self._reject("motor", error)
-            return
-        self.command(left, right)
+        self._command_from("motor", lambda: topics.motor_command(message.data))
 
     def on_action(self, message: Any) -> None:
         """Handles an ``action`` message: a primitive action code."""
-        try:
-            left, right = wheel_speeds(message.data, self.max_wheel_speed)
-        except MazesimError as error:
-            self._reject("action", error)
-            return
-        self.command(left, right)
+        self._command_from("action", lambda: wheel_speeds(message.data, self.max_wheel_speed))
 
     def on_cmd_vel(self, message: Any) -> None:
         """Handles a ``cmd_vel`` twist: ``linear.x`` in m/s, ``angular.z`` in rad/s."""
-        try:
-            left, right = standard.twist_wheel_speeds(
+        self._command_from(
+            standard.CMD_VEL_TOPIC,
+            lambda: standard.twist_wheel_speeds(
                 message.linear.x, message.angular.z, self.simulator.robot
-            )
+            ),
+        )
+
+    def _command_from(self, topic: str, read: Callable[[], tuple[float, float]]) -> None:
+        """Applies the wheel speeds ``read`` gives, or logs and counts a bad ``topic`` message."""
+        try:
+            left, right = read()
         except MazesimError as error:
-            self._reject(standard.CMD_VEL_TOPIC, error)
+            with self._lock:
+                self.rejected += 1
+            self.ros.rospy.logwarn("ignored a bad %s message: %s", topic, error)
             return
         self.command(left, right)
-
-    def _reject(self, topic: str, error: MazesimError) -> None:
-        with self._lock:
-            self.rejected += 1
-        self.ros.rospy.logwarn("ignored a bad %s message: %s", topic, error)
 
     def command(self, left: float, right: float) -> None:
         """Applies wheel speeds: in lockstep, steps once and publishes; else holds them."""

@@ -29,7 +29,6 @@ from mazesim.errors import (
     InvalidArgumentError,
     MazesimError,
     MazesimIOError,
-    MissingDependencyError,
     PolicyFormatError,
 )
 from mazesim.ros.bridge import refuse_several_robots
@@ -74,14 +73,9 @@ def check_free_space(out_dir: str) -> None:
 
 def read_poses(bag_path: str) -> Any:
     """Reads the ``/pose`` messages of a bag: an array of shape (N, 4), rows [x, y, yaw, time]."""
-    try:
-        import rosbag
-    except ImportError as error:
-        raise MissingDependencyError(
-            f"reading a bag needs ROS 1's rosbag package ({error}); on Debian 'make ros-deps'"
-        ) from error
-    with rosbag.Bag(bag_path) as bag:
-        rows = [list(message.data) for _, message, _ in bag.read_messages(topics=["/pose"])]
+    from mazesim.replay.ros_bag import read_topics
+
+    rows = read_topics(bag_path, ("/pose",))["/pose"]
     return np.array(rows, dtype=np.float64).reshape(-1, 4)
 
 

@@ -67,15 +67,19 @@ def stop_on_signals() -> threading.Event:
 
 
 def _spin(node: Node, stop: threading.Event, handle: Callable[[], None]) -> None:
-    from cyclonedds.core import InstanceState, ReadCondition, SampleState, ViewState, WaitSet
+    """Calls ``handle`` as the node's readers receive until ``stop`` is set, then closes it."""
+    try:
+        from cyclonedds.core import InstanceState, ReadCondition, SampleState, ViewState, WaitSet
 
-    waitset = WaitSet(node.participant)
-    mask = SampleState.Any | ViewState.Any | InstanceState.Any
-    for reader in node.readers:
-        waitset.attach(ReadCondition(reader.dds, mask))
-    while not stop.is_set():
-        waitset.wait(100_000_000)
-        handle()
+        waitset = WaitSet(node.participant)
+        mask = SampleState.Any | ViewState.Any | InstanceState.Any
+        for reader in node.readers:
+            waitset.attach(ReadCondition(reader.dds, mask))
+        while not stop.is_set():
+            waitset.wait(100_000_000)
+            handle()
+    finally:
+        node.close()
 
 
 @leaves_signals_as_found
@@ -122,10 +126,7 @@ def run_perform_learning(
             action.publish(cdr.encode_string(code))
             answered += 1
 
-    try:
-        _spin(node, stop, handle)
-    finally:
-        node.close()
+    _spin(node, stop, handle)
     print(f"perform_learning: stopped after {answered} actions", file=sys.stderr, flush=True)
     return 0
 
@@ -182,9 +183,6 @@ def run_avoid_collision(
                 command(latest)
                 next_tick_ns = now + round(period_ms * 1e6)
 
-    try:
-        _spin(node, stop, handle)
-    finally:
-        node.close()
+    _spin(node, stop, handle)
     print(f"avoid_collision: stopped after {sent} commands", file=sys.stderr, flush=True)
     return 0
