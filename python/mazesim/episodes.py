@@ -20,7 +20,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import Protocol
+from typing import Any, Protocol
 
 import numpy as np
 import numpy.typing as npt
@@ -246,6 +246,17 @@ class Navigator(Protocol):
     def act(
         self, observations: npt.ArrayLike, poses: npt.ArrayLike, events: npt.ArrayLike
     ) -> npt.NDArray[np.int64]: ...
+
+
+class NavigatorWrapper:
+    """The base of a navigator that drives through another, :attr:`navigator`."""
+
+    navigator: Any
+
+    @property
+    def record(self) -> Any:
+        """The wrapped navigator's record of its last step (for traces)."""
+        return self.navigator.record
 
 
 @dataclass

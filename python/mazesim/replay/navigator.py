@@ -18,7 +18,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim.actions import ACTION_CODES
-from mazesim.episodes import EpisodeBatch
+from mazesim.episodes import EpisodeBatch, NavigatorWrapper
 from mazesim.learn.subtasks import SUBTASK_NAMES
 from mazesim.replay.recorder import EpisodeRecorder, reading_scale
 from mazesim.replay.run import RecordedRun
@@ -26,7 +26,7 @@ from mazesim.replay.run import RecordedRun
 __all__ = ["NavigatorRecorder", "Recording"]
 
 
-class NavigatorRecorder:
+class NavigatorRecorder(NavigatorWrapper):
     """Records episodes ``0 .. episodes - 1`` of a navigation batch driven by ``navigator``.
 
     It is itself a navigator (``reset``, ``act``, ``record``), to hand to ``run_episodes`` in
@@ -44,11 +44,6 @@ class NavigatorRecorder:
         self.episodes = episodes
         self.recorders: dict[int, EpisodeRecorder] = {}
         self.outcomes: dict[int, str] = {}
-
-    @property
-    def record(self) -> Any:
-        """The watched navigator's record of its last step."""
-        return self.navigator.record
 
     def reset(self, envs: npt.ArrayLike, poses: npt.ArrayLike) -> None:
         """Starts robots afresh (see the watched navigator)."""

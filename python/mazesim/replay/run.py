@@ -176,6 +176,10 @@ class RecordedEpisode:
         return len(self.poses)
 
 
+def _reading_names(profile: RobotProfile) -> list[str]:
+    return [*profile.distance_sensor_names, *profile.ground_sensor_names]
+
+
 @dataclass
 class RunRobot:
     """One robot of a run of several robots.
@@ -195,8 +199,7 @@ class RunRobot:
 
     def sensor_names(self) -> list[str]:
         """Names of its readings' columns: the distance sensors, then the ground sensors."""
-        profile = self.robot_profile
-        return [*profile.distance_sensor_names, *profile.ground_sensor_names]
+        return _reading_names(self.robot_profile)
 
 
 @dataclass
@@ -233,8 +236,7 @@ class RecordedRun:
 
     def sensor_names(self) -> list[str]:
         """Names of the readings' columns: the distance sensors, then the ground sensors."""
-        profile = self.robot_profile
-        return [*profile.distance_sensor_names, *profile.ground_sensor_names]
+        return _reading_names(self.robot_profile)
 
     def as_json(self) -> dict[str, Any]:
         """The run as the JSON object of its file."""

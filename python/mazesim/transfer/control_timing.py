@@ -26,12 +26,13 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim.barcode.link import UnsyncedLink
+from mazesim.episodes import NavigatorWrapper
 from mazesim.errors import InvalidArgumentError
 
 __all__ = ["DelayedNavigator", "LinkedNavigator"]
 
 
-class DelayedNavigator:
+class DelayedNavigator(NavigatorWrapper):
     """A navigator whose commands reach robot ``i`` ``delays[i]`` control steps late.
 
     Args:
@@ -55,11 +56,6 @@ class DelayedNavigator:
         self.history = np.full((longest + 1, count), -1, dtype=np.int64)
         self._robots = np.arange(count)
 
-    @property
-    def record(self) -> Any:
-        """The wrapped navigator's record of its last step (for traces)."""
-        return self.navigator.record
-
     def reset(self, envs: npt.ArrayLike, poses: npt.ArrayLike) -> None:
         """Starts robots ``envs`` afresh: no command sent yet."""
         self.history[:, np.asarray(envs, dtype=np.int64)] = -1
@@ -78,7 +74,7 @@ class DelayedNavigator:
         return self.history[self.delays, self._robots].copy()
 
 
-class LinkedNavigator:
+class LinkedNavigator(NavigatorWrapper):
     """A navigator that reaches the robots marked ``linked`` over an unsynchronised link.
 
     Args:
@@ -94,11 +90,6 @@ class LinkedNavigator:
         self.link = UnsyncedLink(count, seed=seed)
         self.command = np.full(count, -1, dtype=np.int64)
         self.pending = np.zeros(count, dtype=np.int64)
-
-    @property
-    def record(self) -> Any:
-        """The wrapped navigator's record of its last step (for traces)."""
-        return self.navigator.record
 
     def reset(self, envs: npt.ArrayLike, poses: npt.ArrayLike) -> None:
         """Starts robots ``envs`` afresh: their node sends a command at the first step."""

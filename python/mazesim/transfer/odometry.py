@@ -26,6 +26,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from mazesim.episodes import NavigatorWrapper
 from mazesim.odometry import advance
 
 __all__ = ["ODOMETRY_SOURCES", "EncoderOdometryNavigator"]
@@ -34,7 +35,7 @@ __all__ = ["ODOMETRY_SOURCES", "EncoderOdometryNavigator"]
 ODOMETRY_SOURCES = ("truth", "encoders")
 
 
-class EncoderOdometryNavigator:
+class EncoderOdometryNavigator(NavigatorWrapper):
     """A navigator whose poses are dead-reckoned from the robots' wheel encoders.
 
     Args:
@@ -61,11 +62,6 @@ class EncoderOdometryNavigator:
         #: (N, 3) the pose each robot believes it is at.
         self.pose = np.zeros((count, 3), dtype=np.float64)
         self._last = np.zeros((count, 2), dtype=np.float64)
-
-    @property
-    def record(self) -> Any:
-        """The wrapped navigator's record of its last step (for traces)."""
-        return self.navigator.record
 
     def reset(self, envs: npt.ArrayLike, poses: npt.ArrayLike) -> None:
         """Starts robots ``envs`` afresh: their odometry starts from their true poses."""

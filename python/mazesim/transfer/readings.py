@@ -28,6 +28,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import RobotProfile
+from mazesim.episodes import NavigatorWrapper
 from mazesim.learn.discretise import NUM_SENSORS, SHARP_TABLE
 from mazesim.odometry import wrap_angle
 
@@ -114,7 +115,7 @@ class SeedReadings:
         }
 
 
-class SeedReadingsNavigator:
+class SeedReadingsNavigator(NavigatorWrapper):
     """A navigator of the seed robot driving another profile through :class:`SeedReadings`.
 
     Args:
@@ -125,11 +126,6 @@ class SeedReadingsNavigator:
     def __init__(self, navigator: Any, profile: RobotProfile) -> None:
         self.navigator = navigator
         self.readings = SeedReadings(profile)
-
-    @property
-    def record(self) -> Any:
-        """The wrapped navigator's record of its last step (for traces)."""
-        return self.navigator.record
 
     def reset(self, envs: npt.ArrayLike, poses: npt.ArrayLike) -> None:
         """Starts robots ``envs`` afresh."""
