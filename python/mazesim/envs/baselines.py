@@ -124,7 +124,6 @@ class CellAgent:
         self._turned_before = 0.0
         self._axes: float | None = None
         self._first_pattern: tuple[bool, ...] | None = None
-        self._steps = 0
 
     def act(self, observation: npt.ArrayLike) -> npt.NDArray[np.float32]:
         """The wheel speeds (left, right, fractions of the motor limit) for ``observation``."""
@@ -178,7 +177,6 @@ class CellAgent:
         left, right = values[self._index["previous_left"]], values[self._index["previous_right"]]
         self._turned_before = self._turned
         self._turned += self.turn_per_step * (right - left)
-        self._steps += 1
         if self._axes is None:
             pattern = sides
             if self._first_pattern is None:

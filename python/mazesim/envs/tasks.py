@@ -94,6 +94,21 @@ class Task:
 #: discount of 0.99 looks about 13 s ahead (a few cells) and episodes are a few hundred steps.
 LONG_STEP_MS = 128.0
 
+#: Seed-maze with random start and goal cells, at the 128 ms step of tiers 1 to 3.
+_SEED_MAZE_GOALS = {
+    "world": "seed-maze",
+    "observation": "goal",
+    "start_goal": "random",
+    "control_step_ms": LONG_STEP_MS,
+}
+#: A new 5 x 5 maze every episode, the explored map observed (``UnseenMaze-v1``).
+_UNSEEN_MAZE_GOALS = {
+    "world": "random",
+    "observation": "explore",
+    "start_goal": "random",
+    "control_step_ms": LONG_STEP_MS,
+}
+
 #: Every registered task, easiest first.
 TASKS: tuple[Task, ...] = (
     Task("mazesim/EPuckMaze-v0", 0, "seed-maze from its start, raw readings", 3000),
@@ -122,12 +137,7 @@ TASKS: tuple[Task, ...] = (
         3,
         "a new 5 x 5 maze each episode, random start and goal, the explored map observed",
         1000,
-        {
-            "world": "random",
-            "observation": "explore",
-            "start_goal": "random",
-            "control_step_ms": LONG_STEP_MS,
-        },
+        _UNSEEN_MAZE_GOALS,
     ),
     Task(
         "mazesim/UnseenMaze-v2",
@@ -148,20 +158,6 @@ TASKS: tuple[Task, ...] = (
 
 
 _GOAL_ENV = "mazesim.envs.goal:MazeGoalEnv"
-#: Seed-maze with random start and goal cells, at the 128 ms step of tiers 1 to 3.
-_SEED_MAZE_GOALS = {
-    "world": "seed-maze",
-    "observation": "goal",
-    "start_goal": "random",
-    "control_step_ms": LONG_STEP_MS,
-}
-#: A new 5 x 5 maze every episode, the explored map observed, as ``UnseenMaze-v1``.
-_UNSEEN_MAZE_GOALS = {
-    "world": "random",
-    "observation": "explore",
-    "start_goal": "random",
-    "control_step_ms": LONG_STEP_MS,
-}
 
 #: The goal-conditioned tasks (:mod:`mazesim.envs.goal`): the sparse reward (0 at the goal, -1
 #: elsewhere; a solved episode returns more than -``max_episode_steps``) and the dense one (minus

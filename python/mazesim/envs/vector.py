@@ -173,15 +173,7 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         n = self.num_envs
         # The batch first: it checks num_envs against the memory it needs before the spaces
         # below allocate per-environment bounds.
-        batch = BatchSimulator(
-            first,
-            n,
-            robot=self.options.robot.name,
-            seeds=0,
-            noise=self.options.noise,
-            control_step_ms=self.options.control_step_ms,
-            threads=threads,
-        )
+        batch = self._new_batch(first)
         self._batch: BatchSimulator | None = batch
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self.action_space = batch_space(self.single_action_space, self.num_envs)
@@ -409,20 +401,24 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         self.__dict__.update(state)
         self._batch = None
         if snapshots is not None:
-            batch = BatchSimulator(
-                list(self._worlds),
-                self.num_envs,
-                robot=self.options.robot.name,
-                seeds=0,
-                noise=self.options.noise,
-                control_step_ms=self.options.control_step_ms,
-                threads=self._threads,
-            )
+            batch = self._new_batch(list(self._worlds))
             for i, snapshot in enumerate(snapshots):
                 batch.restore_env(i, snapshot)
             self._batch = batch
 
     # -- helpers -------------------------------------------------------------------------------
+
+    def _new_batch(self, worlds: World | list[World]) -> BatchSimulator:
+        """The batch engine of the envs in ``worlds`` (one for all, or one each), seeds 0."""
+        return BatchSimulator(
+            worlds,
+            self.num_envs,
+            robot=self.options.robot.name,
+            seeds=0,
+            noise=self.options.noise,
+            control_step_ms=self.options.control_step_ms,
+            threads=self._threads,
+        )
 
     def _open_batch(self) -> BatchSimulator:
         if self._batch is None:
