@@ -72,6 +72,26 @@ def _rotate(
         out_y += at[1]
 
 
+def _slab(
+    low: np.ndarray,
+    high: np.ndarray,
+    origin: np.ndarray,
+    inverse: np.ndarray,
+    near: np.ndarray,
+    far: np.ndarray,
+    entry: np.ndarray,
+) -> None:
+    """The distances along rays of inverse direction ``inverse`` (one axis) at which they enter
+    the boxes' slabs ``[low, high]`` of that axis, into ``entry``, and leave them, into ``near``;
+    ``far`` is a buffer of their shape."""
+    np.subtract(low, origin, out=near)
+    near *= inverse
+    np.subtract(high, origin, out=far)
+    far *= inverse
+    np.minimum(near, far, out=entry)
+    np.maximum(near, far, out=near)
+
+
 class UniformLut:
     """A piecewise-linear table resampled exactly on a uniform grid (its breakpoints must lie on
     the grid): one multiply, one truncation and two small gathers per column read."""
@@ -290,18 +310,8 @@ class _Chunk:
         np.clip(dy, -_MAX_INV, _MAX_INV, out=dy)
         # Slab test of every ray against every box: (B, 8, C) entry and exit distances.
         t1, t2, t3, t4, t5 = self.t1, self.t2, self.t3, self.t4, self.t5
-        np.subtract(self.sx0, ox, out=t1)
-        t1 *= dx
-        np.subtract(self.sx1, ox, out=t2)
-        t2 *= dx
-        np.minimum(t1, t2, out=t3)  # x entry
-        np.maximum(t1, t2, out=t1)  # x exit
-        np.subtract(self.sy0, oy, out=t2)
-        t2 *= dy
-        np.subtract(self.sy1, oy, out=t4)
-        t4 *= dy
-        np.minimum(t2, t4, out=t5)  # y entry
-        np.maximum(t2, t4, out=t2)  # y exit
+        _slab(self.sx0, self.sx1, ox, dx, t1, t2, t3)  # x entry t3, exit t1
+        _slab(self.sy0, self.sy1, oy, dy, t2, t4, t5)  # y entry t5, exit t2
         np.maximum(t3, t5, out=t3)  # entry
         np.minimum(t1, t2, out=t1)  # exit
         np.maximum(t3, self.zero, out=t3)  # the ray starts at its origin (0 inside a box)
