@@ -13,8 +13,10 @@ import json
 import os
 
 import numpy as np
+from matplotlib.axes import Axes
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
+from matplotlib.image import AxesImage
 
 from mazesim._atomic import atomic_file
 from mazesim.transfer.result import StudyResult
@@ -25,7 +27,11 @@ __all__ = ["save_pairs_map", "save_single_map", "write_study_files"]
 COLOURS = "RdYlGn"
 
 
-def _save(figure: Figure, path: str) -> None:
+def _save(figure: Figure, plot: Axes, image: AxesImage, title: str, path: str) -> None:
+    """Adds the colour bar of success rates and the title, then writes the PNG."""
+    figure.colorbar(image, ax=plot, label="success rate")
+    plot.set_title(title, fontsize=9)
+    figure.tight_layout()
     FigureCanvasAgg(figure)
     with atomic_file(path) as handle:
         figure.savefig(handle, format="png", dpi=110)
@@ -57,14 +63,11 @@ def save_single_map(result: StudyResult, path: str) -> None:
     plot.set_yticks(range(len(axes)), [axis.name for axis in axes], fontsize=8)
     plot.set_xticks(range(columns), ["baseline", *(f"level {i}" for i in range(1, columns))],
                     fontsize=8)  # fmt: skip
-    figure.colorbar(image, ax=plot, label="success rate")
-    plot.set_title(
+    title = (
         f"{result.world}: {result.policy} navigator, success by perturbation "
-        f"({result.episodes_label}, seed {result.seed}, {result.odometry_label})",
-        fontsize=9,
+        f"({result.episodes_label}, seed {result.seed}, {result.odometry_label})"
     )
-    figure.tight_layout()
-    _save(figure, path)
+    _save(figure, plot, image, title, path)
 
 
 def save_pairs_map(result: StudyResult, path: str) -> None:
@@ -90,14 +93,11 @@ def save_pairs_map(result: StudyResult, path: str) -> None:
     labels = [f"{axis.name}\n{axis.label(result.harshest[axis.name])}" for axis in axes]
     plot.set_xticks(range(len(axes)), labels, fontsize=7, rotation=60, ha="right")
     plot.set_yticks(range(len(axes)), labels, fontsize=7)
-    figure.colorbar(image, ax=plot, label="success rate")
-    plot.set_title(
+    title = (
         f"{result.world}: {result.policy} navigator, pairs of perturbations at their harshest "
-        f"levels\n({result.episodes_label}; {result.odometry_label}; diagonal: one axis alone)",
-        fontsize=9,
+        f"levels\n({result.episodes_label}; {result.odometry_label}; diagonal: one axis alone)"
     )
-    figure.tight_layout()
-    _save(figure, path)
+    _save(figure, plot, image, title, path)
 
 
 def write_study_files(result: StudyResult, folder: str | os.PathLike[str]) -> list[str]:
