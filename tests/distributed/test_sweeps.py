@@ -37,18 +37,21 @@ from mazesim.learn.learning_curve import CURVE_VALUES
 REPO = Path(__file__).resolve().parents[2]
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 
-#: 4 settings x 2 seeds, small enough to train in a fraction of a second each.
-SMALL_SWEEP = """
+#: The grid of both test sweeps: 4 settings x 2 seeds.
+GRID = """seed = [0, 1]
+learning_rate = [0.1, 0.3]
+epsilon = [0.05, 0.3]
+maze_size = 3"""
+
+#: The grid for flat Q-learning, each setting small enough to train in a fraction of a second.
+SMALL_SWEEP = f"""
 [sweep]
 name = "small"
 max_retries = 1
 
 [grid]
 trainer = "flat-q"
-seed = [0, 1]
-learning_rate = [0.1, 0.3]
-epsilon = [0.05, 0.3]
-maze_size = 3
+{GRID}
 envs = 8
 steps = 150
 episode_steps = 120
@@ -56,16 +59,13 @@ eval_episodes = 6
 """
 
 #: The same grid for mazesim's hierarchical navigator, with budgets that only a test would use.
-HRL_SWEEP = """
+HRL_SWEEP = f"""
 [sweep]
 name = "hrl-small"
 
 [grid]
 trainer = "hrl"
-seed = [0, 1]
-learning_rate = [0.1, 0.3]
-epsilon = [0.05, 0.3]
-maze_size = 3
+{GRID}
 envs = 4
 steps = 40
 higher_episodes = 4
