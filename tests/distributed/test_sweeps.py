@@ -16,6 +16,7 @@ import mazesim
 from mazesim.cli import main
 from mazesim.distributed import (
     Setting,
+    SweepConfig,
     TaskOutput,
     evaluate_episodes,
     load_sweep_config,
@@ -253,18 +254,26 @@ def local_ray() -> Any:
         yield ray
 
 
-def test_sweep_on_ray_gives_the_same_tables_as_one_by_one(local_ray: Any, tmp_path: Path) -> None:
-    sweep = parse_sweep_config(SMALL_SWEEP)
-    on_ray = run_sweep(sweep, tmp_path / "ray")
-    alone = run_sequential(sweep, tmp_path / "alone")
+def same_runs_on_ray_and_alone(sweep: SweepConfig, folder: Path) -> list[Path]:
+    """Runs ``sweep`` on Ray into ``folder/ray`` and one by one into ``folder/alone``, checks
+    that every run is ok and wrote the same tables and curves both ways, and returns the folders
+    of the Ray runs."""
+    on_ray = run_sweep(sweep, folder / "ray")
+    alone = run_sequential(sweep, folder / "alone")
     assert [run["status"] for run in on_ray.runs] == ["ok"] * 8
     assert [run["status"] for run in alone.runs] == ["ok"] * 8
     for setting in sweep.settings:
-        ray_folder = tmp_path / "ray" / RUNS_DIR / setting.id
-        alone_folder = tmp_path / "alone" / RUNS_DIR / setting.id
+        ray_folder = folder / "ray" / RUNS_DIR / setting.id
+        alone_folder = folder / "alone" / RUNS_DIR / setting.id
         assert arrays_of(ray_folder) == arrays_of(alone_folder)
         for name in ("tables.npz", "curves.csv"):
             assert (ray_folder / name).read_bytes() == (alone_folder / name).read_bytes()
+    return [folder / "ray" / RUNS_DIR / setting.id for setting in sweep.settings]
+
+
+def test_sweep_on_ray_gives_the_same_tables_as_one_by_one(local_ray: Any, tmp_path: Path) -> None:
+    sweep = parse_sweep_config(SMALL_SWEEP)
+    same_runs_on_ray_and_alone(sweep, tmp_path)
     results = json.loads((tmp_path / "ray" / "results.json").read_text())
     assert results["counts"] == {"ok": 8, "failed": 0, "pending": 0}
     assert results["ray"]["cluster_cpus"] == 2.0
@@ -279,13 +288,7 @@ def test_hrl_sweep_on_ray_gives_the_same_tables_as_one_by_one(
     local_ray: Any, tmp_path: Path
 ) -> None:
     sweep = parse_sweep_config(HRL_SWEEP)
-    on_ray = run_sweep(sweep, tmp_path / "ray")
-    alone = run_sequential(sweep, tmp_path / "alone")
-    assert [run["status"] for run in on_ray.runs] == ["ok"] * 8
-    assert [run["status"] for run in alone.runs] == ["ok"] * 8
-    for setting in sweep.settings:
-        ray_folder = tmp_path / "ray" / RUNS_DIR / setting.id
-        alone_folder = tmp_path / "alone" / RUNS_DIR / setting.id
+    for ray_folder in same_runs_on_ray_and_alone(sweep, tmp_path):
         assert sorted(arrays_of(ray_folder)) == [
             "checkpoint_ids",
             "higher_q",
@@ -293,9 +296,6 @@ def test_hrl_sweep_on_ray_gives_the_same_tables_as_one_by_one(
             "lower_q",
             "lower_visits",
         ]
-        assert arrays_of(ray_folder) == arrays_of(alone_folder)
-        for name in ("tables.npz", "curves.csv"):
-            assert (ray_folder / name).read_bytes() == (alone_folder / name).read_bytes()
     # The hyperparameters reach the learner: other rates and seeds, other tables.
     first, other_seed, other_rate = (
         arrays_of(tmp_path / "alone" / RUNS_DIR / sweep.settings[i].id)["lower_q"]
