@@ -50,7 +50,8 @@ pub struct Navigator {
     /// `(NUM_SUBTASKS, rows, NUM_ACTIONS)` values.
     values: Vec<f64>,
     phases: Phases,
-    blind: BlindRule,
+    /// Corridors and Corners keeps its turns on the spot, and follows the blind rule given.
+    rules: CorridorRules,
     robots: Vec<RobotState>,
 }
 
@@ -87,7 +88,10 @@ impl Navigator {
         Ok(Self {
             values,
             phases,
-            blind,
+            rules: CorridorRules {
+                keep_turns: true,
+                blind,
+            },
             robots: vec![start; robots],
         })
     }
@@ -152,13 +156,11 @@ impl Navigator {
         let values = &self.values[start..start + NUM_ACTIONS];
         let corridor = task.subtask == door::CORRIDOR;
         let allowed = (0..NUM_ACTIONS).filter(|&a| !(corridor && a == BACKWARD));
-        let rules = CorridorRules {
-            keep_turns: true,
-            blind: self.blind,
-        };
         let last_spin = previous.and_then(spin_of);
         let chosen = best_action(values, allowed);
-        let action = rules.action(task.subtask, chosen, last_spin, pose[2], || state);
+        let action = self
+            .rules
+            .action(task.subtask, chosen, last_spin, pose[2], || state);
         self.robots[robot].previous = Some(action);
         Ok(StepRecord {
             levels,

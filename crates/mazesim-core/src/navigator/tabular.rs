@@ -253,11 +253,6 @@ impl TabularPolicy {
         best_action(row, allowed.iter().map(|&a| usize::from(a)))
     }
 
-    /// Number of Q-tables.
-    pub fn tables(&self) -> usize {
-        self.tables
-    }
-
     /// Checks that the policy can drive robots through door sub-tasks: the stacked tables of the
     /// sub-tasks' phases ([`TabularPolicy::phases`]), and no fixed table per environment.
     pub fn check_subtasks(&self) -> Result<()> {
