@@ -27,11 +27,6 @@ from navigator_oracle import hold_spins
 RIGHT, LEFT, FORWARD = (ACTION_CODES.index(code) for code in ("aa", "bb", "00"))
 
 
-def decisions_of(policy: HierarchicalPolicy) -> tuple[np.ndarray, np.ndarray]:
-    robots = np.flatnonzero(policy.record.chosen >= 0)
-    return robots, policy.record.chosen[robots]
-
-
 def test_a_corridor_robot_keeps_its_turn_on_the_spot() -> None:
     spins = np.array([RIGHT, LEFT, RIGHT, LEFT, FORWARD, LEFT])
     previous = np.array([LEFT, RIGHT, RIGHT, -1, RIGHT, RIGHT])
@@ -94,9 +89,7 @@ def test_stretches_equal_single_steps_in_unseen_mazes(
         if multi:
             got = run_navigator_episodes(nav, policy, 5, on_end, stretch_steps=stretch_steps)
         else:
-            got = run_episodes(
-                nav, policy, 5, None, on_end, lambda policy=policy: decisions_of(policy)
-            )
+            got = run_episodes(nav, policy, 5, None, on_end, policy.record.decisions)
         results.append((got, sorted(ends)))
         calls.append(acts[0])
     (fast, fast_ends), (slow, slow_ends) = results
@@ -114,20 +107,32 @@ def test_stretches_equal_single_steps_in_unseen_mazes(
         assert calls[0] * 8 < calls[1], calls
 
 
-def test_evaluation_is_the_same_either_way_with_trace_and_paths() -> None:
-    policy = load_policy(None)
+@pytest.mark.parametrize(
+    ("navigator", "episodes", "seed", "recorded", "least_success"),
+    [(None, 12, 3, 3, 0.0), ("randomised", 6, 2, 2, 0.5)],
+)
+def test_evaluation_is_the_same_either_way_with_trace_and_paths(
+    navigator: str | None, episodes: int, seed: int, recorded: int, least_success: float
+) -> None:
+    """The shipped navigator, and the randomised one (door distance, heading held where blind)."""
+    policy = load_policy(navigator)
+    assert policy.hold_heading == (navigator == "randomised")
     world = mazesim.load_world("seed-maze")
-    fast, slow = (EvaluationRecord(paths=2, trace=True, recorder=Recording(3)) for _ in "ab")
+    fast, slow = (EvaluationRecord(paths=2, trace=True, recorder=Recording(recorded)) for _ in "ab")
     summaries = [
-        evaluate_navigator(policy, [world], 12, seed=3, record=record, multi_step=multi)
+        evaluate_navigator(policy, [world], episodes, seed=seed, record=record, multi_step=multi)
         for record, multi in ((fast, True), (slow, False))
     ]
     assert summaries[0] == summaries[1]
-    assert fast.outcomes == slow.outcomes and sorted(fast.outcomes) == [0, 1, 2]
+    assert fast.outcomes == slow.outcomes and sorted(fast.outcomes) == list(range(recorded))
     assert fast.trace_lines == slow.trace_lines and len(fast.trace_lines) > 100
     assert fast.episode_paths.keys() == slow.episode_paths.keys() == {0, 1}
     for episode in fast.episode_paths:
         np.testing.assert_array_equal(fast.episode_paths[episode], slow.episode_paths[episode])
+    assert fast.marks == slow.marks
+    assert fast.run is not None and slow.run is not None
+    assert fast.run.as_json() == slow.run.as_json()
+    assert summaries[0]["truth"].success_rate >= least_success
     assert fast.marks == slow.marks
     assert fast.run is not None and slow.run is not None
     assert fast.run.as_json() == slow.run.as_json()
@@ -159,9 +164,7 @@ def test_robots_of_two_motor_limits_drive_at_the_first_ones_fractions_either_way
         if multi:
             results.append(run_navigator_episodes(nav, greedy, 6))
         else:
-            results.append(
-                run_episodes(nav, greedy, 6, None, None, lambda p=greedy: decisions_of(p))
-            )
+            results.append(run_episodes(nav, greedy, 6, None, None, greedy.record.decisions))
     assert results[0] == results[1]
     assert any(r.arrived for r in results[0])
 

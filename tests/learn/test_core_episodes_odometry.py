@@ -1,7 +1,7 @@
 """The navigator's stretches in the core give, episode for episode, what one step at a time gives
 for navigators whose door sub-tasks count the distance (``door_distance``) and whose Corridors
 and Corners holds its heading where blind (``hold_heading``): the randomised navigator shipped
-(:mod:`mazesim.learn.core_episodes`)."""
+(:mod:`mazesim.learn.core_episodes`); its evaluation is in ``test_core_episodes.py``."""
 
 from __future__ import annotations
 
@@ -13,18 +13,11 @@ import pytest
 import mazesim
 from mazesim.episodes import EpisodeBatch, run_episodes
 from mazesim.learn.core_episodes import run_navigator_episodes, stretches_apply
-from mazesim.learn.evaluate import EvaluationRecord, evaluate_navigator
 from mazesim.learn.higher import HigherLevel
 from mazesim.learn.policy import HierarchicalPolicy
 from mazesim.learn.subtasks import BLIND_STATE
 from mazesim.learn.tables import load_policy
 from mazesim.maze import checkpoint_ids
-from mazesim.replay.navigator import Recording
-
-
-def decisions_of(policy: HierarchicalPolicy) -> tuple[np.ndarray, np.ndarray]:
-    robots = np.flatnonzero(policy.record.chosen >= 0)
-    return robots, policy.record.chosen[robots]
 
 
 @pytest.mark.parametrize(
@@ -68,7 +61,7 @@ def test_stretches_equal_single_steps_with_distance_and_held_heading(
                 return actions
 
             policy.act = counted  # type: ignore[method-assign]
-            got = run_episodes(nav, policy, 4, None, None, lambda p=policy: decisions_of(p))
+            got = run_episodes(nav, policy, 4, None, None, policy.record.decisions)
         results.append(got)
     fast, slow = results
     assert [r.episode for r in fast] == list(range(8))
@@ -76,23 +69,3 @@ def test_stretches_equal_single_steps_with_distance_and_held_heading(
     assert any(r.arrived for r in fast), "expected some episodes to arrive"
     assert {option for r in fast for _, option in r.decisions} >= {1, 2, 3}
     assert blind[0] > 0, "expected Corridors and Corners in the blind state"
-
-
-def test_the_randomised_navigators_evaluation_is_the_same_either_way() -> None:
-    policy = load_policy("randomised")
-    assert policy.hold_heading
-    world = mazesim.load_world("seed-maze")
-    fast, slow = (EvaluationRecord(paths=2, trace=True, recorder=Recording(2)) for _ in "ab")
-    summaries = [
-        evaluate_navigator(policy, [world], 6, seed=2, record=record, multi_step=multi)
-        for record, multi in ((fast, True), (slow, False))
-    ]
-    assert summaries[0] == summaries[1]
-    assert fast.outcomes == slow.outcomes and sorted(fast.outcomes) == [0, 1]
-    assert fast.trace_lines == slow.trace_lines and len(fast.trace_lines) > 100
-    for episode in (0, 1):
-        np.testing.assert_array_equal(fast.episode_paths[episode], slow.episode_paths[episode])
-    assert fast.marks == slow.marks
-    assert fast.run is not None and slow.run is not None
-    assert fast.run.as_json() == slow.run.as_json()
-    assert summaries[0]["truth"].success_rate > 0.5

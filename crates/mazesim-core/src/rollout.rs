@@ -499,11 +499,10 @@ fn follow_subtask(count: &mut Counts, pose: [f32; 3]) -> bool {
     let Some(task) = &mut count.task else {
         return false;
     };
-    match task.update(pose) {
+    match task.follow(pose) {
         SubTaskEnd::Running => return false,
         SubTaskEnd::Done => count.subtasks_done += 1,
         SubTaskEnd::GaveUp => count.subtasks_given_up += 1,
     }
-    *task = SubTaskState::begin(door::CORRIDOR, pose);
     true
 }

@@ -124,14 +124,26 @@ fn steps_setting(dict: &Bound<'_, PyDict>, key: &str) -> PyResult<u64> {
     Ok(value as u64)
 }
 
+/// `obj` as a dict holding no key but those of `known` (names separated by white space); `name`
+/// names the argument and `holding` says what it maps.
+fn closed_dict<'a, 'py>(
+    obj: &'a Bound<'py, PyAny>,
+    name: &str,
+    holding: &str,
+    known: &str,
+) -> PyResult<&'a Bound<'py, PyDict>> {
+    let dict = dict_argument(obj, name, holding)?;
+    match unknown_key(dict, known)? {
+        Some(key) => Err(invalid(format!(
+            "expected {name} to hold only {known:?}, found {key:?}"
+        ))),
+        None => Ok(dict),
+    }
+}
+
 /// Reads and checks a round's settings.
 pub fn round_settings(settings: &Bound<'_, PyAny>) -> PyResult<RoundSettings> {
-    let dict = dict_argument(settings, "settings", "")?;
-    if let Some(key) = unknown_key(dict, SETTINGS)? {
-        return Err(invalid(format!(
-            "expected settings to hold only {SETTINGS:?}, found {key:?}"
-        )));
-    }
+    let dict = closed_dict(settings, "settings", "", SETTINGS)?;
     let gamma = number(dict, "gamma")?;
     let epsilon = number(dict, "epsilon")?;
     if !(0.0..=1.0).contains(&gamma) || !(0.0..=1.0).contains(&epsilon) {
@@ -207,25 +219,10 @@ impl<'py> RoundArrays<'py> {
             .collect::<PyResult<Vec<_>>>()?;
         let starts = dict_argument(starts, "starts", "")?;
         let start_world = entry(starts, "starts", "world")?;
-        let per_env = match shape_of(&start_world)[..] {
-            [rows, k] if rows == n && k > 0 => k,
-            _ => {
-                return Err(invalid(format!(
-                    "expected starts['world'] to be an (N={n}, K) int64 array with K >= 1, found \
-                     shape {:?}",
-                    shape_of(&start_world)
-                )))
-            }
-        };
-        let steps = match shape_of(explore)[..] {
-            [steps, rows] if rows == n => steps,
-            _ => {
-                return Err(invalid(format!(
-                    "expected explore to be a (steps, N={n}) float64 array, found shape {:?}",
-                    shape_of(explore)
-                )))
-            }
-        };
+        let expected = format!("starts['world'] to be an (N={n}, K) int64 array with K >= 1");
+        let per_env = free_axis(&start_world, (0, n), 1, &expected)?;
+        let expected = format!("explore to be a (steps, N={n}) float64 array");
+        let steps = free_axis(explore, (1, n), 0, &expected)?;
         // Tables of either phase count (the round checks them against its own); any other
         // shape is refused below as one of heading phases.
         let phases = match shape_of(q).get(1) {
@@ -295,17 +292,27 @@ impl<'py> RoundArrays<'py> {
     }
 }
 
+/// The length of the free axis of `obj`, a 2-D array whose axis `fixed.0` is `fixed.1` long, if
+/// it is at least `least`; else an error saying what was `expected` and the shape found.
+fn free_axis(
+    obj: &Bound<'_, PyAny>,
+    fixed: (usize, usize),
+    least: usize,
+    expected: &str,
+) -> PyResult<usize> {
+    let shape = shape_of(obj);
+    match shape[..] {
+        [a, b] if [a, b][fixed.0] == fixed.1 && [b, a][fixed.0] >= least => Ok([b, a][fixed.0]),
+        _ => Err(invalid(format!(
+            "expected {expected}, found shape {shape:?}"
+        ))),
+    }
+}
+
 /// A (`rows`, `columns`) float64 array's rows, `columns` taken from the array.
 fn float_rows(obj: &Bound<'_, PyAny>, name: &str, rows: usize) -> PyResult<Vec<Vec<f64>>> {
-    let columns = match shape_of(obj)[..] {
-        [r, columns] if r == rows => columns,
-        _ => {
-            return Err(invalid(format!(
-                "expected {name} to be a ({rows}, K) float64 array, found shape {:?}",
-                shape_of(obj)
-            )))
-        }
-    };
+    let expected = format!("{name} to be a ({rows}, K) float64 array");
+    let columns = free_axis(obj, (0, rows), 0, &expected)?;
     let values = copied::<f64>(obj, name, "float64", &[rows, columns])?;
     Ok(values.chunks(columns.max(1)).map(<[f64]>::to_vec).collect())
 }
@@ -313,12 +320,8 @@ fn float_rows(obj: &Bound<'_, PyAny>, name: &str, rows: usize) -> PyResult<Vec<V
 /// A crew's map of its `width` distance readings into the seed robot's volts
 /// (`mazesim.transfer.readings.SeedReadings.tables`).
 fn seed_volts(obj: &Bound<'_, PyAny>, width: usize) -> PyResult<SeedVolts> {
-    let dict = dict_argument(obj, "readings", " of the tables of a map into seed volts")?;
-    if let Some(key) = unknown_key(dict, READINGS)? {
-        return Err(invalid(format!(
-            "expected readings to hold only {READINGS:?}, found {key:?}"
-        )));
-    }
+    let holding = " of the tables of a map into seed volts";
+    let dict = closed_dict(obj, "readings", holding, READINGS)?;
     let item = |key: &str| entry(dict, "readings", key);
     let taken = copied::<bool>(
         &item("directions")?,
@@ -381,12 +384,8 @@ struct CrewArgs<'py> {
 
 impl<'py> CrewArgs<'py> {
     fn new(obj: &Bound<'py, PyAny>, round_size: usize) -> PyResult<Self> {
-        let dict = dict_argument(obj, "each of crews", " of a batch's robots and buffers")?;
-        if let Some(key) = unknown_key(dict, CREW)? {
-            return Err(invalid(format!(
-                "expected each of crews to hold only {CREW:?}, found {key:?}"
-            )));
-        }
+        let holding = " of a batch's robots and buffers";
+        let dict = closed_dict(obj, "each of crews", holding, CREW)?;
         let item = |key: &str| entry(dict, "each of crews", key);
         let simulator = item("simulator")?;
         let simulator = simulator.cast::<PyBatch>().map_err(|_| {

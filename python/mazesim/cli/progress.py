@@ -20,8 +20,9 @@ import argparse
 import sys
 import time
 from collections.abc import Callable, Mapping
-from types import TracebackType
 from typing import Any, TextIO
+
+from mazesim._closing import Closing
 
 __all__ = [
     "BAR_DELAY_S",
@@ -76,7 +77,7 @@ class _Stage:
         self.bar: Any = None
 
 
-class ProgressDisplay:
+class ProgressDisplay(Closing):
     """Progress of a long run on stderr: ``display(stage, done, total)``.
 
     Args:
@@ -219,17 +220,6 @@ class ProgressDisplay:
     def close(self) -> None:
         """Closes the bar of the current stage, if any."""
         self._end_stage()
-
-    def __enter__(self) -> ProgressDisplay:
-        return self
-
-    def __exit__(
-        self,
-        kind: type[BaseException] | None,
-        error: BaseException | None,
-        traceback: TracebackType | None,
-    ) -> None:
-        self.close()
 
 
 def add_progress_option(parser: argparse.ArgumentParser) -> None:

@@ -255,8 +255,7 @@ def run_navigator_episodes(
     while np.any(active):
         # The higher level at the events, and the odometry of the last step of each robot.
         policy.act(nav.observations, nav.poses, events)
-        chosen = np.flatnonzero(policy.record.chosen >= 0)
-        schedule.decide(chosen, policy.record.chosen[chosen], events)
+        schedule.decide(*policy.record.decisions(), events)
         trace = None if replay is None else replay.begin(active, policy.record, events)
         subtasks = policy.subtask_arrays()
         counters = batch.simulator.run(

@@ -144,14 +144,8 @@ class NavigatorEpisodes:
                 threads=self.threads,
             )
             navigator = self._navigator(slot_worlds)
-
-            def decisions_of(
-                navigator: Any = navigator,
-            ) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.int64]]:
-                robots = np.flatnonzero(navigator.record.chosen >= 0)
-                return robots, navigator.record.chosen[robots]
-
-            for result in run_episodes(nav, navigator, 1, None, None, decisions_of):
+            decisions = navigator.record.decisions
+            for result in run_episodes(nav, navigator, 1, None, None, decisions):
                 world = int(world_of_episode[result.episode - first])
                 results.append(dataclasses.replace(result, world=world))
         return sorted(results, key=lambda result: result.episode)

@@ -387,16 +387,13 @@ def evaluate(
                     lines.append(f"# out of time after {int(batch.episode_steps[env])} steps")
         ended.update(int(episode) for episode in batch.episode[running & (arrived | out_of_time)])
 
-    def decisions_of() -> tuple[npt.NDArray[np.int64], npt.NDArray[np.int64]]:
-        robots = np.flatnonzero(navigator.record.chosen >= 0)
-        return robots, navigator.record.chosen[robots]
-
     driver = stepper if recording is None else recording
     if replay is not None:
         replay.driver, replay.watch = driver, watch
         results = run_navigator_episodes(nav, navigator, episodes_per_world, on_end, replay=replay)
     else:
-        results = run_episodes(nav, driver, episodes_per_world, watch, on_end, decisions_of)
+        decisions = navigator.record.decisions
+        results = run_episodes(nav, driver, episodes_per_world, watch, on_end, decisions)
     record.episode_paths = {k: np.array(v) for k, v in paths.items()}
     recorded = [r for r in results if r.world == 0 and r.episode < record.episodes]
     record.outcomes = {r.episode: r for r in recorded}

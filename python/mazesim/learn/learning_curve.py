@@ -22,10 +22,10 @@ import io
 import math
 from collections.abc import Callable
 from pathlib import Path
-from types import TracebackType
 from typing import TYPE_CHECKING, Any
 
 from mazesim._atomic import atomic_file
+from mazesim._closing import Closing
 from mazesim.errors import MissingDependencyError
 
 if TYPE_CHECKING:
@@ -139,7 +139,7 @@ def _tensorboard_writer_class() -> Any:
     return SummaryWriter
 
 
-class LearningCurve:
+class LearningCurve(Closing):
     """Writes a training's learning curve into ``folder`` as it comes (a context manager and a
     :data:`CurveFn`); the files are opened at the first point, the folder
     made then if the training has not made it yet.
@@ -183,14 +183,3 @@ class LearningCurve:
         """Closes the TensorBoard files (the CSV file is complete after each point)."""
         if self.writer is not None:
             self.writer.close()
-
-    def __enter__(self) -> LearningCurve:
-        return self
-
-    def __exit__(
-        self,
-        kind: type[BaseException] | None,
-        error: BaseException | None,
-        trace: TracebackType | None,
-    ) -> None:
-        self.close()

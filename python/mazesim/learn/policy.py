@@ -54,6 +54,11 @@ class StepRecord:
         self.chosen = np.full(num_envs, -1, dtype=np.int64)
         self.ended = np.zeros(num_envs, dtype=bool)
 
+    def decisions(self) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.int64]]:
+        """The robots the higher level chose a sub-task for in this step, and those sub-tasks."""
+        robots = np.flatnonzero(self.chosen >= 0)
+        return robots, self.chosen[robots]
+
 
 class HierarchicalPolicy:
     """Alg. 5 for N robots: lower-level tables, a higher level, and a sub-task per robot.

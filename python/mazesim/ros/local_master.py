@@ -26,9 +26,9 @@ import time
 import uuid
 import xmlrpc.client
 from collections.abc import Sequence
-from types import TracebackType
 from typing import Any
 
+from mazesim._closing import Closing
 from mazesim.errors import MazesimError, MissingDependencyError
 
 __all__ = ["LocalMaster", "free_loopback_port", "processes_with"]
@@ -109,7 +109,7 @@ def free_loopback_port() -> int:
         return int(probe.getsockname()[1])
 
 
-class LocalMaster:
+class LocalMaster(Closing):
     """``roscore`` on a free loopback port, with the processes started against it.
 
     Use it as a context manager::
@@ -159,14 +159,6 @@ class LocalMaster:
     def __enter__(self) -> LocalMaster:
         self.start()
         return self
-
-    def __exit__(
-        self,
-        kind: type[BaseException] | None,
-        error: BaseException | None,
-        traceback: TracebackType | None,
-    ) -> None:
-        self.close()
 
     def log_path(self, name: str) -> str:
         """The file that receives the standard output and error of the process ``name``."""

@@ -17,6 +17,22 @@ pub const NUM_LEVELS: usize = LEVEL_EDGES_CM.len() + 1;
 /// States of the lower level, `4^6`.
 pub const NUM_STATES: usize = 4096;
 
+/// The level (0 to 3) of a distance in cm by Table 4.1; a distance that is not a number reads
+/// as the farthest level, as a sorted search puts it.
+pub fn level_of_cm(cm: f64) -> usize {
+    if cm.is_nan() {
+        return NUM_LEVELS - 1;
+    }
+    LEVEL_EDGES_CM.iter().filter(|&&edge| edge <= cm).count()
+}
+
+/// The state `sum(level[i] * 4^i)` of six levels in the report's order.
+pub fn state_of_levels(levels: impl DoubleEndedIterator<Item = usize>) -> usize {
+    levels
+        .rev()
+        .fold(0, |state, level| state * NUM_LEVELS + level)
+}
+
 /// Turns Sharp readings in volts into the lower level's state number.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Discretiser {
@@ -36,16 +52,12 @@ impl Discretiser {
     /// The level (0 to 3) of one reading in volts: volts to cm by inverting the Sharp table (the
     /// arithmetic of `mazesim.sharp_volts_to_cm`), then Table 4.1.
     pub fn level(&self, volts: f32) -> usize {
-        let cm = self.sharp.invert(volts as f64) * 100.0;
-        LEVEL_EDGES_CM.iter().filter(|&&edge| edge <= cm).count()
+        level_of_cm(self.sharp.invert(volts as f64) * 100.0)
     }
 
     /// The state `sum(level[i] * 4^i)` of the first six readings (volts, in the report's order).
     pub fn state(&self, volts: &[f32]) -> usize {
-        volts[..NUM_SENSORS]
-            .iter()
-            .rev()
-            .fold(0, |state, &v| state * NUM_LEVELS + self.level(v))
+        state_of_levels(volts[..NUM_SENSORS].iter().map(|&v| self.level(v)))
     }
 }
 
@@ -64,5 +76,13 @@ mod tests {
         assert_eq!(d.level(0.2), 3);
         assert_eq!(d.state(&[0.2, 3.5, 3.5, 3.5, 3.5, 3.5]), 3);
         assert_eq!(d.state(&[3.5, 3.5, 3.5, 3.5, 3.5, 0.2]), 3 * 4usize.pow(5));
+    }
+
+    #[test]
+    fn levels_of_distances_follow_table_4_1_and_not_a_number_is_far() {
+        let levels: Vec<usize> = [3.0, 6.99, 7.0, 12.9, 13.0, 20.0, 40.0, f64::NAN]
+            .map(level_of_cm)
+            .to_vec();
+        assert_eq!(levels, [0, 0, 1, 1, 2, 3, 3, 3]);
     }
 }

@@ -198,16 +198,6 @@ impl SubTaskState {
         }
     }
 
-    /// The row of its table the robot acts from: `distance_state + 4096 * phase`.
-    pub fn table_row(&self, distance_state: usize) -> usize {
-        distance_state + NUM_STATES * self.phase
-    }
-
-    /// The table of the stacked `NUM_TABLES` (see [`MAX_PHASES`]) the robot acts from.
-    pub fn table(&self) -> usize {
-        self.subtask * MAX_PHASES + self.phase
-    }
-
     /// Checks a state given from outside (robot `env`'s): a known sub-task, a phase it has, a
     /// finite odometry.
     pub fn check(&self, env: usize) -> Result<()> {
@@ -244,6 +234,21 @@ impl SubTaskState {
     /// Follows one control step that ended at `pose`.
     pub fn update(&mut self, pose: [f32; 3]) -> SubTaskEnd {
         self.update_at(pose.map(f64::from))
+    }
+
+    /// Follows one control step that ended at `pose` as a running navigator does: a door sub-task
+    /// that ends (done or gave up) hands over to Corridors and Corners, which begins there.
+    pub fn follow(&mut self, pose: [f32; 3]) -> SubTaskEnd {
+        self.follow_at(pose.map(f64::from))
+    }
+
+    /// [`SubTaskState::follow`] to a pose of f64 odometry.
+    pub fn follow_at(&mut self, pose: [f64; 3]) -> SubTaskEnd {
+        let end = self.update_at(pose);
+        if end != SubTaskEnd::Running {
+            *self = Self::begin_at(CORRIDOR, pose);
+        }
+        end
     }
 
     /// [`SubTaskState::update`] to a pose of f64 odometry.
@@ -329,8 +334,7 @@ mod tests {
         assert_eq!(task.turn_point, [0.0, 0.0]);
         assert_eq!(task.update([0.0, -0.05, -1.5]), SubTaskEnd::Running);
         assert_eq!(task.update([0.0, -0.09, -1.55]), SubTaskEnd::Done);
-        assert_eq!(task.table_row(7), 7 + 2 * NUM_STATES);
-        assert_eq!(task.table(), RIGHT * MAX_PHASES + 2);
+        assert_eq!(task.phase, 2);
     }
 
     #[test]

@@ -2,32 +2,21 @@
 //! six distances become levels and a state, its running sub-task's odometry follows its pose, a
 //! door sub-task that ended hands over to Corridors and Corners, a sub-task the higher level
 //! chose (handed in as data, per robot) begins there, and the running sub-task's table gives the
-//! action, greedy among the actions the sub-task may take. In Corridors and Corners a turn on the
-//! spot is kept rather than reversed, and, with [`BlindRule::HoldHeading`], the blind state holds
-//! the heading on the grid. The poses are any odometry (a batch's, or one dead-reckoned from the
-//! actions), in f64.
+//! action, greedy among the actions the sub-task may take, under the rules of Corridors and
+//! Corners ([`CorridorRules`]: a turn on the spot kept rather than reversed and, with
+//! [`BlindRule::HoldHeading`], the heading held on the grid in the blind state), as the
+//! multi-step call's tabular controller follows them. The poses are any odometry (a batch's, or
+//! one dead-reckoned from the actions), in f64.
 
-use super::discretiser::{LEVEL_EDGES_CM, NUM_LEVELS, NUM_SENSORS, NUM_STATES};
+use super::discretiser::{level_of_cm, state_of_levels, NUM_SENSORS, NUM_STATES};
 use super::door::{self, Phases, SubTaskEnd, SubTaskState, NUM_SUBTASKS};
-use super::heading_hold::BlindRule;
+use super::heading_hold::{spin_of, BlindRule, CorridorRules};
 use super::qlearning::best_action;
 use super::tabular::NUM_ACTIONS;
 use crate::error::{Error, Result};
 
 /// Backward (`99`), which Corridors and Corners may not take.
 const BACKWARD: usize = 11;
-/// The turns on the spot, right (`aa`) and left (`bb`).
-const SPIN_RIGHT: usize = 9;
-const SPIN_LEFT: usize = 10;
-
-/// The level (0 to 3) of a distance in cm by Table 4.1; a distance that is not a number reads
-/// as the farthest level, as a sorted search puts it.
-pub fn level_of_cm(cm: f64) -> usize {
-    if cm.is_nan() {
-        return NUM_LEVELS - 1;
-    }
-    LEVEL_EDGES_CM.iter().filter(|&&edge| edge <= cm).count()
-}
 
 /// What one robot's step saw and did.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -61,7 +50,8 @@ pub struct Navigator {
     /// `(NUM_SUBTASKS, rows, NUM_ACTIONS)` values.
     values: Vec<f64>,
     phases: Phases,
-    blind: BlindRule,
+    /// Corridors and Corners keeps its turns on the spot, and follows the blind rule given.
+    rules: CorridorRules,
     robots: Vec<RobotState>,
 }
 
@@ -98,7 +88,10 @@ impl Navigator {
         Ok(Self {
             values,
             phases,
-            blind,
+            rules: CorridorRules {
+                keep_turns: true,
+                blind,
+            },
             robots: vec![start; robots],
         })
     }
@@ -151,14 +144,8 @@ impl Navigator {
         for (level, &cm) in levels.iter_mut().zip(&distances_cm[..NUM_SENSORS]) {
             *level = level_of_cm(cm) as u8;
         }
-        let state = levels
-            .iter()
-            .rev()
-            .fold(0, |s, &l| s * NUM_LEVELS + usize::from(l));
-        let ended = self.robots[robot].task.update_at(pose) != SubTaskEnd::Running;
-        if ended {
-            self.robots[robot].task = SubTaskState::begin_at(door::CORRIDOR, pose);
-        }
+        let state = state_of_levels(levels.iter().map(|&l| usize::from(l)));
+        let ended = self.robots[robot].task.follow_at(pose) != SubTaskEnd::Running;
         if let Some(subtask) = chosen {
             self.begin(robot, subtask, pose)?;
         }
@@ -169,21 +156,11 @@ impl Navigator {
         let values = &self.values[start..start + NUM_ACTIONS];
         let corridor = task.subtask == door::CORRIDOR;
         let allowed = (0..NUM_ACTIONS).filter(|&a| !(corridor && a == BACKWARD));
-        let mut action = best_action(values, allowed);
-        if corridor {
-            action = match (previous, action) {
-                (Some(SPIN_RIGHT), SPIN_LEFT) => SPIN_RIGHT,
-                (Some(SPIN_LEFT), SPIN_RIGHT) => SPIN_LEFT,
-                _ => action,
-            };
-        }
-        if self.blind == BlindRule::HoldHeading {
-            // The rule reads only whether the last step turned on the spot, and which way.
-            let last = previous.unwrap_or(0);
-            action = self
-                .blind
-                .action(task.subtask, state, pose[2], last, action);
-        }
+        let last_spin = previous.and_then(spin_of);
+        let chosen = best_action(values, allowed);
+        let action = self
+            .rules
+            .action(task.subtask, chosen, last_spin, pose[2], || state);
         self.robots[robot].previous = Some(action);
         Ok(StepRecord {
             levels,
@@ -199,6 +176,7 @@ impl Navigator {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::navigator::heading_hold::{SPIN_LEFT, SPIN_RIGHT};
 
     fn tables(phases: Phases, best: impl Fn(usize, usize) -> usize) -> Vec<f64> {
         let rows = phases.rows();
@@ -209,14 +187,6 @@ mod tests {
             }
         }
         values
-    }
-
-    #[test]
-    fn levels_follow_table_4_1_and_not_a_number_is_far() {
-        let levels: Vec<usize> = [3.0, 6.99, 7.0, 12.9, 13.0, 20.0, 40.0, f64::NAN]
-            .map(level_of_cm)
-            .to_vec();
-        assert_eq!(levels, [0, 0, 1, 1, 2, 3, 3, 3]);
     }
 
     #[test]

@@ -5,7 +5,7 @@
 
 use super::discretiser::{Discretiser, NUM_STATES};
 use super::door::{self, Phases, SubTaskState};
-use super::heading_hold::BlindRule;
+use super::heading_hold::{keep_turn, BlindRule, CorridorRules, SPIN_LEFT, SPIN_RIGHT};
 use super::qlearning::best_action;
 use crate::error::{Error, Result};
 use crate::rng::Rng;
@@ -42,20 +42,14 @@ pub struct TabularPolicy {
     /// Per environment, the table it acts from; all use table 0 when `None`.
     table_of_env: Option<Vec<u32>>,
     epsilon: f64,
-    /// Keep turning on the spot the way the last step turned rather than turn back.
-    hold_spins: bool,
-    /// What Corridors and Corners does where no sensor sees a wall, in sub-tasks.
-    blind: BlindRule,
+    /// Keep turning on the spot the way the last step turned rather than turn back (everywhere
+    /// without sub-tasks, in Corridors and Corners with them), and, in sub-tasks, what Corridors
+    /// and Corners does where no sensor sees a wall.
+    rules: CorridorRules,
     /// The motor limit whose fractions every robot drives at (each robot's own when `None`).
     speed_limit: Option<f64>,
     discretiser: Discretiser,
 }
-
-/// Forward (`00`).
-const FORWARD: usize = 0;
-/// The action that turns right on the spot (`aa`) and the one that turns left (`bb`).
-const SPIN_RIGHT: usize = 9;
-const SPIN_LEFT: usize = 10;
 
 impl TabularPolicy {
     /// A policy from `values` (`tables` Q-tables of `NUM_STATES x NUM_ACTIONS` values, row-major),
@@ -130,8 +124,7 @@ impl TabularPolicy {
             allowed,
             table_of_env,
             epsilon,
-            hold_spins: false,
-            blind: BlindRule::Table,
+            rules: CorridorRules::default(),
             speed_limit: None,
             discretiser: Discretiser::new()?,
         })
@@ -142,7 +135,7 @@ impl TabularPolicy {
     /// [`TabularPolicy::action_after`]) and whose action now turns the other way keeps turning
     /// as before.
     pub fn with_held_spins(mut self, hold: bool) -> Self {
-        self.hold_spins = hold;
+        self.rules.keep_turns = hold;
         self
     }
 
@@ -156,13 +149,17 @@ impl TabularPolicy {
         stream: &mut Rng,
     ) -> usize {
         let action = self.action(env, volts, stream);
-        self.held(action, last, self.hold_spins)
+        if self.rules.keep_turns {
+            keep_turn(action, last_spin(last))
+        } else {
+            action
+        }
     }
 
     /// The policy with Corridors and Corners following `rule` in the blind state, in
     /// sub-tasks ([`TabularPolicy::action_in_task`]).
     pub fn with_blind_rule(mut self, rule: BlindRule) -> Self {
-        self.blind = rule;
+        self.rules.blind = rule;
         self
     }
 
@@ -200,9 +197,9 @@ impl TabularPolicy {
 
     /// The action of a robot running door sub-task state `task` at `pose` (see [`super::door`]):
     /// from the table of its sub-task's phase (table `subtask * phases + phase` of the stacked
-    /// tables, [`TabularPolicy::phases`]), a turn on the spot kept, when the policy holds spins,
-    /// in Corridors and Corners only, and in Corridors and Corners' blind state what the blind
-    /// rule says (as `mazesim.learn.policy.HierarchicalPolicy.act` does).
+    /// tables, [`TabularPolicy::phases`]), then the rules of Corridors and Corners
+    /// ([`CorridorRules::action`]: a turn on the spot kept when the policy holds spins, the
+    /// blind rule), as the navigator's step follows them.
     pub fn action_in_task(
         &self,
         task: &SubTaskState,
@@ -214,30 +211,10 @@ impl TabularPolicy {
         let phases = self.phases().unwrap_or_default();
         let table = task.subtask * phases.count() + self.task_phase(task, pose);
         let action = self.action_from(table, volts, stream);
-        let corridor = task.subtask == door::CORRIDOR;
-        let action = self.held(action, last, self.hold_spins && corridor);
-        if !corridor || self.blind == BlindRule::Table {
-            return action;
-        }
-        let state = self.discretiser.state(volts);
-        // The blind rule reads only whether the last step turned on the spot, and which way.
-        let previous = last_spin(last).unwrap_or(FORWARD);
         let yaw = f64::from(pose[2]);
-        self.blind
-            .action(door::CORRIDOR, state, yaw, previous, action)
-    }
-
-    /// `action`, or, when `hold` and the last step (wheel speeds `last`, see [`last_spin`])
-    /// turned the other way on the spot, that turn again.
-    fn held(&self, action: usize, last: [f32; 2], hold: bool) -> usize {
-        if !hold {
-            return action;
-        }
-        match last_spin(last) {
-            Some(SPIN_RIGHT) if action == SPIN_LEFT => SPIN_RIGHT,
-            Some(SPIN_LEFT) if action == SPIN_RIGHT => SPIN_LEFT,
-            _ => action,
-        }
+        let state = || self.discretiser.state(volts);
+        self.rules
+            .action(task.subtask, action, last_spin(last), yaw, state)
     }
 
     /// Checks that the policy can drive `envs` environments.
@@ -274,11 +251,6 @@ impl TabularPolicy {
         let start = (table * NUM_STATES + state) * NUM_ACTIONS;
         let row = &self.values[start..start + NUM_ACTIONS];
         best_action(row, allowed.iter().map(|&a| usize::from(a)))
-    }
-
-    /// Number of Q-tables.
-    pub fn tables(&self) -> usize {
-        self.tables
     }
 
     /// Checks that the policy can drive robots through door sub-tasks: the stacked tables of the
@@ -384,10 +356,10 @@ mod tests {
         let act = |p: &TabularPolicy, volts: &[f32], last, stream: &mut Rng| {
             p.action_in_task(&corridor, yawed, volts, last, stream)
         };
-        assert_eq!(act(&table, &blind, [0.0; 2], &mut stream), FORWARD);
+        assert_eq!(act(&table, &blind, [0.0; 2], &mut stream), 0);
         assert_eq!(act(&holding, &blind, [0.0; 2], &mut stream), 1);
         assert_eq!(act(&holding, &blind, spun_left, &mut stream), SPIN_LEFT);
-        assert_eq!(act(&holding, &near, spun_left, &mut stream), FORWARD);
+        assert_eq!(act(&holding, &near, spun_left, &mut stream), 0);
     }
 
     #[test]
@@ -404,24 +376,14 @@ mod tests {
 
     #[test]
     fn wheel_speeds_tell_a_turn_on_the_spot_as_the_action_does() {
-        let values = vec![0.0; NUM_STATES * NUM_ACTIONS];
-        let policy = TabularPolicy::new(values, 1, None, None, 0.0).unwrap();
         for max_speed in [1e-3, 7.536, 50.0] {
             for (last, &[l, r]) in WHEEL_SPEED_FRACTIONS.iter().enumerate() {
                 let speeds = [(l * max_speed) as f32, (r * max_speed) as f32];
-                for action in 0..NUM_ACTIONS {
-                    // The turn kept, read from the actions themselves.
-                    let expected = match (last, action) {
-                        (SPIN_RIGHT, SPIN_LEFT) => SPIN_RIGHT,
-                        (SPIN_LEFT, SPIN_RIGHT) => SPIN_LEFT,
-                        _ => action,
-                    };
-                    assert_eq!(policy.held(action, speeds, true), expected);
-                    assert_eq!(policy.held(action, speeds, false), action);
-                }
+                let spin = [SPIN_RIGHT, SPIN_LEFT].contains(&last).then_some(last);
+                assert_eq!(last_spin(speeds), spin);
             }
         }
-        assert_eq!(policy.held(SPIN_LEFT, [0.0, 0.0], true), SPIN_LEFT);
+        assert_eq!(last_spin([0.0, 0.0]), None);
     }
 
     #[test]
