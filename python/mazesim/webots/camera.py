@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import numpy.typing as npt
 
-from mazesim.webots.devices import _print_error, _Sensor
+from mazesim.webots.devices import _print_error, _Sensor, webots_property
 from mazesim.webots.node_types import node_type
 from mazesim.webots.rays import FloorPaint, WallBoxes
 
@@ -209,10 +209,7 @@ class Camera(_Sensor):
             self._bytes = pixels.tobytes()
         return self._bytes
 
-    @property
-    def image(self) -> bytes | None:
-        """:meth:`getImage` as a property."""
-        return self.getImage()
+    image = webots_property("getImage")
 
     def getImageArray(self) -> list[list[list[int]]] | None:
         """The last image as ``image[x][y] = [r, g, b]`` (Webots' column-major lists)."""

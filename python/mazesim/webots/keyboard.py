@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING, NamedTuple
 
 from mazesim._paths import read_text
 from mazesim.errors import InvalidArgumentError
-from mazesim.webots.devices import Sampled
+from mazesim.webots.devices import Sampled, webots_property
 
 if TYPE_CHECKING:
     from mazesim.webots.simulation import RobotSimulation
@@ -293,10 +293,7 @@ class Mouse(_Polled):
         nan = math.nan
         return MouseState(False, False, False, nan, nan, nan, nan, nan)
 
-    @property
-    def state(self) -> MouseState:
-        """:meth:`getState` as a property."""
-        return self.getState()
+    state = webots_property("getState")
 
 
 class Joystick(_Polled):
@@ -313,19 +310,13 @@ class Joystick(_Polled):
         """False: no joystick is connected."""
         return False
 
-    @property
-    def is_connected(self) -> bool:
-        """:meth:`isConnected` as a property."""
-        return False
+    is_connected = webots_property("isConnected")
 
     def getModel(self) -> str:
         """The empty string: no joystick."""
         return ""
 
-    @property
-    def model(self) -> str:
-        """:meth:`getModel` as a property."""
-        return ""
+    model = webots_property("getModel")
 
     def getNumberOfAxes(self) -> int:
         """0: no joystick."""
