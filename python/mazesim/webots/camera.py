@@ -227,24 +227,14 @@ class Camera(_Sensor):
         """Image height in pixels."""
         return self._view.height
 
-    @property
-    def width(self) -> int:
-        """Image width in pixels."""
-        return self._view.width
-
-    @property
-    def height(self) -> int:
-        """Image height in pixels."""
-        return self._view.height
+    width = webots_property("getWidth")
+    height = webots_property("getHeight")
 
     def getFov(self) -> float:
         """Horizontal field of view in radians."""
         return self._view.fov
 
-    @property
-    def fov(self) -> float:
-        """Horizontal field of view in radians."""
-        return self._view.fov
+    fov = webots_property("getFov")
 
     def setFov(self, fov: float) -> None:
         """Fixed in the e-puck's camera (no zoom): Webots' error, the field stays."""

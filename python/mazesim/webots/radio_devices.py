@@ -239,10 +239,7 @@ class Receiver(_Tuned, NotSimulated, _Sensor):
         self._channel = int(channel)
         self._tune()
 
-    @property
-    def queue_length(self) -> int:
-        """The number of packets in the queue."""
-        return len(self._queue)
+    queue_length = webots_property("getQueueLength")
 
 
 def _int_field(fields: Mapping[str, Any], name: str, default: int) -> int:
