@@ -6,8 +6,6 @@ from __future__ import annotations
 import json
 import re
 import shutil
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
@@ -19,6 +17,7 @@ from mazesim.webots.keyboard import KeyScript
 from mazesim.webots.native_controller import CAPI, build
 from mazesim.webots.node_types import NODE_TYPES
 from mazesim.webots.requirements import NO_DISPLAY, prepare_controller
+from mazesim_process import mazesim_command
 from native_controllers import NEEDS_COMPILERS, run_twins, write_source
 
 CONTROLLERS = Path(__file__).resolve().parents[1] / "data" / "controllers"
@@ -213,13 +212,8 @@ def test_the_run_says_at_its_start_what_is_missing_and_keeps_it_in_its_summary(
         "import math\nimport helpers\nfrom models import fit\nfrom controller import Robot\n"
         "try:\n    import optional_package_for_mazesim_tests\nexcept ImportError:\n    pass\n"
     )
-    result = subprocess.run(
-        [sys.executable, "-m", "mazesim", "webots", "run", str(folder), "--seconds", "1"]
-        + ["--out", str(tmp_path / "out")],
-        capture_output=True,
-        text=True,
-        timeout=120,
-        check=False,
+    result = mazesim_command(
+        "webots", "run", str(folder), "--seconds", "1", "--out", "out", cwd=tmp_path
     )
     assert result.returncode == 1
     statement = (
@@ -234,13 +228,8 @@ def test_the_run_says_at_its_start_what_is_missing_and_keeps_it_in_its_summary(
 
 def test_the_cli_runs_a_c_controller_folder_and_logs_its_build(tmp_path: Path) -> None:
     build(AVOIDER)  # built already by the twin test when the module runs whole
-    result = subprocess.run(
-        [sys.executable, "-m", "mazesim", "webots", "run", str(AVOIDER.parent), "--seconds", "1"]
-        + ["--out", str(tmp_path / "out")],
-        capture_output=True,
-        text=True,
-        timeout=120,
-        check=False,
+    result = mazesim_command(
+        "webots", "run", str(AVOIDER.parent), "--seconds", "1", "--out", "out", cwd=tmp_path
     )
     assert result.returncode == 0, result.stderr
     assert result.stderr.splitlines()[0].startswith(
