@@ -105,6 +105,9 @@ class Sampled:
     ``sampling_period`` property (assigning it enables or disables)."""
 
     _period_ms: int
+    #: The C function names Webots' messages quote.
+    _api: ClassVar[str] = "wb_sensor"
+    _warned_disabled = False
 
     def enable(self, samplingPeriod: int) -> None:
         raise NotImplementedError
@@ -127,6 +130,23 @@ class Sampled:
             self.enable(period)
         else:
             self.disable()
+
+    def _checked_period(self, samplingPeriod: int) -> int | None:
+        """The sampling period as an integer; None, with Webots' message, when negative."""
+        period = int(samplingPeriod)
+        if period < 0:
+            _print_error(f"Error: {self._api}_enable() called with negative sampling period.")
+            return None
+        return period
+
+    def _warn_disabled(self, function: str) -> None:
+        """Prints Webots' message for a read of a disabled device, once."""
+        if self._period_ms == 0 and not self._warned_disabled:
+            self._warned_disabled = True
+            _print_error(
+                f"Error: {self._api}_{function}() called for a disabled device! "
+                f"Please use: {self._api}_enable()."
+            )
 
 
 def _internal(cls: type) -> bool:
@@ -224,22 +244,17 @@ class Device(metaclass=_DeviceType):
 class _Sensor(Sampled, Device):
     """A sampled sensor: enable, disable, getSamplingPeriod, getValue."""
 
-    #: The C function names Webots' messages quote.
-    _api: ClassVar[str] = "wb_sensor"
-
     def __init__(self, name: str, simulation: RobotSimulation) -> None:
         super().__init__(name, simulation)
         self._period_ms = 0
         self._period_steps = 0
         self._enabled_at = 0
         self._value: Any = math.nan
-        self._warned_disabled = False
 
     def enable(self, samplingPeriod: int) -> None:
         """Reads the sensor every ``samplingPeriod`` ms (rounded up to whole basic steps)."""
-        period = int(samplingPeriod)
-        if period < 0:
-            _print_error(f"Error: {self._api}_enable() called with negative sampling period.")
+        period = self._checked_period(samplingPeriod)
+        if period is None:
             return
         if period == 0:
             self.disable()
@@ -253,15 +268,6 @@ class _Sensor(Sampled, Device):
         """Stops reading; ``getValue`` keeps the last reading."""
         self._period_ms = 0
         self._period_steps = 0
-
-    def _warn_disabled(self, function: str) -> None:
-        """Prints Webots' message for a read of a disabled sensor, once."""
-        if self._period_ms == 0 and not self._warned_disabled:
-            self._warned_disabled = True
-            _print_error(
-                f"Error: {self._api}_{function}() called for a disabled device! "
-                f"Please use: {self._api}_enable()."
-            )
 
     def _reading(self, function: str) -> Any:
         self._warn_disabled(function)

@@ -13,11 +13,10 @@ the robot's motion, and quits it with a status (``mazesim webots run`` exits wit
 from __future__ import annotations
 
 import math
-import sys
 from typing import Any
 
 from mazesim.webots import simulation as _simulations
-from mazesim.webots.devices import webots_property
+from mazesim.webots.devices import _print_error, webots_property
 from mazesim.webots.frames import enu_to_nue, enu_to_nue_matrix, nue_to_enu
 from mazesim.webots.inert import ContactPoint, NotSimulated
 from mazesim.webots.node_types import NODE_TYPES
@@ -47,10 +46,6 @@ _BUILT_IN_TYPES = {
 }
 #: Base nodes with ``translation`` and ``rotation`` fields.
 _POSED_TYPES = {"Robot", "Solid", "Pose", "Transform", "Charger"}
-
-
-def _print_error(message: str) -> None:
-    print(message, file=sys.stderr)
 
 
 def _file_frame() -> bool:
