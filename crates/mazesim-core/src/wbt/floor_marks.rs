@@ -263,7 +263,7 @@ impl<'d> Importer<'d> {
                 }
                 let half = [0, 1, 2].map(|i| frame.axis(i).map(|c| c * size[i] / 2.0));
                 let half_z: f64 = half.iter().map(|a| a[2].abs()).sum();
-                if !self.on_floor(frame.origin[2], half_z) || tilt(frame.axis(2)) > TILT_TOLERANCE {
+                if !on_floor(frame.origin[2] + half_z) || tilt(frame.axis(2)) > TILT_TOLERANCE {
                     return self.drop_visual(node, geometry, "above the floor");
                 }
                 let width = half[0][0].hypot(half[0][1]) * 2.0;
@@ -281,7 +281,7 @@ impl<'d> Importer<'d> {
                 let axis = frame.axis(2);
                 let half_z = (axis[2] * height / 2.0).abs();
                 let scale = frame.axis(0)[0].hypot(frame.axis(0)[1]);
-                if !self.on_floor(frame.origin[2], half_z) || tilt(axis) > TILT_TOLERANCE {
+                if !on_floor(frame.origin[2] + half_z) || tilt(axis) > TILT_TOLERANCE {
                     return self.drop_visual(node, geometry, "above the floor");
                 }
                 self.mark(PaintSpec::Circle {
@@ -310,11 +310,6 @@ impl<'d> Importer<'d> {
                 "(only Plane, Box, Cylinder, IndexedFaceSet and Mesh marks on the floor are read)",
             ),
         }
-    }
-
-    /// Whether a shape spanning `center_z +- half_z` lies on the floor as a mark.
-    fn on_floor(&self, center_z: f64, half_z: f64) -> bool {
-        on_floor(center_z + half_z)
     }
 
     /// Whether a Shape's appearance holds an `ImageTexture` (a `PBRAppearance`'s `baseColorMap`,
