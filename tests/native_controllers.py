@@ -5,10 +5,14 @@ from __future__ import annotations
 
 import shutil
 from pathlib import Path
+from typing import Any
 
 import pytest
 
-__all__ = ["NEEDS_COMPILERS", "write_source"]
+import mazesim
+from mazesim.webots import ControllerRun, run_controller
+
+__all__ = ["NEEDS_COMPILERS", "run_twins", "write_source"]
 
 #: Marks the tests that build C and C++ controllers.
 NEEDS_COMPILERS = pytest.mark.skipif(
@@ -22,3 +26,16 @@ def write_source(folder: Path, name: str, text: str, suffix: str = ".c") -> Path
     source.parent.mkdir(parents=True)
     source.write_text(text)
     return source
+
+
+def run_twins(
+    capfd: pytest.CaptureFixture[str], *controllers: str | Path, **options: Any
+) -> tuple[list[ControllerRun], list[str]]:
+    """Each controller run with the same options (a compiled one and its twin in another
+    language) on the world ``world`` (the arena by default), and what each printed."""
+    world = options.pop("world", None) or mazesim.load_world("arena")
+    runs, outputs = [], []
+    for controller in controllers:
+        runs.append(run_controller(controller, world, **options))
+        outputs.append(capfd.readouterr().out)
+    return runs, outputs

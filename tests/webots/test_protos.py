@@ -8,8 +8,6 @@ import functools
 import http.server
 import json
 import shutil
-import subprocess
-import sys
 import threading
 from collections.abc import Iterator, Mapping
 from pathlib import Path
@@ -20,6 +18,7 @@ import pytest
 
 from mazesim.webots.importer import import_wbt, import_wbt_text
 from mazesim.webots.proto import ProtoUnavailableError
+from mazesim_process import mazesim_command
 
 pytest.importorskip("quickjs", reason="the PROTO engine's JavaScript templates need quickjs")
 pytest.importorskip("lupa", reason="the PROTO engine's Lua templates need lupa")
@@ -242,14 +241,10 @@ def test_a_run_says_at_its_start_which_floor_texture_it_could_not_download(
         f'baseColorMap ImageTexture {{ url [ "{closed}/line.png" ] }} }} }}\nE-puck {{ }}\n'
     )
     (tmp_path / "still.py").write_text("from controller import Robot\nRobot().step(32)\n")
-    result = subprocess.run(
-        [sys.executable, "-m", "mazesim", "webots", "run", "still.py", "--world"]
-        + ["worlds/line.wbt", "--seconds", "0.1", "--out", "out", "--no-progress"],
+    result = mazesim_command(
+        *("webots", "run", "still.py", "--world", "worlds/line.wbt", "--seconds", "0.1"),
+        *("--out", "out", "--no-progress"),
         cwd=tmp_path,
-        capture_output=True,
-        text=True,
-        timeout=120,
-        check=False,
     )
     assert result.returncode == 0, result.stderr
     statement = (

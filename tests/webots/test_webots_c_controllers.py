@@ -6,8 +6,6 @@ from __future__ import annotations
 import json
 import re
 import shutil
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
@@ -19,7 +17,8 @@ from mazesim.webots.keyboard import KeyScript
 from mazesim.webots.native_controller import CAPI, build
 from mazesim.webots.node_types import NODE_TYPES
 from mazesim.webots.requirements import NO_DISPLAY, prepare_controller
-from native_controllers import NEEDS_COMPILERS, write_source
+from mazesim_process import mazesim_command
+from native_controllers import NEEDS_COMPILERS, run_twins, write_source
 
 CONTROLLERS = Path(__file__).resolve().parents[1] / "data" / "controllers"
 AVOIDER = CONTROLLERS / "c_wall_avoider" / "c_wall_avoider.c"
@@ -42,11 +41,8 @@ def write_controller(folder: Path, name: str, body: str) -> Path:
 def test_a_c_controller_drives_bit_for_bit_as_its_python_twin(
     capfd: pytest.CaptureFixture[str],
 ) -> None:
-    world = mazesim.load_world("arena")
-    in_c = run_controller(AVOIDER, world, seconds=4.0, seed=3)
-    c_out = capfd.readouterr().out
-    in_python = run_controller(CONTROLLERS / "wall_avoider_twin.py", world, seconds=4.0, seed=3)
-    python_out = capfd.readouterr().out
+    twin = CONTROLLERS / "wall_avoider_twin.py"
+    (in_c, in_python), (c_out, python_out) = run_twins(capfd, AVOIDER, twin, seconds=4.0, seed=3)
     assert (in_c.exit_status, in_c.error) == (0, "")
     assert in_python.exit_status == 0, in_python.error
     assert in_c.steps == in_python.steps > 100
@@ -63,12 +59,9 @@ def test_a_c_controller_drives_bit_for_bit_as_its_python_twin(
 def test_cameras_inertial_sensors_light_sensors_and_keys_read_as_in_python(
     capfd: pytest.CaptureFixture[str],
 ) -> None:
-    world = mazesim.load_world("arena")
     keys = KeyScript.parse("0.2 A 0.1\n0.5 UP 0.05\n")
-    runs, outputs = [], []
-    for controller in ("c_every_device/c_every_device.c", "every_device_twin.py"):
-        runs.append(run_controller(CONTROLLERS / controller, world, seconds=1.0, keys=keys))
-        outputs.append(capfd.readouterr().out)
+    twins = CONTROLLERS / "c_every_device/c_every_device.c", CONTROLLERS / "every_device_twin.py"
+    runs, outputs = run_twins(capfd, *twins, seconds=1.0, keys=keys)
     assert [(r.exit_status, r.error) for r in runs] == [(0, ""), (0, "")]
     assert outputs[0] == outputs[1]
     lines = outputs[0].splitlines()
@@ -191,13 +184,10 @@ def test_every_header_the_library_lacks_is_named_before_building(tmp_path: Path)
 def test_a_cpp_controller_drives_as_the_c_one_and_names_classes_it_lacks(
     tmp_path: Path, capfd: pytest.CaptureFixture[str]
 ) -> None:
-    world = mazesim.load_world("arena")
-    in_cpp = run_controller(CPP_AVOIDER, world, seconds=2.0, seed=5)
-    cpp_out = capfd.readouterr().out
-    in_c = run_controller(AVOIDER, world, seconds=2.0, seed=5)
+    (in_cpp, in_c), (cpp_out, c_out) = run_twins(capfd, CPP_AVOIDER, AVOIDER, seconds=2.0, seed=5)
     assert (in_cpp.exit_status, in_cpp.error) == (0, "")
     assert (in_cpp.xs, in_cpp.ys) == (in_c.xs, in_c.ys) and in_cpp.distance_m > 0.1
-    assert cpp_out == capfd.readouterr().out
+    assert cpp_out == c_out
     source = tmp_path / "bt" / "bt.cpp"
     source.parent.mkdir()
     source.write_text("#include <webots/Lidar.hpp>\nint main() { return 0; }\n")
@@ -222,13 +212,8 @@ def test_the_run_says_at_its_start_what_is_missing_and_keeps_it_in_its_summary(
         "import math\nimport helpers\nfrom models import fit\nfrom controller import Robot\n"
         "try:\n    import optional_package_for_mazesim_tests\nexcept ImportError:\n    pass\n"
     )
-    result = subprocess.run(
-        [sys.executable, "-m", "mazesim", "webots", "run", str(folder), "--seconds", "1"]
-        + ["--out", str(tmp_path / "out")],
-        capture_output=True,
-        text=True,
-        timeout=120,
-        check=False,
+    result = mazesim_command(
+        "webots", "run", str(folder), "--seconds", "1", "--out", "out", cwd=tmp_path
     )
     assert result.returncode == 1
     statement = (
@@ -243,13 +228,8 @@ def test_the_run_says_at_its_start_what_is_missing_and_keeps_it_in_its_summary(
 
 def test_the_cli_runs_a_c_controller_folder_and_logs_its_build(tmp_path: Path) -> None:
     build(AVOIDER)  # built already by the twin test when the module runs whole
-    result = subprocess.run(
-        [sys.executable, "-m", "mazesim", "webots", "run", str(AVOIDER.parent), "--seconds", "1"]
-        + ["--out", str(tmp_path / "out")],
-        capture_output=True,
-        text=True,
-        timeout=120,
-        check=False,
+    result = mazesim_command(
+        "webots", "run", str(AVOIDER.parent), "--seconds", "1", "--out", "out", cwd=tmp_path
     )
     assert result.returncode == 0, result.stderr
     assert result.stderr.splitlines()[0].startswith(

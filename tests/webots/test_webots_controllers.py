@@ -10,7 +10,6 @@ import csv
 import json
 import math
 import subprocess
-import sys
 from pathlib import Path
 from typing import Any
 
@@ -20,6 +19,7 @@ import pytest
 import mazesim
 from mazesim.webots import import_wbt, run_controller
 from mazesim.webots.keyboard import KeyScript
+from mazesim_process import mazesim_command
 
 ROOT = Path(__file__).resolve().parents[2]
 CONTROLLERS = ROOT / "tests" / "data" / "controllers"
@@ -31,14 +31,7 @@ PROFILE = mazesim.RobotProfile.builtin("e-puck")
 def webots_run(controller: str | Path, *args: str, cwd: Path) -> subprocess.CompletedProcess[str]:
     """``mazesim webots run CONTROLLER --out out ARGS`` in a subprocess, with a time limit."""
     path = controller if isinstance(controller, Path) else CONTROLLERS / controller
-    return subprocess.run(
-        [sys.executable, "-m", "mazesim", "webots", "run", str(path), "--out", "out", *args],
-        cwd=cwd,
-        capture_output=True,
-        text=True,
-        timeout=240,
-        check=False,
-    )
+    return mazesim_command("webots", "run", str(path), "--out", "out", *args, cwd=cwd)
 
 
 def outputs(cwd: Path) -> tuple[dict[str, Any], np.ndarray]:
@@ -350,13 +343,7 @@ def test_a_stand_in_is_named_in_the_summary_and_strict_refuses_it(tmp_path: Path
 
 
 def test_help_documents_the_exit_codes(tmp_path: Path) -> None:
-    result = subprocess.run(
-        [sys.executable, "-m", "mazesim", "webots", "run", "--help"],
-        capture_output=True,
-        text=True,
-        timeout=60,
-        check=False,
-    )
+    result = mazesim_command("webots", "run", "--help", cwd=tmp_path)
     assert result.returncode == 0
     text = " ".join(result.stdout.split())
     phrases = ("exit status", "1 the controller raised", "2 a mazesim error", "--keys", "--strict")

@@ -17,7 +17,7 @@ from mazesim.webots.lockstep import run_world
 from mazesim.webots.native_controller import build
 from mazesim.webots.requirements import DISPLAY_NOTE, prepare_controller
 from mazesim.webots.scene import read_scene
-from native_controllers import NEEDS_COMPILERS, write_source
+from native_controllers import NEEDS_COMPILERS, run_twins, write_source
 
 DATA = Path(__file__).resolve().parents[1] / "data"
 CONTROLLERS = DATA / "controllers"
@@ -98,12 +98,8 @@ def test_a_c_supervisor_moves_its_own_robot_and_quits_as_the_python_one_does(
     world, imported = import_wbt(str(path))
     report = {**imported, "path": str(path)}
     scene = read_scene(path.read_text(), report.get("robot_model"), report.get("robot_line"))
-    runs, outputs = [], []
-    for controller in ("supervisor_teleport.py", "c_teleport/c_teleport.c"):
-        runs.append(
-            run_controller(CONTROLLERS / controller, world, seconds=3.0, report=report, scene=scene)
-        )
-        outputs.append(capfd.readouterr().out)
+    twins = CONTROLLERS / "supervisor_teleport.py", CONTROLLERS / "c_teleport/c_teleport.c"
+    runs, outputs = run_twins(capfd, *twins, world=world, seconds=3.0, report=report, scene=scene)
     in_python, in_c = runs
     assert (in_c.exit_status, in_c.error, in_c.quit_requested) == (3, "", True)
     assert in_python.exit_status == 3

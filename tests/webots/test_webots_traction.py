@@ -10,8 +10,6 @@ figures of docs/webots.md's paragraph on it are these tests'.
 from __future__ import annotations
 
 import math
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
@@ -22,6 +20,7 @@ from mazesim.webots import simulation as simulations
 from mazesim.webots.requirements import motor_limits, prepare_controller
 from mazesim.webots.scene import read_scene
 from mazesim.webots.traction import epuck_traction
+from mazesim_process import mazesim_command
 
 #: Webots' simulated e-puck (the ``e-puck`` profile): wheel radius, effective wheel distance.
 RADIUS, AXLE, TOP = 0.02, 0.05685, 6.28
@@ -165,14 +164,10 @@ def test_a_compass_in_the_turret_of_a_y_up_e_puck_reads_north_in_its_own_frame(
     # world's, so it reads (1, 0, 0), whatever the import reports of its x axis.
     (tmp_path / "probe.py").write_text(COMPASS_PROBE)
     (tmp_path / "world.wbt").write_text(NUE_COMPASS_WORLD)
-    result = subprocess.run(
-        [sys.executable, "-m", "mazesim", "webots", "run", "probe.py", "--world", "world.wbt"]
-        + ["--seconds", "0.1", "--out", "out", "--no-progress"],
+    result = mazesim_command(
+        *("webots", "run", "probe.py", "--world", "world.wbt", "--seconds", "0.1"),
+        *("--out", "out", "--no-progress"),
         cwd=tmp_path,
-        capture_output=True,
-        text=True,
-        timeout=120,
-        check=False,
     )
     assert result.returncode == 0, result.stderr
     line = next(x for x in result.stdout.splitlines() if x.startswith("north:"))

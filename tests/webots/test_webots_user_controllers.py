@@ -9,11 +9,12 @@ import json
 import math
 import shutil
 import subprocess
-import sys
 from pathlib import Path
 from typing import Any
 
 import numpy as np
+
+from mazesim_process import mazesim_command
 
 CONTROLLERS = Path(__file__).resolve().parents[1] / "data" / "controllers"
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
@@ -25,14 +26,8 @@ def run_copy(
     """Copies the controller into ``folder``, runs it there with ``--seconds``, and gives the
     process and the run's summary; the run must end with exit status 0."""
     shutil.copy(CONTROLLERS / controller, folder / controller)
-    result = subprocess.run(
-        [sys.executable, "-m", "mazesim", "webots", "run", controller, "--out", "out"]
-        + ["--seconds", str(seconds), *args],
-        cwd=folder,
-        capture_output=True,
-        text=True,
-        timeout=240,
-        check=False,
+    result = mazesim_command(
+        "webots", "run", controller, "--out", "out", "--seconds", str(seconds), *args, cwd=folder
     )
     assert result.returncode == 0, result.stderr
     summary = json.loads((folder / "out" / "summary.json").read_text())

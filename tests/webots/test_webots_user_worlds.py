@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import math
 import subprocess
-import sys
 from pathlib import Path
 
 import pytest
@@ -16,6 +15,7 @@ from mazesim.webots import controller, prepare
 from mazesim.webots import simulation as simulations
 from mazesim.webots.importer import import_wbt
 from mazesim.webots.scene import read_scene
+from mazesim_process import mazesim_command
 
 #: A competition-style world: a supervisor ``Robot`` (the referee) comes before the e-puck.
 REFEREE_WORLD = """#VRML_SIM R2023b utf8
@@ -59,14 +59,10 @@ def run_webots(
     expected)."""
     (folder / controller).write_text(controller_text)
     (folder / "world.wbt").write_bytes(world_text.encode("utf-8"))
-    result = subprocess.run(
-        [sys.executable, "-m", "mazesim", "webots", "run", controller, *options]
-        + ["--world", "world.wbt", "--seconds", "1", "--out", "out", "--no-progress"],
+    result = mazesim_command(
+        *("webots", "run", controller, *options, "--world", "world.wbt", "--seconds", "1"),
+        *("--out", "out", "--no-progress"),
         cwd=folder,
-        capture_output=True,
-        text=True,
-        timeout=120,
-        check=False,
     )
     assert result.returncode == 0, result.stderr
     return result

@@ -6,13 +6,12 @@ from __future__ import annotations
 import json
 import os
 import shutil
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
 from mazesim.webots.lockstep import controller_of, run_world
+from mazesim_process import mazesim_command
 
 SWARM = Path(__file__).resolve().parent.parent / "data" / "webots-swarm"
 WORLD = SWARM / "worlds" / "leader_followers.wbt"
@@ -172,15 +171,11 @@ def test_a_supervisor_sees_and_moves_every_robot_and_its_own_emitter_reaches_the
 def test_the_command_runs_the_whole_world_and_reports_every_robot(tmp_path: Path) -> None:
     out = tmp_path / "run"
     env = dict(os.environ, SWARM_LOG=str(tmp_path), MPLBACKEND="Agg")
-    result = subprocess.run(
-        [sys.executable, "-m", "mazesim", "webots", "run", str(WORLD), "--seconds", "3"]
-        + ["--robot-controller", f"far={SWARM / 'controllers' / 'leader' / 'leader.py'}"]
-        + ["--out", str(out)],
-        capture_output=True,
-        text=True,
+    result = mazesim_command(
+        *("webots", "run", str(WORLD), "--seconds", "3", "--out", str(out)),
+        *("--robot-controller", f"far={SWARM / 'controllers' / 'leader' / 'leader.py'}"),
+        cwd=tmp_path,
         env=env,
-        timeout=120,
-        check=False,
     )
     assert result.returncode == 0, result.stderr
     summary = json.loads((out / "summary.json").read_text())

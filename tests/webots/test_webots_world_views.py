@@ -6,8 +6,6 @@ from __future__ import annotations
 
 import json
 import os
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -15,6 +13,7 @@ import pytest
 
 from mazesim.cli import main
 from mazesim.replay import load_run
+from mazesim_process import mazesim_command
 
 SWARM = Path(__file__).resolve().parent.parent / "data" / "webots-swarm"
 WORLD = SWARM / "worlds" / "leader_followers.wbt"
@@ -23,15 +22,11 @@ WORLD = SWARM / "worlds" / "leader_followers.wbt"
 def test_the_run_file_and_the_replay_hold_every_robot(tmp_path: Path) -> None:
     out = tmp_path / "run"
     env = dict(os.environ, SWARM_LOG=str(tmp_path), MPLBACKEND="Agg")
-    result = subprocess.run(
-        [sys.executable, "-m", "mazesim", "webots", "run", str(WORLD), "--seconds", "3"]
-        + ["--out", str(out), "--record", str(tmp_path / "run.json.gz")]
-        + ["--html", str(tmp_path / "replay.html"), "--live"],
-        capture_output=True,
-        text=True,
+    result = mazesim_command(
+        *("webots", "run", str(WORLD), "--seconds", "3", "--out", str(out), "--live"),
+        *("--record", str(tmp_path / "run.json.gz"), "--html", str(tmp_path / "replay.html")),
+        cwd=tmp_path,
         env=env,
-        timeout=120,
-        check=False,
     )
     assert result.returncode == 0, result.stderr
     assert "live view off" in result.stderr  # MPLBACKEND=Agg: the window would not show

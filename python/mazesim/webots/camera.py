@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import numpy.typing as npt
 
-from mazesim.webots.devices import _print_error, _Sensor
+from mazesim.webots.devices import _print_error, _Sensor, webots_property
 from mazesim.webots.node_types import node_type
 from mazesim.webots.rays import FloorPaint, WallBoxes
 
@@ -209,10 +209,7 @@ class Camera(_Sensor):
             self._bytes = pixels.tobytes()
         return self._bytes
 
-    @property
-    def image(self) -> bytes | None:
-        """:meth:`getImage` as a property."""
-        return self.getImage()
+    image = webots_property("getImage")
 
     def getImageArray(self) -> list[list[list[int]]] | None:
         """The last image as ``image[x][y] = [r, g, b]`` (Webots' column-major lists)."""
@@ -230,24 +227,14 @@ class Camera(_Sensor):
         """Image height in pixels."""
         return self._view.height
 
-    @property
-    def width(self) -> int:
-        """Image width in pixels."""
-        return self._view.width
-
-    @property
-    def height(self) -> int:
-        """Image height in pixels."""
-        return self._view.height
+    width = webots_property("getWidth")
+    height = webots_property("getHeight")
 
     def getFov(self) -> float:
         """Horizontal field of view in radians."""
         return self._view.fov
 
-    @property
-    def fov(self) -> float:
-        """Horizontal field of view in radians."""
-        return self._view.fov
+    fov = webots_property("getFov")
 
     def setFov(self, fov: float) -> None:
         """Fixed in the e-puck's camera (no zoom): Webots' error, the field stays."""

@@ -11,8 +11,10 @@ from __future__ import annotations
 import functools
 import math
 import sys
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Any, ClassVar
+
+import numpy as np
 
 from mazesim.webots.node_types import node_type
 
@@ -44,11 +46,68 @@ def _print_error(message: str) -> None:
     print(message, file=sys.stderr)
 
 
+def webots_property(getter: str, setter: str | None = None) -> Any:
+    """The property style of a Webots method, as Webots' Python API pairs them: reading the
+    property calls ``getter`` and, when ``setter`` is given, assigning it calls ``setter``."""
+    doc = f":meth:`{getter}` as a property"
+    if setter is None:
+        return property(lambda self: getattr(self, getter)(), doc=f"{doc}.")
+    return property(
+        lambda self: getattr(self, getter)(),
+        lambda self, value: getattr(self, setter)(value),
+        doc=f"{doc}; assigning it calls :meth:`{setter}`.",
+    )
+
+
+Row = tuple[float, float, float]
+
+
+class LookupTable:
+    """A Webots lookup table: input, output, relative noise, row after row."""
+
+    def __init__(self, rows: Sequence[Sequence[float]]) -> None:
+        cleaned = [tuple(float(v) for v in row[:3]) for row in rows if len(row) >= 2]
+        self.rows: list[Row] = [
+            (row[0], row[1], row[2] if len(row) > 2 else 0.0) for row in cleaned
+        ]
+        self.rows.sort(key=lambda row: row[0])
+
+    def __call__(self, x: float, rng: np.random.Generator | None) -> float:
+        """The output for ``x``, with noise when ``rng`` is given; ``x`` itself without rows."""
+        if not self.rows:
+            return x
+        inputs = [row[0] for row in self.rows]
+        value = float(np.interp(x, inputs, [row[1] for row in self.rows]))
+        noise = float(np.interp(x, inputs, [row[2] for row in self.rows]))
+        if rng is not None and noise > 0.0:
+            value += abs(value) * noise * float(rng.standard_normal())
+        return value
+
+    def flat(self) -> list[float]:
+        """The table as Webots' ``getLookupTable`` returns it."""
+        return [number for row in self.rows for number in row]
+
+
+class _Tabled:
+    """Mixin of a sensor with a lookup table: ``getLookupTable`` and ``lookup_table``."""
+
+    _table: LookupTable
+
+    def getLookupTable(self) -> list[float]:
+        """The lookup table as Webots returns it."""
+        return self._table.flat()
+
+    lookup_table = webots_property("getLookupTable")
+
+
 class Sampled:
     """Mixin of what is read every sampling period: ``getSamplingPeriod`` and the
     ``sampling_period`` property (assigning it enables or disables)."""
 
     _period_ms: int
+    #: The C function names Webots' messages quote.
+    _api: ClassVar[str] = "wb_sensor"
+    _warned_disabled = False
 
     def enable(self, samplingPeriod: int) -> None:
         raise NotImplementedError
@@ -71,6 +130,23 @@ class Sampled:
             self.enable(period)
         else:
             self.disable()
+
+    def _checked_period(self, samplingPeriod: int) -> int | None:
+        """The sampling period as an integer; None, with Webots' message, when negative."""
+        period = int(samplingPeriod)
+        if period < 0:
+            _print_error(f"Error: {self._api}_enable() called with negative sampling period.")
+            return None
+        return period
+
+    def _warn_disabled(self, function: str) -> None:
+        """Prints Webots' message for a read of a disabled device, once."""
+        if self._period_ms == 0 and not self._warned_disabled:
+            self._warned_disabled = True
+            _print_error(
+                f"Error: {self._api}_{function}() called for a disabled device! "
+                f"Please use: {self._api}_enable()."
+            )
 
 
 def _internal(cls: type) -> bool:
@@ -147,28 +223,19 @@ class Device(metaclass=_DeviceType):
         """The device's name, e.g. ``"ps0"``."""
         return self._name
 
-    @property
-    def name(self) -> str:
-        """The device's name."""
-        return self._name
+    name = webots_property("getName")
 
     def getModel(self) -> str:
         """The device's model string (empty, as for the e-puck's devices in Webots)."""
         return ""
 
-    @property
-    def model(self) -> str:
-        """The device's model string."""
-        return self.getModel()
+    model = webots_property("getModel")
 
     def getNodeType(self) -> int:
         """Webots' node type of the device (a ``Node`` constant)."""
         return self._node_type
 
-    @property
-    def node_type(self) -> int:
-        """Webots' node type of the device."""
-        return self._node_type
+    node_type = webots_property("getNodeType")
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}({self._name!r})"
@@ -177,22 +244,17 @@ class Device(metaclass=_DeviceType):
 class _Sensor(Sampled, Device):
     """A sampled sensor: enable, disable, getSamplingPeriod, getValue."""
 
-    #: The C function names Webots' messages quote.
-    _api: ClassVar[str] = "wb_sensor"
-
     def __init__(self, name: str, simulation: RobotSimulation) -> None:
         super().__init__(name, simulation)
         self._period_ms = 0
         self._period_steps = 0
         self._enabled_at = 0
         self._value: Any = math.nan
-        self._warned_disabled = False
 
     def enable(self, samplingPeriod: int) -> None:
         """Reads the sensor every ``samplingPeriod`` ms (rounded up to whole basic steps)."""
-        period = int(samplingPeriod)
-        if period < 0:
-            _print_error(f"Error: {self._api}_enable() called with negative sampling period.")
+        period = self._checked_period(samplingPeriod)
+        if period is None:
             return
         if period == 0:
             self.disable()
@@ -206,15 +268,6 @@ class _Sensor(Sampled, Device):
         """Stops reading; ``getValue`` keeps the last reading."""
         self._period_ms = 0
         self._period_steps = 0
-
-    def _warn_disabled(self, function: str) -> None:
-        """Prints Webots' message for a read of a disabled sensor, once."""
-        if self._period_ms == 0 and not self._warned_disabled:
-            self._warned_disabled = True
-            _print_error(
-                f"Error: {self._api}_{function}() called for a disabled device! "
-                f"Please use: {self._api}_enable()."
-            )
 
     def _reading(self, function: str) -> Any:
         self._warn_disabled(function)
@@ -239,10 +292,7 @@ class _ScalarSensor(_Sensor):
         """The last reading; NaN before the first sampling period has passed."""
         return float(self._reading("get_value"))
 
-    @property
-    def value(self) -> float:
-        """:meth:`getValue` as a property."""
-        return self.getValue()
+    value = webots_property("getValue")
 
 
 class _VectorSensor(_Sensor):
@@ -258,13 +308,10 @@ class _VectorSensor(_Sensor):
         """The last reading; NaNs before the first sampling period has passed."""
         return list(self._reading("get_values"))
 
-    @property
-    def value(self) -> list[float]:
-        """:meth:`getValues` as a property."""
-        return self.getValues()
+    value = webots_property("getValues")
 
 
-class DistanceSensor(_ScalarSensor):
+class DistanceSensor(_Tabled, _ScalarSensor):
     """An infra-red sensor: a proximity sensor ``ps0``..``ps7`` or a ground sensor ``gs0``..``gs2``.
 
     Readings are the raw values of Webots' e-puck model (about 4095 touching, 67 at 7 cm and
@@ -283,7 +330,7 @@ class DistanceSensor(_ScalarSensor):
         super().__init__(name, simulation)
         self._index = index
         self._ground = ground
-        self._rows = GROUND_TABLE if ground else PROXIMITY_TABLE
+        self._table = LookupTable(GROUND_TABLE if ground else PROXIMITY_TABLE)
 
     def _read(self) -> float:
         readings = (
@@ -293,17 +340,13 @@ class DistanceSensor(_ScalarSensor):
         )
         return float(readings[self._index])
 
-    def getLookupTable(self) -> list[float]:
-        """The lookup table as Webots returns it: distance, value, noise, row after row."""
-        return [number for row in self._rows for number in row]
-
     def getMinValue(self) -> float:
         """The smallest value the table gives."""
-        return min(row[1] for row in self._rows)
+        return min((row[1] for row in self._table.rows), default=0.0)
 
     def getMaxValue(self) -> float:
         """The largest value the table gives."""
-        return max(row[1] for row in self._rows)
+        return max((row[1] for row in self._table.rows), default=0.0)
 
     def getType(self) -> int:
         """:data:`INFRA_RED`."""
@@ -311,30 +354,18 @@ class DistanceSensor(_ScalarSensor):
 
     def getMaxRange(self) -> float:
         """The table's last distance (m)."""
-        return self._rows[-1][0]
+        return self._table.rows[-1][0] if self._table.rows else 0.0
 
     def getMinRange(self) -> float:
         """The table's first distance (m)."""
-        return self._rows[0][0]
+        return self._table.rows[0][0] if self._table.rows else 0.0
 
     def getAperture(self) -> float:
         """The ray's aperture (rad): one ray."""
         return 0.0
 
-    @property
-    def lookup_table(self) -> list[float]:
-        """:meth:`getLookupTable` as a property."""
-        return self.getLookupTable()
-
-    @property
-    def max_value(self) -> float:
-        """:meth:`getMaxValue` as a property."""
-        return self.getMaxValue()
-
-    @property
-    def min_value(self) -> float:
-        """:meth:`getMinValue` as a property."""
-        return self.getMinValue()
+    max_value = webots_property("getMaxValue")
+    min_value = webots_property("getMinValue")
 
 
 class PositionSensor(_ScalarSensor):
@@ -362,10 +393,7 @@ class PositionSensor(_ScalarSensor):
         """The motor of the same wheel."""
         return self._motor
 
-    @property
-    def motor(self) -> Motor | None:
-        """The motor of the same wheel."""
-        return self._motor
+    motor = webots_property("getMotor")
 
     def getBrake(self) -> None:
         """None: the e-puck's wheels have no brake device."""
@@ -510,42 +538,15 @@ class Motor(Device):
     getForceFeedback = getTorqueFeedback
     getForceFeedbackSamplingPeriod = getTorqueFeedbackSamplingPeriod
 
-    @property
-    def velocity(self) -> float:
-        """The velocity set last (property style); assigning it calls :meth:`setVelocity`."""
-        return self._velocity
+    velocity = webots_property("getVelocity", "setVelocity")
 
-    @velocity.setter
-    def velocity(self, velocity: float) -> None:
-        self.setVelocity(velocity)
+    target_position = webots_property("getTargetPosition", "setPosition")
 
-    @property
-    def target_position(self) -> float:
-        """The target position (property style); assigning it calls :meth:`setPosition`."""
-        return self._target_position
+    max_velocity = webots_property("getMaxVelocity")
 
-    @target_position.setter
-    def target_position(self, position: float) -> None:
-        self.setPosition(position)
+    acceleration = webots_property("getAcceleration", "setAcceleration")
 
-    @property
-    def max_velocity(self) -> float:
-        """The motor's speed limit in rad/s."""
-        return self._max_velocity
-
-    @property
-    def acceleration(self) -> float:
-        """The acceleration set last (property style)."""
-        return self._acceleration
-
-    @acceleration.setter
-    def acceleration(self, acceleration: float) -> None:
-        self.setAcceleration(acceleration)
-
-    @property
-    def position_sensor(self) -> PositionSensor:
-        """The encoder of the same wheel."""
-        return self._sensor
+    position_sensor = webots_property("getPositionSensor")
 
     def _wheel_speed(self, angle: float) -> float:
         """The wheel speed (rad/s) for the next step, the wheel being at ``angle``."""
@@ -574,11 +575,4 @@ class LED(Device):
         """The value set last."""
         return self._value
 
-    @property
-    def value(self) -> int:
-        """The value set last (property style); assigning it calls :meth:`set`."""
-        return self._value
-
-    @value.setter
-    def value(self, value: int) -> None:
-        self.set(value)
+    value = webots_property("get", "set")

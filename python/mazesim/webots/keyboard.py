@@ -15,13 +15,12 @@ from __future__ import annotations
 import bisect
 import math
 import os
-import sys
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, NamedTuple
 
 from mazesim._paths import read_text
 from mazesim.errors import InvalidArgumentError
-from mazesim.webots.devices import Sampled
+from mazesim.webots.devices import Sampled, webots_property
 
 if TYPE_CHECKING:
     from mazesim.webots.simulation import RobotSimulation
@@ -158,10 +157,6 @@ def read_keys(path: str | os.PathLike[str]) -> KeyScript:
     return KeyScript.parse(text, file)
 
 
-def _print_error(message: str) -> None:
-    print(message, file=sys.stderr)
-
-
 class _Polled(Sampled):
     """An input device sampled every period: enable, disable, getSamplingPeriod."""
 
@@ -173,11 +168,9 @@ class _Polled(Sampled):
 
     def enable(self, samplingPeriod: int) -> None:
         """Reads the device every ``samplingPeriod`` ms."""
-        period = int(samplingPeriod)
-        if period < 0:
-            _print_error(f"Error: {self._api}_enable() called with negative sampling period.")
-            return
-        self._period_ms = period
+        period = self._checked_period(samplingPeriod)
+        if period is not None:
+            self._period_ms = period
 
     def disable(self) -> None:
         """Stops reading the device."""
@@ -214,7 +207,6 @@ class Keyboard(_Polled):
 
             simulation = simulations.current()
         super().__init__(simulation)
-        self._warned_disabled = False
         self._served_sample = -1
         self._enabled_at_ms = 0.0
         if samplingPeriod:
@@ -226,12 +218,7 @@ class Keyboard(_Polled):
         if simulation is None:
             return -1
         if self._period_ms == 0:
-            if not self._warned_disabled:
-                self._warned_disabled = True
-                _print_error(
-                    "Error: wb_keyboard_get_key() called for a disabled device! "
-                    "Please use: wb_keyboard_enable()."
-                )
+            self._warn_disabled("get_key")
             return -1
         # As in Webots, the keyboard is read once per sampling period (counted from enable):
         # a key held down is returned once per period, not at every step between.
@@ -293,10 +280,7 @@ class Mouse(_Polled):
         nan = math.nan
         return MouseState(False, False, False, nan, nan, nan, nan, nan)
 
-    @property
-    def state(self) -> MouseState:
-        """:meth:`getState` as a property."""
-        return self.getState()
+    state = webots_property("getState")
 
 
 class Joystick(_Polled):
@@ -313,19 +297,13 @@ class Joystick(_Polled):
         """False: no joystick is connected."""
         return False
 
-    @property
-    def is_connected(self) -> bool:
-        """:meth:`isConnected` as a property."""
-        return False
+    is_connected = webots_property("isConnected")
 
     def getModel(self) -> str:
         """The empty string: no joystick."""
         return ""
 
-    @property
-    def model(self) -> str:
-        """:meth:`getModel` as a property."""
-        return ""
+    model = webots_property("getModel")
 
     def getNumberOfAxes(self) -> int:
         """0: no joystick."""

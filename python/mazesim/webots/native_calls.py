@@ -16,12 +16,12 @@ is ``NULL``); a field's handle comes with its type (``WB_SF_VEC3F``...).
 
 from __future__ import annotations
 
-import sys
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
 from mazesim.errors import MazesimIOError
+from mazesim.webots.devices import _print_error
 from mazesim.webots.supervisor import Field, Node, Supervisor
 
 __all__ = ["FUNCTIONS", "Function", "NativeCalls"]
@@ -154,10 +154,6 @@ FUNCTIONS: dict[str, Function] = {
         },
     ),
 }
-
-
-def _print_error(message: str) -> None:
-    print(message, file=sys.stderr)
 
 
 class NativeCalls:

@@ -214,12 +214,6 @@ def _scan(files: list[Path]) -> tuple[list[str], dict[str, str], set[Path]]:
     return sorted(absent), other_case, seen
 
 
-def absent_headers(files: list[Path]) -> list[str]:
-    """The Webots headers ``files`` include that the controller library does not provide (see
-    :func:`scan_headers`)."""
-    return scan_headers(files)[0]
-
-
 def _write_case_aliases(folder: Path, aliases: dict[str, str]) -> None:
     """Headers in ``folder`` under the names a controller spells in another case, each
     including the library's header."""

@@ -22,7 +22,7 @@ from collections import deque
 from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
-from mazesim.webots.devices import Device, _print_error, _Sensor
+from mazesim.webots.devices import Device, _print_error, _Sensor, webots_property
 from mazesim.webots.inert import NotSimulated
 from mazesim.webots.node_types import node_type
 from mazesim.webots.radio import CHANNEL_BROADCAST, UNLIMITED, Packet
@@ -64,14 +64,7 @@ class _Tuned:
         """The channel (-1: every channel)."""
         return self._channel
 
-    @property
-    def channel(self) -> int:
-        """The channel (property style)."""
-        return self._channel
-
-    @channel.setter
-    def channel(self, channel: int) -> None:
-        self.setChannel(channel)
+    channel = webots_property("getChannel", "setChannel")
 
 
 class Emitter(_Tuned, NotSimulated, Device):
@@ -140,19 +133,9 @@ class Emitter(_Tuned, NotSimulated, Device):
         """The bytes the emitter may queue in one step (-1: unlimited)."""
         return self._buffer_size
 
-    @property
-    def range(self) -> float:
-        """The range (property style)."""
-        return self._range
+    range = webots_property("getRange", "setRange")
 
-    @range.setter
-    def range(self, range: float) -> None:
-        self.setRange(range)
-
-    @property
-    def buffer_size(self) -> int:
-        """The buffer size (property style)."""
-        return self._buffer_size
+    buffer_size = webots_property("getBufferSize")
 
 
 class Receiver(_Tuned, NotSimulated, _Sensor):
@@ -256,10 +239,7 @@ class Receiver(_Tuned, NotSimulated, _Sensor):
         self._channel = int(channel)
         self._tune()
 
-    @property
-    def queue_length(self) -> int:
-        """The number of packets in the queue."""
-        return len(self._queue)
+    queue_length = webots_property("getQueueLength")
 
 
 def _int_field(fields: Mapping[str, Any], name: str, default: int) -> int:

@@ -12,6 +12,7 @@ from typing import Any, ClassVar
 
 from mazesim.errors import InvalidArgumentError
 from mazesim.webots import simulation as _simulations
+from mazesim.webots.devices import webots_property
 from mazesim.webots.equipment import Equipment
 from mazesim.webots.inert import NotSimulated
 from mazesim.webots.keyboard import Joystick, Keyboard, Mouse
@@ -85,6 +86,17 @@ def _deprecated_getter(getter: str) -> Any:
     return get
 
 
+def _equipment_property(device: str) -> Any:
+    """The robot's ``keyboard``, ``mouse`` or ``joystick`` as a property that a controller's
+    ``Robot`` subclass may set to its own object, as in Webots."""
+    key = f"_{device}_set"
+    return property(
+        lambda self: self.__dict__.get(key, getattr(self._equipment, device)),
+        lambda self, value: self.__dict__.__setitem__(key, value),
+        doc=f"The {device}; a controller's ``Robot`` subclass may keep its own ``self.{device}``.",
+    )
+
+
 class Robot(NotSimulated):
     """The e-puck the controller drives (only one per controller process, as in Webots)."""
 
@@ -133,28 +145,19 @@ class Robot(NotSimulated):
         """The world's basic time step in milliseconds (``WorldInfo.basicTimeStep``)."""
         return self._simulation.basic_time_step_ms
 
-    @property
-    def basic_time_step(self) -> float:
-        """:meth:`getBasicTimeStep` as a property."""
-        return self.getBasicTimeStep()
+    basic_time_step = webots_property("getBasicTimeStep")
 
     def getTime(self) -> float:
         """Simulated seconds since the start."""
         return self._simulation.time
 
-    @property
-    def time(self) -> float:
-        """:meth:`getTime` as a property."""
-        return self.getTime()
+    time = webots_property("getTime")
 
     def getName(self) -> str:
         """The robot's name: the world's ``name`` field of the robot, by default ``"e-puck"``."""
         return self._simulation.scene.robot_name
 
-    @property
-    def name(self) -> str:
-        """:meth:`getName` as a property."""
-        return self.getName()
+    name = webots_property("getName")
 
     def getModel(self) -> str:
         """The robot's model as Webots reports it: the E-puck PROTO's ``model`` field,
@@ -164,10 +167,7 @@ class Robot(NotSimulated):
             return "GCtronic e-puck2" if profile == "e-puck2" else "GCtronic e-puck"
         return profile
 
-    @property
-    def model(self) -> str:
-        """:meth:`getModel` as a property."""
-        return self.getModel()
+    model = webots_property("getModel")
 
     def getCustomData(self) -> str:
         """The robot's ``customData`` string (empty at the start)."""
@@ -180,32 +180,19 @@ class Robot(NotSimulated):
     getData = getCustomData
     setData = setCustomData
 
-    @property
-    def custom_data(self) -> str:
-        """The ``customData`` string (property style)."""
-        return self._custom_data
-
-    @custom_data.setter
-    def custom_data(self, data: str) -> None:
-        self.setCustomData(data)
+    custom_data = webots_property("getCustomData", "setCustomData")
 
     def getSupervisor(self) -> bool:
         """Whether the robot is a supervisor (the world says so, or the controller made one)."""
         return self._simulation.supervisor
 
-    @property
-    def supervisor(self) -> bool:
-        """:meth:`getSupervisor` as a property."""
-        return self.getSupervisor()
+    supervisor = webots_property("getSupervisor")
 
     def getSynchronization(self) -> bool:
         """True: the simulation waits for the controller at every step."""
         return True
 
-    @property
-    def synchronization(self) -> bool:
-        """:meth:`getSynchronization` as a property."""
-        return True
+    synchronization = webots_property("getSynchronization")
 
     def getMode(self) -> int:
         """:data:`MODE_SIMULATION`."""
@@ -216,10 +203,7 @@ class Robot(NotSimulated):
         if mode != self.MODE_SIMULATION:
             print("Error: wb_robot_set_mode(): no remote control plugin.", file=sys.stderr)
 
-    @property
-    def mode(self) -> int:
-        """:meth:`getMode` as a property."""
-        return self.MODE_SIMULATION
+    mode = webots_property("getMode")
 
     def getProjectPath(self) -> str:
         """The controller's project folder (the folder above ``controllers/``, else its own)."""
@@ -233,15 +217,9 @@ class Robot(NotSimulated):
         """The world file's path, or the world's name for a built-in world."""
         return str(self._simulation.report.get("path") or self._simulation.world.name)
 
-    @property
-    def project_path(self) -> str:
-        """:meth:`getProjectPath` as a property."""
-        return self.getProjectPath()
+    project_path = webots_property("getProjectPath")
 
-    @property
-    def world_path(self) -> str:
-        """:meth:`getWorldPath` as a property."""
-        return self.getWorldPath()
+    world_path = webots_property("getWorldPath")
 
     def getControllerName(self) -> str:
         """The controller's name, as the robot's ``controller`` field gives it in Webots: the
@@ -364,10 +342,7 @@ class Robot(NotSimulated):
         """How many devices the robot has."""
         return len(self._equipment.devices)
 
-    @property
-    def number_of_devices(self) -> int:
-        """:meth:`getNumberOfDevices` as a property."""
-        return self.getNumberOfDevices()
+    number_of_devices = webots_property("getNumberOfDevices")
 
     def getDeviceByIndex(self, index: int) -> Any:
         """The device at ``index``, or None (with Webots' message) out of range."""
@@ -385,16 +360,7 @@ class Robot(NotSimulated):
         """The keyboard."""
         return self._equipment.keyboard
 
-    @property
-    def keyboard(self) -> Keyboard:
-        """The keyboard."""
-        chosen: Keyboard = self.__dict__.get("_keyboard_set", self._equipment.keyboard)
-        return chosen
-
-    @keyboard.setter
-    def keyboard(self, value: Keyboard) -> None:
-        """A controller's ``Robot`` subclass may keep its own ``self.keyboard``, as in Webots."""
-        self.__dict__["_keyboard_set"] = value
+    keyboard = _equipment_property("keyboard")
 
     def keyboardEnable(self, samplingPeriod: int) -> None:
         """Webots' API before R2018a: ``getKeyboard().enable(samplingPeriod)``."""
@@ -412,31 +378,13 @@ class Robot(NotSimulated):
         """The mouse (no button is ever pressed)."""
         return self._equipment.mouse
 
-    @property
-    def mouse(self) -> Mouse:
-        """The mouse."""
-        chosen: Mouse = self.__dict__.get("_mouse_set", self._equipment.mouse)
-        return chosen
-
-    @mouse.setter
-    def mouse(self, value: Mouse) -> None:
-        """A controller's ``Robot`` subclass may keep its own ``self.mouse``, as in Webots."""
-        self.__dict__["_mouse_set"] = value
+    mouse = _equipment_property("mouse")
 
     def getJoystick(self) -> Joystick:
         """The joystick (never connected)."""
         return self._equipment.joystick
 
-    @property
-    def joystick(self) -> Joystick:
-        """The joystick."""
-        chosen: Joystick = self.__dict__.get("_joystick_set", self._equipment.joystick)
-        return chosen
-
-    @joystick.setter
-    def joystick(self, value: Joystick) -> None:
-        """A controller's ``Robot`` subclass may keep its own ``self.joystick``, as in Webots."""
-        self.__dict__["_joystick_set"] = value
+    joystick = _equipment_property("joystick")
 
 
 for _getter in DEPRECATED_GETTERS:

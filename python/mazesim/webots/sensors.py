@@ -16,7 +16,15 @@ from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
-from mazesim.webots.devices import DistanceSensor, _ScalarSensor, _VectorSensor
+from mazesim.webots.devices import (
+    DistanceSensor,
+    LookupTable,
+    Row,
+    _ScalarSensor,
+    _Tabled,
+    _VectorSensor,
+    webots_property,
+)
 from mazesim.webots.frames import enu_to_nue
 from mazesim.webots.lights import irradiance
 from mazesim.webots.node_types import node_type
@@ -54,34 +62,6 @@ DISTANCE_TABLE = ((0.0, 0.0, 0.0), (0.1, 1000.0, 0.0))
 #: North in the world frame (Webots' WorldInfo.northDirection default since R2022a).
 NORTH = (0.0, 1.0, 0.0)
 
-Row = tuple[float, float, float]
-
-
-class LookupTable:
-    """A Webots lookup table: input, output, relative noise, row after row."""
-
-    def __init__(self, rows: Sequence[Sequence[float]]) -> None:
-        cleaned = [tuple(float(v) for v in row[:3]) for row in rows if len(row) >= 2]
-        self.rows: list[Row] = [
-            (row[0], row[1], row[2] if len(row) > 2 else 0.0) for row in cleaned
-        ]
-        self.rows.sort(key=lambda row: row[0])
-
-    def __call__(self, x: float, rng: np.random.Generator | None) -> float:
-        """The output for ``x``, with noise when ``rng`` is given; ``x`` itself without rows."""
-        if not self.rows:
-            return x
-        inputs = [row[0] for row in self.rows]
-        value = float(np.interp(x, inputs, [row[1] for row in self.rows]))
-        noise = float(np.interp(x, inputs, [row[2] for row in self.rows]))
-        if rng is not None and noise > 0.0:
-            value += abs(value) * noise * float(rng.standard_normal())
-        return value
-
-    def flat(self) -> list[float]:
-        """The table as Webots' ``getLookupTable`` returns it."""
-        return [number for row in self.rows for number in row]
-
 
 class DeviceMount:
     """Where a device sits on the robot: translation (m) and yaw (rad) in the robot's frame."""
@@ -100,21 +80,6 @@ class DeviceMount:
         x, y, yaw = pose
         c, s = math.cos(yaw), math.sin(yaw)
         return x + c * self.x - s * self.y, y + s * self.x + c * self.y, yaw + self.yaw
-
-
-class _Tabled:
-    """Mixin of a sensor with a lookup table: ``getLookupTable`` and ``lookup_table``."""
-
-    _table: LookupTable
-
-    def getLookupTable(self) -> list[float]:
-        """The lookup table as Webots returns it."""
-        return self._table.flat()
-
-    @property
-    def lookup_table(self) -> list[float]:
-        """:meth:`getLookupTable` as a property."""
-        return self.getLookupTable()
 
 
 def _noise_stream(simulation: RobotSimulation, name: str) -> np.random.Generator | None:
@@ -241,10 +206,7 @@ class GPS(_TableVector):
         vx, vy, _ = self._simulation.velocity
         return math.hypot(vx, vy)
 
-    @property
-    def speed(self) -> float:
-        """:meth:`getSpeed` as a property."""
-        return self.getSpeed()
+    speed = webots_property("getSpeed")
 
     def getSpeedVector(self) -> list[float]:
         """The velocity (m/s) in the world frame over the last step."""
@@ -253,19 +215,13 @@ class GPS(_TableVector):
         vx, vy, _ = self._simulation.velocity
         return list(enu_to_nue(vx, vy, 0.0)) if self._simulation.scene.nue else [vx, vy, 0.0]
 
-    @property
-    def speed_vector(self) -> list[float]:
-        """:meth:`getSpeedVector` as a property."""
-        return self.getSpeedVector()
+    speed_vector = webots_property("getSpeedVector")
 
     def getCoordinateSystem(self) -> int:
         """:data:`LOCAL`: metres in the world frame."""
         return self.LOCAL
 
-    @property
-    def coordinate_system(self) -> int:
-        """:meth:`getCoordinateSystem` as a property."""
-        return self.LOCAL
+    coordinate_system = webots_property("getCoordinateSystem")
 
     @staticmethod
     def convertToDegreesMinutesSeconds(decimalDegree: float) -> str:
@@ -291,20 +247,14 @@ class InertialUnit(_TableVector):
         """[roll, pitch, yaw] in radians; NaNs before the first sampling period."""
         return list(self._reading("get_roll_pitch_yaw"))
 
-    @property
-    def roll_pitch_yaw(self) -> list[float]:
-        """:meth:`getRollPitchYaw` as a property."""
-        return self.getRollPitchYaw()
+    roll_pitch_yaw = webots_property("getRollPitchYaw")
 
     def getQuaternion(self) -> list[float]:
         """The orientation as a quaternion [x, y, z, w]."""
         yaw = self.getRollPitchYaw()[2]
         return [0.0, 0.0, math.sin(yaw / 2.0), math.cos(yaw / 2.0)]
 
-    @property
-    def quaternion(self) -> list[float]:
-        """:meth:`getQuaternion` as a property."""
-        return self.getQuaternion()
+    quaternion = webots_property("getQuaternion")
 
     def getNoise(self) -> float:
         """The noise of the readings (0: noise-free)."""
@@ -358,10 +308,7 @@ class TouchSensor(_ScalarSensor):
         """:data:`BUMPER`."""
         return self.BUMPER
 
-    @property
-    def type(self) -> int:
-        """:meth:`getType` as a property."""
-        return self.BUMPER
+    type = webots_property("getType")
 
     def getLookupTable(self) -> list[float]:
         """The empty table of a bumper."""
@@ -373,7 +320,7 @@ class TouchSensor(_ScalarSensor):
 DOWNWARD_PITCH = math.pi / 4
 
 
-class RayDistanceSensor(_Tabled, DistanceSensor):
+class RayDistanceSensor(DistanceSensor):
     """A distance sensor the world adds: one ray from its mount against the walls (a
     :class:`DistanceSensor`, with the world's table and type)."""
 
@@ -422,26 +369,6 @@ class RayDistanceSensor(_Tabled, DistanceSensor):
         if self._type == self.INFRA_RED:
             d = d / max(float(self._simulation.world.floor_reflectance(x, y)), 1e-6)
         return self._table(min(d, self.getMaxRange()), self._rng)
-
-    def getMinValue(self) -> float:
-        """The smallest value the table gives."""
-        return min((row[1] for row in self._table.rows), default=0.0)
-
-    def getMaxValue(self) -> float:
-        """The largest value the table gives."""
-        return max((row[1] for row in self._table.rows), default=0.0)
-
-    def getMaxRange(self) -> float:
-        """The table's last distance (m)."""
-        return self._table.rows[-1][0] if self._table.rows else 0.0
-
-    def getMinRange(self) -> float:
-        """The table's first distance (m)."""
-        return self._table.rows[0][0] if self._table.rows else 0.0
-
-    def getAperture(self) -> float:
-        """The ray's aperture (rad): one ray."""
-        return 0.0
 
     def getType(self) -> int:
         """The sensor type from the world (``GENERIC`` by default)."""

@@ -13,10 +13,10 @@ the robot's motion, and quits it with a status (``mazesim webots run`` exits wit
 from __future__ import annotations
 
 import math
-import sys
 from typing import Any
 
 from mazesim.webots import simulation as _simulations
+from mazesim.webots.devices import _print_error, webots_property
 from mazesim.webots.frames import enu_to_nue, enu_to_nue_matrix, nue_to_enu
 from mazesim.webots.inert import ContactPoint, NotSimulated
 from mazesim.webots.node_types import NODE_TYPES
@@ -46,10 +46,6 @@ _BUILT_IN_TYPES = {
 }
 #: Base nodes with ``translation`` and ``rotation`` fields.
 _POSED_TYPES = {"Robot", "Solid", "Pose", "Transform", "Charger"}
-
-
-def _print_error(message: str) -> None:
-    print(message, file=sys.stderr)
 
 
 def _file_frame() -> bool:
@@ -102,19 +98,13 @@ class Field(NotSimulated):
         """The field's name."""
         return self._name
 
-    @property
-    def name(self) -> str:
-        """:meth:`getName` as a property."""
-        return self._name
+    name = webots_property("getName")
 
     def getType(self) -> int:
         """The field's type (``Field.SF_VEC3F``...)."""
         return self._type
 
-    @property
-    def type(self) -> int:
-        """:meth:`getType` as a property."""
-        return self._type
+    type = webots_property("getType")
 
     def getTypeName(self) -> str:
         """The field's type name (``"SFVec3f"``...)."""
@@ -436,10 +426,7 @@ class Node(NotSimulated):
         """The node's unique id."""
         return self._id
 
-    @property
-    def id(self) -> int:
-        """:meth:`getId` as a property."""
-        return self._id
+    id = webots_property("getId")
 
     def getDef(self) -> str:
         """The node's DEF name (empty if it has none)."""
@@ -692,14 +679,7 @@ class Supervisor(Robot):
         """Records the mode; a headless run always runs as fast as it can."""
         self._mode = int(mode)
 
-    @property
-    def simulation_mode(self) -> int:
-        """The simulation mode (property style)."""
-        return self._mode
-
-    @simulation_mode.setter
-    def simulation_mode(self, mode: int) -> None:
-        self.simulationSetMode(mode)
+    simulation_mode = webots_property("simulationGetMode", "simulationSetMode")
 
     def setLabel(self, *args: Any) -> None:
         """Accepted; there is no 3D view to draw labels on."""

@@ -5,7 +5,7 @@
 //! anything else in a slot is a warning.
 
 use super::frames::{apply, axis_angle, Frame, IDENTITY, NUE_TO_ENU};
-use super::import::Importer;
+use super::import::{Importer, JOINTS};
 use super::shapes::snap;
 use super::tree::Node;
 
@@ -84,9 +84,6 @@ const BUILT_IN_NAMES: &[&str] = &[
     "receiver",
     "speaker",
 ];
-/// Joint nodes: the devices of their `device` field and the solid of their `endPoint` belong to
-/// the robot.
-const JOINTS: &[&str] = &["HingeJoint", "Hinge2Joint", "SliderJoint", "BallJoint"];
 /// Nodes that only hold and place other nodes.
 const CONTAINERS: &[&str] = &["Solid", "Pose", "Transform", "Group"];
 /// Fields that place or hold a node rather than describe the device.

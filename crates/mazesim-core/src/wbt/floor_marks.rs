@@ -10,6 +10,7 @@
 //! from its `.obj` file and painted cell by cell. Every other visual-only shape is named in a
 //! warning (nothing of the world is lost without a word).
 
+use super::floor_texture::equal_rects;
 use super::frames::{tilt, Frame, Vec3};
 use super::import::{Importer, TILT_TOLERANCE};
 use super::shapes::snap;
@@ -189,9 +190,10 @@ pub fn triangles_paint(
             }
         }
     }
-    Ok(covered_rects(&covered, width, height)
+    Ok(equal_rects(&covered, width, height)
         .into_iter()
-        .map(|[c0, c1, r0, r1]| PaintSpec::Rect {
+        .filter(|&(_, inside)| inside)
+        .map(|([c0, c1, r0, r1], _)| PaintSpec::Rect {
             center: [
                 Finite(snap(lo[0] + (c0 + c1) as f64 * cell / 2.0)),
                 Finite(snap(lo[1] + (r0 + r1) as f64 * cell / 2.0)),
@@ -204,32 +206,6 @@ pub fn triangles_paint(
             reflectance: Reflectance(reflectance),
         })
         .collect())
-}
-
-/// Rectangles `[c0, c1, r0, r1]` (end exclusive) of covered cells: runs along each row joined
-/// with the same run of the row before.
-fn covered_rects(covered: &[bool], width: usize, height: usize) -> Vec<[usize; 4]> {
-    let mut done = Vec::new();
-    let mut open: std::collections::BTreeMap<(usize, usize), usize> = Default::default();
-    for r in 0..=height {
-        let mut next = std::collections::BTreeMap::new();
-        if r < height {
-            let row = &covered[r * width..(r + 1) * width];
-            let mut c0 = 0;
-            while c0 < width {
-                let run = row[c0..].iter().take_while(|&&v| v == row[c0]).count();
-                if row[c0] {
-                    let start = open.remove(&(c0, c0 + run)).unwrap_or(r);
-                    next.insert((c0, c0 + run), start);
-                }
-                c0 += run;
-            }
-        }
-        for ((c0, c1), r0) in std::mem::replace(&mut open, next) {
-            done.push([c0, c1, r0, r]);
-        }
-    }
-    done
 }
 
 impl<'d> Importer<'d> {
@@ -287,7 +263,7 @@ impl<'d> Importer<'d> {
                 }
                 let half = [0, 1, 2].map(|i| frame.axis(i).map(|c| c * size[i] / 2.0));
                 let half_z: f64 = half.iter().map(|a| a[2].abs()).sum();
-                if !self.on_floor(frame.origin[2], half_z) || tilt(frame.axis(2)) > TILT_TOLERANCE {
+                if !on_floor(frame.origin[2] + half_z) || tilt(frame.axis(2)) > TILT_TOLERANCE {
                     return self.drop_visual(node, geometry, "above the floor");
                 }
                 let width = half[0][0].hypot(half[0][1]) * 2.0;
@@ -305,7 +281,7 @@ impl<'d> Importer<'d> {
                 let axis = frame.axis(2);
                 let half_z = (axis[2] * height / 2.0).abs();
                 let scale = frame.axis(0)[0].hypot(frame.axis(0)[1]);
-                if !self.on_floor(frame.origin[2], half_z) || tilt(axis) > TILT_TOLERANCE {
+                if !on_floor(frame.origin[2] + half_z) || tilt(axis) > TILT_TOLERANCE {
                     return self.drop_visual(node, geometry, "above the floor");
                 }
                 self.mark(PaintSpec::Circle {
@@ -334,11 +310,6 @@ impl<'d> Importer<'d> {
                 "(only Plane, Box, Cylinder, IndexedFaceSet and Mesh marks on the floor are read)",
             ),
         }
-    }
-
-    /// Whether a shape spanning `center_z +- half_z` lies on the floor as a mark.
-    fn on_floor(&self, center_z: f64, half_z: f64) -> bool {
-        on_floor(center_z + half_z)
     }
 
     /// Whether a Shape's appearance holds an `ImageTexture` (a `PBRAppearance`'s `baseColorMap`,

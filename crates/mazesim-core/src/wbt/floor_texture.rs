@@ -91,57 +91,46 @@ impl GreyImage {
     }
 }
 
-/// A rectangle of one grey level in pixel units of one tile: columns `c0..c1`, rows `r0..r1`.
-struct PixelRect {
-    c0: usize,
-    c1: usize,
-    r0: usize,
-    r1: usize,
-    level: u8,
+/// Rectangles `[c0, c1, r0, r1]` (columns `c0..c1`, rows `r0..r1`) of equal cells of a grid,
+/// row-major, with the value of each: runs along each row joined with the same run of the row
+/// before.
+pub(super) fn equal_rects<T: Copy + Ord>(
+    cells: &[T],
+    width: usize,
+    height: usize,
+) -> Vec<([usize; 4], T)> {
+    let mut done = Vec::new();
+    // Open rectangles keyed by (c0, c1, value), still growing downwards.
+    let mut open: BTreeMap<(usize, usize, T), usize> = BTreeMap::new();
+    for r in 0..=height {
+        let mut next = BTreeMap::new();
+        if r < height {
+            let row = &cells[r * width..(r + 1) * width];
+            let mut c0 = 0;
+            while c0 < width {
+                let value = row[c0];
+                let c1 = c0 + row[c0..].iter().take_while(|&&v| v == value).count();
+                let r0 = open.remove(&(c0, c1, value)).unwrap_or(r);
+                next.insert((c0, c1, value), r0);
+                c0 = c1;
+            }
+        }
+        for ((c0, c1, value), r0) in std::mem::replace(&mut open, next) {
+            done.push(([c0, c1, r0, r], value));
+        }
+    }
+    done
 }
 
-/// The image as rectangles of equal grey: runs along each row, joined with the same run of the
-/// rows above.
-fn pixel_rects(image: &GreyImage) -> Vec<PixelRect> {
+/// The image as rectangles of equal grey, in pixel units of one tile, with the grey level of
+/// each in 0..=255.
+fn pixel_rects(image: &GreyImage) -> Vec<([usize; 4], u8)> {
     let quantised: Vec<u8> = image
         .levels
         .iter()
         .map(|g| (g.clamp(0.0, 1.0) * 255.0).round() as u8)
         .collect();
-    let mut done = Vec::new();
-    // Open rectangles keyed by (c0, c1, level), still growing downwards.
-    let mut open: BTreeMap<(usize, usize, u8), usize> = BTreeMap::new();
-    for r in 0..image.height {
-        let row = &quantised[r * image.width..(r + 1) * image.width];
-        let mut next = BTreeMap::new();
-        let mut c0 = 0;
-        while c0 < row.len() {
-            let level = row[c0];
-            let c1 = c0 + row[c0..].iter().take_while(|&&v| v == level).count();
-            let r0 = open.remove(&(c0, c1, level)).unwrap_or(r);
-            next.insert((c0, c1, level), r0);
-            c0 = c1;
-        }
-        for ((c0, c1, level), r0) in std::mem::replace(&mut open, next) {
-            done.push(PixelRect {
-                c0,
-                c1,
-                r0,
-                r1: r,
-                level,
-            });
-        }
-    }
-    for ((c0, c1, level), r0) in open {
-        done.push(PixelRect {
-            c0,
-            c1,
-            r0,
-            r1: image.height,
-            level,
-        });
-    }
-    done
+    equal_rects(&quantised, image.width, image.height)
 }
 
 impl FloorTexture {
@@ -176,11 +165,11 @@ impl FloorTexture {
                 // The tile's top-left corner in the rectangle's frame (origin at its centre).
                 let left = -sx / 2.0 + i as f64 * tx;
                 let top = -sy / 2.0 + (j + 1) as f64 * ty;
-                for rect in &rects {
-                    let x0 = left + rect.c0 as f64 * px;
-                    let x1 = (left + rect.c1 as f64 * px).min(sx / 2.0);
-                    let y1 = (top - rect.r0 as f64 * py).min(sy / 2.0);
-                    let y0 = (top - rect.r1 as f64 * py).max(-sy / 2.0);
+                for &([c0, c1, r0, r1], level) in &rects {
+                    let x0 = left + c0 as f64 * px;
+                    let x1 = (left + c1 as f64 * px).min(sx / 2.0);
+                    let y1 = (top - r0 as f64 * py).min(sy / 2.0);
+                    let y0 = (top - r1 as f64 * py).max(-sy / 2.0);
                     if x1 - x0 <= 1e-9 || y1 - y0 <= 1e-9 {
                         continue;
                     }
@@ -192,7 +181,7 @@ impl FloorTexture {
                         ],
                         size: [Positive(x1 - x0), Positive(y1 - y0)],
                         yaw: Finite(self.yaw),
-                        reflectance: Reflectance(grey_reflectance(rect.level as f64 / 255.0)),
+                        reflectance: Reflectance(grey_reflectance(level as f64 / 255.0)),
                     });
                 }
             }

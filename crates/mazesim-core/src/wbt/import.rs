@@ -63,14 +63,9 @@ const OTHER_ROBOT_PROTOS: &[&str] = &[
 /// The e-puck PROTOs of Webots and webots_ros2.
 /// Webots 7 named it `EPuck`.
 const EPUCK_PROTOS: &[&str] = &["E-puck", "E-puck_enu", "E-Puck_enu", "EPuck"];
-/// Nodes whose `endPoint` holds a Solid placed in the parent's frame.
-const JOINT_NODES: &[&str] = &[
-    "HingeJoint",
-    "Hinge2Joint",
-    "SliderJoint",
-    "BallJoint",
-    "Slot",
-];
+/// Joint nodes: the Solid of their `endPoint` (as of a `Slot`) is placed in the parent's frame,
+/// and a robot's joints hold its devices in their `device` field.
+pub const JOINTS: &[&str] = &["HingeJoint", "Hinge2Joint", "SliderJoint", "BallJoint"];
 
 /// The mazesim profile that stands in for a robot that is not an e-puck.
 pub const STAND_IN_PROFILE: &str = "e-puck";
@@ -387,7 +382,7 @@ impl<'d> Importer<'d> {
             self.epuck(node, frame);
         } else if ROBOT_NODES.contains(&kind) || self.is_robot_proto(node) {
             self.other_robot(node, frame);
-        } else if JOINT_NODES.contains(&kind) {
+        } else if JOINTS.contains(&kind) || kind == "Slot" {
             for &child in self.nodes(node, "endPoint") {
                 self.scene(child, frame, depth + 1);
             }

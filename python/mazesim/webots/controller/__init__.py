@@ -24,51 +24,84 @@ time is up; a controller that steps again after that is stopped, as Webots stops
 
 from __future__ import annotations
 
-from mazesim.errors import UnknownNameError
-from mazesim.webots.controller.accelerometer import Accelerometer
-from mazesim.webots.controller.altimeter import Altimeter
-from mazesim.webots.controller.ansi_codes import AnsiCodes
-from mazesim.webots.controller.brake import Brake
-from mazesim.webots.controller.camera import Camera, CameraRecognitionObject
-from mazesim.webots.controller.compass import Compass
-from mazesim.webots.controller.connector import Connector
-from mazesim.webots.controller.device import Device
-from mazesim.webots.controller.display import Display
-from mazesim.webots.controller.distance_sensor import DistanceSensor
-from mazesim.webots.controller.emitter import Emitter
-from mazesim.webots.controller.field import Field
-from mazesim.webots.controller.gps import GPS
-from mazesim.webots.controller.gyro import Gyro
-from mazesim.webots.controller.inertial_unit import InertialUnit
-from mazesim.webots.controller.joystick import Joystick
-from mazesim.webots.controller.keyboard import Keyboard
-from mazesim.webots.controller.led import LED
-from mazesim.webots.controller.lidar import Lidar, LidarPoint
-from mazesim.webots.controller.light_sensor import LightSensor
-from mazesim.webots.controller.motion import Motion
-from mazesim.webots.controller.motor import Motor
-from mazesim.webots.controller.mouse import Mouse, MouseState
-from mazesim.webots.controller.node import ContactPoint, Node
-from mazesim.webots.controller.pen import Pen
-from mazesim.webots.controller.position_sensor import PositionSensor
-from mazesim.webots.controller.radar import Radar, RadarTarget
-from mazesim.webots.controller.range_finder import RangeFinder
-from mazesim.webots.controller.receiver import Receiver
-from mazesim.webots.controller.robot import Robot
-from mazesim.webots.controller.skin import Skin
-from mazesim.webots.controller.speaker import Speaker
-from mazesim.webots.controller.supervisor import Supervisor
-from mazesim.webots.controller.touch_sensor import TouchSensor
-from mazesim.webots.controller.vacuum_gripper import VacuumGripper
-from mazesim.webots.robot import ControllerStopped
+import sys
+from types import ModuleType
 
-#: The submodules, one per class as Webots names them (``controller.distance_sensor``...).
-SUBMODULES = (
-    "accelerometer altimeter ansi_codes brake camera compass connector device display "
-    "distance_sensor emitter field gps gyro inertial_unit joystick keyboard led lidar "
-    "light_sensor motion motor mouse node pen position_sensor radar range_finder receiver robot "
-    "skin speaker supervisor touch_sensor vacuum_gripper"
-).split()
+from mazesim.errors import UnknownNameError
+from mazesim.webots.camera import Camera, CameraRecognitionObject
+from mazesim.webots.devices import LED, Device, DistanceSensor, Motor, PositionSensor
+from mazesim.webots.inert import (
+    Altimeter,
+    AnsiCodes,
+    Brake,
+    Connector,
+    ContactPoint,
+    Display,
+    Lidar,
+    LidarPoint,
+    Motion,
+    Pen,
+    Radar,
+    RadarTarget,
+    RangeFinder,
+    Skin,
+    Speaker,
+    VacuumGripper,
+)
+from mazesim.webots.keyboard import Joystick, Keyboard, Mouse, MouseState
+from mazesim.webots.radio_devices import Emitter, Receiver
+from mazesim.webots.robot import ControllerStopped, Robot
+from mazesim.webots.sensors import (
+    GPS,
+    Accelerometer,
+    Compass,
+    Gyro,
+    InertialUnit,
+    LightSensor,
+    TouchSensor,
+)
+from mazesim.webots.supervisor import Field, Node, Supervisor
+
+#: Webots' submodules, one per class as Webots names them (``controller.distance_sensor``...),
+#: with the classes each gives.
+SUBMODULE_CLASSES: dict[str, tuple[str, ...]] = {
+    "accelerometer": ("Accelerometer",),
+    "altimeter": ("Altimeter",),
+    "ansi_codes": ("AnsiCodes",),
+    "brake": ("Brake",),
+    "camera": ("Camera", "CameraRecognitionObject"),
+    "compass": ("Compass",),
+    "connector": ("Connector",),
+    "device": ("Device",),
+    "display": ("Display",),
+    "distance_sensor": ("DistanceSensor",),
+    "emitter": ("Emitter",),
+    "field": ("Field",),
+    "gps": ("GPS",),
+    "gyro": ("Gyro",),
+    "inertial_unit": ("InertialUnit",),
+    "joystick": ("Joystick",),
+    "keyboard": ("Keyboard",),
+    "led": ("LED",),
+    "lidar": ("Lidar", "LidarPoint"),
+    "light_sensor": ("LightSensor",),
+    "motion": ("Motion",),
+    "motor": ("Motor",),
+    "mouse": ("Mouse", "MouseState"),
+    "node": ("ContactPoint", "Node"),
+    "pen": ("Pen",),
+    "position_sensor": ("PositionSensor",),
+    "radar": ("Radar", "RadarTarget"),
+    "range_finder": ("RangeFinder",),
+    "receiver": ("Receiver",),
+    "robot": ("Robot",),
+    "skin": ("Skin",),
+    "speaker": ("Speaker",),
+    "supervisor": ("Supervisor",),
+    "touch_sensor": ("TouchSensor",),
+    "vacuum_gripper": ("VacuumGripper",),
+}
+SUBMODULES = list(SUBMODULE_CLASSES)
 
 __all__ = [
     "GPS",
@@ -113,6 +146,19 @@ __all__ = [
     "TouchSensor",
     "VacuumGripper",
 ]
+
+
+def _submodule(name: str, classes: tuple[str, ...]) -> ModuleType:
+    """The submodule ``controller.<name>``, registered under this package's name, giving the
+    package's own classes."""
+    module = ModuleType(f"{__name__}.{name}", f"Webots' ``controller.{name}`` module.")
+    module.__dict__.update({cls: globals()[cls] for cls in classes}, __all__=list(classes))
+    sys.modules[module.__name__] = module
+    return module
+
+
+for _name, _classes in SUBMODULE_CLASSES.items():
+    globals()[_name] = _submodule(_name, _classes)
 
 
 def __getattr__(name: str) -> object:

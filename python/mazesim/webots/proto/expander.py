@@ -16,7 +16,7 @@ from mazesim.errors import WorldFormatError
 
 from .definition import ProtoDefinition, externproto_urls, parse_definition
 from .own_robot import OWN_ROBOT_TYPES, added_devices, outermost, with_devices
-from .resolver import ProtoSource, ProtoUnavailableError, Resolver, is_url
+from .resolver import ProtoSource, ProtoUnavailableError, Resolver
 from .stand_ins import STAND_INS
 from .syntax import Node, line_of, located_error, parse_nodes, tokenize
 from .templates import evaluate_template
@@ -348,11 +348,6 @@ def _with_def(flat: str, def_name: str) -> str:
     if words and words[0] == "DEF" and len(words) == 3:
         return f"DEF {def_name} {words[2]}"
     return f"DEF {def_name} {flat}"
-
-
-def is_remote(location: str) -> bool:
-    """Whether a PROTO came from a URL."""
-    return is_url(location)
 
 
 def _kinds(devices: list[tuple[str, str]]) -> list[tuple[str, str]]:

@@ -1,7 +1,0 @@
-"""Webots' ``controller.altimeter`` module: ``Altimeter``."""
-
-from __future__ import annotations
-
-from mazesim.webots.inert import Altimeter
-
-__all__ = ["Altimeter"]

@@ -1,7 +1,0 @@
-"""Webots' ``controller.gps`` module: ``GPS``."""
-
-from __future__ import annotations
-
-from mazesim.webots.sensors import GPS
-
-__all__ = ["GPS"]
