@@ -7,7 +7,10 @@
 - Each backticked ``mazesim.x.y`` of the core's and the binding's doc comments, of the pages
   (``README.md``, ``docs/*.md``) and of the tests' helpers (``tests/*.py``) is such a thing, and
   each backticked path of the repository (``tests/...py``, ``docs/...md``, ``crates/...rs``,
-  ``python/...``, ``examples/...``) a file or folder of it.
+  ``python/...``, ``examples/...``) a file or folder of it (the package's docstrings too).
+- Each backticked path of the core (``navigator::door``, ``mazesim_core::limits::MAX_ROBOTS``)
+  in those, in the package's docstrings and in the tests is a module of the core and names it
+  defines or re-exports.
 
 The names a module defines are read from its source (no import): its top-level definitions,
 assignments and imports, the members of its classes and what a method assigns to ``self``.
@@ -30,6 +33,11 @@ MODULE_REFERENCE = re.compile(r":mod:`~?(mazesim(?:\.\w+)*)`")
 ROLE = re.compile(r":(?:mod|func|class|data|meth|attr|exc|obj):`[~.]?([A-Za-z_][\w.]*)`")
 #: A dotted name of the package written in backticks (one or two), calls' ``()`` allowed.
 DOTTED = re.compile(r"`+(mazesim(?:\.[A-Za-z_]\w*)+)(?:\(\))?`+")
+#: A path of the core written in backticks: ``navigator::door``, ``mazesim_core::limits::X``.
+CORE_PATH = re.compile(r"`+((?:mazesim_core|crate|[a-z_]+)(?:::[A-Za-z_]\w*)+)`+")
+#: Paths of other projects' trees that the package's docstrings cite (Webots' documentation).
+ELSEWHERE = {"docs/reference/javascript-procedural-proto.md"}
+CORE = REPOSITORY / "crates" / "mazesim-core" / "src"
 #: A path of the repository written in backticks.
 REPOSITORY_PATH = re.compile(
     r"`+((?:tests|docs|crates|python|examples|benches|worlds|robots)/[\w./-]*\w)`+"
@@ -169,6 +177,49 @@ def unresolved_roles(root: Path = ROOT) -> list[str]:
     ]
 
 
+ITEM = re.compile(
+    r"\b(?:fn|struct|enum|const|static|type|trait|mod)\s+([A-Za-z_]\w*)|^\s+([A-Z]\w*)[,({]",
+    re.M,
+)
+#: A ``pub use`` of the core, whose names it re-exports.
+REEXPORT = re.compile(r"^\s*pub use ([^;]*);", re.M)
+
+
+@functools.cache
+def items_of(scope: Path) -> frozenset[str]:
+    """The names a module of the core (its file, or its folder) defines or re-exports: functions,
+    types, constants, modules and, loosely, enum variants (identifiers that start a line)."""
+    files = sorted(scope.rglob("*.rs")) if scope.is_dir() else [scope]
+    texts = [path.read_text(encoding="utf-8") for path in files]
+    defined = {name for text in texts for found in ITEM.findall(text) for name in found if name}
+    exported = {
+        name
+        for text in texts
+        for statement in REEXPORT.findall(text)
+        for name in re.findall(r"\w+", statement.rsplit("::", 1)[-1])
+    }
+    return frozenset(defined | exported)
+
+
+def core_path_exists(path: str) -> bool | None:
+    """Whether ``path`` (``navigator::door::wrap``) is a module of the core followed by names
+    that module defines; None when it does not start with a module of the core (``std::f64``,
+    ``Batch::step``)."""
+    parts = path.split("::")
+    if parts[0] in ("mazesim_core", "crate"):
+        parts = parts[1:]
+    elif not ((CORE / parts[0]).is_dir() or (CORE / f"{parts[0]}.rs").is_file()):
+        return None
+    scope = CORE / "lib.rs"
+    folder = CORE
+    while parts and ((folder / parts[0]).is_dir() or (folder / f"{parts[0]}.rs").is_file()):
+        folder, parts = folder / parts[0], parts[1:]
+        scope = folder if folder.is_dir() else folder.with_suffix(".rs")
+    return all(part in items_of(scope) for part in parts[:1]) and all(
+        part in items_of(CORE) for part in parts[1:]
+    )
+
+
 def documents() -> list[Path]:
     """The pages, the Rust sources and the tests' helpers whose backticked names and paths are
     checked."""
@@ -177,8 +228,14 @@ def documents() -> list[Path]:
         *sorted((REPOSITORY / "docs").glob("*.md")),
         *sorted((REPOSITORY / "crates").rglob("*.rs")),
         ROOT / "_core.pyi",
+        *python_sources(),
         *sorted(p for p in (REPOSITORY / "tests").glob("*.py") if not p.name.startswith("test_")),
     ]
+
+
+def python_sources() -> list[Path]:
+    """The package's modules, whose docstrings may name the core's modules too."""
+    return sorted(ROOT.rglob("*.py"))
 
 
 def test_docstrings_name_only_modules_that_exist() -> None:
@@ -232,12 +289,39 @@ def test_pages_and_doc_comments_name_only_things_that_exist() -> None:
         where = path.relative_to(REPOSITORY)
         names = sorted(set(DOTTED.findall(text)))
         found += [f"{where}: {name}" for name in names if not resolves(name)]
+        found += [
+            f"{where}: {name}"
+            for name in sorted(set(CORE_PATH.findall(text)))
+            if core_path_exists(name) is False
+        ]
         # A crate's own tests name their data from the crate's folder.
         bases = [REPOSITORY, *[parent for parent in path.parents if parent.parent.name == "crates"]]
         found += [
             f"{where}: {name}"
             for name in sorted(set(REPOSITORY_PATH.findall(text)))
             if not any(mark in name for mark in ("*", ".."))
+            and name not in ELSEWHERE
             and not any((base / name).exists() for base in bases)
         ]
     assert not found, "pages and doc comments name things that do not exist:\n" + "\n".join(found)
+
+
+def test_the_tests_name_only_core_modules_that_exist() -> None:
+    here = Path(__file__).resolve()
+    found = [
+        f"{path.relative_to(REPOSITORY)}: {name}"
+        for path in sorted((REPOSITORY / "tests").rglob("*.py"))
+        if path != here and "data" not in path.relative_to(REPOSITORY / "tests").parts
+        for name in sorted(set(CORE_PATH.findall(path.read_text(encoding="utf-8"))))
+        if core_path_exists(name) is False
+    ]
+    assert not found, "tests name core modules that do not exist:\n" + "\n".join(found)
+
+
+def test_the_core_path_reader_finds_what_is_gone() -> None:
+    assert core_path_exists("navigator::door::wrap")
+    assert core_path_exists("mazesim_core::limits::MAX_ROBOTS")
+    assert core_path_exists("crate::Batch::run_steps")
+    assert core_path_exists("mazesim_core::qlearning") is False
+    assert core_path_exists("control::door") is False
+    assert core_path_exists("std::f64::consts") is None
