@@ -3,10 +3,10 @@ slow reference that the core's round (:func:`mazesim._core.train_lower_round`, w
 :meth:`mazesim.learn.lower.LowerTrainer.run_round` calls) is checked against bit for bit.
 
 The core follows it operation for operation: the sub-tasks' odometry of
-:class:`mazesim.learn.subtasks.SubTaskTracker`, the Table 4.1 states of ``lower_level_states``,
-the batch updates of :func:`mazesim.learn.qlearning.batch_update` for each decision and its mirror
-image, and, for a fleet, each group stepped in its own batch and read through its map into the
-seed robot's volts.
+:class:`navigator_oracle.SubTaskTracker` (the core's ``navigator::door``), the Table 4.1 states
+of ``lower_level_states``, the batch updates of :func:`mazesim.learn.qlearning.batch_update`
+for each decision and its mirror image, and, for a fleet, each group stepped in its own batch
+and read through its map into the seed robot's volts.
 """
 
 from __future__ import annotations

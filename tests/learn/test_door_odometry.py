@@ -1,4 +1,4 @@
-"""The door sub-tasks' odometry as the core computes it (``mazesim_core::control::door``) must
+"""The door sub-tasks' odometry as the core computes it (``mazesim_core::navigator::door``) must
 give SubTaskTracker's phases and ends bit for bit. The core's tests replay the file
 ``crates/mazesim-core/tests/data/door_subtasks.txt``; this test checks that the file is what
 the Python tracker does today. Rewrite it with ``python tests/learn/test_door_odometry.py``.

@@ -16,8 +16,9 @@
 //! ```
 //!
 //! Modules are grouped by subsystem below, from the ground up; `Batch` has one `impl` per concern
-//! (stepping in [`batch`], the multi-step call in [`rollout`], the navigator's training round in
-//! [`navigator::training`]), and [`prelude`] brings the types most programs start from.
+//! (stepping in [`batch`], the multi-step call in [`rollout`], the robot axis of worlds of several
+//! robots in [`swarm`]; the navigator's training round, [`navigator::training`], drives batches
+//! from outside them), and [`prelude`] brings the types most programs start from.
 #![warn(missing_docs)]
 
 // World and geometry: the format and walls, seeded mazes, barcode code books.

@@ -1,7 +1,7 @@
 """The ``mazesim`` command line.
 
 :func:`main` is the ``mazesim`` entry point; :func:`build_parser` builds its parser from the
-command modules of this package (:data:`COMMAND_MODULES`), each adding its subcommand(s). Building
+command modules of this package (:data:`COMMANDS`), each adding its subcommand(s). Building
 the parsers imports only light modules: a command imports what it needs when it runs. Errors are
 printed as one line, ``mazesim: error: <message>``, with exit code 2.
 """

@@ -114,13 +114,13 @@ def register(commands: Any) -> None:
         action="store_true",
         help="the door sub-tasks' phases also count the distance driven since the checkpoint "
         "(18 phases), so a robot that cannot see a door from the corridor's middle (an e-puck's "
-        "own sensors, dark walls) can learn where it is; trains and runs from Python",
+        "own sensors, dark walls) can learn where it is",
     )
     train.add_argument(
         "--blind-forward",
         action="store_true",
         help="'Corridors and Corners' drives forward where no sensor sees a wall, in training "
-        "and after; trains from Python",
+        "and after",
     )
     train.add_argument(
         "--hold-heading",
@@ -128,7 +128,7 @@ def register(commands: Any) -> None:
         help="there, it also holds its heading on the maze's grid: it steers back to the nearest "
         "multiple of 90 degrees and finishes a turn on the spot it began (implies "
         "--blind-forward); for robots that drive blind down a corridor's middle, such as the "
-        "e-puck's own sensors; trains and runs from Python",
+        "e-puck's own sensors",
     )
     train.add_argument(
         "--tensorboard",

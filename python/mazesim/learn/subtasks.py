@@ -11,7 +11,7 @@ number    name                       phases  what it does
 
 **State.** Corridors and Corners sees the distance state of :mod:`mazesim.learn.discretise`
 (4096 values). The door sub-tasks add a phase, the robot's heading change since the sub-task
-began in three bins (:func:`heading_phases`), and see ``distance_state + 4096 * phase``
+began in three bins (the core's ``navigator::door``), and see ``distance_state + 4096 * phase``
 (12288 values):
 
 - the turns: 0 while the robot has turned less than 30 degrees towards its side, 1 up to 60
@@ -156,7 +156,6 @@ DISTANCE_PHASES: tuple[int, ...] = (1,) + (MAX_PHASES * (len(DISTANCE_EDGES) + 1
 BLIND_STATE = NUM_STATES - 1
 #: The heading change each sub-task aims at (radians, counter-clockwise positive).
 TARGET_TURN: tuple[float, ...] = (0.0, -math.pi / 2.0, math.pi / 2.0, 0.0)
-#: The navigator's control step in milliseconds: two 32 ms physics steps of the maze worlds.
 #: Turn towards its side (radians) at which a turn enters phase 1 and phase 2.
 TURN_PHASE_ANGLES = (math.radians(30.0), math.radians(60.0))
 #: Heading change (radians) beyond which "Going forward on a door" is in phase 0 or 2.

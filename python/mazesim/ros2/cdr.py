@@ -3,8 +3,8 @@ messages the bridge sends and receives, with :mod:`struct`.
 
 Cyclone DDS's Python serializer takes 50-100 µs a message; these take a few, which is what lets
 the bridge publish its whole topic set at thousands of steps per second. Every encoder is checked
-against ``rosbags``' independent serializer (``tests/ros2/test_cdr.py``). Offsets are aligned as
-CDR aligns them: from the start of the payload, after the 4-byte encapsulation header.
+against ``rosbags``' independent serializer (``tests/ros2/test_ros2_cdr.py``). Offsets are
+aligned as CDR aligns them: from the start of the payload, after the 4-byte encapsulation header.
 """
 
 from __future__ import annotations

@@ -1,8 +1,12 @@
 //! Controllers that run in the core, per environment, for the multi-step call
 //! ([`crate::Batch::run_steps`]): each maps an environment's latest readings (and, for those
-//! that draw random numbers, its own seeded stream) to the wheel speeds of its next step. Each
-//! gives, bit for bit, the wheel speeds of its Python counterpart on the same readings, so that a
-//! multi-step call equals stepping the batch from Python one step at a time.
+//! that draw random numbers, its own seeded stream) to the wheel speeds of its next step.
+//! Braitenberg and avoid-collision give, bit for bit, the wheel speeds of their Python
+//! counterparts (`mazesim.benchmark.workloads`, `mazesim.controllers.AvoidCollision`) on the
+//! same readings, and the tabular one those of the navigator's per-step
+//! [`crate::navigator::Navigator`], so that a multi-step call equals stepping the batch from
+//! Python one step at a time; random wheels draw from the core's streams (the same law as the
+//! Python `random` workload, other draws).
 
 pub mod avoid_collision;
 pub mod braitenberg;

@@ -130,7 +130,7 @@ pub fn wrap(angle: f64) -> f64 {
 }
 
 /// The phase of `subtask` after a heading change of `change` radians
-/// (`mazesim.learn.subtasks.heading_phases`).
+/// (`heading_phases` of `tests/navigator_oracle.py`).
 pub fn heading_phase(subtask: usize, change: f64) -> usize {
     if subtask == CORRIDOR {
         return 0;

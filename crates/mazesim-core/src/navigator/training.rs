@@ -2,10 +2,10 @@
 //! batch practises its sub-task, acting epsilon-greedily from the stacked tables, and the tables
 //! learn from every finished decision and its mirror image, for a whole round in one call.
 //!
-//! The round follows `LowerTrainer.run_round(stepwise=True)` operation for operation in f64 (the same
-//! products and sums in the same order, the sub-tasks' odometry of [`crate::navigator::door`], the
-//! Table 4.1 state of [`crate::navigator::Discretiser`], the batch updates of [`crate::navigator::qlearning`]),
-//! so that both give the same tables bit for bit. Its random numbers come from the caller, drawn
+//! The round follows the numpy reference round of `tests/lower_oracle.py` operation for operation
+//! in f64 (the same products and sums in the same order, the sub-tasks' odometry of
+//! [`crate::navigator::door`], the Table 4.1 state of [`crate::navigator::Discretiser`], the batch
+//! updates of [`crate::navigator::qlearning`]), so that both give the same tables bit for bit. Its random numbers come from the caller, drawn
 //! before the round: each robot's queue of episode starts and each step's exploration draws. The
 //! robots step in parallel; everything between two steps runs in robot order on the calling
 //! thread, so the result does not depend on the thread count.
