@@ -31,13 +31,19 @@ impl PyWorld {
     }
 }
 
+/// A goal disc (x, y, radius) as Python floats.
+pub(crate) fn goal_tuple(g: mazesim_core::world::Goal) -> (f64, f64, f64) {
+    (g.center[0], g.center[1], g.radius)
+}
+
 /// Rows of `N` numbers as an `(len, N)` numpy array.
 pub(crate) fn rows_to_array<'py, const N: usize>(
     py: Python<'py>,
-    rows: Vec<[f64; N]>,
+    rows: impl IntoIterator<Item = [f64; N]>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    let flat: Vec<f64> = rows.iter().flatten().copied().collect();
-    numpy::PyArray1::from_vec(py, flat).reshape([rows.len(), N])
+    let flat: Vec<f64> = rows.into_iter().flatten().collect();
+    let len = flat.len() / N;
+    numpy::PyArray1::from_vec(py, flat).reshape([len, N])
 }
 
 #[pymethods]
@@ -168,33 +174,16 @@ impl PyWorld {
 
     #[getter]
     fn goal(&self) -> PyResult<Option<(f64, f64, f64)>> {
-        enter(|| {
-            Ok({
-                self.inner
-                    .goal()
-                    .map(|g| (g.center[0], g.center[1], g.radius))
-            })
-        })
+        enter(|| Ok(self.inner.goal().map(goal_tuple)))
     }
 
     /// (N, 6) array: cx, cy, sx, sy, yaw, reflectance of every wall box.
     fn wall_boxes<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
         enter(|| {
-            let rows = self
-                .inner
-                .walls()
-                .iter()
-                .map(|w| {
-                    [
-                        w.center[0],
-                        w.center[1],
-                        2.0 * w.half[0],
-                        2.0 * w.half[1],
-                        w.yaw,
-                        w.reflectance,
-                    ]
-                })
-                .collect();
+            let rows = self.inner.walls().iter().map(|w| {
+                let [sx, sy] = [2.0 * w.half[0], 2.0 * w.half[1]];
+                [w.center[0], w.center[1], sx, sy, w.yaw, w.reflectance]
+            });
             rows_to_array(py, rows)
         })
     }
