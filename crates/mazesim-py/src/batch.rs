@@ -24,10 +24,15 @@ use crate::world::{world_argument, PyWorld};
 #[pyclass(name = "BatchSimulator", module = "mazesim._core", frozen)]
 pub struct PyBatch {
     pub(crate) inner: Exclusive<Batch>,
+    /// Number of environments.
+    #[pyo3(get, name = "num_envs")]
     n: usize,
-    /// Robots per environment: 1 but in a batch of worlds of several robots.
+    /// Robots per environment (1 but in a batch of worlds of several robots).
+    #[pyo3(get, name = "robots_per_env")]
     robots: usize,
+    #[pyo3(get)]
     distance_width: usize,
+    #[pyo3(get)]
     ground_width: usize,
 }
 
@@ -348,28 +353,10 @@ impl PyBatch {
         })
     }
 
-    /// Number of environments.
-    #[getter]
-    fn num_envs(&self) -> usize {
-        self.n
-    }
-    /// Robots per environment (1 but in a batch of worlds of several robots).
-    #[getter]
-    fn robots_per_env(&self) -> usize {
-        self.robots
-    }
     /// Floats per observation row (distance sensors then ground sensors).
     #[getter]
     fn observation_width(&self) -> usize {
         self.width()
-    }
-    #[getter]
-    fn distance_width(&self) -> usize {
-        self.distance_width
-    }
-    #[getter]
-    fn ground_width(&self) -> usize {
-        self.ground_width
     }
 
     /// Bytes the batch holds per environment: each env's own state, plus each distinct world

@@ -156,10 +156,20 @@ impl PyAvoidCollisionSettings {
 #[pyclass(name = "TabularSettings", module = "mazesim._core", frozen)]
 pub struct PyTabularSettings {
     pub(crate) policy: TabularPolicy,
+    /// How many Q-tables the controller acts from.
+    #[pyo3(get)]
     tables: usize,
+    /// The rate of uniformly random allowed actions, in [0, 1].
+    #[pyo3(get)]
     epsilon: f64,
+    /// Whether a spin on the spot goes on the way the last step turned.
+    #[pyo3(get)]
     hold_spins: bool,
+    /// Whether Corridors and Corners holds its heading where no sensor sees a wall.
+    #[pyo3(get)]
     hold_heading: bool,
+    /// The motor limit whose fractions every robot drives at (each robot's own when None).
+    #[pyo3(get)]
     wheel_speed_limit: Option<f64>,
 }
 
@@ -221,36 +231,6 @@ impl PyTabularSettings {
                 wheel_speed_limit,
             })
         })
-    }
-
-    /// How many Q-tables the controller acts from.
-    #[getter]
-    fn tables(&self) -> usize {
-        self.tables
-    }
-
-    /// The rate of uniformly random allowed actions, in [0, 1].
-    #[getter]
-    fn epsilon(&self) -> f64 {
-        self.epsilon
-    }
-
-    /// Whether a spin on the spot goes on the way the last step turned.
-    #[getter]
-    fn hold_spins(&self) -> bool {
-        self.hold_spins
-    }
-
-    /// Whether Corridors and Corners holds its heading where no sensor sees a wall.
-    #[getter]
-    fn hold_heading(&self) -> bool {
-        self.hold_heading
-    }
-
-    /// The motor limit whose fractions every robot drives at (each robot's own when None).
-    #[getter]
-    fn wheel_speed_limit(&self) -> Option<f64> {
-        self.wheel_speed_limit
     }
 
     fn __repr__(&self) -> String {

@@ -13,7 +13,7 @@ use crate::guard::{enter, enter_detached};
 use crate::lock::Exclusive;
 use crate::profile::{PyRobotProfile, RobotArg};
 use crate::tasks::{PyStepBounds, PyTaskFeatures};
-use crate::world::{goal_tuple, world_argument, PyWorld};
+use crate::world::{dicts, goal_tuple, world_argument, PyWorld};
 
 /// What a busy simulator is called in `SimulatorBusyError`.
 const SIMULATOR: &str = "this Simulator";
@@ -479,16 +479,12 @@ impl PySimulator {
     ) -> PyResult<Vec<Bound<'py, PyDict>>> {
         let (list, dt) =
             self.read_robot(robot_index, |s| (s.crossings().to_vec(), s.control_step()))?;
-        list.iter()
-            .map(|c| {
-                let d = PyDict::new(py);
-                d.set_item("checkpoint", c.checkpoint)?;
-                d.set_item("direction", if c.forward { "arrival" } else { "departure" })?;
-                d.set_item("step", c.step)?;
-                d.set_item("time", c.step as f64 * dt)?;
-                Ok(d)
-            })
-            .collect()
+        dicts(py, &list, |d, c| {
+            d.set_item("checkpoint", c.checkpoint)?;
+            d.set_item("direction", if c.forward { "arrival" } else { "departure" })?;
+            d.set_item("step", c.step)?;
+            d.set_item("time", c.step as f64 * dt)
+        })
     }
 
     #[getter]

@@ -289,7 +289,8 @@ mod tests {
         assert_eq!(twice.slip_on_contact, 0.75);
         assert_eq!(twice.wall_reflectance, 0.25);
         assert!((twice.wheel_radius - 0.0205 * 1.05 * 1.05).abs() < 1e-15);
-        let bad: [(fn(&mut Perturbation), &str); 10] = [
+        type Setter = fn(&mut Perturbation);
+        let bad: [(Setter, &str); 10] = [
             (|p| p.wheel_radius_scale = 0.0, "wheel_radius_scale"),
             (|p| p.axle_length_scale = f64::NAN, "axle_length_scale"),
             (|p| p.motor_gains = [1.0, -1.0], "motor_gains (right)"),
