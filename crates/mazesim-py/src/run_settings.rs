@@ -292,9 +292,17 @@ pub struct PyRunSettings {
     #[pyo3(get)]
     pub(crate) limits: Py<PyEpisodeLimits>,
     pub(crate) seeds: Option<Seeds>,
+    /// The seeds of the envs' controller streams (an int ``s`` gives env ``i`` ``s + i``).
+    #[pyo3(get, name = "seeds")]
     seeds_given: Option<Py<PyAny>>,
+    /// (N,) bool, the envs that step (all when None).
+    #[pyo3(get)]
     pub(crate) active: Option<Py<PyAny>>,
+    /// The navigator's running sub-task of each env, arrays by key, read and written in place.
+    #[pyo3(get)]
     pub(crate) subtasks: Option<Py<PyAny>>,
+    /// The per-step outputs to fill, arrays by key.
+    #[pyo3(get)]
     pub(crate) trace: Option<Py<PyAny>>,
 }
 
@@ -352,30 +360,6 @@ impl PyRunSettings {
                 trace: given(trace),
             })
         })
-    }
-
-    /// The seeds of the envs' controller streams (an int ``s`` gives env ``i`` ``s + i``).
-    #[getter]
-    fn seeds(&self, py: Python<'_>) -> Option<Py<PyAny>> {
-        self.seeds_given.as_ref().map(|v| v.clone_ref(py))
-    }
-
-    /// (N,) bool, the envs that step (all when None).
-    #[getter]
-    fn active(&self, py: Python<'_>) -> Option<Py<PyAny>> {
-        self.active.as_ref().map(|v| v.clone_ref(py))
-    }
-
-    /// The navigator's running sub-task of each env, arrays by key, read and written in place.
-    #[getter]
-    fn subtasks(&self, py: Python<'_>) -> Option<Py<PyAny>> {
-        self.subtasks.as_ref().map(|v| v.clone_ref(py))
-    }
-
-    /// The per-step outputs to fill, arrays by key.
-    #[getter]
-    fn trace(&self, py: Python<'_>) -> Option<Py<PyAny>> {
-        self.trace.as_ref().map(|v| v.clone_ref(py))
     }
 
     fn __repr__(&self, py: Python<'_>) -> String {

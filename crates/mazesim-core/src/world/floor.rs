@@ -66,39 +66,35 @@ impl FloorPaint {
         let bounds = regions
             .iter()
             .fold(Bounds::EMPTY, |b, r| b.union(r.shape.bounds()));
-        if bounds.is_empty() {
-            return Self {
-                background,
-                regions,
-                turns,
-                bins: BinLists::none(),
-                slack: LEAST_SLACK,
-            };
-        }
-        // The grid covers every point within the margin of some paint.
-        let covered = bounds.grown(SPOT_MARGIN);
-        let grown = || regions.iter().map(|r| r.shape.bounds().grown(SPOT_MARGIN));
-        // Topmost first.
-        let bins = BinLists::over(covered, grown, true);
-        let g = bins.grid;
-        // The grid reaches a bin beyond the bounds, and every region lies within them.
-        let far = [
-            covered.min,
-            bounds.max,
-            [
-                g.origin[0] + (g.cols as f64 + 1.0) * g.side,
-                g.origin[1] + (g.rows as f64 + 1.0) * g.side,
-            ],
-        ]
-        .iter()
-        .flatten()
-        .fold(0.0_f64, |m, v| m.max(v.abs()));
+        let (bins, slack) = if bounds.is_empty() {
+            (BinLists::none(), LEAST_SLACK)
+        } else {
+            // The grid covers every point within the margin of some paint.
+            let covered = bounds.grown(SPOT_MARGIN);
+            let grown = || regions.iter().map(|r| r.shape.bounds().grown(SPOT_MARGIN));
+            // Topmost first.
+            let bins = BinLists::over(covered, grown, true);
+            let g = bins.grid;
+            // The grid reaches a bin beyond the bounds, and every region lies within them.
+            let far = [
+                covered.min,
+                bounds.max,
+                [
+                    g.origin[0] + (g.cols as f64 + 1.0) * g.side,
+                    g.origin[1] + (g.rows as f64 + 1.0) * g.side,
+                ],
+            ]
+            .iter()
+            .flatten()
+            .fold(0.0_f64, |m, v| m.max(v.abs()));
+            (bins, LEAST_SLACK + far * SLACK_PER_METRE)
+        };
         Self {
             background,
             regions,
             turns,
             bins,
-            slack: LEAST_SLACK + far * SLACK_PER_METRE,
+            slack,
         }
     }
 

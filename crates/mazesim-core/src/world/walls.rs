@@ -107,22 +107,14 @@ impl WallIndex {
             .flatten()
             .all(|&[x0, y0, x1, y1]| x0 <= x1 && y0 <= y1);
         let bounds = walls.iter().fold(Bounds::EMPTY, |b, w| b.union(w.bounds()));
-        if bounds.is_empty() {
-            return Self {
-                shapes,
-                frames,
-                boxes,
-                aligned,
-                aligned_ordered,
-                reflectance,
-                bins: BinLists::none(),
-                around: Neighbourhoods::default(),
-            };
-        }
         // Grown a little so that f32 rounding never drops a wall from a bin it touches.
         let grown = || walls.iter().map(|w| w.bounds().grown(1e-4));
-        let bins = BinLists::over(bounds, grown, false);
-        let around = Neighbourhoods::new(&boxes, bounds);
+        let (bins, around) = if bounds.is_empty() {
+            (BinLists::none(), Neighbourhoods::default())
+        } else {
+            let around = Neighbourhoods::new(&boxes, bounds);
+            (BinLists::over(bounds, grown, false), around)
+        };
         Self {
             shapes,
             frames,
