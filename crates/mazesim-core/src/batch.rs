@@ -702,21 +702,6 @@ impl Batch {
         })
     }
 
-    /// Sets the start pose of every environment for its later resets from `starts`, `(n, 3)` rows
-    /// of x, y, yaw. Every row is checked before any is applied: a bad row changes nothing, and
-    /// the error names its environment.
-    pub fn set_starts(&mut self, starts: &[f64]) -> Result<()> {
-        let n = self.envs.len();
-        if starts.len() != 3 * n {
-            return Err(Error::InvalidArgument(format!(
-                "expected starts of shape ({n}, 3), found {} values",
-                starts.len()
-            )));
-        }
-        let everyone: Vec<usize> = (0..n).collect();
-        self.set_starts_at(&everyone, starts)
-    }
-
     /// Sets the start pose of environments `envs` for their later resets from `starts`, one row
     /// of x, y, yaw per listed environment (the others keep theirs). Every index and row is
     /// checked before any is applied: a bad one changes nothing, and the error names its

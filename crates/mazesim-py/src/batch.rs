@@ -24,12 +24,20 @@ use crate::world::{world_argument, PyWorld};
 #[pyclass(name = "BatchSimulator", module = "mazesim._core", frozen)]
 pub struct PyBatch {
     pub(crate) inner: Exclusive<Batch>,
+    /// Number of environments.
+    #[pyo3(get, name = "num_envs")]
     n: usize,
-    /// Robots per environment: 1 but in a batch of worlds of several robots.
+    /// Robots per environment (1 but in a batch of worlds of several robots).
+    #[pyo3(get, name = "robots_per_env")]
     robots: usize,
+    #[pyo3(get)]
     distance_width: usize,
+    #[pyo3(get)]
     ground_width: usize,
 }
+
+/// A `Batch` setter of one row of three values per listed environment (or per robot of each).
+type SetRowsAt = fn(&mut Batch, &[usize], &[f64]) -> mazesim_core::Result<()>;
 
 /// Most control steps one `run` call takes.
 const MAX_RUN_STEPS: usize = 1 << 40;
@@ -41,10 +49,6 @@ type OutputBuffers<'py> = (
     Bound<'py, PyArrayDyn<bool>>,
     Bound<'py, PyArrayDyn<i32>>,
 );
-
-fn bad(msg: String) -> PyErr {
-    invalid(msg)
-}
 
 impl PyBatch {
     /// Runs `work` on the batch with the four output buffers (observations, poses, colliding,
@@ -138,7 +142,7 @@ impl PyBatch {
         if self.robots == 1 {
             Ok(())
         } else {
-            Err(bad(format!(
+            Err(invalid(format!(
                 "expected a batch of worlds of one robot for {what}, found {} robots per \
                  environment: {instead}",
                 self.robots
@@ -161,13 +165,23 @@ impl PyBatch {
             ))
         })?;
         let indices = copied::<i64>(envs, "envs", "int64", &[m])?;
-        let mut shape = vec![m];
-        if self.robots > 1 {
-            shape.push(self.robots);
-        }
-        shape.push(3);
+        let mut shape = self.shape(&[3]);
+        shape[0] = m;
         let rows = copied::<f64>(values, what, "float64", &shape)?;
         Ok((env_indices(&indices, self.n)?, rows))
+    }
+
+    /// Applies `rows` to the environments `indices` with `one` (a robot per environment) or
+    /// `several` (a batch of worlds of several robots).
+    fn set_rows_at(
+        &self,
+        indices: &[usize],
+        rows: &[f64],
+        one: SetRowsAt,
+        several: SetRowsAt,
+    ) -> PyResult<()> {
+        let apply = if self.robots > 1 { several } else { one };
+        self.inner.with(|b| apply(b, indices, rows))?.py()
     }
 }
 
@@ -201,7 +215,7 @@ impl<'py> Borrowed<'py> {
     }
 
     pub(crate) fn outputs(&mut self) -> PyResult<StepOutputs<'_>> {
-        let unusable = |name: &str| bad(format!("expected {name} to be a contiguous array"));
+        let unusable = |name: &str| invalid(format!("expected {name} to be a contiguous array"));
         Ok(StepOutputs {
             observations: self
                 .obs
@@ -218,10 +232,6 @@ impl<'py> Borrowed<'py> {
                 .map_err(|_| unusable("crossings"))?,
         })
     }
-}
-
-fn seeds_from(seeds: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<u64>> {
-    Seeds::given(seeds, n)?.of(n)
 }
 
 /// Seeds as given: one int (env `i` gets `seed + i`) or one per environment.
@@ -256,7 +266,7 @@ impl Seeds {
         match self {
             Seeds::From(base) => Ok((0..n as u64).map(|i| base.wrapping_add(i)).collect()),
             Seeds::Each(list) if list.len() == n => Ok(list.clone()),
-            Seeds::Each(list) => Err(bad(format!("expected {n} seeds, found {}", list.len()))),
+            Seeds::Each(list) => Err(invalid(format!("expected {n} seeds, found {}", list.len()))),
         }
     }
 }
@@ -286,8 +296,8 @@ impl PyBatch {
             let threads = threads.count("threads", MAX_THREADS)?;
             let noise = noise.value("noise", "a bool")?;
             let worlds: Vec<Arc<World>> = if let Ok(w) = worlds.cast::<PyWorld>() {
-                let n =
-                    num_envs.ok_or_else(|| bad("expected num_envs with a single world".into()))?;
+                let n = num_envs
+                    .ok_or_else(|| invalid("expected num_envs with a single world".into()))?;
                 let world = &w.get().inner;
                 let walls = world.solid_walls().len() as u128 * n as u128;
                 mazesim_core::batch::check_size(n, walls).py()?;
@@ -299,11 +309,11 @@ impl PyBatch {
                         .map(|w| w.cast_into::<PyWorld>())
                         .collect::<Result<_, _>>()
                         .map_err(|_| {
-                            bad("expected worlds to be a World or a sequence of World".into())
+                            invalid("expected worlds to be a World or a sequence of World".into())
                         })?;
                 if let Some(n) = num_envs {
                     if n != list.len() {
-                        return Err(bad(format!(
+                        return Err(invalid(format!(
                             "expected num_envs to equal len(worlds) = {}, found {n}",
                             list.len()
                         )));
@@ -313,9 +323,10 @@ impl PyBatch {
             };
             let n = worlds.len();
             let seeds = match seeds {
-                Some(s) => seeds_from(s, n)?,
-                None => (0..n as u64).collect(),
+                Some(s) => Seeds::given(s, n)?,
+                None => Seeds::From(0),
             };
+            let seeds = seeds.of(n)?;
             let profiles = robot.profiles(n)?;
             let (dw, gw) = (
                 profiles[0].distance_sensors.len(),
@@ -342,28 +353,10 @@ impl PyBatch {
         })
     }
 
-    /// Number of environments.
-    #[getter]
-    fn num_envs(&self) -> usize {
-        self.n
-    }
-    /// Robots per environment (1 but in a batch of worlds of several robots).
-    #[getter]
-    fn robots_per_env(&self) -> usize {
-        self.robots
-    }
     /// Floats per observation row (distance sensors then ground sensors).
     #[getter]
     fn observation_width(&self) -> usize {
         self.width()
-    }
-    #[getter]
-    fn distance_width(&self) -> usize {
-        self.distance_width
-    }
-    #[getter]
-    fn ground_width(&self) -> usize {
-        self.ground_width
     }
 
     /// Bytes the batch holds per environment: each env's own state, plus each distinct world
@@ -543,14 +536,13 @@ impl PyBatch {
     fn set_starts(&self, starts: &Bound<'_, PyAny>) -> PyResult<()> {
         enter(|| {
             let rows = copied::<f64>(starts, "starts", "float64", &self.shape(&[3]))?;
-            if self.robots > 1 {
-                let everyone: Vec<usize> = (0..self.n).collect();
-                return self
-                    .inner
-                    .with(|b| b.set_swarm_starts_at(&everyone, &rows))?
-                    .py();
-            }
-            self.inner.with(|b| b.set_starts(&rows))?.py()
+            let everyone: Vec<usize> = (0..self.n).collect();
+            self.set_rows_at(
+                &everyone,
+                &rows,
+                Batch::set_starts_at,
+                Batch::set_swarm_starts_at,
+            )
         })
     }
 
@@ -595,13 +587,12 @@ impl PyBatch {
     fn set_starts_at(&self, envs: &Bound<'_, PyAny>, starts: &Bound<'_, PyAny>) -> PyResult<()> {
         enter(|| {
             let (indices, rows) = self.listed_rows(envs, starts, "starts")?;
-            if self.robots > 1 {
-                return self
-                    .inner
-                    .with(|b| b.set_swarm_starts_at(&indices, &rows))?
-                    .py();
-            }
-            self.inner.with(|b| b.set_starts_at(&indices, &rows))?.py()
+            self.set_rows_at(
+                &indices,
+                &rows,
+                Batch::set_starts_at,
+                Batch::set_swarm_starts_at,
+            )
         })
     }
 
@@ -612,13 +603,12 @@ impl PyBatch {
     fn set_goals_at(&self, envs: &Bound<'_, PyAny>, goals: &Bound<'_, PyAny>) -> PyResult<()> {
         enter(|| {
             let (indices, rows) = self.listed_rows(envs, goals, "goals")?;
-            if self.robots > 1 {
-                return self
-                    .inner
-                    .with(|b| b.set_swarm_goals_at(&indices, &rows))?
-                    .py();
-            }
-            self.inner.with(|b| b.set_goals_at(&indices, &rows))?.py()
+            self.set_rows_at(
+                &indices,
+                &rows,
+                Batch::set_goals_at,
+                Batch::set_swarm_goals_at,
+            )
         })
     }
 

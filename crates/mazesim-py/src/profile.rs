@@ -29,6 +29,11 @@ impl PyRobotProfile {
             inner: Arc::new(RobotProfile::builtin(name).py()?),
         })
     }
+
+    /// The lookup tables of the distance sensors, device order.
+    fn distance_tables(&self) -> impl Iterator<Item = &LookupTable> {
+        self.inner.distance_sensors.iter().map(|s| &s.model.table)
+    }
 }
 
 /// A `robot` argument as given: a built-in profile's name, a `RobotProfile`, a list or tuple of
@@ -113,8 +118,6 @@ impl<'a, 'py> FromPyObject<'a, 'py> for RobotArg {
     }
 }
 
-/// The left and right gains of a `motor_gains` argument: a sequence of two real numbers.
-/// The keywords of `RobotProfile.perturbed`.
 /// The error for a sensor index at or above the robot's `count` sensors of that `kind`.
 fn sensor_index_error(kind: &str, count: usize, index: usize) -> PyErr {
     crate::errors::to_py(mazesim_core::Error::InvalidArgument(format!(
@@ -310,13 +313,12 @@ impl PyRobotProfile {
     #[getter]
     fn distance_sensor_names(&self) -> PyResult<Vec<String>> {
         enter(|| {
-            Ok({
-                self.inner
-                    .distance_sensors
-                    .iter()
-                    .map(|s| s.name.clone())
-                    .collect()
-            })
+            Ok(self
+                .inner
+                .distance_sensors
+                .iter()
+                .map(|s| s.name.clone())
+                .collect())
         })
     }
     #[getter]
@@ -326,22 +328,12 @@ impl PyRobotProfile {
     /// Largest noise-free reading of any distance sensor (its table's largest output).
     #[getter]
     fn distance_sensor_max(&self) -> PyResult<f64> {
-        enter(|| {
-            Ok(largest(
-                self.inner.distance_sensors.iter().map(|s| &s.model.table),
-                LookupTable::max_output,
-            ))
-        })
+        enter(|| Ok(largest(self.distance_tables(), LookupTable::max_output)))
     }
     /// Range of the distance sensors in metres (the longest table's last input).
     #[getter]
     fn distance_sensor_range(&self) -> PyResult<f64> {
-        enter(|| {
-            Ok(largest(
-                self.inner.distance_sensors.iter().map(|s| &s.model.table),
-                LookupTable::max_input,
-            ))
-        })
+        enter(|| Ok(largest(self.distance_tables(), LookupTable::max_input)))
     }
     /// Largest noise-free reading of any ground sensor (its table's largest output).
     #[getter]
@@ -356,40 +348,32 @@ impl PyRobotProfile {
     #[getter]
     fn ground_sensor_names(&self) -> PyResult<Vec<String>> {
         enter(|| {
-            Ok({
-                self.inner
-                    .ground_sensors
-                    .iter()
-                    .map(|s| s.name.clone())
-                    .collect()
-            })
+            Ok(self
+                .inner
+                .ground_sensors
+                .iter()
+                .map(|s| s.name.clone())
+                .collect())
         })
     }
 
     /// (N, 3) array: x, y, heading of each distance sensor in the robot frame.
     fn distance_sensor_poses<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let sensors = self.inner.distance_sensors.iter();
         enter(|| {
-            let rows = self
-                .inner
-                .distance_sensors
-                .iter()
-                .map(|s| [s.position[0], s.position[1], s.heading])
-                .collect();
-            rows_to_array(py, rows)
+            rows_to_array(
+                py,
+                sensors.map(|s| [s.position[0], s.position[1], s.heading]),
+            )
         })
     }
 
     /// (N, 2) array: nearest and farthest distance in metres of each distance sensor's table.
     fn distance_sensor_limits<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        enter(|| {
-            let rows = self
-                .inner
-                .distance_sensors
-                .iter()
-                .map(|s| [s.model.table.min_input(), s.model.table.max_input()])
-                .collect();
-            rows_to_array(py, rows)
-        })
+        let limits = self
+            .distance_tables()
+            .map(|t| [t.min_input(), t.max_input()]);
+        enter(|| rows_to_array(py, limits))
     }
 
     /// Distance in metres at which distance sensor `index` reads `reading` off a white wall
@@ -434,15 +418,7 @@ impl PyRobotProfile {
 
     /// (N, 2) array: x, y of each ground sensor in the robot frame.
     fn ground_sensor_positions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        enter(|| {
-            let rows = self
-                .inner
-                .ground_sensors
-                .iter()
-                .map(|s| s.position)
-                .collect();
-            rows_to_array(py, rows)
-        })
+        enter(|| rows_to_array(py, self.inner.ground_sensors.iter().map(|s| s.position)))
     }
 
     fn __repr__(&self) -> PyResult<String> {

@@ -156,10 +156,20 @@ impl PyAvoidCollisionSettings {
 #[pyclass(name = "TabularSettings", module = "mazesim._core", frozen)]
 pub struct PyTabularSettings {
     pub(crate) policy: TabularPolicy,
+    /// How many Q-tables the controller acts from.
+    #[pyo3(get)]
     tables: usize,
+    /// The rate of uniformly random allowed actions, in [0, 1].
+    #[pyo3(get)]
     epsilon: f64,
+    /// Whether a spin on the spot goes on the way the last step turned.
+    #[pyo3(get)]
     hold_spins: bool,
+    /// Whether Corridors and Corners holds its heading where no sensor sees a wall.
+    #[pyo3(get)]
     hold_heading: bool,
+    /// The motor limit whose fractions every robot drives at (each robot's own when None).
+    #[pyo3(get)]
     wheel_speed_limit: Option<f64>,
 }
 
@@ -223,36 +233,6 @@ impl PyTabularSettings {
         })
     }
 
-    /// How many Q-tables the controller acts from.
-    #[getter]
-    fn tables(&self) -> usize {
-        self.tables
-    }
-
-    /// The rate of uniformly random allowed actions, in [0, 1].
-    #[getter]
-    fn epsilon(&self) -> f64 {
-        self.epsilon
-    }
-
-    /// Whether a spin on the spot goes on the way the last step turned.
-    #[getter]
-    fn hold_spins(&self) -> bool {
-        self.hold_spins
-    }
-
-    /// Whether Corridors and Corners holds its heading where no sensor sees a wall.
-    #[getter]
-    fn hold_heading(&self) -> bool {
-        self.hold_heading
-    }
-
-    /// The motor limit whose fractions every robot drives at (each robot's own when None).
-    #[getter]
-    fn wheel_speed_limit(&self) -> Option<f64> {
-        self.wheel_speed_limit
-    }
-
     fn __repr__(&self) -> String {
         let py_bool = |b: bool| if b { "True" } else { "False" };
         let limit = self
@@ -312,9 +292,17 @@ pub struct PyRunSettings {
     #[pyo3(get)]
     pub(crate) limits: Py<PyEpisodeLimits>,
     pub(crate) seeds: Option<Seeds>,
+    /// The seeds of the envs' controller streams (an int ``s`` gives env ``i`` ``s + i``).
+    #[pyo3(get, name = "seeds")]
     seeds_given: Option<Py<PyAny>>,
+    /// (N,) bool, the envs that step (all when None).
+    #[pyo3(get)]
     pub(crate) active: Option<Py<PyAny>>,
+    /// The navigator's running sub-task of each env, arrays by key, read and written in place.
+    #[pyo3(get)]
     pub(crate) subtasks: Option<Py<PyAny>>,
+    /// The per-step outputs to fill, arrays by key.
+    #[pyo3(get)]
     pub(crate) trace: Option<Py<PyAny>>,
 }
 
@@ -372,30 +360,6 @@ impl PyRunSettings {
                 trace: given(trace),
             })
         })
-    }
-
-    /// The seeds of the envs' controller streams (an int ``s`` gives env ``i`` ``s + i``).
-    #[getter]
-    fn seeds(&self, py: Python<'_>) -> Option<Py<PyAny>> {
-        self.seeds_given.as_ref().map(|v| v.clone_ref(py))
-    }
-
-    /// (N,) bool, the envs that step (all when None).
-    #[getter]
-    fn active(&self, py: Python<'_>) -> Option<Py<PyAny>> {
-        self.active.as_ref().map(|v| v.clone_ref(py))
-    }
-
-    /// The navigator's running sub-task of each env, arrays by key, read and written in place.
-    #[getter]
-    fn subtasks(&self, py: Python<'_>) -> Option<Py<PyAny>> {
-        self.subtasks.as_ref().map(|v| v.clone_ref(py))
-    }
-
-    /// The per-step outputs to fill, arrays by key.
-    #[getter]
-    fn trace(&self, py: Python<'_>) -> Option<Py<PyAny>> {
-        self.trace.as_ref().map(|v| v.clone_ref(py))
     }
 
     fn __repr__(&self, py: Python<'_>) -> String {

@@ -13,7 +13,7 @@ use crate::guard::{enter, enter_detached};
 use crate::lock::Exclusive;
 use crate::profile::{PyRobotProfile, RobotArg};
 use crate::tasks::{PyStepBounds, PyTaskFeatures};
-use crate::world::{world_argument, PyWorld};
+use crate::world::{dicts, goal_tuple, world_argument, PyWorld};
 
 /// What a busy simulator is called in `SimulatorBusyError`.
 const SIMULATOR: &str = "this Simulator";
@@ -49,6 +49,19 @@ impl PySimulator {
             IntArg::Other(what) => what.clone(),
         };
         Err(mazesim_core::swarm::bad_index(found, n)).py()
+    }
+
+    /// `with` on the swarm for a Python entry point that changes robot `robot_index` (checked),
+    /// given to `f` with the swarm.
+    fn change_robot(
+        &self,
+        robot_index: IntArg,
+        f: impl FnOnce(&mut Swarm, usize) -> mazesim_core::Result<()>,
+    ) -> PyResult<()> {
+        enter(|| {
+            let index = self.robot_index(&robot_index)?;
+            self.inner.with(|s| f(s, index))?.py()
+        })
     }
 
     /// `with` on the whole swarm for a Python entry point.
@@ -197,10 +210,7 @@ impl PySimulator {
     #[pyo3(signature = (left, right, robot_index = IntArg::ZERO), text_signature = "($self, left, right, robot_index=0)")]
     fn set_wheel_speeds(&self, left: Real, right: Real, robot_index: IntArg) -> PyResult<()> {
         let (left, right) = (left.value("left")?, right.value("right")?);
-        enter(|| {
-            let index = self.robot_index(&robot_index)?;
-            self.inner.with(|s| s.set_command(index, left, right))?.py()
-        })
+        self.change_robot(robot_index, |s, i| s.set_command(i, left, right))
     }
 
     /// Number of robots in the world.
@@ -245,10 +255,7 @@ impl PySimulator {
             d.set_item("encoders", (e[0], e[1]))?;
             d.set_item("wall_clearance", s.wall_clearance() as f64)?;
             d.set_item("last_crossing", s.last_crossing())?;
-            d.set_item(
-                "goal",
-                s.goal().map(|g| (g.center[0], g.center[1], g.radius)),
-            )?;
+            d.set_item("goal", s.goal().map(goal_tuple))?;
             d.set_item("profile", s.robot().name.clone())?;
             Ok(())
         })??;
@@ -363,43 +370,29 @@ impl PySimulator {
     #[pyo3(signature = (x, y, yaw, robot_index = IntArg::ZERO), text_signature = "($self, x, y, yaw, robot_index=0)")]
     fn set_start(&self, x: Real, y: Real, yaw: Real, robot_index: IntArg) -> PyResult<()> {
         let (x, y, yaw) = (x.value("x")?, y.value("y")?, yaw.value("yaw")?);
-        enter(|| {
-            let index = self.robot_index(&robot_index)?;
-            self.inner.with(|s| s.set_start(index, x, y, yaw))?.py()
-        })
+        self.change_robot(robot_index, |s, i| s.set_start(i, x, y, yaw))
     }
 
     /// Sets robot `robot_index`'s goal disc, centre (x, y) and radius in metres, instead of the world's.
     #[pyo3(signature = (x, y, radius, robot_index = IntArg::ZERO), text_signature = "($self, x, y, radius, robot_index=0)")]
     fn set_goal(&self, x: Real, y: Real, radius: Real, robot_index: IntArg) -> PyResult<()> {
         let (x, y, radius) = (x.value("x")?, y.value("y")?, radius.value("radius")?);
-        enter(|| {
-            let index = self.robot_index(&robot_index)?;
-            self.inner
-                .with(|s| s.robot_mut(index).and_then(|r| r.set_goal(x, y, radius)))?
-                .py()
+        self.change_robot(robot_index, |s, i| {
+            s.robot_mut(i).and_then(|r| r.set_goal(x, y, radius))
         })
     }
 
     /// The goal disc (x, y, radius) the episodes end at (`set_goal`'s, else the world's), or None.
     #[getter]
     fn goal(&self) -> PyResult<Option<(f64, f64, f64)>> {
-        enter(|| {
-            self.inner.with(|s| {
-                let goal = s.robots()[0].goal();
-                goal.map(|g| (g.center[0], g.center[1], g.radius))
-            })
-        })
+        self.read(|s| s.goal().map(goal_tuple))
     }
 
     /// Moves robot `robot_index` to (x, y, yaw) at rest and reads the sensors there.
     #[pyo3(signature = (x, y, yaw, robot_index = IntArg::ZERO), text_signature = "($self, x, y, yaw, robot_index=0)")]
     fn set_pose(&self, x: Real, y: Real, yaw: Real, robot_index: IntArg) -> PyResult<()> {
         let (x, y, yaw) = (x.value("x")?, y.value("y")?, yaw.value("yaw")?);
-        enter(|| {
-            let index = self.robot_index(&robot_index)?;
-            self.inner.with(|s| s.set_pose(index, x, y, yaw))?.py()
-        })
+        self.change_robot(robot_index, |s, i| s.set_pose(i, x, y, yaw))
     }
 
     /// Robot `robot`'s distance sensor readings (float32), device order.
@@ -486,16 +479,12 @@ impl PySimulator {
     ) -> PyResult<Vec<Bound<'py, PyDict>>> {
         let (list, dt) =
             self.read_robot(robot_index, |s| (s.crossings().to_vec(), s.control_step()))?;
-        list.iter()
-            .map(|c| {
-                let d = PyDict::new(py);
-                d.set_item("checkpoint", c.checkpoint)?;
-                d.set_item("direction", if c.forward { "arrival" } else { "departure" })?;
-                d.set_item("step", c.step)?;
-                d.set_item("time", c.step as f64 * dt)?;
-                Ok(d)
-            })
-            .collect()
+        dicts(py, &list, |d, c| {
+            d.set_item("checkpoint", c.checkpoint)?;
+            d.set_item("direction", if c.forward { "arrival" } else { "departure" })?;
+            d.set_item("step", c.step)?;
+            d.set_item("time", c.step as f64 * dt)
+        })
     }
 
     #[getter]

@@ -37,6 +37,8 @@ fn rows_of<const W: usize>(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Vec<[
 #[pyclass(name = "TaskFeatures", module = "mazesim._core", frozen)]
 pub struct PyTaskFeatures {
     inner: Exclusive<Features>,
+    /// Values of one observation.
+    #[pyo3(get)]
     width: usize,
     sensors: usize,
     num_envs: usize,
@@ -93,12 +95,6 @@ impl PyTaskFeatures {
                 inner: Exclusive::new(features, FEATURES),
             })
         })
-    }
-
-    /// Values of one observation.
-    #[getter]
-    fn width(&self) -> usize {
-        self.width
     }
 
     /// Puts environment `env` into a world: `place` (float64: goal x, y, the world's larger
@@ -297,6 +293,8 @@ fn scaled(left: f64, right: f64, max_speed: f64) -> [f32; 2] {
 pub struct PyStepBounds {
     low: Vec<f32>,
     high: Vec<f32>,
+    /// The motor limit (rad/s) the previous action's wheel speeds are divided by.
+    #[pyo3(get)]
     max_speed: f64,
 }
 
@@ -335,12 +333,6 @@ impl PyStepBounds {
     #[getter]
     fn high<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
         PyArray1::from_slice(py, &self.high)
-    }
-
-    /// The motor limit (rad/s) the previous action's wheel speeds are divided by.
-    #[getter]
-    fn max_speed(&self) -> f64 {
-        self.max_speed
     }
 
     /// Pickles (and copies) as the constructor's arguments.

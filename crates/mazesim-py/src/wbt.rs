@@ -11,12 +11,12 @@ use mazesim_core::world::values::xy;
 use mazesim_core::Error;
 use numpy::{PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList, PyString};
+use pyo3::types::{PyDict, PyString};
 
 use crate::args::{dict_argument, type_name, IntArg, Label, PathArg, SourceName, Text};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::{enter, enter_detached};
-use crate::world::PyWorld;
+use crate::world::{dicts, PyWorld};
 
 /// A device field as a Python value: a number, a list of numbers, a list of rows, a string, a
 /// list of strings or a bool.
@@ -42,22 +42,17 @@ fn robot_and_floor(out: &Bound<'_, PyDict>, import: &WbtImport) -> PyResult<()> 
     out.set_item("robot_model", import.robot_model.clone())?;
     out.set_item("robot_line", import.robot_line)?;
     out.set_item("robot_profile", &import.robot_profile)?;
-    let robots = PyList::empty(py);
-    for robot in &import.robots {
-        let d = PyDict::new(py);
+    let robots = dicts(py, &import.robots, |d, robot| {
         d.set_item("pose", robot.pose.to_vec())?;
         d.set_item("model", &robot.model)?;
         d.set_item("profile", robot.profile)?;
         d.set_item("controller", robot.controller.clone())?;
         d.set_item("name", robot.name.clone())?;
         d.set_item("def_name", robot.def_name.clone())?;
-        d.set_item("line", robot.line)?;
-        robots.append(d)?;
-    }
+        d.set_item("line", robot.line)
+    })?;
     out.set_item("robots", robots)?;
-    let devices = PyList::empty(py);
-    for device in &import.extension_devices {
-        let d = PyDict::new(py);
+    let devices = dicts(py, &import.extension_devices, |d, device| {
         d.set_item("type", &device.kind)?;
         d.set_item("name", &device.name)?;
         d.set_item("slot", &device.slot)?;
@@ -68,22 +63,18 @@ fn robot_and_floor(out: &Bound<'_, PyDict>, import: &WbtImport) -> PyResult<()> 
         for (name, value) in &device.fields {
             fields.set_item(name, device_field(py, value)?)?;
         }
-        d.set_item("fields", fields)?;
-        devices.append(d)?;
-    }
+        d.set_item("fields", fields)
+    })?;
     out.set_item("extension_devices", devices)?;
-    let textures = PyList::empty(py);
-    for texture in &import.floor_textures {
-        let d = PyDict::new(py);
+    let textures = dicts(py, &import.floor_textures, |d, texture| {
         d.set_item("urls", texture.urls.clone())?;
         d.set_item("owner", &texture.owner)?;
         d.set_item("center", texture.center.to_vec())?;
         d.set_item("size", texture.size.to_vec())?;
         d.set_item("yaw", texture.yaw)?;
         d.set_item("tile", texture.tile.to_vec())?;
-        d.set_item("candidates", texture.candidates.clone())?;
-        textures.append(d)?;
-    }
+        d.set_item("candidates", texture.candidates.clone())
+    })?;
     out.set_item("floor_textures", textures)?;
     out.set_item("floor_paint", import.paint.len())?;
     Ok(())
@@ -140,9 +131,7 @@ fn grey_images(images: Option<&Bound<'_, PyAny>>) -> PyResult<BTreeMap<String, G
 /// "warnings": [...], "robot_model", "robot_line", "robot_profile", "extension_devices", "floor_textures",
 /// "floor_paint"}`, in metres and radians, world frame, z up.
 fn report<'py>(py: Python<'py>, import: &WbtImport) -> PyResult<Bound<'py, PyDict>> {
-    let obstacles = PyList::empty(py);
-    for obstacle in &import.obstacles {
-        let d = PyDict::new(py);
+    let obstacles = dicts(py, &import.obstacles, |d, obstacle| {
         match *obstacle {
             Obstacle::Box { center, size, yaw } => {
                 d.set_item("kind", "box")?;
@@ -156,11 +145,9 @@ fn report<'py>(py: Python<'py>, import: &WbtImport) -> PyResult<Bound<'py, PyDic
                 d.set_item("radius", radius)?;
             }
         }
-        obstacles.append(d)?;
-    }
-    let bodies = PyList::empty(py);
-    for body in &import.bodies {
-        let d = PyDict::new(py);
+        Ok(())
+    })?;
+    let bodies = dicts(py, &import.bodies, |d, body| {
         let (mass, friction) = match body {
             BodySpec::Box {
                 center,
@@ -190,9 +177,8 @@ fn report<'py>(py: Python<'py>, import: &WbtImport) -> PyResult<Bound<'py, PyDic
             }
         };
         d.set_item("mass", mass.get())?;
-        d.set_item("friction", friction.get())?;
-        bodies.append(d)?;
-    }
+        d.set_item("friction", friction.get())
+    })?;
     let out = PyDict::new(py);
     out.set_item("obstacles", obstacles)?;
     out.set_item("bodies", bodies)?;

@@ -31,13 +31,33 @@ impl PyWorld {
     }
 }
 
+/// A goal disc (x, y, radius) as Python floats.
+pub(crate) fn goal_tuple(g: mazesim_core::world::Goal) -> (f64, f64, f64) {
+    (g.center[0], g.center[1], g.radius)
+}
+
+/// One dict per item of `items`, filled by `fill`.
+pub(crate) fn dicts<'py, T>(
+    py: Python<'py>,
+    items: impl IntoIterator<Item = T>,
+    fill: impl Fn(&Bound<'py, PyDict>, T) -> PyResult<()>,
+) -> PyResult<Vec<Bound<'py, PyDict>>> {
+    let dict = |item| {
+        let d = PyDict::new(py);
+        fill(&d, item)?;
+        Ok(d)
+    };
+    items.into_iter().map(dict).collect()
+}
+
 /// Rows of `N` numbers as an `(len, N)` numpy array.
 pub(crate) fn rows_to_array<'py, const N: usize>(
     py: Python<'py>,
-    rows: Vec<[f64; N]>,
+    rows: impl IntoIterator<Item = [f64; N]>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    let flat: Vec<f64> = rows.iter().flatten().copied().collect();
-    numpy::PyArray1::from_vec(py, flat).reshape([rows.len(), N])
+    let flat: Vec<f64> = rows.into_iter().flatten().collect();
+    let len = flat.len() / N;
+    numpy::PyArray1::from_vec(py, flat).reshape([len, N])
 }
 
 #[pymethods]
@@ -139,62 +159,35 @@ impl PyWorld {
 
     #[getter]
     fn start(&self) -> PyResult<(f64, f64, f64)> {
-        enter(|| {
-            Ok({
-                let s = self.inner.start();
-                (s[0], s[1], s[2])
-            })
-        })
+        let s = self.inner.start();
+        Ok((s[0], s[1], s[2]))
     }
 
     /// The robots the world places, in order: dicts of "name", "start" (x, y, yaw) and
     /// "profile" (a built-in profile's name, or None for the simulator's).
     #[getter]
-    fn robots<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, pyo3::types::PyDict>>> {
+    fn robots<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
         enter(|| {
-            self.inner
-                .robots()
-                .iter()
-                .map(|r| {
-                    let d = pyo3::types::PyDict::new(py);
-                    d.set_item("name", &r.name)?;
-                    d.set_item("start", (r.start[0], r.start[1], r.start[2]))?;
-                    d.set_item("profile", r.profile.as_deref())?;
-                    Ok(d)
-                })
-                .collect()
+            dicts(py, self.inner.robots(), |d, r| {
+                d.set_item("name", &r.name)?;
+                d.set_item("start", (r.start[0], r.start[1], r.start[2]))?;
+                d.set_item("profile", r.profile.as_deref())
+            })
         })
     }
 
     #[getter]
     fn goal(&self) -> PyResult<Option<(f64, f64, f64)>> {
-        enter(|| {
-            Ok({
-                self.inner
-                    .goal()
-                    .map(|g| (g.center[0], g.center[1], g.radius))
-            })
-        })
+        enter(|| Ok(self.inner.goal().map(goal_tuple)))
     }
 
     /// (N, 6) array: cx, cy, sx, sy, yaw, reflectance of every wall box.
     fn wall_boxes<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
         enter(|| {
-            let rows = self
-                .inner
-                .walls()
-                .iter()
-                .map(|w| {
-                    [
-                        w.center[0],
-                        w.center[1],
-                        2.0 * w.half[0],
-                        2.0 * w.half[1],
-                        w.yaw,
-                        w.reflectance,
-                    ]
-                })
-                .collect();
+            let rows = self.inner.walls().iter().map(|w| {
+                let [sx, sy] = [2.0 * w.half[0], 2.0 * w.half[1]];
+                [w.center[0], w.center[1], sx, sy, w.yaw, w.reflectance]
+            });
             rows_to_array(py, rows)
         })
     }
@@ -202,9 +195,7 @@ impl PyWorld {
     /// Floor paint regions in drawing order, as dicts.
     fn paint_regions<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
         enter(|| {
-            let mut out = Vec::new();
-            for r in self.inner.floor().regions() {
-                let d = PyDict::new(py);
+            dicts(py, self.inner.floor().regions(), |d, r| {
                 match r.shape {
                     PaintShape::Rect { center, half, yaw } => {
                         d.set_item("shape", "rect")?;
@@ -224,10 +215,8 @@ impl PyWorld {
                         d.set_item("radius", radius)?;
                     }
                 }
-                d.set_item("reflectance", r.reflectance)?;
-                out.push(d);
-            }
-            Ok(out)
+                d.set_item("reflectance", r.reflectance)
+            })
         })
     }
 
@@ -235,9 +224,7 @@ impl PyWorld {
     /// "circle" with radius), center, mass, friction, reflectance.
     fn bodies<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
         enter(|| {
-            let mut out = Vec::new();
-            for b in self.inner.bodies() {
-                let d = PyDict::new(py);
+            dicts(py, self.inner.bodies(), |d, b| {
                 let [x, y, yaw] = b.start;
                 match b.shape {
                     BodyShape::Box { half } => {
@@ -254,28 +241,22 @@ impl PyWorld {
                 }
                 d.set_item("mass", b.mass)?;
                 d.set_item("friction", b.friction)?;
-                d.set_item("reflectance", b.reflectance)?;
-                out.push(d);
-            }
-            Ok(out)
+                d.set_item("reflectance", b.reflectance)
+            })
         })
     }
 
     /// Checkpoints as dicts: id, code, center, yaw, width.
     fn checkpoints<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
         enter(|| {
-            let mut out = Vec::new();
-            for c in self.inner.checkpoints() {
-                let d = PyDict::new(py);
+            dicts(py, self.inner.checkpoints(), |d, c| {
                 d.set_item("id", c.id)?;
                 let code: String = c.code.iter().map(|&b| if b { '1' } else { '0' }).collect();
                 d.set_item("code", code)?;
                 d.set_item("center", (c.center[0], c.center[1]))?;
                 d.set_item("yaw", c.yaw)?;
-                d.set_item("width", c.width)?;
-                out.push(d);
-            }
-            Ok(out)
+                d.set_item("width", c.width)
+            })
         })
     }
 

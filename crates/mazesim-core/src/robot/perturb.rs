@@ -289,77 +289,18 @@ mod tests {
         assert_eq!(twice.slip_on_contact, 0.75);
         assert_eq!(twice.wall_reflectance, 0.25);
         assert!((twice.wheel_radius - 0.0205 * 1.05 * 1.05).abs() < 1e-15);
-        let bad = [
-            (
-                Perturbation {
-                    wheel_radius_scale: 0.0,
-                    ..Default::default()
-                },
-                "wheel_radius_scale",
-            ),
-            (
-                Perturbation {
-                    axle_length_scale: f64::NAN,
-                    ..Default::default()
-                },
-                "axle_length_scale",
-            ),
-            (
-                Perturbation {
-                    motor_gains: [1.0, -1.0],
-                    ..Default::default()
-                },
-                "motor_gains (right)",
-            ),
-            (
-                Perturbation {
-                    noise_scale: -0.5,
-                    ..Default::default()
-                },
-                "noise_scale",
-            ),
-            (
-                Perturbation {
-                    noise_scale: 1e300,
-                    ..Default::default()
-                },
-                "noise_scale",
-            ),
-            (
-                Perturbation {
-                    ir_angle_error: f64::INFINITY,
-                    ..Default::default()
-                },
-                "ir_angle_error",
-            ),
-            (
-                Perturbation {
-                    ir_offset_error: 0.05,
-                    ..Default::default()
-                },
-                "ir_offset_error",
-            ),
-            (
-                Perturbation {
-                    ground_gain: 11.0,
-                    ..Default::default()
-                },
-                "ground_gain",
-            ),
-            (
-                Perturbation {
-                    wall_reflectance: 1.5,
-                    ..Default::default()
-                },
-                "wall_reflectance",
-            ),
-            (
-                Perturbation {
-                    slip_on_contact: 1.0,
-                    ..Default::default()
-                },
-                "slip_on_contact",
-            ),
+        type Setter = fn(&mut Perturbation);
+        let bad: [(Setter, &str); 10] = [
+            (|p| p.wheel_radius_scale = 0.0, "wheel_radius_scale"),
+            (|p| p.axle_length_scale = f64::NAN, "axle_length_scale"),
+            (|p| p.motor_gains = [1.0, -1.0], "motor_gains (right)"),
+            (|p| p.noise_scale = -0.5, "noise_scale"),
+            (|p| p.noise_scale = 1e300, "noise_scale"),
+            (|p| p.ir_angle_error = f64::INFINITY, "ir_angle_error"),
+            (|p| p.ir_offset_error = 0.05, "ir_offset_error"),
+            (|p| p.ground_gain = 11.0, "ground_gain"),
+            (|p| p.wall_reflectance = 1.5, "wall_reflectance"),
+            (|p| p.slip_on_contact = 1.0, "slip_on_contact"),
         ];
         let fast = seed()
             .perturbed(&Perturbation {
@@ -375,7 +316,9 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(err.contains("top speed") && err.contains("12.87"), "{err}");
-        for (p, name) in bad {
+        for (set, name) in bad {
+            let mut p = Perturbation::default();
+            set(&mut p);
             let err = seed().perturbed(&p).unwrap_err().to_string();
             assert!(err.contains(name) && err.contains("found"), "{err}");
         }

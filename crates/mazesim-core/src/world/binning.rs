@@ -24,24 +24,23 @@ fn bin_side(bounds: Bounds) -> f64 {
 }
 
 /// The look-up grid over `bounds` (bins from `bounds.min`) of `items` items listed in every bin
-/// their box from `listed()` meets: the bins' side ([`bin_side`], doubled until the lists fit the
-/// budget of [`fitting_side`]) and the grid's columns and rows.
-pub(super) fn grid_over<I: Iterator<Item = Bounds>>(
+/// their box from `listed()` meets: bins of [`bin_side`], doubled until the lists fit the budget
+/// of [`fitting_side`].
+fn grid_over<I: Iterator<Item = Bounds>>(
     bounds: Bounds,
     items: usize,
     listed: impl Fn() -> I,
-) -> (f64, usize, usize) {
+) -> Grid {
     let origin = bounds.min;
     let grid = |bin: f64| {
         let cols = ((bounds.max[0] - origin[0]) / bin) as usize + 1;
         let rows = ((bounds.max[1] - origin[1]) / bin) as usize + 1;
         (cols, rows)
     };
-    let bin = fitting_side(bin_side(bounds), items, |bin| {
+    let side = fitting_side(bin_side(bounds), items, |bin| {
         entries(listed(), origin, bin, grid(bin))
     });
-    let (cols, rows) = grid(bin);
-    (bin, cols, rows)
+    Grid::new(origin, side, grid(side))
 }
 
 /// Entries any grid may hold, at least: 4 Mi `u32` indices, 16 MiB.
@@ -63,13 +62,6 @@ pub(super) fn fitting_side(side: f64, items: usize, entries: impl Fn(f64) -> u64
     side
 }
 
-/// Bins spanned from `lo` to `hi` (`lo <= hi`), with bins of `side` starting at `origin` and
-/// `count` bins in all: the closed index range, clamped to the grid.
-fn span(lo: f64, hi: f64, origin: f64, side: f64, count: usize) -> u64 {
-    let clamp = |v: f64| ((v - origin) / side).max(0.0).min((count - 1) as f64) as u64;
-    clamp(hi) - clamp(lo) + 1
-}
-
 /// List entries of a grid of `cols` x `rows` bins of `side` from `origin` where each of `boxes`
 /// is listed in every bin it meets.
 pub(super) fn entries(
@@ -78,12 +70,154 @@ pub(super) fn entries(
     side: f64,
     (cols, rows): (usize, usize),
 ) -> u64 {
+    let grid = Grid::new(origin, side, (cols, rows));
     boxes
         .map(|b| {
-            span(b.min[0], b.max[0], origin[0], side, cols)
-                * span(b.min[1], b.max[1], origin[1], side, rows)
+            let [c0, r0, c1, r1] = grid.span(b);
+            (c1 - c0 + 1) as u64 * (r1 - r0 + 1) as u64
         })
         .fold(0, u64::saturating_add)
+}
+
+/// A uniform grid of `cols` x `rows` square bins of `side` metres from `origin`.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(super) struct Grid {
+    /// The south-west corner of bin (0, 0).
+    pub(super) origin: [f64; 2],
+    pub(super) side: f64,
+    pub(super) cols: usize,
+    pub(super) rows: usize,
+}
+
+impl Grid {
+    /// `cols` x `rows` bins of `side` from `origin`.
+    pub(super) fn new(origin: [f64; 2], side: f64, (cols, rows): (usize, usize)) -> Self {
+        Self {
+            origin,
+            side,
+            cols,
+            rows,
+        }
+    }
+
+    /// The closed ranges of the columns and rows of the bins `b` meets, `[c0, r0, c1, r1]`,
+    /// clamped to the grid.
+    #[inline]
+    pub(super) fn span(self, b: Bounds) -> [usize; 4] {
+        // Truncation of a non-negative number is its floor (and avoids a libm call).
+        let clamp = |v: f64, n: usize| (v.max(0.0) as usize).min(n - 1);
+        let (o, side) = (self.origin, self.side);
+        [
+            clamp((b.min[0] - o[0]) / side, self.cols),
+            clamp((b.min[1] - o[1]) / side, self.rows),
+            clamp((b.max[0] - o[0]) / side, self.cols),
+            clamp((b.max[1] - o[1]) / side, self.rows),
+        ]
+    }
+
+    /// The bin (`row * cols + col`) holding `p`, or `None` off the grid.
+    #[inline]
+    pub(super) fn bin_at(self, p: [f64; 2]) -> Option<usize> {
+        let fx = (p[0] - self.origin[0]) / self.side;
+        let fy = (p[1] - self.origin[1]) / self.side;
+        if !(fx >= 0.0 && fy >= 0.0) {
+            return None;
+        }
+        // Truncations of non-negative numbers: floors (through i64, cheaper than to usize; a
+        // saturated one is off the grid either way).
+        let (col, row) = (fx as i64 as usize, fy as i64 as usize);
+        (col < self.cols && row < self.rows).then_some(row * self.cols + col)
+    }
+}
+
+/// Item indices listed per bin of a [`Grid`], in CSR layout: the lists of the bins of a row
+/// follow one another, so one slice covers a run of bins of a row.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub(super) struct BinLists {
+    pub(super) grid: Grid,
+    /// Start of each bin's list in `items`, `cols * rows + 1` entries (none in a default one).
+    start: Vec<u32>,
+    items: Vec<u32>,
+}
+
+impl BinLists {
+    /// No bins, of side [`BIN`].
+    pub(super) fn none() -> Self {
+        Self {
+            grid: Grid::new([0.0, 0.0], BIN, (0, 0)),
+            start: vec![0],
+            items: Vec::new(),
+        }
+    }
+
+    /// Each bin of `grid` listing the items of `spans(grid)` that span it, in the order given: an
+    /// item's index and the [`Grid::span`] of its bins, within the grid.
+    pub(super) fn new<I: Iterator<Item = (u32, [usize; 4])>>(
+        grid: Grid,
+        spans: impl Fn(Grid) -> I,
+    ) -> Self {
+        let (cols, bins) = (grid.cols, grid.cols * grid.rows);
+        let bins_of = |[c0, r0, c1, r1]: [usize; 4]| {
+            (r0..=r1).flat_map(move |row| (c0..=c1).map(move |col| row * cols + col))
+        };
+        // Count the items of each bin, then fill the lists.
+        let mut start = vec![0u32; bins + 1];
+        for (_, span) in spans(grid) {
+            for b in bins_of(span) {
+                start[b + 1] += 1;
+            }
+        }
+        for b in 0..bins {
+            start[b + 1] += start[b];
+        }
+        let mut filled = start[..bins].to_vec();
+        let mut items = vec![0u32; start[bins] as usize];
+        for (i, span) in spans(grid) {
+            for b in bins_of(span) {
+                items[filled[b] as usize] = i;
+                filled[b] += 1;
+            }
+        }
+        Self { grid, start, items }
+    }
+
+    /// The items of `boxes()`, each listed in every bin its box meets (last first with
+    /// `last_first`), over the grid of [`grid_over`] on `bounds`, which holds every box.
+    pub(super) fn over<I>(bounds: Bounds, boxes: impl Fn() -> I, last_first: bool) -> Self
+    where
+        I: DoubleEndedIterator<Item = Bounds> + ExactSizeIterator,
+    {
+        let grid = grid_over(bounds, boxes().len(), &boxes);
+        let spans = |g: Grid| (0..boxes().len() as u32).zip(boxes().map(move |b| g.span(b)));
+        if last_first {
+            Self::new(grid, |g| spans(g).rev())
+        } else {
+            Self::new(grid, spans)
+        }
+    }
+
+    /// The list of bin `bin` (`row * cols + col`).
+    #[inline]
+    pub(super) fn list(&self, bin: usize) -> &[u32] {
+        &self.items[self.start[bin] as usize..self.start[bin + 1] as usize]
+    }
+
+    /// The lists of bins `c0..=c1` of `row`, one after the other.
+    #[inline]
+    pub(super) fn row_lists(&self, row: usize, c0: usize, c1: usize) -> &[u32] {
+        let first = row * self.grid.cols;
+        &self.items[self.start[first + c0] as usize..self.start[first + c1 + 1] as usize]
+    }
+
+    /// The length of each bin's list.
+    pub(super) fn lengths(&self) -> impl Iterator<Item = u32> + '_ {
+        self.start.windows(2).map(|w| w[1] - w[0])
+    }
+
+    /// Bytes of its buffers on the heap (`crate::footprint`).
+    pub(super) fn heap_bytes(&self) -> usize {
+        crate::footprint::vec_bytes(&self.start) + crate::footprint::vec_bytes(&self.items)
+    }
 }
 
 #[cfg(test)]
@@ -106,8 +240,12 @@ mod tests {
 
     #[test]
     fn spans_are_clamped_to_the_grid() {
-        assert_eq!(span(0.05, 0.25, 0.0, 0.1, 10), 3);
-        assert_eq!(span(-5.0, 50.0, 0.0, 0.1, 10), 10);
+        let grid = Grid::new([0.0, 0.0], 0.1, (10, 10));
+        let wide = Bounds {
+            min: [0.05, -5.0],
+            max: [0.25, 50.0],
+        };
+        assert_eq!(grid.span(wide), [0, 0, 2, 9]);
         let b = Bounds {
             min: [0.05, -1.0],
             max: [0.25, 0.05],

@@ -9,7 +9,7 @@
 //! of the floor from every edge they rely on, so that each point of the area reads exactly as the
 //! point-wise look-up reads it.
 
-use super::binning;
+use super::binning::BinLists;
 use super::geometry::{Bounds, DiscSide, PaintShape};
 
 /// One painted region.
@@ -52,15 +52,8 @@ pub struct FloorPaint {
     regions: Vec<PaintRegion>,
     /// Per region: `shape.turn()`, so that a look-up computes no sine or cosine.
     turns: Vec<[f64; 2]>,
-    origin: [f64; 2],
-    /// Side of a bin in metres.
-    bin: f64,
-    cols: usize,
-    rows: usize,
-    /// Start of each bin's region list in `bin_regions` (CSR layout), `cols * rows + 1` entries.
-    bin_start: Vec<u32>,
-    /// Region indices per bin, highest (topmost) first.
-    bin_regions: Vec<u32>,
+    /// The regions listed in every bin their bounds (grown by `SPOT_MARGIN`) meet, topmost first.
+    bins: BinLists,
     /// Metres by which the area tests stay clear of the edges they rely on: far above the
     /// rounding of any coordinate of the grid or of a region.
     slack: f64,
@@ -73,86 +66,42 @@ impl FloorPaint {
         let bounds = regions
             .iter()
             .fold(Bounds::EMPTY, |b, r| b.union(r.shape.bounds()));
-        if bounds.is_empty() {
-            return Self {
-                background,
-                regions,
-                turns,
-                origin: [0.0, 0.0],
-                bin: binning::BIN,
-                cols: 0,
-                rows: 0,
-                bin_start: vec![0],
-                bin_regions: Vec::new(),
-                slack: LEAST_SLACK,
-            };
-        }
-        // The grid covers every point within the margin of some paint.
-        let covered = bounds.grown(SPOT_MARGIN);
-        let origin = covered.min;
-        let (bin, cols, rows) = binning::grid_over(covered, regions.len(), || {
-            regions.iter().map(|r| r.shape.bounds().grown(SPOT_MARGIN))
-        });
-        // The bins a region is listed in: those its bounds, grown by the margin, overlap.
-        let bins_of = |r: &PaintRegion| {
-            let b = r.shape.bounds().grown(SPOT_MARGIN);
-            let c0 = ((b.min[0] - origin[0]) / bin).max(0.0) as usize;
-            let r0 = ((b.min[1] - origin[1]) / bin).max(0.0) as usize;
-            let c1 = (((b.max[0] - origin[0]) / bin).max(0.0) as usize).min(cols - 1);
-            let r1 = (((b.max[1] - origin[1]) / bin).max(0.0) as usize).min(rows - 1);
-            (r0..=r1).flat_map(move |row| (c0..=c1).map(move |col| row * cols + col))
+        let (bins, slack) = if bounds.is_empty() {
+            (BinLists::none(), LEAST_SLACK)
+        } else {
+            // The grid covers every point within the margin of some paint.
+            let covered = bounds.grown(SPOT_MARGIN);
+            let grown = || regions.iter().map(|r| r.shape.bounds().grown(SPOT_MARGIN));
+            // Topmost first.
+            let bins = BinLists::over(covered, grown, true);
+            let g = bins.grid;
+            // The grid reaches a bin beyond the bounds, and every region lies within them.
+            let far = [
+                covered.min,
+                bounds.max,
+                [
+                    g.origin[0] + (g.cols as f64 + 1.0) * g.side,
+                    g.origin[1] + (g.rows as f64 + 1.0) * g.side,
+                ],
+            ]
+            .iter()
+            .flatten()
+            .fold(0.0_f64, |m, v| m.max(v.abs()));
+            (bins, LEAST_SLACK + far * SLACK_PER_METRE)
         };
-        // Count the regions of each bin, then fill the lists, topmost region first.
-        let mut bin_start = vec![0u32; cols * rows + 1];
-        for r in &regions {
-            for b in bins_of(r) {
-                bin_start[b + 1] += 1;
-            }
-        }
-        for b in 0..cols * rows {
-            bin_start[b + 1] += bin_start[b];
-        }
-        let mut filled = bin_start[..cols * rows].to_vec();
-        let mut bin_regions = vec![0u32; bin_start[cols * rows] as usize];
-        for (i, r) in regions.iter().enumerate().rev() {
-            for b in bins_of(r) {
-                bin_regions[filled[b] as usize] = i as u32;
-                filled[b] += 1;
-            }
-        }
-        // The grid reaches a bin beyond the bounds, and every region lies within them.
-        let far = [
-            covered.min,
-            bounds.max,
-            [
-                origin[0] + (cols as f64 + 1.0) * bin,
-                origin[1] + (rows as f64 + 1.0) * bin,
-            ],
-        ]
-        .iter()
-        .flatten()
-        .fold(0.0_f64, |m, v| m.max(v.abs()));
         Self {
             background,
             regions,
             turns,
-            origin,
-            bin,
-            cols,
-            rows,
-            bin_start,
-            bin_regions,
-            slack: LEAST_SLACK + far * SLACK_PER_METRE,
+            bins,
+            slack,
         }
     }
 
     /// Bytes of its buffers on the heap (`crate::footprint`).
     pub fn heap_bytes(&self) -> usize {
         use crate::footprint::vec_bytes;
-        vec_bytes(&self.regions)
-            + vec_bytes(&self.turns)
-            + vec_bytes(&self.bin_start)
-            + vec_bytes(&self.bin_regions)
+        vec_bytes(&self.regions) + vec_bytes(&self.turns) + self.bins.heap_bytes()
     }
 
     /// Background reflectance.
@@ -167,21 +116,10 @@ impl FloorPaint {
 
     /// The regions that may paint points within `SPOT_MARGIN` of `p`, topmost first.
     pub fn regions_near(&self, p: [f64; 2]) -> &[u32] {
-        let fx = (p[0] - self.origin[0]) / self.bin;
-        let fy = (p[1] - self.origin[1]) / self.bin;
-        if !(fx >= 0.0 && fy >= 0.0) {
-            return &[];
+        match self.bins.grid.bin_at(p) {
+            Some(bin) => self.bins.list(bin),
+            None => &[],
         }
-        let (col, row) = (fx as usize, fy as usize);
-        if col >= self.cols || row >= self.rows {
-            return &[];
-        }
-        let bin = row * self.cols + col;
-        let (s, e) = (
-            self.bin_start[bin] as usize,
-            self.bin_start[bin + 1] as usize,
-        );
-        &self.bin_regions[s..e]
     }
 
     /// Reflectance at `p` among `candidates` (from `regions_near` of a point within
@@ -232,58 +170,52 @@ impl FloorPaint {
             min: [f64::NEG_INFINITY; 2],
             max: [f64::INFINITY; 2],
         };
-        if self.cols == 0 {
+        let g = self.bins.grid;
+        if g.cols == 0 {
             return WHOLE;
         }
         if !self.regions_near(p).is_empty() || p[0].is_nan() || p[1].is_nan() {
             return Bounds::EMPTY;
         }
-        let f = [
-            (p[0] - self.origin[0]) / self.bin,
-            (p[1] - self.origin[1]) / self.bin,
-        ];
-        let n = [self.cols, self.rows];
+        let f = [(p[0] - g.origin[0]) / g.side, (p[1] - g.origin[1]) / g.side];
+        let n = [g.cols, g.rows];
         // Beyond the grid: the half plane on that side of it.
         for axis in 0..2 {
             let mut half = WHOLE;
             if f[axis] < 0.0 {
-                half.max[axis] = self.origin[axis] - self.slack;
+                half.max[axis] = g.origin[axis] - self.slack;
                 return half;
             }
             if f[axis] >= n[axis] as f64 {
-                half.min[axis] = self.origin[axis] + n[axis] as f64 * self.bin + self.slack;
+                half.min[axis] = g.origin[axis] + n[axis] as f64 * g.side + self.slack;
                 return half;
             }
         }
         let (col, row) = (f[0] as usize, f[1] as usize);
-        let empty = |c: usize, r: usize| {
-            let bin = r * self.cols + c;
-            self.bin_start[bin] == self.bin_start[bin + 1]
-        };
+        let empty = |c: usize, r: usize| self.bins.list(r * g.cols + c).is_empty();
         // Along the row first, then whole rows of that width down and up.
         let (mut c0, mut c1) = (col, col);
         while c0 > 0 && col - c0 < BARE_BOX_REACH && empty(c0 - 1, row) {
             c0 -= 1;
         }
-        while c1 + 1 < self.cols && c1 - col < BARE_BOX_REACH && empty(c1 + 1, row) {
+        while c1 + 1 < g.cols && c1 - col < BARE_BOX_REACH && empty(c1 + 1, row) {
             c1 += 1;
         }
         let (mut r0, mut r1) = (row, row);
         while r0 > 0 && row - r0 < BARE_BOX_REACH && (c0..=c1).all(|c| empty(c, r0 - 1)) {
             r0 -= 1;
         }
-        while r1 + 1 < self.rows && r1 - row < BARE_BOX_REACH && (c0..=c1).all(|c| empty(c, r1 + 1))
-        {
+        while r1 + 1 < g.rows && r1 - row < BARE_BOX_REACH && (c0..=c1).all(|c| empty(c, r1 + 1)) {
             r1 += 1;
         }
         let mut bare = WHOLE;
         for (axis, first, last) in [(0, c0, c1), (1, r0, r1)] {
             // A side on the grid's edge stays open.
             if first > 0 {
-                bare.min[axis] = self.origin[axis] + first as f64 * self.bin + self.slack;
+                bare.min[axis] = g.origin[axis] + first as f64 * g.side + self.slack;
             }
             if last + 1 < n[axis] {
-                bare.max[axis] = self.origin[axis] + (last + 1) as f64 * self.bin - self.slack;
+                bare.max[axis] = g.origin[axis] + (last + 1) as f64 * g.side - self.slack;
             }
         }
         bare
@@ -358,22 +290,23 @@ mod tests {
     #[test]
     fn bins_list_every_region_whose_grown_bounds_meet_them_topmost_first() {
         let floor = scattered_floor();
-        for row in 0..floor.rows {
-            for col in 0..floor.cols {
-                let x0 = floor.origin[0] + col as f64 * floor.bin;
-                let y0 = floor.origin[1] + row as f64 * floor.bin;
+        let g = floor.bins.grid;
+        for row in 0..g.rows {
+            for col in 0..g.cols {
+                let x0 = g.origin[0] + col as f64 * g.side;
+                let y0 = g.origin[1] + row as f64 * g.side;
                 let expected: Vec<u32> = (0..floor.regions.len() as u32)
                     .rev()
                     .filter(|&i| {
                         let b = floor.regions[i as usize].shape.bounds().grown(SPOT_MARGIN);
-                        let c0 = ((b.min[0] - floor.origin[0]) / floor.bin).max(0.0) as usize;
-                        let c1 = ((b.max[0] - floor.origin[0]) / floor.bin).max(0.0) as usize;
-                        let r0 = ((b.min[1] - floor.origin[1]) / floor.bin).max(0.0) as usize;
-                        let r1 = ((b.max[1] - floor.origin[1]) / floor.bin).max(0.0) as usize;
+                        let c0 = ((b.min[0] - g.origin[0]) / g.side).max(0.0) as usize;
+                        let c1 = ((b.max[0] - g.origin[0]) / g.side).max(0.0) as usize;
+                        let r0 = ((b.min[1] - g.origin[1]) / g.side).max(0.0) as usize;
+                        let r1 = ((b.max[1] - g.origin[1]) / g.side).max(0.0) as usize;
                         (c0..=c1).contains(&col) && (r0..=r1).contains(&row)
                     })
                     .collect();
-                let middle = [x0 + floor.bin / 2.0, y0 + floor.bin / 2.0];
+                let middle = [x0 + g.side / 2.0, y0 + g.side / 2.0];
                 assert_eq!(
                     floor.regions_near(middle),
                     &expected[..],

@@ -1,7 +1,7 @@
 //! The walls near a robot, gathered once per step from the bin grid and then queried by all its
 //! sensor rays and by the clearance check, instead of walking the bins once per query.
 
-use super::binning;
+use super::binning::{self, BinLists, Grid};
 use super::geometry::Bounds;
 use super::walls::{next_up, Nearest, RayHit, SlabBox, SlabLanes, SlabRay, WallIndex, LANES};
 
@@ -20,14 +20,7 @@ const MAX_CELLS: f64 = 65_536.0;
 /// index order: the candidates of any square query of half side below the cell side, with no
 /// duplicates to weed out.
 #[derive(Debug, Clone, Default)]
-pub(super) struct Neighbourhoods {
-    origin: [f64; 2],
-    side: f64,
-    cols: usize,
-    rows: usize,
-    start: Vec<u32>,
-    walls: Vec<u32>,
-}
+pub(super) struct Neighbourhoods(BinLists);
 
 impl Neighbourhoods {
     /// Lists for the walls of bounding `boxes` (min x, min y, max x, max y), all within `bounds`.
@@ -54,64 +47,37 @@ impl Neighbourhoods {
             },
         );
         let (cols, rows) = grid(side);
-        let mut cells: Vec<Vec<u32>> = vec![Vec::new(); cols * rows];
         // A point's square meets the box only if the point's cell lies at most one cell beyond
         // the cells the box spans; 1 mm more covers rounding (a wall too many costs a box test,
         // one missing would be wrong).
         let cell = |v: f64, o: f64| ((v - o) / side).floor() as i64;
-        for (i, b) in boxes.iter().enumerate() {
-            let [x0, y0, x1, y1] = b.map(|v| v as f64);
-            let c0 = (cell(x0 - margin, origin[0]) - 1).max(0) as usize;
-            let r0 = (cell(y0 - margin, origin[1]) - 1).max(0) as usize;
-            let c1 = ((cell(x1 + margin, origin[0]) + 1).max(0) as usize).min(cols - 1);
-            let r1 = ((cell(y1 + margin, origin[1]) + 1).max(0) as usize).min(rows - 1);
-            for row in r0..=r1 {
-                for col in c0..=c1 {
-                    cells[row * cols + col].push(i as u32);
-                }
-            }
-        }
-        let mut start = Vec::with_capacity(cells.len() + 1);
-        start.push(0u32);
-        let mut walls = Vec::with_capacity(cells.iter().map(Vec::len).sum());
-        for c in cells {
-            walls.extend(c);
-            start.push(walls.len() as u32);
-        }
-        Self {
-            origin,
-            side,
-            cols,
-            rows,
-            start,
-            walls,
-        }
+        let spans = |_| {
+            (0u32..).zip(boxes).map(|(i, b)| {
+                let [x0, y0, x1, y1] = b.map(|v| v as f64);
+                let c0 = (cell(x0 - margin, origin[0]) - 1).max(0) as usize;
+                let r0 = (cell(y0 - margin, origin[1]) - 1).max(0) as usize;
+                let c1 = ((cell(x1 + margin, origin[0]) + 1).max(0) as usize).min(cols - 1);
+                let r1 = ((cell(y1 + margin, origin[1]) + 1).max(0) as usize).min(rows - 1);
+                (i, [c0, r0, c1, r1])
+            })
+        };
+        Self(BinLists::new(Grid::new(origin, side, (cols, rows)), spans))
     }
 
     /// Bytes of its buffers on the heap.
     pub(super) fn heap_bytes(&self) -> usize {
-        crate::footprint::vec_bytes(&self.start) + crate::footprint::vec_bytes(&self.walls)
+        self.0.heap_bytes()
     }
 
     /// The list of the cell holding `p`, if the square of half side `reach` around `p` stays in
     /// its 3 x 3 block and `p` lies on the grid.
     pub(super) fn around(&self, p: [f32; 2], reach: f32) -> Option<&[u32]> {
-        if self.cols == 0 || reach as f64 > self.side - 1e-3 {
+        let grid = self.0.grid;
+        if grid.cols == 0 || reach as f64 > grid.side - 1e-3 {
             return None;
         }
-        let fx = (p[0] as f64 - self.origin[0]) / self.side;
-        let fy = (p[1] as f64 - self.origin[1]) / self.side;
-        if !(fx >= 0.0 && fy >= 0.0) {
-            return None;
-        }
-        // Truncations of non-negative numbers: floors (through i64, cheaper than to usize; a
-        // saturated one is off the grid either way).
-        let (col, row) = (fx as i64 as usize, fy as i64 as usize);
-        if col >= self.cols || row >= self.rows {
-            return None;
-        }
-        let c = row * self.cols + col;
-        Some(&self.walls[self.start[c] as usize..self.start[c + 1] as usize])
+        let cell = grid.bin_at([p[0] as f64, p[1] as f64])?;
+        Some(self.0.list(cell))
     }
 }
 

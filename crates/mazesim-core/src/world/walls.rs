@@ -6,7 +6,7 @@ use parry2d::math::{Pose, Vector};
 use parry2d::query::{Ray, RayCast};
 use parry2d::shape::Cuboid;
 
-use super::binning;
+use super::binning::BinLists;
 use super::geometry::{Bounds, WallBox};
 use super::nearby::Neighbourhoods;
 
@@ -25,13 +25,8 @@ pub struct WallIndex {
     /// as `SlabLanes` needs.
     aligned_ordered: bool,
     reflectance: Vec<f32>,
-    origin: [f64; 2],
-    /// Side of a bin in metres.
-    bin: f64,
-    cols: usize,
-    rows: usize,
-    bin_start: Vec<u32>,
-    bin_walls: Vec<u32>,
+    /// The walls listed in every bin their bounds (grown by 0.1 mm) meet, in index order.
+    bins: BinLists,
     /// Per coarser cell, the walls near it, for the sensors' once-per-step gathering.
     around: Neighbourhoods,
 }
@@ -112,46 +107,14 @@ impl WallIndex {
             .flatten()
             .all(|&[x0, y0, x1, y1]| x0 <= x1 && y0 <= y1);
         let bounds = walls.iter().fold(Bounds::EMPTY, |b, w| b.union(w.bounds()));
-        if bounds.is_empty() {
-            return Self {
-                shapes,
-                frames,
-                boxes,
-                aligned,
-                aligned_ordered,
-                reflectance,
-                origin: [0.0, 0.0],
-                bin: binning::BIN,
-                cols: 0,
-                rows: 0,
-                bin_start: vec![0],
-                bin_walls: Vec::new(),
-                around: Neighbourhoods::default(),
-            };
-        }
-        let origin = bounds.min;
-        let (bin, cols, rows) = binning::grid_over(bounds, walls.len(), || {
-            walls.iter().map(|w| w.bounds().grown(1e-4))
-        });
-        let mut bins: Vec<Vec<u32>> = vec![Vec::new(); cols * rows];
-        for (i, w) in walls.iter().enumerate() {
-            // Grow a little so that f32 rounding never drops a wall from a bin it touches.
-            let b = w.bounds().grown(1e-4);
-            let (c0, r0, c1, r1) = Self::bin_range_of(origin, bin, cols, rows, b);
-            for row in r0..=r1 {
-                for col in c0..=c1 {
-                    bins[row * cols + col].push(i as u32);
-                }
-            }
-        }
-        let mut bin_start = Vec::with_capacity(bins.len() + 1);
-        bin_start.push(0u32);
-        let mut bin_walls = Vec::with_capacity(bins.iter().map(Vec::len).sum());
-        for b in bins {
-            bin_walls.extend(b);
-            bin_start.push(bin_walls.len() as u32);
-        }
-        let around = Neighbourhoods::new(&boxes, bounds);
+        // Grown a little so that f32 rounding never drops a wall from a bin it touches.
+        let grown = || walls.iter().map(|w| w.bounds().grown(1e-4));
+        let (bins, around) = if bounds.is_empty() {
+            (BinLists::none(), Neighbourhoods::default())
+        } else {
+            let around = Neighbourhoods::new(&boxes, bounds);
+            (BinLists::over(bounds, grown, false), around)
+        };
         Self {
             shapes,
             frames,
@@ -159,12 +122,7 @@ impl WallIndex {
             aligned,
             aligned_ordered,
             reflectance,
-            origin,
-            bin,
-            cols,
-            rows,
-            bin_start,
-            bin_walls,
+            bins,
             around,
         }
     }
@@ -172,8 +130,8 @@ impl WallIndex {
     /// Pairs of walls listed in a common bin (a pair in two bins counts twice): an upper bound
     /// of the pairs of walls whose bounding boxes overlap.
     pub fn crowded_pairs(&self) -> u64 {
-        let pairs = self.bin_start.windows(2).map(|w| {
-            let k = u64::from(w[1] - w[0]);
+        let pairs = self.bins.lengths().map(|k| {
+            let k = u64::from(k);
             k * k.saturating_sub(1) / 2
         });
         pairs.fold(0, u64::saturating_add)
@@ -185,45 +143,23 @@ impl WallIndex {
         self.around.around(p, reach)
     }
 
-    fn bin_range_of(
-        origin: [f64; 2],
-        bin: f64,
-        cols: usize,
-        rows: usize,
-        b: Bounds,
-    ) -> (usize, usize, usize, usize) {
-        // Truncation of a non-negative number is its floor (and avoids a libm call).
-        let clamp = |v: f64, n: usize| (v.max(0.0) as usize).min(n - 1);
-        (
-            clamp((b.min[0] - origin[0]) / bin, cols),
-            clamp((b.min[1] - origin[1]) / bin, rows),
-            clamp((b.max[0] - origin[0]) / bin, cols),
-            clamp((b.max[1] - origin[1]) / bin, rows),
-        )
-    }
-
     /// Calls `f` with the index of every wall listed in a bin that meets `b` (a wall listed in
     /// several of those bins comes more than once; callers' tests are cheap and idempotent).
     pub(super) fn for_each_near(&self, b: Bounds, mut f: impl FnMut(usize)) {
-        if self.cols == 0 {
+        let g = self.bins.grid;
+        if g.cols == 0 {
             return;
         }
-        let far = b.max[0] < self.origin[0]
-            || b.max[1] < self.origin[1]
-            || b.min[0] > self.origin[0] + self.cols as f64 * self.bin
-            || b.min[1] > self.origin[1] + self.rows as f64 * self.bin;
+        let far = b.max[0] < g.origin[0]
+            || b.max[1] < g.origin[1]
+            || b.min[0] > g.origin[0] + g.cols as f64 * g.side
+            || b.min[1] > g.origin[1] + g.rows as f64 * g.side;
         if far {
             return;
         }
-        let (c0, r0, c1, r1) = Self::bin_range_of(self.origin, self.bin, self.cols, self.rows, b);
+        let [c0, r0, c1, r1] = g.span(b);
         for row in r0..=r1 {
-            let first = row * self.cols;
-            let (s, e) = (
-                self.bin_start[first + c0] as usize,
-                self.bin_start[first + c1 + 1] as usize,
-            );
-            // Bins of a row are consecutive in the CSR layout: one slice covers c0..=c1.
-            for &i in &self.bin_walls[s..e] {
+            for &i in self.bins.row_lists(row, c0, c1) {
                 f(i as usize);
             }
         }
@@ -237,8 +173,7 @@ impl WallIndex {
             + vec_bytes(&self.boxes)
             + vec_bytes(&self.aligned)
             + vec_bytes(&self.reflectance)
-            + vec_bytes(&self.bin_start)
-            + vec_bytes(&self.bin_walls)
+            + self.bins.heap_bytes()
             + self.around.heap_bytes()
     }
 
