@@ -39,6 +39,7 @@ from mazesim._core import RobotProfile, Simulator, World
 from mazesim.errors import InvalidArgumentError, MazesimIOError
 from mazesim.webots.controller_process import ControllerJob, answer, controller_main
 from mazesim.webots.radio import Radio
+from mazesim.webots.runner import CONTROLLER_SUFFIXES
 from mazesim.webots.scene import read_scene
 from mazesim.webots.shared_world import RobotView, shared_simulator
 from mazesim.webots.simulation import robot_profile_name
@@ -146,11 +147,6 @@ class Fleet:
         self.moved.add(index)
 
 
-#: The files a Webots controller folder ``controllers/NAME`` may run, in the order Webots
-#: looks for them (Python, C, C++).
-CONTROLLER_SUFFIXES = (".py", ".c", ".cpp")
-
-
 def controller_of(
     robot: Mapping[str, Any], world_path: str, given: Mapping[str, str]
 ) -> tuple[str | None, str]:
@@ -180,7 +176,7 @@ def controller_of(
             candidate = os.path.join(project, "controllers", name, f"{name}{suffix}")
             if os.path.isfile(candidate):
                 return candidate, ""
-    return None, f"no controller controllers/{name}/{name}.py, .c or .cpp"
+    return None, f"no controller controllers/{name}/{name}{', '.join(CONTROLLER_SUFFIXES)}"
 
 
 def run_world(
