@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import struct
 from collections.abc import Iterator
 from typing import Any
 
@@ -146,6 +147,27 @@ def test_the_emitter_direction_of_a_world_before_r2022a_is_in_its_y_up_frame() -
     emitter.send("ping")
     pair.step()
     assert receiver.getEmitterDirection() == pytest.approx([0.0, 0.0, 1.0], abs=1e-9)
+
+
+def test_a_list_of_numbers_is_read_back_as_floats_ints_or_bools() -> None:
+    """Webots' Python Receiver reads a packet as doubles (``getFloats``, what ``Emitter.send``
+    of a list of numbers sends), 4-byte ints (``getInts``) or booleans (``getBools``)."""
+    pair = _TwoRobots()
+    emitter = Emitter("emitter", pair.robots[0])
+    receiver = Receiver("receiver", pair.robots[1])
+    pair.receivers.append(receiver)
+    receiver.enable(int(pair.robots[1].basic_time_step_ms))
+    emitter.send([7.0, 1.0, 0.25])
+    emitter.send(struct.pack("3i", 7, -1, 2))
+    emitter.send(bytes([1, 0]))
+    pair.step()
+    assert receiver.getFloats() == (7.0, 1.0, 0.25)
+    receiver.nextPacket()
+    assert receiver.getInts() == (7, -1, 2)
+    receiver.nextPacket()
+    assert receiver.getBools() == (True, False)
+    receiver.nextPacket()
+    assert receiver.getFloats() is None
 
 
 def test_the_sampling_period_holds_packets_until_it_ends(
