@@ -133,22 +133,6 @@ def test_a_packet_sent_before_a_step_is_in_the_queue_after_it() -> None:
     assert receiver.getQueueLength() == 0
 
 
-def test_the_emitter_direction_of_a_world_before_r2022a_is_in_its_y_up_frame() -> None:
-    """Webots' Y-up PROTOs (worlds before R2022a) read vectors in the device frame x right, y up,
-    z back: an emitter straight behind the receiving e-puck is at +z there, as a controller of
-    such a world (which takes ``-z`` as forward and ``x`` as left) expects."""
-    pair = _TwoRobots()
-    pair.robots[1].scene = read_scene("#VRML_SIM R2021a utf8\nE-puck { }\n")
-    assert pair.robots[1].scene.y_up_devices
-    emitter = Emitter("emitter", pair.robots[0])
-    receiver = Receiver("receiver", pair.robots[1])
-    pair.receivers.append(receiver)
-    receiver.enable(int(pair.robots[1].basic_time_step_ms))
-    emitter.send("ping")
-    pair.step()
-    assert receiver.getEmitterDirection() == pytest.approx([0.0, 0.0, 1.0], abs=1e-9)
-
-
 def test_a_list_of_numbers_is_read_back_as_floats_ints_or_bools() -> None:
     """Webots' Python Receiver reads a packet as doubles (``getFloats``, what ``Emitter.send``
     of a list of numbers sends), 4-byte ints (``getInts``) or booleans (``getBools``)."""

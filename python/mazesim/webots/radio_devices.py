@@ -23,7 +23,6 @@ from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
 from mazesim.webots.devices import Device, _print_error, _Sensor
-from mazesim.webots.frames import enu_to_nue
 from mazesim.webots.inert import NotSimulated
 from mazesim.webots.node_types import node_type
 from mazesim.webots.radio import CHANNEL_BROADCAST, UNLIMITED, Packet
@@ -268,15 +267,10 @@ class Receiver(_Tuned, NotSimulated, _Sensor):
         return math.nan if head is None else head.signal_strength
 
     def getEmitterDirection(self) -> list[float]:
-        """Unit vector toward the head packet's emitter in the robot's frame (NaNs when empty):
-        x forward, y left, z up, or in a world before R2022a, whose PROTOs are Y-up, x right,
-        y up, z back (as its accelerometer and compass read)."""
+        """Unit vector toward the head packet's emitter in the robot's frame (NaNs when
+        empty)."""
         head = self._head("get_emitter_direction")
-        if head is None:
-            return [math.nan] * 3
-        if self._simulation.scene.y_up_devices:
-            return list(enu_to_nue(*head.direction))
-        return list(head.direction)
+        return [math.nan] * 3 if head is None else list(head.direction)
 
     def setChannel(self, channel: int) -> None:
         """Sets the channel (:attr:`CHANNEL_BROADCAST` listens to every channel)."""
