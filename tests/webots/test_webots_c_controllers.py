@@ -149,22 +149,31 @@ def test_a_controller_that_steps_on_after_the_end_is_stopped(tmp_path: Path) -> 
     assert run.simulated_seconds == pytest.approx(0.512)
 
 
+@pytest.mark.parametrize(
+    ("body", "named"),
+    [
+        (
+            "  extern void wb_lidar_enable(unsigned short, int);\n"
+            "  extern const float *wb_lidar_get_range_image(unsigned short);\n"
+            "  wb_lidar_enable(1, 32);\n  wb_lidar_get_range_image(1);",
+            "wb_lidar_enable, wb_lidar_get_range_image",
+        ),
+        # Webots' older C API named its functions without wb_.
+        (
+            "  extern int robot_step(int);\n"
+            "  extern void distance_sensor_enable(unsigned short, int);\n"
+            "  distance_sensor_enable(1, 64);\n  robot_step(64);",
+            "distance_sensor_enable, robot_step",
+        ),
+    ],
+)
 def test_functions_the_library_lacks_are_named_and_the_controller_is_not_started(
-    tmp_path: Path,
+    tmp_path: Path, body: str, named: str
 ) -> None:
-    source = write_controller(
-        tmp_path,
-        "lidar",
-        "  extern void wb_lidar_enable(unsigned short, int);\n"
-        "  extern const float *wb_lidar_get_range_image(unsigned short);\n"
-        "  wb_lidar_enable(1, 32);\n  wb_lidar_get_range_image(1);",
-    )
+    source = write_controller(tmp_path, "lacking", body)
     prepared = prepare_controller(str(source))
     assert not prepared.runnable
-    assert prepared.missing == [
-        "Webots C API function(s) mazesim does not implement: wb_lidar_enable, "
-        "wb_lidar_get_range_image"
-    ]
+    assert prepared.missing == [f"Webots C API function(s) mazesim does not implement: {named}"]
     run = run_controller(source, mazesim.load_world("arena"), seconds=1.0, prepared=prepared)
     assert (run.steps, run.exit_status) == (0, 1)
     assert run.error.startswith("controller not run: Webots C API function(s)")

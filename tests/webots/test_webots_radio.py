@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import struct
 from collections.abc import Iterator
 from typing import Any
 
@@ -130,6 +131,27 @@ def test_a_packet_sent_before_a_step_is_in_the_queue_after_it() -> None:
     assert receiver.getEmitterDirection()[0] == pytest.approx(-1.0)
     receiver.nextPacket()
     assert receiver.getQueueLength() == 0
+
+
+def test_a_list_of_numbers_is_read_back_as_floats_ints_or_bools() -> None:
+    """Webots' Python Receiver reads a packet as doubles (``getFloats``, what ``Emitter.send``
+    of a list of numbers sends), 4-byte ints (``getInts``) or booleans (``getBools``)."""
+    pair = _TwoRobots()
+    emitter = Emitter("emitter", pair.robots[0])
+    receiver = Receiver("receiver", pair.robots[1])
+    pair.receivers.append(receiver)
+    receiver.enable(int(pair.robots[1].basic_time_step_ms))
+    emitter.send([7.0, 1.0, 0.25])
+    emitter.send(struct.pack("3i", 7, -1, 2))
+    emitter.send(bytes([1, 0]))
+    pair.step()
+    assert receiver.getFloats() == (7.0, 1.0, 0.25)
+    receiver.nextPacket()
+    assert receiver.getInts() == (7, -1, 2)
+    receiver.nextPacket()
+    assert receiver.getBools() == (True, False)
+    receiver.nextPacket()
+    assert receiver.getFloats() is None
 
 
 def test_the_sampling_period_holds_packets_until_it_ends(

@@ -74,6 +74,31 @@ def test_modules_of_a_folder_the_controller_puts_on_its_path_are_forgotten_too(
     assert "json" in sys.modules, "a module of the interpreter's own path stays loaded"
 
 
+def test_a_package_of_a_folder_the_controller_puts_on_its_path_is_not_called_missing(
+    tmp_path: Path,
+) -> None:
+    """A controller that puts ``..`` (its project's ``controllers/``) on ``sys.path`` imports
+    another controller's folder as a package: that is its own code, not an uninstalled package;
+    a package installed nowhere still is."""
+    from mazesim.webots.requirements import missing_packages, path_additions
+
+    controllers = tmp_path / "controllers"
+    (controllers / "coach").mkdir(parents=True)
+    (controllers / "coach" / "settings.py").write_text("import json\n")
+    agent = controllers / "agent"
+    agent.mkdir()
+    (agent / "agent.py").write_text(
+        "import sys, os\n"
+        "sys.path.append('..')\n"
+        "sys.path.insert(0, os.path.join('..', 'coach'))\n"
+        "from coach.settings import json\n"
+        "import settings\n"
+        "import no_such_package_anywhere\n"
+    )
+    assert path_additions(str(agent / "agent.py")) == [str(controllers), str(controllers / "coach")]
+    assert missing_packages(str(agent / "agent.py")) == ["no_such_package_anywhere"]
+
+
 def test_a_webots_controller_folder_runs_the_file_named_after_it(tmp_path: Path) -> None:
     folder = tmp_path / "controllers" / "wanderer"
     folder.mkdir(parents=True)

@@ -9,6 +9,7 @@ figures of docs/webots.md's paragraph on it are these tests'.
 
 from __future__ import annotations
 
+import json
 import math
 from pathlib import Path
 
@@ -199,3 +200,54 @@ def test_a_controller_that_limits_its_motors_is_told_at_its_start(tmp_path: Path
 def test_a_differential_wheels_e_puck_of_webots_8_keeps_its_kinematic_wheels() -> None:
     assert read_scene("#VRML_SIM V8.6 utf8\nE-puck { }\n").traction_version is None
     assert read_scene("#VRML_SIM R2018a utf8\nE-puck { }\n").traction_version == "1"
+
+
+#: Spins its e-puck in place at full speed until the run ends.
+SPIN = TURN_ONE_STEP.replace("robot.step(8)\n", "while robot.step(8) != -1:\n    pass\n")
+
+#: Lets the spinner reach full turn rate, puts it back at the origin facing +x, and writes its
+#: yaw after each of the next two steps to the file in SPIN_LOG.
+PUT_BACK = """import json, os
+from controller import Supervisor
+robot = Supervisor()
+spinner = robot.getFromDef("SPINNER")
+for _ in range(10):
+    robot.step(8)
+spinner.getField("translation").setSFVec3f([0.0, 0.0, 0.0])
+spinner.getField("rotation").setSFRotation([0.0, 0.0, 1.0, 0.0])
+yaws = []
+for _ in range(2):
+    robot.step(8)
+    x, y, z, angle = spinner.getField("rotation").getSFRotation()
+    yaws.append(z * angle)
+with open(os.environ["SPIN_LOG"], "w") as handle:
+    json.dump(yaws, handle)
+"""
+
+
+def test_an_e_puck_a_supervisor_puts_elsewhere_starts_again_from_rest(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """In a world run, a spinning E-puck that another robot's supervisor puts back at a pose
+    turns in its next step only what friction allows from rest, as a run of one robot whose
+    own supervisor moves it does; the step after, it turns more."""
+    from mazesim.webots.lockstep import run_world
+
+    header = "#VRML_SIM R2023b utf8\nWorldInfo { basicTimeStep 8 }\n"
+    (tmp_path / "worlds").mkdir()
+    (tmp_path / "worlds" / "spin.wbt").write_text(
+        header
+        + 'DEF SPINNER E-puck { name "spinner" controller "spin" }\n'
+        + 'Robot { translation 0.5 0.5 0 name "referee" controller "put_back" supervisor TRUE }\n'
+    )
+    for name, text in (("spin", SPIN), ("put_back", PUT_BACK)):
+        (tmp_path / "controllers" / name).mkdir(parents=True)
+        (tmp_path / "controllers" / name / f"{name}.py").write_text(text)
+    log = tmp_path / "yaws.json"
+    monkeypatch.setenv("SPIN_LOG", str(log))
+    run = run_world(str(tmp_path / "worlds" / "spin.wbt"), seconds=0.2, noise=False)
+    assert [robot.exit_status for robot in run.robots] == [0, 0], run.robots[1].error
+    first, second = json.loads(log.read_text())
+    from_rest = turned_in_first_step(header + "E-puck { }\n")
+    assert first == pytest.approx(from_rest, abs=1e-6)
+    assert first < 0.82 * turned_in_first_step(None) < second - first

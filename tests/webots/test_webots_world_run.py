@@ -94,7 +94,22 @@ def test_a_c_controller_is_found_in_its_webots_folder(tmp_path: Path) -> None:
     found, _ = controller_of({"name": "e", "controller": "avoid"}, world, {})
     assert found == str(tmp_path / "controllers" / "avoid" / "avoid.c")
     none, why = controller_of({"name": "e", "controller": "absent"}, world, {})
-    assert none is None and "absent.py, .c or .cpp" in why
+    assert none is None and "absent.py, .c, .cpp, .cc, .cxx" in why
+
+
+def test_a_cpp_controller_in_a_cc_file_is_found_in_its_webots_folder(tmp_path: Path) -> None:
+    """Webots' default Makefile compiles ``.cc`` and ``.cxx`` C++ sources too: a controller
+    folder whose main file is ``NAME.cc`` runs it, in a world run and a run of one robot."""
+    from mazesim.webots.runner import controller_file
+
+    (tmp_path / "worlds").mkdir()
+    folder = tmp_path / "controllers" / "bidder"
+    folder.mkdir(parents=True)
+    (folder / "bidder.cc").write_text("int main() { return 0; }\n")
+    world = str(tmp_path / "worlds" / "w.wbt")
+    found, why = controller_of({"name": "e", "controller": "bidder"}, world, {})
+    assert (found, why) == (str(folder / "bidder.cc"), "")
+    assert controller_file(folder) == str(folder / "bidder.cc")
 
 
 @pytest.mark.skipif(shutil.which("gcc") is None, reason="needs gcc")

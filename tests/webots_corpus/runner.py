@@ -264,8 +264,26 @@ def _run_project(project: Project, mirrors: Path, work: Path, census: Census) ->
         checks.append((line, ok, measured))
     missing = [str(m) for m in summary.get("missing_features") or []]
     if whole:  # what the robot of the project's first controller lacks, as its run said
-        missing = [str(m) for m in robot.get("missing_features") or []]
+        missing = _world_missing(summary, robot)
     return _judge(project, checks, warnings, outcome, run, missing, others)
+
+
+def _world_missing(summary: dict[str, Any], own: dict[str, Any]) -> list[str]:
+    """What a whole world's run said at its start that the robot of the project's first
+    controller lacks, else what the other robots' controllers lack (those robots then stand
+    still, which the facts about the world's robots see), each statement once with the robots
+    it concerns."""
+    missing = [str(m) for m in own.get("missing_features") or []]
+    if missing:
+        return missing
+    robots: dict[str, list[str]] = {}
+    for other in summary.get("robots") or []:
+        if isinstance(other, dict) and other is not own:
+            for statement in other.get("missing_features") or []:
+                names = robots.setdefault(str(statement), [])
+                if str(other.get("name")) not in names:
+                    names.append(str(other.get("name")))
+    return [f"robot {', '.join(names)}: {statement}" for statement, names in robots.items()]
 
 
 def _names_texture(statement: str, warning: str) -> bool:

@@ -19,7 +19,7 @@ from webots_corpus.census import Census, losses, proto_instances
 from webots_corpus.facts import Outcome, check, dark_fraction, min_gap, parse_fact
 from webots_corpus.manifest import ManifestError, Project, load_manifest, parse_manifest
 from webots_corpus.report import render
-from webots_corpus.runner import run_project
+from webots_corpus.runner import _world_missing, run_project
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "webots_corpus"
 COMMIT = "0123456789abcdef0123456789abcdef01234567"
@@ -223,6 +223,18 @@ def test_the_runner_exports_runs_and_checks_a_project(tmp_path: Path) -> None:
     assert "| fail |" in page and "| pass |" in page and "| skipped |" in page
     assert "| Mystery | 1 | 1 | 0 | 0 | 1 |" in page
     assert "Coverage: 3 of 4 instances import (75%)" in page
+
+
+def test_a_whole_world_s_missing_features_are_its_own_robot_s_else_the_others_named() -> None:
+    own = {"name": "referee", "missing_features": []}
+    leader = {"name": "leader", "missing_features": ["Webots C API function(s): robot_step"]}
+    follower = {"name": "follower", "missing_features": leader["missing_features"]}
+    summary = {"robots": [own, leader, follower, {**follower}, {"name": "idle"}]}
+    assert _world_missing(summary, own) == [
+        "robot leader, follower: Webots C API function(s): robot_step"
+    ]
+    assert _world_missing(summary, leader) == ["Webots C API function(s): robot_step"]
+    assert _world_missing({"robots": [own]}, own) == []
 
 
 def test_the_committed_table_holds_the_acceptance_rule() -> None:

@@ -12,7 +12,9 @@ does not move. A supervisor sees and moves every robot through the :class:`Fleet
 ``simulationQuit`` ends every controller's run (``Robot.step`` returns -1).
 
 The e-pucks share one simulator (:mod:`mazesim.webots.shared_world`): they collide with and
-see each other and the world's movable bodies, which they push. A world the shared simulator
+see each other and the world's movable bodies, which they push. This process also holds each
+imported E-puck's wheel traction (:mod:`mazesim.webots.traction`), so that a robot a supervisor
+puts elsewhere starts again from rest, whichever process moved it. A world the shared simulator
 refuses (robots overlapping at their starts, more robots than a world holds) runs each robot in
 a simulator of its own, with a warning: there robots neither collide with nor see each other;
 the radio and the supervisor see them all.
@@ -33,12 +35,15 @@ from typing import Any
 
 import numpy as np
 
-from mazesim._core import Simulator, World
+from mazesim._core import RobotProfile, Simulator, World
 from mazesim.errors import InvalidArgumentError, MazesimIOError
 from mazesim.webots.controller_process import ControllerJob, answer, controller_main
 from mazesim.webots.radio import Radio
+from mazesim.webots.runner import CONTROLLER_SUFFIXES
+from mazesim.webots.scene import read_scene
 from mazesim.webots.shared_world import RobotView, shared_simulator
 from mazesim.webots.simulation import robot_profile_name
+from mazesim.webots.traction import Traction, epuck_traction
 from mazesim.webots.virtual_display import virtual_display, window_environment
 
 __all__ = ["Fleet", "RobotRun", "StepObserver", "WorldRun", "controller_of", "run_world"]
@@ -142,11 +147,6 @@ class Fleet:
         self.moved.add(index)
 
 
-#: The files a Webots controller folder ``controllers/NAME`` may run, in the order Webots
-#: looks for them (Python, C, C++).
-CONTROLLER_SUFFIXES = (".py", ".c", ".cpp")
-
-
 def controller_of(
     robot: Mapping[str, Any], world_path: str, given: Mapping[str, str]
 ) -> tuple[str | None, str]:
@@ -176,7 +176,7 @@ def controller_of(
             candidate = os.path.join(project, "controllers", name, f"{name}{suffix}")
             if os.path.isfile(candidate):
                 return candidate, ""
-    return None, f"no controller controllers/{name}/{name}.py, .c or .cpp"
+    return None, f"no controller controllers/{name}/{name}{', '.join(CONTROLLER_SUFFIXES)}"
 
 
 def run_world(
@@ -238,6 +238,7 @@ def run_world(
             )
     drawn, environment = _say_what_is_missing(runs)
     fleet = Fleet(robots, simulators)
+    traction = WorldTraction(world_path, robots, simulators)
     movable = [robot.get("profile") is not None for robot in robots]
     started = time.perf_counter()
     watch = None if observer is None else lambda *state: observer(world, runs, *state)
@@ -246,7 +247,7 @@ def run_world(
         if drawn:
             display.enter_context(virtual_display())
         display.enter_context(window_environment(environment))
-        steps = _lockstep(jobs, simulators, movable, fleet, runs, watch)
+        steps = _lockstep(jobs, simulators, movable, fleet, runs, traction, watch)
     if watch is not None:
         watch(simulators, None)
     for run, simulator in zip(runs, simulators):
@@ -333,6 +334,7 @@ def _lockstep(
     movable: list[bool],
     fleet: Fleet,
     runs: list[RobotRun],
+    traction: WorldTraction,
     watch: Callable[[list[Any], Mapping[int, tuple[float, float]] | None], None] | None = None,
 ) -> int:
     """Starts the controller processes and steps the world whenever every running controller
@@ -388,7 +390,8 @@ def _lockstep(
                 if not over:
                     if watch is not None:
                         watch(simulators, wheels)
-                    _step_world(simulators, wheels, radio, runs)
+                    _step_world(simulators, traction.drive(wheels), radio, runs)
+                    traction.settle()
                     steps += 1
                 for index in sorted(wheels):
                     connections[index].send(("ok", over))
@@ -402,6 +405,58 @@ def _lockstep(
         for connection in connections.values():
             connection.close()
     return steps
+
+
+class WorldTraction:
+    """Each imported E-puck's wheel traction (:mod:`mazesim.webots.traction`), applied in the
+    world's process to the wheel speeds the controllers ask for.
+
+    A robot found elsewhere than where its last step left it was put there by a supervisor (its
+    own, or another's through the :class:`Fleet`): it starts again from rest, as a run of one
+    robot's ``move_robot`` has it.
+    """
+
+    def __init__(
+        self, world_path: str, robots: list[Mapping[str, Any]], simulators: list[Any]
+    ) -> None:
+        with open(world_path, encoding="utf-8", errors="replace") as handle:
+            text = handle.read().replace("\r\n", "\n").replace("\r", "\n")
+        self._simulators = simulators
+        self.dt = float(simulators[0].control_step_ms) / 1000.0
+        self.tractions: dict[int, Traction] = {}
+        for index, robot in enumerate(robots):
+            if robot.get("profile") is None:
+                continue
+            version = read_scene(text, robot.get("model"), robot.get("line")).traction_version
+            if version is not None:
+                name = robot_profile_name({"robot_profile": robot.get("profile")})
+                profile = RobotProfile.builtin(name)
+                self.tractions[index] = epuck_traction(
+                    version,
+                    float(profile.wheel_radius),
+                    float(profile.axle_length),
+                    float(profile.max_wheel_speed),
+                )
+        self._left: dict[int, tuple[float, float, float]] = {
+            i: tuple(float(v) for v in simulators[i].pose)  # type: ignore[misc]
+            for i in self.tractions
+        }
+
+    def drive(self, wheels: Mapping[int, tuple[float, float]]) -> dict[int, tuple[float, float]]:
+        """The wheel speeds that move each robot this step as its traction allows (the others'
+        as asked)."""
+        driven = dict(wheels)
+        for index, traction in self.tractions.items():
+            pose = tuple(float(v) for v in self._simulators[index].pose)
+            if pose != self._left[index]:
+                traction.stop()
+            driven[index] = traction.drive(*wheels.get(index, (0.0, 0.0)), self.dt)
+        return driven
+
+    def settle(self) -> None:
+        """Notes where the step left each robot."""
+        for index in self.tractions:
+            self._left[index] = tuple(float(v) for v in self._simulators[index].pose)  # type: ignore[assignment]
 
 
 def _step_world(

@@ -46,7 +46,14 @@ FLAGS = ("-O2", "-w")
 #: Exit status of a controller killed by a signal, or that broke the link.
 EXIT_CRASHED = 1
 
-_UNDEFINED = re.compile(r"undefined reference to [`'‘](wb_\w+)['’]")
+#: The devices of Webots' older C API, whose functions had no ``wb_`` before their names
+#: (``robot_step``, ``distance_sensor_enable``, ``differential_wheels_set_speed``...): some old
+#: controllers still call them, and the library implements none of them.
+_OLD_API = (
+    "robot|distance_sensor|differential_wheels|receiver|emitter|led|light_sensor|camera|"
+    "supervisor|servo|touch_sensor|accelerometer|gps|compass"
+)
+_UNDEFINED = re.compile(rf"undefined reference to [`'‘]((?:wb|{_OLD_API})_\w+)['’]")
 _NO_HEADER = re.compile(r"fatal error: (webots/[\w/.]+): No such file or directory")
 #: A header of the project that is not in the controller's folder (a library the project's own
 #: build, CMake or a Makefile, adds with its include folders).

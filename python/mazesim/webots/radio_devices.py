@@ -210,6 +210,27 @@ class Receiver(_Tuned, NotSimulated, _Sensor):
         """The head packet's bytes, as :meth:`getBytes`."""
         return self.getBytes()
 
+    def _unpacked(self, kind: str, size: int) -> tuple[Any, ...] | None:
+        head = self._head("get_data")
+        if head is None:
+            return None
+        return struct.unpack(
+            f"{len(head.data) // size}{kind}", head.data[: len(head.data) // size * size]
+        )
+
+    def getFloats(self) -> tuple[float, ...] | None:
+        """The head packet as doubles (what ``Emitter.send`` of a list of numbers sends), as
+        Webots' Python ``Receiver.getFloats`` reads it (None with Webots' error when empty)."""
+        return self._unpacked("d", 8)
+
+    def getInts(self) -> tuple[int, ...] | None:
+        """The head packet as 4-byte integers, as Webots' ``Receiver.getInts``."""
+        return self._unpacked("i", 4)
+
+    def getBools(self) -> tuple[bool, ...] | None:
+        """The head packet as one boolean a byte, as Webots' ``Receiver.getBools``."""
+        return self._unpacked("?", 1)
+
     def getString(self) -> str | None:
         """The head packet as UTF-8 text, without the NUL a C controller ends a string with."""
         head = self._head("get_data")

@@ -187,10 +187,50 @@ def _own_files(base: str, dotted: str) -> list[str] | None:
     return files
 
 
+def _literal_path(node: ast.expr) -> str | None:
+    """The text of a path written as a string, or as ``os.path.join`` of strings."""
+    if isinstance(node, ast.Constant) and isinstance(node.value, str):
+        return node.value
+    if (
+        isinstance(node, ast.Call)
+        and ast.unparse(node.func) in ("os.path.join", "path.join", "join")
+        and node.args
+        and all(isinstance(a, ast.Constant) and isinstance(a.value, str) for a in node.args)
+    ):
+        return os.path.join(*(str(a.value) for a in node.args if isinstance(a, ast.Constant)))
+    return None
+
+
+def path_additions(path: str) -> list[str]:
+    """The folders a controller file puts on ``sys.path`` by ``sys.path.append(...)`` or
+    ``sys.path.insert(i, ...)`` of a written path (``".."``, ``os.path.join("..", "lib")``),
+    relative to the controller's folder, from which Webots runs it."""
+    try:
+        tree = ast.parse(read_input(path, MAX_TEXT_CHARACTERS, "the controller"))
+    except (SyntaxError, ValueError, OSError):
+        return []
+    here = os.path.dirname(os.path.abspath(path))
+    folders = []
+    for node in ast.walk(tree):
+        if (
+            isinstance(node, ast.Call)
+            and isinstance(node.func, ast.Attribute)
+            and node.func.attr in ("append", "insert")
+            and ast.unparse(node.func.value) == "sys.path"
+            and node.args
+        ):
+            written = _literal_path(node.args[-1])
+            if written is not None:
+                folders.append(os.path.normpath(os.path.join(here, written)))
+    return folders
+
+
 def imported_names(path: str) -> set[str]:
     """The top-level names of the modules a controller file imports (outside ``try``), and those
-    its own modules and packages beside it import, but not its own modules' names."""
+    its own modules and packages beside it (or in a folder it puts on ``sys.path``,
+    :func:`path_additions`) import, but not its own modules' names."""
     folder = os.path.dirname(os.path.abspath(path))
+    roots = [folder, *path_additions(path)]
     names: set[str] = set()
     files, seen = [os.path.abspath(path)], set[str]()
     while files and len(seen) < MAX_OWN_MODULES:
@@ -199,12 +239,21 @@ def imported_names(path: str) -> set[str]:
             continue
         seen.add(file)
         for base, dotted in _imports(file):
-            own = _own_files(base or folder, dotted)
+            own = _own_files(base, dotted) if base else _first_own(roots, dotted)
             if own is None and not base:
                 names.add(dotted.split(".")[0])
             else:
                 files += own or []
     return names
+
+
+def _first_own(roots: list[str], dotted: str) -> list[str] | None:
+    """The controller's own files ``dotted`` loads from the first of ``roots`` that holds it."""
+    for root in roots:
+        own = _own_files(root, dotted)
+        if own is not None:
+            return own
+    return None
 
 
 def missing_packages(path: str) -> list[str]:

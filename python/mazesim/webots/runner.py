@@ -97,10 +97,16 @@ class ControllerRun:
     stalled: bool = False
 
 
+#: The files a Webots controller folder ``controllers/NAME`` may run, ``NAME`` and one of these
+#: suffixes, in the order Webots looks for them: Python, then C and C++ sources as its default
+#: Makefile compiles them.
+CONTROLLER_SUFFIXES = (".py", *native_controller.C_SUFFIXES, *native_controller.CPP_SUFFIXES)
+
+
 def controller_file(path: str | os.PathLike[str]) -> str:
     """The controller file to run: ``path`` itself, or for a Webots controller folder
-    ``controllers/NAME`` the ``NAME.py``, ``NAME.c`` or ``NAME.cpp`` in it, as Webots looks for
-    them.
+    ``controllers/NAME`` the ``NAME.py``, ``NAME.c``, ``NAME.cpp``, ``NAME.cc`` or ``NAME.cxx`` in
+    it (:data:`CONTROLLER_SUFFIXES`), as Webots looks for them.
 
     Raises:
         MazesimIOError: ``path`` is a folder without such a file.
@@ -109,13 +115,13 @@ def controller_file(path: str | os.PathLike[str]) -> str:
     if not os.path.isdir(file):
         return file
     name = os.path.basename(file)
-    for suffix in (".py", ".c", ".cpp"):
+    for suffix in CONTROLLER_SUFFIXES:
         inside = os.path.join(file, f"{name}{suffix}")
         if os.path.isfile(inside):
             return inside
     failure = MazesimIOError(
         f"{file}: expected a controller file, or a Webots controller folder holding "
-        f"{name}.py, {name}.c or {name}.cpp (Webots runs controllers/NAME/NAME.*), found a "
+        f"{name}{', '.join(CONTROLLER_SUFFIXES)} (Webots runs controllers/NAME/NAME.*), found a "
         f"folder without them"
     )
     failure.filename = file

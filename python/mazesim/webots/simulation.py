@@ -163,8 +163,10 @@ class RobotSimulation:
             else simulator
         )
         self.radio = Radio() if radio is None else radio
+        # The wheels' traction; in a world of several robots the world's process applies it
+        # (:class:`mazesim.webots.lockstep.WorldTraction`).
         self.traction: Traction | None = None
-        if self.scene.traction_version is not None:
+        if self.scene.traction_version is not None and self.owns_world:
             robot = self.simulator.robot
             self.traction = epuck_traction(
                 self.scene.traction_version,

@@ -13,6 +13,12 @@ pub const FLOOR_LEVEL: f64 = 0.001;
 /// Height of the e-puck, about 5 cm (GCtronic: 70 mm across, ~50 mm high); a shape whose
 /// bottom is at or above it passes over the robot.
 pub const ROBOT_HEIGHT: f64 = 0.05;
+/// A static shape whose top is at or below this height (metres) is a platform the e-puck stands
+/// on, not a wall: the bottom of the E-puck PROTO's body (its bounding cylinder, 0.045 m high,
+/// is centred 0.025 m up); below it only the wheels (radius 0.02 m) and the 1 cm thick bottom
+/// plate of its bounding objects meet the shape, and Webots' ODE lifts a robot placed on it
+/// (a thin region a world marks on the floor as a Solid with a bounding object).
+pub const STOOD_ON: f64 = 0.0025;
 
 fn scaled(v: Vec3, s: f64) -> Vec3 {
     v.map(|c| c * s)
@@ -124,7 +130,15 @@ impl<'d> Importer<'d> {
     /// Whether a shape spanning `center_z +- half_z` meets the robot's height (a falling one, of
     /// an object with physics, meets it once on the floor).
     fn meets_robot(&mut self, center_z: f64, half_z: f64, owner: &str) -> bool {
-        if center_z + half_z <= FLOOR_LEVEL {
+        let top = center_z + half_z;
+        if top <= FLOOR_LEVEL {
+            return false;
+        }
+        if top <= STOOD_ON && !self.falls {
+            self.warn(format!(
+                "{owner}: a collision shape {:.1} mm high: the robot stands and drives on it, imported as floor (Webots' ODE may stop an e-puck driving onto it at its edge)",
+                top * 1000.0
+            ));
             return false;
         }
         if center_z - half_z >= ROBOT_HEIGHT && !self.falls {

@@ -161,6 +161,32 @@ fn what_is_not_understood_is_reported_not_fatal() {
 }
 
 #[test]
+fn a_sheet_lower_than_the_e_puck_s_body_is_floor_it_stands_on() {
+    // A region marked on the floor by a Solid whose bounding box is 1 mm thick and 1 mm up
+    // (its top 1.5 mm high): the e-pucks start on it, as in Webots; a 3 mm high one is a wall.
+    let w = import(
+        "#VRML_SIM R2023b utf8\n\
+         Solid { translation 1 1 0.001 boundingObject Box { size 2 2 0.001 } }\n\
+         Solid { translation -1 -1 0.0015 boundingObject Box { size 0.5 0.5 0.003 } }\n\
+         E-puck { translation 1 1 0 }\n",
+    );
+    assert!(
+        warned(
+            &w,
+            "a collision shape 1.5 mm high: the robot stands and drives on it"
+        ),
+        "{:#?}",
+        w.warnings
+    );
+    assert_eq!(w.obstacles.len(), 1);
+    let (center, size, _) = the_box(&w.obstacles[0]);
+    assert!(
+        close(center[0], -1.0) && close(size[0], 0.5),
+        "{center:?} {size:?}"
+    );
+}
+
+#[test]
 fn circles_become_polygons_in_the_world() {
     let w = import(
         "#VRML_SIM R2023b utf8\n\
