@@ -22,6 +22,18 @@ navigator's in the same round (``randomised_against_default``): the acceptance f
 randomised navigator's training in the core. A randomised run also draws its robots anew and
 builds their batch before every round; ``randomised_with_draw_against_default`` counts that too
 (what a round of ``mazesim train`` costs it), and ``draw_seconds`` gives it alone.
+
+With ``--baseline-python PYTHON`` (the interpreter of another build of mazesim, say a checkout of
+an earlier commit), it compares builds instead: the randomised navigator's round of this build
+against the default navigator's round of the other, each in a process of its own that keeps its
+trainer between rounds (the same robot count and seed, round after round), the two processes
+taking turns (the order swapped every round). It prints both medians and the median of the
+per-round ratios (the other build's default round time over this build's randomised round time,
+so above 1 is faster), in wall seconds and in the processes' processor seconds; with
+``--threads 1`` the processor time is one thread's work, which a loaded machine disturbs least::
+
+    .venv/bin/python benches/bench_train.py --baseline-python ../base/.venv/bin/python \
+        --threads 1 --rounds 7
 """
 
 from __future__ import annotations
@@ -32,6 +44,8 @@ import json
 import os
 import platform
 import statistics
+import subprocess
+import sys
 import time
 from typing import Any
 
@@ -106,13 +120,127 @@ def measure(envs: int, rounds: int, threads: int) -> dict[str, Any]:
     }
 
 
+def serve(loop: str, envs: int, rounds: int, threads: int) -> None:
+    """Runs one loop's rounds as stdin asks (a round index a line) and answers each with a JSON
+    line of its wall and processor seconds (the randomised loop's draw and batch apart)."""
+    shipped = load_policy("randomised").training["settings"]
+    settings = LowerSettings(num_envs=envs, total_steps=envs * 500 * rounds, seed=shipped["seed"])
+    draw = None
+    if loop == "randomised":
+        settings = dataclasses.replace(
+            settings, door_distance=True, blind_forward=True, hold_heading=True
+        )
+        draw = robot_draw(parse_spec(shipped["randomise"]), shipped["seed"])
+    trainer = LowerTrainer(settings, threads=threads)
+    print("ready", flush=True)
+    for line in sys.stdin:
+        k = int(line)
+        drawn = 0.0
+        if draw is not None:
+            start = time.perf_counter()
+            trainer.use_robots(draw(k, envs))
+            drawn = time.perf_counter() - start
+        wall, cpu = time.perf_counter(), time.process_time()
+        trainer.run_round(k)
+        wall, cpu = time.perf_counter() - wall, time.process_time() - cpu
+        print(json.dumps({"wall": wall, "cpu": cpu, "draw": drawn}), flush=True)
+
+
+def against_baseline(python: str, envs: int, rounds: int, threads: int) -> dict[str, Any]:
+    """This build's randomised rounds against ``python``'s build's default rounds, in turns."""
+    args = ["--envs", str(envs), "--rounds", str(rounds), "--threads", str(threads)]
+    workers = {
+        "randomised": [sys.executable, __file__, "--serve", "randomised", *args],
+        "baseline_default": [python, __file__, "--serve", "default", *args],
+    }
+    procs = {
+        name: subprocess.Popen(command, stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+        for name, command in workers.items()
+    }
+    for proc in procs.values():
+        assert proc.stdout is not None and proc.stdout.readline().strip() == "ready"
+    times: dict[str, list[dict[str, float]]] = {name: [] for name in procs}
+    names = list(procs)
+    try:
+        for k in range(rounds):
+            for name in names if k % 2 == 0 else names[::-1]:
+                proc = procs[name]
+                assert proc.stdin is not None and proc.stdout is not None
+                proc.stdin.write(f"{k}\n")
+                proc.stdin.flush()
+                times[name].append(json.loads(proc.stdout.readline()))
+    finally:
+        for proc in procs.values():
+            assert proc.stdin is not None
+            proc.stdin.close()
+            proc.wait()
+
+    def ratio(key: str) -> float:
+        """The median over rounds of the baseline's default time over the randomised time."""
+        pairs = zip(times["baseline_default"], times["randomised"])
+        return statistics.median(base[key] / mine[key] for base, mine in pairs)
+
+    return {
+        "envs": envs,
+        "rounds": rounds,
+        "threads": threads,
+        "baseline_python": python,
+        "seconds_per_round": {
+            name: {key: statistics.median(t[key] for t in ts) for key in ("wall", "cpu")}
+            for name, ts in times.items()
+        },
+        "draw_seconds": statistics.median(t["draw"] for t in times["randomised"]),
+        "randomised_against_baseline_default": {key: ratio(key) for key in ("wall", "cpu")},
+        "load_average": os.getloadavg()[0],
+        "machine": platform.machine(),
+        "cpus": os.cpu_count(),
+    }
+
+
+def print_against_baseline(result: dict[str, Any]) -> None:
+    """The figures of ``against_baseline`` as lines of text."""
+    print(
+        f"lower-level rounds, {result['envs']} robots x 500 steps, {result['threads']} threads, "
+        f"medians of {result['rounds']} rounds"
+    )
+    labels = {
+        "baseline_default": "default, the other build",
+        "randomised": "randomised, this build",
+    }
+    for name, label in labels.items():
+        t = result["seconds_per_round"][name]
+        print(f"  {label:26} {t['wall']:6.2f} s wall  {t['cpu']:6.2f} s processor a round")
+    r = result["randomised_against_baseline_default"]
+    print(
+        f"  randomised (this build) / default (other build): {r['wall']:.3f}x the speed in wall "
+        f"time, {r['cpu']:.3f}x in processor time (the draw apart: {result['draw_seconds']:.2f} s "
+        f"a round; load average {result['load_average']:.1f})"
+    )
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--envs", type=int, default=2048, help="robots (default: 2048)")
     parser.add_argument("--rounds", type=int, default=5, help="rounds of each loop (default: 5)")
     parser.add_argument("--threads", type=int, default=2, help="worker threads (default: 2)")
     parser.add_argument("--json", action="store_true", help="print one JSON object")
+    parser.add_argument(
+        "--baseline-python",
+        metavar="PYTHON",
+        help="compare this build's randomised rounds with this interpreter's build's default ones",
+    )
+    parser.add_argument("--serve", choices=("default", "randomised"), help=argparse.SUPPRESS)
     args = parser.parse_args()
+    if args.serve:
+        serve(args.serve, args.envs, args.rounds, args.threads)
+        return
+    if args.baseline_python:
+        paired = against_baseline(args.baseline_python, args.envs, args.rounds, args.threads)
+        if args.json:
+            print(json.dumps(paired, indent=2))
+        else:
+            print_against_baseline(paired)
+        return
     result = measure(args.envs, args.rounds, args.threads)
     if args.json:
         print(json.dumps(result, indent=2))

@@ -6,10 +6,16 @@
 //! and every robot a perturbed seed robot of its own, each perturbed from its own parse of the
 //! profile as `mazesim train --randomise` draws them). Throughput is in env-steps, so the two
 //! figures compare as `benches/bench_train.py`'s ratio does.
+//!
+//! `cargo bench --bench train -- turns [ROUNDS]` times instead the two rounds in turns in one
+//! thread (the order swapped every round), in processor seconds (the tables' zeroing before each
+//! round left out), and prints the median of the rounds' ratios (randomised over default speed):
+//! the figure a loaded machine still resolves. `turns ROUNDS default` (or `randomised`) runs one
+//! of them alone, for a profiler.
 
 use std::sync::Arc;
 
-use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use criterion::{criterion_group, Criterion, Throughput};
 use mazesim_core::generator::{generate, MazeParams};
 use mazesim_core::navigator::door::{Phases, NUM_SUBTASKS};
 use mazesim_core::navigator::heading_hold::BlindRule;
@@ -130,10 +136,11 @@ struct Robots {
     world_of_env: Vec<i64>,
 }
 
-fn batch(d: &Draws, randomised: bool) -> Robots {
+fn batch(d: &Draws, randomised: bool, threads: usize) -> Robots {
     let worlds = vec![d.worlds[0].clone(); ENVS];
     let seeds: Vec<u64> = (0..ENVS as u64).collect();
-    let batch = Batch::with_robots(worlds, &robots(randomised), &seeds, true, None, 0).unwrap();
+    let robots = robots(randomised);
+    let batch = Batch::with_robots(worlds, &robots, &seeds, true, None, threads).unwrap();
     let width = batch.observation_width();
     Robots {
         batch,
@@ -161,12 +168,17 @@ impl Tables {
     }
 }
 
-/// One round of `STEPS` control steps, the tables learning from zero (set to zero in place, so
-/// that the iteration times no allocation of the tables).
+impl Tables {
+    /// Back to zero, in place (no allocation).
+    fn clear(&mut self) {
+        self.q.fill(0.0);
+        self.visits.fill(0);
+    }
+}
+
+/// One round of `STEPS` control steps, the tables learning from what `tables` holds.
 fn round(d: &Draws, robots: &mut Robots, tables: &mut Tables, settings: RoundSettings) {
     let rows = settings.phases.rows();
-    tables.q.fill(0.0);
-    tables.visits.fill(0);
     let symmetry = Symmetry {
         states: (0..NUM_SUBTASKS).flat_map(|_| 0..rows).collect(),
         actions: std::array::from_fn(|a| a),
@@ -210,29 +222,99 @@ fn round(d: &Draws, robots: &mut Robots, tables: &mut Tables, settings: RoundSet
     train_lower_round(round, &mut crews).unwrap();
 }
 
+/// The two rounds: name, robots of their own, and the options.
+const OPTIONS: [(&str, bool, Phases, BlindRule); 2] = [
+    ("default", false, Phases::Heading, BlindRule::Table),
+    (
+        "randomised",
+        true,
+        Phases::HeadingAndDistance,
+        BlindRule::HoldHeading,
+    ),
+];
+
 fn lower_round(c: &mut Criterion) {
     let d = draws();
     let mut g = c.benchmark_group("lower_round");
     g.throughput(Throughput::Elements((ENVS * STEPS) as u64));
     g.sample_size(10);
-    let options = [
-        ("default", false, Phases::Heading, BlindRule::Table),
-        (
-            "randomised",
-            true,
-            Phases::HeadingAndDistance,
-            BlindRule::HoldHeading,
-        ),
-    ];
-    for (name, randomised, phases, blind) in options {
-        let mut robots = batch(&d, randomised);
+    for (name, randomised, phases, blind) in OPTIONS {
+        let mut robots = batch(&d, randomised, 0);
         let mut tables = Tables::new(phases);
         g.bench_function(name, |b| {
-            b.iter(|| round(&d, &mut robots, &mut tables, settings(phases, blind)))
+            b.iter(|| {
+                // The tables learn from zero every iteration.
+                tables.clear();
+                round(&d, &mut robots, &mut tables, settings(phases, blind))
+            })
         });
     }
     g.finish();
 }
 
+/// This process's processor time, seconds.
+fn processor_seconds() -> f64 {
+    let mut t = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: `t` is a valid timespec for the call to write.
+    unsafe { libc::clock_gettime(libc::CLOCK_PROCESS_CPUTIME_ID, &mut t) };
+    t.tv_sec as f64 + t.tv_nsec as f64 * 1e-9
+}
+
+/// `rounds` rounds of each option in turns, one thread, timed in processor seconds.
+fn turns(rounds: usize, only: Option<&str>) {
+    let d = draws();
+    let mut setups: Vec<_> = (OPTIONS.iter())
+        .map(|&(_, randomised, phases, _)| (batch(&d, randomised, 1), Tables::new(phases)))
+        .collect();
+    let mut seconds = vec![vec![]; OPTIONS.len()];
+    for k in 0..rounds + 1 {
+        let order: Vec<usize> = if k % 2 == 0 { vec![0, 1] } else { vec![1, 0] };
+        for i in order {
+            let (name, _, phases, blind) = OPTIONS[i];
+            if only.is_some_and(|o| o != name) {
+                continue;
+            }
+            let (robots, tables) = &mut setups[i];
+            // Zeroing the tables is the bench's own work (`mazesim train` keeps them from round
+            // to round), and the door distance's tables are larger: it is left out.
+            tables.clear();
+            let start = processor_seconds();
+            round(&d, robots, tables, settings(phases, blind));
+            // The first round of each warms the caches and is not counted.
+            if k > 0 {
+                seconds[i].push(processor_seconds() - start);
+            }
+        }
+    }
+    let median = |mut v: Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    };
+    if only.is_some() {
+        return;
+    }
+    let ratios = seconds[0].iter().zip(&seconds[1]).map(|(a, b)| a / b);
+    for (i, (name, ..)) in OPTIONS.iter().enumerate() {
+        println!("{name:>11}: {:.4} s a round", median(seconds[i].clone()));
+    }
+    println!(
+        "randomised/default: {:.3}x the speed (median of {rounds} rounds' ratios, one thread)",
+        median(ratios.collect())
+    );
+}
+
 criterion_group!(benches, lower_round);
-criterion_main!(benches);
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    if let Some(at) = args.iter().position(|a| a == "turns") {
+        let rounds = args.get(at + 1).and_then(|n| n.parse().ok()).unwrap_or(9);
+        turns(rounds, args.get(at + 2).map(String::as_str));
+        return;
+    }
+    benches();
+    Criterion::default().configure_from_args().final_summary();
+}

@@ -17,6 +17,9 @@ pub struct LookupTable {
     /// Per cell, the first row whose input is at or above the cell's start (at least 1): where
     /// `eval`'s search for the row above `x` may begin.
     guide: [u8; GUIDE_CELLS],
+    /// The outputs fall or rise strictly from row to row, so that `invert` finds its row by
+    /// bisection.
+    strictly_monotonic: bool,
 }
 
 impl LookupTable {
@@ -52,6 +55,7 @@ impl LookupTable {
             )));
         }
         let inputs: Vec<f64> = rows.iter().map(|r| r[0]).collect();
+        let outputs: Vec<f64> = rows.iter().map(|r| r[1]).collect();
         let (first, last) = (inputs[0], inputs[rows.len() - 1]);
         let guide_scale = GUIDE_CELLS as f64 / (last - first);
         let mut guide = [1u8; GUIDE_CELLS];
@@ -67,7 +71,8 @@ impl LookupTable {
         }
         Ok(Self {
             inputs,
-            outputs: rows.iter().map(|r| r[1]).collect(),
+            strictly_monotonic: strictly_monotonic(&outputs),
+            outputs,
             noise: rows.iter().map(|r| r[2]).collect(),
             guide_scale,
             guide,
@@ -135,6 +140,26 @@ impl LookupTable {
         if after_last {
             return self.inputs[n - 1];
         }
+        if self.strictly_monotonic && !y.is_nan() {
+            // The row the scan below finds: the first whose output is at or past `y`, the one
+            // before it short of `y` (the first row is, as `before_first` is false).
+            let rest = &self.outputs[1..];
+            let i = 1 + if decreasing {
+                rest.partition_point(|&o| o > y)
+            } else {
+                rest.partition_point(|&o| o < y)
+            };
+            let (y0, y1) = (self.outputs[i - 1], self.outputs[i]);
+            let t = (y - y0) / (y1 - y0);
+            return self.inputs[i - 1] + t * (self.inputs[i] - self.inputs[i - 1]);
+        }
+        self.invert_by_scan(y, decreasing)
+    }
+
+    /// `invert` of a `y` within the outputs' ends, by a scan for the first row whose segment
+    /// holds it (and is not flat).
+    fn invert_by_scan(&self, y: f64, decreasing: bool) -> f64 {
+        let n = self.outputs.len();
         for i in 1..n {
             let (y0, y1) = (self.outputs[i - 1], self.outputs[i]);
             let inside = if decreasing {
@@ -149,6 +174,12 @@ impl LookupTable {
         }
         self.inputs[n - 1]
     }
+}
+
+/// Whether `values` fall strictly or rise strictly from each to the next.
+fn strictly_monotonic(values: &[f64]) -> bool {
+    let steps = || values.windows(2);
+    steps().all(|w| w[1] < w[0]) || steps().all(|w| w[1] > w[0])
 }
 
 #[cfg(test)]
@@ -239,6 +270,47 @@ mod tests {
         }
         assert_eq!(t.invert(1000.0), 0.0);
         assert_eq!(t.invert(-5.0), 2.0);
+    }
+
+    #[test]
+    fn bisection_inverts_as_the_scan_does() {
+        // Falling (the Sharp sensor's volts), rising, and not monotonic (a scan's case alone).
+        let tables = [
+            vec![
+                3.03, 2.78, 2.72, 2.33, 2.01, 1.76, 1.55, 1.4, 1.25, 1.04, 0.92, 0.31,
+            ],
+            vec![0.0, 0.1, 0.10001, 5.0, 7.5],
+            vec![1.0, 3.0, 2.0, 2.0, 0.5],
+        ];
+        for (k, outputs) in tables.iter().enumerate() {
+            let rows: Vec<[f64; 3]> = outputs
+                .iter()
+                .enumerate()
+                .map(|(j, &y)| [0.03 + 0.01 * j as f64, y, 0.0])
+                .collect();
+            let t = LookupTable::new(&rows).unwrap();
+            assert_eq!(t.strictly_monotonic, k < 2);
+            let (lo, hi) = (-0.5, 8.0);
+            let mut ys: Vec<f64> = (0..=20_000)
+                .map(|j| lo + (hi - lo) * j as f64 / 20_000.0)
+                .collect();
+            for &y in outputs {
+                ys.extend([y, f64::from_bits(y.to_bits() + 1), y.next_down()]);
+            }
+            // Volts as a robot reads them: f32 values.
+            ys.extend((0..=20_000).map(|j| (j as f32 * 1.6e-4) as f64));
+            for y in ys {
+                let (first, last) = (outputs[0], outputs[outputs.len() - 1]);
+                let inside = y > first.min(last) && y < first.max(last);
+                let expected = if inside {
+                    t.invert_by_scan(y, last < first)
+                } else {
+                    t.invert(y)
+                };
+                assert_eq!(t.invert(y).to_bits(), expected.to_bits(), "y = {y}");
+            }
+            assert_eq!(t.invert(f64::NAN), t.max_input());
+        }
     }
 
     #[test]
