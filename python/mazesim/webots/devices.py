@@ -315,7 +315,8 @@ class DistanceSensor(_Tabled, _ScalarSensor):
     """An infra-red sensor: a proximity sensor ``ps0``..``ps7`` or a ground sensor ``gs0``..``gs2``.
 
     Readings are the raw values of Webots' e-puck model (about 4095 touching, 67 at 7 cm and
-    beyond; ground: about 856 on white, 300 on black).
+    beyond; ground: about 856 on white, 300 on black), or of the world's own ``lookupTable``
+    of the sensor (:attr:`RobotSimulation.sensor_tables`).
     """
 
     _node_type = node_type("DISTANCE_SENSOR")
@@ -330,7 +331,9 @@ class DistanceSensor(_Tabled, _ScalarSensor):
         super().__init__(name, simulation)
         self._index = index
         self._ground = ground
-        self._table = LookupTable(GROUND_TABLE if ground else PROXIMITY_TABLE)
+        # The world's own lookupTable of this sensor when the simulation reads through it.
+        world_table = simulation.sensor_tables.get(name)
+        self._table = LookupTable(world_table or (GROUND_TABLE if ground else PROXIMITY_TABLE))
 
     def _read(self) -> float:
         readings = (

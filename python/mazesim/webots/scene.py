@@ -144,6 +144,10 @@ class Scene:
         y_up_devices: Whether the robot's PROTOs are Webots' Y-up ones (a file before
             R2022a): an accelerometer, gyro or compass then reads in the device frame x
             right, y up, z back.
+        sensor_tables: The ``lookupTable`` of each ``DistanceSensor`` node the robot's node
+            lists itself (a plain ``Robot`` e-puck saved expanded, not an E-puck PROTO node), by
+            its ``name``: rows of distance (m), value and relative noise, as written. Webots reads each such sensor through its own table; a sensor
+            without a ``lookupTable`` field, or with one not of rows of 3 numbers, is left out.
     """
 
     defs: dict[str, str] = field(default_factory=dict)
@@ -165,6 +169,7 @@ class Scene:
     ground_sensors_module: bool | None = None
     lights: list[Light] = field(default_factory=list)
     nodes: list[SceneNode] = field(default_factory=list)
+    sensor_tables: dict[str, list[tuple[float, float, float]]] = field(default_factory=dict)
 
 
 def _hinge_wheels(year: str | None) -> bool:
@@ -215,6 +220,8 @@ def read_scene(text: str, robot_model: str | None = None, robot_line: int | None
             # The E-puck PROTO's first HingeJoint is its left wheel's, the second its right's.
             scene.wheel_positions = (saved.get(0, 0.0), saved.get(1, 0.0))
             scene.ground_sensors_module = bool(_GROUND_SENSORS_MODULE.search(body))
+        if robot.group(2) not in EPUCK_TYPES:
+            scene.sensor_tables = _sensor_tables(body)
         if robot.group(2) == "E-puck":
             scene.infrared_elevation = EPUCK_IR_ELEVATION
         if robot.group(2) == "E-puck" and _hinge_wheels(year) and not _KINEMATIC.search(own):
@@ -249,6 +256,37 @@ def _without_comment(match: re.Match[str]) -> str:
     """A string of the file as it is, a comment (``#`` to the end of its line) removed."""
     found = match.group(0)
     return "" if found.startswith("#") else found
+
+
+_DISTANCE_SENSOR = re.compile(r"(?<![\w-])DistanceSensor\s*\{")
+_LOOKUP_TABLE = re.compile(r"\blookupTable\s*\[([^\]]*)\]")
+
+
+def _sensor_tables(body: str) -> dict[str, list[tuple[float, float, float]]]:
+    """The ``lookupTable`` of each named ``DistanceSensor`` node in a robot's body text."""
+    tables: dict[str, list[tuple[float, float, float]]] = {}
+    for node in _DISTANCE_SENSOR.finditer(body):
+        own = _own_text(body, node.end())
+        found = _NAME.search(own)
+        table = _own_lookup_table(_body_text(body, node.end()))
+        if found is not None and table is not None:
+            tables.setdefault(found.group(1), table)
+    return tables
+
+
+def _own_lookup_table(body: str) -> list[tuple[float, float, float]] | None:
+    """A node's own ``lookupTable`` field (not a child's), as rows of 3 numbers, or None."""
+    for match in _LOOKUP_TABLE.finditer(body):
+        if _nesting(body[: match.start()]) != 0:
+            continue
+        try:
+            numbers = [float(v) for v in match.group(1).replace(",", " ").split()]
+        except ValueError:
+            return None
+        if not numbers or len(numbers) % 3 != 0:
+            return None
+        return [(numbers[i], numbers[i + 1], numbers[i + 2]) for i in range(0, len(numbers), 3)]
+    return None
 
 
 def _robot_node(text: str, robot_types: set[str], line: int | None) -> re.Match[str] | None:
