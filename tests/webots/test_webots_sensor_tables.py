@@ -127,6 +127,7 @@ def test_a_refused_table_warns_and_runs(capsys: pytest.CaptureFixture[str]) -> N
     (warning,) = warnings
     assert warning.startswith("mazesim: warning: ")
     assert all(f"'{name}'" in warning for name, *_ in SENSORS)
+    assert warning.endswith("row 1 (0.01) is not above row 0 (0.02)")
     assert robot.getDevice("ps0").getMaxValue() == 4095.0
     assert readings[0] > 300.0
 

@@ -111,7 +111,9 @@ def world_sensor_tables(
         try:
             _profile_with_tables(layout, {sensor["name"]: table})
         except MazesimError as error:
-            refused.setdefault(str(error), []).append(repr(sensor["name"]))
+            # The format's reason, without the place in the generated profile text.
+            reason = str(error).split("`: ", 1)[-1]
+            refused.setdefault(reason, []).append(repr(sensor["name"]))
             continue
         used[sensor["name"]] = table
     warnings = [
