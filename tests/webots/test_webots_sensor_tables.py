@@ -137,3 +137,13 @@ def test_the_profile_text_is_written_back_as_it_was_read(name: str) -> None:
     text = RobotProfile.builtin(name).to_toml()
     again = simulations._profile_with_tables(load_toml(text, name), {})
     assert again.to_toml() == text
+
+
+def test_a_webots_6_differential_wheels_e_puck_s_tables_are_read() -> None:
+    text = plain_robot_world(TEN_BIT).replace("Robot {", "DifferentialWheels {")
+    text = text.replace("#VRML_SIM R2023b", "#VRML_SIM V6.4.0")
+    _, report = import_wbt_text(text, "old.wbt")
+    scene = read_scene(text, report.get("robot_model"), report.get("robot_line"))
+    assert scene.robot_name == "e-puck"
+    assert scene.sensor_tables["ps0"] == list(TEN_BIT)
+    assert set(simulations.world_sensor_tables(report, scene)[0]) == {n for n, *_ in SENSORS}

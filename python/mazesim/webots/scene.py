@@ -44,8 +44,8 @@ _KINEMATIC = re.compile(r"\bkinematic\s+TRUE\b")
 _VERSION_2 = re.compile(r'\bversion\s+"2"')
 _HIDDEN_WHEEL = re.compile(r"\bhidden\s+position_0_([01])\s+" + _NUMBER)
 _NORTH = re.compile(r"\bnorthDirection\s+" + _NUMBER + r"\s+" + _NUMBER + r"\s+" + _NUMBER)
-#: Node types that are robots.
-ROBOT_TYPES = {"E-puck", "Robot", "e-puck2", "Epuck", "EPuck", "E-puck2"}
+#: Node types that are robots (``DifferentialWheels``: Webots 6-7's wheeled robot).
+ROBOT_TYPES = {"E-puck", "Robot", "DifferentialWheels", "e-puck2", "Epuck", "EPuck", "E-puck2"}
 #: The E-puck PROTOs, whose hidden joint positions are their wheels'.
 #: The upward tilt of the E-puck PROTO's proximity sensor rays, radians: its
 #: ``E-puckDistanceSensor`` holds its DistanceSensor at ``rotation 0 0 1 0.16``, about the axis
