@@ -145,10 +145,10 @@ class Scene:
             R2022a): an accelerometer, gyro or compass then reads in the device frame x
             right, y up, z back.
         sensor_tables: The ``lookupTable`` of each ``DistanceSensor`` node the robot's node
-            lists itself (a plain ``Robot`` e-puck saved expanded, not an E-puck PROTO node), by
-            its ``name``: rows of distance (m), value and relative noise, as written. Webots
-            reads each such sensor through its own table; a sensor without a ``lookupTable``
-            field, or with one not of rows of 3 numbers, is left out.
+            lists itself (a plain ``Robot`` or ``DifferentialWheels`` e-puck saved expanded, not
+            an E-puck PROTO node), by its ``name``: rows of distance (m), value and relative
+            noise, as written. Webots reads each such sensor through its own table; a sensor
+            without a ``lookupTable`` field, or with one not of rows of 3 numbers, is left out.
     """
 
     defs: dict[str, str] = field(default_factory=dict)
