@@ -26,7 +26,8 @@ import mazesim
 from mazesim._checks import is_public_module, public_names
 
 #: Modules not walked: the program entry point (running it is the CLI's entries) and the parts
-#: that start outside processes (ROS masters, Ray clusters, Webots controllers over a socket),
+#: that start outside processes (ROS masters, Ray clusters, Webots controllers over a socket, the
+#: template process a world's controller processes are forked from),
 #: whose entry points are reached through the command line's entries instead; and the deprecated
 #: ``mazesim.hrl``, whose names are ``mazesim.learn``'s own objects (importing it warns).
 SKIPPED_MODULES = (
@@ -35,6 +36,7 @@ SKIPPED_MODULES = (
     "mazesim.ros",
     "mazesim.distributed",
     "mazesim.webots.controller",
+    "mazesim.webots.process_template",
 )
 
 #: How to make an instance of each public class whose methods are entry points: Python source

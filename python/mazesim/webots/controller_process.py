@@ -2,9 +2,10 @@
 
 Webots starts each robot's controller in a process of its own, so controllers share no
 module-level state; ``mazesim webots run WORLD`` does the same. The process that owns the world
-(:mod:`mazesim.webots.lockstep`) starts one process per robot with :func:`controller_main` and a
-pipe (``multiprocessing.connection.Connection``; messages are pickled tuples). The protocol,
-from the controller's side:
+(:mod:`mazesim.webots.lockstep`) has one process per robot forked from a template process that
+imported mazesim once (:mod:`mazesim.webots.process_template`); each runs
+:func:`controller_main` on a pipe of its own (``multiprocessing.connection.Connection``;
+messages are pickled tuples). The protocol, from the controller's side:
 
 - ``("call", target, name, args)``: calls ``name(*args)`` on ``target`` (``"simulator"``: the
   robot's simulator; ``"radio"``: the world's :class:`~mazesim.webots.radio.Radio`; ``"fleet"``:

@@ -2,8 +2,9 @@
 
 Each robot's ``controller`` field names a folder of the project's ``controllers/`` (a Python
 controller ``controllers/NAME/NAME.py``); each controller runs in a process of its own
-(:mod:`mazesim.webots.controller_process`), so controllers share no module-level state, and this
-process owns the world: every basic time step waits until every running controller has asked
+(:mod:`mazesim.webots.controller_process`, forked from one template process that imported
+mazesim once: :mod:`mazesim.webots.process_template`), so controllers share no module-level
+state, and this process owns the world: every basic time step waits until every running controller has asked
 for it (lockstep), transmits the radio's packets (:mod:`mazesim.webots.radio`), then steps every
 robot. A robot without a controller (``void``, ``<generic>``, none), with an ``<extern>`` one
 not given on the command line, or with one that is not Python, stands still; so does a robot
@@ -23,21 +24,21 @@ the radio and the supervisor see them all.
 from __future__ import annotations
 
 import contextlib
-import multiprocessing
 import os
 import re
 import sys
 import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from multiprocessing.connection import Connection, wait
+from multiprocessing.connection import wait
 from typing import Any
 
 import numpy as np
 
 from mazesim._core import RobotProfile, Simulator, World
 from mazesim.errors import InvalidArgumentError, MazesimIOError
-from mazesim.webots.controller_process import ControllerJob, answer, controller_main
+from mazesim.webots.controller_process import ControllerJob, answer
+from mazesim.webots.process_template import ControllerProcesses
 from mazesim.webots.radio import Radio
 from mazesim.webots.runner import CONTROLLER_SUFFIXES
 from mazesim.webots.scene import read_scene
@@ -339,17 +340,9 @@ def _lockstep(
 ) -> int:
     """Starts the controller processes and steps the world whenever every running controller
     has asked for the step; returns the number of steps."""
-    context = multiprocessing.get_context("spawn")
     radio = Radio()
-    connections: dict[int, Connection] = {}
-    processes = []
-    for index, job in jobs.items():
-        mine, theirs = context.Pipe()
-        process = context.Process(target=controller_main, args=(theirs, job), daemon=True)
-        process.start()
-        theirs.close()
-        connections[index] = mine
-        processes.append(process)
+    processes = ControllerProcesses()
+    connections = {index: processes.start(job) for index, job in jobs.items()}
     for run, simulator in zip(runs, simulators):
         x, y, _ = simulator.pose
         run.xs.append(float(x))
@@ -397,11 +390,7 @@ def _lockstep(
                     connections[index].send(("ok", over))
                 wheels.clear()
     finally:
-        for process in processes:
-            process.join(EXIT_WAIT_SECONDS)
-            if process.is_alive():
-                process.kill()
-                process.join()
+        processes.finish(EXIT_WAIT_SECONDS)
         for connection in connections.values():
             connection.close()
     return steps

@@ -1,0 +1,187 @@
+"""The template process a world's controller processes are forked from.
+
+A world of many robots starts one controller process per robot (:mod:`mazesim.webots.lockstep`).
+A fresh Python process spends about 0.4 s of processor time importing mazesim, numpy and the
+controller API before the controller's first line runs; forty of them took 20 s on a 2-core
+machine. Instead, a run of a world starts one template process, which imports all that once and
+then forks one child per controller: each child starts with everything imported, and behaves
+as a fresh process started for that controller would:
+
+- its import path (``sys.path``), working folder and environment are the world's process's at the
+  run's start (the controller's own folder, ``sys.argv`` and ``WEBOTS_HOME`` are then set by
+  :func:`~mazesim.webots.runner.run_controller`, as in a fresh process);
+- its standard output and error are the world's process's, unprefixed, and its standard input
+  is empty;
+- Ctrl-C raises ``KeyboardInterrupt`` in it; ``random`` and numpy's global generator are seeded
+  anew (each child draws its own numbers, as fresh processes would);
+- it ends as a Python program ends (its threads joined, its ``atexit`` functions run), and a
+  child that dies without reporting is reported as a process that ended without a report.
+
+The template itself never runs a controller. It ignores Ctrl-C (the world's process tells it when
+the run is over), waits for its children at the end and kills those still running
+``exit_wait_seconds`` later, then exits.
+
+The protocol, over a pipe from the world's process (``multiprocessing.connection``):
+``("start", job)`` followed by the controller's end of its own pipe (passed as a file descriptor)
+forks a child that runs :func:`~mazesim.webots.controller_process.controller_main` on them;
+``("finish", exit_wait_seconds)`` (or the pipe's end) ends the template.
+"""
+
+from __future__ import annotations
+
+import gc
+import json
+import os
+import signal
+import socket
+import subprocess
+import sys
+import time
+from multiprocessing import reduction
+from multiprocessing.connection import Connection
+from typing import Any
+
+__all__ = ["ControllerProcesses", "serve"]
+
+#: The template's program: the world's process's import path, then :func:`serve`; in a child it
+#: goes on to run the controller and ends as a Python program ends.
+_PROGRAM = (
+    "import json, sys\n"
+    "sys.path[:] = json.loads(sys.argv[2])\n"
+    "from mazesim.webots.process_template import serve\n"
+    "from mazesim.webots.controller_process import controller_main\n"
+    "controller_main(*serve(int(sys.argv[1])))\n"
+)
+#: Real seconds the world's process waits for the template to end beyond its children's wait.
+_TEMPLATE_EXIT_MARGIN_SECONDS = 5.0
+
+
+class ControllerProcesses:
+    """The world's side: starts the template, then a controller process per :meth:`start`.
+
+    Example::
+
+        processes = ControllerProcesses()
+        connection = processes.start(job)  # the world's end of the controller's pipe
+        ...
+        processes.finish(5.0)
+    """
+
+    def __init__(self) -> None:
+        ours, template_end = socket.socketpair()
+        flags = subprocess._args_from_interpreter_flags()  # type: ignore[attr-defined]
+        with template_end:
+            self._process = subprocess.Popen(
+                [
+                    sys.executable,
+                    *flags,
+                    "-c",
+                    _PROGRAM,
+                    str(template_end.fileno()),
+                    json.dumps(sys.path),
+                ],
+                pass_fds=[template_end.fileno()],
+                stdin=subprocess.DEVNULL,
+            )
+        self._control = Connection(ours.detach())
+
+    @property
+    def pid(self) -> int:
+        """The template's process id (the parent of every controller process)."""
+        return self._process.pid
+
+    def start(self, job: Any) -> Connection:
+        """Forks a controller process for ``job``; returns the world's end of its pipe.
+
+        If the template has ended (it could not import mazesim), the pipe's other end is closed
+        at once: the controller counts as a process that ended without a report.
+        """
+        ours, theirs = socket.socketpair()
+        with theirs:
+            try:
+                self._control.send(("start", job))
+                reduction.send_handle(self._control, theirs.fileno(), self._process.pid)
+            except OSError:
+                pass
+        return Connection(ours.detach())
+
+    def finish(self, exit_wait_seconds: float) -> None:
+        """Tells the template that the run is over; it waits ``exit_wait_seconds`` for its
+        children, kills those still running and ends."""
+        try:
+            self._control.send(("finish", exit_wait_seconds))
+        except OSError:
+            pass
+        self._control.close()
+        try:
+            self._process.wait(exit_wait_seconds + _TEMPLATE_EXIT_MARGIN_SECONDS)
+        except subprocess.TimeoutExpired:
+            self._process.kill()
+            self._process.wait()
+
+
+def _preload() -> None:
+    """Imports what every controller process runs on: the controller API, the world import and
+    the runner (and, through them, mazesim and numpy)."""
+    from mazesim.webots import controller, importer, runner, scene  # noqa: F401
+
+
+def serve(fd: int) -> tuple[Connection, Any]:
+    """The template's loop on the pipe of file descriptor ``fd``; returns only in a child, with
+    the controller's pipe and job (the template exits when the run is over)."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    control = Connection(fd)
+    _preload()
+    children: set[int] = set()
+    exit_wait_seconds = 0.0
+    while True:
+        try:
+            message = control.recv()
+        except (EOFError, OSError):
+            break
+        if message[0] == "finish":
+            exit_wait_seconds = float(message[1])
+            break
+        job = message[1]
+        handle = reduction.recv_handle(control)
+        # What the template holds is never collected by the child's garbage collector, so the
+        # child does not copy the memory it shares with the template to mark it (the child's
+        # own objects are collected as ever).
+        gc.freeze()
+        child = os.fork()
+        if child == 0:
+            control.close()
+            _become_fresh()
+            return Connection(handle), job
+        os.close(handle)
+        children.add(child)
+        _reap(children, block=False)
+    control.close()
+    deadline = time.monotonic() + exit_wait_seconds
+    while children and time.monotonic() < deadline:
+        _reap(children, block=False)
+        time.sleep(0.01)
+    for child in children:
+        os.kill(child, signal.SIGKILL)
+    _reap(children, block=True)
+    sys.exit(0)
+
+
+def _become_fresh() -> None:
+    """What a fresh process would have that a forked one does not: Ctrl-C's default handler,
+    and random streams of its own (``random`` reseeds itself after a fork; numpy does not)."""
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+    numpy_random = sys.modules.get("numpy.random")
+    if numpy_random is not None:
+        numpy_random.seed()
+
+
+def _reap(children: set[int], *, block: bool) -> None:
+    """Collects the children that have ended (all of them, waiting, when ``block``)."""
+    for child in list(children):
+        try:
+            done, _ = os.waitpid(child, 0 if block else os.WNOHANG)
+        except ChildProcessError:
+            done = child
+        if done:
+            children.discard(child)
