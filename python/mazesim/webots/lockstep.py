@@ -4,13 +4,14 @@ Each robot's ``controller`` field names a folder of the project's ``controllers/
 controller ``controllers/NAME/NAME.py``); each controller runs in a process of its own
 (:mod:`mazesim.webots.controller_process`, forked from one template process that imported
 mazesim once: :mod:`mazesim.webots.process_template`), so controllers share no module-level
-state, and this process owns the world: every basic time step waits until every running controller has asked
-for it (lockstep), transmits the radio's packets (:mod:`mazesim.webots.radio`), then steps every
-robot. A robot without a controller (``void``, ``<generic>``, none), with an ``<extern>`` one
-not given on the command line, or with one that is not Python, stands still; so does a robot
-whose controller has ended. A robot that is not an e-puck runs its controller on a body that
-does not move. A supervisor sees and moves every robot through the :class:`Fleet`; its
-``simulationQuit`` ends every controller's run (``Robot.step`` returns -1).
+state, and this process owns the world: every basic time step waits until every running
+controller has asked for it (lockstep), transmits the radio's packets
+(:mod:`mazesim.webots.radio`), then steps every robot. A robot without a controller (``void``,
+``<generic>``, none), with an ``<extern>`` one not given on the command line, or with one that
+is not Python, stands still; so does a robot whose controller has ended. A robot that is not an
+e-puck runs its controller on a body that does not move. A supervisor sees and moves every robot
+through the :class:`Fleet`; its ``simulationQuit`` ends every controller's run (``Robot.step``
+returns -1).
 
 The e-pucks share one simulator (:mod:`mazesim.webots.shared_world`): they collide with and
 see each other and the world's movable bodies, which they push. This process also holds each
