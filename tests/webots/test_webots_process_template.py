@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import json
 import os
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -201,3 +203,40 @@ robot.step(32)
 print(robot.getName(), "talks")
 print(robot.getName(), "warns", file=sys.stderr)
 """
+
+
+PRELOADED_RUN = """import sys
+
+from mazesim.webots.process_template import _preload
+
+_preload()
+before = set(sys.modules)
+from mazesim.webots.importer import import_wbt
+from mazesim.webots.runner import run_controller
+from mazesim.webots.scene import read_scene
+
+world, report = import_wbt(sys.argv[1])
+with open(sys.argv[1], encoding="utf-8") as file:
+    scene = read_scene(file.read(), report.get("robot_model"), report.get("robot_line"))
+run = run_controller(sys.argv[2], world, seconds=0.1, report=dict(report), scene=scene)
+print(run.exit_status, sorted(m for m in set(sys.modules) - before if m.startswith("mazesim")))
+"""
+
+
+def test_the_template_has_imported_every_module_a_controller_run_takes(tmp_path: Path) -> None:
+    """A child imports none of mazesim's modules itself (the world import's PROTO engine, which
+    it imports when first called, included): a controller's run after the template's imports
+    adds none."""
+    (tmp_path / "worlds").mkdir()
+    world = tmp_path / "worlds" / "w.wbt"
+    world.write_text(WORLD.split("E-puck {")[0] + WORLD_ONE)
+    controller = tmp_path / "controllers" / "talker" / "talker.py"
+    controller.parent.mkdir(parents=True)
+    controller.write_text(TALKER)
+    done = subprocess.run(
+        [sys.executable, "-c", PRELOADED_RUN, str(world), str(controller)],
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    assert done.stdout.splitlines()[-1] == "0 []", done.stderr

@@ -121,9 +121,10 @@ class ControllerProcesses:
 
 
 def _preload() -> None:
-    """Imports what every controller process runs on: the controller API, the world import and
-    the runner (and, through them, mazesim and numpy)."""
-    from mazesim.webots import controller, importer, runner, scene  # noqa: F401
+    """Imports what every controller process runs on: the controller API, the world import with
+    its PROTO engine (which it imports when first called) and the runner (and, through them,
+    mazesim and numpy)."""
+    from mazesim.webots import controller, importer, proto, runner, scene  # noqa: F401
 
 
 def serve(fd: int) -> tuple[Connection, Any]:
