@@ -28,7 +28,10 @@ import os
 import sys
 from dataclasses import asdict, dataclass
 from multiprocessing.connection import Connection
-from typing import Any
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from mazesim.webots.requirements import PreparedController
 
 __all__ = ["ControllerJob", "ControllerSummary", "Remote", "RemoteSimulator", "controller_main"]
 
@@ -45,6 +48,9 @@ class ControllerJob:
         profile: The robot profile that simulates it.
         seconds: Simulated seconds after which ``Robot.step`` returns -1.
         noise: Whether the sensors are noisy.
+        prepared: The controller as the world's process prepared it
+            (:func:`~mazesim.webots.requirements.prepare_controller`), or None to prepare it in
+            the controller's process.
     """
 
     world_path: str
@@ -54,6 +60,7 @@ class ControllerJob:
     profile: str
     seconds: float
     noise: bool
+    prepared: PreparedController | None = None
 
 
 @dataclass(frozen=True)
@@ -160,6 +167,7 @@ def controller_main(connection: Connection, job: ControllerJob) -> None:
             radio=Remote(connection, "radio"),
             fleet=Remote(connection, "fleet"),
             robot_index=job.robot_index,
+            prepared=job.prepared,
         )
         summary = ControllerSummary(
             run.exit_status, run.error, run.reached_end, run.stopped, run.quit_requested, run.steps

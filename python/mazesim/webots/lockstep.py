@@ -30,7 +30,7 @@ import re
 import sys
 import time
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from multiprocessing.connection import wait
 from typing import Any
 
@@ -41,6 +41,7 @@ from mazesim.errors import InvalidArgumentError, MazesimIOError
 from mazesim.webots.controller_process import ControllerJob, answer
 from mazesim.webots.process_template import ControllerProcesses
 from mazesim.webots.radio import Radio
+from mazesim.webots.requirements import PreparedController, prepare_controller
 from mazesim.webots.runner import CONTROLLER_SUFFIXES
 from mazesim.webots.scene import read_scene
 from mazesim.webots.shared_world import RobotView, shared_simulator
@@ -238,7 +239,13 @@ def run_world(
             jobs[index] = ControllerJob(
                 world_path, index, int(robot["line"]), file, profile, seconds, noise
             )
-    drawn, environment = _say_what_is_missing(runs)
+    drawn, environment, prepared = _say_what_is_missing(runs)
+    # Each controller process runs its controller as prepared here (its display, if it needs
+    # one, is this process's), rather than preparing it again.
+    jobs = {
+        index: replace(job, prepared=replace(prepared[job.controller], virtual_display=False))
+        for index, job in jobs.items()
+    }
     fleet = Fleet(robots, simulators)
     traction = WorldTraction(world_path, robots, simulators)
     movable = [robot.get("profile") is not None for robot in robots]
@@ -306,14 +313,15 @@ def _own_simulator(
     return Simulator(bare, robot=profile, seed=seed, noise=noise)
 
 
-def _say_what_is_missing(runs: list[RobotRun]) -> tuple[bool, dict[str, str]]:
+def _say_what_is_missing(
+    runs: list[RobotRun],
+) -> tuple[bool, dict[str, str], dict[str, PreparedController]]:
     """Prepares each robot's controller once (a C or C++ one is built into the cache, which its
     process then takes) and says at the run's start what each one lacks, as a run of one robot
     does; the list is kept on its robot's run. Returns whether a controller's Tk windows need
-    a virtual display, and the environment the controllers' windows need."""
-    from mazesim.webots.requirements import prepare_controller
-
-    prepared: dict[str, Any] = {}
+    a virtual display, the environment the controllers' windows need and each controller file's
+    preparation."""
+    prepared: dict[str, PreparedController] = {}
     for run in runs:
         if run.controller is None:
             continue
@@ -327,7 +335,7 @@ def _say_what_is_missing(runs: list[RobotRun]) -> tuple[bool, dict[str, str]]:
     environment: dict[str, str] = {}
     for done in prepared.values():
         environment.update(done.environment)
-    return any(done.virtual_display for done in prepared.values()), environment
+    return any(done.virtual_display for done in prepared.values()), environment, prepared
 
 
 def _lockstep(
