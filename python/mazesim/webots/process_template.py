@@ -2,10 +2,11 @@
 
 A world of many robots starts one controller process per robot (:mod:`mazesim.webots.lockstep`).
 A fresh Python process spends about 0.4 s of processor time importing mazesim, numpy and the
-controller API before the controller's first line runs; forty of them took 20 s on a 2-core
-machine. Instead, a run of a world starts one template process, which imports all that once and
-then forks one child per controller: each child starts with everything imported, and behaves
-as a fresh process started for that controller would:
+controller API before the controller's first line runs; forty of them took 17 s of it on a
+2-core machine (``benches/webots_startup.py``, docs/performance.md). Instead, a run of a world
+starts one template process, which imports all that once and then forks one child per
+controller: each child starts with everything imported, and behaves as a fresh process started
+for that controller would:
 
 - its import path (``sys.path``), working folder and environment are the world's process's at the
   run's start (the controller's own folder, ``sys.argv`` and ``WEBOTS_HOME`` are then set by
