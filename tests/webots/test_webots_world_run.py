@@ -331,3 +331,27 @@ def test_a_bodiless_supervisor_inside_a_wall_runs_beside_the_e_pucks(
     warning = capsys.readouterr().err
     assert "its stand-in stands there without walls" in warning
     assert "Supervisor" in warning
+
+
+def test_a_robots_state_after_a_step_comes_with_the_steps_answer(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The pose, time and encoders a controller reads at every step come with the answer to its
+    step: past the set-up before the first step, the world's process answers no call for them."""
+    import collections
+
+    import mazesim.webots.lockstep as lockstep
+
+    asked: collections.Counter[str] = collections.Counter()
+    answer = lockstep.answer
+
+    def counted(target: object, name: str, args: tuple[object, ...] | None) -> tuple[str, object]:
+        asked[name] += 1
+        return answer(target, name, args)
+
+    monkeypatch.setattr(lockstep, "answer", counted)
+    monkeypatch.setenv("SWARM_LOG", str(tmp_path))
+    run = run_world(str(WORLD), seconds=10.0, seed=3)
+    assert run.steps == 60
+    for name in ("pose", "time", "encoders"):
+        assert asked[name] <= 3 * len(run.robots), (name, asked[name])

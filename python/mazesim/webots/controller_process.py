@@ -12,9 +12,11 @@ messages are pickled tuples). The protocol, from the controller's side:
   the world's robots, for a supervisor) and answers ``("ok", value)`` or ``("error",
   exception)``; ``name`` may also be an attribute, whose value is answered;
 - ``("step", left, right)``: this robot's wheel speeds (rad/s) for the next basic step; answered
-  ``("ok", False)`` once every robot whose controller still runs has asked for the step and the
-  world has taken it (lockstep), or ``("ok", True)`` without a step when a supervisor has
-  quit the simulation (``Robot.step`` then returns -1);
+  ``("ok", (False, state))`` once every robot whose controller still runs has asked for the step
+  and the world has taken it (lockstep), ``state`` being the robot's ``pose``, ``time`` and
+  ``encoders`` after the step (:data:`STATE_AFTER_STEP`, which the controller's process then
+  reads without asking, until it moves its robot itself), or ``("ok", (True, None))`` without a
+  step when a supervisor has quit the simulation (``Robot.step`` then returns -1);
 - ``("done", summary)``: the controller has ended (a dict of :class:`ControllerSummary`'s
   fields); no answer. From then on the robot's wheels stay still.
 
@@ -33,7 +35,15 @@ from typing import TYPE_CHECKING, Any
 if TYPE_CHECKING:
     from mazesim.webots.requirements import PreparedController
 
-__all__ = ["ControllerJob", "ControllerSummary", "Remote", "RemoteSimulator", "controller_main"]
+__all__ = [
+    "STATE_AFTER_STEP",
+    "ControllerJob",
+    "ControllerSummary",
+    "Remote",
+    "RemoteSimulator",
+    "controller_main",
+    "state_after_step",
+]
 
 
 @dataclass(frozen=True)
@@ -114,8 +124,24 @@ class _Method:
 METHOD = _Method()
 
 
+#: What the answer to a step carries of the robot's state after it: what a controller reads of
+#: its robot at every step, which changes only when the world steps or the robot is moved.
+STATE_AFTER_STEP = ("pose", "time", "encoders")
+
+
+def state_after_step(simulator: Any) -> dict[str, Any]:
+    """The robot's :data:`STATE_AFTER_STEP`, read in the world's process."""
+    return {name: getattr(simulator, name) for name in STATE_AFTER_STEP}
+
+
 class RemoteSimulator(Remote):
-    """The robot's simulator in the world's process; ``step`` waits for the lockstep."""
+    """The robot's simulator in the world's process; ``step`` waits for the lockstep.
+
+    Its ``pose``, ``time`` and ``encoders`` after a step come with the step's answer; until the
+    next step they are read from it (a pose this process sets is asked for again). A robot that
+    another robot's supervisor puts elsewhere during a step reads its new pose after the next
+    step, as a Webots robot's sensors do.
+    """
 
     def __init__(self, connection: Connection, profile: str) -> None:
         from mazesim._core import RobotProfile
@@ -123,11 +149,39 @@ class RemoteSimulator(Remote):
         super().__init__(connection, "simulator")
         #: The profile, built here: it does not cross the pipe.
         self.robot = RobotProfile.builtin(profile)
+        self._after_step: dict[str, Any] = {}
+
+    def _state(self, name: str) -> Any:
+        if name in self._after_step:
+            return self._after_step[name]
+        return self._ask(("call", "simulator", name, None))
+
+    @property
+    def pose(self) -> Any:
+        """The robot's x, y, yaw."""
+        return self._state("pose")
+
+    @property
+    def time(self) -> Any:
+        """Simulated seconds since the start."""
+        return self._state("time")
+
+    @property
+    def encoders(self) -> Any:
+        """The wheels' turns (rad)."""
+        return self._state("encoders")
+
+    def set_pose(self, x: float, y: float, yaw: float) -> None:
+        """Puts the robot at a new pose, at rest."""
+        self._after_step.clear()
+        self._ask(("call", "simulator", "set_pose", (x, y, yaw)))
 
     def step(self, left: float, right: float) -> bool:
         """Asks for the next basic step with these wheel speeds; returns once taken, True when
         the world's run is over instead (a supervisor quit it)."""
-        return bool(self._ask(("step", float(left), float(right))))
+        over, state = self._ask(("step", float(left), float(right)))
+        self._after_step = dict(state or {})
+        return bool(over)
 
 
 def answer(target: Any, name: str, args: tuple[Any, ...] | None) -> tuple[str, Any]:

@@ -38,7 +38,7 @@ import numpy as np
 
 from mazesim._core import RobotProfile, Simulator, World
 from mazesim.errors import InvalidArgumentError, MazesimIOError
-from mazesim.webots.controller_process import ControllerJob, answer
+from mazesim.webots.controller_process import ControllerJob, answer, state_after_step
 from mazesim.webots.process_template import ControllerProcesses
 from mazesim.webots.radio import Radio
 from mazesim.webots.requirements import PreparedController, prepare_controller
@@ -396,7 +396,8 @@ def _lockstep(
                     traction.settle()
                     steps += 1
                 for index in sorted(wheels):
-                    connections[index].send(("ok", over))
+                    state = None if over else state_after_step(simulators[index])
+                    connections[index].send(("ok", (over, state)))
                 wheels.clear()
     finally:
         processes.finish(EXIT_WAIT_SECONDS)
