@@ -38,6 +38,7 @@ import socket
 import subprocess
 import sys
 import time
+import warnings
 from multiprocessing import reduction
 from multiprocessing.connection import Connection
 from typing import Any
@@ -150,7 +151,12 @@ def serve(fd: int) -> tuple[Connection, Any]:
         # child does not copy the memory it shares with the template to mark it (the child's
         # own objects are collected as ever).
         gc.freeze()
-        child = os.fork()
+        with warnings.catch_warnings():
+            # Python 3.12 and later warn about forking a process that has threads: the template's
+            # only other threads are numpy's BLAS workers, which OpenBLAS stops before a fork
+            # (its pthread_atfork handler) and starts again in the child when it needs them.
+            warnings.simplefilter("ignore", DeprecationWarning)
+            child = os.fork()
         if child == 0:
             control.close()
             _become_fresh()
