@@ -15,7 +15,10 @@ from typing import Any
 from mazesim.webots.frames import nue_to_enu
 from mazesim.webots.lights import Light, read_lights
 
-__all__ = ["Scene", "SceneNode", "read_scene"]
+__all__ = ["DEFAULT_LOOKUP_TABLE", "Row", "Scene", "SceneNode", "read_scene"]
+
+#: A row of a ``lookupTable``: distance (m), value and relative noise.
+Row = tuple[float, float, float]
 
 _DEF = re.compile(r"\bDEF\s+([^\s{}\[\]]+)\s+([A-Za-z_][\w-]*)\s*\{")
 _NAME = re.compile(r'\bname\s+"((?:[^"\\]|\\.)*)"')
@@ -148,7 +151,11 @@ class Scene:
             lists itself (a plain ``Robot`` or ``DifferentialWheels`` e-puck saved expanded, not
             an E-puck PROTO node), by its ``name``: rows of distance (m), value and relative
             noise, as written. Webots reads each such sensor through its own table; a sensor
-            without a ``lookupTable`` field, or with one not of rows of 3 numbers, is left out.
+            without a ``lookupTable`` field reads through the field's default,
+            :data:`DEFAULT_LOOKUP_TABLE`; one whose table is not rows of 3 numbers is left out
+            (see ``malformed_tables``).
+        malformed_tables: The ``lookupTable`` fields of those ``DistanceSensor`` nodes that are
+            not rows of 3 numbers, by sensor name: what was found, as written.
     """
 
     defs: dict[str, str] = field(default_factory=dict)
@@ -170,7 +177,8 @@ class Scene:
     ground_sensors_module: bool | None = None
     lights: list[Light] = field(default_factory=list)
     nodes: list[SceneNode] = field(default_factory=list)
-    sensor_tables: dict[str, list[tuple[float, float, float]]] = field(default_factory=dict)
+    sensor_tables: dict[str, list[Row]] = field(default_factory=dict)
+    malformed_tables: dict[str, str] = field(default_factory=dict)
 
 
 def _hinge_wheels(year: str | None) -> bool:
@@ -222,7 +230,7 @@ def read_scene(text: str, robot_model: str | None = None, robot_line: int | None
             scene.wheel_positions = (saved.get(0, 0.0), saved.get(1, 0.0))
             scene.ground_sensors_module = bool(_GROUND_SENSORS_MODULE.search(body))
         if robot.group(2) not in EPUCK_TYPES:
-            scene.sensor_tables = _sensor_tables(body)
+            scene.sensor_tables, scene.malformed_tables = _sensor_tables(body)
         if robot.group(2) == "E-puck":
             scene.infrared_elevation = EPUCK_IR_ELEVATION
         if robot.group(2) == "E-puck" and _hinge_wheels(year) and not _KINEMATIC.search(own):
@@ -261,33 +269,50 @@ def _without_comment(match: re.Match[str]) -> str:
 
 _DISTANCE_SENSOR = re.compile(r"(?<![\w-])DistanceSensor\s*\{")
 _LOOKUP_TABLE = re.compile(r"\blookupTable\s*\[([^\]]*)\]")
+#: The ``lookupTable`` of a ``DistanceSensor`` node without the field (Webots' reference
+#: manual, DistanceSensor: ``lookupTable [ 0 0 0, 0.1 1000 0 ]``): 0 touching, rising to 1000
+#: at 0.1 m and beyond.
+DEFAULT_LOOKUP_TABLE = [(0.0, 0.0, 0.0), (0.1, 1000.0, 0.0)]
 
 
-def _sensor_tables(body: str) -> dict[str, list[tuple[float, float, float]]]:
-    """The ``lookupTable`` of each named ``DistanceSensor`` node in a robot's body text."""
-    tables: dict[str, list[tuple[float, float, float]]] = {}
+def _sensor_tables(body: str) -> tuple[dict[str, list[Row]], dict[str, str]]:
+    """The ``lookupTable`` of each named ``DistanceSensor`` node in a robot's body text (the
+    default one where the node has no such field), and the fields that are not rows of 3
+    numbers, as found."""
+    tables: dict[str, list[Row]] = {}
+    malformed: dict[str, str] = {}
     for node in _DISTANCE_SENSOR.finditer(body):
-        own = _own_text(body, node.end())
-        found = _NAME.search(own)
-        table = _own_lookup_table(_body_text(body, node.end()))
-        if found is not None and table is not None:
-            tables.setdefault(found.group(1), table)
-    return tables
-
-
-def _own_lookup_table(body: str) -> list[tuple[float, float, float]] | None:
-    """A node's own ``lookupTable`` field (not a child's), as rows of 3 numbers, or None."""
-    for match in _LOOKUP_TABLE.finditer(body):
-        if _nesting(body[: match.start()]) != 0:
+        found = _NAME.search(_own_text(body, node.end()))
+        if found is None or found.group(1) in tables or found.group(1) in malformed:
             continue
-        try:
-            numbers = [float(v) for v in match.group(1).replace(",", " ").split()]
-        except ValueError:
-            return None
-        if not numbers or len(numbers) % 3 != 0:
-            return None
-        return [(numbers[i], numbers[i + 1], numbers[i + 2]) for i in range(0, len(numbers), 3)]
+        field_text = _own_lookup_table(_body_text(body, node.end()))
+        if field_text is None:
+            tables[found.group(1)] = list(DEFAULT_LOOKUP_TABLE)
+        elif (table := _rows_of_three(field_text)) is not None:
+            tables[found.group(1)] = table
+        else:
+            malformed[found.group(1)] = " ".join(field_text.split())
+    return tables, malformed
+
+
+def _own_lookup_table(body: str) -> str | None:
+    """The text between the brackets of a node's own ``lookupTable`` field (not a child's), or
+    None without one."""
+    for match in _LOOKUP_TABLE.finditer(body):
+        if _nesting(body[: match.start()]) == 0:
+            return match.group(1)
     return None
+
+
+def _rows_of_three(field_text: str) -> list[Row] | None:
+    """A ``lookupTable`` field's numbers as rows of 3, or None when they are not."""
+    try:
+        numbers = [float(v) for v in field_text.replace(",", " ").split()]
+    except ValueError:
+        return None
+    if not numbers or len(numbers) % 3 != 0:
+        return None
+    return [(numbers[i], numbers[i + 1], numbers[i + 2]) for i in range(0, len(numbers), 3)]
 
 
 def _robot_node(text: str, robot_types: set[str], line: int | None) -> re.Match[str] | None:
