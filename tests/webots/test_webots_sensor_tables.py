@@ -20,7 +20,7 @@ from mazesim.webots import simulation as simulations
 from mazesim.webots.devices import PROXIMITY_TABLE
 from mazesim.webots.importer import import_wbt_text
 from mazesim.webots.lockstep import run_world
-from mazesim.webots.own_sensors import _profile_with_tables, own_sensors
+from mazesim.webots.own_sensors import _profile_with, own_sensors
 from mazesim.webots.scene import DEFAULT_LOOKUP_TABLE, read_scene
 
 #: The 10-bit proximity table of some course worlds (the e-puck's values scaled to 0..1023).
@@ -157,7 +157,7 @@ def test_a_refused_table_warns_and_runs(capsys: pytest.CaptureFixture[str]) -> N
 @pytest.mark.parametrize("name", robot_profile_names())
 def test_the_profile_text_is_written_back_as_it_was_read(name: str) -> None:
     text = RobotProfile.builtin(name).to_toml()
-    again = _profile_with_tables(load_toml(text, name), {})
+    again = _profile_with(load_toml(text, name), {})
     assert again.to_toml() == text
 
 
@@ -318,3 +318,54 @@ def test_a_world_run_warns_of_a_robot_s_table_it_does_not_use(
     assert warning.startswith("mazesim: warning: robot 'ten': the world's lookupTable of ")
     assert warning.endswith("row 1 (0.01) is not above row 0 (0.02)")
     assert readings["ten"]["tables"] == [[v for row in PROXIMITY_TABLE for v in row]] * 8
+
+
+def test_a_sensor_placed_elsewhere_casts_its_ray_from_where_the_world_puts_it() -> None:
+    stock, _ = front_readings(plain_robot_world(PROXIMITY_TABLE))
+    controller.Robot.created = None
+    simulations.release()
+    # ps2, on the right side, moved to ps7's place at the front, facing where ps7 faces.
+    text = plain_robot_world(PROXIMITY_TABLE).replace(
+        "translation 0.0 -0.031 0.033 rotation 0 0 1 -1.5708",
+        "translation 0.03 0.01 0.033 rotation 0 0 1 0.2992",
+    )
+    moved, _ = front_readings(text)
+    assert stock[2] < 100.0 < stock[7], "the side sensor saw no wall, the front one did"
+    assert moved[2] == moved[7] == stock[7]
+    assert [v for i, v in enumerate(moved) if i != 2] == [v for i, v in enumerate(stock) if i != 2]
+    own = simulations.current().simulator.robot
+    assert own.distance_sensor_poses()[2] == pytest.approx((0.03, 0.01, 0.2992))
+
+
+def nue_sensors(moved: str | None = None) -> str:
+    """ps0..ps7 of a Webots 6 e-puck (y up, forward -z), at the built-in poses rounded, or with
+    sensor ``moved`` at ps7's."""
+    lines = []
+    for name, x, y, yaw in SENSORS:
+        if name == moved:
+            _, x, y, yaw = SENSORS[7]
+        # Robot frame x forward, y left -> NUE: x right (-y), y up, z back (-x); a turn about
+        # +z (up) becomes one about +y, the ray's x axis pointing forward needing a quarter turn.
+        lines.append(
+            f"    DistanceSensor {{ translation {-y} 0.033 {-x} rotation 0 1 0 "
+            f'{yaw + 1.5707963267948966} name "{name}" }}\n'
+        )
+    return "".join(lines)
+
+
+def test_a_webots_6_e_puck_s_sensor_poses_are_read_in_its_own_frame() -> None:
+    def scene_of(sensors: str) -> Any:
+        text = (
+            "#VRML_SIM V6.4.0 utf8\nWorldInfo { basicTimeStep 32 }\n"
+            "DifferentialWheels {\n  translation 0 0 0\n  children [\n"
+            f'{sensors}  ]\n  name "e-puck"\n  controller "void"\n}}\n'
+        )
+        return read_scene(text, "DifferentialWheels", None)
+
+    stock = own_sensors("e-puck", scene_of(nue_sensors()))
+    assert stock.poses == {}
+    moved = own_sensors("e-puck", scene_of(nue_sensors("ps2")))
+    assert list(moved.poses) == ["ps2"]
+    assert moved.poses["ps2"] == pytest.approx((0.03, 0.01, 0.3), abs=1e-9)
+    assert moved.profile is not None
+    assert moved.profile.distance_sensor_poses()[2] == pytest.approx((0.03, 0.01, 0.3))

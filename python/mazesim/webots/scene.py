@@ -156,6 +156,12 @@ class Scene:
             (see ``malformed_tables``).
         malformed_tables: The ``lookupTable`` fields of those ``DistanceSensor`` nodes that are
             not rows of 3 numbers, by sensor name: what was found, as written.
+        sensor_poses: The pose of each of those ``DistanceSensor`` nodes that is a child of the
+            robot node itself (not of a ``Transform`` or ``Solid`` inside it), by sensor name:
+            x, y (m), the heading of its ray (rad, counter-clockwise from forward) and how far
+            the ray rises above the floor's plane (rad, negative down) in the robot's frame (x
+            forward, y left, z up; an NUE file's converted as the importer converts it), from
+            its ``translation`` and ``rotation`` (Webots' defaults where absent).
     """
 
     defs: dict[str, str] = field(default_factory=dict)
@@ -179,6 +185,7 @@ class Scene:
     nodes: list[SceneNode] = field(default_factory=list)
     sensor_tables: dict[str, list[Row]] = field(default_factory=dict)
     malformed_tables: dict[str, str] = field(default_factory=dict)
+    sensor_poses: dict[str, tuple[float, float, float, float]] = field(default_factory=dict)
 
 
 def _hinge_wheels(year: str | None) -> bool:
@@ -231,6 +238,7 @@ def read_scene(text: str, robot_model: str | None = None, robot_line: int | None
             scene.ground_sensors_module = bool(_GROUND_SENSORS_MODULE.search(body))
         if robot.group(2) not in EPUCK_TYPES:
             scene.sensor_tables, scene.malformed_tables = _sensor_tables(body)
+            scene.sensor_poses = _sensor_poses(body, scene.nue)
         if robot.group(2) == "E-puck":
             scene.infrared_elevation = EPUCK_IR_ELEVATION
         if robot.group(2) == "E-puck" and _hinge_wheels(year) and not _KINEMATIC.search(own):
@@ -293,6 +301,38 @@ def _sensor_tables(body: str) -> tuple[dict[str, list[Row]], dict[str, str]]:
         else:
             malformed[found.group(1)] = " ".join(field_text.split())
     return tables, malformed
+
+
+def _sensor_poses(body: str, nue: bool) -> dict[str, tuple[float, float, float, float]]:
+    """The pose in the robot's frame (x, y, heading, rise) of each named ``DistanceSensor`` node
+    that is one of the robot node's own children (in its body text ``body``)."""
+    poses: dict[str, tuple[float, float, float, float]] = {}
+    for node in _DISTANCE_SENSOR.finditer(body):
+        if _nesting(body[: node.start()]) != 1:
+            continue
+        own = _own_text(body, node.end())
+        found = _NAME.search(own)
+        if found is None or found.group(1) in poses:
+            continue
+        at = _TRANSLATION.search(own)
+        x, y, z = (float(v) for v in at.groups()) if at else (0.0, 0.0, 0.0)
+        turned = _ROTATION.search(own)
+        axis_angle = tuple(float(v) for v in turned.groups()) if turned else (0.0, 0.0, 1.0, 0.0)
+        ray = _rotated_x_axis(*axis_angle)
+        if nue:
+            (x, y, z), ray = nue_to_enu(x, y, z), nue_to_enu(*ray)
+        rise = math.asin(max(-1.0, min(1.0, ray[2])))
+        poses[found.group(1)] = (x, y, math.atan2(ray[1], ray[0]), rise)
+    return poses
+
+
+def _rotated_x_axis(ax: float, ay: float, az: float, angle: float) -> tuple[float, float, float]:
+    """The x axis (1, 0, 0) turned by ``angle`` about the axis (ax, ay, az) (Rodrigues)."""
+    norm = math.sqrt(ax * ax + ay * ay + az * az) or 1.0
+    kx, ky, kz = ax / norm, ay / norm, az / norm
+    c, s = math.cos(angle), math.sin(angle)
+    # v cos + (k x v) sin + k (k . v)(1 - cos), v = (1, 0, 0).
+    return (c + kx * kx * (1 - c), kz * s + ky * kx * (1 - c), -ky * s + kz * kx * (1 - c))
 
 
 def _own_lookup_table(body: str) -> str | None:
