@@ -369,3 +369,35 @@ def test_a_webots_6_e_puck_s_sensor_poses_are_read_in_its_own_frame() -> None:
     assert moved.poses["ps2"] == pytest.approx((0.03, 0.01, 0.3), abs=1e-9)
     assert moved.profile is not None
     assert moved.profile.distance_sensor_poses()[2] == pytest.approx((0.03, 0.01, 0.3))
+
+
+def expanded_e_puck(turn_ps1: float = 0.0) -> str:
+    """A plain ``Robot`` e-puck saved expanded as Webots' E-puck is: each DistanceSensor in a
+    Solid at the sensor's place and heading, itself turned about the mount's z axis by 0.16
+    (what raises its ray); ps1's Solid turned ``turn_ps1`` more. ps2 sits in a HingeJoint's
+    end point, turned, whose pose is not composed."""
+    sensors = []
+    for name, x, y, yaw in SENSORS:
+        heading = yaw + (turn_ps1 if name == "ps1" else 0.0)
+        solid = f"Solid {{ translation {x} {y} 0.033 rotation 0 0 1 {heading}"
+        sensor = (
+            f'DistanceSensor {{ rotation 0 1 0 -0.16 name "{name}" '
+            f"lookupTable [ {_table(PROXIMITY_TABLE)} ] }}"
+        )
+        if name == "ps2":
+            sensors.append(
+                f"    HingeJoint {{ endPoint {solid} rotation 0 0 1 1 children [ {sensor} ] }} }}\n"
+            )
+        else:
+            sensors.append(f"    {solid} children [ {sensor} ] }}\n")
+    return ARENA + f'Robot {{\n  children [\n{"".join(sensors)}  ]\n  name "e-puck"\n}}\n'
+
+
+def test_an_expanded_e_puck_s_sensor_poses_are_composed_through_its_solids() -> None:
+    stock = read_scene(expanded_e_puck())
+    assert "ps2" not in stock.sensor_poses
+    assert stock.sensor_poses["ps0"] == pytest.approx((0.03, -0.01, -0.3, 0.16))
+    assert own_sensors("e-puck", stock).profile is None
+    turned = own_sensors("e-puck", read_scene(expanded_e_puck(turn_ps1=0.5)))
+    assert list(turned.poses) == ["ps1"]
+    assert turned.poses["ps1"] == pytest.approx((0.022, -0.025, -0.3))

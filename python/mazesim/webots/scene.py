@@ -157,7 +157,9 @@ class Scene:
         malformed_tables: The ``lookupTable`` fields of those ``DistanceSensor`` nodes that are
             not rows of 3 numbers, by sensor name: what was found, as written.
         sensor_poses: The pose of each of those ``DistanceSensor`` nodes that is a child of the
-            robot node itself (not of a ``Transform`` or ``Solid`` inside it), by sensor name:
+            robot node or of the ``Solid``, ``Transform``, ``Pose`` and ``Group`` nodes under it
+            (whose poses it composes; an E-puck saved expanded holds each in a Solid; one in a
+            joint's end point or another robot is left out), by sensor name:
             x, y (m), the heading of its ray (rad, counter-clockwise from forward) and how far
             the ray rises above the floor's plane (rad, negative down) in the robot's frame (x
             forward, y left, z up; an NUE file's converted as the importer converts it), from
@@ -303,22 +305,43 @@ def _sensor_tables(body: str) -> tuple[dict[str, list[Row]], dict[str, str]]:
     return tables, malformed
 
 
+#: The nodes between a robot node and a sensor through which the sensor's pose is composed:
+#: grouping nodes that place their children (an E-puck saved expanded holds each DistanceSensor
+#: in a Solid).
+_PLACING = {"Solid", "Transform", "Pose", "Group"}
+#: An opening or closing brace or bracket, or a node's type and its opening brace.
+_NESTING = re.compile(_NODE.pattern + r"|([{}\[\]])")
+
+
 def _sensor_poses(body: str, nue: bool) -> dict[str, tuple[float, float, float, float]]:
     """The pose in the robot's frame (x, y, heading, rise) of each named ``DistanceSensor`` node
-    that is one of the robot node's own children (in its body text ``body``)."""
+    of a robot's body text ``body`` that is a child of the robot node or of the grouping nodes
+    (:data:`_PLACING`) under it, composed through their ``translation`` and ``rotation``."""
     poses: dict[str, tuple[float, float, float, float]] = {}
-    for node in _DISTANCE_SENSOR.finditer(body):
-        if _nesting(body[: node.start()]) != 1:
+    # The open nodes (type, body start) and lists (None) from the robot's body inwards.
+    open_nodes: list[tuple[str, int] | None] = []
+    for match in _NESTING.finditer(body):
+        bracket = match.group(3)
+        if bracket in ("}", "]"):
+            if open_nodes:
+                open_nodes.pop()
             continue
-        own = _own_text(body, node.end())
+        if bracket is not None:
+            open_nodes.append(None)
+            continue
+        chain = [entry for entry in open_nodes if entry is not None]
+        open_nodes.append((match.group(2), match.end()))
+        if match.group(2) != "DistanceSensor" or any(t not in _PLACING for t, _ in chain):
+            continue
+        own = _own_text(body, match.end())
         found = _NAME.search(own)
         if found is None or found.group(1) in poses:
             continue
-        at = _TRANSLATION.search(own)
-        x, y, z = (float(v) for v in at.groups()) if at else (0.0, 0.0, 0.0)
-        turned = _ROTATION.search(own)
-        axis_angle = tuple(float(v) for v in turned.groups()) if turned else (0.0, 0.0, 1.0, 0.0)
-        ray = _rotated_x_axis(*axis_angle)
+        origin, axes = (0.0, 0.0, 0.0), _IDENTITY
+        for _, start in [*chain, (match.group(2), match.end())]:
+            origin, axes = _placed(origin, axes, _own_text(body, start))
+        x, y, z = origin
+        ray = (axes[0][0], axes[1][0], axes[2][0])
         if nue:
             (x, y, z), ray = nue_to_enu(x, y, z), nue_to_enu(*ray)
         rise = math.asin(max(-1.0, min(1.0, ray[2])))
@@ -326,13 +349,38 @@ def _sensor_poses(body: str, nue: bool) -> dict[str, tuple[float, float, float, 
     return poses
 
 
-def _rotated_x_axis(ax: float, ay: float, az: float, angle: float) -> tuple[float, float, float]:
-    """The x axis (1, 0, 0) turned by ``angle`` about the axis (ax, ay, az) (Rodrigues)."""
+Matrix = tuple[tuple[float, float, float], ...]
+_IDENTITY: Matrix = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+
+
+def _placed(
+    origin: tuple[float, float, float], axes: Matrix, own: str
+) -> tuple[tuple[float, float, float], Matrix]:
+    """The frame (origin, rotation matrix) of a node whose own fields are ``own`` inside the
+    frame ``origin``, ``axes``: its ``translation`` and ``rotation`` (Webots' defaults, none,
+    where absent)."""
+    at = _TRANSLATION.search(own)
+    offset = [float(v) for v in at.groups()] if at else [0.0, 0.0, 0.0]
+    x, y, z = (origin[i] + sum(axes[i][k] * offset[k] for k in range(3)) for i in range(3))
+    turned = _ROTATION.search(own)
+    if turned is None:
+        return (x, y, z), axes
+    rotation = _rotation_matrix(*(float(v) for v in turned.groups()))
+    rows = [[sum(a * rotation[k][j] for k, a in enumerate(row)) for j in range(3)] for row in axes]
+    return (x, y, z), tuple((row[0], row[1], row[2]) for row in rows)
+
+
+def _rotation_matrix(ax: float, ay: float, az: float, angle: float) -> Matrix:
+    """The matrix of a turn by ``angle`` about the axis (ax, ay, az) (Rodrigues)."""
     norm = math.sqrt(ax * ax + ay * ay + az * az) or 1.0
-    kx, ky, kz = ax / norm, ay / norm, az / norm
+    x, y, z = ax / norm, ay / norm, az / norm
     c, s = math.cos(angle), math.sin(angle)
-    # v cos + (k x v) sin + k (k . v)(1 - cos), v = (1, 0, 0).
-    return (c + kx * kx * (1 - c), kz * s + ky * kx * (1 - c), -ky * s + kz * kx * (1 - c))
+    t = 1.0 - c
+    return (
+        (c + x * x * t, x * y * t - z * s, x * z * t + y * s),
+        (y * x * t + z * s, c + y * y * t, y * z * t - x * s),
+        (z * x * t - y * s, z * y * t + x * s, c + z * z * t),
+    )
 
 
 def _own_lookup_table(body: str) -> str | None:
