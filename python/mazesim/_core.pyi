@@ -312,6 +312,8 @@ class Simulator:
         seed: int = 0,
         noise: bool = True,
         control_step_ms: float | None = None,
+        *,
+        robot_profiles: Sequence[str | RobotProfile | None] | None = None,
     ) -> Simulator: ...
     def reset(self, seed: int | None = None) -> None: ...
     def step(self, left: float, right: float) -> None:

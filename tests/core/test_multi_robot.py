@@ -3,7 +3,9 @@ rays between robots, the batch's robot axis and its determinism."""
 
 from __future__ import annotations
 
+import copy
 import math
+import pickle
 
 import numpy as np
 import pytest
@@ -277,3 +279,46 @@ def test_output_buffers_of_a_batch_of_several_robots_have_the_robot_axis() -> No
         (4,),
         (4,),
     ]
+
+
+def rising_table_epuck() -> mazesim.RobotProfile:
+    """The e-puck whose proximity sensors read through Webots' default DistanceSensor table
+    (0 touching, rising to 1000 at 0.1 m): a profile of the e-puck's name."""
+    text = mazesim.RobotProfile.builtin("e-puck").to_toml()
+    stock = "table = [[0.0, 4095.0, 0.002], "
+    start = text.index(stock)
+    end = text.index("]]", start) + 2
+    return mazesim.RobotProfile.from_toml(
+        text[:start] + "table = [[0.0, 0.0, 0.0], [0.1, 1000.0, 0.0]]" + text[end:], "rising"
+    )
+
+
+def test_robot_profiles_give_one_robot_its_own_profile_and_pickle_with_it() -> None:
+    world, own = corridor(0.01), rising_table_epuck()
+    before = mazesim.Simulator(world, noise=False)
+    sim = mazesim.Simulator(world, noise=False, robot_profiles=[None, own])
+    # Robot 0 reads as ever; robot 1 reads robot 0, 1 cm off, on the rising table (d / 0.38).
+    assert np.array_equal(sim.distance_sensors(), before.distance_sensors())
+    front = sim.distance_sensors(robot_index=1)[0]
+    assert 0.0 < front < 1000.0 and sim.distance_sensors(robot_index=1)[3] == 1000.0
+    assert front != before.distance_sensors(robot_index=1)[0]
+    for _ in range(3):
+        sim.step_robots(np.array([[1.0, -1.0], [2.0, 1.0]]))
+    for duplicate in (lambda s: pickle.loads(pickle.dumps(s)), copy.copy):
+        other = duplicate(sim)
+        assert other.snapshot() == sim.snapshot()
+        assert np.array_equal(other.distance_sensors(robot_index=1), sim.distance_sensors(1))
+
+
+@pytest.mark.parametrize(
+    ("profiles", "message"),
+    [
+        ([None], "expected no robot profiles or one per robot of world .* \\(2\\), found 1"),
+        ([None, 3], r"robot_profiles\[1\] to be a robot profile name \(str\) or a"),
+        ([None, "no-such-robot"], "no-such-robot"),
+        ("e-puck", "expected robot_profiles to be a sequence"),
+    ],
+)
+def test_robot_profiles_of_the_wrong_shape_are_refused(profiles: object, message: str) -> None:
+    with pytest.raises(mazesim.MazesimError, match=message):
+        mazesim.Simulator(corridor(0.01), robot_profiles=profiles)  # type: ignore[arg-type]

@@ -5,7 +5,10 @@ the built-in one with a warning."""
 
 from __future__ import annotations
 
+import json
 from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -16,7 +19,9 @@ from mazesim.webots import controller, prepare
 from mazesim.webots import simulation as simulations
 from mazesim.webots.devices import PROXIMITY_TABLE
 from mazesim.webots.importer import import_wbt_text
-from mazesim.webots.scene import read_scene
+from mazesim.webots.lockstep import run_world
+from mazesim.webots.own_sensors import _profile_with, own_sensors
+from mazesim.webots.scene import DEFAULT_LOOKUP_TABLE, read_scene
 
 #: The 10-bit proximity table of some course worlds (the e-puck's values scaled to 0..1023).
 TEN_BIT = ((0.0, 1023.0, 0.0), (0.005, 868.0, 0.0), (0.01, 539.0, 0.0), (0.02, 169.0, 0.0))
@@ -40,24 +45,41 @@ def _table(rows: tuple[tuple[float, float, float], ...]) -> str:
     return ", ".join(" ".join(repr(v) for v in row) for row in rows)
 
 
-def plain_robot_world(rows: tuple[tuple[float, float, float], ...]) -> str:
-    """A plain ``Robot`` e-puck whose ps0..ps7 carry ``rows``, 2 cm from a wall ahead (+x)."""
+def plain_robot(
+    rows: tuple[tuple[float, float, float], ...] | None,
+    *,
+    name: str = "e-puck",
+    at: tuple[float, float] = (0.203, 0.0),
+    controller_name: str = "<extern>",
+) -> str:
+    """A plain ``Robot`` e-puck node at ``at`` facing +x whose ps0..ps7 carry ``rows`` (no
+    ``lookupTable`` field when None)."""
+    table = "" if rows is None else f" lookupTable [ {_table(rows)} ]"
     sensors = "".join(
-        f'    DistanceSensor {{ translation {x} {y} 0.033 rotation 0 0 1 {yaw} name "{name}"'
-        f" lookupTable [ {_table(rows)} ] }}\n"
-        for name, x, y, yaw in SENSORS
+        f'    DistanceSensor {{ translation {x} {y} 0.033 rotation 0 0 1 {yaw} name "{sensor}"'
+        f"{table} }}\n"
+        for sensor, x, y, yaw in SENSORS
     )
     return (
-        "#VRML_SIM R2023b utf8\nWorldInfo { basicTimeStep 32 }\n"
-        "RectangleArena { floorSize 0.5 0.5 }\n"
-        "Robot {\n  translation 0.203 0 0\n  children [\n"
+        f"Robot {{\n  translation {at[0]} {at[1]} 0\n  children [\n"
         f"{sensors}"
         '    HingeJoint { device [ RotationalMotor { name "left wheel motor" } ] '
         "endPoint Solid { translation 0 0.026 0.02 } }\n"
         '    HingeJoint { device [ RotationalMotor { name "right wheel motor" } ] '
         "endPoint Solid { translation 0 -0.026 0.02 } }\n"
-        '  ]\n  name "e-puck"\n  controller "<extern>"\n}\n'
+        f'  ]\n  name "{name}"\n  controller "{controller_name}"\n}}\n'
     )
+
+
+#: The header and arena of the worlds of these tests: walls at x, y = +-0.25 m.
+ARENA = (
+    "#VRML_SIM R2023b utf8\nWorldInfo { basicTimeStep 32 }\nRectangleArena { floorSize 0.5 0.5 }\n"
+)
+
+
+def plain_robot_world(rows: tuple[tuple[float, float, float], ...] | None) -> str:
+    """A plain ``Robot`` e-puck whose ps0..ps7 carry ``rows``, 2 cm from a wall ahead (+x)."""
+    return ARENA + plain_robot(rows)
 
 
 @pytest.fixture(autouse=True)
@@ -135,7 +157,7 @@ def test_a_refused_table_warns_and_runs(capsys: pytest.CaptureFixture[str]) -> N
 @pytest.mark.parametrize("name", robot_profile_names())
 def test_the_profile_text_is_written_back_as_it_was_read(name: str) -> None:
     text = RobotProfile.builtin(name).to_toml()
-    again = simulations._profile_with_tables(load_toml(text, name), {})
+    again = _profile_with(load_toml(text, name), {})
     assert again.to_toml() == text
 
 
@@ -146,4 +168,236 @@ def test_a_webots_6_differential_wheels_e_puck_s_tables_are_read() -> None:
     scene = read_scene(text, report.get("robot_model"), report.get("robot_line"))
     assert scene.robot_name == "e-puck"
     assert scene.sensor_tables["ps0"] == list(TEN_BIT)
-    assert set(simulations.world_sensor_tables(report, scene)[0]) == {n for n, *_ in SENSORS}
+    assert set(own_sensors("e-puck", scene).tables) == {n for n, *_ in SENSORS}
+
+
+def test_a_sensor_without_a_lookup_table_reads_through_webots_default() -> None:
+    """Webots' DistanceSensor ``lookupTable`` defaults to ``[0 0 0, 0.1 1000 0]``: 0 touching,
+    rising to 1000 at 0.1 m and beyond, which the profile format takes as it is."""
+    stock, _ = front_readings(plain_robot_world(PROXIMITY_TABLE))
+    controller.Robot.created = None
+    simulations.release()
+    readings, robot = front_readings(plain_robot_world(None))
+    assert read_scene(plain_robot_world(None)).sensor_tables["ps0"] == DEFAULT_LOOKUP_TABLE
+    inputs = [-row[1] for row in PROXIMITY_TABLE]
+    for index, (value, seen) in enumerate(zip(readings, stock)):
+        if seen > PROXIMITY_TABLE[-1][1] + 0.01:
+            # Within the stock table's 7 cm: the same distance on the rising table.
+            distance = np.interp(-seen, inputs, [row[0] for row in PROXIMITY_TABLE])
+            assert value == pytest.approx(distance * 10_000.0, rel=2e-3, abs=0.05), index
+        else:
+            assert value > 700.0, index
+    # The front sees the wall 2 cm ahead (reading about 200); the rear sees nothing near.
+    assert readings[0] < 300.0 and readings[3] == 1000.0
+    ps0 = robot.getDevice("ps0")
+    assert ps0.getLookupTable() == [0.0, 0.0, 0.0, 0.1, 1000.0, 0.0]
+    assert (ps0.getMinValue(), ps0.getMaxValue()) == (0.0, 1000.0)
+
+
+def test_an_e_puck_proto_keeps_its_proto_s_table() -> None:
+    text = ARENA + 'E-puck { translation 0.2 0 0 name "e-puck" controller "<extern>" }\n'
+    scene = read_scene(text)
+    assert scene.sensor_tables == {} and scene.malformed_tables == {}
+    assert own_sensors("e-puck", scene).profile is None
+
+
+def test_a_lookup_table_not_of_rows_of_three_warns_naming_the_sensor(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    stock, _ = front_readings(plain_robot_world(PROXIMITY_TABLE))
+    controller.Robot.created = None
+    simulations.release()
+    text = plain_robot_world(TEN_BIT)
+    # ps3's and ps4's fields lose their last number.
+    rows, field = _table(TEN_BIT), "0 4095 0.002, 0.07 67"
+    for name in ("ps3", "ps4"):
+        text = text.replace(
+            f'name "{name}" lookupTable [ {rows} ]', f'name "{name}" lookupTable [ {field} ]'
+        )
+    capsys.readouterr()
+    readings, robot = front_readings(text)
+    warnings = [line for line in capsys.readouterr().err.splitlines() if "lookupTable" in line]
+    assert len(warnings) == 1
+    (warning,) = warnings
+    assert warning.startswith(
+        "mazesim: warning: the world's lookupTable of DistanceSensor 'ps3', 'ps4' was not used"
+    )
+    assert warning.endswith(
+        "read through the e-puck profile's table instead): expected rows of 3 numbers "
+        "(distance, value, noise), found [0 4095 0.002, 0.07 67] (5 values)"
+    )
+    # Those two keep the built-in table; the others read through the world's.
+    assert readings[3:5] == stock[3:5]
+    assert robot.getDevice("ps3").getLookupTable() == [v for row in PROXIMITY_TABLE for v in row]
+    assert robot.getDevice("ps0").getLookupTable() == [v for row in TEN_BIT for v in row]
+
+
+#: A controller that writes its robot's ps0..ps7 readings and tables after one step.
+PROBE = """
+import json, os
+from controller import Robot
+
+robot = Robot()
+sensors = [robot.getDevice(f"ps{i}") for i in range(8)]
+for sensor in sensors:
+    sensor.enable(32)
+robot.step(32)
+with open(os.path.join(os.environ["PROBE_LOG"], robot.getName() + ".json"), "w") as log:
+    json.dump({
+        "values": [sensor.getValue() for sensor in sensors],
+        "tables": [sensor.getLookupTable() for sensor in sensors],
+    }, log)
+"""
+
+
+def world_run_readings(
+    tmp_path: Path,
+    monkeypatch: pytest.MonkeyPatch,
+    ten_bit: tuple[tuple[float, float, float], ...] | None,
+    default: tuple[tuple[float, float, float], ...] | None,
+) -> dict[str, dict[str, list[Any]]]:
+    """Each robot's readings and tables in a world of three run in lockstep: plain ``Robot``
+    e-pucks "ten" (its ps0..ps7 carrying ``ten_bit``) 2 cm from a wall and "default" (carrying
+    ``default``) 4 cm from one, and a stock E-puck PROTO "proto" near the "default" one."""
+    project = tmp_path / "project"
+    (project / "worlds").mkdir(parents=True)
+    (project / "controllers" / "probe").mkdir(parents=True)
+    (project / "controllers" / "probe" / "probe.py").write_text(PROBE)
+    world = project / "worlds" / "three.wbt"
+    world.write_text(
+        ARENA
+        + plain_robot(ten_bit, name="ten", controller_name="probe")
+        + plain_robot(default, name="default", at=(-0.18, 0.1), controller_name="probe")
+        + 'E-puck { translation -0.05 0.1 0 rotation 0 0 1 3.1416 name "proto" '
+        'controller "probe" }\n'
+    )
+    logs = tmp_path / "logs"
+    logs.mkdir()
+    monkeypatch.setenv("PROBE_LOG", str(logs))
+    run = run_world(str(world), seconds=0.1, noise=False)
+    assert [robot.exit_status for robot in run.robots] == [0, 0, 0]
+    return {name: json.loads((logs / f"{name}.json").read_text()) for name in RUN_ROBOTS}
+
+
+RUN_ROBOTS = ("ten", "default", "proto")
+
+
+def test_each_robot_of_a_world_run_reads_through_its_own_tables(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    stock = world_run_readings(tmp_path / "stock", monkeypatch, PROXIMITY_TABLE, PROXIMITY_TABLE)
+    assert "lookupTable" not in capsys.readouterr().err
+    own = world_run_readings(tmp_path / "own", monkeypatch, TEN_BIT, None)
+    stock_rows = [v for row in PROXIMITY_TABLE for v in row]
+    # The E-puck PROTO reads bit for bit as beside stock neighbours, through its PROTO's table.
+    assert own["proto"] == stock["proto"]
+    assert own["proto"]["tables"] == [stock_rows] * 8
+    assert own["ten"]["tables"] == [[v for row in TEN_BIT for v in row]] * 8
+    assert own["default"]["tables"] == [[0.0, 0.0, 0.0, 0.1, 1000.0, 0.0]] * 8
+    inputs = [-row[1] for row in PROXIMITY_TABLE]
+    for name, rows in (("ten", TEN_BIT), ("default", DEFAULT_LOOKUP_TABLE)):
+        seen = [v for v in stock[name]["values"] if v > PROXIMITY_TABLE[-1][1] + 0.01]
+        assert len(seen) >= 2, f"{name} sees a wall or a robot"
+        for value, reading in zip(own[name]["values"], stock[name]["values"]):
+            if reading > PROXIMITY_TABLE[-1][1] + 0.01:
+                # Within the stock table's 7 cm: the same distance (over the reflectance of
+                # what the ray meets) on the robot's own table.
+                distance = np.interp(-reading, inputs, [row[0] for row in PROXIMITY_TABLE])
+                expected = np.interp(distance, [r[0] for r in rows], [r[1] for r in rows])
+                assert value == pytest.approx(expected, rel=2e-3, abs=0.05), name
+    assert max(own["ten"]["values"]) <= 1023.0
+    assert min(own["default"]["values"]) < 500.0 and max(own["default"]["values"]) == 1000.0
+
+
+def test_a_world_run_warns_of_a_robot_s_table_it_does_not_use(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    readings = world_run_readings(tmp_path, monkeypatch, REFUSED, PROXIMITY_TABLE)
+    warnings = [line for line in capsys.readouterr().err.splitlines() if "lookupTable" in line]
+    (warning,) = warnings
+    assert warning.startswith("mazesim: warning: robot 'ten': the world's lookupTable of ")
+    assert warning.endswith("row 1 (0.01) is not above row 0 (0.02)")
+    assert readings["ten"]["tables"] == [[v for row in PROXIMITY_TABLE for v in row]] * 8
+
+
+def test_a_sensor_placed_elsewhere_casts_its_ray_from_where_the_world_puts_it() -> None:
+    stock, _ = front_readings(plain_robot_world(PROXIMITY_TABLE))
+    controller.Robot.created = None
+    simulations.release()
+    # ps2, on the right side, moved to ps7's place at the front, facing where ps7 faces.
+    text = plain_robot_world(PROXIMITY_TABLE).replace(
+        "translation 0.0 -0.031 0.033 rotation 0 0 1 -1.5708",
+        "translation 0.03 0.01 0.033 rotation 0 0 1 0.2992",
+    )
+    moved, _ = front_readings(text)
+    assert stock[2] < 100.0 < stock[7], "the side sensor saw no wall, the front one did"
+    assert moved[2] == moved[7] == stock[7]
+    assert [v for i, v in enumerate(moved) if i != 2] == [v for i, v in enumerate(stock) if i != 2]
+    own = simulations.current().simulator.robot
+    assert own.distance_sensor_poses()[2] == pytest.approx((0.03, 0.01, 0.2992))
+
+
+def nue_sensors(moved: str | None = None) -> str:
+    """ps0..ps7 of a Webots 6 e-puck (y up, forward -z), at the built-in poses rounded, or with
+    sensor ``moved`` at ps7's."""
+    lines = []
+    for name, x, y, yaw in SENSORS:
+        if name == moved:
+            _, x, y, yaw = SENSORS[7]
+        # Robot frame x forward, y left -> NUE: x right (-y), y up, z back (-x); a turn about
+        # +z (up) becomes one about +y, the ray's x axis pointing forward needing a quarter turn.
+        lines.append(
+            f"    DistanceSensor {{ translation {-y} 0.033 {-x} rotation 0 1 0 "
+            f'{yaw + 1.5707963267948966} name "{name}" }}\n'
+        )
+    return "".join(lines)
+
+
+def test_a_webots_6_e_puck_s_sensor_poses_are_read_in_its_own_frame() -> None:
+    def scene_of(sensors: str) -> Any:
+        text = (
+            "#VRML_SIM V6.4.0 utf8\nWorldInfo { basicTimeStep 32 }\n"
+            "DifferentialWheels {\n  translation 0 0 0\n  children [\n"
+            f'{sensors}  ]\n  name "e-puck"\n  controller "void"\n}}\n'
+        )
+        return read_scene(text, "DifferentialWheels", None)
+
+    stock = own_sensors("e-puck", scene_of(nue_sensors()))
+    assert stock.poses == {}
+    moved = own_sensors("e-puck", scene_of(nue_sensors("ps2")))
+    assert list(moved.poses) == ["ps2"]
+    assert moved.poses["ps2"] == pytest.approx((0.03, 0.01, 0.3), abs=1e-9)
+    assert moved.profile is not None
+    assert moved.profile.distance_sensor_poses()[2] == pytest.approx((0.03, 0.01, 0.3))
+
+
+def expanded_e_puck(turn_ps1: float = 0.0) -> str:
+    """A plain ``Robot`` e-puck saved expanded as Webots' E-puck is: each DistanceSensor in a
+    Solid at the sensor's place and heading, itself turned about the mount's z axis by 0.16
+    (what raises its ray); ps1's Solid turned ``turn_ps1`` more. ps2 sits in a HingeJoint's
+    end point, turned, whose pose is not composed."""
+    sensors = []
+    for name, x, y, yaw in SENSORS:
+        heading = yaw + (turn_ps1 if name == "ps1" else 0.0)
+        solid = f"Solid {{ translation {x} {y} 0.033 rotation 0 0 1 {heading}"
+        sensor = (
+            f'DistanceSensor {{ rotation 0 1 0 -0.16 name "{name}" '
+            f"lookupTable [ {_table(PROXIMITY_TABLE)} ] }}"
+        )
+        if name == "ps2":
+            sensors.append(
+                f"    HingeJoint {{ endPoint {solid} rotation 0 0 1 1 children [ {sensor} ] }} }}\n"
+            )
+        else:
+            sensors.append(f"    {solid} children [ {sensor} ] }}\n")
+    return ARENA + f'Robot {{\n  children [\n{"".join(sensors)}  ]\n  name "e-puck"\n}}\n'
+
+
+def test_an_expanded_e_puck_s_sensor_poses_are_composed_through_its_solids() -> None:
+    stock = read_scene(expanded_e_puck())
+    assert "ps2" not in stock.sensor_poses
+    assert stock.sensor_poses["ps0"] == pytest.approx((0.03, -0.01, -0.3, 0.16))
+    assert own_sensors("e-puck", stock).profile is None
+    turned = own_sensors("e-puck", read_scene(expanded_e_puck(turn_ps1=0.5)))
+    assert list(turned.poses) == ["ps1"]
+    assert turned.poses["ps1"] == pytest.approx((0.022, -0.025, -0.3))

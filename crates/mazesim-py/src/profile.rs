@@ -4,7 +4,7 @@
 
 use std::sync::Arc;
 
-use mazesim_core::limits::MAX_ENVS;
+use mazesim_core::limits::{MAX_ENVS, MAX_ROBOTS};
 use mazesim_core::{LookupTable, RobotProfile};
 use numpy::PyArray2;
 use pyo3::prelude::*;
@@ -116,6 +116,22 @@ impl<'a, 'py> FromPyObject<'a, 'py> for RobotArg {
         }
         Ok(RobotArg::Other(type_name(&obj.to_owned())))
     }
+}
+
+/// The `robot_profiles` argument of a simulator: a list or tuple of one entry per robot of its
+/// world, each a `RobotProfile`, a built-in profile's name, or None (the robot's placement's).
+pub fn given_profiles(obj: &Bound<'_, PyAny>) -> PyResult<Vec<Option<Arc<RobotProfile>>>> {
+    let expected = "robot profiles (a RobotProfile, a built-in profile's name or None per robot)";
+    let items = bounded_items(obj, "robot_profiles", expected, MAX_ROBOTS)?;
+    (items.iter().enumerate())
+        .map(|(i, item)| {
+            if item.is_none() {
+                return Ok(None);
+            }
+            let arg = item.extract::<RobotArg>()?;
+            Ok(Some(arg.profile(&format!("robot_profiles[{i}]"))?))
+        })
+        .collect()
 }
 
 /// The error for a sensor index at or above the robot's `count` sensors of that `kind`.

@@ -11,7 +11,7 @@ use crate::buffers::{copied, readable};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::{enter, enter_detached};
 use crate::lock::Exclusive;
-use crate::profile::{PyRobotProfile, RobotArg};
+use crate::profile::{given_profiles, PyRobotProfile, RobotArg};
 use crate::tasks::{PyStepBounds, PyTaskFeatures};
 use crate::world::{dicts, goal_tuple, world_argument, PyWorld};
 
@@ -148,18 +148,20 @@ impl PySimulator {
 #[pymethods]
 impl PySimulator {
     #[new]
-    #[pyo3(signature = (world, robot = RobotArg::default_robot(), seed = IntArg::ZERO, noise = Flag::Value(true), control_step_ms = None),
-        text_signature = "(world, robot='e-puck', seed=0, noise=True, control_step_ms=None)")]
+    #[pyo3(signature = (world, robot = RobotArg::default_robot(), seed = IntArg::ZERO, noise = Flag::Value(true), control_step_ms = None, *, robot_profiles = None),
+        text_signature = "(world, robot='e-puck', seed=0, noise=True, control_step_ms=None, *, robot_profiles=None)")]
     fn new(
         world: &Bound<'_, PyAny>,
         robot: RobotArg,
         seed: IntArg,
         noise: Flag,
         control_step_ms: Option<Real>,
+        robot_profiles: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         enter(|| {
             let world = world_argument(world, "world")?;
             let profile = robot.profile("robot")?;
+            let given = robot_profiles.map(given_profiles).transpose()?;
             let noise = noise.value("noise", "a bool")?;
             let control_step_ms = control_step_ms
                 .map(|ms| ms.value("control_step_ms"))
@@ -169,7 +171,8 @@ impl PySimulator {
                 noise,
                 control_step: control_step_ms.map(|ms| ms / 1000.0),
             };
-            let sim = Swarm::new(world, profile, config).py()?;
+            let given = given.unwrap_or_default();
+            let sim = Swarm::with_profiles(world, profile, &given, config).py()?;
             Ok(Self {
                 inner: Exclusive::new(sim, SIMULATOR),
             })
@@ -536,16 +539,27 @@ impl PySimulator {
     fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyTuple>> {
         let py = slf.py();
         let this = slf.get();
-        let (world, robot, config, snapshot) = this.swarm(|s| {
+        let (world, robot, config, snapshot, given) = this.swarm(|s| {
             let first = &s.robots()[0];
             // A world of one robot pickles its robot's profile; one of several the profile of
-            // the robots whose placement names none.
+            // the robots whose placement names none, and the profiles given for some.
             let robot = if s.len() == 1 {
                 first.robot().clone()
             } else {
                 s.default_profile().clone()
             };
-            (first.world().clone(), robot, first.config(), s.snapshot())
+            let given = if s.len() == 1 {
+                Vec::new()
+            } else {
+                s.profile_overrides().to_vec()
+            };
+            (
+                first.world().clone(),
+                robot,
+                first.config(),
+                s.snapshot(),
+                given,
+            )
         })?;
         let control_step_ms = config.control_step.map(|c| c * 1000.0);
         let args = (
@@ -555,7 +569,19 @@ impl PySimulator {
             config.noise,
             control_step_ms,
         );
-        (slf.get_type(), args, PyBytes::new(py, &snapshot)).into_pyobject(py)
+        let state = PyBytes::new(py, &snapshot);
+        if given.is_empty() {
+            return (slf.get_type(), args, state).into_pyobject(py);
+        }
+        // The constructor with the given profiles as its keyword argument.
+        let profiles: Vec<Option<PyRobotProfile>> = (given.into_iter())
+            .map(|p| p.map(|inner| PyRobotProfile { inner }))
+            .collect();
+        let keywords = PyDict::new(py);
+        keywords.set_item("robot_profiles", profiles)?;
+        let partial = py.import("functools")?.getattr("partial")?;
+        let constructor = partial.call((slf.get_type(),), Some(&keywords))?;
+        (constructor, args, state).into_pyobject(py)
     }
 
     fn __setstate__(&self, py: Python<'_>, state: Bytes) -> PyResult<()> {

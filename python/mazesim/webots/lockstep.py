@@ -14,12 +14,14 @@ through the :class:`Fleet`; its ``simulationQuit`` ends every controller's run (
 returns -1).
 
 The e-pucks share one simulator (:mod:`mazesim.webots.shared_world`): they collide with and
-see each other and the world's movable bodies, which they push. This process also holds each
-imported E-puck's wheel traction (:mod:`mazesim.webots.traction`), so that a robot a supervisor
-puts elsewhere starts again from rest, whichever process moved it. A world the shared simulator
-refuses (robots overlapping at their starts, more robots than a world holds) runs each robot in
-a simulator of its own, with a warning: there robots neither collide with nor see each other;
-the radio and the supervisor see them all.
+see each other and the world's movable bodies, which they push; an e-puck whose node lists its
+own ``DistanceSensor`` nodes reads through their tables (:mod:`mazesim.webots.own_sensors`), as
+in a run of one robot. This process also holds each imported E-puck's wheel traction
+(:mod:`mazesim.webots.traction`), so that a robot a supervisor puts elsewhere starts again from
+rest, whichever process moved it. A world the shared simulator refuses (robots overlapping at
+their starts, more robots than a world holds) runs each robot in a simulator of its own, with a
+warning: there robots neither collide with nor see each other; the radio and the supervisor see
+them all.
 """
 
 from __future__ import annotations
@@ -39,11 +41,12 @@ import numpy as np
 from mazesim._core import RobotProfile, Simulator, World
 from mazesim.errors import InvalidArgumentError, MazesimIOError
 from mazesim.webots.controller_process import ControllerJob, answer, state_after_step
+from mazesim.webots.own_sensors import own_sensors
 from mazesim.webots.process_template import ControllerProcesses
 from mazesim.webots.radio import Radio
 from mazesim.webots.requirements import PreparedController, prepare_controller
 from mazesim.webots.runner import CONTROLLER_SUFFIXES
-from mazesim.webots.scene import read_scene
+from mazesim.webots.scene import Scene, read_scene
 from mazesim.webots.shared_world import RobotView, shared_simulator
 from mazesim.webots.simulation import robot_profile_name
 from mazesim.webots.traction import Traction, epuck_traction
@@ -216,7 +219,9 @@ def run_world(
         raise MazesimIOError(f"{world_path}: expected a world with robots, found none")
     streams = np.random.SeedSequence(seed).spawn(len(robots))
     e_pucks = [i for i, robot in enumerate(robots) if robot.get("profile") is not None]
-    shared, refusal = shared_simulator(world, robots, e_pucks, seed=seed, noise=noise)
+    scenes = _robot_scenes(world_path, robots)
+    own = _own_profiles(robots, scenes)
+    shared, refusal = shared_simulator(world, robots, e_pucks, seed=seed, noise=noise, profiles=own)
     if refusal:
         print(
             f"mazesim: warning: the e-pucks run in simulators of their own, without seeing or "
@@ -231,7 +236,9 @@ def run_world(
             simulators.append(RobotView(shared, e_pucks.index(index)))
         else:
             robot_seed = int(streams[index].generate_state(1)[0])
-            simulators.append(_own_simulator(world_path, robot, profile, robot_seed, noise))
+            simulators.append(
+                _own_simulator(world_path, robot, own.get(index, profile), robot_seed, noise)
+            )
         file, note = controller_of(robot, world_path, controllers or {})
         label = robot.get("name") or robot.get("def_name") or robot.get("model")
         runs.append(RobotRun(index, str(label), str(robot.get("model")), file, note))
@@ -247,7 +254,7 @@ def run_world(
         for index, job in jobs.items()
     }
     fleet = Fleet(robots, simulators)
-    traction = WorldTraction(world_path, robots, simulators)
+    traction = WorldTraction(scenes, robots, simulators)
     movable = [robot.get("profile") is not None for robot in robots]
     started = time.perf_counter()
     watch = None if observer is None else lambda *state: observer(world, runs, *state)
@@ -272,6 +279,31 @@ def run_world(
     )
 
 
+def _robot_scenes(world_path: str, robots: list[Mapping[str, Any]]) -> list[Scene]:
+    """What the world file says of each robot's node (:func:`~mazesim.webots.scene.read_scene`
+    of the node on its line)."""
+    with open(world_path, encoding="utf-8", errors="replace") as handle:
+        text = handle.read().replace("\r\n", "\n").replace("\r", "\n")
+    return [read_scene(text, robot.get("model"), robot.get("line")) for robot in robots]
+
+
+def _own_profiles(robots: list[Mapping[str, Any]], scenes: list[Scene]) -> dict[int, RobotProfile]:
+    """The profile of each e-puck whose node lists its own sensors other than its built-in
+    profile's (:func:`~mazesim.webots.own_sensors.own_sensors`), by robot index; says at the
+    run's start, robot by robot, what of a node's sensors is not used."""
+    profiles: dict[int, RobotProfile] = {}
+    for index, (robot, scene) in enumerate(zip(robots, scenes)):
+        if robot.get("profile") is None:
+            continue
+        own = own_sensors(robot_profile_name({"robot_profile": robot.get("profile")}), scene)
+        label = robot.get("name") or robot.get("def_name") or robot.get("model")
+        for warning in own.warnings:
+            print(f"mazesim: warning: robot {label!r}: {warning}", file=sys.stderr)
+        if own.profile is not None:
+            profiles[index] = own.profile
+    return profiles
+
+
 #: The tables of a world file that a robot's body meets: walls and movable bodies.
 _SOLID_TABLES = re.compile(r"^\[\[(?:walls|segments|bodies)\]\]\n(?:(?!\[).*\n)*", re.MULTILINE)
 
@@ -279,7 +311,7 @@ _SOLID_TABLES = re.compile(r"^\[\[(?:walls|segments|bodies)\]\]\n(?:(?!\[).*\n)*
 def _own_simulator(
     world_path: str | os.PathLike[str],
     robot: Mapping[str, Any],
-    profile: str,
+    profile: str | RobotProfile,
     seed: int,
     noise: bool,
 ) -> Simulator:
@@ -416,17 +448,15 @@ class WorldTraction:
     """
 
     def __init__(
-        self, world_path: str, robots: list[Mapping[str, Any]], simulators: list[Any]
+        self, scenes: list[Scene], robots: list[Mapping[str, Any]], simulators: list[Any]
     ) -> None:
-        with open(world_path, encoding="utf-8", errors="replace") as handle:
-            text = handle.read().replace("\r\n", "\n").replace("\r", "\n")
         self._simulators = simulators
         self.dt = float(simulators[0].control_step_ms) / 1000.0
         self.tractions: dict[int, Traction] = {}
-        for index, robot in enumerate(robots):
+        for index, (robot, scene) in enumerate(zip(robots, scenes)):
             if robot.get("profile") is None:
                 continue
-            version = read_scene(text, robot.get("model"), robot.get("line")).traction_version
+            version = scene.traction_version
             if version is not None:
                 name = robot_profile_name({"robot_profile": robot.get("profile")})
                 profile = RobotProfile.builtin(name)

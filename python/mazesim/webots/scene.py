@@ -15,7 +15,10 @@ from typing import Any
 from mazesim.webots.frames import nue_to_enu
 from mazesim.webots.lights import Light, read_lights
 
-__all__ = ["Scene", "SceneNode", "read_scene"]
+__all__ = ["DEFAULT_LOOKUP_TABLE", "Row", "Scene", "SceneNode", "read_scene"]
+
+#: A row of a ``lookupTable``: distance (m), value and relative noise.
+Row = tuple[float, float, float]
 
 _DEF = re.compile(r"\bDEF\s+([^\s{}\[\]]+)\s+([A-Za-z_][\w-]*)\s*\{")
 _NAME = re.compile(r'\bname\s+"((?:[^"\\]|\\.)*)"')
@@ -148,7 +151,19 @@ class Scene:
             lists itself (a plain ``Robot`` or ``DifferentialWheels`` e-puck saved expanded, not
             an E-puck PROTO node), by its ``name``: rows of distance (m), value and relative
             noise, as written. Webots reads each such sensor through its own table; a sensor
-            without a ``lookupTable`` field, or with one not of rows of 3 numbers, is left out.
+            without a ``lookupTable`` field reads through the field's default,
+            :data:`DEFAULT_LOOKUP_TABLE`; one whose table is not rows of 3 numbers is left out
+            (see ``malformed_tables``).
+        malformed_tables: The ``lookupTable`` fields of those ``DistanceSensor`` nodes that are
+            not rows of 3 numbers, by sensor name: what was found, as written.
+        sensor_poses: The pose of each of those ``DistanceSensor`` nodes that is a child of the
+            robot node or of the ``Solid``, ``Transform``, ``Pose`` and ``Group`` nodes under it
+            (whose poses it composes; an E-puck saved expanded holds each in a Solid; one in a
+            joint's end point or another robot is left out), by sensor name:
+            x, y (m), the heading of its ray (rad, counter-clockwise from forward) and how far
+            the ray rises above the floor's plane (rad, negative down) in the robot's frame (x
+            forward, y left, z up; an NUE file's converted as the importer converts it), from
+            its ``translation`` and ``rotation`` (Webots' defaults where absent).
     """
 
     defs: dict[str, str] = field(default_factory=dict)
@@ -170,7 +185,9 @@ class Scene:
     ground_sensors_module: bool | None = None
     lights: list[Light] = field(default_factory=list)
     nodes: list[SceneNode] = field(default_factory=list)
-    sensor_tables: dict[str, list[tuple[float, float, float]]] = field(default_factory=dict)
+    sensor_tables: dict[str, list[Row]] = field(default_factory=dict)
+    malformed_tables: dict[str, str] = field(default_factory=dict)
+    sensor_poses: dict[str, tuple[float, float, float, float]] = field(default_factory=dict)
 
 
 def _hinge_wheels(year: str | None) -> bool:
@@ -222,7 +239,8 @@ def read_scene(text: str, robot_model: str | None = None, robot_line: int | None
             scene.wheel_positions = (saved.get(0, 0.0), saved.get(1, 0.0))
             scene.ground_sensors_module = bool(_GROUND_SENSORS_MODULE.search(body))
         if robot.group(2) not in EPUCK_TYPES:
-            scene.sensor_tables = _sensor_tables(body)
+            scene.sensor_tables, scene.malformed_tables = _sensor_tables(body)
+            scene.sensor_poses = _sensor_poses(body, scene.nue)
         if robot.group(2) == "E-puck":
             scene.infrared_elevation = EPUCK_IR_ELEVATION
         if robot.group(2) == "E-puck" and _hinge_wheels(year) and not _KINEMATIC.search(own):
@@ -261,33 +279,128 @@ def _without_comment(match: re.Match[str]) -> str:
 
 _DISTANCE_SENSOR = re.compile(r"(?<![\w-])DistanceSensor\s*\{")
 _LOOKUP_TABLE = re.compile(r"\blookupTable\s*\[([^\]]*)\]")
+#: The ``lookupTable`` of a ``DistanceSensor`` node without the field (Webots' reference
+#: manual, DistanceSensor: ``lookupTable [ 0 0 0, 0.1 1000 0 ]``): 0 touching, rising to 1000
+#: at 0.1 m and beyond.
+DEFAULT_LOOKUP_TABLE = [(0.0, 0.0, 0.0), (0.1, 1000.0, 0.0)]
 
 
-def _sensor_tables(body: str) -> dict[str, list[tuple[float, float, float]]]:
-    """The ``lookupTable`` of each named ``DistanceSensor`` node in a robot's body text."""
-    tables: dict[str, list[tuple[float, float, float]]] = {}
+def _sensor_tables(body: str) -> tuple[dict[str, list[Row]], dict[str, str]]:
+    """The ``lookupTable`` of each named ``DistanceSensor`` node in a robot's body text (the
+    default one where the node has no such field), and the fields that are not rows of 3
+    numbers, as found."""
+    tables: dict[str, list[Row]] = {}
+    malformed: dict[str, str] = {}
     for node in _DISTANCE_SENSOR.finditer(body):
-        own = _own_text(body, node.end())
-        found = _NAME.search(own)
-        table = _own_lookup_table(_body_text(body, node.end()))
-        if found is not None and table is not None:
-            tables.setdefault(found.group(1), table)
-    return tables
-
-
-def _own_lookup_table(body: str) -> list[tuple[float, float, float]] | None:
-    """A node's own ``lookupTable`` field (not a child's), as rows of 3 numbers, or None."""
-    for match in _LOOKUP_TABLE.finditer(body):
-        if _nesting(body[: match.start()]) != 0:
+        found = _NAME.search(_own_text(body, node.end()))
+        if found is None or found.group(1) in tables or found.group(1) in malformed:
             continue
-        try:
-            numbers = [float(v) for v in match.group(1).replace(",", " ").split()]
-        except ValueError:
-            return None
-        if not numbers or len(numbers) % 3 != 0:
-            return None
-        return [(numbers[i], numbers[i + 1], numbers[i + 2]) for i in range(0, len(numbers), 3)]
+        field_text = _own_lookup_table(_body_text(body, node.end()))
+        if field_text is None:
+            tables[found.group(1)] = list(DEFAULT_LOOKUP_TABLE)
+        elif (table := _rows_of_three(field_text)) is not None:
+            tables[found.group(1)] = table
+        else:
+            malformed[found.group(1)] = " ".join(field_text.split())
+    return tables, malformed
+
+
+#: The nodes between a robot node and a sensor through which the sensor's pose is composed:
+#: grouping nodes that place their children (an E-puck saved expanded holds each DistanceSensor
+#: in a Solid).
+_PLACING = {"Solid", "Transform", "Pose", "Group"}
+#: An opening or closing brace or bracket, or a node's type and its opening brace.
+_NESTING = re.compile(_NODE.pattern + r"|([{}\[\]])")
+
+
+def _sensor_poses(body: str, nue: bool) -> dict[str, tuple[float, float, float, float]]:
+    """The pose in the robot's frame (x, y, heading, rise) of each named ``DistanceSensor`` node
+    of a robot's body text ``body`` that is a child of the robot node or of the grouping nodes
+    (:data:`_PLACING`) under it, composed through their ``translation`` and ``rotation``."""
+    poses: dict[str, tuple[float, float, float, float]] = {}
+    # The open nodes (type, body start) and lists (None) from the robot's body inwards.
+    open_nodes: list[tuple[str, int] | None] = []
+    for match in _NESTING.finditer(body):
+        bracket = match.group(3)
+        if bracket in ("}", "]"):
+            if open_nodes:
+                open_nodes.pop()
+            continue
+        if bracket is not None:
+            open_nodes.append(None)
+            continue
+        chain = [entry for entry in open_nodes if entry is not None]
+        open_nodes.append((match.group(2), match.end()))
+        if match.group(2) != "DistanceSensor" or any(t not in _PLACING for t, _ in chain):
+            continue
+        own = _own_text(body, match.end())
+        found = _NAME.search(own)
+        if found is None or found.group(1) in poses:
+            continue
+        origin, axes = (0.0, 0.0, 0.0), _IDENTITY
+        for _, start in [*chain, (match.group(2), match.end())]:
+            origin, axes = _placed(origin, axes, _own_text(body, start))
+        x, y, z = origin
+        ray = (axes[0][0], axes[1][0], axes[2][0])
+        if nue:
+            (x, y, z), ray = nue_to_enu(x, y, z), nue_to_enu(*ray)
+        rise = math.asin(max(-1.0, min(1.0, ray[2])))
+        poses[found.group(1)] = (x, y, math.atan2(ray[1], ray[0]), rise)
+    return poses
+
+
+Matrix = tuple[tuple[float, float, float], ...]
+_IDENTITY: Matrix = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+
+
+def _placed(
+    origin: tuple[float, float, float], axes: Matrix, own: str
+) -> tuple[tuple[float, float, float], Matrix]:
+    """The frame (origin, rotation matrix) of a node whose own fields are ``own`` inside the
+    frame ``origin``, ``axes``: its ``translation`` and ``rotation`` (Webots' defaults, none,
+    where absent)."""
+    at = _TRANSLATION.search(own)
+    offset = [float(v) for v in at.groups()] if at else [0.0, 0.0, 0.0]
+    x, y, z = (origin[i] + sum(axes[i][k] * offset[k] for k in range(3)) for i in range(3))
+    turned = _ROTATION.search(own)
+    if turned is None:
+        return (x, y, z), axes
+    rotation = _rotation_matrix(*(float(v) for v in turned.groups()))
+    rows = [[sum(a * rotation[k][j] for k, a in enumerate(row)) for j in range(3)] for row in axes]
+    return (x, y, z), tuple((row[0], row[1], row[2]) for row in rows)
+
+
+def _rotation_matrix(ax: float, ay: float, az: float, angle: float) -> Matrix:
+    """The matrix of a turn by ``angle`` about the axis (ax, ay, az) (Rodrigues)."""
+    norm = math.sqrt(ax * ax + ay * ay + az * az) or 1.0
+    x, y, z = ax / norm, ay / norm, az / norm
+    c, s = math.cos(angle), math.sin(angle)
+    t = 1.0 - c
+    return (
+        (c + x * x * t, x * y * t - z * s, x * z * t + y * s),
+        (y * x * t + z * s, c + y * y * t, y * z * t - x * s),
+        (z * x * t - y * s, z * y * t + x * s, c + z * z * t),
+    )
+
+
+def _own_lookup_table(body: str) -> str | None:
+    """The text between the brackets of a node's own ``lookupTable`` field (not a child's), or
+    None without one."""
+    for match in _LOOKUP_TABLE.finditer(body):
+        if _nesting(body[: match.start()]) == 0:
+            return match.group(1)
     return None
+
+
+def _rows_of_three(field_text: str) -> list[Row] | None:
+    """A ``lookupTable`` field's numbers as rows of 3, or None when they are not."""
+    try:
+        numbers = [float(v) for v in field_text.replace(",", " ").split()]
+    except ValueError:
+        return None
+    if not numbers or len(numbers) % 3 != 0:
+        return None
+    return [(numbers[i], numbers[i + 1], numbers[i + 2]) for i in range(0, len(numbers), 3)]
 
 
 def _robot_node(text: str, robot_types: set[str], line: int | None) -> re.Match[str] | None:

@@ -15,7 +15,7 @@ import re
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-from mazesim._core import Simulator, World
+from mazesim._core import RobotProfile, Simulator, World
 from mazesim.errors import MazesimError
 
 __all__ = ["RobotView", "shared_simulator"]
@@ -91,6 +91,7 @@ def shared_simulator(
     *,
     seed: int,
     noise: bool,
+    profiles: Mapping[int, RobotProfile] | None = None,
 ) -> tuple[Simulator | None, str]:
     """One simulator of the robots ``indices`` of a world's ``robots`` (import report entries),
     in that order, or None and why not.
@@ -101,6 +102,9 @@ def shared_simulator(
         indices: The robots to put in the simulator (the e-pucks).
         seed: Seed of the sensor noise; each robot's stream derives from it and its name.
         noise: Whether the sensors are noisy.
+        profiles: The profile of some robots (by index in ``robots``) instead of the built-in
+            one their entry names: a robot node's own sensors
+            (:func:`~mazesim.webots.own_sensors.own_sensors`).
     """
     tables = []
     for index in indices:
@@ -113,6 +117,9 @@ def shared_simulator(
     text = _START_TABLE.sub("", world.to_toml()) + "".join(tables)
     try:
         shared = World.from_toml(text, source=f"{world.name} (every e-puck)")
-        return Simulator(shared, seed=seed, noise=noise), ""
+        if not profiles:
+            return Simulator(shared, seed=seed, noise=noise), ""
+        given = [profiles.get(index) for index in indices]
+        return Simulator(shared, seed=seed, noise=noise, robot_profiles=given), ""
     except MazesimError as refusal:
         return None, str(refusal)

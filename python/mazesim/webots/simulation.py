@@ -8,8 +8,6 @@ with an optional time limit after which ``Robot.step`` returns -1, and the traje
 
 from __future__ import annotations
 
-import copy
-import json
 import math
 import sys
 from collections.abc import Callable, Iterator, Mapping
@@ -20,11 +18,11 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import RobotProfile, Simulator, World
-from mazesim._toml import load_toml
-from mazesim.errors import InvalidArgumentError, MazesimError, UnknownNameError
+from mazesim.errors import InvalidArgumentError, UnknownNameError
 from mazesim.webots.keyboard import KeyScript
+from mazesim.webots.own_sensors import OwnSensors, own_sensors
 from mazesim.webots.radio import Radio
-from mazesim.webots.scene import Scene
+from mazesim.webots.scene import Row, Scene
 from mazesim.webots.traction import Traction, epuck_traction
 
 __all__ = [
@@ -36,7 +34,6 @@ __all__ = [
     "release",
     "robot_profile",
     "robot_profile_name",
-    "world_sensor_tables",
 ]
 
 #: Displacement per step (metres) below which the robot counts as stopped.
@@ -62,121 +59,24 @@ def robot_profile_name(report: Mapping[str, Any] | None) -> str:
     return str(name)
 
 
-Row = tuple[float, float, float]
-
-
 def robot_profile(
     report: Mapping[str, Any] | None,
     scene: Scene | None,
-    tables: Mapping[str, list[Row]] | None = None,
+    own: OwnSensors | None = None,
 ) -> str | RobotProfile:
     """The robot profile to simulate for an import report and the world's scene facts: the
-    report's profile (see :func:`robot_profile_name`), its proximity sensors' rays tilted as
-    the scene says (an ``E-puck`` PROTO's rise 0.16 rad), each sensor of ``tables`` (see
-    :func:`world_sensor_tables`) reading through the world's lookup table; the profile's name
-    when the rays are level and no table is the world's."""
+    report's profile (see :func:`robot_profile_name`), or its copy with the robot node's own
+    sensors (``own``, see :func:`~mazesim.webots.own_sensors.own_sensors`), its proximity
+    sensors' rays tilted as the scene says (an ``E-puck`` PROTO's rise 0.16 rad); the profile's
+    name when the rays are level and no sensor is the world's own."""
     name = robot_profile_name(report)
     elevation = scene.infrared_elevation if scene is not None else 0.0
-    if not tables and elevation == 0.0:
+    profile = own.profile if own is not None else None
+    if profile is None and elevation == 0.0:
         return name
-    if tables:
-        profile = _profile_with_tables(_profile_layout(name), tables)
-    else:
+    if profile is None:
         profile = RobotProfile.builtin(name)
     return profile if elevation == 0.0 else profile.with_infrared_elevation(elevation)
-
-
-def world_sensor_tables(
-    report: Mapping[str, Any] | None, scene: Scene | None
-) -> tuple[dict[str, list[Row]], list[str]]:
-    """The world's own lookup tables (``Scene.sensor_tables``) that differ from the profile's,
-    by sensor of the profile, and a warning naming the sensors whose table the profile format
-    refuses, one per reason (those sensors keep the profile's table).
-
-    Webots reads each DistanceSensor through its own ``lookupTable``; a plain ``Robot`` e-puck
-    saved expanded may carry other tables than the built-in e-puck's (a 10-bit 0..1023 one).
-    """
-    if scene is None or not scene.sensor_tables:
-        return {}, []
-    name = robot_profile_name(report)
-    layout = _profile_layout(name)
-    models = layout.get("models", {})
-    used: dict[str, list[Row]] = {}
-    # The refused sensors by the profile format's reason.
-    refused: dict[str, list[str]] = {}
-    for sensor in [*layout.get("distance_sensors", []), *layout.get("ground_sensors", [])]:
-        table = scene.sensor_tables.get(sensor["name"])
-        if table is None or [tuple(row) for row in models[sensor["model"]]["table"]] == table:
-            continue
-        try:
-            _profile_with_tables(layout, {sensor["name"]: table})
-        except MazesimError as error:
-            # The format's reason, without the place in the generated profile text.
-            reason = str(error).split("`: ", 1)[-1]
-            refused.setdefault(reason, []).append(repr(sensor["name"]))
-            continue
-        used[sensor["name"]] = table
-    warnings = [
-        f"the world's lookupTable of DistanceSensor {', '.join(names)} was not used (read "
-        f"through the {name} profile's table instead): {reason}"
-        for reason, names in refused.items()
-    ]
-    return used, warnings
-
-
-def _profile_layout(name: str) -> dict[str, Any]:
-    """The built-in profile ``name`` as its parsed profile file."""
-    return load_toml(RobotProfile.builtin(name).to_toml(), f"the {name} profile")
-
-
-def _profile_with_tables(layout: dict[str, Any], tables: Mapping[str, list[Row]]) -> RobotProfile:
-    """The profile of a parsed profile file, each sensor named in ``tables`` reading through a
-    copy of its model with that table (one copy per model and table: ``world-table-N``)."""
-    layout = copy.deepcopy(layout)
-    models = layout.setdefault("models", {})
-    copies: dict[tuple[str, tuple[Row, ...]], str] = {}
-    for sensor in [*layout.get("distance_sensors", []), *layout.get("ground_sensors", [])]:
-        table = tables.get(sensor["name"])
-        if table is None:
-            continue
-        key = (sensor["model"], tuple(table))
-        if key not in copies:
-            copies[key] = f"world-table-{len(copies)}"
-            rows = [list(row) for row in table]
-            models[copies[key]] = {**models[sensor["model"]], "table": rows}
-        sensor["model"] = copies[key]
-    return RobotProfile.from_toml(_toml_text(layout), "the world's sensor tables")
-
-
-def _toml_text(layout: Mapping[str, Any], path: str = "") -> str:
-    """TOML text of a parsed profile file: keys of values, then tables, then arrays of tables."""
-    lines = [
-        f"{key} = {_toml_value(value)}"
-        for key, value in layout.items()
-        if not isinstance(value, dict) and not _is_table_array(value)
-    ]
-    for key, value in layout.items():
-        inner = f"{path}.{key}" if path else key
-        if isinstance(value, dict):
-            lines.append(f"\n[{inner}]\n{_toml_text(value, inner)}")
-        elif _is_table_array(value):
-            lines.extend(f"\n[[{inner}]]\n{_toml_text(item, inner)}" for item in value)
-    return "\n".join(lines)
-
-
-def _is_table_array(value: Any) -> bool:
-    return isinstance(value, list) and bool(value) and all(isinstance(v, dict) for v in value)
-
-
-def _toml_value(value: Any) -> str:
-    """One TOML value: a string, boolean, number or array of them."""
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, str):
-        return json.dumps(value)
-    if isinstance(value, list):
-        return "[" + ", ".join(_toml_value(item) for item in value) + "]"
-    return repr(value)
 
 
 class RobotSimulation:
@@ -202,7 +102,8 @@ class RobotSimulation:
             the controller created a ``Supervisor``).
         scene: DEF names, camera fields and north read from the world file.
         sensor_tables: The world's own lookup tables the robot's sensors read through, by
-            sensor name (see :func:`world_sensor_tables`); empty when all are the profile's.
+            sensor name (see :func:`~mazesim.webots.own_sensors.own_sensors`); empty when all
+            are the profile's.
         noise: Whether the sensors are noisy.
         seed: The seed of the sensor noise.
         quit_status: The status a supervisor's ``simulationQuit`` asked for, or None.
@@ -269,17 +170,17 @@ class RobotSimulation:
         self.seed = seed
         self.quit_status: int | None = None
         self.owns_world = simulator is None
-        # The world's own sensor tables, in a run of one robot (the world's process builds
-        # each robot of several from its profile's name).
-        self.sensor_tables: dict[str, list[Row]] = {}
+        # The robot node's own sensors; when another process owns the world, it simulates
+        # them and says what of them is not used.
+        own = own_sensors(robot_profile_name(report), scene)
+        self.sensor_tables: dict[str, list[Row]] = own.tables
         if simulator is None:
-            self.sensor_tables, refused = world_sensor_tables(report, scene)
-            for warning in refused:
+            for warning in own.warnings:
                 print(f"mazesim: warning: {warning}", file=sys.stderr)
         self.simulator = (
             Simulator(
                 world,
-                robot=robot_profile(report, scene, self.sensor_tables),
+                robot=robot_profile(report, scene, own),
                 seed=seed,
                 noise=noise,
             )

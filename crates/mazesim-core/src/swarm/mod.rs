@@ -257,25 +257,60 @@ pub struct Swarm {
     commands: Vec<[f64; 2]>,
     /// The profile of the robots whose placement names none.
     profile: Arc<RobotProfile>,
+    /// The profiles given for some robots instead of their placements' (`with_profiles`), one
+    /// per robot; empty when none was.
+    overrides: Vec<Option<Arc<RobotProfile>>>,
 }
 
 impl Swarm {
     /// The robots of `world`: each of the profile its placement names, else `robot`.
     pub fn new(world: Arc<World>, robot: Arc<RobotProfile>, config: SimConfig) -> Result<Swarm> {
+        Self::with_profiles(world, robot, &[], config)
+    }
+
+    /// The robots of `world`: robot `i` of `profiles[i]` when given, else of the profile its
+    /// placement names, else `robot` (a robot node of an imported world whose own sensors
+    /// differ from its built-in profile's). `profiles` is empty or holds one entry per robot.
+    pub fn with_profiles(
+        world: Arc<World>,
+        robot: Arc<RobotProfile>,
+        profiles: &[Option<Arc<RobotProfile>>],
+        config: SimConfig,
+    ) -> Result<Swarm> {
+        let placements = world.robots();
+        if !profiles.is_empty() && profiles.len() != placements.len() {
+            return Err(Error::InvalidArgument(format!(
+                "expected no robot profiles or one per robot of world {:?} ({}), found {}",
+                world.name(),
+                placements.len(),
+                profiles.len()
+            )));
+        }
         let mut rigs: Vec<Arc<Rig>> = Vec::new();
+        // The rigs of the robots without a given profile, which a placement naming a profile
+        // shares by name (a given profile may bear a built-in's name and differ from it).
+        let mut shared: Vec<Arc<Rig>> = Vec::new();
         let default = Rig::new(robot);
-        for placement in world.robots() {
+        for (i, placement) in placements.iter().enumerate() {
+            if let Some(profile) = profiles.get(i).and_then(Option::as_ref) {
+                rigs.push(Rig::new(profile.clone()));
+                continue;
+            }
             let rig = match &placement.profile {
                 None => default.clone(),
-                Some(name) => match rigs.iter().find(|r| &r.robot().name == name) {
+                Some(name) => match shared.iter().find(|r| &r.robot().name == name) {
                     Some(r) => r.clone(),
                     None => Rig::new(Arc::new(RobotProfile::builtin(name)?)),
                 },
             };
+            shared.push(rig.clone());
             rigs.push(rig);
         }
         let mut swarm = Self::with_rigs(world, &rigs, config)?;
         swarm.profile = default.robot().clone();
+        if profiles.iter().any(Option::is_some) {
+            swarm.overrides = profiles.to_vec();
+        }
         Ok(swarm)
     }
 
@@ -286,6 +321,7 @@ impl Swarm {
         Ok(Swarm {
             commands: vec![[0.0; 2]; robots.len()],
             profile: rigs[0].robot().clone(),
+            overrides: Vec::new(),
             robots,
             names,
         })
@@ -304,6 +340,11 @@ impl Swarm {
     /// The profile of the robots whose placement names none (`Swarm::new`'s `robot`).
     pub fn default_profile(&self) -> &Arc<RobotProfile> {
         &self.profile
+    }
+
+    /// The profiles `with_profiles` was given, one per robot (empty when none was).
+    pub fn profile_overrides(&self) -> &[Option<Arc<RobotProfile>>] {
+        &self.overrides
     }
 
     /// The robots' names, in world order.

@@ -82,12 +82,14 @@ impl Swarm {
                 names: self.names.clone(),
                 commands: self.commands.clone(),
                 profile: self.profile.clone(),
+                overrides: self.overrides.clone(),
             });
         }
         let rigs: Vec<std::sync::Arc<Rig>> = self.robots.iter().map(|r| r.rig().clone()).collect();
         let world = self.robots[0].world().clone();
         let mut copy = Swarm::with_rigs(world, &rigs, self.robots[0].config())?;
         copy.profile = self.profile.clone();
+        copy.overrides = self.overrides.clone();
         copy.restore(&self.snapshot())?;
         Ok(copy)
     }

@@ -216,3 +216,77 @@ fn robots_in_contact_with_each_other_and_a_box_run_the_same_in_any_batch() {
         );
     }
 }
+
+/// The e-puck with every distance sensor read through Webots' default `DistanceSensor` table
+/// (0 at 0 m rising to 1000 at 0.1 m): a profile of the e-puck's name that is not the built-in.
+fn webots_default_table_epuck() -> Arc<RobotProfile> {
+    let mut profile = RobotProfile::builtin("e-puck").unwrap();
+    let model = crate::robot::SensorModel {
+        table: crate::lut::LookupTable::new(&[[0.0, 0.0, 0.0], [0.1, 1000.0, 0.0]]).unwrap(),
+        ..(*profile.distance_sensors[0].model).clone()
+    };
+    let model = Arc::new(model);
+    for sensor in &mut profile.distance_sensors {
+        sensor.model = model.clone();
+    }
+    Arc::new(profile)
+}
+
+#[test]
+fn a_robot_given_its_own_profile_reads_through_it_and_the_others_as_before() {
+    let config = SimConfig {
+        noise: false,
+        ..SimConfig::default()
+    };
+    let world = corridor(0.02);
+    let mut before = Swarm::new(world.clone(), epuck(), config).unwrap();
+    let own = webots_default_table_epuck();
+    let mut swarm =
+        Swarm::with_profiles(world.clone(), epuck(), &[None, Some(own.clone())], config).unwrap();
+    assert_eq!(swarm.profile_overrides().len(), 2);
+    assert!(before.profile_overrides().is_empty());
+    assert_eq!(**swarm.robots()[1].robot(), *own);
+    for _ in 0..5 {
+        before.step(&[[1.0, 1.0], [1.0, 1.0]]).unwrap();
+        swarm.step(&[[1.0, 1.0], [1.0, 1.0]]).unwrap();
+        // Robot 0 reads as it did; robot 1's front sees robot 0 (2.7 cm away, reflectance 0.38:
+        // 0.071 m on the table) on the rising table.
+        assert_eq!(
+            swarm.robots()[0].distance_sensors(),
+            before.robots()[0].distance_sensors()
+        );
+        let front = swarm.robots()[1].distance_sensors()[0];
+        assert!(front > 0.0 && front < 1000.0, "{front}");
+        assert_ne!(front, before.robots()[1].distance_sensors()[0]);
+        // Its rear ray meets nothing within 0.1 m: the table's last row.
+        assert_eq!(swarm.robots()[1].distance_sensors()[3], 1000.0);
+    }
+    let copy = swarm.duplicate().unwrap();
+    assert_eq!(copy.profile_overrides(), swarm.profile_overrides());
+}
+
+#[test]
+fn a_given_profile_is_not_lent_to_a_placement_naming_its_built_in() {
+    let text = corridor(0.05)
+        .to_toml()
+        .unwrap()
+        .replace("name = \"east\"", "name = \"east\"\nprofile = \"e-puck\"");
+    let world = Arc::new(World::from_toml(&text, "corridor").unwrap());
+    let own = webots_default_table_epuck();
+    let swarm =
+        Swarm::with_profiles(world, epuck(), &[Some(own), None], SimConfig::default()).unwrap();
+    assert_eq!(**swarm.robots()[1].robot(), *epuck());
+}
+
+#[test]
+fn profiles_for_some_of_the_robots_only_are_refused() {
+    let own = Some(webots_default_table_epuck());
+    let err = Swarm::with_profiles(corridor(0.05), epuck(), &[own], SimConfig::default())
+        .err()
+        .unwrap();
+    let message = err.to_string();
+    assert!(
+        message.contains("one per robot of world \"corridor\" (2), found 1"),
+        "{message}"
+    );
+}
