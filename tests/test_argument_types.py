@@ -86,6 +86,7 @@ def samples(tmp: Path) -> dict[str, Any]:
         "robot": "e-puck",
         "robot_index": 0,
         "robot_profiles": None,
+        "overlap_robots": False,
         "commands": np.zeros((1, 2)),
         "seeds": None,
         "noise": True,

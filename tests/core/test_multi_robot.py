@@ -258,6 +258,12 @@ def test_bad_worlds_and_robot_indices_are_package_errors() -> None:
         sim.distance_sensors(robot_index=2)
     with pytest.raises(mazesim.InvalidArgumentError, match="overlapping"):
         sim.set_pose(0.05, 0.0, 0.0, robot_index=0)
+    with pytest.raises(
+        mazesim.InvalidArgumentError, match="expected overlap_robots to be a bool, found a str"
+    ):
+        sim.set_pose(0.05, 0.0, 0.0, robot_index=0, overlap_robots="yes")  # type: ignore[arg-type]
+    sim.set_pose(0.05, 0.0, 0.0, robot_index=0, overlap_robots=True)  # as a supervisor may
+    assert sim.poses()[0, 0] == pytest.approx(0.05)
     with pytest.raises(mazesim.InvalidArgumentError, match="commands"):
         sim.step_robots(np.zeros((3, 2)))
     with pytest.raises(mazesim.InvalidActionError):

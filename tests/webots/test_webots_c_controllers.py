@@ -190,6 +190,50 @@ def test_every_header_the_library_lacks_is_named_before_building(tmp_path: Path)
     ]
 
 
+def test_a_controller_that_includes_the_radio_header_builds_and_one_calling_it_is_named(
+    tmp_path: Path,
+) -> None:
+    # Webots' DIS course e-pucks include <webots/radio.h> and talk over Emitters only.
+    talker = write_controller(tmp_path, "talker", '  printf("%d\\n", wb_robot_step(32));')
+    talker.write_text("#include <webots/radio.h>\n" + talker.read_text())
+    prepared = prepare_controller(str(talker))
+    assert prepared.runnable and prepared.missing == []
+    run = run_controller(talker, mazesim.load_world("arena"), seconds=0.5, prepared=prepared)
+    assert (run.exit_status, run.error) == (0, "")
+    call = '  wb_radio_enable(wb_robot_get_device("radio"), 32);'
+    caller = write_controller(tmp_path, "caller", call)
+    caller.write_text("#include <webots/radio.h>\n" + caller.read_text())
+    assert prepare_controller(str(caller)).missing == [
+        "Webots C API function(s) mazesim does not implement: wb_radio_enable"
+    ]
+
+
+def test_sources_a_makefile_lists_from_other_folders_are_built_as_webots_finds_them(
+    tmp_path: Path,
+) -> None:
+    shared = tmp_path / "localization"
+    shared.mkdir()
+    (shared / "pose.h").write_text("double pose_x(void);\ndouble pose_scale(void);\n")
+    (shared / "pose.c").write_text(
+        '#include "pose.h"\ndouble pose_x(void) { return 2 * pose_scale(); }\n'
+    )
+    (shared / "scale.c").write_text("double pose_scale(void) { return 0.25; }\n")
+    # A library of its own main, not listed: left out as Webots' Makefile leaves it.
+    (shared / "localization.c").write_text("int main(void) { return 3; }\n")
+    leader = write_controller(tmp_path, "leader", '  printf("%g\\n", pose_x());')
+    leader.write_text('#include "../localization/pose.h"\n' + leader.read_text())
+    # scale.c listed by a path that does not exist, found by make's vpath under its name in
+    # another listed folder; continued over two lines; a comment and a variable left out.
+    (leader.parent / "Makefile").write_text(
+        "C_SOURCES = leader.c ../localization/pose.c \\\n  localization/scale.c $(EXTRA) # x.c\n"
+        "include $(WEBOTS_HOME_PATH)/resources/Makefile.include\n"
+    )
+    built = build(leader)
+    assert built.program is not None and built.missing == []
+    run = run_controller(leader, mazesim.load_world("arena"), seconds=0.1)
+    assert (run.exit_status, run.error) == (0, "")
+
+
 def test_a_cpp_controller_drives_as_the_c_one_and_names_classes_it_lacks(
     tmp_path: Path, capfd: pytest.CaptureFixture[str]
 ) -> None:

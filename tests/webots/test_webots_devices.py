@@ -80,6 +80,15 @@ def test_devices_are_found_by_name_property_style_and_old_style() -> None:
     assert robot.time == robot.getTime() and robot.basic_time_step == 32.0
 
 
+def test_the_wheels_devices_come_in_the_e_puck_protos_order() -> None:
+    # Each wheel's motor, then its sensor (a C controller's tags 1 to 4; some check them).
+    robot = make_robot()
+    names = [robot.getDeviceByIndex(i).getName() for i in range(4)]
+    assert names == [
+        "left wheel motor", "left wheel sensor", "right wheel motor", "right wheel sensor"
+    ]  # fmt: skip
+
+
 def test_what_is_not_simulated_answers_instead_of_raising(
     capsys: pytest.CaptureFixture[str],
 ) -> None:

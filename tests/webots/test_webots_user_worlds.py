@@ -156,6 +156,18 @@ def test_a_hash_inside_a_string_is_no_comment() -> None:
     assert scene.controller_args == ["--colour", "#ff0000"]
 
 
+def test_a_robot_of_a_project_proto_is_found_on_its_line() -> None:
+    # The import names a project's own e-puck PROTO by the robot it stands in for, E-puck: the
+    # robot on the report's line is that node all the same, with its own name.
+    text = (
+        '#VRML_SIM R2022a utf8\nRobot {\n  name "supervisor"\n  supervisor TRUE\n}\n'
+        'DEF e-puck(1) epuck_custom {\n  name "e-puck(1)"\n  controller "e-puck"\n}\n'
+    )
+    scene = read_scene(text, robot_model="E-puck", robot_line=6)
+    assert (scene.robot_name, scene.robot_def) == ("e-puck(1)", "e-puck(1)")
+    assert not scene.supervisor, "the supervisor is another robot"
+
+
 def test_strict_accepts_an_e_puck_with_its_ground_sensors_module(tmp_path: Path) -> None:
     world = (
         "#VRML_SIM R2023b utf8\n"

@@ -355,3 +355,57 @@ def test_a_robots_state_after_a_step_comes_with_the_steps_answer(
     assert run.steps == 60
     for name in ("pose", "time", "encoders"):
         assert asked[name] <= 3 * len(run.robots), (name, asked[name])
+PLACER_WORLD = """#VRML_SIM R2023b utf8
+
+EXTERNPROTO "webots://projects/objects/floors/protos/RectangleArena.proto"
+EXTERNPROTO "webots://projects/robots/gctronic/e-puck/protos/E-puck.proto"
+
+WorldInfo {
+  basicTimeStep 32
+}
+RectangleArena {
+  floorSize 2 2
+}
+Robot {
+  translation 0 0 0.5
+  name "placer"
+  controller "placer"
+  supervisor TRUE
+}
+DEF STILL E-puck {
+  translation 0 0 0
+  name "still"
+  controller "void"
+}
+DEF MOVED E-puck {
+  translation 0.5 0.5 0
+  name "moved"
+  controller "void"
+}
+"""
+
+PLACER = """from controller import Supervisor
+
+robot = Supervisor()
+robot.step(32)
+# 2 cm into the other e-puck, as Webots lets a supervisor put it.
+robot.getFromDef("MOVED").getField("translation").setSFVec3f([0.054, 0.0, 0.0])
+for _ in range(10):
+    robot.step(32)
+"""
+
+
+def test_a_supervisor_may_put_an_e_puck_onto_another_and_the_contacts_part_them(
+    tmp_path: Path,
+) -> None:
+    (tmp_path / "worlds").mkdir()
+    (tmp_path / "worlds" / "w.wbt").write_text(PLACER_WORLD)
+    (tmp_path / "controllers" / "placer").mkdir(parents=True)
+    (tmp_path / "controllers" / "placer" / "placer.py").write_text(PLACER)
+    run = run_world(str(tmp_path / "worlds" / "w.wbt"), seconds=0.5, seed=1)
+    placer, still, moved = run.robots
+    assert [placer.exit_status, still.exit_status, moved.exit_status] == [0, 0, 0], placer.error
+    # Pushed apart by half the overlap each: touching, 1 cm from where each was put.
+    apart = moved.final_pose[0] - still.final_pose[0]
+    assert apart == pytest.approx(0.074, abs=1e-3)
+    assert still.final_pose[0] == pytest.approx(-0.01, abs=1e-3)

@@ -241,7 +241,9 @@ def _run_project(project: Project, mirrors: Path, work: Path, census: Census) ->
             exit_status = int(robot.get("exit_status") or 0)
         failed = [r for r in summary.get("robots") or [] if r is not robot and r.get("exit_status")]
         if failed:
-            others = f"robot {failed[0].get('name')}: {failed[0].get('controller_error')}"
+            first = failed[0]
+            why = first.get("controller_error") or f"exit status {first.get('exit_status')}"
+            others = f"robot {first.get('name')}: {why}"
     dropped, stood_in = losses(warnings, summary)
     census.add(f"{project.repo}:{project.world}", text, dropped, stood_in)
     if not summary and run.exit_status is not None and run.failure:

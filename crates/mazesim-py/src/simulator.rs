@@ -391,11 +391,27 @@ impl PySimulator {
         self.read(|s| s.goal().map(goal_tuple))
     }
 
-    /// Moves robot `robot_index` to (x, y, yaw) at rest and reads the sensors there.
-    #[pyo3(signature = (x, y, yaw, robot_index = IntArg::ZERO), text_signature = "($self, x, y, yaw, robot_index=0)")]
-    fn set_pose(&self, x: Real, y: Real, yaw: Real, robot_index: IntArg) -> PyResult<()> {
+    /// Moves robot `robot_index` to (x, y, yaw) at rest and reads the sensors there. With
+    /// `overlap_robots` the pose may overlap other robots (as a Webots supervisor may put one
+    /// onto another): the next steps' contacts push them apart.
+    #[pyo3(signature = (x, y, yaw, robot_index = IntArg::ZERO, overlap_robots = Flag::Value(false)), text_signature = "($self, x, y, yaw, robot_index=0, overlap_robots=False)")]
+    fn set_pose(
+        &self,
+        x: Real,
+        y: Real,
+        yaw: Real,
+        robot_index: IntArg,
+        overlap_robots: Flag,
+    ) -> PyResult<()> {
         let (x, y, yaw) = (x.value("x")?, y.value("y")?, yaw.value("yaw")?);
-        self.change_robot(robot_index, |s, i| s.set_pose(i, x, y, yaw))
+        let overlap = overlap_robots.value("overlap_robots", "a bool")?;
+        self.change_robot(robot_index, |s, i| {
+            if overlap {
+                s.place(i, x, y, yaw)
+            } else {
+                s.set_pose(i, x, y, yaw)
+            }
+        })
     }
 
     /// Robot `robot`'s distance sensor readings (float32), device order.

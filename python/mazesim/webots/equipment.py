@@ -179,7 +179,9 @@ class Equipment:
         ]
         for motor, encoder in zip(self._motors, encoders):
             encoder._motor = motor
-        devices: list[Device] = [*self._motors, *encoders]
+        # Each wheel's motor, then its sensor: the E-puck PROTO's tree order, which numbers a
+        # C controller's device tags (left motor 1, left sensor 2, right motor 3...).
+        devices: list[Device] = [self._motors[0], encoders[0], self._motors[1], encoders[1]]
         devices += [
             DistanceSensor(name, simulation, i, ground=False)
             for i, name in enumerate(_names(profile, "distance_sensor_names"))

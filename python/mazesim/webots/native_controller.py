@@ -71,6 +71,11 @@ _DEFINED_TWICE = re.compile(
 _MAIN = re.compile(r"^[ \t]*(?:int|void)[ \t]+main[ \t]*\(", re.MULTILINE)
 #: Most files read for their includes before a build.
 MAX_SCANNED = 500
+#: A Webots controller Makefile's list of sources (``C_SOURCES = a.c ../shared/b.c``, or
+#: ``CXX_SOURCES``), its value up to a comment; lines ending in a backslash go on.
+_MAKEFILE_SOURCES = re.compile(r"^[ \t]*(?:C|CXX)_SOURCES[ \t]*[:+]?=([^#\n]*)", re.MULTILINE)
+#: The names of a controller's Makefile, as make looks for them.
+MAKEFILES = ("GNUmakefile", "makefile", "Makefile")
 
 
 @dataclass
@@ -132,6 +137,41 @@ def _files(folder: Path, suffixes: tuple[str, ...], recursive: bool = False) -> 
 def _defines_main(path: Path) -> bool:
     """Whether a source file defines a ``main`` function."""
     return _MAIN.search(path.read_text(encoding="utf-8", errors="replace")) is not None
+
+
+def _makefile(folder: Path) -> Path | None:
+    """The controller folder's Makefile, the first name make looks for, or None."""
+    return next((folder / name for name in MAKEFILES if (folder / name).is_file()), None)
+
+
+def makefile_sources(folder: Path) -> list[Path]:
+    """The sources outside the controller's folder that its Makefile lists in ``C_SOURCES`` or
+    ``CXX_SOURCES`` (Webots' form of a controller Makefile, which includes Webots'
+    ``Makefile.include``): a controller built from its own files and a library of its project,
+    ``C_SOURCES = leader.c ../localization/kalman.c``.
+
+    Webots' ``Makefile.include`` compiles each listed source under its file name alone (all the
+    objects in one build folder) and make finds it by that name in the controller's folder or,
+    through ``vpath``, in the folders of the listed sources: a source listed by a path that does
+    not exist is found under its name in another listed folder, as make finds it. A name found
+    nowhere is left out (make would stop there; the link then names what is undefined), as are
+    names made of make variables."""
+    makefile = _makefile(folder)
+    if makefile is None:
+        return []
+    text = _source(makefile).decode("utf-8", errors="replace").replace("\r\n", "\n")
+    text = text.replace("\\\n", " ")
+    listed = [name for m in _MAKEFILE_SOURCES.finditer(text) for name in m.group(1).split()]
+    names = [name for name in listed if "$" not in name]
+    places = sorted({f"{Path(name).parent.as_posix()}/" for name in names})
+    found: list[Path] = []
+    for name in names:
+        candidates = [folder / name, folder / Path(name).name]
+        candidates += [folder / place / Path(name).name for place in places]
+        path = next((c.resolve() for c in candidates if c.is_file()), None)
+        if path is not None and path.parent != folder.resolve() and path not in found:
+            found.append(path)
+    return found
 
 
 def _key(compilers: list[str], files: list[Path]) -> str:
@@ -356,6 +396,10 @@ def build(source: str | os.PathLike[str]) -> Build:
     compilers = [c_compiler] + ([_compiler("cpp")] if language == "cpp" else [])
     c_sources = _files(folder, C_SUFFIXES)
     cpp_sources = _files(folder, CPP_SUFFIXES) if language == "cpp" else []
+    listed = makefile_sources(folder)
+    c_sources += [path for path in listed if path.suffix.lower() in C_SUFFIXES]
+    if language == "cpp":
+        cpp_sources += [path for path in listed if path.suffix.lower() in CPP_SUFFIXES]
     # Another file with a main of its own is another program (a tool, a test): left out.
     apart = [p for p in [*c_sources, *cpp_sources] if p != main and _defines_main(p)]
     c_sources = [p for p in c_sources if p not in apart]
@@ -371,6 +415,7 @@ def build(source: str | os.PathLike[str]) -> Build:
         return Build(None, [], absent, note="it includes Webots headers mazesim does not provide")
     # The files the build reads, those its sources include from outside their folder too.
     files = [*c_sources, *cpp_sources, *headers, *library, *(CAPI / "src").glob("*.h")]
+    files += [path for path in [_makefile(folder)] if path is not None and listed]
     files += sorted(path for path in read if path not in set(files))
     key = _key(compilers, [*files, *library_headers])
     target = cache_folder() / f"{main.stem}-{key}" / main.stem

@@ -404,13 +404,17 @@ def _rows_of_three(field_text: str) -> list[Row] | None:
 
 
 def _robot_node(text: str, robot_types: set[str], line: int | None) -> re.Match[str] | None:
-    """The robot's node (DEF name, type): the first robot node on ``line``, or of the file."""
+    """The robot's node (DEF name, type): the first robot node on ``line``, else the first node
+    on ``line`` (a robot of a project's own PROTO, which the import report names by the robot it
+    stands in for, ``E-puck`` for an ``epuck_custom``), or the first robot node of the file."""
+    on_line = None
     for match in _NODE.finditer(text):
-        if match.group(2) not in robot_types:
-            continue
-        if line is None or text.count("\n", 0, match.start(2)) + 1 == line:
+        here = line is not None and text.count("\n", 0, match.start(2)) + 1 == line
+        if match.group(2) in robot_types and (line is None or here):
             return match
-    return None
+        if here and on_line is None:
+            on_line = match
+    return on_line
 
 
 def _top_nodes(text: str, robot: re.Match[str] | None, nue: bool) -> list[SceneNode]:

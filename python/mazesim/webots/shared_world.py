@@ -72,8 +72,9 @@ class RobotView:
         return float(left), float(right)
 
     def set_pose(self, x: float, y: float, yaw: float) -> None:
-        """Puts the robot at a pose, at rest."""
-        self.simulator.set_pose(x, y, yaw, robot_index=self.index)
+        """Puts the robot at a pose, at rest: onto another robot too, as a Webots supervisor may
+        put it (the contacts of the next steps push them apart)."""
+        self.simulator.set_pose(x, y, yaw, robot_index=self.index, overlap_robots=True)
 
     def distance_sensors(self) -> Any:
         """The proximity readings."""

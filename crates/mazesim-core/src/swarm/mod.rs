@@ -432,6 +432,15 @@ impl Swarm {
             .map(|r| r.pose().map(f64::from))
             .collect();
         check_apart(&self.robots, index, [x, y, yaw], |j| poses[j], "pose")?;
+        self.place(index, x, y, yaw)
+    }
+
+    /// Moves robot `index` to a pose at rest clear of the walls, where it may overlap other
+    /// robots (as a Webots supervisor may put one onto another): the contacts of the next
+    /// physics steps push the overlapping robots apart, each by half the overlap. Every robot's
+    /// sensors are read again.
+    pub fn place(&mut self, index: usize, x: f64, y: f64, yaw: f64) -> Result<()> {
+        self.robot(index)?;
         self.robots[index].set_pose(x, y, yaw)?;
         if self.robots[0].in_shared_scene() {
             place_in_scene(&mut self.robots, index);

@@ -77,6 +77,28 @@ fn overlapping_starts_are_refused() {
     assert!(err.to_string().contains("overlapping robot"), "{err}");
 }
 
+#[test]
+fn a_robot_placed_onto_another_is_pushed_apart_by_the_contacts() {
+    let mut swarm = Swarm::new(corridor(0.05), epuck(), SimConfig::default()).unwrap();
+    // set_pose keeps robots apart; place puts "east" 2 cm into "west", as a supervisor may.
+    let err = swarm.set_pose(1, -0.042, 0.0, 0.0).err().unwrap();
+    assert!(err.to_string().contains("overlapping robot 0"), "{err}");
+    swarm.place(1, -0.008, 0.0, 0.0).unwrap();
+    let gap = |s: &Swarm| {
+        let [a, b] = [0, 1].map(|i| s.robots()[i].pose());
+        f64::from(b[0] - a[0]) - 0.074
+    };
+    assert!((gap(&swarm) + 0.02).abs() < 1e-6, "{}", gap(&swarm));
+    assert!(swarm.robots().iter().all(|r| r.touching_robot()));
+    for _ in 0..5 {
+        swarm.step(&[[0.0, 0.0], [0.0, 0.0]]).unwrap();
+    }
+    assert!(gap(&swarm).abs() < 1e-3, "gap {}", gap(&swarm));
+    // Each was pushed by half the overlap.
+    let west = swarm.robots()[0].pose()[0] as f64;
+    assert!((west - (-0.062 - 0.01)).abs() < 1e-3, "west at {west}");
+}
+
 /// A corridor 0.2 m wide: robot "pusher" at x = -0.3 behind a box at x = -0.2, robot "crosser"
 /// at `crosser` facing +y, the box's way along the corridor running through its path.
 fn box_world(crosser: [f64; 2]) -> Arc<World> {
