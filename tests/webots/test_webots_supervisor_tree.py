@@ -126,3 +126,54 @@ def test_a_deep_nesting_is_read_without_recursion(tmp_path: Path) -> None:
     for _ in range(depth - 1):
         (node,) = node.children
     assert node.children[0].def_name == "DEEP"
+
+
+def test_adding_or_removing_nodes_is_refused_at_the_call(tmp_path: Path) -> None:
+    supervisor = supervisor_of(GROUPED, tmp_path)
+    root = supervisor.getRoot().getField("children")
+    box = supervisor.getFromDef("BOX1")
+    refused = {
+        "Field.importMFNodeFromString()": lambda: root.importMFNodeFromString(-1, "Solid {}"),
+        "Field.importSFNodeFromString()": lambda: box.getField("children").importSFNodeFromString(
+            "Solid {}"
+        ),
+        "Field.importMFNode()": lambda: root.importMFNode(-1, "box.wbo"),
+        "Field.removeMF()": lambda: root.removeMF(2),
+        "Field.removeSF()": lambda: root.removeSF(),
+        "Node.remove()": box.remove,
+    }
+    for call, refused_call in refused.items():
+        with pytest.raises(UnsupportedFeatureError) as caught:
+            refused_call()
+        message = str(caught.value)
+        assert message.startswith(call) and "takes no body in or out during a run" in message
+    assert "of node Solid (DEF BOX1)" in message
+    assert root.getCount() == 4 and supervisor.getFromDef("BOX1") is box
+
+
+def test_the_start_up_check_names_the_calls_that_change_the_scene(tmp_path: Path) -> None:
+    from mazesim.webots.requirements import prepare_controller, scene_changes
+
+    spawner = tmp_path / "spawner" / "spawner.py"
+    spawner.parent.mkdir()
+    spawner.write_text(
+        "from controller import Supervisor\n"
+        "supervisor = Supervisor()\n"
+        "children = supervisor.getRoot().getField('children')\n"
+        "children.importMFNodeFromString(-1, 'DEF TRASH Solid {}')\n"
+        "kept = [1, 2]\n"
+        "kept.remove(1)\n"
+        "supervisor.getFromDef('TRASH').remove()\n"
+    )
+    prepared = prepare_controller(str(spawner))
+    (statement,) = [m for m in prepared.missing if m.startswith("adding nodes")]
+    assert "(importMFNodeFromString, remove)" in statement
+    assert "UnsupportedFeatureError" in statement and prepared.runnable
+    cleaner = tmp_path / "cleaner" / "cleaner.c"
+    cleaner.parent.mkdir()
+    cleaner.write_text("void clean(WbNodeRef n) { wb_supervisor_node_remove(n); }\n")
+    assert scene_changes(str(cleaner), "c") == ["wb_supervisor_node_remove"]
+    plain = tmp_path / "plain" / "plain.py"
+    plain.parent.mkdir()
+    plain.write_text("items = [1]\nitems.remove(1)\n")
+    assert scene_changes(str(plain), "python") == []

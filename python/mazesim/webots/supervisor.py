@@ -6,7 +6,9 @@ nodes (their type, DEF name and, read from the file, their ``translation``, ``ro
 the plain Solid, Transform, Pose and Group nodes among them, and theirs (read-only: setting
 their ``translation`` or ``rotation`` raises :class:`~mazesim.errors.UnsupportedFeatureError`),
 the robot's node among them (``getSelf``, ``getFromDef`` of its DEF name) and the file's other
-DEF nodes (their type).
+DEF nodes (their type). Adding nodes to the running world or removing them raises
+:class:`~mazesim.errors.UnsupportedFeatureError`: the simulator is built from the world at its
+import and takes no body in or out during a run.
 It reads and sets the robot's ``translation`` and ``rotation`` (moving the robot in the
 simulation), and in a world with several robots those of every other robot too, reads its
 position, orientation and velocity, resets the simulation (the robot back at its start) or
@@ -57,6 +59,14 @@ _SUPPORTED_CHANGES = (
     "rotation fields of their nodes) and sets other fields of the file's top-level nodes, "
     "which are recorded but move nothing"
 )
+
+
+def _refuse_scene_change(call: str) -> None:
+    """Raises the refusal of a call that adds nodes to the running world or removes them."""
+    raise UnsupportedFeatureError(
+        f"{call} is not supported: it would add or remove a node of the running world, and "
+        f"{_SUPPORTED_CHANGES}"
+    )
 
 
 def _file_frame() -> bool:
@@ -141,18 +151,52 @@ class Field(NotSimulated):
         return children[int(index)]
 
     def importMFNodeFromString(self, position: int, nodeString: str) -> None:
-        """Webots' error: mazesim adds no nodes to a running world."""
-        _print_error(
-            "Error: Field.importMFNodeFromString() is not available in mazesim: the world's "
-            "nodes are fixed when it is imported."
-        )
+        """Refused: mazesim adds no nodes to a running world.
+
+        Raises:
+            UnsupportedFeatureError: Always, naming the call and what is supported.
+        """
+        _refuse_scene_change(f"Field.importMFNodeFromString() on {self._where()}")
+
+    def importSFNodeFromString(self, nodeString: str) -> None:
+        """Refused: mazesim adds no nodes to a running world.
+
+        Raises:
+            UnsupportedFeatureError: Always, naming the call and what is supported.
+        """
+        _refuse_scene_change(f"Field.importSFNodeFromString() on {self._where()}")
+
+    def importMFNode(self, position: int, filename: str) -> None:
+        """Refused: mazesim adds no nodes to a running world (Webots' older name, from a file).
+
+        Raises:
+            UnsupportedFeatureError: Always, naming the call and what is supported.
+        """
+        _refuse_scene_change(f"Field.importMFNode() on {self._where()}")
+
+    def importSFNode(self, filename: str) -> None:
+        """Refused: mazesim adds no nodes to a running world (Webots' older name, from a file).
+
+        Raises:
+            UnsupportedFeatureError: Always, naming the call and what is supported.
+        """
+        _refuse_scene_change(f"Field.importSFNode() on {self._where()}")
 
     def removeMF(self, index: int) -> None:
-        """Webots' error: mazesim removes no nodes from a running world."""
-        _print_error(
-            "Error: Field.removeMF() is not available in mazesim: the world's nodes are fixed "
-            "when it is imported."
-        )
+        """Refused: mazesim removes no nodes from a running world.
+
+        Raises:
+            UnsupportedFeatureError: Always, naming the call and what is supported.
+        """
+        _refuse_scene_change(f"Field.removeMF() on {self._where()}")
+
+    def removeSF(self) -> None:
+        """Refused: mazesim removes no nodes from a running world.
+
+        Raises:
+            UnsupportedFeatureError: Always, naming the call and what is supported.
+        """
+        _refuse_scene_change(f"Field.removeSF() on {self._where()}")
 
     def _where(self) -> str:
         """The field and its node, as a refusal names them."""
@@ -531,6 +575,14 @@ class Node(NotSimulated):
         whose ``children`` hold a node; None for the root and for nodes inside others (a
         PROTO's, a Shape's geometry: their parents are not kept)."""
         return self._parent
+
+    def remove(self) -> None:
+        """Refused: mazesim removes no nodes from a running world.
+
+        Raises:
+            UnsupportedFeatureError: Always, naming the node and what is supported.
+        """
+        _refuse_scene_change(f"Node.remove() of {self._label()}")
 
     def _field_types(self) -> dict[str, int]:
         """The fields the node has: name -> ``Field`` type."""
