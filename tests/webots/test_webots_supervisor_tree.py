@@ -177,3 +177,17 @@ def test_the_start_up_check_names_the_calls_that_change_the_scene(tmp_path: Path
     plain.parent.mkdir()
     plain.write_text("items = [1]\nitems.remove(1)\n")
     assert scene_changes(str(plain), "python") == []
+
+
+def test_a_compiled_controllers_remove_is_refused_as_a_python_ones(tmp_path: Path) -> None:
+    from mazesim.webots.native_calls import NativeCalls
+
+    calls = NativeCalls(supervisor_of(GROUPED, tmp_path), [])
+    (box,) = calls.call("wb_supervisor_node_get_from_def", [b"BOX1"])
+    with pytest.raises(UnsupportedFeatureError, match=r"^Node.remove\(\) of node Solid"):
+        calls.call("wb_supervisor_node_remove", [box])
+    (root,) = calls.call("wb_supervisor_node_get_root", [])
+    children, _ = calls.call("wb_supervisor_node_get_field", [root, b"children"])
+    with pytest.raises(UnsupportedFeatureError, match="importMFNodeFromString"):
+        calls.call("wb_supervisor_field_import_mf_node_from_string", [children, -1, b"Solid {}"])
+    assert calls.call("wb_supervisor_field_get_count", [children]) == [4]
