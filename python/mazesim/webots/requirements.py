@@ -27,6 +27,7 @@ __all__ = [
     "missing_packages",
     "motor_limits",
     "prepare_controller",
+    "scene_changes",
     "turn_in_place_speed",
 ]
 
@@ -65,6 +66,23 @@ MOTOR_LIMITS = (
     "motor acceleration and torque limits ({calls}): mazesim's wheels reach their commanded "
     "speed at once, as Webots' motors do by default; only the floor's friction limits how fast "
     "an imported E-puck's body starts"
+)
+#: Supervisor calls that add nodes to the running world or remove them (the Python and C++
+#: names, then the C API's; Webots reference manual, Supervisor), which mazesim refuses; and
+#: ``Node.remove()`` (``node->remove()`` in C++), a ``remove`` call without arguments.
+_SCENE_CHANGES = re.compile(
+    r"\b(importMFNodeFromString|importSFNodeFromString|importMFNode|importSFNode|removeMF|"
+    r"removeSF|wb_supervisor_field_import_mf_node_from_string|"
+    r"wb_supervisor_field_import_sf_node_from_string|wb_supervisor_field_import_mf_node|"
+    r"wb_supervisor_field_import_sf_node|wb_supervisor_field_remove_mf|"
+    r"wb_supervisor_field_remove_sf|wb_supervisor_node_remove)\s*\("
+    r"|(?:\.|->)(remove)\s*\(\s*\)"
+)
+#: The statement for a controller that makes those calls.
+SCENE_CHANGES = (
+    "adding nodes to the running world or removing them ({calls}): mazesim's simulator is "
+    "built from the world file when it is imported and takes no body in or out during a run, "
+    "so these calls raise mazesim.errors.UnsupportedFeatureError"
 )
 #: Wheel speed (rad/s) of a turn in place above which Webots' E-puck has been seen to turn
 #: more slowly than its wheels' kinematics say. Controllers tuned in Webots agree with the
@@ -293,13 +311,26 @@ def _folder_texts(file: str, suffixes: tuple[str, ...]) -> list[str]:
     return [text.decode("utf-8", "replace") for text in texts]
 
 
+def _calls(file: str, language: str, calls: re.Pattern[str]) -> list[str]:
+    """The names of the functions ``calls`` finds (its first group that matched) in the
+    controller's source files: its main file and the files of its language beside it."""
+    found: set[str] = set()
+    for text in _folder_texts(file, _SOURCES.get(language, (".py",))):
+        found.update(next(g for g in m.groups() if g) for m in calls.finditer(text))
+    return sorted(found)
+
+
 def motor_limits(file: str, language: str) -> list[str]:
     """The motor acceleration and torque limit calls (see ``_MOTOR_LIMITS``) in the controller's
     source files: its main file and the files of its language beside it."""
-    found: set[str] = set()
-    for text in _folder_texts(file, _SOURCES.get(language, (".py",))):
-        found.update(_MOTOR_LIMITS.findall(text))
-    return sorted(found)
+    return _calls(file, language, _MOTOR_LIMITS)
+
+
+def scene_changes(file: str, language: str) -> list[str]:
+    """The supervisor calls that add nodes to the running world or remove them (see
+    ``_SCENE_CHANGES``; ``remove`` for ``Node.remove()``) in the controller's source files: its
+    main file and the files of its language beside it."""
+    return _calls(file, language, _SCENE_CHANGES)
 
 
 def _constant(node: ast.AST, known: dict[str, float]) -> float | None:
@@ -448,4 +479,7 @@ def prepare_controller(file: str) -> PreparedController:
     calls = motor_limits(file, language)
     if calls:
         prepared.missing.append(MOTOR_LIMITS.format(calls=", ".join(calls)))
+    calls = scene_changes(file, language)
+    if calls:
+        prepared.missing.append(SCENE_CHANGES.format(calls=", ".join(calls)))
     return prepared

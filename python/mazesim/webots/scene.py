@@ -15,7 +15,7 @@ from typing import Any
 from mazesim.webots.frames import nue_to_enu
 from mazesim.webots.lights import Light, read_lights
 
-__all__ = ["DEFAULT_LOOKUP_TABLE", "Row", "Scene", "SceneNode", "read_scene"]
+__all__ = ["DEFAULT_LOOKUP_TABLE", "GROUPING_TYPES", "Row", "Scene", "SceneNode", "read_scene"]
 
 #: A row of a ``lookupTable``: distance (m), value and relative noise.
 Row = tuple[float, float, float]
@@ -76,9 +76,14 @@ BASE_TYPES = {
 }
 
 
+#: The built-in nodes whose ``children`` field the scene keeps (they place their children).
+GROUPING_TYPES = {"Solid", "Transform", "Pose", "Group"}
+
+
 @dataclass(frozen=True)
 class SceneNode:
-    """A node at the top of the world file (a child of the scene tree's root).
+    """A node at the top of the world file (a child of the scene tree's root), or a node of a
+    grouping node's ``children`` field.
 
     Attributes:
         type_name: Its node type (``"WorldInfo"``, ``"RectangleArena"``, ``"E-puck"``...).
@@ -90,6 +95,8 @@ class SceneNode:
         numbers: Its other fields of numbers (a PROTO instance's own fields too), as written.
         flags: Its fields of ``TRUE`` / ``FALSE``.
         strings: Its fields of one string.
+        children: The nodes of its ``children`` field, for a grouping node
+            (:data:`GROUPING_TYPES`); their ``translation`` and ``rotation`` are in its frame.
     """
 
     type_name: str
@@ -101,6 +108,7 @@ class SceneNode:
     numbers: dict[str, tuple[float, ...]] = field(default_factory=dict)
     flags: dict[str, bool] = field(default_factory=dict)
     strings: dict[str, str] = field(default_factory=dict)
+    children: list[SceneNode] = field(default_factory=list)
 
     @property
     def base_type(self) -> str:
@@ -127,7 +135,8 @@ class Scene:
             (its part about the camera's y axis).
         north: ``WorldInfo.northDirection`` as x, y (world frame), if set.
         lights: The world's lights that are on (empty: the light sensors' default ambient).
-        nodes: The nodes at the top of the file, in file order (the root's ``children``).
+        nodes: The nodes at the top of the file, in file order (the root's ``children``), each
+            grouping node with its own ``children``.
         nue: Whether the file uses Webots' old NUE frame (y up): before R2022a, or
             ``coordinateSystem "NUE"``; a GPS then reads in that frame.
         ground_sensors_module: Whether the world's E-puck carries Webots' ground sensors
@@ -305,10 +314,6 @@ def _sensor_tables(body: str) -> tuple[dict[str, list[Row]], dict[str, str]]:
     return tables, malformed
 
 
-#: The nodes between a robot node and a sensor through which the sensor's pose is composed:
-#: grouping nodes that place their children (an E-puck saved expanded holds each DistanceSensor
-#: in a Solid).
-_PLACING = {"Solid", "Transform", "Pose", "Group"}
 #: An opening or closing brace or bracket, or a node's type and its opening brace.
 _NESTING = re.compile(_NODE.pattern + r"|([{}\[\]])")
 
@@ -316,7 +321,8 @@ _NESTING = re.compile(_NODE.pattern + r"|([{}\[\]])")
 def _sensor_poses(body: str, nue: bool) -> dict[str, tuple[float, float, float, float]]:
     """The pose in the robot's frame (x, y, heading, rise) of each named ``DistanceSensor`` node
     of a robot's body text ``body`` that is a child of the robot node or of the grouping nodes
-    (:data:`_PLACING`) under it, composed through their ``translation`` and ``rotation``."""
+    (:data:`GROUPING_TYPES`: an E-puck saved expanded holds each in a Solid) under it, composed
+    through their ``translation`` and ``rotation``."""
     poses: dict[str, tuple[float, float, float, float]] = {}
     # The open nodes (type, body start) and lists (None) from the robot's body inwards.
     open_nodes: list[tuple[str, int] | None] = []
@@ -331,7 +337,7 @@ def _sensor_poses(body: str, nue: bool) -> dict[str, tuple[float, float, float, 
             continue
         chain = [entry for entry in open_nodes if entry is not None]
         open_nodes.append((match.group(2), match.end()))
-        if match.group(2) != "DistanceSensor" or any(t not in _PLACING for t, _ in chain):
+        if match.group(2) != "DistanceSensor" or any(t not in GROUPING_TYPES for t, _ in chain):
             continue
         own = _own_text(body, match.end())
         found = _NAME.search(own)
@@ -417,29 +423,79 @@ def _robot_node(text: str, robot_types: set[str], line: int | None) -> re.Match[
     return on_line
 
 
+#: A node's opening, a ``children [`` field's, or another brace or bracket.
+_TREE = re.compile(_NODE.pattern + r"|(?<![\w-])(children)\s*\[|([{}\[\]])")
+
+
 def _top_nodes(text: str, robot: re.Match[str] | None, nue: bool) -> list[SceneNode]:
-    """The nodes at the top of the file (comments removed), the robot's marked."""
-    nodes: list[SceneNode] = []
-    depth, scanned = 0, 0
-    for match in _NODE.finditer(text):
-        depth += _nesting(text[scanned : match.start()])
-        scanned = match.start()
-        if depth != 0:
+    """The nodes at the top of the file (comments removed), the robot's marked, each grouping
+    node (:data:`GROUPING_TYPES`) with the nodes of its ``children`` field, in file order.
+
+    One pass over the file: the text between two braces or brackets belongs to the innermost
+    open one, so each kept node's own fields are gathered as the pass goes by them.
+    """
+    top: list[_NodeText] = []
+    # From the file's top inwards: a kept node, a grouping node's ``children`` list (the
+    # node), or another node, brace or bracket (None).
+    open_entries: list[tuple[str, _NodeText | None]] = []
+    scanned = 0
+    for match in _TREE.finditer(text):
+        if open_entries and open_entries[-1][0] == "node" and open_entries[-1][1] is not None:
+            open_entries[-1][1].own.append(text[scanned : match.start()])
+        scanned = match.end()
+        bracket = match.group(4)
+        if bracket in ("}", "]"):
+            if open_entries:
+                kind, closed = open_entries.pop()
+                if kind == "node" and closed is not None:
+                    closed.close(nue)
             continue
-        def_name, type_name = match.group(1) or "", match.group(2)
-        own = _own_text(text, match.end())
-        nodes.append(
-            SceneNode(
-                type_name,
-                def_name,
-                translation=_vector(_TRANSLATION.search(own), nue),
-                rotation=_rotation(_ROTATION.search(own), nue),
-                name=found.group(1) if (found := _NAME.search(own)) else None,
-                robot=robot is not None and match.start() == robot.start(),
-                **_own_fields(own),
-            )
+        if bracket is not None:
+            open_entries.append(("other", None))
+            continue
+        kind, owner = open_entries[-1] if open_entries else ("top", None)
+        if match.group(3) is not None:
+            grouping = kind == "node" and owner is not None and owner.type_name in GROUPING_TYPES
+            open_entries.append(("children", owner if grouping else None))
+            continue
+        kept: _NodeText | None = None
+        if kind == "top" or (kind == "children" and owner is not None):
+            is_robot = robot is not None and match.start() == robot.start()
+            kept = _NodeText(match.group(1) or "", match.group(2), is_robot)
+            (top if owner is None else owner.children).append(kept)
+        open_entries.append(("node", kept))
+    for kind, unclosed in reversed(open_entries):
+        if kind == "node" and unclosed is not None:
+            if scanned < len(text) and unclosed is open_entries[-1][1]:
+                unclosed.own.append(text[scanned:])
+            unclosed.close(nue)
+    return [node.made for node in top if node.made is not None]
+
+
+@dataclass
+class _NodeText:
+    """A node of the scene tree as the file is read: its own fields' text so far."""
+
+    def_name: str
+    type_name: str
+    robot: bool
+    own: list[str] = field(default_factory=list)
+    children: list[_NodeText] = field(default_factory=list)
+    made: SceneNode | None = None
+
+    def close(self, nue: bool) -> None:
+        """Makes the node's :class:`SceneNode` (its children's are made before)."""
+        own = "".join(self.own)
+        self.made = SceneNode(
+            self.type_name,
+            self.def_name,
+            translation=_vector(_TRANSLATION.search(own), nue),
+            rotation=_rotation(_ROTATION.search(own), nue),
+            name=found.group(1) if (found := _NAME.search(own)) else None,
+            robot=self.robot,
+            children=[child.made for child in self.children if child.made is not None],
+            **_own_fields(own),
         )
-    return nodes
 
 
 _OWN_NUMBERS = re.compile(r"(?<![\w-])([A-Za-z_]\w*)((?:\s+" + _NUMBER + r")+)(?![\w.])")

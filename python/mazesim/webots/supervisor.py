@@ -2,8 +2,13 @@
 
 The supervisor sees the scene tree's root, whose ``children`` are the world file's top-level
 nodes (their type, DEF name and, read from the file, their ``translation``, ``rotation`` and
-``name``: snapshots that can be set but move nothing in the simulation), the robot's node among
-them (``getSelf``, ``getFromDef`` of its DEF name) and the file's other DEF nodes (their type).
+``name``: snapshots that can be set but move nothing in the simulation), the ``children`` of
+the plain Solid, Transform, Pose and Group nodes among them, and theirs (read-only: setting
+their ``translation`` or ``rotation`` raises :class:`~mazesim.errors.UnsupportedFeatureError`),
+the robot's node among them (``getSelf``, ``getFromDef`` of its DEF name) and the file's other
+DEF nodes (their type). Adding nodes to the running world or removing them raises
+:class:`~mazesim.errors.UnsupportedFeatureError`: the simulator is built from the world at its
+import and takes no body in or out during a run.
 It reads and sets the robot's ``translation`` and ``rotation`` (moving the robot in the
 simulation), and in a world with several robots those of every other robot too, reads its
 position, orientation and velocity, resets the simulation (the robot back at its start) or
@@ -15,6 +20,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from mazesim.errors import UnsupportedFeatureError
 from mazesim.webots import simulation as _simulations
 from mazesim.webots.devices import _print_error, webots_property
 from mazesim.webots.frames import enu_to_nue, enu_to_nue_matrix, nue_to_enu
@@ -22,7 +28,7 @@ from mazesim.webots.inert import ContactPoint, NotSimulated
 from mazesim.webots.node_types import NODE_TYPES
 from mazesim.webots.radio_devices import E_PUCK_CHANNEL
 from mazesim.webots.robot import Robot
-from mazesim.webots.scene import EPUCK_TYPES, SceneNode
+from mazesim.webots.scene import EPUCK_TYPES, GROUPING_TYPES, SceneNode
 
 __all__ = ["Field", "Node", "Supervisor"]
 
@@ -46,6 +52,21 @@ _BUILT_IN_TYPES = {
 }
 #: Base nodes with ``translation`` and ``rotation`` fields.
 _POSED_TYPES = {"Robot", "Solid", "Pose", "Transform", "Charger"}
+#: What a supervisor may change of the world, said by each refusal.
+_SUPPORTED_CHANGES = (
+    "mazesim's simulator is built from the world file when it is imported and takes no body "
+    "in or out during a run; a supervisor moves the world's robots (the translation and "
+    "rotation fields of their nodes) and sets other fields of the file's top-level nodes, "
+    "which are recorded but move nothing"
+)
+
+
+def _refuse_scene_change(call: str) -> None:
+    """Raises the refusal of a call that adds nodes to the running world or removes them."""
+    raise UnsupportedFeatureError(
+        f"{call} is not supported: it would add or remove a node of the running world, and "
+        f"{_SUPPORTED_CHANGES}"
+    )
 
 
 def _file_frame() -> bool:
@@ -111,12 +132,12 @@ class Field(NotSimulated):
         return self._type_names[self._type]
 
     def getCount(self) -> int:
-        """-1 for a single field; the number of nodes of the root's ``children``."""
+        """-1 for a single field; the number of nodes of a ``children`` field."""
         return len(self._node._children) if self._type == self.MF_NODE else -1
 
     def getMFNode(self, index: int) -> Node | None:
-        """The node at ``index`` of the root's ``children`` (negative: from the end, as in
-        Webots), or None with Webots' error."""
+        """The node at ``index`` of a ``children`` field (the root's, or a Solid's, Transform's,
+        Pose's or Group's; negative: from the end, as in Webots), or None with Webots' error."""
         if self._type != self.MF_NODE:
             self._wrong("get_mf_node")
             return None
@@ -130,17 +151,64 @@ class Field(NotSimulated):
         return children[int(index)]
 
     def importMFNodeFromString(self, position: int, nodeString: str) -> None:
-        """Webots' error: mazesim adds no nodes to a running world."""
-        _print_error(
-            "Error: Field.importMFNodeFromString() is not available in mazesim: the world's "
-            "nodes are fixed when it is imported."
-        )
+        """Refused: mazesim adds no nodes to a running world.
+
+        Raises:
+            UnsupportedFeatureError: Always, naming the call and what is supported.
+        """
+        _refuse_scene_change(f"Field.importMFNodeFromString() on {self._where()}")
+
+    def importSFNodeFromString(self, nodeString: str) -> None:
+        """Refused: mazesim adds no nodes to a running world.
+
+        Raises:
+            UnsupportedFeatureError: Always, naming the call and what is supported.
+        """
+        _refuse_scene_change(f"Field.importSFNodeFromString() on {self._where()}")
+
+    def importMFNode(self, position: int, filename: str) -> None:
+        """Refused: mazesim adds no nodes to a running world (Webots' older name, from a file).
+
+        Raises:
+            UnsupportedFeatureError: Always, naming the call and what is supported.
+        """
+        _refuse_scene_change(f"Field.importMFNode() on {self._where()}")
+
+    def importSFNode(self, filename: str) -> None:
+        """Refused: mazesim adds no nodes to a running world (Webots' older name, from a file).
+
+        Raises:
+            UnsupportedFeatureError: Always, naming the call and what is supported.
+        """
+        _refuse_scene_change(f"Field.importSFNode() on {self._where()}")
 
     def removeMF(self, index: int) -> None:
-        """Webots' error: mazesim removes no nodes from a running world."""
-        _print_error(
-            "Error: Field.removeMF() is not available in mazesim: the world's nodes are fixed "
-            "when it is imported."
+        """Refused: mazesim removes no nodes from a running world.
+
+        Raises:
+            UnsupportedFeatureError: Always, naming the call and what is supported.
+        """
+        _refuse_scene_change(f"Field.removeMF() on {self._where()}")
+
+    def removeSF(self) -> None:
+        """Refused: mazesim removes no nodes from a running world.
+
+        Raises:
+            UnsupportedFeatureError: Always, naming the call and what is supported.
+        """
+        _refuse_scene_change(f"Field.removeSF() on {self._where()}")
+
+    def _where(self) -> str:
+        """The field and its node, as a refusal names them."""
+        return f"field '{self._name}' of {self._node._label()}"
+
+    def _read_only(self, call: str) -> None:
+        """Raises the refusal of moving a node inside another (its body is not the simulator's
+        to move)."""
+        raise UnsupportedFeatureError(
+            f"Field.{call}() on {self._where()} is not supported: that node is inside "
+            f"{self._node._parent._label() if self._node._parent else 'another node'}, whose "
+            f"fields mazesim reads from the world file but cannot move; {_SUPPORTED_CHANGES}"
         )
 
     def _wrong(self, function: str) -> None:
@@ -159,11 +227,17 @@ class Field(NotSimulated):
 
     def setSFVec3f(self, values: list[float]) -> None:
         """Moves the robot to [x, y, z] (z is ignored: the robot stays on the floor); another
-        node's translation is recorded (its walls do not move)."""
+        top-level node's translation is recorded (its walls do not move).
+
+        Raises:
+            UnsupportedFeatureError: The node is inside another node (read-only).
+        """
         if self._name != "translation":
             self._wrong("set_sf_vec3f")
             return
         node = self._node
+        if node._nested and not node._live:
+            self._read_only("setSFVec3f")
         x, y, z = _in(_padded(values, 3))
         if node._live:
             node._move(x, y, node._pose()[2])
@@ -180,12 +254,18 @@ class Field(NotSimulated):
         return [*_out(rotation[:3]), rotation[3]] if rotation else rotation
 
     def setSFRotation(self, values: list[float]) -> None:
-        """Turns the robot to an axis-angle rotation (its yaw about z is kept); another node's
-        rotation is recorded (its walls do not turn)."""
+        """Turns the robot to an axis-angle rotation (its yaw about z is kept); another top-level
+        node's rotation is recorded (its walls do not turn).
+
+        Raises:
+            UnsupportedFeatureError: The node is inside another node (read-only).
+        """
         if self._name != "rotation":
             self._wrong("set_sf_rotation")
             return
         node = self._node
+        if node._nested and not node._live:
+            self._read_only("setSFRotation")
         ax, ay, az, angle = _padded(values, 4)
         ax, ay, az = _in([ax, ay, az])
         if node._live:
@@ -399,6 +479,45 @@ class Node(NotSimulated):
         return _simulations.current()
 
     @property
+    def _nested(self) -> bool:
+        """Whether the node is inside another node of the world file (not at its top)."""
+        return self._parent is not None and self._parent._parent is not None
+
+    def _label(self) -> str:
+        """The node as a message names it: its type and DEF name."""
+        if self._id == 0:
+            return "the scene tree's root"
+        return f"node {self._type_name}" + (f" (DEF {self._def})" if self._def else "")
+
+    def _world_frame(self) -> tuple[list[float], list[float]]:
+        """The node's origin and rotation matrix (row after row) in the world frame (ENU),
+        composed through the nodes above it from their ``translation`` and ``rotation``
+        (Webots' defaults, none, where absent)."""
+        chain: list[Node] = []
+        node: Node | None = self
+        while node is not None and node._parent is not None:
+            chain.append(node)
+            node = node._parent
+        origin, matrix = [0.0, 0.0, 0.0], _rotation_matrix(0.0, 0.0, 1.0, 0.0)
+        for node in reversed(chain):
+            if node._live:
+                x, y, yaw = node._pose()
+                offset, turn = [x, y, 0.0], [0.0, 0.0, 1.0, yaw]
+            else:
+                offset = list(node._translation or (0.0, 0.0, 0.0))
+                turn = list(node._rotation or (0.0, 0.0, 1.0, 0.0))
+            origin = [
+                origin[i] + sum(matrix[3 * i + k] * offset[k] for k in range(3)) for i in range(3)
+            ]
+            rotation = _rotation_matrix(*turn)
+            matrix = [
+                sum(matrix[3 * i + k] * rotation[3 * k + j] for k in range(3))
+                for i in range(3)
+                for j in range(3)
+            ]
+        return origin, matrix
+
+    @property
     def _live(self) -> bool:
         """Whether the node's pose is a robot's in the simulation (its own or another's)."""
         return self._robot or self._fleet_index is not None
@@ -452,15 +571,26 @@ class Node(NotSimulated):
         return self._type_name != self._base_type or self._type_name not in _BUILT_IN_TYPES
 
     def getParentNode(self) -> Node | None:
-        """The root for a node at the top of the world file; None for the root and for nodes
-        inside others (their parents are not kept)."""
+        """The root for a node at the top of the world file, the Solid, Transform, Pose or Group
+        whose ``children`` hold a node; None for the root and for nodes inside others (a
+        PROTO's, a Shape's geometry: their parents are not kept)."""
         return self._parent
+
+    def remove(self) -> None:
+        """Refused: mazesim removes no nodes from a running world.
+
+        Raises:
+            UnsupportedFeatureError: Always, naming the node and what is supported.
+        """
+        _refuse_scene_change(f"Node.remove() of {self._label()}")
 
     def _field_types(self) -> dict[str, int]:
         """The fields the node has: name -> ``Field`` type."""
         if self._id == 0:
             return {"children": Field.MF_NODE}
         types = dict.fromkeys(self._strings, Field.SF_STRING)
+        if self._type_name in GROUPING_TYPES:
+            types["children"] = Field.MF_NODE
         types.update(dict.fromkeys(self._flags, Field.SF_BOOL))
         for name, values in self._numbers.items():
             kinds = {1: Field.SF_FLOAT, 2: Field.SF_VEC2F, 3: Field.SF_VEC3F, 4: Field.SF_ROTATION}
@@ -490,16 +620,21 @@ class Node(NotSimulated):
     getProtoField = getField
 
     def getPosition(self) -> list[float]:
-        """The node's position [x, y, z] in metres (world frame; NaN for a node whose position
-        the world file does not give)."""
+        """The node's position [x, y, z] in metres (world frame, a node inside others' composed
+        through theirs; NaN for a node whose position the world file does not give)."""
         if self._live:
             x, y, _ = self._pose()
             return _out([x, y, 0.0])
+        if self._nested and self._translation is not None:
+            return _out(self._world_frame()[0])
         return _out(list(self._translation)) if self._translation else [math.nan] * 3
 
     def getOrientation(self) -> list[float]:
-        """The node's rotation matrix, row after row (9 numbers)."""
-        if self._live or self._rotation is None:
+        """The node's rotation matrix, row after row (9 numbers; a node inside others' composed
+        through theirs)."""
+        if self._nested and not self._live:
+            matrix = self._world_frame()[1]
+        elif self._live or self._rotation is None:
             matrix = _rotation_matrix(0.0, 0.0, 1.0, self._pose()[2])
         else:
             matrix = _rotation_matrix(*self._rotation)
@@ -548,12 +683,35 @@ class Node(NotSimulated):
             return 1
         posed = self._robot or self._translation is not None
         return (
-            len(self._strings) + (1 if posed else 0) + (1 if self._robot or self._rotation else 0)
+            len(self._strings)
+            + (1 if posed else 0)
+            + (1 if self._robot or self._rotation else 0)
+            + (1 if self._type_name in GROUPING_TYPES else 0)
         )
 
     def getStaticBalance(self) -> bool:
         """True: the robot stands on the floor."""
         return True
+
+
+def _nest(top: list[tuple[Node, SceneNode]], first_id: int, robot: Node) -> list[Node]:
+    """Gives each grouping node among ``top`` (a top-level node and its scene node) and below it
+    the nodes of its ``children`` field (``robot`` for the robot's); returns those nodes in file
+    order, their ids from ``first_id`` on."""
+    nested: list[Node] = []
+    pending = list(reversed(top))
+    while pending:
+        node, scene_node = pending.pop()
+        if node._nested:
+            node._id = first_id + len(nested)
+            nested.append(node)
+        if scene_node.type_name in GROUPING_TYPES:
+            inner = [
+                robot if child.robot else Node.from_scene(child, 0) for child in scene_node.children
+            ]
+            node._adopt(inner)
+            pending.extend(reversed(list(zip(inner, scene_node.children))))
+    return nested
 
 
 def _follow_robots(nodes: list[Node], robots: list[dict[str, Any]], own: int) -> None:
@@ -604,14 +762,23 @@ class Supervisor(Robot):
         self._mode = self.SIMULATION_MODE_FAST
         self._root = Node("Group", node_id=0)
         children = [self._self if node.robot else Node.from_scene(node, 0) for node in scene.nodes]
-        if self._self not in children:
+        self._root._adopt(children)
+        #: The nodes inside grouping nodes, in file order (the robot's own where it is one).
+        self._nested_nodes = _nest(
+            list(zip(children, scene.nodes)), len(children) + 2 + len(scene.defs), self._self
+        )
+        if self._self._parent is None:
             children.append(self._self)
+            self._root._adopt(children)
         for node_id, child in enumerate(children, start=1):
             child._id = node_id
-        self._root._adopt(children)
         self._nodes: dict[str, Node] = {}
         if self._simulation.fleet is not None:
-            _follow_robots(children, self._simulation.fleet.robots(), self._simulation.robot_index)
+            _follow_robots(
+                [*children, *self._nested_nodes],
+                self._simulation.fleet.robots(),
+                self._simulation.robot_index,
+            )
 
     def getSelf(self) -> Node:
         """The robot's own node."""
@@ -630,7 +797,7 @@ class Supervisor(Robot):
         scene = self._simulation.scene
         if name and (name == scene.robot_def or not scene.defs):
             return self._self
-        for child in self._root._children:
+        for child in [*self._root._children, *self._nested_nodes]:
             if name and child.getDef() == name:
                 return child
         if name in scene.defs:
@@ -642,9 +809,9 @@ class Supervisor(Robot):
         return None
 
     def getFromId(self, id: int) -> Node | None:
-        """The node of that id (the root, a top-level node, a DEF node asked for before), or
-        None."""
-        for node in [self._root, *self._root._children, *self._nodes.values()]:
+        """The node of that id (the root, a top-level node, a node inside a grouping node, a DEF
+        node asked for before), or None."""
+        for node in [self._root, *self._root._children, *self._nested_nodes, *self._nodes.values()]:
             if node.getId() == id:
                 return node
         return None

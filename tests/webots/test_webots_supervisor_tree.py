@@ -1,0 +1,193 @@
+"""The supervisor's scene tree below the root: the ``children`` of plain Solid, Transform, Pose
+and Group nodes, read from the world file and read-only, and the refusal of calls that would
+add nodes to the running world or remove them."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+
+import mazesim
+from mazesim.errors import MazesimError, UnsupportedFeatureError
+from mazesim.webots import controller, prepare
+from mazesim.webots import simulation as simulations
+from mazesim.webots.scene import read_scene
+
+#: A world whose obstacles are grouped: a Group holding a Solid (holding a Pose and a Shape)
+#: and a Transform holding a Solid.
+GROUPED = """#VRML_SIM R2023b utf8
+WorldInfo { basicTimeStep 32 }
+RectangleArena { floorSize 1 1 }
+DEF OBSTACLES Group {
+  children [
+    DEF BOX1 Solid {
+      translation 0.3 0.2 0.05
+      rotation 0 0 1 1.5708
+      children [
+        DEF MARK Pose {
+          translation 0.1 0 0
+          children [ Shape { geometry Box { size 0.01 0.01 0.01 } } ]
+        }
+        Shape { geometry DEF BOXGEOM Box { size 0.05 0.05 0.1 } }
+      ]
+      name "box one"
+      boundingObject USE BOXGEOM
+    }
+    Transform { translation -0.3 0 0 children [ Solid { name "inner" } ] }
+  ]
+}
+DEF EPUCK E-puck { translation -0.2 -0.1 0 supervisor TRUE }
+"""
+
+
+@pytest.fixture(autouse=True)
+def _fresh_robot() -> Iterator[None]:
+    controller.Robot.created = None
+    yield
+    controller.Robot.created = None
+    simulations.release()
+
+
+def supervisor_of(text: str, tmp_path: Path) -> controller.Supervisor:
+    """A supervisor of the robot of the world ``text``, as ``mazesim webots run`` prepares it."""
+    path = tmp_path / "grouped.wbt"
+    path.write_text(text)
+    prepare(mazesim.load_world(str(path)), seconds=5.0, noise=False, scene=read_scene(text))
+    controller.Robot.created = None
+    return controller.Supervisor()
+
+
+def test_grouping_nodes_list_their_children_as_the_file_gives_them(tmp_path: Path) -> None:
+    supervisor = supervisor_of(GROUPED, tmp_path)
+    top = supervisor.getRoot().getField("children")
+    assert [top.getMFNode(i).getTypeName() for i in range(top.getCount())] == [
+        "WorldInfo",
+        "RectangleArena",
+        "Group",
+        "E-puck",
+    ]
+    group = top.getMFNode(2)
+    inside = group.getField("children")
+    assert inside is not None and inside.getTypeName() == "MFNode" and inside.getCount() == 2
+    box, transform = inside.getMFNode(0), inside.getMFNode(-1)
+    assert (box.getTypeName(), box.getDef()) == ("Solid", "BOX1")
+    assert transform.getTypeName() == "Transform"
+    assert box.getParentNode() is group and group.getParentNode() is supervisor.getRoot()
+    assert box.getField("translation").getSFVec3f() == pytest.approx([0.3, 0.2, 0.05])
+    assert box.getField("rotation").getSFRotation() == pytest.approx([0, 0, 1, 1.5708])
+    assert box.getField("name").getSFString() == "box one"
+    in_box = box.getField("children")
+    assert [in_box.getMFNode(i).getTypeName() for i in range(in_box.getCount())] == [
+        "Pose",
+        "Shape",
+    ]
+    mark = in_box.getMFNode(0)
+    assert mark.getDef() == "MARK" and mark.getParentNode() is box
+    # The field is the file's, in the parent's frame; the position is the world's.
+    assert mark.getField("translation").getSFVec3f() == pytest.approx([0.1, 0.0, 0.0])
+    assert mark.getPosition() == pytest.approx([0.3, 0.3, 0.05], abs=1e-4)
+    assert mark.getOrientation()[3] == pytest.approx(math.sin(1.5708), abs=1e-6)
+    assert mark.getField("children").getMFNode(0).getTypeName() == "Shape"
+    assert in_box.getMFNode(1).getField("translation") is None, "a Shape has no translation"
+    inner = transform.getField("children").getMFNode(0)
+    assert inner.getField("name").getSFString() == "inner"
+    assert inner.getPosition() == pytest.approx([-0.3, 0.0, 0.0])
+    assert in_box.getMFNode(2) is None
+    # A node inside others is found by its DEF name and by its id.
+    assert supervisor.getFromDef("MARK") is mark and supervisor.getFromDef("BOX1") is box
+    ids = [n.getId() for n in (group, box, mark, transform, inner, supervisor.getSelf())]
+    assert len(set(ids)) == len(ids)
+    assert all(supervisor.getFromId(n.getId()) is n for n in (box, mark, inner))
+
+
+def test_a_node_inside_another_is_read_only(tmp_path: Path) -> None:
+    supervisor = supervisor_of(GROUPED, tmp_path)
+    box = supervisor.getFromDef("BOX1")
+    with pytest.raises(UnsupportedFeatureError, match=r"inside node Group \(DEF OBSTACLES\)"):
+        box.getField("translation").setSFVec3f([0.0, 0.0, 0.05])
+    with pytest.raises(MazesimError, match="a supervisor moves the world's robots"):
+        box.getField("rotation").setSFRotation([0.0, 0.0, 1.0, 0.0])
+    assert box.getPosition() == pytest.approx([0.3, 0.2, 0.05])
+    # The robot still moves, and a top-level node's field is still recorded.
+    supervisor.getSelf().getField("translation").setSFVec3f([0.1, 0.0, 0.0])
+    assert simulations.current().simulator.pose[0] == pytest.approx(0.1, abs=1e-6)
+    group = supervisor.getFromDef("OBSTACLES")
+    assert group.getField("translation") is None, "a Group is not placed"
+
+
+def test_a_deep_nesting_is_read_without_recursion(tmp_path: Path) -> None:
+    depth = 3000
+    nested = "Group { children [ " * depth + "DEF DEEP Solid { }" + " ] }" * depth
+    scene = read_scene("#VRML_SIM R2023b utf8\n" + nested)
+    node = scene.nodes[0]
+    for _ in range(depth - 1):
+        (node,) = node.children
+    assert node.children[0].def_name == "DEEP"
+
+
+def test_adding_or_removing_nodes_is_refused_at_the_call(tmp_path: Path) -> None:
+    supervisor = supervisor_of(GROUPED, tmp_path)
+    root = supervisor.getRoot().getField("children")
+    box = supervisor.getFromDef("BOX1")
+    refused = {
+        "Field.importMFNodeFromString()": lambda: root.importMFNodeFromString(-1, "Solid {}"),
+        "Field.importSFNodeFromString()": lambda: box.getField("children").importSFNodeFromString(
+            "Solid {}"
+        ),
+        "Field.importMFNode()": lambda: root.importMFNode(-1, "box.wbo"),
+        "Field.removeMF()": lambda: root.removeMF(2),
+        "Field.removeSF()": lambda: root.removeSF(),
+        "Node.remove()": box.remove,
+    }
+    for call, refused_call in refused.items():
+        with pytest.raises(UnsupportedFeatureError) as caught:
+            refused_call()
+        message = str(caught.value)
+        assert message.startswith(call) and "takes no body in or out during a run" in message
+    assert "of node Solid (DEF BOX1)" in message
+    assert root.getCount() == 4 and supervisor.getFromDef("BOX1") is box
+
+
+def test_the_start_up_check_names_the_calls_that_change_the_scene(tmp_path: Path) -> None:
+    from mazesim.webots.requirements import prepare_controller, scene_changes
+
+    spawner = tmp_path / "spawner" / "spawner.py"
+    spawner.parent.mkdir()
+    spawner.write_text(
+        "from controller import Supervisor\n"
+        "supervisor = Supervisor()\n"
+        "children = supervisor.getRoot().getField('children')\n"
+        "children.importMFNodeFromString(-1, 'DEF TRASH Solid {}')\n"
+        "kept = [1, 2]\n"
+        "kept.remove(1)\n"
+        "supervisor.getFromDef('TRASH').remove()\n"
+    )
+    prepared = prepare_controller(str(spawner))
+    (statement,) = [m for m in prepared.missing if m.startswith("adding nodes")]
+    assert "(importMFNodeFromString, remove)" in statement
+    assert "UnsupportedFeatureError" in statement and prepared.runnable
+    cleaner = tmp_path / "cleaner" / "cleaner.c"
+    cleaner.parent.mkdir()
+    cleaner.write_text("void clean(WbNodeRef n) { wb_supervisor_node_remove(n); }\n")
+    assert scene_changes(str(cleaner), "c") == ["wb_supervisor_node_remove"]
+    plain = tmp_path / "plain" / "plain.py"
+    plain.parent.mkdir()
+    plain.write_text("items = [1]\nitems.remove(1)\n")
+    assert scene_changes(str(plain), "python") == []
+
+
+def test_a_compiled_controllers_remove_is_refused_as_a_python_ones(tmp_path: Path) -> None:
+    from mazesim.webots.native_calls import NativeCalls
+
+    calls = NativeCalls(supervisor_of(GROUPED, tmp_path), [])
+    (box,) = calls.call("wb_supervisor_node_get_from_def", [b"BOX1"])
+    with pytest.raises(UnsupportedFeatureError, match=r"^Node.remove\(\) of node Solid"):
+        calls.call("wb_supervisor_node_remove", [box])
+    (root,) = calls.call("wb_supervisor_node_get_root", [])
+    children, _ = calls.call("wb_supervisor_node_get_field", [root, b"children"])
+    with pytest.raises(UnsupportedFeatureError, match="importMFNodeFromString"):
+        calls.call("wb_supervisor_field_import_mf_node_from_string", [children, -1, b"Solid {}"])
+    assert calls.call("wb_supervisor_field_get_count", [children]) == [4]
