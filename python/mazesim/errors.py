@@ -25,7 +25,6 @@ __all__ = [
     "SimulatorBusyError",
     "SnapshotError",
     "UnknownNameError",
-    "UnsupportedFeatureError",
     "WorldFormatError",
 ]
 
@@ -138,9 +137,3 @@ class RunFormatError(MazesimError, ValueError):
     """A recorded run (:mod:`mazesim.replay.run`) cannot be read: it is not a run file, it is
     malformed, or it was written in a newer major version of the format than this mazesim
     reads; the message names the file and says which."""
-
-
-class UnsupportedFeatureError(MazesimError, NotImplementedError):
-    """A call of an API mazesim follows (Webots' supervisor) asks for something mazesim cannot
-    do: adding nodes to a running world or removing them, or moving a node that is no robot's
-    body; the message names the call and says what mazesim supports instead."""

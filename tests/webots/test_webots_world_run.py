@@ -355,6 +355,8 @@ def test_a_robots_state_after_a_step_comes_with_the_steps_answer(
     assert run.steps == 60
     for name in ("pose", "time", "encoders"):
         assert asked[name] <= 3 * len(run.robots), (name, asked[name])
+
+
 PLACER_WORLD = """#VRML_SIM R2023b utf8
 
 EXTERNPROTO "webots://projects/objects/floors/protos/RectangleArena.proto"

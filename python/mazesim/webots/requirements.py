@@ -82,7 +82,7 @@ _SCENE_CHANGES = re.compile(
 SCENE_CHANGES = (
     "adding nodes to the running world or removing them ({calls}): mazesim's simulator is "
     "built from the world file when it is imported and takes no body in or out during a run, "
-    "so these calls raise mazesim.errors.UnsupportedFeatureError"
+    "so these calls print an error and change nothing"
 )
 #: Wheel speed (rad/s) of a turn in place above which Webots' E-puck has been seen to turn
 #: more slowly than its wheels' kinematics say. Controllers tuned in Webots agree with the

@@ -3,12 +3,11 @@
 The supervisor sees the scene tree's root, whose ``children`` are the world file's top-level
 nodes (their type, DEF name and, read from the file, their ``translation``, ``rotation`` and
 ``name``: snapshots that can be set but move nothing in the simulation), the ``children`` of
-the plain Solid, Transform, Pose and Group nodes among them, and theirs (read-only: setting
-their ``translation`` or ``rotation`` raises :class:`~mazesim.errors.UnsupportedFeatureError`),
-the robot's node among them (``getSelf``, ``getFromDef`` of its DEF name) and the file's other
-DEF nodes (their type). Adding nodes to the running world or removing them raises
-:class:`~mazesim.errors.UnsupportedFeatureError`: the simulator is built from the world at its
-import and takes no body in or out during a run.
+the plain Solid, Transform, Pose and Group nodes among them, and theirs (snapshots too), the
+robot's node among them (``getSelf``, ``getFromDef`` of its DEF name) and the file's other DEF
+nodes (their type). A call that would add nodes to the running world or remove them prints
+Webots' kind of error and changes nothing (the simulator is built from the world at its import
+and takes no body in or out during a run), so the controller goes on as Webots' would.
 It reads and sets the robot's ``translation`` and ``rotation`` (moving the robot in the
 simulation), and in a world with several robots those of every other robot too, reads its
 position, orientation and velocity, resets the simulation (the robot back at its start) or
@@ -20,7 +19,6 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from mazesim.errors import UnsupportedFeatureError
 from mazesim.webots import simulation as _simulations
 from mazesim.webots.devices import _print_error, webots_property
 from mazesim.webots.frames import enu_to_nue, enu_to_nue_matrix, nue_to_enu
@@ -52,20 +50,17 @@ _BUILT_IN_TYPES = {
 }
 #: Base nodes with ``translation`` and ``rotation`` fields.
 _POSED_TYPES = {"Robot", "Solid", "Pose", "Transform", "Charger"}
-#: What a supervisor may change of the world, said by each refusal.
-_SUPPORTED_CHANGES = (
-    "mazesim's simulator is built from the world file when it is imported and takes no body "
-    "in or out during a run; a supervisor moves the world's robots (the translation and "
-    "rotation fields of their nodes) and sets other fields of the file's top-level nodes, "
-    "which are recorded but move nothing"
-)
 
 
 def _refuse_scene_change(call: str) -> None:
-    """Raises the refusal of a call that adds nodes to the running world or removes them."""
-    raise UnsupportedFeatureError(
-        f"{call} is not supported: it would add or remove a node of the running world, and "
-        f"{_SUPPORTED_CHANGES}"
+    """Prints the refusal of a call that adds nodes to the running world or removes them (as
+    Webots prints the error of a call it cannot carry out, and the controller goes on)."""
+    _print_error(
+        f"Error: {call} is not supported by mazesim: it would add or remove a node of the "
+        "running world, and mazesim's simulator is built from the world file when it is "
+        "imported and takes no body in or out during a run; nothing changed. A supervisor "
+        "moves the world's robots (the translation and rotation fields of their nodes) and "
+        "sets other fields of the file's nodes, which are recorded but move nothing."
     )
 
 
@@ -151,65 +146,32 @@ class Field(NotSimulated):
         return children[int(index)]
 
     def importMFNodeFromString(self, position: int, nodeString: str) -> None:
-        """Refused: mazesim adds no nodes to a running world.
-
-        Raises:
-            UnsupportedFeatureError: Always, naming the call and what is supported.
-        """
+        """Webots' kind of error: mazesim adds no nodes to a running world."""
         _refuse_scene_change(f"Field.importMFNodeFromString() on {self._where()}")
 
     def importSFNodeFromString(self, nodeString: str) -> None:
-        """Refused: mazesim adds no nodes to a running world.
-
-        Raises:
-            UnsupportedFeatureError: Always, naming the call and what is supported.
-        """
+        """Webots' kind of error: mazesim adds no nodes to a running world."""
         _refuse_scene_change(f"Field.importSFNodeFromString() on {self._where()}")
 
     def importMFNode(self, position: int, filename: str) -> None:
-        """Refused: mazesim adds no nodes to a running world (Webots' older name, from a file).
-
-        Raises:
-            UnsupportedFeatureError: Always, naming the call and what is supported.
-        """
+        """Webots' kind of error: mazesim adds no nodes to a running world (an older name)."""
         _refuse_scene_change(f"Field.importMFNode() on {self._where()}")
 
     def importSFNode(self, filename: str) -> None:
-        """Refused: mazesim adds no nodes to a running world (Webots' older name, from a file).
-
-        Raises:
-            UnsupportedFeatureError: Always, naming the call and what is supported.
-        """
+        """Webots' kind of error: mazesim adds no nodes to a running world (an older name)."""
         _refuse_scene_change(f"Field.importSFNode() on {self._where()}")
 
     def removeMF(self, index: int) -> None:
-        """Refused: mazesim removes no nodes from a running world.
-
-        Raises:
-            UnsupportedFeatureError: Always, naming the call and what is supported.
-        """
+        """Webots' kind of error: mazesim removes no nodes from a running world."""
         _refuse_scene_change(f"Field.removeMF() on {self._where()}")
 
     def removeSF(self) -> None:
-        """Refused: mazesim removes no nodes from a running world.
-
-        Raises:
-            UnsupportedFeatureError: Always, naming the call and what is supported.
-        """
+        """Webots' kind of error: mazesim removes no nodes from a running world."""
         _refuse_scene_change(f"Field.removeSF() on {self._where()}")
 
     def _where(self) -> str:
         """The field and its node, as a refusal names them."""
         return f"field '{self._name}' of {self._node._label()}"
-
-    def _read_only(self, call: str) -> None:
-        """Raises the refusal of moving a node inside another (its body is not the simulator's
-        to move)."""
-        raise UnsupportedFeatureError(
-            f"Field.{call}() on {self._where()} is not supported: that node is inside "
-            f"{self._node._parent._label() if self._node._parent else 'another node'}, whose "
-            f"fields mazesim reads from the world file but cannot move; {_SUPPORTED_CHANGES}"
-        )
 
     def _wrong(self, function: str) -> None:
         _print_error(
@@ -227,17 +189,11 @@ class Field(NotSimulated):
 
     def setSFVec3f(self, values: list[float]) -> None:
         """Moves the robot to [x, y, z] (z is ignored: the robot stays on the floor); another
-        top-level node's translation is recorded (its walls do not move).
-
-        Raises:
-            UnsupportedFeatureError: The node is inside another node (read-only).
-        """
+        node's translation is recorded (its walls do not move)."""
         if self._name != "translation":
             self._wrong("set_sf_vec3f")
             return
         node = self._node
-        if node._nested and not node._live:
-            self._read_only("setSFVec3f")
         x, y, z = _in(_padded(values, 3))
         if node._live:
             node._move(x, y, node._pose()[2])
@@ -254,18 +210,12 @@ class Field(NotSimulated):
         return [*_out(rotation[:3]), rotation[3]] if rotation else rotation
 
     def setSFRotation(self, values: list[float]) -> None:
-        """Turns the robot to an axis-angle rotation (its yaw about z is kept); another top-level
-        node's rotation is recorded (its walls do not turn).
-
-        Raises:
-            UnsupportedFeatureError: The node is inside another node (read-only).
-        """
+        """Turns the robot to an axis-angle rotation (its yaw about z is kept); another node's
+        rotation is recorded (its walls do not turn)."""
         if self._name != "rotation":
             self._wrong("set_sf_rotation")
             return
         node = self._node
-        if node._nested and not node._live:
-            self._read_only("setSFRotation")
         ax, ay, az, angle = _padded(values, 4)
         ax, ay, az = _in([ax, ay, az])
         if node._live:
@@ -577,11 +527,7 @@ class Node(NotSimulated):
         return self._parent
 
     def remove(self) -> None:
-        """Refused: mazesim removes no nodes from a running world.
-
-        Raises:
-            UnsupportedFeatureError: Always, naming the node and what is supported.
-        """
+        """Webots' kind of error: mazesim removes no nodes from a running world."""
         _refuse_scene_change(f"Node.remove() of {self._label()}")
 
     def _field_types(self) -> dict[str, int]:
