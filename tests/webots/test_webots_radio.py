@@ -9,15 +9,13 @@ from typing import Any
 
 import pytest
 
-import mazesim
-from mazesim._core import Simulator
 from mazesim.webots import controller, prepare
 from mazesim.webots import simulation as simulations
 from mazesim.webots.importer import import_wbt_text
 from mazesim.webots.radio import Radio
 from mazesim.webots.radio_devices import Emitter, Receiver, emitter_from_fields
 from mazesim.webots.scene import read_scene
-from mazesim.webots.simulation import RobotSimulation
+from radio_pair import RadioPair
 
 HERE = (0.0, 0.0, 0.0)
 
@@ -91,32 +89,8 @@ def test_order_is_robot_then_sending_whatever_the_order_of_arrival() -> None:
 # --- the devices, two robots sharing one radio -------------------------------------------------
 
 
-class _TwoRobots:
-    """Two e-pucks 0.3 m apart sharing a radio, stepped as the world's owner steps them."""
-
-    def __init__(self) -> None:
-        world = mazesim.World.builtin("arena")
-        self.radio = Radio()
-        self.robots = []
-        for index in range(2):
-            simulator = Simulator(world, seed=index)
-            x, y, _ = simulator.pose
-            simulator.set_pose(x + 0.3 * index, y, 0.0)
-            self.robots.append(
-                RobotSimulation(world, simulator=simulator, radio=self.radio, robot_index=index)
-            )
-        self.receivers: list[Receiver] = []
-
-    def step(self) -> None:
-        self.radio.transmit({r.robot_index: r.simulator.pose for r in self.robots})
-        for robot in self.robots:
-            robot.advance(0.0, 0.0)
-        for receiver in self.receivers:
-            receiver._after_step()
-
-
 def test_a_packet_sent_before_a_step_is_in_the_queue_after_it() -> None:
-    pair = _TwoRobots()
+    pair = RadioPair()
     emitter = Emitter("emitter", pair.robots[0])
     receiver = Receiver("receiver", pair.robots[1])
     pair.receivers.append(receiver)
@@ -136,7 +110,7 @@ def test_a_packet_sent_before_a_step_is_in_the_queue_after_it() -> None:
 def test_a_list_of_numbers_is_read_back_as_floats_ints_or_bools() -> None:
     """Webots' Python Receiver reads a packet as doubles (``getFloats``, what ``Emitter.send``
     of a list of numbers sends), 4-byte ints (``getInts``) or booleans (``getBools``)."""
-    pair = _TwoRobots()
+    pair = RadioPair()
     emitter = Emitter("emitter", pair.robots[0])
     receiver = Receiver("receiver", pair.robots[1])
     pair.receivers.append(receiver)
@@ -157,7 +131,7 @@ def test_a_list_of_numbers_is_read_back_as_floats_ints_or_bools() -> None:
 def test_the_sampling_period_holds_packets_until_it_ends(
     capsys: pytest.CaptureFixture[str],
 ) -> None:
-    pair = _TwoRobots()
+    pair = RadioPair()
     basic = int(pair.robots[1].basic_time_step_ms)
     emitter = Emitter("emitter", pair.robots[0])
     receiver = Receiver("receiver", pair.robots[1])
@@ -175,7 +149,7 @@ def test_the_sampling_period_holds_packets_until_it_ends(
 
 
 def test_a_disabled_receiver_hears_nothing_and_buffers_overflow_by_losing_packets() -> None:
-    pair = _TwoRobots()
+    pair = RadioPair()
     basic = int(pair.robots[1].basic_time_step_ms)
     emitter = Emitter("emitter", pair.robots[0])
     receiver = Receiver("receiver", pair.robots[1], buffer_size=6)
@@ -195,7 +169,7 @@ def test_a_disabled_receiver_hears_nothing_and_buffers_overflow_by_losing_packet
 
 
 def test_an_emitters_buffer_size_and_max_range_and_the_e_pucks_defaults() -> None:
-    pair = _TwoRobots()
+    pair = RadioPair()
     own = emitter_from_fields(
         "radio", pair.robots[0], {"channel": 4, "range": 2.0, "maxRange": 1.0, "bufferSize": 4}
     )

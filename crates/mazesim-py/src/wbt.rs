@@ -59,6 +59,7 @@ fn robot_and_floor(out: &Bound<'_, PyDict>, import: &WbtImport) -> PyResult<()> 
         d.set_item("translation", device.translation.to_vec())?;
         d.set_item("yaw", device.yaw)?;
         d.set_item("pitch", device.pitch)?;
+        d.set_item("axes", device.axes.map(|a| a.to_vec()).to_vec())?;
         let fields = PyDict::new(py);
         for (name, value) in &device.fields {
             fields.set_item(name, device_field(py, value)?)?;

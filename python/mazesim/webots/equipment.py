@@ -128,7 +128,7 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
             ),
         ),
         "Emitter": lambda: emitter_from_fields(name, simulation, fields),
-        "Receiver": lambda: receiver_from_fields(name, simulation, fields),
+        "Receiver": lambda: receiver_from_fields(name, simulation, fields, entry.get("axes")),
         "Speaker": lambda: Speaker(name, simulation),
         "Display": lambda: Display(name, simulation),
         "Pen": lambda: Pen(name, simulation),

@@ -47,7 +47,7 @@ class Packet:
         channel: The channel it was sent on.
         signal_strength: 1 / r^2 for the distance r (metres) between the robots when it was
             sent; infinite at distance 0.
-        direction: Unit vector toward the emitter in the receiver's frame (x forward, y left,
+        direction: Unit vector toward the emitter in the receiving robot's frame (x forward, y left,
             z up).
     """
 

@@ -23,6 +23,7 @@ from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
 from mazesim.webots.devices import Device, _print_error, _Sensor, webots_property
+from mazesim.webots.frames import ENU_TO_NUE
 from mazesim.webots.inert import NotSimulated
 from mazesim.webots.node_types import node_type
 from mazesim.webots.radio import CHANNEL_BROADCAST, UNLIMITED, Packet
@@ -36,6 +37,14 @@ __all__ = ["Emitter", "Receiver", "emitter_from_fields", "receiver_from_fields"]
 E_PUCK_CHANNEL = 1
 #: The E-puck PROTO's emitter range, metres.
 E_PUCK_RANGE = 0.8
+
+#: A device's axes (x, y, z) in the robot's frame, x forward, y left, z up.
+Axes = tuple[tuple[float, float, float], ...]
+#: The axes of a device unturned in a robot's Z-up inside (a file since R2022a).
+Z_UP_AXES: Axes = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+#: The axes of a device unturned in a robot's Y-up inside (a file before R2022a, its PROTOs and
+#: the plain robots saved from them): x right, y up, z back.
+Y_UP_AXES: Axes = ENU_TO_NUE
 
 
 def _packet_bytes(message: Any, length: int | None) -> bytes:
@@ -151,10 +160,15 @@ class Receiver(_Tuned, NotSimulated, _Sensor):
         simulation: RobotSimulation,
         channel: int = E_PUCK_CHANNEL,
         buffer_size: int = UNLIMITED,
+        axes: Axes | None = None,
     ) -> None:
         super().__init__(name, simulation)
         self._channel = int(channel)
         self._buffer_size = int(buffer_size)
+        if axes is None:
+            # The E-puck PROTO's own receiver is unturned in the robot's inside.
+            axes = Y_UP_AXES if simulation.scene.y_up_devices else Z_UP_AXES
+        self._axes = axes
         self._queue: deque[Packet] = deque()
         self._queued_bytes = 0
 
@@ -250,10 +264,14 @@ class Receiver(_Tuned, NotSimulated, _Sensor):
         return math.nan if head is None else head.signal_strength
 
     def getEmitterDirection(self) -> list[float]:
-        """Unit vector toward the head packet's emitter in the robot's frame (NaNs when
-        empty)."""
+        """Unit vector toward the head packet's emitter in the receiver's own frame, as Webots
+        gives it (NaNs when empty): the robot's frame as the world writes its inside (x
+        forward, y left, z up since R2022a; before, x right, y up, z back), turned as the
+        receiver's mount and its own ``rotation`` turn it."""
         head = self._head("get_emitter_direction")
-        return [math.nan] * 3 if head is None else list(head.direction)
+        if head is None:
+            return [math.nan] * 3
+        return [sum(a * d for a, d in zip(axis, head.direction)) for axis in self._axes]
 
     def setChannel(self, channel: int) -> None:
         """Sets the channel (:attr:`CHANNEL_BROADCAST` listens to every channel)."""
@@ -289,13 +307,26 @@ def emitter_from_fields(
 
 
 def receiver_from_fields(
-    name: str, simulation: RobotSimulation, fields: Mapping[str, Any]
+    name: str, simulation: RobotSimulation, fields: Mapping[str, Any], axes: Any = None
 ) -> Receiver:
     """A Receiver node of the world file, with its fields (Webots' node defaults: channel 0,
-    bufferSize -1)."""
+    bufferSize -1) and its axes in the robot's frame (the import report's ``axes``; where
+    absent or malformed, unturned in the robot's inside)."""
     return Receiver(
         name,
         simulation,
         channel=_int_field(fields, "channel", 0),
         buffer_size=_int_field(fields, "bufferSize", UNLIMITED),
+        axes=_axes(axes),
     )
+
+
+def _axes(value: Any) -> Axes | None:
+    """Three axes of three finite numbers, or None."""
+    try:
+        axes = tuple((float(a[0]), float(a[1]), float(a[2])) for a in value)
+    except (TypeError, ValueError, IndexError, KeyError):
+        return None
+    if len(axes) != 3 or not all(math.isfinite(c) for axis in axes for c in axis):
+        return None
+    return axes

@@ -4,7 +4,7 @@
 //! forward, y left, z up, metres; the slot's origin taken as the robot's) and its other fields;
 //! anything else in a slot is a warning.
 
-use super::frames::{apply, axis_angle, Frame, IDENTITY, NUE_TO_ENU};
+use super::frames::{apply, axis_angle, norm, Frame, IDENTITY, NUE_TO_ENU};
 use super::import::{Importer, JOINTS};
 use super::shapes::snap;
 use super::tree::Node;
@@ -130,6 +130,11 @@ pub struct ExtensionDevice {
     /// How far its x axis points below the horizontal, radians (pi/2: straight at the floor, as
     /// a ground sensor; negative: upwards).
     pub pitch: f64,
+    /// Its own x, y and z axes (unit vectors, in this order) in the robot's frame (x forward,
+    /// y left, z up): the frame a device reading a vector in its own coordinates (a Receiver's
+    /// emitter direction) reads in. A device of a file before R2022a has the axes of the
+    /// robot's Y-up inside composed with its mount's rotations (unturned: x right, y up, z back).
+    pub axes: [[f64; 3]; 3],
     /// Its other fields with values (numbers, strings, booleans), in file order.
     pub fields: Vec<(String, DeviceField)>,
 }
@@ -246,6 +251,11 @@ impl<'d> Importer<'d> {
         let to_z_up = |v| if self.y_up { apply(&NUE_TO_ENU, v) } else { v };
         let origin = to_z_up(frame.origin);
         let x_axis = to_z_up(frame.axis(0));
+        let axes = [0, 1, 2].map(|i| {
+            let axis = to_z_up(frame.axis(i));
+            let length = norm(axis);
+            axis.map(|c| snap(if length > 0.0 { c / length } else { c }))
+        });
         let fields = node
             .fields
             .iter()
@@ -278,6 +288,7 @@ impl<'d> Importer<'d> {
             translation: origin.map(snap),
             yaw: snap(x_axis[1].atan2(x_axis[0])),
             pitch: snap((-x_axis[2]).atan2(x_axis[0].hypot(x_axis[1]))),
+            axes,
             fields,
         });
     }

@@ -475,6 +475,33 @@ fn the_e_pucks_ground_slot_is_mounted_as_its_proto_mounts_it() {
     );
 }
 
+/// Whether every component of two lists of axes is within `tol`.
+fn axes_close(found: [[f64; 3]; 3], expected: [[f64; 3]; 3], tol: f64) -> bool {
+    (0..3).all(|i| (0..3).all(|j| (found[i][j] - expected[i][j]).abs() < tol))
+}
+
+#[test]
+fn a_devices_axes_are_its_frame_in_the_robots() {
+    // Since R2022a an unturned device reads in the robot's frame.
+    let new = import("#VRML_SIM R2023b utf8\nE-puck { turretSlot [ Receiver { } ] }\n");
+    let identity = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    assert!(axes_close(new.extension_devices[0].axes, identity, 1e-9));
+    // Before, the PROTO's inside is Y-up: x right, y up, z back.
+    let old = import("#VRML_SIM R2021a utf8\nE-puck { turretSlot [ Receiver { } ] }\n");
+    let y_up = [[0.0, -1.0, 0.0], [0.0, 0.0, 1.0], [-1.0, 0.0, 0.0]];
+    assert!(axes_close(old.extension_devices[0].axes, y_up, 1e-9));
+    // Its groundSensorsSlot is turned -1.57 rad about the back axis: x down, y right.
+    let ground = import("#VRML_SIM R2018b utf8\nE-puck { groundSensorsSlot [ Receiver { } ] }\n");
+    let turned = [[0.0, 0.0, -1.0], [0.0, -1.0, 0.0], [-1.0, 0.0, 0.0]];
+    assert!(axes_close(ground.extension_devices[0].axes, turned, 1e-3));
+    // A device's own rotation composes with its mount's.
+    let own = import(
+        "#VRML_SIM R2023b utf8\nE-puck { turretSlot [ Receiver { rotation 0 0 1 1.5708 } ] }\n",
+    );
+    let left = [[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]];
+    assert!(axes_close(own.extension_devices[0].axes, left, 1e-4));
+}
+
 #[test]
 fn cr_line_ends_read_as_lines() {
     let lf = "#VRML_SIM R2023b utf8\n# a comment\nWoodenBox { translation 0.3 0 0.05 size 0.1 0.1 0.1 }\nE-puck { }\n";
