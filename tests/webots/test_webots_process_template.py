@@ -163,23 +163,21 @@ def test_a_child_that_dies_is_reported_and_the_others_go_on(
 
 
 def test_controllers_print_on_the_worlds_own_output_unprefixed(
-    tmp_path: Path, capfd: pytest.CaptureFixture[str]
+    tmp_path: Path, capfd: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
 ) -> None:
+    """Each controller's lines come whole, even unbuffered and printing at the same time."""
+    monkeypatch.setenv("PYTHONUNBUFFERED", "1")
     (tmp_path / "worlds").mkdir()
     (tmp_path / "worlds" / "w.wbt").write_text(WORLD.split("E-puck {")[0] + WORLD_ONE)
     (tmp_path / "controllers" / "talker").mkdir(parents=True)
-    (tmp_path / "controllers" / "talker" / "talker.py").write_text(TALKER)
+    (tmp_path / "controllers" / "talker" / "talker.py").write_text(TALKER.replace("LINES", "50"))
     run = run_world(str(tmp_path / "worlds" / "w.wbt"), seconds=0.1, noise=False)
     assert [r.exit_status for r in run.robots] == [0, 0]
     out, err = capfd.readouterr()
-    assert sorted(line for line in out.splitlines() if "talks" in line) == [
-        "one talks",
-        "two talks",
-    ]
-    assert sorted(line for line in err.splitlines() if "warns" in line) == [
-        "one warns",
-        "two warns",
-    ]
+    lines = 50 * ["one talks"] + 50 * ["two talks"]
+    assert sorted(line for line in out.splitlines() if "talks" in line) == lines
+    warnings = [line.replace("talks", "warns") for line in lines]
+    assert sorted(line for line in err.splitlines() if "warns" in line) == warnings
 
 
 WORLD_ONE = """E-puck {
@@ -200,8 +198,9 @@ from controller import Robot
 
 robot = Robot()
 robot.step(32)
-print(robot.getName(), "talks")
-print(robot.getName(), "warns", file=sys.stderr)
+for _ in range(LINES):
+    print(robot.getName(), "talks")
+    print(robot.getName(), "warns", file=sys.stderr)
 """
 
 
@@ -232,7 +231,7 @@ def test_the_template_has_imported_every_module_a_controller_run_takes(tmp_path:
     world.write_text(WORLD.split("E-puck {")[0] + WORLD_ONE)
     controller = tmp_path / "controllers" / "talker" / "talker.py"
     controller.parent.mkdir(parents=True)
-    controller.write_text(TALKER)
+    controller.write_text(TALKER.replace("LINES", "1"))
     done = subprocess.run(
         [sys.executable, "-c", PRELOADED_RUN, str(world), str(controller)],
         capture_output=True,

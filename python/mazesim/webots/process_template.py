@@ -11,7 +11,9 @@ for that controller would:
 - its import path (``sys.path``), working folder and environment are the world's process's at the
   run's start (the controller's own folder, ``sys.argv`` and ``WEBOTS_HOME`` are then set by
   :func:`~mazesim.webots.runner.run_controller`, as in a fresh process);
-- its standard output and error are the world's process's, unprefixed, and its standard input
+- its standard output and error are the world's process's, unprefixed, each written a whole line
+  at a time (as Webots reads each controller's output line by line, the lines of controllers
+  printing at once never mix, even where ``PYTHONUNBUFFERED`` is set), and its standard input
   is empty;
 - Ctrl-C raises ``KeyboardInterrupt`` in it; ``random`` and numpy's global generator are seeded
   anew (each child draws its own numbers, as fresh processes would);
@@ -31,6 +33,7 @@ forks a child that runs :func:`~mazesim.webots.controller_process.controller_mai
 from __future__ import annotations
 
 import gc
+import io
 import json
 import os
 import signal
@@ -177,11 +180,27 @@ def serve(fd: int) -> tuple[Connection, Any]:
 
 def _become_fresh() -> None:
     """What a fresh process would have that a forked one does not: Ctrl-C's default handler,
-    and random streams of its own (``random`` reseeds itself after a fork; numpy does not)."""
+    and random streams of its own (``random`` reseeds itself after a fork; numpy does not);
+    and standard output and error that write whole lines."""
     signal.signal(signal.SIGINT, signal.default_int_handler)
     numpy_random = sys.modules.get("numpy.random")
     if numpy_random is not None:
         numpy_random.seed()
+    sys.stdout = _whole_lines(sys.stdout, 1)
+    sys.stderr = _whole_lines(sys.stderr, 2)
+
+
+def _whole_lines(stream: Any, fd: int) -> Any:
+    """``stream`` (of file descriptor ``fd``) rewritten to hand each line to the system in one
+    write, so that the lines of controllers printing at once do not mix: unbuffered
+    (``PYTHONUNBUFFERED``), a ``print`` of several values writes each piece apart."""
+    stream.flush()
+    return io.TextIOWrapper(
+        io.BufferedWriter(io.FileIO(fd, "w", closefd=False)),
+        encoding=stream.encoding,
+        errors=stream.errors,
+        line_buffering=True,
+    )
 
 
 def _reap(children: set[int], *, block: bool) -> None:
