@@ -1,4 +1,5 @@
-"""Webots' old NUE frame (worlds before R2022a: x north, y up, z east) and mazesim's ENU frame.
+"""Webots' old NUE frame (worlds before R2022a: x north, y up, z east) and mazesim's ENU frame,
+and the matrix of a Webots axis-angle rotation.
 
 Webots' R2022a world converter maps a translation ``(x, y, z)`` of an NUE world to ``(-z, -x,
 y)`` and a rotation's axis likewise; the importer (``mazesim-core``'s ``wbt::frames``) does the
@@ -9,7 +10,9 @@ here by the same map, and every value a device of such a world reports in Webots
 
 from __future__ import annotations
 
-__all__ = ["ENU_TO_NUE", "enu_to_nue", "enu_to_nue_matrix", "nue_to_enu"]
+import math
+
+__all__ = ["ENU_TO_NUE", "enu_to_nue", "enu_to_nue_matrix", "nue_to_enu", "rotation_matrix"]
 
 #: The matrix of :func:`enu_to_nue` (rows).
 ENU_TO_NUE = ((0.0, -1.0, 0.0), (0.0, 0.0, 1.0), (-1.0, 0.0, 0.0))
@@ -33,4 +36,18 @@ def enu_to_nue_matrix(matrix: list[float]) -> list[float]:
         sum(m[i][k] * matrix[3 * k + n] * m[j][n] for k in range(3) for n in range(3))
         for i in range(3)
         for j in range(3)
+    ]
+
+
+def rotation_matrix(ax: float, ay: float, az: float, angle: float) -> list[float]:
+    """The 3 x 3 matrix of an axis-angle rotation (a Webots ``rotation`` field), row after row
+    (Rodrigues' formula; a zero axis is taken as it is)."""
+    norm = math.sqrt(ax * ax + ay * ay + az * az) or 1.0
+    x, y, z = ax / norm, ay / norm, az / norm
+    c, s = math.cos(angle), math.sin(angle)
+    t = 1.0 - c
+    return [
+        *(t * x * x + c, t * x * y - s * z, t * x * z + s * y),
+        *(t * x * y + s * z, t * y * y + c, t * y * z - s * x),
+        *(t * x * z - s * y, t * y * z + s * x, t * z * z + c),
     ]

@@ -12,7 +12,7 @@ import re
 from dataclasses import dataclass, field
 from typing import Any
 
-from mazesim.webots.frames import nue_to_enu
+from mazesim.webots.frames import nue_to_enu, rotation_matrix
 from mazesim.webots.lights import Light, read_lights
 
 __all__ = ["DEFAULT_LOOKUP_TABLE", "GROUPING_TYPES", "Row", "Scene", "SceneNode", "read_scene"]
@@ -371,22 +371,10 @@ def _placed(
     turned = _ROTATION.search(own)
     if turned is None:
         return (x, y, z), axes
-    rotation = _rotation_matrix(*(float(v) for v in turned.groups()))
+    flat = rotation_matrix(*(float(v) for v in turned.groups()))
+    rotation = (flat[0:3], flat[3:6], flat[6:9])
     rows = [[sum(a * rotation[k][j] for k, a in enumerate(row)) for j in range(3)] for row in axes]
     return (x, y, z), tuple((row[0], row[1], row[2]) for row in rows)
-
-
-def _rotation_matrix(ax: float, ay: float, az: float, angle: float) -> Matrix:
-    """The matrix of a turn by ``angle`` about the axis (ax, ay, az) (Rodrigues)."""
-    norm = math.sqrt(ax * ax + ay * ay + az * az) or 1.0
-    x, y, z = ax / norm, ay / norm, az / norm
-    c, s = math.cos(angle), math.sin(angle)
-    t = 1.0 - c
-    return (
-        (c + x * x * t, x * y * t - z * s, x * z * t + y * s),
-        (y * x * t + z * s, c + y * y * t, y * z * t - x * s),
-        (z * x * t - y * s, z * y * t + x * s, c + z * z * t),
-    )
 
 
 def _own_lookup_table(body: str) -> str | None:

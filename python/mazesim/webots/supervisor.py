@@ -21,7 +21,7 @@ from typing import Any
 
 from mazesim.webots import simulation as _simulations
 from mazesim.webots.devices import _print_error, webots_property
-from mazesim.webots.frames import enu_to_nue, enu_to_nue_matrix, nue_to_enu
+from mazesim.webots.frames import enu_to_nue, enu_to_nue_matrix, nue_to_enu, rotation_matrix
 from mazesim.webots.inert import ContactPoint, NotSimulated
 from mazesim.webots.node_types import NODE_TYPES
 from mazesim.webots.radio_devices import E_PUCK_CHANNEL
@@ -328,23 +328,10 @@ def _padded(values: list[float], count: int) -> list[float]:
     return numbers + [0.0] * (count - len(numbers))
 
 
-def _rotation_matrix(ax: float, ay: float, az: float, angle: float) -> list[float]:
-    """The 3 x 3 matrix of an axis-angle rotation, row after row."""
-    norm = math.sqrt(ax * ax + ay * ay + az * az) or 1.0
-    x, y, z = ax / norm, ay / norm, az / norm
-    c, s = math.cos(angle), math.sin(angle)
-    t = 1.0 - c
-    return [
-        *(t * x * x + c, t * x * y - s * z, t * x * z + s * y),
-        *(t * x * y + s * z, t * y * y + c, t * y * z - s * x),
-        *(t * x * z - s * y, t * y * z + s * x, t * z * z + c),
-    ]
-
-
 def _yaw_of_rotation(rotation: list[float]) -> float:
     """The heading (rad) of an axis-angle rotation: the angle of its image of the x axis."""
     ax, ay, az, angle = (rotation + [0.0, 0.0, 1.0, 0.0][len(rotation) :])[:4]
-    matrix = _rotation_matrix(ax, ay, az, angle)
+    matrix = rotation_matrix(ax, ay, az, angle)
     return math.atan2(matrix[3], matrix[0])
 
 
@@ -448,7 +435,7 @@ class Node(NotSimulated):
         while node is not None and node._parent is not None:
             chain.append(node)
             node = node._parent
-        origin, matrix = [0.0, 0.0, 0.0], _rotation_matrix(0.0, 0.0, 1.0, 0.0)
+        origin, matrix = [0.0, 0.0, 0.0], rotation_matrix(0.0, 0.0, 1.0, 0.0)
         for node in reversed(chain):
             if node._live:
                 x, y, yaw = node._pose()
@@ -459,7 +446,7 @@ class Node(NotSimulated):
             origin = [
                 origin[i] + sum(matrix[3 * i + k] * offset[k] for k in range(3)) for i in range(3)
             ]
-            rotation = _rotation_matrix(*turn)
+            rotation = rotation_matrix(*turn)
             matrix = [
                 sum(matrix[3 * i + k] * rotation[3 * k + j] for k in range(3))
                 for i in range(3)
@@ -581,9 +568,9 @@ class Node(NotSimulated):
         if self._nested and not self._live:
             matrix = self._world_frame()[1]
         elif self._live or self._rotation is None:
-            matrix = _rotation_matrix(0.0, 0.0, 1.0, self._pose()[2])
+            matrix = rotation_matrix(0.0, 0.0, 1.0, self._pose()[2])
         else:
-            matrix = _rotation_matrix(*self._rotation)
+            matrix = rotation_matrix(*self._rotation)
         return enu_to_nue_matrix(matrix) if _file_frame() else matrix
 
     def getPose(self, fromNode: Node | None = None) -> list[float]:
