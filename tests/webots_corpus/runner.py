@@ -60,9 +60,12 @@ NO_CONTROLLER = ("", "void", "<generic>", "<none>")
 
 def _runs_whole(project: Project, report: dict[str, Any]) -> bool:
     """Whether the world runs whole: a project without a key script in which several robots
-    have a controller (Python, C or C++)."""
+    have a controller (Python, C or C++; a node that leaves its ``controller`` field out has
+    its PROTO's default one)."""
+    from mazesim.webots.lockstep import controller_name
+
     robots = report.get("robots") or []
-    running = [r for r in robots if (r.get("controller") or "") not in NO_CONTROLLER]
+    running = [r for r in robots if controller_name(r) not in NO_CONTROLLER]
     return not project.keys and len(running) > 1
 
 

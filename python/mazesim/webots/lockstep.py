@@ -1,17 +1,19 @@
 """Running a Webots world with several robots, as Webots runs it.
 
 Each robot's ``controller`` field names a folder of the project's ``controllers/`` (a Python
-controller ``controllers/NAME/NAME.py``); each controller runs in a process of its own
+controller ``controllers/NAME/NAME.py``), or else one of Webots' stock controllers
+(:mod:`mazesim.webots.stock_controllers`; a node that leaves the field out names its PROTO's
+default, the E-puck's ``e-puck_avoid_obstacles``); each controller runs in a process of its own
 (:mod:`mazesim.webots.controller_process`, forked from one template process that imported
 mazesim once: :mod:`mazesim.webots.process_template`), so controllers share no module-level
 state, and this process owns the world: every basic time step waits until every running
 controller has asked for it (lockstep), transmits the radio's packets
 (:mod:`mazesim.webots.radio`), then steps every robot. A robot without a controller (``void``,
-``<generic>``, none), with an ``<extern>`` one not given on the command line, or with one that
-is not Python, stands still; so does a robot whose controller has ended. A robot that is not an
-e-puck runs its controller on a body that does not move. A supervisor sees and moves every robot
-through the :class:`Fleet`; its ``simulationQuit`` ends every controller's run (``Robot.step``
-returns -1).
+``<generic>``, ``<none>``, an empty field), with an ``<extern>`` one not given on the command
+line, or with one that is not Python, stands still; so does a robot whose controller has
+ended. A robot that is not an e-puck runs its controller on a body that does not move. A
+supervisor sees and moves every robot through the :class:`Fleet`; its ``simulationQuit`` ends
+every controller's run (``Robot.step`` returns -1).
 
 The e-pucks share one simulator (:mod:`mazesim.webots.shared_world`): they collide with and
 see each other and the world's movable bodies, which they push; an e-puck whose node lists its
@@ -43,16 +45,26 @@ from mazesim.errors import InvalidArgumentError, MazesimIOError
 from mazesim.webots.controller_process import ControllerJob, answer, state_after_step
 from mazesim.webots.own_sensors import own_sensors
 from mazesim.webots.process_template import ControllerProcesses
+from mazesim.webots.proto_fields import declared_fields
 from mazesim.webots.radio import Radio
 from mazesim.webots.requirements import PreparedController, prepare_controller
 from mazesim.webots.runner import CONTROLLER_SUFFIXES
 from mazesim.webots.scene import Scene, read_scene
 from mazesim.webots.shared_world import RobotView, shared_simulator
 from mazesim.webots.simulation import robot_profile_name
+from mazesim.webots.stock_controllers import stock_controller
 from mazesim.webots.traction import Traction, epuck_traction
 from mazesim.webots.virtual_display import virtual_display, window_environment
 
-__all__ = ["Fleet", "RobotRun", "StepObserver", "WorldRun", "controller_of", "run_world"]
+__all__ = [
+    "Fleet",
+    "RobotRun",
+    "StepObserver",
+    "WorldRun",
+    "controller_name",
+    "controller_of",
+    "run_world",
+]
 
 #: Called before every step with the world, the robots' runs, their simulators and the wheel
 #: speeds each steps with, and once after the last step with ``None`` for the wheel speeds
@@ -168,7 +180,7 @@ def controller_of(
     for key in (robot.get("name"), robot.get("def_name"), robot.get("controller")):
         if key and key in given:
             return os.path.abspath(given[key]), ""
-    name = str(robot.get("controller") or "")
+    name = controller_name(robot)
     if name in NO_CONTROLLER:
         return None, "no controller"
     if name == EXTERN:
@@ -182,7 +194,20 @@ def controller_of(
             candidate = os.path.join(project, "controllers", name, f"{name}{suffix}")
             if os.path.isfile(candidate):
                 return candidate, ""
+    stock = stock_controller(name)
+    if stock is not None:  # Webots' own, which it finds among its projects
+        return stock, ""
     return None, f"no controller controllers/{name}/{name}{', '.join(CONTROLLER_SUFFIXES)}"
+
+
+def controller_name(robot: Mapping[str, Any]) -> str:
+    """The controller a robot's node names: its ``controller`` field, or where the world file
+    leaves the field out, the one its PROTO declares (the E-puck's ``e-puck_avoid_obstacles``);
+    "" for none."""
+    name = robot.get("controller")
+    if name is None:
+        name = declared_fields(str(robot.get("model") or "")).strings.get("controller", "")
+    return str(name)
 
 
 def run_world(
