@@ -224,3 +224,21 @@ def test_a_protos_fields_the_file_leaves_out_read_as_the_proto_declares(tmp_path
     assert other.getField("camera_width").getSFInt32() == 52
     assert other.getField("supervisor").getSFBool() is False
     assert other.getField("no such field") is None
+
+
+def test_a_robot_set_into_a_wall_is_pushed_out_of_it_as_webots_physics_does(
+    tmp_path: Path,
+) -> None:
+    """Webots puts a node wherever its translation is set and its physics pushes a body out of
+    a wall it overlaps; the supervisor's move never fails for a pose a few mm into a wall."""
+    supervisor = supervisor_of(GROUPED, tmp_path)
+    robot = supervisor.getSelf()
+    # The arena's east wall (0.01 m thick) starts at x = 0.5: 0.46 puts the e-puck's
+    # 0.037 m body 3 mm into it.
+    robot.getField("translation").setSFVec3f([0.466, 0.0, 0.0])
+    x, y, _ = robot.getPosition()
+    assert 0.462 <= x <= 0.465 and abs(y) < 0.002, "the nearest pose clear of the wall"
+    assert simulations.current().simulator.wall_clearance >= -0.001, "as a simulator allows"
+    # On the centre of BOX1 (5 cm square) the nearest clear pose is 6.2 cm away: refused.
+    with pytest.raises(mazesim.MazesimError, match="clear of the walls"):
+        robot.getField("translation").setSFVec3f([0.3, 0.2, 0.0])

@@ -11,9 +11,9 @@ controller has asked for it (lockstep), transmits the radio's packets
 (:mod:`mazesim.webots.radio`), then steps every robot. A robot without a controller (``void``,
 ``<generic>``, ``<none>``, an empty field), with an ``<extern>`` one not given on the command
 line, or with one that is not Python, stands still; so does a robot whose controller has
-ended. A robot that is not an e-puck runs its controller on a body that does not move. A
-supervisor sees and moves every robot through the :class:`Fleet`; its ``simulationQuit`` ends
-every controller's run (``Robot.step`` returns -1).
+ended. A robot that is not an e-puck runs its controller on a body that does not move by
+itself and touches no wall. A supervisor sees and moves every robot through the
+:class:`Fleet`; its ``simulationQuit`` ends every controller's run (``Robot.step`` returns -1).
 
 The e-pucks share one simulator (:mod:`mazesim.webots.shared_world`): they collide with and
 see each other and the world's movable bodies, which they push; an e-puck whose node lists its
@@ -41,7 +41,7 @@ from typing import Any
 import numpy as np
 
 from mazesim._core import RobotProfile, Simulator, World
-from mazesim.errors import InvalidArgumentError, MazesimIOError
+from mazesim.errors import MazesimIOError
 from mazesim.webots.controller_process import ControllerJob, answer, state_after_step
 from mazesim.webots.own_sensors import own_sensors
 from mazesim.webots.process_template import ControllerProcesses
@@ -51,7 +51,7 @@ from mazesim.webots.requirements import PreparedController, prepare_controller
 from mazesim.webots.runner import CONTROLLER_SUFFIXES
 from mazesim.webots.scene import Scene, read_scene
 from mazesim.webots.shared_world import RobotView, shared_simulator
-from mazesim.webots.simulation import robot_profile_name
+from mazesim.webots.simulation import place_where_asked, robot_profile_name
 from mazesim.webots.stock_controllers import stock_controller
 from mazesim.webots.traction import Traction, epuck_traction
 from mazesim.webots.virtual_display import virtual_display, window_environment
@@ -161,7 +161,7 @@ class Fleet:
 
     def move(self, index: int, x: float, y: float, yaw: float) -> None:
         """Puts a robot at a new pose, at rest."""
-        self._simulators[index].set_pose(x, y, yaw)
+        place_where_asked(self._simulators[index], x, y, yaw)
         self.moved.add(index)
 
 
@@ -343,28 +343,18 @@ def _own_simulator(
     """A simulator of one robot of the world alone.
 
     A robot that is not an e-puck is not simulated: its controller runs and its stand-in body
-    stays at its pose. Such a robot often has no body at all (a Supervisor that only sends
-    orders, at the origin): where an e-puck's disc at its pose would overlap a wall, its
-    stand-in stands there in a copy of the world without walls or movable bodies (which it
-    would not touch, since it does not move), and a warning says so, instead of the run being
-    refused. An e-puck whose start overlaps a wall is refused as ever.
+    stays where it stands, in a copy of the world without walls or movable bodies (which it does
+    not touch, since it does not move by itself, and which its devices, not simulated, do not
+    see). There a supervisor puts it wherever Webots would, its own controller sliding it
+    through a wall by its ``translation`` as much as another's placing it; and a robot with no
+    body at all (a Supervisor that only sends orders) may stand where an e-puck's disc would
+    overlap a wall. An e-puck whose start overlaps a wall is refused as ever.
     """
     from mazesim.webots.importer import import_wbt
 
     own_world, _ = import_wbt(world_path, robot_line=int(robot["line"]))
-    try:
+    if robot.get("profile") is not None:
         return Simulator(own_world, robot=profile, seed=seed, noise=noise)
-    except InvalidArgumentError as refusal:
-        if robot.get("profile") is not None:
-            raise
-        reason = str(refusal)
-    label = robot.get("name") or robot.get("def_name") or robot.get("model")
-    print(
-        f"mazesim: warning: robot {label!r} ({robot.get('model')}, not simulated): an e-puck's "
-        f"body at its pose would overlap a wall ({reason}); its stand-in stands there without "
-        f"walls (it does not move, and its devices see no walls)",
-        file=sys.stderr,
-    )
     text = _SOLID_TABLES.sub("", own_world.to_toml())
     bare = World.from_toml(text, source=f"{own_world.name} (without walls)")
     return Simulator(bare, robot=profile, seed=seed, noise=noise)
