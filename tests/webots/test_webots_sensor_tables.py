@@ -5,7 +5,6 @@ the built-in one with a warning."""
 
 from __future__ import annotations
 
-import json
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -19,26 +18,15 @@ from mazesim.webots import controller, prepare
 from mazesim.webots import simulation as simulations
 from mazesim.webots.devices import PROXIMITY_TABLE
 from mazesim.webots.importer import import_wbt_text
-from mazesim.webots.lockstep import run_world
 from mazesim.webots.own_sensors import _profile_with, own_sensors
 from mazesim.webots.scene import DEFAULT_LOOKUP_TABLE, read_scene
+from proximity_probe import SENSORS, probe_world_run
 
 #: The 10-bit proximity table of some course worlds (the e-puck's values scaled to 0..1023).
 TEN_BIT = ((0.0, 1023.0, 0.0), (0.005, 868.0, 0.0), (0.01, 539.0, 0.0), (0.02, 169.0, 0.0))
 TEN_BIT += ((0.03, 59.0, 0.0), (0.07, 17.0, 0.0))
 #: Distances not increasing: the profile format refuses it.
 REFUSED = ((0.02, 500.0, 0.0), (0.01, 1000.0, 0.0), (0.07, 10.0, 0.0))
-#: The e-puck's proximity sensors: name, x, y, yaw (Webots' E-puck PROTO, rounded).
-SENSORS = (
-    ("ps0", 0.03, -0.01, -0.3),
-    ("ps1", 0.022, -0.025, -0.8),
-    ("ps2", 0.0, -0.031, -1.5708),
-    ("ps3", -0.03, -0.015, -2.644),
-    ("ps4", -0.03, 0.015, 2.639),
-    ("ps5", 0.0, 0.031, 1.5708),
-    ("ps6", 0.022, 0.025, 0.8),
-    ("ps7", 0.03, 0.01, 0.3),
-)
 
 
 def _table(rows: tuple[tuple[float, float, float], ...]) -> str:
@@ -198,7 +186,9 @@ def test_an_e_puck_proto_keeps_its_proto_s_table() -> None:
     text = ARENA + 'E-puck { translation 0.2 0 0 name "e-puck" controller "<extern>" }\n'
     scene = read_scene(text)
     assert scene.sensor_tables == {} and scene.malformed_tables == {}
-    assert own_sensors("e-puck", scene).profile is None
+    own = own_sensors("e-puck", scene)
+    assert own.tables == {} and own.poses == {} and own.types == {}
+    assert own.profile == RobotProfile.builtin("e-puck").with_infrared_elevation(0.16)
 
 
 def test_a_lookup_table_not_of_rows_of_three_warns_naming_the_sensor(
@@ -232,24 +222,6 @@ def test_a_lookup_table_not_of_rows_of_three_warns_naming_the_sensor(
     assert robot.getDevice("ps0").getLookupTable() == [v for row in TEN_BIT for v in row]
 
 
-#: A controller that writes its robot's ps0..ps7 readings and tables after one step.
-PROBE = """
-import json, os
-from controller import Robot
-
-robot = Robot()
-sensors = [robot.getDevice(f"ps{i}") for i in range(8)]
-for sensor in sensors:
-    sensor.enable(32)
-robot.step(32)
-with open(os.path.join(os.environ["PROBE_LOG"], robot.getName() + ".json"), "w") as log:
-    json.dump({
-        "values": [sensor.getValue() for sensor in sensors],
-        "tables": [sensor.getLookupTable() for sensor in sensors],
-    }, log)
-"""
-
-
 def world_run_readings(
     tmp_path: Path,
     monkeypatch: pytest.MonkeyPatch,
@@ -259,24 +231,16 @@ def world_run_readings(
     """Each robot's readings and tables in a world of three run in lockstep: plain ``Robot``
     e-pucks "ten" (its ps0..ps7 carrying ``ten_bit``) 2 cm from a wall and "default" (carrying
     ``default``) 4 cm from one, and a stock E-puck PROTO "proto" near the "default" one."""
-    project = tmp_path / "project"
-    (project / "worlds").mkdir(parents=True)
-    (project / "controllers" / "probe").mkdir(parents=True)
-    (project / "controllers" / "probe" / "probe.py").write_text(PROBE)
-    world = project / "worlds" / "three.wbt"
-    world.write_text(
+    readings = probe_world_run(
+        tmp_path,
+        monkeypatch,
         ARENA
         + plain_robot(ten_bit, name="ten", controller_name="probe")
         + plain_robot(default, name="default", at=(-0.18, 0.1), controller_name="probe")
         + 'E-puck { translation -0.05 0.1 0 rotation 0 0 1 3.1416 name "proto" '
-        'controller "probe" }\n'
+        'controller "probe" }\n',
     )
-    logs = tmp_path / "logs"
-    logs.mkdir()
-    monkeypatch.setenv("PROBE_LOG", str(logs))
-    run = run_world(str(world), seconds=0.1, noise=False)
-    assert [robot.exit_status for robot in run.robots] == [0, 0, 0]
-    return {name: json.loads((logs / f"{name}.json").read_text()) for name in RUN_ROBOTS}
+    return {name: readings[name] for name in RUN_ROBOTS}
 
 
 RUN_ROBOTS = ("ten", "default", "proto")
@@ -397,7 +361,10 @@ def test_an_expanded_e_puck_s_sensor_poses_are_composed_through_its_solids() -> 
     stock = read_scene(expanded_e_puck())
     assert "ps2" not in stock.sensor_poses
     assert stock.sensor_poses["ps0"] == pytest.approx((0.03, -0.01, -0.3, 0.16))
-    assert own_sensors("e-puck", stock).profile is None
+    # Where the E-puck's sensors sit: no pose of the world's own, only its rays' tilt.
+    own = own_sensors("e-puck", stock)
+    assert own.poses == {} and own.tables == {}
+    assert own.elevations == pytest.approx({n: 0.16 for n, *_ in SENSORS if n != "ps2"})
     turned = own_sensors("e-puck", read_scene(expanded_e_puck(turn_ps1=0.5)))
     assert list(turned.poses) == ["ps1"]
     assert turned.poses["ps1"] == pytest.approx((0.022, -0.025, -0.3))

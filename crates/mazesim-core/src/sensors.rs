@@ -1,5 +1,8 @@
 //! Sensor models: Webots' infra-red distance sensor and the downward ground sensor.
 //!
+//! A distance sensor of a `Range` model (Webots' `generic`, `sonar` and `laser` types) reads
+//! `LUT(d)`, the distance its ray runs, whatever colour it meets ([`range_reading`]).
+//!
 //! Infra-red (Webots `DistanceSensor` of type "infra-red"): the ray meets a wall at distance `d`;
 //! the wall's reflection factor `f` (1 white, 0.2 black) scales it, and the reading is
 //! `LUT(d / f) * (1 + sigma(d / f) * N(0, 1))`, the table interpolated linearly and clamped, `sigma`
@@ -118,6 +121,22 @@ pub fn infrared_reading_with(
         None => miss,
     };
     noisy(value, sigma * imperfect.noise_scale, rng)
+}
+
+/// The reading of a sensor whose table reads the distance its ray runs as it is (a `Range`
+/// model: Webots' `generic`, `sonar` and `laser` types), whatever colour the ray meets:
+/// `distance` is where it met something (None: nothing), `miss` is `infrared_miss(model)`, and
+/// `noise_scale` multiplies the table's sigma (a profile's `wall_reflectance` does not apply).
+#[inline]
+pub fn range_reading(
+    model: &SensorModel,
+    distance: Option<f32>,
+    miss: (f64, f64),
+    noise_scale: f64,
+    rng: Option<&mut Rng>,
+) -> f32 {
+    let (value, sigma) = distance.map_or(miss, |d| model.table.eval(d as f64));
+    noisy(value, sigma * noise_scale, rng)
 }
 
 /// Mean floor reflectance over the sensor's square spot centred at `at`, aligned with the robot's
@@ -577,6 +596,29 @@ mod tests {
             );
         }
         assert_eq!(noise_a, noise_b);
+    }
+
+    #[test]
+    fn a_range_sensor_reads_the_distance_whatever_colour_it_meets() {
+        let robot = RobotProfile::builtin("e-puck").unwrap();
+        let model = &robot.distance_sensors[0].model;
+        let miss = infrared_miss(model);
+        let darker = SensorImperfections {
+            wall_reflectance: 0.5,
+            ..SensorImperfections::NONE
+        };
+        for reflectance in [0.2, 0.38, 1.0] {
+            let hit = Some(RayHit {
+                distance: 0.02,
+                reflectance,
+            });
+            let read = range_reading(model, Some(0.02), miss, darker.noise_scale, None);
+            assert_eq!(read, model.table.eval(0.02_f32 as f64).0 as f32);
+            let infrared = infrared_reading_with(model, hit, miss, &darker, None);
+            assert!(infrared < read, "{reflectance}: {infrared} vs {read}");
+        }
+        let none = range_reading(model, None, miss, 1.0, None);
+        assert_eq!(none, miss.0 as f32);
     }
 
     #[test]

@@ -251,8 +251,6 @@ def run_world_command(args: argparse.Namespace, out: TextIO) -> int:
                 f"mazesim: warning: robot {robot.name!r}: {robot.note}: it stands still",
                 file=sys.stderr,
             )
-        if robot.error:
-            sys.stderr.write(robot.error)
     robots: list[dict[str, Any]] = [
         {
             "name": robot.name,
@@ -281,6 +279,7 @@ def run_world_command(args: argparse.Namespace, out: TextIO) -> int:
             f"robot {robot.name}: {missing}" for robot in run.robots for missing in robot.missing
         ],
         "exit_status": run.exit_status,
+        "interrupted": run.interrupted,
         "wall_clock_seconds": run.wall_clock_seconds,
         "mazesim_version": mazesim.__version__,
     }
@@ -316,4 +315,10 @@ def run_world_command(args: argparse.Namespace, out: TextIO) -> int:
             f"{run.world.name}: {len(run.robots)} robots, seed {args.seed}",
         )
     out.write(f"wrote              {', '.join([picture, summary_path, table, *views])}\n")
+    if run.interrupted:
+        print(
+            f"mazesim: interrupted at {run.simulated_seconds:.2f} s of simulated time: every "
+            "controller was stopped, and what was written covers the run until then",
+            file=sys.stderr,
+        )
     return run.exit_status

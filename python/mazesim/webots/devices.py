@@ -311,6 +311,10 @@ class _VectorSensor(_Sensor):
     value = webots_property("getValues")
 
 
+#: Webots' DistanceSensor ``type`` field's values, as ``DistanceSensor.getType`` numbers them.
+DISTANCE_SENSOR_TYPES = {"generic": 0, "infra-red": 1, "sonar": 2, "laser": 3}
+
+
 class DistanceSensor(_Tabled, _ScalarSensor):
     """An infra-red sensor: a proximity sensor ``ps0``..``ps7`` or a ground sensor ``gs0``..``gs2``.
 
@@ -352,8 +356,10 @@ class DistanceSensor(_Tabled, _ScalarSensor):
         return max((row[1] for row in self._table.rows), default=0.0)
 
     def getType(self) -> int:
-        """:data:`INFRA_RED`."""
-        return self.INFRA_RED
+        """:data:`INFRA_RED`, or the world's ``type`` of the sensor
+        (:attr:`RobotSimulation.sensor_types`)."""
+        given = self._simulation.sensor_types.get(self._name)
+        return self.INFRA_RED if given is None else DISTANCE_SENSOR_TYPES.get(given, self.GENERIC)
 
     def getMaxRange(self) -> float:
         """The table's last distance (m)."""

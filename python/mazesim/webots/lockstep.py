@@ -13,7 +13,10 @@ controller has asked for it (lockstep), transmits the radio's packets
 line, or with one that is not Python, stands still; so does a robot whose controller has
 ended. A robot that is not an e-puck runs its controller on a body that does not move by
 itself and touches no wall. A supervisor sees and moves every robot through the
-:class:`Fleet`; its ``simulationQuit`` ends every controller's run (``Robot.step`` returns -1).
+:class:`Fleet`; its ``simulationQuit`` ends every controller's run (``Robot.step`` returns
+-1). So does Ctrl-C: the controllers' processes ignore it, and the world's process ends their
+runs (:class:`Interruption`), then says that the run was interrupted (``WorldRun.interrupted``);
+a second Ctrl-C stops at once.
 
 The e-pucks share one simulator (:mod:`mazesim.webots.shared_world`): they collide with and
 see each other and the world's movable bodies, which they push; an e-puck whose node lists its
@@ -31,7 +34,9 @@ from __future__ import annotations
 import contextlib
 import os
 import re
+import signal
 import sys
+import threading
 import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
@@ -48,7 +53,7 @@ from mazesim.webots.process_template import ControllerProcesses
 from mazesim.webots.proto_fields import declared_fields
 from mazesim.webots.radio import Radio
 from mazesim.webots.requirements import PreparedController, prepare_controller
-from mazesim.webots.runner import CONTROLLER_SUFFIXES
+from mazesim.webots.runner import CONTROLLER_SUFFIXES, EXIT_INTERRUPTED
 from mazesim.webots.scene import Scene, read_scene
 from mazesim.webots.shared_world import RobotView, shared_simulator
 from mazesim.webots.simulation import place_where_asked, robot_profile_name
@@ -79,6 +84,8 @@ NO_CONTROLLER = {"", "void", "<generic>", "<none>"}
 EXTERN = "<extern>"
 #: Real seconds a controller process may take to exit after its run ended, before it is killed.
 EXIT_WAIT_SECONDS = 5.0
+#: Real seconds between two looks at whether Ctrl-C was pressed while no controller speaks.
+_POLL_SECONDS = 0.2
 
 
 @dataclass
@@ -124,17 +131,22 @@ class RobotRun:
 
 @dataclass
 class WorldRun:
-    """What a run of a world did: its robots' runs, the simulated time and the real time."""
+    """What a run of a world did: its robots' runs, the simulated time and the real time, and
+    whether Ctrl-C ended it (every controller's run then ended where the world was)."""
 
     world: World
     robots: list[RobotRun]
     steps: int
     simulated_seconds: float
     wall_clock_seconds: float
+    interrupted: bool = False
 
     @property
     def exit_status(self) -> int:
-        """A supervisor's quit status, else the first non-zero exit status, else 0."""
+        """130 when interrupted, else a supervisor's quit status, else the first non-zero exit
+        status, else 0."""
+        if self.interrupted:
+            return EXIT_INTERRUPTED
         for robot in self.robots:
             if robot.quit_requested:
                 return robot.exit_status
@@ -288,7 +300,7 @@ def run_world(
         if drawn:
             display.enter_context(virtual_display())
         display.enter_context(window_environment(environment))
-        steps = _lockstep(jobs, simulators, movable, fleet, runs, traction, watch)
+        steps, interrupted = _lockstep(jobs, simulators, movable, fleet, runs, traction, watch)
     if watch is not None:
         watch(simulators, None)
     for run, simulator in zip(runs, simulators):
@@ -301,6 +313,7 @@ def run_world(
         steps=steps,
         simulated_seconds=float(simulators[0].time),
         wall_clock_seconds=time.perf_counter() - started,
+        interrupted=interrupted,
     )
 
 
@@ -385,6 +398,31 @@ def _say_what_is_missing(
     return any(done.virtual_display for done in prepared.values()), environment, prepared
 
 
+class Interruption:
+    """Ctrl-C during a world run, noted rather than raised (a context manager, in the main
+    thread only): raised in the middle of a message on a controller's pipe, it would leave the
+    pipe holding half a message or an unread answer. The first Ctrl-C sets ``requested``; a
+    second one raises ``KeyboardInterrupt``."""
+
+    def __init__(self) -> None:
+        self.requested = False
+        self._previous: Any = None
+
+    def _note(self, signum: int, frame: Any) -> None:
+        if self.requested:
+            raise KeyboardInterrupt
+        self.requested = True
+
+    def __enter__(self) -> Interruption:
+        if threading.current_thread() is threading.main_thread():
+            self._previous = signal.signal(signal.SIGINT, self._note)
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        if self._previous is not None:
+            signal.signal(signal.SIGINT, self._previous)
+
+
 def _lockstep(
     jobs: Mapping[int, ControllerJob],
     simulators: list[Any],
@@ -393,64 +431,117 @@ def _lockstep(
     runs: list[RobotRun],
     traction: WorldTraction,
     watch: Callable[[list[Any], Mapping[int, tuple[float, float]] | None], None] | None = None,
-) -> int:
+) -> tuple[int, bool]:
     """Starts the controller processes and steps the world whenever every running controller
-    has asked for the step; returns the number of steps."""
-    radio = Radio()
+    has asked for the step; returns the number of steps and whether Ctrl-C ended the run.
+
+    Once the run is over (a supervisor quit, or Ctrl-C), each controller's next step is answered
+    at once with the end (``Robot.step`` returns -1); after Ctrl-C, controllers that have not
+    ended :data:`EXIT_WAIT_SECONDS` later are stopped."""
     processes = ControllerProcesses()
     connections = {index: processes.start(job) for index, job in jobs.items()}
     for run, simulator in zip(runs, simulators):
         x, y, _ = simulator.pose
         run.xs.append(float(x))
         run.ys.append(float(y))
-    by_connection = {id(c): i for i, c in connections.items()}
-    live = set(connections)
-    wheels: dict[int, tuple[float, float]] = {}
-    over, steps = False, 0
+    world = _Pipes(connections, simulators, movable, fleet, runs)
+    steps = 0
+    deadline: float | None = None
+    exit_wait = EXIT_WAIT_SECONDS
     try:
-        while live:
-            for ready in wait([connections[i] for i in sorted(live)]):
-                index = by_connection[id(ready)]
-                connection = connections[index]
-                targets = {"simulator": simulators[index], "radio": radio, "fleet": fleet}
-                try:
-                    message: Any = connection.recv()
-                except (EOFError, OSError):
-                    live.discard(index)
-                    wheels.pop(index, None)
-                    if not runs[index].error:
-                        runs[index].exit_status = runs[index].exit_status or 1
-                        runs[index].error = "the controller's process ended without a report\n"
-                    continue
-                if message[0] == "call":
-                    _, target, name, args = message
-                    connection.send(answer(targets[target], name, args))
-                elif message[0] == "step":
-                    wheels[index] = (message[1], message[2]) if movable[index] else (0.0, 0.0)
-                elif message[0] == "done":
-                    summary = message[1]
-                    live.discard(index)
-                    wheels.pop(index, None)
-                    for key in ("exit_status", "error", "reached_end", "stopped"):
-                        setattr(runs[index], key, summary[key])
-                    runs[index].quit_requested = bool(summary["quit_requested"])
-                    over = over or runs[index].quit_requested
-            if live and live <= set(wheels):
-                if not over:
-                    if watch is not None:
-                        watch(simulators, wheels)
-                    _step_world(simulators, traction.drive(wheels), radio, runs)
-                    traction.settle()
-                    steps += 1
-                for index in sorted(wheels):
-                    state = None if over else state_after_step(simulators[index])
-                    connections[index].send(("ok", (over, state)))
-                wheels.clear()
+        with Interruption() as interruption:
+            while world.live:
+                if interruption.requested and deadline is None:
+                    world.over, deadline = True, time.monotonic() + EXIT_WAIT_SECONDS
+                if deadline is not None and time.monotonic() > deadline:
+                    for index in world.live:
+                        runs[index].stopped = True
+                    exit_wait = 0.0
+                    break
+                for ready in wait(world.pending(), timeout=_POLL_SECONDS):
+                    world.serve(ready)
+                wheels = world.wheels
+                if wheels and (world.over or world.live <= set(wheels)):
+                    if not world.over:
+                        if watch is not None:
+                            watch(simulators, wheels)
+                        _step_world(simulators, traction.drive(wheels), world.radio, runs)
+                        traction.settle()
+                        steps += 1
+                    for index in sorted(wheels):
+                        state = None if world.over else state_after_step(simulators[index])
+                        connections[index].send(("ok", (world.over, state)))
+                    wheels.clear()
     finally:
-        processes.finish(EXIT_WAIT_SECONDS)
+        processes.finish(exit_wait)
         for connection in connections.values():
             connection.close()
-    return steps
+    return steps, deadline is not None
+
+
+class _Pipes:
+    """The world's side of the controllers' pipes: which controllers still run, the wheel
+    speeds of those that asked for the next step, and whether the run is over."""
+
+    def __init__(
+        self,
+        connections: Mapping[int, Any],
+        simulators: list[Any],
+        movable: list[bool],
+        fleet: Fleet,
+        runs: list[RobotRun],
+    ) -> None:
+        self.connections = connections
+        self.simulators = simulators
+        self.movable = movable
+        self.fleet = fleet
+        self.runs = runs
+        self.radio = Radio()
+        self.by_connection = {id(c): i for i, c in connections.items()}
+        self.live = set(connections)
+        self.wheels: dict[int, tuple[float, float]] = {}
+        self.over = False
+
+    def pending(self) -> list[Any]:
+        """The pipes of the controllers that still run."""
+        return [self.connections[i] for i in sorted(self.live)]
+
+    def serve(self, ready: Any) -> None:
+        """Reads one message of a controller's pipe and answers a call, notes a step's wheel
+        speeds, or notes the controller's end (a supervisor's quit ends the run)."""
+        index = self.by_connection[id(ready)]
+        run = self.runs[index]
+        try:
+            message: Any = ready.recv()
+        except (EOFError, OSError):
+            self._ended(index)
+            if not run.error:
+                run.exit_status = run.exit_status or 1
+                run.error = "the controller's process ended without a report\n"
+                # Its own process did not say so, as it says a controller's traceback.
+                sys.stderr.write(f"mazesim: robot {run.name!r}: {run.error}")
+            return
+        if message[0] == "call":
+            _, target, name, args = message
+            targets = {
+                "simulator": self.simulators[index],
+                "radio": self.radio,
+                "fleet": self.fleet,
+            }
+            ready.send(answer(targets[target], name, args))
+        elif message[0] == "step":
+            self.wheels[index] = (message[1], message[2]) if self.movable[index] else (0.0, 0.0)
+        elif message[0] == "done":
+            summary = message[1]
+            self._ended(index)
+            for key in ("exit_status", "error", "reached_end", "stopped"):
+                setattr(run, key, summary[key])
+            run.quit_requested = bool(summary["quit_requested"])
+            self.over = self.over or run.quit_requested
+
+    def _ended(self, index: int) -> None:
+        self.live.discard(index)
+        self.wheels.pop(index, None)
 
 
 class WorldTraction:

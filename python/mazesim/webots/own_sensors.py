@@ -2,12 +2,20 @@
 
 A plain ``Robot`` (or Webots 6-7 ``DifferentialWheels``) e-puck saved expanded lists its own
 ``DistanceSensor`` nodes ps0..ps7 (gs0..gs2), each with its own ``lookupTable`` (Webots'
-default one where the node has no such field) and its own pose: Webots reads each sensor
-through its table, from where it sits. :func:`own_sensors` turns the tables and poses that
-differ from the built-in profile's into a copy of that profile, for a run of one robot
-(:mod:`mazesim.webots.simulation`) and for each robot of a world of several
-(:mod:`mazesim.webots.lockstep`) alike; a robot whose sensors are all the profile's is
-simulated by the profile's name, as ever.
+default one where the node has no such field), its own pose and its own ``type``: Webots reads
+each sensor through its table, from where it sits, along its ray as its rotation tilts it, and
+only an ``infra-red`` one by the colour of what its ray meets. An ``E-puck`` PROTO node's rays
+rise by the PROTO's stock tilt (:data:`~mazesim.webots.scene.EPUCK_IR_ELEVATION`).
+:func:`own_sensors` turns the tables, poses, tilts and types that differ from the built-in
+profile's into a copy of that profile, for a run of one robot (:mod:`mazesim.webots.simulation`)
+and for each robot of a world of several (:mod:`mazesim.webots.lockstep`) alike; a robot whose
+sensors are all the profile's is simulated by the profile's name, as ever.
+
+A tilted ray in the 2-D model: walls have no height, so a ray tilted by ``e`` (up or down)
+meets a wall at horizontal distance ``h`` after ``h / cos(e)`` of its length and reaches
+``cos(e)`` of its length across the floor. A ray tilted down from height ``z`` meets the floor
+``z / sin(e)`` along it; within its range Webots reads the floor there, which mazesim does not
+(a warning says so at the run's start). The E-puck PROTO's rays rise, from 3.3 cm: no floor.
 """
 
 from __future__ import annotations
@@ -35,8 +43,22 @@ SAME_POSITION_M = 1e-3
 #: world writes ps0's -0.3008 as -0.3, ps6's 0.7992 as 0.8).
 SAME_HEADING_RAD = 0.01
 #: A distance sensor whose ray rises or falls more than this (rad) from the floor's plane keeps
-#: the profile's pose: mazesim's rays are level.
+#: the profile's pose and a level ray.
 STEEPEST_RAY_RAD = math.pi / 4
+#: A ray tilted less than this (rad) from the floor's plane is level (cos 0.01 = 0.99995).
+LEVEL_RAY_RAD = 0.01
+#: The ``type`` of a DistanceSensor whose readings depend on the colour its ray meets.
+INFRA_RED = "infra-red"
+#: What the 2-D model leaves out of each other ``type`` of DistanceSensor (Webots' reference
+#: manual, DistanceSensor): read by the distance alone, whatever colour the ray meets.
+TYPE_LIMITS = {
+    "generic": "",
+    "sonar": (
+        "a ray meeting a wall more than 22.5 degrees off its normal is not lost (Webots then "
+        "reads the table's last value)"
+    ),
+    "laser": "the red spot it draws is not drawn on camera images",
+}
 
 
 @dataclass(frozen=True)
@@ -48,6 +70,11 @@ class OwnSensors:
             those that differ from the profile's and that the profile format takes.
         poses: The world's poses of the robot's sensors, by sensor name, where they differ from
             the profile's: x, y (m) and, for a distance sensor, the heading of its ray (rad).
+        elevations: How far each distance sensor's ray is tilted from the floor's plane (rad,
+            up or down alike), by sensor name, where it is not level: the world's own sensor
+            rotation where the world writes it, the PROTO's stock tilt otherwise.
+        types: The ``type`` of each distance sensor that is not ``infra-red``, by sensor name:
+            it reads the distance its ray runs, whatever colour it meets.
         profile: The built-in profile with those tables and poses, or None when every sensor
             is the profile's (the profile's name then simulates the robot).
         warnings: What of the robot node's sensors is not used, and why (those sensors read
@@ -56,6 +83,8 @@ class OwnSensors:
 
     tables: dict[str, list[Row]] = field(default_factory=dict)
     poses: dict[str, tuple[float, ...]] = field(default_factory=dict)
+    elevations: dict[str, float] = field(default_factory=dict)
+    types: dict[str, str] = field(default_factory=dict)
     profile: RobotProfile | None = None
     warnings: list[str] = field(default_factory=list)
 
@@ -68,9 +97,15 @@ def own_sensors(name: str, scene: Scene | None) -> OwnSensors:
     refuses, or a ``lookupTable`` field not of rows of 3 numbers, keeps the profile's, with a
     warning naming the sensors and what was found. A sensor node that the robot node holds
     itself, placed or turned otherwise than the profile's sensor, casts its ray from the node's
-    pose (see :func:`_moved_sensors`).
+    pose (see :func:`_moved_sensors`), tilted as :func:`_tilted_rays` says; one whose node's
+    ``type`` is not ``infra-red`` reads the distance alone (:func:`_ray_types`).
     """
-    if scene is None or not (scene.sensor_tables or scene.malformed_tables):
+    if scene is None or not (
+        scene.sensor_tables
+        or scene.malformed_tables
+        or scene.sensor_poses
+        or scene.infrared_elevation
+    ):
         return OwnSensors()
     layout = _profile_layout(name)
     models = layout.get("models", {})
@@ -98,8 +133,76 @@ def own_sensors(name: str, scene: Scene | None) -> OwnSensors:
         for reason, names in refused.items()
     ]
     poses = _moved_sensors(layout, scene)
-    profile = _profile_with(layout, tables, poses) if tables or poses else None
-    return OwnSensors(tables, poses, profile, warnings)
+    elevations, floor_warnings = _tilted_rays(layout, scene)
+    types, type_warnings = _ray_types(layout, scene)
+    warnings += floor_warnings + type_warnings
+    changed = tables or poses or elevations or types
+    profile = _profile_with(layout, tables, poses, elevations, set(types)) if changed else None
+    return OwnSensors(tables, poses, elevations, types, profile, warnings)
+
+
+def _tilted_rays(layout: Mapping[str, Any], scene: Scene) -> tuple[dict[str, float], list[str]]:
+    """How far each distance sensor's ray of a parsed profile file is tilted from the floor's
+    plane where it is not level (rad): the rise of the world's own sensor node where the robot
+    node holds it (``Scene.sensor_poses``; one steeper than :data:`STEEPEST_RAY_RAD` keeps a
+    level ray), else the robot node's stock tilt (``Scene.infrared_elevation``: an
+    ``E-puck`` PROTO's); and a warning naming the rays tilted down that meet the floor within
+    their range."""
+    models = layout.get("models", {})
+    elevations: dict[str, float] = {}
+    floor: list[str] = []
+    for sensor in layout.get("distance_sensors", []):
+        name = sensor["name"]
+        pose = scene.sensor_poses.get(name)
+        if pose is None:
+            tilt = scene.infrared_elevation
+        elif abs(pose[3]) > STEEPEST_RAY_RAD:
+            continue
+        else:
+            tilt = abs(pose[3])
+            reach = float(models[sensor["model"]]["table"][-1][0])
+            height = scene.sensor_heights.get(name, 0.0)
+            if pose[3] < -LEVEL_RAY_RAD and height / math.sin(tilt) < reach:
+                floor.append(f"{name!r} ({height / math.sin(tilt):.3f} m)")
+        if tilt > LEVEL_RAY_RAD:
+            elevations[name] = tilt
+    warnings = (
+        [
+            f"the ray of DistanceSensor {', '.join(floor)} points down at the floor within its "
+            "range, where Webots reads the floor: mazesim's rays meet walls, robots and bodies "
+            "only, so it reads them as a ray tilted up as much"
+        ]
+        if floor
+        else []
+    )
+    return elevations, warnings
+
+
+def _ray_types(layout: Mapping[str, Any], scene: Scene) -> tuple[dict[str, str], list[str]]:
+    """The ``type`` of each distance sensor of a parsed profile file whose node the robot node
+    lists with a type other than ``infra-red`` (``Scene.sensor_types``), by name; and what the
+    2-D model does not give of those types (:data:`TYPE_LIMITS`), one line per type."""
+    types: dict[str, str] = {}
+    by_type: dict[str, list[str]] = {}
+    for sensor in layout.get("distance_sensors", []):
+        found = scene.sensor_types.get(sensor["name"], INFRA_RED)
+        if found != INFRA_RED:
+            types[sensor["name"]] = found
+            by_type.setdefault(found, []).append(repr(sensor["name"]))
+    warnings = []
+    for found, names in by_type.items():
+        limit = TYPE_LIMITS.get(found)
+        if limit is None:
+            limit = (
+                f"expected one of {', '.join(map(repr, [*TYPE_LIMITS, INFRA_RED]))}, found "
+                f"{found!r}: read as generic"
+            )
+        if limit:
+            warnings.append(
+                f"DistanceSensor {', '.join(names)} (type {found!r}) reads the distance alone, "
+                f"whatever colour its ray meets; {limit}"
+            )
+    return types, warnings
 
 
 def _moved_sensors(layout: Mapping[str, Any], scene: Scene) -> dict[str, tuple[float, ...]]:
@@ -147,26 +250,34 @@ def _profile_with(
     layout: dict[str, Any],
     tables: Mapping[str, list[Row]],
     poses: Mapping[str, tuple[float, ...]] | None = None,
+    elevations: Mapping[str, float] | None = None,
+    ranges: set[str] | None = None,
 ) -> RobotProfile:
     """The profile of a parsed profile file, each sensor named in ``tables`` reading through a
-    copy of its model with that table (one copy per model and table: ``world-table-N``), each
-    named in ``poses`` at that position (and heading)."""
+    copy of its model with that table, each named in ``ranges`` through a copy of kind
+    ``range`` (one copy per model, table and kind: ``world-table-N``), each named in ``poses``
+    at that position (and heading), each named in ``elevations`` with its ray so tilted."""
     layout = copy.deepcopy(layout)
     models = layout.setdefault("models", {})
-    copies: dict[tuple[str, tuple[Row, ...]], str] = {}
+    copies: dict[tuple[str, tuple[Row, ...], bool], str] = {}
     for sensor in [*layout.get("distance_sensors", []), *layout.get("ground_sensors", [])]:
-        if (pose := (poses or {}).get(sensor["name"])) is not None:
+        name = sensor["name"]
+        if (pose := (poses or {}).get(name)) is not None:
             sensor["position"] = [pose[0], pose[1]]
             if len(pose) > 2:
                 sensor["heading"] = pose[2]
-        table = tables.get(sensor["name"])
-        if table is None:
+        if (elevation := (elevations or {}).get(name)) is not None:
+            sensor["elevation"] = elevation
+        table, ranged = tables.get(name), name in (ranges or set())
+        if table is None and not ranged:
             continue
-        key = (sensor["model"], tuple(table))
+        model = models[sensor["model"]]
+        rows = table if table is not None else [tuple(row) for row in model["table"]]
+        key = (sensor["model"], tuple(rows), ranged)
         if key not in copies:
             copies[key] = f"world-table-{len(copies)}"
-            rows = [list(row) for row in table]
-            models[copies[key]] = {**models[sensor["model"]], "table": rows}
+            kind = {"kind": "range"} if ranged else {}
+            models[copies[key]] = {**model, "table": [list(row) for row in rows], **kind}
         sensor["model"] = copies[key]
     return RobotProfile.from_toml(_toml_text(layout), "the world's sensors")
 

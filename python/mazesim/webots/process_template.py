@@ -15,8 +15,11 @@ for that controller would:
   at a time (as Webots reads each controller's output line by line, the lines of controllers
   printing at once never mix, even where ``PYTHONUNBUFFERED`` is set), and its standard input
   is empty;
-- Ctrl-C raises ``KeyboardInterrupt`` in it; ``random`` and numpy's global generator are seeded
-  anew (each child draws its own numbers, as fresh processes would);
+- it ignores Ctrl-C (and so do the programs it starts, a compiled controller): the world's
+  process ends every controller's run on Ctrl-C, at a step, as a supervisor's quit does, so that
+  no controller stops in the middle of a call to the world's process; ``random`` and numpy's
+  global generator are seeded anew (each child draws its own numbers, as fresh processes
+  would);
 - it ends as a Python program ends (its threads joined, its ``atexit`` functions run), and a
   child that dies without reporting is reported as a process that ended without a report.
 
@@ -179,10 +182,10 @@ def serve(fd: int) -> tuple[Connection, Any]:
 
 
 def _become_fresh() -> None:
-    """What a fresh process would have that a forked one does not: Ctrl-C's default handler,
-    and random streams of its own (``random`` reseeds itself after a fork; numpy does not);
-    and standard output and error that write whole lines."""
-    signal.signal(signal.SIGINT, signal.default_int_handler)
+    """What a fresh process would have that a forked one does not: random streams of its own
+    (``random`` reseeds itself after a fork; numpy does not), and standard output and error
+    that write whole lines. Ctrl-C stays ignored, as in the template: the world's process ends
+    the run (:class:`~mazesim.webots.lockstep.Interruption`)."""
     numpy_random = sys.modules.get("numpy.random")
     if numpy_random is not None:
         numpy_random.seed()

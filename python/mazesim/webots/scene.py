@@ -173,6 +173,12 @@ class Scene:
             the ray rises above the floor's plane (rad, negative down) in the robot's frame (x
             forward, y left, z up; an NUE file's converted as the importer converts it), from
             its ``translation`` and ``rotation`` (Webots' defaults where absent).
+        sensor_heights: The height above the robot's origin (m) of each sensor of
+            ``sensor_poses``, by sensor name.
+        sensor_types: The ``type`` of each ``DistanceSensor`` node the robot's node lists itself
+            (those of ``sensor_tables``), by its ``name``: ``"generic"`` (Webots' default where
+            the node has no such field), ``"infra-red"``, ``"sonar"`` or ``"laser"``, as
+            written.
     """
 
     defs: dict[str, str] = field(default_factory=dict)
@@ -197,6 +203,8 @@ class Scene:
     sensor_tables: dict[str, list[Row]] = field(default_factory=dict)
     malformed_tables: dict[str, str] = field(default_factory=dict)
     sensor_poses: dict[str, tuple[float, float, float, float]] = field(default_factory=dict)
+    sensor_heights: dict[str, float] = field(default_factory=dict)
+    sensor_types: dict[str, str] = field(default_factory=dict)
 
 
 def _hinge_wheels(year: str | None) -> bool:
@@ -249,7 +257,10 @@ def read_scene(text: str, robot_model: str | None = None, robot_line: int | None
             scene.ground_sensors_module = bool(_GROUND_SENSORS_MODULE.search(body))
         if robot.group(2) not in EPUCK_TYPES:
             scene.sensor_tables, scene.malformed_tables = _sensor_tables(body)
-            scene.sensor_poses = _sensor_poses(body, scene.nue)
+            placed = _sensor_poses(body, scene.nue)
+            scene.sensor_poses = {name: pose[:4] for name, pose in placed.items()}
+            scene.sensor_heights = {name: pose[4] for name, pose in placed.items()}
+            scene.sensor_types = _sensor_types(body)
         if robot.group(2) == "E-puck":
             scene.infrared_elevation = EPUCK_IR_ELEVATION
         if robot.group(2) == "E-puck" and _hinge_wheels(year) and not _KINEMATIC.search(own):
@@ -314,16 +325,35 @@ def _sensor_tables(body: str) -> tuple[dict[str, list[Row]], dict[str, str]]:
     return tables, malformed
 
 
+_TYPE = re.compile(r'\btype\s+"((?:[^"\\]|\\.)*)"')
+#: A ``DistanceSensor`` node's ``type`` without the field (Webots' reference manual).
+DEFAULT_SENSOR_TYPE = "generic"
+
+
+def _sensor_types(body: str) -> dict[str, str]:
+    """The ``type`` of each named ``DistanceSensor`` node in a robot's body text (Webots'
+    default, :data:`DEFAULT_SENSOR_TYPE`, where the node has no such field)."""
+    types: dict[str, str] = {}
+    for node in _DISTANCE_SENSOR.finditer(body):
+        own = _own_text(body, node.end())
+        found = _NAME.search(own)
+        if found is None or found.group(1) in types:
+            continue
+        given = _TYPE.search(own)
+        types[found.group(1)] = given.group(1) if given else DEFAULT_SENSOR_TYPE
+    return types
+
+
 #: An opening or closing brace or bracket, or a node's type and its opening brace.
 _NESTING = re.compile(_NODE.pattern + r"|([{}\[\]])")
 
 
-def _sensor_poses(body: str, nue: bool) -> dict[str, tuple[float, float, float, float]]:
-    """The pose in the robot's frame (x, y, heading, rise) of each named ``DistanceSensor`` node
-    of a robot's body text ``body`` that is a child of the robot node or of the grouping nodes
-    (:data:`GROUPING_TYPES`: an E-puck saved expanded holds each in a Solid) under it, composed
-    through their ``translation`` and ``rotation``."""
-    poses: dict[str, tuple[float, float, float, float]] = {}
+def _sensor_poses(body: str, nue: bool) -> dict[str, tuple[float, float, float, float, float]]:
+    """The pose in the robot's frame (x, y, heading, rise, height) of each named
+    ``DistanceSensor`` node of a robot's body text ``body`` that is a child of the robot node or
+    of the grouping nodes (:data:`GROUPING_TYPES`: an E-puck saved expanded holds each in a
+    Solid) under it, composed through their ``translation`` and ``rotation``."""
+    poses: dict[str, tuple[float, float, float, float, float]] = {}
     # The open nodes (type, body start) and lists (None) from the robot's body inwards.
     open_nodes: list[tuple[str, int] | None] = []
     for match in _NESTING.finditer(body):
@@ -351,7 +381,7 @@ def _sensor_poses(body: str, nue: bool) -> dict[str, tuple[float, float, float, 
         if nue:
             (x, y, z), ray = nue_to_enu(x, y, z), nue_to_enu(*ray)
         rise = math.asin(max(-1.0, min(1.0, ray[2])))
-        poses[found.group(1)] = (x, y, math.atan2(ray[1], ray[0]), rise)
+        poses[found.group(1)] = (x, y, math.atan2(ray[1], ray[0]), rise, z)
     return poses
 
 

@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, ClassVar
 import numpy as np
 
 from mazesim.webots.devices import (
+    DISTANCE_SENSOR_TYPES,
     DistanceSensor,
     LookupTable,
     Row,
@@ -324,8 +325,6 @@ class RayDistanceSensor(DistanceSensor):
     """A distance sensor the world adds: one ray from its mount against the walls (a
     :class:`DistanceSensor`, with the world's table and type)."""
 
-    _types: ClassVar[dict[str, int]] = {"generic": 0, "infra-red": 1, "sonar": 2, "laser": 3}
-
     def __init__(
         self,
         name: str,
@@ -337,7 +336,7 @@ class RayDistanceSensor(DistanceSensor):
         _ScalarSensor.__init__(self, name, simulation)
         self._mount = mount
         self._table = LookupTable(DISTANCE_TABLE if not table else table)
-        self._type = self._types.get(sensor_type, self.GENERIC)
+        self._type = DISTANCE_SENSOR_TYPES.get(sensor_type, self.GENERIC)
         self._walls: WallBoxes | None = None
         self._rng = _noise_stream(simulation, name)
 

@@ -105,17 +105,13 @@ def robot_profile(
 ) -> str | RobotProfile:
     """The robot profile to simulate for an import report and the world's scene facts: the
     report's profile (see :func:`robot_profile_name`), or its copy with the robot node's own
-    sensors (``own``, see :func:`~mazesim.webots.own_sensors.own_sensors`), its proximity
-    sensors' rays tilted as the scene says (an ``E-puck`` PROTO's rise 0.16 rad); the profile's
-    name when the rays are level and no sensor is the world's own."""
+    sensors' tables, poses, ray tilts and types (``own``, by default
+    :func:`~mazesim.webots.own_sensors.own_sensors` of the scene: an ``E-puck`` PROTO's rays
+    rise by its stock 0.16 rad); the profile's name when every sensor is the profile's."""
     name = robot_profile_name(report)
-    elevation = scene.infrared_elevation if scene is not None else 0.0
-    profile = own.profile if own is not None else None
-    if profile is None and elevation == 0.0:
-        return name
-    if profile is None:
-        profile = RobotProfile.builtin(name)
-    return profile if elevation == 0.0 else profile.with_infrared_elevation(elevation)
+    if own is None:
+        own = own_sensors(name, scene)
+    return name if own.profile is None else own.profile
 
 
 class RobotSimulation:
@@ -143,6 +139,8 @@ class RobotSimulation:
         sensor_tables: The world's own lookup tables the robot's sensors read through, by
             sensor name (see :func:`~mazesim.webots.own_sensors.own_sensors`); empty when all
             are the profile's.
+        sensor_types: The world's ``type`` of the robot's distance sensors that are not
+            ``infra-red``, by sensor name (see :func:`~mazesim.webots.own_sensors.own_sensors`).
         noise: Whether the sensors are noisy.
         seed: The seed of the sensor noise.
         quit_status: The status a supervisor's ``simulationQuit`` asked for, or None.
@@ -213,6 +211,7 @@ class RobotSimulation:
         # them and says what of them is not used.
         own = own_sensors(robot_profile_name(report), scene)
         self.sensor_tables: dict[str, list[Row]] = own.tables
+        self.sensor_types: dict[str, str] = own.types
         if simulator is None:
             for warning in own.warnings:
                 print(f"mazesim: warning: {warning}", file=sys.stderr)

@@ -46,8 +46,12 @@ pub fn robot_profile_names() -> Vec<String> {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum SensorKind {
-    /// A ray cast to the walls, read through the Webots infra-red model.
+    /// A ray cast to the walls, read through the Webots infra-red model: the distance over the
+    /// reflection factor of what it meets.
     Infrared,
+    /// A ray cast to the walls, read through its table by the distance alone, whatever colour
+    /// it meets: Webots' `DistanceSensor` of type `generic`, `sonar` or `laser`.
+    Range,
     /// A downward sensor reading the floor reflectance.
     Ground,
 }
@@ -87,6 +91,9 @@ pub struct DistanceSensor {
     /// Its model.
     pub model: Arc<SensorModel>,
 }
+
+/// The kinds of model a distance sensor reads through.
+const DISTANCE_KINDS: &[SensorKind] = &[SensorKind::Infrared, SensorKind::Range];
 
 /// The largest elevation of a distance sensor's ray, radians (60 degrees).
 pub const MAX_ELEVATION: f64 = std::f64::consts::FRAC_PI_3;
@@ -279,29 +286,35 @@ impl RobotProfile {
                 }),
             );
         }
-        let find =
-            |s: &SensorFile, kind: SensorKind, list: &str, i: usize| -> Result<Arc<SensorModel>> {
-                let m = models.get(&s.model).ok_or_else(|| {
-                    bad(
-                        format!("{list}[{i}].model"),
-                        format!(
-                            "expected one of the models {:?}, found {:?}",
-                            models.keys().collect::<Vec<_>>(),
-                            s.model
-                        ),
-                    )
-                })?;
-                if m.kind != kind {
-                    return Err(bad(
-                        format!("{list}[{i}].model"),
-                        format!(
-                            "expected a {kind:?} model for {list}, found {:?} of kind {:?}",
-                            s.model, m.kind
-                        ),
-                    ));
-                }
-                Ok(m.clone())
-            };
+        let find = |s: &SensorFile,
+                    kinds: &[SensorKind],
+                    list: &str,
+                    i: usize|
+         -> Result<Arc<SensorModel>> {
+            let m = models.get(&s.model).ok_or_else(|| {
+                bad(
+                    format!("{list}[{i}].model"),
+                    format!(
+                        "expected one of the models {:?}, found {:?}",
+                        models.keys().collect::<Vec<_>>(),
+                        s.model
+                    ),
+                )
+            })?;
+            if !kinds.contains(&m.kind) {
+                let expected: Vec<String> = kinds.iter().map(|k| format!("{k:?}")).collect();
+                return Err(bad(
+                    format!("{list}[{i}].model"),
+                    format!(
+                        "expected a {} model for {list}, found {:?} of kind {:?}",
+                        expected.join(" or "),
+                        s.model,
+                        m.kind
+                    ),
+                ));
+            }
+            Ok(m.clone())
+        };
         let mut distance_sensors = Vec::new();
         for (i, s) in file.distance_sensors.iter().enumerate() {
             let heading = s.heading.map_or(0.0, |h| h.0);
@@ -320,7 +333,7 @@ impl RobotProfile {
                 heading,
                 direction: [heading.cos(), heading.sin()],
                 elevation,
-                model: find(s, SensorKind::Infrared, "distance_sensors", i)?,
+                model: find(s, DISTANCE_KINDS, "distance_sensors", i)?,
             });
         }
         if let Some(extra) = file
@@ -339,7 +352,7 @@ impl RobotProfile {
             ground_sensors.push(GroundSensor {
                 name: s.name.clone(),
                 position: [s.position[0].0, s.position[1].0],
-                model: find(s, SensorKind::Ground, "ground_sensors", i)?,
+                model: find(s, &[SensorKind::Ground], "ground_sensors", i)?,
             });
         }
         let profile = RobotProfile {
@@ -468,6 +481,26 @@ mod tests {
             .to_string();
         assert!(
             err.contains("distance_sensors[0].model") && err.contains("nope"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn a_range_model_serves_distance_sensors_not_ground_sensors() {
+        let head = "name = \"x\"\nbody_radius = 0.03\nwheel_radius = 0.02\naxle_length = 0.05\nmax_wheel_speed = 6\n[models.r]\nkind = \"range\"\nunit = \"raw\"\ntable = [[0, 0, 0], [0.1, 1000, 0]]\nheight = 0.01\n";
+        let ray =
+            format!("{head}[[distance_sensors]]\nname = \"a\"\nposition = [0, 0]\nmodel = \"r\"\n");
+        let profile = RobotProfile::from_toml(&ray, "r.toml").unwrap();
+        assert_eq!(profile.distance_sensors[0].model.kind, SensorKind::Range);
+        let again = RobotProfile::from_toml(&profile.to_toml().unwrap(), "again").unwrap();
+        assert_eq!(again, profile);
+        let ground =
+            format!("{head}[[ground_sensors]]\nname = \"g\"\nposition = [0, 0]\nmodel = \"r\"\n");
+        let err = RobotProfile::from_toml(&ground, "r.toml")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("expected a Ground model") && err.contains("Range"),
             "{err}"
         );
     }

@@ -17,7 +17,7 @@ use crate::limits::{self, MAX_PHYSICS_STEPS_PER_CONTROL_STEP};
 use crate::physics::Body;
 use crate::rng::Rng;
 use crate::robot::{slant_distance, RobotProfile};
-use crate::sensors::{infrared_reading_with, GroundReader};
+use crate::sensors::{infrared_reading_with, range_reading, GroundReader};
 use crate::world::{Goal, NearbyWalls, RayHit, World};
 
 /// A gap to a wall below this (metres) counts as touching it.
@@ -513,7 +513,18 @@ impl Simulator {
                 ..h
             });
             let rng = noise.then_some(&mut self.rng);
-            *reading = infrared_reading_with(&channel.model, hit, channel.miss, imperfect, rng);
+            *reading = if channel.reflective {
+                infrared_reading_with(&channel.model, hit, channel.miss, imperfect, rng)
+            } else {
+                let distance = hit.map(|h| h.distance);
+                range_reading(
+                    &channel.model,
+                    distance,
+                    channel.miss,
+                    imperfect.noise_scale,
+                    rng,
+                )
+            };
         }
         let (sd, cd) = (s as f64, c as f64);
         let ground = rig.ground.iter().zip(&mut self.ground_readers);

@@ -11,7 +11,7 @@ use std::cell::RefCell;
 use std::sync::Arc;
 
 use crate::fingerprint::fnv1a;
-use crate::robot::{RobotProfile, SensorModel};
+use crate::robot::{RobotProfile, SensorKind, SensorModel};
 use crate::sensors::{infrared_miss, SensorImperfections};
 use crate::world::{NearbyWalls, RayFan};
 
@@ -60,6 +60,9 @@ pub(super) struct InfraredChannel {
     pub(super) miss: (f64, f64),
     /// How far its ray rises above the floor's plane, radians (`DistanceSensor::elevation`).
     pub(super) elevation: f64,
+    /// Whether the reflection factor of what its ray meets divides the distance (an
+    /// `Infrared` model), or the distance is read as it is (a `Range` model).
+    pub(super) reflective: bool,
 }
 
 /// One ground sensor as a reading uses it.
@@ -145,6 +148,7 @@ impl Rig {
                 model: d.model.clone(),
                 miss: infrared_miss(&d.model),
                 elevation: d.elevation,
+                reflective: d.model.kind == SensorKind::Infrared,
             })
             .collect();
         let ground = (robot.ground_sensors.iter())

@@ -1,0 +1,119 @@
+"""How a world run (``mazesim webots run WORLD``) ends when a controller fails or Ctrl-C is
+pressed: a controller's traceback is printed once; Ctrl-C stops every controller quietly, and
+the command exits with 130, one line saying the run was interrupted, and whole output files
+that cover the run until then."""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from mazesim.cli import main
+
+#: Two e-pucks, each running the controller its name says.
+WORLD = """#VRML_SIM R2023b utf8
+WorldInfo { basicTimeStep 32 }
+RectangleArena { floorSize 1 1 }
+E-puck { translation 0.2 0 0 name "first" controller "FIRST" }
+E-puck { translation -0.2 0 0 name "second" controller "SECOND" }
+"""
+#: A controller that fails in a function of its own after a step.
+FAILING = """
+from controller import Robot
+
+robot = Robot()
+robot.step(32)
+
+def steer():
+    raise ValueError("no wall to follow")
+
+steer()
+"""
+#: A controller that reads its sensors at every step (each reading a call to the world's
+#: process), and says once it has taken ten steps.
+BUSY = """
+import os
+from controller import Robot
+
+robot = Robot()
+sensors = [robot.getDevice(f"ps{i}") for i in range(8)]
+for sensor in sensors:
+    sensor.enable(32)
+steps = 0
+while robot.step(32) != -1:
+    values = [sensor.getValue() for sensor in sensors]
+    steps += 1
+    if steps == 10:
+        open(os.path.join(os.environ["READY_DIR"], robot.getName()), "w").close()
+"""
+
+
+def _project(tmp_path: Path, first: str, second: str) -> Path:
+    """A project of :data:`WORLD` whose robots run ``first`` and ``second``; its world."""
+    for name, source in (("first", first), ("second", second)):
+        folder = tmp_path / "controllers" / name
+        folder.mkdir(parents=True)
+        (folder / f"{name}.py").write_text(source)
+    world = tmp_path / "worlds" / "two.wbt"
+    world.parent.mkdir()
+    world.write_text(WORLD.replace("FIRST", "first").replace("SECOND", "second"))
+    return world
+
+
+def test_issue_33_a_failing_controller_s_traceback_is_printed_once(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    world = _project(tmp_path, FAILING, BUSY)
+    monkeypatch.setenv("READY_DIR", str(tmp_path))
+    status = main(["webots", "run", str(world), "--seconds", "0.5", "--out", str(tmp_path / "out")])
+    # The controllers' processes write to the same file descriptors as this one.
+    stderr = capfd.readouterr().err
+    assert status == 1, stderr
+    assert stderr.count("Traceback (most recent call last)") == 1, stderr
+    assert stderr.count("ValueError: no wall to follow") == 1, stderr
+    assert 'in steer\n    raise ValueError("no wall to follow")' in stderr
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    first = summary["robots"][0]
+    assert first["controller_error"] == "ValueError: no wall to follow"
+
+
+def test_issue_33_ctrl_c_stops_every_controller_quietly_and_exits_130(tmp_path: Path) -> None:
+    world = _project(tmp_path, BUSY, BUSY)
+    out = tmp_path / "out"
+    process = subprocess.Popen(
+        [sys.executable, "-m", "mazesim", "webots", "run", str(world), "--seconds", "600",
+         "--out", str(out)],
+        cwd=tmp_path, env=dict(os.environ, READY_DIR=str(tmp_path)), stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE, text=True, start_new_session=True,
+    )  # fmt: skip
+    try:
+        deadline = time.monotonic() + 120
+        while not all((tmp_path / name).exists() for name in ("first", "second")):
+            assert process.poll() is None and time.monotonic() < deadline, "the run went on"
+            time.sleep(0.05)
+        # Ctrl-C reaches the terminal's whole process group: the world's process and every
+        # controller's.
+        os.killpg(process.pid, signal.SIGINT)
+        stdout, stderr = process.communicate(timeout=60)
+    finally:
+        if process.poll() is None:
+            os.killpg(process.pid, signal.SIGKILL)
+            process.communicate()
+    assert process.returncode == 130, stderr
+    assert "Traceback" not in stderr, stderr
+    (line,) = [line for line in stderr.splitlines() if "interrupted" in line]
+    assert line.startswith("mazesim: interrupted at ")
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["interrupted"] is True and summary["exit_status"] == 130
+    assert summary["steps"] >= 10
+    assert [robot["exit_status"] for robot in summary["robots"]] == [0, 0]
+    rows = (out / "trajectory.csv").read_text().splitlines()
+    assert len(rows) == 1 + 2 * (summary["steps"] + 1)
+    assert "(seed 0, 2 robots)" in stdout
