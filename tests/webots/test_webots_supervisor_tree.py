@@ -127,6 +127,20 @@ def test_a_deep_nesting_is_read_without_recursion(tmp_path: Path) -> None:
     assert node.children[0].def_name == "DEEP"
 
 
+def test_strings_holding_brackets_or_numbers_are_read_as_strings() -> None:
+    text = (
+        "#VRML_SIM R2023b utf8\n"
+        'Solid { name "rock 1" customData "[(0.1, 0.2)] {x}" translation 1 2 3 }\n'
+        'DEF EPUCK E-puck { customData "{\\"state\\": [1, 2]}" controllerArgs [ "a" "[b]" ] }\n'
+    )
+    scene = read_scene(text)
+    rock, robot = scene.nodes
+    assert rock.strings == {"customData": "[(0.1, 0.2)] {x}"} and rock.numbers == {}
+    assert rock.name == "rock 1" and rock.translation == (1.0, 2.0, 3.0)
+    assert scene.robot_custom_data == '{\\"state\\": [1, 2]}' and robot.robot
+    assert scene.controller_args == ["a", "[b]"]
+
+
 def test_adding_or_removing_nodes_prints_an_error_and_changes_nothing(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

@@ -21,7 +21,14 @@ from typing import Any
 
 from mazesim.webots import simulation as _simulations
 from mazesim.webots.devices import _print_error, webots_property
-from mazesim.webots.frames import enu_to_nue, enu_to_nue_matrix, nue_to_enu, rotation_matrix
+from mazesim.webots.frames import (
+    WORLD_FRAME,
+    enu_to_nue,
+    enu_to_nue_matrix,
+    nue_to_enu,
+    placed,
+    rotation_matrix,
+)
 from mazesim.webots.inert import ContactPoint, NotSimulated
 from mazesim.webots.node_types import NODE_TYPES
 from mazesim.webots.radio_devices import E_PUCK_CHANNEL
@@ -435,24 +442,14 @@ class Node(NotSimulated):
         while node is not None and node._parent is not None:
             chain.append(node)
             node = node._parent
-        origin, matrix = [0.0, 0.0, 0.0], rotation_matrix(0.0, 0.0, 1.0, 0.0)
+        frame = WORLD_FRAME
         for node in reversed(chain):
             if node._live:
                 x, y, yaw = node._pose()
-                offset, turn = [x, y, 0.0], [0.0, 0.0, 1.0, yaw]
+                frame = placed(frame, (x, y, 0.0), (0.0, 0.0, 1.0, yaw))
             else:
-                offset = list(node._translation or (0.0, 0.0, 0.0))
-                turn = list(node._rotation or (0.0, 0.0, 1.0, 0.0))
-            origin = [
-                origin[i] + sum(matrix[3 * i + k] * offset[k] for k in range(3)) for i in range(3)
-            ]
-            rotation = rotation_matrix(*turn)
-            matrix = [
-                sum(matrix[3 * i + k] * rotation[3 * k + j] for k in range(3))
-                for i in range(3)
-                for j in range(3)
-            ]
-        return origin, matrix
+                frame = placed(frame, node._translation or (0.0, 0.0, 0.0), node._rotation)
+        return frame
 
     @property
     def _live(self) -> bool:
