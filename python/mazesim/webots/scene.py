@@ -215,7 +215,7 @@ def read_scene(text: str, robot_model: str | None = None, robot_line: int | None
     for node in every:
         if node.def_name is not None and node.use_name is None:
             scene.defs.setdefault(node.def_name, node.type_name)
-    scene.nodes = _scene_nodes(tree, robot, scene.nue)
+    scene.nodes = _scene_nodes(tree, robot, scene.nue, _definitions(every))
     # Without a robot node, the whole file stands for it.
     own: list[Node] = every
     if robot is not None:
@@ -394,9 +394,28 @@ def _robot_node(
     return on_line
 
 
-def _scene_nodes(tree: list[Node], robot: Node | None, nue: bool) -> list[SceneNode]:
+def _definitions(every: list[Node]) -> dict[int, Node]:
+    """The node each ``USE`` (by ``id``) stands for: the node of the last ``DEF`` of its name
+    complete before it (``every`` is in file order), as Webots and the core read it."""
+    defined: dict[str, list[Node]] = {}
+    for node in every:
+        if node.def_name is not None and node.use_name is None:
+            defined.setdefault(node.def_name, []).append(node)
+    used: dict[int, Node] = {}
+    for node in every:
+        earlier = [d for d in defined.get(node.use_name or "", []) if d.end <= node.start]
+        if node.use_name is not None and earlier:
+            used[id(node)] = max(earlier, key=lambda d: d.end)
+    return used
+
+
+def _scene_nodes(
+    tree: list[Node], robot: Node | None, nue: bool, used: dict[int, Node]
+) -> list[SceneNode]:
     """The nodes at the top of the file, the robot's marked, each grouping node
-    (:data:`GROUPING_TYPES`) with the nodes of its ``children`` field, in file order.
+    (:data:`GROUPING_TYPES`) with the nodes of its ``children`` field, in file order; a ``USE``
+    among them is the very :class:`SceneNode` of the node it stands for (``used``), as a
+    Webots supervisor sees it.
 
     The tree is walked with a stack, not recursion (a world may nest thousands deep): each
     node's :class:`SceneNode` is made once its children's are.
@@ -412,6 +431,10 @@ def _scene_nodes(tree: list[Node], robot: Node | None, nue: bool) -> list[SceneN
         while pending:
             node, into, children = pending.pop()
             if node.use_name is not None:
+                if (defined := used.get(id(node))) is not None:
+                    if id(defined) not in made:  # a DEF the scene does not list: made here
+                        scene_nodes([defined])
+                    into.append(made[id(defined)])
                 continue
             if children is None:
                 inner: list[SceneNode] = []
