@@ -16,14 +16,20 @@ from dataclasses import dataclass, field
 
 from mazesim.webots.frames import WORLD_FRAME, nue_to_enu, placed
 from mazesim.webots.lights import Light, read_lights
-from mazesim.webots.proto.syntax import Field, Node, first_value, nodes_in_order, parse_nodes
+from mazesim.webots.proto.syntax import (
+    Field,
+    Node,
+    first_value,
+    nodes_in_order,
+    parse_nodes,
+    world_version,
+)
 
 __all__ = ["DEFAULT_LOOKUP_TABLE", "GROUPING_TYPES", "Row", "Scene", "SceneNode", "read_scene"]
 
 #: A row of a ``lookupTable``: distance (m), value and relative noise.
 Row = tuple[float, float, float]
 
-_HEADER = re.compile(r"#VRML_SIM\s+(?:R(\d{4})([a-z])?|V?(\d+)\.)")
 
 #: Node types that are robots (``DifferentialWheels``: Webots 6-7's wheeled robot).
 ROBOT_TYPES = {"E-puck", "Robot", "DifferentialWheels", "e-puck2", "Epuck", "EPuck", "E-puck2"}
@@ -200,13 +206,10 @@ def read_scene(text: str, robot_model: str | None = None, robot_line: int | None
         WorldFormatError: The text is not a world's nodes (the import says so first).
     """
     text = text.lstrip("\ufeff")
-    header = _HEADER.match(text.lstrip())
     scene = Scene()
-    year = None
-    if header is not None:
-        year = header.group(1)
-        scene.nue = int(year) < 2022 if year else header.group(3) is not None
-        scene.y_up_devices = scene.nue
+    version, scene.nue = world_version(text)
+    scene.y_up_devices = scene.nue
+    year = version[1:5] if version is not None and version.startswith("R") else None
     tree = _parsed(text)
     every = list(nodes_in_order(tree))
     scene.nue = scene.nue or first_value(every, "coordinateSystem", Field.string) == "NUE"
@@ -233,14 +236,10 @@ def read_scene(text: str, robot_model: str | None = None, robot_line: int | None
             scene.sensor_poses = _sensor_poses(robot, scene.nue)
         if robot.type_name == "E-puck":
             scene.infrared_elevation = EPUCK_IR_ELEVATION
-        if (
-            robot.type_name == "E-puck"
-            and _hinge_wheels(year)
-            and not first_value(own, "kinematic", Field.flag)
-        ):
-            scene.traction_version = (
-                "2" if first_value(own, "version", Field.string) == "2" else "1"
-            )
+        kinematic = first_value(own, "kinematic", Field.flag)
+        if robot.type_name == "E-puck" and _hinge_wheels(year) and not kinematic:
+            second = first_value(own, "version", Field.string) == "2"
+            scene.traction_version = "2" if second else "1"
     scene.supervisor = bool(first_value(own, "supervisor", Field.flag))
     scene.lights = read_lights(every, scene.nue)
     if (arguments := first_value(own, "controllerArgs", _itself)) is not None:
@@ -287,6 +286,11 @@ def _itself(item: Field) -> Field:
     return item
 
 
+def _sensor_name(node: Node) -> str | None:
+    """The ``name`` of a ``DistanceSensor`` node; None for another node or one without."""
+    return first_value([node], "name", Field.string) if node.type_name == "DistanceSensor" else None
+
+
 def _saved_wheel(robot: Node, joint: int) -> float:
     """A wheel joint's position saved in a world file (``hidden position_0_<joint> <rad>``,
     the last one written), 0 without one."""
@@ -312,11 +316,7 @@ def _sensor_tables(text: str, inside: list[Node]) -> tuple[dict[str, list[Row]],
     tables: dict[str, list[Row]] = {}
     malformed: dict[str, str] = {}
     for node in inside:
-        name = (
-            first_value([node], "name", Field.string)
-            if node.type_name == "DistanceSensor"
-            else None
-        )
+        name = _sensor_name(node)
         if name is None or name in tables or name in malformed:
             continue
         table = first_value([node], "lookupTable", _itself)
@@ -360,11 +360,7 @@ def _sensor_poses(robot: Node, nue: bool) -> dict[str, tuple[float, float, float
         if node.type_name in GROUPING_TYPES:
             inner = [(n, frame) for item in node.fields for n in item.nodes]
             pending.extend(reversed(inner))
-        name = (
-            first_value([node], "name", Field.string)
-            if node.type_name == "DistanceSensor"
-            else None
-        )
+        name = _sensor_name(node)
         if name is None or name in poses:
             continue
         x, y, z = origin

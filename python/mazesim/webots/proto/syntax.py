@@ -26,6 +26,7 @@ __all__ = [
     "nodes_in_order",
     "parse_nodes",
     "tokenize",
+    "world_version",
 ]
 
 #: A token, a comment or (alone) a quote that opens a string never closed; white space, commas
@@ -35,6 +36,7 @@ _TOKEN = re.compile(
     r'|(?P<comment>#[^\n\r]*)|(?P<unclosed>")',
     re.DOTALL,
 )
+_HEADER = re.compile(r"#VRML_SIM\s+(R\d{4}[a-z]|V?\d+(?:\.\d+)*)")
 #: A number as VRML97 writes it (no hexadecimal, infinity or NaN).
 _NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
 _Value = TypeVar("_Value")
@@ -64,10 +66,17 @@ def tokenize(text: str, source: str = "<text>") -> list[Token]:
         elif kind == "punct":
             add(make((match.group(), match.group(), *match.span())))
         elif kind == "unclosed":
-            raise _error(
-                text, match.start(), source, "expected a closing '\"', found the end of the text"
-            )
+            message = "expected a closing '\"', found the end of the text"
+            raise located_error(message, source, text, match.start())
     return tokens
+
+
+def world_version(text: str) -> tuple[str | None, bool]:
+    """The Webots release a world's ``#VRML_SIM`` header names (``R2023b``, ``V8.5``; None
+    without a header), and whether its frame is the old NUE one, y up (before R2022a)."""
+    found = _HEADER.search(text[:200])
+    tag = found.group(1) if found else None
+    return tag, tag is not None and (not tag.startswith("R") or tag < "R2022a")
 
 
 def line_of(text: str, position: int) -> int:
@@ -84,10 +93,6 @@ def located_error(message: str, source: str, text: str = "", position: int = 0) 
     return WorldFormatError(
         f"{source}:{line}:{column}: {message}", source=source, line=line, column=column
     )
-
-
-def _error(text: str, position: int, source: str, message: str) -> WorldFormatError:
-    return located_error(message, source, text, position)
 
 
 @dataclass
@@ -196,20 +201,12 @@ def nodes_in_order(nodes: Iterable[Node]) -> Iterator[Node]:
 MAX_DEPTH = 200
 
 
-@dataclass
-class _OpenField:
-    """A field being read: its values so far and how many of its brackets are open."""
-
-    field: Field
-    brackets: int = 0
-    empty: bool = True
-
-    def add(self, start: int, end: int) -> None:
-        """Extends the value's span over a token or node from ``start`` to ``end``."""
-        if self.empty:
-            self.field.value_start = start
-            self.empty = False
-        self.field.value_end = end
+def _extend(item: Field, start: int, end: int) -> None:
+    """Extends a field's value over a token or node from ``start`` to ``end`` (its first, when
+    the value is empty)."""
+    if not item.tokens and not item.nodes:
+        item.value_start = start
+    item.value_end = end
 
 
 class _Parser:
@@ -226,7 +223,7 @@ class _Parser:
     def fail(self, message: str) -> WorldFormatError:
         token = self.peek()
         position = token.start if token else len(self.text)
-        return _error(self.text, position, self.source, message)
+        return located_error(message, self.source, self.text, position)
 
     def starts_node(self) -> bool:
         token, after = self.peek(), self.peek(1)
@@ -268,7 +265,7 @@ class _Parser:
         (any depth for None)."""
         top, has_body = self.opening()
         # The nodes being read, outermost first, each with the field being read (or None).
-        open_nodes: list[tuple[Node, _OpenField | None]] = [(top, None)] if has_body else []
+        open_nodes: list[tuple[Node, Field | None]] = [(top, None)] if has_body else []
         while open_nodes:
             node, reading = open_nodes[-1]
             if reading is None:
@@ -280,11 +277,11 @@ class _Parser:
                 if open_nodes:
                     parent, parent_field = open_nodes[-1]
                     assert parent_field is not None
-                    parent_field.field.nodes.append(node)
-                    parent_field.add(node.start, node.end)
+                    _extend(parent_field, node.start, node.end)
+                    parent_field.nodes.append(node)
                 continue
             if not self.field_values(reading):
-                reading.field.end = reading.field.value_end
+                reading.end = reading.value_end
                 open_nodes[-1] = (node, None)
                 continue
             if max_depth is not None and len(open_nodes) > max_depth:
@@ -293,11 +290,11 @@ class _Parser:
             if child_body:
                 open_nodes.append((child, None))
             else:
-                reading.field.nodes.append(child)
-                reading.add(child.start, child.end)
+                _extend(reading, child.start, child.end)
+                reading.nodes.append(child)
         return top
 
-    def field_start(self, node: Node) -> _OpenField | None:
+    def field_start(self, node: Node) -> Field | None:
         """Reads the name of a node's next field whose value follows (a ``name IS other``
         field is read whole on the way); None when the node's ``}`` comes instead (read too)."""
         while (token := self.peek()) is not None and token.kind == "word":
@@ -307,7 +304,7 @@ class _Parser:
             node.fields.append(result)
             reference, target = self.peek(), self.peek(1)
             if reference is None or reference.text != "IS" or reference.kind != "word":
-                return _OpenField(result)
+                return result
             if target is None or target.kind != "word":
                 raise self.fail("expected a field name after IS")
             result.tokens += [reference, target]
@@ -322,32 +319,29 @@ class _Parser:
         node.end = token.end
         return None
 
-    def field_values(self, reading: _OpenField) -> bool:
+    def field_values(self, reading: Field) -> bool:
         """Reads values of the field being read up to a node among them (True: a node starts
         at the current token) or to the field's end (False): a field keeps every value up to
         the next field name or the closing of its node."""
         tokens, index = self.tokens, self.index
-        values = reading.field.tokens
+        brackets = sum({"[": 1, "]": -1}.get(t.kind, 0) for t in reading.tokens)
         while index < len(tokens):
             token = tokens[index]
             self.index = index
             if token.kind == "word":
                 after = tokens[index + 1].kind if index + 1 < len(tokens) else None
-                if token.text in ("DEF", "USE") or after == "{":
-                    if self.starts_node():
-                        return True
-                if not reading.brackets and not _is_literal(token.text):
+                if (token.text in ("DEF", "USE") or after == "{") and self.starts_node():
+                    return True
+                if not brackets and not _is_literal(token.text):
                     return False
-            elif token.kind in ("}", "]") and not reading.brackets:
+            elif token.kind in ("}", "]") and not brackets:
                 return False
-            elif token.kind == "[":
-                reading.brackets += 1
-            elif token.kind == "]":
-                reading.brackets -= 1
+            elif token.kind in ("[", "]"):
+                brackets += 1 if token.kind == "[" else -1
             elif token.kind == "}":
                 raise self.fail("expected ']' before '}'")
-            values.append(token)
-            reading.add(token.start, token.end)
+            _extend(reading, token.start, token.end)
+            reading.tokens.append(token)
             index += 1
         self.index = index
         return False
@@ -401,16 +395,12 @@ def parse_nodes(
 def _after_definition(tokens: list[Token], index: int) -> int:
     """The index after a ``PROTO Name [ interface ] { body }`` that starts at ``index`` (the
     next one's when the word ``PROTO`` starts no such definition)."""
-    if index + 2 >= len(tokens) or tokens[index + 1].kind != "word":
+    if index + 2 >= len(tokens) or tokens[index + 2].kind != "[":
         return index + 1
     index += 2
     for opening, closing in (("[", "]"), ("{", "}")):
-        if index >= len(tokens) or tokens[index].kind != opening:
-            return index
         depth = 0
-        while index < len(tokens):
+        while index < len(tokens) and (depth or tokens[index].kind == opening):
             depth += {opening: 1, closing: -1}.get(tokens[index].kind, 0)
             index += 1
-            if depth == 0:
-                break
     return index
