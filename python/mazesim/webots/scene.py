@@ -8,10 +8,9 @@ the E-puck's camera fields and the world's north. They are read from the file's 
 
 from __future__ import annotations
 
-import functools
 import math
 import re
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
 from mazesim.webots.frames import WORLD_FRAME, nue_to_enu, placed
@@ -25,7 +24,15 @@ from mazesim.webots.proto.syntax import (
     world_version,
 )
 
-__all__ = ["DEFAULT_LOOKUP_TABLE", "GROUPING_TYPES", "Row", "Scene", "SceneNode", "read_scene"]
+__all__ = [
+    "DEFAULT_LOOKUP_TABLE",
+    "GROUPING_TYPES",
+    "Row",
+    "Scene",
+    "SceneNode",
+    "read_scene",
+    "read_scenes",
+]
 
 #: A row of a ``lookupTable``: distance (m), value and relative noise.
 Row = tuple[float, float, float]
@@ -205,13 +212,30 @@ def read_scene(text: str, robot_model: str | None = None, robot_line: int | None
     Raises:
         WorldFormatError: The text is not a world's nodes (the import says so first).
     """
+    return read_scenes(text, [(robot_model, robot_line)])[0]
+
+
+def read_scenes(text: str, robots: Sequence[tuple[str | None, int | None]]) -> list[Scene]:
+    """The scene facts of a world file's text for each of its robots (its node type and line,
+    as :func:`read_scene` takes them), the text parsed once.
+
+    Raises:
+        WorldFormatError: The text is not a world's nodes (the import says so first).
+    """
     text = text.lstrip("\ufeff")
+    tree = parse_nodes(text, "<world>", max_depth=None)
+    every = list(nodes_in_order(tree))
+    return [_scene(text, tree, every, model, line) for model, line in robots]
+
+
+def _scene(
+    text: str, tree: list[Node], every: list[Node], robot_model: str | None, robot_line: int | None
+) -> Scene:
+    """The scene facts of a parsed world (``tree``, ``every`` node in file order) for a robot."""
     scene = Scene()
     version, scene.nue = world_version(text)
     scene.y_up_devices = scene.nue
     year = version[1:5] if version is not None and version.startswith("R") else None
-    tree = _parsed(text)
-    every = list(nodes_in_order(tree))
     scene.nue = scene.nue or first_value(every, "coordinateSystem", Field.string) == "NUE"
     robot_types = ROBOT_TYPES | ({robot_model} if robot_model else set())
     robot = _robot_node(text, every, robot_types, robot_line)
@@ -263,12 +287,6 @@ def read_scene(text: str, robot_model: str | None = None, robot_line: int | None
         # WorldInfo.northDirection's default before R2022a: x (1 0 0).
         scene.north = nue_to_enu(1.0, 0.0, 0.0)[:2]
     return scene
-
-
-@functools.lru_cache(maxsize=2)
-def _parsed(text: str) -> list[Node]:
-    """The top-level nodes of a world's text, parsed once for every robot of the world."""
-    return parse_nodes(text, "<world>", max_depth=None)
 
 
 #: The nodes of Webots' ground sensors module of the E-puck (its gs0..gs2), in its
