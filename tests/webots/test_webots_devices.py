@@ -144,6 +144,25 @@ def test_camera_sees_the_line_ahead_the_floor_below_and_the_sky_above() -> None:
     ]
 
 
+def test_a_camera_slower_than_the_step_is_black_until_its_first_image() -> None:
+    """Webots returns an enabled camera's image buffer from the step after it is enabled, drawn
+    only when the first sampling period ends: a controller that enables its camera at 100 ms and
+    reads it after a 32 ms step gets a black image, not None."""
+    robot = make_robot("line-follow")
+    camera = robot.getDevice("camera")
+    camera.enable(100)
+    assert camera.getImageArray() is None, "no buffer before the first step"
+    robot.step(32)
+    width, height = camera.getWidth(), camera.getHeight()
+    black = camera.getImageArray()
+    assert black == [[[0, 0, 0]] * height] * width
+    assert camera.getImage() == bytes(width * height * 4)
+    for _ in range(3):  # 128 ms: the first image is drawn
+        robot.step(32)
+    drawn = np.frombuffer(camera.getImage(), dtype=np.uint8)
+    assert drawn.max() > 200, "the lit floor beside the line"
+
+
 def test_camera_sees_a_wall_it_faces_and_saves_images(tmp_path: Path) -> None:
     robot = make_robot("arena")
     simulation = simulations.current()

@@ -255,3 +255,49 @@ def test_a_compiled_controllers_remove_is_refused_as_a_python_ones(
     calls.call("wb_supervisor_field_import_mf_node_from_string", [children, -1, b"Solid {}"])
     assert "importMFNodeFromString" in capsys.readouterr().err
     assert calls.call("wb_supervisor_field_get_count", [children]) == [4]
+
+
+#: An arena that writes none of its fields, and an e-puck that names no controller.
+UNWRITTEN = """#VRML_SIM R2025a utf8
+WorldInfo { basicTimeStep 32 }
+DEF ARENA RectangleArena { }
+DEF SMALL RectangleArena { translation 3 0 0 floorSize 0.5 0.25 name "small" }
+DEF EPUCK E-puck { translation -0.2 -0.1 0 supervisor TRUE controller "x" }
+DEF OTHER E-puck { translation 0.2 0 0 }
+"""
+
+
+def test_a_protos_fields_the_file_leaves_out_read_as_the_proto_declares(tmp_path: Path) -> None:
+    supervisor = supervisor_of(UNWRITTEN, tmp_path)
+    arena = supervisor.getFromDef("ARENA")
+    assert arena is not None
+    assert arena.getField("floorSize").getSFVec2f() == [1.0, 1.0]
+    assert arena.getField("wallHeight").getSFFloat() == pytest.approx(0.1)
+    assert arena.getField("name").getSFString() == "rectangle arena"
+    small = supervisor.getFromDef("SMALL")
+    assert small.getField("floorSize").getSFVec2f() == [0.5, 0.25], "the file's value wins"
+    assert small.getField("floorTileSize").getSFVec2f() == [0.5, 0.5]
+    assert small.getField("name").getSFString() == "small"
+    other = supervisor.getFromDef("OTHER")
+    assert other.getField("controller").getSFString() == "e-puck_avoid_obstacles"
+    assert other.getField("camera_width").getSFInt32() == 52
+    assert other.getField("supervisor").getSFBool() is False
+    assert other.getField("no such field") is None
+
+
+def test_a_robot_set_into_a_wall_is_pushed_out_of_it_as_webots_physics_does(
+    tmp_path: Path,
+) -> None:
+    """Webots puts a node wherever its translation is set and its physics pushes a body out of
+    a wall it overlaps; the supervisor's move never fails for a pose a few mm into a wall."""
+    supervisor = supervisor_of(GROUPED, tmp_path)
+    robot = supervisor.getSelf()
+    # The arena's east wall (0.01 m thick) starts at x = 0.5: 0.46 puts the e-puck's
+    # 0.037 m body 3 mm into it.
+    robot.getField("translation").setSFVec3f([0.466, 0.0, 0.0])
+    x, y, _ = robot.getPosition()
+    assert 0.462 <= x <= 0.465 and abs(y) < 0.002, "the nearest pose clear of the wall"
+    assert simulations.current().simulator.wall_clearance >= -0.001, "as a simulator allows"
+    # On the centre of BOX1 (5 cm square) the nearest clear pose is 6.2 cm away: refused.
+    with pytest.raises(mazesim.MazesimError, match="clear of the walls"):
+        robot.getField("translation").setSFVec3f([0.3, 0.2, 0.0])

@@ -11,7 +11,8 @@ A fact is one line, ``kind [argument]``, written in the manifest as Webots shows
 - ``on_dark F``: at least a fraction F of the steps the floor under the robot is dark
   (reflectance below 0.5 within 1 cm of its centre): it follows a line;
 - ``walls N``: the world imports with at least N wall obstacles;
-- ``robots N``: at least N robots move (travel more than 5 cm);
+- ``robots N``: at least N robots move (travel more than 5 cm, or are put more than 5 cm from
+  their start by a supervisor);
 - ``prints TEXT``: the controller prints TEXT (the rest of the line) on its standard output.
 """
 
@@ -83,7 +84,7 @@ class Outcome:
 
     ``path`` is the robot's (N, 2) positions after each step, the first its start; ``walls`` the
     (M, 5) wall boxes (cx, cy, sx, sy, yaw) of the imported world; ``floor`` the floor's
-    reflectance at a point; ``robots_moving`` how many robots travelled more than 5 cm (None:
+    reflectance at a point; ``robots_moving`` how many robots moved more than 5 cm (None:
     count the one robot of ``path``).
     """
 

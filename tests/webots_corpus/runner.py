@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 
 from webots_corpus.census import DROPPED_WORDS, Census, losses
-from webots_corpus.facts import MOVED, Outcome, check, parse_fact
+from webots_corpus.facts import MOVED, Outcome, check, farthest_from_start, parse_fact
 from webots_corpus.manifest import Project
 from webots_corpus.mirrors import MirrorError, export, find_mirror, has_commit, read_file
 
@@ -60,9 +60,12 @@ NO_CONTROLLER = ("", "void", "<generic>", "<none>")
 
 def _runs_whole(project: Project, report: dict[str, Any]) -> bool:
     """Whether the world runs whole: a project without a key script in which several robots
-    have a controller (Python, C or C++)."""
+    have a controller (Python, C or C++; a node that leaves its ``controller`` field out has
+    its PROTO's default one)."""
+    from mazesim.webots.lockstep import controller_name
+
     robots = report.get("robots") or []
-    running = [r for r in robots if (r.get("controller") or "") not in NO_CONTROLLER]
+    running = [r for r in robots if controller_name(r) not in NO_CONTROLLER]
     return not project.keys and len(running) > 1
 
 
@@ -88,11 +91,23 @@ def _trajectory(path: Path, robot: str | None = None) -> np.ndarray:
     return np.array(rows, dtype=np.float64).reshape(-1, 2)
 
 
-def _robots_moving(summary: dict[str, Any]) -> int | None:
+def _robots_moving(summary: dict[str, Any], trajectory: Path) -> int | None:
+    """How many of a whole world's robots moved: travelled more than 5 cm, or were put more
+    than 5 cm from their start by a supervisor (a body a controller slides by its own
+    ``translation`` moves in Webots too, though it travels nothing on its wheels)."""
     robots = summary.get("robots")
     if not isinstance(robots, list):
         return None
-    return sum(1 for r in robots if isinstance(r, dict) and float(r.get("distance_m", 0)) > MOVED)
+    moving = 0
+    for robot in robots:
+        if not isinstance(robot, dict):
+            continue
+        if float(robot.get("distance_m", 0)) > MOVED:
+            moving += 1
+        elif robot.get("name") is not None:
+            path = _trajectory(trajectory, str(robot["name"]))
+            moving += int(farthest_from_start(path) > MOVED)
+    return moving
 
 
 def _significant(warnings: list[str]) -> list[str]:
@@ -257,7 +272,7 @@ def _run_project(project: Project, mirrors: Path, work: Path, census: Census) ->
         path=_trajectory(out / "trajectory.csv", own),
         walls=boxes,
         floor=world_obj.floor_reflectance,
-        robots_moving=_robots_moving(summary),
+        robots_moving=_robots_moving(summary, out / "trajectory.csv"),
         wall_count=len(report.get("obstacles", [])),
     )
     checks = []

@@ -19,7 +19,7 @@ from webots_corpus.census import Census, losses, proto_instances
 from webots_corpus.facts import Outcome, check, dark_fraction, min_gap, parse_fact
 from webots_corpus.manifest import ManifestError, Project, load_manifest, parse_manifest
 from webots_corpus.report import render
-from webots_corpus.runner import _world_missing, run_project
+from webots_corpus.runner import _robots_moving, _world_missing, run_project
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "webots_corpus"
 COMMIT = "0123456789abcdef0123456789abcdef01234567"
@@ -235,6 +235,23 @@ def test_a_whole_world_s_missing_features_are_its_own_robot_s_else_the_others_na
     ]
     assert _world_missing(summary, leader) == ["Webots C API function(s): robot_step"]
     assert _world_missing({"robots": [own]}, own) == []
+
+
+def test_a_robot_a_supervisor_slides_moves_though_it_travels_nothing(tmp_path: Path) -> None:
+    trajectory = tmp_path / "trajectory.csv"
+    rows = ["step,robot,x_m,y_m"]
+    rows += [f"{i},npc,-0.25,{0.005 * i:.3f}" for i in range(20)]  # slid 9.5 cm
+    rows += [f"{i},box,0.5,{0.001 * i:.3f}" for i in range(20)]  # slid 1.9 cm
+    trajectory.write_text("\n".join(rows) + "\n")
+    summary = {
+        "robots": [
+            {"name": "e-puck", "distance_m": 0.6},
+            {"name": "npc", "distance_m": 0.0},
+            {"name": "box", "distance_m": 0.0},
+        ]
+    }
+    assert _robots_moving(summary, trajectory) == 2
+    assert _robots_moving({}, trajectory) is None
 
 
 def test_the_committed_table_holds_the_acceptance_rule() -> None:

@@ -197,11 +197,17 @@ class Camera(_Sensor):
     def _image(self) -> npt.NDArray[np.uint8] | None:
         if self._period_ms == 0 and self._pixels is None:
             self._warn_disabled("get_image")
+        if self._pixels is None and self._period_ms and self._simulation.steps > self._enabled_at:
+            # Webots' wb_camera_get_image returns an enabled camera's image buffer, set up at
+            # the first step after the camera is enabled and drawn when its first sampling
+            # period ends (src/controller/c/camera.c, WbSensor.cpp): black until then.
+            return np.zeros((self._view.height, self._view.width, 4), dtype=np.uint8)
         return self._pixels
 
     def getImage(self) -> bytes | None:
         """The last image: ``width * height * 4`` bytes, B G R A per pixel, row after row;
-        None before the first sampling period has passed."""
+        black from the step after the camera is enabled until its first sampling period has
+        passed (Webots' buffer before its first image), None before."""
         pixels = self._image()
         if pixels is None:
             return None

@@ -1,17 +1,19 @@
 """Running a Webots world with several robots, as Webots runs it.
 
 Each robot's ``controller`` field names a folder of the project's ``controllers/`` (a Python
-controller ``controllers/NAME/NAME.py``); each controller runs in a process of its own
+controller ``controllers/NAME/NAME.py``), or else one of Webots' stock controllers
+(:mod:`mazesim.webots.stock_controllers`; a node that leaves the field out names its PROTO's
+default, the E-puck's ``e-puck_avoid_obstacles``); each controller runs in a process of its own
 (:mod:`mazesim.webots.controller_process`, forked from one template process that imported
 mazesim once: :mod:`mazesim.webots.process_template`), so controllers share no module-level
 state, and this process owns the world: every basic time step waits until every running
 controller has asked for it (lockstep), transmits the radio's packets
 (:mod:`mazesim.webots.radio`), then steps every robot. A robot without a controller (``void``,
-``<generic>``, none), with an ``<extern>`` one not given on the command line, or with one that
-is not Python, stands still; so does a robot whose controller has ended. A robot that is not an
-e-puck runs its controller on a body that does not move. A supervisor sees and moves every robot
-through the :class:`Fleet`; its ``simulationQuit`` ends every controller's run (``Robot.step``
-returns -1).
+``<generic>``, ``<none>``, an empty field), with an ``<extern>`` one not given on the command
+line, or with one that is not Python, stands still; so does a robot whose controller has
+ended. A robot that is not an e-puck runs its controller on a body that does not move by
+itself and touches no wall. A supervisor sees and moves every robot through the
+:class:`Fleet`; its ``simulationQuit`` ends every controller's run (``Robot.step`` returns -1).
 
 The e-pucks share one simulator (:mod:`mazesim.webots.shared_world`): they collide with and
 see each other and the world's movable bodies, which they push; an e-puck whose node lists its
@@ -39,20 +41,30 @@ from typing import Any
 import numpy as np
 
 from mazesim._core import RobotProfile, Simulator, World
-from mazesim.errors import InvalidArgumentError, MazesimIOError
+from mazesim.errors import MazesimIOError
 from mazesim.webots.controller_process import ControllerJob, answer, state_after_step
 from mazesim.webots.own_sensors import own_sensors
 from mazesim.webots.process_template import ControllerProcesses
+from mazesim.webots.proto_fields import declared_fields
 from mazesim.webots.radio import Radio
 from mazesim.webots.requirements import PreparedController, prepare_controller
 from mazesim.webots.runner import CONTROLLER_SUFFIXES
 from mazesim.webots.scene import Scene, read_scenes
 from mazesim.webots.shared_world import RobotView, shared_simulator
-from mazesim.webots.simulation import robot_profile_name
+from mazesim.webots.simulation import place_where_asked, robot_profile_name
+from mazesim.webots.stock_controllers import stock_controller
 from mazesim.webots.traction import Traction, epuck_traction
 from mazesim.webots.virtual_display import virtual_display, window_environment
 
-__all__ = ["Fleet", "RobotRun", "StepObserver", "WorldRun", "controller_of", "run_world"]
+__all__ = [
+    "Fleet",
+    "RobotRun",
+    "StepObserver",
+    "WorldRun",
+    "controller_name",
+    "controller_of",
+    "run_world",
+]
 
 #: Called before every step with the world, the robots' runs, their simulators and the wheel
 #: speeds each steps with, and once after the last step with ``None`` for the wheel speeds
@@ -149,7 +161,7 @@ class Fleet:
 
     def move(self, index: int, x: float, y: float, yaw: float) -> None:
         """Puts a robot at a new pose, at rest."""
-        self._simulators[index].set_pose(x, y, yaw)
+        place_where_asked(self._simulators[index], x, y, yaw)
         self.moved.add(index)
 
 
@@ -168,7 +180,7 @@ def controller_of(
     for key in (robot.get("name"), robot.get("def_name"), robot.get("controller")):
         if key and key in given:
             return os.path.abspath(given[key]), ""
-    name = str(robot.get("controller") or "")
+    name = controller_name(robot)
     if name in NO_CONTROLLER:
         return None, "no controller"
     if name == EXTERN:
@@ -182,7 +194,20 @@ def controller_of(
             candidate = os.path.join(project, "controllers", name, f"{name}{suffix}")
             if os.path.isfile(candidate):
                 return candidate, ""
+    stock = stock_controller(name)
+    if stock is not None:  # Webots' own, which it finds among its projects
+        return stock, ""
     return None, f"no controller controllers/{name}/{name}{', '.join(CONTROLLER_SUFFIXES)}"
+
+
+def controller_name(robot: Mapping[str, Any]) -> str:
+    """The controller a robot's node names: its ``controller`` field, or where the world file
+    leaves the field out, the one its PROTO declares (the E-puck's ``e-puck_avoid_obstacles``);
+    "" for none."""
+    name = robot.get("controller")
+    if name is None:
+        name = declared_fields(str(robot.get("model") or "")).strings.get("controller", "")
+    return str(name)
 
 
 def run_world(
@@ -318,28 +343,18 @@ def _own_simulator(
     """A simulator of one robot of the world alone.
 
     A robot that is not an e-puck is not simulated: its controller runs and its stand-in body
-    stays at its pose. Such a robot often has no body at all (a Supervisor that only sends
-    orders, at the origin): where an e-puck's disc at its pose would overlap a wall, its
-    stand-in stands there in a copy of the world without walls or movable bodies (which it
-    would not touch, since it does not move), and a warning says so, instead of the run being
-    refused. An e-puck whose start overlaps a wall is refused as ever.
+    stays where it stands, in a copy of the world without walls or movable bodies (which it does
+    not touch, since it does not move by itself, and which its devices, not simulated, do not
+    see). There a supervisor puts it wherever Webots would, its own controller sliding it
+    through a wall by its ``translation`` as much as another's placing it; and a robot with no
+    body at all (a Supervisor that only sends orders) may stand where an e-puck's disc would
+    overlap a wall. An e-puck whose start overlaps a wall is refused as ever.
     """
     from mazesim.webots.importer import import_wbt
 
     own_world, _ = import_wbt(world_path, robot_line=int(robot["line"]))
-    try:
+    if robot.get("profile") is not None:
         return Simulator(own_world, robot=profile, seed=seed, noise=noise)
-    except InvalidArgumentError as refusal:
-        if robot.get("profile") is not None:
-            raise
-        reason = str(refusal)
-    label = robot.get("name") or robot.get("def_name") or robot.get("model")
-    print(
-        f"mazesim: warning: robot {label!r} ({robot.get('model')}, not simulated): an e-puck's "
-        f"body at its pose would overlap a wall ({reason}); its stand-in stands there without "
-        f"walls (it does not move, and its devices see no walls)",
-        file=sys.stderr,
-    )
     text = _SOLID_TABLES.sub("", own_world.to_toml())
     bare = World.from_toml(text, source=f"{own_world.name} (without walls)")
     return Simulator(bare, robot=profile, seed=seed, noise=noise)

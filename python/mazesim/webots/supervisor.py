@@ -31,6 +31,7 @@ from mazesim.webots.frames import (
 )
 from mazesim.webots.inert import ContactPoint, NotSimulated
 from mazesim.webots.node_types import NODE_TYPES
+from mazesim.webots.proto_fields import declared_fields
 from mazesim.webots.radio_devices import E_PUCK_CHANNEL
 from mazesim.webots.robot import Robot
 from mazesim.webots.scene import EPUCK_TYPES, GROUPING_TYPES, SceneNode
@@ -411,6 +412,14 @@ class Node(NotSimulated):
                 made._numbers.setdefault(channel, [float(E_PUCK_CHANNEL)])
         made._flags = dict(node.flags)
         made._strings.update(node.strings)
+        # The fields the PROTO declares that the file leaves out, at their defaults.
+        declared = declared_fields(node.type_name)
+        for name, values in declared.numbers.items():
+            made._numbers.setdefault(name, list(values))
+        for name, text in declared.strings.items():
+            made._strings.setdefault(name, text)
+        for name, flag in declared.flags.items():
+            made._flags.setdefault(name, flag)
         return made
 
     def _adopt(self, children: list[Node]) -> None:

@@ -1,0 +1,69 @@
+"""A robot whose world file leaves its ``controller`` field out runs its PROTO's default
+controller, as in Webots: the E-puck's ``e-puck_avoid_obstacles``, a Braitenberg avoider."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from mazesim.webots import stock_controllers
+from mazesim.webots.lockstep import controller_name, controller_of, run_world
+
+#: Two e-pucks in an arena: one whose controller only steps, one that names no controller.
+WORLD = """#VRML_SIM R2023b utf8
+WorldInfo { basicTimeStep 32 }
+RectangleArena { floorSize 1 1 }
+E-puck { translation -0.3 0.3 0 name "still" controller "still" }
+E-puck { translation 0 0 0 name "default" }
+"""
+STILL = """from controller import Robot
+robot = Robot()
+while robot.step(32) != -1:
+    pass
+"""
+
+
+def test_a_node_without_a_controller_field_names_its_protos_default(tmp_path: Path) -> None:
+    world = str(tmp_path / "worlds" / "w.wbt")
+    robot = {"name": "e", "model": "E-puck", "controller": None}
+    assert controller_name(robot) == "e-puck_avoid_obstacles"
+    found, why = controller_of(robot, world, {})
+    assert (found, why) == (stock_controllers.__file__, "")
+    none, why = controller_of({**robot, "controller": ""}, world, {})
+    assert none is None and why == "no controller", "an empty field names no controller"
+    # A project's own controller of that name wins over Webots' stock one.
+    own = tmp_path / "controllers" / "e-puck_avoid_obstacles" / "e-puck_avoid_obstacles.py"
+    own.parent.mkdir(parents=True)
+    own.write_text(STILL)
+    assert controller_of(robot, world, {}) == (str(own), "")
+    assert controller_name({"name": "r", "model": "Robot"}) == "", "no PROTO default"
+
+
+def test_the_stock_avoider_turns_away_from_the_side_it_sees() -> None:
+    assert stock_controllers.wheel_speeds([0.0] * 8) == pytest.approx((3.14, 3.14))
+    right = stock_controllers.wheel_speeds([2000.0, 2000.0, 0, 0, 0, 0, 0, 0])
+    left = stock_controllers.wheel_speeds([0, 0, 0, 0, 0, 0, 2000.0, 2000.0])
+    # Webots' weights turn it left, away from an obstacle on the right and in front, and, as
+    # its left wheel alone slows for ps6 and ps7, left for one on the left front too.
+    assert right == pytest.approx(
+        (3.14 - 2 * 2000 / 4096 * 1.3 * 6.28, 3.14 - 2 * 2000 / 4096 * 6.28)
+    )
+    assert right[0] < right[1] < 0, "close on the right front: it backs away turning left"
+    assert left == pytest.approx((3.14 - 2 * 2000 / 4096 * 0.75 * 6.28, 3.14))
+    assert max(abs(s) for s in stock_controllers.wheel_speeds([4096.0] * 8)) <= 6.28
+
+
+def test_an_e_puck_without_a_controller_field_drives_in_a_world_run(tmp_path: Path) -> None:
+    (tmp_path / "worlds").mkdir()
+    (tmp_path / "worlds" / "w.wbt").write_text(WORLD)
+    (tmp_path / "controllers" / "still").mkdir(parents=True)
+    (tmp_path / "controllers" / "still" / "still.py").write_text(STILL)
+    run = run_world(str(tmp_path / "worlds" / "w.wbt"), seconds=4.0, seed=1)
+    still, default = run.robots
+    assert Path(str(default.controller)).name == "stock_controllers.py"
+    assert default.exit_status == 0, default.error
+    assert still.distance_m < 1e-6
+    # Half of full speed (3.14 rad/s, 0.063 m/s) ahead for 4 s, clear of the walls.
+    assert 0.2 < default.distance_m < 0.26
+    assert default.collisions == 0
