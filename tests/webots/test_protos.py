@@ -503,3 +503,19 @@ def test_a_cabinet_stands_in_as_the_envelope_of_its_frame(
     # Turned to face -x: 0.3 deep toward -x; 0.04 + 0.5 wide.
     assert small[0] == pytest.approx([-1.15, 0.0], abs=1e-5)
     assert small[1] == pytest.approx([0.3, 0.54])
+
+
+def test_the_world_parser_reads_any_depth_when_asked_and_skips_inline_proto_definitions() -> None:
+    from mazesim.errors import WorldFormatError
+    from mazesim.webots.proto.syntax import MAX_DEPTH, nodes_in_order, parse_nodes
+
+    depth = 3000
+    text = "Group { children [ " * depth + "DEF DEEP Solid { }" + " ] }" * depth
+    with pytest.raises(WorldFormatError, match=f"expected nodes nested at most {MAX_DEPTH} deep"):
+        parse_nodes(text)
+    every = list(nodes_in_order(parse_nodes(text, max_depth=None)))
+    assert len(every) == depth + 1 and every[-1].def_name == "DEEP"
+    # A PROTO written in a world is a definition, not nodes of the world.
+    world = 'PROTO Post [ field SFFloat h 1 ] { Solid { name "inside" } }\nSolid { name "post" }'
+    (post,) = parse_nodes(world)
+    assert post.field("name") is not None and post.field("name").string() == "post"

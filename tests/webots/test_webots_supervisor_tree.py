@@ -127,6 +127,65 @@ def test_a_deep_nesting_is_read_without_recursion(tmp_path: Path) -> None:
     assert node.children[0].def_name == "DEEP"
 
 
+#: A world whose ``children`` fields hold USE nodes: the Group lists a Solid, a Transform that
+#: USEs that Solid, and a USE of a Solid at the file's top.
+WITH_USE = """#VRML_SIM R2023b utf8
+WorldInfo { basicTimeStep 32 }
+DEF POST Solid { translation 0.2 0.1 0 name "post" }
+DEF ROW Group {
+  children [
+    DEF PILLAR Solid { translation 0.3 0 0 rotation 0 0 1 1.5708 name "pillar" }
+    Transform { translation 0 0.5 0 children [ USE PILLAR ] }
+    USE POST
+  ]
+}
+DEF EPUCK E-puck { translation -0.2 -0.1 0 supervisor TRUE }
+"""
+
+
+def test_a_use_in_a_children_field_is_the_node_of_its_def(tmp_path: Path) -> None:
+    supervisor = supervisor_of(WITH_USE, tmp_path)
+    row = supervisor.getFromDef("ROW").getField("children")
+    assert row.getCount() == 3, "the Solid, the Transform and the USE of POST"
+    post, pillar = supervisor.getFromDef("POST"), supervisor.getFromDef("PILLAR")
+    assert row.getMFNode(2) is post and row.getMFNode(-1) is post
+    transform = row.getMFNode(1).getField("children")
+    assert transform.getCount() == 1 and transform.getMFNode(0) is pillar
+    # The same node: its DEF name, fields, parent and place in the world are its DEF's.
+    assert transform.getMFNode(0).getDef() == "PILLAR"
+    assert pillar.getParentNode() is supervisor.getFromDef("ROW")
+    assert pillar.getPosition() == pytest.approx([0.3, 0.0, 0.0])
+    assert post.getParentNode() is supervisor.getRoot()
+    assert post.getField("name").getSFString() == "post"
+    ids = [n.getId() for n in (post, pillar, row.getMFNode(1), supervisor.getFromDef("ROW"))]
+    assert len(set(ids)) == len(ids) and supervisor.getFromId(pillar.getId()) is pillar
+
+
+def test_a_use_stands_for_the_last_def_of_its_name_before_it() -> None:
+    text = (
+        "#VRML_SIM R2023b utf8\n"
+        'DEF A Solid { name "first" }\n'
+        'Group { children [ USE A DEF A Solid { name "second" } USE A USE B ] }\n'
+    )
+    (first, group) = read_scene(text).nodes
+    assert [child.name for child in group.children] == ["first", "second", "second"]
+    assert group.children[0] is first, "the USE is the DEF's own node, not a copy"
+
+
+def test_strings_holding_brackets_or_numbers_are_read_as_strings() -> None:
+    text = (
+        "#VRML_SIM R2023b utf8\n"
+        'Solid { name "rock 1" customData "[(0.1, 0.2)] {x}" translation 1 2 3 }\n'
+        'DEF EPUCK E-puck { customData "{\\"state\\": [1, 2]}" controllerArgs [ "a" "[b]" ] }\n'
+    )
+    scene = read_scene(text)
+    rock, robot = scene.nodes
+    assert rock.strings == {"customData": "[(0.1, 0.2)] {x}"} and rock.numbers == {}
+    assert rock.name == "rock 1" and rock.translation == (1.0, 2.0, 3.0)
+    assert scene.robot_custom_data == '{\\"state\\": [1, 2]}' and robot.robot
+    assert scene.controller_args == ["a", "[b]"]
+
+
 def test_adding_or_removing_nodes_prints_an_error_and_changes_nothing(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

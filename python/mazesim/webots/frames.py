@@ -1,5 +1,5 @@
 """Webots' old NUE frame (worlds before R2022a: x north, y up, z east) and mazesim's ENU frame,
-and the matrix of a Webots axis-angle rotation.
+the matrix of a Webots axis-angle rotation, and the frame of a node placed inside another's.
 
 Webots' R2022a world converter maps a translation ``(x, y, z)`` of an NUE world to ``(-z, -x,
 y)`` and a rotation's axis likewise; the importer (``mazesim-core``'s ``wbt::frames``) does the
@@ -11,8 +11,18 @@ here by the same map, and every value a device of such a world reports in Webots
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
-__all__ = ["ENU_TO_NUE", "enu_to_nue", "enu_to_nue_matrix", "nue_to_enu", "rotation_matrix"]
+__all__ = [
+    "ENU_TO_NUE",
+    "WORLD_FRAME",
+    "Frame",
+    "enu_to_nue",
+    "enu_to_nue_matrix",
+    "nue_to_enu",
+    "placed",
+    "rotation_matrix",
+]
 
 #: The matrix of :func:`enu_to_nue` (rows).
 ENU_TO_NUE = ((0.0, -1.0, 0.0), (0.0, 0.0, 1.0), (-1.0, 0.0, 0.0))
@@ -50,4 +60,29 @@ def rotation_matrix(ax: float, ay: float, az: float, angle: float) -> list[float
         *(t * x * x + c, t * x * y - s * z, t * x * z + s * y),
         *(t * x * y + s * z, t * y * y + c, t * y * z - s * x),
         *(t * x * z - s * y, t * y * z + s * x, t * z * z + c),
+    ]
+
+
+#: A frame: its origin and its rotation matrix (row after row), in the frame it is placed in.
+Frame = tuple[list[float], list[float]]
+#: The world's frame in itself.
+WORLD_FRAME: Frame = ([0.0, 0.0, 0.0], rotation_matrix(0.0, 0.0, 1.0, 0.0))
+
+
+def placed(
+    frame: Frame, translation: Sequence[float], rotation: Sequence[float] | None = None
+) -> Frame:
+    """The frame of a node placed inside ``frame`` by its ``translation`` and its axis-angle
+    ``rotation`` (none by default), as Webots composes a node's pose through its parents'."""
+    origin, matrix = frame
+    moved = [
+        origin[i] + sum(matrix[3 * i + k] * translation[k] for k in range(3)) for i in range(3)
+    ]
+    if rotation is None:
+        return moved, matrix
+    turn = rotation_matrix(*rotation)
+    return moved, [
+        sum(matrix[3 * i + k] * turn[3 * k + j] for k in range(3))
+        for i in range(3)
+        for j in range(3)
     ]

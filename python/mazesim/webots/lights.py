@@ -1,8 +1,8 @@
 """The world's lights, as the e-puck's light sensors see them.
 
 A world file's ``PointLight``, ``SpotLight`` and ``DirectionalLight`` nodes are read from its
-text; a light sensor at a point, facing a heading along the floor, receives from each light that
-is on::
+node tree; a light sensor at a point, facing a heading along the floor, receives from each light
+that is on::
 
     E = intensity * (ambientIntensity + max(0, cos(a))) / attenuation
 
@@ -16,10 +16,11 @@ attenuation of a point or spot light at distance ``d`` is ``a0 + a1 d + a2 d^2``
 from __future__ import annotations
 
 import math
-import re
+from collections.abc import Iterable
 from dataclasses import dataclass
 
 from mazesim.webots.frames import nue_to_enu
+from mazesim.webots.proto.syntax import Field, Node, first_value
 
 __all__ = ["DEFAULT_IRRADIANCE", "Light", "irradiance", "read_lights"]
 
@@ -27,8 +28,7 @@ __all__ = ["DEFAULT_IRRADIANCE", "Light", "irradiance", "read_lights"]
 #: sensors' table (1-2 W/m^2), a reading of 2047.5.
 DEFAULT_IRRADIANCE = 1.5
 
-_LIGHT = re.compile(r"\b(PointLight|SpotLight|DirectionalLight)\s*\{")
-_NUMBER = r"([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)"
+_LIGHT_TYPES = ("PointLight", "SpotLight", "DirectionalLight")
 
 
 @dataclass(frozen=True)
@@ -52,49 +52,35 @@ class Light:
     radius: float = 100.0
 
 
-def _body(text: str, start: int) -> str:
-    """The text of a node's body from just after its ``{`` to its ``}``."""
-    depth = 0
-    for index in range(start, len(text)):
-        if text[index] == "{":
-            depth += 1
-        elif text[index] == "}":
-            if depth == 0:
-                return text[start:index]
-            depth -= 1
-    return text[start:]
+def _numbers(light: Node, name: str, default: tuple[float, ...]) -> tuple[float, ...]:
+    """A light's field of ``len(default)`` numbers, ``default`` where the file gives none."""
+    return first_value([light], name, lambda item: item.numbers(len(default))) or default
 
 
-def _numbers(body: str, name: str, count: int) -> list[float] | None:
-    found = re.search(r"\b" + name + r"\s+" + r"\s+".join([_NUMBER] * count), body)
-    return None if found is None else [float(v) for v in found.groups()]
-
-
-def read_lights(text: str, nue: bool = False) -> list[Light]:
-    """The lights of a world file's text that are on (comments already stripped).
+def read_lights(nodes: Iterable[Node], nue: bool = False) -> list[Light]:
+    """The lights among a world file's nodes that are on.
 
     Args:
-        text: The ``.wbt`` text.
+        nodes: Every node of the world file (:func:`~mazesim.webots.proto.syntax.nodes_in_order`).
         nue: Whether the file is in Webots' old NUE frame (y up); positions are converted.
     """
     lights = []
-    for match in _LIGHT.finditer(text):
-        body = _body(text, match.end())
-        if re.search(r"\bon\s+FALSE\b", body):
+    for light in nodes:
+        if light.type_name not in _LIGHT_TYPES or first_value([light], "on", Field.flag) is False:
             continue
-        intensity = (_numbers(body, "intensity", 1) or [1.0])[0]
-        ambient = (_numbers(body, "ambientIntensity", 1) or [0.0])[0]
-        if match.group(1) == "DirectionalLight":
-            x, y, z = _numbers(body, "direction", 3) or [0.0, 0.0, -1.0]
+        (intensity,) = _numbers(light, "intensity", (1.0,))
+        (ambient,) = _numbers(light, "ambientIntensity", (0.0,))
+        if light.type_name == "DirectionalLight":
+            x, y, z = _numbers(light, "direction", (0.0, 0.0, -1.0))
             x, y, z = nue_to_enu(x, y, z) if nue else (x, y, z)
             norm = math.sqrt(x * x + y * y + z * z) or 1.0
             lights.append(
                 Light(None, (x / norm, y / norm, z / norm), intensity=intensity, ambient=ambient)
             )
             continue
-        x, y, z = _numbers(body, "location", 3) or [0.0, 0.0, 0.0]
-        a0, a1, a2 = _numbers(body, "attenuation", 3) or [1.0, 0.0, 0.0]
-        radius = (_numbers(body, "radius", 1) or [100.0])[0]
+        x, y, z = _numbers(light, "location", (0.0, 0.0, 0.0))
+        a0, a1, a2 = _numbers(light, "attenuation", (1.0, 0.0, 0.0))
+        (radius,) = _numbers(light, "radius", (100.0,))
         lights.append(
             Light(
                 nue_to_enu(x, y, z) if nue else (x, y, z),

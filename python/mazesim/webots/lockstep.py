@@ -54,7 +54,7 @@ from mazesim.webots.proto_fields import declared_fields
 from mazesim.webots.radio import Radio
 from mazesim.webots.requirements import PreparedController, prepare_controller
 from mazesim.webots.runner import CONTROLLER_SUFFIXES, EXIT_INTERRUPTED
-from mazesim.webots.scene import Scene, read_scene
+from mazesim.webots.scene import Scene, read_scenes
 from mazesim.webots.shared_world import RobotView, shared_simulator
 from mazesim.webots.simulation import place_where_asked, robot_profile_name
 from mazesim.webots.stock_controllers import stock_controller
@@ -318,11 +318,11 @@ def run_world(
 
 
 def _robot_scenes(world_path: str, robots: list[Mapping[str, Any]]) -> list[Scene]:
-    """What the world file says of each robot's node (:func:`~mazesim.webots.scene.read_scene`
+    """What the world file says of each robot's node (:func:`~mazesim.webots.scene.read_scenes`
     of the node on its line)."""
     with open(world_path, encoding="utf-8", errors="replace") as handle:
         text = handle.read().replace("\r\n", "\n").replace("\r", "\n")
-    return [read_scene(text, robot.get("model"), robot.get("line")) for robot in robots]
+    return read_scenes(text, [(robot.get("model"), robot.get("line")) for robot in robots])
 
 
 def _own_profiles(robots: list[Mapping[str, Any]], scenes: list[Scene]) -> dict[int, RobotProfile]:

@@ -2,51 +2,42 @@
 
 The import report gives walls, the robot's pose and its extension devices; the controller module
 also wants the DEF names (for ``Supervisor.getFromDef``), whether the robot is a supervisor,
-the E-puck's camera fields and the world's north. They are read from the file's text here.
+the E-puck's camera fields and the world's north. They are read from the file's node tree, as
+:mod:`mazesim.webots.proto.syntax` parses it for the PROTO engine too.
 """
 
 from __future__ import annotations
 
 import math
 import re
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import Any
 
-from mazesim.webots.frames import nue_to_enu, rotation_matrix
+from mazesim.webots.frames import WORLD_FRAME, nue_to_enu, placed
 from mazesim.webots.lights import Light, read_lights
+from mazesim.webots.proto.syntax import (
+    Field,
+    Node,
+    first_value,
+    nodes_in_order,
+    parse_nodes,
+    world_version,
+)
 
-__all__ = ["DEFAULT_LOOKUP_TABLE", "GROUPING_TYPES", "Row", "Scene", "SceneNode", "read_scene"]
+__all__ = [
+    "DEFAULT_LOOKUP_TABLE",
+    "GROUPING_TYPES",
+    "Row",
+    "Scene",
+    "SceneNode",
+    "read_scene",
+    "read_scenes",
+]
 
 #: A row of a ``lookupTable``: distance (m), value and relative noise.
 Row = tuple[float, float, float]
 
-_DEF = re.compile(r"\bDEF\s+([^\s{}\[\]]+)\s+([A-Za-z_][\w-]*)\s*\{")
-_NAME = re.compile(r'\bname\s+"((?:[^"\\]|\\.)*)"')
-_CUSTOM_DATA = re.compile(r'\bcustomData\s+"((?:[^"\\]|\\.)*)"')
-_CONTROLLER_ARGS = re.compile(r'\bcontrollerArgs\s*(?:\[([^\]]*)\]|"((?:[^"\\]|\\.)*)")')
-_STRING = re.compile(r'"((?:[^"\\]|\\.)*)"')
-#: A string (kept: it may hold a ``#``) or a comment (removed).
-_COMMENT_OR_STRING = re.compile(r'"(?:[^"\\\n]|\\.)*"|#[^\n]*')
-_SUPERVISOR = re.compile(r"\bsupervisor\s+TRUE\b")
-_NUMBER = r"([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)"
-_CAMERA_WIDTH = re.compile(r"\bcamera_width\s+" + _NUMBER)
-_CAMERA_HEIGHT = re.compile(r"\bcamera_height\s+" + _NUMBER)
-_CAMERA_FOV = re.compile(r"\bcamera_fieldOfView\s+" + _NUMBER)
-_CAMERA_ROTATION = re.compile(r"\bcamera_rotation" + r"\s+".join([""] + [_NUMBER] * 4))
-_HEADER = re.compile(r"#VRML_SIM\s+(?:R(\d{4})([a-z])?|V?(\d+)\.)")
-_NUE = re.compile(r'\bcoordinateSystem\s+"NUE"')
-_NODE = re.compile(r"(?:\bDEF\s+([^\s{}\[\]]+)\s+)?(?<![\w-])([A-Za-z_][\w-]*)\s*\{")
-_ROTATION = re.compile(r"\brotation" + r"\s+".join([""] + [_NUMBER] * 4))
-_TRANSLATION = re.compile(r"\btranslation\s+" + _NUMBER + r"\s+" + _NUMBER + r"\s+" + _NUMBER)
-#: Webots' ground sensors module of the E-puck (its gs0..gs2), in its groundSensorsSlot.
-_GROUND_SENSORS_MODULE = re.compile(
-    r"(?<![\w-])(?:E-puckGroundSensors|EPuck_GroundSensorsModule)\s*\{"
-)
-#: A wheel joint's position saved in a world file: ``hidden position_0_<joint> <rad>``.
-_KINEMATIC = re.compile(r"\bkinematic\s+TRUE\b")
-_VERSION_2 = re.compile(r'\bversion\s+"2"')
-_HIDDEN_WHEEL = re.compile(r"\bhidden\s+position_0_([01])\s+" + _NUMBER)
-_NORTH = re.compile(r"\bnorthDirection\s+" + _NUMBER + r"\s+" + _NUMBER + r"\s+" + _NUMBER)
+
 #: Node types that are robots (``DifferentialWheels``: Webots 6-7's wheeled robot).
 ROBOT_TYPES = {"E-puck", "Robot", "DifferentialWheels", "e-puck2", "Epuck", "EPuck", "E-puck2"}
 #: The E-puck PROTOs, whose hidden joint positions are their wheels'.
@@ -214,7 +205,7 @@ def _hinge_wheels(year: str | None) -> bool:
 
 
 def read_scene(text: str, robot_model: str | None = None, robot_line: int | None = None) -> Scene:
-    """Reads the scene facts of a world file's text (comments skipped).
+    """Reads the scene facts of a world file's text.
 
     The robot's own facts (DEF and ``name``, ``customData``, ``supervisor``,
     ``controllerArgs``, camera fields) are read from its node alone, so that another robot of
@@ -225,65 +216,83 @@ def read_scene(text: str, robot_model: str | None = None, robot_line: int | None
         robot_model: The robot's node type from the import report, if any.
         robot_line: The line of the robot's node from the import report (``robot_line``), if
             any; without it the first robot node of the file is the robot.
+
+    Raises:
+        WorldFormatError: The text is not a world's nodes (the import says so first).
+    """
+    return read_scenes(text, [(robot_model, robot_line)])[0]
+
+
+def read_scenes(text: str, robots: Sequence[tuple[str | None, int | None]]) -> list[Scene]:
+    """The scene facts of a world file's text for each of its robots (its node type and line,
+    as :func:`read_scene` takes them), the text parsed once.
+
+    Raises:
+        WorldFormatError: The text is not a world's nodes (the import says so first).
     """
     text = text.lstrip("\ufeff")
-    header = _HEADER.match(text.lstrip())
+    tree = parse_nodes(text, "<world>", max_depth=None)
+    every = list(nodes_in_order(tree))
+    return [_scene(text, tree, every, model, line) for model, line in robots]
+
+
+def _scene(
+    text: str, tree: list[Node], every: list[Node], robot_model: str | None, robot_line: int | None
+) -> Scene:
+    """The scene facts of a parsed world (``tree``, ``every`` node in file order) for a robot."""
     scene = Scene()
-    year = None
-    if header is not None:
-        year = header.group(1)
-        scene.nue = int(year) < 2022 if year else header.group(3) is not None
-        scene.y_up_devices = scene.nue
-    text = _COMMENT_OR_STRING.sub(_without_comment, text)
-    scene.nue = scene.nue or bool(_NUE.search(text))
+    version, scene.nue = world_version(text)
+    scene.y_up_devices = scene.nue
+    year = version[1:5] if version is not None and version.startswith("R") else None
+    scene.nue = scene.nue or first_value(every, "coordinateSystem", Field.string) == "NUE"
     robot_types = ROBOT_TYPES | ({robot_model} if robot_model else set())
-    robot = _robot_node(text, robot_types, robot_line)
-    for match in _DEF.finditer(text):
-        scene.defs.setdefault(match.group(1), match.group(2))
-    scene.nodes = _top_nodes(text, robot, scene.nue)
+    robot = _robot_node(text, every, robot_types, robot_line)
+    for node in every:
+        if node.def_name is not None and node.use_name is None:
+            scene.defs.setdefault(node.def_name, node.type_name)
+    scene.nodes = _scene_nodes(tree, robot, scene.nue, _definitions(every))
     # Without a robot node, the whole file stands for it.
-    own, body = text, text
+    own: list[Node] = every
     if robot is not None:
-        scene.robot_def = robot.group(1)
-        own, body = _own_text(text, robot.end()), _body_text(text, robot.end())
-        if found := _NAME.search(own):
-            scene.robot_name = found.group(1)
-        if found := _CUSTOM_DATA.search(own):
-            scene.robot_custom_data = found.group(1)
-        saved = {int(j): float(v) for j, v in _HIDDEN_WHEEL.findall(own)}
-        if robot.group(2) in EPUCK_TYPES:
+        own = [robot]
+        inside = list(nodes_in_order(f for item in robot.fields for f in item.nodes))
+        scene.robot_def = robot.def_name
+        scene.robot_name = first_value(own, "name", Field.string) or scene.robot_name
+        scene.robot_custom_data = first_value(own, "customData", Field.string) or ""
+        if robot.type_name in EPUCK_TYPES:
             # The E-puck PROTO's first HingeJoint is its left wheel's, the second its right's.
-            scene.wheel_positions = (saved.get(0, 0.0), saved.get(1, 0.0))
-            scene.ground_sensors_module = bool(_GROUND_SENSORS_MODULE.search(body))
-        if robot.group(2) not in EPUCK_TYPES:
-            scene.sensor_tables, scene.malformed_tables = _sensor_tables(body)
-            placed = _sensor_poses(body, scene.nue)
+            scene.wheel_positions = (_saved_wheel(robot, 0), _saved_wheel(robot, 1))
+            scene.ground_sensors_module = any(n.type_name in _GROUND_SENSORS for n in inside)
+        else:
+            scene.sensor_tables, scene.malformed_tables = _sensor_tables(text, inside)
+            placed = _sensor_poses(robot, scene.nue)
             scene.sensor_poses = {name: pose[:4] for name, pose in placed.items()}
             scene.sensor_heights = {name: pose[4] for name, pose in placed.items()}
-            scene.sensor_types = _sensor_types(body)
-        if robot.group(2) == "E-puck":
+            scene.sensor_types = _sensor_types(inside)
+        if robot.type_name == "E-puck":
             scene.infrared_elevation = EPUCK_IR_ELEVATION
-        if robot.group(2) == "E-puck" and _hinge_wheels(year) and not _KINEMATIC.search(own):
-            scene.traction_version = "2" if _VERSION_2.search(own) else "1"
-    scene.supervisor = bool(_SUPERVISOR.search(own))
-    scene.lights = read_lights(text, scene.nue)
-    if found := _CONTROLLER_ARGS.search(body):
-        listed, single = found.groups()
-        scene.controller_args = (
-            _STRING.findall(listed) if listed is not None else (single or "").split()
-        )
-    if found := _CAMERA_WIDTH.search(own):
-        scene.camera_width = max(1, int(float(found.group(1))))
-    if found := _CAMERA_HEIGHT.search(own):
-        scene.camera_height = max(1, int(float(found.group(1))))
-    if found := _CAMERA_FOV.search(own):
-        scene.camera_fov = float(found.group(1))
-    if found := _CAMERA_ROTATION.search(own):
-        ax, ay, az, angle = (float(v) for v in found.groups())
+        kinematic = first_value(own, "kinematic", Field.flag)
+        if robot.type_name == "E-puck" and _hinge_wheels(year) and not kinematic:
+            second = first_value(own, "version", Field.string) == "2"
+            scene.traction_version = "2" if second else "1"
+    scene.supervisor = bool(first_value(own, "supervisor", Field.flag))
+    scene.lights = read_lights(every, scene.nue)
+    if (arguments := first_value(own, "controllerArgs", _itself)) is not None:
+        strings = [t.text[1:-1] for t in arguments.tokens if t.kind == "string"]
+        bracketed = bool(arguments.tokens) and arguments.tokens[0].kind == "["
+        scene.controller_args = strings if bracketed else " ".join(strings[:1]).split()
+    if (width := first_value(own, "camera_width", _leading(1))) is not None:
+        scene.camera_width = max(1, int(width[0]))
+    if (height := first_value(own, "camera_height", _leading(1))) is not None:
+        scene.camera_height = max(1, int(height[0]))
+    if (fov := first_value(own, "camera_fieldOfView", _leading(1))) is not None:
+        scene.camera_fov = fov[0]
+    if (turn := first_value(own, "camera_rotation", _leading(4))) is not None:
+        ax, ay, az, angle = turn
         norm = math.sqrt(ax * ax + ay * ay + az * az) or 1.0
         scene.camera_pitch = angle * ay / norm
-    if found := _NORTH.search(text):
-        x, y, z = (float(v) for v in found.groups())
+    if (north := first_value(every, "northDirection", _leading(3))) is not None:
+        x, y, z = north
         scene.north = nue_to_enu(x, y, z)[:2] if scene.nue else (x, y)
     elif scene.y_up_devices:
         # WorldInfo.northDirection's default before R2022a: x (1 0 0).
@@ -291,304 +300,232 @@ def read_scene(text: str, robot_model: str | None = None, robot_line: int | None
     return scene
 
 
-def _without_comment(match: re.Match[str]) -> str:
-    """A string of the file as it is, a comment (``#`` to the end of its line) removed."""
-    found = match.group(0)
-    return "" if found.startswith("#") else found
+#: The nodes of Webots' ground sensors module of the E-puck (its gs0..gs2), in its
+#: groundSensorsSlot.
+_GROUND_SENSORS = {"E-puckGroundSensors", "EPuck_GroundSensorsModule"}
 
 
-_DISTANCE_SENSOR = re.compile(r"(?<![\w-])DistanceSensor\s*\{")
-_LOOKUP_TABLE = re.compile(r"\blookupTable\s*\[([^\]]*)\]")
+def _leading(count: int) -> Callable[[Field], tuple[float, ...] | None]:
+    """Reads a field's first ``count`` values when they are numbers."""
+    return lambda item: item.numbers(count)
+
+
+def _itself(item: Field) -> Field:
+    """Reads a field as it is."""
+    return item
+
+
+def _sensor_name(node: Node) -> str | None:
+    """The ``name`` of a ``DistanceSensor`` node; None for another node or one without."""
+    return first_value([node], "name", Field.string) if node.type_name == "DistanceSensor" else None
+
+
+def _saved_wheel(robot: Node, joint: int) -> float:
+    """A wheel joint's position saved in a world file (``hidden position_0_<joint> <rad>``,
+    the last one written), 0 without one."""
+    saved = [
+        values[0]
+        for item in robot.fields
+        if item.name == f"position_0_{joint}" and (values := item.numbers()) is not None
+    ]
+    return saved[-1] if saved else 0.0
+
+
 #: The ``lookupTable`` of a ``DistanceSensor`` node without the field (Webots' reference
 #: manual, DistanceSensor: ``lookupTable [ 0 0 0, 0.1 1000 0 ]``): 0 touching, rising to 1000
 #: at 0.1 m and beyond.
 DEFAULT_LOOKUP_TABLE = [(0.0, 0.0, 0.0), (0.1, 1000.0, 0.0)]
+_COMMENT = re.compile(r"#[^\n\r]*")
 
 
-def _sensor_tables(body: str) -> tuple[dict[str, list[Row]], dict[str, str]]:
-    """The ``lookupTable`` of each named ``DistanceSensor`` node in a robot's body text (the
-    default one where the node has no such field), and the fields that are not rows of 3
-    numbers, as found."""
+def _sensor_tables(text: str, inside: list[Node]) -> tuple[dict[str, list[Row]], dict[str, str]]:
+    """The ``lookupTable`` of each named ``DistanceSensor`` node among the nodes ``inside`` a
+    robot's (the default one where the node has no such field), and the fields that are not
+    rows of 3 numbers, as found."""
     tables: dict[str, list[Row]] = {}
     malformed: dict[str, str] = {}
-    for node in _DISTANCE_SENSOR.finditer(body):
-        found = _NAME.search(_own_text(body, node.end()))
-        if found is None or found.group(1) in tables or found.group(1) in malformed:
+    for node in inside:
+        name = _sensor_name(node)
+        if name is None or name in tables or name in malformed:
             continue
-        field_text = _own_lookup_table(_body_text(body, node.end()))
-        if field_text is None:
-            tables[found.group(1)] = list(DEFAULT_LOOKUP_TABLE)
-        elif (table := _rows_of_three(field_text)) is not None:
-            tables[found.group(1)] = table
+        table = first_value([node], "lookupTable", _itself)
+        if table is None:
+            tables[name] = list(DEFAULT_LOOKUP_TABLE)
+            continue
+        written = _COMMENT.sub("", text[table.value_start : table.value_end]).strip()
+        written = written[1:-1] if written.startswith("[") and written.endswith("]") else written
+        if (rows := _rows_of_three(table)) is not None:
+            tables[name] = rows
         else:
-            malformed[found.group(1)] = " ".join(field_text.split())
+            malformed[name] = " ".join(written.split())
     return tables, malformed
 
 
-_TYPE = re.compile(r'\btype\s+"((?:[^"\\]|\\.)*)"')
 #: A ``DistanceSensor`` node's ``type`` without the field (Webots' reference manual).
 DEFAULT_SENSOR_TYPE = "generic"
 
 
-def _sensor_types(body: str) -> dict[str, str]:
-    """The ``type`` of each named ``DistanceSensor`` node in a robot's body text (Webots'
-    default, :data:`DEFAULT_SENSOR_TYPE`, where the node has no such field)."""
+def _sensor_types(inside: list[Node]) -> dict[str, str]:
+    """The ``type`` of each named ``DistanceSensor`` node among a robot's nodes ``inside``
+    (Webots' default, :data:`DEFAULT_SENSOR_TYPE`, where the node has no such field)."""
     types: dict[str, str] = {}
-    for node in _DISTANCE_SENSOR.finditer(body):
-        own = _own_text(body, node.end())
-        found = _NAME.search(own)
-        if found is None or found.group(1) in types:
-            continue
-        given = _TYPE.search(own)
-        types[found.group(1)] = given.group(1) if given else DEFAULT_SENSOR_TYPE
+    for node in inside:
+        name = _sensor_name(node)
+        if name is not None and name not in types:
+            given = first_value([node], "type", Field.string)
+            types[name] = given if given is not None else DEFAULT_SENSOR_TYPE
     return types
 
 
-#: An opening or closing brace or bracket, or a node's type and its opening brace.
-_NESTING = re.compile(_NODE.pattern + r"|([{}\[\]])")
-
-
-def _sensor_poses(body: str, nue: bool) -> dict[str, tuple[float, float, float, float, float]]:
-    """The pose in the robot's frame (x, y, heading, rise, height) of each named
-    ``DistanceSensor`` node of a robot's body text ``body`` that is a child of the robot node or
-    of the grouping nodes (:data:`GROUPING_TYPES`: an E-puck saved expanded holds each in a
-    Solid) under it, composed through their ``translation`` and ``rotation``."""
-    poses: dict[str, tuple[float, float, float, float, float]] = {}
-    # The open nodes (type, body start) and lists (None) from the robot's body inwards.
-    open_nodes: list[tuple[str, int] | None] = []
-    for match in _NESTING.finditer(body):
-        bracket = match.group(3)
-        if bracket in ("}", "]"):
-            if open_nodes:
-                open_nodes.pop()
-            continue
-        if bracket is not None:
-            open_nodes.append(None)
-            continue
-        chain = [entry for entry in open_nodes if entry is not None]
-        open_nodes.append((match.group(2), match.end()))
-        if match.group(2) != "DistanceSensor" or any(t not in GROUPING_TYPES for t, _ in chain):
-            continue
-        own = _own_text(body, match.end())
-        found = _NAME.search(own)
-        if found is None or found.group(1) in poses:
-            continue
-        origin, axes = (0.0, 0.0, 0.0), _IDENTITY
-        for _, start in [*chain, (match.group(2), match.end())]:
-            origin, axes = _placed(origin, axes, _own_text(body, start))
-        x, y, z = origin
-        ray = (axes[0][0], axes[1][0], axes[2][0])
-        if nue:
-            (x, y, z), ray = nue_to_enu(x, y, z), nue_to_enu(*ray)
-        rise = math.asin(max(-1.0, min(1.0, ray[2])))
-        poses[found.group(1)] = (x, y, math.atan2(ray[1], ray[0]), rise, z)
-    return poses
-
-
-Matrix = tuple[tuple[float, float, float], ...]
-_IDENTITY: Matrix = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
-
-
-def _placed(
-    origin: tuple[float, float, float], axes: Matrix, own: str
-) -> tuple[tuple[float, float, float], Matrix]:
-    """The frame (origin, rotation matrix) of a node whose own fields are ``own`` inside the
-    frame ``origin``, ``axes``: its ``translation`` and ``rotation`` (Webots' defaults, none,
-    where absent)."""
-    at = _TRANSLATION.search(own)
-    offset = [float(v) for v in at.groups()] if at else [0.0, 0.0, 0.0]
-    x, y, z = (origin[i] + sum(axes[i][k] * offset[k] for k in range(3)) for i in range(3))
-    turned = _ROTATION.search(own)
-    if turned is None:
-        return (x, y, z), axes
-    flat = rotation_matrix(*(float(v) for v in turned.groups()))
-    rotation = (flat[0:3], flat[3:6], flat[6:9])
-    rows = [[sum(a * rotation[k][j] for k, a in enumerate(row)) for j in range(3)] for row in axes]
-    return (x, y, z), tuple((row[0], row[1], row[2]) for row in rows)
-
-
-def _own_lookup_table(body: str) -> str | None:
-    """The text between the brackets of a node's own ``lookupTable`` field (not a child's), or
-    None without one."""
-    for match in _LOOKUP_TABLE.finditer(body):
-        if _nesting(body[: match.start()]) == 0:
-            return match.group(1)
-    return None
-
-
-def _rows_of_three(field_text: str) -> list[Row] | None:
+def _rows_of_three(table: Field) -> list[Row] | None:
     """A ``lookupTable`` field's numbers as rows of 3, or None when they are not."""
-    try:
-        numbers = [float(v) for v in field_text.replace(",", " ").split()]
-    except ValueError:
-        return None
-    if not numbers or len(numbers) % 3 != 0:
+    inside = Field(table.name, table.start, table.end, table.nodes)
+    inside.tokens = [t for t in table.tokens if t.kind not in ("[", "]")]
+    numbers = inside.numbers()
+    if numbers is None or len(numbers) % 3 != 0:
         return None
     return [(numbers[i], numbers[i + 1], numbers[i + 2]) for i in range(0, len(numbers), 3)]
 
 
-def _robot_node(text: str, robot_types: set[str], line: int | None) -> re.Match[str] | None:
-    """The robot's node (DEF name, type): the first robot node on ``line``, else the first node
-    on ``line`` (a robot of a project's own PROTO, which the import report names by the robot it
-    stands in for, ``E-puck`` for an ``epuck_custom``), or the first robot node of the file."""
+def _sensor_poses(
+    robot: Node, nue: bool
+) -> dict[str, tuple[float, float, float, float, float]]:
+    """The pose in the robot's frame (x, y, heading, rise, height) of each named ``DistanceSensor`` node
+    that is a child of the robot node or of the grouping nodes (:data:`GROUPING_TYPES`: an
+    E-puck saved expanded holds each in a Solid) under it, composed through their
+    ``translation`` and ``rotation``."""
+    poses: dict[str, tuple[float, float, float, float, float]] = {}
+    # The nodes still to visit, each with the frame of the node that holds it.
+    pending = [(node, WORLD_FRAME) for item in robot.fields for node in item.nodes]
+    pending.reverse()
+    while pending:
+        node, holder = pending.pop()
+        if node.use_name is not None:
+            continue
+        offset = first_value([node], "translation", _leading(3)) or (0.0, 0.0, 0.0)
+        origin, axes = frame = placed(holder, offset, first_value([node], "rotation", _leading(4)))
+        if node.type_name in GROUPING_TYPES:
+            inner = [(n, frame) for item in node.fields for n in item.nodes]
+            pending.extend(reversed(inner))
+        name = _sensor_name(node)
+        if name is None or name in poses:
+            continue
+        x, y, z = origin
+        ray = (axes[0], axes[3], axes[6])
+        if nue:
+            (x, y, z), ray = nue_to_enu(x, y, z), nue_to_enu(*ray)
+        rise = math.asin(max(-1.0, min(1.0, ray[2])))
+        poses[name] = (x, y, math.atan2(ray[1], ray[0]), rise, z)
+    return poses
+
+
+def _robot_node(
+    text: str, every: list[Node], robot_types: set[str], line: int | None
+) -> Node | None:
+    """The robot's node: the first robot node on ``line``, else the first node on ``line`` (a
+    robot of a project's own PROTO, which the import report names by the robot it stands in
+    for, ``E-puck`` for an ``epuck_custom``), or the first robot node of the file."""
     on_line = None
-    for match in _NODE.finditer(text):
-        here = line is not None and text.count("\n", 0, match.start(2)) + 1 == line
-        if match.group(2) in robot_types and (line is None or here):
-            return match
+    for node in every:
+        if node.use_name is not None:
+            continue
+        here = line is not None and text.count("\n", 0, node.type_start) + 1 == line
+        if node.type_name in robot_types and (line is None or here):
+            return node
         if here and on_line is None:
-            on_line = match
+            on_line = node
     return on_line
 
 
-#: A node's opening, a ``children [`` field's, or another brace or bracket.
-_TREE = re.compile(_NODE.pattern + r"|(?<![\w-])(children)\s*\[|([{}\[\]])")
+def _definitions(every: list[Node]) -> dict[int, Node]:
+    """The node each ``USE`` (by ``id``) stands for: the node of the last ``DEF`` of its name
+    complete before it (``every`` is in file order), as Webots and the core read it."""
+    defined: dict[str, list[Node]] = {}
+    for node in every:
+        if node.def_name is not None and node.use_name is None:
+            defined.setdefault(node.def_name, []).append(node)
+    used: dict[int, Node] = {}
+    for node in every:
+        earlier = [d for d in defined.get(node.use_name or "", []) if d.end <= node.start]
+        if node.use_name is not None and earlier:
+            used[id(node)] = max(earlier, key=lambda d: d.end)
+    return used
 
 
-def _top_nodes(text: str, robot: re.Match[str] | None, nue: bool) -> list[SceneNode]:
-    """The nodes at the top of the file (comments removed), the robot's marked, each grouping
-    node (:data:`GROUPING_TYPES`) with the nodes of its ``children`` field, in file order.
+def _scene_nodes(
+    tree: list[Node], robot: Node | None, nue: bool, used: dict[int, Node]
+) -> list[SceneNode]:
+    """The nodes at the top of the file, the robot's marked, each grouping node
+    (:data:`GROUPING_TYPES`) with the nodes of its ``children`` field, in file order; a ``USE``
+    among them is the very :class:`SceneNode` of the node it stands for (``used``), as a
+    Webots supervisor sees it.
 
-    One pass over the file: the text between two braces or brackets belongs to the innermost
-    open one, so each kept node's own fields are gathered as the pass goes by them.
+    The tree is walked with a stack, not recursion (a world may nest thousands deep): each
+    node's :class:`SceneNode` is made once its children's are.
     """
-    top: list[_NodeText] = []
-    # From the file's top inwards: a kept node, a grouping node's ``children`` list (the
-    # node), or another node, brace or bracket (None).
-    open_entries: list[tuple[str, _NodeText | None]] = []
-    scanned = 0
-    for match in _TREE.finditer(text):
-        if open_entries and open_entries[-1][0] == "node" and open_entries[-1][1] is not None:
-            open_entries[-1][1].own.append(text[scanned : match.start()])
-        scanned = match.end()
-        bracket = match.group(4)
-        if bracket in ("}", "]"):
-            if open_entries:
-                kind, closed = open_entries.pop()
-                if kind == "node" and closed is not None:
-                    closed.close(nue)
-            continue
-        if bracket is not None:
-            open_entries.append(("other", None))
-            continue
-        kind, owner = open_entries[-1] if open_entries else ("top", None)
-        if match.group(3) is not None:
-            grouping = kind == "node" and owner is not None and owner.type_name in GROUPING_TYPES
-            open_entries.append(("children", owner if grouping else None))
-            continue
-        kept: _NodeText | None = None
-        if kind == "top" or (kind == "children" and owner is not None):
-            is_robot = robot is not None and match.start() == robot.start()
-            kept = _NodeText(match.group(1) or "", match.group(2), is_robot)
-            (top if owner is None else owner.children).append(kept)
-        open_entries.append(("node", kept))
-    for kind, unclosed in reversed(open_entries):
-        if kind == "node" and unclosed is not None:
-            if scanned < len(text) and unclosed is open_entries[-1][1]:
-                unclosed.own.append(text[scanned:])
-            unclosed.close(nue)
-    return [node.made for node in top if node.made is not None]
+    made: dict[int, SceneNode] = {}
+
+    def scene_nodes(nodes: list[Node]) -> list[SceneNode]:
+        top: list[SceneNode] = []
+        # (node, the list its SceneNode goes into, its children's SceneNodes once visited)
+        pending: list[tuple[Node, list[SceneNode], list[SceneNode] | None]] = [
+            (node, top, None) for node in reversed(nodes)
+        ]
+        while pending:
+            node, into, children = pending.pop()
+            if node.use_name is not None:
+                if (defined := used.get(id(node))) is not None:
+                    if id(defined) not in made:  # a DEF the scene does not list: made here
+                        scene_nodes([defined])
+                    into.append(made[id(defined)])
+                continue
+            if children is None:
+                inner: list[SceneNode] = []
+                pending.append((node, into, inner))
+                if node.type_name in GROUPING_TYPES:
+                    listed = [
+                        n for item in node.fields if item.name == "children" for n in item.nodes
+                    ]
+                    pending.extend((n, inner, None) for n in reversed(listed))
+                continue
+            made[id(node)] = _scene_node(node, node is robot, children, nue)
+            into.append(made[id(node)])
+        return top
+
+    return scene_nodes(tree)
 
 
-@dataclass
-class _NodeText:
-    """A node of the scene tree as the file is read: its own fields' text so far."""
-
-    def_name: str
-    type_name: str
-    robot: bool
-    own: list[str] = field(default_factory=list)
-    children: list[_NodeText] = field(default_factory=list)
-    made: SceneNode | None = None
-
-    def close(self, nue: bool) -> None:
-        """Makes the node's :class:`SceneNode` (its children's are made before)."""
-        own = "".join(self.own)
-        self.made = SceneNode(
-            self.type_name,
-            self.def_name,
-            translation=_vector(_TRANSLATION.search(own), nue),
-            rotation=_rotation(_ROTATION.search(own), nue),
-            name=found.group(1) if (found := _NAME.search(own)) else None,
-            robot=self.robot,
-            children=[child.made for child in self.children if child.made is not None],
-            **_own_fields(own),
-        )
-
-
-_OWN_NUMBERS = re.compile(r"(?<![\w-])([A-Za-z_]\w*)((?:\s+" + _NUMBER + r")+)(?![\w.])")
-_OWN_FLAG = re.compile(r"(?<![\w-])([A-Za-z_]\w*)\s+(TRUE|FALSE)\b")
-_OWN_STRING = re.compile(r'(?<![\w-])([A-Za-z_]\w*)\s+"((?:[^"\\]|\\.)*)"')
-_HIDDEN = re.compile(r"\bhidden\s+\S+[^\n]*")
 #: Fields read on their own (the frame) or not fields (``hidden`` engine state).
 _NOT_OWN = {"translation", "rotation", "name", "hidden"}
 
 
-def _own_fields(own: str) -> dict[str, dict[str, Any]]:
-    """A node's own fields of numbers, flags and strings (for the supervisor's ``getField``)."""
-    own = _HIDDEN.sub("", own)
-    numbers = {
-        m.group(1): tuple(float(v) for v in m.group(2).split())
-        for m in _OWN_NUMBERS.finditer(own)
-        if m.group(1) not in _NOT_OWN
-    }
-    flags = {
-        m.group(1): m.group(2) == "TRUE"
-        for m in _OWN_FLAG.finditer(own)
-        if m.group(1) not in _NOT_OWN
-    }
-    strings = {
-        m.group(1): m.group(2) for m in _OWN_STRING.finditer(own) if m.group(1) not in _NOT_OWN
-    }
-    return {"numbers": numbers, "flags": flags, "strings": strings}
-
-
-def _vector(found: re.Match[str] | None, nue: bool) -> tuple[float, float, float] | None:
-    """A found x y z in the world frame (ENU, converted from NUE)."""
-    if found is None:
-        return None
-    x, y, z = (float(v) for v in found.groups())
-    return nue_to_enu(x, y, z) if nue else (x, y, z)
-
-
-def _rotation(found: re.Match[str] | None, nue: bool) -> tuple[float, float, float, float] | None:
-    """A found axis-angle rotation in the world frame (its axis converted from NUE)."""
-    if found is None:
-        return None
-    ax, ay, az, angle = (float(v) for v in found.groups())
-    return (*nue_to_enu(ax, ay, az), angle) if nue else (ax, ay, az, angle)
-
-
-def _nesting(text: str) -> int:
-    """How much deeper (in braces and brackets) the end of ``text`` is than its start."""
-    return text.count("{") + text.count("[") - text.count("}") - text.count("]")
-
-
-def _body_text(text: str, body: int) -> str:
-    """The text of the node whose body starts at ``body`` (after its ``{``), to its ``}``."""
-    depth = 0
-    for index in range(body, len(text)):
-        if text[index] in "{[":
-            depth += 1
-        elif text[index] in "}]":
-            depth -= 1
-            if depth < 0:
-                return text[body:index]
-    return text[body:]
-
-
-def _own_text(text: str, body: int) -> str:
-    """The fields of the node whose body starts at ``body`` (after its ``{``), without its
-    children's."""
-    depth, own = 0, []
-    for index in range(body, len(text)):
-        char = text[index]
-        if char in "{[":
-            depth += 1
-        elif char in "}]":
-            depth -= 1
-            if depth < 0:
-                break
-        elif depth == 0:
-            own.append(char)
-    return "".join(own)
+def _scene_node(node: Node, robot: bool, children: list[SceneNode], nue: bool) -> SceneNode:
+    """The :class:`SceneNode` of a node of the tree, its ``children`` made already."""
+    numbers, flags, strings = {}, {}, {}
+    for item in node.own_fields():
+        if item.name in _NOT_OWN:
+            continue
+        if (values := item.numbers()) is not None:
+            numbers[item.name] = values
+        if (flag := item.flag()) is not None:
+            flags[item.name] = flag
+        if (string := item.string()) is not None:
+            strings[item.name] = string
+    translation, rotation = None, None
+    if (at := first_value([node], "translation", _leading(3))) is not None:
+        translation = nue_to_enu(*at) if nue else (at[0], at[1], at[2])
+    if (turn := first_value([node], "rotation", _leading(4))) is not None:
+        axis = nue_to_enu(*turn[:3]) if nue else (turn[0], turn[1], turn[2])
+        rotation = (*axis, turn[3])
+    return SceneNode(
+        node.type_name,
+        node.def_name or "",
+        translation=translation,
+        rotation=rotation,
+        name=first_value([node], "name", Field.string),
+        robot=robot,
+        numbers=numbers,
+        flags=flags,
+        strings=strings,
+        children=children,
+    )

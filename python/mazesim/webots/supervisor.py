@@ -21,7 +21,14 @@ from typing import Any
 
 from mazesim.webots import simulation as _simulations
 from mazesim.webots.devices import _print_error, webots_property
-from mazesim.webots.frames import enu_to_nue, enu_to_nue_matrix, nue_to_enu, rotation_matrix
+from mazesim.webots.frames import (
+    WORLD_FRAME,
+    enu_to_nue,
+    enu_to_nue_matrix,
+    nue_to_enu,
+    placed,
+    rotation_matrix,
+)
 from mazesim.webots.inert import ContactPoint, NotSimulated
 from mazesim.webots.node_types import NODE_TYPES
 from mazesim.webots.proto_fields import declared_fields
@@ -416,10 +423,12 @@ class Node(NotSimulated):
         return made
 
     def _adopt(self, children: list[Node]) -> None:
-        """Makes ``children`` the node's ``children`` field."""
+        """Makes ``children`` the node's ``children`` field (a node a ``USE`` lists again
+        keeps the parent of its ``DEF``)."""
         self._children = children
         for child in children:
-            child._parent = self
+            if child._parent is None:
+                child._parent = self
 
     def _simulation(self) -> _simulations.RobotSimulation:
         return _simulations.current()
@@ -444,24 +453,14 @@ class Node(NotSimulated):
         while node is not None and node._parent is not None:
             chain.append(node)
             node = node._parent
-        origin, matrix = [0.0, 0.0, 0.0], rotation_matrix(0.0, 0.0, 1.0, 0.0)
+        frame = WORLD_FRAME
         for node in reversed(chain):
             if node._live:
                 x, y, yaw = node._pose()
-                offset, turn = [x, y, 0.0], [0.0, 0.0, 1.0, yaw]
+                frame = placed(frame, (x, y, 0.0), (0.0, 0.0, 1.0, yaw))
             else:
-                offset = list(node._translation or (0.0, 0.0, 0.0))
-                turn = list(node._rotation or (0.0, 0.0, 1.0, 0.0))
-            origin = [
-                origin[i] + sum(matrix[3 * i + k] * offset[k] for k in range(3)) for i in range(3)
-            ]
-            rotation = rotation_matrix(*turn)
-            matrix = [
-                sum(matrix[3 * i + k] * rotation[3 * k + j] for k in range(3))
-                for i in range(3)
-                for j in range(3)
-            ]
-        return origin, matrix
+                frame = placed(frame, node._translation or (0.0, 0.0, 0.0), node._rotation)
+        return frame
 
     @property
     def _live(self) -> bool:
@@ -636,21 +635,34 @@ class Node(NotSimulated):
         return True
 
 
-def _nest(top: list[tuple[Node, SceneNode]], first_id: int, robot: Node) -> list[Node]:
+def _nodes_of(listed: list[SceneNode], made: dict[int, Node], robot: Node) -> list[Node]:
+    """The node of each scene node (``robot`` for the robot's): one per scene node, however
+    often ``USE`` lists it (``made`` keeps them)."""
+    for scene_node in listed:
+        if id(scene_node) not in made:
+            made[id(scene_node)] = robot if scene_node.robot else Node.from_scene(scene_node, 0)
+    return [made[id(scene_node)] for scene_node in listed]
+
+
+def _nest(
+    top: list[tuple[Node, SceneNode]], first_id: int, robot: Node, made: dict[int, Node]
+) -> list[Node]:
     """Gives each grouping node among ``top`` (a top-level node and its scene node) and below it
     the nodes of its ``children`` field (``robot`` for the robot's); returns those nodes in file
     order, their ids from ``first_id`` on."""
     nested: list[Node] = []
+    placed: set[int] = set()
     pending = list(reversed(top))
     while pending:
         node, scene_node = pending.pop()
+        if id(node) in placed:
+            continue  # a USE of a node placed already
+        placed.add(id(node))
         if node._nested:
             node._id = first_id + len(nested)
             nested.append(node)
         if scene_node.type_name in GROUPING_TYPES:
-            inner = [
-                robot if child.robot else Node.from_scene(child, 0) for child in scene_node.children
-            ]
+            inner = _nodes_of(scene_node.children, made, robot)
             node._adopt(inner)
             pending.extend(reversed(list(zip(inner, scene_node.children))))
     return nested
@@ -703,17 +715,18 @@ class Supervisor(Robot):
         self._self._strings.update(name=scene.robot_name, customData=self._custom_data)
         self._mode = self.SIMULATION_MODE_FAST
         self._root = Node("Group", node_id=0)
-        children = [self._self if node.robot else Node.from_scene(node, 0) for node in scene.nodes]
+        made: dict[int, Node] = {}
+        children = _nodes_of(scene.nodes, made, self._self)
         self._root._adopt(children)
         #: The nodes inside grouping nodes, in file order (the robot's own where it is one).
         self._nested_nodes = _nest(
-            list(zip(children, scene.nodes)), len(children) + 2 + len(scene.defs), self._self
+            list(zip(children, scene.nodes)), len(children) + 2 + len(scene.defs), self._self, made
         )
         if self._self._parent is None:
             children.append(self._self)
             self._root._adopt(children)
-        for node_id, child in enumerate(children, start=1):
-            child._id = node_id
+        for node_id, child in reversed(list(enumerate(children, start=1))):
+            child._id = node_id  # a node a USE lists again keeps the id of its first place
         self._nodes: dict[str, Node] = {}
         if self._simulation.fleet is not None:
             _follow_robots(

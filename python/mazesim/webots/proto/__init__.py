@@ -10,26 +10,11 @@ nested PROTOs (``expander``); stock objects that cannot be read get mazesim's st
 
 from __future__ import annotations
 
-import re
-
 from .expander import Expander, ExpansionReport
 from .resolver import ProtoUnavailableError, cache_dir, fetch_url
+from .syntax import world_version
 
 __all__ = ["ExpansionReport", "ProtoUnavailableError", "cache_dir", "expand_world", "fetch_url"]
-
-_HEADER = re.compile(r"#VRML_SIM\s+(R\d{4}[a-z]|V?\d+(?:\.\d+)*)")
-
-
-def _version(text: str) -> tuple[str, bool]:
-    """The world's version tag for ``webots://`` URLs, and whether its PROTOs are Y-up (before
-    R2022a)."""
-    match = _HEADER.search(text[:200])
-    if match is None:
-        return "R2023b", False
-    tag = match.group(1)
-    if tag.startswith("R"):
-        return tag, tag < "R2022a"
-    return tag, True
 
 
 def expand_world(text: str, world: str) -> tuple[str, ExpansionReport]:
@@ -49,6 +34,6 @@ def expand_world(text: str, world: str) -> tuple[str, ExpansionReport]:
         WorldFormatError: A PROTO file is malformed or its template fails.
     """
     text = text.replace("\r\n", "\n").replace("\r", "\n")
-    version, y_up = _version(text)
-    expander = Expander(world, text, version, y_up)
+    version, y_up = world_version(text)
+    expander = Expander(world, text, version or "R2023b", y_up)
     return expander.expand_world(), expander.report

@@ -14,7 +14,7 @@ import re
 from mazesim.errors import WorldFormatError
 
 from .definition import parse_definition
-from .syntax import Node, parse_nodes
+from .syntax import Field, Node, first_value, parse_nodes
 
 __all__ = ["OWN_ROBOT_TYPES", "added_devices", "outermost", "with_devices"]
 
@@ -36,7 +36,6 @@ _STOCK_NAMES = frozenset(
 )
 #: Template chunks (JavaScript ``%< >%``, Lua ``%{ }%``): left out before reading the nodes.
 _TEMPLATE = re.compile(r"%<.*?>%|%\{.*?\}%", re.S)
-_NAME = re.compile(r'\bname\s+"((?:[^"\\]|\\.)*)"')
 
 
 def added_devices(proto_text: str, origin: str) -> list[tuple[str, str]]:
@@ -51,8 +50,7 @@ def added_devices(proto_text: str, origin: str) -> list[tuple[str, str]]:
     found: list[tuple[str, str]] = []
     for node in outermost(nodes, _DEVICE_TYPES):
         text = stripped[node.start : node.end]
-        match = _NAME.search(text) if node.field("name") is not None else None
-        name = match.group(1) if match else node.type_name.lower()
+        name = first_value([node], "name", Field.string) or node.type_name.lower()
         if name not in _STOCK_NAMES and " IS " not in f" {text} ":
             found.append((name, " ".join(text.split())))
     return found

@@ -10,21 +10,39 @@ does. ``#`` starts a comment outside strings; commas are white space.
 from __future__ import annotations
 
 import re
+from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
+from typing import NamedTuple, TypeVar
 
 from mazesim.errors import WorldFormatError
 
-__all__ = ["Field", "Node", "Token", "line_of", "located_error", "parse_nodes", "tokenize"]
+__all__ = [
+    "Field",
+    "Node",
+    "Token",
+    "first_value",
+    "line_of",
+    "located_error",
+    "nodes_in_order",
+    "parse_nodes",
+    "tokenize",
+    "world_version",
+]
 
+#: A token, a comment or (alone) a quote that opens a string never closed; white space, commas
+#: and byte-order marks are what lies between.
 _TOKEN = re.compile(
-    r'(?P<space>[\s,\ufeff]+)|(?P<comment>#[^\n\r]*)|(?P<string>"(?:[^"\\]|\\.)*")'
-    r'|(?P<punct>[{}\[\]])|(?P<word>[^\s,"#{}\[\]]+)',
+    r'(?P<string>"(?:[^"\\]|\\.)*")|(?P<punct>[{}\[\]])|(?P<word>[^\s,"#{}\[\]\ufeff][^\s,"#{}\[\]]*)'
+    r'|(?P<comment>#[^\n\r]*)|(?P<unclosed>")',
     re.DOTALL,
 )
+_HEADER = re.compile(r"#VRML_SIM\s+(R\d{4}[a-z]|V?\d+(?:\.\d+)*)")
+#: A number as VRML97 writes it (no hexadecimal, infinity or NaN).
+_NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
+_Value = TypeVar("_Value")
 
 
-@dataclass(frozen=True)
-class Token:
+class Token(NamedTuple):
     """A token: its kind (``{``, ``}``, ``[``, ``]``, ``string`` or ``word``) and its span."""
 
     kind: str
@@ -40,22 +58,25 @@ def tokenize(text: str, source: str = "<text>") -> list[Token]:
         WorldFormatError: A string is not closed.
     """
     tokens: list[Token] = []
-    position = 0
-    while position < len(text):
-        match = _TOKEN.match(text, position)
-        if match is None:  # an unclosed string
-            raise _error(
-                text, position, source, "expected a closing '\"', found the end of the text"
-            )
-        kind = match.lastgroup or "space"
-        if kind == "string":
-            tokens.append(Token("string", match.group(), match.start(), match.end()))
+    add, make = tokens.append, Token._make  # the package's own values: no argument check
+    for match in _TOKEN.finditer(text):
+        kind = match.lastgroup
+        if kind == "word" or kind == "string":
+            add(make((kind, match.group(), *match.span())))
         elif kind == "punct":
-            tokens.append(Token(match.group(), match.group(), match.start(), match.end()))
-        elif kind == "word":
-            tokens.append(Token("word", match.group(), match.start(), match.end()))
-        position = match.end()
+            add(make((match.group(), match.group(), *match.span())))
+        elif kind == "unclosed":
+            message = "expected a closing '\"', found the end of the text"
+            raise located_error(message, source, text, match.start())
     return tokens
+
+
+def world_version(text: str) -> tuple[str | None, bool]:
+    """The Webots release a world's ``#VRML_SIM`` header names (``R2023b``, ``V8.5``; None
+    without a header), and whether its frame is the old NUE one, y up (before R2022a)."""
+    found = _HEADER.search(text[:200])
+    tag = found.group(1) if found else None
+    return tag, tag is not None and (not tag.startswith("R") or tag < "R2022a")
 
 
 def line_of(text: str, position: int) -> int:
@@ -74,10 +95,6 @@ def located_error(message: str, source: str, text: str = "", position: int = 0) 
     )
 
 
-def _error(text: str, position: int, source: str, message: str) -> WorldFormatError:
-    return located_error(message, source, text, position)
-
-
 @dataclass
 class Field:
     """A field of a node: its name, its values (tokens and nodes in order) and its span."""
@@ -92,6 +109,26 @@ class Field:
     #: The span of the value (after the name); empty when the field has no value.
     value_start: int = 0
     value_end: int = 0
+
+    def numbers(self, count: int | None = None) -> tuple[float, ...] | None:
+        """The first ``count`` values when they are numbers, or (for None) every value when
+        they all are; None otherwise."""
+        values = self.tokens if count is None else self.tokens[:count]
+        if (count is None and self.nodes) or not values or len(values) < (count or 0):
+            return None
+        if not all(t.kind == "word" and _NUMBER.fullmatch(t.text) for t in values):
+            return None
+        return tuple(float(t.text) for t in values)
+
+    def string(self) -> str | None:
+        """The first value when it is a string, as written (its escapes kept); else None."""
+        first = self.tokens[0] if self.tokens else None
+        return first.text[1:-1] if first is not None and first.kind == "string" else None
+
+    def flag(self) -> bool | None:
+        """The first value when it is ``TRUE`` or ``FALSE``; else None."""
+        first = self.tokens[0].text if self.tokens else None
+        return None if first not in ("TRUE", "FALSE") else first == "TRUE"
 
     @property
     def is_reference(self) -> str | None:
@@ -112,6 +149,8 @@ class Node:
     def_name: str | None = None
     use_name: str | None = None
     fields: list[Field] = field(default_factory=list)
+    #: Where its type's name is (after ``DEF name``); its start for a ``USE``.
+    type_start: int = 0
 
     def field(self, name: str) -> Field | None:
         """The field of that name (the last one when written twice)."""
@@ -120,11 +159,59 @@ class Node:
                 return candidate
         return None
 
+    def own_fields(self) -> Iterator[Field]:
+        """The fields, but those a ``hidden`` word marks as engine state (a saved joint's
+        ``hidden position_0_0 0.5``, written in a world after a run)."""
+        hidden = False
+        for item in self.fields:
+            if item.name == "hidden" and not item.tokens and not item.nodes:
+                hidden = True
+                continue
+            if not hidden:
+                yield item
+            hidden = False
 
-_MAX_DEPTH = 200
+
+def first_value(
+    nodes: Iterable[Node], name: str, read: Callable[[Field], _Value | None]
+) -> _Value | None:
+    """What ``read`` finds in the first field of that name among the own fields of ``nodes``
+    (in the order the text writes them) in which it finds something; None without one."""
+    found = [
+        (item.start, value)
+        for node in nodes
+        for item in node.own_fields()
+        if item.name == name and (value := read(item)) is not None
+    ]
+    return min(found, key=lambda pair: pair[0])[1] if found else None
+
+
+def nodes_in_order(nodes: Iterable[Node]) -> Iterator[Node]:
+    """Every node of the trees ``nodes`` (``USE`` ones too), each before the nodes inside it, in
+    the order the text writes them (without recursion, so at any depth)."""
+    pending = list(reversed(list(nodes)))
+    while pending:
+        node = pending.pop()
+        yield node
+        for item in reversed(node.fields):
+            pending.extend(reversed(item.nodes))
+
+
+#: How deep the PROTO engine lets nodes nest (its walks over the tree recurse).
+MAX_DEPTH = 200
+
+
+def _extend(item: Field, start: int, end: int) -> None:
+    """Extends a field's value over a token or node from ``start`` to ``end`` (its first, when
+    the value is empty)."""
+    if not item.tokens and not item.nodes:
+        item.value_start = start
+    item.value_end = end
 
 
 class _Parser:
+    """Reads nodes with a stack of the nodes and fields open (no recursion, so any depth)."""
+
     def __init__(self, text: str, tokens: list[Token], source: str) -> None:
         self.text, self.tokens, self.source = text, tokens, source
         self.index = 0
@@ -136,7 +223,7 @@ class _Parser:
     def fail(self, message: str) -> WorldFormatError:
         token = self.peek()
         position = token.start if token else len(self.text)
-        return _error(self.text, position, self.source, message)
+        return located_error(message, self.source, self.text, position)
 
     def starts_node(self) -> bool:
         token, after = self.peek(), self.peek(1)
@@ -148,14 +235,16 @@ class _Parser:
             return after is not None and after.kind == "word"
         return after is not None and after.kind == "{"
 
-    def node(self, depth: int) -> Node:
-        if depth > _MAX_DEPTH:
-            raise self.fail(f"expected nodes nested at most {_MAX_DEPTH} deep")
+    def opening(self) -> tuple[Node, bool]:
+        """Reads a node's head (``USE name``, or ``[DEF name] Type {``); whether it has a body
+        to read."""
         first = self.tokens[self.index]
         if first.text == "USE":
             used = self.tokens[self.index + 1]
             self.index += 2
-            return Node("USE", first.start, used.end, use_name=used.text)
+            return Node(
+                "USE", first.start, used.end, use_name=used.text, type_start=first.start
+            ), False
         def_name = None
         if first.text == "DEF":
             name, kind = self.peek(1), self.peek(2)
@@ -168,61 +257,94 @@ class _Parser:
         if opening is None or opening.kind != "{":
             raise self.fail(f"expected '{{' after {type_token.text}")
         self.index += 2
-        node = Node(type_token.text, first.start, first.end, def_name=def_name)
-        while True:
-            token = self.peek()
-            if token is None:
-                raise self.fail(f"expected '}}' closing {type_token.text}, found the end")
-            if token.kind == "}":
-                self.index += 1
-                node.end = token.end
-                return node
-            if token.kind != "word":
-                raise self.fail(f"expected a field name in {type_token.text}, found {token.text}")
-            node.fields.append(self.field(depth))
+        node = Node(type_token.text, first.start, first.end, def_name, type_start=type_token.start)
+        return node, True
 
-    def field(self, depth: int) -> Field:
-        name = self.tokens[self.index]
-        self.index += 1
-        result = Field(name.text, name.start, name.end, value_start=name.end, value_end=name.end)
-        token = self.peek()
-        if token is not None and token.text == "IS" and token.kind == "word":
-            target = self.peek(1)
+    def node(self, max_depth: int | None) -> Node:
+        """Reads the node that starts at the current token, nested at most ``max_depth`` deep
+        (any depth for None)."""
+        top, has_body = self.opening()
+        # The nodes being read, outermost first, each with the field being read (or None).
+        open_nodes: list[tuple[Node, Field | None]] = [(top, None)] if has_body else []
+        while open_nodes:
+            node, reading = open_nodes[-1]
+            if reading is None:
+                started = self.field_start(node)
+                if started is not None:
+                    open_nodes[-1] = (node, started)
+                    continue
+                open_nodes.pop()  # its '}' was read
+                if open_nodes:
+                    parent, parent_field = open_nodes[-1]
+                    assert parent_field is not None
+                    _extend(parent_field, node.start, node.end)
+                    parent_field.nodes.append(node)
+                continue
+            if not self.field_values(reading):
+                reading.end = reading.value_end
+                open_nodes[-1] = (node, None)
+                continue
+            if max_depth is not None and len(open_nodes) > max_depth:
+                raise self.fail(f"expected nodes nested at most {max_depth} deep")
+            child, child_body = self.opening()
+            if child_body:
+                open_nodes.append((child, None))
+            else:
+                _extend(reading, child.start, child.end)
+                reading.nodes.append(child)
+        return top
+
+    def field_start(self, node: Node) -> Field | None:
+        """Reads the name of a node's next field whose value follows (a ``name IS other``
+        field is read whole on the way); None when the node's ``}`` comes instead (read too)."""
+        while (token := self.peek()) is not None and token.kind == "word":
+            self.index += 1
+            result = Field(token.text, token.start, token.end, value_start=token.end)
+            result.value_end = token.end
+            node.fields.append(result)
+            reference, target = self.peek(), self.peek(1)
+            if reference is None or reference.text != "IS" or reference.kind != "word":
+                return result
             if target is None or target.kind != "word":
                 raise self.fail("expected a field name after IS")
-            result.tokens += [token, target]
+            result.tokens += [reference, target]
             self.index += 2
-            result.value_start, result.value_end = token.start, target.end
+            result.value_start, result.value_end = reference.start, target.end
             result.end = target.end
-            return result
-        bracket = 0
-        first = True
-        while (token := self.peek()) is not None:
-            if bracket == 0 and (
-                token.kind in ("}", "]")
-                or (token.kind == "word" and not _is_literal(token.text) and not self.starts_node())
-            ):
-                break
-            if self.starts_node():
-                child = self.node(depth + 1)
-                result.nodes.append(child)
-                end = child.end
-            else:
-                if token.kind == "[":
-                    bracket += 1
-                elif token.kind == "]":
-                    bracket -= 1
-                elif token.kind == "}":
-                    raise self.fail("expected ']' before '}'")
-                result.tokens.append(token)
-                self.index += 1
-                end = token.end
-            if first:
-                result.value_start = token.start
-                first = False
-            result.value_end = end
-        result.end = result.value_end
-        return result
+        if token is None:
+            raise self.fail(f"expected '}}' closing {node.type_name}, found the end")
+        if token.kind != "}":
+            raise self.fail(f"expected a field name in {node.type_name}, found {token.text}")
+        self.index += 1
+        node.end = token.end
+        return None
+
+    def field_values(self, reading: Field) -> bool:
+        """Reads values of the field being read up to a node among them (True: a node starts
+        at the current token) or to the field's end (False): a field keeps every value up to
+        the next field name or the closing of its node."""
+        tokens, index = self.tokens, self.index
+        brackets = sum({"[": 1, "]": -1}.get(t.kind, 0) for t in reading.tokens)
+        while index < len(tokens):
+            token = tokens[index]
+            self.index = index
+            if token.kind == "word":
+                after = tokens[index + 1].kind if index + 1 < len(tokens) else None
+                if (token.text in ("DEF", "USE") or after == "{") and self.starts_node():
+                    return True
+                if not brackets and not _is_literal(token.text):
+                    return False
+            elif token.kind in ("}", "]") and not brackets:
+                return False
+            elif token.kind in ("[", "]"):
+                brackets += 1 if token.kind == "[" else -1
+            elif token.kind == "}":
+                raise self.fail("expected ']' before '}'")
+            _extend(reading, token.start, token.end)
+            reading.tokens.append(token)
+            index += 1
+        self.index = index
+        return False
 
 
 def _is_literal(word: str) -> bool:
@@ -236,15 +358,21 @@ def _is_literal(word: str) -> bool:
 
 
 def parse_nodes(
-    text: str, source: str = "<text>", start: int = 0, end: int | None = None
+    text: str,
+    source: str = "<text>",
+    start: int = 0,
+    end: int | None = None,
+    max_depth: int | None = MAX_DEPTH,
 ) -> list[Node]:
-    """Parses the top-level nodes of a text (skipping ``EXTERNPROTO`` lines and words between).
+    """Parses the top-level nodes of a text (skipping ``EXTERNPROTO`` lines, ``PROTO``
+    definitions written in a world and other words between).
 
     Args:
         text: The text.
         source: A name for error messages.
         start: Where to start reading.
         end: Where to stop (the end of the text by default).
+        max_depth: How deep nodes may nest (:data:`MAX_DEPTH` by default); None for any depth.
 
     Raises:
         WorldFormatError: The text is not VRML97 nodes.
@@ -254,9 +382,25 @@ def parse_nodes(
     ]
     parser = _Parser(text, tokens, source)
     nodes: list[Node] = []
-    while parser.peek() is not None:
+    while (token := parser.peek()) is not None:
         if parser.starts_node():
-            nodes.append(parser.node(0))
+            nodes.append(parser.node(max_depth))
+        elif token.text == "PROTO" and token.kind == "word":
+            parser.index = _after_definition(tokens, parser.index)
         else:
             parser.index += 1
     return nodes
+
+
+def _after_definition(tokens: list[Token], index: int) -> int:
+    """The index after a ``PROTO Name [ interface ] { body }`` that starts at ``index`` (the
+    next one's when the word ``PROTO`` starts no such definition)."""
+    if index + 2 >= len(tokens) or tokens[index + 2].kind != "[":
+        return index + 1
+    index += 2
+    for opening, closing in (("[", "]"), ("{", "}")):
+        depth = 0
+        while index < len(tokens) and (depth or tokens[index].kind == opening):
+            depth += {opening: 1, closing: -1}.get(tokens[index].kind, 0)
+            index += 1
+    return index
