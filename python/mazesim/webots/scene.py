@@ -387,13 +387,11 @@ def _rows_of_three(table: Field) -> list[Row] | None:
     return [(numbers[i], numbers[i + 1], numbers[i + 2]) for i in range(0, len(numbers), 3)]
 
 
-def _sensor_poses(
-    robot: Node, nue: bool
-) -> dict[str, tuple[float, float, float, float, float]]:
-    """The pose in the robot's frame (x, y, heading, rise, height) of each named ``DistanceSensor`` node
-    that is a child of the robot node or of the grouping nodes (:data:`GROUPING_TYPES`: an
-    E-puck saved expanded holds each in a Solid) under it, composed through their
-    ``translation`` and ``rotation``."""
+def _sensor_poses(robot: Node, nue: bool) -> dict[str, tuple[float, float, float, float, float]]:
+    """The pose in the robot's frame (x, y, heading, rise, height) of each named
+    ``DistanceSensor`` node that is a child of the robot node or of the grouping nodes
+    (:data:`GROUPING_TYPES`: an E-puck saved expanded holds each in a Solid) under it, composed
+    through their ``translation`` and ``rotation``."""
     poses: dict[str, tuple[float, float, float, float, float]] = {}
     # The nodes still to visit, each with the frame of the node that holds it.
     pending = [(node, WORLD_FRAME) for item in robot.fields for node in item.nodes]
