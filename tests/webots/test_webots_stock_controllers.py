@@ -94,3 +94,23 @@ def test_a_controller_given_with_its_world_runs_beside_the_protos_default(tmp_pa
     assert ran["still"]["distance_m"] < 1e-6
     assert Path(ran["default"]["controller"]).name == "stock_controllers.py"
     assert 0.2 < ran["default"]["distance_m"] < 0.26, "the PROTO's default drove it"
+
+
+def test_with_keys_a_controller_given_with_its_world_still_runs_alone(tmp_path: Path) -> None:
+    from argparse import Namespace
+
+    from mazesim.cli.webots_world import whole_world_run
+
+    (tmp_path / "worlds").mkdir()
+    world = tmp_path / "worlds" / "w.wbt"
+    world.write_text(WORLD)
+    still = str(tmp_path / "still.py")
+    args = Namespace(controller=still, world=str(world), keys=None, strict=False)
+    whole = whole_world_run(args, still)
+    assert whole is not None and whole.controller == str(world) and whole.world is None
+    assert whole.robot_controller == [f"still={still}"], "named by its controller field"
+    assert whole_world_run(Namespace(**{**vars(args), "keys": "k.txt"}), still) is None
+    assert whole_world_run(Namespace(**{**vars(args), "strict": True}), still) is None
+    alone = tmp_path / "worlds" / "alone.wbt"
+    alone.write_text(WORLD.replace('E-puck { translation 0 0 0 name "default" }\n', ""))
+    assert whole_world_run(Namespace(**{**vars(args), "world": str(alone)}), still) is None

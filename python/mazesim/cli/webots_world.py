@@ -199,14 +199,16 @@ def whole_world_run(args: argparse.Namespace, controller_file: str) -> argparse.
     The given controller runs on the robot a run of one controller chooses (the first e-puck
     whose ``controller`` field names it, else the first e-puck), named by its ``controller``
     field, its name or its DEF name; the other robots run their own controllers, as in
-    ``webots run WORLD.wbt``. A run with ``--keys`` (one controller's Keyboard), or whose robot
-    no name tells from the others, stays a run of one controller.
+    ``webots run WORLD.wbt``. A run with ``--keys`` (one controller's Keyboard) or ``--strict``
+    (which a world run does not check), or whose robot no name tells from the others, stays a
+    run of one controller.
     """
     from mazesim.webots.importer import import_wbt
     from mazesim.webots.lockstep import controller_of
 
     world = getattr(args, "world", None)
-    if not world or not str(world).lower().endswith(".wbt") or getattr(args, "keys", None):
+    one_robot_only = getattr(args, "keys", None) or getattr(args, "strict", False)
+    if not world or not str(world).lower().endswith(".wbt") or one_robot_only:
         return None
     controller = os.path.splitext(os.path.basename(controller_file))[0]
     _, report = import_wbt(world, controller=controller)
