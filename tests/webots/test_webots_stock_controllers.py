@@ -114,3 +114,12 @@ def test_with_keys_a_controller_given_with_its_world_still_runs_alone(tmp_path: 
     alone = tmp_path / "worlds" / "alone.wbt"
     alone.write_text(WORLD.replace('E-puck { translation 0 0 0 name "default" }\n', ""))
     assert whole_world_run(Namespace(**{**vars(args), "world": str(alone)}), still) is None
+
+
+def test_the_stock_controller_lacks_nothing() -> None:
+    """The modules beside mazesim's stock controller are mazesim's own, not the controller's:
+    its run says of no missing feature that they name."""
+    from mazesim.webots.requirements import prepare_controller
+
+    prepared = prepare_controller(stock_controllers.__file__)
+    assert prepared.missing == [] and prepared.runnable
