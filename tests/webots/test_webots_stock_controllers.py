@@ -3,12 +3,15 @@ controller, as in Webots: the E-puck's ``e-puck_avoid_obstacles``, a Braitenberg
 
 from __future__ import annotations
 
+import json
+import os
 from pathlib import Path
 
 import pytest
 
 from mazesim.webots import stock_controllers
 from mazesim.webots.lockstep import controller_name, controller_of, run_world
+from mazesim_process import mazesim_command
 
 #: Two e-pucks in an arena: one whose controller only steps, one that names no controller.
 WORLD = """#VRML_SIM R2023b utf8
@@ -67,3 +70,56 @@ def test_an_e_puck_without_a_controller_field_drives_in_a_world_run(tmp_path: Pa
     # Half of full speed (3.14 rad/s, 0.063 m/s) ahead for 4 s, clear of the walls.
     assert 0.2 < default.distance_m < 0.26
     assert default.collisions == 0
+
+
+def test_a_controller_given_with_its_world_runs_beside_the_protos_default(tmp_path: Path) -> None:
+    """``webots run CONTROLLER --world WORLD.wbt``: an E-puck that leaves its controller field
+    out runs e-puck_avoid_obstacles beside the given controller, as in Webots."""
+    (tmp_path / "worlds").mkdir()
+    (tmp_path / "worlds" / "w.wbt").write_text(WORLD)
+    still = tmp_path / "controllers" / "still" / "still.py"
+    still.parent.mkdir(parents=True)
+    still.write_text(STILL)
+    out = tmp_path / "run"
+    result = mazesim_command(
+        *("webots", "run", str(still), "--world", str(tmp_path / "worlds" / "w.wbt")),
+        *("--seconds", "4", "--seed", "1", "--out", str(out)),
+        cwd=tmp_path,
+        env=dict(os.environ, MPLBACKEND="Agg"),
+    )
+    assert result.returncode == 0, result.stderr
+    summary = json.loads((out / "summary.json").read_text())
+    ran = {robot["name"]: robot for robot in summary["robots"]}
+    assert Path(ran["still"]["controller"]) == still, "the given controller, on its robot"
+    assert ran["still"]["distance_m"] < 1e-6
+    assert Path(ran["default"]["controller"]).name == "stock_controllers.py"
+    assert 0.2 < ran["default"]["distance_m"] < 0.26, "the PROTO's default drove it"
+
+
+def test_with_keys_a_controller_given_with_its_world_still_runs_alone(tmp_path: Path) -> None:
+    from argparse import Namespace
+
+    from mazesim.cli.webots_world import whole_world_run
+
+    (tmp_path / "worlds").mkdir()
+    world = tmp_path / "worlds" / "w.wbt"
+    world.write_text(WORLD)
+    still = str(tmp_path / "still.py")
+    args = Namespace(controller=still, world=str(world), keys=None, strict=False)
+    whole = whole_world_run(args, still)
+    assert whole is not None and whole.controller == str(world) and whole.world is None
+    assert whole.robot_controller == [f"still={still}"], "named by its controller field"
+    assert whole_world_run(Namespace(**{**vars(args), "keys": "k.txt"}), still) is None
+    assert whole_world_run(Namespace(**{**vars(args), "strict": True}), still) is None
+    alone = tmp_path / "worlds" / "alone.wbt"
+    alone.write_text(WORLD.replace('E-puck { translation 0 0 0 name "default" }\n', ""))
+    assert whole_world_run(Namespace(**{**vars(args), "world": str(alone)}), still) is None
+
+
+def test_the_stock_controller_lacks_nothing() -> None:
+    """The modules beside mazesim's stock controller are mazesim's own, not the controller's:
+    its run says of no missing feature that they name."""
+    from mazesim.webots.requirements import prepare_controller
+
+    prepared = prepare_controller(stock_controllers.__file__)
+    assert prepared.missing == [] and prepared.runnable

@@ -297,6 +297,11 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
             f"{args.controller!r}: give the world as the first argument, or leave the option out"
         )
     file = controller_file(args.controller)
+    from mazesim.cli.webots_world import run_world_command, whole_world_run
+
+    whole = whole_world_run(args, file)
+    if whole is not None:
+        return run_world_command(whole, out)
     controller = os.path.splitext(os.path.basename(file))[0]
     world, report, scene = _load_world(args.world, args.strict, controller)
     prepared = prepare_controller(file)

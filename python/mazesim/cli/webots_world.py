@@ -26,6 +26,7 @@ __all__ = [
     "refuse_keys",
     "robot_controllers",
     "run_world_command",
+    "whole_world_run",
     "write_paths_table",
 ]
 
@@ -188,6 +189,71 @@ def refuse_keys(args: argparse.Namespace) -> None:
             f"'mazesim webots run CONTROLLER --world {args.controller} --keys {args.keys}', "
             "or leave --keys out"
         )
+
+
+def whole_world_run(args: argparse.Namespace, controller_file: str) -> argparse.Namespace | None:
+    """The arguments of a world run standing for ``webots run CONTROLLER --world WORLD.wbt``
+    when another robot of the world leaves its ``controller`` field out and so runs its PROTO's
+    default controller in Webots (the E-puck's ``e-puck_avoid_obstacles``), else None.
+
+    The given controller runs on the robot a run of one controller chooses (the first e-puck
+    whose ``controller`` field names it, else the first e-puck), named by its ``controller``
+    field, its name or its DEF name; the other robots run their own controllers, as in
+    ``webots run WORLD.wbt``. A run with ``--keys`` (one controller's Keyboard) or ``--strict``
+    (which a world run does not check), or whose robot no name tells from the others, stays a
+    run of one controller.
+    """
+    from mazesim.webots.importer import import_wbt
+    from mazesim.webots.lockstep import controller_of
+
+    world = getattr(args, "world", None)
+    one_robot_only = getattr(args, "keys", None) or getattr(args, "strict", False)
+    if not world or not str(world).lower().endswith(".wbt") or one_robot_only:
+        return None
+    controller = os.path.splitext(os.path.basename(controller_file))[0]
+    _, report = import_wbt(world, controller=controller)
+    robots = list(report.get("robots") or [])
+    chosen = [robot for robot in robots if robot.get("line") == report.get("robot_line")]
+    defaults = [
+        robot
+        for robot in robots
+        if robot not in chosen
+        and robot.get("controller") is None
+        and controller_of(robot, str(world), {})[0] is not None
+    ]
+    if len(chosen) != 1 or not defaults:
+        return None
+    key = _robot_key(chosen[0], robots, controller)
+    if key is None:
+        return None
+    labels = ", ".join(repr(r.get("name") or r.get("def_name") or r.get("model")) for r in defaults)
+    print(
+        f"mazesim: robots {labels} leave their controller field out and run their PROTO's "
+        f"default controller, as in Webots: the whole world runs, {controller!r} on robot "
+        f"{key!r}",
+        file=sys.stderr,
+    )
+    return argparse.Namespace(
+        **{
+            **vars(args),
+            "controller": world,
+            "world": None,
+            "robot_controller": [f"{key}={controller_file}"],
+        }
+    )
+
+
+def _robot_key(robot: Mapping[str, Any], robots: list[Any], controller: str) -> str | None:
+    """What names ``robot`` alone among ``robots`` for ``--robot-controller``: its controller
+    field when it names ``controller``, else its name or DEF name if no other robot has it."""
+    if robot.get("controller") == controller:
+        return controller
+    for field in ("name", "def_name"):
+        value = robot.get(field)
+        others = [r for r in robots if value in (r.get("name"), r.get("def_name"))]
+        if value and len(others) == 1 and robot.get("controller") != value:
+            return str(value)
+    return None
 
 
 def robot_controllers(pairs: list[str] | None) -> dict[str, str]:

@@ -8,7 +8,9 @@ have: their ``EXTERNPROTO`` URLs need a download), so their declared fields are 
 Sources (cyberbotics/webots): ``projects/objects/floors/protos/RectangleArena.proto`` (the
 same fields and defaults from R2019b on), ``projects/robots/gctronic/e-puck/protos/
 E-puck.proto`` (R2022b on: the default controller is ``e-puck_avoid_obstacles``, the radio
-channels 1, the camera 52 x 39 pixels with a 0.84 rad field of view).
+channels 1, the camera 52 x 39 pixels with a 0.84 rad field of view; the E-puck.proto of Webots
+V8.5 declares the same default controller and radio channels, so worlds of every version share
+them).
 """
 
 from __future__ import annotations

@@ -19,6 +19,7 @@ import sys
 from dataclasses import dataclass, field
 
 from mazesim._paths import MAX_TEXT_CHARACTERS, read_input
+from mazesim.webots.stock_controllers import STOCK
 
 __all__ = [
     "LANGUAGES",
@@ -421,6 +422,10 @@ def prepare_controller(file: str) -> PreparedController:
     """
     language = LANGUAGES.get(os.path.splitext(file)[1].lower(), "python")
     prepared = PreparedController(file, language)
+    if os.path.abspath(file) in {os.path.abspath(stock) for stock in STOCK.values()}:
+        # mazesim's own stock controller uses nothing mazesim lacks; the files beside it are
+        # mazesim's modules, not the controller's.
+        return prepared
     if language in ("c", "cpp"):
         from mazesim.webots.native_controller import LANGUAGE_NAMES, build
 
