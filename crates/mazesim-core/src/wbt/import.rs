@@ -60,6 +60,9 @@ const OTHER_ROBOT_PROTOS: &[&str] = &[
     "BB-8",
     "Nao",
 ];
+/// The controller the E-puck PROTO runs when its node leaves `controller` out (its declared
+/// default from Webots V8.5 to R2025a).
+const EPUCK_DEFAULT_CONTROLLER: &str = "e-puck_avoid_obstacles";
 /// The e-puck PROTOs of Webots and webots_ros2.
 /// Webots 7 named it `EPuck`.
 const EPUCK_PROTOS: &[&str] = &["E-puck", "E-puck_enu", "E-Puck_enu", "EPuck"];
@@ -601,7 +604,18 @@ impl<'d> Importer<'d> {
             line: node.line,
         };
         self.list_robot(node, &found, Some(profile), Vec::new());
-        let controller = |n: &'d Node| self.strings(n, "controller").first().cloned();
+        // A node that leaves `controller` out runs its PROTO's default (the E-puck PROTO's
+        // `e-puck_avoid_obstacles`, declared so since V8.5); a plain robot node's is `<generic>`.
+        let controller = |n: &'d Node| {
+            let kind = n.type_name.as_str();
+            let default = if EPUCK_PROTOS.contains(&kind) {
+                Some(EPUCK_DEFAULT_CONTROLLER)
+            } else {
+                ROBOT_NODES.contains(&kind).then_some("<generic>")
+            };
+            let given = self.strings(n, "controller").first().cloned();
+            given.or(default.map(str::to_string))
+        };
         if let Some(chosen) = self.chosen.filter(|chosen| !std::ptr::eq(*chosen, node)) {
             let (mine, theirs) = (controller(node), controller(chosen).unwrap_or_default());
             let runs = if mine.as_deref() == Some(theirs.as_str()) {

@@ -394,6 +394,13 @@ fn the_e_puck_of_the_controller_that_runs_is_the_robot() {
         "line 2: E-puck: an e-puck running \"leader\": a run of the controller \"follower\" alone simulates only its first e-puck (line 3)"
     ));
     assert!(!warned(&follower, "a second e-puck"));
+    // An e-puck whose node leaves the field out runs its PROTO's default controller.
+    let unnamed = text.replace(" controller \"leader\"", "");
+    let alone = WbtImport::from_text_for(&unnamed, "two.wbt", Some("follower")).unwrap();
+    assert!(warned(
+        &alone,
+        "line 2: E-puck: an e-puck running \"e-puck_avoid_obstacles\": a run of"
+    ));
     // Without a controller, or one no e-puck names, the first e-puck runs, as before.
     for controller in [None, Some("nobody")] {
         let first = WbtImport::from_text_for(text, "two.wbt", controller).unwrap();
