@@ -24,7 +24,7 @@ use mazesim_core::navigator::symmetry::Symmetry;
 use mazesim_core::navigator::training::{
     train_lower_round, Crew, LowerRound, Rewards, RoundSettings, StartQueues,
 };
-use mazesim_core::navigator::{NUM_ACTIONS, WHEEL_SPEED_FRACTIONS};
+use mazesim_core::navigator::{NUM_ACTIONS, NUM_STATES, WHEEL_SPEED_FRACTIONS};
 use mazesim_core::rng::Rng;
 use mazesim_core::{Batch, Perturbation, RobotProfile, StepOutputs, World};
 
@@ -178,9 +178,10 @@ impl Tables {
 
 /// One round of `STEPS` control steps, the tables learning from what `tables` holds.
 fn round(d: &Draws, robots: &mut Robots, tables: &mut Tables, settings: RoundSettings) {
-    let rows = settings.phases.rows();
+    let phases = settings.phases.count();
     let symmetry = Symmetry {
-        states: (0..NUM_SUBTASKS).flat_map(|_| 0..rows).collect(),
+        distance_states: (0..NUM_STATES as u16).collect(),
+        phases: (0..NUM_SUBTASKS).flat_map(|_| 0..phases).collect(),
         actions: std::array::from_fn(|a| a),
         subtasks: [0, 2, 1, 3],
     };

@@ -13,7 +13,7 @@ use mazesim_core::navigator::training::{
     train_lower_round, Crew, LowerRound, Rewards, RoundCounts, RoundSettings, StartQueues,
     PATH_WIDTH,
 };
-use mazesim_core::navigator::NUM_ACTIONS;
+use mazesim_core::navigator::{NUM_ACTIONS, NUM_STATES};
 use mazesim_core::rng::Rng;
 use mazesim_core::{Batch, Error, RobotProfile, StepOutputs, World};
 
@@ -32,7 +32,7 @@ struct Setup {
     start_path: Vec<f64>,
     explore: Vec<f64>,
     random_action: Vec<i64>,
-    mirrored: Vec<usize>,
+    mirrored_states: Vec<u16>,
 }
 
 fn setup() -> Setup {
@@ -59,7 +59,7 @@ fn setup() -> Setup {
     let random_action = (0..STEPS * ENVS)
         .map(|i| (rng.uniform() * if i % 4 == 0 { 11.0 } else { 12.0 }) as i64)
         .collect();
-    let mirrored = (0..NUM_SUBTASKS).flat_map(|_| 0..ROWS).collect();
+    let mirrored_states = (0..NUM_STATES as u16).collect();
     Setup {
         worlds,
         role,
@@ -69,7 +69,7 @@ fn setup() -> Setup {
         start_path,
         explore,
         random_action,
-        mirrored,
+        mirrored_states,
     }
 }
 
@@ -186,7 +186,10 @@ fn round_in_crews(
             visits: &mut visits,
             allowed,
             symmetry: &Symmetry {
-                states: s.mirrored.clone(),
+                distance_states: s.mirrored_states.clone(),
+                phases: (0..NUM_SUBTASKS)
+                    .flat_map(|_| 0..Phases::Heading.count())
+                    .collect(),
                 actions: std::array::from_fn(|a| a),
                 subtasks: [0, 2, 1, 3],
             },
@@ -274,7 +277,10 @@ fn bad_arrays_are_refused_before_anything_moves() {
             "robot 0 (sub-task 0) at step 2",
         ),
         (Box::new(|s| s.role[0] = 4), "sub-tasks"),
-        (Box::new(|s| s.mirrored[5] = ROWS), "mirrored states"),
+        (
+            Box::new(|s| s.mirrored_states[5] = NUM_STATES as u16),
+            "mirrored distance states",
+        ),
         (
             Box::new(|s| s.start_path.truncate(PATH_WIDTH)),
             "door paths",

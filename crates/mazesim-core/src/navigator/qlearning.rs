@@ -120,7 +120,12 @@ impl QTable<'_> {
         targets: &mut Vec<f64>,
     ) {
         targets.clear();
+        // Each pair's value and count are read here too, where the loads do not wait on one
+        // another, so that the updates below, one after the other, find them in cache.
+        let mut touched = 0;
         targets.extend(batch.iter().map(|t| {
+            let pair = t.state * self.actions + t.action;
+            touched ^= self.values[pair].to_bits() ^ self.visits[pair] as u64;
             let best = if t.bootstrap != 0.0 {
                 self.best_value(t.next_state, allowed)
             } else {
@@ -128,6 +133,7 @@ impl QTable<'_> {
             };
             t.reward + t.bootstrap * best
         }));
+        std::hint::black_box(touched);
         for (t, &target) in batch.iter().zip(targets.iter()) {
             let pair = t.state * self.actions + t.action;
             let alpha = rate.after(self.visits[pair]);

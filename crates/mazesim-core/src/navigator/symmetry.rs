@@ -9,6 +9,7 @@
 use super::discretiser::{NUM_LEVELS, NUM_SENSORS, NUM_STATES};
 use super::door::{self, Phases, MAX_PHASES, NUM_SUBTASKS};
 use super::tabular::{NUM_ACTIONS, WHEEL_SPEED_FRACTIONS};
+use crate::error::{Error, Result};
 
 /// The sensor each sensor's reading comes from in the mirror image, in the report's order
 /// (front, back, left, right, left-front, right-front).
@@ -19,10 +20,17 @@ const MIRRORED_SUBTASK: [usize; NUM_SUBTASKS] =
 
 /// The mirror image of every row of every sub-task's table, of every action and of every
 /// sub-task.
+///
+/// A row is a distance state and a phase (`distance_state + NUM_STATES * phase`), and each part
+/// has its own mirror image, so the rows' mirror images are held as those of the 4096 distance
+/// states and of each sub-task's phases: a few kilobytes that stay in cache, where a list of every
+/// row's would take megabytes for the door sub-tasks that count the distance.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Symmetry {
-    /// `(NUM_SUBTASKS, rows)`: the mirror image of each row of each sub-task's table.
-    pub states: Vec<usize>,
+    /// The mirror image of each of the [`NUM_STATES`] distance states.
+    pub distance_states: Vec<u16>,
+    /// `(NUM_SUBTASKS, phases)`: the mirror image of each phase of each sub-task's table.
+    pub phases: Vec<usize>,
     /// The mirror image of each action: its wheel speeds swapped.
     pub actions: [usize; NUM_ACTIONS],
     /// The mirror image of each sub-task.
@@ -32,15 +40,54 @@ pub struct Symmetry {
 impl Symmetry {
     /// The mirror image of tables whose door sub-tasks count `phases`.
     pub fn new(phases: Phases) -> Self {
-        let rows = phases.rows();
-        let states = (0..NUM_SUBTASKS)
-            .flat_map(|subtask| (0..rows).map(move |row| mirrored_row(subtask, row)))
-            .collect();
+        let count = phases.count();
         Self {
-            states,
+            distance_states: (0..NUM_STATES)
+                .map(|state| mirrored_distance_state(state) as u16)
+                .collect(),
+            phases: (0..NUM_SUBTASKS)
+                .flat_map(|subtask| (0..count).map(move |phase| mirrored_phase(subtask, phase)))
+                .collect(),
             actions: std::array::from_fn(mirrored_action),
             subtasks: MIRRORED_SUBTASK,
         }
+    }
+
+    /// Phases of each sub-task's table.
+    pub fn phase_count(&self) -> usize {
+        self.phases.len() / NUM_SUBTASKS
+    }
+
+    /// The mirror image of row `row` of `subtask`'s table (row and sub-task in range).
+    pub fn row(&self, subtask: usize, row: usize) -> usize {
+        let phase = self.phases[subtask * self.phase_count() + row / NUM_STATES];
+        usize::from(self.distance_states[row % NUM_STATES]) + NUM_STATES * phase
+    }
+
+    /// Checks that it mirrors rows of `phase_count` phases into them.
+    pub fn check(&self, phase_count: usize) -> Result<()> {
+        if self.distance_states.len() != NUM_STATES
+            || self.phases.len() != NUM_SUBTASKS * phase_count
+        {
+            return Err(Error::InvalidArgument(format!(
+                "expected the mirror images of {NUM_STATES} distance states and of \
+                 {NUM_SUBTASKS} x {phase_count} phases, found {} and {}",
+                self.distance_states.len(),
+                self.phases.len()
+            )));
+        }
+        let state = self.distance_states.iter().map(|&s| usize::from(s));
+        if let Some(s) = state.clone().find(|&s| s >= NUM_STATES) {
+            return Err(Error::InvalidArgument(format!(
+                "expected mirrored distance states in [0, {NUM_STATES}), found {s}"
+            )));
+        }
+        if let Some(p) = self.phases.iter().find(|&&p| p >= phase_count) {
+            return Err(Error::InvalidArgument(format!(
+                "expected mirrored phases in [0, {phase_count}), found {p}"
+            )));
+        }
+        Ok(())
     }
 }
 
@@ -52,17 +99,23 @@ pub fn mirrored_distance_state(state: usize) -> usize {
     })
 }
 
-/// The mirror image of row `row` (`distance_state + 4096 * phase`) of `subtask`'s table. A
-/// turn's phase counts its progress towards its own side, so it stays; the heading phase of
-/// "Going forward on a door" tells right of straight (0) from left of it (2), so those two swap;
-/// a distance bin (`heading_phase + 3 * bin`) stays.
+/// The mirror image of row `row` (`distance_state + 4096 * phase`) of `subtask`'s table.
 pub fn mirrored_row(subtask: usize, row: usize) -> usize {
-    let mut phase = row / NUM_STATES;
+    mirrored_distance_state(row % NUM_STATES)
+        + NUM_STATES * mirrored_phase(subtask, row / NUM_STATES)
+}
+
+/// The mirror image of phase `phase` of `subtask`'s table. A turn's phase counts its progress
+/// towards its own side, so it stays; the heading phase of "Going forward on a door" tells right
+/// of straight (0) from left of it (2), so those two swap; a distance bin (`heading_phase + 3 *
+/// bin`) stays.
+fn mirrored_phase(subtask: usize, phase: usize) -> usize {
     if subtask == door::FORWARD {
         let (heading, bin) = (phase % MAX_PHASES, phase / MAX_PHASES);
-        phase = 2 - heading + MAX_PHASES * bin;
+        2 - heading + MAX_PHASES * bin
+    } else {
+        phase
     }
-    mirrored_distance_state(row % NUM_STATES) + NUM_STATES * phase
 }
 
 /// The action whose wheel speeds are those of `action` swapped.
@@ -89,11 +142,13 @@ mod tests {
         for phases in [Phases::Heading, Phases::HeadingAndDistance] {
             let symmetry = Symmetry::new(phases);
             let rows = phases.rows();
+            symmetry.check(phases.count()).unwrap();
             for subtask in 0..NUM_SUBTASKS {
                 for row in (0..rows).step_by(37) {
-                    let once = symmetry.states[subtask * rows + row];
+                    let once = symmetry.row(subtask, row);
+                    assert_eq!(once, mirrored_row(subtask, row));
                     assert!(once < rows);
-                    assert_eq!(symmetry.states[subtask * rows + once], row);
+                    assert_eq!(symmetry.row(subtask, once), row);
                 }
             }
             assert_eq!(symmetry.actions, [0, 5, 6, 7, 8, 1, 2, 3, 4, 10, 9, 11]);

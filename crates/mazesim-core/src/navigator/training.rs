@@ -389,7 +389,7 @@ impl Pass<'_> {
             || learner.decided_steps >= settings.decision_steps;
         let transitions = learner.deciding.then(|| {
             let bootstrap = if ended { 0.0 } else { learner.discount };
-            let mirror = |row: usize| self.symmetry.states[learner.role * rows + row];
+            let mirror = |row: usize| self.symmetry.row(learner.role, row);
             [
                 Transition {
                     state: learner.state,
@@ -457,11 +457,6 @@ impl LowerRound<'_> {
         let per_table = rows * NUM_ACTIONS;
         expect("q", self.q.len(), door::NUM_SUBTASKS * per_table)?;
         expect("visits", self.visits.len(), door::NUM_SUBTASKS * per_table)?;
-        expect(
-            "mirrored states",
-            self.symmetry.states.len(),
-            door::NUM_SUBTASKS * rows,
-        )?;
         if let Some(r) = self.role.iter().find(|&&r| !(0..4).contains(&r)) {
             return Err(Error::InvalidArgument(format!(
                 "expected sub-tasks in 0..4, found {r}"
@@ -496,17 +491,27 @@ impl LowerRound<'_> {
                 self.role[env]
             )));
         }
-        if let Some(s) = self.symmetry.states.iter().find(|&&s| s >= rows) {
-            return Err(Error::InvalidArgument(format!(
-                "expected mirrored states in [0, {rows}), found {s}"
-            )));
-        }
-        if let Some(v) = self.visits.iter().find(|&&v| v < 0) {
+        self.symmetry.check(self.settings.phases.count())?;
+        // The tables are large (56 MB with the door sub-tasks that count the distance): each is
+        // read once by a reduction without branches, and searched for what is wrong only then.
+        if self.visits.iter().fold(0, |all, &v| all | v) < 0 {
+            let v = self
+                .visits
+                .iter()
+                .find(|&&v| v < 0)
+                .copied()
+                .unwrap_or_default();
             return Err(Error::InvalidArgument(format!(
                 "expected visit counts of 0 or more, found {v}"
             )));
         }
-        if let Some(v) = self.q.iter().find(|v| !v.is_finite()) {
+        if self.q.iter().fold(false, |bad, v| bad | !v.is_finite()) {
+            let v = self
+                .q
+                .iter()
+                .find(|v| !v.is_finite())
+                .copied()
+                .unwrap_or_default();
             return Err(Error::InvalidArgument(format!(
                 "expected finite Q-values, found {v}"
             )));
