@@ -286,6 +286,7 @@ def motor_commands(count: int, seed: int) -> list[dict[str, Any]]:
 def test_bridge_and_avoid_collision_move_the_robot(master: LocalMaster) -> None:
     spawn_bridge(master, "--world", "seed-maze", "--seed", "3")
     master.spawn("avoid-collision", [*MAZESIM, "ros", "avoid-collision"])
+    run_probe(master, "count", "motor", "1")  # the node drives (its start can take seconds)
     seen = run_probe(master, "count", "pose", "60")
 
     clock = seen["clock"]

@@ -85,7 +85,12 @@ def run_avoid_collision(
             )
             return
         left, right = controller(readings)
-        motor.publish(ros.Float64MultiArray(data=[left, right]))
+        try:
+            motor.publish(ros.Float64MultiArray(data=[left, right]))
+        except rospy.ROSException:
+            # A reading that arrives while the node shuts down finds its topic closed.
+            if not rospy.is_shutdown():
+                raise
 
     wait_for_subscribers(rospy, motor, subscribers, stop)
     rospy.Subscriber(

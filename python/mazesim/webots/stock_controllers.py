@@ -4,7 +4,7 @@ A robot whose world file leaves its ``controller`` field out runs the controller
 declares (:mod:`mazesim.webots.proto_fields`): for the E-puck, ``e-puck_avoid_obstacles``,
 which Webots finds among its own projects when the world's project has no controller of that
 name. mazesim runs this file in its place (as ``__main__``, with the ``controller`` module of
-:mod:`mazesim.webots.controller`), a controller written here from what Webots' behaves as.
+:mod:`mazesim.webots.controller`), a controller written here from how Webots' own behaves.
 
 ``e-puck_avoid_obstacles`` (cyberbotics/webots, ``projects/robots/gctronic/e-puck/
 controllers/e-puck_avoid_obstacles``, R2022b on): a Braitenberg vehicle. Each step it reads the
