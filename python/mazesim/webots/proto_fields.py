@@ -17,6 +17,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from mazesim.webots.camera import DEFAULT_FOV, DEFAULT_HEIGHT, DEFAULT_WIDTH
+from mazesim.webots.radio_devices import E_PUCK_CHANNEL
+
 __all__ = ["DeclaredFields", "declared_fields"]
 
 
@@ -42,11 +45,11 @@ _RECTANGLE_ARENA = DeclaredFields(
 
 _E_PUCK = DeclaredFields(
     numbers={
-        "emitter_channel": [1.0],
-        "receiver_channel": [1.0],
-        "camera_width": [52.0],
-        "camera_height": [39.0],
-        "camera_fieldOfView": [0.84],
+        "emitter_channel": [float(E_PUCK_CHANNEL)],
+        "receiver_channel": [float(E_PUCK_CHANNEL)],
+        "camera_width": [float(DEFAULT_WIDTH)],
+        "camera_height": [float(DEFAULT_HEIGHT)],
+        "camera_fieldOfView": [DEFAULT_FOV],
         "distance_sensor_numberOfRays": [1.0],
     },
     strings={
