@@ -129,7 +129,8 @@ def import_wbt(
     robot_line: int | None = None,
 ) -> tuple[World, dict[str, Any]]:
     """Imports a Webots .wbt file: the mazesim World and the import report (obstacles, robot,
-    basic_time_step_ms, warnings, robot_model, robot_line, robot_profile, robots (every robot:
+    basic_time_step_ms, warnings, one_controller_warnings (those of a run of one controller
+    only), robot_model, robot_line, robot_profile, robots (every robot:
     pose, model, profile, controller, name, def_name, line), extension_devices,
     floor_textures, floor_paint). `floor_images` maps texture files to (height, width) grey
     levels in [0, 1]; of several e-pucks, the first whose `controller` field is `controller` is

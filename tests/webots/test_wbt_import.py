@@ -235,6 +235,7 @@ def test_cli_json_layout(tmp_path: Path) -> None:
         "robot",
         "basic_time_step_ms",
         "warnings",
+        "one_controller_warnings",
         "robot_model",
         "robot_line",
         "robot_profile",

@@ -129,7 +129,7 @@ fn grey_images(images: Option<&Bound<'_, PyAny>>) -> PyResult<BTreeMap<String, G
 }
 
 /// The import as `{"obstacles": [...], "bodies": [...], "robot": {...} | None, "basic_time_step_ms": t,
-/// "warnings": [...], "robot_model", "robot_line", "robot_profile", "extension_devices", "floor_textures",
+/// "warnings": [...], "one_controller_warnings": [...], "robot_model", "robot_line", "robot_profile", "extension_devices", "floor_textures",
 /// "floor_paint"}`, in metres and radians, world frame, z up.
 fn report<'py>(py: Python<'py>, import: &WbtImport) -> PyResult<Bound<'py, PyDict>> {
     let obstacles = dicts(py, &import.obstacles, |d, obstacle| {
@@ -195,6 +195,10 @@ fn report<'py>(py: Python<'py>, import: &WbtImport) -> PyResult<Bound<'py, PyDic
     }
     out.set_item("basic_time_step_ms", import.basic_time_step_ms)?;
     out.set_item("warnings", import.warnings.clone())?;
+    out.set_item(
+        "one_controller_warnings",
+        import.one_controller_warnings.clone(),
+    )?;
     robot_and_floor(&out, import)?;
     Ok(out)
 }

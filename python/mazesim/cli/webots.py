@@ -204,38 +204,6 @@ def run_import(args: argparse.Namespace, out: TextIO) -> int:
     return 0
 
 
-def import_summary(spec: str, report: dict[str, Any], warnings: list[str]) -> dict[str, Any]:
-    """The one summary of a world's import that a run starts with (and keeps in summary.json):
-    the robot recognised, the PROTOs expanded and stood in for, and how many things were not
-    imported as Webots simulates them (each is one warning line)."""
-    protos = report.get("protos") or {}
-    expanded = sorted(protos.get("expanded") or {})
-    stand_ins = protos.get("stand_ins") or {}
-    model = report.get("robot_model")
-    robot = (
-        f"robot: {model}, simulated as the {report.get('robot_profile') or 'e-puck'}"
-        if model
-        else "no robot: the e-puck starts at (0, 0)"
-    )
-    parts = [f"{os.path.basename(spec)}: {robot}"]
-    if expanded:
-        parts.append(f"PROTOs expanded: {', '.join(expanded)}")
-    if stand_ins:
-        parts.append(f"stood in for by mazesim's stand-ins: {', '.join(sorted(stand_ins))}")
-    parts.append(
-        f"{len(warnings)} thing(s) not imported as in Webots, listed below"
-        if warnings
-        else "everything imported"
-    )
-    return {
-        "sentence": "; ".join(parts),
-        "robot_model": model,
-        "protos_expanded": expanded,
-        "stand_ins": stand_ins,
-        "not_imported": list(warnings),
-    }
-
-
 def _load_world(
     spec: str, strict: bool, controller: str | None = None
 ) -> tuple[Any, dict[str, Any] | None, Any]:
@@ -243,7 +211,7 @@ def _load_world(
     several e-pucks, the one whose ``controller`` field names ``controller`` runs."""
     import mazesim
     from mazesim.errors import WorldFormatError
-    from mazesim.webots.importer import import_wbt, robot_warnings
+    from mazesim.webots.importer import import_summary, import_wbt, robot_warnings
     from mazesim.webots.scene import read_scene
 
     if not spec.lower().endswith(".wbt"):

@@ -200,8 +200,8 @@ def whole_world_run(args: argparse.Namespace, controller_file: str) -> argparse.
     whose ``controller`` field names it, else the first e-puck), named by its ``controller``
     field, its name or its DEF name; the other robots run their own controllers, as in
     ``webots run WORLD.wbt``. A run with ``--keys`` (one controller's Keyboard) or ``--strict``
-    (which a world run does not check), or whose robot no name tells from the others, stays a
-    run of one controller.
+    (which then checks the import for that one controller, the other e-pucks' warnings
+    included), or whose robot no name tells from the others, stays a run of one controller.
     """
     from mazesim.webots.importer import import_wbt
     from mazesim.webots.lockstep import controller_of
@@ -284,7 +284,7 @@ def run_world_command(args: argparse.Namespace, out: TextIO) -> int:
     from mazesim._paths import open_input, refuse_overwriting_inputs
     from mazesim.plotting import save_robot_paths_png
     from mazesim.replay.views import recording_requested, viewing_outputs, write_views
-    from mazesim.webots.lockstep import run_world
+    from mazesim.webots.lockstep import refuse_import_warnings, run_world
     from mazesim.webots.runner import controller_file
 
     refuse_keys(args)
@@ -295,6 +295,8 @@ def run_world_command(args: argparse.Namespace, out: TextIO) -> int:
     }
     for file in given.values():
         open_input(file, "the controller").close()  # a regular file, readable, before any run
+    if getattr(args, "strict", False):
+        refuse_import_warnings(args.controller)
     out_dir = os.path.abspath(args.out)
     os.makedirs(out_dir, exist_ok=True)
     live = bool(getattr(args, "live", False))
@@ -346,6 +348,7 @@ def run_world_command(args: argparse.Namespace, out: TextIO) -> int:
         ],
         "exit_status": run.exit_status,
         "interrupted": run.interrupted,
+        "import": {key: value for key, value in run.import_summary.items() if key != "sentence"},
         "wall_clock_seconds": run.wall_clock_seconds,
         "mazesim_version": mazesim.__version__,
     }

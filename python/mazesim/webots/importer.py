@@ -33,10 +33,12 @@ __all__ = [
     "ImportReport",
     "RobotPose",
     "WorldRobot",
+    "import_summary",
     "import_wbt",
     "import_wbt_text",
     "robot_warnings",
     "undownloaded_textures",
+    "world_run_warnings",
 ]
 
 #: Largest world file the PROTO engine reads (a larger one goes to the core, which refuses it).
@@ -131,7 +133,9 @@ class ImportReport(TypedDict):
     that simulates it (``"e-puck"`` or ``"e-puck2"``); ``robots`` every robot of the file
     (see :class:`WorldRobot`); ``floor_paint`` the number of paint
     rectangles the floor textures gave; ``bodies`` the movable bodies (``kind``, ``center``,
-    ``size`` and ``yaw`` or ``radius``, ``mass`` in kg, floor ``friction``).
+    ``size`` and ``yaw`` or ``radius``, ``mass`` in kg, floor ``friction``);
+    ``one_controller_warnings`` those of ``warnings`` that concern a run of one controller only
+    (the world's other e-pucks, which a run of the whole world simulates).
     """
 
     obstacles: list[BoxObstacle | CircleObstacle]
@@ -139,6 +143,7 @@ class ImportReport(TypedDict):
     robot: RobotPose | None
     basic_time_step_ms: float
     warnings: list[str]
+    one_controller_warnings: list[str]
     robot_model: str | None
     robot_line: int | None
     robot_profile: str
@@ -371,3 +376,46 @@ def robot_warnings(report: Mapping[str, Any]) -> list[str]:
         return []
     profile = report.get("robot_profile") or "e-puck"
     return [f"the world's robot is a {model}, not an e-puck: mazesim runs it as the {profile}"]
+
+
+def world_run_warnings(report: Mapping[str, Any]) -> list[str]:
+    """The import's warnings that a run of the whole world shares: all of them but those that
+    concern a run of one controller only (``one_controller_warnings``)."""
+    alone = set(report.get("one_controller_warnings") or [])
+    return [warning for warning in report.get("warnings") or [] if warning not in alone]
+
+
+def import_summary(
+    spec: str, report: Mapping[str, Any], warnings: list[str], robots: int = 1
+) -> dict[str, Any]:
+    """The one summary of a world's import that a run starts with (and keeps in summary.json):
+    the robot recognised (or, for a run of ``robots`` > 1, how many run), the PROTOs expanded
+    and stood in for, and how many things were not imported as Webots simulates them (each is
+    one warning line)."""
+    protos = report.get("protos") or {}
+    expanded = sorted(protos.get("expanded") or {})
+    stand_ins = protos.get("stand_ins") or {}
+    model = report.get("robot_model")
+    if robots > 1:
+        robot = f"{robots} robots, each run by its own controller"
+    elif model:
+        robot = f"robot: {model}, simulated as the {report.get('robot_profile') or 'e-puck'}"
+    else:
+        robot = "no robot: the e-puck starts at (0, 0)"
+    parts = [f"{os.path.basename(spec)}: {robot}"]
+    if expanded:
+        parts.append(f"PROTOs expanded: {', '.join(expanded)}")
+    if stand_ins:
+        parts.append(f"stood in for by mazesim's stand-ins: {', '.join(sorted(stand_ins))}")
+    parts.append(
+        f"{len(warnings)} thing(s) not imported as in Webots, listed below"
+        if warnings
+        else "everything imported"
+    )
+    return {
+        "sentence": "; ".join(parts),
+        "robot_model": model,
+        "protos_expanded": expanded,
+        "stand_ins": stand_ins,
+        "not_imported": list(warnings),
+    }

@@ -46,7 +46,7 @@ from typing import Any
 import numpy as np
 
 from mazesim._core import RobotProfile, Simulator, World
-from mazesim.errors import MazesimIOError
+from mazesim.errors import MazesimIOError, WorldFormatError
 from mazesim.webots.controller_process import ControllerJob, answer, state_after_step
 from mazesim.webots.own_sensors import own_sensors
 from mazesim.webots.process_template import ControllerProcesses
@@ -68,6 +68,7 @@ __all__ = [
     "WorldRun",
     "controller_name",
     "controller_of",
+    "refuse_import_warnings",
     "run_world",
 ]
 
@@ -140,6 +141,8 @@ class WorldRun:
     simulated_seconds: float
     wall_clock_seconds: float
     interrupted: bool = False
+    #: The import's summary (:func:`~mazesim.webots.importer.import_summary`) as printed.
+    import_summary: dict[str, Any] = field(default_factory=dict)
 
     @property
     def exit_status(self) -> int:
@@ -233,6 +236,10 @@ def run_world(
 ) -> WorldRun:
     """Runs every robot of a ``.wbt`` world with its own controller, in lockstep.
 
+    It starts as a run of one controller does, with one line on stderr summing up the import,
+    then each thing not imported as in Webots (all the import's warnings but those about the
+    world's other e-pucks, which this run simulates), each prefixed ``mazesim: warning:``.
+
     Args:
         world_path: The world file.
         seconds: Simulated seconds after which every ``Robot.step`` returns -1.
@@ -248,12 +255,9 @@ def run_world(
     Raises:
         MazesimIOError: The world has no robot.
     """
-    from mazesim.webots.importer import import_wbt
-
-    world, report = import_wbt(world_path)
+    world, report, summary = _imported(world_path)
     robots: list[Mapping[str, Any]] = list(report.get("robots") or [])
-    if not robots:
-        raise MazesimIOError(f"{world_path}: expected a world with robots, found none")
+    _say_import(summary)
     streams = np.random.SeedSequence(seed).spawn(len(robots))
     e_pucks = [i for i, robot in enumerate(robots) if robot.get("profile") is not None]
     scenes = _robot_scenes(world_path, robots)
@@ -314,7 +318,49 @@ def run_world(
         simulated_seconds=float(simulators[0].time),
         wall_clock_seconds=time.perf_counter() - started,
         interrupted=interrupted,
+        import_summary=summary,
     )
+
+
+def _imported(world_path: str) -> tuple[World, dict[str, Any], dict[str, Any]]:
+    """The world of a world run, its import report and the summary of what it lost.
+
+    Raises:
+        MazesimIOError: The world has no robot.
+    """
+    from mazesim.webots.importer import import_summary, import_wbt, world_run_warnings
+
+    world, report = import_wbt(world_path)
+    robots = list(report.get("robots") or [])
+    if not robots:
+        raise MazesimIOError(f"{world_path}: expected a world with robots, found none")
+    lost = world_run_warnings(report)
+    return world, dict(report), import_summary(world_path, report, lost, robots=len(robots))
+
+
+def _say_import(summary: Mapping[str, Any]) -> None:
+    """Prints the import's summary line and each thing not imported, as a run starts."""
+    print(f"mazesim: {summary['sentence']}", file=sys.stderr)
+    for warning in summary["not_imported"]:
+        print(f"mazesim: warning: {warning}", file=sys.stderr)
+
+
+def refuse_import_warnings(world_path: str) -> None:
+    """What ``--strict`` checks before a world run: that the world imports without a warning
+    a run of the whole world shares; else prints the import as a run would and raises.
+
+    Raises:
+        MazesimIOError: The world has no robot.
+        WorldFormatError: The import has warnings.
+    """
+    _, _, summary = _imported(world_path)
+    if summary["not_imported"]:
+        _say_import(summary)
+        raise WorldFormatError(
+            f"{world_path}: --strict expects a world imported without warnings, found "
+            f"{len(summary['not_imported'])} (listed above)",
+            source=world_path,
+        )
 
 
 def _robot_scenes(world_path: str, robots: list[Mapping[str, Any]]) -> list[Scene]:

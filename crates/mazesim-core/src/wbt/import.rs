@@ -122,6 +122,8 @@ pub struct Importer<'d> {
     /// simulated through it).
     pub bounded: bool,
     pub warnings: Vec<String>,
+    /// Those of `warnings` that a run of the whole world does not share.
+    pub one_controller_warnings: Vec<String>,
     /// Set while reading the collision shapes of an object with physics: it falls onto the
     /// floor in Webots, so its height does not let the robot pass under it.
     pub falls: bool,
@@ -148,6 +150,7 @@ pub fn import(doc: &Document, choice: RobotChoice<'_>) -> WbtImport {
         floor_meshes: Vec::new(),
         bounded: false,
         warnings: doc.warnings.clone(),
+        one_controller_warnings: Vec::new(),
         falls: false,
         visits: 0,
         too_deep: false,
@@ -199,6 +202,7 @@ pub fn import(doc: &Document, choice: RobotChoice<'_>) -> WbtImport {
         paint: importer.floor_marks,
         basic_time_step_ms,
         warnings: importer.warnings,
+        one_controller_warnings: importer.one_controller_warnings,
     }
 }
 
@@ -218,6 +222,13 @@ impl<'d> Importer<'d> {
 
     pub fn warn(&mut self, message: String) {
         self.warnings.push(message);
+    }
+
+    /// A warning of a run of one controller only: a run of the whole world simulates what it
+    /// says is left out.
+    fn warn_one_controller(&mut self, message: String) {
+        self.one_controller_warnings.push(message.clone());
+        self.warn(message);
     }
 
     /// Counts a visit; false once the budget or the depth limit is exhausted.
@@ -623,7 +634,7 @@ impl<'d> Importer<'d> {
             } else {
                 format!("an e-puck running \"{}\"", mine.unwrap_or_default())
             };
-            self.warn(format!(
+            self.warn_one_controller(format!(
                 "{label}: {runs}: a run of the controller \"{theirs}\" alone simulates only its first e-puck (line {}); a run of the whole world runs every robot",
                 chosen.line
             ));
@@ -631,7 +642,7 @@ impl<'d> Importer<'d> {
         }
         if let Some(first) = &self.robot {
             let line = first.line;
-            self.warn(format!(
+            self.warn_one_controller(format!(
                 "{label}: a second e-puck: a run of one controller simulates only the first (line {line}); a run of the whole world runs every robot"
             ));
             return;

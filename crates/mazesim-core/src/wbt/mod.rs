@@ -154,6 +154,9 @@ pub struct WbtImport {
     pub basic_time_step_ms: f64,
     /// Everything not imported or approximated, one sentence each, with its line.
     pub warnings: Vec<String>,
+    /// Those of `warnings` that concern a run of one controller only (the world's other
+    /// e-pucks, which a run of the whole world simulates).
+    pub one_controller_warnings: Vec<String>,
 }
 
 impl WbtImport {

@@ -413,6 +413,24 @@ fn the_e_puck_of_the_controller_that_runs_is_the_robot() {
 }
 
 #[test]
+fn only_the_other_e_pucks_warnings_concern_a_run_of_one_controller_alone() {
+    let text = "#VRML_SIM R2023b utf8\nSomethingUnknown { }\nE-puck { controller \"a\" }\nE-puck { controller \"b\" }\nE-puck { controller \"a\" }\n";
+    let first = WbtImport::from_text_for(text, "three.wbt", Some("b")).unwrap();
+    assert_eq!(first.warnings.len(), 3, "{:?}", first.warnings);
+    assert_eq!(first.one_controller_warnings.len(), 2);
+    for warning in &first.one_controller_warnings {
+        assert!(first.warnings.contains(warning));
+        assert!(warning.contains("a run of the whole world runs every robot"));
+    }
+    assert!(!first.one_controller_warnings[0].contains("SomethingUnknown"));
+    let unknown = first
+        .warnings
+        .iter()
+        .filter(|w| w.contains("SomethingUnknown"));
+    assert_eq!(unknown.count(), 1);
+}
+
+#[test]
 fn plain_robot_epuck_lists_its_children_devices_but_not_its_own() {
     let w = import(
         "#VRML_SIM R2023b utf8\nRobot { name \"e-puck\" children [\n\
