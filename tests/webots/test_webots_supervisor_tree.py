@@ -329,6 +329,11 @@ def test_a_supervisor_reads_a_shapes_geometry_and_appearance_through_their_field
     assert wall.getField("name") is None and marker.getField("geometry").getSFVec3f() is None
     ids = {shape.getId(), geometry.getId(), material.getId()}
     assert len(ids) == 3 and 0 not in ids
+    assert supervisor.getFromId(geometry.getId()) is geometry
+    grouped = supervisor_of(GROUPED, tmp_path)
+    box = grouped.getFromDef("BOXGEOM")  # a DEF in a Shape's geometry field
+    assert box.getTypeName() == "Box" and box.getField("size").getSFVec3f()[2] == 0.1
+    assert grouped.getFromDef("BOX1").getField("boundingObject").getSFNode() is box
 
 
 def test_another_robot_whose_node_leaves_its_rotation_out_has_a_live_rotation_field() -> None:
