@@ -95,6 +95,28 @@ def test_a_compile_error_quotes_the_compiler(tmp_path: Path) -> None:
     assert re.search(r"broken\.c:\d+:\d+: error: expected expression", message)
 
 
+def test_a_cpp_controller_that_relies_on_another_compilers_transitive_headers_builds(
+    tmp_path: Path,
+) -> None:
+    """Sources that use std::unique_ptr and memcpy without including <memory> and <cstring>
+    (which the author's compiler brought in through <iomanip> and <string>) are built with the
+    headers g++ names, and the build says so; a real error still stops the build."""
+    source = tmp_path / "owner" / "owner.cpp"
+    source.parent.mkdir()
+    source.write_text(
+        "#include <iomanip>\n#include <webots/robot.h>\n"
+        "int main() {\n  wb_robot_init();\n  std::unique_ptr<int> kept(new int(4));\n"
+        "  int copy = 0;\n  memcpy(&copy, kept.get(), sizeof copy);\n"
+        "  wb_robot_cleanup();\n  return copy == 4 ? 0 : 1;\n}\n"
+    )
+    built = build(source)
+    assert built.program is not None, built.note
+    assert "<memory>, <cstring>" in built.note and "without including them" in built.note
+    source.write_text(source.read_text().replace("int copy = 0;", "int copy = ;"))
+    with pytest.raises(ControllerBuildError, match="expected a C\\+\\+ controller that compiles"):
+        build(source)
+
+
 def test_without_a_compiler_the_error_says_what_to_install(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:

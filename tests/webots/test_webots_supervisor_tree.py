@@ -13,6 +13,7 @@ import pytest
 import mazesim
 from mazesim.webots import controller, prepare
 from mazesim.webots import simulation as simulations
+from mazesim.webots import supervisor as supervisor_module
 from mazesim.webots.scene import read_scene
 
 #: A world whose obstacles are grouped: a Group holding a Solid (holding a Pose and a Shape)
@@ -283,6 +284,73 @@ def test_a_protos_fields_the_file_leaves_out_read_as_the_proto_declares(tmp_path
     assert other.getField("camera_width").getSFInt32() == 52
     assert other.getField("supervisor").getSFBool() is False
     assert other.getField("no such field") is None
+
+
+#: Walls whose sizes a supervisor reads through their Shapes' geometry, and a painted marker.
+WALLS = """#VRML_SIM R2023b utf8
+WorldInfo { basicTimeStep 32 }
+DEF WALL_X Solid {
+  translation 0.5 0 0.05
+  children [ DEF SIDE Shape { geometry Box { size 0.3 0.01 0.1 } } ]
+  boundingObject USE SIDE
+}
+DEF MARK Pose {
+  children [
+    Shape {
+      appearance Appearance { material Material { diffuseColor 0 0 1 } }
+      geometry Cylinder { height 0.1 radius 0.05 }
+    }
+  ]
+}
+DEF EPUCK E-puck { supervisor TRUE }
+"""
+
+
+def test_a_supervisor_reads_a_shapes_geometry_and_appearance_through_their_fields(
+    tmp_path: Path,
+) -> None:
+    """``getSFNode`` of a field holding one node (a Shape's ``geometry`` and ``appearance``, an
+    Appearance's ``material``, a Solid's ``boundingObject``) gives that node and its fields, as
+    a supervisor mapping a maze's walls from the scene tree reads them."""
+    supervisor = supervisor_of(WALLS, tmp_path)
+    wall = supervisor.getFromDef("WALL_X")
+    shape = wall.getField("children").getMFNode(0)
+    geometry = shape.getField("geometry").getSFNode()
+    assert (geometry.getTypeName(), geometry.getParentNode()) == ("Box", shape)
+    assert geometry.getField("size").getSFVec3f() == pytest.approx([0.3, 0.01, 0.1])
+    assert shape.getField("geometry").getTypeName() == "SFNode"
+    assert wall.getField("boundingObject").getSFNode() is shape, "a USE is its DEF's node"
+    marker = supervisor.getFromDef("MARK").getField("children").getMFNode(0)
+    material = marker.getField("appearance").getSFNode().getField("material").getSFNode()
+    assert material.getField("diffuseColor").getSFColor() == [0.0, 0.0, 1.0]
+    material.getField("diffuseColor").setSFColor([1, 0, 0])
+    assert material.getField("diffuseColor").getSFColor() == [1.0, 0.0, 0.0], "recorded"
+    assert marker.getField("geometry").getSFNode().getField("radius").getSFFloat() == 0.05
+    assert wall.getField("name") is None and marker.getField("geometry").getSFVec3f() is None
+    ids = {shape.getId(), geometry.getId(), material.getId()}
+    assert len(ids) == 3 and 0 not in ids
+    assert supervisor.getFromId(geometry.getId()) is geometry
+    grouped = supervisor_of(GROUPED, tmp_path)
+    box = grouped.getFromDef("BOXGEOM")  # a DEF in a Shape's geometry field
+    assert box.getTypeName() == "Box" and box.getField("size").getSFVec3f()[2] == 0.1
+    assert grouped.getFromDef("BOX1").getField("boundingObject").getSFNode() is box
+
+
+def test_another_robot_whose_node_leaves_its_rotation_out_has_a_live_rotation_field() -> None:
+    """A robot of the world of a project's own e-puck PROTO (not known here as a Solid) whose
+    node writes no ``rotation``: a supervisor still finds its rotation field, as in Webots (a
+    NULL field crashed a C supervisor that read it)."""
+    puck = supervisor_module.Node(
+        "epuck_rangeColA", "e-puck1", 7, translation=(0.1, 0.2, 0.0), name="e-puck1"
+    )
+    assert puck.getBaseTypeName() == "epuck_rangeColA"
+    puck._fleet_index = 1  # another robot of the world, as a world run links it
+    rotation = puck.getField("rotation")
+    assert rotation is not None and rotation.getTypeName() == "SFRotation"
+    assert puck.getField("translation").getTypeName() == "SFVec3f"
+    assert puck.getNumberOfFields() == 3  # name, translation, rotation
+    wall = supervisor_module.Node("Wall", "W", 8, translation=(0.0, 0.0, 0.0))
+    assert wall.getField("rotation") is None, "a node that is no robot keeps the file's fields"
 
 
 def test_a_robot_set_into_a_wall_is_pushed_out_of_it_as_webots_physics_does(

@@ -7,6 +7,7 @@ import json
 import os
 import shutil
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -137,30 +138,58 @@ def test_c_controllers_drive_every_robot_of_a_world_of_several(
     assert closest > 0.065, "bodies of about 7.4 cm across never pass through each other"
 
 
+def run_beside_an_avoider(tmp_path: Path, name: str, source: str) -> tuple[Any, Any]:
+    """The head-on world run for a second: the west robot on the C controller ``source`` (in
+    ``controllers/NAME/NAME.c``), the east one on the wall avoider; their runs."""
+    own = tmp_path / "controllers" / name / f"{name}.c"
+    own.parent.mkdir(parents=True)
+    own.write_text(source)
+    avoider = str(C_CONTROLLERS / "c_wall_avoider" / "c_wall_avoider.c")
+    run = run_world(
+        str(SWARM / "worlds" / "head_on.wbt"),
+        seconds=1.0,
+        controllers={"west": str(own), "east": avoider},
+    )
+    west, east = run.robots
+    return west, east
+
+
 @pytest.mark.skipif(shutil.which("gcc") is None, reason="needs gcc")
 def test_a_world_run_says_at_its_start_what_a_robots_controller_lacks(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
 ) -> None:
     monkeypatch.setenv("MAZESIM_CACHE", str(tmp_path / "cache"))
-    ranging = tmp_path / "controllers" / "ranging" / "ranging.c"
-    ranging.parent.mkdir(parents=True)
-    ranging.write_text(
+    west, east = run_beside_an_avoider(
+        tmp_path,
+        "ranging",
         "#include <webots/robot.h>\n#include <webots/lidar.h>\n"
-        "int main(void) { wb_robot_init(); while (wb_robot_step(32) != -1) {} return 0; }\n"
+        "int main(void) { wb_robot_init(); while (wb_robot_step(32) != -1) {} return 0; }\n",
     )
-    avoider = str(C_CONTROLLERS / "c_wall_avoider" / "c_wall_avoider.c")
-    run = run_world(
-        str(SWARM / "worlds" / "head_on.wbt"),
-        seconds=1.0,
-        controllers={"west": str(ranging), "east": avoider},
-    )
-    west, east = run.robots
     assert any("webots/lidar.h" in missing for missing in west.missing)
     assert east.missing == ()
     said = capsys.readouterr().err
     assert "mazesim: missing: robot 'west':" in said and "webots/lidar.h" in said
     assert "controller not run" in west.error and west.distance_m == 0.0
     assert east.distance_m > 0.0, "the other robot runs on"
+
+
+@pytest.mark.skipif(shutil.which("gcc") is None, reason="needs gcc")
+def test_a_robot_whose_c_controller_does_not_compile_stands_still_and_the_others_run(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """As in Webots, a controller that does not build leaves its own robot without a controller;
+    the world's other robots run (the run stopped before any step)."""
+    monkeypatch.setenv("MAZESIM_CACHE", str(tmp_path / "cache"))
+    west, east = run_beside_an_avoider(
+        tmp_path,
+        "broken",
+        "#include <webots/robot.h>\nint main(void) { wb_robot_init(); this is not C; return 0; }\n",
+    )
+    (statement,) = west.missing
+    assert "C controller broken.c does not compile here" in statement and "error:" in statement
+    assert "mazesim: missing: robot 'west':" in capsys.readouterr().err
+    assert "controller not run" in west.error and west.distance_m == 0.0
+    assert east.missing == () and east.distance_m > 0.0, "the other robot runs on"
 
 
 def test_a_supervisor_sees_and_moves_every_robot_and_its_own_emitter_reaches_them(

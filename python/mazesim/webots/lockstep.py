@@ -46,13 +46,13 @@ from typing import Any
 import numpy as np
 
 from mazesim._core import RobotProfile, Simulator, World
-from mazesim.errors import MazesimIOError, WorldFormatError
+from mazesim.errors import ControllerBuildError, MazesimIOError, WorldFormatError
 from mazesim.webots.controller_process import ControllerJob, answer, state_after_step
 from mazesim.webots.own_sensors import own_sensors
 from mazesim.webots.process_template import ControllerProcesses
 from mazesim.webots.proto_fields import declared_fields
 from mazesim.webots.radio import Radio
-from mazesim.webots.requirements import PreparedController, prepare_controller
+from mazesim.webots.requirements import PreparedController, prepare_controller, unbuilt
 from mazesim.webots.runner import CONTROLLER_SUFFIXES, EXIT_INTERRUPTED
 from mazesim.webots.scene import Scene, read_scenes
 from mazesim.webots.shared_world import RobotView, shared_simulator
@@ -424,15 +424,20 @@ def _say_what_is_missing(
 ) -> tuple[bool, dict[str, str], dict[str, PreparedController]]:
     """Prepares each robot's controller once (a C or C++ one is built into the cache, which its
     process then takes) and says at the run's start what each one lacks, as a run of one robot
-    does; the list is kept on its robot's run. Returns whether a controller's Tk windows need
-    a virtual display, the environment the controllers' windows need and each controller file's
-    preparation."""
+    does; the list is kept on its robot's run. A C or C++ controller that does not compile
+    leaves its robot standing still, the others running, as in Webots. Returns whether a
+    controller's Tk windows need a virtual display, the environment the controllers' windows
+    need and each controller file's preparation."""
     prepared: dict[str, PreparedController] = {}
     for run in runs:
         if run.controller is None:
             continue
         if run.controller not in prepared:
-            prepared[run.controller] = done = prepare_controller(run.controller)
+            try:
+                done = prepare_controller(run.controller)
+            except ControllerBuildError as failure:
+                done = unbuilt(run.controller, failure)
+            prepared[run.controller] = done
             for note in done.notes:
                 print(f"mazesim: {note}", file=sys.stderr)
         run.missing = tuple(prepared[run.controller].missing)

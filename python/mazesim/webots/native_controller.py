@@ -67,6 +67,12 @@ _INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]', re.MULTILINE)
 _DEFINED_TWICE = re.compile(
     r"([\w.+-]+\.(?:c|cpp|cc|cxx)):\([^)]*\): (?:multiple definition of|first defined here)"
 )
+#: gcc's and g++'s notes naming the standard header that declares a name a source uses without
+#: including it (``did you forget to '#include <memory>'?``, ``include '<string.h>' or provide a
+#: declaration of 'memcpy'``): a header that other compilers' own headers include for it.
+_FORGOTTEN_HEADER = re.compile(
+    r"did you forget to [‘'`]#include <([\w./+-]+)>|include [‘'`]<([\w./+-]+)>[’'`] or provide"
+)
 #: The definition of a program's ``main`` function, at the start of a line.
 _MAIN = re.compile(r"^[ \t]*(?:int|void)[ \t]+main[ \t]*\(", re.MULTILINE)
 #: Most files read for their includes before a build.
@@ -278,9 +284,13 @@ def _compile_all(
     cpp_sources: list[Path],
     aliases: dict[str, str],
     target: Path,
+    forced: tuple[str, tuple[str, ...]] = ("", ()),
 ) -> tuple[subprocess.CompletedProcess[str], list[str]]:
-    """Compiles and links the controller into ``target``; the last step's result and command."""
+    """Compiles and links the controller into ``target``; the last step's result and command.
+    ``forced``: a language (``"c"`` or ``"cpp"``) and standard headers its steps include before
+    the sources (``-include``)."""
     folder = main.parent
+    prefix = {forced[0]: [part for header in forced[1] for part in ("-include", header)]}
     c_compiler = compilers[0]
     library = _library(main, c_compiler)
     archived = [str(path) for path in library if path.suffix == ".a"]
@@ -288,18 +298,20 @@ def _compile_all(
     with tempfile.TemporaryDirectory(prefix="mazesim-build-") as work:
         _write_case_aliases(Path(work) / "aliases", aliases)
         includes = ["-I", str(folder), "-I", str(CAPI / "include"), "-I", f"{work}/aliases"]
+        c_includes = [*includes, *prefix.get("c", [])]
         if language == "c":
-            steps = [[c_compiler, *FLAGS, *includes, *map(str, [*c_sources, *library])]]
+            steps = [[c_compiler, *FLAGS, *c_includes, *map(str, [*c_sources, *library])]]
             steps[0] += [*archived, "-o", str(target), "-lm"]
         else:
             # The C parts (the library, the project's .c files) as C, then the C++ program.
             c_parts = [*c_sources, *library]
             objects = [os.path.join(work, f"{i}.o") for i in range(len(c_parts))]
             steps = [
-                [c_compiler, *FLAGS, *includes, "-c", str(path), "-o", obj]
+                [c_compiler, *FLAGS, *c_includes, "-c", str(path), "-o", obj]
                 for path, obj in zip(c_parts, objects)
             ]
-            steps.append([compilers[1], *FLAGS, *includes, *map(str, cpp_sources), *objects])
+            cpp_includes = [*includes, *prefix.get("cpp", [])]
+            steps.append([compilers[1], *FLAGS, *cpp_includes, *map(str, cpp_sources), *objects])
             steps[-1] += [*archived, "-o", str(target), "-lm"]
         for command in steps:
             done = _compile(main, command, work)
@@ -448,6 +460,15 @@ def build(source: str | os.PathLike[str]) -> Build:
         done, command = _compile_all(
             main, language, compilers, c_sources, cpp_sources, aliases, temporary
         )
+    forgotten = _forgotten_headers(done.stderr) if done.returncode != 0 else ()
+    if forgotten:
+        # Standard headers the sources use without including them, which the compiler names:
+        # the author's compiler included them through its other headers (g++ 12's <iomanip>
+        # no longer brings <memory>), so the sources are built with them included first.
+        step = "cpp" if language == "cpp" and command[0] == compilers[-1] else "c"
+        done, command = _compile_all(
+            main, language, compilers, c_sources, cpp_sources, aliases, temporary, (step, forgotten)
+        )
     if done.returncode != 0:
         temporary.unlink(missing_ok=True)
         missing = sorted(set(_UNDEFINED.findall(done.stderr)))
@@ -485,7 +506,20 @@ def build(source: str | os.PathLike[str]) -> Build:
     if twice:
         names = ", ".join(twice)
         note += f" (left out, their functions defined again by the controller's files: {names})"
+    if forgotten:
+        names = ", ".join(f"<{header}>" for header in forgotten)
+        note += (
+            f" (standard headers its sources use without including them, included first as "
+            f"other compilers' own headers include them: {names})"
+        )
     return Build(str(target), note=note)
+
+
+def _forgotten_headers(stderr: str) -> tuple[str, ...]:
+    """The standard headers the compiler's notes say the sources forgot to include, in the order
+    the notes first name them."""
+    named = [cpp or c for cpp, c in _FORGOTTEN_HEADER.findall(stderr)]
+    return tuple(dict.fromkeys(named))
 
 
 def native_robot() -> Any:

@@ -30,6 +30,7 @@ __all__ = [
     "prepare_controller",
     "scene_changes",
     "turn_in_place_speed",
+    "unbuilt",
 ]
 
 #: Controller languages by file suffix.
@@ -488,3 +489,17 @@ def prepare_controller(file: str) -> PreparedController:
     if calls:
         prepared.missing.append(SCENE_CHANGES.format(calls=", ".join(calls)))
     return prepared
+
+
+def unbuilt(file: str, failure: Exception) -> PreparedController:
+    """A C or C++ controller of a world's robot that does not compile, prepared not to run: in a
+    world of several robots its robot stands still, as one whose controller Webots cannot build
+    does, while the others run. Its statement quotes the compiler's first error."""
+    from mazesim.webots.native_controller import LANGUAGE_NAMES
+
+    language = LANGUAGES.get(os.path.splitext(file)[1].lower(), "c")
+    lines = str(failure).splitlines()
+    first = next((line.strip() for line in lines if "error:" in line), lines[0] if lines else "")
+    kind = LANGUAGE_NAMES.get(language, "C")
+    statement = f"its {kind} controller {os.path.basename(file)} does not compile here: {first}"
+    return PreparedController(file, language, missing=[statement], runnable=False)

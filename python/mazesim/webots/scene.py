@@ -88,6 +88,8 @@ class SceneNode:
         strings: Its fields of one string.
         children: The nodes of its ``children`` field, for a grouping node
             (:data:`GROUPING_TYPES`); their ``translation`` and ``rotation`` are in its frame.
+        nodes: The node of each of its fields that holds one node (a Shape's ``geometry`` and
+            ``appearance``, an Appearance's ``material``, a Solid's ``boundingObject``).
     """
 
     type_name: str
@@ -100,6 +102,7 @@ class SceneNode:
     flags: dict[str, bool] = field(default_factory=dict)
     strings: dict[str, str] = field(default_factory=dict)
     children: list[SceneNode] = field(default_factory=list)
+    nodes: dict[str, SceneNode] = field(default_factory=dict)
 
     @property
     def base_type(self) -> str:
@@ -454,9 +457,10 @@ def _scene_nodes(
     tree: list[Node], robot: Node | None, nue: bool, used: dict[int, Node]
 ) -> list[SceneNode]:
     """The nodes at the top of the file, the robot's marked, each grouping node
-    (:data:`GROUPING_TYPES`) with the nodes of its ``children`` field, in file order; a ``USE``
-    among them is the very :class:`SceneNode` of the node it stands for (``used``), as a
-    Webots supervisor sees it.
+    (:data:`GROUPING_TYPES`) with the nodes of its ``children`` field, in file order, and each
+    node but the robot's with the node of each of its single-node fields (:func:`_single_nodes`); a
+    ``USE`` among them is the very :class:`SceneNode` of the node it stands for (``used``), as
+    a Webots supervisor sees it.
 
     The tree is walked with a stack, not recursion (a world may nest thousands deep): each
     node's :class:`SceneNode` is made once its children's are.
@@ -465,32 +469,62 @@ def _scene_nodes(
 
     def scene_nodes(nodes: list[Node]) -> list[SceneNode]:
         top: list[SceneNode] = []
-        # (node, the list its SceneNode goes into, its children's SceneNodes once visited)
-        pending: list[tuple[Node, list[SceneNode], list[SceneNode] | None]] = [
+        # (node, the list its SceneNode goes into, its children's SceneNodes and its
+        # single-node fields' once visited)
+        Visited = tuple[list[SceneNode], list[tuple[str, SceneNode]]]
+        pending: list[tuple[Node, list[SceneNode] | _Named, Visited | None]] = [
             (node, top, None) for node in reversed(nodes)
         ]
         while pending:
-            node, into, children = pending.pop()
+            node, into, visited = pending.pop()
             if node.use_name is not None:
                 if (defined := used.get(id(node))) is not None:
                     if id(defined) not in made:  # a DEF the scene does not list: made here
                         scene_nodes([defined])
                     into.append(made[id(defined)])
                 continue
-            if children is None:
+            if visited is None:
                 inner: list[SceneNode] = []
-                pending.append((node, into, inner))
+                held: list[tuple[str, SceneNode]] = []
+                pending.append((node, into, (inner, held)))
+                if node is not robot:
+                    for name, single in reversed(_single_nodes(node)):
+                        pending.append((single, _Named(held, name), None))
                 if node.type_name in GROUPING_TYPES:
                     listed = [
                         n for item in node.fields if item.name == "children" for n in item.nodes
                     ]
                     pending.extend((n, inner, None) for n in reversed(listed))
                 continue
+            children, singles = visited
             made[id(node)] = _scene_node(node, node is robot, children, nue)
+            made[id(node)].nodes.update(singles)
             into.append(made[id(node)])
         return top
 
     return scene_nodes(tree)
+
+
+class _Named:
+    """Where the SceneNode of a single-node field goes: its owner's list, under the field's
+    name (an ``append`` as a list of children takes one)."""
+
+    def __init__(self, held: list[tuple[str, SceneNode]], name: str) -> None:
+        self._held = held
+        self._name = name
+
+    def append(self, scene_node: SceneNode) -> None:
+        self._held.append((self._name, scene_node))
+
+
+def _single_nodes(node: Node) -> list[tuple[str, Node]]:
+    """The fields of a node that hold one node, without brackets (``geometry Box { ... }``,
+    ``boundingObject USE BOX``), with their node, in file order."""
+    return [
+        (item.name, item.nodes[0])
+        for item in node.own_fields()
+        if item.name != "children" and len(item.nodes) == 1 and not item.tokens
+    ]
 
 
 #: Fields read on their own (the frame) or not fields (``hidden`` engine state).

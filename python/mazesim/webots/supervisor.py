@@ -111,7 +111,13 @@ class Field(NotSimulated):
     MF_COLOR = 0x17
     MF_STRING = 0x18
     MF_NODE = 0x19
-    _type_names = {0x05: "SFVec3f", 0x06: "SFRotation", 0x08: "SFString", 0x19: "MFNode"}
+    _type_names = {
+        0x05: "SFVec3f",
+        0x06: "SFRotation",
+        0x08: "SFString",
+        0x09: "SFNode",
+        0x19: "MFNode",
+    }
 
     def __init__(self, node: Node, name: str, field_type: int) -> None:
         self._node = node
@@ -152,6 +158,14 @@ class Field(NotSimulated):
             )
             return None
         return children[int(index)]
+
+    def getSFNode(self) -> Node | None:
+        """The node a field of one node holds (a Shape's ``geometry`` or ``appearance``, an
+        Appearance's ``material``), or None with Webots' error for another field."""
+        if self._type != self.SF_NODE:
+            self._wrong("get_sf_node")
+            return None
+        return self._node._held.get(self._name)
 
     def importMFNodeFromString(self, position: int, nodeString: str) -> None:
         """Webots' kind of error: mazesim adds no nodes to a running world."""
@@ -278,6 +292,11 @@ class Field(NotSimulated):
         """Records a new value of a number field."""
         self._set_numbers("set_sf_float", (self.SF_FLOAT, self.SF_INT32), [float(value)])
 
+    def setSFColor(self, values: list[float]) -> None:
+        """Records a new value of a colour field (a Material's ``diffuseColor``: the rendering
+        does not change)."""
+        self._set_numbers("set_sf_color", (self.SF_COLOR, self.SF_VEC3F), _padded(values, 3))
+
     def setSFBool(self, value: bool) -> None:
         """Records a new value of a ``TRUE`` / ``FALSE`` field."""
         if self._type != self.SF_BOOL:
@@ -387,6 +406,8 @@ class Node(NotSimulated):
         #: Other fields the world file gives the node (a PROTO instance's own fields too).
         self._numbers: dict[str, list[float]] = {}
         self._flags: dict[str, bool] = {}
+        #: The node of each of its fields that holds one (a Shape's ``geometry``...).
+        self._held: dict[str, Node] = {}
 
     @classmethod
     def from_scene(cls, node: SceneNode, node_id: int) -> Node:
@@ -429,6 +450,13 @@ class Node(NotSimulated):
         for child in children:
             if child._parent is None:
                 child._parent = self
+
+    def _hold(self, nodes: dict[str, Node]) -> None:
+        """Makes ``nodes`` the nodes of the node's single-node fields, by field name."""
+        self._held = nodes
+        for node in nodes.values():
+            if node._parent is None:
+                node._parent = self
 
     def _simulation(self) -> _simulations.RobotSimulation:
         return _simulations.current()
@@ -517,8 +545,8 @@ class Node(NotSimulated):
 
     def getParentNode(self) -> Node | None:
         """The root for a node at the top of the world file, the Solid, Transform, Pose or Group
-        whose ``children`` hold a node; None for the root and for nodes inside others (a
-        PROTO's, a Shape's geometry: their parents are not kept)."""
+        whose ``children`` hold a node, the node whose field holds a node of one (a Shape's
+        ``geometry``); None for the root and for nodes inside a PROTO (not kept)."""
         return self._parent
 
     def remove(self) -> None:
@@ -532,6 +560,7 @@ class Node(NotSimulated):
         types = dict.fromkeys(self._strings, Field.SF_STRING)
         if self._type_name in GROUPING_TYPES:
             types["children"] = Field.MF_NODE
+        types.update(dict.fromkeys(self._held, Field.SF_NODE))
         types.update(dict.fromkeys(self._flags, Field.SF_BOOL))
         for name, values in self._numbers.items():
             kinds = {1: Field.SF_FLOAT, 2: Field.SF_VEC2F, 3: Field.SF_VEC3F, 4: Field.SF_ROTATION}
@@ -541,9 +570,11 @@ class Node(NotSimulated):
                 types[name] = Field.SF_INT32
             if len(values) == 3 and name.lower().endswith("color"):
                 types[name] = Field.SF_COLOR
-        if self._robot or self._translation is not None:
+        # Every robot of the world has both, live, whatever its node writes (a project's PROTO
+        # of the e-puck, unknown here as a Solid, may leave its rotation out).
+        if self._live or self._translation is not None:
             types["translation"] = Field.SF_VEC3F
-        if self._robot or self._rotation is not None:
+        if self._live or self._rotation is not None:
             types["rotation"] = Field.SF_ROTATION
         return types
 
@@ -622,12 +653,13 @@ class Node(NotSimulated):
         """The number of fields :meth:`getField` knows."""
         if self._id == 0:
             return 1
-        posed = self._robot or self._translation is not None
+        posed = self._live or self._translation is not None
         return (
             len(self._strings)
             + (1 if posed else 0)
-            + (1 if self._robot or self._rotation else 0)
+            + (1 if self._live or self._rotation else 0)
             + (1 if self._type_name in GROUPING_TYPES else 0)
+            + len(self._held)
         )
 
     def getStaticBalance(self) -> bool:
@@ -648,9 +680,12 @@ def _nest(
     top: list[tuple[Node, SceneNode]], first_id: int, robot: Node, made: dict[int, Node]
 ) -> list[Node]:
     """Gives each grouping node among ``top`` (a top-level node and its scene node) and below it
-    the nodes of its ``children`` field (``robot`` for the robot's); returns those nodes in file
-    order, their ids from ``first_id`` on."""
+    the nodes of its ``children`` field (``robot`` for the robot's), and each node below one the
+    nodes of its single-node fields; returns those nodes in file order, their ids from
+    ``first_id`` on (the single-node fields' after the others')."""
     nested: list[Node] = []
+    held: list[Node] = []
+    singles: set[int] = set()
     placed: set[int] = set()
     pending = list(reversed(top))
     while pending:
@@ -658,14 +693,23 @@ def _nest(
         if id(node) in placed:
             continue  # a USE of a node placed already
         placed.add(id(node))
-        if node._nested:
+        if id(node) in singles:
+            held.append(node)
+        elif node._nested:
             node._id = first_id + len(nested)
             nested.append(node)
+        inner: list[Node] = []
         if scene_node.type_name in GROUPING_TYPES:
             inner = _nodes_of(scene_node.children, made, robot)
             node._adopt(inner)
-            pending.extend(reversed(list(zip(inner, scene_node.children))))
-    return nested
+        fields = list(scene_node.nodes.values())
+        kept = _nodes_of(fields, made, robot)
+        node._hold(dict(zip(scene_node.nodes, kept)))
+        singles.update(id(n) for n in kept)
+        pending.extend(reversed(list(zip([*kept, *inner], [*fields, *scene_node.children]))))
+    for index, node in enumerate(held):
+        node._id = first_id + len(nested) + index
+    return [*nested, *held]
 
 
 def _follow_robots(nodes: list[Node], robots: list[dict[str, Any]], own: int) -> None:
