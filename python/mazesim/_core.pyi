@@ -8,6 +8,7 @@ import numpy as np
 import numpy.typing as npt
 
 __all__ = [
+    "EPUCK_DEFAULT_CONTROLLER",
     "AvoidCollisionSettings",
     "BatchSimulator",
     "DrivePerturbation",
@@ -38,6 +39,9 @@ __all__ = [
     "validate_codes",
 ]
 __version__: str
+#: The controller the E-puck PROTO runs when its node leaves ``controller`` out (its declared
+#: default from Webots V8.5 to R2025a).
+EPUCK_DEFAULT_CONTROLLER: str
 
 def builtin_world_names() -> list[str]:
     """Names of the worlds embedded in the package."""

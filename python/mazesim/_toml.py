@@ -1,4 +1,5 @@
-"""Reading the TOML files of commands (sweep files, randomisation files) with their nesting bounded.
+"""Reading the TOML files of commands (sweep files, randomisation files) with their nesting bounded,
+and writing TOML text back (:func:`dump_toml`).
 
 Python's TOML reader parses nested arrays and inline tables by recursion: a file of ten thousand
 ``[`` ends in a ``RecursionError``. :func:`load_toml` first measures how deep the values nest, and
@@ -8,13 +9,15 @@ field, before the reader sees it.
 
 from __future__ import annotations
 
+import json
 import re
 import sys
+from collections.abc import Mapping
 from typing import Any
 
 from mazesim.errors import InvalidArgumentError, MissingDependencyError
 
-__all__ = ["MAX_TOML_NESTING", "load_toml"]
+__all__ = ["MAX_TOML_NESTING", "dump_toml", "load_toml"]
 
 #: The deepest nesting of arrays and inline tables a command's TOML file may have: far beyond any
 #: real one (a sweep's values nest two deep), far below Python's recursion limit.
@@ -122,3 +125,36 @@ def load_toml(text: str, source: str) -> dict[str, Any]:
         raise InvalidArgumentError(
             f"{source}: expected values nested at most {MAX_TOML_NESTING} deep, found deeper"
         ) from None
+
+
+def dump_toml(layout: Mapping[str, Any], path: str = "") -> str:
+    """The TOML text of a document as :func:`load_toml` returns it (tables and arrays of tables
+    as dicts and lists of dicts; strings, booleans, numbers and arrays of them): keys of values,
+    then tables, then arrays of tables."""
+    lines = [
+        f"{key} = {_toml_value(value)}"
+        for key, value in layout.items()
+        if not isinstance(value, dict) and not _is_table_array(value)
+    ]
+    for key, value in layout.items():
+        inner = f"{path}.{key}" if path else key
+        if isinstance(value, dict):
+            lines.append(f"\n[{inner}]\n{dump_toml(value, inner)}")
+        elif _is_table_array(value):
+            lines.extend(f"\n[[{inner}]]\n{dump_toml(item, inner)}" for item in value)
+    return "\n".join(lines)
+
+
+def _is_table_array(value: Any) -> bool:
+    return isinstance(value, list) and bool(value) and all(isinstance(v, dict) for v in value)
+
+
+def _toml_value(value: Any) -> str:
+    """One TOML value: a string, boolean, number or array of them."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, str):
+        return json.dumps(value)
+    if isinstance(value, list):
+        return "[" + ", ".join(_toml_value(item) for item in value) + "]"
+    return repr(value)

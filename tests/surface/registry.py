@@ -84,6 +84,10 @@ INSTANCES: dict[str, str] = {
         "__import__('mazesim.learn', fromlist=['x']).load_policy(),"
         " __import__('mazesim.learn.episode_ranges', fromlist=['x']))"
     ),
+    # A token of a world's text.
+    "mazesim.webots.proto.syntax.Token": (
+        "__import__('mazesim.webots.proto.syntax', fromlist=['x']).Token('word', 'TRUE', 0, 4)"
+    ),
     # The link to a C controller: a socket whose other end is closed, and the robot it drives.
     "mazesim.webots.native_link.RobotLink": (
         "(lambda s, w: w.native_link.RobotLink(s.socketpair()[0],"

@@ -519,3 +519,15 @@ def test_the_world_parser_reads_any_depth_when_asked_and_skips_inline_proto_defi
     world = 'PROTO Post [ field SFFloat h 1 ] { Solid { name "inside" } }\nSolid { name "post" }'
     (post,) = parse_nodes(world)
     assert post.field("name") is not None and post.field("name").string() == "post"
+
+
+def test_a_template_reads_field_values_as_the_world_parser_does() -> None:
+    from mazesim.webots.proto.syntax import parse_nodes
+    from mazesim.webots.proto.values import field_value
+
+    # A word that is no number stays a word in both: no hexadecimal without 0x.
+    assert field_value("MFFloat", "[ 1 cafe 0x10 -2 ]") == [1.0, 16.0, -2.0]
+    assert field_value("MFString", '[ "a b" cafe ]') == ["a b", "cafe"]
+    assert field_value("SFBool", "true") is True and field_value("SFNode", "NULL") is None
+    (solid,) = parse_nodes("Solid { name 0x10 cafe 1 }")
+    assert [t.value() for t in solid.field("name").tokens] == [16.0]

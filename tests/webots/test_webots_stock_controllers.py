@@ -123,3 +123,14 @@ def test_the_stock_controller_lacks_nothing() -> None:
 
     prepared = prepare_controller(stock_controllers.__file__)
     assert prepared.missing == [] and prepared.runnable
+
+
+def test_the_e_pucks_default_controller_is_the_cores_name_everywhere() -> None:
+    from mazesim._core import EPUCK_DEFAULT_CONTROLLER
+    from mazesim.webots.proto_fields import declared_fields
+
+    assert EPUCK_DEFAULT_CONTROLLER == "e-puck_avoid_obstacles"
+    assert declared_fields("E-puck").strings["controller"] == EPUCK_DEFAULT_CONTROLLER
+    assert (
+        stock_controllers.stock_controller(EPUCK_DEFAULT_CONTROLLER) == stock_controllers.__file__
+    )

@@ -44,33 +44,77 @@ pub struct RunOptions {
     pub autoreset: bool,
 }
 
-/// Per-step outputs of a multi-step call, each `(steps, n, width)` values in step-major order,
-/// written only where given. Row `[t, i]` holds environment i's state after its step t, before
-/// any reset that step's end of episode brings; an environment that stands still repeats its
-/// observation and pose, with colliding false, crossing 0, wheel speeds 0 and action -1.
-#[derive(Default)]
-pub struct RunTrace<'a> {
+/// Declares the per-step outputs once: [`RunTrace`], the caller's buffers; `ChunkTrace`, one
+/// chunk of environments' rows of each step of a block (empty when not traced); the check of
+/// their sizes and the split into chunks. Each output is `name: type = width per environment`,
+/// the width an expression of the observation width, named by the first word.
+macro_rules! trace_outputs {
+    ($width:ident; $($(#[doc = $doc:expr])* $name:ident: $t:ty = $w:expr,)*) => {
+        /// Per-step outputs of a multi-step call, each `(steps, n, width)` values in step-major
+        /// order, written only where given. Row `[t, i]` holds environment i's state after its
+        /// step t, before any reset that step's end of episode brings; an environment that
+        /// stands still repeats its observation and pose, with colliding false, crossing 0,
+        /// wheel speeds 0 and action -1.
+        #[derive(Default)]
+        pub struct RunTrace<'a> {
+            $($(#[doc = $doc])* pub $name: Option<&'a mut [$t]>,)*
+        }
+
+        /// One chunk of environments' rows of each step of a block, per traced output (empty
+        /// when not traced).
+        struct ChunkTrace<'a> {
+            $($name: Vec<&'a mut [$t]>,)*
+        }
+
+        impl RunTrace<'_> {
+            /// Checks that each traced output holds `steps x n x width` values.
+            fn check(&self, steps: usize, n: usize, $width: usize) -> Result<()> {
+                $(check_trace(concat!(stringify!($name), " trace"), &self.$name, [steps, n, $w])?;)*
+                Ok(())
+            }
+
+            /// Per chunk of `CHUNK_ENVS` environments, its rows of steps `steps` of each traced
+            /// output.
+            fn chunk_rows(
+                &mut self,
+                steps: Range<usize>,
+                n: usize,
+                $width: usize,
+            ) -> Vec<ChunkTrace<'_>> {
+                $(let mut $name = chunk_part(&mut self.$name, &steps, n, $w);)*
+                (0..n.div_ceil(CHUNK_ENVS))
+                    .map(|_| ChunkTrace {
+                        $($name: $name.next().unwrap_or_default(),)*
+                    })
+                    .collect()
+            }
+        }
+    };
+}
+
+trace_outputs! {
+    width;
     /// Observations, `(steps, n, observation_width)`.
-    pub observations: Option<&'a mut [f32]>,
+    observations: f32 = width,
     /// Poses (x, y, yaw), `(steps, n, 3)`.
-    pub poses: Option<&'a mut [f32]>,
+    poses: f32 = 3,
     /// Touched a wall during the step, `(steps, n)`.
-    pub colliding: Option<&'a mut [bool]>,
+    colliding: bool = 1,
     /// Signed checkpoint id of a barcode crossed in the step, 0 for none, `(steps, n)`.
-    pub crossings: Option<&'a mut [i32]>,
+    crossings: i32 = 1,
     /// The wheel speeds the controller chose (rad/s, before the motor limit), `(steps, n, 2)`.
-    pub wheel_speeds: Option<&'a mut [f32]>,
+    wheel_speeds: f32 = 2,
     /// The primitive action the controller chose, -1 for none, `(steps, n)`.
-    pub actions: Option<&'a mut [i32]>,
+    actions: i32 = 1,
     /// The episode ended with the step, `(steps, n)`.
-    pub episode_ends: Option<&'a mut [bool]>,
+    episode_ends: bool = 1,
     /// With sub-tasks, the sub-task the step's action was chosen in, -1 for none, `(steps, n)`.
-    pub subtasks: Option<&'a mut [i32]>,
+    subtasks: i32 = 1,
     /// With sub-tasks, the phase whose table the action came from, -1 for none, `(steps, n)`.
-    pub phases: Option<&'a mut [i32]>,
+    phases: i32 = 1,
     /// With sub-tasks, a door sub-task ended (or gave up) before the step's action was chosen,
     /// `(steps, n)`.
-    pub subtask_ends: Option<&'a mut [bool]>,
+    subtask_ends: bool = 1,
 }
 
 /// Which environments a multi-step call moves, and the sub-tasks its tabular controller follows.
@@ -124,21 +168,6 @@ struct Counts {
     subtasks_given_up: u64,
 }
 
-/// One chunk of environments' rows of each step of a block, per traced output (empty when not
-/// traced).
-struct ChunkTrace<'a> {
-    observations: Vec<&'a mut [f32]>,
-    poses: Vec<&'a mut [f32]>,
-    colliding: Vec<&'a mut [bool]>,
-    crossings: Vec<&'a mut [i32]>,
-    wheel_speeds: Vec<&'a mut [f32]>,
-    actions: Vec<&'a mut [i32]>,
-    episode_ends: Vec<&'a mut [bool]>,
-    subtasks: Vec<&'a mut [i32]>,
-    phases: Vec<&'a mut [i32]>,
-    subtask_ends: Vec<&'a mut [bool]>,
-}
-
 /// Per chunk of `CHUNK_ENVS` environments, its rows of each step of `block` (`(steps, n, width)`
 /// values); empty lists when `block` is `None`.
 fn rows_per_chunk<T>(block: Option<&mut [T]>, n: usize, width: usize) -> Vec<Vec<&mut [T]>> {
@@ -151,44 +180,17 @@ fn rows_per_chunk<T>(block: Option<&mut [T]>, n: usize, width: usize) -> Vec<Vec
     per_chunk
 }
 
-impl RunTrace<'_> {
-    /// Per chunk of `CHUNK_ENVS` environments, its rows of steps `steps` of each traced output.
-    fn chunk_rows(&mut self, steps: Range<usize>, n: usize, width: usize) -> Vec<ChunkTrace<'_>> {
-        fn part<'t, T>(
-            values: &'t mut Option<&mut [T]>,
-            steps: &Range<usize>,
-            n: usize,
-            width: usize,
-        ) -> std::vec::IntoIter<Vec<&'t mut [T]>> {
-            let span = steps.start * n * width..steps.end * n * width;
-            let block = values.as_deref_mut().map(|v| &mut v[span]);
-            rows_per_chunk(block, n, width).into_iter()
-        }
-        let mut observations = part(&mut self.observations, &steps, n, width);
-        let mut poses = part(&mut self.poses, &steps, n, 3);
-        let mut colliding = part(&mut self.colliding, &steps, n, 1);
-        let mut crossings = part(&mut self.crossings, &steps, n, 1);
-        let mut wheel_speeds = part(&mut self.wheel_speeds, &steps, n, 2);
-        let mut actions = part(&mut self.actions, &steps, n, 1);
-        let mut episode_ends = part(&mut self.episode_ends, &steps, n, 1);
-        let mut subtasks = part(&mut self.subtasks, &steps, n, 1);
-        let mut phases = part(&mut self.phases, &steps, n, 1);
-        let mut subtask_ends = part(&mut self.subtask_ends, &steps, n, 1);
-        (0..n.div_ceil(CHUNK_ENVS))
-            .map(|_| ChunkTrace {
-                observations: observations.next().unwrap_or_default(),
-                poses: poses.next().unwrap_or_default(),
-                colliding: colliding.next().unwrap_or_default(),
-                crossings: crossings.next().unwrap_or_default(),
-                wheel_speeds: wheel_speeds.next().unwrap_or_default(),
-                actions: actions.next().unwrap_or_default(),
-                episode_ends: episode_ends.next().unwrap_or_default(),
-                subtasks: subtasks.next().unwrap_or_default(),
-                phases: phases.next().unwrap_or_default(),
-                subtask_ends: subtask_ends.next().unwrap_or_default(),
-            })
-            .collect()
-    }
+/// Per chunk of `CHUNK_ENVS` environments, its rows of steps `steps` of a traced output of
+/// `width` values per environment.
+fn chunk_part<'t, T>(
+    values: &'t mut Option<&mut [T]>,
+    steps: &Range<usize>,
+    n: usize,
+    width: usize,
+) -> std::vec::IntoIter<Vec<&'t mut [T]>> {
+    let span = steps.start * n * width..steps.end * n * width;
+    let block = values.as_deref_mut().map(|v| &mut v[span]);
+    rows_per_chunk(block, n, width).into_iter()
 }
 
 /// Writes `value` as environment `j`'s row of step `s` in `rows`, when traced.
@@ -288,16 +290,7 @@ impl Batch {
         }
         self.check_outputs(&out)?;
         let steps = options.steps;
-        check_trace("observations trace", &trace.observations, [steps, n, width])?;
-        check_trace("poses trace", &trace.poses, [steps, n, 3])?;
-        check_trace("colliding trace", &trace.colliding, [steps, n, 1])?;
-        check_trace("crossings trace", &trace.crossings, [steps, n, 1])?;
-        check_trace("wheel_speeds trace", &trace.wheel_speeds, [steps, n, 2])?;
-        check_trace("actions trace", &trace.actions, [steps, n, 1])?;
-        check_trace("episode_ends trace", &trace.episode_ends, [steps, n, 1])?;
-        check_trace("subtasks trace", &trace.subtasks, [steps, n, 1])?;
-        check_trace("phases trace", &trace.phases, [steps, n, 1])?;
-        check_trace("subtask_ends trace", &trace.subtask_ends, [steps, n, 1])?;
+        trace.check(steps, n, width)?;
 
         let mut streams: Vec<Rng> = seeds.iter().map(|&s| Rng::new(s)).collect();
         if let Some(flags) = active {

@@ -22,6 +22,7 @@ mod tasks;
 mod wbt;
 mod world;
 
+use mazesim_core::wbt::EPUCK_DEFAULT_CONTROLLER;
 use pyo3::prelude::*;
 
 use args::{bounded_items, Given, Real};
@@ -73,6 +74,7 @@ fn validate_codes(codes: &Bound<'_, PyAny>) -> PyResult<()> {
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add("EPUCK_DEFAULT_CONTROLLER", EPUCK_DEFAULT_CONTROLLER)?;
     m.add_function(wrap_pyfunction!(builtin_world_names, m)?)?;
     m.add_function(wrap_pyfunction!(robot_profile_names, m)?)?;
     m.add_function(wrap_pyfunction!(sharp_volts_to_cm, m)?)?;

@@ -32,6 +32,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._core import MazeLayout, World, generate_maze
+from mazesim._toml import dump_toml, load_toml
 from mazesim.envs.navigation import start_and_goal_cells
 from mazesim.errors import InvalidArgumentError
 from mazesim.maze import GoalDistance, PathDistanceTable
@@ -96,28 +97,23 @@ class RobotStates:
 def robots_world(world_toml: str, starts: npt.NDArray[np.float64], name: str) -> World:
     """``world_toml`` with the robots ``epuck_0``... at ``starts`` ((R, 3) x, y, yaw) instead of
     its ``[start]`` and without its ``[goal]`` (each robot has its own), named ``name``."""
-    lines = []
-    dropped = False
-    header = True
-    in_map = False
-    for line in world_toml.splitlines():
-        stripped = line.strip()
-        if in_map:
-            # The grid's own start and goal marks give way to the robots' starts and goals.
-            in_map = stripped != '"""'
-            line = line.replace("S", " ").replace("G", " ") if in_map else line
-        elif stripped.startswith("["):
-            header = False
-            dropped = stripped in ("[start]", "[goal]")
-        in_map = in_map or stripped == 'map = """'
-        if header and stripped.startswith("name "):
-            line = f'name = "{name}"'
-        if not dropped:
-            lines.append(line)
-    for robot, (x, y, yaw) in zip(agent_names(len(starts)), starts):
-        lines += ["", "[[robots]]", f'name = "{robot}"', f"x = {float(x)!r}", f"y = {float(y)!r}"]
-        lines.append(f"yaw = {float(yaw)!r}")
-    return World.from_toml("\n".join(lines) + "\n", source=name)
+    layout = load_toml(world_toml, name)
+    layout.pop("start", None)
+    layout.pop("goal", None)
+    if "name" in layout:
+        layout["name"] = name
+    grid = layout.get("grid", {})
+    if "map" in grid:
+        # The grid's own start and goal marks give way to the robots' starts and goals.
+        grid["map"] = grid["map"].replace("S", " ").replace("G", " ")
+    layout["robots"] = [
+        *layout.get("robots", []),
+        *(
+            {"name": robot, "x": float(x), "y": float(y), "yaw": float(yaw)}
+            for robot, (x, y, yaw) in zip(agent_names(len(starts)), starts)
+        ),
+    ]
+    return World.from_toml(dump_toml(layout), source=name)
 
 
 def dispersion(poses: npt.NDArray[np.float32], body_radius: float) -> npt.NDArray[np.float64]:
@@ -411,17 +407,19 @@ class AggregationTask(MultiRobotTask):
 
     def _arena_toml(self) -> str:
         half, wall = self.arena_side / 2.0, self.WALL
-        lines = ['format = "mazesim-world"', "version = 1", 'name = "aggregation"']
         middle = half + wall / 2.0
         span = self.arena_side + 2.0 * wall
-        for cx, cy, sx, sy in (
-            (0.0, middle, span, wall),
-            (0.0, -middle, span, wall),
-            (middle, 0.0, wall, span),
-            (-middle, 0.0, wall, span),
-        ):
-            lines += ["", "[[walls]]", f"center = [{cx!r}, {cy!r}]", f"size = [{sx!r}, {sy!r}]"]
-        return "\n".join(lines) + "\n"
+        walls = [
+            {"center": [cx, cy], "size": [sx, sy]}
+            for cx, cy, sx, sy in (
+                (0.0, middle, span, wall),
+                (0.0, -middle, span, wall),
+                (middle, 0.0, wall, span),
+                (-middle, 0.0, wall, span),
+            )
+        ]
+        layout = {"format": "mazesim-world", "version": 1, "name": "aggregation", "walls": walls}
+        return dump_toml(layout)
 
     def draw(self, rng: np.random.Generator) -> EpisodeDraw:
         sim_seed = int(rng.integers(2**63))

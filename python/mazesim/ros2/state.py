@@ -13,11 +13,11 @@ of a world of several robots publishes the same topics in its own namespace (``/
 from __future__ import annotations
 
 import math
-import sys
 from collections.abc import Sequence
 from typing import NamedTuple
 
 from mazesim._core import RobotProfile, Simulator
+from mazesim._toml import load_toml
 from mazesim.ros import standard, topics
 from mazesim.ros2 import cdr
 from mazesim.ros2.qos import CLOCK, SENSOR, TF, TF_STATIC, TopicQos
@@ -71,11 +71,7 @@ class Topic(NamedTuple):
 
 def _ground_tables(robot: RobotProfile) -> list[list[tuple[float, float]]]:
     """Each ground sensor's table rows ``(distance, reading)``, from the profile."""
-    if sys.version_info >= (3, 11):
-        import tomllib
-    else:  # mazesim[ros2] installs tomli there
-        import tomli as tomllib
-    profile = tomllib.loads(robot.to_toml())
+    profile = load_toml(robot.to_toml(), f"the {robot.name} profile")
     models = profile.get("models", {})
     return [
         [(float(row[0]), float(row[1])) for row in models[sensor["model"]]["table"]]

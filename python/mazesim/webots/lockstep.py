@@ -33,7 +33,6 @@ from __future__ import annotations
 
 import contextlib
 import os
-import re
 import signal
 import sys
 import threading
@@ -46,6 +45,7 @@ from typing import Any
 import numpy as np
 
 from mazesim._core import RobotProfile, Simulator, World
+from mazesim._toml import dump_toml, load_toml
 from mazesim.errors import ControllerBuildError, MazesimIOError, WorldFormatError
 from mazesim.webots.controller_process import ControllerJob, answer, state_after_step
 from mazesim.webots.own_sensors import own_sensors
@@ -389,7 +389,7 @@ def _own_profiles(robots: list[Mapping[str, Any]], scenes: list[Scene]) -> dict[
 
 
 #: The tables of a world file that a robot's body meets: walls and movable bodies.
-_SOLID_TABLES = re.compile(r"^\[\[(?:walls|segments|bodies)\]\]\n(?:(?!\[).*\n)*", re.MULTILINE)
+_SOLID_TABLES = ("walls", "segments", "bodies")
 
 
 def _own_simulator(
@@ -414,8 +414,10 @@ def _own_simulator(
     own_world, _ = import_wbt(world_path, robot_line=int(robot["line"]))
     if robot.get("profile") is not None:
         return Simulator(own_world, robot=profile, seed=seed, noise=noise)
-    text = _SOLID_TABLES.sub("", own_world.to_toml())
-    bare = World.from_toml(text, source=f"{own_world.name} (without walls)")
+    source = f"{own_world.name} (without walls)"
+    layout = load_toml(own_world.to_toml(), source)
+    text = dump_toml({key: value for key, value in layout.items() if key not in _SOLID_TABLES})
+    bare = World.from_toml(text, source=source)
     return Simulator(bare, robot=profile, seed=seed, noise=noise)
 
 

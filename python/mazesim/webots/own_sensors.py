@@ -21,14 +21,13 @@ meets a wall at horizontal distance ``h`` after ``h / cos(e)`` of its length and
 from __future__ import annotations
 
 import copy
-import json
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
 from mazesim._core import RobotProfile
-from mazesim._toml import load_toml
+from mazesim._toml import dump_toml, load_toml
 from mazesim.errors import MazesimError
 from mazesim.webots.scene import Row, Scene
 
@@ -279,35 +278,4 @@ def _profile_with(
             kind = {"kind": "range"} if ranged else {}
             models[copies[key]] = {**model, "table": [list(row) for row in rows], **kind}
         sensor["model"] = copies[key]
-    return RobotProfile.from_toml(_toml_text(layout), "the world's sensors")
-
-
-def _toml_text(layout: Mapping[str, Any], path: str = "") -> str:
-    """TOML text of a parsed profile file: keys of values, then tables, then arrays of tables."""
-    lines = [
-        f"{key} = {_toml_value(value)}"
-        for key, value in layout.items()
-        if not isinstance(value, dict) and not _is_table_array(value)
-    ]
-    for key, value in layout.items():
-        inner = f"{path}.{key}" if path else key
-        if isinstance(value, dict):
-            lines.append(f"\n[{inner}]\n{_toml_text(value, inner)}")
-        elif _is_table_array(value):
-            lines.extend(f"\n[[{inner}]]\n{_toml_text(item, inner)}" for item in value)
-    return "\n".join(lines)
-
-
-def _is_table_array(value: Any) -> bool:
-    return isinstance(value, list) and bool(value) and all(isinstance(v, dict) for v in value)
-
-
-def _toml_value(value: Any) -> str:
-    """One TOML value: a string, boolean, number or array of them."""
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, str):
-        return json.dumps(value)
-    if isinstance(value, list):
-        return "[" + ", ".join(_toml_value(item) for item in value) + "]"
-    return repr(value)
+    return RobotProfile.from_toml(dump_toml(layout), "the world's sensors")

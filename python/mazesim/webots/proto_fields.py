@@ -17,6 +17,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from mazesim._core import EPUCK_DEFAULT_CONTROLLER
 from mazesim.webots.camera import DEFAULT_FOV, DEFAULT_HEIGHT, DEFAULT_WIDTH
 from mazesim.webots.radio_devices import E_PUCK_CHANNEL
 
@@ -54,7 +55,7 @@ _E_PUCK = DeclaredFields(
     },
     strings={
         "name": "e-puck",
-        "controller": "e-puck_avoid_obstacles",
+        "controller": EPUCK_DEFAULT_CONTROLLER,
         "window": "e-puck",
         "customData": "",
         "version": "1",

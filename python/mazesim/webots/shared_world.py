@@ -11,17 +11,14 @@ robots than it holds) is run with a simulator per robot instead, with a warning.
 
 from __future__ import annotations
 
-import re
 from collections.abc import Mapping, Sequence
 from typing import Any
 
 from mazesim._core import RobotProfile, Simulator, World
+from mazesim._toml import dump_toml, load_toml
 from mazesim.errors import MazesimError
 
 __all__ = ["RobotView", "shared_simulator"]
-
-#: The ``[start]`` table of a world file, up to the next table.
-_START_TABLE = re.compile(r"^\[start\]\n(?:(?!\[).*\n)*", re.MULTILINE)
 
 
 class RobotView:
@@ -107,17 +104,16 @@ def shared_simulator(
             one their entry names: a robot node's own sensors
             (:func:`~mazesim.webots.own_sensors.own_sensors`).
     """
-    tables = []
+    source = f"{world.name} (every e-puck)"
+    layout = load_toml(world.to_toml(), source)
+    layout.pop("start", None)
     for index in indices:
         x, y, yaw = (float(v) for v in robots[index]["pose"])
         profile = robots[index].get("profile") or "e-puck"
-        tables.append(
-            f'\n[[robots]]\nname = "robot-{index}"\nx = {x!r}\ny = {y!r}\nyaw = {yaw!r}\n'
-            f'profile = "{profile}"\n'
-        )
-    text = _START_TABLE.sub("", world.to_toml()) + "".join(tables)
+        entry = {"name": f"robot-{index}", "x": x, "y": y, "yaw": yaw, "profile": profile}
+        layout.setdefault("robots", []).append(entry)
     try:
-        shared = World.from_toml(text, source=f"{world.name} (every e-puck)")
+        shared = World.from_toml(dump_toml(layout), source=source)
         if not profiles:
             return Simulator(shared, seed=seed, noise=noise), ""
         given = [profiles.get(index) for index in indices]

@@ -22,10 +22,12 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from mazesim._core import EPUCK_DEFAULT_CONTROLLER
+
 __all__ = ["STOCK", "stock_controller"]
 
 #: The stock controllers mazesim has, by the name a ``controller`` field gives: their files.
-STOCK = {"e-puck_avoid_obstacles": __file__}
+STOCK = {EPUCK_DEFAULT_CONTROLLER: __file__}
 
 #: Full wheel speed of Webots' E-puck (rad/s).
 MAX_SPEED = 6.28

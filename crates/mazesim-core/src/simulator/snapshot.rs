@@ -41,10 +41,46 @@ pub const SNAPSHOT_VERSION: u32 = 2;
 /// Bytes of the fixed part of the header (before the names).
 const FIXED_HEADER: usize = 8 + 4 + 8 + 8 + 4 + 1 + 8 + 8;
 
-/// The state outside the body, as serde data.
-#[derive(Serialize, Deserialize)]
-struct State {
-    seed: u64,
+/// Declares the state outside the body once: `State`, its serde data (the seed first, the
+/// goal set by `set_goal` last, the simulator's own fields of those names between, in this
+/// order, which is the payload's), what a snapshot takes of a simulator and what a restore puts
+/// back.
+macro_rules! saved_fields {
+    ($($field:ident: $t:ty,)*) => {
+        /// The state outside the body, as serde data.
+        #[derive(Serialize, Deserialize)]
+        struct State {
+            seed: u64,
+            $($field: $t,)*
+            goal_override: Option<[f64; 3]>,
+        }
+
+        impl Simulator {
+            /// The state outside the body now.
+            fn saved_state(&self) -> State {
+                State {
+                    seed: self.config.seed,
+                    $($field: Clone::clone(&self.$field),)*
+                    goal_override: self
+                        .goal_override
+                        .map(|g| [g.center[0], g.center[1], g.radius]),
+                }
+            }
+
+            /// Puts back the state outside the body.
+            fn put_state(&mut self, state: State) {
+                self.config.seed = state.seed;
+                $(self.$field = state.$field;)*
+                self.goal_override = state.goal_override.map(|[x, y, radius]| Goal {
+                    center: [x, y],
+                    radius,
+                });
+            }
+        }
+    };
+}
+
+saved_fields! {
     rng: Rng,
     pose: [f32; 3],
     ray_hits: Vec<Option<RayHit>>,
@@ -64,7 +100,6 @@ struct State {
     crossings: Vec<Crossing>,
     last_crossing: i32,
     start_override: Option<[f32; 3]>,
-    goal_override: Option<[f64; 3]>,
 }
 
 /// What the header says, read back.
@@ -169,31 +204,7 @@ fn push_name(out: &mut Vec<u8>, text: &str) {
 impl Simulator {
     /// The whole state as bytes, for [`Simulator::restore`] (see the module notes for the layout).
     pub fn snapshot(&self) -> Vec<u8> {
-        let state = State {
-            seed: self.config.seed,
-            rng: self.rng.clone(),
-            pose: self.pose,
-            ray_hits: self.ray_hits.clone(),
-            ground_readers: self.ground_readers.clone(),
-            time: self.time,
-            steps: self.steps,
-            collisions: self.collisions,
-            colliding: self.colliding,
-            touching: self.touching,
-            clearance: self.clearance,
-            distance_travelled: self.distance_travelled,
-            wheel_speeds: self.wheel_speeds,
-            wheel_angles: self.wheel_angles,
-            distance_readings: self.distance_readings.clone(),
-            ground_readings: self.ground_readings.clone(),
-            tracker: self.tracker.clone(),
-            crossings: self.crossings.clone(),
-            last_crossing: self.last_crossing,
-            start_override: self.start_override,
-            goal_override: self
-                .goal_override
-                .map(|g| [g.center[0], g.center[1], g.radius]),
-        };
+        let state = self.saved_state();
         let payload = postcard::to_allocvec(&state).expect("the state is serde data");
         let mut body = postcard::Serializer {
             output: postcard::ser_flavors::ExtendFlavor::new(payload),
@@ -285,30 +296,7 @@ impl Simulator {
         let mut body_reader = postcard::Deserializer::from_bytes(body_bytes);
         self.body.load(&mut body_reader).map_err(corrupt)?;
         self.heading = self.body.heading();
-        self.config.seed = state.seed;
-        self.rng = state.rng;
-        self.pose = state.pose;
-        self.ray_hits = state.ray_hits;
-        self.ground_readers = state.ground_readers;
-        self.time = state.time;
-        self.steps = state.steps;
-        self.collisions = state.collisions;
-        self.colliding = state.colliding;
-        self.touching = state.touching;
-        self.clearance = state.clearance;
-        self.distance_travelled = state.distance_travelled;
-        self.wheel_speeds = state.wheel_speeds;
-        self.wheel_angles = state.wheel_angles;
-        self.distance_readings = state.distance_readings;
-        self.ground_readings = state.ground_readings;
-        self.tracker = state.tracker;
-        self.crossings = state.crossings;
-        self.last_crossing = state.last_crossing;
-        self.start_override = state.start_override;
-        self.goal_override = state.goal_override.map(|[x, y, radius]| Goal {
-            center: [x, y],
-            radius,
-        });
+        self.put_state(state);
         Ok(())
     }
 

@@ -62,7 +62,7 @@ const OTHER_ROBOT_PROTOS: &[&str] = &[
 ];
 /// The controller the E-puck PROTO runs when its node leaves `controller` out (its declared
 /// default from Webots V8.5 to R2025a).
-const EPUCK_DEFAULT_CONTROLLER: &str = "e-puck_avoid_obstacles";
+pub const EPUCK_DEFAULT_CONTROLLER: &str = "e-puck_avoid_obstacles";
 /// The e-puck PROTOs of Webots and webots_ros2.
 /// Webots 7 named it `EPuck`.
 const EPUCK_PROTOS: &[&str] = &["E-puck", "E-puck_enu", "E-Puck_enu", "EPuck"];

@@ -56,6 +56,7 @@ pub use devices::{DeviceField, ExtensionDevice};
 pub use floor_marks::{colour_reflectance, obj_triangles, FloorMesh};
 pub use floor_texture::{grey_reflectance, FloorTexture, GreyImage};
 pub use header::WbtVersion;
+pub use import::EPUCK_DEFAULT_CONTROLLER;
 pub use tree::{Document, Field, Node, NodeId, Value};
 
 /// A 2D obstacle of an imported world, in metres and radians, world frame, z up.

@@ -22,6 +22,7 @@ __all__ = [
     "Token",
     "first_value",
     "line_of",
+    "literal",
     "located_error",
     "nodes_in_order",
     "parse_nodes",
@@ -49,6 +50,32 @@ class Token(NamedTuple):
     text: str
     start: int
     end: int
+
+    def value(self) -> float | bool | str | None:
+        """What the token stands for: a string's text (its escapes kept), else :func:`literal`
+        of the word."""
+        return self.text[1:-1] if self.kind == "string" else literal(self.text)
+
+
+#: The words that stand for a flag or for no node.
+_WORDS: dict[str, bool | None] = {
+    "TRUE": True,
+    "true": True,
+    "FALSE": False,
+    "false": False,
+    "NULL": None,
+}
+
+
+def literal(word: str) -> float | bool | str | None:
+    """What a bare word of a value stands for: ``TRUE``/``FALSE`` a flag, ``NULL`` None, a
+    number (hexadecimal after ``0x``) a float; any other word is itself."""
+    if word in _WORDS:
+        return _WORDS[word]
+    try:
+        return float(word) if not word.lower().startswith(("0x", "-0x")) else float(int(word, 16))
+    except ValueError:
+        return word
 
 
 def tokenize(text: str, source: str = "<text>") -> list[Token]:
@@ -332,7 +359,7 @@ class _Parser:
                 after = tokens[index + 1].kind if index + 1 < len(tokens) else None
                 if (token.text in ("DEF", "USE") or after == "{") and self.starts_node():
                     return True
-                if not brackets and not _is_literal(token.text):
+                if not brackets and isinstance(literal(token.text), str):
                     return False
             elif token.kind in ("}", "]") and not brackets:
                 return False
@@ -345,16 +372,6 @@ class _Parser:
             index += 1
         self.index = index
         return False
-
-
-def _is_literal(word: str) -> bool:
-    if word in ("TRUE", "FALSE", "NULL", "true", "false"):
-        return True
-    try:
-        float(word) if not word.lower().startswith(("0x", "-0x")) else int(word, 16)
-    except ValueError:
-        return False
-    return True
 
 
 def parse_nodes(

@@ -25,26 +25,7 @@ def _parse_value(text: str) -> Field | None:
 
 
 def _scalars(tokens: list[Token]) -> list[Any]:
-    values: list[Any] = []
-    for token in tokens:
-        if token.kind == "string":
-            values.append(json.loads(token.text) if "\\" not in token.text else token.text[1:-1])
-        elif token.kind == "word":
-            if token.text in ("TRUE", "true"):
-                values.append(True)
-            elif token.text in ("FALSE", "false"):
-                values.append(False)
-            elif token.text == "NULL":
-                values.append(None)
-            else:
-                try:
-                    values.append(float(token.text))
-                except ValueError:
-                    try:
-                        values.append(float(int(token.text, 16)))
-                    except ValueError:
-                        values.append(token.text)
-    return values
+    return [token.value() for token in tokens if token.kind in ("string", "word")]
 
 
 def _node_value(node: Node) -> dict[str, Any]:
