@@ -612,6 +612,7 @@ fn painted_at(import: &WbtImport, x: f64, y: f64) -> Option<f64> {
             size,
             yaw,
             reflectance,
+            ..
         } => {
             let (s, c) = yaw.0.sin_cos();
             let (dx, dy) = (x - center[0].0, y - center[1].0);
@@ -623,6 +624,7 @@ fn painted_at(import: &WbtImport, x: f64, y: f64) -> Option<f64> {
             center,
             radius,
             reflectance,
+            ..
         } => ((x - center[0].0).hypot(y - center[1].0) < radius.0).then_some(reflectance.0),
         PaintSpec::Polyline { .. } => None,
     })
