@@ -180,10 +180,15 @@ class World:
         """(x, y, radius) of the goal disc, or None."""
     def wall_boxes(self) -> npt.NDArray[np.float64]:
         """(N, 6) array: cx, cy, sx, sy, yaw, reflectance of every wall box."""
+    def wall_colours(self) -> npt.NDArray[np.float64]:
+        """(N, 3) array: red, green, blue in [0, 1] of every wall box as a camera sees it, in
+        the order of ``wall_boxes``; NaN for a wall that gives no colour (drawn in the grey of
+        its reflectance)."""
     def paint_regions(self) -> list[dict[str, object]]:
         """Floor paint in drawing order; each a dict with "shape" ("rect" | "circle" | "capsule"),
-        its geometry ("center", "size", "yaw" | "center", "radius" | "a", "b", "radius") and
-        "reflectance". Barcode bars are included as rects."""
+        its geometry ("center", "size", "yaw" | "center", "radius" | "a", "b", "radius"),
+        "reflectance" and "colour" ((red, green, blue) in [0, 1] as a camera sees it, or None
+        for the grey of its reflectance). Barcode bars are included as rects."""
     def bodies(self) -> list[dict[str, object]]:
         """Each movable body at its start pose as a dict: "shape" ("box" with "size" and
         "yaw", or "circle" with "radius"), "center", "mass", "friction", "reflectance"."""
@@ -200,6 +205,10 @@ class World:
     @property
     def floor_background(self) -> float:
         """Background floor reflectance (where nothing is painted)."""
+    @property
+    def floor_colour(self) -> tuple[float, float, float] | None:
+        """The bare floor's colour as a camera sees it, (red, green, blue) in [0, 1], or None
+        (the grey of its reflectance)."""
     def floor_reflectance(self, x: float, y: float) -> float: ...
     def __reduce__(self) -> tuple[Any, tuple[str, str]]:
         """Pickles as its world file text and source name."""

@@ -251,6 +251,10 @@ def test_e_pucks_driving_head_on_see_each_other_and_do_not_pass_through(
         # Alone in the arena the front sensors read under 120 (the lookup table's 5 cm and
         # beyond); touching the other e-puck's grey shell they read several hundred.
         assert seen > 300.0, f"{name}'s front sensors see the other e-puck's body"
+        # At the start, 0.3 m apart, each camera sees the other's shell in the middle of its
+        # image: the E-puck PROTO's grey, 80 % lit (the wall behind would be 204).
+        middle = json.loads((tmp_path / f"{name}.json").read_text())["first_middle_pixel"]
+        assert middle == [102, 102, 102], f"{name}'s camera sees the other e-puck"
 
 
 def test_e_pucks_push_a_box_between_them_in_one_shared_world(

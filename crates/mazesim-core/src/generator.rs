@@ -219,6 +219,7 @@ pub fn generate(params: &MazeParams, seed: u64) -> Result<World> {
         basic_time_step_ms: Positive(32.0),
         floor: Some(FloorSpec {
             reflectance: Reflectance(params.floor_reflectance),
+            colour: None,
         }),
         start: Some(crate::world::spec::StartSpec {
             x: Finite((start.0 as f64 + 0.5) * cs),

@@ -192,10 +192,35 @@ impl PyWorld {
         })
     }
 
-    /// Floor paint regions in drawing order, as dicts.
+    /// (N, 3) array: red, green, blue in [0, 1] of every wall box as a camera sees it, in the
+    /// order of `wall_boxes`; NaN for a wall that gives no colour (drawn in the grey of its
+    /// reflectance).
+    fn wall_colours<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        enter(|| {
+            let rows = self
+                .inner
+                .wall_colours()
+                .into_iter()
+                .map(|c| c.unwrap_or([f64::NAN; 3]));
+            rows_to_array(py, rows)
+        })
+    }
+
+    /// The bare floor's colour as a camera sees it, (red, green, blue) in [0, 1], or None (the
+    /// grey of its reflectance).
+    #[getter]
+    fn floor_colour(&self) -> PyResult<Option<(f64, f64, f64)>> {
+        enter(|| Ok(self.inner.floor_colour().map(|[r, g, b]| (r, g, b))))
+    }
+
+    /// Floor paint regions in drawing order, as dicts ("colour": (red, green, blue) in [0, 1]
+    /// as a camera sees it, or None for the grey of its reflectance).
     fn paint_regions<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
         enter(|| {
-            dicts(py, self.inner.floor().regions(), |d, r| {
+            let regions = self.inner.floor().regions().iter().enumerate();
+            dicts(py, regions, |d, (i, r)| {
+                let colour = self.inner.paint_colour(i).map(|[r, g, b]| (r, g, b));
+                d.set_item("colour", colour)?;
                 match r.shape {
                     PaintShape::Rect { center, half, yaw } => {
                         d.set_item("shape", "rect")?;

@@ -1,17 +1,20 @@
-"""The e-puck's camera: a forward view rendered from the 2D world.
+"""The e-puck's camera: a forward view rendered from the 2D world, in colour.
 
 Each pixel is a ray from the camera (0.03 m ahead of the axle, 0.028 m above the floor, level,
-field of view 0.84 rad, 52 x 39 pixels as in Webots' E-puck PROTO). A ray that meets a wall below
-the wall's height sees the wall (grey from its reflectance); a ray going down that meets the floor
-first sees the floor paint, grey from its reflectance factor ``f`` (``(f - 0.2) / 0.8``, so a white
-floor is 255 and black paint 0, the inverse of the infra-red model); anything else sees the sky.
-Images are BGRA bytes, as Webots gives them.
+field of view 0.84 rad, 52 x 39 pixels as in Webots' E-puck PROTO). A ray that meets another
+robot's body below its top sees that robot (the E-puck PROTO's colours); one that meets a wall
+below the wall's height sees the wall, 80 % of its colour; a ray going down that meets the floor
+first sees the floor paint in its colour. A wall, paint or floor that gives no colour (see
+:meth:`mazesim.World.wall_colours`) is grey from its reflectance factor ``f``
+(``(f - 0.2) / 0.8``, so a white floor is 255 and black paint 0, the inverse of the infra-red
+model); anything else sees the sky. Images are BGRA bytes, as Webots gives them.
 """
 
 from __future__ import annotations
 
 import math
 import os
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -25,7 +28,7 @@ from mazesim.webots.rays import FloorPaint, WallBoxes
 if TYPE_CHECKING:
     from mazesim.webots.simulation import RobotSimulation
 
-__all__ = ["Camera", "CameraRecognitionObject", "CameraView", "render"]
+__all__ = ["Camera", "CameraRecognitionObject", "CameraView", "RobotBody", "render"]
 
 #: Image size and field of view of Webots' E-puck PROTO camera.
 DEFAULT_WIDTH = 52
@@ -40,6 +43,25 @@ WALL_HEIGHT = 0.1
 WALL_SHADE = 0.8
 #: Colour of the sky (RGB).
 SKY = (150, 180, 210)
+#: Another e-puck as the camera sees it, from Webots' E-puck PROTO (R2022b,
+#: projects/robots/gctronic/e-puck/protos/E-puck.proto): its bounding cylinder (radius 0.037 m,
+#: 0.045 m high, centred 0.025 m up) is the body, drawn in the shell's
+#: ``EPUCK_TRANSPARENT_APPEARANCE`` (baseColor 0.5 0.5 0.5) but for the edge of its top plate
+#: (0.037 to 0.0385 m up), its ``EPUCK_SIDE_PRINT_APPEARANCE`` green.
+ROBOT_TOP = 0.0475
+ROBOT_BOTTOM = 0.0025
+ROBOT_COLOUR = (0.5, 0.5, 0.5)
+PLATE_EDGE = (0.037, 0.0385)
+PLATE_COLOUR = (0.184314, 0.635294, 0.184314)
+
+
+@dataclass(frozen=True)
+class RobotBody:
+    """Another robot as the camera sees it: an upright cylinder at (x, y) of ``radius``."""
+
+    x: float
+    y: float
+    radius: float
 
 
 @dataclass(frozen=True)
@@ -56,7 +78,11 @@ class CameraView:
 
 
 def render(
-    view: CameraView, walls: WallBoxes, floor: FloorPaint, pose: tuple[float, float, float]
+    view: CameraView,
+    walls: WallBoxes,
+    floor: FloorPaint,
+    pose: tuple[float, float, float],
+    robots: Sequence[RobotBody] = (),
 ) -> npt.NDArray[np.uint8]:
     """Renders the view from a robot pose.
 
@@ -65,6 +91,7 @@ def render(
         walls: The world's walls.
         floor: The world's floor paint.
         pose: The robot's x, y, yaw.
+        robots: The other robots, where they are now.
 
     Returns:
         A (height, width, 4) array of B, G, R, A.
@@ -84,35 +111,79 @@ def render(
     dy = sin_y * forward + cos_y * left[None, :]
     if view.pitch == 0.0:
         # A level camera: every row of a column casts the same ray along the floor.
-        column_t, column_reflectance = walls.cast((ox, oy), np.stack([dx[0], dy[0]], axis=1))
+        column_t, column_wall = walls.cast_walls((ox, oy), np.stack([dx[0], dy[0]], axis=1))
         wall_t = np.broadcast_to(column_t, rise.shape)
-        wall_reflectance = np.broadcast_to(column_reflectance, rise.shape)
+        wall = np.broadcast_to(column_wall, rise.shape)
     else:
         directions = np.stack([dx.ravel(), dy.ravel()], axis=1)
-        wall_t, wall_reflectance = walls.cast((ox, oy), directions)
+        wall_t, wall = walls.cast_walls((ox, oy), directions)
         wall_t = wall_t.reshape(rise.shape)
-        wall_reflectance = wall_reflectance.reshape(rise.shape)
+        wall = wall.reshape(rise.shape)
     with np.errstate(divide="ignore", invalid="ignore"):
         floor_t = np.where(rise < 0.0, view.z / -rise, np.inf)
     sees_wall = np.isfinite(wall_t) & (wall_t <= floor_t)
     # A ray that meets no wall (an open side of the world) has no height to compare.
     hit_height = view.z + np.where(np.isfinite(wall_t), wall_t, 0.0) * rise
     sees_wall &= hit_height <= view.wall_height
-    sees_floor = ~sees_wall & np.isfinite(floor_t)
+    robot_t = _robot_hits(view, (ox, oy), dx, dy, rise, robots)
+    sees_robot = np.isfinite(robot_t) & (robot_t <= floor_t)
+    sees_robot &= ~(sees_wall & (wall_t < robot_t))
+    sees_wall &= ~sees_robot
+    sees_floor = ~sees_wall & ~sees_robot & np.isfinite(floor_t)
     image = np.empty(rise.shape + (4,), dtype=np.uint8)
     image[...] = (SKY[2], SKY[1], SKY[0], 255)
     if sees_floor.any():
         t = floor_t[sees_floor]
-        reflectance = floor.reflectance(ox + t * dx[sees_floor], oy + t * dy[sees_floor])
-        grey = _grey(reflectance, 1.0)
-        image[sees_floor, :3] = grey[:, None]
+        region = floor.region(ox + t * dx[sees_floor], oy + t * dy[sees_floor]) + 1
+        rgb = _levels(floor.reflectances[region], floor.colours[region], 1.0)
+        image[sees_floor, :3] = rgb[:, ::-1]
     if sees_wall.any():
-        image[sees_wall, :3] = _grey(wall_reflectance[sees_wall], WALL_SHADE)[:, None]
+        hit = wall[sees_wall]
+        rgb = _levels(walls.reflectance[hit], walls.colour[hit], WALL_SHADE)
+        image[sees_wall, :3] = rgb[:, ::-1]
+    if sees_robot.any():
+        height = view.z + robot_t[sees_robot] * rise[sees_robot]
+        plate = (height >= PLATE_EDGE[0]) & (height <= PLATE_EDGE[1])
+        colour = np.where(plate[:, None], PLATE_COLOUR, ROBOT_COLOUR)
+        rgb = _levels(np.ones(len(height)), colour, WALL_SHADE)
+        image[sees_robot, :3] = rgb[:, ::-1]
     return image
 
 
-def _grey(reflectance: npt.NDArray[np.float64], shade: float) -> npt.NDArray[np.uint8]:
-    level = np.clip((reflectance - 0.2) / 0.8, 0.0, 1.0) * 255.0 * shade
+def _robot_hits(
+    view: CameraView,
+    origin: tuple[float, float],
+    dx: npt.NDArray[np.float64],
+    dy: npt.NDArray[np.float64],
+    rise: npt.NDArray[np.float64],
+    robots: Sequence[RobotBody],
+) -> npt.NDArray[np.float64]:
+    """The ray parameter at which each ray meets the nearest other robot's body between its
+    bottom and top (``inf`` where none)."""
+    nearest = np.full(rise.shape, np.inf)
+    for robot in robots:
+        # |origin + t d - centre| = radius, with d horizontal: a t^2 + 2 b t + c = 0.
+        cx, cy = origin[0] - robot.x, origin[1] - robot.y
+        a = dx * dx + dy * dy
+        b = cx * dx + cy * dy
+        c = cx * cx + cy * cy - robot.radius * robot.radius
+        disc = b * b - a * c
+        with np.errstate(invalid="ignore", divide="ignore"):
+            t = (-b - np.sqrt(disc)) / a
+        t = np.where((disc >= 0.0) & (t >= 0.0), t, np.inf)
+        height = view.z + np.where(np.isfinite(t), t, 0.0) * rise
+        t = np.where((height <= ROBOT_TOP) & (height >= ROBOT_BOTTOM), t, np.inf)
+        nearest = np.minimum(nearest, t)
+    return nearest
+
+
+def _levels(
+    reflectance: npt.NDArray[np.float64], colour: npt.NDArray[np.float64], shade: float
+) -> npt.NDArray[np.uint8]:
+    """Red, green and blue levels ((N, 3)) of surfaces of these reflectances and colours
+    (NaN: none given, grey from the reflectance), ``shade`` of full light."""
+    grey = np.clip((reflectance - 0.2) / 0.8, 0.0, 1.0) * 255.0 * shade
+    level = np.where(np.isnan(colour), grey[:, None], colour * 255.0 * shade)
     return np.asarray(np.rint(level), dtype=np.uint8)
 
 
@@ -185,14 +256,33 @@ class Camera(_Sensor):
         self._pixels: npt.NDArray[np.uint8] | None = None
         self._bytes: bytes | None = None
         self._value = None
+        #: Whether the simulator holds this robot alone (it has no ``other_robots``).
+        self._alone = False
 
     def _read(self) -> Any:
         if self._walls is None or self._floor is None:
             self._walls = WallBoxes(self._simulation.world)
             self._floor = FloorPaint(self._simulation.world)
         self._bytes = None
-        self._pixels = render(self._view, self._walls, self._floor, self._simulation.simulator.pose)
+        simulator = self._simulation.simulator
+        self._pixels = render(
+            self._view, self._walls, self._floor, simulator.pose, self._other_robots()
+        )
         return True
+
+    def _other_robots(self) -> list[RobotBody]:
+        """The other robots of a simulator shared with them (a
+        :class:`~mazesim.webots.shared_world.RobotView`, here or over a controller's pipe);
+        none for a simulator of one robot."""
+        if self._alone:
+            return []
+        simulator: Any = self._simulation.simulator
+        try:
+            bodies = simulator.other_robots()
+        except AttributeError:
+            self._alone = True
+            return []
+        return [RobotBody(float(x), float(y), float(radius)) for x, y, radius in bodies]
 
     def _image(self) -> npt.NDArray[np.uint8] | None:
         if self._period_ms == 0 and self._pixels is None:

@@ -1,10 +1,13 @@
 """Rays against the world's walls, from any pose: the camera's view and extra distance sensors.
 
 The core casts the profile's own sensors; these casts serve what the world adds (a camera, a
-distance sensor in an extension slot), from the wall boxes of :meth:`World.wall_boxes`.
+distance sensor in an extension slot), from the wall boxes of :meth:`World.wall_boxes`, their
+colours (:meth:`World.wall_colours`) and the floor's paint and colours.
 """
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 import numpy.typing as npt
@@ -26,6 +29,8 @@ class WallBoxes:
         self.cos = np.cos(boxes[:, 4])
         self.sin = np.sin(boxes[:, 4])
         self.reflectance = boxes[:, 5]
+        #: Red, green, blue in [0, 1] of each wall as a camera sees it; NaN where none is given.
+        self.colour = np.asarray(world.wall_colours(), dtype=np.float64).reshape(-1, 3)
 
     def cast(self, origin: tuple[float, float], directions: Floats) -> tuple[Floats, Floats]:
         """Casts rays from ``origin`` along each of ``directions`` ((N, 2), not normalised).
@@ -35,9 +40,18 @@ class WallBoxes:
             ``origin + t * direction``; ``inf`` when none) and that wall's reflectance (NaN when
             none).
         """
+        distance, wall = self.cast_walls(origin, directions)
+        reflectance = np.where(wall >= 0, self.reflectance[np.maximum(wall, 0)], np.nan)
+        return distance, reflectance
+
+    def cast_walls(
+        self, origin: tuple[float, float], directions: Floats
+    ) -> tuple[Floats, npt.NDArray[np.intp]]:
+        """As :meth:`cast`, with the index of the first wall met (-1 when none) instead of its
+        reflectance."""
         count = directions.shape[0]
         if self.center.shape[0] == 0:
-            return np.full(count, np.inf), np.full(count, np.nan)
+            return np.full(count, np.inf), np.full(count, -1, dtype=np.intp)
         # Origin and directions in each box's frame: (boxes,) and (rays, boxes).
         ox = origin[0] - self.center[:, 0]
         oy = origin[1] - self.center[:, 1]
@@ -56,8 +70,7 @@ class WallBoxes:
         t = np.where(hit, near, np.inf)
         nearest = np.argmin(t, axis=1)
         distance = t[np.arange(count), nearest]
-        reflectance = np.where(np.isfinite(distance), self.reflectance[nearest], np.nan)
-        return distance, reflectance
+        return distance, np.where(np.isfinite(distance), nearest, -1)
 
 
 def _slab(origin: Floats, direction: Floats, half: Floats) -> tuple[Floats, Floats]:
@@ -72,16 +85,30 @@ def _slab(origin: Floats, direction: Floats, half: Floats) -> tuple[Floats, Floa
 
 
 class FloorPaint:
-    """The floor paint of a world, read once, for the reflectance at many points at a time."""
+    """The floor paint of a world, read once, for the reflectance and colour at many points at
+    a time."""
 
     def __init__(self, world: World) -> None:
         self.background = float(world.floor_background)
         self.regions = world.paint_regions()
+        #: The reflectance of the bare floor, then of each region.
+        self.reflectances = np.array(
+            [self.background] + [_number(r, "reflectance") for r in self.regions]
+        )
+        #: The colour (red, green, blue in [0, 1]) of the bare floor, then of each region; NaN
+        #: where none is given.
+        self.colours = np.array(
+            [_colour(world.floor_colour)] + [_colour(r.get("colour")) for r in self.regions]
+        ).reshape(-1, 3)
 
     def reflectance(self, x: Floats, y: Floats) -> Floats:
         """The floor's reflectance factor at each point (later paint drawn over earlier)."""
-        result = np.full(np.shape(x), self.background)
-        for region in self.regions:
+        return np.asarray(self.reflectances[self.region(x, y) + 1], dtype=np.float64)
+
+    def region(self, x: Floats, y: Floats) -> npt.NDArray[np.intp]:
+        """The paint region seen at each point (the last drawn there), -1 for the bare floor."""
+        result = np.full(np.shape(x), -1, dtype=np.intp)
+        for index, region in enumerate(self.regions):
             shape = region["shape"]
             if shape == "rect":
                 cx, cy = _pair(region, "center")
@@ -97,7 +124,7 @@ class FloorPaint:
             else:
                 a, b = _pair(region, "a"), _pair(region, "b")
                 inside = _segment_distance(x, y, a, b) <= _number(region, "radius")
-            result = np.where(inside, _number(region, "reflectance"), result)
+            result = np.where(inside, index, result)
         return result
 
 
@@ -105,6 +132,15 @@ def _number(region: dict[str, object], key: str) -> float:
     value = region[key]
     assert isinstance(value, int | float), f"paint {key}: expected a number, found {value!r}"
     return float(value)
+
+
+def _colour(value: object) -> tuple[float, float, float]:
+    """A colour given as (red, green, blue), or NaNs for none."""
+    if value is None:
+        return (math.nan, math.nan, math.nan)
+    assert isinstance(value, list | tuple), f"colour: expected (r, g, b), found {value!r}"
+    red, green, blue = (float(v) for v in value)
+    return (red, green, blue)
 
 
 def _pair(region: dict[str, object], key: str) -> tuple[float, float]:

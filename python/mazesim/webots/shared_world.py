@@ -68,6 +68,17 @@ class RobotView:
         left, right = self._state("encoders")
         return float(left), float(right)
 
+    def other_robots(self) -> list[tuple[float, float, float]]:
+        """(x, y, body radius) of each other robot of the simulator now (what a camera sees
+        of them)."""
+        bodies = []
+        for index in range(self.simulator.num_robots):
+            if index != self.index:
+                state = self.simulator.robot_state(index)
+                x, y, _ = state["pose"]
+                bodies.append((float(x), float(y), _body_radius(str(state["profile"]))))
+        return bodies
+
     def set_pose(self, x: float, y: float, yaw: float) -> None:
         """Puts the robot at a pose, at rest: onto another robot too, as a Webots supervisor may
         put it (the contacts of the next steps push them apart)."""
@@ -80,6 +91,14 @@ class RobotView:
     def ground_sensors(self) -> Any:
         """The ground readings."""
         return self.simulator.ground_sensors(robot_index=self.index)
+
+
+def _body_radius(profile: str) -> float:
+    """The body radius of a built-in profile (the e-puck's for another)."""
+    try:
+        return float(RobotProfile.builtin(profile).body_radius)
+    except MazesimError:
+        return float(RobotProfile.builtin("e-puck").body_radius)
 
 
 def shared_simulator(

@@ -6,9 +6,10 @@ use std::f64::consts::PI;
 
 use super::{Obstacle, WbtImport};
 use crate::error::Result;
-use crate::world::spec::{StartSpec, WallSpec, WorldSpec};
+use crate::world::spec::{FloorSpec, StartSpec, WallSpec, WorldSpec};
 use crate::world::values::{
-    Finite, FormatTag, FormatVersion, Positive, Reflectance, WORLD_FORMAT_TAG, WORLD_FORMAT_VERSION,
+    self, Finite, FormatTag, FormatVersion, Positive, Reflectance, WORLD_FORMAT_TAG,
+    WORLD_FORMAT_VERSION,
 };
 use crate::World;
 
@@ -31,18 +32,19 @@ pub fn polygon_sides(radius: f64) -> usize {
         .unwrap_or(most)
 }
 
-fn wall(center: [f64; 2], size: [f64; 2], yaw: f64) -> WallSpec {
+fn wall(center: [f64; 2], size: [f64; 2], yaw: f64, colour: Option<[f64; 3]>) -> WallSpec {
     WallSpec {
         center: [Finite(center[0]), Finite(center[1])],
         size: [Positive(size[0]), Positive(size[1])],
         yaw: Finite(yaw),
         reflectance: Reflectance(1.0),
+        colour: colour.map(values::colour),
     }
 }
 
 /// A ring of walls whose outline is a regular polygon straddling the circle: its apothem lies
 /// as far inside the circle as its corners lie outside.
-pub fn circle_walls(center: [f64; 2], radius: f64) -> Vec<WallSpec> {
+pub fn circle_walls(center: [f64; 2], radius: f64, colour: Option<[f64; 3]>) -> Vec<WallSpec> {
     let n = polygon_sides(radius);
     let half_angle = PI / n as f64;
     let apothem = 2.0 * radius * half_angle.cos() / (1.0 + half_angle.cos());
@@ -57,6 +59,7 @@ pub fn circle_walls(center: [f64; 2], radius: f64) -> Vec<WallSpec> {
                 [center[0] + c * distance, center[1] + s * distance],
                 [thickness, side],
                 angle,
+                colour,
             )
         })
         .collect()
@@ -66,10 +69,13 @@ impl WbtImport {
     /// The mazesim world description of this import.
     pub fn to_spec(&self, name: &str) -> WorldSpec {
         let mut walls = Vec::new();
-        for obstacle in &self.obstacles {
+        for (i, obstacle) in self.obstacles.iter().enumerate() {
+            let colour = self.obstacle_colours.get(i).copied().flatten();
             match *obstacle {
-                Obstacle::Box { center, size, yaw } => walls.push(wall(center, size, yaw)),
-                Obstacle::Circle { center, radius } => walls.extend(circle_walls(center, radius)),
+                Obstacle::Box { center, size, yaw } => walls.push(wall(center, size, yaw, colour)),
+                Obstacle::Circle { center, radius } => {
+                    walls.extend(circle_walls(center, radius, colour))
+                }
             }
         }
         WorldSpec {
@@ -77,7 +83,10 @@ impl WbtImport {
             version: FormatVersion(WORLD_FORMAT_VERSION),
             name: name.to_string(),
             basic_time_step_ms: Positive(self.basic_time_step_ms),
-            floor: None,
+            floor: self.floor_colour.map(|colour| FloorSpec {
+                reflectance: Reflectance(1.0),
+                colour: Some(values::colour(colour)),
+            }),
             start: self.robot.map(|[x, y, yaw]| StartSpec {
                 x: Finite(x),
                 y: Finite(y),
@@ -110,7 +119,7 @@ mod tests {
         assert_eq!(polygon_sides(0.005), 8);
         assert_eq!(polygon_sides(1e6), 256);
         for radius in [0.02, 0.05, 0.3] {
-            let walls = circle_walls([1.0, 2.0], radius);
+            let walls = circle_walls([1.0, 2.0], radius, None);
             let n = walls.len();
             let half_angle = PI / n as f64;
             let apothem = 2.0 * radius * half_angle.cos() / (1.0 + half_angle.cos());

@@ -17,7 +17,7 @@ use super::shapes::snap;
 use super::tree::Node;
 use super::WbtImport;
 use crate::world::spec::PaintSpec;
-use crate::world::values::{Finite, Positive, Reflectance};
+use crate::world::values::{self, Finite, Positive, Reflectance};
 
 /// A visual-only shape whose top is at most this high (metres) is a mark on the floor: a line
 /// painted on it, or a track modelled as a sheet a few millimetres above it (one public course
@@ -50,6 +50,8 @@ pub struct FloorMesh {
     pub frame: Frame,
     /// The reflection factor of its colour.
     pub reflectance: f64,
+    /// Its colour as a camera sees it (see `appearance.rs`).
+    pub colour: Option<[f64; 3]>,
 }
 
 /// The reflection factor Webots' infra-red sensors give a colour: `0.2 + 0.8 red`.
@@ -124,6 +126,7 @@ pub fn obj_triangles(text: &str) -> Result<Vec<[Vec3; 3]>, String> {
 pub fn triangles_paint(
     triangles: &[[Vec3; 3]],
     reflectance: f64,
+    colour: Option<[f64; 3]>,
 ) -> Result<Vec<PaintSpec>, String> {
     if triangles.len() > MAX_MESH_TRIANGLES {
         return Err(format!(
@@ -204,6 +207,7 @@ pub fn triangles_paint(
             ],
             yaw: Finite(0.0),
             reflectance: Reflectance(reflectance),
+            colour: colour.map(values::colour),
         })
         .collect())
 }
@@ -248,12 +252,13 @@ impl<'d> Importer<'d> {
         let frame = self.z_up(frame);
         let rgb = self.appearance_colour(node);
         let reflectance = colour_reflectance(rgb);
+        let colour = self.field_colour(node, "appearance");
         match geometry.type_name.as_str() {
             "Plane" => {
                 if self.has_texture(node) {
                     self.textured_shape(node, &parent);
                 } else {
-                    self.plain_plane(node, geometry, &frame, reflectance);
+                    self.plain_plane(node, geometry, &frame, reflectance, colour);
                 }
             }
             "Box" => {
@@ -273,6 +278,7 @@ impl<'d> Importer<'d> {
                     size: [Positive(width), Positive(depth)],
                     yaw: Finite(snap(half[0][1].atan2(half[0][0]))),
                     reflectance: Reflectance(reflectance),
+                    colour: colour.map(values::colour),
                 });
             }
             "Cylinder" => {
@@ -288,11 +294,12 @@ impl<'d> Importer<'d> {
                     center: [Finite(snap(frame.origin[0])), Finite(snap(frame.origin[1]))],
                     radius: Positive(radius * scale),
                     reflectance: Reflectance(reflectance),
+                    colour: colour.map(values::colour),
                 });
             }
             "IndexedFaceSet" => {
                 let triangles = self.face_set_triangles(geometry, &parent);
-                self.mark_triangles(node, geometry, &triangles, reflectance);
+                self.mark_triangles(node, geometry, &triangles, reflectance, colour);
             }
             "Mesh" => {
                 let label = self.label(geometry);
@@ -302,6 +309,7 @@ impl<'d> Importer<'d> {
                     owner: label,
                     frame: parent,
                     reflectance,
+                    colour,
                 });
             }
             _ => self.drop_visual(
@@ -342,6 +350,7 @@ impl<'d> Importer<'d> {
         geometry: &'d Node,
         triangles: &[[Vec3; 3]],
         reflectance: f64,
+        colour: Option<[f64; 3]>,
     ) {
         let high = triangles
             .iter()
@@ -354,7 +363,7 @@ impl<'d> Importer<'d> {
             let why = format!("reaching {high:.3} m above the floor");
             return self.drop_visual(shape, geometry, &why);
         }
-        match triangles_paint(triangles, reflectance) {
+        match triangles_paint(triangles, reflectance, colour) {
             Ok(paint) => self.floor_marks.extend(paint),
             Err(why) => self.drop_visual(shape, geometry, &why),
         }
@@ -398,11 +407,12 @@ impl<'d> Importer<'d> {
         geometry: &'d Node,
         frame: &Frame,
         reflectance: f64,
+        colour: Option<[f64; 3]>,
     ) {
         if tilt(frame.axis(2)) > TILT_TOLERANCE || frame.origin[2].abs() > FLOOR_MARK_HEIGHT {
             return self.drop_visual(shape, geometry, "not lying on the floor");
         }
-        if reflectance >= 1.0 {
+        if reflectance >= 1.0 && colour.is_none_or(|c| c == [1.0; 3]) {
             return;
         }
         let mut size = self.vector(geometry, "size", [1.0, 1.0]);
@@ -418,6 +428,7 @@ impl<'d> Importer<'d> {
             ],
             yaw: Finite(snap(x[1].atan2(x[0]))),
             reflectance: Reflectance(reflectance),
+            colour: colour.map(values::colour),
         });
     }
 }
@@ -484,7 +495,7 @@ impl WbtImport {
                 ));
                 continue;
             }
-            match triangles_paint(&world, mesh.reflectance) {
+            match triangles_paint(&world, mesh.reflectance, mesh.colour) {
                 Ok(paint) => self.paint.extend(paint),
                 Err(why) => self.warnings.push(format!(
                     "{owner}: mesh {}: {why}: not imported",
@@ -507,9 +518,9 @@ mod tests {
         let refused = obj_triangles(&text).expect_err("a refusal");
         assert!(refused.contains("at most 1048576 triangles"), "{refused}");
         let large = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
-        let refused = triangles_paint(&[large; 2000], 0.2).unwrap_err();
+        let refused = triangles_paint(&[large; 2000], 0.2, None).unwrap_err();
         assert!(refused.contains("too detailed"), "{refused}");
-        assert!(triangles_paint(&[large; 20], 0.2).is_ok());
+        assert!(triangles_paint(&[large; 20], 0.2, None).is_ok());
     }
 
     #[test]
@@ -529,7 +540,7 @@ mod tests {
     #[test]
     fn a_painted_triangle_covers_its_half_of_the_square() {
         let t = [[0.0, 0.0, 0.0], [0.1, 0.0, 0.0], [0.0, 0.1, 0.0]];
-        let paint = triangles_paint(&[t], 0.2).unwrap();
+        let paint = triangles_paint(&[t], 0.2, None).unwrap();
         let area: f64 = paint
             .iter()
             .map(|p| match p {

@@ -182,6 +182,7 @@ impl FloorTexture {
                         size: [Positive(x1 - x0), Positive(y1 - y0)],
                         yaw: Finite(self.yaw),
                         reflectance: Reflectance(grey_reflectance(level as f64 / 255.0)),
+                        colour: None,
                     });
                 }
             }
@@ -313,6 +314,7 @@ impl<'d> Importer<'d> {
 
     /// The floor of a `RectangleArena` (`frame` is its Z-up frame): its `floorAppearance`.
     pub fn arena_floor(&mut self, node: &'d Node, frame: &Frame, floor: [f64; 2]) {
+        self.floor_colour_of(node, "floorAppearance");
         let Some(&appearance) = self.nodes(node, "floorAppearance").first() else {
             return;
         };
@@ -325,6 +327,7 @@ impl<'d> Importer<'d> {
 
     /// A `Floor` PROTO: no collision in 2D, but its `appearance` may be a texture.
     pub fn floor(&mut self, node: &'d Node, frame: &Frame) {
+        self.floor_colour_of(node, "appearance");
         let Some(&appearance) = self.nodes(node, "appearance").first() else {
             return;
         };

@@ -95,12 +95,21 @@ pub const MAX_BODY_SIDE: f64 = 0.5;
 /// with physics) stays a static obstacle.
 pub const MAX_BODY_ELONGATION: f64 = 4.0;
 
+/// An obstacle with the colour a camera sees of it (see `appearance.rs`).
+pub type ColouredObstacle = (Obstacle, Option<[f64; 3]>);
+
 /// The state of one import.
 pub struct Importer<'d> {
     pub doc: &'d Document,
     /// PROTOs and primitives are Y-up (files before R2022a).
     pub y_up: bool,
     pub obstacles: Vec<Obstacle>,
+    /// The colour of each of `obstacles` (see `appearance.rs`).
+    pub obstacle_colours: Vec<Option<[f64; 3]>>,
+    /// The colour of the Solid whose collision shapes are being read.
+    pub colour: Option<[f64; 3]>,
+    /// The floor's colour (see `appearance.rs`).
+    pub floor_colour: Option<[f64; 3]>,
     /// Movable bodies: objects with physics light and small enough to push (see `movable`).
     pub bodies: Vec<BodySpec>,
     /// The e-puck (or e-puck2) the world runs with.
@@ -109,9 +118,10 @@ pub struct Importer<'d> {
     pub other_robot: Option<FoundRobot>,
     /// Where its warning is in `warnings`, and what the warning says of it (`line L: Type`).
     other_robot_warning: Option<(usize, String)>,
-    /// Every robot of the world, in file order, with the collision shapes of those that are not
-    /// e-pucks (kept as static obstacles unless the e-puck stands in for that robot).
-    pub robots: Vec<(WorldRobot, Vec<Obstacle>)>,
+    /// Every robot of the world, in file order, with the collision shapes (and their colours)
+    /// of those that are not e-pucks (kept as static obstacles unless the e-puck stands in for
+    /// that robot).
+    pub robots: Vec<(WorldRobot, Vec<ColouredObstacle>)>,
     pub devices: Vec<ExtensionDevice>,
     pub floor_textures: Vec<FloorTexture>,
     /// Paint of the visual-only shapes lying on the floor (see `floor_marks.rs`).
@@ -139,6 +149,9 @@ pub fn import(doc: &Document, choice: RobotChoice<'_>) -> WbtImport {
         doc,
         y_up: !doc.version.has_z_up_protos(),
         obstacles: Vec::new(),
+        obstacle_colours: Vec::new(),
+        colour: None,
+        floor_colour: None,
         bodies: Vec::new(),
         robot: None,
         other_robot: None,
@@ -179,7 +192,10 @@ pub fn import(doc: &Document, choice: RobotChoice<'_>) -> WbtImport {
     let mut robots = Vec::with_capacity(importer.robots.len());
     for (found, shapes) in std::mem::take(&mut importer.robots) {
         if found.profile.is_none() && Some(found.line) != stand_in_line {
-            importer.obstacles.extend(shapes);
+            for (shape, colour) in shapes {
+                importer.obstacles.push(shape);
+                importer.obstacle_colours.push(colour);
+            }
         }
         robots.push(found);
     }
@@ -190,6 +206,8 @@ pub fn import(doc: &Document, choice: RobotChoice<'_>) -> WbtImport {
     }
     WbtImport {
         obstacles: importer.obstacles,
+        obstacle_colours: importer.obstacle_colours,
+        floor_colour: importer.floor_colour,
         bodies: importer.bodies,
         robot: robot.as_ref().map(|r| r.pose),
         robot_model: robot.as_ref().map(|r| r.model.clone()),
@@ -445,12 +463,15 @@ impl<'d> Importer<'d> {
         let frame = frame.then(&local);
         let falls = self.is_dynamic(node);
         let first = self.obstacles.len();
+        let colour = self.solid_colour(node);
+        let outer_colour = std::mem::replace(&mut self.colour, colour);
         for &shape in self.nodes(node, "boundingObject") {
             let label = self.label(node);
             self.falls = falls;
             self.bounding(shape, &frame, &label, depth + 1);
             self.falls = false;
         }
+        self.colour = outer_colour;
         if falls && !self.nodes(node, "boundingObject").is_empty() {
             let mass = self.physics_mass(node);
             if !self.make_movable(first, mass) {
@@ -533,6 +554,7 @@ impl<'d> Importer<'d> {
             _ => return false,
         };
         self.obstacles.truncate(first);
+        self.obstacle_colours.truncate(first);
         self.bodies.push(body);
         true
     }
@@ -661,7 +683,7 @@ impl<'d> Importer<'d> {
         node: &'d Node,
         found: &FoundRobot,
         profile: Option<&'static str>,
-        shapes: Vec<Obstacle>,
+        shapes: Vec<ColouredObstacle>,
     ) {
         let robot = WorldRobot {
             pose: found.pose,
@@ -723,14 +745,24 @@ impl<'d> Importer<'d> {
     }
 
     /// The collision shapes of a plain robot node (its `boundingObject`), in the world frame.
-    fn robot_shapes(&mut self, node: &'d Node, frame: &Frame, label: &str) -> Vec<Obstacle> {
+    fn robot_shapes(
+        &mut self,
+        node: &'d Node,
+        frame: &Frame,
+        label: &str,
+    ) -> Vec<ColouredObstacle> {
         let local = self.local_frame(node, [0.0; 3]);
         let frame = frame.then(&local);
         let first = self.obstacles.len();
+        let colour = self.solid_colour(node);
+        let outer = std::mem::replace(&mut self.colour, colour);
         for &shape in self.nodes(node, "boundingObject") {
             self.bounding(shape, &frame, label, 1);
         }
-        self.obstacles.split_off(first)
+        self.colour = outer;
+        let shapes = self.obstacles.split_off(first);
+        let colours = self.obstacle_colours.split_off(first);
+        shapes.into_iter().zip(colours).collect()
     }
 
     /// A robot's start pose: its origin and where its forward axis points.

@@ -34,6 +34,7 @@
 //! assert_eq!(world.walls().len(), 1);
 //! ```
 
+mod appearance;
 mod convert;
 mod devices;
 mod floor_marks;
@@ -127,6 +128,11 @@ pub struct WorldRobot {
 pub struct WbtImport {
     /// The static obstacles, in file order.
     pub obstacles: Vec<Obstacle>,
+    /// The colour a camera sees of each obstacle (`None`: the grey of its reflection factor),
+    /// in the order of `obstacles` (see `appearance.rs`).
+    pub obstacle_colours: Vec<Option<[f64; 3]>>,
+    /// The colour of the floor, when the world gives one (see `appearance.rs`).
+    pub floor_colour: Option<[f64; 3]>,
     /// The movable bodies (light, small objects with physics), in file order.
     pub bodies: Vec<crate::world::spec::BodySpec>,
     /// The robot's start pose (x, y, yaw), if the world has one: the e-puck's, or that of the

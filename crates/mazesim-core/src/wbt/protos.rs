@@ -17,6 +17,14 @@ use super::tree::Node;
 impl<'d> Importer<'d> {
     /// Expands a known PROTO; false when the type is not one.
     pub fn expand_proto(&mut self, node: &'d Node, frame: &Frame) -> bool {
+        let colour = self.proto_colour(node);
+        let outer = std::mem::replace(&mut self.colour, colour);
+        let known = self.expand_known(node, frame);
+        self.colour = outer;
+        known
+    }
+
+    fn expand_known(&mut self, node: &'d Node, frame: &Frame) -> bool {
         match node.type_name.as_str() {
             "RectangleArena" => self.rectangle_arena(node, frame),
             "Wall" => self.wall(node, frame),

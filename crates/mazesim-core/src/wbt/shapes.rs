@@ -273,6 +273,7 @@ impl<'d> Importer<'d> {
             ));
         }
         self.obstacles.push(obstacle);
+        self.obstacle_colours.push(self.colour);
     }
 }
 

@@ -630,6 +630,7 @@ fn painted_at(import: &WbtImport, x: f64, y: f64) -> Option<f64> {
             size,
             yaw,
             reflectance,
+            ..
         } => {
             let (s, c) = yaw.0.sin_cos();
             let (dx, dy) = (x - center[0].0, y - center[1].0);
@@ -641,6 +642,7 @@ fn painted_at(import: &WbtImport, x: f64, y: f64) -> Option<f64> {
             center,
             radius,
             reflectance,
+            ..
         } => ((x - center[0].0).hypot(y - center[1].0) < radius.0).then_some(reflectance.0),
         PaintSpec::Polyline { .. } => None,
     })

@@ -94,6 +94,9 @@ pub struct World {
     bodies: Vec<MovableBody>,
     /// Hash of the description as `to_toml` writes it: equal worlds have equal fingerprints.
     fingerprint: u64,
+    /// The colour of each paint region of `[[paint]]` that gives one, in the floor's region
+    /// order (the checkpoints' bars after them have none).
+    paint_colours: Vec<Option<[f64; 3]>>,
 }
 
 impl PartialEq for World {
@@ -241,6 +244,7 @@ impl World {
         }
         check.counts(walls.len(), 0, 0)?;
         let mut regions = Vec::new();
+        let mut paint_colours = Vec::new();
         for (i, p) in spec.paint.iter().enumerate() {
             let first = regions.len();
             if let PaintSpec::Rect { yaw, .. } = p {
@@ -256,6 +260,7 @@ impl World {
                     size,
                     yaw,
                     reflectance,
+                    ..
                 } => regions.push(PaintRegion {
                     shape: PaintShape::Rect {
                         center: xy(center),
@@ -268,6 +273,7 @@ impl World {
                     center,
                     radius,
                     reflectance,
+                    ..
                 } => regions.push(PaintRegion {
                     shape: PaintShape::Circle {
                         center: xy(center),
@@ -280,6 +286,7 @@ impl World {
                     width,
                     closed,
                     reflectance,
+                    ..
                 } => {
                     if points.len() < 2 {
                         return Err(locate::format_error(
@@ -311,6 +318,7 @@ impl World {
                     }
                 }
             }
+            paint_colours.resize(regions.len(), p.colour().map(|c| values::rgb(&c)));
             let painted = regions[first..]
                 .iter()
                 .fold(Bounds::EMPTY, |b, r| b.union(r.shape.bounds()));
@@ -430,6 +438,7 @@ impl World {
             bounds,
             maze,
             bodies,
+            paint_colours,
         })
     }
 
@@ -516,6 +525,37 @@ impl World {
     /// Every wall as a box.
     pub fn walls(&self) -> &[WallBox] {
         self.walls.as_deref().unwrap_or(&self.solid_walls)
+    }
+
+    /// The colour of each wall of [`World::walls`] as a camera sees it, in the same order:
+    /// that of its `[[walls]]` entry when it gives one, `None` otherwise (the grid's walls and
+    /// the segments have none: a camera draws them in the grey of their reflectance).
+    pub fn wall_colours(&self) -> Vec<Option<[f64; 3]>> {
+        let listed = self.spec.walls.len() + self.spec.segments.len();
+        let grid = self.walls().len().saturating_sub(listed);
+        let mut colours = vec![None; grid];
+        colours.extend(
+            self.spec
+                .walls
+                .iter()
+                .map(|w| w.colour.as_ref().map(values::rgb)),
+        );
+        colours.resize(self.walls().len(), None);
+        colours
+    }
+
+    /// The colour of paint region `index` of [`World::floor`] as a camera sees it (`None`: the
+    /// grey of its reflectance).
+    pub fn paint_colour(&self, index: usize) -> Option<[f64; 3]> {
+        self.paint_colours.get(index).copied().flatten()
+    }
+
+    /// The colour of the bare floor as a camera sees it (`None`: the grey of its reflectance).
+    pub fn floor_colour(&self) -> Option<[f64; 3]> {
+        self.spec
+            .floor
+            .as_ref()
+            .and_then(|f| f.colour.as_ref().map(values::rgb))
     }
 
     /// The walls as solids: `walls` with exact duplicates merged, in file order.

@@ -4,7 +4,8 @@
 use serde::{Deserialize, Serialize};
 
 use super::values::{
-    BarcodeBits, Finite, FormatTag, FormatVersion, NonNegative, Point, Positive, Reflectance, Size,
+    BarcodeBits, Colour, Finite, FormatTag, FormatVersion, NonNegative, Point, Positive,
+    Reflectance, Size,
 };
 
 fn default_time_step() -> Positive {
@@ -74,6 +75,9 @@ pub struct WorldSpec {
 pub struct FloorSpec {
     /// Background reflectance factor.
     pub reflectance: Reflectance,
+    /// Background colour as a camera sees it (`None`: the grey of its reflectance).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub colour: Option<Colour>,
 }
 
 /// `[start]`.
@@ -199,6 +203,9 @@ pub struct WallSpec {
     /// Infra-red reflection factor.
     #[serde(default = "white", skip_serializing_if = "is_white")]
     pub reflectance: Reflectance,
+    /// Colour as a camera sees it (`None`: the grey of its reflectance).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub colour: Option<Colour>,
 }
 
 /// `[[segments]]`: a wall along a centre line.
@@ -235,6 +242,9 @@ pub enum PaintSpec {
         yaw: Finite,
         /// Floor reflectance.
         reflectance: Reflectance,
+        /// Colour as a camera sees it (`None`: the grey of its reflectance).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        colour: Option<Colour>,
     },
     /// A disc.
     Circle {
@@ -244,6 +254,9 @@ pub enum PaintSpec {
         radius: Positive,
         /// Floor reflectance.
         reflectance: Reflectance,
+        /// Colour as a camera sees it (`None`: the grey of its reflectance).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        colour: Option<Colour>,
     },
     /// A stroke along points, round joints.
     Polyline {
@@ -256,7 +269,21 @@ pub enum PaintSpec {
         closed: bool,
         /// Floor reflectance.
         reflectance: Reflectance,
+        /// Colour as a camera sees it (`None`: the grey of its reflectance).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        colour: Option<Colour>,
     },
+}
+
+impl PaintSpec {
+    /// The colour a camera sees, when the region gives one.
+    pub fn colour(&self) -> Option<Colour> {
+        match self {
+            PaintSpec::Rect { colour, .. }
+            | PaintSpec::Circle { colour, .. }
+            | PaintSpec::Polyline { colour, .. } => *colour,
+        }
+    }
 }
 
 /// `[[checkpoints]]`: a barcode across a corridor.

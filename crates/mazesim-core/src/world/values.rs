@@ -62,6 +62,26 @@ checked_f64!(
     "a fraction in [0, 1)"
 );
 
+checked_f64!(
+    /// One level of a colour in [0, 1] (Webots' `SFColor` components).
+    ColourLevel,
+    |v| v.is_finite() && (0.0..=1.0).contains(&v),
+    "a colour level in [0, 1]"
+);
+
+/// A colour `[red, green, blue]`, each level in [0, 1], as a camera sees it.
+pub type Colour = [ColourLevel; 3];
+
+/// A colour from plain numbers, each level clamped to [0, 1] (NaN read as 0).
+pub fn colour(rgb: [f64; 3]) -> Colour {
+    rgb.map(|c| ColourLevel(if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) }))
+}
+
+/// Converts a colour to plain numbers.
+pub fn rgb(c: &Colour) -> [f64; 3] {
+    [c[0].0, c[1].0, c[2].0]
+}
+
 /// A point or vector `[x, y]` in metres.
 pub type Point = [Finite; 2];
 
