@@ -460,3 +460,24 @@ def test_the_objects_python_recognises_reach_a_c_controller_field_by_field(
         "7 target 0.5 -0.25 0.125 1.5 0.1 0.2 3 4 6 2 9 0.5 1",
         "second [] 0",
     ]
+
+
+def test_a_c_controller_defining_its_own_random_builds_as_on_windows(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str]
+) -> None:
+    # Windows' C library has no random(): controllers written there define their own.
+    source = write_controller(
+        tmp_path, "dice", '  wb_robot_step(32);\n  printf("%g %.4f\\n", random(2, 2), M_PI);'
+    )
+    source.write_text(
+        "#include <stdlib.h>\n#include <math.h>\n"
+        "double random(int min, int max) { return min + (max - min) * 0.5; }\n" + source.read_text()
+    )
+    built = build(source)
+    assert built.note.endswith(
+        "(C built without the C library's POSIX extensions, as on Windows, since it defines "
+        "functions of their names: random)"
+    )
+    run = run_controller(source, mazesim.load_world("arena"), seconds=0.5)
+    assert (run.exit_status, run.error) == (0, "")
+    assert capfd.readouterr().out.splitlines()[-1] == "2 3.1416"
