@@ -13,6 +13,7 @@ import pytest
 import mazesim
 from mazesim.errors import ControllerBuildError, MissingDependencyError
 from mazesim.webots import run_controller
+from mazesim.webots.camera import Camera, CameraRecognitionObject
 from mazesim.webots.keyboard import KeyScript
 from mazesim.webots.native_controller import CAPI, build
 from mazesim.webots.node_types import NODE_TYPES
@@ -373,3 +374,110 @@ def test_a_controller_that_is_a_fifo_or_too_long_is_refused_before_it_is_read(
         handle.truncate(MAX_TEXT_CHARACTERS + 1)  # sparse: takes no room on the disk
     with pytest.raises(ControllerBuildError, match="at most 67108864 bytes"):
         build(long)
+
+
+RECOGNITION_BODY = """
+  WbDeviceTag camera = wb_robot_get_device("camera");
+  wb_camera_recognition_enable(camera, 32);
+  wb_robot_step(32);
+  const WbCameraRecognitionObject *objects = wb_camera_recognition_get_objects(camera);
+  printf("has %d period %d objects %d array %d same %d\\n", wb_camera_has_recognition(camera),
+         wb_camera_recognition_get_sampling_period(camera),
+         wb_camera_recognition_get_number_of_objects(camera), objects != NULL,
+         objects == wb_camera_recognition_get_objects(camera));
+"""
+
+
+def test_a_c_controller_calls_camera_recognition_as_a_python_one_does(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str]
+) -> None:
+    # The e-puck's camera has no Recognition node: Webots' error, and nothing recognised.
+    source = write_controller(tmp_path, "recogniser", RECOGNITION_BODY)
+    source.write_text("#include <webots/camera.h>\n" + source.read_text())
+    assert prepare_controller(str(source)).missing == []
+    run = run_controller(source, mazesim.load_world("arena"), seconds=0.5)
+    assert (run.exit_status, run.error) == (0, "")
+    out, err = capfd.readouterr()
+    assert out.splitlines()[-1] == "has 0 period 0 objects 0 array 1 same 1"
+    assert (
+        "Error: wb_camera_recognition_enable() called on a Camera without Recognition node."
+        in err.splitlines()
+    )
+
+
+def test_a_cpp_controller_reads_the_recognition_object_struct(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str]
+) -> None:
+    source = write_source(
+        tmp_path,
+        "recogniser",
+        "#include <cstdio>\n#include <webots/Camera.hpp>\n#include <webots/Robot.hpp>\n"
+        "#include <webots/camera_recognition_object.h>\n"
+        "int main() {\n  webots::Robot robot;\n"
+        '  webots::Camera *camera = robot.getCamera("camera");\n'
+        "  camera->recognitionEnable(32);\n  robot.step(32);\n"
+        "  const webots::CameraRecognitionObject *objects = camera->getRecognitionObjects();\n"
+        "  const WbCameraRecognitionObject *same = objects;\n"
+        '  std::printf("objects %d %d\\n", camera->getRecognitionNumberOfObjects(),\n'
+        "              same == camera->getRecognitionObjects());\n  return 0;\n}\n",
+        suffix=".cpp",
+    )
+    assert prepare_controller(str(source)).missing == []
+    run = run_controller(source, mazesim.load_world("arena"), seconds=0.5)
+    assert (run.exit_status, run.error) == (0, "")
+    assert capfd.readouterr().out.splitlines()[-1] == "objects 0 1"
+
+
+def test_the_objects_python_recognises_reach_a_c_controller_field_by_field(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    def recognised(camera: Camera) -> list[CameraRecognitionObject]:
+        things = [CameraRecognitionObject(), CameraRecognitionObject()]
+        things[0].id, things[0].model = 7, "target"
+        things[0].position, things[0].orientation = [0.5, -0.25, 0.125], [0, 0, 1, 1.5]
+        things[0].size, things[0].position_on_image = [0.1, 0.2], [3, 4]
+        things[0].size_on_image = [5, 6]
+        things[0].number_of_colors, things[0].colors = 2, [1, 0, 0, 0, 0.5, 1]
+        things[1].id = 9
+        return things
+
+    monkeypatch.setattr(Camera, "getRecognitionObjects", recognised)
+    body = (
+        '  WbDeviceTag camera = wb_robot_get_device("camera");\n  wb_robot_step(32);\n'
+        "  const WbCameraRecognitionObject *o = wb_camera_recognition_get_objects(camera);\n"
+        '  printf("%d %s %g %g %g %g %g %g %d %d %d %d %d %g %g\\n", o[0].id, o[0].model,\n'
+        "         o[0].position[0], o[0].position[1], o[0].position[2], o[0].orientation[3],\n"
+        "         o[0].size[0], o[0].size[1], o[0].position_on_image[0],\n"
+        "         o[0].position_on_image[1], o[0].size_on_image[1], o[0].number_of_colors,\n"
+        "         o[1].id, o[0].colors[4], o[0].colors[5]);\n"
+        '  printf("second [%s] %d\\n", o[1].model, o[1].number_of_colors);'
+    )
+    source = write_controller(tmp_path, "carrier", body)
+    source.write_text("#include <webots/camera.h>\n" + source.read_text())
+    run = run_controller(source, mazesim.load_world("arena"), seconds=0.5)
+    assert (run.exit_status, run.error) == (0, "")
+    assert capfd.readouterr().out.splitlines()[-2:] == [
+        "7 target 0.5 -0.25 0.125 1.5 0.1 0.2 3 4 6 2 9 0.5 1",
+        "second [] 0",
+    ]
+
+
+def test_a_c_controller_defining_its_own_random_builds_as_on_windows(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str]
+) -> None:
+    # Windows' C library has no random(): controllers written there define their own.
+    source = write_controller(
+        tmp_path, "dice", '  wb_robot_step(32);\n  printf("%g %.4f\\n", random(2, 2), M_PI);'
+    )
+    source.write_text(
+        "#include <stdlib.h>\n#include <math.h>\n"
+        "double random(int min, int max) { return min + (max - min) * 0.5; }\n" + source.read_text()
+    )
+    built = build(source)
+    assert built.note.endswith(
+        "(C built without the C library's POSIX extensions, as on Windows, since it defines "
+        "functions of their names: random)"
+    )
+    run = run_controller(source, mazesim.load_world("arena"), seconds=0.5)
+    assert (run.exit_status, run.error) == (0, "")
+    assert capfd.readouterr().out.splitlines()[-1] == "2 3.1416"

@@ -1,14 +1,19 @@
 """The Webots functions a compiled controller waits for, run on the robot's Python objects.
 
-A C or C++ controller's radio and supervisor functions are calls over the link
-(:mod:`mazesim.webots.native_link`, message ``CALL``): a Webots C function's name and typed
+A C or C++ controller's radio, camera recognition and supervisor functions are calls over the
+link (:mod:`mazesim.webots.native_link`, message ``CALL``): a Webots C function's name and typed
 values. :class:`NativeCalls` runs each on the object that implements it for Python controllers
 (an :class:`~mazesim.webots.radio_devices.Emitter` or
-:class:`~mazesim.webots.radio_devices.Receiver` of the robot, or its
+:class:`~mazesim.webots.radio_devices.Receiver` of the robot, its
+:class:`~mazesim.webots.camera.Camera`, or its
 :class:`~mazesim.webots.supervisor.Supervisor` and the nodes and fields it hands out), so
 channels, ranges, queues, nodes and fields behave for a compiled controller as they do for a
 Python one, and answers typed values. The functions follow Webots' reference manual
-(https://cyberbotics.com/doc/reference/emitter, /receiver and /supervisor).
+(https://cyberbotics.com/doc/reference/emitter, /receiver, /recognition and /supervisor).
+
+A camera's recognised objects cross the link as two values: one list of numbers (per object:
+id, position, orientation, size, position and size on the image, number of colours, then the
+colours' red, green and blue) and their models, each ending with a NUL.
 
 Nodes and fields cross the link as handles (1, 2... in the order they are first handed out; 0
 is ``NULL``); a field's handle comes with its type (``WB_SF_VEC3F``...).
@@ -21,6 +26,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from mazesim.errors import MazesimIOError
+from mazesim.webots.camera import CameraRecognitionObject
 from mazesim.webots.devices import _print_error
 from mazesim.webots.supervisor import Field, Node, Supervisor
 
@@ -75,6 +81,23 @@ FUNCTIONS: dict[str, Function] = {
             "get_data": ("getBytes", ""),
             "get_signal_strength": ("getSignalStrength", ""),
             "get_emitter_direction": ("getEmitterDirection", ""),
+        },
+    ),
+    **_table(
+        "device",
+        "wb_camera_",
+        {
+            "has_recognition": ("hasRecognition", ""),
+            "recognition_enable": ("recognitionEnable", "i"),
+            "recognition_disable": ("recognitionDisable", ""),
+            "recognition_get_sampling_period": ("getRecognitionSamplingPeriod", ""),
+            "recognition_get_number_of_objects": ("getRecognitionNumberOfObjects", ""),
+            "recognition_get_objects": ("getRecognitionObjects", ""),
+            "recognition_has_segmentation": ("hasRecognitionSegmentation", ""),
+            "recognition_enable_segmentation": ("enableRecognitionSegmentation", ""),
+            "recognition_disable_segmentation": ("disableRecognitionSegmentation", ""),
+            "recognition_is_segmentation_enabled": ("isRecognitionSegmentationEnabled", ""),
+            "recognition_get_segmentation_image": ("getRecognitionSegmentationImage", ""),
         },
     ),
     **_table(
@@ -252,6 +275,8 @@ class NativeCalls:
             return [int(result)]
         if isinstance(result, str):
             return [result.encode("utf-8")]
+        if isinstance(result, list) and result and isinstance(result[0], CameraRecognitionObject):
+            return _recognised(result)
         if isinstance(result, (list, tuple)):
             return [[float(v) for v in result]]
         return [result]
@@ -261,3 +286,23 @@ class NativeCalls:
             self._nodes.append(node)
             self._node_handles[id(node)] = len(self._nodes)
         return self._node_handles[id(node)]
+
+
+def _recognised(objects: list[CameraRecognitionObject]) -> list[Any]:
+    """A camera's recognised objects as the link carries them (see the module's docstring)."""
+    numbers: list[float] = []
+    for thing in objects:
+        numbers.append(float(thing.getId()))
+        for values in (
+            thing.getPosition(),
+            thing.getOrientation(),
+            thing.getSize(),
+            thing.getPositionOnImage(),
+            thing.getSizeOnImage(),
+        ):
+            numbers.extend(float(v) for v in values)
+        colors = [float(v) for v in thing.getColors()]
+        numbers.append(float(len(colors) // 3))
+        numbers.extend(colors[: 3 * (len(colors) // 3)])
+    models = b"".join(thing.getModel().encode("utf-8") + b"\0" for thing in objects)
+    return [numbers, models]

@@ -73,6 +73,15 @@ _DEFINED_TWICE = re.compile(
 _FORGOTTEN_HEADER = re.compile(
     r"did you forget to [‘'`]#include <([\w./+-]+)>|include [‘'`]<([\w./+-]+)>[’'`] or provide"
 )
+#: A function of the sources whose name glibc's <stdlib.h> declares by default, as a BSD and
+#: POSIX extension (its random number generator), with another type: Windows' C library has
+#: no such function, so the name was free where the controller was written.
+_REDEFINED_POSIX_NAME = re.compile(
+    r"conflicting types for [‘'`](random|srandom|initstate|setstate)[’'`]"
+)
+#: The C steps' flag that builds them as X/Open C, without glibc's default BSD and POSIX
+#: extensions (M_PI stays declared).
+_POSIX_FREE = ("c", ("-D_XOPEN_SOURCE",))
 #: The definition of a program's ``main`` function, at the start of a line.
 _MAIN = re.compile(r"^[ \t]*(?:int|void)[ \t]+main[ \t]*\(", re.MULTILINE)
 #: Most files read for their includes before a build.
@@ -287,10 +296,10 @@ def _compile_all(
     forced: tuple[str, tuple[str, ...]] = ("", ()),
 ) -> tuple[subprocess.CompletedProcess[str], list[str]]:
     """Compiles and links the controller into ``target``; the last step's result and command.
-    ``forced``: a language (``"c"`` or ``"cpp"``) and standard headers its steps include before
-    the sources (``-include``)."""
+    ``forced``: a language (``"c"`` or ``"cpp"``) and the flags its steps take before the
+    sources (standard headers they include first, ``-include``, or a feature macro)."""
     folder = main.parent
-    prefix = {forced[0]: [part for header in forced[1] for part in ("-include", header)]}
+    prefix = {forced[0]: list(forced[1])}
     c_compiler = compilers[0]
     library = _library(main, c_compiler)
     archived = [str(path) for path in library if path.suffix == ".a"]
@@ -466,8 +475,17 @@ def build(source: str | os.PathLike[str]) -> Build:
         # the author's compiler included them through its other headers (g++ 12's <iomanip>
         # no longer brings <memory>), so the sources are built with them included first.
         step = "cpp" if language == "cpp" and command[0] == compilers[-1] else "c"
+        included = tuple(part for header in forgotten for part in ("-include", header))
         done, command = _compile_all(
-            main, language, compilers, c_sources, cpp_sources, aliases, temporary, (step, forgotten)
+            main, language, compilers, c_sources, cpp_sources, aliases, temporary, (step, included)
+        )
+    redefined = _posix_names_redefined(done.stderr) if done.returncode != 0 else ()
+    if redefined and command[0] == c_compiler:
+        # C functions named as the C library's POSIX extensions (a `double random(int, int)`),
+        # which Windows' C library, the authors', does not declare: the C sources are built
+        # without glibc's default extensions, as X/Open C, which leaves those names free.
+        done, command = _compile_all(
+            main, language, compilers, c_sources, cpp_sources, aliases, temporary, _POSIX_FREE
         )
     if done.returncode != 0:
         temporary.unlink(missing_ok=True)
@@ -506,6 +524,12 @@ def build(source: str | os.PathLike[str]) -> Build:
     if twice:
         names = ", ".join(twice)
         note += f" (left out, their functions defined again by the controller's files: {names})"
+    if redefined:
+        names = ", ".join(redefined)
+        note += (
+            f" (C built without the C library's POSIX extensions, as on Windows, since it defines "
+            f"functions of their names: {names})"
+        )
     if forgotten:
         names = ", ".join(f"<{header}>" for header in forgotten)
         note += (
@@ -513,6 +537,12 @@ def build(source: str | os.PathLike[str]) -> Build:
             f"other compilers' own headers include them: {names})"
         )
     return Build(str(target), note=note)
+
+
+def _posix_names_redefined(stderr: str) -> tuple[str, ...]:
+    """The C library's POSIX extensions the sources define again with other types, as the
+    compiler's errors name them."""
+    return tuple(dict.fromkeys(_REDEFINED_POSIX_NAME.findall(stderr)))
 
 
 def _forgotten_headers(stderr: str) -> tuple[str, ...]:

@@ -6,6 +6,7 @@
 
 #include <stddef.h>
 
+#include <webots/camera_recognition_object.h>
 #include <webots/nodes.h>
 #include <webots/types.h>
 
@@ -43,6 +44,9 @@ typedef struct {
   int led;
   unsigned char *packet;  /* a receiver's head packet, as the last wb_receiver_get_data read it */
   double direction[3];    /* a receiver's head packet's emitter direction */
+  int object_count;       /* a camera's recognised objects, as fetched at `objects_time` */
+  WbCameraRecognitionObject *objects;
+  double objects_time;
 } Device;
 
 typedef struct {

@@ -60,9 +60,36 @@
   }                                                                                              \
   static unsigned char imageGetGray(const unsigned char *image, int width, int x, int y) {       \
     return wb_camera_image_get_gray(image, width, x, y);                                         \
+  }                                                                                              \
+  bool hasRecognition() const { return wb_camera_has_recognition(tag); }                         \
+  void recognitionEnable(int samplingPeriod) {                                                   \
+    wb_camera_recognition_enable(tag, samplingPeriod);                                           \
+  }                                                                                              \
+  void recognitionDisable() { wb_camera_recognition_disable(tag); }                              \
+  int getRecognitionSamplingPeriod() const {                                                     \
+    return wb_camera_recognition_get_sampling_period(tag);                                       \
+  }                                                                                              \
+  int getRecognitionNumberOfObjects() const {                                                    \
+    return wb_camera_recognition_get_number_of_objects(tag);                                     \
+  }                                                                                              \
+  const CameraRecognitionObject *getRecognitionObjects() const {                                 \
+    return wb_camera_recognition_get_objects(tag);                                               \
+  }                                                                                              \
+  bool hasRecognitionSegmentation() const {                                                      \
+    return wb_camera_recognition_has_segmentation(tag);                                          \
+  }                                                                                              \
+  void enableRecognitionSegmentation() { wb_camera_recognition_enable_segmentation(tag); }       \
+  void disableRecognitionSegmentation() { wb_camera_recognition_disable_segmentation(tag); }     \
+  bool isRecognitionSegmentationEnabled() const {                                                \
+    return wb_camera_recognition_is_segmentation_enabled(tag);                                   \
+  }                                                                                              \
+  const unsigned char *getRecognitionSegmentationImage() const {                                 \
+    return wb_camera_recognition_get_segmentation_image(tag);                                    \
   }
 
 namespace webots {
+  // Webots' C++ recognition object is its C struct.
+  typedef WbCameraRecognitionObject CameraRecognitionObject;
   MAZESIM_SENSOR(DistanceSensor, wb_distance_sensor, double, getValue, get_value)
   MAZESIM_SENSOR(PositionSensor, wb_position_sensor, double, getValue, get_value)
   MAZESIM_SENSOR(LightSensor, wb_light_sensor, double, getValue, get_value)

@@ -3,6 +3,7 @@
 #ifndef WB_CAMERA_H
 #define WB_CAMERA_H
 
+#include <webots/camera_recognition_object.h>
 #include <webots/types.h>
 
 #ifdef __cplusplus
@@ -21,6 +22,20 @@ unsigned char wb_camera_image_get_green(const unsigned char *image, int width, i
 unsigned char wb_camera_image_get_blue(const unsigned char *image, int width, int x, int y);
 unsigned char wb_camera_image_get_gray(const unsigned char *image, int width, int x, int y);
 unsigned char wb_camera_image_get_grey(const unsigned char *image, int width, int x, int y);
+
+/* Recognition: what the camera's Python object recognises, carried over the link. The array
+   wb_camera_recognition_get_objects returns stays valid until the next step. */
+bool wb_camera_has_recognition(WbDeviceTag tag);
+void wb_camera_recognition_enable(WbDeviceTag tag, int sampling_period);
+void wb_camera_recognition_disable(WbDeviceTag tag);
+int wb_camera_recognition_get_sampling_period(WbDeviceTag tag);
+int wb_camera_recognition_get_number_of_objects(WbDeviceTag tag);
+const WbCameraRecognitionObject *wb_camera_recognition_get_objects(WbDeviceTag tag);
+bool wb_camera_recognition_has_segmentation(WbDeviceTag tag);
+void wb_camera_recognition_enable_segmentation(WbDeviceTag tag);
+void wb_camera_recognition_disable_segmentation(WbDeviceTag tag);
+bool wb_camera_recognition_is_segmentation_enabled(WbDeviceTag tag);
+const unsigned char *wb_camera_recognition_get_segmentation_image(WbDeviceTag tag);
 
 #ifdef __cplusplus
 }
