@@ -101,8 +101,14 @@ pub struct Importer<'d> {
     /// PROTOs and primitives are Y-up (files before R2022a).
     pub y_up: bool,
     pub obstacles: Vec<Obstacle>,
+    /// Per obstacle, the lines of the nodes that hold it (see [`WbtImport::obstacle_owners`]).
+    pub obstacle_owners: Vec<Vec<usize>>,
     /// Movable bodies: objects with physics light and small enough to push (see `movable`).
     pub bodies: Vec<BodySpec>,
+    /// Per movable body, the lines of the nodes that hold it.
+    pub body_owners: Vec<Vec<usize>>,
+    /// The lines of the nodes the walk is inside, outermost first.
+    holders: Vec<usize>,
     /// The e-puck (or e-puck2) the world runs with.
     pub robot: Option<FoundRobot>,
     /// The first robot that is not an e-puck: the e-puck stands in for it when there is none.
@@ -111,7 +117,7 @@ pub struct Importer<'d> {
     other_robot_warning: Option<(usize, String)>,
     /// Every robot of the world, in file order, with the collision shapes of those that are not
     /// e-pucks (kept as static obstacles unless the e-puck stands in for that robot).
-    pub robots: Vec<(WorldRobot, Vec<Obstacle>)>,
+    pub robots: Vec<(WorldRobot, Vec<Obstacle>, Vec<Vec<usize>>)>,
     pub devices: Vec<ExtensionDevice>,
     pub floor_textures: Vec<FloorTexture>,
     /// Paint of the visual-only shapes lying on the floor (see `floor_marks.rs`).
@@ -137,7 +143,10 @@ pub fn import(doc: &Document, choice: RobotChoice<'_>) -> WbtImport {
         doc,
         y_up: !doc.version.has_z_up_protos(),
         obstacles: Vec::new(),
+        obstacle_owners: Vec::new(),
         bodies: Vec::new(),
+        body_owners: Vec::new(),
+        holders: Vec::new(),
         robot: None,
         other_robot: None,
         other_robot_warning: None,
@@ -174,9 +183,10 @@ pub fn import(doc: &Document, choice: RobotChoice<'_>) -> WbtImport {
         .filter(|r| r.profile == STAND_IN_PROFILE)
         .map(|r| r.line);
     let mut robots = Vec::with_capacity(importer.robots.len());
-    for (found, shapes) in std::mem::take(&mut importer.robots) {
+    for (found, shapes, owners) in std::mem::take(&mut importer.robots) {
         if found.profile.is_none() && Some(found.line) != stand_in_line {
             importer.obstacles.extend(shapes);
+            importer.obstacle_owners.extend(owners);
         }
         robots.push(found);
     }
@@ -187,7 +197,9 @@ pub fn import(doc: &Document, choice: RobotChoice<'_>) -> WbtImport {
     }
     WbtImport {
         obstacles: importer.obstacles,
+        obstacle_owners: importer.obstacle_owners,
         bodies: importer.bodies,
+        body_owners: importer.body_owners,
         robot: robot.as_ref().map(|r| r.pose),
         robot_model: robot.as_ref().map(|r| r.model.clone()),
         robot_line: robot.as_ref().map(|r| r.line),
@@ -363,8 +375,24 @@ impl<'d> Importer<'d> {
         (step, frame)
     }
 
-    /// Walks a node of the scene (outside bounding objects).
+    /// Walks a node of the scene (outside bounding objects); what it emits is held by it (its
+    /// line joins `holders` meanwhile).
     pub fn scene(&mut self, id: NodeId, frame: &Frame, depth: usize) {
+        let line = self.node(id).line;
+        self.holders.push(line);
+        self.scene_node(id, frame, depth);
+        self.holders.pop();
+    }
+
+    /// Records an obstacle, held by the nodes the walk is inside.
+    pub fn emit(&mut self, obstacle: Obstacle) {
+        self.obstacles.push(obstacle);
+        let mut owners = self.holders.clone();
+        owners.dedup();
+        self.obstacle_owners.push(owners);
+    }
+
+    fn scene_node(&mut self, id: NodeId, frame: &Frame, depth: usize) {
         if !self.enter(depth) {
             return;
         }
@@ -522,6 +550,7 @@ impl<'d> Importer<'d> {
             _ => return false,
         };
         self.obstacles.truncate(first);
+        self.body_owners.extend(self.obstacle_owners.drain(first..));
         self.bodies.push(body);
         true
     }
@@ -603,7 +632,7 @@ impl<'d> Importer<'d> {
             profile,
             line: node.line,
         };
-        self.list_robot(node, &found, Some(profile), Vec::new());
+        self.list_robot(node, &found, Some(profile), (Vec::new(), Vec::new()));
         // A node that leaves `controller` out runs its PROTO's default (the E-puck PROTO's
         // `e-puck_avoid_obstacles`, declared so since V8.5); a plain robot node's is `<generic>`.
         let controller = |n: &'d Node| {
@@ -650,7 +679,7 @@ impl<'d> Importer<'d> {
         node: &'d Node,
         found: &FoundRobot,
         profile: Option<&'static str>,
-        shapes: Vec<Obstacle>,
+        shapes: (Vec<Obstacle>, Vec<Vec<usize>>),
     ) {
         let robot = WorldRobot {
             pose: found.pose,
@@ -661,7 +690,7 @@ impl<'d> Importer<'d> {
             def_name: node.def_name.clone(),
             line: node.line,
         };
-        self.robots.push((robot, shapes));
+        self.robots.push((robot, shapes.0, shapes.1));
     }
 
     /// A robot that is not an e-puck: the e-puck stands in for it at its pose (if the world has
@@ -679,7 +708,7 @@ impl<'d> Importer<'d> {
             line: node.line,
         };
         let shapes = self.robot_shapes(node, frame, &label);
-        let kept = if shapes.is_empty() {
+        let kept = if shapes.0.is_empty() {
             "it has no collision shape mazesim reads (a PROTO's are inside the PROTO), so it is no obstacle"
         } else {
             "its collision shapes are static obstacles"
@@ -712,14 +741,20 @@ impl<'d> Importer<'d> {
     }
 
     /// The collision shapes of a plain robot node (its `boundingObject`), in the world frame.
-    fn robot_shapes(&mut self, node: &'d Node, frame: &Frame, label: &str) -> Vec<Obstacle> {
+    fn robot_shapes(
+        &mut self,
+        node: &'d Node,
+        frame: &Frame,
+        label: &str,
+    ) -> (Vec<Obstacle>, Vec<Vec<usize>>) {
         let local = self.local_frame(node, [0.0; 3]);
         let frame = frame.then(&local);
         let first = self.obstacles.len();
         for &shape in self.nodes(node, "boundingObject") {
             self.bounding(shape, &frame, label, 1);
         }
-        self.obstacles.split_off(first)
+        let owners = self.obstacle_owners.split_off(first);
+        (self.obstacles.split_off(first), owners)
     }
 
     /// A robot's start pose: its origin and where its forward axis points.
