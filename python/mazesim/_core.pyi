@@ -394,6 +394,23 @@ class Simulator:
     def ground_sensors(self, robot_index: int = 0) -> npt.NDArray[np.float32]: ...
     def body_poses(self) -> list[tuple[float, float, float]]:
         """Current poses (x, y, yaw) of the world's movable bodies, in world order."""
+    def body_velocities(self) -> list[tuple[float, float, float]]:
+        """Current velocities (vx, vy, turn rate) of the world's movable bodies, in world
+        order."""
+    def move_solid(
+        self,
+        walls: Sequence[int],
+        bodies: Sequence[int],
+        from_pose: Sequence[float],
+        to_pose: Sequence[float],
+    ) -> None:
+        """Moves the ``[[walls]]`` entries ``walls`` and the movable bodies ``bodies`` by the
+        rigid motion taking ``from_pose`` (x, y, yaw) to ``to_pose``, bodies at rest.
+
+        Raises:
+            InvalidArgumentError: An index past the walls or bodies, or a pose beyond the
+                limits; nothing moved.
+        """
     @property
     def pose(self) -> tuple[float, float, float]: ...
     @property

@@ -102,6 +102,11 @@ INSTANCES: dict[str, str] = {
         "__import__('mazesim.webots.supervisor', fromlist=['x']) and"
         " __import__('mazesim.webots', fromlist=['native_calls', 'simulation', 'supervisor']))"
     ),
+    # The walls and bodies a supervisor moves, in a world's simulator.
+    "mazesim.webots.solids.WorldSolids": (
+        "__import__('mazesim.webots.solids', fromlist=['x']).WorldSolids("
+        "[mazesim.Simulator(world)], {})"
+    ),
     # The curriculum wraps a native vector env of an unseen-maze task.
     "mazesim.envs.curriculum.MazeSizeCurriculumWrapper": (
         "(lambda c: c.MazeSizeCurriculumWrapper(__import__('gymnasium').make_vec("

@@ -2,9 +2,13 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
+
+from mazesim.webots import controller
+from mazesim.webots import simulation as simulations
 
 
 @pytest.fixture(scope="session")
@@ -19,3 +23,12 @@ def own_cache(native_build_cache: Path, monkeypatch: pytest.MonkeyPatch) -> Path
     """Builds go to the tests' cache, not the user's."""
     monkeypatch.setenv("MAZESIM_CACHE", str(native_build_cache))
     return native_build_cache
+
+
+@pytest.fixture
+def fresh_robot() -> Iterator[None]:
+    """A test's controller makes its own robot of a prepared world, released after it."""
+    controller.Robot.created = None
+    yield
+    controller.Robot.created = None
+    simulations.release()

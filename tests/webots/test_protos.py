@@ -276,7 +276,11 @@ def test_balls_and_barrels_stand_in_with_their_documented_geometry(
     assert ball["center"] == [0.5, 0.0] and ball["radius"] == pytest.approx(0.113)
     assert ball["mass"] == pytest.approx(0.6)
     assert can["center"] == [0.0, 0.5] and can["radius"] == pytest.approx(0.03175)
-    assert report["obstacles"] == [{"kind": "circle", "center": [-1.0, 0.0], "radius": 0.305}]
+    (barrel,) = report["obstacles"]
+    assert barrel["center"] == [-1.0, 0.0] and barrel["radius"] == 0.305
+    # Each is held by its PROTO instance's node (its expansion is on the instance's line).
+    assert barrel["owners"] == [6] and barrel["walls"][0] == 0
+    assert (ball["owners"], can["owners"]) == ([5], [7])
 
 
 def test_a_projects_robot_proto_is_the_robot_with_its_devices() -> None:

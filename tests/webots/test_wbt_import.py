@@ -210,7 +210,14 @@ def test_text_import_and_errors_carry_line_and_column() -> None:
         "{ radius 0.05 height 0.1 } }\n",
         "round.wbt",
     )
-    assert report["obstacles"] == [{"kind": "circle", "center": [0.0, 0.0], "radius": 0.05}]
+    (circle,) = report["obstacles"]
+    assert circle == {
+        "kind": "circle",
+        "center": [0.0, 0.0],
+        "radius": 0.05,
+        "owners": [2],  # the Solid on line 2 holds it
+        "walls": [0, len(world.wall_boxes())],  # a ring of walls, the world's first
+    }
     assert report["robot"] is None
     assert world.name == "round"
     assert len(world.wall_boxes()) >= 8
@@ -251,10 +258,10 @@ def test_cli_json_layout(tmp_path: Path) -> None:
     assert set(report["protos"]) == {"expanded", "stand_ins", "cache_hits", "downloads"}
     for obstacle in report["obstacles"]:
         if obstacle["kind"] == "box":
-            assert set(obstacle) == {"kind", "center", "size", "yaw"}
+            assert set(obstacle) == {"kind", "center", "size", "yaw", "owners", "walls"}
             assert len(obstacle["center"]) == 2 and len(obstacle["size"]) == 2
         else:
-            assert set(obstacle) == {"kind", "center", "radius"}
+            assert set(obstacle) == {"kind", "center", "radius", "owners", "walls"}
     assert (report["robot_model"], report["robot_profile"]) == ("E-puck", "e-puck")
     assert report["extension_devices"] == [] and report["floor_textures"] == []
     assert set(report["robot"]) == {"x", "y", "yaw"}
@@ -269,7 +276,9 @@ def test_cli_json_layout(tmp_path: Path) -> None:
         mazesim_command("import-wbt", str(round_world), "--json", cwd=tmp_path).stdout
     )
     assert report["robot"] is None
-    assert report["obstacles"] == [{"kind": "circle", "center": [0.1, 0.0], "radius": 0.02}]
+    assert report["obstacles"] == [
+        {"kind": "circle", "center": [0.1, 0.0], "radius": 0.02, "owners": [2], "walls": [0, 11]}
+    ]
 
 
 def test_cli_summary_and_world_file(tmp_path: Path) -> None:

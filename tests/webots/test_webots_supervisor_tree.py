@@ -5,7 +5,6 @@ add nodes to the running world or remove them."""
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
@@ -43,12 +42,7 @@ DEF EPUCK E-puck { translation -0.2 -0.1 0 supervisor TRUE }
 """
 
 
-@pytest.fixture(autouse=True)
-def _fresh_robot() -> Iterator[None]:
-    controller.Robot.created = None
-    yield
-    controller.Robot.created = None
-    simulations.release()
+pytestmark = pytest.mark.usefixtures("fresh_robot")
 
 
 def supervisor_of(text: str, tmp_path: Path) -> controller.Supervisor:

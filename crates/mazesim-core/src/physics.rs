@@ -62,6 +62,8 @@ pub struct Body {
 /// The robot, the walls and the movable bodies in rapier.
 struct Scene {
     world: PhysicsWorld,
+    /// The walls' colliders, in the order of the walls they were made of.
+    walls: Vec<ColliderHandle>,
     /// The robots' bodies, in world order (one but in a world of several robots).
     robots: Vec<RigidBodyHandle>,
     /// The movable bodies with their reflectance, in world order.
@@ -79,6 +81,17 @@ fn wrap_angle(a: f32) -> f32 {
     }
 }
 
+/// The fixed collider of a wall.
+fn wall(w: &WallBox) -> ColliderBuilder {
+    ColliderBuilder::cuboid(w.half[0] as f32, w.half[1] as f32)
+        .position(Pose::new(
+            Vector::new(w.center[0] as f32, w.center[1] as f32),
+            w.yaw as f32,
+        ))
+        .friction(0.0)
+        .restitution(0.0)
+}
+
 impl Scene {
     /// Rapier's world of `walls`, the balls of `robots` (radius and pose of each) and the movable
     /// `bodies`, made in that order.
@@ -90,16 +103,10 @@ impl Scene {
         world.integration_parameters.num_solver_iterations = SOLVER_ITERATIONS_WITH_BODIES;
         world.integration_parameters.normalized_prediction_distance =
             PREDICTION_DISTANCE / LENGTH_UNIT;
-        for w in walls {
-            let collider = ColliderBuilder::cuboid(w.half[0] as f32, w.half[1] as f32)
-                .position(Pose::new(
-                    Vector::new(w.center[0] as f32, w.center[1] as f32),
-                    w.yaw as f32,
-                ))
-                .friction(0.0)
-                .restitution(0.0);
-            world.colliders.insert(collider);
-        }
+        let walls = walls
+            .iter()
+            .map(|w| world.colliders.insert(wall(w)))
+            .collect();
         let robots = robots
             .iter()
             .map(|&(radius, pose)| {
@@ -154,9 +161,28 @@ impl Scene {
             .collect();
         Scene {
             world,
+            walls,
             robots,
             movables,
         }
+    }
+
+    /// Takes `walls` in place of the walls the scene was made among (some of them moved).
+    fn replace_walls(&mut self, walls: &[WallBox]) {
+        let world = &mut self.world;
+        for handle in self.walls.drain(..) {
+            world.colliders.remove(
+                handle,
+                &mut world.islands,
+                &mut world.bodies,
+                &mut world.soft_bodies,
+                true,
+            );
+        }
+        self.walls = walls
+            .iter()
+            .map(|w| world.colliders.insert(wall(w)))
+            .collect();
     }
 
     /// The pose of robot `index`'s body.
@@ -365,6 +391,46 @@ impl Body {
         self.pose
     }
 
+    /// Takes `walls` in place of the walls the scene this body holds was made among (some of
+    /// them moved); nothing to do without one (the walls are then the world's wall index).
+    pub fn replace_walls(&mut self, walls: &[WallBox]) {
+        if let Some(scene) = self.scene.as_mut() {
+            scene.replace_walls(walls);
+        }
+    }
+
+    /// Puts movable body `index` of the scene this body holds at `pose` (x, y, yaw), at rest;
+    /// returns whether there is such a body.
+    pub fn place_movable(&mut self, index: usize, pose: [f32; 3]) -> bool {
+        let Some(scene) = self.scene.as_mut() else {
+            return false;
+        };
+        let Some(&(handle, _, _)) = scene.movables.get(index) else {
+            return false;
+        };
+        let body = &mut scene.world.bodies[handle];
+        body.set_translation(Vector::new(pose[0], pose[1]), true);
+        body.set_rotation(Rotation::new(pose[2]), true);
+        body.set_linvel(Vector::ZERO, true);
+        body.set_angvel(0.0, true);
+        true
+    }
+
+    /// Current velocities (vx, vy in m/s, turn rate in rad/s) of the movable bodies, in world
+    /// order.
+    pub fn movable_velocities(&self) -> Vec<[f32; 3]> {
+        let Some(scene) = self.scene.as_deref() else {
+            return Vec::new();
+        };
+        (scene.movables.iter())
+            .map(|&(handle, _, _)| {
+                let b = &scene.world.bodies[handle];
+                let v = b.linvel();
+                [v.x, v.y, b.angvel()]
+            })
+            .collect()
+    }
+
     /// Current poses (x, y, yaw) of the movable bodies, in world order.
     pub fn movable_poses(&self) -> impl Iterator<Item = [f32; 3]> + '_ {
         let scene = self.scene.as_deref();
@@ -450,6 +516,7 @@ impl Body {
                 + s.world.colliders.len() * (size_of::<Collider>() + size_of::<Cuboid>())
                 + s.movables.capacity() * size_of::<(RigidBodyHandle, ColliderHandle, f32)>()
                 + s.robots.capacity() * size_of::<RigidBodyHandle>()
+                + s.walls.capacity() * size_of::<ColliderHandle>()
         })
     }
 

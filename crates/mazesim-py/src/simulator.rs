@@ -6,7 +6,7 @@ use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyTuple};
 
-use crate::args::{type_name, Bytes, Flag, IntArg, Real};
+use crate::args::{bounded_items, type_name, Bytes, Flag, IntArg, Real};
 use crate::buffers::{copied, readable};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::{enter, enter_detached};
@@ -68,6 +68,31 @@ impl PySimulator {
     fn swarm<T>(&self, f: impl FnOnce(&mut Swarm) -> T) -> PyResult<T> {
         enter(|| self.inner.with(f))
     }
+}
+
+/// A sequence of at most `most` indices, named `name` in errors.
+fn indices(obj: &Bound<'_, PyAny>, name: &str, most: usize) -> PyResult<Vec<usize>> {
+    let items = bounded_items(obj, name, "indices", most)?;
+    (items.iter().enumerate())
+        .map(|(i, item)| {
+            item.extract::<IntArg>()?
+                .count(&format!("{name}[{i}]"), most)
+        })
+        .collect()
+}
+
+/// A pose (x, y, yaw) given as a sequence of three real numbers, named `name` in errors.
+fn pose_argument(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<[f64; 3]> {
+    let items = bounded_items(obj, name, "real numbers (x, y, yaw)", 3)?;
+    let values: Vec<f64> = (items.iter().enumerate())
+        .map(|(i, item)| item.extract::<Real>()?.value(&format!("{name}[{i}]")))
+        .collect::<PyResult<_>>()?;
+    values.try_into().map_err(|found: Vec<f64>| {
+        invalid(format!(
+            "expected {name} to be a pose (x, y, yaw), found {} numbers",
+            found.len()
+        ))
+    })
 }
 
 /// A pose (x, y, yaw) as Python floats.
@@ -447,6 +472,34 @@ impl PySimulator {
         let poses = self.read(|s| s.body_poses())?;
         Ok(poses.into_iter().map(pose_tuple).collect())
     }
+    /// Current velocities (vx, vy in m/s, turn rate in rad/s) of the world's movable bodies, in
+    /// world order.
+    fn body_velocities(&self) -> PyResult<Vec<(f64, f64, f64)>> {
+        let velocities = self.read(|s| s.body_velocities())?;
+        Ok(velocities.into_iter().map(pose_tuple).collect())
+    }
+
+    /// Moves an object of the world, as a supervisor moves a node: the `[[walls]]` entries
+    /// `walls` and the movable bodies `bodies` (indices, world order) by the rigid motion that
+    /// takes the pose `from_pose` (x, y, yaw) to `to_pose`; each body is put at rest. The robots
+    /// meet them there from the next step on. Nothing moves when an index or a pose is refused.
+    #[pyo3(text_signature = "($self, walls, bodies, from_pose, to_pose)")]
+    fn move_solid(
+        &self,
+        walls: &Bound<'_, PyAny>,
+        bodies: &Bound<'_, PyAny>,
+        from_pose: &Bound<'_, PyAny>,
+        to_pose: &Bound<'_, PyAny>,
+    ) -> PyResult<()> {
+        let walls = indices(walls, "walls", mazesim_core::limits::MAX_WALLS)?;
+        let bodies = indices(bodies, "bodies", mazesim_core::limits::MAX_BODIES)?;
+        let motion = mazesim_core::world::Motion {
+            from: pose_argument(from_pose, "from_pose")?,
+            to: pose_argument(to_pose, "to_pose")?,
+        };
+        self.swarm(|s| s.move_solid(&walls, &bodies, motion))?.py()
+    }
+
     #[getter]
     fn time(&self) -> PyResult<f64> {
         self.read(|s| s.time())

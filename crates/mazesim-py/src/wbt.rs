@@ -129,6 +129,8 @@ fn grey_images(images: Option<&Bound<'_, PyAny>>) -> PyResult<BTreeMap<String, G
 }
 
 /// The import as `{"obstacles": [...], "bodies": [...], "robot": {...} | None, "basic_time_step_ms": t,
+/// (each obstacle and body with its `owners`, the lines of the nodes that hold it, and each
+/// obstacle with its `walls`, the first of its walls in the world and how many),
 /// "warnings": [...], "one_controller_warnings": [...], "robot_model", "robot_line", "robot_profile", "extension_devices", "floor_textures",
 /// "floor_paint"}`, in metres and radians, world frame, z up.
 fn report<'py>(py: Python<'py>, import: &WbtImport) -> PyResult<Bound<'py, PyDict>> {
@@ -180,6 +182,15 @@ fn report<'py>(py: Python<'py>, import: &WbtImport) -> PyResult<Bound<'py, PyDic
         d.set_item("mass", mass.get())?;
         d.set_item("friction", friction.get())
     })?;
+    // What a supervisor moves with a node: the obstacles and bodies its line holds.
+    let walls = import.obstacle_walls();
+    for ((d, owners), (first, count)) in obstacles.iter().zip(&import.obstacle_owners).zip(walls) {
+        d.set_item("owners", owners.clone())?;
+        d.set_item("walls", vec![first, count])?;
+    }
+    for (d, owners) in bodies.iter().zip(&import.body_owners) {
+        d.set_item("owners", owners.clone())?;
+    }
     let out = PyDict::new(py);
     out.set_item("obstacles", obstacles)?;
     out.set_item("bodies", bodies)?;

@@ -57,6 +57,7 @@ from mazesim.webots.runner import CONTROLLER_SUFFIXES, EXIT_INTERRUPTED
 from mazesim.webots.scene import Scene, read_scenes
 from mazesim.webots.shared_world import RobotView, shared_simulator
 from mazesim.webots.simulation import place_where_asked, robot_profile_name
+from mazesim.webots.solids import WorldSolids
 from mazesim.webots.stock_controllers import stock_controller
 from mazesim.webots.traction import Traction, epuck_traction
 from mazesim.webots.virtual_display import virtual_display, window_environment
@@ -159,10 +160,17 @@ class WorldRun:
 class Fleet:
     """The world's robots as a supervisor sees them (answered over the controllers' pipes)."""
 
-    def __init__(self, robots: list[Mapping[str, Any]], simulators: list[Any]) -> None:
+    def __init__(
+        self,
+        robots: list[Mapping[str, Any]],
+        simulators: list[Any],
+        report: Mapping[str, Any] | None = None,
+    ) -> None:
         self._robots = robots
         self._simulators = simulators
         self.moved: set[int] = set()
+        #: The world's walls and movable bodies (``report``: the world's import report).
+        self.solids = WorldSolids(self._worlds(), report or {})
 
     def robots(self) -> list[dict[str, Any]]:
         """Each robot's index, ``def_name``, ``name``, ``model`` and ``line``."""
@@ -178,6 +186,31 @@ class Fleet:
         """Puts a robot at a new pose, at rest."""
         place_where_asked(self._simulators[index], x, y, yaw)
         self.moved.add(index)
+
+    def _worlds(self) -> list[Any]:
+        """The simulators that each hold the world's walls and movable bodies: the e-pucks'
+        shared one first, then those of e-pucks that run in simulators of their own (another
+        robot's holds neither); all of them in a world without e-pucks."""
+        shared = [s.simulator for s in self._simulators if isinstance(s, RobotView)][:1]
+        own = [
+            s
+            for s, robot in zip(self._simulators, self._robots)
+            if not isinstance(s, RobotView) and robot.get("profile") is not None
+        ]
+        return shared + own or list(self._simulators)
+
+    def body_poses(self) -> list[tuple[float, float, float]]:
+        """The movable bodies' poses (x, y, yaw) now, in world order."""
+        return self.solids.body_poses()
+
+    def body_velocities(self) -> list[tuple[float, float, float]]:
+        """The movable bodies' velocities (vx, vy, turn rate) now, in world order."""
+        return self.solids.body_velocities()
+
+    def move_node(self, line: int, from_pose: Any, to_pose: Any) -> None:
+        """Moves what the node on ``line`` holds, in every simulator that holds the world's
+        walls and bodies (see :meth:`~mazesim.webots.solids.WorldSolids.move_node`)."""
+        self.solids.move_node(line, from_pose, to_pose)
 
 
 def controller_of(
@@ -294,7 +327,7 @@ def run_world(
         index: replace(job, prepared=replace(prepared[job.controller], virtual_display=False))
         for index, job in jobs.items()
     }
-    fleet = Fleet(robots, simulators)
+    fleet = Fleet(robots, simulators, report)
     traction = WorldTraction(scenes, robots, simulators)
     movable = [robot.get("profile") is not None for robot in robots]
     started = time.perf_counter()

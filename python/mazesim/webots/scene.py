@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 import re
+from bisect import bisect_left
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
@@ -90,6 +91,8 @@ class SceneNode:
             (:data:`GROUPING_TYPES`); their ``translation`` and ``rotation`` are in its frame.
         nodes: The node of each of its fields that holds one node (a Shape's ``geometry`` and
             ``appearance``, an Appearance's ``material``, a Solid's ``boundingObject``).
+        line: The line of its node type in the file (the import report's ``owners`` name the
+            obstacles and bodies a node holds by it); 0 when unknown.
     """
 
     type_name: str
@@ -103,6 +106,7 @@ class SceneNode:
     strings: dict[str, str] = field(default_factory=dict)
     children: list[SceneNode] = field(default_factory=list)
     nodes: dict[str, SceneNode] = field(default_factory=dict)
+    line: int = 0
 
     @property
     def base_type(self) -> str:
@@ -253,7 +257,10 @@ def _scene(
     for node in every:
         if node.def_name is not None and node.use_name is None:
             scene.defs.setdefault(node.def_name, node.type_name)
-    scene.nodes = _scene_nodes(tree, robot, scene.nue, _definitions(every))
+    newlines = [i for i, char in enumerate(text) if char == "\n"]
+    scene.nodes = _scene_nodes(
+        tree, robot, scene.nue, _definitions(every), lambda at: bisect_left(newlines, at) + 1
+    )
     # Without a robot node, the whole file stands for it.
     own: list[Node] = every
     if robot is not None:
@@ -454,7 +461,11 @@ def _definitions(every: list[Node]) -> dict[int, Node]:
 
 
 def _scene_nodes(
-    tree: list[Node], robot: Node | None, nue: bool, used: dict[int, Node]
+    tree: list[Node],
+    robot: Node | None,
+    nue: bool,
+    used: dict[int, Node],
+    line_of: Callable[[int], int],
 ) -> list[SceneNode]:
     """The nodes at the top of the file, the robot's marked, each grouping node
     (:data:`GROUPING_TYPES`) with the nodes of its ``children`` field, in file order, and each
@@ -497,7 +508,8 @@ def _scene_nodes(
                     pending.extend((n, inner, None) for n in reversed(listed))
                 continue
             children, singles = visited
-            made[id(node)] = _scene_node(node, node is robot, children, nue)
+            line = line_of(node.type_start)
+            made[id(node)] = _scene_node(node, node is robot, children, nue, line)
             made[id(node)].nodes.update(singles)
             into.append(made[id(node)])
         return top
@@ -531,8 +543,11 @@ def _single_nodes(node: Node) -> list[tuple[str, Node]]:
 _NOT_OWN = {"translation", "rotation", "name", "hidden"}
 
 
-def _scene_node(node: Node, robot: bool, children: list[SceneNode], nue: bool) -> SceneNode:
-    """The :class:`SceneNode` of a node of the tree, its ``children`` made already."""
+def _scene_node(
+    node: Node, robot: bool, children: list[SceneNode], nue: bool, line: int
+) -> SceneNode:
+    """The :class:`SceneNode` of a node of the tree (on ``line``), its ``children`` made
+    already."""
     numbers, flags, strings = {}, {}, {}
     for item in node.own_fields():
         if item.name in _NOT_OWN:
@@ -560,4 +575,5 @@ def _scene_node(node: Node, robot: bool, children: list[SceneNode], nue: bool) -
         flags=flags,
         strings=strings,
         children=children,
+        line=line,
     )

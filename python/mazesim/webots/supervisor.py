@@ -2,7 +2,9 @@
 
 The supervisor sees the scene tree's root, whose ``children`` are the world file's top-level
 nodes (their type, DEF name and, read from the file, their ``translation``, ``rotation`` and
-``name``: snapshots that can be set but move nothing in the simulation), the ``children`` of
+``name``; setting the pose of a node that holds walls or movable bodies moves them in the
+simulation, and a movable body's node reads its live pose: :mod:`mazesim.webots.solids`;
+other nodes' are snapshots that move nothing), the ``children`` of
 the plain Solid, Transform, Pose and Group nodes among them, and theirs (snapshots too), the
 robot's node among them (``getSelf``, ``getFromDef`` of its DEF name) and the file's other DEF
 nodes (their type). A call that would add nodes to the running world or remove them prints
@@ -19,6 +21,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from mazesim.errors import MazesimError
 from mazesim.webots import simulation as _simulations
 from mazesim.webots.devices import _print_error, webots_property
 from mazesim.webots.frames import (
@@ -29,12 +32,14 @@ from mazesim.webots.frames import (
     placed,
     rotation_matrix,
 )
+from mazesim.webots.importer import E_PUCK_MODELS
 from mazesim.webots.inert import ContactPoint, NotSimulated
 from mazesim.webots.node_types import NODE_TYPES
 from mazesim.webots.proto_fields import declared_fields
 from mazesim.webots.radio_devices import E_PUCK_CHANNEL
 from mazesim.webots.robot import Robot
 from mazesim.webots.scene import EPUCK_TYPES, GROUPING_TYPES, SceneNode
+from mazesim.webots.solids import Held, Pose2, composed, held_by_line, relative, world_objects
 
 __all__ = ["Field", "Node", "Supervisor"]
 
@@ -165,7 +170,7 @@ class Field(NotSimulated):
         if self._type != self.SF_NODE:
             self._wrong("get_sf_node")
             return None
-        return self._node._held.get(self._name)
+        return self._node._field_nodes.get(self._name)
 
     def importMFNodeFromString(self, position: int, nodeString: str) -> None:
         """Webots' kind of error: mazesim adds no nodes to a running world."""
@@ -202,25 +207,29 @@ class Field(NotSimulated):
         )
 
     def getSFVec3f(self) -> list[float] | None:
-        """The node's translation [x, y, z] in metres (world frame; the robot's is live), or
-        another field of three numbers as the world file gives it."""
+        """The node's translation [x, y, z] in metres (in its parent's frame; a robot's and a
+        movable body's are live), or another field of three numbers as the world file gives
+        it."""
         if self._name != "translation":
             return self._numbers("get_sf_vec3f", (self.SF_VEC3F, self.SF_COLOR))
         node = self._node
-        return node.getPosition() if node._live else _out(list(node._translation or ()))
+        if node._live:
+            x, y, _ = node._field_pose()
+            return _out([x, y, node._field_height()])
+        return _out(list(node._translation or ()))
 
     def setSFVec3f(self, values: list[float]) -> None:
-        """Moves the robot to [x, y, z] (z is ignored: the robot stays on the floor); another
-        node's translation is recorded (its walls do not move)."""
+        """Moves the robot, or what the node holds, to [x, y, z] (z is ignored: everything stays
+        on the floor); another node's translation is recorded."""
         if self._name != "translation":
             self._wrong("set_sf_vec3f")
             return
         node = self._node
         x, y, z = _in(_padded(values, 3))
         if node._live:
-            node._move(x, y, node._pose()[2])
+            node._set_field_pose(x, y, node._field_pose()[2])
         else:
-            node._translation = (x, y, z)
+            node._place(translation=(x, y, z))
 
     def getSFRotation(self) -> list[float] | None:
         """The node's rotation as axis and angle (the robot's is live: [0, 0, 1, yaw])."""
@@ -228,12 +237,13 @@ class Field(NotSimulated):
             self._wrong("get_sf_rotation")
             return None
         node = self._node
-        rotation = [0.0, 0.0, 1.0, node._pose()[2]] if node._live else list(node._rotation or ())
+        live = [0.0, 0.0, 1.0, node._field_pose()[2]] if node._live else None
+        rotation = live or list(node._rotation or ())
         return [*_out(rotation[:3]), rotation[3]] if rotation else rotation
 
     def setSFRotation(self, values: list[float]) -> None:
-        """Turns the robot to an axis-angle rotation (its yaw about z is kept); another node's
-        rotation is recorded (its walls do not turn)."""
+        """Turns the robot, or what the node holds, to an axis-angle rotation (its yaw about z is
+        kept); another node's rotation is recorded."""
         if self._name != "rotation":
             self._wrong("set_sf_rotation")
             return
@@ -241,10 +251,10 @@ class Field(NotSimulated):
         ax, ay, az, angle = _padded(values, 4)
         ax, ay, az = _in([ax, ay, az])
         if node._live:
-            x, y, _ = node._pose()
-            node._move(x, y, _yaw_of_rotation([ax, ay, az, angle]))
+            x, y, _ = node._field_pose()
+            node._set_field_pose(x, y, _yaw_of_rotation([ax, ay, az, angle]))
         else:
-            node._rotation = (ax, ay, az, angle)
+            node._place(rotation=(ax, ay, az, angle))
 
     def _numbers(self, function: str, types: tuple[int, ...]) -> list[float] | None:
         if self._type not in types or self._name not in self._node._numbers:
@@ -407,7 +417,14 @@ class Node(NotSimulated):
         self._numbers: dict[str, list[float]] = {}
         self._flags: dict[str, bool] = {}
         #: The node of each of its fields that holds one (a Shape's ``geometry``...).
-        self._held: dict[str, Node] = {}
+        self._field_nodes: dict[str, Node] = {}
+        #: The line of its node type in the world file (0: unknown).
+        self._line = 0
+        #: The obstacles and movable bodies it holds (moved with it).
+        self._held = Held()
+        #: Its pose in the frame of the one movable body it holds alone (it follows that
+        #: body), and its height; None otherwise.
+        self._on_body: tuple[Pose2, float] | None = None
 
     @classmethod
     def from_scene(cls, node: SceneNode, node_id: int) -> Node:
@@ -432,6 +449,7 @@ class Node(NotSimulated):
             for channel in ("emitter_channel", "receiver_channel"):
                 made._numbers.setdefault(channel, [float(E_PUCK_CHANNEL)])
         made._flags = dict(node.flags)
+        made._line = node.line
         made._strings.update(node.strings)
         # The fields the PROTO declares that the file leaves out, at their defaults.
         declared = declared_fields(node.type_name)
@@ -453,7 +471,7 @@ class Node(NotSimulated):
 
     def _hold(self, nodes: dict[str, Node]) -> None:
         """Makes ``nodes`` the nodes of the node's single-node fields, by field name."""
-        self._held = nodes
+        self._field_nodes = nodes
         for node in nodes.values():
             if node._parent is None:
                 node._parent = self
@@ -484,18 +502,89 @@ class Node(NotSimulated):
         frame = WORLD_FRAME
         for node in reversed(chain):
             if node._live:
-                x, y, yaw = node._pose()
-                frame = placed(frame, (x, y, 0.0), (0.0, 0.0, 1.0, yaw))
+                x, y, yaw = node._field_pose()
+                frame = placed(frame, (x, y, node._field_height()), (0.0, 0.0, 1.0, yaw))
             else:
                 frame = placed(frame, node._translation or (0.0, 0.0, 0.0), node._rotation)
         return frame
 
     @property
     def _live(self) -> bool:
-        """Whether the node's pose is a robot's in the simulation (its own or another's)."""
-        return self._robot or self._fleet_index is not None
+        """Whether the node's pose is the simulation's: a robot's (its own or another's) or
+        that of the movable body it holds."""
+        return self._robot or self._fleet_index is not None or self._on_body is not None
+
+    def _hold(self, held: Held, bodies: list[dict[str, Any]]) -> None:
+        """Makes the node hold ``held`` (``bodies``: the import report's): it follows the one
+        movable body it holds alone."""
+        self._held = held
+        if len(held.bodies) != 1 or held.walls or self._translation is None:
+            return
+        body = bodies[held.bodies[0]]
+        if body.get("owners", [0])[-1] != self._line:
+            return  # a node above the body's own: it stays where it is as the body moves
+        start = (float(body["center"][0]), float(body["center"][1]), float(body.get("yaw", 0.0)))
+        origin = self._world_frame()[0]
+        self._on_body = (relative(start, self._planar()), origin[2])
+
+    def _parent_planar(self) -> Pose2:
+        """The pose seen from above of the frame the node's fields are in (its parent's)."""
+        if self._parent is None or self._parent._parent is None:
+            return 0.0, 0.0, 0.0
+        return self._parent._planar()
+
+    def _field_pose(self) -> Pose2:
+        """A live node's translation x, y and yaw as its fields give them (in its parent's
+        frame: a robot's is the world's)."""
+        pose = self._pose()
+        return relative(self._parent_planar(), pose) if self._on_body is not None else pose
+
+    def _field_height(self) -> float:
+        """A live node's translation z: a movable body's as the file gives it, 0 for a robot."""
+        return self._translation[2] if self._on_body and self._translation else 0.0
+
+    def _set_field_pose(self, x: float, y: float, yaw: float) -> None:
+        """Moves a live node to the translation x, y and yaw given in its parent's frame."""
+        if self._on_body is not None:
+            x, y, yaw = composed(self._parent_planar(), (x, y, yaw))
+        self._move(x, y, yaw)
+
+    def _planar(self) -> Pose2:
+        """The node's pose seen from above, composed through the nodes above it."""
+        origin, matrix = self._world_frame()
+        return origin[0], origin[1], math.atan2(matrix[3], matrix[0])
+
+    def _move_held(self, before: Pose2, after: Pose2) -> bool:
+        """Moves what the node holds by the motion from ``before`` to ``after``; False, with
+        Webots' kind of error, when the simulation refuses it."""
+        try:
+            world_objects(self._simulation()).move_node(self._line, before, after)
+        except MazesimError as refused:
+            _print_error(f"Error: {self._label()} cannot be moved there: {refused}")
+            return False
+        return True
+
+    def _place(
+        self,
+        translation: tuple[float, float, float] | None = None,
+        rotation: tuple[float, float, float, float] | None = None,
+    ) -> None:
+        """Sets the ``translation`` or ``rotation`` of a node whose pose is read from the file:
+        what it holds moves with it (its field stays as it was when that is refused)."""
+        before = self._planar() if self._held else None
+        kept = (self._translation, self._rotation)
+        self._translation = translation or self._translation
+        self._rotation = rotation or self._rotation
+        if before is not None and not self._move_held(before, self._planar()):
+            self._translation, self._rotation = kept
 
     def _pose(self) -> tuple[float, float, float]:
+        if self._on_body is not None:
+            index = self._held.bodies[0]
+            poses = world_objects(self._simulation()).body_poses()
+            if index < len(poses):
+                x, y, yaw = poses[index]
+                return composed((float(x), float(y), float(yaw)), self._on_body[0])
         if self._fleet_index is not None:
             x, y, yaw = self._simulation().fleet.pose(self._fleet_index)
             return float(x), float(y), float(yaw)
@@ -508,7 +597,12 @@ class Node(NotSimulated):
         return self._translation[0], self._translation[1], yaw
 
     def _move(self, x: float, y: float, yaw: float) -> None:
-        """Moves the robot in the simulation, at rest."""
+        """Moves the robot, or the movable body the node follows, in the simulation, at rest."""
+        if self._on_body is not None:
+            self._move_held(self._pose(), (x, y, yaw))
+            return
+        if self._held and not self._move_held(self._pose(), (x, y, yaw)):
+            return  # a robot kept as an obstacle: refused where its obstacle cannot go
         if self._fleet_index is not None:
             self._simulation().fleet.move(self._fleet_index, x, y, yaw)
             return
@@ -560,7 +654,7 @@ class Node(NotSimulated):
         types = dict.fromkeys(self._strings, Field.SF_STRING)
         if self._type_name in GROUPING_TYPES:
             types["children"] = Field.MF_NODE
-        types.update(dict.fromkeys(self._held, Field.SF_NODE))
+        types.update(dict.fromkeys(self._field_nodes, Field.SF_NODE))
         types.update(dict.fromkeys(self._flags, Field.SF_BOOL))
         for name, values in self._numbers.items():
             kinds = {1: Field.SF_FLOAT, 2: Field.SF_VEC2F, 3: Field.SF_VEC3F, 4: Field.SF_ROTATION}
@@ -596,7 +690,7 @@ class Node(NotSimulated):
         through theirs; NaN for a node whose position the world file does not give)."""
         if self._live:
             x, y, _ = self._pose()
-            return _out([x, y, 0.0])
+            return _out([x, y, self._on_body[1] if self._on_body is not None else 0.0])
         if self._nested and self._translation is not None:
             return _out(self._world_frame()[0])
         return _out(list(self._translation)) if self._translation else [math.nan] * 3
@@ -624,17 +718,24 @@ class Node(NotSimulated):
 
     def getVelocity(self) -> list[float]:
         """Linear and angular velocity [vx, vy, vz, wx, wy, wz] (m/s, rad/s, world frame)."""
-        if not self._robot:
+        if self._on_body is not None:
+            moving = world_objects(self._simulation()).body_velocities()
+            vx, vy, yaw_rate = moving[self._held.bodies[0]]
+        elif not self._robot:
             return [0.0] * 6
-        vx, vy, yaw_rate = self._simulation().velocity
+        else:
+            vx, vy, yaw_rate = self._simulation().velocity
         return [*_out([vx, vy, 0.0]), *_out([0.0, 0.0, yaw_rate])]
 
     def setVelocity(self, velocity: list[float]) -> None:
         """Accepted; the robot's velocity comes from its wheels."""
 
     def resetPhysics(self) -> None:
-        """Stops the robot's motion (its wheels' speeds still apply at the next step); other
-        nodes are static."""
+        """Stops the robot's motion (its wheels' speeds still apply at the next step), or that
+        of the movable bodies the node holds; other nodes are static."""
+        if self._held.bodies:
+            here = self._planar() if self._on_body is None else self._pose()
+            world_objects(self._simulation()).move_node(self._line, here, here)
         if self._robot:
             self._simulation().velocity = (0.0, 0.0, 0.0)
 
@@ -659,7 +760,7 @@ class Node(NotSimulated):
             + (1 if posed else 0)
             + (1 if self._live or self._rotation else 0)
             + (1 if self._type_name in GROUPING_TYPES else 0)
-            + len(self._held)
+            + len(self._field_nodes)
         )
 
     def getStaticBalance(self) -> bool:
@@ -719,8 +820,8 @@ def _follow_robots(nodes: list[Node], robots: list[dict[str, Any]], own: int) ->
         if robot["index"] == own:
             continue
         for node in nodes:
-            if node._robot or node._fleet_index is not None:
-                continue
+            if node._robot or node._fleet_index is not None or node._held:
+                continue  # a robot kept as an obstacle moves as one
             same_def = bool(robot.get("def_name")) and node.getDef() == robot["def_name"]
             same_name = not robot.get("def_name") and robot.get("name") is not None
             if same_def or (same_name and node._strings.get("name") == robot["name"]):
@@ -772,6 +873,17 @@ class Supervisor(Robot):
         for node_id, child in reversed(list(enumerate(children, start=1))):
             child._id = node_id  # a node a USE lists again keeps the id of its first place
         self._nodes: dict[str, Node] = {}
+        held = held_by_line(self._simulation.report)
+        bodies = self._simulation.report.get("bodies", [])
+        for node in made.values():
+            if node._line in held and not node._robot:
+                node._hold(held[node._line], bodies)
+        # The robot of the run when it is no e-puck: its collision shapes are the world's
+        # obstacles (though not in its own import, where the e-puck stands in for it).
+        model = self._simulation.report.get("robot_model")
+        if model is not None and model not in E_PUCK_MODELS:
+            self._self._line = int(self._simulation.report.get("robot_line") or 0)
+            self._self._held = Held(obstacle=True)
         if self._simulation.fleet is not None:
             _follow_robots(
                 [*children, *self._nested_nodes],

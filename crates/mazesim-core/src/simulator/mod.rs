@@ -592,6 +592,26 @@ impl Simulator {
         self.body.movable_poses().collect()
     }
 
+    /// Current velocities (vx, vy in m/s, turn rate in rad/s) of the world's movable bodies, in
+    /// world order (empty but in the simulator that holds the bodies' scene).
+    pub fn body_velocities(&self) -> Vec<[f32; 3]> {
+        self.body.movable_velocities()
+    }
+
+    /// Puts movable body `index` at `pose`, at rest, in the scene this simulator holds; returns
+    /// whether it holds that body.
+    pub(crate) fn place_body(&mut self, index: usize, pose: [f32; 3]) -> bool {
+        self.body.place_movable(index, pose)
+    }
+
+    /// Takes `world`, this one with some walls moved (`World::with_walls_moved`): the physics
+    /// meets them and the next step's sensors see them where they are now.
+    pub(crate) fn take_world(&mut self, world: Arc<World>) {
+        self.world = world;
+        self.body.replace_walls(self.world.solid_walls());
+        self.update_contact();
+    }
+
     /// Distance sensor readings in device order (raw counts or volts, per the profile).
     pub fn distance_sensors(&self) -> &[f32] {
         &self.distance_readings

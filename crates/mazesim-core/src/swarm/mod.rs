@@ -29,7 +29,7 @@ use crate::simulator::{
     move_in_scene, place_in_scene, share_scene, Drive, Neighbour, Others, Rig, SceneStep,
     SimConfig, Simulator, START_OVERLAP,
 };
-use crate::world::World;
+use crate::world::{Motion, World};
 
 /// The seed of the noise stream of robot `index`, named `name`, of a world run with `seed`: the
 /// seed itself for robot 0, and for the others the first SplitMix64 output of the seed mixed with
@@ -446,6 +446,37 @@ impl Swarm {
             place_in_scene(&mut self.robots, index);
         }
         sense_robots(&mut self.robots);
+        Ok(())
+    }
+
+    /// Moves an object of the world by `motion`, as a supervisor moves a node: the `[[walls]]`
+    /// entries `walls` (see `World::with_walls_moved`) and the movable bodies `bodies` (world
+    /// order; each put at rest where the motion takes its pose now). The robots meet the walls
+    /// and bodies there from the next step on. Nothing moves when any index or pose is refused.
+    pub fn move_solid(&mut self, walls: &[usize], bodies: &[usize], motion: Motion) -> Result<()> {
+        motion.check()?;
+        let poses = self.robots[0].body_poses();
+        let mut placed = Vec::with_capacity(bodies.len());
+        for &i in bodies {
+            let Some(pose) = poses.get(i) else {
+                return Err(Error::InvalidArgument(format!(
+                    "expected movable body indices below the world's {} bodies, found {i}",
+                    poses.len()
+                )));
+            };
+            let [x, y, yaw] = motion.apply(pose.map(f64::from));
+            crate::limits::check_pose("movable body", x, y, yaw)?;
+            placed.push((i, [x as f32, y as f32, yaw as f32]));
+        }
+        if !walls.is_empty() {
+            let world = Arc::new(self.robots[0].world().with_walls_moved(walls, motion)?);
+            for robot in &mut self.robots {
+                robot.take_world(world.clone());
+            }
+        }
+        for (i, pose) in placed {
+            self.robots[0].place_body(i, pose);
+        }
         Ok(())
     }
 }

@@ -312,3 +312,150 @@ fn profiles_for_some_of_the_robots_only_are_refused() {
         "{message}"
     );
 }
+
+/// An e-puck at the origin facing +x, a gate wall (`[[walls]]` entry 0) `gate` m ahead of its
+/// centre, and with `with_box` a movable box off to the side.
+fn gate_world(gate: f64, with_box: bool) -> Arc<World> {
+    let body = if with_box {
+        "[[bodies]]\nshape = \"box\"\ncenter = [0.0, 0.3]\nsize = [0.04, 0.04]\nmass = 0.05\n"
+    } else {
+        ""
+    };
+    let text = format!(
+        r#"format = "mazesim-world"
+version = 1
+name = "gate"
+
+[start]
+x = 0.0
+y = 0.0
+
+[[walls]]
+center = [{gate}, 0.0]
+size = [0.02, 0.2]
+
+[[walls]]
+center = [0.8, 0.0]
+size = [0.02, 1.0]
+
+{body}"#
+    );
+    Arc::new(World::from_toml(&text, "gate").unwrap())
+}
+
+/// The e-puck of `world` with noiseless sensors.
+fn quiet(world: Arc<World>) -> Swarm {
+    let config = SimConfig {
+        noise: false,
+        ..SimConfig::default()
+    };
+    Swarm::new(world, epuck(), config).unwrap()
+}
+
+/// The e-puck's front sensors' sum after one step at rest.
+fn front_reading(swarm: &mut Swarm) -> f32 {
+    swarm.step(&[[0.0, 0.0]]).unwrap();
+    let readings = swarm.robots()[0].distance_sensors();
+    readings[0] + readings[7]
+}
+
+#[test]
+fn a_moved_wall_is_seen_and_met_where_it_is_now() {
+    let mut swarm = quiet(gate_world(0.5, false));
+    let far = front_reading(&mut swarm);
+    let motion = Motion {
+        from: [0.5, 0.0, 0.0],
+        to: [0.06, 0.0, 0.0],
+    };
+    swarm.move_solid(&[0], &[], motion).unwrap();
+    let near = front_reading(&mut swarm);
+    assert!(near > far + 500.0, "front sensors {far} -> {near}");
+    for _ in 0..40 {
+        swarm.step(&[[6.0, 6.0]]).unwrap();
+    }
+    let x = swarm.robots()[0].pose()[0];
+    assert!(
+        x < 0.06 - 0.01 - 0.037 + 1e-3,
+        "went through the moved wall to x {x}"
+    );
+    assert!(swarm.robots()[0].collisions() >= 1);
+}
+
+#[test]
+fn moving_a_wall_away_clears_the_way() {
+    let mut swarm = Swarm::new(gate_world(0.06, true), epuck(), SimConfig::default()).unwrap();
+    for _ in 0..20 {
+        swarm.step(&[[6.0, 6.0]]).unwrap();
+    }
+    let blocked = swarm.robots()[0].pose()[0];
+    assert!(blocked < 0.02, "x {blocked}");
+    // The gate turns a quarter turn about its far end: the corridor ahead is open.
+    let motion = Motion {
+        from: [0.06, 0.1, 0.0],
+        to: [0.06, 0.1, std::f64::consts::FRAC_PI_2],
+    };
+    swarm.move_solid(&[0], &[], motion).unwrap();
+    for _ in 0..40 {
+        swarm.step(&[[6.0, 6.0]]).unwrap();
+    }
+    let x = swarm.robots()[0].pose()[0];
+    assert!(x > 0.15, "still blocked at x {x}");
+}
+
+#[test]
+fn a_moved_box_is_seen_and_pushed_from_where_it_was_put() {
+    let mut swarm = quiet(gate_world(0.5, true));
+    let clear = front_reading(&mut swarm);
+    let motion = Motion {
+        from: [0.0, 0.3, 0.0],
+        to: [0.07, 0.0, 0.3],
+    };
+    swarm.move_solid(&[], &[0], motion).unwrap();
+    let [x, y, yaw] = swarm.robots()[0].body_poses()[0];
+    assert!((x - 0.07).abs() < 1e-6 && y.abs() < 1e-6 && (yaw - 0.3).abs() < 1e-6);
+    let seen = front_reading(&mut swarm);
+    assert!(seen > clear + 150.0, "front sensors {clear} -> {seen}");
+    for _ in 0..30 {
+        swarm.step(&[[6.0, 6.0]]).unwrap();
+    }
+    assert!(
+        swarm.robots()[0].body_poses()[0][0] > 0.1,
+        "the box was not pushed"
+    );
+    let error = swarm.move_solid(&[], &[1], motion).unwrap_err().to_string();
+    assert!(
+        error.contains("below the world's 1 bodies, found 1"),
+        "{error}"
+    );
+}
+
+#[test]
+fn the_same_moves_give_the_same_run() {
+    let run = || {
+        let mut swarm = Swarm::new(gate_world(0.3, true), epuck(), SimConfig::default()).unwrap();
+        let mut poses = Vec::new();
+        for step in 0..60 {
+            if step == 10 {
+                let motion = Motion {
+                    from: [0.3, 0.0, 0.0],
+                    to: [0.12, 0.02, 0.4],
+                };
+                swarm.move_solid(&[0], &[], motion).unwrap();
+                let to_box = Motion {
+                    from: [0.0, 0.3, 0.0],
+                    to: [0.09, -0.01, 0.2],
+                };
+                swarm.move_solid(&[], &[0], to_box).unwrap();
+            }
+            swarm.step(&[[5.0, 6.0]]).unwrap();
+            let robot = &swarm.robots()[0];
+            poses.push((
+                robot.pose(),
+                robot.body_poses(),
+                robot.distance_sensors().to_vec(),
+            ));
+        }
+        poses
+    };
+    assert_eq!(run(), run());
+}

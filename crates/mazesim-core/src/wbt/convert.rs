@@ -66,6 +66,23 @@ pub fn circle_walls(center: [f64; 2], radius: f64, colour: Option<[f64; 3]>) -> 
 }
 
 impl WbtImport {
+    /// Per obstacle, its first wall among the world's `[[walls]]` (`to_spec`'s, in order) and
+    /// how many walls it is: a box is one, a circle a ring of `polygon_sides`.
+    pub fn obstacle_walls(&self) -> Vec<(usize, usize)> {
+        let mut first = 0;
+        self.obstacles
+            .iter()
+            .map(|obstacle| {
+                let count = match *obstacle {
+                    Obstacle::Box { .. } => 1,
+                    Obstacle::Circle { radius, .. } => polygon_sides(radius),
+                };
+                first += count;
+                (first - count, count)
+            })
+            .collect()
+    }
+
     /// The mazesim world description of this import.
     pub fn to_spec(&self, name: &str) -> WorldSpec {
         let mut walls = Vec::new();

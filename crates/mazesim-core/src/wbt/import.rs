@@ -110,8 +110,14 @@ pub struct Importer<'d> {
     pub colour: Option<[f64; 3]>,
     /// The floor's colour (see `appearance.rs`).
     pub floor_colour: Option<[f64; 3]>,
+    /// Per obstacle, the lines of the nodes that hold it (see [`WbtImport::obstacle_owners`]).
+    pub obstacle_owners: Vec<Vec<usize>>,
     /// Movable bodies: objects with physics light and small enough to push (see `movable`).
     pub bodies: Vec<BodySpec>,
+    /// Per movable body, the lines of the nodes that hold it.
+    pub body_owners: Vec<Vec<usize>>,
+    /// The lines of the nodes the walk is inside, outermost first.
+    holders: Vec<usize>,
     /// The e-puck (or e-puck2) the world runs with.
     pub robot: Option<FoundRobot>,
     /// The first robot that is not an e-puck: the e-puck stands in for it when there is none.
@@ -120,8 +126,8 @@ pub struct Importer<'d> {
     other_robot_warning: Option<(usize, String)>,
     /// Every robot of the world, in file order, with the collision shapes (and their colours)
     /// of those that are not e-pucks (kept as static obstacles unless the e-puck stands in for
-    /// that robot).
-    pub robots: Vec<(WorldRobot, Vec<ColouredObstacle>)>,
+    /// that robot) and the lines of the nodes that hold each shape.
+    pub robots: Vec<(WorldRobot, Vec<ColouredObstacle>, Vec<Vec<usize>>)>,
     pub devices: Vec<ExtensionDevice>,
     pub floor_textures: Vec<FloorTexture>,
     /// Paint of the visual-only shapes lying on the floor (see `floor_marks.rs`).
@@ -152,7 +158,10 @@ pub fn import(doc: &Document, choice: RobotChoice<'_>) -> WbtImport {
         obstacle_colours: Vec::new(),
         colour: None,
         floor_colour: None,
+        obstacle_owners: Vec::new(),
         bodies: Vec::new(),
+        body_owners: Vec::new(),
+        holders: Vec::new(),
         robot: None,
         other_robot: None,
         other_robot_warning: None,
@@ -190,12 +199,13 @@ pub fn import(doc: &Document, choice: RobotChoice<'_>) -> WbtImport {
         .filter(|r| r.profile == STAND_IN_PROFILE)
         .map(|r| r.line);
     let mut robots = Vec::with_capacity(importer.robots.len());
-    for (found, shapes) in std::mem::take(&mut importer.robots) {
+    for (found, shapes, owners) in std::mem::take(&mut importer.robots) {
         if found.profile.is_none() && Some(found.line) != stand_in_line {
             for (shape, colour) in shapes {
                 importer.obstacles.push(shape);
                 importer.obstacle_colours.push(colour);
             }
+            importer.obstacle_owners.extend(owners);
         }
         robots.push(found);
     }
@@ -208,7 +218,9 @@ pub fn import(doc: &Document, choice: RobotChoice<'_>) -> WbtImport {
         obstacles: importer.obstacles,
         obstacle_colours: importer.obstacle_colours,
         floor_colour: importer.floor_colour,
+        obstacle_owners: importer.obstacle_owners,
         bodies: importer.bodies,
+        body_owners: importer.body_owners,
         robot: robot.as_ref().map(|r| r.pose),
         robot_model: robot.as_ref().map(|r| r.model.clone()),
         robot_line: robot.as_ref().map(|r| r.line),
@@ -392,8 +404,26 @@ impl<'d> Importer<'d> {
         (step, frame)
     }
 
-    /// Walks a node of the scene (outside bounding objects).
+    /// Walks a node of the scene (outside bounding objects); what it emits is held by it (its
+    /// line joins `holders` meanwhile).
     pub fn scene(&mut self, id: NodeId, frame: &Frame, depth: usize) {
+        let line = self.node(id).line;
+        self.holders.push(line);
+        self.scene_node(id, frame, depth);
+        self.holders.pop();
+    }
+
+    /// Records an obstacle, in the colour of the Solid being read, held by the nodes the walk
+    /// is inside.
+    pub fn emit(&mut self, obstacle: Obstacle) {
+        self.obstacles.push(obstacle);
+        self.obstacle_colours.push(self.colour);
+        let mut owners = self.holders.clone();
+        owners.dedup();
+        self.obstacle_owners.push(owners);
+    }
+
+    fn scene_node(&mut self, id: NodeId, frame: &Frame, depth: usize) {
         if !self.enter(depth) {
             return;
         }
@@ -555,6 +585,7 @@ impl<'d> Importer<'d> {
         };
         self.obstacles.truncate(first);
         self.obstacle_colours.truncate(first);
+        self.body_owners.extend(self.obstacle_owners.drain(first..));
         self.bodies.push(body);
         true
     }
@@ -636,7 +667,7 @@ impl<'d> Importer<'d> {
             profile,
             line: node.line,
         };
-        self.list_robot(node, &found, Some(profile), Vec::new());
+        self.list_robot(node, &found, Some(profile), (Vec::new(), Vec::new()));
         // A node that leaves `controller` out runs its PROTO's default (the E-puck PROTO's
         // `e-puck_avoid_obstacles`, declared so since V8.5); a plain robot node's is `<generic>`.
         let controller = |n: &'d Node| {
@@ -683,7 +714,7 @@ impl<'d> Importer<'d> {
         node: &'d Node,
         found: &FoundRobot,
         profile: Option<&'static str>,
-        shapes: Vec<ColouredObstacle>,
+        shapes: (Vec<ColouredObstacle>, Vec<Vec<usize>>),
     ) {
         let robot = WorldRobot {
             pose: found.pose,
@@ -694,7 +725,7 @@ impl<'d> Importer<'d> {
             def_name: node.def_name.clone(),
             line: node.line,
         };
-        self.robots.push((robot, shapes));
+        self.robots.push((robot, shapes.0, shapes.1));
     }
 
     /// A robot that is not an e-puck: the e-puck stands in for it at its pose (if the world has
@@ -712,7 +743,7 @@ impl<'d> Importer<'d> {
             line: node.line,
         };
         let shapes = self.robot_shapes(node, frame, &label);
-        let kept = if shapes.is_empty() {
+        let kept = if shapes.0.is_empty() {
             "it has no collision shape mazesim reads (a PROTO's are inside the PROTO), so it is no obstacle"
         } else {
             "its collision shapes are static obstacles"
@@ -750,7 +781,7 @@ impl<'d> Importer<'d> {
         node: &'d Node,
         frame: &Frame,
         label: &str,
-    ) -> Vec<ColouredObstacle> {
+    ) -> (Vec<ColouredObstacle>, Vec<Vec<usize>>) {
         let local = self.local_frame(node, [0.0; 3]);
         let frame = frame.then(&local);
         let first = self.obstacles.len();
@@ -760,9 +791,10 @@ impl<'d> Importer<'d> {
             self.bounding(shape, &frame, label, 1);
         }
         self.colour = outer;
+        let owners = self.obstacle_owners.split_off(first);
         let shapes = self.obstacles.split_off(first);
         let colours = self.obstacle_colours.split_off(first);
-        shapes.into_iter().zip(colours).collect()
+        (shapes.into_iter().zip(colours).collect(), owners)
     }
 
     /// A robot's start pose: its origin and where its forward axis points.

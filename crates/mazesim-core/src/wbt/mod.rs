@@ -133,8 +133,14 @@ pub struct WbtImport {
     pub obstacle_colours: Vec<Option<[f64; 3]>>,
     /// The colour of the floor, when the world gives one (see `appearance.rs`).
     pub floor_colour: Option<[f64; 3]>,
+    /// Per obstacle, the lines of the nodes that hold it, outermost first (the file's node
+    /// that places it, the Solid whose collision shape it is, and those between): moving one
+    /// of those nodes moves it.
+    pub obstacle_owners: Vec<Vec<usize>>,
     /// The movable bodies (light, small objects with physics), in file order.
     pub bodies: Vec<crate::world::spec::BodySpec>,
+    /// Per movable body, the lines of the nodes that hold it, as `obstacle_owners`.
+    pub body_owners: Vec<Vec<usize>>,
     /// The robot's start pose (x, y, yaw), if the world has one: the e-puck's, or that of the
     /// robot the e-puck stands in for.
     pub robot: Option<[f64; 3]>,

@@ -272,8 +272,7 @@ impl<'d> Importer<'d> {
                 "{owner}: a round obstacle of radius {radius:.4} m: kept as a circle; the mazesim world approximates it by a polygon of walls"
             ));
         }
-        self.obstacles.push(obstacle);
-        self.obstacle_colours.push(self.colour);
+        self.emit(obstacle);
     }
 }
 

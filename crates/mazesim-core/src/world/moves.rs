@@ -1,0 +1,190 @@
+//! Moving a group of a world's walls while it runs: an imported object a supervisor moves (a
+//! Solid kept as static walls, a robot kept as an obstacle) takes its walls along.
+
+use std::f64::consts::PI;
+
+use super::values::Finite;
+use super::{distinct, World};
+use crate::error::{Error, Result};
+use crate::world::WallIndex;
+
+/// The rigid motion of the plane that takes the pose `from` (x, y, yaw) to the pose `to`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Motion {
+    /// The pose moved from.
+    pub from: [f64; 3],
+    /// The pose moved to.
+    pub to: [f64; 3],
+}
+
+impl Motion {
+    /// Where the motion takes the pose `pose` (x, y, yaw; the yaw kept in (-pi, pi] when it was).
+    pub fn apply(&self, pose: [f64; 3]) -> [f64; 3] {
+        let [fx, fy, fyaw] = self.from;
+        let [tx, ty, tyaw] = self.to;
+        let turn = tyaw - fyaw;
+        if turn == 0.0 {
+            return [pose[0] - fx + tx, pose[1] - fy + ty, pose[2]];
+        }
+        let (s, c) = turn.sin_cos();
+        let (dx, dy) = (pose[0] - fx, pose[1] - fy);
+        let mut yaw = pose[2] + turn;
+        if yaw > PI {
+            yaw -= 2.0 * PI * ((yaw + PI) / (2.0 * PI)).floor();
+        } else if yaw <= -PI {
+            yaw += 2.0 * PI * ((PI - yaw) / (2.0 * PI)).floor();
+        }
+        [tx + c * dx - s * dy, ty + s * dx + c * dy, yaw]
+    }
+
+    /// Checks both poses against the limits (`crate::limits`).
+    pub fn check(&self) -> Result<()> {
+        let [x, y, yaw] = self.from;
+        crate::limits::check_pose("pose moved from", x, y, yaw)?;
+        let [x, y, yaw] = self.to;
+        crate::limits::check_pose("pose moved to", x, y, yaw)
+    }
+}
+
+impl World {
+    /// This world with the `[[walls]]` entries `walls` (indices into the description's walls)
+    /// moved by `motion`: its description, its walls and their index say where they are now;
+    /// the rest (floor, bodies, robots, checkpoints) is shared as it was. Refused, naming what
+    /// was expected and found: an index past the walls, or a wall moved beyond the limits.
+    pub fn with_walls_moved(&self, walls: &[usize], motion: Motion) -> Result<World> {
+        motion.check()?;
+        let count = self.spec.walls.len();
+        if let Some(&bad) = walls.iter().find(|&&i| i >= count) {
+            return Err(Error::InvalidArgument(format!(
+                "expected wall indices below the world's {count} [[walls]] entries, found {bad}"
+            )));
+        }
+        // The compiled walls: the grid's first, then `[[walls]]`, then `[[segments]]`.
+        let mut every = self.walls().to_vec();
+        let offset = every.len() - count - self.spec.segments.len();
+        let mut spec = self.spec.clone();
+        for &i in walls {
+            let wall = &mut every[offset + i];
+            let [x, y, yaw] = motion.apply([wall.center[0], wall.center[1], wall.yaw]);
+            wall.center = [x, y];
+            wall.yaw = yaw;
+            let b = wall.bounds();
+            let limit = crate::limits::MAX_COORDINATE;
+            if ![b.min, b.max]
+                .as_flattened()
+                .iter()
+                .all(|v| v.abs() <= limit)
+            {
+                return Err(Error::InvalidArgument(format!(
+                    "expected wall {i} moved within [-{limit}, {limit}] m on x and y, found it \
+                     spanning x in [{:?}, {:?}], y in [{:?}, {:?}]",
+                    b.min[0], b.max[0], b.min[1], b.max[1]
+                )));
+            }
+            spec.walls[i].center = [Finite(x), Finite(y)];
+            spec.walls[i].yaw = Finite(yaw);
+        }
+        let solid_walls = distinct(&every);
+        let wall_index = WallIndex::new(&solid_walls);
+        let bounds = solid_walls
+            .iter()
+            .fold(self.bounds, |b, w| b.union(w.bounds()));
+        let fingerprint = toml::to_string(&spec)
+            .map(|text| crate::fingerprint::fnv1a(text.as_bytes()))
+            .map_err(|e| Error::InvalidArgument(format!("cannot write the world: {e}")))?;
+        Ok(World {
+            spec,
+            source: self.source.clone(),
+            walls: (every.len() != solid_walls.len()).then_some(every),
+            solid_walls,
+            wall_index,
+            floor: self.floor.clone(),
+            checkpoints: self.checkpoints.clone(),
+            goal: self.goal,
+            start: self.start,
+            robots: self.robots.clone(),
+            bounds,
+            maze: self.maze.clone(),
+            bodies: self.bodies.clone(),
+            paint_colours: self.paint_colours.clone(),
+            fingerprint,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const TWO_WALLS: &str = r#"
+format = "mazesim-world"
+version = 1
+[start]
+x = 0.0
+y = 0.0
+[[walls]]
+center = [0.3, 0.0]
+size = [0.02, 0.4]
+[[walls]]
+center = [-0.3, 0.0]
+size = [0.02, 0.4]
+"#;
+
+    #[test]
+    fn a_motion_takes_its_from_pose_to_its_to_pose() {
+        let motion = Motion {
+            from: [1.0, 2.0, 0.5],
+            to: [-1.0, 0.5, 2.0],
+        };
+        let moved = motion.apply([1.0, 2.0, 0.5]);
+        for (got, want) in moved.iter().zip([-1.0, 0.5, 2.0]) {
+            assert!((got - want).abs() < 1e-12, "{moved:?}");
+        }
+        // A point 1 m ahead of `from` ends 1 m ahead of `to`.
+        let ahead = motion.apply([1.0 + 0.5f64.cos(), 2.0 + 0.5f64.sin(), 0.0]);
+        assert!((ahead[0] - (-1.0 + 2.0f64.cos())).abs() < 1e-12);
+        assert!((ahead[1] - (0.5 + 2.0f64.sin())).abs() < 1e-12);
+    }
+
+    #[test]
+    fn moved_walls_are_where_the_index_finds_them() {
+        let world = World::from_toml(TWO_WALLS, "two").unwrap();
+        let ahead = world.wall_index().cast_ray([0.0, 0.0], [1.0, 0.0], 1.0);
+        assert!((ahead.unwrap().distance - 0.29).abs() < 1e-5);
+        let motion = Motion {
+            from: [0.3, 0.0, 0.0],
+            to: [0.1, 0.0, 0.0],
+        };
+        let moved = world.with_walls_moved(&[0], motion).unwrap();
+        let ahead = moved.wall_index().cast_ray([0.0, 0.0], [1.0, 0.0], 1.0);
+        assert!((ahead.unwrap().distance - 0.09).abs() < 1e-5);
+        assert_eq!(moved.spec().walls[0].center[0].0, 0.1);
+        assert_eq!(moved.walls()[1], world.walls()[1]);
+        assert_ne!(moved.fingerprint(), world.fingerprint());
+        // Moved back, it is the world it was.
+        let back = Motion {
+            from: motion.to,
+            to: motion.from,
+        };
+        assert_eq!(moved.with_walls_moved(&[0], back).unwrap(), world);
+    }
+
+    #[test]
+    fn a_wall_index_past_the_walls_or_a_move_beyond_the_limits_is_refused() {
+        let world = World::from_toml(TWO_WALLS, "two").unwrap();
+        let still = Motion {
+            from: [0.0; 3],
+            to: [0.0; 3],
+        };
+        let error = world.with_walls_moved(&[2], still).unwrap_err().to_string();
+        assert!(
+            error.contains("below the world's 2 [[walls]] entries, found 2"),
+            "{error}"
+        );
+        let far = Motion {
+            from: [0.0; 3],
+            to: [2000.0, 0.0, 0.0],
+        };
+        assert!(world.with_walls_moved(&[0], far).is_err());
+    }
+}

@@ -1,0 +1,121 @@
+"""What a supervisor moves when it moves a node that is not a robot's.
+
+The import report names, for each obstacle (as walls of the world) and each movable body, the
+lines of the world file's nodes that hold it (its ``owners``). A supervisor's node of one of
+those lines holds them: setting its ``translation`` or ``rotation`` moves them all by the rigid
+motion that takes the node's old pose (seen from above) to its new one, in the simulation, at
+the next step. A node that holds one movable body and nothing else follows that body: its
+position, orientation and velocity are the body's, live (a box the robot pushed is where it was
+pushed to).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+__all__ = [
+    "Held",
+    "Pose2",
+    "WorldSolids",
+    "composed",
+    "held_by_line",
+    "relative",
+    "world_objects",
+]
+
+#: A pose seen from above: x, y (m, world frame) and yaw (rad).
+Pose2 = tuple[float, float, float]
+
+
+@dataclass
+class Held:
+    """The obstacles and movable bodies a node holds.
+
+    Attributes:
+        walls: The indices of its walls among the world's ``[[walls]]``.
+        bodies: The indices of its movable bodies, world order.
+        obstacle: Whether it is a robot that is no e-puck, whose collision shapes are the
+            world's obstacles where the world is simulated (not in its own import, where the
+            e-puck stands in for it).
+    """
+
+    walls: list[int] = field(default_factory=list)
+    bodies: list[int] = field(default_factory=list)
+    obstacle: bool = False
+
+    def __bool__(self) -> bool:
+        return bool(self.walls or self.bodies or self.obstacle)
+
+
+def held_by_line(report: Mapping[str, Any]) -> dict[int, Held]:
+    """What the nodes of each line of the world file hold, read from an import report's
+    ``obstacles`` (their ``owners`` and ``walls``) and ``bodies`` (their ``owners``)."""
+    held: dict[int, Held] = {}
+    for obstacle in report.get("obstacles", []):
+        first, count = obstacle.get("walls", (0, 0))
+        for line in obstacle.get("owners", []):
+            held.setdefault(int(line), Held()).walls.extend(range(first, first + count))
+    for index, body in enumerate(report.get("bodies", [])):
+        for line in body.get("owners", []):
+            held.setdefault(int(line), Held()).bodies.append(index)
+    return held
+
+
+class WorldSolids:
+    """The walls and movable bodies of a world's simulators, moved by the line of the node
+    that holds them (a world's wall indices depend on the robot it was imported for: a robot
+    that is not an e-puck is no obstacle in its own import, so the nodes are named by line)."""
+
+    def __init__(self, simulators: list[Any], report: Mapping[str, Any]) -> None:
+        """Over ``simulators`` (each holding a copy of the world, the one whose bodies are read
+        first), imported with ``report``."""
+        self._simulators = simulators
+        self._held = held_by_line(report)
+
+    def body_poses(self) -> list[tuple[float, float, float]]:
+        """The movable bodies' poses (x, y, yaw) now, in world order."""
+        return [tuple(p) for p in self._simulators[0].body_poses()]
+
+    def body_velocities(self) -> list[tuple[float, float, float]]:
+        """The movable bodies' velocities (vx, vy, turn rate) now, in world order."""
+        return [tuple(v) for v in self._simulators[0].body_velocities()]
+
+    def move_node(self, line: int, from_pose: Pose2, to_pose: Pose2) -> None:
+        """Moves what the node on ``line`` holds by the motion from ``from_pose`` to
+        ``to_pose`` (a motion that moves nothing stops its bodies).
+
+        Raises:
+            InvalidArgumentError: A pose beyond the limits; nothing moved.
+        """
+        held = self._held.get(int(line))
+        if not held:
+            return
+        walls = held.walls if tuple(from_pose) != tuple(to_pose) else []
+        for simulator in self._simulators:
+            simulator.move_solid(walls, held.bodies, from_pose, to_pose)
+
+
+def world_objects(simulation: Any) -> Any:
+    """What answers ``body_poses``, ``body_velocities`` and ``move_node`` for the world of a
+    run: the world's robots (the :class:`~mazesim.webots.lockstep.Fleet`) when another process
+    owns the world, else the :class:`WorldSolids` of its simulator."""
+    if simulation.fleet is not None:
+        return simulation.fleet
+    return WorldSolids([simulation.simulator], simulation.report)
+
+
+def relative(base: Pose2, pose: Pose2) -> Pose2:
+    """``pose`` in the frame of ``base``."""
+    dx, dy = pose[0] - base[0], pose[1] - base[1]
+    c, s = math.cos(base[2]), math.sin(base[2])
+    return c * dx + s * dy, -s * dx + c * dy, pose[2] - base[2]
+
+
+def composed(base: Pose2, offset: Pose2) -> Pose2:
+    """The pose ``offset`` gives in the frame of ``base``."""
+    c, s = math.cos(base[2]), math.sin(base[2])
+    x, y, yaw = offset
+    return base[0] + c * x - s * y, base[1] + s * x + c * y, base[2] + yaw
