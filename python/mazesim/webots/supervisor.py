@@ -469,7 +469,7 @@ class Node(NotSimulated):
             if child._parent is None:
                 child._parent = self
 
-    def _hold(self, nodes: dict[str, Node]) -> None:
+    def _adopt_fields(self, nodes: dict[str, Node]) -> None:
         """Makes ``nodes`` the nodes of the node's single-node fields, by field name."""
         self._field_nodes = nodes
         for node in nodes.values():
@@ -805,7 +805,7 @@ def _nest(
             node._adopt(inner)
         fields = list(scene_node.nodes.values())
         kept = _nodes_of(fields, made, robot)
-        node._hold(dict(zip(scene_node.nodes, kept)))
+        node._adopt_fields(dict(zip(scene_node.nodes, kept)))
         singles.update(id(n) for n in kept)
         pending.extend(reversed(list(zip([*kept, *inner], [*fields, *scene_node.children]))))
     for index, node in enumerate(held):
