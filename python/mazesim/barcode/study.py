@@ -35,6 +35,7 @@ import numpy.typing as npt
 
 import mazesim
 from mazesim._core import BatchSimulator, RobotProfile, World
+from mazesim._toml import dump_toml, load_toml
 from mazesim.barcode.codebook import CodeBook
 from mazesim.barcode.decoders import DECODERS, Reading, make_decoder
 from mazesim.barcode.link import UnsyncedLink, check_link
@@ -200,20 +201,16 @@ def random_start_worlds(world: World, count: int, seed: int) -> list[World]:
     cells = _open_cells(world)
     if not cells:
         return [world] * count
-    text = world.to_toml()
-    if "\n[start]" in text:
+    layout = load_toml(world.to_toml(), source=world.name)
+    if "start" in layout:
         return [world] * count
     rng = np.random.default_rng(seed)
     worlds = []
     for _ in range(count):
         x, y = cells[int(rng.integers(len(cells)))]
         yaw = float(rng.uniform(-math.pi, math.pi))
-        worlds.append(
-            World.from_toml(
-                f"{text}\n[start]\nx = {x!r}\ny = {y!r}\nyaw = {yaw!r}\n",
-                source=f"{world.name} (random start)",
-            )
-        )
+        layout["start"] = {"x": x, "y": y, "yaw": yaw}
+        worlds.append(World.from_toml(dump_toml(layout), source=f"{world.name} (random start)"))
     return worlds
 
 
