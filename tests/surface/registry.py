@@ -107,6 +107,13 @@ INSTANCES: dict[str, str] = {
         "__import__('mazesim.webots.solids', fromlist=['x']).WorldSolids("
         "[mazesim.Simulator(world)], {})"
     ),
+    # A recogniser of a camera with Webots' default Recognition node, over no object.
+    "mazesim.webots.recognition.Recogniser": (
+        "__import__('mazesim.webots.recognition', fromlist=['x']).Recogniser("
+        "{'robot_line': 1, 'camera': 'camera', 'max_range': 100.0, 'max_objects': -1, "
+        "'occlusion': 1, 'frame_color': [1.0, 0.0, 0.0], 'frame_thickness': 1, "
+        "'segmentation': False}, [], {})"
+    ),
     # The curriculum wraps a native vector env of an unseen-maze task.
     "mazesim.envs.curriculum.MazeSizeCurriculumWrapper": (
         "(lambda c: c.MazeSizeCurriculumWrapper(__import__('gymnasium').make_vec("

@@ -251,7 +251,9 @@ def test_cli_json_layout(tmp_path: Path) -> None:
         "floor_textures",
         "floor_paint",
         "protos",
+        "recognition",
     }
+    assert report["recognition"] == {"cameras": [], "objects": []}
     (robot,) = report["robots"]
     assert set(robot) == {"pose", "model", "profile", "controller", "name", "def_name", "line"}
     assert robot["line"] == report["robot_line"]

@@ -8,6 +8,9 @@ first sees the floor paint in its colour. A wall, paint or floor that gives no c
 :meth:`mazesim.World.wall_colours`) is grey from its reflectance factor ``f``
 (``(f - 0.2) / 0.8``, so a white floor is 255 and black paint 0, the inverse of the infra-red
 model); anything else sees the sky. Images are BGRA bytes, as Webots gives them.
+
+A camera whose node has a Recognition node recognises objects
+(:mod:`mazesim.webots.recognition`); the E-puck PROTO's own camera has none.
 """
 
 from __future__ import annotations
@@ -24,6 +27,7 @@ import numpy.typing as npt
 from mazesim.webots.devices import _print_error, _Sensor, webots_property
 from mazesim.webots.node_types import node_type
 from mazesim.webots.rays import FloorPaint, WallBoxes
+from mazesim.webots.recognition import CameraPose, RecognisedObject, recogniser_of
 
 if TYPE_CHECKING:
     from mazesim.webots.simulation import RobotSimulation
@@ -188,9 +192,10 @@ def _levels(
 
 
 class CameraRecognitionObject:
-    """An object the camera recognises (the e-puck's camera has no Recognition node)."""
+    """An object the camera recognises (see :mod:`mazesim.webots.recognition`); one made
+    without ``seen`` holds nothing (NaN position, no colour)."""
 
-    def __init__(self) -> None:
+    def __init__(self, seen: RecognisedObject | None = None) -> None:
         self.id = -1
         self.position = [math.nan] * 3
         self.orientation = [math.nan] * 4
@@ -200,13 +205,23 @@ class CameraRecognitionObject:
         self.number_of_colors = 0
         self.colors: list[float] = []
         self.model = ""
+        if seen is not None:
+            self.id = seen.id
+            self.position = list(seen.position)
+            self.orientation = list(seen.orientation)
+            self.size = list(seen.size)
+            self.position_on_image = list(seen.position_on_image)
+            self.size_on_image = list(seen.size_on_image)
+            self.number_of_colors = len(seen.colors) // 3
+            self.colors = list(seen.colors)
+            self.model = seen.model
 
     def getId(self) -> int:
-        """The object's id."""
+        """The object's node id."""
         return self.id
 
     def getPosition(self) -> list[float]:
-        """The object's position relative to the camera."""
+        """The position of the object's centre in the camera's frame (m)."""
         return self.position
 
     def getOrientation(self) -> list[float]:
@@ -214,15 +229,15 @@ class CameraRecognitionObject:
         return self.orientation
 
     def getSize(self) -> list[float]:
-        """The object's size."""
+        """The object's width and height as the camera sees it (m)."""
         return self.size
 
     def getPositionOnImage(self) -> list[int]:
-        """The object's position on the image (pixels)."""
+        """The centre of the object's box on the image (pixels)."""
         return self.position_on_image
 
     def getSizeOnImage(self) -> list[int]:
-        """The object's size on the image (pixels)."""
+        """The size of the object's box on the image (pixels)."""
         return self.size_on_image
 
     def getNumberOfColors(self) -> int:
@@ -230,11 +245,11 @@ class CameraRecognitionObject:
         return self.number_of_colors
 
     def getColors(self) -> list[float]:
-        """The object's colours."""
+        """The object's colours: red, green and blue of each."""
         return self.colors
 
     def getModel(self) -> str:
-        """The object's model."""
+        """The object's ``model`` field."""
         return self.model
 
 
@@ -258,6 +273,13 @@ class Camera(_Sensor):
         self._value = None
         #: Whether the simulator holds this robot alone (it has no ``other_robots``).
         self._alone = False
+        self._recogniser = recogniser_of(
+            simulation.report, name, old_frame=simulation.scene.y_up_devices
+        )
+        self._recognition_period_ms = 0
+        self._recognition_steps = 0
+        self._recognition_from = 0
+        self._recognised: list[CameraRecognitionObject] = []
 
     def _read(self) -> Any:
         if self._walls is None or self._floor is None:
@@ -377,41 +399,118 @@ class Camera(_Sensor):
     def setExposure(self, exposure: float) -> None:
         """Accepted; the rendering has no exposure."""
 
-    def hasRecognition(self) -> bool:
-        """False: the e-puck's camera has no Recognition node."""
+    def _after_step(self) -> None:
+        super()._after_step()
+        steps = self._recognition_steps
+        if steps and (self._simulation.steps - self._recognition_from) % steps == 0:
+            self._recognised = [CameraRecognitionObject(seen) for seen in self._recognise()]
+
+    def _recognise(self) -> list[RecognisedObject]:
+        """What the camera's Recognition node recognises now."""
+        recogniser = self._recogniser
+        assert recogniser is not None
+        if self._walls is None:
+            self._walls = WallBoxes(self._simulation.world)
+        simulation = self._simulation
+        x, y, yaw = (float(v) for v in simulation.simulator.pose)
+        view = self._view
+        camera = CameraPose(
+            x + math.cos(yaw) * view.x,
+            y + math.sin(yaw) * view.x,
+            view.z,
+            yaw,
+            view.pitch,
+            view.width,
+            view.height,
+            view.fov,
+        )
+        robots = None
+        if recogniser.follows_robots and simulation.fleet is not None:
+            robots = simulation.fleet.poses()
+        bodies = None
+        if recogniser.follows_bodies:
+            from mazesim.webots.solids import world_objects
+
+            bodies = world_objects(simulation).body_poses()
+        return recogniser.recognise(camera, self._walls, robots, bodies)
+
+    def _without_recognition(self, function: str) -> bool:
+        """Whether the camera has no Recognition node (then with Webots' error)."""
+        if self._recogniser is None:
+            _print_error(
+                f"Error: wb_camera_recognition_{function}() called on a Camera without "
+                "Recognition node."
+            )
+            return True
         return False
 
+    def hasRecognition(self) -> bool:
+        """Whether the camera's node has a Recognition node (the e-puck's own camera has
+        none; a project's e-puck PROTO may give it one)."""
+        return self._recogniser is not None
+
     def recognitionEnable(self, samplingPeriod: int) -> None:
-        """Webots' error: no Recognition node."""
-        _print_error(
-            "Error: wb_camera_recognition_enable() called on a Camera without Recognition node."
-        )
+        """Recognises objects every ``samplingPeriod`` ms (rounded up to whole basic steps),
+        from the end of the first period on; Webots' error without a Recognition node."""
+        period = int(samplingPeriod)
+        if period < 0:
+            _print_error(
+                "Error: wb_camera_recognition_enable() called with negative sampling period."
+            )
+            return
+        if self._without_recognition("enable"):
+            return
+        self._recognition_period_ms = period
+        basic = self._simulation.basic_time_step_ms
+        self._recognition_steps = max(1, math.ceil(period / basic - 1e-9)) if period else 0
+        self._recognition_from = self._simulation.steps
 
     def recognitionDisable(self) -> None:
-        """Nothing to disable."""
+        """Stops recognising (the objects recognised last stay)."""
+        if not self._without_recognition("disable"):
+            self.recognitionEnable(0)
 
     def getRecognitionSamplingPeriod(self) -> int:
-        """0: recognition is never enabled."""
-        return 0
+        """The period given to :meth:`recognitionEnable`, 0 when disabled."""
+        if self._without_recognition("get_sampling_period"):
+            return 0
+        return self._recognition_period_ms
+
+    def _recognition_reading(self, function: str) -> bool:
+        """Whether the recognised objects can be read (else with Webots' error)."""
+        if self._without_recognition(function):
+            return False
+        if self._recognition_period_ms == 0:
+            _print_error(
+                f"Error: wb_camera_recognition_{function}() called for a disabled device! "
+                "Please use: wb_camera_recognition_enable()."
+            )
+            return False
+        return True
 
     def getRecognitionNumberOfObjects(self) -> int:
-        """0: nothing is recognised."""
-        return 0
+        """How many objects the last recognition found (0 before the first period ends)."""
+        if not self._recognition_reading("get_number_of_objects"):
+            return 0
+        return len(self._recognised)
 
     def getRecognitionObjects(self) -> list[CameraRecognitionObject]:
-        """The empty list: nothing is recognised."""
-        return []
+        """The objects the last recognition found, in world order."""
+        if not self._recognition_reading("get_objects"):
+            return []
+        return list(self._recognised)
 
     def hasRecognitionSegmentation(self) -> bool:
-        """False: no segmentation."""
+        """False: segmentation images are not simulated."""
         return False
 
     def enableRecognitionSegmentation(self) -> None:
-        """Webots' error: no Recognition node."""
-        _print_error(
-            "Error: wb_camera_recognition_enable_segmentation() called on a Camera without "
-            "Recognition node."
-        )
+        """Webots' error: without a Recognition node, or segmentation (not simulated)."""
+        if not self._without_recognition("enable_segmentation"):
+            _print_error(
+                "Error: wb_camera_recognition_enable_segmentation(): segmentation is disabled "
+                "in Recognition node."
+            )
 
     def disableRecognitionSegmentation(self) -> None:
         """Nothing to disable."""

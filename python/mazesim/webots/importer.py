@@ -24,6 +24,7 @@ from mazesim import _core
 from mazesim._core import World
 from mazesim._paths import open_input, read_input
 from mazesim.errors import MazesimIOError
+from mazesim.webots.recognition import RecognitionReport, read_recognition
 
 __all__ = [
     "BoxObstacle",
@@ -142,7 +143,9 @@ class ImportReport(TypedDict):
     rectangles the floor textures gave; ``bodies`` the movable bodies (``kind``, ``center``,
     ``size`` and ``yaw`` or ``radius``, ``mass`` in kg, floor ``friction``, ``owners`` as an
     obstacle's); ``one_controller_warnings`` those of ``warnings`` that concern a run of one
-    controller only (the world's other e-pucks, which a run of the whole world simulates).
+    controller only (the world's other e-pucks, which a run of the whole world simulates);
+    ``recognition`` the cameras' Recognition nodes and the objects with ``recognitionColors``
+    (:mod:`mazesim.webots.recognition`; empty for a file the core reads itself).
     """
 
     obstacles: list[BoxObstacle | CircleObstacle]
@@ -159,6 +162,7 @@ class ImportReport(TypedDict):
     floor_textures: list[FloorTexture]
     floor_paint: int
     protos: ProtoReport
+    recognition: RecognitionReport
 
 
 class ProtoReport(TypedDict):
@@ -305,12 +309,14 @@ def import_wbt(
     file = os.fspath(path)
     text = _world_text(file)
     if text is None:  # not UTF-8 or not readable: the core says why, with the place
-        return _with_floor(
+        world, report = _with_floor(
             _core.import_wbt(file, controller=controller, robot_line=robot_line),
             lambda images: _core.import_wbt(
                 file, floor_images=images, controller=controller, robot_line=robot_line
             ),
         )
+        report["recognition"] = {"cameras": [], "objects": []}
+        return world, report
     return import_wbt_text(text, file, controller=controller, robot_line=robot_line)
 
 
@@ -363,6 +369,7 @@ def import_wbt_text(
         "cache_hits": protos.cache_hits,
         "downloads": protos.downloads,
     }
+    report["recognition"] = read_recognition(expanded)
     return world, report
 
 

@@ -182,6 +182,11 @@ class Fleet:
         x, y, yaw = self._simulators[index].pose
         return float(x), float(y), float(yaw)
 
+    def poses(self) -> list[tuple[float, float, float]]:
+        """Every robot's x, y, yaw now, in the world's order (one answer for a camera that
+        recognises robots)."""
+        return [self.pose(index) for index in range(len(self._simulators))]
+
     def move(self, index: int, x: float, y: float, yaw: float) -> None:
         """Puts a robot at a new pose, at rest."""
         place_where_asked(self._simulators[index], x, y, yaw)

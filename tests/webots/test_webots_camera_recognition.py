@@ -1,0 +1,230 @@
+"""A camera with a Recognition node recognises the world's Solids with recognitionColors: those
+in its field of view and range, not hidden behind walls, with their model, colours, position
+in the camera's frame and place on the image, as Webots' camera recognition gives them."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from mazesim.webots import controller, prepare, run_controller
+from mazesim.webots import simulation as simulations
+from mazesim.webots.importer import import_wbt
+from mazesim.webots.recognition import CameraPose, Recogniser
+from mazesim.webots.scene import read_scene
+from native_controllers import NEEDS_COMPILERS, write_source
+
+HEADER = "#VRML_SIM R2023b utf8\n"
+
+
+def world_text(occlusion: str = "", max_objects: str = "") -> str:
+    """An e-puck at the origin facing +x whose turret camera ``rec`` has a Recognition node;
+    a red box 0.3 m ahead and a little left, a green one 0.6 m ahead and right behind a
+    wall, a blue one beside the robot, out of the field of view."""
+    return (
+        HEADER
+        + "WorldInfo { basicTimeStep 32 }\n"
+        + 'E-puck {\n  controller "<extern>"\n  turretSlot [\n'
+        + '    Camera { translation 0.03 0 0.028 name "rec" width 52 height 39 '
+        + f"fieldOfView 0.84 recognition Recognition {{ {occlusion} {max_objects} }} }}\n"
+        + "  ]\n}\n"
+        + 'Solid { translation 0.3 0.05 0.025 name "red" model "red box" '
+        + "recognitionColors [ 1 0 0 ] children [ Shape { geometry DEF R Box "
+        + "{ size 0.05 0.05 0.05 } } ] boundingObject USE R }\n"
+        + 'Solid { translation 0.6 -0.15 0.025 name "green" model "green box" '
+        + "recognitionColors [ 0 1 0, 0 0.5 0 ] boundingObject Box { size 0.05 0.05 0.05 } }\n"
+        + 'Solid { translation 0.45 -0.1 0.05 name "wall" '
+        + "boundingObject Box { size 0.02 0.1 0.1 } }\n"
+        + 'Solid { translation 0 0.4 0.025 name "blue" model "blue box" '
+        + "recognitionColors [ 0 0 1 ] boundingObject Box { size 0.05 0.05 0.05 } }\n"
+    )
+
+
+@pytest.fixture(autouse=True)
+def release() -> Iterator[None]:
+    yield
+    controller.Robot.created = None
+    simulations.release()
+
+
+def camera_of(tmp_path: Path, text: str) -> tuple[Any, Any]:
+    """The robot and its ``rec`` camera of a world file's ``text``."""
+    world_file = tmp_path / "recognition.wbt"
+    world_file.write_text(text)
+    world, report = import_wbt(world_file)
+    prepare(world, seconds=2.0, noise=False, report=report, scene=read_scene(text))
+    controller.Robot.created = None
+    robot = controller.Robot()
+    return robot, robot.getDevice("rec")
+
+
+def test_the_import_keeps_the_recognition_node_and_the_objects_with_colours(
+    tmp_path: Path,
+) -> None:
+    world_file = tmp_path / "recognition.wbt"
+    world_file.write_text(world_text("maxRange 2 occlusion 0", "maxObjects 3"))
+    _, report = import_wbt(world_file)
+    (camera,) = report["recognition"]["cameras"]
+    assert (camera["camera"], camera["robot_line"]) == ("rec", 3)
+    assert (camera["max_range"], camera["max_objects"], camera["occlusion"]) == (2.0, 3, 0)
+    assert not camera["segmentation"]
+    objects = report["recognition"]["objects"]
+    assert [o["model"] for o in objects] == ["red box", "green box", "blue box"]
+    assert objects[1]["colors"] == [0.0, 1.0, 0.0, 0.0, 0.5, 0.0]
+    assert objects[0]["origin"] == pytest.approx([0.3, 0.05, 0.025])
+    assert objects[0]["box_size"] == pytest.approx([0.05, 0.05, 0.05])
+    # Their ids are their places among the file's top-level nodes, as a supervisor's.
+    assert [o["id"] for o in objects] == [3, 4, 6]
+
+
+def test_the_camera_recognises_the_box_in_view_not_the_hidden_or_the_outside_one(
+    tmp_path: Path,
+) -> None:
+    robot, camera = camera_of(tmp_path, world_text())
+    assert camera.hasRecognition()
+    assert not robot.getDevice("camera").hasRecognition()  # the e-puck's own camera has none
+    camera.recognitionEnable(64)
+    assert camera.getRecognitionSamplingPeriod() == 64
+    robot.step(32)
+    assert camera.getRecognitionNumberOfObjects() == 0  # the first period has not ended
+    robot.step(32)
+    assert camera.getRecognitionNumberOfObjects() == 1
+    (red,) = camera.getRecognitionObjects()
+    assert red.getModel() == "red box"
+    assert red.getColors() == [1.0, 0.0, 0.0] and red.getNumberOfColors() == 1
+    assert red.getId() == 3
+    # x forward, y left, z up (Webots' camera frame since R2022a): ahead, left, a little down.
+    x, y, z = red.getPosition()
+    assert x == pytest.approx(0.27, abs=0.01)
+    assert y == pytest.approx(0.05, abs=0.01)
+    assert z < 0.0
+    assert red.getSize() == pytest.approx([0.05, 0.05], abs=0.01)
+    u, v = red.getPositionOnImage()
+    width, height = red.getSizeOnImage()
+    # Left of the image's centre, by the planar projection of its centre.
+    focal = 51 * 0.5 / math.tan(0.42)
+    assert u == pytest.approx(25.5 - focal * 0.05 / 0.27, abs=2.0)
+    assert u < 25 and 17 <= v <= 22
+    assert 8 <= width <= 12 and 8 <= height <= 12
+
+
+def test_without_occlusion_the_box_behind_the_wall_is_recognised_too(tmp_path: Path) -> None:
+    robot, camera = camera_of(tmp_path, world_text("occlusion 0"))
+    camera.recognitionEnable(32)
+    robot.step(32)
+    objects = camera.getRecognitionObjects()
+    assert [o.getModel() for o in objects] == ["red box", "green box"]
+    green = objects[1]
+    assert green.getPosition()[1] < 0.0  # to the right
+    assert green.getPositionOnImage()[0] > 26
+    assert green.getNumberOfColors() == 2
+
+
+def test_max_objects_keeps_the_biggest_on_the_image_and_max_range_the_near_ones(
+    tmp_path: Path,
+) -> None:
+    robot, camera = camera_of(tmp_path, world_text("occlusion 0", "maxObjects 1"))
+    camera.recognitionEnable(32)
+    robot.step(32)
+    assert [o.getModel() for o in camera.getRecognitionObjects()] == ["red box"]
+    controller.Robot.created = None
+    simulations.release()
+    robot, camera = camera_of(tmp_path, world_text("occlusion 0 maxRange 0.4"))
+    camera.recognitionEnable(32)
+    robot.step(32)
+    assert [o.getModel() for o in camera.getRecognitionObjects()] == ["red box"]
+
+
+def test_recognition_functions_say_webots_errors_when_disabled_or_missing(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    robot, camera = camera_of(tmp_path, world_text())
+    assert camera.getRecognitionNumberOfObjects() == 0
+    assert "wb_camera_recognition_get_number_of_objects() called for a disabled device" in (
+        capsys.readouterr().err
+    )
+    camera.recognitionEnable(32)
+    robot.step(32)
+    camera.recognitionDisable()
+    assert camera.getRecognitionSamplingPeriod() == 0
+    robot.getDevice("camera").recognitionEnable(32)
+    assert "called on a Camera without Recognition node" in capsys.readouterr().err
+
+
+def test_a_recognised_robot_follows_its_live_pose() -> None:
+    settings: Any = {
+        "robot_line": 1,
+        "camera": "camera",
+        "max_range": 100.0,
+        "max_objects": -1,
+        "occlusion": 0,
+        "frame_color": [1.0, 0.0, 0.0],
+        "frame_thickness": 1,
+        "segmentation": False,
+    }
+    target: Any = {
+        "line": 9,
+        "id": 2,
+        "model": "cible",
+        "colors": [0.0, 1.0, 0.0],
+        "origin": [5.0, 5.0, 0.0],
+        "yaw": 0.0,
+        "box_center": [0.0, 0.0, 0.0],
+        "box_size": [0.1, 0.2, 0.1],
+        "round": False,
+    }
+    report = {"robots": [{"line": 1}, {"line": 9}]}
+    recogniser = Recogniser(settings, [target], report)
+    assert recogniser.follows_robots
+    camera = CameraPose(0.0, 0.0, 0.028, 0.0, 0.0, 52, 39, 0.84)
+    assert recogniser.recognise(camera, None) == []  # where the import put it: behind
+    (seen,) = recogniser.recognise(camera, None, [(0.0, 0.0, 0.0), (0.5, -0.05, math.pi / 2)])
+    assert seen.position == pytest.approx((0.5, -0.05, -0.028))
+    # Turned a quarter: its 0.2 m side across the camera's x axis, its 0.1 m side across y.
+    assert seen.size == pytest.approx((0.1, 0.1))
+    assert seen.orientation == pytest.approx((0.0, 0.0, 1.0, math.pi / 2))
+    # Before R2022a: x right, y up, z backward.
+    old = Recogniser(settings, [target], report, old_frame=True)
+    (seen,) = old.recognise(camera, None, [(0.0, 0.0, 0.0), (0.5, -0.05, 0.0)])
+    assert seen.position == pytest.approx((0.05, -0.028, -0.5))
+
+
+RECOGNITION_BODY = """
+  WbDeviceTag camera = wb_robot_get_device("rec");
+  wb_camera_recognition_enable(camera, 32);
+  wb_robot_step(32);
+  const WbCameraRecognitionObject *o = wb_camera_recognition_get_objects(camera);
+  printf("has %d objects %d model %s left %d colours %d\\n", wb_camera_has_recognition(camera),
+         wb_camera_recognition_get_number_of_objects(camera), o[0].model,
+         o[0].position[1] > 0.0, o[0].number_of_colors);
+"""
+
+
+@NEEDS_COMPILERS
+@pytest.mark.usefixtures("own_cache")
+def test_a_c_controller_reads_what_the_camera_recognises(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str]
+) -> None:
+    source = write_source(
+        tmp_path,
+        "recogniser",
+        "#include <stdio.h>\n#include <webots/robot.h>\n#include <webots/camera.h>\n"
+        "#include <webots/camera_recognition_object.h>\n"
+        f"int main(void) {{\n  wb_robot_init();\n{RECOGNITION_BODY}\n  wb_robot_cleanup();\n"
+        "  return 0;\n}\n",
+    )
+    text = world_text()
+    world_file = tmp_path / "recognition.wbt"
+    world_file.write_text(text)
+    world, report = import_wbt(world_file)
+    run = run_controller(
+        source, world, seconds=0.5, noise=False, report=dict(report), scene=read_scene(text)
+    )
+    assert (run.exit_status, run.error) == (0, "")
+    assert (
+        capfd.readouterr().out.splitlines()[-1] == "has 1 objects 1 model red box left 1 colours 1"
+    )
