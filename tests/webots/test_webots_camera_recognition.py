@@ -228,3 +228,37 @@ def test_a_c_controller_reads_what_the_camera_recognises(
     assert (
         capfd.readouterr().out.splitlines()[-1] == "has 1 objects 1 model red box left 1 colours 1"
     )
+
+
+def test_an_object_across_the_edge_of_the_view_is_recognised_clipped_to_it() -> None:
+    settings: Any = {
+        "robot_line": 1,
+        "camera": "camera",
+        "max_range": 100.0,
+        "max_objects": -1,
+        "occlusion": 0,
+        "frame_color": [1.0, 0.0, 0.0],
+        "frame_thickness": 1,
+        "segmentation": False,
+    }
+    # Its centre 5 cm left of the field of view at 0.3 m ahead, its near half inside it.
+    edge = 0.3 * math.tan(0.42)
+    wide: Any = {
+        "line": 5,
+        "id": 4,
+        "model": "wide",
+        "colors": [1.0, 1.0, 0.0],
+        "origin": [0.3, edge + 0.05, 0.0],
+        "yaw": 0.0,
+        "box_center": [0.0, 0.0, 0.0],
+        "box_size": [0.02, 0.2, 0.02],
+        "round": False,
+    }
+    camera = CameraPose(0.0, 0.0, 0.0, 0.0, 0.0, 52, 39, 0.84)
+    (seen,) = Recogniser(settings, [wide], {}).recognise(camera, None)
+    left = seen.position[1] + seen.size[0] / 2.0
+    assert left == pytest.approx(0.31 * math.tan(0.42), abs=1e-9)  # clipped at the edge
+    assert seen.size[0] < 0.2
+    assert seen.position_on_image[0] < 26 and seen.size_on_image[0] < 26
+    wide["origin"] = [0.3, edge + 0.15, 0.0]  # wholly outside
+    assert Recogniser(settings, [wide], {}).recognise(camera, None) == []

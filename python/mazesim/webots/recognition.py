@@ -453,7 +453,7 @@ class Recogniser:
         centre = (origin[0] + c * cx - s * cy, origin[1] + s * cx + c * cy, origin[2] + cz)
         reach = math.sqrt(sum(h * h for h in half))
         gap = math.dist(centre, (camera.x, camera.y, camera.z))
-        if gap > max_range + reach:
+        if gap > max_range + reach or not _may_be_in_view(centre, reach, camera):
             return None
         # The box's axes: the object's, or (a round object) the camera's.
         axes_yaw = camera.yaw if thing["round"] else yaw
@@ -538,6 +538,20 @@ def _in_camera(point: tuple[float, float, float], camera: CameraPose) -> tuple[f
     ahead, left = c * dx + s * dy, -s * dx + c * dy
     cp, sp = math.cos(camera.pitch), math.sin(camera.pitch)
     return ahead * cp - dz * sp, left, ahead * sp + dz * cp
+
+
+def _may_be_in_view(centre: tuple[float, float, float], reach: float, camera: CameraPose) -> bool:
+    """Whether a ball of radius ``reach`` about ``centre`` may meet the field of view (False:
+    wholly behind the camera or beyond a side of the field of view)."""
+    x, y, z = _in_camera(centre, camera)
+    if x < -reach:
+        return False
+    across, up = _half_tangents(camera)
+    for tangent, offset in ((across, abs(y)), (up, abs(z))):
+        # The distance of the centre beyond the side plane at that half angle.
+        if (offset - x * tangent) / math.sqrt(1.0 + tangent * tangent) > reach:
+            return False
+    return True
 
 
 def _half_tangents(camera: CameraPose) -> tuple[float, float]:
