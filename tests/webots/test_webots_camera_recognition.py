@@ -44,6 +44,19 @@ def world_text(occlusion: str = "", max_objects: str = "") -> str:
     )
 
 
+#: The Recognition node of the robot on line 1's camera, without occlusion.
+SETTINGS: Any = {
+    "robot_line": 1,
+    "camera": "camera",
+    "max_range": 100.0,
+    "max_objects": -1,
+    "occlusion": 0,
+    "frame_color": [1.0, 0.0, 0.0],
+    "frame_thickness": 1,
+    "segmentation": False,
+}
+
+
 @pytest.fixture(autouse=True)
 def release() -> Iterator[None]:
     yield
@@ -156,16 +169,6 @@ def test_recognition_functions_say_webots_errors_when_disabled_or_missing(
 
 
 def test_a_recognised_robot_follows_its_live_pose() -> None:
-    settings: Any = {
-        "robot_line": 1,
-        "camera": "camera",
-        "max_range": 100.0,
-        "max_objects": -1,
-        "occlusion": 0,
-        "frame_color": [1.0, 0.0, 0.0],
-        "frame_thickness": 1,
-        "segmentation": False,
-    }
     target: Any = {
         "line": 9,
         "id": 2,
@@ -178,7 +181,7 @@ def test_a_recognised_robot_follows_its_live_pose() -> None:
         "round": False,
     }
     report = {"robots": [{"line": 1}, {"line": 9}]}
-    recogniser = Recogniser(settings, [target], report)
+    recogniser = Recogniser(SETTINGS, [target], report)
     assert recogniser.follows_robots
     camera = CameraPose(0.0, 0.0, 0.028, 0.0, 0.0, 52, 39, 0.84)
     assert recogniser.recognise(camera, None) == []  # where the import put it: behind
@@ -188,7 +191,7 @@ def test_a_recognised_robot_follows_its_live_pose() -> None:
     assert seen.size == pytest.approx((0.1, 0.1))
     assert seen.orientation == pytest.approx((0.0, 0.0, 1.0, math.pi / 2))
     # Before R2022a: x right, y up, z backward.
-    old = Recogniser(settings, [target], report, old_frame=True)
+    old = Recogniser(SETTINGS, [target], report, old_frame=True)
     (seen,) = old.recognise(camera, None, [(0.0, 0.0, 0.0), (0.5, -0.05, 0.0)])
     assert seen.position == pytest.approx((0.05, -0.028, -0.5))
 
@@ -231,16 +234,6 @@ def test_a_c_controller_reads_what_the_camera_recognises(
 
 
 def test_an_object_across_the_edge_of_the_view_is_recognised_clipped_to_it() -> None:
-    settings: Any = {
-        "robot_line": 1,
-        "camera": "camera",
-        "max_range": 100.0,
-        "max_objects": -1,
-        "occlusion": 0,
-        "frame_color": [1.0, 0.0, 0.0],
-        "frame_thickness": 1,
-        "segmentation": False,
-    }
     # Its centre 5 cm left of the field of view at 0.3 m ahead, its near half inside it.
     edge = 0.3 * math.tan(0.42)
     wide: Any = {
@@ -255,10 +248,10 @@ def test_an_object_across_the_edge_of_the_view_is_recognised_clipped_to_it() -> 
         "round": False,
     }
     camera = CameraPose(0.0, 0.0, 0.0, 0.0, 0.0, 52, 39, 0.84)
-    (seen,) = Recogniser(settings, [wide], {}).recognise(camera, None)
+    (seen,) = Recogniser(SETTINGS, [wide], {}).recognise(camera, None)
     left = seen.position[1] + seen.size[0] / 2.0
     assert left == pytest.approx(0.31 * math.tan(0.42), abs=1e-9)  # clipped at the edge
     assert seen.size[0] < 0.2
     assert seen.position_on_image[0] < 26 and seen.size_on_image[0] < 26
     wide["origin"] = [0.3, edge + 0.15, 0.0]  # wholly outside
-    assert Recogniser(settings, [wide], {}).recognise(camera, None) == []
+    assert Recogniser(SETTINGS, [wide], {}).recognise(camera, None) == []
