@@ -255,3 +255,25 @@ def test_an_object_across_the_edge_of_the_view_is_recognised_clipped_to_it() -> 
     assert seen.position_on_image[0] < 26 and seen.size_on_image[0] < 26
     wide["origin"] = [0.3, edge + 0.15, 0.0]  # wholly outside
     assert Recogniser(SETTINGS, [wide], {}).recognise(camera, None) == []
+
+
+def test_a_world_before_r2022a_gives_positions_in_the_old_camera_frame(tmp_path: Path) -> None:
+    # y up, the e-puck facing -z: a box 0.3 m ahead, another 0.3 m to its right (out of view).
+    text = (
+        "#VRML_SIM R2021a utf8\nWorldInfo { basicTimeStep 32 }\n"
+        'E-puck { controller "<extern>" turretSlot [ Camera { name "rec" width 52 height 39 '
+        "fieldOfView 0.84 recognition Recognition { occlusion TRUE } } ] }\n"
+        'Solid { translation 0 0.025 -0.3 model "ahead" recognitionColors [ 1 0 0 ] '
+        "boundingObject Box { size 0.05 0.05 0.05 } }\n"
+        'Solid { translation 0.3 0.025 0 model "right" recognitionColors [ 1 0 0 ] '
+        "boundingObject Box { size 0.05 0.05 0.05 } }\n"
+    )
+    robot, camera = camera_of(tmp_path, text)
+    camera.recognitionEnable(32)
+    robot.step(32)
+    (ahead,) = camera.getRecognitionObjects()
+    assert ahead.getModel() == "ahead"
+    # x right, y up, z backward: straight ahead is a negative z.
+    assert ahead.getPosition() == pytest.approx([0.0, 0.024, -0.3])
+    assert ahead.getOrientation()[3] == pytest.approx(0.0)  # turned as the robot is
+    assert ahead.getPositionOnImage()[0] in (25, 26)

@@ -205,12 +205,14 @@ def _object(
     if not points:
         return None
     origin = list(frame[0])
-    axis_x = [frame[1][0], frame[1][3], frame[1][6]]
+    # Its heading: its x axis, or in an NUE world its -z axis (where a robot of such a world
+    # faces, which the import takes as the robot's yaw 0).
+    ahead = [frame[1][0], frame[1][3], frame[1][6]]
     if nue:
         origin = list(nue_to_enu(*origin))
-        axis_x = list(nue_to_enu(*axis_x))
+        ahead = list(nue_to_enu(-frame[1][2], -frame[1][5], -frame[1][8]))
         points = [nue_to_enu(*p) for p in points]
-    yaw = math.atan2(axis_x[1], axis_x[0])
+    yaw = math.atan2(ahead[1], ahead[0])
     c, s = math.cos(yaw), math.sin(yaw)
     local = [
         (
