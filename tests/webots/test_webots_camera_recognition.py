@@ -277,3 +277,16 @@ def test_a_world_before_r2022a_gives_positions_in_the_old_camera_frame(tmp_path:
     assert ahead.getPosition() == pytest.approx([0.0, 0.024, -0.3])
     assert ahead.getOrientation()[3] == pytest.approx(0.0)  # turned as the robot is
     assert ahead.getPositionOnImage()[0] in (25, 26)
+
+
+def test_the_camera_does_not_recognise_a_part_of_its_own_robot(tmp_path: Path) -> None:
+    # A flag with recognitionColors on the e-puck's turret, 10 cm ahead of its camera.
+    flag = (
+        'Solid { translation 0.13 0 0.03 name "flag" model "own flag" recognitionColors '
+        "[ 1 1 0 ] boundingObject Box { size 0.02 0.02 0.02 } }\n"
+    )
+    text = world_text().replace("  ]\n}\n", f"    {flag}  ]\n}}\n", 1)
+    robot, camera = camera_of(tmp_path, text)
+    camera.recognitionEnable(32)
+    robot.step(32)
+    assert [o.getModel() for o in camera.getRecognitionObjects()] == ["red box"]

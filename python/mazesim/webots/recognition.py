@@ -78,10 +78,12 @@ class RecognisableObject(TypedDict):
     file's top-level nodes, as a supervisor numbers them; 0 inside another node), ``model``,
     ``colors`` (red, green, blue of each), ``origin`` (x, y, z, world frame) and ``yaw``, the
     ``box_center`` and ``box_size`` of the box that holds it in its own frame turned by
-    ``yaw``, and whether that box is ``round`` (cylinders, capsules and spheres only: seen
-    from any side as wide)."""
+    ``yaw``, whether that box is ``round`` (cylinders, capsules and spheres only: seen
+    from any side as wide), and the line of the robot it is part of or is (``robot_line``, 0
+    for none: a camera does not recognise its own robot's)."""
 
     line: int
+    robot_line: int
     id: int
     model: str
     colors: list[float]
@@ -133,6 +135,7 @@ def read_recognition(text: str) -> RecognitionReport:
         if (colours := _colours(node)) is not None:
             found = _object(node, frame, nue, colours, line, top_id, defined)
             if found is not None:
+                found["robot_line"] = robot_line
                 report["objects"].append(found)
         inner = [
             (child, frame, robot_line, 0)
@@ -226,6 +229,7 @@ def _object(
     high = [max(p[k] for p in local) for k in range(3)]
     return {
         "line": line,
+        "robot_line": 0,
         "id": top_id,
         "model": first_value([node], "model", Field.string) or "",
         "colors": colours,
@@ -359,7 +363,13 @@ class Recogniser:
 
         self.settings = settings
         self._old_frame = old_frame
-        self._objects = [o for o in objects if int(o["line"]) != int(settings["robot_line"])]
+        robot_line = int(settings["robot_line"])
+        self._objects = [
+            o
+            for o in objects
+            if int(o["line"]) != robot_line
+            and (robot_line == 0 or int(o.get("robot_line", 0) or 0) != robot_line)
+        ]
         robots = report.get("robots") or []
         #: The robot index of each object that is a robot (it follows its live pose).
         self._robot = {int(r["line"]): i for i, r in enumerate(robots) if "line" in r}
