@@ -6,11 +6,13 @@ from __future__ import annotations
 
 import json
 import re
+import subprocess
 from pathlib import Path
 
 import pytest
 
 import mazesim
+from mazesim.errors import ControllerBuildError
 from mazesim.webots import run_controller
 from mazesim.webots.importer import import_wbt
 from mazesim.webots.lockstep import run_world
@@ -289,3 +291,82 @@ def test_other_programs_and_files_a_controller_copied_are_left_out_of_its_build(
     )
     run = run_controller(source, mazesim.load_world("arena"), seconds=0.5)
     assert (run.exit_status, run.error, run.steps) == (0, "", 1)
+
+
+def test_a_controller_whose_main_is_in_another_of_its_files_builds_with_it(
+    tmp_path: Path,
+) -> None:
+    # The file named after the folder holds the controller's functions; its main is in pso.cpp,
+    # and Webots' Makefile links the folder's files into one program.
+    source = write_source(
+        tmp_path,
+        "supervisor",
+        "#include <webots/robot.h>\nint steps() { return wb_robot_step(32) == -1 ? 0 : 1; }\n",
+        suffix=".cpp",
+    )
+    (source.parent / "pso.cpp").write_text(
+        "#include <webots/robot.h>\nint steps();\n"
+        "int main(int, char const **) { wb_robot_init(); int n = steps(); wb_robot_cleanup(); "
+        "return n - 1; }\n"
+    )
+    built = build(source)
+    assert built.program is not None and "main of its own" not in built.note
+    run = run_controller(source, mazesim.load_world("arena"), seconds=0.5)
+    assert (run.exit_status, run.error, run.steps) == (0, "", 1)
+
+
+def test_a_controller_reads_its_own_path_in_its_folder_as_in_webots(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str]
+) -> None:
+    # Webots starts controllers/NAME/NAME, so argv[0] leads to the files beside the sources
+    # (a supervisor that loads its saved settings from there), not to mazesim's build cache.
+    source = write_source(
+        tmp_path,
+        "replayer",
+        "#include <stdio.h>\n#include <webots/robot.h>\n"
+        'int main(int argc, char **argv) { wb_robot_init(); printf("argv0=%s\\n", argv[0]); '
+        "wb_robot_cleanup(); return 0; }\n",
+    )
+    run = run_controller(source, mazesim.load_world("arena"), seconds=0.5)
+    assert (run.exit_status, run.error) == (0, "")
+    assert f"argv0={source.parent / 'replayer'}\n" in capfd.readouterr().out
+
+
+def test_a_c_controller_whose_folder_ships_its_linux_program_runs_it_when_its_sources_fail(
+    tmp_path: Path,
+) -> None:
+    # Webots runs controllers/NAME/NAME when the folder holds it, whatever its sources: here
+    # a program built against libController.so beside sources that no longer compile.
+    from mazesim.webots.native_controller import CAPI
+    from mazesim.webots.shipped_program import LIBRARY
+
+    webots = tmp_path / "webots-lib"
+    webots.mkdir()
+    capi = [str(path) for path in sorted((CAPI / "src").glob("*.c"))]
+    include = ["-I", str(CAPI / "include")]
+    shared = ["gcc", "-shared", "-fPIC", "-w", *include, *capi, "-o", str(webots / LIBRARY)]
+    assert subprocess.run([*shared, "-lm"], check=False).returncode == 0
+    source = write_source(
+        tmp_path, "walker", "#include <webots/robot.h>\nint main(void) { return undeclared; }\n"
+    )
+    program = source.parent / "walker.built.c"
+    program.write_text(
+        "#include <webots/robot.h>\n#include <webots/motor.h>\n"
+        "int main(void) { wb_robot_init();\n"
+        '  WbDeviceTag left = wb_robot_get_device("left wheel motor");\n'
+        '  WbDeviceTag right = wb_robot_get_device("right wheel motor");\n'
+        "  wb_motor_set_position(left, 1.0 / 0.0); wb_motor_set_position(right, 1.0 / 0.0);\n"
+        "  wb_motor_set_velocity(left, 4.0); wb_motor_set_velocity(right, 4.0);\n"
+        "  while (wb_robot_step(32) != -1) {}\n  wb_robot_cleanup(); return 0; }\n"
+    )
+    link = ["gcc", "-w", *include, str(program), "-L", str(webots), "-lController"]
+    assert subprocess.run([*link, "-o", str(source.parent / "walker")], check=False).returncode == 0
+    program.unlink()
+    built = build(source)
+    assert built.program is not None and "the program walker its folder holds" in built.note
+    run = run_controller(source, mazesim.load_world("arena"), seconds=1.0)
+    assert (run.exit_status, run.error) == (0, "") and run.distance_m > 0.05
+    # A program for another system (a macOS build) is not run: the sources' errors stand.
+    (source.parent / "walker").write_bytes(b"\xcf\xfa\xed\xfe" + bytes(64))
+    with pytest.raises(ControllerBuildError):
+        build(source)

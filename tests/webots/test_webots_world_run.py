@@ -492,3 +492,41 @@ def test_a_supervisor_may_put_an_e_puck_onto_another_and_the_contacts_part_them(
     apart = moved.final_pose[0] - still.final_pose[0]
     assert apart == pytest.approx(0.074, abs=1e-3)
     assert still.final_pose[0] == pytest.approx(-0.01, abs=1e-3)
+
+
+SCATTERED_WORLD = PLACER_WORLD.replace("translation 0.5 0.5 0", "translation 0 0 0").replace(
+    'controller "placer"', 'controller "scatterer"'
+)
+
+SCATTERER = """from controller import Supervisor
+
+robot = Supervisor()
+# Before the first step, as a swarm's supervisor scatters the e-pucks its world writes at the
+# origin: the moved one 10 cm ahead of the still one.
+robot.getFromDef("MOVED").getField("translation").setSFVec3f([0.1, 0.0, 0.0])
+for _ in range(10):
+    robot.step(32)
+"""
+
+
+def test_e_pucks_written_on_one_another_that_a_supervisor_scatters_share_one_world(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    (tmp_path / "worlds").mkdir()
+    (tmp_path / "worlds" / "w.wbt").write_text(SCATTERED_WORLD)
+    (tmp_path / "controllers" / "scatterer").mkdir(parents=True)
+    (tmp_path / "controllers" / "scatterer" / "scatterer.py").write_text(SCATTERER)
+    shared: list[bool] = []
+
+    def watch(world: Any, runs: Any, simulators: list[Any], wheels: Any) -> None:
+        still, moved = simulators[1], simulators[2]
+        shared.append(getattr(still, "simulator", None) is getattr(moved, "simulator", 0))
+
+    run = run_world(str(tmp_path / "worlds" / "w.wbt"), seconds=0.3, seed=1, observer=watch)
+    assert "simulators of their own" not in capsys.readouterr().err
+    scatterer, still, moved = run.robots
+    assert scatterer.exit_status == 0, scatterer.error
+    # One simulator, where they see and touch each other, as in Webots once scattered.
+    assert shared and all(shared)
+    assert moved.final_pose[0] == pytest.approx(0.1, abs=1e-6)
+    assert still.final_pose[0] == pytest.approx(0.0, abs=1e-6)

@@ -23,10 +23,11 @@ see each other and the world's movable bodies, which they push; an e-puck whose 
 own ``DistanceSensor`` nodes reads through their tables (:mod:`mazesim.webots.own_sensors`), as
 in a run of one robot. This process also holds each imported E-puck's wheel traction
 (:mod:`mazesim.webots.traction`), so that a robot a supervisor puts elsewhere starts again from
-rest, whichever process moved it. A world the shared simulator refuses (robots overlapping at
-their starts, more robots than a world holds) runs each robot in a simulator of its own, with a
-warning: there robots neither collide with nor see each other; the radio and the supervisor see
-them all.
+rest, whichever process moved it. E-pucks written overlapping share it too, put at their starts
+as a supervisor puts one onto another (:mod:`mazesim.webots.shared_world`). A world the shared
+simulator refuses (an e-puck in a wall, more robots than a world holds) runs each robot in a
+simulator of its own, with a warning: there robots neither collide with nor see each other; the
+radio and the supervisor see them all.
 """
 
 from __future__ import annotations

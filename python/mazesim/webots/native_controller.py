@@ -33,6 +33,7 @@ from mazesim.errors import ControllerBuildError, MazesimError, MissingDependency
 from mazesim.webots import native_link
 from mazesim.webots import simulation as simulations
 from mazesim.webots.cmake_build import cmake_build, cmake_program
+from mazesim.webots.shipped_program import LIBRARY, shipped_program
 from mazesim.webots.termination import GRACE_SECONDS
 
 __all__ = ["CAPI", "Build", "build", "cache_folder", "drive", "native_robot"]
@@ -401,7 +402,10 @@ def build(source: str | os.PathLike[str]) -> Build:
     ``.c``, and for C++ ``.cpp``, ``.cc`` and ``.cxx``, files), or takes it from the cache. One
     that includes headers of its project found neither in its folder nor on the system is built
     by the project's ``CMakeLists.txt`` in its folder when there is one and ``cmake`` is
-    installed (:mod:`mazesim.webots.cmake_build`).
+    installed (:mod:`mazesim.webots.cmake_build`). A C controller whose sources do not build
+    here but whose folder holds the program Webots runs, built for Linux against Webots'
+    ``libController.so``, runs that program with mazesim's library
+    (:mod:`mazesim.webots.shipped_program`).
 
     Raises:
         MissingDependencyError: No compiler.
@@ -411,6 +415,39 @@ def build(source: str | os.PathLike[str]) -> Build:
     """
     main = Path(source).resolve()
     _source(main)  # a regular file of a bounded size, before anything waits on it
+    try:
+        built = _build_sources(main)
+    except ControllerBuildError as failed:
+        errors = [line for line in str(failed).splitlines() if "error:" in line]
+        shipped = _shipped(main, (errors or ["compiler errors"])[0])
+        if shipped is None:
+            raise
+        return shipped
+    if built.program is None and not built.missing:
+        # Headers it lacks: the program its folder holds was built with them.
+        return _shipped(main, built.note) or built
+    return built
+
+
+def _shipped(main: Path, why: str) -> Build | None:
+    """The build of a C controller whose folder holds its program, built for Linux against
+    Webots' ``libController.so``: that program, run with mazesim's library, as Webots runs it
+    (None when the folder holds no such program)."""
+    if main.suffix.lower() not in C_SUFFIXES:
+        return None
+    program = shipped_program(main, cache_folder(), CAPI, _compiler("c"))
+    if program is None:
+        return None
+    note = (
+        f"its sources do not build here ({why.strip()[:200]}): the program {main.parent.name} its "
+        f"folder holds, which Webots runs, is run with mazesim's controller library as "
+        f"{LIBRARY} (copied into the cache {Path(program).parent})"
+    )
+    return Build(program, note=note)
+
+
+def _build_sources(main: Path) -> Build:
+    """:func:`build` from the controller's sources."""
     folder = main.parent
     language = "cpp" if main.suffix.lower() in CPP_SUFFIXES else "c"
     c_compiler = _compiler("c")
@@ -421,8 +458,12 @@ def build(source: str | os.PathLike[str]) -> Build:
     c_sources += [path for path in listed if path.suffix.lower() in C_SUFFIXES]
     if language == "cpp":
         cpp_sources += [path for path in listed if path.suffix.lower() in CPP_SUFFIXES]
-    # Another file with a main of its own is another program (a tool, a test): left out.
+    # Another file with a main of its own is another program (a tool, a test): left out. But
+    # when the file named after the folder defines no main, the program's main is in another
+    # of its files (Webots' Makefile links them all into the folder's one program): kept.
     apart = [p for p in [*c_sources, *cpp_sources] if p != main and _defines_main(p)]
+    if not _defines_main(main):
+        apart = []
     c_sources = [p for p in c_sources if p not in apart]
     cpp_sources = [p for p in cpp_sources if p not in apart]
     own = cpp_sources if language == "cpp" else c_sources
@@ -583,7 +624,8 @@ def drive(
         robot: The :class:`~mazesim.webots.robot.Robot` it drives.
         arguments: The controller's arguments (the world's ``controllerArgs``).
         facts: Controller name, project path and world path, for the API's getters.
-        folder: The controller's folder, where it runs (as in Webots).
+        folder: The controller's folder, where it runs (as in Webots), and where its
+            ``argv[0]`` says it is.
 
     Returns:
         The exit status, the error (a crash, or "" ), and whether the controller was stopped
@@ -591,10 +633,18 @@ def drive(
     """
     ours, theirs = socket.socketpair()
     environment = dict(os.environ, MAZESIM_CONTROLLER_FD=str(theirs.fileno()))
+    beside = os.path.dirname(program)
+    if os.path.isfile(os.path.join(beside, LIBRARY)):
+        # A program built against Webots' libController.so finds mazesim's beside it.
+        found = environment.get("LD_LIBRARY_PATH")
+        environment["LD_LIBRARY_PATH"] = beside + (os.pathsep + found if found else "")
     sys.stdout.flush()
     sys.stderr.flush()
+    # The program's own name (argv[0]) is where Webots starts it, the executable named after
+    # its folder in that folder, as a controller that finds its files beside itself reads it.
     process = subprocess.Popen(
-        [program, *arguments],
+        [os.path.join(folder, facts[0]), *arguments],
+        executable=program,
         cwd=folder,
         env=environment,
         pass_fds=(theirs.fileno(),),

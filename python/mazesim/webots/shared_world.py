@@ -5,8 +5,10 @@
 :class:`RobotView` is one of them with the calls of a one-robot simulator, which is what a
 controller's process asks for over its pipe (:mod:`mazesim.webots.controller_process`). The
 world's movable bodies are in the shared simulator too: every e-puck pushes them and sees them
-where they are. A world the shared simulator refuses (robots overlapping at their starts, more
-robots than it holds) is run with a simulator per robot instead, with a warning.
+where they are. Robots that overlap at their written starts share it too, put there as a supervisor
+puts one onto another (a world whose supervisor scatters them before the first step). A world
+the shared simulator refuses (more robots than it holds) is run with a simulator per robot
+instead, with a warning.
 """
 
 from __future__ import annotations
@@ -126,16 +128,57 @@ def shared_simulator(
     source = f"{world.name} (every e-puck)"
     layout = load_toml(world.to_toml(), source)
     layout.pop("start", None)
-    for index in indices:
-        x, y, yaw = (float(v) for v in robots[index]["pose"])
-        profile = robots[index].get("profile") or "e-puck"
-        entry = {"name": f"robot-{index}", "x": x, "y": y, "yaw": yaw, "profile": profile}
-        layout.setdefault("robots", []).append(entry)
+    starts = [tuple(float(v) for v in robots[index]["pose"]) for index in indices]
     try:
-        shared = World.from_toml(dump_toml(layout), source=source)
-        if not profiles:
-            return Simulator(shared, seed=seed, noise=noise), ""
-        given = [profiles.get(index) for index in indices]
-        return Simulator(shared, seed=seed, noise=noise, robot_profiles=given), ""
+        return _built(layout, robots, indices, starts, source, seed, noise, profiles), ""
+    except MazesimError as refusal:
+        if "do not overlap" not in str(refusal):
+            return None, str(refusal)
+    # Robots that overlap at their written starts (a world whose supervisor scatters them
+    # before the first step): built apart, beyond the world's walls and bodies, then put at
+    # their starts as a supervisor puts one onto another, whose contacts push them apart at
+    # the next steps unless a supervisor moves them first, as Webots' physics does.
+    far = _beyond(world, layout, starts)
+    apart = [(far + 0.2 * k, far, 0.0) for k in range(len(indices))]
+    try:
+        simulator = _built(layout, robots, indices, apart, source, seed, noise, profiles)
+        for k, (x, y, yaw) in enumerate(starts):
+            simulator.set_pose(x, y, yaw, robot_index=k, overlap_robots=True)
     except MazesimError as refusal:
         return None, str(refusal)
+    return simulator, ""
+
+
+def _built(
+    layout: dict[str, Any],
+    robots: Sequence[Mapping[str, Any]],
+    indices: Sequence[int],
+    poses: Sequence[tuple[float, ...]],
+    source: str,
+    seed: int,
+    noise: bool,
+    profiles: Mapping[int, RobotProfile] | None,
+) -> Simulator:
+    """The simulator of ``layout`` with the robots ``indices`` at ``poses``."""
+    placed = dict(layout, robots=[])
+    for index, (x, y, yaw) in zip(indices, poses):
+        profile = robots[index].get("profile") or "e-puck"
+        entry = {"name": f"robot-{index}", "x": x, "y": y, "yaw": yaw, "profile": profile}
+        placed["robots"].append(entry)
+    shared = World.from_toml(dump_toml(placed), source=source)
+    if not profiles:
+        return Simulator(shared, seed=seed, noise=noise)
+    given = [profiles.get(index) for index in indices]
+    return Simulator(shared, seed=seed, noise=noise, robot_profiles=given)
+
+
+def _beyond(world: World, layout: Mapping[str, Any], starts: Sequence[tuple[float, ...]]) -> float:
+    """A coordinate 1 m beyond every wall, movable body and start of the world, on both axes."""
+    reach = [abs(v) for x, y, _ in starts for v in (x, y)]
+    for cx, cy, sx, sy, *_ in world.wall_boxes():
+        reach.append(float(max(abs(cx), abs(cy)) + max(sx, sy)))
+    for body in layout.get("bodies") or []:
+        cx, cy = (float(v) for v in body.get("center", (0.0, 0.0)))
+        size = body.get("size") or [2 * float(body.get("radius", 0.0))] * 2
+        reach.append(max(abs(cx), abs(cy)) + max(float(v) for v in size))
+    return float(max(reach, default=0.0)) + 1.0
