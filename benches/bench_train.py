@@ -34,6 +34,17 @@ so above 1 is faster), in wall seconds and in the processes' processor seconds; 
 
     .venv/bin/python benches/bench_train.py --baseline-python ../base/.venv/bin/python \
         --threads 1 --rounds 7
+
+Timing on a shared machine scatters by several per cent; with ``--instructions`` (and
+``--baseline-python``) it counts instead (valgrind's callgrind, which the machine's load does not
+move): each build serves one round of its loop on one thread under callgrind, once with the round
+and once without it (the same import, set-up and robots' draw), and the difference over the
+round's env-steps is its instructions per env-step. The script exits with status 1 when this
+build's randomised round needs more than ``TOLERANCE`` (a fraction, 0.01 unless given) more than
+the other build's default round::
+
+    .venv/bin/python benches/bench_train.py --baseline-python ../base/.venv/bin/python \
+        --envs 256 --instructions [TOLERANCE]
 """
 
 from __future__ import annotations
@@ -46,6 +57,7 @@ import platform
 import statistics
 import subprocess
 import sys
+import tempfile
 import time
 from typing import Any
 
@@ -134,12 +146,17 @@ def serve(loop: str, envs: int, rounds: int, threads: int) -> None:
     trainer = LowerTrainer(settings, threads=threads)
     print("ready", flush=True)
     for line in sys.stdin:
-        k = int(line)
+        # "K" runs round K; "K skip" only draws its robots (what `counted` subtracts).
+        k, *skip = line.split()
+        k = int(k)
         drawn = 0.0
         if draw is not None:
             start = time.perf_counter()
             trainer.use_robots(draw(k, envs))
             drawn = time.perf_counter() - start
+        if skip:
+            print(json.dumps({"draw": drawn}), flush=True)
+            continue
         wall, cpu = time.perf_counter(), time.process_time()
         trainer.run_round(k)
         wall, cpu = time.perf_counter() - wall, time.process_time() - cpu
@@ -197,6 +214,44 @@ def against_baseline(python: str, envs: int, rounds: int, threads: int) -> dict[
     }
 
 
+def counted_instructions(python: str, loop: str, envs: int, skip: bool) -> int:
+    """Callgrind's instruction total of ``python``'s build serving round 0 of ``loop`` on one
+    thread (import and set-up included), or, with ``skip``, everything but the round itself."""
+    with tempfile.TemporaryDirectory() as folder:
+        out = os.path.join(folder, "callgrind.out")
+        command = ["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}", python]
+        command += [__file__, "--serve", loop, "--envs", str(envs), "--rounds", "1"]
+        command += ["--threads", "1"]
+        env = dict(os.environ, OPENBLAS_NUM_THREADS="1")
+        stdin = "0 skip\n" if skip else "0\n"
+        subprocess.run(command, input=stdin, check=True, capture_output=True, text=True, env=env)
+        with open(out, encoding="utf-8") as file:
+            totals = [line for line in file if line.startswith(("summary:", "totals:"))]
+    return int(totals[0].split()[1])
+
+
+def counted(baseline: str, envs: int, tolerance: float) -> int:
+    """Instructions per env-step of this build's randomised round against ``baseline``'s default
+    round (each the count of a round less that of the same run without it); 1 when this build
+    needs more than ``tolerance`` (a fraction) more."""
+    env_steps = envs * LowerSettings(num_envs=envs).round_steps
+    per_step = {}
+    runs = (("this", sys.executable, "randomised"), ("base", baseline, "default"))
+    for name, python, loop in runs:
+        with_round = counted_instructions(python, loop, envs, skip=False)
+        without = counted_instructions(python, loop, envs, skip=True)
+        per_step[name] = (with_round - without) / env_steps
+    mine, theirs = per_step["this"], per_step["base"]
+    print(f"lower-level round 0, {envs} robots, one thread, instructions per env-step:")
+    print(f"randomised navigator, this build:  {mine:,.0f}")
+    print(f"default navigator, the other build: {theirs:,.0f}")
+    print(f"ratio (this / other): {mine / theirs:.3f}")
+    if mine > theirs * (1.0 + tolerance):
+        print(f"this build needs more than {tolerance:.1%} more instructions per env-step")
+        return 1
+    return 0
+
+
 def print_against_baseline(result: dict[str, Any]) -> None:
     """The figures of ``against_baseline`` as lines of text."""
     print(
@@ -229,11 +284,22 @@ def main() -> None:
         metavar="PYTHON",
         help="compare this build's randomised rounds with this interpreter's build's default ones",
     )
+    parser.add_argument(
+        "--instructions",
+        nargs="?",
+        type=float,
+        const=0.01,
+        metavar="TOLERANCE",
+        help="with --baseline-python: count instructions per env-step of a round under "
+        "callgrind; fail above the other build's by more than TOLERANCE (default: 0.01)",
+    )
     parser.add_argument("--serve", choices=("default", "randomised"), help=argparse.SUPPRESS)
     args = parser.parse_args()
     if args.serve:
         serve(args.serve, args.envs, args.rounds, args.threads)
         return
+    if args.baseline_python and args.instructions is not None:
+        sys.exit(counted(args.baseline_python, args.envs, args.instructions))
     if args.baseline_python:
         paired = against_baseline(args.baseline_python, args.envs, args.rounds, args.threads)
         if args.json:

@@ -38,20 +38,33 @@ pub fn state_of_levels(levels: impl DoubleEndedIterator<Item = usize>) -> usize 
 pub struct Discretiser {
     /// The Sharp GP2Y0A41SK0F table (metres to volts) of the `seed` robot.
     sharp: LookupTable,
+    /// For each level k from 1 to 3, the least reading (volts) whose level is below k: a
+    /// reading is at level k or farther exactly when it is below this. The inverted table falls
+    /// as the volts rise, step by step of its arithmetic, so each level is a run of readings.
+    below: [f32; NUM_LEVELS - 1],
 }
 
 impl Discretiser {
     /// The discretiser of the `seed` robot's Sharp sensors.
     pub fn new() -> Result<Self> {
         let seed = RobotProfile::builtin("seed")?;
-        Ok(Self {
-            sharp: seed.distance_sensors[0].model.table.clone(),
-        })
+        let sharp = seed.distance_sensors[0].model.table.clone();
+        let level = |volts: f32| level_of_cm(sharp.invert(volts as f64) * 100.0);
+        let below = std::array::from_fn(|k| least_below(&level, k + 1));
+        Ok(Self { sharp, below })
     }
 
     /// The level (0 to 3) of one reading in volts: volts to cm by inverting the Sharp table (the
     /// arithmetic of `mazesim.sharp_volts_to_cm`), then Table 4.1.
     pub fn level(&self, volts: f32) -> usize {
+        if volts.is_nan() {
+            return self.level_by_table(volts);
+        }
+        self.below.iter().filter(|&&edge| volts < edge).count()
+    }
+
+    /// `level` through the table itself.
+    fn level_by_table(&self, volts: f32) -> usize {
         level_of_cm(self.sharp.invert(volts as f64) * 100.0)
     }
 
@@ -59,6 +72,39 @@ impl Discretiser {
     pub fn state(&self, volts: &[f32]) -> usize {
         state_of_levels(volts[..NUM_SENSORS].iter().map(|&v| self.level(v)))
     }
+}
+
+/// The least finite f32 reading whose `level` is below `k`, found by bisection over the
+/// ordered finite f32 values (`level` falls as the reading rises).
+fn least_below(level: &impl Fn(f32) -> usize, k: usize) -> f32 {
+    // Finite f32 values in increasing order, as ordered integers (-0 and 0 as one).
+    let key = |v: f32| {
+        let bits = i64::from(v.to_bits() & 0x7fff_ffff);
+        if v.is_sign_negative() {
+            -bits
+        } else {
+            bits
+        }
+    };
+    let value = |key: i64| {
+        let v = f32::from_bits(key.unsigned_abs() as u32);
+        if key < 0 {
+            -v
+        } else {
+            v
+        }
+    };
+    // `level(lo) >= k` and `level(hi) < k` throughout.
+    let (mut lo, mut hi) = (key(f32::MIN), key(f32::MAX));
+    while hi - lo > 1 {
+        let mid = lo + (hi - lo) / 2;
+        if level(value(mid)) < k {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    value(hi)
 }
 
 #[cfg(test)]
@@ -76,6 +122,31 @@ mod tests {
         assert_eq!(d.level(0.2), 3);
         assert_eq!(d.state(&[0.2, 3.5, 3.5, 3.5, 3.5, 3.5]), 3);
         assert_eq!(d.state(&[3.5, 3.5, 3.5, 3.5, 3.5, 0.2]), 3 * 4usize.pow(5));
+    }
+
+    #[test]
+    fn levels_from_the_edges_in_volts_are_the_tables_for_every_reading() {
+        // Every f32 reading from below the table's last output to above its first (all the
+        // readings where the level can change), and a few far outside.
+        let d = Discretiser::new().unwrap();
+        let (lo, hi) = (0.3f32.to_bits(), 3.1f32.to_bits());
+        for bits in lo..=hi {
+            let v = f32::from_bits(bits);
+            assert_eq!(d.level(v), d.level_by_table(v), "{v}");
+        }
+        for v in [
+            f32::NEG_INFINITY,
+            -1.0,
+            -0.0,
+            0.0,
+            1e-30,
+            4.0,
+            1e30,
+            f32::INFINITY,
+            f32::NAN,
+        ] {
+            assert_eq!(d.level(v), d.level_by_table(v), "{v}");
+        }
     }
 
     #[test]

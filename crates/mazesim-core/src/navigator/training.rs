@@ -281,7 +281,7 @@ struct StepDone {
     good: bool,
     /// A door episode ran out of steps.
     cut_short: bool,
-    /// Metres driven forward.
+    /// Metres driven forward by Corridors and Corners (0 in a door sub-task).
     forward: f64,
     colliding: bool,
     /// The episode is over: the robot starts its next one.
@@ -347,7 +347,13 @@ impl Pass<'_> {
         let distance = distance_state(self.discretiser, self.volts, env.distance_sensors());
         let next_state = settings.phases.table_row(&learner.task, pose, distance);
 
-        let forward = (here[0] - bx) * byaw.cos() + (here[1] - by) * byaw.sin();
+        // Metres forward along the heading before the step: Corridors and Corners' reward and
+        // count (a door sub-task's reward reads its path's progress instead).
+        let forward = if is_door {
+            0.0
+        } else {
+            (here[0] - bx) * byaw.cos() + (here[1] - by) * byaw.sin()
+        };
         let new_progress = learner.path.progress(here, settings.door_path_exit);
         let rewards = &settings.rewards;
         let mut reward = if is_door {

@@ -16,68 +16,94 @@ const NEIGHBOURHOOD: f64 = 0.11;
 /// At most this many cells: very large worlds get larger cells.
 const MAX_CELLS: f64 = 65_536.0;
 
-/// For each cell of a grid, the walls whose bounding boxes meet the 3 x 3 cells around it, in
-/// index order: the candidates of any square query of half side below the cell side, with no
-/// duplicates to weed out.
+/// Half side (metres) of the squares the wide neighbourhood lists answer: a Sharp
+/// GP2Y0A41SK0F's 0.40 m ray from a body's rim, with room for a perturbed mounting.
+pub(super) const WIDE_REACH: f64 = 0.5;
+
+/// Cells a wall is listed beyond those it spans in the wide lists: cells of `WIDE_REACH / 8`,
+/// so that a list holds little more than the walls of the widest square it answers.
+const WIDE_BEYOND: usize = 8;
+
+/// For each cell of a grid, the walls whose bounding boxes meet the block of cells around it
+/// (`beyond` cells on every side), in index order: the candidates of any square query of half
+/// side below `beyond` cell sides, with no duplicates to weed out.
 #[derive(Debug, Clone, Default)]
-pub(super) struct Neighbourhoods(BinLists);
+pub(super) struct Neighbourhoods {
+    lists: BinLists,
+    /// The largest half side of a query the lists answer, metres.
+    covers: f64,
+}
 
 impl Neighbourhoods {
-    /// Lists for the walls of bounding `boxes` (min x, min y, max x, max y), all within `bounds`.
+    /// Lists of the 3 x 3 cells around each cell for the walls of bounding `boxes` (min x, min
+    /// y, max x, max y), all within `bounds`: the e-puck's rays and clearance search.
     pub(super) fn new(boxes: &[[f32; 4]], bounds: Bounds) -> Self {
+        Self::with_block(boxes, bounds, NEIGHBOURHOOD, 1)
+    }
+
+    /// Lists that answer squares of half side up to [`WIDE_REACH`] (less 1 mm), such as the
+    /// Sharp sensors' rays, for the same walls.
+    pub(super) fn wide(boxes: &[[f32; 4]], bounds: Bounds) -> Self {
+        Self::with_block(boxes, bounds, WIDE_REACH / WIDE_BEYOND as f64, WIDE_BEYOND)
+    }
+
+    /// Lists of cells of `side` (or larger for very large worlds), each wall listed `beyond`
+    /// cells beyond those it spans.
+    fn with_block(boxes: &[[f32; 4]], bounds: Bounds, side: f64, beyond: usize) -> Self {
         let w = bounds.max[0] - bounds.min[0];
         let h = bounds.max[1] - bounds.min[1];
         let origin = bounds.min;
         let grid = |side: f64| ((w / side) as usize + 1, (h / side) as usize + 1);
-        // A wall is listed one cell beyond those it spans on every side, and 1 mm more.
+        // A wall is listed `beyond` cells beyond those it spans on every side, and 1 mm more.
         let margin = 1e-3;
-        let side = binning::fitting_side(
-            NEIGHBOURHOOD.max((w * h / MAX_CELLS).sqrt()),
-            boxes.len(),
-            |side| {
+        let side =
+            binning::fitting_side(side.max((w * h / MAX_CELLS).sqrt()), boxes.len(), |side| {
                 let listed = boxes.iter().map(|b| {
                     let [x0, y0, x1, y1] = b.map(|v| v as f64);
                     let b = Bounds {
                         min: [x0, y0],
                         max: [x1, y1],
                     };
-                    b.grown(side + margin)
+                    b.grown(beyond as f64 * side + margin)
                 });
                 binning::entries(listed, origin, side, grid(side))
-            },
-        );
+            });
         let (cols, rows) = grid(side);
-        // A point's square meets the box only if the point's cell lies at most one cell beyond
-        // the cells the box spans; 1 mm more covers rounding (a wall too many costs a box test,
-        // one missing would be wrong).
+        // A point's square meets the box only if the point's cell lies at most `beyond` cells
+        // beyond the cells the box spans; 1 mm more covers rounding (a wall too many costs a box
+        // test, one missing would be wrong).
         let cell = |v: f64, o: f64| ((v - o) / side).floor() as i64;
+        let k = beyond as i64;
         let spans = |_| {
-            (0u32..).zip(boxes).map(|(i, b)| {
+            (0u32..).zip(boxes).map(move |(i, b)| {
                 let [x0, y0, x1, y1] = b.map(|v| v as f64);
-                let c0 = (cell(x0 - margin, origin[0]) - 1).max(0) as usize;
-                let r0 = (cell(y0 - margin, origin[1]) - 1).max(0) as usize;
-                let c1 = ((cell(x1 + margin, origin[0]) + 1).max(0) as usize).min(cols - 1);
-                let r1 = ((cell(y1 + margin, origin[1]) + 1).max(0) as usize).min(rows - 1);
+                let c0 = (cell(x0 - margin, origin[0]) - k).max(0) as usize;
+                let r0 = (cell(y0 - margin, origin[1]) - k).max(0) as usize;
+                let c1 = ((cell(x1 + margin, origin[0]) + k).max(0) as usize).min(cols - 1);
+                let r1 = ((cell(y1 + margin, origin[1]) + k).max(0) as usize).min(rows - 1);
                 (i, [c0, r0, c1, r1])
             })
         };
-        Self(BinLists::new(Grid::new(origin, side, (cols, rows)), spans))
+        Self {
+            lists: BinLists::new(Grid::new(origin, side, (cols, rows)), spans),
+            covers: beyond as f64 * side - 1e-3,
+        }
     }
 
     /// Bytes of its buffers on the heap.
     pub(super) fn heap_bytes(&self) -> usize {
-        self.0.heap_bytes()
+        self.lists.heap_bytes()
     }
 
     /// The list of the cell holding `p`, if the square of half side `reach` around `p` stays in
-    /// its 3 x 3 block and `p` lies on the grid.
+    /// its block and `p` lies on the grid.
     pub(super) fn around(&self, p: [f32; 2], reach: f32) -> Option<&[u32]> {
-        let grid = self.0.grid;
-        if grid.cols == 0 || reach as f64 > grid.side - 1e-3 {
+        let grid = self.lists.grid;
+        if grid.cols == 0 || reach as f64 > self.covers {
             return None;
         }
         let cell = grid.bin_at([p[0] as f64, p[1] as f64])?;
-        Some(self.0.list(cell))
+        Some(self.lists.list(cell))
     }
 }
 
@@ -699,6 +725,52 @@ mod tests {
                 near.signed_distance(&w, center, 0.067),
                 w.signed_distance(center, 0.067)
             );
+        }
+    }
+
+    #[test]
+    fn wide_lists_give_the_sharp_sensors_the_walls_the_bins_give() {
+        // Squares of the seed robot's reach (0.40 m Sharp rays from its rim) over a maze.
+        let world = crate::generator::generate(&Default::default(), 7).unwrap();
+        let w = world.wall_index();
+        let reach = 0.45;
+        for k in 0..400 {
+            let center = [(k % 20) as f32 * 0.07 - 0.1, (k / 20) as f32 * 0.07 - 0.1];
+            let mut near = NearbyWalls::default();
+            near.gather(w, center, reach);
+            // What the bins give, each wall once, in index order.
+            let lo = [center[0] - reach, center[1] - reach];
+            let hi = [center[0] + reach, center[1] + reach];
+            let mut expected = Vec::new();
+            let region = Bounds {
+                min: [lo[0] as f64, lo[1] as f64],
+                max: [hi[0] as f64, hi[1] as f64],
+            };
+            w.for_each_near(region, |i| {
+                let [x0, y0, x1, y1] = w.bounding_box(i);
+                let meets = !(x0 > hi[0] || y0 > hi[1] || x1 < lo[0] || y1 < lo[1]);
+                if meets && !expected.contains(&(i as u32)) {
+                    expected.push(i as u32);
+                }
+            });
+            expected.sort_unstable();
+            let on_grid = (0.0..=1.25).contains(&center[0]) && (0.0..=1.25).contains(&center[1]);
+            if on_grid {
+                assert!(w.walls_around(center, reach).is_some(), "{center:?}");
+            }
+            assert!(!near.overflow);
+            let mut kept = near.walls[..near.count].to_vec();
+            kept.sort_unstable();
+            assert_eq!(kept, expected, "{center:?}");
+            for a in 0..16 {
+                let a = a as f32 * 0.4;
+                let origin = [center[0] + 0.037 * a.cos(), center[1] + 0.037 * a.sin()];
+                let dir = [a.cos(), a.sin()];
+                assert_eq!(
+                    near.cast_ray(w, origin, dir, 0.4),
+                    w.cast_ray(origin, dir, 0.4)
+                );
+            }
         }
     }
 }

@@ -2,13 +2,15 @@
 //! near the query, found through a uniform bin grid. Axis-aligned walls (every cell maze's) are
 //! cast against with a slab test here; rotated ones through parry2d.
 
+use std::sync::OnceLock;
+
 use parry2d::math::{Pose, Vector};
 use parry2d::query::{Ray, RayCast};
 use parry2d::shape::Cuboid;
 
 use super::binning::BinLists;
 use super::geometry::{Bounds, WallBox};
-use super::nearby::Neighbourhoods;
+use super::nearby::{Neighbourhoods, WIDE_REACH};
 
 /// The walls of a world as parry2d shapes with a bin index.
 #[derive(Debug, Clone)]
@@ -29,6 +31,9 @@ pub struct WallIndex {
     bins: BinLists,
     /// Per coarser cell, the walls near it, for the sensors' once-per-step gathering.
     around: Neighbourhoods,
+    /// The same for the wider squares of long-range sensors (the Sharp sensors' rays), made
+    /// when first asked for.
+    wide: OnceLock<Box<Neighbourhoods>>,
 }
 
 /// What a ray hit.
@@ -124,6 +129,7 @@ impl WallIndex {
             reflectance,
             bins,
             around,
+            wide: OnceLock::new(),
         }
     }
 
@@ -140,7 +146,26 @@ impl WallIndex {
     /// The walls whose bounding boxes may meet the square of half side `reach` around `p`, each
     /// once and in index order, when a prepared list holds them all (`None`: use `for_each_near`).
     pub(super) fn walls_around(&self, p: [f32; 2], reach: f32) -> Option<&[u32]> {
-        self.around.around(p, reach)
+        if let Some(list) = self.around.around(p, reach) {
+            return Some(list);
+        }
+        if self.boxes.is_empty() || f64::from(reach) > WIDE_REACH {
+            return None;
+        }
+        self.wide
+            .get_or_init(|| {
+                let bounds = self
+                    .boxes
+                    .iter()
+                    .fold(Bounds::EMPTY, |b, &[x0, y0, x1, y1]| {
+                        b.union(Bounds {
+                            min: [x0.into(), y0.into()],
+                            max: [x1.into(), y1.into()],
+                        })
+                    });
+                Box::new(Neighbourhoods::wide(&self.boxes, bounds))
+            })
+            .around(p, reach)
     }
 
     /// Calls `f` with the index of every wall listed in a bin that meets `b` (a wall listed in
@@ -175,6 +200,9 @@ impl WallIndex {
             + vec_bytes(&self.reflectance)
             + self.bins.heap_bytes()
             + self.around.heap_bytes()
+            + self.wide.get().map_or(0, |wide| {
+                std::mem::size_of::<Neighbourhoods>() + wide.heap_bytes()
+            })
     }
 
     /// Number of walls.
