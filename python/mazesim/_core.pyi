@@ -179,11 +179,19 @@ class World:
     def goal(self) -> tuple[float, float, float] | None:
         """(x, y, radius) of the goal disc, or None."""
     def wall_boxes(self) -> npt.NDArray[np.float64]:
-        """(N, 6) array: cx, cy, sx, sy, yaw, reflectance of every wall box."""
+        """(N, 6) array: cx, cy, sx, sy, yaw, reflectance of every wall box (the sensed-only
+        walls are ``sensed_wall_boxes``)."""
     def wall_colours(self) -> npt.NDArray[np.float64]:
         """(N, 3) array: red, green, blue in [0, 1] of every wall box as a camera sees it, in
         the order of ``wall_boxes``; NaN for a wall that gives no colour (drawn in the grey of
         its reflectance)."""
+    def sensed_wall_boxes(self) -> npt.NDArray[np.float64]:
+        """(N, 6) array as ``wall_boxes`` of the sensed-only walls (``sensed_only = true``: seen
+        by infra-red rays and cameras, met by nothing else), in ``[[walls]]`` order; (0, 6) when
+        none."""
+    def sensed_wall_colours(self) -> npt.NDArray[np.float64]:
+        """(N, 3) array as ``wall_colours`` of the sensed-only walls, in the order of
+        ``sensed_wall_boxes``."""
     def paint_regions(self) -> list[dict[str, object]]:
         """Floor paint in drawing order; each a dict with "shape" ("rect" | "circle" | "capsule"),
         its geometry ("center", "size", "yaw" | "center", "radius" | "a", "b", "radius"),

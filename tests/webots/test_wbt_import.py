@@ -238,6 +238,7 @@ def test_cli_json_layout(tmp_path: Path) -> None:
     report = json.loads(result.stdout)
     assert set(report) == {
         "obstacles",
+        "sensed_only",
         "bodies",
         "robot",
         "basic_time_step_ms",

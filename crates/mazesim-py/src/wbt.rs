@@ -128,13 +128,14 @@ fn grey_images(images: Option<&Bound<'_, PyAny>>) -> PyResult<BTreeMap<String, G
     Ok(out)
 }
 
-/// The import as `{"obstacles": [...], "bodies": [...], "robot": {...} | None, "basic_time_step_ms": t,
+/// The import as `{"obstacles": [...], "sensed_only": [...], "bodies": [...], "robot": {...} | None, "basic_time_step_ms": t,
 /// (each obstacle and body with its `owners`, the lines of the nodes that hold it, and each
-/// obstacle with its `walls`, the first of its walls in the world and how many),
+/// obstacle with its `walls`, the first of its walls in the world and how many; `sensed_only`
+/// the obstacles only infra-red rays and cameras meet, as obstacles without owners),
 /// "warnings": [...], "one_controller_warnings": [...], "robot_model", "robot_line", "robot_profile", "extension_devices", "floor_textures",
 /// "floor_paint"}`, in metres and radians, world frame, z up.
 fn report<'py>(py: Python<'py>, import: &WbtImport) -> PyResult<Bound<'py, PyDict>> {
-    let obstacles = dicts(py, &import.obstacles, |d, obstacle| {
+    let footprint = |d: &Bound<'py, PyDict>, obstacle: &Obstacle| -> PyResult<()> {
         match *obstacle {
             Obstacle::Box { center, size, yaw } => {
                 d.set_item("kind", "box")?;
@@ -149,7 +150,9 @@ fn report<'py>(py: Python<'py>, import: &WbtImport) -> PyResult<Bound<'py, PyDic
             }
         }
         Ok(())
-    })?;
+    };
+    let obstacles = dicts(py, &import.obstacles, footprint)?;
+    let sensed_only = dicts(py, &import.sensed_obstacles, footprint)?;
     let bodies = dicts(py, &import.bodies, |d, body| {
         let (mass, friction) = match body {
             BodySpec::Box {
@@ -193,6 +196,7 @@ fn report<'py>(py: Python<'py>, import: &WbtImport) -> PyResult<Bound<'py, PyDic
     }
     let out = PyDict::new(py);
     out.set_item("obstacles", obstacles)?;
+    out.set_item("sensed_only", sensed_only)?;
     out.set_item("bodies", bodies)?;
     match import.robot {
         Some([x, y, yaw]) => {

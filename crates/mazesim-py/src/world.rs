@@ -3,7 +3,7 @@
 use std::sync::Arc;
 
 use mazesim_core::tasks::{cell_targets, grid_of, largest_connected_cells, open_sides};
-use mazesim_core::world::{BodyShape, PaintShape, PlacedMaze};
+use mazesim_core::world::{BodyShape, PaintShape, PlacedMaze, WallBox};
 use mazesim_core::World;
 use numpy::{PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
@@ -58,6 +58,14 @@ pub(crate) fn rows_to_array<'py, const N: usize>(
     let flat: Vec<f64> = rows.into_iter().flatten().collect();
     let len = flat.len() / N;
     numpy::PyArray1::from_vec(py, flat).reshape([len, N])
+}
+
+/// Rows of `wall_boxes`: cx, cy, sx, sy, yaw, reflectance of each wall.
+fn box_rows(walls: &[WallBox]) -> impl Iterator<Item = [f64; 6]> + '_ {
+    walls.iter().map(|w| {
+        let [sx, sy] = [2.0 * w.half[0], 2.0 * w.half[1]];
+        [w.center[0], w.center[1], sx, sy, w.yaw, w.reflectance]
+    })
 }
 
 #[pymethods]
@@ -181,15 +189,10 @@ impl PyWorld {
         enter(|| Ok(self.inner.goal().map(goal_tuple)))
     }
 
-    /// (N, 6) array: cx, cy, sx, sy, yaw, reflectance of every wall box.
+    /// (N, 6) array: cx, cy, sx, sy, yaw, reflectance of every wall box (the sensed-only walls
+    /// are `sensed_wall_boxes`).
     fn wall_boxes<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        enter(|| {
-            let rows = self.inner.walls().iter().map(|w| {
-                let [sx, sy] = [2.0 * w.half[0], 2.0 * w.half[1]];
-                [w.center[0], w.center[1], sx, sy, w.yaw, w.reflectance]
-            });
-            rows_to_array(py, rows)
-        })
+        enter(|| rows_to_array(py, box_rows(self.inner.walls())))
     }
 
     /// (N, 3) array: red, green, blue in [0, 1] of every wall box as a camera sees it, in the
@@ -203,6 +206,24 @@ impl PyWorld {
                 .into_iter()
                 .map(|c| c.unwrap_or([f64::NAN; 3]));
             rows_to_array(py, rows)
+        })
+    }
+
+    /// (N, 6) array as `wall_boxes` of the sensed-only walls (`sensed_only = true`: seen by
+    /// infra-red rays and cameras, met by nothing else), in `[[walls]]` order; (0, 6) when none.
+    fn sensed_wall_boxes<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        enter(|| {
+            let walls = self.inner.sensed_walls().map_or(&[][..], |s| s.walls());
+            rows_to_array(py, box_rows(walls))
+        })
+    }
+
+    /// (N, 3) array as `wall_colours` of the sensed-only walls, in the order of
+    /// `sensed_wall_boxes`.
+    fn sensed_wall_colours<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        enter(|| {
+            let colours = self.inner.sensed_walls().map_or(&[][..], |s| s.colours());
+            rows_to_array(py, colours.iter().map(|c| c.unwrap_or([f64::NAN; 3])))
         })
     }
 

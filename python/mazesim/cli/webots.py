@@ -188,6 +188,8 @@ def run_import(args: argparse.Namespace, out: TextIO) -> int:
         f"obstacles          {kinds.count('box')} boxes, {kinds.count('circle')} circles "
         f"({len(world.wall_boxes())} walls in the mazesim world)\n"
         f"movable bodies     {len(report['bodies'])}\n"
+        f"sensed only        {len(report['sensed_only'])} (seen by the infra-red sensors and "
+        "the camera, met by nothing else)\n"
         f"robot start        {_pose(report['robot'])}\n"
         f"robot              {report['robot_model'] or 'none'} "
         f"(simulated as {report['robot_profile']})\n"

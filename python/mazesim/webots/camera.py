@@ -3,7 +3,8 @@
 Each pixel is a ray from the camera (0.03 m ahead of the axle, 0.028 m above the floor, level,
 field of view 0.84 rad, 52 x 39 pixels as in Webots' E-puck PROTO). A ray that meets another
 robot's body below its top sees that robot (the E-puck PROTO's colours); one that meets a wall
-below the wall's height sees the wall, 80 % of its colour; a ray going down that meets the floor
+(a sensed-only one too, which nothing collides with) below the wall's height sees the wall, 80 %
+of its colour; a ray going down that meets the floor
 first sees the floor paint in its colour. A wall, paint or floor that gives no colour (see
 :meth:`mazesim.World.wall_colours`) is grey from its reflectance factor ``f``
 (``(f - 0.2) / 0.8``, so a white floor is 255 and black paint 0, the inverse of the infra-red
@@ -283,7 +284,7 @@ class Camera(_Sensor):
 
     def _read(self) -> Any:
         if self._walls is None or self._floor is None:
-            self._walls = WallBoxes(self._simulation.world)
+            self._walls = WallBoxes(self._simulation.world, sensed=True)
             self._floor = FloorPaint(self._simulation.world)
         self._bytes = None
         simulator = self._simulation.simulator

@@ -142,13 +142,18 @@ class ImportReport(TypedDict):
     (see :class:`WorldRobot`); ``floor_paint`` the number of paint
     rectangles the floor textures gave; ``bodies`` the movable bodies (``kind``, ``center``,
     ``size`` and ``yaw`` or ``radius``, ``mass`` in kg, floor ``friction``, ``owners`` as an
-    obstacle's); ``one_controller_warnings`` those of ``warnings`` that concern a run of one
-    controller only (the world's other e-pucks, which a run of the whole world simulates);
-    ``recognition`` the cameras' Recognition nodes and the objects with ``recognitionColors``
-    (:mod:`mazesim.webots.recognition`; empty for a file the core reads itself).
+    obstacle's); ``sensed_only`` the obstacles that only the infra-red sensors and the camera
+    meet (``kind``, ``center``, ``size`` and ``yaw`` or ``radius``: visual-only shapes, of no
+    Solid with a ``boundingObject``, in the proximity sensors' rays, which Webots' infra-red
+    rays see and nothing collides with); ``one_controller_warnings`` those of ``warnings`` that
+    concern a run of one controller only (the world's other e-pucks, which a run of the whole
+    world simulates); ``recognition`` the cameras' Recognition nodes and the objects with
+    ``recognitionColors`` (:mod:`mazesim.webots.recognition`; empty for a file the core reads
+    itself).
     """
 
     obstacles: list[BoxObstacle | CircleObstacle]
+    sensed_only: list[dict[str, object]]
     bodies: list[dict[str, object]]
     robot: RobotPose | None
     basic_time_step_ms: float
@@ -403,7 +408,8 @@ def import_summary(
     spec: str, report: Mapping[str, Any], warnings: list[str], robots: int = 1
 ) -> dict[str, Any]:
     """The one summary of a world's import that a run starts with (and keeps in summary.json):
-    the robot recognised (or, for a run of ``robots`` > 1, how many run), the PROTOs expanded
+    the robot recognised (or, for a run of ``robots`` > 1, how many run), the visual-only objects
+    kept for the infra-red sensors and the camera (``sensed_only``, a count), the PROTOs expanded
     and stood in for, and how many things were not imported as Webots simulates them (each is
     one warning line)."""
     protos = report.get("protos") or {}
@@ -417,6 +423,12 @@ def import_summary(
     else:
         robot = "no robot: the e-puck starts at (0, 0)"
     parts = [f"{os.path.basename(spec)}: {robot}"]
+    sensed = len(report.get("sensed_only") or [])
+    if sensed:
+        parts.append(
+            f"{sensed} visual-only object(s) seen by the infra-red sensors and the camera, "
+            "met by nothing else"
+        )
     if expanded:
         parts.append(f"PROTOs expanded: {', '.join(expanded)}")
     if stand_ins:
@@ -429,6 +441,7 @@ def import_summary(
     return {
         "sentence": "; ".join(parts),
         "robot_model": model,
+        "sensed_only": sensed,
         "protos_expanded": expanded,
         "stand_ins": stand_ins,
         "not_imported": list(warnings),

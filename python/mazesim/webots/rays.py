@@ -20,17 +20,23 @@ Floats = npt.NDArray[np.float64]
 
 
 class WallBoxes:
-    """The walls of a world as oriented boxes, ready for many rays at once."""
+    """The walls of a world as oriented boxes, ready for many rays at once; with ``sensed``, its
+    sensed-only walls too (after the others), as infra-red rays and cameras see them."""
 
-    def __init__(self, world: World) -> None:
+    def __init__(self, world: World, sensed: bool = False) -> None:
         boxes = np.asarray(world.wall_boxes(), dtype=np.float64).reshape(-1, 6)
+        colours = np.asarray(world.wall_colours(), dtype=np.float64).reshape(-1, 3)
+        if sensed:
+            boxes = np.concatenate([boxes, np.asarray(world.sensed_wall_boxes()).reshape(-1, 6)])
+            more = np.asarray(world.sensed_wall_colours(), dtype=np.float64).reshape(-1, 3)
+            colours = np.concatenate([colours, more])
         self.center = boxes[:, 0:2]
         self.half = boxes[:, 2:4] / 2.0
         self.cos = np.cos(boxes[:, 4])
         self.sin = np.sin(boxes[:, 4])
         self.reflectance = boxes[:, 5]
         #: Red, green, blue in [0, 1] of each wall as a camera sees it; NaN where none is given.
-        self.colour = np.asarray(world.wall_colours(), dtype=np.float64).reshape(-1, 3)
+        self.colour = colours
 
     def cast(self, origin: tuple[float, float], directions: Floats) -> tuple[Floats, Floats]:
         """Casts rays from ``origin`` along each of ``directions`` ((N, 2), not normalised).

@@ -344,7 +344,7 @@ class RayDistanceSensor(DistanceSensor):
         if self._mount.pitch > DOWNWARD_PITCH:
             return self._read_floor()
         if self._walls is None:
-            self._walls = WallBoxes(self._simulation.world)
+            self._walls = WallBoxes(self._simulation.world, sensed=self._type == self.INFRA_RED)
         x, y, heading = self._mount.world_pose(self._simulation.simulator.pose)
         direction = np.array([[math.cos(heading), math.sin(heading)]])
         distance, reflectance = self._walls.cast((x, y), direction)

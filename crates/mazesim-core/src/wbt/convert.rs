@@ -39,6 +39,7 @@ fn wall(center: [f64; 2], size: [f64; 2], yaw: f64, colour: Option<[f64; 3]>) ->
         yaw: Finite(yaw),
         reflectance: Reflectance(1.0),
         colour: colour.map(values::colour),
+        sensed_only: false,
     }
 }
 
@@ -85,14 +86,23 @@ impl WbtImport {
 
     /// The mazesim world description of this import.
     pub fn to_spec(&self, name: &str) -> WorldSpec {
+        // The solid obstacles first (`obstacle_walls` counts them), then the sensed-only ones.
+        let solid =
+            (self.obstacles.iter().enumerate()).map(|(i, o)| (o, &self.obstacle_colours, i, false));
+        let sensed = (self.sensed_obstacles.iter().enumerate())
+            .map(|(i, o)| (o, &self.sensed_colours, i, true));
         let mut walls = Vec::new();
-        for (i, obstacle) in self.obstacles.iter().enumerate() {
-            let colour = self.obstacle_colours.get(i).copied().flatten();
+        for (obstacle, colours, i, sensed_only) in solid.chain(sensed) {
+            let colour = colours.get(i).copied().flatten();
+            let first = walls.len();
             match *obstacle {
                 Obstacle::Box { center, size, yaw } => walls.push(wall(center, size, yaw, colour)),
                 Obstacle::Circle { center, radius } => {
                     walls.extend(circle_walls(center, radius, colour))
                 }
+            }
+            for w in &mut walls[first..] {
+                w.sensed_only = sensed_only;
             }
         }
         WorldSpec {

@@ -7,8 +7,9 @@
 //!
 //! Shapes no taller than [`FLOOR_MARK_HEIGHT`] that lie on the floor become floor paint of
 //! their colour's reflection factor, seen by the ground sensors; a mesh's triangles are read
-//! from its `.obj` file and painted cell by cell. Every other visual-only shape is named in a
-//! warning (nothing of the world is lost without a word).
+//! from its `.obj` file and painted cell by cell. Primitives in the proximity sensors' rays are
+//! sensed-only obstacles (`sensed.rs`). Every other visual-only shape is named in a warning
+//! (nothing of the world is lost without a word).
 
 use super::floor_texture::equal_rects;
 use super::frames::{tilt, Frame, Vec3};
@@ -240,6 +241,18 @@ impl<'d> Importer<'d> {
         ));
     }
 
+    /// A visual-only primitive above the floor: a sensed-only obstacle when it stands in the
+    /// proximity rays' way (`sensed.rs`), otherwise named in a warning.
+    fn sensed_or_dropped(&mut self, shape: &'d Node, geometry: &'d Node, parent: &Frame) {
+        if !self.sensed_shape(shape, parent) {
+            self.drop_visual(
+                shape,
+                geometry,
+                "above the floor, out of the proximity sensors' rays (3.3 to 4.4 cm up)",
+            );
+        }
+    }
+
     /// A `Shape` of the scene that no `Solid` with a `boundingObject` owns (`frame` is its
     /// parent's): a floor texture, a floor mark, or a warning.
     pub fn visual_shape(&mut self, node: &'d Node, frame: &Frame) {
@@ -269,7 +282,7 @@ impl<'d> Importer<'d> {
                 let half = [0, 1, 2].map(|i| frame.axis(i).map(|c| c * size[i] / 2.0));
                 let half_z: f64 = half.iter().map(|a| a[2].abs()).sum();
                 if !on_floor(frame.origin[2] + half_z) || tilt(frame.axis(2)) > TILT_TOLERANCE {
-                    return self.drop_visual(node, geometry, "above the floor");
+                    return self.sensed_or_dropped(node, geometry, &parent);
                 }
                 let width = half[0][0].hypot(half[0][1]) * 2.0;
                 let depth = half[1][0].hypot(half[1][1]) * 2.0;
@@ -288,7 +301,7 @@ impl<'d> Importer<'d> {
                 let half_z = (axis[2] * height / 2.0).abs();
                 let scale = frame.axis(0)[0].hypot(frame.axis(0)[1]);
                 if !on_floor(frame.origin[2] + half_z) || tilt(axis) > TILT_TOLERANCE {
-                    return self.drop_visual(node, geometry, "above the floor");
+                    return self.sensed_or_dropped(node, geometry, &parent);
                 }
                 self.mark(PaintSpec::Circle {
                     center: [Finite(snap(frame.origin[0])), Finite(snap(frame.origin[1]))],
@@ -312,6 +325,7 @@ impl<'d> Importer<'d> {
                     colour,
                 });
             }
+            "Sphere" | "Capsule" => self.sensed_or_dropped(node, geometry, &parent),
             _ => self.drop_visual(
                 node,
                 geometry,

@@ -108,6 +108,12 @@ pub struct Importer<'d> {
     pub obstacle_colours: Vec<Option<[f64; 3]>>,
     /// The colour of the Solid whose collision shapes are being read.
     pub colour: Option<[f64; 3]>,
+    /// Obstacles only infra-red rays and cameras meet (visual-only shapes in the proximity
+    /// rays' way, see `sensed.rs`), and their colours.
+    pub sensed_obstacles: Vec<Obstacle>,
+    pub sensed_colours: Vec<Option<[f64; 3]>>,
+    /// Set while reading a visual-only shape as a sensed-only obstacle.
+    pub sensing: bool,
     /// The floor's colour (see `appearance.rs`).
     pub floor_colour: Option<[f64; 3]>,
     /// Per obstacle, the lines of the nodes that hold it (see [`WbtImport::obstacle_owners`]).
@@ -157,6 +163,9 @@ pub fn import(doc: &Document, choice: RobotChoice<'_>) -> WbtImport {
         obstacles: Vec::new(),
         obstacle_colours: Vec::new(),
         colour: None,
+        sensed_obstacles: Vec::new(),
+        sensed_colours: Vec::new(),
+        sensing: false,
         floor_colour: None,
         obstacle_owners: Vec::new(),
         bodies: Vec::new(),
@@ -217,6 +226,8 @@ pub fn import(doc: &Document, choice: RobotChoice<'_>) -> WbtImport {
     WbtImport {
         obstacles: importer.obstacles,
         obstacle_colours: importer.obstacle_colours,
+        sensed_obstacles: importer.sensed_obstacles,
+        sensed_colours: importer.sensed_colours,
         floor_colour: importer.floor_colour,
         obstacle_owners: importer.obstacle_owners,
         bodies: importer.bodies,
@@ -416,6 +427,11 @@ impl<'d> Importer<'d> {
     /// Records an obstacle, in the colour of the Solid being read, held by the nodes the walk
     /// is inside.
     pub fn emit(&mut self, obstacle: Obstacle) {
+        if self.sensing {
+            self.sensed_obstacles.push(obstacle);
+            self.sensed_colours.push(self.colour);
+            return;
+        }
         self.obstacles.push(obstacle);
         self.obstacle_colours.push(self.colour);
         let mut owners = self.holders.clone();

@@ -15,8 +15,10 @@
 //! with a warning), the devices in its extension slots are listed, and floor image textures are
 //! found for [`WbtImport::paint_floor`]. Visual-only shapes lying on the floor (a line given as
 //! a thin Box or an `.obj` Mesh outside any Solid) become floor paint, as Webots' infra-red
-//! sensors see them. Anything not understood (an unknown PROTO, a tilted shape, a mesh bounding
-//! object, a visual-only shape above the floor) becomes a warning.
+//! sensors see them; those standing in the proximity rays' way (a decorative wall, a goal object
+//! the robot drives through) become sensed-only obstacles, seen by the infra-red sensors and the
+//! camera and met by nothing else. Anything not understood (an unknown PROTO, a tilted shape, a mesh bounding
+//! object, a visual-only shape above the floor out of the proximity rays) becomes a warning.
 //!
 //! ```
 //! use mazesim_core::wbt::{Obstacle, WbtImport};
@@ -45,6 +47,7 @@ mod import;
 mod lexer;
 mod parser;
 mod protos;
+mod sensed;
 mod shapes;
 mod tree;
 
@@ -131,6 +134,12 @@ pub struct WbtImport {
     /// The colour a camera sees of each obstacle (`None`: the grey of its reflection factor),
     /// in the order of `obstacles` (see `appearance.rs`).
     pub obstacle_colours: Vec<Option<[f64; 3]>>,
+    /// Obstacles only infra-red rays and cameras meet, in file order: visual-only shapes (of
+    /// no Solid with a `boundingObject`) in the e-puck's proximity rays' way (see `sensed.rs`).
+    /// The world keeps them as `sensed_only` walls, after the others.
+    pub sensed_obstacles: Vec<Obstacle>,
+    /// The colour a camera sees of each of `sensed_obstacles`.
+    pub sensed_colours: Vec<Option<[f64; 3]>>,
     /// The colour of the floor, when the world gives one (see `appearance.rs`).
     pub floor_colour: Option<[f64; 3]>,
     /// Per obstacle, the lines of the nodes that hold it, outermost first (the file's node

@@ -130,6 +130,9 @@ impl<'d> Importer<'d> {
     /// Whether a shape spanning `center_z +- half_z` meets the robot's height (a falling one, of
     /// an object with physics, meets it once on the floor).
     fn meets_robot(&mut self, center_z: f64, half_z: f64, owner: &str) -> bool {
+        if self.sensing {
+            return self.meets_proximity_rays(center_z, half_z);
+        }
         let top = center_z + half_z;
         if top <= FLOOR_LEVEL {
             return false;

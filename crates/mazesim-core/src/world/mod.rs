@@ -12,6 +12,7 @@ pub mod locate;
 pub mod moves;
 pub mod nearby;
 pub mod robots;
+pub mod sensed;
 pub mod spec;
 pub mod values;
 pub mod walls;
@@ -26,6 +27,7 @@ pub use grid::CellMaze;
 pub use moves::Motion;
 pub use nearby::{NearbyWalls, RayFan};
 pub use robots::RobotPlacement;
+pub use sensed::SensedWalls;
 pub use spec::WorldSpec;
 pub use walls::{RayHit, WallIndex};
 
@@ -79,11 +81,13 @@ pub struct World {
     spec: WorldSpec,
     source: String,
     /// Every wall box in file order, when some are exact duplicates (`None`: as `solid_walls`).
-    walls: Option<Vec<WallBox>>,
+    walls: Option<Box<[WallBox]>>,
     /// `walls` without exact duplicates (a wall written twice is one solid), in file order: what
     /// the physics and the sensors see.
     solid_walls: Vec<WallBox>,
     wall_index: WallIndex,
+    /// The walls only infra-red rays and cameras meet (`None`: there are none).
+    sensed: Option<Box<SensedWalls>>,
     floor: FloorPaint,
     checkpoints: Vec<Checkpoint>,
     goal: Option<Goal>,
@@ -166,6 +170,7 @@ impl World {
             spec.checkpoints.len(),
         )?;
         let mut walls: Vec<WallBox> = Vec::new();
+        let (mut sensed, mut sensed_colours) = (Vec::new(), Vec::new());
         let mut maze = None;
         let mut start = None;
         let mut goal = None;
@@ -228,7 +233,12 @@ impl World {
                 reflectance: w.reflectance.get(),
             };
             check.within(Place::Array("walls", i), &field, wall.bounds())?;
-            walls.push(wall);
+            if w.sensed_only {
+                sensed.push(wall);
+                sensed_colours.push(w.colour.as_ref().map(values::rgb));
+            } else {
+                walls.push(wall);
+            }
         }
         for (i, s) in spec.segments.iter().enumerate() {
             let wall = WallBox::from_segment(
@@ -414,12 +424,14 @@ impl World {
             });
         }
         bounds = bodies.iter().fold(bounds, |b, m| b.union(m.bounds()));
+        let sensed = SensedWalls::new(sensed, sensed_colours);
+        bounds = sensed.as_ref().map_or(bounds, |s| bounds.union(s.bounds()));
         let background = spec.floor.as_ref().map_or(1.0, |f| f.reflectance.get());
         regions.shrink_to_fit();
         checkpoints.shrink_to_fit();
         let mut solid_walls = distinct(&walls);
         solid_walls.shrink_to_fit();
-        let walls = (walls.len() != solid_walls.len()).then_some(walls);
+        let walls = (walls.len() != solid_walls.len()).then(|| walls.into_boxed_slice());
         let wall_index = WallIndex::new(&solid_walls);
         check.crowding(wall_index.crowded_pairs(), solid_walls.len())?;
         let fingerprint = toml::to_string(&spec)
@@ -429,6 +441,7 @@ impl World {
             fingerprint,
             solid_walls,
             wall_index,
+            sensed,
             floor: FloorPaint::new(background, regions),
             spec,
             source: source.to_string(),
@@ -484,9 +497,10 @@ impl World {
         size_of_val(self)
             + described
             + string_bytes(&self.source)
-            + self.walls.as_ref().map_or(0, vec_bytes)
+            + self.walls.as_ref().map_or(0, |w| size_of_val(&**w))
             + vec_bytes(&self.solid_walls)
             + self.wall_index.heap_bytes()
+            + self.sensed.as_ref().map_or(0, |s| s.heap_bytes())
             + self.floor.heap_bytes()
             + vec_bytes(&self.checkpoints)
             + self
@@ -524,7 +538,7 @@ impl World {
         self.spec.basic_time_step_ms.get() / 1000.0
     }
 
-    /// Every wall as a box.
+    /// Every wall as a box (the sensed-only ones are [`World::sensed_walls`]).
     pub fn walls(&self) -> &[WallBox] {
         self.walls.as_deref().unwrap_or(&self.solid_walls)
     }
@@ -533,15 +547,11 @@ impl World {
     /// that of its `[[walls]]` entry when it gives one, `None` otherwise (the grid's walls and
     /// the segments have none: a camera draws them in the grey of their reflectance).
     pub fn wall_colours(&self) -> Vec<Option<[f64; 3]>> {
-        let listed = self.spec.walls.len() + self.spec.segments.len();
+        let solid = self.spec.walls.iter().filter(|w| !w.sensed_only);
+        let listed = solid.clone().count() + self.spec.segments.len();
         let grid = self.walls().len().saturating_sub(listed);
         let mut colours = vec![None; grid];
-        colours.extend(
-            self.spec
-                .walls
-                .iter()
-                .map(|w| w.colour.as_ref().map(values::rgb)),
-        );
+        colours.extend(solid.map(|w| w.colour.as_ref().map(values::rgb)));
         colours.resize(self.walls().len(), None);
         colours
     }
@@ -558,6 +568,12 @@ impl World {
             .floor
             .as_ref()
             .and_then(|f| f.colour.as_ref().map(values::rgb))
+    }
+
+    /// The walls only infra-red rays and cameras meet (`sensed_only = true`; see `sensed.rs`),
+    /// when the world has some.
+    pub fn sensed_walls(&self) -> Option<&SensedWalls> {
+        self.sensed.as_deref()
     }
 
     /// The walls as solids: `walls` with exact duplicates merged, in file order.

@@ -6,7 +6,7 @@ use std::f64::consts::PI;
 use super::values::Finite;
 use super::{distinct, World};
 use crate::error::{Error, Result};
-use crate::world::WallIndex;
+use crate::world::{SensedWalls, WallIndex};
 
 /// The rigid motion of the plane that takes the pose `from` (x, y, yaw) to the pose `to`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -59,12 +59,24 @@ impl World {
                 "expected wall indices below the world's {count} [[walls]] entries, found {bad}"
             )));
         }
-        // The compiled walls: the grid's first, then `[[walls]]`, then `[[segments]]`.
+        // The compiled walls: the grid's first, then the solid `[[walls]]`, then `[[segments]]`;
+        // the sensed-only `[[walls]]` apart, in their own order.
         let mut every = self.walls().to_vec();
-        let offset = every.len() - count - self.spec.segments.len();
+        let solid = self.spec.walls.iter().filter(|w| !w.sensed_only).count();
+        let offset = every.len() - solid - self.spec.segments.len();
+        let mut sensed = self
+            .sensed
+            .as_ref()
+            .map_or(Vec::new(), |s| s.walls().to_vec());
         let mut spec = self.spec.clone();
         for &i in walls {
-            let wall = &mut every[offset + i];
+            let before = &self.spec.walls[..i];
+            let kept_apart = self.spec.walls[i].sensed_only;
+            let wall = if kept_apart {
+                &mut sensed[before.iter().filter(|w| w.sensed_only).count()]
+            } else {
+                &mut every[offset + before.iter().filter(|w| !w.sensed_only).count()]
+            };
             let [x, y, yaw] = motion.apply([wall.center[0], wall.center[1], wall.yaw]);
             wall.center = [x, y];
             wall.yaw = yaw;
@@ -88,16 +100,23 @@ impl World {
         let wall_index = WallIndex::new(&solid_walls);
         let bounds = solid_walls
             .iter()
+            .chain(&sensed)
             .fold(self.bounds, |b, w| b.union(w.bounds()));
+        let sensed_moved = walls.iter().any(|&i| self.spec.walls[i].sensed_only);
+        let sensed = match &self.sensed {
+            Some(kept) if sensed_moved => SensedWalls::new(sensed, kept.colours().to_vec()),
+            kept => kept.clone(),
+        };
         let fingerprint = toml::to_string(&spec)
             .map(|text| crate::fingerprint::fnv1a(text.as_bytes()))
             .map_err(|e| Error::InvalidArgument(format!("cannot write the world: {e}")))?;
         Ok(World {
             spec,
             source: self.source.clone(),
-            walls: (every.len() != solid_walls.len()).then_some(every),
+            walls: (every.len() != solid_walls.len()).then(|| every.into_boxed_slice()),
             solid_walls,
             wall_index,
+            sensed,
             floor: self.floor.clone(),
             checkpoints: self.checkpoints.clone(),
             goal: self.goal,

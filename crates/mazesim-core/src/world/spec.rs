@@ -206,6 +206,11 @@ pub struct WallSpec {
     /// Colour as a camera sees it (`None`: the grey of its reflectance).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub colour: Option<Colour>,
+    /// Seen and not touched: infra-red rays and cameras meet it, nothing collides with it and
+    /// range sensors and ground sensors pass it by (a Webots Solid without a `boundingObject`,
+    /// such as a goal object the robot drives through).
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub sensed_only: bool,
 }
 
 /// `[[segments]]`: a wall along a centre line.
