@@ -124,3 +124,17 @@ def test_a_supervisor_resets_a_world_of_several_robots(
     assert after["time"] == pytest.approx(30 * 0.032)
     # The gate, back where the file has it, stops the pusher again.
     assert seen["pusher_end"][0] < -0.12 - 0.01 - 0.037 + 1e-3
+
+
+def test_removing_a_wall_is_refused_with_what_to_do_instead(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    supervisor = supervisor_of(tmp_path)
+    gate = supervisor.getFromDef("GATE")
+    gate.remove()
+    error = capsys.readouterr().err
+    assert error.startswith("Error: Node.remove() of node Solid (DEF GATE)")
+    assert "nothing changed" in error and "move it far from them" in error
+    assert supervisor.getFromId(gate.getId()) is gate
+    drive(supervisor, 6.0, 40)
+    assert simulations.current().simulator.pose[0] < BLOCKED_X, "the gate still stands"

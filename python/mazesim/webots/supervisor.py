@@ -73,8 +73,8 @@ def _refuse_scene_change(call: str) -> None:
         f"Error: {call} is not supported by mazesim: it would add or remove a node of the "
         "running world, and mazesim's simulator is built from the world file when it is "
         "imported and takes no body in or out during a run; nothing changed. A supervisor "
-        "moves the world's robots (the translation and rotation fields of their nodes) and "
-        "sets other fields of the file's nodes, which are recorded but move nothing."
+        "moves the world's robots, walls and movable bodies by the translation and rotation "
+        "fields of their nodes: to take one out of the robots' way, move it far from them."
     )
 
 
