@@ -296,11 +296,19 @@ impl Simulator {
     /// Back at the start pose among the walls of `world` (this robot's world as it was made,
     /// before `take_world`), the movable bodies at their starts, all at rest (see
     /// `Swarm::reset_scene`); time, counters and the noise stream go on.
-    pub(crate) fn restart_among(&mut self, world: Arc<World>) {
-        self.world = world;
+    pub(crate) fn restart_among(&mut self, world: &Arc<World>) {
+        self.forget_moves(world);
         let start = self.start_pose().map(|v| v as f32);
         self.place(start);
         self.sense();
+    }
+
+    /// Takes `world` back, this robot's world as it was made, when `take_world` gave it another
+    /// (the walls are met there once the body is placed again, at the next reset).
+    pub(crate) fn forget_moves(&mut self, world: &Arc<World>) {
+        if !Arc::ptr_eq(&self.world, world) {
+            self.world = world.clone();
+        }
     }
 
     /// Sets the velocity (vx, vy in m/s, turn rate in rad/s) of movable body `index` of the

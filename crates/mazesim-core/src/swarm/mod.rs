@@ -409,8 +409,12 @@ impl Swarm {
         Ok(())
     }
 
-    /// Back to the starts, time and counters zeroed; new streams of `seed` when given.
+    /// Back to the starts, time and counters zeroed, the walls `move_solid` moved where the
+    /// world has them; new streams of `seed` when given.
     pub fn reset(&mut self, seed: Option<u64>) {
+        for robot in &mut self.robots {
+            robot.forget_moves(&self.made_of);
+        }
         reset_robots(&mut self.robots, &self.names, seed);
         self.commands.fill([0.0; 2]);
     }
@@ -491,7 +495,7 @@ impl Swarm {
     /// streams and wheel commands go on.
     pub fn reset_scene(&mut self) {
         for robot in &mut self.robots {
-            robot.restart_among(self.made_of.clone());
+            robot.restart_among(&self.made_of);
         }
         if self.robots[0].in_shared_scene() {
             share_scene(&mut self.robots);

@@ -538,3 +538,26 @@ fn a_body_set_moving_slides_and_slows() {
         .unwrap_err();
     assert!(error.to_string().contains("vx"), "{error}");
 }
+
+#[test]
+fn a_reset_puts_moved_walls_back_too() {
+    let made = quiet(gate_world(0.5, false));
+    let mut swarm = quiet(gate_world(0.5, false));
+    let wall = Motion {
+        from: [0.5, 0.0, 0.0],
+        to: [0.06, 0.0, 0.0],
+    };
+    swarm.move_solid(&[0], &[], wall).unwrap();
+    swarm.reset(None);
+    assert_eq!(
+        swarm.robots()[0].world().walls(),
+        made.robots()[0].world().walls()
+    );
+    for _ in 0..40 {
+        swarm.step(&[[6.0, 6.0]]).unwrap();
+    }
+    assert!(
+        swarm.robots()[0].pose()[0] > 0.1,
+        "held back by the moved wall"
+    );
+}
