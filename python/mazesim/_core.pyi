@@ -419,6 +419,20 @@ class Simulator:
             InvalidArgumentError: An index past the walls or bodies, or a pose beyond the
                 limits; nothing moved.
         """
+    def reset_scene(self) -> None:
+        """Puts the scene back as the world was made, as a Webots supervisor's
+        ``simulationReset`` does: every robot at its start, the walls ``move_solid`` moved where
+        the world has them and every movable body at its start, all at rest. Time, counters,
+        noise streams and wheel commands go on (``reset`` zeroes them)."""
+    def set_body_velocity(self, index: int, vx: float, vy: float, turn_rate: float) -> None:
+        """Sets the velocity of movable body ``index`` (world order): ``vx``, ``vy`` in m/s and
+        ``turn_rate`` in rad/s, as a Webots supervisor's ``Node.setVelocity`` does; the floor's
+        friction slows it from the next step on.
+
+        Raises:
+            InvalidArgumentError: An index past the bodies, or a speed beyond 10 m/s (a turn
+                rate beyond 10,000 rad/s); nothing changed.
+        """
     @property
     def pose(self) -> tuple[float, float, float]: ...
     @property

@@ -101,3 +101,30 @@ def test_the_robot_pushes_a_box_and_a_reset_puts_it_back() -> None:
     assert x > 0.35 and abs(y) < 0.02
     sim.reset()
     assert sim.body_poses() == [(pytest.approx(0.15), 0.0, 0.0)]
+
+
+def test_moving_the_robot_leaves_a_pushed_box_and_reset_scene_puts_it_back() -> None:
+    sim = mazesim.Simulator(mazesim.World.from_toml(HEADER + BOX), noise=False)
+    for _ in range(60):
+        sim.step(6.0, 6.0)
+    [pushed] = sim.body_poses()
+    assert pushed[0] > 0.25
+    sim.set_pose(-0.3, 0.3, 1.0)
+    assert sim.body_poses() == [pushed]
+    steps = sim.steps
+    sim.reset_scene()
+    assert sim.body_poses() == [(pytest.approx(0.15), 0.0, 0.0)]
+    assert sim.pose == (0.0, 0.0, 0.0) and sim.steps == steps
+
+
+def test_a_box_set_moving_slides_and_slows() -> None:
+    sim = mazesim.Simulator(mazesim.World.from_toml(HEADER + BOX), noise=False)
+    sim.set_body_velocity(0, 0.0, 0.3, 0.0)
+    sim.step(0.0, 0.0)
+    [(x, y, _)] = sim.body_poses()
+    [(_, vy, _)] = sim.body_velocities()
+    assert x == pytest.approx(0.15) and y > 0.005 and 0.0 < vy < 0.3
+    with pytest.raises(mazesim.InvalidArgumentError, match="below the world's 1 bodies"):
+        sim.set_body_velocity(1, 0.0, 0.0, 0.0)
+    with pytest.raises(mazesim.InvalidArgumentError, match="vy"):
+        sim.set_body_velocity(0, 0.0, 11.0, 0.0)

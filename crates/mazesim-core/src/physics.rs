@@ -317,8 +317,9 @@ impl Body {
         self.set_pose(first);
     }
 
-    /// Puts robot `index` of the scene this body holds at `pose`, at rest (a robot moved by hand).
-    pub fn place_shared(&mut self, index: usize, pose: [f32; 3]) {
+    /// Puts robot `index` of the scene this body holds at `pose`, at rest (a robot moved by
+    /// hand); the movable bodies stay where they are. Without a scene the body takes the pose.
+    pub fn place_robot(&mut self, index: usize, pose: [f32; 3]) {
         if let Some(scene) = self.scene.as_mut() {
             if let Some(&handle) = scene.robots.get(index) {
                 let body = &mut scene.world.bodies[handle];
@@ -413,6 +414,21 @@ impl Body {
         body.set_rotation(Rotation::new(pose[2]), true);
         body.set_linvel(Vector::ZERO, true);
         body.set_angvel(0.0, true);
+        true
+    }
+
+    /// Sets the velocity (vx, vy in m/s, turn rate in rad/s) of movable body `index` of the
+    /// scene this body holds; returns whether there is such a body.
+    pub fn set_movable_velocity(&mut self, index: usize, velocity: [f32; 3]) -> bool {
+        let Some(scene) = self.scene.as_mut() else {
+            return false;
+        };
+        let Some(&(handle, _, _)) = scene.movables.get(index) else {
+            return false;
+        };
+        let body = &mut scene.world.bodies[handle];
+        body.set_linvel(Vector::new(velocity[0], velocity[1]), true);
+        body.set_angvel(velocity[2], true);
         true
     }
 

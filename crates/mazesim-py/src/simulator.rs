@@ -500,6 +500,34 @@ impl PySimulator {
         self.swarm(|s| s.move_solid(&walls, &bodies, motion))?.py()
     }
 
+    /// Puts the scene back as the world was made, as a Webots supervisor's `simulationReset`
+    /// does: every robot at its start, the walls `move_solid` moved where the world has them and
+    /// every movable body at its start, all at rest. Time, counters, noise streams and wheel
+    /// commands go on (`reset` zeroes them).
+    fn reset_scene(&self) -> PyResult<()> {
+        self.swarm(|s| s.reset_scene())
+    }
+
+    /// Sets the velocity of movable body `index` (world order): `vx`, `vy` in m/s and
+    /// `turn_rate` in rad/s, as a Webots supervisor's `Node.setVelocity` does; the floor's
+    /// friction slows it from the next step on.
+    #[pyo3(text_signature = "($self, index, vx, vy, turn_rate)")]
+    fn set_body_velocity(
+        &self,
+        index: IntArg,
+        vx: Real,
+        vy: Real,
+        turn_rate: Real,
+    ) -> PyResult<()> {
+        let index = index.count("index", mazesim_core::limits::MAX_BODIES)?;
+        let velocity = [
+            vx.value("vx")?,
+            vy.value("vy")?,
+            turn_rate.value("turn_rate")?,
+        ];
+        self.swarm(|s| s.set_body_velocity(index, velocity))?.py()
+    }
+
     #[getter]
     fn time(&self) -> PyResult<f64> {
         self.read(|s| s.time())

@@ -213,6 +213,21 @@ class Fleet:
         """The movable bodies' velocities (vx, vy, turn rate) now, in world order."""
         return self.solids.body_velocities()
 
+    def set_body_velocity(self, index: int, vx: float, vy: float, turn_rate: float) -> None:
+        """Sets a movable body's velocity in every simulator that holds the world's bodies."""
+        self.solids.set_body_velocity(index, vx, vy, turn_rate)
+
+    def reset_scene(self) -> None:
+        """Puts every robot at its start and the walls and movable bodies where the world file
+        has them, all at rest (a supervisor's ``simulationReset``), in every simulator."""
+        done: set[int] = set()
+        for simulator in self._simulators:
+            whole = simulator.simulator if isinstance(simulator, RobotView) else simulator
+            if id(whole) not in done:
+                done.add(id(whole))
+                whole.reset_scene()
+        self.moved.update(range(len(self._simulators)))
+
     def move_node(self, line: int, from_pose: Any, to_pose: Any) -> None:
         """Moves what the node on ``line`` holds, in every simulator that holds the world's
         walls and bodies (see :meth:`~mazesim.webots.solids.WorldSolids.move_node`)."""

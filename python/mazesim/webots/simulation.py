@@ -307,6 +307,24 @@ class RobotSimulation:
         distance travelled.
         """
         x, y = place_where_asked(self.simulator, x, y, yaw)
+        self._at_rest(x, y, yaw)
+
+    def reset_scene(self) -> None:
+        """Puts the world back as its file has it, as a supervisor's ``simulationReset`` does:
+        every robot at its start, the walls a supervisor moved where the file has them and every
+        movable body at its start, all at rest (in a world with several robots, through the
+        world's process). The clock, the counters and the trajectory go on; the move is not
+        counted as distance travelled."""
+        if self.fleet is not None:
+            self.fleet.reset_scene()
+        else:
+            self.simulator.reset_scene()
+        x, y, yaw = (float(v) for v in self.simulator.pose)
+        self._at_rest(x, y, yaw)
+
+    def _at_rest(self, x: float, y: float, yaw: float) -> None:
+        """Notes that the robot was put at (x, y, yaw) at rest: the trajectory's latest point
+        is there, the wheels' traction, velocity and sensor readings start again."""
         if self.traction is not None:
             self.traction.stop()
         self._distance = None

@@ -97,9 +97,19 @@ class WorldSolids:
         for simulator in self._simulators:
             simulator.move_solid(walls, held.bodies, from_pose, to_pose)
 
+    def set_body_velocity(self, index: int, vx: float, vy: float, turn_rate: float) -> None:
+        """Sets the velocity of movable body ``index`` (world order) in every simulator.
+
+        Raises:
+            InvalidArgumentError: An index past the bodies or a speed beyond the limits.
+        """
+        for simulator in self._simulators:
+            simulator.set_body_velocity(index, vx, vy, turn_rate)
+
 
 def world_objects(simulation: Any) -> Any:
-    """What answers ``body_poses``, ``body_velocities`` and ``move_node`` for the world of a
+    """What answers ``body_poses``, ``body_velocities``, ``move_node`` and ``set_body_velocity``
+    for the world of a
     run: the world's robots (the :class:`~mazesim.webots.lockstep.Fleet`) when another process
     owns the world, else the :class:`WorldSolids` of its simulator."""
     if simulation.fleet is not None:

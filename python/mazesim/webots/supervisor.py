@@ -12,8 +12,9 @@ Webots' kind of error and changes nothing (the simulator is built from the world
 and takes no body in or out during a run), so the controller goes on as Webots' would.
 It reads and sets the robot's ``translation`` and ``rotation`` (moving the robot in the
 simulation), and in a world with several robots those of every other robot too, reads its
-position, orientation and velocity, resets the simulation (the robot back at its start) or
-the robot's motion, and quits it with a status (``mazesim webots run`` exits with it).
+position, orientation and velocity, sets a movable body's velocity, resets the simulation
+(every robot, moved wall and movable body back where the file has them) or the motion of the
+robot and the bodies, and quits it with a status (``mazesim webots run`` exits with it).
 """
 
 from __future__ import annotations
@@ -72,8 +73,8 @@ def _refuse_scene_change(call: str) -> None:
         f"Error: {call} is not supported by mazesim: it would add or remove a node of the "
         "running world, and mazesim's simulator is built from the world file when it is "
         "imported and takes no body in or out during a run; nothing changed. A supervisor "
-        "moves the world's robots (the translation and rotation fields of their nodes) and "
-        "sets other fields of the file's nodes, which are recorded but move nothing."
+        "moves the world's robots, walls and movable bodies by the translation and rotation "
+        "fields of their nodes: to take one out of the robots' way, move it far from them."
     )
 
 
@@ -408,6 +409,8 @@ class Node(NotSimulated):
         self._fleet_index: int | None = None
         self._translation = translation
         self._rotation = rotation
+        #: Its translation and rotation as the world file gives them (what a reset restores).
+        self._file_pose = (translation, rotation)
         self._strings = {"name": "e-puck", "customData": "", "controller": "<extern>"}
         if not robot:
             self._strings = {} if name is None else {"name": name}
@@ -728,7 +731,21 @@ class Node(NotSimulated):
         return [*_out([vx, vy, 0.0]), *_out([0.0, 0.0, yaw_rate])]
 
     def setVelocity(self, velocity: list[float]) -> None:
-        """Accepted; the robot's velocity comes from its wheels."""
+        """Sets the linear and angular velocity [vx, vy, vz, wx, wy, wz] (m/s, rad/s, world
+        frame) of the movable bodies the node holds: their motion seen from above, vx, vy and the
+        turn rate about the vertical (the floor's friction slows them from the next step on).
+        Accepted for a robot, whose velocity comes from its wheels, and for static nodes."""
+        if not self._held.bodies:
+            return
+        values = _padded(velocity, 6)
+        vx, vy, _ = _in(values[:3])
+        turn_rate = _in(values[3:6])[2]
+        objects = world_objects(self._simulation())
+        try:
+            for index in self._held.bodies:
+                objects.set_body_velocity(index, vx, vy, turn_rate)
+        except MazesimError as refused:
+            _print_error(f"Error: the velocity of {self._label()} cannot be set: {refused}")
 
     def resetPhysics(self) -> None:
         """Stops the robot's motion (its wheels' speeds still apply at the next step), or that
@@ -873,6 +890,8 @@ class Supervisor(Robot):
         for node_id, child in reversed(list(enumerate(children, start=1))):
             child._id = node_id  # a node a USE lists again keeps the id of its first place
         self._nodes: dict[str, Node] = {}
+        #: Every node of the world file (one per scene node), whose fields a reset restores.
+        self._file_nodes = list(made.values())
         held = held_by_line(self._simulation.report)
         bodies = self._simulation.report.get("bodies", [])
         for node in made.values():
@@ -941,13 +960,21 @@ class Supervisor(Robot):
         self._simulation.quit_status = int(status)
 
     def simulationReset(self) -> None:
-        """Puts the robot back at its start, at rest (the clock goes on)."""
-        x, y, yaw = self._simulation.world.start
-        self._simulation.move_robot(x, y, yaw)
+        """Puts the world back as its file has it, as Webots' reset does: every robot at its
+        start, every wall a supervisor moved and every movable body at its start, all at rest,
+        and the nodes' ``translation`` and ``rotation`` fields as the file gives them. The
+        controllers go on, as in Webots; unlike Webots, the clock goes on too."""
+        self._simulation.reset_scene()
+        for node in [*self._file_nodes, *self._nodes.values()]:
+            node._translation, node._rotation = node._file_pose
 
     def simulationResetPhysics(self) -> None:
-        """Stops the robot's motion (its wheels' speeds still apply at the next step)."""
+        """Stops the motion of the robot (its wheels' speeds still apply at the next step) and
+        of every movable body."""
         self._simulation.velocity = (0.0, 0.0, 0.0)
+        objects = world_objects(self._simulation)
+        for index in range(len(objects.body_poses())):
+            objects.set_body_velocity(index, 0.0, 0.0, 0.0)
 
     def simulationGetMode(self) -> int:
         """The mode set last (fast by default: a headless run runs as fast as it can)."""

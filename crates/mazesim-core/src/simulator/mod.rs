@@ -265,17 +265,22 @@ impl Simulator {
 
     /// Moves the robot to a pose (x, y, yaw), at rest; sensors are read there. Time and counters go on.
     /// The pose must lie within the limits (`crate::limits`) and leave the body clear of every wall.
+    /// The world's movable bodies stay where they are (with their motion).
     pub fn set_pose(&mut self, x: f64, y: f64, yaw: f64) -> Result<()> {
         check_free(&self.world, &self.rig.robot, "pose", [x, y, yaw])?;
-        self.place([x as f32, y as f32, yaw as f32]);
+        // Among movable bodies, the robot's ball moves in its scene (in a shared scene, the
+        // swarm moves it there); the bodies are not made again.
+        self.body.place_robot(0, [x as f32, y as f32, yaw as f32]);
+        self.placed();
         self.sense();
         Ok(())
     }
 
+    /// Puts the robot at `pose` at rest among the world's walls and its movable bodies made
+    /// again at their starts (one of several robots in one scene: the swarm moves its ball).
     fn place(&mut self, pose: [f32; 3]) {
         if self.body.is_shared() {
-            // One of several robots in one scene: the swarm moves its ball there.
-            self.body.place_shared(0, pose);
+            self.body.place_robot(0, pose);
         } else {
             self.body = Body::new(
                 self.world.solid_walls(),
@@ -285,6 +290,35 @@ impl Simulator {
                 self.dt as f32,
             );
         }
+        self.placed();
+    }
+
+    /// Back at the start pose among the walls of `world` (this robot's world as it was made,
+    /// before `take_world`), the movable bodies at their starts, all at rest (see
+    /// `Swarm::reset_scene`); time, counters and the noise stream go on.
+    pub(crate) fn restart_among(&mut self, world: &Arc<World>) {
+        self.forget_moves(world);
+        let start = self.start_pose().map(|v| v as f32);
+        self.place(start);
+        self.sense();
+    }
+
+    /// Takes `world` back, this robot's world as it was made, when `take_world` gave it another
+    /// (the walls are met there once the body is placed again, at the next reset).
+    pub(crate) fn forget_moves(&mut self, world: &Arc<World>) {
+        if !Arc::ptr_eq(&self.world, world) {
+            self.world = world.clone();
+        }
+    }
+
+    /// Sets the velocity (vx, vy in m/s, turn rate in rad/s) of movable body `index` of the
+    /// scene this simulator holds; returns whether it holds that body.
+    pub(crate) fn set_body_velocity(&mut self, index: usize, velocity: [f32; 3]) -> bool {
+        self.body.set_movable_velocity(index, velocity)
+    }
+
+    /// What follows a move of the body: the pose, heading, wall contact and barcode tracker.
+    fn placed(&mut self) {
         self.pose = self.body.pose();
         self.heading = self.body.heading();
         self.update_contact();

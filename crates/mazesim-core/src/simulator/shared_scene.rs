@@ -39,7 +39,7 @@ pub fn share_scene(robots: &mut [Simulator]) {
 pub fn place_in_scene(robots: &mut [Simulator], index: usize) {
     if index > 0 && index < robots.len() {
         let pose = robots[index].pose;
-        robots[0].body.place_shared(index, pose);
+        robots[0].body.place_robot(index, pose);
     }
 }
 

@@ -24,6 +24,7 @@ use std::sync::Arc;
 
 use crate::error::{Error, Result};
 use crate::fingerprint::fnv1a;
+use crate::limits;
 use crate::robot::RobotProfile;
 use crate::simulator::{
     move_in_scene, place_in_scene, share_scene, Drive, Neighbour, Others, Rig, SceneStep,
@@ -260,6 +261,9 @@ pub struct Swarm {
     /// The profiles given for some robots instead of their placements' (`with_profiles`), one
     /// per robot; empty when none was.
     overrides: Vec<Option<Arc<RobotProfile>>>,
+    /// The world as the swarm was made of it (its walls where its file has them), which
+    /// `reset_scene` puts back after `move_solid`.
+    made_of: Arc<World>,
 }
 
 impl Swarm {
@@ -324,6 +328,7 @@ impl Swarm {
             overrides: Vec::new(),
             robots,
             names,
+            made_of: world,
         })
     }
 
@@ -404,8 +409,12 @@ impl Swarm {
         Ok(())
     }
 
-    /// Back to the starts, time and counters zeroed; new streams of `seed` when given.
+    /// Back to the starts, time and counters zeroed, the walls `move_solid` moved where the
+    /// world has them; new streams of `seed` when given.
     pub fn reset(&mut self, seed: Option<u64>) {
+        for robot in &mut self.robots {
+            robot.forget_moves(&self.made_of);
+        }
         reset_robots(&mut self.robots, &self.names, seed);
         self.commands.fill([0.0; 2]);
     }
@@ -465,7 +474,7 @@ impl Swarm {
                 )));
             };
             let [x, y, yaw] = motion.apply(pose.map(f64::from));
-            crate::limits::check_pose("movable body", x, y, yaw)?;
+            limits::check_pose("movable body", x, y, yaw)?;
             placed.push((i, [x as f32, y as f32, yaw as f32]));
         }
         if !walls.is_empty() {
@@ -477,6 +486,39 @@ impl Swarm {
         for (i, pose) in placed {
             self.robots[0].place_body(i, pose);
         }
+        Ok(())
+    }
+
+    /// Puts the scene back as the world was made, as a Webots supervisor's
+    /// `simulationReset` does: every robot at its start, the walls `move_solid` moved where the
+    /// world has them and every movable body at its start, all at rest. Time, counters, noise
+    /// streams and wheel commands go on.
+    pub fn reset_scene(&mut self) {
+        for robot in &mut self.robots {
+            robot.restart_among(&self.made_of);
+        }
+        if self.robots[0].in_shared_scene() {
+            share_scene(&mut self.robots);
+        }
+        sense_robots(&mut self.robots);
+    }
+
+    /// Sets the velocity of movable body `index` (world order): `vx`, `vy` in m/s and a turn
+    /// rate in rad/s, as a Webots supervisor's `Node.setVelocity` does; the floor's friction
+    /// slows it from the next step on.
+    pub fn set_body_velocity(&mut self, index: usize, velocity: [f64; 3]) -> Result<()> {
+        let count = self.robots[0].body_poses().len();
+        if index >= count {
+            return Err(Error::InvalidArgument(format!(
+                "expected a movable body index below the world's {count} bodies, found {index}"
+            )));
+        }
+        // A body goes no faster than a robot can, so that a step of it stays resolved.
+        let [vx, vy, turn] = velocity;
+        limits::check_bounded("the body's vx (m/s)", vx, limits::MAX_ROBOT_SPEED)?;
+        limits::check_bounded("the body's vy (m/s)", vy, limits::MAX_ROBOT_SPEED)?;
+        limits::check_bounded("the body's turn rate (rad/s)", turn, limits::MAX_TURN_RATE)?;
+        self.robots[0].set_body_velocity(index, velocity.map(|v| v as f32));
         Ok(())
     }
 }

@@ -83,6 +83,7 @@ impl Swarm {
                 commands: self.commands.clone(),
                 profile: self.profile.clone(),
                 overrides: self.overrides.clone(),
+                made_of: self.made_of.clone(),
             });
         }
         let rigs: Vec<std::sync::Arc<Rig>> = self.robots.iter().map(|r| r.rig().clone()).collect();
@@ -90,6 +91,7 @@ impl Swarm {
         let mut copy = Swarm::with_rigs(world, &rigs, self.robots[0].config())?;
         copy.profile = self.profile.clone();
         copy.overrides = self.overrides.clone();
+        copy.made_of = self.made_of.clone();
         copy.restore(&self.snapshot())?;
         Ok(copy)
     }

@@ -459,3 +459,105 @@ fn the_same_moves_give_the_same_run() {
     };
     assert_eq!(run(), run());
 }
+
+#[test]
+fn moving_the_robot_leaves_a_pushed_box_where_it_is() {
+    let mut swarm = quiet(gate_world(0.5, true));
+    let motion = Motion {
+        from: [0.0, 0.3, 0.0],
+        to: [0.07, 0.0, 0.0],
+    };
+    swarm.move_solid(&[], &[0], motion).unwrap();
+    for _ in 0..30 {
+        swarm.step(&[[6.0, 6.0]]).unwrap();
+    }
+    let pushed = swarm.robots()[0].body_poses()[0];
+    assert!(pushed[0] > 0.1, "the box was not pushed: {pushed:?}");
+    swarm.set_pose(0, -0.2, -0.2, 1.0).unwrap();
+    assert_eq!(swarm.robots()[0].body_poses()[0], pushed);
+    assert_eq!(swarm.robots()[0].pose()[0], -0.2);
+}
+
+#[test]
+fn resetting_the_scene_puts_robots_walls_and_bodies_back_and_time_goes_on() {
+    let made = quiet(gate_world(0.5, true));
+    let mut swarm = quiet(gate_world(0.5, true));
+    let wall = Motion {
+        from: [0.5, 0.0, 0.0],
+        to: [0.3, 0.1, 0.5],
+    };
+    swarm.move_solid(&[0], &[], wall).unwrap();
+    let to_box = Motion {
+        from: [0.0, 0.3, 0.0],
+        to: [0.07, 0.0, 0.0],
+    };
+    swarm.move_solid(&[], &[0], to_box).unwrap();
+    for _ in 0..30 {
+        swarm.step(&[[6.0, 5.0]]).unwrap();
+    }
+    swarm.reset_scene();
+    let robot = &swarm.robots()[0];
+    assert_eq!(robot.world().walls(), made.robots()[0].world().walls());
+    assert_eq!(robot.body_poses(), made.robots()[0].body_poses());
+    assert_eq!(robot.body_velocities(), vec![[0.0; 3]]);
+    assert_eq!(robot.pose(), made.robots()[0].pose());
+    assert_eq!(robot.steps(), 30);
+    // From there it runs as the world as made does.
+    let mut fresh = quiet(gate_world(0.5, true));
+    let (mut a, mut b) = (Vec::new(), Vec::new());
+    for _ in 0..20 {
+        swarm.step(&[[6.0, 6.0]]).unwrap();
+        fresh.step(&[[6.0, 6.0]]).unwrap();
+        a.push(swarm.robots()[0].pose());
+        b.push(fresh.robots()[0].pose());
+    }
+    assert_eq!(a, b);
+}
+
+#[test]
+fn a_body_set_moving_slides_and_slows() {
+    let mut swarm = quiet(gate_world(0.5, true));
+    swarm.set_body_velocity(0, [0.0, -0.2, 1.0]).unwrap();
+    let [vx, vy, turn] = swarm.robots()[0].body_velocities()[0];
+    assert_eq!((vx, vy, turn), (0.0, -0.2, 1.0));
+    swarm.step(&[[0.0, 0.0]]).unwrap();
+    let [x, y, _] = swarm.robots()[0].body_poses()[0];
+    let slower = swarm.robots()[0].body_velocities()[0][1];
+    assert!(x.abs() < 1e-6 && y < 0.3 - 0.004, "body at ({x}, {y})");
+    assert!(slower > -0.2 && slower < -0.1, "vy {slower}");
+    let error = swarm
+        .set_body_velocity(1, [0.0; 3])
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.contains("below the world's 1 bodies, found 1"),
+        "{error}"
+    );
+    let error = swarm
+        .set_body_velocity(0, [f64::NAN, 0.0, 0.0])
+        .unwrap_err();
+    assert!(error.to_string().contains("vx"), "{error}");
+}
+
+#[test]
+fn a_reset_puts_moved_walls_back_too() {
+    let made = quiet(gate_world(0.5, false));
+    let mut swarm = quiet(gate_world(0.5, false));
+    let wall = Motion {
+        from: [0.5, 0.0, 0.0],
+        to: [0.06, 0.0, 0.0],
+    };
+    swarm.move_solid(&[0], &[], wall).unwrap();
+    swarm.reset(None);
+    assert_eq!(
+        swarm.robots()[0].world().walls(),
+        made.robots()[0].world().walls()
+    );
+    for _ in 0..40 {
+        swarm.step(&[[6.0, 6.0]]).unwrap();
+    }
+    assert!(
+        swarm.robots()[0].pose()[0] > 0.1,
+        "held back by the moved wall"
+    );
+}
