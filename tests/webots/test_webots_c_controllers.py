@@ -118,6 +118,29 @@ def test_a_cpp_controller_that_relies_on_another_compilers_transitive_headers_bu
         build(source)
 
 
+def test_a_cpp_controller_using_a_standard_name_g_plus_plus_does_not_trace_builds(
+    tmp_path: Path,
+) -> None:
+    """`function` after `using namespace std`, with only <memory> included (macOS' libc++
+    brings <functional> in with it; g++ names no header for it): built with every standard
+    header included first, and the build says so; a real error still stops the build."""
+    source = tmp_path / "steer" / "steer.cpp"
+    source.parent.mkdir()
+    source.write_text(
+        "#include <memory>\n#include <webots/robot.h>\nusing namespace std;\n"
+        "struct steering {\n  steering(function<int(int)> pick) : pick_(pick) {}\n"
+        "  function<int(int)> pick_;\n};\n"
+        "int main() {\n  wb_robot_init();\n  steering left{[](int x) { return x - 4; }};\n"
+        "  wb_robot_cleanup();\n  return left.pick_(4);\n}\n"
+    )
+    built = build(source)
+    assert built.program is not None, built.note
+    assert "every standard header included first" in built.note
+    source.write_text(source.read_text().replace("return x - 4;", "return x - ;"))
+    with pytest.raises(ControllerBuildError, match="expected a C\\+\\+ controller that compiles"):
+        build(source)
+
+
 def test_without_a_compiler_the_error_says_what_to_install(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:

@@ -74,6 +74,13 @@ _DEFINED_TWICE = re.compile(
 _FORGOTTEN_HEADER = re.compile(
     r"did you forget to [‘'`]#include <([\w./+-]+)>|include [‘'`]<([\w./+-]+)>[’'`] or provide"
 )
+#: g++'s errors for a name it does not know, where no note names a header.
+_UNDECLARED = re.compile(
+    r"error: [‘'`]\w+[’'`] (?:does not name a type|was not declared in this scope"
+    r"|has not been declared|is not a member of [‘'`]std[’'`])"
+)
+#: Every header of the C++ standard library (libstdc++'s precompilable header), included first.
+_EVERY_HEADER = ("cpp", ("-include", "bits/stdc++.h"))
 #: A function of the sources whose name glibc's <stdlib.h> declares by default, as a BSD and
 #: POSIX extension (its random number generator), with another type: Windows' C library has
 #: no such function, so the name was free where the controller was written.
@@ -520,6 +527,17 @@ def _build_sources(main: Path) -> Build:
         done, command = _compile_all(
             main, language, compilers, c_sources, cpp_sources, aliases, temporary, (step, included)
         )
+    whole_library = False
+    if done.returncode != 0 and command[0] == compilers[-1] and _UNDECLARED.search(done.stderr):
+        # A name of the C++ standard library that g++ does not trace to its header (`function`
+        # after `using namespace std`): another standard library (macOS' libc++) brought it in
+        # through the headers the sources include, so they are built with every standard header
+        # included first; when that fails too, the first errors are the ones said.
+        retried, again = _compile_all(
+            main, language, compilers, c_sources, cpp_sources, aliases, temporary, _EVERY_HEADER
+        )
+        if retried.returncode == 0:
+            done, command, whole_library = retried, again, True
     redefined = _posix_names_redefined(done.stderr) if done.returncode != 0 else ()
     if redefined and command[0] == c_compiler:
         # C functions named as the C library's POSIX extensions (a `double random(int, int)`),
@@ -571,7 +589,13 @@ def _build_sources(main: Path) -> Build:
             f" (C built without the C library's POSIX extensions, as on Windows, since it defines "
             f"functions of their names: {names})"
         )
-    if forgotten:
+    if whole_library:
+        note += (
+            " (C++ standard names its sources use without their headers, which g++ does not "
+            "name: built with every standard header included first, as other standard "
+            "libraries' headers include them)"
+        )
+    elif forgotten:
         names = ", ".join(f"<{header}>" for header in forgotten)
         note += (
             f" (standard headers its sources use without including them, included first as "
