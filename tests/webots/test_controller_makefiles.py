@@ -44,12 +44,15 @@ def test_the_makefile_is_read_with_its_continuations_references_and_webots_folde
     (tmp_path / "shared").mkdir()
     (tmp_path / "probe").mkdir()
     (tmp_path / "shared" / "gain.c").write_text("")
+    (tmp_path / "mingw").mkdir()
+    (tmp_path / "mingw" / "libgsl.dll.a").write_text("")
     settings = read_makefile(
         tmp_path / "probe",
         "SHARED := ../shared\nC_SOURCES = ../shared/gain.c \\\n  probe.c # left.c\n"
         'INCLUDE = -I"$(SHARED)" -I$(WEBOTS_HOME)/projects/default\n'
         "CFLAGS = -O3 -Wall -DGAIN=3 --std=c99 -fopenmp\nCFLAGS += -D SPEED=2\n"
-        "LIBRARIES = -L../lib -lController -llibgsl -L/usr/local/webots/lib/controller $(shell x)\n"
+        "LIBRARIES = -L../lib -lController -llibgsl $(shell x) \\\n"
+        "  -L/usr/local/webots/lib/controller -L../mingw\n"
         "ifeq ($(OSTYPE),windows)\nLIBRARIES += -lws2_32\nendif\n"
         "null :=\nspace := $(null) $(null)\n"
         "WEBOTS_HOME_PATH=$(subst $(space),\\ ,$(strip $(subst \\,/,$(WEBOTS_HOME))))\n"
@@ -65,6 +68,7 @@ def test_the_makefile_is_read_with_its_continuations_references_and_webots_folde
         "$(shell x) in LIBRARIES",
         "LIBRARIES set under a make conditional",
         "-fopenmp in CFLAGS",
+        "-L../mingw (libraries built for Windows)",
     ]
 
 

@@ -175,7 +175,13 @@ def _options(words: list[str], name: str, folder: Path, settings: MakefileSettin
         elif word.startswith("-std=") and name != "LIBRARIES":
             settings.standards.append(word)
         elif word.startswith("-L") and name == "LIBRARIES":
-            settings.link_options.append(_folder_option("-L", word[2:], folder)[0])
+            option, place = _folder_option("-L", word[2:], folder)
+            if place.is_dir() and any(place.glob("*.dll*")):
+                # A Windows build's libraries (MinGW's .dll and .dll.a beside its .a): this
+                # system's linker cannot link them, the system's own are linked instead.
+                settings.ignored.append(f"{word} (libraries built for Windows)")
+            else:
+                settings.link_options.append(option)
         elif word.startswith("-l") and name == "LIBRARIES":
             # MinGW's linker finds -llibgsl as libgsl.dll.a: the library gsl.
             library = word[5:] if word.startswith("-llib") and len(word) > 5 else word[2:]
