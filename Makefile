@@ -41,7 +41,7 @@ export MPLCONFIGDIR := $(CURDIR)/$(VENV)/matplotlib
 .DEFAULT_GOAL := help
 
 .PHONY: help venv build test demo lint typecheck fmt bench wheel clean ros-deps ros2-deps ros2-peer ros-demo bench-peers \
-	bench-tasks bench-transfer webots-compat \
+	bench-tasks bench-transfer webots-compat corpus-libs \
 	browser-deps replay-screenshot docs docs-deps sb3-deps marl-deps fuzz dev-deps wheel-deps oldest-glibc-deps \
 	wheel-oldest newcomer-check
 
@@ -152,6 +152,14 @@ display-deps: ## install Debian's xvfb and cmake if missing (Webots controllers'
 		|| echo "display-deps: could not install xvfb and cmake; the Tk and CMake controllers' tests will be skipped"; \
 	else echo "display-deps: no apt-get; install Xvfb and cmake yourself (the Tk and CMake controllers' tests are skipped without them)"; fi
 
+corpus-libs: ## install Debian's libgsl-dev if missing (the C libraries the corpus's controller Makefiles link: -lgsl -lgslcblas)
+	@if [ -e /usr/include/gsl/gsl_matrix.h ]; then :; \
+	elif command -v apt-get >/dev/null; then \
+		sudo=; [ "$$(id -u)" -eq 0 ] || sudo=sudo; \
+		$$sudo apt-get update && $$sudo apt-get install -y --no-install-recommends libgsl-dev \
+		|| echo "corpus-libs: could not install libgsl-dev; the corpus rows that link GSL will name it as missing"; \
+	else echo "corpus-libs: no apt-get; install GSL yourself (the corpus rows that link it name it as missing without it)"; fi
+
 replay-screenshot: build browser-deps ## the shipped navigator's demo replayed in headless Chromium: docs/replay.png
 	$(BIN)/mazesim demo --controller hrl --out mazesim-demo --html mazesim-demo/replay.html
 	$(BIN)/python -m mazesim.replay.screenshot mazesim-demo/replay.html docs/replay.png
@@ -188,7 +196,7 @@ bench-transfer: build ## time the full default transfer study of the shipped and
 # clone; tests/webots_corpus/mirrors.py lists the names looked for). A missing one is skipped.
 MIRRORS ?= mirrors
 
-webots-compat: build display-deps ## run the Webots compatibility corpus from local git mirrors (MIRRORS=DIR); writes docs/webots-compat.md
+webots-compat: build display-deps corpus-libs ## run the Webots compatibility corpus from local git mirrors (MIRRORS=DIR); writes docs/webots-compat.md
 	@$(BIN)/python -c 'import skfuzzy, scipy, networkx, deap, nnfs, pandas' 2>/dev/null || echo "make webots-compat: installing the Python packages the corpus's controllers import (mazesim[webots-corpus]: scikit-fuzzy, SciPy, NetworkX, DEAP, nnfs, pandas; about 55 MB to download, 255 MB in $(VENV))"
 	$(BIN)/python -m pip install --quiet $(WEBOTS_CORPUS_PACKAGES)
 	$(BIN)/python tests/webots_corpus/run_corpus.py --mirrors $(MIRRORS)

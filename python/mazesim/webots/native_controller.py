@@ -33,6 +33,12 @@ from mazesim.errors import ControllerBuildError, MazesimError, MissingDependency
 from mazesim.webots import native_link
 from mazesim.webots import simulation as simulations
 from mazesim.webots.cmake_build import cmake_build, cmake_program
+from mazesim.webots.controller_makefile import (
+    LIBRARY_PACKAGES,
+    MakefileSettings,
+    makefile,
+    read_makefile,
+)
 from mazesim.webots.shipped_program import LIBRARY, shipped_program
 from mazesim.webots.termination import GRACE_SECONDS
 
@@ -63,6 +69,8 @@ _NO_PROJECT_HEADER = re.compile(r"fatal error: ((?!webots/)[\w/.+-]+): No such f
 _NO_MEMBER = re.compile(
     r"error: ['‘](?:class |struct )?(webots::\w+)['’] has no member named ['‘](\w+)['’]"
 )
+#: A library the link does not find (``ld: cannot find -lgsl``).
+_NO_LIBRARY = re.compile(r"cannot find -l([\w.+-]+)")
 _INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]', re.MULTILINE)
 #: A file named in a linker's "multiple definition" or "first defined here" message.
 _DEFINED_TWICE = re.compile(
@@ -94,11 +102,6 @@ _POSIX_FREE = ("c", ("-D_XOPEN_SOURCE",))
 _MAIN = re.compile(r"^[ \t]*(?:int|void)[ \t]+main[ \t]*\(", re.MULTILINE)
 #: Most files read for their includes before a build.
 MAX_SCANNED = 500
-#: A Webots controller Makefile's list of sources (``C_SOURCES = a.c ../shared/b.c``, or
-#: ``CXX_SOURCES``), its value up to a comment; lines ending in a backslash go on.
-_MAKEFILE_SOURCES = re.compile(r"^[ \t]*(?:C|CXX)_SOURCES[ \t]*[:+]?=([^#\n]*)", re.MULTILINE)
-#: The names of a controller's Makefile, as make looks for them.
-MAKEFILES = ("GNUmakefile", "makefile", "Makefile")
 
 
 @dataclass
@@ -112,6 +115,8 @@ class Build:
         note: What the build did, for the run's log (compiled, or taken from the cache).
         elsewhere: The project's own headers the controller includes that are not in its
             folder (a library its own build adds), which mazesim's build does not find.
+        libraries: The libraries its Makefile links that are not installed, each with the
+            Debian package that provides it when known (``gsl (Debian: libgsl-dev)``).
     """
 
     program: str | None
@@ -119,6 +124,7 @@ class Build:
     headers: list[str] = field(default_factory=list)
     note: str = ""
     elsewhere: list[str] = field(default_factory=list)
+    libraries: list[str] = field(default_factory=list)
 
 
 def cache_folder() -> Path:
@@ -162,43 +168,11 @@ def _defines_main(path: Path) -> bool:
     return _MAIN.search(path.read_text(encoding="utf-8", errors="replace")) is not None
 
 
-def _makefile(folder: Path) -> Path | None:
-    """The controller folder's Makefile, the first name make looks for, or None."""
-    return next((folder / name for name in MAKEFILES if (folder / name).is_file()), None)
-
-
-def makefile_sources(folder: Path) -> list[Path]:
-    """The sources outside the controller's folder that its Makefile lists in ``C_SOURCES`` or
-    ``CXX_SOURCES`` (Webots' form of a controller Makefile, which includes Webots'
-    ``Makefile.include``): a controller built from its own files and a library of its project,
-    ``C_SOURCES = leader.c ../localization/kalman.c``.
-
-    Webots' ``Makefile.include`` compiles each listed source under its file name alone (all the
-    objects in one build folder) and make finds it by that name in the controller's folder or,
-    through ``vpath``, in the folders of the listed sources: a source listed by a path that does
-    not exist is found under its name in another listed folder, as make finds it. A name found
-    nowhere is left out (make would stop there; the link then names what is undefined), as are
-    names made of make variables."""
-    makefile = _makefile(folder)
-    if makefile is None:
-        return []
-    text = _source(makefile).decode("utf-8", errors="replace").replace("\r\n", "\n")
-    text = text.replace("\\\n", " ")
-    listed = [name for m in _MAKEFILE_SOURCES.finditer(text) for name in m.group(1).split()]
-    names = [name for name in listed if "$" not in name]
-    places = sorted({f"{Path(name).parent.as_posix()}/" for name in names})
-    found: list[Path] = []
-    for name in names:
-        candidates = [folder / name, folder / Path(name).name]
-        candidates += [folder / place / Path(name).name for place in places]
-        path = next((c.resolve() for c in candidates if c.is_file()), None)
-        if path is not None and path.parent != folder.resolve() and path not in found:
-            found.append(path)
-    return found
-
-
-def _key(compilers: list[str], files: list[Path]) -> str:
+def _key(compilers: list[str], files: list[Path], options: tuple[str, ...] = ()) -> str:
+    """The build's cache key: its compilers, its files and the options its Makefile adds."""
     digest = hashlib.sha256()
+    if options:
+        digest.update(b"options\0" + "\0".join(options).encode() + b"\0")
     for compiler in compilers:
         digest.update(compiler.encode() + b"\0" + " ".join(FLAGS).encode() + b"\0")
         version = subprocess.run([compiler, "--version"], capture_output=True, check=False)
@@ -301,9 +275,11 @@ def _compile_all(
     cpp_sources: list[Path],
     aliases: dict[str, str],
     target: Path,
+    settings: MakefileSettings,
     forced: tuple[str, tuple[str, ...]] = ("", ()),
 ) -> tuple[subprocess.CompletedProcess[str], list[str]]:
-    """Compiles and links the controller into ``target``; the last step's result and command.
+    """Compiles and links the controller into ``target``, with its Makefile's ``settings``; the
+    last step's result and command.
     ``forced``: a language (``"c"`` or ``"cpp"``) and the flags its steps take before the
     sources (standard headers they include first, ``-include``, or a feature macro)."""
     folder = main.parent
@@ -315,10 +291,12 @@ def _compile_all(
     with tempfile.TemporaryDirectory(prefix="mazesim-build-") as work:
         _write_case_aliases(Path(work) / "aliases", aliases)
         includes = ["-I", str(folder), "-I", str(CAPI / "include"), "-I", f"{work}/aliases"]
-        c_includes = [*includes, *prefix.get("c", [])]
+        includes += settings.compile_options
+        c_includes = [*includes, *_standards(settings, "c"), *prefix.get("c", [])]
+        linked = [*archived, "-o", str(target), *settings.link_options, "-lm"]
         if language == "c":
             steps = [[c_compiler, *FLAGS, *c_includes, *map(str, [*c_sources, *library])]]
-            steps[0] += [*archived, "-o", str(target), "-lm"]
+            steps[0] += linked
         else:
             # The C parts (the library, the project's .c files) as C, then the C++ program.
             c_parts = [*c_sources, *library]
@@ -327,14 +305,20 @@ def _compile_all(
                 [c_compiler, *FLAGS, *c_includes, "-c", str(path), "-o", obj]
                 for path, obj in zip(c_parts, objects)
             ]
-            cpp_includes = [*includes, *prefix.get("cpp", [])]
+            cpp_includes = [*includes, *_standards(settings, "cpp"), *prefix.get("cpp", [])]
             steps.append([compilers[1], *FLAGS, *cpp_includes, *map(str, cpp_sources), *objects])
-            steps[-1] += [*archived, "-o", str(target), "-lm"]
+            steps[-1] += linked
         for command in steps:
             done = _compile(main, command, work)
             if done.returncode != 0:
                 break
     return done, command
+
+
+def _standards(settings: MakefileSettings, language: str) -> list[str]:
+    """The Makefile's ``-std=`` options of ``language``'s steps (``-std=c++17`` to C++,
+    ``-std=c99`` to C), as each compiler takes only its own."""
+    return [s for s in settings.standards if ("++" in s) == (language == "cpp")]
 
 
 def _library(main: Path, c_compiler: str) -> list[Path]:
@@ -422,8 +406,15 @@ def build(source: str | os.PathLike[str]) -> Build:
     """
     main = Path(source).resolve()
     _source(main)  # a regular file of a bounded size, before anything waits on it
+    found = makefile(main.parent)
+    settings = (
+        read_makefile(main.parent, _source(found).decode("utf-8", errors="replace"))
+        if found is not None
+        else MakefileSettings()
+    )
     try:
-        built = _build_sources(main)
+        built = _build_sources(main, settings)
+        built.note += settings.note()
     except ControllerBuildError as failed:
         errors = [line for line in str(failed).splitlines() if "error:" in line]
         shipped = _shipped(main, (errors or ["compiler errors"])[0])
@@ -453,18 +444,21 @@ def _shipped(main: Path, why: str) -> Build | None:
     return Build(program, note=note)
 
 
-def _build_sources(main: Path) -> Build:
-    """:func:`build` from the controller's sources."""
+def _build_sources(main: Path, settings: MakefileSettings) -> Build:
+    """:func:`build` from the controller's sources, as its Makefile's ``settings`` ask."""
     folder = main.parent
     language = "cpp" if main.suffix.lower() in CPP_SUFFIXES else "c"
     c_compiler = _compiler("c")
     compilers = [c_compiler] + ([_compiler("cpp")] if language == "cpp" else [])
-    c_sources = _files(folder, C_SUFFIXES)
-    cpp_sources = _files(folder, CPP_SUFFIXES) if language == "cpp" else []
-    listed = makefile_sources(folder)
-    c_sources += [path for path in listed if path.suffix.lower() in C_SUFFIXES]
-    if language == "cpp":
-        cpp_sources += [path for path in listed if path.suffix.lower() in CPP_SUFFIXES]
+    listed = settings.sources
+    if listed is None:
+        c_sources = _files(folder, C_SUFFIXES)
+        cpp_sources = _files(folder, CPP_SUFFIXES) if language == "cpp" else []
+    else:
+        # The sources its Makefile lists, exactly those, as Webots' Makefile.include builds.
+        c_sources = [path for path in listed if path.suffix.lower() in C_SUFFIXES]
+        cpp_sources = [path for path in listed if path.suffix.lower() in CPP_SUFFIXES]
+        cpp_sources = cpp_sources if language == "cpp" else []
     # Another file with a main of its own is another program (a tool, a test): left out. But
     # when the file named after the folder defines no main, the program's main is in another
     # of its files (Webots' Makefile links them all into the folder's one program): kept.
@@ -477,6 +471,8 @@ def _build_sources(main: Path) -> Build:
     if main not in own:
         own.append(main)
     headers = _files(folder, (".h", ".hpp", ".hh"), recursive=True)
+    for place in settings.include_folders:
+        headers += _files(place, (".h", ".hpp", ".hh"), recursive=True)[:MAX_SCANNED]
     library = sorted((CAPI / "src").glob("*.c"))
     library_headers = sorted((CAPI / "include").rglob("*.h*"))
     absent, aliases, read = _scan([*c_sources, *cpp_sources, *headers])
@@ -484,9 +480,10 @@ def _build_sources(main: Path) -> Build:
         return Build(None, [], absent, note="it includes Webots headers mazesim does not provide")
     # The files the build reads, those its sources include from outside their folder too.
     files = [*c_sources, *cpp_sources, *headers, *library, *(CAPI / "src").glob("*.h")]
-    files += [path for path in [_makefile(folder)] if path is not None and listed]
+    files += [path for path in [makefile(folder)] if path is not None]
     files += sorted(path for path in read if path not in set(files))
-    key = _key(compilers, [*files, *library_headers])
+    options = (*settings.compile_options, *settings.standards, *settings.link_options)
+    key = _key(compilers, [*files, *library_headers], options)
     target = cache_folder() / f"{main.stem}-{key}" / main.stem
     if target.is_file():
         return Build(str(target), note=f"built earlier, taken from the cache {target.parent}")
@@ -505,18 +502,23 @@ def _build_sources(main: Path) -> Build:
         return Build(None, known["missing"], known["headers"], note, known["elsewhere"])
     target.parent.mkdir(parents=True, exist_ok=True)
     temporary = target.with_name(f".{target.name}.{os.getpid()}")
-    done, command = _compile_all(
-        main, language, compilers, c_sources, cpp_sources, aliases, temporary
-    )
+
+    def compiled(
+        forced: tuple[str, tuple[str, ...]] = ("", ()),
+    ) -> tuple[subprocess.CompletedProcess[str], list[str]]:
+        """The build of the sources as they now stand, with ``forced`` flags."""
+        return _compile_all(
+            main, language, compilers, c_sources, cpp_sources, aliases, temporary, settings, forced
+        )
+
+    done, command = compiled()
     twice = _defined_twice(done.stderr, main) if done.returncode != 0 else []
     if twice:
         # Files whose functions another file defines again (copies the main file took in):
         # the program is built without them, as it must have been.
         c_sources = [p for p in c_sources if p.name not in twice]
         cpp_sources = [p for p in cpp_sources if p.name not in twice]
-        done, command = _compile_all(
-            main, language, compilers, c_sources, cpp_sources, aliases, temporary
-        )
+        done, command = compiled()
     forgotten = _forgotten_headers(done.stderr) if done.returncode != 0 else ()
     if forgotten:
         # Standard headers the sources use without including them, which the compiler names:
@@ -524,18 +526,14 @@ def _build_sources(main: Path) -> Build:
         # no longer brings <memory>), so the sources are built with them included first.
         step = "cpp" if language == "cpp" and command[0] == compilers[-1] else "c"
         included = tuple(part for header in forgotten for part in ("-include", header))
-        done, command = _compile_all(
-            main, language, compilers, c_sources, cpp_sources, aliases, temporary, (step, included)
-        )
+        done, command = compiled((step, included))
     whole_library = False
     if done.returncode != 0 and command[0] == compilers[-1] and _UNDECLARED.search(done.stderr):
         # A name of the C++ standard library that g++ does not trace to its header (`function`
         # after `using namespace std`): another standard library (macOS' libc++) brought it in
         # through the headers the sources include, so they are built with every standard header
         # included first; when that fails too, the first errors are the ones said.
-        retried, again = _compile_all(
-            main, language, compilers, c_sources, cpp_sources, aliases, temporary, _EVERY_HEADER
-        )
+        retried, again = compiled(_EVERY_HEADER)
         if retried.returncode == 0:
             done, command, whole_library = retried, again, True
     redefined = _posix_names_redefined(done.stderr) if done.returncode != 0 else ()
@@ -543,16 +541,22 @@ def _build_sources(main: Path) -> Build:
         # C functions named as the C library's POSIX extensions (a `double random(int, int)`),
         # which Windows' C library, the authors', does not declare: the C sources are built
         # without glibc's default extensions, as X/Open C, which leaves those names free.
-        done, command = _compile_all(
-            main, language, compilers, c_sources, cpp_sources, aliases, temporary, _POSIX_FREE
-        )
+        done, command = compiled(_POSIX_FREE)
     if done.returncode != 0:
         temporary.unlink(missing_ok=True)
         missing = sorted(set(_UNDEFINED.findall(done.stderr)))
         missing += sorted({f"{owner}::{name}" for owner, name in _NO_MEMBER.findall(done.stderr)})
         absent = sorted(set(_NO_HEADER.findall(done.stderr)))
         elsewhere = sorted(set(_NO_PROJECT_HEADER.findall(done.stderr)))
+        libraries = sorted(set(_NO_LIBRARY.findall(done.stderr)))
         compiler = command[0]
+        if libraries and not (missing or absent or elsewhere):
+            # Not kept in the cache: the library may be installed before the next run.
+            said = [
+                f"{name} (Debian: {LIBRARY_PACKAGES[name]})" if name in LIBRARY_PACKAGES else name
+                for name in libraries
+            ]
+            return Build(None, note=f"{compiler} cannot link it", libraries=said)
         built = (
             _project_cmake(main, c_compiler, elsewhere)
             if _buildable(elsewhere) and not missing

@@ -443,6 +443,11 @@ def prepare_controller(file: str) -> PreparedController:
                 f"Webots {kind} API function(s) mazesim does not implement: "
                 + ", ".join(built.missing)
             )
+        if built.libraries:
+            prepared.missing.append(
+                "librar(ies) its Makefile links that are not installed here: "
+                + ", ".join(built.libraries)
+            )
         windows = [name for name in built.elsewhere if name.lower() in WINDOWS_HEADERS]
         others = [name for name in built.elsewhere if name not in windows]
         if windows:

@@ -1,0 +1,226 @@
+"""What a Webots controller's Makefile asks of its build, read without running make.
+
+Webots builds a C or C++ controller with the ``Makefile`` of its folder, which sets variables
+and then includes Webots' ``Makefile.include`` (Webots' user guide, "Using Webots Makefiles"):
+``C_SOURCES``, ``CXX_SOURCES`` or ``CPP_SOURCES`` (the sources to build, all of the folder's
+when none is set), ``INCLUDE`` (``-I`` folders), ``CFLAGS`` and ``LIBRARIES`` (``-L`` folders,
+``-l`` libraries). :func:`read_makefile` reads their simple assignments (``=``, ``:=``, ``+=``,
+``?=``, lines continued by a backslash, ``$(VAR)`` naming a variable set before), relative paths
+being relative to the controller's folder. Words naming Webots' own folders (``$(WEBOTS_HOME)``)
+are dropped, mazesim's controller library standing for them; whatever else it cannot read (make
+functions, conditionals, unknown options) is left out and named in
+:attr:`MakefileSettings.ignored`, for the run's log.
+"""
+
+from __future__ import annotations
+
+import re
+import shlex
+from dataclasses import dataclass, field
+from pathlib import Path
+
+__all__ = ["LIBRARY_PACKAGES", "MAKEFILES", "MakefileSettings", "makefile", "read_makefile"]
+
+#: The names of a controller's Makefile, as make looks for them.
+MAKEFILES = ("GNUmakefile", "makefile", "Makefile")
+#: The variables of Webots' ``Makefile.include`` naming a controller's sources.
+SOURCE_VARIABLES = ("C_SOURCES", "CXX_SOURCES", "CPP_SOURCES")
+#: The variables whose options the build takes.
+OPTION_VARIABLES = ("INCLUDE", "CFLAGS", "LIBRARIES")
+#: Webots' own controller libraries, which mazesim's library stands for.
+WEBOTS_LIBRARIES = frozenset({"Controller", "CppController", "car", "driver", "CppCar"})
+#: The Debian package providing a library a Makefile links (``-lNAME``), when known.
+LIBRARY_PACKAGES = {
+    "gsl": "libgsl-dev",
+    "gslcblas": "libgsl-dev",
+    "m": "libc6-dev",
+    "pthread": "libc6-dev",
+    "dl": "libc6-dev",
+    "rt": "libc6-dev",
+    "blas": "libblas-dev",
+    "lapack": "liblapack-dev",
+    "jsoncpp": "libjsoncpp-dev",
+    "curl": "libcurl4-openssl-dev",
+    "zmq": "libzmq3-dev",
+}
+#: Compiler options mazesim's build sets itself (optimisation, warnings, debugging).
+_OWN_OPTIONS = re.compile(r"^-(?:O\w*|W.*|w|g\w*|pipe)$")
+_ASSIGNMENT = re.compile(r"^(?:override\s+|export\s+)?([A-Za-z_]\w*)\s*(::=|:=|\+=|\?=|=)\s*(.*)$")
+#: A folder of a Webots installation (``/usr/local/webots/include/controller/c``).
+_WEBOTS_FOLDER = re.compile(r"\$\(WEBOTS_HOME\)|(?:^|/)(?:include|lib)/controller(?:/|$)")
+_REFERENCE = re.compile(r"\$[({]([^)}]*)[)}]")
+_CONDITIONAL = re.compile(r"^(ifeq|ifneq|ifdef|ifndef|else|endif)\b")
+
+
+@dataclass
+class MakefileSettings:
+    """A controller Makefile's settings, as its build takes them.
+
+    Attributes:
+        sources: The sources it lists, found as make finds them, or None when it lists none
+            (the folder's sources are built).
+        compile_options: ``-I`` (absolute folders), ``-D`` and ``-U`` options.
+        standards: ``-std=`` options.
+        link_options: ``-L`` (absolute folders) and ``-l`` options, Webots' own left out.
+        include_folders: The ``-I`` folders that exist (their headers are part of the build).
+        ignored: What it sets that the build leaves out, for the run's log.
+    """
+
+    sources: list[Path] | None = None
+    compile_options: list[str] = field(default_factory=list)
+    standards: list[str] = field(default_factory=list)
+    link_options: list[str] = field(default_factory=list)
+    include_folders: list[Path] = field(default_factory=list)
+    ignored: list[str] = field(default_factory=list)
+
+    def note(self) -> str:
+        """What the build left out of the Makefile, for the run's log ("" when nothing)."""
+        if not self.ignored:
+            return ""
+        return " (its Makefile read without make; left out: " + "; ".join(self.ignored) + ")"
+
+
+def makefile(folder: Path) -> Path | None:
+    """The controller folder's Makefile, the first name make looks for, or None."""
+    return next((folder / name for name in MAKEFILES if (folder / name).is_file()), None)
+
+
+def _logical_lines(text: str) -> list[str]:
+    text = text.replace("\r\n", "\n").replace("\\\n", " ")
+    lines = []
+    for line in text.split("\n"):
+        if line.startswith("\t"):
+            continue  # a recipe's command
+        lines.append(re.sub(r"(?<!\\)#.*", "", line).strip())
+    return lines
+
+
+def _variables(text: str, ignored: list[str]) -> dict[str, str]:
+    """The Makefile's variables as its simple assignments set them, in order; the assignments
+    of the variables the build takes that it cannot read are named in ``ignored``."""
+    values: dict[str, str] = {}
+    depth = 0
+    for line in _logical_lines(text):
+        conditional = _CONDITIONAL.match(line)
+        if conditional:
+            depth += {"endif": -1, "else": 0}.get(conditional.group(1), 1)
+            continue
+        found = _ASSIGNMENT.match(line)
+        if found is None:
+            continue
+        name, operator, value = found.groups()
+        wanted = name in SOURCE_VARIABLES or name in OPTION_VARIABLES
+        if depth > 0:
+            if wanted:
+                ignored.append(f"{name} set under a make conditional")
+            continue
+        value = _expand(value, values, name if wanted else "", ignored)
+        if operator == "+=":
+            values[name] = f"{values.get(name, '')} {value}".strip()
+        elif operator != "?=" or name not in values:
+            values[name] = value
+    return values
+
+
+def _expand(value: str, values: dict[str, str], name: str, ignored: list[str]) -> str:
+    """``value`` with its ``$(VAR)`` references to variables set before replaced; Webots' own
+    folders kept as ``$(WEBOTS_HOME)`` (dropped later); a make function left out (named in
+    ``ignored`` when ``name`` is a variable the build takes)."""
+
+    def replace(match: re.Match[str]) -> str:
+        inner = match.group(1).strip()
+        if inner in ("WEBOTS_HOME", "WEBOTS_HOME_PATH"):
+            return "$(WEBOTS_HOME)"
+        if re.fullmatch(r"\w+", inner) and inner in values:
+            return values[inner]
+        if name:
+            ignored.append(f"$({inner}) in {name}")
+        return ""
+
+    return _REFERENCE.sub(replace, value)
+
+
+def _words(value: str, name: str, ignored: list[str]) -> list[str]:
+    try:
+        return shlex.split(value)
+    except ValueError:
+        ignored.append(f"{name} (unbalanced quotes)")
+        return []
+
+
+def _folder_option(flag: str, path: str, folder: Path) -> tuple[str, Path]:
+    place = (folder / path).resolve()
+    return f"{flag}{place}", place
+
+
+def _options(words: list[str], name: str, folder: Path, settings: MakefileSettings) -> None:
+    """Takes ``-I``, ``-D``, ``-U``, ``-std=``, ``-L`` and ``-l`` options from ``words``."""
+    pending = ""
+    for word in words:
+        if pending:
+            word, pending = pending + word, ""
+        if word.startswith("--std="):
+            word = word[1:]  # gcc takes both spellings
+        if word in ("-I", "-D", "-U", "-L", "-l"):
+            pending = word
+        elif _WEBOTS_FOLDER.search(word):
+            continue  # Webots' own folders: mazesim's library stands for them
+        elif word.startswith("-I") and name != "LIBRARIES":
+            option, place = _folder_option("-I", word[2:], folder)
+            settings.compile_options.append(option)
+            if place.is_dir():
+                settings.include_folders.append(place)
+        elif word.startswith(("-D", "-U")) and name != "LIBRARIES":
+            settings.compile_options.append(word)
+        elif word.startswith("-std=") and name != "LIBRARIES":
+            settings.standards.append(word)
+        elif word.startswith("-L") and name == "LIBRARIES":
+            option, place = _folder_option("-L", word[2:], folder)
+            if place.is_dir() and any(place.glob("*.dll*")):
+                # A Windows build's libraries (MinGW's .dll and .dll.a beside its .a): this
+                # system's linker cannot link them, the system's own are linked instead.
+                settings.ignored.append(f"{word} (libraries built for Windows)")
+            else:
+                settings.link_options.append(option)
+        elif word.startswith("-l") and name == "LIBRARIES":
+            # MinGW's linker finds -llibgsl as libgsl.dll.a: the library gsl.
+            library = word[5:] if word.startswith("-llib") and len(word) > 5 else word[2:]
+            if library not in WEBOTS_LIBRARIES:
+                settings.link_options.append(f"-l{library}")
+        elif not _OWN_OPTIONS.match(word):
+            settings.ignored.append(f"{word} in {name}")
+
+
+def _sources(names: list[str], folder: Path) -> list[Path]:
+    """The listed sources, found as make finds them: Webots' ``Makefile.include`` compiles each
+    under its file name alone and make finds it by that name in the controller's folder or,
+    through ``vpath``, in the folders of the listed sources (a source listed by a path that does
+    not exist is found under its name in another listed folder). A name found nowhere is left
+    out (make would stop there; the link then names what is undefined)."""
+    places = sorted({f"{Path(name).parent.as_posix()}/" for name in names})
+    found: list[Path] = []
+    for name in names:
+        candidates = [folder / name, folder / Path(name).name]
+        candidates += [folder / place / Path(name).name for place in places]
+        path = next((c.resolve() for c in candidates if c.is_file()), None)
+        if path is not None and path not in found:
+            found.append(path)
+    return found
+
+
+def read_makefile(folder: Path, text: str) -> MakefileSettings:
+    """The settings of the Makefile ``text`` of the controller folder ``folder``."""
+    settings = MakefileSettings()
+    values = _variables(text, settings.ignored)
+    listed = [SOURCE_VARIABLES.index(name) for name in SOURCE_VARIABLES if name in values]
+    if listed:
+        names = []
+        for index in listed:
+            name = SOURCE_VARIABLES[index]
+            names += [w for w in _words(values[name], name, settings.ignored)]
+        kept = [name for name in names if not _WEBOTS_FOLDER.search(name)]
+        settings.sources = _sources(kept, folder) if kept else None
+    for name in OPTION_VARIABLES:
+        if name in values:
+            _options(_words(values[name], name, settings.ignored), name, folder, settings)
+    return settings

@@ -1,0 +1,138 @@
+"""A C controller's Makefile settings (INCLUDE, CFLAGS, LIBRARIES, C_SOURCES), as Webots'
+Makefile.include takes them, are honoured by mazesim's build (#33)."""
+
+from __future__ import annotations
+
+import shutil
+import subprocess
+from pathlib import Path
+
+import pytest
+
+import mazesim
+from mazesim.webots import native_controller, run_controller
+from mazesim.webots.controller_makefile import read_makefile
+from mazesim.webots.native_controller import build
+from mazesim.webots.requirements import prepare_controller
+from native_controllers import NEEDS_COMPILERS, write_source
+
+pytestmark = pytest.mark.usefixtures("own_cache")
+
+PRINTER = (
+    "#include <stdio.h>\n#include <webots/robot.h>\n{head}"
+    'int main(void) {{\n  wb_robot_init();\n  printf("value %g\\n", {value});\n'
+    "  wb_robot_cleanup();\n  return 0;\n}}\n"
+)
+
+
+def printer(folder: Path, name: str, head: str, value: str, makefile: str) -> Path:
+    """A controller ``folder/name/name.c`` printing ``value`` once, built by ``makefile``."""
+    source = write_source(folder, name, PRINTER.format(head=head, value=value))
+    (source.parent / "Makefile").write_text(makefile)
+    return source
+
+
+def printed(capfd: pytest.CaptureFixture[str], source: Path) -> list[str]:
+    run = run_controller(source, mazesim.load_world("arena"), seconds=0.1)
+    assert (run.exit_status, run.error) == (0, "")
+    return [line for line in capfd.readouterr().out.splitlines() if line.startswith("value")]
+
+
+def test_the_makefile_is_read_with_its_continuations_references_and_webots_folders(
+    tmp_path: Path,
+) -> None:
+    (tmp_path / "shared").mkdir()
+    (tmp_path / "probe").mkdir()
+    (tmp_path / "shared" / "gain.c").write_text("")
+    (tmp_path / "mingw").mkdir()
+    (tmp_path / "mingw" / "libgsl.dll.a").write_text("")
+    settings = read_makefile(
+        tmp_path / "probe",
+        "SHARED := ../shared\nC_SOURCES = ../shared/gain.c \\\n  probe.c # left.c\n"
+        'INCLUDE = -I"$(SHARED)" -I$(WEBOTS_HOME)/projects/default\n'
+        "CFLAGS = -O3 -Wall -DGAIN=3 --std=c99 -fopenmp\nCFLAGS += -D SPEED=2\n"
+        "LIBRARIES = -L../lib -lController -llibgsl $(shell x) \\\n"
+        "  -L/usr/local/webots/lib/controller -L../mingw\n"
+        "ifeq ($(OSTYPE),windows)\nLIBRARIES += -lws2_32\nendif\n"
+        "null :=\nspace := $(null) $(null)\n"
+        "WEBOTS_HOME_PATH=$(subst $(space),\\ ,$(strip $(subst \\,/,$(WEBOTS_HOME))))\n"
+        "include $(WEBOTS_HOME_PATH)/resources/Makefile.include\n",
+    )
+    assert settings.sources == [(tmp_path / "shared" / "gain.c").resolve()]
+    shared = (tmp_path / "shared").resolve()
+    assert settings.compile_options == [f"-I{shared}", "-DGAIN=3", "-DSPEED=2"]
+    assert settings.include_folders == [shared]
+    assert settings.standards == ["-std=c99"]
+    assert settings.link_options == [f"-L{(tmp_path / 'lib').resolve()}", "-lgsl"]
+    assert settings.ignored == [
+        "$(shell x) in LIBRARIES",
+        "LIBRARIES set under a make conditional",
+        "-fopenmp in CFLAGS",
+        "-L../mingw (libraries built for Windows)",
+    ]
+
+
+@NEEDS_COMPILERS
+def test_include_folders_defines_and_exactly_the_listed_sources_are_built(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str]
+) -> None:
+    common = tmp_path / "common"
+    common.mkdir()
+    (common / "gain.h").write_text("double gain(void);\n")
+    (common / "gain.c").write_text('#include "gain.h"\ndouble gain(void) { return GAIN * 1.5; }\n')
+    source = printer(
+        tmp_path,
+        "probe",
+        "#include <gain.h>\n",
+        "gain()",
+        'INCLUDE = -I"../common"\nCFLAGS = -DGAIN=4 -std=gnu99\n'
+        "C_SOURCES = probe.c ../common/gain.c\n",
+    )
+    # A source of the folder the Makefile does not list: left out, as Webots leaves it out.
+    (source.parent / "draft.c").write_text("this is not C\n")
+    assert printed(capfd, source) == ["value 6"]
+
+
+@NEEDS_COMPILERS
+def test_libraries_are_linked_from_folders_relative_to_the_controller(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str]
+) -> None:
+    lib = tmp_path / "lib"
+    lib.mkdir()
+    (lib / "scale.c").write_text("double scale(double x) { return 2 * x; }\n")
+    gcc, ar = shutil.which("gcc"), shutil.which("ar")
+    if ar is None or gcc is None:
+        pytest.skip("needs ar")
+    subprocess.run([gcc, "-c", "scale.c", "-o", "scale.o"], cwd=lib, check=True)
+    subprocess.run([ar, "rcs", "libscale.a", "scale.o"], cwd=lib, check=True)
+    (lib / "scale.c").unlink()
+    source = printer(
+        tmp_path,
+        "scaler",
+        "#include <math.h>\ndouble scale(double x);\n",
+        "scale(cbrt(27.0))",
+        "LIBRARIES = -L../lib -lscale -lm\n",
+    )
+    assert printed(capfd, source) == ["value 6"]
+
+
+@NEEDS_COMPILERS
+def test_a_library_that_is_not_installed_is_named_and_the_robot_stands_still(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    packages = {**native_controller.LIBRARY_PACKAGES, "gsl_absent": "libgsl-absent-dev"}
+    monkeypatch.setattr(native_controller, "LIBRARY_PACKAGES", packages)
+    source = printer(
+        tmp_path, "linker", "", "1.0", "LIBRARIES = -lmazesim_absent_library -lgsl_absent\n"
+    )
+    built = build(source)
+    assert built.program is None
+    assert built.libraries == ["gsl_absent (Debian: libgsl-absent-dev)", "mazesim_absent_library"]
+    prepared = prepare_controller(str(source))
+    assert not prepared.runnable
+    assert prepared.missing == [
+        "librar(ies) its Makefile links that are not installed here: gsl_absent (Debian: "
+        "libgsl-absent-dev), mazesim_absent_library"
+    ]
+    run = run_controller(source, mazesim.load_world("arena"), seconds=0.5, prepared=prepared)
+    assert (run.steps, run.exit_status) == (0, 1)
