@@ -217,6 +217,7 @@ def test_text_import_and_errors_carry_line_and_column() -> None:
         "radius": 0.05,
         "owners": [2],  # the Solid on line 2 holds it
         "walls": [0, len(world.wall_boxes())],  # a ring of walls, the world's first
+        "reflectance": 1.0,  # no appearance: white
     }
     assert report["robot"] is None
     assert world.name == "round"
@@ -261,10 +262,18 @@ def test_cli_json_layout(tmp_path: Path) -> None:
     assert set(report["protos"]) == {"expanded", "stand_ins", "cache_hits", "downloads"}
     for obstacle in report["obstacles"]:
         if obstacle["kind"] == "box":
-            assert set(obstacle) == {"kind", "center", "size", "yaw", "owners", "walls"}
+            assert set(obstacle) == {
+                "kind",
+                "center",
+                "size",
+                "yaw",
+                "owners",
+                "walls",
+                "reflectance",
+            }
             assert len(obstacle["center"]) == 2 and len(obstacle["size"]) == 2
         else:
-            assert set(obstacle) == {"kind", "center", "radius", "owners", "walls"}
+            assert set(obstacle) == {"kind", "center", "radius", "owners", "walls", "reflectance"}
     assert (report["robot_model"], report["robot_profile"]) == ("E-puck", "e-puck")
     assert report["extension_devices"] == [] and report["floor_textures"] == []
     assert set(report["robot"]) == {"x", "y", "yaw"}
@@ -280,7 +289,14 @@ def test_cli_json_layout(tmp_path: Path) -> None:
     )
     assert report["robot"] is None
     assert report["obstacles"] == [
-        {"kind": "circle", "center": [0.1, 0.0], "radius": 0.02, "owners": [2], "walls": [0, 11]}
+        {
+            "kind": "circle",
+            "center": [0.1, 0.0],
+            "radius": 0.02,
+            "owners": [2],
+            "walls": [0, 11],
+            "reflectance": 1.0,
+        }
     ]
 
 

@@ -129,9 +129,10 @@ fn grey_images(images: Option<&Bound<'_, PyAny>>) -> PyResult<BTreeMap<String, G
 }
 
 /// The import as `{"obstacles": [...], "sensed_only": [...], "bodies": [...], "robot": {...} | None, "basic_time_step_ms": t,
-/// (each obstacle and body with its `owners`, the lines of the nodes that hold it, and each
-/// obstacle with its `walls`, the first of its walls in the world and how many; `sensed_only`
-/// the obstacles only infra-red rays and cameras meet, as obstacles without owners),
+/// (each obstacle and body with its `owners`, the lines of the nodes that hold it, and its
+/// infra-red `reflectance`, and each obstacle with its `walls`, the first of its walls in the
+/// world and how many; `sensed_only` the obstacles only infra-red rays and cameras meet, as
+/// obstacles without owners),
 /// "warnings": [...], "one_controller_warnings": [...], "robot_model", "robot_line", "robot_profile", "extension_devices", "floor_textures",
 /// "floor_paint"}`, in metres and radians, world frame, z up.
 fn report<'py>(py: Python<'py>, import: &WbtImport) -> PyResult<Bound<'py, PyDict>> {
@@ -154,42 +155,46 @@ fn report<'py>(py: Python<'py>, import: &WbtImport) -> PyResult<Bound<'py, PyDic
     let obstacles = dicts(py, &import.obstacles, footprint)?;
     let sensed_only = dicts(py, &import.sensed_obstacles, footprint)?;
     let bodies = dicts(py, &import.bodies, |d, body| {
-        let (mass, friction) = match body {
+        let (mass, friction, reflectance) = match body {
             BodySpec::Box {
                 center,
                 size,
                 yaw,
                 mass,
                 friction,
-                ..
+                reflectance,
             } => {
                 d.set_item("kind", "box")?;
                 d.set_item("center", xy(center).to_vec())?;
                 d.set_item("size", [size[0].get(), size[1].get()].to_vec())?;
                 d.set_item("yaw", yaw.get())?;
-                (mass, friction)
+                (mass, friction, reflectance)
             }
             BodySpec::Circle {
                 center,
                 radius,
                 mass,
                 friction,
-                ..
+                reflectance,
             } => {
                 d.set_item("kind", "circle")?;
                 d.set_item("center", xy(center).to_vec())?;
                 d.set_item("radius", radius.get())?;
-                (mass, friction)
+                (mass, friction, reflectance)
             }
         };
         d.set_item("mass", mass.get())?;
-        d.set_item("friction", friction.get())
+        d.set_item("friction", friction.get())?;
+        d.set_item("reflectance", reflectance.0)
     })?;
     // What a supervisor moves with a node: the obstacles and bodies its line holds.
     let walls = import.obstacle_walls();
     for ((d, owners), (first, count)) in obstacles.iter().zip(&import.obstacle_owners).zip(walls) {
         d.set_item("owners", owners.clone())?;
         d.set_item("walls", vec![first, count])?;
+    }
+    for (d, look) in obstacles.iter().zip(&import.obstacle_looks) {
+        d.set_item("reflectance", look.reflectance)?;
     }
     for (d, owners) in bodies.iter().zip(&import.body_owners) {
         d.set_item("owners", owners.clone())?;

@@ -51,8 +51,9 @@ E_PUCK_MODELS = ("E-puck", "e-puck", "e-puck2", "E-puck2", "EPuck")
 
 class BoxObstacle(TypedDict):
     """A box seen from above: centre [x, y], size [sx, sy] along its own axes, yaw; ``owners``,
-    the lines of the world file's nodes that hold it (a supervisor moving one moves it), and
-    ``walls``, its first wall among the world's ``[[walls]]`` and how many it is."""
+    the lines of the world file's nodes that hold it (a supervisor moving one moves it),
+    ``walls``, its first wall among the world's ``[[walls]]`` and how many it is, and
+    ``reflectance``, the infra-red reflection factor its appearance gives it (docs/webots.md)."""
 
     kind: Literal["box"]
     center: list[float]
@@ -60,17 +61,19 @@ class BoxObstacle(TypedDict):
     yaw: float
     owners: list[int]
     walls: list[int]
+    reflectance: float
 
 
 class CircleObstacle(TypedDict):
     """An upright cylinder, capsule or sphere seen from above (a ring of walls in the world),
-    with ``owners`` and ``walls`` as a :class:`BoxObstacle`'s."""
+    with ``owners``, ``walls`` and ``reflectance`` as a :class:`BoxObstacle`'s."""
 
     kind: Literal["circle"]
     center: list[float]
     radius: float
     owners: list[int]
     walls: list[int]
+    reflectance: float
 
 
 class RobotPose(TypedDict):
@@ -141,15 +144,15 @@ class ImportReport(TypedDict):
     that simulates it (``"e-puck"`` or ``"e-puck2"``); ``robots`` every robot of the file
     (see :class:`WorldRobot`); ``floor_paint`` the number of paint
     rectangles the floor textures gave; ``bodies`` the movable bodies (``kind``, ``center``,
-    ``size`` and ``yaw`` or ``radius``, ``mass`` in kg, floor ``friction``, ``owners`` as an
-    obstacle's); ``sensed_only`` the obstacles that only the infra-red sensors and the camera
-    meet (``kind``, ``center``, ``size`` and ``yaw`` or ``radius``: visual-only shapes, of no
-    Solid with a ``boundingObject``, in the proximity sensors' rays, which Webots' infra-red
-    rays see and nothing collides with); ``one_controller_warnings`` those of ``warnings`` that
-    concern a run of one controller only (the world's other e-pucks, which a run of the whole
-    world simulates); ``recognition`` the cameras' Recognition nodes and the objects with
-    ``recognitionColors`` (:mod:`mazesim.webots.recognition`; empty for a file the core reads
-    itself).
+    ``size`` and ``yaw`` or ``radius``, ``mass`` in kg, floor ``friction``, ``owners`` and
+    ``reflectance`` as an obstacle's); ``sensed_only`` the obstacles that only the infra-red
+    sensors and the camera meet (``kind``, ``center``, ``size`` and ``yaw`` or ``radius``:
+    visual-only shapes, of no Solid with a ``boundingObject``, in the proximity sensors' rays,
+    which Webots' infra-red rays see and nothing collides with); ``one_controller_warnings``
+    those of ``warnings`` that concern a run of one controller only (the world's other e-pucks,
+    which a run of the whole world simulates); ``recognition`` the cameras' Recognition nodes
+    and the objects with ``recognitionColors`` (:mod:`mazesim.webots.recognition`; empty for a
+    file the core reads itself).
     """
 
     obstacles: list[BoxObstacle | CircleObstacle]

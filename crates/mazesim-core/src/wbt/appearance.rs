@@ -10,12 +10,56 @@
 //! `Parquetry`...) multiplies its texture by its `colorOverride` (Webots' guide, Appearances):
 //! the colour the instance writes there is taken, the texture counted as white; without one it
 //! gives no colour. A shape without a colour is drawn in the grey of its reflection factor.
+//!
+//! Webots' infra-red sensors divide the distance a ray runs by the reflection factor
+//! `f = 0.2 + 0.8 red (1 - 0.5 roughness) (1 - 0.5 occlusion)` of the shape it meets (reference
+//! manual, DistanceSensor, "Infra-Red Sensors"), where `red` is the red of the colour the ray
+//! picks (`WbShape::pickColor` in Webots' source): a `PBRAppearance`'s `baseColor` times
+//! `1 - transparency`, with its `roughness`; an `Appearance`'s `Material.diffuseColor` (white
+//! without a material, or with a texture) times `1 - transparency`, with roughness 0; no
+//! appearance, white. Emission does not count. The colour is multiplied by a texture's, which
+//! the import does not read, nor an occlusion map's value (taken as 0): a texture is counted
+//! white, so the factor is the highest the texture allows. An appearance PROTO gives the red of
+//! its `colorOverride` (white without one), roughness 0.
+//!
+//! A collision shape reflects by its appearance when a camera sees its colour; one without a
+//! colour keeps the factor 1 of a white surface (a textured wall's colour is not read).
 
 use super::import::Importer;
 use super::tree::Node;
 
 /// Most nodes looked through for a Solid's first visible shape.
 const MAX_LOOKS: usize = 10_000;
+
+/// How a collision shape looks to a camera and to the infra-red sensors.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Look {
+    /// The colour a camera sees (`None`: the grey of `reflectance`).
+    pub colour: Option<[f64; 3]>,
+    /// The reflection factor of Webots' infra-red sensors (see the module).
+    pub reflectance: f64,
+}
+
+impl Look {
+    /// A shape whose colour the import does not read: white to the infra-red sensors.
+    pub const UNREAD: Look = Look {
+        colour: None,
+        reflectance: 1.0,
+    };
+}
+
+/// The reflection factor Webots' infra-red sensors give a surface of `red` (the picked colour's
+/// red, transparency applied), `roughness` and `occlusion`, each clamped to [0, 1].
+pub fn reflection_factor(red: f64, roughness: f64, occlusion: f64) -> f64 {
+    let unit = |x: f64| {
+        if x.is_finite() {
+            x.clamp(0.0, 1.0)
+        } else {
+            0.0
+        }
+    };
+    0.2 + 0.8 * unit(red) * (1.0 - 0.5 * unit(roughness)) * (1.0 - 0.5 * unit(occlusion))
+}
 
 impl<'d> Importer<'d> {
     /// The colour of an appearance node as a camera sees it, or `None` (see the module).
@@ -54,6 +98,42 @@ impl<'d> Importer<'d> {
         colour.iter().all(|c| c.is_finite()).then_some(colour)
     }
 
+    /// The reflection factor Webots' infra-red sensors give a shape of an appearance node (see
+    /// the module).
+    pub fn appearance_node_reflectance(&mut self, appearance: &'d Node) -> f64 {
+        let (red, roughness) = match appearance.type_name.as_str() {
+            "PBRAppearance" => {
+                let base = self.vector(appearance, "baseColor", [1.0; 3])[0];
+                let transparency = self.number(appearance, "transparency", 0.0);
+                let roughness = self.number(appearance, "roughness", 0.0);
+                (base * (1.0 - transparency), roughness)
+            }
+            "Appearance" => match self.nodes(appearance, "material").first() {
+                Some(&material) => {
+                    let material = self.node(material);
+                    let diffuse = if self.nodes(appearance, "texture").is_empty() {
+                        self.vector(material, "diffuseColor", [0.8; 3])[0]
+                    } else {
+                        1.0
+                    };
+                    let transparency = self.number(material, "transparency", 0.0);
+                    (diffuse * (1.0 - transparency), 0.0)
+                }
+                None => (1.0, 0.0),
+            },
+            _ => (self.vector(appearance, "colorOverride", [1.0; 3])[0], 0.0),
+        };
+        reflection_factor(red, roughness, 0.0)
+    }
+
+    /// The reflection factor of a Shape's appearance (1, white, without one).
+    pub fn shape_reflectance(&mut self, shape: &'d Node) -> f64 {
+        match self.nodes(shape, "appearance").first() {
+            Some(&appearance) => self.appearance_node_reflectance(self.node(appearance)),
+            None => 1.0,
+        }
+    }
+
     /// The colour of a node's appearance field `field` (a Shape's `appearance`, a PROTO's
     /// `wallAppearance`...), or `None`.
     pub fn field_colour(&mut self, node: &'d Node, field: &str) -> Option<[f64; 3]> {
@@ -61,10 +141,27 @@ impl<'d> Importer<'d> {
         self.appearance_node_colour(self.node(appearance))
     }
 
-    /// The colour of a Solid (or a plain robot) as a camera sees it: that of the first of its
-    /// visible shapes that has one (its `children`, through `Pose`, `Transform` and `Group`,
-    /// not into other Solids), else of its `boundingObject` when that is a `Shape`.
-    pub fn solid_colour(&mut self, solid: &'d Node) -> Option<[f64; 3]> {
+    /// The look of a node's appearance field `field` when a camera sees its colour, with the
+    /// reflection factor of that appearance.
+    pub fn field_look(&mut self, node: &'d Node, field: &str) -> Option<Look> {
+        let &appearance = self.nodes(node, field).first()?;
+        let appearance = self.node(appearance);
+        let colour = self.appearance_node_colour(appearance)?;
+        Some(Look {
+            colour: Some(colour),
+            reflectance: self.appearance_node_reflectance(appearance),
+        })
+    }
+
+    /// How a Solid (or a plain robot) looks: as the first of its visible shapes whose colour a
+    /// camera sees (its `children`, through `Pose`, `Transform` and `Group`, not into other
+    /// Solids), else as its `boundingObject` when that is a `Shape` with one, else
+    /// [`Look::UNREAD`].
+    pub fn solid_look(&mut self, solid: &'d Node) -> Look {
+        self.solid_seen_look(solid).unwrap_or(Look::UNREAD)
+    }
+
+    fn solid_seen_look(&mut self, solid: &'d Node) -> Option<Look> {
         let mut stack: Vec<&'d Node> = self
             .nodes(solid, "children")
             .iter()
@@ -79,8 +176,8 @@ impl<'d> Importer<'d> {
             }
             match node.type_name.as_str() {
                 "Shape" => {
-                    if let Some(colour) = self.field_colour(node, "appearance") {
-                        return Some(colour);
+                    if let Some(look) = self.field_look(node, "appearance") {
+                        return Some(look);
                     }
                 }
                 "Pose" | "Transform" | "Group" => {
@@ -93,19 +190,20 @@ impl<'d> Importer<'d> {
         let &bounding = self.nodes(solid, "boundingObject").first()?;
         let bounding = self.node(bounding);
         if bounding.type_name == "Shape" {
-            return self.field_colour(bounding, "appearance");
+            return self.field_look(bounding, "appearance");
         }
         None
     }
 
-    /// The colour of a known PROTO's collision boxes: a `RectangleArena`'s `wallAppearance`, a
-    /// `Wall`'s or a `SolidBox`'s `appearance` (their defaults are textured: no colour).
-    pub fn proto_colour(&mut self, node: &'d Node) -> Option<[f64; 3]> {
-        match node.type_name.as_str() {
-            "RectangleArena" => self.field_colour(node, "wallAppearance"),
-            "Wall" | "SolidBox" => self.field_colour(node, "appearance"),
+    /// How a known PROTO's collision boxes look: as a `RectangleArena`'s `wallAppearance`, a
+    /// `Wall`'s or a `SolidBox`'s `appearance` (their defaults are textured: no colour, white).
+    pub fn proto_look(&mut self, node: &'d Node) -> Look {
+        let look = match node.type_name.as_str() {
+            "RectangleArena" => self.field_look(node, "wallAppearance"),
+            "Wall" | "SolidBox" => self.field_look(node, "appearance"),
             _ => None,
-        }
+        };
+        look.unwrap_or(Look::UNREAD)
     }
 
     /// Keeps the first floor colour the world gives (a `RectangleArena`'s `floorAppearance`, a
@@ -119,20 +217,110 @@ impl<'d> Importer<'d> {
 
 #[cfg(test)]
 mod tests {
+    use super::{reflection_factor, Look};
     use crate::wbt::WbtImport;
+    use crate::world::spec::{BodySpec, PaintSpec};
 
     fn import(text: &str) -> WbtImport {
         WbtImport::from_text(text, "test.wbt").unwrap_or_else(|e| panic!("{e}"))
     }
 
-    fn solid_with(appearance: &str) -> Option<[f64; 3]> {
+    fn look_with(appearance: &str) -> Look {
         let w = import(&format!(
             "#VRML_SIM R2023b utf8\nSolid {{ translation 0.3 0 0.05 children [ Shape {{ \
              {appearance} geometry Box {{ size 0.1 0.1 0.1 }} }} ] \
              boundingObject Box {{ size 0.1 0.1 0.1 }} }}\n"
         ));
         assert_eq!(w.obstacles.len(), 1);
-        w.obstacle_colours[0]
+        let look = w.obstacle_looks[0];
+        let wall = &w.to_spec("look").walls[0];
+        assert_eq!(wall.reflectance.0, look.reflectance);
+        look
+    }
+
+    fn solid_with(appearance: &str) -> Option<[f64; 3]> {
+        look_with(appearance).colour
+    }
+
+    fn reflectance_with(appearance: &str) -> f64 {
+        look_with(appearance).reflectance
+    }
+
+    #[test]
+    fn the_reflection_factor_is_webots_infra_red_formula() {
+        assert_eq!(reflection_factor(1.0, 0.0, 0.0), 1.0);
+        assert_eq!(reflection_factor(0.0, 1.0, 1.0), 0.2);
+        assert!((reflection_factor(0.5, 1.0, 0.0) - 0.4).abs() < 1e-12);
+        // The E-puck's shell: grey 0.5 at transparency 0.4, roughness 0.5.
+        assert!((reflection_factor(0.5 * 0.6, 0.5, 0.0) - 0.38).abs() < 1e-12);
+        assert!((reflection_factor(1.0, 0.0, 1.0) - 0.6).abs() < 1e-12);
+        assert_eq!(reflection_factor(f64::NAN, 2.0, -1.0), 0.2);
+    }
+
+    #[test]
+    fn a_wall_reflects_by_its_red_transparency_and_roughness() {
+        let close = |a: f64, b: f64| (a - b).abs() < 1e-12;
+        assert_eq!(
+            reflectance_with("appearance PBRAppearance { baseColor 1 0 0 }"),
+            1.0
+        );
+        assert!(close(
+            reflectance_with("appearance PBRAppearance { baseColor 0.5 0.5 0.5 roughness 1 }"),
+            0.4
+        ));
+        assert!(close(
+            reflectance_with("appearance PBRAppearance { baseColor 0 1 1 emissiveColor 1 0 0 }"),
+            0.2
+        ));
+        assert!(close(
+            reflectance_with("appearance PBRAppearance { transparency 0.5 roughness 0.5 }"),
+            0.5
+        ));
+        // A Material has no roughness: Webots picks 0 for it.
+        assert!(close(
+            reflectance_with(
+                "appearance Appearance { material Material { diffuseColor 0.5 0 0 transparency 0.5 } }"
+            ),
+            0.4
+        ));
+        assert!(close(
+            reflectance_with("appearance Appearance { material Material { } }"),
+            0.84
+        ));
+        assert!(close(
+            reflectance_with("appearance Roughcast { colorOverride 0.25 0.25 0.25 }"),
+            0.4
+        ));
+        // What gives no colour keeps the factor of a white surface.
+        for unread in [
+            "",
+            "appearance PBRAppearance { baseColor 0 0 0 roughness 1 baseColorMap ImageTexture { } }",
+            "appearance Parquetry { }",
+        ] {
+            assert_eq!(look_with(unread), Look::UNREAD, "{unread}");
+        }
+    }
+
+    #[test]
+    fn a_movable_body_and_a_floor_mark_reflect_by_their_appearance() {
+        let w = import(
+            "#VRML_SIM R2023b utf8\n\
+             Solid { translation 0.3 0 0.05 children [ Shape { \
+               appearance PBRAppearance { baseColor 0.5 0.5 0.5 roughness 1 } \
+               geometry Sphere { radius 0.05 } } ] \
+               boundingObject Sphere { radius 0.05 } physics Physics { } }\n\
+             Pose { translation -0.2 0 0.0005 children [ Shape { \
+               appearance PBRAppearance { baseColor 1 1 1 roughness 1 transparency 0.5 } \
+               geometry Box { size 0.1 0.1 0.001 } } ] }\n",
+        );
+        let [BodySpec::Circle { reflectance, .. }] = w.bodies.as_slice() else {
+            panic!("one ball: {:?}", w.bodies);
+        };
+        assert!((reflectance.0 - 0.4).abs() < 1e-12);
+        let [PaintSpec::Rect { reflectance, .. }] = w.paint.as_slice() else {
+            panic!("one mark: {:?}", w.paint);
+        };
+        assert!((reflectance.0 - 0.4).abs() < 1e-12);
     }
 
     #[test]
@@ -190,11 +378,11 @@ mod tests {
         );
         assert_eq!(w.floor_colour, Some([0.0, 0.0, 1.0]));
         assert_eq!(w.obstacles.len(), 6);
-        assert!(w.obstacle_colours[..4]
+        assert!(w.obstacle_looks[..4]
             .iter()
-            .all(|c| *c == Some([0.0, 1.0, 0.0])));
-        assert_eq!(w.obstacle_colours[4], Some([1.0, 0.0, 0.0]));
-        assert_eq!(w.obstacle_colours[5], None);
+            .all(|l| l.colour == Some([0.0, 1.0, 0.0])));
+        assert_eq!(w.obstacle_looks[4].colour, Some([1.0, 0.0, 0.0]));
+        assert_eq!(w.obstacle_looks[5].colour, None);
         let world = w.to_world("colours").unwrap();
         let colours = world.wall_colours();
         assert_eq!(colours.len(), 6);

@@ -4,7 +4,7 @@
 
 use std::f64::consts::PI;
 
-use super::{Obstacle, WbtImport};
+use super::{Look, Obstacle, WbtImport};
 use crate::error::Result;
 use crate::world::spec::{FloorSpec, StartSpec, WallSpec, WorldSpec};
 use crate::world::values::{
@@ -32,20 +32,20 @@ pub fn polygon_sides(radius: f64) -> usize {
         .unwrap_or(most)
 }
 
-fn wall(center: [f64; 2], size: [f64; 2], yaw: f64, colour: Option<[f64; 3]>) -> WallSpec {
+fn wall(center: [f64; 2], size: [f64; 2], yaw: f64, look: Look) -> WallSpec {
     WallSpec {
         center: [Finite(center[0]), Finite(center[1])],
         size: [Positive(size[0]), Positive(size[1])],
         yaw: Finite(yaw),
-        reflectance: Reflectance(1.0),
-        colour: colour.map(values::colour),
+        reflectance: Reflectance(look.reflectance),
+        colour: look.colour.map(values::colour),
         sensed_only: false,
     }
 }
 
 /// A ring of walls whose outline is a regular polygon straddling the circle: its apothem lies
 /// as far inside the circle as its corners lie outside.
-pub fn circle_walls(center: [f64; 2], radius: f64, colour: Option<[f64; 3]>) -> Vec<WallSpec> {
+pub fn circle_walls(center: [f64; 2], radius: f64, look: Look) -> Vec<WallSpec> {
     let n = polygon_sides(radius);
     let half_angle = PI / n as f64;
     let apothem = 2.0 * radius * half_angle.cos() / (1.0 + half_angle.cos());
@@ -60,7 +60,7 @@ pub fn circle_walls(center: [f64; 2], radius: f64, colour: Option<[f64; 3]>) -> 
                 [center[0] + c * distance, center[1] + s * distance],
                 [thickness, side],
                 angle,
-                colour,
+                look,
             )
         })
         .collect()
@@ -88,17 +88,17 @@ impl WbtImport {
     pub fn to_spec(&self, name: &str) -> WorldSpec {
         // The solid obstacles first (`obstacle_walls` counts them), then the sensed-only ones.
         let solid =
-            (self.obstacles.iter().enumerate()).map(|(i, o)| (o, &self.obstacle_colours, i, false));
+            (self.obstacles.iter().enumerate()).map(|(i, o)| (o, &self.obstacle_looks, i, false));
         let sensed = (self.sensed_obstacles.iter().enumerate())
-            .map(|(i, o)| (o, &self.sensed_colours, i, true));
+            .map(|(i, o)| (o, &self.sensed_looks, i, true));
         let mut walls = Vec::new();
-        for (obstacle, colours, i, sensed_only) in solid.chain(sensed) {
-            let colour = colours.get(i).copied().flatten();
+        for (obstacle, looks, i, sensed_only) in solid.chain(sensed) {
+            let look = looks.get(i).copied().unwrap_or(Look::UNREAD);
             let first = walls.len();
             match *obstacle {
-                Obstacle::Box { center, size, yaw } => walls.push(wall(center, size, yaw, colour)),
+                Obstacle::Box { center, size, yaw } => walls.push(wall(center, size, yaw, look)),
                 Obstacle::Circle { center, radius } => {
-                    walls.extend(circle_walls(center, radius, colour))
+                    walls.extend(circle_walls(center, radius, look))
                 }
             }
             for w in &mut walls[first..] {
@@ -146,7 +146,7 @@ mod tests {
         assert_eq!(polygon_sides(0.005), 8);
         assert_eq!(polygon_sides(1e6), 256);
         for radius in [0.02, 0.05, 0.3] {
-            let walls = circle_walls([1.0, 2.0], radius, None);
+            let walls = circle_walls([1.0, 2.0], radius, Look::UNREAD);
             let n = walls.len();
             let half_angle = PI / n as f64;
             let apothem = 2.0 * radius * half_angle.cos() / (1.0 + half_angle.cos());

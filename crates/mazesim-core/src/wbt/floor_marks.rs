@@ -1,8 +1,8 @@
 //! Visual-only shapes: a `Shape` that belongs to no `Solid` with a `boundingObject` collides
 //! with nothing in Webots, but its infra-red distance sensors still see it (the reference
 //! manual's DistanceSensor page: "infra-red rays collision detection uses the Solid nodes
-//! themselves"; the sensor picks the colour of the first shape its ray meets, reflection factor
-//! `0.2 + 0.8 red`). A line drawn on the floor as a thin `Box`, `Cylinder`, `IndexedFaceSet` or
+//! themselves"; the sensor picks the colour of the first shape its ray meets: see
+//! `appearance.rs` for its reflection factor). A line drawn on the floor as a thin `Box`, `Cylinder`, `IndexedFaceSet` or
 //! `Mesh` (a Wavefront `.obj` file) is such a shape.
 //!
 //! Shapes no taller than [`FLOOR_MARK_HEIGHT`] that lie on the floor become floor paint of
@@ -53,11 +53,6 @@ pub struct FloorMesh {
     pub reflectance: f64,
     /// Its colour as a camera sees it (see `appearance.rs`).
     pub colour: Option<[f64; 3]>,
-}
-
-/// The reflection factor Webots' infra-red sensors give a colour: `0.2 + 0.8 red`.
-pub fn colour_reflectance(rgb: [f64; 3]) -> f64 {
-    0.2 + 0.8 * rgb[0].clamp(0.0, 1.0)
 }
 
 /// Triangles of a Wavefront `.obj` text (`v` and `f` lines; polygons fanned into triangles,
@@ -214,24 +209,6 @@ pub fn triangles_paint(
 }
 
 impl<'d> Importer<'d> {
-    /// The colour of an appearance as Webots' infra-red sensors pick it: a `PBRAppearance`'s
-    /// `baseColor` (default white), an `Appearance`'s `Material.diffuseColor` (default 0.8 grey;
-    /// white without a material); no appearance is white.
-    fn appearance_colour(&mut self, shape: &'d Node) -> [f64; 3] {
-        let Some(&appearance) = self.nodes(shape, "appearance").first() else {
-            return [1.0; 3];
-        };
-        let appearance = self.node(appearance);
-        match appearance.type_name.as_str() {
-            "PBRAppearance" => self.vector(appearance, "baseColor", [1.0; 3]),
-            "Appearance" => match self.nodes(appearance, "material").first() {
-                Some(&material) => self.vector(self.node(material), "diffuseColor", [0.8; 3]),
-                None => [1.0; 3],
-            },
-            _ => [1.0; 3],
-        }
-    }
-
     /// Warns that a visual-only shape is not imported.
     fn drop_visual(&mut self, shape: &'d Node, geometry: &'d Node, why: &str) {
         let label = self.label(shape);
@@ -263,8 +240,7 @@ impl<'d> Importer<'d> {
         let parent = *frame;
         // Primitives are defined Z-up (turned in Y-up files); points are taken as written.
         let frame = self.z_up(frame);
-        let rgb = self.appearance_colour(node);
-        let reflectance = colour_reflectance(rgb);
+        let reflectance = self.shape_reflectance(node);
         let colour = self.field_colour(node, "appearance");
         match geometry.type_name.as_str() {
             "Plane" => {

@@ -2,6 +2,7 @@
 //! `WorldInfo`, the robot's start pose and the budget that keeps a hostile file bounded.
 //! Collision shapes are in `shapes.rs`, PROTO expansions in `protos.rs`.
 
+use super::appearance::Look;
 use super::devices::ExtensionDevice;
 use super::floor_marks::FloorMesh;
 use super::floor_texture::FloorTexture;
@@ -95,8 +96,8 @@ pub const MAX_BODY_SIDE: f64 = 0.5;
 /// with physics) stays a static obstacle.
 pub const MAX_BODY_ELONGATION: f64 = 4.0;
 
-/// An obstacle with the colour a camera sees of it (see `appearance.rs`).
-pub type ColouredObstacle = (Obstacle, Option<[f64; 3]>);
+/// An obstacle with how it looks (see `appearance.rs`).
+pub type ColouredObstacle = (Obstacle, Look);
 
 /// The state of one import.
 pub struct Importer<'d> {
@@ -104,14 +105,14 @@ pub struct Importer<'d> {
     /// PROTOs and primitives are Y-up (files before R2022a).
     pub y_up: bool,
     pub obstacles: Vec<Obstacle>,
-    /// The colour of each of `obstacles` (see `appearance.rs`).
-    pub obstacle_colours: Vec<Option<[f64; 3]>>,
-    /// The colour of the Solid whose collision shapes are being read.
-    pub colour: Option<[f64; 3]>,
+    /// How each of `obstacles` looks (see `appearance.rs`).
+    pub obstacle_looks: Vec<Look>,
+    /// How the Solid whose collision shapes are being read looks.
+    pub look: Look,
     /// Obstacles only infra-red rays and cameras meet (visual-only shapes in the proximity
-    /// rays' way, see `sensed.rs`), and their colours.
+    /// rays' way, see `sensed.rs`), and how they look.
     pub sensed_obstacles: Vec<Obstacle>,
-    pub sensed_colours: Vec<Option<[f64; 3]>>,
+    pub sensed_looks: Vec<Look>,
     /// Set while reading a visual-only shape as a sensed-only obstacle.
     pub sensing: bool,
     /// The floor's colour (see `appearance.rs`).
@@ -161,10 +162,10 @@ pub fn import(doc: &Document, choice: RobotChoice<'_>) -> WbtImport {
         doc,
         y_up: !doc.version.has_z_up_protos(),
         obstacles: Vec::new(),
-        obstacle_colours: Vec::new(),
-        colour: None,
+        obstacle_looks: Vec::new(),
+        look: Look::UNREAD,
         sensed_obstacles: Vec::new(),
-        sensed_colours: Vec::new(),
+        sensed_looks: Vec::new(),
         sensing: false,
         floor_colour: None,
         obstacle_owners: Vec::new(),
@@ -210,9 +211,9 @@ pub fn import(doc: &Document, choice: RobotChoice<'_>) -> WbtImport {
     let mut robots = Vec::with_capacity(importer.robots.len());
     for (found, shapes, owners) in std::mem::take(&mut importer.robots) {
         if found.profile.is_none() && Some(found.line) != stand_in_line {
-            for (shape, colour) in shapes {
+            for (shape, look) in shapes {
                 importer.obstacles.push(shape);
-                importer.obstacle_colours.push(colour);
+                importer.obstacle_looks.push(look);
             }
             importer.obstacle_owners.extend(owners);
         }
@@ -225,9 +226,9 @@ pub fn import(doc: &Document, choice: RobotChoice<'_>) -> WbtImport {
     }
     WbtImport {
         obstacles: importer.obstacles,
-        obstacle_colours: importer.obstacle_colours,
+        obstacle_looks: importer.obstacle_looks,
         sensed_obstacles: importer.sensed_obstacles,
-        sensed_colours: importer.sensed_colours,
+        sensed_looks: importer.sensed_looks,
         floor_colour: importer.floor_colour,
         obstacle_owners: importer.obstacle_owners,
         bodies: importer.bodies,
@@ -424,16 +425,16 @@ impl<'d> Importer<'d> {
         self.holders.pop();
     }
 
-    /// Records an obstacle, in the colour of the Solid being read, held by the nodes the walk
+    /// Records an obstacle, with the look of the Solid being read, held by the nodes the walk
     /// is inside.
     pub fn emit(&mut self, obstacle: Obstacle) {
         if self.sensing {
             self.sensed_obstacles.push(obstacle);
-            self.sensed_colours.push(self.colour);
+            self.sensed_looks.push(self.look);
             return;
         }
         self.obstacles.push(obstacle);
-        self.obstacle_colours.push(self.colour);
+        self.obstacle_looks.push(self.look);
         let mut owners = self.holders.clone();
         owners.dedup();
         self.obstacle_owners.push(owners);
@@ -509,15 +510,15 @@ impl<'d> Importer<'d> {
         let frame = frame.then(&local);
         let falls = self.is_dynamic(node);
         let first = self.obstacles.len();
-        let colour = self.solid_colour(node);
-        let outer_colour = std::mem::replace(&mut self.colour, colour);
+        let look = self.solid_look(node);
+        let outer_look = std::mem::replace(&mut self.look, look);
         for &shape in self.nodes(node, "boundingObject") {
             let label = self.label(node);
             self.falls = falls;
             self.bounding(shape, &frame, &label, depth + 1);
             self.falls = false;
         }
-        self.colour = outer_colour;
+        self.look = outer_look;
         if falls && !self.nodes(node, "boundingObject").is_empty() {
             let mass = self.physics_mass(node);
             if !self.make_movable(first, mass) {
@@ -574,6 +575,7 @@ impl<'d> Importer<'d> {
         if self.obstacles.len() != first + 1 {
             return false;
         }
+        let reflectance = Reflectance(self.obstacle_looks[first].reflectance);
         let body = match self.obstacles[first] {
             Obstacle::Box { center, size, yaw }
                 if size.iter().all(|s| *s <= MAX_BODY_SIDE)
@@ -585,7 +587,7 @@ impl<'d> Importer<'d> {
                     yaw: Finite(yaw),
                     mass: Positive(mass),
                     friction: NonNegative(DEFAULT_BODY_FRICTION),
-                    reflectance: Reflectance(1.0),
+                    reflectance,
                 }
             }
             Obstacle::Circle { center, radius } if 2.0 * radius <= MAX_BODY_SIDE => {
@@ -594,13 +596,13 @@ impl<'d> Importer<'d> {
                     radius: Positive(radius),
                     mass: Positive(mass),
                     friction: NonNegative(DEFAULT_BODY_FRICTION),
-                    reflectance: Reflectance(1.0),
+                    reflectance,
                 }
             }
             _ => return false,
         };
         self.obstacles.truncate(first);
-        self.obstacle_colours.truncate(first);
+        self.obstacle_looks.truncate(first);
         self.body_owners.extend(self.obstacle_owners.drain(first..));
         self.bodies.push(body);
         true
@@ -801,16 +803,16 @@ impl<'d> Importer<'d> {
         let local = self.local_frame(node, [0.0; 3]);
         let frame = frame.then(&local);
         let first = self.obstacles.len();
-        let colour = self.solid_colour(node);
-        let outer = std::mem::replace(&mut self.colour, colour);
+        let look = self.solid_look(node);
+        let outer = std::mem::replace(&mut self.look, look);
         for &shape in self.nodes(node, "boundingObject") {
             self.bounding(shape, &frame, label, 1);
         }
-        self.colour = outer;
+        self.look = outer;
         let owners = self.obstacle_owners.split_off(first);
         let shapes = self.obstacles.split_off(first);
-        let colours = self.obstacle_colours.split_off(first);
-        (shapes.into_iter().zip(colours).collect(), owners)
+        let looks = self.obstacle_looks.split_off(first);
+        (shapes.into_iter().zip(looks).collect(), owners)
     }
 
     /// A robot's start pose: its origin and where its forward axis points.

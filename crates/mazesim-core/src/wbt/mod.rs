@@ -55,9 +55,10 @@ use std::path::Path;
 
 use crate::error::Result;
 
+pub use appearance::{reflection_factor, Look};
 pub use convert::polygon_sides;
 pub use devices::{DeviceField, ExtensionDevice};
-pub use floor_marks::{colour_reflectance, obj_triangles, FloorMesh};
+pub use floor_marks::{obj_triangles, FloorMesh};
 pub use floor_texture::{grey_reflectance, FloorTexture, GreyImage};
 pub use header::WbtVersion;
 pub use import::EPUCK_DEFAULT_CONTROLLER;
@@ -131,15 +132,16 @@ pub struct WorldRobot {
 pub struct WbtImport {
     /// The static obstacles, in file order.
     pub obstacles: Vec<Obstacle>,
-    /// The colour a camera sees of each obstacle (`None`: the grey of its reflection factor),
-    /// in the order of `obstacles` (see `appearance.rs`).
-    pub obstacle_colours: Vec<Option<[f64; 3]>>,
+    /// How each obstacle looks: the colour a camera sees (`None`: the grey of its reflection
+    /// factor) and its infra-red reflection factor, in the order of `obstacles` (see
+    /// `appearance.rs`).
+    pub obstacle_looks: Vec<Look>,
     /// Obstacles only infra-red rays and cameras meet, in file order: visual-only shapes (of
     /// no Solid with a `boundingObject`) in the e-puck's proximity rays' way (see `sensed.rs`).
     /// The world keeps them as `sensed_only` walls, after the others.
     pub sensed_obstacles: Vec<Obstacle>,
-    /// The colour a camera sees of each of `sensed_obstacles`.
-    pub sensed_colours: Vec<Option<[f64; 3]>>,
+    /// How each of `sensed_obstacles` looks.
+    pub sensed_looks: Vec<Look>,
     /// The colour of the floor, when the world gives one (see `appearance.rs`).
     pub floor_colour: Option<[f64; 3]>,
     /// Per obstacle, the lines of the nodes that hold it, outermost first (the file's node

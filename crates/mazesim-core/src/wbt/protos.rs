@@ -17,10 +17,10 @@ use super::tree::Node;
 impl<'d> Importer<'d> {
     /// Expands a known PROTO; false when the type is not one.
     pub fn expand_proto(&mut self, node: &'d Node, frame: &Frame) -> bool {
-        let colour = self.proto_colour(node);
-        let outer = std::mem::replace(&mut self.colour, colour);
+        let look = self.proto_look(node);
+        let outer = std::mem::replace(&mut self.look, look);
         let known = self.expand_known(node, frame);
-        self.colour = outer;
+        self.look = outer;
         known
     }
 

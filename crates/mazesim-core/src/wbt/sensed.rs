@@ -10,6 +10,7 @@
 //! colour of its appearance, and the world keeps it as a `sensed_only` wall. Lower shapes stay
 //! floor marks or warnings (`floor_marks.rs`); higher ones pass over the robot.
 
+use super::appearance::Look;
 use super::frames::Frame;
 use super::import::Importer;
 use super::tree::Node;
@@ -23,7 +24,7 @@ pub const PROXIMITY_RAYS_HIGH: f64 = 0.044;
 
 impl<'d> Importer<'d> {
     /// Reads the primitive geometry of the visual-only `shape` (in its parent's `frame`) as a
-    /// sensed-only obstacle of the shape's colour, when it reaches the proximity rays' band;
+    /// sensed-only obstacle of the shape's look (colour and reflection factor), when it reaches the proximity rays' band;
     /// returns whether it reached it (otherwise nothing is emitted, the caller warns).
     pub fn sensed_shape(&mut self, shape: &'d Node, frame: &Frame) -> bool {
         let Some(&geometry) = self.nodes(shape, "geometry").first() else {
@@ -31,12 +32,12 @@ impl<'d> Importer<'d> {
         };
         let label = self.label(shape);
         let before = self.sensed_obstacles.len();
-        let colour = self.field_colour(shape, "appearance");
-        let outer = std::mem::replace(&mut self.colour, colour);
+        let look = self.field_look(shape, "appearance").unwrap_or(Look::UNREAD);
+        let outer = std::mem::replace(&mut self.look, look);
         self.sensing = true;
         self.bounding(geometry, frame, &label, 1);
         self.sensing = false;
-        self.colour = outer;
+        self.look = outer;
         self.sensed_obstacles.len() > before
     }
 
