@@ -15,8 +15,9 @@ messages are pickled tuples). The protocol, from the controller's side:
   ``("ok", (False, state))`` once every robot whose controller still runs has asked for the step
   and the world has taken it (lockstep), ``state`` being the robot's ``pose``, ``time`` and
   ``encoders`` after the step (:data:`STATE_AFTER_STEP`, which the controller's process then
-  reads without asking, until it moves its robot itself), or ``("ok", (True, None))`` without a
-  step when a supervisor has quit the simulation (``Robot.step`` then returns -1);
+  reads without asking, until it moves its robot itself) and the world's ``last_reset``
+  (:class:`~mazesim.webots.simulation.WorldReset`), or ``("ok", (True, None))`` without a step
+  when a supervisor has quit the simulation (``Robot.step`` then returns -1);
 - ``("done", summary)``: the controller has ended (a dict of :class:`ControllerSummary`'s
   fields); no answer. From then on the robot's wheels stay still.
 
@@ -150,6 +151,8 @@ class RemoteSimulator(Remote):
         #: The profile, built here: it does not cross the pipe.
         self.robot = RobotProfile.builtin(profile)
         self._after_step: dict[str, Any] = {}
+        #: The world's last reset, as the last step's answer told it (None before the first).
+        self.last_reset: Any = None
 
     def _state(self, name: str) -> Any:
         if name in self._after_step:
@@ -181,6 +184,7 @@ class RemoteSimulator(Remote):
         the world's run is over instead (a supervisor quit it)."""
         over, state = self._ask(("step", float(left), float(right)))
         self._after_step = dict(state or {})
+        self.last_reset = self._after_step.pop("last_reset", self.last_reset)
         return bool(over)
 
 

@@ -57,7 +57,7 @@ from mazesim.webots.requirements import PreparedController, prepare_controller, 
 from mazesim.webots.runner import CONTROLLER_SUFFIXES, EXIT_INTERRUPTED
 from mazesim.webots.scene import Scene, read_scenes
 from mazesim.webots.shared_world import RobotView, shared_simulator
-from mazesim.webots.simulation import place_where_asked, robot_profile_name
+from mazesim.webots.simulation import WorldReset, place_where_asked, robot_profile_name
 from mazesim.webots.solids import WorldSolids
 from mazesim.webots.stock_controllers import stock_controller
 from mazesim.webots.traction import Traction, epuck_traction
@@ -159,7 +159,8 @@ class WorldRun:
 
 
 class Fleet:
-    """The world's robots as a supervisor sees them (answered over the controllers' pipes)."""
+    """The world's robots as a supervisor sees them (answered over the controllers' pipes), and
+    the world's radio and last reset, which every robot's controller is told of."""
 
     def __init__(
         self,
@@ -172,6 +173,8 @@ class Fleet:
         self.moved: set[int] = set()
         #: The world's walls and movable bodies (``report``: the world's import report).
         self.solids = WorldSolids(self._worlds(), report or {})
+        self.radio = Radio()
+        self._resets: list[WorldReset] = [WorldReset() for _ in simulators]
 
     def robots(self) -> list[dict[str, Any]]:
         """Each robot's index, ``def_name``, ``name``, ``model`` and ``line``."""
@@ -217,9 +220,11 @@ class Fleet:
         """Sets a movable body's velocity in every simulator that holds the world's bodies."""
         self.solids.set_body_velocity(index, vx, vy, turn_rate)
 
-    def reset_scene(self) -> None:
+    def reset_scene(self, index: int) -> WorldReset:
         """Puts every robot at its start and the walls and movable bodies where the world file
-        has them, all at rest (a supervisor's ``simulationReset``), in every simulator."""
+        has them, all at rest (a supervisor's ``simulationReset``), in every simulator; drops
+        the radio's packets and restarts every robot's clock and wheel sensors. Returns the
+        reset as robot ``index`` (the supervisor's) counts from it."""
         done: set[int] = set()
         for simulator in self._simulators:
             whole = simulator.simulator if isinstance(simulator, RobotView) else simulator
@@ -227,6 +232,16 @@ class Fleet:
                 done.add(id(whole))
                 whole.reset_scene()
         self.moved.update(range(len(self._simulators)))
+        self.radio.clear()
+        count, now = self._resets[0].count + 1, float(self._simulators[0].time)
+        for robot, simulator in enumerate(self._simulators):
+            left, right = (float(v) for v in simulator.encoders)
+            self._resets[robot] = WorldReset(count, now, (left, right))
+        return self._resets[index]
+
+    def last_reset(self, index: int) -> WorldReset:
+        """The world's last reset as robot ``index`` counts from it."""
+        return self._resets[index]
 
     def move_node(self, line: int, from_pose: Any, to_pose: Any) -> None:
         """Moves what the node on ``line`` holds, in every simulator that holds the world's
@@ -576,7 +591,10 @@ def _lockstep(
                         traction.settle()
                         steps += 1
                     for index in sorted(wheels):
-                        state = None if world.over else state_after_step(simulators[index])
+                        state = None
+                        if not world.over:
+                            state = state_after_step(simulators[index])
+                            state["last_reset"] = fleet.last_reset(index)
                         connections[index].send(("ok", (world.over, state)))
                     wheels.clear()
     finally:
@@ -603,7 +621,7 @@ class _Pipes:
         self.movable = movable
         self.fleet = fleet
         self.runs = runs
-        self.radio = Radio()
+        self.radio = fleet.radio
         self.by_connection = {id(c): i for i, c in connections.items()}
         self.live = set(connections)
         self.wheels: dict[int, tuple[float, float]] = {}

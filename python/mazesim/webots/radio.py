@@ -133,6 +133,13 @@ class Radio:
                 if arrived is not None:
                     tuning.arrived.append(arrived)
 
+    def clear(self) -> None:
+        """Drops the packets in transit and those waiting for their receivers (a reset of the
+        world, which empties Webots' Emitter and Receiver queues)."""
+        self._in_transit = []
+        for tuning in self._receivers.values():
+            tuning.arrived = []
+
     def collect(self, robot: int, receiver: str) -> list[Packet]:
         """The packets that reached a receiver since it last collected (emptied)."""
         tuning = self._receivers.get((robot, receiver))

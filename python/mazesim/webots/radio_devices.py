@@ -171,6 +171,17 @@ class Receiver(_Tuned, NotSimulated, _Sensor):
         self._axes = axes
         self._queue: deque[Packet] = deque()
         self._queued_bytes = 0
+        self._resets = simulation.last_reset.count
+
+    def _queued(self) -> deque[Packet]:
+        """The queue, emptied when the world was reset since it was last read, as Webots
+        empties it."""
+        resets = self._simulation.last_reset.count
+        if resets != self._resets:
+            self._resets = resets
+            self._queue.clear()
+            self._queued_bytes = 0
+        return self._queue
 
     def _tune(self) -> None:
         simulation = self._simulation
@@ -191,24 +202,25 @@ class Receiver(_Tuned, NotSimulated, _Sensor):
         """At the end of a sampling period: queues what arrived, losing a packet that would
         overflow the buffer."""
         simulation = self._simulation
+        queue = self._queued()
         for packet in simulation.radio.collect(simulation.robot_index, self._name):
             size = len(packet.data)
             if self._buffer_size != UNLIMITED and self._queued_bytes + size > self._buffer_size:
                 continue
-            self._queue.append(packet)
+            queue.append(packet)
             self._queued_bytes += size
         return math.nan
 
     def _head(self, function: str) -> Packet | None:
         """The head packet, or None with Webots' error when the queue is empty."""
-        if not self._queue:
+        if not self._queued():
             _print_error(f"Error: wb_receiver_{function}(): the receiver queue is empty.")
             return None
         return self._queue[0]
 
     def getQueueLength(self) -> int:
         """The number of packets in the queue."""
-        return len(self._queue)
+        return len(self._queued())
 
     def nextPacket(self) -> None:
         """Drops the head packet (Webots' error when the queue is empty)."""

@@ -148,8 +148,8 @@ class Robot(NotSimulated):
     basic_time_step = webots_property("getBasicTimeStep")
 
     def getTime(self) -> float:
-        """Simulated seconds since the start."""
-        return self._simulation.time
+        """Simulated seconds since the start, or since a supervisor last reset the world."""
+        return self._simulation.clock
 
     time = webots_property("getTime")
 

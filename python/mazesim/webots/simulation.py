@@ -12,6 +12,7 @@ import math
 import sys
 from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -28,6 +29,7 @@ from mazesim.webots.traction import Traction, epuck_traction
 __all__ = [
     "RobotSimulation",
     "StepObserver",
+    "WorldReset",
     "current",
     "observing_steps",
     "place_where_asked",
@@ -41,6 +43,22 @@ __all__ = [
 STOP_DISPLACEMENT = 1e-4
 #: The profile used when the import report names none (or one this build does not have).
 DEFAULT_PROFILE = "e-puck"
+
+
+@dataclass(frozen=True)
+class WorldReset:
+    """A reset of the world (a supervisor's ``simulationReset``) as a robot's clock and wheel
+    sensors count from it, as Webots restarts them.
+
+    Attributes:
+        count: How many resets the world has had (0: none yet).
+        time: The simulator's time at the last reset (s).
+        turns: The robot's wheel turns at the last reset (rad).
+    """
+
+    count: int = 0
+    time: float = 0.0
+    turns: tuple[float, float] = (0.0, 0.0)
 
 
 #: How far (metres) a supervisor's move may push a robot out of the walls, in steps of one mm.
@@ -260,6 +278,8 @@ class RobotSimulation:
         self._yaw = float(self.simulator.pose[2])
         self._distance: npt.NDArray[np.float32] | None = None
         self._ground: npt.NDArray[np.float32] | None = None
+        #: The world's last reset (a supervisor's ``simulationReset``) this robot knows of.
+        self.last_reset = WorldReset()
 
     @property
     def time_is_up(self) -> bool:
@@ -279,6 +299,11 @@ class RobotSimulation:
             self.world_over = True
             return
         self.steps += 1
+        if self.fleet is not None:
+            # A robot of a world run learns of a supervisor's reset with the step's answer.
+            told: WorldReset | None = getattr(self.simulator, "last_reset", None)
+            if told is not None and told.count > self.last_reset.count:
+                self.last_reset = told
         self._distance = None
         self._ground = None
         x, y, yaw = self.simulator.pose
@@ -297,8 +322,14 @@ class RobotSimulation:
 
     @property
     def time(self) -> float:
-        """Simulated seconds since the start."""
+        """Simulated seconds since the start (what the run's summary and time limit count)."""
         return float(self.simulator.time)
+
+    @property
+    def clock(self) -> float:
+        """Simulated seconds since the start, or since the world's last reset, as Webots'
+        ``Robot.getTime`` counts them."""
+        return self.time - self.last_reset.time
 
     def move_robot(self, x: float, y: float, yaw: float) -> None:
         """Puts the robot at a new pose at rest (a supervisor's ``setSFVec3f`` / ``setSFRotation``).
@@ -313,12 +344,16 @@ class RobotSimulation:
         """Puts the world back as its file has it, as a supervisor's ``simulationReset`` does:
         every robot at its start, the walls a supervisor moved where the file has them and every
         movable body at its start, all at rest (in a world with several robots, through the
-        world's process). The clock, the counters and the trajectory go on; the move is not
-        counted as distance travelled."""
+        world's process). The clock (:attr:`clock`) and the wheels' positions start again,
+        and the radio's packets are dropped, as in Webots; the run's counters, its time limit
+        and the trajectory go on; the move is not counted as distance travelled."""
         if self.fleet is not None:
-            self.fleet.reset_scene()
+            self.last_reset = self.fleet.reset_scene(self.robot_index)
         else:
             self.simulator.reset_scene()
+            self.radio.clear()
+            left, right = (float(v) for v in self.simulator.encoders)
+            self.last_reset = WorldReset(self.last_reset.count + 1, self.time, (left, right))
         x, y, yaw = (float(v) for v in self.simulator.pose)
         self._at_rest(x, y, yaw)
 
@@ -338,11 +373,12 @@ class RobotSimulation:
     def wheel_angles(self) -> tuple[float, float]:
         """The left and right wheel joints' positions (rad), as Webots' wheel sensors read them:
         where the world file left them (:attr:`Scene.wheel_positions`, 0 in a fresh world) plus
-        the turns of the run, to the encoders' resolution."""
+        the turns since the start or the world's last reset, to the encoders' resolution."""
         resolution = float(self.simulator.robot.encoder_resolution)
         angles = []
-        for start, turned in zip(self.scene.wheel_positions, self.simulator.encoders):
-            angle = start + float(turned)
+        turns = zip(self.scene.wheel_positions, self.simulator.encoders, self.last_reset.turns)
+        for start, turned, before in turns:
+            angle = start + (float(turned) - before)
             if start and resolution > 0.0:
                 angle = round(angle / resolution) * resolution
             angles.append(angle)

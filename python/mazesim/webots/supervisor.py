@@ -962,8 +962,9 @@ class Supervisor(Robot):
     def simulationReset(self) -> None:
         """Puts the world back as its file has it, as Webots' reset does: every robot at its
         start, every wall a supervisor moved and every movable body at its start, all at rest,
-        and the nodes' ``translation`` and ``rotation`` fields as the file gives them. The
-        controllers go on, as in Webots; unlike Webots, the clock goes on too."""
+        and the nodes' ``translation`` and ``rotation`` fields as the file gives them. As in
+        Webots, every robot's clock (``getTime``) and wheel position sensors start again from
+        the reset, the Emitter and Receiver queues are emptied and the controllers go on."""
         self._simulation.reset_scene()
         for node in [*self._file_nodes, *self._nodes.values()]:
             node._translation, node._rotation = node._file_pose
