@@ -181,7 +181,8 @@ fn a_solid_without_bounding_object_in_the_rays_is_sensed_only_and_read_as_webots
         panic!("a box")
     };
     assert_eq!((center, size), ([0.1, 0.0], [0.1, 0.1]));
-    assert_eq!(import.sensed_colours, vec![Some([1.0, 0.0, 0.0])]);
+    let colours: Vec<_> = import.sensed_looks.iter().map(|look| look.colour).collect();
+    assert_eq!(colours, vec![Some([1.0, 0.0, 0.0])]);
     // The flat disc stays floor paint, the post over the rays a warning.
     assert_eq!(import.paint.len(), 1);
     assert!(import.warnings.iter().any(
