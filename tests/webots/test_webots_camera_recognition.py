@@ -14,7 +14,7 @@ import pytest
 from mazesim.webots import controller, prepare, run_controller
 from mazesim.webots import simulation as simulations
 from mazesim.webots.importer import import_wbt
-from mazesim.webots.recognition import CameraPose, Recogniser
+from mazesim.webots.recognition import CameraPose, Recogniser, read_recognition
 from mazesim.webots.scene import read_scene
 from native_controllers import NEEDS_COMPILERS, write_source
 
@@ -290,3 +290,18 @@ def test_the_camera_does_not_recognise_a_part_of_its_own_robot(tmp_path: Path) -
     camera.recognitionEnable(32)
     robot.step(32)
     assert [o.getModel() for o in camera.getRecognitionObjects()] == ["red box"]
+
+
+@pytest.mark.parametrize(
+    ("written", "objects", "thickness"),
+    [("1e999", -1, 1), ("-1e999", -1, 1), ("99999999999999999999", 2**31 - 1, 2**31 - 1)],
+)
+def test_a_recognition_count_out_of_range_keeps_a_whole_number(
+    written: str, objects: int, thickness: int
+) -> None:
+    text = (
+        "#VRML_SIM R2023b utf8\nRobot { children [ Camera { recognition Recognition { "
+        f"maxObjects {written} frameThickness {written} }} }} ] }}\n"
+    )
+    camera = read_recognition(text)["cameras"][0]
+    assert (camera["max_objects"], camera["frame_thickness"]) == (objects, thickness)

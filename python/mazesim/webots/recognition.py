@@ -151,6 +151,15 @@ def _numbers(node: Node, name: str, count: int) -> tuple[float, ...] | None:
     return first_value([node], name, lambda item: item.numbers(count))
 
 
+def _whole(node: Node, name: str, default: int) -> int:
+    """An SFInt32 field's value, or ``default`` when absent or not a finite number (a value
+    past the 32-bit range is clamped to it, as Webots' parser keeps an SFInt32)."""
+    value = (_numbers(node, name, 1) or (float(default),))[0]
+    if not math.isfinite(value):
+        return default
+    return int(min(max(value, -(2.0**31)), 2.0**31 - 1))
+
+
 def _frame_of(node: Node, holder: Frame) -> Frame:
     """The frame of a node placed in ``holder`` by its translation and rotation."""
     offset = _numbers(node, "translation", 3) or (0.0, 0.0, 0.0)
@@ -170,11 +179,11 @@ def _camera(node: Node, robot_line: int, report: RecognitionReport) -> None:
             "robot_line": robot_line,
             "camera": first_value([node], "name", Field.string) or "camera",
             "max_range": (_numbers(held, "maxRange", 1) or (100.0,))[0],
-            "max_objects": int((_numbers(held, "maxObjects", 1) or (-1.0,))[0]),
+            "max_objects": _whole(held, "maxObjects", -1),
             # An SFBool before R2021b, an SFInt32 (0, 1 or 2) since.
             "occlusion": int(level[0]) if level else int(occlusion is not False),
             "frame_color": list(_numbers(held, "frameColor", 3) or (1.0, 0.0, 0.0)),
-            "frame_thickness": int((_numbers(held, "frameThickness", 1) or (1.0,))[0]),
+            "frame_thickness": _whole(held, "frameThickness", 1),
             "segmentation": bool(first_value([held], "segmentation", Field.flag)),
         }
     )
