@@ -58,7 +58,7 @@ from mazesim.webots.runner import CONTROLLER_SUFFIXES, EXIT_INTERRUPTED
 from mazesim.webots.scene import Scene, read_scenes
 from mazesim.webots.shared_world import RobotView, shared_simulator
 from mazesim.webots.simulation import WorldReset, place_where_asked, robot_profile_name
-from mazesim.webots.solids import WorldSolids
+from mazesim.webots.solids import Pose2, WorldSolids
 from mazesim.webots.stock_controllers import stock_controller
 from mazesim.webots.traction import Traction, epuck_traction
 from mazesim.webots.virtual_display import virtual_display, window_environment
@@ -233,6 +233,7 @@ class Fleet:
         ``simulationReset``), in every simulator; drops the radio's packets and restarts every
         robot's clock and wheel sensors; each robot learns of it with the step's answer."""
         self.reset_asked = False
+        self.solids.forget_moves()
         done: set[int] = set()
         for simulator in self._simulators:
             whole = simulator.simulator if isinstance(simulator, RobotView) else simulator
@@ -249,6 +250,11 @@ class Fleet:
     def last_reset(self, index: int) -> WorldReset:
         """The world's last reset as robot ``index`` counts from it."""
         return self._resets[index]
+
+    def node_moves(self) -> dict[int, tuple[Pose2, Pose2]]:
+        """The nodes a supervisor moved since the start or the last reset (see
+        :meth:`~mazesim.webots.solids.WorldSolids.node_moves`)."""
+        return self.solids.node_moves()
 
     def move_node(self, line: int, from_pose: Any, to_pose: Any) -> None:
         """Moves what the node on ``line`` holds, in every simulator that holds the world's

@@ -170,6 +170,8 @@ class RobotSimulation:
         fleet: The world's robots when another process owns the world (for a supervisor), or
             None.
         world_over: Whether the world's run is over (a supervisor of another robot quit it).
+        solids: The world's walls and movable bodies as a supervisor moves them, in a run of
+            one robot (None until :func:`~mazesim.webots.solids.world_objects` is asked).
         reset_listeners: Called when the world's reset reaches this robot, at the end of a
             step (the devices' and a supervisor's nodes' own restarts).
         paused: Whether a supervisor paused the simulation (``simulationSetMode(PAUSE)``).
@@ -260,6 +262,7 @@ class RobotSimulation:
             )
         self.robot_index = robot_index
         self.fleet = fleet
+        self.solids: Any = None
         self.world_over = False
         self.velocity = (0.0, 0.0, 0.0)
         self.acceleration = (0.0, 0.0)
@@ -375,6 +378,8 @@ class RobotSimulation:
         """The reset of a run of one robot, at the end of the step after the request."""
         self.simulator.reset_scene()
         self.radio.clear()
+        if self.solids is not None:
+            self.solids.forget_moves()
         left, right = (float(v) for v in self.simulator.encoders)
         self.last_reset = WorldReset(self.last_reset.count + 1, self.time, (left, right))
 
