@@ -422,8 +422,9 @@ class Simulator:
     def reset_scene(self) -> None:
         """Puts the scene back as the world was made, as a Webots supervisor's
         ``simulationReset`` does: every robot at its start, the walls ``move_solid`` moved where
-        the world has them and every movable body at its start, all at rest. Time, counters,
-        noise streams and wheel commands go on (``reset`` zeroes them)."""
+        the world has them and every movable body at its start, all at rest, and every robot's
+        noise stream started again from its seed, as Webots' reset restarts its random seeds.
+        Time, counters and wheel commands go on (``reset`` zeroes them)."""
     def set_body_velocity(self, index: int, vx: float, vy: float, turn_rate: float) -> None:
         """Sets the velocity of movable body ``index`` (world order): ``vx``, ``vy`` in m/s and
         ``turn_rate`` in rad/s, as a Webots supervisor's ``Node.setVelocity`` does; the floor's

@@ -66,6 +66,8 @@ def test_the_import_keeps_it_sensed_only_and_says_so(tmp_path: Path) -> None:
     assert world.wall_boxes().shape == (0, 6)
     assert world.sensed_wall_boxes().shape == (1, 6)
     assert world.sensed_wall_colours().tolist() == [[1.0, 0.0, 0.0]]
+    # The report says the reflectance the world's sensed-only wall has.
+    assert goal["reflectance"] == pytest.approx(float(world.sensed_wall_boxes()[0, 5]))
     assert len(world.paint_regions()) == 1  # the floor marker
     again = mazesim.World.from_toml(world.to_toml())
     assert again == world and "sensed_only = true" in world.to_toml()

@@ -4,6 +4,7 @@ in the camera's frame and place on the image, as Webots' camera recognition give
 
 from __future__ import annotations
 
+import json
 import math
 from collections.abc import Iterator
 from pathlib import Path
@@ -11,14 +12,18 @@ from typing import Any
 
 import pytest
 
+from mazesim import World
 from mazesim.webots import controller, prepare, run_controller
 from mazesim.webots import simulation as simulations
 from mazesim.webots.importer import import_wbt
+from mazesim.webots.lockstep import run_world
+from mazesim.webots.rays import WallBoxes
 from mazesim.webots.recognition import CameraPose, Recogniser, read_recognition
 from mazesim.webots.scene import read_scene
 from native_controllers import NEEDS_COMPILERS, write_source
 
 HEADER = "#VRML_SIM R2023b utf8\n"
+SWARM = Path(__file__).resolve().parent.parent / "data" / "webots-swarm"
 
 
 def world_text(occlusion: str = "", max_objects: str = "") -> str:
@@ -64,14 +69,15 @@ def release() -> Iterator[None]:
     simulations.release()
 
 
-def camera_of(tmp_path: Path, text: str) -> tuple[Any, Any]:
-    """The robot and its ``rec`` camera of a world file's ``text``."""
+def camera_of(tmp_path: Path, text: str, supervisor: bool = False) -> tuple[Any, Any]:
+    """The robot (a ``Supervisor`` when asked) and its ``rec`` camera of a world file's
+    ``text``."""
     world_file = tmp_path / "recognition.wbt"
     world_file.write_text(text)
     world, report = import_wbt(world_file)
     prepare(world, seconds=2.0, noise=False, report=report, scene=read_scene(text))
     controller.Robot.created = None
-    robot = controller.Robot()
+    robot = controller.Supervisor() if supervisor else controller.Robot()
     return robot, robot.getDevice("rec")
 
 
@@ -168,18 +174,23 @@ def test_recognition_functions_say_webots_errors_when_disabled_or_missing(
     assert "called on a Camera without Recognition node" in capsys.readouterr().err
 
 
-def test_a_recognised_robot_follows_its_live_pose() -> None:
-    target: Any = {
-        "line": 9,
-        "id": 2,
+def green_target(line: int, node_id: int, origin: list[float], size: list[float]) -> Any:
+    """A recognisable green object "cible" on ``line``, its box of ``size`` at ``origin``."""
+    return {
+        "line": line,
+        "id": node_id,
         "model": "cible",
         "colors": [0.0, 1.0, 0.0],
-        "origin": [5.0, 5.0, 0.0],
+        "origin": origin,
         "yaw": 0.0,
         "box_center": [0.0, 0.0, 0.0],
-        "box_size": [0.1, 0.2, 0.1],
+        "box_size": size,
         "round": False,
     }
+
+
+def test_a_recognised_robot_follows_its_live_pose() -> None:
+    target = green_target(9, 2, [5.0, 5.0, 0.0], [0.1, 0.2, 0.1])
     report = {"robots": [{"line": 1}, {"line": 9}]}
     recogniser = Recogniser(SETTINGS, [target], report)
     assert recogniser.follows_robots
@@ -305,3 +316,64 @@ def test_a_recognition_count_out_of_range_keeps_a_whole_number(
     )
     camera = read_recognition(text)["cameras"][0]
     assert (camera["max_objects"], camera["frame_thickness"]) == (objects, thickness)
+
+
+def supervised_camera(tmp_path: Path) -> tuple[Any, Any]:
+    """The supervisor and ``rec`` camera of :func:`world_text`'s e-puck, the red box ``RED``
+    and the wall ``WALL``."""
+    text = (
+        world_text()
+        .replace("E-puck {\n  controller", "E-puck {\n  supervisor TRUE controller")
+        .replace("Solid { translation 0.3 0.05", "DEF RED Solid { translation 0.3 0.05")
+        .replace("Solid { translation 0.45 -0.1", "DEF WALL Solid { translation 0.45 -0.1")
+    )
+    return camera_of(tmp_path, text, supervisor=True)
+
+
+def test_a_solid_a_supervisor_moves_is_recognised_where_it_is_now(tmp_path: Path) -> None:
+    supervisor, camera = supervised_camera(tmp_path)
+    camera.recognitionEnable(32)
+    supervisor.getFromDef("RED").getField("translation").setSFVec3f([0.35, -0.04, 0.025])
+    supervisor.step(32)
+    (red,) = camera.getRecognitionObjects()
+    x, y, _ = red.getPosition()
+    assert x == pytest.approx(0.32, abs=0.01) and y == pytest.approx(-0.04, abs=0.01)
+    # The wall that hid the green box moved away: the camera sees it now.
+    supervisor.getFromDef("WALL").getField("translation").setSFVec3f([0.45, 0.5, 0.05])
+    supervisor.step(32)
+    assert [o.getModel() for o in camera.getRecognitionObjects()] == ["red box", "green box"]
+    # The world's reset puts both back: the red box where the file has it, the green one hidden.
+    supervisor.simulationReset()
+    supervisor.step(32)
+    supervisor.step(32)
+    (red,) = camera.getRecognitionObjects()
+    assert red.getPosition()[1] == pytest.approx(0.05, abs=0.01)
+
+
+def test_another_robots_body_hides_what_is_behind_it() -> None:
+    target = green_target(20, 3, [0.6, 0.0, 0.025], [0.05, 0.05, 0.05])
+    report = {"robots": [{"line": 1, "profile": "e-puck"}, {"line": 9, "profile": "e-puck"}]}
+    camera = CameraPose(0.0, 0.0, 0.028, 0.0, 0.0, 52, 39, 0.84)
+    occluding = Recogniser({**SETTINGS, "occlusion": 1}, [target], report)
+    assert occluding.needs_robot_poses
+    no_walls = WallBoxes(World.from_toml('format = "mazesim-world"\nversion = 1\n'))
+    ahead = [(0.0, 0.0, 0.0), (0.3, 0.0, 0.0)]
+    aside = [(0.0, 0.0, 0.0), (0.3, 0.2, 0.0)]
+    assert occluding.recognise(camera, no_walls, ahead) == []
+    assert [o.model for o in occluding.recognise(camera, no_walls, aside)] == ["cible"]
+    # The camera's own robot hides nothing; without occlusion, nothing hides.
+    assert len(occluding.recognise(camera, no_walls, [(0.0, 0.0, 0.0), (0.3, 0.2, 0.0)])) == 1
+    seeing = Recogniser(SETTINGS, [target], report)
+    assert not seeing.needs_robot_poses
+    assert len(seeing.recognise(camera, no_walls, ahead)) == 1
+
+
+def test_in_a_world_run_a_robot_crossing_the_line_of_sight_hides_the_box(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setenv("SWARM_LOG", str(tmp_path))
+    run = run_world(str(SWARM / "worlds" / "hidden_box.wbt"), seconds=2.0)
+    assert [r.exit_status for r in run.robots] == [0, 0]
+    counts = json.loads((tmp_path / "watcher.json").read_text())
+    assert counts[0] == 0, "the screen e-puck stands between the camera and the box"
+    assert counts[-1] == 1, "it drove out of the way"

@@ -285,6 +285,7 @@ def test_supervisor_reads_and_sets_the_robots_fields(capsys: pytest.CaptureFixtu
     rotation.setSFRotation([0.0, 0.0, -1.0, 1.0])
     assert me.getField("mass") is None
     supervisor.simulationReset()
+    supervisor.step(32)
     assert me.getPosition() == pytest.approx([0.0, 0.0, 0.0], abs=1e-6)
     children = supervisor.getRoot().getField("children")
     assert children.getCount() == 1 and children.getTypeName() == "MFNode"

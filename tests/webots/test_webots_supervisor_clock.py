@@ -1,6 +1,7 @@
-"""A supervisor's ``simulationReset`` restarts what Webots restarts: every robot's clock
-(``getTime``) and wheel position sensors count from the reset and the Emitter and Receiver
-queues are emptied, while the run's summary and time limit count the whole run (#33)."""
+"""A supervisor's ``simulationReset`` restarts what Webots restarts, at the end of the next step:
+every robot's clock (``getTime``) and wheel position sensors count from the reset, its motors
+are back in position control and the Emitter and Receiver queues are emptied, while the run's
+summary and time limit count the whole run (#33)."""
 
 from __future__ import annotations
 
@@ -38,18 +39,21 @@ def test_after_a_reset_the_clock_and_the_wheel_sensors_read_as_in_a_fresh_run(
     assert supervisor.getTime() == pytest.approx(40 * STEP_S)
     assert sensors[0].getValue() > 1.0
     supervisor.simulationReset()
+    assert supervisor.getTime() == pytest.approx(40 * STEP_S), "not before the next step"
+    assert supervisor.step(32) == 0
     assert supervisor.getTime() == 0.0
     drive(supervisor, 6.0, 10)
     after_reset = (supervisor.getTime(), [sensor.getValue() for sensor in sensors])
     run = simulations.current()
-    assert run.time == pytest.approx(50 * STEP_S), "the run's own count goes on"
-    assert run.steps == 50
+    assert run.time == pytest.approx(51 * STEP_S), "the run's own count goes on"
+    assert run.steps == 51
     simulations.release()
     fresh = supervisor_of(tmp_path)
     fresh_sensors = wheel_sensors(fresh)
     drive(fresh, 6.0, 10)
     assert after_reset[0] == pytest.approx(fresh.getTime(), abs=1e-12)
-    assert after_reset[1] == pytest.approx([s.getValue() for s in fresh_sensors], abs=1e-9)
+    # To the wheel sensors' resolution (2 pi / 1000 rad).
+    assert after_reset[1] == pytest.approx([s.getValue() for s in fresh_sensors], abs=0.00629)
 
 
 def test_every_robot_of_a_world_run_counts_from_the_reset_and_loses_its_packets(
@@ -60,18 +64,19 @@ def test_every_robot_of_a_world_run_counts_from_the_reset_and_loses_its_packets(
     assert [r.exit_status for r in run.robots] == [0, 0]
     keeper = json.loads((tmp_path / "clock_keeper.json").read_text())
     assert keeper["before_reset"] == pytest.approx(30 * STEP_S)
-    assert keeper["at_reset"] == 0.0
-    assert keeper["step_after_reset"] == pytest.approx(STEP_S)
-    assert keeper["end"] == pytest.approx(10 * STEP_S)
+    assert keeper["at_reset"] == pytest.approx(30 * STEP_S), "applied at the next step's end"
+    assert keeper["step_after_reset"] == 0.0
+    assert keeper["end"] == pytest.approx(9 * STEP_S)
     listener = json.loads((tmp_path / "listener.json").read_text())
-    # Its 30th step is the keeper's: whether the reset came before it was read is a race.
-    assert listener["time"][28] == pytest.approx(29 * STEP_S)
-    assert listener["time"][30:] == pytest.approx([k * STEP_S for k in range(1, 11)])
-    assert listener["queue"][28] == 20, "the keeper's packets, never read"
+    # Every robot learns of the reset with the answer of the same step, its 31st.
+    assert listener["time"][29] == pytest.approx(30 * STEP_S)
+    assert listener["time"][30:] == pytest.approx([k * STEP_S for k in range(10)])
+    assert listener["queue"][29] == 20, "the keeper's packets, never read"
     assert listener["queue"][30:] == [0] * 10, "the reset emptied the queue"
-    assert listener["wheel"][28] > 20 * 4.0 * STEP_S
-    # One step from rest, as its first step was, to the wheel sensor's resolution.
-    assert listener["wheel"][30] == pytest.approx(listener["wheel"][0], abs=0.00629)
+    assert listener["wheel"][29] > 20 * 4.0 * STEP_S
+    # Its motors are back in position control at the reset's wheel angles: the wheels hold
+    # still, as in Webots, until the controller sets them again (this one never does).
+    assert listener["wheel"][30:] == pytest.approx([0.0] * 10, abs=1e-9)
     # The run's summary counts the whole run.
     assert run.steps >= 40 and run.simulated_seconds == pytest.approx(run.steps * STEP_S)
 
@@ -123,7 +128,7 @@ def test_a_c_controller_reads_its_clock_and_wheel_from_the_reset(
     assert [r.exit_status for r in run.robots] == [0, 0]
     read = json.loads((tmp_path / "c_timer.json").read_text())
     times, wheel = [t for t, _ in read], [w for _, w in read]
-    assert times[28] == pytest.approx(29 * STEP_S)
-    assert times[30:] == pytest.approx([k * STEP_S for k in range(1, 11)])
-    assert wheel[28] > 20 * 4.0 * STEP_S
-    assert wheel[30] == pytest.approx(wheel[0], abs=0.00629)
+    assert times[29] == pytest.approx(30 * STEP_S)
+    assert times[30:] == pytest.approx([k * STEP_S for k in range(10)])
+    assert wheel[29] > 20 * 4.0 * STEP_S
+    assert wheel[30:] == pytest.approx([0.0] * 10, abs=1e-9), "position control holds them"

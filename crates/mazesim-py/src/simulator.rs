@@ -502,7 +502,8 @@ impl PySimulator {
 
     /// Puts the scene back as the world was made, as a Webots supervisor's `simulationReset`
     /// does: every robot at its start, the walls `move_solid` moved where the world has them and
-    /// every movable body at its start, all at rest. Time, counters, noise streams and wheel
+    /// every movable body at its start, all at rest, and every robot's noise stream started again
+    /// from its seed, as Webots' reset restarts its random seeds. Time, counters and wheel
     /// commands go on (`reset` zeroes them).
     fn reset_scene(&self) -> PyResult<()> {
         self.swarm(|s| s.reset_scene())

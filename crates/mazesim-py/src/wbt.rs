@@ -132,7 +132,7 @@ fn grey_images(images: Option<&Bound<'_, PyAny>>) -> PyResult<BTreeMap<String, G
 /// (each obstacle and body with its `owners`, the lines of the nodes that hold it, and its
 /// infra-red `reflectance`, and each obstacle with its `walls`, the first of its walls in the
 /// world and how many; `sensed_only` the obstacles only infra-red rays and cameras meet, as
-/// obstacles without owners),
+/// obstacles without owners, each with its `reflectance`),
 /// "warnings": [...], "one_controller_warnings": [...], "robot_model", "robot_line", "robot_profile", "extension_devices", "floor_textures",
 /// "floor_paint"}`, in metres and radians, world frame, z up.
 fn report<'py>(py: Python<'py>, import: &WbtImport) -> PyResult<Bound<'py, PyDict>> {
@@ -194,6 +194,9 @@ fn report<'py>(py: Python<'py>, import: &WbtImport) -> PyResult<Bound<'py, PyDic
         d.set_item("walls", vec![first, count])?;
     }
     for (d, look) in obstacles.iter().zip(&import.obstacle_looks) {
+        d.set_item("reflectance", look.reflectance)?;
+    }
+    for (d, look) in sensed_only.iter().zip(&import.sensed_looks) {
         d.set_item("reflectance", look.reflectance)?;
     }
     for (d, owners) in bodies.iter().zip(&import.body_owners) {

@@ -425,15 +425,15 @@ class Camera(_Sensor):
             view.height,
             view.fov,
         )
-        robots = None
-        if recogniser.follows_robots and simulation.fleet is not None:
-            robots = simulation.fleet.poses()
-        bodies = None
-        if recogniser.follows_bodies:
-            from mazesim.webots.solids import world_objects
+        from mazesim.webots.solids import world_objects
 
-            bodies = world_objects(simulation).body_poses()
-        return recogniser.recognise(camera, self._walls, robots, bodies)
+        robots = None
+        if recogniser.needs_robot_poses and simulation.fleet is not None:
+            robots = simulation.fleet.poses()
+        objects = world_objects(simulation)
+        bodies = objects.body_poses() if recogniser.follows_bodies else None
+        moves = objects.node_moves() if recogniser.follows_moves else None
+        return recogniser.recognise(camera, self._walls, robots, bodies, moves)
 
     def _without_recognition(self, function: str) -> bool:
         """Whether the camera has no Recognition node (then with Webots' error)."""

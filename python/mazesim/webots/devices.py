@@ -11,6 +11,7 @@ from __future__ import annotations
 import functools
 import math
 import sys
+import zlib
 from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Any, ClassVar
 
@@ -44,6 +45,15 @@ POSITION_GAIN = 10.0
 
 def _print_error(message: str) -> None:
     print(message, file=sys.stderr)
+
+
+def noise_stream(simulation: RobotSimulation, name: str) -> np.random.Generator | None:
+    """The noise stream of the device ``name``: its own, from the run's seed (None without
+    noise)."""
+    if not simulation.noise:
+        return None
+    key = zlib.crc32(name.encode("utf-8"))
+    return np.random.default_rng(np.random.SeedSequence(simulation.seed, spawn_key=(key,)))
 
 
 def webots_property(getter: str, setter: str | None = None) -> Any:
@@ -222,6 +232,12 @@ class Device(metaclass=_DeviceType):
     def getName(self) -> str:
         """The device's name, e.g. ``"ps0"``."""
         return self._name
+
+    def _restart(self) -> None:
+        """What Webots' reset (a supervisor's ``simulationReset``) restarts in the device: its
+        noise stream, when it has one of its own."""
+        if getattr(self, "_rng", None) is not None:
+            self._rng = noise_stream(self._simulation, self._name)
 
     name = webots_property("getName")
 
@@ -430,7 +446,18 @@ class Motor(Device):
         # As in Webots, the velocity starts at maxVelocity (the speed of position control).
         self._velocity = self._max_velocity
         self._acceleration = -1.0
+        #: What the controller set last, as Webots' controller library keeps it (a reset of
+        #: the world restarts the motor, not this): the getters' target position and velocity.
+        self._set_points = (self._target_position, self._velocity)
         self._warned_clamp = False
+
+    def _restart(self) -> None:
+        """As Webots' reset does (WbMotor::reset): position control again, at the joint's
+        position the reset restores, with ``maxVelocity``, until the controller sets the
+        position or the velocity again; the getters still read what it set last, as Webots'
+        controller library keeps it."""
+        self._target_position = float(self._simulation.scene.wheel_positions[self._side])
+        self._velocity = self._max_velocity
 
     def setPosition(self, position: float) -> None:
         """Turns the wheel to ``position`` rad; ``float('inf')`` switches to velocity control."""
@@ -441,6 +468,7 @@ class Motor(Device):
             )
             return
         self._target_position = position
+        self._set_points = (position, self._set_points[1])
 
     def setVelocity(self, velocity: float) -> None:
         """Sets the wheel speed in rad/s (the speed limit of position control)."""
@@ -450,10 +478,10 @@ class Motor(Device):
                 "Error: wb_motor_set_velocity() called with an invalid 'velocity' argument.(NaN)"
             )
             return
-        if velocity < 0.0 and not math.isinf(self._target_position):
+        if velocity < 0.0 and not math.isinf(self._set_points[0]):
             _print_error(
                 "Error: wb_motor_set_velocity() called with negative 'velocity' argument in "
-                f"position control mode ({self._target_position:g})."
+                f"position control mode ({self._set_points[0]:g})."
             )
             return
         if abs(velocity) > self._max_velocity and not self._warned_clamp:
@@ -463,6 +491,7 @@ class Motor(Device):
                 f"exceeds 'maxVelocity' = {self._max_velocity:g}."
             )
         self._velocity = velocity
+        self._set_points = (self._set_points[0], velocity)
 
     def setAcceleration(self, acceleration: float) -> None:
         """Stored for ``getAcceleration``; mazesim's motors reach their speed at once."""
@@ -470,11 +499,11 @@ class Motor(Device):
 
     def getTargetPosition(self) -> float:
         """The position set last (``inf`` in velocity control)."""
-        return self._target_position
+        return self._set_points[0]
 
     def getVelocity(self) -> float:
         """The velocity set last."""
-        return self._velocity
+        return self._set_points[1]
 
     def getMaxVelocity(self) -> float:
         """The motor's speed limit in rad/s (6.28 for the e-puck)."""

@@ -224,6 +224,12 @@ class Equipment:
         self.keyboard = Keyboard(simulation=simulation)
         self.mouse = Mouse()
         self.joystick = Joystick()
+        simulation.reset_listeners.append(self._restart)
+
+    def _restart(self) -> None:
+        """What the world's reset restarts in every device (motors, LEDs, noise streams)."""
+        for device in self.devices.values():
+            device._restart()
 
     def advance(self) -> None:
         """Runs one basic step with the motors' speeds, then lets each sensor take its reading."""

@@ -146,9 +146,10 @@ class ImportReport(TypedDict):
     rectangles the floor textures gave; ``bodies`` the movable bodies (``kind``, ``center``,
     ``size`` and ``yaw`` or ``radius``, ``mass`` in kg, floor ``friction``, ``owners`` and
     ``reflectance`` as an obstacle's); ``sensed_only`` the obstacles that only the infra-red
-    sensors and the camera meet (``kind``, ``center``, ``size`` and ``yaw`` or ``radius``:
-    visual-only shapes, of no Solid with a ``boundingObject``, in the proximity sensors' rays,
-    which Webots' infra-red rays see and nothing collides with); ``one_controller_warnings``
+    sensors and the camera meet (``kind``, ``center``, ``size`` and ``yaw`` or ``radius``, and
+    ``reflectance`` as an obstacle's: visual-only shapes, of no Solid with a
+    ``boundingObject``, in the proximity sensors' rays, which Webots' infra-red rays see and
+    nothing collides with); ``one_controller_warnings``
     those of ``warnings`` that concern a run of one controller only (the world's other e-pucks,
     which a run of the whole world simulates); ``recognition`` the cameras' Recognition nodes
     and the objects with ``recognitionColors`` (:mod:`mazesim.webots.recognition`; empty for a

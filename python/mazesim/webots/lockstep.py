@@ -58,7 +58,7 @@ from mazesim.webots.runner import CONTROLLER_SUFFIXES, EXIT_INTERRUPTED
 from mazesim.webots.scene import Scene, read_scenes
 from mazesim.webots.shared_world import RobotView, shared_simulator
 from mazesim.webots.simulation import WorldReset, place_where_asked, robot_profile_name
-from mazesim.webots.solids import WorldSolids
+from mazesim.webots.solids import Pose2, WorldSolids
 from mazesim.webots.stock_controllers import stock_controller
 from mazesim.webots.traction import Traction, epuck_traction
 from mazesim.webots.virtual_display import virtual_display, window_environment
@@ -175,6 +175,8 @@ class Fleet:
         self.solids = WorldSolids(self._worlds(), report or {})
         self.radio = Radio()
         self._resets: list[WorldReset] = [WorldReset() for _ in simulators]
+        #: Whether a supervisor asked for a reset, which the world applies at the step's end.
+        self.reset_asked = False
 
     def robots(self) -> list[dict[str, Any]]:
         """Each robot's index, ``def_name``, ``name``, ``model`` and ``line``."""
@@ -220,11 +222,18 @@ class Fleet:
         """Sets a movable body's velocity in every simulator that holds the world's bodies."""
         self.solids.set_body_velocity(index, vx, vy, turn_rate)
 
-    def reset_scene(self, index: int) -> WorldReset:
+    def request_reset(self) -> None:
+        """Notes a supervisor's ``simulationReset``: the world applies it at the end of the
+        next step (:meth:`reset_scene`), as Webots does."""
+        self.reset_asked = True
+
+    def reset_scene(self) -> None:
         """Puts every robot at its start and the walls and movable bodies where the world file
-        has them, all at rest (a supervisor's ``simulationReset``), in every simulator; drops
-        the radio's packets and restarts every robot's clock and wheel sensors. Returns the
-        reset as robot ``index`` (the supervisor's) counts from it."""
+        has them, all at rest, the noise streams started again (a supervisor's
+        ``simulationReset``), in every simulator; drops the radio's packets and restarts every
+        robot's clock and wheel sensors; each robot learns of it with the step's answer."""
+        self.reset_asked = False
+        self.solids.forget_moves()
         done: set[int] = set()
         for simulator in self._simulators:
             whole = simulator.simulator if isinstance(simulator, RobotView) else simulator
@@ -237,11 +246,15 @@ class Fleet:
         for robot, simulator in enumerate(self._simulators):
             left, right = (float(v) for v in simulator.encoders)
             self._resets[robot] = WorldReset(count, now, (left, right))
-        return self._resets[index]
 
     def last_reset(self, index: int) -> WorldReset:
         """The world's last reset as robot ``index`` counts from it."""
         return self._resets[index]
+
+    def node_moves(self) -> dict[int, tuple[Pose2, Pose2]]:
+        """The nodes a supervisor moved since the start or the last reset (see
+        :meth:`~mazesim.webots.solids.WorldSolids.node_moves`)."""
+        return self.solids.node_moves()
 
     def move_node(self, line: int, from_pose: Any, to_pose: Any) -> None:
         """Moves what the node on ``line`` holds, in every simulator that holds the world's
@@ -589,6 +602,10 @@ def _lockstep(
                             watch(simulators, wheels)
                         _step_world(simulators, traction.drive(wheels), world.radio, runs)
                         traction.settle()
+                        if fleet.reset_asked:
+                            fleet.reset_scene()
+                            for run, simulator in zip(runs, simulators):
+                                run.xs[-1], run.ys[-1] = (float(v) for v in simulator.pose[:2])
                         steps += 1
                     for index in sorted(wheels):
                         state = None

@@ -7,6 +7,7 @@ colours (:meth:`World.wall_colours`) and the floor's paint and colours.
 
 from __future__ import annotations
 
+import copy
 import math
 
 import numpy as np
@@ -37,6 +38,32 @@ class WallBoxes:
         self.reflectance = boxes[:, 5]
         #: Red, green, blue in [0, 1] of each wall as a camera sees it; NaN where none is given.
         self.colour = colours
+
+    def moved(
+        self,
+        walls: list[int],
+        before: tuple[float, float, float],
+        now: tuple[float, float, float],
+    ) -> WallBoxes:
+        """A copy with the walls ``walls`` (indices) moved by the rigid motion, seen from
+        above, that takes the pose ``before`` (x, y, yaw) to ``now``; this one when ``walls``
+        is empty."""
+        if not walls:
+            return self
+        moved = copy.copy(self)
+        index = np.asarray(walls, dtype=np.intp)
+        turn = now[2] - before[2]
+        c, s = math.cos(turn), math.sin(turn)
+        dx = self.center[index, 0] - before[0]
+        dy = self.center[index, 1] - before[1]
+        moved.center = self.center.copy()
+        moved.center[index, 0] = now[0] + c * dx - s * dy
+        moved.center[index, 1] = now[1] + s * dx + c * dy
+        # The box's axes turn by the motion's turn.
+        moved.cos, moved.sin = self.cos.copy(), self.sin.copy()
+        moved.cos[index] = self.cos[index] * c - self.sin[index] * s
+        moved.sin[index] = self.sin[index] * c + self.cos[index] * s
+        return moved
 
     def cast(self, origin: tuple[float, float], directions: Floats) -> tuple[Floats, Floats]:
         """Casts rays from ``origin`` along each of ``directions`` ((N, 2), not normalised).

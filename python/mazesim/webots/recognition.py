@@ -11,14 +11,16 @@ frame.
 At each of its sampling periods the camera (:class:`Recogniser`) keeps, in world order, the
 objects that are not its own robot, lie in its field of view (a point of their box inside it,
 or the box across it) and within ``maxRange``, and (``occlusion`` 1 or 2) whose centre the ray
-from the camera reaches before a wall of the 2D world does, other than the object's own walls.
+from the camera reaches before a wall of the 2D world (where a supervisor moved it) or another
+robot's body does, other than the object's own walls and body.
 Of more than ``maxObjects`` it keeps the biggest on the image. Each object's position and size
 are those of its box in the camera's frame, clipped to the field of view; its position and size
 on the image project the box's corners as Webots' planar camera does
 (``src/webots/nodes/WbCamera.cpp``, ``WbObjectDetection.cpp``). The camera frame is Webots'
 since R2022a, x forward, y left, z up; for a world of an earlier release, x right, y up, z
 backward (the object ahead has a negative z). Robots follow their live pose, a Solid that holds
-one movable body that body's. Segmentation images are not simulated.
+one movable body that body's, a Solid with walls that a supervisor moved (it, or a node above
+it) the move's. Segmentation images are not simulated.
 """
 
 from __future__ import annotations
@@ -30,6 +32,7 @@ from typing import Any, TypedDict
 
 import numpy as np
 
+from mazesim._core import RobotProfile
 from mazesim.webots.frames import WORLD_FRAME, Frame, nue_to_enu, placed
 from mazesim.webots.proto.syntax import (
     Field,
@@ -41,6 +44,7 @@ from mazesim.webots.proto.syntax import (
 )
 from mazesim.webots.rays import WallBoxes
 from mazesim.webots.scene import ROBOT_TYPES
+from mazesim.webots.solids import composed, relative
 
 __all__ = [
     "CameraPose",
@@ -368,6 +372,7 @@ class Recogniser:
         """Over the ``objects`` of a world imported with ``report``, for a camera of the robot
         on ``settings["robot_line"]``; ``old_frame``: the world is of a release before R2022a
         (Webots' camera frame then x right, y up, z backward)."""
+        from mazesim.webots.simulation import robot_profile_name
         from mazesim.webots.solids import held_by_line
 
         self.settings = settings
@@ -382,7 +387,20 @@ class Recogniser:
         robots = report.get("robots") or []
         #: The robot index of each object that is a robot (it follows its live pose).
         self._robot = {int(r["line"]): i for i, r in enumerate(robots) if "line" in r}
+        #: The camera's own robot's index (its body hides nothing from it).
+        self._own_robot = self._robot.get(robot_line)
+        #: The body radius of each robot simulated as one (None: its shapes are walls).
+        self._radii: list[float | None] = []
+        for robot in robots:
+            profile = robot.get("profile")
+            name = robot_profile_name({"robot_profile": profile})
+            radius = float(RobotProfile.builtin(name).body_radius)
+            self._radii.append(radius if profile is not None else None)
         held = held_by_line(report)
+        #: The walls each node holds, by its line (a supervisor's move of it moves them).
+        self._held_walls = {line: list(h.walls) for line, h in held.items() if h.walls}
+        #: The nodes whose moves move each object that holds walls: it, and those above it.
+        self._holders: dict[int, list[int]] = {}
         bodies = report.get("bodies") or []
         #: The movable body an object holds alone (it follows that body), with its import pose.
         self._body: dict[int, tuple[int, Pose2]] = {}
@@ -394,6 +412,11 @@ class Recogniser:
             if own is None:
                 continue
             self._walls[line] = set(own.walls)
+            if own.walls:
+                walls = set(own.walls)
+                self._holders[line] = [
+                    holder for holder, moved in self._held_walls.items() if walls <= set(moved)
+                ]
             if len(own.bodies) == 1 and own.bodies[0] < len(bodies):
                 body = bodies[own.bodies[0]]
                 centre = body.get("center") or (0.0, 0.0)
@@ -410,24 +433,44 @@ class Recogniser:
         """Whether some object holds a movable body, whose live pose is needed."""
         return bool(self._body)
 
+    @property
+    def follows_moves(self) -> bool:
+        """Whether some object or wall a supervisor may move is in the world, whose moves
+        (``node_moves``) are needed."""
+        return bool(self._holders) or (
+            bool(self._held_walls) and int(self.settings["occlusion"]) > 0
+        )
+
+    @property
+    def needs_robot_poses(self) -> bool:
+        """Whether the robots' live poses are needed: some object is a robot, or another
+        robot's body may hide an object (``occlusion`` 1 or 2)."""
+        others = any(r is not None for i, r in enumerate(self._radii) if i != self._own_robot)
+        return self.follows_robots or (others and int(self.settings["occlusion"]) > 0)
+
     def recognise(
         self,
         camera: CameraPose,
         walls: WallBoxes | None,
         robot_poses: Sequence[Pose2] | None = None,
         body_poses: Sequence[Pose2] | None = None,
+        node_moves: Mapping[int, tuple[Pose2, Pose2]] | None = None,
     ) -> list[RecognisedObject]:
         """The objects recognised from ``camera`` now, the robots at ``robot_poses`` (every
-        robot of the world's, in the report's order) and the movable bodies at ``body_poses``
-        (None: where the import put them)."""
+        robot of the world's, in the report's order), the movable bodies at ``body_poses``
+        (None: where the import put them) and the nodes a supervisor moved by ``node_moves``
+        (by line, the node's pose seen from above in the file and now)."""
+        moves = node_moves or {}
         found: list[_Candidate] = []
         for thing in self._objects:
-            origin, yaw = self._pose(thing, robot_poses, body_poses)
+            origin, yaw = self._pose(thing, robot_poses, body_poses, moves)
             candidate = self._seen(thing, origin, yaw, camera)
             if candidate is not None:
                 found.append(candidate)
         if walls is not None and int(self.settings["occlusion"]) > 0 and found:
-            found = self._unhidden(found, camera, walls)
+            for line, (before, now) in moves.items():
+                walls = walls.moved(self._held_walls.get(int(line), []), before, now)
+            found = self._unhidden(found, camera, walls, robot_poses)
         limit = int(self.settings["max_objects"])
         if 0 < limit < len(found):
             # The biggest on the image, in world order among equals.
@@ -440,6 +483,7 @@ class Recogniser:
         thing: RecognisableObject,
         robot_poses: Sequence[Pose2] | None,
         body_poses: Sequence[Pose2] | None,
+        moves: Mapping[int, tuple[Pose2, Pose2]],
     ) -> tuple[tuple[float, float, float], float]:
         """An object's origin and yaw now."""
         x, y, z = (float(v) for v in thing["origin"])
@@ -456,6 +500,10 @@ class Recogniser:
                 c, s = math.cos(turn), math.sin(turn)
                 dx, dy = x - sx, y - sy
                 return (bx + c * dx - s * dy, by + s * dx + c * dy, z), yaw + turn
+        for holder in self._holders.get(line, []):
+            if holder in moves:
+                before, now = moves[holder]
+                x, y, yaw = composed(now, relative(before, (x, y, yaw)))
         return (x, y, z), yaw
 
     def _seen(
@@ -523,11 +571,16 @@ class Recogniser:
         return _Candidate(seen, int(thing["line"]), (origin[0], origin[1]), size[0])
 
     def _unhidden(
-        self, found: list[_Candidate], camera: CameraPose, walls: WallBoxes
+        self,
+        found: list[_Candidate],
+        camera: CameraPose,
+        walls: WallBoxes,
+        robot_poses: Sequence[Pose2] | None,
     ) -> list[_Candidate]:
         """Those of ``found`` whose origin the ray from the camera reaches, seen from above,
-        before any wall but their own, or past it by less than half their depth along the
-        camera's axis (Webots: a collision farther than that from the object hides it)."""
+        before any wall but their own and any other robot's body (at ``robot_poses``) but
+        their own, or past it by less than half their depth along the camera's axis (Webots:
+        a collision farther than that from the object hides it)."""
         directions = np.array(
             [[c.origin[0] - camera.x, c.origin[1] - camera.y] for c in found], dtype=np.float64
         )
@@ -536,9 +589,35 @@ class Recogniser:
         for candidate, t, hit, direction in zip(found, along, wall, directions):
             short = (1.0 - float(t)) * float(np.hypot(direction[0], direction[1]))
             own = int(hit) in self._walls.get(candidate.line, set())
-            if own or not math.isfinite(t) or short <= candidate.depth / 2.0:
+            if not (own or not math.isfinite(t) or short <= candidate.depth / 2.0):
+                continue
+            if robot_poses is None or not self._behind_robot(candidate, camera, robot_poses):
                 kept.append(candidate)
         return kept
+
+    def _behind_robot(
+        self, candidate: _Candidate, camera: CameraPose, robot_poses: Sequence[Pose2]
+    ) -> bool:
+        """Whether another robot's body (a disc seen from above) meets the ray from the camera
+        to the candidate's origin farther than half the candidate's depth from it."""
+        dx, dy = candidate.origin[0] - camera.x, candidate.origin[1] - camera.y
+        length = math.hypot(dx, dy)
+        if length == 0.0:
+            return False
+        ux, uy = dx / length, dy / length
+        itself = self._robot.get(candidate.line)
+        for index, (pose, radius) in enumerate(zip(robot_poses, self._radii)):
+            if radius is None or index in (self._own_robot, itself):
+                continue
+            wx, wy = float(pose[0]) - camera.x, float(pose[1]) - camera.y
+            along = wx * ux + wy * uy
+            across = wx * wx + wy * wy - along * along
+            if across >= radius * radius:
+                continue
+            enter = along - math.sqrt(radius * radius - across)
+            if 0.0 <= enter and length - enter > candidate.depth / 2.0:
+                return True
+        return False
 
 
 @dataclass(frozen=True)

@@ -270,8 +270,8 @@ class Robot(NotSimulated):
             duration: Milliseconds to simulate; by default one basic time step.
 
         Returns:
-            0, or -1 when the run's time is up or a supervisor asked to quit (the simulation
-            does not advance then).
+            0, or -1 when the run's time is up, a supervisor asked to quit or paused the
+            simulation (it does not advance then; paused, ``step(0)`` returns 0 at once).
 
         Raises:
             InvalidArgumentError: ``duration`` is negative or not a number.
@@ -291,6 +291,16 @@ class Robot(NotSimulated):
                 simulation.stopped = True
                 unwind_controller(ControllerStopped, STOPPED_MESSAGE)
             raise ControllerStopped("the run is over: Robot.step returned -1 before")
+        if simulation.paused:
+            if duration == 0.0:
+                return 0
+            if simulation.quit_status is None:
+                print(
+                    "mazesim: the supervisor paused the simulation (simulationSetMode(PAUSE)) "
+                    "and nothing resumes it in a headless run: the run ends here",
+                    file=sys.stderr,
+                )
+                simulation.quit_status = 0
         for _ in range(max(1, math.ceil(duration / basic - 1e-9))):
             if simulation.time_is_up or simulation.quit_status is not None:
                 simulation.ended = True

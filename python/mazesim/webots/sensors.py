@@ -10,7 +10,6 @@ deviation, seeded from the run's seed and the device's name.
 from __future__ import annotations
 
 import math
-import zlib
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, ClassVar
 
@@ -24,6 +23,7 @@ from mazesim.webots.devices import (
     _ScalarSensor,
     _Tabled,
     _VectorSensor,
+    noise_stream,
     webots_property,
 )
 from mazesim.webots.frames import enu_to_nue
@@ -83,13 +83,6 @@ class DeviceMount:
         return x + c * self.x - s * self.y, y + s * self.x + c * self.y, yaw + self.yaw
 
 
-def _noise_stream(simulation: RobotSimulation, name: str) -> np.random.Generator | None:
-    if not simulation.noise:
-        return None
-    key = zlib.crc32(name.encode("utf-8"))
-    return np.random.default_rng(np.random.SeedSequence(simulation.seed, spawn_key=(key,)))
-
-
 class _TableVector(_Tabled, _VectorSensor):
     """A three-axis sensor: a vector in the device frame through a lookup table."""
 
@@ -108,7 +101,7 @@ class _TableVector(_Tabled, _VectorSensor):
         super().__init__(name, simulation)
         self._mount = mount or DeviceMount()
         self._table = LookupTable(self._default_table if table is None else table)
-        self._rng = _noise_stream(simulation, name)
+        self._rng = noise_stream(simulation, name)
 
     def _read(self) -> list[float]:
         measured = self._measure()
@@ -280,7 +273,7 @@ class LightSensor(_Tabled, _ScalarSensor):
         super().__init__(name, simulation)
         self._table = LookupTable(table)
         self._mount = mount or DeviceMount()
-        self._rng = _noise_stream(simulation, name)
+        self._rng = noise_stream(simulation, name)
 
     def _read(self) -> float:
         x, y, heading = self._mount.world_pose(self._simulation.simulator.pose)
@@ -338,7 +331,7 @@ class RayDistanceSensor(DistanceSensor):
         self._table = LookupTable(DISTANCE_TABLE if not table else table)
         self._type = DISTANCE_SENSOR_TYPES.get(sensor_type, self.GENERIC)
         self._walls: WallBoxes | None = None
-        self._rng = _noise_stream(simulation, name)
+        self._rng = noise_stream(simulation, name)
 
     def _read(self) -> float:
         if self._mount.pitch > DOWNWARD_PITCH:

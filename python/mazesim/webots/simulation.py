@@ -170,6 +170,11 @@ class RobotSimulation:
         fleet: The world's robots when another process owns the world (for a supervisor), or
             None.
         world_over: Whether the world's run is over (a supervisor of another robot quit it).
+        solids: The world's walls and movable bodies as a supervisor moves them, in a run of
+            one robot (None until :func:`~mazesim.webots.solids.world_objects` is asked).
+        reset_listeners: Called when the world's reset reaches this robot, at the end of a
+            step (the devices' and a supervisor's nodes' own restarts).
+        paused: Whether a supervisor paused the simulation (``simulationSetMode(PAUSE)``).
         owns_world: Whether this simulation steps the world itself (a run of one robot), and
             so transmits the radio's packets at each step; a robot of a world with several
             robots has the world stepped for it in lockstep with the others.
@@ -257,6 +262,7 @@ class RobotSimulation:
             )
         self.robot_index = robot_index
         self.fleet = fleet
+        self.solids: Any = None
         self.world_over = False
         self.velocity = (0.0, 0.0, 0.0)
         self.acceleration = (0.0, 0.0)
@@ -280,6 +286,11 @@ class RobotSimulation:
         self._ground: npt.NDArray[np.float32] | None = None
         #: The world's last reset (a supervisor's ``simulationReset``) this robot knows of.
         self.last_reset = WorldReset()
+        self.reset_listeners: list[Callable[[], None]] = []
+        #: Whether a supervisor of this run of one robot asked for a reset, which the next step
+        #: applies at its end.
+        self._reset_asked = False
+        self.paused = False
 
     @property
     def time_is_up(self) -> bool:
@@ -299,11 +310,15 @@ class RobotSimulation:
             self.world_over = True
             return
         self.steps += 1
+        resets = self.last_reset.count
         if self.fleet is not None:
             # A robot of a world run learns of a supervisor's reset with the step's answer.
             told: WorldReset | None = getattr(self.simulator, "last_reset", None)
             if told is not None and told.count > self.last_reset.count:
                 self.last_reset = told
+        elif self._reset_asked:
+            self._reset_asked = False
+            self._reset_world()
         self._distance = None
         self._ground = None
         x, y, yaw = self.simulator.pose
@@ -319,6 +334,10 @@ class RobotSimulation:
         self.ys.append(y)
         self._stop_steps = self._stop_steps + 1 if moved < STOP_DISPLACEMENT else 0
         self.longest_stop_steps = max(self.longest_stop_steps, self._stop_steps)
+        if self.last_reset.count != resets:
+            self._at_rest(x, y, yaw)
+            for listener in self.reset_listeners:
+                listener()
 
     @property
     def time(self) -> float:
@@ -340,22 +359,29 @@ class RobotSimulation:
         x, y = place_where_asked(self.simulator, x, y, yaw)
         self._at_rest(x, y, yaw)
 
-    def reset_scene(self) -> None:
-        """Puts the world back as its file has it, as a supervisor's ``simulationReset`` does:
-        every robot at its start, the walls a supervisor moved where the file has them and every
-        movable body at its start, all at rest (in a world with several robots, through the
-        world's process). The clock (:attr:`clock`) and the wheels' positions start again,
-        and the radio's packets are dropped, as in Webots; the run's counters, its time limit
-        and the trajectory go on; the move is not counted as distance travelled."""
+    def request_reset(self) -> None:
+        """Asks for the world to be put back as its file has it (a supervisor's
+        ``simulationReset``); as in Webots, the next step applies it at its end (in a world with
+        several robots, the world's process, for every robot at once): every robot at its
+        start, the walls a supervisor moved where the file has them and every movable body at
+        its start, all at rest, the noise streams started again from their seeds. The clock
+        (:attr:`clock`) and the wheels' positions start again, the radio's packets are dropped
+        and :attr:`reset_listeners` are called (the devices' own restarts); the run's counters,
+        its time limit and the trajectory go on; the move is not counted as distance
+        travelled."""
         if self.fleet is not None:
-            self.last_reset = self.fleet.reset_scene(self.robot_index)
+            self.fleet.request_reset()
         else:
-            self.simulator.reset_scene()
-            self.radio.clear()
-            left, right = (float(v) for v in self.simulator.encoders)
-            self.last_reset = WorldReset(self.last_reset.count + 1, self.time, (left, right))
-        x, y, yaw = (float(v) for v in self.simulator.pose)
-        self._at_rest(x, y, yaw)
+            self._reset_asked = True
+
+    def _reset_world(self) -> None:
+        """The reset of a run of one robot, at the end of the step after the request."""
+        self.simulator.reset_scene()
+        self.radio.clear()
+        if self.solids is not None:
+            self.solids.forget_moves()
+        left, right = (float(v) for v in self.simulator.encoders)
+        self.last_reset = WorldReset(self.last_reset.count + 1, self.time, (left, right))
 
     def _at_rest(self, x: float, y: float, yaw: float) -> None:
         """Notes that the robot was put at (x, y, yaw) at rest: the trajectory's latest point

@@ -74,6 +74,18 @@ class WorldSolids:
         first), imported with ``report``."""
         self._simulators = simulators
         self._held = held_by_line(report)
+        #: The nodes moved since the start or the last reset, by line: their pose in the file
+        #: and now, seen from above.
+        self._moves: dict[int, tuple[Pose2, Pose2]] = {}
+
+    def node_moves(self) -> dict[int, tuple[Pose2, Pose2]]:
+        """The nodes holding walls or bodies that a supervisor moved since the start or the
+        world's last reset, by line: their pose seen from above in the file and now."""
+        return dict(self._moves)
+
+    def forget_moves(self) -> None:
+        """The world's reset put every node back where the file has it."""
+        self._moves.clear()
 
     def body_poses(self) -> list[tuple[float, float, float]]:
         """The movable bodies' poses (x, y, yaw) now, in world order."""
@@ -96,6 +108,9 @@ class WorldSolids:
         walls = held.walls if tuple(from_pose) != tuple(to_pose) else []
         for simulator in self._simulators:
             simulator.move_solid(walls, held.bodies, from_pose, to_pose)
+        if walls:
+            first = self._moves.get(int(line), (tuple(from_pose), tuple(from_pose)))[0]
+            self._moves[int(line)] = (first, tuple(to_pose))  # type: ignore[assignment]
 
     def set_body_velocity(self, index: int, vx: float, vy: float, turn_rate: float) -> None:
         """Sets the velocity of movable body ``index`` (world order) in every simulator.
@@ -108,13 +123,15 @@ class WorldSolids:
 
 
 def world_objects(simulation: Any) -> Any:
-    """What answers ``body_poses``, ``body_velocities``, ``move_node`` and ``set_body_velocity``
-    for the world of a
-    run: the world's robots (the :class:`~mazesim.webots.lockstep.Fleet`) when another process
+    """What answers ``body_poses``, ``body_velocities``, ``move_node``, ``node_moves`` and
+    ``set_body_velocity`` for the world of a run (the same one all through it): the world's
+    robots (the :class:`~mazesim.webots.lockstep.Fleet`) when another process
     owns the world, else the :class:`WorldSolids` of its simulator."""
     if simulation.fleet is not None:
         return simulation.fleet
-    return WorldSolids([simulation.simulator], simulation.report)
+    if simulation.solids is None:
+        simulation.solids = WorldSolids([simulation.simulator], simulation.report)
+    return simulation.solids
 
 
 def relative(base: Pose2, pose: Pose2) -> Pose2:

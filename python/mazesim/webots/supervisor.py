@@ -892,6 +892,7 @@ class Supervisor(Robot):
         self._nodes: dict[str, Node] = {}
         #: Every node of the world file (one per scene node), whose fields a reset restores.
         self._file_nodes = list(made.values())
+        self._simulation.reset_listeners.append(self._restore_file_poses)
         held = held_by_line(self._simulation.report)
         bodies = self._simulation.report.get("bodies", [])
         for node in made.values():
@@ -960,12 +961,19 @@ class Supervisor(Robot):
         self._simulation.quit_status = int(status)
 
     def simulationReset(self) -> None:
-        """Puts the world back as its file has it, as Webots' reset does: every robot at its
-        start, every wall a supervisor moved and every movable body at its start, all at rest,
-        and the nodes' ``translation`` and ``rotation`` fields as the file gives them. As in
-        Webots, every robot's clock (``getTime``) and wheel position sensors start again from
-        the reset, the Emitter and Receiver queues are emptied and the controllers go on."""
-        self._simulation.reset_scene()
+        """Asks for the world to be put back as its file has it, as Webots' reset does, at the
+        end of the next step: every robot at its start, every wall a supervisor moved and every
+        movable body at its start, all at rest, and the nodes' ``translation`` and ``rotation``
+        fields as the file gives them. As in Webots, every robot's clock (``getTime``, 0 after
+        that step) and wheel position sensors start again from the reset, its motors are back at
+        the world file's position control (the joint's position, at ``maxVelocity``), the noise
+        streams start again from their seeds, the Emitter and Receiver queues are
+        emptied and the controllers go on."""
+        self._simulation.request_reset()
+
+    def _restore_file_poses(self) -> None:
+        """The nodes' ``translation`` and ``rotation`` fields as the file gives them (the
+        world's reset has reached this robot)."""
         for node in [*self._file_nodes, *self._nodes.values()]:
             node._translation, node._rotation = node._file_pose
 
@@ -982,8 +990,13 @@ class Supervisor(Robot):
         return self._mode
 
     def simulationSetMode(self, mode: int) -> None:
-        """Records the mode; a headless run always runs as fast as it can."""
+        """Sets the mode; a headless run runs as fast as it can in the real-time and fast
+        modes. In the pause mode, as in Webots, ``step(0)`` returns at once without advancing
+        and a ``step`` of a longer duration waits for the simulation to be resumed, which
+        nothing does in a headless run: the run ends there (the step returns -1, as when Webots
+        is closed while paused), with exit status 0."""
         self._mode = int(mode)
+        self._simulation.paused = self._mode == self.SIMULATION_MODE_PAUSE
 
     simulation_mode = webots_property("simulationGetMode", "simulationSetMode")
 

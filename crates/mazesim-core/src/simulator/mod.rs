@@ -295,11 +295,13 @@ impl Simulator {
 
     /// Back at the start pose among the walls of `world` (this robot's world as it was made,
     /// before `take_world`), the movable bodies at their starts, all at rest (see
-    /// `Swarm::reset_scene`); time, counters and the noise stream go on.
+    /// `Swarm::reset_scene`), the noise stream started again from the seed of the last `reset`
+    /// and the sensors read there as `reset` reads them; time and counters go on.
     pub(crate) fn restart_among(&mut self, world: &Arc<World>) {
         self.forget_moves(world);
         let start = self.start_pose().map(|v| v as f32);
         self.place(start);
+        self.rng = Rng::new(self.config.seed);
         self.sense();
     }
 

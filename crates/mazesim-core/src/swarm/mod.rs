@@ -491,8 +491,9 @@ impl Swarm {
 
     /// Puts the scene back as the world was made, as a Webots supervisor's
     /// `simulationReset` does: every robot at its start, the walls `move_solid` moved where the
-    /// world has them and every movable body at its start, all at rest. Time, counters, noise
-    /// streams and wheel commands go on.
+    /// world has them and every movable body at its start, all at rest, each robot's noise
+    /// stream started again from its seed (Webots' reset restarts its random seeds). Time,
+    /// counters and wheel commands go on.
     pub fn reset_scene(&mut self) {
         for robot in &mut self.robots {
             robot.restart_among(&self.made_of);

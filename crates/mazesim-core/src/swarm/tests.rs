@@ -515,6 +515,35 @@ fn resetting_the_scene_puts_robots_walls_and_bodies_back_and_time_goes_on() {
 }
 
 #[test]
+fn resetting_the_scene_starts_the_noise_streams_again() {
+    let noisy = || {
+        let config = SimConfig {
+            noise: true,
+            seed: 7,
+            ..SimConfig::default()
+        };
+        Swarm::new(gate_world(0.1, false), epuck(), config).unwrap()
+    };
+    let readings = |swarm: &mut Swarm| -> Vec<Vec<f32>> {
+        (0..5)
+            .map(|_| {
+                swarm.step(&[[0.0, 0.0]]).unwrap();
+                swarm.robots()[0].distance_sensors().to_vec()
+            })
+            .collect()
+    };
+    let mut swarm = noisy();
+    let first = readings(&mut swarm);
+    assert_ne!(first[0], first[1], "the readings are noisy");
+    for _ in 0..10 {
+        swarm.step(&[[3.0, 3.0]]).unwrap();
+    }
+    swarm.reset_scene();
+    assert_eq!(readings(&mut swarm), first);
+    assert_eq!(readings(&mut noisy()), first);
+}
+
+#[test]
 fn a_body_set_moving_slides_and_slows() {
     let mut swarm = quiet(gate_world(0.5, true));
     swarm.set_body_velocity(0, [0.0, -0.2, 1.0]).unwrap();

@@ -1,6 +1,7 @@
 """A supervisor that ends a trial and starts the next: once the pusher has met the gate, it
 moves the gate out of the way and sets the box sliding; ten steps later it resets the
-simulation, and records where the box, the gate and the pusher are then and at the end."""
+simulation, and records where the box, the gate and the pusher are after the next step (at
+whose end the reset comes) and at the end."""
 
 import json
 import os
@@ -24,6 +25,7 @@ while supervisor.step(time_step) != -1:
     if steps == 30:
         seen["before_reset"] = {"box": box.getPosition(), "pusher": pusher.getPosition()}
         supervisor.simulationReset()
+    if steps == 31:
         seen["after_reset"] = {
             "box": box.getPosition(),
             "box_velocity": box.getVelocity(),
