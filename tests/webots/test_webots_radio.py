@@ -181,8 +181,18 @@ def test_an_emitters_buffer_size_and_max_range_and_the_e_pucks_defaults() -> Non
     pair.step()
     assert own.send(b"de") == 1, "the buffer empties as the packets leave"
     e_puck = Emitter("emitter", pair.robots[0])
-    assert (e_puck.getChannel(), e_puck.getRange(), e_puck.getBufferSize()) == (1, 0.8, -1)
+    assert (e_puck.getChannel(), e_puck.getRange(), e_puck.getBufferSize()) == (1, -1, -1)
     assert e_puck.send(b"") == 0
+
+
+def test_the_e_pucks_emitter_reaches_any_distance_as_its_protos_does() -> None:
+    # The E-puck PROTO sets only its Emitter's channel, so the range is the node's default, -1:
+    # an e-puck's packet reaches a supervisor 1.4 m away (a swarm scattered over a 5 m arena).
+    pair = RadioPair()
+    pair.radio.tune(1, "receiver", 1, listening=True)
+    Emitter("emitter", pair.robots[0]).send(b"configuration")
+    pair.radio.transmit({0: HERE, 1: (1.4, 0.0, 0.0)})
+    assert [p.data for p in pair.radio.collect(1, "receiver")] == [b"configuration"]
 
 
 # --- the channels a world file gives --------------------------------------------------------

@@ -127,3 +127,40 @@ def test_supervisor_reads_a_proto_instances_own_fields(tmp_path: Path) -> None:
     finally:
         controller.Robot.created = None
         simulations.release()
+
+
+# An e-puck saved expanded (R2023b) whose Emitter its author set to channel 99 and whose
+# Receiver to channel 3, a range on neither: Webots reads the nodes' own fields, with the
+# Emitter's default range (-1, no limit); the e-puck's device names stay.
+EXPANDED_RADIO = """#VRML_SIM R2023b utf8
+Robot {
+  children [
+    DistanceSensor { translation 0.03 0.01 0.03 name "ps0" }
+    DEF EPUCK_RECEIVER Receiver {
+      channel 3
+    }
+    DEF EPUCK_EMITTER Emitter {
+      channel 99
+      bufferSize 64
+    }
+  ]
+  name "r0"
+  model "GCtronic e-puck"
+  controller "<extern>"
+}
+"""
+
+
+def test_an_expanded_e_pucks_radio_nodes_keep_their_own_fields() -> None:
+    _, report = import_wbt_text(EXPANDED_RADIO, "expanded.wbt")
+    assert report["robot_model"] == "E-puck"
+    prepare(mazesim.World.builtin("arena"), seconds=1.0, report=report)
+    controller.Robot.created = None
+    try:
+        robot = controller.Robot()
+        emitter, receiver = robot.getDevice("emitter"), robot.getDevice("receiver")
+        assert (emitter.getChannel(), emitter.getRange(), emitter.getBufferSize()) == (99, -1, 64)
+        assert receiver.getChannel() == 3
+    finally:
+        controller.Robot.created = None
+        simulations.release()

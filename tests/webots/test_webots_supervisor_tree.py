@@ -363,3 +363,62 @@ def test_a_robot_set_into_a_wall_is_pushed_out_of_it_as_webots_physics_does(
     # On the centre of BOX1 (5 cm square) the nearest clear pose is 6.2 cm away: refused.
     with pytest.raises(mazesim.MazesimError, match="clear of the walls"):
         robot.getField("translation").setSFVec3f([0.3, 0.2, 0.0])
+
+
+#: An e-puck saved expanded (a plain Robot, as R2025a saves one), a supervisor whose Emitter
+#: holds the Shape that shows its range; a second one beside it.
+EXPANDED = """#VRML_SIM R2025a utf8
+WorldInfo { basicTimeStep 32 }
+RectangleArena { }
+DEF epuck Robot {
+  translation 0.1 0 0
+  children [
+    DEF EPUCK_RECEIVER Receiver { channel 1 }
+    DEF EPUCK_EMITTER Emitter {
+      children [
+        Pose {
+          children [
+            Shape {
+              appearance PBRAppearance { transparency 0.9 }
+              geometry Sphere { radius 0.25 }
+            }
+          ]
+        }
+      ]
+      range 0.25
+      channel 1
+    }
+  ]
+  name "epuck"
+  model "GCtronic e-puck"
+  controller "aggregation"
+  supervisor TRUE
+}
+DEF other Robot {
+  translation -0.2 0 0
+  children [ DEF EPUCK_EMITTER Emitter { channel 1 } ]
+  name "other"
+  model "GCtronic e-puck"
+  controller "aggregation"
+}
+"""
+
+
+def test_a_plain_robots_children_and_its_devices_children_are_fields(tmp_path: Path) -> None:
+    supervisor = supervisor_of(EXPANDED, tmp_path)
+    own = supervisor.getFromDef("epuck")
+    children = own.getField("children")
+    assert children.getCount() == 2
+    emitter = children.getMFNode(1)
+    assert (emitter.getTypeName(), emitter.getDef()) == ("Emitter", "EPUCK_EMITTER")
+    assert emitter.getField("range").getSFFloat() == pytest.approx(0.25)
+    pose = emitter.getField("children").getMFNode(0)
+    shape = pose.getField("children").getMFNode(0)
+    appearance = shape.getField("appearance").getSFNode()
+    transparency = appearance.getField("transparency")
+    assert transparency.getSFFloat() == pytest.approx(0.9)
+    transparency.setSFFloat(1.0)  # hides the range sphere, as a swarm's controller does
+    assert transparency.getSFFloat() == 1.0
+    # Another robot's children are there too; an E-puck PROTO's are not a field of it.
+    other = supervisor.getFromDef("other").getField("children")
+    assert other.getMFNode(0).getTypeName() == "Emitter"

@@ -54,7 +54,7 @@ def test_orders_arrive_one_step_later_and_only_within_range(
     strength, direction = near["strengths"]
     assert strength == pytest.approx(1 / 0.3**2)
     assert direction == pytest.approx([0.0, -1.0, 0.0], abs=1e-9), "the leader is on its right"
-    # 0.9 m away, beyond the e-puck emitter's 0.8 m: nothing arrives.
+    # 0.9 m away, beyond the 0.8 m the leader sets its emitter's range to: nothing arrives.
     assert far["first_heard"] is None and far["orders"] == []
     leader = json.loads((logs / "leader.json").read_text())
     # Acknowledgements on channel 2 come from the near follower only, one step after each order

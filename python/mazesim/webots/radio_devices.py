@@ -1,7 +1,8 @@
 """Webots' ``Emitter`` and ``Receiver`` devices, carried by the world's
 :class:`~mazesim.webots.radio.Radio`.
 
-The e-puck's own ``emitter`` and ``receiver`` use the E-puck PROTO's channel 1 and range 0.8 m;
+The e-puck's own ``emitter`` and ``receiver`` use the E-puck PROTO's channel 1 and no range limit
+(the PROTO's Emitter sets only its ``channel``, so its ``range`` is the node's default, -1);
 an Emitter or Receiver node of the world file (in an extension slot, or among a robot's children)
 brings its own ``channel``, ``range``, ``maxRange`` and ``bufferSize`` fields, with the node's
 defaults (channel 0, range -1, unlimited buffers) where the file gives none.
@@ -35,8 +36,9 @@ __all__ = ["Emitter", "Receiver", "emitter_from_fields", "receiver_from_fields"]
 
 #: The E-puck PROTO's emitter and receiver channel.
 E_PUCK_CHANNEL = 1
-#: The E-puck PROTO's emitter range, metres.
-E_PUCK_RANGE = 0.8
+#: The E-puck PROTO's emitter range: the Emitter node's default, -1 (no limit), since the PROTO
+#: (V7 to R2025a) sets only the emitter's ``channel``.
+E_PUCK_RANGE = UNLIMITED
 
 #: A device's axes (x, y, z) in the robot's frame, x forward, y left, z up.
 Axes = tuple[tuple[float, float, float], ...]

@@ -27,6 +27,7 @@ from mazesim.webots.proto.syntax import (
 
 __all__ = [
     "DEFAULT_LOOKUP_TABLE",
+    "CHILDREN_TYPES",
     "GROUPING_TYPES",
     "Row",
     "Scene",
@@ -70,6 +71,17 @@ BASE_TYPES = {
 
 #: The built-in nodes whose ``children`` field the scene keeps (they place their children).
 GROUPING_TYPES = {"Solid", "Transform", "Pose", "Group"}
+#: The other built-in nodes derived from Solid, whose ``children`` field a supervisor walks too:
+#: a plain robot (an e-puck saved expanded) and the devices among its children (an Emitter
+#: holding the Shape that shows its range).
+SOLID_DERIVED_TYPES = {
+    "Robot", "DifferentialWheels", "Accelerometer", "Altimeter", "Camera", "Compass",
+    "Connector", "Display", "DistanceSensor", "Emitter", "GPS", "Gyro", "InertialUnit", "LED",
+    "Lidar", "LightSensor", "Pen", "Radar", "RangeFinder", "Receiver", "Speaker",
+    "TouchSensor", "VacuumGripper",
+}  # fmt: skip
+#: The nodes whose ``children`` field the scene keeps for a supervisor.
+CHILDREN_TYPES = GROUPING_TYPES | SOLID_DERIVED_TYPES
 
 
 @dataclass(frozen=True)
@@ -87,8 +99,9 @@ class SceneNode:
         numbers: Its other fields of numbers (a PROTO instance's own fields too), as written.
         flags: Its fields of ``TRUE`` / ``FALSE``.
         strings: Its fields of one string.
-        children: The nodes of its ``children`` field, for a grouping node
-            (:data:`GROUPING_TYPES`); their ``translation`` and ``rotation`` are in its frame.
+        children: The nodes of its ``children`` field, for a grouping node, a plain robot or a
+            device (:data:`CHILDREN_TYPES`); their ``translation`` and ``rotation`` are in its
+            frame.
         nodes: The node of each of its fields that holds one node (a Shape's ``geometry`` and
             ``appearance``, an Appearance's ``material``, a Solid's ``boundingObject``).
         line: The line of its node type in the file (the import report's ``owners`` name the
@@ -467,9 +480,10 @@ def _scene_nodes(
     used: dict[int, Node],
     line_of: Callable[[int], int],
 ) -> list[SceneNode]:
-    """The nodes at the top of the file, the robot's marked, each grouping node
-    (:data:`GROUPING_TYPES`) with the nodes of its ``children`` field, in file order, and each
-    node but the robot's with the node of each of its single-node fields (:func:`_single_nodes`); a
+    """The nodes at the top of the file, the robot's marked, each grouping node, plain robot and
+    device (:data:`CHILDREN_TYPES`) with the nodes of its ``children`` field, in file order, and
+    each node but the robot's with the node of each of its single-node fields
+    (:func:`_single_nodes`); a
     ``USE`` among them is the very :class:`SceneNode` of the node it stands for (``used``), as
     a Webots supervisor sees it.
 
@@ -501,7 +515,7 @@ def _scene_nodes(
                 if node is not robot:
                     for name, single in reversed(_single_nodes(node)):
                         pending.append((single, _Named(held, name), None))
-                if node.type_name in GROUPING_TYPES:
+                if node.type_name in CHILDREN_TYPES:
                     listed = [
                         n for item in node.fields if item.name == "children" for n in item.nodes
                     ]

@@ -39,7 +39,7 @@ from mazesim.webots.node_types import NODE_TYPES
 from mazesim.webots.proto_fields import declared_fields
 from mazesim.webots.radio_devices import E_PUCK_CHANNEL
 from mazesim.webots.robot import Robot
-from mazesim.webots.scene import EPUCK_TYPES, GROUPING_TYPES, SceneNode
+from mazesim.webots.scene import CHILDREN_TYPES, EPUCK_TYPES, GROUPING_TYPES, SceneNode
 from mazesim.webots.solids import Held, Pose2, composed, held_by_line, relative, world_objects
 
 __all__ = ["Field", "Node", "Supervisor"]
@@ -416,6 +416,9 @@ class Node(NotSimulated):
             self._strings = {} if name is None else {"name": name}
         self._parent: Node | None = None
         self._children: list[Node] = []
+        #: Whether it has a ``children`` field besides a grouping node's: a plain robot's, or
+        #: a device's among its children.
+        self._holds_children = False
         #: Other fields the world file gives the node (a PROTO instance's own fields too).
         self._numbers: dict[str, list[float]] = {}
         self._flags: dict[str, bool] = {}
@@ -655,7 +658,7 @@ class Node(NotSimulated):
         if self._id == 0:
             return {"children": Field.MF_NODE}
         types = dict.fromkeys(self._strings, Field.SF_STRING)
-        if self._type_name in GROUPING_TYPES:
+        if self._type_name in GROUPING_TYPES or self._holds_children:
             types["children"] = Field.MF_NODE
         types.update(dict.fromkeys(self._field_nodes, Field.SF_NODE))
         types.update(dict.fromkeys(self._flags, Field.SF_BOOL))
@@ -776,7 +779,7 @@ class Node(NotSimulated):
             len(self._strings)
             + (1 if posed else 0)
             + (1 if self._live or self._rotation else 0)
-            + (1 if self._type_name in GROUPING_TYPES else 0)
+            + (1 if self._type_name in GROUPING_TYPES or self._holds_children else 0)
             + len(self._field_nodes)
         )
 
@@ -817,9 +820,10 @@ def _nest(
             node._id = first_id + len(nested)
             nested.append(node)
         inner: list[Node] = []
-        if scene_node.type_name in GROUPING_TYPES:
+        if scene_node.type_name in CHILDREN_TYPES:
             inner = _nodes_of(scene_node.children, made, robot)
             node._adopt(inner)
+            node._holds_children = True
         fields = list(scene_node.nodes.values())
         kept = _nodes_of(fields, made, robot)
         node._adopt_fields(dict(zip(scene_node.nodes, kept)))

@@ -8,6 +8,7 @@ from controller import Robot
 robot = Robot()
 time_step = int(robot.getBasicTimeStep())
 emitter = robot.getDevice("emitter")
+emitter.setRange(0.8)  # the E-puck PROTO sets no range: its orders reach 0.8 m only
 receiver = robot.getDevice("receiver")
 receiver.setChannel(2)
 receiver.enable(time_step)
