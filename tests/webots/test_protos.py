@@ -535,3 +535,15 @@ def test_a_template_reads_field_values_as_the_world_parser_does() -> None:
     assert field_value("SFBool", "true") is True and field_value("SFNode", "NULL") is None
     (solid,) = parse_nodes("Solid { name 0x10 cafe 1 }")
     assert [t.value() for t in solid.field("name").tokens] == [16.0]
+
+
+def test_line_numbers_give_the_line_counting_each_line_end_before_the_position() -> None:
+    """The bisection over a text's line ends gives every position the line that counting the
+    line ends before it gives (a long world's nodes were each counted anew)."""
+    text = "Robot {\n  children [\n\n    Solid { }\n  ]\n}\nWall { }"
+    from mazesim.webots.proto.syntax import line_numbers
+
+    line_at = line_numbers(text)
+    for position in range(len(text) + 1):
+        assert line_at(position) == text.count("\n", 0, position) + 1
+    assert line_at(text.index("Wall")) == 7

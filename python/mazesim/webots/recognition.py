@@ -38,6 +38,7 @@ from mazesim.webots.proto.syntax import (
     Field,
     Node,
     first_value,
+    line_numbers,
     nodes_in_order,
     parse_nodes,
     world_version,
@@ -115,9 +116,12 @@ def read_recognition(text: str) -> RecognitionReport:
     Raises:
         WorldFormatError: The text is not a world's nodes (the import says so first).
     """
-    top = parse_nodes(text, "<world>", max_depth=None)
-    nue = world_version(text)[1] or first_value(top, "coordinateSystem", Field.string) == "NUE"
     report: RecognitionReport = {"cameras": [], "objects": []}
+    if "Recognition" not in text and "recognitionColors" not in text:
+        return report  # nothing to recognise, nothing that recognises: no need to parse
+    top = parse_nodes(text, "<world>", max_depth=None)
+    line_of = line_numbers(text)
+    nue = world_version(text)[1] or first_value(top, "coordinateSystem", Field.string) == "NUE"
     defined: dict[str, list[Node]] = {}
     for node in nodes_in_order(top):
         if node.def_name is not None and node.use_name is None:
@@ -131,7 +135,7 @@ def read_recognition(text: str) -> RecognitionReport:
         if node.use_name is not None:
             continue
         frame = _frame_of(node, holder)
-        line = text.count("\n", 0, node.type_start) + 1
+        line = line_of(node.type_start)
         if node.type_name in _ROBOTS and robot_line == 0:
             robot_line = line
         if node.type_name == "Camera":

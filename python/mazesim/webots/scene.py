@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import math
 import re
-from bisect import bisect_left
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
@@ -20,6 +19,7 @@ from mazesim.webots.proto.syntax import (
     Field,
     Node,
     first_value,
+    line_numbers,
     nodes_in_order,
     parse_nodes,
     world_version,
@@ -270,10 +270,7 @@ def _scene(
     for node in every:
         if node.def_name is not None and node.use_name is None:
             scene.defs.setdefault(node.def_name, node.type_name)
-    newlines = [i for i, char in enumerate(text) if char == "\n"]
-    scene.nodes = _scene_nodes(
-        tree, robot, scene.nue, _definitions(every), lambda at: bisect_left(newlines, at) + 1
-    )
+    scene.nodes = _scene_nodes(tree, robot, scene.nue, _definitions(every), line_numbers(text))
     # Without a robot node, the whole file stands for it.
     own: list[Node] = every
     if robot is not None:
@@ -447,10 +444,11 @@ def _robot_node(
     robot of a project's own PROTO, which the import report names by the robot it stands in
     for, ``E-puck`` for an ``epuck_custom``), or the first robot node of the file."""
     on_line = None
+    line_of = line_numbers(text)
     for node in every:
         if node.use_name is not None:
             continue
-        here = line is not None and text.count("\n", 0, node.type_start) + 1 == line
+        here = line is not None and line_of(node.type_start) == line
         if node.type_name in robot_types and (line is None or here):
             return node
         if here and on_line is None:

@@ -12,6 +12,7 @@ int main(void) {
   wb_robot_init();
   int time_step = (int)wb_robot_get_basic_time_step();
   WbDeviceTag emitter = wb_robot_get_device("emitter");
+  wb_emitter_set_range(emitter, 0.8); /* the E-puck PROTO sets no range: orders reach 0.8 m only */
   WbDeviceTag receiver = wb_robot_get_device("receiver");
   wb_receiver_set_channel(receiver, 2);
   wb_receiver_enable(receiver, time_step);
