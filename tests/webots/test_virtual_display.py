@@ -1,5 +1,6 @@
-"""A controller's Tk windows drawn on a virtual display (Xvfb) and its Qt windows off screen
-where ``$DISPLAY`` is not set, as ``mazesim.webots.virtual_display`` does (docs/webots.md)."""
+"""A controller's Tk and OpenCV windows drawn on a virtual display (Xvfb) and its Qt windows off
+screen where ``$DISPLAY`` is not set, as ``mazesim.webots.virtual_display`` does
+(docs/webots.md)."""
 
 from __future__ import annotations
 
@@ -11,6 +12,7 @@ import pytest
 import mazesim
 from mazesim.webots.requirements import (
     NO_DISPLAY,
+    OPENCV_WINDOWS_NOTE,
     QT_OFFSCREEN_NOTE,
     VIRTUAL_DISPLAY_NOTE,
     prepare_controller,
@@ -57,19 +59,69 @@ def test_the_virtual_display_is_there_for_the_block_only(
     assert "DISPLAY" not in os.environ
 
 
+#: A controller that shows its camera's image in OpenCV windows, as camera line followers do.
+OPENCV_CONTROLLER = """import cv2
+import numpy as np
+from controller import Robot
+robot = Robot()
+camera = robot.getDevice("camera")
+camera.enable(64)
+cv2.namedWindow("preview")
+left, right = robot.getDevice("left wheel motor"), robot.getDevice("right wheel motor")
+for motor in (left, right):
+    motor.setPosition(float("inf"))
+    motor.setVelocity(3.0)
+while robot.step(64) != -1:
+    image = np.frombuffer(camera.getImage(), np.uint8).reshape(
+        (camera.getHeight(), camera.getWidth(), 4))
+    cv2.imshow("preview", image)
+    cv2.waitKey(1)
+"""
+
+
 @needs_xvfb
-def test_a_tk_controller_without_a_display_runs_on_a_virtual_one(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+@pytest.mark.parametrize(
+    ("controller", "module", "note"),
+    [
+        (TURTLE_CONTROLLER, "tkinter", VIRTUAL_DISPLAY_NOTE),
+        (OPENCV_CONTROLLER, "cv2", OPENCV_WINDOWS_NOTE),
+    ],
+    ids=["tk", "opencv"],
+)
+def test_a_controller_with_windows_and_no_display_runs_on_a_virtual_one(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, controller: str, module: str, note: str
 ) -> None:
+    pytest.importorskip(module)
     monkeypatch.delenv("DISPLAY", raising=False)
-    (tmp_path / "mouse.py").write_text(TURTLE_CONTROLLER)
+    (tmp_path / "mouse.py").write_text(controller)
     prepared = prepare_controller(str(tmp_path / "mouse.py"))
     assert prepared.runnable and prepared.virtual_display
-    assert NO_DISPLAY not in prepared.missing and VIRTUAL_DISPLAY_NOTE in prepared.notes
+    assert NO_DISPLAY not in prepared.missing and note in prepared.notes
     run = run_controller(str(tmp_path / "mouse.py"), mazesim.load_world("arena"), seconds=1.0)
     assert run.exit_status == 0, run.error
     assert run.steps > 0 and run.distance_m > 0.05
     assert "DISPLAY" not in os.environ
+
+
+def test_opencv_without_its_windows_needs_no_display(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.delenv("DISPLAY", raising=False)
+    (tmp_path / "counter.py").write_text(
+        "import cv2\nfrom controller import Robot\nprint(cv2.countNonZero)\nRobot().step(64)\n"
+    )
+    prepared = prepare_controller(str(tmp_path / "counter.py"))
+    assert not prepared.virtual_display and OPENCV_WINDOWS_NOTE not in prepared.notes
+
+
+def test_an_opencv_controller_without_a_display_or_xvfb_is_not_started(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.delenv("DISPLAY", raising=False)
+    monkeypatch.setattr("mazesim.webots.virtual_display.xvfb_program", lambda: None)
+    (tmp_path / "follower.py").write_text(OPENCV_CONTROLLER)
+    prepared = prepare_controller(str(tmp_path / "follower.py"))
+    assert NO_DISPLAY in prepared.missing and not prepared.runnable
 
 
 def test_a_qt_controller_without_a_display_draws_off_screen(

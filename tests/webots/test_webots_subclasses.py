@@ -1,6 +1,7 @@
 """Controllers' own subclasses of Webots' classes, as Webots allows them: a Motor or Camera
-subclass whose ``__init__`` calls ``super().__init__(name)`` (with other arguments of its own),
-and a Robot subclass that keeps its own ``self.keyboard``."""
+subclass whose ``__init__`` calls ``super().__init__(name)`` (with other arguments of its own,
+or none, its device's name written in that call), and a Robot subclass that keeps its own
+``self.keyboard``."""
 
 from __future__ import annotations
 
@@ -48,6 +49,33 @@ def test_camera_subclass_with_other_arguments_enables_itself() -> None:
     eye = Eye("camera", 64)
     assert isinstance(eye, Eye) and eye.getSamplingPeriod() == 64
     assert robot.getDevice("camera") is eye
+
+
+def test_camera_subclass_naming_its_device_in_its_own_init_is_the_robots_camera() -> None:
+    class Eye(controller.Camera):
+        def __init__(self) -> None:
+            super().__init__("camera")  # type: ignore[call-arg]
+            self.enable(64)
+            self.tracked = "rubber duck"
+
+    robot = controller.Robot()
+    eye = Eye()
+    assert isinstance(eye, Eye) and eye.getName() == "camera"
+    assert eye.getSamplingPeriod() == 64 and eye.tracked == "rubber duck"
+    # As when the name is given to the class: the robot's camera is that same object.
+    assert robot.getDevice("camera") is eye
+
+
+def test_subclass_naming_a_device_of_another_type_in_its_init_gives_none(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    class Eye(controller.Camera):
+        def __init__(self) -> None:
+            super().__init__("ps0")  # type: ignore[call-arg]
+
+    controller.Robot()
+    assert Eye() is None
+    assert "is a DistanceSensor, not a Camera" in capsys.readouterr().err
 
 
 def test_subclass_of_the_wrong_device_type_gives_none(capsys: pytest.CaptureFixture[str]) -> None:

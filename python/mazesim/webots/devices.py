@@ -173,16 +173,68 @@ def _already_built(init: Callable[..., None]) -> Callable[..., None]:
     def initialise(self: Any, *args: Any, **kwargs: Any) -> None:
         if len(args) <= 1 and not kwargs and "_simulation" in vars(self):
             return
+        if _names_its_device(self, args, kwargs):
+            # A controller's subclass called without its device's name, whose own __init__
+            # names it here: the robot's device becomes an instance of the subclass and this
+            # instance shares its state while that __init__ goes on; the class call then
+            # gives the robot's device itself.
+            device = _robot_device(type(self), args[0])
+            if device is not None:
+                device.__class__ = type(self)
+                device.__dict__.update(vars(self))  # what it set before naming its device
+                self.__dict__ = device.__dict__
+                _ADOPTED[id(self)] = device
+            return
         init(self, *args, **kwargs)
 
     return initialise
+
+
+#: The robot's devices that a controller's subclass instance named in its ``super().__init__``
+#: call, by the instance's id, while the subclass's ``__init__`` runs (see ``_DeviceType``).
+_ADOPTED: dict[int, Any] = {}
+
+
+def _names_its_device(device: Any, args: tuple[Any, ...], kwargs: dict[str, Any]) -> bool:
+    """Whether ``super().__init__(name)`` is called on a controller's subclass instance that is
+    not yet a device of the robot."""
+    return (
+        len(args) == 1
+        and not kwargs
+        and isinstance(args[0], str | int)
+        and not _internal(type(device))
+        and "_simulation" not in vars(device)
+    )
+
+
+def _robot_device(cls: type, key: str | int) -> Any:
+    """The robot's device of that name (or index) for ``cls``, or None with Webots' message:
+    no Robot yet, or a device of another type than ``cls``'s."""
+    from mazesim.webots.robot import Robot
+
+    robot = Robot.created
+    if robot is None:
+        _print_error(f'Error: {cls.__name__}("{key}") needs the Robot: create it first.')
+        return None
+    device = robot.getDeviceByIndex(key) if isinstance(key, int) else robot.getDevice(key)
+    if device is None or _internal(cls) or isinstance(device, cls):
+        return device
+    if not issubclass(cls, type(device)):
+        _print_error(
+            f'Error: {cls.__name__}("{key}"): the device "{key}" is a '
+            f"{type(device).__name__}, not a {cls.__mro__[1].__name__}."
+        )
+        return None
+    return device
 
 
 class _DeviceType(type):
     """Lets a controller write ``DistanceSensor("ps0")``, as older Webots controllers do: a
     device class called with only a name gives the robot's device of that name. A controller's
     own subclass (``class EpuckMotor(Motor)``) called with a name and any other arguments gives
-    that device too, made an instance of the subclass, whose ``__init__`` runs on it."""
+    that device too, made an instance of the subclass, whose ``__init__`` runs on it; one called
+    without a name (``class EpuckCamera(Camera)`` whose ``__init__`` calls
+    ``super().__init__("camera")``) gives the device its ``__init__`` names there."""
 
     def __init__(cls, name: str, bases: tuple[type, ...], namespace: dict[str, Any]) -> None:
         super().__init__(name, bases, namespace)
@@ -191,31 +243,20 @@ class _DeviceType(type):
 
     def __call__(cls, *args: Any, **kwargs: Any) -> Any:
         subclass = not _internal(cls)
-        by_name = len(args) == 1 and not kwargs and isinstance(args[0], str | int)
-        if by_name or (subclass and args and isinstance(args[0], str | int)):
-            from mazesim.webots.robot import Robot
-
-            robot = Robot.created
-            if robot is None:
-                _print_error(
-                    f'Error: {cls.__name__}("{args[0]}") needs the Robot: create it first.'
-                )
-                return None
-            if isinstance(args[0], int):
-                device = robot.getDeviceByIndex(args[0])
-            else:
-                device = robot.getDevice(args[0])
+        named = bool(args) and isinstance(args[0], str | int)
+        if (named and len(args) == 1 and not kwargs) or (subclass and named):
+            device = _robot_device(cls, args[0])
             if device is None or not subclass or isinstance(device, cls):
                 return device
-            if not issubclass(cls, type(device)):
-                _print_error(
-                    f'Error: {cls.__name__}("{args[0]}"): the device "{args[0]}" is a '
-                    f"{type(device).__name__}, not a {cls.__mro__[1].__name__}."
-                )
-                return None
             device.__class__ = cls
             cls.__init__(device, *args, **kwargs)  # type: ignore[misc]
             return device
+        if subclass:
+            # A subclass whose own __init__ takes no name and gives one to super().__init__.
+            made: Any = object.__new__(cls)  # type: ignore[arg-type]
+            cls.__init__(made, *args, **kwargs)  # type: ignore[misc]
+            # None when it named no device of the robot (Webots' message is printed).
+            return _ADOPTED.pop(id(made), None)
         return super().__call__(*args, **kwargs)
 
 

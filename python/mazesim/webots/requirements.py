@@ -37,10 +37,11 @@ __all__ = [
 LANGUAGES = {".py": "python", ".c": "c", ".cpp": "cpp", ".cc": "cpp", ".cxx": "cpp"}
 #: Most of a controller's own modules read for their imports.
 MAX_OWN_MODULES = 200
-#: The statement for a controller that opens Tk windows where there is no display.
+#: The statement for a controller that opens Tk or OpenCV windows where there is no display.
 NO_DISPLAY = (
-    "a display for the controller's Tk windows (tkinter, turtle; $DISPLAY is not set, and "
-    "Xvfb, which would draw them on a virtual display, is not installed)"
+    "a display for the controller's windows (Tk's: tkinter, turtle; OpenCV's: cv2.imshow, "
+    "cv2.namedWindow; $DISPLAY is not set, and Xvfb, which would draw them on a virtual "
+    "display, is not installed)"
 )
 #: What the run says of a controller whose Tk windows it draws on a virtual display.
 VIRTUAL_DISPLAY_NOTE = (
@@ -49,6 +50,18 @@ VIRTUAL_DISPLAY_NOTE = (
 )
 #: Modules that open Tk windows.
 TK_MODULES = {"tkinter", "turtle"}
+#: OpenCV's window calls (HighGUI). OpenCV's wheels draw their windows with a Qt of their own
+#: whose only platform is X11's (xcb): without a display the whole process stops (SIGABRT) at the
+#: first window, and Qt's offscreen platform is not there to draw into memory.
+_OPENCV_WINDOWS = re.compile(
+    r"\b(?:cv2|cv)\s*\.\s*(imshow|namedWindow|startWindowThread|createTrackbar|selectROIs?|"
+    r"setMouseCallback|moveWindow|resizeWindow|setWindowProperty|setWindowTitle)\s*\("
+)
+#: What the run says of a controller whose OpenCV windows it draws on a virtual display.
+OPENCV_WINDOWS_NOTE = (
+    "its OpenCV windows (cv2.imshow, cv2.namedWindow) are drawn on a virtual display (Xvfb) "
+    "and not shown: $DISPLAY is not set"
+)
 #: Modules that open Qt windows.
 QT_MODULES = {"PySide6", "PySide2", "PyQt6", "PyQt5"}
 #: What the run says of a controller whose Qt windows it draws off screen.
@@ -473,15 +486,18 @@ def prepare_controller(file: str) -> PreparedController:
             if "QT_QPA_PLATFORM" not in os.environ:
                 prepared.notes.append(QT_OFFSCREEN_NOTE)
                 prepared.environment["QT_QPA_PLATFORM"] = "offscreen"
-        if TK_MODULES & imported and not os.environ.get("DISPLAY"):
-            from mazesim.webots.virtual_display import xvfb_program
+        tk = bool(TK_MODULES & imported)
+        opencv = "cv2" in imported and bool(_calls(file, language, _OPENCV_WINDOWS))
+        if (tk or opencv) and not os.environ.get("DISPLAY"):
+            from mazesim.webots import virtual_display
 
-            if xvfb_program() is not None:
-                prepared.notes.append(VIRTUAL_DISPLAY_NOTE)
+            if virtual_display.xvfb_program() is not None:
+                prepared.notes += [VIRTUAL_DISPLAY_NOTE] * tk + [OPENCV_WINDOWS_NOTE] * opencv
                 prepared.virtual_display = True
             else:
                 # Tk raises at its first window; a controller that waits for the thread that
-                # draws would never return, so it is not started.
+                # draws would never return, and OpenCV's Qt stops the process: neither is
+                # started.
                 prepared.missing.append(NO_DISPLAY)
                 prepared.runnable = False
         speed = turn_in_place_speed(file)

@@ -7,7 +7,9 @@
 //! levels. The image is laid on the floor rectangle as Webots tiles it: one copy of the image per
 //! tile (`floorTileSize` of a `RectangleArena`, `tileSize` of a `Floor`, the whole plane of a
 //! `Shape`), divided by the appearance's `textureTransform` scale, tiles starting at the
-//! rectangle's (-x, -y) corner, the image's top row towards +y and its left column towards -x.
+//! rectangle's (-x, -y) corner, the image's top row towards +y and its left column towards -x;
+//! the Y-up `Floor` PROTO of worlds before R2022a starts them at its (-x, +z) corner, the top row
+//! towards -z, a quarter turn from the Z-up one's.
 //! A grey level `g` in [0, 1] paints the reflection factor `0.2 + 0.8 g` of Webots' infra-red
 //! model (white 1, black 0.2), in steps of 1/255 of the grey scale.
 
@@ -276,6 +278,11 @@ impl<'d> Importer<'d> {
     }
 
     /// Records a texture laid on the floor rectangle `size` of `frame` (Z-up), one image per `tile`.
+    /// Lays an appearance's image texture on a floor rectangle of `size` in tiles of `tile`,
+    /// both along `frame`'s x and y; or, for the Y-up `Floor` PROTO of a world before R2022a
+    /// (`y_up_floor`), along the PROTO's own x and z, its image's left column towards -x and
+    /// top row towards -z, a quarter turn from the Z-up PROTO's (`frame` is its Z-up frame,
+    /// whose x is the Y-up -z and whose y the Y-up -x).
     fn lay_texture(
         &mut self,
         owner: &'d Node,
@@ -283,6 +290,7 @@ impl<'d> Importer<'d> {
         frame: &Frame,
         size: [f64; 2],
         tile: [f64; 2],
+        y_up_floor: bool,
     ) {
         let Some((urls, scale)) = self.appearance_texture(appearance) else {
             return;
@@ -297,16 +305,22 @@ impl<'d> Importer<'d> {
             return;
         }
         let x_axis = frame.axis(0);
-        let (sx, sy) = (
+        let (mut sx, mut sy) = (
             x_axis[0].hypot(x_axis[1]),
             frame.axis(1)[0].hypot(frame.axis(1)[1]),
         );
+        let mut yaw = x_axis[1].atan2(x_axis[0]);
+        if y_up_floor {
+            // The image's x runs along the Z-up frame's -y, its y along the frame's x.
+            yaw -= std::f64::consts::FRAC_PI_2;
+            (sx, sy) = (sy, sx);
+        }
         self.floor_textures.push(FloorTexture {
             urls,
             owner: label,
             center: [snap(frame.origin[0]), snap(frame.origin[1])],
             size: [size[0] * sx, size[1] * sy],
-            yaw: wrap_angle(snap(x_axis[1].atan2(x_axis[0]))),
+            yaw: wrap_angle(snap(yaw)),
             tile: [tile[0] * sx, tile[1] * sy],
             candidates: Vec::new(),
         });
@@ -318,11 +332,14 @@ impl<'d> Importer<'d> {
         let Some(&appearance) = self.nodes(node, "floorAppearance").first() else {
             return;
         };
-        let mut tile = self.vector(node, "floorTileSize", [0.5, 0.5]);
-        if self.y_up {
-            tile = [tile[1], tile[0]];
-        }
-        self.lay_texture(node, self.node(appearance), frame, floor, tile);
+        let tile = self.vector(node, "floorTileSize", [0.5, 0.5]);
+        // `floor` is along the Z-up frame's axes; a Y-up Floor's texture is laid along its own.
+        let size = if self.y_up {
+            [floor[1], floor[0]]
+        } else {
+            floor
+        };
+        self.lay_texture(node, self.node(appearance), frame, size, tile, self.y_up);
     }
 
     /// A `Floor` PROTO: no collision in 2D, but its `appearance` may be a texture.
@@ -333,13 +350,9 @@ impl<'d> Importer<'d> {
         };
         let local = self.local_frame(node, [0.0; 3]);
         let frame = self.z_up(&frame.then(&local));
-        let mut size = self.vector(node, "size", [10.0, 10.0]);
-        let mut tile = self.vector(node, "tileSize", [0.5, 0.5]);
-        if self.y_up {
-            size = [size[1], size[0]];
-            tile = [tile[1], tile[0]];
-        }
-        self.lay_texture(node, self.node(appearance), &frame, size, tile);
+        let size = self.vector(node, "size", [10.0, 10.0]);
+        let tile = self.vector(node, "tileSize", [0.5, 0.5]);
+        self.lay_texture(node, self.node(appearance), &frame, size, tile, self.y_up);
     }
 
     /// A `Shape` in the scene: a textured horizontal `Plane` at floor level is a floor texture.
@@ -363,7 +376,7 @@ impl<'d> Importer<'d> {
         if self.y_up {
             size = [size[1], size[0]];
         }
-        self.lay_texture(node, self.node(appearance), &frame, size, size);
+        self.lay_texture(node, self.node(appearance), &frame, size, size, false);
     }
 }
 
@@ -481,7 +494,8 @@ mod tests {
 
     #[test]
     fn a_y_up_arena_lays_its_texture_on_the_converted_floor() {
-        // R2021a: floorSize is (x, z) of the Y-up PROTO, 2 m along north (ENU -y), 1 m along east.
+        // R2021a: floorSize is (x, z) of the Y-up PROTO, 2 m along north (ENU -y), 1 m along
+        // east; the texture is laid along the PROTO's own x (ENU -y) and -z (ENU x).
         let import = WbtImport::from_text(
             "#VRML_SIM R2021a utf8
 RectangleArena { floorSize 2 1 floorTileSize 1 0.5 floorAppearance Appearance { texture ImageTexture { url [\"t.png\"] } } }\n",
@@ -489,8 +503,9 @@ RectangleArena { floorSize 2 1 floorTileSize 1 0.5 floorAppearance Appearance { 
         )
         .unwrap();
         let texture = &import.floor_textures[0];
-        assert_eq!(texture.size, [1.0, 2.0]);
-        assert_eq!(texture.tile, [0.5, 1.0]);
+        assert_eq!(texture.size, [2.0, 1.0]);
+        assert_eq!(texture.tile, [1.0, 0.5]);
+        assert!((texture.yaw + std::f64::consts::FRAC_PI_2).abs() < 1e-6);
         assert_eq!(texture.center, [0.0, 0.0]);
         assert_eq!(texture.candidates, ["t.png", "textures/t.png"]);
     }

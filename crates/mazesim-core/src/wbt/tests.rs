@@ -757,3 +757,33 @@ fn a_mesh_that_cannot_be_read_or_rises_above_the_floor_is_named() {
         assert!(found, "line {line}: {words}: {:?}", import.warnings);
     }
 }
+
+#[test]
+fn a_y_up_arena_lays_its_image_as_webots_y_up_floor_does() {
+    // The Y-up Floor PROTO (R2019b to R2021b) gives its corner (-x/2, -z/2) the texture
+    // coordinate (0, 1) and (-x/2, +z/2) the coordinate (0, 0): the image's left column lies
+    // towards -x and its top row towards -z. A 2 x 1 m floor, one copy of an image whose
+    // top-left quarter is black: black where x < 0 and z < 0, which the NUE to ENU mapping
+    // (x, y, z) -> (-z, -x, y) puts where x > 0 and y > 0.
+    let mut import = WbtImport::from_text(
+        "#VRML_SIM R2021a utf8
+RectangleArena { floorSize 2 1 floorTileSize 2 1 floorAppearance Appearance { texture ImageTexture { url [\"t.png\"] } } }\n",
+        "old.wbt",
+    )
+    .unwrap();
+    let image = super::floor_texture::GreyImage {
+        width: 2,
+        height: 2,
+        levels: vec![0.0, 1.0, 1.0, 1.0],
+    };
+    import.paint_floor(&std::collections::BTreeMap::from([(
+        "t.png".to_string(),
+        image,
+    )]));
+    let nue = |x: f64, z: f64| painted_at(&import, -z, -x);
+    assert_eq!(nue(-0.5, -0.25), Some(0.2), "the image's top-left quarter");
+    assert_eq!(nue(0.5, -0.25), Some(1.0), "its top-right quarter");
+    assert_eq!(nue(-0.5, 0.25), Some(1.0), "its bottom-left quarter");
+    assert_eq!(nue(0.5, 0.25), Some(1.0), "its bottom-right quarter");
+    assert_eq!(nue(-0.9, -0.45), Some(0.2), "the floor's corner (-x, -z)");
+}
