@@ -14,6 +14,7 @@ from mazesim.webots import simulation as simulations
 from mazesim.webots.importer import import_wbt_text
 from mazesim.webots.radio import Radio
 from mazesim.webots.radio_devices import Emitter, Receiver, emitter_from_fields
+from mazesim.webots.rays import WallBoxes
 from mazesim.webots.scene import read_scene
 from radio_pair import RadioPair
 
@@ -220,3 +221,47 @@ def test_the_e_puck_protos_channel_fields_tune_its_radio(robot_of_world: Any) ->
     # Another e-puck that sets none has the PROTO's default, as a supervisor reads it.
     other = robot_of_world.getRoot().getField("children").getMFNode(1)
     assert other.getField("receiver_channel").getSFInt32() == 1
+
+
+# --- infra-red: a line of sight -------------------------------------------------------------
+
+WALLED = """#VRML_SIM R2023b utf8
+E-puck { translation -0.3 0 0 controller "x" }
+Solid {
+  translation 0 0 0.05
+  children [ Shape { geometry DEF W Box { size 0.05 0.6 0.1 } } ]
+  boundingObject USE W
+}
+"""
+
+
+@pytest.mark.parametrize(
+    ("receiver_at", "infra_red", "heard"),
+    [
+        ((0.3, 0.0, 0.0), True, False),  # behind the wall
+        ((0.3, 0.0, 0.0), False, True),  # radio goes through walls
+        ((0.3, 0.9, 0.0), True, True),  # past the wall's end: in sight
+        ((-0.1, 0.0, 0.0), True, True),  # in front of the wall
+    ],
+)
+def test_walls_stop_infra_red_packets_only(
+    receiver_at: tuple[float, float, float], infra_red: bool, heard: bool
+) -> None:
+    world, _ = import_wbt_text(WALLED)
+    radio = Radio(WallBoxes(world))
+    radio.tune(1, "receiver", 1, listening=True)
+    radio.send(0, 1, -1, b"x", infra_red)
+    radio.transmit({0: (-0.3, 0.0, 0.0), 1: receiver_at})
+    assert bool(radio.collect(1, "receiver")) is heard
+
+
+def test_an_emitter_of_type_infra_red_sends_infra_red_packets() -> None:
+    world, _ = import_wbt_text(WALLED)
+    pair = RadioPair()
+    pair.radio.walls = WallBoxes(world)
+    pair.radio.tune(1, "receiver", 0, listening=True)
+    fields = {"type": "infra-red"}
+    emitter_from_fields("ir", pair.robots[0], fields).send(b"ir")
+    emitter_from_fields("radio", pair.robots[0], {}).send(b"radio")
+    pair.radio.transmit({0: (-0.3, 0.0, 0.0), 1: (0.3, 0.0, 0.0)})
+    assert [p.data for p in pair.radio.collect(1, "receiver")] == [b"radio"]

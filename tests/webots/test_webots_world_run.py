@@ -212,6 +212,19 @@ def test_a_supervisor_sees_and_moves_every_robot_and_its_own_emitter_reaches_the
     assert shepherd.distance_m == 0.0
 
 
+def test_a_wall_stops_an_infra_red_emitters_packets_but_not_a_radio_emitters(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setenv("SWARM_LOG", str(tmp_path))
+    run = run_world(str(SWARM / "worlds" / "beacon_wall.wbt"), seconds=2.0)
+    assert [r.exit_status for r in run.robots] == [0, 0, 0]
+    behind = json.loads((tmp_path / "behind.json").read_text())
+    beside = json.loads((tmp_path / "beside.json").read_text())
+    # The beacon sent 20 packets from each emitter; the wall stands between it and "behind".
+    assert behind == {"radio": 20}
+    assert beside == {"infra-red": 20, "radio": 20}
+
+
 def test_the_command_runs_the_whole_world_and_reports_every_robot(tmp_path: Path) -> None:
     out = tmp_path / "run"
     env = dict(os.environ, SWARM_LOG=str(tmp_path), MPLBACKEND="Agg")

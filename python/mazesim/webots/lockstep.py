@@ -53,6 +53,7 @@ from mazesim.webots.own_sensors import own_sensors
 from mazesim.webots.process_template import ControllerProcesses
 from mazesim.webots.proto_fields import declared_fields
 from mazesim.webots.radio import Radio
+from mazesim.webots.rays import WallBoxes
 from mazesim.webots.requirements import PreparedController, prepare_controller, unbuilt
 from mazesim.webots.runner import CONTROLLER_SUFFIXES, EXIT_INTERRUPTED
 from mazesim.webots.scene import Scene, read_scenes
@@ -377,6 +378,8 @@ def run_world(
         for index, job in jobs.items()
     }
     fleet = Fleet(robots, simulators, report)
+    # The walls stop infra-red packets; a supervisor's moves of them do not.
+    fleet.radio.walls = WallBoxes(world)
     traction = WorldTraction(scenes, robots, simulators)
     movable = [robot.get("profile") is not None for robot in robots]
     started = time.perf_counter()

@@ -19,7 +19,12 @@ https://cyberbotics.com/doc/reference/receiver):
   squared", the emitter's direction "a normalized (length=1) vector that indicates the direction
   of the emitter with respect to the receiver's coordinate system" (x forward, y left, z up);
 - packets are "received in the same order they were sent"; packets of several robots sent in
-  the same step arrive in the order of the robots, then of sending, so a run is repeatable.
+  the same step arrive in the order of the robots, then of sending, so a run is repeatable;
+- "Signals of type "radio" (the default) and "serial" are transmitted without taking obstacles
+  into account. Signals of type "infra-red," however, do take potential obstacles between the
+  emitter and the receiver into account": an infra-red packet reaches a receiver only when the
+  segment between the two robots' centres, seen from above, meets none of the world's walls
+  (those with a bounding object; the radio's :attr:`~Radio.walls`).
 
 A run of one robot has a radio too: nothing reaches its own receiver.
 """
@@ -29,6 +34,12 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from mazesim.webots.rays import WallBoxes
 
 __all__ = ["CHANNEL_BROADCAST", "UNLIMITED", "Packet", "Radio"]
 
@@ -66,6 +77,7 @@ class _Sent:
     channel: int
     range_m: float
     data: bytes
+    infra_red: bool
 
 
 @dataclass
@@ -87,14 +99,20 @@ class Radio:
 
     Robots are numbered (their index in the world); receivers are named by robot and device
     name.
+
+    Attributes:
+        walls: The world's walls, which stop infra-red packets; None: nothing stops them.
     """
 
-    def __init__(self) -> None:
+    def __init__(self, walls: WallBoxes | None = None) -> None:
+        self.walls = walls
         self._in_transit: list[_Sent] = []
         self._receivers: dict[tuple[int, str], _Tuning] = {}
         self._sent = 0
 
-    def send(self, robot: int, channel: int, range_m: float, data: bytes) -> None:
+    def send(
+        self, robot: int, channel: int, range_m: float, data: bytes, infra_red: bool = False
+    ) -> None:
         """Puts a packet on its way; it arrives at the next :meth:`transmit`.
 
         Args:
@@ -102,9 +120,12 @@ class Radio:
             channel: The emitter's channel (-1: every channel).
             range_m: The emitter's range in metres (-1: no limit).
             data: The packet.
+            infra_red: Whether the emitter is of type "infra-red" (walls stop the packet).
         """
         self._sent += 1
-        self._in_transit.append(_Sent(robot, self._sent, channel, float(range_m), bytes(data)))
+        self._in_transit.append(
+            _Sent(robot, self._sent, channel, float(range_m), bytes(data), bool(infra_red))
+        )
 
     def tune(self, robot: int, receiver: str, channel: int, listening: bool) -> None:
         """Sets a receiver's channel and whether it listens; a receiver that stops listening
@@ -130,8 +151,21 @@ class Radio:
                 if not _reaches(packet, tuning.channel):
                     continue
                 arrived = _arrival(packet, poses[packet.robot], poses[robot])
-                if arrived is not None:
-                    tuning.arrived.append(arrived)
+                if arrived is None:
+                    continue
+                if packet.infra_red and self._walled_off(poses[packet.robot], poses[robot]):
+                    continue
+                tuning.arrived.append(arrived)
+
+    def _walled_off(
+        self, sender: tuple[float, float, float], receiver: tuple[float, float, float]
+    ) -> bool:
+        """Whether a wall meets the segment between two robots' centres, seen from above."""
+        if self.walls is None:
+            return False
+        towards = np.array([[receiver[0] - sender[0], receiver[1] - sender[1]]])
+        along, _ = self.walls.cast_walls((sender[0], sender[1]), towards)
+        return bool(along[0] < 1.0)
 
     def clear(self) -> None:
         """Drops the packets in transit and those waiting for their receivers (a reset of the

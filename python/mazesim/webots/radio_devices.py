@@ -4,8 +4,9 @@
 The e-puck's own ``emitter`` and ``receiver`` use the E-puck PROTO's channel 1 and no range limit
 (the PROTO's Emitter sets only its ``channel``, so its ``range`` is the node's default, -1);
 an Emitter or Receiver node of the world file (in an extension slot, or among a robot's children)
-brings its own ``channel``, ``range``, ``maxRange`` and ``bufferSize`` fields, with the node's
-defaults (channel 0, range -1, unlimited buffers) where the file gives none.
+brings its own ``channel``, ``range``, ``maxRange`` and ``bufferSize`` fields, and an Emitter its
+``type``, with the node's defaults (channel 0, range -1, unlimited buffers, "radio") where the
+file gives none.
 
 Semantics follow Webots' reference manual (https://cyberbotics.com/doc/reference/emitter,
 https://cyberbotics.com/doc/reference/receiver): ``send`` returns 0 when the packets queued in
@@ -79,7 +80,8 @@ class _Tuned:
 
 
 class Emitter(_Tuned, NotSimulated, Device):
-    """A radio emitter: ``send``, channel, range and buffer size."""
+    """A radio emitter: ``send``, channel, range and buffer size; an infra-red one
+    (``infra_red``, the node's ``type "infra-red"``) sends only along a line of sight."""
 
     _node_type = node_type("EMITTER")
 
@@ -91,9 +93,11 @@ class Emitter(_Tuned, NotSimulated, Device):
         range_m: float = E_PUCK_RANGE,
         max_range: float = UNLIMITED,
         buffer_size: int = UNLIMITED,
+        infra_red: bool = False,
     ) -> None:
         super().__init__(name, simulation)
         self._channel = int(channel)
+        self._infra_red = bool(infra_red)
         self._max_range = float(max_range)
         self._range = self._clamped(float(range_m))
         self._buffer_size = int(buffer_size)
@@ -125,7 +129,9 @@ class Emitter(_Tuned, NotSimulated, Device):
         if self._buffer_size != UNLIMITED and self._queued_bytes + len(data) > self._buffer_size:
             return 0
         self._queued_bytes += len(data)
-        simulation.radio.send(simulation.robot_index, self._channel, self._range, data)
+        simulation.radio.send(
+            simulation.robot_index, self._channel, self._range, data, self._infra_red
+        )
         return 1
 
     def setChannel(self, channel: int) -> None:
@@ -308,8 +314,8 @@ def _float_field(fields: Mapping[str, Any], name: str, default: float) -> float:
 def emitter_from_fields(
     name: str, simulation: RobotSimulation, fields: Mapping[str, Any]
 ) -> Emitter:
-    """An Emitter node of the world file, with its fields (Webots' node defaults: channel 0,
-    range -1, maxRange -1, bufferSize -1)."""
+    """An Emitter node of the world file, with its fields (Webots' node defaults: type
+    "radio", channel 0, range -1, maxRange -1, bufferSize -1)."""
     return Emitter(
         name,
         simulation,
@@ -317,6 +323,7 @@ def emitter_from_fields(
         range_m=_float_field(fields, "range", UNLIMITED),
         max_range=_float_field(fields, "maxRange", UNLIMITED),
         buffer_size=_int_field(fields, "bufferSize", UNLIMITED),
+        infra_red=fields.get("type") == "infra-red",
     )
 
 
