@@ -271,6 +271,8 @@ class Camera(_Sensor):
         self._floor: FloorPaint | None = None
         self._pixels: npt.NDArray[np.uint8] | None = None
         self._bytes: bytes | None = None
+        #: The robot's pose and the other robots of the last image rendered.
+        self._rendered_at: tuple[tuple[float, float, float], list[RobotBody]] | None = None
         self._value = None
         #: Whether the simulator holds this robot alone (it has no ``other_robots``).
         self._alone = False
@@ -286,11 +288,14 @@ class Camera(_Sensor):
         if self._walls is None or self._floor is None:
             self._walls = WallBoxes(self._simulation.world, sensed=True)
             self._floor = FloorPaint(self._simulation.world)
+        x, y, yaw = (float(v) for v in self._simulation.simulator.pose)
+        pose = (x, y, yaw)
+        robots = self._other_robots()
+        if self._pixels is not None and self._rendered_at == (pose, robots):
+            return True  # nothing the camera sees has moved: the same image
         self._bytes = None
-        simulator = self._simulation.simulator
-        self._pixels = render(
-            self._view, self._walls, self._floor, simulator.pose, self._other_robots()
-        )
+        self._pixels = render(self._view, self._walls, self._floor, pose, robots)
+        self._rendered_at = (pose, robots)
         return True
 
     def _other_robots(self) -> list[RobotBody]:

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import copy
 import math
+from collections.abc import Iterator
 
 import numpy as np
 import numpy.typing as npt
@@ -133,32 +134,120 @@ class FloorPaint:
         self.colours = np.array(
             [_colour(world.floor_colour)] + [_colour(r.get("colour")) for r in self.regions]
         ).reshape(-1, 3)
+        self._grid = _PaintGrid([_bounds(r) for r in self.regions])
 
     def reflectance(self, x: Floats, y: Floats) -> Floats:
         """The floor's reflectance factor at each point (later paint drawn over earlier)."""
         return np.asarray(self.reflectances[self.region(x, y) + 1], dtype=np.float64)
 
     def region(self, x: Floats, y: Floats) -> npt.NDArray[np.intp]:
-        """The paint region seen at each point (the last drawn there), -1 for the bare floor."""
-        result = np.full(np.shape(x), -1, dtype=np.intp)
-        for index, region in enumerate(self.regions):
-            shape = region["shape"]
-            if shape == "rect":
-                cx, cy = _pair(region, "center")
-                sx, sy = _pair(region, "size")
-                yaw = _number(region, "yaw")
-                c, s = np.cos(yaw), np.sin(yaw)
-                u = c * (x - cx) + s * (y - cy)
-                v = -s * (x - cx) + c * (y - cy)
-                inside = (np.abs(u) <= sx / 2.0) & (np.abs(v) <= sy / 2.0)
-            elif shape == "circle":
-                cx, cy = _pair(region, "center")
-                inside = np.hypot(x - cx, y - cy) <= _number(region, "radius")
-            else:
-                a, b = _pair(region, "a"), _pair(region, "b")
-                inside = _segment_distance(x, y, a, b) <= _number(region, "radius")
-            result = np.where(inside, index, result)
-        return result
+        """The paint region seen at each point (the last drawn there), -1 for the bare floor.
+
+        Each region tests only the points in the grid cells its bounding box covers."""
+        x, y = np.broadcast_arrays(np.asarray(x, dtype=np.float64), np.asarray(y, dtype=np.float64))
+        px, py = x.ravel(), y.ravel()
+        result = np.full(px.shape, -1, dtype=np.intp)
+        for index, points in self._grid.candidates(px, py):
+            inside = _inside(self.regions[index], px[points], py[points])
+            result[points[inside]] = index
+        return result.reshape(x.shape)
+
+
+def _inside(region: dict[str, object], x: Floats, y: Floats) -> npt.NDArray[np.bool_]:
+    """Whether each point lies in the paint region."""
+    shape = region["shape"]
+    if shape == "rect":
+        cx, cy = _pair(region, "center")
+        sx, sy = _pair(region, "size")
+        yaw = _number(region, "yaw")
+        c, s = np.cos(yaw), np.sin(yaw)
+        u = c * (x - cx) + s * (y - cy)
+        v = -s * (x - cx) + c * (y - cy)
+        return np.asarray((np.abs(u) <= sx / 2.0) & (np.abs(v) <= sy / 2.0))
+    if shape == "circle":
+        cx, cy = _pair(region, "center")
+        return np.asarray(np.hypot(x - cx, y - cy) <= _number(region, "radius"))
+    a, b = _pair(region, "a"), _pair(region, "b")
+    return np.asarray(_segment_distance(x, y, a, b) <= _number(region, "radius"))
+
+
+#: Added to each side of a paint region's bounding box (m), far above rounding errors.
+BOUNDS_MARGIN = 1e-6
+#: Cells along each side of the grid over the paint.
+GRID_CELLS = 64
+
+
+def _bounds(region: dict[str, object]) -> tuple[float, float, float, float]:
+    """A box (x0, y0, x1, y1) holding the paint region, a little larger."""
+    shape = region["shape"]
+    if shape == "rect":
+        cx, cy = _pair(region, "center")
+        sx, sy = _pair(region, "size")
+        c, s = abs(math.cos(_number(region, "yaw"))), abs(math.sin(_number(region, "yaw")))
+        half_x = (c * abs(sx) + s * abs(sy)) / 2.0
+        half_y = (s * abs(sx) + c * abs(sy)) / 2.0
+        box = (cx - half_x, cy - half_y, cx + half_x, cy + half_y)
+    elif shape == "circle":
+        cx, cy = _pair(region, "center")
+        r = abs(_number(region, "radius"))
+        box = (cx - r, cy - r, cx + r, cy + r)
+    else:
+        (ax, ay), (bx, by) = _pair(region, "a"), _pair(region, "b")
+        r = abs(_number(region, "radius"))
+        box = (min(ax, bx) - r, min(ay, by) - r, max(ax, bx) + r, max(ay, by) + r)
+    m = BOUNDS_MARGIN
+    return (box[0] - m, box[1] - m, box[2] + m, box[3] + m)
+
+
+class _PaintGrid:
+    """A grid over the paint regions' bounding boxes: which points may lie in which region."""
+
+    def __init__(self, bounds: list[tuple[float, float, float, float]]) -> None:
+        self.count = len(bounds)
+        boxes = np.array(bounds, dtype=np.float64).reshape(-1, 4)
+        #: Whether every box is finite; otherwise every point is every region's candidate.
+        self.bounded = bool(np.isfinite(boxes).all())
+        self.low = boxes[:, :2].min(axis=0) if self.count else np.zeros(2)
+        self.high = boxes[:, 2:].max(axis=0) if self.count else np.zeros(2)
+        self.cell = np.zeros(2)
+        if self.bounded:
+            self.cell = np.maximum((self.high - self.low) / GRID_CELLS, 1e-9)
+            #: Each region's first and last cell along x and y.
+            self.first = self._cells(boxes[:, :2])
+            self.last = self._cells(boxes[:, 2:])
+
+    def _cells(self, points: Floats) -> npt.NDArray[np.intp]:
+        """The cell (column, row) of each point, clamped to the grid."""
+        cells = np.floor((points - self.low) / self.cell)
+        return np.asarray(np.clip(cells, 0, GRID_CELLS - 1), dtype=np.intp)
+
+    def candidates(self, x: Floats, y: Floats) -> Iterator[tuple[int, npt.NDArray[np.intp]]]:
+        """Each region's index, in drawing order, with the indices of the points in the
+        cells its box covers, where there are any (a point outside every box is nobody's
+        candidate)."""
+        if self.count == 0:
+            return
+        if not self.bounded:
+            for index in range(self.count):
+                yield index, np.arange(len(x))
+            return
+        points = np.stack([x, y], axis=1)
+        within = np.all((points >= self.low) & (points <= self.high), axis=1)
+        kept = np.flatnonzero(within)
+        cells = self._cells(points[kept])
+        cell_ids = cells[:, 1] * GRID_CELLS + cells[:, 0]
+        order = np.argsort(cell_ids, kind="stable")
+        sorted_points = kept[order]
+        starts = np.searchsorted(cell_ids[order], np.arange(GRID_CELLS * GRID_CELLS + 1))
+        for index in range(self.count):
+            (x0, y0), (x1, y1) = self.first[index], self.last[index]
+            rows = [
+                sorted_points[starts[row * GRID_CELLS + x0] : starts[row * GRID_CELLS + x1 + 1]]
+                for row in range(y0, y1 + 1)
+            ]
+            candidates = np.concatenate(rows)
+            if candidates.size:
+                yield index, candidates
 
 
 def _number(region: dict[str, object], key: str) -> float:

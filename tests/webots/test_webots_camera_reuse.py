@@ -1,0 +1,105 @@
+"""The camera renders only what it must: the floor paint tests each region against the points
+near it alone, giving the regions seen as testing every point did, so images stay byte for
+byte; a camera whose robot and fellows have not moved keeps its image without drawing it again."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from typing import Any
+
+import numpy as np
+import pytest
+
+import mazesim
+from mazesim.webots import camera as cameras
+from mazesim.webots import controller, prepare
+from mazesim.webots import simulation as simulations
+from mazesim.webots.camera import CameraView, render
+from mazesim.webots.rays import FloorPaint, WallBoxes
+
+#: Walls round a floor of overlapping paint of every shape, some coloured: later paint covers
+#: earlier, rotated rectangles, circles and polyline capsules among them.
+PAINTED = (
+    'format = "mazesim-world"\nversion = 1\n[start]\nx = -0.2\ny = 0.05\nyaw = 0.3\n'
+    "[[walls]]\ncenter = [0.5, 0.0]\nsize = [0.02, 1.0]\ncolour = [0.9, 0.1, 0.1]\n"
+    "[[walls]]\ncenter = [-0.5, 0.0]\nsize = [0.02, 1.0]\n"
+    "[[walls]]\ncenter = [0.0, 0.5]\nsize = [1.0, 0.02]\n"
+    '[[paint]]\nshape = "rect"\ncenter = [0.0, 0.0]\nsize = [0.6, 0.4]\nyaw = 0.4\n'
+    "reflectance = 0.3\n"
+    '[[paint]]\nshape = "circle"\ncenter = [0.1, 0.1]\nradius = 0.12\nreflectance = 0.6\n'
+    "colour = [0.0, 0.8, 0.2]\n"
+    '[[paint]]\nshape = "polyline"\npoints = [[-0.3, -0.2], [0.0, 0.15], [0.3, -0.1]]\n'
+    "width = 0.03\nreflectance = 0.2\n"
+    '[[paint]]\nshape = "rect"\ncenter = [0.2, 0.0]\nsize = [0.05, 0.3]\nyaw = -1.2\n'
+    "reflectance = 0.9\ncolour = [0.1, 0.2, 0.9]\n"
+)
+
+
+@pytest.fixture(autouse=True)
+def release() -> Iterator[None]:
+    yield
+    controller.Robot.created = None
+    simulations.release()
+
+
+def every_point_tested(paint: FloorPaint) -> FloorPaint:
+    """The same paint with every point tested against every region."""
+    paint._grid.bounded = False
+    return paint
+
+
+def test_paint_regions_are_those_found_testing_every_point() -> None:
+    world = mazesim.World.from_toml(PAINTED, "painted")
+    paint = FloorPaint(world)
+    generator = np.random.default_rng(7)
+    x = generator.uniform(-0.6, 0.6, (50, 40))
+    y = generator.uniform(-0.6, 0.6, (50, 40))
+    x[0, :3] = [np.nan, np.inf, -np.inf]
+    found = paint.region(x, y)
+    assert found.shape == x.shape
+    assert set(np.unique(found)) == {-1, 0, 1, 2, 3, 4}
+    np.testing.assert_array_equal(found, every_point_tested(FloorPaint(world)).region(x, y))
+
+
+@pytest.mark.parametrize("pitch", [0.0, 0.5])
+def test_camera_images_are_those_of_testing_every_point(pitch: float) -> None:
+    world = mazesim.World.from_toml(PAINTED, "painted")
+    walls = WallBoxes(world, sensed=True)
+    view = CameraView(width=120, height=80, pitch=pitch)
+    grid, everywhere = FloorPaint(world), every_point_tested(FloorPaint(world))
+    colours: set[bytes] = set()
+    for pose in [(-0.2, 0.05, 0.3), (0.0, -0.3, 1.4), (0.3, 0.2, 3.0), (-0.35, -0.3, 0.8)]:
+        image = render(view, walls, grid, pose)
+        assert image.tobytes() == render(view, walls, everywhere, pose).tobytes()
+        colours |= {pixel.tobytes() for pixel in np.unique(image.reshape(-1, 4), axis=0)}
+    assert len(colours) >= 4
+
+
+def test_a_still_camera_keeps_its_image_without_drawing_it_again(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    world = mazesim.World.from_toml(PAINTED, "painted")
+    drawn: list[Any] = []
+
+    def counted(*arguments: Any) -> Any:
+        drawn.append(arguments[3])
+        return render(*arguments)
+
+    monkeypatch.setattr(cameras, "render", counted)
+    prepare(world, seconds=2.0, noise=False)
+    robot = controller.Robot()
+    camera = robot.getDevice("camera")
+    camera.enable(32)
+    robot.step(32)
+    first = camera.getImage()
+    for _ in range(3):
+        robot.step(32)
+    assert len(drawn) == 1
+    assert camera.getImage() == first
+    left, right = robot.getDevice("left wheel motor"), robot.getDevice("right wheel motor")
+    for motor in (left, right):
+        motor.setPosition(float("inf"))
+        motor.setVelocity(4.0)
+    robot.step(32)
+    assert len(drawn) == 2
+    assert camera.getImage() != first
