@@ -266,11 +266,12 @@ def _scene(
     year = version[1:5] if version is not None and version.startswith("R") else None
     scene.nue = scene.nue or first_value(every, "coordinateSystem", Field.string) == "NUE"
     robot_types = ROBOT_TYPES | ({robot_model} if robot_model else set())
-    robot = _robot_node(text, every, robot_types, robot_line)
+    line_of = line_numbers(text)
+    robot = _robot_node(line_of, every, robot_types, robot_line)
     for node in every:
         if node.def_name is not None and node.use_name is None:
             scene.defs.setdefault(node.def_name, node.type_name)
-    scene.nodes = _scene_nodes(tree, robot, scene.nue, _definitions(every), line_numbers(text))
+    scene.nodes = _scene_nodes(tree, robot, scene.nue, _definitions(every), line_of)
     # Without a robot node, the whole file stands for it.
     own: list[Node] = every
     if robot is not None:
@@ -438,13 +439,12 @@ def _sensor_poses(robot: Node, nue: bool) -> dict[str, tuple[float, float, float
 
 
 def _robot_node(
-    text: str, every: list[Node], robot_types: set[str], line: int | None
+    line_of: Callable[[int], int], every: list[Node], robot_types: set[str], line: int | None
 ) -> Node | None:
     """The robot's node: the first robot node on ``line``, else the first node on ``line`` (a
     robot of a project's own PROTO, which the import report names by the robot it stands in
     for, ``E-puck`` for an ``epuck_custom``), or the first robot node of the file."""
     on_line = None
-    line_of = line_numbers(text)
     for node in every:
         if node.use_name is not None:
             continue
