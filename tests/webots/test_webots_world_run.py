@@ -245,9 +245,11 @@ RADIO = {"radio": 20}
         # Three e-pucks in a row: the middle one's body stands between the beacon and "behind";
         # neither the sender's nor the middle one's own body stops what reaches the middle one.
         ("beacon_in_a_row", {"middle": BOTH, "behind": RADIO}),
+        # A movable box (a Solid with physics) stands between the beacon and "behind".
+        ("beacon_box", {"behind": RADIO, "beside": BOTH}),
     ],
 )
-def test_a_wall_or_a_robot_between_stops_an_infra_red_emitters_packets_not_a_radio_emitters(
+def test_a_wall_a_robot_or_a_box_between_stops_infra_red_packets_not_radio_packets(
     world: str, heard: dict[str, Any], tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     assert _beacon_heard(tmp_path, monkeypatch, world) == heard
