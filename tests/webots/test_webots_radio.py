@@ -12,8 +12,14 @@ import pytest
 from mazesim.webots import controller, prepare
 from mazesim.webots import simulation as simulations
 from mazesim.webots.importer import import_wbt_text
+from mazesim.webots.line_of_sight import LineOfSight
 from mazesim.webots.radio import Radio
-from mazesim.webots.radio_devices import Emitter, Receiver, emitter_from_fields
+from mazesim.webots.radio_devices import (
+    Emitter,
+    Receiver,
+    emitter_from_fields,
+    receiver_from_fields,
+)
 from mazesim.webots.rays import WallBoxes
 from mazesim.webots.scene import read_scene
 from radio_pair import RadioPair
@@ -248,7 +254,7 @@ def test_walls_stop_infra_red_packets_only(
     receiver_at: tuple[float, float, float], infra_red: bool, heard: bool
 ) -> None:
     world, _ = import_wbt_text(WALLED)
-    radio = Radio(WallBoxes(world))
+    radio = Radio(LineOfSight(WallBoxes(world)))
     radio.tune(1, "receiver", 1, listening=True)
     radio.send(0, 1, -1, b"x", infra_red)
     radio.transmit({0: (-0.3, 0.0, 0.0), 1: receiver_at})
@@ -258,10 +264,145 @@ def test_walls_stop_infra_red_packets_only(
 def test_an_emitter_of_type_infra_red_sends_infra_red_packets() -> None:
     world, _ = import_wbt_text(WALLED)
     pair = RadioPair()
-    pair.radio.walls = WallBoxes(world)
+    pair.radio.sight = LineOfSight(WallBoxes(world))
     pair.radio.tune(1, "receiver", 0, listening=True)
     fields = {"type": "infra-red"}
     emitter_from_fields("ir", pair.robots[0], fields).send(b"ir")
     emitter_from_fields("radio", pair.robots[0], {}).send(b"radio")
     pair.radio.transmit({0: (-0.3, 0.0, 0.0), 1: (0.3, 0.0, 0.0)})
     assert [p.data for p in pair.radio.collect(1, "receiver")] == [b"radio"]
+
+
+# --- infra-red: other robots' bodies and movable bodies -------------------------------------
+
+E_PUCK_RADIUS = 0.037
+IN_A_ROW = {0: (-0.3, 0.0, 0.0), 1: (0.0, 0.0, 0.0), 2: (0.3, 0.0, 0.0)}
+
+
+def _heard_in_a_row(radio: Radio, infra_red: bool, poses: Any = None) -> tuple[bool, bool]:
+    """Robot 0 sends one packet; whether robots 1 and 2 hear it."""
+    for robot in (1, 2):
+        radio.tune(robot, "receiver", 1, listening=True)
+    radio.send(0, 1, -1, b"x", infra_red)
+    radio.transmit(poses or IN_A_ROW)
+    return bool(radio.collect(1, "receiver")), bool(radio.collect(2, "receiver"))
+
+
+def test_a_third_robots_body_stops_infra_red_packets_not_the_senders_nor_the_receivers() -> None:
+    sight = LineOfSight(None, [E_PUCK_RADIUS] * 3)
+    assert _heard_in_a_row(Radio(sight), infra_red=True) == (True, False)
+    assert _heard_in_a_row(Radio(sight), infra_red=False) == (True, True), "radio passes"
+    aside = {**IN_A_ROW, 1: (0.0, 0.05, 0.0)}  # a body's edge 13 mm off the line
+    assert _heard_in_a_row(Radio(sight), infra_red=True, poses=aside) == (True, True)
+    grazing = {**IN_A_ROW, 1: (0.0, 0.03, 0.0)}
+    assert _heard_in_a_row(Radio(sight), infra_red=True, poses=grazing) == (True, False)
+    # A robot simulated as walls (no radius) has no body of its own here.
+    assert _heard_in_a_row(Radio(LineOfSight(None, [None] * 3)), infra_red=True) == (True, True)
+
+
+class _Objects:
+    """A world's movable bodies and a supervisor's moves, as the fleet answers them."""
+
+    def __init__(self, bodies: list[tuple[float, float, float]], moves: Any = None) -> None:
+        self.bodies = bodies
+        self.moves = moves or {}
+
+    def body_poses(self) -> list[tuple[float, float, float]]:
+        return self.bodies
+
+    def node_moves(self) -> dict[int, Any]:
+        return dict(self.moves)
+
+
+@pytest.mark.parametrize("kind", ["box", "circle"])
+def test_a_movable_body_stops_infra_red_packets_where_it_is_now(kind: str) -> None:
+    body = {"kind": kind, "center": [0.6, 0.6], "size": [0.05, 0.2], "yaw": 0.0, "radius": 0.05}
+    report = {"bodies": [body]}
+    two = {0: IN_A_ROW[0], 2: IN_A_ROW[2]}
+    objects = _Objects([(0.0, 0.0, 0.0)])  # pushed from its start onto the line
+    radio = Radio(LineOfSight(None, (), report, objects))
+    assert _heard_in_a_row(radio, infra_red=True, poses=two) == (False, False)
+    objects.bodies = [(0.0, 0.3, 0.0)]
+    radio = Radio(LineOfSight(None, (), report, objects))
+    assert _heard_in_a_row(radio, infra_red=True, poses=two)[1], "off the line"
+
+
+def test_a_wall_a_supervisor_moved_stops_infra_red_packets_where_it_is_now() -> None:
+    world, report = import_wbt_text(WALLED)
+    (line,) = report["obstacles"][0]["owners"]
+    moved = {line: ((0.0, 0.0, 0.0), (0.0, 1.0, 0.0))}  # 1 m to the north
+    poses = {0: (-0.3, 0.0, 0.0), 1: (0.3, 0.0, 0.0)}
+    for moves, heard in (({}, False), (moved, True)):
+        radio = Radio(LineOfSight(WallBoxes(world), (), report, _Objects([], moves)))
+        radio.tune(1, "receiver", 1, listening=True)
+        radio.send(0, 1, -1, b"x", True)
+        radio.transmit(poses)
+        assert bool(radio.collect(1, "receiver")) is heard
+
+
+# --- infra-red: the emitter's and the receiver's aperture -----------------------------------
+
+FORWARD_CONE = (1.0, 0.0, 0.0, 0.5)  # along the robot's x axis, 1 rad wide
+
+
+@pytest.mark.parametrize(
+    ("receiver_at", "heard"),
+    [
+        ((0.3, 0.0, 0.0), True),  # straight ahead
+        ((0.3, 0.15, 0.0), True),  # 0.46 rad off the axis
+        ((0.3, 0.2, 0.0), False),  # 0.59 rad off
+        ((-0.3, 0.0, 0.0), False),  # behind
+    ],
+)
+def test_an_infra_red_emitter_sends_only_within_its_cone(
+    receiver_at: tuple[float, float, float], heard: bool
+) -> None:
+    radio = _radio_with_receiver()
+    radio.send(0, 1, -1, b"ir", True, FORWARD_CONE)
+    radio.send(0, 1, -1, b"radio", False, FORWARD_CONE)
+    radio.transmit({0: HERE, 1: receiver_at})
+    expected = [b"ir", b"radio"] if heard else [b"radio"]
+    assert [p.data for p in radio.collect(1, "receiver")] == expected
+
+
+def test_the_cone_turns_with_the_sending_robot_and_the_receivers_own() -> None:
+    radio = _radio_with_receiver()
+    radio.send(0, 1, -1, b"ir", True, FORWARD_CONE)
+    radio.transmit({0: (0.0, 0.0, math.pi), 1: (-0.3, 0.0, 0.0)})  # facing the receiver
+    assert len(radio.collect(1, "receiver")) == 1
+    radio.tune(1, "receiver", 1, True, FORWARD_CONE)
+    # The receiver's own cone: the sender must lie within it (0.4 rad off its axis: yes).
+    for receiver_yaw, heard in ((0.0, False), (math.pi, True), (math.pi - 0.4, True),
+                                (math.pi - 0.6, False)):  # fmt: skip
+        radio.send(0, 1, -1, b"ir", True)
+        radio.send(0, 1, -1, b"radio", False)
+        radio.transmit({0: HERE, 1: (0.3, 0.0, receiver_yaw)})
+        expected = [b"ir", b"radio"] if heard else [b"radio"]
+        assert [p.data for p in radio.collect(1, "receiver")] == expected
+
+
+TURNED = ((0.0, 1.0, 0.0), (-1.0, 0.0, 0.0), (0.0, 0.0, 1.0))  # x axis to the robot's left
+
+
+@pytest.mark.parametrize(
+    ("fields", "axes", "cone"),
+    [
+        ({"type": "infra-red", "aperture": 1.0}, None, (1.0, 0.0, 0.0, 0.5)),
+        ({"type": "infra-red", "aperture": 1.0}, TURNED, (0.0, 1.0, 0.0, 0.5)),
+        ({"type": "infra-red", "aperture": 2 * math.pi}, None, (1.0, 0.0, 0.0, math.pi)),
+        ({"type": "infra-red", "aperture": -1}, None, None),
+        ({"type": "infra-red", "aperture": 0}, None, None),  # Webots: above 0 only
+        ({"type": "infra-red", "aperture": 7.0}, None, None),  # beyond 2 pi: -1
+        ({"type": "infra-red"}, None, None),
+        ({"type": "serial", "aperture": 1.0}, None, None),  # "for infra-red only"
+        ({"aperture": 1.0}, None, None),
+    ],
+)
+def test_the_aperture_field_gives_an_infra_red_devices_cone_around_its_x_axis(
+    fields: dict[str, Any], axes: Any, cone: Any
+) -> None:
+    pair = RadioPair()
+    emitter = emitter_from_fields("e", pair.robots[0], fields, axes)
+    receiver = receiver_from_fields("r", pair.robots[0], fields, axes)
+    assert emitter._cone == (pytest.approx(cone) if cone else None)
+    assert receiver._cone == (pytest.approx(cone) if cone else None)

@@ -212,17 +212,60 @@ def test_a_supervisor_sees_and_moves_every_robot_and_its_own_emitter_reaches_the
     assert shepherd.distance_m == 0.0
 
 
-def test_a_wall_stops_an_infra_red_emitters_packets_but_not_a_radio_emitters(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
-) -> None:
+def _beacon_heard(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, world: str, beacon: str | None = None
+) -> dict[str, dict[str, int]]:
+    """Runs a world where a beacon sends 20 packets from each of its infra-red and radio
+    emitters (its controller ``beacon``, or the Python one) and the other robots count what
+    they hear: their counts by name."""
     monkeypatch.setenv("SWARM_LOG", str(tmp_path))
-    run = run_world(str(SWARM / "worlds" / "beacon_wall.wbt"), seconds=2.0)
-    assert [r.exit_status for r in run.robots] == [0, 0, 0]
-    behind = json.loads((tmp_path / "behind.json").read_text())
-    beside = json.loads((tmp_path / "beside.json").read_text())
-    # The beacon sent 20 packets from each emitter; the wall stands between it and "behind".
-    assert behind == {"radio": 20}
-    assert beside == {"infra-red": 20, "radio": 20}
+    monkeypatch.setenv("MAZESIM_CACHE", str(tmp_path / "cache"))
+    run = run_world(
+        str(SWARM / "worlds" / f"{world}.wbt"),
+        seconds=2.0,
+        controllers={"beacon": beacon} if beacon else None,
+    )
+    assert [r.exit_status for r in run.robots] == [0] * len(run.robots)
+    return {
+        r.name: json.loads((tmp_path / f"{r.name}.json").read_text())
+        for r in run.robots
+        if r.name != "beacon"
+    }
+
+
+BOTH = {"infra-red": 20, "radio": 20}
+RADIO = {"radio": 20}
+
+
+@pytest.mark.parametrize(
+    ("world", "heard"),
+    [
+        # The wall stands between the beacon and "behind".
+        ("beacon_wall", {"behind": RADIO, "beside": BOTH}),
+        # Three e-pucks in a row: the middle one's body stands between the beacon and "behind";
+        # neither the sender's nor the middle one's own body stops what reaches the middle one.
+        ("beacon_in_a_row", {"middle": BOTH, "behind": RADIO}),
+        # A movable box (a Solid with physics) stands between the beacon and "behind".
+        ("beacon_box", {"behind": RADIO, "beside": BOTH}),
+    ],
+)
+def test_a_wall_a_robot_or_a_box_between_stops_infra_red_packets_not_radio_packets(
+    world: str, heard: dict[str, Any], tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    assert _beacon_heard(tmp_path, monkeypatch, world) == heard
+
+
+@pytest.mark.parametrize("language", ["python", "c"])
+def test_an_infra_red_emitter_sends_only_within_its_aperture(
+    language: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    if language == "c" and shutil.which("gcc") is None:
+        pytest.skip("needs gcc")
+    beacon = str(C_CONTROLLERS / "c_beacon" / "c_beacon.c") if language == "c" else None
+    # Both emitters have an aperture of 1 rad around the beacon's heading (east); the radio
+    # one's is ignored, as Webots ignores it.
+    heard = _beacon_heard(tmp_path, monkeypatch, "beacon_cone", beacon)
+    assert heard == {"ahead": BOTH, "behind": RADIO, "beside": RADIO}
 
 
 def test_the_command_runs_the_whole_world_and_reports_every_robot(tmp_path: Path) -> None:

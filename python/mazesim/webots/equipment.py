@@ -127,7 +127,7 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
                 z=max(mount.z, 0.001),
             ),
         ),
-        "Emitter": lambda: emitter_from_fields(name, simulation, fields),
+        "Emitter": lambda: emitter_from_fields(name, simulation, fields, entry.get("axes")),
         "Receiver": lambda: receiver_from_fields(name, simulation, fields, entry.get("axes")),
         "Speaker": lambda: Speaker(name, simulation),
         "Display": lambda: Display(name, simulation),

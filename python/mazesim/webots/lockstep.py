@@ -49,6 +49,7 @@ from mazesim._core import RobotProfile, Simulator, World
 from mazesim._toml import dump_toml, load_toml
 from mazesim.errors import ControllerBuildError, MazesimIOError, WorldFormatError
 from mazesim.webots.controller_process import ControllerJob, answer, state_after_step
+from mazesim.webots.line_of_sight import LineOfSight, robot_body_radii
 from mazesim.webots.own_sensors import own_sensors
 from mazesim.webots.process_template import ControllerProcesses
 from mazesim.webots.proto_fields import declared_fields
@@ -378,8 +379,9 @@ def run_world(
         for index, job in jobs.items()
     }
     fleet = Fleet(robots, simulators, report)
-    # The walls stop infra-red packets; a supervisor's moves of them do not.
-    fleet.radio.walls = WallBoxes(world)
+    # The walls (where a supervisor moved them), the robots' bodies and the movable bodies
+    # stop infra-red packets.
+    fleet.radio.sight = LineOfSight(WallBoxes(world), robot_body_radii(report), report, fleet)
     traction = WorldTraction(scenes, robots, simulators)
     movable = [robot.get("profile") is not None for robot in robots]
     started = time.perf_counter()

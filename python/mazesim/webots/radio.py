@@ -22,9 +22,20 @@ https://cyberbotics.com/doc/reference/receiver):
   the same step arrive in the order of the robots, then of sending, so a run is repeatable;
 - "Signals of type "radio" (the default) and "serial" are transmitted without taking obstacles
   into account. Signals of type "infra-red," however, do take potential obstacles between the
-  emitter and the receiver into account": an infra-red packet reaches a receiver only when the
-  segment between the two robots' centres, seen from above, meets none of the world's walls
-  (those with a bounding object; the radio's :attr:`~Radio.walls`).
+  emitter and the receiver into account. Any solid object (solid, robots, etc ...) with a
+  defined bounding object is a potential obstacle [...] The structure of the emitting or
+  receiving robot itself will not block an "infra-red" transmission": an infra-red packet
+  reaches a receiver only when the segment between the two robots' centres, seen from above,
+  meets none of the obstacles of the radio's :attr:`~Radio.sight` (the world's walls where a
+  supervisor moved them, the other robots' bodies and the movable bodies, all as they stand
+  when the packet is sent);
+- an infra-red Emitter's ``aperture`` is the "opening angle of the emission cone (in radians);
+  for "infra-red" only", an infra-red Receiver's that of its reception cone, -1 (the default)
+  all around: such a packet reaches a receiver only when the receiving robot's centre lies
+  within the emitter's cone and the sending robot's within the receiver's. Webots' source
+  (``WbReceiver::checkApertureAndRange``) takes an aperture above 0 only, around the device's
+  x axis; the reference manual names its z axis, which mazesim takes for a file before R2022a
+  (:class:`Cone`).
 
 A run of one robot has a radio too: nothing reaches its own receiver.
 """
@@ -36,17 +47,19 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
-import numpy as np
-
 if TYPE_CHECKING:
-    from mazesim.webots.rays import WallBoxes
+    from mazesim.webots.line_of_sight import LineOfSight, Sight
 
-__all__ = ["CHANNEL_BROADCAST", "UNLIMITED", "Packet", "Radio"]
+__all__ = ["CHANNEL_BROADCAST", "UNLIMITED", "Cone", "Packet", "Radio"]
 
 #: The channel of an emitter that sends on every channel, or a receiver that listens to all.
 CHANNEL_BROADCAST = -1
 #: A range, buffer size or maximum range without limit.
 UNLIMITED = -1
+
+#: An infra-red device's cone: its axis (x, y, z in its robot's frame, x forward, y left, z
+#: up) and half its ``aperture`` (radians).
+Cone = tuple[float, float, float, float]
 
 
 @dataclass(frozen=True)
@@ -78,6 +91,7 @@ class _Sent:
     range_m: float
     data: bytes
     infra_red: bool
+    cone: Cone | None
 
 
 @dataclass
@@ -86,6 +100,7 @@ class _Tuning:
 
     channel: int
     listening: bool
+    cone: Cone | None = None
     arrived: list[Packet] = field(default_factory=list)
 
 
@@ -101,17 +116,23 @@ class Radio:
     name.
 
     Attributes:
-        walls: The world's walls, which stop infra-red packets; None: nothing stops them.
+        sight: The world's obstacles, which stop infra-red packets; None: nothing stops them.
     """
 
-    def __init__(self, walls: WallBoxes | None = None) -> None:
-        self.walls = walls
+    def __init__(self, sight: LineOfSight | None = None) -> None:
+        self.sight = sight
         self._in_transit: list[_Sent] = []
         self._receivers: dict[tuple[int, str], _Tuning] = {}
         self._sent = 0
 
     def send(
-        self, robot: int, channel: int, range_m: float, data: bytes, infra_red: bool = False
+        self,
+        robot: int,
+        channel: int,
+        range_m: float,
+        data: bytes,
+        infra_red: bool = False,
+        cone: Cone | None = None,
     ) -> None:
         """Puts a packet on its way; it arrives at the next :meth:`transmit`.
 
@@ -120,19 +141,32 @@ class Radio:
             channel: The emitter's channel (-1: every channel).
             range_m: The emitter's range in metres (-1: no limit).
             data: The packet.
-            infra_red: Whether the emitter is of type "infra-red" (walls stop the packet).
+            infra_red: Whether the emitter is of type "infra-red" (obstacles stop the packet).
+            cone: An infra-red emitter's emission cone (None: all around).
         """
         self._sent += 1
         self._in_transit.append(
-            _Sent(robot, self._sent, channel, float(range_m), bytes(data), bool(infra_red))
+            _Sent(
+                robot,
+                self._sent,
+                channel,
+                float(range_m),
+                bytes(data),
+                bool(infra_red),
+                cone if infra_red else None,
+            )
         )
 
-    def tune(self, robot: int, receiver: str, channel: int, listening: bool) -> None:
-        """Sets a receiver's channel and whether it listens; a receiver that stops listening
-        keeps what arrived before."""
+    def tune(
+        self, robot: int, receiver: str, channel: int, listening: bool, cone: Cone | None = None
+    ) -> None:
+        """Sets a receiver's channel, whether it listens and its reception cone for infra-red
+        packets (None: all around); a receiver that stops listening keeps what arrived
+        before."""
         tuning = self._receivers.setdefault((robot, receiver), _Tuning(channel, listening))
         tuning.channel = channel
         tuning.listening = listening
+        tuning.cone = cone
 
     def transmit(self, poses: Mapping[int, tuple[float, float, float]]) -> None:
         """Delivers the packets sent since the last call to the listening receivers they reach.
@@ -142,6 +176,7 @@ class Radio:
         """
         sent = sorted(self._in_transit, key=lambda p: (p.robot, p.order))
         self._in_transit = []
+        sight: Sight | None = None
         for (robot, _), tuning in sorted(self._receivers.items()):
             if not tuning.listening or robot not in poses:
                 continue
@@ -153,19 +188,18 @@ class Radio:
                 arrived = _arrival(packet, poses[packet.robot], poses[robot])
                 if arrived is None:
                     continue
-                if packet.infra_red and self._walled_off(poses[packet.robot], poses[robot]):
-                    continue
+                if packet.infra_red:
+                    sender, receiver = poses[packet.robot], poses[robot]
+                    if not (
+                        _within(packet.cone, sender, receiver)
+                        and _within(tuning.cone, receiver, sender)
+                    ):
+                        continue
+                    if self.sight is not None:
+                        sight = sight or self.sight.at(poses)
+                        if sight.blocked(packet.robot, robot):
+                            continue
                 tuning.arrived.append(arrived)
-
-    def _walled_off(
-        self, sender: tuple[float, float, float], receiver: tuple[float, float, float]
-    ) -> bool:
-        """Whether a wall meets the segment between two robots' centres, seen from above."""
-        if self.walls is None:
-            return False
-        towards = np.array([[receiver[0] - sender[0], receiver[1] - sender[1]]])
-        along, _ = self.walls.cast_walls((sender[0], sender[1]), towards)
-        return bool(along[0] < 1.0)
 
     def clear(self) -> None:
         """Drops the packets in transit and those waiting for their receivers (a reset of the
@@ -181,6 +215,24 @@ class Radio:
             return []
         arrived, tuning.arrived = tuning.arrived, []
         return arrived
+
+
+def _within(
+    cone: Cone | None, device: tuple[float, float, float], other: tuple[float, float, float]
+) -> bool:
+    """Whether the robot at ``other`` lies within the cone of a device of the robot at
+    ``device`` (x, y, yaw): the angle between the cone's axis and the way from one robot's
+    centre to the other's is at most half the aperture."""
+    if cone is None:
+        return True
+    ax, ay, az, half = cone
+    c, s = math.cos(device[2]), math.sin(device[2])
+    wx, wy = c * ax - s * ay, s * ax + c * ay
+    dx, dy = other[0] - device[0], other[1] - device[1]
+    norm = math.sqrt(wx * wx + wy * wy + az * az) * math.hypot(dx, dy)
+    if norm == 0.0:
+        return True
+    return math.acos(max(-1.0, min(1.0, (wx * dx + wy * dy) / norm))) <= half
 
 
 def _arrival(

@@ -4,9 +4,11 @@
 The e-puck's own ``emitter`` and ``receiver`` use the E-puck PROTO's channel 1 and no range limit
 (the PROTO's Emitter sets only its ``channel``, so its ``range`` is the node's default, -1);
 an Emitter or Receiver node of the world file (in an extension slot, or among a robot's children)
-brings its own ``channel``, ``range``, ``maxRange`` and ``bufferSize`` fields, and an Emitter its
-``type``, with the node's defaults (channel 0, range -1, unlimited buffers, "radio") where the
-file gives none.
+brings its own ``channel``, ``range``, ``maxRange`` and ``bufferSize`` fields, and its ``type``
+and ``aperture``, with the node's defaults (channel 0, range -1, unlimited buffers, "radio",
+aperture -1) where the file gives none. An infra-red device's ``aperture`` between 0 (excluded)
+and 2 pi makes a cone around its x axis in its robot (its z axis in a file before R2022a, see
+:mod:`mazesim.webots.radio`), turned as its mount and its own ``rotation`` turn it.
 
 Semantics follow Webots' reference manual (https://cyberbotics.com/doc/reference/emitter,
 https://cyberbotics.com/doc/reference/receiver): ``send`` returns 0 when the packets queued in
@@ -28,7 +30,7 @@ from mazesim.webots.devices import Device, _print_error, _Sensor, webots_propert
 from mazesim.webots.frames import ENU_TO_NUE
 from mazesim.webots.inert import NotSimulated
 from mazesim.webots.node_types import node_type
-from mazesim.webots.radio import CHANNEL_BROADCAST, UNLIMITED, Packet
+from mazesim.webots.radio import CHANNEL_BROADCAST, UNLIMITED, Cone, Packet
 
 if TYPE_CHECKING:
     from mazesim.webots.simulation import RobotSimulation
@@ -81,7 +83,8 @@ class _Tuned:
 
 class Emitter(_Tuned, NotSimulated, Device):
     """A radio emitter: ``send``, channel, range and buffer size; an infra-red one
-    (``infra_red``, the node's ``type "infra-red"``) sends only along a line of sight."""
+    (``infra_red``, the node's ``type "infra-red"``) sends only along a line of sight, within
+    its ``cone`` (None: all around)."""
 
     _node_type = node_type("EMITTER")
 
@@ -94,10 +97,12 @@ class Emitter(_Tuned, NotSimulated, Device):
         max_range: float = UNLIMITED,
         buffer_size: int = UNLIMITED,
         infra_red: bool = False,
+        cone: Cone | None = None,
     ) -> None:
         super().__init__(name, simulation)
         self._channel = int(channel)
         self._infra_red = bool(infra_red)
+        self._cone = cone
         self._max_range = float(max_range)
         self._range = self._clamped(float(range_m))
         self._buffer_size = int(buffer_size)
@@ -130,7 +135,7 @@ class Emitter(_Tuned, NotSimulated, Device):
             return 0
         self._queued_bytes += len(data)
         simulation.radio.send(
-            simulation.robot_index, self._channel, self._range, data, self._infra_red
+            simulation.robot_index, self._channel, self._range, data, self._infra_red, self._cone
         )
         return 1
 
@@ -156,7 +161,8 @@ class Emitter(_Tuned, NotSimulated, Device):
 
 
 class Receiver(_Tuned, NotSimulated, _Sensor):
-    """A radio receiver: its queue of packets, sampled every sampling period."""
+    """A radio receiver: its queue of packets, sampled every sampling period; an infra-red
+    one hears only within its ``cone`` (None: all around)."""
 
     _node_type = node_type("RECEIVER")
 
@@ -169,14 +175,13 @@ class Receiver(_Tuned, NotSimulated, _Sensor):
         channel: int = E_PUCK_CHANNEL,
         buffer_size: int = UNLIMITED,
         axes: Axes | None = None,
+        cone: Cone | None = None,
     ) -> None:
         super().__init__(name, simulation)
         self._channel = int(channel)
         self._buffer_size = int(buffer_size)
-        if axes is None:
-            # The E-puck PROTO's own receiver is unturned in the robot's inside.
-            axes = Y_UP_AXES if simulation.scene.y_up_devices else Z_UP_AXES
-        self._axes = axes
+        self._axes = axes or _unturned(simulation)
+        self._cone = cone
         self._queue: deque[Packet] = deque()
         self._queued_bytes = 0
         self._resets = simulation.last_reset.count
@@ -194,7 +199,9 @@ class Receiver(_Tuned, NotSimulated, _Sensor):
     def _tune(self) -> None:
         simulation = self._simulation
         listening = self._period_ms > 0
-        simulation.radio.tune(simulation.robot_index, self._name, self._channel, listening)
+        simulation.radio.tune(
+            simulation.robot_index, self._name, self._channel, listening, self._cone
+        )
 
     def enable(self, samplingPeriod: int) -> None:
         """Listens from now on; what arrives is in the queue at each end of a sampling period."""
@@ -312,10 +319,11 @@ def _float_field(fields: Mapping[str, Any], name: str, default: float) -> float:
 
 
 def emitter_from_fields(
-    name: str, simulation: RobotSimulation, fields: Mapping[str, Any]
+    name: str, simulation: RobotSimulation, fields: Mapping[str, Any], axes: Any = None
 ) -> Emitter:
     """An Emitter node of the world file, with its fields (Webots' node defaults: type
-    "radio", channel 0, range -1, maxRange -1, bufferSize -1)."""
+    "radio", channel 0, range -1, maxRange -1, bufferSize -1, aperture -1) and its axes in
+    the robot's frame (as :func:`receiver_from_fields`)."""
     return Emitter(
         name,
         simulation,
@@ -324,6 +332,7 @@ def emitter_from_fields(
         max_range=_float_field(fields, "maxRange", UNLIMITED),
         buffer_size=_int_field(fields, "bufferSize", UNLIMITED),
         infra_red=fields.get("type") == "infra-red",
+        cone=_cone(simulation, fields, axes),
     )
 
 
@@ -339,7 +348,25 @@ def receiver_from_fields(
         channel=_int_field(fields, "channel", 0),
         buffer_size=_int_field(fields, "bufferSize", UNLIMITED),
         axes=_axes(axes),
+        cone=_cone(simulation, fields, axes),
     )
+
+
+def _unturned(simulation: RobotSimulation) -> Axes:
+    """The axes of a device unturned in the robot's inside (the E-puck PROTO's own)."""
+    return Y_UP_AXES if simulation.scene.y_up_devices else Z_UP_AXES
+
+
+def _cone(simulation: RobotSimulation, fields: Mapping[str, Any], axes: Any) -> Cone | None:
+    """An infra-red device's cone: its ``aperture`` field above 0 and at most 2 pi (else
+    none, as Webots takes -1 and 0), around its x axis (its z axis in a file before
+    R2022a)."""
+    aperture = _float_field(fields, "aperture", UNLIMITED)
+    if fields.get("type") != "infra-red" or not 0.0 < aperture <= math.tau:
+        return None
+    own = _axes(axes) or _unturned(simulation)
+    axis = own[2] if simulation.scene.y_up_devices else own[0]
+    return (*axis, aperture / 2.0)
 
 
 def _axes(value: Any) -> Axes | None:

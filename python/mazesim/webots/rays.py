@@ -32,6 +32,18 @@ class WallBoxes:
             boxes = np.concatenate([boxes, np.asarray(world.sensed_wall_boxes()).reshape(-1, 6)])
             more = np.asarray(world.sensed_wall_colours(), dtype=np.float64).reshape(-1, 3)
             colours = np.concatenate([colours, more])
+        self._take(boxes, colours)
+
+    @classmethod
+    def of_boxes(cls, boxes: list[tuple[float, float, float, float, float, float]]) -> WallBoxes:
+        """Boxes (centre x, y, size x, y, yaw, reflectance each) as walls, of no colour."""
+        made = cls.__new__(cls)
+        array = np.asarray(boxes, dtype=np.float64).reshape(-1, 6)
+        made._take(array, np.full((array.shape[0], 3), np.nan))
+        return made
+
+    def _take(self, boxes: Floats, colours: Floats) -> None:
+        """Holds ``boxes`` (N, 6) and their ``colours`` (N, 3)."""
         self.center = boxes[:, 0:2]
         self.half = boxes[:, 2:4] / 2.0
         self.cos = np.cos(boxes[:, 4])

@@ -32,8 +32,8 @@ from typing import Any, TypedDict
 
 import numpy as np
 
-from mazesim._core import RobotProfile
 from mazesim.webots.frames import WORLD_FRAME, Frame, nue_to_enu, placed
+from mazesim.webots.line_of_sight import disc_entries, moved_walls, robot_body_radii
 from mazesim.webots.proto.syntax import (
     Field,
     Node,
@@ -376,7 +376,6 @@ class Recogniser:
         """Over the ``objects`` of a world imported with ``report``, for a camera of the robot
         on ``settings["robot_line"]``; ``old_frame``: the world is of a release before R2022a
         (Webots' camera frame then x right, y up, z backward)."""
-        from mazesim.webots.simulation import robot_profile_name
         from mazesim.webots.solids import held_by_line
 
         self.settings = settings
@@ -394,12 +393,7 @@ class Recogniser:
         #: The camera's own robot's index (its body hides nothing from it).
         self._own_robot = self._robot.get(robot_line)
         #: The body radius of each robot simulated as one (None: its shapes are walls).
-        self._radii: list[float | None] = []
-        for robot in robots:
-            profile = robot.get("profile")
-            name = robot_profile_name({"robot_profile": profile})
-            radius = float(RobotProfile.builtin(name).body_radius)
-            self._radii.append(radius if profile is not None else None)
+        self._radii = robot_body_radii(report)
         held = held_by_line(report)
         #: The walls each node holds, by its line (a supervisor's move of it moves them).
         self._held_walls = {line: list(h.walls) for line, h in held.items() if h.walls}
@@ -472,8 +466,7 @@ class Recogniser:
             if candidate is not None:
                 found.append(candidate)
         if walls is not None and int(self.settings["occlusion"]) > 0 and found:
-            for line, (before, now) in moves.items():
-                walls = walls.moved(self._held_walls.get(int(line), []), before, now)
+            walls = moved_walls(walls, self._held_walls, moves)
             found = self._unhidden(found, camera, walls, robot_poses)
         limit = int(self.settings["max_objects"])
         if 0 < limit < len(found):
@@ -608,20 +601,21 @@ class Recogniser:
         length = math.hypot(dx, dy)
         if length == 0.0:
             return False
-        ux, uy = dx / length, dy / length
         itself = self._robot.get(candidate.line)
-        for index, (pose, radius) in enumerate(zip(robot_poses, self._radii)):
-            if radius is None or index in (self._own_robot, itself):
-                continue
-            wx, wy = float(pose[0]) - camera.x, float(pose[1]) - camera.y
-            along = wx * ux + wy * uy
-            across = wx * wx + wy * wy - along * along
-            if across >= radius * radius:
-                continue
-            enter = along - math.sqrt(radius * radius - across)
-            if 0.0 <= enter and length - enter > candidate.depth / 2.0:
-                return True
-        return False
+        count = min(len(robot_poses), len(self._radii))
+        radii = np.array(
+            [
+                math.nan if radius is None or index in (self._own_robot, itself) else radius
+                for index, radius in enumerate(self._radii[:count])
+            ],
+            dtype=np.float64,
+        )
+        centres = np.array(
+            [(float(p[0]), float(p[1])) for p in robot_poses[:count]], dtype=np.float64
+        ).reshape(-1, 2)
+        unit = np.array([[dx / length, dy / length]], dtype=np.float64)
+        enter = disc_entries((camera.x, camera.y), unit, centres, radii)[0]
+        return bool(np.any((enter >= 0.0) & (length - enter > candidate.depth / 2.0)))
 
 
 @dataclass(frozen=True)
