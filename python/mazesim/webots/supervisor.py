@@ -353,6 +353,15 @@ class Field(NotSimulated):
             return getters[self._type]()
         return self.c_sf_string()
 
+    @value.setter
+    def value(self, value: Any) -> None:
+        if self._type == self.SF_VEC3F:
+            self.setSFVec3f(value)
+        elif self._type == self.SF_ROTATION:
+            self.setSFRotation(value)
+        else:
+            self.setSFString(value)
+
     # Webots' Python API (its ctypes ``Field``, since R2023b) gives every single-value getter
     # as ``return self.value``: it reads the field by its own type whatever the getter's name
     # (``getSFVec3f()`` of a rotation field is its four numbers); the C API's typed functions
@@ -391,15 +400,6 @@ class Field(NotSimulated):
         """The field's value, read by its own type (see :attr:`value`): ``name``,
         ``customData``, ``controller``..."""
         return self.value
-
-    @value.setter
-    def value(self, value: Any) -> None:
-        if self._type == self.SF_VEC3F:
-            self.setSFVec3f(value)
-        elif self._type == self.SF_ROTATION:
-            self.setSFRotation(value)
-        else:
-            self.setSFString(value)
 
 
 def _padded(values: list[float], count: int) -> list[float]:
