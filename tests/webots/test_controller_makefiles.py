@@ -1,5 +1,5 @@
-"""A C controller's Makefile settings (INCLUDE, CFLAGS, LIBRARIES, C_SOURCES), as Webots'
-Makefile.include takes them, are honoured by mazesim's build (#33)."""
+"""A C controller's Makefile settings (INCLUDE, CFLAGS, LIBRARIES, C_SOURCES, VPATH), as
+Webots' Makefile.include takes them, are honoured by mazesim's build (#33)."""
 
 from __future__ import annotations
 
@@ -80,17 +80,39 @@ def test_include_folders_defines_and_exactly_the_listed_sources_are_built(
     common.mkdir()
     (common / "gain.h").write_text("double gain(void);\n")
     (common / "gain.c").write_text('#include "gain.h"\ndouble gain(void) { return GAIN * 1.5; }\n')
+    # A source listed by its file name alone, found by make in a folder of VPATH.
+    (tmp_path / "lib").mkdir()
+    (tmp_path / "lib" / "offset.c").write_text("double offset(void) { return 1.0; }\n")
     source = printer(
         tmp_path,
         "probe",
-        "#include <gain.h>\n",
-        "gain()",
+        "#include <gain.h>\ndouble offset(void);\n",
+        "gain() + offset()",
         'INCLUDE = -I"../common"\nCFLAGS = -DGAIN=4 -std=gnu99\n'
-        "C_SOURCES = probe.c ../common/gain.c\n",
+        "C_SOURCES = probe.c ../common/gain.c offset.c\nVPATH = ../lib\n",
     )
     # A source of the folder the Makefile does not list: left out, as Webots leaves it out.
     (source.parent / "draft.c").write_text("this is not C\n")
-    assert printed(capfd, source) == ["value 6"]
+    assert printed(capfd, source) == ["value 7"]
+
+
+def test_sources_are_found_in_the_folders_of_vpath_and_the_vpath_directive(tmp_path: Path) -> None:
+    for place in ("lib", "shared", "other", "probe"):
+        (tmp_path / place).mkdir()
+    (tmp_path / "lib" / "odometry.c").write_text("")
+    (tmp_path / "shared" / "gain.cpp").write_text("")
+    (tmp_path / "other" / "notes.c").write_text("")
+    settings = read_makefile(
+        tmp_path / "probe",
+        "LIB = ../lib\nVPATH = $(LIB):../absent\nvpath %.cpp ../shared\nvpath %.h ../other\n"
+        "C_SOURCES = odometry.c notes.c\nCXX_SOURCES = gain.cpp\n",
+    )
+    # make finds odometry.c through VPATH, gain.cpp through the vpath directive for .cpp
+    # files; notes.c only lies in a folder searched for headers, so it is not found.
+    assert settings.sources == [
+        (tmp_path / "lib" / "odometry.c").resolve(),
+        (tmp_path / "shared" / "gain.cpp").resolve(),
+    ]
 
 
 @NEEDS_COMPILERS

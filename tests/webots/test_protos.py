@@ -34,6 +34,19 @@ def _private_cache(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.delenv("MAZESIM_OFFLINE", raising=False)
 
 
+def _offline_import(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path, protos: list[str], nodes: str
+) -> dict[str, Any]:
+    """The import report of an R2023b world of ``nodes`` naming Webots' ``protos``
+    (``solids/protos/SolidTorus``...) by EXTERNPROTO, offline: their stand-ins are taken."""
+    monkeypatch.setenv("MAZESIM_OFFLINE", "1")
+    head = "#VRML_SIM R2023b utf8\n" + "".join(
+        f'EXTERNPROTO "webots://projects/objects/{proto}.proto"\n' for proto in protos
+    )
+    _, report = import_wbt_text(head + nodes, str(tmp_path / "offline.wbt"))
+    return report
+
+
 def _boxes(report: Mapping[str, Any]) -> list[tuple[list[float], list[float]]]:
     return [(o["center"], o["size"]) for o in report["obstacles"] if o["kind"] == "box"]
 
@@ -283,6 +296,30 @@ def test_balls_and_barrels_stand_in_with_their_documented_geometry(
     assert (ball["owners"], can["owners"]) == ([5], [7])
 
 
+def test_a_solid_torus_stands_in_as_its_ring_of_spheres(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    """Webots' guide: a SolidTorus is physically a set of ``subdivision`` spheres; here of radius
+    0.1 on a circle of radius 0.07 about its translation. One without a bounding object is no
+    obstacle."""
+    report = _offline_import(
+        monkeypatch,
+        tmp_path,
+        ["solids/protos/SolidTorus"],
+        "DEF Obs1 SolidTorus {\n  translation -0.5 0.75 0\n  majorRadius 0.07\n"
+        "  minorRadius 0.1\n  subdivision 4\n}\n"
+        "SolidTorus { translation 1 1 0 enableBoundingObject FALSE }\nE-puck { }\n",
+    )
+    assert set(report["protos"]["stand_ins"]) == {"SolidTorus"}
+    circles = [(o["center"], o["radius"], o["owners"]) for o in report["obstacles"]]
+    assert circles == [
+        ([-0.43, 0.75], 0.1, [3]),
+        ([-0.5, 0.82], 0.1, [3]),
+        ([-0.57, 0.75], 0.1, [3]),
+        ([-0.5, 0.68], 0.1, [3]),
+    ]
+
+
 def test_a_projects_robot_proto_is_the_robot_with_its_devices() -> None:
     _, report = import_wbt(DATA / "project" / "worlds" / "robot_proto.wbt")
     assert report["robot_model"] == "E-puck" and report["robot_line"] == 4
@@ -488,18 +525,17 @@ def test_a_cabinet_stands_in_as_the_envelope_of_its_frame(
 ) -> None:
     """A cabinet reaches from its origin forward by its depth, is as wide as its columns and
     frame and centred across; one hung on a wall (its rows above the robot) is not a wall."""
-    monkeypatch.setenv("MAZESIM_OFFLINE", "1")
-    text = (
-        "#VRML_SIM R2023b utf8\n"
-        'EXTERNPROTO "webots://projects/objects/cabinet/protos/Cabinet.proto"\n'
+    report = _offline_import(
+        monkeypatch,
+        tmp_path,
+        ["cabinet/protos/Cabinet"],
         'Cabinet { translation 1 0 0 name "default" }\n'
         'Cabinet { translation -1 0 0 rotation 0 0 1 3.14159 name "small" depth 0.3 '
         "outerThickness 0.02 rowsHeights [ 0.2 0.2 ] columnsWidths [ 0.5 ] "
         'layout [ "Shelf (1, 2, 1, 0)" ] handle CabinetHandle { } }\n'
         'Cabinet { translation 0 1 0.9 name "hung" }\n'
-        "E-puck { }\n"
+        "E-puck { }\n",
     )
-    _, report = import_wbt_text(text, str(tmp_path / "cabinets.wbt"))
     assert set(report["protos"]["stand_ins"]) == {"Cabinet"}
     default, small = _boxes(report)
     # 0.5 deep forward of (1, 0); 0.06 + 0.74 wide.

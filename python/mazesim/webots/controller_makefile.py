@@ -3,7 +3,8 @@
 Webots builds a C or C++ controller with the ``Makefile`` of its folder, which sets variables
 and then includes Webots' ``Makefile.include`` (Webots' user guide, "Using Webots Makefiles"):
 ``C_SOURCES``, ``CXX_SOURCES`` or ``CPP_SOURCES`` (the sources to build, all of the folder's
-when none is set), ``INCLUDE`` (``-I`` folders), ``CFLAGS`` and ``LIBRARIES`` (``-L`` folders,
+when none is set, found in the folders make's ``VPATH`` variable and ``vpath`` directives for
+sources name too), ``INCLUDE`` (``-I`` folders), ``CFLAGS`` and ``LIBRARIES`` (``-L`` folders,
 ``-l`` libraries). :func:`read_makefile` reads their simple assignments (``=``, ``:=``, ``+=``,
 ``?=``, lines continued by a backslash, ``$(VAR)`` naming a variable set before), relative paths
 being relative to the controller's folder. Words naming Webots' own folders (``$(WEBOTS_HOME)``)
@@ -25,6 +26,12 @@ __all__ = ["LIBRARY_PACKAGES", "MAKEFILES", "MakefileSettings", "makefile", "rea
 MAKEFILES = ("GNUmakefile", "makefile", "Makefile")
 #: The variables of Webots' ``Makefile.include`` naming a controller's sources.
 SOURCE_VARIABLES = ("C_SOURCES", "CXX_SOURCES", "CPP_SOURCES")
+#: Make's search path for every prerequisite (folders separated by colons or blanks).
+SEARCH_VARIABLE = "VPATH"
+#: A ``vpath PATTERN FOLDERS`` directive: make's search path for the names the pattern matches.
+_VPATH_DIRECTIVE = re.compile(r"^vpath\s+(\S+)\s+(.+)$")
+#: The names a source has (a ``vpath`` pattern for them is a search path for sources).
+_SOURCE_SUFFIXES = (".c", ".cc", ".cpp", ".cxx", ".C")
 #: The variables whose options the build takes.
 OPTION_VARIABLES = ("INCLUDE", "CFLAGS", "LIBRARIES")
 #: Webots' own controller libraries, which mazesim's library stands for.
@@ -191,13 +198,29 @@ def _options(words: list[str], name: str, folder: Path, settings: MakefileSettin
             settings.ignored.append(f"{word} in {name}")
 
 
-def _sources(names: list[str], folder: Path) -> list[Path]:
+def _search_folders(text: str, values: dict[str, str]) -> list[str]:
+    """The folders make searches for a source it does not find in the controller's folder: the
+    ``VPATH`` variable's and those of the ``vpath`` directives whose pattern names sources, in
+    the Makefile's order, relative to the controller's folder."""
+    folders = values.get(SEARCH_VARIABLE, "").replace(":", " ").split()
+    for line in _logical_lines(text):
+        directive = _VPATH_DIRECTIVE.match(line)
+        if directive is None:
+            continue
+        pattern, places = directive.groups()
+        if pattern == "%" or pattern.endswith(_SOURCE_SUFFIXES):
+            folders += _expand(places, values, "", []).replace(":", " ").split()
+    return [f"{place.rstrip('/')}/" for place in folders]
+
+
+def _sources(names: list[str], folder: Path, search: list[str]) -> list[Path]:
     """The listed sources, found as make finds them: Webots' ``Makefile.include`` compiles each
-    under its file name alone and make finds it by that name in the controller's folder or,
-    through ``vpath``, in the folders of the listed sources (a source listed by a path that does
-    not exist is found under its name in another listed folder). A name found nowhere is left
-    out (make would stop there; the link then names what is undefined)."""
-    places = sorted({f"{Path(name).parent.as_posix()}/" for name in names})
+    under its file name alone and make finds it by that name in the controller's folder, in the
+    ``search`` folders (``VPATH``, ``vpath``), or, through Webots' own ``vpath``, in the folders
+    of the listed sources (a source listed by a path that does not exist is found under its name
+    in another listed folder). A name found nowhere is left out (make would stop there; the
+    link then names what is undefined)."""
+    places = search + sorted({f"{Path(name).parent.as_posix()}/" for name in names})
     found: list[Path] = []
     for name in names:
         candidates = [folder / name, folder / Path(name).name]
@@ -219,7 +242,8 @@ def read_makefile(folder: Path, text: str) -> MakefileSettings:
             name = SOURCE_VARIABLES[index]
             names += [w for w in _words(values[name], name, settings.ignored)]
         kept = [name for name in names if not _WEBOTS_FOLDER.search(name)]
-        settings.sources = _sources(kept, folder) if kept else None
+        search = _search_folders(text, values)
+        settings.sources = _sources(kept, folder, search) if kept else None
     for name in OPTION_VARIABLES:
         if name in values:
             _options(_words(values[name], name, settings.ignored), name, folder, settings)

@@ -207,7 +207,7 @@ class Field(NotSimulated):
             f"{self.getTypeName()}."
         )
 
-    def getSFVec3f(self) -> list[float] | None:
+    def c_sf_vec3f(self) -> list[float] | None:
         """The node's translation [x, y, z] in metres (in its parent's frame; a robot's and a
         movable body's are live), or another field of three numbers as the world file gives
         it."""
@@ -232,7 +232,7 @@ class Field(NotSimulated):
         else:
             node._place(translation=(x, y, z))
 
-    def getSFRotation(self) -> list[float] | None:
+    def c_sf_rotation(self) -> list[float] | None:
         """The node's rotation as axis and angle (the robot's is live: [0, 0, 1, yaw])."""
         if self._name != "rotation":
             self._wrong("get_sf_rotation")
@@ -263,28 +263,28 @@ class Field(NotSimulated):
             return None
         return list(self._node._numbers[self._name])
 
-    def getSFInt32(self) -> int | None:
+    def c_sf_int32(self) -> int | None:
         """The value of an integer field the world file gives (a PROTO's ``channel 2``)."""
         values = self._numbers("get_sf_int32", (self.SF_INT32,))
         return None if values is None else int(values[0])
 
-    def getSFFloat(self) -> float | None:
+    def c_sf_float(self) -> float | None:
         """The value of a number field the world file gives."""
         values = self._numbers("get_sf_float", (self.SF_FLOAT, self.SF_INT32))
         return None if values is None else values[0]
 
-    def getSFBool(self) -> bool | None:
+    def c_sf_bool(self) -> bool | None:
         """The value of a ``TRUE`` / ``FALSE`` field the world file gives."""
         if self._type != self.SF_BOOL:
             self._wrong("get_sf_bool")
             return None
         return self._node._flags.get(self._name, False)
 
-    def getSFVec2f(self) -> list[float] | None:
+    def c_sf_vec2f(self) -> list[float] | None:
         """The value of a field of two numbers the world file gives."""
         return self._numbers("get_sf_vec2f", (self.SF_VEC2F,))
 
-    def getSFColor(self) -> list[float] | None:
+    def c_sf_color(self) -> list[float] | None:
         """The value of a colour field the world file gives."""
         # The file does not say whether three numbers are a colour or a vector: both read.
         return self._numbers("get_sf_color", (self.SF_COLOR, self.SF_VEC3F))
@@ -315,7 +315,7 @@ class Field(NotSimulated):
             return
         self._node._flags[self._name] = bool(value)
 
-    def getSFString(self) -> str | None:
+    def c_sf_string(self) -> str | None:
         """The value of a string field (``name``, ``customData``, ``controller``)."""
         if self._type != self.SF_STRING:
             self._wrong("get_sf_string")
@@ -331,22 +331,27 @@ class Field(NotSimulated):
 
     @property
     def value(self) -> Any:
-        """The field's value (property style)."""
+        """The field's value, read by the field's own type (a node for an SFNode field, None for
+        a multiple field), as Webots' Python ``Field.value`` reads it."""
         if self._type == self.SF_VEC3F:
-            return self.getSFVec3f()
+            return self.c_sf_vec3f()
         if self._type == self.SF_ROTATION and self._name == "rotation":
-            return self.getSFRotation()
+            return self.c_sf_rotation()
+        if self._type == self.SF_NODE:
+            return self.getSFNode()
+        if self._type & self.MF:
+            return None
         getters = {
-            self.SF_INT32: self.getSFInt32,
-            self.SF_FLOAT: self.getSFFloat,
-            self.SF_BOOL: self.getSFBool,
-            self.SF_VEC2F: self.getSFVec2f,
-            self.SF_COLOR: self.getSFColor,
+            self.SF_INT32: self.c_sf_int32,
+            self.SF_FLOAT: self.c_sf_float,
+            self.SF_BOOL: self.c_sf_bool,
+            self.SF_VEC2F: self.c_sf_vec2f,
+            self.SF_COLOR: self.c_sf_color,
             self.SF_ROTATION: lambda: self._numbers("get_sf_rotation", (self.SF_ROTATION,)),
         }
         if self._type in getters:
             return getters[self._type]()
-        return self.getSFString()
+        return self.c_sf_string()
 
     @value.setter
     def value(self, value: Any) -> None:
@@ -356,6 +361,45 @@ class Field(NotSimulated):
             self.setSFRotation(value)
         else:
             self.setSFString(value)
+
+    # Webots' Python API (its ctypes ``Field``, since R2023b) gives every single-value getter
+    # as ``return self.value``: it reads the field by its own type whatever the getter's name
+    # (``getSFVec3f()`` of a rotation field is its four numbers); the C API's typed functions
+    # (``c_sf_*`` above, which compiled controllers call) print Webots' error and give NULL.
+    def getSFBool(self) -> Any:
+        """The field's value, read by its own type (see :attr:`value`)."""
+        return self.value
+
+    def getSFInt32(self) -> Any:
+        """The field's value, read by its own type (see :attr:`value`)."""
+        return self.value
+
+    def getSFFloat(self) -> Any:
+        """The field's value, read by its own type (see :attr:`value`)."""
+        return self.value
+
+    def getSFVec2f(self) -> Any:
+        """The field's value, read by its own type (see :attr:`value`)."""
+        return self.value
+
+    def getSFVec3f(self) -> Any:
+        """The field's value, read by its own type (see :attr:`value`): a translation in
+        metres (a robot's and a movable body's are live)."""
+        return self.value
+
+    def getSFRotation(self) -> Any:
+        """The field's value, read by its own type (see :attr:`value`): a rotation as axis and
+        angle (the robot's is live: [0, 0, 1, yaw])."""
+        return self.value
+
+    def getSFColor(self) -> Any:
+        """The field's value, read by its own type (see :attr:`value`)."""
+        return self.value
+
+    def getSFString(self) -> Any:
+        """The field's value, read by its own type (see :attr:`value`): ``name``,
+        ``customData``, ``controller``..."""
+        return self.value
 
 
 def _padded(values: list[float], count: int) -> list[float]:

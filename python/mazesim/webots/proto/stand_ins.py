@@ -20,7 +20,10 @@ x 0.1 m by default, in the corners, ``feetPadding`` in from the edges, under a t
 ``rowsHeights`` (0.24, 0.2, 0.2, 0.4, 0.4) high on each side, from the floor up, its doors,
 drawers and shelves inside that envelope); the ``Chair`` PROTO's published collision shape
 (legs 0.06 x 0.06 x 0.4 m centred 0.22 m from its origin on both horizontal axes, under a
-seat; kept static: at the default density its 40-odd kg is beyond an e-puck's push).
+seat; kept static: at the default density its 40-odd kg is beyond an e-puck's push); "Solids"
+(``SolidTorus``: majorRadius 2, minorRadius 1, subdivision 24, physics NULL,
+enableBoundingObject TRUE; physically "a set of N spheres, where N is the subdivision field", of
+the minor radius on the circle of the major radius, the ring lying about the up axis).
 """
 
 from __future__ import annotations
@@ -389,6 +392,55 @@ PROTO Chair [
 }
 """
 
+_SOLID_TORUS = """#VRML_SIM R2023b utf8
+# template language: javascript
+PROTO SolidTorus [
+  field SFVec3f translation 0 0 0
+  field SFRotation rotation 0 0 1 0
+  field SFString name "torus"
+  field SFFloat majorRadius 2
+  field SFFloat minorRadius 1
+  field SFInt32 subdivision 24
+  field SFString contactMaterial "default"
+  field SFNode appearance NULL
+  field SFNode physics NULL
+  field SFBool enableBoundingObject TRUE
+  field MFColor recognitionColors []
+]
+{
+  %<
+    const yUp = context.coordinate_system === 'NUE';
+    const major = fields.majorRadius.value;
+    const minor = fields.minorRadius.value > 0 ? fields.minorRadius.value : 1;
+    const spheres = Math.max(1, fields.subdivision.value);
+  >%
+  Solid {
+    translation IS translation
+    rotation IS rotation
+    name IS name
+    %< if (fields.enableBoundingObject.value) { >%
+    boundingObject Group {
+      children [
+        %< for (let i = 0; i < spheres; ++i) {
+             const a = 2 * Math.PI * i / spheres;
+             const c = major * Math.cos(a), s = major * Math.sin(a); >%
+          Pose {
+            %< if (yUp) { >%
+              translation %<= c >% 0 %<= s >%
+            %< } else { >%
+              translation %<= c >% %<= s >% 0
+            %< } >%
+            children [ Sphere { radius %<= minor >% } ]
+          }
+        %< } >%
+      ]
+    }
+    %< } >%
+    physics IS physics
+  }
+}
+"""
+
 #: The stand-ins, by PROTO name.
 STAND_INS: dict[str, StandIn] = {
     "CircleArena": StandIn(
@@ -418,4 +470,8 @@ STAND_INS: dict[str, StandIn] = {
     "Desk": StandIn(DESK, "its four published legs where they meet the floor"),
     "WoodenChair": StandIn(WOODEN_CHAIR, "its four published legs, static"),
     "Window": StandIn(WINDOW, "the wall below its sill, of the given size"),
+    "SolidTorus": StandIn(
+        _SOLID_TORUS,
+        "a ring of `subdivision` spheres of the minor radius on the circle of the major radius",
+    ),
 }
