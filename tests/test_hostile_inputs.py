@@ -5,7 +5,11 @@ PanicException, no other exception, no hang, no memory blow-up."""
 from __future__ import annotations
 
 import multiprocessing
+import os
 import random
+import subprocess
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -425,3 +429,99 @@ def test_a_forked_child_steps_a_batch_its_parent_made(threads: int) -> None:
     expected = _step_the_inherited_batch(0)
     with multiprocessing.get_context("fork").Pool(1) as pool:
         assert pool.map_async(_step_the_inherited_batch, [0]).get(timeout=60) == [expected]
+
+
+#: A str Python made of bytes it could not decode (a file name, a command-line argument): name
+#: -> (statement with ``S``, such a str, in scope). Each used to end in pyo3's
+#: ``UnicodeEncodeError`` or "expected name to be a str, found a str".
+NOT_UNICODE = {
+    "robot": "_core.Simulator(_core.World.builtin('arena'), robot=S)",
+    "batch robots": "_core.BatchSimulator(_core.World.builtin('arena'), num_envs=2, robot=[S, S])",
+    "world name": "_core.World.builtin(S)",
+    "profile name": "_core.RobotProfile.builtin(S)",
+    "world text": "_core.World.from_toml(S)",
+    "codes": "mazesim.validate_codes([S])",
+}
+
+
+@pytest.mark.parametrize("name", sorted(NOT_UNICODE))
+def test_a_str_that_is_not_unicode_text_is_refused_saying_so(name: str) -> None:
+    outcome = run_hostile("S = 'maze-\\udcff'\n" + NOT_UNICODE[name])
+    assert outcome.refused, outcome.describe()
+    assert "InvalidArgumentError" in outcome.stdout and "not Unicode text" in outcome.stdout, (
+        outcome.stdout
+    )
+
+
+def test_a_wbt_time_step_the_world_refuses_is_a_warning_of_its_line() -> None:
+    text = "#VRML_SIM R2023b utf8\nWorldInfo { basicTimeStep 0.05 }\n"
+    world, report = _core.import_wbt_text(text)
+    assert world.basic_time_step_ms == 32.0
+    assert any(w.startswith("line 2: basicTimeStep:") and "0.05" in w for w in report["warnings"])
+
+
+def test_an_imported_world_the_world_check_refuses_names_the_wbt_file(tmp_path: Path) -> None:
+    # 100,000 boxes piled up: the world made from them has more crowded walls than its index
+    # holds; the refusal used to point at "imported:5:1", a line of a text the user never saw.
+    path = tmp_path / "crowd.wbt"
+    solids = "".join(
+        f"Solid {{ translation {i * 1e-4:.4f} 0 0 boundingObject Box {{ size 0.01 0.1 0.1 }} }}\n"
+        for i in range(100_000)
+    )
+    path.write_text("#VRML_SIM R2023b utf8\n" + solids)
+    with pytest.raises(mazesim.WorldFormatError) as caught:
+        _core.import_wbt(str(path))
+    assert str(caught.value).startswith(f"{path}: field `(imported world).walls`: expected walls")
+    assert caught.value.source == str(path) and caught.value.line is None
+
+
+@pytest.mark.parametrize("target", ["/dev/full", "a-file", "a-fifo"])
+def test_saving_a_navigator_into_something_not_a_folder_says_what_it_is(
+    tmp_path: Path, target: str
+) -> None:
+    from mazesim.learn.tables import load_policy, save_policy
+
+    folder = tmp_path
+    (folder / "a-file").write_text("kept\n")
+    os.mkfifo(folder / "a-fifo")
+    path = target if target.startswith("/") else str(folder / target)
+    kind = {"/dev/full": "a character device", "a-file": "a file", "a-fifo": "a FIFO"}[target]
+    with pytest.raises(mazesim.MazesimIOError, match=f"expected an output folder, found {kind}"):
+        save_policy(load_policy(), path)
+    assert (folder / "a-file").read_text() == "kept\n"
+
+
+#: A Webots controller's calls of its devices with arguments of the wrong type: each must be
+#: refused with an InvalidArgumentError naming the method and the parameter.
+WRONG_TYPED_DEVICE_CALLS = {
+    "motor velocity": "robot.getDevice('left wheel motor').setVelocity('fast')",
+    "emitter channel": "robot.getDevice('emitter').setChannel('seven')",
+    "distance sensor period": "robot.getDevice('ps0').enable('often')",
+    "led value": "robot.getDevice('led0').set([1])",
+}
+
+
+def test_a_controllers_wrong_typed_device_calls_are_refused_naming_the_method(
+    tmp_path: Path,
+) -> None:
+    """The controller runs inside ``mazesim webots run``: its calls were taken for the package's
+    calls to itself and not checked (a ``ValueError`` from a line deep in the package)."""
+    calls = "".join(
+        f"try:\n    {call}\n    print('ACCEPTED', {name!r})\n"
+        f"except mazesim.MazesimError as e:\n    print('REFUSED', {name!r}, type(e).__name__, e)\n"
+        f"except Exception as e:\n    print('ESCAPED', {name!r}, type(e).__name__, e)\n"
+        for name, call in WRONG_TYPED_DEVICE_CALLS.items()
+    )
+    controller = tmp_path / "wrong_types.py"
+    controller.write_text("import mazesim\nfrom controller import Robot\nrobot = Robot()\n" + calls)
+    done = subprocess.run(
+        [sys.executable, "-m", "mazesim", "webots", "run", str(controller)]
+        + ["--world", "arena", "--seconds", "1", "--out", str(tmp_path / "run")],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=False,
+    )
+    refused = [line for line in done.stdout.splitlines() if line.startswith("REFUSED")]
+    assert len(refused) == len(WRONG_TYPED_DEVICE_CALLS), done.stdout + done.stderr
+    assert all("InvalidArgumentError" in line and " refused: " in line for line in refused), refused

@@ -26,7 +26,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("maze.py", "odometry.py", "_seeding.py", "render", "plotting.py", "webots", "benchmark",
      "controllers.py", "actions.py", "_checks.py"),
     ("sensor_rays.py", "_atomic.py", "_closing.py", "_paths.py", "_sizes.py", "_toml.py",
-     "_error_tree.py"),
+     "_error_tree.py", "_callers.py"),
     ("errors.py", "_core.pyi"),
 )  # fmt: skip
 #: The files of the package that are neither modules nor packages.

@@ -22,7 +22,9 @@ their annotations (a bound the annotations cannot say, or a bug), and any other 
 below the surface, is put into the package's error tree by :mod:`mazesim._error_tree`.
 A new public function is checked without any code of its own. The check is made once per call
 from outside: calls a checked function makes to other public functions of the package are not
-checked again, and the compiled core's per-step work is not touched.
+checked again, and the compiled core's per-step work is not touched. The user's own code that
+the package runs from inside a call (a Webots controller) calls from outside again:
+:func:`mazesim._callers.users_code` says so.
 
 Annotations the check cannot read (names imported for type checkers only, type variables,
 protocols that are not runtime-checkable) are not checked; everything the check lets through
@@ -38,7 +40,6 @@ import importlib.machinery
 import inspect
 import os
 import sys
-import threading
 import types
 import typing
 from collections.abc import Callable
@@ -47,6 +48,7 @@ from typing import Any
 
 import numpy as np
 
+from mazesim._callers import STATE
 from mazesim._error_tree import in_the_tree
 from mazesim._sizes import MOST_ENVS, size_of
 from mazesim.errors import InvalidArgumentError, MazesimError
@@ -312,12 +314,6 @@ def _takes_text(args: tuple[Any, ...]) -> bool:
     return any(a is str or a is Any for a in args)
 
 
-#: Per thread, whether a checked call is running: the calls it makes to other public functions
-#: are the package's own and are not checked again (the check costs once per call from outside,
-#: not once per helper in a step).
-_STATE = threading.local()
-
-
 #: What a function's code raises when an argument is not what it expects (its own errors aside):
 #: the arguments are then checked against the annotations, and a refusal is raised instead.
 _ARGUMENT_FAILURES = (
@@ -459,7 +455,7 @@ def checked(func: Callable[..., Any], *, method: bool = False) -> Callable[..., 
     # The wrapper runs in func's globals: everything it uses is bound here.
     error, own, failures = InvalidArgumentError, MazesimError, _ARGUMENT_FAILURES
     tree = in_the_tree
-    state = _STATE
+    state = STATE  # per thread, whether a checked call is running
 
     def wrapper(*args: Any, **kwargs: Any) -> Any:
         if getattr(state, "inside", False):
@@ -472,7 +468,11 @@ def checked(func: Callable[..., Any], *, method: bool = False) -> Callable[..., 
         except (own, KeyboardInterrupt):
             raise
         except failures as failure:
-            parameters.check(args, kwargs)  # raises InvalidArgumentError naming the argument
+            try:
+                parameters.check(args, kwargs)  # raises InvalidArgumentError naming the argument
+            except error as refusal:
+                # The refusal says what is wrong; the line deep inside that failed would not.
+                raise refusal.with_traceback(None) from None
             trace = failure.__traceback__
             if isinstance(failure, TypeError) and trace is not None and trace.tb_next is None:
                 raise error(f"{func.__qualname__}: {failure}") from None  # wrong arguments
@@ -560,6 +560,31 @@ def _guard_class(cls: type) -> None:
             setattr(cls, name, classmethod(checked(raw.__func__, method=True)))
         elif inspect.isfunction(raw):
             setattr(cls, name, checked(raw, method=True))
+    for name, raw in _inherited_from_private_bases(cls):
+        # A copy named as cls's own method, so that a refusal names the class the user has.
+        own = types.FunctionType(
+            raw.__code__, raw.__globals__, raw.__name__, raw.__defaults__, raw.__closure__
+        )
+        functools.update_wrapper(own, raw)
+        own.__qualname__ = f"{cls.__qualname__}.{name}"
+        own.__kwdefaults__ = raw.__kwdefaults__
+        setattr(cls, name, checked(own, method=True))
+
+
+def _inherited_from_private_bases(cls: type) -> list[tuple[str, Callable[..., Any]]]:
+    """The public methods ``cls`` takes from the package's private base classes (a Webots
+    ``DistanceSensor``'s ``enable``, from ``_Sensor``), which no public class of their own puts
+    the check on: they are part of ``cls``'s surface."""
+    found = []
+    for base in cls.__mro__[1:]:
+        if not base.__name__.startswith("_") or not base.__module__.startswith("mazesim."):
+            continue
+        for name, raw in vars(base).items():
+            if name.startswith("_") or not inspect.isfunction(raw):
+                continue
+            if inspect.getattr_static(cls, name) is raw:
+                found.append((name, raw))
+    return found
 
 
 def public_names(module: types.ModuleType) -> list[str]:

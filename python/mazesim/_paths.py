@@ -19,6 +19,7 @@ from mazesim.errors import InvalidArgumentError, MazesimError, MazesimIOError
 __all__ = [
     "MAX_TEXT_CHARACTERS",
     "file_name_of",
+    "make_output_folder",
     "open_input",
     "output_file",
     "output_files",
@@ -268,6 +269,37 @@ def output_file(text: str) -> str:
     return text
 
 
+def make_output_folder(folder: str | os.PathLike[str]) -> None:
+    """Makes the output folder ``folder`` and its parents, unless it is a folder already.
+
+    Every command and function that writes into a folder makes it here, so that a path that is
+    something else (a file, ``/dev/full``, a FIFO) or cannot be made is refused saying what was
+    expected and what was found, not with the system's bare "File exists".
+
+    Raises:
+        MazesimIOError: ``folder`` is not a folder, or it cannot be made.
+    """
+    path = os.fspath(folder)
+    try:
+        os.makedirs(path, exist_ok=True)
+    except FileExistsError as error:
+        if not os.path.exists(path):
+            kind = "a symbolic link to nothing"
+        else:
+            mode = os.stat(path).st_mode
+            kind = "a file" if stat.S_ISREG(mode) else _kind_of(mode)
+        raise _folder_failure(path, f"expected an output folder, found {kind}", error) from None
+    except OSError as error:
+        reason = error.strerror or str(error)
+        raise _folder_failure(path, f"cannot make the output folder: {reason}", error) from None
+
+
+def _folder_failure(path: str, reason: str, error: OSError) -> MazesimIOError:
+    failure = MazesimIOError(f"{path}: {reason}; choose another output folder")
+    failure.errno, failure.strerror, failure.filename = error.errno, error.strerror, path
+    return failure
+
+
 @contextlib.contextmanager
 def writing_alone(
     folder: str | os.PathLike[str], command: str, create: bool = True
@@ -289,20 +321,11 @@ def writing_alone(
         MazesimIOError: Another process holds the folder, or it cannot be made or opened.
     """
     path = os.fspath(folder)
-    if os.path.exists(path) and not os.path.isdir(path):
-        raise MazesimIOError(
-            f"{path}: expected an output folder, found a file; choose another output folder"
-        )
     if not os.path.isdir(path):
-        if not create:
+        if not create and not os.path.lexists(path):
             yield
             return
-        try:
-            os.makedirs(path, exist_ok=True)
-        except OSError as error:
-            raise MazesimIOError(
-                f"{path}: cannot make the output folder: {error.strerror}"
-            ) from error
+        make_output_folder(path)
     try:
         handle = os.open(path, os.O_RDONLY | os.O_DIRECTORY)
     except OSError as error:

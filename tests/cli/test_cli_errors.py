@@ -169,5 +169,8 @@ def test_an_os_error_names_the_file_and_the_reason_not_its_errno(
 ) -> None:
     device = Path(os.devnull)
     assert main(["webots", "run", str(WBT), "--seconds", "1", "--out", str(device)]) == 2
-    assert capsys.readouterr().err == f"mazesim: error: {device}: File exists\n"
+    assert capsys.readouterr().err == (
+        f"mazesim: error: {device}: expected an output folder, found a character device; "
+        "choose another output folder\n"
+    )
     assert device.is_char_device()

@@ -510,3 +510,64 @@ def test_special_outputs_are_written_into_never_replaced(
     assert _main_within(["show", "arena", "-o", str(fifo)], tmp_path, 60.0) == 2
     assert b"FIFO that no process reads" in capfdbinary.readouterr().err
     assert stat.S_ISFIFO(fifo.lstat().st_mode)
+
+
+def _options_of_kind(parser: argparse.ArgumentParser, kind: str) -> list[argparse.Action]:
+    return [a for a in _value_options(parser) if a.option_strings and _kind(a) == kind]
+
+
+#: Commands with an output folder option (``--out DIR``), ROS's aside (they need ROS).
+OUTPUT_FOLDER_COMMANDS = sorted(
+    command
+    for command, parser in COMMANDS.items()
+    if _options_of_kind(parser, "output") and command.split()[0] not in ("ros", "ros2")
+)
+
+
+def test_output_folder_commands_are_found() -> None:
+    assert {"demo", "train", "webots run", "barcode-study"} <= set(OUTPUT_FOLDER_COMMANDS)
+
+
+def test_an_output_folder_that_is_a_device_is_refused_saying_what_it_is(
+    files: dict[str, Path], tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """``--out /dev/full`` (a character device) to every command that writes a folder: exit 2
+    and one line saying an output folder was expected and a character device found (``demo``
+    and ``webots run`` said "/dev/full: File exists")."""
+    problems = []
+    for command in OUTPUT_FOLDER_COMMANDS:
+        parser = COMMANDS[command]
+        for action in _options_of_kind(parser, "output"):
+            arguments = _arguments(command, parser, (action, "/dev/full"), files, tmp_path)
+            code = _main_within(arguments, tmp_path, 60.0)
+            error = capsys.readouterr().err.strip()
+            expected = "/dev/full: expected an output folder, found a character device"
+            if code != 2 or expected not in error.splitlines()[-1]:
+                problems.append(f"mazesim {' '.join(arguments)}: exit {code}: {error[-500:]}")
+    assert not problems, "\n".join(problems)
+
+
+#: A name option's value of bytes the terminal's encoding cannot decode (Python keeps them as
+#: lone surrogates).
+NOT_UNICODE_NAME = os.fsdecode(b"\xff\xfe")
+
+
+def test_a_name_that_is_not_unicode_text_is_refused_in_one_line(
+    files: dict[str, Path], tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Each name option (``--robot``, ``--address``...) of each command given undecodable bytes:
+    refused in one line with exit 2 (or unused, ``sweep --sequential --address``), never an
+    internal error (``demo --robot`` ended in "internal error ... UnicodeEncodeError")."""
+    problems = []
+    for command, parser in sorted(COMMANDS.items()):
+        if command.startswith("ros"):
+            continue
+        for action in _options_of_kind(parser, "name"):
+            arguments = _arguments(command, parser, (action, NOT_UNICODE_NAME), files, tmp_path)
+            code = _main_within(arguments, tmp_path, 60.0)
+            error = capsys.readouterr().err.strip()
+            last = error.splitlines()[-1] if error else ""
+            refused = code == 2 and last.startswith("mazesim")
+            if not (refused or code == 0) or "internal error" in error:
+                problems.append(f"mazesim {' '.join(arguments)}: exit {code}: {error[-500:]}")
+    assert not problems, "\n".join(problems)

@@ -13,8 +13,22 @@ pub struct Location {
     pub column: usize,
 }
 
+impl Location {
+    /// A file as a whole (line and column 0): what it holds together is refused, not one line.
+    pub fn whole(source: &str) -> Self {
+        Location {
+            source: source.to_string(),
+            line: 0,
+            column: 0,
+        }
+    }
+}
+
 impl fmt::Display for Location {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.line == 0 {
+            return write!(f, "{}", self.source);
+        }
         write!(f, "{}:{}:{}", self.source, self.line, self.column)
     }
 }

@@ -206,12 +206,22 @@ impl<'a, 'py> FromPyObject<'a, 'py> for Label {
 /// A source-name argument (`source="maze.toml"`).
 pub type SourceName = Given<Label>;
 
-/// The name of an object's type, for an error saying what was found.
+/// The name of an object's type, for an error saying what was found: a str that is not Unicode
+/// text (a byte of a file name or command-line argument Python could not decode, kept as a lone
+/// surrogate) says so, since "expected a str, found a str" would tell nothing.
 pub fn type_name(obj: &Bound<'_, PyAny>) -> String {
-    obj.get_type()
+    let name = obj
+        .get_type()
         .name()
         .map(|n| n.to_string())
-        .unwrap_or_default()
+        .unwrap_or_default();
+    match obj.cast::<pyo3::types::PyString>() {
+        Ok(text) if text.to_cow().is_err() => format!(
+            "{name} that is not Unicode text (it holds a lone surrogate, as Python keeps a byte of \
+             a file name or command-line argument it could not decode)"
+        ),
+        _ => name,
+    }
 }
 
 /// The items of a sequence argument (a list, tuple, range or other sized iterable; not a str or

@@ -44,8 +44,10 @@ fn build(py: Python<'_>, err: &Error) -> PyResult<PyErr> {
             location, field, ..
         } => {
             instance.setattr("source", &location.source)?;
-            instance.setattr("line", location.line)?;
-            instance.setattr("column", location.column)?;
+            // Line 0: the file as a whole (no line is known).
+            let known = |n: usize| (n > 0).then_some(n);
+            instance.setattr("line", known(location.line))?;
+            instance.setattr("column", known(location.column))?;
             instance.setattr("field", field)?;
         }
         Error::UnknownName { available, .. } => {

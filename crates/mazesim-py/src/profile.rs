@@ -103,7 +103,10 @@ impl<'a, 'py> FromPyObject<'a, 'py> for RobotArg {
             return Ok(RobotArg::Profile(p.get().inner.clone()));
         }
         if let Ok(text) = obj.cast::<PyString>() {
-            return Ok(RobotArg::Name(text.to_cow()?.into_owned()));
+            return Ok(match text.to_cow() {
+                Ok(name) => RobotArg::Name(name.into_owned()),
+                Err(_) => RobotArg::Other(type_name(&obj.to_owned())),
+            });
         }
         if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
             let items = bounded_items(&obj.to_owned(), "robot", "robot profiles", MAX_ENVS)?;

@@ -242,7 +242,9 @@ fn finish<'py>(
 ) -> PyResult<(PyWorld, Bound<'py, PyDict>)> {
     import.paint_floor(&grey_images(floor_images)?);
     let import = &import;
-    let world = import.to_world(&world_name(source)).py()?;
+    let world = import
+        .to_world_of(&world_name(source), &source.display().to_string())
+        .py()?;
     Ok((
         PyWorld {
             inner: Arc::new(world),

@@ -17,6 +17,7 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
 from mazesim._atomic import atomic_file
+from mazesim._paths import make_output_folder
 from mazesim.barcode.study import StudyResult, Tally
 
 __all__ = ["CSV_COLUMNS", "save_study_chart", "study_csv", "write_study_files"]
@@ -120,7 +121,7 @@ def write_study_files(result: StudyResult, folder: str | os.PathLike[str]) -> li
 
     A study part with no settings writes no files.
     """
-    os.makedirs(folder, exist_ok=True)
+    make_output_folder(folder)
     written = []
     parts = (
         (

@@ -9,13 +9,13 @@ from __future__ import annotations
 import argparse
 import json
 import math
-import os
 import sys
 import time
 from collections.abc import Callable
 from typing import Any, TextIO
 
 import mazesim
+from mazesim._paths import make_output_folder
 from mazesim.barcode.decoders import DECODERS
 from mazesim.barcode.link import LINKS
 from mazesim.barcode.study import (
@@ -205,7 +205,7 @@ def run_barcode_study(args: argparse.Namespace, out: TextIO) -> int:
     from mazesim.barcode.charts import write_study_files
 
     world = mazesim.load_world(args.world)
-    os.makedirs(args.out, exist_ok=True)
+    make_output_folder(args.out)
     started = time.perf_counter()
     with progress_display(args, unit="readings") as display:
         result: StudyResult = run_study(

@@ -17,7 +17,7 @@ import sys
 import time
 from typing import Any, TextIO
 
-from mazesim._paths import output_files, refuse_overwriting_inputs
+from mazesim._paths import make_output_folder, output_files, refuse_overwriting_inputs
 from mazesim.cli._args import output_path, positive_seconds, seed_argument
 from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
@@ -152,7 +152,7 @@ def run_avoid_collision_demo(args: argparse.Namespace, out: TextIO) -> int:
     columns = proximity_columns(robot)
     controller = AvoidCollision(max_speed=robot.max_wheel_speed)
     # Fail before the run, not after it, if the output folder cannot be made.
-    os.makedirs(args.out, exist_ok=True)
+    make_output_folder(args.out)
     steps = max(1, math.ceil(seconds * 1000.0 / simulator.control_step_ms - 1e-9))
 
     xs = np.empty(steps + 1, dtype=np.float64)

@@ -20,6 +20,7 @@ import numpy.typing as npt
 
 import mazesim
 from mazesim._atomic import atomic_file
+from mazesim._paths import make_output_folder
 from mazesim.cli.demo import HRL_DEFAULT_SECONDS, speed_summary
 from mazesim.cli.progress import progress_display
 from mazesim.episodes import StartJitter, shortest_path_steps
@@ -47,7 +48,7 @@ def run_hrl_demo(args: argparse.Namespace, out: TextIO) -> int:
             f"the navigator cannot drive world {world.name!r}: " + "; ".join(problems)
         )
     policy = load_policy()
-    os.makedirs(args.out, exist_ok=True)
+    make_output_folder(args.out)
     adapt_seconds = None
     if world_hash(world) != policy.world_sha256:
         out.write(

@@ -18,6 +18,7 @@ import numpy as np
 
 from mazesim._atomic import atomic_file
 from mazesim._core import RobotProfile, Simulator
+from mazesim._paths import make_output_folder
 from mazesim.cli.demo import speed_summary
 from mazesim.cli.progress import progress_display
 from mazesim.errors import InvalidArgumentError
@@ -63,7 +64,7 @@ def run_robots_demo(
     ]
     columns = [proximity_columns(profile, name) for profile, name in zip(profiles, names)]
     controllers = [AvoidCollision(max_speed=profile.max_wheel_speed) for profile in profiles]
-    os.makedirs(args.out, exist_ok=True)
+    make_output_folder(args.out)
     steps = max(1, math.ceil(seconds * 1000.0 / simulator.control_step_ms - 1e-9))
     recorder = (
         FleetRecorder.of_simulator(simulator, "avoid-collision", args.seed)

@@ -9,11 +9,11 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
 import sys
 import time
 from typing import Any, TextIO
 
+from mazesim._paths import make_output_folder
 from mazesim.cli._args import (
     name_list,
     non_negative_int,
@@ -170,7 +170,7 @@ def run_transfer_study(args: argparse.Namespace, out: TextIO) -> int:
     from mazesim.transfer.heatmap import write_study_files
     from mazesim.transfer.study import DEFAULT_EPISODES, DEFAULT_MAX_STEPS
 
-    os.makedirs(args.out, exist_ok=True)  # a bad --out fails before the study runs
+    make_output_folder(args.out)  # a bad --out fails before the study runs
     policy = load_policy(args.policy)
     world = policy.learned_world()
     options = StudyOptions(

@@ -13,6 +13,7 @@ from typing import Any, TextIO
 
 from mazesim._atomic import atomic_file
 from mazesim._paths import (
+    make_output_folder,
     open_input,
     output_files,
     output_path,
@@ -291,7 +292,7 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
         [("the controller", args.controller), ("--world", args.world), ("--keys", args.keys)],
     )
     # Fail before the run, not after it, if the output folder cannot be made.
-    os.makedirs(out_dir, exist_ok=True)
+    make_output_folder(out_dir)
     from mazesim.webots.simulation import observing_steps
 
     watch = DeferredWatch(args, os.path.basename(args.controller), args.seed)

@@ -281,7 +281,7 @@ def run_world_command(args: argparse.Namespace, out: TextIO) -> int:
         A supervisor's quit status, else the first controller's non-zero exit status, else 0.
     """
     import mazesim
-    from mazesim._paths import open_input, refuse_overwriting_inputs
+    from mazesim._paths import make_output_folder, open_input, refuse_overwriting_inputs
     from mazesim.plotting import save_robot_paths_png
     from mazesim.replay.views import recording_requested, viewing_outputs, write_views
     from mazesim.webots.lockstep import refuse_import_warnings, run_world
@@ -298,7 +298,7 @@ def run_world_command(args: argparse.Namespace, out: TextIO) -> int:
     if getattr(args, "strict", False):
         refuse_import_warnings(args.controller)
     out_dir = os.path.abspath(args.out)
-    os.makedirs(out_dir, exist_ok=True)
+    make_output_folder(out_dir)
     live = bool(getattr(args, "live", False))
     recorder = (
         WorldWatch(args.seed, recording_requested(args), live)

@@ -32,7 +32,7 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
 from mazesim._atomic import atomic_file
-from mazesim._paths import read_input
+from mazesim._paths import make_output_folder, read_input
 from mazesim.distributed.config import Setting
 from mazesim.distributed.tasks import RUN_FILE
 from mazesim.errors import InvalidArgumentError, MazesimIOError
@@ -106,7 +106,7 @@ def write_run_folder(out_dir: str, run_id: str, files: Mapping[str, bytes]) -> s
         if not name or os.path.basename(name) != name or name in (".", ".."):
             raise InvalidArgumentError(f"expected a plain file name for a run file, found {name!r}")
     runs = os.path.join(out_dir, RUNS_DIR)
-    os.makedirs(runs, exist_ok=True)
+    make_output_folder(runs)
     target = os.path.join(runs, run_id)
     temporary = tempfile.mkdtemp(prefix=f".{run_id}.", suffix=_TEMPORARY_SUFFIX, dir=runs)
     try:

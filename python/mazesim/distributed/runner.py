@@ -25,6 +25,7 @@ from typing import Any
 
 from mazesim._atomic import atomic_file
 from mazesim._core import __version__
+from mazesim._paths import make_output_folder
 from mazesim.distributed.cluster import local_cpus, ray_session
 from mazesim.distributed.config import Setting, SweepConfig, load_sweep_config
 from mazesim.distributed.output import (
@@ -89,7 +90,7 @@ class _SweepFolder:
         self.started = time.perf_counter()
         self.started_at = datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds")
         self.summary = SweepSummary(out_dir=out_dir, runs=[], runner=runner)
-        os.makedirs(out_dir, exist_ok=True)
+        make_output_folder(out_dir)
         remove_leftovers(out_dir)
         with atomic_file(os.path.join(out_dir, "sweep.toml")) as handle:
             handle.write(config.text.encode("utf-8"))

@@ -25,6 +25,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from mazesim._paths import make_output_folder
 from mazesim.errors import InvalidArgumentError, MissingDependencyError
 
 if importlib.util.find_spec("stable_baselines3") is None:
@@ -134,7 +135,7 @@ def make_vec_env(
         return venv
     filename = None if monitor_dir is None else os.path.join(monitor_dir, "monitor")
     if monitor_dir is not None:
-        os.makedirs(monitor_dir, exist_ok=True)
+        make_output_folder(monitor_dir)
     return VecMonitor(venv, filename=filename, **(monitor_kwargs or {}))
 
 

@@ -16,6 +16,7 @@ import os
 from pathlib import Path
 from typing import Any
 
+from mazesim._paths import make_output_folder
 from mazesim.errors import InvalidArgumentError, PolicyFormatError
 from mazesim.learn.schema import differing
 from mazesim.learn.tables import (
@@ -132,7 +133,7 @@ class RunFolder:
                 f"{folder} holds the checkpoint of another run; pass --resume to continue it, "
                 "or choose another --out"
             )
-        folder.mkdir(parents=True, exist_ok=True)
+        make_output_folder(folder)
         remove_checkpoint_leftovers(folder)
         return saved
 
@@ -142,6 +143,6 @@ class RunFolder:
 
     def finish(self, policy: TrainedPolicy) -> None:
         """Saves the trained navigator into the folder and names it as its source."""
-        self.folder.mkdir(parents=True, exist_ok=True)
+        make_output_folder(self.folder)
         save_policy(policy, self.folder)
         policy.source = str(self.folder)

@@ -26,6 +26,7 @@ from typing import TYPE_CHECKING, Any
 
 from mazesim._atomic import atomic_file
 from mazesim._closing import Closing
+from mazesim._paths import make_output_folder
 from mazesim.errors import MissingDependencyError
 
 if TYPE_CHECKING:
@@ -164,7 +165,7 @@ class LearningCurve(Closing):
     def __call__(self, stage: str, values: dict[str, float]) -> None:
         if self._csv is None:
             # The hierarchical training has made the folder by now; the flat one makes it last.
-            self.folder.mkdir(parents=True, exist_ok=True)
+            make_output_folder(self.folder)
             self._csv = csv.DictWriter(self._rows, fieldnames=CSV_COLUMNS, restval="")
             self._csv.writeheader()
             if self._writer_class is not None:

@@ -62,7 +62,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._atomic import atomic_file, remove_stale_temporaries
-from mazesim._paths import read_input
+from mazesim._paths import make_output_folder, read_input
 from mazesim.actions import ACTION_CODES, WHEEL_SPEED_FRACTIONS
 from mazesim.errors import InvalidArgumentError, MazesimIOError, PolicyFormatError
 from mazesim.learn.discretise import LEVEL_EDGES_CM, NUM_STATES, SENSOR_ORDER, SHARP_TABLE
@@ -380,7 +380,7 @@ def write_bundle(
     is written after the ``.npz``.
     """
     path = Path(folder)
-    path.mkdir(parents=True, exist_ok=True)
+    make_output_folder(path)
     data = write_archive(arrays)
     described = dict(metadata)
     described["tables"] = {

@@ -25,6 +25,7 @@ from typing import Any, TextIO
 import numpy as np
 
 import mazesim
+from mazesim._paths import make_output_folder
 from mazesim.errors import (
     InvalidArgumentError,
     MazesimError,
@@ -113,7 +114,7 @@ def run_demo(args: argparse.Namespace, out: TextIO) -> int:
             ) from None
     robot = "seed" if hrl else "e-puck"
     out_dir = os.path.abspath(args.out)
-    os.makedirs(out_dir, exist_ok=True)
+    make_output_folder(out_dir)
     check_free_space(out_dir)
     bag_path = os.path.join(out_dir, "maze.bag")
     if os.path.exists(bag_path):

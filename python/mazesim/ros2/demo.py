@@ -17,6 +17,7 @@ import sys
 from pathlib import Path
 from typing import NamedTuple
 
+from mazesim._paths import make_output_folder
 from mazesim.episodes import MAX_STEPS
 from mazesim.errors import MazesimError, MazesimIOError
 
@@ -52,10 +53,7 @@ def run_demo(
         MazesimIOError: ``OUT/bag`` exists already.
         MazesimError: The bridge failed or did not finish in time.
     """
-    try:
-        out.mkdir(parents=True, exist_ok=True)
-    except OSError as error:
-        raise MazesimIOError(f"expected to make the output folder {out}; {error}") from error
+    make_output_folder(out)
     bag = out / "bag"
     if bag.exists():
         raise MazesimIOError(f"expected a new bag folder; found {bag}, which exists")

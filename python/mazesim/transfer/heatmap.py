@@ -19,6 +19,7 @@ from matplotlib.figure import Figure
 from matplotlib.image import AxesImage
 
 from mazesim._atomic import atomic_file
+from mazesim._paths import make_output_folder
 from mazesim.transfer.result import StudyResult
 
 __all__ = ["save_pairs_map", "save_single_map", "write_study_files"]
@@ -103,7 +104,7 @@ def save_pairs_map(result: StudyResult, path: str) -> None:
 def write_study_files(result: StudyResult, folder: str | os.PathLike[str]) -> list[str]:
     """Writes ``transfer.json``, ``transfer_single.png`` and (with pairs)
     ``transfer_pairs.png`` into ``folder`` (created if missing); returns their paths."""
-    os.makedirs(folder, exist_ok=True)
+    make_output_folder(folder)
     document = os.path.join(folder, "transfer.json")
     with atomic_file(document) as handle:
         handle.write((json.dumps(result.as_json(), indent=2) + "\n").encode("utf-8"))

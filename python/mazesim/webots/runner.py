@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 from types import ModuleType, TracebackType
 from typing import Any
 
+from mazesim._callers import users_code
 from mazesim._core import World
 from mazesim._paths import MAX_TEXT_CHARACTERS, read_input
 from mazesim.errors import InvalidArgumentError, MazesimIOError
@@ -244,7 +245,8 @@ def run_controller(
         code = compile(source, file, "exec")
         try:
             watchdog.start()
-            exec(code, {"__name__": "__main__", "__file__": file, "__builtins__": __builtins__})
+            with users_code():
+                exec(code, {"__name__": "__main__", "__file__": file, "__builtins__": __builtins__})
         finally:
             try:
                 watchdog.stop()

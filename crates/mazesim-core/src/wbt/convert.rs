@@ -5,7 +5,7 @@
 use std::f64::consts::PI;
 
 use super::{Look, Obstacle, WbtImport};
-use crate::error::Result;
+use crate::error::{Error, Location, Result};
 use crate::world::spec::{FloorSpec, StartSpec, WallSpec, WorldSpec};
 use crate::world::values::{
     self, Finite, FormatTag, FormatVersion, Positive, Reflectance, WORLD_FORMAT_TAG,
@@ -133,7 +133,22 @@ impl WbtImport {
 
     /// The mazesim world of this import, named `name` (which also names it in messages).
     pub fn to_world(&self, name: &str) -> Result<World> {
-        World::from_spec(self.to_spec(name), name)
+        self.to_world_of(name, name)
+    }
+
+    /// The mazesim world of this import of the file `source`, named `name`. A world mazesim
+    /// refuses (more walls crowded together than its limits allow...) is a format error of
+    /// `source` as a whole, saying what was refused: the world text it was checked as is made
+    /// here, so a line of it would point nowhere the user can look.
+    pub fn to_world_of(&self, name: &str, source: &str) -> Result<World> {
+        World::from_spec(self.to_spec(name), name).map_err(|error| match error {
+            Error::Format { field, message, .. } => Error::Format {
+                location: Location::whole(source),
+                field: format!("(imported world).{field}"),
+                message,
+            },
+            other => other,
+        })
     }
 }
 

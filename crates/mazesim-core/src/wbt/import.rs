@@ -391,11 +391,13 @@ impl<'d> Importer<'d> {
         if let Some(&id) = infos.first() {
             let info = self.node(id);
             let asked = self.number(info, "basicTimeStep", DEFAULT_BASIC_TIME_STEP_MS);
-            if asked > 0.0 && asked <= 1000.0 {
+            // The world's own range, so that a step the world would refuse is a warning here.
+            let (least, most) = crate::limits::BASIC_TIME_STEP_MS;
+            if (least..=most).contains(&asked) {
                 step = asked;
             } else {
                 self.warn(format!(
-                    "line {}: basicTimeStep: expected a number of milliseconds in (0, 1000], found {asked}; used {DEFAULT_BASIC_TIME_STEP_MS}",
+                    "line {}: basicTimeStep: expected a number of milliseconds in [{least}, {most}], found {asked}; used {DEFAULT_BASIC_TIME_STEP_MS}",
                     info.line
                 ));
             }
