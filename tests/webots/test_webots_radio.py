@@ -13,7 +13,7 @@ from mazesim.webots import controller, prepare
 from mazesim.webots import simulation as simulations
 from mazesim.webots.importer import import_wbt_text
 from mazesim.webots.line_of_sight import LineOfSight
-from mazesim.webots.radio import Radio
+from mazesim.webots.radio import INFRA_RED, RADIO, SERIAL, Radio
 from mazesim.webots.radio_devices import (
     Emitter,
     Receiver,
@@ -242,21 +242,22 @@ Solid {
 
 
 @pytest.mark.parametrize(
-    ("receiver_at", "infra_red", "heard"),
+    ("receiver_at", "kind", "heard"),
     [
-        ((0.3, 0.0, 0.0), True, False),  # behind the wall
-        ((0.3, 0.0, 0.0), False, True),  # radio goes through walls
-        ((0.3, 0.9, 0.0), True, True),  # past the wall's end: in sight
-        ((-0.1, 0.0, 0.0), True, True),  # in front of the wall
+        ((0.3, 0.0, 0.0), INFRA_RED, False),  # behind the wall
+        ((0.3, 0.0, 0.0), RADIO, True),  # radio goes through walls
+        ((0.3, 0.0, 0.0), SERIAL, True),  # and so does serial
+        ((0.3, 0.9, 0.0), INFRA_RED, True),  # past the wall's end: in sight
+        ((-0.1, 0.0, 0.0), INFRA_RED, True),  # in front of the wall
     ],
 )
 def test_walls_stop_infra_red_packets_only(
-    receiver_at: tuple[float, float, float], infra_red: bool, heard: bool
+    receiver_at: tuple[float, float, float], kind: str, heard: bool
 ) -> None:
     world, _ = import_wbt_text(WALLED)
     radio = Radio(LineOfSight(WallBoxes(world)))
-    radio.tune(1, "receiver", 1, listening=True)
-    radio.send(0, 1, -1, b"x", infra_red)
+    radio.tune(1, "receiver", 1, listening=True, kind=kind)
+    radio.send(0, 1, -1, b"x", kind)
     radio.transmit({0: (-0.3, 0.0, 0.0), 1: receiver_at})
     assert bool(radio.collect(1, "receiver")) is heard
 
@@ -265,12 +266,61 @@ def test_an_emitter_of_type_infra_red_sends_infra_red_packets() -> None:
     world, _ = import_wbt_text(WALLED)
     pair = RadioPair()
     pair.radio.sight = LineOfSight(WallBoxes(world))
-    pair.radio.tune(1, "receiver", 0, listening=True)
-    fields = {"type": "infra-red"}
-    emitter_from_fields("ir", pair.robots[0], fields).send(b"ir")
+    infra_red = {"type": "infra-red"}
+    receiver_from_fields("ir receiver", pair.robots[1], infra_red).enable(32)
+    receiver_from_fields("radio receiver", pair.robots[1], {}).enable(32)
+    emitter_from_fields("ir", pair.robots[0], infra_red).send(b"ir")
     emitter_from_fields("radio", pair.robots[0], {}).send(b"radio")
     pair.radio.transmit({0: (-0.3, 0.0, 0.0), 1: (0.3, 0.0, 0.0)})
-    assert [p.data for p in pair.radio.collect(1, "receiver")] == [b"radio"]
+    assert pair.radio.collect(1, "ir receiver") == [], "the wall stops it"
+    assert [p.data for p in pair.radio.collect(1, "radio receiver")] == [b"radio"]
+
+
+# --- the transmission type ------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("sent", [RADIO, SERIAL, INFRA_RED])
+def test_a_packet_reaches_only_receivers_of_its_emitters_type(sent: str) -> None:
+    # Webots' WbReceiver::transmitPacket: "media types must match".
+    radio = Radio()
+    for kind in (RADIO, SERIAL, INFRA_RED):
+        radio.tune(1, kind, 1, listening=True, kind=kind)
+    radio.send(0, 1, -1, b"x", sent)
+    radio.transmit({0: HERE, 1: (0.3, 0.0, 0.0)})
+    heard = {kind: len(radio.collect(1, kind)) for kind in (RADIO, SERIAL, INFRA_RED)}
+    assert heard == {kind: int(kind == sent) for kind in heard}
+
+
+@pytest.mark.parametrize(
+    ("fields", "kind"),
+    [
+        ({}, RADIO),  # the nodes' default
+        ({"type": "serial"}, SERIAL),
+        ({"type": "infra-red"}, INFRA_RED),
+        ({"type": "infrared"}, RADIO),  # Webots warns of an unknown type and takes "radio"
+    ],
+)
+def test_the_type_field_gives_an_emitters_and_a_receivers_transmission_type(
+    fields: dict[str, Any], kind: str
+) -> None:
+    pair = RadioPair()
+    emitter_from_fields("e", pair.robots[0], fields).send(b"x")
+    receiver_from_fields("r", pair.robots[1], fields).enable(32)
+    pair.radio.tune(1, "radio", 0, listening=True)
+    pair.radio.transmit({0: HERE, 1: (0.3, 0.0, 0.0)})
+    assert len(pair.radio.collect(1, "r")) == 1
+    assert len(pair.radio.collect(1, "radio")) == int(kind == RADIO)
+
+
+def test_the_e_pucks_own_emitter_and_receiver_are_of_type_radio() -> None:
+    # The E-puck PROTO sets only its Emitter's and Receiver's channel: both are "radio".
+    pair = RadioPair()
+    Receiver("receiver", pair.robots[1]).enable(32)
+    pair.radio.tune(1, "serial", 1, listening=True, kind=SERIAL)
+    Emitter("emitter", pair.robots[0]).send(b"x")
+    pair.radio.transmit({0: HERE, 1: (0.3, 0.0, 0.0)})
+    assert len(pair.radio.collect(1, "receiver")) == 1
+    assert pair.radio.collect(1, "serial") == []
 
 
 # --- infra-red: other robots' bodies and movable bodies -------------------------------------
@@ -280,10 +330,12 @@ IN_A_ROW = {0: (-0.3, 0.0, 0.0), 1: (0.0, 0.0, 0.0), 2: (0.3, 0.0, 0.0)}
 
 
 def _heard_in_a_row(radio: Radio, infra_red: bool, poses: Any = None) -> tuple[bool, bool]:
-    """Robot 0 sends one packet; whether robots 1 and 2 hear it."""
+    """Robot 0 sends one packet, infra-red or radio; whether robots 1 and 2 hear it on a
+    receiver of that type."""
+    kind = INFRA_RED if infra_red else RADIO
     for robot in (1, 2):
-        radio.tune(robot, "receiver", 1, listening=True)
-    radio.send(0, 1, -1, b"x", infra_red)
+        radio.tune(robot, "receiver", 1, listening=True, kind=kind)
+    radio.send(0, 1, -1, b"x", kind)
     radio.transmit(poses or IN_A_ROW)
     return bool(radio.collect(1, "receiver")), bool(radio.collect(2, "receiver"))
 
@@ -334,8 +386,8 @@ def test_a_wall_a_supervisor_moved_stops_infra_red_packets_where_it_is_now() -> 
     poses = {0: (-0.3, 0.0, 0.0), 1: (0.3, 0.0, 0.0)}
     for moves, heard in (({}, False), (moved, True)):
         radio = Radio(LineOfSight(WallBoxes(world), (), report, _Objects([], moves)))
-        radio.tune(1, "receiver", 1, listening=True)
-        radio.send(0, 1, -1, b"x", True)
+        radio.tune(1, "receiver", 1, listening=True, kind=INFRA_RED)
+        radio.send(0, 1, -1, b"x", INFRA_RED)
         radio.transmit(poses)
         assert bool(radio.collect(1, "receiver")) is heard
 
@@ -358,27 +410,30 @@ def test_an_infra_red_emitter_sends_only_within_its_cone(
     receiver_at: tuple[float, float, float], heard: bool
 ) -> None:
     radio = _radio_with_receiver()
-    radio.send(0, 1, -1, b"ir", True, FORWARD_CONE)
-    radio.send(0, 1, -1, b"radio", False, FORWARD_CONE)
+    radio.tune(1, "ir receiver", 1, listening=True, kind=INFRA_RED)
+    radio.send(0, 1, -1, b"ir", INFRA_RED, FORWARD_CONE)
+    radio.send(0, 1, -1, b"radio", RADIO, FORWARD_CONE)
     radio.transmit({0: HERE, 1: receiver_at})
-    expected = [b"ir", b"radio"] if heard else [b"radio"]
-    assert [p.data for p in radio.collect(1, "receiver")] == expected
+    assert [p.data for p in radio.collect(1, "ir receiver")] == ([b"ir"] if heard else [])
+    assert [p.data for p in radio.collect(1, "receiver")] == [b"radio"], "its cone is ignored"
 
 
 def test_the_cone_turns_with_the_sending_robot_and_the_receivers_own() -> None:
     radio = _radio_with_receiver()
-    radio.send(0, 1, -1, b"ir", True, FORWARD_CONE)
+    radio.tune(1, "ir receiver", 1, listening=True, kind=INFRA_RED)
+    radio.send(0, 1, -1, b"ir", INFRA_RED, FORWARD_CONE)
     radio.transmit({0: (0.0, 0.0, math.pi), 1: (-0.3, 0.0, 0.0)})  # facing the receiver
-    assert len(radio.collect(1, "receiver")) == 1
+    assert len(radio.collect(1, "ir receiver")) == 1
+    radio.tune(1, "ir receiver", 1, True, FORWARD_CONE, INFRA_RED)
     radio.tune(1, "receiver", 1, True, FORWARD_CONE)
     # The receiver's own cone: the sender must lie within it (0.4 rad off its axis: yes).
     for receiver_yaw, heard in ((0.0, False), (math.pi, True), (math.pi - 0.4, True),
                                 (math.pi - 0.6, False)):  # fmt: skip
-        radio.send(0, 1, -1, b"ir", True)
-        radio.send(0, 1, -1, b"radio", False)
+        radio.send(0, 1, -1, b"ir", INFRA_RED)
+        radio.send(0, 1, -1, b"radio", RADIO)
         radio.transmit({0: HERE, 1: (0.3, 0.0, receiver_yaw)})
-        expected = [b"ir", b"radio"] if heard else [b"radio"]
-        assert [p.data for p in radio.collect(1, "receiver")] == expected
+        assert [p.data for p in radio.collect(1, "ir receiver")] == ([b"ir"] if heard else [])
+        assert [p.data for p in radio.collect(1, "receiver")] == [b"radio"]
 
 
 TURNED = ((0.0, 1.0, 0.0), (-1.0, 0.0, 0.0), (0.0, 0.0, 1.0))  # x axis to the robot's left

@@ -217,7 +217,8 @@ def _beacon_heard(
 ) -> dict[str, dict[str, int]]:
     """Runs a world where a beacon sends 20 packets from each of its infra-red and radio
     emitters (its controller ``beacon``, or the Python one) and the other robots count what
-    they hear: their counts by name."""
+    their radio and infra-red receivers hear, each only its own type's packets: their counts
+    by name."""
     monkeypatch.setenv("SWARM_LOG", str(tmp_path))
     monkeypatch.setenv("MAZESIM_CACHE", str(tmp_path / "cache"))
     run = run_world(

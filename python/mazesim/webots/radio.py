@@ -3,8 +3,9 @@
 A :class:`Radio` is the medium of one world. Emitters :meth:`~Radio.send` packets; once per basic
 time step the process that owns the world calls :meth:`~Radio.transmit` with every robot's
 pose, before the step, and each packet sent since the last transmission reaches the listening
-receivers of the other robots: those on its channel (or listening to all, channel -1; a packet
-sent on channel -1 reaches every channel) and within its range (-1: no limit). Receivers
+receivers of the other robots: those of the emitter's type ("radio", "serial" or "infra-red"),
+on its channel (or listening to all, channel -1; a packet sent on channel -1 reaches every
+channel) and within its range (-1: no limit). Receivers
 :meth:`~Radio.collect` what arrived at their next sampling instant. The rules follow Webots'
 reference manual (https://cyberbotics.com/doc/reference/emitter and
 https://cyberbotics.com/doc/reference/receiver):
@@ -13,6 +14,10 @@ https://cyberbotics.com/doc/reference/receiver):
   node will receive it immediately": a packet sent before ``Robot.step`` is in the queue of a
   receiver sampling every basic step when that step returns;
 - "a packet will not be sent to its emitter robot";
+- a packet reaches only receivers of its emitter's ``type``: Webots' source
+  (``WbReceiver::transmitPacket``, "media types must match") compares the two devices' types,
+  so a "radio" receiver hears neither a "serial" nor an "infra-red" emitter; a type Webots does
+  not know counts as "radio", as Webots takes it after its warning;
 - "A value of -1 (the default) for range is considered to be an infinite range"; the distance
   is the one between the two robots' centres at the time of sending;
 - the signal strength is "the inverse of the distance between the emitter and the receiver
@@ -50,12 +55,35 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from mazesim.webots.line_of_sight import LineOfSight, Sight
 
-__all__ = ["CHANNEL_BROADCAST", "UNLIMITED", "Cone", "Packet", "Radio"]
+__all__ = [
+    "CHANNEL_BROADCAST",
+    "INFRA_RED",
+    "RADIO",
+    "SERIAL",
+    "UNLIMITED",
+    "Cone",
+    "Packet",
+    "Radio",
+    "transmission_type",
+]
 
 #: The channel of an emitter that sends on every channel, or a receiver that listens to all.
 CHANNEL_BROADCAST = -1
 #: A range, buffer size or maximum range without limit.
 UNLIMITED = -1
+
+#: The transmission types of Webots' Emitter and Receiver nodes (their ``type`` field), the
+#: first the nodes' default.
+RADIO = "radio"
+SERIAL = "serial"
+INFRA_RED = "infra-red"
+
+
+def transmission_type(value: object) -> str:
+    """A node's ``type`` field as the transmission type Webots takes: "radio", "serial" or
+    "infra-red", anything else (absent, misspelt) "radio"."""
+    return value if isinstance(value, str) and value in (SERIAL, INFRA_RED) else RADIO
+
 
 #: An infra-red device's cone: its axis (x, y, z in its robot's frame, x forward, y left, z
 #: up) and half its ``aperture`` (radians).
@@ -90,17 +118,18 @@ class _Sent:
     channel: int
     range_m: float
     data: bytes
-    infra_red: bool
+    kind: str
     cone: Cone | None
 
 
 @dataclass
 class _Tuning:
-    """A receiver's channel and whether it listens (is enabled)."""
+    """A receiver's channel, whether it listens (is enabled) and its transmission type."""
 
     channel: int
     listening: bool
     cone: Cone | None = None
+    kind: str = RADIO
     arrived: list[Packet] = field(default_factory=list)
 
 
@@ -131,7 +160,7 @@ class Radio:
         channel: int,
         range_m: float,
         data: bytes,
-        infra_red: bool = False,
+        kind: str = RADIO,
         cone: Cone | None = None,
     ) -> None:
         """Puts a packet on its way; it arrives at the next :meth:`transmit`.
@@ -141,9 +170,12 @@ class Radio:
             channel: The emitter's channel (-1: every channel).
             range_m: The emitter's range in metres (-1: no limit).
             data: The packet.
-            infra_red: Whether the emitter is of type "infra-red" (obstacles stop the packet).
+            kind: The emitter's transmission type (:data:`RADIO`, :data:`SERIAL` or
+                :data:`INFRA_RED`, whose packets obstacles stop); only receivers of that type
+                hear it.
             cone: An infra-red emitter's emission cone (None: all around).
         """
+        kind = transmission_type(kind)
         self._sent += 1
         self._in_transit.append(
             _Sent(
@@ -152,21 +184,28 @@ class Radio:
                 channel,
                 float(range_m),
                 bytes(data),
-                bool(infra_red),
-                cone if infra_red else None,
+                kind,
+                cone if kind == INFRA_RED else None,
             )
         )
 
     def tune(
-        self, robot: int, receiver: str, channel: int, listening: bool, cone: Cone | None = None
+        self,
+        robot: int,
+        receiver: str,
+        channel: int,
+        listening: bool,
+        cone: Cone | None = None,
+        kind: str = RADIO,
     ) -> None:
-        """Sets a receiver's channel, whether it listens and its reception cone for infra-red
-        packets (None: all around); a receiver that stops listening keeps what arrived
-        before."""
+        """Sets a receiver's channel, whether it listens, its reception cone for infra-red
+        packets (None: all around) and its transmission type (it hears only emitters of that
+        type); a receiver that stops listening keeps what arrived before."""
         tuning = self._receivers.setdefault((robot, receiver), _Tuning(channel, listening))
         tuning.channel = channel
         tuning.listening = listening
         tuning.cone = cone
+        tuning.kind = transmission_type(kind)
 
     def transmit(self, poses: Mapping[int, tuple[float, float, float]]) -> None:
         """Delivers the packets sent since the last call to the listening receivers they reach.
@@ -183,12 +222,12 @@ class Radio:
             for packet in sent:
                 if packet.robot == robot or packet.robot not in poses:
                     continue
-                if not _reaches(packet, tuning.channel):
+                if packet.kind != tuning.kind or not _reaches(packet, tuning.channel):
                     continue
                 arrived = _arrival(packet, poses[packet.robot], poses[robot])
                 if arrived is None:
                     continue
-                if packet.infra_red:
+                if packet.kind == INFRA_RED:
                     sender, receiver = poses[packet.robot], poses[robot]
                     if not (
                         _within(packet.cone, sender, receiver)

@@ -1,8 +1,9 @@
 """Webots' ``Emitter`` and ``Receiver`` devices, carried by the world's
 :class:`~mazesim.webots.radio.Radio`.
 
-The e-puck's own ``emitter`` and ``receiver`` use the E-puck PROTO's channel 1 and no range limit
-(the PROTO's Emitter sets only its ``channel``, so its ``range`` is the node's default, -1);
+The e-puck's own ``emitter`` and ``receiver`` use the E-puck PROTO's channel 1, no range limit
+and the type "radio" (the PROTO's Emitter and Receiver set only their ``channel``, so their
+``range`` and ``type`` are the nodes' defaults, -1 and "radio");
 an Emitter or Receiver node of the world file (in an extension slot, or among a robot's children)
 brings its own ``channel``, ``range``, ``maxRange`` and ``bufferSize`` fields, and its ``type``
 and ``aperture``, with the node's defaults (channel 0, range -1, unlimited buffers, "radio",
@@ -15,7 +16,7 @@ https://cyberbotics.com/doc/reference/receiver): ``send`` returns 0 when the pac
 the current step would exceed the emitter's ``bufferSize``; a receiver listens from ``enable``
 on and makes what arrived available at each end of its sampling period; a packet that would
 make the queue's bytes exceed the receiver's ``bufferSize`` is lost; reading an empty queue
-prints Webots' error.
+prints Webots' error. A receiver hears only emitters of its own ``type``.
 """
 
 from __future__ import annotations
@@ -30,7 +31,15 @@ from mazesim.webots.devices import Device, _print_error, _Sensor, webots_propert
 from mazesim.webots.frames import ENU_TO_NUE
 from mazesim.webots.inert import NotSimulated
 from mazesim.webots.node_types import node_type
-from mazesim.webots.radio import CHANNEL_BROADCAST, UNLIMITED, Cone, Packet
+from mazesim.webots.radio import (
+    CHANNEL_BROADCAST,
+    INFRA_RED,
+    RADIO,
+    UNLIMITED,
+    Cone,
+    Packet,
+    transmission_type,
+)
 
 if TYPE_CHECKING:
     from mazesim.webots.simulation import RobotSimulation
@@ -82,9 +91,9 @@ class _Tuned:
 
 
 class Emitter(_Tuned, NotSimulated, Device):
-    """A radio emitter: ``send``, channel, range and buffer size; an infra-red one
-    (``infra_red``, the node's ``type "infra-red"``) sends only along a line of sight, within
-    its ``cone`` (None: all around)."""
+    """An emitter: ``send``, channel, range and buffer size; its ``kind`` (the node's ``type``,
+    "radio", "serial" or "infra-red") is the only type of receiver that hears it, and an
+    infra-red one sends only along a line of sight, within its ``cone`` (None: all around)."""
 
     _node_type = node_type("EMITTER")
 
@@ -96,12 +105,12 @@ class Emitter(_Tuned, NotSimulated, Device):
         range_m: float = E_PUCK_RANGE,
         max_range: float = UNLIMITED,
         buffer_size: int = UNLIMITED,
-        infra_red: bool = False,
+        kind: str = RADIO,
         cone: Cone | None = None,
     ) -> None:
         super().__init__(name, simulation)
         self._channel = int(channel)
-        self._infra_red = bool(infra_red)
+        self._kind = transmission_type(kind)
         self._cone = cone
         self._max_range = float(max_range)
         self._range = self._clamped(float(range_m))
@@ -135,7 +144,7 @@ class Emitter(_Tuned, NotSimulated, Device):
             return 0
         self._queued_bytes += len(data)
         simulation.radio.send(
-            simulation.robot_index, self._channel, self._range, data, self._infra_red, self._cone
+            simulation.robot_index, self._channel, self._range, data, self._kind, self._cone
         )
         return 1
 
@@ -161,8 +170,9 @@ class Emitter(_Tuned, NotSimulated, Device):
 
 
 class Receiver(_Tuned, NotSimulated, _Sensor):
-    """A radio receiver: its queue of packets, sampled every sampling period; an infra-red
-    one hears only within its ``cone`` (None: all around)."""
+    """A receiver: its queue of packets, sampled every sampling period; it hears only
+    emitters of its ``kind`` (the node's ``type``), and an infra-red one only within its
+    ``cone`` (None: all around)."""
 
     _node_type = node_type("RECEIVER")
 
@@ -176,9 +186,11 @@ class Receiver(_Tuned, NotSimulated, _Sensor):
         buffer_size: int = UNLIMITED,
         axes: Axes | None = None,
         cone: Cone | None = None,
+        kind: str = RADIO,
     ) -> None:
         super().__init__(name, simulation)
         self._channel = int(channel)
+        self._kind = transmission_type(kind)
         self._buffer_size = int(buffer_size)
         self._axes = axes or _unturned(simulation)
         self._cone = cone
@@ -200,7 +212,7 @@ class Receiver(_Tuned, NotSimulated, _Sensor):
         simulation = self._simulation
         listening = self._period_ms > 0
         simulation.radio.tune(
-            simulation.robot_index, self._name, self._channel, listening, self._cone
+            simulation.robot_index, self._name, self._channel, listening, self._cone, self._kind
         )
 
     def enable(self, samplingPeriod: int) -> None:
@@ -331,7 +343,7 @@ def emitter_from_fields(
         range_m=_float_field(fields, "range", UNLIMITED),
         max_range=_float_field(fields, "maxRange", UNLIMITED),
         buffer_size=_int_field(fields, "bufferSize", UNLIMITED),
-        infra_red=fields.get("type") == "infra-red",
+        kind=transmission_type(fields.get("type")),
         cone=_cone(simulation, fields, axes),
     )
 
@@ -339,9 +351,9 @@ def emitter_from_fields(
 def receiver_from_fields(
     name: str, simulation: RobotSimulation, fields: Mapping[str, Any], axes: Any = None
 ) -> Receiver:
-    """A Receiver node of the world file, with its fields (Webots' node defaults: channel 0,
-    bufferSize -1) and its axes in the robot's frame (the import report's ``axes``; where
-    absent or malformed, unturned in the robot's inside)."""
+    """A Receiver node of the world file, with its fields (Webots' node defaults: type
+    "radio", channel 0, bufferSize -1, aperture -1) and its axes in the robot's frame (the
+    import report's ``axes``; where absent or malformed, unturned in the robot's inside)."""
     return Receiver(
         name,
         simulation,
@@ -349,6 +361,7 @@ def receiver_from_fields(
         buffer_size=_int_field(fields, "bufferSize", UNLIMITED),
         axes=_axes(axes),
         cone=_cone(simulation, fields, axes),
+        kind=transmission_type(fields.get("type")),
     )
 
 
@@ -362,7 +375,7 @@ def _cone(simulation: RobotSimulation, fields: Mapping[str, Any], axes: Any) -> 
     none, as Webots takes -1 and 0), around its x axis (its z axis in a file before
     R2022a)."""
     aperture = _float_field(fields, "aperture", UNLIMITED)
-    if fields.get("type") != "infra-red" or not 0.0 < aperture <= math.tau:
+    if fields.get("type") != INFRA_RED or not 0.0 < aperture <= math.tau:
         return None
     own = _axes(axes) or _unturned(simulation)
     axis = own[2] if simulation.scene.y_up_devices else own[0]
