@@ -28,7 +28,8 @@ from typing import Any
 from mazesim.errors import MazesimIOError
 from mazesim.webots.camera import CameraRecognitionObject
 from mazesim.webots.devices import _print_error
-from mazesim.webots.supervisor import Field, Node, Supervisor
+from mazesim.webots.field import Field
+from mazesim.webots.supervisor import Node, Supervisor
 
 __all__ = ["FUNCTIONS", "Function", "NativeCalls"]
 

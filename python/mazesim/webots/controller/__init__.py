@@ -30,6 +30,7 @@ from types import ModuleType
 from mazesim.errors import UnknownNameError
 from mazesim.webots.camera import Camera, CameraRecognitionObject
 from mazesim.webots.devices import LED, Device, DistanceSensor, Motor, PositionSensor
+from mazesim.webots.field import Field
 from mazesim.webots.inert import (
     Altimeter,
     AnsiCodes,
@@ -60,7 +61,7 @@ from mazesim.webots.sensors import (
     LightSensor,
     TouchSensor,
 )
-from mazesim.webots.supervisor import Field, Node, Supervisor
+from mazesim.webots.supervisor import Node, Supervisor
 
 #: Webots' submodules, one per class as Webots names them (``controller.distance_sensor``...),
 #: with the classes each gives.

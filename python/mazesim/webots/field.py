@@ -1,0 +1,375 @@
+"""Webots' ``Field``: one field of a node a supervisor reads and sets.
+
+A field reads by its own type (a translation, an axis-angle rotation, a name or ``customData``
+string, the nodes of a ``children`` field, the node of an SFNode field) through the node that
+holds it (:class:`~mazesim.webots.supervisor.Node`); setting a robot's or a movable body's
+``translation`` or ``rotation`` moves it in the simulation. Calls that would add nodes to the
+running world or remove them print Webots' kind of error and change nothing. Positions are read
+and written in the world file's frame (Webots' old NUE frame for worlds before R2022a).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING, Any
+
+from mazesim.webots import simulation as _simulations
+from mazesim.webots.devices import _print_error, webots_property
+from mazesim.webots.frames import enu_to_nue, nue_to_enu, rotation_matrix
+from mazesim.webots.inert import NotSimulated
+
+if TYPE_CHECKING:
+    from mazesim.webots.supervisor import Node
+
+__all__ = ["Field"]
+
+
+def _refuse_scene_change(call: str) -> None:
+    """Prints the refusal of a call that adds nodes to the running world or removes them (as
+    Webots prints the error of a call it cannot carry out, and the controller goes on)."""
+    _print_error(
+        f"Error: {call} is not supported by mazesim: it would add or remove a node of the "
+        "running world, and mazesim's simulator is built from the world file when it is "
+        "imported and takes no body in or out during a run; nothing changed. A supervisor "
+        "moves the world's robots, walls and movable bodies by the translation and rotation "
+        "fields of their nodes: to take one out of the robots' way, move it far from them."
+    )
+
+
+def _file_frame() -> bool:
+    """Whether the world file is in Webots' old NUE frame: a supervisor then reads and writes
+    positions, rotations and velocities in it, as the file writes them (Webots before R2022a
+    did), and mazesim converts them as the importer converts the world."""
+    return _simulations.current().scene.nue
+
+
+def _out(vector: list[float]) -> list[float]:
+    """A world-frame (ENU) vector as the supervisor reports it."""
+    return list(enu_to_nue(*vector[:3])) if len(vector) == 3 and _file_frame() else vector
+
+
+def _in(vector: list[float]) -> list[float]:
+    """A vector the supervisor was given, in the world frame (ENU)."""
+    return list(nue_to_enu(*vector[:3])) if _file_frame() else vector
+
+
+class Field(NotSimulated):
+    """A field of a node: the robot's ``translation``, ``rotation``, ``name``, ``customData``."""
+
+    SF_BOOL = 0x01
+    SF_INT32 = 0x02
+    SF_FLOAT = 0x03
+    SF_VEC2F = 0x04
+    SF_VEC3F = 0x05
+    SF_ROTATION = 0x06
+    SF_COLOR = 0x07
+    SF_STRING = 0x08
+    SF_NODE = 0x09
+    MF = 0x10
+    MF_BOOL = 0x11
+    MF_INT32 = 0x12
+    MF_FLOAT = 0x13
+    MF_VEC2F = 0x14
+    MF_VEC3F = 0x15
+    MF_ROTATION = 0x16
+    MF_COLOR = 0x17
+    MF_STRING = 0x18
+    MF_NODE = 0x19
+    _type_names = {
+        0x05: "SFVec3f",
+        0x06: "SFRotation",
+        0x08: "SFString",
+        0x09: "SFNode",
+        0x19: "MFNode",
+    }
+
+    def __init__(self, node: Node, name: str, field_type: int) -> None:
+        self._node = node
+        self._name = name
+        self._type = field_type
+
+    def getName(self) -> str:
+        """The field's name."""
+        return self._name
+
+    name = webots_property("getName")
+
+    def getType(self) -> int:
+        """The field's type (``Field.SF_VEC3F``...)."""
+        return self._type
+
+    type = webots_property("getType")
+
+    def getTypeName(self) -> str:
+        """The field's type name (``"SFVec3f"``...)."""
+        return self._type_names[self._type]
+
+    def getCount(self) -> int:
+        """-1 for a single field; the number of nodes of a ``children`` field."""
+        return len(self._node._children) if self._type == self.MF_NODE else -1
+
+    def getMFNode(self, index: int) -> Node | None:
+        """The node at ``index`` of a ``children`` field (the root's, or a Solid's, Transform's,
+        Pose's or Group's; negative: from the end, as in Webots), or None with Webots' error."""
+        if self._type != self.MF_NODE:
+            self._wrong("get_mf_node")
+            return None
+        children = self._node._children
+        if not -len(children) <= int(index) < len(children):
+            _print_error(
+                f"Error: wb_supervisor_field_get_mf_node() called with an out of range index: "
+                f"{index}."
+            )
+            return None
+        return children[int(index)]
+
+    def getSFNode(self) -> Node | None:
+        """The node a field of one node holds (a Shape's ``geometry`` or ``appearance``, an
+        Appearance's ``material``), or None with Webots' error for another field."""
+        if self._type != self.SF_NODE:
+            self._wrong("get_sf_node")
+            return None
+        return self._node._field_nodes.get(self._name)
+
+    def importMFNodeFromString(self, position: int, nodeString: str) -> None:
+        """Webots' kind of error: mazesim adds no nodes to a running world."""
+        _refuse_scene_change(f"Field.importMFNodeFromString() on {self._where()}")
+
+    def importSFNodeFromString(self, nodeString: str) -> None:
+        """Webots' kind of error: mazesim adds no nodes to a running world."""
+        _refuse_scene_change(f"Field.importSFNodeFromString() on {self._where()}")
+
+    def importMFNode(self, position: int, filename: str) -> None:
+        """Webots' kind of error: mazesim adds no nodes to a running world (an older name)."""
+        _refuse_scene_change(f"Field.importMFNode() on {self._where()}")
+
+    def importSFNode(self, filename: str) -> None:
+        """Webots' kind of error: mazesim adds no nodes to a running world (an older name)."""
+        _refuse_scene_change(f"Field.importSFNode() on {self._where()}")
+
+    def removeMF(self, index: int) -> None:
+        """Webots' kind of error: mazesim removes no nodes from a running world."""
+        _refuse_scene_change(f"Field.removeMF() on {self._where()}")
+
+    def removeSF(self) -> None:
+        """Webots' kind of error: mazesim removes no nodes from a running world."""
+        _refuse_scene_change(f"Field.removeSF() on {self._where()}")
+
+    def _where(self) -> str:
+        """The field and its node, as a refusal names them."""
+        return f"field '{self._name}' of {self._node._label()}"
+
+    def _wrong(self, function: str) -> None:
+        _print_error(
+            f"Error: wb_supervisor_field_{function}() called with a field of type "
+            f"{self.getTypeName()}."
+        )
+
+    def c_sf_vec3f(self) -> list[float] | None:
+        """The node's translation [x, y, z] in metres (in its parent's frame; a robot's and a
+        movable body's are live), or another field of three numbers as the world file gives
+        it."""
+        if self._name != "translation":
+            return self._numbers("get_sf_vec3f", (self.SF_VEC3F, self.SF_COLOR))
+        node = self._node
+        if node._live:
+            x, y, _ = node._field_pose()
+            return _out([x, y, node._field_height()])
+        return _out(list(node._translation or ()))
+
+    def setSFVec3f(self, values: list[float]) -> None:
+        """Moves the robot, or what the node holds, to [x, y, z] (z is ignored: everything stays
+        on the floor); another node's translation is recorded."""
+        if self._name != "translation":
+            self._wrong("set_sf_vec3f")
+            return
+        node = self._node
+        x, y, z = _in(_padded(values, 3))
+        if node._live:
+            node._set_field_pose(x, y, node._field_pose()[2])
+        else:
+            node._place(translation=(x, y, z))
+
+    def c_sf_rotation(self) -> list[float] | None:
+        """The node's rotation as axis and angle (the robot's is live: [0, 0, 1, yaw])."""
+        if self._name != "rotation":
+            self._wrong("get_sf_rotation")
+            return None
+        node = self._node
+        live = [0.0, 0.0, 1.0, node._field_pose()[2]] if node._live else None
+        rotation = live or list(node._rotation or ())
+        return [*_out(rotation[:3]), rotation[3]] if rotation else rotation
+
+    def setSFRotation(self, values: list[float]) -> None:
+        """Turns the robot, or what the node holds, to an axis-angle rotation (its yaw about z is
+        kept); another node's rotation is recorded."""
+        if self._name != "rotation":
+            self._wrong("set_sf_rotation")
+            return
+        node = self._node
+        ax, ay, az, angle = _padded(values, 4)
+        ax, ay, az = _in([ax, ay, az])
+        if node._live:
+            x, y, _ = node._field_pose()
+            node._set_field_pose(x, y, _yaw_of_rotation([ax, ay, az, angle]))
+        else:
+            node._place(rotation=(ax, ay, az, angle))
+
+    def _numbers(self, function: str, types: tuple[int, ...]) -> list[float] | None:
+        if self._type not in types or self._name not in self._node._numbers:
+            self._wrong(function)
+            return None
+        return list(self._node._numbers[self._name])
+
+    def c_sf_int32(self) -> int | None:
+        """The value of an integer field the world file gives (a PROTO's ``channel 2``)."""
+        values = self._numbers("get_sf_int32", (self.SF_INT32,))
+        return None if values is None else int(values[0])
+
+    def c_sf_float(self) -> float | None:
+        """The value of a number field the world file gives."""
+        values = self._numbers("get_sf_float", (self.SF_FLOAT, self.SF_INT32))
+        return None if values is None else values[0]
+
+    def c_sf_bool(self) -> bool | None:
+        """The value of a ``TRUE`` / ``FALSE`` field the world file gives."""
+        if self._type != self.SF_BOOL:
+            self._wrong("get_sf_bool")
+            return None
+        return self._node._flags.get(self._name, False)
+
+    def c_sf_vec2f(self) -> list[float] | None:
+        """The value of a field of two numbers the world file gives."""
+        return self._numbers("get_sf_vec2f", (self.SF_VEC2F,))
+
+    def c_sf_color(self) -> list[float] | None:
+        """The value of a colour field the world file gives."""
+        # The file does not say whether three numbers are a colour or a vector: both read.
+        return self._numbers("get_sf_color", (self.SF_COLOR, self.SF_VEC3F))
+
+    def _set_numbers(self, function: str, types: tuple[int, ...], values: list[float]) -> None:
+        if self._type not in types or self._name not in self._node._numbers:
+            self._wrong(function)
+            return
+        self._node._numbers[self._name] = [float(v) for v in values]
+
+    def setSFInt32(self, value: int) -> None:
+        """Records a new value of an integer field."""
+        self._set_numbers("set_sf_int32", (self.SF_INT32,), [int(value)])
+
+    def setSFFloat(self, value: float) -> None:
+        """Records a new value of a number field."""
+        self._set_numbers("set_sf_float", (self.SF_FLOAT, self.SF_INT32), [float(value)])
+
+    def setSFColor(self, values: list[float]) -> None:
+        """Records a new value of a colour field (a Material's ``diffuseColor``: the rendering
+        does not change)."""
+        self._set_numbers("set_sf_color", (self.SF_COLOR, self.SF_VEC3F), _padded(values, 3))
+
+    def setSFBool(self, value: bool) -> None:
+        """Records a new value of a ``TRUE`` / ``FALSE`` field."""
+        if self._type != self.SF_BOOL:
+            self._wrong("set_sf_bool")
+            return
+        self._node._flags[self._name] = bool(value)
+
+    def c_sf_string(self) -> str | None:
+        """The value of a string field (``name``, ``customData``, ``controller``)."""
+        if self._type != self.SF_STRING:
+            self._wrong("get_sf_string")
+            return None
+        return self._node._strings.get(self._name, "")
+
+    def setSFString(self, value: str) -> None:
+        """Sets a string field."""
+        if self._type != self.SF_STRING:
+            self._wrong("set_sf_string")
+            return
+        self._node._strings[self._name] = str(value)
+
+    @property
+    def value(self) -> Any:
+        """The field's value, read by the field's own type (a node for an SFNode field, None for
+        a multiple field), as Webots' Python ``Field.value`` reads it."""
+        if self._type == self.SF_VEC3F:
+            return self.c_sf_vec3f()
+        if self._type == self.SF_ROTATION and self._name == "rotation":
+            return self.c_sf_rotation()
+        if self._type == self.SF_NODE:
+            return self.getSFNode()
+        if self._type & self.MF:
+            return None
+        getters = {
+            self.SF_INT32: self.c_sf_int32,
+            self.SF_FLOAT: self.c_sf_float,
+            self.SF_BOOL: self.c_sf_bool,
+            self.SF_VEC2F: self.c_sf_vec2f,
+            self.SF_COLOR: self.c_sf_color,
+            self.SF_ROTATION: lambda: self._numbers("get_sf_rotation", (self.SF_ROTATION,)),
+        }
+        if self._type in getters:
+            return getters[self._type]()
+        return self.c_sf_string()
+
+    @value.setter
+    def value(self, value: Any) -> None:
+        if self._type == self.SF_VEC3F:
+            self.setSFVec3f(value)
+        elif self._type == self.SF_ROTATION:
+            self.setSFRotation(value)
+        else:
+            self.setSFString(value)
+
+    # Webots' Python API (its ctypes ``Field``, since R2023b) gives every single-value getter
+    # as ``return self.value``: it reads the field by its own type whatever the getter's name
+    # (``getSFVec3f()`` of a rotation field is its four numbers); the C API's typed functions
+    # (``c_sf_*`` above, which compiled controllers call) print Webots' error and give NULL.
+    def getSFBool(self) -> Any:
+        """The field's value, read by its own type (see :attr:`value`)."""
+        return self.value
+
+    def getSFInt32(self) -> Any:
+        """The field's value, read by its own type (see :attr:`value`)."""
+        return self.value
+
+    def getSFFloat(self) -> Any:
+        """The field's value, read by its own type (see :attr:`value`)."""
+        return self.value
+
+    def getSFVec2f(self) -> Any:
+        """The field's value, read by its own type (see :attr:`value`)."""
+        return self.value
+
+    def getSFVec3f(self) -> Any:
+        """The field's value, read by its own type (see :attr:`value`): a translation in
+        metres (a robot's and a movable body's are live)."""
+        return self.value
+
+    def getSFRotation(self) -> Any:
+        """The field's value, read by its own type (see :attr:`value`): a rotation as axis and
+        angle (the robot's is live: [0, 0, 1, yaw])."""
+        return self.value
+
+    def getSFColor(self) -> Any:
+        """The field's value, read by its own type (see :attr:`value`)."""
+        return self.value
+
+    def getSFString(self) -> Any:
+        """The field's value, read by its own type (see :attr:`value`): ``name``,
+        ``customData``, ``controller``..."""
+        return self.value
+
+
+def _padded(values: list[float], count: int) -> list[float]:
+    """The first ``count`` values as floats, missing ones 0: Webots' Python API copies the list
+    into a C array of ``count`` doubles, whose missing elements are 0
+    (``setSFRotation([0, 0, -1])`` is the rotation by angle 0)."""
+    numbers = [float(v) for v in list(values)[:count]]
+    return numbers + [0.0] * (count - len(numbers))
+
+
+def _yaw_of_rotation(rotation: list[float]) -> float:
+    """The heading (rad) of an axis-angle rotation: the angle of its image of the x axis."""
+    ax, ay, az, angle = (rotation + [0.0, 0.0, 1.0, 0.0][len(rotation) :])[:4]
+    matrix = rotation_matrix(ax, ay, az, angle)
+    return math.atan2(matrix[3], matrix[0])
