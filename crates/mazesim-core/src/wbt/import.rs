@@ -154,10 +154,52 @@ pub struct Importer<'d> {
     too_deep: bool,
     /// The e-puck whose `controller` field names the controller of the run, if one does.
     chosen: Option<&'d Node>,
+    /// The heights of the horizontal `Plane` bounding objects met (floors), world frame.
+    pub floors: Vec<f64>,
+    /// The height of the last robot pose read, and of the run's e-puck's (see [`raised_floor`]).
+    pose_z: f64,
+    robot_z: Option<f64>,
 }
 
 /// Imports a parsed world.
 pub fn import(doc: &Document, choice: RobotChoice<'_>) -> WbtImport {
+    let first = walk(doc, &choice, 0.0);
+    match raised_floor(first.0.robot_z, &first.0.floors) {
+        Some(height) => {
+            let mut lowered = walk(doc, &choice, height);
+            lowered.0.warnings.push(format!(
+                "the e-puck stands on a floor {height:.3} m above the world's origin: the world is imported lowered by {height:.3} m, its floor at 0"
+            ));
+            finish(lowered)
+        }
+        None => finish(first),
+    }
+}
+
+/// A robot whose origin is this high (metres) above the world's origin, on a floor, stands on a
+/// raised floor.
+const RAISED: f64 = 0.02;
+/// How near (metres) a floor plane must be to the robot's origin to be the floor it stands on.
+const ON_FLOOR: f64 = 0.01;
+
+/// The height of the floor the run's e-puck stands on when a world raises it (an arena placed on
+/// a table, a whole scene saved at a height): a horizontal floor `Plane` within [`ON_FLOOR`] of
+/// the robot's origin, which is more than [`RAISED`] above the world's origin, and no floor at
+/// the origin's own height. `None` for a world whose floor is at 0.
+fn raised_floor(robot_z: Option<f64>, floors: &[f64]) -> Option<f64> {
+    let z = robot_z.filter(|z| z.abs() > RAISED)?;
+    if floors.iter().any(|f| f.abs() <= ON_FLOOR) {
+        return None;
+    }
+    floors
+        .iter()
+        .copied()
+        .filter(|f| (f - z).abs() <= ON_FLOOR)
+        .min_by(|a, b| (a - z).abs().total_cmp(&(b - z).abs()))
+}
+
+/// Walks the whole world, lowered by `lowered_by` metres.
+fn walk<'d>(doc: &'d Document, choice: &RobotChoice<'_>, lowered_by: f64) -> (Importer<'d>, f64) {
     let mut importer = Importer {
         doc,
         y_up: !doc.version.has_z_up_protos(),
@@ -187,6 +229,9 @@ pub fn import(doc: &Document, choice: RobotChoice<'_>) -> WbtImport {
         visits: 0,
         too_deep: false,
         chosen: None,
+        floors: Vec::new(),
+        pose_z: 0.0,
+        robot_z: None,
     };
     importer.chosen = match choice.line {
         Some(line) => importer.robot_on_line(line),
@@ -195,9 +240,15 @@ pub fn import(doc: &Document, choice: RobotChoice<'_>) -> WbtImport {
             .and_then(|name| importer.epuck_of_controller(name)),
     };
     let (basic_time_step_ms, root) = importer.world_info();
+    let root = Frame::translation([0.0, 0.0, -lowered_by]).then(&root);
     for &id in &doc.roots {
         importer.scene(id, &root, 0);
     }
+    (importer, basic_time_step_ms)
+}
+
+/// The import a walk gives, with the world's basic time step.
+fn finish((mut importer, basic_time_step_ms): (Importer<'_>, f64)) -> WbtImport {
     if let (Some(_), Some((index, what))) = (&importer.robot, &importer.other_robot_warning) {
         importer.warnings[*index] = format!(
             "{what}: a robot that is not an e-puck: its controller runs, its body does not move; its collision shapes (those of a plain Robot node) are static obstacles"
@@ -721,6 +772,7 @@ impl<'d> Importer<'d> {
             return;
         }
         self.robot = Some(found);
+        self.robot_z = Some(self.pose_z);
         self.extension_slots(node);
         if plain {
             self.robot_children(node, true);
@@ -838,7 +890,8 @@ impl<'d> Importer<'d> {
             ));
             0.0
         };
-        let [x, y, _] = body.origin;
+        let [x, y, z] = body.origin;
+        self.pose_z = z;
         if x.abs() > MAX_EXTENT || y.abs() > MAX_EXTENT {
             self.warn(format!(
                 "{label}: the robot stands at ({x}, {y}), farther than {MAX_EXTENT} m from the origin; not imported"

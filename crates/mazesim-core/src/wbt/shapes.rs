@@ -113,6 +113,8 @@ impl<'d> Importer<'d> {
                         "{owner}: a Plane that is not horizontal (tilted by {:.3} rad): not imported",
                         tilt(normal)
                     ));
+                } else {
+                    self.floors.push(frame.origin[2]);
                 }
                 // A horizontal plane is a floor (or a ceiling): nothing to collide with in 2D.
             }

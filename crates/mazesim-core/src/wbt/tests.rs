@@ -787,3 +787,41 @@ RectangleArena { floorSize 2 1 floorTileSize 2 1 floorAppearance Appearance { te
     assert_eq!(nue(0.5, 0.25), Some(1.0), "its bottom-right quarter");
     assert_eq!(nue(-0.9, -0.45), Some(0.2), "the floor's corner (-x, -z)");
 }
+
+#[test]
+fn a_raised_floor_is_lowered_to_zero_with_its_walls_and_paint() {
+    // An arena saved 0.85 m up (an expanded RectangleArena scaled by 3 on a table), its wall a
+    // Box, a black mark lying on its floor, the e-puck standing on it.
+    let raised = |height: f64, robot: f64| {
+        import(&format!(
+            "#VRML_SIM R2021b utf8\nWorldInfo {{ coordinateSystem \"NUE\" }}\n\
+             E-puck {{ translation 0.2 {robot} 0 }}\n\
+             Solid {{ translation 0 {height} 0 scale 3 3 3 children [\n\
+               Solid {{ name \"floor\" boundingObject Plane {{ }} }}\n\
+               Solid {{ translation 0.505 0.05 0 name \"wall\" boundingObject Box {{ size 0.01 0.1 1 }} }}\n\
+               Shape {{ appearance PBRAppearance {{ baseColor 0 0 0 }} geometry Box {{ size 0.1 0.0001 0.02 }} }}\n\
+             ] }}\n"
+        ))
+    };
+    let w = raised(0.85, 0.8499);
+    assert_eq!(w.obstacles.len(), 1, "{:?}", w.warnings);
+    let (center, size, _) = the_box(&w.obstacles[0]);
+    // NUE x 0.505 * 3 is ENU -y 1.515; the wall is 3 m long and 3 cm thick.
+    let wall = close(center[1], -1.515) && close(size[0].max(size[1]), 3.0);
+    assert!(
+        wall && close(size[0].min(size[1]), 0.03),
+        "{center:?} {size:?}"
+    );
+    assert_eq!(
+        w.paint.len(),
+        1,
+        "the mark lies on the lowered floor: {:?}",
+        w.warnings
+    );
+    assert!(warned(&w, "a floor 0.850 m above the world's origin"));
+    assert!(!warned(&w, "passes over the robot"));
+    // A robot saved in the air above a floor at 0 falls onto it: nothing is lowered.
+    let on_zero = raised(0.0, 0.3);
+    assert!(!warned(&on_zero, "above the world's origin"));
+    assert_eq!(on_zero.paint.len(), 1);
+}
