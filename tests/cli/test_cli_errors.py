@@ -171,3 +171,13 @@ def test_an_os_error_names_the_file_and_the_reason_not_its_errno(
     assert main(["webots", "run", str(WBT), "--seconds", "1", "--out", str(device)]) == 2
     assert capsys.readouterr().err == f"mazesim: error: {device}: File exists\n"
     assert device.is_char_device()
+
+
+@pytest.mark.parametrize("command", ["show", "demo", "eval", "train"])
+def test_a_mistyped_world_name_gets_the_name_meant(tmp_path: Path, command: str) -> None:
+    world = ["seed_maze"] if command == "show" else ["--world", "seed_maze"]
+    line = _one_error_line(mazesim_command(command, *world, cwd=tmp_path))
+    assert line.endswith(
+        "built-in worlds: arena, line-follow, seed-maze (or a path to a .toml "
+        "or .wbt world file); did you mean 'seed-maze'?"
+    ), line
