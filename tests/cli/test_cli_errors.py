@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 import shutil
 import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -181,3 +182,31 @@ def test_a_mistyped_world_name_gets_the_name_meant(tmp_path: Path, command: str)
         "built-in worlds: arena, line-follow, seed-maze (or a path to a .toml "
         "or .wbt world file); did you mean 'seed-maze'?"
     ), line
+
+
+@pytest.mark.parametrize(("module", "package"), [("matplotlib", "matplotlib"), ("PIL", "pillow")])
+def test_a_missing_dependency_says_what_to_install(
+    tmp_path: Path, module: str, package: str
+) -> None:
+    # As if the package were not installed: its import fails, as it would.
+    blocked = f"import sys; sys.modules[{module!r}] = None; "
+    result = subprocess.run(
+        [
+            sys.executable,
+            "-c",
+            blocked + "from mazesim.cli import main; sys.exit(main(sys.argv[1:]))",
+            "show",
+            "seed-maze",
+            "-o",
+            "seed-maze.png",
+        ],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=300,
+        check=False,
+    )
+    line = _one_error_line(result)
+    assert f"this command needs the Python package {package!r}, which is not installed" in line
+    assert line.endswith(f"install it with {sys.executable} -m pip install {package}")
+    assert "internal error" not in line

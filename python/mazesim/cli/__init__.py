@@ -207,9 +207,33 @@ def main(argv: Sequence[str] | None = None) -> int:
         # PanicException derives from BaseException; SystemExit and GeneratorExit pass.)
         if isinstance(error, (SystemExit, GeneratorExit)):
             raise
+        missing = _missing_package(error)
+        if missing is not None:
+            print(f"mazesim: error: {missing}", file=sys.stderr)
+            return EXIT_ERROR
         print(
             f"mazesim: error: internal error, please report it with the command that caused "
             f"it: {type(error).__name__}: {_one_line(str(error))}",
             file=sys.stderr,
         )
         return EXIT_ERROR
+
+
+#: The name pip installs a package by, where it differs from the name it is imported by.
+_PIP_NAMES = {"PIL": "pillow"}
+
+
+def _missing_package(error: BaseException) -> str | None:
+    """What to install when ``error`` says a package outside mazesim is not installed (a
+    dependency left out or removed); None for any other error, a missing module of mazesim's
+    own included (a broken installation: a bug to report)."""
+    if not isinstance(error, ModuleNotFoundError) or not error.name:
+        return None
+    module = error.name.partition(".")[0]
+    if module == "mazesim":
+        return None
+    package = _PIP_NAMES.get(module, module)
+    return (
+        f"this command needs the Python package {package!r}, which is not installed for "
+        f"{sys.executable}: install it with {sys.executable} -m pip install {package}"
+    )
