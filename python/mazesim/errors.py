@@ -85,11 +85,12 @@ class UnknownNameError(MazesimError, LookupError):
         self.available = available
 
 
-def _closest_name(name: str | None, available: list[str] | None) -> str | None:
-    """The name of ``available`` closest to ``name`` (difflib's ratio of at least 0.6), or None."""
+def _closest_name(name: str | None, available: list[str] | None, cutoff: float = 0.6) -> str | None:
+    """The name of ``available`` closest to ``name`` (difflib's ratio of at least ``cutoff``), or
+    None."""
     if name is None or not available:
         return None
-    close = difflib.get_close_matches(name, [str(each) for each in available], n=1)
+    close = difflib.get_close_matches(name, [str(each) for each in available], 1, cutoff)
     return close[0] if close else None
 
 

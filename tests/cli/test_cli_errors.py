@@ -210,3 +210,27 @@ def test_a_missing_dependency_says_what_to_install(
     assert f"this command needs the Python package {package!r}, which is not installed" in line
     assert line.endswith(f"install it with {sys.executable} -m pip install {package}")
     assert "internal error" not in line
+
+
+@pytest.mark.parametrize(
+    ("arguments", "usage", "error"),
+    [
+        (
+            ["demo", "--seeed", "3"],
+            "mazesim demo",
+            "--seeed 3; did you mean '--seeed' for '--seed'?",
+        ),
+        (["eval", "--episods=3"], "mazesim eval", "--episods=3; did you mean '--episods' for "),
+        (["webots", "run", "x.wbt", "--secnds", "3"], "mazesim webots run", "--secnds 3; did "),
+        (["bench", "--world", "seed-maze"], "mazesim bench", "--world seed-maze"),
+    ],
+)
+def test_an_option_the_command_does_not_take_shows_its_usage_and_the_one_meant(
+    capsys: pytest.CaptureFixture[str], arguments: list[str], usage: str, error: str
+) -> None:
+    assert main(arguments) == 2
+    lines = capsys.readouterr().err.strip().splitlines()
+    assert lines[0].startswith(f"usage: {usage} "), lines
+    assert lines[-1].startswith(f"{usage}: error: unrecognized arguments: {error}"), lines
+    if arguments[0] == "bench":  # --world is not --workload: no guess
+        assert lines[-1] == f"{usage}: error: unrecognized arguments: {error}"
