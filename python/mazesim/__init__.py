@@ -134,9 +134,10 @@ def load_world(name_or_path: str | os.PathLike[str]) -> World:
         found = unreadable.strerror.lower() if unreadable.strerror else "no such file"
     error = UnknownNameError(
         f"no built-in world named {path!r} and {found}; "
-        f"built-in worlds: {', '.join(available)} (or a path to a .toml or .wbt world file)"
+        f"built-in worlds: {', '.join(available)} (or a path to a .toml or .wbt world file)",
+        available=available,
+        name=path,
     )
-    error.available = available
     raise error
 
 

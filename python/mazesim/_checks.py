@@ -51,7 +51,7 @@ import numpy as np
 from mazesim._callers import STATE
 from mazesim._error_tree import in_the_tree
 from mazesim._sizes import MOST_ENVS, size_of
-from mazesim.errors import InvalidArgumentError, MazesimError
+from mazesim.errors import InvalidArgumentError, MazesimError, _closest_name
 
 __all__ = [
     "MOST_ARRAY_VALUES",
@@ -373,6 +373,8 @@ class _Parameters:
         #: Parameters without a default: (position, name, keyword-only).
         self.required: list[tuple[int, str, bool]] = []
         self.any_keyword = True
+        #: The name of the unchecked first parameter (``self`` or ``cls``), if any.
+        self.first: str | None = None
         #: Parameters whose values have a length bound: (position, name, bound).
         self.sized: list[tuple[int, str, int]] = []
 
@@ -388,6 +390,7 @@ class _Parameters:
             hint = hints.get(p.name, Any)
             if index == 0 and self.skip_first:
                 hint = Any
+                self.first = p.name
             elif p.default is p.empty and p.kind not in (p.VAR_POSITIONAL, p.VAR_KEYWORD):
                 self.required.append((len(self.positional), p.name, p.kind is p.KEYWORD_ONLY))
             if p.kind is p.VAR_KEYWORD:
@@ -430,8 +433,12 @@ class _Parameters:
             if hint is not Any:
                 self.refuse(name, value, hint)
             elif not self.any_keyword and name not in self.by_name:
+                names = [known for known in self.by_name if known != self.first]
+                meant = _closest_name(name, names)
                 raise InvalidArgumentError(
-                    f"{self.func.__qualname__}: expected no argument named {name!r}, found one"
+                    f"{self.func.__qualname__}: expected no argument named {name!r}, found one; "
+                    f"its arguments: {', '.join(names) or 'none by name'}"
+                    + (f"; did you mean {meant!r}?" if meant else "")
                 )
         for index, name, keyword_only in self.required:
             if name not in kwargs and (keyword_only or index >= len(args)):

@@ -4,12 +4,15 @@ Every error that mazesim raises on purpose is a :class:`MazesimError`. Each subc
 from the built-in exception a Python user would expect (``ValueError``, ``LookupError``,
 ``OSError``), so ``except ValueError`` keeps working.
 
-The compiled core raises these classes too: it calls a class with one message string and then
-sets the extra attributes, so every constructor takes a single positional message and every
-attribute defaults to ``None``.
+The compiled core raises these classes too: it calls a class with one message string (and, for
+:class:`UnknownNameError`, the keywords ``name`` and ``available``) and then sets the extra
+attributes, so every constructor takes a single positional message and every attribute defaults
+to ``None``.
 """
 
 from __future__ import annotations
+
+import difflib
 
 __all__ = [
     "ClusterConnectionError",
@@ -64,13 +67,31 @@ class WorldFormatError(MazesimError, ValueError):
 class UnknownNameError(MazesimError, LookupError):
     """A name (a built-in world, a robot profile, a sensor) is not known.
 
+    Given the name asked for and the names that exist, the message ends with the closest of
+    them, as a typo's likely fix: ``...; did you mean 'seed-maze'?``.
+
     Attributes:
         available: The names that would have been accepted, if known.
+        suggestion: The accepted name closest to the one asked for, or None when none is close.
     """
 
-    def __init__(self, message: str = "", *, available: list[str] | None = None) -> None:
+    def __init__(
+        self, message: str = "", *, available: list[str] | None = None, name: str | None = None
+    ) -> None:
+        self.suggestion = _closest_name(name, available)
+        if self.suggestion is not None:
+            message = f"{message}; did you mean {self.suggestion!r}?"
         super().__init__(message)
         self.available = available
+
+
+def _closest_name(name: str | None, available: list[str] | None, cutoff: float = 0.6) -> str | None:
+    """The name of ``available`` closest to ``name`` (difflib's ratio of at least ``cutoff``), or
+    None."""
+    if name is None or not available:
+        return None
+    close = difflib.get_close_matches(name, [str(each) for each in available], 1, cutoff)
+    return close[0] if close else None
 
 
 class InvalidActionError(MazesimError, ValueError):

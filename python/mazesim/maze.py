@@ -22,7 +22,7 @@ from typing import cast
 import numpy as np
 import numpy.typing as npt
 
-from mazesim._core import World
+from mazesim._core import Simulator, World
 from mazesim.errors import InvalidArgumentError
 
 __all__ = [
@@ -62,7 +62,8 @@ def navigator_problems(world: World) -> list[str]:
     each said with what to change; empty when it can learn it.
 
     The navigator needs a ``[grid]`` cell maze, a goal, a start cell from which the goal can be
-    reached along the cells, and barcode checkpoints: its higher level decides only where it reads
+    reached along the cells, a start pose inside the maze and clear of its walls, and barcode
+    checkpoints: its higher level decides only where it reads
     one, so in a world without any it would drive, learn nothing and save a navigator that
     cannot be evaluated.
     """
@@ -91,6 +92,9 @@ def navigator_problems(world: World) -> list[str]:
                 f"(cell column {maze.start_cell[0]}, row {maze.start_cell[1]}): open a way "
                 "through the walls of the [grid] map, or move S or G"
             )
+    start = _start_problem(world, maze)
+    if start is not None:
+        problems.append(start)
     if not world.checkpoints():
         problems.append(
             "it has no barcode checkpoints, and the navigator decides only where it reads one: "
@@ -98,6 +102,27 @@ def navigator_problems(world: World) -> list[str]:
             "it with mazesim.generate_maze, which places one on every way into every junction"
         )
     return problems
+
+
+def _start_problem(world: World, maze: CellMaze) -> str | None:
+    """What keeps the robot from starting at the world's start pose (outside the maze's cells, or
+    in a wall), said with what to change; None when it can start there."""
+    x, y = float(world.start[0]), float(world.start[1])
+    east, north = (
+        maze.origin[0] + maze.cols * maze.cell_size,
+        maze.origin[1] + maze.rows * maze.cell_size,
+    )
+    fix = "move the [start] pose to the middle of a cell, or put an S in a cell of the [grid] map"
+    if not (maze.origin[0] <= x <= east and maze.origin[1] <= y <= north):
+        return (
+            f"its start ({x:g}, {y:g}) is outside the maze, which spans x {maze.origin[0]:g} to "
+            f"{east:g} and y {maze.origin[1]:g} to {north:g}: {fix}"
+        )
+    try:
+        Simulator(world)
+    except InvalidArgumentError as blocked:
+        return f"{blocked}: {fix}"
+    return None
 
 
 def world_hash(world: World) -> str:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 import shutil
 import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -174,3 +175,65 @@ def test_an_os_error_names_the_file_and_the_reason_not_its_errno(
         "choose another output folder\n"
     )
     assert device.is_char_device()
+
+
+@pytest.mark.parametrize("command", ["show", "demo", "eval", "train"])
+def test_a_mistyped_world_name_gets_the_name_meant(tmp_path: Path, command: str) -> None:
+    world = ["seed_maze"] if command == "show" else ["--world", "seed_maze"]
+    line = _one_error_line(mazesim_command(command, *world, cwd=tmp_path))
+    assert line.endswith(
+        "built-in worlds: arena, line-follow, seed-maze (or a path to a .toml "
+        "or .wbt world file); did you mean 'seed-maze'?"
+    ), line
+
+
+@pytest.mark.parametrize(("module", "package"), [("matplotlib", "matplotlib"), ("PIL", "pillow")])
+def test_a_missing_dependency_says_what_to_install(
+    tmp_path: Path, module: str, package: str
+) -> None:
+    # As if the package were not installed: its import fails, as it would.
+    blocked = f"import sys; sys.modules[{module!r}] = None; "
+    result = subprocess.run(
+        [
+            sys.executable,
+            "-c",
+            blocked + "from mazesim.cli import main; sys.exit(main(sys.argv[1:]))",
+            "show",
+            "seed-maze",
+            "-o",
+            "seed-maze.png",
+        ],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=300,
+        check=False,
+    )
+    line = _one_error_line(result)
+    assert f"this command needs the Python package {package!r}, which is not installed" in line
+    assert line.endswith(f"install it with {sys.executable} -m pip install {package}")
+    assert "internal error" not in line
+
+
+@pytest.mark.parametrize(
+    ("arguments", "usage", "error"),
+    [
+        (
+            ["demo", "--seeed", "3"],
+            "mazesim demo",
+            "--seeed 3; did you mean '--seeed' for '--seed'?",
+        ),
+        (["eval", "--episods=3"], "mazesim eval", "--episods=3; did you mean '--episods' for "),
+        (["webots", "run", "x.wbt", "--secnds", "3"], "mazesim webots run", "--secnds 3; did "),
+        (["bench", "--world", "seed-maze"], "mazesim bench", "--world seed-maze"),
+    ],
+)
+def test_an_option_the_command_does_not_take_shows_its_usage_and_the_one_meant(
+    capsys: pytest.CaptureFixture[str], arguments: list[str], usage: str, error: str
+) -> None:
+    assert main(arguments) == 2
+    lines = capsys.readouterr().err.strip().splitlines()
+    assert lines[0].startswith(f"usage: {usage} "), lines
+    assert lines[-1].startswith(f"{usage}: error: unrecognized arguments: {error}"), lines
+    if arguments[0] == "bench":  # --world is not --workload: no guess
+        assert lines[-1] == f"{usage}: error: unrecognized arguments: {error}"

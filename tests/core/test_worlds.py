@@ -218,6 +218,34 @@ def test_core_unknown_builtin_name_lists_the_available_names() -> None:
         assert name in str(caught.value)
 
 
+@pytest.mark.parametrize(
+    ("typed", "meant"),
+    [("seed_maze", "seed-maze"), ("seed-maz", "seed-maze"), ("Arena", "arena")],
+)
+def test_a_mistyped_world_name_says_which_name_was_meant(typed: str, meant: str) -> None:
+    with pytest.raises(UnknownNameError) as caught:
+        mazesim.load_world(typed)
+    assert str(caught.value).endswith(f"; did you mean {meant!r}?")
+    assert caught.value.suggestion == meant
+
+
+def test_the_cores_unknown_names_say_which_name_was_meant() -> None:
+    with pytest.raises(UnknownNameError, match="did you mean 'e-puck'\\?$") as caught:
+        mazesim.Simulator(mazesim.load_world("arena"), robot="epuck")
+    assert caught.value.suggestion == "e-puck"
+    assert "e-puck2" in caught.value.available
+    with pytest.raises(UnknownNameError, match="did you mean 'seed-maze'\\?$"):
+        World.builtin("seedmaze")
+
+
+def test_a_name_far_from_every_known_one_gets_no_guess(tmp_path: Path) -> None:
+    for far in (str(tmp_path / "missing.toml"), "warehouse"):
+        with pytest.raises(UnknownNameError) as caught:
+            mazesim.load_world(far)
+        assert "did you mean" not in str(caught.value)
+        assert caught.value.suggestion is None
+
+
 def test_load_world_reads_a_path(tmp_path: Path) -> None:
     arena = mazesim.load_world("arena")
     path = tmp_path / "my-arena.toml"

@@ -78,3 +78,22 @@ def test_random_starts_in_a_world_without_a_cell_maze_are_refused_when_made(worl
         gymnasium.make_vec(TASK, 2, world=world)
     env = gymnasium.make(TASK, world=world, start_goal="world")  # its own start and goal: fine
     assert env.observation_space.contains(env.reset(seed=0)[0])
+
+
+@pytest.mark.parametrize("mode", [None, "sync", "vector_entry_point"])
+def test_a_mistyped_option_says_which_option_was_meant(mode: str | None) -> None:
+    with pytest.raises(InvalidArgumentError) as caught:
+        if mode is None:
+            gymnasium.make(TASK, wrold="arena", max_episde_steps=10)
+        else:
+            gymnasium.make_vec(TASK, num_envs=2, vectorization_mode=mode, wrold="arena")
+    message = str(caught.value)
+    assert "expected options among world, robot," in message
+    assert message.endswith(
+        "; did you mean 'max_episde_steps' for 'max_episode_steps', 'wrold' for 'world'?"
+        if mode is None
+        else "; did you mean 'wrold' for 'world'?"
+    )
+    with pytest.raises(InvalidArgumentError) as caught:
+        gymnasium.make(TASK, colour="red")
+    assert "did you mean" not in str(caught.value)

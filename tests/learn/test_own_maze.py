@@ -65,6 +65,26 @@ def test_the_problems_of_a_world_say_what_to_change() -> None:
     assert navigator_problems(mazesim.load_world("seed-maze")) == []
 
 
+@pytest.mark.parametrize(
+    ("start", "said"),
+    [
+        ("x = 0.0\ny = 0.0", "with its centre 0.0050 m inside a wall"),
+        ("x = 5.0\ny = 5.0", "its start (5, 5) is outside the maze, which spans x 0 to 0.75"),
+    ],
+)
+def test_a_start_on_a_wall_or_outside_the_maze_is_a_problem(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], start: str, said: str
+) -> None:
+    text = mazesim.generate_maze(3, 3, seed=1).to_toml()
+    assert "[start]\nx = 0.125\ny = 0.125" in text
+    world = tmp_path / "moved.toml"
+    world.write_text(text.replace("[start]\nx = 0.125\ny = 0.125", f"[start]\n{start}"))
+    (problem,) = navigator_problems(mazesim.load_world(str(world)))
+    assert said in problem and "move the [start] pose" in problem
+    assert main(["show", str(world), "-o", str(tmp_path / "moved.png")]) == 0
+    assert f"the navigator cannot learn it: {problem}" in capsys.readouterr().out
+
+
 @pytest.mark.parametrize("flat", [False, True])
 def test_a_world_the_navigator_cannot_learn_is_refused_before_training(
     tmp_path: Path, capsys: pytest.CaptureFixture[str], flat: bool

@@ -37,6 +37,15 @@ def test_options_that_are_not_a_dict_are_refused() -> None:
         env.reset(options=123)  # type: ignore[arg-type]
 
 
+def test_a_mistyped_option_names_the_options_and_the_one_meant() -> None:
+    with pytest.raises(mazesim.InvalidArgumentError) as caught:
+        maze_goals_v0.parallel_env(num_robot=3)
+    message = str(caught.value)
+    assert "expected no argument named 'num_robot', found one" in message
+    assert "its arguments: num_robots, maze_size, loops, max_cycles" in message
+    assert message.endswith("; did you mean 'num_robots'?")
+
+
 def test_the_largest_seed_is_taken_and_the_batch_wraps_past_it() -> None:
     batch = maze_goals_v0.batch_env(2, **OPTIONS)
     wrapped, _ = batch.reset(seed=2**64 - 1)

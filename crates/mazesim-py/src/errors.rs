@@ -38,7 +38,19 @@ fn build(py: Python<'_>, err: &Error) -> PyResult<PyErr> {
         Error::Busy(_) => "SimulatorBusyError",
         Error::Internal(_) | Error::Interrupted => "InternalError",
     };
-    let instance = errors.getattr(class_name)?.call1((err.to_string(),))?;
+    let class = errors.getattr(class_name)?;
+    let instance = match err {
+        // The name asked for, so that the message can end with the closest available name.
+        Error::UnknownName {
+            name, available, ..
+        } => {
+            let keywords = pyo3::types::PyDict::new(py);
+            keywords.set_item("name", name)?;
+            keywords.set_item("available", available.clone())?;
+            class.call((err.to_string(),), Some(&keywords))?
+        }
+        _ => class.call1((err.to_string(),))?,
+    };
     match err {
         Error::Format {
             location, field, ..
@@ -49,9 +61,6 @@ fn build(py: Python<'_>, err: &Error) -> PyResult<PyErr> {
             instance.setattr("line", known(location.line))?;
             instance.setattr("column", known(location.column))?;
             instance.setattr("field", field)?;
-        }
-        Error::UnknownName { available, .. } => {
-            instance.setattr("available", available.clone())?;
         }
         Error::Io {
             path,

@@ -478,6 +478,8 @@ def make_decoder(name: str, book: CodeBook, **options: Any) -> Decoder:
     except KeyError:
         available = sorted(DECODERS)
         raise UnknownNameError(
-            f"no decoder named {name!r}; decoders: {', '.join(available)}", available=available
+            f"no decoder named {name!r}; decoders: {', '.join(available)}",
+            available=available,
+            name=name,
         ) from None
     return cls(book, **options)

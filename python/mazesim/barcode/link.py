@@ -42,7 +42,7 @@ def check_link(name: str) -> str:
     """
     if name not in LINKS:
         raise UnknownNameError(
-            f"no link named {name!r}; links: {', '.join(LINKS)}", available=list(LINKS)
+            f"no link named {name!r}; links: {', '.join(LINKS)}", available=list(LINKS), name=name
         )
     return name
 

@@ -394,6 +394,7 @@ def run_study(
         raise UnknownNameError(
             f"no decoder named {unknown[0]!r}; decoders: {', '.join(available)}",
             available=available,
+            name=unknown[0],
         )
     check_link(link)
     if not decoders or not (thresholds or speeds):

@@ -212,5 +212,6 @@ def make_workload(name: str, envs: int, seed: int = 0) -> Workload:
         raise UnknownNameError(
             f"expected a workload among {', '.join(WORKLOADS)}, found {name!r}",
             available=list(WORKLOADS),
+            name=name,
         ) from None
     return kind(envs, seed)

@@ -14,11 +14,12 @@ import os
 import stat
 import sys
 from collections.abc import Sequence
+from typing import NoReturn
 
 import mazesim
 from mazesim._error_tree import io_error
 from mazesim.cli._help import CommandParser, examples
-from mazesim.errors import MazesimError
+from mazesim.errors import MazesimError, _closest_name
 
 __all__ = ["COMMANDS", "build_parser", "main"]
 
@@ -117,6 +118,35 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
     return parser
 
 
+def _refuse_unknown(
+    parser: argparse.ArgumentParser, args: argparse.Namespace, unknown: list[str]
+) -> NoReturn:
+    """Refuses arguments the command does not take with the usage of the command run (``mazesim
+    demo``, ``mazesim webots run``), not mazesim's, and, for a mistyped option, the one meant."""
+    while True:
+        commands = next(
+            (a for a in parser._actions if isinstance(a, argparse._SubParsersAction)), None
+        )
+        chosen = None if commands is None else getattr(args, commands.dest, None)
+        if commands is None or chosen not in commands.choices:
+            break
+        parser = commands.choices[chosen]
+    # Compared without their dashes, and closer than names must be: short words look alike.
+    options = {
+        option.lstrip("-"): option for action in parser._actions for option in action.option_strings
+    }
+    typed = [word.partition("=")[0] for word in unknown if word.startswith("-")]
+    meant = [
+        f"{word!r} for {options[closest]!r}"
+        for word in typed
+        if (closest := _closest_name(word.lstrip("-"), list(options), 0.8)) is not None
+    ]
+    parser.error(
+        f"unrecognized arguments: {' '.join(unknown)}"
+        + (f"; did you mean {', '.join(meant)}?" if meant else "")
+    )
+
+
 def _command_word(arguments: Sequence[str]) -> str:
     """The command a command line runs: its first word that is not an option ("" if none)."""
     return next((word for word in arguments if not word.startswith("-")), "")
@@ -171,7 +201,9 @@ def main(argv: Sequence[str] | None = None) -> int:
             return EXIT_ERROR
     parser = build_parser(command)
     try:
-        args = parser.parse_args(arguments)
+        args, unknown = parser.parse_known_args(arguments)
+        if unknown:
+            _refuse_unknown(parser, args, unknown)
     except SystemExit as exit_request:
         # --help and --version exit with None (success); usage errors with 2.
         code = exit_request.code
@@ -207,9 +239,33 @@ def main(argv: Sequence[str] | None = None) -> int:
         # PanicException derives from BaseException; SystemExit and GeneratorExit pass.)
         if isinstance(error, (SystemExit, GeneratorExit)):
             raise
+        missing = _missing_package(error)
+        if missing is not None:
+            print(f"mazesim: error: {missing}", file=sys.stderr)
+            return EXIT_ERROR
         print(
             f"mazesim: error: internal error, please report it with the command that caused "
             f"it: {type(error).__name__}: {_one_line(str(error))}",
             file=sys.stderr,
         )
         return EXIT_ERROR
+
+
+#: The name pip installs a package by, where it differs from the name it is imported by.
+_PIP_NAMES = {"PIL": "pillow"}
+
+
+def _missing_package(error: BaseException) -> str | None:
+    """What to install when ``error`` says a package outside mazesim is not installed (a
+    dependency left out or removed); None for any other error, a missing module of mazesim's
+    own included (a broken installation: a bug to report)."""
+    if not isinstance(error, ModuleNotFoundError) or not error.name:
+        return None
+    module = error.name.partition(".")[0]
+    if module == "mazesim":
+        return None
+    package = _PIP_NAMES.get(module, module)
+    return (
+        f"this command needs the Python package {package!r}, which is not installed for "
+        f"{sys.executable}: install it with {sys.executable} -m pip install {package}"
+    )

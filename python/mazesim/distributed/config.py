@@ -255,11 +255,11 @@ def _check_value(parameter: Parameter, value: Any, where: str) -> Any:
 
 
 def _unknown(source: str, table: str, key: str, available: list[str]) -> UnknownNameError:
-    error = UnknownNameError(
-        f"{source}: unknown key {table}{key!r}; expected one of {', '.join(available)}"
+    return UnknownNameError(
+        f"{source}: unknown key {table}{key!r}; expected one of {', '.join(available)}",
+        available=available,
+        name=key,
     )
-    error.available = available
-    return error
 
 
 def _read_grid(source: str, grid: Any) -> dict[str, tuple[Any, ...]]:
@@ -304,6 +304,7 @@ def _world_text(source: str, name: str, base_dir: str) -> str | None:
                 f"{source}: grid.world: no built-in world named {name!r} and no file {path!r}; "
                 f"built-in worlds: {', '.join(available)}",
                 available=available,
+                name=name,
             )
         text = read_text(
             path,

@@ -132,6 +132,7 @@ def resolve_trainer(name: str) -> str:
         raise UnknownNameError(
             f"expected a trainer among auto, {', '.join(available)}; found {name!r}",
             available=["auto", *available],
+            name=name,
         )
     return name
 

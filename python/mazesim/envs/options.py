@@ -27,7 +27,7 @@ from mazesim.envs.navigation import (
     start_and_goal_cells,
 )
 from mazesim.envs.reward import RewardWeights
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _closest_name
 
 __all__ = [
     "ACTION_MODES",
@@ -230,9 +230,17 @@ class EnvOptions:
                 if vector
                 else ""
             )
+            # gymnasium's make takes max_episode_steps itself: a typo of it reaches the env.
+            known = [*option_names(), "max_episode_steps"]
+            meant = [
+                f"{key!r} for {closest!r}"
+                for key in unknown
+                if (closest := _closest_name(key, known)) is not None
+            ]
             raise InvalidArgumentError(
                 f"expected options among {', '.join(option_names())}; "
                 f"found unknown {', '.join(map(repr, unknown))}{hint}"
+                + (f"; did you mean {', '.join(meant)}?" if meant else "")
             )
         return cls.create(**keywords)
 

@@ -174,6 +174,7 @@ def axis_named(name: str) -> Axis:
     raise UnknownNameError(
         f"no transfer axis named {name!r}; axes: {', '.join(AXIS_NAMES)}",
         available=list(AXIS_NAMES),
+        name=name,
     )
 
 

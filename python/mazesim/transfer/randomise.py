@@ -79,7 +79,9 @@ def _robot_names(value: Any, where: str) -> tuple[str, ...]:
         if name not in valid:
             raise UnknownNameError(
                 f"{where}: robot: expected a robot profile named one of {', '.join(valid)}, "
-                f"found {name!r}"
+                f"found {name!r}",
+                available=list(valid),
+                name=name,
             )
     return tuple(names)
 
