@@ -12,6 +12,12 @@ from mazesim.webots import controller
 from mazesim.webots.devices import Device
 from mazesim.webots.importer import import_wbt
 from mazesim.webots.native_controller import CAPI
+from mazesim.webots.requirements import (
+    RANGE_READINGS,
+    motor_limits,
+    prepare_controller,
+    range_readings,
+)
 from native_controllers import NEEDS_COMPILERS, run_twins
 
 CONTROLLERS = Path(__file__).resolve().parents[1] / "data" / "controllers"
@@ -88,7 +94,32 @@ def test_c_and_cpp_controllers_read_an_inertial_unit_and_a_lidar_as_python_does(
     # The e-puck starts turned 0.5 rad and spins left on the spot.
     assert len(yaws) == 4 and yaws[0] > 0.5 and yaws == sorted(yaws)
     assert all(line.startswith("rpy 0.000000 0.000000 ") for line in lines[::4])
-    # mazesim simulates no lidar: the device is there and reads as one without points.
+    # mazesim simulates no lidar: the device is there and reads as one without points, which
+    # the run says at its start.
     assert lines[2] == "ranges none resolution 0 layers 0"
     assert lines[3] == "cloud none points 0 fov none max none"
     assert runs[1].xs == runs[0].xs and runs[2].final_pose == runs[0].final_pose
+    calls = (
+        ["wb_lidar_get_point_cloud", "wb_lidar_get_range_image"],
+        ["getPointCloud", "getRangeImage"],
+    )
+    for twin, read in zip(twins, (calls[1], calls[0], calls[1])):
+        prepared = prepare_controller(str(twin))
+        assert prepared.runnable
+        assert prepared.missing == [RANGE_READINGS.format(calls=", ".join(read))]
+
+
+def test_a_compiled_controllers_sources_below_its_folder_are_read_for_what_it_calls(
+    tmp_path: Path,
+) -> None:
+    # A Makefile's src/*.cpp holds the calls; a copy of Webots' header declares, not calls.
+    (tmp_path / "src").mkdir()
+    (tmp_path / "webots").mkdir()
+    (tmp_path / "main.cpp").write_text("int main() { return 0; }\n")
+    (tmp_path / "src" / "walls.cpp").write_text("void f(L *l) { l->getPointCloud(); }\n")
+    (tmp_path / "webots" / "motor.h").write_text("void wb_motor_set_acceleration(int, double);\n")
+    assert range_readings(str(tmp_path / "main.cpp"), "cpp") == ["getPointCloud"]
+    assert motor_limits(str(tmp_path / "main.cpp"), "cpp") == []
+    # A Python controller's own packages are read for their imports, not for these calls.
+    (tmp_path / "main.py").write_text("from controller import Robot\n")
+    assert range_readings(str(tmp_path / "main.py"), "python") == []

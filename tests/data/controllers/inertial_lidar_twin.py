@@ -22,8 +22,8 @@ lidar.enablePointCloud()
 left.setControlPID(8.0, 0.0, 0.0)
 left.setPosition(float("inf"))
 right.setPosition(float("inf"))
-left.setVelocity(-2.0)
-right.setVelocity(2.0)
+left.setVelocity(-1.0)
+right.setVelocity(1.0)
 n = 0
 while robot.step(step) != -1:
     n += 1

@@ -38,8 +38,8 @@ int main(void) {
   wb_motor_set_control_pid(left, 8.0, 0.0, 0.0);
   wb_motor_set_position(left, INFINITY);
   wb_motor_set_position(right, INFINITY);
-  wb_motor_set_velocity(left, -2.0);
-  wb_motor_set_velocity(right, 2.0);
+  wb_motor_set_velocity(left, -1.0);
+  wb_motor_set_velocity(right, 1.0);
   int n = 0;
   char fov[32], range[32];
   while (wb_robot_step(step) != -1) {

@@ -44,8 +44,8 @@ int main() {
   left->setControlPID(8.0, 0.0, 0.0);
   left->setPosition(INFINITY);
   right->setPosition(INFINITY);
-  left->setVelocity(-2.0);
-  right->setVelocity(2.0);
+  left->setVelocity(-1.0);
+  right->setVelocity(1.0);
   int n = 0;
   while (robot->step(step) != -1) {
     if (++n % 8)
