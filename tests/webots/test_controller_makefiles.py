@@ -115,6 +115,21 @@ def test_sources_are_found_in_the_folders_of_vpath_and_the_vpath_directive(tmp_p
     ]
 
 
+def test_the_wildcard_function_lists_the_sources_that_exist(tmp_path: Path) -> None:
+    probe = tmp_path / "probe"
+    (probe / "src").mkdir(parents=True)
+    for name in ("timer.cpp", "plan.cpp", "notes.txt"):
+        (probe / "src" / name).write_text("")
+    (probe / "probe.cpp").write_text("")
+    settings = read_makefile(probe, "CXX_SOURCES = $(wildcard src/*.cpp src/*.cc) probe.cpp\n")
+    assert settings.sources == [
+        (probe / "src" / "plan.cpp").resolve(),
+        (probe / "src" / "timer.cpp").resolve(),
+        (probe / "probe.cpp").resolve(),
+    ]
+    assert settings.ignored == []
+
+
 @NEEDS_COMPILERS
 def test_libraries_are_linked_from_folders_relative_to_the_controller(
     tmp_path: Path, capfd: pytest.CaptureFixture[str]

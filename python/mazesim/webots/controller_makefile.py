@@ -6,15 +6,17 @@ and then includes Webots' ``Makefile.include`` (Webots' user guide, "Using Webot
 when none is set, found in the folders make's ``VPATH`` variable and ``vpath`` directives for
 sources name too), ``INCLUDE`` (``-I`` folders), ``CFLAGS`` and ``LIBRARIES`` (``-L`` folders,
 ``-l`` libraries). :func:`read_makefile` reads their simple assignments (``=``, ``:=``, ``+=``,
-``?=``, lines continued by a backslash, ``$(VAR)`` naming a variable set before), relative paths
-being relative to the controller's folder. Words naming Webots' own folders (``$(WEBOTS_HOME)``)
-are dropped, mazesim's controller library standing for them; whatever else it cannot read (make
-functions, conditionals, unknown options) is left out and named in
-:attr:`MakefileSettings.ignored`, for the run's log.
+``?=``, lines continued by a backslash, ``$(VAR)`` naming a variable set before, make's
+``$(wildcard PATTERN...)`` function), relative paths being relative to the controller's folder.
+Words naming Webots' own folders (``$(WEBOTS_HOME)``) are dropped, mazesim's controller library
+standing for them; whatever else it cannot read (other make functions, conditionals, unknown
+options) is left out and named in :attr:`MakefileSettings.ignored`, for the run's log.
 """
 
 from __future__ import annotations
 
+import glob
+import os
 import re
 import shlex
 from dataclasses import dataclass, field
@@ -102,7 +104,7 @@ def _logical_lines(text: str) -> list[str]:
     return lines
 
 
-def _variables(text: str, ignored: list[str]) -> dict[str, str]:
+def _variables(text: str, folder: Path, ignored: list[str]) -> dict[str, str]:
     """The Makefile's variables as its simple assignments set them, in order; the assignments
     of the variables the build takes that it cannot read are named in ``ignored``."""
     values: dict[str, str] = {}
@@ -121,7 +123,7 @@ def _variables(text: str, ignored: list[str]) -> dict[str, str]:
             if wanted:
                 ignored.append(f"{name} set under a make conditional")
             continue
-        value = _expand(value, values, name if wanted else "", ignored)
+        value = _expand(value, values, name if wanted else "", ignored, folder)
         if operator == "+=":
             values[name] = f"{values.get(name, '')} {value}".strip()
         elif operator != "?=" or name not in values:
@@ -129,10 +131,13 @@ def _variables(text: str, ignored: list[str]) -> dict[str, str]:
     return values
 
 
-def _expand(value: str, values: dict[str, str], name: str, ignored: list[str]) -> str:
+def _expand(
+    value: str, values: dict[str, str], name: str, ignored: list[str], folder: Path | None = None
+) -> str:
     """``value`` with its ``$(VAR)`` references to variables set before replaced; Webots' own
-    folders kept as ``$(WEBOTS_HOME)`` (dropped later); a make function left out (named in
-    ``ignored`` when ``name`` is a variable the build takes)."""
+    folders kept as ``$(WEBOTS_HOME)`` (dropped later); ``$(wildcard PATTERN...)`` replaced by
+    the names in ``folder`` that match; another make function left out (named in ``ignored``
+    when ``name`` is a variable the build takes)."""
 
     def replace(match: re.Match[str]) -> str:
         inner = match.group(1).strip()
@@ -140,11 +145,24 @@ def _expand(value: str, values: dict[str, str], name: str, ignored: list[str]) -
             return "$(WEBOTS_HOME)"
         if re.fullmatch(r"\w+", inner) and inner in values:
             return values[inner]
+        function, _, patterns = inner.partition(" ")
+        if function == "wildcard" and folder is not None:
+            return " ".join(_wildcard(folder, patterns.split()))
         if name:
             ignored.append(f"$({inner}) in {name}")
         return ""
 
     return _REFERENCE.sub(replace, value)
+
+
+def _wildcard(folder: Path, patterns: list[str]) -> list[str]:
+    """Make's ``$(wildcard PATTERN...)`` run in ``folder``: the existing names each pattern
+    matches, sorted as GNU make 4.3 sorts them."""
+    return [
+        os.path.relpath(path, folder)
+        for pattern in patterns
+        for path in sorted(glob.glob(os.path.join(folder, pattern)))
+    ]
 
 
 def _words(value: str, name: str, ignored: list[str]) -> list[str]:
@@ -234,7 +252,7 @@ def _sources(names: list[str], folder: Path, search: list[str]) -> list[Path]:
 def read_makefile(folder: Path, text: str) -> MakefileSettings:
     """The settings of the Makefile ``text`` of the controller folder ``folder``."""
     settings = MakefileSettings()
-    values = _variables(text, settings.ignored)
+    values = _variables(text, folder, settings.ignored)
     listed = [SOURCE_VARIABLES.index(name) for name in SOURCE_VARIABLES if name in values]
     if listed:
         names = []

@@ -17,7 +17,7 @@ from typing import Any
 
 from mazesim.webots.camera import Camera, CameraView
 from mazesim.webots.devices import LED, Device, DistanceSensor, Motor, PositionSensor, _Sensor
-from mazesim.webots.inert import Display, Pen, Speaker
+from mazesim.webots.inert import Display, Lidar, Pen, Speaker
 from mazesim.webots.keyboard import Joystick, Keyboard, Mouse
 from mazesim.webots.radio_devices import (
     E_PUCK_CHANNEL,
@@ -132,6 +132,7 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
         "Speaker": lambda: Speaker(name, simulation),
         "Display": lambda: Display(name, simulation),
         "Pen": lambda: Pen(name, simulation),
+        "Lidar": lambda: Lidar(name, simulation),
     }
     build = builders.get(kind)
     if build is None:

@@ -173,6 +173,42 @@ class Lidar(_Inert):
         """0: no lidar."""
         return 0
 
+    def getLayerRangeImage(self, layer: int) -> None:
+        """None: no lidar."""
+        return None
+
+    def enablePointCloud(self) -> None:
+        """Accepted; there is no point cloud."""
+
+    def disablePointCloud(self) -> None:
+        """Accepted."""
+
+    def isPointCloudEnabled(self) -> bool:
+        """False: no lidar."""
+        return False
+
+    def getPointCloud(self, data_type: str = "list") -> None:
+        """None: no lidar."""
+        return None
+
+    def getLayerPointCloud(self, layer: int, data_type: str = "list") -> None:
+        """None: no lidar."""
+        return None
+
+    def getNumberOfPoints(self) -> int:
+        """0: no lidar."""
+        return 0
+
+    def getFov(self) -> float:
+        """NaN: no lidar."""
+        return math.nan
+
+    getVerticalFov = getMinRange = getMaxRange = getFov
+    getFrequency = getMinFrequency = getMaxFrequency = getFov
+
+    def setFrequency(self, frequency: float) -> None:
+        """Accepted; there is no lidar."""
+
 
 class LidarPoint:
     """A point of a lidar's point cloud."""

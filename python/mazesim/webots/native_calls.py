@@ -1,19 +1,22 @@
 """The Webots functions a compiled controller waits for, run on the robot's Python objects.
 
-A C or C++ controller's radio, camera recognition and supervisor functions are calls over the
-link (:mod:`mazesim.webots.native_link`, message ``CALL``): a Webots C function's name and typed
-values. :class:`NativeCalls` runs each on the object that implements it for Python controllers
-(an :class:`~mazesim.webots.radio_devices.Emitter` or
+A C or C++ controller's radio, camera recognition, inertial unit quaternion, lidar and
+supervisor functions are calls over the link (:mod:`mazesim.webots.native_link`, message
+``CALL``): a Webots C function's name and typed values. :class:`NativeCalls` runs each on the
+object that implements it for Python controllers (an
+:class:`~mazesim.webots.radio_devices.Emitter` or
 :class:`~mazesim.webots.radio_devices.Receiver` of the robot, its
-:class:`~mazesim.webots.camera.Camera`, or its
-:class:`~mazesim.webots.supervisor.Supervisor` and the nodes and fields it hands out), so
-channels, ranges, queues, nodes and fields behave for a compiled controller as they do for a
-Python one, and answers typed values. The functions follow Webots' reference manual
-(https://cyberbotics.com/doc/reference/emitter, /receiver, /recognition and /supervisor).
+:class:`~mazesim.webots.camera.Camera`, :class:`~mazesim.webots.sensors.InertialUnit` or
+:class:`~mazesim.webots.inert.Lidar`, or its :class:`~mazesim.webots.supervisor.Supervisor`
+and the nodes and fields it hands out), so channels, ranges, queues, nodes and fields behave for
+a compiled controller as they do for a Python one, and answers typed values. The functions
+follow Webots' reference manual (https://cyberbotics.com/doc/reference/emitter, /receiver,
+/recognition, /inertialunit, /lidar and /supervisor).
 
 A camera's recognised objects cross the link as two values: one list of numbers (per object:
 id, position, orientation, size, position and size on the image, number of colours, then the
-colours' red, green and blue) and their models, each ending with a NUL.
+colours' red, green and blue) and their models, each ending with a NUL. A lidar's point cloud
+is one list of numbers (per point: x, y, z, layer, time).
 
 Nodes and fields cross the link as handles (1, 2... in the order they are first handed out; 0
 is ``NULL``); a field's handle comes with its type (``WB_SF_VEC3F``...).
@@ -29,6 +32,7 @@ from mazesim.errors import MazesimIOError
 from mazesim.webots.camera import CameraRecognitionObject
 from mazesim.webots.devices import _print_error
 from mazesim.webots.field import Field
+from mazesim.webots.inert import LidarPoint
 from mazesim.webots.supervisor import Node, Supervisor
 
 __all__ = ["FUNCTIONS", "Function", "NativeCalls"]
@@ -99,6 +103,35 @@ FUNCTIONS: dict[str, Function] = {
             "recognition_disable_segmentation": ("disableRecognitionSegmentation", ""),
             "recognition_is_segmentation_enabled": ("isRecognitionSegmentationEnabled", ""),
             "recognition_get_segmentation_image": ("getRecognitionSegmentationImage", ""),
+        },
+    ),
+    **_table(
+        "device",
+        "wb_inertial_unit_",
+        {"get_quaternion": ("getQuaternion", ""), "get_noise": ("getNoise", "")},
+    ),
+    **_table(
+        "device",
+        "wb_lidar_",
+        {
+            "get_range_image": ("getRangeImage", ""),
+            "get_layer_range_image": ("getLayerRangeImage", "i"),
+            "enable_point_cloud": ("enablePointCloud", ""),
+            "disable_point_cloud": ("disablePointCloud", ""),
+            "is_point_cloud_enabled": ("isPointCloudEnabled", ""),
+            "get_point_cloud": ("getPointCloud", ""),
+            "get_layer_point_cloud": ("getLayerPointCloud", "i"),
+            "get_number_of_points": ("getNumberOfPoints", ""),
+            "get_horizontal_resolution": ("getHorizontalResolution", ""),
+            "get_number_of_layers": ("getNumberOfLayers", ""),
+            "get_min_frequency": ("getMinFrequency", ""),
+            "get_max_frequency": ("getMaxFrequency", ""),
+            "get_frequency": ("getFrequency", ""),
+            "set_frequency": ("setFrequency", "f"),
+            "get_fov": ("getFov", ""),
+            "get_vertical_fov": ("getVerticalFov", ""),
+            "get_min_range": ("getMinRange", ""),
+            "get_max_range": ("getMaxRange", ""),
         },
     ),
     **_table(
@@ -278,6 +311,8 @@ class NativeCalls:
             return [result.encode("utf-8")]
         if isinstance(result, list) and result and isinstance(result[0], CameraRecognitionObject):
             return _recognised(result)
+        if isinstance(result, list) and result and isinstance(result[0], LidarPoint):
+            return [[v for p in result for v in (p.x, p.y, p.z, p.layer_id, p.time)]]
         if isinstance(result, (list, tuple)):
             return [[float(v) for v in result]]
         return [result]

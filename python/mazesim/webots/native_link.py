@@ -382,7 +382,7 @@ class RobotLink:
             elif kind == node_type("CAMERA"):
                 image = device.getImage()
                 yield tag, [], bytes(image) if image is not None else b""
-            elif hasattr(device, "getValues") and kind != node_type("TOUCH_SENSOR"):
+            elif hasattr(type(device), "getValues") and kind != node_type("TOUCH_SENSOR"):
                 yield tag, [float(v) for v in device.getValues()], b""
             else:
                 yield tag, [float(device.getValue())], b""

@@ -28,6 +28,7 @@ __all__ = [
     "missing_packages",
     "motor_limits",
     "prepare_controller",
+    "range_readings",
     "scene_changes",
     "turn_in_place_speed",
     "unbuilt",
@@ -99,6 +100,18 @@ SCENE_CHANGES = (
     "built from the world file when it is imported and takes no body in or out during a run, "
     "so these calls print an error and change nothing"
 )
+#: Lidar and RangeFinder readings (the Python and C++ names, then the C API's; Webots reference
+#: manual, Lidar and RangeFinder), which mazesim does not simulate.
+_RANGE_READINGS = re.compile(
+    r"\b(getRangeImage|getLayerRangeImage|getPointCloud|getLayerPointCloud|"
+    r"wb_lidar_get_range_image|wb_lidar_get_layer_range_image|wb_lidar_get_point_cloud|"
+    r"wb_lidar_get_layer_point_cloud|wb_range_finder_get_range_image)\s*\("
+)
+#: The statement for a controller that reads them.
+RANGE_READINGS = (
+    "Webots' Lidar and RangeFinder readings ({calls}): mazesim simulates neither device, so a "
+    "range image and a point cloud are None (NULL in C and C++) and their sizes 0"
+)
 #: Wheel speed (rad/s) of a turn in place above which Webots' E-puck has been seen to turn
 #: more slowly than its wheels' kinematics say. Controllers tuned in Webots agree with the
 #: 0.05685 m wheel distance at 0.2 x 6.28 rad/s (a half turn timed in 111 steps of 32 ms),
@@ -117,6 +130,8 @@ TURN_SLIP = (
 )
 #: Source files of each language read for those calls, beside the controller's main file.
 _SOURCES = {"python": (".py",), "c": (".c", ".h"), "cpp": (".cpp", ".cc", ".cxx", ".hpp", ".h")}
+#: Source files, not headers, of a compiled controller.
+_COMPILED_SOURCES = (".c", ".cpp", ".cc", ".cxx")
 #: What the run says of a compiled controller that draws on a Display.
 DISPLAY_NOTE = (
     "its Display drawings are accepted and not drawn: mazesim has no view to show a display "
@@ -305,16 +320,20 @@ def missing_packages(path: str) -> list[str]:
     return missing
 
 
-def _folder_texts(file: str, suffixes: tuple[str, ...]) -> list[str]:
+def _folder_texts(file: str, suffixes: tuple[str, ...], below: bool = False) -> list[str]:
     """The texts of the controller's source files with one of ``suffixes`` (lower case): its
-    main file and those beside it, at most ``MAX_OWN_MODULES`` of them; unreadable ones are
-    left out."""
+    main file and those beside it (with ``below``, those in the folders below it too), at most
+    ``MAX_OWN_MODULES`` of them; unreadable ones are left out."""
     folder = os.path.dirname(os.path.abspath(file))
-    try:
-        names = sorted(os.listdir(folder))
-    except OSError:
-        return []
-    paths = [os.path.join(folder, n) for n in names if n.lower().endswith(suffixes)]
+    if below:
+        found = (os.path.join(top, n) for top, _, names in os.walk(folder) for n in names)
+        paths = sorted(p for p in found if p.lower().endswith(suffixes))
+    else:
+        try:
+            names = sorted(os.listdir(folder))
+        except OSError:
+            return []
+        paths = [os.path.join(folder, n) for n in names if n.lower().endswith(suffixes)]
     texts = []
     for path in paths[:MAX_OWN_MODULES]:
         if not os.path.isfile(path):
@@ -328,9 +347,13 @@ def _folder_texts(file: str, suffixes: tuple[str, ...]) -> list[str]:
 
 def _calls(file: str, language: str, calls: re.Pattern[str]) -> list[str]:
     """The names of the functions ``calls`` finds (its first group that matched) in the
-    controller's source files: its main file and the files of its language beside it."""
+    controller's source files: its main file and the files of its language beside it, and for
+    C and C++ the sources (not the headers) in the folders below it (a Makefile's ``src/``)."""
     found: set[str] = set()
-    for text in _folder_texts(file, _SOURCES.get(language, (".py",))):
+    texts = _folder_texts(file, _SOURCES.get(language, (".py",)))
+    if language in ("c", "cpp"):
+        texts += _folder_texts(file, _COMPILED_SOURCES, below=True)
+    for text in texts:
         found.update(next(g for g in m.groups() if g) for m in calls.finditer(text))
     return sorted(found)
 
@@ -339,6 +362,12 @@ def motor_limits(file: str, language: str) -> list[str]:
     """The motor acceleration and torque limit calls (see ``_MOTOR_LIMITS``) in the controller's
     source files: its main file and the files of its language beside it."""
     return _calls(file, language, _MOTOR_LIMITS)
+
+
+def range_readings(file: str, language: str) -> list[str]:
+    """The Lidar and RangeFinder reading calls (see ``_RANGE_READINGS``) in the controller's
+    source files."""
+    return _calls(file, language, _RANGE_READINGS)
 
 
 def scene_changes(file: str, language: str) -> list[str]:
@@ -509,6 +538,9 @@ def prepare_controller(file: str) -> PreparedController:
     calls = scene_changes(file, language)
     if calls:
         prepared.missing.append(SCENE_CHANGES.format(calls=", ".join(calls)))
+    calls = range_readings(file, language)
+    if calls:
+        prepared.missing.append(RANGE_READINGS.format(calls=", ".join(calls)))
     return prepared
 
 

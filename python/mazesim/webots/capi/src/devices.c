@@ -1,5 +1,6 @@
 /* Webots' device functions on the link: commands are queued for the next wb_robot_step,
    readings are those the last step brought. */
+#include "call.h"
 #include "link.h"
 
 #include <math.h>
@@ -12,8 +13,10 @@
 #include <webots/distance_sensor.h>
 #include <webots/gps.h>
 #include <webots/gyro.h>
+#include <webots/inertial_unit.h>
 #include <webots/keyboard.h>
 #include <webots/led.h>
+#include <webots/lidar.h>
 #include <webots/light_sensor.h>
 #include <webots/motor.h>
 #include <webots/position_sensor.h>
@@ -119,7 +122,37 @@ VECTOR_SENSOR(wb_compass)
 VECTOR_SENSOR(wb_accelerometer)
 VECTOR_SENSOR(wb_gyro)
 SAMPLED(wb_camera)
+SAMPLED(wb_inertial_unit)
+SAMPLED(wb_lidar)
 SAMPLED(wb_receiver)
+
+/* An inertial unit's roll, pitch and yaw come with each step's readings; its quaternion and
+   noise are calls, as the Python InertialUnit computes them. */
+const double *wb_inertial_unit_get_roll_pitch_yaw(WbDeviceTag tag) {
+  return vector(tag, "wb_inertial_unit_get_roll_pitch_yaw");
+}
+
+const double *wb_inertial_unit_get_quaternion(WbDeviceTag tag) {
+  Device *device = link_device(tag, "wb_inertial_unit_get_quaternion");
+  if (!device)
+    return NULL;
+  call_begin("wb_inertial_unit_get_quaternion");
+  call_int(tag);
+  call_end();
+  int count;
+  const double *quaternion = answer_doubles(0, &count);
+  if (!quaternion || count != 4)
+    return NULL;
+  for (int i = 0; i < 4; i++)
+    device->quaternion[i] = quaternion[i];
+  return device->quaternion;
+}
+
+double wb_inertial_unit_get_noise(WbDeviceTag tag) {
+  return link_device(tag, "wb_inertial_unit_get_noise")
+           ? call_device_double("wb_inertial_unit_get_noise", tag)
+           : NAN;
+}
 
 /* A distance sensor's facts: min value, max value, aperture, type, lookup table rows. */
 double wb_distance_sensor_get_min_value(WbDeviceTag tag) {
@@ -173,6 +206,14 @@ void wb_motor_set_velocity(WbDeviceTag tag, double velocity) {
 
 void wb_motor_set_acceleration(WbDeviceTag tag, double acceleration) {
   set_point(tag, 2, COMMAND_SET_ACCELERATION, acceleration, "wb_motor_set_acceleration");
+}
+
+/* Accepted, as the Python Motor accepts it: position control keeps its proportional gain. */
+void wb_motor_set_control_pid(WbDeviceTag tag, double p, double i, double d) {
+  (void)p;
+  (void)i;
+  (void)d;
+  link_device(tag, "wb_motor_set_control_pid");
 }
 
 static double set_value(WbDeviceTag tag, int index, const char *function) {

@@ -7,6 +7,7 @@
 #include <stddef.h>
 
 #include <webots/camera_recognition_object.h>
+#include <webots/lidar.h>
 #include <webots/nodes.h>
 #include <webots/types.h>
 
@@ -47,6 +48,11 @@ typedef struct {
   int object_count;       /* a camera's recognised objects, as fetched at `objects_time` */
   WbCameraRecognitionObject *objects;
   double objects_time;
+  double quaternion[4];   /* an inertial unit's orientation, as the last call read it */
+  int range_count;        /* a lidar's range image and point cloud, as the last calls read them */
+  float *ranges;
+  int point_count;
+  WbLidarPoint *points;
 } Device;
 
 typedef struct {

@@ -13,8 +13,10 @@
 #include <webots/emitter.h>
 #include <webots/gps.h>
 #include <webots/gyro.h>
+#include <webots/inertial_unit.h>
 #include <webots/keyboard.h>
 #include <webots/led.h>
+#include <webots/lidar.h>
 #include <webots/light_sensor.h>
 #include <webots/motor.h>
 #include <webots/position_sensor.h>
@@ -45,6 +47,31 @@
 #define MAZESIM_Compass_EXTRA
 #define MAZESIM_Accelerometer_EXTRA
 #define MAZESIM_Gyro_EXTRA
+#define MAZESIM_InertialUnit_EXTRA                                                               \
+  const double *getQuaternion() const { return wb_inertial_unit_get_quaternion(tag); }           \
+  double getNoise() const { return wb_inertial_unit_get_noise(tag); }
+#define MAZESIM_Lidar_EXTRA                                                                      \
+  virtual void enablePointCloud() { wb_lidar_enable_point_cloud(tag); }                          \
+  virtual void disablePointCloud() { wb_lidar_disable_point_cloud(tag); }                        \
+  bool isPointCloudEnabled() const { return wb_lidar_is_point_cloud_enabled(tag); }              \
+  const float *getLayerRangeImage(int layer) const {                                             \
+    return wb_lidar_get_layer_range_image(tag, layer);                                           \
+  }                                                                                              \
+  const LidarPoint *getPointCloud() const { return wb_lidar_get_point_cloud(tag); }              \
+  const LidarPoint *getLayerPointCloud(int layer) const {                                        \
+    return wb_lidar_get_layer_point_cloud(tag, layer);                                           \
+  }                                                                                              \
+  int getNumberOfPoints() const { return wb_lidar_get_number_of_points(tag); }                   \
+  int getHorizontalResolution() const { return wb_lidar_get_horizontal_resolution(tag); }        \
+  int getNumberOfLayers() const { return wb_lidar_get_number_of_layers(tag); }                   \
+  double getMinFrequency() const { return wb_lidar_get_min_frequency(tag); }                     \
+  double getMaxFrequency() const { return wb_lidar_get_max_frequency(tag); }                     \
+  double getFrequency() const { return wb_lidar_get_frequency(tag); }                            \
+  virtual void setFrequency(double frequency) { wb_lidar_set_frequency(tag, frequency); }        \
+  double getFov() const { return wb_lidar_get_fov(tag); }                                        \
+  double getVerticalFov() const { return wb_lidar_get_vertical_fov(tag); }                       \
+  double getMinRange() const { return wb_lidar_get_min_range(tag); }                             \
+  double getMaxRange() const { return wb_lidar_get_max_range(tag); }
 #define MAZESIM_Camera_EXTRA                                                                     \
   int getWidth() const { return wb_camera_get_width(tag); }                                      \
   int getHeight() const { return wb_camera_get_height(tag); }                                    \
@@ -90,6 +117,8 @@
 namespace webots {
   // Webots' C++ recognition object is its C struct.
   typedef WbCameraRecognitionObject CameraRecognitionObject;
+  // And its lidar point is its C struct.
+  typedef WbLidarPoint LidarPoint;
   MAZESIM_SENSOR(DistanceSensor, wb_distance_sensor, double, getValue, get_value)
   MAZESIM_SENSOR(PositionSensor, wb_position_sensor, double, getValue, get_value)
   MAZESIM_SENSOR(LightSensor, wb_light_sensor, double, getValue, get_value)
@@ -98,6 +127,9 @@ namespace webots {
   MAZESIM_SENSOR(Compass, wb_compass, const double *, getValues, get_values)
   MAZESIM_SENSOR(Accelerometer, wb_accelerometer, const double *, getValues, get_values)
   MAZESIM_SENSOR(Gyro, wb_gyro, const double *, getValues, get_values)
+  MAZESIM_SENSOR(InertialUnit, wb_inertial_unit, const double *, getRollPitchYaw,
+                 get_roll_pitch_yaw)
+  MAZESIM_SENSOR(Lidar, wb_lidar, const float *, getRangeImage, get_range_image)
   MAZESIM_SENSOR(Camera, wb_camera, const unsigned char *, getImage, get_image)
 
   class Motor : public Device {
@@ -109,6 +141,9 @@ namespace webots {
     virtual void setPosition(double position) { wb_motor_set_position(tag, position); }
     virtual void setVelocity(double velocity) { wb_motor_set_velocity(tag, velocity); }
     virtual void setAcceleration(double value) { wb_motor_set_acceleration(tag, value); }
+    virtual void setControlPID(double p, double i, double d) {
+      wb_motor_set_control_pid(tag, p, i, d);
+    }
     double getTargetPosition() const { return wb_motor_get_target_position(tag); }
     double getMinPosition() const { return wb_motor_get_min_position(tag); }
     double getMaxPosition() const { return wb_motor_get_max_position(tag); }

@@ -52,6 +52,10 @@ namespace webots {
       return dynamic_cast<Accelerometer *>(getDevice(name));
     }
     Gyro *getGyro(const std::string &name) { return dynamic_cast<Gyro *>(getDevice(name)); }
+    InertialUnit *getInertialUnit(const std::string &name) {
+      return dynamic_cast<InertialUnit *>(getDevice(name));
+    }
+    Lidar *getLidar(const std::string &name) { return dynamic_cast<Lidar *>(getDevice(name)); }
     Camera *getCamera(const std::string &name) { return dynamic_cast<Camera *>(getDevice(name)); }
     Emitter *getEmitter(const std::string &name) {
       return dynamic_cast<Emitter *>(getDevice(name));
@@ -97,6 +101,10 @@ namespace webots {
           return new Accelerometer(tag);
         case WB_NODE_GYRO:
           return new Gyro(tag);
+        case WB_NODE_INERTIAL_UNIT:
+          return new InertialUnit(tag);
+        case WB_NODE_LIDAR:
+          return new Lidar(tag);
         case WB_NODE_CAMERA:
           return new Camera(tag);
         case WB_NODE_EMITTER:

@@ -13,6 +13,7 @@ typedef enum { WB_ROTATIONAL = 0, WB_LINEAR } WbJointType;
 void wb_motor_set_position(WbDeviceTag tag, double position);
 void wb_motor_set_velocity(WbDeviceTag tag, double velocity);
 void wb_motor_set_acceleration(WbDeviceTag tag, double acceleration);
+void wb_motor_set_control_pid(WbDeviceTag tag, double p, double i, double d);
 double wb_motor_get_target_position(WbDeviceTag tag);
 double wb_motor_get_min_position(WbDeviceTag tag);
 double wb_motor_get_max_position(WbDeviceTag tag);
