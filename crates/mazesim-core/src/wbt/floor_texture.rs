@@ -24,8 +24,10 @@ use super::WbtImport;
 use crate::world::spec::PaintSpec;
 use crate::world::values::{Finite, Positive, Reflectance};
 
-/// Largest image side read, in pixels: larger images are sampled down to it (nearest pixel).
-pub const MAX_TEXTURE_SIDE: usize = 256;
+/// Largest image side read, in pixels: larger images are averaged down to it (by area) first.
+pub const MAX_TEXTURE_SIDE: usize = 2048;
+/// Smallest side an image is averaged down to so that its paint fits [`MAX_TEXTURE_PAINT`].
+pub const MIN_TEXTURE_SIDE: usize = 256;
 /// Most paint rectangles one texture may give; beyond it the texture is left out, with a warning.
 pub const MAX_TEXTURE_PAINT: usize = 200_000;
 /// Reflection factor of black in Webots' infra-red model; white is 1.
@@ -68,22 +70,23 @@ pub fn grey_reflectance(level: f64) -> f64 {
 }
 
 impl GreyImage {
-    /// The image sampled down (nearest pixel) to at most [`MAX_TEXTURE_SIDE`] a side.
-    fn bounded(&self) -> GreyImage {
-        if self.width <= MAX_TEXTURE_SIDE && self.height <= MAX_TEXTURE_SIDE {
+    /// The image averaged down to at most `side` pixels a side: each pixel of the result is the
+    /// mean of the image over the area it covers, so that a line thinner than a pixel of the
+    /// result stays a connected band, lighter than the line by the share of the pixel it covers.
+    fn averaged(&self, side: usize) -> GreyImage {
+        let (w, h) = (self.width.min(side), self.height.min(side));
+        if (w, h) == (self.width, self.height) {
             return self.clone();
         }
-        let (w, h) = (
-            self.width.min(MAX_TEXTURE_SIDE),
-            self.height.min(MAX_TEXTURE_SIDE),
-        );
+        let (columns, rows) = (area_shares(self.width, w), area_shares(self.height, h));
+        // Along the rows first (height x w), then down the columns.
+        let mut narrow = Vec::with_capacity(w * self.height);
+        for row in self.levels.chunks_exact(self.width) {
+            narrow.extend(columns.iter().map(|shares| mean_of(shares, |k| row[k])));
+        }
         let mut levels = Vec::with_capacity(w * h);
-        for r in 0..h {
-            let sr = (r * self.height + self.height / (2 * h)) / h;
-            for c in 0..w {
-                let sc = (c * self.width + self.width / (2 * w)) / w;
-                levels.push(self.levels[sr * self.width + sc]);
-            }
+        for shares in &rows {
+            levels.extend((0..w).map(|c| mean_of(shares, |k| narrow[k * w + c])));
         }
         GreyImage {
             width: w,
@@ -91,6 +94,29 @@ impl GreyImage {
             levels,
         }
     }
+}
+
+/// For each of `to` equal cells laid over `from` pixels in a line: the pixels it covers and the
+/// share of the cell each covers (the shares of a cell sum to 1; whole when `to == from`).
+fn area_shares(from: usize, to: usize) -> Vec<Vec<(usize, f64)>> {
+    // In units of 1 / `to` of a pixel, cell i spans [i * from, (i + 1) * from) and pixel k
+    // spans [k * to, (k + 1) * to).
+    (0..to)
+        .map(|i| {
+            let (start, end) = (i * from, (i + 1) * from);
+            (start / to..end.div_ceil(to))
+                .map(|k| {
+                    let overlap = end.min((k + 1) * to) - start.max(k * to);
+                    (k, overlap as f64 / from as f64)
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// The sum of `level(k) * share` over `shares`.
+fn mean_of(shares: &[(usize, f64)], level: impl Fn(usize) -> f64) -> f64 {
+    shares.iter().map(|&(k, share)| level(k) * share).sum()
 }
 
 /// Rectangles `[c0, c1, r0, r1]` (columns `c0..c1`, rows `r0..r1`) of equal cells of a grid,
@@ -124,15 +150,39 @@ pub(super) fn equal_rects<T: Copy + Ord>(
     done
 }
 
+/// A rectangle `[c0, c1, r0, r1]` of an image's pixels and their grey level in 0..=255.
+type GreyRect = ([usize; 4], u8);
+
 /// The image as rectangles of equal grey, in pixel units of one tile, with the grey level of
 /// each in 0..=255.
-fn pixel_rects(image: &GreyImage) -> Vec<([usize; 4], u8)> {
+fn pixel_rects(image: &GreyImage) -> Vec<GreyRect> {
     let quantised: Vec<u8> = image
         .levels
         .iter()
         .map(|g| (g.clamp(0.0, 1.0) * 255.0).round() as u8)
         .collect();
     equal_rects(&quantised, image.width, image.height)
+}
+
+/// The image as painted over `tile_count` tiles, with its rectangles: at its own size (up to
+/// [`MAX_TEXTURE_SIDE`]), halved while its paint does not fit [`MAX_TEXTURE_PAINT`], down to
+/// [`MIN_TEXTURE_SIDE`]; or why it does not fit even then.
+fn fitted(image: &GreyImage, tile_count: usize) -> Result<(GreyImage, Vec<GreyRect>), String> {
+    let mut image = image.averaged(MAX_TEXTURE_SIDE);
+    loop {
+        let rects = pixel_rects(&image);
+        if tile_count.saturating_mul(rects.len()) <= MAX_TEXTURE_PAINT {
+            return Ok((image, rects));
+        }
+        let side = image.width.max(image.height);
+        if side <= MIN_TEXTURE_SIDE {
+            return Err(format!(
+                "expected at most {MAX_TEXTURE_PAINT} paint rectangles, found {tile_count} tiles of {} rectangles",
+                rects.len()
+            ));
+        }
+        image = image.averaged((side / 2).max(MIN_TEXTURE_SIDE));
+    }
 }
 
 impl FloorTexture {
@@ -147,19 +197,12 @@ impl FloorTexture {
                 image.height
             ));
         }
-        let image = image.bounded();
-        let rects = pixel_rects(&image);
         let [sx, sy] = self.size;
         let [tx, ty] = self.tile;
-        let (px, py) = (tx / image.width as f64, ty / image.height as f64);
         let tiles = [(sx / tx).ceil() as usize, (sy / ty).ceil() as usize];
         let tile_count = tiles[0].saturating_mul(tiles[1]);
-        if tile_count.saturating_mul(rects.len()) > MAX_TEXTURE_PAINT {
-            return Err(format!(
-                "expected at most {MAX_TEXTURE_PAINT} paint rectangles, found {tile_count} tiles of {} rectangles",
-                rects.len()
-            ));
-        }
+        let (image, rects) = fitted(image, tile_count)?;
+        let (px, py) = (tx / image.width as f64, ty / image.height as f64);
         let (s, c) = self.yaw.sin_cos();
         let mut paint = Vec::new();
         for i in 0..tiles[0] {
@@ -473,9 +516,8 @@ mod tests {
     }
 
     #[test]
-    fn large_images_are_sampled_down_keeping_their_edges() {
-        // 512 x 300, black left of column 200: after sampling down to 256 x 256 the edge is
-        // still at 200 / 512 of the width.
+    fn large_images_keep_their_edges_to_the_pixel() {
+        // 512 x 300, black left of column 200: the edge is at 200 / 512 of the width.
         let (width, height) = (512, 300);
         let levels = (0..width * height)
             .map(|i| if i % width < 200 { 0.0 } else { 1.0 })
@@ -488,8 +530,82 @@ mod tests {
         let paint = texture([0.512, 0.3], [0.512, 0.3]).paint(&image).unwrap();
         assert_eq!(paint.len(), 2, "one black and one white rectangle");
         let edge = -0.256 + 0.2;
-        assert_eq!(reflectance_at(&paint, edge - 0.002, 0.0), Some(0.2));
-        assert_eq!(reflectance_at(&paint, edge + 0.002, 0.0), Some(1.0));
+        assert_eq!(reflectance_at(&paint, edge - 0.0005, 0.0), Some(0.2));
+        assert_eq!(reflectance_at(&paint, edge + 0.0005, 0.0), Some(1.0));
+    }
+
+    /// An 800 x 800 white image with a black ring 3 pixels wide, 300 pixels in radius, and
+    /// whether each pixel is on the ring.
+    fn ring_image() -> (GreyImage, Vec<bool>) {
+        let side = 800;
+        let on_ring: Vec<bool> = (0..side * side)
+            .map(|i| {
+                let (r, c) = ((i / side) as f64 + 0.5, (i % side) as f64 + 0.5);
+                ((c - 400.0).hypot(r - 400.0) - 300.0).abs() < 1.5
+            })
+            .collect();
+        let levels = on_ring
+            .iter()
+            .map(|&on| if on { 0.0 } else { 1.0 })
+            .collect();
+        let image = GreyImage {
+            width: side,
+            height: side,
+            levels,
+        };
+        (image, on_ring)
+    }
+
+    #[test]
+    fn a_thin_line_of_a_large_image_is_painted_pixel_for_pixel() {
+        // One pixel a millimetre: every pixel of the ring, which is one 8-connected piece, is
+        // painted black where it lies.
+        let (image, on_ring) = ring_image();
+        let paint = texture([0.8, 0.8], [0.8, 0.8]).paint(&image).unwrap();
+        for (i, _) in on_ring.iter().enumerate().filter(|(_, &on)| on) {
+            let (r, c) = ((i / 800) as f64 + 0.5, (i % 800) as f64 + 0.5);
+            let (x, y) = (-0.4 + c * 1e-3, 0.4 - r * 1e-3);
+            assert_eq!(reflectance_at(&paint, x, y), Some(0.2), "pixel {r}, {c}");
+        }
+    }
+
+    #[test]
+    fn over_the_paint_budget_a_thin_line_is_averaged_into_a_band_seen_all_round() {
+        let (image, _) = ring_image();
+        // Just too many tiles for the image at its own size, then for it at half its size.
+        let over = |image: &GreyImage| MAX_TEXTURE_PAINT / pixel_rects(image).len() + 1;
+        for tiles in [over(&image), over(&image.averaged(400))] {
+            let (fitted, rects) = fitted(&image, tiles).unwrap();
+            assert!(fitted.width < 800 && tiles * rects.len() <= MAX_TEXTURE_PAINT);
+            // Crossing the ring outwards at every half degree, in steps of a quarter of a pixel
+            // of the image: the darkest pixel met, and the darkness summed across the band (the
+            // line's width in pixels of the image where it is black).
+            let scale = fitted.width as f64 / 800.0;
+            for step in 0..720 {
+                let (s, c) = (step as f64 / 720.0 * std::f64::consts::TAU).sin_cos();
+                let levels: Vec<f64> = (0..=80)
+                    .map(|k| 290.0 + k as f64 * 0.25)
+                    .map(|radius| {
+                        let col = ((400.0 + radius * c) * scale) as usize;
+                        let row = ((400.0 + radius * s) * scale) as usize;
+                        fitted.levels[row * fitted.width + col]
+                    })
+                    .collect();
+                let darkest = levels.iter().copied().fold(1.0_f64, f64::min);
+                let width: f64 = levels.iter().map(|g| (1.0 - g) * 0.25).sum();
+                let at = format!("{} px, {} degrees", fitted.width, step as f64 / 2.0);
+                assert!(darkest < 0.7, "{at}: darkest {darkest}");
+                assert!((2.0..4.0).contains(&width), "{at}: width {width}");
+            }
+        }
+    }
+
+    #[test]
+    fn averaging_shares_each_cell_among_the_pixels_it_covers() {
+        let shares = area_shares(5, 2);
+        assert_eq!(shares[0], vec![(0, 0.4), (1, 0.4), (2, 0.2)]);
+        assert_eq!(shares[1], vec![(2, 0.2), (3, 0.4), (4, 0.4)]);
+        assert_eq!(area_shares(3, 3)[1], vec![(1, 1.0)]);
     }
 
     #[test]
