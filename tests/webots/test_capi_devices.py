@@ -82,7 +82,7 @@ def test_c_and_cpp_controllers_read_an_inertial_unit_and_a_lidar_as_python_does(
     path = CONTROLLERS / "worlds" / "inertial_lidar_arena.wbt"
     world, report = import_wbt(str(path))
     twins = (
-        CONTROLLERS / "inertial_lidar_twin.py",
+        CONTROLLERS / "inertial_lidar_twin" / "inertial_lidar_twin.py",
         CONTROLLERS / "c_inertial_lidar" / "c_inertial_lidar.c",
         CONTROLLERS / "cpp_inertial_lidar" / "cpp_inertial_lidar.cpp",
     )

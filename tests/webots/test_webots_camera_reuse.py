@@ -101,5 +101,52 @@ def test_a_still_camera_keeps_its_image_without_drawing_it_again(
         motor.setPosition(float("inf"))
         motor.setVelocity(4.0)
     robot.step(32)
-    assert len(drawn) == 2
     assert camera.getImage() != first
+    assert len(drawn) == 2
+
+
+def last_image(world: mazesim.World, read_every_step: bool, drawn: list[Any]) -> bytes | None:
+    """The camera's image after 20 steps of a robot driving in an arc."""
+    prepare(world, seconds=2.0, noise=False)
+    robot = controller.Robot()
+    camera = robot.getDevice("camera")
+    camera.enable(64)
+    left, right = robot.getDevice("left wheel motor"), robot.getDevice("right wheel motor")
+    for motor, speed in ((left, 3.0), (right, 4.0)):
+        motor.setPosition(float("inf"))
+        motor.setVelocity(speed)
+    for _ in range(20):
+        robot.step(32)
+        if read_every_step:
+            camera.getImage()
+    image = camera.getImage()
+    controller.Robot.created = None
+    simulations.release()
+    return image
+
+
+def test_a_camera_never_read_draws_nothing_and_its_image_is_the_sampled_one(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    world = mazesim.World.from_toml(PAINTED, "painted")
+    drawn: list[Any] = []
+
+    def counted(*arguments: Any) -> Any:
+        drawn.append(arguments[3])
+        return render(*arguments)
+
+    monkeypatch.setattr(cameras, "render", counted)
+    every = last_image(world, True, drawn)
+    assert len(drawn) == 10  # one image per 64 ms sampling period, the robot moving
+    drawn.clear()
+    prepare(world, seconds=2.0, noise=False)
+    robot = controller.Robot()
+    robot.getDevice("camera").enable(64)
+    for _ in range(20):
+        robot.step(32)
+    assert drawn == []
+    controller.Robot.created = None
+    simulations.release()
+    once = last_image(world, False, drawn)
+    assert len(drawn) == 1
+    assert once is not None and once == every

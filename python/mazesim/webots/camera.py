@@ -271,7 +271,10 @@ class Camera(_Sensor):
         self._floor: FloorPaint | None = None
         self._pixels: npt.NDArray[np.uint8] | None = None
         self._bytes: bytes | None = None
-        #: The robot's pose and the other robots of the last image rendered.
+        #: The robot's pose and the other robots when the camera last sampled (its image is
+        #: drawn from them only when the controller asks for it), and those of the last image
+        #: drawn.
+        self._sampled: tuple[tuple[float, float, float], list[RobotBody]] | None = None
         self._rendered_at: tuple[tuple[float, float, float], list[RobotBody]] | None = None
         self._value = None
         #: Whether the simulator holds this robot alone (it has no ``other_robots``).
@@ -289,14 +292,21 @@ class Camera(_Sensor):
             self._walls = WallBoxes(self._simulation.world, sensed=True)
             self._floor = FloorPaint(self._simulation.world)
         x, y, yaw = (float(v) for v in self._simulation.simulator.pose)
-        pose = (x, y, yaw)
-        robots = self._other_robots()
-        if self._pixels is not None and self._rendered_at == (pose, robots):
-            return True  # nothing the camera sees has moved: the same image
-        self._bytes = None
-        self._pixels = render(self._view, self._walls, self._floor, pose, robots)
-        self._rendered_at = (pose, robots)
+        self._sampled = ((x, y, yaw), self._other_robots())
         return True
+
+    def _drawn(self) -> npt.NDArray[np.uint8] | None:
+        """The image of the last sample, drawn at the first call that asks for it (a camera
+        enabled and never read draws nothing), and drawn again only when the robot or another
+        robot has moved since the last image; None before the first sample."""
+        if self._sampled is None or self._walls is None or self._floor is None:
+            return None
+        if self._pixels is None or self._rendered_at != self._sampled:
+            pose, robots = self._sampled
+            self._bytes = None
+            self._pixels = render(self._view, self._walls, self._floor, pose, robots)
+            self._rendered_at = self._sampled
+        return self._pixels
 
     def _other_robots(self) -> list[RobotBody]:
         """The other robots of a simulator shared with them (a
@@ -313,14 +323,14 @@ class Camera(_Sensor):
         return [RobotBody(float(x), float(y), float(radius)) for x, y, radius in bodies]
 
     def _image(self) -> npt.NDArray[np.uint8] | None:
-        if self._period_ms == 0 and self._pixels is None:
+        if self._period_ms == 0 and self._sampled is None:
             self._warn_disabled("get_image")
-        if self._pixels is None and self._period_ms and self._simulation.steps > self._enabled_at:
+        if self._sampled is None and self._period_ms and self._simulation.steps > self._enabled_at:
             # Webots' wb_camera_get_image returns an enabled camera's image buffer, set up at
             # the first step after the camera is enabled and drawn when its first sampling
             # period ends (src/controller/c/camera.c, WbSensor.cpp): black until then.
             return np.zeros((self._view.height, self._view.width, 4), dtype=np.uint8)
-        return self._pixels
+        return self._drawn()
 
     def getImage(self) -> bytes | None:
         """The last image: ``width * height * 4`` bytes, B G R A per pixel, row after row;
@@ -543,7 +553,7 @@ class Camera(_Sensor):
         Returns:
             0 on success, -1 on failure (no image yet, unknown extension, unwritable file).
         """
-        pixels = self._pixels
+        pixels = self._drawn()
         extension = os.path.splitext(filename)[1].lower()
         if pixels is None or extension not in (".png", ".jpg", ".jpeg"):
             _print_error(f"Error: wb_camera_save_image() cannot save {filename!r}.")
