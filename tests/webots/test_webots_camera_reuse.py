@@ -42,6 +42,19 @@ def release() -> Iterator[None]:
     simulations.release()
 
 
+@pytest.fixture
+def drawn(monkeypatch: pytest.MonkeyPatch) -> list[Any]:
+    """The robot poses of the images the cameras draw, in order."""
+    poses: list[Any] = []
+
+    def counted(*arguments: Any) -> Any:
+        poses.append(arguments[3])
+        return render(*arguments)
+
+    monkeypatch.setattr(cameras, "render", counted)
+    return poses
+
+
 def every_point_tested(paint: FloorPaint) -> FloorPaint:
     """The same paint with every point tested against every region."""
     paint._grid.bounded = False
@@ -75,17 +88,8 @@ def test_camera_images_are_those_of_testing_every_point(pitch: float) -> None:
     assert len(colours) >= 4
 
 
-def test_a_still_camera_keeps_its_image_without_drawing_it_again(
-    monkeypatch: pytest.MonkeyPatch,
-) -> None:
+def test_a_still_camera_keeps_its_image_without_drawing_it_again(drawn: list[Any]) -> None:
     world = mazesim.World.from_toml(PAINTED, "painted")
-    drawn: list[Any] = []
-
-    def counted(*arguments: Any) -> Any:
-        drawn.append(arguments[3])
-        return render(*arguments)
-
-    monkeypatch.setattr(cameras, "render", counted)
     prepare(world, seconds=2.0, noise=False)
     robot = controller.Robot()
     camera = robot.getDevice("camera")
@@ -126,16 +130,9 @@ def last_image(world: mazesim.World, read_every_step: bool, drawn: list[Any]) ->
 
 
 def test_a_camera_never_read_draws_nothing_and_its_image_is_the_sampled_one(
-    monkeypatch: pytest.MonkeyPatch,
+    drawn: list[Any],
 ) -> None:
     world = mazesim.World.from_toml(PAINTED, "painted")
-    drawn: list[Any] = []
-
-    def counted(*arguments: Any) -> Any:
-        drawn.append(arguments[3])
-        return render(*arguments)
-
-    monkeypatch.setattr(cameras, "render", counted)
     every = last_image(world, True, drawn)
     assert len(drawn) == 10  # one image per 64 ms sampling period, the robot moving
     drawn.clear()
