@@ -285,7 +285,12 @@ def motor_commands(count: int, seed: int) -> list[dict[str, Any]]:
 @needs_ros
 def test_bridge_and_avoid_collision_move_the_robot(master: LocalMaster) -> None:
     spawn_bridge(master, "--world", "seed-maze", "--seed", "3")
-    master.spawn("avoid-collision", [*MAZESIM, "ros", "avoid-collision"])
+    # Two subscribers of its commands, the bridge and the probe below: a node waiting for one
+    # could start on the probe's alone and send its first command before the bridge listens,
+    # and a lockstep bridge then waits for a command that never comes.
+    master.spawn(
+        "avoid-collision", [*MAZESIM, "ros", "avoid-collision", "--wait-for-subscribers", "2"]
+    )
     run_probe(master, "count", "motor", "1")  # the node drives (its start can take seconds)
     seen = run_probe(master, "count", "pose", "60")
 
