@@ -221,9 +221,13 @@ def test_a_missing_dependency_says_what_to_install(
         (
             ["demo", "--seeed", "3"],
             "mazesim demo",
-            "--seeed 3; did you mean '--seeed' for '--seed'?",
+            "--seeed 3; did you mean '--seed' for '--seeed'?",
         ),
-        (["eval", "--episods=3"], "mazesim eval", "--episods=3; did you mean '--episods' for "),
+        (
+            ["eval", "--episods=3"],
+            "mazesim eval",
+            "--episods=3; did you mean '--episodes' for '--episods'?",
+        ),
         (["webots", "run", "x.wbt", "--secnds", "3"], "mazesim webots run", "--secnds 3; did "),
         (["bench", "--world", "seed-maze"], "mazesim bench", "--world seed-maze"),
     ],

@@ -90,10 +90,12 @@ def test_a_mistyped_option_says_which_option_was_meant(mode: str | None) -> None
     message = str(caught.value)
     assert "expected options among world, robot," in message
     assert message.endswith(
-        "; did you mean 'max_episde_steps' for 'max_episode_steps', 'wrold' for 'world'?"
+        "; did you mean 'max_episode_steps' for 'max_episde_steps', 'world' for 'wrold'?"
         if mode is None
-        else "; did you mean 'wrold' for 'world'?"
+        else "; did you mean 'world' for 'wrold'?"
     )
+    with pytest.raises(InvalidArgumentError, match="did you mean 'render_mode' for 'render_mod'"):
+        gymnasium.make(TASK, render_mod="rgb_array")
     with pytest.raises(InvalidArgumentError) as caught:
         gymnasium.make(TASK, colour="red")
     assert "did you mean" not in str(caught.value)

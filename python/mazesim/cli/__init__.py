@@ -137,7 +137,7 @@ def _refuse_unknown(
     }
     typed = [word.partition("=")[0] for word in unknown if word.startswith("-")]
     meant = [
-        f"{word!r} for {options[closest]!r}"
+        f"{options[closest]!r} for {word!r}"
         for word in typed
         if (closest := _closest_name(word.lstrip("-"), list(options), 0.8)) is not None
     ]

@@ -60,6 +60,14 @@ WorldOption = Union[str, "os.PathLike[str]", World, dict[str, str]]
 #: Keywords of a vector env that reach a single env when given to ``make_vec`` in sync or async
 #: mode, where gymnasium takes them in ``vector_kwargs``.
 _VECTOR_ENV_KEYWORDS = ("autoreset_mode", "copy", "observation_mode", "shared_memory", "context")
+#: Keywords gymnasium.make takes itself (or passes to every env), suggested for a typo of one.
+_MAKE_KEYWORDS = (
+    "max_episode_steps",
+    "render_mode",
+    "disable_env_checker",
+    "autoreset",
+    "apply_api_compatibility",
+)
 
 
 def draw_seed(rng: np.random.Generator) -> int:
@@ -230,10 +238,10 @@ class EnvOptions:
                 if vector
                 else ""
             )
-            # gymnasium's make takes max_episode_steps itself: a typo of it reaches the env.
-            known = [*option_names(), "max_episode_steps"]
+            # gymnasium's make takes these itself: a typo of one reaches the env.
+            known = [*option_names(), *_MAKE_KEYWORDS]
             meant = [
-                f"{key!r} for {closest!r}"
+                f"{closest!r} for {key!r}"
                 for key in unknown
                 if (closest := _closest_name(key, known)) is not None
             ]
