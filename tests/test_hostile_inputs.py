@@ -145,6 +145,9 @@ CASES = {
         "from mazesim.benchmark.steady import BenchSettings, SteadyState\n"
         "SteadyState(BenchSettings(envs=2**31 - 1))"
     ),
+    # Text where a number is expected: numpy (and float()) read "3" as one, so the call did not
+    # fail and its arguments were never checked.
+    "text_for_an_angle": "from mazesim.odometry import wrap_angle\nwrap_angle('3')",
 }
 
 
@@ -181,6 +184,7 @@ MUST_BE_REFUSED = {
     "barcode_study_envs_2_31",
     "unseen_mazes_2_31",
     "bench_distinct_mazes_2_31",
+    "text_for_an_angle",
 }
 
 
@@ -498,6 +502,8 @@ WRONG_TYPED_DEVICE_CALLS = {
     "emitter channel": "robot.getDevice('emitter').setChannel('seven')",
     "distance sensor period": "robot.getDevice('ps0').enable('often')",
     "led value": "robot.getDevice('led0').set([1])",
+    # Text read as a number by float(): accepted as 64 ms.
+    "step duration": "robot.step('64')",
 }
 
 
@@ -525,3 +531,4 @@ def test_a_controllers_wrong_typed_device_calls_are_refused_naming_the_method(
     refused = [line for line in done.stdout.splitlines() if line.startswith("REFUSED")]
     assert len(refused) == len(WRONG_TYPED_DEVICE_CALLS), done.stdout + done.stderr
     assert all("InvalidArgumentError" in line and " refused: " in line for line in refused), refused
+

@@ -13,9 +13,11 @@ helper (:func:`refusal`): the type (``int``, ``float``, ``str``, paths, sequence
 arrays, callables, the package's own classes, ``Literal`` choices, unions, ``None``) and the range
 of integers (what a 64-bit integer holds). The length of a sized value (at most
 :data:`MOST_ITEMS`, read from ``len()`` or ``.shape`` before anything is converted) is checked
-before the call; the rest when the call fails with a built-in exception (``TypeError``,
-``ValueError``, ``AttributeError``, ``MemoryError``...), so that valid calls pay nothing for it and
-the function's own, more precise messages are kept: an argument that does not fit then raises
+before the call, and so is a text argument (``str`` or ``bytes``) against its annotation, which
+``float()`` and ``int()`` would read as a number (``Robot.step("64")``); the rest when the call
+fails with a built-in exception (``TypeError``, ``ValueError``, ``AttributeError``,
+``MemoryError``...), so that valid calls pay nothing for it and the function's own, more precise
+messages are kept: an argument that does not fit then raises
 :class:`~mazesim.errors.InvalidArgumentError` ("expected X, found Y") naming the function and the
 parameter, and so does a call with missing or unknown arguments. A failure whose arguments all fit
 their annotations (a bound the annotations cannot say, or a bug), and any other exception from
@@ -328,6 +330,13 @@ _ARGUMENT_FAILURES = (
 )
 
 
+#: Arguments checked before every call: Python's ``float()``, ``int()`` and numpy read ``"64"`` or
+#: ``b"64"`` as a number, so a call given text for a number would not fail and be checked after.
+_TEXT = (str, bytes, bytearray)
+#: Texts that fit a function's parameters remembered per function.
+REMEMBERED_TEXTS = 64
+
+
 class _Names(dict[str, Any]):
     """The names an annotation may use: its module's, then a public class of that name defined in
     a module of the package already imported (names imported for type checkers only)."""
@@ -377,6 +386,8 @@ class _Parameters:
         self.first: str | None = None
         #: Parameters whose values have a length bound: (position, name, bound).
         self.sized: list[tuple[int, str, int]] = []
+        #: (parameter, text) pairs that fit, by :meth:`refuse_text`.
+        self.fitting_text: set[tuple[str, str | bytes] | None] = set()
 
     def prepare(self) -> None:
         func = inspect.unwrap(self.func)
@@ -446,6 +457,29 @@ class _Parameters:
                     f"{self.func.__qualname__}: expected the argument {name!r}, found none"
                 )
 
+    def check_text(self, args: tuple[Any, ...], kwargs: dict[str, Any]) -> None:
+        """Refuses, before the call, a text argument (``str`` or ``bytes``) its annotation does
+        not take."""
+        for (name, hint), value in zip(self.positional, args):  # noqa: B905 - extras: TypeError
+            if isinstance(value, _TEXT) and hint is not Any:
+                self.refuse_text(name, value, hint)
+        for name, value in kwargs.items():
+            hint = self.by_name.get(name, Any)
+            if isinstance(value, _TEXT) and hint is not Any:
+                self.refuse_text(name, value, hint)
+
+    def refuse_text(self, name: str, value: str | bytes | bytearray, hint: Any) -> None:
+        """:meth:`refuse` for text, remembering the last texts that fit (a controller asks for
+        the same device names at every step)."""
+        key = None if isinstance(value, bytearray) else (name, value)
+        if key in self.fitting_text:
+            return
+        self.refuse(name, value, hint)
+        if key is not None:
+            if len(self.fitting_text) >= REMEMBERED_TEXTS:
+                self.fitting_text.clear()
+            self.fitting_text.add(key)
+
     def refuse(self, name: str, value: Any, hint: Any) -> None:
         reason = refusal(value, hint)
         if reason is not None:
@@ -460,7 +494,7 @@ def checked(func: Callable[..., Any], *, method: bool = False) -> Callable[..., 
         return func
     parameters = _Parameters(func, method)
     # The wrapper runs in func's globals: everything it uses is bound here.
-    error, own, failures = InvalidArgumentError, MazesimError, _ARGUMENT_FAILURES
+    error, own, failures, text = InvalidArgumentError, MazesimError, _ARGUMENT_FAILURES, _TEXT
     tree = in_the_tree
     state = STATE  # per thread, whether a checked call is running
 
@@ -469,6 +503,10 @@ def checked(func: Callable[..., Any], *, method: bool = False) -> Callable[..., 
             return func(*args, **kwargs)  # called by the package itself: checked at the surface
         if parameters.sized or not parameters.ready:
             parameters.check_sizes(args, kwargs)
+        for value in (*args, *kwargs.values()) if kwargs else args:
+            if isinstance(value, text):  # float("64") would take text for a number: check now
+                parameters.check_text(args, kwargs)
+                break
         state.inside = True
         try:
             return func(*args, **kwargs)

@@ -169,7 +169,7 @@ def _samples(world: Any, tmp: Path) -> dict[Any, Any]:
         mazesim.Simulator: lambda: mazesim.Simulator(world),
         mazesim.BatchSimulator: lambda: mazesim.BatchSimulator(world, num_envs=2),
         mazesim.RobotProfile: lambda: mazesim.RobotProfile.builtin("seed"),
-        argparse.Namespace: argparse.Namespace,
+        argparse.Namespace: lambda: argparse.Namespace(),
         int: 1,
         float: 1.0,
         bool: False,
