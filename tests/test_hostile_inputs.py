@@ -532,3 +532,43 @@ def test_a_controllers_wrong_typed_device_calls_are_refused_naming_the_method(
     assert len(refused) == len(WRONG_TYPED_DEVICE_CALLS), done.stdout + done.stderr
     assert all("InvalidArgumentError" in line and " refused: " in line for line in refused), refused
 
+
+def _core_instances() -> dict[str, object]:
+    from surface.registry import INSTANCES
+
+    world = _core.World.builtin("seed-maze")
+    made = {}
+    for path, recipe in INSTANCES.items():
+        if path.startswith("mazesim._core."):
+            made[path.rsplit(".", 1)[1]] = eval(recipe, {"mazesim": mazesim, "world": world})  # noqa: S307
+    return made
+
+
+@pytest.mark.parametrize("how", ["pickle", "copy", "deepcopy"])
+def test_every_core_object_pickles_or_is_refused_saying_so(how: str) -> None:
+    """Every class of the core, pickled or copied: a working copy, or InvalidArgumentError (also a
+    TypeError, as pickle's own refusal) naming the class; a batch, a navigator, the settings of a
+    run call and three more failed with pickle's bare TypeError (a PettingZoo env holding a
+    batch with them)."""
+    import copy
+    import pickle
+
+    action = {
+        "pickle": lambda o: pickle.loads(pickle.dumps(o)),
+        "copy": copy.copy,
+        "deepcopy": copy.deepcopy,
+    }[how]
+    instances = _core_instances()
+    classes = {n for n in dir(_core) if isinstance(getattr(_core, n), type)}
+    assert {n for n in classes if not issubclass(getattr(_core, n), BaseException)} <= set(
+        instances
+    )
+    refused = []
+    for name, instance in sorted(instances.items()):
+        try:
+            action(instance)
+        except mazesim.InvalidArgumentError as error:
+            assert isinstance(error, TypeError), name
+            assert f"found a {name}, which cannot be" in str(error), error
+            refused.append(name)
+    assert "BatchSimulator" in refused and "World" not in refused and "Simulator" not in refused

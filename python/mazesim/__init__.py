@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import os
 
-from mazesim import _checks
+from mazesim import _checks, _core, _pickling
 from mazesim._core import (
     AvoidCollisionSettings,
     BatchSimulator,
@@ -51,6 +51,7 @@ from mazesim.errors import (
 
 # Every public module imported from here on gets the argument check (mazesim._checks).
 _checks.install()
+_pickling.refuse_unpicklable(_core)
 
 __all__ = [
     "AvoidCollisionSettings",

@@ -34,7 +34,7 @@ from typing import Any
 
 from mazesim.errors import InternalError, InvalidArgumentError, MazesimError, MazesimIOError
 
-__all__ = ["in_the_tree", "io_error"]
+__all__ = ["in_the_tree", "io_error", "made_as"]
 
 #: The longest part of an original message quoted (a message may quote a huge value).
 QUOTED_CHARACTERS = 300
@@ -71,7 +71,7 @@ def _raised_by_library(error: BaseException) -> bool:
 
 
 def _rebuild(tree: type, kind: type, args: tuple[Any, ...]) -> Any:
-    return _made(tree, kind, *args) if len(args) == 1 else tree(*args)
+    return made_as(tree, kind, *args) if len(args) == 1 else tree(*args)
 
 
 @functools.cache
@@ -94,7 +94,7 @@ def _both(tree: type, kind: type) -> type:
     return made
 
 
-def _made(tree: type, kind: type, message: str) -> Any:
+def made_as(tree: type, kind: type, message: str) -> Any:
     """A ``tree`` error that is also a ``kind`` if it can be made with just a message."""
     try:
         return _both(tree, kind)(message)
@@ -117,7 +117,7 @@ def io_error(error: OSError, where: str = "") -> MazesimIOError:
         return error
     name = error.filename if error.filename is not None else where
     reason = error.strerror or _quoted(error)
-    made = _made(MazesimIOError, type(error), f"{name}: {reason}")
+    made = made_as(MazesimIOError, type(error), f"{name}: {reason}")
     made.errno, made.strerror, made.filename = error.errno, reason, error.filename
     return made
 
@@ -142,6 +142,6 @@ def in_the_tree(where: str, error: BaseException, argument_failure: bool) -> Bas
         return io_error(error, where)
     if argument_failure:
         message = f"{where}: the arguments do not fit: {_quoted(error)}"
-        return _made(InvalidArgumentError, type(error), message)
+        return made_as(InvalidArgumentError, type(error), message)
     message = f"{where}: internal error, please report: {_quoted(error)}"
-    return _made(InternalError, type(error), message)
+    return made_as(InternalError, type(error), message)
