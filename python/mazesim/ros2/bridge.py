@@ -3,7 +3,10 @@
 Lockstep (the default): each command on ``/cmd_vel``, ``/motor`` or ``/action`` advances one
 control step, then the state topics go out stamped with the new simulation time, ``/clock`` last.
 Before the first command the bridge publishes the reset state once (stamped 1 ns), after a writer
-on one of its command topics has matched and a grace period has passed. Free-running: the bridge
+on one of its command topics has matched and a grace period has passed, and again every
+``RESEND_S`` seconds while a command writer is matched and no command has come (a node that
+answers only its second message, or whose first command went out before it matched, gets
+another), saying so on stderr. Free-running: the bridge
 steps on its own at ``speed`` (see :mod:`mazesim.ros2.clock`), with the last commanded wheel
 speeds. Topics and QoS: :mod:`mazesim.ros2.state`; the page ``docs/ros2.md``.
 
@@ -42,6 +45,9 @@ __all__ = ["BridgeSettings", "Ros2Bridge", "run_bridge"]
 NODE_NAME = "mazesim_bridge"
 #: Seconds between a command writer matching and the reset state going out.
 READY_GRACE_S = 0.5
+#: Lockstep: seconds without a first command, a command writer matched, before the reset state
+#: goes out again.
+RESEND_S = 5.0
 TWIST = "geometry_msgs/msg/Twist"
 TWIST_STAMPED = "geometry_msgs/msg/TwistStamped"
 STRING = "std_msgs/msg/String"
@@ -191,6 +197,8 @@ class Ros2Bridge:
         self.stop = threading.Event()
         self.rejected_controls = 0
         self.published_steps = 0
+        #: Lockstep: how many times the reset state went out again, awaiting a first command.
+        self.resent_states = 0
         self._waitset = self._make_waitset()
 
     def _make_waitset(self) -> Any:
@@ -295,11 +303,38 @@ class Ros2Bridge:
             self.wait_for_driver()
             if not self.stop.is_set():
                 self.publish_state(0.0)
+            published = time.monotonic()
             while not self.stop.is_set():
                 self._waitset.wait(100_000_000)
                 self._step_pending()
+                if self.simulator.steps == 0 and time.monotonic() - published >= RESEND_S:
+                    self._resend_reset_state()
+                    published = time.monotonic()
             return
         self._run_free()
+
+    def _resend_reset_state(self) -> None:
+        """Lockstep, before the first command: publishes the reset state again if a command
+        writer is matched (once a node answers, every state is answered, and nothing is sent
+        twice); says so on stderr the first time."""
+        driven = [robot for robot in self.robots if robot.driven()]
+        if not driven or any(robot.pending for robot in self.robots):
+            return
+        if self.resent_states == 0:
+            topic = f"{driven[0].state.namespace}/{standard.CMD_VEL_TOPIC}"
+            print(
+                f"mazesim ros2 bridge: lockstep: no command {RESEND_S:g} s after the reset "
+                f"state though a command writer is matched (e.g. on {topic}); publishing the "
+                "reset state again, every "
+                f"{RESEND_S:g} s until a command comes (a node that answers only from its "
+                "second message, or whose first command went out before it matched, gets "
+                "another). A node that waits for simulated time (a timer or sleep on /clock) "
+                "before its first command cannot start in lockstep: run it with --mode free",
+                file=sys.stderr,
+                flush=True,
+            )
+        self.resent_states += 1
+        self.publish_state(0.0)
 
     def _run_free(self) -> None:
         control_step_s = self.simulator.control_step_ms / 1000.0
