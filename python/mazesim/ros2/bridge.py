@@ -39,6 +39,7 @@ from mazesim.ros2.nodes import leaves_signals_as_found
 from mazesim.ros2.qos import CLOCK, COMMAND
 from mazesim.ros2.robots import RobotOf, robot_namespaces
 from mazesim.ros2.state import CLOCK_TOPIC, CLOCK_TYPE, StateTopics
+from mazesim.ros2.unpublished import UnpublishedTopics
 
 __all__ = ["BridgeSettings", "Ros2Bridge", "run_bridge"]
 
@@ -48,6 +49,8 @@ READY_GRACE_S = 0.5
 #: Lockstep: seconds without a first command, a command writer matched, before the reset state
 #: goes out again.
 RESEND_S = 5.0
+#: Seconds between two looks at the readers other nodes created (see :mod:`.unpublished`).
+READERS_CHECK_S = 1.0
 TWIST = "geometry_msgs/msg/Twist"
 TWIST_STAMPED = "geometry_msgs/msg/TwistStamped"
 STRING = "std_msgs/msg/String"
@@ -191,6 +194,13 @@ class Ros2Bridge:
         if settings.mode == "free":
             self.control = self.node.reader(SIM_CONTROL_TOPIC, STRING, COMMAND)
         self.node.announce()
+        published = [CLOCK_TOPIC]
+        for robot in self.robots:
+            published += [t.name for t in robot.state.topics] + [robot.state.static_topic().name]
+        self.unpublished = UnpublishedTopics(
+            self.node.participant, published, simulator.robot.name, self._say
+        )
+        self._readers_checked = 0.0
         self.bag = BagRecorder(settings.bag, settings.distro) if settings.bag else None
         self.goal = simulator.world.goal
         self.goal_step: int | None = None
@@ -209,6 +219,17 @@ class Ros2Bridge:
         for reader in self.node.readers:
             waitset.attach(ReadCondition(reader.dds, mask))
         return waitset
+
+    @staticmethod
+    def _say(message: str) -> None:
+        print(f"mazesim ros2 bridge: {message}", file=sys.stderr, flush=True)
+
+    def _check_readers(self) -> None:
+        """Says which topics other nodes read that the bridge does not publish (every second)."""
+        now = time.monotonic()
+        if now - self._readers_checked >= READERS_CHECK_S:
+            self._readers_checked = now
+            self.unpublished.check()
 
     def _send(self, writer: Any, nanoseconds: int, data: bytes) -> None:
         writer.publish(data)
@@ -291,6 +312,7 @@ class Ros2Bridge:
     def wait_for_driver(self) -> None:
         """Lockstep: waits until a command writer has matched, then the grace period."""
         while not self.stop.is_set():
+            self._check_readers()
             if any(robot.driven() for robot in self.robots):
                 self.stop.wait(READY_GRACE_S)
                 return
@@ -307,6 +329,7 @@ class Ros2Bridge:
             while not self.stop.is_set():
                 self._waitset.wait(100_000_000)
                 self._step_pending()
+                self._check_readers()
                 if self.simulator.steps == 0 and time.monotonic() - published >= RESEND_S:
                     self._resend_reset_state()
                     published = time.monotonic()
@@ -351,6 +374,7 @@ class Ros2Bridge:
             for robot in self.robots:
                 for speeds in robot.commands():
                     robot.wheel_speeds = speeds
+            self._check_readers()
             delay = pace.due(self.simulator.time, control_step_s)
             if delay is None:
                 self._waitset.wait(50_000_000)
