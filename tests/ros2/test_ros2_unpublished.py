@@ -1,6 +1,7 @@
 """A node waiting for a topic of Webots' e-puck driver that the bridge does not publish hears why:
 ``/tof`` from the e-puck (Webots' ``webots_ros2_epuck`` world simulates an e-puck2), the light
-sensors, the inertial unit, the camera."""
+sensors, the inertial unit, the camera; and the bridge names a reader or writer whose QoS DDS
+cannot match with its own (``mazesim.ros2.qos.IncompatibleQos``)."""
 
 from __future__ import annotations
 
@@ -41,25 +42,31 @@ def test_a_published_tof_is_left_alone() -> None:
     assert why_unpublished("/tof", [*PUBLISHED, "/tof"], "e-puck2") is None
 
 
-READ_TOF = (
+USER_NODE = (
     "import time\n"
     "from mazesim.ros2.node import Node\n"
-    "from mazesim.ros2.qos import SENSOR\n"
-    "node = Node('random_walk')\n"
+    "from mazesim.ros2.qos import SENSOR, TopicQos\n"
+    "node = Node('user_node')\n"
     "node.reader('/tof', 'sensor_msgs/msg/Range', SENSOR)\n"
+    "node.reader('/odom', 'nav_msgs/msg/Odometry', TopicQos(True, True, 1))\n"
+    "node.writer('/cmd_vel', 'geometry_msgs/msg/Twist', TopicQos(False, False, 10))\n"
     "time.sleep(4)\n"
 )
 
 
 @needs_ros2
 @needs_namespace
-def test_the_bridge_says_once_why_a_node_reading_tof_gets_nothing() -> None:
+def test_the_bridge_says_once_why_a_node_gets_nothing_or_sends_in_vain() -> None:
+    # A node of a random walk waiting for /tof from the e-puck, which reads /odom transient
+    # local and writes /cmd_vel best effort: DDS matches neither with the bridge's endpoints.
     result = run_in_namespace(
         [[*MAZESIM, "ros2", "bridge", "--mode", "free", "--stop-after", "150"]],
-        [sys.executable, "-c", READ_TOF],
+        [sys.executable, "-c", USER_NODE],
         timeout=60,
     )
     assert result.returncode == 0, result.stderr
     message = "a node reads /tof, which this bridge does not publish: the e-puck has no"
     assert result.stderr.count(message) == 1, result.stderr
     assert "--robot e-puck2" in result.stderr
+    assert result.stderr.count("a node reads /odom asking for a durability") == 1
+    assert result.stderr.count("a node writes /cmd_vel offering less reliability") == 1

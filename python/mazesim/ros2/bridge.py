@@ -36,7 +36,7 @@ from mazesim.ros2.bag import BagRecorder
 from mazesim.ros2.clock import SIM_CONTROL_TOPIC, FreeRunning, stamp_nanoseconds
 from mazesim.ros2.node import Node, Reader
 from mazesim.ros2.nodes import leaves_signals_as_found
-from mazesim.ros2.qos import CLOCK, COMMAND
+from mazesim.ros2.qos import CLOCK, COMMAND, IncompatibleQos
 from mazesim.ros2.robots import RobotOf, robot_namespaces
 from mazesim.ros2.state import CLOCK_TOPIC, CLOCK_TYPE, StateTopics
 from mazesim.ros2.unpublished import UnpublishedTopics
@@ -200,6 +200,7 @@ class Ros2Bridge:
         self.unpublished = UnpublishedTopics(
             self.node.participant, published, simulator.robot.name, self._say
         )
+        self.incompatible = IncompatibleQos(self.node.writers, self.node.readers, self._say)
         self._readers_checked = 0.0
         self.bag = BagRecorder(settings.bag, settings.distro) if settings.bag else None
         self.goal = simulator.world.goal
@@ -225,11 +226,13 @@ class Ros2Bridge:
         print(f"mazesim ros2 bridge: {message}", file=sys.stderr, flush=True)
 
     def _check_readers(self) -> None:
-        """Says which topics other nodes read that the bridge does not publish (every second)."""
+        """Says which topics other nodes read that the bridge does not publish, and which of
+        their readers and writers cannot match the bridge's QoS (every second)."""
         now = time.monotonic()
         if now - self._readers_checked >= READERS_CHECK_S:
             self._readers_checked = now
             self.unpublished.check()
+            self.incompatible.check()
 
     def _send(self, writer: Any, nanoseconds: int, data: bytes) -> None:
         writer.publish(data)
