@@ -4,6 +4,9 @@ rospy allows one node per process, so the tests run this script in a subprocess 
 environment) and read its standard output.
 
     ros_probe.py drive COMMANDS_JSON   publish each command, wait for the state it produces
+    ros_probe.py drive-from-second COMMANDS_JSON
+                                       the same, leaving the first state unanswered (as a
+                                       controller that answers only its second message)
     ros_probe.py listen SECONDS        record what the bridge publishes for SECONDS (wall clock)
     ros_probe.py count TOPIC N         receive N messages of TOPIC (e.g. from rosbag play)
     ros_probe.py standard TWISTS_JSON  publish each [linear.x, angular.z] on cmd_vel, keep the
@@ -95,7 +98,9 @@ def wait_for_connection(pub: Any) -> None:
         time.sleep(0.01)
 
 
-def drive(commands: list[dict[str, Any]]) -> dict[str, Any]:
+def drive(commands: list[dict[str, Any]], first_answered: int = 1) -> dict[str, Any]:
+    """Publishes the commands, each after the state before it; ``first_answered`` is the state
+    message the first command answers (2: the reset state must come twice)."""
     motor = publisher("motor", Float64MultiArray)
     action = publisher("action", String)
     wait_for_connection(motor)
@@ -104,7 +109,7 @@ def drive(commands: list[dict[str, Any]]) -> dict[str, Any]:
     has_sensor_data = any(name == "/sensor_data" for name, _ in rospy.get_published_topics())
     topics = STATE_TOPICS if has_sensor_data else STATE_TOPICS[:2]
     recorder = Recorder(topics)
-    expected = 1  # the latched state before the first command
+    expected = first_answered  # the latched state before the first command
     recorder.wait_for(dict.fromkeys(topics, expected))
     for command in commands:
         if command["topic"] == "motor":
@@ -219,9 +224,9 @@ def main() -> int:
     mode = sys.argv[1]
     rospy.init_node("ros_probe", anonymous=True, disable_signals=True)
     try:
-        if mode == "drive":
+        if mode in ("drive", "drive-from-second"):
             with open(sys.argv[2]) as handle:
-                result = drive(json.load(handle))
+                result = drive(json.load(handle), 2 if mode == "drive-from-second" else 1)
         elif mode == "listen":
             recorder = Recorder(STATE_TOPICS)
             time.sleep(float(sys.argv[2]))

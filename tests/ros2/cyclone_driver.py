@@ -4,7 +4,9 @@ Run as a separate process: it subscribes to the bridge's state topics, sends one
 step (``Twist`` or ``TwistStamped`` as the distribution says), decodes every message with Cyclone
 DDS's serializer (not mazesim's encoder) and checks every field against an in-process simulator
 driven by the same commands. Exit code 0: all steps equal; 1: the first difference or a missing
-message, on stderr.
+message, on stderr. ``--answer-from-second-state`` leaves the reset state unanswered, as a node
+that answers only from its second message does (Webots' e-puck drive calibrator takes its first
+odometry as its start), and waits for the bridge to publish it again.
 
     python cyclone_driver.py --distro humble --steps 2000 [--robot e-puck] [--seed 0]
 """
@@ -61,6 +63,11 @@ def main() -> int:
     parser.add_argument("--wait", type=float, default=10.0, help="seconds to wait for a message")
     parser.add_argument(
         "--reader-distro", default=None, help="decode the state with another distro's layouts"
+    )
+    parser.add_argument(
+        "--answer-from-second-state",
+        action="store_true",
+        help="leave the first reset state unanswered and wait for it again",
     )
     args = parser.parse_args()
     global WAIT_S
@@ -238,6 +245,8 @@ def main() -> int:
     try:
         before = simulator.pose
         check(collect(stamp_nanoseconds(0.0)), 0.0, before)
+        if args.answer_from_second_state:
+            check(collect(stamp_nanoseconds(0.0)), 0.0, before)
         check_graph()
         statics = static_reader.take(4)
         if not statics:

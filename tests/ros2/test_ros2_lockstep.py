@@ -76,3 +76,18 @@ def test_a_driver_of_the_wrong_layout_is_caught() -> None:
     assert "no message within" in result.stderr
     assert "/ps0" in result.stderr and "/gs0" in result.stderr
     assert "/odom" not in result.stderr.split("no message within")[1].split("\n")[0]
+
+
+def test_a_driver_that_answers_from_its_second_state_gets_the_reset_state_again() -> None:
+    # Webots' e-puck drive calibrator (webots_ros2_epuck/drive_calibrator.py in
+    # cyberbotics/webots_ros2) takes its first /odom as its start and answers from the second
+    # on: in lockstep nothing came after the first, and bridge and node waited for each other.
+    result = run_in_namespace(
+        [_bridge("humble", 50)],
+        _driver("humble", 50, "--answer-from-second-state", "--wait", "12"),
+        timeout=60,
+    )
+    assert result.returncode == 0, result.stderr
+    assert "50 steps, every field equal" in result.stdout
+    assert "publishing the reset state again" in result.stderr
+    assert "stopped after 50 steps" in result.stderr

@@ -12,7 +12,10 @@ A ``cmd_vel`` twist is a command like the others. It runs in one of two modes:
   answers each ``sensors`` (or ``sensor_data``) message with one command, so no reading is ever
   missed or stale whatever the load, and a run is as deterministic as the in-process simulator.
   The state topics are latched: a controller that connects late still receives the state waiting
-  for its command. Run exactly one controller in this mode.
+  for its command. Until the first command, while a publisher of one of the command topics is
+  connected, the bridge publishes the reset state again every ``RESEND_S`` seconds without one (a
+  controller whose first command went out before the bridge listened, or that answers only from
+  its second message, gets another) and says so. Run exactly one controller in this mode.
 - ``realtime``: the simulation steps on its own, ``speed`` times faster than the wall clock, with
   the last commanded wheel speeds.
 
@@ -53,6 +56,9 @@ __all__ = ["MODES", "Bridge", "BridgeSettings", "refuse_several_robots", "run_br
 MODES = ("lockstep", "realtime")
 #: Seconds without a command after which a lockstep bridge says it is waiting for one.
 IDLE_WARNING_S = 5.0
+#: Lockstep: seconds without a first command, a command publisher connected, before the reset
+#: state goes out again.
+RESEND_S = 5.0
 #: How many control steps a real-time bridge may fall behind before it stops catching up.
 MAX_LAG_STEPS = 5
 
@@ -161,9 +167,15 @@ class Bridge:
         self.standard = StandardPublishers(ros, simulator, self._publisher)
         self.publish_state()
         # No queue limit: in lockstep every command is one step and none may be dropped.
-        rospy.Subscriber(topics.MOTOR_TOPIC, ros.Float64MultiArray, self.on_motor, tcp_nodelay=True)
-        rospy.Subscriber(topics.ACTION_TOPIC, ros.String, self.on_action, tcp_nodelay=True)
-        rospy.Subscriber(standard.CMD_VEL_TOPIC, ros.Twist, self.on_cmd_vel, tcp_nodelay=True)
+        self.command_subscribers = [
+            rospy.Subscriber(
+                topics.MOTOR_TOPIC, ros.Float64MultiArray, self.on_motor, tcp_nodelay=True
+            ),
+            rospy.Subscriber(topics.ACTION_TOPIC, ros.String, self.on_action, tcp_nodelay=True),
+            rospy.Subscriber(standard.CMD_VEL_TOPIC, ros.Twist, self.on_cmd_vel, tcp_nodelay=True),
+        ]
+        #: Lockstep: how many times the reset state went out again, awaiting a first command.
+        self.resent_states = 0
 
     def _publisher(self, topic: str, message_class: Any) -> Any:
         # Synchronous in lockstep: every subscriber (a recorder too) gets every step before the
@@ -262,6 +274,28 @@ class Bridge:
             if self._finished():
                 self.stop.set()
 
+    def _resend_reset_state(self) -> None:
+        """Lockstep, before the first command: publishes the reset state again if a publisher of
+        a command topic is connected; logs it the first time."""
+        connected = [sub for sub in self.command_subscribers if sub.get_num_connections() > 0]
+        if not connected:
+            return
+        with self._lock:
+            if self.commands or self.stop.is_set():
+                return
+            if self.resent_states == 0:
+                self.ros.rospy.logwarn(
+                    "lockstep: no command %g s after the reset state though %s has a publisher; "
+                    "publishing the reset state again every %g s until a command comes (a "
+                    "controller whose first command went out before the bridge listened, or "
+                    "that answers only from its second message, gets another)",
+                    RESEND_S,
+                    connected[0].resolved_name,
+                    RESEND_S,
+                )
+            self.resent_states += 1
+            self.publish_state()
+
     def finish(self) -> tuple[int, float]:
         """Stops stepping (later commands are ignored) and returns the steps and simulated time."""
         with self._lock:
@@ -272,16 +306,22 @@ class Bridge:
         """Runs until a signal, ROS shutdown or the end of ``duration``."""
         rospy = self.ros.rospy
         if self.lockstep:
-            started = time.monotonic()
+            started = published = time.monotonic()
             while not self.stop.wait(0.1) and not rospy.is_shutdown():
                 if self.commands == 0 and time.monotonic() - started > IDLE_WARNING_S:
                     rospy.logwarn(
-                        "lockstep: waiting for a command on %s, %s or %s (one control step each)",
+                        "lockstep: waiting for a command on %s, %s or %s (one control step "
+                        "each); a controller that waits for simulated time (rospy.sleep or "
+                        "rospy.Rate with /use_sim_time) before its first command cannot start "
+                        "in lockstep: run the bridge in mode realtime",
                         rospy.resolve_name(topics.MOTOR_TOPIC),
                         rospy.resolve_name(topics.ACTION_TOPIC),
                         rospy.resolve_name(standard.CMD_VEL_TOPIC),
                     )
                     started = math.inf
+                if self.commands == 0 and time.monotonic() - published >= RESEND_S:
+                    self._resend_reset_state()
+                    published = time.monotonic()
             return
         period = self.simulator.control_step_ms / 1000.0 / self.settings.speed
         next_step = time.monotonic()

@@ -3,7 +3,10 @@
 Lockstep (the default): each command on ``/cmd_vel``, ``/motor`` or ``/action`` advances one
 control step, then the state topics go out stamped with the new simulation time, ``/clock`` last.
 Before the first command the bridge publishes the reset state once (stamped 1 ns), after a writer
-on one of its command topics has matched and a grace period has passed. Free-running: the bridge
+on one of its command topics has matched and a grace period has passed, and again every
+``RESEND_S`` seconds while a command writer is matched and no command has come (a node that
+answers only its second message, or whose first command went out before it matched, gets
+another), saying so on stderr. Free-running: the bridge
 steps on its own at ``speed`` (see :mod:`mazesim.ros2.clock`), with the last commanded wheel
 speeds. Topics and QoS: :mod:`mazesim.ros2.state`; the page ``docs/ros2.md``.
 
@@ -33,15 +36,21 @@ from mazesim.ros2.bag import BagRecorder
 from mazesim.ros2.clock import SIM_CONTROL_TOPIC, FreeRunning, stamp_nanoseconds
 from mazesim.ros2.node import Node, Reader
 from mazesim.ros2.nodes import leaves_signals_as_found
-from mazesim.ros2.qos import CLOCK, COMMAND
+from mazesim.ros2.qos import CLOCK, COMMAND, IncompatibleQos
 from mazesim.ros2.robots import RobotOf, robot_namespaces
 from mazesim.ros2.state import CLOCK_TOPIC, CLOCK_TYPE, StateTopics
+from mazesim.ros2.unpublished import UnpublishedTopics
 
 __all__ = ["BridgeSettings", "Ros2Bridge", "run_bridge"]
 
 NODE_NAME = "mazesim_bridge"
 #: Seconds between a command writer matching and the reset state going out.
 READY_GRACE_S = 0.5
+#: Lockstep: seconds without a first command, a command writer matched, before the reset state
+#: goes out again.
+RESEND_S = 5.0
+#: Seconds between two looks at the readers other nodes created (see :mod:`.unpublished`).
+READERS_CHECK_S = 1.0
 TWIST = "geometry_msgs/msg/Twist"
 TWIST_STAMPED = "geometry_msgs/msg/TwistStamped"
 STRING = "std_msgs/msg/String"
@@ -185,12 +194,22 @@ class Ros2Bridge:
         if settings.mode == "free":
             self.control = self.node.reader(SIM_CONTROL_TOPIC, STRING, COMMAND)
         self.node.announce()
+        published = [CLOCK_TOPIC]
+        for robot in self.robots:
+            published += [t.name for t in robot.state.topics] + [robot.state.static_topic().name]
+        self.unpublished = UnpublishedTopics(
+            self.node.participant, published, simulator.robot.name, self._say
+        )
+        self.incompatible = IncompatibleQos(self.node.writers, self.node.readers, self._say)
+        self._readers_checked = 0.0
         self.bag = BagRecorder(settings.bag, settings.distro) if settings.bag else None
         self.goal = simulator.world.goal
         self.goal_step: int | None = None
         self.stop = threading.Event()
         self.rejected_controls = 0
         self.published_steps = 0
+        #: Lockstep: how many times the reset state went out again, awaiting a first command.
+        self.resent_states = 0
         self._waitset = self._make_waitset()
 
     def _make_waitset(self) -> Any:
@@ -201,6 +220,19 @@ class Ros2Bridge:
         for reader in self.node.readers:
             waitset.attach(ReadCondition(reader.dds, mask))
         return waitset
+
+    @staticmethod
+    def _say(message: str) -> None:
+        print(f"mazesim ros2 bridge: {message}", file=sys.stderr, flush=True)
+
+    def _check_readers(self) -> None:
+        """Says which topics other nodes read that the bridge does not publish, and which of
+        their readers and writers cannot match the bridge's QoS (every second)."""
+        now = time.monotonic()
+        if now - self._readers_checked >= READERS_CHECK_S:
+            self._readers_checked = now
+            self.unpublished.check()
+            self.incompatible.check()
 
     def _send(self, writer: Any, nanoseconds: int, data: bytes) -> None:
         writer.publish(data)
@@ -283,6 +315,7 @@ class Ros2Bridge:
     def wait_for_driver(self) -> None:
         """Lockstep: waits until a command writer has matched, then the grace period."""
         while not self.stop.is_set():
+            self._check_readers()
             if any(robot.driven() for robot in self.robots):
                 self.stop.wait(READY_GRACE_S)
                 return
@@ -295,11 +328,39 @@ class Ros2Bridge:
             self.wait_for_driver()
             if not self.stop.is_set():
                 self.publish_state(0.0)
+            published = time.monotonic()
             while not self.stop.is_set():
                 self._waitset.wait(100_000_000)
                 self._step_pending()
+                self._check_readers()
+                if self.simulator.steps == 0 and time.monotonic() - published >= RESEND_S:
+                    self._resend_reset_state()
+                    published = time.monotonic()
             return
         self._run_free()
+
+    def _resend_reset_state(self) -> None:
+        """Lockstep, before the first command: publishes the reset state again if a command
+        writer is matched (once a node answers, every state is answered, and nothing is sent
+        twice); says so on stderr the first time."""
+        driven = [robot for robot in self.robots if robot.driven()]
+        if not driven or any(robot.pending for robot in self.robots):
+            return
+        if self.resent_states == 0:
+            topic = f"{driven[0].state.namespace}/{standard.CMD_VEL_TOPIC}"
+            print(
+                f"mazesim ros2 bridge: lockstep: no command {RESEND_S:g} s after the reset "
+                f"state though a command writer is matched (e.g. on {topic}); publishing the "
+                "reset state again, every "
+                f"{RESEND_S:g} s until a command comes (a node that answers only from its "
+                "second message, or whose first command went out before it matched, gets "
+                "another). A node that waits for simulated time (a timer or sleep on /clock) "
+                "before its first command cannot start in lockstep: run it with --mode free",
+                file=sys.stderr,
+                flush=True,
+            )
+        self.resent_states += 1
+        self.publish_state(0.0)
 
     def _run_free(self) -> None:
         control_step_s = self.simulator.control_step_ms / 1000.0
@@ -316,6 +377,7 @@ class Ros2Bridge:
             for robot in self.robots:
                 for speeds in robot.commands():
                     robot.wheel_speeds = speeds
+            self._check_readers()
             delay = pace.due(self.simulator.time, control_step_s)
             if delay is None:
                 self._waitset.wait(50_000_000)

@@ -29,11 +29,12 @@ def dds_topic_name(topic: str) -> str:
 class Writer:
     """Publishes encoded messages of one topic."""
 
-    def __init__(self, topic: str, msgtype: str, writer: Any) -> None:
+    def __init__(self, topic: str, msgtype: str, writer: Any, qos: TopicQos) -> None:
         from cyclonedds._clayer import ddspy_write
 
         self.topic = topic
         self.msgtype = msgtype
+        self.qos = qos
         self.dds = writer
         self._write = ddspy_write
         self._ref = writer._ref
@@ -63,12 +64,13 @@ class Writer:
 class Reader:
     """Receives the encoded messages of one topic."""
 
-    def __init__(self, topic: str, msgtype: str, reader: Any) -> None:
+    def __init__(self, topic: str, msgtype: str, reader: Any, qos: TopicQos) -> None:
         from cyclonedds._clayer import ddspy_take
         from cyclonedds.core import InstanceState, SampleState, ViewState
 
         self.topic = topic
         self.msgtype = msgtype
+        self.qos = qos
         self.dds = reader
         self._take = ddspy_take
         self._mask = SampleState.Any | ViewState.Any | InstanceState.Any
@@ -152,7 +154,7 @@ class Node:
 
     def writer(self, topic: str, msgtype: str, qos: TopicQos) -> Writer:
         """A writer of the ROS 2 topic ``topic`` (``/ps0``) of ``msgtype`` (``pkg/msg/Name``)."""
-        writer = Writer(topic, msgtype, self._dds_writer(topic, msgtype, qos))
+        writer = Writer(topic, msgtype, self._dds_writer(topic, msgtype, qos), qos)
         self.writers.append(writer)
         return writer
 
@@ -166,7 +168,7 @@ class Node:
             self._topic(dds_topic_name(topic), msgtype),
             qos=cyclone_qos(qos, user_data),
         )
-        reader = Reader(topic, msgtype, dds)
+        reader = Reader(topic, msgtype, dds, qos)
         self.readers.append(reader)
         return reader
 

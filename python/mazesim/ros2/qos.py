@@ -3,16 +3,20 @@
 Sensor data: reliable, volatile, keep last 5; ``/tf``: keep last 100; ``/tf_static`` and
 ``ros_discovery_info``: transient local, keep last 1, so a late subscriber still gets them;
 commands: keep last 10 (ROS 2's default). All data is plain CDR (XCDR1), as ROS 2 writes it.
+:class:`IncompatibleQos` says when another node's endpoint cannot match the bridge's (a
+``TRANSIENT_LOCAL`` reader of a volatile topic, a ``BEST_EFFORT`` command writer).
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
 from typing import Any, NamedTuple
 
 __all__ = [
     "CLOCK",
     "COMMAND",
     "GRAPH",
+    "IncompatibleQos",
     "SENSOR",
     "TF",
     "TF_STATIC",
@@ -59,3 +63,60 @@ def cyclone_qos(profile: TopicQos, user_data: bytes | None = None) -> Any:
     if user_data is not None:
         policies.append(Policy.Userdata(user_data))
     return Qos(*policies)
+
+
+#: DDS's QoS policy ids (``last_policy_id`` of the incompatible-QoS statuses) that ROS 2 sets.
+POLICY_NAMES = {2: "durability", 4: "deadline", 8: "liveliness", 11: "reliability"}
+
+
+class IncompatibleQos:
+    """Reports, once per new occurrence, another node's reader that asked a writer of the
+    bridge for QoS it does not offer, or writer that offered a reader of the bridge less than it
+    asks: DDS does not match them, and that node receives (or sends) nothing.
+
+    Args:
+        writers: The bridge's writers (:class:`mazesim.ros2.node.Writer`).
+        readers: The bridge's readers (:class:`mazesim.ros2.node.Reader`).
+        report: Called with each message.
+    """
+
+    def __init__(
+        self, writers: Sequence[Any], readers: Sequence[Any], report: Callable[[str], None]
+    ) -> None:
+        self.writers = list(writers)
+        self.readers = list(readers)
+        self.report = report
+        self.seen: dict[int, int] = {}
+
+    def _new(self, endpoint: Any, status: Any) -> str | None:
+        """The policy of a new incompatibility of ``endpoint``, or ``None``."""
+        if status.total_count <= self.seen.get(id(endpoint), 0):
+            return None
+        self.seen[id(endpoint)] = status.total_count
+        policy = status.last_policy_id
+        return POLICY_NAMES.get(policy, f"policy {policy}")
+
+    def check(self) -> None:
+        """Reads every endpoint's incompatible-QoS status and reports the new ones."""
+        for endpoints, status_of, says in (
+            (
+                self.writers,
+                lambda endpoint: endpoint.dds.get_offered_incompatible_qos_status(),
+                "a node reads {topic} asking for a {policy} the bridge does not offer (it "
+                "writes {qos}): that reader receives nothing; give it the bridge's {policy}",
+            ),
+            (
+                self.readers,
+                lambda endpoint: endpoint.dds.get_requested_incompatible_qos_status(),
+                "a node writes {topic} offering less {policy} than the bridge asks for (it "
+                "reads {qos}): nothing it sends arrives; give its writer the bridge's {policy}",
+            ),
+        ):
+            for endpoint in endpoints:
+                policy = self._new(endpoint, status_of(endpoint))
+                if policy is not None:
+                    self.report(
+                        says.format(
+                            topic=endpoint.topic, policy=policy, qos=endpoint.qos.describe()
+                        )
+                    )
