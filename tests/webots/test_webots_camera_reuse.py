@@ -5,6 +5,7 @@ byte; a camera whose robot and fellows have not moved keeps its image without dr
 from __future__ import annotations
 
 from collections.abc import Iterator
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -12,10 +13,12 @@ import pytest
 
 import mazesim
 from mazesim.webots import camera as cameras
-from mazesim.webots import controller, prepare
+from mazesim.webots import controller, prepare, run_controller
 from mazesim.webots import simulation as simulations
 from mazesim.webots.camera import CameraView, render
 from mazesim.webots.rays import FloorPaint, WallBoxes
+from mazesim.webots.scene import Scene
+from native_controllers import NEEDS_COMPILERS, write_source
 
 #: Walls round a floor of overlapping paint of every shape, some coloured: later paint covers
 #: earlier, rotated rectangles, circles and polyline capsules among them.
@@ -147,3 +150,62 @@ def test_a_camera_never_read_draws_nothing_and_its_image_is_the_sampled_one(
     once = last_image(world, False, drawn)
     assert len(drawn) == 1
     assert once is not None and once == every
+
+
+#: A C controller driving in an arc for 20 steps of 32 ms with its camera sampling every 64 ms;
+#: with an argument it reads the image after the last step and prints its bytes' sum.
+C_ARC = """#include <stdio.h>
+#include <webots/camera.h>
+#include <webots/motor.h>
+#include <webots/robot.h>
+
+int main(int argc, char **argv) {
+  wb_robot_init();
+  WbDeviceTag camera = wb_robot_get_device("camera");
+  wb_camera_enable(camera, 64);
+  const char *motors[2] = {"left wheel motor", "right wheel motor"};
+  const double speeds[2] = {3.0, 4.0};
+  for (int m = 0; m < 2; m++) {
+    WbDeviceTag motor = wb_robot_get_device(motors[m]);
+    wb_motor_set_position(motor, INFINITY);
+    wb_motor_set_velocity(motor, speeds[m]);
+  }
+  for (int i = 0; i < 20; i++)
+    wb_robot_step(32);
+  if (argc > 1) {
+    const unsigned char *image = wb_camera_get_image(camera);
+    const unsigned char *again = wb_camera_get_image(camera);
+    long sum = 0;
+    int size = 4 * wb_camera_get_width(camera) * wb_camera_get_height(camera);
+    for (int k = 0; image && k < size; k++)
+      sum += image[k];
+    printf("image sum %ld same %d\\n", sum, image == again);
+  }
+  wb_robot_cleanup();
+  return 0;
+}
+"""
+
+
+@NEEDS_COMPILERS
+def test_a_c_controllers_camera_never_read_draws_nothing_and_reads_the_sampled_image(
+    drawn: list[Any], tmp_path: Path, capfd: pytest.CaptureFixture[str]
+) -> None:
+    """The image crosses the link when the controller asks for it, not at every step: a camera
+    enabled and never read draws no image; read once after the last step, it draws one, the
+    image a Python controller gets, and a second read in the same step asks for nothing."""
+    world = mazesim.World.from_toml(PAINTED, "painted")
+    expected = last_image(world, False, drawn)
+    assert expected is not None
+    drawn.clear()
+    source = write_source(tmp_path, "arc", C_ARC)
+    run = run_controller(source.parent, world, seconds=2.0, noise=False)
+    assert run.exit_status == 0
+    assert drawn == []
+    capfd.readouterr()
+    run = run_controller(
+        source.parent, world, seconds=2.0, noise=False, scene=Scene(controller_args=["read"])
+    )
+    assert run.exit_status == 0
+    assert len(drawn) == 1
+    assert f"image sum {sum(expected)} same 1" in capfd.readouterr().out

@@ -5,7 +5,9 @@ Usage: ``python tests/webots_corpus/run_corpus.py --mirrors DIR [--out FILE] [--
 exported from its repository's mirror in DIR into a temporary folder, its world imported and its
 first controller run with ``mazesim webots run`` for the project's simulated time; the facts it is
 expected to show are checked against the run's ``summary.json`` and ``trajectory.csv``. A
-project whose mirror is missing is skipped, and the table says which. The whole run stops
+project whose mirror is missing is skipped, and the table says which. A compiled core older
+than its Rust sources (a checkout not built again since it took in Rust changes) is refused
+before any project runs (:mod:`webots_corpus.core_build`). The whole run stops
 starting projects once ``--budget`` wall-clock seconds (default 2400) have passed: the three
 muesli-bt projects each build a C++ library of about 30 files with their own CMakeLists.txt
 first, 9 minutes each on the shared 2-core machine under a load average of 11-13
@@ -26,6 +28,7 @@ if __package__ in (None, ""):  # run as a script: import the package from tests/
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from webots_corpus.census import Census
+from webots_corpus.core_build import core_file, stale_core_message
 from webots_corpus.manifest import load_manifest
 from webots_corpus.report import write_report
 from webots_corpus.runner import Row, run_project
@@ -46,13 +49,19 @@ def _revision() -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Runs the corpus; 0 when every project ran or was skipped for a stated reason."""
+    """Runs the corpus; 0 when every project ran or was skipped for a stated reason, 2 (before
+    running any) when the compiled core is older than its sources in the checkout."""
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--mirrors", type=Path, required=True, help="folder of git mirrors")
     parser.add_argument("--out", type=Path, default=DEFAULT_OUT, help="the page to write")
     parser.add_argument("--only", nargs="*", default=None, help="project names to run")
     parser.add_argument("--budget", type=float, default=DEFAULT_BUDGET_S, help="wall-clock s")
     args = parser.parse_args(argv)
+    core = core_file()
+    stale = stale_core_message(core, ROOT) if core is not None else None
+    if stale is not None:
+        print(f"run_corpus: {stale}", file=sys.stderr)
+        return 2
     projects = load_manifest()
     if args.only:
         projects = [p for p in projects if p.name in set(args.only)]

@@ -1,7 +1,7 @@
 """The Webots functions a compiled controller waits for, run on the robot's Python objects.
 
-A C or C++ controller's radio, camera recognition, inertial unit quaternion, lidar and
-supervisor functions are calls over the link (:mod:`mazesim.webots.native_link`, message
+A C or C++ controller's radio, camera image and recognition, inertial unit quaternion, lidar
+and supervisor functions are calls over the link (:mod:`mazesim.webots.native_link`, message
 ``CALL``): a Webots C function's name and typed values. :class:`NativeCalls` runs each on the
 object that implements it for Python controllers (an
 :class:`~mazesim.webots.radio_devices.Emitter` or
@@ -92,6 +92,7 @@ FUNCTIONS: dict[str, Function] = {
         "device",
         "wb_camera_",
         {
+            "get_image": ("getImage", ""),
             "has_recognition": ("hasRecognition", ""),
             "recognition_enable": ("recognitionEnable", "i"),
             "recognition_disable": ("recognitionDisable", ""),

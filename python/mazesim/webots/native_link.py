@@ -31,8 +31,10 @@ Messages from the controller, each starting with an ``i32`` kind:
     as ``Robot.step(duration)`` does and answers ``i32`` result (0, or -1 when the run's time is
     up), ``f64`` time (s), ``i32`` reading count, and per enabled device ``i32`` tag, ``i32``
     value count, ``i32`` byte count, the values as ``f64`` (a receiver's: the length of its
-    queue) and the bytes (a camera's image, B G R A per pixel). The keyboard's reading (tag 0)
-    holds the keys of this step.
+    queue) and the bytes (none so far). The keyboard's reading (tag 0) holds the keys of this
+    step. A camera has no reading: ``wb_camera_get_image`` asks for its image (B G R A per
+    pixel) with a ``CALL`` the first time it is called after a step, so that a camera enabled
+    and never read draws no image.
 
 ``CLEANUP`` (3)
     Sent by ``wb_robot_cleanup``; no answer. The controller then exits.
@@ -85,7 +87,7 @@ VALUE_NONE, VALUE_INT, VALUE_DOUBLE, VALUE_BYTES, VALUE_DOUBLES = 0, 1, 2, 3, 4
 #: Most values a CALL carries, and most bytes a value holds.
 MAX_VALUES, MAX_VALUE_BYTES = 64, 1 << 26
 #: Devices that give no reading at a step (their functions are calls).
-_UNREAD_TYPES = {node_type(name) for name in ("EMITTER", "DISPLAY")}
+_UNREAD_TYPES = {node_type(name) for name in ("EMITTER", "DISPLAY", "CAMERA")}
 #: Most commands one step may carry (a controller queues a few per device).
 MAX_COMMANDS = 1 << 20
 
@@ -379,9 +381,6 @@ class RobotLink:
             if kind == node_type("RECEIVER"):
                 # Its queue's length, which only a step and wb_receiver_next_packet change.
                 yield tag, [float(device.getQueueLength())], b""
-            elif kind == node_type("CAMERA"):
-                image = device.getImage()
-                yield tag, [], bytes(image) if image is not None else b""
             elif hasattr(type(device), "getValues") and kind != node_type("TOUCH_SENSOR"):
                 yield tag, [float(v) for v in device.getValues()], b""
             else:

@@ -5,6 +5,8 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
 #include <webots/accelerometer.h>
 #include <webots/camera.h>
@@ -272,7 +274,29 @@ int wb_led_get(WbDeviceTag tag) {
 
 const unsigned char *wb_camera_get_image(WbDeviceTag tag) {
   Device *device = link_device(tag, "wb_camera_get_image");
-  return device ? device->image : NULL;
+  if (!device)
+    return NULL;
+  /* Asked for once a step, when first read: a camera that is enabled and never read costs no
+     image. As in Webots, the image stays valid until the next step. */
+  if (device->image && device->image_time == link_robot.time)
+    return device->image;
+  call_begin("wb_camera_get_image");
+  call_int(tag);
+  call_end();
+  int size = 0;
+  const void *bytes = answer_bytes(0, &size);
+  if (!bytes || size <= 0)
+    return NULL;
+  if (size != device->image_size) {
+    free(device->image);
+    device->image = malloc((size_t)size);
+    if (!device->image)
+      link_failed("out of memory");
+    device->image_size = size;
+  }
+  memcpy(device->image, bytes, (size_t)size);
+  device->image_time = link_robot.time;
+  return device->image;
 }
 
 int wb_camera_get_width(WbDeviceTag tag) {

@@ -40,7 +40,8 @@ typedef struct {
   int value_count;
   double values[3];       /* the last reading */
   int image_size;
-  unsigned char *image;   /* a camera's last image */
+  unsigned char *image;   /* a camera's image, as fetched at `image_time` */
+  double image_time;
   double set_point[3];    /* a motor's target position, velocity and acceleration */
   int led;
   unsigned char *packet;  /* a receiver's head packet, as the last wb_receiver_get_data read it */
