@@ -89,10 +89,28 @@ pub fn format_error(
 }
 
 /// Converts a TOML reader error into a located format error.
+///
+/// An error about the document as a whole (a missing top-level field, whose span is empty at
+/// the start or the whole text) is placed at the top level, not in the table that happens to stand first; a missing
+/// `format` or `version` says which lines a world file starts with.
 pub fn from_toml_error(source: &str, text: &str, err: &toml::de::Error) -> Error {
-    let offset = err.span().map_or(0, |s| s.start);
-    let message = err.message().trim().to_string();
-    format_error(source, text, offset, None, message)
+    let span = err.span();
+    let offset = span.as_ref().map_or(0, |s| s.start);
+    let mut message = err.message().trim().to_string();
+    let whole = span
+        .as_ref()
+        .is_none_or(|s| s.start == 0 && (s.end == 0 || s.end >= text.trim_end().len()));
+    if !whole {
+        return format_error(source, text, offset, None, message);
+    }
+    if message.contains("`format`") || message.contains("`version`") {
+        message.push_str(&format!(
+            "; a world file starts with the two lines `format = \"{}\"` and `version = {}`",
+            super::values::WORLD_FORMAT_TAG,
+            super::values::WORLD_FORMAT_VERSION
+        ));
+    }
+    format_error(source, text, offset, Some("(top level)"), message)
 }
 
 #[cfg(test)]

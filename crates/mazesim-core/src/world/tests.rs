@@ -83,6 +83,25 @@ fn unknown_fields_missing_fields_and_wrong_versions_are_located() {
 }
 
 #[test]
+fn a_world_without_its_header_names_the_lines_to_write() {
+    for text in [
+        "[[walls]]\ncenter = [0, 0]\nsize = [1, 1]\n",
+        "version = 1\n[goal]\ncenter = [0, 0]\nradius = 0.1\n",
+        "format = \"mazesim-world\"\n",
+    ] {
+        let err = World::from_toml(text, "h.toml").unwrap_err();
+        let Error::Format { field, message, .. } = &err else {
+            panic!("{err}");
+        };
+        assert_eq!(field, "(top level)", "{err}");
+        assert!(
+            message.contains("format = \"mazesim-world\"") && message.contains("version = 1"),
+            "{err}"
+        );
+    }
+}
+
+#[test]
 fn grid_errors_point_into_the_drawing() {
     let (line, field, message) = format_error("[grid]\ncell_size = 0.25\nwall_thickness = 0.01\nmap = \"\"\"\n+--+--+\n|  x  |\n+--+--+\n\"\"\"\n");
     assert_eq!(field, "grid.map");
