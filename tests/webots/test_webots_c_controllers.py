@@ -195,6 +195,25 @@ def test_a_controller_that_steps_on_after_the_end_is_stopped(tmp_path: Path) -> 
     assert run.simulated_seconds == pytest.approx(0.512)
 
 
+def test_a_controller_calling_on_after_its_cleanup_at_the_end_ends_quietly(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str]
+) -> None:
+    # A student's step(): on -1 it calls wb_robot_cleanup() and returns, and the maze loop
+    # around it sets the motors and steps again. Webots ends such a controller itself.
+    source = write_controller(
+        tmp_path,
+        "after_cleanup",
+        '  WbDeviceTag left = wb_robot_get_device("left wheel motor");\n'
+        "  for (int i = 0; i < 100; i++) {\n"
+        "    if (wb_robot_step(32) == -1) wb_robot_cleanup();\n"
+        "    wb_motor_set_velocity(left, 1.0);\n  }",
+    )
+    run = run_controller(source, mazesim.load_world("arena"), seconds=0.5)
+    assert run.reached_end
+    assert (run.exit_status, run.error) == (0, "")
+    assert "the link to mazesim is closed" not in capfd.readouterr().err
+
+
 @pytest.mark.parametrize(
     ("body", "named"),
     [

@@ -526,3 +526,31 @@ def test_the_level_cameras_column_rays_render_as_per_pixel_rays() -> None:
         per_pixel = render(CameraView(pitch=1e-12), walls, floor, pose)
         assert np.array_equal(level, per_pixel)
         assert len(np.unique(level[:, :, 0])) >= 3, "walls, floor and sky are all in view"
+
+
+def test_an_e_puck_distance_sensor_in_a_slot_is_the_ds_its_proto_holds() -> None:
+    from mazesim.webots import import_wbt_text
+
+    text = (
+        "#VRML_SIM R2023b utf8\n"
+        "E-puck {\n  turretSlot [\n    E-puckDistanceSensor {\n      translation 0.04 0 0\n"
+        "    }\n  ]\n}\n"
+    )
+    _, report = import_wbt_text(text)
+    [ds] = [d for d in report["extension_devices"] if d["name"] == "ds"]
+    assert ds["type"] == "DistanceSensor"
+    assert ds["yaw"] == pytest.approx(0.16)
+    assert ds["fields"]["type"] == "infra-red"
+    assert ds["fields"]["model"] == "e-puck distance sensor"
+    assert not any("E-puckDistanceSensor" in w for w in report["warnings"])
+    robot = make_robot(report=report)
+    sensor = robot.getDevice("ds")
+    sensor.enable(32)
+    assert sensor.getType() == sensor.INFRA_RED
+    readings = []
+    for gap in (0.02, 0.06):  # from the sensor to the arena's wall at x = 0.495
+        simulations.current().move_robot(0.495 - 0.04 - gap, 0.0, -0.16)
+        robot.step(32)
+        readings.append(sensor.getValue())
+    # The PROTO's table: 383.84 at 2 cm, 104.09 at 6 cm (times the wall's reflection factor).
+    assert readings[0] > 3.0 * readings[1] > 0.0, readings

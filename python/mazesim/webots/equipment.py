@@ -16,7 +16,15 @@ from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 from mazesim.webots.camera import Camera, CameraView
-from mazesim.webots.devices import LED, Device, DistanceSensor, Motor, PositionSensor, _Sensor
+from mazesim.webots.devices import (
+    LED,
+    PROXIMITY_TABLE,
+    Device,
+    DistanceSensor,
+    Motor,
+    PositionSensor,
+    _Sensor,
+)
 from mazesim.webots.inert import Display, Lidar, Pen, Speaker
 from mazesim.webots.keyboard import Joystick, Keyboard, Mouse
 from mazesim.webots.radio_devices import (
@@ -77,6 +85,10 @@ def light_sensor_mount(profile: Any, index: int) -> DeviceMount:
     return DeviceMount((x, y, LIGHT_SENSOR_HEIGHT), heading)
 
 
+#: The ``model`` of Webots' ``E-puckDistanceSensor`` PROTO: a distance sensor of that model in an
+#: extension slot reads through the e-puck's proximity table, as the PROTO's DistanceSensor does.
+EPUCK_DISTANCE_SENSOR_MODEL = "e-puck distance sensor"
+
 #: Devices reading a vector in their own frame (``_TableVector._device_frame``).
 _DEVICE_FRAME_KINDS = frozenset({"Compass", "Accelerometer", "Gyro"})
 
@@ -99,6 +111,8 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
         float(entry.get("pitch", 0.0)),
     )
     table = _table(fields)
+    if table is None and fields.get("model") == EPUCK_DISTANCE_SENSOR_MODEL:
+        table = [list(row) for row in PROXIMITY_TABLE]
     north = simulation.scene.north or (0.0, 1.0)
     builders: dict[str, Callable[[], Device]] = {
         "GPS": lambda: GPS(name, simulation, mount, table),

@@ -84,6 +84,13 @@ const BUILT_IN_NAMES: &[&str] = &[
     "receiver",
     "speaker",
 ];
+/// Webots' `E-puckDistanceSensor` PROTO (R2022a and later), the e-puck's own proximity sensor a
+/// world may mount again in a slot: a `DistanceSensor` named `ds` by default, placed at the
+/// PROTO's `translation` (default 0 0.005 0) and turned 0.16 rad about its z axis, of
+/// `type "infra-red"` and `aperture 0.1`, in a Solid of `model` [`EPUCK_DISTANCE_SENSOR_MODEL`],
+/// which tells the device its table: the e-puck's proximity sensors' own.
+const EPUCK_DISTANCE_SENSOR: &str = "E-puckDistanceSensor";
+const EPUCK_DISTANCE_SENSOR_MODEL: &str = "e-puck distance sensor";
 /// Device types whose node an e-puck saved expanded keeps with its own fields: they replace the
 /// e-puck's devices of the same name.
 const RADIO_TYPES: &[&str] = &["Emitter", "Receiver"];
@@ -222,6 +229,9 @@ impl<'d> Importer<'d> {
         if BUILT_IN_EXTENSIONS.contains(&kind) {
             return;
         }
+        if kind == EPUCK_DISTANCE_SENSOR {
+            return self.epuck_distance_sensor(node, slot, frame);
+        }
         let local = self.local_frame(node, [0.0; 3]);
         let frame = frame.then(&local);
         if let Some(&(_, default_name)) = DEVICE_TYPES.iter().find(|(t, _)| *t == kind) {
@@ -244,6 +254,26 @@ impl<'d> Importer<'d> {
         }
         for &child in self.nodes(node, "children") {
             self.slot_node(self.node(child), slot, &frame, depth + 1);
+        }
+    }
+
+    /// An `E-puckDistanceSensor` in a slot, as the `DistanceSensor` its PROTO holds.
+    fn epuck_distance_sensor(&mut self, node: &'d Node, slot: &str, frame: &Frame) {
+        let local = self.local_frame(node, [0.0, 0.005, 0.0]);
+        let turn = axis_angle([0.0, 0.0, 1.0], 0.16).unwrap_or(IDENTITY);
+        let frame = frame.then(&local).then(&Frame::rotation(turn));
+        self.device(node, slot, &frame, "ds");
+        if let Some(device) = self.devices.last_mut() {
+            device.kind = "DistanceSensor".into();
+            device.fields.retain(|(name, _)| name == "numberOfRays");
+            device.fields.extend([
+                ("type".to_string(), DeviceField::Text("infra-red".into())),
+                ("aperture".to_string(), DeviceField::Number(0.1)),
+                (
+                    "model".to_string(),
+                    DeviceField::Text(EPUCK_DISTANCE_SENSOR_MODEL.into()),
+                ),
+            ]);
         }
     }
 

@@ -55,6 +55,29 @@ pub struct FloorMesh {
     pub colour: Option<[f64; 3]>,
 }
 
+/// The three finite numbers `words` go on with: a vertex of a mesh file's line `line`, the
+/// `number`th from 0; or why not.
+pub(super) fn vertex(
+    words: &mut std::str::SplitWhitespace<'_>,
+    number: usize,
+    line: &str,
+) -> Result<Vec3, String> {
+    let mut v = [0.0; 3];
+    for c in &mut v {
+        *c = words
+            .next()
+            .and_then(|w| w.parse::<f64>().ok())
+            .filter(|x| x.is_finite())
+            .ok_or_else(|| {
+                format!(
+                    "line {}: expected a vertex of three numbers, found {line:?}",
+                    number + 1
+                )
+            })?;
+    }
+    Ok(v)
+}
+
 /// Triangles of a Wavefront `.obj` text (`v` and `f` lines; polygons fanned into triangles,
 /// negative indices counted from the end), or why not, with the line.
 pub fn obj_triangles(text: &str) -> Result<Vec<[Vec3; 3]>, String> {
@@ -63,22 +86,7 @@ pub fn obj_triangles(text: &str) -> Result<Vec<[Vec3; 3]>, String> {
     for (number, line) in text.lines().enumerate() {
         let mut words = line.split_whitespace();
         match words.next() {
-            Some("v") => {
-                let mut v = [0.0; 3];
-                for c in &mut v {
-                    *c = words
-                        .next()
-                        .and_then(|w| w.parse::<f64>().ok())
-                        .filter(|x| x.is_finite())
-                        .ok_or_else(|| {
-                            format!(
-                                "line {}: expected a vertex of three numbers, found {line:?}",
-                                number + 1
-                            )
-                        })?;
-                }
-                vertices.push(v);
-            }
+            Some("v") => vertices.push(vertex(&mut words, number, line)?),
             Some("f") => {
                 let mut corners = Vec::new();
                 for word in words {
@@ -361,7 +369,11 @@ impl<'d> Importer<'d> {
 
     /// The triangles of an `IndexedFaceSet` (its `Coordinate.point` and `coordIndex`, faces
     /// ended by -1 and fanned), in the world frame `frame`.
-    fn face_set_triangles(&mut self, geometry: &'d Node, frame: &Frame) -> Vec<[Vec3; 3]> {
+    pub(super) fn face_set_triangles(
+        &mut self,
+        geometry: &'d Node,
+        frame: &Frame,
+    ) -> Vec<[Vec3; 3]> {
         let Some(&coord) = self.nodes(geometry, "coord").first() else {
             return Vec::new();
         };
@@ -429,7 +441,7 @@ fn on_floor(top: f64) -> bool {
 }
 
 /// A point of a shape's local frame in the world.
-fn world_point(frame: &Frame, p: Vec3) -> Vec3 {
+pub(super) fn world_point(frame: &Frame, p: Vec3) -> Vec3 {
     let v = frame.vector(p);
     [0, 1, 2].map(|i| v[i] + frame.origin[i])
 }

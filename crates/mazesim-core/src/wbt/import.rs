@@ -156,17 +156,19 @@ pub struct Importer<'d> {
     chosen: Option<&'d Node>,
     /// The heights of the horizontal `Plane` bounding objects met (floors), world frame.
     pub floors: Vec<f64>,
+    /// The folder of the world file, where the files of `Mesh` bounding objects are read.
+    pub world_dir: std::path::PathBuf,
     /// The height of the last robot pose read, and of the run's e-puck's (see [`raised_floor`]).
     pose_z: f64,
     robot_z: Option<f64>,
 }
 
 /// Imports a parsed world.
-pub fn import(doc: &Document, choice: RobotChoice<'_>) -> WbtImport {
-    let first = walk(doc, &choice, 0.0);
+pub fn import(doc: &Document, choice: RobotChoice<'_>, world_dir: &std::path::Path) -> WbtImport {
+    let first = walk(doc, &choice, 0.0, world_dir);
     match raised_floor(first.0.robot_z, &first.0.floors) {
         Some(height) => {
-            let mut lowered = walk(doc, &choice, height);
+            let mut lowered = walk(doc, &choice, height, world_dir);
             lowered.0.warnings.push(format!(
                 "the e-puck stands on a floor {height:.3} m above the world's origin: the world is imported lowered by {height:.3} m, its floor at 0"
             ));
@@ -199,7 +201,12 @@ fn raised_floor(robot_z: Option<f64>, floors: &[f64]) -> Option<f64> {
 }
 
 /// Walks the whole world, lowered by `lowered_by` metres.
-fn walk<'d>(doc: &'d Document, choice: &RobotChoice<'_>, lowered_by: f64) -> (Importer<'d>, f64) {
+fn walk<'d>(
+    doc: &'d Document,
+    choice: &RobotChoice<'_>,
+    lowered_by: f64,
+    world_dir: &std::path::Path,
+) -> (Importer<'d>, f64) {
     let mut importer = Importer {
         doc,
         y_up: !doc.version.has_z_up_protos(),
@@ -230,6 +237,7 @@ fn walk<'d>(doc: &'d Document, choice: &RobotChoice<'_>, lowered_by: f64) -> (Im
         too_deep: false,
         chosen: None,
         floors: Vec::new(),
+        world_dir: world_dir.to_path_buf(),
         pose_z: 0.0,
         robot_z: None,
     };

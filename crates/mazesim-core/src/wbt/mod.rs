@@ -50,6 +50,7 @@ mod protos;
 mod sensed;
 mod shapes;
 mod tree;
+mod wall_meshes;
 
 use std::path::Path;
 
@@ -199,8 +200,8 @@ impl WbtImport {
         choice: impl Into<RobotChoice<'a>>,
     ) -> Result<WbtImport> {
         let document = Document::parse(text, source)?;
-        let mut import = import::import(&document, choice.into());
         let dir = Path::new(source).parent().unwrap_or(Path::new(""));
+        let mut import = import::import(&document, choice.into(), dir);
         import.locate_textures(dir);
         import.paint_floor_meshes(dir);
         Ok(import)

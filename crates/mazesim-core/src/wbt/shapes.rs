@@ -118,6 +118,7 @@ impl<'d> Importer<'d> {
                 }
                 // A horizontal plane is a floor (or a ceiling): nothing to collide with in 2D.
             }
+            "IndexedFaceSet" | "Mesh" if !self.sensing => self.mesh_walls(node, frame, owner),
             "IndexedFaceSet" | "Mesh" | "ElevationGrid" => self.warn(format!(
                 "{owner}: a {} bounding object (a mesh): not imported; give the Solid Box or Cylinder bounding objects",
                 node.type_name
@@ -236,7 +237,7 @@ impl<'d> Importer<'d> {
     }
 
     /// Adds an obstacle after the checks the world format needs (finite, positive, near).
-    fn push(&mut self, obstacle: Obstacle, owner: &str) {
+    pub(super) fn push(&mut self, obstacle: Obstacle, owner: &str) {
         let obstacle = match obstacle {
             Obstacle::Box { center, size, yaw } => Obstacle::Box {
                 center: center.map(snap),

@@ -14,6 +14,10 @@
 Robot link_robot;
 
 static int channel = -1;
+/* Set once wb_robot_step has returned -1: the run is over. Webots then ends the controller
+   itself, so a call the controller still makes (after its wb_robot_cleanup, say) ends it
+   quietly, with status 0, instead of failing on the closed link. */
+static int run_over;
 
 typedef struct {
   int32_t op;
@@ -37,6 +41,8 @@ static void send_all(const void *data, size_t size) {
     ssize_t sent = write(channel, bytes, size);
     if (sent < 0 && errno == EINTR)
       continue;
+    if (sent <= 0 && run_over)
+      _exit(0);
     if (sent <= 0)
       link_failed("the link to mazesim is closed");
     bytes += sent;
@@ -126,6 +132,8 @@ static void receive_description(void) {
 void link_start(void) {
   if (link_robot.ready)
     return;
+  if (run_over)
+    _exit(0);
   const char *fd = getenv("MAZESIM_CONTROLLER_FD");
   if (!fd || !*fd)
     link_failed("MAZESIM_CONTROLLER_FD is not set: run this controller with `mazesim webots run`");
@@ -220,6 +228,8 @@ int wb_robot_step(int duration) {
   int32_t result = receive_int();
   link_robot.time = receive_double();
   receive_readings();
+  if (result == -1)
+    run_over = 1;
   return result;
 }
 
