@@ -211,3 +211,57 @@ void call_device_set_int(const char *function, int tag, int value) {
   call_int(value);
   call_end();
 }
+
+/* Copies of answers kept for their callers, one per function and key. */
+typedef struct Kept {
+  const char *function;
+  int key;
+  void *data;
+  struct Kept *next;
+} Kept;
+
+static Kept *kept;
+
+/* Makes the copy kept for (function, key) `size` bytes of `data`; returns it. */
+static void *keep(const char *function, int key, const void *data, size_t size) {
+  Kept *found = kept;
+  while (found && (found->key != key || strcmp(found->function, function) != 0))
+    found = found->next;
+  if (!found) {
+    found = calloc(1, sizeof *found);
+    if (!found)
+      link_failed("out of memory");
+    found->function = function;
+    found->key = key;
+    found->next = kept;
+    kept = found;
+  }
+  void *copy = realloc(found->data, size ? size : 1);
+  if (!copy)
+    link_failed("out of memory");
+  memcpy(copy, data, size);
+  found->data = copy;
+  return copy;
+}
+
+const double *answer_kept_doubles(int index, const char *function, int key, int *count) {
+  int size;
+  const double *numbers = answer_doubles(index, &size);
+  if (count)
+    *count = size;
+  return numbers ? keep(function, key, numbers, sizeof(double) * (size_t)size) : NULL;
+}
+
+const char *answer_kept_text(int index, const char *function, int key) {
+  int size;
+  const char *bytes = answer_bytes(index, &size);
+  /* The answer's bytes end with a NUL. */
+  return bytes ? keep(function, key, bytes, (size_t)size + 1) : NULL;
+}
+
+void call_device_set_double(const char *function, int tag, double value) {
+  call_begin(function);
+  call_int(tag);
+  call_double(value);
+  call_end();
+}
