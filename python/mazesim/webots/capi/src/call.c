@@ -51,7 +51,14 @@ static void append_int(int32_t value) {
   append(&value, sizeof value);
 }
 
+/* Whether this thread's call was refused (see link_enter): its values are dropped, it is not
+   sent and its answer holds nothing. */
+static __thread int refused;
+
 void call_begin(const char *function) {
+  refused = !link_enter(function);
+  if (refused)
+    return;
   message_size = 0;
   int32_t size = (int32_t)strlen(function);
   append_int(size);
@@ -62,18 +69,24 @@ void call_begin(const char *function) {
 }
 
 void call_int(int value) {
+  if (refused)
+    return;
   append_int(VALUE_INT);
   append_int(value);
   value_count++;
 }
 
 void call_double(double value) {
+  if (refused)
+    return;
   append_int(VALUE_DOUBLE);
   append(&value, sizeof value);
   value_count++;
 }
 
 void call_bytes(const void *data, int size) {
+  if (refused)
+    return;
   if (!data || size < 0) {
     append_int(VALUE_NONE);
   } else {
@@ -89,6 +102,8 @@ void call_text(const char *text) {
 }
 
 void call_doubles(const double *numbers, int count) {
+  if (refused)
+    return;
   if (!numbers || count < 0) {
     append_int(VALUE_NONE);
   } else {
@@ -106,6 +121,8 @@ static int32_t receive_int(void) {
 }
 
 int call_end(void) {
+  if (refused)
+    return 0;
   memcpy(message + count_at, &value_count, sizeof value_count);
   link_send_with_commands(LINK_CALL, message, message_size);
   int32_t count = receive_int();
@@ -139,11 +156,12 @@ int call_end(void) {
     }
   }
   answered = count;
+  link_leave();
   return count;
 }
 
 int answer_type(int index) {
-  return index < answered ? values[index].type : VALUE_NONE;
+  return !refused && index < answered ? values[index].type : VALUE_NONE;
 }
 
 int answer_int(int index) {

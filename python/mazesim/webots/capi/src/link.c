@@ -3,6 +3,7 @@
 
 #include <errno.h>
 #include <math.h>
+#include <sched.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -138,8 +139,50 @@ void link_start(void) {
   link_robot.ready = 1;
 }
 
+/* The function whose exchange with mazesim is under way, NULL when none, and whether it is the
+   calling thread's. */
+static const char *inside;
+static __thread int mine;
+static int refusals;
+
+static void refuse(const char *function, const char *other) {
+  /* Said once: a second thread that loops on the robot would repeat it at every call. */
+  if (__atomic_fetch_add(&refusals, 1, __ATOMIC_RELAXED) == 0)
+    fprintf(stderr,
+            "Error: %s() called by a second thread while another is inside %s(): mazesim's "
+            "controller library, as Webots', serves one thread at a time; the call is ignored "
+            "(and further ones like it, unreported).\n",
+            function, other ? other : "a call");
+}
+
+int link_enter(const char *function) {
+  const char *expected = NULL;
+  if (__atomic_compare_exchange_n(&inside, &expected, function, 0, __ATOMIC_ACQ_REL,
+                                  __ATOMIC_ACQUIRE)) {
+    mine = 1;
+    return 1;
+  }
+  refuse(function, expected);
+  return 0;
+}
+
+void link_leave(void) {
+  mine = 0;
+  __atomic_store_n(&inside, NULL, __ATOMIC_RELEASE);
+}
+
+int link_busy_elsewhere(const char *function) {
+  const char *other = __atomic_load_n(&inside, __ATOMIC_ACQUIRE);
+  if (!other || mine)
+    return 0;
+  refuse(function, other);
+  return 1;
+}
+
 void link_command(int op, int tag, double a, double b) {
   link_start();
+  if (link_busy_elsewhere("a device command"))
+    return;
   if (pending_count == pending_capacity) {
     pending_capacity = pending_capacity ? 2 * pending_capacity : 64;
     pending = realloc(pending, sizeof(Command) * (size_t)pending_capacity);
@@ -212,6 +255,14 @@ int wb_robot_init(void) {
 
 int wb_robot_step(int duration) {
   link_start();
+  /* A second thread's call under way ends soon: the step waits for it. */
+  const char *expected = NULL;
+  while (!__atomic_compare_exchange_n(&inside, &expected, "wb_robot_step", 0, __ATOMIC_ACQ_REL,
+                                      __ATOMIC_ACQUIRE)) {
+    expected = NULL;
+    sched_yield();
+  }
+  mine = 1;
   int32_t header[3] = {LINK_STEP, duration, pending_count};
   send_all(header, sizeof header);
   if (pending_count)
@@ -220,6 +271,7 @@ int wb_robot_step(int duration) {
   int32_t result = receive_int();
   link_robot.time = receive_double();
   receive_readings();
+  link_leave();
   return result;
 }
 
