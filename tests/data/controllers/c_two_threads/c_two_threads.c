@@ -1,19 +1,20 @@
-/* Steps in its main thread while a second thread reads the camera's exposure without pause,
-   until one of its reads comes while the main thread is inside wb_robot_step (the library
-   refuses it: NaN). Prints the steps, the time and whether a read was refused. */
-#include <math.h>
+/* Steps 40 times in its main thread while a second thread reads the camera's exposure (a call
+   over the link) without pause. Prints whether the second thread read, whether any of its reads
+   was wrong, and whether the steps all ran. */
 #include <pthread.h>
 #include <stdio.h>
 
 #include <webots/camera.h>
 #include <webots/robot.h>
 
-static volatile int refused;
+static volatile int stepping = 1;
+static int reads, wrong;
 
 static void *reader(void *camera) {
-  while (!refused) {
-    if (isnan(wb_camera_get_exposure(*(WbDeviceTag *)camera)))
-      refused = 1;
+  while (stepping) {
+    if (wb_camera_get_exposure(*(WbDeviceTag *)camera) != 1.0)
+      wrong++;
+    reads++;
   }
   return NULL;
 }
@@ -25,13 +26,11 @@ int main(void) {
   pthread_t thread;
   pthread_create(&thread, NULL, reader, &camera);
   int steps = 0;
-  while (!refused && wb_robot_step(step) != -1)
+  while (steps < 40 && wb_robot_step(step) != -1)
     steps++;
+  stepping = 0;
   pthread_join(thread, NULL);
-  /* The link is whole: the steps all ran and the main thread's own reads are answered. */
-  printf("refused %d steps match %d exposure %.1f\n", refused,
-         fabs(wb_robot_get_time() - steps * step / 1000.0) < 1e-9,
-         wb_camera_get_exposure(camera));
+  printf("read %d wrong %d steps %d time %.3f\n", reads > 0, wrong, steps, wb_robot_get_time());
   wb_robot_cleanup();
   return 0;
 }

@@ -12,9 +12,10 @@
 /* Most values one answer holds. */
 #define MAX_VALUES 16
 
-static char *message;
-static size_t message_size, message_capacity, count_at;
-static int32_t value_count;
+/* Each thread builds its calls and reads its answers in buffers of its own. */
+static __thread char *message;
+static __thread size_t message_size, message_capacity, count_at;
+static __thread int32_t value_count;
 
 typedef struct {
   int32_t type;
@@ -23,10 +24,10 @@ typedef struct {
   int32_t size;  /* bytes, or numbers for VALUE_DOUBLES */
 } Value;
 
-static Value values[MAX_VALUES];
-static int answered;
-static char *answer_data;
-static size_t answer_capacity;
+static __thread Value values[MAX_VALUES];
+static __thread int answered;
+static __thread char *answer_data;
+static __thread size_t answer_capacity;
 
 /* Makes `*buffer` hold at least `needed` bytes, doubling its capacity. */
 static void reserve(char **buffer, size_t *capacity, size_t needed) {
@@ -51,14 +52,7 @@ static void append_int(int32_t value) {
   append(&value, sizeof value);
 }
 
-/* Whether this thread's call was refused (see link_enter): its values are dropped, it is not
-   sent and its answer holds nothing. */
-static __thread int refused;
-
 void call_begin(const char *function) {
-  refused = !link_enter(function);
-  if (refused)
-    return;
   message_size = 0;
   int32_t size = (int32_t)strlen(function);
   append_int(size);
@@ -69,24 +63,18 @@ void call_begin(const char *function) {
 }
 
 void call_int(int value) {
-  if (refused)
-    return;
   append_int(VALUE_INT);
   append_int(value);
   value_count++;
 }
 
 void call_double(double value) {
-  if (refused)
-    return;
   append_int(VALUE_DOUBLE);
   append(&value, sizeof value);
   value_count++;
 }
 
 void call_bytes(const void *data, int size) {
-  if (refused)
-    return;
   if (!data || size < 0) {
     append_int(VALUE_NONE);
   } else {
@@ -102,8 +90,6 @@ void call_text(const char *text) {
 }
 
 void call_doubles(const double *numbers, int count) {
-  if (refused)
-    return;
   if (!numbers || count < 0) {
     append_int(VALUE_NONE);
   } else {
@@ -121,9 +107,9 @@ static int32_t receive_int(void) {
 }
 
 int call_end(void) {
-  if (refused)
-    return 0;
   memcpy(message + count_at, &value_count, sizeof value_count);
+  link_start();
+  link_lock();
   link_send_with_commands(LINK_CALL, message, message_size);
   int32_t count = receive_int();
   if (count < 0 || count > MAX_VALUES)
@@ -156,12 +142,12 @@ int call_end(void) {
     }
   }
   answered = count;
-  link_leave();
+  link_unlock();
   return count;
 }
 
 int answer_type(int index) {
-  return !refused && index < answered ? values[index].type : VALUE_NONE;
+  return index < answered ? values[index].type : VALUE_NONE;
 }
 
 int answer_int(int index) {
@@ -242,6 +228,7 @@ static Kept *kept;
 
 /* Makes the copy kept for (function, key) `size` bytes of `data`; returns it. */
 static void *keep(const char *function, int key, const void *data, size_t size) {
+  link_lock();
   Kept *found = kept;
   while (found && (found->key != key || strcmp(found->function, function) != 0))
     found = found->next;
@@ -259,6 +246,7 @@ static void *keep(const char *function, int key, const void *data, size_t size) 
     link_failed("out of memory");
   memcpy(copy, data, size);
   found->data = copy;
+  link_unlock();
   return copy;
 }
 

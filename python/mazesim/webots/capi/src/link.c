@@ -3,7 +3,7 @@
 
 #include <errno.h>
 #include <math.h>
-#include <sched.h>
+#include <pthread.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -139,50 +139,30 @@ void link_start(void) {
   link_robot.ready = 1;
 }
 
-/* The function whose exchange with mazesim is under way, NULL when none, and whether it is the
-   calling thread's. */
-static const char *inside;
-static __thread int mine;
-static int refusals;
+/* The link goes to the threads in the order they ask for it (a ticket each), so that a thread
+   stepping in a loop cannot keep it from another. */
+static pthread_mutex_t tickets = PTHREAD_MUTEX_INITIALIZER;
+static pthread_cond_t turn = PTHREAD_COND_INITIALIZER;
+static unsigned long next_ticket, serving;
 
-static void refuse(const char *function, const char *other) {
-  /* Said once: a second thread that loops on the robot would repeat it at every call. */
-  if (__atomic_fetch_add(&refusals, 1, __ATOMIC_RELAXED) == 0)
-    fprintf(stderr,
-            "Error: %s() called by a second thread while another is inside %s(): mazesim's "
-            "controller library, as Webots', serves one thread at a time; the call is ignored "
-            "(and further ones like it, unreported).\n",
-            function, other ? other : "a call");
+void link_lock(void) {
+  pthread_mutex_lock(&tickets);
+  unsigned long ticket = next_ticket++;
+  while (ticket != serving)
+    pthread_cond_wait(&turn, &tickets);
+  pthread_mutex_unlock(&tickets);
 }
 
-int link_enter(const char *function) {
-  const char *expected = NULL;
-  if (__atomic_compare_exchange_n(&inside, &expected, function, 0, __ATOMIC_ACQ_REL,
-                                  __ATOMIC_ACQUIRE)) {
-    mine = 1;
-    return 1;
-  }
-  refuse(function, expected);
-  return 0;
-}
-
-void link_leave(void) {
-  mine = 0;
-  __atomic_store_n(&inside, NULL, __ATOMIC_RELEASE);
-}
-
-int link_busy_elsewhere(const char *function) {
-  const char *other = __atomic_load_n(&inside, __ATOMIC_ACQUIRE);
-  if (!other || mine)
-    return 0;
-  refuse(function, other);
-  return 1;
+void link_unlock(void) {
+  pthread_mutex_lock(&tickets);
+  serving++;
+  pthread_cond_broadcast(&turn);
+  pthread_mutex_unlock(&tickets);
 }
 
 void link_command(int op, int tag, double a, double b) {
   link_start();
-  if (link_busy_elsewhere("a device command"))
-    return;
+  link_lock();
   if (pending_count == pending_capacity) {
     pending_capacity = pending_capacity ? 2 * pending_capacity : 64;
     pending = realloc(pending, sizeof(Command) * (size_t)pending_capacity);
@@ -191,6 +171,7 @@ void link_command(int op, int tag, double a, double b) {
   }
   Command command = {op, tag, a, b};
   pending[pending_count++] = command;
+  link_unlock();
 }
 
 Device *link_device(WbDeviceTag tag, const char *function) {
@@ -255,14 +236,7 @@ int wb_robot_init(void) {
 
 int wb_robot_step(int duration) {
   link_start();
-  /* A second thread's call under way ends soon: the step waits for it. */
-  const char *expected = NULL;
-  while (!__atomic_compare_exchange_n(&inside, &expected, "wb_robot_step", 0, __ATOMIC_ACQ_REL,
-                                      __ATOMIC_ACQUIRE)) {
-    expected = NULL;
-    sched_yield();
-  }
-  mine = 1;
+  link_lock();
   int32_t header[3] = {LINK_STEP, duration, pending_count};
   send_all(header, sizeof header);
   if (pending_count)
@@ -271,7 +245,7 @@ int wb_robot_step(int duration) {
   int32_t result = receive_int();
   link_robot.time = receive_double();
   receive_readings();
-  link_leave();
+  link_unlock();
   return result;
 }
 
