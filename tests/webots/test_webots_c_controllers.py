@@ -523,3 +523,16 @@ def test_a_c_controller_defining_its_own_random_builds_as_on_windows(
     run = run_controller(source, mazesim.load_world("arena"), seconds=0.5)
     assert (run.exit_status, run.error) == (0, "")
     assert capfd.readouterr().out.splitlines()[-1] == "2 3.1416"
+
+
+def test_a_second_threads_calls_wait_for_the_step_under_way_instead_of_garbling_the_link(
+    capfd: pytest.CaptureFixture[str],
+) -> None:
+    # The library serves its threads one at a time: a call that another thread makes while the
+    # main one is inside wb_robot_step waits for the step to end. Both used to write to the link
+    # at once, and mazesim, reading garbage, closed it (the controller was killed by SIGPIPE).
+    controller = CONTROLLERS / "c_two_threads" / "c_two_threads.c"
+    run = run_controller(controller, mazesim.load_world("arena"), seconds=5.0)
+    out, _ = capfd.readouterr()
+    assert (run.exit_status, run.error) == (0, "")
+    assert out.splitlines()[-1] == "read 1 wrong 0 steps 40 time 1.280"

@@ -1,22 +1,23 @@
 """The Webots functions a compiled controller waits for, run on the robot's Python objects.
 
-A C or C++ controller's radio, camera image and recognition, inertial unit quaternion, lidar
-and supervisor functions are calls over the link (:mod:`mazesim.webots.native_link`, message
-``CALL``): a Webots C function's name and typed values. :class:`NativeCalls` runs each on the
-object that implements it for Python controllers (an
-:class:`~mazesim.webots.radio_devices.Emitter` or
-:class:`~mazesim.webots.radio_devices.Receiver` of the robot, its
-:class:`~mazesim.webots.camera.Camera`, :class:`~mazesim.webots.sensors.InertialUnit` or
-:class:`~mazesim.webots.inert.Lidar`, or its :class:`~mazesim.webots.supervisor.Supervisor`
-and the nodes and fields it hands out), so channels, ranges, queues, nodes and fields behave for
-a compiled controller as they do for a Python one, and answers typed values. The functions
-follow Webots' reference manual (https://cyberbotics.com/doc/reference/emitter, /receiver,
-/recognition, /inertialunit, /lidar and /supervisor).
+A C or C++ controller's radio, camera image, recognition and lens, inertial unit quaternion, lidar,
+motor torque, GPS speed, lookup table, robot battery and supervisor functions are calls over the
+link (:mod:`mazesim.webots.native_link`, message ``CALL``): a Webots C function's name and typed
+values. :class:`NativeCalls` runs each on the object that implements it for Python controllers
+(a device of the robot, such as an :class:`~mazesim.webots.radio_devices.Emitter`, a
+:class:`~mazesim.webots.camera.Camera` or an :class:`~mazesim.webots.inert.Lidar`, the
+:class:`~mazesim.webots.robot.Robot` itself, or its
+:class:`~mazesim.webots.supervisor.Supervisor` and the nodes and fields it hands out), so
+channels, ranges, queues, nodes and fields behave for a compiled controller as they do for a
+Python one, and answers typed values. The functions follow Webots' reference manual
+(https://cyberbotics.com/doc/reference/emitter, /receiver, /recognition, /inertialunit, /lidar,
+/camera, /motor, /gps, /robot and /supervisor).
 
 A camera's recognised objects cross the link as two values: one list of numbers (per object:
 id, position, orientation, size, position and size on the image, number of colours, then the
 colours' red, green and blue) and their models, each ending with a NUL. A lidar's point cloud
-is one list of numbers (per point: x, y, z, layer, time).
+is one list of numbers (per point: x, y, z, layer, time), a node's contact points another (per
+point: x, y, z, node id).
 
 Nodes and fields cross the link as handles (1, 2... in the order they are first handed out; 0
 is ``NULL``); a field's handle comes with its type (``WB_SF_VEC3F``...).
@@ -32,7 +33,7 @@ from mazesim.errors import MazesimIOError
 from mazesim.webots.camera import CameraRecognitionObject
 from mazesim.webots.devices import _print_error
 from mazesim.webots.field import Field
-from mazesim.webots.inert import LidarPoint
+from mazesim.webots.inert import ContactPoint, LidarPoint
 from mazesim.webots.supervisor import Node, Supervisor
 
 __all__ = ["FUNCTIONS", "Function", "NativeCalls"]
@@ -44,7 +45,8 @@ class Function:
 
     Attributes:
         target: What its first argument is: ``"device"`` (a device tag), ``"node"`` or
-            ``"field"`` (a handle), or ``"supervisor"`` (no argument: the robot's supervisor).
+            ``"field"`` (a handle), ``"robot"`` (no argument: the robot) or ``"supervisor"``
+            (no argument: the robot's supervisor).
         method: The Python method that implements it.
         arguments: The kinds of its other arguments, one letter each: ``i`` an integer, ``f``
             a number, ``s`` a text, ``b`` bytes, ``v`` numbers, ``n`` a node handle, ``t`` a
@@ -108,6 +110,88 @@ FUNCTIONS: dict[str, Function] = {
     ),
     **_table(
         "device",
+        "wb_camera_",
+        {
+            "get_fov": ("getFov", ""),
+            "set_fov": ("setFov", "f"),
+            "get_min_fov": ("getMinFov", ""),
+            "get_max_fov": ("getMaxFov", ""),
+            "get_exposure": ("getExposure", ""),
+            "set_exposure": ("setExposure", "f"),
+            "get_focal_length": ("getFocalLength", ""),
+            "get_focal_distance": ("getFocalDistance", ""),
+            "get_min_focal_distance": ("getMinFocalDistance", ""),
+            "get_max_focal_distance": ("getMaxFocalDistance", ""),
+            "set_focal_distance": ("setFocalDistance", "f"),
+            "get_near": ("getNear", ""),
+            "save_image": ("saveImage", "si"),
+            "recognition_save_segmentation_image": ("saveRecognitionSegmentationImage", "si"),
+        },
+    ),
+    **_table(
+        "device",
+        "wb_motor_",
+        {
+            "set_available_torque": ("setAvailableTorque", "f"),
+            "set_available_force": ("setAvailableForce", "f"),
+            "set_torque": ("setTorque", "f"),
+            "set_force": ("setForce", "f"),
+            "get_available_torque": ("getAvailableTorque", ""),
+            "get_available_force": ("getAvailableForce", ""),
+            "get_max_torque": ("getMaxTorque", ""),
+            "get_max_force": ("getMaxForce", ""),
+            "enable_torque_feedback": ("enableTorqueFeedback", "i"),
+            "enable_force_feedback": ("enableForceFeedback", "i"),
+            "disable_torque_feedback": ("disableTorqueFeedback", ""),
+            "disable_force_feedback": ("disableForceFeedback", ""),
+            "get_torque_feedback": ("getTorqueFeedback", ""),
+            "get_force_feedback": ("getForceFeedback", ""),
+            "get_torque_feedback_sampling_period": ("getTorqueFeedbackSamplingPeriod", ""),
+            "get_force_feedback_sampling_period": ("getForceFeedbackSamplingPeriod", ""),
+            "get_multiplier": ("getMultiplier", ""),
+            "get_brake": ("getBrake", ""),
+        },
+    ),
+    **_table(
+        "device",
+        "wb_gps_",
+        {
+            "get_speed": ("getSpeed", ""),
+            "get_speed_vector": ("getSpeedVector", ""),
+            "get_coordinate_system": ("getCoordinateSystem", ""),
+        },
+    ),
+    **{
+        f"wb_{device}_get_lookup_table": Function("device", "getLookupTable")
+        for device in ("accelerometer", "compass", "gyro", "light_sensor", "touch_sensor")
+    },
+    **_table(
+        "device",
+        "wb_touch_sensor_",
+        {"get_values": ("getValues", ""), "get_type": ("getType", "")},
+    ),
+    **_table(
+        "device",
+        "wb_position_sensor_",
+        {"get_type": ("getType", ""), "get_brake": ("getBrake", "")},
+    ),
+    **_table(
+        "robot",
+        "wb_robot_",
+        {
+            "battery_sensor_enable": ("batterySensorEnable", "i"),
+            "battery_sensor_disable": ("batterySensorDisable", ""),
+            "battery_sensor_get_sampling_period": ("batterySensorGetSamplingPeriod", ""),
+            "battery_sensor_get_value": ("batterySensorGetValue", ""),
+            "get_type": ("getType", ""),
+            "get_urdf": ("getUrdf", "s"),
+            "wait_for_user_input_event": ("waitForUserInputEvent", "ii"),
+            "wwi_send_text": ("wwiSendText", "s"),
+            "wwi_receive_text": ("wwiReceiveText", ""),
+        },
+    ),
+    **_table(
+        "device",
         "wb_inertial_unit_",
         {"get_quaternion": ("getQuaternion", ""), "get_noise": ("getNoise", "")},
     ),
@@ -155,6 +239,7 @@ FUNCTIONS: dict[str, Function] = {
             "node_get_from_id": ("getFromId", "i"),
             "node_get_from_device": ("getFromDevice", "t"),
             "node_get_selected": ("getSelected", ""),
+            "virtual_reality_headset_is_used": ("virtualRealityHeadsetIsUsed", ""),
         },
     ),
     **_table(
@@ -181,6 +266,7 @@ FUNCTIONS: dict[str, Function] = {
             "restart_controller": ("restartController", ""),
             "get_static_balance": ("getStaticBalance", ""),
             "remove": ("remove", ""),
+            "get_contact_points": ("getContactPoints", "i"),
         },
     ),
     **_table(
@@ -208,7 +294,11 @@ FUNCTIONS: dict[str, Function] = {
             "set_sf_color": ("setSFColor", "v"),
             "set_sf_string": ("setSFString", "s"),
             "import_mf_node_from_string": ("importMFNodeFromString", "is"),
+            "import_sf_node_from_string": ("importSFNodeFromString", "s"),
+            "import_mf_node": ("importMFNode", "is"),
+            "import_sf_node": ("importSFNode", "s"),
             "remove_mf": ("removeMF", "i"),
+            "remove_sf": ("removeSF", ""),
         },
     ),
 }
@@ -255,6 +345,8 @@ class NativeCalls:
     # --- the first argument ----------------------------------------------------------------
 
     def _target(self, function: Function, name: str, first: Any) -> Any:
+        if function.target == "robot":
+            return self.robot
         if function.target == "supervisor":
             if not isinstance(self.robot, Supervisor):
                 _print_error(f"Error: {name}() can only be called by a supervisor.")
@@ -312,6 +404,8 @@ class NativeCalls:
             return [result.encode("utf-8")]
         if isinstance(result, list) and result and isinstance(result[0], CameraRecognitionObject):
             return _recognised(result)
+        if isinstance(result, list) and result and isinstance(result[0], ContactPoint):
+            return [[v for p in result for v in (*p.getPoint(), p.getNodeId())]]
         if isinstance(result, list) and result and isinstance(result[0], LidarPoint):
             return [[v for p in result for v in (p.x, p.y, p.z, p.layer_id, p.time)]]
         if isinstance(result, (list, tuple)):

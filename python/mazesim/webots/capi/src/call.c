@@ -12,9 +12,10 @@
 /* Most values one answer holds. */
 #define MAX_VALUES 16
 
-static char *message;
-static size_t message_size, message_capacity, count_at;
-static int32_t value_count;
+/* Each thread builds its calls and reads its answers in buffers of its own. */
+static __thread char *message;
+static __thread size_t message_size, message_capacity, count_at;
+static __thread int32_t value_count;
 
 typedef struct {
   int32_t type;
@@ -23,10 +24,10 @@ typedef struct {
   int32_t size;  /* bytes, or numbers for VALUE_DOUBLES */
 } Value;
 
-static Value values[MAX_VALUES];
-static int answered;
-static char *answer_data;
-static size_t answer_capacity;
+static __thread Value values[MAX_VALUES];
+static __thread int answered;
+static __thread char *answer_data;
+static __thread size_t answer_capacity;
 
 /* Makes `*buffer` hold at least `needed` bytes, doubling its capacity. */
 static void reserve(char **buffer, size_t *capacity, size_t needed) {
@@ -107,6 +108,8 @@ static int32_t receive_int(void) {
 
 int call_end(void) {
   memcpy(message + count_at, &value_count, sizeof value_count);
+  link_start();
+  link_lock();
   link_send_with_commands(LINK_CALL, message, message_size);
   int32_t count = receive_int();
   if (count < 0 || count > MAX_VALUES)
@@ -139,6 +142,7 @@ int call_end(void) {
     }
   }
   answered = count;
+  link_unlock();
   return count;
 }
 
@@ -209,5 +213,61 @@ void call_device_set_int(const char *function, int tag, int value) {
   call_begin(function);
   call_int(tag);
   call_int(value);
+  call_end();
+}
+
+/* Copies of answers kept for their callers, one per function and key. */
+typedef struct Kept {
+  const char *function;
+  int key;
+  void *data;
+  struct Kept *next;
+} Kept;
+
+static Kept *kept;
+
+/* Makes the copy kept for (function, key) `size` bytes of `data`; returns it. */
+static void *keep(const char *function, int key, const void *data, size_t size) {
+  link_lock();
+  Kept *found = kept;
+  while (found && (found->key != key || strcmp(found->function, function) != 0))
+    found = found->next;
+  if (!found) {
+    found = calloc(1, sizeof *found);
+    if (!found)
+      link_failed("out of memory");
+    found->function = function;
+    found->key = key;
+    found->next = kept;
+    kept = found;
+  }
+  void *copy = realloc(found->data, size ? size : 1);
+  if (!copy)
+    link_failed("out of memory");
+  memcpy(copy, data, size);
+  found->data = copy;
+  link_unlock();
+  return copy;
+}
+
+const double *answer_kept_doubles(int index, const char *function, int key, int *count) {
+  int size;
+  const double *numbers = answer_doubles(index, &size);
+  if (count)
+    *count = size;
+  return numbers ? keep(function, key, numbers, sizeof(double) * (size_t)size) : NULL;
+}
+
+const char *answer_kept_text(int index, const char *function, int key) {
+  int size;
+  const char *bytes = answer_bytes(index, &size);
+  /* The answer's bytes end with a NUL. */
+  return bytes ? keep(function, key, bytes, (size_t)size + 1) : NULL;
+}
+
+void call_device_set_double(const char *function, int tag, double value) {
+  call_begin(function);
+  call_int(tag);
+  call_double(value);
   call_end();
 }

@@ -33,11 +33,19 @@ const double *answer_doubles(int index, int *count);
 /* A copy of a text value, ending with a NUL, that the caller frees (NULL for no value). */
 char *answer_text(int index);
 
+/* A copy of the numbers `index`, kept for (function, key) until the next such call: a pointer
+   the controller may hold as Webots' are held. NULL for no value. */
+const double *answer_kept_doubles(int index, const char *function, int key, int *count);
+/* Likewise a copy of the text `index`. */
+const char *answer_kept_text(int index, const char *function, int key);
+
 /* A call of `function` on a device tag and the integer it answers. */
 int call_device_int(const char *function, int tag);
 /* A call of `function` on a device tag and the number it answers. */
 double call_device_double(const char *function, int tag);
 /* A call of `function` with a device tag and one integer, answered by nothing. */
 void call_device_set_int(const char *function, int tag, int value);
+/* A call of `function` with a device tag and one number, answered by nothing. */
+void call_device_set_double(const char *function, int tag, double value);
 
 #endif

@@ -3,6 +3,7 @@
 
 #include <errno.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -146,8 +147,30 @@ void link_start(void) {
   link_robot.ready = 1;
 }
 
+/* The link goes to the threads in the order they ask for it (a ticket each), so that a thread
+   stepping in a loop cannot keep it from another. */
+static pthread_mutex_t tickets = PTHREAD_MUTEX_INITIALIZER;
+static pthread_cond_t turn = PTHREAD_COND_INITIALIZER;
+static unsigned long next_ticket, serving;
+
+void link_lock(void) {
+  pthread_mutex_lock(&tickets);
+  unsigned long ticket = next_ticket++;
+  while (ticket != serving)
+    pthread_cond_wait(&turn, &tickets);
+  pthread_mutex_unlock(&tickets);
+}
+
+void link_unlock(void) {
+  pthread_mutex_lock(&tickets);
+  serving++;
+  pthread_cond_broadcast(&turn);
+  pthread_mutex_unlock(&tickets);
+}
+
 void link_command(int op, int tag, double a, double b) {
   link_start();
+  link_lock();
   if (pending_count == pending_capacity) {
     pending_capacity = pending_capacity ? 2 * pending_capacity : 64;
     pending = realloc(pending, sizeof(Command) * (size_t)pending_capacity);
@@ -156,6 +179,7 @@ void link_command(int op, int tag, double a, double b) {
   }
   Command command = {op, tag, a, b};
   pending[pending_count++] = command;
+  link_unlock();
 }
 
 Device *link_device(WbDeviceTag tag, const char *function) {
@@ -220,6 +244,7 @@ int wb_robot_init(void) {
 
 int wb_robot_step(int duration) {
   link_start();
+  link_lock();
   int32_t header[3] = {LINK_STEP, duration, pending_count};
   send_all(header, sizeof header);
   if (pending_count)
@@ -230,6 +255,7 @@ int wb_robot_step(int duration) {
   receive_readings();
   if (result == -1)
     run_over = 1;
+  link_unlock();
   return result;
 }
 

@@ -83,10 +83,17 @@ void link_failed(const char *what);
 void link_start(void);
 /* Queues a command for the next step. */
 void link_command(int op, int tag, double a, double b);
-/* Sends the commands queued so far and `size` bytes of a message after them, unanswered yet. */
+/* Sends the commands queued so far and `size` bytes of a message after them, unanswered yet
+   (the caller holds the link). */
 void link_send_with_commands(int kind, const void *message, size_t size);
 /* Reads `size` bytes of mazesim's answer. */
 void link_receive(void *data, size_t size);
+/* The library serves its threads one at a time, in the order they ask: a thread holds the link
+   for a whole step, a whole call (from sending it to reading its answer) or queueing a command,
+   and another thread wanting the link meanwhile waits. */
+void link_lock(void);
+void link_unlock(void);
+
 /* The device of a tag, or NULL after printing Webots' message naming `function`. */
 Device *link_device(WbDeviceTag tag, const char *function);
 

@@ -349,6 +349,38 @@ void wb_supervisor_node_remove(WbNodeRef node) {
   call_end();
 }
 
+/* Numbers per contact point on the link: x, y, z, node id. */
+#define CONTACT_NUMBERS 4
+
+WbContactPoint *wb_supervisor_node_get_contact_points(WbNodeRef node, bool include_descendants,
+                                                      int *size) {
+  static WbContactPoint *points;
+  if (size)
+    *size = 0;
+  call_node("wb_supervisor_node_get_contact_points", node);
+  call_int(include_descendants);
+  call_end();
+  int count;
+  const double *numbers = answer_doubles(0, &count);
+  int point_count = numbers ? count / CONTACT_NUMBERS : 0;
+  if (point_count == 0)
+    return NULL;
+  WbContactPoint *grown = realloc(points, sizeof(WbContactPoint) * (size_t)point_count);
+  if (!grown)
+    link_failed("out of memory");
+  points = grown;
+  for (int i = 0; i < point_count; i++) {
+    const double *number = numbers + CONTACT_NUMBERS * i;
+    points[i].point[0] = number[0];
+    points[i].point[1] = number[1];
+    points[i].point[2] = number[2];
+    points[i].node_id = (int)number[3];
+  }
+  if (size)
+    *size = point_count;
+  return points;
+}
+
 /* --- fields -------------------------------------------------------------------------------- */
 
 WbFieldType wb_supervisor_field_get_type(WbFieldRef field) {
@@ -499,4 +531,33 @@ void wb_supervisor_field_remove_mf(WbFieldRef field, int index) {
   call_field("wb_supervisor_field_remove_mf", field);
   call_int(index);
   call_end();
+}
+
+void wb_supervisor_field_import_sf_node_from_string(WbFieldRef field, const char *node_string) {
+  call_field("wb_supervisor_field_import_sf_node_from_string", field);
+  call_text(node_string);
+  call_end();
+}
+
+void wb_supervisor_field_import_mf_node(WbFieldRef field, int position, const char *filename) {
+  call_field("wb_supervisor_field_import_mf_node", field);
+  call_int(position);
+  call_text(filename);
+  call_end();
+}
+
+void wb_supervisor_field_import_sf_node(WbFieldRef field, const char *filename) {
+  call_field("wb_supervisor_field_import_sf_node", field);
+  call_text(filename);
+  call_end();
+}
+
+void wb_supervisor_field_remove_sf(WbFieldRef field) {
+  call_field("wb_supervisor_field_remove_sf", field);
+  call_end();
+}
+
+bool wb_supervisor_virtual_reality_headset_is_used(void) {
+  call_plain("wb_supervisor_virtual_reality_headset_is_used");
+  return answer_int(0) != 0;
 }

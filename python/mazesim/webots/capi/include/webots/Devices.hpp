@@ -4,6 +4,9 @@
 #ifndef WB_DEVICES_HPP
 #define WB_DEVICES_HPP
 
+#include <map>
+#include <string>
+
 #include <webots/Device.hpp>
 #include <webots/accelerometer.h>
 #include <webots/camera.h>
@@ -23,6 +26,11 @@
 #include <webots/receiver.h>
 #include <webots/touch_sensor.h>
 
+// A sensor's lookup table (rows of input, output, noise) as Webots' C++ classes give it.
+#define MAZESIM_LOOKUP_TABLE(prefix)                                                              \
+  const double *getLookupTable() const { return prefix##_get_lookup_table(tag); }               \
+  int getLookupTableSize() const { return prefix##_get_lookup_table_size(tag); }
+
 // A sensor class: enable, disable, getSamplingPeriod and its reading `Method` (C's `function`).
 #define MAZESIM_SENSOR(Class, prefix, Reading, Method, function)                                 \
   class Class : public Device {                                                                  \
@@ -39,14 +47,39 @@
 #define MAZESIM_DistanceSensor_EXTRA                                                             \
   double getMinValue() const { return wb_distance_sensor_get_min_value(tag); }                   \
   double getMaxValue() const { return wb_distance_sensor_get_max_value(tag); }                   \
-  double getAperture() const { return wb_distance_sensor_get_aperture(tag); }
-#define MAZESIM_PositionSensor_EXTRA
-#define MAZESIM_LightSensor_EXTRA
-#define MAZESIM_TouchSensor_EXTRA
-#define MAZESIM_GPS_EXTRA
-#define MAZESIM_Compass_EXTRA
-#define MAZESIM_Accelerometer_EXTRA
-#define MAZESIM_Gyro_EXTRA
+  double getAperture() const { return wb_distance_sensor_get_aperture(tag); }                   \
+  enum Type { GENERIC = WB_DISTANCE_SENSOR_GENERIC, INFRA_RED = WB_DISTANCE_SENSOR_INFRA_RED,     \
+              SONAR = WB_DISTANCE_SENSOR_SONAR, LASER = WB_DISTANCE_SENSOR_LASER };              \
+  Type getType() const { return static_cast<Type>(wb_distance_sensor_get_type(tag)); }           \
+  MAZESIM_LOOKUP_TABLE(wb_distance_sensor)
+#define MAZESIM_PositionSensor_EXTRA                                                             \
+  enum { ROTATIONAL = WB_ROTATIONAL, LINEAR = WB_LINEAR };                                       \
+  int getType() const { return wb_position_sensor_get_type(tag); }                               \
+  WbDeviceTag getMotorTag() const { return wb_position_sensor_get_motor(tag); }                  \
+  WbDeviceTag getBrakeTag() const { return wb_position_sensor_get_brake(tag); }                  \
+  Motor *getMotor() const;                                                                       \
+  /* mazesim has no C++ Brake class: a brake's tag is getBrakeTag's (0, none, on the e-puck). */ \
+  Device *getBrake() const { return 0; }
+#define MAZESIM_LightSensor_EXTRA MAZESIM_LOOKUP_TABLE(wb_light_sensor)
+#define MAZESIM_TouchSensor_EXTRA                                                                \
+  enum Type { BUMPER = WB_TOUCH_SENSOR_BUMPER, FORCE = WB_TOUCH_SENSOR_FORCE,                    \
+              FORCE3D = WB_TOUCH_SENSOR_FORCE3D };                                               \
+  const double *getValues() const { return wb_touch_sensor_get_values(tag); }                    \
+  Type getType() const { return static_cast<Type>(wb_touch_sensor_get_type(tag)); }              \
+  MAZESIM_LOOKUP_TABLE(wb_touch_sensor)
+#define MAZESIM_GPS_EXTRA                                                                        \
+  enum CoordinateSystem { LOCAL = WB_GPS_LOCAL_COORDINATE, WGS84 = WB_GPS_WGS84_COORDINATE };    \
+  double getSpeed() const { return wb_gps_get_speed(tag); }                                      \
+  const double *getSpeedVector() const { return wb_gps_get_speed_vector(tag); }                  \
+  CoordinateSystem getCoordinateSystem() const {                                                 \
+    return static_cast<CoordinateSystem>(wb_gps_get_coordinate_system(tag));                     \
+  }                                                                                              \
+  static std::string convertToDegreesMinutesSeconds(double decimalDegree) {                      \
+    return wb_gps_convert_to_degrees_minutes_seconds(decimalDegree);                             \
+  }
+#define MAZESIM_Compass_EXTRA MAZESIM_LOOKUP_TABLE(wb_compass)
+#define MAZESIM_Accelerometer_EXTRA MAZESIM_LOOKUP_TABLE(wb_accelerometer)
+#define MAZESIM_Gyro_EXTRA MAZESIM_LOOKUP_TABLE(wb_gyro)
 #define MAZESIM_InertialUnit_EXTRA                                                               \
   const double *getQuaternion() const { return wb_inertial_unit_get_quaternion(tag); }           \
   double getNoise() const { return wb_inertial_unit_get_noise(tag); }
@@ -88,6 +121,26 @@
   static unsigned char imageGetGray(const unsigned char *image, int width, int x, int y) {       \
     return wb_camera_image_get_gray(image, width, x, y);                                         \
   }                                                                                              \
+  static unsigned char imageGetGrey(const unsigned char *image, int width, int x, int y) {       \
+    return wb_camera_image_get_grey(image, width, x, y);                                         \
+  }                                                                                              \
+  virtual void setFov(double fov) { wb_camera_set_fov(tag, fov); }                               \
+  double getMinFov() const { return wb_camera_get_min_fov(tag); }                                \
+  double getMaxFov() const { return wb_camera_get_max_fov(tag); }                                \
+  double getExposure() const { return wb_camera_get_exposure(tag); }                             \
+  virtual void setExposure(double exposure) { wb_camera_set_exposure(tag, exposure); }           \
+  double getFocalLength() const { return wb_camera_get_focal_length(tag); }                      \
+  double getFocalDistance() const { return wb_camera_get_focal_distance(tag); }                  \
+  double getMinFocalDistance() const { return wb_camera_get_min_focal_distance(tag); }           \
+  double getMaxFocalDistance() const { return wb_camera_get_max_focal_distance(tag); }           \
+  virtual void setFocalDistance(double distance) { wb_camera_set_focal_distance(tag, distance); } \
+  double getNear() const { return wb_camera_get_near(tag); }                                     \
+  int saveImage(const std::string &filename, int quality) const {                                \
+    return wb_camera_save_image(tag, filename.c_str(), quality);                                 \
+  }                                                                                              \
+  int saveRecognitionSegmentationImage(const std::string &filename, int quality) const {         \
+    return wb_camera_recognition_save_segmentation_image(tag, filename.c_str(), quality);        \
+  }                                                                                              \
   bool hasRecognition() const { return wb_camera_has_recognition(tag); }                         \
   void recognitionEnable(int samplingPeriod) {                                                   \
     wb_camera_recognition_enable(tag, samplingPeriod);                                           \
@@ -115,6 +168,7 @@
   }
 
 namespace webots {
+  class Motor;
   // Webots' C++ recognition object is its C struct.
   typedef WbCameraRecognitionObject CameraRecognitionObject;
   // And its lidar point is its C struct.
@@ -156,10 +210,49 @@ namespace webots {
         sensor = new PositionSensor(wb_motor_get_position_sensor(tag));
       return sensor;
     }
+    virtual void setAvailableTorque(double torque) { wb_motor_set_available_torque(tag, torque); }
+    virtual void setAvailableForce(double force) { wb_motor_set_available_force(tag, force); }
+    virtual void setTorque(double torque) { wb_motor_set_torque(tag, torque); }
+    virtual void setForce(double force) { wb_motor_set_force(tag, force); }
+    double getAvailableTorque() const { return wb_motor_get_available_torque(tag); }
+    double getAvailableForce() const { return wb_motor_get_available_force(tag); }
+    double getMaxTorque() const { return wb_motor_get_max_torque(tag); }
+    double getMaxForce() const { return wb_motor_get_max_force(tag); }
+    virtual void enableTorqueFeedback(int samplingPeriod) {
+      wb_motor_enable_torque_feedback(tag, samplingPeriod);
+    }
+    virtual void enableForceFeedback(int samplingPeriod) {
+      wb_motor_enable_force_feedback(tag, samplingPeriod);
+    }
+    virtual void disableTorqueFeedback() { wb_motor_disable_torque_feedback(tag); }
+    virtual void disableForceFeedback() { wb_motor_disable_force_feedback(tag); }
+    double getTorqueFeedback() const { return wb_motor_get_torque_feedback(tag); }
+    double getForceFeedback() const { return wb_motor_get_force_feedback(tag); }
+    int getTorqueFeedbackSamplingPeriod() const {
+      return wb_motor_get_torque_feedback_sampling_period(tag);
+    }
+    int getForceFeedbackSamplingPeriod() const {
+      return wb_motor_get_force_feedback_sampling_period(tag);
+    }
+    double getMultiplier() const { return wb_motor_get_multiplier(tag); }
+    WbDeviceTag getBrakeTag() const { return wb_motor_get_brake(tag); }
+    // mazesim has no C++ Brake class: a brake's tag is getBrakeTag's (0, none, on the e-puck).
+    Device *getBrake() const { return 0; }
 
   private:
     PositionSensor *sensor;
   };
+
+  // A position sensor's motor, made once per motor.
+  inline Motor *PositionSensor::getMotor() const {
+    static std::map<WbDeviceTag, Motor *> motors;
+    WbDeviceTag motor = getMotorTag();
+    if (!motor)
+      return 0;
+    if (!motors[motor])
+      motors[motor] = new Motor(motor);
+    return motors[motor];
+  }
 
   class LED : public Device {
   public:

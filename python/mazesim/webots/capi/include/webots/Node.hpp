@@ -77,6 +77,16 @@ namespace webots {
       wb_supervisor_field_import_mf_node_from_string(ref, position, nodeString.c_str());
     }
     void removeMF(int index) { wb_supervisor_field_remove_mf(ref, index); }
+    void importSFNodeFromString(const std::string &nodeString) {
+      wb_supervisor_field_import_sf_node_from_string(ref, nodeString.c_str());
+    }
+    void importMFNode(int position, const std::string &filename) {
+      wb_supervisor_field_import_mf_node(ref, position, filename.c_str());
+    }
+    void importSFNode(const std::string &filename) {
+      wb_supervisor_field_import_sf_node(ref, filename.c_str());
+    }
+    void removeSF() { wb_supervisor_field_remove_sf(ref); }
 
   private:
     explicit Field(WbFieldRef ref) : ref(ref) {}
@@ -86,6 +96,9 @@ namespace webots {
     }
     WbFieldRef ref;
   };
+
+  // Webots' C++ contact point is its C struct.
+  typedef WbContactPoint ContactPoint;
 
   class Node {
   public:
@@ -218,6 +231,9 @@ namespace webots {
     void restartController() { wb_supervisor_node_restart_controller(ref); }
     bool getStaticBalance() const { return wb_supervisor_node_get_static_balance(ref); }
     void remove() { wb_supervisor_node_remove(ref); }
+    ContactPoint *getContactPoints(bool includeDescendants, int *size) const {
+      return wb_supervisor_node_get_contact_points(ref, includeDescendants, size);
+    }
 
   private:
     explicit Node(WbNodeRef ref) : ref(ref) {}

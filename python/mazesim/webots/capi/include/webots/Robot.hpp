@@ -26,7 +26,54 @@ namespace webots {
     std::string getModel() const { return wb_robot_get_model(); }
     std::string getCustomData() const { return wb_robot_get_custom_data(); }
     void setCustomData(const std::string &data) { wb_robot_set_custom_data(data.c_str()); }
+    std::string getData() const { return wb_robot_get_data(); }
+    void setData(const std::string &data) { wb_robot_set_data(data.c_str()); }
     bool getSupervisor() const { return wb_robot_get_supervisor(); }
+    bool getSynchronization() const { return wb_robot_get_synchronization(); }
+    std::string getControllerName() const { return wb_robot_get_controller_name(); }
+    std::string getProjectPath() const { return wb_robot_get_project_path(); }
+    std::string getWorldPath() const { return wb_robot_get_world_path(); }
+    void setMode(int mode, const char *argument) {
+      wb_robot_set_mode(static_cast<WbRobotMode>(mode), argument);
+    }
+    int getType() const { return wb_robot_get_type(); }
+    std::string getUrdf(const std::string &prefix = "") const {
+      const char *urdf = wb_robot_get_urdf(prefix.c_str());
+      return urdf ? urdf : "";
+    }
+    virtual int stepBegin(int duration) { return wb_robot_step_begin(duration); }
+    virtual int stepEnd() { return wb_robot_step_end(); }
+    enum UserInputEvent {
+      EVENT_QUIT = WB_EVENT_QUIT,
+      EVENT_NO_EVENT = WB_EVENT_NO_EVENT,
+      EVENT_MOUSE_CLICK = WB_EVENT_MOUSE_CLICK,
+      EVENT_MOUSE_MOVE = WB_EVENT_MOUSE_MOVE,
+      EVENT_KEYBOARD = WB_EVENT_KEYBOARD,
+      EVENT_JOYSTICK_BUTTON = WB_EVENT_JOYSTICK_BUTTON,
+      EVENT_JOYSTICK_AXIS = WB_EVENT_JOYSTICK_AXIS,
+      EVENT_JOYSTICK_POV = WB_EVENT_JOYSTICK_POV
+    };
+    UserInputEvent waitForUserInputEvent(UserInputEvent eventType, int timeout) {
+      return static_cast<UserInputEvent>(
+        wb_robot_wait_for_user_input_event(static_cast<WbUserInputEvent>(eventType), timeout));
+    }
+    void wwiSendText(const std::string &text) { wb_robot_wwi_send_text(text.c_str()); }
+    std::string wwiReceiveText() {
+      const char *text = wb_robot_wwi_receive_text();
+      return text ? text : "";
+    }
+    virtual void batterySensorEnable(int samplingPeriod) {
+      wb_robot_battery_sensor_enable(samplingPeriod);
+    }
+    virtual void batterySensorDisable() { wb_robot_battery_sensor_disable(); }
+    int batterySensorGetSamplingPeriod() const {
+      return wb_robot_battery_sensor_get_sampling_period();
+    }
+    double batterySensorGetValue() const { return wb_robot_battery_sensor_get_value(); }
+    // The keyboard functions of Webots 7 and before.
+    void keyboardEnable(int samplingPeriod) { wb_robot_keyboard_enable(samplingPeriod); }
+    void keyboardDisable() { wb_robot_keyboard_disable(); }
+    int keyboardGetKey() const { return wb_robot_keyboard_get_key(); }
     int getMode() const { return wb_robot_get_mode(); }
     int getNumberOfDevices() const { return wb_robot_get_number_of_devices(); }
     Device *getDeviceByIndex(int index) { return device(wb_robot_get_device_by_index(index)); }

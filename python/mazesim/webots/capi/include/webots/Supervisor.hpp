@@ -30,6 +30,9 @@ namespace webots {
       return Node::findNode(wb_supervisor_node_get_from_device(device ? device->getTag() : 0));
     }
     Node *getSelected() { return Node::findNode(wb_supervisor_node_get_selected()); }
+    bool virtualRealityHeadsetIsUsed() const {
+      return wb_supervisor_virtual_reality_headset_is_used();
+    }
     void simulationQuit(int status) { wb_supervisor_simulation_quit(status); }
     void simulationReset() { wb_supervisor_simulation_reset(); }
     void simulationResetPhysics() { wb_supervisor_simulation_reset_physics(); }

@@ -37,6 +37,23 @@ void wb_camera_recognition_disable_segmentation(WbDeviceTag tag);
 bool wb_camera_recognition_is_segmentation_enabled(WbDeviceTag tag);
 const unsigned char *wb_camera_recognition_get_segmentation_image(WbDeviceTag tag);
 
+/* The lens (Webots' Camera node fields fieldOfView, exposure, near and its Focus node). */
+void wb_camera_set_fov(WbDeviceTag tag, double fov);
+double wb_camera_get_min_fov(WbDeviceTag tag);
+double wb_camera_get_max_fov(WbDeviceTag tag);
+double wb_camera_get_exposure(WbDeviceTag tag);
+void wb_camera_set_exposure(WbDeviceTag tag, double exposure);
+double wb_camera_get_focal_length(WbDeviceTag tag);
+double wb_camera_get_focal_distance(WbDeviceTag tag);
+double wb_camera_get_min_focal_distance(WbDeviceTag tag);
+double wb_camera_get_max_focal_distance(WbDeviceTag tag);
+void wb_camera_set_focal_distance(WbDeviceTag tag, double focal_distance);
+double wb_camera_get_near(WbDeviceTag tag);
+/* Saves the last image (PNG or JPEG by the file's extension); 0 when saved, -1 otherwise. */
+int wb_camera_save_image(WbDeviceTag tag, const char *filename, int quality);
+int wb_camera_recognition_save_segmentation_image(WbDeviceTag tag, const char *filename,
+                                                  int quality);
+
 #ifdef __cplusplus
 }
 #endif

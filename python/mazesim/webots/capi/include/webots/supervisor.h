@@ -19,6 +19,12 @@ extern "C" {
 typedef struct WbNodeStructPrivate *WbNodeRef;
 typedef struct WbFieldStructPrivate *WbFieldRef;
 
+/* A point where a node touches another, and the id of the node it belongs to. */
+typedef struct {
+  double point[3];
+  int node_id;
+} WbContactPoint;
+
 typedef enum {
   WB_NO_FIELD = 0x00,
   WB_SF_BOOL = 0x01,
@@ -91,6 +97,10 @@ void wb_supervisor_node_reset_physics(WbNodeRef node);
 void wb_supervisor_node_restart_controller(WbNodeRef node);
 bool wb_supervisor_node_get_static_balance(WbNodeRef node);
 void wb_supervisor_node_remove(WbNodeRef node);
+/* The node's contact points (its descendants' too when asked), `*size` of them, valid until
+   the next call on the same node. */
+WbContactPoint *wb_supervisor_node_get_contact_points(WbNodeRef node, bool include_descendants,
+                                                      int *size);
 
 /* Fields. */
 WbFieldType wb_supervisor_field_get_type(WbFieldRef field);
@@ -118,6 +128,12 @@ void wb_supervisor_field_set_sf_string(WbFieldRef field, const char *value);
 void wb_supervisor_field_import_mf_node_from_string(WbFieldRef field, int position,
                                                     const char *node_string);
 void wb_supervisor_field_remove_mf(WbFieldRef field, int index);
+void wb_supervisor_field_import_sf_node_from_string(WbFieldRef field, const char *node_string);
+void wb_supervisor_field_import_mf_node(WbFieldRef field, int position, const char *filename);
+void wb_supervisor_field_import_sf_node(WbFieldRef field, const char *filename);
+void wb_supervisor_field_remove_sf(WbFieldRef field);
+/* False: a headless run has no headset. */
+bool wb_supervisor_virtual_reality_headset_is_used(void);
 
 #ifdef __cplusplus
 }

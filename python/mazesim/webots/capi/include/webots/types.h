@@ -11,4 +11,7 @@
 /* A device of the robot: 1, 2... in the robot's device order; 0 is no device. */
 typedef unsigned short WbDeviceTag;
 
+/* A motor's or a position sensor's joint. */
+typedef enum { WB_ROTATIONAL = 0, WB_LINEAR } WbJointType;
+
 #endif
