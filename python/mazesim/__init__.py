@@ -125,7 +125,21 @@ def load_world(name_or_path: str | os.PathLike[str]) -> World:
             from mazesim.webots.importer import import_wbt
 
             return import_wbt(path)[0]
-        return World.load(path)
+        try:
+            return World.load(path)
+        except WorldFormatError as unreadable_world:
+            suffix = os.path.splitext(path)[1]
+            if suffix.lower() == ".toml":
+                raise
+            # Another kind of file read as TOML: say which files are worlds.
+            raise WorldFormatError(
+                f"{unreadable_world} (mazesim reads .toml world files and .wbt Webots worlds; "
+                + (f"found a {suffix} file)" if suffix else "found a file without an extension)"),
+                source=getattr(unreadable_world, "source", None),
+                line=getattr(unreadable_world, "line", None),
+                column=getattr(unreadable_world, "column", None),
+                field=getattr(unreadable_world, "field", None),
+            ) from None
     available = sorted(builtin_world_names())
     from mazesim._paths import _kind_of
 
@@ -133,6 +147,8 @@ def load_world(name_or_path: str | os.PathLike[str]) -> World:
         found = f"it is {_kind_of(os.stat(path).st_mode)}, not a world file"
     except OSError as unreadable:
         found = unreadable.strerror.lower() if unreadable.strerror else "no such file"
+        if not os.path.isabs(path):  # a relative path: say where it was looked for
+            found = f"{found} in {os.getcwd()}"
     error = UnknownNameError(
         f"no built-in world named {path!r} and {found}; "
         f"built-in worlds: {', '.join(available)} (or a path to a .toml or .wbt world file)",

@@ -211,6 +211,32 @@ def test_a_folder_or_device_given_as_a_world_says_it_is_not_a_world_file(tmp_pat
         mazesim.load_world(tmp_path / "missing.toml")
 
 
+def test_a_missing_relative_world_file_says_which_folder_it_was_looked_in(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(UnknownNameError) as caught:
+        mazesim.load_world("worlds/my-maze.toml")
+    assert f"and no such file or directory in {tmp_path}; built-in worlds" in str(caught.value)
+
+
+@pytest.mark.parametrize(("name", "kind"), [("maze.json", "a .json file"), ("maze", "a file")])
+def test_a_file_of_another_kind_says_which_files_are_worlds(
+    tmp_path: Path, name: str, kind: str
+) -> None:
+    path = tmp_path / name
+    path.write_text('{"walls": []}\n')
+    with pytest.raises(WorldFormatError) as caught:
+        mazesim.load_world(path)
+    message = str(caught.value)
+    assert message.startswith(f"{path}:1:1: ")
+    assert message.endswith(
+        f"(mazesim reads .toml world files and .wbt Webots worlds; found {kind}"
+        + (")" if "json" in kind else " without an extension)")
+    )
+    assert caught.value.line == 1
+
+
 def test_core_unknown_builtin_name_lists_the_available_names() -> None:
     with pytest.raises(UnknownNameError) as caught:
         World.builtin("no-such-world")

@@ -1,7 +1,10 @@
 """The goal-conditioned tasks: Gymnasium-Robotics' GoalEnv form, checked by gymnasium and SB3,
-``compute_reward`` equal to the step reward (one pair and batches), and SB3's HER accepting it."""
+``compute_reward`` equal to the step reward (one pair and batches), SB3's HER accepting it, and
+the native vector env equal to SyncVectorEnv."""
 
 from __future__ import annotations
+
+from typing import Any
 
 import numpy as np
 import pytest
@@ -128,3 +131,67 @@ def test_compute_reward_refuses_goals_that_are_not_finite_pairs(
     goal_env = gymnasium.make("mazesim/EPuckGoalDense-v0").unwrapped
     with pytest.raises(InvalidArgumentError, match=found):
         goal_env.compute_reward(achieved, desired, {})
+
+
+def _same(mine: Any, theirs: Any) -> bool:
+    """Whether two batched values (arrays, or dicts of them, as goal observations) are equal,
+    dtypes included."""
+    if isinstance(theirs, dict):
+        return mine.keys() == theirs.keys() and all(_same(mine[k], theirs[k]) for k in theirs)
+    mine, theirs = np.asarray(mine), np.asarray(theirs)
+    if theirs.dtype == object:
+        return len(mine) == len(theirs) and all(_same(a, b) for a, b in zip(mine, theirs))
+    return mine.dtype == theirs.dtype and np.array_equal(mine, theirs)
+
+
+@pytest.mark.parametrize("env_id", IDS)
+@pytest.mark.parametrize("autoreset_mode", ["NextStep", "SameStep"])
+def test_the_native_vector_env_equals_sync(env_id: str, autoreset_mode: str) -> None:
+    num_envs = 3
+    native = gymnasium.make_vec(
+        env_id,
+        num_envs,
+        vectorization_mode="vector_entry_point",
+        max_episode_steps=40,
+        autoreset_mode=autoreset_mode,
+    )
+    sync = gymnasium.make_vec(
+        env_id,
+        num_envs,
+        vectorization_mode="sync",
+        max_episode_steps=40,
+        vector_kwargs={"autoreset_mode": gymnasium.vector.AutoresetMode(autoreset_mode)},
+    )
+    assert type(native.unwrapped).__name__ == "MazeGoalVectorEnv"
+    assert native.single_observation_space == sync.single_observation_space
+    assert _same(native.reset(seed=5)[0], sync.reset(seed=5)[0])
+    native.action_space.seed(5)
+    ended = 0
+    for step in range(130):  # the 40-step limit ends every episode at least three times
+        actions = native.action_space.sample()
+        mine, theirs = native.step(actions), sync.step(actions)
+        for a, b in zip(mine[:4], theirs[:4]):
+            assert _same(a, b), step
+        assert mine[4].keys() == theirs[4].keys(), step
+        assert all(_same(mine[4][k], theirs[4][k]) for k in theirs[4]), step
+        ended += int((mine[2] | mine[3]).sum())
+    assert ended >= num_envs * 3
+    # A seeded reset starts the same episodes again; an unseeded one goes on with the stream.
+    again = native.reset(seed=5)[0]
+    assert _same(again, sync.reset(seed=5)[0])
+    assert _same(native.reset()[0], sync.reset()[0])
+
+
+def test_the_native_vector_env_refuses_what_the_goal_env_refuses() -> None:
+    with pytest.raises(InvalidArgumentError, match="reward_type"):
+        gymnasium.make_vec(
+            "mazesim/EPuckGoal-v0", 2, vectorization_mode="vector_entry_point", reward_type="x"
+        )
+    with pytest.raises(InvalidArgumentError, match="a world with a goal"):
+        gymnasium.make_vec(
+            "mazesim/EPuckGoal-v0",
+            2,
+            vectorization_mode="vector_entry_point",
+            world="arena",
+            start_goal="world",
+        )

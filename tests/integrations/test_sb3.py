@@ -19,6 +19,7 @@ from stable_baselines3.common.vec_env import DummyVecEnv, VecEnv  # noqa: E402
 
 from env_worlds import CORRIDOR  # noqa: E402
 from mazesim.envs import ENV_ID, TASKS  # noqa: E402
+from mazesim.envs.tasks import GOAL_TASKS  # noqa: E402
 from mazesim.errors import InvalidArgumentError  # noqa: E402
 from mazesim.integrations.sb3 import MazesimVecEnv, make_vec_env  # noqa: E402
 
@@ -34,10 +35,18 @@ def assert_same_infos(mine: list[dict[str, Any]], theirs: list[dict[str, Any]], 
         assert a.keys() == b.keys(), f"{where}, env {env}: keys {sorted(a)} != {sorted(b)}"
         for key in a:
             assert type(a[key]) is type(b[key]), f"{where}, env {env}: type of {key}"
-            if isinstance(a[key], np.ndarray):
-                assert a[key].dtype == b[key].dtype and np.array_equal(a[key], b[key]), key
+            if isinstance(a[key], (np.ndarray, dict)):  # a goal task's observation is a dict
+                assert same_arrays(a[key], b[key]), f"{where}, env {env}: {key}"
             else:
                 assert a[key] == b[key], f"{where}, env {env}: {key} {a[key]} != {b[key]}"
+
+
+def same_arrays(mine: Any, theirs: Any) -> bool:
+    """Whether two arrays, or two dicts of arrays (``Dict`` observations), are equal, dtypes
+    included."""
+    if isinstance(theirs, dict):
+        return mine.keys() == theirs.keys() and all(same_arrays(mine[k], theirs[k]) for k in mine)
+    return mine.dtype == theirs.dtype and np.array_equal(mine, theirs)
 
 
 @pytest.fixture(scope="module")
@@ -75,7 +84,9 @@ def test_adapter_equals_dummy_vec_env_bit_for_bit(world: str, corridor: str) -> 
         assert successes > 0 and crossings > 0
 
 
-@pytest.mark.parametrize("task", TASKS[1:], ids=[task.env_id for task in TASKS[1:]])
+@pytest.mark.parametrize(
+    "task", TASKS[1:] + GOAL_TASKS, ids=[task.env_id for task in TASKS[1:] + GOAL_TASKS]
+)
 def test_adapter_equals_dummy_vec_env_on_every_tier(task: Any) -> None:
     n_envs = 3
     fast = make_vec_env(task.env_id, n_envs, seed=5, monitor=False, max_episode_steps=40)
@@ -83,17 +94,45 @@ def test_adapter_equals_dummy_vec_env_on_every_tier(task: Any) -> None:
         [lambda: gymnasium.make(task.env_id, max_episode_steps=40) for _ in range(n_envs)]
     )
     reference.seed(5)
-    assert np.array_equal(fast.reset(), reference.reset())
+    assert fast.observation_space == reference.observation_space
+    assert same_arrays(fast.reset(), reference.reset())
     rng = np.random.default_rng(5)
     dones = 0
     for step in range(100):
         actions = rng.uniform(-1, 1, (n_envs, 2)).astype(np.float32)
         mine, theirs = fast.step(actions), reference.step(actions)
         for name, a, b in zip(("observations", "rewards", "dones"), mine[:3], theirs[:3]):
-            assert a.dtype == b.dtype and np.array_equal(a, b), f"step {step}: {name}"
+            assert same_arrays(a, b), f"step {step}: {name}"
         assert_same_infos(mine[3], theirs[3], f"step {step}")
         dones += int(mine[2].sum())
     assert dones >= 2 * n_envs  # episodes ended and restarted in new starts and goals
+
+
+def test_her_relabels_through_the_adapter_of_a_goal_task() -> None:
+    from stable_baselines3 import SAC, HerReplayBuffer
+
+    envs = make_vec_env("mazesim/EPuckGoal-v0", 2, seed=0, max_episode_steps=40)
+    model = SAC(
+        "MultiInputPolicy",
+        envs,
+        replay_buffer_class=HerReplayBuffer,
+        learning_starts=100,
+        batch_size=32,
+        policy_kwargs={"net_arch": [16, 16]},
+        seed=0,
+        device="cpu",
+    )
+    model.learn(total_timesteps=200)
+    sample = model.replay_buffer.sample(64)  # relabelled rewards, from compute_reward
+    recomputed = envs.env_method(
+        "compute_reward",
+        sample.next_observations["achieved_goal"].numpy(),
+        sample.observations["desired_goal"].numpy(),
+        None,
+        indices=[0],
+    )[0]
+    assert np.array_equal(sample.rewards.numpy().ravel(), recomputed.astype(np.float32))
+    assert set(np.unique(recomputed)) <= {-1.0, 0.0}
 
 
 def test_ppo_trained_through_the_adapter_gives_the_same_weights() -> None:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -227,3 +228,27 @@ def test_the_folder_lock_is_released_when_the_run_fails(tmp_path: Path) -> None:
         with writing_alone(tmp_path / "a-file", "mazesim train"):
             pass
     assert (tmp_path / "a-file").read_text() == "kept"
+
+
+def test_ctrl_c_in_training_says_how_to_continue_from_the_checkpoint(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    def interrupted(settings: object, folder: RunFolder, **kwargs: object) -> None:
+        if folder.folder.name == "run":  # the first round made its checkpoint
+            (folder.folder / "checkpoint.npz").write_bytes(b"")
+        raise KeyboardInterrupt
+
+    # (mazesim.learn's own `train` is the function: the module is sys.modules' entry.)
+    monkeypatch.setattr(sys.modules["mazesim.learn.train"], "train", interrupted)
+    out = tmp_path / "run"
+    command = ["train", "--out", str(out), "--steps", "1k", "--no-progress"]
+    assert main(command) == 130
+    assert capsys.readouterr().err == (
+        f"mazesim: interrupted; the run's checkpoint is kept in {out}: run the same command "
+        "with --resume to continue it to the tables an uninterrupted run makes\n"
+    )
+    assert main([*command, "--resume"]) == 130
+    assert "run the same command to continue it" in capsys.readouterr().err
+    # Interrupted before the first checkpoint: nothing is kept, nothing to continue.
+    assert main(["train", "--out", str(tmp_path / "early"), "--steps", "1k"]) == 130
+    assert capsys.readouterr().err.endswith("mazesim: interrupted\n")

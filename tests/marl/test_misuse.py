@@ -15,7 +15,7 @@ from gymnasium.error import ClosedEnvironmentError, ResetNeeded  # noqa: E402
 
 import mazesim  # noqa: E402
 from mazesim.envs import EnvClosedError, ResetNeededError  # noqa: E402
-from mazesim.marl import maze_goals_v0  # noqa: E402
+from mazesim.marl import aggregation_v0, maze_goals_v0  # noqa: E402
 
 OPTIONS = {"num_robots": 2, "maze_size": (3, 3), "max_cycles": 10}
 BAD_SEEDS = [-1, 2**64, 1.5, True, "7", [1]]
@@ -43,6 +43,16 @@ def test_a_mistyped_option_names_the_options_and_the_one_meant() -> None:
     message = str(caught.value)
     assert "expected no argument named 'num_robot', found one" in message
     assert "its arguments: num_robots, maze_size, loops, max_cycles" in message
+    assert message.endswith("; did you mean 'num_robots'?")
+
+
+@pytest.mark.parametrize("make", [aggregation_v0.parallel_env, aggregation_v0.batch_env])
+def test_an_option_the_task_does_not_take_is_refused_by_name(make: Any) -> None:
+    with pytest.raises(mazesim.InvalidArgumentError) as caught:
+        make(*([2] if make is aggregation_v0.batch_env else []), num_robot=3, world="arena")
+    message = str(caught.value)
+    assert message.startswith("aggregation_v0: expected no argument named 'num_robot'")
+    assert "its arguments: render_mode, control_step_ms, noise, num_robots, arena_side" in message
     assert message.endswith("; did you mean 'num_robots'?")
 
 

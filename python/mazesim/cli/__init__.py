@@ -231,8 +231,10 @@ def main(argv: Sequence[str] | None = None) -> int:
             file=sys.stderr,
         )
         return EXIT_ERROR
-    except KeyboardInterrupt:
-        print("mazesim: interrupted", file=sys.stderr)
+    except KeyboardInterrupt as interrupted:
+        # A command may say what to do next (how to continue): the interrupt's message.
+        then = f"; {interrupted}" if str(interrupted) else ""
+        print(f"mazesim: interrupted{then}", file=sys.stderr)
         return EXIT_INTERRUPTED
     except BaseException as error:
         # A bug, not the user's doing: one line and how to report it, not a traceback. (pyo3's

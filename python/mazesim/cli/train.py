@@ -144,6 +144,7 @@ def run_train(args: argparse.Namespace, out: TextIO) -> int:
     """Runs ``mazesim train``."""
     from mazesim.learn.checkpoint import RunFolder
     from mazesim.learn.learning_curve import CURVE_FILE, LearningCurve
+    from mazesim.learn.tables import checkpoint_exists
     from mazesim.learn.train import (
         TrainSettings,
         command_line_fields,
@@ -199,10 +200,19 @@ def run_train(args: argparse.Namespace, out: TextIO) -> int:
             f"evaluate it with: mazesim eval --policy {args.out}\n"
         )
         return 0
-    with writing_alone(args.out, "mazesim train", create=not args.resume), curve:
-        with progress_display(args, units=_UNITS) as progress:
-            folder = RunFolder(args.out, resume=args.resume)
-            result = train(settings, folder, progress=progress, curve=curve, robot=robot)
+    try:
+        with writing_alone(args.out, "mazesim train", create=not args.resume), curve:
+            with progress_display(args, units=_UNITS) as progress:
+                folder = RunFolder(args.out, resume=args.resume)
+                result = train(settings, folder, progress=progress, curve=curve, robot=robot)
+    except KeyboardInterrupt:
+        if not checkpoint_exists(Path(args.out)):
+            raise
+        resume = "" if args.resume else " with --resume"
+        raise KeyboardInterrupt(
+            f"the run's checkpoint is kept in {args.out}: run the same command{resume} to "
+            "continue it to the tables an uninterrupted run makes"
+        ) from None
     if result is None:
         return 0
     seconds = time.perf_counter() - started

@@ -69,8 +69,8 @@ class Task:
             ``control_step_ms``: 128 ms for tiers 1 to 3 of version 1).
         options: The env options that make the task (see ``EnvOptions.create``).
         entry_point: The single env's class.
-        vector_entry_point: The native vector env's class, or None (``make_vec`` then runs
-            gymnasium's ``SyncVectorEnv``).
+        vector_entry_point: The native vector env's class (every registered task has one), or
+            None (``make_vec`` then runs gymnasium's ``SyncVectorEnv``).
         reward_threshold: The mean episode return gymnasium's spec calls solved: the goal
             bonus of the default reward (:class:`~mazesim.envs.RewardWeights`, 10). An episode
             that reaches the goal earns the bonus plus the progress along the shortest path
@@ -158,6 +158,7 @@ TASKS: tuple[Task, ...] = (
 
 
 _GOAL_ENV = "mazesim.envs.goal:MazeGoalEnv"
+_GOAL_VECTOR_ENV = "mazesim.envs.goal:MazeGoalVectorEnv"
 
 #: The goal-conditioned tasks (:mod:`mazesim.envs.goal`): the sparse reward (0 at the goal, -1
 #: elsewhere; a solved episode returns more than -``max_episode_steps``) and the dense one (minus
@@ -171,7 +172,7 @@ GOAL_TASKS: tuple[Task, ...] = tuple(
         {**options, "reward_type": reward_type},
         reward_threshold=None,
         entry_point=_GOAL_ENV,
-        vector_entry_point=None,
+        vector_entry_point=_GOAL_VECTOR_ENV,
     )
     for env_id, tier, summary, steps, options, reward_type in (
         (

@@ -216,6 +216,12 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         navigation features)."""
         return list(self._layout.names if self._features is None else self._features.names)
 
+    @property
+    def goal_discs(self) -> npt.NDArray[np.float64]:
+        """(N, 3): x, y and radius (metres) of each environment's goal disc in its current
+        episode; a NaN row for an environment whose world has no goal."""
+        return self._open_batch().goals()
+
     def reset(
         self,
         *,

@@ -41,10 +41,14 @@ from stable_baselines3.common.vec_env.base_vec_env import (  # noqa: E402
     VecEnvStepReturn,
 )
 
+from mazesim.envs.goal import MazeGoalVectorEnv  # noqa: E402
 from mazesim.envs.vector import EPuckMazeVectorEnv  # noqa: E402
 
 __all__ = ["MazesimVecEnv", "make_vec_env"]
 
+#: The native vector envs: of the maze tasks, and of the goal-conditioned ones (``Dict``
+#: observations, whose ``compute_reward`` HER calls through ``env_method``).
+_NATIVE = (EPuckMazeVectorEnv, MazeGoalVectorEnv)
 #: The keys of every per-environment info, in the single env's order.
 _INFO_KEYS = ("pose", "collisions", "colliding", "distance_to_goal", "is_success")
 #: The vector env's methods that act on every environment at once, which ``env_method`` (a call
@@ -126,7 +130,7 @@ def make_vec_env(
         **keywords,
     )
     native = vector.unwrapped
-    if not isinstance(native, EPuckMazeVectorEnv):
+    if not isinstance(native, _NATIVE):
         raise InvalidArgumentError(f"expected a mazesim task, found {env_id!r}")
     venv: VecEnv = MazesimVecEnv(native)
     if seed is not None:
@@ -140,7 +144,8 @@ def make_vec_env(
 
 
 class MazesimVecEnv(VecEnv):
-    """An SB3 ``VecEnv`` over a native :class:`~mazesim.envs.EPuckMazeVectorEnv`.
+    """An SB3 ``VecEnv`` over a native :class:`~mazesim.envs.EPuckMazeVectorEnv` (or
+    :class:`~mazesim.envs.goal.MazeGoalVectorEnv`, a goal-conditioned task's).
 
     Args:
         vector_env: The native vector env, made with ``autoreset_mode=AutoresetMode.SAME_STEP``.
@@ -149,10 +154,11 @@ class MazesimVecEnv(VecEnv):
         InvalidArgumentError: The vector env is not native or does not reset in the same step.
     """
 
-    def __init__(self, vector_env: EPuckMazeVectorEnv) -> None:
-        if not isinstance(vector_env, EPuckMazeVectorEnv):
+    def __init__(self, vector_env: EPuckMazeVectorEnv | MazeGoalVectorEnv) -> None:
+        if not isinstance(vector_env, _NATIVE):
             raise InvalidArgumentError(
-                f"expected a mazesim EPuckMazeVectorEnv, found {type(vector_env).__name__}"
+                "expected a mazesim EPuckMazeVectorEnv or MazeGoalVectorEnv, found "
+                f"{type(vector_env).__name__}"
             )
         if vector_env.autoreset_mode != AutoresetMode.SAME_STEP:
             raise InvalidArgumentError(

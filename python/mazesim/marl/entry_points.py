@@ -4,6 +4,7 @@ batch)."""
 
 from __future__ import annotations
 
+import inspect
 from collections.abc import Callable
 from typing import Any, NamedTuple
 
@@ -12,6 +13,7 @@ from pettingzoo.utils.conversions import parallel_to_aec_wrapper
 from pettingzoo.utils.wrappers import OrderEnforcingWrapper
 
 from mazesim.envs.errors import ResetNeededError
+from mazesim.errors import InvalidArgumentError, _closest_name
 from mazesim.marl.batch import MultiRobotBatch
 from mazesim.marl.parallel import MultiRobotParallelEnv
 from mazesim.marl.tasks import MultiRobotTask
@@ -65,7 +67,41 @@ def entry_points(task: Callable[..., MultiRobotTask]) -> EntryPoints:
             threads=threads,
         )
 
+    # The functions above call the checked task (a closure's name is looked up at each call).
+    task = _refusing_unknown_options(task, parallel_env)
     return EntryPoints(parallel_env, raw_env, env, batch_env)
+
+
+def _refusing_unknown_options(
+    task: Callable[..., MultiRobotTask], parallel_env: Callable[..., Any]
+) -> Callable[..., MultiRobotTask]:
+    """``task``, refusing an option it does not take with
+    :class:`~mazesim.errors.InvalidArgumentError` naming the options of ``parallel_env`` (its
+    own keywords and the task's) and the one meant, for a typo, rather than Python's
+    ``TypeError``. A ``task`` that passes any keyword on (``**rewards``) leaves those to the
+    rules' own check."""
+    parameters = inspect.signature(task).parameters.values()
+    if any(p.kind is p.VAR_KEYWORD for p in parameters):
+        return task
+    names = [p.name for p in parameters]
+    own = [
+        p.name
+        for p in inspect.signature(parallel_env).parameters.values()
+        if p.kind is not p.VAR_KEYWORD
+    ]
+    where = task.__module__.rsplit(".", 1)[-1]
+
+    def checked_task(**options: Any) -> MultiRobotTask:
+        for name in options:
+            if name not in names:
+                meant = _closest_name(name, own + names)
+                raise InvalidArgumentError(
+                    f"{where}: expected no argument named {name!r}, found one; its arguments: "
+                    f"{', '.join(own + names)}" + (f"; did you mean {meant!r}?" if meant else "")
+                )
+        return task(**options)
+
+    return checked_task
 
 
 class _OrderEnforcing(OrderEnforcingWrapper[Any, Any, Any]):

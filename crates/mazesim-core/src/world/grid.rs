@@ -33,6 +33,10 @@ pub struct GridProblem {
     pub message: String,
 }
 
+/// What a drawing's misplaced character is told: where corners and side walls go.
+const CELL_WIDTH: &str = " (each cell is three characters wide: corners '+' and side walls '|' at \
+every third column, from the first)";
+
 fn problem(row: usize, column: usize, message: impl Into<String>) -> GridProblem {
     GridProblem {
         row,
@@ -105,11 +109,12 @@ impl CellMaze {
                         matches!(ch, '-' | ' ')
                     };
                     if !ok {
-                        return Err(problem(
-                            at,
-                            x,
-                            format!("expected '+', '-' or a space in a wall row, found {ch:?}"),
-                        ));
+                        let expected = if x % 3 == 0 {
+                            "'+', '-', '|' or a space at a corner of a wall row".to_string()
+                        } else {
+                            format!("'-' or a space in a wall row between corners{CELL_WIDTH}")
+                        };
+                        return Err(problem(at, x, format!("expected {expected}, found {ch:?}")));
                     }
                 }
                 for c in 0..cols {
@@ -124,7 +129,9 @@ impl CellMaze {
                             return Err(problem(
                                 at,
                                 x,
-                                format!("expected '|' or a space between cells, found {ch:?}"),
+                                format!(
+                                    "expected '|' or a space between cells{CELL_WIDTH}, found {ch:?}"
+                                ),
                             ));
                         }
                         maze.vertical[r * (cols + 1) + x / 3] = ch == '|';
@@ -135,14 +142,24 @@ impl CellMaze {
                             'S' if maze.start.is_none() => maze.start = Some(cell),
                             'G' if maze.goal.is_none() => maze.goal = Some(cell),
                             'S' | 'G' => {
-                                return Err(problem(at, x, format!("a second {ch:?} marker: only one is allowed")))
-                            }
-                            _ => {
                                 return Err(problem(
                                     at,
                                     x,
-                                    format!("expected a space, 'S' (start) or 'G' (goal) inside a cell, found {ch:?}"),
+                                    format!("a second {ch:?} marker: only one is allowed"),
                                 ))
+                            }
+                            _ => {
+                                // A wall's character inside a cell: the row is shifted.
+                                let shifted = if matches!(ch, '|' | '+' | '-') {
+                                    CELL_WIDTH
+                                } else {
+                                    ""
+                                };
+                                return Err(problem(
+                                    at,
+                                    x,
+                                    format!("expected a space, 'S' (start) or 'G' (goal) inside a cell{shifted}, found {ch:?}"),
+                                ));
                             }
                         }
                     }

@@ -129,15 +129,25 @@ pub struct GoalSpec {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct GridSpec {
-    /// Side of a cell in metres.
+    /// Side of a cell in metres; by default the generated mazes' (0.25).
+    #[serde(default = "grid_cell_size")]
     pub cell_size: Positive,
-    /// Wall thickness in metres.
+    /// Wall thickness in metres; by default the generated mazes' (0.01).
+    #[serde(default = "grid_wall_thickness")]
     pub wall_thickness: Positive,
     /// World position of the south-west corner.
     #[serde(default = "origin")]
     pub origin: Point,
     /// The maze drawing (see the format document).
     pub map: toml::Spanned<String>,
+}
+
+fn grid_cell_size() -> Positive {
+    Positive(crate::generator::MazeParams::default().cell_size)
+}
+
+fn grid_wall_thickness() -> Positive {
+    Positive(crate::generator::MazeParams::default().wall_thickness)
 }
 
 fn origin() -> Point {

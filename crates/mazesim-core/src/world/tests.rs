@@ -316,3 +316,26 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn a_grid_without_its_sizes_has_the_generated_mazes_cells_and_walls() {
+    let map = "map = \"\"\"\n+--+--+\n|S  G |\n+--+--+\n\"\"\"\n";
+    let drawn = parse(&format!("[grid]\n{map}")).unwrap();
+    let sized = parse(&format!(
+        "[grid]\ncell_size = 0.25\nwall_thickness = 0.01\n{map}"
+    ))
+    .unwrap();
+    assert_eq!(drawn, sized);
+    let other = parse(&format!("[grid]\ncell_size = 0.3\n{map}")).unwrap();
+    assert_ne!(drawn, other);
+}
+
+#[test]
+fn a_misaligned_grid_row_says_how_wide_a_cell_is() {
+    let (line, field, message) =
+        format_error("[grid]\nmap = \"\"\"\n+--+--+\n|S   G|\n+--+-+\n\"\"\"\n");
+    assert_eq!((line, field.as_str()), (7, "grid.map"));
+    assert!(message.contains("between corners"), "{message}");
+    assert!(message.contains("three characters wide"), "{message}");
+    assert!(message.ends_with("found '+'"), "{message}");
+}
