@@ -288,7 +288,8 @@ class Bridge:
                     "lockstep: no command %g s after the reset state though %s has a publisher; "
                     "publishing the reset state again every %g s until a command comes (a "
                     "controller whose first command went out before the bridge listened, or "
-                    "that answers only from its second message, gets another)",
+                    "that answers only from its second message, gets another; one still busy "
+                    "with the first that then answers every message would run a step behind)",
                     RESEND_S,
                     connected[0].resolved_name,
                     RESEND_S,

@@ -354,8 +354,10 @@ class Ros2Bridge:
                 "reset state again, every "
                 f"{RESEND_S:g} s until a command comes (a node that answers only from its "
                 "second message, or whose first command went out before it matched, gets "
-                "another). A node that waits for simulated time (a timer or sleep on /clock) "
-                "before its first command cannot start in lockstep: run it with --mode free",
+                "another; one still busy with the first that then answers every message would "
+                "run a step behind). A node that waits for simulated time (a timer or sleep on "
+                "/clock) before its first command cannot start in lockstep: run it with --mode "
+                "free",
                 file=sys.stderr,
                 flush=True,
             )
