@@ -6,9 +6,14 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
+from typing import Any
 
 from mazesim.webots import controller, import_wbt, prepare
+from mazesim.webots.lockstep import run_world
 from mazesim.webots.scene import read_scene
+
+#: The tests' Webots project of worlds of several robots.
+SWARM = Path(__file__).resolve().parent / "data" / "webots-swarm"
 
 #: An e-puck supervisor at the origin facing +x; a static wall (GATE) 0.1 m ahead; a light box
 #: with physics (BOX, a movable body) off to the side, inside a Pose.
@@ -56,3 +61,22 @@ def drive(supervisor: controller.Supervisor, speed: float, steps: int) -> None:
         motor.setVelocity(speed)
     for _ in range(steps):
         assert supervisor.step(32) != -1
+
+
+def front(supervisor: controller.Supervisor) -> float:
+    """The sum of the e-puck's two front proximity readings after one step."""
+    sensors = [supervisor.getDevice(name) for name in ("ps0", "ps7")]
+    for sensor in sensors:
+        sensor.enable(32)
+    supervisor.step(32)
+    return float(sum(sensor.getValue() for sensor in sensors))
+
+
+def run_test_world(name: str, log: Path, monkeypatch: Any) -> list[Any]:
+    """Runs the tests' Webots world ``name`` for 3 s, its controllers logging into ``log``
+    (``monkeypatch``: pytest's, which sets ``SWARM_LOG``): what each robot did, every
+    controller having ended well."""
+    monkeypatch.setenv("SWARM_LOG", str(log))
+    robots = run_world(str(SWARM / "worlds" / name), seconds=3.0).robots
+    assert [r.exit_status for r in robots] == [0] * len(robots)
+    return list(robots)

@@ -419,6 +419,16 @@ class Simulator:
             InvalidArgumentError: An index past the walls or bodies, or a pose beyond the
                 limits; nothing moved.
         """
+    def change_world(self, world: World) -> None:
+        """Runs on in ``world`` from the next step on, as a Webots supervisor imports nodes into
+        the running world or removes some: its walls are met and sensed, every robot keeping its
+        pose, velocities, encoders, noise stream, clock and counters; a movable body both worlds
+        hold goes on where it is, a new one starts at rest. ``world`` is what ``reset_scene``
+        puts back.
+
+        Raises:
+            InvalidArgumentError: ``world`` holds another number of robots.
+        """
     def reset_scene(self) -> None:
         """Puts the scene back as the world was made, as a Webots supervisor's
         ``simulationReset`` does: every robot at its start, the walls ``move_solid`` moved where

@@ -107,6 +107,12 @@ INSTANCES: dict[str, str] = {
         "__import__('mazesim.webots.solids', fromlist=['x']).WorldSolids("
         "[mazesim.Simulator(world)], {})"
     ),
+    # The changes a supervisor makes to the running world of a world file.
+    "mazesim.webots.scene_edits.SceneEdits": (
+        "(lambda w: w.scene_edits.SceneEdits(w.simulation.prepare(world,"
+        " report={'path': 'tests/data/webots-worlds/e-puck.R2023b.wbt'})))("
+        "__import__('mazesim.webots', fromlist=['scene_edits', 'simulation']))"
+    ),
     # A recogniser of a camera with Webots' default Recognition node, over no object.
     "mazesim.webots.recognition.Recogniser": (
         "__import__('mazesim.webots.recognition', fromlist=['x']).Recogniser("

@@ -298,7 +298,7 @@ def test_supervisor_reads_and_sets_the_robots_fields(capsys: pytest.CaptureFixtu
     assert children.getCount() == 1 and children.getTypeName() == "MFNode"
     assert children.getMFNode(0) is me and children.getMFNode(-1) is me, "a mazesim world"
     children.importMFNodeFromString(-1, "Solid {}")
-    assert "importMFNodeFromString() on field 'children'" in capsys.readouterr().err
+    assert "the run's world is no Webots world file" in capsys.readouterr().err
     assert children.getCount() == 1
     supervisor.simulationQuit(5)
     assert supervisor.step(32) == -1 and simulations.current().quit_status == 5

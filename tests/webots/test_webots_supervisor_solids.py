@@ -14,21 +14,9 @@ import pytest
 
 from mazesim.webots import controller, import_wbt
 from mazesim.webots import simulation as simulations
-from mazesim.webots.lockstep import run_world
-from supervised_world import WORLD, drive, supervisor_of
-
-SWARM = Path(__file__).resolve().parent.parent / "data" / "webots-swarm"
+from supervised_world import WORLD, drive, front, run_test_world, supervisor_of
 
 pytestmark = pytest.mark.usefixtures("fresh_robot")
-
-
-def front(supervisor: controller.Supervisor) -> float:
-    """The sum of the e-puck's two front proximity readings after one step."""
-    sensors = [supervisor.getDevice(name) for name in ("ps0", "ps7")]
-    for sensor in sensors:
-        sensor.enable(32)
-    supervisor.step(32)
-    return float(sum(sensor.getValue() for sensor in sensors))
 
 
 def test_the_import_report_says_which_nodes_hold_each_obstacle_and_body(tmp_path: Path) -> None:
@@ -126,15 +114,6 @@ def test_the_same_seed_gives_the_same_run(tmp_path: Path) -> None:
     first, second = _trial(tmp_path), _trial(tmp_path)
     assert np.array_equal(np.array(first, dtype=object), np.array(second, dtype=object))
     assert first[-1][1][0] > 0.1, "the box was pushed"
-
-
-def run_test_world(name: str, log: Path, monkeypatch: pytest.MonkeyPatch) -> list[Any]:
-    """Runs the tests' Webots world ``name`` for 3 s, its controllers logging into ``log``:
-    what each robot did, every controller having ended well."""
-    monkeypatch.setenv("SWARM_LOG", str(log))
-    robots = run_world(str(SWARM / "worlds" / name), seconds=3.0).robots
-    assert [r.exit_status for r in robots] == [0] * len(robots)
-    return list(robots)
 
 
 def test_a_supervisor_robot_moves_a_gate_and_a_box_of_a_world_of_several_robots(

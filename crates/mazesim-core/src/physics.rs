@@ -92,6 +92,34 @@ fn wall(w: &WallBox) -> ColliderBuilder {
         .restitution(0.0)
 }
 
+/// Inserts movable body `m` into `world` at its start, at rest: its body, its collider and its
+/// reflectance.
+fn movable(world: &mut PhysicsWorld, m: &MovableBody) -> (RigidBodyHandle, ColliderHandle, f32) {
+    let damping = m.friction as f32 * FLOOR_DAMPING_PER_FRICTION;
+    let [x, y, yaw] = m.start.map(|v| v as f32);
+    let rigid = RigidBodyBuilder::dynamic()
+        .translation(Vector::new(x, y))
+        .rotation(yaw)
+        .linear_damping(damping)
+        .angular_damping(damping)
+        .can_sleep(false)
+        .build();
+    let handle = world.bodies.insert(rigid);
+    let shape = match m.shape {
+        BodyShape::Box { half } => ColliderBuilder::cuboid(half[0] as f32, half[1] as f32),
+        BodyShape::Circle { radius } => ColliderBuilder::ball(radius as f32),
+    };
+    let collider = shape
+        .mass(m.mass as f32)
+        .friction(0.0)
+        .friction_combine_rule(CoefficientCombineRule::Min)
+        .restitution(0.0);
+    let collider = world
+        .colliders
+        .insert_with_parent(collider, handle, &mut world.bodies);
+    (handle, collider, m.reflectance as f32)
+}
+
 impl Scene {
     /// Rapier's world of `walls`, the balls of `robots` (radius and pose of each) and the movable
     /// `bodies`, made in that order.
@@ -128,37 +156,7 @@ impl Scene {
                 robot
             })
             .collect();
-        let movables = bodies
-            .iter()
-            .map(|m| {
-                let damping = m.friction as f32 * FLOOR_DAMPING_PER_FRICTION;
-                let [x, y, yaw] = m.start.map(|v| v as f32);
-                let rigid = RigidBodyBuilder::dynamic()
-                    .translation(Vector::new(x, y))
-                    .rotation(yaw)
-                    .linear_damping(damping)
-                    .angular_damping(damping)
-                    .can_sleep(false)
-                    .build();
-                let handle = world.bodies.insert(rigid);
-                let shape = match m.shape {
-                    BodyShape::Box { half } => {
-                        ColliderBuilder::cuboid(half[0] as f32, half[1] as f32)
-                    }
-                    BodyShape::Circle { radius } => ColliderBuilder::ball(radius as f32),
-                };
-                let collider = shape
-                    .mass(m.mass as f32)
-                    .friction(0.0)
-                    .friction_combine_rule(CoefficientCombineRule::Min)
-                    .restitution(0.0);
-                let collider =
-                    world
-                        .colliders
-                        .insert_with_parent(collider, handle, &mut world.bodies);
-                (handle, collider, m.reflectance as f32)
-            })
-            .collect();
+        let movables = bodies.iter().map(|m| movable(&mut world, m)).collect();
         Scene {
             world,
             walls,
@@ -182,6 +180,33 @@ impl Scene {
         self.walls = walls
             .iter()
             .map(|w| world.colliders.insert(wall(w)))
+            .collect();
+    }
+
+    /// Takes `bodies` in place of the movable bodies: body `i` is the running body `kept[i]`
+    /// where it is given (its pose and motion go on), else a new one at its start, at rest; the
+    /// running bodies that none keeps are taken out.
+    fn replace_movables(&mut self, bodies: &[MovableBody], kept: &[Option<usize>]) {
+        let running = std::mem::take(&mut self.movables);
+        let world = &mut self.world;
+        for (i, &(handle, _, _)) in running.iter().enumerate() {
+            if !kept.contains(&Some(i)) {
+                world.bodies.remove(
+                    handle,
+                    &mut world.islands,
+                    &mut world.colliders,
+                    &mut world.impulse_joints,
+                    &mut world.multibody_joints,
+                    &mut world.soft_bodies,
+                    true,
+                );
+            }
+        }
+        self.movables = (bodies.iter().zip(kept))
+            .map(|(m, k)| match k {
+                Some(i) => running[*i],
+                None => movable(world, m),
+            })
             .collect();
     }
 
@@ -397,6 +422,27 @@ impl Body {
     pub fn replace_walls(&mut self, walls: &[WallBox]) {
         if let Some(scene) = self.scene.as_mut() {
             scene.replace_walls(walls);
+        }
+    }
+
+    /// Takes `bodies` as the movable bodies of the scene this body holds (see the scene's
+    /// `replace_movables`: `kept` names the running body each one is, if any). A body of its
+    /// own without a scene gets one, among `walls`, when `bodies` is not empty: from then on
+    /// rapier moves it, as in a world made with movable bodies. A body that follows a shared
+    /// scene has nothing to do.
+    pub fn replace_movables(
+        &mut self,
+        walls: &[WallBox],
+        bodies: &[MovableBody],
+        kept: &[Option<usize>],
+    ) {
+        match self.scene.as_mut() {
+            Some(scene) => scene.replace_movables(bodies, kept),
+            None if !self.shared && !bodies.is_empty() => {
+                let robot = [(self.radius, self.pose)];
+                self.scene = Some(Box::new(Scene::new(walls, bodies, &robot, self.dt)));
+            }
+            None => {}
         }
     }
 

@@ -500,6 +500,17 @@ impl PySimulator {
         self.swarm(|s| s.move_solid(&walls, &bodies, motion))?.py()
     }
 
+    /// Runs on in `world` from the next step on, as a Webots supervisor imports nodes into the
+    /// running world or removes some: its walls are met and sensed, every robot keeping its
+    /// pose, velocities, encoders, noise stream, clock and counters; a movable body both worlds
+    /// hold goes on where it is, a new one starts at rest. `world` is what a `reset_scene` puts
+    /// back. Refused when `world` holds another number of robots.
+    #[pyo3(text_signature = "($self, world)")]
+    fn change_world(&self, world: &Bound<'_, PyAny>) -> PyResult<()> {
+        let world = world_argument(world, "world")?;
+        self.swarm(|s| s.change_world(world))?.py()
+    }
+
     /// Puts the scene back as the world was made, as a Webots supervisor's `simulationReset`
     /// does: every robot at its start, the walls `move_solid` moved where the world has them and
     /// every movable body at its start, all at rest, and every robot's noise stream started again

@@ -357,7 +357,7 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
         save_robot_paths_png(world, paths, picture, title=title)
         write_paths_table(table, paths, step_s)
     else:
-        save_trajectory_png(world, result.xs, result.ys, picture, title=title)
+        save_trajectory_png(result.world, result.xs, result.ys, picture, title=title)
         with atomic_file(table) as handle:
             points = enumerate(zip(result.xs, result.ys))
             rows = (f"{i * step_s:.3f},{x:.5f},{y:.5f}" for i, (x, y) in points)

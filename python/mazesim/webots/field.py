@@ -25,14 +25,13 @@ __all__ = ["Field"]
 
 
 def _refuse_scene_change(call: str) -> None:
-    """Prints the refusal of a call that adds nodes to the running world or removes them (as
-    Webots prints the error of a call it cannot carry out, and the controller goes on)."""
+    """Prints the refusal of a call that would add a node to the running world or remove one
+    elsewhere than in the scene tree root's ``children`` (as Webots prints the error of a call
+    it cannot carry out, and the controller goes on)."""
     _print_error(
-        f"Error: {call} is not supported by mazesim: it would add or remove a node of the "
-        "running world, and mazesim's simulator is built from the world file when it is "
-        "imported and takes no body in or out during a run; nothing changed. A supervisor "
-        "moves the world's robots, walls and movable bodies by the translation and rotation "
-        "fields of their nodes: to take one out of the robots' way, move it far from them."
+        f"Error: {call} is not supported by mazesim: a supervisor imports nodes into the "
+        "scene tree root's children field and removes nodes from it, not elsewhere; nothing "
+        "changed."
     )
 
 
@@ -132,28 +131,57 @@ class Field(NotSimulated):
         return self._node._field_nodes.get(self._name)
 
     def importMFNodeFromString(self, position: int, nodeString: str) -> None:
-        """Webots' kind of error: mazesim adds no nodes to a running world."""
-        _refuse_scene_change(f"Field.importMFNodeFromString() on {self._where()}")
+        """Imports the nodes of ``nodeString`` into the running world at ``position`` of the
+        root's ``children`` (-1: at the end), as the world file's nodes are imported; the robot
+        meets them from the next step on (:mod:`mazesim.webots.scene_edits`). Webots' kind of
+        error, nothing changed, for another field or nodes mazesim does not add in a run."""
+        tree = self._tree("importMFNodeFromString")
+        if tree is not None:
+            tree._import_nodes(position, str(nodeString), "importMFNodeFromString()")
 
     def importSFNodeFromString(self, nodeString: str) -> None:
-        """Webots' kind of error: mazesim adds no nodes to a running world."""
+        """Webots' kind of error: mazesim sets no node into a single-node field in a run."""
         _refuse_scene_change(f"Field.importSFNodeFromString() on {self._where()}")
 
     def importMFNode(self, position: int, filename: str) -> None:
-        """Webots' kind of error: mazesim adds no nodes to a running world (an older name)."""
-        _refuse_scene_change(f"Field.importMFNode() on {self._where()}")
+        """Imports the nodes of a ``.wbo`` file as :meth:`importMFNodeFromString` does (an
+        older name)."""
+        tree = self._tree("importMFNode")
+        if tree is None:
+            return
+        try:
+            with open(filename, encoding="utf-8", errors="replace") as handle:
+                text = handle.read()
+        except OSError as failure:
+            _print_error(f"Error: importMFNode(): cannot read '{filename}': {failure}.")
+            return
+        tree._import_nodes(position, text, "importMFNode()")
 
     def importSFNode(self, filename: str) -> None:
-        """Webots' kind of error: mazesim adds no nodes to a running world (an older name)."""
+        """Webots' kind of error: mazesim sets no node into a single-node field in a run."""
         _refuse_scene_change(f"Field.importSFNode() on {self._where()}")
 
     def removeMF(self, index: int) -> None:
-        """Webots' kind of error: mazesim removes no nodes from a running world."""
-        _refuse_scene_change(f"Field.removeMF() on {self._where()}")
+        """Removes the node at ``index`` of the root's ``children`` from the running world, as
+        ``Node.remove()`` does; Webots' kind of error for another field."""
+        tree = self._tree("removeMF")
+        if tree is None:
+            return
+        node = self.getMFNode(index)
+        if node is not None:
+            tree._remove_node(node, "wb_supervisor_field_remove_mf()")
 
     def removeSF(self) -> None:
-        """Webots' kind of error: mazesim removes no nodes from a running world."""
+        """Webots' kind of error: mazesim removes no node of a single-node field in a run."""
         _refuse_scene_change(f"Field.removeSF() on {self._where()}")
+
+    def _tree(self, call: str) -> Any:
+        """The supervisor whose root's ``children`` the field is, or None after printing the
+        refusal of ``call`` on another field."""
+        tree = self._node._tree if self._name == "children" else None
+        if tree is None:
+            _refuse_scene_change(f"Field.{call}() on {self._where()}")
+        return tree
 
     def _where(self) -> str:
         """The field and its node, as a refusal names them."""

@@ -58,9 +58,9 @@ from mazesim.webots.rays import WallBoxes
 from mazesim.webots.requirements import PreparedController, prepare_controller, unbuilt
 from mazesim.webots.runner import CONTROLLER_SUFFIXES, EXIT_INTERRUPTED
 from mazesim.webots.scene import Scene, read_scenes
-from mazesim.webots.shared_world import RobotView, shared_simulator
+from mazesim.webots.shared_world import RobotView, shared_simulator, with_robots_of
 from mazesim.webots.simulation import WorldReset, place_where_asked, robot_profile_name
-from mazesim.webots.solids import Pose2, WorldSolids
+from mazesim.webots.solids import Pose2, WorldSolids, carried_over
 from mazesim.webots.stock_controllers import stock_controller
 from mazesim.webots.traction import Traction, epuck_traction
 from mazesim.webots.virtual_display import virtual_display, window_environment
@@ -172,6 +172,8 @@ class Fleet:
     ) -> None:
         self._robots = robots
         self._simulators = simulators
+        #: The world file (the import report's ``path``), which a supervisor's changes edit.
+        self._path = str((report or {}).get("path") or "")
         self.moved: set[int] = set()
         #: The world's walls and movable bodies (``report``: the world's import report).
         self.solids = WorldSolids(self._worlds(), report or {})
@@ -262,6 +264,34 @@ class Fleet:
         """Moves what the node on ``line`` holds, in every simulator that holds the world's
         walls and bodies (see :meth:`~mazesim.webots.solids.WorldSolids.move_node`)."""
         self.solids.move_node(line, from_pose, to_pose)
+
+    def change_world(self, text: str) -> None:
+        """Runs on in the world of ``text`` (the world file as a supervisor changed it: see
+        :mod:`mazesim.webots.scene_edits`) in every simulator that holds the world's walls and
+        bodies, each imported as its own was.
+
+        Raises:
+            MazesimError: The text is no world the importer reads, or it holds other robots or
+                movable bodies; nothing changed.
+        """
+        from mazesim.webots.importer import import_wbt_text
+
+        world, report = import_wbt_text(text, self._path)
+        shared = {id(s.simulator) for s in self._simulators if isinstance(s, RobotView)}
+        own = {
+            id(simulator): robot
+            for simulator, robot in zip(self._simulators, self._robots)
+            if not isinstance(simulator, RobotView)
+        }
+        simulators, worlds = self._worlds(), []
+        for simulator in simulators:
+            if id(simulator) in shared:
+                worlds.append(with_robots_of(world, simulator.world))
+                continue
+            robot = own[id(simulator)]
+            changed, _ = import_wbt_text(text, self._path, robot_line=int(robot["line"]))
+            worlds.append(changed if robot.get("profile") else _without_walls(changed))
+        self.solids = carried_over(self.solids, simulators, worlds, report)
 
 
 def controller_of(
@@ -378,7 +408,7 @@ def run_world(
         index: replace(job, prepared=replace(prepared[job.controller], virtual_display=False))
         for index, job in jobs.items()
     }
-    fleet = Fleet(robots, simulators, report)
+    fleet = Fleet(robots, simulators, dict(report, path=os.path.abspath(world_path)))
     # The walls (where a supervisor moved them), the robots' bodies and the movable bodies
     # stop infra-red packets.
     fleet.radio.sight = LineOfSight(WallBoxes(world), robot_body_radii(report), report, fleet)
@@ -501,11 +531,15 @@ def _own_simulator(
     own_world, _ = import_wbt(world_path, robot_line=int(robot["line"]))
     if robot.get("profile") is not None:
         return Simulator(own_world, robot=profile, seed=seed, noise=noise)
-    source = f"{own_world.name} (without walls)"
-    layout = load_toml(own_world.to_toml(), source)
+    return Simulator(_without_walls(own_world), robot=profile, seed=seed, noise=noise)
+
+
+def _without_walls(world: World) -> World:
+    """``world`` without its walls and movable bodies (a robot that is not an e-puck's)."""
+    source = f"{world.name} (without walls)"
+    layout = load_toml(world.to_toml(), source)
     text = dump_toml({key: value for key, value in layout.items() if key not in _SOLID_TABLES})
-    bare = World.from_toml(text, source=source)
-    return Simulator(bare, robot=profile, seed=seed, noise=noise)
+    return World.from_toml(text, source=source)
 
 
 def _say_what_is_missing(

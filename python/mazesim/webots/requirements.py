@@ -84,7 +84,7 @@ MOTOR_LIMITS = (
     "an imported E-puck's body starts"
 )
 #: Supervisor calls that add nodes to the running world or remove them (the Python and C++
-#: names, then the C API's; Webots reference manual, Supervisor), which mazesim refuses; and
+#: names, then the C API's; Webots reference manual, Supervisor), which mazesim does in part; and
 #: ``Node.remove()`` (``node->remove()`` in C++), a ``remove`` call without arguments.
 _SCENE_CHANGES = re.compile(
     r"\b(importMFNodeFromString|importSFNodeFromString|importMFNode|importSFNode|removeMF|"
@@ -96,9 +96,10 @@ _SCENE_CHANGES = re.compile(
 )
 #: The statement for a controller that makes those calls.
 SCENE_CHANGES = (
-    "adding nodes to the running world or removing them ({calls}): mazesim's simulator is "
-    "built from the world file when it is imported and takes no body in or out during a run, "
-    "so these calls print an error and change nothing"
+    "adding nodes to the running world or removing them ({calls}): mazesim imports nodes "
+    "into the scene tree root's children and removes top-level nodes, but not robots: "
+    "importing or removing a robot, and a change of another field, print an error and change "
+    "nothing"
 )
 #: Lidar and RangeFinder readings (the Python and C++ names, then the C API's; Webots reference
 #: manual, Lidar and RangeFinder), which mazesim does not simulate.

@@ -51,7 +51,8 @@ class ControllerRun:
     """What a controller run did.
 
     Attributes:
-        world: The world it ran in.
+        world: The world it ran in, as a supervisor left it (with the nodes it imported, without
+            those it removed).
         controller: The controller file.
         simulated_seconds: Simulated time at the end.
         steps: Basic time steps simulated.
@@ -322,7 +323,7 @@ def _outcome(
     no step)."""
     simulator = simulation.simulator
     return ControllerRun(
-        world=world,
+        world=simulation.world if simulation.scene_edits is not None else world,
         controller=file,
         simulated_seconds=float(simulator.time),
         steps=simulation.steps,

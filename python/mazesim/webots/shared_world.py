@@ -20,7 +20,7 @@ from mazesim._core import RobotProfile, Simulator, World
 from mazesim._toml import dump_toml, load_toml
 from mazesim.errors import MazesimError
 
-__all__ = ["RobotView", "shared_simulator"]
+__all__ = ["RobotView", "shared_simulator", "with_robots_of"]
 
 
 class RobotView:
@@ -147,6 +147,16 @@ def shared_simulator(
     except MazesimError as refusal:
         return None, str(refusal)
     return simulator, ""
+
+
+def with_robots_of(world: World, running: World) -> World:
+    """``world`` (a world file imported again, as a supervisor changed it) with the robots of
+    ``running``, the world of the simulator :func:`shared_simulator` made."""
+    source = running.name
+    layout = load_toml(world.to_toml(), source)
+    layout.pop("start", None)
+    layout["robots"] = load_toml(running.to_toml(), source).get("robots", [])
+    return World.from_toml(dump_toml(layout), source=source)
 
 
 def _built(

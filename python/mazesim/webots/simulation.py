@@ -172,6 +172,8 @@ class RobotSimulation:
         world_over: Whether the world's run is over (a supervisor of another robot quit it).
         solids: The world's walls and movable bodies as a supervisor moves them, in a run of
             one robot (None until :func:`~mazesim.webots.solids.world_objects` is asked).
+        scene_edits: The nodes a supervisor imported into the running world or removed from it
+            (:class:`~mazesim.webots.scene_edits.SceneEdits`; None until its first change).
         reset_listeners: Called when the world's reset reaches this robot, at the end of a
             step (the devices' and a supervisor's nodes' own restarts).
         paused: Whether a supervisor paused the simulation (``simulationSetMode(PAUSE)``).
@@ -263,6 +265,7 @@ class RobotSimulation:
         self.robot_index = robot_index
         self.fleet = fleet
         self.solids: Any = None
+        self.scene_edits: Any = None
         self.world_over = False
         self.velocity = (0.0, 0.0, 0.0)
         self.acceleration = (0.0, 0.0)

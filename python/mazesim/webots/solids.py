@@ -20,6 +20,7 @@ __all__ = [
     "Held",
     "Pose2",
     "WorldSolids",
+    "carried_over",
     "composed",
     "held_by_line",
     "relative",
@@ -120,6 +121,30 @@ class WorldSolids:
         """
         for simulator in self._simulators:
             simulator.set_body_velocity(index, vx, vy, turn_rate)
+
+
+def carried_over(
+    before: WorldSolids | None, simulators: list[Any], worlds: list[Any], report: Mapping[str, Any]
+) -> WorldSolids:
+    """The walls and movable bodies of ``simulators`` once each runs on in its world of
+    ``worlds`` (imported with ``report``; a supervisor changed the world), the walls that
+    ``before`` moved moved again where they were put.
+
+    Raises:
+        InvalidArgumentError: A world holds other robots or movable bodies than the running
+            one.
+    """
+    moves = before.node_moves() if before is not None else {}
+    for simulator, world in zip(simulators, worlds):
+        simulator.change_world(world)
+    after = WorldSolids(simulators, report)
+    for line, (start, now) in moves.items():
+        held = after._held.get(line)
+        if held is not None and held.walls:
+            for simulator in simulators:
+                simulator.move_solid(held.walls, [], start, now)
+            after._moves[line] = (start, now)
+    return after
 
 
 def world_objects(simulation: Any) -> Any:

@@ -8,9 +8,10 @@ simulation, and a movable body's node reads its live pose: :mod:`mazesim.webots.
 other nodes' are snapshots that move nothing), the ``children`` of
 the plain Solid, Transform, Pose and Group nodes among them, and theirs (snapshots too), the
 robot's node among them (``getSelf``, ``getFromDef`` of its DEF name) and the file's other DEF
-nodes (their type). A call that would add nodes to the running world or remove them prints
-Webots' kind of error and changes nothing (the simulator is built from the world at its import
-and takes no body in or out during a run), so the controller goes on as Webots' would.
+nodes (their type). It imports nodes into the root's ``children`` and removes top-level nodes
+while the world runs (:mod:`mazesim.webots.scene_edits`); a change mazesim does not make (a
+robot, another field) prints Webots' kind of error and changes nothing, so the controller goes
+on as Webots' would.
 It reads and sets the robot's ``translation`` and ``rotation`` (moving the robot in the
 simulation), and in a world with several robots those of every other robot too, reads its
 position, orientation and velocity, sets a movable body's velocity, resets the simulation
@@ -48,6 +49,7 @@ from mazesim.webots.proto_fields import declared_fields
 from mazesim.webots.radio_devices import E_PUCK_CHANNEL
 from mazesim.webots.robot import Robot
 from mazesim.webots.scene import CHILDREN_TYPES, EPUCK_TYPES, GROUPING_TYPES, SceneNode
+from mazesim.webots.scene_edits import Change, scene_edits
 from mazesim.webots.solids import Held, Pose2, composed, held_by_line, relative, world_objects
 
 __all__ = ["Field", "Node", "Supervisor"]
@@ -132,6 +134,8 @@ class Node(NotSimulated):
         #: Its pose in the frame of the one movable body it holds alone (it follows that
         #: body), and its height; None otherwise.
         self._on_body: tuple[Pose2, float] | None = None
+        #: The supervisor whose scene tree the node is the root of (None for another node).
+        self._tree: Supervisor | None = None
 
     @classmethod
     def from_scene(cls, node: SceneNode, node_id: int) -> Node:
@@ -351,8 +355,15 @@ class Node(NotSimulated):
         return self._parent
 
     def remove(self) -> None:
-        """Webots' kind of error: mazesim removes no nodes from a running world."""
-        _refuse_scene_change(f"Node.remove() of {self._label()}")
+        """Removes the node from the running world, if it is at the top of the scene tree (see
+        :meth:`Supervisor._remove_node`); another prints Webots' kind of error."""
+        root = self
+        while root._parent is not None:
+            root = root._parent
+        if root._tree is None:
+            _refuse_scene_change(f"Node.remove() of {self._label()}")
+            return
+        root._tree._remove_node(self, "wb_supervisor_node_remove()")
 
     def _field_types(self) -> dict[str, int]:
         """The fields the node has: name -> ``Field`` type."""
@@ -551,6 +562,14 @@ def _follow_robots(nodes: list[Node], robots: list[dict[str, Any]], own: int) ->
                 break
 
 
+def _inside(node: Node, ancestor: Node) -> bool:
+    """Whether ``node`` is below ``ancestor`` in the scene tree."""
+    parent = node._parent
+    while parent is not None and parent is not ancestor:
+        parent = parent._parent
+    return parent is ancestor
+
+
 def _constant_name(type_name: str) -> str:
     """``"DistanceSensor"`` -> ``"DISTANCE_SENSOR"``."""
     out = []
@@ -582,6 +601,7 @@ class Supervisor(Robot):
         self._self._strings.update(name=scene.robot_name, customData=self._custom_data)
         self._mode = self.SIMULATION_MODE_FAST
         self._root = Node("Group", node_id=0)
+        self._root._tree = self
         made: dict[int, Node] = {}
         children = _nodes_of(scene.nodes, made, self._self)
         self._root._adopt(children)
@@ -595,6 +615,12 @@ class Supervisor(Robot):
         for node_id, child in reversed(list(enumerate(children, start=1))):
             child._id = node_id  # a node a USE lists again keeps the id of its first place
         self._nodes: dict[str, Node] = {}
+        #: The id of the first of the file's other DEF nodes, and the next id an imported node
+        #: takes.
+        self._def_ids = len(children) + 1
+        self._next_id = self._def_ids + len(scene.defs) + len(self._nested_nodes) + 1
+        #: The DEF names of the file's nodes a supervisor removed.
+        self._removed_defs: set[str] = set()
         #: Every node of the world file (one per scene node), whose fields a reset restores.
         self._file_nodes = list(made.values())
         self._simulation.reset_listeners.append(self._restore_file_poses)
@@ -616,6 +642,70 @@ class Supervisor(Robot):
                 self._simulation.robot_index,
             )
 
+    def _import_nodes(self, position: int, text: str, call: str) -> None:
+        """Imports the nodes of ``text`` into the running world at ``position`` of the root's
+        ``children`` (-1: at the end; below: from the end, as in Webots), as
+        :class:`~mazesim.webots.scene_edits.SceneEdits` does; Webots' kind of error when
+        refused, nothing changed."""
+        children = self._root._children
+        index = int(position) if int(position) >= 0 else len(children) + 1 + int(position)
+        if not 0 <= index <= len(children):
+            _print_error(f"Error: {call} called with an out of range position: {position}.")
+            return
+        try:
+            change = scene_edits(self._simulation).import_node(text)
+        except MazesimError as refused:
+            _print_error(f"Error: {call} refused by mazesim: {refused}; nothing changed.")
+            return
+        made: dict[int, Node] = {}
+        added = _nodes_of(change.added, made, self._self)
+        for offset, node in enumerate(added):
+            node._id = self._next_id + offset
+        self._next_id += len(added)
+        nested = _nest(list(zip(added, change.added)), self._next_id, self._self, made)
+        self._next_id += len(nested)
+        children[index:index] = added
+        self._root._adopt(children)
+        self._nested_nodes.extend(nested)
+        self._file_nodes.extend(made.values())
+        self._held_again(change)
+        for node in made.values():
+            if node._line in change.held:
+                node._hold(change.held[node._line], change.bodies)
+
+    def _remove_node(self, node: Node, call: str) -> None:
+        """Removes ``node``, at the top of the scene tree, from the running world, as
+        :class:`~mazesim.webots.scene_edits.SceneEdits` does; Webots' kind of error when
+        refused (the robot's own node, a node inside another), nothing changed."""
+        if node._robot or node._fleet_index is not None or node._parent is not self._root:
+            what = "the robot's own node" if node._robot else "a node inside another node"
+            if node._fleet_index is not None:
+                what = "another robot's node"
+            _print_error(f"Error: {call} refused by mazesim: {what} stays; nothing changed.")
+            return
+        try:
+            change = scene_edits(self._simulation).remove_node(node._line)
+        except MazesimError as refused:
+            _print_error(f"Error: {call} refused by mazesim: {refused}; nothing changed.")
+            return
+        gone = [node, *(n for n in self._nested_nodes if _inside(n, node))]
+        self._root._children.remove(node)
+        self._nested_nodes = [n for n in self._nested_nodes if n not in gone]
+        self._removed_defs.update(n._def for n in gone if n._def)
+        self._held_again(change)
+
+    def _held_again(self, change: Change) -> None:
+        """Gives the nodes the walls and movable bodies they hold in the changed world (their
+        indices may move)."""
+        for node in self._file_nodes:
+            if node._robot or not node._held:
+                continue
+            held = change.held.get(node._line)
+            node._held.walls = list(held.walls) if held is not None else []
+            node._held.bodies = list(held.bodies) if held is not None else []
+            if not node._held.bodies:
+                node._on_body = None
+
     def getSelf(self) -> Node:
         """The robot's own node."""
         return self._self
@@ -628,17 +718,19 @@ class Supervisor(Robot):
     def getFromDef(self, name: str) -> Node | None:
         """The node of that DEF name (the first in the file), or None (with Webots' message).
 
-        A world without DEF names (a mazesim world) gives the robot's node for any name.
+        A world without DEF names (a mazesim world) gives the robot's node for any name, until
+        a supervisor imports a node into it.
         """
         scene = self._simulation.scene
-        if name and (name == scene.robot_def or not scene.defs):
+        unnamed = not scene.defs and self._simulation.scene_edits is None
+        if name and (name == scene.robot_def or unnamed):
             return self._self
         for child in [*self._root._children, *self._nested_nodes]:
             if name and child.getDef() == name:
                 return child
-        if name in scene.defs:
+        if name in scene.defs and name not in self._removed_defs:
             if name not in self._nodes:
-                node_id = len(self._root._children) + 1 + list(scene.defs).index(name)
+                node_id = self._def_ids + list(scene.defs).index(name)
                 self._nodes[name] = Node(scene.defs[name], name, node_id)
             return self._nodes[name]
         _print_error(f"Error: wb_supervisor_node_get_from_def(): node '{name}' not found.")

@@ -651,6 +651,17 @@ impl Simulator {
         self.update_contact();
     }
 
+    /// Takes `world`, the running world with nodes a supervisor imported or removed: its walls
+    /// as `take_world` takes them, and its movable bodies, body `i` being the running body
+    /// `kept[i]` where given (see `Body::replace_movables`).
+    pub(crate) fn take_changed_world(&mut self, world: Arc<World>, kept: &[Option<usize>]) {
+        self.world = world;
+        let walls = self.world.solid_walls();
+        self.body.replace_walls(walls);
+        self.body.replace_movables(walls, self.world.bodies(), kept);
+        self.update_contact();
+    }
+
     /// Distance sensor readings in device order (raw counts or volts, per the profile).
     pub fn distance_sensors(&self) -> &[f32] {
         &self.distance_readings

@@ -30,7 +30,7 @@ use crate::simulator::{
     move_in_scene, place_in_scene, share_scene, Drive, Neighbour, Others, Rig, SceneStep,
     SimConfig, Simulator, START_OVERLAP,
 };
-use crate::world::{Motion, World};
+use crate::world::{Motion, MovableBody, World};
 
 /// The seed of the noise stream of robot `index`, named `name`, of a world run with `seed`: the
 /// seed itself for robot 0, and for the others the first SplitMix64 output of the seed mixed with
@@ -212,6 +212,20 @@ pub fn make_robots(
     }
     sense_robots(&mut robots);
     Ok(robots)
+}
+
+/// For each of `bodies`, the index of the one of `running` it is, if any: the bodies both
+/// describe alike, matched in order (a body taken out leaves the others matched).
+fn kept_bodies(running: &[MovableBody], bodies: &[MovableBody]) -> Vec<Option<usize>> {
+    let mut next = 0;
+    bodies
+        .iter()
+        .map(|body| {
+            let found = running[next..].iter().position(|r| r == body)?;
+            next += found + 1;
+            Some(next - 1)
+        })
+        .collect()
 }
 
 /// `error` with the robot named in its message.
@@ -486,6 +500,36 @@ impl Swarm {
         for (i, pose) in placed {
             self.robots[0].place_body(i, pose);
         }
+        Ok(())
+    }
+
+    /// Takes `world` as the world the robots run in from the next step on, as a supervisor
+    /// imports nodes into the running world or removes some: its walls are met and sensed
+    /// there, while every robot keeps its pose, velocities, wheel encoders, noise stream, clock
+    /// and counters. A movable body of the running world that `world` holds too (the same one,
+    /// in the same order among those kept) goes on where it is; the others are taken out, and
+    /// `world`'s new ones start at rest where it puts them (the robots of a world that had none
+    /// are put into one rapier scene then, as a world made with movable bodies has them).
+    /// `world` becomes the one a reset puts back. Refused, naming what was expected and found,
+    /// when `world` holds another number of robots.
+    pub fn change_world(&mut self, world: Arc<World>) -> Result<()> {
+        let running = self.robots[0].world().clone();
+        if world.robots().len() != running.robots().len() {
+            return Err(Error::InvalidArgument(format!(
+                "expected a world of the running world's {} robots, found {}",
+                running.robots().len(),
+                world.robots().len()
+            )));
+        }
+        let kept = kept_bodies(running.bodies(), world.bodies());
+        let shared_now = self.len() > 1 && running.bodies().is_empty();
+        for robot in &mut self.robots {
+            robot.take_changed_world(world.clone(), &kept);
+        }
+        if shared_now && !world.bodies().is_empty() {
+            share_scene(&mut self.robots);
+        }
+        self.made_of = world;
         Ok(())
     }
 

@@ -590,3 +590,58 @@ fn a_reset_puts_moved_walls_back_too() {
         "held back by the moved wall"
     );
 }
+
+#[test]
+fn a_changed_world_is_met_from_the_next_step_and_the_robot_goes_on_as_it_was() {
+    let mut swarm = quiet(gate_world(0.5, false));
+    for _ in 0..5 {
+        swarm.step(&[[2.0, 2.0]]).unwrap();
+    }
+    let robot = &swarm.robots()[0];
+    let (pose, time, encoders) = (robot.pose(), robot.time(), robot.encoders());
+    let far = front_reading(&mut swarm);
+    swarm.change_world(gate_world(0.08, false)).unwrap();
+    let robot = &swarm.robots()[0];
+    assert!(robot.pose() == pose && robot.encoders() == encoders);
+    assert!(robot.time() > time, "the clock goes on");
+    let near = front_reading(&mut swarm);
+    assert!(near > far + 500.0, "front sensors {far} -> {near}");
+    // A reset puts back the changed world.
+    swarm.reset_scene();
+    assert!(front_reading(&mut swarm) > far + 300.0);
+}
+
+#[test]
+fn a_box_imported_into_a_world_without_bodies_is_pushed_and_a_kept_one_goes_on() {
+    let mut swarm = quiet(gate_world(0.5, false));
+    swarm.change_world(gate_world(0.5, true)).unwrap();
+    assert_eq!(swarm.robots()[0].body_poses().len(), 1);
+    swarm.set_body_velocity(0, [0.1, 0.0, 0.0]).unwrap();
+    swarm.step(&[[0.0, 0.0]]).unwrap();
+    let moving = swarm.robots()[0].body_poses()[0];
+    assert!(moving[0] > 0.0);
+    // The same box in the next change goes on from where it is; a world without it removes it.
+    swarm.change_world(gate_world(0.5, true)).unwrap();
+    assert_eq!(swarm.robots()[0].body_poses()[0], moving);
+    swarm.change_world(gate_world(0.5, false)).unwrap();
+    assert!(swarm.robots()[0].body_poses().is_empty());
+    let error = swarm.change_world(corridor(0.05)).unwrap_err().to_string();
+    assert!(
+        error.contains("running world's 1 robots, found 2"),
+        "{error}"
+    );
+}
+
+#[test]
+fn bodies_kept_are_matched_in_order() {
+    let world = gate_world(0.5, true);
+    let one = world.bodies()[0];
+    let mut other = one;
+    other.mass = 0.5;
+    assert_eq!(
+        kept_bodies(&[one, other], &[other, one]),
+        vec![Some(1), None]
+    );
+    assert_eq!(kept_bodies(&[one, other], &[one]), vec![Some(0)]);
+    assert_eq!(kept_bodies(&[], &[one]), vec![None]);
+}

@@ -1,0 +1,160 @@
+"""The world a supervisor changes while it runs: nodes imported into the scene tree root's
+``children`` field (``importMFNodeFromString``) and top-level nodes removed (``Node.remove()``,
+``removeMF``).
+
+The running world's description is the world file's text with each removed node's lines left
+blank and each imported node's text after it, in import order (so every node keeps its line,
+by which the import report names what it holds). Each change imports that description again
+with the importer that read the world file (PROTOs, DEF names, fields) and gives the result to
+the simulator, which runs on in it from the next step: the robots keep their poses,
+velocities, wheel encoders, noise streams and clocks, the movable bodies the change keeps go on
+where they are (an imported Solid with physics is a new one, at rest), and the walls a
+supervisor moved are moved again where it put them. A change that would add or remove a robot
+is refused (the world's robots and their controllers are made with it), with an error naming
+it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+from mazesim.errors import MazesimError
+from mazesim.webots.scene import SceneNode, read_scene
+from mazesim.webots.solids import carried_over, held_by_line
+
+__all__ = ["Change", "SceneEdits", "scene_edits"]
+
+
+@dataclass(frozen=True)
+class Change:
+    """What a change of the running world made.
+
+    Attributes:
+        added: The scene nodes of the nodes imported by it (none for a removal).
+        held: What the nodes of each line hold now (:func:`~mazesim.webots.solids.held_by_line`
+            of the new import report).
+        bodies: The new import report's movable bodies.
+    """
+
+    added: list[SceneNode]
+    held: dict[int, Any]
+    bodies: list[dict[str, Any]]
+
+
+class SceneEdits:
+    """The running world's description as a supervisor changed it, for a run of one robot."""
+
+    def __init__(self, simulation: Any) -> None:
+        """Over the world file of ``simulation`` (its import report's ``path``).
+
+        Raises:
+            MazesimError: The run's world is no world file.
+        """
+        path = simulation.report.get("path")
+        if not path:
+            raise MazesimError("the run's world is no Webots world file")
+        self._simulation = simulation
+        self._path = str(path)
+        with open(self._path, encoding="utf-8", errors="replace") as handle:
+            text = handle.read().replace("\r\n", "\n").replace("\r", "\n")
+        #: The world file's lines, a removed node's left blank.
+        self._lines = text.split("\n")
+        #: The lines of each imported node's text, in import order (a removed one's blank).
+        self._imported: list[list[str]] = []
+        #: The first line of each top-level node of the file and of each imported node.
+        self._starts = sorted({node.line for node in simulation.scene.nodes if node.line})
+
+    def _text(self) -> str:
+        return "\n".join([*self._lines, *(line for lines in self._imported for line in lines)])
+
+    def import_node(self, text: str) -> Change:
+        """Imports the nodes of ``text`` at the end of the root's ``children``.
+
+        Raises:
+            MazesimError: The text is not nodes the importer reads, or they hold a robot;
+                nothing changed.
+        """
+        first = len(self._lines) + sum(len(lines) for lines in self._imported) + 1
+        self._imported.append(text.replace("\r\n", "\n").replace("\r", "\n").split("\n"))
+        try:
+            change = self._apply(first)
+        except MazesimError:
+            self._imported.pop()
+            raise
+        self._starts.append(first)
+        return change
+
+    def remove_node(self, line: int) -> Change:
+        """Removes the top-level node whose node type is on ``line``.
+
+        Raises:
+            MazesimError: The node holds a robot, or the world without it is not one the
+                importer reads; nothing changed.
+        """
+        start = max((s for s in self._starts if s <= line), default=line)
+        later = [s for s in self._starts if s > start]
+        end = later[0] - 1 if later else len(self._lines) + sum(map(len, self._imported))
+        kept = list(self._lines), [list(lines) for lines in self._imported]
+        for number in range(start, end + 1):
+            self._blank(number)
+        try:
+            return self._apply()
+        except MazesimError:
+            self._lines, self._imported = kept
+            raise
+
+    def _blank(self, number: int) -> None:
+        """Leaves line ``number`` (from 1) of the description blank."""
+        if number <= len(self._lines):
+            self._lines[number - 1] = ""
+            return
+        number -= len(self._lines)
+        for lines in self._imported:
+            if number <= len(lines):
+                lines[number - 1] = ""
+                return
+            number -= len(lines)
+
+    def _apply(self, first: int | None = None) -> Change:
+        """Imports the description and runs on in it (the nodes from line ``first`` on are
+        the ones added, when it is given)."""
+        from mazesim.webots.importer import import_wbt_text
+
+        simulation = self._simulation
+        text = self._text()
+        robot_line = simulation.report.get("robot_line")
+        world, report = import_wbt_text(text, self._path, robot_line=robot_line)
+        robots = len(report.get("robots") or [])
+        running = len(simulation.report.get("robots") or [])
+        if robots != running:
+            raise MazesimError(
+                f"expected the world's {running} robots, found {robots}: mazesim adds no robot "
+                "to a running world and removes none (a robot's controller runs from the start)"
+            )
+        if simulation.owns_world:
+            simulator = simulation.simulator
+            simulation.solids = carried_over(simulation.solids, [simulator], [world], report)
+            simulation.world = simulator.world
+        else:
+            simulation.fleet.change_world(text)
+        for key in ("obstacles", "bodies"):
+            simulation.report[key] = report.get(key, [])
+        added: list[SceneNode] = []
+        if first is not None:
+            scene = read_scene(text, report.get("robot_model"), robot_line)
+            added = [node for node in scene.nodes if node.line >= first]
+        return Change(added, held_by_line(report), list(report.get("bodies", [])))
+
+
+def scene_edits(simulation: Any) -> SceneEdits:
+    """The :class:`SceneEdits` of ``simulation`` (made at its first change).
+
+    Raises:
+        MazesimError: The run's world cannot be changed (see :class:`SceneEdits`).
+    """
+    edits = getattr(simulation, "scene_edits", None)
+    if edits is None:
+        edits = SceneEdits(simulation)
+        simulation.scene_edits = edits
+    return edits
