@@ -88,8 +88,10 @@ PAGE_CONSTANTS: dict[str, dict[str, str]] = {
         "1.5 %": "arithmetic: one step's travel against the largest coordinate's resolution",
     },
     "robots.md": {"0.7-12.6 %": "the e-puck2 PROTO's noise column (Webots' source)"},
+    "ros.md": {"5 s": "the lockstep bridge's wait before it sends the reset state again"},
     "ros2.md": {
         "0.5 s": "the bridge's wait for its readers to match",
+        "5 s": "the lockstep bridge's wait before it sends the reset state again",
         "6.4 s": "the argument of the page's run_until example",
     },
     "webots.md": {
