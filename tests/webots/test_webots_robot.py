@@ -30,3 +30,16 @@ def test_the_differential_wheels_of_webots_before_r2018a_is_refused_with_what_to
         exec("from mazesim.webots.controller import DifferentialWheels", {})
     with pytest.raises(AttributeError, match="no attribute 'NoSuchClass'"):
         _ = controller.NoSuchClass  # type: ignore[attr-defined]
+
+
+def test_a_controller_of_webots_swig_api_may_call_robot_del_before_it_exits() -> None:
+    # Webots' Python API made by SWIG gives its objects a __del__ that does nothing; a sumo
+    # project's controller calls robot.__del__() and exit() once step returns -1.
+    prepare(mazesim.load_world("arena"), seconds=0.064)
+    controller.Robot.created = None
+    robot = controller.Robot()
+    while robot.step(32) != -1:
+        pass
+    robot.__del__()
+    assert robot.getTime() == pytest.approx(0.064)
+    simulations.release()

@@ -13,7 +13,7 @@ import pytest
 import mazesim
 from mazesim.webots import controller, prepare
 from mazesim.webots import simulation as simulations
-from mazesim.webots.importer import import_wbt
+from mazesim.webots.importer import import_wbt, import_wbt_text
 from mazesim.webots.scene import read_scene
 from mazesim_process import mazesim_command
 
@@ -223,6 +223,36 @@ def test_devices_of_a_world_before_r2022a_read_in_the_y_up_protos_frames() -> No
     spin = gyro_table_rate(robot.getDevice("gyro").getValues())
     assert spin[0] == pytest.approx(0.0) and spin[2] == pytest.approx(0.0)
     assert spin[1] > 0.5, "turning left (counter-clockwise seen from above) about +y"
+    simulations.release()
+
+
+#: An e-puck of R2021a with a compass in its groundSensorsSlot, half a turn about the slot's y
+#: axis (a swarm project reads its robots' headings so).
+GROUND_SLOT_COMPASS = """#VRML_SIM R2021a utf8
+WorldInfo { coordinateSystem "NUE" }
+RectangleArena { floorSize 1 1 }
+E-puck {
+  groundSensorsSlot [ Compass { rotation 0 1 0 3.14159 } ]
+}
+"""
+
+
+def test_a_compass_turned_down_in_the_ground_slot_reads_in_its_own_frame() -> None:
+    # The slot's frame is a quarter turn down from the robot's: the compass's x axis points up,
+    # its y axis to the robot's right and its z axis forward, so Webots reads north (the NUE
+    # world's x, the unturned robot's right) on y, and on -z once the robot faces north's left.
+    world, report = import_wbt_text(GROUND_SLOT_COMPASS, "compass.wbt")
+    scene = read_scene(GROUND_SLOT_COMPASS, report.get("robot_model"), report.get("robot_line"))
+    prepare(world, seconds=2.0, noise=False, report=report, scene=scene)
+    controller.Robot.created = None
+    robot = controller.Robot()
+    compass = robot.getDevice("compass")
+    compass.enable(32)
+    robot.step(32)
+    assert compass.getValues() == pytest.approx([0.0, 1.0, 0.0], abs=1e-3)
+    simulations.current().move_robot(0.0, 0.0, math.pi / 2)
+    robot.step(32)
+    assert compass.getValues() == pytest.approx([0.0, 0.0, -1.0], abs=1e-3)
     simulations.release()
 
 

@@ -253,6 +253,18 @@ class CameraRecognitionObject:
         """The object's ``model`` field."""
         return self.model
 
+    # The spelling of Webots' Python API before R2023a (its SWIG-made module): controllers
+    # written then call ``get_position_on_image()``, ``get_colors()``...
+    get_id = getId
+    get_position = getPosition
+    get_orientation = getOrientation
+    get_size = getSize
+    get_position_on_image = getPositionOnImage
+    get_size_on_image = getSizeOnImage
+    get_number_of_colors = getNumberOfColors
+    get_colors = getColors
+    get_model = getModel
+
 
 class Camera(_Sensor):
     """The e-puck's ``camera``: images of the forward view, refreshed every sampling period."""

@@ -109,6 +109,7 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
         entry.get("translation") or (0.0, 0.0, 0.0),
         yaw,
         float(entry.get("pitch", 0.0)),
+        entry.get("axes") if kind in _DEVICE_FRAME_KINDS else None,
     )
     table = _table(fields)
     if table is None and fields.get("model") == EPUCK_DISTANCE_SENSOR_MODEL:

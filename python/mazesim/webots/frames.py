@@ -16,7 +16,9 @@ from collections.abc import Sequence
 __all__ = [
     "ENU_TO_NUE",
     "WORLD_FRAME",
+    "Axes",
     "Frame",
+    "axes_or_none",
     "enu_to_nue",
     "enu_to_nue_matrix",
     "nue_to_enu",
@@ -26,6 +28,21 @@ __all__ = [
 
 #: The matrix of :func:`enu_to_nue` (rows).
 ENU_TO_NUE = ((0.0, -1.0, 0.0), (0.0, 0.0, 1.0), (-1.0, 0.0, 0.0))
+
+#: A device's axes (x, y, z) in the robot's frame, x forward, y left, z up.
+Axes = tuple[tuple[float, float, float], ...]
+
+
+def axes_or_none(value: object) -> Axes | None:
+    """Three axes of three finite numbers (the import report's ``axes`` of a device), or
+    None."""
+    try:
+        axes = tuple((float(a[0]), float(a[1]), float(a[2])) for a in value)  # type: ignore[attr-defined]
+    except (TypeError, ValueError, IndexError, KeyError):
+        return None
+    if len(axes) != 3 or not all(math.isfinite(c) for axis in axes for c in axis):
+        return None
+    return axes
 
 
 def nue_to_enu(x: float, y: float, z: float) -> tuple[float, float, float]:

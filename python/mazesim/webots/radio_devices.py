@@ -28,7 +28,7 @@ from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
 from mazesim.webots.devices import Device, _print_error, _Sensor, webots_property
-from mazesim.webots.frames import ENU_TO_NUE
+from mazesim.webots.frames import ENU_TO_NUE, Axes, axes_or_none
 from mazesim.webots.inert import NotSimulated
 from mazesim.webots.node_types import node_type
 from mazesim.webots.radio import (
@@ -52,8 +52,6 @@ E_PUCK_CHANNEL = 1
 #: (V7 to R2025a) sets only the emitter's ``channel``.
 E_PUCK_RANGE = UNLIMITED
 
-#: A device's axes (x, y, z) in the robot's frame, x forward, y left, z up.
-Axes = tuple[tuple[float, float, float], ...]
 #: The axes of a device unturned in a robot's Z-up inside (a file since R2022a).
 Z_UP_AXES: Axes = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
 #: The axes of a device unturned in a robot's Y-up inside (a file before R2022a, its PROTOs and
@@ -359,7 +357,7 @@ def receiver_from_fields(
         simulation,
         channel=_int_field(fields, "channel", 0),
         buffer_size=_int_field(fields, "bufferSize", UNLIMITED),
-        axes=_axes(axes),
+        axes=axes_or_none(axes),
         cone=_cone(simulation, fields, axes),
         kind=transmission_type(fields.get("type")),
     )
@@ -377,17 +375,6 @@ def _cone(simulation: RobotSimulation, fields: Mapping[str, Any], axes: Any) -> 
     aperture = _float_field(fields, "aperture", UNLIMITED)
     if fields.get("type") != INFRA_RED or not 0.0 < aperture <= math.tau:
         return None
-    own = _axes(axes) or _unturned(simulation)
+    own = axes_or_none(axes) or _unturned(simulation)
     axis = own[2] if simulation.scene.y_up_devices else own[0]
     return (*axis, aperture / 2.0)
-
-
-def _axes(value: Any) -> Axes | None:
-    """Three axes of three finite numbers, or None."""
-    try:
-        axes = tuple((float(a[0]), float(a[1]), float(a[2])) for a in value)
-    except (TypeError, ValueError, IndexError, KeyError):
-        return None
-    if len(axes) != 3 or not all(math.isfinite(c) for axis in axes for c in axis):
-        return None
-    return axes

@@ -263,6 +263,11 @@ class Robot(NotSimulated):
         """0."""
         return 0
 
+    def __del__(self) -> None:
+        """Nothing, as in Webots' Python API made by SWIG (before R2023a), whose objects have
+        a ``__del__`` that does nothing: a controller of that time calls ``robot.__del__()``
+        and then ``exit()`` once :meth:`step` returns -1."""
+
     def step(self, duration: float | None = None) -> int:
         """Runs the simulation for ``duration`` ms (a whole number of basic steps, rounded up).
 

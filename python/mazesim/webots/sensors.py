@@ -26,7 +26,7 @@ from mazesim.webots.devices import (
     noise_stream,
     webots_property,
 )
-from mazesim.webots.frames import enu_to_nue
+from mazesim.webots.frames import Axes, axes_or_none, enu_to_nue
 from mazesim.webots.lights import irradiance
 from mazesim.webots.node_types import node_type
 from mazesim.webots.rays import WallBoxes
@@ -62,19 +62,29 @@ GYRO_TABLE = ((-13.315805, -100000.0, 0.003), (13.315805, 100000.0, 0.003))
 DISTANCE_TABLE = ((0.0, 0.0, 0.0), (0.1, 1000.0, 0.0))
 #: North in the world frame (Webots' WorldInfo.northDirection default since R2022a).
 NORTH = (0.0, 1.0, 0.0)
+#: How far from the robot's up (as a component of a unit vector) a device's up axis may lean
+#: and the device still read by its yaw alone.
+LEVEL_TOLERANCE = 1e-6
 
 
 class DeviceMount:
-    """Where a device sits on the robot: translation (m) and yaw (rad) in the robot's frame."""
+    """Where a device sits on the robot: translation (m) and yaw (rad) in the robot's frame,
+    and, where the import gives them, the device's x, y and z axes in that frame (the import
+    report's ``axes``: rows of three numbers)."""
 
     def __init__(
-        self, translation: Sequence[float] = (0.0, 0.0, 0.0), yaw: float = 0.0, pitch: float = 0.0
+        self,
+        translation: Sequence[float] = (0.0, 0.0, 0.0),
+        yaw: float = 0.0,
+        pitch: float = 0.0,
+        axes: Sequence[Sequence[float]] | None = None,
     ) -> None:
         padded = [*(float(v) for v in translation), 0.0, 0.0, 0.0][:3]
         self.x, self.y, self.z = padded
         self.yaw = float(yaw)
         #: How far the device's x axis points below the horizontal (rad).
         self.pitch = float(pitch)
+        self.axes = axes_or_none(axes)
 
     def world_pose(self, pose: tuple[float, float, float]) -> tuple[float, float, float]:
         """The device's x, y, heading in the world for a robot pose."""
@@ -104,13 +114,34 @@ class _TableVector(_Tabled, _VectorSensor):
         self._rng = noise_stream(simulation, name)
 
     def _read(self) -> list[float]:
-        measured = self._measure()
-        if self._device_frame and self._simulation.scene.y_up_devices:
-            measured = enu_to_nue(*measured)
+        tilted = self._tilted_axes()
+        if tilted is not None:
+            robot = self._robot_vector()
+            measured = tuple(sum(a * v for a, v in zip(axis, robot)) for axis in tilted)
+        else:
+            measured = self._measure()
+            if self._device_frame and self._simulation.scene.y_up_devices:
+                measured = enu_to_nue(*measured)
         return [self._table(v, self._rng) for v in measured]
 
     def _measure(self) -> tuple[float, float, float]:
         raise NotImplementedError
+
+    def _robot_vector(self) -> tuple[float, float, float]:
+        """The measured vector in the robot's frame (x forward, y left, z up)."""
+        raise NotImplementedError
+
+    def _tilted_axes(self) -> Axes | None:
+        """The device's axes when it reads in its own frame and that frame is not the robot's
+        turned about the vertical (its up axis, z, or y in a Y-up PROTO, is not the robot's
+        up): a compass in the E-puck's groundSensorsSlot, whose frame is turned a quarter turn
+        down; None otherwise (:meth:`_measure` then reads it, by its yaw)."""
+        axes = self._mount.axes
+        if not self._device_frame or axes is None:
+            return None
+        up = axes[1] if self._simulation.scene.y_up_devices else axes[2]
+        level = abs(up[0]) < LEVEL_TOLERANCE and abs(up[1]) < LEVEL_TOLERANCE and up[2] > 0.0
+        return None if level else axes
 
     def _heading(self) -> float:
         return self._simulation.simulator.pose[2] + self._mount.yaw
@@ -132,6 +163,12 @@ class Accelerometer(_TableVector):
         c, s = math.cos(heading), math.sin(heading)
         return c * ax + s * ay, -s * ax + c * ay, GRAVITY
 
+    def _robot_vector(self) -> tuple[float, float, float]:
+        ax, ay = self._simulation.acceleration
+        yaw = self._simulation.simulator.pose[2]
+        c, s = math.cos(yaw), math.sin(yaw)
+        return c * ax + s * ay, -s * ax + c * ay, GRAVITY
+
 
 class Gyro(_TableVector):
     """Angular velocity about the device's axes (rad/s): the yaw rate about z (about y in a
@@ -145,6 +182,9 @@ class Gyro(_TableVector):
 
     def _measure(self) -> tuple[float, float, float]:
         return 0.0, 0.0, self._simulation.velocity[2]
+
+    def _robot_vector(self) -> tuple[float, float, float]:
+        return self._measure()
 
 
 class Compass(_TableVector):
@@ -171,6 +211,12 @@ class Compass(_TableVector):
     def _measure(self) -> tuple[float, float, float]:
         heading = self._heading()
         c, s = math.cos(heading), math.sin(heading)
+        nx, ny = self._north
+        return c * nx + s * ny, -s * nx + c * ny, 0.0
+
+    def _robot_vector(self) -> tuple[float, float, float]:
+        yaw = self._simulation.simulator.pose[2]
+        c, s = math.cos(yaw), math.sin(yaw)
         nx, ny = self._north
         return c * nx + s * ny, -s * nx + c * ny, 0.0
 
