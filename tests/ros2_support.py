@@ -15,6 +15,23 @@ import pytest
 DRIVER = Path(__file__).parent / "ros2" / "cyclone_driver.py"
 MAZESIM = [sys.executable, "-m", "mazesim"]
 
+#: A world of two e-pucks facing each other, one named as no ROS name may be (``east-1``).
+TWO_ROBOTS = """format = "mazesim-world"
+version = 1
+name = "two-robots"
+
+[[robots]]
+name = "west"
+x = -0.2
+y = 0.0
+
+[[robots]]
+name = "east-1"
+x = 0.2
+y = 0.0
+yaw = 3.141592653589793
+"""
+
 _MISSING = [name for name in ("cyclonedds", "rosbags") if importlib.util.find_spec(name) is None]
 needs_ros2 = pytest.mark.skipif(
     bool(_MISSING), reason=f"mazesim[ros2] is not installed ({', '.join(_MISSING)}): make ros2-deps"

@@ -5,10 +5,12 @@ Run as a separate process: it sends each robot its own ``/<name>/cmd_vel`` every
 drives straight on, the others turn on the spot), reads each robot's ``/<name>/pose`` and
 ``/<name>/ps0`` and the one ``/clock``, and checks them against an in-process simulator of the
 same world driven by the same commands. It also checks that nobody reads the single robot's
-``/cmd_vel``. Exit code 0: every step equal (the last line is the final poses as JSON); 1: the
-first difference or a missing message, on stderr.
+``/cmd_vel``. With ``--frame-prefix`` (the bridge's too) it reads ``/tf`` as well: each step,
+every robot's ``<name>/odom`` -> ``<name>/base_link`` at its pose, and ``<name>/ps0`` frames.
+Exit code 0: every step equal (the last line is the final poses as JSON); 1: the first difference
+or a missing message, on stderr.
 
-    python swarm_driver.py --world WORLD.toml --steps 100 [--distro humble]
+    python swarm_driver.py --world WORLD.toml --steps 100 [--distro humble] [--frame-prefix]
 """
 
 from __future__ import annotations
@@ -25,7 +27,7 @@ import mazesim
 from mazesim.ros import standard
 from mazesim.ros2 import messages, network
 from mazesim.ros2.clock import stamp_nanoseconds
-from mazesim.ros2.qos import CLOCK, COMMAND, SENSOR, cyclone_qos
+from mazesim.ros2.qos import CLOCK, COMMAND, SENSOR, TF, cyclone_qos
 from mazesim.ros2.robots import RobotOf, robot_namespaces
 
 #: Each robot's command: robot 0 forward, the others turning on the spot.
@@ -43,6 +45,7 @@ def main() -> int:
     parser.add_argument("--steps", type=int, default=100)
     parser.add_argument("--distro", default="humble")
     parser.add_argument("--wait", type=float, default=10.0)
+    parser.add_argument("--frame-prefix", action="store_true")
     args = parser.parse_args()
 
     from cyclonedds.core import Policy
@@ -65,6 +68,8 @@ def main() -> int:
     clock_type = messages.idl_type(args.distro, "rosgraph_msgs/msg/Clock")
     twist_type = messages.idl_type(args.distro, "geometry_msgs/msg/Twist")
     vector = messages.idl_type(args.distro, "geometry_msgs/msg/Vector3")
+    tf_type = messages.idl_type(args.distro, "tf2_msgs/msg/TFMessage")
+    prefixes = [ns[1:] + "/" if args.frame_prefix else "" for ns in namespaces]
 
     def reader(topic: str, kind: Any, qos: Any) -> Any:
         return DataReader(participant, Topic(participant, "rt" + topic, kind), qos=cyclone_qos(qos))
@@ -73,6 +78,10 @@ def main() -> int:
     for ns in namespaces:
         readers[f"{ns}/pose"] = reader(f"{ns}/pose", array, SENSOR)
         readers[f"{ns}/ps0"] = reader(f"{ns}/ps0", range_type, SENSOR)
+    tf_reader = reader("/tf", tf_type, TF) if args.frame_prefix else None
+    transforms: list[Any] = []
+    #: Transforms on /tf each step: one per robot, with a frame prefix.
+    per_step = count if tf_reader is not None else 0
     writers = [
         DataWriter(
             participant, Topic(participant, f"rt{ns}/cmd_vel", twist_type), qos=cyclone_qos(COMMAND)
@@ -90,10 +99,14 @@ def main() -> int:
         while True:
             for name, dds in readers.items():
                 pending[name].extend(dds.take(16))
-            if all(pending[name] for name in readers):
-                return {name: pending[name].pop(0) for name in readers}
+            if tf_reader is not None:
+                transforms.extend(tf_reader.take(16))
+            if all(pending[name] for name in readers) and len(transforms) >= per_step:
+                got = {name: pending[name].pop(0) for name in readers}
+                got["/tf"] = [transforms.pop(0) for _ in range(per_step)]
+                return got
             if time.monotonic() > deadline:
-                missing = sorted(name for name in readers if not pending[name])
+                missing = sorted(name for name in readers if not pending[name]) or ["/tf"]
                 raise Mismatch(f"no message within {args.wait:.0f} s on {', '.join(missing)}")
             time.sleep(0.0005)
 
@@ -109,6 +122,20 @@ def main() -> int:
             distance = float(np.float32(standard.ranges(robot, robot.robot)[0]))  # type: ignore[arg-type]
             if got[f"{ns}/ps0"].range != distance:
                 raise Mismatch(f"{ns}/ps0: expected {distance}, found {got[f'{ns}/ps0'].range}")
+        for ns, prefix in zip(namespaces, prefixes):
+            frame = got[f"{ns}/ps0"].header.frame_id
+            if frame != prefix + "ps0":
+                raise Mismatch(f"{ns}/ps0: expected frame {prefix}ps0, found {frame}")
+        by_child = {
+            sample.transforms[0].child_frame_id: sample.transforms[0] for sample in got["/tf"]
+        }
+        for robot, prefix in zip(robots if per_step else [], prefixes):
+            transform = by_child.get(prefix + "base_link")
+            if transform is None or transform.header.frame_id != prefix + "odom":
+                raise Mismatch(f"/tf: no {prefix}odom -> {prefix}base_link in {sorted(by_child)}")
+            place = transform.transform.translation
+            if [place.x, place.y] != list(robot.pose[:2]):
+                raise Mismatch(f"/tf {prefix}base_link: expected {robot.pose[:2]}, found {place}")
 
     deadline = time.monotonic() + args.wait
     while not all(writer.get_matched_subscriptions() for writer in writers):
@@ -136,7 +163,10 @@ def main() -> int:
     except Mismatch as error:
         print(f"swarm driver: step {simulator.steps}: {error}", file=sys.stderr, flush=True)
         return 1
-    print(f"swarm driver: {args.steps} steps, every robot equal on its own topics", flush=True)
+    where = " and on /tf" if tf_reader is not None else ""
+    print(
+        f"swarm driver: {args.steps} steps, every robot equal on its own topics{where}", flush=True
+    )
     print(json.dumps({ns: list(robot.pose) for ns, robot in zip(namespaces, robots)}), flush=True)
     return 0
 

@@ -6,11 +6,12 @@ cannot match with its own (``mazesim.ros2.qos.IncompatibleQos``)."""
 from __future__ import annotations
 
 import sys
+from pathlib import Path
 
 import pytest
 
-from mazesim.ros2.unpublished import why_unpublished
-from ros2_support import MAZESIM, needs_namespace, needs_ros2, run_in_namespace
+from mazesim.ros2.unpublished import in_robot_namespaces, why_unpublished
+from ros2_support import MAZESIM, TWO_ROBOTS, needs_namespace, needs_ros2, run_in_namespace
 
 PUBLISHED = ["/ps0", "/scan", "/odom", "/clock"]
 
@@ -42,6 +43,29 @@ def test_a_published_tof_is_left_alone() -> None:
     assert why_unpublished("/tof", [*PUBLISHED, "/tof"], "e-puck2") is None
 
 
+NAMESPACES = ["/west", "/east_1"]
+PUBLISHED_BY_TWO = [f"{ns}/{name}" for ns in NAMESPACES for name in ("odom", "ps0", "tf")]
+
+
+def test_a_topic_each_robot_has_in_its_namespace_is_explained_outside_them() -> None:
+    reason = in_robot_namespaces("/odom", PUBLISHED_BY_TWO, NAMESPACES)
+    assert reason is not None
+    assert "(/west/odom, /east_1/odom)" in reason and "-r /odom:=/west/odom" in reason
+    assert "__ns:=/west" in reason and "--frame-prefix" not in reason
+    tf = in_robot_namespaces("/tf", PUBLISHED_BY_TWO, NAMESPACES)
+    assert tf is not None and "--frame-prefix" in tf
+    commands = in_robot_namespaces("/cmd_vel", ["/west/cmd_vel", "/east_1/cmd_vel"], NAMESPACES)
+    assert commands is not None and "-r /cmd_vel:=/west/cmd_vel" in commands
+
+
+@pytest.mark.parametrize("topic", ["/west/odom", "/map", "/west/map", "/clock"])
+def test_topics_in_a_namespace_or_that_no_robot_has_are_left_alone(topic: str) -> None:
+    published = [*PUBLISHED_BY_TWO, "/clock"]
+    assert in_robot_namespaces(topic, published, NAMESPACES) is None
+    # A world of one robot has no namespaces: nothing to say.
+    assert in_robot_namespaces(topic, ["/odom", "/clock"], []) is None
+
+
 USER_NODE = (
     "import time\n"
     "from mazesim.ros2.node import Node\n"
@@ -70,3 +94,49 @@ def test_the_bridge_says_once_why_a_node_gets_nothing_or_sends_in_vain() -> None
     assert "--robot e-puck2" in result.stderr
     assert result.stderr.count("a node reads /odom asking for a durability") == 1
     assert result.stderr.count("a node writes /cmd_vel offering less reliability") == 1
+
+
+#: Webots' drive calibrator (webots_ros2_epuck/drive_calibrator.py in cyberbotics/webots_ros2)
+#: reads /odom (depth 1) and writes /cmd_vel (depth 10), absolute names that -r __ns:=/west
+#: leaves as they are.
+CALIBRATOR = (
+    "import time\n"
+    "from mazesim.ros2.node import Node\n"
+    "from mazesim.ros2.qos import COMMAND, SENSOR\n"
+    "node = Node('drive_calibrator')\n"
+    "node.reader('/odom', 'nav_msgs/msg/Odometry', SENSOR._replace(depth=1))\n"
+    "node.writer('/cmd_vel', 'geometry_msgs/msg/Twist', COMMAND)\n"
+    "time.sleep(4)\n"
+)
+
+
+@needs_ros2
+@needs_namespace
+def test_the_bridge_says_where_each_robot_has_the_topic_a_node_names_absolutely(
+    tmp_path: Path,
+) -> None:
+    world = tmp_path / "two.toml"
+    world.write_text(TWO_ROBOTS)
+    result = run_in_namespace(
+        [
+            [
+                *MAZESIM,
+                "ros2",
+                "bridge",
+                "--world",
+                str(world),
+                "--mode",
+                "free",
+                "--stop-after",
+                "150",
+            ]
+        ],
+        [sys.executable, "-c", CALIBRATOR],
+        timeout=60,
+    )
+    assert result.returncode == 0, result.stderr
+    reads = "a node reads /odom, which this bridge does not publish: each robot of this world"
+    assert result.stderr.count(reads) == 1, result.stderr
+    writes = "a node writes /cmd_vel, which this bridge does not read: each robot of this world"
+    assert result.stderr.count(writes) == 1, result.stderr
+    assert "-r /cmd_vel:=/west/cmd_vel" in result.stderr

@@ -104,6 +104,7 @@ def _run_bridge(args: argparse.Namespace) -> int:
             stop_at_goal=args.stop_at_goal,
             bag=args.bag,
             network=args.network,
+            frame_prefix=args.frame_prefix,
         )
     )
 
@@ -199,6 +200,13 @@ def register(commands: Any) -> None:
     )
     bridge.add_argument("--stop-at-goal", action="store_true", help="stop once at the goal")
     bridge.add_argument("--bag", default=None, help="record a rosbag2 (MCAP) into this new folder")
+    bridge.add_argument(
+        "--frame-prefix",
+        action="store_true",
+        help="a world of several robots: each robot's frames start with its name (west/odom, "
+        "west/base_link...) and its transforms go on the one /tf and /tf_static, as "
+        "ros2_control's diff drive controller in a namespace names them",
+    )
     _add_common(bridge)
     bridge.set_defaults(run=_run_bridge)
     learning = sub.add_parser(

@@ -78,6 +78,9 @@ class BridgeSettings:
     bag: str | None = None
     #: Open discovery to the network (the subnet) instead of this machine.
     network: bool = False
+    #: A world of several robots: each robot's frames start with its namespace's name
+    #: (``west/odom``), and its transforms go on the one ``/tf`` and ``/tf_static``.
+    frame_prefix: bool = False
 
     def validate(self) -> None:
         """Raises :class:`InvalidArgumentError` on a setting the bridge cannot run."""
@@ -169,6 +172,12 @@ class Ros2Bridge:
     def __init__(
         self, simulator: Simulator, settings: BridgeSettings, node: Node | None = None
     ) -> None:
+        if settings.frame_prefix and simulator.num_robots == 1:
+            raise InvalidArgumentError(
+                "expected a world of several robots for --frame-prefix (each robot's frames "
+                f"start with its name); found one robot in {simulator.world.name!r}, whose "
+                "frames are odom, base_link...: leave --frame-prefix out"
+            )
         self.simulator = simulator
         self.settings = settings
         self.node = node or Node(
@@ -181,7 +190,13 @@ class Ros2Bridge:
         else:
             namespaces = robot_namespaces(simulator.robot_names)
             states = [
-                StateTopics(RobotOf(simulator, i), settings.distro, namespace, clock=False)  # type: ignore[arg-type]
+                StateTopics(
+                    RobotOf(simulator, i),  # type: ignore[arg-type]
+                    settings.distro,
+                    namespace,
+                    clock=False,
+                    frame_prefix=namespace[1:] + "/" if settings.frame_prefix else "",
+                )
                 for i, namespace in enumerate(namespaces)
             ]
         self.robots = [RobotChannel(self.node, state, settings.distro) for state in states]
@@ -198,7 +213,12 @@ class Ros2Bridge:
         for robot in self.robots:
             published += [t.name for t in robot.state.topics] + [robot.state.static_topic().name]
         self.unpublished = UnpublishedTopics(
-            self.node.participant, published, simulator.robot.name, self._say
+            self.node.participant,
+            published,
+            simulator.robot.name,
+            self._say,
+            read=[reader.topic for reader in self.node.readers],
+            namespaces=[robot.state.namespace for robot in self.robots if robot.state.namespace],
         )
         self.incompatible = IncompatibleQos(self.node.writers, self.node.readers, self._say)
         self._readers_checked = 0.0
@@ -420,11 +440,12 @@ def run_bridge(settings: BridgeSettings) -> int:
     signal.signal(signal.SIGINT, on_signal)
     signal.signal(signal.SIGTERM, on_signal)
     started = time.monotonic()
+    frames = ", frames prefixed with the namespace's name, on /tf" if settings.frame_prefix else ""
     robots = (
         settings.robot
         if simulator.num_robots == 1
         else f"{simulator.num_robots} robots (namespaces "
-        f"{', '.join(robot.state.namespace for robot in bridge.robots)})"
+        f"{', '.join(robot.state.namespace for robot in bridge.robots)}{frames})"
     )
     print(
         f"mazesim ros2 bridge: {robots} in {world.name}, ROS 2 {settings.distro}, "

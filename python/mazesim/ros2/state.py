@@ -7,7 +7,10 @@ them, ``/odom``, ``/tf``, ``/tf_static`` once and ``/clock``; and the report's o
 ROS 1 bridge has them (``/sensors``, ``/sensor_data``, ``/pose``). The numbers are those of
 :mod:`mazesim.ros.standard` and :mod:`mazesim.ros.topics`, so both bridges say the same. A robot
 of a world of several robots publishes the same topics in its own namespace (``/west/ps0``,
-``/west/tf``...), without ``/clock``, which the bridge publishes once for all.
+``/west/tf``...), without ``/clock``, which the bridge publishes once for all; with a frame prefix
+(``west/``) its frames are ``west/odom``, ``west/base_link``, ``west/ps0``... and its transforms
+go on the one ``/tf`` and ``/tf_static``, as ros2_controllers' diff drive controller (the one
+Webots' e-puck driver runs) names its frames after its namespace and publishes them on ``/tf``.
 """
 
 from __future__ import annotations
@@ -32,6 +35,7 @@ __all__ = [
 ]
 
 CLOCK_TOPIC = "/clock"
+TF_TOPIC = "/tf"
 TF_STATIC_TOPIC = "/tf_static"
 SCAN_TOPIC = "/scan"
 #: The LaserScan's frame, 0.033 m above ``base_link`` as in Webots' e-puck driver.
@@ -115,14 +119,24 @@ class StateTopics:
         distro: ``humble`` or ``jazzy`` (Jazzy's Range carries a variance).
         namespace: The robot's namespace (``"/west"``), or ``""`` for a world of one robot.
         clock: Whether ``/clock`` is among the topics (not for a robot in a namespace).
+        frame_prefix: What every frame name starts with (``"west/"``), ``""`` for none; with a
+            prefix the transforms go on ``/tf`` and ``/tf_static``, outside the namespace.
     """
 
     def __init__(
-        self, simulator: Simulator, distro: str, namespace: str = "", clock: bool = True
+        self,
+        simulator: Simulator,
+        distro: str,
+        namespace: str = "",
+        clock: bool = True,
+        frame_prefix: str = "",
     ) -> None:
         self.simulator = simulator
         self.namespace = namespace
         self.clock = clock
+        self.frame_prefix = frame_prefix
+        #: Where the transforms go: the robot's own ``tf``, or with a frame prefix the one ``/tf``.
+        self.tf_namespace = "" if frame_prefix else namespace
         self.robot = robot = simulator.robot
         self.jazzy = distro != "humble"
         self.frames = standard.sensor_frames(robot)
@@ -149,7 +163,7 @@ class StateTopics:
             self.topics.append(Topic(ns + SCAN_TOPIC, LASER_SCAN, SENSOR))
         self.topics += [
             Topic(f"{ns}/odom", ODOMETRY, SENSOR),
-            Topic(f"{ns}/tf", TF_MESSAGE, TF),
+            Topic(self.tf_namespace + TF_TOPIC, TF_MESSAGE, TF),
             Topic(f"{ns}/{topics.SENSORS_TOPIC}", FLOAT64_ARRAY, SENSOR),
         ]
         if self.sharp:
@@ -159,16 +173,21 @@ class StateTopics:
             self.topics.append(Topic(CLOCK_TOPIC, CLOCK_TYPE, CLOCK))
 
     def static_topic(self) -> Topic:
-        """``/tf_static`` (in the robot's namespace)."""
-        return Topic(self.namespace + TF_STATIC_TOPIC, TF_MESSAGE, TF_STATIC)
+        """``/tf_static`` (in the robot's namespace unless its frames have a prefix)."""
+        return Topic(self.tf_namespace + TF_STATIC_TOPIC, TF_MESSAGE, TF_STATIC)
+
+    def frame(self, name: str) -> str:
+        """The frame ``name`` (``base_link``) as this robot's messages give it."""
+        return self.frame_prefix + name
 
     def static_transforms(self, stamp: cdr.Stamp) -> bytes:
         """The ``/tf_static`` message: ``base_link`` -> every sensor frame (and the scan's)."""
+        base = self.frame(standard.BASE_FRAME)
         transforms: list[cdr.Transform] = [
             (
                 stamp,
-                standard.BASE_FRAME,
-                frame.frame,
+                base,
+                self.frame(frame.frame),
                 (frame.x, frame.y, 0.0),
                 standard.yaw_quaternion(frame.yaw),
             )
@@ -178,13 +197,13 @@ class StateTopics:
         for name, (x, y) in zip(self.ground_names, positions):
             # Looking down: pitched by +90 degrees about y.
             down = (0.0, math.sqrt(0.5), 0.0, math.sqrt(0.5))
-            transforms.append((stamp, standard.BASE_FRAME, name, (x, y, 0.0), down))
+            transforms.append((stamp, base, self.frame(name), (x, y, 0.0), down))
         if self.has_scan:
             transforms.append(
                 (
                     stamp,
-                    standard.BASE_FRAME,
-                    SCAN_FRAME,
+                    base,
+                    self.frame(SCAN_FRAME),
                     (0.0, 0.0, SCAN_HEIGHT),
                     (0.0, 0.0, 0.0, 1.0),
                 )
@@ -204,7 +223,7 @@ class StateTopics:
         out = [
             cdr.encode_range(
                 stamp,
-                frame.frame,
+                self.frame(frame.frame),
                 RADIATION_INFRARED,
                 standard.FIELD_OF_VIEW,
                 frame.min_range,
@@ -224,7 +243,7 @@ class StateTopics:
             out.append(
                 cdr.encode_range(
                     stamp,
-                    name,
+                    self.frame(name),
                     RADIATION_INFRARED,
                     standard.FIELD_OF_VIEW,
                     near,
@@ -239,7 +258,7 @@ class StateTopics:
             out.append(
                 cdr.encode_laser_scan(
                     stamp,
-                    SCAN_FRAME,
+                    self.frame(SCAN_FRAME),
                     (-math.radians(SCAN_HALF_DEGREES), math.radians(SCAN_HALF_DEGREES), increment),
                     (0.0, step_seconds),
                     (SCAN_RANGE_MIN, SCAN_RANGE_MAX),
@@ -250,20 +269,17 @@ class StateTopics:
         velocity = standard.body_velocity(self.before, after, step_seconds)
         self.before = after
         rotation = standard.yaw_quaternion(yaw)
+        odom, base = self.frame(standard.ODOM_FRAME), self.frame(standard.BASE_FRAME)
         out.append(
             cdr.encode_odometry(
                 stamp,
-                standard.ODOM_FRAME,
-                standard.BASE_FRAME,
+                odom,
+                base,
                 (x, y, 0.0, *rotation),
                 (velocity.forward, velocity.leftward, 0.0, 0.0, 0.0, velocity.turn),
             )
         )
-        out.append(
-            cdr.encode_tf_message(
-                [(stamp, standard.ODOM_FRAME, standard.BASE_FRAME, (x, y, 0.0), rotation)]
-            )
-        )
+        out.append(cdr.encode_tf_message([(stamp, odom, base, (x, y, 0.0), rotation)]))
         out.append(
             cdr.encode_float64_multi_array(self.sensor_labels, topics.sensors_values(simulator))
         )

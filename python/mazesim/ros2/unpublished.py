@@ -3,17 +3,23 @@
 A node written for Webots' e-puck (``webots_ros2_epuck`` in cyberbotics/webots_ros2, whose world
 simulates ``E-puck { version "2" }`` with its time-of-flight sensor, camera and light sensors)
 may wait for a topic the simulated robot does not have: ``/tof`` from the e-puck, which has no
-time-of-flight sensor, waits forever. :class:`UnpublishedTopics` watches the readers DDS
-discovers on other participants and names each such topic once, with what to do.
+time-of-flight sensor, waits forever. In a world of several robots, each robot's topics are in
+its namespace: a node that names them absolutely (Webots' drive calibrator reads ``/odom`` and
+writes ``/cmd_vel``, so ``-r __ns:=/west`` leaves them as they are) reads and writes where no
+robot is. :class:`UnpublishedTopics` watches the readers and writers DDS discovers on other
+participants and names each such topic once, with what to do.
 """
 
 from __future__ import annotations
 
 import re
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Sequence
 from typing import Any
 
-__all__ = ["UnpublishedTopics", "why_unpublished"]
+__all__ = ["UnpublishedTopics", "in_robot_namespaces", "why_unpublished"]
+
+#: The transforms' topics, which ``--frame-prefix`` puts outside the robots' namespaces.
+_TF = ("/tf", "/tf_static")
 
 #: What Webots' e-puck driver publishes and the bridge does not, by topic (its last name token).
 _WEBOTS_EPUCK_ONLY = (
@@ -23,6 +29,27 @@ _WEBOTS_EPUCK_ONLY = (
     (re.compile(r"imu"), "mazesim does not simulate the e-puck's inertial unit"),
     (re.compile(r"(image_raw|camera_info|camera(/.*)?)"), "the bridge publishes no camera images"),
 )  # fmt: skip
+
+
+def in_robot_namespaces(
+    topic: str, endpoints: Iterable[str], namespaces: Sequence[str]
+) -> str | None:
+    """Why a node's ``topic`` (a ROS name outside every robot's namespace) reaches no robot when
+    each robot of a world of several has it in its own namespace (``endpoints``: the ROS names
+    of the bridge's topics of that direction); ``None`` when ``topic`` is not such a one."""
+    endpoints = set(endpoints)
+    if topic in endpoints or any(topic.startswith(ns + "/") for ns in namespaces):
+        return None
+    own = [ns + topic for ns in namespaces if ns + topic in endpoints]
+    if not own:
+        return None
+    tf = " or run the bridge with --frame-prefix (every robot's on /tf)," if topic in _TF else ""
+    return (
+        f"each robot of this world has its own ({', '.join(own)}): remap the node's to its "
+        f"robot's (--ros-args -r {topic}:={own[0]}),{tf} or start the node in the robot's "
+        f"namespace (-r __ns:={own[0][: -len(topic)]}) if it names the topic without a "
+        "leading slash"
+    )
 
 
 def why_unpublished(topic: str, published: Iterable[str], robot: str) -> str | None:
@@ -39,38 +66,68 @@ def why_unpublished(topic: str, published: Iterable[str], robot: str) -> str | N
 
 
 class UnpublishedTopics:
-    """Watches the readers of other participants and reports, once per topic, those that wait
-    for a topic of Webots' e-puck driver the bridge does not publish.
+    """Watches the readers and writers of other participants and reports, once per topic, those
+    that wait for a topic of Webots' e-puck driver the bridge does not publish, and in a world of
+    several robots those outside every robot's namespace where each robot has its own.
 
     Args:
         participant: The bridge's Cyclone DDS participant.
         published: The ROS names of the topics the bridge publishes.
         robot: The simulated robot's profile name, for the message.
         report: Called with each message.
+        read: The ROS names of the topics the bridge reads.
+        namespaces: The robots' namespaces in a world of several robots (none for one).
     """
 
     def __init__(
-        self, participant: Any, published: Iterable[str], robot: str, report: Callable[[str], None]
+        self,
+        participant: Any,
+        published: Iterable[str],
+        robot: str,
+        report: Callable[[str], None],
+        read: Iterable[str] = (),
+        namespaces: Sequence[str] = (),
     ) -> None:
-        from cyclonedds.builtin import BuiltinDataReader, BuiltinTopicDcpsSubscription
+        from cyclonedds.builtin import (
+            BuiltinDataReader,
+            BuiltinTopicDcpsPublication,
+            BuiltinTopicDcpsSubscription,
+        )
 
         self.own = participant.guid
         self.published = set(published)
+        self.read = set(read)
+        self.namespaces = list(namespaces)
         self.robot = robot
         self.report = report
-        self.reported: set[str] = set()
-        self._reader = BuiltinDataReader(participant, BuiltinTopicDcpsSubscription)
+        self.reported: set[tuple[str, str]] = set()
+        self._readers = BuiltinDataReader(participant, BuiltinTopicDcpsSubscription)
+        self._writers = BuiltinDataReader(participant, BuiltinTopicDcpsPublication)
+
+    def _topics(self, builtin: Any) -> list[str]:
+        """The ROS names of the endpoints of other participants discovered since the last look."""
+        topics = []
+        for endpoint in builtin.take(64):
+            name = getattr(endpoint, "topic_name", None)
+            if name and name.startswith("rt/") and endpoint.participant_key != self.own:
+                topics.append("/" + name[3:])
+        return topics
 
     def check(self) -> None:
-        """Reads the readers discovered since the last call and reports the new topics."""
-        for endpoint in self._reader.take(64):
-            name = getattr(endpoint, "topic_name", None)
-            if not name or not name.startswith("rt/") or endpoint.participant_key == self.own:
-                continue
-            topic = "/" + name[3:]
-            if topic in self.reported:
-                continue
-            reason = why_unpublished(topic, self.published, self.robot)
-            if reason is not None:
-                self.reported.add(topic)
-                self.report(f"a node reads {topic}, which this bridge does not publish: {reason}")
+        """Reads the endpoints discovered since the last call and reports the new topics."""
+        for topic in self._topics(self._readers):
+            reason = why_unpublished(topic, self.published, self.robot) or in_robot_namespaces(
+                topic, self.published, self.namespaces
+            )
+            self._say("reads", topic, "publish", reason)
+        for topic in self._topics(self._writers):
+            self._say(
+                "writes", topic, "read", in_robot_namespaces(topic, self.read, self.namespaces)
+            )
+
+    def _say(self, does: str, topic: str, bridge_does: str, reason: str | None) -> None:
+        if reason is not None and (does, topic) not in self.reported:
+            self.reported.add((does, topic))
+            self.report(
+                f"a node {does} {topic}, which this bridge does not {bridge_does}: {reason}"
+            )
