@@ -29,7 +29,7 @@
 use crate::rng::Rng;
 use crate::robot::{RobotProfile, SensorModel};
 use crate::world::floor::DiscPaint;
-use crate::world::{Bounds, FloorPaint, RayHit, WallIndex};
+use crate::world::{Bounds, FloorPaint, RayHit};
 
 /// Samples per side of the ground sensor's spot.
 const SPOT_SAMPLES: usize = 3;
@@ -73,38 +73,15 @@ fn noisy(value: f64, sigma: f64, rng: Option<&mut Rng>) -> f32 {
     v.max(0.0) as f32
 }
 
-/// Reads an infra-red distance sensor whose ray starts at `origin` in the unit direction `dir`.
-pub fn read_infrared(
-    model: &SensorModel,
-    walls: &WallIndex,
-    origin: [f32; 2],
-    dir: [f32; 2],
-    rng: Option<&mut Rng>,
-) -> f32 {
-    let hit = walls.cast_ray(origin, dir, model.table.max_input() as f32);
-    infrared_reading(model, hit, rng)
-}
-
-/// The infra-red reading for what the sensor's ray (of the table's range) met.
-#[inline]
-pub fn infrared_reading(model: &SensorModel, hit: Option<RayHit>, rng: Option<&mut Rng>) -> f32 {
-    let x = match hit {
-        Some(hit) => hit.distance as f64 / hit.reflectance as f64,
-        None => model.table.max_input(),
-    };
-    let (value, sigma) = model.table.eval(x);
-    noisy(value, sigma, rng)
-}
-
 /// What an infra-red sensor's table gives when its ray meets nothing (its last row), for
 /// `infrared_reading_with`.
 pub fn infrared_miss(model: &SensorModel) -> (f64, f64) {
     model.table.eval(model.table.max_input())
 }
 
-/// `infrared_reading` of a sensor with imperfections `imperfect`, with
-/// `miss = infrared_miss(model)` computed beforehand: a ray that met nothing needs no table
-/// look-up.
+/// The reading of an infra-red sensor with imperfections `imperfect` for what its ray (of the
+/// table's range) met, with `miss = infrared_miss(model)` computed beforehand: a ray that met
+/// nothing needs no table look-up.
 #[inline]
 pub fn infrared_reading_with(
     model: &SensorModel,
@@ -139,21 +116,8 @@ pub fn range_reading(
     noisy(value, sigma * noise_scale, rng)
 }
 
-/// Mean floor reflectance over the sensor's square spot centred at `at`, aligned with the robot's
-/// unit forward vector `axis` (cos, sin of its heading).
-pub fn spot_reflectance(
-    model: &SensorModel,
-    floor: &FloorPaint,
-    at: [f64; 2],
-    axis: [f64; 2],
-) -> f64 {
-    if model.footprint <= 0.0 {
-        return floor.reflectance_at(at);
-    }
-    spot_reflectance_among(model, floor, floor.regions_near(at), at, axis)
-}
-
-/// `spot_reflectance` of a sensor with a spot (`footprint > 0`), given
+/// Mean floor reflectance over the square spot (`footprint > 0`) of a sensor centred at `at`,
+/// aligned with the robot's unit forward vector `axis` (cos, sin of its heading), given
 /// `candidates = floor.regions_near(at)`.
 ///
 /// The mean is that of the floor at `SPOT_SAMPLES` x `SPOT_SAMPLES` points of the spot. When no
@@ -228,43 +192,12 @@ fn ground_value(
     model.table.eval(model.height / f)
 }
 
-/// Reads a ground sensor at floor point `at` on a robot whose unit forward vector is `axis`.
-pub fn read_ground(
-    model: &SensorModel,
-    floor: &FloorPaint,
-    at: [f64; 2],
-    axis: [f64; 2],
-    rng: Option<&mut Rng>,
-) -> f32 {
-    let f = spot_reflectance(model, floor, at, axis);
-    let (value, sigma) = model.table.eval(model.height / f);
-    noisy(value, sigma, rng)
-}
-
-/// A ground sensor's table value and relative sigma over bare floor, for `read_ground_with`
-/// and `GroundReader`.
+/// A ground sensor's table value and relative sigma over bare floor, for `GroundReader`.
 pub fn ground_background(model: &SensorModel, floor: &FloorPaint) -> (f64, f64) {
     model.table.eval(model.height / floor.background())
 }
 
-/// `read_ground`, with `background = ground_background(model, floor)` computed beforehand: where
-/// no paint is near, the reading needs no spot average and no table look-up.
-#[inline]
-pub fn read_ground_with(
-    model: &SensorModel,
-    floor: &FloorPaint,
-    at: [f64; 2],
-    axis: [f64; 2],
-    background: (f64, f64),
-    rng: Option<&mut Rng>,
-) -> f32 {
-    let candidates = floor.regions_near(at);
-    let (value, sigma) = ground_value(model, floor, candidates, at, axis, background);
-    noisy(value, sigma, rng)
-}
-
-/// One ground sensor reading the floor of one world again and again, as `read_ground` does: it
-/// keeps its table value over bare floor and the last box of bare floor it was in (from
+/// One ground sensor reading the floor of one world again and again: it keeps its table value over bare floor and the last box of bare floor it was in (from
 /// `FloorPaint::bare_box`), so that while it stays in that box a reading needs no look-up.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct GroundReader {
@@ -313,7 +246,59 @@ impl GroundReader {
 mod tests {
     use super::*;
     use crate::robot::RobotProfile;
-    use crate::world::{PaintRegion, PaintShape, WallBox};
+    use crate::world::{PaintRegion, PaintShape, WallBox, WallIndex};
+
+    // The readings by their definitions, one sensor at a time: what the step's readers must give
+    // to the bit.
+
+    /// Reads an infra-red distance sensor whose ray starts at `origin` in the unit direction `dir`.
+    fn read_infrared(
+        model: &SensorModel,
+        walls: &WallIndex,
+        origin: [f32; 2],
+        dir: [f32; 2],
+        rng: Option<&mut Rng>,
+    ) -> f32 {
+        let hit = walls.cast_ray(origin, dir, model.table.max_input() as f32);
+        infrared_reading(model, hit, rng)
+    }
+
+    /// The infra-red reading for what the sensor's ray (of the table's range) met.
+    fn infrared_reading(model: &SensorModel, hit: Option<RayHit>, rng: Option<&mut Rng>) -> f32 {
+        let x = match hit {
+            Some(hit) => hit.distance as f64 / hit.reflectance as f64,
+            None => model.table.max_input(),
+        };
+        let (value, sigma) = model.table.eval(x);
+        noisy(value, sigma, rng)
+    }
+
+    /// Mean floor reflectance over the sensor's square spot centred at `at`, aligned with the
+    /// robot's unit forward vector `axis` (cos, sin of its heading).
+    fn spot_reflectance(
+        model: &SensorModel,
+        floor: &FloorPaint,
+        at: [f64; 2],
+        axis: [f64; 2],
+    ) -> f64 {
+        if model.footprint <= 0.0 {
+            return floor.reflectance_at(at);
+        }
+        spot_reflectance_among(model, floor, floor.regions_near(at), at, axis)
+    }
+
+    /// Reads a ground sensor at floor point `at` on a robot whose unit forward vector is `axis`.
+    fn read_ground(
+        model: &SensorModel,
+        floor: &FloorPaint,
+        at: [f64; 2],
+        axis: [f64; 2],
+        rng: Option<&mut Rng>,
+    ) -> f32 {
+        let f = spot_reflectance(model, floor, at, axis);
+        let (value, sigma) = model.table.eval(model.height / f);
+        noisy(value, sigma, rng)
+    }
 
     #[test]
     fn ground_sensor_reads_white_black_and_edges_between() {
@@ -336,16 +321,6 @@ mod tests {
         assert!((white - 855.625).abs() < 0.01, "{white}");
         assert!((black - 300.0).abs() < 1e-3, "{black}");
         assert!(edge > black + 10.0 && edge < white - 10.0, "{edge}");
-        let background = ground_background(model, &floor);
-        for k in 0..200 {
-            let at = [k as f64 * 0.01 - 0.5, 0.3 - k as f64 * 0.003];
-            let axis = [0.6, 0.8];
-            assert_eq!(
-                read_ground_with(model, &floor, at, axis, background, None),
-                read_ground(model, &floor, at, axis, None),
-                "at {at:?}"
-            );
-        }
     }
 
     /// The spot mean by its definition: every sample looked up among the regions near the

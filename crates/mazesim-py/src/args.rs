@@ -303,18 +303,28 @@ pub fn made_elsewhere(class: &str, how: &str) -> PyErr {
     ))
 }
 
+/// `obj` as a `T`, else the error that the argument `name` was expected to be `what` ("a
+/// TaskFeatures", "a RunSettings or None").
+pub fn typed_argument<'a, 'py, T: pyo3::type_object::PyTypeCheck>(
+    obj: &'a Bound<'py, PyAny>,
+    name: &str,
+    what: &str,
+) -> PyResult<&'a Bound<'py, T>> {
+    obj.cast::<T>().map_err(|_| {
+        invalid(format!(
+            "expected {name} to be {what}, found a {}",
+            type_name(obj)
+        ))
+    })
+}
+
 /// `obj` as a dict; `name` names the argument and `holding` says what it maps (" of name -> array").
 pub fn dict_argument<'a, 'py>(
     obj: &'a Bound<'py, PyAny>,
     name: &str,
     holding: &str,
 ) -> PyResult<&'a Bound<'py, pyo3::types::PyDict>> {
-    obj.cast::<pyo3::types::PyDict>().map_err(|_| {
-        invalid(format!(
-            "expected {name} to be a dict{holding}, found a {}",
-            type_name(obj)
-        ))
-    })
+    typed_argument(obj, name, &format!("a dict{holding}"))
 }
 
 /// The first key of `dict` that is not among `known` (names separated by white space), if any.

@@ -19,7 +19,8 @@ use numpy::{PyReadonlyArrayDyn, PyReadwriteArrayDyn};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::{bounded_items, dict_argument, type_name, unknown_key, Keywords, Real};
+use crate::args::{bounded_items, dict_argument, type_name, typed_argument, unknown_key};
+use crate::args::{Keywords, Real};
 use crate::batch::{Borrowed, PyBatch};
 use crate::buffers::{copied, readable, writable};
 use crate::errors::{invalid, IntoPy};
@@ -388,12 +389,8 @@ impl<'py> CrewArgs<'py> {
         let dict = closed_dict(obj, "each of crews", holding, CREW)?;
         let item = |key: &str| entry(dict, "each of crews", key);
         let simulator = item("simulator")?;
-        let simulator = simulator.cast::<PyBatch>().map_err(|_| {
-            invalid(format!(
-                "expected crews' 'simulator' to be a mazesim.BatchSimulator, found a {}",
-                type_name(&simulator)
-            ))
-        })?;
+        let what = "a mazesim.BatchSimulator";
+        let simulator = typed_argument::<PyBatch>(&simulator, "crews' 'simulator'", what)?;
         let batch = simulator.get();
         batch.one_robot(
             "train_lower_round",

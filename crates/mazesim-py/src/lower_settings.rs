@@ -10,7 +10,7 @@ use mazesim_core::navigator::NUM_ACTIONS;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::{bounded_items, dict_argument, shape_of, type_name, unknown_key};
+use crate::args::{bounded_items, dict_argument, shape_of, typed_argument, unknown_key};
 use crate::args::{warn_deprecated, Keywords};
 use crate::buffers::copied;
 use crate::errors::invalid;
@@ -164,12 +164,8 @@ pub fn round_keywords<'py>(
     let settings = settings.ok_or_else(|| {
         invalid("train_lower_round() missing required argument: 'settings'".to_string())
     })?;
-    let settings = settings.cast::<PyLowerRoundSettings>().map_err(|_| {
-        invalid(format!(
-            "expected settings to be a LowerRoundSettings, found a {}",
-            type_name(settings)
-        ))
-    })?;
+    let what = "a LowerRoundSettings";
+    let settings = typed_argument::<PyLowerRoundSettings>(settings, "settings", what)?;
     let s = settings.get();
     round.set_item("settings", s.learning.bind(py))?;
     round.set_item("worlds", s.worlds.bind(py))?;

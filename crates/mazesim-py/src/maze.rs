@@ -6,7 +6,7 @@ use mazesim_core::generator::{self, MazeParams};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::{type_name, unknown_key, warn_deprecated, Flag, IntArg, Keywords, Real};
+use crate::args::{typed_argument, unknown_key, warn_deprecated, Flag, IntArg, Keywords, Real};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::enter;
 use crate::world::PyWorld;
@@ -157,12 +157,9 @@ fn layout_of(
     }
     match layout {
         None => Ok(PyMazeLayout::default()),
-        Some(l) => l.cast::<PyMazeLayout>().map(|l| *l.get()).map_err(|_| {
-            invalid(format!(
-                "expected layout to be a MazeLayout or None, found a {}",
-                type_name(l)
-            ))
-        }),
+        Some(l) => {
+            typed_argument::<PyMazeLayout>(l, "layout", "a MazeLayout or None").map(|l| *l.get())
+        }
     }
 }
 

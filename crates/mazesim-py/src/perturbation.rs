@@ -7,7 +7,7 @@ use mazesim_core::Perturbation;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyType};
 
-use crate::args::{bounded_items, type_name, unknown_key, warn_deprecated, Keywords, Real};
+use crate::args::{bounded_items, typed_argument, unknown_key, warn_deprecated, Keywords, Real};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::enter;
 
@@ -259,12 +259,7 @@ where
     let Some(value) = value.filter(|v| !v.is_none()) else {
         return Ok(None);
     };
-    value.cast::<T>().map(|v| Some(*v.get())).map_err(|_| {
-        invalid(format!(
-            "expected {name} to be a {class} or None, found a {}",
-            type_name(value)
-        ))
-    })
+    typed_argument::<T>(value, name, &format!("a {class} or None")).map(|v| Some(*v.get()))
 }
 
 /// The perturbation of a `perturbed` call: its `drive` and `sensing`, or (deprecated, with a

@@ -11,7 +11,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::args::{
-    shape_of, type_name, unknown_key, warn_deprecated, Flag, IntArg, Keywords, Real,
+    shape_of, type_name, typed_argument, unknown_key, warn_deprecated, Flag, IntArg, Keywords, Real,
 };
 use crate::buffers::{copied, writable};
 use crate::errors::{invalid, IntoPy};
@@ -70,14 +70,7 @@ impl RunCall {
         let kw = Keywords::new(keywords, "run", "settings")?;
         let settings = match kw.object("settings")? {
             None => Py::new(py, PyRunSettings::new(py, None, None, None, None, None)?)?,
-            Some(s) => s
-                .cast::<PyRunSettings>()
-                .map_err(|_| {
-                    invalid(format!(
-                        "expected settings to be a RunSettings or None, found a {}",
-                        type_name(&s)
-                    ))
-                })?
+            Some(s) => typed_argument::<PyRunSettings>(&s, "settings", "a RunSettings or None")?
                 .clone()
                 .unbind(),
         };

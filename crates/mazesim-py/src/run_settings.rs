@@ -11,7 +11,7 @@ use mazesim_core::navigator::{self, TabularPolicy};
 use mazesim_core::RunOptions;
 use pyo3::prelude::*;
 
-use crate::args::{dict_argument, shape_of, type_name, Flag, IntArg, Real};
+use crate::args::{dict_argument, shape_of, type_name, typed_argument, Flag, IntArg, Real};
 use crate::batch::Seeds;
 use crate::buffers::{copied, readable};
 use crate::errors::{invalid, IntoPy};
@@ -325,15 +325,12 @@ impl PyRunSettings {
             };
             let limits = match given(limits) {
                 None => Py::new(py, PyEpisodeLimits::new_default())?,
-                Some(l) => match l.bind(py).cast::<PyEpisodeLimits>() {
-                    Ok(limits) => limits.clone().unbind(),
-                    Err(_) => {
-                        return Err(invalid(format!(
-                            "expected limits to be an EpisodeLimits or None, found a {}",
-                            type_name(l.bind(py))
-                        )))
-                    }
-                },
+                Some(l) => {
+                    let what = "an EpisodeLimits or None";
+                    typed_argument::<PyEpisodeLimits>(l.bind(py), "limits", what)?
+                        .clone()
+                        .unbind()
+                }
             };
             let seeds_given = given(seeds);
             let seeds = seeds_given

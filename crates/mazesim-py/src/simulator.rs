@@ -6,7 +6,7 @@ use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyTuple};
 
-use crate::args::{bounded_items, type_name, Bytes, Flag, IntArg, Real};
+use crate::args::{bounded_items, typed_argument, Bytes, Flag, IntArg, Real};
 use crate::buffers::{copied, readable};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::{enter, enter_detached};
@@ -352,18 +352,8 @@ impl PySimulator {
     )> {
         let (left, right) = (left.value("left")?, right.value("right")?);
         let observe = observe.value("observe", "a bool")?;
-        let features = features.cast::<PyTaskFeatures>().map_err(|_| {
-            invalid(format!(
-                "expected features to be a TaskFeatures, found a {}",
-                type_name(features)
-            ))
-        })?;
-        let bounds = bounds.cast::<PyStepBounds>().map_err(|_| {
-            invalid(format!(
-                "expected bounds to be a StepBounds, found a {}",
-                type_name(bounds)
-            ))
-        })?;
+        let features = typed_argument::<PyTaskFeatures>(features, "features", "a TaskFeatures")?;
+        let bounds = typed_argument::<PyStepBounds>(bounds, "bounds", "a StepBounds")?;
         let bounds = bounds.get();
         let previous = bounds.previous_action(left, right);
         let features = features.get();

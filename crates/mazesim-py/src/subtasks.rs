@@ -10,7 +10,7 @@ use numpy::PyReadwriteArrayDyn;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::args::type_name;
+use crate::args::dict_argument;
 use crate::buffers::writable;
 use crate::errors::invalid;
 
@@ -60,12 +60,7 @@ impl<'py> SubTaskArrays<'py> {
     /// Borrows the arrays of `subtasks` for `n` environments, each checked against its dtype
     /// and shape; unknown keys are refused.
     pub fn new(subtasks: &Bound<'py, PyAny>, n: usize) -> PyResult<Self> {
-        let dict = subtasks.cast::<PyDict>().map_err(|_| {
-            invalid(format!(
-                "expected subtasks to be a dict of name -> array, found a {}",
-                type_name(subtasks)
-            ))
-        })?;
+        let dict = dict_argument(subtasks, "subtasks", " of name -> array")?;
         for key in dict.keys() {
             let known = key
                 .extract::<String>()

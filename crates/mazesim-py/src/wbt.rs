@@ -13,7 +13,9 @@ use numpy::{PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
 
-use crate::args::{dict_argument, type_name, IntArg, Label, PathArg, SourceName, Text};
+use crate::args::{
+    dict_argument, type_name, typed_argument, IntArg, Label, PathArg, SourceName, Text,
+};
 use crate::errors::{invalid, IntoPy};
 use crate::guard::{enter, enter_detached};
 use crate::world::{dicts, PyWorld};
@@ -323,12 +325,7 @@ pub fn import_wbt_text<'py>(
     robot_line: Option<IntArg>,
 ) -> PyResult<(PyWorld, Bound<'py, PyDict>)> {
     enter(|| {
-        let text = text.cast::<PyString>().map_err(|_| {
-            invalid(format!(
-                "expected text to be a str, found a {}",
-                type_name(text)
-            ))
-        })?;
+        let text = typed_argument::<PyString>(text, "text", "a str")?;
         let text = text.to_string_lossy();
         let source = source.value("source", "a str")?.0;
         let robot = (controller, robot_line);

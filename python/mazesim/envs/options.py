@@ -252,11 +252,6 @@ class EnvOptions:
             )
         return cls.create(**keywords)
 
-    @property
-    def random_world(self) -> bool:
-        """Whether every episode draws a fresh random maze."""
-        return self.world is None
-
     def sample_world(self) -> World:
         """A world of the kind the episodes run in: the fixed world, or a random maze (seed 0)."""
         return self.world if self.world is not None else self.random_maze(0)

@@ -120,20 +120,6 @@ class Decision:
             "greedy": self.greedy,
         }
 
-    @staticmethod
-    def from_json(values: dict[str, Any]) -> Decision:
-        """Reads a decision written by :meth:`as_json`."""
-        return Decision(
-            number=int(values["number"]),
-            frame=int(values["frame"]),
-            checkpoint=int(values["checkpoint"]),
-            arrival=values["direction"] == "arrival",
-            code=str(values["code"]),
-            q_values=[float(value) for value in values["q_values"]],
-            chosen=int(values["chosen"]),
-            greedy=bool(values["greedy"]),
-        )
-
 
 @dataclass
 class RecordedEpisode:

@@ -86,11 +86,6 @@ class Axis:
     high: float = math.inf
     names: tuple[str, ...] = ()
 
-    @property
-    def numeric(self) -> bool:
-        """Whether the levels are numbers."""
-        return not self.names
-
     def check(self, level: Level) -> Level:
         """Returns ``level`` if the axis accepts it.
 

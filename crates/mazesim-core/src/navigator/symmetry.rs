@@ -99,12 +99,6 @@ pub fn mirrored_distance_state(state: usize) -> usize {
     })
 }
 
-/// The mirror image of row `row` (`distance_state + 4096 * phase`) of `subtask`'s table.
-pub fn mirrored_row(subtask: usize, row: usize) -> usize {
-    mirrored_distance_state(row % NUM_STATES)
-        + NUM_STATES * mirrored_phase(subtask, row / NUM_STATES)
-}
-
 /// The mirror image of phase `phase` of `subtask`'s table. A turn's phase counts its progress
 /// towards its own side, so it stays; the heading phase of "Going forward on a door" tells right
 /// of straight (0) from left of it (2), so those two swap; a distance bin (`heading_phase + 3 *
@@ -130,6 +124,13 @@ fn mirrored_action(action: usize) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The mirror image of row `row` (`distance_state + 4096 * phase`) of `subtask`'s table, by
+    /// its definition (`Symmetry` keeps them worked out).
+    fn mirrored_row(subtask: usize, row: usize) -> usize {
+        mirrored_distance_state(row % NUM_STATES)
+            + NUM_STATES * mirrored_phase(subtask, row / NUM_STATES)
+    }
 
     #[test]
     fn mirroring_twice_is_the_identity_and_swaps_sides() {
