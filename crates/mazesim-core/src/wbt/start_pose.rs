@@ -15,19 +15,24 @@ pub const PUSH_OUT_LIMIT_MM: u32 = 50;
 pub const PUSH_OUT_DIRECTIONS: u32 = 16;
 
 impl WbtImport {
-    /// Moves each simulated robot's start whose body overlaps a wall by more than the
-    /// simulator accepts (`START_OVERLAP`) to the nearest pose clear of the walls within
-    /// `PUSH_OUT_LIMIT_MM`, warning once per robot moved.
+    /// Moves each e-puck's start whose body overlaps a wall by more than the simulator accepts
+    /// (`START_OVERLAP`) to the nearest pose clear of the walls within `PUSH_OUT_LIMIT_MM`,
+    /// warning once per robot moved. A robot that is not an e-puck keeps its pose: the e-puck
+    /// that stands in for it has no body among the walls.
     pub(super) fn push_starts_out_of_walls(&mut self) {
-        if self.robot.is_none() && self.robots.iter().all(|r| r.profile.is_none()) {
+        if self.robots.iter().all(|r| r.profile.is_none()) {
             return;
         }
         let Ok(world) = self.to_world("start poses") else {
             return; // the world is refused: the import's own world says why
         };
         let radius = |profile: &str| RobotProfile::builtin(profile).map(|p| p.body_radius);
+        let run_robot_is_epuck =
+            (self.robots.iter()).any(|r| Some(r.line) == self.robot_line && r.profile.is_some());
         let mut moved = Vec::new();
-        if let (Some(pose), Ok(r)) = (self.robot, radius(&self.robot_profile)) {
+        if let (Some(pose), Ok(r), true) =
+            (self.robot, radius(&self.robot_profile), run_robot_is_epuck)
+        {
             if let Some((clear, depth)) = clear_pose(&world, r, pose) {
                 moved.push((self.robot_line, pose, clear, depth));
                 self.robot = Some(clear);
