@@ -480,6 +480,49 @@ def test_a_camera_tilted_down_by_the_world_sees_only_floor() -> None:
     assert max(top_row) == 255 and min(top_row) == 0
 
 
+def test_a_world_s_display_has_its_size_and_accepts_drawings_silently(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    # A Display in the turret (a path planner drawing its map): Webots draws on it; here the
+    # drawings are accepted and dropped, as the C library does, and its size is the node's.
+    display_entry = {
+        "type": "Display",
+        "name": "display",
+        "slot": "turretSlot",
+        "fields": {"width": 200.0, "height": 120.0},
+    }
+    robot = make_robot(report={"extension_devices": [display_entry]})
+    display = robot.getDevice("display")
+    assert (display.getWidth(), display.getHeight()) == (200, 120)
+    display.setColor(0x222222)
+    display.fillRectangle(0, 0, 200, 120)
+    display.drawLine(0, 0, 10, 10)
+    display.drawText("Confidence", 2, 2)
+    display.drawOval(5, 5, 2, 2)
+    image = display.imageCopy(0, 0, 30, 20)
+    assert (image.width, image.height) == (30, 20)
+    display.imagePaste(image, 5, 5, False)
+    display.imageDelete(image)
+    assert "not available" not in capsys.readouterr().err
+    assert robot.step(32) == 0
+
+
+def test_a_python_controller_that_draws_on_a_display_is_told_it_is_not_drawn(
+    tmp_path: Path,
+) -> None:
+    from mazesim.webots.requirements import DISPLAY_NOTE, prepare_controller
+
+    source = tmp_path / "planner.py"
+    source.write_text(
+        "from controller import Robot\nrobot = Robot()\ndisplay = robot.getDevice('display')\n"
+        "display.fillRectangle(0, 0, 10, 10)\n",
+        encoding="utf-8",
+    )
+    assert f"Python controller planner.py: {DISPLAY_NOTE}" in prepare_controller(str(source)).notes
+    source.write_text("from controller import Robot\nrobot = Robot()\n", encoding="utf-8")
+    assert not [n for n in prepare_controller(str(source)).notes if DISPLAY_NOTE in n]
+
+
 def test_the_robots_name_and_custom_data_come_from_the_world() -> None:
     text = 'E-puck {\n  name "scout"\n  customData "lap 3"\n  turretSlot [ GPS { name "g" } ]\n}\n'
     scene = read_scene(text)

@@ -145,7 +145,9 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
         "Emitter": lambda: emitter_from_fields(name, simulation, fields, entry.get("axes")),
         "Receiver": lambda: receiver_from_fields(name, simulation, fields, entry.get("axes")),
         "Speaker": lambda: Speaker(name, simulation),
-        "Display": lambda: Display(name, simulation),
+        "Display": lambda: Display(
+            name, simulation, int(fields.get("width", 64)), int(fields.get("height", 64))
+        ),
         "Pen": lambda: Pen(name, simulation),
         "Lidar": lambda: Lidar(name, simulation),
     }

@@ -16,6 +16,7 @@ from __future__ import annotations
 import math
 import sys
 from collections.abc import Callable
+from types import SimpleNamespace
 from typing import TYPE_CHECKING, Any
 
 from mazesim.webots.devices import Device, _ScalarSensor
@@ -125,7 +126,10 @@ class Speaker(NotSimulated, Device):
 
 
 class Display(_Inert):
-    """A display (the e-puck has none)."""
+    """A display: one the world puts in an extension slot has its node's width and height,
+    and its drawings are accepted and dropped (mazesim has no view to show it on), as the C
+    library's ``wb_display_*`` functions do; without one (the e-puck has none) its size is 0.
+    An image (``imageNew``, ``imageCopy``, ``imageLoad``) keeps its size only."""
 
     _node_type = node_type("DISPLAY")
 
@@ -135,13 +139,87 @@ class Display(_Inert):
     BGRA = 6
     ABGR = 7
 
+    def __init__(
+        self, name: str, simulation: RobotSimulation, width: int = 0, height: int = 0
+    ) -> None:
+        super().__init__(name, simulation)
+        self._size = (max(0, int(width)), max(0, int(height)))
+
     def getWidth(self) -> int:
-        """0: no display."""
-        return 0
+        """The display's width in pixels (its node's ``width``)."""
+        return self._size[0]
 
     def getHeight(self) -> int:
-        """0: no display."""
-        return 0
+        """The display's height in pixels (its node's ``height``)."""
+        return self._size[1]
+
+    def setColor(self, color: int) -> None:
+        """Accepted; nothing is drawn."""
+
+    def setAlpha(self, alpha: float) -> None:
+        """Accepted; nothing is drawn."""
+
+    def setOpacity(self, opacity: float) -> None:
+        """Accepted; nothing is drawn."""
+
+    def setFont(self, font: str, size: int, antiAliasing: bool) -> None:
+        """Accepted; nothing is drawn."""
+
+    def attachCamera(self, camera: Any) -> None:
+        """Accepted; nothing is drawn."""
+
+    def detachCamera(self) -> None:
+        """Accepted."""
+
+    def drawPixel(self, x: int, y: int) -> None:
+        """Accepted; nothing is drawn."""
+
+    def drawLine(self, x1: int, y1: int, x2: int, y2: int) -> None:
+        """Accepted; nothing is drawn."""
+
+    def drawRectangle(self, x: int, y: int, width: int, height: int) -> None:
+        """Accepted; nothing is drawn."""
+
+    def drawOval(self, cx: int, cy: int, a: int, b: int) -> None:
+        """Accepted; nothing is drawn."""
+
+    def drawPolygon(self, x: Any, y: Any) -> None:
+        """Accepted; nothing is drawn."""
+
+    def drawText(self, text: str, x: int, y: int) -> None:
+        """Accepted; nothing is drawn."""
+
+    def fillRectangle(self, x: int, y: int, width: int, height: int) -> None:
+        """Accepted; nothing is drawn."""
+
+    def fillOval(self, cx: int, cy: int, a: int, b: int) -> None:
+        """Accepted; nothing is drawn."""
+
+    def fillPolygon(self, x: Any, y: Any) -> None:
+        """Accepted; nothing is drawn."""
+
+    def imageNew(
+        self, data: Any, format: int, width: int | None = None, height: int | None = None
+    ) -> SimpleNamespace:
+        """An image of ``width`` x ``height`` (its size only)."""
+        return SimpleNamespace(width=max(0, int(width or 0)), height=max(0, int(height or 0)))
+
+    def imageLoad(self, filename: str) -> SimpleNamespace:
+        """An image of size 0: the file is not read."""
+        return SimpleNamespace(width=0, height=0)
+
+    def imageCopy(self, x: int, y: int, width: int, height: int) -> SimpleNamespace:
+        """An image of ``width`` x ``height`` (its size only)."""
+        return SimpleNamespace(width=max(0, int(width)), height=max(0, int(height)))
+
+    def imagePaste(self, ir: Any, x: int, y: int, blend: bool = False) -> None:
+        """Accepted; nothing is drawn."""
+
+    def imageSave(self, ir: Any, filename: str) -> None:
+        """Accepted; no file is written."""
+
+    def imageDelete(self, ir: Any) -> None:
+        """Accepted."""
 
 
 class Pen(_Inert):

@@ -133,10 +133,15 @@ TURN_SLIP = (
 _SOURCES = {"python": (".py",), "c": (".c", ".h"), "cpp": (".cpp", ".cc", ".cxx", ".hpp", ".h")}
 #: Source files, not headers, of a compiled controller.
 _COMPILED_SOURCES = (".c", ".cpp", ".cc", ".cxx")
-#: What the run says of a compiled controller that draws on a Display.
+#: What the run says of a controller that draws on a Display.
 DISPLAY_NOTE = (
     "its Display drawings are accepted and not drawn: mazesim has no view to show a display "
-    "on (images keep their size only, wb_display_image_save writes no file)"
+    "on (images keep their size only, saving one writes no file)"
+)
+#: A Python controller's drawing calls of Webots' Display (its first group names the call).
+_DISPLAY_DRAWINGS = re.compile(
+    r"\.\s*(fillRectangle|fillOval|fillPolygon|drawPixel|drawLine|drawRectangle|drawOval|"
+    r"drawPolygon|drawText|imageNew|imageLoad|imageCopy|imagePaste|imageSave|attachCamera)\s*\("
 )
 #: The include of Webots' display header, in C or C++.
 DISPLAY_INCLUDE = re.compile(r'#\s*include\s*[<"]webots/(display\.h|Display\.hpp)[>"]', re.I)
@@ -530,6 +535,8 @@ def prepare_controller(file: str) -> PreparedController:
                 # started.
                 prepared.missing.append(NO_DISPLAY)
                 prepared.runnable = False
+        if _calls(file, language, _DISPLAY_DRAWINGS):
+            prepared.notes.append(f"Python controller {os.path.basename(file)}: {DISPLAY_NOTE}")
         speed = turn_in_place_speed(file)
         if speed is not None and speed > FAST_TURN_IN_PLACE:
             prepared.missing.append(TURN_SLIP.format(speed=round(speed, 4)))

@@ -31,16 +31,23 @@ const CLEARANCE_SEARCH: f32 = 0.03;
 /// accepted (rapier pushes the body out within a step), a deeper one is refused.
 pub const START_OVERLAP: f64 = 1e-3;
 
+/// How deep (metres) a body of `radius` centred at `[x, y]` lies in the world's walls: its radius
+/// less the signed distance from its centre to the nearest wall (negative: clear of them), and
+/// that distance.
+pub fn wall_overlap(world: &World, radius: f64, [x, y]: [f64; 2]) -> (f64, f32) {
+    let r = radius as f32;
+    let gap = world
+        .wall_index()
+        .signed_distance([x as f32, y as f32], r + CLEARANCE_SEARCH);
+    (r as f64 - gap as f64, gap)
+}
+
 /// Checks a pose `[x, y, yaw]` (named `what` in the error) against the limits and the walls: the
 /// robot's body may not overlap a wall by more than `START_OVERLAP`.
 fn check_free(world: &World, robot: &RobotProfile, what: &str, pose: [f64; 3]) -> Result<()> {
     let [x, y, yaw] = pose;
     limits::check_pose(what, x, y, yaw)?;
-    let r = robot.body_radius as f32;
-    let gap = world
-        .wall_index()
-        .signed_distance([x as f32, y as f32], r + CLEARANCE_SEARCH);
-    let overlap = r as f64 - gap as f64;
+    let (overlap, gap) = wall_overlap(world, robot.body_radius, [x, y]);
     if overlap > START_OVERLAP {
         return Err(Error::InvalidArgument(format!(
             "expected a {what} where the robot (radius {} m) is clear of the walls, found \

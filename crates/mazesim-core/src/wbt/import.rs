@@ -283,7 +283,7 @@ fn finish((mut importer, basic_time_step_ms): (Importer<'_>, f64)) -> WbtImport 
             .warnings
             .push("no robot in the world: the e-puck starts at (0, 0) facing +x".into());
     }
-    WbtImport {
+    let mut import = WbtImport {
         obstacles: importer.obstacles,
         obstacle_looks: importer.obstacle_looks,
         sensed_obstacles: importer.sensed_obstacles,
@@ -304,7 +304,9 @@ fn finish((mut importer, basic_time_step_ms): (Importer<'_>, f64)) -> WbtImport 
         basic_time_step_ms,
         warnings: importer.warnings,
         one_controller_warnings: importer.one_controller_warnings,
-    }
+    };
+    import.push_starts_out_of_walls();
+    import
 }
 
 impl<'d> Importer<'d> {

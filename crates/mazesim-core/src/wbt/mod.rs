@@ -49,6 +49,7 @@ mod parser;
 mod protos;
 mod sensed;
 mod shapes;
+mod start_pose;
 mod tree;
 mod wall_meshes;
 
