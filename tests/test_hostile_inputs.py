@@ -148,6 +148,24 @@ CASES = {
     # Text where a number is expected: numpy (and float()) read "3" as one, so the call did not
     # fail and its arguments were never checked.
     "text_for_an_angle": "from mazesim.odometry import wrap_angle\nwrap_angle('3')",
+    # Texts given in memory, beyond the bound of the file each stands for: the parser asked for
+    # more memory than the process may have (an abort), or parsed for minutes.
+    "world_text_of_a_10000_by_10000_maze": (
+        "row = '+' + '--+' * 10000 + '\\n'\nmiddle = '|' + '  |' * 10000 + '\\n'\n"
+        "_core.World.from_toml(HEADER + '[grid]\\ncell_size = 0.25\\nwall_thickness = 0.01\\n"
+        'map = """\\n\' + (row + middle) * 10000 + row + \'"""\\n\')'
+    ),
+    "world_text_of_150_million_numbers": (
+        "_core.World.from_toml(HEADER + 'x = [' + '0,' * 150_000_000 + ']\\n')"
+    ),
+    "profile_text_of_600_mb": (
+        "text = _core.RobotProfile.builtin('seed').to_toml()\n"
+        "_core.RobotProfile.from_toml(text + '#' * 600_000_000)"
+    ),
+    "wbt_text_of_60_million_nodes": (
+        "_core.import_wbt_text('#VRML_SIM R2023b utf8\\nE-puck { }\\nGroup { children [ '"
+        " + 'Group { } ' * 60_000_000 + ' ] }\\n')"
+    ),
 }
 
 
@@ -185,6 +203,10 @@ MUST_BE_REFUSED = {
     "unseen_mazes_2_31",
     "bench_distinct_mazes_2_31",
     "text_for_an_angle",
+    "world_text_of_a_10000_by_10000_maze",
+    "world_text_of_150_million_numbers",
+    "profile_text_of_600_mb",
+    "wbt_text_of_60_million_nodes",
 }
 
 

@@ -25,6 +25,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("envs", "batch.py", "barcode"),
     ("maze.py", "odometry.py", "_seeding.py", "render", "plotting.py", "webots", "benchmark",
      "controllers.py", "actions.py", "_checks.py", "_pickling.py"),
+    ("_figures.py",),
     ("sensor_rays.py", "_atomic.py", "_closing.py", "_paths.py", "_sizes.py", "_toml.py",
      "_error_tree.py", "_callers.py"),
     ("errors.py", "_core.pyi"),

@@ -25,7 +25,7 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Circle, FancyArrow, Patch, Polygon
 
-from mazesim._atomic import atomic_file
+from mazesim._figures import save_png
 from mazesim.errors import InvalidArgumentError
 
 if TYPE_CHECKING:
@@ -421,9 +421,7 @@ def save_trajectory_png(
             )
     trajectory_legend(ax, world, extra)
     ax.set_title(world.name if title is None else title)
-    figure.tight_layout()
-    with atomic_file(path) as handle:
-        figure.savefig(handle, format="png")
+    save_png(figure, path)
 
 
 def save_robot_paths_png(
@@ -459,6 +457,4 @@ def save_robot_paths_png(
         ax.plot(path_x[-1:], path_y[-1:], marker="o", markersize=4, color=colour, zorder=8)
     trajectory_legend(ax, world, extra)
     ax.set_title(world.name if title is None else title)
-    figure.tight_layout()
-    with atomic_file(path) as handle:
-        figure.savefig(handle, format="png")
+    save_png(figure, path)

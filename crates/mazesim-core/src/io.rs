@@ -93,17 +93,33 @@ pub fn read_limited(path: &Path, limit: u64, what: &str) -> Result<Vec<u8>> {
         .read_to_end(&mut bytes)
         .map_err(io_err)?;
     if bytes.len() as u64 > limit {
-        return Err(Error::Format {
-            location: Location {
-                source: path.display().to_string(),
-                line: 1,
-                column: 1,
-            },
-            field: "(file)".into(),
-            message: format!("expected {what} of at most {limit} bytes, found more"),
-        });
+        return Err(too_long(&path.display().to_string(), what, limit, "more"));
     }
     Ok(bytes)
+}
+
+/// Refuses a text given in memory (not read from a file) longer than the bound of the file it
+/// stands for, before it is parsed: a parser's memory is a multiple of its input, and a text of a
+/// few hundred MB made it ask for more than the process may have (an abort, not an error).
+pub fn check_text_length(text: &str, source: &str, limit: u64, what: &str) -> Result<()> {
+    if text.len() as u64 > limit {
+        let found = format!("{} bytes", text.len());
+        return Err(too_long(source, what, limit, &found));
+    }
+    Ok(())
+}
+
+/// The format error of an input of more than `limit` bytes (`found`: how many, or "more").
+fn too_long(source: &str, what: &str, limit: u64, found: &str) -> Error {
+    Error::Format {
+        location: Location {
+            source: source.to_string(),
+            line: 1,
+            column: 1,
+        },
+        field: "(file)".into(),
+        message: format!("expected {what} of at most {limit} bytes, found {found}"),
+    }
 }
 
 /// Temporary files made by this process so far: each write has its own, even when several
@@ -258,6 +274,18 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_text_longer_than_its_files_bound_is_refused_saying_both_lengths() {
+        assert!(check_text_length("0123456789", "<string>", 10, "the text").is_ok());
+        let error = check_text_length("0123456789!", "<string>", 10, "the text").unwrap_err();
+        let message = error.to_string();
+        assert!(message.starts_with("<string>:1:1"), "{message}");
+        assert!(
+            message.contains("expected the text of at most 10 bytes, found 11 bytes"),
+            "{message}"
+        );
+    }
 
     #[test]
     fn a_file_longer_than_the_limit_is_a_format_error_naming_it() {

@@ -13,8 +13,8 @@ pub const MAX_COORDINATE: f64 = 1_000.0;
 /// Largest angle (a yaw) in radians, either sign; beyond it an `f32` angle is too coarse to turn by.
 pub const MAX_ANGLE: f64 = 1_000.0;
 
-/// Largest world file read, bytes: 100,000 walls and as much paint take a few tens of MB, and
-/// the parser's memory stays a small multiple of it.
+/// Largest world file read (or world text parsed, and robot profile), bytes: 100,000 walls and
+/// as much paint take a few tens of MB, and the parser's memory stays a small multiple of it.
 pub const MAX_WORLD_FILE_BYTES: u64 = 64 << 20;
 
 /// Largest `.wbt` file read, bytes (a world may inline meshes of its robots and objects).

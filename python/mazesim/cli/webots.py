@@ -33,6 +33,10 @@ from mazesim.replay.views import (
 __all__: list[str] = []
 
 
+#: The world of a controller's run without --world.
+DEFAULT_WORLD = "arena"
+
+
 def register(commands: Any) -> None:
     """Adds ``import-wbt`` and ``webots run`` to the command line."""
     importer = commands.add_parser(
@@ -119,7 +123,7 @@ def register(commands: Any) -> None:
     )
     run.add_argument(
         "--world",
-        default="arena",
+        default=DEFAULT_WORLD,
         metavar="NAME|PATH|FILE.wbt",
         help="a built-in world, a mazesim world file or a Webots world (default: %(default)s)",
     )
@@ -259,6 +263,12 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
     if args.controller.lower().endswith(".wbt"):
         from mazesim.cli.webots_world import run_world_command
 
+        if args.world != DEFAULT_WORLD:
+            raise InvalidArgumentError(
+                f"--world chooses the world of a controller's run; found it ({args.world!r}) with "
+                f"the world file {args.controller!r} as the first argument, which is the world of "
+                "this run: leave --world out, or give a controller file first"
+            )
         return run_world_command(args, out)
 
     if args.robot_controller:

@@ -15,8 +15,8 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import numpy.typing as npt
 
-from mazesim._atomic import atomic_file
 from mazesim._core import World
+from mazesim._figures import save_png
 from mazesim.learn.subtasks import SUBTASK_CODES, SUBTASK_NAMES
 from mazesim.plotting import START_COLOR, trajectory_legend, world_figure
 
@@ -102,6 +102,4 @@ def save_episodes_png(
         )
     trajectory_legend(ax, world, extra)
     ax.set_title(title, fontsize=9)
-    figure.tight_layout()
-    with atomic_file(path) as handle:
-        figure.savefig(handle, format="png")
+    save_png(figure, path)

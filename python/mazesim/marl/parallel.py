@@ -9,6 +9,7 @@ observations and rewards are the task's (:mod:`mazesim.marl.tasks`).
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from typing import Any
 
 import gymnasium
@@ -106,7 +107,8 @@ class MultiRobotParallelEnv(ParallelEnv[str, Observation, npt.NDArray[np.float32
         dict[str, bool],
         dict[str, dict[str, Any]],
     ]:
-        """Steps every live agent with its action (an agent without one: an error).
+        """Steps every live agent with its action (an agent without one, or an action of an
+        agent the env does not have: an error; an ended agent's action is left out).
 
         Raises:
             ResetNeededError: No agent is live (before the first ``reset``, or after the episode
@@ -116,6 +118,16 @@ class MultiRobotParallelEnv(ParallelEnv[str, Observation, npt.NDArray[np.float32
         self._check_open()
         if not self.agents:
             raise ResetNeededError("expected reset() before step(): no agent is live")
+        if not isinstance(actions, Mapping):
+            raise InvalidActionError(
+                f"expected a dict of actions by agent name, found {type(actions).__name__}"
+            )
+        unknown = [a for a in actions if a not in self.possible_agents]
+        if unknown:  # a misspelt name would leave its robot's action out unseen
+            raise InvalidActionError(
+                f"expected actions of the agents {self.possible_agents}, found unknown agents "
+                f"{unknown}"
+            )
         missing = [a for a in self.agents if a not in actions]
         if missing:
             raise InvalidActionError(f"expected an action for every live agent, missing {missing}")

@@ -19,8 +19,8 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
 from mazesim import load_world
-from mazesim._atomic import atomic_file
 from mazesim._core import World
+from mazesim._figures import save_png
 from mazesim.plotting import plot_world, world_legend_handles
 
 __all__ = ["GRID_COLOR", "load_with_warnings", "save_world_preview"]
@@ -119,8 +119,7 @@ def save_world_preview(
     if len(warnings) > 25:
         notes.append(f"... and {len(warnings) - 25} more")
     figure.text(0.66, 0.08, "\n".join(notes), fontsize=7, va="bottom", ha="left", wrap=True)
-    with atomic_file(path) as handle:
-        figure.savefig(handle, format="png")
+    save_png(figure, path, tight=False)
 
 
 def load_with_warnings(name_or_path: str) -> tuple[World, list[str]]:

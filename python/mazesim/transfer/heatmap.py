@@ -19,6 +19,7 @@ from matplotlib.figure import Figure
 from matplotlib.image import AxesImage
 
 from mazesim._atomic import atomic_file
+from mazesim._figures import save_png
 from mazesim._paths import make_output_folder
 from mazesim.transfer.result import StudyResult
 
@@ -32,10 +33,8 @@ def _save(figure: Figure, plot: Axes, image: AxesImage, title: str, path: str) -
     """Adds the colour bar of success rates and the title, then writes the PNG."""
     figure.colorbar(image, ax=plot, label="success rate")
     plot.set_title(title, fontsize=9)
-    figure.tight_layout()
     FigureCanvasAgg(figure)
-    with atomic_file(path) as handle:
-        figure.savefig(handle, format="png", dpi=110)
+    save_png(figure, path, dpi=110)
 
 
 def _percent(share: float) -> str:

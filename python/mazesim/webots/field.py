@@ -13,9 +13,12 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING, Any
 
+from mazesim._paths import read_input
+from mazesim.errors import MazesimError, MazesimIOError
 from mazesim.webots import simulation as _simulations
 from mazesim.webots.devices import _print_error, webots_property
 from mazesim.webots.frames import enu_to_nue, nue_to_enu, rotation_matrix
+from mazesim.webots.importer import MAX_WORLD_BYTES
 from mazesim.webots.inert import NotSimulated
 
 if TYPE_CHECKING:
@@ -150,12 +153,15 @@ class Field(NotSimulated):
         if tree is None:
             return
         try:
-            with open(filename, encoding="utf-8", errors="replace") as handle:
-                text = handle.read()
-        except OSError as failure:
+            # The one bounded reader of input files: a FIFO, a device or an endless file is
+            # refused, not waited on or read until the memory runs out.
+            data = read_input(filename, MAX_WORLD_BYTES, "a .wbo file")
+            if len(data) > MAX_WORLD_BYTES:
+                raise MazesimIOError(f"expected at most {MAX_WORLD_BYTES} bytes, found more")
+        except (MazesimError, OSError) as failure:
             _print_error(f"Error: importMFNode(): cannot read '{filename}': {failure}.")
             return
-        tree._import_nodes(position, text, "importMFNode()")
+        tree._import_nodes(position, data.decode("utf-8", "replace"), "importMFNode()")
 
     def importSFNode(self, filename: str) -> None:
         """Webots' kind of error: mazesim sets no node into a single-node field in a run."""

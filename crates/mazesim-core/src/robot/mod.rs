@@ -247,6 +247,8 @@ impl RobotProfile {
 
     /// Parses a profile file's text; `source` names it in errors.
     pub fn from_toml(text: &str, source: &str) -> Result<RobotProfile> {
+        let limit = crate::limits::MAX_WORLD_FILE_BYTES;
+        crate::io::check_text_length(text, source, limit, "the robot profile")?;
         let file: ProfileFile =
             toml::from_str(text).map_err(|e| locate::from_toml_error(source, text, &e))?;
         let bad = |field: String, message: String| {

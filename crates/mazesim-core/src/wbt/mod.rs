@@ -200,6 +200,8 @@ impl WbtImport {
         source: &str,
         choice: impl Into<RobotChoice<'a>>,
     ) -> Result<WbtImport> {
+        let limit = crate::limits::MAX_WBT_FILE_BYTES;
+        crate::io::check_text_length(text, source, limit, "the Webots world")?;
         let document = Document::parse(text, source)?;
         let dir = Path::new(source).parent().unwrap_or(Path::new(""));
         let mut import = import::import(&document, choice.into(), dir);

@@ -120,6 +120,8 @@ fn table_offset(text: &str, name: &str, n: usize) -> usize {
 impl World {
     /// Parses a world file's text; `source` names it in error messages.
     pub fn from_toml(text: &str, source: &str) -> Result<World> {
+        let limit = crate::limits::MAX_WORLD_FILE_BYTES;
+        crate::io::check_text_length(text, source, limit, "the world file")?;
         let spec: WorldSpec =
             toml::from_str(text).map_err(|e| locate::from_toml_error(source, text, &e))?;
         Self::compile(spec, source, text)
