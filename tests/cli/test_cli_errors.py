@@ -241,3 +241,39 @@ def test_an_option_the_command_does_not_take_shows_its_usage_and_the_one_meant(
     assert lines[-1].startswith(f"{usage}: error: unrecognized arguments: {error}"), lines
     if arguments[0] == "bench":  # --world is not --workload: no guess
         assert lines[-1] == f"{usage}: error: unrecognized arguments: {error}"
+
+
+@pytest.mark.parametrize(
+    ("arguments", "usage", "error"),
+    [
+        (["trian"], "mazesim", "argument COMMAND: invalid choice: 'trian' (choose from "),
+        (["webots", "rn", "x.py"], "mazesim webots", "argument COMMAND: invalid choice: 'rn' "),
+        (["demo", "--controller", "hrll"], "mazesim demo", "argument --controller: invalid "),
+        (["bench", "--workload", "contcat"], "mazesim bench", "argument --workload: invalid "),
+    ],
+)
+def test_a_mistyped_command_or_choice_gets_the_one_meant(
+    capsys: pytest.CaptureFixture[str], arguments: list[str], usage: str, error: str
+) -> None:
+    meant = {"trian": "train", "rn": "run", "hrll": "hrl", "contcat": "contact"}
+    typed = next(word for word in arguments if word in meant)
+    assert main(arguments) == 2
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert line.startswith(f"{usage}: error: {error}"), line
+    assert line.endswith(f"; did you mean {meant[typed]!r}?"), line
+
+
+def test_a_choice_like_none_of_them_gets_no_guess(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["bench", "--workload", "xyz"]) == 2
+    assert capsys.readouterr().err.strip().splitlines()[-1] == (
+        "mazesim bench: error: argument --workload: invalid choice: 'xyz' (choose from "
+        "'braitenberg', 'contact', 'random')"
+    )
+
+
+def test_a_list_of_names_gets_the_ones_meant(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["transfer-study", "--axes", "latncy,robot,slpi,zzz"]) == 2
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert line.endswith(
+        "found 'latncy,robot,slpi,zzz'; did you mean 'latency' for 'latncy', 'slip' for 'slpi'?"
+    ), line

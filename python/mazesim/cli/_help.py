@@ -11,6 +11,8 @@ import argparse
 import textwrap
 from typing import Any
 
+from mazesim.errors import _closest_name
+
 __all__ = ["CommandParser", "HelpFormatter", "examples"]
 
 
@@ -39,6 +41,19 @@ class CommandParser(argparse.ArgumentParser):
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         kwargs.setdefault("formatter_class", HelpFormatter)
         super().__init__(*args, **kwargs)
+
+    def _check_value(self, action: argparse.Action, value: Any) -> None:
+        """argparse's check of a value against the option's choices (or the commands), with the
+        choice meant for a typo: ``invalid choice: 'trian' (...); did you mean 'train'?``."""
+        try:
+            super()._check_value(action, value)
+        except argparse.ArgumentError as error:
+            meant = _closest_name(str(value), [str(choice) for choice in action.choices or ()])
+            if meant is None:
+                raise
+            raise argparse.ArgumentError(
+                action, f"{error.message}; did you mean {meant!r}?"
+            ) from None
 
 
 def examples(*command_lines: str, notes: str = "") -> str:
