@@ -320,3 +320,21 @@ def test_webots_run_names_the_other_language_a_controller_folder_holds(tmp_path:
         mazesim_command("webots", "run", "controllers/avoid", "--seconds", "1", cwd=tmp_path)
     )
     assert line.endswith("found a folder with avoid.m (MATLAB), which mazesim does not run"), line
+
+
+@pytest.mark.parametrize(
+    ("arguments", "said"),
+    [
+        (["show", "--world", "seed-maze"], "WORLD is given without '--world': mazesim show WORLD"),
+        (
+            ["replay", "--run", "x.json", "-o", "x.html"],
+            "RUN is given without '--run': mazesim replay RUN",
+        ),
+    ],
+)
+def test_an_argument_given_with_an_option_it_takes_without_says_so(
+    capsys: pytest.CaptureFixture[str], arguments: list[str], said: str
+) -> None:
+    assert main(arguments) == 2
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert line.endswith(f"unrecognized arguments: {arguments[1]}; {said}"), line
