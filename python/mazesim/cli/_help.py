@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import argparse
 import textwrap
-from typing import Any
+from typing import Any, NoReturn
 
 from mazesim.errors import _closest_name
 
@@ -41,6 +41,19 @@ class CommandParser(argparse.ArgumentParser):
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         kwargs.setdefault("formatter_class", HelpFormatter)
         super().__init__(*args, **kwargs)
+
+    def error(self, message: str) -> NoReturn:
+        """argparse's usage error; a command run without its subcommand (``mazesim``, ``mazesim
+        webots``) also lists the subcommands and where their options are."""
+        commands = next(
+            (a for a in self._actions if isinstance(a, argparse._SubParsersAction)), None
+        )
+        if commands is not None and message.endswith(f"required: {commands.metavar}"):
+            message += (
+                f" (one of: {', '.join(commands.choices)}; "
+                f"'{self.prog} {commands.metavar} --help' gives its options)"
+            )
+        super().error(message)
 
     def _check_value(self, action: argparse.Action, value: Any) -> None:
         """argparse's check of a value against the option's choices (or the commands), with the
