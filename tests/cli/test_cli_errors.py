@@ -354,3 +354,17 @@ def test_a_usage_error_says_how_the_command_takes_its_arguments(
     # An argument given with an option it is taken without; a command without its subcommand.
     assert main(arguments) == 2
     assert capsys.readouterr().err.strip().splitlines()[-1] == said
+
+
+def test_a_world_file_without_a_name_is_called_after_the_file(tmp_path: Path) -> None:
+    (tmp_path / "corridor.toml").write_text(
+        'format = "mazesim-world"\nversion = 1\n'
+        '[grid]\nmap = """\n+--+--+\n|S   G|\n+--+--+\n"""\n',
+        encoding="utf-8",
+    )
+    line = _one_error_line(mazesim_command("train", "--world", "corridor.toml", cwd=tmp_path))
+    assert line.startswith(
+        "mazesim: error: the navigator cannot learn world 'corridor' (corridor.toml): "
+    ), line
+    shown = mazesim_command("demo", "--world", "corridor.toml", "--seconds", "1", cwd=tmp_path)
+    assert shown.stdout.startswith("world              corridor (robot e-puck, seed 0)\n")
