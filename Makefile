@@ -95,6 +95,7 @@ fuzz: build dev-deps ## fuzz the readers (FUZZ_CASES inputs each) and every publ
 
 demo: build ## the shipped hierarchical navigator drives seed-maze to its goal; writes mazesim-demo/ (replay.html: watch it)
 	$(BIN)/mazesim demo --controller hrl --out mazesim-demo --html mazesim-demo/replay.html
+	@echo "make demo: the mazesim command is $(BIN)/mazesim (try $(BIN)/mazesim --help, or 'source $(BIN)/activate' first); a maze of your own next: docs/own-maze.md"
 
 # Debian's ROS 1 (docs/ros.md): installed only when /usr/bin/python3 cannot import rospy.
 # The venv sees /usr/lib/python3/dist-packages through a .pth file, at the END of sys.path (first
@@ -162,6 +163,7 @@ corpus-libs: ## install Debian's libgsl-dev if missing (the C libraries the corp
 
 replay-screenshot: build browser-deps ## the shipped navigator's demo replayed in headless Chromium: docs/replay.png
 	$(BIN)/mazesim demo --controller hrl --out mazesim-demo --html mazesim-demo/replay.html
+	@echo "make demo: the mazesim command is $(BIN)/mazesim (try $(BIN)/mazesim --help, or 'source $(BIN)/activate' first); a maze of your own next: docs/own-maze.md"
 	$(BIN)/python -m mazesim.replay.screenshot mazesim-demo/replay.html docs/replay.png
 
 lint: dev-deps ## rustfmt, clippy (warnings are errors), ruff check and ruff format

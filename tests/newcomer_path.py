@@ -50,13 +50,19 @@ def duration_lines(output: str) -> list[str]:
 
 def demo_problems(output: str) -> list[str]:
     """What is wrong with what ``make demo`` printed (empty when nothing): a misleading line,
-    the Rust build or the demo's run not saying how long it took."""
+    the Rust build or the demo's run not saying how long it took, no word of what to open next
+    or where the ``mazesim`` command is."""
     problems = [f"misleading line: {line!r}" for line in misleading_lines(output)]
     timed = duration_lines(output)
     if not any(line.startswith("make build:") for line in timed):
         problems.append("the build does not say how long it took ('make build: ... in N s')")
     if not any(line.startswith("wall-clock time") for line in timed):
         problems.append("the demo does not say how long its run took ('wall-clock time')")
+    lines = output.splitlines()
+    if not any(line.startswith("next") and "replay.html in a browser" in line for line in lines):
+        problems.append("the demo does not say what to open next (its replay.html)")
+    if not any(line.startswith("make demo:") and "mazesim --help" in line for line in lines):
+        problems.append("make demo does not say where the mazesim command is")
     return problems
 
 

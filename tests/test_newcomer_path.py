@@ -20,9 +20,21 @@ VENV_BIN = Path(sys.executable).parent
 PIP_NOTE = "Ignoring gymnasium: markers 'extra == \"gym\"' don't match your environment"
 
 
+#: The command `make demo` runs, after its build.
+DEMO = [
+    "demo",
+    "--controller",
+    "hrl",
+    "--out",
+    "mazesim-demo",
+    "--html",
+    "mazesim-demo/replay.html",
+]
+
+
 def _demo_output(tmp_path: Path) -> str:
     finished = subprocess.run(
-        [str(VENV_BIN / "mazesim"), "demo", "--controller", "hrl", "--out", "out"],
+        [str(VENV_BIN / "mazesim"), *DEMO],
         cwd=tmp_path,
         capture_output=True,
         text=True,
@@ -36,11 +48,29 @@ def test_the_demo_says_how_long_its_run_took_and_warns_of_nothing(tmp_path: Path
     assert newcomer_path.misleading_lines(printed) == []
     (timed,) = newcomer_path.duration_lines(printed)
     assert timed.startswith("wall-clock time")
-    # With the build's line that `make build` prints, nothing is missing.
+    # With the lines that `make build` and `make demo` print, nothing is missing.
     built = "make build: built and installed in 98 s\n"
-    assert newcomer_path.demo_problems(built + printed) == []
+    assert newcomer_path.demo_problems(built + printed + _make_demo_last_line()) == []
     missing = newcomer_path.demo_problems(printed)
-    assert missing == ["the build does not say how long it took ('make build: ... in N s')"]
+    assert missing == [
+        "the build does not say how long it took ('make build: ... in N s')",
+        "make demo does not say where the mazesim command is",
+    ]
+    assert "mazesim-demo/replay.html in a browser" in printed
+
+
+def _make_demo_last_line() -> str:
+    """The line ``make demo`` prints after the demo's run, as a dry run of it gives it."""
+    dry_run = subprocess.run(
+        ["make", "--no-print-directory", "-n", "demo"],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        check=True,
+    ).stdout
+    assert " ".join(DEMO) in dry_run, dry_run
+    (said,) = [line for line in dry_run.splitlines() if line.startswith('echo "make demo:')]
+    return subprocess.run(["sh", "-c", said], capture_output=True, text=True, check=True).stdout
 
 
 @pytest.mark.parametrize(

@@ -90,7 +90,8 @@ def load_world(name_or_path: str | os.PathLike[str]) -> World:
 
     A string that names a built-in world (see :func:`builtin_world_names`) wins over a file of
     the same name in the current folder; anything else is read as a path to a ``.toml`` world file,
-    or to a Webots ``.wbt`` world, which is imported (see :func:`mazesim.webots.import_wbt`).
+    or to a Webots ``.wbt`` world, which is imported (see :func:`mazesim.webots.import_wbt`). A
+    world file without a ``name`` is named after the file (``my-maze`` for ``my-maze.toml``).
 
     Args:
         name_or_path: A built-in world name such as ``"seed-maze"``, or a path to a world file.

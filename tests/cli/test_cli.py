@@ -188,3 +188,35 @@ def test_a_reader_closing_the_pipe_ends_the_command_quietly() -> None:
         error = process.stderr.read()
     assert process.wait(timeout=60) == 141  # 128 + SIGPIPE, as shells report it
     assert error == b""
+
+
+#: What ``next`` says when a run command wrote no replay page.
+NO_REPLAY = "; add --html run.html for a replay to watch in a browser"
+
+
+@pytest.mark.parametrize(
+    ("arguments", "then"),
+    [
+        (["demo", "--seconds", "1", "--out", "run"], f"open run/trajectory.png{NO_REPLAY}"),
+        (
+            ["demo", "--seconds", "1", "--out", "run", "--html", "run/replay.html"],
+            "open run/replay.html in a browser to watch the run (offline)",
+        ),
+        (
+            ["webots", "run", "CONTROLLER", "--seconds", "1"],
+            "open TMP/mazesim-webots/trajectory.png" + NO_REPLAY,
+        ),
+    ],
+)
+def test_a_run_command_ends_with_what_to_open_next(
+    tmp_path: Path,
+    monkeypatch: pytest.MonkeyPatch,
+    capsys: pytest.CaptureFixture[str],
+    arguments: list[str],
+    then: str,
+) -> None:
+    example = Path(__file__).resolve().parents[2] / "examples" / "webots" / "avoid_collision.py"
+    monkeypatch.chdir(tmp_path)
+    assert main([str(example) if word == "CONTROLLER" else word for word in arguments]) == 0
+    last = capsys.readouterr().out.splitlines()[-1]
+    assert last == f"next               {then.replace('TMP', str(tmp_path))}"

@@ -187,28 +187,31 @@ def test_a_mistyped_world_name_gets_the_name_meant(tmp_path: Path, command: str)
     ), line
 
 
-@pytest.mark.parametrize(("module", "package"), [("matplotlib", "matplotlib"), ("PIL", "pillow")])
-def test_a_missing_dependency_says_what_to_install(
-    tmp_path: Path, module: str, package: str
-) -> None:
-    # As if the package were not installed: its import fails, as it would.
-    blocked = f"import sys; sys.modules[{module!r}] = None; "
-    result = subprocess.run(
+def _mazesim_without(
+    module: str, arguments: list[str], cwd: Path
+) -> subprocess.CompletedProcess[str]:
+    """``mazesim ARGUMENTS`` run as if ``module`` were not installed: its import fails."""
+    return subprocess.run(
         [
             sys.executable,
             "-c",
-            blocked + "from mazesim.cli import main; sys.exit(main(sys.argv[1:]))",
-            "show",
-            "seed-maze",
-            "-o",
-            "seed-maze.png",
+            f"import sys; sys.modules[{module!r}] = None; "
+            "from mazesim.cli import main; sys.exit(main(sys.argv[1:]))",
+            *arguments,
         ],
-        cwd=tmp_path,
+        cwd=cwd,
         capture_output=True,
         text=True,
         timeout=300,
         check=False,
     )
+
+
+@pytest.mark.parametrize(("module", "package"), [("matplotlib", "matplotlib"), ("PIL", "pillow")])
+def test_a_missing_dependency_says_what_to_install(
+    tmp_path: Path, module: str, package: str
+) -> None:
+    result = _mazesim_without(module, ["show", "seed-maze", "-o", "seed-maze.png"], tmp_path)
     line = _one_error_line(result)
     assert f"this command needs the Python package {package!r}, which is not installed" in line
     assert line.endswith(f"install it with {sys.executable} -m pip install {package}")
@@ -241,3 +244,127 @@ def test_an_option_the_command_does_not_take_shows_its_usage_and_the_one_meant(
     assert lines[-1].startswith(f"{usage}: error: unrecognized arguments: {error}"), lines
     if arguments[0] == "bench":  # --world is not --workload: no guess
         assert lines[-1] == f"{usage}: error: unrecognized arguments: {error}"
+
+
+@pytest.mark.parametrize(
+    ("arguments", "usage", "error"),
+    [
+        (["trian"], "mazesim", "argument COMMAND: invalid choice: 'trian' (choose from "),
+        (["webots", "rn", "x.py"], "mazesim webots", "argument COMMAND: invalid choice: 'rn' "),
+        (["demo", "--controller", "hrll"], "mazesim demo", "argument --controller: invalid "),
+        (["bench", "--workload", "contcat"], "mazesim bench", "argument --workload: invalid "),
+    ],
+)
+def test_a_mistyped_command_or_choice_gets_the_one_meant(
+    capsys: pytest.CaptureFixture[str], arguments: list[str], usage: str, error: str
+) -> None:
+    meant = {"trian": "train", "rn": "run", "hrll": "hrl", "contcat": "contact"}
+    typed = next(word for word in arguments if word in meant)
+    assert main(arguments) == 2
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert line.startswith(f"{usage}: error: {error}"), line
+    assert line.endswith(f"; did you mean {meant[typed]!r}?"), line
+
+
+def test_a_choice_like_none_of_them_gets_no_guess(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["bench", "--workload", "xyz"]) == 2
+    assert capsys.readouterr().err.strip().splitlines()[-1] == (
+        "mazesim bench: error: argument --workload: invalid choice: 'xyz' (choose from "
+        "'braitenberg', 'contact', 'random')"
+    )
+
+
+def test_a_list_of_names_gets_the_ones_meant(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["transfer-study", "--axes", "latncy,robot,slpi,zzz"]) == 2
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert line.endswith(
+        "found 'latncy,robot,slpi,zzz'; did you mean 'latency' for 'latncy', 'slip' for 'slpi'?"
+    ), line
+
+
+def test_eval_gets_random_meant_for_its_typo(tmp_path: Path) -> None:
+    line = _one_error_line(mazesim_command("eval", "--world", "randm", cwd=tmp_path))
+    assert line.endswith(
+        "world file), or 'random' for unseen generated 5 x 5 mazes; did you mean 'random'?"
+    ), line
+
+
+def test_sweep_without_ray_names_the_sequential_run(tmp_path: Path) -> None:
+    shutil.copyfile(REPO / "examples" / "sweep.toml", tmp_path / "my sweep.toml")
+    result = _mazesim_without("ray", ["sweep", "my sweep.toml"], tmp_path)
+    line = _one_error_line(result)
+    assert "running on Ray needs the 'ray' package: pip install 'mazesim[ray]'" in line
+    assert line.endswith("without Ray: mazesim sweep 'my sweep.toml' --sequential"), line
+    assert not (tmp_path / "mazesim-sweep").exists()
+
+
+@pytest.mark.parametrize(
+    ("file", "language"), [("Avoid.java", "Java"), ("avoid.jar", "Java"), ("avoid.m", "MATLAB")]
+)
+def test_webots_run_refuses_a_controller_in_another_language(
+    tmp_path: Path, file: str, language: str
+) -> None:
+    (tmp_path / file).write_text("public class Avoid {}\n", encoding="utf-8")
+    line = _one_error_line(mazesim_command("webots", "run", file, "--seconds", "1", cwd=tmp_path))
+    assert line == (
+        f"mazesim: error: {tmp_path / file}: expected a Python, C or C++ controller (.py, .c, "
+        f".cpp, .cc, .cxx), found a {language} controller, which mazesim does not run"
+    )
+
+
+def test_webots_run_names_the_other_language_a_controller_folder_holds(tmp_path: Path) -> None:
+    folder = tmp_path / "controllers" / "avoid"
+    folder.mkdir(parents=True)
+    (folder / "avoid.m").write_text("wb_robot_init();\n", encoding="utf-8")
+    line = _one_error_line(
+        mazesim_command("webots", "run", "controllers/avoid", "--seconds", "1", cwd=tmp_path)
+    )
+    assert line.endswith("found a folder with avoid.m (MATLAB), which mazesim does not run"), line
+
+
+@pytest.mark.parametrize(
+    ("arguments", "said"),
+    [
+        (
+            ["show", "--world", "seed-maze"],
+            "mazesim show: error: unrecognized arguments: --world; WORLD is given without "
+            "'--world': mazesim show WORLD",
+        ),
+        (
+            ["replay", "--run", "x.json", "-o", "x.html"],
+            "mazesim replay: error: unrecognized arguments: --run; RUN is given without '--run': "
+            "mazesim replay RUN",
+        ),
+        (
+            [],
+            "mazesim: error: the following arguments are required: COMMAND (one of: worlds, demo, "
+            "bench, ros, ros2, barcode-study, transfer-study, import-wbt, webots, sweep, train, "
+            "eval, replay, show; 'mazesim COMMAND --help' gives its options)",
+        ),
+        (
+            ["webots"],
+            "mazesim webots: error: the following arguments are required: COMMAND (one of: run; "
+            "'mazesim webots COMMAND --help' gives its options)",
+        ),
+    ],
+)
+def test_a_usage_error_says_how_the_command_takes_its_arguments(
+    capsys: pytest.CaptureFixture[str], arguments: list[str], said: str
+) -> None:
+    # An argument given with an option it is taken without; a command without its subcommand.
+    assert main(arguments) == 2
+    assert capsys.readouterr().err.strip().splitlines()[-1] == said
+
+
+def test_a_world_file_without_a_name_is_called_after_the_file(tmp_path: Path) -> None:
+    (tmp_path / "corridor.toml").write_text(
+        'format = "mazesim-world"\nversion = 1\n'
+        '[grid]\nmap = """\n+--+--+\n|S   G|\n+--+--+\n"""\n',
+        encoding="utf-8",
+    )
+    line = _one_error_line(mazesim_command("train", "--world", "corridor.toml", cwd=tmp_path))
+    assert line.startswith(
+        "mazesim: error: the navigator cannot learn world 'corridor' (corridor.toml): "
+    ), line
+    shown = mazesim_command("demo", "--world", "corridor.toml", "--seconds", "1", cwd=tmp_path)
+    assert shown.stdout.startswith("world              corridor (robot e-puck, seed 0)\n")

@@ -17,8 +17,8 @@ BOX = '\n[[bodies]]\nshape = "box"\ncenter = [0.15, 0.0]\nsize = [0.05, 0.05]\nm
 
 
 def test_bodies_are_listed_and_round_trip_through_a_file(tmp_path: Path) -> None:
-    world = mazesim.World.from_toml(
-        HEADER
+    world = mazesim.World.from_toml(  # named: a world without a name takes its file's
+        HEADER.replace("version = 1\n", 'version = 1\nname = "bodies"\n')
         + BOX
         + '\n[[bodies]]\nshape = "circle"\ncenter = [-0.2, 0.1]\nradius = 0.03\nmass = 0.2\n'
         + "friction = 0.1\nreflectance = 0.5\n"

@@ -48,7 +48,7 @@ def test_show_writes_name_png_here_by_default(
     ("name", "picture"),
     [
         ("../escaped", "escaped.png"),
-        ("", "world.png"),
+        ("", "named.png"),  # no name: the file's
         ("/tmp/a b", "a-b.png"),
         ("..", "world.png"),
     ],

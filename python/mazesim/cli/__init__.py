@@ -141,9 +141,22 @@ def _refuse_unknown(
         for word in typed
         if (closest := _closest_name(word.lstrip("-"), list(options), 0.8)) is not None
     ]
+    # An argument the command takes without an option, given with one (`show --world X`).
+    positional = {
+        name: str(action.metavar or action.dest)
+        for action in parser._actions
+        if not action.option_strings
+        for name in [str(action.dest), *str(action.metavar or "").lower().split("|")]
+    }
+    given = [
+        f"{positional[name]} is given without {word!r}: {parser.prog} {positional[name]}"
+        for word in typed
+        if (name := word.lstrip("-").replace("-", "_")) in positional
+    ]
     parser.error(
         f"unrecognized arguments: {' '.join(unknown)}"
         + (f"; did you mean {', '.join(meant)}?" if meant else "")
+        + "".join(f"; {each}" for each in given)
     )
 
 

@@ -15,6 +15,7 @@ from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 from mazesim._paths import output_path
+from mazesim.errors import _closest_name
 
 __all__ = [
     "MAX_COUNT",
@@ -111,8 +112,14 @@ def name_list(text: str, names: Sequence[str], what: str) -> list[str]:
     """
     chosen = [part.strip() for part in text.split(",") if part.strip()]
     if not chosen or any(name not in names for name in chosen):
+        meant = [
+            f"{closest!r} for {name!r}"
+            for name in chosen
+            if name not in names and (closest := _closest_name(name, list(names))) is not None
+        ]
         raise argparse.ArgumentTypeError(
             f"expected {what} among {', '.join(names)}, found {text!r}"
+            + (f"; did you mean {', '.join(meant)}?" if meant else "")
         )
     return list(dict.fromkeys(chosen))
 

@@ -9,7 +9,9 @@ from __future__ import annotations
 
 import argparse
 import textwrap
-from typing import Any
+from typing import Any, NoReturn
+
+from mazesim.errors import _closest_name
 
 __all__ = ["CommandParser", "HelpFormatter", "examples"]
 
@@ -39,6 +41,32 @@ class CommandParser(argparse.ArgumentParser):
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         kwargs.setdefault("formatter_class", HelpFormatter)
         super().__init__(*args, **kwargs)
+
+    def error(self, message: str) -> NoReturn:
+        """argparse's usage error; a command run without its subcommand (``mazesim``, ``mazesim
+        webots``) also lists the subcommands and where their options are."""
+        commands = next(
+            (a for a in self._actions if isinstance(a, argparse._SubParsersAction)), None
+        )
+        if commands is not None and message.endswith(f"required: {commands.metavar}"):
+            message += (
+                f" (one of: {', '.join(commands.choices)}; "
+                f"'{self.prog} {commands.metavar} --help' gives its options)"
+            )
+        super().error(message)
+
+    def _check_value(self, action: argparse.Action, value: Any) -> None:
+        """argparse's check of a value against the option's choices (or the commands), with the
+        choice meant for a typo: ``invalid choice: 'trian' (...); did you mean 'train'?``."""
+        try:
+            super()._check_value(action, value)
+        except argparse.ArgumentError as error:
+            meant = _closest_name(str(value), [str(choice) for choice in action.choices or ()])
+            if meant is None:
+                raise
+            raise argparse.ArgumentError(
+                action, f"{error.message}; did you mean {meant!r}?"
+            ) from None
 
 
 def examples(*command_lines: str, notes: str = "") -> str:

@@ -140,7 +140,7 @@ def run_avoid_collision_demo(args: argparse.Namespace, out: TextIO) -> int:
     from mazesim.cli.demo_robots import proximity_columns, run_robots_demo
     from mazesim.controllers import AvoidCollision
     from mazesim.plotting import save_trajectory_png
-    from mazesim.replay.views import SimulatorWatch
+    from mazesim.replay.views import SimulatorWatch, written_lines
 
     world = mazesim.load_world(args.world)
     simulator = mazesim.Simulator(world, robot=args.robot, seed=args.seed)
@@ -214,6 +214,6 @@ def run_avoid_collision_demo(args: argparse.Namespace, out: TextIO) -> int:
         out.write(f"goal reached       {'yes' if goal_reached else 'no'}\n")
     out.write(
         f"wall-clock time    {wall_clock:.3f} s ({speed} real time)\n"
-        f"wrote              {', '.join([picture, summary_path, *views])}\n"
+        + written_lines(args, picture, [picture, summary_path, *views])
     )
     return 0

@@ -34,7 +34,7 @@ from mazesim.learn.summary import summarise
 from mazesim.learn.tables import load_policy
 from mazesim.maze import navigator_problems, world_hash
 from mazesim.replay.navigator import Recording
-from mazesim.replay.views import play_live, recording_requested, write_views
+from mazesim.replay.views import play_live, recording_requested, write_views, written_lines
 
 __all__ = ["run_hrl_demo"]
 
@@ -154,6 +154,6 @@ def run_hrl_demo(args: argparse.Namespace, out: TextIO) -> int:
         f"goal reached       {'yes' if result.arrived else 'no'}{limit}\n"
         f"decisions          {chosen}\n"
         f"wall-clock time    {wall_clock:.3f} s (the run){adapt}\n"
-        f"wrote              {', '.join([picture, trace, summary_path, *views])}\n"
+        + written_lines(args, picture, [picture, trace, summary_path, *views])
     )
     return 0

@@ -54,7 +54,7 @@ def run_robots_demo(
     from mazesim.controllers import AvoidCollision
     from mazesim.plotting import save_robot_paths_png
     from mazesim.replay.recorder import FleetRecorder
-    from mazesim.replay.views import FleetLiveView, recording_requested, write_views
+    from mazesim.replay.views import FleetLiveView, recording_requested, write_views, written_lines
 
     world = simulator.world
     names = list(simulator.robot_names)
@@ -140,7 +140,7 @@ def run_robots_demo(
         out.write(
             f"  {entry['name']:<16} {entry['distance_m']:.2f} m, {entry['collisions']} collisions\n"
         )
-    out.write(f"wrote              {', '.join([picture, summary_path, *views])}\n")
+    out.write(written_lines(args, picture, [picture, summary_path, *views]))
     return 0
 
 

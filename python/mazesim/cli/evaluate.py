@@ -17,11 +17,12 @@ from dataclasses import fields
 from pathlib import Path
 from typing import Any, TextIO
 
-from mazesim import load_world
+from mazesim import World, load_world
 from mazesim._paths import refuse_overwriting_inputs
 from mazesim.cli._args import add_setting_options, output_path, positive_int, seed_argument
 from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
+from mazesim.errors import UnknownNameError
 from mazesim.replay.navigator import Recording
 from mazesim.replay.views import (
     add_viewing_options,
@@ -34,6 +35,8 @@ __all__ = ["run_eval"]
 
 #: Episodes that ``eval --html/--video/--record`` records (the first ones of the first world).
 RECORDED_EPISODES = 3
+#: The ``--world`` that stands for unseen generated 5 x 5 mazes.
+RANDOM_WORLD = "random"
 #: Episodes whose paths ``eval --plot`` draws (the first ones of the first world).
 PLOTTED_EPISODES = 3
 
@@ -67,6 +70,25 @@ def _write_trace_and_plot(
         )
         written.append(str(args.plot))
     return written
+
+
+def _world_or_random(name: str) -> World:
+    """The world ``--world`` names, where 'random' (unseen generated mazes, which the caller
+    makes) is one name more: a typo of it gets it as the one meant.
+
+    Raises:
+        UnknownNameError: Neither a built-in world nor a file; ends with the name meant.
+    """
+    try:
+        return load_world(name)
+    except UnknownNameError as unknown:
+        if unknown.suggestion is not None:
+            raise
+        raise UnknownNameError(
+            f"{unknown}, or {RANDOM_WORLD!r} for unseen generated 5 x 5 mazes",
+            available=[*(unknown.available or []), RANDOM_WORLD],
+            name=name,
+        ) from None
 
 
 def register(commands: Any) -> None:
@@ -154,14 +176,16 @@ def run_eval(args: argparse.Namespace, out: TextIO) -> int:
         [*policy_files, ("--world", args.world)],
     )
     policy = load_policy(args.policy)
-    if args.world == "random":
+    if args.world == RANDOM_WORLD:
         from mazesim.learn.evaluate import unseen_mazes
 
         worlds = unseen_mazes(args.mazes, args.seed)
         per_world = max(1, math.ceil(args.episodes / len(worlds)))
         label = f"{len(worlds)} unseen generated 5 x 5 mazes"
     else:
-        worlds = [load_world(args.world) if args.world is not None else policy.learned_world()]
+        worlds = [
+            _world_or_random(args.world) if args.world is not None else policy.learned_world()
+        ]
         per_world = args.episodes
         label = worlds[0].name
     settings = EvalSettings(**{f.name: getattr(args, f.name) for f in fields(EvalSettings)})

@@ -9,6 +9,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import shlex
 import sys
 from collections.abc import Sequence
 from typing import Any, TextIO
@@ -18,6 +19,7 @@ from mazesim.cli._args import positive_int
 from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
 from mazesim.distributed.config import PARAMETERS, TRAINER_DEFAULTS, load_sweep_config
+from mazesim.errors import MissingDependencyError
 
 __all__ = ["run_sweep_command"]
 
@@ -121,6 +123,16 @@ def run_sweep_command(args: argparse.Namespace, out: TextIO) -> int:
         [("the sweep file", args.config)],
     )
     config = load_sweep_config(args.config)
+    if not args.sequential:
+        from mazesim.distributed.cluster import import_ray
+
+        try:
+            import_ray()
+        except MissingDependencyError as missing:
+            raise MissingDependencyError(
+                f"{missing}; or run the sweep in this process, without Ray: "
+                f"mazesim sweep {shlex.quote(str(args.config))} --sequential"
+            ) from None
 
     def progress(line: str) -> None:
         if not args.quiet:

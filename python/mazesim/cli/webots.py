@@ -28,6 +28,7 @@ from mazesim.replay.views import (
     add_viewing_options,
     viewing_outputs,
     viewing_requested,
+    written_lines,
 )
 
 __all__: list[str] = []
@@ -396,7 +397,7 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
             f"  {robot['name']:<16} no controller: {robot['distance_m']:.2f} m, "
             f"{robot['collisions']} collisions\n"
         )
-    out.write(f"wrote              {', '.join([picture, summary_path, table, *views])}\n")
+    out.write(written_lines(args, picture, [picture, summary_path, table, *views]))
     return result.exit_status
 
 

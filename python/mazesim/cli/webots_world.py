@@ -283,7 +283,12 @@ def run_world_command(args: argparse.Namespace, out: TextIO) -> int:
     import mazesim
     from mazesim._paths import make_output_folder, open_input, refuse_overwriting_inputs
     from mazesim.plotting import save_robot_paths_png
-    from mazesim.replay.views import recording_requested, viewing_outputs, write_views
+    from mazesim.replay.views import (
+        recording_requested,
+        viewing_outputs,
+        write_views,
+        written_lines,
+    )
     from mazesim.webots.lockstep import refuse_import_warnings, run_world
     from mazesim.webots.runner import controller_file
 
@@ -383,7 +388,7 @@ def run_world_command(args: argparse.Namespace, out: TextIO) -> int:
             recorder.fleet.run(f"{run.simulated_seconds:.0f} s"),
             f"{run.world.name}: {len(run.robots)} robots, seed {args.seed}",
         )
-    out.write(f"wrote              {', '.join([picture, summary_path, table, *views])}\n")
+    out.write(written_lines(args, picture, [picture, summary_path, table, *views]))
     if run.interrupted:
         print(
             f"mazesim: interrupted at {run.simulated_seconds:.2f} s of simulated time: every "

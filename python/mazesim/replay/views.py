@@ -27,6 +27,7 @@ __all__ = [
     "viewing_outputs",
     "viewing_requested",
     "write_views",
+    "written_lines",
 ]
 
 
@@ -107,6 +108,18 @@ def write_views(args: argparse.Namespace, run: RecordedRun, title: str | None = 
         write_video(run, args.video)
         written.append(os.fspath(args.video))
     return written
+
+
+def written_lines(args: argparse.Namespace, picture: str, written: list[str]) -> str:
+    """The last lines of a run command's summary: the files it wrote, and what to open next (the
+    replay page when it wrote one, else the picture and how to get a replay)."""
+    html = getattr(args, "html", None)
+    then = (
+        f"open {os.fspath(html)} in a browser to watch the run (offline)"
+        if html
+        else f"open {picture}; add --html run.html for a replay to watch in a browser"
+    )
+    return f"wrote              {', '.join(written)}\nnext               {then}\n"
 
 
 def play_live(run: RecordedRun, title: str, stream: TextIO | None = None) -> None:

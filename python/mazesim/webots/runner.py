@@ -105,6 +105,10 @@ class ControllerRun:
 CONTROLLER_SUFFIXES = (".py", *native_controller.C_SUFFIXES, *native_controller.CPP_SUFFIXES)
 
 
+#: The other languages Webots runs controllers in, by file suffix: mazesim runs none of them.
+OTHER_LANGUAGES = {".java": "Java", ".class": "Java", ".jar": "Java", ".m": "MATLAB"}
+
+
 def controller_file(path: str | os.PathLike[str]) -> str:
     """The controller file to run: ``path`` itself, or for a Webots controller folder
     ``controllers/NAME`` the ``NAME.py``, ``NAME.c``, ``NAME.cpp``, ``NAME.cc`` or ``NAME.cxx`` in
@@ -112,19 +116,37 @@ def controller_file(path: str | os.PathLike[str]) -> str:
 
     Raises:
         MazesimIOError: ``path`` is a folder without such a file.
+        InvalidArgumentError: ``path`` is a controller in a language mazesim does not run
+            (:data:`OTHER_LANGUAGES`: Java, MATLAB).
     """
     file = os.path.abspath(os.fspath(path))
+    expected = f"a Python, C or C++ controller ({', '.join(CONTROLLER_SUFFIXES)})"
     if not os.path.isdir(file):
+        language = OTHER_LANGUAGES.get(os.path.splitext(file)[1].lower())
+        if language is not None:
+            raise InvalidArgumentError(
+                f"{file}: expected {expected}, found a {language} controller, which mazesim "
+                f"does not run"
+            )
         return file
     name = os.path.basename(file)
     for suffix in CONTROLLER_SUFFIXES:
         inside = os.path.join(file, f"{name}{suffix}")
         if os.path.isfile(inside):
             return inside
+    others = [
+        f"{name}{suffix} ({language})"
+        for suffix, language in OTHER_LANGUAGES.items()
+        if os.path.isfile(os.path.join(file, f"{name}{suffix}"))
+    ]
     failure = MazesimIOError(
         f"{file}: expected a controller file, or a Webots controller folder holding "
         f"{name}{', '.join(CONTROLLER_SUFFIXES)} (Webots runs controllers/NAME/NAME.*), found a "
-        f"folder without them"
+        + (
+            f"folder with {', '.join(others)}, which mazesim does not run"
+            if others
+            else "folder without them"
+        )
     )
     failure.filename = file
     raise failure

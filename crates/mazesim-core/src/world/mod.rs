@@ -127,7 +127,8 @@ impl World {
         Self::compile(spec, source, text)
     }
 
-    /// Reads a world file.
+    /// Reads a world file; a world without a `name` is named after the file (`my-maze` for
+    /// `my-maze.toml`), as an imported Webots world is.
     pub fn load(path: &Path) -> Result<World> {
         let what = "the world file";
         let bytes = crate::io::read_limited(path, crate::limits::MAX_WORLD_FILE_BYTES, what)?;
@@ -138,7 +139,13 @@ impl World {
             );
             Error::io(path, &format!("cannot read {what}"), &not_text)
         })?;
-        Self::from_toml(&text, &path.display().to_string())
+        let mut world = Self::from_toml(&text, &path.display().to_string())?;
+        if world.spec.name.is_empty() {
+            if let Some(stem) = path.file_stem() {
+                world.spec.name = stem.to_string_lossy().into_owned();
+            }
+        }
+        Ok(world)
     }
 
     /// A built-in world by name.

@@ -164,6 +164,21 @@ fn saving_is_atomic_and_round_trips() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+#[test]
+fn a_world_file_without_a_name_is_named_after_the_file() {
+    let dir = std::env::temp_dir().join(format!("mazesim-world-name-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let header = "format = \"mazesim-world\"\nversion = 1\n";
+    let unnamed = dir.join("my-maze.toml");
+    std::fs::write(&unnamed, header).unwrap();
+    assert_eq!(World::load(&unnamed).unwrap().name(), "my-maze");
+    let named = dir.join("file.toml");
+    std::fs::write(&named, format!("{header}name = \"kept\"\n")).unwrap();
+    assert_eq!(World::load(&named).unwrap().name(), "kept");
+    assert_eq!(World::from_toml(header, "x.toml").unwrap().name(), "");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 fn finite() -> impl Strategy<Value = f64> {
     -10.0f64..10.0
 }
