@@ -85,6 +85,7 @@ def samples(tmp: Path) -> dict[str, Any]:
         "num_envs": NUM_ENVS,
         "robot": "e-puck",
         "robot_index": 0,
+        "kept_robots": [0],
         "robot_profiles": None,
         "overlap_robots": False,
         "commands": np.zeros((1, 2)),

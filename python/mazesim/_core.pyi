@@ -419,15 +419,23 @@ class Simulator:
             InvalidArgumentError: An index past the walls or bodies, or a pose beyond the
                 limits; nothing moved.
         """
-    def change_world(self, world: World) -> None:
+    def change_world(self, world: World, kept_robots: Sequence[int | None] | None = None) -> None:
         """Runs on in ``world`` from the next step on, as a Webots supervisor imports nodes into
         the running world or removes some: its walls are met and sensed, every robot keeping its
         pose, velocities, encoders, noise stream, clock and counters; a movable body both worlds
         hold goes on where it is, a new one starts at rest. ``world`` is what ``reset_scene``
         puts back.
 
+        ``kept_robots``, when given, holds one entry per robot of ``world``: the index of the
+        running robot it is (which goes on as above), or None for a robot imported now, which
+        starts at rest at its world pose on the running clock, with no wheel command, fresh
+        counters and a noise stream of its own derived from the seed and its name. The running
+        robots it does not name are taken out.
+
         Raises:
-            InvalidArgumentError: ``world`` holds another number of robots.
+            InvalidArgumentError: Without ``kept_robots``, ``world`` holds another number of
+                robots; with it, an entry per robot of ``world`` is expected, each running robot
+                at most once; nothing changed.
         """
     def reset_scene(self) -> None:
         """Puts the scene back as the world was made, as a Webots supervisor's

@@ -107,6 +107,11 @@ INSTANCES: dict[str, str] = {
         "__import__('mazesim.webots.solids', fromlist=['x']).WorldSolids("
         "[mazesim.Simulator(world)], {})"
     ),
+    # A robot a supervisor removed, as it was in a world's simulator.
+    "mazesim.webots.robots_changed.RemovedRobot": (
+        "__import__('mazesim.webots.robots_changed', fromlist=['x']).RemovedRobot("
+        "mazesim.Simulator(world))"
+    ),
     # The changes a supervisor makes to the running world of a world file.
     "mazesim.webots.scene_edits.SceneEdits": (
         "(lambda w: w.scene_edits.SceneEdits(w.simulation.prepare(world,"

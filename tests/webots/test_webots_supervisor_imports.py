@@ -1,12 +1,14 @@
 """A supervisor imports nodes into the running world and removes them: an imported Solid is
 met and seen by the robot from the next step on, found by its DEF name and moved by its
-fields; a removed one is gone; the robot runs on as it was (#33)."""
+fields; a removed one is gone; the robot runs on as it was; a supervisor's reset takes the
+imported nodes out, as Webots' does (#33)."""
 
 from __future__ import annotations
 
 import json
 import math
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -42,15 +44,22 @@ def without_gate(supervisor: controller.Supervisor) -> None:
     supervisor.getFromDef("GATE").getField("translation").setSFVec3f([0.1, 0.6, 0.05])
 
 
-def test_an_imported_solid_is_in_the_scene_tree_and_seen_from_the_next_step(
-    tmp_path: Path,
-) -> None:
+def crate_ahead(tmp_path: Path) -> tuple[controller.Supervisor, Any, int, float]:
+    """The supervisor of a world without the gate, after it imported the crate ahead: with the
+    root's ``children`` field, their count and the front sensors' reading before the import."""
     supervisor = supervisor_in(tmp_path)
     without_gate(supervisor)
     children = supervisor.getRoot().getField("children")
     count = children.getCount()
     clear = front(supervisor)
     children.importMFNodeFromString(-1, AHEAD)
+    return supervisor, children, count, clear
+
+
+def test_an_imported_solid_is_in_the_scene_tree_and_seen_from_the_next_step(
+    tmp_path: Path,
+) -> None:
+    supervisor, children, count, clear = crate_ahead(tmp_path)
     assert children.getCount() == count + 1
     crate = supervisor.getFromDef("CRATE")
     assert crate is children.getMFNode(-1) and crate.getTypeName() == "Solid"
@@ -198,3 +207,16 @@ def test_a_supervisor_robot_imports_and_removes_a_crate_in_a_world_of_several_ro
     # Held at the crate's face (x = -0.10) while it stood, then on past it.
     assert pusher.xs[35] < -0.1 - 0.037 + 1e-3
     assert pusher.final_pose[0] > -0.12
+
+
+def test_a_supervisor_reset_takes_an_imported_box_out(tmp_path: Path) -> None:
+    supervisor, children, count, clear = crate_ahead(tmp_path)
+    assert front(supervisor) > clear + 300.0
+    supervisor.simulationReset()
+    supervisor.step(32)  # the reset is applied at the end of the next step, as in Webots
+    assert children.getCount() == count and supervisor.getFromDef("CRATE") is None
+    without_gate(supervisor)  # the reset put the gate back where the file has it
+    assert front(supervisor) == pytest.approx(clear, abs=50.0), "the crate is out too"
+    # A later import takes a new place and is met again.
+    children.importMFNodeFromString(-1, AHEAD)
+    assert children.getCount() == count + 1 and front(supervisor) > clear + 300.0

@@ -494,11 +494,33 @@ impl PySimulator {
     /// running world or removes some: its walls are met and sensed, every robot keeping its
     /// pose, velocities, encoders, noise stream, clock and counters; a movable body both worlds
     /// hold goes on where it is, a new one starts at rest. `world` is what a `reset_scene` puts
-    /// back. Refused when `world` holds another number of robots.
-    #[pyo3(text_signature = "($self, world)")]
-    fn change_world(&self, world: &Bound<'_, PyAny>) -> PyResult<()> {
+    /// back. Without `kept_robots`, refused when `world` holds another number of robots; with
+    /// it (one entry per robot of `world`: the index of the running robot it is, or None for a
+    /// new one), robots are added and taken out as a supervisor imports and removes them (see
+    /// `Swarm::change_world_with_robots`).
+    #[pyo3(signature = (world, kept_robots=None), text_signature = "($self, world, kept_robots=None)")]
+    fn change_world(
+        &self,
+        world: &Bound<'_, PyAny>,
+        kept_robots: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<()> {
         let world = world_argument(world, "world")?;
-        self.swarm(|s| s.change_world(world))?.py()
+        let Some(kept) = kept_robots else {
+            return self.swarm(|s| s.change_world(world))?.py();
+        };
+        let most = mazesim_core::limits::MAX_ROBOTS;
+        let items = bounded_items(kept, "kept_robots", "robot indices or None", most)?;
+        let kept = (items.iter().enumerate())
+            .map(|(i, item)| {
+                if item.is_none() {
+                    return Ok(None);
+                }
+                let index = item.extract::<IntArg>()?;
+                index.count(&format!("kept_robots[{i}]"), most).map(Some)
+            })
+            .collect::<PyResult<Vec<Option<usize>>>>()?;
+        self.swarm(|s| s.change_world_with_robots(world, &kept))?
+            .py()
     }
 
     /// Puts the scene back as the world was made, as a Webots supervisor's `simulationReset`

@@ -80,11 +80,29 @@ class WorldWatch:
                 self.view.close()
         if not self.record:
             return
+        for index in range(len(self.fleet.recorders), len(simulators)):
+            self._imported(runs[index].name, simulators[index])
         for index, simulator in enumerate(simulators):
             readings = np.concatenate((simulator.distance_sensors(), simulator.ground_sensors()))
             self.fleet.capture(index, simulator.pose, readings, bool(simulator.colliding))
             if wheels is not None:
                 self.fleet.acted(index, *wheels.get(index, (0.0, 0.0)))
+
+    def _imported(self, name: str, simulator: Any) -> None:
+        """Records a robot a supervisor imported: where it was imported, for every frame before
+        it (a replay keeps one frame per step for every robot)."""
+        import numpy as np
+
+        from mazesim.replay.recorder import EpisodeRecorder
+
+        profile = _profile_of(simulator)
+        recorder = EpisodeRecorder(self.fleet.world, profile)
+        readings = np.concatenate((simulator.distance_sensors(), simulator.ground_sensors()))
+        for _ in range(self.fleet.recorders[0].frames - 1):
+            recorder.add_frame(simulator.pose, readings, False)
+            recorder.set_action(wheel_speeds=(0.0, 0.0))
+        self.fleet.robots.append((name, profile))
+        self.fleet.recorders.append(recorder)
 
 
 class RobotPaths:
@@ -156,12 +174,16 @@ class RobotPaths:
         return entries, paths
 
 
-def write_paths_table(path: str, paths: list[tuple[str, Any, Any]], step_s: float) -> None:
-    """Writes every robot's path as the table ``robot,time_s,x_m,y_m`` (atomically)."""
+def write_paths_table(
+    path: str, paths: list[tuple[str, Any, Any]], step_s: float, starts: list[float] | None = None
+) -> None:
+    """Writes every robot's path as the table ``robot,time_s,x_m,y_m`` (atomically); path
+    ``i`` starts at ``starts[i]`` seconds when given (a robot a supervisor imported), else 0."""
+    begin = starts or [0.0] * len(paths)
     with atomic_file(path) as handle:
         rows = [
-            f"{name},{i * step_s:.3f},{x:.5f},{y:.5f}"
-            for name, xs, ys in paths
+            f"{name},{start + i * step_s:.3f},{x:.5f},{y:.5f}"
+            for (name, xs, ys), start in zip(paths, begin)
             for i, (x, y) in enumerate(zip(xs, ys))
         ]
         handle.write(("robot,time_s,x_m,y_m\n" + "\n".join(rows) + "\n").encode("utf-8"))
@@ -172,6 +194,8 @@ def _profile_of(simulator: Any) -> RobotProfile:
     shared = getattr(simulator, "simulator", None)
     if shared is not None:
         return RobotProfile.builtin(str(shared.robot_state(simulator.index)["profile"]))
+    if getattr(simulator, "profile", None) is not None:  # a robot a supervisor removed
+        return RobotProfile.builtin(str(simulator.profile))
     profile: RobotProfile = simulator.robot
     return profile
 
@@ -339,6 +363,8 @@ def run_world_command(args: argparse.Namespace, out: TextIO) -> int:
             "stopped_after_end": robot.stopped,
             "quit_requested": robot.quit_requested,
             "missing_features": list(robot.missing),
+            "imported_at_s": robot.imported_s,
+            "removed_at_s": robot.removed_s,
         }
         for robot in run.robots
     ]
@@ -370,7 +396,8 @@ def run_world_command(args: argparse.Namespace, out: TextIO) -> int:
         handle.write((json.dumps(summary, indent=2) + "\n").encode("utf-8"))
     table = os.path.join(out_dir, "trajectory.csv")
     step_s = run.simulated_seconds / run.steps if run.steps else 0.0
-    write_paths_table(table, [(robot.name, robot.xs, robot.ys) for robot in run.robots], step_s)
+    paths = [(robot.name, robot.xs, robot.ys) for robot in run.robots]
+    write_paths_table(table, paths, step_s, [robot.imported_s or 0.0 for robot in run.robots])
     out.write(
         f"world              {run.world.name} (seed {args.seed}, {len(run.robots)} robots)\n"
         f"simulated time     {run.simulated_seconds:.2f} s ({run.steps} steps)\n"

@@ -62,6 +62,9 @@ class ControllerJob:
         prepared: The controller as the world's process prepared it
             (:func:`~mazesim.webots.requirements.prepare_controller`), or None to prepare it in
             the controller's process.
+        world_text: The running world's description, when a supervisor imported the robot
+            (:mod:`mazesim.webots.scene_edits`; ``robot_line`` is a line of it), else None: the
+            file's text.
     """
 
     world_path: str
@@ -72,6 +75,7 @@ class ControllerJob:
     seconds: float
     noise: bool
     prepared: PreparedController | None = None
+    world_text: str | None = None
 
 
 @dataclass(frozen=True)
@@ -202,15 +206,19 @@ def answer(target: Any, name: str, args: tuple[Any, ...] | None) -> tuple[str, A
 def controller_main(connection: Connection, job: ControllerJob) -> None:
     """Runs one robot's controller against the world of the process at the other end of
     ``connection`` (the entry point of a controller process)."""
-    from mazesim.webots.importer import import_wbt
+    from mazesim.webots.importer import import_wbt, import_wbt_text
     from mazesim.webots.runner import run_controller
     from mazesim.webots.scene import read_scene
 
-    world, imported = import_wbt(job.world_path, robot_line=job.robot_line)
+    text = job.world_text
+    if text is None:
+        world, imported = import_wbt(job.world_path, robot_line=job.robot_line)
+        with open(job.world_path, encoding="utf-8", errors="replace") as handle:
+            text = handle.read().replace("\r\n", "\n").replace("\r", "\n")
+    else:
+        world, imported = import_wbt_text(text, job.world_path, robot_line=job.robot_line)
     report: dict[str, Any] = dict(imported)
     report["path"] = os.path.abspath(job.world_path)
-    with open(job.world_path, encoding="utf-8", errors="replace") as handle:
-        text = handle.read().replace("\r\n", "\n").replace("\r", "\n")
     scene = read_scene(text, report.get("robot_model"), report.get("robot_line"))
     summary = ControllerSummary(1, "", False, False, False, 0)
     try:

@@ -56,6 +56,7 @@ from mazesim.webots.proto_fields import declared_fields
 from mazesim.webots.radio import Radio
 from mazesim.webots.rays import WallBoxes
 from mazesim.webots.requirements import PreparedController, prepare_controller, unbuilt
+from mazesim.webots.robots_changed import RemovedRobot, RobotChange, robot_change
 from mazesim.webots.runner import CONTROLLER_SUFFIXES, EXIT_INTERRUPTED
 from mazesim.webots.scene import Scene, read_scenes
 from mazesim.webots.shared_world import RobotView, shared_simulator, with_robots_of
@@ -114,6 +115,9 @@ class RobotRun:
         stopped: Whether its controller went on after the end and was stopped.
         quit_requested: Whether it (a supervisor) quit the simulation.
         missing: What its controller needs that mazesim lacks (said at the run's start).
+        imported_s: When a supervisor imported it (s), or None for a robot of the world file;
+            its path starts there.
+        removed_s: When a supervisor removed it (s), or None; its path ends there.
     """
 
     index: int
@@ -132,6 +136,8 @@ class RobotRun:
     stopped: bool = False
     quit_requested: bool = False
     missing: tuple[str, ...] = ()
+    imported_s: float | None = None
+    removed_s: float | None = None
 
 
 @dataclass
@@ -175,17 +181,46 @@ class Fleet:
         #: The world file (the import report's ``path``), which a supervisor's changes edit.
         self._path = str((report or {}).get("path") or "")
         self.moved: set[int] = set()
+        #: The robots a supervisor removed (:mod:`mazesim.webots.robots_changed`).
+        self.gone: set[int] = set()
         #: The world's walls and movable bodies (``report``: the world's import report).
         self.solids = WorldSolids(self._worlds(), report or {})
         self.radio = Radio()
         self._resets: list[WorldReset] = [WorldReset() for _ in simulators]
         #: Whether a supervisor asked for a reset, which the world applies at the step's end.
         self.reset_asked = False
+        #: The robots imported, and removed, since the run last took note (their controllers
+        #: start, and end).
+        self.joined: list[int] = []
+        self.left: list[int] = []
+        #: The running world's description as a supervisor last changed it, which the
+        #: controllers of the robots it imports read, and the world file's number of lines
+        #: (the imported nodes' come after them).
+        self.text: str | None = None
+        self._file_lines = 0
+        if self._path:
+            with open(self._path, encoding="utf-8", errors="replace") as handle:
+                self._file_lines = (
+                    handle.read().replace("\r\n", "\n").replace("\r", "\n").count("\n") + 1
+                )
 
     def robots(self) -> list[dict[str, Any]]:
-        """Each robot's index, ``def_name``, ``name``, ``model`` and ``line``."""
+        """Each robot's index, ``def_name``, ``name``, ``model`` and ``line`` (a removed robot's
+        are not listed; an imported one's are, after the running ones)."""
         keys = ("def_name", "name", "model", "line")
-        return [{"index": i, **{k: r.get(k) for k in keys}} for i, r in enumerate(self._robots)]
+        return [
+            {"index": i, **{k: r.get(k) for k in keys}}
+            for i, r in enumerate(self._robots)
+            if i not in self.gone
+        ]
+
+    def robots_of(self, indices: list[int]) -> list[Mapping[str, Any]]:
+        """The import report entries of robots ``indices``."""
+        return [self._robots[index] for index in indices]
+
+    def clock(self) -> float:
+        """The world's clock now (s)."""
+        return float(next(s for i, s in enumerate(self._simulators) if i not in self.gone).time)
 
     def pose(self, index: int) -> tuple[float, float, float]:
         """A robot's x, y, yaw now."""
@@ -207,12 +242,13 @@ class Fleet:
         shared one first, then those of e-pucks that run in simulators of their own (another
         robot's holds neither); all of them in a world without e-pucks."""
         shared = [s.simulator for s in self._simulators if isinstance(s, RobotView)][:1]
-        own = [
-            s
-            for s, robot in zip(self._simulators, self._robots)
-            if not isinstance(s, RobotView) and robot.get("profile") is not None
+        here = [
+            (s, robot)
+            for index, (s, robot) in enumerate(zip(self._simulators, self._robots))
+            if index not in self.gone and not isinstance(s, RobotView)
         ]
-        return shared + own or list(self._simulators)
+        own = [s for s, robot in here if robot.get("profile") is not None]
+        return shared + own or [s for s, _ in here]
 
     def body_poses(self) -> list[tuple[float, float, float]]:
         """The movable bodies' poses (x, y, yaw) now, in world order."""
@@ -237,16 +273,20 @@ class Fleet:
         ``simulationReset``), in every simulator; drops the radio's packets and restarts every
         robot's clock and wheel sensors; each robot learns of it with the step's answer."""
         self.reset_asked = False
+        if self.text is not None:  # Webots' reset takes a supervisor's imports out
+            kept = self.text.split("\n")[: self._file_lines]
+            self.change_world("\n".join(kept + [""] * (self.text.count("\n") + 1 - len(kept))))
         self.solids.forget_moves()
         done: set[int] = set()
-        for simulator in self._simulators:
+        here = [s for i, s in enumerate(self._simulators) if i not in self.gone]
+        for simulator in here:
             whole = simulator.simulator if isinstance(simulator, RobotView) else simulator
             if id(whole) not in done:
                 done.add(id(whole))
                 whole.reset_scene()
         self.moved.update(range(len(self._simulators)))
         self.radio.clear()
-        count, now = self._resets[0].count + 1, float(self._simulators[0].time)
+        count, now = self._resets[0].count + 1, float(here[0].time)
         for robot, simulator in enumerate(self._simulators):
             left, right = (float(v) for v in simulator.encoders)
             self._resets[robot] = WorldReset(count, now, (left, right))
@@ -270,28 +310,56 @@ class Fleet:
         :mod:`mazesim.webots.scene_edits`) in every simulator that holds the world's walls and
         bodies, each imported as its own was.
 
+        Robots imported and removed join and leave the run as
+        :mod:`mazesim.webots.robots_changed` has them.
+
         Raises:
-            MazesimError: The text is no world the importer reads, or it holds other robots or
-                movable bodies; nothing changed.
+            MazesimError: The text is no world the importer reads, or it imports a robot
+                mazesim does not add; nothing changed.
         """
         from mazesim.webots.importer import import_wbt_text
 
         world, report = import_wbt_text(text, self._path)
+        change = robot_change(self._robots, self._simulators, self.gone, report, world)
         shared = {id(s.simulator) for s in self._simulators if isinstance(s, RobotView)}
         own = {
             id(simulator): robot
             for simulator, robot in zip(self._simulators, self._robots)
             if not isinstance(simulator, RobotView)
         }
-        simulators, worlds = self._worlds(), []
+        leaving = {id(self._simulators[i]) for i in (change.removed if change else [])}
+        simulators = [s for s in self._worlds() if id(s) not in leaving]
+        worlds = []
         for simulator in simulators:
             if id(simulator) in shared:
-                worlds.append(with_robots_of(world, simulator.world))
+                worlds.append(change.world if change else with_robots_of(world, simulator.world))
                 continue
             robot = own[id(simulator)]
             changed, _ = import_wbt_text(text, self._path, robot_line=int(robot["line"]))
             worlds.append(changed if robot.get("profile") else _without_walls(changed))
-        self.solids = carried_over(self.solids, simulators, worlds, report)
+        kept = change.kept if change and change.world is not None else None
+        # What the removed robots were, read before their simulator changes.
+        removed = {i: RemovedRobot(self._simulators[i]) for i in (change.removed if change else [])}
+        self.solids = carried_over(self.solids, simulators, worlds, report, kept_robots=kept)
+        self.text = text
+        if change is not None:
+            self._take(change, removed)
+
+    def _take(self, change: RobotChange, removed: dict[int, RemovedRobot]) -> None:
+        """Takes the robots' change: the ``removed`` ones leave, the imported ones join."""
+        for index, stand_in in removed.items():
+            self._simulators[index] = stand_in
+            self.gone.add(index)
+            self.left.append(index)
+        last = self._resets[0]
+        for entry in change.added:
+            self.joined.append(len(self._robots))
+            self._robots.append(entry)
+            self._simulators.append(None)
+            self._resets.append(WorldReset(last.count, last.time, (0.0, 0.0)))
+        shared = next(s.simulator for s in self._simulators if isinstance(s, RobotView))
+        for place, index in enumerate(change.order):
+            self._simulators[index] = RobotView(shared, place)
 
 
 def controller_of(
@@ -394,13 +462,10 @@ def run_world(
             simulators.append(
                 _own_simulator(world_path, robot, own.get(index, profile), robot_seed, noise)
             )
-        file, note = controller_of(robot, world_path, controllers or {})
-        label = robot.get("name") or robot.get("def_name") or robot.get("model")
-        runs.append(RobotRun(index, str(label), str(robot.get("model")), file, note))
-        if file is not None:
-            jobs[index] = ControllerJob(
-                world_path, index, int(robot["line"]), file, profile, seconds, noise
-            )
+        run, job = _robot_run(world_path, index, robot, controllers or {}, seconds, noise)
+        runs.append(run)
+        if job is not None:
+            jobs[index] = job
     drawn, environment, prepared = _say_what_is_missing(runs)
     # Each controller process runs its controller as prepared here (its display, if it needs
     # one, is this process's), rather than preparing it again.
@@ -409,6 +474,17 @@ def run_world(
         for index, job in jobs.items()
     }
     fleet = Fleet(robots, simulators, dict(report, path=os.path.abspath(world_path)))
+
+    def joined(index: int) -> tuple[RobotRun, ControllerJob | None]:
+        """The run and controller job of robot ``index``, which a supervisor imported."""
+        run, job = _robot_run(world_path, index, robots[index], controllers or {}, seconds, noise)
+        run.imported_s = float(simulators[index].time)
+        if job is None:
+            return run, None
+        _, _, ready = _say_what_is_missing([run])
+        done = replace(ready[job.controller], virtual_display=False)
+        return run, replace(job, prepared=done, world_text=fleet.text)
+
     # The walls (where a supervisor moved them), the robots' bodies and the movable bodies
     # stop infra-red packets.
     fleet.radio.sight = LineOfSight(WallBoxes(world), robot_body_radii(report), report, fleet)
@@ -421,22 +497,44 @@ def run_world(
         if drawn:
             display.enter_context(virtual_display())
         display.enter_context(window_environment(environment))
-        steps, interrupted = _lockstep(jobs, simulators, movable, fleet, runs, traction, watch)
+        steps, interrupted = _lockstep(
+            jobs, simulators, movable, fleet, runs, traction, watch, joined
+        )
     if watch is not None:
         watch(simulators, None)
     for run, simulator in zip(runs, simulators):
         run.distance_m = float(simulator.distance_travelled)
         run.collisions = int(simulator.collisions)
         run.final_pose = tuple(float(v) for v in simulator.pose)  # type: ignore[assignment]
+    here = [s for i, s in enumerate(simulators) if i not in fleet.gone]
     return WorldRun(
         world=world,
         robots=runs,
         steps=steps,
-        simulated_seconds=float(simulators[0].time),
+        simulated_seconds=float(here[0].time),
         wall_clock_seconds=time.perf_counter() - started,
         interrupted=interrupted,
         import_summary=summary,
     )
+
+
+def _robot_run(
+    world_path: str,
+    index: int,
+    robot: Mapping[str, Any],
+    given: Mapping[str, str],
+    seconds: float,
+    noise: bool,
+) -> tuple[RobotRun, ControllerJob | None]:
+    """Robot ``index``'s run, and the job of its controller process (None without one)."""
+    profile = robot_profile_name({"robot_profile": robot.get("profile")})
+    file, note = controller_of(robot, world_path, given)
+    label = robot.get("name") or robot.get("def_name") or robot.get("model")
+    run = RobotRun(index, str(label), str(robot.get("model")), file, note)
+    if file is None:
+        return run, None
+    job = ControllerJob(world_path, index, int(robot["line"]), file, profile, seconds, noise)
+    return run, job
 
 
 def _imported(world_path: str) -> tuple[World, dict[str, Any], dict[str, Any]]:
@@ -605,9 +703,14 @@ def _lockstep(
     runs: list[RobotRun],
     traction: WorldTraction,
     watch: Callable[[list[Any], Mapping[int, tuple[float, float]] | None], None] | None = None,
+    joined: Callable[[int], tuple[RobotRun, ControllerJob | None]] | None = None,
 ) -> tuple[int, bool]:
     """Starts the controller processes and steps the world whenever every running controller
     has asked for the step; returns the number of steps and whether Ctrl-C ended the run.
+
+    A robot a supervisor imports gets its run and controller process from ``joined`` at once,
+    and the world waits for its first step before the next; a removed robot's controller is
+    answered the end at its next step (``Robot.step`` returns -1).
 
     Once the run is over (a supervisor quit, or Ctrl-C), each controller's next step is answered
     at once with the end (``Robot.step`` returns -1); after Ctrl-C, controllers that have not
@@ -634,6 +737,8 @@ def _lockstep(
                     break
                 for ready in wait(world.pending(), timeout=_POLL_SECONDS):
                     world.serve(ready)
+                    if joined is not None and (fleet.joined or fleet.left):
+                        world.regroup(processes, joined)
                 wheels = world.wheels
                 if wheels and (world.over or world.live <= set(wheels)):
                     if not world.over:
@@ -648,10 +753,10 @@ def _lockstep(
                         steps += 1
                     for index in sorted(wheels):
                         state = None
-                        if not world.over:
+                        if not world.over and index not in fleet.gone:
                             state = state_after_step(simulators[index])
                             state["last_reset"] = fleet.last_reset(index)
-                        connections[index].send(("ok", (world.over, state)))
+                        connections[index].send(("ok", (state is None, state)))
                     wheels.clear()
     finally:
         processes.finish(exit_wait)
@@ -680,12 +785,43 @@ class _Pipes:
         self.radio = fleet.radio
         self.by_connection = {id(c): i for i, c in connections.items()}
         self.live = set(connections)
+        #: The controllers of removed robots, whose ``Robot.step`` returns -1 until they end.
+        self.leaving: set[int] = set()
         self.wheels: dict[int, tuple[float, float]] = {}
         self.over = False
 
     def pending(self) -> list[Any]:
         """The pipes of the controllers that still run."""
-        return [self.connections[i] for i in sorted(self.live)]
+        return [self.connections[i] for i in sorted(self.live | self.leaving)]
+
+    def regroup(
+        self,
+        processes: ControllerProcesses,
+        joined: Callable[[int], tuple[RobotRun, ControllerJob | None]],
+    ) -> None:
+        """Starts the controllers of the robots a supervisor imported (each steps from the
+        next step on, the world waiting for it) and ends those of the robots it removed."""
+        for index in self.fleet.left:
+            self.runs[index].removed_s = float(self.fleet.clock())
+            if index in self.live:
+                self.live.discard(index)
+                self.leaving.add(index)
+            if self.wheels.pop(index, None) is not None:
+                self.connections[index].send(("ok", (True, None)))
+        self.fleet.left.clear()
+        for index in self.fleet.joined:
+            run, job = joined(index)
+            x, y, _ = self.simulators[index].pose
+            run.xs.append(float(x))
+            run.ys.append(float(y))
+            self.runs.append(run)
+            self.movable.append(self.fleet.robots_of([index])[0].get("profile") is not None)
+            if job is not None:
+                connection = processes.start(job)
+                self.connections[index] = connection  # type: ignore[index]
+                self.by_connection[id(connection)] = index
+                self.live.add(index)
+        self.fleet.joined.clear()
 
     def serve(self, ready: Any) -> None:
         """Reads one message of a controller's pipe and answers a call, notes a step's wheel
@@ -710,6 +846,8 @@ class _Pipes:
                 "fleet": self.fleet,
             }
             ready.send(answer(targets[target], name, args))
+        elif message[0] == "step" and index in self.leaving:
+            ready.send(("ok", (True, None)))
         elif message[0] == "step":
             self.wheels[index] = (message[1], message[2]) if self.movable[index] else (0.0, 0.0)
         elif message[0] == "done":
@@ -722,6 +860,7 @@ class _Pipes:
 
     def _ended(self, index: int) -> None:
         self.live.discard(index)
+        self.leaving.discard(index)
         self.wheels.pop(index, None)
 
 
@@ -782,15 +921,16 @@ def _step_world(
     runs: list[RobotRun],
 ) -> None:
     """One basic step of every robot: the radio's packets, then the motion."""
-    radio.transmit({i: tuple(float(v) for v in s.pose) for i, s in enumerate(simulators)})  # type: ignore[misc]
+    here = {i: s for i, s in enumerate(simulators) if not isinstance(s, RemovedRobot)}
+    radio.transmit({i: tuple(float(v) for v in s.pose) for i, s in here.items()})  # type: ignore[misc]
     views = [(i, s) for i, s in enumerate(simulators) if isinstance(s, RobotView)]
     if views:
         commands = np.array([wheels.get(i, (0.0, 0.0)) for i, _ in views], dtype=np.float64)
         views[0][1].simulator.step_robots(commands)
-    for index, simulator in enumerate(simulators):
+    for index, simulator in here.items():
         if not isinstance(simulator, RobotView):
             simulator.step(*wheels.get(index, (0.0, 0.0)))
-    for index, simulator in enumerate(simulators):
+    for index, simulator in here.items():
         x, y, _ = simulator.pose
         runs[index].xs.append(float(x))
         runs[index].ys.append(float(y))

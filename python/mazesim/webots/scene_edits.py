@@ -4,14 +4,15 @@
 
 The running world's description is the world file's text with each removed node's lines left
 blank and each imported node's text after it, in import order (so every node keeps its line,
-by which the import report names what it holds). Each change imports that description again
+by which the import report names what it holds). A supervisor's reset takes the imported nodes
+out and leaves the removed ones out, as Webots' does. Each change imports that description again
 with the importer that read the world file (PROTOs, DEF names, fields) and gives the result to
 the simulator, which runs on in it from the next step: the robots keep their poses,
 velocities, wheel encoders, noise streams and clocks, the movable bodies the change keeps go on
 where they are (an imported Solid with physics is a new one, at rest), and the walls a
-supervisor moved are moved again where it put them. A change that would add or remove a robot
-is refused (the world's robots and their controllers are made with it), with an error naming
-it.
+supervisor moved are moved again where it put them. In a world run (every robot with its
+controller) robots are imported and removed too (:mod:`mazesim.webots.robots_changed`); a run
+of one controller refuses a change that would add or remove a robot, with an error naming it.
 """
 
 from __future__ import annotations
@@ -104,6 +105,26 @@ class SceneEdits:
             self._lines, self._imported = kept
             raise
 
+    @property
+    def file_lines(self) -> int:
+        """The number of lines of the world file (the imported nodes' come after them)."""
+        return len(self._lines)
+
+    def take_out_imports(self, apply: bool = True) -> None:
+        """Takes every imported node out, as a supervisor's reset does in Webots (its
+        Reset/Reload matrix: a reset from a supervisor removes nodes and does not add removed
+        ones back): their lines are left blank, so that later imports take new lines; the world
+        runs on without them when ``apply`` (else the world's process changes it itself).
+
+        Raises:
+            MazesimError: The world without them is not one the importer reads.
+        """
+        if not any(line for lines in self._imported for line in lines):
+            return
+        self._imported = [[""] * len(lines) for lines in self._imported]
+        if apply:
+            self._apply()
+
     def _blank(self, number: int) -> None:
         """Leaves line ``number`` (from 1) of the description blank."""
         if number <= len(self._lines):
@@ -127,10 +148,11 @@ class SceneEdits:
         world, report = import_wbt_text(text, self._path, robot_line=robot_line)
         robots = len(report.get("robots") or [])
         running = len(simulation.report.get("robots") or [])
-        if robots != running:
+        if robots != running and simulation.owns_world:
             raise MazesimError(
-                f"expected the world's {running} robots, found {robots}: mazesim adds no robot "
-                "to a running world and removes none (a robot's controller runs from the start)"
+                f"expected the world's {running} robots, found {robots}: a run of one "
+                "controller adds no robot and removes none (`mazesim webots run WORLD` runs "
+                "every robot with its controller, and those a supervisor imports)"
             )
         if simulation.owns_world:
             simulator = simulation.simulator

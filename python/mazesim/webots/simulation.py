@@ -383,6 +383,8 @@ class RobotSimulation:
         self.radio.clear()
         if self.solids is not None:
             self.solids.forget_moves()
+        if self.scene_edits is not None:  # Webots' reset takes a supervisor's imports out
+            self.scene_edits.take_out_imports()
         left, right = (float(v) for v in self.simulator.encoders)
         self.last_reset = WorldReset(self.last_reset.count + 1, self.time, (left, right))
 

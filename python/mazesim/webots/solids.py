@@ -124,19 +124,27 @@ class WorldSolids:
 
 
 def carried_over(
-    before: WorldSolids | None, simulators: list[Any], worlds: list[Any], report: Mapping[str, Any]
+    before: WorldSolids | None,
+    simulators: list[Any],
+    worlds: list[Any],
+    report: Mapping[str, Any],
+    kept_robots: list[int | None] | None = None,
 ) -> WorldSolids:
     """The walls and movable bodies of ``simulators`` once each runs on in its world of
     ``worlds`` (imported with ``report``; a supervisor changed the world), the walls that
-    ``before`` moved moved again where they were put.
+    ``before`` moved moved again where they were put. The first simulator's robots change as
+    ``kept_robots`` says, when given (``Simulator.change_world``).
 
     Raises:
-        InvalidArgumentError: A world holds other robots or movable bodies than the running
-            one.
+        InvalidArgumentError: A world holds other robots than the running one (without
+            ``kept_robots``).
     """
     moves = before.node_moves() if before is not None else {}
-    for simulator, world in zip(simulators, worlds):
-        simulator.change_world(world)
+    for number, (simulator, world) in enumerate(zip(simulators, worlds)):
+        if number == 0 and kept_robots is not None:
+            simulator.change_world(world, kept_robots)
+        else:
+            simulator.change_world(world)
     after = WorldSolids(simulators, report)
     for line, (start, now) in moves.items():
         held = after._held.get(line)

@@ -672,15 +672,19 @@ class Supervisor(Robot):
         for node in made.values():
             if node._line in change.held:
                 node._hold(change.held[node._line], change.bodies)
+        if self._simulation.fleet is not None:  # an imported robot's node follows the robot
+            _follow_robots(
+                [*added, *nested], self._simulation.fleet.robots(), self._simulation.robot_index
+            )
 
     def _remove_node(self, node: Node, call: str) -> None:
         """Removes ``node``, at the top of the scene tree, from the running world, as
         :class:`~mazesim.webots.scene_edits.SceneEdits` does; Webots' kind of error when
-        refused (the robot's own node, a node inside another), nothing changed."""
-        if node._robot or node._fleet_index is not None or node._parent is not self._root:
+        refused (the robot's own node, a node inside another), nothing changed. Another
+        robot's node leaves the world with its robot, whose controller's ``Robot.step`` then
+        returns -1 (:mod:`mazesim.webots.robots_changed`)."""
+        if node._robot or node._parent is not self._root:
             what = "the robot's own node" if node._robot else "a node inside another node"
-            if node._fleet_index is not None:
-                what = "another robot's node"
             _print_error(f"Error: {call} refused by mazesim: {what} stays; nothing changed.")
             return
         try:
@@ -769,8 +773,19 @@ class Supervisor(Robot):
         self._simulation.request_reset()
 
     def _restore_file_poses(self) -> None:
-        """The nodes' ``translation`` and ``rotation`` fields as the file gives them (the
-        world's reset has reached this robot)."""
+        """The nodes' ``translation`` and ``rotation`` fields as the file gives them, and the
+        imported nodes out of the tree, as Webots' reset takes them out (the world's reset has
+        reached this robot)."""
+        edits = self._simulation.scene_edits
+        if edits is not None:
+            if self._simulation.fleet is not None:  # the world's process changed the world
+                edits.take_out_imports(apply=False)
+            first = edits.file_lines + 1
+            imported = [n for n in self._root._children if n._line >= first and not n._robot]
+            gone = {*imported, *(n for n in self._nested_nodes for i in imported if _inside(n, i))}
+            self._root._adopt([n for n in self._root._children if n not in gone])
+            self._nested_nodes = [n for n in self._nested_nodes if n not in gone]
+            self._file_nodes = [n for n in self._file_nodes if n not in gone]
         for node in [*self._file_nodes, *self._nodes.values()]:
             node._translation, node._rotation = node._file_pose
 

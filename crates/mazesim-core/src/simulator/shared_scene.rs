@@ -6,13 +6,35 @@
 //! and the bodies together: robots push bodies, bodies push robots, and nothing goes through a
 //! wall. Every robot's rays meet the movable bodies of that one scene.
 
+use std::sync::Arc;
+
 use super::{Drive, Others, Simulator};
 use crate::physics::Body;
+use crate::world::World;
 
 impl Simulator {
     /// Whether this robot is one of several in one rapier scene (see the module notes).
     pub fn in_shared_scene(&self) -> bool {
         self.body.is_shared()
+    }
+
+    /// Takes `world` (nodes a supervisor imported or removed, robots among them) with a body of
+    /// its own at its pose, at rest, among the world's walls and its movable bodies at their
+    /// starts; `share_scene` then puts it into one scene with the others where there are several.
+    pub(crate) fn join_world(&mut self, world: Arc<World>) {
+        self.world = world;
+        let radius = self.rig.drivetrain.body_radius;
+        let (walls, bodies) = (self.world.solid_walls(), self.world.bodies());
+        self.body = Body::new(walls, bodies, radius, self.pose, self.dt as f32);
+        self.pose = self.body.pose();
+        self.heading = self.body.heading();
+        self.update_contact();
+    }
+
+    /// Takes the clock of the robots it joins: `time` seconds and `steps` control steps.
+    pub(crate) fn join_clock(&mut self, time: f64, steps: u64) {
+        self.time = time;
+        self.steps = steps;
     }
 }
 

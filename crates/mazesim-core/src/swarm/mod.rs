@@ -533,6 +533,133 @@ impl Swarm {
         Ok(())
     }
 
+    /// `change_world` with a world whose robots may differ from the running ones, as a Webots
+    /// supervisor imports robots or removes some: robot `i` of `world` is the running robot
+    /// `kept[i]` where given, which goes on with its state (pose, encoders, noise stream,
+    /// counters, wheel command); the others are new robots, at their world poses, at rest, with
+    /// fresh counters, no wheel command, the running robots' clock and a noise stream derived
+    /// from the seed and their name (`robot_seed` as for a robot after the first); the running
+    /// robots `kept` does not name are taken out. The movable bodies go on as `change_world`
+    /// has them. With `kept` naming every running robot in order, this is `change_world`.
+    /// Refused, naming what was expected and found, nothing changed: `kept` of another length
+    /// than `world`'s robots, or naming a running robot twice or one past the running robots.
+    pub fn change_world_with_robots(
+        &mut self,
+        world: Arc<World>,
+        kept: &[Option<usize>],
+    ) -> Result<()> {
+        let placements = world.robots();
+        if kept.len() != placements.len() {
+            return Err(Error::InvalidArgument(format!(
+                "expected one entry per robot of the new world ({}), found {}",
+                placements.len(),
+                kept.len()
+            )));
+        }
+        let mut taken = vec![false; self.len()];
+        for &j in kept.iter().flatten() {
+            if j >= self.len() || std::mem::replace(&mut taken[j], true) {
+                return Err(Error::InvalidArgument(format!(
+                    "expected each running robot (0 to {}) kept at most once, found robot {j} {}",
+                    self.len() - 1,
+                    if j >= self.len() {
+                        "past them"
+                    } else {
+                        "twice"
+                    }
+                )));
+            }
+        }
+        let same: Vec<Option<usize>> = (0..self.len()).map(Some).collect();
+        if kept == same.as_slice() {
+            return self.change_world(world);
+        }
+        let config = self.robots[0].config();
+        let (time, steps) = (self.robots[0].time(), self.robots[0].steps());
+        // The new robots first, so that a refusal leaves the running ones as they are.
+        let mut fresh = Vec::with_capacity(kept.len());
+        for (i, (placement, from)) in placements.iter().zip(kept).enumerate() {
+            if from.is_some() {
+                fresh.push(None);
+                continue;
+            }
+            let rig = self.rig_for(placement);
+            let seed = robot_seed(config.seed, i.max(1), &placement.name);
+            let mut sim = Simulator::with_rig(world.clone(), rig?, SimConfig { seed, ..config })?;
+            let [x, y, yaw] = placement.start;
+            sim.set_start(x, y, yaw)
+                .map_err(|e| name_robot(e, &placement.name))?;
+            sim.reset(None);
+            sim.join_clock(time, steps);
+            fresh.push(Some(sim));
+        }
+        let running = self.robots[0].world().clone();
+        let bodies = kept_bodies(running.bodies(), world.bodies());
+        let poses = self.robots[0].body_poses();
+        let velocities = self.robots[0].body_velocities();
+        let mut old: Vec<Option<Simulator>> = self.robots.drain(..).map(Some).collect();
+        let mut robots = Vec::with_capacity(kept.len());
+        let mut commands = Vec::with_capacity(kept.len());
+        let mut overrides = Vec::with_capacity(kept.len());
+        for (&from, new) in kept.iter().zip(fresh) {
+            match (from, new) {
+                (Some(j), _) => {
+                    robots.extend(old[j].take());
+                    commands.push(self.commands[j]);
+                    overrides.push(self.overrides.get(j).cloned().flatten());
+                }
+                (None, new) => {
+                    robots.extend(new);
+                    commands.push([0.0; 2]);
+                    overrides.push(None);
+                }
+            }
+        }
+        for robot in &mut robots {
+            robot.join_world(world.clone());
+        }
+        if robots.len() > 1 && !world.bodies().is_empty() {
+            share_scene(&mut robots);
+        }
+        for (i, from) in bodies.iter().enumerate() {
+            if let Some(k) = *from {
+                robots[0].place_body(i, poses[k]);
+                if let Some(&velocity) = velocities.get(k) {
+                    robots[0].set_body_velocity(i, velocity);
+                }
+            }
+        }
+        self.names = placements.iter().map(|p| p.name.clone()).collect();
+        self.overrides = if overrides.iter().any(Option::is_some) {
+            overrides
+        } else {
+            Vec::new()
+        };
+        self.robots = robots;
+        self.commands = commands;
+        self.made_of = world;
+        Ok(())
+    }
+
+    /// The rig of a new robot placed by `placement`: that of a running robot of the profile it
+    /// names (or of the swarm's default profile when it names none) that was given no profile
+    /// of its own, else a new one.
+    fn rig_for(&self, placement: &crate::world::RobotPlacement) -> Result<Arc<Rig>> {
+        let own = |j: usize| self.overrides.get(j).is_some_and(Option::is_some);
+        let found = (self.robots.iter().enumerate())
+            .filter(|&(j, _)| !own(j))
+            .map(|(_, r)| r.rig())
+            .find(|r| match &placement.profile {
+                Some(name) => &r.robot().name == name,
+                None => Arc::ptr_eq(r.robot(), &self.profile),
+            });
+        Ok(match (found, &placement.profile) {
+            (Some(rig), _) => rig.clone(),
+            (None, Some(name)) => Rig::new(Arc::new(RobotProfile::builtin(name)?)),
+            (None, None) => Rig::new(self.profile.clone()),
+        })
+    }
+
     /// Puts the scene back as the world was made, as a Webots supervisor's
     /// `simulationReset` does: every robot at its start, the walls `move_solid` moved where the
     /// world has them and every movable body at its start, all at rest, each robot's noise
@@ -579,3 +706,6 @@ pub fn bad_index(index: impl std::fmt::Display, n: usize) -> Error {
 
 #[cfg(test)]
 mod tests;
+
+#[cfg(test)]
+mod robots_changed_tests;

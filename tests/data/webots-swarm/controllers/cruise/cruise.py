@@ -1,0 +1,25 @@
+"""Drives straight ahead until its run ends; records how many steps it had, whether
+``Robot.step`` returned -1 and the time of its first step."""
+
+import json
+import os
+
+from controller import Robot
+
+robot = Robot()
+time_step = int(robot.getBasicTimeStep())
+for name in ("left wheel motor", "right wheel motor"):
+    motor = robot.getDevice(name)
+    motor.setPosition(float("inf"))
+    motor.setVelocity(4.0)
+steps = 0
+first = None
+ended = False
+while steps < 90:
+    if robot.step(time_step) == -1:
+        ended = True
+        break
+    steps += 1
+    first = robot.getTime() if first is None else first
+with open(os.path.join(os.environ["SWARM_LOG"], f"{robot.getName()}.json"), "w") as log:
+    json.dump({"steps": steps, "ended": ended, "first_step_time": first}, log)

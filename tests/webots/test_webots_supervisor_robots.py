@@ -1,0 +1,82 @@
+"""A supervisor imports e-pucks into a running world of several robots and removes robots:
+an imported e-puck's controller starts and steps in lockstep with the others, its node is found
+by DEF name and id and follows it; a removed robot's controller sees ``Robot.step`` return -1;
+the first robot runs bit for bit as without the imports until them (#33)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from mazesim.webots.lockstep import run_world
+from supervised_world import SWARM
+
+pytestmark = pytest.mark.usefixtures("fresh_robot")
+
+#: The spawner's steps of 32 ms at which it imports the e-pucks and removes them.
+IMPORT_STEP, REMOVE_STEP, REMOVE_FIRST_STEP = 5, 40, 60
+
+
+def spawned(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, spawn: bool = True) -> list:
+    """The robots' runs of ``robot_spawner.wbt`` (the imports left out unless ``spawn``)."""
+    tmp_path.mkdir(exist_ok=True)
+    monkeypatch.setenv("SWARM_LOG", str(tmp_path))
+    if spawn:
+        monkeypatch.delenv("SPAWN_NONE", raising=False)
+    else:
+        monkeypatch.setenv("SPAWN_NONE", "1")
+    robots = run_world(str(SWARM / "worlds" / "robot_spawner.wbt"), seconds=3.0).robots
+    assert [r.exit_status for r in robots] == [0] * len(robots), [r.error for r in robots]
+    return list(robots)
+
+
+def log(tmp_path: Path, name: str) -> dict:
+    return json.loads((tmp_path / f"{name}.json").read_text())
+
+
+def test_imported_e_pucks_run_their_controllers_and_removed_robots_end(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    robots = spawned(tmp_path, monkeypatch)
+    assert [r.name for r in robots] == ["spawner", "first", "new-a", "new-b"]
+    spawner, first, new_a, new_b = robots
+    seen = log(tmp_path, "spawner")
+    # The scene tree: both imported, found by DEF name and id, their nodes live.
+    assert seen["count_with"] == seen["count_before"] + 2 == seen["count_after"] + 1
+    assert seen["new_a_type"] == "E-puck" and seen["new_a_found_by_id"] and seen["new_b_gone"]
+    assert seen["new_a_at_import"][:2] == pytest.approx([-0.6, -0.3])
+    assert seen["new_a_later"][0] > -0.6 + 0.05, "new-a's node follows it as it drives"
+    # The imported robots' controllers started at the import and drove in lockstep.
+    step_s = 0.032
+    assert new_a.imported_s == pytest.approx(IMPORT_STEP * step_s)
+    assert new_a.controller and new_a.controller.endswith("cruise.py")
+    assert new_a.final_pose[0] > -0.6 + 0.15 and new_a.xs[0] == pytest.approx(-0.6)
+    a_log = log(tmp_path, "new-a")
+    assert a_log["steps"] == 90 and not a_log["ended"]
+    assert a_log["first_step_time"] == pytest.approx((IMPORT_STEP + 1) * step_s)
+    # A removed robot's controller is answered the end at its next step, as after a
+    # supervisor's quit (that step returns without the world advancing, the one after it -1),
+    # and its path ends there.
+    b_log = log(tmp_path, "new-b")
+    assert b_log["ended"] and b_log["steps"] == REMOVE_STEP - IMPORT_STEP + 1
+    assert new_b.removed_s == pytest.approx(REMOVE_STEP * step_s)
+    assert len(new_b.xs) == REMOVE_STEP - IMPORT_STEP + 1
+    first_log = log(tmp_path, "first")
+    assert first_log["ended"] and first_log["steps"] == REMOVE_FIRST_STEP + 1
+    assert first.removed_s == pytest.approx(REMOVE_FIRST_STEP * step_s)
+    assert spawner.removed_s is None and new_a.removed_s is None
+
+
+def test_the_first_robot_runs_as_without_the_imports_until_them(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    alone = spawned(tmp_path / "alone", monkeypatch, spawn=False)
+    joined = spawned(tmp_path, monkeypatch)
+    assert len(alone) == 2
+    # Bit for bit until the import, and on after it (the new e-pucks are out of its reach).
+    until = IMPORT_STEP + 1
+    assert alone[1].xs[:until] == joined[1].xs[:until]
+    assert alone[1].xs[:REMOVE_FIRST_STEP] == joined[1].xs[:REMOVE_FIRST_STEP]
+    assert alone[1].ys[:REMOVE_FIRST_STEP] == joined[1].ys[:REMOVE_FIRST_STEP]
