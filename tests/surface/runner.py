@@ -100,9 +100,31 @@ def run_one(plan: dict[str, Any], world: Any, tmp: Path) -> dict[str, Any]:
         timer.cancel()
 
 
+def _import_ahead() -> None:
+    """Imports every module of the package, and matplotlib's pyplot, before the first call.
+
+    The package imports some modules (and matplotlib) only when a call needs them. A first
+    import that takes longer than :data:`CALL_LIMIT` (a loaded machine) would be cut by the
+    watchdog's Ctrl-C half way, leaving a half-made module behind that fails every later call
+    with an error of its own (matplotlib's ``KeyError: 'Text:kwdoc'``): a finding of the
+    walk, not of the package. Modules whose optional dependencies are missing are skipped."""
+    import pkgutil
+
+    import mazesim
+
+    os.environ.setdefault("MPLBACKEND", "Agg")
+    names = ["matplotlib.pyplot"]
+    modules = pkgutil.walk_packages(mazesim.__path__, "mazesim.", onerror=lambda _name: None)
+    names += [m.name for m in modules if not m.name.endswith("__main__")]
+    for name in names:
+        with contextlib.suppress(Exception):
+            importlib.import_module(name)
+
+
 def main() -> None:
     resource.setrlimit(resource.RLIMIT_AS, (ADDRESS_SPACE_CAP, ADDRESS_SPACE_CAP))
     plans = json.loads(Path(sys.argv[1]).read_text(encoding="utf-8"))
+    _import_ahead()
     import mazesim
 
     world = mazesim.World.builtin("seed-maze")
