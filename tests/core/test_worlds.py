@@ -302,6 +302,19 @@ MALFORMED = {
         10,
         "map",
     ),
+    # A fixed-length array with an item too many: the reader took the first two and dropped
+    # the third without a word.
+    "point-of-three-numbers": (
+        HEADER + "\n[[walls]]\ncenter = [0.5, 0.5]\nsize = [0.1, 0.1]\n"
+        "[[walls]]\ncenter = [0.2, 0.5, 0.1]\nsize = [0.1, 0.1]\n",
+        9,
+        "walls[1].center",
+    ),
+    "colour-of-four-numbers": (
+        HEADER + "\n[floor]\nreflectance = 0.5\ncolour = [0.5, 0.5, 0.5, 1.0]\n",
+        7,
+        "colour",
+    ),
 }
 
 

@@ -251,6 +251,7 @@ impl RobotProfile {
         crate::io::check_text_length(text, source, limit, "the robot profile")?;
         let file: ProfileFile =
             toml::from_str(text).map_err(|e| locate::from_toml_error(source, text, &e))?;
+        crate::world::lengths::check(&file, text, source)?;
         let bad = |field: String, message: String| {
             let key = field.rsplit('.').next().unwrap_or(&field).to_string();
             let offset = text.find(&key).unwrap_or(0);

@@ -8,6 +8,7 @@ mod extent;
 pub mod floor;
 pub mod geometry;
 pub mod grid;
+pub(crate) mod lengths;
 pub mod locate;
 pub mod moves;
 pub mod nearby;
@@ -120,10 +121,19 @@ fn table_offset(text: &str, name: &str, n: usize) -> usize {
 impl World {
     /// Parses a world file's text; `source` names it in error messages.
     pub fn from_toml(text: &str, source: &str) -> Result<World> {
+        Self::parse(text, source, false)
+    }
+
+    /// Parses a world's text; `written_here` skips the check of its arrays' lengths, for a
+    /// text written from a description (whose arrays have their fields' lengths).
+    fn parse(text: &str, source: &str, written_here: bool) -> Result<World> {
         let limit = crate::limits::MAX_WORLD_FILE_BYTES;
         crate::io::check_text_length(text, source, limit, "the world file")?;
         let spec: WorldSpec =
             toml::from_str(text).map_err(|e| locate::from_toml_error(source, text, &e))?;
+        if !written_here {
+            lengths::check(&spec, text, source)?;
+        }
         Self::compile(spec, source, text)
     }
 
@@ -159,7 +169,7 @@ impl World {
         // Round-trip through the text so that errors can point at lines and the world saves as built.
         let text =
             toml::to_string_pretty(&spec).map_err(|e| Error::InvalidArgument(e.to_string()))?;
-        Self::from_toml(&text, source)
+        Self::parse(&text, source, true)
     }
 
     fn compile(spec: WorldSpec, source: &str, text: &str) -> Result<World> {
