@@ -91,6 +91,8 @@ EPUCK_DISTANCE_SENSOR_MODEL = "e-puck distance sensor"
 
 #: Devices reading a vector in their own frame (``_TableVector._device_frame``).
 _DEVICE_FRAME_KINDS = frozenset({"Compass", "Accelerometer", "Gyro"})
+#: The devices whose reading depends on their axes on the robot when a mount tilts them.
+_TILTED_KINDS = _DEVICE_FRAME_KINDS | {"InertialUnit"}
 
 
 def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> Device | None:
@@ -109,7 +111,7 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
         entry.get("translation") or (0.0, 0.0, 0.0),
         yaw,
         float(entry.get("pitch", 0.0)),
-        entry.get("axes") if kind in _DEVICE_FRAME_KINDS else None,
+        entry.get("axes") if kind in _TILTED_KINDS else None,
     )
     table = _table(fields)
     if table is None and fields.get("model") == EPUCK_DISTANCE_SENSOR_MODEL:

@@ -100,6 +100,9 @@ class _TableVector(_Tabled, _VectorSensor):
     #: Whether the vector is in the device's own frame, which in the Y-up PROTOs of worlds
     #: before R2022a is x right, y up, z back (the ENU x forward, y left, z up before).
     _device_frame: ClassVar[bool] = False
+    #: Whether the reading depends on how the device's frame is tilted on the robot, though it
+    #: is no vector in that frame (an InertialUnit's attitude).
+    _reads_tilt: ClassVar[bool] = False
 
     def __init__(
         self,
@@ -137,7 +140,7 @@ class _TableVector(_Tabled, _VectorSensor):
         up): a compass in the E-puck's groundSensorsSlot, whose frame is turned a quarter turn
         down; None otherwise (:meth:`_measure` then reads it, by its yaw)."""
         axes = self._mount.axes
-        if not self._device_frame or axes is None:
+        if not (self._device_frame or self._reads_tilt) or axes is None:
             return None
         up = axes[1] if self._simulation.scene.y_up_devices else axes[2]
         level = abs(up[0]) < LEVEL_TOLERANCE and abs(up[1]) < LEVEL_TOLERANCE and up[2] > 0.0
@@ -274,11 +277,35 @@ class GPS(_TableVector):
 
 
 class InertialUnit(_TableVector):
-    """Roll, pitch and yaw of the device (rad); on the flat floor roll and pitch are 0."""
+    """Roll, pitch and yaw of the device (rad): its frame's attitude in the world, Webots'
+    x-y-z extrinsic sequence (the rotation Rz(yaw) Ry(pitch) Rx(roll)) in a world since
+    R2022a. On the flat floor roll and pitch are 0 for a device mounted level, and those of its
+    mount for one whose ``rotation`` tilts it on the robot (in a world before R2022a, whose
+    NUE sequence differs, it reads as a level one)."""
 
     _node_type = node_type("INERTIAL_UNIT")
+    _reads_tilt = True
 
     _api = "wb_inertial_unit"
+
+    def _tilt(self) -> Axes | None:
+        """The device's axes on the robot when its mount tilts it, in a world since R2022a."""
+        return None if self._simulation.scene.y_up_devices else self._tilted_axes()
+
+    def _read(self) -> list[float]:
+        tilted = self._tilt()
+        if tilted is None:
+            return super()._read()
+        yaw = self._simulation.simulator.pose[2]
+        c, s = math.cos(yaw), math.sin(yaw)
+        # The device's x, y and z axes in the world: the columns of its rotation matrix R.
+        x_axis, y_axis, z_axis = ((c * a[0] - s * a[1], s * a[0] + c * a[1], a[2]) for a in tilted)
+        attitude = (
+            math.atan2(y_axis[2], z_axis[2]),
+            -math.asin(max(-1.0, min(1.0, x_axis[2]))),
+            math.atan2(x_axis[1], x_axis[0]),
+        )
+        return [self._table(v, self._rng) for v in attitude]
 
     def _measure(self) -> tuple[float, float, float]:
         return 0.0, 0.0, math.remainder(self._heading(), math.tau)
@@ -290,9 +317,20 @@ class InertialUnit(_TableVector):
     roll_pitch_yaw = webots_property("getRollPitchYaw")
 
     def getQuaternion(self) -> list[float]:
-        """The orientation as a quaternion [x, y, z, w]."""
-        yaw = self.getRollPitchYaw()[2]
-        return [0.0, 0.0, math.sin(yaw / 2.0), math.cos(yaw / 2.0)]
+        """The orientation as a quaternion [x, y, z, w] (of the rotation Rz(yaw) Ry(pitch)
+        Rx(roll))."""
+        roll, pitch, yaw = self.getRollPitchYaw()
+        if self._tilt() is None:  # level: its yaw alone (its roll and pitch read 0 noise-free)
+            return [0.0, 0.0, math.sin(yaw / 2.0), math.cos(yaw / 2.0)]
+        cr, sr = math.cos(roll / 2.0), math.sin(roll / 2.0)
+        cp, sp = math.cos(pitch / 2.0), math.sin(pitch / 2.0)
+        cy, sy = math.cos(yaw / 2.0), math.sin(yaw / 2.0)
+        return [
+            sr * cp * cy - cr * sp * sy,
+            cr * sp * cy + sr * cp * sy,
+            cr * cp * sy - sr * sp * cy,
+            cr * cp * cy + sr * sp * sy,
+        ]
 
     quaternion = webots_property("getQuaternion")
 
