@@ -386,6 +386,19 @@ def test_another_robots_body_hides_what_is_behind_it() -> None:
     assert len(seeing.recognise(camera, no_walls, ahead)) == 1
 
 
+def test_a_robot_a_supervisor_removed_is_not_recognised_and_hides_nothing() -> None:
+    robot = green_target(9, 2, [5.0, 5.0, 0.0], [0.07, 0.07, 0.05])
+    box = green_target(20, 3, [0.6, 0.0, 0.025], [0.05, 0.05, 0.05])
+    report = {"robots": [{"line": 1, "profile": "e-puck"}, {"line": 9, "profile": "e-puck"}]}
+    camera = CameraPose(0.0, 0.0, 0.028, 0.0, 0.0, 52, 39, 0.84)
+    recogniser = Recogniser({**SETTINGS, "occlusion": 1}, [robot, box], report)
+    no_walls = WallBoxes(World.from_toml('format = "mazesim-world"\nversion = 1\n'))
+    here = recogniser.recognise(camera, no_walls, [(0.0, 0.0, 0.0), (0.3, 0.0, 0.0)])
+    assert [o.id for o in here] == [2], "the robot ahead, the box behind it hidden"
+    gone = recogniser.recognise(camera, no_walls, [(0.0, 0.0, 0.0), None])
+    assert [o.id for o in gone] == [3], "the removed robot is not there to see or to hide"
+
+
 def test_in_a_world_run_a_robot_crossing_the_line_of_sight_hides_the_box(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:

@@ -227,10 +227,13 @@ class Fleet:
         x, y, yaw = self._simulators[index].pose
         return float(x), float(y), float(yaw)
 
-    def poses(self) -> list[tuple[float, float, float]]:
-        """Every robot's x, y, yaw now, in the world's order (one answer for a camera that
-        recognises robots)."""
-        return [self.pose(index) for index in range(len(self._simulators))]
+    def poses(self) -> list[tuple[float, float, float] | None]:
+        """Every robot's x, y, yaw now, in the world's order, None for one a supervisor
+        removed (one answer for a camera that recognises robots)."""
+        return [
+            None if index in self.gone else self.pose(index)
+            for index in range(len(self._simulators))
+        ]
 
     def move(self, index: int, x: float, y: float, yaw: float) -> None:
         """Puts a robot at a new pose, at rest."""

@@ -450,19 +450,22 @@ class Recogniser:
         self,
         camera: CameraPose,
         walls: WallBoxes | None,
-        robot_poses: Sequence[Pose2] | None = None,
+        robot_poses: Sequence[Pose2 | None] | None = None,
         body_poses: Sequence[Pose2] | None = None,
         node_moves: Mapping[int, tuple[Pose2, Pose2]] | None = None,
     ) -> list[RecognisedObject]:
         """The objects recognised from ``camera`` now, the robots at ``robot_poses`` (every
-        robot of the world's, in the report's order), the movable bodies at ``body_poses``
+        robot of the world's, in the report's order; None for one a supervisor removed, which
+        is gone), the movable bodies at ``body_poses``
         (None: where the import put them) and the nodes a supervisor moved by ``node_moves``
         (by line, the node's pose seen from above in the file and now)."""
         moves = node_moves or {}
         found: list[_Candidate] = []
         for thing in self._objects:
-            origin, yaw = self._pose(thing, robot_poses, body_poses, moves)
-            candidate = self._seen(thing, origin, yaw, camera)
+            posed = self._pose(thing, robot_poses, body_poses, moves)
+            if posed is None:
+                continue
+            candidate = self._seen(thing, *posed, camera)
             if candidate is not None:
                 found.append(candidate)
         if walls is not None and int(self.settings["occlusion"]) > 0 and found:
@@ -478,16 +481,19 @@ class Recogniser:
     def _pose(
         self,
         thing: RecognisableObject,
-        robot_poses: Sequence[Pose2] | None,
+        robot_poses: Sequence[Pose2 | None] | None,
         body_poses: Sequence[Pose2] | None,
         moves: Mapping[int, tuple[Pose2, Pose2]],
-    ) -> tuple[tuple[float, float, float], float]:
-        """An object's origin and yaw now."""
+    ) -> tuple[tuple[float, float, float], float] | None:
+        """An object's origin and yaw now (None for a robot a supervisor removed)."""
         x, y, z = (float(v) for v in thing["origin"])
         yaw = float(thing["yaw"])
         line = int(thing["line"])
         if robot_poses is not None and line in self._robot and self._robot[line] < len(robot_poses):
-            px, py, pyaw = robot_poses[self._robot[line]]
+            robot = robot_poses[self._robot[line]]
+            if robot is None:
+                return None
+            px, py, pyaw = robot
             return (float(px), float(py), z), float(pyaw)
         if body_poses is not None and line in self._body:
             index, (sx, sy, syaw) = self._body[line]
@@ -572,7 +578,7 @@ class Recogniser:
         found: list[_Candidate],
         camera: CameraPose,
         walls: WallBoxes,
-        robot_poses: Sequence[Pose2] | None,
+        robot_poses: Sequence[Pose2 | None] | None,
     ) -> list[_Candidate]:
         """Those of ``found`` whose origin the ray from the camera reaches, seen from above,
         before any wall but their own and any other robot's body (at ``robot_poses``) but
@@ -593,10 +599,11 @@ class Recogniser:
         return kept
 
     def _behind_robot(
-        self, candidate: _Candidate, camera: CameraPose, robot_poses: Sequence[Pose2]
+        self, candidate: _Candidate, camera: CameraPose, robot_poses: Sequence[Pose2 | None]
     ) -> bool:
-        """Whether another robot's body (a disc seen from above) meets the ray from the camera
-        to the candidate's origin farther than half the candidate's depth from it."""
+        """Whether another robot's body (a disc seen from above; none for a robot a supervisor
+        removed) meets the ray from the camera to the candidate's origin farther than half the
+        candidate's depth from it."""
         dx, dy = candidate.origin[0] - camera.x, candidate.origin[1] - camera.y
         length = math.hypot(dx, dy)
         if length == 0.0:
@@ -610,8 +617,10 @@ class Recogniser:
             ],
             dtype=np.float64,
         )
+        gone = (math.nan, math.nan)
         centres = np.array(
-            [(float(p[0]), float(p[1])) for p in robot_poses[:count]], dtype=np.float64
+            [gone if p is None else (float(p[0]), float(p[1])) for p in robot_poses[:count]],
+            dtype=np.float64,
         ).reshape(-1, 2)
         unit = np.array([[dx / length, dy / length]], dtype=np.float64)
         enter = disc_entries((camera.x, camera.y), unit, centres, radii)[0]
