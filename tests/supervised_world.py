@@ -53,6 +53,19 @@ def supervisor_of(tmp_path: Path, noise: bool = False, seed: int = 0) -> control
     return controller.Supervisor()
 
 
+def supervisor_in(tmp_path: Path, text: str = WORLD, noise: bool = False) -> controller.Supervisor:
+    """The e-puck's supervisor in the world ``text``, as ``mazesim webots run`` prepares it
+    (the import report's ``path`` is the world file's)."""
+    path = tmp_path / "spawn.wbt"
+    path.write_text(text)
+    world, report = import_wbt(str(path))
+    report = dict(report, path=str(path))
+    scene = read_scene(text, report["robot_model"], report["robot_line"])
+    prepare(world, seconds=60.0, noise=noise, seed=3, report=report, scene=scene)
+    controller.Robot.created = None
+    return controller.Supervisor()
+
+
 def drive(supervisor: controller.Supervisor, speed: float, steps: int) -> None:
     """Turns both wheels at ``speed`` rad/s for ``steps`` steps."""
     for name in ("left wheel motor", "right wheel motor"):

@@ -12,11 +12,10 @@ from typing import Any
 
 import pytest
 
-from mazesim.webots import controller, import_wbt, prepare
+from mazesim.webots import controller
 from mazesim.webots import simulation as simulations
 from mazesim.webots.native_calls import NativeCalls
-from mazesim.webots.scene import read_scene
-from supervised_world import WORLD, drive, front, run_test_world
+from supervised_world import drive, front, run_test_world, supervisor_in
 
 pytestmark = pytest.mark.usefixtures("fresh_robot")
 
@@ -25,19 +24,6 @@ AHEAD = (
     "DEF CRATE Solid { translation 0.08 0 0.05 children [ Shape { geometry DEF CRATE_BOX "
     'Box { size 0.04 0.3 0.1 } } ] name "crate" boundingObject USE CRATE_BOX }'
 )
-
-
-def supervisor_in(tmp_path: Path, text: str = WORLD, noise: bool = False) -> controller.Supervisor:
-    """The e-puck's supervisor in the world ``text``, as ``mazesim webots run`` prepares it
-    (the import report's ``path`` is the world file's)."""
-    path = tmp_path / "spawn.wbt"
-    path.write_text(text)
-    world, report = import_wbt(str(path))
-    report = dict(report, path=str(path))
-    scene = read_scene(text, report["robot_model"], report["robot_line"])
-    prepare(world, seconds=60.0, noise=noise, seed=3, report=report, scene=scene)
-    controller.Robot.created = None
-    return controller.Supervisor()
 
 
 def without_gate(supervisor: controller.Supervisor) -> None:
@@ -220,3 +206,27 @@ def test_a_supervisor_reset_takes_an_imported_box_out(tmp_path: Path) -> None:
     # A later import takes a new place and is met again.
     children.importMFNodeFromString(-1, AHEAD)
     assert children.getCount() == count + 1 and front(supervisor) > clear + 300.0
+
+
+def test_an_imported_robot_that_is_no_e_puck_is_an_obstacle_with_the_importers_warning(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    supervisor = supervisor_in(tmp_path)
+    without_gate(supervisor)
+    children = supervisor.getRoot().getField("children")
+    clear = front(supervisor)
+    capsys.readouterr()
+    children.importMFNodeFromString(
+        -1,
+        'DEF ROVER Robot { translation 0.08 0 0.05 name "rover" controller "<none>" children [ '
+        "Shape { geometry DEF ROVER_BOX Box { size 0.04 0.3 0.1 } } ] "
+        "boundingObject USE ROVER_BOX }",
+    )
+    said = capsys.readouterr().err
+    assert "mazesim: warning:" in said and "not an e-puck (Robot)" in said, said
+    assert "its collision shapes are static obstacles" in said
+    rover = supervisor.getFromDef("ROVER")
+    assert rover is not None and rover.getPosition() == pytest.approx([0.08, 0.0, 0.05])
+    assert front(supervisor) > clear + 300.0
+    rover.remove()
+    assert front(supervisor) == pytest.approx(clear, abs=50.0)

@@ -80,3 +80,20 @@ def test_the_first_robot_runs_as_without_the_imports_until_them(
     assert alone[1].xs[:until] == joined[1].xs[:until]
     assert alone[1].xs[:REMOVE_FIRST_STEP] == joined[1].xs[:REMOVE_FIRST_STEP]
     assert alone[1].ys[:REMOVE_FIRST_STEP] == joined[1].ys[:REMOVE_FIRST_STEP]
+
+
+def test_an_imported_robot_that_is_no_e_puck_stands_as_an_obstacle_in_a_world_run(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setenv("SWARM_LOG", str(tmp_path))
+    robots = run_world(str(SWARM / "worlds" / "rover_spawner.wbt"), seconds=3.0).robots
+    assert [r.exit_status for r in robots] == [0, 0], [r.error for r in robots]
+    assert [r.name for r in robots] == ["spawner", "first"], "the rover is no robot of the run"
+    seen = log(tmp_path, "spawner")
+    assert seen["count_with"] == seen["count_before"] + 1 == seen["count_after"] + 1
+    assert seen["crate"] == pytest.approx([-0.5, 0.3, 0.05]) and seen["gone"]
+    # Held at the rover's face (x = -0.52) while it stood (step 3 to 40; about -0.50 there
+    # without it), then on past it.
+    first = robots[1]
+    assert first.xs[38] < -0.52 - 0.037 + 1e-3, first.xs[38]
+    assert first.final_pose[0] > first.xs[38] + 0.02

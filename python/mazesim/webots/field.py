@@ -3,8 +3,10 @@
 A field reads by its own type (a translation, an axis-angle rotation, a name or ``customData``
 string, the nodes of a ``children`` field, the node of an SFNode field) through the node that
 holds it (:class:`~mazesim.webots.supervisor.Node`); setting a robot's or a movable body's
-``translation`` or ``rotation`` moves it in the simulation. Calls that would add nodes to the
-running world or remove them print Webots' kind of error and change nothing. Positions are read
+``translation`` or ``rotation`` moves it in the simulation. Nodes are imported into a
+``children`` or an empty ``endPoint`` field and removed from them
+(:mod:`mazesim.webots.scene_edits`); another such change prints Webots' kind of error and
+changes nothing. Positions are read
 and written in the world file's frame (Webots' old NUE frame for worlds before R2022a).
 """
 
@@ -32,9 +34,9 @@ def _refuse_scene_change(call: str) -> None:
     elsewhere than in the scene tree root's ``children`` (as Webots prints the error of a call
     it cannot carry out, and the controller goes on)."""
     _print_error(
-        f"Error: {call} is not supported by mazesim: a supervisor imports nodes into the "
-        "scene tree root's children field and removes nodes from it, not elsewhere; nothing "
-        "changed."
+        f"Error: {call} is not supported by mazesim: a supervisor imports nodes into a "
+        "children field or an empty endPoint field and removes top-level or imported nodes, "
+        "not elsewhere; nothing changed."
     )
 
 
@@ -134,22 +136,32 @@ class Field(NotSimulated):
         return self._node._field_nodes.get(self._name)
 
     def importMFNodeFromString(self, position: int, nodeString: str) -> None:
-        """Imports the nodes of ``nodeString`` into the running world at ``position`` of the
-        root's ``children`` (-1: at the end), as the world file's nodes are imported; the robot
-        meets them from the next step on (:mod:`mazesim.webots.scene_edits`). Webots' kind of
-        error, nothing changed, for another field or nodes mazesim does not add in a run."""
+        """Imports the nodes of ``nodeString`` into the running world at ``position`` of a
+        ``children`` field (-1: at the end): the root's, or a Solid's, Pose's, Transform's or
+        Group's that does not move in the simulation, whose frame places them, as the world
+        file's nodes are imported; the robot meets them from the next step on
+        (:mod:`mazesim.webots.scene_edits`). Webots' kind of error, nothing changed, for
+        another field or nodes mazesim does not add in a run."""
         tree = self._tree("importMFNodeFromString")
         if tree is not None:
-            tree._import_nodes(position, str(nodeString), "importMFNodeFromString()")
+            tree._import_nodes(position, str(nodeString), "importMFNodeFromString()", self._into)
 
     def importSFNodeFromString(self, nodeString: str) -> None:
-        """Webots' kind of error: mazesim sets no node into a single-node field in a run."""
-        _refuse_scene_change(f"Field.importSFNodeFromString() on {self._where()}")
+        """Imports the node of ``nodeString`` into an empty ``endPoint`` field (a ``Slot``'s or
+        a joint's), placed in the frame of the node that holds the field, as
+        :meth:`importMFNodeFromString` does; Webots' kind of error for another field."""
+        tree = self._tree("importSFNodeFromString", single=True)
+        if tree is not None:
+            tree._import_nodes(0, str(nodeString), "importSFNodeFromString()", self._into)
 
     def importMFNode(self, position: int, filename: str) -> None:
         """Imports the nodes of a ``.wbo`` file as :meth:`importMFNodeFromString` does (an
         older name)."""
-        tree = self._tree("importMFNode")
+        self._import_file(position, filename, "importMFNode")
+
+    def _import_file(self, position: int, filename: str, call: str, single: bool = False) -> None:
+        """Imports the nodes of a ``.wbo`` file, as ``call`` (``importMFNode``...) does."""
+        tree = self._tree(call, single)
         if tree is None:
             return
         try:
@@ -159,16 +171,17 @@ class Field(NotSimulated):
             if len(data) > MAX_WORLD_BYTES:
                 raise MazesimIOError(f"expected at most {MAX_WORLD_BYTES} bytes, found more")
         except (MazesimError, OSError) as failure:
-            _print_error(f"Error: importMFNode(): cannot read '{filename}': {failure}.")
+            _print_error(f"Error: {call}(): cannot read '{filename}': {failure}.")
             return
-        tree._import_nodes(position, data.decode("utf-8", "replace"), "importMFNode()")
+        text = data.decode("utf-8", "replace")
+        tree._import_nodes(position, text, f"{call}()", self._into)
 
     def importSFNode(self, filename: str) -> None:
-        """Webots' kind of error: mazesim sets no node into a single-node field in a run."""
-        _refuse_scene_change(f"Field.importSFNode() on {self._where()}")
+        """Imports the node of a ``.wbo`` file as :meth:`importSFNodeFromString` does."""
+        self._import_file(0, filename, "importSFNode", single=True)
 
     def removeMF(self, index: int) -> None:
-        """Removes the node at ``index`` of the root's ``children`` from the running world, as
+        """Removes the node at ``index`` of a ``children`` field from the running world, as
         ``Node.remove()`` does; Webots' kind of error for another field."""
         tree = self._tree("removeMF")
         if tree is None:
@@ -178,13 +191,30 @@ class Field(NotSimulated):
             tree._remove_node(node, "wb_supervisor_field_remove_mf()")
 
     def removeSF(self) -> None:
-        """Webots' kind of error: mazesim removes no node of a single-node field in a run."""
-        _refuse_scene_change(f"Field.removeSF() on {self._where()}")
+        """Removes the node of an ``endPoint`` field from the running world, as
+        ``Node.remove()`` does; Webots' kind of error for another field."""
+        tree = self._tree("removeSF", single=True)
+        node = self._node._field_nodes.get(self._name) if tree is not None else None
+        if tree is not None and node is None:
+            _print_error("Error: wb_supervisor_field_remove_sf() called with an empty field.")
+        elif tree is not None and node is not None:
+            tree._remove_node(node, "wb_supervisor_field_remove_sf()")
 
-    def _tree(self, call: str) -> Any:
-        """The supervisor whose root's ``children`` the field is, or None after printing the
-        refusal of ``call`` on another field."""
-        tree = self._node._tree if self._name == "children" else None
+    @property
+    def _into(self) -> tuple[Node, str] | None:
+        """The node and field nodes are imported into (None: the root's ``children``)."""
+        return None if self._node._id == 0 else (self._node, self._name)
+
+    def _tree(self, call: str, single: bool = False) -> Any:
+        """The supervisor whose scene tree holds the field, when nodes can be imported into it
+        by ``call`` (a ``children`` field, or an ``endPoint`` field for a call on ``single``
+        fields), or None after printing the refusal of ``call`` on another field."""
+        root = self._node
+        while root._parent is not None:
+            root = root._parent
+        name, wanted = ("endPoint", self.SF_NODE) if single else ("children", self.MF_NODE)
+        fits = self._name == name and self._type == wanted
+        tree = root._tree if fits else None
         if tree is None:
             _refuse_scene_change(f"Field.{call}() on {self._where()}")
         return tree

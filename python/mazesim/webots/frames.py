@@ -19,6 +19,7 @@ __all__ = [
     "Axes",
     "Frame",
     "axes_or_none",
+    "axis_angle",
     "enu_to_nue",
     "enu_to_nue_matrix",
     "nue_to_enu",
@@ -78,6 +79,25 @@ def rotation_matrix(ax: float, ay: float, az: float, angle: float) -> list[float
         *(t * x * y + s * z, t * y * y + c, t * y * z - s * x),
         *(t * x * z - s * y, t * y * z + s * x, t * z * z + c),
     ]
+
+
+def axis_angle(matrix: Sequence[float]) -> tuple[float, float, float, float]:
+    """The axis-angle rotation (a Webots ``rotation`` field) of a rotation matrix, row after
+    row: the inverse of :func:`rotation_matrix` (a half turn's axis read from the diagonal)."""
+    m = matrix
+    cos = max(-1.0, min(1.0, (m[0] + m[4] + m[8] - 1.0) / 2.0))
+    x, y, z = m[7] - m[5], m[2] - m[6], m[3] - m[1]
+    norm = math.sqrt(x * x + y * y + z * z)
+    if norm > 1e-9:
+        return x / norm, y / norm, z / norm, math.acos(cos)
+    if cos > 0.0:
+        return 0.0, 0.0, 1.0, 0.0
+    # A half turn: R = 2 a a^T - I, so a_i^2 = (R_ii + 1) / 2 and a_i a_j = R_ij / 2.
+    squares = [max(0.0, (m[4 * i] + 1.0) / 2.0) for i in range(3)]
+    i = max(range(3), key=lambda k: squares[k])
+    largest = math.sqrt(squares[i])
+    axis = [largest if j == i else m[3 * i + j] / (2.0 * largest) for j in range(3)]
+    return axis[0], axis[1], axis[2], math.pi
 
 
 #: A frame: its origin and its rotation matrix (row after row), in the frame it is placed in.

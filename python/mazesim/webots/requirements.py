@@ -97,9 +97,9 @@ _SCENE_CHANGES = re.compile(
 #: The statement for a controller that makes those calls.
 SCENE_CHANGES = (
     "adding nodes to the running world or removing them ({calls}): mazesim imports nodes "
-    "into the scene tree root's children and removes top-level nodes, e-pucks and robots too "
-    "in a run of the whole world: importing a robot that is not an e-puck, and a change of "
-    "another field, print an error and change nothing"
+    "into children and empty endPoint fields and removes top-level and imported nodes, "
+    "e-pucks and robots too in a run of the whole world (a robot that is not an e-puck is an "
+    "obstacle); changes of other fields print an error and change nothing"
 )
 #: Lidar and RangeFinder readings (the Python and C++ names, then the C API's; Webots reference
 #: manual, Lidar and RangeFinder), which mazesim does not simulate.

@@ -10,14 +10,15 @@ were; the others are imported now. An imported e-puck joins the e-pucks' shared 
 noise stream of its own (``Simulator.change_world``'s ``kept_robots``), and its controller
 starts at once, to step in lockstep with the others from the next step. A removed robot
 leaves the simulation: a :class:`RemovedRobot` keeps where it was and what it did, and its
-controller's next ``Robot.step`` returns -1. Refused, with an error naming it: an imported
-robot that is not an e-puck, or an e-puck imported into a world whose e-pucks run in
-simulators of their own.
+controller's next ``Robot.step`` returns -1. An imported robot that is not an e-puck is kept
+as an obstacle, as the import of a world file keeps one (its controller does not run). Refused,
+with an error naming it: an e-puck imported into a world whose e-pucks run in simulators of
+their own.
 """
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Collection, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -28,7 +29,7 @@ from mazesim._toml import dump_toml, load_toml
 from mazesim.errors import MazesimError
 from mazesim.webots.shared_world import RobotView, with_robots_of
 
-__all__ = ["RemovedRobot", "RobotChange", "robot_change"]
+__all__ = ["RemovedRobot", "RobotChange", "kept_robots", "robot_change"]
 
 
 class RemovedRobot:
@@ -93,6 +94,17 @@ class RobotChange:
     removed: list[int]
 
 
+def kept_robots(report: Mapping[str, Any], running: Collection[int]) -> list[dict[str, Any]]:
+    """The robots of a changed world's import ``report`` that the run has or adds: those on
+    the ``running`` robots' lines, and the imported e-pucks; an imported robot that is not an
+    e-puck is an obstacle (its collision shapes, as the import of a world file keeps one)."""
+    return [
+        dict(r)
+        for r in report.get("robots") or []
+        if r.get("profile") is not None or int(r["line"]) in running
+    ]
+
+
 def robot_change(
     robots: Sequence[Mapping[str, Any]],
     simulators: Sequence[Any],
@@ -108,7 +120,7 @@ def robot_change(
         MazesimError: A robot is imported that mazesim does not add (see the module notes).
     """
     running = {int(r["line"]): i for i, r in enumerate(robots) if i not in gone}
-    found = list(report.get("robots") or [])
+    found = kept_robots(report, running)
     lines = {int(r["line"]) for r in found}
     if lines == set(running):
         return None
@@ -116,11 +128,6 @@ def robot_change(
     shared = next((s.simulator for s in simulators if isinstance(s, RobotView)), None)
     for robot in added:
         label = robot.get("name") or robot.get("def_name") or robot.get("model")
-        if robot.get("profile") is None:
-            raise MazesimError(
-                f"expected an imported robot that is an e-puck, found {label!r}, a "
-                f"{robot.get('model')}: mazesim adds no other robot to a running world"
-            )
         if shared is None:
             raise MazesimError(
                 f"expected a world whose e-pucks share one simulator to import robot {label!r} "

@@ -1,26 +1,35 @@
-"""The world a supervisor changes while it runs: nodes imported into the scene tree root's
-``children`` field (``importMFNodeFromString``) and top-level nodes removed (``Node.remove()``,
-``removeMF``).
+"""The world a supervisor changes while it runs: nodes imported into a ``children`` field
+(``importMFNodeFromString``) or an empty single-node field such as a ``Slot``'s ``endPoint``
+(``importSFNodeFromString``), and top-level or imported nodes removed (``Node.remove()``,
+``removeMF``, ``removeSF``).
 
 The running world's description is the world file's text with each removed node's lines left
 blank and each imported node's text after it, in import order (so every node keeps its line,
-by which the import report names what it holds). A supervisor's reset takes the imported nodes
-out and leaves the removed ones out, as Webots' does. Each change imports that description again
-with the importer that read the world file (PROTOs, DEF names, fields) and gives the result to
-the simulator, which runs on in it from the next step: the robots keep their poses,
+by which the import report names what it holds). A node imported into another node's field
+is written inside a ``Pose`` at that node's frame in the world, so that its ``translation`` and
+``rotation`` are in its parent's frame, as Webots places it; it goes when its parent goes.
+A supervisor's reset takes the imported nodes out and leaves the removed ones out, as Webots'
+does. Each change imports that description again with the importer that read the world file
+(PROTOs, DEF names, fields) and gives the result to the simulator, which runs on in it from the
+next step (what the import says of the new nodes, a robot kept as an obstacle, is printed once
+as a warning): the robots keep their poses,
 velocities, wheel encoders, noise streams and clocks, the movable bodies the change keeps go on
 where they are (an imported Solid with physics is a new one, at rest), and the walls a
 supervisor moved are moved again where it put them. In a world run (every robot with its
-controller) robots are imported and removed too (:mod:`mazesim.webots.robots_changed`); a run
-of one controller refuses a change that would add or remove a robot, with an error naming it.
+controller) e-pucks are imported and robots removed too (:mod:`mazesim.webots.robots_changed`);
+a run of one controller refuses a change that would add or remove an e-puck, with an error
+naming it.
 """
 
 from __future__ import annotations
 
+import sys
 from dataclasses import dataclass
 from typing import Any
 
 from mazesim.errors import MazesimError
+from mazesim.webots.frames import Frame, axis_angle, enu_to_nue, enu_to_nue_matrix
+from mazesim.webots.robots_changed import kept_robots
 from mazesim.webots.scene import SceneNode, read_scene
 from mazesim.webots.solids import carried_over, held_by_line
 
@@ -65,45 +74,88 @@ class SceneEdits:
         self._imported: list[list[str]] = []
         #: The first line of each top-level node of the file and of each imported node.
         self._starts = sorted({node.line for node in simulation.scene.nodes if node.line})
+        #: The import's warnings said so far (the world file's at the run's start).
+        self._said = set(simulation.report.get("warnings") or [])
+        #: The first line of each node imported into another node's field -> that node's line.
+        self._parents: dict[int, int] = {}
 
     def _text(self) -> str:
         return "\n".join([*self._lines, *(line for lines in self._imported for line in lines)])
 
-    def import_node(self, text: str) -> Change:
-        """Imports the nodes of ``text`` at the end of the root's ``children``.
+    def import_node(self, text: str, into: tuple[int, Frame] | None = None) -> Change:
+        """Imports the nodes of ``text`` at the end of the root's ``children``, or into a field
+        of the node on line ``into[0]``, whose frame in the world (ENU) is ``into[1]``.
 
         Raises:
             MazesimError: The text is not nodes the importer reads, or they hold a robot;
                 nothing changed.
         """
         first = len(self._lines) + sum(len(lines) for lines in self._imported) + 1
-        self._imported.append(text.replace("\r\n", "\n").replace("\r", "\n").split("\n"))
+        lines = text.replace("\r\n", "\n").replace("\r", "\n").split("\n")
+        if into is not None:
+            lines = [self._frame_line(into[1]), *lines, "] }"]
+        self._imported.append(lines)
         try:
-            change = self._apply(first)
+            change = self._apply(first, wrapped=into is not None)
         except MazesimError:
             self._imported.pop()
             raise
         self._starts.append(first)
+        if into is not None:
+            self._parents[first] = into[0]
         return change
 
+    def _frame_line(self, frame: Frame) -> str:
+        """The first line of the ``Pose`` (a ``Transform`` in an NUE world) that places the
+        nodes of its ``children`` at ``frame``, written in the world file's frame."""
+        origin, matrix = frame
+        if self._simulation.scene.nue:
+            origin, matrix = list(enu_to_nue(*origin)), enu_to_nue_matrix(matrix)
+            kind = "Transform"
+        else:
+            kind = "Pose"
+        turn = " ".join(repr(float(v)) for v in axis_angle(matrix))
+        at = " ".join(repr(float(v)) for v in origin)
+        return f"{kind} {{ translation {at} rotation {turn} children ["
+
     def remove_node(self, line: int) -> Change:
-        """Removes the top-level node whose node type is on ``line``.
+        """Removes the top-level or imported node whose node type is on ``line``, and the
+        nodes imported into its fields.
 
         Raises:
             MazesimError: The node holds a robot, or the world without it is not one the
                 importer reads; nothing changed.
         """
         start = max((s for s in self._starts if s <= line), default=line)
-        later = [s for s in self._starts if s > start]
-        end = later[0] - 1 if later else len(self._lines) + sum(map(len, self._imported))
-        kept = list(self._lines), [list(lines) for lines in self._imported]
+        end = self._end_of(start)
+        kept = list(self._lines), [list(lines) for lines in self._imported], dict(self._parents)
         for number in range(start, end + 1):
             self._blank(number)
+        self._blank_inside(start, end)
         try:
             return self._apply()
         except MazesimError:
-            self._lines, self._imported = kept
+            self._lines, self._imported, self._parents = kept
             raise
+
+    def _end_of(self, start: int) -> int:
+        """The last line of the node (top-level or imported) whose text starts on ``start``."""
+        later = [s for s in self._starts if s > start]
+        return later[0] - 1 if later else len(self._lines) + sum(map(len, self._imported))
+
+    def _blank_inside(self, start: int, end: int) -> None:
+        """Leaves blank the nodes imported into a field of a node on lines ``start`` to
+        ``end`` (and those imported into theirs)."""
+        pending = [(start, end)]
+        while pending:
+            low, high = pending.pop()
+            for first, parent in list(self._parents.items()):
+                if low <= parent <= high:
+                    del self._parents[first]
+                    last = self._end_of(first)
+                    for number in range(first, last + 1):
+                        self._blank(number)
+                    pending.append((first, last))
 
     @property
     def file_lines(self) -> int:
@@ -122,6 +174,7 @@ class SceneEdits:
         if not any(line for lines in self._imported for line in lines):
             return
         self._imported = [[""] * len(lines) for lines in self._imported]
+        self._parents.clear()
         if apply:
             self._apply()
 
@@ -137,17 +190,19 @@ class SceneEdits:
                 return
             number -= len(lines)
 
-    def _apply(self, first: int | None = None) -> Change:
+    def _apply(self, first: int | None = None, wrapped: bool = False) -> Change:
         """Imports the description and runs on in it (the nodes from line ``first`` on are
-        the ones added, when it is given)."""
+        the ones added, when it is given: the children of the ``Pose`` there when
+        ``wrapped``)."""
         from mazesim.webots.importer import import_wbt_text
 
         simulation = self._simulation
         text = self._text()
         robot_line = simulation.report.get("robot_line")
         world, report = import_wbt_text(text, self._path, robot_line=robot_line)
-        robots = len(report.get("robots") or [])
-        running = len(simulation.report.get("robots") or [])
+        lines = {int(r["line"]) for r in simulation.report.get("robots") or []}
+        robots = len(kept_robots(report, lines))
+        running = len(lines)
         if robots != running and simulation.owns_world:
             raise MazesimError(
                 f"expected the world's {running} robots, found {robots}: a run of one "
@@ -162,10 +217,16 @@ class SceneEdits:
             simulation.fleet.change_world(text)
         for key in ("obstacles", "bodies"):
             simulation.report[key] = report.get(key, [])
+        for warning in report.get("warnings") or []:
+            if warning not in self._said:  # what the import says of the nodes, said once
+                self._said.add(warning)
+                print(f"mazesim: warning: {warning}", file=sys.stderr)
         added: list[SceneNode] = []
         if first is not None:
             scene = read_scene(text, report.get("robot_model"), robot_line)
             added = [node for node in scene.nodes if node.line >= first]
+            if wrapped:
+                added = [node for pose in added for node in pose.children]
         return Change(added, held_by_line(report), list(report.get("bodies", [])))
 
 

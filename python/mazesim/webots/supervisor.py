@@ -8,9 +8,10 @@ simulation, and a movable body's node reads its live pose: :mod:`mazesim.webots.
 other nodes' are snapshots that move nothing), the ``children`` of
 the plain Solid, Transform, Pose and Group nodes among them, and theirs (snapshots too), the
 robot's node among them (``getSelf``, ``getFromDef`` of its DEF name) and the file's other DEF
-nodes (their type). It imports nodes into the root's ``children`` and removes top-level nodes
-while the world runs (:mod:`mazesim.webots.scene_edits`); a change mazesim does not make (a
-robot, another field) prints Webots' kind of error and changes nothing, so the controller goes
+nodes (their type). It imports nodes into a ``children`` field (the root's or a static
+node's) or an empty ``endPoint`` field and removes top-level and imported nodes while the
+world runs (:mod:`mazesim.webots.scene_edits`); a change mazesim does not make (the robot's own
+node, another field) prints Webots' kind of error and changes nothing, so the controller goes
 on as Webots' would.
 It reads and sets the robot's ``translation`` and ``rotation`` (moving the robot in the
 simulation), and in a world with several robots those of every other robot too, reads its
@@ -72,6 +73,8 @@ _BUILT_IN_TYPES = {
     "Shape",
     "Charger",
 }
+#: Base nodes with an ``endPoint`` field, which places its node in their parent's frame.
+_END_POINT_TYPES = {"Slot", "HingeJoint", "Hinge2Joint", "SliderJoint", "BallJoint"}
 #: Base nodes with ``translation`` and ``rotation`` fields.
 _POSED_TYPES = {"Robot", "Solid", "Pose", "Transform", "Charger"}
 
@@ -372,6 +375,8 @@ class Node(NotSimulated):
         types = dict.fromkeys(self._strings, Field.SF_STRING)
         if self._type_name in GROUPING_TYPES or self._holds_children:
             types["children"] = Field.MF_NODE
+        if self._base_type in _END_POINT_TYPES:
+            types["endPoint"] = Field.SF_NODE  # empty: a node can be imported into it
         types.update(dict.fromkeys(self._field_nodes, Field.SF_NODE))
         types.update(dict.fromkeys(self._flags, Field.SF_BOOL))
         for name, values in self._numbers.items():
@@ -562,6 +567,25 @@ def _follow_robots(nodes: list[Node], robots: list[dict[str, Any]], own: int) ->
                 break
 
 
+def _detach(node: Node) -> None:
+    """Takes ``node`` out of the field of its parent that holds it."""
+    parent = node._parent
+    if parent is None:
+        return
+    parent._children = [n for n in parent._children if n is not node]
+    parent._field_nodes = {k: n for k, n in parent._field_nodes.items() if n is not node}
+
+
+def _moving(node: Node) -> Node | None:
+    """The node at or above ``node`` that moves in the simulation (a robot, a node of a movable
+    body), or None."""
+    while node._parent is not None:
+        if node._live or node._base_type == "Robot":
+            return node
+        node = node._parent
+    return None
+
+
 def _inside(node: Node, ancestor: Node) -> bool:
     """Whether ``node`` is below ``ancestor`` in the scene tree."""
     parent = node._parent
@@ -621,6 +645,8 @@ class Supervisor(Robot):
         self._next_id = self._def_ids + len(scene.defs) + len(self._nested_nodes) + 1
         #: The DEF names of the file's nodes a supervisor removed.
         self._removed_defs: set[str] = set()
+        #: The nodes a supervisor imported into a field of another node than the root.
+        self._imports: list[Node] = []
         #: Every node of the world file (one per scene node), whose fields a reset restores.
         self._file_nodes = list(made.values())
         self._simulation.reset_listeners.append(self._restore_file_poses)
@@ -642,30 +668,53 @@ class Supervisor(Robot):
                 self._simulation.robot_index,
             )
 
-    def _import_nodes(self, position: int, text: str, call: str) -> None:
+    def _import_nodes(
+        self, position: int, text: str, call: str, into: tuple[Node, str] | None = None
+    ) -> None:
         """Imports the nodes of ``text`` into the running world at ``position`` of the root's
-        ``children`` (-1: at the end; below: from the end, as in Webots), as
+        ``children`` (-1: at the end; below: from the end, as in Webots), or of the field
+        ``into[1]`` of the node ``into[0]`` (a ``children`` field, or an empty single-node
+        field such as a ``Slot``'s ``endPoint``), as
         :class:`~mazesim.webots.scene_edits.SceneEdits` does; Webots' kind of error when
         refused, nothing changed."""
-        children = self._root._children
+        parent, field = into if into is not None else (self._root, "children")
+        single = field != "children"
+        children = parent._children
         index = int(position) if int(position) >= 0 else len(children) + 1 + int(position)
-        if not 0 <= index <= len(children):
+        if not single and not 0 <= index <= len(children):
             _print_error(f"Error: {call} called with an out of range position: {position}.")
             return
+        if single and field in parent._field_nodes:
+            _print_error(f"Error: {call} called with a field that holds a node: remove it first.")
+            return
+        moving = _moving(parent)
+        if moving is not None:
+            _print_error(
+                f"Error: {call} refused by mazesim: {moving._label()} moves in the simulation, "
+                "and a node imported into it would not move with it; nothing changed."
+            )
+            return
+        place = None if parent is self._root else (parent._line, parent._world_frame())
         try:
-            change = scene_edits(self._simulation).import_node(text)
+            change = scene_edits(self._simulation).import_node(text, place)
         except MazesimError as refused:
             _print_error(f"Error: {call} refused by mazesim: {refused}; nothing changed.")
             return
         made: dict[int, Node] = {}
         added = _nodes_of(change.added, made, self._self)
-        for offset, node in enumerate(added):
-            node._id = self._next_id + offset
-        self._next_id += len(added)
+        if parent is self._root:
+            for offset, node in enumerate(added):
+                node._id = self._next_id + offset
+            self._next_id += len(added)
+        if parent is not self._root:
+            self._imports.extend(added)
+        if single:
+            parent._adopt_fields({**parent._field_nodes, field: added[0]} if added else {})
+        else:
+            children[index:index] = added
+            parent._adopt(children)
         nested = _nest(list(zip(added, change.added)), self._next_id, self._self, made)
         self._next_id += len(nested)
-        children[index:index] = added
-        self._root._adopt(children)
         self._nested_nodes.extend(nested)
         self._file_nodes.extend(made.values())
         self._held_again(change)
@@ -683,7 +732,8 @@ class Supervisor(Robot):
         refused (the robot's own node, a node inside another), nothing changed. Another
         robot's node leaves the world with its robot, whose controller's ``Robot.step`` then
         returns -1 (:mod:`mazesim.webots.robots_changed`)."""
-        if node._robot or node._parent is not self._root:
+        imported = any(node is n for n in self._imports)
+        if node._robot or (node._parent is not self._root and not imported):
             what = "the robot's own node" if node._robot else "a node inside another node"
             _print_error(f"Error: {call} refused by mazesim: {what} stays; nothing changed.")
             return
@@ -693,7 +743,7 @@ class Supervisor(Robot):
             _print_error(f"Error: {call} refused by mazesim: {refused}; nothing changed.")
             return
         gone = [node, *(n for n in self._nested_nodes if _inside(n, node))]
-        self._root._children.remove(node)
+        _detach(node)
         self._nested_nodes = [n for n in self._nested_nodes if n not in gone]
         self._removed_defs.update(n._def for n in gone if n._def)
         self._held_again(change)
@@ -781,11 +831,14 @@ class Supervisor(Robot):
             if self._simulation.fleet is not None:  # the world's process changed the world
                 edits.take_out_imports(apply=False)
             first = edits.file_lines + 1
-            imported = [n for n in self._root._children if n._line >= first and not n._robot]
+            listed = [*self._root._children, *self._nested_nodes]
+            imported = [n for n in listed if n._line >= first and not n._robot]
             gone = {*imported, *(n for n in self._nested_nodes for i in imported if _inside(n, i))}
-            self._root._adopt([n for n in self._root._children if n not in gone])
+            for node in imported:
+                _detach(node)
             self._nested_nodes = [n for n in self._nested_nodes if n not in gone]
             self._file_nodes = [n for n in self._file_nodes if n not in gone]
+            self._imports.clear()
         for node in [*self._file_nodes, *self._nodes.values()]:
             node._translation, node._rotation = node._file_pose
 
