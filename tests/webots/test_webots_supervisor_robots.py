@@ -97,3 +97,16 @@ def test_an_imported_robot_that_is_no_e_puck_stands_as_an_obstacle_in_a_world_ru
     first = robots[1]
     assert first.xs[38] < -0.52 - 0.037 + 1e-3, first.xs[38]
     assert first.final_pose[0] > first.xs[38] + 0.02
+
+
+def test_an_imported_e_puck_gets_going_with_the_traction_of_the_world_files(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setenv("SWARM_LOG", str(tmp_path))
+    monkeypatch.setenv("CRUISE_SPEED", "6.28")
+    world = SWARM / "worlds" / "robot_spawner_8ms.wbt"  # 8 ms steps: traction takes 2 of them
+    _, first, new_a, _ = run_world(str(world), seconds=1.0).robots
+    went = [first.xs[k] - first.xs[0] for k in range(1, 6)]
+    # From rest, the floor's friction holds the body back in its first step, at full speed.
+    assert went[0] < 0.75 * 6.28 * 0.0205 * 0.008
+    assert [new_a.xs[k] - new_a.xs[0] for k in range(1, 6)] == pytest.approx(went, abs=1e-6)

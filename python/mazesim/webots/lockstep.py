@@ -58,7 +58,7 @@ from mazesim.webots.rays import WallBoxes
 from mazesim.webots.requirements import PreparedController, prepare_controller, unbuilt
 from mazesim.webots.robots_changed import RemovedRobot, RobotChange, robot_change
 from mazesim.webots.runner import CONTROLLER_SUFFIXES, EXIT_INTERRUPTED
-from mazesim.webots.scene import Scene, read_scenes
+from mazesim.webots.scene import Scene, read_scene, read_scenes
 from mazesim.webots.shared_world import RobotView, shared_simulator, with_robots_of
 from mazesim.webots.simulation import WorldReset, place_where_asked, robot_profile_name
 from mazesim.webots.solids import Pose2, WorldSolids, carried_over
@@ -482,6 +482,8 @@ def run_world(
         """The run and controller job of robot ``index``, which a supervisor imported."""
         run, job = _robot_run(world_path, index, robots[index], controllers or {}, seconds, noise)
         run.imported_s = float(simulators[index].time)
+        robot, text = robots[index], fleet.text or ""  # the world as the import changed it
+        traction.join(index, robot, read_scene(text, robot.get("model"), robot["line"]))
         if job is None:
             return run, None
         _, _, ready = _say_what_is_missing([run])
@@ -882,23 +884,26 @@ class WorldTraction:
         self._simulators = simulators
         self.dt = float(simulators[0].control_step_ms) / 1000.0
         self.tractions: dict[int, Traction] = {}
+        self._left: dict[int, tuple[float, float, float]] = {}
         for index, (robot, scene) in enumerate(zip(robots, scenes)):
-            if robot.get("profile") is None:
-                continue
-            version = scene.traction_version
-            if version is not None:
-                name = robot_profile_name({"robot_profile": robot.get("profile")})
-                profile = RobotProfile.builtin(name)
-                self.tractions[index] = epuck_traction(
-                    version,
-                    float(profile.wheel_radius),
-                    float(profile.axle_length),
-                    float(profile.max_wheel_speed),
-                )
-        self._left: dict[int, tuple[float, float, float]] = {
-            i: tuple(float(v) for v in simulators[i].pose)  # type: ignore[misc]
-            for i in self.tractions
-        }
+            self.join(index, robot, scene)
+
+    def join(self, index: int, robot: Mapping[str, Any], scene: Scene) -> None:
+        """Gives robot ``index`` (its import report entry and its node's scene) its traction
+        when it is an E-puck: one of the world file, or one a supervisor imported, at rest."""
+        version = scene.traction_version
+        if robot.get("profile") is None or version is None:
+            return
+        name = robot_profile_name({"robot_profile": robot.get("profile")})
+        profile = RobotProfile.builtin(name)
+        self.tractions[index] = epuck_traction(
+            version,
+            float(profile.wheel_radius),
+            float(profile.axle_length),
+            float(profile.max_wheel_speed),
+        )
+        x, y, yaw = (float(v) for v in self._simulators[index].pose)
+        self._left[index] = (x, y, yaw)
 
     def drive(self, wheels: Mapping[int, tuple[float, float]]) -> dict[int, tuple[float, float]]:
         """The wheel speeds that move each robot this step as its traction allows (the others'
