@@ -37,9 +37,11 @@ def log(tmp_path: Path, name: str) -> dict:
 
 
 def test_imported_e_pucks_run_their_controllers_and_removed_robots_end(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capfd: pytest.CaptureFixture[str]
 ) -> None:
     robots = spawned(tmp_path, monkeypatch)
+    # The imports say nothing of a run of one controller, which this run is not.
+    assert "alone simulates only" not in capfd.readouterr().err
     assert [r.name for r in robots] == ["spawner", "first", "new-a", "new-b"]
     spawner, first, new_a, new_b = robots
     seen = log(tmp_path, "spawner")
@@ -83,10 +85,12 @@ def test_the_first_robot_runs_as_without_the_imports_until_them(
 
 
 def test_an_imported_robot_that_is_no_e_puck_stands_as_an_obstacle_in_a_world_run(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capfd: pytest.CaptureFixture[str]
 ) -> None:
     monkeypatch.setenv("SWARM_LOG", str(tmp_path))
     robots = run_world(str(SWARM / "worlds" / "rover_spawner.wbt"), seconds=3.0).robots
+    said = capfd.readouterr().err
+    assert "not an e-puck (Robot)" in said and "static obstacles" in said, said
     assert [r.exit_status for r in robots] == [0, 0], [r.error for r in robots]
     assert [r.name for r in robots] == ["spawner", "first"], "the rover is no robot of the run"
     seen = log(tmp_path, "spawner")

@@ -217,8 +217,10 @@ class SceneEdits:
             simulation.fleet.change_world(text)
         for key in ("obstacles", "bodies"):
             simulation.report[key] = report.get(key, [])
+        # What the import says of the new nodes, once (in a world run, what it shares).
+        alone = set(report.get("one_controller_warnings") or []) if simulation.fleet else set()
         for warning in report.get("warnings") or []:
-            if warning not in self._said:  # what the import says of the nodes, said once
+            if warning not in self._said and warning not in alone:
                 self._said.add(warning)
                 print(f"mazesim: warning: {warning}", file=sys.stderr)
         added: list[SceneNode] = []
