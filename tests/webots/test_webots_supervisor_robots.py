@@ -57,11 +57,14 @@ def test_imported_e_pucks_run_their_controllers_and_removed_robots_end(
     assert new_a.final_pose[0] > -0.6 + 0.15 and new_a.xs[0] == pytest.approx(-0.6)
     a_log = log(tmp_path, "new-a")
     assert a_log["steps"] == 90 and not a_log["ended"]
+    # Its node's own camera width and turret device, not the built-in e-puck's.
+    assert a_log["camera_width"] == 80 and "compass" in a_log["devices"]
+    b_log = log(tmp_path, "new-b")
+    assert b_log["camera_width"] == 52 and "compass" not in b_log["devices"]
     assert a_log["first_step_time"] == pytest.approx((IMPORT_STEP + 1) * step_s)
     # A removed robot's controller is answered the end at its next step, as after a
     # supervisor's quit (that step returns without the world advancing, the one after it -1),
     # and its path ends there.
-    b_log = log(tmp_path, "new-b")
     assert b_log["ended"] and b_log["steps"] == REMOVE_STEP - IMPORT_STEP + 1
     assert new_b.removed_s == pytest.approx(REMOVE_STEP * step_s)
     assert len(new_b.xs) == REMOVE_STEP - IMPORT_STEP + 1

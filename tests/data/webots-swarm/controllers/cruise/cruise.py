@@ -1,6 +1,6 @@
 """Drives straight ahead (at ``CRUISE_SPEED`` rad/s, 4 by default) until its run ends;
-records how many steps it had, whether ``Robot.step`` returned -1 and the time of its first
-step."""
+records how many steps it had, whether ``Robot.step`` returned -1, the time of its first
+step, its devices' names and its camera's width."""
 
 import json
 import os
@@ -23,4 +23,15 @@ while steps < 90:
     steps += 1
     first = robot.getTime() if first is None else first
 with open(os.path.join(os.environ["SWARM_LOG"], f"{robot.getName()}.json"), "w") as log:
-    json.dump({"steps": steps, "ended": ended, "first_step_time": first}, log)
+    devices = [robot.getDeviceByIndex(i).getName() for i in range(robot.getNumberOfDevices())]
+    width = robot.getDevice("camera").getWidth()
+    json.dump(
+        {
+            "steps": steps,
+            "ended": ended,
+            "first_step_time": first,
+            "devices": devices,
+            "camera_width": width,
+        },
+        log,
+    )

@@ -8,7 +8,8 @@ import os
 from controller import Supervisor
 
 ROBOTS = [
-    'DEF NEW_A E-puck { translation -0.6 -0.3 0 name "new-a" controller "cruise" }',
+    'DEF NEW_A E-puck { translation -0.6 -0.3 0 name "new-a" controller "cruise" '
+    "camera_width 80 turretSlot [ Compass { } ] }",
     'DEF NEW_B E-puck { translation 0.2 -0.6 0 name "new-b" controller "cruise" }',
 ]
 
