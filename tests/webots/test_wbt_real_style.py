@@ -180,6 +180,15 @@ def test_a_missing_texture_is_a_warning_naming_the_files(tmp_path: Path) -> None
     assert world.paint_regions() == []
 
 
+def test_an_empty_texture_url_is_no_texture_and_no_warning(tmp_path: Path) -> None:
+    # Webots' scene tree leaves url [""] when a texture is cleared: it loads no image and says
+    # nothing, and the floor is drawn in its appearance's own colour.
+    world, report = import_wbt(write_world(tmp_path, EPUCK2, url=""))
+    assert not [w for w in report["warnings"] if "floor texture" in w]
+    assert report["floor_paint"] == 0
+    assert world.paint_regions() == []
+
+
 def test_a_jpeg_in_textures_beside_the_world_is_found(tmp_path: Path) -> None:
     (tmp_path / "textures").mkdir()
     jpeg = tmp_path / "textures" / "track.jpg"

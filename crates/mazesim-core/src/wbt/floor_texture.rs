@@ -293,7 +293,8 @@ impl WbtImport {
 
 impl<'d> Importer<'d> {
     /// The `ImageTexture` urls of an appearance (`PBRAppearance.baseColorMap`,
-    /// `Appearance.texture`) and its `textureTransform` scale.
+    /// `Appearance.texture`) and its `textureTransform` scale; `None` when it has no texture
+    /// with a url.
     fn appearance_texture(&mut self, appearance: &'d Node) -> Option<(Vec<String>, [f64; 2])> {
         let field = match appearance.type_name.as_str() {
             "PBRAppearance" => "baseColorMap",
@@ -312,6 +313,11 @@ impl<'d> Importer<'d> {
             .map(|&id| self.node(id))
             .find(|n| n.type_name == "ImageTexture")?;
         let urls = self.strings(texture, "url").to_vec();
+        // An ImageTexture whose urls are all empty (what Webots' scene tree leaves when a
+        // texture is cleared) loads no image in Webots: no texture, and nothing to warn of.
+        if urls.iter().all(|url| url.trim().is_empty()) {
+            return None;
+        }
         let scale = self
             .nodes(appearance, "textureTransform")
             .first()
