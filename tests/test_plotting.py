@@ -23,10 +23,17 @@ def test_plot_world_draws_walls_paint_and_labels(builtin_name: str) -> None:
     labels = sorted(text.get_text() for text in ax.texts)
     ids = sorted(str(checkpoint["id"]) for checkpoint in world.checkpoints())
     assert labels == sorted(ids + (["GOAL"] if world.goal is not None else []))
-    assert len(ax.collections) == 1  # the walls
-    # One patch per paint region, plus the start (circle and arrow) and the goal.
-    expected = len(world.paint_regions()) + 2 + (world.goal is not None)
-    assert len(ax.patches) == expected
+    regions = world.paint_regions()
+    # The walls, and the floor paint as one collection of a path per region, in their order
+    # (later regions cover earlier ones) and in the grey of its reflectance.
+    assert len(ax.collections) == 1 + bool(regions)
+    if regions:
+        paint = ax.collections[0]
+        assert len(paint.get_paths()) == len(regions)
+        greys = [min(max(float(region["reflectance"]), 0.0), 1.0) for region in regions]
+        assert np.allclose(paint.get_facecolors()[:, :3], np.repeat(greys, 3).reshape(-1, 3))
+    # The start (circle and arrow) and the goal are patches of their own.
+    assert len(ax.patches) == 2 + (world.goal is not None)
     xmin, ymin, xmax, ymax = world.bounds
     left, right = ax.get_xlim()
     assert left < xmin and right > xmax

@@ -20,10 +20,11 @@ import numpy as np
 import numpy.typing as npt
 from matplotlib import colormaps
 from matplotlib.backends.backend_agg import FigureCanvasAgg
-from matplotlib.collections import PolyCollection
+from matplotlib.collections import PathCollection, PolyCollection
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Circle, FancyArrow, Patch, Polygon
+from matplotlib.path import Path
 
 from mazesim._figures import save_png
 from mazesim.errors import InvalidArgumentError
@@ -106,33 +107,41 @@ def _pair(value: object) -> tuple[float, float]:
     return float(first), float(second)
 
 
-def _paint_patch(region: dict[str, object], zorder: float) -> Patch | None:
-    """The patch that draws one paint region, or None for a shape this module does not know."""
-    color = _grey(_number(region["reflectance"]))
-    style = {"facecolor": color, "edgecolor": "none", "zorder": zorder}
+def _paint_path(region: dict[str, object]) -> Path | None:
+    """The outline of one paint region, or None for a shape this module does not know."""
     shape = region["shape"]
     if shape == "rect":
         center_x, center_y = _pair(region["center"])
         size_x, size_y = _pair(region["size"])
         yaw = _number(region.get("yaw", 0.0))
         corners = _rectangle_corners(center_x, center_y, size_x, size_y, yaw)
-        return Polygon(corners, closed=True, **style)
+        return Path(np.vstack([corners, corners[:1]]), closed=True)
     if shape == "circle":
-        return Circle(_pair(region["center"]), _number(region["radius"]), **style)
+        return Path.circle(_pair(region["center"]), _number(region["radius"]))
     if shape == "capsule":
         outline = _capsule_outline(
             _pair(region["a"]), _pair(region["b"]), _number(region["radius"])
         )
-        return Polygon(outline, closed=True, **style)
+        return Path(np.vstack([outline, outline[:1]]), closed=True)
     return None
 
 
 def _draw_paint(ax: Axes, world: World) -> None:
-    for order, region in enumerate(world.paint_regions()):
-        # Later regions cover earlier ones, all below walls and markers.
-        patch = _paint_patch(region, zorder=1.0 + order * 1e-6)
-        if patch is not None:
-            ax.add_patch(patch)
+    """Draws the floor paint as one collection of outlines: a floor texture read as paint gives
+    tens of thousands of regions, which matplotlib draws in seconds so, and in most of a minute
+    as as many patches. Later regions cover earlier ones (the collection's order), all below
+    walls and markers."""
+    paths: list[Path] = []
+    greys: list[tuple[float, float, float]] = []
+    for region in world.paint_regions():
+        path = _paint_path(region)
+        if path is not None:
+            paths.append(path)
+            greys.append(_grey(_number(region["reflectance"])))
+    if paths:
+        ax.add_collection(
+            PathCollection(paths, facecolors=greys, edgecolors="none", linewidths=1.0, zorder=1.0)
+        )
 
 
 def _draw_walls(ax: Axes, world: World) -> None:
