@@ -4,6 +4,7 @@ Jazzy's layouts, and a driver of the wrong layout is caught."""
 
 from __future__ import annotations
 
+import shlex
 import sys
 from pathlib import Path
 
@@ -91,3 +92,45 @@ def test_a_driver_that_answers_from_its_second_state_gets_the_reset_state_again(
     assert "50 steps, every field equal" in result.stdout
     assert "publishing the reset state again" in result.stderr
     assert "stopped after 50 steps" in result.stderr
+
+
+def test_a_node_restarted_while_the_bridge_runs_gets_the_last_state_again() -> None:
+    # A node that stops and starts again while the lockstep bridge runs (a crash, an edit, one
+    # more `ros2 run`) waited for a state that had gone out before it was there, and the bridge
+    # waited for its command: nothing moved again.
+    answer = " ".join([sys.executable, "-c", shlex.quote(_ANSWER_ODOM), "10"])
+    result = run_in_namespace(
+        [_bridge("humble", 20)], ["bash", "-c", f"{answer} && {answer}"], timeout=60
+    )
+    assert result.returncode == 0, result.stderr
+    first, second = result.stdout.split()
+    # The first run answers the reset state and steps 1-9; the second starts from step 10, the
+    # state that went out once already (its stamp says so), and drives the bridge to step 20.
+    assert first == f"answered:{1}..{9 * 32_000_000}"
+    assert second == f"answered:{10 * 32_000_000}..{19 * 32_000_000}"
+    assert "stopped after 20 steps" in result.stderr
+    assert "a command writer matched after the last state" in result.stderr
+
+
+#: Answers each /odom with one /cmd_vel, as many times as its argument says; prints the stamps
+#: of the first and last odometry it answered.
+_ANSWER_ODOM = """
+import sys, time
+from mazesim.ros2 import cdr
+from mazesim.ros2.node import Node
+from mazesim.ros2.qos import COMMAND, SENSOR
+node = Node("answerer")
+odom = node.reader("/odom", "nav_msgs/msg/Odometry", SENSOR)
+cmd_vel = node.writer("/cmd_vel", "geometry_msgs/msg/Twist", COMMAND)
+node.announce()
+stamps = []
+deadline = time.monotonic() + 10
+while len(stamps) < int(sys.argv[1]) and time.monotonic() < deadline:
+    for data in odom.take():
+        stamps.append(cdr.decode_clock(data))  # a header's stamp opens it, as a Clock's time
+        cmd_vel.publish(cdr.encode_twist((0.05, 0.0, 0.0), (0.0, 0.0, 0.3)))
+    time.sleep(0.002)
+time.sleep(0.3)
+print(f"answered:{stamps[0]}..{stamps[-1]}" if stamps else "answered:nothing")
+sys.exit(0 if len(stamps) == int(sys.argv[1]) else 1)
+"""

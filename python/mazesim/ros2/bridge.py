@@ -6,7 +6,9 @@ Before the first command the bridge publishes the reset state once (stamped 1 ns
 on one of its command topics has matched and a grace period has passed, and again every
 ``RESEND_S`` seconds while a command writer is matched and no command has come (a node that
 answers only its second message, or whose first command went out before it matched, gets
-another), saying so on stderr. Free-running: the bridge
+another), saying so on stderr. Once stepping, a command writer that matches later (a node started
+or restarted while the bridge runs) and sends nothing within the grace period gets its robot's
+last state again, byte for byte. Free-running: the bridge
 steps on its own at ``speed`` (see :mod:`mazesim.ros2.clock`), with the last commanded wheel
 speeds. Topics and QoS: :mod:`mazesim.ros2.state`; the page ``docs/ros2.md``.
 
@@ -124,10 +126,23 @@ class RobotChannel:
         self.pending: deque[tuple[float, float]] = deque()
         self.wheel_speeds = (0.0, 0.0)
         self.rejected = 0
+        #: Commands received so far (accepted or not).
+        self.received = 0
+        #: The robot's last state as it went out: each writer with its message.
+        self.last_state: list[tuple[Any, bytes]] = []
+        #: The command writers matched at the last look, and when a new one came and how many
+        #: commands the robot had received then (see :meth:`Ros2Bridge._greet_newcomers`).
+        self.known_writers: set[int] = set()
+        self.newcomer_since: tuple[float, int] | None = None
 
     def driven(self) -> bool:
         """Whether a writer on one of the robot's command topics has matched."""
         return any(reader.publishers() for reader in (self.cmd_vel, self.motor, self.action))
+
+    def command_writers(self) -> set[int]:
+        """The writers matched now on the robot's command topics."""
+        readers = (self.cmd_vel, self.motor, self.action)
+        return set().union(*(reader.matched_writers() for reader in readers))
 
     def commands(self) -> list[tuple[float, float]]:
         """The wheel speeds of every command received since the last call; bad ones are
@@ -148,6 +163,7 @@ class RobotChannel:
         return wheel_speeds(cdr.decode_string(data), self.state.robot.max_wheel_speed)
 
     def _accept(self, speeds: list[tuple[float, float]], read: Any, data: bytes) -> None:
+        self.received += 1
         try:
             speeds.append(read(data))
         except (MazesimError, ValueError, KeyError) as error:
@@ -276,8 +292,8 @@ class Ros2Bridge:
         nanoseconds = stamp_nanoseconds(self.simulator.time)
         stamp = cdr.stamp_of(nanoseconds)
         for robot in self.robots:
-            encoded = robot.state.messages(stamp, step_seconds)
-            for writer, data in zip(robot.writers, encoded):
+            robot.last_state = list(zip(robot.writers, robot.state.messages(stamp, step_seconds)))
+            for writer, data in robot.last_state:
                 self._send(writer, nanoseconds, data)
         if self.clock_writer is not None:
             self._send(self.clock_writer, nanoseconds, cdr.encode_clock(stamp))
@@ -348,11 +364,13 @@ class Ros2Bridge:
             self.wait_for_driver()
             if not self.stop.is_set():
                 self.publish_state(0.0)
+            self._greet_newcomers()  # the writers matched now are the first drivers, not late
             published = time.monotonic()
             while not self.stop.is_set():
                 self._waitset.wait(100_000_000)
                 self._step_pending()
                 self._check_readers()
+                self._greet_newcomers()
                 if self.simulator.steps == 0 and time.monotonic() - published >= RESEND_S:
                     self._resend_reset_state()
                     published = time.monotonic()
@@ -383,6 +401,39 @@ class Ros2Bridge:
             )
         self.resent_states += 1
         self.publish_state(0.0)
+
+    def _greet_newcomers(self) -> None:
+        """Lockstep, once stepping: a node that starts writing a robot's commands after the
+        robot's last state went out (started, or restarted, while the bridge runs) waits for a
+        state, and the bridge for its command. When a command writer matches that was not
+        matched before, and the robot has received no command ``READY_GRACE_S`` later, the
+        robot's last state goes out again as it went out (same stamp; ``/clock`` too in a world
+        of one robot); a node that answers at once gets nothing twice. Says so on stderr."""
+        now = time.monotonic()
+        for robot in self.robots:
+            writers = robot.command_writers()
+            if writers - robot.known_writers and self.simulator.steps > 0:
+                robot.newcomer_since = (now, robot.received)
+            robot.known_writers = writers
+            if robot.newcomer_since is None:
+                continue
+            since, received = robot.newcomer_since
+            if robot.received != received or robot.pending:
+                robot.newcomer_since = None
+            elif now - since >= READY_GRACE_S:
+                robot.newcomer_since = None
+                self._send_last_state(robot)
+
+    def _send_last_state(self, robot: RobotChannel) -> None:
+        nanoseconds = stamp_nanoseconds(self.simulator.time)
+        for writer, data in robot.last_state:
+            self._send(writer, nanoseconds, data)
+        topic = f"{robot.state.namespace}/{standard.CMD_VEL_TOPIC}"
+        self._say(
+            f"lockstep: a command writer matched after the last state went out (e.g. on {topic}: "
+            f"a node started or restarted while the bridge runs) and sent nothing in "
+            f"{READY_GRACE_S:g} s; publishing that state again (step {self.simulator.steps})"
+        )
 
     def _run_free(self) -> None:
         control_step_s = self.simulator.control_step_ms / 1000.0
