@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from mazesim.ros2.unpublished import in_robot_namespaces, why_unpublished
+from mazesim.ros2.unpublished import also_published, in_robot_namespaces, why_unpublished
 from ros2_support import MAZESIM, TWO_ROBOTS, needs_namespace, needs_ros2, run_in_namespace
 
 PUBLISHED = ["/ps0", "/scan", "/odom", "/clock"]
@@ -64,6 +64,33 @@ def test_topics_in_a_namespace_or_that_no_robot_has_are_left_alone(topic: str) -
     assert in_robot_namespaces(topic, published, NAMESPACES) is None
     # A world of one robot has no namespaces: nothing to say.
     assert in_robot_namespaces(topic, ["/odom", "/clock"], []) is None
+
+
+@pytest.mark.parametrize("topic", ["/clock", "/odom", "/ps0"])
+def test_another_publisher_of_the_bridge_s_topics_is_explained(topic: str) -> None:
+    reason = also_published(topic, PUBLISHED)
+    assert reason is not None and f"another node publishes {topic}" in reason
+    assert "ROS_DOMAIN_ID" in reason
+
+
+@pytest.mark.parametrize("topic", ["/tf", "/tf_static", "/map", "/cmd_vel"])
+def test_the_transforms_and_topics_the_bridge_does_not_publish_are_left_alone(topic: str) -> None:
+    # Many nodes write /tf (a localiser's map -> odom, robot_state_publisher's /tf_static).
+    assert also_published(topic, [*PUBLISHED, "/tf", "/tf_static"]) is None
+
+
+@needs_ros2
+@needs_namespace
+def test_two_bridges_on_one_domain_each_say_so_once() -> None:
+    # Two simulations on one domain: a node reading /odom got both robots' odometry, and its
+    # commands stepped both, and nothing said why.
+    bridge = [*MAZESIM, "ros2", "bridge", "--mode", "free", "--stop-after", "100"]
+    result = run_in_namespace(
+        [bridge, [*bridge, "--world", "arena"]], ["sleep", "5"], timeout=60, grace=10.0
+    )
+    assert result.returncode == 0, result.stderr
+    assert result.stderr.count("as this bridge does: every node reading it receives both") == 2
+    assert "give each simulation its own ROS_DOMAIN_ID" in result.stderr
 
 
 USER_NODE = (

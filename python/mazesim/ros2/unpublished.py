@@ -7,7 +7,10 @@ time-of-flight sensor, waits forever. In a world of several robots, each robot's
 its namespace: a node that names them absolutely (Webots' drive calibrator reads ``/odom`` and
 writes ``/cmd_vel``, so ``-r __ns:=/west`` leaves them as they are) reads and writes where no
 robot is. :class:`UnpublishedTopics` watches the readers and writers DDS discovers on other
-participants and names each such topic once, with what to do.
+participants and names each such topic once, with what to do. It also says, once, when another
+node publishes one of the bridge's own state topics or ``/clock``: a second bridge (or simulator,
+or ``ros2 bag play``) on the same domain, whose messages every node then receives mixed with the
+bridge's, and whose lockstep steps on the same commands.
 """
 
 from __future__ import annotations
@@ -16,7 +19,7 @@ import re
 from collections.abc import Callable, Iterable, Sequence
 from typing import Any
 
-__all__ = ["UnpublishedTopics", "in_robot_namespaces", "why_unpublished"]
+__all__ = ["UnpublishedTopics", "also_published", "in_robot_namespaces", "why_unpublished"]
 
 #: The transforms' topics, which ``--frame-prefix`` puts outside the robots' namespaces.
 _TF = ("/tf", "/tf_static")
@@ -49,6 +52,18 @@ def in_robot_namespaces(
         f"robot's (--ros-args -r {topic}:={own[0]}),{tf} or start the node in the robot's "
         f"namespace (-r __ns:={own[0][: -len(topic)]}) if it names the topic without a "
         "leading slash"
+    )
+
+
+def also_published(topic: str, published: Iterable[str]) -> str | None:
+    """What goes wrong when another node writes ``topic``, a topic the bridge publishes (the
+    transforms' topics aside, which many nodes write); ``None`` when it is not one of those."""
+    if topic in _TF or topic not in set(published):
+        return None
+    return (
+        f"another node publishes {topic}, as this bridge does: every node reading it receives "
+        "both, and in lockstep both step on the same commands (a second bridge or simulator, or "
+        "a bag played, on this domain?); give each simulation its own ROS_DOMAIN_ID"
     )
 
 
@@ -101,6 +116,7 @@ class UnpublishedTopics:
         self.robot = robot
         self.report = report
         self.reported: set[tuple[str, str]] = set()
+        self.said_also_published = False
         self._readers = BuiltinDataReader(participant, BuiltinTopicDcpsSubscription)
         self._writers = BuiltinDataReader(participant, BuiltinTopicDcpsPublication)
 
@@ -124,6 +140,10 @@ class UnpublishedTopics:
             self._say(
                 "writes", topic, "read", in_robot_namespaces(topic, self.read, self.namespaces)
             )
+            twice = also_published(topic, self.published)
+            if twice is not None and not self.said_also_published:
+                self.said_also_published = True
+                self.report(twice)
 
     def _say(self, does: str, topic: str, bridge_does: str, reason: str | None) -> None:
         if reason is not None and (does, topic) not in self.reported:
