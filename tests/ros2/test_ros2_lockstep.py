@@ -12,7 +12,14 @@ import pytest
 
 import mazesim
 from mazesim.ros2.state import StateTopics
-from ros2_support import DRIVER, MAZESIM, needs_namespace, needs_ros2, run_in_namespace
+from ros2_support import (
+    DRIVER,
+    MAZESIM,
+    TWO_ROBOTS,
+    needs_namespace,
+    needs_ros2,
+    run_in_namespace,
+)
 
 pytestmark = [needs_ros2, needs_namespace]
 
@@ -112,16 +119,41 @@ def test_a_node_restarted_while_the_bridge_runs_gets_the_last_state_again() -> N
     assert "a command writer matched after the last state" in result.stderr
 
 
-#: Answers each /odom with one /cmd_vel, as many times as its argument says; prints the stamps
-#: of the first and last odometry it answered.
+def test_a_robot_s_node_restarted_gets_its_robot_s_state_again_and_no_other_robot_s(
+    tmp_path: Path,
+) -> None:
+    world = tmp_path / "two.toml"
+    world.write_text(TWO_ROBOTS)
+    answer = [sys.executable, "-c", shlex.quote(_ANSWER_ODOM)]
+    west = " ".join([*answer, "40", "/west"])
+    east = " ".join([*answer, "10", "/east_1"])
+    out = tmp_path / "west.txt"
+    result = run_in_namespace(
+        [[*MAZESIM, "ros2", "bridge", "--world", str(world)]],
+        ["bash", "-c", f"{west} > {out} & {east} && {east} && wait $! && cat {out}"],
+        timeout=90,
+        grace=2.0,
+    )
+    first_east, second_east, west_run = result.stdout.split()
+    assert first_east == f"answered:{1}..{9 * 32_000_000}"
+    start, end = (int(part) for part in second_east.split(":")[1].split(".."))
+    assert start >= 10 * 32_000_000 and end - start == 9 * 32_000_000
+    # The west robot's node got every state once: 40 answers, 40 states in a row.
+    assert west_run == f"answered:{1}..{39 * 32_000_000}", result.stderr
+    assert "(e.g. on /east_1/cmd_vel" in result.stderr
+
+
+#: Answers each /odom with one /cmd_vel, as many times as its first argument says, in the
+#: namespace its second names if any; prints the stamps of the first and last odometry answered.
 _ANSWER_ODOM = """
 import sys, time
 from mazesim.ros2 import cdr
 from mazesim.ros2.node import Node
 from mazesim.ros2.qos import COMMAND, SENSOR
 node = Node("answerer")
-odom = node.reader("/odom", "nav_msgs/msg/Odometry", SENSOR)
-cmd_vel = node.writer("/cmd_vel", "geometry_msgs/msg/Twist", COMMAND)
+namespace = sys.argv[2] if len(sys.argv) > 2 else ""
+odom = node.reader(namespace + "/odom", "nav_msgs/msg/Odometry", SENSOR)
+cmd_vel = node.writer(namespace + "/cmd_vel", "geometry_msgs/msg/Twist", COMMAND)
 node.announce()
 stamps = []
 deadline = time.monotonic() + 10

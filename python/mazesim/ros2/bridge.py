@@ -53,6 +53,8 @@ READY_GRACE_S = 0.5
 RESEND_S = 5.0
 #: Seconds between two looks at the readers other nodes created (see :mod:`.unpublished`).
 READERS_CHECK_S = 1.0
+#: Lockstep: seconds between two looks for command writers that matched late.
+NEWCOMERS_CHECK_S = 0.1
 TWIST = "geometry_msgs/msg/Twist"
 TWIST_STAMPED = "geometry_msgs/msg/TwistStamped"
 STRING = "std_msgs/msg/String"
@@ -238,6 +240,7 @@ class Ros2Bridge:
         )
         self.incompatible = IncompatibleQos(self.node.writers, self.node.readers, self._say)
         self._readers_checked = 0.0
+        self._newcomers_checked = 0.0
         self.bag = BagRecorder(settings.bag, settings.distro) if settings.bag else None
         self.goal = simulator.world.goal
         self.goal_step: int | None = None
@@ -410,6 +413,9 @@ class Ros2Bridge:
         robot's last state goes out again as it went out (same stamp; ``/clock`` too in a world
         of one robot); a node that answers at once gets nothing twice. Says so on stderr."""
         now = time.monotonic()
+        if now - self._newcomers_checked < NEWCOMERS_CHECK_S:
+            return  # a look costs a DDS query per command topic: not at every lockstep step
+        self._newcomers_checked = now
         for robot in self.robots:
             writers = robot.command_writers()
             if writers - robot.known_writers and self.simulator.steps > 0:
