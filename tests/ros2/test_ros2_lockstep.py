@@ -143,6 +143,19 @@ def test_a_robot_s_node_restarted_gets_its_robot_s_state_again_and_no_other_robo
     assert "(e.g. on /east_1/cmd_vel" in result.stderr
 
 
+def test_a_world_of_one_robot_runs_in_the_namespace_a_node_names() -> None:
+    # The formation controller of ustbmicl-ros2epucksRL/safe-rl-manifold-suite
+    # (cosmos/ros2/scripts/formation_controller.py) names its robots' topics /epuck<i>/odom,
+    # /epuck<i>/cmd_vel: with num_robots 1 it read /epuck0/odom, which a world of one robot did
+    # not publish, and waited in silence.
+    answer = [sys.executable, "-c", _ANSWER_ODOM, "20", "/epuck0"]
+    result = run_in_namespace([_bridge("humble", 20, "--namespace", "epuck0")], answer)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.split() == [f"answered:{1}..{19 * 32_000_000}"]
+    assert "e-puck (namespace /epuck0) in seed-maze" in result.stderr
+    assert "stopped after 20 steps" in result.stderr
+
+
 #: Answers each /odom with one /cmd_vel, as many times as its first argument says, in the
 #: namespace its second names if any; prints the stamps of the first and last odometry answered.
 _ANSWER_ODOM = """

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 import signal
 import sys
 import threading
@@ -53,6 +54,7 @@ READY_GRACE_S = 0.5
 RESEND_S = 5.0
 #: Seconds between two looks at the readers other nodes created (see :mod:`.unpublished`).
 READERS_CHECK_S = 1.0
+_ROS_NAMESPACE = re.compile(r"/?[A-Za-z_][A-Za-z0-9_]*(/[A-Za-z_][A-Za-z0-9_]*)*")
 #: Lockstep: seconds between two looks for command writers that matched late.
 NEWCOMERS_CHECK_S = 0.1
 TWIST = "geometry_msgs/msg/Twist"
@@ -85,6 +87,9 @@ class BridgeSettings:
     #: A world of several robots: each robot's frames start with its namespace's name
     #: (``west/odom``), and its transforms go on the one ``/tf`` and ``/tf_static``.
     frame_prefix: bool = False
+    #: A world of one robot: the namespace its topics go in (``epuck0``: ``/epuck0/odom``...),
+    #: as a node written for one robot of several names them; ``""`` for none.
+    namespace: str = ""
 
     def validate(self) -> None:
         """Raises :class:`InvalidArgumentError` on a setting the bridge cannot run."""
@@ -96,6 +101,12 @@ class BridgeSettings:
             )
         if self.stop_after < 0:
             raise InvalidArgumentError(f"expected stop_after >= 0; found {self.stop_after}")
+        if self.namespace and not _ROS_NAMESPACE.fullmatch(self.namespace):
+            raise InvalidArgumentError(
+                "expected a ROS namespace for --namespace (names of letters, digits and _, "
+                "not starting with a digit, joined by /: epuck0, /team/epuck0); found "
+                f"{self.namespace!r}"
+            )
 
 
 def _motor_speeds(data: bytes) -> tuple[float, float]:
@@ -190,7 +201,14 @@ class Ros2Bridge:
     def __init__(
         self, simulator: Simulator, settings: BridgeSettings, node: Node | None = None
     ) -> None:
-        if settings.frame_prefix and simulator.num_robots == 1:
+        if settings.namespace and simulator.num_robots > 1:
+            raise InvalidArgumentError(
+                "expected a world of one robot for --namespace; found "
+                f"{simulator.num_robots} robots in {simulator.world.name!r}, each in the "
+                "namespace of its name: leave --namespace out"
+            )
+        own = "/" + settings.namespace.strip("/") if settings.namespace else ""
+        if settings.frame_prefix and simulator.num_robots == 1 and not own:
             raise InvalidArgumentError(
                 "expected a world of several robots for --frame-prefix (each robot's frames "
                 f"start with its name); found one robot in {simulator.world.name!r}, whose "
@@ -204,7 +222,10 @@ class Ros2Bridge:
             network.discovery_from_environment(network=settings.network),
         )
         if simulator.num_robots == 1:
-            states = [StateTopics(simulator, settings.distro)]
+            prefix = own[1:] + "/" if settings.frame_prefix else ""
+            states = [
+                StateTopics(simulator, settings.distro, own, clock=not own, frame_prefix=prefix)
+            ]
         else:
             namespaces = robot_namespaces(simulator.robot_names)
             states = [
@@ -221,7 +242,9 @@ class Ros2Bridge:
         self.state = states[0]
         #: ``/clock`` for a world of several robots (a world of one has it among its topics).
         self.clock_writer = (
-            None if simulator.num_robots == 1 else self.node.writer(CLOCK_TOPIC, CLOCK_TYPE, CLOCK)
+            None
+            if simulator.num_robots == 1 and not own
+            else self.node.writer(CLOCK_TOPIC, CLOCK_TYPE, CLOCK)
         )
         self.control: Reader | None = None
         if settings.mode == "free":
@@ -500,6 +523,7 @@ def run_bridge(settings: BridgeSettings) -> int:
     frames = ", frames prefixed with the namespace's name, on /tf" if settings.frame_prefix else ""
     robots = (
         settings.robot
+        + (f" (namespace {bridge.state.namespace}{frames})" if settings.namespace else "")
         if simulator.num_robots == 1
         else f"{simulator.num_robots} robots (namespaces "
         f"{', '.join(robot.state.namespace for robot in bridge.robots)}{frames})"
