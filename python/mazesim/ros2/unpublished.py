@@ -19,7 +19,13 @@ import re
 from collections.abc import Callable, Iterable, Sequence
 from typing import Any
 
-__all__ = ["UnpublishedTopics", "also_published", "in_robot_namespaces", "why_unpublished"]
+__all__ = [
+    "UnpublishedTopics",
+    "also_published",
+    "in_robot_namespaces",
+    "outside_a_namespace",
+    "why_unpublished",
+]
 
 #: The transforms' topics, which ``--frame-prefix`` puts outside the robots' namespaces.
 _TF = ("/tf", "/tf_static")
@@ -53,6 +59,25 @@ def in_robot_namespaces(
         f"namespace (-r __ns:={own[0][: -len(topic)]}) if it names the topic without a "
         "leading slash"
     )
+
+
+def outside_a_namespace(
+    topic: str, endpoints: Iterable[str], namespaces: Sequence[str]
+) -> str | None:
+    """Why a node's ``topic`` in a namespace (``/epuck0/odom``) reaches no robot when the bridge
+    runs one robot in none and has the topic there (``/odom``; ``endpoints``: the ROS names of
+    the bridge's topics of that direction); ``None`` otherwise."""
+    endpoints = set(endpoints)
+    if namespaces or topic in endpoints:
+        return None
+    for slash in range(1, len(topic)):
+        if topic[slash] == "/" and topic[slash:] in endpoints:
+            own, namespace = topic[slash:], topic[:slash]
+            return (
+                f"the robot of this bridge has it in no namespace ({own}): run the bridge with "
+                f"--namespace {namespace[1:]}, or remap the node's (--ros-args -r {topic}:={own})"
+            )
+    return None
 
 
 def also_published(topic: str, published: Iterable[str]) -> str | None:
@@ -132,14 +157,17 @@ class UnpublishedTopics:
     def check(self) -> None:
         """Reads the endpoints discovered since the last call and reports the new topics."""
         for topic in self._topics(self._readers):
-            reason = why_unpublished(topic, self.published, self.robot) or in_robot_namespaces(
-                topic, self.published, self.namespaces
+            reason = (
+                why_unpublished(topic, self.published, self.robot)
+                or in_robot_namespaces(topic, self.published, self.namespaces)
+                or outside_a_namespace(topic, self.published, self.namespaces)
             )
             self._say("reads", topic, "publish", reason)
         for topic in self._topics(self._writers):
-            self._say(
-                "writes", topic, "read", in_robot_namespaces(topic, self.read, self.namespaces)
+            reason = in_robot_namespaces(topic, self.read, self.namespaces) or outside_a_namespace(
+                topic, self.read, self.namespaces
             )
+            self._say("writes", topic, "read", reason)
             twice = also_published(topic, self.published)
             if twice is not None and not self.said_also_published:
                 self.said_also_published = True
