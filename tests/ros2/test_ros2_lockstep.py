@@ -4,6 +4,7 @@ Jazzy's layouts, and a driver of the wrong layout is caught."""
 
 from __future__ import annotations
 
+import shlex
 import sys
 from pathlib import Path
 
@@ -11,7 +12,14 @@ import pytest
 
 import mazesim
 from mazesim.ros2.state import StateTopics
-from ros2_support import DRIVER, MAZESIM, needs_namespace, needs_ros2, run_in_namespace
+from ros2_support import (
+    DRIVER,
+    MAZESIM,
+    TWO_ROBOTS,
+    needs_namespace,
+    needs_ros2,
+    run_in_namespace,
+)
 
 pytestmark = [needs_ros2, needs_namespace]
 
@@ -91,3 +99,83 @@ def test_a_driver_that_answers_from_its_second_state_gets_the_reset_state_again(
     assert "50 steps, every field equal" in result.stdout
     assert "publishing the reset state again" in result.stderr
     assert "stopped after 50 steps" in result.stderr
+
+
+def test_a_node_restarted_while_the_bridge_runs_gets_the_last_state_again() -> None:
+    # A node that stops and starts again while the lockstep bridge runs (a crash, an edit, one
+    # more `ros2 run`) waited for a state that had gone out before it was there, and the bridge
+    # waited for its command: nothing moved again.
+    answer = " ".join([sys.executable, "-c", shlex.quote(_ANSWER_ODOM), "10"])
+    result = run_in_namespace(
+        [_bridge("humble", 20)], ["bash", "-c", f"{answer} && {answer}"], timeout=60
+    )
+    assert result.returncode == 0, result.stderr
+    first, second = result.stdout.split()
+    # The first run answers the reset state and steps 1-9; the second starts from step 10, the
+    # state that went out once already (its stamp says so), and drives the bridge to step 20.
+    assert first == f"answered:{1}..{9 * 32_000_000}"
+    assert second == f"answered:{10 * 32_000_000}..{19 * 32_000_000}"
+    assert "stopped after 20 steps" in result.stderr
+    assert "a command writer matched after the last state" in result.stderr
+
+
+def test_a_robot_s_node_restarted_gets_its_robot_s_state_again_and_no_other_robot_s(
+    tmp_path: Path,
+) -> None:
+    world = tmp_path / "two.toml"
+    world.write_text(TWO_ROBOTS)
+    answer = [sys.executable, "-c", shlex.quote(_ANSWER_ODOM)]
+    west = " ".join([*answer, "40", "/west"])
+    east = " ".join([*answer, "10", "/east_1"])
+    out = tmp_path / "west.txt"
+    result = run_in_namespace(
+        [[*MAZESIM, "ros2", "bridge", "--world", str(world)]],
+        ["bash", "-c", f"{west} > {out} & {east} && {east} && wait $! && cat {out}"],
+        timeout=90,
+        grace=2.0,
+    )
+    first_east, second_east, west_run = result.stdout.split()
+    assert first_east == f"answered:{1}..{9 * 32_000_000}"
+    start, end = (int(part) for part in second_east.split(":")[1].split(".."))
+    assert start >= 10 * 32_000_000 and end - start == 9 * 32_000_000
+    # The west robot's node got every state once: 40 answers, 40 states in a row.
+    assert west_run == f"answered:{1}..{39 * 32_000_000}", result.stderr
+    assert "(e.g. on /east_1/cmd_vel" in result.stderr
+
+
+def test_a_world_of_one_robot_runs_in_the_namespace_a_node_names() -> None:
+    # The formation controller of ustbmicl-ros2epucksRL/safe-rl-manifold-suite
+    # (cosmos/ros2/scripts/formation_controller.py) names its robots' topics /epuck<i>/odom,
+    # /epuck<i>/cmd_vel: with num_robots 1 it read /epuck0/odom, which a world of one robot did
+    # not publish, and waited in silence.
+    answer = [sys.executable, "-c", _ANSWER_ODOM, "20", "/epuck0"]
+    result = run_in_namespace([_bridge("humble", 20, "--namespace", "epuck0")], answer)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.split() == [f"answered:{1}..{19 * 32_000_000}"]
+    assert "e-puck (namespace /epuck0) in seed-maze" in result.stderr
+    assert "stopped after 20 steps" in result.stderr
+
+
+#: Answers each /odom with one /cmd_vel, as many times as its first argument says, in the
+#: namespace its second names if any; prints the stamps of the first and last odometry answered.
+_ANSWER_ODOM = """
+import sys, time
+from mazesim.ros2 import cdr
+from mazesim.ros2.node import Node
+from mazesim.ros2.qos import COMMAND, SENSOR
+node = Node("answerer")
+namespace = sys.argv[2] if len(sys.argv) > 2 else ""
+odom = node.reader(namespace + "/odom", "nav_msgs/msg/Odometry", SENSOR)
+cmd_vel = node.writer(namespace + "/cmd_vel", "geometry_msgs/msg/Twist", COMMAND)
+node.announce()
+stamps = []
+deadline = time.monotonic() + 10
+while len(stamps) < int(sys.argv[1]) and time.monotonic() < deadline:
+    for data in odom.take():
+        stamps.append(cdr.decode_clock(data))  # a header's stamp opens it, as a Clock's time
+        cmd_vel.publish(cdr.encode_twist((0.05, 0.0, 0.0), (0.0, 0.0, 0.3)))
+    time.sleep(0.002)
+time.sleep(0.3)
+print(f"answered:{stamps[0]}..{stamps[-1]}" if stamps else "answered:nothing")
+sys.exit(0 if len(stamps) == int(sys.argv[1]) else 1)
+"""

@@ -83,6 +83,30 @@ def test_the_frame_prefix_is_refused_for_a_world_of_one_robot(
     assert "expected a world of several robots for --frame-prefix" in capsys.readouterr().err
 
 
+@needs_ros2
+@pytest.mark.parametrize(
+    "options, words",
+    [
+        (["--namespace", "2nd"], "expected a ROS namespace for --namespace"),
+        (["--namespace", "a//b"], "expected a ROS namespace for --namespace"),
+        (
+            ["--namespace", "west", "--world", "TWO"],
+            "expected a world of one robot for --namespace",
+        ),
+    ],
+)
+def test_a_namespace_that_is_no_ros_name_or_for_several_robots_is_refused(
+    options: list[str], words: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from mazesim.cli import main
+
+    world = tmp_path / "two.toml"
+    world.write_text(TWO_ROBOTS)
+    options = [str(world) if option == "TWO" else option for option in options]
+    assert main(["ros2", "bridge", *options, "--stop-after", "1"]) == 2
+    assert words in capsys.readouterr().err
+
+
 def _drive_two_robots(tmp_path: Path, steps: int, *options: str) -> Any:
     """The bridge on :data:`TWO_ROBOTS` and the swarm driver, both given ``options``, for
     ``steps`` lockstep steps in a private network namespace; their result."""

@@ -10,7 +10,12 @@ from pathlib import Path
 
 import pytest
 
-from mazesim.ros2.unpublished import in_robot_namespaces, why_unpublished
+from mazesim.ros2.unpublished import (
+    also_published,
+    in_robot_namespaces,
+    outside_a_namespace,
+    why_unpublished,
+)
 from ros2_support import MAZESIM, TWO_ROBOTS, needs_namespace, needs_ros2, run_in_namespace
 
 PUBLISHED = ["/ps0", "/scan", "/odom", "/clock"]
@@ -64,6 +69,51 @@ def test_topics_in_a_namespace_or_that_no_robot_has_are_left_alone(topic: str) -
     assert in_robot_namespaces(topic, published, NAMESPACES) is None
     # A world of one robot has no namespaces: nothing to say.
     assert in_robot_namespaces(topic, ["/odom", "/clock"], []) is None
+
+
+def test_a_namespaced_topic_the_robot_has_in_no_namespace_is_explained() -> None:
+    # A formation controller for e-pucks /epuck0 .. run with one robot reads /epuck0/odom.
+    reason = outside_a_namespace("/epuck0/odom", PUBLISHED, [])
+    assert reason is not None and "(/odom)" in reason
+    assert "--namespace epuck0" in reason and "-r /epuck0/odom:=/odom" in reason
+    deep = outside_a_namespace("/team/epuck0/cmd_vel", ["/cmd_vel"], [])
+    assert deep is not None and "--namespace team/epuck0" in deep
+
+
+@pytest.mark.parametrize("topic", ["/odom", "/epuck0/map", "/odometry", "/epuck0/odometry"])
+def test_topics_the_bridge_has_or_no_robot_has_are_left_alone_outside_a_namespace(
+    topic: str,
+) -> None:
+    assert outside_a_namespace(topic, PUBLISHED, []) is None
+    # A world of several robots: in_robot_namespaces speaks instead.
+    assert outside_a_namespace("/epuck0/odom", PUBLISHED, ["/west"]) is None
+
+
+@pytest.mark.parametrize("topic", ["/clock", "/odom", "/ps0"])
+def test_another_publisher_of_the_bridge_s_topics_is_explained(topic: str) -> None:
+    reason = also_published(topic, PUBLISHED)
+    assert reason is not None and f"another node publishes {topic}" in reason
+    assert "ROS_DOMAIN_ID" in reason
+
+
+@pytest.mark.parametrize("topic", ["/tf", "/tf_static", "/map", "/cmd_vel"])
+def test_the_transforms_and_topics_the_bridge_does_not_publish_are_left_alone(topic: str) -> None:
+    # Many nodes write /tf (a localiser's map -> odom, robot_state_publisher's /tf_static).
+    assert also_published(topic, [*PUBLISHED, "/tf", "/tf_static"]) is None
+
+
+@needs_ros2
+@needs_namespace
+def test_two_bridges_on_one_domain_each_say_so_once() -> None:
+    # Two simulations on one domain: a node reading /odom got both robots' odometry, and its
+    # commands stepped both, and nothing said why.
+    bridge = [*MAZESIM, "ros2", "bridge", "--mode", "free", "--stop-after", "100"]
+    result = run_in_namespace(
+        [bridge, [*bridge, "--world", "arena"]], ["sleep", "5"], timeout=60, grace=10.0
+    )
+    assert result.returncode == 0, result.stderr
+    assert result.stderr.count("as this bridge does: every node reading it receives both") == 2
+    assert "give each simulation its own ROS_DOMAIN_ID" in result.stderr
 
 
 USER_NODE = (

@@ -105,6 +105,7 @@ def _run_bridge(args: argparse.Namespace) -> int:
             bag=args.bag,
             network=args.network,
             frame_prefix=args.frame_prefix,
+            namespace=args.namespace,
         )
     )
 
@@ -206,6 +207,13 @@ def register(commands: Any) -> None:
         help="a world of several robots: each robot's frames start with its name (west/odom, "
         "west/base_link...) and its transforms go on the one /tf and /tf_static, as "
         "ros2_control's diff drive controller in a namespace names them",
+    )
+    bridge.add_argument(
+        "--namespace",
+        default="",
+        help="a world of one robot: put its topics in this namespace (epuck0: /epuck0/odom, "
+        "/epuck0/cmd_vel...; /clock stays), as a node written for one robot of several names "
+        "them; a world of several robots puts each in its own",
     )
     _add_common(bridge)
     bridge.set_defaults(run=_run_bridge)

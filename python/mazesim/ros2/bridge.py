@@ -6,7 +6,9 @@ Before the first command the bridge publishes the reset state once (stamped 1 ns
 on one of its command topics has matched and a grace period has passed, and again every
 ``RESEND_S`` seconds while a command writer is matched and no command has come (a node that
 answers only its second message, or whose first command went out before it matched, gets
-another), saying so on stderr. Free-running: the bridge
+another), saying so on stderr. Once stepping, a command writer that matches later (a node started
+or restarted while the bridge runs) and sends nothing within the grace period gets its robot's
+last state again, byte for byte. Free-running: the bridge
 steps on its own at ``speed`` (see :mod:`mazesim.ros2.clock`), with the last commanded wheel
 speeds. Topics and QoS: :mod:`mazesim.ros2.state`; the page ``docs/ros2.md``.
 
@@ -20,6 +22,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 import signal
 import sys
 import threading
@@ -51,6 +54,9 @@ READY_GRACE_S = 0.5
 RESEND_S = 5.0
 #: Seconds between two looks at the readers other nodes created (see :mod:`.unpublished`).
 READERS_CHECK_S = 1.0
+_ROS_NAMESPACE = re.compile(r"/?[A-Za-z_][A-Za-z0-9_]*(/[A-Za-z_][A-Za-z0-9_]*)*")
+#: Lockstep: seconds between two looks for command writers that matched late.
+NEWCOMERS_CHECK_S = 0.1
 TWIST = "geometry_msgs/msg/Twist"
 TWIST_STAMPED = "geometry_msgs/msg/TwistStamped"
 STRING = "std_msgs/msg/String"
@@ -81,6 +87,9 @@ class BridgeSettings:
     #: A world of several robots: each robot's frames start with its namespace's name
     #: (``west/odom``), and its transforms go on the one ``/tf`` and ``/tf_static``.
     frame_prefix: bool = False
+    #: A world of one robot: the namespace its topics go in (``epuck0``: ``/epuck0/odom``...),
+    #: as a node written for one robot of several names them; ``""`` for none.
+    namespace: str = ""
 
     def validate(self) -> None:
         """Raises :class:`InvalidArgumentError` on a setting the bridge cannot run."""
@@ -92,6 +101,12 @@ class BridgeSettings:
             )
         if self.stop_after < 0:
             raise InvalidArgumentError(f"expected stop_after >= 0; found {self.stop_after}")
+        if self.namespace and not _ROS_NAMESPACE.fullmatch(self.namespace):
+            raise InvalidArgumentError(
+                "expected a ROS namespace for --namespace (names of letters, digits and _, "
+                "not starting with a digit, joined by /: epuck0, /team/epuck0); found "
+                f"{self.namespace!r}"
+            )
 
 
 def _motor_speeds(data: bytes) -> tuple[float, float]:
@@ -124,10 +139,23 @@ class RobotChannel:
         self.pending: deque[tuple[float, float]] = deque()
         self.wheel_speeds = (0.0, 0.0)
         self.rejected = 0
+        #: Commands received so far (accepted or not).
+        self.received = 0
+        #: The robot's last state as it went out: each writer with its message.
+        self.last_state: list[tuple[Any, bytes]] = []
+        #: The command writers matched at the last look, and when a new one came and how many
+        #: commands the robot had received then (see :meth:`Ros2Bridge._greet_newcomers`).
+        self.known_writers: set[int] = set()
+        self.newcomer_since: tuple[float, int] | None = None
 
     def driven(self) -> bool:
         """Whether a writer on one of the robot's command topics has matched."""
         return any(reader.publishers() for reader in (self.cmd_vel, self.motor, self.action))
+
+    def command_writers(self) -> set[int]:
+        """The writers matched now on the robot's command topics."""
+        readers = (self.cmd_vel, self.motor, self.action)
+        return set().union(*(reader.matched_writers() for reader in readers))
 
     def commands(self) -> list[tuple[float, float]]:
         """The wheel speeds of every command received since the last call; bad ones are
@@ -148,6 +176,7 @@ class RobotChannel:
         return wheel_speeds(cdr.decode_string(data), self.state.robot.max_wheel_speed)
 
     def _accept(self, speeds: list[tuple[float, float]], read: Any, data: bytes) -> None:
+        self.received += 1
         try:
             speeds.append(read(data))
         except (MazesimError, ValueError, KeyError) as error:
@@ -172,7 +201,14 @@ class Ros2Bridge:
     def __init__(
         self, simulator: Simulator, settings: BridgeSettings, node: Node | None = None
     ) -> None:
-        if settings.frame_prefix and simulator.num_robots == 1:
+        if settings.namespace and simulator.num_robots > 1:
+            raise InvalidArgumentError(
+                "expected a world of one robot for --namespace; found "
+                f"{simulator.num_robots} robots in {simulator.world.name!r}, each in the "
+                "namespace of its name: leave --namespace out"
+            )
+        own = "/" + settings.namespace.strip("/") if settings.namespace else ""
+        if settings.frame_prefix and simulator.num_robots == 1 and not own:
             raise InvalidArgumentError(
                 "expected a world of several robots for --frame-prefix (each robot's frames "
                 f"start with its name); found one robot in {simulator.world.name!r}, whose "
@@ -186,7 +222,10 @@ class Ros2Bridge:
             network.discovery_from_environment(network=settings.network),
         )
         if simulator.num_robots == 1:
-            states = [StateTopics(simulator, settings.distro)]
+            prefix = own[1:] + "/" if settings.frame_prefix else ""
+            states = [
+                StateTopics(simulator, settings.distro, own, clock=not own, frame_prefix=prefix)
+            ]
         else:
             namespaces = robot_namespaces(simulator.robot_names)
             states = [
@@ -203,7 +242,9 @@ class Ros2Bridge:
         self.state = states[0]
         #: ``/clock`` for a world of several robots (a world of one has it among its topics).
         self.clock_writer = (
-            None if simulator.num_robots == 1 else self.node.writer(CLOCK_TOPIC, CLOCK_TYPE, CLOCK)
+            None
+            if simulator.num_robots == 1 and not own
+            else self.node.writer(CLOCK_TOPIC, CLOCK_TYPE, CLOCK)
         )
         self.control: Reader | None = None
         if settings.mode == "free":
@@ -222,6 +263,7 @@ class Ros2Bridge:
         )
         self.incompatible = IncompatibleQos(self.node.writers, self.node.readers, self._say)
         self._readers_checked = 0.0
+        self._newcomers_checked = 0.0
         self.bag = BagRecorder(settings.bag, settings.distro) if settings.bag else None
         self.goal = simulator.world.goal
         self.goal_step: int | None = None
@@ -276,8 +318,8 @@ class Ros2Bridge:
         nanoseconds = stamp_nanoseconds(self.simulator.time)
         stamp = cdr.stamp_of(nanoseconds)
         for robot in self.robots:
-            encoded = robot.state.messages(stamp, step_seconds)
-            for writer, data in zip(robot.writers, encoded):
+            robot.last_state = list(zip(robot.writers, robot.state.messages(stamp, step_seconds)))
+            for writer, data in robot.last_state:
                 self._send(writer, nanoseconds, data)
         if self.clock_writer is not None:
             self._send(self.clock_writer, nanoseconds, cdr.encode_clock(stamp))
@@ -348,11 +390,13 @@ class Ros2Bridge:
             self.wait_for_driver()
             if not self.stop.is_set():
                 self.publish_state(0.0)
+            self._greet_newcomers()  # the writers matched now are the first drivers, not late
             published = time.monotonic()
             while not self.stop.is_set():
                 self._waitset.wait(100_000_000)
                 self._step_pending()
                 self._check_readers()
+                self._greet_newcomers()
                 if self.simulator.steps == 0 and time.monotonic() - published >= RESEND_S:
                     self._resend_reset_state()
                     published = time.monotonic()
@@ -383,6 +427,42 @@ class Ros2Bridge:
             )
         self.resent_states += 1
         self.publish_state(0.0)
+
+    def _greet_newcomers(self) -> None:
+        """Lockstep, once stepping: a node that starts writing a robot's commands after the
+        robot's last state went out (started, or restarted, while the bridge runs) waits for a
+        state, and the bridge for its command. When a command writer matches that was not
+        matched before, and the robot has received no command ``READY_GRACE_S`` later, the
+        robot's last state goes out again as it went out (same stamp; ``/clock`` too in a world
+        of one robot); a node that answers at once gets nothing twice. Says so on stderr."""
+        now = time.monotonic()
+        if now - self._newcomers_checked < NEWCOMERS_CHECK_S:
+            return  # a look costs a DDS query per command topic: not at every lockstep step
+        self._newcomers_checked = now
+        for robot in self.robots:
+            writers = robot.command_writers()
+            if writers - robot.known_writers and self.simulator.steps > 0:
+                robot.newcomer_since = (now, robot.received)
+            robot.known_writers = writers
+            if robot.newcomer_since is None:
+                continue
+            since, received = robot.newcomer_since
+            if robot.received != received or robot.pending:
+                robot.newcomer_since = None
+            elif now - since >= READY_GRACE_S:
+                robot.newcomer_since = None
+                self._send_last_state(robot)
+
+    def _send_last_state(self, robot: RobotChannel) -> None:
+        nanoseconds = stamp_nanoseconds(self.simulator.time)
+        for writer, data in robot.last_state:
+            self._send(writer, nanoseconds, data)
+        topic = f"{robot.state.namespace}/{standard.CMD_VEL_TOPIC}"
+        self._say(
+            f"lockstep: a command writer matched after the last state went out (e.g. on {topic}: "
+            f"a node started or restarted while the bridge runs) and sent nothing in "
+            f"{READY_GRACE_S:g} s; publishing that state again (step {self.simulator.steps})"
+        )
 
     def _run_free(self) -> None:
         control_step_s = self.simulator.control_step_ms / 1000.0
@@ -443,6 +523,7 @@ def run_bridge(settings: BridgeSettings) -> int:
     frames = ", frames prefixed with the namespace's name, on /tf" if settings.frame_prefix else ""
     robots = (
         settings.robot
+        + (f" (namespace {bridge.state.namespace}{frames})" if settings.namespace else "")
         if simulator.num_robots == 1
         else f"{simulator.num_robots} robots (namespaces "
         f"{', '.join(robot.state.namespace for robot in bridge.robots)}{frames})"

@@ -88,6 +88,10 @@ class Reader:
         """How many writers are matched."""
         return len(self.dds.get_matched_publications())
 
+    def matched_writers(self) -> set[int]:
+        """The DDS instance handles of the writers matched now (a restarted node's are new)."""
+        return set(self.dds.get_matched_publications())
+
 
 class Node:
     """One ROS 2 node in its own DDS participant.

@@ -117,7 +117,8 @@ class StateTopics:
         simulator: The simulator whose state is published (or one robot of a simulator of
             several, :class:`mazesim.ros2.robots.RobotOf`).
         distro: ``humble`` or ``jazzy`` (Jazzy's Range carries a variance).
-        namespace: The robot's namespace (``"/west"``), or ``""`` for a world of one robot.
+        namespace: The robot's namespace (``"/west"``), or ``""`` for none (a world of one robot,
+            unless the bridge is given one).
         clock: Whether ``/clock`` is among the topics (not for a robot in a namespace).
         frame_prefix: What every frame name starts with (``"west/"``), ``""`` for none; with a
             prefix the transforms go on ``/tf`` and ``/tf_static``, outside the namespace.

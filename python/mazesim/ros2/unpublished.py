@@ -7,7 +7,10 @@ time-of-flight sensor, waits forever. In a world of several robots, each robot's
 its namespace: a node that names them absolutely (Webots' drive calibrator reads ``/odom`` and
 writes ``/cmd_vel``, so ``-r __ns:=/west`` leaves them as they are) reads and writes where no
 robot is. :class:`UnpublishedTopics` watches the readers and writers DDS discovers on other
-participants and names each such topic once, with what to do.
+participants and names each such topic once, with what to do. It also says, once, when another
+node publishes one of the bridge's own state topics or ``/clock``: a second bridge (or simulator,
+or ``ros2 bag play``) on the same domain, whose messages every node then receives mixed with the
+bridge's, and whose lockstep steps on the same commands.
 """
 
 from __future__ import annotations
@@ -16,7 +19,13 @@ import re
 from collections.abc import Callable, Iterable, Sequence
 from typing import Any
 
-__all__ = ["UnpublishedTopics", "in_robot_namespaces", "why_unpublished"]
+__all__ = [
+    "UnpublishedTopics",
+    "also_published",
+    "in_robot_namespaces",
+    "outside_a_namespace",
+    "why_unpublished",
+]
 
 #: The transforms' topics, which ``--frame-prefix`` puts outside the robots' namespaces.
 _TF = ("/tf", "/tf_static")
@@ -49,6 +58,37 @@ def in_robot_namespaces(
         f"robot's (--ros-args -r {topic}:={own[0]}),{tf} or start the node in the robot's "
         f"namespace (-r __ns:={own[0][: -len(topic)]}) if it names the topic without a "
         "leading slash"
+    )
+
+
+def outside_a_namespace(
+    topic: str, endpoints: Iterable[str], namespaces: Sequence[str]
+) -> str | None:
+    """Why a node's ``topic`` in a namespace (``/epuck0/odom``) reaches no robot when the bridge
+    runs one robot in none and has the topic there (``/odom``; ``endpoints``: the ROS names of
+    the bridge's topics of that direction); ``None`` otherwise."""
+    endpoints = set(endpoints)
+    if namespaces or topic in endpoints:
+        return None
+    for slash in range(1, len(topic)):
+        if topic[slash] == "/" and topic[slash:] in endpoints:
+            own, namespace = topic[slash:], topic[:slash]
+            return (
+                f"the robot of this bridge has it in no namespace ({own}): run the bridge with "
+                f"--namespace {namespace[1:]}, or remap the node's (--ros-args -r {topic}:={own})"
+            )
+    return None
+
+
+def also_published(topic: str, published: Iterable[str]) -> str | None:
+    """What goes wrong when another node writes ``topic``, a topic the bridge publishes (the
+    transforms' topics aside, which many nodes write); ``None`` when it is not one of those."""
+    if topic in _TF or topic not in set(published):
+        return None
+    return (
+        f"another node publishes {topic}, as this bridge does: every node reading it receives "
+        "both, and in lockstep both step on the same commands (a second bridge or simulator, or "
+        "a bag played, on this domain?); give each simulation its own ROS_DOMAIN_ID"
     )
 
 
@@ -101,6 +141,7 @@ class UnpublishedTopics:
         self.robot = robot
         self.report = report
         self.reported: set[tuple[str, str]] = set()
+        self.said_also_published = False
         self._readers = BuiltinDataReader(participant, BuiltinTopicDcpsSubscription)
         self._writers = BuiltinDataReader(participant, BuiltinTopicDcpsPublication)
 
@@ -116,14 +157,21 @@ class UnpublishedTopics:
     def check(self) -> None:
         """Reads the endpoints discovered since the last call and reports the new topics."""
         for topic in self._topics(self._readers):
-            reason = why_unpublished(topic, self.published, self.robot) or in_robot_namespaces(
-                topic, self.published, self.namespaces
+            reason = (
+                why_unpublished(topic, self.published, self.robot)
+                or in_robot_namespaces(topic, self.published, self.namespaces)
+                or outside_a_namespace(topic, self.published, self.namespaces)
             )
             self._say("reads", topic, "publish", reason)
         for topic in self._topics(self._writers):
-            self._say(
-                "writes", topic, "read", in_robot_namespaces(topic, self.read, self.namespaces)
+            reason = in_robot_namespaces(topic, self.read, self.namespaces) or outside_a_namespace(
+                topic, self.read, self.namespaces
             )
+            self._say("writes", topic, "read", reason)
+            twice = also_published(topic, self.published)
+            if twice is not None and not self.said_also_published:
+                self.said_also_published = True
+                self.report(twice)
 
     def _say(self, does: str, topic: str, bridge_does: str, reason: str | None) -> None:
         if reason is not None and (does, topic) not in self.reported:
