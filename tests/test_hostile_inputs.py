@@ -518,7 +518,8 @@ def test_saving_a_navigator_into_something_not_a_folder_says_what_it_is(
 
 
 #: A Webots controller's calls of its devices with arguments of the wrong type: each must be
-#: refused with an InvalidArgumentError naming the method and the parameter.
+#: refused with a WrongTypeError (an InvalidArgumentError and a TypeError) naming the method and
+#: the parameter.
 WRONG_TYPED_DEVICE_CALLS = {
     "motor velocity": "robot.getDevice('left wheel motor').setVelocity('fast')",
     "emitter channel": "robot.getDevice('emitter').setChannel('seven')",
@@ -552,7 +553,7 @@ def test_a_controllers_wrong_typed_device_calls_are_refused_naming_the_method(
     )
     refused = [line for line in done.stdout.splitlines() if line.startswith("REFUSED")]
     assert len(refused) == len(WRONG_TYPED_DEVICE_CALLS), done.stdout + done.stderr
-    assert all("InvalidArgumentError" in line and " refused: " in line for line in refused), refused
+    assert all("WrongTypeError" in line and " refused: " in line for line in refused), refused
 
 
 def _core_instances() -> dict[str, object]:
@@ -568,10 +569,10 @@ def _core_instances() -> dict[str, object]:
 
 @pytest.mark.parametrize("how", ["pickle", "copy", "deepcopy"])
 def test_every_core_object_pickles_or_is_refused_saying_so(how: str) -> None:
-    """Every class of the core, pickled or copied: a working copy, or InvalidArgumentError (also a
-    TypeError, as pickle's own refusal) naming the class; a batch, a navigator, the settings of a
-    run call and three more failed with pickle's bare TypeError (a PettingZoo env holding a
-    batch with them)."""
+    """Every class of the core, pickled or copied: a working copy, or WrongTypeError (an
+    InvalidArgumentError that is also a TypeError, as pickle's own refusal) naming the class; a
+    batch, a navigator, the settings of a run call and three more failed with pickle's bare
+    TypeError (a PettingZoo env holding a batch with them)."""
     import copy
     import pickle
 
@@ -589,7 +590,7 @@ def test_every_core_object_pickles_or_is_refused_saying_so(how: str) -> None:
     for name, instance in sorted(instances.items()):
         try:
             action(instance)
-        except mazesim.InvalidArgumentError as error:
+        except mazesim.WrongTypeError as error:
             assert isinstance(error, TypeError), name
             assert f"found a {name}, which cannot be" in str(error), error
             refused.append(name)

@@ -18,7 +18,7 @@ from typing import Any
 
 from gymnasium.error import ClosedEnvironmentError, ResetNeeded
 
-from mazesim.errors import InvalidArgumentError, MazesimError
+from mazesim.errors import InvalidArgumentError, MazesimError, WrongTypeError
 
 __all__ = [
     "MAX_SEED",
@@ -74,7 +74,7 @@ def check_options(options: Any) -> Mapping[str, Any]:
     if options is None:
         return {}
     if not isinstance(options, Mapping):
-        raise InvalidArgumentError(
+        raise WrongTypeError(
             f"expected options to be None or a dict, found {type(options).__name__}"
         )
     return options
