@@ -238,7 +238,7 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         batch = self._open_batch()
         n = self.num_envs
         seeds = self._seeds(seed)
-        mask = self._reset_mask(check_options(options).get("reset_mask"))
+        mask = self._reset_mask(check_options(options, ("reset_mask",)).get("reset_mask"))
         super().reset(seed=seeds[0] if is_seed(seed) else None)
         envs = np.flatnonzero(mask) if mask is not None else np.arange(n)
         for i in envs:
