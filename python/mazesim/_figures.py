@@ -16,6 +16,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import os
+import stat
 import warnings
 from collections.abc import Iterator
 from typing import TYPE_CHECKING
@@ -41,7 +42,8 @@ _MISSING_GLYPH = r"Glyph \d+ .*missing from font"
 
 
 #: The suffixes a figure's file may have (any case): the one format :func:`save_png` writes. A
-#: name without a suffix (``/dev/stdout``, ``plot``) takes it too.
+#: name without a suffix (``plot``) takes it too, and so does something that is not a file
+#: (``/dev/stdout``, a FIFO, a device), whose name says nothing of what goes through it.
 FIGURE_SUFFIXES = (".png",)
 
 
@@ -50,12 +52,21 @@ def figure_suffix_refusal(path: str | os.PathLike[str]) -> str | None:
     None."""
     name = os.fsdecode(os.fspath(path))
     suffix = os.path.splitext(name)[1]
-    if not suffix or suffix.lower() in FIGURE_SUFFIXES:
+    if not suffix or suffix.lower() in FIGURE_SUFFIXES or _special(name):
         return None
     return (
         f"expected a figure file ending in {' or '.join(FIGURE_SUFFIXES)} (figures are written as "
         f"PNG), found {name!r}, ending in {suffix!r}"
     )
+
+
+def _special(name: str) -> bool:
+    """Whether ``name`` is something other than a file or folder (a device, a FIFO, a socket)."""
+    try:
+        mode = os.stat(name).st_mode
+    except (OSError, ValueError):
+        return False
+    return not (stat.S_ISREG(mode) or stat.S_ISDIR(mode))
 
 
 def figure_file(text: str) -> str:
