@@ -1,5 +1,6 @@
 """Every argument of every function and method of ``mazesim._core``, given a value of the wrong
-type, raises ``mazesim.InvalidArgumentError`` naming the argument: never pyo3's ``TypeError``.
+type, raises ``mazesim.WrongTypeError`` naming the argument (an ``InvalidArgumentError`` that is
+also a ``TypeError``): never pyo3's bare ``TypeError``.
 
 The arguments are found by introspection, so a new function or method is covered as soon as it
 exists; a parameter name this file has no valid sample for fails the test (add its sample below).
@@ -307,13 +308,13 @@ def cases(tmp: Path) -> Iterator[tuple[str, Callable[..., Any], dict[str, Any], 
             yield f"{owner + '.' if owner else ''}{name}({p.name}=)", bound, valid, p.name
 
 
-def test_every_argument_of_a_wrong_type_is_an_invalid_argument_error(tmp_path: Path) -> None:
+def test_every_argument_of_a_wrong_type_is_a_wrong_type_error(tmp_path: Path) -> None:
     checked = 0
     failures = []
     for label, target, valid, wrong in cases(tmp_path):
         try:
             target(**{**valid, wrong: WrongType()})
-        except mazesim.InvalidArgumentError as error:
+        except mazesim.WrongTypeError as error:
             if wrong not in str(error):
                 failures.append(f"{label}: the message does not name {wrong!r}: {error}")
         except BaseException as error:  # noqa: BLE001 - any other exception is the failure

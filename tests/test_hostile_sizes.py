@@ -94,7 +94,9 @@ for name, statement in CASES.items():
         eval(statement)
         print('CASE', name, '|ACCEPTED')
     except mazesim.MazesimError as e:
-        print('CASE', name, '|' + type(e).__name__ + ': ' + str(e).replace(chr(10), ' ')[:400])
+        own = isinstance(e, mazesim.InvalidArgumentError)  # WrongTypeError is one
+        kind = 'InvalidArgumentError' if own else type(e).__name__
+        print('CASE', name, '|' + kind + ': ' + str(e).replace(chr(10), ' ')[:400])
 """
 
 

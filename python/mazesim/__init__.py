@@ -47,6 +47,7 @@ from mazesim.errors import (
     SnapshotError,
     UnknownNameError,
     WorldFormatError,
+    WrongTypeError,
 )
 
 # Every public module imported from here on gets the argument check (mazesim._checks).
@@ -74,6 +75,7 @@ __all__ = [
     "UnknownNameError",
     "World",
     "WorldFormatError",
+    "WrongTypeError",
     "__version__",
     "builtin_world_names",
     "default_codes",
@@ -107,7 +109,7 @@ def load_world(name_or_path: str | os.PathLike[str]) -> World:
         InvalidArgumentError: ``name_or_path`` is neither a str nor an ``os.PathLike``.
     """
     if not isinstance(name_or_path, (str, os.PathLike)):
-        raise InvalidArgumentError(
+        raise WrongTypeError(
             "expected name_or_path to be a built-in world name or a path (str or os.PathLike), "
             f"found a {type(name_or_path).__name__}"
         )
@@ -116,9 +118,7 @@ def load_world(name_or_path: str | os.PathLike[str]) -> World:
     try:
         path = os.fspath(name_or_path)
     except TypeError as bad_path:  # a PathLike whose __fspath__ gives neither str nor bytes
-        raise InvalidArgumentError(
-            f"expected name_or_path to be a path, found: {bad_path}"
-        ) from None
+        raise WrongTypeError(f"expected name_or_path to be a path, found: {bad_path}") from None
     if isinstance(path, bytes):
         path = os.fsdecode(path)
     if os.path.isfile(path):

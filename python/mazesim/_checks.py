@@ -53,7 +53,7 @@ import numpy as np
 from mazesim._callers import STATE
 from mazesim._error_tree import in_the_tree
 from mazesim._sizes import MOST_ENVS, size_of
-from mazesim.errors import InvalidArgumentError, MazesimError, _closest_name
+from mazesim.errors import InvalidArgumentError, MazesimError, WrongTypeError, _closest_name
 
 __all__ = [
     "MOST_ARRAY_VALUES",
@@ -68,6 +68,8 @@ __all__ = [
     "is_public_module",
     "public_names",
     "refusal",
+    "refusal_error",
+    "TypeRefusal",
 ]
 
 #: Most items a sequence or mapping argument may hold: the package's bound on what it takes from
@@ -96,6 +98,18 @@ def is_public_module(name: str) -> bool:
     return parts[0] == "mazesim" and not any(p.startswith("_") for p in parts[1:])
 
 
+class TypeRefusal(str):
+    """A refusal (:func:`refusal`'s text) of a value whose type the annotation does not take, as
+    opposed to a value of the right type out of its range: raised as
+    :class:`~mazesim.errors.WrongTypeError`, which is also a ``TypeError``."""
+
+
+def refusal_error(reason: str) -> type[InvalidArgumentError]:
+    """The class a refusal is raised as: :class:`~mazesim.errors.WrongTypeError` for a value of
+    the wrong type, :class:`~mazesim.errors.InvalidArgumentError` for one out of range."""
+    return WrongTypeError if isinstance(reason, TypeRefusal) else InvalidArgumentError
+
+
 def _describe(value: Any) -> str:
     """A short description of a value for a message: its type, and its repr if short."""
     kind = type(value).__name__
@@ -118,7 +132,7 @@ def refusal(value: Any, hint: Any) -> str | None:
     try:
         return _refusal(value, hint)
     except Exception:  # noqa: BLE001 - a value whose inspection fails is refused, not raised
-        return f"expected {_hint_name(hint)}, found {_describe(value)}"
+        return TypeRefusal(f"expected {_hint_name(hint)}, found {_describe(value)}")
 
 
 def _too_many(value: Any, most: int = MOST_ITEMS) -> str | None:
@@ -132,15 +146,19 @@ def _refusal(value: Any, hint: Any) -> str | None:  # noqa: C901, PLR0911, PLR09
     if hint is Any or hint is object or isinstance(hint, (str, typing.TypeVar)):
         return None
     if hint is None or hint is type(None):
-        return None if value is None else f"expected None, found {_describe(value)}"
+        return None if value is None else TypeRefusal(f"expected None, found {_describe(value)}")
     origin = typing.get_origin(hint)
     args = typing.get_args(hint)
     if origin in _UNIONS:
         if _is_array_like(args) and value is not None:
             return _array_like_refusal(value, args)
-        if any(_refusal(value, arg) is None for arg in args):
+        reasons = [_refusal(value, arg) for arg in args]
+        if any(reason is None for reason in reasons):
             return None
-        return f"expected {_hint_name(hint)}, found {_describe(value)}"
+        of_value = [r for r in reasons if not isinstance(r, TypeRefusal)]
+        if of_value:
+            return of_value[0]  # the value is of a member's type, out of its range
+        return TypeRefusal(f"expected {_hint_name(hint)}, found {_describe(value)}")
     if origin is typing.Annotated:
         return _refusal(value, args[0])
     if origin is typing.Literal:
@@ -148,11 +166,20 @@ def _refusal(value: Any, hint: Any) -> str | None:  # noqa: C901, PLR0911, PLR09
             value == a and type(value) is type(a) for a in args
         ):
             return None
-        return f"expected one of {', '.join(repr(a) for a in args)}, found {_describe(value)}"
+        reason = f"expected one of {', '.join(repr(a) for a in args)}, found {_describe(value)}"
+        return reason if any(type(value) is type(a) for a in args) else TypeRefusal(reason)
     if origin is type:
-        return None if isinstance(value, type) else f"expected a class, found {_describe(value)}"
+        return (
+            None
+            if isinstance(value, type)
+            else TypeRefusal(f"expected a class, found {_describe(value)}")
+        )
     if origin is abc.Callable or hint is abc.Callable or hint is typing.Callable:
-        return None if callable(value) else f"expected a callable, found {_describe(value)}"
+        return (
+            None
+            if callable(value)
+            else TypeRefusal(f"expected a callable, found {_describe(value)}")
+        )
     if origin is not None:
         return _container_refusal(value, hint, origin, args)
     if not isinstance(hint, type):
@@ -181,7 +208,7 @@ def _class_refusal(value: Any, hint: type) -> str | None:  # noqa: PLR0911 - one
         return _path_refusal(value)
     elif hint is np.ndarray:
         if not isinstance(value, _ARRAY_LIKE) or isinstance(value, (str, bytes)):
-            return f"expected an array, found {_describe(value)}"
+            return TypeRefusal(f"expected an array, found {_describe(value)}")
         return _too_many(value, MOST_ARRAY_VALUES) or _numbers_refusal(value)
     elif hint in _CONTAINERS or (hint.__module__ == "collections.abc"):
         return _container_refusal(value, hint, hint, ())
@@ -191,7 +218,7 @@ def _class_refusal(value: Any, hint: type) -> str | None:  # noqa: PLR0911 - one
         ok = isinstance(value, hint)
     else:
         ok = isinstance(value, hint)
-    return None if ok else f"expected {_hint_name(hint)}, found {_describe(value)}"
+    return None if ok else TypeRefusal(f"expected {_hint_name(hint)}, found {_describe(value)}")
 
 
 def _container_refusal(value: Any, hint: Any, origin: Any, args: tuple[Any, ...]) -> str | None:
@@ -201,20 +228,20 @@ def _container_refusal(value: Any, hint: Any, origin: Any, args: tuple[Any, ...]
         return None
     if origin in (dict, abc.Mapping, abc.MutableMapping):
         if not isinstance(value, abc.Mapping):
-            return f"expected a mapping, found {_describe(value)}"
+            return TypeRefusal(f"expected a mapping, found {_describe(value)}")
         return _too_many(value)
     if origin in (tuple, list, abc.Sequence, abc.MutableSequence, set, frozenset, abc.Set,
                   abc.Collection, abc.Iterable, abc.Iterator, abc.Sized):  # fmt: skip
         if isinstance(value, (str, bytes)) and not _takes_text(args):
-            return f"expected {_hint_name(hint)}, found {_describe(value)}"
+            return TypeRefusal(f"expected {_hint_name(hint)}, found {_describe(value)}")
         if origin is abc.Iterator:
             return (
                 None
                 if isinstance(value, abc.Iterator)
-                else f"expected an iterator, found {_describe(value)}"
+                else TypeRefusal(f"expected an iterator, found {_describe(value)}")
             )
         if not isinstance(value, abc.Iterable):
-            return f"expected {_hint_name(hint)}, found {_describe(value)}"
+            return TypeRefusal(f"expected {_hint_name(hint)}, found {_describe(value)}")
         too_many = _too_many(value)
         if too_many is not None:
             return too_many
@@ -234,14 +261,14 @@ def _container_refusal(value: Any, hint: Any, origin: Any, args: tuple[Any, ...]
         return None  # numpy's _NestedSequence, _SupportsArray...: structural, not checked
     else:
         ok = isinstance(value, origin)
-    return None if ok else f"expected {_hint_name(hint)}, found {_describe(value)}"
+    return None if ok else TypeRefusal(f"expected {_hint_name(hint)}, found {_describe(value)}")
 
 
 def _path_refusal(value: Any) -> str | None:
     """Why ``value`` is not a path: not text or a path object, or text with a NUL character
     (which no file system takes)."""
     if not isinstance(value, (str, os.PathLike)):
-        return f"expected a path, found {_describe(value)}"
+        return TypeRefusal(f"expected a path, found {_describe(value)}")
     if "\x00" in str(os.fspath(value)):
         return "expected a path, found one with a NUL character"
     return None
@@ -259,7 +286,7 @@ def _array_like_refusal(value: Any, args: tuple[Any, ...]) -> str | None:
     if isinstance(value, (str, bytes, abc.Mapping)) or not isinstance(value, _ARRAY_LIKE):
         if hasattr(value, "__array__") or hasattr(value, "__array_interface__"):
             return _too_many(value, MOST_ARRAY_VALUES) or _numbers_refusal(value)
-        return f"expected an array of numbers, found {_describe(value)}"
+        return TypeRefusal(f"expected an array of numbers, found {_describe(value)}")
     return _too_many(value, MOST_ARRAY_VALUES) or _numbers_refusal(value)
 
 
@@ -281,7 +308,7 @@ def _numbers_refusal(value: Any) -> str | None:
     if array.ndim > MOST_DIMENSIONS:
         return f"expected an array of at most {MOST_DIMENSIONS} dimensions, found {array.ndim}"
     if array.dtype.kind not in "biuf":
-        return f"expected an array of numbers, found an array of dtype {array.dtype}"
+        return TypeRefusal(f"expected an array of numbers, found an array of dtype {array.dtype}")
     return None
 
 
@@ -307,7 +334,7 @@ def _items_refusal(value: Any, hint: Any) -> str | None:
     for index in range(min(len(value), SAMPLED_ITEMS)):
         reason = _refusal(value[index], hint)
         if reason is not None:
-            return f"item {index}: {reason}"
+            return type(reason)(f"item {index}: {reason}")
     return None
 
 
@@ -328,7 +355,6 @@ _ARGUMENT_FAILURES = (
     MemoryError,
     RecursionError,
 )
-
 
 #: Arguments checked before every call: Python's ``float()``, ``int()`` and numpy read ``"64"`` or
 #: ``b"64"`` as a number, so a call given text for a number would not fail and be checked after.
@@ -483,7 +509,7 @@ class _Parameters:
     def refuse(self, name: str, value: Any, hint: Any) -> None:
         reason = refusal(value, hint)
         if reason is not None:
-            raise InvalidArgumentError(f"{self.func.__qualname__}: {name} refused: {reason}")
+            raise refusal_error(reason)(f"{self.func.__qualname__}: {name} refused: {reason}")
 
 
 def checked(func: Callable[..., Any], *, method: bool = False) -> Callable[..., Any]:
@@ -495,6 +521,7 @@ def checked(func: Callable[..., Any], *, method: bool = False) -> Callable[..., 
     parameters = _Parameters(func, method)
     # The wrapper runs in func's globals: everything it uses is bound here.
     error, own, failures, text = InvalidArgumentError, MazesimError, _ARGUMENT_FAILURES, _TEXT
+    wrong = WrongTypeError
     tree = in_the_tree
     state = STATE  # per thread, whether a checked call is running
 
@@ -510,7 +537,19 @@ def checked(func: Callable[..., Any], *, method: bool = False) -> Callable[..., 
         state.inside = True
         try:
             return func(*args, **kwargs)
-        except (own, KeyboardInterrupt):
+        except KeyboardInterrupt:
+            raise
+        except own as failure:
+            if isinstance(failure, error) and not isinstance(failure, wrong):
+                # The function's own refusal; an argument of a type its annotation does not
+                # take is the cause to name, as a TypeError (a hand-written check said "found
+                # 42" without saying that it was the type that was wrong).
+                try:
+                    parameters.check(args, kwargs)
+                except wrong as refusal:
+                    raise refusal.with_traceback(None) from None
+                except error:
+                    pass  # a missing or unknown argument: the function's message says more
             raise
         except failures as failure:
             try:

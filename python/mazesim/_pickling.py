@@ -4,9 +4,10 @@ A class of :mod:`mazesim._core` pickles and copies through a ``__reduce__`` of i
 as its text, a simulator with its whole state). A class without one (a batch of environments, a
 navigator's tables, the settings of one ``run`` call holding its output buffers) would fail in
 Python's ``pickle`` or ``copy`` with a bare ``TypeError``; :func:`refuse_unpicklable` gives each
-such class, once, a ``__reduce__`` that raises :class:`~mazesim.errors.InvalidArgumentError` (also
-a ``TypeError``, as ``pickle``'s own refusal is) naming the class and what to do instead, so that
-a class added to the core later is covered without code of its own.
+such class, once, a ``__reduce__`` that raises :class:`~mazesim.errors.WrongTypeError` (an
+``InvalidArgumentError`` that is also a ``TypeError``, as ``pickle``'s own refusal is) naming the
+class and what to do instead, so that a class added to the core later is covered without code of
+its own.
 """
 
 from __future__ import annotations
@@ -14,17 +15,14 @@ from __future__ import annotations
 import types
 from typing import Any, NoReturn
 
-from mazesim._error_tree import made_as
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import WrongTypeError
 
 __all__ = ["refuse_unpicklable"]
 
 
 def _refusal(name: str) -> Any:
     def __reduce__(self: Any) -> NoReturn:
-        raise made_as(
-            InvalidArgumentError,
-            TypeError,
+        raise WrongTypeError(
             f"expected an object that can be pickled or copied, found a {name}, which cannot be: "
             f"make a new {name} with the arguments that made this one",
         )

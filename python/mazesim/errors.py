@@ -29,6 +29,7 @@ __all__ = [
     "SnapshotError",
     "UnknownNameError",
     "WorldFormatError",
+    "WrongTypeError",
 ]
 
 
@@ -100,6 +101,14 @@ class InvalidActionError(MazesimError, ValueError):
 
 class InvalidArgumentError(MazesimError, ValueError):
     """An argument is out of range or of the wrong shape or dtype."""
+
+
+class WrongTypeError(InvalidArgumentError, TypeError):
+    """An argument is of a type the parameter does not take (text for a number, None for a
+    sensor's sampling period, a list for a world): an :class:`InvalidArgumentError` that is also
+    a ``TypeError``, as Python's own refusal of a wrong type is, so ``except TypeError`` and
+    ``except InvalidArgumentError`` both catch it. A value of the right type that is out of range
+    stays an :class:`InvalidArgumentError` (a ``ValueError``)."""
 
 
 class MazesimIOError(MazesimError, OSError):

@@ -351,6 +351,10 @@ def test_output_file_commands_are_found() -> None:
     assert {"demo", "eval", "webots run", "ros demo", "show", "replay"} <= set(OUTPUT_FILE_COMMANDS)
 
 
+#: The suffix an output file option takes (a figure is a PNG, a video a GIF or an MP4...).
+SUFFIXES = {"--video": ".gif", "--html": ".html", "--plot": ".png"}
+
+
 @pytest.mark.parametrize(
     "command",
     [
@@ -373,7 +377,7 @@ def test_no_output_option_writes_over_an_input_or_another_output(
         folder = tmp_path / f"run-{number}"
         folder.mkdir()
         original = _input_copy(source, files, folder)
-        suffix = {"--video": ".gif", "--html": ".html"}.get(option.option_strings[-1])
+        suffix = SUFFIXES.get(option.option_strings[-1])
         if command in ("show", "replay") or suffix is not None:
             suffix = suffix or (".html" if command == "replay" else ".png")
             alias = folder / f"same-input{suffix}"
@@ -387,11 +391,12 @@ def test_no_output_option_writes_over_an_input_or_another_output(
             arguments[arguments.index(_positionals(command, files)[source.dest])] = str(original)
         runs.append((arguments, folder))
         inputs.append((original, original.read_bytes()))
+    view = "view" + SUFFIXES.get(outputs[1].option_strings[-1] if len(outputs) > 1 else "", ".gif")
     if len(outputs) > 1:
         folder = tmp_path / "two-outputs"
         folder.mkdir()
-        arguments = _arguments(command, parser, (outputs[1], "./view.gif"), files, folder)
-        runs.append(([*arguments, outputs[0].option_strings[0], "view.gif"], folder))
+        arguments = _arguments(command, parser, (outputs[1], f"./{view}"), files, folder)
+        runs.append(([*arguments, outputs[0].option_strings[0], view], folder))
     endings = run_limited(runs, tmp_path)
     problems = [
         f"mazesim {' '.join(ending.arguments)}: {problem or 'ran'}"
@@ -402,7 +407,7 @@ def test_no_output_option_writes_over_an_input_or_another_output(
     ]
     assert not problems, "\n".join(problems)
     assert all(path.read_bytes() == data for path, data in inputs)
-    assert not (tmp_path / "two-outputs" / "view.gif").exists()
+    assert not (tmp_path / "two-outputs" / view).exists()
 
 
 @pytest.mark.parametrize("name", ["\u00fc.png", os.fsdecode(b"\xff.png")])

@@ -59,6 +59,16 @@ def test_options_that_are_not_a_dict_are_invalid_arguments(kind: str, options: A
 
 
 @pytest.mark.parametrize("kind", KINDS)
+def test_an_option_the_env_does_not_read_is_refused_by_name(kind: str) -> None:
+    """A misspelt or unknown reset option (``{"start": ...}``) was ignored without a word."""
+    env = make(kind)
+    with pytest.raises(InvalidArgumentError, match="expected reset options .*found 'reset_mak'"):
+        env.reset(seed=0, options={"reset_mak": np.ones(2, bool)})
+    if kind == "vector":
+        env.reset(seed=0, options={"reset_mask": np.ones(2, bool)})
+
+
+@pytest.mark.parametrize("kind", KINDS)
 @pytest.mark.parametrize("seed", [-1, MAX_SEED + 1, 1.5, "7", True, np.float64(3.0)], ids=str)
 def test_the_same_seeds_are_refused_by_both(kind: str, seed: Any) -> None:
     with pytest.raises(InvalidArgumentError, match="seed"):

@@ -87,3 +87,16 @@ def test_the_aec_env_asks_for_reset_with_the_package_error() -> None:
     env.reset(seed=0)
     env.step(np.zeros(2, np.float32))
     assert env.agent_selection == "epuck_1"
+
+
+@pytest.mark.parametrize("action", ["fast", [1.0, "x"], {"left": 1.0}, object()])
+def test_an_action_that_is_not_two_numbers_names_the_agent(action: Any) -> None:
+    """numpy's "could not convert string to float: 'fast'" came out as an InvalidArgumentError
+    naming neither the agent nor what an action is."""
+    env = maze_goals_v0.parallel_env(**OPTIONS)
+    env.reset(seed=0)
+    actions = {agent: np.zeros(2, np.float32) for agent in env.agents}
+    actions[env.agents[1]] = action
+    with pytest.raises(mazesim.InvalidActionError) as caught:
+        env.step(actions)
+    assert f"expected the action of {env.agents[1]} to be two wheel speeds" in str(caught.value)

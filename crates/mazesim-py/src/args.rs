@@ -5,14 +5,16 @@
 use pyo3::prelude::*;
 use pyo3::types::PyInt;
 
-use crate::errors::invalid;
+use crate::errors::{invalid, wrong_type};
 
 /// An integer argument as given, checked against its range by [`IntArg::within`].
 #[derive(Debug, Clone)]
 pub enum IntArg {
     /// An int that fits in an `i128`.
     Int(i128),
-    /// Anything else, described for the error: an int beyond `i128`, or another type.
+    /// An int beyond `i128`, described for the error ("an int of 40 digits").
+    Huge(String),
+    /// Not an int: its type, described for the error.
     Other(String),
 }
 
@@ -35,7 +37,10 @@ impl IntArg {
                 T::try_from(*v).map_err(|_| refuse(v.to_string()))
             }
             IntArg::Int(v) => Err(refuse(v.to_string())),
-            IntArg::Other(found) => Err(refuse(found.clone())),
+            IntArg::Huge(found) => Err(refuse(found.clone())),
+            IntArg::Other(found) => Err(wrong_type(format!(
+                "expected {name} to be an int in {least}..={most}, found {found}"
+            ))),
         }
     }
 
@@ -64,7 +69,7 @@ impl<'a, 'py> FromPyObject<'a, 'py> for IntArg {
         }
         if obj.is_instance_of::<PyInt>() {
             let digits = obj.str().map(|s| s.to_string()).unwrap_or_default();
-            return Ok(IntArg::Other(format!("an int of {} digits", digits.len())));
+            return Ok(IntArg::Huge(format!("an int of {} digits", digits.len())));
         }
         let kind = type_name(&obj);
         Ok(IntArg::Other(format!("a {kind}")))
@@ -87,7 +92,7 @@ impl Real {
     pub fn value(&self, name: &str) -> PyResult<f64> {
         match self {
             Real::Number(v) => Ok(*v),
-            Real::Other(kind) => Err(invalid(format!(
+            Real::Other(kind) => Err(wrong_type(format!(
                 "expected {name} to be a real number, found a {kind}"
             ))),
         }
@@ -130,7 +135,7 @@ impl<T> Given<T> {
     pub fn value(self, name: &str, expected: &str) -> PyResult<T> {
         match self {
             Given::Value(v) => Ok(v),
-            Given::Other(kind) => Err(invalid(format!(
+            Given::Other(kind) => Err(wrong_type(format!(
                 "expected {name} to be {expected}, found a {kind}"
             ))),
         }
@@ -217,12 +222,17 @@ pub fn type_name(obj: &Bound<'_, PyAny>) -> String {
         .unwrap_or_default();
     match obj.cast::<pyo3::types::PyString>() {
         Ok(text) if text.to_cow().is_err() => format!(
-            "{name} that is not Unicode text (it holds a lone surrogate, as Python keeps a byte of \
-             a file name or command-line argument it could not decode)"
+            "{name} {NOT_UNICODE} (it holds a lone surrogate, as Python keeps a byte of a file \
+             name or command-line argument it could not decode)"
         ),
         _ => name,
     }
 }
+
+/// What [`type_name`] says of a str that is not Unicode text: a str of the wrong value, not of
+/// the wrong type, so the refusal of a wrong type (`wrong_type` in `errors.rs`) makes it an
+/// `InvalidArgumentError`.
+pub const NOT_UNICODE: &str = "that is not Unicode text";
 
 /// The items of a sequence argument (a list, tuple, range or other sized iterable; not a str or
 /// bytes), its `len()` checked against `most` BEFORE anything is reserved: every sequence taken
@@ -236,26 +246,35 @@ pub fn bounded_items<'py>(
     expected: &str,
     most: usize,
 ) -> PyResult<Vec<Bound<'py, PyAny>>> {
-    let refuse = |found: String| {
-        invalid(format!(
-            "expected {name} to be a sequence of at most {most} {expected}, found {found}"
-        ))
+    let message = |found: String| {
+        format!("expected {name} to be a sequence of at most {most} {expected}, found {found}")
     };
+    let refuse = |found: String| invalid(message(found));
     let textual = obj.is_instance_of::<pyo3::types::PyString>()
         || obj.is_instance_of::<pyo3::types::PyBytes>()
         || obj.is_instance_of::<pyo3::types::PyByteArray>();
     let len = match obj.len() {
         Ok(len) if !textual => len,
-        // No length, or one beyond `sys.maxsize` (OverflowError).
-        _ => return Err(refuse(format!("a {}", type_name(obj)))),
+        // A length beyond `sys.maxsize`: a sequence, far too long.
+        Err(e) if e.is_instance_of::<pyo3::exceptions::PyOverflowError>(obj.py()) => {
+            return Err(refuse(format!(
+                "a {} of more than {most} items",
+                type_name(obj)
+            )))
+        }
+        // Text, or no length: not a sequence.
+        _ => return Err(wrong_type(message(format!("a {}", type_name(obj))))),
     };
     if len > most {
         return Err(refuse(format!("a {} of {len} items", type_name(obj))));
     }
     let mut items = Vec::with_capacity(len);
-    let iter = obj
-        .try_iter()
-        .map_err(|_| refuse(format!("a {} that cannot be iterated", type_name(obj))))?;
+    let iter = obj.try_iter().map_err(|_| {
+        wrong_type(message(format!(
+            "a {} that cannot be iterated",
+            type_name(obj)
+        )))
+    })?;
     for item in iter {
         if items.len() == most {
             return Err(refuse(format!(
@@ -311,7 +330,7 @@ pub fn typed_argument<'a, 'py, T: pyo3::type_object::PyTypeCheck>(
     what: &str,
 ) -> PyResult<&'a Bound<'py, T>> {
     obj.cast::<T>().map_err(|_| {
-        invalid(format!(
+        wrong_type(format!(
             "expected {name} to be {what}, found a {}",
             type_name(obj)
         ))

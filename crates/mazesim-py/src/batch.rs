@@ -12,7 +12,7 @@ use pyo3::types::PyDict;
 
 use crate::args::{bounded_items, dict_argument, type_name, Bytes, Flag, IntArg, Real};
 use crate::buffers::{copied, writable};
-use crate::errors::{invalid, IntoPy};
+use crate::errors::{invalid, wrong_type, IntoPy};
 use crate::guard::{ctrl_c_pressed, enter, enter_detached};
 use crate::lock::Exclusive;
 use crate::profile::RobotArg;
@@ -159,7 +159,7 @@ impl PyBatch {
         what: &str,
     ) -> PyResult<(Vec<usize>, Vec<f64>)> {
         let m = envs.len().map_err(|_| {
-            invalid(format!(
+            wrong_type(format!(
                 "expected envs to be an (M,) int64 array of env indices, found a {}",
                 type_name(envs)
             ))

@@ -8,7 +8,7 @@ use numpy::{
 };
 use pyo3::prelude::*;
 
-use crate::errors::to_py;
+use crate::errors::{to_py, wrong_type};
 
 fn describe(obj: &Bound<'_, PyAny>) -> String {
     // Both read the object's own attributes, which may be anything: the dtype's text is cut
@@ -26,11 +26,21 @@ fn describe(obj: &Bound<'_, PyAny>) -> String {
     )
 }
 
-fn wrong<T>(name: &str, expected: &str, obj: &Bound<'_, PyAny>) -> PyResult<T> {
-    Err(to_py(Error::InvalidArgument(format!(
+fn refusal(name: &str, expected: &str, obj: &Bound<'_, PyAny>) -> String {
+    format!(
         "expected {name} to be an aligned, C-contiguous numpy array of {expected}, found a {}",
         describe(obj)
-    ))))
+    )
+}
+
+/// A numpy array of the right dtype whose shape, layout or borrow does not fit.
+fn wrong<T>(name: &str, expected: &str, obj: &Bound<'_, PyAny>) -> PyResult<T> {
+    Err(to_py(Error::InvalidArgument(refusal(name, expected, obj))))
+}
+
+/// Not a numpy array, or one of another dtype: a `WrongTypeError`.
+fn wrong_kind<T>(name: &str, expected: &str, obj: &Bound<'_, PyAny>) -> PyResult<T> {
+    Err(wrong_type(refusal(name, expected, obj)))
 }
 
 fn shape_text(shape: &[usize]) -> String {
@@ -40,6 +50,19 @@ fn shape_text(shape: &[usize]) -> String {
     } else {
         format!("({})", parts.join(", "))
     }
+}
+
+/// The refusal of an array argument whose shape does not fit, `message` saying what was expected
+/// and the shape found: a `WrongTypeError` when `obj` is not an array at all (it has no `.shape`,
+/// which `message` shows as `[]`), else an `InvalidArgumentError`.
+pub fn shape_refusal(obj: &Bound<'_, PyAny>, message: String) -> PyErr {
+    if obj.hasattr("shape").unwrap_or(false) {
+        return to_py(Error::InvalidArgument(message));
+    }
+    wrong_type(format!(
+        "{message} (a {}, not an array)",
+        crate::args::type_name(obj)
+    ))
 }
 
 /// A writable array of dtype `T` and exactly `shape`.
@@ -103,7 +126,8 @@ fn usable_array<'a, 'py, T: Element>(
     let expected = expected_array(dtype, shape);
     match obj.cast::<PyArrayDyn<T>>() {
         Ok(array) if usable(array, shape) => Ok((array, expected)),
-        _ => wrong(name, &expected, obj),
+        Ok(_) => wrong(name, &expected, obj),
+        Err(_) => wrong_kind(name, &expected, obj),
     }
 }
 

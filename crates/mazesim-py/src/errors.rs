@@ -82,6 +82,25 @@ pub fn invalid(message: String) -> PyErr {
     to_py(Error::InvalidArgument(message))
 }
 
+/// A `WrongTypeError` (an `InvalidArgumentError` that is also a `TypeError`) with `message`: the
+/// refusal of an argument of a type its parameter does not take, as opposed to [`invalid`]'s
+/// value of the right type out of its range (a str that is not Unicode text is one).
+pub fn wrong_type(message: String) -> PyErr {
+    if message.contains(crate::args::NOT_UNICODE) {
+        return invalid(message); // a str, of a value that is not text
+    }
+    Python::attach(|py| {
+        match py
+            .import("mazesim.errors")
+            .and_then(|errors| errors.getattr("WrongTypeError"))
+            .and_then(|class| class.call1((message.as_str(),)))
+        {
+            Ok(instance) => PyErr::from_value(instance),
+            Err(_) => invalid(message),
+        }
+    })
+}
+
 /// Shorthand: a core result as a Python result.
 pub trait IntoPy<T> {
     /// Maps the error.

@@ -22,8 +22,8 @@ use pyo3::types::PyDict;
 use crate::args::{bounded_items, dict_argument, type_name, typed_argument, unknown_key};
 use crate::args::{Keywords, Real};
 use crate::batch::{Borrowed, PyBatch};
-use crate::buffers::{copied, readable, writable};
-use crate::errors::{invalid, IntoPy};
+use crate::buffers::{copied, readable, shape_refusal, writable};
+use crate::errors::{invalid, wrong_type, IntoPy};
 use crate::guard::{enter, enter_detached};
 use crate::lower_settings::round_keywords;
 use crate::world::world_argument;
@@ -70,7 +70,7 @@ fn named<T: Copy>(
     };
     let known: Vec<&str> = names.iter().map(|(name, _)| *name).collect();
     let name = value.extract::<String>().map_err(|_| {
-        invalid(format!(
+        wrong_type(format!(
             "expected settings[{key:?}] to be one of {known:?}, found a {}",
             type_name(&value)
         ))
@@ -102,7 +102,7 @@ fn number(dict: &Bound<'_, PyDict>, key: &str) -> PyResult<f64> {
 fn number_of(dict: &Bound<'_, PyDict>, name: &str, key: &str) -> PyResult<f64> {
     let value = entry(dict, name, key)?;
     let number = value.extract::<f64>().map_err(|_| {
-        invalid(format!(
+        wrong_type(format!(
             "expected {name}[{key:?}] to be a number, found a {}",
             type_name(&value)
         ))
@@ -304,9 +304,10 @@ fn free_axis(
     let shape = shape_of(obj);
     match shape[..] {
         [a, b] if [a, b][fixed.0] == fixed.1 && [b, a][fixed.0] >= least => Ok([b, a][fixed.0]),
-        _ => Err(invalid(format!(
-            "expected {expected}, found shape {shape:?}"
-        ))),
+        _ => Err(shape_refusal(
+            obj,
+            format!("expected {expected}, found shape {shape:?}"),
+        )),
     }
 }
 
@@ -482,10 +483,13 @@ pub fn train_lower_round<'py>(
         let n = match shape_of(&role)[..] {
             [n] if n > 0 => n,
             _ => {
-                return Err(invalid(format!(
-                    "expected role to be an (N,) int64 array with N >= 1, found shape {:?}",
-                    shape_of(&role)
-                )))
+                return Err(shape_refusal(
+                    &role,
+                    format!(
+                        "expected role to be an (N,) int64 array with N >= 1, found shape {:?}",
+                        shape_of(&role)
+                    ),
+                ))
             }
         };
         let items = bounded_items(crews, "crews", "dicts of a batch's robots", MAX_ENVS)?;
@@ -605,9 +609,12 @@ pub fn q_batch_update(
     crate::guard::enter(|| {
         let shape = shape_of(q);
         let [rows, columns] = shape[..] else {
-            return Err(invalid(format!(
-                "expected q to be a (states, actions) float64 array, found shape {shape:?}"
-            )));
+            return Err(shape_refusal(
+                q,
+                format!(
+                    "expected q to be a (states, actions) float64 array, found shape {shape:?}"
+                ),
+            ));
         };
         let rate = learning_rate(rate)?;
         let transitions = dict_argument(transitions, "transitions", "")?;

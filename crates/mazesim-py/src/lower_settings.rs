@@ -12,7 +12,7 @@ use pyo3::types::PyDict;
 
 use crate::args::{bounded_items, dict_argument, shape_of, typed_argument, unknown_key};
 use crate::args::{warn_deprecated, Keywords};
-use crate::buffers::copied;
+use crate::buffers::{copied, shape_refusal};
 use crate::errors::invalid;
 use crate::guard::enter;
 use crate::lower::round_settings;
@@ -65,10 +65,13 @@ impl PyLowerRoundSettings {
             let robots = match shape_of(role).unwrap_or_default()[..] {
                 [n] if n > 0 => n,
                 _ => {
-                    return Err(invalid(format!(
-                        "expected role to be an (N,) int64 array with N >= 1, found shape {:?}",
-                        shape_of(role).unwrap_or_default()
-                    )))
+                    return Err(shape_refusal(
+                        role,
+                        format!(
+                            "expected role to be an (N,) int64 array with N >= 1, found shape {:?}",
+                            shape_of(role).unwrap_or_default()
+                        ),
+                    ))
                 }
             };
             copied::<i64>(role, "role", "int64", &[robots])?;

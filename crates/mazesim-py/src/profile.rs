@@ -11,7 +11,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString, PyTuple};
 
 use crate::args::{bounded_items, type_name, IntArg, Label, Real, SourceName, Text};
-use crate::errors::{invalid, IntoPy};
+use crate::errors::{invalid, wrong_type, IntoPy};
 use crate::guard::enter;
 use crate::perturbation::perturbation_of;
 use crate::world::rows_to_array;
@@ -65,7 +65,7 @@ impl RobotArg {
                 "expected {name} to be a robot profile name (str) or a mazesim.RobotProfile, \
                  found a sequence"
             ))),
-            RobotArg::Other(kind) => Err(invalid(format!(
+            RobotArg::Other(kind) => Err(wrong_type(format!(
                 "expected {name} to be a robot profile name (str) or a mazesim.RobotProfile, \
                  found a {kind}"
             ))),
@@ -86,7 +86,7 @@ impl RobotArg {
                  sequence of {n} of them (one per environment), found {} of them",
                 items.len()
             ))),
-            RobotArg::Other(kind) => Err(invalid(format!(
+            RobotArg::Other(kind) => Err(wrong_type(format!(
                 "expected robot to be a robot profile name (str), a mazesim.RobotProfile or a \
                  sequence of {n} of them (one per environment), found a {kind}"
             ))),

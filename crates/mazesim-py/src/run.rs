@@ -13,8 +13,8 @@ use pyo3::types::PyDict;
 use crate::args::{
     shape_of, type_name, typed_argument, unknown_key, warn_deprecated, Flag, IntArg, Keywords, Real,
 };
-use crate::buffers::{copied, writable};
-use crate::errors::{invalid, IntoPy};
+use crate::buffers::{copied, shape_refusal, writable};
+use crate::errors::{invalid, wrong_type, IntoPy};
 use crate::guard::enter;
 use crate::run_settings::{
     PyAvoidCollisionSettings, PyEpisodeLimits, PyRunSettings, PyTabularSettings,
@@ -173,7 +173,7 @@ fn controller_of(controller: &Bound<'_, PyAny>) -> PyResult<(Controller, f64)> {
         return Ok((Controller::AvoidCollision(rule), rule.max_speed));
     }
     let name = controller.extract::<String>().map_err(|_| {
-        invalid(format!(
+        wrong_type(format!(
             "expected controller to be {CONTROLLERS}, found a {}",
             type_name(controller)
         ))
@@ -320,10 +320,13 @@ pub fn lower_level_states<'py>(
         let (rows, width) = match shape[..] {
             [rows, width] if width >= sensors => (rows, width),
             _ => {
-                return Err(invalid(format!(
-                    "expected observations of shape (N, >= {sensors}) with the Sharp volts \
-                     first, found shape {shape:?}"
-                )))
+                return Err(shape_refusal(
+                    observations,
+                    format!(
+                        "expected observations of shape (N, >= {sensors}) with the Sharp volts \
+                         first, found shape {shape:?}"
+                    ),
+                ))
             }
         };
         let values = copied::<f32>(observations, "observations", "float32", &[rows, width])?;

@@ -46,7 +46,8 @@ impl PySimulator {
                 Ok(i) if i < n => return Ok(i),
                 _ => v.to_string(),
             },
-            IntArg::Other(what) => what.clone(),
+            IntArg::Huge(what) => what.clone(),
+            IntArg::Other(_) => return robot_index.count("robot_index", n.max(1) - 1),
         };
         Err(mazesim_core::swarm::bad_index(found, n)).py()
     }

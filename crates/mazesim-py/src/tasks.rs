@@ -10,7 +10,7 @@ use pyo3::types::PyBytes;
 
 use crate::args::{type_name, Bytes, Flag, IntArg, Real, Text};
 use crate::buffers::copied;
-use crate::errors::{invalid, IntoPy};
+use crate::errors::{invalid, wrong_type, IntoPy};
 use crate::guard::enter;
 use crate::lock::Exclusive;
 
@@ -171,7 +171,7 @@ impl PyTaskFeatures {
         targets: &Bound<'_, PyAny>,
     ) -> PyResult<()> {
         let (rows, cols) = shape.extract::<(IntArg, IntArg)>().map_err(|_| {
-            invalid(format!(
+            wrong_type(format!(
                 "expected shape to be a (rows, cols) pair of ints, found a {}",
                 type_name(shape)
             ))

@@ -16,7 +16,7 @@ use pyo3::types::{PyDict, PyString};
 use crate::args::{
     dict_argument, type_name, typed_argument, IntArg, Label, PathArg, SourceName, Text,
 };
-use crate::errors::{invalid, IntoPy};
+use crate::errors::{wrong_type, IntoPy};
 use crate::guard::{enter, enter_detached};
 use crate::world::{dicts, PyWorld};
 
@@ -97,7 +97,7 @@ fn grey_images(images: Option<&Bound<'_, PyAny>>) -> PyResult<BTreeMap<String, G
     let mut out = BTreeMap::new();
     for (key, value) in images.into_iter().flat_map(|d| d.iter()) {
         let file: String = key.extract().map_err(|_| {
-            invalid(format!(
+            wrong_type(format!(
                 "expected the keys of floor_images to be file names (str), found a {}",
                 type_name(&key)
             ))

@@ -408,7 +408,7 @@ pub fn world_argument(world: &Bound<'_, PyAny>, name: &str) -> PyResult<Arc<Worl
         Ok(w) => Ok(w.get().inner.clone()),
         Err(_) => {
             let kind = crate::args::type_name(world);
-            Err(crate::errors::invalid(format!(
+            Err(crate::errors::wrong_type(format!(
                 "expected {name} to be a mazesim.World, found a {kind}"
             )))
         }

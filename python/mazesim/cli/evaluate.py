@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import Any, TextIO
 
 from mazesim import World, load_world
+from mazesim._figures import figure_file
 from mazesim._paths import refuse_overwriting_inputs
 from mazesim.cli._args import add_setting_options, output_path, positive_int, seed_argument
 from mazesim.cli._help import examples
@@ -140,7 +141,7 @@ def register(commands: Any) -> None:
     )
     evaluate.add_argument(
         "--plot",
-        type=output_path,
+        type=figure_file,
         default=None,
         metavar="FILE",
         help="draw the first episodes' trajectories on the maze into a PNG (Fig. 4.6 / 4.8)",

@@ -14,6 +14,7 @@ import webbrowser
 from pathlib import Path
 from typing import Any, TextIO
 
+from mazesim._figures import figure_file
 from mazesim._paths import file_name_of, refuse_overwriting_inputs
 from mazesim.cli._help import examples
 
@@ -40,7 +41,9 @@ def register(commands: Any) -> None:
         ),
     )
     show.add_argument("world", metavar="WORLD", help="a built-in world name, a .toml or a .wbt")
-    show.add_argument("-o", "--out", default=None, metavar="FILE.png", help="the PNG to write")
+    show.add_argument(
+        "-o", "--out", type=figure_file, default=None, metavar="FILE.png", help="the PNG to write"
+    )
     show.add_argument(
         "--open",
         action="store_true",

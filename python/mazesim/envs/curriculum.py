@@ -37,7 +37,7 @@ import numpy.typing as npt
 from mazesim.envs.maze_env import EPuckMazeEnv
 from mazesim.envs.options import MAX_ENV_CELLS
 from mazesim.envs.vector import EPuckMazeVectorEnv
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, WrongTypeError
 
 __all__ = ["MazeSizeCurriculum", "MazeSizeCurriculumWrapper"]
 
@@ -125,7 +125,7 @@ class MazeSizeCurriculum:
         not, of a task with ``world="random"``) draw mazes of the current size."""
         target = getattr(env, "unwrapped", env)
         if not isinstance(target, (EPuckMazeEnv, EPuckMazeVectorEnv)):
-            raise InvalidArgumentError(
+            raise WrongTypeError(
                 f"expected a mazesim maze env or its native vector env, found "
                 f"{type(target).__name__}"
             )

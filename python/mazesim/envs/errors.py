@@ -7,7 +7,8 @@ Each error is a :class:`mazesim.MazesimError` and also the error gymnasium defin
 - :class:`EnvClosedError`: ``reset``, ``step`` or ``render`` after ``close()``;
 - :class:`ResetNeededError`: ``step`` before the first ``reset``;
 - :class:`~mazesim.errors.InvalidArgumentError`: a seed that is not an int in ``0..=2**64-1``
-  (or, for the vector env, a list of them), or options that are not a dict.
+  (or, for the vector env, a list of them), options that are not a dict, or an option the env
+  does not read (a misspelt one was ignored without a word).
 """
 
 from __future__ import annotations
@@ -18,7 +19,7 @@ from typing import Any
 
 from gymnasium.error import ClosedEnvironmentError, ResetNeeded
 
-from mazesim.errors import InvalidArgumentError, MazesimError
+from mazesim.errors import InvalidArgumentError, MazesimError, WrongTypeError, _closest_name
 
 __all__ = [
     "MAX_SEED",
@@ -65,16 +66,25 @@ def check_seed(seed: Any) -> int | None:
     return int(seed)
 
 
-def check_options(options: Any) -> Mapping[str, Any]:
-    """``reset``'s options as a mapping (empty for None).
+def check_options(options: Any, known: tuple[str, ...] = ()) -> Mapping[str, Any]:
+    """``reset``'s options as a mapping (empty for None), each of them one of ``known``.
 
     Raises:
-        InvalidArgumentError: Neither None nor a dict.
+        InvalidArgumentError: Neither None nor a dict (a ``WrongTypeError``), or an option that
+            is not one of ``known``.
     """
     if options is None:
         return {}
     if not isinstance(options, Mapping):
-        raise InvalidArgumentError(
+        raise WrongTypeError(
             f"expected options to be None or a dict, found {type(options).__name__}"
+        )
+    unknown = [key for key in options if key not in known]
+    if unknown:
+        takes = f"among {', '.join(map(repr, known))}" if known else "none (this env reads none)"
+        meant = _closest_name(str(unknown[0]), list(known))
+        raise InvalidArgumentError(
+            f"expected reset options {takes}, found {', '.join(map(repr, unknown[:8]))}"
+            + (f"; did you mean {meant!r}?" if meant else "")
         )
     return options

@@ -45,7 +45,7 @@ from mazesim.envs.options import (
 )
 from mazesim.envs.reward import step_reward
 from mazesim.envs.spaces import ActionConverter, ObservationLayout, sensor_ranges
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, WrongTypeError
 from mazesim.maze import GoalDistance, PathDistanceTable
 from mazesim.render.episode import EpisodeTrace
 from mazesim.render.topdown import TopDownRenderer
@@ -238,7 +238,7 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         batch = self._open_batch()
         n = self.num_envs
         seeds = self._seeds(seed)
-        mask = self._reset_mask(check_options(options).get("reset_mask"))
+        mask = self._reset_mask(check_options(options, ("reset_mask",)).get("reset_mask"))
         super().reset(seed=seeds[0] if is_seed(seed) else None)
         envs = np.flatnonzero(mask) if mask is not None else np.arange(n)
         for i in envs:
@@ -563,7 +563,7 @@ def _vector_keywords(vector_kwargs: Any, **given: Any) -> dict[str, Any]:
     """``given`` updated with ``vector_kwargs``, which may hold only the vector env's own
     keywords."""
     if not isinstance(vector_kwargs, dict):
-        raise InvalidArgumentError(
+        raise WrongTypeError(
             f"expected vector_kwargs to be a dict, found {type(vector_kwargs).__name__}"
         )
     unknown = sorted(str(key) for key in vector_kwargs if key not in given)

@@ -26,7 +26,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._paths import make_output_folder
-from mazesim.errors import InvalidArgumentError, MissingDependencyError
+from mazesim.errors import InvalidArgumentError, MissingDependencyError, WrongTypeError
 
 if importlib.util.find_spec("stable_baselines3") is None:
     raise MissingDependencyError(
@@ -156,7 +156,7 @@ class MazesimVecEnv(VecEnv):
 
     def __init__(self, vector_env: EPuckMazeVectorEnv | MazeGoalVectorEnv) -> None:
         if not isinstance(vector_env, _NATIVE):
-            raise InvalidArgumentError(
+            raise WrongTypeError(
                 "expected a mazesim EPuckMazeVectorEnv or MazeGoalVectorEnv, found "
                 f"{type(vector_env).__name__}"
             )

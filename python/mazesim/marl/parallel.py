@@ -134,7 +134,14 @@ class MultiRobotParallelEnv(ParallelEnv[str, Observation, npt.NDArray[np.float32
         wheels = np.zeros((1, len(self.possible_agents), 2), np.float32)
         for i, agent in enumerate(self.possible_agents):
             if agent in self.agents:
-                action = np.asarray(actions[agent], dtype=np.float32)
+                try:
+                    action = np.asarray(actions[agent], dtype=np.float32)
+                except (TypeError, ValueError, OverflowError) as error:
+                    found = repr(actions[agent])[:60]
+                    raise InvalidActionError(
+                        f"expected the action of {agent} to be two wheel speeds (numbers), found "
+                        f"{found}: {error}"
+                    ) from None
                 if action.shape != (2,):
                     raise InvalidActionError(
                         f"expected the action of {agent} of shape (2,), found {action.shape}"
