@@ -213,7 +213,8 @@ def register(commands: Any) -> None:
         default="",
         help="a world of one robot: put its topics in this namespace (epuck0: /epuck0/odom, "
         "/epuck0/cmd_vel...; /clock stays), as a node written for one robot of several names "
-        "them; a world of several robots puts each in its own",
+        "them; a world of several robots puts each in its own (default: none, the topics at the "
+        "root)",
     )
     _add_common(bridge)
     bridge.set_defaults(run=_run_bridge)

@@ -7,8 +7,8 @@ Each error is a :class:`mazesim.MazesimError` and also the error gymnasium defin
 - :class:`EnvClosedError`: ``reset``, ``step`` or ``render`` after ``close()``;
 - :class:`ResetNeededError`: ``step`` before the first ``reset``;
 - :class:`~mazesim.errors.InvalidArgumentError`: a seed that is not an int in ``0..=2**64-1``
-  (or, for the vector env, a list of them), options that are not a dict, or an option the env
-  does not read (a misspelt one was ignored without a word).
+  (or, for the vector env, a list of them), options that are not a dict, or a misspelling of
+  an option the env reads (it was ignored without a word).
 """
 
 from __future__ import annotations
@@ -67,11 +67,16 @@ def check_seed(seed: Any) -> int | None:
 
 
 def check_options(options: Any, known: tuple[str, ...] = ()) -> Mapping[str, Any]:
-    """``reset``'s options as a mapping (empty for None), each of them one of ``known``.
+    """``reset``'s options as a mapping (empty for None).
+
+    An option close to one of ``known`` but not it (``reset_mak`` for ``reset_mask``) is refused
+    as the misspelling it is; any other key is left alone, as Gymnasium and PettingZoo expect of
+    an env (wrappers pass options of their own, and PettingZoo's API test resets with
+    ``{"options": 1}``).
 
     Raises:
         InvalidArgumentError: Neither None nor a dict (a ``WrongTypeError``), or an option that
-            is not one of ``known``.
+            is a misspelling of one of ``known``.
     """
     if options is None:
         return {}
@@ -79,12 +84,11 @@ def check_options(options: Any, known: tuple[str, ...] = ()) -> Mapping[str, Any
         raise WrongTypeError(
             f"expected options to be None or a dict, found {type(options).__name__}"
         )
-    unknown = [key for key in options if key not in known]
-    if unknown:
-        takes = f"among {', '.join(map(repr, known))}" if known else "none (this env reads none)"
-        meant = _closest_name(str(unknown[0]), list(known))
-        raise InvalidArgumentError(
-            f"expected reset options {takes}, found {', '.join(map(repr, unknown[:8]))}"
-            + (f"; did you mean {meant!r}?" if meant else "")
-        )
+    for key in options:
+        meant = None if key in known else _closest_name(str(key), list(known))
+        if meant is not None:
+            raise InvalidArgumentError(
+                f"expected reset options among {', '.join(map(repr, known))}, found {key!r}; "
+                f"did you mean {meant!r}?"
+            )
     return options
