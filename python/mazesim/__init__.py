@@ -142,7 +142,7 @@ def load_world(name_or_path: str | os.PathLike[str]) -> World:
                 field=getattr(unreadable_world, "field", None),
             ) from None
     available = sorted(builtin_world_names())
-    from mazesim._paths import _kind_of
+    from mazesim._paths import _kind_of, world_files_beside
 
     try:
         found = f"it is {_kind_of(os.stat(path).st_mode)}, not a world file"
@@ -155,6 +155,7 @@ def load_world(name_or_path: str | os.PathLike[str]) -> World:
         f"built-in worlds: {', '.join(available)} (or a path to a .toml or .wbt world file)",
         available=available,
         name=path,
+        nearby=world_files_beside(path),
     )
     raise error
 

@@ -202,6 +202,11 @@ class World:
         "yaw", or "circle" with "radius"), "center", "mass", "friction", "reflectance"."""
     def checkpoints(self) -> list[dict[str, object]]:
         """Each checkpoint as a dict: "id", "code", "center", "yaw", "width"."""
+    def junction_checkpoints(self) -> str:
+        """The [[checkpoints]] tables generate_maze would place on this world's [grid] maze, one
+        on every way into every junction, as world-file text to paste into a maze drawn by hand
+        (after the grey [floor] of generated mazes when the world has no [floor]); "" when the
+        world has no grid or its maze no junction."""
     def cell_maze(self) -> dict[str, object] | None:
         """The cell maze of a [grid] world: rows, cols, cell_size, origin, horizontal
         ((rows + 1, cols) bool), vertical ((rows, cols + 1) bool), start and goal cells."""

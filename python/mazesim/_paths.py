@@ -28,6 +28,7 @@ __all__ = [
     "read_text",
     "refuse_overwriting_inputs",
     "same_file",
+    "world_files_beside",
     "writing_alone",
 ]
 
@@ -48,6 +49,29 @@ def _kind_of(mode: int) -> str:
         (stat.S_ISSOCK, "a socket"),
     )
     return next((word for test, word in kinds if test(mode)), "not a regular file")
+
+
+#: The most entries of a folder :func:`world_files_beside` looks at (a typo's suggestion is not
+#: worth reading a huge folder for).
+MAX_FOLDER_ENTRIES = 1000
+
+
+def world_files_beside(path: str) -> list[str]:
+    """The world files (``.toml``, ``.wbt``) in the folder of ``path``, written as ``path`` would
+    name them: the names a mistyped world file may have meant. Empty when the folder cannot be
+    read."""
+    folder = os.path.dirname(path)
+    names = []
+    try:
+        with os.scandir(folder or ".") as entries:
+            for count, entry in enumerate(entries):
+                if count >= MAX_FOLDER_ENTRIES:
+                    break
+                if entry.name.lower().endswith((".toml", ".wbt")):
+                    names.append(os.path.join(folder, entry.name))
+    except OSError:
+        return []
+    return sorted(names)
 
 
 def _read_failure(file: str, what: str, reason: str, number: int | None) -> MazesimIOError:

@@ -73,13 +73,20 @@ class UnknownNameError(MazesimError, LookupError):
 
     Attributes:
         available: The names that would have been accepted, if known.
-        suggestion: The accepted name closest to the one asked for, or None when none is close.
+        suggestion: The accepted name closest to the one asked for (of ``available`` and
+            ``nearby``: the world files beside a path that does not exist), or None when none is
+            close.
     """
 
     def __init__(
-        self, message: str = "", *, available: list[str] | None = None, name: str | None = None
+        self,
+        message: str = "",
+        *,
+        available: list[str] | None = None,
+        name: str | None = None,
+        nearby: list[str] | None = None,
     ) -> None:
-        self.suggestion = _closest_name(name, available)
+        self.suggestion = _closest_name(name, [*(available or []), *(nearby or [])])
         if self.suggestion is not None:
             message = f"{message}; did you mean {self.suggestion!r}?"
         super().__init__(message)

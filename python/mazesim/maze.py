@@ -57,9 +57,13 @@ def checkpoint_ids(world: World) -> list[int]:
     return sorted(int(cast(int, checkpoint["id"])) for checkpoint in world.checkpoints())
 
 
-def navigator_problems(world: World) -> list[str]:
+def navigator_problems(world: World, *, show_command: str | None = None) -> list[str]:
     """What keeps the hierarchical navigator (and the flat baseline) from learning ``world``,
     each said with what to change; empty when it can learn it.
+
+    A maze without checkpoints is told the ``[[checkpoints]]`` tables to paste, on lines of
+    their own; with ``show_command`` (``"mazesim show my-maze.toml"``), for a message of one
+    line, it is told to run that command, which prints them.
 
     The navigator needs a ``[grid]`` cell maze, a goal, a start cell from which the goal can be
     reached along the cells, a start pose inside the maze and clear of its walls, and barcode
@@ -96,12 +100,37 @@ def navigator_problems(world: World) -> list[str]:
     if start is not None:
         problems.append(start)
     if not world.checkpoints():
-        problems.append(
-            "it has no barcode checkpoints, and the navigator decides only where it reads one: "
-            "add [[checkpoints]] on the ways into its junctions (docs/world-format.md), or draw "
-            "it with mazesim.generate_maze, which places one on every way into every junction"
-        )
+        problems.append(_checkpoints_problem(world, show_command))
     return problems
+
+
+def _checkpoints_problem(world: World, show_command: str | None) -> str:
+    """What to add to a world without barcode checkpoints: the ``[[checkpoints]]`` tables that
+    :func:`mazesim.generate_maze` would place on its maze, ready to paste, or, for a maze without
+    a junction, where to open one."""
+    why = "it has no barcode checkpoints, and the navigator decides only where it reads one"
+    tables = world.junction_checkpoints()
+    if not tables:
+        return (
+            f"{why}, and its maze has no junction (a cell with three or four openings) to put one "
+            "before: open a wall of the [grid] map so that a corridor branches, or draw the maze "
+            "with mazesim.generate_maze"
+        )
+    if show_command is not None:
+        return (
+            f"{why}: add the [[checkpoints]] that '{show_command}' prints, one on every way into "
+            "every junction as mazesim.generate_maze places them"
+        )
+    count = tables.count("[[checkpoints]]")
+    floor = (
+        "the grey [floor] of generated mazes (on a white one the codes' ends do not show) and "
+        if tables.startswith("[floor]")
+        else ""
+    )
+    return (
+        f"{why}: add {floor}these {count} [[checkpoints]] (one on every way into every junction, "
+        "as mazesim.generate_maze places them) at the end of the world file:\n\n" + tables.strip()
+    )
 
 
 def _start_problem(world: World, maze: CellMaze) -> str | None:

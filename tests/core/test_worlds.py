@@ -272,6 +272,37 @@ def test_a_name_far_from_every_known_one_gets_no_guess(tmp_path: Path) -> None:
         assert caught.value.suggestion is None
 
 
+def test_a_mistyped_world_file_says_which_file_beside_it_was_meant(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    mazesim.generate_maze(3, 3, seed=1).save(str(tmp_path / "my-maze.toml"))
+    (tmp_path / "notes.txt").write_text("not a world")
+    with pytest.raises(UnknownNameError) as caught:
+        mazesim.load_world(str(tmp_path / "my-maz.toml"))
+    assert caught.value.suggestion == str(tmp_path / "my-maze.toml")
+    assert sorted(caught.value.available) == sorted(BUILTIN_WORLDS)
+    # A relative path is answered relatively, as it was typed.
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(UnknownNameError, match="did you mean 'my-maze.toml'\\?$"):
+        mazesim.load_world("mymaze.toml")
+
+
+def test_a_grid_row_cut_short_names_its_line_instead_of_opening_the_wall() -> None:
+    text = (
+        'format = "mazesim-world"\nversion = 1\n[grid]\nmap = """\n'
+        "+--+--+\n|S    |\n+  +--+\n|   G\n+--+--+\n" + '"""\n'
+    )
+    with pytest.raises(WorldFormatError) as caught:
+        World.from_toml(text, source="short.toml")
+    message = str(caught.value)
+    assert message.startswith("short.toml:8:")
+    assert "every row 7 characters wide" in message and "found 5" in message
+    assert "east border" in message
+    # With its spaces kept, the row is an opening in the east wall on purpose.
+    opened = World.from_toml(text.replace("|   G\n", "|   G  \n"), source="open.toml")
+    assert not opened.cell_maze()["vertical"][1, 2]
+
+
 def test_load_world_reads_a_path(tmp_path: Path) -> None:
     arena = mazesim.load_world("arena")
     path = tmp_path / "my-arena.toml"

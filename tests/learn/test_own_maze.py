@@ -5,6 +5,7 @@ command ``mazesim train`` prints works as printed; long comparisons show where t
 from __future__ import annotations
 
 import json
+import math
 import os
 from pathlib import Path
 
@@ -15,7 +16,7 @@ from mazesim.cli import main
 from mazesim.errors import PolicyFormatError, UnknownNameError
 from mazesim.learn.schema import differing
 from mazesim.learn.tables import load_policy
-from mazesim.maze import navigator_problems
+from mazesim.maze import CellMaze, navigator_problems
 
 #: A small, quick training: 32 robots, 16,000 env-steps of the lower level.
 QUICK = ["--envs", "32", "--steps", "16000", "--no-progress"]
@@ -63,6 +64,68 @@ def test_the_problems_of_a_world_say_what_to_change() -> None:
     )
     assert "no [grid] cell maze" in navigator_problems(mazesim.load_world("arena"))[0]
     assert navigator_problems(mazesim.load_world("seed-maze")) == []
+
+
+#: A maze drawn by hand with two junctions and no checkpoints, away from the origin.
+DRAWN = '''format = "mazesim-world"
+version = 1
+
+[grid]
+origin = [1.0, 2.0]
+map = """
++--+--+--+
+|S       |
++  +  +--+
+|  |    G|
++  +--+  +
+|        |
++--+--+--+
+"""
+'''
+
+
+def test_a_maze_drawn_by_hand_is_told_the_checkpoints_to_paste(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    drawn = tmp_path / "drawn.toml"
+    drawn.write_text(DRAWN)
+    (problem,) = navigator_problems(mazesim.load_world(str(drawn)))
+    assert "the grey [floor] of generated mazes" in problem
+    assert "these 3 [[checkpoints]]" in problem and "at the end of the world file" in problem
+    tables = problem.split("\n\n", 1)[1]
+    assert tables.startswith("[floor]\nreflectance = 0.36\n\n[[checkpoints]]\nid = 1\n")
+    assert main(["show", str(drawn), "-o", str(tmp_path / "drawn.png")]) == 0
+    assert tables in capsys.readouterr().out
+    # The refusal of train, one line, says which command prints them.
+    args = ["train", "--world", str(drawn), "--out", str(tmp_path / "run"), *QUICK]
+    assert main(args) == 2
+    refusal = capsys.readouterr().err
+    assert f"add the [[checkpoints]] that 'mazesim show {drawn}' prints" in refusal
+    assert len(refusal.splitlines()) == 1
+    # Pasted as told, the navigator can learn the maze, its codes before its junctions.
+    drawn.write_text(DRAWN + "\n" + tables + "\n")
+    world = mazesim.load_world(str(drawn))
+    assert navigator_problems(world) == []
+    assert world.floor_background == 0.36
+    # The same checkpoints, and no second [floor] now that the world has one.
+    assert world.junction_checkpoints() == tables.split("\n\n", 1)[1] + "\n"
+    maze = CellMaze(world)
+    for checkpoint in world.checkpoints():
+        x, y = checkpoint["center"]
+        assert 1.0 < x < 1.75 and 2.0 < y < 2.75
+        # Just ahead of each code, along its reading direction, lies a junction.
+        ahead = 0.6 * maze.cell_size
+        yaw = float(checkpoint["yaw"])
+        column, row = maze.cell_at(x + ahead * math.cos(yaw), y + ahead * math.sin(yaw))
+        assert len(maze.openings((int(column), int(row)))) >= 3
+
+
+def test_a_maze_without_a_junction_is_told_to_open_one() -> None:
+    corridor = WALLED.replace("|S    |G |", "|S     G |").replace("+  +--+  +", "+--+--+--+")
+    world = mazesim.World.from_toml(corridor, source="corridor.toml")
+    assert world.junction_checkpoints() == ""
+    (problem,) = [p for p in navigator_problems(world) if "checkpoints" in p]
+    assert "no junction" in problem and "open a wall of the [grid] map" in problem
 
 
 @pytest.mark.parametrize(

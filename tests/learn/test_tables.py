@@ -118,8 +118,10 @@ def test_another_world_is_refused(tmp_path: Path) -> None:
 
 
 def test_missing_folder_is_refused(tmp_path: Path) -> None:
-    with pytest.raises(PolicyFormatError, match="no such file"):
+    with pytest.raises(PolicyFormatError, match="no such file") as refused:
         load_policy(tmp_path / "nowhere")
+    assert f"there is no folder {str(tmp_path / 'nowhere')!r}" in str(refused.value)
+    assert "'mazesim train --out DIR' writes" in str(refused.value)
 
 
 def test_eval_command_reports_a_damaged_policy_in_one_line(tmp_path: Path) -> None:

@@ -206,7 +206,7 @@ pub fn generate(params: &MazeParams, seed: u64) -> Result<World> {
     m.goal = Some((goal_index % m.cols, goal_index / m.cols));
     let cs = params.cell_size;
     let checkpoints = if params.checkpoints {
-        place_checkpoints(&m, cs)
+        place_checkpoints(&m, cs, [0.0, 0.0])
     } else {
         Vec::new()
     };
@@ -284,7 +284,7 @@ struct Candidate {
 /// of the doors on the shortest way from the start to the goal come first, then the others in
 /// scan order; the rest get none. Ids and codes follow the scan order (row by row, then east,
 /// north, west, south of each door).
-fn place_checkpoints(m: &CellMaze, cs: f64) -> Vec<CheckpointSpec> {
+fn place_checkpoints(m: &CellMaze, cs: f64, origin: [f64; 2]) -> Vec<CheckpointSpec> {
     let book = codebook::default_codes();
     let door = |c: usize, r: usize| openings(m, c, r) >= 3;
     let on_way = way_cells(m);
@@ -348,8 +348,8 @@ fn place_checkpoints(m: &CellMaze, cs: f64) -> Vec<CheckpointSpec> {
                 Spot::Edge => cs / 2.0,
             };
             let center = [
-                (nc as f64 + 0.5) * cs + shift * DX[cand.dir] as f64,
-                (m.rows as f64 - nr as f64 - 0.5) * cs - shift * DY[cand.dir] as f64,
+                origin[0] + (nc as f64 + 0.5) * cs + shift * DX[cand.dir] as f64,
+                origin[1] + (m.rows as f64 - nr as f64 - 0.5) * cs - shift * DY[cand.dir] as f64,
             ];
             CheckpointSpec {
                 id: index as u32 + 1,
@@ -360,6 +360,54 @@ fn place_checkpoints(m: &CellMaze, cs: f64) -> Vec<CheckpointSpec> {
             }
         })
         .collect()
+}
+
+/// The checkpoints [`generate`] would place on a world's `[grid]` maze: one on every way into
+/// every junction, as on a generated maze (for a maze drawn by hand without `[[checkpoints]]`).
+/// The start and goal cells are the `S` and `G` of the map, else those of the world's start pose
+/// and goal. Empty when the world has no grid or its maze no junction.
+pub fn junction_checkpoints(world: &World) -> Vec<CheckpointSpec> {
+    let Some(placed) = world.maze() else {
+        return Vec::new();
+    };
+    let (origin, cs) = (placed.origin, placed.cell_size);
+    let mut m = placed.maze.clone();
+    let (rows, cols) = (m.rows as f64, m.cols as f64);
+    let cell_at = |p: [f64; 2]| {
+        let c = ((p[0] - origin[0]) / cs).floor();
+        let r = rows - 1.0 - ((p[1] - origin[1]) / cs).floor();
+        let inside = c >= 0.0 && r >= 0.0 && c < cols && r < rows;
+        inside.then_some((c as usize, r as usize))
+    };
+    let start = world.start();
+    let start_cell = m.start.or_else(|| cell_at([start[0], start[1]]));
+    let goal_cell = m
+        .goal
+        .or_else(|| world.goal().and_then(|g| cell_at(g.center)));
+    (m.start, m.goal) = (start_cell, goal_cell);
+    place_checkpoints(&m, cs, origin)
+}
+
+/// [`junction_checkpoints`] as the `[[checkpoints]]` tables of a world file, ready to paste (empty
+/// when there are none), after the grey `[floor]` of generated mazes when the world has no
+/// `[floor]` (on the default white floor a code's white bits would not show where it ends).
+pub fn junction_checkpoints_toml(world: &World) -> Result<String> {
+    #[derive(serde::Serialize)]
+    struct Tables {
+        #[serde(skip_serializing_if = "Option::is_none")]
+        floor: Option<FloorSpec>,
+        checkpoints: Vec<CheckpointSpec>,
+    }
+    let checkpoints = junction_checkpoints(world);
+    if checkpoints.is_empty() {
+        return Ok(String::new());
+    }
+    let floor = world.spec().floor.is_none().then(|| FloorSpec {
+        reflectance: Reflectance(MazeParams::default().floor_reflectance),
+        colour: None,
+    });
+    toml::to_string(&Tables { floor, checkpoints })
+        .map_err(|e| Error::InvalidArgument(format!("cannot write the checkpoints: {e}")))
 }
 
 /// The cells on a shortest way from the start to the goal (true where on it).
@@ -493,6 +541,43 @@ mod tests {
                 "{label}: approach {a:?} unmarked"
             );
         }
+    }
+
+    #[test]
+    fn a_generated_map_without_its_checkpoints_gets_them_back_wherever_it_lies() {
+        let p = MazeParams {
+            width: 4,
+            height: 4,
+            ..Default::default()
+        };
+        let generated = generate(&p, 3).unwrap();
+        let mut spec = generated.spec().clone();
+        spec.checkpoints.clear();
+        let bare = World::from_spec(spec.clone(), "bare").unwrap();
+        assert!(bare.checkpoints().is_empty());
+        assert_eq!(junction_checkpoints(&bare), generated.spec().checkpoints);
+        // The same map elsewhere, its start given by [start] alone (no S): the same codes, moved.
+        let shift = [1.5, -2.0];
+        let grid = spec.grid.as_mut().unwrap();
+        grid.origin = [Finite(shift[0]), Finite(shift[1])];
+        grid.map = toml::Spanned::new(0..0, grid.map.get_ref().replace('S', " "));
+        let start = spec.start.as_mut().unwrap();
+        (start.x, start.y) = (Finite(start.x.0 + shift[0]), Finite(start.y.0 + shift[1]));
+        let moved = junction_checkpoints(&World::from_spec(spec, "moved").unwrap());
+        assert_eq!(moved.len(), generated.checkpoints().len());
+        for (m, g) in moved.iter().zip(&generated.spec().checkpoints) {
+            assert_eq!((m.id, &m.code, m.yaw.0), (g.id, &g.code, g.yaw.0));
+            for (k, by) in shift.iter().enumerate() {
+                assert!((m.center[k].0 - g.center[k].0 - by).abs() < 1e-12);
+            }
+        }
+        // A maze without a junction has nowhere for one.
+        let ring = World::from_toml(
+            "format = \"mazesim-world\"\nversion = 1\n[grid]\nmap = \"\"\"\n+--+--+\n|S    |\n+  +  +\n|   G |\n+--+--+\n\"\"\"\n",
+            "ring",
+        )
+        .unwrap();
+        assert!(junction_checkpoints(&ring).is_empty());
     }
 
     #[test]

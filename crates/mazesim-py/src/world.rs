@@ -292,6 +292,14 @@ impl PyWorld {
         })
     }
 
+    /// The `[[checkpoints]]` tables `generate_maze` would place on this world's `[grid]` maze, one
+    /// on every way into every junction, as world-file text to paste into a maze drawn by hand
+    /// (after the grey `[floor]` of generated mazes when the world has none); "" when the world
+    /// has no grid or its maze no junction.
+    fn junction_checkpoints(&self) -> PyResult<String> {
+        enter(|| mazesim_core::generator::junction_checkpoints_toml(&self.inner).py())
+    }
+
     /// Checkpoints as dicts: id, code, center, yaw, width.
     fn checkpoints<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
         enter(|| {

@@ -42,7 +42,7 @@ __all__ = ["run_hrl_demo"]
 def run_hrl_demo(args: argparse.Namespace, out: TextIO) -> int:
     """Runs the navigator demo (``args``: world, seconds, seed, out)."""
     world = mazesim.load_world(args.world)
-    problems = navigator_problems(world)
+    problems = navigator_problems(world, show_command=f"mazesim show {args.world}")
     if problems:
         raise InvalidArgumentError(
             f"the navigator cannot drive world {world.name!r}: " + "; ".join(problems)

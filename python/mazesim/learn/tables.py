@@ -686,6 +686,14 @@ def load_policy(folder: str | os.PathLike[str] | None = None) -> TrainedPolicy:
     """
     path = navigator_folder(folder)
     meta_path = path / METADATA_FILE
+    if not path.exists():
+        where = "" if path.is_absolute() else f" in {os.getcwd()}"
+        shipped = ", ".join(repr(name) for name in SHIPPED_NAVIGATORS)
+        raise PolicyFormatError(
+            f"{meta_path}: no such file: there is no folder {str(path)!r}{where}; a navigator is "
+            f"the folder 'mazesim train --out DIR' writes, or a shipped one ({shipped}; without "
+            "--policy, the seed-maze navigator)"
+        )
     arrays, metadata = read_bundle(
         path,
         TABLES_FILE,

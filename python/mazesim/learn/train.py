@@ -315,7 +315,7 @@ def navigator_world(name: str) -> World:
         UnknownNameError, WorldFormatError: The world cannot be loaded.
     """
     world = load_world(name)
-    problems = navigator_problems(world)
+    problems = navigator_problems(world, show_command=f"mazesim show {name}")
     if problems:
         shown = name if name == world.name else f"{world.name!r} ({name})"
         raise InvalidArgumentError(

@@ -165,6 +165,24 @@ impl CellMaze {
                     }
                 }
             }
+            // A row cut short (a forgotten east border, or an editor that stripped trailing
+            // spaces) would be padded with openings and open the outer wall unseen; spaces
+            // written out up to the full width are openings on purpose. A misplaced character of
+            // the row is told first (above).
+            let written = body[i].chars().count();
+            if written < width {
+                return Err(problem(
+                    at,
+                    written,
+                    format!(
+                        "expected every row {width} characters wide, as the widest (3 * columns \
+                         + 1), found {written}: end the row with its east border ('|' in a cell \
+                         row, '+' in a wall row); an opening in the east wall is written with \
+                         spaces up to the full width, which the editor must keep (many strip \
+                         trailing spaces)"
+                    ),
+                ));
+            }
         }
         Ok(maze)
     }
@@ -299,5 +317,22 @@ mod tests {
         assert_eq!((err.row, err.column), (1, 1));
         let err = CellMaze::parse("+--+\n|  |").unwrap_err();
         assert!(err.message.contains("odd number"));
+    }
+
+    #[test]
+    fn a_row_cut_short_is_refused_and_written_out_spaces_are_openings() {
+        // The east border of the second cell row forgotten (or stripped with its spaces).
+        let err = CellMaze::parse("+--+--+\n|S    |\n+  +--+\n|   G\n+--+--+").unwrap_err();
+        assert_eq!((err.row, err.column), (3, 5));
+        assert!(
+            err.message.contains("every row 7 characters wide"),
+            "{}",
+            err.message
+        );
+        assert!(err.message.contains("east border"), "{}", err.message);
+        // The same row with its spaces kept: an opening in the east wall on purpose.
+        let open = CellMaze::parse("+--+--+\n|S    |\n+  +--+\n|   G  \n+--+--+").unwrap();
+        assert!(!open.vertical[open.cols + 1 + open.cols]);
+        assert!(open.vertical[open.cols]);
     }
 }
