@@ -208,13 +208,12 @@ def controller_main(connection: Connection, job: ControllerJob) -> None:
     ``connection`` (the entry point of a controller process)."""
     from mazesim.webots.importer import import_wbt, import_wbt_text
     from mazesim.webots.runner import run_controller
-    from mazesim.webots.scene import read_scene
+    from mazesim.webots.scene import read_scene, read_world_text
 
     text = job.world_text
     if text is None:
         world, imported = import_wbt(job.world_path, robot_line=job.robot_line)
-        with open(job.world_path, encoding="utf-8", errors="replace") as handle:
-            text = handle.read().replace("\r\n", "\n").replace("\r", "\n")
+        text = read_world_text(job.world_path)
     else:
         world, imported = import_wbt_text(text, job.world_path, robot_line=job.robot_line)
     report: dict[str, Any] = dict(imported)
