@@ -178,10 +178,12 @@ class RemoteSimulator(Remote):
         """The wheels' turns (rad)."""
         return self._state("encoders")
 
-    def set_pose(self, x: float, y: float, yaw: float) -> None:
-        """Puts the robot at a new pose, at rest."""
+    def set_pose_pushed_out(self, x: float, y: float, yaw: float) -> tuple[float, float]:
+        """Puts the robot at a new pose at rest, or at the nearest clear of the walls; returns
+        the x, y it stands at."""
         self._after_step.clear()
-        self._ask(("call", "simulator", "set_pose", (x, y, yaw)))
+        x, y = self._ask(("call", "simulator", "set_pose_pushed_out", (x, y, yaw)))
+        return x, y
 
     def step(self, left: float, right: float) -> bool:
         """Asks for the next basic step with these wheel speeds; returns once taken, True when

@@ -60,7 +60,7 @@ from mazesim.webots.robots_changed import RemovedRobot, RobotChange, robot_chang
 from mazesim.webots.runner import CONTROLLER_SUFFIXES, EXIT_INTERRUPTED
 from mazesim.webots.scene import Scene, read_scenes, read_world_text
 from mazesim.webots.shared_world import RobotView, shared_simulator, with_robots_of
-from mazesim.webots.simulation import WorldReset, place_where_asked, robot_profile_name
+from mazesim.webots.simulation import WorldReset, robot_profile_name
 from mazesim.webots.solids import Pose2, WorldSolids, carried_over
 from mazesim.webots.stock_controllers import stock_controller
 from mazesim.webots.traction import Traction, epuck_traction
@@ -231,7 +231,7 @@ class Fleet:
 
     def move(self, index: int, x: float, y: float, yaw: float) -> None:
         """Puts a robot at a new pose, at rest."""
-        place_where_asked(self._simulators[index], x, y, yaw)
+        self._simulators[index].set_pose_pushed_out(x, y, yaw)
         self.moved.add(index)
 
     def _worlds(self) -> list[Any]:
