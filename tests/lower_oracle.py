@@ -54,6 +54,14 @@ from navigator_oracle import (
 NUM_SENSORS = 6
 
 
+def move_to_world(batch: RobotBatch, env: int, world: int) -> None:
+    """Puts robot ``env`` of ``batch`` into ``batch.worlds[world]`` (placed at that world's start
+    until ``place`` moves it); nothing happens when it is there already."""
+    if int(batch.world_of_env[env]) != int(world):
+        batch.simulator.set_world(int(env), batch.worlds[int(world)], 0)
+        batch.world_of_env[env] = int(world)
+
+
 class SteppedFleet:
     """A :class:`FleetBatch` stepped as one batch of seed-robot observations: (N, 6) float32
     volts of each robot's distance sensors, its pose and its contact flag."""
@@ -92,7 +100,7 @@ class SteppedFleet:
         """Puts robot ``env`` into world ``world``."""
         batch = self.fleet.batches[int(self.group[env])]
         assert batch is not None
-        batch.move_to_world(int(self.row[env]), world)
+        move_to_world(batch, int(self.row[env]), world)
 
     def place(
         self, envs: npt.NDArray[np.int64], poses: npt.NDArray[np.float64], seeds: npt.NDArray[Any]
@@ -300,7 +308,10 @@ class _Episodes:
         rows = self.taken[envs] % per_env
         self.taken[envs] += 1
         for env, world in zip(envs, self.starts.world[envs, rows]):
-            self.robots.move_to_world(int(env), int(world))
+            if isinstance(self.robots, RobotBatch):
+                move_to_world(self.robots, int(env), int(world))
+            else:
+                self.robots.move_to_world(int(env), int(world))
         self.robots.place(envs, self.starts.pose[envs, rows], self.starts.seed[envs, rows])
         self.path[envs] = self.starts.path[envs, rows]
         self.steps[envs] = 0

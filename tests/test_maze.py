@@ -18,6 +18,7 @@ from mazesim.maze import (
     GoalDistance,
     PathDistanceTable,
     breadth_first_distances,
+    next_cells,
 )
 
 
@@ -74,7 +75,7 @@ def test_open_sides_are_is_open_of_every_cell() -> None:
 def test_next_cells_lead_one_open_step_nearer_the_target(loops: float) -> None:
     maze = CellMaze(mazesim.generate_maze(6, 4, seed=2, loops=loops))
     target = (4, 1)
-    following = maze.next_cells_towards(target)
+    following = next_cells(maze.open_sides()[None], np.array([target]))[0]
     distance = maze.distances_from(target)
     assert following[1, 4].tolist() == [-1, -1]
     for cell in maze.cells():
@@ -91,7 +92,7 @@ def test_next_cells_lead_one_open_step_nearer_the_target(loops: float) -> None:
 
 def test_next_cells_are_none_where_the_target_cannot_be_reached() -> None:
     maze = CellMaze(mazesim.load_world("seed-maze"))  # (1, 1) is walled in
-    following = maze.next_cells_towards((0, 0))
+    following = next_cells(maze.open_sides()[None], np.array([(0, 0)]))[0]
     distance = maze.distances_from((0, 0))
     assert distance[1, 1] < 0 and following[1, 1].tolist() == [-1, -1]
     assert np.array_equal((following >= 0).all(axis=-1), distance > 0)

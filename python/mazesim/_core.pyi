@@ -403,6 +403,19 @@ class Simulator:
     def set_pose(
         self, x: float, y: float, yaw: float, robot_index: int = 0, overlap_robots: bool = False
     ) -> None: ...
+    def set_pose_pushed_out(
+        self, x: float, y: float, yaw: float, robot_index: int = 0, overlap_robots: bool = False
+    ) -> tuple[float, float]:
+        """Moves robot ``robot_index`` as :meth:`set_pose` does or, when its body would lie in
+        a wall there, to the nearest pose within 5 cm that :meth:`set_pose` accepts, as Webots'
+        physics pushes a body out of a wall.
+
+        Returns:
+            The (x, y) the robot stands at.
+
+        Raises:
+            InvalidArgumentError: The pose is refused and none within 5 cm is clear.
+        """
     def distance_sensors(self, robot_index: int = 0) -> npt.NDArray[np.float32]: ...
     def ground_sensors(self, robot_index: int = 0) -> npt.NDArray[np.float32]: ...
     def body_poses(self) -> list[tuple[float, float, float]]:

@@ -121,10 +121,6 @@ class RobotBatch:
             threads=threads,
         )
         self.profile = first_profile(robot)
-        robots = [robot] if isinstance(robot, (str, RobotProfile)) else list(robot)
-        self.one_motor_limit = all(
-            first_profile(each).max_wheel_speed == self.profile.max_wheel_speed for each in robots
-        )
         self.wheel_speeds = (WHEEL_SPEED_FRACTIONS * self.profile.max_wheel_speed).astype(
             np.float32
         )
@@ -163,14 +159,6 @@ class RobotBatch:
     def observe(self) -> None:
         """Writes the current state into the buffers without stepping."""
         self.simulator.observe(self.observations, self.poses, self.colliding, self.crossings)
-
-    def move_to_world(self, env: int, world: int) -> None:
-        """Puts robot ``env`` into ``worlds[world]`` (placed at that world's start until
-        :meth:`place` moves it); nothing happens when it is there already."""
-        if int(self.world_of_env[env]) == int(world):
-            return
-        self.simulator.set_world(int(env), self.worlds[int(world)], 0)
-        self.world_of_env[env] = int(world)
 
     def place(self, envs: npt.ArrayLike, poses: npt.ArrayLike, seeds: npt.ArrayLike) -> None:
         """Starts robots ``envs`` afresh at ``poses`` ((M, 3) x, y, yaw) with noise ``seeds``.

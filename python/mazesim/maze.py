@@ -228,12 +228,6 @@ class CellMaze:
         sides[..., SOUTH] = ~self.horizontal[1:]
         return sides
 
-    def next_cells_towards(self, target: tuple[int, int]) -> npt.NDArray[np.int64]:
-        """(rows, cols, 2): the (column, row) of the next cell on a shortest path from each cell
-        to ``target`` (:func:`next_cells`); -1, -1 in ``target`` and in the cells that cannot
-        reach it."""
-        return next_cells(self.open_sides()[None], np.array([target]))[0]
-
     def openings(self, cell: tuple[int, int]) -> list[int]:
         """The open directions of a cell, in direction order."""
         return [d for d in range(4) if self.is_open(cell, d)]
@@ -293,16 +287,6 @@ class CellMaze:
                 straight = set(open_sides) <= {heading, side}
                 approaches.append(DoorApproach(cell, door, heading, straight))
         return approaches
-
-    def code_centre(self, approach: DoorApproach) -> tuple[float, float]:
-        """Where the generator paints the middle of an approach's code: the middle of a straight
-        approach cell, else the middle of the edge between the cell and the door."""
-        x, y = self.center(approach.cell)
-        if approach.straight:
-            return x, y
-        shift = self.cell_size / 2.0
-        angle = self.heading_of(approach.heading)
-        return x + shift * round(math.cos(angle)), y + shift * round(math.sin(angle))
 
     def heading_of(self, direction: int) -> float:
         """The heading in radians of a direction number."""

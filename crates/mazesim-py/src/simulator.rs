@@ -430,6 +430,28 @@ impl PySimulator {
         })
     }
 
+    /// Moves robot `robot_index` as `set_pose` does or, when its body would lie in a wall
+    /// there, to the nearest pose within 5 cm that `set_pose` accepts, as Webots' physics pushes
+    /// a body out of a wall; returns the (x, y) it stands at.
+    #[pyo3(signature = (x, y, yaw, robot_index = IntArg::ZERO, overlap_robots = Flag::Value(false)), text_signature = "($self, x, y, yaw, robot_index=0, overlap_robots=False)")]
+    fn set_pose_pushed_out(
+        &self,
+        x: Real,
+        y: Real,
+        yaw: Real,
+        robot_index: IntArg,
+        overlap_robots: Flag,
+    ) -> PyResult<(f64, f64)> {
+        let (x, y, yaw) = (x.value("x")?, y.value("y")?, yaw.value("yaw")?);
+        let overlap = overlap_robots.value("overlap_robots", "a bool")?;
+        let mut placed = [x, y];
+        self.change_robot(robot_index, |s, i| {
+            placed = s.set_pose_pushed_out(i, [x, y], yaw, overlap)?;
+            Ok(())
+        })?;
+        Ok((placed[0], placed[1]))
+    }
+
     /// Robot `robot`'s distance sensor readings (float32), device order.
     #[pyo3(signature = (robot_index = IntArg::ZERO), text_signature = "($self, robot_index=0)")]
     fn distance_sensors<'py>(

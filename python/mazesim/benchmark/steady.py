@@ -323,11 +323,6 @@ class SteadyState:
         n, limit = self.settings.envs, self.settings.episode_steps
         return -(-offset * n // limit), -(-(offset + 1) * n // limit)
 
-    @property
-    def episode_clock(self) -> np.ndarray:
-        """Steps of each env's current episode."""
-        return (self.episode_offset + self.steps_done) % self.settings.episode_steps
-
     def timed_block(self, steps: int) -> Block:
         """Advances ``steps`` steps and times them."""
         first = self.steps_done

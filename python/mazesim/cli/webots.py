@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import io
 import json
 import math
 import os
@@ -14,7 +13,6 @@ from typing import Any, TextIO
 from mazesim._atomic import atomic_file
 from mazesim._paths import (
     make_output_folder,
-    open_input,
     output_files,
     output_path,
     refuse_overwriting_inputs,
@@ -220,7 +218,7 @@ def _load_world(
     import mazesim
     from mazesim.errors import WorldFormatError
     from mazesim.webots.importer import import_summary, import_wbt, robot_warnings
-    from mazesim.webots.scene import read_scene
+    from mazesim.webots.scene import read_scene, read_world_text
 
     if not spec.lower().endswith(".wbt"):
         return mazesim.load_world(spec), None, None
@@ -239,11 +237,7 @@ def _load_world(
             source=spec,
         )
     # The import has checked the file's size; it is read again only for the scene's fields.
-    with io.TextIOWrapper(
-        open_input(spec, "the Webots world"), encoding="utf-8", errors="replace"
-    ) as handle:
-        text = handle.read().replace("\r\n", "\n").replace("\r", "\n")
-    scene = read_scene(text, report.get("robot_model"), report.get("robot_line"))
+    scene = read_scene(read_world_text(spec), report.get("robot_model"), report.get("robot_line"))
     return world, report, scene
 
 

@@ -269,7 +269,6 @@ class Ros2Bridge:
         self.goal_step: int | None = None
         self.stop = threading.Event()
         self.rejected_controls = 0
-        self.published_steps = 0
         #: Lockstep: how many times the reset state went out again, awaiting a first command.
         self.resent_states = 0
         self._waitset = self._make_waitset()
@@ -323,7 +322,6 @@ class Ros2Bridge:
                 self._send(writer, nanoseconds, data)
         if self.clock_writer is not None:
             self._send(self.clock_writer, nanoseconds, cdr.encode_clock(stamp))
-        self.published_steps += 1
 
     def _note_goal(self) -> None:
         if self.goal is not None and self.goal_step is None:

@@ -90,17 +90,6 @@ class CdrWriter:
         self.buffer += _TIME.pack(*stamp)
         self.string(frame)
 
-    def float64s(self, values: Sequence[float]) -> None:
-        """Appends a ``float64[]`` sequence."""
-        self.pack(_U32, 4, len(values))
-        if values:
-            self.pack(struct.Struct(f"<{len(values)}d"), 8, *values)
-
-    def float32s(self, values: Sequence[float]) -> None:
-        """Appends a ``float32[]`` sequence."""
-        self.pack(_U32, 4, len(values))
-        self.buffer += struct.pack(f"<{len(values)}f", *values)
-
     def bytes(self) -> bytes:
         """The message, padded to a multiple of 4 bytes as DDS sends it."""
         self.align(4)

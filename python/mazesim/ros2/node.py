@@ -49,13 +49,6 @@ class Writer:
         if result < 0:
             raise MazesimIOError(f"expected DDS to take a message on {self.topic}; error {result}")
 
-    def publish_sample(self, sample: Any) -> bytes:
-        """Sends a Cyclone DDS sample of the topic's type; returns its encoding."""
-        data: bytes = sample.serialize(use_version_2=False)
-        data = data.ljust(-(-len(data) // 4) * 4, b"\x00")
-        self.publish(data)
-        return data
-
     def subscribers(self) -> int:
         """How many readers are matched."""
         return len(self.dds.get_matched_subscriptions())

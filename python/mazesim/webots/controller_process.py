@@ -178,10 +178,12 @@ class RemoteSimulator(Remote):
         """The wheels' turns (rad)."""
         return self._state("encoders")
 
-    def set_pose(self, x: float, y: float, yaw: float) -> None:
-        """Puts the robot at a new pose, at rest."""
+    def set_pose_pushed_out(self, x: float, y: float, yaw: float) -> tuple[float, float]:
+        """Puts the robot at a new pose at rest, or at the nearest clear of the walls; returns
+        the x, y it stands at."""
         self._after_step.clear()
-        self._ask(("call", "simulator", "set_pose", (x, y, yaw)))
+        x, y = self._ask(("call", "simulator", "set_pose_pushed_out", (x, y, yaw)))
+        return x, y
 
     def step(self, left: float, right: float) -> bool:
         """Asks for the next basic step with these wheel speeds; returns once taken, True when
@@ -208,13 +210,12 @@ def controller_main(connection: Connection, job: ControllerJob) -> None:
     ``connection`` (the entry point of a controller process)."""
     from mazesim.webots.importer import import_wbt, import_wbt_text
     from mazesim.webots.runner import run_controller
-    from mazesim.webots.scene import read_scene
+    from mazesim.webots.scene import read_scene, read_world_text
 
     text = job.world_text
     if text is None:
         world, imported = import_wbt(job.world_path, robot_line=job.robot_line)
-        with open(job.world_path, encoding="utf-8", errors="replace") as handle:
-            text = handle.read().replace("\r\n", "\n").replace("\r", "\n")
+        text = read_world_text(job.world_path)
     else:
         world, imported = import_wbt_text(text, job.world_path, robot_line=job.robot_line)
     report: dict[str, Any] = dict(imported)

@@ -58,9 +58,9 @@ from mazesim.webots.rays import WallBoxes
 from mazesim.webots.requirements import PreparedController, prepare_controller, unbuilt
 from mazesim.webots.robots_changed import RemovedRobot, RobotChange, robot_change
 from mazesim.webots.runner import CONTROLLER_SUFFIXES, EXIT_INTERRUPTED
-from mazesim.webots.scene import Scene, read_scene, read_scenes
+from mazesim.webots.scene import Scene, read_scene, read_scenes, read_world_text
 from mazesim.webots.shared_world import RobotView, shared_simulator, with_robots_of
-from mazesim.webots.simulation import WorldReset, place_where_asked, robot_profile_name
+from mazesim.webots.simulation import WorldReset, robot_profile_name
 from mazesim.webots.solids import Pose2, WorldSolids, carried_over
 from mazesim.webots.stock_controllers import stock_controller
 from mazesim.webots.traction import Traction, epuck_traction
@@ -199,10 +199,7 @@ class Fleet:
         self.text: str | None = None
         self._file_lines = 0
         if self._path:
-            with open(self._path, encoding="utf-8", errors="replace") as handle:
-                self._file_lines = (
-                    handle.read().replace("\r\n", "\n").replace("\r", "\n").count("\n") + 1
-                )
+            self._file_lines = read_world_text(self._path).count("\n") + 1
 
     def robots(self) -> list[dict[str, Any]]:
         """Each robot's index, ``def_name``, ``name``, ``model`` and ``line`` (a removed robot's
@@ -237,7 +234,7 @@ class Fleet:
 
     def move(self, index: int, x: float, y: float, yaw: float) -> None:
         """Puts a robot at a new pose, at rest."""
-        place_where_asked(self._simulators[index], x, y, yaw)
+        self._simulators[index].set_pose_pushed_out(x, y, yaw)
         self.moved.add(index)
 
     def _worlds(self) -> list[Any]:
@@ -586,9 +583,9 @@ def refuse_import_warnings(world_path: str) -> None:
 def _robot_scenes(world_path: str, robots: list[Mapping[str, Any]]) -> list[Scene]:
     """What the world file says of each robot's node (:func:`~mazesim.webots.scene.read_scenes`
     of the node on its line)."""
-    with open(world_path, encoding="utf-8", errors="replace") as handle:
-        text = handle.read().replace("\r\n", "\n").replace("\r", "\n")
-    return read_scenes(text, [(robot.get("model"), robot.get("line")) for robot in robots])
+    return read_scenes(
+        read_world_text(world_path), [(robot.get("model"), robot.get("line")) for robot in robots]
+    )
 
 
 def _own_profiles(robots: list[Mapping[str, Any]], scenes: list[Scene]) -> dict[int, RobotProfile]:

@@ -64,7 +64,7 @@ class RemovedRobot:
     def step(self, left: float, right: float) -> None:
         """Nothing: a removed robot does not move."""
 
-    def set_pose(self, x: float, y: float, yaw: float) -> None:
+    def set_pose_pushed_out(self, x: float, y: float, yaw: float) -> tuple[float, float]:
         """Refused: the robot is no longer in the world.
 
         Raises:

@@ -8,11 +8,14 @@ the E-puck's camera fields and the world's north. They are read from the file's 
 
 from __future__ import annotations
 
+import io
 import math
+import os
 import re
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
+from mazesim._paths import open_input
 from mazesim.webots.frames import WORLD_FRAME, nue_to_enu, placed
 from mazesim.webots.lights import Light, read_lights
 from mazesim.webots.proto.syntax import (
@@ -34,6 +37,7 @@ __all__ = [
     "SceneNode",
     "read_scene",
     "read_scenes",
+    "read_world_text",
 ]
 
 #: A row of a ``lookupTable``: distance (m), value and relative noise.
@@ -222,6 +226,20 @@ def _hinge_wheels(year: str | None) -> bool:
     """Whether an E-puck of a file of this release year turns its wheels on HingeJoints, moved
     by their friction: since R2018a (before, the PROTO was a DifferentialWheels robot)."""
     return year is not None and int(year) >= 2018
+
+
+def read_world_text(path: str | os.PathLike[str]) -> str:
+    """The text of a world file the import has read and checked already, read again for what
+    the import report does not hold: line ends made ``\\n`` as the import counts lines, bytes
+    that are not UTF-8 replaced.
+
+    Raises:
+        MazesimIOError: The file cannot be read (it changed since the import).
+    """
+    with io.TextIOWrapper(
+        open_input(path, "the Webots world"), encoding="utf-8", errors="replace"
+    ) as handle:
+        return handle.read().replace("\r\n", "\n").replace("\r", "\n")
 
 
 def read_scene(text: str, robot_model: str | None = None, robot_line: int | None = None) -> Scene:

@@ -30,7 +30,7 @@ from typing import Any
 from mazesim.errors import MazesimError
 from mazesim.webots.frames import Frame, axis_angle, enu_to_nue, enu_to_nue_matrix
 from mazesim.webots.robots_changed import kept_robots
-from mazesim.webots.scene import SceneNode, read_scene
+from mazesim.webots.scene import SceneNode, read_scene, read_world_text
 from mazesim.webots.solids import carried_over, held_by_line
 
 __all__ = ["Change", "SceneEdits", "scene_edits"]
@@ -66,10 +66,8 @@ class SceneEdits:
             raise MazesimError("the run's world is no Webots world file")
         self._simulation = simulation
         self._path = str(path)
-        with open(self._path, encoding="utf-8", errors="replace") as handle:
-            text = handle.read().replace("\r\n", "\n").replace("\r", "\n")
         #: The world file's lines, a removed node's left blank.
-        self._lines = text.split("\n")
+        self._lines = read_world_text(self._path).split("\n")
         #: The lines of each imported node's text, in import order (a removed one's blank).
         self._imported: list[list[str]] = []
         #: The first line of each top-level node of the file and of each imported node.

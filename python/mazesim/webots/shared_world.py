@@ -81,10 +81,13 @@ class RobotView:
                 bodies.append((float(x), float(y), _body_radius(str(state["profile"]))))
         return bodies
 
-    def set_pose(self, x: float, y: float, yaw: float) -> None:
+    def set_pose_pushed_out(self, x: float, y: float, yaw: float) -> tuple[float, float]:
         """Puts the robot at a pose, at rest: onto another robot too, as a Webots supervisor may
-        put it (the contacts of the next steps push them apart)."""
-        self.simulator.set_pose(x, y, yaw, robot_index=self.index, overlap_robots=True)
+        put it (the contacts of the next steps push them apart), and out of a wall it would lie
+        in (:meth:`mazesim.Simulator.set_pose_pushed_out`); returns the x, y it stands at."""
+        return self.simulator.set_pose_pushed_out(
+            x, y, yaw, robot_index=self.index, overlap_robots=True
+        )
 
     def distance_sensors(self) -> Any:
         """The proximity readings."""

@@ -32,7 +32,6 @@ __all__ = [
     "WorldReset",
     "current",
     "observing_steps",
-    "place_where_asked",
     "prepare",
     "release",
     "robot_profile",
@@ -59,44 +58,6 @@ class WorldReset:
     count: int = 0
     time: float = 0.0
     turns: tuple[float, float] = (0.0, 0.0)
-
-
-#: How far (metres) a supervisor's move may push a robot out of the walls, in steps of one mm.
-PUSH_OUT_LIMIT = 0.05
-#: Directions tried at each distance of the push out.
-PUSH_OUT_DIRECTIONS = 16
-
-
-def place_where_asked(simulator: Any, x: float, y: float, yaw: float) -> tuple[float, float]:
-    """Puts a robot where a supervisor's ``setSFVec3f`` / ``setSFRotation`` asks, at rest, and
-    returns where it stands.
-
-    Webots puts a node wherever its ``translation`` is set, and its physics pushes a body that
-    overlaps a wall out of it at the next steps; a simulator refuses a pose whose body overlaps
-    a wall, so a robot asked into one is put at the nearest pose clear of the walls (tried a
-    millimetre further out at a time, in 16 directions), within 5 cm. A pose farther in stays
-    refused.
-
-    Raises:
-        InvalidArgumentError: No pose within 5 cm of the asked one is clear of the walls.
-    """
-    try:
-        simulator.set_pose(x, y, yaw)
-        return x, y
-    except InvalidArgumentError as refusal:
-        if "clear of the walls" not in str(refusal):
-            raise
-        steps = round(PUSH_OUT_LIMIT * 1000)
-        for distance in (0.001 * k for k in range(1, steps + 1)):
-            for turn in range(PUSH_OUT_DIRECTIONS):
-                angle = 2.0 * math.pi * turn / PUSH_OUT_DIRECTIONS
-                px, py = x + distance * math.cos(angle), y + distance * math.sin(angle)
-                try:
-                    simulator.set_pose(px, py, yaw)
-                except InvalidArgumentError:
-                    continue
-                return px, py
-        raise
 
 
 def robot_profile_name(report: Mapping[str, Any] | None) -> str:
@@ -359,7 +320,8 @@ class RobotSimulation:
         The trajectory's latest point becomes the new pose; the move is not counted as
         distance travelled.
         """
-        x, y = place_where_asked(self.simulator, x, y, yaw)
+        # Webots' physics pushes a body set into a wall out of it at the next steps.
+        x, y = self.simulator.set_pose_pushed_out(x, y, yaw)
         self._at_rest(x, y, yaw)
 
     def request_reset(self) -> None:

@@ -31,6 +31,26 @@ const CLEARANCE_SEARCH: f32 = 0.03;
 /// accepted (rapier pushes the body out within a step), a deeper one is refused.
 pub const START_OVERLAP: f64 = 1e-3;
 
+/// Farthest (millimetres) a body is pushed out of the walls, tried a millimetre further out at a
+/// time, as Webots' physics pushes out a body that overlaps a wall; one deeper in stays there.
+pub const PUSH_OUT_LIMIT_MM: u32 = 50;
+/// Directions tried at each distance of the push out, evenly spaced from +x.
+pub const PUSH_OUT_DIRECTIONS: u32 = 16;
+
+/// The nearest point to `[x, y]` that `clear` accepts, tried a millimetre further out at a time
+/// up to `PUSH_OUT_LIMIT_MM`, in `PUSH_OUT_DIRECTIONS` directions at each distance: where a body
+/// that lies in a wall is pushed out to (a start saved in a wall, a supervisor's move into one).
+pub fn pushed_out([x, y]: [f64; 2], mut clear: impl FnMut([f64; 2]) -> bool) -> Option<[f64; 2]> {
+    (1..=PUSH_OUT_LIMIT_MM).find_map(|mm| {
+        let distance = f64::from(mm) * 1e-3;
+        (0..PUSH_OUT_DIRECTIONS).find_map(|k| {
+            let angle = 2.0 * std::f64::consts::PI * f64::from(k) / f64::from(PUSH_OUT_DIRECTIONS);
+            let p = [x + distance * angle.cos(), y + distance * angle.sin()];
+            clear(p).then_some(p)
+        })
+    })
+}
+
 /// How deep (metres) a body of `radius` centred at `[x, y]` lies in the world's walls: its radius
 /// less the signed distance from its centre to the nearest wall (negative: clear of them), and
 /// that distance.

@@ -27,8 +27,8 @@ use crate::fingerprint::fnv1a;
 use crate::limits;
 use crate::robot::RobotProfile;
 use crate::simulator::{
-    move_in_scene, place_in_scene, share_scene, Drive, Neighbour, Others, Rig, SceneStep,
-    SimConfig, Simulator, START_OVERLAP,
+    move_in_scene, place_in_scene, pushed_out, share_scene, Drive, Neighbour, Others, Rig,
+    SceneStep, SimConfig, Simulator, START_OVERLAP,
 };
 use crate::world::{Motion, MovableBody, World};
 
@@ -456,6 +456,35 @@ impl Swarm {
             .collect();
         check_apart(&self.robots, index, [x, y, yaw], |j| poses[j], "pose")?;
         self.place(index, x, y, yaw)
+    }
+
+    /// Moves robot `index` to a pose at rest as `set_pose` (or, `overlap_robots`, `place`) does
+    /// or, when the body would lie in a wall there, to the nearest pose that call accepts
+    /// (`pushed_out`), as Webots' physics pushes out a body a supervisor put into a wall;
+    /// returns the x and y it stands at. A pose with none accepted near enough stays refused.
+    pub fn set_pose_pushed_out(
+        &mut self,
+        index: usize,
+        [x, y]: [f64; 2],
+        yaw: f64,
+        overlap_robots: bool,
+    ) -> Result<[f64; 2]> {
+        let move_to = |swarm: &mut Swarm, [x, y]: [f64; 2]| {
+            if overlap_robots {
+                swarm.place(index, x, y, yaw)
+            } else {
+                swarm.set_pose(index, x, y, yaw)
+            }
+        };
+        let Err(refusal) = move_to(self, [x, y]) else {
+            return Ok([x, y]);
+        };
+        let in_wall = limits::check_pose("pose", x, y, yaw).is_ok()
+            && self
+                .robot(index)
+                .is_ok_and(|r| r.check_start(x, y, yaw).is_err());
+        let clear = in_wall.then(|| pushed_out([x, y], |p| move_to(self, p).is_ok()));
+        clear.flatten().ok_or(refusal)
     }
 
     /// Moves robot `index` to a pose at rest clear of the walls, where it may overlap other

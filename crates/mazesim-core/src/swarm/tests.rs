@@ -650,3 +650,44 @@ fn bodies_kept_are_matched_in_order() {
     assert_eq!(kept_bodies(&[one, other], &[one]), vec![Some(0)]);
     assert_eq!(kept_bodies(&[], &[one]), vec![None]);
 }
+
+#[test]
+fn a_pose_a_few_millimetres_into_a_wall_is_pushed_out_clear_of_it_and_of_other_robots() {
+    let mut swarm = Swarm::new(corridor(0.05), epuck(), SimConfig::default()).unwrap();
+    let push =
+        |s: &mut Swarm, at: [f64; 2], overlap: bool| s.set_pose_pushed_out(0, at, 0.0, overlap);
+    // The north wall's face is at y = 0.1: an e-puck (radius 0.037) at y = 0.066 is 3 mm in.
+    assert!(swarm.set_pose(0, -0.3, 0.066, 0.0).is_err());
+    let alone = push(&mut swarm, [-0.3, 0.066], false).unwrap();
+    let moved = (alone[0] + 0.3).hypot(alone[1] - 0.066);
+    assert!(
+        moved <= 0.003 + 1e-9 && alone[1] <= 0.064 + 1e-6,
+        "{alone:?}"
+    );
+    assert_eq!(
+        swarm.robots()[0].pose(),
+        [alone[0] as f32, alone[1] as f32, 0.0]
+    );
+    // A clear pose is taken as it is; one beyond the limits, or on another robot, is refused
+    // (one deeper in a wall than 5 cm: tests/webots/test_webots_supervisor_tree.py).
+    assert_eq!(push(&mut swarm, [-0.3, 0.0], false).unwrap(), [-0.3, 0.0]);
+    assert!(push(&mut swarm, [2000.0, 0.0], false).is_err());
+    let east = swarm.robots()[1].pose().map(f64::from);
+    let on_robot = push(&mut swarm, [east[0], east[1]], false).unwrap_err();
+    assert!(
+        on_robot.to_string().contains("overlapping robot 1"),
+        "{on_robot}"
+    );
+    // Robot 1 2 mm into where robot 0 was pushed out to, from the west: the push out goes on
+    // to a pose clear of it too, unless robots may overlap.
+    let west = [alone[0] - 0.072, alone[1]];
+    swarm.set_pose(0, -0.45, 0.0, 0.0).unwrap();
+    swarm.set_pose(1, west[0], west[1], 0.0).unwrap();
+    let beside = push(&mut swarm, [-0.3, 0.066], false).unwrap();
+    let apart = (beside[0] - west[0]).hypot(beside[1] - west[1]);
+    assert!(
+        beside != alone && apart >= 0.073 - 1e-6,
+        "clear of robot 1: {apart}"
+    );
+    assert_eq!(push(&mut swarm, [-0.3, 0.066], true).unwrap(), alone);
+}

@@ -181,11 +181,6 @@ impl Features {
         self.envs.len()
     }
 
-    /// Number of sensor readings an observation starts with.
-    pub fn sensor_width(&self) -> usize {
-        self.scale.len()
-    }
-
     /// Puts environment `env` into a world: its `place`, the next `waypoints` of its cells
     /// (row-major; one, the goal, without a maze), the true open `sides` of its cells (when the
     /// features hold the explored map; all walled without a maze) and the goal cell to plan

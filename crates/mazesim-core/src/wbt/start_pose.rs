@@ -2,21 +2,13 @@
 //! script): Webots' physics pushes the body out at the first steps, so the import starts the
 //! robot at the nearest pose clear of the walls, with a warning.
 
-use std::f64::consts::PI;
-
 use super::WbtImport;
 use crate::robot::RobotProfile;
-use crate::simulator::{wall_overlap, START_OVERLAP};
-
-/// Farthest (metres) a start is moved out of the walls, tried a millimetre further out at a
-/// time; a body deeper in stays where it is saved (the simulator then refuses it).
-pub const PUSH_OUT_LIMIT_MM: u32 = 50;
-/// Directions tried at each distance, evenly spaced from +x.
-pub const PUSH_OUT_DIRECTIONS: u32 = 16;
+use crate::simulator::{pushed_out, wall_overlap, START_OVERLAP};
 
 impl WbtImport {
     /// Moves each e-puck's start whose body overlaps a wall by more than the simulator accepts
-    /// (`START_OVERLAP`) to the nearest pose clear of the walls within `PUSH_OUT_LIMIT_MM`,
+    /// (`START_OVERLAP`) to the nearest pose clear of the walls (`pushed_out`),
     /// warning once per robot moved. A robot that is not an e-puck keeps its pose: the e-puck
     /// that stands in for it has no body among the walls.
     pub(super) fn push_starts_out_of_walls(&mut self) {
@@ -67,13 +59,8 @@ fn clear_pose(world: &crate::World, radius: f64, pose: [f64; 3]) -> Option<([f64
     if depth <= START_OVERLAP {
         return None;
     }
-    (1..=PUSH_OUT_LIMIT_MM).find_map(|mm| {
-        let distance = f64::from(mm) * 1e-3;
-        (0..PUSH_OUT_DIRECTIONS).find_map(|k| {
-            let angle = 2.0 * PI * f64::from(k) / f64::from(PUSH_OUT_DIRECTIONS);
-            let p = [x + distance * angle.cos(), y + distance * angle.sin()];
-            let (overlap, _) = wall_overlap(world, radius, p);
-            (overlap <= START_OVERLAP).then_some(([p[0], p[1], yaw], depth))
-        })
-    })
+    let [cx, cy] = pushed_out([x, y], |p| {
+        wall_overlap(world, radius, p).0 <= START_OVERLAP
+    })?;
+    Some(([cx, cy, yaw], depth))
 }
