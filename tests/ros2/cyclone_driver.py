@@ -65,6 +65,15 @@ def main() -> int:
         "--reader-distro", default=None, help="decode the state with another distro's layouts"
     )
     parser.add_argument(
+        "--cmd-vel",
+        choices=("twist", "twist-stamped"),
+        default=None,
+        help="the /cmd_vel type to write (the distribution's by default)",
+    )
+    parser.add_argument(
+        "--nan-at", type=int, default=-1, help="the command (from 0) sent with a NaN speed"
+    )
+    parser.add_argument(
         "--answer-from-second-state",
         action="store_true",
         help="leave the first reset state unanswered and wait for it again",
@@ -100,7 +109,8 @@ def main() -> int:
         participant, Topic(participant, "rt/tf_static", static_type), qos=cyclone_qos(TF_STATIC)
     )
     jazzy = distro != "humble"
-    twist_name = "geometry_msgs/msg/TwistStamped" if jazzy else "geometry_msgs/msg/Twist"
+    stamped = args.cmd_vel == "twist-stamped" if args.cmd_vel else jazzy
+    twist_name = "geometry_msgs/msg/TwistStamped" if stamped else "geometry_msgs/msg/Twist"
     twist_type = messages.idl_type(distro, twist_name)
     vector = messages.idl_type(distro, "geometry_msgs/msg/Vector3")
     inner = messages.idl_type(distro, "geometry_msgs/msg/Twist")
@@ -222,6 +232,15 @@ def main() -> int:
         velocity = standard.body_velocity(before, (x, y, yaw), step_seconds)
         twist = odom.twist.twist
         same("odom", "twist", (twist.linear.x, twist.linear.y, twist.angular.z), tuple(velocity))
+        joints = got["/joint_states"]
+        same("joint_states", "name", list(joints.name), list(state.WHEEL_JOINTS))
+        encoders = simulator.encoders
+        same("joint_states", "position", list(joints.position), list(encoders))
+        turns = [
+            (a - b) / step_seconds if step_seconds else 0.0 for a, b in zip(encoders, wheels[0])
+        ]
+        same("joint_states", "velocity", list(joints.velocity), turns)
+        wheels[0] = encoders
         transform = got["/tf"].transforms[0]
         same("tf", "child", transform.child_frame_id, "base_link")
         t = transform.transform.translation
@@ -242,6 +261,7 @@ def main() -> int:
             print("driver: no bridge on /cmd_vel", file=sys.stderr)
             return 1
         time.sleep(0.01)
+    wheels = [simulator.encoders]  # the encoders at the last state checked
     try:
         before = simulator.pose
         check(collect(stamp_nanoseconds(0.0)), 0.0, before)
@@ -257,10 +277,12 @@ def main() -> int:
             raise Mismatch(f"/tf_static lacks {sorted(expected_frames - frames)}")
         robot = simulator.robot
         started = time.monotonic()
-        for linear, angular in commands(args.steps, args.seed):
-            linear_v = vector(x=linear, y=0.0, z=0.0)
+        kept = (0.0, 0.0)  # the wheel speeds a refused command keeps
+        for index, (linear, angular) in enumerate(commands(args.steps, args.seed)):
+            nan = index == args.nan_at
+            linear_v = vector(x=math.nan if nan else linear, y=0.0, z=0.0)
             angular_v = vector(x=0.0, y=0.0, z=angular)
-            if jazzy:
+            if stamped:
                 now = stamp_nanoseconds(simulator.time)
                 sample = twist_type(
                     header=header(
@@ -272,7 +294,9 @@ def main() -> int:
                 sample = twist_type(linear=linear_v, angular=angular_v)
             cmd_vel.write(sample)
             before = simulator.pose
-            simulator.step(*standard.twist_wheel_speeds(linear, angular, robot))
+            if not nan:
+                kept = standard.twist_wheel_speeds(linear, angular, robot)
+            simulator.step(*kept)
             got = collect(stamp_nanoseconds(simulator.time))
             check(got, simulator.control_step_ms / 1000.0, before)
         elapsed = time.monotonic() - started

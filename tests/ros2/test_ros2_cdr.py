@@ -183,6 +183,25 @@ def test_arrays_strings_clock_and_commands(
     assert encoded == _padded(stamped)
 
 
+@pytest.mark.parametrize("distro", DISTROS)
+@settings(max_examples=10, deadline=None)
+@given(
+    stamp=stamps,
+    names=st.lists(st.text(max_size=20), max_size=3),
+    values=st.lists(floats64, min_size=6, max_size=6),
+)
+def test_joint_state(distro: str, stamp: cdr.Stamp, names: list[str], values: list[float]) -> None:
+    numpy = pytest.importorskip("numpy")
+    positions, velocities = values[: len(names)], values[3 : 3 + len(names)]
+    expected = _ros(
+        distro, "sensor_msgs/msg/JointState", header=_header(distro, stamp, ""), name=names,
+        position=numpy.asarray(positions, dtype=numpy.float64),
+        velocity=numpy.asarray(velocities, dtype=numpy.float64),
+        effort=numpy.asarray([], dtype=numpy.float64),
+    )  # fmt: skip
+    assert cdr.encode_joint_state(stamp, names, positions, velocities) == _padded(expected)
+
+
 def test_big_endian_commands_are_read_too() -> None:
     import struct
 

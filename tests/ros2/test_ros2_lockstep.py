@@ -86,6 +86,32 @@ def test_a_driver_of_the_wrong_layout_is_caught() -> None:
     assert "/odom" not in result.stderr.split("no message within")[1].split("\n")[0]
 
 
+@pytest.mark.parametrize(("distro", "cmd_vel"), [("humble", "twist-stamped"), ("jazzy", "twist")])
+def test_a_driver_writing_the_other_distribution_s_cmd_vel_drives_too(
+    distro: str, cmd_vel: str
+) -> None:
+    # Webots' test of its e-puck (webots_ros2_tests/test/test_system_epuck.py) writes
+    # TwistStamped when ROS_DISTRO says jazzy, Twist otherwise, whatever the simulation speaks.
+    result = run_in_namespace(
+        [_bridge(distro, 100)], _driver(distro, 100, "--cmd-vel", cmd_vel), timeout=60
+    )
+    assert result.returncode == 0, result.stderr
+    assert "100 steps, every field equal" in result.stdout
+    assert "policy" not in result.stderr and "stopped after 100 steps" in result.stderr
+
+
+def test_a_nan_command_takes_its_step_keeping_the_wheel_speeds() -> None:
+    # A node answering each state with one command waited forever once the bridge dropped
+    # its NaN twist; as ROS's diff drive controllers ignore one while time goes on, the step is
+    # taken with the wheel speeds of the command before.
+    result = run_in_namespace(
+        [_bridge("humble", 60)], _driver("humble", 60, "--nan-at", "20"), timeout=60
+    )
+    assert result.returncode == 0, result.stderr
+    assert "60 steps, every field equal" in result.stdout
+    assert result.stderr.count("ignored a command: expected a finite linear.x") == 1
+
+
 def test_a_driver_that_answers_from_its_second_state_gets_the_reset_state_again() -> None:
     # Webots' e-puck drive calibrator (webots_ros2_epuck/drive_calibrator.py in
     # cyberbotics/webots_ros2) takes its first /odom as its start and answers from the second

@@ -1,7 +1,8 @@
 """A node waiting for a topic of Webots' e-puck driver that the bridge does not publish hears why:
 ``/tof`` from the e-puck (Webots' ``webots_ros2_epuck`` world simulates an e-puck2), the light
 sensors, the inertial unit, the camera; and the bridge names a reader or writer whose QoS DDS
-cannot match with its own (``mazesim.ros2.qos.IncompatibleQos``)."""
+cannot match with its own (``mazesim.ros2.qos.IncompatibleQos``), or whose message type is not
+the bridge's on that topic."""
 
 from __future__ import annotations
 
@@ -13,6 +14,7 @@ import pytest
 from mazesim.ros2.unpublished import (
     also_published,
     in_robot_namespaces,
+    other_type,
     outside_a_namespace,
     why_unpublished,
 )
@@ -89,6 +91,35 @@ def test_topics_the_bridge_has_or_no_robot_has_are_left_alone_outside_a_namespac
     assert outside_a_namespace("/epuck0/odom", PUBLISHED, ["/west"]) is None
 
 
+TYPES = {
+    "/odom": ["nav_msgs/msg/Odometry"],
+    "/cmd_vel": ["geometry_msgs/msg/Twist", "geometry_msgs/msg/TwistStamped"],
+}
+
+
+def test_a_node_with_another_type_on_a_topic_of_the_bridge_is_explained() -> None:
+    reads = other_type("reads", "/odom", "geometry_msgs::msg::dds_::Twist_", TYPES)
+    assert reads is not None and "as geometry_msgs/msg/Twist" in reads
+    assert "nav_msgs/msg/Odometry only" in reads and "receives nothing" in reads
+    writes = other_type("writes", "/cmd_vel", "std_msgs::msg::dds_::String_", TYPES)
+    assert writes is not None and "nothing it sends arrives" in writes
+    assert "geometry_msgs/msg/Twist or geometry_msgs/msg/TwistStamped only" in writes
+
+
+@pytest.mark.parametrize(
+    "topic, dds_type",
+    [
+        ("/cmd_vel", "geometry_msgs::msg::dds_::Twist_"),
+        ("/cmd_vel", "geometry_msgs::msg::dds_::TwistStamped_"),
+        ("/odom", "nav_msgs::msg::dds_::Odometry_"),
+        ("/map", "nav_msgs::msg::dds_::OccupancyGrid_"),
+        ("/odom", ""),
+    ],
+)
+def test_the_bridge_s_own_types_and_other_topics_are_left_alone(topic: str, dds_type: str) -> None:
+    assert other_type("writes", topic, dds_type, TYPES) is None
+
+
 @pytest.mark.parametrize("topic", ["/clock", "/odom", "/ps0"])
 def test_another_publisher_of_the_bridge_s_topics_is_explained(topic: str) -> None:
     reason = also_published(topic, PUBLISHED)
@@ -124,6 +155,8 @@ USER_NODE = (
     "node.reader('/tof', 'sensor_msgs/msg/Range', SENSOR)\n"
     "node.reader('/odom', 'nav_msgs/msg/Odometry', TopicQos(True, True, 1))\n"
     "node.writer('/cmd_vel', 'geometry_msgs/msg/Twist', TopicQos(False, False, 10))\n"
+    "node.reader('/pose', 'geometry_msgs/msg/Twist', SENSOR)\n"
+    "node.writer('/motor', 'std_msgs/msg/String', TopicQos(True, False, 10))\n"
     "time.sleep(4)\n"
 )
 
@@ -144,6 +177,14 @@ def test_the_bridge_says_once_why_a_node_gets_nothing_or_sends_in_vain() -> None
     assert "--robot e-puck2" in result.stderr
     assert result.stderr.count("a node reads /odom asking for a durability") == 1
     assert result.stderr.count("a node writes /cmd_vel offering less reliability") == 1
+    # And it reads /pose, writes /motor as types the bridge does not have there: Cyclone DDS
+    # reports that as an incompatible QoS (policy 24), once passed on as "offering less policy
+    # 24"; the bridge names the types.
+    reads = "a node reads /pose as geometry_msgs/msg/Twist; the bridge has it as std_msgs/msg/"
+    assert result.stderr.count(reads) == 1, result.stderr
+    writes = "a node writes /motor as std_msgs/msg/String; the bridge has it as std_msgs/msg/Float"
+    assert result.stderr.count(writes) == 1, result.stderr
+    assert "policy" not in result.stderr
 
 
 #: Webots' drive calibrator (webots_ros2_epuck/drive_calibrator.py in cyberbotics/webots_ros2)

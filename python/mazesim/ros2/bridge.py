@@ -1,6 +1,7 @@
 """The ROS 2 bridge node: a simulator behind the e-puck's standard ROS 2 topics.
 
-Lockstep (the default): each command on ``/cmd_vel``, ``/motor`` or ``/action`` advances one
+Lockstep (the default): each command on ``/cmd_vel`` (read as Twist and as TwistStamped, whatever
+the distribution), ``/motor`` or ``/action`` advances one
 control step, then the state topics go out stamped with the new simulation time, ``/clock`` last.
 Before the first command the bridge publishes the reset state once (stamped 1 ns), after a writer
 on one of its command topics has matched and a grace period has passed, and again every
@@ -21,6 +22,7 @@ robot nobody drives keeps its last wheel speeds (at first, none).
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 import re
 import signal
@@ -28,6 +30,7 @@ import sys
 import threading
 import time
 from collections import deque
+from collections.abc import Callable
 from typing import Any
 
 from mazesim._core import Simulator
@@ -109,6 +112,15 @@ class BridgeSettings:
             )
 
 
+def _types_by_topic(endpoints: list[Any]) -> dict[str, list[str]]:
+    """The message types of the endpoints on each topic (``/cmd_vel``: Twist, TwistStamped)."""
+    types: dict[str, list[str]] = {}
+    for endpoint in endpoints:
+        if endpoint.msgtype not in types.setdefault(endpoint.topic, []):
+            types[endpoint.topic].append(endpoint.msgtype)
+    return types
+
+
 def _motor_speeds(data: bytes) -> tuple[float, float]:
     return topics.motor_command(cdr.decode_float64_array(data))
 
@@ -130,14 +142,20 @@ class RobotChannel:
         self.static_writer = node.writer(static.name, static.msgtype, static.qos)
         jazzy = distro != "humble"
         ns = state.namespace
-        self.cmd_vel = node.reader(
-            f"{ns}/{standard.CMD_VEL_TOPIC}", TWIST_STAMPED if jazzy else TWIST, COMMAND
-        )
-        self._decode_twist = cdr.decode_twist_stamped if jazzy else cdr.decode_twist
+        # The distribution's cmd_vel type first (Webots' e-puck driver reads Twist on Humble,
+        # TwistStamped from Jazzy on); the other one is read too, so a node written for the other
+        # distribution (teleop_twist_keyboard's stamped:=true) drives as well.
+        kinds = [(TWIST, cdr.decode_twist), (TWIST_STAMPED, cdr.decode_twist_stamped)]
+        self.cmd_vels = [
+            (node.reader(f"{ns}/{standard.CMD_VEL_TOPIC}", kind, COMMAND), decode)
+            for kind, decode in (kinds[::-1] if jazzy else kinds)
+        ]
         self.motor = node.reader(f"{ns}/{topics.MOTOR_TOPIC}", FLOAT64_ARRAY, COMMAND)
         self.action = node.reader(f"{ns}/{topics.ACTION_TOPIC}", STRING, COMMAND)
         self.pending: deque[tuple[float, float]] = deque()
         self.wheel_speeds = (0.0, 0.0)
+        #: The wheel speeds of the last command accepted (what a refused one keeps).
+        self.latest = (0.0, 0.0)
         self.rejected = 0
         #: Commands received so far (accepted or not).
         self.received = 0
@@ -148,29 +166,39 @@ class RobotChannel:
         self.known_writers: set[int] = set()
         self.newcomer_since: tuple[float, int] | None = None
 
+    def command_readers(self) -> list[Reader]:
+        """The readers of the robot's command topics (``cmd_vel`` of both types)."""
+        return [reader for reader, _ in self.cmd_vels] + [self.motor, self.action]
+
     def driven(self) -> bool:
         """Whether a writer on one of the robot's command topics has matched."""
-        return any(reader.publishers() for reader in (self.cmd_vel, self.motor, self.action))
+        return any(reader.publishers() for reader in self.command_readers())
 
     def command_writers(self) -> set[int]:
         """The writers matched now on the robot's command topics."""
-        readers = (self.cmd_vel, self.motor, self.action)
-        return set().union(*(reader.matched_writers() for reader in readers))
+        return set().union(*(reader.matched_writers() for reader in self.command_readers()))
 
     def commands(self) -> list[tuple[float, float]]:
-        """The wheel speeds of every command received since the last call; bad ones are
-        counted, reported on stderr and skipped."""
+        """The wheel speeds of every command received since the last call. A bad one (a speed
+        that is not finite, an unknown action code) is counted and reported on stderr, and
+        keeps the wheel speeds of the command before it, as ROS's diff drive controllers ignore
+        a NaN twist while the simulation goes on: in lockstep it still takes its step, so a node
+        answering each state with one command gets the next state."""
         speeds: list[tuple[float, float]] = []
-        for data in self.cmd_vel.take():
-            self._accept(speeds, self._twist_speeds, data)
+        for reader, decode in self.cmd_vels:
+            for data in reader.take():
+                self._accept(speeds, functools.partial(self._twist_speeds, decode), data)
         for data in self.motor.take():
             self._accept(speeds, _motor_speeds, data)
         for data in self.action.take():
             self._accept(speeds, self._action_speeds, data)
         return speeds
 
-    def _twist_speeds(self, data: bytes) -> tuple[float, float]:
-        return standard.twist_wheel_speeds(*self._decode_twist(data), self.state.robot)
+    def _twist_speeds(
+        self, decode: Callable[[bytes], tuple[float, float]], data: bytes
+    ) -> tuple[float, float]:
+        linear, angular = decode(data)
+        return standard.twist_wheel_speeds(linear, angular, self.state.robot)
 
     def _action_speeds(self, data: bytes) -> tuple[float, float]:
         return wheel_speeds(cdr.decode_string(data), self.state.robot.max_wheel_speed)
@@ -178,15 +206,17 @@ class RobotChannel:
     def _accept(self, speeds: list[tuple[float, float]], read: Any, data: bytes) -> None:
         self.received += 1
         try:
-            speeds.append(read(data))
+            self.latest = read(data)
         except (MazesimError, ValueError, KeyError) as error:
             self.rejected += 1
             where = f" for {self.state.namespace[1:]}" if self.state.namespace else ""
             print(
-                f"mazesim ros2 bridge: ignored a command{where}: {error}",
+                f"mazesim ros2 bridge: ignored a command{where}: {error}; the robot keeps its "
+                "wheel speeds for that step",
                 file=sys.stderr,
                 flush=True,
             )
+        speeds.append(self.latest)
 
 
 class Ros2Bridge:
@@ -260,6 +290,7 @@ class Ros2Bridge:
             self._say,
             read=[reader.topic for reader in self.node.readers],
             namespaces=[robot.state.namespace for robot in self.robots if robot.state.namespace],
+            types=_types_by_topic([*self.node.writers, *self.node.readers]),
         )
         self.incompatible = IncompatibleQos(self.node.writers, self.node.readers, self._say)
         self._readers_checked = 0.0

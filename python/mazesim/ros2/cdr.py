@@ -26,6 +26,7 @@ __all__ = [
     "decode_twist_stamped",
     "encode_clock",
     "encode_float64_multi_array",
+    "encode_joint_state",
     "encode_laser_scan",
     "encode_odometry",
     "encode_range",
@@ -266,6 +267,26 @@ def encode_float64_multi_array(labels: Sequence[str], data: Sequence[float]) -> 
         text = label.encode()
         return CDR_LE + layout.pack(1, len(text) + 1, text, count, count, 0, count, *data)
     return CDR_LE + layout.pack(0, 0, count, *data)
+
+
+def encode_joint_state(
+    stamp: Stamp,
+    names: Sequence[str],
+    positions: Sequence[float],
+    velocities: Sequence[float],
+) -> bytes:
+    """A ``sensor_msgs/msg/JointState`` with no frame and no efforts."""
+    writer = CdrWriter()
+    writer.header(stamp, "")
+    writer.pack(_U32, 4, len(names))
+    for name in names:
+        writer.string(name)
+    for values in (positions, velocities):
+        writer.pack(_U32, 4, len(values))
+        if values:
+            writer.pack(struct.Struct(f"<{len(values)}d"), 8, *values)
+    writer.pack(_U32, 4, 0)
+    return writer.bytes()
 
 
 def encode_string(text: str) -> bytes:

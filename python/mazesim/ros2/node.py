@@ -126,7 +126,7 @@ class Node:
                 "expected a usable network interface (the loopback interface 'lo' up, or the "
                 "network with --network); check `ip link`, or the CYCLONEDDS_URI you set"
             ) from None
-        self._topics: dict[str, Any] = {}
+        self._topics: dict[tuple[str, str], Any] = {}
         self.readers: list[Reader] = []
         self.writers: list[Writer] = []
         self._graph_writer = self._dds_writer(
@@ -134,11 +134,14 @@ class Node:
         )
 
     def _topic(self, dds_name: str, msgtype: str) -> Any:
-        if dds_name not in self._topics:
-            self._topics[dds_name] = self._topic_class(
+        # One DDS topic per name and type: a name may carry two types (``cmd_vel``: Twist and
+        # TwistStamped), and DDS matches each reader only with writers of its own type.
+        key = (dds_name, msgtype)
+        if key not in self._topics:
+            self._topics[key] = self._topic_class(
                 self.participant, dds_name, messages.idl_type(self.distro, msgtype)
             )
-        return self._topics[dds_name]
+        return self._topics[key]
 
     def _dds_writer(self, topic: str, msgtype: str, qos: TopicQos, ros_topic: bool = True) -> Any:
         from cyclonedds.pub import DataWriter

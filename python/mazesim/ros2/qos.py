@@ -67,6 +67,10 @@ def cyclone_qos(profile: TopicQos, user_data: bytes | None = None) -> Any:
 
 #: DDS's QoS policy ids (``last_policy_id`` of the incompatible-QoS statuses) that ROS 2 sets.
 POLICY_NAMES = {2: "durability", 4: "deadline", 8: "liveliness", 11: "reliability"}
+#: Cyclone DDS's id of the type-consistency policy: the endpoints' types differ, which
+#: :mod:`mazesim.ros2.unpublished` names with the types (a topic the bridge reads in two types,
+#: ``/cmd_vel``, has a reader of the other type that no writer matches, rightly).
+TYPE_CONSISTENCY = 24
 
 
 class IncompatibleQos:
@@ -94,6 +98,8 @@ class IncompatibleQos:
             return None
         self.seen[id(endpoint)] = status.total_count
         policy = status.last_policy_id
+        if policy == TYPE_CONSISTENCY:
+            return "type"
         return POLICY_NAMES.get(policy, f"policy {policy}")
 
     def check(self) -> None:
@@ -112,11 +118,13 @@ class IncompatibleQos:
                 "reads {qos}): nothing it sends arrives; give its writer the bridge's {policy}",
             ),
         ):
+            said = set()  # the bridge's two cmd_vel readers (two types) see the same writer
             for endpoint in endpoints:
                 policy = self._new(endpoint, status_of(endpoint))
-                if policy is not None:
-                    self.report(
-                        says.format(
-                            topic=endpoint.topic, policy=policy, qos=endpoint.qos.describe()
-                        )
+                if policy is not None and policy != "type":
+                    message = says.format(
+                        topic=endpoint.topic, policy=policy, qos=endpoint.qos.describe()
                     )
+                    if message not in said:
+                        said.add(message)
+                        self.report(message)

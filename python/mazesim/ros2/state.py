@@ -3,9 +3,10 @@
 As Webots' e-puck driver and the real robot's publish them (``webots_ros2_epuck``): a
 ``sensor_msgs/msg/Range`` per distance sensor (``/ps0`` .. ``/ps7``, ``/tof`` on the e-puck2,
 frames named after the sensors) and per ground sensor (``/gs0`` .. ``/gs2``), ``/scan`` built from
-them, ``/odom``, ``/tf``, ``/tf_static`` once and ``/clock``; and the report's own topics as the
-ROS 1 bridge has them (``/sensors``, ``/sensor_data``, ``/pose``). The numbers are those of
-:mod:`mazesim.ros.standard` and :mod:`mazesim.ros.topics`, so both bridges say the same. A robot
+them, ``/odom``, the wheels' ``/joint_states``, ``/tf``, ``/tf_static`` once and ``/clock``; and
+the report's own topics as the ROS 1 bridge has them (``/sensors``, ``/sensor_data``,
+``/pose``). The numbers are those of :mod:`mazesim.ros.standard` and :mod:`mazesim.ros.topics`,
+so both bridges say the same. A robot
 of a world of several robots publishes the same topics in its own namespace (``/west/ps0``,
 ``/west/tf``...), without ``/clock``, which the bridge publishes once for all; with a frame prefix
 (``west/``) its frames are ``west/odom``, ``west/base_link``, ``west/ps0``... and its transforms
@@ -56,12 +57,18 @@ SCAN_ANGLES = {
     "tof": 0,
 }  # fmt: skip
 RADIATION_INFRARED = 1
+JOINT_STATES_TOPIC = "/joint_states"
+#: The wheels' joints as Webots' e-puck driver names them: its ros2_control joints, which
+#: joint_state_broadcaster publishes on ``joint_states`` (``webots_ros2_epuck/resource/
+#: ros2_control.yml`` and ``epuck_webots.urdf`` in cyberbotics/webots_ros2).
+WHEEL_JOINTS = ("left wheel motor", "right wheel motor")
 
 RANGE = "sensor_msgs/msg/Range"
 LASER_SCAN = "sensor_msgs/msg/LaserScan"
 ODOMETRY = "nav_msgs/msg/Odometry"
 TF_MESSAGE = "tf2_msgs/msg/TFMessage"
 FLOAT64_ARRAY = "std_msgs/msg/Float64MultiArray"
+JOINT_STATE = "sensor_msgs/msg/JointState"
 CLOCK_TYPE = "rosgraph_msgs/msg/Clock"
 
 
@@ -155,6 +162,7 @@ class StateTopics:
             "checkpoint"
         ]
         self.before = simulator.pose
+        self.encoders_before = simulator.encoders
         ns = namespace
         self.topics: list[Topic] = [
             *(Topic(f"{ns}/{frame.frame}", RANGE, SENSOR) for frame in self.frames),
@@ -164,6 +172,7 @@ class StateTopics:
             self.topics.append(Topic(ns + SCAN_TOPIC, LASER_SCAN, SENSOR))
         self.topics += [
             Topic(f"{ns}/odom", ODOMETRY, SENSOR),
+            Topic(ns + JOINT_STATES_TOPIC, JOINT_STATE, SENSOR),
             Topic(self.tf_namespace + TF_TOPIC, TF_MESSAGE, TF),
             Topic(f"{ns}/{topics.SENSORS_TOPIC}", FLOAT64_ARRAY, SENSOR),
         ]
@@ -280,6 +289,13 @@ class StateTopics:
                 (velocity.forward, velocity.leftward, 0.0, 0.0, 0.0, velocity.turn),
             )
         )
+        encoders = simulator.encoders
+        turns = [
+            (now - then) / step_seconds if step_seconds > 0.0 else 0.0
+            for now, then in zip(encoders, self.encoders_before)
+        ]
+        self.encoders_before = encoders
+        out.append(cdr.encode_joint_state(stamp, WHEEL_JOINTS, encoders, turns))
         out.append(cdr.encode_tf_message([(stamp, odom, base, (x, y, 0.0), rotation)]))
         out.append(
             cdr.encode_float64_multi_array(self.sensor_labels, topics.sensors_values(simulator))

@@ -10,19 +10,22 @@ robot is. :class:`UnpublishedTopics` watches the readers and writers DDS discove
 participants and names each such topic once, with what to do. It also says, once, when another
 node publishes one of the bridge's own state topics or ``/clock``: a second bridge (or simulator,
 or ``ros2 bag play``) on the same domain, whose messages every node then receives mixed with the
-bridge's, and whose lockstep steps on the same commands.
+bridge's, and whose lockstep steps on the same commands. And it says when a node reads or writes
+one of the bridge's topics as another message type (``/cmd_vel`` as ``std_msgs/msg/String``):
+DDS matches endpoints of one type only, so that node receives or sends nothing.
 """
 
 from __future__ import annotations
 
 import re
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from typing import Any
 
 __all__ = [
     "UnpublishedTopics",
     "also_published",
     "in_robot_namespaces",
+    "other_type",
     "outside_a_namespace",
     "why_unpublished",
 ]
@@ -92,6 +95,25 @@ def also_published(topic: str, published: Iterable[str]) -> str | None:
     )
 
 
+def other_type(
+    does: str, topic: str, dds_type: str, types: Mapping[str, Sequence[str]]
+) -> str | None:
+    """What goes wrong when a node ``does`` (``reads``, ``writes``) ``topic`` with the DDS type
+    name ``dds_type`` (``std_msgs::msg::dds_::String_``) while the bridge has the topic in the ROS
+    types ``types[topic]`` only; ``None`` when the bridge has no such topic or has that type."""
+    own = types.get(topic)
+    if not own or not dds_type:
+        return None
+    ros_type = dds_type.replace("::dds_::", "::").rstrip("_").replace("::", "/")
+    if ros_type in own:
+        return None
+    outcome = "that reader receives nothing" if does == "reads" else "nothing it sends arrives"
+    return (
+        f"a node {does} {topic} as {ros_type}; the bridge has it as {' or '.join(own)} only, and "
+        f"DDS matches endpoints of one type: {outcome}"
+    )
+
+
 def why_unpublished(topic: str, published: Iterable[str], robot: str) -> str | None:
     """Why a node reading ``topic`` (a ROS name) gets nothing, when it is one of the topics of
     Webots' e-puck driver that the bridge does not publish; ``None`` otherwise."""
@@ -117,6 +139,7 @@ class UnpublishedTopics:
         report: Called with each message.
         read: The ROS names of the topics the bridge reads.
         namespaces: The robots' namespaces in a world of several robots (none for one).
+        types: The ROS message types the bridge has on each of its topics, read or written.
     """
 
     def __init__(
@@ -127,6 +150,7 @@ class UnpublishedTopics:
         report: Callable[[str], None],
         read: Iterable[str] = (),
         namespaces: Sequence[str] = (),
+        types: Mapping[str, Sequence[str]] | None = None,
     ) -> None:
         from cyclonedds.builtin import (
             BuiltinDataReader,
@@ -138,6 +162,7 @@ class UnpublishedTopics:
         self.published = set(published)
         self.read = set(read)
         self.namespaces = list(namespaces)
+        self.types = dict(types or {})
         self.robot = robot
         self.report = report
         self.reported: set[tuple[str, str]] = set()
@@ -145,25 +170,28 @@ class UnpublishedTopics:
         self._readers = BuiltinDataReader(participant, BuiltinTopicDcpsSubscription)
         self._writers = BuiltinDataReader(participant, BuiltinTopicDcpsPublication)
 
-    def _topics(self, builtin: Any) -> list[str]:
-        """The ROS names of the endpoints of other participants discovered since the last look."""
+    def _topics(self, builtin: Any) -> list[tuple[str, str]]:
+        """The ROS names and DDS type names of the endpoints of other participants discovered
+        since the last look."""
         topics = []
         for endpoint in builtin.take(64):
             name = getattr(endpoint, "topic_name", None)
             if name and name.startswith("rt/") and endpoint.participant_key != self.own:
-                topics.append("/" + name[3:])
+                topics.append(("/" + name[3:], getattr(endpoint, "type_name", "") or ""))
         return topics
 
     def check(self) -> None:
         """Reads the endpoints discovered since the last call and reports the new topics."""
-        for topic in self._topics(self._readers):
+        for topic, dds_type in self._topics(self._readers):
+            self._say_once("reads", topic, other_type("reads", topic, dds_type, self.types))
             reason = (
                 why_unpublished(topic, self.published, self.robot)
                 or in_robot_namespaces(topic, self.published, self.namespaces)
                 or outside_a_namespace(topic, self.published, self.namespaces)
             )
             self._say("reads", topic, "publish", reason)
-        for topic in self._topics(self._writers):
+        for topic, dds_type in self._topics(self._writers):
+            self._say_once("writes", topic, other_type("writes", topic, dds_type, self.types))
             reason = in_robot_namespaces(topic, self.read, self.namespaces) or outside_a_namespace(
                 topic, self.read, self.namespaces
             )
@@ -174,8 +202,14 @@ class UnpublishedTopics:
                 self.report(twice)
 
     def _say(self, does: str, topic: str, bridge_does: str, reason: str | None) -> None:
-        if reason is not None and (does, topic) not in self.reported:
-            self.reported.add((does, topic))
-            self.report(
-                f"a node {does} {topic}, which this bridge does not {bridge_does}: {reason}"
+        if reason is not None:
+            self._say_once(
+                does,
+                topic,
+                f"a node {does} {topic}, which this bridge does not {bridge_does}: " + reason,
             )
+
+    def _say_once(self, does: str, topic: str, message: str | None) -> None:
+        if message is not None and (does, topic) not in self.reported:
+            self.reported.add((does, topic))
+            self.report(message)

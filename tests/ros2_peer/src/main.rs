@@ -217,15 +217,29 @@ fn foreign_types(context: &Context, options: &Options) -> Result<(), Failure> {
         };
         Some(format!("{package}::msg::dds_::{type_name}_"))
     };
-    let remote_readers = participant.discovered_readers().into_iter().map(|reader| {
-        let data = reader.subscription_topic_data;
-        (data.topic_name().clone(), data.type_name().clone())
-    });
+    let remote_readers: Vec<(String, String)> = participant
+        .discovered_readers()
+        .into_iter()
+        .map(|reader| {
+            let data = reader.subscription_topic_data;
+            (data.topic_name().clone(), data.type_name().clone())
+        })
+        .collect();
+    // A topic read under several types (the bridge reads /cmd_vel as Twist and TwistStamped)
+    // matches this peer's writer if one of them is this peer's type.
+    let read_as_ours = |topic: &str| {
+        remote_readers
+            .iter()
+            .any(|(name, type_name)| name == topic && ours(name).as_deref() == Some(type_name))
+    };
     let remote_writers = participant.discovered_writers().into_iter().map(|writer| {
         let data = writer.publication_topic_data;
         (data.topic_name, data.type_name)
     });
     let mut differences: Vec<String> = remote_readers
+        .iter()
+        .filter(|(topic, _)| !read_as_ours(topic))
+        .cloned()
         .chain(remote_writers)
         .filter_map(|(topic, type_name): (String, String)| {
             let expected = ours(&topic)?;
