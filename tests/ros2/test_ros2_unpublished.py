@@ -138,9 +138,11 @@ def test_the_transforms_and_topics_the_bridge_does_not_publish_are_left_alone(to
 def test_two_bridges_on_one_domain_each_say_so_once() -> None:
     # Two simulations on one domain: a node reading /odom got both robots' odometry, and its
     # commands stepped both, and nothing said why.
-    bridge = [*MAZESIM, "ros2", "bridge", "--mode", "free", "--stop-after", "100"]
+    # Each bridge runs long enough (300 steps, about 19 s) that a start delayed by a loaded
+    # machine still leaves the two of them running together.
+    bridge = [*MAZESIM, "ros2", "bridge", "--mode", "free", "--stop-after", "300"]
     result = run_in_namespace(
-        [bridge, [*bridge, "--world", "arena"]], ["sleep", "5"], timeout=60, grace=10.0
+        [bridge, [*bridge, "--world", "arena"]], ["sleep", "5"], timeout=120, grace=60.0
     )
     assert result.returncode == 0, result.stderr
     assert result.stderr.count("as this bridge does: every node reading it receives both") == 2
