@@ -13,6 +13,7 @@ import pytest
 
 import mazesim
 from mazesim.cli import main
+from mazesim.episodes import learning_problems
 from mazesim.errors import PolicyFormatError, UnknownNameError
 from mazesim.learn.schema import differing
 from mazesim.learn.tables import load_policy
@@ -180,6 +181,22 @@ def test_an_s_moved_away_from_the_start_pose_is_a_problem() -> None:
     assert "the S of the [grid] map is in (column 2, row 2)" in problem
     assert "delete the [start] table to start at the S" in problem
     assert navigator_problems(_moved(None, "|      S |")) == []
+
+
+def test_a_goal_farther_than_an_episode_can_drive_is_refused_before_training(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    world = tmp_path / "big.toml"
+    mazesim.generate_maze(20, 20, seed=7).save(str(world))
+    (problem,) = learning_problems(mazesim.load_world(str(world)))
+    assert problem.startswith("its goal is 46.75 m from the start along the cells, about 11,328")
+    assert "more than the 4000 an episode lasts (16.5 m)" in problem
+    assert main(["show", str(world), "-o", str(tmp_path / "big.png")]) == 0
+    assert f"the navigator cannot learn it: {problem}" in capsys.readouterr().out
+    out = tmp_path / "run"
+    assert main(["train", "--world", str(world), "--out", str(out), *QUICK]) == 2
+    assert problem in capsys.readouterr().err and not out.exists()
+    assert learning_problems(mazesim.load_world("seed-maze")) == []
 
 
 @pytest.mark.parametrize("flat", [False, True])
