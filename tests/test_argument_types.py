@@ -80,6 +80,7 @@ def samples(tmp: Path) -> dict[str, Any]:
             "Navigator": navigator,
         },
         "name": {"World": "seed-maze", "RobotProfile": "e-puck"},
+        "name_or_path": "e-puck",
         "path": {"load": saved, "save": tmp / "out.toml", "import_wbt": WEBOTS_WORLD},
         "worlds": world,
         "world": world,

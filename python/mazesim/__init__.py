@@ -141,23 +141,15 @@ def load_world(name_or_path: str | os.PathLike[str]) -> World:
                 column=getattr(unreadable_world, "column", None),
                 field=getattr(unreadable_world, "field", None),
             ) from None
-    available = sorted(builtin_world_names())
-    from mazesim._paths import _kind_of, world_files_beside
+    from mazesim._paths import unknown_name_or_file
 
-    try:
-        found = f"it is {_kind_of(os.stat(path).st_mode)}, not a world file"
-    except OSError as unreadable:
-        found = unreadable.strerror.lower() if unreadable.strerror else "no such file"
-        if not os.path.isabs(path):  # a relative path: say where it was looked for
-            found = f"{found} in {os.getcwd()}"
-    error = UnknownNameError(
-        f"no built-in world named {path!r} and {found}; "
-        f"built-in worlds: {', '.join(available)} (or a path to a .toml or .wbt world file)",
-        available=available,
-        name=path,
-        nearby=world_files_beside(path),
+    raise unknown_name_or_file(
+        path,
+        "world",
+        sorted(builtin_world_names()),
+        "a .toml or .wbt world file",
+        (".toml", ".wbt"),
     )
-    raise error
 
 
 _checks.guard_module(_checks.sys.modules[__name__])

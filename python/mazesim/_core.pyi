@@ -239,6 +239,11 @@ class RobotProfile:
     @staticmethod
     def builtin(name: str) -> RobotProfile: ...
     @staticmethod
+    def load(name_or_path: str | os.PathLike[str]) -> RobotProfile:
+        """A built-in profile by name, or a profile file by path (a copy of a built-in profile's
+        `to_toml()` text, edited); the `robot` argument of the simulators and environments, and
+        the `--robot` option of the commands, take the same."""
+    @staticmethod
     def from_toml(text: str, source: str = "<string>") -> RobotProfile:
         """Parses a profile file's text; ``source`` names it in error messages."""
     def to_toml(self) -> str:

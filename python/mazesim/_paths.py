@@ -14,7 +14,7 @@ import stat
 from collections.abc import Callable, Iterable, Iterator
 from typing import BinaryIO
 
-from mazesim.errors import InvalidArgumentError, MazesimError, MazesimIOError
+from mazesim.errors import InvalidArgumentError, MazesimError, MazesimIOError, UnknownNameError
 
 __all__ = [
     "MAX_TEXT_CHARACTERS",
@@ -28,6 +28,8 @@ __all__ = [
     "read_text",
     "refuse_overwriting_inputs",
     "same_file",
+    "unknown_name_or_file",
+    "unknown_robot_profile",
     "world_files_beside",
     "writing_alone",
 ]
@@ -56,10 +58,10 @@ def _kind_of(mode: int) -> str:
 MAX_FOLDER_ENTRIES = 1000
 
 
-def world_files_beside(path: str) -> list[str]:
-    """The world files (``.toml``, ``.wbt``) in the folder of ``path``, written as ``path`` would
-    name them: the names a mistyped world file may have meant. Empty when the folder cannot be
-    read."""
+def world_files_beside(path: str, suffixes: tuple[str, ...] = (".toml", ".wbt")) -> list[str]:
+    """The world files (``.toml``, ``.wbt``, or the files of ``suffixes``) in the folder of
+    ``path``, written as ``path`` would name them: the names a mistyped file may have meant.
+    Empty when the folder cannot be read."""
     folder = os.path.dirname(path)
     names = []
     try:
@@ -67,11 +69,47 @@ def world_files_beside(path: str) -> list[str]:
             for count, entry in enumerate(entries):
                 if count >= MAX_FOLDER_ENTRIES:
                     break
-                if entry.name.lower().endswith((".toml", ".wbt")):
+                if entry.name.lower().endswith(suffixes):
                     names.append(os.path.join(folder, entry.name))
     except OSError:
         return []
     return sorted(names)
+
+
+def unknown_name_or_file(
+    path: str, kind: str, available: list[str], files: str, suffixes: tuple[str, ...]
+) -> UnknownNameError:
+    """The error for ``path`` that is neither the name of a built-in ``kind`` (one of
+    ``available``) nor a file: it says what the path is or where it was looked for, lists the
+    built-in names and ``files`` (what else is taken), and ends with the closest built-in name or
+    file of ``suffixes`` beside it (a typo's likely fix)."""
+    try:
+        found = f"it is {_kind_of(os.stat(path).st_mode)}, not a {kind} file"
+    except OSError as unreadable:
+        found = unreadable.strerror.lower() if unreadable.strerror else "no such file"
+        if not os.path.isabs(path):  # a relative path: say where it was looked for
+            found = f"{found} in {os.getcwd()}"
+    return UnknownNameError(
+        f"no built-in {kind} named {path!r} and {found}; "
+        f"built-in {kind}s: {', '.join(available)} (or a path to {files})",
+        available=available,
+        name=path,
+        nearby=world_files_beside(path, suffixes),
+    )
+
+
+def unknown_robot_profile(path: str) -> UnknownNameError:
+    """The error for a ``robot`` that is neither a built-in profile's name nor a profile file."""
+    from mazesim._core import robot_profile_names
+
+    return unknown_name_or_file(
+        path,
+        "robot profile",
+        sorted(robot_profile_names()),
+        "a robot profile .toml file, such as RobotProfile.builtin('e-puck').to_toml() saved "
+        "to a file and edited",
+        (".toml",),
+    )
 
 
 def _read_failure(file: str, what: str, reason: str, number: int | None) -> MazesimIOError:

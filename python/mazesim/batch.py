@@ -50,7 +50,7 @@ RobotChoice = Union[str, RobotProfile, Sequence[Union[str, RobotProfile]]]
 def first_profile(robot: RobotChoice) -> RobotProfile:
     """The profile of the first robot of a ``robot`` argument the batch simulator accepted."""
     first = robot if isinstance(robot, (str, RobotProfile)) else robot[0]
-    return first if isinstance(first, RobotProfile) else RobotProfile.builtin(first)
+    return first if isinstance(first, RobotProfile) else RobotProfile.load(first)
 
 
 def cruise_step_length(robot: RobotProfile, control_step_ms: float = CONTROL_STEP_MS) -> float:

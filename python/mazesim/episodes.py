@@ -30,7 +30,7 @@ from mazesim._seeding import seed_sequence
 from mazesim._seeding import stream as random_stream
 from mazesim.batch import CONTROL_STEP_MS, RobotBatch, RobotChoice, cruise_step_length
 from mazesim.errors import InvalidArgumentError
-from mazesim.maze import CellMaze
+from mazesim.maze import CellMaze, navigator_problems
 
 __all__ = [
     "EVENT_SOURCES",
@@ -40,6 +40,7 @@ __all__ = [
     "EpisodeSchedule",
     "Navigator",
     "StartJitter",
+    "learning_problems",
     "run_episodes",
     "shortest_path_steps",
 ]
@@ -71,6 +72,26 @@ def shortest_path_steps(world: World, control_step_ms: float = CONTROL_STEP_MS) 
     radius = 0.0 if goal is None else goal[2]
     length = max(maze.shortest_path_length() - radius, 0.0)
     return length / cruise_step_length(RobotProfile.builtin("seed"), control_step_ms)
+
+
+def learning_problems(world: World, *, show_command: str | None = None) -> list[str]:
+    """What keeps the navigator from learning ``world``, each said with what to change
+    (:func:`mazesim.maze.navigator_problems`), and a goal farther from the start than any episode
+    of :data:`MAX_STEPS` can drive at cruise speed; empty when it can learn it."""
+    problems = navigator_problems(world, show_command=show_command)
+    maze = CellMaze(world)
+    if problems or maze.start_cell is None or maze.goal_cell is None:
+        return problems
+    steps = shortest_path_steps(world)
+    if steps > MAX_STEPS:
+        reach = MAX_STEPS * cruise_step_length(RobotProfile.builtin("seed"))
+        problems.append(
+            f"its goal is {maze.shortest_path_length():.2f} m from the start along the cells, "
+            f"about {steps:,.0f} control steps of {CONTROL_STEP_MS:g} ms at cruise speed, more "
+            f"than the {MAX_STEPS} an episode lasts ({reach:.1f} m), so no episode can reach "
+            "it: draw a smaller maze, or put the goal nearer the start"
+        )
+    return problems
 
 
 class EpisodeBatch:

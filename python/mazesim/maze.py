@@ -84,11 +84,25 @@ def navigator_problems(world: World, *, show_command: str | None = None) -> list
             "center inside the maze"
         )
     elif maze.start_cell is None:
-        problems.append(
-            "its start is in no cell of the maze: put an S in a cell of the [grid] map, or a "
-            "[start] pose inside it"
-        )
+        between = maze.cells_touching(float(world.start[0]), float(world.start[1]))
+        if len(between) > 1:  # outside the maze (none): _start_problem says so
+            cells = " and ".join(f"(column {c}, row {r})" for c, r in between)
+            centres = " or ".join("({:g}, {:g})".format(*maze.center(cell)) for cell in between)
+            problems.append(
+                f"its start ({float(world.start[0]):g}, {float(world.start[1]):g}) is on the "
+                f"line between the cells {cells}, so it is in none of them: move the [start] "
+                f"pose to a cell's centre, {centres}"
+            )
     else:
+        marked = maze.marked_start
+        if marked is not None and marked != maze.start_cell:
+            problems.append(
+                f"its [start] pose ({float(world.start[0]):g}, {float(world.start[1]):g}) is in "
+                f"the cell (column {maze.start_cell[0]}, row {maze.start_cell[1]}), but the S of "
+                f"the [grid] map is in (column {marked[0]}, row {marked[1]}), and the robot "
+                "starts at the [start] pose: delete the [start] table to start at the S, or move "
+                "the S to the pose's cell"
+            )
         column, row = maze.goal_cell
         if maze.distances_from(maze.start_cell)[row, column] < 0:
             problems.append(
@@ -154,6 +168,16 @@ def _start_problem(world: World, maze: CellMaze) -> str | None:
     return None
 
 
+def _cells_along(position: float, count: int) -> list[int]:
+    """The cells (0 to ``count - 1``) whose span [k, k + 1] holds ``position`` (in cells): one
+    inside a cell, two on the line between cells (within a billionth of a cell), none outside."""
+    nearest = round(position)
+    if abs(position - nearest) <= 1e-9:
+        return [k for k in (nearest - 1, nearest) if 0 <= k < count]
+    inside = math.floor(position)
+    return [inside] if 0 <= inside < count else []
+
+
 def world_hash(world: World) -> str:
     """The sha256 of the world's description (:meth:`mazesim.World.to_toml`), in hex."""
     return hashlib.sha256(world.to_toml().encode("utf-8")).hexdigest()
@@ -204,8 +228,25 @@ class CellMaze:
         self.vertical = np.asarray(maze["vertical"], dtype=bool)
         start = cast("tuple[int, int] | None", maze["start"])
         goal = cast("tuple[int, int] | None", maze["goal"])
-        self.start_cell = None if start is None else (int(start[0]), int(start[1]))
         self.goal_cell = None if goal is None else (int(goal[0]), int(goal[1]))
+        #: The cell of the map's S, or None when the map has none.
+        self.marked_start = None if start is None else (int(start[0]), int(start[1]))
+        #: The start cell: the cell holding the robot's start pose (the S's centre, or the
+        #: [start] pose, which wins), or the S's cell for a pose on its edge; None for a pose
+        #: outside the maze or on the line between two cells without an S.
+        holding = self.cells_touching(float(world.start[0]), float(world.start[1]))
+        self.start_cell = holding[0] if len(holding) == 1 else None
+        if len(holding) > 1 and self.marked_start in holding:
+            self.start_cell = self.marked_start
+
+    def cells_touching(self, x: float, y: float) -> list[tuple[int, int]]:
+        """The cells whose square holds the point (x, y), edges included: one for a point inside
+        a cell, two or four for a point on the line between cells, none outside the maze."""
+        column = (x - self.origin[0]) / self.cell_size
+        row_from_south = (y - self.origin[1]) / self.cell_size
+        columns = _cells_along(column, self.cols)
+        rows = [self.rows - 1 - each for each in _cells_along(row_from_south, self.rows)]
+        return [(c, r) for r in rows for c in columns]
 
     def is_open(self, cell: tuple[int, int], direction: int) -> bool:
         """True when no wall closes ``cell`` on side ``direction``."""

@@ -320,7 +320,7 @@ def test_robot_profiles_give_one_robot_its_own_profile_and_pickle_with_it() -> N
     ("profiles", "message"),
     [
         ([None], "expected no robot profiles or one per robot of world .* \\(2\\), found 1"),
-        ([None, 3], r"robot_profiles\[1\] to be a robot profile name \(str\) or a"),
+        ([None, 3], r"robot_profiles\[1\] to be a robot profile name, a profile file's path or a"),
         ([None, "no-such-robot"], "no-such-robot"),
         ("e-puck", "expected robot_profiles to be a sequence"),
     ],

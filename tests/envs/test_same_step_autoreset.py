@@ -78,3 +78,15 @@ def test_same_step_autoreset_equals_sync_vector_env(world: str, tmp_path: Any) -
 def test_an_unknown_autoreset_mode_is_refused() -> None:
     with pytest.raises(InvalidArgumentError, match="autoreset_mode.*Disabled.*found 'Never'"):
         EPuckMazeVectorEnv(num_envs=2, autoreset_mode="Never")
+    with pytest.raises(InvalidArgumentError) as refused:
+        EPuckMazeVectorEnv(num_envs=2, autoreset_mode="Never")
+    assert "did you mean" not in str(refused.value)
+
+
+@pytest.mark.parametrize(
+    ("spelt", "meant"),
+    [("next_step", "NextStep"), ("SAME_STEP", "SameStep"), ("disabled", "Disabled")],
+)
+def test_a_mode_spelt_otherwise_is_told_gymnasiums_spelling(spelt: str, meant: str) -> None:
+    with pytest.raises(InvalidArgumentError, match=f"found '{spelt}'; did you mean '{meant}'\\?$"):
+        EPuckMazeVectorEnv(num_envs=2, autoreset_mode=spelt)

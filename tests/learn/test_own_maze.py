@@ -13,6 +13,7 @@ import pytest
 
 import mazesim
 from mazesim.cli import main
+from mazesim.episodes import learning_problems
 from mazesim.errors import PolicyFormatError, UnknownNameError
 from mazesim.learn.schema import differing
 from mazesim.learn.tables import load_policy
@@ -146,6 +147,56 @@ def test_a_start_on_a_wall_or_outside_the_maze_is_a_problem(
     assert said in problem and "move the [start] pose" in problem
     assert main(["show", str(world), "-o", str(tmp_path / "moved.png")]) == 0
     assert f"the navigator cannot learn it: {problem}" in capsys.readouterr().out
+
+
+def _moved(start: str | None, row: str) -> mazesim.World:
+    """The 3 x 3 maze of seed 1 with its [start] pose moved (deleted for None) and its S row
+    (the bottom row, ``|S       |``) redrawn."""
+    text = mazesim.generate_maze(3, 3, seed=1).to_toml()
+    pose = "[start]\nx = 0.125\ny = 0.125\nyaw = 0.0\n"
+    assert pose in text and "|S       |" in text
+    text = text.replace(pose, "" if start is None else f"[start]\n{start}\nyaw = 0.0\n")
+    return mazesim.World.from_toml(text.replace("|S       |", row), source="moved.toml")
+
+
+def test_a_start_pose_without_an_s_starts_in_the_cell_holding_it() -> None:
+    world = _moved("x = 0.375\ny = 0.125", "|        |")
+    assert CellMaze(world).start_cell == (1, 2)
+    assert navigator_problems(world) == []
+
+
+def test_a_start_on_the_line_between_two_cells_is_told_their_centres() -> None:
+    (problem,) = navigator_problems(_moved("x = 0.25\ny = 0.125", "|        |"))
+    assert problem == (
+        "its start (0.25, 0.125) is on the line between the cells (column 0, row 2) and "
+        "(column 1, row 2), so it is in none of them: move the [start] pose to a cell's centre, "
+        "(0.125, 0.125) or (0.375, 0.125)"
+    )
+    # On the S's edge, the S decides.
+    assert CellMaze(_moved("x = 0.25\ny = 0.125", "|S       |")).start_cell == (0, 2)
+
+
+def test_an_s_moved_away_from_the_start_pose_is_a_problem() -> None:
+    (problem,) = navigator_problems(_moved("x = 0.125\ny = 0.125", "|      S |"))
+    assert "the S of the [grid] map is in (column 2, row 2)" in problem
+    assert "delete the [start] table to start at the S" in problem
+    assert navigator_problems(_moved(None, "|      S |")) == []
+
+
+def test_a_goal_farther_than_an_episode_can_drive_is_refused_before_training(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    world = tmp_path / "big.toml"
+    mazesim.generate_maze(20, 20, seed=7).save(str(world))
+    (problem,) = learning_problems(mazesim.load_world(str(world)))
+    assert problem.startswith("its goal is 46.75 m from the start along the cells, about 11,328")
+    assert "more than the 4000 an episode lasts (16.5 m)" in problem
+    assert main(["show", str(world), "-o", str(tmp_path / "big.png")]) == 0
+    assert f"the navigator cannot learn it: {problem}" in capsys.readouterr().out
+    out = tmp_path / "run"
+    assert main(["train", "--world", str(world), "--out", str(out), *QUICK]) == 2
+    assert problem in capsys.readouterr().err and not out.exists()
+    assert learning_problems(mazesim.load_world("seed-maze")) == []
 
 
 @pytest.mark.parametrize("flat", [False, True])

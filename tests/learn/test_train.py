@@ -47,8 +47,11 @@ def test_interrupted_training_resumes_to_the_same_tables(tmp_path: Path) -> None
     assert train(TINY, RunFolder(tmp_path / "parts"), progress=None, stop_after_rounds=1) is None
     assert (tmp_path / "parts" / "checkpoint.npz").exists()
     assert not (tmp_path / "parts" / "tables.npz").exists()
-    with pytest.raises(PolicyFormatError, match="--resume"):
+    with pytest.raises(PolicyFormatError, match="a run that has not finished .*--resume"):
         train(TINY, RunFolder(tmp_path / "parts"), progress=None)
+    # Evaluating the unfinished navigator is told to finish it, not that a file is missing.
+    with pytest.raises(PolicyFormatError, match="that has not finished .*again with --resume"):
+        load_policy(tmp_path / "parts")
     other = dataclasses.replace(TINY, seed=12)
     with pytest.raises(PolicyFormatError, match="other settings"):
         train(other, RunFolder(tmp_path / "parts", resume=True), progress=None)

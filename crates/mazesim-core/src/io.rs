@@ -98,6 +98,17 @@ pub fn read_limited(path: &Path, limit: u64, what: &str) -> Result<Vec<u8>> {
     Ok(bytes)
 }
 
+/// Reads `path` as UTF-8 text with [`read_limited`]'s bounds; text that is not UTF-8 is an I/O
+/// error naming the file.
+pub fn read_text_limited(path: &Path, limit: u64, what: &str) -> Result<String> {
+    let bytes = read_limited(path, limit, what)?;
+    String::from_utf8(bytes).map_err(|_| {
+        let not_text =
+            std::io::Error::new(ErrorKind::InvalidData, "stream did not contain valid UTF-8");
+        Error::io(path, &format!("cannot read {what}"), &not_text)
+    })
+}
+
 /// Refuses a text given in memory (not read from a file) longer than the bound of the file it
 /// stands for, before it is parsed: a parser's memory is a multiple of its input, and a text of a
 /// few hundred MB made it ask for more than the process may have (an abort, not an error).

@@ -30,17 +30,43 @@ impl PyRobotProfile {
         })
     }
 
+    /// A built-in profile by name, or a profile file by path (a copy of a built-in profile's
+    /// TOML, edited): a built-in name wins over a file of that name in the current folder, as a
+    /// built-in world's does. Neither: an `UnknownNameError` listing the built-in names, saying
+    /// where the path was looked for and ending with the closest name or `.toml` file beside it.
+    pub fn named_or_file(name: &str) -> PyResult<Self> {
+        if mazesim_core::robot_profile_names()
+            .iter()
+            .any(|n| n == name)
+        {
+            return Self::named(name);
+        }
+        let path = std::path::Path::new(name);
+        if path.is_file() {
+            return Ok(Self {
+                inner: Arc::new(RobotProfile::load(path).py()?),
+            });
+        }
+        Err(Python::attach(|py| {
+            py.import("mazesim._paths")
+                .and_then(|paths| paths.getattr("unknown_robot_profile"))
+                .and_then(|unknown| unknown.call1((name,)))
+                .map_or_else(|failed| failed, PyErr::from_value)
+        }))
+    }
+
     /// The lookup tables of the distance sensors, device order.
     fn distance_tables(&self) -> impl Iterator<Item = &LookupTable> {
         self.inner.distance_sensors.iter().map(|s| &s.model.table)
     }
 }
 
-/// A `robot` argument as given: a built-in profile's name, a `RobotProfile`, a list or tuple of
-/// them (one per environment of a batch), or something else (its type's name, for the error).
+/// A `robot` argument as given: a built-in profile's name or a profile file's path (a str or an
+/// `os.PathLike`), a `RobotProfile`, a list or tuple of them (one per environment of a batch), or
+/// something else (its type's name, for the error).
 #[derive(Debug, Clone)]
 pub enum RobotArg {
-    /// A built-in profile's name.
+    /// A built-in profile's name or a profile file's path.
     Name(String),
     /// A profile.
     Profile(Arc<RobotProfile>),
@@ -59,15 +85,15 @@ impl RobotArg {
     /// The one profile this argument gives; `name` names the argument in the error.
     pub fn profile(&self, name: &str) -> PyResult<Arc<RobotProfile>> {
         match self {
-            RobotArg::Name(n) => Ok(PyRobotProfile::named(n)?.inner),
+            RobotArg::Name(n) => Ok(PyRobotProfile::named_or_file(n)?.inner),
             RobotArg::Profile(p) => Ok(p.clone()),
             RobotArg::Many(_) => Err(invalid(format!(
-                "expected {name} to be a robot profile name (str) or a mazesim.RobotProfile, \
-                 found a sequence"
+                "expected {name} to be a robot profile name, a profile file's path or a \
+                 mazesim.RobotProfile, found a sequence"
             ))),
             RobotArg::Other(kind) => Err(wrong_type(format!(
-                "expected {name} to be a robot profile name (str) or a mazesim.RobotProfile, \
-                 found a {kind}"
+                "expected {name} to be a robot profile name, a profile file's path or a \
+                 mazesim.RobotProfile, found a {kind}"
             ))),
         }
     }
@@ -82,13 +108,13 @@ impl RobotArg {
                 .map(|(i, item)| item.profile(&format!("robot[{i}]")))
                 .collect(),
             RobotArg::Many(items) => Err(invalid(format!(
-                "expected robot to be a robot profile name (str), a mazesim.RobotProfile or a \
-                 sequence of {n} of them (one per environment), found {} of them",
+                "expected robot to be a robot profile name, a profile file's path, a \
+                 mazesim.RobotProfile or a sequence of {n} of them (one per environment), found {} of them",
                 items.len()
             ))),
             RobotArg::Other(kind) => Err(wrong_type(format!(
-                "expected robot to be a robot profile name (str), a mazesim.RobotProfile or a \
-                 sequence of {n} of them (one per environment), found a {kind}"
+                "expected robot to be a robot profile name, a profile file's path, a \
+                 mazesim.RobotProfile or a sequence of {n} of them (one per environment), found a {kind}"
             ))),
             one => Ok(vec![one.profile("robot")?]),
         }
@@ -107,6 +133,15 @@ impl<'a, 'py> FromPyObject<'a, 'py> for RobotArg {
                 Ok(name) => RobotArg::Name(name.into_owned()),
                 Err(_) => RobotArg::Other(type_name(&obj.to_owned())),
             });
+        }
+        if obj.hasattr("__fspath__").unwrap_or(false) {
+            let path = obj.py().import("os")?.call_method1("fspath", (obj,));
+            if let Ok(Ok(path)) = path.as_ref().map(|p| p.cast::<PyString>()) {
+                if let Ok(path) = path.to_cow() {
+                    return Ok(RobotArg::Name(path.into_owned()));
+                }
+            }
+            return Ok(RobotArg::Other(type_name(&obj.to_owned())));
         }
         if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
             let items = bounded_items(&obj.to_owned(), "robot", "robot profiles", MAX_ENVS)?;
@@ -169,6 +204,23 @@ impl PyRobotProfile {
     #[staticmethod]
     fn builtin(name: Text) -> PyResult<Self> {
         enter(|| Self::named(&name.value("name", "a str")?))
+    }
+
+    /// A built-in profile by name, or a profile file by path (a copy of a built-in profile's
+    /// `to_toml()` text, edited); the `robot` argument of the simulators and environments, and
+    /// the `--robot` option of the commands, take the same.
+    #[staticmethod]
+    fn load(name_or_path: &Bound<'_, PyAny>) -> PyResult<Self> {
+        enter(|| match name_or_path.extract::<RobotArg>()? {
+            RobotArg::Name(name) => Self::named_or_file(&name),
+            RobotArg::Profile(_) | RobotArg::Many(_) | RobotArg::Other(_) => {
+                Err(wrong_type(format!(
+                    "expected name_or_path to be a robot profile name or a profile file's path \
+                     (str or os.PathLike), found a {}",
+                    type_name(name_or_path)
+                )))
+            }
+        })
     }
 
     /// Parses a profile file's text; `source` names it in error messages.

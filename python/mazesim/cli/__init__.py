@@ -28,7 +28,10 @@ __all__ = ["COMMANDS", "build_parser", "main"]
 #: which adds its parser(s) to the ``argparse`` subparsers object and sets
 #: ``run=<function(args) -> int>`` as the parser default.
 COMMANDS: dict[str, tuple[str, str]] = {
-    "worlds": ("mazesim.cli.worlds", "list the built-in worlds"),
+    "worlds": (
+        "mazesim.cli.worlds",
+        "list the built-in worlds, or export one to a world file to edit",
+    ),
     "demo": (
         "mazesim.cli.demo",
         "drive the robot (avoid-collision or the shipped navigator) and plot its path",

@@ -71,9 +71,9 @@ def run_show(args: argparse.Namespace, out: TextIO) -> int:
     imported = Path(args.world).suffix.lower() == ".wbt"
     out.write(f"wrote {path}" + (f" ({len(warnings)} importer warnings)\n" if imported else "\n"))
     if world.cell_maze() is not None:
-        from mazesim.maze import navigator_problems
+        from mazesim.episodes import learning_problems
 
-        problems = navigator_problems(world)
+        problems = learning_problems(world)
         out.write(
             f"the navigator cannot learn it: {'; '.join(problems)}\n"
             if problems

@@ -1,25 +1,85 @@
-"""``mazesim worlds``: the built-in worlds, one line each."""
+"""``mazesim worlds``: the built-in worlds, one line each, and the export of one to a world file
+to edit (``--export NAME FILE``)."""
 
 from __future__ import annotations
 
+import argparse
+import os
 import sys
 from typing import Any, TextIO
 
+from mazesim._paths import output_file
 from mazesim.cli._help import examples
+from mazesim.errors import InvalidArgumentError, MazesimIOError
 
-__all__ = ["run_worlds"]
+__all__ = ["export_world", "run_worlds"]
 
 
 def register(commands: Any) -> None:
     """Adds ``worlds`` to the ``mazesim`` command's subparsers."""
     worlds = commands.add_parser(
         "worlds",
-        help="list the built-in worlds",
+        help="list the built-in worlds, or export one to a world file to edit",
         description="List the built-in worlds: name, size and number of barcode checkpoints, "
-        "and whether the world has a goal. Any command's --world takes these names.",
-        epilog=examples("mazesim worlds"),
+        "and whether the world has a goal. Any command's --world takes these names, or the path "
+        "of a world file: --export NAME FILE writes a built-in world to FILE, a world file to "
+        "edit (docs/own-maze.md).",
+        epilog=examples(
+            "mazesim worlds",
+            "mazesim worlds --export seed-maze my-maze.toml",
+            "mazesim show my-maze.toml",
+        ),
     )
-    worlds.set_defaults(run=lambda args: run_worlds(sys.stdout))
+    worlds.add_argument(
+        "--export",
+        nargs=2,
+        metavar=("NAME", "FILE"),
+        help="write the built-in world NAME to the world file FILE (refused if FILE exists, "
+        "unless --force)",
+    )
+    worlds.add_argument(
+        "--force", action="store_true", help="with --export: overwrite FILE if it exists"
+    )
+    worlds.set_defaults(run=_run)
+
+
+def _run(args: argparse.Namespace) -> int:
+    if args.export is None:
+        if args.force:
+            raise InvalidArgumentError(
+                "expected --force with --export NAME FILE (it allows overwriting FILE), found it "
+                "alone"
+            )
+        return run_worlds(sys.stdout)
+    name, file = args.export
+    export_world(name, file, force=args.force)
+    print(f"wrote {file} (the built-in world {name}); edit it, then: mazesim show {file}")
+    return 0
+
+
+def export_world(name: str, file: str, *, force: bool = False) -> None:
+    """Writes the built-in world ``name`` to the world file ``file``.
+
+    Raises:
+        UnknownNameError: ``name`` is not a built-in world (the message lists them).
+        MazesimIOError: ``file`` exists and ``force`` is False, or it cannot be written.
+    """
+    import mazesim
+
+    if name not in mazesim.builtin_world_names():
+        mazesim.load_world(name)  # not a built-in world: its error lists them
+        available = ", ".join(sorted(mazesim.builtin_world_names()))
+        raise MazesimIOError(
+            f"expected the name of a built-in world to export, found the file {name!r}; "
+            f"built-in worlds: {available} (a world file is edited where it is)"
+        )
+    try:
+        output_file(file)
+    except argparse.ArgumentTypeError as refused:
+        raise MazesimIOError(str(refused)) from None
+    if os.path.lexists(file) and not force:
+        raise MazesimIOError(f"{file} exists: name another file, or add --force to overwrite it")
+    mazesim.World.builtin(name).save(file)
 
 
 def run_worlds(out: TextIO) -> int:

@@ -112,7 +112,7 @@ class EnvOptions:
     def create(
         cls,
         world: WorldOption = "seed-maze",
-        robot: str = "e-puck",
+        robot: str | os.PathLike[str] = "e-puck",
         action_mode: str = "continuous",
         clip_actions: bool = True,
         observation: str = "sensors",
@@ -134,7 +134,8 @@ class EnvOptions:
                 for a fresh random maze at each reset (``maze_size`` cells, drawn from the env's
                 RNG).
             robot: The robot profile (``mazesim.robot_profile_names()``): ``"e-puck"``,
-                ``"e-puck2"``, ``"e-puck-hardware"``, ``"seed"`` or ``"alphabot2"``.
+                ``"e-puck2"``, ``"e-puck-hardware"``, ``"seed"`` or ``"alphabot2"``, or the path
+                of a profile ``.toml`` file (:meth:`mazesim.RobotProfile.load`).
             action_mode: ``"continuous"`` (left and right wheel speeds as fractions of the motor
                 limit) or ``"discrete"`` (the report's 12 primitive actions).
             clip_actions: With True (the default), a continuous action outside [-1, 1] is
@@ -213,7 +214,7 @@ class EnvOptions:
         return cls(
             world=resolved,
             maze_size=(int(sizes[0]), int(sizes[1])),
-            robot=RobotProfile.builtin(robot),
+            robot=RobotProfile.load(robot),
             action_mode=action_mode,
             noise=bool(noise),
             include_pose=bool(include_pose),

@@ -581,4 +581,10 @@ def _autoreset_mode(mode: AutoresetMode | str) -> AutoresetMode:
         if mode is known or mode == known.value:
             return known
     names = ", ".join(f"AutoresetMode.{m.name} ({m.value!r})" for m in modes)
-    raise InvalidArgumentError(f"expected autoreset_mode to be one of {names}; found {mode!r}")
+    # A mode written in another case or with underscores ("next_step", "NEXT_STEP").
+    spelt = str(mode).replace("_", "").replace("-", "").lower()
+    meant = [m for m in modes if spelt in (m.value.lower(), m.name.replace("_", "").lower())]
+    raise InvalidArgumentError(
+        f"expected autoreset_mode to be one of {names}; found {mode!r}"
+        + (f"; did you mean {meant[0].value!r}?" if meant else "")
+    )

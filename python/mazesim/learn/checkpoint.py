@@ -130,8 +130,8 @@ class RunFolder:
             saved = read_checkpoint(folder, settings)
         elif checkpoint_exists(folder):
             raise PolicyFormatError(
-                f"{folder} holds the checkpoint of another run; pass --resume to continue it, "
-                "or choose another --out"
+                f"{folder} holds the checkpoint of a run that has not finished (interrupted, or "
+                "still running): pass --resume to continue it, or choose another --out"
             )
         make_output_folder(folder)
         remove_checkpoint_leftovers(folder)

@@ -694,6 +694,12 @@ def load_policy(folder: str | os.PathLike[str] | None = None) -> TrainedPolicy:
             f"the folder 'mazesim train --out DIR' writes, or a shipped one ({shipped}; without "
             "--policy, the seed-maze navigator)"
         )
+    if not meta_path.exists() and checkpoint_exists(path):
+        raise PolicyFormatError(
+            f"{meta_path}: no such file: {str(path)!r} holds the checkpoint of a 'mazesim train' "
+            "that has not finished (interrupted, or still running): run that command again with "
+            "--resume to finish it, then evaluate it"
+        )
     arrays, metadata = read_bundle(
         path,
         TABLES_FILE,

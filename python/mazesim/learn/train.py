@@ -40,7 +40,7 @@ from typing import Any, Protocol, Union
 from mazesim import load_world
 from mazesim._core import World, builtin_world_names
 from mazesim.batch import RobotChoice
-from mazesim.episodes import EpisodeResult, shortest_path_steps
+from mazesim.episodes import EpisodeResult, learning_problems, shortest_path_steps
 from mazesim.errors import InvalidArgumentError
 from mazesim.learn.baseline import train_flat
 from mazesim.learn.checkpoint import CHECKPOINT_FORMAT, Checkpoint
@@ -57,7 +57,7 @@ from mazesim.learn.lower import (
 )
 from mazesim.learn.summary import summarise
 from mazesim.learn.tables import TrainedPolicy
-from mazesim.maze import checkpoint_ids, navigator_problems, world_hash
+from mazesim.maze import checkpoint_ids, world_hash
 
 __all__ = [
     "CHECKPOINT_FORMAT",
@@ -310,12 +310,12 @@ def navigator_world(name: str) -> World:
 
     Raises:
         InvalidArgumentError: The navigator cannot learn it (no cell maze, no goal, a goal out of
-            reach, no checkpoints: :func:`mazesim.maze.navigator_problems`); the message says
+            reach, no checkpoints: :func:`mazesim.episodes.learning_problems`); the message says
             what to change.
         UnknownNameError, WorldFormatError: The world cannot be loaded.
     """
     world = load_world(name)
-    problems = navigator_problems(world, show_command=f"mazesim show {name}")
+    problems = learning_problems(world, show_command=f"mazesim show {name}")
     if problems:
         shown = name if name == world.name else f"{world.name!r} ({name})"
         raise InvalidArgumentError(

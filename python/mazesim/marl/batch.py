@@ -48,7 +48,7 @@ class MultiRobotBatch:
     Args:
         task: The task's rules (:mod:`mazesim.marl.tasks`).
         num_envs: Number of environments.
-        robot: The robots' profile (a built-in name).
+        robot: The robots' profile (a built-in name or a profile file's path).
         control_step_ms: Control step in milliseconds.
         noise: Whether sensors and wheels are noisy.
         threads: Threads of the batch engine (0: one per core).
@@ -73,7 +73,7 @@ class MultiRobotBatch:
         self.num_envs = num_envs
         self.num_robots = task.num_robots
         self.agents = agent_names(task.num_robots)
-        self.profile = RobotProfile.builtin(robot)
+        self.profile = RobotProfile.load(robot)
         self.max_wheel_speed = float(self.profile.max_wheel_speed)
         self.control_step_ms = control_step_ms
         self.noise = noise

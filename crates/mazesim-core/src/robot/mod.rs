@@ -245,6 +245,13 @@ impl RobotProfile {
         Self::from_toml(text, &format!("builtin-robot:{name}"))
     }
 
+    /// Reads a profile file (a copy of a built-in profile's TOML, edited); errors name the file.
+    pub fn load(path: &std::path::Path) -> Result<RobotProfile> {
+        let limit = crate::limits::MAX_WORLD_FILE_BYTES;
+        let text = crate::io::read_text_limited(path, limit, "the robot profile file")?;
+        Self::from_toml(&text, &path.display().to_string())
+    }
+
     /// Parses a profile file's text; `source` names it in errors.
     pub fn from_toml(text: &str, source: &str) -> Result<RobotProfile> {
         let limit = crate::limits::MAX_WORLD_FILE_BYTES;

@@ -140,15 +140,8 @@ impl World {
     /// Reads a world file; a world without a `name` is named after the file (`my-maze` for
     /// `my-maze.toml`), as an imported Webots world is.
     pub fn load(path: &Path) -> Result<World> {
-        let what = "the world file";
-        let bytes = crate::io::read_limited(path, crate::limits::MAX_WORLD_FILE_BYTES, what)?;
-        let text = String::from_utf8(bytes).map_err(|_| {
-            let not_text = std::io::Error::new(
-                std::io::ErrorKind::InvalidData,
-                "stream did not contain valid UTF-8",
-            );
-            Error::io(path, &format!("cannot read {what}"), &not_text)
-        })?;
+        let limit = crate::limits::MAX_WORLD_FILE_BYTES;
+        let text = crate::io::read_text_limited(path, limit, "the world file")?;
         let mut world = Self::from_toml(&text, &path.display().to_string())?;
         if world.spec.name.is_empty() {
             if let Some(stem) = path.file_stem() {
