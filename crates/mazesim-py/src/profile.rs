@@ -67,7 +67,7 @@ impl RobotArg {
             ))),
             RobotArg::Other(kind) => Err(wrong_type(format!(
                 "expected {name} to be a robot profile name (str) or a mazesim.RobotProfile, \
-                 found a {kind}"
+                 found {kind}"
             ))),
         }
     }
@@ -88,7 +88,7 @@ impl RobotArg {
             ))),
             RobotArg::Other(kind) => Err(wrong_type(format!(
                 "expected robot to be a robot profile name (str), a mazesim.RobotProfile or a \
-                 sequence of {n} of them (one per environment), found a {kind}"
+                 sequence of {n} of them (one per environment), found {kind}"
             ))),
             one => Ok(vec![one.profile("robot")?]),
         }
