@@ -352,7 +352,9 @@ def test_the_valid_samples_are_accepted(tmp_path: Path) -> None:
 @pytest.mark.parametrize("robot", [None, 3, b"e-puck"])
 def test_simulator_robot_of_a_wrong_type(robot: Any) -> None:
     world = mazesim.World.builtin("seed-maze")
-    with pytest.raises(mazesim.InvalidArgumentError, match=r"expected robot to be .*found a"):
+    with pytest.raises(
+        mazesim.InvalidArgumentError, match=r"expected robot to be .*found (an? |None)"
+    ):
         mazesim.Simulator(world, robot=robot)
 
 

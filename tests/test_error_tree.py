@@ -47,7 +47,7 @@ def test_text_for_an_array_is_named_as_not_numbers() -> None:
     from mazesim.learn.discretise import format_levels
 
     with pytest.raises(
-        InvalidArgumentError, match="levels refused: expected an array of numbers, found str"
+        InvalidArgumentError, match="levels refused: expected an array of numbers, found a str"
     ):
         format_levels("/tmp/garbage.toml")  # type: ignore[arg-type]
 

@@ -19,6 +19,7 @@ from hypothesis import strategies as st
 import mazesim
 from hostile import run_hostile
 from mazesim import _core
+from mazesim.errors import _with_article
 
 #: One case per class of the issue: a name saying what broke, and the statements that broke it.
 CASES = {
@@ -536,7 +537,22 @@ WRONG_TYPED_DEVICE_CALLS = {
     "led value": "robot.getDevice('led0').set([1])",
     # Text read as a number by float(): accepted as 64 ms.
     "step duration": "robot.step('64')",
+    # Read by int() as another number, without a word (Webots refuses them).
+    "receiver channel of 1.5": "robot.getDevice('receiver').setChannel(1.5)",
+    "sampling period of True": "robot.getDevice('ps0').enable(True)",
 }
+
+
+def _run_controller(controller: Path, out: Path) -> subprocess.CompletedProcess[str]:
+    """``mazesim webots run`` of ``controller`` for one second in the arena."""
+    return subprocess.run(
+        [sys.executable, "-m", "mazesim", "webots", "run", str(controller)]
+        + ["--world", "arena", "--seconds", "1", "--out", str(out)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=False,
+    )
 
 
 def test_a_controllers_wrong_typed_device_calls_are_refused_naming_the_method(
@@ -552,17 +568,38 @@ def test_a_controllers_wrong_typed_device_calls_are_refused_naming_the_method(
     )
     controller = tmp_path / "wrong_types.py"
     controller.write_text("import mazesim\nfrom controller import Robot\nrobot = Robot()\n" + calls)
-    done = subprocess.run(
-        [sys.executable, "-m", "mazesim", "webots", "run", str(controller)]
-        + ["--world", "arena", "--seconds", "1", "--out", str(tmp_path / "run")],
-        capture_output=True,
-        text=True,
-        timeout=120,
-        check=False,
-    )
+    done = _run_controller(controller, tmp_path / "run")
     refused = [line for line in done.stdout.splitlines() if line.startswith("REFUSED")]
     assert len(refused) == len(WRONG_TYPED_DEVICE_CALLS), done.stdout + done.stderr
     assert all("WrongTypeError" in line and " refused: " in line for line in refused), refused
+
+
+#: Controllers that end in an exception, and what the end of their run must say.
+ENDED_CONTROLLERS = {
+    # Webots' None for a device the robot lacks, then a call on it: the AttributeError on None
+    # did not say which name was asked for or what the robot has.
+    "robot.getDevice('ps9').enable(64)": [
+        "getDevice returned None for 'ps9': robot 'e-puck' has no device of that name",
+        "'ps0'",
+    ],
+    # A call the package refused: the trace went on into the package's checking frames.
+    "robot.step(-1)": ["Robot.step expects a duration in ms >= 0, found -1.0"],
+}
+
+
+@pytest.mark.parametrize("line", sorted(ENDED_CONTROLLERS))
+def test_a_controller_ended_by_an_exception_says_why_at_its_own_line(
+    tmp_path: Path, line: str
+) -> None:
+    controller = tmp_path / "ended.py"
+    controller.write_text(f"from controller import Robot\nrobot = Robot()\n{line}\n")
+    done = _run_controller(controller, tmp_path / "run")
+    assert done.returncode == 1, done.stderr
+    for expected in ENDED_CONTROLLERS[line]:
+        assert expected in done.stderr, done.stderr
+    trace = done.stderr[done.stderr.index("Traceback") :]
+    frames = [f for f in trace.splitlines() if f.strip().startswith("File ")]
+    assert frames and all(str(controller) in f for f in frames), trace
 
 
 def _core_instances() -> dict[str, object]:
@@ -601,6 +638,6 @@ def test_every_core_object_pickles_or_is_refused_saying_so(how: str) -> None:
             action(instance)
         except mazesim.WrongTypeError as error:
             assert isinstance(error, TypeError), name
-            assert f"found a {name}, which cannot be" in str(error), error
+            assert f"found {_with_article(name)}, which cannot be" in str(error), error
             refused.append(name)
     assert "BatchSimulator" in refused and "World" not in refused and "Simulator" not in refused

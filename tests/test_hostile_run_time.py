@@ -75,7 +75,7 @@ def test_an_action_of_an_agent_the_env_does_not_have_is_refused(swarm: Any) -> N
 
 
 def test_actions_not_by_agent_name_are_refused_saying_what_they_were(swarm: Any) -> None:
-    with pytest.raises(mazesim.InvalidActionError, match="by agent name, found list"):
+    with pytest.raises(mazesim.InvalidActionError, match="by agent name, found a list"):
         swarm.step([np.zeros(2, np.float32)] * len(swarm.agents))
 
 

@@ -7,6 +7,7 @@ function's own check of a type) and in the compiled core's binding (issue #15)."
 from __future__ import annotations
 
 import pickle
+import re
 from collections.abc import Callable
 from typing import Any
 
@@ -37,6 +38,18 @@ def _batch_step(actions: Any) -> None:
     batch.step(actions, *batch.output_buffers())
 
 
+def _unseen_mazes(count: Any, seed: Any) -> Any:
+    from mazesim.learn.evaluate import unseen_mazes
+
+    return unseen_mazes(count, seed)
+
+
+def _make(**options: Any) -> Any:
+    import gymnasium
+
+    return gymnasium.make("mazesim/EPuckMaze-v0", **options)
+
+
 #: Calls with an argument of the wrong type: name -> the call.
 WRONG_TYPES: dict[str, Callable[[], Any]] = {
     # The compiled core's arguments: ints, reals, text, classes, sequences, arrays.
@@ -57,6 +70,14 @@ WRONG_TYPES: dict[str, Callable[[], Any]] = {
     "render mode int": lambda: _env(render_mode=42),
     "parallel env render mode int": lambda: _goals_env(render_mode=3),
     "figure path int": lambda: mazesim.plotting.save_trajectory_png(_arena(), [0.0], [0.0], 5),
+    # True and False are ints to Python, not counts or seeds: the binding took them as 1 and 0.
+    "num_envs bool": lambda: mazesim.BatchSimulator(_arena(), num_envs=True),
+    "seed bool": lambda: mazesim.Simulator(_arena(), seed=True),
+    # int() read it as 1, without a word.
+    "seed of True": lambda: _unseen_mazes(1, True),
+    # gymnasium asks the env's render modes whether they hold 42 before the env is made; it
+    # failed inside gymnasium (AttributeError: 'int' object has no attribute 'endswith').
+    "gymnasium.make render mode int": lambda: _make(render_mode=42),
 }
 
 #: Calls with an argument of the right type out of its range: name -> the call.
@@ -101,3 +122,33 @@ def test_wrong_type_error_is_in_the_public_error_tree() -> None:
 
     assert "WrongTypeError" in errors.__all__ and "WrongTypeError" in mazesim.__all__
     assert issubclass(mazesim.WrongTypeError, mazesim.MazesimError)
+
+
+#: What a refusal of a type says it found, by value: the type's name with its article, or None.
+FOUND = {
+    "None": None,
+    "an int": 3,
+    "a float": 1.5,
+    "a bool": True,
+    "a bytes": b"x",
+    "an ndarray": np.zeros(2),
+    "a uint8": np.uint8(1),
+    "an object": object(),
+}
+
+
+@pytest.mark.parametrize("found", sorted(FOUND))
+def test_the_binding_and_the_python_side_name_a_wrong_type_alike(found: str) -> None:
+    """One wording: "found an int", "found None" (the binding said "found a int", "found a
+    NoneType")."""
+    value = FOUND[found]
+    with pytest.raises(mazesim.WrongTypeError) as binding:
+        mazesim.World.from_toml(value)
+    assert str(binding.value).endswith(f"found {found}"), binding.value
+    with pytest.raises(mazesim.WrongTypeError) as python_side:
+        mazesim.load_world(value)
+    # (The argument check follows the type with a short repr: "found a bytes b'x'".)
+    assert re.search(f"found {found}( |$)", str(python_side.value)), python_side.value
+    from mazesim._checks import refusal
+
+    assert re.search(f"found {found}( |$)", str(refusal(value, dict))), refusal(value, dict)

@@ -48,6 +48,7 @@ from mazesim.errors import (
     UnknownNameError,
     WorldFormatError,
     WrongTypeError,
+    _a_type,
 )
 
 # Every public module imported from here on gets the argument check (mazesim._checks).
@@ -111,7 +112,7 @@ def load_world(name_or_path: str | os.PathLike[str]) -> World:
     if not isinstance(name_or_path, (str, os.PathLike)):
         raise WrongTypeError(
             "expected name_or_path to be a built-in world name or a path (str or os.PathLike), "
-            f"found a {type(name_or_path).__name__}"
+            f"found {_a_type(name_or_path)}"
         )
     if isinstance(name_or_path, str) and name_or_path in builtin_world_names():
         return World.builtin(name_or_path)

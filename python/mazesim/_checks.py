@@ -53,7 +53,13 @@ import numpy as np
 from mazesim._callers import STATE
 from mazesim._error_tree import in_the_tree
 from mazesim._sizes import MOST_ENVS, size_of
-from mazesim.errors import InvalidArgumentError, MazesimError, WrongTypeError, _closest_name
+from mazesim.errors import (
+    InvalidArgumentError,
+    MazesimError,
+    WrongTypeError,
+    _a_type,
+    _closest_name,
+)
 
 __all__ = [
     "MOST_ARRAY_VALUES",
@@ -111,13 +117,13 @@ def refusal_error(reason: str) -> type[InvalidArgumentError]:
 
 
 def _describe(value: Any) -> str:
-    """A short description of a value for a message: its type, and its repr if short."""
-    kind = type(value).__name__
+    """A short description of a value for a message: its type with its article (as the
+    binding's refusals name it, :func:`~mazesim.errors._a_type`), and its repr if short."""
     try:
         text = repr(value) if isinstance(value, (int, float, str, bytes)) else ""
     except Exception:  # noqa: BLE001 - a repr that fails is not described
         text = ""
-    return f"{kind} {text}" if text and len(text) <= 60 else f"a {kind}"
+    return f"{_a_type(value)} {text}" if text and len(text) <= 60 else _a_type(value)
 
 
 def _hint_name(hint: Any) -> str:
@@ -138,7 +144,7 @@ def refusal(value: Any, hint: Any) -> str | None:
 def _too_many(value: Any, most: int = MOST_ITEMS) -> str | None:
     size = size_of(value)
     if size is not None and size > most:
-        return f"expected at most {most} items, found {size} (a {type(value).__name__})"
+        return f"expected at most {most} items, found {size} ({_a_type(value)})"
     return None
 
 
@@ -303,8 +309,8 @@ def _numbers_refusal(value: Any) -> str | None:
         try:
             array = np.asarray(value)
         except (ValueError, TypeError, RecursionError, OverflowError) as error:
-            kind = type(value).__name__
-            return f"expected an array of numbers, found a {kind} numpy cannot read ({error})"
+            found = _a_type(value)
+            return f"expected an array of numbers, found {found} numpy cannot read ({error})"
     if array.ndim > MOST_DIMENSIONS:
         return f"expected an array of at most {MOST_DIMENSIONS} dimensions, found {array.ndim}"
     if array.dtype.kind not in "biuf":
@@ -396,6 +402,26 @@ def annotations_of(func: Callable[..., Any]) -> dict[str, Any]:
     return hints
 
 
+def _takes_int(hint: Any) -> bool:
+    """Whether ``hint`` is ``int`` or a union with ``int`` and no ``float``."""
+    if hint is int:
+        return True
+    args = typing.get_args(hint) if typing.get_origin(hint) in _UNIONS else ()
+    return int in args and float not in args
+
+
+#: The types ``int()`` reads as ints, a value of which may be another number than the int.
+_READ_AS_INTS = (bool, float, np.bool_, np.floating)
+
+
+def _read_as_another_int(value: Any) -> bool:
+    """Whether ``int(value)`` is a number other than the one given: a bool, or a float with a
+    fractional part, NaN or an infinity."""
+    if isinstance(value, (bool, np.bool_)):
+        return True
+    return isinstance(value, _READ_AS_INTS) and not float(value).is_integer()
+
+
 class _Parameters:
     """The checks of one callable's parameters, read from its annotations at its first call."""
 
@@ -414,6 +440,9 @@ class _Parameters:
         self.sized: list[tuple[int, str, int]] = []
         #: (parameter, text) pairs that fit, by :meth:`refuse_text`.
         self.fitting_text: set[tuple[str, str | bytes] | None] = set()
+        #: The parameters annotated as ints (not floats), which ``int()`` would read a bool or
+        #: a float of 1.5 as, silently: checked before the call.
+        self.ints: set[str] = set()
 
     def prepare(self) -> None:
         func = inspect.unwrap(self.func)
@@ -438,6 +467,8 @@ class _Parameters:
                 self.positional.append((p.name, hint))
             if p.kind is not p.POSITIONAL_ONLY:
                 self.by_name[p.name] = hint
+            if _takes_int(hint):
+                self.ints.add(p.name)
         for index, p in enumerate(parameters):
             most = _bound_of(hints.get(p.name, Any))
             if most is not None and not (index == 0 and self.skip_first):
@@ -494,6 +525,16 @@ class _Parameters:
             if isinstance(value, _TEXT) and hint is not Any:
                 self.refuse_text(name, value, hint)
 
+    def check_ints(self, args: tuple[Any, ...], kwargs: dict[str, Any]) -> None:
+        """Refuses, before the call, a bool or a float with a fractional part (or not finite)
+        given for an int, which ``int()`` would read as another number without a word."""
+        for (name, hint), value in zip(self.positional, args):  # noqa: B905 - extras: TypeError
+            if name in self.ints and _read_as_another_int(value):
+                self.refuse(name, value, hint)
+        for name, value in kwargs.items():
+            if name in self.ints and _read_as_another_int(value):
+                self.refuse(name, value, self.by_name[name])
+
     def refuse_text(self, name: str, value: str | bytes | bytearray, hint: Any) -> None:
         """:meth:`refuse` for text, remembering the last texts that fit (a controller asks for
         the same device names at every step)."""
@@ -522,6 +563,7 @@ def checked(func: Callable[..., Any], *, method: bool = False) -> Callable[..., 
     # The wrapper runs in func's globals: everything it uses is bound here.
     error, own, failures, text = InvalidArgumentError, MazesimError, _ARGUMENT_FAILURES, _TEXT
     wrong = WrongTypeError
+    lossy = _READ_AS_INTS
     tree = in_the_tree
     state = STATE  # per thread, whether a checked call is running
 
@@ -534,6 +576,11 @@ def checked(func: Callable[..., Any], *, method: bool = False) -> Callable[..., 
             if isinstance(value, text):  # float("64") would take text for a number: check now
                 parameters.check_text(args, kwargs)
                 break
+        if parameters.ints:  # int(True) and int(1.5) would take another number: check now
+            for value in (*args, *kwargs.values()) if kwargs else args:
+                if isinstance(value, lossy):
+                    parameters.check_ints(args, kwargs)
+                    break
         state.inside = True
         try:
             return func(*args, **kwargs)

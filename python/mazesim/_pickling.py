@@ -15,7 +15,7 @@ from __future__ import annotations
 import types
 from typing import Any, NoReturn
 
-from mazesim.errors import WrongTypeError
+from mazesim.errors import WrongTypeError, _with_article
 
 __all__ = ["refuse_unpicklable"]
 
@@ -23,7 +23,8 @@ __all__ = ["refuse_unpicklable"]
 def _refusal(name: str) -> Any:
     def __reduce__(self: Any) -> NoReturn:
         raise WrongTypeError(
-            f"expected an object that can be pickled or copied, found a {name}, which cannot be: "
+            "expected an object that can be pickled or copied, "
+            f"found {_with_article(name)}, which cannot be: "
             f"make a new {name} with the arguments that made this one",
         )
 

@@ -19,7 +19,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _a_type
 
 __all__ = ["MOST_ENVS", "bounded_array", "bounded_list", "size_of"]
 
@@ -49,15 +49,14 @@ def bounded_array(value: Any, name: str, dtype: npt.DTypeLike, most: int) -> npt
     size = size_of(value)
     if size is not None and size > most:
         raise InvalidArgumentError(
-            f"expected {name} to hold at most {most} values, found {size} "
-            f"(a {type(value).__name__})"
+            f"expected {name} to hold at most {most} values, found {size} ({_a_type(value)})"
         )
     try:
         array = np.asarray(value, dtype=dtype)
     except (TypeError, ValueError, OverflowError) as error:
         raise InvalidArgumentError(
             f"expected {name} to be {most} or fewer values of {np.dtype(dtype)}, "
-            f"found a {type(value).__name__}: {str(error)[:200]}"
+            f"found {_a_type(value)}: {str(error)[:200]}"
         ) from error
     if array.size > most:
         raise InvalidArgumentError(
@@ -72,11 +71,11 @@ def bounded_list(value: Any, name: str, most: int) -> list[Any]:
     size = size_of(value)
     if size is None or isinstance(value, (str, bytes, bytearray)):
         raise InvalidArgumentError(
-            f"expected {name} to be a list of at most {most} items, found a {type(value).__name__}"
+            f"expected {name} to be a list of at most {most} items, found {_a_type(value)}"
         )
     if size > most:
         raise InvalidArgumentError(
-            f"expected {name} to hold at most {most} items, found {size} (a {type(value).__name__})"
+            f"expected {name} to hold at most {most} items, found {size} ({_a_type(value)})"
         )
     items = list(itertools.islice(value, most + 1))  # a __len__ that lied is cut short too
     if len(items) > most:

@@ -102,6 +102,27 @@ def _closest_name(name: str | None, available: list[str] | None, cutoff: float =
     return close[0] if close else None
 
 
+#: Starts of names whose "u" is spoken "you" (uint8, UUID), which take "a".
+_SPOKEN_YOU = ("uint", "uni", "uu", "use", "usu", "uti")
+
+
+def _with_article(name: str) -> str:
+    """``name`` with "a" or "an" as it is spoken: "an int", "an ndarray", "a uint8", "a float"
+    (the binding's ``with_article`` says the same)."""
+    lower = name.lower()
+    # An "nd" is spoken "en-dee" (ndarray).
+    vowel = lower[:1] in tuple("aeiou") and not lower.startswith(_SPOKEN_YOU)
+    vowel = vowel or lower.startswith("nd")
+    return f"{'an' if vowel else 'a'} {name}"
+
+
+def _a_type(value: object) -> str:
+    """What was found, for a refusal "expected ..., found {_a_type(value)}": the name of the
+    value's type with its article ("an int", "a str", "an ndarray"), or "None"; the one wording
+    of the package's refusals of a type, the binding's (``type_name``) included."""
+    return "None" if value is None else _with_article(type(value).__name__)
+
+
 class InvalidActionError(MazesimError, ValueError):
     """An action is not valid: NaN or infinite wheel speeds, or an unknown action code."""
 

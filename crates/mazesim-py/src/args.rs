@@ -60,6 +60,11 @@ impl<'a, 'py> FromPyObject<'a, 'py> for IntArg {
     type Error = PyErr;
 
     fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        // True and False are ints to Python, not counts, seeds or indices: `num_envs=True` made
+        // one environment (the Python side's check refuses a bool for an int too).
+        if obj.is_instance_of::<pyo3::types::PyBool>() {
+            return Ok(IntArg::Other(type_name(&obj)));
+        }
         // Most ints fit 64 bits, read in one C call; pyo3 reads an i128 with Python arithmetic.
         if let Ok(v) = obj.extract::<i64>() {
             return Ok(IntArg::Int(i128::from(v)));
@@ -71,8 +76,7 @@ impl<'a, 'py> FromPyObject<'a, 'py> for IntArg {
             let digits = obj.str().map(|s| s.to_string()).unwrap_or_default();
             return Ok(IntArg::Huge(format!("an int of {} digits", digits.len())));
         }
-        let kind = type_name(&obj);
-        Ok(IntArg::Other(format!("a {kind}")))
+        Ok(IntArg::Other(type_name(&obj)))
     }
 }
 
@@ -93,7 +97,7 @@ impl Real {
         match self {
             Real::Number(v) => Ok(*v),
             Real::Other(kind) => Err(wrong_type(format!(
-                "expected {name} to be a real number, found a {kind}"
+                "expected {name} to be a real number, found {kind}"
             ))),
         }
     }
@@ -136,7 +140,7 @@ impl<T> Given<T> {
         match self {
             Given::Value(v) => Ok(v),
             Given::Other(kind) => Err(wrong_type(format!(
-                "expected {name} to be {expected}, found a {kind}"
+                "expected {name} to be {expected}, found {kind}"
             ))),
         }
     }
@@ -211,15 +215,25 @@ impl<'a, 'py> FromPyObject<'a, 'py> for Label {
 /// A source-name argument (`source="maze.toml"`).
 pub type SourceName = Given<Label>;
 
-/// The name of an object's type, for an error saying what was found: a str that is not Unicode
-/// text (a byte of a file name or command-line argument Python could not decode, kept as a lone
-/// surrogate) says so, since "expected a str, found a str" would tell nothing.
-pub fn type_name(obj: &Bound<'_, PyAny>) -> String {
-    let name = obj
-        .get_type()
+/// The name of an object's type as its `repr` shows it (`ndarray`, `NoneType`).
+pub fn class_name(obj: &Bound<'_, PyAny>) -> String {
+    obj.get_type()
         .name()
         .map(|n| n.to_string())
-        .unwrap_or_default();
+        .unwrap_or_default()
+}
+
+/// What was found, for an error saying "expected ..., found {type_name}": the name of the
+/// object's type with its article, as a Python user reads it ("an int", "a str", "an ndarray",
+/// "None"); the one wording of the package's refusals of a type, which the Python side
+/// (`mazesim.errors._a_type`) shares. A str that is not Unicode text (a byte of a file name or
+/// command-line argument Python could not decode, kept as a lone surrogate) says so, since
+/// "expected a str, found a str" would tell nothing.
+pub fn type_name(obj: &Bound<'_, PyAny>) -> String {
+    if obj.is_none() {
+        return "None".into();
+    }
+    let name = with_article(&class_name(obj));
     match obj.cast::<pyo3::types::PyString>() {
         Ok(text) if text.to_cow().is_err() => format!(
             "{name} {NOT_UNICODE} (it holds a lone surrogate, as Python keeps a byte of a file \
@@ -227,6 +241,19 @@ pub fn type_name(obj: &Bound<'_, PyAny>) -> String {
         ),
         _ => name,
     }
+}
+
+/// `name` with "a" or "an" as it is spoken: "an int", "an ndarray", "a uint8", "a float".
+pub fn with_article(name: &str) -> String {
+    let lower = name.to_ascii_lowercase();
+    // A "u" spoken "you" (uint8, unicode, UUID) takes "a".
+    let spoken_you = ["uint", "uni", "uu", "use", "usu", "uti"]
+        .iter()
+        .any(|p| lower.starts_with(p));
+    // An "nd" is spoken "en-dee" (ndarray).
+    let vowel =
+        (lower.starts_with(['a', 'e', 'i', 'o', 'u']) && !spoken_you) || lower.starts_with("nd");
+    format!("{} {name}", if vowel { "an" } else { "a" })
 }
 
 /// What [`type_name`] says of a str that is not Unicode text: a str of the wrong value, not of
@@ -258,27 +285,27 @@ pub fn bounded_items<'py>(
         // A length beyond `sys.maxsize`: a sequence, far too long.
         Err(e) if e.is_instance_of::<pyo3::exceptions::PyOverflowError>(obj.py()) => {
             return Err(refuse(format!(
-                "a {} of more than {most} items",
+                "{} of more than {most} items",
                 type_name(obj)
             )))
         }
         // Text, or no length: not a sequence.
-        _ => return Err(wrong_type(message(format!("a {}", type_name(obj))))),
+        _ => return Err(wrong_type(message(type_name(obj)))),
     };
     if len > most {
-        return Err(refuse(format!("a {} of {len} items", type_name(obj))));
+        return Err(refuse(format!("{} of {len} items", type_name(obj))));
     }
     let mut items = Vec::with_capacity(len);
     let iter = obj.try_iter().map_err(|_| {
         wrong_type(message(format!(
-            "a {} that cannot be iterated",
+            "{} that cannot be iterated",
             type_name(obj)
         )))
     })?;
     for item in iter {
         if items.len() == most {
             return Err(refuse(format!(
-                "a {} of more than {most} items",
+                "{} of more than {most} items",
                 type_name(obj)
             )));
         }
@@ -331,7 +358,7 @@ pub fn typed_argument<'a, 'py, T: pyo3::type_object::PyTypeCheck>(
 ) -> PyResult<&'a Bound<'py, T>> {
     obj.cast::<T>().map_err(|_| {
         wrong_type(format!(
-            "expected {name} to be {what}, found a {}",
+            "expected {name} to be {what}, found {}",
             type_name(obj)
         ))
     })

@@ -160,7 +160,7 @@ impl PyBatch {
     ) -> PyResult<(Vec<usize>, Vec<f64>)> {
         let m = envs.len().map_err(|_| {
             wrong_type(format!(
-                "expected envs to be an (M,) int64 array of env indices, found a {}",
+                "expected envs to be an (M,) int64 array of env indices, found {}",
                 type_name(envs)
             ))
         })?;

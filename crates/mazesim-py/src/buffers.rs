@@ -28,7 +28,7 @@ fn describe(obj: &Bound<'_, PyAny>) -> String {
 
 fn refusal(name: &str, expected: &str, obj: &Bound<'_, PyAny>) -> String {
     format!(
-        "expected {name} to be an aligned, C-contiguous numpy array of {expected}, found a {}",
+        "expected {name} to be an aligned, C-contiguous numpy array of {expected}, found {}",
         describe(obj)
     )
 }
@@ -60,7 +60,7 @@ pub fn shape_refusal(obj: &Bound<'_, PyAny>, message: String) -> PyErr {
         return to_py(Error::InvalidArgument(message));
     }
     wrong_type(format!(
-        "{message} (a {}, not an array)",
+        "{message} ({}, not an array)",
         crate::args::type_name(obj)
     ))
 }

@@ -71,7 +71,7 @@ fn named<T: Copy>(
     let known: Vec<&str> = names.iter().map(|(name, _)| *name).collect();
     let name = value.extract::<String>().map_err(|_| {
         wrong_type(format!(
-            "expected settings[{key:?}] to be one of {known:?}, found a {}",
+            "expected settings[{key:?}] to be one of {known:?}, found {}",
             type_name(&value)
         ))
     })?;
@@ -103,7 +103,7 @@ fn number_of(dict: &Bound<'_, PyDict>, name: &str, key: &str) -> PyResult<f64> {
     let value = entry(dict, name, key)?;
     let number = value.extract::<f64>().map_err(|_| {
         wrong_type(format!(
-            "expected {name}[{key:?}] to be a number, found a {}",
+            "expected {name}[{key:?}] to be a number, found {}",
             type_name(&value)
         ))
     })?;

@@ -93,7 +93,7 @@ impl RobotArg {
             ))),
             RobotArg::Other(kind) => Err(wrong_type(format!(
                 "expected {name} to be a robot profile name, a profile file's path or a \
-                 mazesim.RobotProfile, found a {kind}"
+                 mazesim.RobotProfile, found {kind}"
             ))),
         }
     }
@@ -114,7 +114,7 @@ impl RobotArg {
             ))),
             RobotArg::Other(kind) => Err(wrong_type(format!(
                 "expected robot to be a robot profile name, a profile file's path, a \
-                 mazesim.RobotProfile or a sequence of {n} of them (one per environment), found a {kind}"
+                 mazesim.RobotProfile or a sequence of {n} of them (one per environment), found {kind}"
             ))),
             one => Ok(vec![one.profile("robot")?]),
         }
@@ -216,7 +216,7 @@ impl PyRobotProfile {
             RobotArg::Profile(_) | RobotArg::Many(_) | RobotArg::Other(_) => {
                 Err(wrong_type(format!(
                     "expected name_or_path to be a robot profile name or a profile file's path \
-                     (str or os.PathLike), found a {}",
+                     (str or os.PathLike), found {}",
                     type_name(name_or_path)
                 )))
             }

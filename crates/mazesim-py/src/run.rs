@@ -174,7 +174,7 @@ fn controller_of(controller: &Bound<'_, PyAny>) -> PyResult<(Controller, f64)> {
     }
     let name = controller.extract::<String>().map_err(|_| {
         wrong_type(format!(
-            "expected controller to be {CONTROLLERS}, found a {}",
+            "expected controller to be {CONTROLLERS}, found {}",
             type_name(controller)
         ))
     })?;

@@ -11,7 +11,7 @@ use mazesim_core::navigator::{self, TabularPolicy};
 use mazesim_core::RunOptions;
 use pyo3::prelude::*;
 
-use crate::args::{dict_argument, shape_of, type_name, typed_argument, Flag, IntArg, Real};
+use crate::args::{class_name, dict_argument, shape_of, typed_argument, Flag, IntArg, Real};
 use crate::batch::Seeds;
 use crate::buffers::{copied, readable};
 use crate::errors::{invalid, IntoPy};
@@ -362,7 +362,7 @@ impl PyRunSettings {
     fn __repr__(&self, py: Python<'_>) -> String {
         let shown = |value: &Option<Py<PyAny>>| match value {
             None => "None".to_string(),
-            Some(v) => format!("<{}>", type_name(v.bind(py))),
+            Some(v) => format!("<{}>", class_name(v.bind(py))),
         };
         format!(
             "RunSettings(limits={}, seeds={}, active={}, subtasks={}, trace={})",

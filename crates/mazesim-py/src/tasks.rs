@@ -172,7 +172,7 @@ impl PyTaskFeatures {
     ) -> PyResult<()> {
         let (rows, cols) = shape.extract::<(IntArg, IntArg)>().map_err(|_| {
             wrong_type(format!(
-                "expected shape to be a (rows, cols) pair of ints, found a {}",
+                "expected shape to be a (rows, cols) pair of ints, found {}",
                 type_name(shape)
             ))
         })?;

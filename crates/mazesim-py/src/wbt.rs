@@ -98,7 +98,7 @@ fn grey_images(images: Option<&Bound<'_, PyAny>>) -> PyResult<BTreeMap<String, G
     for (key, value) in images.into_iter().flat_map(|d| d.iter()) {
         let file: String = key.extract().map_err(|_| {
             wrong_type(format!(
-                "expected the keys of floor_images to be file names (str), found a {}",
+                "expected the keys of floor_images to be file names (str), found {}",
                 type_name(&key)
             ))
         })?;

@@ -417,7 +417,7 @@ pub fn world_argument(world: &Bound<'_, PyAny>, name: &str) -> PyResult<Arc<Worl
         Err(_) => {
             let kind = crate::args::type_name(world);
             Err(crate::errors::wrong_type(format!(
-                "expected {name} to be a mazesim.World, found a {kind}"
+                "expected {name} to be a mazesim.World, found {kind}"
             )))
         }
     }

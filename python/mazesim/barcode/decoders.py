@@ -35,7 +35,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim.barcode.codebook import ARRIVAL, CodeBook
-from mazesim.errors import InvalidArgumentError, WrongTypeError
+from mazesim.errors import InvalidArgumentError, WrongTypeError, _a_type
 
 __all__ = [
     "BAR_LENGTH",
@@ -136,7 +136,7 @@ class Decoder(ABC):
         floor_distance: float = 0.0,
     ) -> None:
         if not isinstance(book, CodeBook):
-            raise WrongTypeError(f"expected a CodeBook, found {type(book).__name__}")
+            raise WrongTypeError(f"expected a CodeBook, found {_a_type(book)}")
         if not floor_low < floor_high:
             raise InvalidArgumentError(
                 f"expected floor_low < floor_high, found {floor_low} and {floor_high}"

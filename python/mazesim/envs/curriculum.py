@@ -37,7 +37,7 @@ import numpy.typing as npt
 from mazesim.envs.maze_env import EPuckMazeEnv
 from mazesim.envs.options import MAX_ENV_CELLS
 from mazesim.envs.vector import EPuckMazeVectorEnv
-from mazesim.errors import InvalidArgumentError, WrongTypeError
+from mazesim.errors import InvalidArgumentError, WrongTypeError, _a_type
 
 __all__ = ["MazeSizeCurriculum", "MazeSizeCurriculumWrapper"]
 
@@ -126,8 +126,7 @@ class MazeSizeCurriculum:
         target = getattr(env, "unwrapped", env)
         if not isinstance(target, (EPuckMazeEnv, EPuckMazeVectorEnv)):
             raise WrongTypeError(
-                f"expected a mazesim maze env or its native vector env, found "
-                f"{type(target).__name__}"
+                f"expected a mazesim maze env or its native vector env, found {_a_type(target)}"
             )
         world = target.options.world
         if world is not None:

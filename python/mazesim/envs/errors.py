@@ -19,7 +19,13 @@ from typing import Any
 
 from gymnasium.error import ClosedEnvironmentError, ResetNeeded
 
-from mazesim.errors import InvalidArgumentError, MazesimError, WrongTypeError, _closest_name
+from mazesim.errors import (
+    InvalidArgumentError,
+    MazesimError,
+    WrongTypeError,
+    _a_type,
+    _closest_name,
+)
 
 __all__ = [
     "MAX_SEED",
@@ -81,9 +87,7 @@ def check_options(options: Any, known: tuple[str, ...] = ()) -> Mapping[str, Any
     if options is None:
         return {}
     if not isinstance(options, Mapping):
-        raise WrongTypeError(
-            f"expected options to be None or a dict, found {type(options).__name__}"
-        )
+        raise WrongTypeError(f"expected options to be None or a dict, found {_a_type(options)}")
     for key in options:
         meant = None if key in known else _closest_name(str(key), list(known))
         if meant is not None:

@@ -20,7 +20,7 @@ from mazesim.envs.navigation import (
 )
 from mazesim.envs.options import EnvOptions, draw_seed, json_world_spec
 from mazesim.envs.spaces import ActionConverter, ObservationLayout, sensor_ranges
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, WrongTypeError, _a_type
 from mazesim.maze import PathDistanceTable
 from mazesim.render.episode import EpisodeTrace
 from mazesim.render.topdown import TopDownRenderer
@@ -33,10 +33,30 @@ __all__ = [
     "step_length_ms",
 ]
 
+
+class _RenderModes(tuple[str, ...]):
+    """The render modes of an env, as its ``metadata["render_modes"]``: asked whether it holds
+    something that is neither a str nor None, it refuses it with a WrongTypeError naming the
+    modes, since ``gymnasium.make(..., render_mode=42)`` asks so before the env is made (and
+    would otherwise fail inside gymnasium on ``42.endswith``)."""
+
+    __slots__ = ()
+
+    def __contains__(self, value: object) -> bool:
+        if value is None:
+            return False
+        if not isinstance(value, str):
+            raise WrongTypeError(
+                f"expected render_mode to be None or one of {', '.join(self)}; "
+                f"found {_a_type(value)}"
+            )
+        return super().__contains__(value)
+
+
 #: The render modes of the maze environment: a live window, or top-down RGB images.
-RENDER_MODES = ["human", "rgb_array"]
+RENDER_MODES = _RenderModes(("human", "rgb_array"))
 #: The render modes of the vector environments (images only).
-VECTOR_RENDER_MODES = ["rgb_array"]
+VECTOR_RENDER_MODES = _RenderModes(("rgb_array",))
 
 
 def step_length_ms(options: EnvOptions, world: World) -> float:
@@ -46,8 +66,9 @@ def step_length_ms(options: EnvOptions, world: World) -> float:
     )
 
 
-def check_render_mode(render_mode: str | None, modes: Sequence[str] = tuple(RENDER_MODES)) -> None:
-    """Raises InvalidArgumentError unless ``render_mode`` is None or one of ``modes``."""
+def check_render_mode(render_mode: str | None, modes: Sequence[str] = RENDER_MODES) -> None:
+    """Raises InvalidArgumentError unless ``render_mode`` is None or one of ``modes``
+    (WrongTypeError for one that is not a str)."""
     if render_mode is not None and render_mode not in modes:
         raise InvalidArgumentError(
             f"expected render_mode to be None or one of {', '.join(modes)}; found {render_mode!r}"

@@ -45,7 +45,7 @@ from mazesim.envs.options import (
 )
 from mazesim.envs.reward import step_reward
 from mazesim.envs.spaces import ActionConverter, ObservationLayout, sensor_ranges
-from mazesim.errors import InvalidArgumentError, WrongTypeError
+from mazesim.errors import InvalidArgumentError, WrongTypeError, _a_type
 from mazesim.maze import GoalDistance, PathDistanceTable
 from mazesim.render.episode import EpisodeTrace
 from mazesim.render.topdown import TopDownRenderer
@@ -563,9 +563,7 @@ def _vector_keywords(vector_kwargs: Any, **given: Any) -> dict[str, Any]:
     """``given`` updated with ``vector_kwargs``, which may hold only the vector env's own
     keywords."""
     if not isinstance(vector_kwargs, dict):
-        raise WrongTypeError(
-            f"expected vector_kwargs to be a dict, found {type(vector_kwargs).__name__}"
-        )
+        raise WrongTypeError(f"expected vector_kwargs to be a dict, found {_a_type(vector_kwargs)}")
     unknown = sorted(str(key) for key in vector_kwargs if key not in given)
     if unknown:
         raise InvalidArgumentError(

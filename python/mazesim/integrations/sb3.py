@@ -26,7 +26,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._paths import make_output_folder
-from mazesim.errors import InvalidArgumentError, MissingDependencyError, WrongTypeError
+from mazesim.errors import InvalidArgumentError, MissingDependencyError, WrongTypeError, _a_type
 
 if importlib.util.find_spec("stable_baselines3") is None:
     raise MissingDependencyError(
@@ -158,7 +158,7 @@ class MazesimVecEnv(VecEnv):
         if not isinstance(vector_env, _NATIVE):
             raise WrongTypeError(
                 "expected a mazesim EPuckMazeVectorEnv or MazeGoalVectorEnv, found "
-                f"{type(vector_env).__name__}"
+                f"{_a_type(vector_env)}"
             )
         if vector_env.autoreset_mode != AutoresetMode.SAME_STEP:
             raise InvalidArgumentError(

@@ -18,7 +18,7 @@ import numpy.typing as npt
 from pettingzoo import ParallelEnv
 
 from mazesim.envs.errors import EnvClosedError, ResetNeededError, check_options, check_seed
-from mazesim.errors import InvalidActionError, InvalidArgumentError
+from mazesim.errors import InvalidActionError, InvalidArgumentError, _a_type
 from mazesim.marl.batch import MultiRobotBatch
 from mazesim.marl.render import SwarmRenderer
 from mazesim.marl.tasks import MultiRobotTask
@@ -120,7 +120,7 @@ class MultiRobotParallelEnv(ParallelEnv[str, Observation, npt.NDArray[np.float32
             raise ResetNeededError("expected reset() before step(): no agent is live")
         if not isinstance(actions, Mapping):
             raise InvalidActionError(
-                f"expected a dict of actions by agent name, found {type(actions).__name__}"
+                f"expected a dict of actions by agent name, found {_a_type(actions)}"
             )
         unknown = [a for a in actions if a not in self.possible_agents]
         if unknown:  # a misspelt name would leave its robot's action out unseen

@@ -116,6 +116,8 @@ class Robot(NotSimulated):
     _equipment: Equipment
     _custom_data: str
     _warned_ground_module = False
+    #: The names ``getDevice`` found no device of, in the order asked.
+    _missing_devices: tuple[str, ...] = ()
 
     def __init__(self) -> None:
         """Attaches to the prepared simulation and finds the robot's devices.
@@ -342,6 +344,7 @@ class Robot(NotSimulated):
                 file=sys.stderr,
             )
         if device is None:
+            self._missing_devices = (*self._missing_devices, str(name))
             print(f'Device "{name}" was not found on robot "{self.getName()}"', file=sys.stderr)
             similar = difflib.get_close_matches(str(name), list(self._equipment.devices), n=3)
             if similar:
@@ -352,6 +355,19 @@ class Robot(NotSimulated):
                     file=sys.stderr,
                 )
         return device
+
+    def _missing_devices_line(self) -> str:
+        """The line that ends a controller's run stopped by a call on the None ``getDevice``
+        gave (as Webots gives it) for a name the robot has no device of: the names asked for
+        and the robot's devices; empty when every name asked for was found."""
+        if not self._missing_devices:
+            return ""
+        asked = ", ".join(repr(name) for name in dict.fromkeys(self._missing_devices))
+        have = ", ".join(repr(name) for name in self._equipment.devices)
+        return (
+            f"mazesim: getDevice returned None for {asked}: robot {self.getName()!r} has no "
+            f"device of that name; its devices: {have}\n"
+        )
 
     def getNumberOfDevices(self) -> int:
         """How many devices the robot has."""

@@ -23,7 +23,7 @@ from typing import Any
 from mazesim._callers import users_code
 from mazesim._core import World
 from mazesim._paths import MAX_TEXT_CHARACTERS, read_input
-from mazesim.errors import InvalidArgumentError, MazesimIOError
+from mazesim.errors import InvalidArgumentError, MazesimError, MazesimIOError
 from mazesim.webots import controller as controller_module
 from mazesim.webots import native_controller, termination
 from mazesim.webots import simulation as simulations
@@ -434,6 +434,10 @@ def _exit_status(request: SystemExit) -> tuple[int, str]:
     return EXIT_CONTROLLER_ERROR, f"{code}\n"
 
 
+#: The folder of the package's own modules (a controller's frames are outside it).
+_PACKAGE_FOLDER = os.path.dirname(os.path.dirname(os.path.abspath(__file__))) + os.sep
+
+
 def _controller_traceback(failure: BaseException) -> str:
     """The traceback of a controller's exception, from the controller's own first frame."""
     if isinstance(failure, SyntaxError):
@@ -442,4 +446,22 @@ def _controller_traceback(failure: BaseException) -> str:
     # The first frame is the runner's exec; the controller's file comes next.
     if trace is not None and trace.tb_next is not None:
         trace = trace.tb_next
-    return "".join(traceback.format_exception(type(failure), failure, trace))
+    if isinstance(failure, MazesimError):
+        # A call the package refused: the trace ends at the controller's own line, not in the
+        # package's frames that checked the call.
+        frames = traceback.extract_tb(trace)
+        while len(frames) > 1 and frames[-1].filename.startswith(_PACKAGE_FOLDER):
+            frames.pop()
+        return "".join(
+            [
+                "Traceback (most recent call last):\n",
+                *traceback.format_list(frames),
+                *traceback.format_exception_only(type(failure), failure),
+            ]
+        )
+    text = "".join(traceback.format_exception(type(failure), failure, trace))
+    robot = controller_module.Robot.created
+    if isinstance(failure, AttributeError) and getattr(failure, "obj", 0) is None and robot:
+        # A method called on the None of a device the robot does not have.
+        text += robot._missing_devices_line()  # noqa: SLF001 - the run's own robot
+    return text
