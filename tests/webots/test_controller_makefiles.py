@@ -63,10 +63,10 @@ def test_the_makefile_is_read_with_its_continuations_references_and_webots_folde
     assert settings.compile_options == [f"-I{shared}", "-DGAIN=3", "-DSPEED=2"]
     assert settings.include_folders == [shared]
     assert settings.standards == ["-std=c99"]
+    # OSTYPE, which make does not find set on Linux, is empty: -lws2_32 is Windows' only.
     assert settings.link_options == [f"-L{(tmp_path / 'lib').resolve()}", "-lgsl"]
     assert settings.ignored == [
         "$(shell x) in LIBRARIES",
-        "LIBRARIES set under a make conditional",
         "-fopenmp in CFLAGS",
         "-L../mingw (libraries built for Windows)",
     ]
@@ -94,6 +94,41 @@ def test_include_folders_defines_and_exactly_the_listed_sources_are_built(
     # A source of the folder the Makefile does not list: left out, as Webots leaves it out.
     (source.parent / "draft.c").write_text("this is not C\n")
     assert printed(capfd, source) == ["value 7"]
+
+
+def test_conditionals_on_the_system_take_the_branch_make_takes_on_linux(tmp_path: Path) -> None:
+    settings = read_makefile(
+        tmp_path / "probe",
+        "UNAME := $(shell uname)\nifeq ($(UNAME), Linux)\n  CFLAGS = -DGAIN=2\nelse\n"
+        "  CFLAGS = -DGAIN=5\nendif\n"
+        # OS is Windows_NT on Windows only; an unset variable is empty to make.
+        "ifeq ($(OS),Windows_NT)\n  LIBRARIES = -lws2_32\nelse ifdef WEBOTS_HOME\n"
+        "  CFLAGS += -DOFFSET=1\n  ifneq '$(UNAME)' 'Darwin'\n    LIBRARIES = -lgsl\n"
+        "  endif\nendif\n"
+        # A test this reader cannot make (another shell command): its settings are left out.
+        "ifeq ($(shell uname -m),x86_64)\n  CFLAGS += -DWIDE=1\nendif\n",
+    )
+    assert settings.compile_options == ["-DGAIN=2", "-DOFFSET=1"]
+    assert settings.link_options == ["-lgsl"]
+    assert settings.ignored == ["CFLAGS set under a make conditional"]
+
+
+@NEEDS_COMPILERS
+def test_a_library_a_makefile_links_on_linux_only_is_linked(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str]
+) -> None:
+    source = printer(
+        tmp_path,
+        "probe",
+        "#include <math.h>\n",
+        "round(GAIN * 2.6)",
+        # Assignments indented by a tab before the first rule are read as make reads them;
+        # after a rule, a line starting with a tab is a command of its recipe.
+        "UNAME := $(shell uname)\nifeq ($(UNAME), Linux)\n\tLIBRARIES = -lm\n"
+        "\tCFLAGS = -DGAIN=2\nelse\n\tCFLAGS = -DGAIN=5\nendif\n"
+        "notes:\n\tCFLAGS = -DGAIN=9\n",
+    )
+    assert printed(capfd, source) == ["value 5"]
 
 
 def test_sources_are_found_in_the_folders_of_vpath_and_the_vpath_directive(tmp_path: Path) -> None:

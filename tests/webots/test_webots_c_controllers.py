@@ -536,3 +536,22 @@ def test_a_second_threads_calls_wait_for_the_step_under_way_instead_of_garbling_
     out, _ = capfd.readouterr()
     assert (run.exit_status, run.error) == (0, "")
     assert out.splitlines()[-1] == "read 1 wrong 0 steps 40 time 1.280"
+
+
+def test_globals_a_shared_header_defines_link_as_before_gcc_10(
+    tmp_path: Path, capfd: pytest.CaptureFixture[str]
+) -> None:
+    # A header that defines (not declares) a global, included by two files of the controller:
+    # GCC before 10, which Webots of those years built with, merged the two as one common
+    # symbol; GCC 10's -fno-common refuses the link with "multiple definition".
+    source = write_controller(
+        tmp_path, "shared", '  count_step();\n  count_step();\n  printf("steps %d\\n", counter);'
+    )
+    (source.parent / "counter.h").write_text("int counter;\nvoid count_step(void);\n")
+    (source.parent / "counter.c").write_text(
+        '#include "counter.h"\nvoid count_step(void) { counter += 1; }\n'
+    )
+    source.write_text('#include "counter.h"\n' + source.read_text())
+    run = run_controller(source, mazesim.load_world("arena"), seconds=0.2)
+    assert (run.exit_status, run.error) == (0, "")
+    assert capfd.readouterr().out.splitlines()[-1] == "steps 2"

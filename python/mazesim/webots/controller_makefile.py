@@ -7,10 +7,14 @@ when none is set, found in the folders make's ``VPATH`` variable and ``vpath`` d
 sources name too), ``INCLUDE`` (``-I`` folders), ``CFLAGS`` and ``LIBRARIES`` (``-L`` folders,
 ``-l`` libraries). :func:`read_makefile` reads their simple assignments (``=``, ``:=``, ``+=``,
 ``?=``, lines continued by a backslash, ``$(VAR)`` naming a variable set before, make's
-``$(wildcard PATTERN...)`` function), relative paths being relative to the controller's folder.
-Words naming Webots' own folders (``$(WEBOTS_HOME)``) are dropped, mazesim's controller library
-standing for them; whatever else it cannot read (other make functions, conditionals, unknown
-options) is left out and named in :attr:`MakefileSettings.ignored`, for the run's log.
+``$(wildcard PATTERN...)`` function, ``$(shell uname)``), relative paths being relative to the
+controller's folder, and its conditionals (``ifeq``, ``ifneq``, ``ifdef``, ``ifndef``, ``else``)
+as make on Linux takes them, Webots' builds there: ``$(shell uname)`` is ``Linux`` and a
+variable neither the Makefile nor Webots sets (``$(OS)``, ``Windows_NT`` on Windows only) is
+empty. Words naming Webots' own folders (``$(WEBOTS_HOME)``) are dropped, mazesim's controller
+library standing for them; whatever else it cannot read (other make functions, a conditional
+testing one, unknown options) is left out and named in :attr:`MakefileSettings.ignored`, for
+the run's log.
 """
 
 from __future__ import annotations
@@ -58,7 +62,13 @@ _ASSIGNMENT = re.compile(r"^(?:override\s+|export\s+)?([A-Za-z_]\w*)\s*(::=|:=|\
 #: A folder of a Webots installation (``/usr/local/webots/include/controller/c``).
 _WEBOTS_FOLDER = re.compile(r"\$\(WEBOTS_HOME\)|(?:^|/)(?:include|lib)/controller(?:/|$)")
 _REFERENCE = re.compile(r"\$[({]([^)}]*)[)}]")
-_CONDITIONAL = re.compile(r"^(ifeq|ifneq|ifdef|ifndef|else|endif)\b")
+#: A rule's first line (``target: prerequisites``), not an assignment (``:=``, ``::=``).
+_RULE = re.compile(r"^[^=:#\s][^=:#]*:(?![:=])")
+_CONDITIONAL = re.compile(r"^(ifeq|ifneq|ifdef|ifndef|else|endif)\b\s*(.*)$")
+#: What the shell commands a Makefile runs to learn its system print on Linux.
+_SHELL_ON_LINUX = {"uname": "Linux", "uname -s": "Linux", "uname -o": "GNU/Linux"}
+#: Variables Webots sets for the make it runs.
+_WEBOTS_VARIABLES = frozenset({"WEBOTS_HOME", "WEBOTS_HOME_PATH"})
 
 
 @dataclass
@@ -95,31 +105,42 @@ def makefile(folder: Path) -> Path | None:
 
 
 def _logical_lines(text: str) -> list[str]:
+    """The Makefile's lines, continuations joined and comments removed, without the commands
+    of its rules' recipes (lines starting with a tab after a rule; before the first rule, make
+    reads a line starting with a tab as any other, an assignment indented under a conditional)."""
     text = text.replace("\r\n", "\n").replace("\\\n", " ")
     lines = []
+    in_rules = False
     for line in text.split("\n"):
-        if line.startswith("\t"):
+        if line.startswith("\t") and in_rules:
             continue  # a recipe's command
-        lines.append(re.sub(r"(?<!\\)#.*", "", line).strip())
+        line = re.sub(r"(?<!\\)#.*", "", line).strip()
+        in_rules = in_rules or _RULE.match(line) is not None
+        lines.append(line)
     return lines
 
 
 def _variables(text: str, folder: Path, ignored: list[str]) -> dict[str, str]:
-    """The Makefile's variables as its simple assignments set them, in order; the assignments
-    of the variables the build takes that it cannot read are named in ``ignored``."""
+    """The Makefile's variables as its simple assignments set them, in order, under its
+    conditionals as make on Linux takes them; the assignments of the variables the build takes
+    that it cannot read (under a conditional it cannot test) are named in ``ignored``."""
     values: dict[str, str] = {}
-    depth = 0
+    # Each open conditional: whether its branch under way is taken (None: unknown), and
+    # whether one of its branches was.
+    open_: list[list[bool | None]] = []
     for line in _logical_lines(text):
         conditional = _CONDITIONAL.match(line)
         if conditional:
-            depth += {"endif": -1, "else": 0}.get(conditional.group(1), 1)
+            _branch(open_, conditional.group(1), conditional.group(2), values, folder)
             continue
         found = _ASSIGNMENT.match(line)
         if found is None:
             continue
         name, operator, value = found.groups()
         wanted = name in SOURCE_VARIABLES or name in OPTION_VARIABLES
-        if depth > 0:
+        if any(frame[0] is False for frame in open_):
+            continue  # a branch make does not take on Linux
+        if any(frame[0] is None for frame in open_):
             if wanted:
                 ignored.append(f"{name} set under a make conditional")
             continue
@@ -131,23 +152,97 @@ def _variables(text: str, folder: Path, ignored: list[str]) -> dict[str, str]:
     return values
 
 
+def _branch(
+    open_: list[list[bool | None]], keyword: str, rest: str, values: dict[str, str], folder: Path
+) -> None:
+    """Opens, switches or closes a conditional of ``open_`` at the directive ``keyword rest``."""
+    if keyword == "endif":
+        if open_:
+            open_.pop()
+        return
+    if keyword != "else":
+        taken = _test(keyword, rest, values, folder)
+        open_.append([taken, taken])
+        return
+    if not open_:
+        return
+    frame = open_[-1]
+    chained = _CONDITIONAL.match(rest)
+    if frame[1] is True:
+        frame[0] = False
+    elif frame[1] is None:
+        frame[0] = None
+    elif chained and chained.group(1) not in ("else", "endif"):
+        frame[0] = _test(chained.group(1), chained.group(2), values, folder)
+        frame[1] = frame[0]
+    else:
+        frame[0] = frame[1] = True
+
+
+def _test(keyword: str, rest: str, values: dict[str, str], folder: Path) -> bool | None:
+    """Whether a conditional's test holds as make on Linux finds it, or None when it names a
+    make function this reader does not run."""
+    if keyword in ("ifdef", "ifndef"):
+        unknown: list[str] = []
+        name = _expand(rest, values, "test", unknown, folder, empty_unset=True).strip()
+        if unknown:
+            return None
+        defined = bool(values.get(name)) or name in _WEBOTS_VARIABLES
+        return defined if keyword == "ifdef" else not defined
+    operands = _operands(rest)
+    if operands is None:
+        return None
+    unknown = []
+    left, right = (
+        _expand(o, values, "test", unknown, folder, empty_unset=True).strip() for o in operands
+    )
+    if unknown:
+        return None
+    return (left == right) if keyword == "ifeq" else (left != right)
+
+
+def _operands(rest: str) -> tuple[str, str] | None:
+    """The two operands of ``ifeq``'s ``(A,B)``, ``"A" "B"`` or ``'A' 'B'`` forms."""
+    rest = rest.strip()
+    if rest.startswith("(") and rest.endswith(")"):
+        inner, depth = rest[1:-1], 0
+        for index, character in enumerate(inner):
+            depth += {"(": 1, ")": -1}.get(character, 0)
+            if character == "," and depth == 0:
+                return inner[:index], inner[index + 1 :]
+        return None
+    quoted = re.fullmatch(r"""(["'])(.*?)\1\s+(["'])(.*?)\3""", rest)
+    return (quoted.group(2), quoted.group(4)) if quoted else None
+
+
 def _expand(
-    value: str, values: dict[str, str], name: str, ignored: list[str], folder: Path | None = None
+    value: str,
+    values: dict[str, str],
+    name: str,
+    ignored: list[str],
+    folder: Path | None = None,
+    empty_unset: bool = False,
 ) -> str:
     """``value`` with its ``$(VAR)`` references to variables set before replaced; Webots' own
     folders kept as ``$(WEBOTS_HOME)`` (dropped later); ``$(wildcard PATTERN...)`` replaced by
-    the names in ``folder`` that match; another make function left out (named in ``ignored``
-    when ``name`` is a variable the build takes)."""
+    the names in ``folder`` that match and ``$(shell uname)`` by what it prints on Linux;
+    another make function left out (named in ``ignored`` when ``name`` is a variable the build
+    takes), and so is a variable not set before, unless ``empty_unset``: then it is empty, as
+    make finds it."""
 
     def replace(match: re.Match[str]) -> str:
         inner = match.group(1).strip()
-        if inner in ("WEBOTS_HOME", "WEBOTS_HOME_PATH"):
+        if inner in _WEBOTS_VARIABLES:
             return "$(WEBOTS_HOME)"
         if re.fullmatch(r"\w+", inner) and inner in values:
             return values[inner]
+        if re.fullmatch(r"\w+", inner) and empty_unset:
+            return ""
         function, _, patterns = inner.partition(" ")
         if function == "wildcard" and folder is not None:
             return " ".join(_wildcard(folder, patterns.split()))
+        if function == "shell" and " ".join(patterns.split()) in _SHELL_ON_LINUX:
+            return _SHELL_ON_LINUX[" ".join(patterns.split())]
         if name:
             ignored.append(f"$({inner}) in {name}")
         return ""

@@ -50,6 +50,11 @@ CAPI = Path(__file__).with_name("capi")
 BUILD_TIMEOUT_S = 300
 #: The compiler's options (besides include folders and files).
 FLAGS = ("-O2", "-w")
+#: The C compiler's own: a global that a header defines (``int count;``, not ``extern``) in
+#: every file including it is one common symbol, as GCC made it before version 10 (the
+#: compilers of Webots' Linux and Windows releases of those years), where GCC 10 on refuses
+#: the link with "multiple definition".
+C_FLAGS = ("-fcommon",)
 #: Exit status of a controller killed by a signal, or that broke the link.
 EXIT_CRASHED = 1
 
@@ -174,7 +179,7 @@ def _key(compilers: list[str], files: list[Path], options: tuple[str, ...] = ())
     if options:
         digest.update(b"options\0" + "\0".join(options).encode() + b"\0")
     for compiler in compilers:
-        digest.update(compiler.encode() + b"\0" + " ".join(FLAGS).encode() + b"\0")
+        digest.update(compiler.encode() + b"\0" + " ".join(FLAGS + C_FLAGS).encode() + b"\0")
         version = subprocess.run([compiler, "--version"], capture_output=True, check=False)
         digest.update(version.stdout)
     for path in files:
@@ -292,7 +297,7 @@ def _compile_all(
         _write_case_aliases(Path(work) / "aliases", aliases)
         includes = ["-I", str(folder), "-I", str(CAPI / "include"), "-I", f"{work}/aliases"]
         includes += settings.compile_options
-        c_includes = [*includes, *_standards(settings, "c"), *prefix.get("c", [])]
+        c_includes = [*C_FLAGS, *includes, *_standards(settings, "c"), *prefix.get("c", [])]
         linked = [*archived, "-o", str(target), *settings.link_options, "-lm"]
         if language == "c":
             steps = [[c_compiler, *FLAGS, *c_includes, *map(str, [*c_sources, *library])]]
