@@ -38,26 +38,31 @@ def test_worlds_lists_each_builtin(tmp_path: Path) -> None:
 
 
 def test_worlds_exports_a_builtin_world_to_edit_and_keeps_an_existing_file(
-    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
 ) -> None:
     import mazesim
 
     mine = tmp_path / "my-maze.toml"
-    assert main(["worlds", "--export", "seed-maze", str(mine)]) == 0
+    assert main(["worlds", "--export", "seed-maze", "--out", str(mine)]) == 0
     assert f"wrote {mine}" in capsys.readouterr().out
     assert mazesim.load_world(str(mine)) == mazesim.World.builtin("seed-maze")
     assert "|S  " in mine.read_text()  # the [grid] map, to edit
     mine.write_text(mine.read_text() + "# my edit\n")
-    assert main(["worlds", "--export", "arena", str(mine)]) == 2
+    assert main(["worlds", "--export", "arena", "-o", str(mine)]) == 2
     assert "exists: name another file, or add --force" in capsys.readouterr().err
     assert mine.read_text().endswith("# my edit\n")
-    assert main(["worlds", "--export", "arena", str(mine), "--force"]) == 0
+    assert main(["worlds", "--export", "arena", "-o", str(mine), "--force"]) == 0
     assert mazesim.load_world(str(mine)) == mazesim.World.builtin("arena")
-    assert main(["worlds", "--export", "seed-maz", str(tmp_path / "x.toml")]) == 2
+    assert main(["worlds", "--export", "seed-maz", "-o", str(tmp_path / "x.toml")]) == 2
     assert "did you mean 'seed-maze'?" in capsys.readouterr().err
-    assert main(["worlds", "--export", str(mine), str(tmp_path / "y.toml")]) == 2
+    assert main(["worlds", "--export", str(mine), "-o", str(tmp_path / "y.toml")]) == 2
     assert "expected the name of a built-in world to export" in capsys.readouterr().err
     assert main(["worlds", "--force"]) == 2
+    assert main(["worlds", "--out", str(tmp_path / "x.toml")]) == 2
+    assert "expected --out with --export NAME" in capsys.readouterr().err
+    monkeypatch.chdir(tmp_path)  # without --out: NAME.toml in the current folder
+    assert main(["worlds", "--export", "arena"]) == 0
+    assert mazesim.load_world(str(tmp_path / "arena.toml")) == mazesim.World.builtin("arena")
     assert not (tmp_path / "x.toml").exists() and not (tmp_path / "y.toml").exists()
 
 

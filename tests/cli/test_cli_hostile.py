@@ -44,6 +44,7 @@ HOSTILE_OUTPUT_FILES = ("", "folder", "under-a-file")
 #: Arguments that keep a valid run short, by command.
 QUICK = {
     "demo": ["--seconds", "1"],
+    "worlds": ["--export", "arena"],
     "bench": ["--envs", "1", "--blocks", "1", "--block-steps", "100", "--threads", "1"],
     "barcode-study": ["--readings", "1", "--envs", "1", "--thresholds", "1.4", "--speeds", "3"],
     "webots run": ["--seconds", "1"],
@@ -58,7 +59,7 @@ QUICK = {
 #: Options that name outputs (the others taking paths are inputs).
 OUTPUT_OPTIONS = {"--out", "--trace", "--plot", "--html", "--video", "--record"}
 #: Options that take a name or an address, not a path or a number.
-NAME_OPTIONS = {"--robot", "--name", "--address", "remappings"}
+NAME_OPTIONS = {"--robot", "--name", "--address", "--export", "remappings"}
 
 SMALL_SWEEP = """
 [sweep]

@@ -88,5 +88,5 @@ def test_a_folder_or_a_broken_profile_file_says_what_it_is(tmp_path: Path) -> No
     broken.write_text(_slow_epuck(tmp_path).read_text().replace("max_wheel_speed = 3.0", ""))
     with pytest.raises(mazesim.WorldFormatError, match="broken.toml"):
         RobotProfile.load(str(broken))
-    with pytest.raises(mazesim.WrongTypeError, match="found a int"):
+    with pytest.raises(mazesim.WrongTypeError, match="found an int"):
         RobotProfile.load(3)  # type: ignore[arg-type]

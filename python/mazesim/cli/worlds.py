@@ -1,5 +1,5 @@
 """``mazesim worlds``: the built-in worlds, one line each, and the export of one to a world file
-to edit (``--export NAME FILE``)."""
+to edit (``--export NAME [--out FILE]``)."""
 
 from __future__ import annotations
 
@@ -22,20 +22,22 @@ def register(commands: Any) -> None:
         help="list the built-in worlds, or export one to a world file to edit",
         description="List the built-in worlds: name, size and number of barcode checkpoints, "
         "and whether the world has a goal. Any command's --world takes these names, or the path "
-        "of a world file: --export NAME FILE writes a built-in world to FILE, a world file to "
-        "edit (docs/own-maze.md).",
+        "of a world file: --export NAME writes a built-in world to a world file to edit "
+        "(docs/own-maze.md).",
         epilog=examples(
             "mazesim worlds",
-            "mazesim worlds --export seed-maze my-maze.toml",
-            "mazesim show my-maze.toml",
+            "mazesim worlds --export seed-maze --out my-maze.toml",
         ),
     )
     worlds.add_argument(
-        "--export",
-        nargs=2,
-        metavar=("NAME", "FILE"),
-        help="write the built-in world NAME to the world file FILE (refused if FILE exists, "
-        "unless --force)",
+        "--export", metavar="NAME", help="write the built-in world NAME to a world file to edit"
+    )
+    worlds.add_argument(
+        "-o",
+        "--out",
+        metavar="FILE",
+        help="with --export: the world file to write (default: NAME.toml in the current "
+        "folder; refused if it exists, unless --force)",
     )
     worlds.add_argument(
         "--force", action="store_true", help="with --export: overwrite FILE if it exists"
@@ -45,13 +47,15 @@ def register(commands: Any) -> None:
 
 def _run(args: argparse.Namespace) -> int:
     if args.export is None:
-        if args.force:
-            raise InvalidArgumentError(
-                "expected --force with --export NAME FILE (it allows overwriting FILE), found it "
-                "alone"
-            )
+        for given, option in ((args.force, "--force"), (args.out, "--out")):
+            if given:
+                raise InvalidArgumentError(
+                    f"expected {option} with --export NAME (it names the file to write), found "
+                    "it alone"
+                )
         return run_worlds(sys.stdout)
-    name, file = args.export
+    name = args.export
+    file = args.out if args.out is not None else f"{name}.toml"
     export_world(name, file, force=args.force)
     print(f"wrote {file} (the built-in world {name}); edit it, then: mazesim show {file}")
     return 0

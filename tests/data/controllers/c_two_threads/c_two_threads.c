@@ -2,13 +2,15 @@
    over the link) without pause. Prints whether the second thread read, whether any of its reads
    was wrong, and whether the steps all ran. */
 #include <pthread.h>
+#include <sched.h>
 #include <stdio.h>
 
 #include <webots/camera.h>
 #include <webots/robot.h>
 
 static volatile int stepping = 1;
-static int reads, wrong;
+static volatile int reads;
+static int wrong;
 
 static void *reader(void *camera) {
   while (stepping) {
@@ -25,6 +27,10 @@ int main(void) {
   WbDeviceTag camera = wb_robot_get_device("camera");
   pthread_t thread;
   pthread_create(&thread, NULL, reader, &camera);
+  /* On a loaded machine the second thread may not run before the 40 steps end: wait for its
+     first read, after which it keeps reading while the main thread steps. */
+  while (!reads)
+    sched_yield();
   int steps = 0;
   while (steps < 40 && wb_robot_step(step) != -1)
     steps++;
