@@ -4,6 +4,7 @@ one step, for the tests of a robot's own DistanceSensor nodes in world runs."""
 from __future__ import annotations
 
 import json
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
@@ -43,15 +44,54 @@ with open(os.path.join(os.environ["PROBE_LOG"], robot.getName() + ".json"), "w")
 """
 
 
+def table_text(rows: tuple[tuple[float, float, float], ...]) -> str:
+    """``rows`` as a ``lookupTable`` field's values."""
+    return ", ".join(" ".join(repr(v) for v in row) for row in rows)
+
+
+def plain_robot(
+    rows: tuple[tuple[float, float, float], ...] | None,
+    *,
+    name: str = "e-puck",
+    at: tuple[float, float] = (0.203, 0.0),
+    controller_name: str = "<extern>",
+) -> str:
+    """A plain ``Robot`` e-puck node at ``at`` facing +x whose ps0..ps7 carry ``rows`` (no
+    ``lookupTable`` field when None)."""
+    table = "" if rows is None else f" lookupTable [ {table_text(rows)} ]"
+    sensors = "".join(
+        f'    DistanceSensor {{ translation {x} {y} 0.033 rotation 0 0 1 {yaw} name "{sensor}"'
+        f"{table} }}\n"
+        for sensor, x, y, yaw in SENSORS
+    )
+    return (
+        f"Robot {{\n  translation {at[0]} {at[1]} 0\n  children [\n"
+        f"{sensors}"
+        '    HingeJoint { device [ RotationalMotor { name "left wheel motor" } ] '
+        "endPoint Solid { translation 0 0.026 0.02 } }\n"
+        '    HingeJoint { device [ RotationalMotor { name "right wheel motor" } ] '
+        "endPoint Solid { translation 0 -0.026 0.02 } }\n"
+        f'  ]\n  name "{name}"\n  controller "{controller_name}"\n}}\n'
+    )
+
+
+#: The header and arena of the worlds of these tests: walls at x, y = +-0.25 m.
+
+
 def probe_world_run(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, text: str
+    tmp_path: Path,
+    monkeypatch: pytest.MonkeyPatch,
+    text: str,
+    others: Mapping[str, str] | None = None,
 ) -> dict[str, dict[str, list[Any]]]:
-    """Runs the world ``text`` (its robots' controller ``probe``) for 0.1 s without noise in a
-    project under ``tmp_path``; returns what each robot wrote, by robot name."""
+    """Runs the world ``text`` (its robots' controller ``probe``, or one of ``others``: Python
+    sources by controller name) for 0.1 s without noise in a project under ``tmp_path``;
+    returns what each robot wrote, by robot name."""
     project = tmp_path / "project"
     (project / "worlds").mkdir(parents=True)
-    (project / "controllers" / "probe").mkdir(parents=True)
-    (project / "controllers" / "probe" / "probe.py").write_text(PROBE)
+    for name, source in {"probe": PROBE, **(others or {})}.items():
+        (project / "controllers" / name).mkdir(parents=True)
+        (project / "controllers" / name / f"{name}.py").write_text(source)
     world = project / "worlds" / "probe.wbt"
     world.write_text(text)
     logs = tmp_path / "logs"

@@ -442,7 +442,12 @@ class Simulator:
             InvalidArgumentError: An index past the walls or bodies, or a pose beyond the
                 limits; nothing moved.
         """
-    def change_world(self, world: World, kept_robots: Sequence[int | None] | None = None) -> None:
+    def change_world(
+        self,
+        world: World,
+        kept_robots: Sequence[int | None] | None = None,
+        robot_profiles: Sequence[str | RobotProfile | None] | None = None,
+    ) -> None:
         """Runs on in ``world`` from the next step on, as a Webots supervisor imports nodes into
         the running world or removes some: its walls are met and sensed, every robot keeping its
         pose, velocities, encoders, noise stream, clock and counters; a movable body both worlds
@@ -455,10 +460,16 @@ class Simulator:
         counters and a noise stream of its own derived from the seed and its name. The running
         robots it does not name are taken out.
 
+        ``robot_profiles``, given with ``kept_robots``, holds one entry per robot of ``world``:
+        a new robot's own profile (a robot node's own sensors, as the constructor's
+        ``robot_profiles`` takes them) or None (its placement's profile); a kept robot keeps
+        its own, so its entry is None.
+
         Raises:
             InvalidArgumentError: Without ``kept_robots``, ``world`` holds another number of
-                robots; with it, an entry per robot of ``world`` is expected, each running robot
-                at most once; nothing changed.
+                robots, or ``robot_profiles`` is given; with it, an entry per robot of ``world``
+                is expected, each running robot at most once, and a profile for new robots
+                only; nothing changed.
         """
     def reset_scene(self) -> None:
         """Puts the scene back as the world was made, as a Webots supervisor's

@@ -20,7 +20,7 @@ from mazesim.webots.devices import PROXIMITY_TABLE
 from mazesim.webots.importer import import_wbt_text
 from mazesim.webots.own_sensors import _profile_with, own_sensors
 from mazesim.webots.scene import DEFAULT_LOOKUP_TABLE, read_scene
-from proximity_probe import SENSORS, probe_world_run
+from proximity_probe import SENSORS, plain_robot, probe_world_run, table_text
 
 #: The 10-bit proximity table of some course worlds (the e-puck's values scaled to 0..1023).
 TEN_BIT = ((0.0, 1023.0, 0.0), (0.005, 868.0, 0.0), (0.01, 539.0, 0.0), (0.02, 169.0, 0.0))
@@ -29,37 +29,6 @@ TEN_BIT += ((0.03, 59.0, 0.0), (0.07, 17.0, 0.0))
 REFUSED = ((0.02, 500.0, 0.0), (0.01, 1000.0, 0.0), (0.07, 10.0, 0.0))
 
 
-def _table(rows: tuple[tuple[float, float, float], ...]) -> str:
-    return ", ".join(" ".join(repr(v) for v in row) for row in rows)
-
-
-def plain_robot(
-    rows: tuple[tuple[float, float, float], ...] | None,
-    *,
-    name: str = "e-puck",
-    at: tuple[float, float] = (0.203, 0.0),
-    controller_name: str = "<extern>",
-) -> str:
-    """A plain ``Robot`` e-puck node at ``at`` facing +x whose ps0..ps7 carry ``rows`` (no
-    ``lookupTable`` field when None)."""
-    table = "" if rows is None else f" lookupTable [ {_table(rows)} ]"
-    sensors = "".join(
-        f'    DistanceSensor {{ translation {x} {y} 0.033 rotation 0 0 1 {yaw} name "{sensor}"'
-        f"{table} }}\n"
-        for sensor, x, y, yaw in SENSORS
-    )
-    return (
-        f"Robot {{\n  translation {at[0]} {at[1]} 0\n  children [\n"
-        f"{sensors}"
-        '    HingeJoint { device [ RotationalMotor { name "left wheel motor" } ] '
-        "endPoint Solid { translation 0 0.026 0.02 } }\n"
-        '    HingeJoint { device [ RotationalMotor { name "right wheel motor" } ] '
-        "endPoint Solid { translation 0 -0.026 0.02 } }\n"
-        f'  ]\n  name "{name}"\n  controller "{controller_name}"\n}}\n'
-    )
-
-
-#: The header and arena of the worlds of these tests: walls at x, y = +-0.25 m.
 ARENA = (
     "#VRML_SIM R2023b utf8\nWorldInfo { basicTimeStep 32 }\nRectangleArena { floorSize 0.5 0.5 }\n"
 )
@@ -182,7 +151,7 @@ def test_a_sensor_without_a_lookup_table_reads_through_webots_default() -> None:
     assert (ps0.getMinValue(), ps0.getMaxValue()) == (0.0, 1000.0)
 
 
-def test_an_e_puck_proto_keeps_its_proto_s_table() -> None:
+def test_an_e_puck_proto_keeps_its_proto_stable_text() -> None:
     text = ARENA + 'E-puck { translation 0.2 0 0 name "e-puck" controller "<extern>" }\n'
     scene = read_scene(text)
     assert scene.sensor_tables == {} and scene.malformed_tables == {}
@@ -199,7 +168,7 @@ def test_a_lookup_table_not_of_rows_of_three_warns_naming_the_sensor(
     simulations.release()
     text = plain_robot_world(TEN_BIT)
     # ps3's and ps4's fields lose their last number.
-    rows, field = _table(TEN_BIT), "0 4095 0.002, 0.07 67"
+    rows, field = table_text(TEN_BIT), "0 4095 0.002, 0.07 67"
     for name in ("ps3", "ps4"):
         text = text.replace(
             f'name "{name}" lookupTable [ {rows} ]', f'name "{name}" lookupTable [ {field} ]'
@@ -346,7 +315,7 @@ def expanded_e_puck(turn_ps1: float = 0.0) -> str:
         solid = f"Solid {{ translation {x} {y} 0.033 rotation 0 0 1 {heading}"
         sensor = (
             f'DistanceSensor {{ rotation 0 1 0 -0.16 name "{name}" '
-            f"lookupTable [ {_table(PROXIMITY_TABLE)} ] }}"
+            f"lookupTable [ {table_text(PROXIMITY_TABLE)} ] }}"
         )
         if name == "ps2":
             sensors.append(

@@ -520,15 +520,24 @@ impl PySimulator {
     /// back. Without `kept_robots`, refused when `world` holds another number of robots; with
     /// it (one entry per robot of `world`: the index of the running robot it is, or None for a
     /// new one), robots are added and taken out as a supervisor imports and removes them (see
-    /// `Swarm::change_world_with_robots`).
-    #[pyo3(signature = (world, kept_robots=None), text_signature = "($self, world, kept_robots=None)")]
+    /// `Swarm::change_world_with_robots`). `robot_profiles` (with `kept_robots`: one entry per
+    /// robot of `world`, None but for new robots) gives a new robot its own profile, as the
+    /// constructor's does.
+    #[pyo3(signature = (world, kept_robots=None, robot_profiles=None), text_signature = "($self, world, kept_robots=None, robot_profiles=None)")]
     fn change_world(
         &self,
         world: &Bound<'_, PyAny>,
         kept_robots: Option<&Bound<'_, PyAny>>,
+        robot_profiles: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<()> {
         let world = world_argument(world, "world")?;
+        let given = robot_profiles.map(given_profiles).transpose()?;
         let Some(kept) = kept_robots else {
+            if given.is_some() {
+                return Err(invalid(
+                    "expected robot_profiles with kept_robots, found them alone".into(),
+                ));
+            }
             return self.swarm(|s| s.change_world(world))?.py();
         };
         let most = mazesim_core::limits::MAX_ROBOTS;
@@ -542,7 +551,8 @@ impl PySimulator {
                 index.count(&format!("kept_robots[{i}]"), most).map(Some)
             })
             .collect::<PyResult<Vec<Option<usize>>>>()?;
-        self.swarm(|s| s.change_world_with_robots(world, &kept))?
+        let given = given.unwrap_or_default();
+        self.swarm(|s| s.change_world_with_robots(world, &kept, &given))?
             .py()
     }
 

@@ -61,6 +61,7 @@ class WorldWatch:
 
         from mazesim.replay.recorder import FleetRecorder
         from mazesim.replay.views import FleetLiveView
+        from mazesim.webots.robots_changed import RemovedRobot
 
         if self.fleet is None:
             robots = [
@@ -81,28 +82,16 @@ class WorldWatch:
         if not self.record:
             return
         for index in range(len(self.fleet.recorders), len(simulators)):
-            self._imported(runs[index].name, simulators[index])
+            simulator = simulators[index]
+            readings = np.concatenate((simulator.distance_sensors(), simulator.ground_sensors()))
+            self.fleet.join(runs[index].name, _profile_of(simulator), simulator.pose, readings)
         for index, simulator in enumerate(simulators):
+            if isinstance(simulator, RemovedRobot):
+                self.fleet.leave(index)
             readings = np.concatenate((simulator.distance_sensors(), simulator.ground_sensors()))
             self.fleet.capture(index, simulator.pose, readings, bool(simulator.colliding))
             if wheels is not None:
                 self.fleet.acted(index, *wheels.get(index, (0.0, 0.0)))
-
-    def _imported(self, name: str, simulator: Any) -> None:
-        """Records a robot a supervisor imported: where it was imported, for every frame before
-        it (a replay keeps one frame per step for every robot)."""
-        import numpy as np
-
-        from mazesim.replay.recorder import EpisodeRecorder
-
-        profile = _profile_of(simulator)
-        recorder = EpisodeRecorder(self.fleet.world, profile)
-        readings = np.concatenate((simulator.distance_sensors(), simulator.ground_sensors()))
-        for _ in range(self.fleet.recorders[0].frames - 1):
-            recorder.add_frame(simulator.pose, readings, False)
-            recorder.set_action(wheel_speeds=(0.0, 0.0))
-        self.fleet.robots.append((name, profile))
-        self.fleet.recorders.append(recorder)
 
 
 class RobotPaths:

@@ -263,6 +263,8 @@ class FleetRecorder:
         self.seed = seed
         self.control_step_ms = float(control_step_ms)
         self.recorders = [EpisodeRecorder(world, profile) for _, profile in self.robots]
+        #: Each robot's first frame in the world and its last (None: to the end).
+        self.presence: list[tuple[int, int | None]] = [(0, None)] * len(self.robots)
 
     @staticmethod
     def of_simulator(simulator: Simulator, controller: str, seed: int) -> FleetRecorder:
@@ -299,6 +301,29 @@ class FleetRecorder:
             event = int(state["last_crossing"]) if recorder.frames else 0
             recorder.add_frame(state["pose"], readings, bool(state["colliding"]), event)
 
+    def join(
+        self, name: str, profile: RobotProfile, pose: Sequence[float], readings: npt.ArrayLike
+    ) -> None:
+        """Adds a robot that joins the world now (a Webots supervisor imported it), before the
+        frame of this moment is captured: it stands at ``pose`` reading ``readings`` in every
+        frame before, as a run's robots share one frame per step, and is in the world from
+        this frame on."""
+        recorder = EpisodeRecorder(self.world, profile)
+        for _ in range(self.recorders[0].frames):
+            recorder.add_frame(pose, readings, False)
+            recorder.set_action(wheel_speeds=(0.0, 0.0))
+        self.robots.append((name, profile))
+        self.recorders.append(recorder)
+        self.presence.append((recorder.frames, None))
+
+    def leave(self, index: int) -> None:
+        """Notes that robot ``index`` left the world now (a Webots supervisor removed it),
+        before the frame of this moment is captured: that frame, its last, holds where it
+        was, and it stands still there in the later ones, out of the world."""
+        first, last = self.presence[index]
+        if last is None:
+            self.presence[index] = (first, max(first, self.recorders[index].frames))
+
     def acted(self, index: int, left: float, right: float) -> None:
         """Records the wheel speeds robot ``index`` set from its last frame."""
         self.recorders[index].set_action(wheel_speeds=(left, right))
@@ -321,7 +346,10 @@ class FleetRecorder:
             episodes=[episode],
             reading_scale=max(reading_scale(robot) for _, robot in self.robots),
             robots=(
-                [RunRobot(name, robot.name) for name, robot in self.robots]
+                [
+                    RunRobot(name, robot.name, first, last)
+                    for (name, robot), (first, last) in zip(self.robots, self.presence)
+                ]
                 if len(self.robots) > 1
                 else []
             ),
@@ -342,12 +370,15 @@ class FleetRecorder:
             for other, (_, profile) in enumerate(self.robots):
                 if other == index:
                     continue
+                first, last = self.presence[other]
+                there = np.zeros((frames, 1), dtype=bool)
+                there[first : frames if last is None else last + 1] = True
                 rel_x = origin_x - poses[other][:, :1]
                 rel_y = origin_y - poses[other][:, 1:2]
                 along = rel_x * cos_ray + rel_y * sin_ray
                 apart = rel_x * rel_x + rel_y * rel_y - profile.body_radius**2
                 room = along * along - apart
                 entry = np.maximum(-along - np.sqrt(np.maximum(room, 0.0)), 0.0)
-                meets = (room >= 0.0) & ((along <= 0.0) | (apart <= 0.0))
+                meets = there & (room >= 0.0) & ((along <= 0.0) | (apart <= 0.0))
                 lengths = np.where(meets & (entry < lengths), entry, lengths)
             recorder.ray_lengths[:frames] = list(lengths)

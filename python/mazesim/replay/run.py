@@ -18,7 +18,10 @@ every field.
 A run of several robots (a world's ``[[robots]]``, a Webots world of several robots) is version
 1.1: the run's ``robots`` lists every robot (:class:`RunRobot`), each episode's own fields are
 robot 0's, and its ``robots`` holds the tracks of the others, each with the fields of an episode.
-A run of one robot is written as version 1.0, byte for byte as before.
+A run of one robot is written as version 1.0, byte for byte as before. A run in which robots
+join or leave the world (a Webots supervisor imports or removes them) is version 1.2: a robot of
+the run's ``robots`` is in the world from its ``from_frame`` to its ``until_frame`` only (its
+track holds a frame for every frame of the episode, standing still where it is not).
 """
 
 from __future__ import annotations
@@ -53,8 +56,11 @@ __all__ = [
 #: The ``format`` field of every run file.
 FORMAT_NAME = "mazesim-run"
 #: The newest version this module writes: ``(major, minor)``. A newer minor version only adds
-#: fields. Runs of several robots are 1.1 (the ``robots`` fields); runs of one robot 1.0.
-FORMAT_VERSION = (1, 1)
+#: fields. Runs in which robots join or leave are 1.2 (the robots' ``from_frame`` and
+#: ``until_frame``), other runs of several robots 1.1 (the ``robots`` fields), runs of one 1.0.
+FORMAT_VERSION = (1, 2)
+#: The version of a run of several robots all in the world from its first frame to its last.
+SEVERAL_ROBOTS_VERSION = (1, 1)
 #: The version of a run of one robot, which needs none of 1.1's fields.
 ONE_ROBOT_VERSION = (1, 0)
 #: The most robots a run may hold: a world's limit (``mazesim_core::limits::MAX_ROBOTS``).
@@ -173,10 +179,39 @@ class RunRobot:
     Attributes:
         name: Its name in the world.
         profile: Its robot profile's name.
+        from_frame: The first frame it is in the world: that of its import, for a robot a
+            supervisor imported after the start (it stands still at its import pose before).
+        until_frame: The last frame it is in the world, that of its removal, which holds
+            where it was then, or None: to the end (a robot a supervisor removed stands still
+            there after).
     """
 
     name: str
     profile: str
+    from_frame: int = 0
+    until_frame: int | None = None
+
+    @property
+    def always_present(self) -> bool:
+        """Whether it is in the world from the first frame to the last."""
+        return self.from_frame == 0 and self.until_frame is None
+
+    def present(self, frame: int) -> bool:
+        """Whether it is in the world at ``frame``."""
+        return self.from_frame <= frame and (self.until_frame is None or frame <= self.until_frame)
+
+    def as_json(self) -> dict[str, Any]:
+        """Its entry of the run's ``robots``."""
+        values: dict[str, Any] = {
+            "name": self.name,
+            "profile": self.profile,
+            "sensor_names": self.sensor_names(),
+        }
+        if self.from_frame:
+            values["from_frame"] = self.from_frame
+        if self.until_frame is not None:
+            values["until_frame"] = self.until_frame
+        return values
 
     @property
     def robot_profile(self) -> RobotProfile:
@@ -226,7 +261,12 @@ class RecordedRun:
 
     def as_json(self) -> dict[str, Any]:
         """The run as the JSON object of its file."""
-        major, minor = FORMAT_VERSION if self.robots else ONE_ROBOT_VERSION
+        if not self.robots:
+            major, minor = ONE_ROBOT_VERSION
+        elif all(robot.always_present for robot in self.robots):
+            major, minor = SEVERAL_ROBOTS_VERSION
+        else:
+            major, minor = FORMAT_VERSION
         values: dict[str, Any] = {
             "format": FORMAT_NAME,
             "version": f"{major}.{minor}",
@@ -241,10 +281,7 @@ class RecordedRun:
             "episodes": [self._episode_json(episode) for episode in self.episodes],
         }
         if self.robots:
-            values["robots"] = [
-                {"name": robot.name, "profile": robot.profile, "sensor_names": robot.sensor_names()}
-                for robot in self.robots
-            ]
+            values["robots"] = [robot.as_json() for robot in self.robots]
         return values
 
     def _episode_json(self, episode: RecordedEpisode) -> dict[str, Any]:
@@ -443,6 +480,14 @@ def run_from_json(values: Any, source: str = "<run>") -> RecordedRun:
                 f"the tracks of the run's {len(run.robots) - 1} other robots",
                 episodes[index].get("robots"),
             )
+        for number, member in enumerate(run.robots):
+            last = member.from_frame if member.until_frame is None else member.until_frame
+            if last >= episode.frames:
+                raise fields.fail(
+                    f"robots[{number}]",
+                    f"a robot present within the {episode.frames} frames of episodes[{index}]",
+                    {"from_frame": member.from_frame, "until_frame": member.until_frame},
+                )
     return run
 
 
@@ -462,8 +507,18 @@ def _robots_from_json(fields: RunFields, values: Any, robot: str) -> list[RunRob
                     f"{where}.profile",
                     robot_profile_names(),
                 ),
+                from_frame=fields.whole(
+                    fields.get(entry, "from_frame", f"{where}.from_frame", 0),
+                    f"{where}.from_frame",
+                    0,
+                    2**40,
+                ),
             )
         )
+        until = fields.get(entry, "until_frame", f"{where}.until_frame", None)
+        if until is not None:
+            low = robots[-1].from_frame
+            robots[-1].until_frame = fields.whole(until, f"{where}.until_frame", low, 2**40)
     if robots and robots[0].profile != robot:
         raise fields.fail("robots[0].profile", f"the run's robot {robot!r}", robots[0].profile)
     return robots

@@ -38,7 +38,7 @@ import signal
 import sys
 import threading
 import time
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from multiprocessing.connection import wait
 from typing import Any
@@ -338,9 +338,12 @@ class Fleet:
             changed, _ = import_wbt_text(text, self._path, robot_line=int(robot["line"]))
             worlds.append(changed if robot.get("profile") else _without_walls(changed))
         kept = change.kept if change and change.world is not None else None
+        profiles = _imported_profiles(change, text) if change and kept is not None else None
         # What the removed robots were, read before their simulator changes.
         removed = {i: RemovedRobot(self._simulators[i]) for i in (change.removed if change else [])}
-        self.solids = carried_over(self.solids, simulators, worlds, report, kept_robots=kept)
+        self.solids = carried_over(
+            self.solids, simulators, worlds, report, kept_robots=kept, robot_profiles=profiles
+        )
         self.text = text
         if change is not None:
             self._take(change, removed)
@@ -588,7 +591,9 @@ def _robot_scenes(world_path: str, robots: list[Mapping[str, Any]]) -> list[Scen
     )
 
 
-def _own_profiles(robots: list[Mapping[str, Any]], scenes: list[Scene]) -> dict[int, RobotProfile]:
+def _own_profiles(
+    robots: Sequence[Mapping[str, Any]], scenes: Sequence[Scene]
+) -> dict[int, RobotProfile]:
     """The profile of each e-puck whose node lists its own sensors other than its built-in
     profile's (:func:`~mazesim.webots.own_sensors.own_sensors`), by robot index; says at the
     run's start, robot by robot, what of a node's sensors is not used."""
@@ -603,6 +608,18 @@ def _own_profiles(robots: list[Mapping[str, Any]], scenes: list[Scene]) -> dict[
         if own.profile is not None:
             profiles[index] = own.profile
     return profiles
+
+
+def _imported_profiles(change: RobotChange, text: str) -> list[RobotProfile | None] | None:
+    """The profile of each robot of a changed world (``change.kept``'s order) that its node's
+    own sensors make (:func:`_own_profiles`, as for a robot of the world file), None for a kept
+    robot or one of its built-in profile; None when no imported robot has one."""
+    scenes = read_scenes(text, [(robot.get("model"), robot.get("line")) for robot in change.added])
+    own = _own_profiles(change.added, scenes)
+    if not own:
+        return None
+    new = iter(range(len(change.added)))
+    return [own.get(next(new)) if index is None else None for index in change.kept]
 
 
 #: The tables of a world file that a robot's body meets: walls and movable bodies.

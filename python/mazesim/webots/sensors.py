@@ -26,7 +26,7 @@ from mazesim.webots.devices import (
     noise_stream,
     webots_property,
 )
-from mazesim.webots.frames import Axes, axes_or_none, enu_to_nue
+from mazesim.webots.frames import Axes, axes_or_none, enu_to_nue, nue_to_enu
 from mazesim.webots.lights import irradiance
 from mazesim.webots.node_types import node_type
 from mazesim.webots.rays import WallBoxes
@@ -62,6 +62,9 @@ GYRO_TABLE = ((-13.315805, -100000.0, 0.003), (13.315805, 100000.0, 0.003))
 DISTANCE_TABLE = ((0.0, 0.0, 0.0), (0.1, 1000.0, 0.0))
 #: North in the world frame (Webots' WorldInfo.northDirection default since R2022a).
 NORTH = (0.0, 1.0, 0.0)
+#: North in the world frame of a world before R2022a (``WorldInfo.northDirection``'s default
+#: there, the NUE file's x).
+NUE_NORTH = nue_to_enu(1.0, 0.0, 0.0)[:2]
 #: How far from the robot's up (as a component of a unit vector) a device's up axis may lean
 #: and the device still read by its yaw alone.
 LEVEL_TOLERANCE = 1e-6
@@ -280,8 +283,16 @@ class InertialUnit(_TableVector):
     """Roll, pitch and yaw of the device (rad): its frame's attitude in the world, Webots'
     x-y-z extrinsic sequence (the rotation Rz(yaw) Ry(pitch) Rx(roll)) in a world since
     R2022a. On the flat floor roll and pitch are 0 for a device mounted level, and those of its
-    mount for one whose ``rotation`` tilts it on the robot (in a world before R2022a, whose
-    NUE sequence differs, it reads as a level one)."""
+    mount for one whose ``rotation`` tilts it on the robot.
+
+    In a world before R2022a (NUE, Y-up devices) the attitude is that of the device's frame in
+    the reference frame of north (``WorldInfo.northDirection``, x by default), up and their
+    cross product, Webots' x-z-y extrinsic sequence (the rotation Ry(yaw) Rz(pitch) Rx(roll),
+    Webots' R2020b-R2021b InertialUnit page): the yaw is 0 when the device's x axis points
+    north and grows turning left, the roll turns about the device's x axis, the pitch about
+    its z axis. A unit mounted unturned in a Y-up robot, whose x axis is the robot's right,
+    thus reads the robot's heading in the imported world (0 facing the file's -z, whose right
+    is north) where north is the default."""
 
     _node_type = node_type("INERTIAL_UNIT")
     _reads_tilt = True
@@ -293,6 +304,8 @@ class InertialUnit(_TableVector):
         return None if self._simulation.scene.y_up_devices else self._tilted_axes()
 
     def _read(self) -> list[float]:
+        if self._simulation.scene.y_up_devices:
+            return [self._table(v, self._rng) for v in self._nue_attitude()]
         tilted = self._tilt()
         if tilted is None:
             return super()._read()
@@ -310,6 +323,25 @@ class InertialUnit(_TableVector):
     def _measure(self) -> tuple[float, float, float]:
         return 0.0, 0.0, math.remainder(self._heading(), math.tau)
 
+    def _nue_attitude(self) -> tuple[float, float, float]:
+        """Roll, pitch and yaw in a world before R2022a (see the class notes)."""
+        axes = self._mount.axes
+        if axes is None:  # level, its x axis at the mount's yaw (its y axis up)
+            c, s = math.cos(self._mount.yaw), math.sin(self._mount.yaw)
+            axes = ((c, s, 0.0), (0.0, 0.0, 1.0), (s, -c, 0.0))
+        yaw = self._simulation.simulator.pose[2]
+        c, s = math.cos(yaw), math.sin(yaw)
+        x_axis, y_axis, z_axis = ((c * a[0] - s * a[1], s * a[0] + c * a[1], a[2]) for a in axes)
+        nx, ny = self._simulation.scene.north or NUE_NORTH
+        length = math.hypot(nx, ny) or 1.0
+        nx, ny = nx / length, ny / length
+        # The reference frame: north, up (z) and north x up = (ny, -nx, 0).
+        return (
+            math.atan2(-z_axis[2], y_axis[2]),
+            math.asin(max(-1.0, min(1.0, x_axis[2]))),
+            math.atan2(-(ny * x_axis[0] - nx * x_axis[1]), nx * x_axis[0] + ny * x_axis[1]),
+        )
+
     def getRollPitchYaw(self) -> list[float]:
         """[roll, pitch, yaw] in radians; NaNs before the first sampling period."""
         return list(self._reading("get_roll_pitch_yaw"))
@@ -320,6 +352,14 @@ class InertialUnit(_TableVector):
         """The orientation as a quaternion [x, y, z, w] (of the rotation Rz(yaw) Ry(pitch)
         Rx(roll))."""
         roll, pitch, yaw = self.getRollPitchYaw()
+        if self._simulation.scene.y_up_devices:  # Ry(yaw) Rz(pitch) Rx(roll)
+            turns = ((1, yaw), (2, pitch), (0, roll))
+            quaternion = [0.0, 0.0, 0.0, 1.0]
+            for axis, angle in turns:
+                turn = [0.0, 0.0, 0.0, math.cos(angle / 2.0)]
+                turn[axis] = math.sin(angle / 2.0)
+                quaternion = _product(quaternion, turn)
+            return quaternion
         if self._tilt() is None:  # level: its yaw alone (its roll and pitch read 0 noise-free)
             return [0.0, 0.0, math.sin(yaw / 2.0), math.cos(yaw / 2.0)]
         cr, sr = math.cos(roll / 2.0), math.sin(roll / 2.0)
@@ -449,3 +489,16 @@ class RayDistanceSensor(DistanceSensor):
     def getType(self) -> int:
         """The sensor type from the world (``GENERIC`` by default)."""
         return self._type
+
+
+def _product(first: Sequence[float], second: Sequence[float]) -> list[float]:
+    """The Hamilton product of two quaternions [x, y, z, w] (the rotation ``second`` then
+    ``first``)."""
+    x1, y1, z1, w1 = first
+    x2, y2, z2, w2 = second
+    return [
+        w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
+        w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2,
+        w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2,
+        w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2,
+    ]

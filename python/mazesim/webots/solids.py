@@ -129,11 +129,13 @@ def carried_over(
     worlds: list[Any],
     report: Mapping[str, Any],
     kept_robots: list[int | None] | None = None,
+    robot_profiles: list[Any] | None = None,
 ) -> WorldSolids:
     """The walls and movable bodies of ``simulators`` once each runs on in its world of
     ``worlds`` (imported with ``report``; a supervisor changed the world), the walls that
     ``before`` moved moved again where they were put. The first simulator's robots change as
-    ``kept_robots`` says, when given (``Simulator.change_world``).
+    ``kept_robots`` says, when given, the new ones of ``robot_profiles`` where it gives one
+    (``Simulator.change_world``).
 
     Raises:
         InvalidArgumentError: A world holds other robots than the running one (without
@@ -142,7 +144,7 @@ def carried_over(
     moves = before.node_moves() if before is not None else {}
     for number, (simulator, world) in enumerate(zip(simulators, worlds)):
         if number == 0 and kept_robots is not None:
-            simulator.change_world(world, kept_robots)
+            simulator.change_world(world, kept_robots, robot_profiles)
         else:
             simulator.change_world(world)
     after = WorldSolids(simulators, report)

@@ -568,14 +568,19 @@ impl Swarm {
     /// counters, wheel command); the others are new robots, at their world poses, at rest, with
     /// fresh counters, no wheel command, the running robots' clock and a noise stream derived
     /// from the seed and their name (`robot_seed` as for a robot after the first); the running
-    /// robots `kept` does not name are taken out. The movable bodies go on as `change_world`
+    /// robots `kept` does not name are taken out. A new robot is of `profiles[i]` when given
+    /// (a robot node of an imported world whose own sensors differ from its built-in profile's,
+    /// as `with_profiles` takes them), else of the profile its placement names, else the
+    /// swarm's default; a kept robot keeps its own. The movable bodies go on as `change_world`
     /// has them. With `kept` naming every running robot in order, this is `change_world`.
     /// Refused, naming what was expected and found, nothing changed: `kept` of another length
-    /// than `world`'s robots, or naming a running robot twice or one past the running robots.
+    /// than `world`'s robots, naming a running robot twice or one past the running robots, or
+    /// `profiles` neither empty nor of that length, or giving a kept robot a profile.
     pub fn change_world_with_robots(
         &mut self,
         world: Arc<World>,
         kept: &[Option<usize>],
+        profiles: &[Option<Arc<RobotProfile>>],
     ) -> Result<()> {
         let placements = world.robots();
         if kept.len() != placements.len() {
@@ -583,6 +588,21 @@ impl Swarm {
                 "expected one entry per robot of the new world ({}), found {}",
                 placements.len(),
                 kept.len()
+            )));
+        }
+        if !profiles.is_empty() && profiles.len() != placements.len() {
+            return Err(Error::InvalidArgument(format!(
+                "expected no robot profiles or one per robot of the new world ({}), found {}",
+                placements.len(),
+                profiles.len()
+            )));
+        }
+        let given = |i: usize| profiles.get(i).and_then(Option::as_ref);
+        if let Some(i) = (0..kept.len()).find(|&i| kept[i].is_some() && given(i).is_some()) {
+            return Err(Error::InvalidArgument(format!(
+                "expected a profile for new robots only, found one for robot {i}, the running \
+                 robot {}",
+                kept[i].unwrap_or_default()
             )));
         }
         let mut taken = vec![false; self.len()];
@@ -612,7 +632,10 @@ impl Swarm {
                 fresh.push(None);
                 continue;
             }
-            let rig = self.rig_for(placement);
+            let rig = match given(i) {
+                Some(profile) => Ok(Rig::new(profile.clone())),
+                None => self.rig_for(placement),
+            };
             let seed = robot_seed(config.seed, i.max(1), &placement.name);
             let mut sim = Simulator::with_rig(world.clone(), rig?, SimConfig { seed, ..config })?;
             let [x, y, yaw] = placement.start;
@@ -630,7 +653,7 @@ impl Swarm {
         let mut robots = Vec::with_capacity(kept.len());
         let mut commands = Vec::with_capacity(kept.len());
         let mut overrides = Vec::with_capacity(kept.len());
-        for (&from, new) in kept.iter().zip(fresh) {
+        for (i, (&from, new)) in kept.iter().zip(fresh).enumerate() {
             match (from, new) {
                 (Some(j), _) => {
                     robots.extend(old[j].take());
@@ -640,7 +663,7 @@ impl Swarm {
                 (None, new) => {
                     robots.extend(new);
                     commands.push([0.0; 2]);
-                    overrides.push(None);
+                    overrides.push(given(i).cloned());
                 }
             }
         }

@@ -48,7 +48,7 @@ fn an_imported_robot_starts_at_its_pose_on_the_running_clock_and_the_others_go_o
         .collect();
     let time = swarm.robots()[0].time();
     swarm
-        .change_world_with_robots(three.clone(), &[Some(0), Some(1), None])
+        .change_world_with_robots(three.clone(), &[Some(0), Some(1), None], &[])
         .unwrap();
     assert_eq!(swarm.len(), 3);
     assert_eq!(swarm.names(), ["west", "east", "new"]);
@@ -69,7 +69,7 @@ fn an_imported_robot_starts_at_its_pose_on_the_running_clock_and_the_others_go_o
         again.step(&[[3.0, 3.0], [1.0, 1.0]]).unwrap();
     }
     again
-        .change_world_with_robots(three, &[Some(0), Some(1), None])
+        .change_world_with_robots(three, &[Some(0), Some(1), None], &[])
         .unwrap();
     again.set_command(2, 4.0, 4.0).unwrap();
     again.step_commanded().unwrap();
@@ -93,7 +93,7 @@ fn keeping_every_robot_in_order_is_change_world_bit_for_bit() {
         swarm.step(&[[3.0, 3.0], [2.0, 2.0]]).unwrap();
     }
     plain.change_world(changed.clone()).unwrap();
-    kept.change_world_with_robots(changed, &[Some(0), Some(1)])
+    kept.change_world_with_robots(changed, &[Some(0), Some(1)], &[])
         .unwrap();
     for _ in 0..30 {
         plain.step(&[[3.0, 3.0], [2.0, 2.0]]).unwrap();
@@ -116,7 +116,7 @@ fn a_removed_robot_disappears_and_the_bodies_go_on() {
     // East, in west's way, is taken out: west then drives through where it stood.
     let alone = corridor_of(&[("west", -0.2, 0.0)], true);
     swarm
-        .change_world_with_robots(alone.clone(), &[Some(0)])
+        .change_world_with_robots(alone.clone(), &[Some(0)], &[])
         .unwrap();
     assert_eq!(swarm.len(), 1);
     assert_eq!(swarm.robots()[0].pose(), west);
@@ -133,7 +133,7 @@ fn a_removed_robot_disappears_and_the_bodies_go_on() {
     let mut swarm = swarm_of(corridor_of(&[("west", -0.2, 0.0), ("east", 0.0, PI)], true));
     let only_east = corridor_of(&[("east", 0.0, PI)], true);
     swarm
-        .change_world_with_robots(only_east, &[Some(1)])
+        .change_world_with_robots(only_east, &[Some(1)], &[])
         .unwrap();
     assert_eq!((swarm.len(), swarm.names()), (1, &["east".to_string()][..]));
     assert_eq!(swarm.robots()[0].body_poses().len(), 1);
@@ -152,7 +152,7 @@ fn a_robot_list_that_names_no_running_robot_rightly_is_refused() {
     let world = corridor_of(&[("west", -0.5, 0.0), ("east", 0.5, PI)], false);
     let mut swarm = swarm_of(world.clone());
     let error = swarm
-        .change_world_with_robots(world.clone(), &[Some(0)])
+        .change_world_with_robots(world.clone(), &[Some(0)], &[])
         .unwrap_err()
         .to_string();
     assert!(
@@ -160,14 +160,60 @@ fn a_robot_list_that_names_no_running_robot_rightly_is_refused() {
         "{error}"
     );
     let error = swarm
-        .change_world_with_robots(world.clone(), &[Some(1), Some(1)])
+        .change_world_with_robots(world.clone(), &[Some(1), Some(1)], &[])
         .unwrap_err()
         .to_string();
     assert!(error.contains("found robot 1 twice"), "{error}");
     let error = swarm
-        .change_world_with_robots(world, &[Some(0), Some(2)])
+        .change_world_with_robots(world, &[Some(0), Some(2)], &[])
         .unwrap_err()
         .to_string();
     assert!(error.contains("found robot 2 past them"), "{error}");
+    assert_eq!(swarm.len(), 2);
+}
+
+#[test]
+fn an_imported_robot_of_its_own_profile_senses_through_it_and_keeps_it() {
+    let two = corridor_of(&[("west", -0.5, 0.0), ("east", 0.5, PI)], false);
+    let three = corridor_of(
+        &[("west", -0.5, 0.0), ("east", 0.5, PI), ("new", 0.0, 0.0)],
+        false,
+    );
+    let mut own = RobotProfile::builtin("e-puck").unwrap();
+    own.distance_sensors.truncate(2);
+    let own = Arc::new(own);
+    let mut swarm = swarm_of(two);
+    swarm.step(&[[1.0, 1.0], [1.0, 1.0]]).unwrap();
+    let given = [None, None, Some(own.clone())];
+    swarm
+        .change_world_with_robots(three.clone(), &[Some(0), Some(1), None], &given)
+        .unwrap();
+    swarm.step_commanded().unwrap();
+    let sensors: Vec<usize> = (swarm.robots().iter())
+        .map(|r| r.distance_sensors().len())
+        .collect();
+    assert_eq!(sensors, [8, 8, 2]);
+    assert!(Arc::ptr_eq(
+        swarm.profile_overrides()[2].as_ref().unwrap(),
+        &own
+    ));
+    // A later import keeps it: the robot is kept, with its own profile.
+    swarm
+        .change_world_with_robots(three.clone(), &[Some(0), Some(2)], &[])
+        .unwrap_err();
+    let two_kept = corridor_of(&[("west", -0.5, 0.0), ("new", 0.0, 0.0)], false);
+    swarm
+        .change_world_with_robots(two_kept, &[Some(0), Some(2)], &[])
+        .unwrap();
+    assert_eq!(swarm.robots()[1].distance_sensors().len(), 2);
+    // A kept robot is given no profile.
+    let error = swarm
+        .change_world_with_robots(three, &[Some(0), Some(1), None], &[None, Some(own), None])
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.contains("for new robots only, found one for robot 1"),
+        "{error}"
+    );
     assert_eq!(swarm.len(), 2);
 }

@@ -148,6 +148,13 @@
     });
     el("title", {}, body).textContent = fleet[0].robot_name;
   }
+  // The frames each robot is in the world: a robot a supervisor imports or removes is drawn
+  // only from its from_frame to its until_frame (run format 1.2).
+  views.forEach(function (view, k) {
+    var entry = run.robots ? run.robots[k] : null;
+    view.from = entry && entry.from_frame ? entry.from_frame : 0;
+    view.until = entry && entry.until_frame != null ? entry.until_frame : Infinity;
+  });
 
   var legend = document.getElementById("legend");
   var robotItems = fleet ? views.map(function (view) { return [view.colour, "robot " + view.name + " and its trail (red when touching)"]; }) :
@@ -279,15 +286,19 @@
 
   function drawRobot(view, track, frame) {
     var x = track.x[frame], y = track.y[frame], yaw = track.yaw[frame];
+    var present = frame >= view.from && frame <= view.until, shown = present ? "visible" : "hidden";
     view.body.setAttribute("transform", "translate(" + x + "," + (-y) + ") rotate(" + (-degrees(yaw)) + ")");
     view.body.setAttribute("data-x", fixed(x, 4));
     view.body.setAttribute("data-y", fixed(y, 4));
+    view.body.setAttribute("visibility", shown);
     view.disc.setAttribute("fill", track.contacts[frame] ? "#d62728" : view.colour);
-    var points = [];
-    var stride = Math.max(1, Math.floor(frame / 2000));
-    for (var i = 0; i <= frame; i += stride) { points.push(fixed(track.x[i], 4) + "," + fixed(-track.y[i], 4)); }
-    points.push(fixed(x, 4) + "," + fixed(-y, 4));
+    // Its trail runs from where it joined the world to where it is, or where it left it.
+    var points = [], last = Math.min(frame, view.until);
+    var stride = Math.max(1, Math.floor((last - view.from) / 2000));
+    for (var i = view.from; i <= last; i += stride) { points.push(fixed(track.x[i], 4) + "," + fixed(-track.y[i], 4)); }
+    if (last >= view.from) { points.push(fixed(track.x[last], 4) + "," + fixed(-track.y[last], 4)); }
     view.trail.setAttribute("points", points.join(" "));
+    view.rays.forEach(function (line) { line.setAttribute("visibility", shown); });
     view.profile.sensors.forEach(function (sensor, k) {
       var c = Math.cos(yaw), s = Math.sin(yaw);
       var ox = x + c * sensor[0] - s * sensor[1], oy = y + s * sensor[0] + c * sensor[1];
@@ -298,7 +309,7 @@
       line.setAttribute("y2", -(oy + reach * Math.sin(yaw + sensor[2])));
       line.setAttribute("stroke", rayColour(track, frame, k, view.profile));
     });
-    return { name: view.name, x: x, y: y, yaw: yaw, touching: !!track.contacts[frame] };
+    return { name: view.name, x: x, y: y, yaw: yaw, touching: !!track.contacts[frame], present: present };
   }
 
   function drawRobotsTable(episode, frame) {
@@ -309,7 +320,8 @@
       return '<tr id="robot-row-' + k + '" class="' + (k === state.selected ? "selected" : "") + '"><td><span class="swatch" style="background:' +
         view.colour + '"></span>' + escapeHtml(view.name) + '</td><td class="num">' + fixed(where.x, 3) + ", " +
         fixed(where.y, 3) + '</td><td class="num">' + fixed(degrees(where.yaw), 0) + '&deg;</td><td class="num">' +
-        (speeds ? fixed(speeds[0] / 100, 1) + " / " + fixed(speeds[1] / 100, 1) : "\u2014") + "</td><td>" + (where.touching ? "touching" : "") + "</td></tr>";
+        (speeds ? fixed(speeds[0] / 100, 1) + " / " + fixed(speeds[1] / 100, 1) : "\u2014") + "</td><td>" +
+        (!where.present ? "not in the world" : where.touching ? "touching" : "") + "</td></tr>";
     });
     var tableBody = document.querySelector("#robots tbody");
     tableBody.innerHTML = rows.join("");
