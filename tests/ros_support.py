@@ -6,7 +6,9 @@ import json
 import shutil
 import subprocess
 import sys
+import time
 import uuid
+import xmlrpc.client
 from pathlib import Path
 from typing import Any
 
@@ -88,3 +90,23 @@ def spawn_launch(
 def processes_with(variable: str, value: str) -> list[int]:
     """PIDs of running (not zombie) processes whose environment has variable=value."""
     return [pid for pid, _ in local_master.processes_with(variable, value)]
+
+
+def topic_types(master: LocalMaster) -> dict[str, str]:
+    """The type of every topic someone publishes or subscribes on ``master``, as ``rostopic
+    list -v`` shows them: ``{"/odom": "nav_msgs/Odometry", ...}``."""
+    with xmlrpc.client.ServerProxy(master.uri) as proxy:
+        code, message, types = proxy.getTopicTypes(local_master.CALLER_ID)
+    assert code == 1, message
+    return {str(topic): str(kind) for topic, kind in types}
+
+
+def wait_for_subscriber(master: LocalMaster, topic: str, timeout: float = 15.0) -> None:
+    """Waits until some node subscribes ``topic`` (an absolute name such as ``/pose``)."""
+    deadline = time.monotonic() + timeout
+    while True:
+        _, subscribers, _ = master.system_state()
+        if any(name == topic and nodes for name, nodes in subscribers):
+            return
+        assert time.monotonic() <= deadline, f"no node subscribed {topic} within {timeout:g} s"
+        time.sleep(0.05)

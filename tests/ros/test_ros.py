@@ -37,6 +37,7 @@ from ros_support import (
     run_probe,
     spawn_bridge,
     spawn_launch,
+    wait_for_subscriber,
 )
 
 EPUCK_SENSORS = "ps0,ps1,ps2,ps3,ps4,ps5,ps6,ps7,gs0,gs1,gs2"
@@ -570,7 +571,7 @@ def test_recorded_run_plays_back_and_equals_in_process_run(
             text=True,
         )
         try:
-            player.wait_for_subscriber("/pose")
+            wait_for_subscriber(player, "/pose")
             play = subprocess.run(
                 [
                     "rosbag",

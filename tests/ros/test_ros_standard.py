@@ -18,7 +18,15 @@ import mazesim
 from mazesim.errors import InvalidActionError, InvalidArgumentError
 from mazesim.ros import standard
 from mazesim.ros.local_master import LocalMaster
-from ros_support import REPO, needs_ros, processes_with, run_probe, spawn_bridge, spawn_launch
+from ros_support import (
+    REPO,
+    needs_ros,
+    processes_with,
+    run_probe,
+    spawn_bridge,
+    spawn_launch,
+    topic_types,
+)
 
 EPUCK = mazesim.RobotProfile.builtin("e-puck")
 STEP_S = 0.032
@@ -149,7 +157,7 @@ def test_standard_messages_agree_with_the_simulator(master: LocalMaster, tmp_pat
     seen = run_probe(master, "standard", str(commands))
 
     # The types on each topic, as the master (and `rostopic list -v`) reports them.
-    types = master.topic_types()
+    types = topic_types(master)
     assert types["/odom"] == "nav_msgs/Odometry"
     assert types["/tf"] == types["/tf_static"] == "tf2_msgs/TFMessage"
     assert types["/cmd_vel"] == "geometry_msgs/Twist"
@@ -207,7 +215,7 @@ def test_view_launch_runs_without_a_display(master: LocalMaster) -> None:
     )
     seen = run_probe(master, "count", "pose", "40")  # the robot drives in real time
     assert seen["data"]["pose"][-1][3] > seen["data"]["pose"][0][3]
-    types = master.topic_types()
+    types = topic_types(master)
     assert types["/odom"] == "nav_msgs/Odometry" and types["/ps0"] == "sensor_msgs/Range"
     assert LocalMaster.stop_process(launch) == 0
     log = Path(master.log_path("roslaunch")).read_text()

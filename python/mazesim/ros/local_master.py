@@ -256,25 +256,6 @@ class LocalMaster(Closing):
         publishers, subscribers, services = state
         return publishers, subscribers, services
 
-    def topic_types(self) -> dict[str, str]:
-        """The type of every topic someone publishes or subscribes, as ``rostopic list -v``
-        shows them: ``{"/odom": "nav_msgs/Odometry", ...}``."""
-        code, message, types = _xmlrpc(self.uri, "getTopicTypes")
-        if code != 1:
-            raise MazesimError(f"the ROS master at {self.uri} refused getTopicTypes: {message}")
-        return {str(topic): str(kind) for topic, kind in types}
-
-    def wait_for_subscriber(self, topic: str, timeout: float = 15.0) -> None:
-        """Waits until some node subscribes ``topic`` (an absolute name such as ``/pose``)."""
-        deadline = time.monotonic() + timeout
-        while True:
-            _, subscribers, _ = self.system_state()
-            if any(name == topic and nodes for name, nodes in subscribers):
-                return
-            if time.monotonic() > deadline:
-                raise MazesimError(f"no node subscribed {topic} within {timeout:g} s")
-            time.sleep(0.05)
-
     def connections(self, node: str) -> list[tuple[str, str, str]]:
         """A node's open connections as ``(topic, peer node, direction)``; direction ``"o"`` is
         outbound (the node publishes to the peer), ``"i"`` inbound. Empty if the node is unknown.

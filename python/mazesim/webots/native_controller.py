@@ -225,19 +225,13 @@ def _provided_headers() -> dict[str, str]:
     }
 
 
-def scan_headers(files: list[Path]) -> tuple[list[str], dict[str, str]]:
+def _scan(files: list[Path]) -> tuple[list[str], dict[str, str], set[Path]]:
     """The Webots headers (``webots/...``) that ``files``, and the files they include by a
     relative path, include: those the controller library does not provide (all of them, where
     the compiler would stop at the first), and those it provides under another case
     (``webots/motor.hpp`` for ``webots/Motor.hpp``, which Windows and macOS, whose file names
-    ignore case, find), mapped to the header they stand for."""
-    absent, other_case, _ = _scan(files)
-    return absent, other_case
-
-
-def _scan(files: list[Path]) -> tuple[list[str], dict[str, str], set[Path]]:
-    """:func:`scan_headers`'s answer and every file read (those included from outside the
-    controller's folder too, which a build depends on)."""
+    ignore case, find), mapped to the header they stand for; and every file read (those
+    included from outside the controller's folder too, which a build depends on)."""
     provided = _provided_headers()
     absent: set[str] = set()
     other_case: dict[str, str] = {}

@@ -25,6 +25,7 @@ from mazesim.webots.proto.syntax import (
     line_numbers,
     nodes_in_order,
     parse_nodes,
+    unix_line_ends,
     world_version,
 )
 
@@ -239,7 +240,7 @@ def read_world_text(path: str | os.PathLike[str]) -> str:
     with io.TextIOWrapper(
         open_input(path, "the Webots world"), encoding="utf-8", errors="replace"
     ) as handle:
-        return handle.read().replace("\r\n", "\n").replace("\r", "\n")
+        return unix_line_ends(handle.read())
 
 
 def read_scene(text: str, robot_model: str | None = None, robot_line: int | None = None) -> Scene:

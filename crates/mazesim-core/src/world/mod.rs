@@ -446,9 +446,7 @@ impl World {
         let walls = (walls.len() != solid_walls.len()).then(|| walls.into_boxed_slice());
         let wall_index = WallIndex::new(&solid_walls);
         check.crowding(wall_index.crowded_pairs(), solid_walls.len())?;
-        let fingerprint = toml::to_string(&spec)
-            .map(|text| crate::fingerprint::fnv1a(text.as_bytes()))
-            .map_err(|e| Error::InvalidArgument(format!("cannot write the world: {e}")))?;
+        let fingerprint = fingerprint_of(&spec)?;
         Ok(World {
             fingerprint,
             solid_walls,
@@ -637,6 +635,13 @@ impl World {
     pub fn maze(&self) -> Option<&PlacedMaze> {
         self.maze.as_ref()
     }
+}
+
+/// The fingerprint of a description (`World::fingerprint`): the hash of its TOML text.
+fn fingerprint_of(spec: &WorldSpec) -> Result<u64> {
+    toml::to_string(spec)
+        .map(|text| crate::fingerprint::fnv1a(text.as_bytes()))
+        .map_err(|e| Error::InvalidArgument(format!("cannot write the world: {e}")))
 }
 
 /// `walls` without exact duplicates, first occurrences in order.

@@ -4,7 +4,7 @@
 use std::f64::consts::PI;
 
 use super::values::Finite;
-use super::{distinct, World};
+use super::{distinct, fingerprint_of, World};
 use crate::error::{Error, Result};
 use crate::world::{SensedWalls, WallIndex};
 
@@ -107,9 +107,7 @@ impl World {
             Some(kept) if sensed_moved => SensedWalls::new(sensed, kept.colours().to_vec()),
             kept => kept.clone(),
         };
-        let fingerprint = toml::to_string(&spec)
-            .map(|text| crate::fingerprint::fnv1a(text.as_bytes()))
-            .map_err(|e| Error::InvalidArgument(format!("cannot write the world: {e}")))?;
+        let fingerprint = fingerprint_of(&spec)?;
         Ok(World {
             spec,
             source: self.source.clone(),

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from .expander import Expander, ExpansionReport
 from .resolver import ProtoUnavailableError, cache_dir, fetch_url
-from .syntax import world_version
+from .syntax import unix_line_ends, world_version
 
 __all__ = ["ExpansionReport", "ProtoUnavailableError", "cache_dir", "expand_world", "fetch_url"]
 
@@ -33,7 +33,7 @@ def expand_world(text: str, world: str) -> tuple[str, ExpansionReport]:
         ProtoUnavailableError: An ``EXTERNPROTO`` URL cannot be downloaded and is not cached.
         WorldFormatError: A PROTO file is malformed or its template fails.
     """
-    text = text.replace("\r\n", "\n").replace("\r", "\n")
+    text = unix_line_ends(text)
     version, y_up = world_version(text)
     expander = Expander(world, text, version or "R2023b", y_up)
     return expander.expand_world(), expander.report

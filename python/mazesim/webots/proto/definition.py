@@ -6,7 +6,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, field
 
-from .syntax import located_error, tokenize
+from .syntax import located_error, tokenize, unix_line_ends
 
 __all__ = ["FieldDeclaration", "ProtoDefinition", "parse_definition", "externproto_urls"]
 
@@ -69,7 +69,7 @@ def parse_definition(text: str, origin: str) -> ProtoDefinition:
     Raises:
         WorldFormatError: The text has no ``PROTO Name [ ... ] { ... }``.
     """
-    text = text.replace("\r\n", "\n").replace("\r", "\n")
+    text = unix_line_ends(text)
     match = re.search(r"^\s*PROTO\s+([^\s\[]+)\s*\[", text, re.MULTILINE)
     if match is None:
         raise located_error("expected a PROTO definition (PROTO Name [ ... ] { ... })", origin)

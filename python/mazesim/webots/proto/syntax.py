@@ -29,6 +29,7 @@ __all__ = [
     "nodes_in_order",
     "parse_nodes",
     "tokenize",
+    "unix_line_ends",
     "world_version",
 ]
 
@@ -106,6 +107,12 @@ def world_version(text: str) -> tuple[str | None, bool]:
     found = _HEADER.search(text[:200])
     tag = found.group(1) if found else None
     return tag, tag is not None and (not tag.startswith("R") or tag < "R2022a")
+
+
+def unix_line_ends(text: str) -> str:
+    """The text with every line end (``\\r\\n`` or a lone ``\\r``) made ``\\n``, as the core's
+    importer counts lines."""
+    return text.replace("\r\n", "\n").replace("\r", "\n")
 
 
 def line_numbers(text: str) -> Callable[[int], int]:
