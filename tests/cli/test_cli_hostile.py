@@ -323,18 +323,26 @@ def _output_file_options(parser: argparse.ArgumentParser) -> list[argparse.Actio
     ]
 
 
+#: The names of the option or positional argument naming a command's main input file.
+INPUT_NAMES = ("--world", "world", "run_file", "file")
+
+
 def _input_of(parser: argparse.ArgumentParser) -> argparse.Action:
     """The option or positional argument naming the command's main input file."""
     by_name = {a.option_strings[0] if a.option_strings else a.dest: a for a in parser._actions}
-    for name in ("--world", "world", "run_file", "file"):
+    for name in INPUT_NAMES:
         if name in by_name:
             return by_name[name]
     raise AssertionError(f"no input among {sorted(by_name)}")
 
 
-#: Commands that write files named by options, each with an input the outputs must not replace.
+#: Commands that write files named by options, each with an input the outputs must not replace
+#: (``worlds --export`` reads none).
 OUTPUT_FILE_COMMANDS = sorted(
-    command for command, parser in COMMANDS.items() if _output_file_options(parser)
+    command
+    for command, parser in COMMANDS.items()
+    if _output_file_options(parser)
+    and any((a.option_strings or [a.dest])[0] in INPUT_NAMES for a in parser._actions)
 )
 
 
