@@ -29,6 +29,7 @@ from typing import Any
 
 from mazesim.errors import MazesimError
 from mazesim.webots.frames import Frame, axis_angle, enu_to_nue, enu_to_nue_matrix
+from mazesim.webots.proto.syntax import unix_line_ends
 from mazesim.webots.robots_changed import kept_robots
 from mazesim.webots.scene import SceneNode, read_scene, read_world_text
 from mazesim.webots.solids import carried_over, held_by_line
@@ -89,7 +90,7 @@ class SceneEdits:
                 nothing changed.
         """
         first = len(self._lines) + sum(len(lines) for lines in self._imported) + 1
-        lines = text.replace("\r\n", "\n").replace("\r", "\n").split("\n")
+        lines = unix_line_ends(text).split("\n")
         if into is not None:
             lines = [self._frame_line(into[1]), *lines, "] }"]
         self._imported.append(lines)
