@@ -515,6 +515,9 @@ class Simulator:
     def control_step_ms(self) -> float: ...
     @property
     def robot(self) -> RobotProfile: ...
+    def robot_profile(self, robot_index: int = 0) -> RobotProfile:
+        """Robot `robot_index`'s profile itself: a built-in one or the one a profile file gave,
+        so a multi-robot world's robots travel with their own profiles, not with a name."""
     @property
     def world(self) -> World: ...
     def snapshot(self) -> bytes:

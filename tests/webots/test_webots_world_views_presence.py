@@ -1,7 +1,8 @@
 """The run file and the HTML replay of a world run in which a supervisor imports robots and
-removes some mid-run (``robot_spawner.wbt``): each robot is in the run (format 1.2) from the
-frame it was imported to the frame it was removed, the replay draws it only then, and the
-other robots' recorded rays pass where it is not (#33)."""
+removes some mid-run (``robot_spawner.wbt``): each robot is in the run (format 1.2; 1.3 as it
+holds the imported robots' own profiles) from the frame it was imported to the frame it was
+removed, the replay draws it only then, and the other robots' recorded rays pass where it is not
+(#33, #37)."""
 
 from __future__ import annotations
 
@@ -41,8 +42,10 @@ def spawned(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Any]:
 
 def test_each_robot_is_in_the_run_from_its_import_to_its_removal(spawned: dict[str, Any]) -> None:
     values = json.loads(spawned["record"].read_text())
-    assert values["version"] == "1.2"
+    # 1.3: the imported e-pucks drive with the PROTO's tilted rays, a profile the run holds.
+    assert values["version"] == "1.3"
     run = load_run(spawned["record"])
+    assert run.robots[1].robot_profile.distance_sensor_elevations() == [0.16] * 8
     presence = {robot.name: (robot.from_frame, robot.until_frame) for robot in run.robots}
     # Frame k is the state after k steps: a robot imported after step 5 is in frame 5 on, at
     # its import pose; one removed after step 40 has frame 40, where it was then, its last.

@@ -654,6 +654,14 @@ impl PySimulator {
             inner: self.read(|s| s.robot().clone())?,
         })
     }
+    /// Robot `robot_index`'s profile itself: a built-in one or the one a profile file gave,
+    /// so a multi-robot world's robots travel with their own profiles, not with a name.
+    #[pyo3(signature = (robot_index = IntArg::ZERO), text_signature = "($self, robot_index=0)")]
+    fn robot_profile(&self, robot_index: IntArg) -> PyResult<PyRobotProfile> {
+        Ok(PyRobotProfile {
+            inner: self.read_robot(robot_index, |s| s.robot().clone())?,
+        })
+    }
     #[getter]
     fn world(&self) -> PyResult<PyWorld> {
         Ok(PyWorld {

@@ -59,9 +59,7 @@ def run_robots_demo(
     world = simulator.world
     names = list(simulator.robot_names)
     count = len(names)
-    profiles = [
-        RobotProfile.builtin(str(simulator.robot_state(i)["profile"])) for i in range(count)
-    ]
+    profiles = [simulator.robot_profile(i) for i in range(count)]
     columns = [proximity_columns(profile, name) for profile, name in zip(profiles, names)]
     controllers = [AvoidCollision(max_speed=profile.max_wheel_speed) for profile in profiles]
     make_output_folder(args.out)

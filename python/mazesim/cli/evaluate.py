@@ -174,7 +174,7 @@ def run_eval(args: argparse.Namespace, out: TextIO) -> int:
     ]
     refuse_overwriting_inputs(
         [("--trace", args.trace), ("--plot", args.plot), *viewing_outputs(args)],
-        [*policy_files, ("--world", args.world)],
+        [*policy_files, ("--world", args.world), ("--robot", args.robot)],
     )
     policy = load_policy(args.policy)
     if args.world == RANDOM_WORLD:
@@ -215,6 +215,7 @@ def run_eval(args: argparse.Namespace, out: TextIO) -> int:
             record=record,
             spread=None if args.address is None else ray_spreader(args.address),
             progress=progress,
+            robot=args.robot,
         )
     first = summaries[sources[0]]
     written = _write_trace_and_plot(args, record, first, worlds[0], sources[0], policy.kind)

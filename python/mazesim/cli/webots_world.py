@@ -182,9 +182,11 @@ def _profile_of(simulator: Any) -> RobotProfile:
     """The profile of a simulator of one robot, or of a shared simulator's robot."""
     shared = getattr(simulator, "simulator", None)
     if shared is not None:
-        return RobotProfile.builtin(str(shared.robot_state(simulator.index)["profile"]))
+        profile_of_robot: RobotProfile = shared.robot_profile(simulator.index)
+        return profile_of_robot
     if getattr(simulator, "profile", None) is not None:  # a robot a supervisor removed
-        return RobotProfile.builtin(str(simulator.profile))
+        removed: RobotProfile = simulator.profile
+        return removed
     profile: RobotProfile = simulator.robot
     return profile
 

@@ -205,7 +205,7 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
             self.world = world if world is not None else self.world
             simulator = self._simulator = Simulator(
                 self.world,
-                robot=self.options.robot.name,
+                robot=self.options.robot,
                 seed=episode_seed,
                 noise=self.options.noise,
                 control_step_ms=self.options.control_step_ms,

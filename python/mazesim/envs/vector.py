@@ -419,7 +419,7 @@ class EPuckMazeVectorEnv(VectorEnv[npt.NDArray[np.float32], npt.NDArray[Any], np
         return BatchSimulator(
             worlds,
             self.num_envs,
-            robot=self.options.robot.name,
+            robot=self.options.robot,
             seeds=0,
             noise=self.options.noise,
             control_step_ms=self.options.control_step_ms,

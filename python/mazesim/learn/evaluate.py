@@ -181,6 +181,14 @@ class EvalSettings:
             "metavar": "N",
         },
     )
+    robot: str = field(
+        default="seed",
+        metadata={
+            "help": "the robot profile the navigator drives: a built-in name or a profile file "
+            "(docs/robots.md); the report's seed robot unless told",
+            "metavar": "NAME|PATH",
+        },
+    )
 
     @property
     def sources(self) -> list[str]:

@@ -118,6 +118,7 @@ class NavigatorRecorder(NavigatorWrapper):
             ],
             subtask_names=list(SUBTASK_NAMES) if hierarchical else [],
             reading_scale=reading_scale(nav.robot),
+            own_profile=nav.robot,
         )
 
 

@@ -232,6 +232,7 @@ class SimulatorRecorder:
             control_step_ms=float(self.simulator.control_step_ms),
             episodes=[self.recorder.episode(outcome)],
             reading_scale=reading_scale(robot),
+            own_profile=robot,
         )
 
 
@@ -270,7 +271,7 @@ class FleetRecorder:
     def of_simulator(simulator: Simulator, controller: str, seed: int) -> FleetRecorder:
         """A recorder of every robot of one simulator."""
         robots = [
-            (name, RobotProfile.builtin(str(simulator.robot_state(index)["profile"])))
+            (name, simulator.robot_profile(index))
             for index, name in enumerate(simulator.robot_names)
         ]
         return FleetRecorder(
@@ -345,9 +346,10 @@ class FleetRecorder:
             control_step_ms=self.control_step_ms,
             episodes=[episode],
             reading_scale=max(reading_scale(robot) for _, robot in self.robots),
+            own_profile=profile,
             robots=(
                 [
-                    RunRobot(name, robot.name, first, last)
+                    RunRobot(name, robot.name, first, last, own_profile=robot)
                     for (name, robot), (first, last) in zip(self.robots, self.presence)
                 ]
                 if len(self.robots) > 1

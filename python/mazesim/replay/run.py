@@ -21,7 +21,10 @@ robot 0's, and its ``robots`` holds the tracks of the others, each with the fiel
 A run of one robot is written as version 1.0, byte for byte as before. A run in which robots
 join or leave the world (a Webots supervisor imports or removes them) is version 1.2: a robot of
 the run's ``robots`` is in the world from its ``from_frame`` to its ``until_frame`` only (its
-track holds a frame for every frame of the episode, standing still where it is not).
+track holds a frame for every frame of the episode, standing still where it is not). A run of
+a robot whose profile is no built-in one (a profile file's) is version 1.3: the run holds that
+profile's TOML text (``robot_profile``, a robot's ``profile_toml``), so it replays with that
+profile even after the file changes or is gone.
 """
 
 from __future__ import annotations
@@ -39,7 +42,7 @@ import numpy.typing as npt
 from mazesim._atomic import atomic_file
 from mazesim._core import RobotProfile, World, robot_profile_names
 from mazesim._paths import read_input
-from mazesim.errors import RunFormatError
+from mazesim.errors import MazesimError, RunFormatError
 from mazesim.replay.run_fields import RunFields
 
 __all__ = [
@@ -56,9 +59,12 @@ __all__ = [
 #: The ``format`` field of every run file.
 FORMAT_NAME = "mazesim-run"
 #: The newest version this module writes: ``(major, minor)``. A newer minor version only adds
-#: fields. Runs in which robots join or leave are 1.2 (the robots' ``from_frame`` and
-#: ``until_frame``), other runs of several robots 1.1 (the ``robots`` fields), runs of one 1.0.
-FORMAT_VERSION = (1, 2)
+#: fields. Runs of a profile file's robot are 1.3 (the profile's TOML text), runs in which robots
+#: join or leave 1.2 (the robots' ``from_frame`` and ``until_frame``), other runs of several
+#: robots 1.1 (the ``robots`` fields), runs of one 1.0.
+FORMAT_VERSION = (1, 3)
+#: The version of a run in which robots join or leave the world.
+PRESENCE_VERSION = (1, 2)
 #: The version of a run of several robots all in the world from its first frame to its last.
 SEVERAL_ROBOTS_VERSION = (1, 1)
 #: The version of a run of one robot, which needs none of 1.1's fields.
@@ -172,6 +178,22 @@ def _reading_names(profile: RobotProfile) -> list[str]:
     return [*profile.distance_sensor_names, *profile.ground_sensor_names]
 
 
+def written_profile(profile: RobotProfile | None) -> str | None:
+    """The TOML text a run's file holds of ``profile``: None for a built-in profile, which its
+    name alone says."""
+    if profile is None:
+        return None
+    name = profile.name
+    if name in robot_profile_names() and profile == RobotProfile.builtin(name):
+        return None
+    return profile.to_toml()
+
+
+def _run_profile(name: str, own: RobotProfile | None) -> RobotProfile:
+    """The profile a run's robot drove with: its own, or the built-in one of its name."""
+    return own if own is not None else RobotProfile.builtin(name)
+
+
 @dataclass
 class RunRobot:
     """One robot of a run of several robots.
@@ -179,6 +201,8 @@ class RunRobot:
     Attributes:
         name: Its name in the world.
         profile: Its robot profile's name.
+        own_profile: Its profile itself when the run was given it (a profile file's), which the
+            run's file then holds; None: the built-in profile ``profile`` names.
         from_frame: The first frame it is in the world: that of its import, for a robot a
             supervisor imported after the start (it stands still at its import pose before).
         until_frame: The last frame it is in the world, that of its removal, which holds
@@ -190,6 +214,7 @@ class RunRobot:
     profile: str
     from_frame: int = 0
     until_frame: int | None = None
+    own_profile: RobotProfile | None = None
 
     @property
     def always_present(self) -> bool:
@@ -207,6 +232,9 @@ class RunRobot:
             "profile": self.profile,
             "sensor_names": self.sensor_names(),
         }
+        own = written_profile(self.own_profile)
+        if own is not None:
+            values["profile_toml"] = own
         if self.from_frame:
             values["from_frame"] = self.from_frame
         if self.until_frame is not None:
@@ -216,7 +244,7 @@ class RunRobot:
     @property
     def robot_profile(self) -> RobotProfile:
         """The robot's profile."""
-        return RobotProfile.builtin(self.profile)
+        return _run_profile(self.profile, self.own_profile)
 
     def sensor_names(self) -> list[str]:
         """Names of its readings' columns: the distance sensors, then the ground sensors."""
@@ -230,6 +258,8 @@ class RecordedRun:
     Attributes:
         world: The world the run drove in.
         robot: The robot profile's name.
+        own_profile: The robot's profile itself when the run was given it (a profile file's),
+            which the run's file then holds; None: the built-in profile ``robot`` names.
         controller: What drove the robot (``"hrl"``, ``"avoid-collision"``, a controller file).
         seed: The run's seed.
         control_step_ms: The time between frames.
@@ -249,11 +279,12 @@ class RecordedRun:
     subtask_names: list[str] = field(default_factory=list)
     reading_scale: float = 1.0
     robots: list[RunRobot] = field(default_factory=list)
+    own_profile: RobotProfile | None = None
 
     @property
     def robot_profile(self) -> RobotProfile:
         """The robot's profile."""
-        return RobotProfile.builtin(self.robot)
+        return _run_profile(self.robot, self.own_profile)
 
     def sensor_names(self) -> list[str]:
         """Names of the readings' columns: the distance sensors, then the ground sensors."""
@@ -261,17 +292,21 @@ class RecordedRun:
 
     def as_json(self) -> dict[str, Any]:
         """The run as the JSON object of its file."""
-        if not self.robots:
+        own = written_profile(self.own_profile)
+        if own is not None or any(written_profile(r.own_profile) for r in self.robots):
+            major, minor = FORMAT_VERSION
+        elif not self.robots:
             major, minor = ONE_ROBOT_VERSION
         elif all(robot.always_present for robot in self.robots):
             major, minor = SEVERAL_ROBOTS_VERSION
         else:
-            major, minor = FORMAT_VERSION
+            major, minor = PRESENCE_VERSION
         values: dict[str, Any] = {
             "format": FORMAT_NAME,
             "version": f"{major}.{minor}",
             "world": {"name": self.world.name, "toml": self.world.to_toml()},
             "robot": self.robot,
+            **({"robot_profile": own} if own is not None else {}),
             "controller": self.controller,
             "seed": self.seed,
             "control_step_ms": self.control_step_ms,
@@ -447,7 +482,7 @@ def run_from_json(values: Any, source: str = "<run>") -> RecordedRun:
     fields = RunFields(source)
     world = fields.get(values, "world", "world")
     toml = fields.text(fields.get(world, "toml", "world.toml"), "world.toml")
-    robot = fields.text(fields.get(values, "robot", "robot"), "robot", robot_profile_names())
+    robot, own_profile = _profile_from_json(fields, values, "robot", "robot_profile", "robot")
     subtask_names = fields.texts(
         fields.get(values, "subtask_names", "subtask_names", []), "subtask_names"
     )
@@ -464,6 +499,7 @@ def run_from_json(values: Any, source: str = "<run>") -> RecordedRun:
         ),
         subtask_names=subtask_names,
         reading_scale=scale,
+        own_profile=own_profile,
     )
     run.robots = _robots_from_json(fields, fields.get(values, "robots", "robots", []), robot)
     episodes = fields.get(values, "episodes", "episodes")
@@ -491,6 +527,25 @@ def run_from_json(values: Any, source: str = "<run>") -> RecordedRun:
     return run
 
 
+def _profile_from_json(
+    fields: RunFields, values: Any, name_key: str, toml_key: str, where: str
+) -> tuple[str, RobotProfile | None]:
+    """A run's robot profile: its name and, when the run holds it (version 1.3), the profile
+    itself read from its TOML text; a name alone must be a built-in profile's."""
+    toml_field = f"{where.rpartition('.')[0]}.{toml_key}".lstrip(".")
+    text = fields.get(values, toml_key, toml_field, None)
+    if text is None:
+        return fields.text(fields.get(values, name_key, where), where, robot_profile_names()), None
+    name = fields.text(fields.get(values, name_key, where), where)
+    try:
+        profile = RobotProfile.from_toml(
+            fields.text(text, toml_field), f"{fields.source}: {toml_field}"
+        )
+    except MazesimError as refusal:
+        raise RunFormatError(str(refusal)) from None
+    return name, profile
+
+
 def _robots_from_json(fields: RunFields, values: Any, robot: str) -> list[RunRobot]:
     """The run's ``robots`` (none, or 2 to :data:`MAX_RUN_ROBOTS`, the first of profile
     ``robot``)."""
@@ -499,14 +554,14 @@ def _robots_from_json(fields: RunFields, values: Any, robot: str) -> list[RunRob
     robots = []
     for index, entry in enumerate(values):
         where = f"robots[{index}]"
+        profile, own_profile = _profile_from_json(
+            fields, entry, "profile", "profile_toml", f"{where}.profile"
+        )
         robots.append(
             RunRobot(
                 name=fields.text(fields.get(entry, "name", f"{where}.name"), f"{where}.name"),
-                profile=fields.text(
-                    fields.get(entry, "profile", f"{where}.profile"),
-                    f"{where}.profile",
-                    robot_profile_names(),
-                ),
+                profile=profile,
+                own_profile=own_profile,
                 from_frame=fields.whole(
                     fields.get(entry, "from_frame", f"{where}.from_frame", 0),
                     f"{where}.from_frame",

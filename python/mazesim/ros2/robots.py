@@ -13,7 +13,7 @@ from __future__ import annotations
 import re
 from collections.abc import Sequence
 
-from mazesim._core import RobotProfile, Simulator
+from mazesim._core import Simulator
 from mazesim.errors import InvalidArgumentError
 from mazesim.webots.shared_world import RobotView
 
@@ -53,8 +53,7 @@ class RobotOf(RobotView):
 
     def __init__(self, simulator: Simulator, index: int) -> None:
         super().__init__(simulator, index)
-        profile = str(simulator.robot_state(index)["profile"])
-        self.robot = simulator.robot if index == 0 else RobotProfile.builtin(profile)
+        self.robot = simulator.robot_profile(index)
 
     @property
     def last_crossing(self) -> int:

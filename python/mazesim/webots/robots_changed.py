@@ -51,7 +51,7 @@ class RemovedRobot:
         #: The profile of a shared simulator's robot, or the simulator's own.
         self.robot = getattr(simulator, "robot", None)
         shared = getattr(simulator, "simulator", None)
-        self.profile = str(shared.robot_state(simulator.index)["profile"]) if shared else None
+        self.profile = shared.robot_profile(simulator.index) if shared else None
 
     def distance_sensors(self) -> Any:
         """The proximity readings when it was removed."""

@@ -78,7 +78,8 @@ class RobotView:
             if index != self.index:
                 state = self.simulator.robot_state(index)
                 x, y, _ = state["pose"]
-                bodies.append((float(x), float(y), _body_radius(str(state["profile"]))))
+                radius = self.simulator.robot_profile(index).body_radius
+                bodies.append((float(x), float(y), float(radius)))
         return bodies
 
     def set_pose_pushed_out(self, x: float, y: float, yaw: float) -> tuple[float, float]:
@@ -96,14 +97,6 @@ class RobotView:
     def ground_sensors(self) -> Any:
         """The ground readings."""
         return self.simulator.ground_sensors(robot_index=self.index)
-
-
-def _body_radius(profile: str) -> float:
-    """The body radius of a built-in profile (the e-puck's for another)."""
-    try:
-        return float(RobotProfile.builtin(profile).body_radius)
-    except MazesimError:
-        return float(RobotProfile.builtin("e-puck").body_radius)
 
 
 def shared_simulator(
