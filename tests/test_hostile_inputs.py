@@ -171,6 +171,11 @@ CASES = {
         "_core.World.from_toml(HEADER + 'walls = [' + '{center=[0,0],size=[1,1]},' * 300_000"
         " + ']\\n')"
     ),
+    # A field value that is no number, taken for the next field's name.
+    "wbt_box_size_nan": (
+        "_core.import_wbt_text('#VRML_SIM R2023b utf8\\n"
+        "Solid { boundingObject Box { size -1 1e300 nan } }\\n')"
+    ),
     "wbt_text_of_27_million_nodes": (
         "_core.import_wbt_text('#VRML_SIM R2023b utf8\\nE-puck { }\\nGroup { children [ '"
         " + 'Group { } ' * 27_000_000 + ' ] }\\n')"
@@ -189,6 +194,10 @@ BOUND_REFUSALS = {
 #: What other refusals say: the field and what was found, not a misreading of the input.
 REFUSALS_SAY = {
     **BOUND_REFUSALS,
+    "wbt_box_size_nan": (
+        ":2:44: field `Solid.boundingObject.Box.size`: expected the field `size` to hold finite"
+        " numbers, found `nan`"
+    ),
 }
 
 
