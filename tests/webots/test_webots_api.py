@@ -256,6 +256,32 @@ def test_reset_physics_stops_the_robot() -> None:
     assert robot.getVelocity() == [0.0] * 6
 
 
+def test_a_channel_webots_refuses_is_refused_or_ignored_as_webots_does(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    """Webots' channel is a C int: a number beyond int32 is refused (Webots' Python API passed
+    its low 32 bits on); below -1 (the broadcast channel) Webots prints its error and keeps
+    the channel."""
+    prepare(mazesim.load_world("arena"), seconds=1.0)
+    controller.Robot.created = None
+    robot = controller.Robot()
+    for device, function in (("emitter", "wb_emitter"), ("receiver", "wb_receiver")):
+        tuned = robot.getDevice(device)
+        tuned.setChannel(7)
+        for huge in (2**40, -(2**31) - 1):
+            with pytest.raises(mazesim.InvalidArgumentError, match=r"channel .*int32.*found"):
+                tuned.setChannel(huge)
+        capsys.readouterr()
+        tuned.setChannel(-5)
+        assert (
+            f"Error: {function}_set_channel() called with an invalid channel=-5."
+            in capsys.readouterr().err
+        )
+        assert tuned.getChannel() == 7
+        tuned.setChannel(controller.Emitter.CHANNEL_BROADCAST)
+        assert tuned.getChannel() == -1
+
+
 def test_a_robot_alone_sends_to_nobody_and_receives_nothing(
     capsys: pytest.CaptureFixture[str],
 ) -> None:

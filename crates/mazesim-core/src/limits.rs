@@ -57,6 +57,14 @@ pub const MAX_TURN_RATE: f64 = 10_000.0;
 /// (a scale of 1e300 made every noisy reading infinite).
 pub const MAX_NOISE_SCALE: f64 = 100.0;
 
+/// Most tables (`[[walls]]`-style headers and `{ ... }` inline tables) of a world text: one per
+/// wall, segment, paint region, checkpoint, movable body and robot at their limits, and one for
+/// each of `[floor]`, `[start]`, `[goal]`, `[grid]` and `[barcode]`. A text of more cannot make a
+/// world within the limits, and is refused by a count of its bytes before it is parsed (a
+/// text of 300,000 inline walls took seconds to parse before the wall count refused it).
+pub const MAX_WORLD_TABLES: usize =
+    MAX_WALLS + MAX_PAINT_REGIONS + MAX_CHECKPOINTS + MAX_BODIES + MAX_ROBOTS + 5;
+
 /// Most threads of a batch (0 means one per core).
 pub const MAX_THREADS: usize = 256;
 

@@ -27,6 +27,7 @@ from collections import deque
 from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
+from mazesim.errors import InvalidArgumentError
 from mazesim.webots.devices import Device, _print_error, _Sensor, webots_property
 from mazesim.webots.frames import ENU_TO_NUE, Axes, axes_or_none
 from mazesim.webots.inert import NotSimulated
@@ -80,6 +81,26 @@ class _Tuned:
 
     def setChannel(self, channel: int) -> None:
         raise NotImplementedError
+
+    def _tuned_to(self, channel: int, function: str) -> int | None:
+        """The channel a ``setChannel`` call asks for, as Webots takes it: a C ``int``, so a
+        number beyond the int32 range is refused (Webots' Python API would pass its low 32 bits
+        on, a channel the call never named); a channel below -1 (:attr:`CHANNEL_BROADCAST`)
+        prints Webots' error and is ignored (None), as ``wb_emitter_set_channel`` and
+        ``wb_receiver_set_channel`` do."""
+        tuned = int(channel)
+        if not -(2**31) <= tuned < 2**31:
+            raise InvalidArgumentError(
+                f"{type(self).__name__}.setChannel: channel refused: expected a channel that "
+                f"fits Webots' int32, in [-1, {2**31 - 1}] (-1: every channel), found {tuned}"
+            )
+        if tuned < CHANNEL_BROADCAST:
+            _print_error(
+                f"Error: {function}() called with an invalid channel={tuned}. "
+                "Please use a channel inside the range [-1,inf)."
+            )
+            return None
+        return tuned
 
     def getChannel(self) -> int:
         """The channel (-1: every channel)."""
@@ -148,7 +169,9 @@ class Emitter(_Tuned, NotSimulated, Device):
 
     def setChannel(self, channel: int) -> None:
         """Sets the channel (:attr:`CHANNEL_BROADCAST` sends on every channel)."""
-        self._channel = int(channel)
+        tuned = self._tuned_to(channel, "wb_emitter_set_channel")
+        if tuned is not None:
+            self._channel = tuned
 
     def getRange(self) -> float:
         """The range in metres (-1: no limit)."""
@@ -312,8 +335,10 @@ class Receiver(_Tuned, NotSimulated, _Sensor):
 
     def setChannel(self, channel: int) -> None:
         """Sets the channel (:attr:`CHANNEL_BROADCAST` listens to every channel)."""
-        self._channel = int(channel)
-        self._tune()
+        tuned = self._tuned_to(channel, "wb_receiver_set_channel")
+        if tuned is not None:
+            self._channel = tuned
+            self._tune()
 
     queue_length = webots_property("getQueueLength")
 

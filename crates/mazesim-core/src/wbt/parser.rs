@@ -85,8 +85,20 @@ fn describe(token: Option<&Token>) -> String {
         Some(TokenKind::Str(s)) => {
             format!("the string {:?}", s.chars().take(30).collect::<String>())
         }
-        Some(TokenKind::Word(w)) => format!("`{}`", w.chars().take(30).collect::<String>()),
+        Some(TokenKind::Word(w) | TokenKind::NotANumber(w)) => {
+            format!("`{}`", w.chars().take(30).collect::<String>())
+        }
     }
+}
+
+/// Whether a word spells a number that is not finite (`nan`, `-inf`, `Infinity`): no field is
+/// named so, and where a number stands it is a bad one, not the next field's name.
+fn spells_non_finite(word: &str) -> bool {
+    let unsigned = word
+        .strip_prefix(['-', '+'])
+        .unwrap_or(word)
+        .to_ascii_lowercase();
+    matches!(unsigned.as_str(), "nan" | "inf" | "infinity")
 }
 
 struct Parser<'a> {
@@ -377,6 +389,51 @@ impl Parser<'_> {
         }
     }
 
+    /// Whether the token at `at` can start a field's value (what follows a field name).
+    fn starts_value(&self, at: usize) -> bool {
+        match self.tokens.get(at).map(|t| &t.kind) {
+            Some(TokenKind::Number(_) | TokenKind::Str(_) | TokenKind::OpenBracket) => true,
+            Some(TokenKind::Word(w)) => {
+                matches!(w.as_str(), "TRUE" | "FALSE" | "IS" | "DEF" | "USE" | "NULL")
+                    || self.tokens.get(at + 1).map(|t| &t.kind) == Some(&TokenKind::OpenBrace)
+            }
+            _ => false,
+        }
+    }
+
+    /// The next token's text when it stands among the numbers of `value` and is no finite number:
+    /// text that starts as a number does (`1e400`), a word spelling one that is not finite
+    /// (`nan`), or, after a number, a word that no value follows (so no field name either).
+    fn not_a_number(&self, value: &Value) -> Option<String> {
+        match self.peek().map(|t| &t.kind) {
+            Some(TokenKind::NotANumber(w)) => Some(w.clone()),
+            Some(TokenKind::Word(w)) if spells_non_finite(w) => Some(w.clone()),
+            Some(TokenKind::Word(w))
+                if !value.numbers.is_empty()
+                    && w != "hidden"
+                    && !self.is_node_start()
+                    && !self.starts_value(self.pos + 1) =>
+            {
+                Some(w.clone())
+            }
+            _ => None,
+        }
+    }
+
+    /// The error of a token among the numbers of the field `name` that is no finite number: the
+    /// same for every numeric field, at the token's line.
+    fn refuse_number(&self, name: &str, value: &Value, found: &str) -> Error {
+        let read = value.numbers.len();
+        let after = match read {
+            0 => String::new(),
+            1 => " after its first number".to_string(),
+            n => format!(" after its first {n} numbers"),
+        };
+        self.error_here(format!(
+            "expected the field `{name}` to hold finite numbers, found `{found}`{after}"
+        ))
+    }
+
     /// Adds one scalar (number, string, boolean) to `value`; false when the next token is none.
     fn scalar(&mut self, value: &mut Value) -> bool {
         let kind = match self.peek() {
@@ -413,6 +470,10 @@ impl Parser<'_> {
                         )))
                         }
                         _ if self.scalar(&mut value) => {}
+                        _ if self.not_a_number(&value).is_some() => {
+                            let found = self.not_a_number(&value).unwrap_or_default();
+                            return Err(self.refuse_number(name, &value, &found));
+                        }
                         _ if self.is_node_start() => value
                             .nodes
                             .extend(self.node_statement(&format!("the list `{name}`"))?),
@@ -438,6 +499,9 @@ impl Parser<'_> {
             }
             _ => {
                 if !self.scalar(&mut value) {
+                    if let Some(found) = self.not_a_number(&value) {
+                        return Err(self.refuse_number(name, &value, &found));
+                    }
                     return Err(self.error_here(format!(
                         "expected a value for the field `{name}` (numbers, a string, TRUE/FALSE, a node or a [list]), found {}",
                         describe(self.peek())
@@ -445,6 +509,9 @@ impl Parser<'_> {
                 }
                 // A single-valued field or an MF field written without brackets.
                 while self.scalar(&mut value) {}
+                if let Some(found) = self.not_a_number(&value) {
+                    return Err(self.refuse_number(name, &value, &found));
+                }
             }
         }
         Ok(value)

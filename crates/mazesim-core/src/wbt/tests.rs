@@ -825,3 +825,37 @@ fn a_raised_floor_is_lowered_to_zero_with_its_walls_and_paint() {
     assert!(!warned(&on_zero, "above the world's origin"));
     assert_eq!(on_zero.paint.len(), 1);
 }
+
+#[test]
+fn a_field_value_that_is_no_number_is_refused_naming_the_field_and_its_line() {
+    let cases = [
+        ("size -1 1e300 nan", "nan", "after its first 2 numbers"),
+        ("size 1 inf 1", "inf", "after its first number"),
+        ("size 1 1 wide", "wide", "after its first 2 numbers"),
+        ("size 1 1e400 1", "1e400", "after its first number"),
+        (
+            "size -Infinity 1 1",
+            "-Infinity",
+            "finite numbers, found `-Infinity`",
+        ),
+        ("size [ 1 NaN 1 ]", "NaN", "after its first number"),
+    ];
+    for (field, found, says) in cases {
+        let text = format!("Solid {{\n  boundingObject Box {{\n    {field} }}\n}}");
+        let Err(Error::Format {
+            location,
+            field,
+            message,
+        }) = parse(&text)
+        else {
+            panic!("{text} was read")
+        };
+        assert_eq!(location.line, 4, "{message}");
+        assert_eq!(field, "Solid.boundingObject.Box.size", "{message}");
+        assert!(message.contains(&format!("found `{found}`")), "{message}");
+        assert!(message.contains(says), "{message}");
+    }
+    // A field name after numbers is one: a value follows it.
+    let doc = parse("Solid { translation 1 2 3 name \"a\" locked TRUE }").unwrap();
+    assert_eq!(doc.node(doc.roots[0]).fields.len(), 3);
+}

@@ -113,9 +113,69 @@ pub fn from_toml_error(source: &str, text: &str, err: &toml::de::Error) -> Error
     format_error(source, text, offset, Some("(top level)"), message)
 }
 
+/// Refuses a world text of more tables than a world within the limits has
+/// (`MAX_WORLD_TABLES`), by counting its `{` and `[[` bytes before anything parses it: the
+/// parser's time grows with the tables it reads, so a text of too many would be refused by the
+/// count limits only after seconds of parsing. The error points at the first table past the
+/// bound.
+pub fn check_table_count(text: &str, source: &str) -> Result<(), Error> {
+    let most = crate::limits::MAX_WORLD_TABLES;
+    let bytes = text.as_bytes();
+    let opens =
+        |i: usize| bytes[i] == b'{' || (bytes[i] == b'[' && bytes.get(i + 1) == Some(&b'['));
+    let mut found = 0usize;
+    let mut first_past = None;
+    for i in 0..bytes.len() {
+        if opens(i) {
+            found += 1;
+            if found == most + 1 {
+                first_past = Some(i);
+            }
+        }
+    }
+    let Some(offset) = first_past else {
+        return Ok(());
+    };
+    Err(format_error(
+        source,
+        text,
+        offset,
+        Some("(file)"),
+        format!(
+            "expected a world text of at most {most} tables (`[[walls]]` headers and `{{ }}` \
+             inline tables together: the walls, paint regions, checkpoints, bodies and robots a \
+             world may have), found {found}"
+        ),
+    ))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_text_of_more_tables_than_a_world_may_have_is_refused_before_parsing() {
+        let most = crate::limits::MAX_WORLD_TABLES;
+        let walls = "{ center = [0.0, 0.0], size = [0.1, 0.1] },\n".repeat(most);
+        let at_bound = format!("walls = [\n{walls}]\n");
+        assert!(check_table_count(&at_bound, "w.toml").is_ok());
+        let past = format!("walls = [\n{walls}{{ }},\n[[x]]\n]\n");
+        let Err(Error::Format {
+            location, message, ..
+        }) = check_table_count(&past, "w.toml")
+        else {
+            panic!("refused")
+        };
+        assert_eq!(location.line, most + 2, "{message}");
+        assert!(
+            message.contains(&format!("at most {most} tables")),
+            "{message}"
+        );
+        assert!(
+            message.contains(&format!("found {}", most + 2)),
+            "{message}"
+        );
+    }
 
     #[test]
     fn finds_lines_columns_and_fields() {

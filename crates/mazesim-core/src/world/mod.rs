@@ -129,6 +129,7 @@ impl World {
     fn parse(text: &str, source: &str, written_here: bool) -> Result<World> {
         let limit = crate::limits::MAX_WORLD_FILE_BYTES;
         crate::io::check_text_length(text, source, limit, "the world file")?;
+        locate::check_table_count(text, source)?;
         let spec: WorldSpec =
             toml::from_str(text).map_err(|e| locate::from_toml_error(source, text, &e))?;
         if !written_here {
