@@ -132,7 +132,8 @@ fn grey_images(images: Option<&Bound<'_, PyAny>>) -> PyResult<BTreeMap<String, G
 
 /// The import as `{"obstacles": [...], "sensed_only": [...], "bodies": [...], "robot": {...} | None, "basic_time_step_ms": t,
 /// (each obstacle and body with its `owners`, the lines of the nodes that hold it, and its
-/// infra-red `reflectance`, and each obstacle with its `walls`, the first of its walls in the
+/// infra-red `reflectance`, each body with the `colour` a camera sees (None: the grey of its
+/// reflectance) and whether it is a `sphere` (a ball), and each obstacle with its `walls`, the first of its walls in the
 /// world and how many; `sensed_only` the obstacles only infra-red rays and cameras meet, as
 /// obstacles without owners, each with its `reflectance`),
 /// "warnings": [...], "one_controller_warnings": [...], "robot_model", "robot_line", "robot_profile", "extension_devices", "floor_textures",
@@ -203,6 +204,10 @@ fn report<'py>(py: Python<'py>, import: &WbtImport) -> PyResult<Bound<'py, PyDic
     }
     for (d, owners) in bodies.iter().zip(&import.body_owners) {
         d.set_item("owners", owners.clone())?;
+    }
+    for (d, look) in bodies.iter().zip(&import.body_looks) {
+        d.set_item("colour", look.colour.map(|c| c.to_vec()))?;
+        d.set_item("sphere", look.sphere)?;
     }
     let out = PyDict::new(py);
     out.set_item("obstacles", obstacles)?;

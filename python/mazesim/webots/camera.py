@@ -2,7 +2,9 @@
 
 Each pixel is a ray from the camera (0.03 m ahead of the axle, 0.028 m above the floor, level,
 field of view 0.84 rad, 52 x 39 pixels as in Webots' E-puck PROTO). A ray that meets another
-robot's body below its top sees that robot (the E-puck PROTO's colours); one that meets a wall
+robot's body below its top sees that robot (the E-puck PROTO's colours), one that meets a ball
+(a movable body whose collision shape is a sphere, resting on the floor where it is now) sees
+it, 80 % of its colour; one that meets a wall
 (a sensed-only one too, which nothing collides with) below the wall's height sees the wall, 80 %
 of its colour; a ray going down that meets the floor
 first sees the floor paint in its colour. A wall, paint or floor that gives no colour (see
@@ -33,7 +35,7 @@ from mazesim.webots.recognition import CameraPose, RecognisedObject, recogniser_
 if TYPE_CHECKING:
     from mazesim.webots.simulation import RobotSimulation
 
-__all__ = ["Camera", "CameraRecognitionObject", "CameraView", "RobotBody", "render"]
+__all__ = ["Ball", "Camera", "CameraRecognitionObject", "CameraView", "RobotBody", "render"]
 
 #: Image size and field of view of Webots' E-puck PROTO camera.
 DEFAULT_WIDTH = 52
@@ -70,6 +72,18 @@ class RobotBody:
 
 
 @dataclass(frozen=True)
+class Ball:
+    """A ball as the camera sees it: a sphere of ``radius`` resting on the floor at (x, y), of
+    ``colour`` (red, green, blue in [0, 1]; None: the grey of its infra-red ``reflectance``)."""
+
+    x: float
+    y: float
+    radius: float
+    colour: tuple[float, float, float] | None
+    reflectance: float
+
+
+@dataclass(frozen=True)
 class CameraView:
     """Where a camera sits and what it sees: pose on the robot, image size, field of view."""
 
@@ -88,6 +102,7 @@ def render(
     floor: FloorPaint,
     pose: tuple[float, float, float],
     robots: Sequence[RobotBody] = (),
+    balls: Sequence[Ball] = (),
 ) -> npt.NDArray[np.uint8]:
     """Renders the view from a robot pose.
 
@@ -97,6 +112,7 @@ def render(
         floor: The world's floor paint.
         pose: The robot's x, y, yaw.
         robots: The other robots, where they are now.
+        balls: The balls, where they are now.
 
     Returns:
         A (height, width, 4) array of B, G, R, A.
@@ -134,7 +150,12 @@ def render(
     sees_robot = np.isfinite(robot_t) & (robot_t <= floor_t)
     sees_robot &= ~(sees_wall & (wall_t < robot_t))
     sees_wall &= ~sees_robot
-    sees_floor = ~sees_wall & ~sees_robot & np.isfinite(floor_t)
+    ball_t, ball = _ball_hits(view, (ox, oy), dx, dy, rise, balls)
+    sees_ball = np.isfinite(ball_t) & (ball_t <= floor_t)
+    sees_ball &= ~(sees_wall & (wall_t < ball_t)) & ~(sees_robot & (robot_t < ball_t))
+    sees_wall &= ~sees_ball
+    sees_robot &= ~sees_ball
+    sees_floor = ~sees_wall & ~sees_robot & ~sees_ball & np.isfinite(floor_t)
     image = np.empty(rise.shape + (4,), dtype=np.uint8)
     image[...] = (SKY[2], SKY[1], SKY[0], 255)
     if sees_floor.any():
@@ -152,7 +173,41 @@ def render(
         colour = np.where(plate[:, None], PLATE_COLOUR, ROBOT_COLOUR)
         rgb = _levels(np.ones(len(height)), colour, WALL_SHADE)
         image[sees_robot, :3] = rgb[:, ::-1]
+    if sees_ball.any():
+        hit = ball[sees_ball]
+        reflectances = np.array([b.reflectance for b in balls])
+        colours = np.array([b.colour or (math.nan,) * 3 for b in balls], dtype=np.float64)
+        rgb = _levels(reflectances[hit], colours[hit], WALL_SHADE)
+        image[sees_ball, :3] = rgb[:, ::-1]
     return image
+
+
+def _ball_hits(
+    view: CameraView,
+    origin: tuple[float, float],
+    dx: npt.NDArray[np.float64],
+    dy: npt.NDArray[np.float64],
+    rise: npt.NDArray[np.float64],
+    balls: Sequence[Ball],
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.intp]]:
+    """The ray parameter at which each ray meets the nearest ball (``inf`` where none), and
+    which ball it meets."""
+    nearest = np.full(rise.shape, np.inf)
+    which = np.zeros(rise.shape, dtype=np.intp)
+    for index, ball in enumerate(balls):
+        # |origin + t d - centre| = radius in 3D, the centre ``radius`` above the floor.
+        cx, cy, cz = origin[0] - ball.x, origin[1] - ball.y, view.z - ball.radius
+        a = dx * dx + dy * dy + rise * rise
+        b = cx * dx + cy * dy + cz * rise
+        c = cx * cx + cy * cy + cz * cz - ball.radius * ball.radius
+        disc = b * b - a * c
+        with np.errstate(invalid="ignore", divide="ignore"):
+            t = (-b - np.sqrt(disc)) / a
+        t = np.where((disc >= 0.0) & (t >= 0.0), t, np.inf)
+        closer = t < nearest
+        nearest = np.where(closer, t, nearest)
+        which = np.where(closer, index, which)
+    return nearest, which
 
 
 def _robot_hits(
@@ -180,6 +235,28 @@ def _robot_hits(
         t = np.where((height <= ROBOT_TOP) & (height >= ROBOT_BOTTOM), t, np.inf)
         nearest = np.minimum(nearest, t)
     return nearest
+
+
+#: What a camera samples: the robot's pose, the other robots and the balls.
+_Sample = tuple[tuple[float, float, float], list[RobotBody], list[Ball]]
+
+
+def _balls_of(
+    report: Any,
+) -> list[tuple[int, tuple[float, tuple[float, float, float] | None, float]]]:
+    """The movable bodies of an import report that are balls (``sphere``): each one's index
+    among the bodies and its radius, colour (None when the import read none) and reflectance."""
+    balls = []
+    for index, body in enumerate(report.get("bodies") or []):
+        if body.get("sphere") and body.get("kind") == "circle":
+            colour = body.get("colour")
+            look = (
+                float(body["radius"]),
+                None if colour is None else (float(colour[0]), float(colour[1]), float(colour[2])),
+                float(body.get("reflectance", 1.0)),
+            )
+            balls.append((index, look))
+    return balls
 
 
 def _levels(
@@ -286,8 +363,10 @@ class Camera(_Sensor):
         #: The robot's pose and the other robots when the camera last sampled (its image is
         #: drawn from them only when the controller asks for it), and those of the last image
         #: drawn.
-        self._sampled: tuple[tuple[float, float, float], list[RobotBody]] | None = None
-        self._rendered_at: tuple[tuple[float, float, float], list[RobotBody]] | None = None
+        self._sampled: _Sample | None = None
+        self._rendered_at: _Sample | None = None
+        #: The movable bodies that are balls: their index in the world and how they look.
+        self._balls = _balls_of(simulation.report)
         self._value = None
         #: Whether the simulator holds this robot alone (it has no ``other_robots``).
         self._alone = False
@@ -304,19 +383,32 @@ class Camera(_Sensor):
             self._walls = WallBoxes(self._simulation.world, sensed=True)
             self._floor = FloorPaint(self._simulation.world)
         x, y, yaw = (float(v) for v in self._simulation.simulator.pose)
-        self._sampled = ((x, y, yaw), self._other_robots())
+        self._sampled = ((x, y, yaw), self._other_robots(), self._balls_now())
         return True
+
+    def _balls_now(self) -> list[Ball]:
+        """The world's balls where they are now (none in a world without any)."""
+        if not self._balls:
+            return []
+        from mazesim.webots.solids import world_objects
+
+        poses = world_objects(self._simulation).body_poses()
+        return [
+            Ball(float(poses[index][0]), float(poses[index][1]), *look)
+            for index, look in self._balls
+            if index < len(poses)
+        ]
 
     def _drawn(self) -> npt.NDArray[np.uint8] | None:
         """The image of the last sample, drawn at the first call that asks for it (a camera
-        enabled and never read draws nothing), and drawn again only when the robot or another
-        robot has moved since the last image; None before the first sample."""
+        enabled and never read draws nothing), and drawn again only when the robot, another
+        robot or a ball has moved since the last image; None before the first sample."""
         if self._sampled is None or self._walls is None or self._floor is None:
             return None
         if self._pixels is None or self._rendered_at != self._sampled:
-            pose, robots = self._sampled
+            pose, robots, balls = self._sampled
             self._bytes = None
-            self._pixels = render(self._view, self._walls, self._floor, pose, robots)
+            self._pixels = render(self._view, self._walls, self._floor, pose, robots, balls)
             self._rendered_at = self._sampled
         return self._pixels
 

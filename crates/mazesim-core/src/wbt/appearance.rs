@@ -40,6 +40,16 @@ pub struct Look {
     pub reflectance: f64,
 }
 
+/// How a movable body looks to a camera: its colour (`None`: the grey of its reflectance) and
+/// whether its collision shape is one `Sphere` (a ball, which a camera draws as one).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BodyLook {
+    /// The colour a camera sees, as [`Look::colour`].
+    pub colour: Option<[f64; 3]>,
+    /// Whether the body is a ball resting on the floor (its disc's radius is the sphere's).
+    pub sphere: bool,
+}
+
 impl Look {
     /// A shape whose colour the import does not read: white to the infra-red sensors.
     pub const UNREAD: Look = Look {
@@ -217,7 +227,7 @@ impl<'d> Importer<'d> {
 
 #[cfg(test)]
 mod tests {
-    use super::{reflection_factor, Look};
+    use super::{reflection_factor, BodyLook, Look};
     use crate::wbt::WbtImport;
     use crate::world::spec::{BodySpec, PaintSpec};
 
@@ -401,5 +411,31 @@ mod tests {
         let world = w.to_world("mark").unwrap();
         assert_eq!(world.paint_colour(0), Some([1.0, 0.0, 1.0]));
         assert_eq!(world.paint_colour(1), None);
+    }
+
+    #[test]
+    fn a_ball_with_physics_keeps_its_colour_and_a_box_is_no_sphere() {
+        let w = import(
+            "#VRML_SIM R2023b utf8\n\
+             Solid { translation 0.2 0 0.02 children [ Shape { appearance PBRAppearance { \
+               baseColor 0 0 1 } geometry DEF S Sphere { radius 0.02 } } ] \
+               boundingObject USE S physics Physics { mass 0.05 } }\n\
+             Solid { translation -0.2 0 0.02 boundingObject Box { size 0.04 0.04 0.04 } \
+               physics Physics { mass 0.05 } }\n",
+        );
+        assert_eq!(w.bodies.len(), 2);
+        assert_eq!(
+            w.body_looks,
+            [
+                BodyLook {
+                    colour: Some([0.0, 0.0, 1.0]),
+                    sphere: true
+                },
+                BodyLook {
+                    colour: None,
+                    sphere: false
+                }
+            ]
+        );
     }
 }

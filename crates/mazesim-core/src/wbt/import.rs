@@ -2,7 +2,7 @@
 //! `WorldInfo`, the robot's start pose and the budget that keeps a hostile file bounded.
 //! Collision shapes are in `shapes.rs`, PROTO expansions in `protos.rs`.
 
-use super::appearance::Look;
+use super::appearance::{BodyLook, Look};
 use super::devices::ExtensionDevice;
 use super::floor_marks::FloorMesh;
 use super::floor_texture::FloorTexture;
@@ -123,6 +123,8 @@ pub struct Importer<'d> {
     pub bodies: Vec<BodySpec>,
     /// Per movable body, the lines of the nodes that hold it.
     pub body_owners: Vec<Vec<usize>>,
+    /// How each movable body looks to a camera.
+    pub body_looks: Vec<BodyLook>,
     /// The lines of the nodes the walk is inside, outermost first.
     holders: Vec<usize>,
     /// The e-puck (or e-puck2) the world runs with.
@@ -220,6 +222,7 @@ fn walk<'d>(
         obstacle_owners: Vec::new(),
         bodies: Vec::new(),
         body_owners: Vec::new(),
+        body_looks: Vec::new(),
         holders: Vec::new(),
         robot: None,
         other_robot: None,
@@ -292,6 +295,7 @@ fn finish((mut importer, basic_time_step_ms): (Importer<'_>, f64)) -> WbtImport 
         obstacle_owners: importer.obstacle_owners,
         bodies: importer.bodies,
         body_owners: importer.body_owners,
+        body_looks: importer.body_looks,
         robot: robot.as_ref().map(|r| r.pose),
         robot_model: robot.as_ref().map(|r| r.model.clone()),
         robot_line: robot.as_ref().map(|r| r.line),
@@ -584,7 +588,8 @@ impl<'d> Importer<'d> {
         self.look = outer_look;
         if falls && !self.nodes(node, "boundingObject").is_empty() {
             let mass = self.physics_mass(node);
-            if !self.make_movable(first, mass) {
+            let sphere = self.sphere_bounded(node);
+            if !self.make_movable(first, mass, sphere) {
                 self.warn_static(node);
             }
         }
@@ -628,17 +633,34 @@ impl<'d> Importer<'d> {
         (mass.is_finite() && mass > 0.0).then_some(mass)
     }
 
+    /// Whether a Solid's bounding object is one `Sphere` (bare or as a Shape's geometry).
+    fn sphere_bounded(&self, node: &'d Node) -> bool {
+        let &[bounding] = self.nodes(node, "boundingObject") else {
+            return false;
+        };
+        let mut geometry = self.node(bounding);
+        if geometry.type_name == "Shape" {
+            match self.nodes(geometry, "geometry").first() {
+                Some(&id) => geometry = self.node(id),
+                None => return false,
+            }
+        }
+        geometry.type_name == "Sphere"
+    }
+
     /// Turns the obstacles emitted since index `first` into one movable body of `mass` kg, when
     /// they are one box (not longer than `MAX_BODY_ELONGATION` times its width) or one disc no
     /// wider than `MAX_BODY_SIDE` and `mass` is at most `MAX_BODY_MASS`; returns whether it did (otherwise the obstacles stay static).
-    pub fn make_movable(&mut self, first: usize, mass: Option<f64>) -> bool {
+    /// A `sphere` (its bounding object is one `Sphere`) is a ball to the camera.
+    pub fn make_movable(&mut self, first: usize, mass: Option<f64>, sphere: bool) -> bool {
         let Some(mass) = mass.filter(|m| m.is_finite() && *m > 0.0 && *m <= MAX_BODY_MASS) else {
             return false;
         };
         if self.obstacles.len() != first + 1 {
             return false;
         }
-        let reflectance = Reflectance(self.obstacle_looks[first].reflectance);
+        let look = self.obstacle_looks[first];
+        let reflectance = Reflectance(look.reflectance);
         let body = match self.obstacles[first] {
             Obstacle::Box { center, size, yaw }
                 if size.iter().all(|s| *s <= MAX_BODY_SIDE)
@@ -667,6 +689,11 @@ impl<'d> Importer<'d> {
         self.obstacles.truncate(first);
         self.obstacle_looks.truncate(first);
         self.body_owners.extend(self.obstacle_owners.drain(first..));
+        let sphere = sphere && matches!(body, BodySpec::Circle { .. });
+        self.body_looks.push(BodyLook {
+            colour: look.colour,
+            sphere,
+        });
         self.bodies.push(body);
         true
     }

@@ -57,7 +57,7 @@ use std::path::Path;
 
 use crate::error::Result;
 
-pub use appearance::{reflection_factor, Look};
+pub use appearance::{reflection_factor, BodyLook, Look};
 pub use convert::polygon_sides;
 pub use devices::{DeviceField, ExtensionDevice};
 pub use floor_marks::{obj_triangles, FloorMesh};
@@ -154,6 +154,8 @@ pub struct WbtImport {
     pub bodies: Vec<crate::world::spec::BodySpec>,
     /// Per movable body, the lines of the nodes that hold it, as `obstacle_owners`.
     pub body_owners: Vec<Vec<usize>>,
+    /// How each movable body looks to a camera.
+    pub body_looks: Vec<BodyLook>,
     /// The robot's start pose (x, y, yaw), if the world has one: the e-puck's, or that of the
     /// robot the e-puck stands in for.
     pub robot: Option<[f64; 3]>,

@@ -159,7 +159,7 @@ impl<'d> Importer<'d> {
         }
         let first = self.obstacles.len();
         self.box_at(node, &frame, [0.0; 3], clamped);
-        if mass > 0.0 && !self.make_movable(first, Some(mass)) {
+        if mass > 0.0 && !self.make_movable(first, Some(mass), false) {
             self.warn_static(node);
         }
     }

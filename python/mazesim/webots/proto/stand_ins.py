@@ -3,27 +3,30 @@ Webots installation, no cache, no network): the collision geometry that the Webo
 documents for each (its fields and their defaults), written here as procedural PROTOs. Webots'
 own PROTO files are licensed for use with Webots only and are not shipped.
 
-Sources: Webots user guide, "Floors" (``CircleArena``: radius 1, wallThickness 0.01,
-wallHeight 0.1, subdivision 48), "Kitchen" (``CerealBox``: size 0.08 x 0.3 x 0.2 with the
-height second in the Y-up versions, mass 1 kg), "Balls" (``SoccerBall``: radius 0.113, mass 0.6
-kg; ``Ball``: radius 0.0325, mass 0.055 kg) and "Obstacles" (``OilBarrel``: height 0.88, radius
-0.305, centred on its translation, physics NULL by default) and "Drinks" (``Can``: 0.03175 m
-radius, 0.1222 m high, 0.35 kg); the robotbenchmark "Maze Runner" sample's ``MazeBlock`` (its
-PROTO interface: a wall block 0.015 m thick, ``length`` long (default 0.1) and 0.065 m high,
-standing on its translation, of density 200 kg/m^3); "Kitchen" (``Fridge``: 0.7 x 0.7 x 1.8 m,
-standing on its translation, centred on it across) and "Tables" (``Table``: ``size`` 1 x 1.8 x
-0.74 m since R2022a, 1.8 x 0.74 x 1 with the height second before; four ``feetSize`` legs, 0.1
-x 0.1 m by default, in the corners, ``feetPadding`` in from the edges, under a top
-``frameThickness`` thick, 0.05 m by default) and "Cabinet" (``Cabinet``: a frame ``depth`` deep
-(0.5 m by default) from its origin forward, ``outerThickness`` (0.03) plus the
-``columnsWidths`` (0.4, 0.17, 0.17) wide, centred across, and ``outerThickness`` plus the
-``rowsHeights`` (0.24, 0.2, 0.2, 0.4, 0.4) high on each side, from the floor up, its doors,
-drawers and shelves inside that envelope); the ``Chair`` PROTO's published collision shape
-(legs 0.06 x 0.06 x 0.4 m centred 0.22 m from its origin on both horizontal axes, under a
-seat; kept static: at the default density its 40-odd kg is beyond an e-puck's push); "Solids"
-(``SolidTorus``: majorRadius 2, minorRadius 1, subdivision 24, physics NULL,
-enableBoundingObject TRUE; physically "a set of N spheres, where N is the subdivision field", of
-the minor radius on the circle of the major radius, the ring lying about the up axis).
+Sources: Webots user guide, "Floors" (``CircleArena``: radius 1, wallThickness 0.01, wallHeight
+0.1, subdivision 48), "Kitchen" (``CerealBox``: size 0.08 x 0.3 x 0.2 with the height second in
+the Y-up versions, mass 1 kg), "Balls" (``SoccerBall``: radius 0.113, mass 0.6 kg; ``Ball``:
+radius 0.0325, mass 0.055 kg, ``color`` 1.0 0.54 0.08, the colour a camera sees and the
+infra-red sensors read, as a ``PBRAppearance`` of roughness 0.3, metalness 0; the
+``SoccerBall``'s black and white texture is not drawn: it is white, as any texture) and
+"Obstacles" (``OilBarrel``: height 0.88, radius 0.305, centred on its translation, physics NULL
+by default) and "Drinks" (``Can``: 0.03175 m radius, 0.1222 m high, 0.35 kg); the
+robotbenchmark "Maze Runner" sample's ``MazeBlock`` (its PROTO interface: a wall block 0.015 m
+thick, ``length`` long (default 0.1) and 0.065 m high, standing on its translation, of density
+200 kg/m^3); "Kitchen" (``Fridge``: 0.7 x 0.7 x 1.8 m, standing on its translation, centred on
+it across) and "Tables" (``Table``: ``size`` 1 x 1.8 x 0.74 m since R2022a, 1.8 x 0.74 x 1 with
+the height second before; four ``feetSize`` legs, 0.1 x 0.1 m by default, in the corners,
+``feetPadding`` in from the edges, under a top ``frameThickness`` thick, 0.05 m by default) and
+"Cabinet" (``Cabinet``: a frame ``depth`` deep (0.5 m by default) from its origin forward,
+``outerThickness`` (0.03) plus the ``columnsWidths`` (0.4, 0.17, 0.17) wide, centred across,
+and ``outerThickness`` plus the ``rowsHeights`` (0.24, 0.2, 0.2, 0.4, 0.4) high on each side,
+from the floor up, its doors, drawers and shelves inside that envelope); the ``Chair`` PROTO's
+published collision shape (legs 0.06 x 0.06 x 0.4 m centred 0.22 m from its origin on both
+horizontal axes, under a seat; kept static: at the default density its 40-odd kg is beyond an
+e-puck's push); "Solids" (``SolidTorus``: majorRadius 2, minorRadius 1, subdivision 24, physics
+NULL, enableBoundingObject TRUE; physically "a set of N spheres, where N is the subdivision
+field", of the minor radius on the circle of the major radius, the ring lying about the up
+axis).
 """
 
 from __future__ import annotations
@@ -129,13 +132,25 @@ PROTO CerealBox [
 """
 
 
-def _ball(name: str, label: str, radius: float, mass: float) -> str:
+def _ball(name: str, label: str, radius: float, mass: float, colour: str | None = None) -> str:
+    """A ball PROTO; one of a ``colour`` (Webots' default of its ``color`` field) has a Shape
+    of that colour, which a camera sees, and ``color`` changes it."""
+    field_colour = colour or "1 1 1"
+    shape = ""
+    if colour is not None:
+        shape = """
+    children [
+      Shape {
+        appearance PBRAppearance { baseColor IS color roughness 0.3 metalness 0 }
+        geometry Sphere { radius IS radius }
+      }
+    ]"""
     return f"""#VRML_SIM R2023b utf8
 PROTO {name} [
   field SFVec3f translation 0 0 {radius}
   field SFRotation rotation 0 0 1 0
   field SFString name "{label}"
-  field SFColor color 1 1 1
+  field SFColor color {field_colour}
   field SFFloat radius {radius}
   field SFFloat mass {mass}
   field MFVec3f centerOfMass []
@@ -147,7 +162,7 @@ PROTO {name} [
   Solid {{
     translation IS translation
     rotation IS rotation
-    name IS name
+    name IS name{shape}
     boundingObject Sphere {{ radius IS radius }}
     physics Physics {{ density -1 mass IS mass }}
   }}
@@ -452,7 +467,8 @@ STAND_INS: dict[str, StandIn] = {
         _ball("SoccerBall", "soccer ball", 0.113, 0.6), "a ball of the documented radius and mass"
     ),
     "Ball": StandIn(
-        _ball("Ball", "ball", 0.0325, 0.055), "a ball of the documented radius and mass"
+        _ball("Ball", "ball", 0.0325, 0.055, "1.0 0.54 0.08"),
+        "a ball of the documented radius, mass and colour",
     ),
     "OilBarrel": StandIn(_OIL_BARREL, "an upright cylinder of the documented height and radius"),
     "Can": StandIn(_CAN, "an upright cylinder of the documented size and mass"),
