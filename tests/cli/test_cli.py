@@ -57,6 +57,10 @@ def test_worlds_exports_a_builtin_world_to_edit_and_keeps_an_existing_file(
     assert "did you mean 'seed-maze'?" in capsys.readouterr().err
     assert main(["worlds", "--export", str(mine), "-o", str(tmp_path / "y.toml")]) == 2
     assert "expected the name of a built-in world to export" in capsys.readouterr().err
+    for suffix in (".wbt", ".png", ""):  # a world file's name says it is one
+        assert main(["worlds", "--export", "arena", "-o", str(tmp_path / f"w{suffix}")]) == 2
+        assert "expected a world file ending in .toml" in capsys.readouterr().err
+        assert not (tmp_path / f"w{suffix}").exists()
     assert main(["worlds", "--force"]) == 2
     assert main(["worlds", "--out", str(tmp_path / "x.toml")]) == 2
     assert "expected --out with --export NAME" in capsys.readouterr().err
