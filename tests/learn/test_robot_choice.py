@@ -3,6 +3,9 @@
 from __future__ import annotations
 
 import contextlib
+import pickle
+import re
+from pathlib import Path
 from typing import Any
 
 import pytest
@@ -56,11 +59,38 @@ def test_evaluation_hands_the_robot_to_adaptation_and_episodes(robots_seen: list
     assert robots_seen and robots_seen[0] is profile
 
 
-def test_a_spread_evaluation_refuses_another_robot() -> None:
+def test_a_spread_evaluation_sends_a_profile_file_as_itself(tmp_path: Path) -> None:
+    # An edited seed robot, still named seed: the chunks must drive it, not the built-in one.
+    text = mazesim.RobotProfile.builtin("seed").to_toml()
+    edited = re.sub(r"(?m)^max_wheel_speed = .*$", "max_wheel_speed = 4.0", text)
+    assert edited != text
+    path = tmp_path / "slow-seed.toml"
+    path.write_text(edited)
+    policy = load_policy(None)
+    worlds = [mazesim.load_world("seed-maze")]
+    options: dict[str, Any] = {"max_steps": 1500, "seed": 3}
+    here = evaluate_navigator(policy, worlds, 4, robot=str(path), **options)["truth"]
+    builtin = evaluate_navigator(policy, worlds, 4, robot="seed", **options)["truth"]
+    assert here.as_json() != builtin.as_json()
+
+    def spread(chunk: Any, episodes: int) -> Any:
+        path.unlink(missing_ok=True)  # the machines running the chunks have no copy of the file
+        travelled = pickle.loads(pickle.dumps(chunk))  # as Ray sends a chunk to a worker
+        return [*travelled(0, 2), *travelled(2, episodes - 2)]
+
+    spread_out = evaluate_navigator(policy, worlds, 4, robot=str(path), spread=spread, **options)
+    assert spread_out["truth"].as_json() == here.as_json()
+
+
+def test_a_spread_evaluation_refuses_a_profile_per_robot() -> None:
     def spread(chunk: Any, episodes: int) -> Any:
         raise AssertionError("not reached")
 
-    with pytest.raises(mazesim.InvalidArgumentError, match="seed robot"):
+    with pytest.raises(mazesim.InvalidArgumentError, match="one robot profile .* sequence of 2"):
         evaluate_navigator(
-            load_policy(None), [mazesim.load_world("seed-maze")], 1, spread=spread, robot="e-puck"
+            load_policy(None),
+            [mazesim.load_world("seed-maze")],
+            1,
+            spread=spread,
+            robot=["e-puck", "e-puck"],
         )

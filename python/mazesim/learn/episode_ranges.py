@@ -6,12 +6,13 @@ start jitter and sensor noise from ``(seed, number)`` alone
 (:class:`mazesim.episodes.EpisodeBatch`), and a greedy navigator keeps nothing from one
 episode to the next. So the episodes numbered ``first`` to ``first + count - 1`` can run anywhere,
 in any company, and end the same: :class:`NavigatorEpisodes` holds what they need (the tables,
-the worlds as TOML text) and runs such a chunk, handing back its episodes'
-:class:`~mazesim.episodes.EpisodeResult` list, numbered and placed as ``evaluate`` numbers and
-places them. Whoever spreads the chunks (the evaluator's ``spread`` argument,
-:func:`mazesim.distributed.evaluate_episodes` on Ray) joins the lists in episode order, and the
-evaluator summarises them once (:func:`mazesim.learn.summary.summarise`), as it does the
-episodes it runs itself.
+the worlds as TOML text, the robot profile, which pickles as its TOML text unless it is a
+built-in one, so a profile file's robot needs no file where the chunk runs) and runs such a
+chunk, handing back its episodes' :class:`~mazesim.episodes.EpisodeResult` list, numbered and
+placed as ``evaluate`` numbers and places them. Whoever spreads the chunks (the evaluator's
+``spread`` argument, :func:`mazesim.distributed.evaluate_episodes` on Ray) joins the lists in
+episode order, and the evaluator summarises them once (:func:`mazesim.learn.summary.summarise`),
+as it does the episodes it runs itself.
 
 A chunk runs its episodes side by side, up to :data:`CHUNK_ENVS` at a time, one robot per
 episode.
@@ -27,7 +28,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from mazesim._core import World
+from mazesim._core import RobotProfile, World
 from mazesim.episodes import EpisodeBatch, EpisodeResult, run_episodes
 from mazesim.errors import InvalidArgumentError
 from mazesim.learn.higher import HigherLevel
@@ -71,6 +72,7 @@ class NavigatorEpisodes:
         threads: Batch-engine threads of a chunk.
         hold_heading: The navigator holds its heading where blind (hierarchical;
             :attr:`mazesim.learn.tables.TrainedPolicy.hold_heading`).
+        robot: The profile every robot drives; None: the report's seed robot.
     """
 
     kind: str
@@ -85,6 +87,7 @@ class NavigatorEpisodes:
     flat_q: npt.NDArray[np.float64] | None = None
     threads: int = 1
     hold_heading: bool = False
+    robot: RobotProfile | None = None
 
     def __post_init__(self) -> None:
         tables = (self.lower_q, self.higher_q) if self.kind == "hierarchical" else (self.flat_q,)
@@ -142,6 +145,7 @@ class NavigatorEpisodes:
                 max_steps=self.max_steps,
                 events=self.events,
                 threads=self.threads,
+                robot="seed" if self.robot is None else self.robot,
             )
             navigator = self._navigator(slot_worlds)
             decisions = navigator.record.decisions

@@ -40,10 +40,10 @@ from typing import Any, Protocol
 import numpy as np
 import numpy.typing as npt
 
-from mazesim._core import World, generate_maze
+from mazesim._core import RobotProfile, World, generate_maze
 from mazesim._seeding import stream_seeds
 from mazesim.actions import ACTION_CODES, ACTIONS
-from mazesim.batch import RobotChoice
+from mazesim.batch import RobotChoice, first_profile
 from mazesim.episodes import (
     EVENT_SOURCES,
     MAX_STEPS,
@@ -440,8 +440,9 @@ def evaluate_navigator(
             default; see :func:`evaluate`); ``False``: every episode one step at a time. The
             results are the same.
         robot: The robots of the evaluation and of the higher level's adaptation
-            (:data:`mazesim.batch.RobotChoice`), handed to the batches as given; the seed
-            robot's only with ``spread``.
+            (:data:`mazesim.batch.RobotChoice`), handed to the batches as given; with
+            ``spread``, one profile for every robot, sent to the chunks as itself (a profile
+            file's as its TOML text), so the machines that run them need no copy of its file.
 
     Returns:
         Each source's summary, in the order of ``sources``; their
@@ -452,9 +453,10 @@ def evaluate_navigator(
         PolicyFormatError: A flat navigator asked to drive a world it did not learn.
         MissingDependencyError: ``spread`` needs a package that is not installed.
     """
-    if spread is not None and not (isinstance(robot, str) and robot == "seed"):
+    if spread is not None and not isinstance(robot, (str, RobotProfile)):
         raise InvalidArgumentError(
-            f"expected the seed robot for an evaluation spread in chunks, found {robot!r}"
+            "expected one robot profile (a name, a profile file or a RobotProfile) for every "
+            f"episode of an evaluation spread in chunks, found a sequence of {len(robot)}"
         )
     adapted = False
     make_navigator: NavigatorFactory
@@ -546,6 +548,7 @@ def _evaluate_spread(
         higher_q=level.q if level is not None else None,
         flat_q=policy.flat_q if level is None else None,
         hold_heading=policy.hold_heading,
+        robot=first_profile(options["robot"]),
     )
     progress = options.pop("progress")
     results = chunks.check_joined(spread(chunks, chunks.episodes))
