@@ -76,12 +76,30 @@ def test_a_newer_major_version_is_refused_clearly(tmp_path: Path) -> None:
         load_run(path)
 
 
-def test_a_newer_minor_version_with_unknown_fields_is_read(tmp_path: Path) -> None:
+def test_a_newer_minor_version_is_refused_naming_the_version_to_upgrade_to(
+    tmp_path: Path,
+) -> None:
+    # A newer minor version adds fields this reader would misread by ignoring them (as a 1.2
+    # reader would draw a 1.3 run's own profile named e-puck as the built-in e-puck).
     values = long_run(5).as_json()
-    values["version"] = f"{FORMAT_VERSION[0]}.{FORMAT_VERSION[1] + 3}"
+    values["version"] = newer = f"{FORMAT_VERSION[0]}.{FORMAT_VERSION[1] + 1}"
     values["something_new"] = [1, 2, 3]
-    values["episodes"][0]["also_new"] = "x"
     path = tmp_path / "minor.json"
+    path.write_text(json.dumps(values))
+    reads = "{}.0 to {}.{}".format(FORMAT_VERSION[0], *FORMAT_VERSION)
+    with pytest.raises(
+        RunFormatError,
+        match=rf"reads run format {reads}; the file is version {newer} \(a newer format\): "
+        rf"upgrade mazesim to one that reads run format {newer}",
+    ):
+        load_run(path)
+
+
+@pytest.mark.parametrize("version", ["1", "1.0", "1.1", "1.2", "1.3"])
+def test_every_older_minor_version_still_loads(tmp_path: Path, version: str) -> None:
+    values = long_run(5).as_json()
+    values["version"] = version
+    path = tmp_path / "older.json"
     path.write_text(json.dumps(values))
     assert load_run(path).episodes[0].frames == 6
 

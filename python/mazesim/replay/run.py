@@ -11,8 +11,11 @@ The hierarchical navigator's decisions at checkpoints are :class:`Decision` reco
 On disk a run is one JSON object (``.json``, or gzip-compressed ``.json.gz``), never a pickle,
 with numbers quantised to whole units (0.1 mm, milliradians, millivolts) so a 4,000-step episode
 takes a few hundred kB. The format is versioned (:data:`FORMAT_VERSION`, ``"major.minor"``):
-a reader accepts any minor version of its own major version, ignores fields it does not know,
-and refuses a newer major version with :class:`RunFormatError`. ``docs/watching.md`` describes
+a writer writes the oldest version that holds its run, and a reader accepts its own version and
+every older minor version of its major version and refuses a newer one, major or minor, with
+:class:`RunFormatError` naming the version to upgrade to: every minor version so far adds fields
+an older reader would misread by ignoring them (a 1.2 reader would draw a 1.3 run's profile file
+robot named ``e-puck`` as the built-in e-puck). ``docs/watching.md`` describes
 every field.
 
 A run of several robots (a world's ``[[robots]]``, a Webots world of several robots) is version
@@ -58,10 +61,11 @@ __all__ = [
 
 #: The ``format`` field of every run file.
 FORMAT_NAME = "mazesim-run"
-#: The newest version this module writes: ``(major, minor)``. A newer minor version only adds
-#: fields. Runs of a profile file's robot are 1.3 (the profile's TOML text), runs in which robots
-#: join or leave 1.2 (the robots' ``from_frame`` and ``until_frame``), other runs of several
-#: robots 1.1 (the ``robots`` fields), runs of one 1.0.
+#: The newest version this module writes and reads: ``(major, minor)``. A newer minor version
+#: adds fields (and is refused by an older reader, which would misread it). Runs of a profile
+#: file's robot are 1.3 (the profile's TOML text), runs in which robots join or leave 1.2 (the
+#: robots' ``from_frame`` and ``until_frame``), other runs of several robots 1.1 (the ``robots``
+#: fields), runs of one 1.0.
 FORMAT_VERSION = (1, 3)
 #: The version of a run in which robots join or leave the world.
 PRESENCE_VERSION = (1, 2)
@@ -370,15 +374,15 @@ def save_run(run: RecordedRun, path: str | os.PathLike[str]) -> None:
 
 
 def load_run(path: str | os.PathLike[str]) -> RecordedRun:
-    """Reads a run file written by :func:`save_run` (this or an older minor version).
+    """Reads a run file written by :func:`save_run` (this or an older minor version of the format).
 
     The file (once decompressed) may hold at most :data:`MAX_RUN_BYTES` bytes of JSON; every
     field is checked before it is used.
 
     Raises:
         MazesimIOError: The file cannot be read.
-        RunFormatError: It is not a run file, or of a newer major version, or too large, or a
-            field is missing or malformed (the message names the field).
+        RunFormatError: It is not a run file, or of a newer version (major or minor), or too
+            large, or a field is missing or malformed (the message names the field).
     """
     name = os.fspath(path)
     data = read_input(name, MAX_RUN_BYTES, "the run")
@@ -460,24 +464,27 @@ def run_from_json(values: Any, source: str = "<run>") -> RecordedRun:
     """A run from the JSON object of a run file; ``source`` names it in errors.
 
     Raises:
-        RunFormatError: Not a run, a newer major version, or a field missing or malformed.
+        RunFormatError: Not a run, a newer version, or a field missing or malformed.
     """
     if not isinstance(values, dict) or values.get("format") != FORMAT_NAME:
         found = values.get("format") if isinstance(values, dict) else type(values).__name__
         raise RunFormatError(f"{source}: expected format {FORMAT_NAME!r}, found {found!r}")
     version = str(values.get("version", ""))
-    try:
-        major = int(version.split(".")[0])
-    except ValueError:
+    major_text, _, minor_text = version.partition(".")
+    if not all(p.isdecimal() and len(p) <= 6 for p in (major_text, minor_text or "0")):
+        raise RunFormatError(f"{source}: expected a version such as '1.0', found {version!r}")
+    found = (int(major_text), int(minor_text or "0"))
+    if found[0] != FORMAT_VERSION[0] or found > FORMAT_VERSION:
+        newer = found > FORMAT_VERSION
         raise RunFormatError(
-            f"{source}: expected a version such as '1.0', found {version!r}"
-        ) from None
-    if major != FORMAT_VERSION[0]:
-        newer = "a newer" if major > FORMAT_VERSION[0] else "an older"
-        raise RunFormatError(
-            f"{source}: this mazesim reads run format {FORMAT_VERSION[0]}.x; the file is "
-            f"version {version} ({newer} format): "
-            + ("upgrade mazesim to read it" if major > FORMAT_VERSION[0] else "record it again")
+            f"{source}: this mazesim reads run format {FORMAT_VERSION[0]}.0 to "
+            f"{FORMAT_VERSION[0]}.{FORMAT_VERSION[1]}; the file is version {version} "
+            f"({'a newer' if newer else 'an older'} format): "
+            + (
+                f"upgrade mazesim to one that reads run format {version}"
+                if newer
+                else "record it again"
+            )
         )
     fields = RunFields(source)
     world = fields.get(values, "world", "world")
