@@ -368,3 +368,45 @@ def test_a_world_file_without_a_name_is_called_after_the_file(tmp_path: Path) ->
     ), line
     shown = mazesim_command("demo", "--world", "corridor.toml", "--seconds", "1", cwd=tmp_path)
     assert shown.stdout.startswith("world              corridor (robot e-puck, seed 0)\n")
+
+
+NO_WAY_TO_THE_GOAL = '''format = "mazesim-world"
+version = 1
+name = "walled-in"
+
+[grid]
+map = """
++--+--+--+
+|S       |
++--+--+--+
+|       G|
++--+--+--+
+"""
+'''
+
+
+@pytest.mark.parametrize(
+    ("command", "verb"),
+    [
+        (["train", "--world", "walled.toml", "--out", "nav", "--steps", "1k"], "learn"),
+        (["eval", "--world", "walled.toml", "--episodes", "2"], "drive"),
+        (["demo", "--controller", "hrl", "--world", "walled.toml"], "drive"),
+    ],
+)
+def test_every_navigator_command_refuses_a_maze_without_a_way_alike(
+    tmp_path: Path,
+    monkeypatch: pytest.MonkeyPatch,
+    capsys: pytest.CaptureFixture[str],
+    command: list[str],
+    verb: str,
+) -> None:
+    (tmp_path / "walled.toml").write_text(NO_WAY_TO_THE_GOAL)
+    monkeypatch.chdir(tmp_path)
+    assert main(command) == 2
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert line.startswith(
+        f"mazesim: error: the navigator cannot {verb} world 'walled-in' (walled.toml): its goal "
+        "(cell column 2, row 1) cannot be reached from the start (cell column 0, row 0): open a "
+        "way through the walls of the [grid] map, or move S or G"
+    ), line
+    assert sorted(path.name for path in tmp_path.iterdir()) == ["walled.toml"]

@@ -23,8 +23,7 @@ from mazesim._atomic import atomic_file
 from mazesim._paths import make_output_folder
 from mazesim.cli.demo import HRL_DEFAULT_SECONDS, speed_summary
 from mazesim.cli.progress import progress_display
-from mazesim.episodes import StartJitter, learning_problems, shortest_path_steps
-from mazesim.errors import InvalidArgumentError
+from mazesim.episodes import StartJitter, shortest_path_steps
 from mazesim.learn.evaluate import ADAPT_EPISODES, EvaluationRecord, evaluate, navigator_for
 from mazesim.learn.evaluation_text import trace_text
 from mazesim.learn.figures import save_episodes_png
@@ -32,6 +31,7 @@ from mazesim.learn.policy import HierarchicalPolicy
 from mazesim.learn.subtasks import CONTROL_STEP_MS, SUBTASK_NAMES
 from mazesim.learn.summary import summarise
 from mazesim.learn.tables import load_policy
+from mazesim.learn.train import refuse_unlearnable
 from mazesim.maze import world_hash
 from mazesim.replay.navigator import Recording
 from mazesim.replay.views import play_live, recording_requested, write_views, written_lines
@@ -42,11 +42,7 @@ __all__ = ["run_hrl_demo"]
 def run_hrl_demo(args: argparse.Namespace, out: TextIO) -> int:
     """Runs the navigator demo (``args``: world, seconds, seed, out)."""
     world = mazesim.load_world(args.world)
-    problems = learning_problems(world, show_command=f"mazesim show {args.world}")
-    if problems:
-        raise InvalidArgumentError(
-            f"the navigator cannot drive world {world.name!r}: " + "; ".join(problems)
-        )
+    refuse_unlearnable(world, args.world, "drive")
     policy = load_policy()
     make_output_folder(args.out)
     adapt_seconds = None

@@ -92,6 +92,16 @@ def _world_or_random(name: str) -> World:
         ) from None
 
 
+def _navigator_world(name: str) -> World:
+    """The world ``--world`` names, refused as ``mazesim train`` refuses it when the navigator
+    cannot drive it (no goal, a goal out of reach, no checkpoints), saying what to change."""
+    from mazesim.learn.train import refuse_unlearnable
+
+    world = _world_or_random(name)
+    refuse_unlearnable(world, name, "drive")
+    return world
+
+
 def register(commands: Any) -> None:
     """Adds ``eval`` to the ``mazesim`` command's subparsers."""
     from mazesim.learn.evaluate import ADAPT_EPISODES, EvalSettings
@@ -184,9 +194,7 @@ def run_eval(args: argparse.Namespace, out: TextIO) -> int:
         per_world = max(1, math.ceil(args.episodes / len(worlds)))
         label = f"{len(worlds)} unseen generated 5 x 5 mazes"
     else:
-        worlds = [
-            _world_or_random(args.world) if args.world is not None else policy.learned_world()
-        ]
+        worlds = [_navigator_world(args.world) if args.world else policy.learned_world()]
         per_world = args.episodes
         label = worlds[0].name
     settings = EvalSettings(**{f.name: getattr(args, f.name) for f in fields(EvalSettings)})

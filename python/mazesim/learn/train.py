@@ -71,6 +71,7 @@ __all__ = [
     "TrainingRun",
     "command_line_fields",
     "navigator_world",
+    "refuse_unlearnable",
     "run_training",
     "train",
     "train_flat_policy",
@@ -315,13 +316,24 @@ def navigator_world(name: str) -> World:
         UnknownNameError, WorldFormatError: The world cannot be loaded.
     """
     world = load_world(name)
+    refuse_unlearnable(world, name)
+    return world
+
+
+def refuse_unlearnable(world: World, name: str, verb: str = "learn") -> None:
+    """Refuses a world the navigator cannot learn or drive, loaded from ``name`` (a built-in
+    name or a world file): one message for ``mazesim train``, ``eval --world`` and ``demo
+    --controller hrl``, naming the world, its file and what to change.
+
+    Raises:
+        InvalidArgumentError: :func:`mazesim.episodes.learning_problems` finds a problem.
+    """
     problems = learning_problems(world, show_command=f"mazesim show {name}")
     if problems:
         shown = name if name == world.name else f"{world.name!r} ({name})"
         raise InvalidArgumentError(
-            f"the navigator cannot learn world {shown}: " + "; ".join(problems)
+            f"the navigator cannot {verb} world {shown}: " + "; ".join(problems)
         )
-    return world
 
 
 def world_file(name: str) -> str | None:
