@@ -187,6 +187,12 @@ def test_make_demo_command_drives_seed_maze_to_the_goal(tmp_path: Path) -> None:
     summary = json.loads((out / "summary.json").read_text())
     assert summary["goal_reached"] is True
     assert summary["collisions"] == 0
+    # Every figure is told what it is where it is printed: the decisions' signed numbers too.
+    decisions = next(line for line in done.stdout.splitlines() if line.startswith("decisions"))
+    assert decisions.startswith("decisions          +1: Left turn on a door, "), decisions
+    assert decisions.endswith(
+        "(the sub-task chosen at each barcode: +N arriving at checkpoint N, -N leaving it)"
+    ), decisions
 
 
 def test_demo_drives_the_e_puck2_with_its_proximity_sensors(tmp_path: Path) -> None:

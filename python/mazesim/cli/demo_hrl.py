@@ -141,7 +141,13 @@ def run_hrl_demo(args: argparse.Namespace, out: TextIO) -> int:
     adapt = (
         "" if adapt_seconds is None else f", and {adapt_seconds:.1f} s training the higher level"
     )
-    chosen = ", ".join(f"{d['event']:+d}: {d['subtask']}" for d in decisions) or "none"
+    chosen = ", ".join(f"{d['event']:+d}: {d['subtask']}" for d in decisions)
+    if chosen:  # what the numbers are, where a newcomer first meets them
+        chosen += (
+            " (the sub-task chosen at each barcode: +N arriving at checkpoint N, -N leaving it)"
+        )
+    else:
+        chosen = "none"
     out.write(
         f"world              {world.name} (robot seed, hierarchical navigator, seed {args.seed})\n"
         f"simulated time     {simulated:.2f} s ({result.steps} steps of {CONTROL_STEP_MS:.0f} ms)\n"
