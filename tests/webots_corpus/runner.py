@@ -2,8 +2,10 @@
 controller with ``mazesim webots run`` for the project's simulated time, and checks its facts.
 
 A world in which several robots have a controller runs whole (``mazesim webots run WORLD``:
-every robot with its own controller, in lockstep); the facts about one robot's path are then
-checked on the robot that runs the project's first controller."""
+every robot with its own controller, in lockstep), and so does a world without an e-puck that
+declares the E-puck PROTO ``IMPORTABLE`` (a supervisor that imports the swarm, as Webots from
+R2023b has it declared); the facts about one robot's path are then checked on the robot that
+runs the project's first controller."""
 
 from __future__ import annotations
 
@@ -58,15 +60,23 @@ def _import(world: Path, controller: str) -> tuple[Any, dict[str, Any]]:
 NO_CONTROLLER = ("", "void", "<generic>", "<none>")
 
 
-def _runs_whole(project: Project, report: dict[str, Any]) -> bool:
-    """Whether the world runs whole: a project without a key script in which several robots
-    have a controller (Python, C or C++; a node that leaves its ``controller`` field out has
-    its PROTO's default one)."""
+#: A world's declaration that its supervisor imports e-pucks.
+_IMPORTS_E_PUCKS = re.compile(r'IMPORTABLE\s+EXTERNPROTO\s+"[^"]*/E-puck2?\.proto"')
+
+
+def _runs_whole(project: Project, report: dict[str, Any], text: str = "") -> bool:
+    """Whether the world (its import ``report`` and file ``text``) runs whole: a project
+    without a key script in which several robots have a controller (Python, C or C++; a node
+    that leaves its ``controller`` field out has its PROTO's default one), or whose world has
+    no e-puck but declares the E-puck importable."""
     from mazesim.webots.lockstep import controller_name
 
     robots = report.get("robots") or []
     running = [r for r in robots if controller_name(r) not in NO_CONTROLLER]
-    return not project.keys and len(running) > 1
+    if project.keys:
+        return False
+    no_e_puck = running and not any(r.get("profile") is not None for r in robots)
+    return len(running) > 1 or bool(no_e_puck and _IMPORTS_E_PUCKS.search(text))
 
 
 def _own_robot(summary: dict[str, Any], controller: str) -> dict[str, Any]:
@@ -238,7 +248,7 @@ def _run_project(project: Project, mirrors: Path, work: Path, census: Census) ->
         census.add(f"{project.repo}:{project.world}", text, *losses(warnings))
         return Row(project, "broken itself", project.broken, warnings=warnings)
     out = root.parent / f"{root.name}.out"
-    whole = _runs_whole(project, report)
+    whole = _runs_whole(project, report, text)
     run = _run(project, root, world, out, whole)
     summary: dict[str, Any] = {}
     if (out / "summary.json").is_file():

@@ -175,9 +175,16 @@ class Fleet:
         robots: list[Mapping[str, Any]],
         simulators: list[Any],
         report: Mapping[str, Any] | None = None,
+        *,
+        seed: int = 0,
+        noise: bool = True,
     ) -> None:
         self._robots = robots
         self._simulators = simulators
+        #: The run's noise seed and switch, which the first e-pucks a supervisor imports into a
+        #: world without any are simulated with (:mod:`mazesim.webots.robots_changed`).
+        self._seed = seed
+        self._noise = noise
         #: The world file (the import report's ``path``), which a supervisor's changes edit.
         self._path = str((report or {}).get("path") or "")
         self.moved: set[int] = set()
@@ -339,6 +346,11 @@ class Fleet:
             worlds.append(changed if robot.get("profile") else _without_walls(changed))
         kept = change.kept if change and change.world is not None else None
         profiles = _imported_profiles(change, text) if change and kept is not None else None
+        opened = None
+        if change is not None and change.opens and change.world is not None:
+            opened = self._opened(change.world, len(change.added), profiles)
+            simulators, worlds = [opened, *simulators], [change.world, *worlds]
+            kept = profiles = None
         # What the removed robots were, read before their simulator changes.
         removed = {i: RemovedRobot(self._simulators[i]) for i in (change.removed if change else [])}
         self.solids = carried_over(
@@ -346,10 +358,31 @@ class Fleet:
         )
         self.text = text
         if change is not None:
-            self._take(change, removed)
+            self._take(change, removed, opened)
 
-    def _take(self, change: RobotChange, removed: dict[int, RemovedRobot]) -> None:
-        """Takes the robots' change: the ``removed`` ones leave, the imported ones join."""
+    def _opened(
+        self, world: World, count: int, profiles: list[RobotProfile | None] | None
+    ) -> Simulator:
+        """The e-pucks' shared simulator of ``world``, whose ``count`` robots a supervisor
+        imported as the world's first e-pucks, at rest on the running clock."""
+        if profiles:
+            opened = Simulator(world, seed=self._seed, noise=self._noise, robot_profiles=profiles)
+        else:
+            opened = Simulator(world, seed=self._seed, noise=self._noise)
+        steps = round(self.clock() * 1000.0 / float(opened.control_step_ms))
+        at_rest = np.zeros((count, 2), dtype=np.float64)
+        for _ in range(steps):
+            opened.step_robots(at_rest)
+        return opened
+
+    def _take(
+        self,
+        change: RobotChange,
+        removed: dict[int, RemovedRobot],
+        opened: Simulator | None = None,
+    ) -> None:
+        """Takes the robots' change: the ``removed`` ones leave, the imported ones join (into
+        ``opened`` when they are the world's first e-pucks)."""
         for index, stand_in in removed.items():
             self._simulators[index] = stand_in
             self.gone.add(index)
@@ -360,7 +393,7 @@ class Fleet:
             self._robots.append(entry)
             self._simulators.append(None)
             self._resets.append(WorldReset(last.count, last.time, (0.0, 0.0)))
-        shared = next(s.simulator for s in self._simulators if isinstance(s, RobotView))
+        shared = opened or next(s.simulator for s in self._simulators if isinstance(s, RobotView))
         for place, index in enumerate(change.order):
             self._simulators[index] = RobotView(shared, place)
 
@@ -476,7 +509,9 @@ def run_world(
         index: replace(job, prepared=replace(prepared[job.controller], virtual_display=False))
         for index, job in jobs.items()
     }
-    fleet = Fleet(robots, simulators, dict(report, path=os.path.abspath(world_path)))
+    fleet = Fleet(
+        robots, simulators, dict(report, path=os.path.abspath(world_path)), seed=seed, noise=noise
+    )
 
     def joined(index: int) -> tuple[RobotRun, ControllerJob | None]:
         """The run and controller job of robot ``index``, which a supervisor imported."""

@@ -8,7 +8,9 @@ robots of the changed world on the lines of running ones are those robots, which
 were; the others are imported now. An imported e-puck joins the e-pucks' shared simulator
 (:mod:`mazesim.webots.shared_world`) at its node's pose, at rest, on the running clock, with a
 noise stream of its own (``Simulator.change_world``'s ``kept_robots``), and its controller
-starts at once, to step in lockstep with the others from the next step. A removed robot
+starts at once, to step in lockstep with the others from the next step. The first e-pucks
+imported into a world that had none (its only robot a supervisor that imports the swarm) make
+that shared simulator, on the running clock. A removed robot
 leaves the simulation: a :class:`RemovedRobot` keeps where it was and what it did, and its
 controller's next ``Robot.step`` returns -1. An imported robot that is not an e-puck is kept
 as an obstacle, as the import of a world file keeps one (its controller does not run). Refused,
@@ -85,6 +87,9 @@ class RobotChange:
         added: The import report entries of the imported robots, in order; they take the
             run's next indices.
         removed: The run's indices of the robots taken out.
+        opens: Whether the imported robots are the run's first e-pucks, whose shared
+            simulator the run makes now of ``world`` (in a world that had none, such as one
+            whose only robot is a supervisor that imports the swarm).
     """
 
     world: World | None
@@ -92,6 +97,7 @@ class RobotChange:
     order: list[int]
     added: list[dict[str, Any]]
     removed: list[int]
+    opens: bool = False
 
 
 def kept_robots(report: Mapping[str, Any], running: Collection[int]) -> list[dict[str, Any]]:
@@ -126,14 +132,15 @@ def robot_change(
         return None
     added = [dict(r) for r in found if int(r["line"]) not in running]
     shared = next((s.simulator for s in simulators if isinstance(s, RobotView)), None)
-    for robot in added:
-        label = robot.get("name") or robot.get("def_name") or robot.get("model")
-        if shared is None:
+    removed = sorted(i for line, i in running.items() if line not in lines)
+    if shared is None and added:
+        if any(robots[i].get("profile") is not None for i in running.values()):
+            label = added[0].get("name") or added[0].get("def_name") or added[0].get("model")
             raise MazesimError(
                 f"expected a world whose e-pucks share one simulator to import robot {label!r} "
                 "into, found e-pucks in simulators of their own"
             )
-    removed = sorted(i for line, i in running.items() if line not in lines)
+        return _first_e_pucks(world, len(robots), added, removed)
     if shared is None:
         return RobotChange(None, [], [], added, removed)
     layout = load_toml(with_robots_of(world, shared.world).to_toml(), shared.world.name)
@@ -163,3 +170,23 @@ def robot_change(
     layout["robots"] = placed
     changed = World.from_toml(dump_toml(layout), source=shared.world.name)
     return RobotChange(changed, kept, order, added, removed)
+
+
+def _first_e_pucks(
+    world: World, count: int, added: list[dict[str, Any]], removed: list[int]
+) -> RobotChange:
+    """The change of a world without e-pucks into which a supervisor imports its first ones
+    (``added``; the run had ``count`` robots): they make the e-pucks' shared simulator, whose
+    world is ``world`` with them alone (``RobotChange.opens``)."""
+    source = f"{world.name} (every e-puck)"
+    layout = load_toml(world.to_toml(), source)
+    layout.pop("start", None)
+    placed = []
+    for k, robot in enumerate(added):
+        x, y, yaw = (float(v) for v in robot["pose"])
+        entry = {"name": f"robot-{count + k}", "x": x, "y": y, "yaw": yaw}
+        placed.append(dict(entry, profile=robot.get("profile") or "e-puck"))
+    layout["robots"] = placed
+    changed = World.from_toml(dump_toml(layout), source=source)
+    order = [count + k for k in range(len(added))]
+    return RobotChange(changed, [None] * len(added), order, added, removed, opens=True)
