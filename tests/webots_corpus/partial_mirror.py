@@ -7,8 +7,9 @@ version of that file, read by hand; nothing of it is kept in this repository). F
 ``manifest.toml`` from that repository, the files of ``CACHE`` under the folders the runner
 exports for the row (its project's folder, its controllers' folders, its ``exports``) become one
 local commit, and the git ``refs/replace/`` reference of the row's commit points at it: the
-runner's ``git show COMMIT:PATH`` and ``git ls-tree COMMIT`` then read those files. A row whose
-commit a real mirror in ``DIR`` holds is left as it is.
+runner's ``git show COMMIT:PATH`` and ``git ls-tree COMMIT`` then read those files (rows at one
+commit share that local commit, which holds all their files). A row whose commit a real mirror in
+``DIR`` holds is left as it is.
 """
 
 from __future__ import annotations
@@ -102,8 +103,11 @@ def build(mirrors: Path, files: Path, repo: str, projects: list[Project]) -> lis
         git_dir.mkdir(parents=True)
         _git(git_dir, "init", "--quiet", "--bare")
     said = []
-    for project in (p for p in projects if p.repo == repo):
-        names = row_files(project, cache)
+    rows = [p for p in projects if p.repo == repo]
+    for project in rows:
+        # Rows at one commit share its stand-in: it holds the files of all of them.
+        sharing = [p for p in rows if p.commit == project.commit]
+        names = sorted({name for p in sharing for name in row_files(p, cache)})
         replaced = _git(git_dir, "for-each-ref", f"refs/replace/{project.commit}")
         if has_commit(git_dir, project.commit) and not replaced:
             said.append(f"{project.name}: the mirror holds {project.commit[:12]} itself")

@@ -4,6 +4,7 @@ functions read a row's files at the row's commit from it, and a real mirror is l
 from __future__ import annotations
 
 import subprocess
+from dataclasses import replace
 from pathlib import Path
 
 from webots_corpus.manifest import Project
@@ -66,6 +67,18 @@ def test_a_partial_mirror_answers_for_the_rows_commit(tmp_path: Path) -> None:
         "samples/demo/protos/Thing.proto",
         "samples/demo/worlds/demo.wbt",
     ]
+    # A second row at the same commit, from another folder: the commit holds both rows' files.
+    other = replace(
+        project,
+        name="someone/other-sample",
+        world="other/worlds/other.wbt",
+        controllers=("other/unrelated.c",),
+    )
+    (files / "someone+big" / "other/worlds").mkdir(parents=True)
+    (files / "someone+big" / "other/worlds/other.wbt").write_text("#VRML_SIM R2023b utf8\n")
+    build(mirrors, files, "someone/big", [project, other])
+    assert read_file(git_dir, COMMIT, "other/unrelated.c") == b"int other;\n"
+    assert read_file(git_dir, COMMIT, "shared/helper/helper.c") == b"int helper;\n"
     # Built again (more files read since), the row's commit names the new files.
     (files / "someone+big" / "samples/demo/controllers/demo/demo.c").write_text("int x;\n")
     build(mirrors, files, "someone/big", [project])
