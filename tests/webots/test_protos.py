@@ -583,3 +583,32 @@ def test_line_numbers_give_the_line_counting_each_line_end_before_the_position()
     for position in range(len(text) + 1):
         assert line_at(position) == text.count("\n", 0, position) + 1
     assert line_at(text.index("Wall")) == 7
+
+
+def test_a_sample_world_of_a_webots_tree_reads_its_projects_protos_from_that_tree(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    """Webots' own sample worlds name their project's PROTOs by ``webots://`` URLs (the
+    curriculum's Obstacle): a world inside a checkout of Webots' repository reads them from that
+    tree, offline and without a Webots installation, rather than leaving them out."""
+    monkeypatch.setenv("MAZESIM_OFFLINE", "1")
+    curriculum = tmp_path / "webots" / "projects" / "samples" / "curriculum"
+    (curriculum / "protos").mkdir(parents=True)
+    (curriculum / "worlds").mkdir()
+    (curriculum / "protos" / "Pillar.proto").write_text(
+        "#VRML_SIM R2023b utf8\n"
+        "PROTO Pillar [ field SFVec3f translation 0 0 0.025 ] {\n"
+        "  Solid { translation IS translation\n"
+        "    boundingObject Box { size 0.04 0.06 0.05 } }\n"
+        "}\n"
+    )
+    world = curriculum / "worlds" / "pillar.wbt"
+    world.write_text(
+        "#VRML_SIM R2023b utf8\n"
+        'EXTERNPROTO "webots://projects/samples/curriculum/protos/Pillar.proto"\n'
+        "Pillar { translation 0.2 0.1 0.025 }\n"
+    )
+    _, report = import_wbt(world)
+    assert report["protos"]["expanded"] == {"Pillar": str(curriculum / "protos" / "Pillar.proto")}
+    assert _boxes(report) == [([0.2, 0.1], [0.04, 0.06])]
+    assert not [w for w in report["warnings"] if "unknown PROTO" in w]

@@ -111,3 +111,41 @@ def test_a_webots_controller_folder_runs_the_file_named_after_it(tmp_path: Path)
     empty.mkdir()
     with pytest.raises(MazesimIOError, match="holding empty.py"):
         run_controller(empty, mazesim.load_world("arena"), seconds=1.0)
+
+
+def test_the_pythonpath_of_a_runtime_ini_beside_the_controller_is_on_its_path(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Webots sets the ``[environment variables with paths]`` of a controller folder's
+    ``runtime.ini`` in the controller's environment (``:``-separated paths relative to the
+    folder, ``$(NAME)`` the environment's): a module of another controller's folder that its
+    ``PYTHONPATH`` names is imported, and not called a missing package."""
+    controllers = tmp_path / "controllers"
+    (controllers / "driver").mkdir(parents=True)
+    (controllers / "driver" / "shared_words.py").write_text("WORD = 'from the driver'\n")
+    slave = controllers / "slave"
+    slave.mkdir()
+    (slave / "slave.py").write_text(
+        "from controller import Robot\n"
+        "from shared_words import WORD\n"
+        "print(WORD)\n"
+        "Robot().step(32)\n"
+    )
+    monkeypatch.setenv("SHARED_LIBRARIES", str(tmp_path / "libraries"))
+    monkeypatch.delenv("NOT_SET_ANYWHERE", raising=False)
+    (slave / "runtime.ini").write_bytes(
+        b"; Webots runtime.ini\r\n[environment variables with paths]\r\n"
+        b"PYTHONPATH=$(NOT_SET_ANYWHERE)/lib:../driver/:$(SHARED_LIBRARIES)\r\n"
+    )
+    run = run_controller(slave / "slave.py", mazesim.load_world("arena"), seconds=1.0)
+    assert run.exit_status == 0, run.error
+    assert capsys.readouterr().out.splitlines() == ["from the driver"]
+    assert "shared_words" not in sys.modules
+    assert str(controllers / "driver") not in sys.path
+    from mazesim.webots.requirements import missing_packages, runtime_python_paths
+
+    assert missing_packages(str(slave / "slave.py")) == []
+    assert runtime_python_paths(str(slave / "slave.py")) == [
+        str(controllers / "driver"),
+        str(tmp_path / "libraries"),
+    ]

@@ -87,6 +87,23 @@ def test_controllers_are_found_in_the_project_or_given() -> None:
     assert none is None and why == "no controller"
 
 
+def test_a_robot_whose_controller_is_java_or_matlab_says_so(tmp_path: Path) -> None:
+    """Webots' MATLAB and Java example worlds: a robot whose controller folder holds only a
+    MATLAB or Java file stands still, and its note names the language, as a run of that
+    controller alone does, rather than a missing controller."""
+    world = tmp_path / "worlds" / "example.wbt"
+    world.parent.mkdir()
+    world.write_text("#VRML_SIM R2023b utf8\n")
+    for name, suffix in (("matlab", ".m"), ("Slave", ".java")):
+        (tmp_path / "controllers" / name).mkdir(parents=True)
+        (tmp_path / "controllers" / name / f"{name}{suffix}").write_text("% its code\n")
+    none, why = controller_of({"name": "e-puck", "controller": "matlab"}, str(world), {})
+    assert none is None
+    assert why == "a MATLAB controller controllers/matlab/matlab.m, which mazesim does not run"
+    none, why = controller_of({"name": "robot1", "controller": "Slave"}, str(world), {})
+    assert none is None and why.startswith("a Java controller controllers/Slave/Slave.java")
+
+
 def test_a_c_controller_is_found_in_its_webots_folder(tmp_path: Path) -> None:
     (tmp_path / "worlds").mkdir()
     (tmp_path / "controllers" / "avoid").mkdir(parents=True)

@@ -52,8 +52,10 @@ def find_mirror(mirrors: Path, repo: str) -> Path | None:
 
 
 def has_commit(git_dir: Path, commit: str) -> bool:
-    """Whether the mirror holds the commit."""
-    return _git(git_dir, "cat-file", "-e", f"{commit}^{{commit}}").returncode == 0
+    """Whether the mirror holds the commit, or a commit standing in for it (a ``refs/replace/``
+    reference, as a partial mirror has: :mod:`webots_corpus.partial_mirror`)."""
+    found = _git(git_dir, "rev-parse", "--verify", "--quiet", f"{commit}^{{commit}}")
+    return found.returncode == 0
 
 
 def read_file(git_dir: Path, commit: str, path: str) -> bytes:

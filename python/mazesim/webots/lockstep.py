@@ -57,7 +57,7 @@ from mazesim.webots.radio import Radio
 from mazesim.webots.rays import WallBoxes
 from mazesim.webots.requirements import PreparedController, prepare_controller, unbuilt
 from mazesim.webots.robots_changed import RemovedRobot, RobotChange, robot_change
-from mazesim.webots.runner import CONTROLLER_SUFFIXES, EXIT_INTERRUPTED
+from mazesim.webots.runner import CONTROLLER_SUFFIXES, EXIT_INTERRUPTED, OTHER_LANGUAGES
 from mazesim.webots.scene import Scene, read_scene, read_scenes, read_world_text
 from mazesim.webots.shared_world import RobotView, shared_simulator, with_robots_of
 from mazesim.webots.simulation import WorldReset, robot_profile_name
@@ -430,6 +430,13 @@ def controller_of(
     stock = stock_controller(name)
     if stock is not None:  # Webots' own, which it finds among its projects
         return stock, ""
+    for project in (os.path.dirname(folder), folder):
+        for suffix, language in OTHER_LANGUAGES.items():
+            if os.path.isfile(os.path.join(project, "controllers", name, f"{name}{suffix}")):
+                return None, (
+                    f"a {language} controller controllers/{name}/{name}{suffix}, which mazesim "
+                    "does not run"
+                )
     return None, f"no controller controllers/{name}/{name}{', '.join(CONTROLLER_SUFFIXES)}"
 
 

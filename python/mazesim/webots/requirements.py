@@ -12,6 +12,7 @@ package is, and fails as it would in Webots.
 from __future__ import annotations
 
 import ast
+import configparser
 import importlib.util
 import os
 import re
@@ -279,12 +280,43 @@ def path_additions(path: str) -> list[str]:
     return folders
 
 
+#: The section of a controller folder's ``runtime.ini`` whose variables hold paths, which Webots
+#: sets in the controller's environment (``:``-separated, relative to the controller's folder).
+RUNTIME_PATHS_SECTION = "environment variables with paths"
+_REFERENCE = re.compile(r"\$\((\w+)\)")
+
+
+def runtime_python_paths(path: str) -> list[str]:
+    """The folders the ``PYTHONPATH`` of the ``runtime.ini`` beside a controller file puts on
+    the controller's module path, as Webots does: its ``[environment variables with paths]``
+    section, ``:``-separated paths relative to the controller's folder, a ``$(NAME)`` replaced by
+    the environment's variable (an entry naming one that is not set is left out)."""
+    here = os.path.dirname(os.path.abspath(path))
+    parser = configparser.ConfigParser(interpolation=None, strict=False)
+    try:
+        with open(os.path.join(here, "runtime.ini"), encoding="utf-8", errors="replace") as ini:
+            parser.read_file(ini)
+        written = parser.get(RUNTIME_PATHS_SECTION, "PYTHONPATH", fallback="")
+    except (OSError, configparser.Error):
+        return []
+    folders = []
+    for entry in written.split(":"):
+        names = _REFERENCE.findall(entry)
+        if not entry.strip() or any(name not in os.environ for name in names):
+            continue
+        for expanded in _REFERENCE.sub(lambda m: os.environ[m.group(1)], entry).split(":"):
+            if expanded.strip():
+                folders.append(os.path.normpath(os.path.join(here, expanded.strip())))
+    return folders
+
+
 def imported_names(path: str) -> set[str]:
     """The top-level names of the modules a controller file imports (outside ``try``), and those
     its own modules and packages beside it (or in a folder it puts on ``sys.path``,
-    :func:`path_additions`) import, but not its own modules' names."""
+    :func:`path_additions`, or its ``runtime.ini`` on its module path,
+    :func:`runtime_python_paths`) import, but not its own modules' names."""
     folder = os.path.dirname(os.path.abspath(path))
-    roots = [folder, *path_additions(path)]
+    roots = [folder, *runtime_python_paths(path), *path_additions(path)]
     names: set[str] = set()
     files, seen = [os.path.abspath(path)], set[str]()
     while files and len(seen) < MAX_OWN_MODULES:

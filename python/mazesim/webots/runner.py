@@ -28,7 +28,11 @@ from mazesim.webots import controller as controller_module
 from mazesim.webots import native_controller, termination
 from mazesim.webots import simulation as simulations
 from mazesim.webots.keyboard import KeyScript
-from mazesim.webots.requirements import PreparedController, prepare_controller
+from mazesim.webots.requirements import (
+    PreparedController,
+    prepare_controller,
+    runtime_python_paths,
+)
 from mazesim.webots.scene import Scene
 from mazesim.webots.virtual_display import virtual_display, window_environment
 
@@ -250,7 +254,8 @@ def run_controller(
     saved_argv, saved_path, saved_cwd = sys.argv, list(sys.path), os.getcwd()
     saved_module_names = set(sys.modules)
     sys.argv = [file, *(scene.controller_args if scene else [])]
-    sys.path.insert(0, folder)
+    # Its folder first, then what its runtime.ini's PYTHONPATH adds, as Webots starts it.
+    sys.path[0:0] = [folder, *runtime_python_paths(file)]
     # Controllers written to run outside Webots too look Webots up through WEBOTS_HOME.
     saved_home = os.environ.get("WEBOTS_HOME")
     if saved_home is None:

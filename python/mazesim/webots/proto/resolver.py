@@ -1,6 +1,7 @@
 """Where a PROTO's file is, found as Webots finds it: the ``EXTERNPROTO`` declaration of the file
 that uses it (a path relative to that file, ``webots://`` or an http(s) URL), the project's
-``protos/`` folder, the Webots installation named by ``WEBOTS_HOME``. URLs are downloaded once
+``protos/`` folder, the Webots installation named by ``WEBOTS_HOME``, or for a ``webots://`` URL
+the Webots tree the world itself lies in (Webots' own sample worlds). URLs are downloaded once
 into a cache (``MAZESIM_PROTO_CACHE``, by default ``~/.cache/mazesim/protos``) and read from it
 afterwards; ``MAZESIM_OFFLINE=1`` forbids downloads. ``webots://`` is Webots' own repository at
 the world's version when no installation has the file."""
@@ -137,6 +138,9 @@ class Resolver:
                 local = Path(home) / url[len("webots://") :]
                 if local.is_file():
                     return ProtoSource(_read(local), str(local))
+            own = self.in_world_tree(url[len("webots://") :])
+            if own is not None:
+                return ProtoSource(_read(own), str(own))
             return self.url(self.webots_url(url))
         if is_url(url):
             return self.url(url)
@@ -145,6 +149,18 @@ class Resolver:
         path = Path(os.path.dirname(base)) / url
         if path.is_file():
             return ProtoSource(_read(path), str(path.resolve()))
+        return None
+
+    def in_world_tree(self, path: str) -> Path | None:
+        """The file at ``path`` of the Webots tree the world lies in, or None: a world of Webots'
+        own (a sample world of a checkout of its repository, or a copy of one of its projects
+        kept at its place in the tree) names its project's PROTOs by ``webots://`` URLs, which
+        Webots reads from the installation the world lies in; the nearest folder above the
+        world that holds ``path`` is that tree's root."""
+        for root in Path(self.world).parents:
+            candidate = root / path
+            if candidate.is_file():
+                return candidate
         return None
 
     def url(self, url: str) -> ProtoSource:
