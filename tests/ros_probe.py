@@ -10,7 +10,7 @@ environment) and read its standard output.
     ros_probe.py listen SECONDS        record what the bridge publishes for SECONDS (wall clock)
     ros_probe.py count TOPIC N         receive N messages of TOPIC (e.g. from rosbag play)
     ros_probe.py standard TWISTS_JSON  publish each [linear.x, angular.z] on cmd_vel, keep the
-                                       standard messages (odom, /tf, /tf_static, Range topics)
+                                       standard messages (odom, /tf, /tf_static, scan, Range topics)
 
 A drive command is ``{"topic": "motor" | "action", "data": ..., "steps": 0 | 1}``: ``steps`` is
 how many control steps it must cause (0 for a message the bridge must reject).
@@ -30,7 +30,7 @@ import rospy
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
-from sensor_msgs.msg import Range
+from sensor_msgs.msg import LaserScan, Range
 from std_msgs.msg import Float64MultiArray, String
 from tf2_msgs.msg import TFMessage
 
@@ -127,17 +127,20 @@ def _yaw(rotation: Any) -> float:
 
 
 class StandardRecorder:
-    """Keeps the standard messages: odom, /tf and /tf_static as plain rows, Range per topic."""
+    """Keeps the standard messages: odom, /tf, /tf_static and scan as plain rows, Range per
+    topic."""
 
     def __init__(self, range_topics: list[str]) -> None:
         self.lock = threading.Condition()
         self.odom: list[dict[str, Any]] = []
         self.tf: list[dict[str, Any]] = []
         self.tf_static: list[dict[str, Any]] = []
+        self.scan: list[dict[str, Any]] = []
         self.ranges: dict[str, list[dict[str, Any]]] = {topic: [] for topic in range_topics}
         rospy.Subscriber("odom", Odometry, self.on_odom, tcp_nodelay=True)
         rospy.Subscriber("/tf", TFMessage, self.on_tf, callback_args=self.tf, tcp_nodelay=True)
         rospy.Subscriber("/tf_static", TFMessage, self.on_tf, callback_args=self.tf_static)
+        rospy.Subscriber("scan", LaserScan, self.on_scan, tcp_nodelay=True)
         for topic in range_topics:
             rospy.Subscriber(topic, Range, self.on_range, callback_args=topic, tcp_nodelay=True)
 
@@ -168,8 +171,21 @@ class StandardRecorder:
                             transform.transform.translation.y,
                             _yaw(transform.transform.rotation),
                         ],
+                        "height": transform.transform.translation.z,
                     }
                 )
+            self.lock.notify_all()
+
+    def on_scan(self, message: LaserScan) -> None:
+        row = {
+            "stamp": message.header.stamp.to_sec(),
+            "frame": message.header.frame_id,
+            "angles": [message.angle_min, message.angle_max, message.angle_increment],
+            "limits": [message.range_min, message.range_max],
+            "ranges": list(message.ranges),
+        }
+        with self.lock:
+            self.scan.append(row)
             self.lock.notify_all()
 
     def on_range(self, message: Range, topic: str) -> None:
@@ -190,6 +206,7 @@ class StandardRecorder:
             return (
                 len(self.odom) >= steps
                 and len(self.tf) >= steps
+                and len(self.scan) >= steps
                 and all(len(rows) >= steps for rows in self.ranges.values())
             )
 
@@ -216,6 +233,7 @@ def standard(twists: list[list[float]]) -> dict[str, Any]:
             "odom": recorder.odom,
             "tf": recorder.tf,
             "tf_static": recorder.tf_static,
+            "scan": recorder.scan,
             "ranges": recorder.ranges,
         }
 

@@ -21,7 +21,7 @@ import pytest
 import mazesim
 from mazesim.actions import wheel_speeds
 from mazesim.controllers import AvoidCollision
-from mazesim.errors import InvalidActionError, InvalidArgumentError, MazesimIOError
+from mazesim.errors import InvalidActionError, InvalidArgumentError, MazesimError, MazesimIOError
 from mazesim.learn import load_policy
 from mazesim.ros import demo, topics
 from mazesim.ros._ros import subscriber_count
@@ -228,13 +228,18 @@ def replay(robot: str, seed: int, commands: list[dict[str, Any]]) -> dict[str, l
             states["sensor_data"].append(topics.sensor_data_values(simulator))
 
     record()
+    held = (0.0, 0.0)
     for command in commands:
         if command["steps"] == 0:
             continue
-        if command["topic"] == "motor":
-            simulator.step(*command["data"])
-        else:
-            simulator.step(*wheel_speeds(command["data"], simulator.robot.max_wheel_speed))
+        try:
+            if command["topic"] == "motor":
+                held = topics.motor_command(command["data"])
+            else:
+                held = wheel_speeds(command["data"], simulator.robot.max_wheel_speed)
+        except MazesimError:
+            pass  # a refused command keeps the wheel speeds of the last one accepted
+        simulator.step(*held)
         record()
     return states
 
@@ -438,15 +443,19 @@ def test_perform_learning_with_unusable_tables_fails_clearly(
 
 
 @needs_ros
-def test_bad_messages_are_logged_and_ignored(master: LocalMaster, tmp_path: Path) -> None:
+def test_a_refused_command_steps_with_the_wheel_speeds_before(
+    master: LocalMaster, tmp_path: Path
+) -> None:
+    # As the ROS 2 bridge: a node answering each state with one command, one of them refused,
+    # gets the next state, the robot keeping the wheel speeds of the command before.
     bad = [
-        {"topic": "motor", "data": [1.0], "steps": 0},
-        {"topic": "motor", "data": [], "steps": 0},
-        {"topic": "motor", "data": [1.0, 2.0, 3.0], "steps": 0},
-        {"topic": "motor", "data": [math.nan, 1.0], "steps": 0},
-        {"topic": "motor", "data": [1.0, math.inf], "steps": 0},
-        {"topic": "action", "data": "zz", "steps": 0},
-        {"topic": "action", "data": "", "steps": 0},
+        {"topic": "motor", "data": [1.0], "steps": 1},
+        {"topic": "motor", "data": [], "steps": 1},
+        {"topic": "motor", "data": [1.0, 2.0, 3.0], "steps": 1},
+        {"topic": "motor", "data": [math.nan, 1.0], "steps": 1},
+        {"topic": "motor", "data": [1.0, math.inf], "steps": 1},
+        {"topic": "action", "data": "zz", "steps": 1},
+        {"topic": "action", "data": "", "steps": 1},
     ]
     good = [
         {"topic": "motor", "data": [2.0, 2.5], "steps": 1},
@@ -459,10 +468,14 @@ def test_bad_messages_are_logged_and_ignored(master: LocalMaster, tmp_path: Path
     assert bridge.poll() is None  # still running
     expected = replay("e-puck", 6, commands)
     assert seen["data"]["pose"] == expected["pose"]
-    assert [pose[3] for pose in seen["data"]["pose"]] == pytest.approx([0.0, 0.032, 0.064, 0.096])
+    assert len(seen["data"]["pose"]) == len(commands) + 1
+    # The refused commands after [2.0, 2.5] drove on with it: the robot moved while they came.
+    moving = seen["data"]["pose"][8:16]
+    assert all(later[:2] != before[:2] for before, later in zip(moving, moving[1:]))
     log = Path(master.log_path("bridge")).read_text()
     assert log.count("ignored a bad motor message") == 10
     assert log.count("ignored a bad action message") == 4
+    assert "keeps its wheel speeds for that step" in log
     assert "Traceback" not in log
 
 

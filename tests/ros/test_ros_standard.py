@@ -162,6 +162,7 @@ def test_standard_messages_agree_with_the_simulator(master: LocalMaster, tmp_pat
     assert types["/tf"] == types["/tf_static"] == "tf2_msgs/TFMessage"
     assert types["/cmd_vel"] == "geometry_msgs/Twist"
     assert all(types[f"/ps{index}"] == "sensor_msgs/Range" for index in range(8))
+    assert types["/scan"] == "sensor_msgs/LaserScan"
     assert types["/pose"] == types["/sensors"] == "std_msgs/Float64MultiArray"  # kept as they were
 
     expected = _replay(3, TWISTS)
@@ -200,9 +201,23 @@ def test_standard_messages_agree_with_the_simulator(master: LocalMaster, tmp_pat
             assert row["stamp"] == pytest.approx(time, abs=1e-9)
     assert any(math.isfinite(row["range"]) for rows in seen["ranges"].values() for row in rows)
 
-    # The sensor frames on the robot, sent once on /tf_static.
+    # The e-puck's sensors as one scan, as the ROS 2 bridge and Webots' e-puck driver build it
+    # (a gmapping-style consumer of scan, odom and /tf reads it), stamped with each step.
+    assert len(seen["scan"]) == len(expected)
+    for row, (_, distances, time) in zip(seen["scan"], expected):
+        assert row["frame"] == "laser_scanner" and row["stamp"] == pytest.approx(time, abs=1e-9)
+        assert row["angles"] == pytest.approx(
+            [-math.radians(150), math.radians(150), math.radians(15)]
+        )
+        assert row["limits"] == pytest.approx([0.044, 1.035])
+        by_name = {frame.frame: distance for frame, distance in zip(frames, distances)}
+        assert row["ranges"] == pytest.approx(standard.scan_ranges(by_name), rel=1e-6)
+
+    # The sensor frames on the robot, and the scan's above it, sent once on /tf_static.
     statics = {row["child"]: row for row in seen["tf_static"]}
-    assert sorted(statics) == sorted(frame.frame for frame in frames)
+    assert sorted(statics) == sorted([*(frame.frame for frame in frames), "laser_scanner"])
+    assert statics["laser_scanner"]["parent"] == "base_link"
+    assert statics["laser_scanner"]["height"] == pytest.approx(0.033)
     for frame in frames:
         assert statics[frame.frame]["parent"] == "base_link"
         assert statics[frame.frame]["pose"] == pytest.approx([frame.x, frame.y, frame.yaw])

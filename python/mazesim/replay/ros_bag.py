@@ -44,15 +44,21 @@ def read_topics(bag_path: str, topics: tuple[str, ...]) -> dict[str, list[Any]]:
 
 
 def run_from_bag(
-    bag_path: str, world: World, robot: str, controller: str, seed: int, control_step_ms: float
+    bag_path: str,
+    world: World,
+    profile: RobotProfile,
+    controller: str,
+    seed: int,
+    control_step_ms: float,
 ) -> RecordedRun:
-    """The run a ``ros demo`` bag holds (see the module)."""
+    """The run a ``ros demo`` bag holds (see the module), of a robot with ``profile``: the
+    profile the bridge drove, which the run keeps as a run of the simulator does (a profile
+    file's robot replays with its own profile, as run format 1.3 holds it)."""
     hierarchical = controller == "hrl"
     topics = ("/pose", "/sensors", "/sensor_data", "/action") if hierarchical else (
         "/pose", "/sensors", "/motor",
     )  # fmt: skip
     messages = read_topics(bag_path, topics)
-    profile = RobotProfile.builtin(robot)
     recorder = EpisodeRecorder(world, profile)
     frames = min(len(messages["/pose"]), len(messages["/sensors"]))
     if hierarchical:
@@ -75,13 +81,14 @@ def run_from_bag(
             outcome = "goal reached"
     return RecordedRun(
         world=world,
-        robot=robot,
+        robot=profile.name,
         controller=f"{controller} over ROS",
         seed=seed,
         control_step_ms=control_step_ms,
         episodes=[recorder.episode(outcome)],
         subtask_names=list(SUBTASK_NAMES) if hierarchical else [],
         reading_scale=reading_scale(profile),
+        own_profile=profile,
     )
 
 

@@ -104,8 +104,8 @@ def require_ros() -> Any:
 
     Returns:
         A namespace with ``rospy``, ``rosgraph``, ``Float64MultiArray``, ``MultiArrayDimension``,
-        ``String``, ``Clock`` and the standard messages ``Range``, ``Odometry``, ``Twist``,
-        ``TransformStamped`` and ``TFMessage``.
+        ``String``, ``Clock`` and the standard messages ``Range``, ``LaserScan``, ``Odometry``,
+        ``Twist``, ``TransformStamped`` and ``TFMessage``.
 
     Raises:
         MissingDependencyError: ROS 1's Python packages cannot be imported.
@@ -116,7 +116,7 @@ def require_ros() -> Any:
         from geometry_msgs.msg import TransformStamped, Twist
         from nav_msgs.msg import Odometry
         from rosgraph_msgs.msg import Clock
-        from sensor_msgs.msg import Range
+        from sensor_msgs.msg import LaserScan, Range
         from std_msgs.msg import Float64MultiArray, MultiArrayDimension, String
         from tf2_msgs.msg import TFMessage
     except ImportError as error:
@@ -132,6 +132,7 @@ def require_ros() -> Any:
         String=String,
         Clock=Clock,
         Range=Range,
+        LaserScan=LaserScan,
         Odometry=Odometry,
         Twist=Twist,
         TransformStamped=TransformStamped,

@@ -29,8 +29,10 @@ is already set, and sets ``control_step_ms`` in its namespace (next to its topic
 perform-learning node dead-reckons its sub-tasks with it. It logs the step at which the robot first
 reaches the goal, and says in its last log line whether it did.
 
-Bad commands (not two finite numbers, unknown action codes) are logged and ignored: they do not
-advance the simulation.
+A bad command (not two finite numbers, an unknown action code) is logged and keeps the wheel
+speeds of the last command accepted (:class:`~mazesim.ros.topics.HeldCommand`, the rule of both
+bridges): in lockstep it still takes its step, so a controller answering each state with one
+command gets the next state.
 """
 
 from __future__ import annotations
@@ -143,7 +145,7 @@ class Bridge:
         self.lockstep = settings.mode == "lockstep"
         self.max_wheel_speed = simulator.robot.max_wheel_speed
         self.commands = 0
-        self.rejected = 0
+        self.held = topics.HeldCommand()
         self.wheel_speeds = (0.0, 0.0)
         self.first_command_at: float | None = None
         self.goal = simulator.world.goal
@@ -248,14 +250,16 @@ class Bridge:
         )
 
     def _command_from(self, topic: str, read: Callable[[], tuple[float, float]]) -> None:
-        """Applies the wheel speeds ``read`` gives, or logs and counts a bad ``topic`` message."""
-        try:
-            left, right = read()
-        except MazesimError as error:
-            with self._lock:
-                self.rejected += 1
-            self.ros.rospy.logwarn("ignored a bad %s message: %s", topic, error)
-            return
+        """Applies the wheel speeds ``read`` gives; a bad ``topic`` message is logged and keeps
+        the wheel speeds of the last command accepted."""
+        with self._lock:
+            (left, right), refused = self.held.take(read)
+        if refused:
+            self.ros.rospy.logwarn(
+                "ignored a bad %s message: %s; the robot keeps its wheel speeds for that step",
+                topic,
+                refused,
+            )
         self.command(left, right)
 
     def command(self, left: float, right: float) -> None:
@@ -416,13 +420,13 @@ def run_bridge(
             goal = f"goal reached at step {bridge.goal_step}"
         rospy.loginfo(
             "mazesim bridge stopped: %d steps (%.2f s simulated) in %.2f s of stepping, "
-            "%.0f steps/s; %s; %d bad messages ignored",
+            "%.0f steps/s; %s; %d bad messages ignored (their steps kept the wheel speeds)",
             steps,
             simulated,
             elapsed,
             rate,
             goal,
-            bridge.rejected,
+            bridge.held.refused,
         )
         rospy.signal_shutdown("mazesim bridge stopped")
     return 0

@@ -237,5 +237,6 @@ def _write_views(
         return []
     from mazesim.replay.ros_bag import run_from_bag
 
-    run = run_from_bag(bag_path, world, robot, controller, args.seed, step_ms)
+    profile = mazesim.RobotProfile.builtin(robot)
+    run = run_from_bag(bag_path, world, profile, controller, args.seed, step_ms)
     return write_views(args, run, f"{world.name} over ROS: {controller}, seed {args.seed}")

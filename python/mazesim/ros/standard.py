@@ -13,8 +13,11 @@ for Webots does:
 - ``odom`` (``nav_msgs/Odometry``): the simulator's pose in frame ``odom`` (the world's frame) and
   the body's velocity over the last control step in frame ``base_link``;
 - ``/tf`` (``tf2_msgs/TFMessage``): the same pose as the transform ``odom`` -> ``base_link``;
+- ``scan`` (``sensor_msgs/LaserScan``, robots with the e-puck's ``ps0`` .. ``ps7``): the
+  distance sensors as one scan in frame ``laser_scanner``, as Webots' e-puck driver builds it
+  (:func:`scan_ranges`);
 - ``/tf_static`` (``tf2_msgs/TFMessage``, latched, sent once): ``base_link`` -> each sensor frame,
-  from the sensor poses of the robot profile;
+  from the sensor poses of the robot profile, and ``laser_scanner`` where there is a scan;
 - ``cmd_vel`` (``geometry_msgs/Twist``, subscribed): ``linear.x`` in m/s and ``angular.z`` in
   rad/s, turned into wheel speeds with the profile's wheel radius and axle length; when a wheel
   would exceed the motor limit both are scaled down by the same factor, so the robot keeps the
@@ -38,13 +41,18 @@ __all__ = [
     "FIELD_OF_VIEW",
     "ODOM_FRAME",
     "ODOM_TOPIC",
+    "SCAN_FRAME",
+    "SCAN_TOPIC",
     "TF_STATIC_TOPIC",
     "TF_TOPIC",
     "BodyVelocity",
     "SensorFrame",
     "StandardPublishers",
     "body_velocity",
+    "has_scan",
     "ranges",
+    "scan_angles",
+    "scan_ranges",
     "sensor_frames",
     "twist_wheel_speeds",
     "yaw_quaternion",
@@ -63,6 +71,25 @@ BASE_FRAME = "base_link"
 FIELD_OF_VIEW = 0.1
 #: Relative tolerance under which a distance counts as the far end of the sensor's table.
 FAR_END_TOLERANCE = 1e-6
+#: The e-puck's distance sensors as one LaserScan, in both bridges.
+SCAN_TOPIC = "scan"
+#: The LaserScan's frame, 0.033 m above ``base_link`` as in Webots' e-puck driver.
+SCAN_FRAME = "laser_scanner"
+SCAN_HEIGHT = 0.033
+#: Webots' e-puck driver: rays every 15 degrees from -150 to +150; each sensor's range is
+#: measured from the body's centre by adding its radius, 0.035 m; readings beyond 0.04 m (of
+#: the infra-red sensors) are out of range; range_min 0.035 + 0.009, range_max 0.035 + 1.0.
+SCAN_STEP_DEGREES = 15
+SCAN_HALF_DEGREES = 150
+SCAN_BODY_OFFSET = 0.035
+SCAN_INFRARED_MAX = 0.04
+SCAN_RANGE_MIN = SCAN_BODY_OFFSET + 0.009
+SCAN_RANGE_MAX = SCAN_BODY_OFFSET + 1.0
+#: Each e-puck sensor's ray in the scan, in degrees.
+SCAN_ANGLES = {
+    "ps0": -15, "ps1": -45, "ps2": -90, "ps3": -150, "ps4": 150, "ps5": 90, "ps6": 45, "ps7": 15,
+    "tof": 0,
+}  # fmt: skip
 
 
 class SensorFrame(NamedTuple):
@@ -173,6 +200,36 @@ def twist_wheel_speeds(linear: float, angular: float, robot: RobotProfile) -> tu
     return left, right
 
 
+def has_scan(frames: list[SensorFrame]) -> bool:
+    """Whether a robot with these sensor frames has the e-puck's scan (``ps0`` .. ``ps7``)."""
+    return {f"ps{index}" for index in range(8)} <= {frame.frame for frame in frames}
+
+
+def scan_angles() -> tuple[float, float, float]:
+    """The scan's ``angle_min``, ``angle_max`` and ``angle_increment``, in radians."""
+    half = math.radians(SCAN_HALF_DEGREES)
+    return -half, half, math.radians(SCAN_STEP_DEGREES)
+
+
+def scan_ranges(distances: dict[str, float]) -> list[float]:
+    """The ranges of the LaserScan of the e-puck's sensors, from each sensor's distance by name
+    (:func:`ranges`; ``inf``: nothing in range): a sensor's ray is its distance plus the body's
+    radius, or the body's radius alone (below ``range_min``, so dropped) when it reads nothing
+    within 0.04 m; the rays of no sensor are 0."""
+    count = 2 * SCAN_HALF_DEGREES // SCAN_STEP_DEGREES + 1
+    ranges = [0.0] * count
+    for name, degrees in SCAN_ANGLES.items():
+        if name not in distances:
+            continue
+        distance = distances[name]
+        if name != "tof" and not distance <= SCAN_INFRARED_MAX:
+            distance = 0.0
+        elif not math.isfinite(distance):
+            distance = 0.0
+        ranges[(degrees + SCAN_HALF_DEGREES) // SCAN_STEP_DEGREES] = distance + SCAN_BODY_OFFSET
+    return ranges
+
+
 class StandardPublishers:
     """Publishes the standard messages of one simulator; the bridge calls it after each step.
 
@@ -192,6 +249,9 @@ class StandardPublishers:
         self.odom_publisher = make_publisher(ODOM_TOPIC, ros.Odometry)
         self.tf_publisher = make_publisher(TF_TOPIC, ros.TFMessage)
         self.range_publishers = [make_publisher(f.frame, ros.Range) for f in self.frames]
+        self.scan_publisher = None
+        if has_scan(self.frames):
+            self.scan_publisher = make_publisher(SCAN_TOPIC, ros.LaserScan)
         # Latched and sent once: the sensors do not move on the robot.
         self.tf_static_publisher = ros.rospy.Publisher(
             TF_STATIC_TOPIC, ros.TFMessage, queue_size=1, latch=True
@@ -213,15 +273,24 @@ class StandardPublishers:
 
     def _sensor_transforms(self) -> list[Any]:
         stamp = self.ros.rospy.Time(0)
-        return [self._transform(stamp, BASE_FRAME, f.frame, f.x, f.y, f.yaw) for f in self.frames]
+        transforms = [
+            self._transform(stamp, BASE_FRAME, f.frame, f.x, f.y, f.yaw) for f in self.frames
+        ]
+        if self.scan_publisher is not None:
+            scan = self._transform(stamp, BASE_FRAME, SCAN_FRAME, 0.0, 0.0, 0.0)
+            scan.transform.translation.z = SCAN_HEIGHT
+            transforms.append(scan)
+        return transforms
 
     def publish(self, stamp: Any) -> None:
-        """Publishes ``odom``, ``/tf`` and every Range topic for the current step at ``stamp``."""
+        """Publishes ``odom``, ``/tf``, every Range topic and ``scan`` for the current step at
+        ``stamp``."""
         ros, simulator = self.ros, self.simulator
         pose = simulator.pose
         velocity = BodyVelocity(0.0, 0.0, 0.0)
+        step_seconds = simulator.time - self.previous_time
         if self.previous is not None:
-            velocity = body_velocity(self.previous, pose, simulator.time - self.previous_time)
+            velocity = body_velocity(self.previous, pose, step_seconds)
         self.previous, self.previous_time = pose, simulator.time
         x, y, yaw = pose
         odom = ros.Odometry()
@@ -238,9 +307,8 @@ class StandardPublishers:
         self.odom_publisher.publish(odom)
         transform = self._transform(stamp, ODOM_FRAME, BASE_FRAME, x, y, yaw)
         self.tf_publisher.publish(ros.TFMessage(transforms=[transform]))
-        for frame, distance, range_publisher in zip(
-            self.frames, ranges(simulator), self.range_publishers
-        ):
+        distances = ranges(simulator)
+        for frame, distance, range_publisher in zip(self.frames, distances, self.range_publishers):
             message = ros.Range(
                 radiation_type=ros.Range.INFRARED,
                 field_of_view=FIELD_OF_VIEW,
@@ -251,3 +319,18 @@ class StandardPublishers:
             message.header.stamp = stamp
             message.header.frame_id = frame.frame
             range_publisher.publish(message)
+        if self.scan_publisher is not None:
+            by_name = {frame.frame: distance for frame, distance in zip(self.frames, distances)}
+            angle_min, angle_max, increment = scan_angles()
+            scan = ros.LaserScan(
+                angle_min=angle_min,
+                angle_max=angle_max,
+                angle_increment=increment,
+                scan_time=step_seconds,
+                range_min=SCAN_RANGE_MIN,
+                range_max=SCAN_RANGE_MAX,
+                ranges=scan_ranges(by_name),
+            )
+            scan.header.stamp = stamp
+            scan.header.frame_id = SCAN_FRAME
+            self.scan_publisher.publish(scan)

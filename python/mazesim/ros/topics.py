@@ -27,7 +27,8 @@ Subscribed by the bridge:
   (on the e-puck, ``00`` is 3.14 rad/s on both wheels).
 
 A command that is not exactly two finite numbers, or an unknown action code, is rejected with a
-:class:`~mazesim.errors.InvalidActionError`; the bridge logs it and carries on.
+:class:`~mazesim.errors.InvalidActionError`; both bridges (ROS 1 and ROS 2) then log it and take
+it as a command keeping the wheel speeds of the last one accepted (:class:`HeldCommand`).
 
 Set by the bridge on the parameter server, relative to its namespace like its topics:
 
@@ -38,16 +39,17 @@ Set by the bridge on the parameter server, relative to its namespace like its to
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any
 
 from mazesim._core import Simulator, sharp_volts_to_cm
-from mazesim.errors import InvalidActionError
+from mazesim.errors import InvalidActionError, MazesimError
 
 __all__ = [
     "ACTION_TOPIC",
     "CLOCK_TOPIC",
     "CONTROL_STEP_PARAM",
+    "HeldCommand",
     "MOTOR_TOPIC",
     "POSE_TOPIC",
     "SENSORS_TOPIC",
@@ -130,3 +132,35 @@ def motor_command(values: Sequence[Any]) -> tuple[float, float]:
                 f"expected a finite {side} wheel speed in rad/s on motor; found {value}"
             )
     return left, right
+
+
+class HeldCommand:
+    """The wheel speeds one robot's commands give, under the rule both bridges share.
+
+    A command the bridge refuses (a speed that is not finite, an unknown action code, data that
+    does not decode) is still a command: it keeps the wheel speeds of the last one accepted (at
+    first none, the robot standing still), as ROS's diff drive controllers ignore a NaN twist
+    while the simulation goes on. In lockstep it therefore takes its step, and a node answering
+    each state with one command gets the next state.
+    """
+
+    def __init__(self) -> None:
+        #: The wheel speeds of the last command accepted (what a refused one keeps).
+        self.latest = (0.0, 0.0)
+        #: How many commands were refused.
+        self.refused = 0
+
+    def take(self, read: Callable[[], tuple[float, float]]) -> tuple[tuple[float, float], str]:
+        """Reads one command: returns its wheel speeds and, for a refused one, why ("" if not).
+
+        Args:
+            read: Decodes the message and returns its (left, right) wheel speeds in rad/s,
+                raising :class:`~mazesim.errors.MazesimError`, ``ValueError`` or ``KeyError``
+                when it cannot.
+        """
+        try:
+            self.latest = read()
+        except (MazesimError, ValueError, KeyError) as error:
+            self.refused += 1
+            return self.latest, str(error)
+        return self.latest, ""

@@ -35,7 +35,7 @@ from typing import Any
 
 from mazesim._core import Simulator
 from mazesim.actions import wheel_speeds
-from mazesim.errors import InvalidActionError, InvalidArgumentError, MazesimError
+from mazesim.errors import InvalidActionError, InvalidArgumentError
 from mazesim.ros import standard, topics
 from mazesim.ros2 import cdr, network
 from mazesim.ros2.bag import BagRecorder
@@ -154,9 +154,7 @@ class RobotChannel:
         self.action = node.reader(f"{ns}/{topics.ACTION_TOPIC}", STRING, COMMAND)
         self.pending: deque[tuple[float, float]] = deque()
         self.wheel_speeds = (0.0, 0.0)
-        #: The wheel speeds of the last command accepted (what a refused one keeps).
-        self.latest = (0.0, 0.0)
-        self.rejected = 0
+        self.held = topics.HeldCommand()
         #: Commands received so far (accepted or not).
         self.received = 0
         #: The robot's last state as it went out: each writer with its message.
@@ -179,19 +177,17 @@ class RobotChannel:
         return set().union(*(reader.matched_writers() for reader in self.command_readers()))
 
     def commands(self) -> list[tuple[float, float]]:
-        """The wheel speeds of every command received since the last call. A bad one (a speed
-        that is not finite, an unknown action code) is counted and reported on stderr, and
-        keeps the wheel speeds of the command before it, as ROS's diff drive controllers ignore
-        a NaN twist while the simulation goes on: in lockstep it still takes its step, so a node
-        answering each state with one command gets the next state."""
+        """The wheel speeds of every command received since the last call. A bad one is
+        reported on stderr and keeps the wheel speeds of the command before it
+        (:class:`~mazesim.ros.topics.HeldCommand`, the rule of both bridges)."""
         speeds: list[tuple[float, float]] = []
         for reader, decode in self.cmd_vels:
             for data in reader.take():
-                self._accept(speeds, functools.partial(self._twist_speeds, decode), data)
+                self._accept(speeds, functools.partial(self._twist_speeds, decode, data))
         for data in self.motor.take():
-            self._accept(speeds, _motor_speeds, data)
+            self._accept(speeds, functools.partial(_motor_speeds, data))
         for data in self.action.take():
-            self._accept(speeds, self._action_speeds, data)
+            self._accept(speeds, functools.partial(self._action_speeds, data))
         return speeds
 
     def _twist_speeds(
@@ -203,20 +199,20 @@ class RobotChannel:
     def _action_speeds(self, data: bytes) -> tuple[float, float]:
         return wheel_speeds(cdr.decode_string(data), self.state.robot.max_wheel_speed)
 
-    def _accept(self, speeds: list[tuple[float, float]], read: Any, data: bytes) -> None:
+    def _accept(
+        self, speeds: list[tuple[float, float]], read: Callable[[], tuple[float, float]]
+    ) -> None:
         self.received += 1
-        try:
-            self.latest = read(data)
-        except (MazesimError, ValueError, KeyError) as error:
-            self.rejected += 1
+        wheels, refused = self.held.take(read)
+        if refused:
             where = f" for {self.state.namespace[1:]}" if self.state.namespace else ""
             print(
-                f"mazesim ros2 bridge: ignored a command{where}: {error}; the robot keeps its "
+                f"mazesim ros2 bridge: ignored a command{where}: {refused}; the robot keeps its "
                 "wheel speeds for that step",
                 file=sys.stderr,
                 flush=True,
             )
-        speeds.append(self.latest)
+        speeds.append(wheels)
 
 
 class Ros2Bridge:
@@ -334,7 +330,7 @@ class Ros2Bridge:
     @property
     def rejected(self) -> int:
         """Commands refused, over every robot, and simulation controls refused."""
-        return sum(robot.rejected for robot in self.robots) + self.rejected_controls
+        return sum(robot.held.refused for robot in self.robots) + self.rejected_controls
 
     def publish_static(self) -> None:
         """Publishes ``/tf_static`` (transient local: late subscribers get it too)."""

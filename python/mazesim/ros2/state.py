@@ -28,34 +28,14 @@ from mazesim.ros2.qos import CLOCK, SENSOR, TF, TF_STATIC, TopicQos
 
 __all__ = [
     "CLOCK_TOPIC",
-    "SCAN_FRAME",
     "StateTopics",
     "Topic",
     "ground_distance",
-    "scan_ranges",
 ]
 
 CLOCK_TOPIC = "/clock"
 TF_TOPIC = "/tf"
 TF_STATIC_TOPIC = "/tf_static"
-SCAN_TOPIC = "/scan"
-#: The LaserScan's frame, 0.033 m above ``base_link`` as in Webots' e-puck driver.
-SCAN_FRAME = "laser_scanner"
-SCAN_HEIGHT = 0.033
-#: Webots' e-puck driver: rays every 15 degrees from -150 to +150; each sensor's range is
-#: measured from the body's centre by adding its radius, 0.035 m; readings beyond 0.04 m (of
-#: the infra-red sensors) are out of range; range_min 0.035 + 0.009, range_max 0.035 + 1.0.
-SCAN_STEP_DEGREES = 15
-SCAN_HALF_DEGREES = 150
-SCAN_BODY_OFFSET = 0.035
-SCAN_INFRARED_MAX = 0.04
-SCAN_RANGE_MIN = SCAN_BODY_OFFSET + 0.009
-SCAN_RANGE_MAX = SCAN_BODY_OFFSET + 1.0
-#: Each e-puck sensor's ray in the scan, in degrees.
-SCAN_ANGLES = {
-    "ps0": -15, "ps1": -45, "ps2": -90, "ps3": -150, "ps4": 150, "ps5": 90, "ps6": 45, "ps7": 15,
-    "tof": 0,
-}  # fmt: skip
 RADIATION_INFRARED = 1
 JOINT_STATES_TOPIC = "/joint_states"
 #: The wheels' joints as Webots' e-puck driver names them: its ros2_control joints, which
@@ -101,22 +81,6 @@ def ground_distance(table: Sequence[tuple[float, float]], reading: float) -> flo
     return first[0] if abs(reading - first[1]) <= abs(reading - last[1]) else last[0]
 
 
-def scan_ranges(distances: dict[str, float]) -> list[float]:
-    """The ranges of the LaserScan of the e-puck's sensors (``inf``: nothing in range)."""
-    count = 2 * SCAN_HALF_DEGREES // SCAN_STEP_DEGREES + 1
-    ranges = [0.0] * count
-    for name, degrees in SCAN_ANGLES.items():
-        if name not in distances:
-            continue
-        distance = distances[name]
-        if name != "tof" and not distance <= SCAN_INFRARED_MAX:
-            distance = 0.0
-        elif not math.isfinite(distance):
-            distance = 0.0
-        ranges[(degrees + SCAN_HALF_DEGREES) // SCAN_STEP_DEGREES] = distance + SCAN_BODY_OFFSET
-    return ranges
-
-
 class StateTopics:
     """The state topics of one simulator, and their messages after each step.
 
@@ -154,8 +118,7 @@ class StateTopics:
             (min(row[0] for row in table), max(row[0] for row in table))
             for table in self.ground_tables
         ]
-        names = {frame.frame for frame in self.frames}
-        self.has_scan = {f"ps{index}" for index in range(8)} <= names
+        self.has_scan = standard.has_scan(self.frames)
         self.sensor_labels = topics.sensor_names(simulator)
         self.sharp = topics.has_sharp_sensors(simulator)
         self.sensor_data_labels = [f"{name} cm" for name in robot.distance_sensor_names] + [
@@ -169,7 +132,7 @@ class StateTopics:
             *(Topic(f"{ns}/{name}", RANGE, SENSOR) for name in self.ground_names),
         ]
         if self.has_scan:
-            self.topics.append(Topic(ns + SCAN_TOPIC, LASER_SCAN, SENSOR))
+            self.topics.append(Topic(f"{ns}/{standard.SCAN_TOPIC}", LASER_SCAN, SENSOR))
         self.topics += [
             Topic(f"{ns}/odom", ODOMETRY, SENSOR),
             Topic(ns + JOINT_STATES_TOPIC, JOINT_STATE, SENSOR),
@@ -213,8 +176,8 @@ class StateTopics:
                 (
                     stamp,
                     base,
-                    self.frame(SCAN_FRAME),
-                    (0.0, 0.0, SCAN_HEIGHT),
+                    self.frame(standard.SCAN_FRAME),
+                    (0.0, 0.0, standard.SCAN_HEIGHT),
                     (0.0, 0.0, 0.0, 1.0),
                 )
             )
@@ -264,15 +227,14 @@ class StateTopics:
             )
         if self.has_scan:
             by_name = {frame.frame: distance for frame, distance in zip(self.frames, distances)}
-            increment = math.radians(SCAN_STEP_DEGREES)
             out.append(
                 cdr.encode_laser_scan(
                     stamp,
-                    self.frame(SCAN_FRAME),
-                    (-math.radians(SCAN_HALF_DEGREES), math.radians(SCAN_HALF_DEGREES), increment),
+                    self.frame(standard.SCAN_FRAME),
+                    standard.scan_angles(),
                     (0.0, step_seconds),
-                    (SCAN_RANGE_MIN, SCAN_RANGE_MAX),
-                    scan_ranges(by_name),
+                    (standard.SCAN_RANGE_MIN, standard.SCAN_RANGE_MAX),
+                    standard.scan_ranges(by_name),
                 )
             )
         x, y, yaw = after = simulator.pose
