@@ -104,6 +104,32 @@ def test_a_controller_importing_submodules_runs_and_sys_modules_is_restored() ->
     assert not [name for name in sys.modules if name.split(".")[0] == "controller"]
 
 
+def test_the_sensor_submodule_gives_the_base_of_every_sampled_device(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # Webots R2023b and later: controller/sensor.py defines Sensor, the base class of the
+    # sampled devices, which its package does not export; controllers import it from there.
+    script = tmp_path / "sensor_base.py"
+    script.write_text(
+        "from controller import Robot\n"
+        "from controller.sensor import Sensor\n"
+        "robot = Robot()\n"
+        "names = ['ps0', 'ls0', 'camera', 'receiver', 'left wheel sensor', 'gs0']\n"
+        "devices = [robot.getDevice(name) for name in names]\n"
+        "print([isinstance(device, Sensor) for device in devices])\n"
+        "print(isinstance(robot.getDevice('left wheel motor'), Sensor))\n"
+        "devices[0].enable(32)\n"
+        "robot.step(32)\n"
+        "print(devices[0].getSamplingPeriod())\n"
+    )
+    world = mazesim.load_world("line-follow")
+    run = run_controller(script, world, seconds=0.1)
+    assert (run.exit_status, run.error) == (0, ""), run.error
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[:3] == ["[True, True, True, True, True, True]", "False", "32"]
+    assert "Sensor" not in controller.__all__
+
+
 def test_node_type_constants_are_webots_values_and_distinct() -> None:
     values = [getattr(controller.Node, name) for name in NODE_TYPES]
     assert len(set(values)) == len(values)

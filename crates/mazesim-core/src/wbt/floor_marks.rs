@@ -295,6 +295,9 @@ impl<'d> Importer<'d> {
                 });
             }
             "IndexedFaceSet" => {
+                if self.has_texture(node) && self.textured_face_set(node, geometry, &parent) {
+                    return;
+                }
                 let triangles = self.face_set_triangles(geometry, &parent);
                 self.mark_triangles(node, geometry, &triangles, reflectance, colour);
             }

@@ -16,7 +16,8 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use super::frames::{tilt, Frame};
+use super::floor_marks::world_point;
+use super::frames::{tilt, Frame, Vec3};
 use super::import::{Importer, TILT_TOLERANCE};
 use super::shapes::{snap, wrap_angle, FLOOR_LEVEL};
 use super::tree::Node;
@@ -413,6 +414,10 @@ impl<'d> Importer<'d> {
             return;
         };
         let geometry = self.node(geometry);
+        if geometry.type_name == "IndexedFaceSet" {
+            self.textured_face_set(node, geometry, frame);
+            return;
+        }
         if geometry.type_name != "Plane" {
             return;
         }
@@ -426,6 +431,103 @@ impl<'d> Importer<'d> {
             size = [size[1], size[0]];
         }
         self.lay_texture(node, self.node(appearance), &frame, size, size, false);
+    }
+
+    /// A textured `IndexedFaceSet` lying on the floor as one rectangle whose texture
+    /// coordinates run from (0, 0) at one corner to (u, v) at the opposite one, along its sides
+    /// (the floor of a `RectangleArena` or `Floor` PROTO that Webots' "Convert to Base Node(s)"
+    /// saved as a Solid, its Shape drawing the texture `u` by `v` times): its image laid in tiles
+    /// as on the PROTO's floor. Returns whether it did (`frame` is the shape's parent's).
+    pub fn textured_face_set(&mut self, node: &'d Node, geometry: &'d Node, frame: &Frame) -> bool {
+        let Some(&appearance) = self.nodes(node, "appearance").first() else {
+            return false;
+        };
+        let Some((corners, uv)) = self.face_set_quad(geometry, frame) else {
+            return false;
+        };
+        let span = |a: usize, b: usize| [0, 1, 2].map(|i| corners[b][i] - corners[a][i]);
+        // The corner of texture coordinate (0, 0), and those of (u, 0) and (0, v).
+        let Some(origin) = (0..4).find(|&k| uv[k] == [0.0, 0.0]) else {
+            return false;
+        };
+        let (u, v) = (
+            uv.iter().map(|t| t[0]).fold(0.0, f64::max),
+            uv.iter().map(|t| t[1]).fold(0.0, f64::max),
+        );
+        let (Some(along_u), Some(along_v), Some(far)) = (
+            (0..4).find(|&k| uv[k] == [u, 0.0]),
+            (0..4).find(|&k| uv[k] == [0.0, v]),
+            (0..4).find(|&k| uv[k] == [u, v]),
+        ) else {
+            return false;
+        };
+        let (x, y) = (span(origin, along_u), span(origin, along_v));
+        let diagonal = span(origin, far);
+        let (width, depth) = (x[0].hypot(x[1]), y[0].hypot(y[1]));
+        let square = (x[0] * y[0] + x[1] * y[1]).abs() <= 1e-6 * width * depth;
+        let closed = (0..2).all(|i| (x[i] + y[i] - diagonal[i]).abs() <= 1e-6 * (width + depth));
+        let level = corners
+            .iter()
+            .map(|c| c[2])
+            .fold(f64::NEG_INFINITY, f64::max);
+        let flat = corners.iter().all(|c| (c[2] - level).abs() <= FLOOR_LEVEL);
+        let upright = x[0] * y[1] - x[1] * y[0] > 0.0; // not a mirror image of the texture
+        if !(u > 0.0 && v > 0.0 && width > 0.0 && depth > 0.0 && square && closed && flat)
+            || level.abs() > 10.0 * FLOOR_LEVEL
+            || !upright
+        {
+            return false;
+        }
+        let (ux, uy) = ([x[0] / width, x[1] / width], [y[0] / depth, y[1] / depth]);
+        let centre = [0, 1, 2].map(|i| (corners[origin][i] + corners[far][i]) / 2.0);
+        let floor = Frame {
+            linear: [[ux[0], uy[0], 0.0], [ux[1], uy[1], 0.0], [0.0, 0.0, 1.0]],
+            origin: centre,
+        };
+        let size = [width, depth];
+        let tile = [width / u, depth / v];
+        self.lay_texture(node, self.node(appearance), &floor, size, tile, false);
+        true
+    }
+
+    /// The four corners (world frame) and texture coordinates of an `IndexedFaceSet` of one
+    /// face of four corners, with a texture coordinate for each (its `texCoordIndex`, or its
+    /// `coordIndex` when it has none); `None` for any other.
+    fn face_set_quad(
+        &self,
+        geometry: &'d Node,
+        frame: &Frame,
+    ) -> Option<([Vec3; 4], [[f64; 2]; 4])> {
+        let coord = self.node(*self.nodes(geometry, "coord").first()?);
+        let points = self.numbers(coord, "point")?;
+        let tex = self.node(*self.nodes(geometry, "texCoord").first()?);
+        let tex_points = self.numbers(tex, "point")?;
+        let face = self.numbers(geometry, "coordIndex")?;
+        let tex_face = self
+            .numbers(geometry, "texCoordIndex")
+            .filter(|t| !t.is_empty())
+            .unwrap_or(face);
+        let corners_of = |indices: &[f64]| -> Option<[usize; 4]> {
+            let used: Vec<f64> = match indices.split_last() {
+                Some((last, rest)) if *last < 0.0 => rest.to_vec(),
+                _ => indices.to_vec(),
+            };
+            let used: Vec<usize> = used
+                .iter()
+                .map(|&i| (i >= 0.0 && i.fract() == 0.0).then_some(i as usize))
+                .collect::<Option<_>>()?;
+            used.try_into().ok()
+        };
+        let (ids, tex_ids) = (corners_of(face)?, corners_of(tex_face)?);
+        let mut corners = [[0.0; 3]; 4];
+        let mut uv = [[0.0; 2]; 4];
+        for k in 0..4 {
+            let p = points.get(3 * ids[k]..3 * ids[k] + 3)?;
+            corners[k] = world_point(frame, [p[0], p[1], p[2]]);
+            let t = tex_points.get(2 * tex_ids[k]..2 * tex_ids[k] + 2)?;
+            uv[k] = [t[0], t[1]];
+        }
+        Some((corners, uv))
     }
 }
 
@@ -630,6 +732,73 @@ RectangleArena { floorSize 2 1 floorTileSize 1 0.5 floorAppearance Appearance { 
         assert!((texture.yaw + std::f64::consts::FRAC_PI_2).abs() < 1e-6);
         assert_eq!(texture.center, [0.0, 0.0]);
         assert_eq!(texture.candidates, ["t.png", "textures/t.png"]);
+    }
+
+    /// A world whose floor is a `RectangleArena` saved as base nodes: a Solid bounded by a
+    /// Plane, its Shape a textured quad drawing the image `u` times across (`uv` is "u v").
+    fn converted_floor(uv: &str, points: &str) -> WbtImport {
+        WbtImport::from_text(
+            &format!(
+                "#VRML_SIM R2025a utf8
+Solid {{ translation 0.3 0.25 0 children [ Solid {{ children [ Shape {{
+  appearance PBRAppearance {{ baseColorMap ImageTexture {{ url [\"../track.png\"] }} textureTransform TextureTransform {{ scale 0.5 0.5 }} }}
+  geometry IndexedFaceSet {{ coord Coordinate {{ point [ {points} ] }}
+    texCoord TextureCoordinate {{ point [ 0 0, {uv} ] }}
+    coordIndex [ 2, 0, 1, 3, -1 ] texCoordIndex [ 2, 0, 1, 3, -1 ] }} }} ]
+  boundingObject Plane {{ }} }} ] }}
+"
+            ),
+            "line.wbt",
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn a_floor_saved_as_a_textured_quad_lays_its_image_as_the_arena_did() {
+        // Texture coordinates 0..2 scaled by 0.5: the image once over the 1 m floor.
+        let import = converted_floor(
+            "2 0, 0 2, 2 2",
+            "-0.5 -0.5 0, 0.5 -0.5 0, -0.5 0.5 0, 0.5 0.5 0",
+        );
+        assert_eq!(import.floor_textures.len(), 1, "{:?}", import.warnings);
+        let texture = &import.floor_textures[0];
+        assert_eq!(texture.center, [0.3, 0.25]);
+        assert_eq!(texture.size, [1.0, 1.0]);
+        assert_eq!(texture.tile, [1.0, 1.0]);
+        assert!(texture.yaw.abs() < 1e-9);
+        assert_eq!(texture.candidates[0], "../track.png");
+        // Four images along x, one along y on a 2 x 1 m quad turned a quarter: its image's x
+        // runs along the world's y.
+        let import = converted_floor("8 0, 0 2, 8 2", "0 0 0, 0 2 0, -1 0 0, -1 2 0");
+        let texture = &import.floor_textures[0];
+        assert_eq!(texture.size, [2.0, 1.0]);
+        assert_eq!(texture.tile, [0.5, 1.0]);
+        assert!((texture.yaw - std::f64::consts::FRAC_PI_2).abs() < 1e-9);
+        assert_eq!(texture.center, [-0.2, 1.25]);
+    }
+
+    #[test]
+    fn a_textured_quad_that_is_not_a_floor_rectangle_lays_no_image() {
+        // Mirrored (u runs towards -x), sheared, and raised 5 cm above the floor.
+        for (uv, points) in [
+            (
+                "2 0, 0 2, 2 2",
+                "0.5 -0.5 0, -0.5 -0.5 0, 0.5 0.5 0, -0.5 0.5 0",
+            ),
+            (
+                "2 0, 0 2, 2 2",
+                "-0.5 -0.5 0, 0.5 -0.5 0, -0.3 0.5 0, 0.7 0.5 0",
+            ),
+            (
+                "2 0, 0 2, 2 2",
+                "-0.5 -0.5 0.05, 0.5 -0.5 0.05, -0.5 0.5 0.05, 0.5 0.5 0.05",
+            ),
+        ] {
+            assert!(
+                converted_floor(uv, points).floor_textures.is_empty(),
+                "{points}"
+            );
+        }
     }
 
     #[test]

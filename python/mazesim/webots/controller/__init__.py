@@ -29,7 +29,7 @@ from types import ModuleType
 
 from mazesim.errors import UnknownNameError
 from mazesim.webots.camera import Camera, CameraRecognitionObject
-from mazesim.webots.devices import LED, Device, DistanceSensor, Motor, PositionSensor
+from mazesim.webots.devices import LED, Device, DistanceSensor, Motor, PositionSensor, _Sensor
 from mazesim.webots.field import Field
 from mazesim.webots.inert import (
     Altimeter,
@@ -102,7 +102,12 @@ SUBMODULE_CLASSES: dict[str, tuple[str, ...]] = {
     "touch_sensor": ("TouchSensor",),
     "vacuum_gripper": ("VacuumGripper",),
 }
-SUBMODULES = list(SUBMODULE_CLASSES)
+#: Webots' submodules of base classes that its package itself does not give: ``controller.sensor``
+#: (``Sensor``, the base of every sampled device, which controllers import to annotate their
+#: device wrappers: ``from controller.sensor import Sensor``).
+BASE_SUBMODULE_CLASSES: dict[str, tuple[str, ...]] = {"sensor": ("Sensor",)}
+Sensor = _Sensor
+SUBMODULES = list(SUBMODULE_CLASSES) + list(BASE_SUBMODULE_CLASSES)
 
 __all__ = [
     "GPS",
@@ -158,7 +163,7 @@ def _submodule(name: str, classes: tuple[str, ...]) -> ModuleType:
     return module
 
 
-for _name, _classes in SUBMODULE_CLASSES.items():
+for _name, _classes in {**SUBMODULE_CLASSES, **BASE_SUBMODULE_CLASSES}.items():
     globals()[_name] = _submodule(_name, _classes)
 
 
