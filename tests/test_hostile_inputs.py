@@ -186,6 +186,11 @@ CASES = {
         "_core.import_wbt_text('#VRML_SIM R2023b utf8\\n"
         "Solid { translation 1 2 rotation 0 0 1 0 }\\n')"
     ),
+    # An array of the right dtype and shape but a strided view: "expected X, found X".
+    "strided_actions_of_the_right_shape": (
+        "b = _core.BatchSimulator(_core.World.builtin('arena'), num_envs=2)\n"
+        "obs, poses, col, cr = buffers(b)\nb.step(poses[:, :2], obs, poses, col, cr)"
+    ),
 }
 
 #: What the texts past the bound of their file are refused with: the bound, before any parsing.
@@ -207,6 +212,9 @@ REFUSALS_SAY = {
     "wbt_translation_of_two_numbers": (
         ":2:25: field `Solid.translation`: expected the field `translation` to hold 3 numbers,"
         " found 2, then `rotation`"
+    ),
+    "strided_actions_of_the_right_shape": (
+        "found an ndarray of dtype float32 and shape (2, 2), not C-contiguous"
     ),
 }
 
