@@ -180,6 +180,17 @@ CASES = {
         "_core.import_wbt_text('#VRML_SIM R2023b utf8\\nE-puck { }\\nGroup { children [ '"
         " + 'Group { } ' * 27_000_000 + ' ] }\\n')"
     ),
+    # A frame field short of numbers: Webots reads the next field's name as the missing number
+    # and refuses the world; the import warned and put the Solid at the origin.
+    "wbt_translation_of_two_numbers": (
+        "_core.import_wbt_text('#VRML_SIM R2023b utf8\\n"
+        "Solid { translation 1 2 rotation 0 0 1 0 }\\n')"
+    ),
+    # An array of the right dtype and shape but a strided view: "expected X, found X".
+    "strided_actions_of_the_right_shape": (
+        "b = _core.BatchSimulator(_core.World.builtin('arena'), num_envs=2)\n"
+        "obs, poses, col, cr = buffers(b)\nb.step(poses[:, :2], obs, poses, col, cr)"
+    ),
 }
 
 #: What the texts past the bound of their file are refused with: the bound, before any parsing.
@@ -197,6 +208,13 @@ REFUSALS_SAY = {
     "wbt_box_size_nan": (
         ":2:44: field `Solid.boundingObject.Box.size`: expected the field `size` to hold finite"
         " numbers, found `nan`"
+    ),
+    "wbt_translation_of_two_numbers": (
+        ":2:25: field `Solid.translation`: expected the field `translation` to hold 3 numbers,"
+        " found 2, then `rotation`"
+    ),
+    "strided_actions_of_the_right_shape": (
+        "found an ndarray of dtype float32 and shape (2, 2), not C-contiguous"
     ),
 }
 

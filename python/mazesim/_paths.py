@@ -12,12 +12,14 @@ import os
 import re
 import stat
 from collections.abc import Callable, Iterable, Iterator
+from pathlib import Path
 from typing import BinaryIO
 
 from mazesim.errors import InvalidArgumentError, MazesimError, MazesimIOError, UnknownNameError
 
 __all__ = [
     "MAX_TEXT_CHARACTERS",
+    "cache_folder",
     "file_name_of",
     "make_output_folder",
     "open_input",
@@ -354,6 +356,41 @@ def make_output_folder(folder: str | os.PathLike[str]) -> None:
     except OSError as error:
         reason = error.strerror or str(error)
         raise _folder_failure(path, f"cannot make the output folder: {reason}", error) from None
+
+
+def cache_folder(variable: str, name: str, *, under_variable: bool = False) -> Path:
+    """The folder mazesim caches ``name`` in (built controllers, downloaded PROTOs):
+    ``$variable`` if set (``$variable/name`` when ``under_variable``: a variable naming
+    mazesim's whole cache), else ``$XDG_CACHE_HOME/mazesim/name``, else
+    ``~/.cache/mazesim/name``.
+
+    Raises:
+        MazesimIOError: The folder, or one above it, is a file or another thing that is not a
+            folder: the message names the variable that set it, what is there and what to do.
+    """
+    configured = os.environ.get(variable)
+    if configured:
+        folder = Path(configured) / name if under_variable else Path(configured)
+        setting = f"${variable}"
+    else:
+        xdg = os.environ.get("XDG_CACHE_HOME")
+        base = Path(xdg) if xdg else Path(os.path.expanduser("~")) / ".cache"
+        folder = base / "mazesim" / name
+        setting = "$XDG_CACHE_HOME" if xdg else "the default cache"
+    for above in (folder, *folder.parents):
+        try:
+            mode = os.stat(above).st_mode
+        except OSError:
+            continue
+        if stat.S_ISDIR(mode):
+            return folder
+        kind = "a file" if stat.S_ISREG(mode) else _kind_of(mode)
+        what = "it" if above == folder else f"above it, {above},"
+        raise MazesimIOError(
+            f"{setting} names {folder} as the folder of cached {name}, but {what} is {kind}, "
+            f"not a folder: set {variable} to a folder (or unset it)"
+        )
+    return folder
 
 
 def _folder_failure(path: str, reason: str, error: OSError) -> MazesimIOError:

@@ -193,6 +193,12 @@ fn output_of(path: &Path) -> Result<Output> {
     Ok(Output::Stream)
 }
 
+/// Whether writing `path` replaces a regular file (existing or new) rather than writing into a
+/// device, FIFO, terminal or a path through `/proc` (see the module's docs).
+pub fn replaces_a_file(path: &Path) -> Result<bool> {
+    Ok(matches!(output_of(path)?, Output::File(_)))
+}
+
 /// Writes `bytes` into the device, FIFO or terminal `path`, appending; a FIFO no process reads
 /// is refused at once instead of waited on.
 fn write_stream(path: &Path, bytes: &[u8]) -> Result<()> {

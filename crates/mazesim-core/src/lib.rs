@@ -53,8 +53,10 @@ pub mod tasks;
 // Webots import.
 pub mod wbt;
 
-// Utilities: errors, fingerprints, memory accounting, file access, limits, random streams.
+// Utilities: errors, file kinds, fingerprints, memory accounting, file access, limits, random
+// streams.
 mod error;
+pub mod file_kind;
 pub mod fingerprint;
 mod footprint;
 mod io;

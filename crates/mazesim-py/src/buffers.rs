@@ -10,7 +10,7 @@ use pyo3::prelude::*;
 
 use crate::errors::{to_py, wrong_type};
 
-fn describe(obj: &Bound<'_, PyAny>) -> String {
+fn describe(obj: &Bound<'_, PyAny>, expected: &str) -> String {
     // Both read the object's own attributes, which may be anything: the dtype's text is cut
     // short, and a shape is shown only when it is a short sequence of sizes.
     let dtype = obj
@@ -21,15 +21,42 @@ fn describe(obj: &Bound<'_, PyAny>) -> String {
         .map(|s| shape_text(&s))
         .unwrap_or_else(|| "no usable shape".into());
     format!(
-        "{} of dtype {dtype} and shape {shape}",
-        crate::args::type_name(obj)
+        "{} of dtype {dtype} and shape {shape}{}",
+        crate::args::type_name(obj),
+        layout(obj, expected.contains("writable"))
     )
+}
+
+/// What keeps an array from being borrowed as a slice, as a clause to the description of what
+/// was found (", not C-contiguous (...)"), so that a refusal of an array of the right dtype and
+/// shape never reads "expected X, found X"; its being read-only counts for an output only.
+fn layout(obj: &Bound<'_, PyAny>, output: bool) -> String {
+    let Ok(flags) = obj.getattr("flags") else {
+        return String::new();
+    };
+    let flag = |name: &str| {
+        flags
+            .getattr(name)
+            .and_then(|value| value.is_truthy())
+            .unwrap_or(true)
+    };
+    let mut notes = Vec::new();
+    if !flag("c_contiguous") {
+        notes.push("not C-contiguous (a slice or a transpose: pass np.ascontiguousarray(...))");
+    }
+    if !flag("aligned") {
+        notes.push("not aligned (a view at an odd byte offset: pass a copy)");
+    }
+    if output && !flag("writeable") {
+        notes.push("read-only");
+    }
+    notes.iter().map(|note| format!(", {note}")).collect()
 }
 
 fn refusal(name: &str, expected: &str, obj: &Bound<'_, PyAny>) -> String {
     format!(
         "expected {name} to be an aligned, C-contiguous numpy array of {expected}, found {}",
-        describe(obj)
+        describe(obj, expected)
     )
 }
 
@@ -90,9 +117,10 @@ pub fn readable<'py, T: Element>(
     shape: &[usize],
 ) -> PyResult<PyReadonlyArrayDyn<'py, T>> {
     let (array, expected) = usable_array::<T>(obj, name, dtype, shape)?;
-    array
-        .try_readonly()
-        .or_else(|_| wrong(name, &expected, obj))
+    array.try_readonly().or_else(|_| {
+        let unshared = format!("{expected}, not written by another argument of this call");
+        wrong(name, &unshared, obj)
+    })
 }
 
 /// A copy of an array of dtype `T` and exactly `shape`: inputs are copied before a call borrows

@@ -139,7 +139,8 @@ impl PyWorld {
         slf
     }
 
-    /// Writes the world file atomically.
+    /// Writes the world file atomically; a name not ending in `.toml` is refused (a `.wbt` one
+    /// would be read back as a Webots world), a device such as `/dev/stdout` is written into.
     fn save(&self, py: Python<'_>, path: PathArg) -> PyResult<()> {
         let path = path.value("path", "a str or os.PathLike")?;
         enter_detached(py, || self.inner.save(&path))

@@ -66,7 +66,8 @@ def export_world(name: str, file: str, *, force: bool = False) -> None:
 
     Raises:
         UnknownNameError: ``name`` is not a built-in world (the message lists them).
-        InvalidArgumentError: ``file`` does not end in ``.toml``.
+        InvalidArgumentError: ``file`` does not end in ``.toml`` (refused by
+            :meth:`mazesim.World.save`, as any world saved under such a name).
         MazesimIOError: ``file`` exists and ``force`` is False, or it cannot be written.
     """
     import mazesim
@@ -77,11 +78,6 @@ def export_world(name: str, file: str, *, force: bool = False) -> None:
         raise MazesimIOError(
             f"expected the name of a built-in world to export, found the file {name!r}; "
             f"built-in worlds: {available} (a world file is edited where it is)"
-        )
-    if not file.lower().endswith(".toml"):
-        raise InvalidArgumentError(
-            f"expected a world file ending in .toml to export to, found {file!r} (a .wbt name "
-            "would be read as a Webots world, any other as a TOML world under a misleading name)"
         )
     try:
         output_file(file)

@@ -29,6 +29,7 @@ from typing import Any
 
 from mazesim._atomic import atomic_file
 from mazesim._paths import MAX_TEXT_CHARACTERS, read_input
+from mazesim._paths import cache_folder as cache_folder_of
 from mazesim.errors import ControllerBuildError, MazesimError, MissingDependencyError
 from mazesim.webots import native_link
 from mazesim.webots import simulation as simulations
@@ -134,12 +135,9 @@ class Build:
 
 def cache_folder() -> Path:
     """The folder of built controllers: ``$MAZESIM_CACHE/controllers`` if set, else
-    ``$XDG_CACHE_HOME/mazesim/controllers``, else ``~/.cache/mazesim/controllers``."""
-    own = os.environ.get("MAZESIM_CACHE")
-    if own:
-        return Path(own) / "controllers"
-    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
-    return Path(base) / "mazesim" / "controllers"
+    ``$XDG_CACHE_HOME/mazesim/controllers``, else ``~/.cache/mazesim/controllers``; a file where
+    the folder or one above it should be is a ``MazesimIOError``."""
+    return cache_folder_of("MAZESIM_CACHE", "controllers", under_variable=True)
 
 
 #: Source suffixes by language, as Webots' default Makefile compiles them.

@@ -111,6 +111,13 @@ CONTROLLER_SUFFIXES = (".py", *native_controller.C_SUFFIXES, *native_controller.
 
 #: The other languages Webots runs controllers in, by file suffix: mazesim runs none of them.
 OTHER_LANGUAGES = {".java": "Java", ".class": "Java", ".jar": "Java", ".m": "MATLAB"}
+#: Files that are no controller in any language, by suffix, with where they are given instead:
+#: run as Python, a world file ended in a NameError on its first table.
+NOT_CONTROLLERS = {
+    ".toml": "a TOML file (a mazesim world, given as --world, or a robot profile, as --robot)",
+    ".json": "a JSON file (a recorded run, replayed with mazesim replay)",
+    ".proto": "a Webots PROTO file (a world that uses it is run: give the .wbt world)",
+}
 
 
 def controller_file(path: str | os.PathLike[str]) -> str:
@@ -121,12 +128,18 @@ def controller_file(path: str | os.PathLike[str]) -> str:
     Raises:
         MazesimIOError: ``path`` is a folder without such a file.
         InvalidArgumentError: ``path`` is a controller in a language mazesim does not run
-            (:data:`OTHER_LANGUAGES`: Java, MATLAB).
+            (:data:`OTHER_LANGUAGES`: Java, MATLAB), or no controller at all
+            (:data:`NOT_CONTROLLERS`: a world file, a run, a PROTO).
     """
     file = os.path.abspath(os.fspath(path))
     expected = f"a Python, C or C++ controller ({', '.join(CONTROLLER_SUFFIXES)})"
     if not os.path.isdir(file):
-        language = OTHER_LANGUAGES.get(os.path.splitext(file)[1].lower())
+        suffix = os.path.splitext(file)[1].lower()
+        if suffix in NOT_CONTROLLERS:
+            raise InvalidArgumentError(
+                f"{file}: expected {expected} or a .wbt world, found {NOT_CONTROLLERS[suffix]}"
+            )
+        language = OTHER_LANGUAGES.get(suffix)
         if language is not None:
             raise InvalidArgumentError(
                 f"{file}: expected {expected}, found a {language} controller, which mazesim "

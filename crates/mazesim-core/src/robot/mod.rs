@@ -19,6 +19,7 @@ use std::sync::Arc;
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
+use crate::file_kind::{self, FileKind};
 use crate::lut::LookupTable;
 use crate::world::locate;
 use crate::world::values::{Finite, NonNegative, Positive, Reflectance, SlipFraction};
@@ -256,8 +257,10 @@ impl RobotProfile {
     pub fn from_toml(text: &str, source: &str) -> Result<RobotProfile> {
         let limit = crate::limits::MAX_WORLD_FILE_BYTES;
         crate::io::check_text_length(text, source, limit, "the robot profile")?;
-        let file: ProfileFile =
-            toml::from_str(text).map_err(|e| locate::from_toml_error(source, text, &e))?;
+        let file: ProfileFile = toml::from_str(text).map_err(|e| {
+            let refused = locate::from_toml_error(source, text, &e);
+            file_kind::named_for_its_kind(text, source, FileKind::RobotProfile, refused)
+        })?;
         crate::world::lengths::check(&file, text, source)?;
         let bad = |field: String, message: String| {
             let key = field.rsplit('.').next().unwrap_or(&field).to_string();

@@ -8,6 +8,7 @@ use std::fmt;
 
 use super::lexer::syntax_error;
 use crate::error::Result;
+use crate::file_kind::{named_for_its_kind, FileKind};
 
 /// The newest Webots release this reader was checked against.
 pub const NEWEST_KNOWN: WbtVersion = WbtVersion::Release {
@@ -139,12 +140,18 @@ pub fn parse_header(text: &str, source: &str) -> Result<(WbtVersion, Vec<String>
     let mut words = first.split_whitespace();
     if words.next() != Some("#VRML_SIM") {
         let shown: String = first.chars().take(40).collect();
-        return Err(syntax_error(
+        let refused = syntax_error(
             source,
             1,
             1,
             "(header)",
             format!("expected the Webots world header `#VRML_SIM <version> utf8`, found `{shown}`"),
+        );
+        return Err(named_for_its_kind(
+            text,
+            source,
+            FileKind::WebotsWorld,
+            refused,
         ));
     }
     let column = first.find("#VRML_SIM").unwrap_or(0) + "#VRML_SIM".len() + 2;

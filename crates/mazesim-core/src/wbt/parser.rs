@@ -434,6 +434,29 @@ impl Parser<'_> {
         ))
     }
 
+    /// Refuses a vector field of a Webots base node (see [`vector_length`]) given fewer numbers
+    /// than it holds, as Webots does: it reads the next word as the missing number and stops
+    /// loading the world. More numbers than it holds are left to the import's warning.
+    fn check_vector_length(&self, name: &str, value: &Value) -> Result<()> {
+        let node = self
+            .path
+            .len()
+            .checked_sub(2)
+            .map(|i| self.path[i].as_str());
+        let Some(length) = node.and_then(|node| vector_length(node, name)) else {
+            return Ok(());
+        };
+        let read = value.numbers.len();
+        if read == 0 || read >= length || !value.strings.is_empty() || !value.bools.is_empty() {
+            return Ok(());
+        }
+        Err(self.error_here(format!(
+            "expected the field `{name}` to hold {length} numbers, found {read}, then {} \
+             (Webots refuses the world too)",
+            describe(self.peek())
+        )))
+    }
+
     /// Adds one scalar (number, string, boolean) to `value`; false when the next token is none.
     fn scalar(&mut self, value: &mut Value) -> bool {
         let kind = match self.peek() {
@@ -509,11 +532,35 @@ impl Parser<'_> {
                 }
                 // A single-valued field or an MF field written without brackets.
                 while self.scalar(&mut value) {}
-                if let Some(found) = self.not_a_number(&value) {
+                let found = self.not_a_number(&value);
+                let non_finite =
+                    matches!(self.peek().map(|t| &t.kind), Some(TokenKind::NotANumber(_)))
+                        || found.as_deref().is_some_and(spells_non_finite);
+                if !non_finite {
+                    self.check_vector_length(name, &value)?;
+                }
+                if let Some(found) = found {
                     return Err(self.refuse_number(name, &value, &found));
                 }
             }
         }
         Ok(value)
+    }
+}
+
+/// The Webots base nodes whose frame fields are read as vectors of a fixed length (a PROTO may
+/// give a field of the same name another type, so only these are checked).
+const FRAME_NODES: [&str; 5] = ["Solid", "Robot", "Pose", "Transform", "E-puck"];
+
+/// How many numbers the field `name` of a node of type `node` holds, when Webots fixes it:
+/// `translation` (SFVec3f) and `rotation` (SFRotation) of [`FRAME_NODES`].
+fn vector_length(node: &str, name: &str) -> Option<usize> {
+    if !FRAME_NODES.contains(&node) {
+        return None;
+    }
+    match name {
+        "translation" => Some(3),
+        "rotation" => Some(4),
+        _ => None,
     }
 }

@@ -859,3 +859,34 @@ fn a_field_value_that_is_no_number_is_refused_naming_the_field_and_its_line() {
     let doc = parse("Solid { translation 1 2 3 name \"a\" locked TRUE }").unwrap();
     assert_eq!(doc.node(doc.roots[0]).fields.len(), 3);
 }
+
+#[test]
+fn a_frame_field_of_too_few_numbers_is_refused_as_webots_refuses_it() {
+    let cases = [
+        (
+            "Solid { translation 1 2 rotation 0 0 1 0 }",
+            "`translation` to hold 3 numbers, found 2, then `rotation`",
+        ),
+        (
+            "Pose { rotation 0 0 1 }",
+            "`rotation` to hold 4 numbers, found 3, then `}`",
+        ),
+        (
+            "Robot { translation 1 wide }",
+            "`translation` to hold 3 numbers, found 1, then `wide`",
+        ),
+    ];
+    for (text, says) in cases {
+        let Err(Error::Format { message, .. }) = parse(text) else {
+            panic!("{text} was read")
+        };
+        assert!(message.contains(says), "{message}");
+    }
+    // A non-finite number keeps its own wording; a PROTO's field of the same name is its own.
+    let Err(Error::Format { message, .. }) = parse("Solid { translation 1 nan 3 }") else {
+        panic!("nan was read")
+    };
+    assert!(message.contains("finite numbers, found `nan`"), "{message}");
+    assert!(parse("MyProto { translation 1 2 }").is_ok());
+    assert!(parse("Solid { translation 1 2 3 4 }").is_ok());
+}

@@ -33,6 +33,7 @@ pub use spec::WorldSpec;
 pub use walls::{RayHit, WallIndex};
 
 use crate::error::{Error, Result};
+use crate::file_kind::FileKind;
 use extent::{ExtentCheck, Place};
 use spec::{BarcodeSpec, PaintSpec};
 use values::xy;
@@ -130,8 +131,10 @@ impl World {
         let limit = crate::limits::MAX_WORLD_FILE_BYTES;
         crate::io::check_text_length(text, source, limit, "the world file")?;
         locate::check_table_count(text, source)?;
-        let spec: WorldSpec =
-            toml::from_str(text).map_err(|e| locate::from_toml_error(source, text, &e))?;
+        let spec: WorldSpec = toml::from_str(text).map_err(|e| {
+            let refused = locate::from_toml_error(source, text, &e);
+            crate::file_kind::named_for_its_kind(text, source, FileKind::World, refused)
+        })?;
         if !written_here {
             lengths::check(&spec, text, source)?;
         }
@@ -525,7 +528,9 @@ impl World {
     }
 
     /// Writes the world file atomically (a temporary file in the same folder, then a rename).
+    /// A name not ending in `.toml` is refused (see [`crate::file_kind::check_world_file_name`]).
     pub fn save(&self, path: &Path) -> Result<()> {
+        crate::file_kind::check_world_file_name(path)?;
         crate::io::write_atomic(path, self.to_toml()?.as_bytes())
     }
 

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from mazesim._atomic import atomic_file
-from mazesim._paths import read_input
+from mazesim._paths import cache_folder, read_input
 from mazesim.errors import MazesimIOError
 
 __all__ = ["ProtoSource", "ProtoUnavailableError", "Resolver", "cache_dir", "fetch_url"]
@@ -35,12 +35,13 @@ class ProtoUnavailableError(MazesimIOError):
 
 
 def cache_dir() -> Path:
-    """The download cache: ``$MAZESIM_PROTO_CACHE`` or ``~/.cache/mazesim/protos``."""
-    configured = os.environ.get("MAZESIM_PROTO_CACHE")
-    if configured:
-        return Path(configured)
-    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
-    return Path(base) / "mazesim" / "protos"
+    """The download cache: ``$MAZESIM_PROTO_CACHE`` or ``~/.cache/mazesim/protos``.
+
+    Raises:
+        MazesimIOError: It, or a folder above it, is a file (the message names the variable
+            that set it).
+    """
+    return cache_folder("MAZESIM_PROTO_CACHE", "protos")
 
 
 def _cached_path(url: str) -> Path:
