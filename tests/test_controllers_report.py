@@ -146,6 +146,8 @@ def test_explore_batch_mask_keeps_the_state_of_robots_that_do_not_act() -> None:
     np.testing.assert_allclose(after, [[-2.0, 2.0], [2.0, -2.0]])
     with pytest.raises(InvalidArgumentError, match="mask of shape"):
         controller.batch(np.array([OPEN, OPEN]), np.array([True]))
+    with pytest.raises(InvalidArgumentError, match=r"mask of shape \(2,\), found \(3,\)"):
+        controller.reset_robots(np.array([True, False, True]))
 
 
 @settings(max_examples=100, deadline=None)

@@ -338,11 +338,7 @@ class Explore:
             self._spin = np.zeros(readings.shape[0], dtype=np.int8)
         if mask is None:
             return self._wheel_speeds(readings, self._spin).astype(np.float32)
-        acting = np.asarray(mask, dtype=bool)
-        if acting.shape != self._spin.shape:
-            raise InvalidArgumentError(
-                f"expected a mask of shape {self._spin.shape}, found {acting.shape}"
-            )
+        acting = self._robots_in(mask)
         spin = self._spin.copy()
         wheel_speeds = self._wheel_speeds(readings, spin)
         self._spin[acting] = spin[acting]
@@ -350,12 +346,16 @@ class Explore:
 
     def reset_robots(self, mask: npt.ArrayLike) -> None:
         """Forgets the turning state of the robots in ``mask`` (N,) of the last batch."""
+        self._spin[self._robots_in(mask)] = 0
+
+    def _robots_in(self, mask: npt.ArrayLike) -> npt.NDArray[np.bool_]:
+        """``mask`` as flags of the last batch's robots, refused when of another shape."""
         flags = np.asarray(mask, dtype=bool)
         if flags.shape != self._spin.shape:
             raise InvalidArgumentError(
                 f"expected a mask of shape {self._spin.shape}, found {flags.shape}"
             )
-        self._spin[flags] = 0
+        return flags
 
     def _wheel_speeds(
         self, readings: npt.NDArray[np.float64], spin: npt.NDArray[np.int8]

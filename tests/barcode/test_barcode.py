@@ -419,6 +419,8 @@ def test_batch_reader_mask_hides_the_sample_from_robots_outside_it() -> None:
     assert found == {0: [bits], 1: ["11110"]}  # 16 samples, 1111 1111 1111 0000
     with pytest.raises(InvalidArgumentError, match=r"mask of shape \(2,\)"):
         reader.update(np.zeros(2), None, np.ones(3, dtype=bool))
+    with pytest.raises(InvalidArgumentError, match=r"mask of shape \(2,\), found \(1,\)"):
+        reader.reset(np.ones(1, dtype=bool))
 
 
 def test_batch_reader_checks_shapes() -> None:

@@ -24,6 +24,27 @@ impl Location {
     }
 }
 
+impl Error {
+    /// The format error at `line` and `column` (1-based) of `source`, in field `field`.
+    pub fn format_at(
+        source: &str,
+        line: usize,
+        column: usize,
+        field: impl Into<String>,
+        message: impl Into<String>,
+    ) -> Error {
+        Error::Format {
+            location: Location {
+                source: source.to_string(),
+                line,
+                column,
+            },
+            field: field.into(),
+            message: message.into(),
+        }
+    }
+}
+
 impl fmt::Display for Location {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         if self.line == 0 {

@@ -13,7 +13,7 @@ use std::io::{ErrorKind, Read, Write};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 
-use crate::error::{Error, Location, Result};
+use crate::error::{Error, Result};
 
 /// The longest file name, in bytes, of the usual file systems (ext4, XFS, APFS, NTFS).
 const NAME_MAX: usize = 255;
@@ -122,15 +122,8 @@ pub fn check_text_length(text: &str, source: &str, limit: u64, what: &str) -> Re
 
 /// The format error of an input of more than `limit` bytes (`found`: how many, or "more").
 fn too_long(source: &str, what: &str, limit: u64, found: &str) -> Error {
-    Error::Format {
-        location: Location {
-            source: source.to_string(),
-            line: 1,
-            column: 1,
-        },
-        field: "(file)".into(),
-        message: format!("expected {what} of at most {limit} bytes, found {found}"),
-    }
+    let message = format!("expected {what} of at most {limit} bytes, found {found}");
+    Error::format_at(source, 1, 1, "(file)", message)
 }
 
 /// Temporary files made by this process so far: each write has its own, even when several

@@ -449,13 +449,9 @@ impl Body {
     /// Puts movable body `index` of the scene this body holds at `pose` (x, y, yaw), at rest;
     /// returns whether there is such a body.
     pub fn place_movable(&mut self, index: usize, pose: [f32; 3]) -> bool {
-        let Some(scene) = self.scene.as_mut() else {
+        let Some(body) = self.movable_mut(index) else {
             return false;
         };
-        let Some(&(handle, _, _)) = scene.movables.get(index) else {
-            return false;
-        };
-        let body = &mut scene.world.bodies[handle];
         body.set_translation(Vector::new(pose[0], pose[1]), true);
         body.set_rotation(Rotation::new(pose[2]), true);
         body.set_linvel(Vector::ZERO, true);
@@ -466,16 +462,19 @@ impl Body {
     /// Sets the velocity (vx, vy in m/s, turn rate in rad/s) of movable body `index` of the
     /// scene this body holds; returns whether there is such a body.
     pub fn set_movable_velocity(&mut self, index: usize, velocity: [f32; 3]) -> bool {
-        let Some(scene) = self.scene.as_mut() else {
+        let Some(body) = self.movable_mut(index) else {
             return false;
         };
-        let Some(&(handle, _, _)) = scene.movables.get(index) else {
-            return false;
-        };
-        let body = &mut scene.world.bodies[handle];
         body.set_linvel(Vector::new(velocity[0], velocity[1]), true);
         body.set_angvel(velocity[2], true);
         true
+    }
+
+    /// Movable body `index` of the scene this body holds, if there is one.
+    fn movable_mut(&mut self, index: usize) -> Option<&mut RigidBody> {
+        let scene = self.scene.as_mut()?;
+        let &(handle, _, _) = scene.movables.get(index)?;
+        Some(&mut scene.world.bodies[handle])
     }
 
     /// Current velocities (vx, vy in m/s, turn rate in rad/s) of the movable bodies, in world

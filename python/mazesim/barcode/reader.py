@@ -14,7 +14,7 @@ import numpy.typing as npt
 
 from mazesim._core import RobotProfile, Simulator
 from mazesim.barcode.decoders import Decoder, Reading
-from mazesim.barcode.odometry import Odometry, barcode_sensor_index
+from mazesim.barcode.odometry import Odometry, _as_mask, barcode_sensor_index
 from mazesim.errors import InvalidArgumentError
 
 __all__ = ["BarcodeReader", "BatchBarcodeReader"]
@@ -87,11 +87,7 @@ class BatchBarcodeReader:
 
     def reset(self, mask: npt.ArrayLike | None = None) -> None:
         """Forgets the streams of the robots in ``mask`` (all by default)."""
-        flags = np.ones(self.num_envs, bool) if mask is None else np.asarray(mask, dtype=bool)
-        if flags.shape != (self.num_envs,):
-            raise InvalidArgumentError(
-                f"expected a mask of shape ({self.num_envs},), found {flags.shape}"
-            )
+        flags = _as_mask(mask, self.num_envs)
         for index in np.flatnonzero(flags):
             self.decoders[index].reset()
         self._on_code[flags] = False
@@ -127,11 +123,7 @@ class BatchBarcodeReader:
             positions = self.odometry.update(encoders)
         elif self.needs_position:
             raise InvalidArgumentError("the decoders need the wheel encoders each step")
-        fed = np.ones(self.num_envs, dtype=bool) if mask is None else np.asarray(mask, bool)
-        if fed.shape != (self.num_envs,):
-            raise InvalidArgumentError(
-                f"expected a mask of shape ({self.num_envs},), found {fed.shape}"
-            )
+        fed = _as_mask(mask, self.num_envs)
         off_floor = (values < self.floor_low) | (values > self.floor_high)
         busy = np.flatnonzero((off_floor | self._on_code) & fed)
         readings: list[tuple[int, Reading]] = []

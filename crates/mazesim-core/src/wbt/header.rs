@@ -6,8 +6,7 @@
 
 use std::fmt;
 
-use super::lexer::syntax_error;
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::file_kind::{named_for_its_kind, FileKind};
 
 /// The newest Webots release this reader was checked against.
@@ -140,7 +139,7 @@ pub fn parse_header(text: &str, source: &str) -> Result<(WbtVersion, Vec<String>
     let mut words = first.split_whitespace();
     if words.next() != Some("#VRML_SIM") {
         let shown: String = first.chars().take(40).collect();
-        let refused = syntax_error(
+        let refused = Error::format_at(
             source,
             1,
             1,
@@ -156,17 +155,16 @@ pub fn parse_header(text: &str, source: &str) -> Result<(WbtVersion, Vec<String>
     }
     let column = first.find("#VRML_SIM").unwrap_or(0) + "#VRML_SIM".len() + 2;
     let Some(word) = words.next() else {
-        return Err(syntax_error(
+        return Err(Error::format_at(
             source,
             1,
             column,
             "(header)",
-            "expected a Webots version such as R2023b or V8.5 after #VRML_SIM, found nothing"
-                .into(),
+            "expected a Webots version such as R2023b or V8.5 after #VRML_SIM, found nothing",
         ));
     };
     let version = WbtVersion::parse(word).ok_or_else(|| {
-        syntax_error(
+        Error::format_at(
             source,
             1,
             column,

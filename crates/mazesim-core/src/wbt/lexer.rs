@@ -2,7 +2,7 @@
 //! double-quoted strings and words. `#` starts a comment outside strings; commas are white space.
 //! Lines end with `\n`, `\r\n` or a lone `\r`.
 
-use crate::error::{Error, Location, Result};
+use crate::error::{Error, Result};
 
 /// What a token is.
 #[derive(Debug, Clone, PartialEq)]
@@ -35,25 +35,6 @@ pub struct Token {
     pub line: usize,
     /// Its column.
     pub column: usize,
-}
-
-/// A syntax error at a line and column of `source`.
-pub fn syntax_error(
-    source: &str,
-    line: usize,
-    column: usize,
-    field: &str,
-    message: String,
-) -> Error {
-    Error::Format {
-        location: Location {
-            source: source.to_string(),
-            line,
-            column,
-        },
-        field: field.to_string(),
-        message,
-    }
 }
 
 fn is_delimiter(c: char) -> bool {
@@ -125,12 +106,12 @@ pub fn tokenize(text: &str, source: &str) -> Result<Vec<Token>> {
             column += 1;
             loop {
                 let Some(&d) = chars.get(i) else {
-                    return Err(syntax_error(
+                    return Err(Error::format_at(
                         source,
                         start_line,
                         start_column,
                         "(string)",
-                        "expected a closing `\"` for this string, found the end of the file".into(),
+                        "expected a closing `\"` for this string, found the end of the file",
                     ));
                 };
                 i += 1;
@@ -163,7 +144,7 @@ pub fn tokenize(text: &str, source: &str) -> Result<Vec<Token>> {
             continue;
         }
         if c.is_control() {
-            return Err(syntax_error(
+            return Err(Error::format_at(
                 source,
                 line,
                 column,

@@ -55,7 +55,7 @@ mod wall_meshes;
 
 use std::path::Path;
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 
 pub use appearance::{reflection_factor, BodyLook, Look};
 pub use convert::polygon_sides;
@@ -230,7 +230,7 @@ impl WbtImport {
                 let valid = std::str::from_utf8(&bytes[..e.valid_up_to()]).unwrap_or_default();
                 let line = valid.matches('\n').count() + 1;
                 let column = valid.rsplit('\n').next().unwrap_or("").chars().count() + 1;
-                Err(lexer::syntax_error(
+                Err(Error::format_at(
                     source,
                     line,
                     column,

@@ -5,7 +5,7 @@
 use std::collections::HashMap;
 
 use super::header::parse_header;
-use super::lexer::{syntax_error, tokenize, Token, TokenKind};
+use super::lexer::{tokenize, Token, TokenKind};
 use super::tree::{Document, Field, Node, NodeId, Value};
 use crate::error::{Error, Result};
 
@@ -137,7 +137,7 @@ impl Parser<'_> {
         } else {
             self.path.join(".")
         };
-        syntax_error(self.source, line, column, &field, message)
+        Error::format_at(self.source, line, column, &field, message)
     }
 
     fn warn(&mut self, at: &Token, message: &str) {
@@ -356,7 +356,7 @@ impl Parser<'_> {
         } else {
             self.path.join(".")
         };
-        Err(syntax_error(
+        Err(Error::format_at(
             self.source,
             at.0,
             at.1,

@@ -1,6 +1,6 @@
 //! Turning a byte offset in a TOML text into a line, a column and the field that sits there.
 
-use crate::error::{Error, Location};
+use crate::error::Error;
 
 /// `offset` within `text`, moved back to the start of the character it falls in (a parser may
 /// point inside a character of several bytes, such as the replacement of an invalid byte).
@@ -77,15 +77,8 @@ pub fn format_error(
     message: impl Into<String>,
 ) -> Error {
     let (line, column) = line_column(text, offset);
-    Error::Format {
-        location: Location {
-            source: source.to_string(),
-            line,
-            column,
-        },
-        field: field.map_or_else(|| field_at(text, offset), str::to_string),
-        message: message.into(),
-    }
+    let field = field.map_or_else(|| field_at(text, offset), str::to_string);
+    Error::format_at(source, line, column, field, message)
 }
 
 /// Converts a TOML reader error into a located format error.

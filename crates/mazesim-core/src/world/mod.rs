@@ -363,26 +363,22 @@ impl World {
         )?;
         let mut checkpoints: Vec<Checkpoint> = Vec::new();
         for (i, c) in spec.checkpoints.iter().enumerate() {
-            let at = || table_offset(text, "checkpoints", i);
-            if c.id == 0 {
+            let refused_id = match c.id {
+                0 => Some("expected a positive checkpoint id, found 0".to_string()),
+                id if checkpoints.iter().any(|k| k.id == id) => Some(format!(
+                    "expected a unique checkpoint id, found {id} a second time"
+                )),
+                _ => None,
+            };
+            if let Some(message) = refused_id {
+                let at = table_offset(text, "checkpoints", i);
+                let field = format!("checkpoints[{i}].id");
                 return Err(locate::format_error(
                     source,
                     text,
-                    at(),
-                    Some(&format!("checkpoints[{i}].id")),
-                    "expected a positive checkpoint id, found 0",
-                ));
-            }
-            if checkpoints.iter().any(|k| k.id == c.id) {
-                return Err(locate::format_error(
-                    source,
-                    text,
-                    at(),
-                    Some(&format!("checkpoints[{i}].id")),
-                    format!(
-                        "expected a unique checkpoint id, found {} a second time",
-                        c.id
-                    ),
+                    at,
+                    Some(&field),
+                    message,
                 ));
             }
             let field = format!("checkpoints[{i}]");

@@ -114,9 +114,15 @@ fn checkpoint_ids_are_positive_and_unique_and_codes_are_five_bits() {
     let cp = |id: u32, code: &str| {
         format!("[[checkpoints]]\nid = {id}\ncode = \"{code}\"\ncenter = [0, 0]\nyaw = 0\nwidth = 0.2\n")
     };
-    let (_, field, message) = format_error(&format!("{}{}", cp(1, "10110"), cp(1, "11010")));
-    assert_eq!(field, "checkpoints[1].id");
-    assert!(message.contains("unique"), "{message}");
+    let (line, field, message) = format_error(&format!("{}{}", cp(1, "10110"), cp(1, "11010")));
+    assert_eq!((line, field.as_str()), (9, "checkpoints[1].id"));
+    assert_eq!(
+        message,
+        "expected a unique checkpoint id, found 1 a second time"
+    );
+    let (line, field, message) = format_error(&format!("{}{}", cp(1, "10110"), cp(0, "11010")));
+    assert_eq!((line, field.as_str()), (9, "checkpoints[1].id"));
+    assert_eq!(message, "expected a positive checkpoint id, found 0");
     let (line, field, _) = format_error(&cp(3, "1011"));
     assert_eq!((line, field.as_str()), (5, "checkpoints[0].code"));
 }
