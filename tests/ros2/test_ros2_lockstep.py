@@ -182,6 +182,49 @@ def test_a_world_of_one_robot_runs_in_the_namespace_a_node_names() -> None:
     assert "stopped after 20 steps" in result.stderr
 
 
+def test_a_node_waiting_for_odom_before_its_command_writer_gets_the_reset_state() -> None:
+    # rclpy.wait_for_message(Odometry, node, '/odom') at start-up (a reliable reader of depth 1,
+    # one message), and only then the node's cmd_vel publisher: in lockstep the bridge waited
+    # for a command writer before its first state, and both waited in silence.
+    node = [sys.executable, "-c", _WAIT_FOR_ODOM]
+    result = run_in_namespace([_bridge("humble", 5)], node, timeout=60)
+    assert result.returncode == 0, result.stderr
+    # The reset state (stamped 1 ns) to the first reader, the first command: step 1, then 4 more.
+    assert result.stdout.split() == ["first:1", f"answered:{32_000_000}..{4 * 32_000_000}"]
+    assert "stopped after 5 steps" in result.stderr
+
+
+#: Waits for one /odom on a reader of its own (depth 1), then creates its /cmd_vel writer and
+#: an /odom reader, sends a first command once the writer matches and answers each /odom.
+_WAIT_FOR_ODOM = """
+import time
+from mazesim.ros2 import cdr
+from mazesim.ros2.node import Node
+from mazesim.ros2.qos import COMMAND, TopicQos
+node = Node("waits_for_odom")
+first = node.reader("/odom", "nav_msgs/msg/Odometry", TopicQos(True, False, 1))
+deadline = time.monotonic() + 10
+found = []
+while not found and time.monotonic() < deadline:
+    found = first.take(1)
+    time.sleep(0.005)
+print(f"first:{cdr.decode_clock(found[0])}" if found else "first:nothing", flush=True)
+odom = node.reader("/odom", "nav_msgs/msg/Odometry", TopicQos(True, False, 10))
+cmd_vel = node.writer("/cmd_vel", "geometry_msgs/msg/Twist", COMMAND)
+while not cmd_vel.subscribers() and time.monotonic() < deadline:
+    time.sleep(0.005)
+twist = cdr.encode_twist((0.05, 0.0, 0.0), (0.0, 0.0, 0.3))
+cmd_vel.publish(twist)
+stamps = []
+while len(stamps) < 4 and time.monotonic() < deadline:
+    for data in odom.take():
+        stamps.append(cdr.decode_clock(data))
+        cmd_vel.publish(twist)
+    time.sleep(0.002)
+print(f"answered:{stamps[0]}..{stamps[-1]}" if stamps else "answered:nothing")
+"""
+
+
 #: Answers each /odom with one /cmd_vel, as many times as its first argument says, in the
 #: namespace its second names if any; prints the stamps of the first and last odometry answered.
 _ANSWER_ODOM = """

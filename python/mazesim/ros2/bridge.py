@@ -4,7 +4,8 @@ Lockstep (the default): each command on ``/cmd_vel`` (read as Twist and as Twist
 the distribution), ``/motor`` or ``/action`` advances one
 control step, then the state topics go out stamped with the new simulation time, ``/clock`` last.
 Before the first command the bridge publishes the reset state once (stamped 1 ns), after a writer
-on one of its command topics has matched and a grace period has passed, and again every
+on one of its command topics or a reader of a state topic has matched and a grace period has
+passed, and again every
 ``RESEND_S`` seconds while a command writer is matched and no command has come (a node that
 answers only its second message, or whose first command went out before it matched, gets
 another), saying so on stderr. Once stepping, a command writer that matches later (a node started
@@ -171,6 +172,11 @@ class RobotChannel:
     def driven(self) -> bool:
         """Whether a writer on one of the robot's command topics has matched."""
         return any(reader.publishers() for reader in self.command_readers())
+
+    def watched(self) -> bool:
+        """Whether a reader of one of the robot's state topics (``/tf_static`` aside) has
+        matched."""
+        return any(writer.subscribers() for writer in self.writers)
 
     def command_writers(self) -> set[int]:
         """The writers matched now on the robot's command topics."""
@@ -400,10 +406,13 @@ class Ros2Bridge:
             self.step_robots()
 
     def wait_for_driver(self) -> None:
-        """Lockstep: waits until a command writer has matched, then the grace period."""
+        """Lockstep: waits until a command writer or a reader of a state topic has matched (a
+        node that waits for one state before it creates its command writer, as
+        ``rclpy.wait_for_message`` at start-up does, gets the reset state), then the grace
+        period."""
         while not self.stop.is_set():
             self._check_readers()
-            if any(robot.driven() for robot in self.robots):
+            if any(robot.driven() or robot.watched() for robot in self.robots):
                 self.stop.wait(READY_GRACE_S)
                 return
             self.stop.wait(0.02)
