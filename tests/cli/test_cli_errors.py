@@ -289,6 +289,18 @@ def test_eval_gets_random_meant_for_its_typo(tmp_path: Path) -> None:
     ), line
 
 
+def test_eval_gets_the_shipped_navigator_meant_for_its_typo(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    for typed, meant in (("randomized", "; did you mean 'randomised'?"), ("my-run", "")):
+        assert main(["eval", "--policy", typed, "--episodes", "1"]) == 2
+        line = capsys.readouterr().err.strip().splitlines()[-1]
+        assert line.endswith(f"('randomised'; without --policy, the seed-maze navigator){meant}"), (
+            line
+        )
+
+
 def test_sweep_without_ray_names_the_sequential_run(tmp_path: Path) -> None:
     shutil.copyfile(REPO / "examples" / "sweep.toml", tmp_path / "my sweep.toml")
     result = _mazesim_without("ray", ["sweep", "my sweep.toml"], tmp_path)
