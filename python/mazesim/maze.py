@@ -38,6 +38,7 @@ __all__ = [
     "blocked_start",
     "breadth_first_distances",
     "checkpoint_ids",
+    "looks_like_grid_map",
     "navigator_problems",
     "next_cells",
     "refuse_blocked_start",
@@ -213,6 +214,20 @@ def world_source(world: World, name: str) -> str:
     """The world and where it was loaded from, for messages: ``seed-maze`` for a built-in
     world, ``'my-maze' (worlds/my-maze.toml)`` for a file."""
     return name if name == world.name else f"{world.name!r} ({name})"
+
+
+#: The characters of a ``[grid]`` map: corners, walls, open sides, start and goal.
+_GRID_MAP_CHARACTERS = frozenset("+-| SG")
+
+
+def looks_like_grid_map(text: str) -> bool:
+    """Whether ``text`` is a maze drawn as a ``[grid]`` map (docs/world-format.md) and nothing
+    else: two rows or more of ``+``, ``-``, ``|``, spaces, ``S`` and ``G``, the first a row of
+    corners and walls (``+--+--+``)."""
+    rows = [row.rstrip() for row in text.strip("\n").splitlines()]
+    if len(rows) < 2 or not rows[0].lstrip().startswith("+-"):
+        return False
+    return all(set(row) <= _GRID_MAP_CHARACTERS for row in rows)
 
 
 def _cells_along(position: float, count: int) -> list[int]:

@@ -266,6 +266,23 @@ def test_a_file_of_another_kind_says_which_files_are_worlds(
     assert caught.value.line == 1
 
 
+def test_a_maze_drawn_in_a_text_file_is_told_to_paste_it_into_a_world_file(
+    tmp_path: Path,
+) -> None:
+    drawn = tmp_path / "maze.txt"
+    drawn.write_text("+--+--+\n|S    |\n+--+  +\n|G    |\n+--+--+\n")
+    notes = tmp_path / "notes.txt"
+    notes.write_text("+-- a list\n| of notes\n")
+    with pytest.raises(WorldFormatError) as caught:
+        mazesim.load_world(drawn)
+    assert str(caught.value).endswith(
+        "found a .txt file); it holds a maze drawn as a [grid] map: paste it into a .toml world "
+        'file under [grid] map = """...""" (docs/own-maze.md shows such a file)'
+    )
+    with pytest.raises(WorldFormatError) as caught:
+        mazesim.load_world(notes)
+    assert str(caught.value).endswith("found a .txt file)")
+
 
 def test_core_unknown_builtin_name_lists_the_available_names() -> None:
     with pytest.raises(UnknownNameError) as caught:
