@@ -136,7 +136,8 @@ def load_world(name_or_path: str | os.PathLike[str]) -> World:
             # Another kind of file read as TOML: say which files are worlds.
             raise WorldFormatError(
                 f"{unreadable_world} (mazesim reads .toml world files and .wbt Webots worlds; "
-                + (f"found a {suffix} file)" if suffix else "found a file without an extension)"),
+                + (f"found a {suffix} file)" if suffix else "found a file without an extension)")
+                + _grid_map_advice(path),
                 source=getattr(unreadable_world, "source", None),
                 line=getattr(unreadable_world, "line", None),
                 column=getattr(unreadable_world, "column", None),
@@ -150,6 +151,28 @@ def load_world(name_or_path: str | os.PathLike[str]) -> World:
         sorted(builtin_world_names()),
         "a .toml or .wbt world file",
         (".toml", ".wbt"),
+    )
+
+
+#: The most characters of a file that is no world read to tell whether it is a drawn maze.
+_MOST_MAP_CHARACTERS = 1 << 20
+
+
+def _grid_map_advice(path: str) -> str:
+    """What to do with a file that is not a world but holds a maze drawn as a ``[grid]`` map (a
+    hand-drawn ``.txt``): paste it into a world file; "" for any other file."""
+    from mazesim.maze import looks_like_grid_map
+
+    try:
+        with open(path, encoding="utf-8") as file:
+            text = file.read(_MOST_MAP_CHARACTERS)
+    except (OSError, UnicodeDecodeError):
+        return ""
+    if not looks_like_grid_map(text):
+        return ""
+    return (
+        "; it holds a maze drawn as a [grid] map: paste it into a .toml world file under "
+        '[grid] map = """...""" (docs/own-maze.md shows such a file)'
     )
 
 

@@ -84,20 +84,35 @@ def unknown_name_or_file(
     """The error for ``path`` that is neither the name of a built-in ``kind`` (one of
     ``available``) nor a file: it says what the path is or where it was looked for, lists the
     built-in names and ``files`` (what else is taken), and ends with the closest built-in name or
-    file of ``suffixes`` beside it (a typo's likely fix)."""
+    file of ``suffixes`` beside it (a typo's likely fix).
+
+    A name with a folder or a suffix (``maps/maze.toml``, ``maze.toml``) is a path: the message
+    says which folder does not exist, or which folder lacks the file; a path with a folder is
+    compared with the files beside it only, not with the built-in names."""
+    folder, file = os.path.split(path)
+    is_path = bool(folder) or bool(os.path.splitext(file)[1])
+    where = "" if os.path.isabs(path) else f" in {os.getcwd()}"
     try:
         found = f"it is {_kind_of(os.stat(path).st_mode)}, not a {kind} file"
     except OSError as unreadable:
         found = unreadable.strerror.lower() if unreadable.strerror else "no such file"
-        if not os.path.isabs(path):  # a relative path: say where it was looked for
-            found = f"{found} in {os.getcwd()}"
-    return UnknownNameError(
-        f"no built-in {kind} named {path!r} and {found}; "
-        f"built-in {kind}s: {', '.join(available)} (or a path to {files})",
-        available=available,
+        if unreadable.errno == errno.ENOENT and is_path:
+            found = (
+                f"there is no folder {folder!r}{where}"
+                if folder and not os.path.isdir(folder)
+                else f"there is no file {file!r} in "
+                + (f"the folder {folder!r}{where}" if folder else os.getcwd())
+            )
+        elif not os.path.isabs(path):  # a relative path: say where it was looked for
+            found = f"{found}{where}"
+    opening = f"no {kind} file {path!r}: " if is_path else f"no built-in {kind} named {path!r} and "
+    unknown = UnknownNameError(
+        f"{opening}{found}; built-in {kind}s: {', '.join(available)} (or a path to {files})",
         name=path,
-        nearby=world_files_beside(path, suffixes),
+        nearby=world_files_beside(path, suffixes) + ([] if folder else available),
     )
+    unknown.available = available
+    return unknown
 
 
 def unknown_robot_profile(path: str) -> UnknownNameError:

@@ -95,11 +95,25 @@ class UnknownNameError(MazesimError, LookupError):
 
 def _closest_name(name: str | None, available: list[str] | None, cutoff: float = 0.6) -> str | None:
     """The name of ``available`` closest to ``name`` (difflib's ratio of at least ``cutoff``), or
-    None."""
+    None: the one "did you mean" of the package. File names are compared by their stems
+    (``my-maz.toml`` to ``my-maze``), so that a shared folder or suffix makes no name close."""
     if name is None or not available:
         return None
-    close = difflib.get_close_matches(name, [str(each) for each in available], 1, cutoff)
-    return close[0] if close else None
+    typed = _spelling(str(name))
+    scored = [
+        (difflib.SequenceMatcher(None, _spelling(str(each)), typed).ratio(), str(each))
+        for each in available
+    ]
+    score, closest = max(scored)
+    return closest if score >= cutoff else None
+
+
+def _spelling(name: str) -> str:
+    """What of ``name`` is compared for a "did you mean": a path's file name without its suffix
+    (``maps/my-maze.toml`` is ``my-maze``), any other name whole."""
+    file = name.replace("\\", "/").rsplit("/", 1)[-1]
+    stem, dot, suffix = file.rpartition(".")
+    return stem if dot and stem and suffix.isalpha() else file
 
 
 #: Starts of names whose "u" is spoken "you" (uint8, UUID), which take "a".

@@ -22,7 +22,7 @@ from typing import cast
 import numpy as np
 import numpy.typing as npt
 
-from mazesim._core import Simulator, World
+from mazesim._core import RobotProfile, Simulator, World
 from mazesim.errors import InvalidArgumentError
 
 __all__ = [
@@ -35,11 +35,15 @@ __all__ = [
     "GoalDistance",
     "PathDistanceTable",
     "assumed_open_sides",
+    "blocked_start",
     "breadth_first_distances",
     "checkpoint_ids",
+    "looks_like_grid_map",
     "navigator_problems",
     "next_cells",
+    "refuse_blocked_start",
     "world_hash",
+    "world_source",
 ]
 
 EAST, NORTH, WEST, SOUTH = 0, 1, 2, 3
@@ -155,17 +159,75 @@ def _start_problem(world: World, maze: CellMaze) -> str | None:
         maze.origin[0] + maze.cols * maze.cell_size,
         maze.origin[1] + maze.rows * maze.cell_size,
     )
-    fix = "move the [start] pose to the middle of a cell, or put an S in a cell of the [grid] map"
     if not (maze.origin[0] <= x <= east and maze.origin[1] <= y <= north):
         return (
             f"its start ({x:g}, {y:g}) is outside the maze, which spans x {maze.origin[0]:g} to "
-            f"{east:g} and y {maze.origin[1]:g} to {north:g}: {fix}"
+            f"{east:g} and y {maze.origin[1]:g} to {north:g}: {_MOVE_START_IN_A_MAZE}"
         )
+    return blocked_start(world)
+
+
+_MOVE_START_IN_A_MAZE = (
+    "move the [start] pose to the middle of a cell, or put an S in a cell of the [grid] map"
+)
+
+#: The words of the core's refusal of a pose in or against a wall (its ``check_free``).
+_NOT_CLEAR = "is clear of the walls"
+
+
+def blocked_start(world: World, robot: str | RobotProfile = "e-puck") -> str | None:
+    """What keeps ``robot`` from starting at the world's start pose (in or against a wall): the
+    pose, how far into the wall, and what to change in the world; None when it can start there.
+
+    Raises:
+        InvalidArgumentError: ``robot`` cannot drive in ``world`` for another reason.
+    """
     try:
-        Simulator(world)
+        Simulator(world, robot=robot)
     except InvalidArgumentError as blocked:
+        if _NOT_CLEAR not in str(blocked):
+            raise
+        fix = (
+            _MOVE_START_IN_A_MAZE
+            if world.cell_maze() is not None
+            else "move the [start] pose to open floor, farther from every wall than the robot's "
+            "radius"
+        )
         return f"{blocked}: {fix}"
     return None
+
+
+def refuse_blocked_start(world: World, name: str, robot: str | RobotProfile = "e-puck") -> None:
+    """Refuses a world, loaded from ``name`` (a built-in name or a world file), whose start pose
+    puts ``robot`` in or against a wall: one message for every command that loads a world, naming
+    the world, its file, the pose and what to change, before the simulator refuses it.
+
+    Raises:
+        InvalidArgumentError: :func:`blocked_start` finds the start blocked.
+    """
+    problem = blocked_start(world, robot)
+    if problem is not None:
+        raise InvalidArgumentError(f"world {world_source(world, name)}: {problem}")
+
+
+def world_source(world: World, name: str) -> str:
+    """The world and where it was loaded from, for messages: ``seed-maze`` for a built-in
+    world, ``'my-maze' (worlds/my-maze.toml)`` for a file."""
+    return name if name == world.name else f"{world.name!r} ({name})"
+
+
+#: The characters of a ``[grid]`` map: corners, walls, open sides, start and goal.
+_GRID_MAP_CHARACTERS = frozenset("+-| SG")
+
+
+def looks_like_grid_map(text: str) -> bool:
+    """Whether ``text`` is a maze drawn as a ``[grid]`` map (docs/world-format.md) and nothing
+    else: two rows or more of ``+``, ``-``, ``|``, spaces, ``S`` and ``G``, the first a row of
+    corners and walls (``+--+--+``)."""
+    rows = [row.rstrip() for row in text.strip("\n").splitlines()]
+    if len(rows) < 2 or not rows[0].lstrip().startswith("+-"):
+        return False
+    return all(set(row) <= _GRID_MAP_CHARACTERS for row in rows)
 
 
 def _cells_along(position: float, count: int) -> list[int]:

@@ -289,6 +289,60 @@ def test_eval_gets_random_meant_for_its_typo(tmp_path: Path) -> None:
     ), line
 
 
+def test_eval_gets_the_shipped_navigator_meant_for_its_typo(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    for typed, meant in (("randomized", "; did you mean 'randomised'?"), ("my-run", "")):
+        assert main(["eval", "--policy", typed, "--episodes", "1"]) == 2
+        line = capsys.readouterr().err.strip().splitlines()[-1]
+        assert line.endswith(f"('randomised'; without --policy, the seed-maze navigator){meant}"), (
+            line
+        )
+
+
+def _walled_in(start: str) -> str:
+    """A 2 x 2-cell world named walled-in whose [start] table is ``start``."""
+    rows = ["+--+--+", "|S    |", "+--+  +", "|G    |", "+--+--+"]
+    return (
+        'format = "mazesim-world"\nversion = 1\nname = "walled-in"\n'
+        f"[start]\n{start}\n[grid]\nmap = '''\n" + "\n".join(rows) + "\n'''\n"
+    )
+
+
+def test_every_command_names_the_world_file_whose_start_is_in_a_wall(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "walled.toml").write_text(_walled_in("x = 0.0\ny = 0.375"))
+    for command in (["demo"], ["demo", "--robot", "e-puck2"], ["barcode-study"], ["train"]):
+        assert main([*command, "--world", "walled.toml", "--out", "out"]) == 2
+        line = capsys.readouterr().err.strip().splitlines()[-1]
+        assert "world 'walled-in' (walled.toml): expected a start pose where the robot" in line
+        assert "found (0, 0.375, 0) with its centre" in line, line
+        assert line.endswith(
+            ": move the [start] pose to the middle of a cell, or put an S in a cell of the "
+            "[grid] map"
+        ), line
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_start_in_a_wall_of_a_world_without_cells_is_told_to_move_to_open_floor(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "pillar.toml").write_text(
+        'format = "mazesim-world"\nversion = 1\n[start]\nx = 0.5\ny = 0.5\n'
+        "[[walls]]\ncenter = [0.5, 0.5]\nsize = [0.2, 0.2]\n"
+    )
+    assert main(["demo", "--world", "pillar.toml", "--out", "out"]) == 2
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert "world 'pillar' (pillar.toml): expected a start pose" in line, line
+    assert line.endswith(
+        ": move the [start] pose to open floor, farther from every wall than the robot's radius"
+    ), line
+
+
 def test_sweep_without_ray_names_the_sequential_run(tmp_path: Path) -> None:
     shutil.copyfile(REPO / "examples" / "sweep.toml", tmp_path / "my sweep.toml")
     result = _mazesim_without("ray", ["sweep", "my sweep.toml"], tmp_path)

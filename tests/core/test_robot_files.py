@@ -74,7 +74,9 @@ def test_a_mistyped_profile_file_is_told_the_file_beside_it(
     with pytest.raises(UnknownNameError) as raised:
         Simulator(mazesim.load_world("seed-maze"), robot="slow-epuk.toml")
     said = str(raised.value)
-    assert said.startswith("no built-in robot profile named 'slow-epuk.toml' and no such file")
+    assert said.startswith(
+        f"no robot profile file 'slow-epuk.toml': there is no file 'slow-epuk.toml' in {tmp_path}"
+    )
     assert str(tmp_path) in said and "built-in robot profiles: alphabot2, e-puck" in said
     assert "a robot profile .toml file" in said and "to_toml()" in said
     assert said.endswith("did you mean 'slow-epuck.toml'?")

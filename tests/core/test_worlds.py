@@ -207,7 +207,7 @@ def test_a_folder_or_device_given_as_a_world_says_it_is_not_a_world_file(tmp_pat
     ):
         with pytest.raises(UnknownNameError, match=f"it is {kind}, not a world file"):
             mazesim.load_world(where)
-    with pytest.raises(UnknownNameError, match="and no such file"):
+    with pytest.raises(UnknownNameError, match="there is no file 'missing.toml' in the folder"):
         mazesim.load_world(tmp_path / "missing.toml")
 
 
@@ -217,7 +217,36 @@ def test_a_missing_relative_world_file_says_which_folder_it_was_looked_in(
     monkeypatch.chdir(tmp_path)
     with pytest.raises(UnknownNameError) as caught:
         mazesim.load_world("worlds/my-maze.toml")
-    assert f"and no such file or directory in {tmp_path}; built-in worlds" in str(caught.value)
+    assert str(caught.value).startswith(
+        f"no world file 'worlds/my-maze.toml': there is no folder 'worlds' in {tmp_path}; "
+        "built-in worlds: "
+    )
+
+
+def test_a_path_names_the_missing_folder_or_file_and_guesses_only_close_names(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "nostart.toml").write_text(mazesim.load_world("seed-maze").to_toml())
+    (tmp_path / "worlds").mkdir()
+    said = {}
+    for path in ("nothere/maze.toml", "nothere.toml", "worlds/maze.toml"):
+        with pytest.raises(UnknownNameError) as caught:
+            mazesim.load_world(path)
+        assert caught.value.suggestion is None, path
+        assert "did you mean" not in str(caught.value)
+        said[path] = str(caught.value).split("; built-in worlds")[0]
+    assert said == {
+        "nothere/maze.toml": f"no world file 'nothere/maze.toml': there is no folder 'nothere' in "
+        f"{tmp_path}",
+        "nothere.toml": f"no world file 'nothere.toml': there is no file 'nothere.toml' in "
+        f"{tmp_path}",
+        "worlds/maze.toml": "no world file 'worlds/maze.toml': there is no file 'maze.toml' in "
+        f"the folder 'worlds' in {tmp_path}",
+    }
+    # A built-in name given with a suffix is the name meant.
+    with pytest.raises(UnknownNameError, match="did you mean 'seed-maze'\\?$"):
+        mazesim.load_world("seed-maze.toml")
 
 
 @pytest.mark.parametrize(("name", "kind"), [("maze.json", "a .json file"), ("maze", "a file")])
@@ -235,6 +264,24 @@ def test_a_file_of_another_kind_says_which_files_are_worlds(
         + (")" if "json" in kind else " without an extension)")
     )
     assert caught.value.line == 1
+
+
+def test_a_maze_drawn_in_a_text_file_is_told_to_paste_it_into_a_world_file(
+    tmp_path: Path,
+) -> None:
+    drawn = tmp_path / "maze.txt"
+    drawn.write_text("+--+--+\n|S    |\n+--+  +\n|G    |\n+--+--+\n")
+    notes = tmp_path / "notes.txt"
+    notes.write_text("+-- a list\n| of notes\n")
+    with pytest.raises(WorldFormatError) as caught:
+        mazesim.load_world(drawn)
+    assert str(caught.value).endswith(
+        "found a .txt file); it holds a maze drawn as a [grid] map: paste it into a .toml world "
+        'file under [grid] map = """...""" (docs/own-maze.md shows such a file)'
+    )
+    with pytest.raises(WorldFormatError) as caught:
+        mazesim.load_world(notes)
+    assert str(caught.value).endswith("found a .txt file)")
 
 
 def test_core_unknown_builtin_name_lists_the_available_names() -> None:

@@ -203,8 +203,10 @@ def _table(title: str, key: str, tallies: list[Tally]) -> str:
 def run_barcode_study(args: argparse.Namespace, out: TextIO) -> int:
     """Runs the study, writes its files and prints the table or the JSON object."""
     from mazesim.barcode.charts import write_study_files
+    from mazesim.maze import refuse_blocked_start
 
     world = mazesim.load_world(args.world)
+    refuse_blocked_start(world, args.world)
     make_output_folder(args.out)
     started = time.perf_counter()
     with progress_display(args, unit="readings") as display:

@@ -139,10 +139,12 @@ def run_avoid_collision_demo(args: argparse.Namespace, out: TextIO) -> int:
     from mazesim._atomic import atomic_file
     from mazesim.cli.demo_robots import proximity_columns, run_robots_demo
     from mazesim.controllers import AvoidCollision
+    from mazesim.maze import refuse_blocked_start
     from mazesim.plotting import save_trajectory_png
     from mazesim.replay.views import SimulatorWatch, written_lines
 
     world = mazesim.load_world(args.world)
+    refuse_blocked_start(world, args.world, args.robot)
     simulator = mazesim.Simulator(world, robot=args.robot, seed=args.seed)
     seconds = DEFAULT_SECONDS if args.seconds is None else args.seconds
     if simulator.num_robots > 1:

@@ -127,10 +127,12 @@ def _run_avoid_collision(args: argparse.Namespace) -> int:
 def _run_demo(args: argparse.Namespace) -> int:
     import mazesim
     from mazesim._paths import output_files, refuse_overwriting_inputs
+    from mazesim.maze import refuse_blocked_start
     from mazesim.ros2.demo import run_demo
 
     refuse_overwriting_inputs(output_files(args.out, ("bag",)), [("--world", args.world)])
     world = mazesim.load_world(args.world)  # a bad world fails here, before any process starts
+    refuse_blocked_start(world, args.world)
     if len(world.robots) > 1:
         raise InvalidArgumentError(
             f"mazesim ros2 demo drives one robot; world {world.name!r} holds "

@@ -64,7 +64,7 @@ import numpy.typing as npt
 from mazesim._atomic import atomic_file, remove_stale_temporaries
 from mazesim._paths import make_output_folder, read_input
 from mazesim.actions import ACTION_CODES, WHEEL_SPEED_FRACTIONS
-from mazesim.errors import InvalidArgumentError, MazesimIOError, PolicyFormatError
+from mazesim.errors import InvalidArgumentError, MazesimIOError, PolicyFormatError, _closest_name
 from mazesim.learn.discretise import LEVEL_EDGES_CM, NUM_STATES, SENSOR_ORDER, SHARP_TABLE
 from mazesim.learn.higher import event_state_names
 from mazesim.learn.lower import LowerTables, lower_table_shape
@@ -689,10 +689,13 @@ def load_policy(folder: str | os.PathLike[str] | None = None) -> TrainedPolicy:
     if not path.exists():
         where = "" if path.is_absolute() else f" in {os.getcwd()}"
         shipped = ", ".join(repr(name) for name in SHIPPED_NAVIGATORS)
+        meant = (
+            _closest_name(str(path), list(SHIPPED_NAVIGATORS)) if path.name == str(path) else None
+        )
         raise PolicyFormatError(
             f"{meta_path}: no such file: there is no folder {str(path)!r}{where}; a navigator is "
             f"the folder 'mazesim train --out DIR' writes, or a shipped one ({shipped}; without "
-            "--policy, the seed-maze navigator)"
+            "--policy, the seed-maze navigator)" + (f"; did you mean {meant!r}?" if meant else "")
         )
     if not meta_path.exists() and checkpoint_exists(path):
         raise PolicyFormatError(

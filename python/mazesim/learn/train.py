@@ -57,7 +57,7 @@ from mazesim.learn.lower import (
 )
 from mazesim.learn.summary import summarise
 from mazesim.learn.tables import TrainedPolicy
-from mazesim.maze import checkpoint_ids, world_hash
+from mazesim.maze import checkpoint_ids, refuse_blocked_start, world_hash, world_source
 
 __all__ = [
     "CHECKPOINT_FORMAT",
@@ -323,16 +323,17 @@ def navigator_world(name: str) -> World:
 def refuse_unlearnable(world: World, name: str, verb: str = "learn") -> None:
     """Refuses a world the navigator cannot learn or drive, loaded from ``name`` (a built-in
     name or a world file): one message for ``mazesim train``, ``eval --world`` and ``demo
-    --controller hrl``, naming the world, its file and what to change.
+    --controller hrl``, naming the world, its file and what to change. A start pose in a wall is
+    refused first, as every command refuses it (:func:`mazesim.maze.refuse_blocked_start`).
 
     Raises:
         InvalidArgumentError: :func:`mazesim.episodes.learning_problems` finds a problem.
     """
+    refuse_blocked_start(world, name)
     problems = learning_problems(world, show_command=f"mazesim show {name}")
     if problems:
-        shown = name if name == world.name else f"{world.name!r} ({name})"
         raise InvalidArgumentError(
-            f"the navigator cannot {verb} world {shown}: " + "; ".join(problems)
+            f"the navigator cannot {verb} world {world_source(world, name)}: " + "; ".join(problems)
         )
 
 
