@@ -70,6 +70,19 @@ def test_worlds_exports_a_builtin_world_to_edit_and_keeps_an_existing_file(
     assert not (tmp_path / "x.toml").exists() and not (tmp_path / "y.toml").exists()
 
 
+def test_worlds_exported_to_stdout_pipes_a_world_file_alone(tmp_path: Path) -> None:
+    import mazesim
+
+    result = mazesim_command(
+        "worlds", "--export", "arena", "--out", "/dev/stdout", "--force", cwd=tmp_path
+    )
+    assert result.returncode == 0, result.stderr
+    piped = tmp_path / "piped.toml"
+    piped.write_text(result.stdout)
+    assert mazesim.load_world(str(piped)) == mazesim.World.builtin("arena")
+    assert "wrote /dev/stdout" in result.stderr
+
+
 def test_help_names_the_commands(tmp_path: Path) -> None:
     result = mazesim_command("--help", cwd=tmp_path)
     assert result.returncode == 0

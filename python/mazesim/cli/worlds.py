@@ -57,7 +57,12 @@ def _run(args: argparse.Namespace) -> int:
     name = args.export
     file = args.out if args.out is not None else f"{name}.toml"
     export_world(name, file, force=args.force)
-    print(f"wrote {file} (the built-in world {name}); edit it, then: mazesim show {file}")
+    # Into a device or a pipe (``--out /dev/stdout``) the world is the output: the status line
+    # goes to stderr so that what is piped on stays a world file.
+    status = sys.stdout if os.path.isfile(file) else sys.stderr
+    print(
+        f"wrote {file} (the built-in world {name}); edit it, then: mazesim show {file}", file=status
+    )
     return 0
 
 
