@@ -158,9 +158,15 @@ fn malformed_input_names_line_and_column() {
             1,
         ),
         (
+            "#VRML_SIM R2023b utf8\nSolid { translation 1 2 3 } ]\n",
+            2,
+            29,
+        ),
+        // A translation short of a number is refused where its third number should be.
+        (
             "#VRML_SIM R2023b utf8\nSolid { translation 1 2 } ]\n",
             2,
-            27,
+            25,
         ),
         ("#VRML_SIM R2023b utf8\nSolid { name \"open\n", 2, 14),
         ("#VRML_SIM R2023b utf8\nSolid { size 1..2 }\n", 2, 14),
