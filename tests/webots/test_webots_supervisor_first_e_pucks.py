@@ -34,7 +34,10 @@ def test_a_supervisor_alone_imports_the_worlds_first_e_pucks_which_then_drive(
     for name in ("new-a", "new-b"):
         log = json.loads((tmp_path / f"{name}.json").read_text())
         assert log["first_step_time"] == pytest.approx((IMPORT_STEP + 1) * STEP_S)
-        assert log["steps"] == 90 and not log["ended"]
+        # The run's 3 s are world time (94 steps of 32 ms), as Webots' one clock: an e-puck
+        # imported at step 5 has the 89 steps left, not 3 s of its own from its import.
+        assert log["steps"] == 89 and log["ended"]
+    assert run.steps == 94
     # Each drives ahead from where it was put (new-b faces -x).
     assert new_a.xs[0] == pytest.approx(-0.6) and new_a.final_pose[0] > -0.6 + 0.2
     assert new_b.xs[0] == pytest.approx(0.2) and new_b.final_pose[0] < 0.2 - 0.2

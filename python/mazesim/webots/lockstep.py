@@ -521,9 +521,13 @@ def run_world(
     )
 
     def joined(index: int) -> tuple[RobotRun, ControllerJob | None]:
-        """The run and controller job of robot ``index``, which a supervisor imported."""
-        run, job = _robot_run(world_path, index, robots[index], controllers or {}, seconds, noise)
-        run.imported_s = float(simulators[index].time)
+        """The run and controller job of robot ``index``, which a supervisor imported: its
+        controller has what is left of the run's ``seconds`` of world time, as Webots' one
+        simulation clock ends every robot's run together."""
+        imported_s = float(simulators[index].time)
+        left = max(seconds - imported_s, 1e-9)
+        run, job = _robot_run(world_path, index, robots[index], controllers or {}, left, noise)
+        run.imported_s = imported_s
         robot, text = robots[index], fleet.text or ""  # the world as the import changed it
         traction.join(index, robot, read_scene(text, robot.get("model"), robot["line"]))
         if job is None:

@@ -131,8 +131,9 @@ pub struct Importer<'d> {
     pub robot: Option<FoundRobot>,
     /// The first robot that is not an e-puck: the e-puck stands in for it when there is none.
     pub other_robot: Option<FoundRobot>,
-    /// Where its warning is in `warnings`, and what the warning says of it (`line L: Type`).
-    other_robot_warning: Option<(usize, String)>,
+    /// Where its warning is in `warnings`, and what the warning says of it (`line L: Type`,
+    /// its type, whether it has collision shapes).
+    other_robot_warning: Option<(usize, String, String, bool)>,
     /// Every robot of the world, in file order, with the collision shapes (and their colours)
     /// of those that are not e-pucks (kept as static obstacles unless the e-puck stands in for
     /// that robot) and the lines of the nodes that hold each shape.
@@ -260,10 +261,10 @@ fn walk<'d>(
 
 /// The import a walk gives, with the world's basic time step.
 fn finish((mut importer, basic_time_step_ms): (Importer<'_>, f64)) -> WbtImport {
-    if let (Some(_), Some((index, what))) = (&importer.robot, &importer.other_robot_warning) {
-        importer.warnings[*index] = format!(
-            "{what}: a robot that is not an e-puck: its controller runs, its body does not move; its collision shapes (those of a plain Robot node) are static obstacles"
-        );
+    if let (Some(_), Some((index, label, kind, shaped))) =
+        (&importer.robot, &importer.other_robot_warning)
+    {
+        importer.warnings[*index] = not_an_epuck(label, kind, NotAnEpuck::Kept { shaped: *shaped });
     }
     let robot = importer.robot.take().or(importer.other_robot.take());
     let stand_in_line = robot
@@ -699,7 +700,10 @@ impl<'d> Importer<'d> {
     }
 
     /// A raw robot node counts as an e-puck when its name or model says so, or when it carries
-    /// the e-puck's proximity sensor `ps0`.
+    /// the e-puck's proximity sensor `ps0` or its two wheel motors (`RotationalMotor`s named
+    /// `left wheel motor` and `right wheel motor`, as a two-wheeled robot built by hand in
+    /// Webots' own example worlds has). Every run decides by this one test, whether it runs the
+    /// whole world or one controller.
     fn looks_like_epuck(&self, node: &'d Node) -> bool {
         let says = |field: &str| {
             self.strings(node, field).iter().any(|s| {
@@ -712,12 +716,20 @@ impl<'d> Importer<'d> {
         }
         let mut stack: Vec<NodeId> = self.nodes(node, "children").to_vec();
         let mut budget = 10_000usize;
+        let mut wheels = [false; 2];
         while let (Some(id), true) = (stack.pop(), budget > 0) {
             budget -= 1;
             let n = self.node(id);
-            if n.type_name == "DistanceSensor" && self.strings(n, "name").iter().any(|s| s == "ps0")
-            {
+            let named = |name: &str| self.strings(n, "name").iter().any(|s| s == name);
+            if n.type_name == "DistanceSensor" && named("ps0") {
                 return true;
+            }
+            if n.type_name == "RotationalMotor" {
+                wheels[0] |= named("left wheel motor");
+                wheels[1] |= named("right wheel motor");
+                if wheels == [true; 2] {
+                    return true;
+                }
             }
             for field in &n.fields {
                 stack.extend(field.value.nodes.iter().copied());
@@ -852,35 +864,24 @@ impl<'d> Importer<'d> {
             line: node.line,
         };
         let shapes = self.robot_shapes(node, frame, &label);
-        let kept = if shapes.0.is_empty() {
-            "it has no collision shape mazesim reads (a PROTO's are inside the PROTO), so it is no obstacle"
-        } else {
-            "its collision shapes are static obstacles"
-        };
+        let shaped = !shapes.0.is_empty();
         self.list_robot(node, &found, None, shapes);
+        let kind = node.type_name.as_str();
         if self.chosen.is_some_and(|chosen| std::ptr::eq(chosen, node)) {
             // The robot of the run: its controller runs on a robot that stays where it is.
-            self.warn(format!(
-                "{label}: a robot that is not an e-puck ({}): its controller runs, its body does not move; its devices are those of its children",
-                node.type_name
-            ));
+            self.warn(not_an_epuck(&label, kind, NotAnEpuck::Chosen));
             self.robot = Some(found);
             self.robot_children(node, false);
             return;
         }
         if self.robot.is_some() || self.other_robot_warning.is_some() || self.chosen.is_some() {
-            self.warn(format!(
-                "{label}: a robot that is not an e-puck ({}): its controller runs, its body does not move; {kept}",
-                node.type_name
-            ));
+            self.warn(not_an_epuck(&label, kind, NotAnEpuck::Kept { shaped }));
             return;
         }
         // Said again at the end if the world's e-puck comes later.
-        self.other_robot_warning = Some((self.warnings.len(), label.clone()));
-        self.warn(format!(
-            "{label}: a robot that is not an e-puck ({}): mazesim simulates the e-puck in its place, at its pose; its own body, wheels and devices are not imported",
-            node.type_name
-        ));
+        let index = self.warnings.len();
+        self.other_robot_warning = Some((index, label.clone(), kind.to_string(), shaped));
+        self.warn(not_an_epuck(&label, kind, NotAnEpuck::StandIn));
         self.other_robot = Some(found);
     }
 
@@ -937,4 +938,28 @@ impl<'d> Importer<'d> {
         }
         Some([snap(x), snap(y), snap(yaw)])
     }
+}
+
+/// What a run does with a robot node that is not an e-puck (see [`not_an_epuck`]).
+enum NotAnEpuck {
+    /// The robot of a run of its controller alone.
+    Chosen,
+    /// The first robot of a world without an e-puck: a run of one controller simulates the
+    /// e-puck at its pose; a run of the whole world does not.
+    StandIn,
+    /// Any other: its controller runs on a body that does not move; `shaped` when it has
+    /// collision shapes mazesim reads (static obstacles then).
+    Kept { shaped: bool },
+}
+
+/// The warning of a robot node that is not an e-puck, saying what the run does with it: the one
+/// place that words it.
+fn not_an_epuck(label: &str, kind: &str, what: NotAnEpuck) -> String {
+    let does = match what {
+        NotAnEpuck::Chosen => "its controller runs, its body does not move; its devices are those of its children",
+        NotAnEpuck::StandIn => "a run of one controller simulates the e-puck in its place, at its pose, its own body, wheels and devices not imported; a run of the whole world simulates nothing in its place: its controller runs, its body does not move",
+        NotAnEpuck::Kept { shaped: true } => "its controller runs, its body does not move; its collision shapes are static obstacles",
+        NotAnEpuck::Kept { shaped: false } => "its controller runs, its body does not move; it has no collision shape mazesim reads (a PROTO's are inside the PROTO), so it is no obstacle",
+    };
+    format!("{label}: a robot that is not an e-puck ({kind}): {does}")
 }

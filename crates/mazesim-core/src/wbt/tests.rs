@@ -110,7 +110,7 @@ fn a_known_robot_proto_without_a_controller_field_is_a_robot() {
     assert_eq!(w.robot_line, Some(3));
     assert!(warned(
         &w,
-        "line 2: Pioneer3dx: a robot that is not an e-puck: its controller runs, its body does not move"
+        "line 2: Pioneer3dx: a robot that is not an e-puck (Pioneer3dx): its controller runs, its body does not move; it has no collision shape"
     ));
     assert!(!warned(&w, "in its place"), "{:?}", w.warnings);
     let alone =
@@ -119,7 +119,46 @@ fn a_known_robot_proto_without_a_controller_field_is_a_robot() {
     assert_eq!(alone.robot_model.as_deref(), Some("Pioneer3dx"));
     assert_eq!(alone.robot_line, Some(2));
     assert_eq!(alone.robot_profile, "e-puck");
-    assert!(warned(&alone, "mazesim simulates the e-puck in its place"));
+    assert!(warned(
+        &alone,
+        "a run of one controller simulates the e-puck in its place"
+    ));
+}
+
+/// A two-wheeled robot built by hand as in Webots' own example worlds: Solid children, two
+/// HingeJoints whose RotationalMotors have the e-puck's names, sensors of its own names.
+const HAND_BUILT: &str = "Robot { translation 0.1 0.2 0 name \"robot1\" controller \"slave\"\n\
+    children [ HingeJoint { device [ RotationalMotor { name \"left wheel motor\" } ]\n\
+      endPoint Solid { translation 0 0.045 0.025 } }\n\
+    HingeJoint { device [ RotationalMotor { name \"right wheel motor\" } ]\n\
+      endPoint Solid { translation 0 -0.045 0.025 } }\n\
+    DistanceSensor { name \"ds0\" } ]\n\
+  boundingObject Cylinder { height 0.08 radius 0.045 } }\n";
+
+#[test]
+fn a_robot_built_by_hand_with_the_e_puck_s_wheel_motors_is_an_e_puck_in_every_run() {
+    let text = format!("#VRML_SIM R2021c utf8\n{HAND_BUILT}Robot {{ name \"Driver\" controller \"driver\" supervisor TRUE }}\n");
+    // The whole world's import and the run of its controller alone decide alike.
+    let whole = import(&text);
+    let alone = WbtImport::from_text_for(&text, "test.wbt", Some("slave")).unwrap();
+    for w in [&whole, &alone] {
+        assert_eq!(w.robot_model.as_deref(), Some("E-puck"), "{:?}", w.warnings);
+        assert_eq!(w.robots[0].profile, Some("e-puck"));
+        assert_eq!(w.robots[1].profile, None);
+        assert!(!warned(w, "in its place"), "{:?}", w.warnings);
+        assert!(warned(w, "line 9: Robot \"Driver\": a robot that is not an e-puck (Robot): its controller runs, its body does not move; it has no collision shape"), "{:?}", w.warnings);
+    }
+    // One wheel motor of that name is not enough.
+    let one = text.replacen("right wheel motor", "arm motor", 1);
+    assert_eq!(import(&one).robots[0].profile, None);
+}
+
+#[test]
+fn a_bodiless_supervisor_alone_is_told_apart_by_run() {
+    let w = import(
+        "#VRML_SIM R2025a utf8\nRobot { name \"boss\" controller \"spawn\" supervisor TRUE }\n",
+    );
+    assert!(warned(&w, "line 2: Robot \"boss\": a robot that is not an e-puck (Robot): a run of one controller simulates the e-puck in its place, at its pose, its own body, wheels and devices not imported; a run of the whole world simulates nothing in its place: its controller runs, its body does not move"), "{:?}", w.warnings);
 }
 
 #[test]
@@ -144,7 +183,7 @@ fn what_is_not_understood_is_reported_not_fatal() {
         "line 9: Solid: an object with physics: imported as a static obstacle",
         "line 10: WoodenBox: an object with physics: imported as a static obstacle",
         "USE NOPE",
-        "\"pioneer\": a robot that is not an e-puck (Robot): mazesim simulates the e-puck in its place",
+        "\"pioneer\": a robot that is not an e-puck (Robot): a run of one controller simulates the e-puck in its place",
     ] {
         assert!(
             warned(&w, words),
