@@ -114,6 +114,22 @@ def test_a_packet_sent_before_a_step_is_in_the_queue_after_it() -> None:
     assert receiver.getQueueLength() == 0
 
 
+def test_a_packet_of_another_type_is_refused_naming_the_kinds_sent() -> None:
+    """``send`` takes str, bytes or a sequence of numbers (a numpy array too); anything else is
+    a WrongTypeError naming what was found, not a TypeError from inside the packing."""
+    import numpy as np
+
+    import mazesim
+
+    pair = RadioPair()
+    emitter = Emitter("emitter", pair.robots[0])
+    for bad, found in ((None, "found None"), (12, "found an int"), (["a"], "found a list")):
+        with pytest.raises(mazesim.WrongTypeError, match=found) as refused:
+            emitter.send(bad)
+        assert "str, bytes or a list of numbers" in str(refused.value)
+    assert emitter.send(np.array([1.0, 2.0], dtype=np.float32)) == 1
+
+
 def test_a_list_of_numbers_is_read_back_as_floats_ints_or_bools() -> None:
     """Webots' Python Receiver reads a packet as doubles (``getFloats``, what ``Emitter.send``
     of a list of numbers sends), 4-byte ints (``getInts``) or booleans (``getBools``)."""

@@ -27,7 +27,7 @@ from collections import deque
 from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, WrongTypeError, _a_type
 from mazesim.webots.devices import Device, _print_error, _Sensor, webots_property
 from mazesim.webots.frames import ENU_TO_NUE, Axes, axes_or_none
 from mazesim.webots.inert import NotSimulated
@@ -68,7 +68,13 @@ def _packet_bytes(message: Any, length: int | None) -> bytes:
     elif isinstance(message, (bytes, bytearray, memoryview)):
         data = bytes(message)
     else:
-        data = struct.pack(f"{len(message)}d", *(float(v) for v in message))
+        try:  # a list of numbers (or any sequence of them: a numpy array, a tuple)
+            data = struct.pack(f"{len(message)}d", *(float(v) for v in message))
+        except (TypeError, ValueError):
+            raise WrongTypeError(
+                "expected an Emitter packet as str, bytes or a list of numbers, found "
+                f"{_a_type(message)}"
+            ) from None
     return data if length is None else data[: max(0, int(length))]
 
 
