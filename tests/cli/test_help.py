@@ -13,6 +13,7 @@ from collections.abc import Iterator
 import pytest
 
 from mazesim.cli import COMMANDS, build_parser
+from mazesim.cli._args import output_path, seed_argument
 from mazesim.cli._help import HelpFormatter, examples
 
 #: Commands whose parsers read their defaults from the learning modules (not yet import-light).
@@ -77,6 +78,16 @@ def test_every_default_is_shown(command: str) -> None:
         and "default" not in (action.help or "")
     ]
     assert unshown == []
+
+
+@pytest.mark.parametrize("command", sorted(LEAVES))
+def test_an_output_folder_is_said_to_be_made_and_a_seed_is_checked(command: str) -> None:
+    for action in LEAVES[command]._actions:
+        if "--out" in action.option_strings and action.metavar == "DIR":
+            assert action.type is output_path
+            assert ", created if missing (default: %(default)s)" in (action.help or "")
+        if "--seed" in action.option_strings:
+            assert action.type is seed_argument
 
 
 @pytest.mark.parametrize("command", sorted(LEAVES))

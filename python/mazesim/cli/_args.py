@@ -19,6 +19,8 @@ from mazesim.errors import _closest_name
 
 __all__ = [
     "MAX_COUNT",
+    "add_out_folder",
+    "add_seed_option",
     "add_setting_options",
     "MAX_NUMBER",
     "MAX_SECONDS",
@@ -133,6 +135,20 @@ def seed_argument(text: str) -> int:
     if value < 0 or value >= 2**64:
         raise argparse.ArgumentTypeError(f"expected a seed in [0, 2^64), found {text!r}")
     return value
+
+
+def add_seed_option(parser: argparse.ArgumentParser, seeded: str, metavar: str = "N") -> None:
+    """Adds ``--seed`` (:func:`seed_argument`, 0 by default), the seed of ``seeded``."""
+    help_text = f"seed of {seeded} (default: %(default)s)"
+    parser.add_argument("--seed", type=seed_argument, default=0, metavar=metavar, help=help_text)
+
+
+def add_out_folder(parser: argparse.ArgumentParser, default: str, holding: str = "") -> None:
+    """Adds ``--out DIR`` (:func:`output_path`), the output folder, created if missing, which
+    holds ``holding`` (said in the help when given)."""
+    what = f"folder for {holding}" if holding else "output folder"
+    help_text = f"{what}, created if missing (default: %(default)s)"
+    parser.add_argument("--out", type=output_path, default=default, metavar="DIR", help=help_text)
 
 
 def add_setting_options(

@@ -29,7 +29,7 @@ from mazesim.barcode.study import (
     Tally,
     run_study,
 )
-from mazesim.cli._args import name_list, output_path, positive_int, seed_argument
+from mazesim.cli._args import add_out_folder, add_seed_option, name_list, positive_int
 from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
 
@@ -162,20 +162,8 @@ def register(commands: Any) -> None:
         metavar="N",
         help="robots wandering at once in the batch engine (default: %(default)s)",
     )
-    parser.add_argument(
-        "--seed",
-        type=seed_argument,
-        default=0,
-        metavar="N",
-        help="seed of the start poses, sensor noise and turning choices (default: %(default)s)",
-    )
-    parser.add_argument(
-        "--out",
-        type=output_path,
-        default="mazesim-barcode-study",
-        metavar="DIR",
-        help="folder for the CSV tables and charts, created if missing (default: %(default)s)",
-    )
+    add_seed_option(parser, "the start poses, sensor noise and turning choices")
+    add_out_folder(parser, "mazesim-barcode-study", "the CSV tables and charts")
     parser.add_argument(
         "--json",
         action="store_true",

@@ -18,7 +18,7 @@ import time
 from typing import Any, TextIO
 
 from mazesim._paths import make_output_folder, output_files, refuse_overwriting_inputs
-from mazesim.cli._args import output_path, positive_seconds, seed_argument
+from mazesim.cli._args import add_out_folder, add_seed_option, positive_seconds
 from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
 from mazesim.replay.views import add_viewing_options, viewing_outputs
@@ -80,21 +80,8 @@ def register(commands: Any) -> None:
         help=f"simulated seconds to run (default: {DEFAULT_SECONDS:.0f}; with --controller hrl: "
         f"{HRL_DEFAULT_SECONDS:.0f}, the 4,000 control steps an evaluation episode may take)",
     )
-    demo.add_argument(
-        "--seed",
-        type=seed_argument,
-        default=0,
-        metavar="N",
-        help="seed of the sensor noise (default: %(default)s)",
-    )
-    demo.add_argument(
-        "--out",
-        type=output_path,
-        default="mazesim-demo",
-        metavar="DIR",
-        help="folder for trajectory.png and summary.json, created if missing "
-        "(default: %(default)s)",
-    )
+    add_seed_option(demo, "the sensor noise")
+    add_out_folder(demo, "mazesim-demo", "trajectory.png and summary.json")
     demo.add_argument(
         "--robot",
         default="e-puck",

@@ -14,8 +14,8 @@ import sys
 from collections.abc import Sequence
 from typing import Any, TextIO
 
-from mazesim._paths import output_files, output_path, refuse_overwriting_inputs
-from mazesim.cli._args import positive_int
+from mazesim._paths import output_files, refuse_overwriting_inputs
+from mazesim.cli._args import add_out_folder, positive_int
 from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
 from mazesim.distributed.config import PARAMETERS, TRAINER_DEFAULTS, load_sweep_config
@@ -67,13 +67,7 @@ def register(commands: Any) -> None:
         help="a running Ray cluster: 'auto', HOST:6379 or ray://HOST:10001; or 'local' "
         "(the default: start a local Ray instance)",
     )
-    parser.add_argument(
-        "--out",
-        type=output_path,
-        default="mazesim-sweep",
-        metavar="DIR",
-        help="output folder, created if missing (default: %(default)s)",
-    )
+    add_out_folder(parser, "mazesim-sweep")
     parser.add_argument(
         "--cpus",
         type=positive_int,

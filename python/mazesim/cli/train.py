@@ -14,8 +14,8 @@ import time
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, TextIO
 
-from mazesim._paths import output_files, output_path, refuse_overwriting_inputs, writing_alone
-from mazesim.cli._args import add_setting_options, positive_int, seed_argument
+from mazesim._paths import output_files, refuse_overwriting_inputs, writing_alone
+from mazesim.cli._args import add_out_folder, add_setting_options, positive_int, seed_argument
 from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
 from mazesim.errors import InvalidArgumentError
@@ -84,13 +84,7 @@ def register(commands: Any) -> None:
     )
     option_types = {"envs": positive_int, "steps": step_count, "seed": seed_argument}
     add_setting_options(train, defaults, option_types)
-    train.add_argument(
-        "--out",
-        type=output_path,
-        default=DEFAULT_OUT,
-        metavar="DIR",
-        help="folder for the checkpoint and the navigator (default: %(default)s)",
-    )
+    add_out_folder(train, DEFAULT_OUT, "the checkpoint and the navigator")
     train.add_argument(
         "--resume",
         action="store_true",

@@ -15,11 +15,11 @@ from typing import Any, TextIO
 
 from mazesim._paths import make_output_folder
 from mazesim.cli._args import (
+    add_out_folder,
+    add_seed_option,
     name_list,
     non_negative_int,
-    output_path,
     positive_int,
-    seed_argument,
 )
 from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
@@ -114,13 +114,8 @@ def register(commands: Any) -> None:
         metavar="N",
         help="control steps (64 ms) after which an episode fails (default: 2000)",
     )
-    parser.add_argument(
-        "--seed",
-        type=seed_argument,
-        default=0,
-        metavar="S",
-        help="seed of the episodes' start jitter and sensor noise and of the link's wake-ups "
-        "(default: %(default)s)",
+    add_seed_option(
+        parser, "the episodes' start jitter and sensor noise and of the link's wake-ups", "S"
     )
     parser.add_argument(
         "--threads",
@@ -129,14 +124,7 @@ def register(commands: Any) -> None:
         metavar="T",
         help="worker threads of the batch; results do not depend on it (default: 0 = all cores)",
     )
-    parser.add_argument(
-        "--out",
-        type=output_path,
-        default="mazesim-transfer-study",
-        metavar="DIR",
-        help="folder for transfer.json and the heat maps, created if missing "
-        "(default: %(default)s)",
-    )
+    add_out_folder(parser, "mazesim-transfer-study", "transfer.json and the heat maps")
     parser.add_argument(
         "--json",
         action="store_true",

@@ -17,7 +17,7 @@ from mazesim._paths import (
     output_path,
     refuse_overwriting_inputs,
 )
-from mazesim.cli._args import positive_seconds, seed_argument
+from mazesim.cli._args import add_out_folder, add_seed_option, positive_seconds
 from mazesim.cli._help import examples
 from mazesim.cli.progress import ProgressDisplay, add_progress_option, progress_display
 from mazesim.errors import InvalidArgumentError
@@ -133,21 +133,8 @@ def register(commands: Any) -> None:
         metavar="S",
         help="simulated seconds before robot.step returns -1 (default: %(default)s)",
     )
-    run.add_argument(
-        "--seed",
-        type=seed_argument,
-        default=0,
-        metavar="N",
-        help="seed of the sensor noise (default: %(default)s)",
-    )
-    run.add_argument(
-        "--out",
-        type=output_path,
-        default="mazesim-webots",
-        metavar="DIR",
-        help="folder for trajectory.png, summary.json and trajectory.csv, created if missing "
-        "(default: %(default)s)",
-    )
+    add_seed_option(run, "the sensor noise")
+    add_out_folder(run, "mazesim-webots", "trajectory.png, summary.json and trajectory.csv")
     run.add_argument("--no-noise", action="store_true", help="noise-free sensors")
     add_viewing_options(run, live=True)
     run.add_argument(
