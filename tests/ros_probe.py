@@ -7,6 +7,9 @@ environment) and read its standard output.
     ros_probe.py drive-from-second COMMANDS_JSON
                                        the same, leaving the first state unanswered (as a
                                        controller that answers only its second message)
+    ros_probe.py drive-after-sleep COMMANDS_JSON
+                                       the same, after a rospy.sleep(0.5) on simulated time
+                                       before the first command (as teleop_twist_keyboard)
     ros_probe.py listen SECONDS        record what the bridge publishes for SECONDS (wall clock)
     ros_probe.py count TOPIC N         receive N messages of TOPIC (e.g. from rosbag play)
     ros_probe.py standard TWISTS_JSON  publish each [linear.x, angular.z] on cmd_vel, keep the
@@ -98,9 +101,12 @@ def wait_for_connection(pub: Any) -> None:
         time.sleep(0.01)
 
 
-def drive(commands: list[dict[str, Any]], first_answered: int = 1) -> dict[str, Any]:
+def drive(
+    commands: list[dict[str, Any]], first_answered: int = 1, sleep_s: float = 0.0
+) -> dict[str, Any]:
     """Publishes the commands, each after the state before it; ``first_answered`` is the state
-    message the first command answers (2: the reset state must come twice)."""
+    message the first command answers (2: the reset state must come twice); ``sleep_s``, a
+    ``rospy.sleep`` before the first command."""
     motor = publisher("motor", Float64MultiArray)
     action = publisher("action", String)
     wait_for_connection(motor)
@@ -111,6 +117,10 @@ def drive(commands: list[dict[str, Any]], first_answered: int = 1) -> dict[str, 
     recorder = Recorder(topics)
     expected = first_answered  # the latched state before the first command
     recorder.wait_for(dict.fromkeys(topics, expected))
+    if sleep_s:
+        if rospy.rostime.is_wallclock():
+            raise SystemExit("expected /use_sim_time: rospy.sleep would not wait for /clock")
+        rospy.sleep(sleep_s)
     for command in commands:
         if command["topic"] == "motor":
             motor.publish(Float64MultiArray(data=command["data"]))
@@ -242,9 +252,13 @@ def main() -> int:
     mode = sys.argv[1]
     rospy.init_node("ros_probe", anonymous=True, disable_signals=True)
     try:
-        if mode in ("drive", "drive-from-second"):
+        if mode in ("drive", "drive-from-second", "drive-after-sleep"):
             with open(sys.argv[2]) as handle:
-                result = drive(json.load(handle), 2 if mode == "drive-from-second" else 1)
+                result = drive(
+                    json.load(handle),
+                    2 if mode == "drive-from-second" else 1,
+                    0.5 if mode == "drive-after-sleep" else 0.0,
+                )
         elif mode == "listen":
             recorder = Recorder(STATE_TOPICS)
             time.sleep(float(sys.argv[2]))

@@ -191,6 +191,43 @@ def test_hrl_demo_refuses_a_world_its_tables_do_not_know(
     assert not out.exists()  # refused before starting anything
 
 
+def test_the_demos_take_a_robot_profile_file_with_the_sensors_their_node_reads(
+    tmp_path: Path,
+) -> None:
+    # mazesim ros demo ran the built-in seed or e-puck only, where every other command's --robot
+    # takes a profile file too.
+    epuck = tmp_path / "my-epuck.toml"
+    epuck.write_text(mazesim.RobotProfile.builtin("e-puck").to_toml())
+    seed = tmp_path / "my-seed.toml"
+    seed.write_text(mazesim.RobotProfile.builtin("seed").to_toml())
+    assert topics.demo_robot("hrl", None) == "seed"
+    assert topics.demo_robot("avoid-collision", None) == "e-puck"
+    assert topics.demo_robot("avoid-collision", str(epuck)) == str(epuck.resolve())
+    assert topics.demo_robot("hrl", str(seed)) == str(seed.resolve())
+    assert topics.demo_robot("avoid-collision", "e-puck2") == "e-puck2"
+    with pytest.raises(InvalidArgumentError, match=r"six Sharp distance sensors.*ps0, ps1"):
+        topics.demo_robot("hrl", str(epuck))
+    with pytest.raises(InvalidArgumentError, match=r"ps0-ps7.*front, back"):
+        topics.demo_robot("avoid-collision", str(seed))
+    with pytest.raises(MazesimError):
+        topics.demo_robot("hrl", str(tmp_path / "missing.toml"))
+
+
+@needs_ros
+def test_ros_demo_runs_a_robot_profile_file(tmp_path: Path) -> None:
+    profile = tmp_path / "my-epuck.toml"
+    profile.write_text(mazesim.RobotProfile.builtin("e-puck").to_toml())
+    out = tmp_path / "demo"
+    result = subprocess.run(
+        [*MAZESIM, "ros", "demo", "--controller", "avoid-collision", "--robot", str(profile),
+         "--world", "arena", "--seconds", "2", "--out", str(out)],
+        capture_output=True, text=True, timeout=120, check=False,
+    )  # fmt: skip
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert "62 control steps" in result.stdout or "63 control steps" in result.stdout, result.stdout
+    assert (out / "maze.bag").exists()
+
+
 def test_node_without_rospy_fails_with_one_clear_line() -> None:
     code = (
         "import sys\n"
@@ -369,6 +406,28 @@ def test_lockstep_trajectory_equals_in_process_simulator(
     assert seen["data"]["pose"] == expected["pose"][:1] * again + expected["pose"]  # bit for bit
     assert seen["data"]["sensors"] == expected["sensors"][:1] * again + expected["sensors"]
     assert seen["labels"]["sensors"] == EPUCK_SENSORS
+
+
+@needs_ros
+def test_a_controller_that_sleeps_on_simulated_time_first_starts_in_lockstep(
+    master: LocalMaster, tmp_path: Path
+) -> None:
+    # teleop_twist_keyboard looks for a subscriber, rospy.sleep(0.5) between looks: on the
+    # simulated time the bridge sets, in lockstep, that sleep never ended. /clock now runs on its
+    # own once the reset state sent again goes unanswered, the simulator standing still: the
+    # run is the in-process run, bit for bit, its clock a whole number of steps later.
+    master.set_param("/use_sim_time", True)
+    commands = motor_commands(40, seed=5)
+    spawn_bridge(master, "--seed", "5")
+    seen = drive(master, tmp_path, commands, "drive-after-sleep")
+    expected = replay("e-puck", 5, commands)
+    # The reset state went out again (5 s without a command) before the clock ran.
+    again = len(seen["data"]["pose"]) - len(expected["pose"])
+    assert again >= 1
+    assert seen["data"]["pose"] == expected["pose"][:1] * again + expected["pose"]  # bit for bit
+    assert seen["data"]["sensors"] == expected["sensors"][:1] * again + expected["sensors"]
+    ahead = seen["clock"][-1] - 40 * 0.032
+    assert ahead >= 0.5 - 0.032 and abs(ahead / 0.032 - round(ahead / 0.032)) < 1e-6
 
 
 @needs_ros

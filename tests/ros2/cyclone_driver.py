@@ -78,6 +78,19 @@ def main() -> int:
         action="store_true",
         help="leave the first reset state unanswered and wait for it again",
     )
+    parser.add_argument(
+        "--sleep-sim",
+        type=float,
+        default=0.0,
+        help="after the reset state, wait for this much simulated time on /clock before the "
+        "first command (a start-up sleep on simulated time)",
+    )
+    parser.add_argument(
+        "--skip-answer-at",
+        type=int,
+        default=-1,
+        help="leave the state of this step unanswered and wait for it again",
+    )
     args = parser.parse_args()
     global WAIT_S
     WAIT_S = args.wait
@@ -175,7 +188,15 @@ def main() -> int:
                 f"expected the bridge's 3 command readers; found {len(node.reader_gid_seq)}"
             )
 
-    def collect(stamp_ns: int) -> dict[str, Any]:
+    control_step_s = simulator.control_step_ms / 1000.0
+    #: Steps /clock ran on its own before the first command (None: to be read off /clock).
+    idle: list[int | None] = [0]
+
+    def expected_stamp() -> int | None:
+        count = idle[0]
+        return None if count is None else stamp_nanoseconds(simulator.time + count * control_step_s)
+
+    def collect(stamp_ns: int | None) -> dict[str, Any]:
         deadline = time.monotonic() + WAIT_S
         while True:
             for name, reader in readers.items():
@@ -187,6 +208,13 @@ def main() -> int:
                 raise Mismatch(f"no message within {WAIT_S:.0f} s on {', '.join(missing)}")
             time.sleep(0.0002)
         got = {name: pending[name].pop(0) for name in readers}
+        if stamp_ns is None:  # the first state after /clock ran on its own: how far it ran
+            clock = got["/clock"].clock
+            ahead = clock.sec * 10**9 + clock.nanosec - stamp_nanoseconds(simulator.time)
+            idle[0] = round(ahead / (control_step_s * 1e9))
+            stamp_ns = expected_stamp()
+            if idle[0] * control_step_s < args.sleep_sim - 1e-9:
+                raise Mismatch(f"/clock ran {idle[0]} steps, short of {args.sleep_sim} s")
         for name, message in got.items():
             stamp = message.clock if name == "/clock" else getattr(message, "header", None)
             if name == "/tf":
@@ -276,6 +304,23 @@ def main() -> int:
         expected_frames = {f.frame for f in standard.sensor_frames(simulator.robot)}
         if not expected_frames <= frames:
             raise Mismatch(f"/tf_static lacks {sorted(expected_frames - frames)}")
+        if args.sleep_sim > 0.0:
+            # Sleeps on simulated time: waits for /clock, dropping what else comes.
+            deadline = time.monotonic() + WAIT_S
+            clock_ns = 0
+            while clock_ns < args.sleep_sim * 1e9:
+                for name, reader in readers.items():
+                    for message in reader.take(64):
+                        if name == "/clock":
+                            clock_ns = max(
+                                clock_ns, message.clock.sec * 10**9 + message.clock.nanosec
+                            )
+                if time.monotonic() > deadline:
+                    raise Mismatch(f"/clock stayed at {clock_ns} ns for {WAIT_S:.0f} s")
+                time.sleep(0.001)
+            for name in pending:
+                pending[name].clear()
+            idle[0] = None
         robot = simulator.robot
         started = time.monotonic()
         kept = (0.0, 0.0)  # the wheel speeds a refused command keeps
@@ -298,8 +343,12 @@ def main() -> int:
             if not nan:
                 kept = standard.twist_wheel_speeds(linear, angular, robot)
             simulator.step(*kept)
-            got = collect(stamp_nanoseconds(simulator.time))
+            got = collect(expected_stamp())
             check(got, simulator.control_step_ms / 1000.0, before)
+            if index + 1 == args.skip_answer_at:  # the same state again, as it went out
+                again = collect(expected_stamp())
+                same("pose", "again", list(again["/pose"].data), topics.pose_values(simulator))
+                same("sensors", "again", list(again["/sensors"].data), list(got["/sensors"].data))
         elapsed = time.monotonic() - started
     except Mismatch as error:
         print(f"driver: step {simulator.steps}: {error}", file=sys.stderr, flush=True)

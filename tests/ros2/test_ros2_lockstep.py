@@ -4,6 +4,7 @@ Jazzy's layouts, and a driver of the wrong layout is caught."""
 
 from __future__ import annotations
 
+import re
 import shlex
 import sys
 from pathlib import Path
@@ -125,6 +126,39 @@ def test_a_driver_that_answers_from_its_second_state_gets_the_reset_state_again(
     assert "50 steps, every field equal" in result.stdout
     assert "publishing the reset state again" in result.stderr
     assert "stopped after 50 steps" in result.stderr
+
+
+def test_a_node_that_sleeps_on_simulated_time_first_starts_and_keeps_the_in_process_run() -> None:
+    # A node that waits for simulated time before its first command (a start-up sleep on
+    # /clock, as teleop_twist_keyboard's rospy.sleep under ROS 1) waited forever: lockstep
+    # moved the clock only on commands. Once the reset state sent again goes unanswered, /clock
+    # runs on its own until the first command; the simulator does not step meanwhile, so every
+    # later state is the in-process run's, stamped a whole number of steps later.
+    result = run_in_namespace(
+        [_bridge("humble", 40)],
+        _driver("humble", 40, "--sleep-sim", "0.5", "--wait", "15"),
+        timeout=60,
+    )
+    assert result.returncode == 0, result.stderr
+    assert "40 steps, every field equal" in result.stdout
+    assert "/clock now runs on its own" in result.stderr
+    ran = re.search(r"/clock ran (\d+) steps before the first command", result.stderr)
+    assert ran is not None and int(ran.group(1)) >= 16, result.stderr  # 0.5 s of 32 ms steps
+
+
+def test_a_node_that_leaves_a_state_unanswered_gets_it_again() -> None:
+    # A lifecycle node paused by its manager (its publisher drops the answer) and resumed
+    # waits for the next state, and the lockstep bridge for its command: nothing moved again.
+    # The bridge now sends that state again as it went out, and the run goes on step for step.
+    result = run_in_namespace(
+        [_bridge("humble", 30)],
+        _driver("humble", 30, "--skip-answer-at", "12", "--wait", "12"),
+        timeout=60,
+    )
+    assert result.returncode == 0, result.stderr
+    assert "30 steps, every field equal" in result.stdout
+    assert "no command 5 s after step 12" in result.stderr
+    assert "stopped after 30 steps" in result.stderr
 
 
 def test_a_node_restarted_while_the_bridge_runs_gets_the_last_state_again() -> None:

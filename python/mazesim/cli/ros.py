@@ -131,7 +131,7 @@ def _run_demo(args: argparse.Namespace) -> int:
 
     refuse_overwriting_inputs(
         [*output_files(args.out, ("maze.bag", "trajectory.png")), *viewing_outputs(args)],
-        [("--world", args.world)],
+        [("--world", args.world), ("--robot", args.robot)],
     )
     # Before a master is started: without ROS the nodes would fail one by one, much later.
     check_ros_installed(DEMO_COMMANDS)
@@ -288,6 +288,7 @@ def register(commands: Any) -> None:
         epilog=examples(
             "mazesim ros demo",
             "mazesim ros demo --controller avoid-collision --world arena --seconds 30",
+            "mazesim ros demo --controller avoid-collision --robot my-epuck.toml",
             "mazesim ros demo --html ros-demo.html",
         ),
     )
@@ -303,6 +304,12 @@ def register(commands: Any) -> None:
         default="seed-maze",
         metavar="NAME|PATH",
         help="built-in world or world file (default: %(default)s)",
+    )
+    demo.add_argument(
+        "--robot",
+        metavar="NAME|PATH",
+        help="built-in robot profile or profile file, with the sensors the controller reads "
+        "(default: seed for hrl, e-puck for avoid-collision)",
     )
     demo.add_argument(
         "--seed", type=seed_argument, default=0, metavar="N", help="noise seed (default: 0)"

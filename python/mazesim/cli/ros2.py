@@ -130,7 +130,9 @@ def _run_demo(args: argparse.Namespace) -> int:
     from mazesim.maze import refuse_blocked_start
     from mazesim.ros2.demo import run_demo
 
-    refuse_overwriting_inputs(output_files(args.out, ("bag",)), [("--world", args.world)])
+    refuse_overwriting_inputs(
+        output_files(args.out, ("bag",)), [("--world", args.world), ("--robot", args.robot)]
+    )
     world = mazesim.load_world(args.world)  # a bad world fails here, before any process starts
     refuse_blocked_start(world, args.world)
     if len(world.robots) > 1:
@@ -140,7 +142,13 @@ def _run_demo(args: argparse.Namespace) -> int:
             "robot, such as 'mazesim ros2 avoid-collision --robot NAME'"
         )
     result = run_demo(
-        Path(args.out), args.controller, args.ros_distro, args.seed, args.steps, args.world
+        Path(args.out),
+        args.controller,
+        args.ros_distro,
+        args.seed,
+        args.steps,
+        args.world,
+        args.robot,
     )
     goal = "goal not reached" if result.goal_step is None else f"goal at step {result.goal_step}"
     print(f"mazesim ros2 demo: {result.steps} steps, {goal}; bag: {result.bag}")
@@ -272,6 +280,7 @@ def register(commands: Any) -> None:
         epilog=examples(
             "mazesim ros2 demo --out ros2-demo",
             "mazesim ros2 demo --controller avoid-collision --steps 500 --ros-distro jazzy",
+            "mazesim ros2 demo --controller avoid-collision --robot my-epuck.toml",
         ),
     )
     demo.add_argument(
@@ -292,6 +301,12 @@ def register(commands: Any) -> None:
         choices=("hrl", "avoid-collision"),
         default="hrl",
         help="the node that drives (default: %(default)s)",
+    )
+    demo.add_argument(
+        "--robot",
+        metavar="NAME|PATH",
+        help="built-in robot profile or profile file, with the sensors the controller reads "
+        "(default: seed for hrl, e-puck for avoid-collision)",
     )
     demo.add_argument(
         "--seed", type=seed_argument, default=0, help="the bridge's seed (default: %(default)s)"

@@ -61,6 +61,9 @@ IDLE_WARNING_S = 5.0
 #: Lockstep: seconds without a first command, a command publisher connected, before the reset
 #: state goes out again.
 RESEND_S = 5.0
+#: Lockstep, before the first command: seconds after the reset state went out again unanswered
+#: before ``/clock`` runs on its own (see :meth:`Bridge.tick_idle_clock`).
+IDLE_CLOCK_AFTER_S = 1.0
 #: How many control steps a real-time bridge may fall behind before it stops catching up.
 MAX_LAG_STEPS = 5
 
@@ -148,6 +151,10 @@ class Bridge:
         self.held = topics.HeldCommand()
         self.wheel_speeds = (0.0, 0.0)
         self.first_command_at: float | None = None
+        #: Lockstep: control steps ``/clock`` ran on its own before the first command; every
+        #: stamp after them is that many steps later than the simulator's time.
+        self.idle_steps = 0
+        self.idle_tick_at = math.inf
         self.goal = simulator.world.goal
         #: The control step after which the robot was first inside the goal disc, if it was.
         self.goal_step: int | None = None
@@ -198,8 +205,7 @@ class Bridge:
         """Publishes ``/clock``, ``pose``, ``sensors``, ``sensor_data`` and the standard messages
         (``odom``, ``/tf``, one Range per distance sensor) for the current step."""
         simulator = self.simulator
-        nanoseconds = round(simulator.time * 1e9)
-        clock_time = self.ros.rospy.Time(nanoseconds // 10**9, nanoseconds % 10**9)
+        clock_time = self._clock_time()
         self.clock_publisher.publish(self.ros.Clock(clock=clock_time))
         self.pose_publisher.publish(self._array(self._pose_layout, topics.pose_values(simulator)))
         self.sensors_publisher.publish(
@@ -210,6 +216,51 @@ class Bridge:
                 self._array(self._sensor_data_layout, topics.sensor_data_values(simulator))
             )
         self.standard.publish(clock_time)
+
+    def _clock_time(self) -> Any:
+        """The ROS time of the current step: the simulator's, plus the steps ``/clock`` ran on
+        its own before the first command (see :meth:`tick_idle_clock`)."""
+        control_step_s = self.simulator.control_step_ms / 1000.0
+        nanoseconds = round((self.simulator.time + self.idle_steps * control_step_s) * 1e9)
+        return self.ros.rospy.Time(nanoseconds // 10**9, nanoseconds % 10**9)
+
+    def tick_idle_clock(self) -> float:
+        """Lockstep, before the first command: once the reset state sent again has gone
+        unanswered for ``IDLE_CLOCK_AFTER_S``, ``/clock`` runs on its own in real time, one
+        control step at a time, the robot standing still and nothing else published, so that a
+        controller that waits for simulated time before its first command (``rospy.sleep`` or
+        ``rospy.Rate`` with ``/use_sim_time``, as ``teleop_twist_keyboard`` does while it looks
+        for a subscriber) can start. The simulator does not step: the run stays the in-process
+        run with the same commands, step for step and reading for reading, its stamps later by
+        the steps the clock ran (:attr:`idle_steps`, logged at the first command and at the
+        end). Returns the seconds until the next tick (``inf``: none due)."""
+        with self._lock:
+            if self.commands or self.stop.is_set():
+                if self.commands and self.idle_tick_at != math.inf:
+                    self.idle_tick_at = math.inf
+                    if self.idle_steps:
+                        self.ros.rospy.logwarn(
+                            "lockstep: the first command came after /clock ran %d steps on its "
+                            "own; from here every stamp is that many steps later than the "
+                            "in-process run's, whose steps and readings this run keeps",
+                            self.idle_steps,
+                        )
+                return math.inf
+            now = time.monotonic()
+            if now < self.idle_tick_at:
+                return self.idle_tick_at - now
+            if self.idle_steps == 0:
+                self.ros.rospy.logwarn(
+                    "lockstep: the reset state sent again went unanswered; /clock now runs on "
+                    "its own in real time, the robot standing still, until the first command (a "
+                    "controller that waits for simulated time before its first command can "
+                    "start; one that commands at a rospy.Rate slower than the control step "
+                    "cannot run in lockstep: run the bridge in mode realtime)"
+                )
+            self.idle_steps += 1
+            self.clock_publisher.publish(self.ros.Clock(clock=self._clock_time()))
+            self.idle_tick_at += self.simulator.control_step_ms / 1000.0
+            return max(self.idle_tick_at - time.monotonic(), 0.0)
 
     def _finished(self) -> bool:
         """Notes the goal after a step; whether the bridge is done (duration, or goal reached)."""
@@ -300,6 +351,8 @@ class Bridge:
                 )
             self.resent_states += 1
             self.publish_state()
+            if self.idle_tick_at == math.inf:
+                self.idle_tick_at = time.monotonic() + IDLE_CLOCK_AFTER_S
 
     def finish(self) -> tuple[int, float]:
         """Stops stepping (later commands are ignored) and returns the steps and simulated time."""
@@ -312,13 +365,14 @@ class Bridge:
         rospy = self.ros.rospy
         if self.lockstep:
             started = published = time.monotonic()
-            while not self.stop.wait(0.1) and not rospy.is_shutdown():
+            wait = 0.1
+            while not self.stop.wait(min(wait, 0.1)) and not rospy.is_shutdown():
                 if self.commands == 0 and time.monotonic() - started > IDLE_WARNING_S:
                     rospy.logwarn(
                         "lockstep: waiting for a command on %s, %s or %s (one control step "
-                        "each); a controller that waits for simulated time (rospy.sleep or "
-                        "rospy.Rate with /use_sim_time) before its first command cannot start "
-                        "in lockstep: run the bridge in mode realtime",
+                        "each); once the reset state sent again goes unanswered, /clock runs on "
+                        "its own until the first command, for a controller that waits for "
+                        "simulated time (rospy.sleep or rospy.Rate with /use_sim_time) first",
                         rospy.resolve_name(topics.MOTOR_TOPIC),
                         rospy.resolve_name(topics.ACTION_TOPIC),
                         rospy.resolve_name(standard.CMD_VEL_TOPIC),
@@ -327,6 +381,7 @@ class Bridge:
                 if self.commands == 0 and time.monotonic() - published >= RESEND_S:
                     self._resend_reset_state()
                     published = time.monotonic()
+                wait = self.tick_idle_clock()
             return
         period = self.simulator.control_step_ms / 1000.0 / self.settings.speed
         next_step = time.monotonic()
@@ -420,13 +475,15 @@ def run_bridge(
             goal = f"goal reached at step {bridge.goal_step}"
         rospy.loginfo(
             "mazesim bridge stopped: %d steps (%.2f s simulated) in %.2f s of stepping, "
-            "%.0f steps/s; %s; %d bad messages ignored (their steps kept the wheel speeds)",
+            "%.0f steps/s; %s; %d bad messages ignored (their steps kept the wheel speeds); "
+            "/clock ran %d steps on its own before the first command",
             steps,
             simulated,
             elapsed,
             rate,
             goal,
             bridge.held.refused,
+            bridge.idle_steps,
         )
         rospy.signal_shutdown("mazesim bridge stopped")
     return 0

@@ -34,6 +34,7 @@ from mazesim.errors import (
 )
 from mazesim.ros.bridge import refuse_several_robots
 from mazesim.ros.local_master import LocalMaster
+from mazesim.ros.topics import demo_robot
 
 __all__ = [
     "CONTROLLERS",
@@ -112,7 +113,7 @@ def run_demo(args: argparse.Namespace, out: TextIO) -> int:
                 f"{error}; the hrl demo drives with the tables shipped for seed-maze "
                 f"(or run --controller avoid-collision in {world.name!r})"
             ) from None
-    robot = "seed" if hrl else "e-puck"
+    robot = demo_robot(controller, getattr(args, "robot", None))
     out_dir = os.path.abspath(args.out)
     make_output_folder(out_dir)
     check_free_space(out_dir)
@@ -237,6 +238,6 @@ def _write_views(
         return []
     from mazesim.replay.ros_bag import run_from_bag
 
-    profile = mazesim.RobotProfile.builtin(robot)
+    profile = mazesim.RobotProfile.load(robot)
     run = run_from_bag(bag_path, world, profile, controller, args.seed, step_ms)
     return write_views(args, run, f"{world.name} over ROS: {controller}, seed {args.seed}")

@@ -39,11 +39,12 @@ Set by the bridge on the parameter server, relative to its namespace like its to
 from __future__ import annotations
 
 import math
+import os
 from collections.abc import Callable, Sequence
 from typing import Any
 
-from mazesim._core import Simulator, sharp_volts_to_cm
-from mazesim.errors import InvalidActionError, MazesimError
+from mazesim._core import RobotProfile, Simulator, sharp_volts_to_cm
+from mazesim.errors import InvalidActionError, InvalidArgumentError, MazesimError
 
 __all__ = [
     "ACTION_TOPIC",
@@ -57,6 +58,7 @@ __all__ = [
     "current_checkpoint",
     "has_sharp_sensors",
     "motor_command",
+    "demo_robot",
     "pose_values",
     "sensor_data_values",
     "sensor_names",
@@ -164,3 +166,34 @@ class HeldCommand:
             self.refused += 1
             return self.latest, str(error)
         return self.latest, ""
+
+
+def demo_robot(controller: str, robot: str | None) -> str:
+    """The robot a demo's bridge runs (``mazesim ros demo``, ``mazesim ros2 demo``): ``robot``
+    (a built-in profile's name or a profile file's path, as ``--robot`` takes everywhere), else
+    ``seed`` for ``hrl`` and ``e-puck`` for ``avoid-collision``; a file's path made absolute, as
+    the nodes run in other folders.
+
+    Raises:
+        InvalidArgumentError: The profile lacks the sensors the controller node reads: the
+            perform-learning node reads six Sharp distances (``sensor_data``), the
+            avoid-collision node the e-puck's ps0-ps7 as the first 8 values of ``sensors``.
+        MazesimError: No such profile, or a profile file that does not read.
+    """
+    if robot is None:
+        return "seed" if controller == "hrl" else "e-puck"
+    profile = RobotProfile.load(robot)
+    names = list(profile.distance_sensor_names)
+    if controller == "hrl":
+        fits = profile.distance_sensor_unit == "volts" and len(names) == 6
+        needs = "the six Sharp distance sensors of the seed robot (in volts), read on sensor_data"
+    else:
+        fits = profile.distance_sensor_unit == "raw" and names[:8] == [f"ps{i}" for i in range(8)]
+        needs = "the e-puck's 8 raw proximity sensors ps0-ps7, first on sensors"
+    if not fits:
+        raise InvalidArgumentError(
+            f"the {controller} node needs {needs}; robot {robot!r} ({profile.name}) has "
+            f"{', '.join(names)} in {profile.distance_sensor_unit!r}: give such a profile, or "
+            f"leave --robot out ({'seed' if controller == 'hrl' else 'e-puck'})"
+        )
+    return os.path.abspath(robot) if os.path.exists(robot) else robot

@@ -8,9 +8,12 @@ on one of its command topics or a reader of a state topic has matched and a grac
 passed, and again every
 ``RESEND_S`` seconds while a command writer is matched and no command has come (a node that
 answers only its second message, or whose first command went out before it matched, gets
-another), saying so on stderr. Once stepping, a command writer that matches later (a node started
-or restarted while the bridge runs) and sends nothing within the grace period gets its robot's
-last state again, byte for byte. Free-running: the bridge
+another), saying so on stderr; when that goes unanswered too, ``/clock`` runs on its own until
+the first command, the simulator standing still, for a node that waits for simulated time first.
+Once stepping, a command writer that matches later (a node started or restarted while the bridge
+runs) and sends nothing within the grace period gets its robot's last state again, byte for
+byte, and so does every robot the world waits for when no command has come for ``RESEND_S``
+seconds (a node that let a state go unanswered). Free-running: the bridge
 steps on its own at ``speed`` (see :mod:`mazesim.ros2.clock`), with the last commanded wheel
 speeds. Topics and QoS: :mod:`mazesim.ros2.state`; the page ``docs/ros2.md``.
 
@@ -56,6 +59,9 @@ READY_GRACE_S = 0.5
 #: Lockstep: seconds without a first command, a command writer matched, before the reset state
 #: goes out again.
 RESEND_S = 5.0
+#: Lockstep, before the first command: seconds after the reset state went out again unanswered
+#: before ``/clock`` runs on its own (see :meth:`Ros2Bridge._tick_idle_clock`).
+IDLE_CLOCK_AFTER_S = 1.0
 #: Seconds between two looks at the readers other nodes created (see :mod:`.unpublished`).
 READERS_CHECK_S = 1.0
 _ROS_NAMESPACE = re.compile(r"/?[A-Za-z_][A-Za-z0-9_]*(/[A-Za-z_][A-Za-z0-9_]*)*")
@@ -304,6 +310,13 @@ class Ros2Bridge:
         self.rejected_controls = 0
         #: Lockstep: how many times the reset state went out again, awaiting a first command.
         self.resent_states = 0
+        #: Lockstep: control steps ``/clock`` ran on its own before the first command; every
+        #: stamp after them is that many steps later than the simulator's time.
+        self.idle_steps = 0
+        self._idle_tick_at = math.inf
+        #: Lockstep: how many times a state went out again after a step left unanswered.
+        self.stall_resends = 0
+        self._stepped_at = self._stall_sent = 0.0
         self._waitset = self._make_waitset()
 
     def _make_waitset(self) -> Any:
@@ -338,16 +351,23 @@ class Ros2Bridge:
         """Commands refused, over every robot, and simulation controls refused."""
         return sum(robot.held.refused for robot in self.robots) + self.rejected_controls
 
+    def stamp(self) -> int:
+        """The stamp of the current step in nanoseconds: the simulator's time, plus the steps
+        ``/clock`` ran on its own before the first command (lockstep; see
+        :meth:`_tick_idle_clock`)."""
+        control_step_s = self.simulator.control_step_ms / 1000.0
+        return stamp_nanoseconds(self.simulator.time + self.idle_steps * control_step_s)
+
     def publish_static(self) -> None:
         """Publishes ``/tf_static`` (transient local: late subscribers get it too)."""
-        nanoseconds = stamp_nanoseconds(self.simulator.time)
+        nanoseconds = self.stamp()
         for robot in self.robots:
             data = robot.state.static_transforms(cdr.stamp_of(nanoseconds))
             self._send(robot.static_writer, nanoseconds, data)
 
     def publish_state(self, step_seconds: float) -> None:
         """Publishes every state topic for the current step, ``/clock`` last."""
-        nanoseconds = stamp_nanoseconds(self.simulator.time)
+        nanoseconds = self.stamp()
         stamp = cdr.stamp_of(nanoseconds)
         for robot in self.robots:
             robot.last_state = list(zip(robot.writers, robot.state.messages(stamp, step_seconds)))
@@ -384,6 +404,7 @@ class Ros2Bridge:
             commands = np.array([robot.wheel_speeds for robot in self.robots], dtype=np.float64)
             self.simulator.step_robots(commands)
         self.publish_state(self.simulator.control_step_ms / 1000.0)
+        self._stepped_at = time.monotonic()
         self._note_goal()
 
     def commands(self) -> list[tuple[float, float]]:
@@ -427,13 +448,16 @@ class Ros2Bridge:
             self._greet_newcomers()  # the writers matched now are the first drivers, not late
             published = time.monotonic()
             while not self.stop.is_set():
-                self._waitset.wait(100_000_000)
+                wait = min(0.1, max(self._idle_tick_at - time.monotonic(), 0.0))
+                self._waitset.wait(int(wait * 1e9))
                 self._step_pending()
                 self._check_readers()
                 self._greet_newcomers()
                 if self.simulator.steps == 0 and time.monotonic() - published >= RESEND_S:
                     self._resend_reset_state()
                     published = time.monotonic()
+                self._tick_idle_clock()
+                self._resend_last_state()
             return
         self._run_free()
 
@@ -453,14 +477,85 @@ class Ros2Bridge:
                 f"{RESEND_S:g} s until a command comes (a node that answers only from its "
                 "second message, or whose first command went out before it matched, gets "
                 "another; one still busy with the first that then answers every message would "
-                "run a step behind). A node that waits for simulated time (a timer or sleep on "
-                "/clock) before its first command cannot start in lockstep: run it with --mode "
-                "free",
+                "run a step behind). If this one goes unanswered too, /clock runs on its own "
+                f"{IDLE_CLOCK_AFTER_S:g} s later, for a node that waits for simulated time "
+                "before its first command",
                 file=sys.stderr,
                 flush=True,
             )
         self.resent_states += 1
         self.publish_state(0.0)
+        if self._idle_tick_at == math.inf:
+            self._idle_tick_at = time.monotonic() + IDLE_CLOCK_AFTER_S
+
+    def _tick_idle_clock(self) -> None:
+        """Lockstep, before the first command: once the reset state sent again has gone
+        unanswered for ``IDLE_CLOCK_AFTER_S``, ``/clock`` runs on its own in real time, one control
+        step at a time, the robot standing still and nothing else published, so that a node that
+        waits for simulated time before its first command (``teleop_twist_keyboard``'s
+        ``rospy.sleep``, a start-up sleep or one-shot timer on ``/clock``) can start. The
+        simulator does not step: the run stays the in-process run with the same commands, step
+        for step and reading for reading, its stamps later by the steps the clock ran
+        (:attr:`idle_steps`, said on stderr at the first command and at the end). A node that
+        answers the reset state, or the reset state sent again, never sees the clock run."""
+        if self.simulator.steps or time.monotonic() < self._idle_tick_at or self.stop.is_set():
+            if self.simulator.steps and self._idle_tick_at != math.inf:
+                self._idle_tick_at = math.inf
+                if self.idle_steps:
+                    self._say(
+                        f"lockstep: the first command came after /clock ran {self.idle_steps} "
+                        "steps on its own; from here every stamp is that many steps later "
+                        "than the in-process run's, whose steps and readings this run keeps"
+                    )
+            return
+        if any(robot.pending for robot in self.robots):
+            return
+        if self.idle_steps == 0:
+            self._say(
+                "lockstep: the reset state sent again went unanswered; /clock now runs on its "
+                "own in real time, the robot standing still, until the first command (a node "
+                "that waits for simulated time before its first command can start; one that "
+                "commands on a timer of simulated time slower than the control step cannot run "
+                "in lockstep: run it with --mode free)"
+            )
+        self.idle_steps += 1
+        nanoseconds = self.stamp()
+        clock = self.clock_writer or next(
+            writer for writer in self.robots[0].writers if writer.topic == CLOCK_TOPIC
+        )
+        self._send(clock, nanoseconds, cdr.encode_clock(cdr.stamp_of(nanoseconds)))
+        self._idle_tick_at += self.simulator.control_step_ms / 1000.0
+
+    def _resend_last_state(self) -> None:
+        """Lockstep, once stepping: when no step has come for ``RESEND_S`` while a command writer
+        is matched, publishes again, as it went out (same bytes, same stamp), the last state of
+        every robot the world waits for, and again every ``RESEND_S`` until a command comes. A
+        node that let one state go unanswered (a lifecycle node paused and resumed by its
+        manager, whose publisher dropped the answer meanwhile) waits for the next state, and the
+        bridge for its command; the state sent again gets it going, and the run stays the
+        in-process run step for step. Says so on stderr the first time."""
+        now = time.monotonic()
+        if not self.simulator.steps or now - max(self._stepped_at, self._stall_sent) < RESEND_S:
+            return
+        waited_for = [robot for robot in self.robots if robot.driven() and not robot.pending]
+        if not waited_for or any(robot.newcomer_since for robot in self.robots):
+            return  # a node that came late gets the state from _greet_newcomers, once
+        self._stall_sent = now
+        if self.stall_resends == 0:
+            topic = f"{waited_for[0].state.namespace}/{standard.CMD_VEL_TOPIC}"
+            self._say(
+                f"lockstep: no command {RESEND_S:g} s after step {self.simulator.steps} though a "
+                f"command writer is matched (e.g. on {topic}); publishing that step's state "
+                f"again, as it went out, every {RESEND_S:g} s until a command comes (a node that "
+                "let a state go unanswered, as a lifecycle node paused and resumed does, gets "
+                "it again; a node that commands on a timer of simulated time cannot run in "
+                "lockstep, where time moves on commands only: run it with --mode free)"
+            )
+        self.stall_resends += 1
+        for robot in waited_for:
+            nanoseconds = self.stamp()
+            for writer, data in robot.last_state:
+                self._send(writer, nanoseconds, data)
 
     def _greet_newcomers(self) -> None:
         """Lockstep, once stepping: a node that starts writing a robot's commands after the
@@ -488,7 +583,8 @@ class Ros2Bridge:
                 self._send_last_state(robot)
 
     def _send_last_state(self, robot: RobotChannel) -> None:
-        nanoseconds = stamp_nanoseconds(self.simulator.time)
+        self._stall_sent = time.monotonic()
+        nanoseconds = self.stamp()
         for writer, data in robot.last_state:
             self._send(writer, nanoseconds, data)
         topic = f"{robot.state.namespace}/{standard.CMD_VEL_TOPIC}"
@@ -582,10 +678,15 @@ def run_bridge(settings: BridgeSettings) -> int:
             else f"goal reached at step {bridge.goal_step}"
         )
     )
+    idle = (
+        f", /clock ran {bridge.idle_steps} steps before the first command"
+        if bridge.idle_steps
+        else ""
+    )
     print(
         f"mazesim ros2 bridge: stopped after {simulator.steps} steps "
         f"({simulator.time:.3f} s simulated, {time.monotonic() - started:.1f} s wall clock), "
-        f"{goal}",
+        f"{goal}{idle}",
         file=sys.stderr,
         flush=True,
     )

@@ -20,6 +20,7 @@ from typing import NamedTuple
 from mazesim._paths import make_output_folder
 from mazesim.episodes import MAX_STEPS
 from mazesim.errors import MazesimError, MazesimIOError
+from mazesim.ros.topics import demo_robot
 
 __all__ = ["DemoResult", "run_demo"]
 
@@ -46,18 +47,21 @@ def run_demo(
     seed: int = 0,
     steps: int = MAX_STEPS,
     world: str = "seed-maze",
+    robot: str | None = None,
 ) -> DemoResult:
     """Runs the bridge and a controller node until the goal (or ``steps``); returns the result.
+    ``robot``: a built-in profile or a profile file (:func:`mazesim.ros.topics.demo_robot`).
 
     Raises:
+        InvalidArgumentError: The robot lacks the sensors the controller node reads.
         MazesimIOError: ``OUT/bag`` exists already.
         MazesimError: The bridge failed or did not finish in time.
     """
+    robot = demo_robot(controller, robot)
     make_output_folder(out)
     bag = out / "bag"
     if bag.exists():
         raise MazesimIOError(f"expected a new bag folder; found {bag}, which exists")
-    robot = "seed" if controller == "hrl" else "e-puck"
     bridge_arguments = [
         "bridge", "--robot", robot, "--world", world, "--seed", str(seed),
         "--ros-distro", distro, "--stop-after", str(steps), "--bag", str(bag),

@@ -1,18 +1,20 @@
 """Topics a node reads that the bridge does not publish, and why, said once each.
 
 A node written for Webots' e-puck (``webots_ros2_epuck`` in cyberbotics/webots_ros2, whose world
-simulates ``E-puck { version "2" }`` with its time-of-flight sensor, camera and light sensors)
-may wait for a topic the simulated robot does not have: ``/tof`` from the e-puck, which has no
-time-of-flight sensor, waits forever. In a world of several robots, each robot's topics are in
-its namespace: a node that names them absolutely (Webots' drive calibrator reads ``/odom`` and
-writes ``/cmd_vel``, so ``-r __ns:=/west`` leaves them as they are) reads and writes where no
-robot is. :class:`UnpublishedTopics` watches the readers and writers DDS discovers on other
-participants and names each such topic once, with what to do. It also says, once, when another
-node publishes one of the bridge's own state topics or ``/clock``: a second bridge (or simulator,
-or ``ros2 bag play``) on the same domain, whose messages every node then receives mixed with the
-bridge's, and whose lockstep steps on the same commands. And it says when a node reads or writes
-one of the bridge's topics as another message type (``/cmd_vel`` as ``std_msgs/msg/String``):
-DDS matches endpoints of one type only, so that node receives or sends nothing.
+simulates ``E-puck { version "2" }`` with its time-of-flight sensor, camera and light sensors) may
+wait for a topic the simulated robot does not have: ``/tof`` from the e-puck, which has no
+time-of-flight sensor, waits forever; so does a Nav2-style node waiting for ``/map``, which a map
+server or a SLAM node publishes beside the simulation. In a world of several robots, each robot's
+topics are in its namespace: a node that names them absolutely (Webots' drive calibrator reads
+``/odom`` and writes ``/cmd_vel``, so ``-r __ns:=/west`` leaves them as they are) reads and writes
+where no robot is. :class:`UnpublishedTopics` watches the readers and writers DDS discovers on
+other participants and names each such topic once, with what to do. It also says, once, when
+another node publishes one of the bridge's own state topics or ``/clock``: a second bridge (or
+simulator, or ``ros2 bag play``) on the same domain, whose messages every node then receives mixed
+with the bridge's, and whose lockstep steps on the same commands. And it says when a node reads or
+writes one of the bridge's topics as another message type (``/cmd_vel`` as
+``std_msgs/msg/String``): DDS matches endpoints of one type only, so that node receives or sends
+nothing.
 """
 
 from __future__ import annotations
@@ -40,6 +42,9 @@ _WEBOTS_EPUCK_ONLY = (
     (re.compile(r"ls[0-7]"), "mazesim does not simulate the e-puck's light sensors"),
     (re.compile(r"imu"), "mazesim does not simulate the e-puck's inertial unit"),
     (re.compile(r"(image_raw|camera_info|camera(/.*)?)"), "the bridge publishes no camera images"),
+    (re.compile(r"map"), "the bridge publishes no map: run a map server (Nav2's map_server, as "
+     "Webots' e-puck launch does with its nav option) or a SLAM node (slam_toolbox, from /scan "
+     "and /odom) beside it"),
 )  # fmt: skip
 
 
