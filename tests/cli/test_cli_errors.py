@@ -464,3 +464,45 @@ def test_every_navigator_command_refuses_a_maze_without_a_way_alike(
         "way through the walls of the [grid] map, or move S or G"
     ), line
     assert sorted(path.name for path in tmp_path.iterdir()) == ["walled.toml"]
+
+
+@pytest.mark.parametrize(
+    ("command", "missing", "meant"),
+    [
+        (["import-wbt", "boxs.wbt"], "boxs.wbt", "'boxes.wbt"),
+        (["show", "boxs.wbt"], "boxs.wbt", "'boxes.wbt"),
+        (
+            ["webots", "run", "avoid_collision", "--world", "boxes.wbt"],
+            "avoid_collision",
+            "/avoid_collision.py",
+        ),
+        (["replay", "ru.json.gz", "-o", "replay.html"], "ru.json.gz", "'run.json.gz"),
+    ],
+)
+def test_a_mistyped_input_file_names_the_folder_and_the_file_meant(
+    monkeypatch: pytest.MonkeyPatch,
+    tmp_path: Path,
+    capsys: pytest.CaptureFixture[str],
+    command: list[str],
+    missing: str,
+    meant: str,
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    shutil.copyfile(REPO / "examples" / "worlds" / "boxes.wbt", tmp_path / "boxes.wbt")
+    shutil.copyfile(REPO / "examples" / "webots" / "avoid_collision.py", "avoid_collision.py")
+    Path("boxes.png").write_bytes(b"")
+    Path("run.json.gz").write_bytes(b"")
+    assert main(command) == 2
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert "No such file or directory: there is no " in line or "there is no file" in line, line
+    assert missing in line and str(tmp_path) in line, line
+    assert "; did you mean '" in line and line.endswith(f"{meant}'?"), line
+
+
+def test_an_input_file_in_a_missing_folder_names_the_folder(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    assert main(["import-wbt", "worlds/boxes.wbt"]) == 2
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert line.endswith(f"No such file or directory: there is no folder 'worlds' in {tmp_path}")
