@@ -506,3 +506,20 @@ def test_an_input_file_in_a_missing_folder_names_the_folder(
     assert main(["import-wbt", "worlds/boxes.wbt"]) == 2
     line = capsys.readouterr().err.strip().splitlines()[-1]
     assert line.endswith(f"No such file or directory: there is no folder 'worlds' in {tmp_path}")
+
+
+def test_an_option_of_another_command_names_the_commands_that_take_it(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    # A navigator trained with `mazesim train` is watched with eval, not demo.
+    assert main(["demo", "--controller", "hrl", "--policy", "my-navigator"]) == 2
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert line.startswith("mazesim demo: error: unrecognized arguments: --policy my-navigator; ")
+    assert "--policy is an option of mazesim eval, " in line, line
+    assert "mazesim demo," not in line
+    assert main(["show", "seed-maze", "--episodes", "3"]) == 2
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert line.endswith("--episodes is an option of mazesim eval, mazesim transfer-study"), line
+    assert main(["eval", "--no-such-option"]) == 2  # nobody takes it: nothing added
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert line.endswith("unrecognized arguments: --no-such-option"), line
