@@ -523,3 +523,20 @@ def test_an_option_of_another_command_names_the_commands_that_take_it(
     assert main(["eval", "--no-such-option"]) == 2  # nobody takes it: nothing added
     line = capsys.readouterr().err.strip().splitlines()[-1]
     assert line.endswith("unrecognized arguments: --no-such-option"), line
+
+
+def test_the_navigator_demo_refuses_a_robot_it_would_not_drive(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # It drove the seed robot whatever --robot said, and its summary said "robot seed".
+    monkeypatch.chdir(tmp_path)
+    assert main(["demo", "--controller", "hrl", "--robot", "e-puck2", "--out", "out"]) == 2
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert line.endswith(
+        "--robot e-puck2: mazesim demo --controller hrl drives the shipped navigator on the seed "
+        "robot it was trained for, and takes no other robot; to watch the navigator drive "
+        "e-puck2: mazesim eval --robot e-puck2 --episodes 1 --html run.html"
+    ), line
+    assert not (tmp_path / "out").exists()
+    assert main(["demo", "--robot", "e-puck2", "--seconds", "1", "--out", "out"]) == 0
+    assert "(robot e-puck2, seed 0)" in capsys.readouterr().out

@@ -97,10 +97,10 @@ def register(commands: Any) -> None:
     )
     demo.add_argument(
         "--robot",
-        default="e-puck",
+        default=None,
         metavar="NAME",
         help="robot profile; the controller needs the e-puck's 8 proximity sensors "
-        "(default: %(default)s)",
+        "(default: e-puck; --controller hrl drives the seed robot it was trained for)",
     )
     demo.add_argument(
         "--controller",
@@ -144,8 +144,9 @@ def run_avoid_collision_demo(args: argparse.Namespace, out: TextIO) -> int:
     from mazesim.replay.views import SimulatorWatch, written_lines
 
     world = mazesim.load_world(args.world)
-    refuse_blocked_start(world, args.world, args.robot)
-    simulator = mazesim.Simulator(world, robot=args.robot, seed=args.seed)
+    robot_name = "e-puck" if args.robot is None else args.robot
+    refuse_blocked_start(world, args.world, robot_name)
+    simulator = mazesim.Simulator(world, robot=robot_name, seed=args.seed)
     seconds = DEFAULT_SECONDS if args.seconds is None else args.seconds
     if simulator.num_robots > 1:
         return run_robots_demo(args, out, simulator, seconds)
