@@ -540,3 +540,18 @@ def test_the_navigator_demo_refuses_a_robot_it_would_not_drive(
     assert not (tmp_path / "out").exists()
     assert main(["demo", "--robot", "e-puck2", "--seconds", "1", "--out", "out"]) == 0
     assert "(robot e-puck2, seed 0)" in capsys.readouterr().out
+
+
+def test_training_on_a_world_without_cells_says_how_to_make_one(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    shutil.copyfile(REPO / "examples" / "worlds" / "boxes.wbt", tmp_path / "boxes.wbt")
+    assert main(["train", "--world", "boxes.wbt", "--out", "nav", "--steps", "1M"]) == 2
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert line.endswith(
+        "found none in 'boxes' (its walls are boxes, as every imported Webots world's are): draw "
+        "the maze as a [grid] map of +--+ and | in a .toml world file (docs/world-format.md), or "
+        "generate one with mazesim.generate_maze"
+    ), line
+    assert not (tmp_path / "nav").exists()
