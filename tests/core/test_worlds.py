@@ -295,7 +295,7 @@ def test_a_toml_file_holding_a_drawn_map_alone_is_told_to_put_it_under_grid(
     message = str(caught.value)
     assert message.startswith(f"{drawn}:1:")
     assert message.endswith(
-        '; it holds a maze drawn as a [grid] map: paste it into a .toml world file under [grid] '
+        "; it holds a maze drawn as a [grid] map: paste it into a .toml world file under [grid] "
         'map = """...""", after the lines format = "mazesim-world" and version = 1 '
         "(docs/own-maze.md shows such a file)"
     )
