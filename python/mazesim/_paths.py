@@ -153,17 +153,8 @@ def _where_missing(path: str) -> str:
     if folder and not os.path.isdir(folder):
         return f": there is no folder {folder!r}{where}"
     suffix = os.path.splitext(file)[1].lower()
-    names = []
-    try:
-        with os.scandir(folder or ".") as entries:
-            for count, entry in enumerate(entries):
-                if count >= MAX_FOLDER_ENTRIES:
-                    break
-                if not suffix or entry.name.lower().endswith(suffix):
-                    names.append(os.path.join(folder, entry.name))
-    except OSError:
-        names = []
-    meant = _closest_name(path, sorted(names))
+    names = world_files_beside(path, (suffix,))  # "" (no suffix): every file
+    meant = _closest_name(path, names)
     looked = f"the folder {folder!r}{where}" if folder else os.getcwd()
     return f": there is no {file!r} in {looked}" + (f"; did you mean {meant!r}?" if meant else "")
 
