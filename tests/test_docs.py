@@ -255,3 +255,25 @@ def test_the_rl_page_says_how_to_set_torchs_threads() -> None:
     assert "torch.set_num_threads(1)" in prose and "OMP_NUM_THREADS=1" in prose
     python = [b.text for b in BLOCKS if b.page.name == "rl.md" and b.language == "python"]
     assert any("torch.set_num_threads(1)" in text for text in python)
+
+
+#: What a page says before its first block that uses the checkout's own files.
+FROM_THE_ROOT = "from the repository's root"
+
+
+def test_a_block_that_uses_the_checkouts_examples_says_it_runs_from_the_root() -> None:
+    # The tests run every block beside a copy of examples/; a reader in another folder, or with
+    # the wheel alone, has none, and must be told where these commands run.
+    untold = []
+    for block in BLOCKS:
+        if block.skip_reason is not None or block.language not in RUNNABLE - TOML_LANGUAGES:
+            continue
+        if not re.search(r"(?<![\w/.-])examples/", block.text):
+            continue
+        before = "\n".join(block.page.read_text().splitlines()[: block.line - 1])
+        if FROM_THE_ROOT not in before.replace("\n", " "):
+            untold.append(block.where)
+    assert untold == [], (
+        f"blocks that use examples/ on pages that do not first say they run {FROM_THE_ROOT!r}: "
+        f"{untold}"
+    )

@@ -129,15 +129,14 @@ def load_world(name_or_path: str | os.PathLike[str]) -> World:
             return import_wbt(path)[0]
         try:
             return World.load(path)
-        except WorldFormatError as unreadable_world:
-            suffix = os.path.splitext(path)[1]
-            if suffix.lower() == ".toml":
+        except (WorldFormatError, MazesimIOError) as unreadable_world:
+            advice = _not_a_world_advice(path, isinstance(unreadable_world, WorldFormatError))
+            if not advice:
                 raise
-            # Another kind of file read as TOML: say which files are worlds.
+            if isinstance(unreadable_world, MazesimIOError):
+                raise MazesimIOError(f"{unreadable_world}{advice}") from None
             raise WorldFormatError(
-                f"{unreadable_world} (mazesim reads .toml world files and .wbt Webots worlds; "
-                + (f"found a {suffix} file)" if suffix else "found a file without an extension)")
-                + _grid_map_advice(path),
+                f"{unreadable_world}{advice}",
                 source=getattr(unreadable_world, "source", None),
                 line=getattr(unreadable_world, "line", None),
                 column=getattr(unreadable_world, "column", None),
@@ -157,10 +156,48 @@ def load_world(name_or_path: str | os.PathLike[str]) -> World:
 #: The most characters of a file that is no world read to tell whether it is a drawn maze.
 _MOST_MAP_CHARACTERS = 1 << 20
 
+#: The first bytes of the picture files a maze may be drawn in, and their names.
+_PICTURE_SIGNATURES = (
+    (b"\x89PNG\r\n\x1a\n", "a PNG image"),
+    (b"\xff\xd8\xff", "a JPEG image"),
+    (b"GIF8", "a GIF image"),
+    (b"BM", "a BMP image"),
+    (b"%PDF", "a PDF document"),
+)
+
+
+def _not_a_world_advice(path: str, read_as_toml: bool) -> str:
+    """What to add to the error of a file ``load_world`` could not read as a world: which kind
+    of file it found, which files are worlds, and what to do with a maze drawn as a ``[grid]``
+    map or in a picture; "" when there is nothing to add (a ``.toml`` world with a mistake)."""
+    try:
+        with open(path, "rb") as file:
+            start = file.read(8)
+    except OSError:
+        return ""
+    picture = next((kind for magic, kind in _PICTURE_SIGNATURES if start.startswith(magic)), None)
+    if picture is not None:
+        return (
+            f" (found {picture}: mazesim reads .toml world files and .wbt Webots worlds, not "
+            "pictures; draw the maze as a [grid] map of +--+ and | in a .toml world file, or "
+            "generate one with mazesim.generate_maze: docs/own-maze.md shows both)"
+        )
+    suffix = os.path.splitext(path)[1]
+    grid_map = _grid_map_advice(path)
+    if suffix.lower() == ".toml" or not read_as_toml:
+        return grid_map
+    # Another kind of file read as TOML: say which files are worlds.
+    return (
+        " (mazesim reads .toml world files and .wbt Webots worlds; "
+        + (f"found a {suffix} file)" if suffix else "found a file without an extension)")
+        + grid_map
+    )
+
 
 def _grid_map_advice(path: str) -> str:
     """What to do with a file that is not a world but holds a maze drawn as a ``[grid]`` map (a
-    hand-drawn ``.txt``): paste it into a world file; "" for any other file."""
+    hand-drawn ``.txt``, or a ``.toml`` holding the map alone): paste it into a world file; ""
+    for any other file."""
     from mazesim.maze import looks_like_grid_map
 
     try:
@@ -172,7 +209,8 @@ def _grid_map_advice(path: str) -> str:
         return ""
     return (
         "; it holds a maze drawn as a [grid] map: paste it into a .toml world file under "
-        '[grid] map = """...""" (docs/own-maze.md shows such a file)'
+        '[grid] map = """...""", after the lines format = "mazesim-world" and version = 1 '
+        "(docs/own-maze.md shows such a file)"
     )
 
 

@@ -15,7 +15,13 @@ from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
 from typing import BinaryIO
 
-from mazesim.errors import InvalidArgumentError, MazesimError, MazesimIOError, UnknownNameError
+from mazesim.errors import (
+    InvalidArgumentError,
+    MazesimError,
+    MazesimIOError,
+    UnknownNameError,
+    _closest_name,
+)
 
 __all__ = [
     "MAX_TEXT_CHARACTERS",
@@ -130,11 +136,27 @@ def unknown_robot_profile(path: str) -> UnknownNameError:
 
 
 def _read_failure(file: str, what: str, reason: str, number: int | None) -> MazesimIOError:
-    failure = MazesimIOError(f"{file}: cannot read {what}: {reason}")
+    where = _where_missing(file) if number == errno.ENOENT else ""
+    failure = MazesimIOError(f"{file}: cannot read {what}: {reason}{where}")
     failure.errno = number
     failure.strerror = reason
     failure.filename = file
     return failure
+
+
+def _where_missing(path: str) -> str:
+    """What to add to "No such file or directory" for ``path``: the folder that does not exist,
+    or the folder the file was looked for in, and the closest name of a file there (a typo's
+    likely fix: ``boxs.wbt`` -> ``boxes.wbt``, ``avoid_collision`` -> ``avoid_collision.py``)."""
+    folder, file = os.path.split(path)
+    where = "" if os.path.isabs(path) else f" in {os.getcwd()}"
+    if folder and not os.path.isdir(folder):
+        return f": there is no folder {folder!r}{where}"
+    suffix = os.path.splitext(file)[1].lower()
+    names = world_files_beside(path, (suffix,))  # "" (no suffix): every file
+    meant = _closest_name(path, names)
+    looked = f"the folder {folder!r}{where}" if folder else os.getcwd()
+    return f": there is no {file!r} in {looked}" + (f"; did you mean {meant!r}?" if meant else "")
 
 
 def open_input(path: str | os.PathLike[str], what: str) -> BinaryIO:

@@ -279,7 +279,10 @@ class CellMaze:
         maze = world.cell_maze()
         if maze is None:
             raise InvalidArgumentError(
-                f"expected a world with a [grid] cell maze, found none in {world.name!r}"
+                f"expected a world with a [grid] cell maze, found none in {world.name!r} (its "
+                "walls are boxes, as every imported Webots world's are): draw the maze as a [grid] "
+                "map of +--+ and | in a .toml world file (docs/world-format.md), or generate one "
+                "with mazesim.generate_maze"
             )
         self.rows = int(cast(int, maze["rows"]))
         self.cols = int(cast(int, maze["cols"]))

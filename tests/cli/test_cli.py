@@ -9,6 +9,7 @@ from pathlib import Path
 
 import pytest
 
+import mazesim
 from mazesim.cli import main
 from mazesim_process import mazesim_command
 
@@ -272,3 +273,17 @@ def test_a_run_command_ends_with_what_to_open_next(
     assert main([str(example) if word == "CONTROLLER" else word for word in arguments]) == 0
     last = capsys.readouterr().out.splitlines()[-1]
     assert last == f"next               {then.replace('TMP', str(tmp_path))}"
+
+
+def test_a_demo_of_a_robot_profile_file_names_the_file(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # The docs' recipe: a copy of the e-puck's profile, edited; its name inside is still e-puck.
+    monkeypatch.chdir(tmp_path)
+    text = mazesim.RobotProfile.builtin("e-puck").to_toml()
+    Path("my-robot.toml").write_text(text.replace("wheel_radius = 0.02\n", "wheel_radius = 0.03\n"))
+    assert main(["demo", "--robot", "my-robot.toml", "--seconds", "1", "--out", "mine"]) == 0
+    assert "(robot e-puck from my-robot.toml, seed 0)" in capsys.readouterr().out
+    assert json.loads(Path("mine/summary.json").read_text())["robot"] == "e-puck from my-robot.toml"
+    assert main(["demo", "--robot", "e-puck", "--seconds", "1", "--out", "builtin"]) == 0
+    assert json.loads(Path("builtin/summary.json").read_text())["robot"] == "e-puck"

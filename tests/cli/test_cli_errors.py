@@ -464,3 +464,94 @@ def test_every_navigator_command_refuses_a_maze_without_a_way_alike(
         "way through the walls of the [grid] map, or move S or G"
     ), line
     assert sorted(path.name for path in tmp_path.iterdir()) == ["walled.toml"]
+
+
+@pytest.mark.parametrize(
+    ("command", "missing", "meant"),
+    [
+        (["import-wbt", "boxs.wbt"], "boxs.wbt", "'boxes.wbt"),
+        (["show", "boxs.wbt"], "boxs.wbt", "'boxes.wbt"),
+        (
+            ["webots", "run", "avoid_collision", "--world", "boxes.wbt"],
+            "avoid_collision",
+            "/avoid_collision.py",
+        ),
+        (["replay", "ru.json.gz", "-o", "replay.html"], "ru.json.gz", "'run.json.gz"),
+    ],
+)
+def test_a_mistyped_input_file_names_the_folder_and_the_file_meant(
+    monkeypatch: pytest.MonkeyPatch,
+    tmp_path: Path,
+    capsys: pytest.CaptureFixture[str],
+    command: list[str],
+    missing: str,
+    meant: str,
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    shutil.copyfile(REPO / "examples" / "worlds" / "boxes.wbt", tmp_path / "boxes.wbt")
+    shutil.copyfile(REPO / "examples" / "webots" / "avoid_collision.py", "avoid_collision.py")
+    Path("boxes.png").write_bytes(b"")
+    Path("run.json.gz").write_bytes(b"")
+    assert main(command) == 2
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert "No such file or directory: there is no " in line or "there is no file" in line, line
+    assert missing in line and str(tmp_path) in line, line
+    assert "; did you mean '" in line and line.endswith(f"{meant}'?"), line
+
+
+def test_an_input_file_in_a_missing_folder_names_the_folder(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    assert main(["import-wbt", "worlds/boxes.wbt"]) == 2
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert line.endswith(f"No such file or directory: there is no folder 'worlds' in {tmp_path}")
+
+
+def test_an_option_of_another_command_names_the_commands_that_take_it(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    # A navigator trained with `mazesim train` is watched with eval, not demo.
+    assert main(["demo", "--controller", "hrl", "--policy", "my-navigator"]) == 2
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert line.startswith("mazesim demo: error: unrecognized arguments: --policy my-navigator; ")
+    assert "--policy is an option of mazesim eval, " in line, line
+    assert "mazesim demo," not in line
+    assert main(["show", "seed-maze", "--episodes", "3"]) == 2
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert line.endswith("--episodes is an option of mazesim eval, mazesim transfer-study"), line
+    assert main(["eval", "--no-such-option"]) == 2  # nobody takes it: nothing added
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert line.endswith("unrecognized arguments: --no-such-option"), line
+
+
+def test_the_navigator_demo_refuses_a_robot_it_would_not_drive(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # It drove the seed robot whatever --robot said, and its summary said "robot seed".
+    monkeypatch.chdir(tmp_path)
+    assert main(["demo", "--controller", "hrl", "--robot", "e-puck2", "--out", "out"]) == 2
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert line.endswith(
+        "--robot e-puck2: mazesim demo --controller hrl drives the shipped navigator on the seed "
+        "robot it was trained for, and takes no other robot; to watch the navigator drive "
+        "e-puck2: mazesim eval --robot e-puck2 --episodes 1 --html run.html"
+    ), line
+    assert not (tmp_path / "out").exists()
+    assert main(["demo", "--robot", "e-puck2", "--seconds", "1", "--out", "out"]) == 0
+    assert "(robot e-puck2, seed 0)" in capsys.readouterr().out
+
+
+def test_training_on_a_world_without_cells_says_how_to_make_one(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    shutil.copyfile(REPO / "examples" / "worlds" / "boxes.wbt", tmp_path / "boxes.wbt")
+    assert main(["train", "--world", "boxes.wbt", "--out", "nav", "--steps", "1M"]) == 2
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert line.endswith(
+        "found none in 'boxes' (its walls are boxes, as every imported Webots world's are): draw "
+        "the maze as a [grid] map of +--+ and | in a .toml world file (docs/world-format.md), or "
+        "generate one with mazesim.generate_maze"
+    ), line
+    assert not (tmp_path / "nav").exists()

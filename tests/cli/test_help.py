@@ -102,6 +102,27 @@ def test_the_examples_of_a_command_parse(command: str) -> None:
         assert args.command == command.split()[0]
 
 
+def _every_command(
+    parser: argparse.ArgumentParser, words: tuple[str, ...] = ()
+) -> Iterator[tuple[str, argparse.ArgumentParser]]:
+    """Every command and subcommand, groups included (``ros2`` and ``ros2 bridge``)."""
+    if words:
+        yield " ".join(words), parser
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            for name, sub in action.choices.items():
+                yield from _every_command(sub, (*words, name))
+
+
+@pytest.mark.parametrize("command", sorted(dict(_every_command(build_parser()))))
+def test_every_command_says_what_it_does_in_plain_words(command: str) -> None:
+    parser = dict(_every_command(build_parser()))[command]
+    # The paragraph under the usage lines: what the command does, before its options.
+    description = parser.description or ""
+    assert len(description.split()) >= 5, f"mazesim {command} --help has no description"
+    assert "``" not in description and ":class:" not in description, description
+
+
 def test_examples_keep_their_lines_and_wrap_the_notes() -> None:
     parser = argparse.ArgumentParser(
         prog="mazesim x",

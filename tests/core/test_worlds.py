@@ -277,11 +277,52 @@ def test_a_maze_drawn_in_a_text_file_is_told_to_paste_it_into_a_world_file(
         mazesim.load_world(drawn)
     assert str(caught.value).endswith(
         "found a .txt file); it holds a maze drawn as a [grid] map: paste it into a .toml world "
-        'file under [grid] map = """...""" (docs/own-maze.md shows such a file)'
+        'file under [grid] map = """...""", after the lines format = "mazesim-world" and '
+        "version = 1 (docs/own-maze.md shows such a file)"
     )
     with pytest.raises(WorldFormatError) as caught:
         mazesim.load_world(notes)
     assert str(caught.value).endswith("found a .txt file)")
+
+
+def test_a_toml_file_holding_a_drawn_map_alone_is_told_to_put_it_under_grid(
+    tmp_path: Path,
+) -> None:
+    drawn = tmp_path / "maze.toml"
+    drawn.write_text("+--+--+\n|S    |\n+--+  +\n|G    |\n+--+--+\n")
+    with pytest.raises(WorldFormatError) as caught:
+        mazesim.load_world(drawn)
+    message = str(caught.value)
+    assert message.startswith(f"{drawn}:1:")
+    assert message.endswith(
+        "; it holds a maze drawn as a [grid] map: paste it into a .toml world file under [grid] "
+        'map = """...""", after the lines format = "mazesim-world" and version = 1 '
+        "(docs/own-maze.md shows such a file)"
+    )
+
+
+@pytest.mark.parametrize(
+    ("name", "start", "kind"),
+    [
+        ("maze.png", b"\x89PNG\r\n\x1a\n\x00\x00\x00\rIHDR\xff\xfe", "a PNG image"),
+        ("maze.jpg", b"\xff\xd8\xff\xe0\x00\x10JFIF\x00\xff\xfe", "a JPEG image"),
+        ("maze", b"GIF89a\x01\x00\xff\xfe", "a GIF image"),
+    ],
+)
+def test_a_maze_drawn_in_a_picture_is_told_what_mazesim_reads_and_what_to_do(
+    tmp_path: Path, name: str, start: bytes, kind: str
+) -> None:
+    picture = tmp_path / name
+    picture.write_bytes(start)
+    with pytest.raises(mazesim.MazesimError) as caught:
+        mazesim.load_world(picture)
+    message = str(caught.value)
+    assert message.startswith(f"{picture}: ")
+    assert message.endswith(
+        f"(found {kind}: mazesim reads .toml world files and .wbt Webots worlds, not pictures; "
+        "draw the maze as a [grid] map of +--+ and | in a .toml world file, or generate one with "
+        "mazesim.generate_maze: docs/own-maze.md shows both)"
+    ), message
 
 
 def test_core_unknown_builtin_name_lists_the_available_names() -> None:

@@ -156,11 +156,39 @@ def _refuse_unknown(
         for word in typed
         if (name := word.lstrip("-").replace("-", "_")) in positional
     ]
+    elsewhere = [] if meant or given else _commands_taking(typed, parser.prog)
     parser.error(
         f"unrecognized arguments: {' '.join(unknown)}"
         + (f"; did you mean {', '.join(meant)}?" if meant else "")
         + "".join(f"; {each}" for each in given)
+        + "".join(f"; {each}" for each in elsewhere)
     )
+
+
+def _commands_taking(typed: list[str], prog: str) -> list[str]:
+    """For each option of ``typed`` that the command ``prog`` lacks but others take (``mazesim
+    demo --policy``): which commands take it (``--policy is an option of mazesim eval, ...``),
+    so that a user who reached for the wrong command is told the right one."""
+    if not typed:
+        return []
+    taking: dict[str, list[str]] = {word: [] for word in typed}
+
+    def walk(parser: argparse.ArgumentParser) -> None:
+        for action in parser._actions:
+            if isinstance(action, argparse._SubParsersAction):
+                for chosen in dict.fromkeys(action.choices.values()):
+                    walk(chosen)
+            for word in taking:
+                if word in action.option_strings and parser.prog != prog:
+                    taking[word].append(parser.prog)
+
+    walk(build_parser())
+    return [
+        f"{word} is an option of {', '.join(sorted(set(progs)))}"
+        + (" (see its --help)" if len(set(progs)) == 1 else "")
+        for word, progs in taking.items()
+        if progs
+    ]
 
 
 def _command_word(arguments: Sequence[str]) -> str:

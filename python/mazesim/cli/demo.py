@@ -84,10 +84,10 @@ def register(commands: Any) -> None:
     add_out_folder(demo, "mazesim-demo", "trajectory.png and summary.json")
     demo.add_argument(
         "--robot",
-        default="e-puck",
+        default=None,
         metavar="NAME",
         help="robot profile; the controller needs the e-puck's 8 proximity sensors "
-        "(default: %(default)s)",
+        "(default: e-puck; --controller hrl drives the seed robot it was trained for)",
     )
     demo.add_argument(
         "--controller",
@@ -131,12 +131,20 @@ def run_avoid_collision_demo(args: argparse.Namespace, out: TextIO) -> int:
     from mazesim.replay.views import SimulatorWatch, written_lines
 
     world = mazesim.load_world(args.world)
-    refuse_blocked_start(world, args.world, args.robot)
-    simulator = mazesim.Simulator(world, robot=args.robot, seed=args.seed)
+    robot_name = "e-puck" if args.robot is None else args.robot
+    refuse_blocked_start(world, args.world, robot_name)
+    simulator = mazesim.Simulator(world, robot=robot_name, seed=args.seed)
     seconds = DEFAULT_SECONDS if args.seconds is None else args.seconds
     if simulator.num_robots > 1:
         return run_robots_demo(args, out, simulator, seconds)
     robot = simulator.robot
+    # A profile file is named with its file: a copy of the e-puck's, edited, still says
+    # name = "e-puck" inside, and the run must not read as the built-in robot's.
+    robot_label = (
+        robot.name
+        if robot_name in mazesim.robot_profile_names()
+        else f"{robot.name} from {robot_name}"
+    )
     # ps0-ps7, wherever the profile lists them (the e-puck2 has its ToF beside them).
     columns = proximity_columns(robot)
     controller = AvoidCollision(max_speed=robot.max_wheel_speed)
@@ -167,7 +175,7 @@ def run_avoid_collision_demo(args: argparse.Namespace, out: TextIO) -> int:
         goal_reached = bool(np.any(np.hypot(xs - goal_x, ys - goal_y) <= radius))
     summary: dict[str, Any] = {
         "world": world.name,
-        "robot": robot.name,
+        "robot": robot_label,
         "seed": args.seed,
         "controller": "avoid-collision",
         "simulated_seconds": simulator.time,
@@ -194,7 +202,7 @@ def run_avoid_collision_demo(args: argparse.Namespace, out: TextIO) -> int:
 
     speed = "n/a" if summary["real_time_factor"] is None else f"{summary['real_time_factor']:.0f}x"
     out.write(
-        f"world              {world.name} (robot {robot.name}, seed {args.seed})\n"
+        f"world              {world.name} (robot {robot_label}, seed {args.seed})\n"
         f"simulated time     {simulator.time:.2f} s ({simulator.steps} steps)\n"
         f"distance travelled {simulator.distance_travelled:.2f} m\n"
         f"collisions         {simulator.collisions}\n"

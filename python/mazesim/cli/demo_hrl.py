@@ -19,6 +19,7 @@ import numpy as np
 import numpy.typing as npt
 
 import mazesim
+from mazesim import InvalidArgumentError
 from mazesim._atomic import atomic_file
 from mazesim._paths import make_output_folder
 from mazesim.cli.demo import HRL_DEFAULT_SECONDS, speed_summary
@@ -41,6 +42,13 @@ __all__ = ["run_hrl_demo"]
 
 def run_hrl_demo(args: argparse.Namespace, out: TextIO) -> int:
     """Runs the navigator demo (``args``: world, seconds, seed, out)."""
+    if getattr(args, "robot", None) is not None:
+        raise InvalidArgumentError(
+            f"--robot {args.robot}: mazesim demo --controller hrl drives the shipped navigator "
+            "on the seed robot it was trained for, and takes no other robot; to watch the "
+            f"navigator drive {args.robot}: mazesim eval --robot {args.robot} --episodes 1 "
+            "--html run.html"
+        )
     world = mazesim.load_world(args.world)
     refuse_unlearnable(world, args.world, "drive")
     policy = load_policy()

@@ -160,7 +160,13 @@ def register(commands: Any) -> None:
     parser = commands.add_parser(
         "ros2",
         help="run the ROS 2 bridge and controller nodes over DDS (needs mazesim[ros2])",
-        description=__doc__.split("\n\n")[0],
+        description=(
+            "Run mazesim as ROS 2 nodes over DDS, with no ROS 2 installation (the extra "
+            "mazesim[ros2] brings Cyclone DDS and rosbags): the bridge publishes the e-puck's "
+            "standard topics (/scan, /odom, /tf, one Range per sensor, /clock) and the report's "
+            "/sensors and /sensor_data, and drives on /cmd_vel, /motor or /action; the controller "
+            "nodes and a recorded demo are beside it (docs/ros2.md)."
+        ),
         epilog=examples(
             "mazesim ros2 bridge --world seed-maze",
             "mazesim ros2 bridge --mode free --speed 2 --ros-distro jazzy",
@@ -171,6 +177,13 @@ def register(commands: Any) -> None:
     bridge = sub.add_parser(
         "bridge",
         help="the simulator behind the e-puck's ROS 2 topics",
+        description=(
+            "Run a simulator as a ROS 2 node: after each control step it publishes the sensors "
+            "(a sensor_msgs/Range per distance and ground sensor, /scan, /sensors, /sensor_data), "
+            "/odom, /joint_states, /tf and /clock; it drives on /cmd_vel, /motor ([left, right] "
+            "rad/s) or /action (a primitive action code). In lockstep mode it advances one "
+            "control step per command; free mode steps on its own, controlled on /sim_control."
+        ),
         epilog=examples(
             "mazesim ros2 bridge --world seed-maze --bag run1",
             "mazesim ros2 bridge --robot seed --stop-at-goal --ros-distro jazzy",
@@ -231,6 +244,12 @@ def register(commands: Any) -> None:
     learning = sub.add_parser(
         "perform-learning",
         help="the shipped hierarchical navigator: /sensor_data -> /action",
+        description=(
+            "Run the hierarchical navigator (the shipped one, or a folder 'mazesim train' wrote) "
+            "as a ROS 2 node: it reads /sensor_data (the Sharp distances and the checkpoint "
+            "crossed) and answers each reading with an action code on /action. Start 'mazesim "
+            "ros2 bridge --robot seed' beside it."
+        ),
         epilog=examples(
             "mazesim ros2 perform-learning",
             "mazesim ros2 perform-learning --ros-distro jazzy --control-step-ms 32",
@@ -250,6 +269,11 @@ def register(commands: Any) -> None:
     avoid = sub.add_parser(
         "avoid-collision",
         help="the report's Alg. 1: /sensors -> /motor",
+        description=(
+            "Run the report's avoid-collision rule (Alg. 1) as a ROS 2 node: it reads /sensors "
+            "(ps0..ps7 first) and answers with wheel speeds on /motor, to each reading or on a "
+            "timer of simulation time. Start 'mazesim ros2 bridge' beside it."
+        ),
         epilog=examples(
             "mazesim ros2 avoid-collision",
             "mazesim ros2 avoid-collision --period-ms 64",
@@ -277,6 +301,11 @@ def register(commands: Any) -> None:
     demo = sub.add_parser(
         "demo",
         help="bridge + navigator node to the goal, recorded in a bag",
+        description=(
+            "Run the bridge in lockstep and a controller node (the shipped navigator, or the "
+            "avoid-collision rule) as two processes on this machine until the goal or the step "
+            "limit, recording the run in a rosbag2 (MCAP) folder, DIR/bag."
+        ),
         epilog=examples(
             "mazesim ros2 demo --out ros2-demo",
             "mazesim ros2 demo --controller avoid-collision --steps 500 --ros-distro jazzy",

@@ -12,6 +12,7 @@ metres and radians, world frame, z up.
 
 from __future__ import annotations
 
+import errno
 import os
 import re
 from collections.abc import Callable, Mapping
@@ -336,7 +337,11 @@ def _world_text(file: str) -> str | None:
         if len(data) > MAX_WORLD_BYTES:
             return None
         return data.decode("utf-8")
-    except (MazesimIOError, UnicodeDecodeError):
+    except MazesimIOError as unreadable:
+        if unreadable.errno == errno.ENOENT:  # no such file: say where it was looked for
+            raise
+        return None
+    except UnicodeDecodeError:
         return None
 
 
