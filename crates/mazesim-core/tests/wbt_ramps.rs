@@ -37,7 +37,11 @@ fn a_ramp_down_from_a_platform_is_floor_and_says_its_top_and_slope() {
     // the top of a 0.21 m springboard.
     let w = world([0.2, 0.46, 0.02], 0.095, 0.47, 0.5, 0.0);
     assert!(w.obstacles.is_empty(), "{:?}", w.obstacles);
-    assert!(warned(&w, "rises from the floor to 0.208 m at 27 degrees"), "{:?}", w.warnings);
+    assert!(
+        warned(&w, "rises from the floor to 0.208 m at 27 degrees"),
+        "{:?}",
+        w.warnings
+    );
 }
 
 #[test]
