@@ -16,7 +16,7 @@ import errno
 import os
 import re
 from collections.abc import Callable, Mapping
-from typing import Any, Literal, TypedDict, Union, cast
+from typing import TYPE_CHECKING, Any, Literal, TypedDict, Union, cast
 
 import numpy as np
 import numpy.typing as npt
@@ -26,6 +26,9 @@ from mazesim._core import World
 from mazesim._paths import open_input, read_input
 from mazesim.errors import MazesimIOError
 from mazesim.webots.recognition import RecognitionReport, read_recognition
+
+if TYPE_CHECKING:
+    from mazesim.webots.proto.resolver import Resolver
 
 __all__ = [
     "BoxObstacle",
@@ -205,15 +208,18 @@ def grey_levels(path: str) -> npt.NDArray[np.float64]:
     return np.ascontiguousarray(np.asarray(grey, dtype=np.float64) / 255.0)
 
 
-def _floor_images(report: dict[str, Any]) -> tuple[dict[str, npt.NDArray[np.float64]], list[str]]:
-    """The images of the report's floor textures (the first candidate file that exists), and a
-    warning for each file that exists but cannot be decoded."""
+def _floor_images(
+    report: dict[str, Any], resolver: Resolver | None
+) -> tuple[dict[str, npt.NDArray[np.float64]], list[str]]:
+    """The images of the report's floor textures (the first candidate file that exists, else
+    the URL's file through ``resolver``), and a warning for each file that exists but cannot
+    be decoded."""
     images: dict[str, npt.NDArray[np.float64]] = {}
     problems: list[str] = []
     for texture in report["floor_textures"]:
         files = [(c, c) for c in texture["candidates"] if os.path.isfile(c)]
         if not files and texture["candidates"]:
-            files = _downloaded(texture, problems)
+            files = _downloaded(texture, problems, resolver)
         for key, candidate in files[:1]:
             try:
                 images[key] = grey_levels(candidate)
@@ -225,17 +231,23 @@ def _floor_images(report: dict[str, Any]) -> tuple[dict[str, npt.NDArray[np.floa
     return images, problems
 
 
-def _downloaded(texture: dict[str, Any], problems: list[str]) -> list[tuple[str, str]]:
-    """A floor texture given by an http(s) URL, through the PROTO engine's download cache:
-    [(the candidate the core looks the image up by, the cached file)], or [] with a warning
-    naming the URL."""
+def _downloaded(
+    texture: dict[str, Any], problems: list[str], resolver: Resolver | None
+) -> list[tuple[str, str]]:
+    """A floor texture given by an http(s) URL, through the PROTO engine's download cache, or
+    by a ``webots://`` URL, found as the PROTO engine finds a ``webots://`` PROTO (the Webots
+    installation, the Webots tree the world lies in, else Webots' repository at the world's
+    version through that cache): [(the candidate the core looks the image up by, the file)],
+    or [] with a warning naming the URL."""
     from mazesim.webots.proto import ProtoUnavailableError, fetch_url
 
-    for url in texture["urls"]:
-        if not str(url).startswith(("http://", "https://")):
+    for url in map(str, texture["urls"]):
+        webots = url.startswith("webots://") and resolver is not None
+        if not webots and not url.startswith(("http://", "https://")):
             continue
         try:
-            return [(texture["candidates"][0], str(fetch_url(str(url))))]
+            found = resolver.webots_texture(url) if webots and resolver else fetch_url(url)
+            return [(texture["candidates"][0], str(found))]
         except ProtoUnavailableError as error:
             problems.append(f"{texture['owner']}: floor texture: {error}; the floor is left bare")
             return []
@@ -265,10 +277,12 @@ def undownloaded_textures(warnings: list[str]) -> list[str]:
 def _with_floor(
     imported: tuple[World, dict[str, Any]],
     again: Callable[[dict[str, npt.NDArray[np.float64]]], tuple[World, dict[str, Any]]],
+    resolver: Resolver | None = None,
 ) -> tuple[World, ImportReport]:
-    """Imports again with the floor textures' images when any was found."""
+    """Imports again with the floor textures' images when any was found (``webots://`` and
+    http(s) ones through the world's ``resolver``)."""
     world, report = imported
-    images, problems = _floor_images(report)
+    images, problems = _floor_images(report, resolver)
     if images:
         world, report = again(images)
     warnings: list[str] = report["warnings"]
@@ -367,7 +381,7 @@ def import_wbt_text(
     Raises:
         WorldFormatError: The text is not a readable Webots world.
     """
-    from mazesim.webots.proto import expand_world
+    from mazesim.webots.proto import expand_world, world_resolver
 
     expanded, protos = expand_world(text, source)
     world, report = _with_floor(
@@ -375,6 +389,7 @@ def import_wbt_text(
         lambda images: _core.import_wbt_text(
             expanded, source, floor_images=images, controller=controller, robot_line=robot_line
         ),
+        world_resolver(text, source),
     )
     report["warnings"][:0] = protos.warnings
     report["protos"] = {

@@ -19,6 +19,10 @@ pub const ROBOT_HEIGHT: f64 = 0.05;
 /// plate of its bounding objects meet the shape, and Webots' ODE lifts a robot placed on it
 /// (a thin region a world marks on the floor as a Solid with a bounding object).
 pub const STOOD_ON: f64 = 0.0025;
+/// The steepest slope (radians from level) of a ramp the e-puck drives on: Webots' default
+/// contact (`ContactProperties.coulombFriction` 1) holds a wheel on an incline up to
+/// atan(1) = 45 degrees.
+pub const STEEPEST_RAMP: f64 = PI / 4.0;
 
 fn scaled(v: Vec3, s: f64) -> Vec3 {
     v.map(|c| c * s)
@@ -160,10 +164,42 @@ impl<'d> Importer<'d> {
     /// Adds the footprint of a box with half-extents `half` along the axes of `frame`.
     pub fn emit_box(&mut self, frame: &Frame, half: Vec3, owner: &str) {
         let axes = [0, 1, 2].map(|i| scaled(frame.axis(i), half[i]));
+        if !self.sensing && !self.falls && self.is_ramp(frame.origin, &axes, owner) {
+            return;
+        }
         let half_z: f64 = axes.iter().map(|a| a[2].abs()).sum();
         if self.meets_robot(frame.origin[2], half_z, owner) {
             self.footprint(frame.origin, axes, owner, "box");
         }
+    }
+
+    /// Whether a static box (centre `center`, half-axes `axes`) is a ramp: its upper face, tilted
+    /// by at most [`STEEPEST_RAMP`], rises from the floor (its lowest edge within [`STOOD_ON`]
+    /// of it), so the robot drives onto it and up it (or stands on it, as a robot saved on a
+    /// sloping slab does) as on ground: in 2D it is floor, not a wall (said in a warning).
+    fn is_ramp(&mut self, center: Vec3, axes: &[Vec3; 3], owner: &str) -> bool {
+        let up = (0..3)
+            .min_by(|&i, &j| tilt(axes[i]).total_cmp(&tilt(axes[j])))
+            .unwrap_or(2);
+        let slope = tilt(axes[up]);
+        if slope <= TILT_TOLERANCE || slope > STEEPEST_RAMP {
+            return false;
+        }
+        let face_height = center[2] + axes[up][2].abs();
+        let lowest_edge = face_height
+            - (0..3)
+                .filter(|&i| i != up)
+                .map(|i| axes[i][2].abs())
+                .sum::<f64>();
+        let highest_edge = 2.0 * face_height - lowest_edge;
+        if lowest_edge > STOOD_ON || highest_edge <= STOOD_ON {
+            return false;
+        }
+        self.warn(format!(
+            "{owner}: a ramp (a box whose top rises from the floor to {highest_edge:.3} m at {:.0} degrees): the robot drives on it, imported as floor",
+            slope.to_degrees()
+        ));
+        true
     }
 
     /// Adds the footprint of a round shape (cylinder, capsule, sphere) of `radius` whose axis,

@@ -11,10 +11,20 @@ nested PROTOs (``expander``); stock objects that cannot be read get mazesim's st
 from __future__ import annotations
 
 from .expander import Expander, ExpansionReport
-from .resolver import ProtoUnavailableError, cache_dir, fetch_url
+from .resolver import ProtoUnavailableError, Resolver, cache_dir, fetch_url
 from .syntax import unix_line_ends, world_version
 
-__all__ = ["ExpansionReport", "ProtoUnavailableError", "cache_dir", "expand_world", "fetch_url"]
+__all__ = [
+    "ExpansionReport",
+    "ProtoUnavailableError",
+    "cache_dir",
+    "expand_world",
+    "fetch_url",
+    "world_resolver",
+]
+
+#: The Webots release a world without a ``#VRML_SIM`` header is read as.
+DEFAULT_VERSION = "R2023b"
 
 
 def expand_world(text: str, world: str) -> tuple[str, ExpansionReport]:
@@ -35,5 +45,12 @@ def expand_world(text: str, world: str) -> tuple[str, ExpansionReport]:
     """
     text = unix_line_ends(text)
     version, y_up = world_version(text)
-    expander = Expander(world, text, version or "R2023b", y_up)
+    expander = Expander(world, text, version or DEFAULT_VERSION, y_up)
     return expander.expand_world(), expander.report
+
+
+def world_resolver(text: str, world: str) -> Resolver:
+    """The resolver of a world's ``webots://`` and http(s) URLs, at the Webots release its
+    header names (for files the PROTO expansion does not read: its floor textures)."""
+    version, _ = world_version(unix_line_ends(text))
+    return Resolver(world, version or DEFAULT_VERSION)

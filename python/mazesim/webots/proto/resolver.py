@@ -134,14 +134,9 @@ class Resolver:
             ProtoUnavailableError: A URL cannot be downloaded.
         """
         if url.startswith("webots://"):
-            home = os.environ.get("WEBOTS_HOME")
-            if home:
-                local = Path(home) / url[len("webots://") :]
-                if local.is_file():
-                    return ProtoSource(_read(local), str(local))
-            own = self.in_world_tree(url[len("webots://") :])
-            if own is not None:
-                return ProtoSource(_read(own), str(own))
+            local = self.webots_file(url)
+            if local is not None:
+                return ProtoSource(_read(local), str(local))
             return self.url(self.webots_url(url))
         if is_url(url):
             return self.url(url)
@@ -151,6 +146,29 @@ class Resolver:
         if path.is_file():
             return ProtoSource(_read(path), str(path.resolve()))
         return None
+
+    def webots_file(self, url: str) -> Path | None:
+        """The local file of a ``webots://`` URL (a PROTO or a texture): in the Webots
+        installation named by ``WEBOTS_HOME``, else in the Webots tree the world lies in; None
+        when neither holds it (it is then Webots' repository at :meth:`webots_url`)."""
+        path = url[len("webots://") :]
+        home = os.environ.get("WEBOTS_HOME")
+        if home:
+            local = Path(home) / path
+            if local.is_file():
+                return local
+        return self.in_world_tree(path)
+
+    def webots_texture(self, url: str) -> Path:
+        """The local copy of a ``webots://`` texture URL: :meth:`webots_file`, else downloaded
+        from Webots' repository at the world's version through the cache.
+
+        Raises:
+            ProtoUnavailableError: Neither installed, in the world's tree nor in the cache, and
+                it cannot be downloaded (the message names the https URL).
+        """
+        local = self.webots_file(url)
+        return local if local is not None else fetch_url(self.webots_url(url))
 
     def in_world_tree(self, path: str) -> Path | None:
         """The file at ``path`` of the Webots tree the world lies in, or None: a world of Webots'
