@@ -579,6 +579,12 @@ WRONG_TYPED_DEVICE_CALLS = {
     # Read by int() as another number, without a word (Webots refuses them).
     "receiver channel of 1.5": "robot.getDevice('receiver').setChannel(1.5)",
     "sampling period of True": "robot.getDevice('ps0').enable(True)",
+    # Plain values of another type that no line of the call failed on: True was a step of 1 ms
+    # and a speed of 1 rad/s, None and 3 the names of devices "None" and "3".
+    "step duration of True": "robot.step(True)",
+    "motor velocity of True": "robot.getDevice('left wheel motor').setVelocity(True)",
+    "device name None": "robot.getDevice(None)",
+    "device name 3": "robot.getDevice(3)",
 }
 
 

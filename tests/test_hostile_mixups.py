@@ -11,7 +11,15 @@ import pytest
 
 import mazesim
 from mazesim.cli import main
-from mazesim.errors import InvalidArgumentError, MazesimIOError, WorldFormatError
+from mazesim.errors import (
+    InvalidArgumentError,
+    MazesimIOError,
+    PolicyFormatError,
+    RunFormatError,
+    UnknownNameError,
+    WorldFormatError,
+    WrongTypeError,
+)
 from mazesim.webots.importer import import_wbt
 from mazesim.webots.native_controller import cache_folder
 from mazesim.webots.proto import cache_dir, fetch_url
@@ -97,3 +105,78 @@ def test_a_world_file_given_as_a_controller_is_not_run_as_python(
     assert "expected a Python, C or C++ controller" in said
     assert "found a TOML file (a mazesim world, given as --world" in said
     assert "NameError" not in said
+
+
+class _BytesPath:
+    """A path object whose ``__fspath__`` gives bytes."""
+
+    def __fspath__(self) -> bytes:
+        return bytes(WORLD)
+
+
+@pytest.mark.parametrize("path", [bytes(WORLD), _BytesPath()], ids=["bytes", "bytes-pathlike"])
+def test_every_path_argument_takes_the_same_paths(path: object) -> None:
+    """``load_world`` read a path object giving bytes that ``World.load`` refused: every path
+    argument now takes a str or an ``os.PathLike`` giving a str, and refuses bytes alike."""
+    from mazesim.learn import load_policy
+    from mazesim.replay import load_run
+
+    for call in (
+        mazesim.World.load,
+        mazesim.load_world,
+        mazesim.World.builtin("arena").save,
+        load_run,
+        load_policy,
+    ):
+        with pytest.raises(WrongTypeError, match=r"expected .*str (or|\|) os\.PathLike"):
+            call(path)  # type: ignore[operator]
+
+
+def test_a_json_loader_given_another_kind_of_file_names_it(tmp_path: Path) -> None:
+    """The run and navigator readers said only "not JSON" of a world file."""
+    from mazesim.learn import load_policy
+    from mazesim.replay import load_run
+
+    said = "found a mazesim world file: pass it as a world (`--world`"
+    with pytest.raises(RunFormatError, match="expected a mazesim run") as refused:
+        load_run(WORLD)
+    assert said in str(refused.value)
+    empty = tmp_path / "empty.json"
+    empty.write_bytes(b"")
+    with pytest.raises(RunFormatError, match="expected a mazesim run .*, found an empty file"):
+        load_run(empty)
+    navigator = tmp_path / "navigator"
+    navigator.mkdir()
+    (navigator / "policy.json").write_text(WORLD.read_text())
+    with pytest.raises(PolicyFormatError, match="expected JSON metadata") as refused:
+        load_policy(navigator)
+    assert said in str(refused.value)
+    with pytest.raises(PolicyFormatError, match="expected a navigator's folder") as refused:
+        load_policy(WORLD)
+    assert said in str(refused.value)
+
+
+def test_a_sweep_file_that_is_another_kind_or_names_no_world_says_so(tmp_path: Path) -> None:
+    from mazesim.distributed.config import load_sweep_config
+
+    with pytest.raises(InvalidArgumentError, match="expected a sweep file") as refused:
+        load_sweep_config(WORLD)
+    assert "found a mazesim world file" in str(refused.value)
+    sweep = tmp_path / "sweep.toml"
+    sweep.write_text('[sweep]\n[grid]\nworld = "arnea"\n')
+    with pytest.raises(UnknownNameError) as unknown:
+        load_sweep_config(sweep)
+    # The words of load_world and every other reader of a world's name.
+    assert str(unknown.value).startswith(
+        f"{sweep}: grid.world: no built-in world named 'arnea' and "
+    )
+    assert "(or a path to a .toml world file" in str(unknown.value)
+    assert unknown.value.suggestion == "arena"
+
+
+def test_a_proto_file_given_as_a_world_is_named_a_proto_file(tmp_path: Path) -> None:
+    """A PROTO file imported as a world was an empty world, without a word."""
+    proto = tmp_path / "Foo.proto"
+    proto.write_text("#VRML_SIM R2023b utf8\nPROTO Foo [ ] { Solid { } }\n")
+    with pytest.raises(WorldFormatError, match="found a Webots PROTO file"):
+        import_wbt(str(proto))

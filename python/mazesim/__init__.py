@@ -48,7 +48,6 @@ from mazesim.errors import (
     UnknownNameError,
     WorldFormatError,
     WrongTypeError,
-    _a_type,
 )
 
 # Every public module imported from here on gets the argument check (mazesim._checks).
@@ -109,19 +108,11 @@ def load_world(name_or_path: str | os.PathLike[str]) -> World:
         MazesimIOError: The file exists but cannot be read.
         InvalidArgumentError: ``name_or_path`` is neither a str nor an ``os.PathLike``.
     """
-    if not isinstance(name_or_path, (str, os.PathLike)):
-        raise WrongTypeError(
-            "expected name_or_path to be a built-in world name or a path (str or os.PathLike), "
-            f"found {_a_type(name_or_path)}"
-        )
+    from mazesim._paths import fs_path
+
     if isinstance(name_or_path, str) and name_or_path in builtin_world_names():
         return World.builtin(name_or_path)
-    try:
-        path = os.fspath(name_or_path)
-    except TypeError as bad_path:  # a PathLike whose __fspath__ gives neither str nor bytes
-        raise WrongTypeError(f"expected name_or_path to be a path, found: {bad_path}") from None
-    if isinstance(path, bytes):
-        path = os.fsdecode(path)
+    path = fs_path(name_or_path, "name_or_path")  # as World.load takes it: bytes refused
     if os.path.isfile(path):
         if path.lower().endswith(".wbt"):
             from mazesim.webots.importer import import_wbt

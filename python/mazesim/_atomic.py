@@ -45,7 +45,7 @@ import time
 from collections.abc import Iterator
 from typing import IO, NamedTuple
 
-from mazesim.errors import MazesimIOError
+from mazesim.errors import MazesimIOError, _path_of
 
 try:
     import fcntl
@@ -357,7 +357,7 @@ def atomic_file(path: str | os.PathLike[str]) -> Iterator[IO[bytes]]:
     Raises:
         MazesimIOError: The file cannot be written (naming ``path`` and the system's reason).
     """
-    user_path = os.fspath(path)
+    user_path = _path_of(path, "path")  # as every path argument: bytes refused
     target = output_target(user_path)
     if target.stream:
         with _streamed(target.path) as buffer:

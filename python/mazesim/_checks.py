@@ -203,7 +203,9 @@ def _class_refusal(value: Any, hint: type) -> str | None:  # noqa: PLR0911 - one
             return None
         ok = False  # True and False are ints to Python, not counts or indices to mazesim
     elif hint is float or hint is complex:
-        ok = isinstance(value, (*_NUMBERS, np.bool_, complex if hint is complex else float))
+        # True and False are ints to Python, not speeds or milliseconds to mazesim.
+        ok = isinstance(value, (*_NUMBERS, complex if hint is complex else float))
+        ok = ok and not isinstance(value, (bool, np.bool_))
         if ok and isinstance(value, int) and not SMALLEST_INT <= value <= LARGEST_INT:
             return f"expected a number, found an integer of {value.bit_length()} bits"
     elif hint is str:
@@ -275,6 +277,8 @@ def _path_refusal(value: Any) -> str | None:
     (which no file system takes)."""
     if not isinstance(value, (str, os.PathLike)):
         return TypeRefusal(f"expected a path, found {_describe(value)}")
+    if not isinstance(os.fspath(value), str):  # as the compiled core's paths (_paths.fs_path)
+        return TypeRefusal(f"expected a path, found {_describe(value)} whose path is bytes")
     if "\x00" in str(os.fspath(value)):
         return "expected a path, found one with a NUL character"
     return None
@@ -412,6 +416,28 @@ def _takes_int(hint: Any) -> bool:
 
 #: The types ``int()`` reads as ints, a value of which may be another number than the int.
 _READ_AS_INTS = (bool, float, np.bool_, np.floating)
+#: The plain values a call may take without failing whatever their annotation says (``float()``
+#: reads True, an f-string reads None or 3 as a name): checked before the call.
+_SCALARS = (bool, int, float, type(None))
+#: The scalar types each annotation takes without a closer look.
+_PLAIN_TYPES: dict[Any, tuple[type, ...]] = {
+    float: (float, int),
+    int: (int,),
+    bool: (bool,),
+    str: (),
+    type(None): (type(None),),
+    None: (type(None),),
+}
+
+
+def _plain_types(hint: Any) -> tuple[type, ...] | None:
+    """The scalar types (of :data:`_SCALARS`) a value of ``hint`` may have without a closer
+    look, or None when ``hint`` is one the scalar check leaves alone (``Any``, a choice of
+    literals, an array-like, a class of the package...): those are checked after a failure."""
+    members = typing.get_args(hint) if typing.get_origin(hint) in _UNIONS else (hint,)
+    if not members or any(m not in _PLAIN_TYPES for m in members):
+        return None
+    return tuple({t for m in members for t in _PLAIN_TYPES[m]})
 
 
 def _read_as_another_int(value: Any) -> bool:
@@ -443,6 +469,9 @@ class _Parameters:
         #: The parameters annotated as ints (not floats), which ``int()`` would read a bool or
         #: a float of 1.5 as, silently: checked before the call.
         self.ints: set[str] = set()
+        #: The scalar types each plainly annotated parameter takes (:func:`_plain_types`): a
+        #: bool, None or number of another type is refused before the call.
+        self.plain: dict[str, tuple[type, ...]] = {}
 
     def prepare(self) -> None:
         func = inspect.unwrap(self.func)
@@ -469,6 +498,9 @@ class _Parameters:
                 self.by_name[p.name] = hint
             if _takes_int(hint):
                 self.ints.add(p.name)
+            plain = _plain_types(hint) if hint is not Any else None
+            if plain is not None:
+                self.plain[p.name] = plain
         for index, p in enumerate(parameters):
             most = _bound_of(hints.get(p.name, Any))
             if most is not None and not (index == 0 and self.skip_first):
@@ -525,15 +557,25 @@ class _Parameters:
             if isinstance(value, _TEXT) and hint is not Any:
                 self.refuse_text(name, value, hint)
 
-    def check_ints(self, args: tuple[Any, ...], kwargs: dict[str, Any]) -> None:
-        """Refuses, before the call, a bool or a float with a fractional part (or not finite)
-        given for an int, which ``int()`` would read as another number without a word."""
-        for (name, hint), value in zip(self.positional, args):  # noqa: B905 - extras: TypeError
-            if name in self.ints and _read_as_another_int(value):
+    def check_scalars(self, args: tuple[Any, ...], kwargs: dict[str, Any]) -> None:
+        """Refuses, before the call, a plain value its parameter's annotation does not take,
+        which the call could read as something else without a word: a bool or a float with a
+        fractional part (or not finite) given for an int (``int()`` reads them), an int beyond
+        64 bits for an int, a bool for a number (``Robot.step(True)`` is not 1 ms), None or a
+        number for text (``getDevice(None)`` is not the device named "None")."""
+        pairs = [*self.positional[: len(args)], *((n, self.by_name.get(n, Any)) for n in kwargs)]
+        values = [*args[: len(self.positional)], *kwargs.values()]
+        for (name, hint), value in zip(pairs, values):  # noqa: B905 - one value per pair
+            if hint is Any or not isinstance(value, _SCALARS):
+                continue
+            if name in self.ints and (
+                _read_as_another_int(value)
+                or (type(value) is int and not SMALLEST_INT <= value <= LARGEST_INT)
+            ):
                 self.refuse(name, value, hint)
-        for name, value in kwargs.items():
-            if name in self.ints and _read_as_another_int(value):
-                self.refuse(name, value, self.by_name[name])
+            plain = self.plain.get(name)
+            if plain is not None and type(value) not in plain:
+                self.refuse(name, value, hint)
 
     def refuse_text(self, name: str, value: str | bytes | bytearray, hint: Any) -> None:
         """:meth:`refuse` for text, remembering the last texts that fit (a controller asks for
@@ -563,7 +605,7 @@ def checked(func: Callable[..., Any], *, method: bool = False) -> Callable[..., 
     # The wrapper runs in func's globals: everything it uses is bound here.
     error, own, failures, text = InvalidArgumentError, MazesimError, _ARGUMENT_FAILURES, _TEXT
     wrong = WrongTypeError
-    lossy = _READ_AS_INTS
+    scalars = _SCALARS
     tree = in_the_tree
     state = STATE  # per thread, whether a checked call is running
 
@@ -576,10 +618,10 @@ def checked(func: Callable[..., Any], *, method: bool = False) -> Callable[..., 
             if isinstance(value, text):  # float("64") would take text for a number: check now
                 parameters.check_text(args, kwargs)
                 break
-        if parameters.ints:  # int(True) and int(1.5) would take another number: check now
+        if parameters.ints or parameters.plain:  # int(True), float(True), f"{None}": check now
             for value in (*args, *kwargs.values()) if kwargs else args:
-                if isinstance(value, lossy):
-                    parameters.check_ints(args, kwargs)
+                if isinstance(value, scalars):
+                    parameters.check_scalars(args, kwargs)
                     break
         state.inside = True
         try:

@@ -28,6 +28,7 @@ __all__ = [
     "_panic_for_tests",
     "builtin_world_names",
     "default_codes",
+    "file_kind",
     "generate_maze",
     "import_wbt",
     "import_wbt_text",
@@ -125,6 +126,11 @@ def default_codes() -> list[str]:
 
 def validate_codes(codes: list[str]) -> None:
     """Raises InvalidArgumentError for a palindrome, a duplicate or a reverse clash."""
+
+def file_kind(text: str) -> tuple[str, str] | None:
+    """What kind of mazesim file ``text`` is, from its first lines: its name with its article
+    (``"a mazesim world file"``) and where such a file is taken, or None when it is none of
+    mazesim's kinds."""
 
 def import_wbt(
     path: str | os.PathLike[str],

@@ -22,11 +22,15 @@ from mazesim.errors import (
     UnknownNameError,
     _closest_name,
 )
+from mazesim.errors import _path_of as fs_path
 
 __all__ = [
     "MAX_TEXT_CHARACTERS",
     "cache_folder",
     "file_name_of",
+    "file_described",
+    "found_kind",
+    "fs_path",
     "make_output_folder",
     "open_input",
     "output_file",
@@ -61,6 +65,36 @@ def _kind_of(mode: int) -> str:
     return next((word for test, word in kinds if test(mode)), "not a regular file")
 
 
+def found_kind(data: bytes | str, expected: tuple[str, ...] = ()) -> str | None:
+    """What kind of mazesim file ``data`` (a file's first bytes) is, with where such a file is
+    taken ("a mazesim world file: pass it as a world (...)"), as the compiled core tells a
+    file given for another kind; None when it is none of mazesim's kinds, or one of
+    ``expected`` (the kinds the caller reads: a damaged one is refused for its damage)."""
+    from mazesim._core import file_kind
+
+    text = data if isinstance(data, str) else data[: 64 * 1024].decode("utf-8", "replace")
+    kind = file_kind(text)
+    return None if kind is None or kind[0] in expected else f"{kind[0]}: {kind[1]}"
+
+
+def file_described(path: str | os.PathLike[str]) -> str:
+    """What ``path`` is, in words, for a message saying it is not what was expected: "a folder",
+    "a FIFO (named pipe)"..., a regular file by its kind ("a mazesim world file: pass it as a
+    world (...)", :func:`found_kind`) or "a file"."""
+    try:
+        mode = os.stat(path).st_mode
+    except (OSError, ValueError) as unreadable:
+        return getattr(unreadable, "strerror", None) or str(unreadable)
+    if not stat.S_ISREG(mode):
+        return _kind_of(mode)
+    try:
+        with open_input(path, "the file") as handle:
+            head = handle.read(64 * 1024)
+    except MazesimIOError:
+        return "a file"
+    return found_kind(head) or "a file"
+
+
 #: The most entries of a folder :func:`world_files_beside` looks at (a typo's suggestion is not
 #: worth reading a huge folder for).
 MAX_FOLDER_ENTRIES = 1000
@@ -85,7 +119,12 @@ def world_files_beside(path: str, suffixes: tuple[str, ...] = (".toml", ".wbt"))
 
 
 def unknown_name_or_file(
-    path: str, kind: str, available: list[str], files: str, suffixes: tuple[str, ...]
+    path: str,
+    kind: str,
+    available: list[str],
+    files: str,
+    suffixes: tuple[str, ...],
+    context: str = "",
 ) -> UnknownNameError:
     """The error for ``path`` that is neither the name of a built-in ``kind`` (one of
     ``available``) nor a file: it says what the path is or where it was looked for, lists the
@@ -94,7 +133,8 @@ def unknown_name_or_file(
 
     A name with a folder or a suffix (``maps/maze.toml``, ``maze.toml``) is a path: the message
     says which folder does not exist, or which folder lacks the file; a path with a folder is
-    compared with the files beside it only, not with the built-in names."""
+    compared with the files beside it only, not with the built-in names. ``context`` opens the
+    message (``"sweep.toml: grid.world: "``: where the name was given)."""
     folder, file = os.path.split(path)
     is_path = bool(folder) or bool(os.path.splitext(file)[1])
     where = "" if os.path.isabs(path) else f" in {os.getcwd()}"
@@ -112,6 +152,7 @@ def unknown_name_or_file(
         elif not os.path.isabs(path):  # a relative path: say where it was looked for
             found = f"{found}{where}"
     opening = f"no {kind} file {path!r}: " if is_path else f"no built-in {kind} named {path!r} and "
+    opening = context + opening
     unknown = UnknownNameError(
         f"{opening}{found}; built-in {kind}s: {', '.join(available)} (or a path to {files})",
         name=path,
@@ -174,7 +215,7 @@ def open_input(path: str | os.PathLike[str], what: str) -> BinaryIO:
         MazesimIOError: The file cannot be opened, or is not a regular file (``filename`` is the
             path, ``strerror`` the reason).
     """
-    file = os.fspath(path)
+    file = fs_path(path, "path")  # as every path argument: bytes refused
     flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0)
     try:
         descriptor = os.open(file, flags | getattr(os, "O_BINARY", 0))

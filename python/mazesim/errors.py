@@ -13,6 +13,7 @@ to ``None``.
 from __future__ import annotations
 
 import difflib
+import os
 
 __all__ = [
     "ClusterConnectionError",
@@ -209,3 +210,29 @@ class RunFormatError(MazesimError, ValueError):
     """A recorded run (:mod:`mazesim.replay.run`) cannot be read: it is not a run file, it is
     malformed, or it was written in a newer major version of the format than this mazesim
     reads; the message names the file and says which."""
+
+
+def _path_of(value: object, name: str) -> str:
+    """The path ``value`` names, as a str: a str, or an ``os.PathLike`` whose ``__fspath__``
+    gives a str. Every path argument of the package takes the same, the compiled core's
+    (``World.load``, ``World.save``) included: bytes, or a path object giving bytes, is refused
+    (decode it with ``os.fsdecode``).
+
+    The one path helper: ``mazesim._paths.fs_path`` for the readers, the writer of
+    ``mazesim._atomic`` for every output.
+
+    Raises:
+        WrongTypeError: ``value`` is not such a path.
+    """
+    found = _a_type(value)
+    if isinstance(value, os.PathLike) and not isinstance(value, (str, bytes)):
+        try:
+            value = os.fspath(value)
+        except TypeError:
+            value = None
+        if not isinstance(value, str):
+            found += f" whose __fspath__ gives {_a_type(value)}"
+    if not isinstance(value, str):
+        hint = " (decode bytes with os.fsdecode)" if "bytes" in found else ""
+        raise WrongTypeError(f"expected {name} to be a str or os.PathLike, found {found}{hint}")
+    return value

@@ -1,6 +1,8 @@
 """The hostile values fed to the public surface, by key: huge lengths, nesting, non-finite and
-extreme numbers, wrong types, special files. The keys are what hypothesis draws (plans are plain
-data that cross into the runner's process); :func:`make` builds the value in that process.
+extreme numbers, wrong types, special files, a path object giving bytes, a file of another kind
+(a world file where a run, a navigator or a sweep is read). The keys are what hypothesis draws
+(plans are plain data that cross into the runner's process); :func:`make` builds the value in
+that process.
 
 Special files here are the ones that cannot harm the machine when a call writes to them (a folder,
 a missing path, a symlink loop, garbage, all inside a scratch folder): device nodes and FIFOs are
@@ -41,6 +43,19 @@ class HugeShape:
         return 10**9
 
 
+class BytesPath:
+    """A path object whose ``__fspath__`` gives bytes, which no path argument takes."""
+
+    def __init__(self, path: Path) -> None:
+        self.path = path
+
+    def __fspath__(self) -> bytes:
+        return os.fsencode(self.path)
+
+    def __repr__(self) -> str:
+        return f"BytesPath({self.path!r})"
+
+
 class HugeMapping(dict[str, int]):
     """A mapping that says it holds a billion items (it holds one)."""
 
@@ -74,7 +89,13 @@ def _files(tmp: Path) -> dict[str, Any]:
     loop = tmp / "loop.toml"
     if not loop.is_symlink():
         os.symlink(loop, loop)
+    # A file of another kind than the one a reader expects: a world file given as a run, a
+    # navigator, a sweep, a profile...
+    world = tmp / "a-world.toml"
+    world.write_text('format = "mazesim-world"\nversion = 1\n', encoding="utf-8")
     return {
+        "world_file": str(world),
+        "bytes_path": BytesPath(world),
         "folder": str(tmp / "folder"),
         "missing_path": str(tmp / "missing" / "x.toml"),
         "garbage_file": str(garbage),
@@ -118,6 +139,8 @@ BUILDERS: dict[str, Any] = {
     "garbage_file": None,
     "empty_file": None,
     "symlink_loop": None,
+    "world_file": None,
+    "bytes_path": None,
 }
 
 #: The strings a command line option is given.
@@ -138,6 +161,7 @@ ARGUMENT_WORDS: dict[str, str] = {
     "garbage_file": "@garbage_file",
     "empty_file": "@empty_file",
     "symlink_loop": "@symlink_loop",
+    "world_file": "@world_file",
 }
 
 

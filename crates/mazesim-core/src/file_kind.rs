@@ -64,7 +64,7 @@ impl FileKind {
     }
 
     /// Where a file of this kind is taken.
-    fn where_taken(self) -> &'static str {
+    pub fn where_taken(self) -> &'static str {
         match self {
             FileKind::World => "pass it as a world (`--world`, `load_world`, `World.load`)",
             FileKind::RobotProfile => "pass it as a robot (`--robot`, `RobotProfile.load`)",

@@ -107,6 +107,11 @@ impl<'a, 'py> FromPyObject<'a, 'py> for Real {
     type Error = PyErr;
 
     fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        // True and False are ints to Python, not wheel speeds or volts to mazesim (a `step(True)`
+        // would drive at 1 rad/s): refused as the Python side refuses them.
+        if class_name(&obj) == "bool" {
+            return Ok(Real::Other(type_name(&obj)));
+        }
         if let Ok(v) = obj.extract::<f64>() {
             return Ok(Real::Number(v));
         }

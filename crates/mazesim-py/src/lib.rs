@@ -71,6 +71,18 @@ fn validate_codes(codes: &Bound<'_, PyAny>) -> PyResult<()> {
     })
 }
 
+/// What kind of mazesim file `text` is, from its first lines (a world file, a robot profile, a
+/// Webots world or PROTO, a policy, a checkpoint, a run, a transfer study's result): its name
+/// with its article and where such a file is taken, or None when it is none of them.
+#[pyfunction]
+fn file_kind(text: Given<String>) -> PyResult<Option<(String, String)>> {
+    enter(|| {
+        let text = text.value("text", "a str")?;
+        let kind = mazesim_core::file_kind::FileKind::sniff(&text);
+        Ok(kind.map(|k| (k.name().to_string(), k.where_taken().to_string())))
+    })
+}
+
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
@@ -81,6 +93,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(maze::generate_maze, m)?)?;
     m.add_function(wrap_pyfunction!(default_codes, m)?)?;
     m.add_function(wrap_pyfunction!(validate_codes, m)?)?;
+    m.add_function(wrap_pyfunction!(file_kind, m)?)?;
     m.add_function(wrap_pyfunction!(wbt::import_wbt, m)?)?;
     m.add_function(wrap_pyfunction!(wbt::import_wbt_text, m)?)?;
     m.add_function(wrap_pyfunction!(guard::_panic_for_tests, m)?)?;

@@ -42,7 +42,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from mazesim._core import World, builtin_world_names, generate_maze
-from mazesim._paths import read_text
+from mazesim._paths import found_kind, read_text, unknown_name_or_file
 from mazesim._toml import load_toml
 from mazesim.errors import (
     InvalidArgumentError,
@@ -299,12 +299,13 @@ def _world_text(source: str, name: str, base_dir: str) -> str | None:
     else:
         path = os.path.join(base_dir, name)
         if not os.path.isfile(path):
-            available = sorted(builtin_world_names())
-            raise UnknownNameError(
-                f"{source}: grid.world: no built-in world named {name!r} and no file {path!r}; "
-                f"built-in worlds: {', '.join(available)}",
-                available=available,
-                name=name,
+            raise unknown_name_or_file(
+                path if os.path.dirname(name) or os.path.splitext(name)[1] else name,
+                "world",
+                sorted(builtin_world_names()),
+                "a .toml world file, relative to the sweep file's folder",
+                (".toml",),
+                context=f"{source}: grid.world: ",
             )
         text = read_text(
             path,
@@ -360,6 +361,11 @@ def parse_sweep_config(
 
     if resolve_trainer is None:
         resolve_trainer = tasks.resolve_trainer
+    kind = found_kind(text)
+    if kind is not None:  # a world file or a robot profile given as the sweep file
+        raise InvalidArgumentError(
+            f"{source}: expected a sweep file (a [sweep] and a [grid] table), found {kind}"
+        )
     document = load_toml(text, source)
     for key in document:
         if key not in ("sweep", "grid"):

@@ -110,6 +110,12 @@ def parse_metadata(data: bytes, where: str) -> Any:
             f"{where}: expected JSON nested at most {MAX_DEPTH} deep, found deeper"
         ) from None
     except ValueError as error:
+        from mazesim._paths import found_kind
+
+        metadata = ("a trained policy (policy.json)", "a training checkpoint")
+        kind = found_kind(data, metadata) if data.strip() else "an empty file"
+        if kind is not None:  # another of mazesim's files: say which, and where it is taken
+            raise PolicyFormatError(f"{where}: expected JSON metadata, found {kind}") from None
         raise PolicyFormatError(
             f"{where}: not valid JSON (truncated or corrupt?): {error}"
         ) from None

@@ -62,7 +62,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim._atomic import atomic_file, remove_stale_temporaries
-from mazesim._paths import make_output_folder, read_input
+from mazesim._paths import file_described, make_output_folder, read_input
 from mazesim.actions import ACTION_CODES, WHEEL_SPEED_FRACTIONS
 from mazesim.errors import InvalidArgumentError, MazesimIOError, PolicyFormatError, _closest_name
 from mazesim.learn.discretise import LEVEL_EDGES_CM, NUM_STATES, SENSOR_ORDER, SHARP_TABLE
@@ -686,6 +686,11 @@ def load_policy(folder: str | os.PathLike[str] | None = None) -> TrainedPolicy:
     """
     path = navigator_folder(folder)
     meta_path = path / METADATA_FILE
+    if path.exists() and not path.is_dir():
+        raise PolicyFormatError(
+            f"{path}: expected a navigator's folder (the folder 'mazesim train --out DIR' "
+            f"writes), found {file_described(path)}"
+        )
     if not path.exists():
         where = "" if path.is_absolute() else f" in {os.getcwd()}"
         shipped = ", ".join(repr(name) for name in SHIPPED_NAVIGATORS)

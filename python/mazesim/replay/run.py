@@ -44,7 +44,7 @@ import numpy.typing as npt
 
 from mazesim._atomic import atomic_file
 from mazesim._core import RobotProfile, World, robot_profile_names
-from mazesim._paths import read_input
+from mazesim._paths import found_kind, read_input
 from mazesim.errors import MazesimError, RunFormatError
 from mazesim.replay.run_fields import RunFields
 
@@ -401,6 +401,9 @@ def load_run(path: str | os.PathLike[str]) -> RecordedRun:
             f"{name}: expected a mazesim run (JSON), found deeper nesting than any run has"
         ) from None
     except (OSError, EOFError, UnicodeDecodeError, zlib.error, json.JSONDecodeError) as error:
+        kind = found_kind(data, ("a recorded run",)) if data.strip() else "an empty file"
+        if kind is not None:  # another of mazesim's files: say which, and where it is taken
+            raise RunFormatError(f"{name}: expected a mazesim run (JSON), found {kind}") from None
         raise RunFormatError(f"{name}: expected a mazesim run (JSON), found: {error}") from None
     return run_from_json(values, name)
 

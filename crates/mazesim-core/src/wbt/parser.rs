@@ -8,6 +8,7 @@ use super::header::parse_header;
 use super::lexer::{tokenize, Token, TokenKind};
 use super::tree::{Document, Field, Node, NodeId, Value};
 use crate::error::{Error, Result};
+use crate::file_kind::{named_for_its_kind, FileKind};
 
 /// Most nodes a world may stand for once every `USE` is expanded: far above any real world (the
 /// largest test world has a few thousand), far below what exhausts memory.
@@ -57,6 +58,17 @@ impl Document {
                     }
                 }
             }
+        }
+        if roots.is_empty() && FileKind::sniff(text) == Some(FileKind::WebotsProto) {
+            // A PROTO file holds a node's definition and no world: imported, it would be an
+            // empty world without a word.
+            let empty = Error::format_at(source, 1, 1, "(top level)", "expected a world");
+            return Err(named_for_its_kind(
+                text,
+                source,
+                FileKind::WebotsWorld,
+                empty,
+            ));
         }
         Ok(Document {
             version,

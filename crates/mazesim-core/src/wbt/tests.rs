@@ -929,3 +929,18 @@ fn a_frame_field_of_too_few_numbers_is_refused_as_webots_refuses_it() {
     assert!(parse("MyProto { translation 1 2 }").is_ok());
     assert!(parse("Solid { translation 1 2 3 4 }").is_ok());
 }
+
+#[test]
+fn a_proto_file_read_as_a_world_is_named_a_proto_file() {
+    let proto = "#VRML_SIM R2023b utf8\nPROTO Foo [ ] { Solid { } }\n";
+    let err = WbtImport::from_text(proto, "foo.proto")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("expected a Webots world (.wbt), found a Webots PROTO file"),
+        "{err}"
+    );
+    // A world that defines a PROTO inline and uses it is still a world.
+    let world = "#VRML_SIM R2023b utf8\nPROTO Foo [ ] { Solid { } }\nFoo { }\n";
+    assert!(WbtImport::from_text(world, "w.wbt").is_ok());
+}
