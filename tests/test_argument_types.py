@@ -142,6 +142,7 @@ def samples(tmp: Path) -> dict[str, Any]:
         "steps": 3,
         "controller": "braitenberg",
         "robot_line": None,
+        "imported_from": None,
         "settings": core.RunSettings(),
         "limits": core.EpisodeLimits(),
         "max_steps": 0,

@@ -152,6 +152,7 @@ def import_wbt_text(
     floor_images: dict[str, npt.NDArray[np.float64]] | None = None,
     controller: str | None = None,
     robot_line: int | None = None,
+    imported_from: int | None = None,
 ) -> tuple[World, dict[str, Any]]:
     """Imports the text of a .wbt file; `source` names it in error messages and names the world,
     and floor textures are looked for beside it."""

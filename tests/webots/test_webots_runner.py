@@ -99,6 +99,39 @@ def test_a_package_of_a_folder_the_controller_puts_on_its_path_is_not_called_mis
     assert missing_packages(str(agent / "agent.py")) == ["no_such_package_anywhere"]
 
 
+def test_a_module_on_a_path_made_from_the_controllers_own_file_is_its_own(
+    tmp_path: Path,
+) -> None:
+    """A controller that finds its project's ``controllers/`` from its own ``__file__``
+    (``Path(__file__).resolve().parent.parent``, through names, or ``os.path`` calls) and puts
+    it on ``sys.path`` imports a module kept there: its own code, not an uninstalled package
+    (#33)."""
+    from mazesim.webots.requirements import missing_packages, path_additions
+
+    controllers = tmp_path / "controllers"
+    (controllers / "member").mkdir(parents=True)
+    (controllers / "team_common.py").write_text("import math\n")
+    member = controllers / "member" / "member.py"
+    member.write_text(
+        "import os, sys\n"
+        "from pathlib import Path\n"
+        "CURRENT_DIR = Path(__file__).resolve().parent\n"
+        "CONTROLLERS_DIR = CURRENT_DIR.parent\n"
+        "if str(CONTROLLERS_DIR) not in sys.path:\n"
+        "    sys.path.insert(0, str(CONTROLLERS_DIR))\n"
+        "sys.path.append(os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'lib'))\n"
+        "sys.path.append(str(Path(__file__).parents[2] / 'libraries'))\n"
+        "from team_common import math\n"
+        "import no_such_package_anywhere\n"
+    )
+    assert path_additions(str(member)) == [
+        str(controllers),
+        str(controllers / "lib"),
+        str(tmp_path / "libraries"),
+    ]
+    assert missing_packages(str(member)) == ["no_such_package_anywhere"]
+
+
 def test_a_webots_controller_folder_runs_the_file_named_after_it(tmp_path: Path) -> None:
     folder = tmp_path / "controllers" / "wanderer"
     folder.mkdir(parents=True)

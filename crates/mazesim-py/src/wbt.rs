@@ -277,7 +277,7 @@ pub fn import_wbt<'py>(
 ) -> PyResult<(PyWorld, Bound<'py, PyDict>)> {
     enter(|| {
         let path: PathBuf = path.value("path", "a str or os.PathLike")?;
-        let robot = (controller, robot_line);
+        let robot = (controller, robot_line, None);
         import_chosen(py, robot, floor_images, &path, |choice| {
             WbtImport::load_for(&path, choice)
         })
@@ -285,10 +285,11 @@ pub fn import_wbt<'py>(
 }
 
 /// Imports with `load`, the GIL released, the robot that the `controller` and `robot_line`
-/// arguments choose, and makes the world named after `source` and the report.
+/// arguments choose (the nodes from line `imported_from` on imported while the world runs),
+/// and makes the world named after `source` and the report.
 fn import_chosen<'py>(
     py: Python<'py>,
-    (controller, robot_line): (Option<Text>, Option<IntArg>),
+    (controller, robot_line, imported_from): (Option<Text>, Option<IntArg>, Option<IntArg>),
     floor_images: Option<&Bound<'py, PyAny>>,
     source: &Path,
     load: impl FnOnce(RobotChoice<'_>) -> mazesim_core::Result<WbtImport> + Send,
@@ -296,31 +297,33 @@ fn import_chosen<'py>(
     let controller = controller
         .map(|c| c.value("controller", "a str or None"))
         .transpose()?;
-    let line = line_number(robot_line)?;
+    let line = line_number(robot_line, "robot_line")?;
+    let imported_from = line_number(imported_from, "imported_from")?;
     let import = enter_detached(py, || {
         load(RobotChoice {
             controller: controller.as_deref(),
             line,
+            imported_from,
         })
     })?;
     finish(py, import, source, floor_images)
 }
 
-/// The `robot_line` argument: a line number of the file (from 1), or None.
-fn line_number(robot_line: Option<IntArg>) -> PyResult<Option<usize>> {
-    robot_line
-        .map(|line| {
-            line.within("robot_line", 1u64, u64::from(u32::MAX))
-                .map(|l| l as usize)
-        })
-        .transpose()
+/// A line number argument (`robot_line`, `imported_from`): a line of the file (from 1), or
+/// None.
+fn line_number(line: Option<IntArg>, name: &str) -> PyResult<Option<usize>> {
+    line.map(|line| {
+        line.within(name, 1u64, u64::from(u32::MAX))
+            .map(|l| l as usize)
+    })
+    .transpose()
 }
 
 /// Imports the text of a `.wbt` file; `source` names it in error messages and names the world.
 /// Lone surrogates (not UTF-8) are read as U+FFFD, so that they end in a located format error.
 #[pyfunction]
-#[pyo3(signature = (text, source = SourceName::Value(Label("<string>".into())), floor_images = None, controller = None, robot_line = None),
-    text_signature = "(text, source='<string>', floor_images=None, controller=None, robot_line=None)")]
+#[pyo3(signature = (text, source = SourceName::Value(Label("<string>".into())), floor_images = None, controller = None, robot_line = None, imported_from = None),
+    text_signature = "(text, source='<string>', floor_images=None, controller=None, robot_line=None, imported_from=None)")]
 pub fn import_wbt_text<'py>(
     py: Python<'py>,
     text: &Bound<'py, PyAny>,
@@ -328,12 +331,13 @@ pub fn import_wbt_text<'py>(
     floor_images: Option<&Bound<'py, PyAny>>,
     controller: Option<Text>,
     robot_line: Option<IntArg>,
+    imported_from: Option<IntArg>,
 ) -> PyResult<(PyWorld, Bound<'py, PyDict>)> {
     enter(|| {
         let text = typed_argument::<PyString>(text, "text", "a str")?;
         let text = text.to_string_lossy();
         let source = source.value("source", "a str")?.0;
-        let robot = (controller, robot_line);
+        let robot = (controller, robot_line, imported_from);
         import_chosen(py, robot, floor_images, Path::new(&source), |choice| {
             WbtImport::from_text_for(&text, &source, choice)
         })

@@ -15,8 +15,9 @@ messages are pickled tuples). The protocol, from the controller's side:
   ``("ok", (False, state))`` once every robot whose controller still runs has asked for the step
   and the world has taken it (lockstep), ``state`` being the robot's ``pose``, ``time`` and
   ``encoders`` after the step (:data:`STATE_AFTER_STEP`, which the controller's process then
-  reads without asking, until it moves its robot itself) and the world's ``last_reset``
-  (:class:`~mazesim.webots.simulation.WorldReset`), or ``("ok", (True, None))`` without a step
+  reads without asking, until it moves its robot itself), the world's ``last_reset``
+  (:class:`~mazesim.webots.simulation.WorldReset`) and the ``customData`` a supervisor last
+  wrote into the robot's node (``Fleet.custom_data``), or ``("ok", (True, None))`` without a step
   when a supervisor has quit the simulation (``Robot.step`` then returns -1);
 - ``("done", summary)``: the controller has ended (a dict of :class:`ControllerSummary`'s
   fields); no answer. From then on the robot's wheels stay still.
@@ -157,6 +158,9 @@ class RemoteSimulator(Remote):
         self._after_step: dict[str, Any] = {}
         #: The world's last reset, as the last step's answer told it (None before the first).
         self.last_reset: Any = None
+        #: The ``customData`` a supervisor last wrote into the robot's node and the number of
+        #: that write, as the last step's answer told it (None while none did).
+        self.custom_data: tuple[int, str] | None = None
 
     def _state(self, name: str) -> Any:
         if name in self._after_step:
@@ -191,6 +195,7 @@ class RemoteSimulator(Remote):
         over, state = self._ask(("step", float(left), float(right)))
         self._after_step = dict(state or {})
         self.last_reset = self._after_step.pop("last_reset", self.last_reset)
+        self.custom_data = self._after_step.pop("custom_data", self.custom_data)
         return bool(over)
 
 

@@ -345,11 +345,14 @@ class Field(NotSimulated):
         return self._node._strings.get(self._name, "")
 
     def setSFString(self, value: str) -> None:
-        """Sets a string field."""
+        """Sets a string field (a robot's ``customData`` is what its controller's
+        ``getCustomData`` reads)."""
         if self._type != self.SF_STRING:
             self._wrong("set_sf_string")
             return
         self._node._strings[self._name] = str(value)
+        if self._name == "customData":
+            self._node._tell_custom_data(str(value))
 
     @property
     def value(self) -> Any:

@@ -364,6 +364,8 @@ def import_wbt_text(
     source: str = "<string>",
     controller: str | None = None,
     robot_line: int | None = None,
+    *,
+    imported_from: int | None = None,
 ) -> tuple[World, ImportReport]:
     """Imports the text of a Webots world file (its PROTOs expanded as in :func:`import_wbt`).
 
@@ -374,6 +376,10 @@ def import_wbt_text(
             looked for beside it.
         controller: As for :func:`import_wbt`.
         robot_line: As for :func:`import_wbt`.
+        imported_from: For the running world's text after a supervisor imported nodes into
+            it (:mod:`mazesim.webots.scene_edits`), the first line of those nodes: a robot
+            there that is not an e-puck is warned of as an obstacle whose controller does not
+            start, which is what a run makes of it.
 
     Returns:
         The mazesim world and the import report.
@@ -384,13 +390,18 @@ def import_wbt_text(
     from mazesim.webots.proto import expand_world, world_resolver
 
     expanded, protos = expand_world(text, source)
-    world, report = _with_floor(
-        _core.import_wbt_text(expanded, source, controller=controller, robot_line=robot_line),
-        lambda images: _core.import_wbt_text(
-            expanded, source, floor_images=images, controller=controller, robot_line=robot_line
-        ),
-        world_resolver(text, source),
-    )
+
+    def imported(images: Any = None) -> tuple[World, dict[str, Any]]:
+        return _core.import_wbt_text(
+            expanded,
+            source,
+            floor_images=images,
+            controller=controller,
+            robot_line=robot_line,
+            imported_from=imported_from,
+        )
+
+    world, report = _with_floor(imported(), imported, world_resolver(text, source))
     report["warnings"][:0] = protos.warnings
     report["protos"] = {
         "expanded": protos.expanded,

@@ -205,6 +205,9 @@ class Fleet:
         #: (the imported nodes' come after them).
         self.text: str | None = None
         self._file_lines = 0
+        #: The ``customData`` a supervisor last wrote into each robot's node, numbered in the
+        #: order written, which the robot reads after the world's next step.
+        self._custom_data: dict[int, tuple[int, str]] = {}
         if self._path:
             self._file_lines = read_world_text(self._path).count("\n") + 1
 
@@ -243,6 +246,18 @@ class Fleet:
         """Puts a robot at a new pose, at rest."""
         self._simulators[index].set_pose_pushed_out(x, y, yaw)
         self.moved.add(index)
+
+    def set_custom_data(self, index: int, text: str) -> None:
+        """Notes a supervisor's write of a robot's ``customData`` field, which the robot's
+        controller reads after the world's next step (:meth:`custom_data`)."""
+        number = max((n for n, _ in self._custom_data.values()), default=0) + 1
+        self._custom_data[index] = (number, str(text))
+
+    def custom_data(self, index: int) -> tuple[int, str] | None:
+        """The ``customData`` a supervisor last wrote into robot ``index``'s node and the
+        number of that write (a robot's own ``setCustomData`` stands until a later one), or
+        None when none did."""
+        return self._custom_data.get(index)
 
     def _worlds(self) -> list[Any]:
         """The simulators that each hold the world's walls and movable bodies: the e-pucks'
@@ -821,6 +836,7 @@ def _lockstep(
                         if not world.over and index not in fleet.gone:
                             state = state_after_step(simulators[index])
                             state["last_reset"] = fleet.last_reset(index)
+                            state["custom_data"] = fleet.custom_data(index)
                         connections[index].send(("ok", (state is None, state)))
                     wheels.clear()
     finally:

@@ -259,25 +259,85 @@ def _literal_path(node: ast.expr) -> str | None:
 def path_additions(path: str) -> list[str]:
     """The folders a controller file puts on ``sys.path`` by ``sys.path.append(...)`` or
     ``sys.path.insert(i, ...)`` of a written path (``".."``, ``os.path.join("..", "lib")``),
-    relative to the controller's folder, from which Webots runs it."""
+    relative to the controller's folder, from which Webots runs it, or of a path made from the
+    file's own ``__file__`` (``Path(__file__).resolve().parent.parent``,
+    ``os.path.dirname(os.path.abspath(__file__))``), directly or through names the file's
+    top-level statements give them (:func:`_path_of`)."""
     try:
         tree = ast.parse(read_input(path, MAX_TEXT_CHARACTERS, "the controller"))
     except (SyntaxError, ValueError, OSError):
         return []
     here = os.path.dirname(os.path.abspath(path))
+    names: dict[str, str] = {"__file__": os.path.abspath(path)}
+    for statement in tree.body:
+        if isinstance(statement, ast.Assign) and len(statement.targets) == 1:
+            target = statement.targets[0]
+            value = _path_of(statement.value, names)
+            if isinstance(target, ast.Name) and value is not None:
+                names[target.id] = value
     folders = []
-    for node in ast.walk(tree):
+    calls = [node for node in ast.walk(tree) if isinstance(node, ast.Call)]
+    for node in sorted(calls, key=lambda call: (call.lineno, call.col_offset)):
         if (
-            isinstance(node, ast.Call)
-            and isinstance(node.func, ast.Attribute)
+            isinstance(node.func, ast.Attribute)
             and node.func.attr in ("append", "insert")
             and ast.unparse(node.func.value) == "sys.path"
             and node.args
         ):
-            written = _literal_path(node.args[-1])
+            written = _literal_path(node.args[-1]) or _path_of(node.args[-1], names)
             if written is not None:
                 folders.append(os.path.normpath(os.path.join(here, written)))
     return folders
+
+
+#: Calls that give their argument's path back as it is, or in another type.
+_SAME_PATH = frozenset(
+    "str Path pathlib.Path PurePath pathlib.PurePath os.fspath os.path.abspath "
+    "os.path.realpath os.path.normpath path.abspath path.realpath path.normpath".split()
+)
+
+
+def _path_of(node: ast.expr, names: dict[str, str]) -> str | None:
+    """The path an expression makes from ``__file__`` and the paths in ``names`` (by the
+    ``pathlib`` and ``os.path`` calls a controller uses to find its folder and its
+    project's), or None when it makes none mazesim can tell without running it."""
+    if isinstance(node, ast.Name):
+        return names.get(node.id)
+    if isinstance(node, ast.Constant) and isinstance(node.value, str):
+        return node.value
+    if isinstance(node, ast.Attribute) and node.attr == "parent":
+        inner = _path_of(node.value, names)
+        return None if inner is None else os.path.dirname(inner)
+    if (
+        isinstance(node, ast.Subscript)
+        and isinstance(node.value, ast.Attribute)
+        and node.value.attr == "parents"
+        and isinstance(node.slice, ast.Constant)
+        and isinstance(node.slice.value, int)
+    ):
+        inner = _path_of(node.value.value, names)
+        for _ in range(node.slice.value + 1):
+            inner = None if inner is None else os.path.dirname(inner)
+        return inner
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Div):
+        left, right = _path_of(node.left, names), _path_of(node.right, names)
+        return None if left is None or right is None else os.path.join(left, right)
+    if not isinstance(node, ast.Call):
+        return None
+    called = ast.unparse(node.func)
+    if isinstance(node.func, ast.Attribute) and node.func.attr in ("resolve", "absolute"):
+        return _path_of(node.func.value, names)
+    parts = [_path_of(a, names) for a in node.args]
+    if not parts or any(part is None for part in parts):
+        return None
+    paths = [str(part) for part in parts]
+    if called in _SAME_PATH and len(paths) == 1:
+        return os.path.normpath(paths[0])
+    if called in ("os.path.dirname", "path.dirname") and len(paths) == 1:
+        return os.path.dirname(paths[0])
+    if called in ("os.path.join", "path.join"):
+        return os.path.join(*paths)
+    return None
 
 
 #: The section of a controller folder's ``runtime.ini`` whose variables hold paths, which Webots

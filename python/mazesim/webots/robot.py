@@ -115,6 +115,8 @@ class Robot(NotSimulated):
     _simulation: _simulations.RobotSimulation
     _equipment: Equipment
     _custom_data: str
+    #: The number of the last supervisor's write of ``customData`` read (0: none).
+    _custom_data_written = 0
     _warned_ground_module = False
     #: The names ``getDevice`` found no device of, in the order asked.
     _missing_devices: tuple[str, ...] = ()
@@ -172,7 +174,12 @@ class Robot(NotSimulated):
     model = webots_property("getModel")
 
     def getCustomData(self) -> str:
-        """The robot's ``customData`` string (empty at the start)."""
+        """The robot's ``customData`` string: the world file's, or the last one set, by
+        :meth:`setCustomData` or by a supervisor's write of the field (in a world of several
+        robots, read after the world's next step)."""
+        written = getattr(self._simulation.simulator, "custom_data", None)
+        if written is not None and written[0] != self._custom_data_written:
+            self._custom_data_written, self._custom_data = written
         return self._custom_data
 
     def setCustomData(self, data: str) -> None:

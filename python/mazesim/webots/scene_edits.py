@@ -11,11 +11,11 @@ is written inside a ``Pose`` at that node's frame in the world, so that its ``tr
 A supervisor's reset takes the imported nodes out and leaves the removed ones out, as Webots'
 does. Each change imports that description again with the importer that read the world file
 (PROTOs, DEF names, fields) and gives the result to the simulator, which runs on in it from the
-next step (what the import says of the new nodes, a robot kept as an obstacle, is printed once
-as a warning): the robots keep their poses,
-velocities, wheel encoders, noise streams and clocks, the movable bodies the change keeps go on
-where they are (an imported Solid with physics is a new one, at rest), and the walls a
-supervisor moved are moved again where it put them. In a world run (every robot with its
+next step (what the import says of the new nodes, a robot that is not an e-puck kept as an
+obstacle whose controller does not start, is printed once as a warning): the robots keep their
+poses, velocities, wheel encoders, noise streams and clocks, the movable bodies the change
+keeps go on where they are (an imported Solid with physics is a new one, at rest), and the
+walls a supervisor moved are moved again where it put them. In a world run (every robot with its
 controller) e-pucks are imported and robots removed too (:mod:`mazesim.webots.robots_changed`);
 a run of one controller refuses a change that would add or remove an e-puck, with an error
 naming it.
@@ -198,7 +198,12 @@ class SceneEdits:
         simulation = self._simulation
         text = self._text()
         robot_line = simulation.report.get("robot_line")
-        world, report = import_wbt_text(text, self._path, robot_line=robot_line)
+        # The imported nodes come after the file's lines: what the import says of a robot
+        # among them that is not an e-puck is what the run makes of it.
+        imported_from = self.file_lines + 1 if self._imported else None
+        world, report = import_wbt_text(
+            text, self._path, robot_line=robot_line, imported_from=imported_from
+        )
         lines = {int(r["line"]) for r in simulation.report.get("robots") or []}
         robots = len(kept_robots(report, lines))
         running = len(lines)

@@ -322,6 +322,16 @@ class Node(NotSimulated):
             return
         self._simulation().move_robot(x, y, yaw)
 
+    def _tell_custom_data(self, text: str) -> None:
+        """Gives a robot the ``customData`` a supervisor wrote into its node: the run's own
+        robot reads it at once; another robot of the world, whose controller runs in a process
+        of its own, reads it after the world's next step, as in Webots (a node that is no
+        robot only keeps it)."""
+        if self._robot and Robot.created is not None:
+            Robot.created._custom_data = text
+        elif self._fleet_index is not None:
+            self._simulation().fleet.set_custom_data(self._fleet_index, text)
+
     def getId(self) -> int:
         """The node's unique id."""
         return self._id

@@ -157,6 +157,9 @@ pub struct Importer<'d> {
     too_deep: bool,
     /// The e-puck whose `controller` field names the controller of the run, if one does.
     chosen: Option<&'d Node>,
+    /// The first line of the nodes a supervisor imported while the world runs (see
+    /// [`RobotChoice::imported_from`]).
+    imported_from: Option<usize>,
     /// The heights of the horizontal `Plane` bounding objects met (floors), world frame.
     pub floors: Vec<f64>,
     /// The folder of the world file, where the files of `Mesh` bounding objects are read.
@@ -240,6 +243,7 @@ fn walk<'d>(
         visits: 0,
         too_deep: false,
         chosen: None,
+        imported_from: choice.imported_from,
         floors: Vec::new(),
         world_dir: world_dir.to_path_buf(),
         pose_z: 0.0,
@@ -875,7 +879,13 @@ impl<'d> Importer<'d> {
             return;
         }
         if self.robot.is_some() || self.other_robot_warning.is_some() || self.chosen.is_some() {
-            self.warn(not_an_epuck(&label, kind, NotAnEpuck::Kept { shaped }));
+            let imported = self.imported_from.is_some_and(|first| node.line >= first);
+            let what = if imported {
+                NotAnEpuck::Imported { shaped }
+            } else {
+                NotAnEpuck::Kept { shaped }
+            };
+            self.warn(not_an_epuck(&label, kind, what));
             return;
         }
         // Said again at the end if the world's e-puck comes later.
@@ -950,16 +960,25 @@ enum NotAnEpuck {
     /// Any other: its controller runs on a body that does not move; `shaped` when it has
     /// collision shapes mazesim reads (static obstacles then).
     Kept { shaped: bool },
+    /// One a supervisor imported while the world runs: kept as [`NotAnEpuck::Kept`] is, but
+    /// no run starts its controller (a run of the whole world starts those of imported
+    /// e-pucks alone).
+    Imported { shaped: bool },
 }
 
 /// The warning of a robot node that is not an e-puck, saying what the run does with it: the one
 /// place that words it.
 fn not_an_epuck(label: &str, kind: &str, what: NotAnEpuck) -> String {
-    let does = match what {
-        NotAnEpuck::Chosen => "its controller runs, its body does not move; its devices are those of its children",
-        NotAnEpuck::StandIn => "a run of one controller simulates the e-puck in its place, at its pose, its own body, wheels and devices not imported; a run of the whole world simulates nothing in its place: its controller runs, its body does not move",
-        NotAnEpuck::Kept { shaped: true } => "its controller runs, its body does not move; its collision shapes are static obstacles",
-        NotAnEpuck::Kept { shaped: false } => "its controller runs, its body does not move; it has no collision shape mazesim reads (a PROTO's are inside the PROTO), so it is no obstacle",
+    let (runs, shaped) = match what {
+        NotAnEpuck::Chosen => ("its controller runs, its body does not move; its devices are those of its children", None),
+        NotAnEpuck::StandIn => ("a run of one controller simulates the e-puck in its place, at its pose, its own body, wheels and devices not imported; a run of the whole world simulates nothing in its place: its controller runs, its body does not move", None),
+        NotAnEpuck::Kept { shaped } => ("its controller runs, its body does not move", Some(shaped)),
+        NotAnEpuck::Imported { shaped } => ("imported while the world runs: its controller does not start, its body does not move", Some(shaped)),
     };
-    format!("{label}: a robot that is not an e-puck ({kind}): {does}")
+    let kept = match shaped {
+        None => "",
+        Some(true) => "; its collision shapes are static obstacles",
+        Some(false) => "; it has no collision shape mazesim reads (a PROTO's are inside the PROTO), so it is no obstacle",
+    };
+    format!("{label}: a robot that is not an e-puck ({kind}): {runs}{kept}")
 }

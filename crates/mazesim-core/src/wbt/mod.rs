@@ -96,13 +96,18 @@ pub struct RobotChoice<'a> {
     pub controller: Option<&'a str>,
     /// The line of the robot that runs (wins over `controller`).
     pub line: Option<usize>,
+    /// The first line of the nodes a supervisor imported while the world runs (the running
+    /// world's text gives them after the file's own lines): a robot there that is not an
+    /// e-puck is warned of as what the run makes of it, an obstacle whose controller does not
+    /// start.
+    pub imported_from: Option<usize>,
 }
 
 impl<'a> From<Option<&'a str>> for RobotChoice<'a> {
     fn from(controller: Option<&'a str>) -> Self {
         RobotChoice {
             controller,
-            line: None,
+            ..RobotChoice::default()
         }
     }
 }

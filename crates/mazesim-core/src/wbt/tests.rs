@@ -153,6 +153,43 @@ fn a_robot_built_by_hand_with_the_e_puck_s_wheel_motors_is_an_e_puck_in_every_ru
     assert_eq!(import(&one).robots[0].profile, None);
 }
 
+/// A supervisor's world as it runs, after it imported a robot that is not an e-puck (line 4 on:
+/// after the file's own three lines).
+const RUNNING_WITH_A_ROVER: &str = "#VRML_SIM R2023b utf8\n\
+    Robot { name \"spawner\" controller \"spawner\" supervisor TRUE }\n\
+    E-puck { translation 0.1 0 0 controller \"cruise\" }\n\
+    Robot { translation -0.5 0.3 0.05 name \"rover\" controller \"rove\"\n\
+      boundingObject Box { size 0.04 0.3 0.1 } }\n\
+    Robot { translation 0.5 0.3 0.05 name \"probe\" controller \"probe\" }\n";
+
+#[test]
+fn issue_33_a_robot_imported_while_the_world_runs_is_warned_of_as_the_run_makes_it() {
+    // Whichever run it is (the whole world's or one controller's), mazesim starts no
+    // controller for a robot a supervisor imports unless it is an e-puck.
+    for line in [None, Some(3)] {
+        let choice = RobotChoice {
+            line,
+            imported_from: Some(4),
+            ..RobotChoice::default()
+        };
+        let w = WbtImport::from_text_for(RUNNING_WITH_A_ROVER, "running.wbt", choice).unwrap();
+        assert!(warned(&w, "line 4: Robot \"rover\": a robot that is not an e-puck (Robot): imported while the world runs: its controller does not start, its body does not move; its collision shapes are static obstacles"), "{:?}", w.warnings);
+        assert!(warned(&w, "line 6: Robot \"probe\": a robot that is not an e-puck (Robot): imported while the world runs: its controller does not start, its body does not move; it has no collision shape"), "{:?}", w.warnings);
+        assert!(
+            !warned(
+                &w,
+                "\"rover\": a robot that is not an e-puck (Robot): its controller runs"
+            ),
+            "{:?}",
+            w.warnings
+        );
+        assert_eq!(w.obstacles.len(), 1, "the rover's box");
+    }
+    // In the world file itself, the same robot's controller runs.
+    let w = import(RUNNING_WITH_A_ROVER);
+    assert!(warned(&w, "line 4: Robot \"rover\": a robot that is not an e-puck (Robot): its controller runs, its body does not move; its collision shapes are static obstacles"), "{:?}", w.warnings);
+}
+
 #[test]
 fn a_bodiless_supervisor_alone_is_told_apart_by_run() {
     let w = import(
@@ -630,15 +667,15 @@ fn issue_33_a_run_of_one_robot_chosen_by_its_line() {
         E-puck { translation 0.1 0 0 controller \"worker\" }\n\
         E-puck { translation 0.3 0 0 controller \"worker\" }\n";
     let second = RobotChoice {
-        controller: None,
         line: Some(4),
+        ..RobotChoice::default()
     };
     let w = WbtImport::from_text_for(text, "swarm.wbt", second).unwrap();
     assert_eq!(w.robot, Some([0.3, 0.0, 0.0]));
     assert_eq!(w.robot_line, Some(4));
     let boss = RobotChoice {
-        controller: None,
         line: Some(2),
+        ..RobotChoice::default()
     };
     let w = WbtImport::from_text_for(text, "swarm.wbt", boss).unwrap();
     assert_eq!(w.robot_line, Some(2));
