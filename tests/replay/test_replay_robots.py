@@ -205,3 +205,31 @@ def test_a_robots_rays_stop_at_the_other_robots_body() -> None:
         # between the rims away (about 4 cm along their rays), well within their 7 cm.
         assert 0.026 < rays["ps0"] < 0.05 and 0.026 < rays["ps7"] < 0.05
         assert rays["ps3"] == pytest.approx(reach, abs=1e-3)  # behind: nothing in range
+
+
+def test_the_live_view_of_a_world_run_leaves_out_a_robot_a_supervisor_removed() -> None:
+    from mazesim.cli.webots_world import WorldWatch
+    from mazesim.render.topdown import OTHER_ROBOT_RGB, TopDownRenderer
+    from mazesim.replay.views import FleetLiveView
+    from mazesim.webots.robots_changed import RemovedRobot
+
+    world = mazesim.World.from_toml(THREE_ROBOTS)
+    simulator = mazesim.Simulator(world, seed=0)
+    view = FleetLiveView(world, simulator.robot, simulator.control_step_ms, "three")
+    view.renderer = TopDownRenderer(world, simulator.robot)  # drawn even without a display
+    watch = WorldWatch(seed=0, record=False, live=True)
+    watch.fleet, watch.view = object(), view
+
+    class Here:
+        def __init__(self, index: int) -> None:
+            self.pose = tuple(simulator.robot_state(index)["pose"])
+            self.colliding, self.time = False, 0.0
+
+    removed = RemovedRobot.__new__(RemovedRobot)
+    removed.pose, removed.colliding = Here(1).pose, False
+    watch(world, [], [Here(0), removed, Here(2)], {})
+    frame = view.live.last_frame
+    assert frame is not None
+    # Robot 1 is gone: robot 2 is the first other robot drawn, in the first other colour.
+    assert np.all(frame == OTHER_ROBOT_RGB[0], axis=2).sum() > 50
+    assert np.all(frame == OTHER_ROBOT_RGB[1], axis=2).sum() == 0

@@ -133,7 +133,7 @@ fn grey_images(images: Option<&Bound<'_, PyAny>>) -> PyResult<BTreeMap<String, G
 /// The import as `{"obstacles": [...], "sensed_only": [...], "bodies": [...], "robot": {...} | None, "basic_time_step_ms": t,
 /// (each obstacle and body with its `owners`, the lines of the nodes that hold it, and its
 /// infra-red `reflectance`, each body with the `colour` a camera sees (None: the grey of its
-/// reflectance) and whether it is a `sphere` (a ball), and each obstacle with its `walls`, the first of its walls in the
+/// reflectance), whether it is a `sphere` (a ball) and its `height`, and each obstacle with its `walls`, the first of its walls in the
 /// world and how many; `sensed_only` the obstacles only infra-red rays and cameras meet, as
 /// obstacles without owners, each with its `reflectance`),
 /// "warnings": [...], "one_controller_warnings": [...], "robot_model", "robot_line", "robot_profile", "extension_devices", "floor_textures",
@@ -208,6 +208,7 @@ fn report<'py>(py: Python<'py>, import: &WbtImport) -> PyResult<Bound<'py, PyDic
     for (d, look) in bodies.iter().zip(&import.body_looks) {
         d.set_item("colour", look.colour.map(|c| c.to_vec()))?;
         d.set_item("sphere", look.sphere)?;
+        d.set_item("height", look.height)?;
     }
     let out = PyDict::new(py);
     out.set_item("obstacles", obstacles)?;

@@ -73,7 +73,10 @@ class WorldWatch:
                 self.view = FleetLiveView(world, robots[0][1], step_ms, f"mazesim: {world.name}")
         if self.view is not None:
             self.view.show(
-                [simulator.pose for simulator in simulators],
+                [
+                    None if isinstance(simulator, RemovedRobot) else simulator.pose
+                    for simulator in simulators
+                ],
                 [bool(simulator.colliding) for simulator in simulators],
                 f"t {simulators[0].time:6.2f} s",
             )

@@ -294,23 +294,27 @@ class FleetLiveView:
         self.trails: list[list[tuple[float, float]]] = []
 
     def show(
-        self, poses: list[tuple[float, float, float]], colliding: list[bool], overlay: str
+        self,
+        poses: list[tuple[float, float, float] | None],
+        colliding: list[bool],
+        overlay: str,
     ) -> None:
-        """Shows every robot at its pose (robot 0 first), with a line of text."""
+        """Shows every robot at its pose (robot 0 first; None: a robot no longer in the world,
+        not drawn, the first one still there drawn with its rays), with a line of text."""
         if self.renderer is None:
             return
         while len(self.trails) < len(poses):
             self.trails.append([])
-        for trail, (x, y, _) in zip(self.trails, poses):
-            trail.append((x, y))
-        others = [
-            (pose, touching, trail)
-            for pose, touching, trail in zip(poses[1:], colliding[1:], self.trails[1:])
-        ]
+        here = []
+        for pose, touching, trail in zip(poses, colliding, self.trails):
+            if pose is not None:
+                trail.append((pose[0], pose[1]))
+                here.append((pose, touching, trail))
+        if not here:
+            return
+        (pose, touching, trail), others = here[0], here[1:]
         self.live.show(
-            self.renderer.frame(
-                poses[0], colliding[0], trail=self.trails[0], overlay=[overlay], others=others
-            )
+            self.renderer.frame(pose, touching, trail=trail, overlay=[overlay], others=others)
         )
 
     def close(self) -> None:

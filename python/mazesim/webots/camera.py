@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -28,6 +28,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim.webots.devices import _print_error, _Sensor, webots_property
+from mazesim.webots.frames import axes_or_none, camera_heading
 from mazesim.webots.node_types import node_type
 from mazesim.webots.rays import FloorPaint, WallBoxes
 from mazesim.webots.recognition import CameraPose, RecognisedObject, recogniser_of
@@ -35,7 +36,17 @@ from mazesim.webots.recognition import CameraPose, RecognisedObject, recogniser_
 if TYPE_CHECKING:
     from mazesim.webots.simulation import RobotSimulation
 
-__all__ = ["Ball", "Camera", "CameraRecognitionObject", "CameraView", "RobotBody", "render"]
+__all__ = [
+    "Ball",
+    "Block",
+    "Camera",
+    "CameraRecognitionObject",
+    "CameraView",
+    "RobotBody",
+    "drawn_body",
+    "node_view",
+    "render",
+]
 
 #: Image size and field of view of Webots' E-puck PROTO camera.
 DEFAULT_WIDTH = 52
@@ -84,8 +95,27 @@ class Ball:
 
 
 @dataclass(frozen=True)
+class Block:
+    """A box or an upright cylinder with physics as the camera sees it, standing on the floor
+    at (x, y): a box of ``size`` (its extents along its own axes, turned by ``yaw``), or with
+    ``size`` None a cylinder of ``radius``; ``height`` high, of ``colour`` (as a
+    :class:`Ball`'s) and infra-red ``reflectance``."""
+
+    x: float
+    y: float
+    yaw: float
+    size: tuple[float, float] | None
+    radius: float
+    height: float
+    colour: tuple[float, float, float] | None
+    reflectance: float
+
+
+@dataclass(frozen=True)
 class CameraView:
-    """Where a camera sits and what it sees: pose on the robot, image size, field of view."""
+    """Where a camera sits and what it sees: pose on the robot (``x`` forward, ``y`` left,
+    ``z`` up, m; ``yaw`` its heading left of the robot's forward, ``pitch`` its tilt down, rad),
+    image size, field of view."""
 
     width: int = DEFAULT_WIDTH
     height: int = DEFAULT_HEIGHT
@@ -94,6 +124,32 @@ class CameraView:
     z: float = CAMERA_Z
     pitch: float = 0.0
     wall_height: float = WALL_HEIGHT
+    y: float = 0.0
+    yaw: float = 0.0
+
+
+def node_view(entry: Mapping[str, Any], y_up: bool) -> CameraView:
+    """The view of a Camera node the import lists among the robot's devices (an entry of
+    ``extension_devices``): its ``width``, ``height`` and ``fieldOfView`` (Webots' defaults 64,
+    64 and 0.7854 where the node has none), where it sits and where it looks: along its x axis
+    (Webots R2022a on), or its -z axis in a file before (``y_up``)."""
+    fields: Mapping[str, Any] = entry.get("fields") or {}
+    x, y, z = (float(v) for v in (entry.get("translation") or (0.0, 0.0, 0.0))[:3])
+    yaw, pitch = float(entry.get("yaw", 0.0)), float(entry.get("pitch", 0.0))
+    axes = axes_or_none(entry.get("axes"))
+    if axes is not None:
+        forward = tuple(-v for v in axes[2]) if y_up else axes[0]
+        yaw, pitch = camera_heading(forward)
+    return CameraView(
+        width=max(1, int(fields.get("width", 64))),
+        height=max(1, int(fields.get("height", 64))),
+        fov=float(fields.get("fieldOfView", 0.7854)),
+        x=x,
+        y=y,
+        z=max(z, 0.001),
+        pitch=pitch,
+        yaw=yaw,
+    )
 
 
 def render(
@@ -103,6 +159,7 @@ def render(
     pose: tuple[float, float, float],
     robots: Sequence[RobotBody] = (),
     balls: Sequence[Ball] = (),
+    blocks: Sequence[Block] = (),
 ) -> npt.NDArray[np.uint8]:
     """Renders the view from a robot pose.
 
@@ -113,6 +170,7 @@ def render(
         pose: The robot's x, y, yaw.
         robots: The other robots, where they are now.
         balls: The balls, where they are now.
+        blocks: The boxes and cylinders with physics, where they are now.
 
     Returns:
         A (height, width, 4) array of B, G, R, A.
@@ -125,9 +183,8 @@ def render(
     cos_p, sin_p = math.cos(view.pitch), math.sin(view.pitch)
     forward = cos_p + sin_p * up[:, None] * np.ones_like(left)[None, :]
     rise = up[:, None] * cos_p - sin_p * np.ones_like(left)[None, :]
-    cos_y, sin_y = math.cos(yaw), math.sin(yaw)
-    ox = x + cos_y * view.x
-    oy = y + sin_y * view.x
+    ox, oy = _lens(view, pose)
+    cos_y, sin_y = math.cos(yaw + view.yaw), math.sin(yaw + view.yaw)
     dx = cos_y * forward - sin_y * left[None, :]
     dy = sin_y * forward + cos_y * left[None, :]
     if view.pitch == 0.0:
@@ -150,7 +207,8 @@ def render(
     sees_robot = np.isfinite(robot_t) & (robot_t <= floor_t)
     sees_robot &= ~(sees_wall & (wall_t < robot_t))
     sees_wall &= ~sees_robot
-    ball_t, ball = _ball_hits(view, (ox, oy), dx, dy, rise, balls)
+    bodies: list[Ball | Block] = [*balls, *blocks]
+    ball_t, ball = _body_hits(view, (ox, oy), dx, dy, rise, bodies)
     sees_ball = np.isfinite(ball_t) & (ball_t <= floor_t)
     sees_ball &= ~(sees_wall & (wall_t < ball_t)) & ~(sees_robot & (robot_t < ball_t))
     sees_wall &= ~sees_ball
@@ -175,39 +233,106 @@ def render(
         image[sees_robot, :3] = rgb[:, ::-1]
     if sees_ball.any():
         hit = ball[sees_ball]
-        reflectances = np.array([b.reflectance for b in balls])
-        colours = np.array([b.colour or (math.nan,) * 3 for b in balls], dtype=np.float64)
+        reflectances = np.array([b.reflectance for b in bodies])
+        colours = np.array([b.colour or (math.nan,) * 3 for b in bodies], dtype=np.float64)
         rgb = _levels(reflectances[hit], colours[hit], WALL_SHADE)
         image[sees_ball, :3] = rgb[:, ::-1]
     return image
 
 
-def _ball_hits(
+def _lens(view: CameraView, pose: Sequence[float]) -> tuple[float, float]:
+    """Where the camera's lens is, seen from above, on a robot at ``pose`` (x, y, yaw)."""
+    x, y, yaw = pose[0], pose[1], pose[2]
+    cos_y, sin_y = math.cos(yaw), math.sin(yaw)
+    return x + cos_y * view.x - sin_y * view.y, y + sin_y * view.x + cos_y * view.y
+
+
+def _body_hits(
     view: CameraView,
     origin: tuple[float, float],
     dx: npt.NDArray[np.float64],
     dy: npt.NDArray[np.float64],
     rise: npt.NDArray[np.float64],
-    balls: Sequence[Ball],
+    bodies: Sequence[Ball | Block],
 ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.intp]]:
-    """The ray parameter at which each ray meets the nearest ball (``inf`` where none), and
-    which ball it meets."""
+    """The ray parameter at which each ray meets the nearest movable body (``inf`` where none),
+    and which body it meets."""
     nearest = np.full(rise.shape, np.inf)
     which = np.zeros(rise.shape, dtype=np.intp)
-    for index, ball in enumerate(balls):
-        # |origin + t d - centre| = radius in 3D, the centre ``radius`` above the floor.
-        cx, cy, cz = origin[0] - ball.x, origin[1] - ball.y, view.z - ball.radius
-        a = dx * dx + dy * dy + rise * rise
-        b = cx * dx + cy * dy + cz * rise
-        c = cx * cx + cy * cy + cz * cz - ball.radius * ball.radius
-        disc = b * b - a * c
-        with np.errstate(invalid="ignore", divide="ignore"):
-            t = (-b - np.sqrt(disc)) / a
-        t = np.where((disc >= 0.0) & (t >= 0.0), t, np.inf)
+    for index, body in enumerate(bodies):
+        if isinstance(body, Ball):
+            t = _sphere_t(view, origin, dx, dy, rise, body)
+        else:
+            t = _block_t(view, origin, dx, dy, rise, body)
         closer = t < nearest
         nearest = np.where(closer, t, nearest)
         which = np.where(closer, index, which)
     return nearest, which
+
+
+def _sphere_t(
+    view: CameraView,
+    origin: tuple[float, float],
+    dx: npt.NDArray[np.float64],
+    dy: npt.NDArray[np.float64],
+    rise: npt.NDArray[np.float64],
+    ball: Ball,
+) -> npt.NDArray[np.float64]:
+    """Where each ray meets a ball resting on the floor (``inf`` where it does not)."""
+    # |origin + t d - centre| = radius in 3D, the centre ``radius`` above the floor.
+    cx, cy, cz = origin[0] - ball.x, origin[1] - ball.y, view.z - ball.radius
+    a = dx * dx + dy * dy + rise * rise
+    b = cx * dx + cy * dy + cz * rise
+    c = cx * cx + cy * cy + cz * cz - ball.radius * ball.radius
+    disc = b * b - a * c
+    with np.errstate(invalid="ignore", divide="ignore"):
+        t = (-b - np.sqrt(disc)) / a
+    return np.where((disc >= 0.0) & (t >= 0.0), t, np.inf)
+
+
+def _block_t(
+    view: CameraView,
+    origin: tuple[float, float],
+    dx: npt.NDArray[np.float64],
+    dy: npt.NDArray[np.float64],
+    rise: npt.NDArray[np.float64],
+    block: Block,
+) -> npt.NDArray[np.float64]:
+    """Where each ray meets a box or upright cylinder standing on the floor, on its side below
+    its top or on its top (``inf`` where it does not)."""
+    ox, oy = origin[0] - block.x, origin[1] - block.y
+    with np.errstate(invalid="ignore", divide="ignore"):
+        if block.size is None:
+            # The ray's horizontal path enters and leaves the disc at the roots of
+            # a t^2 + 2 b t + c = 0.
+            a = dx * dx + dy * dy
+            b = ox * dx + oy * dy
+            c = ox * ox + oy * oy - block.radius * block.radius
+            root = np.sqrt(b * b - a * c)
+            enter, leave = (-b - root) / a, (-b + root) / a
+        else:
+            # The box's own axes: the ray's path crosses each pair of faces (slabs).
+            cos_y, sin_y = math.cos(block.yaw), math.sin(block.yaw)
+            enter = np.full(rise.shape, -np.inf)
+            leave = np.full(rise.shape, np.inf)
+            for half, start, step in (
+                (block.size[0] / 2.0, cos_y * ox + sin_y * oy, cos_y * dx + sin_y * dy),
+                (block.size[1] / 2.0, -sin_y * ox + cos_y * oy, -sin_y * dx + cos_y * dy),
+            ):
+                near, far = (-half - start) / step, (half - start) / step
+                # A path along the faces' plane is inside the slab throughout, or never.
+                inside = np.abs(start) <= half
+                near = np.where(step == 0.0, np.where(inside, -np.inf, np.inf), near)
+                far = np.where(step == 0.0, np.where(inside, np.inf, -np.inf), far)
+                enter = np.maximum(enter, np.minimum(near, far))
+                leave = np.minimum(leave, np.maximum(near, far))
+        top_t = (block.height - view.z) / rise
+    crosses = (enter <= leave) & (enter >= 0.0)
+    height = view.z + np.where(crosses, enter, 0.0) * rise
+    side = crosses & (height >= 0.0) & (height <= block.height)
+    # Over the top edge, a ray going down lands on the top before it leaves the footprint.
+    top = crosses & (height > block.height) & (rise < 0.0) & (top_t <= leave)
+    return np.where(side, enter, np.where(top, top_t, np.inf))
 
 
 def _robot_hits(
@@ -237,26 +362,32 @@ def _robot_hits(
     return nearest
 
 
-#: What a camera samples: the robot's pose, the other robots and the balls.
-_Sample = tuple[tuple[float, float, float], list[RobotBody], list[Ball]]
+#: What a camera samples: the robot's pose, the other robots and the movable bodies.
+_Sample = tuple[tuple[float, float, float], list[RobotBody], list[Ball | Block]]
 
 
-def _balls_of(
-    report: Any,
-) -> list[tuple[int, tuple[float, tuple[float, float, float] | None, float]]]:
-    """The movable bodies of an import report that are balls (``sphere``): each one's index
-    among the bodies and its radius, colour (None when the import read none) and reflectance."""
-    balls = []
-    for index, body in enumerate(report.get("bodies") or []):
-        if body.get("sphere") and body.get("kind") == "circle":
-            colour = body.get("colour")
-            look = (
-                float(body["radius"]),
-                None if colour is None else (float(colour[0]), float(colour[1]), float(colour[2])),
-                float(body.get("reflectance", 1.0)),
-            )
-            balls.append((index, look))
-    return balls
+def drawn_body(pose: Sequence[float], body: Mapping[str, Any]) -> Ball | Block:
+    """A movable body of the import report (``kind``, ``size`` or ``radius``, ``colour``,
+    ``sphere``, ``height``, ``reflectance``) at ``pose`` (x, y, yaw) as the camera draws it: a
+    ball when its collision shape is a sphere, else a box or an upright cylinder."""
+    colour = body.get("colour")
+    look = None if colour is None else (float(colour[0]), float(colour[1]), float(colour[2]))
+    reflectance = float(body.get("reflectance", 1.0))
+    x, y, yaw = (float(v) for v in pose[:3])
+    if body.get("kind") == "circle":
+        radius = float(body["radius"])
+        if body.get("sphere"):
+            return Ball(x, y, radius, look, reflectance)
+        return Block(x, y, yaw, None, radius, _height(body, 2.0 * radius), look, reflectance)
+    width, depth = (float(v) for v in body["size"])
+    height = _height(body, min(width, depth))
+    return Block(x, y, yaw, (width, depth), 0.0, height, look, reflectance)
+
+
+def _height(body: Mapping[str, Any], otherwise: float) -> float:
+    """A body's ``height``, or ``otherwise`` for a report without one (a mazesim world's)."""
+    height = body.get("height")
+    return float(height) if height else otherwise
 
 
 def _levels(
@@ -365,8 +496,9 @@ class Camera(_Sensor):
         #: drawn.
         self._sampled: _Sample | None = None
         self._rendered_at: _Sample | None = None
-        #: The movable bodies that are balls: their index in the world and how they look.
-        self._balls = _balls_of(simulation.report)
+        #: The world whose walls and floor the camera holds (a supervisor's change makes
+        #: another).
+        self._world: Any = None
         self._value = None
         #: Whether the simulator holds this robot alone (it has no ``other_robots``).
         self._alone = False
@@ -379,36 +511,36 @@ class Camera(_Sensor):
         self._recognised: list[CameraRecognitionObject] = []
 
     def _read(self) -> Any:
-        if self._walls is None or self._floor is None:
-            self._walls = WallBoxes(self._simulation.world, sensed=True)
-            self._floor = FloorPaint(self._simulation.world)
+        world = self._simulation.world
+        if self._walls is None or self._floor is None or world is not self._world:
+            self._walls = WallBoxes(world, sensed=True)
+            self._floor = FloorPaint(world)
+            self._world = world
         x, y, yaw = (float(v) for v in self._simulation.simulator.pose)
-        self._sampled = ((x, y, yaw), self._other_robots(), self._balls_now())
+        self._sampled = ((x, y, yaw), self._other_robots(), self._bodies_now())
         return True
 
-    def _balls_now(self) -> list[Ball]:
-        """The world's balls where they are now (none in a world without any)."""
-        if not self._balls:
-            return []
+    def _bodies_now(self) -> list[Ball | Block]:
+        """The world's movable bodies where they are now: those a supervisor imported too,
+        not those it removed."""
         from mazesim.webots.solids import world_objects
 
-        poses = world_objects(self._simulation).body_poses()
-        return [
-            Ball(float(poses[index][0]), float(poses[index][1]), *look)
-            for index, look in self._balls
-            if index < len(poses)
-        ]
+        drawn = world_objects(self._simulation).drawn_bodies()
+        return [drawn_body(pose, body) for pose, body in drawn]
 
     def _drawn(self) -> npt.NDArray[np.uint8] | None:
         """The image of the last sample, drawn at the first call that asks for it (a camera
         enabled and never read draws nothing), and drawn again only when the robot, another
-        robot or a ball has moved since the last image; None before the first sample."""
+        robot or a movable body has moved since the last image; None before the first
+        sample."""
         if self._sampled is None or self._walls is None or self._floor is None:
             return None
         if self._pixels is None or self._rendered_at != self._sampled:
-            pose, robots, balls = self._sampled
+            pose, robots, bodies = self._sampled
+            balls = [body for body in bodies if isinstance(body, Ball)]
+            blocks = [body for body in bodies if isinstance(body, Block)]
             self._bytes = None
-            self._pixels = render(self._view, self._walls, self._floor, pose, robots, balls)
+            self._pixels = render(self._view, self._walls, self._floor, pose, robots, balls, blocks)
             self._rendered_at = self._sampled
         return self._pixels
 
@@ -534,11 +666,12 @@ class Camera(_Sensor):
         simulation = self._simulation
         x, y, yaw = (float(v) for v in simulation.simulator.pose)
         view = self._view
+        lens_x, lens_y = _lens(view, (x, y, yaw))
         camera = CameraPose(
-            x + math.cos(yaw) * view.x,
-            y + math.sin(yaw) * view.x,
+            lens_x,
+            lens_y,
             view.z,
-            yaw,
+            yaw + view.yaw,
             view.pitch,
             view.width,
             view.height,

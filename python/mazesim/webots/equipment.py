@@ -15,7 +15,7 @@ import sys
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
-from mazesim.webots.camera import Camera, CameraView
+from mazesim.webots.camera import Camera, CameraView, node_view
 from mazesim.webots.devices import (
     LED,
     PROXIMITY_TABLE,
@@ -133,17 +133,7 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
             else LightSensor(name, simulation, mount=mount)
         ),
         "LED": lambda: LED(name, simulation),
-        "Camera": lambda: Camera(
-            name,
-            simulation,
-            CameraView(
-                width=int(fields.get("width", 64)),
-                height=int(fields.get("height", 64)),
-                fov=float(fields.get("fieldOfView", 0.7854)),
-                x=mount.x,
-                z=max(mount.z, 0.001),
-            ),
-        ),
+        "Camera": lambda: Camera(name, simulation, node_view(entry, simulation.scene.y_up_devices)),
         "Emitter": lambda: emitter_from_fields(name, simulation, fields, entry.get("axes")),
         "Receiver": lambda: receiver_from_fields(name, simulation, fields, entry.get("axes")),
         "Speaker": lambda: Speaker(name, simulation),
@@ -174,6 +164,16 @@ def _proto_channel(scene: Any, name: str) -> int:
 
 #: Devices a robot's own node of the same name replaces (the e-puck's emitter and receiver).
 RADIO_DEVICES = (Emitter, Receiver)
+
+
+def _replaces(known: Device, device: Device, own_node: bool) -> bool:
+    """Whether ``device`` of the world replaces the e-puck's ``known`` of the same name: a
+    robot's own Emitter or Receiver node does, and its own Camera node (among its children:
+    a robot saved expanded, or one that is no e-puck), with the fields the world gives it;
+    a camera in an E-puck PROTO's slot comes after the PROTO's own, which Webots finds first."""
+    if type(known) is not type(device):
+        return False
+    return type(known) in RADIO_DEVICES or (own_node and isinstance(known, Camera))
 
 
 class Equipment:
@@ -221,6 +221,7 @@ class Equipment:
             height=scene.camera_height or CameraView.height,
             fov=scene.camera_fov or CameraView.fov,
             pitch=scene.camera_pitch,
+            yaw=scene.camera_yaw,
         )
         devices += [
             Camera("camera", simulation, view),
@@ -230,14 +231,16 @@ class Equipment:
             Receiver("receiver", simulation, channel=_proto_channel(scene, "receiver_channel")),
             Speaker("speaker", simulation),
         ]
+        own_nodes: set[int] = set()
         for entry in simulation.report.get("extension_devices") or []:
             if isinstance(entry, Mapping) and (device := extension_device(simulation, entry)):
                 devices.append(device)
+                if entry.get("slot") == "children":
+                    own_nodes.add(id(device))
         self.devices: dict[str, Device] = {}
         for device in devices:
             known = self.devices.get(device.getName())
-            # A robot's own Emitter or Receiver node replaces the e-puck's of the same name.
-            if known is None or (type(known) is type(device) and type(known) in RADIO_DEVICES):
+            if known is None or _replaces(known, device, id(device) in own_nodes):
                 self.devices[device.getName()] = device
         devices = list(self.devices.values())
         self._sampled = [device for device in devices if isinstance(device, _Sensor)]

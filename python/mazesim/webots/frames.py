@@ -20,6 +20,7 @@ __all__ = [
     "Frame",
     "axes_or_none",
     "axis_angle",
+    "camera_heading",
     "enu_to_nue",
     "enu_to_nue_matrix",
     "nue_to_enu",
@@ -79,6 +80,15 @@ def rotation_matrix(ax: float, ay: float, az: float, angle: float) -> list[float
         *(t * x * y + s * z, t * y * y + c, t * y * z - s * x),
         *(t * x * z - s * y, t * y * z + s * x, t * z * z + c),
     ]
+
+
+def camera_heading(forward: Sequence[float]) -> tuple[float, float]:
+    """Where a camera whose view runs along ``forward`` (in the robot's frame, x forward, y
+    left, z up) looks: its heading left of the robot's forward and its tilt down, radians."""
+    fx, fy, fz = (float(v) for v in forward[:3])
+    norm = math.sqrt(fx * fx + fy * fy + fz * fz) or 1.0
+    heading = math.atan2(fy, fx) if math.hypot(fx, fy) > 1e-12 else 0.0
+    return heading, math.asin(max(-1.0, min(1.0, -fz / norm)))
 
 
 def axis_angle(matrix: Sequence[float]) -> tuple[float, float, float, float]:

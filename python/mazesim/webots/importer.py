@@ -149,7 +149,8 @@ class ImportReport(TypedDict):
     (see :class:`WorldRobot`); ``floor_paint`` the number of paint
     rectangles the floor textures gave; ``bodies`` the movable bodies (``kind``, ``center``,
     ``size`` and ``yaw`` or ``radius``, ``mass`` in kg, floor ``friction``, ``owners`` and
-    ``reflectance`` as an obstacle's); ``sensed_only`` the obstacles that only the infra-red
+    ``reflectance`` as an obstacle's, the ``colour`` a camera sees, whether it is a ``sphere``
+    and its ``height`` in m); ``sensed_only`` the obstacles that only the infra-red
     sensors and the camera meet (``kind``, ``center``, ``size`` and ``yaw`` or ``radius``, and
     ``reflectance`` as an obstacle's: visual-only shapes, of no Solid with a
     ``boundingObject``, in the proximity sensors' rays, which Webots' infra-red rays see and

@@ -280,6 +280,11 @@ class Fleet:
         """The movable bodies' velocities (vx, vy, turn rate) now, in world order."""
         return self.solids.body_velocities()
 
+    def drawn_bodies(self) -> list[tuple[Pose2, Mapping[str, Any]]]:
+        """The movable bodies as a camera draws them now (see
+        :meth:`~mazesim.webots.solids.WorldSolids.drawn_bodies`)."""
+        return self.solids.drawn_bodies()
+
     def set_body_velocity(self, index: int, vx: float, vy: float, turn_rate: float) -> None:
         """Sets a movable body's velocity in every simulator that holds the world's bodies."""
         self.solids.set_body_velocity(index, vx, vy, turn_rate)

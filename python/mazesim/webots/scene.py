@@ -16,7 +16,13 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
 from mazesim._paths import open_input
-from mazesim.webots.frames import WORLD_FRAME, nue_to_enu, placed
+from mazesim.webots.frames import (
+    WORLD_FRAME,
+    camera_heading,
+    nue_to_enu,
+    placed,
+    rotation_matrix,
+)
 from mazesim.webots.lights import Light, read_lights
 from mazesim.webots.proto.syntax import (
     Field,
@@ -148,7 +154,8 @@ class Scene:
         camera_height: The E-puck's ``camera_height`` field, if set.
         camera_fov: The E-puck's ``camera_fieldOfView`` field, if set.
         camera_pitch: How far down (rad) the E-puck's ``camera_rotation`` tilts the camera
-            (its part about the camera's y axis).
+            (in the frame of the file's E-puck PROTO: see ``y_up_devices``).
+        camera_yaw: How far left (rad) the E-puck's ``camera_rotation`` turns the camera.
         north: ``WorldInfo.northDirection`` as x, y (world frame), if set.
         lights: The world's lights that are on (empty: the light sensors' default ambient).
         nodes: The nodes at the top of the file, in file order (the root's ``children``), each
@@ -207,6 +214,7 @@ class Scene:
     camera_height: int | None = None
     camera_fov: float | None = None
     camera_pitch: float = 0.0
+    camera_yaw: float = 0.0
     north: tuple[float, float] | None = None
     nue: bool = False
     y_up_devices: bool = False
@@ -328,9 +336,7 @@ def _scene(
     if (fov := first_value(own, "camera_fieldOfView", _leading(1))) is not None:
         scene.camera_fov = fov[0]
     if (turn := first_value(own, "camera_rotation", _leading(4))) is not None:
-        ax, ay, az, angle = turn
-        norm = math.sqrt(ax * ax + ay * ay + az * az) or 1.0
-        scene.camera_pitch = angle * ay / norm
+        scene.camera_yaw, scene.camera_pitch = _camera_turn(turn, scene.y_up_devices)
     if (north := first_value(every, "northDirection", _leading(3))) is not None:
         x, y, z = north
         scene.north = nue_to_enu(x, y, z)[:2] if scene.nue else (x, y)
@@ -338,6 +344,19 @@ def _scene(
         # WorldInfo.northDirection's default before R2022a: x (1 0 0).
         scene.north = nue_to_enu(1.0, 0.0, 0.0)[:2]
     return scene
+
+
+def _camera_turn(rotation: Sequence[float], y_up: bool) -> tuple[float, float]:
+    """The heading and tilt down (rad) of the E-puck's camera turned by its ``camera_rotation``
+    (axis x, y, z and angle): the Camera of Webots' Z-up E-puck PROTO (R2022a on) looks along
+    its x axis, z up, so a turn about y tilts it; that of the Y-up PROTO before looks along its
+    -z axis, y up, x to the right, so there a turn about x tilts it (``1 0 0 -0.3`` looks 0.3
+    rad down) and one about y turns it left."""
+    m = rotation_matrix(*rotation[:4])
+    if y_up:
+        # -z of the turned camera, read in the robot's frame: forward -z, left -x, up y.
+        return camera_heading((m[8], m[2], -m[5]))
+    return camera_heading((m[0], m[3], m[6]))
 
 
 #: The nodes of Webots' ground sensors module of the E-puck (its gs0..gs2), in its

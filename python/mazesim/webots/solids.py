@@ -75,6 +75,7 @@ class WorldSolids:
         first), imported with ``report``."""
         self._simulators = simulators
         self._held = held_by_line(report)
+        self._bodies = list(report.get("bodies") or [])
         #: The nodes moved since the start or the last reset, by line: their pose in the file
         #: and now, seen from above.
         self._moves: dict[int, tuple[Pose2, Pose2]] = {}
@@ -95,6 +96,14 @@ class WorldSolids:
     def body_velocities(self) -> list[tuple[float, float, float]]:
         """The movable bodies' velocities (vx, vy, turn rate) now, in world order."""
         return [tuple(v) for v in self._simulators[0].body_velocities()]
+
+    def drawn_bodies(self) -> list[tuple[Pose2, Mapping[str, Any]]]:
+        """Each movable body of the world as it is now (a supervisor's changes included): its
+        pose (x, y, yaw) and its entry of the import report (shape, ``colour``, ``sphere``,
+        ``height``), in world order; what a camera draws."""
+        if not self._bodies:
+            return []
+        return list(zip(self.body_poses(), self._bodies))
 
     def move_node(self, line: int, from_pose: Pose2, to_pose: Pose2) -> None:
         """Moves what the node on ``line`` holds by the motion from ``from_pose`` to

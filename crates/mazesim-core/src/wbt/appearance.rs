@@ -40,14 +40,18 @@ pub struct Look {
     pub reflectance: f64,
 }
 
-/// How a movable body looks to a camera: its colour (`None`: the grey of its reflectance) and
-/// whether its collision shape is one `Sphere` (a ball, which a camera draws as one).
+/// How a movable body looks to a camera: its colour (`None`: the grey of its reflectance),
+/// whether its collision shape is one `Sphere` (a ball, which a camera draws as one) and how
+/// high it stands on the floor.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BodyLook {
     /// The colour a camera sees, as [`Look::colour`].
     pub colour: Option<[f64; 3]>,
     /// Whether the body is a ball resting on the floor (its disc's radius is the sphere's).
     pub sphere: bool,
+    /// The vertical extent of its collision shape (m): a box or cylinder is drawn this high,
+    /// standing on the floor.
+    pub height: f64,
 }
 
 impl Look {
@@ -429,11 +433,13 @@ mod tests {
             [
                 BodyLook {
                     colour: Some([0.0, 0.0, 1.0]),
-                    sphere: true
+                    sphere: true,
+                    height: 0.04
                 },
                 BodyLook {
                     colour: None,
-                    sphere: false
+                    sphere: false,
+                    height: 0.04
                 }
             ]
         );

@@ -91,9 +91,10 @@ const BUILT_IN_NAMES: &[&str] = &[
 /// which tells the device its table: the e-puck's proximity sensors' own.
 const EPUCK_DISTANCE_SENSOR: &str = "E-puckDistanceSensor";
 const EPUCK_DISTANCE_SENSOR_MODEL: &str = "e-puck distance sensor";
-/// Device types whose node an e-puck saved expanded keeps with its own fields: they replace the
-/// e-puck's devices of the same name.
-const RADIO_TYPES: &[&str] = &["Emitter", "Receiver"];
+/// Device types whose node an e-puck saved expanded keeps with its own fields (a radio's
+/// channel and range, a camera's size and field of view): they replace the e-puck's devices of
+/// the same name.
+const OWN_FIELD_TYPES: &[&str] = &["Emitter", "Receiver", "Camera"];
 /// Nodes that only hold and place other nodes.
 const CONTAINERS: &[&str] = &["Solid", "Pose", "Transform", "Group"];
 /// Fields that place or hold a node rather than describe the device.
@@ -183,7 +184,8 @@ impl<'d> Importer<'d> {
     /// Lists the devices among a plain robot node's children (anywhere below them, through
     /// solids, poses, groups and joints), under the slot name `children`: for an e-puck
     /// (`e_puck`), those that are not the e-puck's own, and its Emitter and Receiver, whose
-    /// fields (channel, range, buffer size) an e-puck saved expanded keeps as Webots reads them;
+    /// fields (channel, range, buffer size) an e-puck saved expanded keeps as Webots reads them,
+    /// and its Camera, whose size and field of view it keeps likewise;
     /// for another robot, all of them.
     pub fn robot_children(&mut self, robot: &'d Node, e_puck: bool) {
         let mut stack: Vec<(&'d Node, Frame, usize)> = self
@@ -206,8 +208,8 @@ impl<'d> Importer<'d> {
             if let Some(&(_, default_name)) = DEVICE_TYPES.iter().find(|(t, _)| *t == kind) {
                 let name = self.strings(node, "name").first().cloned();
                 let name = name.unwrap_or_else(|| default_name.to_string());
-                let radio = RADIO_TYPES.contains(&kind);
-                if !(e_puck && !radio && BUILT_IN_NAMES.contains(&name.as_str())) {
+                let own_fields = OWN_FIELD_TYPES.contains(&kind);
+                if !(e_puck && !own_fields && BUILT_IN_NAMES.contains(&name.as_str())) {
                     self.device(node, "children", &frame, default_name);
                 }
             }

@@ -153,6 +153,9 @@ pub struct Importer<'d> {
     /// Set while reading the collision shapes of an object with physics: it falls onto the
     /// floor in Webots, so its height does not let the robot pass under it.
     pub falls: bool,
+    /// The vertical extent (m) of the last collision shape kept as an obstacle: a movable
+    /// body's height as it rests on the floor.
+    pub shape_height: f64,
     visits: usize,
     too_deep: bool,
     /// The e-puck whose `controller` field names the controller of the run, if one does.
@@ -222,6 +225,7 @@ fn walk<'d>(
         sensed_obstacles: Vec::new(),
         sensed_looks: Vec::new(),
         sensing: false,
+        shape_height: 0.0,
         floor_colour: None,
         obstacle_owners: Vec::new(),
         bodies: Vec::new(),
@@ -698,6 +702,7 @@ impl<'d> Importer<'d> {
         self.body_looks.push(BodyLook {
             colour: look.colour,
             sphere,
+            height: self.shape_height,
         });
         self.bodies.push(body);
         true

@@ -158,6 +158,7 @@ impl<'d> Importer<'d> {
             ));
             return false;
         }
+        self.shape_height = 2.0 * half_z;
         true
     }
 
