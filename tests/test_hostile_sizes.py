@@ -113,3 +113,18 @@ def test_huge_lengths_are_refused_before_allocation() -> None:
     for name, (_, says) in CASES.items():
         assert found[name].startswith("InvalidArgumentError: "), f"{name}: {found[name]}"
         assert re.search(says, found[name]), f"{name}: {found[name]}"
+
+
+def test_a_robot_list_nested_deep_is_refused_without_overflowing_the_stack() -> None:
+    # A list of robots is read one level deep: its items are names, paths or profiles, never
+    # lists to look into (reading them as robot lists recursed until the stack overflowed).
+    deep = "world = mazesim.World.builtin('seed-maze')\ndeep = []\nfor _ in range(100_000):\n"
+    for call in (
+        "_core.Simulator(world, robot=deep)",
+        "_core.BatchSimulator(world, 1, robot=deep)",
+    ):
+        outcome = run_hostile(deep + "    deep = [deep]\n" + call + "\n")
+        assert outcome.refused, f"{call}: {outcome.describe()}"
+        assert "found a sequence" in outcome.stdout or "found a list" in outcome.stdout, (
+            f"{call}: {outcome.stdout}"
+        )

@@ -145,10 +145,14 @@ impl<'a, 'py> FromPyObject<'a, 'py> for RobotArg {
         }
         if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
             let items = bounded_items(&obj.to_owned(), "robot", "robot profiles", MAX_ENVS)?;
-            let one = |item: &Bound<'py, PyAny>| match item.extract::<RobotArg>() {
-                Ok(RobotArg::Many(_)) => RobotArg::Other(type_name(item)),
-                Ok(arg) => arg,
-                Err(_) => RobotArg::Other(type_name(item)),
+            // One level only: an item that is itself a sequence is not looked into (a list
+            // nested a hundred thousand deep would overflow the stack).
+            let one = |item: &Bound<'py, PyAny>| {
+                if item.is_instance_of::<PyList>() || item.is_instance_of::<PyTuple>() {
+                    return RobotArg::Other(type_name(item));
+                }
+                item.extract::<RobotArg>()
+                    .unwrap_or_else(|_| RobotArg::Other(type_name(item)))
             };
             return Ok(RobotArg::Many(items.iter().map(one).collect()));
         }
