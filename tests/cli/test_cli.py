@@ -284,6 +284,8 @@ def test_a_demo_of_a_robot_profile_file_names_the_file(
     Path("my-robot.toml").write_text(text.replace("wheel_radius = 0.02\n", "wheel_radius = 0.03\n"))
     assert main(["demo", "--robot", "my-robot.toml", "--seconds", "1", "--out", "mine"]) == 0
     assert "(robot e-puck from my-robot.toml, seed 0)" in capsys.readouterr().out
-    assert json.loads(Path("mine/summary.json").read_text())["robot"] == "e-puck from my-robot.toml"
+    mine = json.loads(Path("mine/summary.json").read_text())
+    assert (mine["robot"], mine["robot_file"]) == ("e-puck", "my-robot.toml")
     assert main(["demo", "--robot", "e-puck", "--seconds", "1", "--out", "builtin"]) == 0
-    assert json.loads(Path("builtin/summary.json").read_text())["robot"] == "e-puck"
+    builtin = json.loads(Path("builtin/summary.json").read_text())
+    assert builtin["robot"] == "e-puck" and "robot_file" not in builtin

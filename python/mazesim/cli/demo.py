@@ -175,7 +175,7 @@ def run_avoid_collision_demo(args: argparse.Namespace, out: TextIO) -> int:
         goal_reached = bool(np.any(np.hypot(xs - goal_x, ys - goal_y) <= radius))
     summary: dict[str, Any] = {
         "world": world.name,
-        "robot": robot_label,
+        "robot": robot.name,
         "seed": args.seed,
         "controller": "avoid-collision",
         "simulated_seconds": simulator.time,
@@ -185,6 +185,8 @@ def run_avoid_collision_demo(args: argparse.Namespace, out: TextIO) -> int:
         "goal_reached": goal_reached,
         **speed_summary(simulator.time, wall_clock),
     }
+    if robot_label != robot.name:  # the profile's own name, and the file it came from
+        summary["robot_file"] = robot_name
 
     picture = os.path.join(args.out, "trajectory.png")
     save_trajectory_png(
