@@ -88,10 +88,15 @@ PAGE_CONSTANTS: dict[str, dict[str, str]] = {
         "1.5 %": "arithmetic: one step's travel against the largest coordinate's resolution",
     },
     "robots.md": {"0.7-12.6 %": "the e-puck2 PROTO's noise column (Webots' source)"},
-    "ros.md": {"5 s": "the lockstep bridge's wait before it sends the reset state again"},
+    "ros.md": {
+        "5 s": "the lockstep bridge's wait before it sends the reset state again",
+        "1 s": "the lockstep bridge's wait after that before its clock runs on its own",
+        "0.5 s": "the simulated sleep of the test of a controller that sleeps before commanding",
+    },
     "ros2.md": {
         "0.5 s": "the bridge's wait for its readers to match",
         "5 s": "the lockstep bridge's wait before it sends the reset state again",
+        "1 s": "the lockstep bridge's wait after that before its clock runs on its own",
         "6.4 s": "the argument of the page's run_until example",
     },
     "webots.md": {
