@@ -17,10 +17,14 @@ import importlib.util
 import os
 import re
 import sys
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import TypeVar
 
 from mazesim._paths import MAX_TEXT_CHARACTERS, read_input
 from mazesim.webots.stock_controllers import STOCK
+
+_Value = TypeVar("_Value")
 
 __all__ = [
     "LANGUAGES",
@@ -268,13 +272,7 @@ def path_additions(path: str) -> list[str]:
     except (SyntaxError, ValueError, OSError):
         return []
     here = os.path.dirname(os.path.abspath(path))
-    names: dict[str, str] = {"__file__": os.path.abspath(path)}
-    for statement in tree.body:
-        if isinstance(statement, ast.Assign) and len(statement.targets) == 1:
-            target = statement.targets[0]
-            value = _path_of(statement.value, names)
-            if isinstance(target, ast.Name) and value is not None:
-                names[target.id] = value
+    names = _module_names(tree, _path_of, {"__file__": os.path.abspath(path)})
     folders = []
     calls = [node for node in ast.walk(tree) if isinstance(node, ast.Call)]
     for node in sorted(calls, key=lambda call: (call.lineno, call.col_offset)):
@@ -517,13 +515,7 @@ def turn_in_place_speed(path: str) -> float | None:
         tree = ast.parse(read_input(path, MAX_TEXT_CHARACTERS, "the controller"))
     except (SyntaxError, ValueError, OSError):
         return None
-    known: dict[str, float] = {}
-    for statement in tree.body:
-        if isinstance(statement, ast.Assign) and len(statement.targets) == 1:
-            target = statement.targets[0]
-            value = _constant(statement.value, known)
-            if isinstance(target, ast.Name) and value is not None:
-                known[target.id] = value
+    known = _module_names(tree, _constant, {})
     fastest: float | None = None
     for node in ast.walk(tree):
         for block in (getattr(node, "body", None), getattr(node, "orelse", None)):
@@ -656,3 +648,19 @@ def unbuilt(file: str, failure: Exception) -> PreparedController:
     kind = LANGUAGE_NAMES.get(language, "C")
     statement = f"its {kind} controller {os.path.basename(file)} does not compile here: {first}"
     return PreparedController(file, language, missing=[statement], runnable=False)
+
+
+def _module_names(
+    tree: ast.Module,
+    value_of: Callable[[ast.expr, dict[str, _Value]], _Value | None],
+    names: dict[str, _Value],
+) -> dict[str, _Value]:
+    """``names`` with the module's top-level ``NAME = value`` assignments whose value
+    ``value_of`` works out (from the names known so far), in source order."""
+    for statement in tree.body:
+        if isinstance(statement, ast.Assign) and len(statement.targets) == 1:
+            target = statement.targets[0]
+            value = value_of(statement.value, names)
+            if isinstance(target, ast.Name) and value is not None:
+                names[target.id] = value
+    return names
