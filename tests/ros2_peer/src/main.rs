@@ -39,6 +39,11 @@ use step::{Sample, StepSet, RANGE_TOPICS};
 /// How often the announced types are compared while the reset state is awaited.
 const TYPE_CHECK_INTERVAL: Duration = Duration::from_millis(200);
 
+/// How long a difference of types must last before it is reported: discovery announces a
+/// participant's readers one by one, so the bridge's Twist reader of `/cmd_vel` may be known a
+/// moment before its TwistStamped one.
+const TYPE_SETTLE: Duration = Duration::from_millis(1500);
+
 /// Why the peer stopped: each kind has its exit status.
 enum Failure {
     Layout(String),
@@ -199,9 +204,9 @@ async fn gather(
     }
 }
 
-/// Fails with a layout mismatch if another participant reads `/cmd_vel` or writes a state topic
-/// under a type name other than this peer's (DDS then matches no reader with that writer).
-fn foreign_types(context: &Context, options: &Options) -> Result<(), Failure> {
+/// The topics another participant reads (`/cmd_vel`) or writes (state topics) under a type name
+/// other than this peer's (DDS then matches no reader with that writer), one line each.
+fn foreign_types(context: &Context, options: &Options) -> Vec<String> {
     let participant = context.domain_participant();
     let ours = |topic: &str| -> Option<String> {
         let name = topic.strip_prefix("rt/")?;
@@ -249,15 +254,30 @@ fn foreign_types(context: &Context, options: &Options) -> Result<(), Failure> {
         .collect();
     differences.sort();
     differences.dedup();
-    if differences.is_empty() {
-        return Ok(());
+    differences
+}
+
+/// Fails with a layout mismatch once the announced types have differed from this peer's for
+/// [`TYPE_SETTLE`] without a break; runs until then.
+async fn watch_types(context: &Context, options: &Options) -> Failure {
+    let mut differing_since: Option<Instant> = None;
+    loop {
+        Timer::after(TYPE_CHECK_INTERVAL).await;
+        let differences = foreign_types(context, options);
+        if differences.is_empty() {
+            differing_since = None;
+            continue;
+        }
+        let since = *differing_since.get_or_insert_with(Instant::now);
+        if since.elapsed() >= TYPE_SETTLE {
+            return Failure::Layout(format!(
+                "the bridge's types differ from this peer's ({}, /cmd_vel {}): {}",
+                options.distro.name(),
+                options.cmd_vel.type_name(),
+                differences.join("; ")
+            ));
+        }
     }
-    Err(Failure::Layout(format!(
-        "the bridge's types differ from this peer's ({}, /cmd_vel {}): {}",
-        options.distro.name(),
-        options.cmd_vel.type_name(),
-        differences.join("; ")
-    )))
 }
 
 async fn drive(
@@ -336,14 +356,9 @@ async fn drive(
     let writer = CommandWriter::create(node, options.cmd_vel)?;
     // Silence is what DDS makes of a type the other side does not share: while the reset state
     // is awaited, the types the other participants announce are compared with this peer's.
-    let watch_types = async {
-        loop {
-            Timer::after(TYPE_CHECK_INTERVAL).await;
-            foreign_types(context, options)?;
-        }
-    };
     let reset = gather(&mut incoming, options.start_timeout, "the reset state");
-    let (reset, mut now) = smol::future::or(reset, watch_types).await?;
+    let (reset, mut now) =
+        smol::future::or(reset, async { Err(watch_types(context, options).await) }).await?;
     if now != (Time { sec: 0, nanosec: 1 }) {
         return Err(Failure::Other(format!(
             "the reset state is stamped {now}, not 0.000000001"
