@@ -371,7 +371,13 @@ def test_sweep_without_ray_names_the_sequential_run(tmp_path: Path) -> None:
 
 
 @pytest.mark.parametrize(
-    ("file", "language"), [("Avoid.java", "Java"), ("avoid.jar", "Java"), ("avoid.m", "MATLAB")]
+    ("file", "language"),
+    [
+        ("Avoid.java", "Java"),
+        ("avoid.jar", "Java"),
+        ("avoid.m", "MATLAB"),
+        ("blink.bsg", "BotStudio"),
+    ],
 )
 def test_webots_run_refuses_a_controller_in_another_language(
     tmp_path: Path, file: str, language: str

@@ -182,6 +182,35 @@ def test_webots_home_is_searched_before_a_stand_in(
     assert _boxes(report) == [([0.0, 0.0], [0.5, 0.02])]
 
 
+def test_a_webots_library_proto_named_by_its_https_url_is_read_from_the_installation(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    """A world saved by Webots R2022b or later names a PROTO of Webots' library (a pallet
+    mazesim has no stand-in for) by its URL in Webots' repository: offline, with Webots
+    installed, its solids are obstacles, as a ``webots://`` URL's are; without Webots, the
+    warning says it is not imported."""
+    monkeypatch.setenv("MAZESIM_OFFLINE", "1")
+    text = (
+        "#VRML_SIM R2025a utf8\n"
+        'EXTERNPROTO "https://raw.githubusercontent.com/cyberbotics/webots/R2025a/projects/'
+        'objects/factory/pallet/protos/Pallet.proto"\n'
+        "Pallet { translation 0.2 0.1 0 }\n"
+    )
+    _, without = import_wbt_text(text, str(tmp_path / "pallets.wbt"))
+    assert _boxes(without) == []
+    assert any("line 3: Pallet: an unknown PROTO: not imported" in w for w in without["warnings"])
+    home = tmp_path / "webots"
+    protos = home / "projects" / "objects" / "factory" / "pallet" / "protos"
+    protos.mkdir(parents=True)
+    wall = (DATA / "project" / "protos" / "BoxWall.proto").read_text()
+    (protos / "Pallet.proto").write_text(wall.replace("PROTO BoxWall", "PROTO Pallet"))
+    monkeypatch.setenv("WEBOTS_HOME", str(home))
+    _, report = import_wbt_text(text, str(tmp_path / "pallets.wbt"))
+    assert report["protos"]["expanded"] == {"Pallet": str(protos / "Pallet.proto")}
+    assert _boxes(report) == [([0.2, 0.1], [0.5, 0.02])]
+    assert not any("Pallet" in w for w in report["warnings"])
+
+
 def test_cr_line_ends_import_like_lf() -> None:
     text = (DATA / "project" / "worlds" / "local.wbt").read_text()
     source = str(DATA / "project" / "worlds" / "local.wbt")

@@ -94,7 +94,7 @@ def test_a_robot_whose_controller_is_java_or_matlab_says_so(tmp_path: Path) -> N
     world = tmp_path / "worlds" / "example.wbt"
     world.parent.mkdir()
     world.write_text("#VRML_SIM R2023b utf8\n")
-    for name, suffix in (("matlab", ".m"), ("Slave", ".java")):
+    for name, suffix in (("matlab", ".m"), ("Slave", ".java"), ("blink", ".bsg")):
         (tmp_path / "controllers" / name).mkdir(parents=True)
         (tmp_path / "controllers" / name / f"{name}{suffix}").write_text("% its code\n")
     none, why = controller_of({"name": "e-puck", "controller": "matlab"}, str(world), {})
@@ -102,6 +102,17 @@ def test_a_robot_whose_controller_is_java_or_matlab_says_so(tmp_path: Path) -> N
     assert why == "a MATLAB controller controllers/matlab/matlab.m, which mazesim does not run"
     none, why = controller_of({"name": "robot1", "controller": "Slave"}, str(world), {})
     assert none is None and why.startswith("a Java controller controllers/Slave/Slave.java")
+    none, why = controller_of({"name": "e-puck", "controller": "blink"}, str(world), {})
+    assert none is None and why.startswith("a BotStudio controller controllers/blink/blink.bsg")
+    # A world run says so among what its robot lacks, as the run of a controller whose Python
+    # package is not installed does; a robot without a controller lacks nothing.
+    world.write_text(
+        '#VRML_SIM R2023b utf8\nRectangleArena { }\nE-puck { controller "blink" }\n'
+        'E-puck { translation 0.2 0 0 name "e-puck(1)" controller "void" }\n'
+    )
+    run = run_world(str(world), seconds=0.2)
+    assert [robot.missing for robot in run.robots] == [(why,), ()]
+    assert run.robots[0].distance_m == 0.0
 
 
 def test_a_c_controller_is_found_in_its_webots_folder(tmp_path: Path) -> None:

@@ -25,7 +25,7 @@ import numpy as np
 
 from webots_corpus.census import DROPPED_WORDS, Census, losses
 from webots_corpus.facts import MOVED, Outcome, check, farthest_from_start, parse_fact
-from webots_corpus.manifest import Project
+from webots_corpus.manifest import RUN, Project
 from webots_corpus.mirrors import MirrorError, export, find_mirror, has_commit, read_file
 
 #: Words of an import warning that says something of the world was lost (a dropped node, an
@@ -68,11 +68,14 @@ def _runs_whole(project: Project, report: dict[str, Any], text: str = "") -> boo
     """Whether the world (its import ``report`` and file ``text``) runs whole: a project
     without a key script in which several robots have a controller (Python, C or C++; a node
     that leaves its ``controller`` field out has its PROTO's default one), or whose world has
-    no e-puck but declares the E-puck importable."""
+    no e-puck but declares the E-puck importable, or whose first controller is in a language
+    mazesim does not run (the world's run says so of its robot, which stands still)."""
     from mazesim.webots.lockstep import controller_name
 
     robots = report.get("robots") or []
     running = [r for r in robots if controller_name(r) not in NO_CONTROLLER]
+    if project.language not in RUN:
+        return True
     if project.keys:
         return False
     no_e_puck = running and not any(r.get("profile") is not None for r in robots)
@@ -330,10 +333,12 @@ def _judge(
     others: str = "",
 ) -> Row:
     """The row of a run: pass, fail or timeout, or not run when the run said at its start what
-    it lacks (its statement is the cause, so the table and the run agree)."""
+    it lacks (its statement is the cause, so the table and the run agree), as it does of a
+    first controller in a language mazesim does not run, whatever the facts."""
     failed = [f"{line} ({measured})" for line, ok, measured in checks if not ok]
     parts: list[str] = []
-    if missing and (failed or run.exit_status is None):
+    unrun = project.language not in RUN
+    if missing and (failed or run.exit_status is None or unrun):
         # A floor texture the run names as missing is not quoted again from the import.
         lost = [w for w in _significant(warnings) if not any(_names_texture(m, w) for m in missing)]
         cause = "missing: " + "; ".join(missing) + (f"; import: {lost[0]}" if lost else "")

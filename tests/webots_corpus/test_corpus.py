@@ -63,7 +63,7 @@ def test_a_broken_field_is_required_and_facts_must_parse() -> None:
         'broken = ""\n': "",
         f'commit = "{COMMIT}"': 'commit = "abc123"',
         '"travels 0.5"': '"travels far"',
-        'language = "python"': 'language = "java"',
+        'language = "python"': 'language = "fortran"',
         "seconds = 10": "seconds = 0",
     }
     for old, message in cases.items():
@@ -145,10 +145,14 @@ def test_the_census_finds_proto_instances_and_what_the_import_lost() -> None:
     assert census.coverage() == 0.5
 
 
-def _mirror(tmp_path: Path) -> tuple[Path, str]:
-    """A mirror folder holding one repository, someone/tiny, of the tiny project."""
+def _mirror(tmp_path: Path, extra: dict[str, str] | None = None) -> tuple[Path, str]:
+    """A mirror folder holding one repository, someone/tiny, of the tiny project (and the
+    ``extra`` files, by path)."""
     work = tmp_path / "src"
     shutil.copytree(DATA, work)
+    for name, text in (extra or {}).items():
+        (work / name).parent.mkdir(parents=True, exist_ok=True)
+        (work / name).write_text(text)
     git = ["git", "-C", str(work), "-c", "user.name=t", "-c", "user.email=t@example.org"]
     subprocess.run([*git, "init", "-q"], check=True)
     subprocess.run([*git, "add", "."], check=True)
@@ -223,6 +227,34 @@ def test_the_runner_exports_runs_and_checks_a_project(tmp_path: Path) -> None:
     assert "| fail |" in page and "| pass |" in page and "| skipped |" in page
     assert "| Mystery | 1 | 1 | 0 | 0 | 1 |" in page
     assert "Coverage: 3 of 4 instances import (75%)" in page
+
+
+def test_a_controller_in_a_language_mazesim_does_not_run_is_a_row_not_run(tmp_path: Path) -> None:
+    """Webots' BotStudio worlds: the manifest takes a row whose controller is a BotStudio
+    automaton (a language mazesim's runner names as one it does not run), and the row is not
+    run, its cause what the run says, though its e-puck standing still holds its facts."""
+    world = 'WorldInfo { }\nRectangleArena { }\nE-puck {\n  controller "blink"\n}\n'
+    mirrors, commit = _mirror(
+        tmp_path,
+        {
+            "worlds/automaton.wbt": "#VRML_SIM R2023b utf8\n" + world,
+            "controllers/blink/blink.bsg": "#botstudio 4.0\n#e-puck\n",
+        },
+    )
+    toml = PROJECT_TOML.replace('language = "python"', 'language = "botstudio"')
+    toml = toml.replace("controllers/demo/demo.py", "controllers/blink/blink.bsg")
+    toml = toml.replace("worlds/demo.wbt", "worlds/automaton.wbt").replace(COMMIT, commit)
+    project = replace(
+        parse_manifest(toml.replace("someone/demo", "someone/tiny"))[0],
+        seconds=0.5,
+        expect=("stays_near 0.01",),
+    )
+    row = run_project(project, mirrors, tmp_path / "work", Census())
+    assert [ok for _, ok, _ in row.checks] == [True]
+    assert (row.result, row.cause) == (
+        "not run",
+        "missing: a BotStudio controller controllers/blink/blink.bsg, which mazesim does not run",
+    )
 
 
 def test_a_whole_world_s_missing_features_are_its_own_robot_s_else_the_others_named() -> None:

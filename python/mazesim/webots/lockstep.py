@@ -450,14 +450,25 @@ def controller_of(
     stock = stock_controller(name)
     if stock is not None:  # Webots' own, which it finds among its projects
         return stock, ""
+    return None, _other_language(name, world_path) or (
+        f"no controller controllers/{name}/{name}{', '.join(CONTROLLER_SUFFIXES)}"
+    )
+
+
+def _other_language(name: str, world_path: str) -> str:
+    """Why the controller ``name`` of a world does not run: "a LANGUAGE controller
+    controllers/NAME/NAME.SUFFIX, which mazesim does not run" when its folder (in the project
+    of ``world_path``) holds one in a language mazesim does not run (:data:`OTHER_LANGUAGES`:
+    Java, MATLAB, BotStudio), else ""."""
+    folder = os.path.dirname(os.path.abspath(world_path))
     for project in (os.path.dirname(folder), folder):
         for suffix, language in OTHER_LANGUAGES.items():
             if os.path.isfile(os.path.join(project, "controllers", name, f"{name}{suffix}")):
-                return None, (
+                return (
                     f"a {language} controller controllers/{name}/{name}{suffix}, which mazesim "
                     "does not run"
                 )
-    return None, f"no controller controllers/{name}/{name}{', '.join(CONTROLLER_SUFFIXES)}"
+    return ""
 
 
 def controller_name(robot: Mapping[str, Any]) -> str:
@@ -603,6 +614,10 @@ def _robot_run(
     label = robot.get("name") or robot.get("def_name") or robot.get("model")
     run = RobotRun(index, str(label), str(robot.get("model")), file, note)
     if file is None:
+        # A controller in a language mazesim does not run is what the run lacks, said in its
+        # summary's missing features as a Python package not installed is.
+        if note == _other_language(controller_name(robot), world_path):
+            run.missing = (note,)
         return run, None
     job = ControllerJob(world_path, index, int(robot["line"]), file, profile, seconds, noise)
     return run, job

@@ -109,8 +109,16 @@ class ControllerRun:
 CONTROLLER_SUFFIXES = (".py", *native_controller.C_SUFFIXES, *native_controller.CPP_SUFFIXES)
 
 
-#: The other languages Webots runs controllers in, by file suffix: mazesim runs none of them.
-OTHER_LANGUAGES = {".java": "Java", ".class": "Java", ".jar": "Java", ".m": "MATLAB"}
+#: The other languages Webots runs controllers in, by file suffix: mazesim runs none of them
+#: (BotStudio's ``.bsg`` is the e-puck's graphical automaton, which Webots' botstudio robot
+#: window runs).
+OTHER_LANGUAGES = {
+    ".java": "Java",
+    ".class": "Java",
+    ".jar": "Java",
+    ".m": "MATLAB",
+    ".bsg": "BotStudio",
+}
 #: Files that are no controller in any language, by suffix, with where they are given instead:
 #: run as Python, a world file ended in a NameError on its first table.
 NOT_CONTROLLERS = {
@@ -128,7 +136,7 @@ def controller_file(path: str | os.PathLike[str]) -> str:
     Raises:
         MazesimIOError: ``path`` is a folder without such a file.
         InvalidArgumentError: ``path`` is a controller in a language mazesim does not run
-            (:data:`OTHER_LANGUAGES`: Java, MATLAB), or no controller at all
+            (:data:`OTHER_LANGUAGES`: Java, MATLAB, BotStudio), or no controller at all
             (:data:`NOT_CONTROLLERS`: a world file, a run, a PROTO).
     """
     file = os.path.abspath(os.fspath(path))

@@ -1,7 +1,8 @@
 """Where a PROTO's file is, found as Webots finds it: the ``EXTERNPROTO`` declaration of the file
 that uses it (a path relative to that file, ``webots://`` or an http(s) URL), the project's
 ``protos/`` folder, the Webots installation named by ``WEBOTS_HOME``, or for a ``webots://`` URL
-the Webots tree the world itself lies in (Webots' own sample worlds). URLs are downloaded once
+(or its https form in Webots' repository, which Webots writes into the worlds it saves) the
+Webots tree the world itself lies in (Webots' own sample worlds). URLs are downloaded once
 into a cache (``MAZESIM_PROTO_CACHE``, by default ``~/.cache/mazesim/protos``) and read from it
 afterwards; ``MAZESIM_OFFLINE=1`` forbids downloads. ``webots://`` is Webots' own repository at
 the world's version when no installation has the file."""
@@ -11,6 +12,7 @@ from __future__ import annotations
 import hashlib
 import http.client
 import os
+import re
 import urllib.error
 import urllib.parse
 import urllib.request
@@ -28,6 +30,10 @@ MAX_DOWNLOAD_BYTES = 16 * 1024 * 1024
 #: Seconds a download may take.
 DOWNLOAD_TIMEOUT_S = 20.0
 _WEBOTS_RAW = "https://raw.githubusercontent.com/cyberbotics/webots/{version}/"
+#: Webots' repository at a release tag (or a branch or commit), and the path in it.
+_WEBOTS_REPOSITORY = re.compile(
+    r"https://raw\.githubusercontent\.com/cyberbotics/webots/[^/]+/(.+)"
+)
 
 
 class ProtoUnavailableError(MazesimIOError):
@@ -89,6 +95,18 @@ class ProtoSource:
     origin: str
 
 
+def as_webots_url(url: str) -> str | None:
+    """A PROTO URL of Webots' own library as ``webots://PATH``: a ``webots://`` URL itself, or
+    its https form in Webots' repository at a release
+    (``https://raw.githubusercontent.com/cyberbotics/webots/R2025a/PATH``, what Webots writes
+    into the worlds it saves); None for any other URL or path. Webots reads either from its
+    installation; so does the import (:meth:`Resolver.webots_file`) before downloading."""
+    if url.startswith("webots://"):
+        return url
+    found = _WEBOTS_REPOSITORY.fullmatch(url)
+    return None if found is None else "webots://" + found.group(1)
+
+
 def is_url(location: str) -> bool:
     """Whether a location is an http(s) URL (else a path)."""
     return location.startswith(("http://", "https://"))
@@ -133,11 +151,12 @@ class Resolver:
         Raises:
             ProtoUnavailableError: A URL cannot be downloaded.
         """
-        if url.startswith("webots://"):
-            local = self.webots_file(url)
+        webots = as_webots_url(url)
+        if webots is not None:
+            local = self.webots_file(webots)
             if local is not None:
                 return ProtoSource(_read(local), str(local))
-            return self.url(self.webots_url(url))
+            return self.url(url if is_url(url) else self.webots_url(url))
         if is_url(url):
             return self.url(url)
         if is_url(base):
