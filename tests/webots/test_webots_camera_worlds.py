@@ -56,7 +56,7 @@ def red_share(camera: Any) -> float:
     return float((pixels(camera) == RED).all(axis=2).mean())
 
 
-def test_issue_32_a_robot_that_is_no_e_puck_has_its_own_cameras_size(tmp_path: Path) -> None:
+def test_a_robot_that_is_no_e_puck_has_its_own_cameras_size(tmp_path: Path) -> None:
     text = (
         HEADER + 'Robot {\n  name "watcher"\n  controller "<extern>"\n  supervisor TRUE\n'
         "  children [ Camera { translation 0.02 0 0.05 width 256 height 128 "

@@ -114,7 +114,7 @@ def _one_robot_readings(text: str) -> list[float]:
         simulations.release()
 
 
-def test_issue_33_a_world_run_tilts_each_robot_s_rays_as_a_run_of_one_robot_does(
+def test_a_world_run_tilts_each_robot_s_rays_as_a_run_of_one_robot_does(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     proto = 'E-puck { translation 0.2 0 0 name "proto" controller "probe" }\n'

@@ -67,7 +67,7 @@ def _project(tmp_path: Path, first: str, second: str) -> Path:
     return world
 
 
-def test_issue_33_a_failing_controller_s_traceback_is_printed_once(
+def test_a_failing_controller_s_traceback_is_printed_once(
     tmp_path: Path, capfd: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
 ) -> None:
     world = _project(tmp_path, FAILING, BUSY)
@@ -84,7 +84,7 @@ def test_issue_33_a_failing_controller_s_traceback_is_printed_once(
     assert first["controller_error"] == "ValueError: no wall to follow"
 
 
-def test_issue_33_ctrl_c_stops_every_controller_quietly_and_exits_130(tmp_path: Path) -> None:
+def test_ctrl_c_stops_every_controller_quietly_and_exits_130(tmp_path: Path) -> None:
     world = _project(tmp_path, BUSY, BUSY)
     out = tmp_path / "out"
     process = subprocess.Popen(

@@ -28,10 +28,11 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim.webots.devices import _print_error, _Sensor, webots_property
-from mazesim.webots.frames import axes_or_none, camera_heading
+from mazesim.webots.frames import Axes, axes_or_none, camera_heading
 from mazesim.webots.node_types import node_type
 from mazesim.webots.rays import FloorPaint, WallBoxes
 from mazesim.webots.recognition import CameraPose, RecognisedObject, recogniser_of
+from mazesim.webots.robot_frames import Mount, RobotShape
 
 if TYPE_CHECKING:
     from mazesim.webots.simulation import RobotSimulation
@@ -45,6 +46,7 @@ __all__ = [
     "RobotBody",
     "drawn_body",
     "node_view",
+    "placed_shape",
     "render",
 ]
 
@@ -59,6 +61,9 @@ CAMERA_Z = 0.028
 WALL_HEIGHT = 0.1
 #: Grey of a wall of reflectance 1 (walls are drawn a little darker than a white floor).
 WALL_SHADE = 0.8
+#: A JPEG of a quality above this keeps its colours at full resolution (4:4:4), as Webots'
+#: writer (stb_image_write, src/controller/c/g_image.c) does; at or below, at half (4:2:0).
+JPEG_FULL_COLOUR_ABOVE = 90
 #: Colour of the sky (RGB).
 SKY = (150, 180, 210)
 #: Another e-puck as the camera sees it, from Webots' E-puck PROTO (R2022b,
@@ -67,6 +72,7 @@ SKY = (150, 180, 210)
 #: ``EPUCK_TRANSPARENT_APPEARANCE`` (baseColor 0.5 0.5 0.5) but for the edge of its top plate
 #: (0.037 to 0.0385 m up), its ``EPUCK_SIDE_PRINT_APPEARANCE`` green.
 ROBOT_TOP = 0.0475
+ROBOT_RADIUS = 0.037
 ROBOT_BOTTOM = 0.0025
 ROBOT_COLOUR = (0.5, 0.5, 0.5)
 PLATE_EDGE = (0.037, 0.0385)
@@ -92,14 +98,16 @@ class Ball:
     radius: float
     colour: tuple[float, float, float] | None
     reflectance: float
+    #: The height of its centre (None: ``radius``, resting on the floor).
+    z: float | None = None
 
 
 @dataclass(frozen=True)
 class Block:
     """A box or an upright cylinder with physics as the camera sees it, standing on the floor
     at (x, y): a box of ``size`` (its extents along its own axes, turned by ``yaw``), or with
-    ``size`` None a cylinder of ``radius``; ``height`` high, of ``colour`` (as a
-    :class:`Ball`'s) and infra-red ``reflectance``."""
+    ``size`` None a cylinder of ``radius``; its top ``height`` above the floor, its bottom
+    ``base``, of ``colour`` (as a :class:`Ball`'s) and infra-red ``reflectance``."""
 
     x: float
     y: float
@@ -109,13 +117,16 @@ class Block:
     height: float
     colour: tuple[float, float, float] | None
     reflectance: float
+    #: The height of its bottom (0: standing on the floor; a shape a robot holds up).
+    base: float = 0.0
 
 
 @dataclass(frozen=True)
 class CameraView:
     """Where a camera sits and what it sees: pose on the robot (``x`` forward, ``y`` left,
     ``z`` up, m; ``yaw`` its heading left of the robot's forward, ``pitch`` its tilt down, rad),
-    image size, field of view."""
+    image size, field of view; ``axes`` its forward, left and up directions in the robot's
+    frame when it is also turned about its view (a camera on a tilted robot), else None."""
 
     width: int = DEFAULT_WIDTH
     height: int = DEFAULT_HEIGHT
@@ -126,20 +137,32 @@ class CameraView:
     wall_height: float = WALL_HEIGHT
     y: float = 0.0
     yaw: float = 0.0
+    axes: Axes | None = None
 
 
-def node_view(entry: Mapping[str, Any], y_up: bool) -> CameraView:
+def node_view(entry: Mapping[str, Any], y_up: bool, mount: Mount | None = None) -> CameraView:
     """The view of a Camera node the import lists among the robot's devices (an entry of
     ``extension_devices``): its ``width``, ``height`` and ``fieldOfView`` (Webots' defaults 64,
     64 and 0.7854 where the node has none), where it sits and where it looks: along its x axis
-    (Webots R2022a on), or its -z axis in a file before (``y_up``)."""
+    (Webots R2022a on), or its -z axis in a file before (``y_up``); on a robot node raised or
+    tilted (``mount``, a robot that mazesim does not move), from the camera's full pose."""
     fields: Mapping[str, Any] = entry.get("fields") or {}
     x, y, z = (float(v) for v in (entry.get("translation") or (0.0, 0.0, 0.0))[:3])
     yaw, pitch = float(entry.get("yaw", 0.0)), float(entry.get("pitch", 0.0))
     axes = axes_or_none(entry.get("axes"))
+    turned: Axes | None = None
     if axes is not None:
-        forward = tuple(-v for v in axes[2]) if y_up else axes[0]
-        yaw, pitch = camera_heading(forward)
+        # Forward, left and up of the camera's image in the robot's frame.
+        looks: Axes = (axes[0], axes[1], axes[2])
+        if y_up:
+            looks = (_opposite(axes[2]), _opposite(axes[0]), axes[1])
+        if mount is not None:
+            x, y, z = mount.point((x, y, z))
+            turned = tuple(mount.direction(v) for v in looks)
+            looks = turned
+        yaw, pitch = camera_heading(looks[0])
+    elif mount is not None:
+        x, y, z = mount.point((x, y, z))
     return CameraView(
         width=max(1, int(fields.get("width", 64))),
         height=max(1, int(fields.get("height", 64))),
@@ -149,7 +172,12 @@ def node_view(entry: Mapping[str, Any], y_up: bool) -> CameraView:
         z=max(z, 0.001),
         pitch=pitch,
         yaw=yaw,
+        axes=turned,
     )
+
+
+def _opposite(v: tuple[float, float, float]) -> tuple[float, float, float]:
+    return (-v[0], -v[1], -v[2])
 
 
 def render(
@@ -175,19 +203,9 @@ def render(
     Returns:
         A (height, width, 4) array of B, G, R, A.
     """
-    x, y, yaw = pose
-    focal = (view.width / 2.0) / math.tan(view.fov / 2.0)
-    left = (view.width / 2.0 - (np.arange(view.width) + 0.5)) / focal
-    up = (view.height / 2.0 - (np.arange(view.height) + 0.5)) / focal
-    # Pitch (down positive) turns each ray about the camera's left axis.
-    cos_p, sin_p = math.cos(view.pitch), math.sin(view.pitch)
-    forward = cos_p + sin_p * up[:, None] * np.ones_like(left)[None, :]
-    rise = up[:, None] * cos_p - sin_p * np.ones_like(left)[None, :]
+    dx, dy, rise = _rays(view, pose[2])
     ox, oy = _lens(view, pose)
-    cos_y, sin_y = math.cos(yaw + view.yaw), math.sin(yaw + view.yaw)
-    dx = cos_y * forward - sin_y * left[None, :]
-    dy = sin_y * forward + cos_y * left[None, :]
-    if view.pitch == 0.0:
+    if view.pitch == 0.0 and view.axes is None:
         # A level camera: every row of a column casts the same ray along the floor.
         column_t, column_wall = walls.cast_walls((ox, oy), np.stack([dx[0], dy[0]], axis=1))
         wall_t = np.broadcast_to(column_t, rise.shape)
@@ -240,6 +258,35 @@ def render(
     return image
 
 
+def _rays(
+    view: CameraView, yaw: float
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    """Each pixel's ray (height, width) from a robot heading ``yaw``: its x and y in the
+    world and its rise, per unit along the camera's forward axis."""
+    focal = (view.width / 2.0) / math.tan(view.fov / 2.0)
+    left = (view.width / 2.0 - (np.arange(view.width) + 0.5)) / focal
+    up = (view.height / 2.0 - (np.arange(view.height) + 0.5)) / focal
+    if view.axes is not None:
+        ahead, aside, above = (np.asarray(v, dtype=np.float64) for v in view.axes)
+        ray = (
+            ahead[None, None, :]
+            + left[None, :, None] * aside[None, None, :]
+            + up[:, None, None] * above[None, None, :]
+        )
+        cos_r, sin_r = math.cos(yaw), math.sin(yaw)
+        dx = cos_r * ray[..., 0] - sin_r * ray[..., 1]
+        dy = sin_r * ray[..., 0] + cos_r * ray[..., 1]
+        return dx, dy, np.ascontiguousarray(ray[..., 2])
+    # Pitch (down positive) turns each ray about the camera's left axis.
+    cos_p, sin_p = math.cos(view.pitch), math.sin(view.pitch)
+    forward = cos_p + sin_p * up[:, None] * np.ones_like(left)[None, :]
+    rise = up[:, None] * cos_p - sin_p * np.ones_like(left)[None, :]
+    cos_y, sin_y = math.cos(yaw + view.yaw), math.sin(yaw + view.yaw)
+    dx = cos_y * forward - sin_y * left[None, :]
+    dy = sin_y * forward + cos_y * left[None, :]
+    return dx, dy, rise
+
+
 def _lens(view: CameraView, pose: Sequence[float]) -> tuple[float, float]:
     """Where the camera's lens is, seen from above, on a robot at ``pose`` (x, y, yaw)."""
     x, y, yaw = pose[0], pose[1], pose[2]
@@ -280,7 +327,8 @@ def _sphere_t(
 ) -> npt.NDArray[np.float64]:
     """Where each ray meets a ball resting on the floor (``inf`` where it does not)."""
     # |origin + t d - centre| = radius in 3D, the centre ``radius`` above the floor.
-    cx, cy, cz = origin[0] - ball.x, origin[1] - ball.y, view.z - ball.radius
+    centre = ball.radius if ball.z is None else ball.z
+    cx, cy, cz = origin[0] - ball.x, origin[1] - ball.y, view.z - centre
     a = dx * dx + dy * dy + rise * rise
     b = cx * dx + cy * dy + cz * rise
     c = cx * cx + cy * cy + cz * cz - ball.radius * ball.radius
@@ -329,9 +377,10 @@ def _block_t(
         top_t = (block.height - view.z) / rise
     crosses = (enter <= leave) & (enter >= 0.0)
     height = view.z + np.where(crosses, enter, 0.0) * rise
-    side = crosses & (height >= 0.0) & (height <= block.height)
-    # Over the top edge, a ray going down lands on the top before it leaves the footprint.
-    top = crosses & (height > block.height) & (rise < 0.0) & (top_t <= leave)
+    side = crosses & (height >= block.base) & (height <= block.height)
+    # Over the top edge (or above the footprint), a ray going down lands on the top before it
+    # leaves the footprint.
+    top = (enter <= leave) & (rise < 0.0) & (top_t >= np.maximum(enter, 0.0)) & (top_t <= leave)
     return np.where(side, enter, np.where(top, top_t, np.inf))
 
 
@@ -344,7 +393,7 @@ def _robot_hits(
     robots: Sequence[RobotBody],
 ) -> npt.NDArray[np.float64]:
     """The ray parameter at which each ray meets the nearest other robot's body between its
-    bottom and top (``inf`` where none)."""
+    bottom and top, or its top seen from above (``inf`` where none)."""
     nearest = np.full(rise.shape, np.inf)
     for robot in robots:
         # |origin + t d - centre| = radius, with d horizontal: a t^2 + 2 b t + c = 0.
@@ -354,10 +403,15 @@ def _robot_hits(
         c = cx * cx + cy * cy - robot.radius * robot.radius
         disc = b * b - a * c
         with np.errstate(invalid="ignore", divide="ignore"):
-            t = (-b - np.sqrt(disc)) / a
-        t = np.where((disc >= 0.0) & (t >= 0.0), t, np.inf)
+            root = np.sqrt(disc)
+            enter, leave = (-b - root) / a, (-b + root) / a
+            top_t = (ROBOT_TOP - view.z) / rise
+        t = np.where((disc >= 0.0) & (enter >= 0.0), enter, np.inf)
         height = view.z + np.where(np.isfinite(t), t, 0.0) * rise
         t = np.where((height <= ROBOT_TOP) & (height >= ROBOT_BOTTOM), t, np.inf)
+        # A ray going down from above the body lands on its top inside the disc.
+        top = (disc >= 0.0) & (rise < 0.0) & (top_t >= np.maximum(enter, 0.0)) & (top_t <= leave)
+        t = np.where(top, np.minimum(t, top_t), t)
         nearest = np.minimum(nearest, t)
     return nearest
 
@@ -382,6 +436,31 @@ def drawn_body(pose: Sequence[float], body: Mapping[str, Any]) -> Ball | Block:
     width, depth = (float(v) for v in body["size"])
     height = _height(body, min(width, depth))
     return Block(x, y, yaw, (width, depth), 0.0, height, look, reflectance)
+
+
+def placed_shape(shape: RobotShape, pose: Sequence[float]) -> Ball | Block:
+    """A robot's visual shape where the robot stands at ``pose`` (x, y, yaw), as the camera
+    draws it: 80 % of its colour, or the grey of a white surface when it gives none."""
+    x, y, yaw = (float(v) for v in pose[:3])
+    c, s = math.cos(yaw), math.sin(yaw)
+    cx, cy = x + c * shape.x - s * shape.y, y + s * shape.x + c * shape.y
+    if shape.sphere:
+        centre = (shape.bottom + shape.top) / 2.0
+        return Ball(cx, cy, shape.radius, shape.colour, 1.0, z=centre)
+    return Block(
+        cx, cy, yaw + shape.yaw, shape.size, shape.radius, shape.top, shape.colour, 1.0,
+        base=shape.bottom,
+    )  # fmt: skip
+
+
+def _inside_body(shape: RobotShape) -> bool:
+    """Whether an e-puck's visual shape lies inside the body the camera draws for it."""
+    reach = shape.radius if shape.size is None else math.hypot(*shape.size) / 2.0
+    return (
+        shape.bottom >= ROBOT_BOTTOM - 1e-9
+        and shape.top <= ROBOT_TOP + 1e-9
+        and math.hypot(shape.x, shape.y) + reach <= ROBOT_RADIUS + 1e-9
+    )
 
 
 def _height(body: Mapping[str, Any], otherwise: float) -> float:
@@ -502,6 +581,8 @@ class Camera(_Sensor):
         self._value = None
         #: Whether the simulator holds this robot alone (it has no ``other_robots``).
         self._alone = False
+        #: The world's robots (import report entries) with their visual shapes, once read.
+        self._others: list[tuple[Any, list[RobotShape]]] | None = None
         self._recogniser = recogniser_of(
             simulation.report, name, old_frame=simulation.scene.y_up_devices
         )
@@ -517,8 +598,53 @@ class Camera(_Sensor):
             self._floor = FloorPaint(world)
             self._world = world
         x, y, yaw = (float(v) for v in self._simulation.simulator.pose)
-        self._sampled = ((x, y, yaw), self._other_robots(), self._bodies_now())
+        fleet = self._fleet_now()
+        bodies = self._bodies_now() + self._robot_shapes_now(fleet)
+        self._sampled = ((x, y, yaw), self._other_robots(fleet), bodies)
         return True
+
+    def _fleet_now(self) -> list[tuple[Any, Sequence[float]]]:
+        """Each other robot of a world run whose camera draws more than its simulator's
+        bodies (its visual shapes; every e-puck for a robot alone in its simulator, one that
+        is not an e-puck) with its pose now: (its entry of the import report's ``robots``,
+        pose); empty in a run of one robot."""
+        simulation = self._simulation
+        if simulation.fleet is None:
+            return []
+        if self._others is None:
+            from mazesim.webots.robot_frames import robot_shapes
+
+            shapes = robot_shapes(simulation.scene)
+            self._others = [
+                (robot, shapes.get(int(robot.get("line") or 0), []))
+                for robot in simulation.report.get("robots") or []
+            ]
+        alone = not hasattr(simulation.simulator, "other_robots")
+        wanted = [
+            bool(shapes) or (alone and robot.get("profile")) for robot, shapes in self._others
+        ]
+        if not any(wanted):
+            return []
+        poses = simulation.fleet.poses()
+        return [
+            (self._others[index], pose)
+            for index, pose in enumerate(poses)
+            if index != simulation.robot_index and index < len(wanted) and wanted[index]
+            if pose is not None
+        ]
+
+    def _robot_shapes_now(self, fleet: list[tuple[Any, Sequence[float]]]) -> list[Ball | Block]:
+        """The visual shapes of the other robots of a world run, where their robots are now
+        (an e-puck's that its drawn body holds left out)."""
+        drawn: list[Ball | Block] = []
+        for (robot, shapes), pose in fleet:
+            e_puck = robot.get("profile") is not None
+            drawn.extend(
+                placed_shape(shape, pose)
+                for shape in shapes
+                if not (e_puck and _inside_body(shape))
+            )
+        return drawn
 
     def _bodies_now(self) -> list[Ball | Block]:
         """The world's movable bodies where they are now: those a supervisor imported too,
@@ -544,18 +670,23 @@ class Camera(_Sensor):
             self._rendered_at = self._sampled
         return self._pixels
 
-    def _other_robots(self) -> list[RobotBody]:
+    def _other_robots(self, fleet: list[tuple[Any, Sequence[float]]]) -> list[RobotBody]:
         """The other robots of a simulator shared with them (a
         :class:`~mazesim.webots.shared_world.RobotView`, here or over a controller's pipe);
-        none for a simulator of one robot."""
+        for a simulator of one robot, the e-pucks of the world run where they are now (of
+        ``fleet``), none in a run of one robot."""
         if self._alone:
-            return []
+            return [
+                RobotBody(float(pose[0]), float(pose[1]), ROBOT_RADIUS)
+                for (robot, _), pose in fleet
+                if robot.get("profile") is not None
+            ]
         simulator: Any = self._simulation.simulator
         try:
             bodies = simulator.other_robots()
         except AttributeError:
             self._alone = True
-            return []
+            return self._other_robots(fleet)
         return [RobotBody(float(x), float(y), float(radius)) for x, y, radius in bodies]
 
     def _image(self) -> npt.NDArray[np.uint8] | None:
@@ -785,7 +916,9 @@ class Camera(_Sensor):
         return -1
 
     def saveImage(self, filename: str, quality: int = 100) -> int:
-        """Saves the last image as PNG or JPEG (by the file's extension).
+        """Saves the last image as PNG or JPEG (by the file's extension), a JPEG of
+        ``quality`` (1-100) as Webots writes one (stb_image_write: its colours at full
+        resolution above quality 90, at half resolution from 90 down).
 
         Returns:
             0 on success, -1 on failure (no image yet, unknown extension, unwritable file).
@@ -795,11 +928,18 @@ class Camera(_Sensor):
         if pixels is None or extension not in (".png", ".jpg", ".jpeg"):
             _print_error(f"Error: wb_camera_save_image() cannot save {filename!r}.")
             return -1
-        from matplotlib import image as images
-
         rgb = np.ascontiguousarray(pixels[:, :, 2::-1])
         try:
-            images.imsave(filename, rgb)
+            if extension == ".png":
+                from matplotlib import image as images
+
+                images.imsave(filename, rgb)
+            else:
+                from PIL import Image
+
+                level = min(100, max(1, int(quality)))
+                subsampling = 0 if level > JPEG_FULL_COLOUR_ABOVE else 2
+                Image.fromarray(rgb).save(filename, "JPEG", quality=level, subsampling=subsampling)
         except (OSError, ValueError):
             return -1
         return 0

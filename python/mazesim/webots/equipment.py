@@ -34,6 +34,7 @@ from mazesim.webots.radio_devices import (
     emitter_from_fields,
     receiver_from_fields,
 )
+from mazesim.webots.robot_frames import Mount, robot_mount
 from mazesim.webots.sensors import (
     GPS,
     Accelerometer,
@@ -133,7 +134,11 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
             else LightSensor(name, simulation, mount=mount)
         ),
         "LED": lambda: LED(name, simulation),
-        "Camera": lambda: Camera(name, simulation, node_view(entry, simulation.scene.y_up_devices)),
+        "Camera": lambda: Camera(
+            name,
+            simulation,
+            node_view(entry, simulation.scene.y_up_devices, _still_mount(simulation)),
+        ),
         "Emitter": lambda: emitter_from_fields(name, simulation, fields, entry.get("axes")),
         "Receiver": lambda: receiver_from_fields(name, simulation, fields, entry.get("axes")),
         "Speaker": lambda: Speaker(name, simulation),
@@ -152,6 +157,19 @@ def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> D
         )
         return None
     return build()
+
+
+def _still_mount(simulation: RobotSimulation) -> Mount | None:
+    """The height, tilt and scale of the run's robot node when it is not an e-puck (mazesim
+    does not move it: it stays where its node stands, as a Webots robot without physics);
+    None for an e-puck (Webots' physics lays its body on the floor) or an upright node."""
+    report = simulation.report
+    line = report.get("robot_line")
+    own = next((r for r in report.get("robots") or [] if r.get("line") == line), None)
+    if own is None or own.get("profile") is not None:
+        return None
+    mount = robot_mount(simulation.scene)
+    return None if mount is None or mount.upright else mount
 
 
 def _proto_channel(scene: Any, name: str) -> int:

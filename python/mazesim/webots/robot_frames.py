@@ -1,0 +1,263 @@
+"""The robots of a world file in three dimensions: where a robot's node stands and leans, and
+the primitive visual shapes its node holds, as a camera sees them.
+
+mazesim moves a robot on the floor's plane (x, y and heading), the frame the import gives a
+robot's devices in. A robot node raised above the floor or tilted (a camera robot looking down
+at the arena) keeps its height and tilt in Webots: :func:`robot_mount` gives them, so that a
+device's pose in the robot's node becomes its pose above the floor. :func:`robot_shapes` lists
+the ``Box``, ``Cylinder``, ``Capsule`` and ``Sphere`` shapes of each robot node's children
+(through ``Solid``, ``Transform``, ``Pose``, ``Group`` and device nodes, not a joint's end
+point nor a ``boundingObject``): what another robot's camera draws of it beside its body.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+
+from mazesim.webots.frames import rotation_matrix
+from mazesim.webots.scene import Scene, SceneNode
+
+__all__ = ["Mount", "RobotShape", "robot_mount", "robot_shapes"]
+
+Matrix = npt.NDArray[np.float64]
+
+#: Webots' ``Material.diffuseColor`` default (an ``Appearance`` whose material gives none).
+MATERIAL_DIFFUSE = (0.8, 0.8, 0.8)
+#: A rotation axis at most this far from vertical (the sine of the angle) counts as upright.
+UPRIGHT = 1e-3
+
+
+@dataclass(frozen=True)
+class Mount:
+    """A robot node's frame seen from the frame mazesim moves it in (its origin on the floor
+    below the node's, x its heading on the floor's plane, z up): ``linear`` (rotation times the
+    node's ``scale``) and ``origin`` (its height in z)."""
+
+    linear: tuple[tuple[float, float, float], ...]
+    origin: tuple[float, float, float]
+
+    def point(self, p: Sequence[float]) -> tuple[float, float, float]:
+        """A point of the robot's node in the floor's frame."""
+        v = np.asarray(self.linear) @ np.asarray(p[:3], dtype=np.float64) + self.origin
+        return float(v[0]), float(v[1]), float(v[2])
+
+    def direction(self, d: Sequence[float]) -> tuple[float, float, float]:
+        """A direction of the robot's node in the floor's frame, of length 1."""
+        v = np.asarray(self.linear) @ np.asarray(d[:3], dtype=np.float64)
+        v = v / (np.linalg.norm(v) or 1.0)
+        return float(v[0]), float(v[1]), float(v[2])
+
+    @property
+    def upright(self) -> bool:
+        """Whether the node stands upright on the floor, unscaled (nothing to change)."""
+        return bool(np.allclose(self.linear, np.eye(3), atol=1e-12) and self.origin[2] == 0.0)
+
+
+@dataclass(frozen=True)
+class RobotShape:
+    """A primitive visual shape of a robot, in the frame mazesim moves the robot in (x, y of
+    its centre; ``bottom`` and ``top`` heights above the floor, m): a box of ``size`` (its
+    extents, turned by ``yaw``), an upright cylinder of ``radius`` (``size`` None), or with
+    ``sphere`` a sphere of ``radius``; of ``colour`` (red, green, blue in [0, 1]; None: no
+    colour given)."""
+
+    x: float
+    y: float
+    bottom: float
+    top: float
+    yaw: float
+    size: tuple[float, float] | None
+    radius: float
+    sphere: bool
+    colour: tuple[float, float, float] | None
+
+
+def _frame(node: SceneNode, scaled: bool = True) -> tuple[Matrix, Matrix]:
+    """A node's ``linear`` (rotation times scale) and ``origin`` in its parent's frame."""
+    origin = np.asarray(node.translation or (0.0, 0.0, 0.0), dtype=np.float64)
+    turn = node.rotation or (0.0, 0.0, 1.0, 0.0)
+    linear = np.asarray(rotation_matrix(*turn), dtype=np.float64).reshape(3, 3)
+    scale = node.numbers.get("scale")
+    if scaled and scale is not None and len(scale) >= 3 and all(s != 0.0 for s in scale[:3]):
+        linear = linear * np.asarray(scale[:3], dtype=np.float64)[None, :]
+    return linear, origin
+
+
+def _level(linear: Matrix, origin: Matrix) -> tuple[Matrix, Matrix]:
+    """A robot node's frame (in the world) seen from its frame on the floor: heading from its
+    forward axis projected on the floor (0 when it points straight up or down), as the import
+    takes a robot's start pose."""
+    forward = linear[:, 0]
+    yaw = math.atan2(forward[1], forward[0]) if math.hypot(forward[0], forward[1]) > 1e-9 else 0.0
+    c, s = math.cos(yaw), math.sin(yaw)
+    back = np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]])
+    return back @ linear, np.array([0.0, 0.0, origin[2]])
+
+
+def _scale_fixed(scene: Scene, node: SceneNode) -> SceneNode:
+    """The node with its ``scale`` in the world frame's order (a file before R2022a writes it
+    along its Y-up axes)."""
+    scale = node.numbers.get("scale")
+    if not scene.nue or scale is None or len(scale) < 3:
+        return node
+    numbers = dict(node.numbers)
+    numbers["scale"] = (scale[2], scale[0], scale[1])
+    return SceneNode(
+        node.type_name,
+        translation=node.translation,
+        rotation=node.rotation,
+        numbers=numbers,
+    )
+
+
+def robot_mount(scene: Scene) -> Mount | None:
+    """The run's robot node's frame seen from its frame on the floor (its height, tilt and
+    scale), or None when the scene has no robot node at its top."""
+    own = next((node for node in scene.nodes if node.robot), None)
+    if own is None:
+        return None
+    linear, origin = _level(*_frame(_scale_fixed(scene, own)))
+    rows = tuple((float(r[0]), float(r[1]), float(r[2])) for r in linear)
+    return Mount(rows, (0.0, 0.0, float(origin[2])))
+
+
+def robot_shapes(scene: Scene) -> dict[int, list[RobotShape]]:
+    """The primitive visual shapes of each robot node at the top of the file but the run's
+    own, by the line of its node."""
+    found: dict[int, list[RobotShape]] = {}
+    for node in scene.nodes:
+        if node.robot or node.base_type not in ("Robot", "DifferentialWheels"):
+            continue
+        linear, origin = _level(*_frame(_scale_fixed(scene, node)))
+        shapes = [
+            shape
+            for frame, shape_node in _shapes_below(scene, node, linear, origin)
+            if (shape := _shape(scene, shape_node, *frame)) is not None
+        ]
+        if shapes:
+            found[node.line] = shapes
+    return found
+
+
+def _shapes_below(
+    scene: Scene, robot: SceneNode, linear: Matrix, origin: Matrix
+) -> Iterator[tuple[tuple[Matrix, Matrix], SceneNode]]:
+    """Each Shape among the robot's children, with its frame in the robot's floor frame."""
+    pending = [(child, linear, origin, 0) for child in reversed(robot.children)]
+    while pending:
+        node, outer_linear, outer_origin, depth = pending.pop()
+        if depth > 64:
+            continue
+        if node.type_name == "Shape":
+            yield (outer_linear, outer_origin), node
+            continue
+        inner, at = _frame(_scale_fixed(scene, node))
+        here = outer_linear @ inner
+        placed_at = outer_linear @ at + outer_origin
+        pending.extend((child, here, placed_at, depth + 1) for child in reversed(node.children))
+
+
+def _shape(scene: Scene, node: SceneNode, linear: Matrix, origin: Matrix) -> RobotShape | None:
+    """A Shape's primitive geometry placed by ``linear`` and ``origin``, or None for another
+    geometry."""
+    geometry = node.nodes.get("geometry")
+    if geometry is None:
+        return None
+    colour = _colour(node.nodes.get("appearance"))
+    numbers = geometry.numbers
+    kind = geometry.type_name
+    if kind == "Sphere":
+        radius = _first(numbers, "radius", 1.0) * max(
+            float(np.linalg.norm(linear[:, i])) for i in range(3)
+        )
+        x, y, z = (float(v) for v in origin)
+        return RobotShape(x, y, z - radius, z + radius, 0.0, None, radius, True, colour)
+    if kind == "Box":
+        size = numbers.get("size", (2.0, 2.0, 2.0))
+        if len(size) < 3:
+            return None
+        half = np.asarray(size[:3], dtype=np.float64) / 2.0
+        if scene.nue:
+            half = half[[2, 0, 1]]
+        return _block(linear * half[None, :], origin, colour, None)
+    if kind in ("Cylinder", "Capsule"):
+        radius = _first(numbers, "radius", 1.0)
+        half_height = _first(numbers, "height", 2.0) / 2.0
+        if kind == "Capsule":
+            half_height += radius
+        half = np.array([radius, radius, half_height])
+        return _block(linear * half[None, :], origin, colour, radius)
+    return None
+
+
+def _block(
+    axes: Matrix,
+    origin: Matrix,
+    colour: tuple[float, float, float] | None,
+    round_radius: float | None,
+) -> RobotShape:
+    """A box or cylinder whose half axes (columns, scaled) are ``axes`` at ``origin``: turned
+    about the vertical only, as itself; otherwise the upright box that holds it."""
+    x, y, z = (float(v) for v in origin)
+    vertical = axes[:, 2]
+    length = float(np.linalg.norm(vertical)) or 1.0
+    upright = math.hypot(vertical[0], vertical[1]) <= UPRIGHT * length
+    if upright:
+        half_height = abs(float(vertical[2]))
+        if round_radius is not None:
+            radius = float(np.linalg.norm(axes[:, 0]))
+            return RobotShape(
+                x, y, z - half_height, z + half_height, 0.0, None, radius, False, colour
+            )
+        yaw = math.atan2(axes[1, 0], axes[0, 0])
+        width = 2.0 * float(np.linalg.norm(axes[:, 0]))
+        depth = 2.0 * float(np.linalg.norm(axes[:, 1]))
+        return RobotShape(
+            x, y, z - half_height, z + half_height, yaw, (width, depth), 0.0, False, colour
+        )
+    extent = np.abs(axes).sum(axis=1)
+    size = (2.0 * float(extent[0]), 2.0 * float(extent[1]))
+    return RobotShape(
+        x, y, z - float(extent[2]), z + float(extent[2]), 0.0, size, 0.0, False, colour
+    )
+
+
+def _first(numbers: dict[str, tuple[float, ...]], name: str, default: float) -> float:
+    values = numbers.get(name)
+    return float(values[0]) if values else default
+
+
+def _colour(appearance: SceneNode | None) -> tuple[float, float, float] | None:
+    """The colour a camera sees of an appearance: a ``PBRAppearance``'s ``baseColor``, an
+    ``Appearance``'s ``Material.diffuseColor``, each plus its ``emissiveColor``, an appearance
+    PROTO's ``colorOverride``; None for a textured one or none."""
+    if appearance is None:
+        return None
+    kind = appearance.type_name
+    if kind == "PBRAppearance":
+        if "baseColorMap" in appearance.nodes:
+            return None
+        base = appearance.numbers.get("baseColor", (1.0, 1.0, 1.0))
+        glow = appearance.numbers.get("emissiveColor", (0.0, 0.0, 0.0))
+    elif kind == "Appearance":
+        if "texture" in appearance.nodes:
+            return None
+        material = appearance.nodes.get("material")
+        if material is None:
+            return (1.0, 1.0, 1.0)
+        base = material.numbers.get("diffuseColor", MATERIAL_DIFFUSE)
+        glow = material.numbers.get("emissiveColor", (0.0, 0.0, 0.0))
+    else:
+        override = appearance.numbers.get("colorOverride")
+        if override is None:
+            return None
+        base, glow = override, (0.0, 0.0, 0.0)
+    if len(base) < 3 or len(glow) < 3:
+        return None
+    red, green, blue = (min(1.0, max(0.0, float(b) + float(g))) for b, g in zip(base, glow))
+    return (red, green, blue)
