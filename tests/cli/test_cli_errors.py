@@ -579,3 +579,17 @@ def test_training_on_a_world_without_cells_says_how_to_make_one(
         "generate one with mazesim.generate_maze"
     ), line
     assert not (tmp_path / "nav").exists()
+
+
+def test_an_option_is_taken_by_its_whole_name_only(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    # `webots run C.py --robot my-robot.toml` was read as the prefix of --robot-controller and
+    # refused with a message about that option, which the newcomer never typed.
+    assert main(["webots", "run", "c.py", "--robot", "my-robot.toml"]) == 2
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert line.startswith("mazesim webots run: error: unrecognized arguments: --robot "), line
+    assert "--robot-controller" not in line and "--robot is an option of mazesim " in line, line
+    assert main(["demo", "--sec", "2"]) == 2
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert line.endswith("unrecognized arguments: --sec 2; did you mean '--seconds' for '--sec'?")

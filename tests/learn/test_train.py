@@ -44,6 +44,11 @@ def test_short_training_is_reproducible_and_improves() -> None:
 def test_interrupted_training_resumes_to_the_same_tables(tmp_path: Path) -> None:
     whole = train(TINY, RunFolder(tmp_path / "whole"), progress=None)
     assert whole is not None
+    # Issue 37: the same command again on a finished run's folder was told that the run had
+    # not finished; it is told the folder holds a navigator, and what to do.
+    with pytest.raises(PolicyFormatError, match="already holds a trained navigator") as again:
+        train(TINY, RunFolder(tmp_path / "whole"), progress=None)
+    assert "not finished" not in str(again.value) and "another --out" in str(again.value)
     assert train(TINY, RunFolder(tmp_path / "parts"), progress=None, stop_after_rounds=1) is None
     assert (tmp_path / "parts" / "checkpoint.npz").exists()
     assert not (tmp_path / "parts" / "tables.npz").exists()

@@ -75,11 +75,33 @@ def test_show_renders_a_world_file(tmp_path: Path) -> None:
     assert png_size(tmp_path / "maze.png")[0] > 0
 
 
+def test_a_world_file_gets_no_importer_note_in_its_picture(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # A newcomer's hand-written .toml maze was drawn with "no importer warnings" beside it,
+    # although nothing was imported; a .wbt world keeps its note, even with no warning.
+    written: list[str] = []
+    drawn = Figure.text
+
+    def recording(self: Figure, x: float, y: float, text: str, **kwargs: object) -> object:
+        written.append(text)
+        return drawn(self, x, y, text, **kwargs)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(Figure, "text", recording)
+    world_file = tmp_path / "maze.toml"
+    mazesim.generate_maze(3, 3, seed=1).save(str(world_file))
+    assert main(["show", str(world_file), "-o", str(tmp_path / "maze.png")]) == 0
+    assert not any("importer" in text for text in written)
+    assert main(["show", str(WBT_FILES[0]), "-o", str(tmp_path / "wbt.png")]) == 0
+    assert any("importer warnings" in text for text in written)
+
+
 @pytest.mark.parametrize("wbt", WBT_FILES, ids=[path.name for path in WBT_FILES])
 def test_show_renders_every_real_webots_world(
     wbt: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
     _, warnings = load_with_warnings(str(wbt))
+    assert warnings is not None
     path = tmp_path / "world.png"
     assert main(["show", str(wbt), "-o", str(path)]) == 0
     assert png_size(path)[0] > 0

@@ -169,7 +169,25 @@ def test_human_mode_carries_on_headless_with_agg(capsys: pytest.CaptureFixture[s
     assert env.render() is None
     env.close()
     said = capsys.readouterr().err
-    assert said.count("live view off") == 1 and "carrying on headless" in said
+    assert said.count('render_mode="human" shows no window here') == 1
+    assert 'render_mode="rgb_array" returns them' in said and "live view off" not in said
+
+
+def test_check_env_says_why_its_human_mode_env_shows_nothing(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    # check_env makes an env of every declared render mode; its "human" one printed the
+    # commands' "live view off ... carrying on headless", which a newcomer who asked for no
+    # window could not place.
+    from gymnasium.utils.env_checker import check_env
+
+    matplotlib.use("Agg")
+    env = gymnasium.make("mazesim/MazeFixed-v1")
+    check_env(env.unwrapped)
+    env.close()
+    said = capsys.readouterr().err
+    assert "live view off" not in said
+    assert 'render_mode="human"' in said and "check_env" in said
 
 
 def test_demo_live_carries_on_headless(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:

@@ -157,6 +157,14 @@ def _refuse_unknown(
         if (name := word.lstrip("-").replace("-", "_")) in positional
     ]
     elsewhere = [] if meant or given else _commands_taking(typed, parser.prog)
+    if not (meant or given or elsewhere):
+        # The start of one option's name (`demo --sec`): options are taken by their whole name
+        # only, so say which one it starts.
+        meant = [
+            f"{options[starting[0]]!r} for {word!r}"
+            for word in typed
+            if len(starting := [name for name in options if name.startswith(word.lstrip("-"))]) == 1
+        ]
     parser.error(
         f"unrecognized arguments: {' '.join(unknown)}"
         + (f"; did you mean {', '.join(meant)}?" if meant else "")

@@ -36,10 +36,14 @@ class HelpFormatter(argparse.HelpFormatter):
 
 class CommandParser(argparse.ArgumentParser):
     """An argument parser whose help is formatted by :class:`HelpFormatter` unless told
-    otherwise."""
+    otherwise, and which takes each option by its whole name only: argparse's abbreviations
+    made ``mazesim webots run C.py --robot FILE`` the prefix of ``--robot-controller``, a
+    message about an option never typed; an option the command lacks is refused, naming the
+    commands that take it."""
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         kwargs.setdefault("formatter_class", HelpFormatter)
+        kwargs.setdefault("allow_abbrev", False)
         super().__init__(*args, **kwargs)
 
     def error(self, message: str) -> NoReturn:

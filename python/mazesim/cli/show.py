@@ -68,8 +68,8 @@ def run_show(args: argparse.Namespace, out: TextIO) -> int:
         else:
             path = file_name_of(world.name, ".png")
     save_world_preview(world, path, warnings)
-    imported = Path(args.world).suffix.lower() == ".wbt"
-    out.write(f"wrote {path}" + (f" ({len(warnings)} importer warnings)\n" if imported else "\n"))
+    imported = f" ({len(warnings)} importer warnings)" if warnings is not None else ""
+    out.write(f"wrote {path}{imported}\n")
     if world.cell_maze() is not None:
         from mazesim.episodes import learning_problems
 

@@ -57,6 +57,14 @@ class _RenderModes(tuple[str, ...]):
 RENDER_MODES = _RenderModes(("human", "rgb_array"))
 #: The render modes of the vector environments (images only).
 VECTOR_RENDER_MODES = _RenderModes(("rgb_array",))
+#: What an env of ``render_mode="human"`` says once where no window can open (``{problem}``: the
+#: reason): what becomes of its frames, how to get them, and that gymnasium's ``check_env``,
+#: which makes an env of every declared render mode, needs nothing done.
+HUMAN_MODE_HEADLESS_NOTICE = (
+    'mazesim: render_mode="human" shows no window here: {problem}; its frames are drawn but not '
+    'shown (render_mode="rgb_array" returns them as arrays). Nothing to do when gymnasium\'s '
+    "check_env made this env: it tries every render mode"
+)
 
 
 def step_length_ms(options: EnvOptions, world: World) -> float:
@@ -322,7 +330,9 @@ class EPuckMazeEnv(gymnasium.Env[npt.NDArray[np.float32], Any]):
                 from mazesim.render.live import LiveView
 
                 self._live = LiveView(
-                    f"mazesim: {self.world.name}", 1.0 / float(self.metadata["render_fps"])
+                    f"mazesim: {self.world.name}",
+                    1.0 / float(self.metadata["render_fps"]),
+                    headless_notice=HUMAN_MODE_HEADLESS_NOTICE,
                 )
             self._live.show(frame)
             return None

@@ -22,6 +22,7 @@ from mazesim.learn.schema import differing
 from mazesim.learn.tables import (
     CHECKPOINT_FILE,
     CHECKPOINT_FORMAT,
+    METADATA_FILE,
     Checkpoint,
     TrainedPolicy,
     checkpoint_exists,
@@ -115,8 +116,9 @@ class RunFolder:
 
         Raises:
             InvalidArgumentError: The folder is a file.
-            PolicyFormatError: ``resume`` without a usable checkpoint of the same settings, or a
-                checkpoint already in the folder without ``resume``.
+            PolicyFormatError: ``resume`` without a usable checkpoint of the same settings, or,
+                without ``resume``, a checkpoint or a finished run's navigator already in the
+                folder.
         """
         folder = self.folder
         if folder.exists() and not folder.is_dir():
@@ -128,6 +130,14 @@ class RunFolder:
             if not checkpoint_exists(folder):
                 raise PolicyFormatError(f"{folder / CHECKPOINT_FILE}: no checkpoint to resume from")
             saved = read_checkpoint(folder, settings)
+        elif (folder / METADATA_FILE).exists():
+            # A finished run keeps its checkpoint beside the navigator it saved last.
+            raise PolicyFormatError(
+                f"{folder} already holds a trained navigator ({METADATA_FILE}, tables.npz) and "
+                f"its run's checkpoint: choose another --out for a new one, or delete {folder} "
+                f"to train afresh there ('mazesim eval --policy {folder}' measures the one it "
+                "holds)"
+            )
         elif checkpoint_exists(folder):
             raise PolicyFormatError(
                 f"{folder} holds the checkpoint of a run that has not finished (interrupted, or "

@@ -17,7 +17,10 @@ from typing import Any, TextIO
 import numpy as np
 import numpy.typing as npt
 
-__all__ = ["NON_INTERACTIVE_BACKENDS", "LiveView", "display_problem"]
+__all__ = ["LIVE_OPTION_NOTICE", "NON_INTERACTIVE_BACKENDS", "LiveView", "display_problem"]
+
+#: What a command's ``--live`` says where no window can open (``{problem}``: the reason).
+LIVE_OPTION_NOTICE = "mazesim: live view off: {problem}; carrying on headless"
 
 #: matplotlib's backends that draw into files only, never a window.
 NON_INTERACTIVE_BACKENDS = frozenset({"agg", "cairo", "pdf", "pgf", "ps", "svg", "template"})
@@ -45,6 +48,8 @@ class LiveView:
         real_time_step_s: Simulated seconds per frame; when given, :meth:`show` waits so the
             window does not run ahead of real time.
         stream: Where to say that there is no display.
+        headless_notice: What to say there when no window can open, with ``{problem}`` where
+            the reason goes; by default the words of the commands' ``--live``.
     """
 
     def __init__(
@@ -52,6 +57,7 @@ class LiveView:
         title: str = "mazesim",
         real_time_step_s: float | None = None,
         stream: TextIO | None = None,
+        headless_notice: str = LIVE_OPTION_NOTICE,
     ) -> None:
         self.title = title
         self.real_time_step_s = real_time_step_s
@@ -64,7 +70,7 @@ class LiveView:
         self._next_time: float | None = None
         if self.headless:
             out = stream if stream is not None else sys.stderr
-            out.write(f"mazesim: live view off: {self.problem}; carrying on headless\n")
+            out.write(headless_notice.format(problem=self.problem) + "\n")
             out.flush()
 
     def show(self, frame: npt.NDArray[np.uint8]) -> None:

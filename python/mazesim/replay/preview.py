@@ -72,7 +72,7 @@ def _draw_codes(ax: object, world: World) -> None:
 def save_world_preview(
     world: World,
     path: str | os.PathLike[str],
-    warnings: Sequence[str] = (),
+    warnings: Sequence[str] | None = None,
     title: str | None = None,
 ) -> None:
     """Draws a world with its legend (and the importer's warnings) into a PNG file.
@@ -80,7 +80,9 @@ def save_world_preview(
     Args:
         world: The world.
         path: The PNG file; its folder must exist.
-        warnings: Notes to list beside the picture (e.g. what a ``.wbt`` import left out).
+        warnings: The importer's warnings of a ``.wbt`` world, listed beside the picture (an
+            empty list says there were none); None for a world that was not imported, which
+            gets no such note.
         title: The title; by default the world's name and size.
     """
     xmin, ymin, xmax, ymax = world.bounds
@@ -113,20 +115,21 @@ def save_world_preview(
         or f"{world.name}: {xmax - xmin:.2f} x {ymax - ymin:.2f} m, {checkpoints} checkpoints",
         fontsize=10,
     )
-    notes = [f"importer warnings ({len(warnings)}):"] if warnings else ["no importer warnings"]
-    for warning in warnings[:25]:
-        notes += textwrap.wrap(f"- {warning}", 60, subsequent_indent="  ")
-    if len(warnings) > 25:
-        notes.append(f"... and {len(warnings) - 25} more")
-    figure.text(0.66, 0.08, "\n".join(notes), fontsize=7, va="bottom", ha="left", wrap=True)
+    if warnings is not None:
+        notes = [f"importer warnings ({len(warnings)}):"] if warnings else ["no importer warnings"]
+        for warning in warnings[:25]:
+            notes += textwrap.wrap(f"- {warning}", 60, subsequent_indent="  ")
+        if len(warnings) > 25:
+            notes.append(f"... and {len(warnings) - 25} more")
+        figure.text(0.66, 0.08, "\n".join(notes), fontsize=7, va="bottom", ha="left", wrap=True)
     save_png(figure, path, tight=False)
 
 
-def load_with_warnings(name_or_path: str) -> tuple[World, list[str]]:
-    """A world and the importer's warnings (none unless it is a ``.wbt`` file)."""
+def load_with_warnings(name_or_path: str) -> tuple[World, list[str] | None]:
+    """A world and the importer's warnings (None unless it is a ``.wbt`` file)."""
     if Path(name_or_path).suffix.lower() == ".wbt":
         from mazesim.webots.importer import import_wbt
 
         world, report = import_wbt(name_or_path)
         return world, [str(warning) for warning in report["warnings"]]
-    return load_world(name_or_path), []
+    return load_world(name_or_path), None

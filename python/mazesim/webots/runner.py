@@ -122,7 +122,10 @@ OTHER_LANGUAGES = {
 #: Files that are no controller in any language, by suffix, with where they are given instead:
 #: run as Python, a world file ended in a NameError on its first table.
 NOT_CONTROLLERS = {
-    ".toml": "a TOML file (a mazesim world, given as --world, or a robot profile, as --robot)",
+    ".toml": (
+        "a TOML file (a mazesim world, given as --world; a robot profile is the --robot of "
+        "mazesim demo and mazesim eval, while a controller drives the world's e-puck)"
+    ),
     ".json": "a JSON file (a recorded run, replayed with mazesim replay)",
     ".proto": "a Webots PROTO file (a world that uses it is run: give the .wbt world)",
 }
