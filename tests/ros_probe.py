@@ -10,6 +10,10 @@ environment) and read its standard output.
     ros_probe.py drive-after-sleep COMMANDS_JSON
                                        the same, after a rospy.sleep(0.5) on simulated time
                                        before the first command (as teleop_twist_keyboard)
+    ros_probe.py drive-skipping COMMANDS_JSON
+                                       the same, leaving the state after the 10th command
+                                       unanswered (as a lifecycle controller paused and resumed)
+                                       until it comes again
     ros_probe.py listen SECONDS        record what the bridge publishes for SECONDS (wall clock)
     ros_probe.py count TOPIC N         receive N messages of TOPIC (e.g. from rosbag play)
     ros_probe.py standard TWISTS_JSON  publish each [linear.x, angular.z] on cmd_vel, keep the
@@ -102,11 +106,15 @@ def wait_for_connection(pub: Any) -> None:
 
 
 def drive(
-    commands: list[dict[str, Any]], first_answered: int = 1, sleep_s: float = 0.0
+    commands: list[dict[str, Any]],
+    first_answered: int = 1,
+    sleep_s: float = 0.0,
+    skip_after: int = 0,
 ) -> dict[str, Any]:
     """Publishes the commands, each after the state before it; ``first_answered`` is the state
     message the first command answers (2: the reset state must come twice); ``sleep_s``, a
-    ``rospy.sleep`` before the first command."""
+    ``rospy.sleep`` before the first command; ``skip_after``, leave the state after that many
+    commands unanswered until it comes again (0: none)."""
     motor = publisher("motor", Float64MultiArray)
     action = publisher("action", String)
     wait_for_connection(motor)
@@ -128,6 +136,9 @@ def drive(
             action.publish(String(data=command["data"]))
         expected += command["steps"]
         recorder.wait_for(dict.fromkeys(topics, expected))
+        if skip_after and len(recorder.data[topics[0]]) - first_answered == skip_after:
+            expected += 1  # the same state, sent again
+            recorder.wait_for(dict.fromkeys(topics, expected))
     time.sleep(0.3)  # a step caused by a message that should have been rejected would show now
     return recorder.result()
 
@@ -252,12 +263,13 @@ def main() -> int:
     mode = sys.argv[1]
     rospy.init_node("ros_probe", anonymous=True, disable_signals=True)
     try:
-        if mode in ("drive", "drive-from-second", "drive-after-sleep"):
+        if mode in ("drive", "drive-from-second", "drive-after-sleep", "drive-skipping"):
             with open(sys.argv[2]) as handle:
                 result = drive(
                     json.load(handle),
                     2 if mode == "drive-from-second" else 1,
                     0.5 if mode == "drive-after-sleep" else 0.0,
+                    10 if mode == "drive-skipping" else 0,
                 )
         elif mode == "listen":
             recorder = Recorder(STATE_TOPICS)

@@ -409,6 +409,22 @@ def test_lockstep_trajectory_equals_in_process_simulator(
 
 
 @needs_ros
+def test_a_state_left_unanswered_goes_out_again_and_the_run_stays_the_in_process_run(
+    master: LocalMaster, tmp_path: Path
+) -> None:
+    # A controller that lets one state go unanswered (a lifecycle node paused and resumed) once
+    # waited for the next state while the bridge waited for its command: the ROS 2 bridge sent
+    # the last state again, this one did not. Both now share one rule.
+    commands = motor_commands(30, seed=7)
+    spawn_bridge(master, "--seed", "7")
+    seen = drive(master, tmp_path, commands, "drive-skipping")
+    expected = replay("e-puck", 7, commands)
+    # The state after the 10th command came twice, as it went out; then the run went on.
+    assert seen["data"]["pose"] == expected["pose"][:11] + expected["pose"][10:]  # bit for bit
+    assert seen["data"]["sensors"] == expected["sensors"][:11] + expected["sensors"][10:]
+
+
+@needs_ros
 def test_a_controller_that_sleeps_on_simulated_time_first_starts_in_lockstep(
     master: LocalMaster, tmp_path: Path
 ) -> None:

@@ -62,6 +62,13 @@ def main() -> int:
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--wait", type=float, default=10.0, help="seconds to wait for a message")
     parser.add_argument(
+        "--silent-after",
+        type=float,
+        default=None,
+        help="once one message of a step has come, seconds after which the topics still silent "
+        "are reported (the step's messages go out together); --wait by default",
+    )
+    parser.add_argument(
         "--reader-distro", default=None, help="decode the state with another distro's layouts"
     )
     parser.add_argument(
@@ -91,9 +98,18 @@ def main() -> int:
         default=-1,
         help="leave the state of this step unanswered and wait for it again",
     )
+    parser.add_argument(
+        "--timer-period",
+        type=float,
+        default=0.0,
+        help="command on a timer of simulated time with this period in seconds, as rclpy's "
+        "create_timer does with use_sim_time (ticks at each multiple of the period, missed ones "
+        "skipped), instead of answering each state",
+    )
     args = parser.parse_args()
     global WAIT_S
     WAIT_S = args.wait
+    silent_after = args.wait if args.silent_after is None else args.silent_after
 
     from cyclonedds.core import Policy
     from cyclonedds.domain import Domain, DomainParticipant
@@ -188,6 +204,30 @@ def main() -> int:
                 f"expected the bridge's 3 command readers; found {len(node.reader_gid_seq)}"
             )
 
+    def check_map() -> None:
+        """``/map``, read by a reader made now (after the bridge published it, as a Nav2 node
+        started late): latched, the world's walls cell for cell."""
+        from mazesim.ros2.occupancy import occupied_cells
+
+        map_reader = DataReader(
+            participant,
+            Topic(participant, "rt/map", messages.idl_type(distro, "nav_msgs/msg/OccupancyGrid")),
+            qos=cyclone_qos(TF_STATIC),
+        )
+        deadline = time.monotonic() + WAIT_S
+        maps = map_reader.take(1)
+        while not maps:
+            if time.monotonic() > deadline:
+                raise Mismatch(f"no /map within {WAIT_S:.0f} s")
+            time.sleep(0.01)
+            maps = map_reader.take(1)
+        grid = maps[0]
+        cells, x0, y0 = occupied_cells(simulator.world)
+        same("map", "frame_id", grid.header.frame_id, "map")
+        same("map", "size", (grid.info.width, grid.info.height), cells.shape[::-1])
+        same("map", "origin", (grid.info.origin.position.x, grid.info.origin.position.y), (x0, y0))
+        same("map", "data", bytes(np.asarray(grid.data, dtype=np.int8)), cells.tobytes())
+
     control_step_s = simulator.control_step_ms / 1000.0
     #: Steps /clock ran on its own before the first command (None: to be read off /clock).
     idle: list[int | None] = [0]
@@ -198,14 +238,20 @@ def main() -> int:
 
     def collect(stamp_ns: int | None) -> dict[str, Any]:
         deadline = time.monotonic() + WAIT_S
+        first_came = False
         while True:
             for name, reader in readers.items():
                 pending[name].extend(reader.take(16))
             if all(pending[name] for name in readers):
                 break
+            if not first_came and any(pending[name] for name in readers):
+                # The step's messages go out together: the others are judged from the first.
+                first_came = True
+                deadline = min(deadline, time.monotonic() + silent_after)
             if time.monotonic() > deadline:
                 missing = sorted(name for name in readers if not pending[name])
-                raise Mismatch(f"no message within {WAIT_S:.0f} s on {', '.join(missing)}")
+                waited = silent_after if first_came else WAIT_S
+                raise Mismatch(f"no message within {waited:.0f} s on {', '.join(missing)}")
             time.sleep(0.0002)
         got = {name: pending[name].pop(0) for name in readers}
         if stamp_ns is None:  # the first state after /clock ran on its own: how far it ran
@@ -261,6 +307,11 @@ def main() -> int:
         velocity = standard.body_velocity(before, (x, y, yaw), step_seconds)
         twist = odom.twist.twist
         same("odom", "twist", (twist.linear.x, twist.linear.y, twist.angular.z), tuple(velocity))
+        imu = got["/imu"]
+        q = imu.orientation
+        same("imu", "orientation", (q.x, q.y, q.z, q.w), standard.yaw_quaternion(yaw))
+        same("imu", "angular_velocity.z", imu.angular_velocity.z, velocity.turn)
+        same("imu", "linear_acceleration.z", imu.linear_acceleration.z, 9.81)
         joints = got["/joint_states"]
         same("joint_states", "name", list(joints.name), list(state.WHEEL_JOINTS))
         encoders = simulator.encoders
@@ -284,6 +335,31 @@ def main() -> int:
                 topics.sensor_data_values(simulator),
             )
 
+    def drive_on_timer(period_s: float) -> int:
+        """Commands as a node on a timer of simulated time does (rcl's timers: ticks at the
+        multiples of the period from time 0, a tick fires at the first clock at or after it,
+        missed ones skipped), the wheels kept between commands; checks every state."""
+        period_ns = int(period_s * 1e9)
+        fire_at, sent, kept = period_ns, 0, (0.0, 0.0)
+        plan = commands(args.steps, args.seed)
+        while simulator.steps < args.steps:
+            now = stamp_nanoseconds(simulator.time)
+            if now >= fire_at:
+                linear, angular = plan[sent]
+                sent += 1
+                cmd_vel.write(
+                    twist_type(
+                        linear=vector(x=linear, y=0.0, z=0.0),
+                        angular=vector(x=0.0, y=0.0, z=angular),
+                    )
+                )
+                kept = standard.twist_wheel_speeds(linear, angular, simulator.robot)
+                fire_at = (now // period_ns + 1) * period_ns
+            before = simulator.pose
+            simulator.step(*kept)
+            check(collect(expected_stamp()), simulator.control_step_ms / 1000.0, before)
+        return sent
+
     deadline = time.monotonic() + WAIT_S
     while not cmd_vel.get_matched_subscriptions():
         if time.monotonic() > deadline:
@@ -297,6 +373,7 @@ def main() -> int:
         if args.answer_from_second_state:
             check(collect(stamp_nanoseconds(0.0)), 0.0, before)
         check_graph()
+        check_map()
         statics = static_reader.take(4)
         if not statics:
             raise Mismatch("no /tf_static")
@@ -324,7 +401,12 @@ def main() -> int:
         robot = simulator.robot
         started = time.monotonic()
         kept = (0.0, 0.0)  # the wheel speeds a refused command keeps
-        for index, (linear, angular) in enumerate(commands(args.steps, args.seed)):
+        if args.timer_period > 0.0:
+            sent = drive_on_timer(args.timer_period)
+            print(f"driver: {sent} commands on a timer", flush=True)
+        for index, (linear, angular) in enumerate(
+            commands(0 if args.timer_period > 0.0 else args.steps, args.seed)
+        ):
             nan = index == args.nan_at
             linear_v = vector(x=math.nan if nan else linear, y=0.0, z=0.0)
             angular_v = vector(x=0.0, y=0.0, z=angular)

@@ -242,3 +242,81 @@ def test_type_hashes_and_graph_gids_per_distro() -> None:
 def test_a_string_keeps_its_own_nul_characters() -> None:
     for text in ("\x00", "a\x00", "a\x00\x00b", ""):
         assert cdr.decode_string(cdr.encode_string(text)) == text
+
+
+@pytest.mark.parametrize("distro", DISTROS)
+@settings(max_examples=10, deadline=None)
+@given(stamp=stamps, frame=frames, values=st.lists(floats64, min_size=10, max_size=10))
+def test_imu(distro: str, stamp: cdr.Stamp, frame: str, values: list[float]) -> None:
+    types = messages.typestore(distro).types
+    zeros = __import__("numpy").zeros(9)
+    vector = types["geometry_msgs/msg/Vector3"]
+    expected = _ros(
+        distro,
+        "sensor_msgs/msg/Imu",
+        header=_header(distro, stamp, frame),
+        orientation=types["geometry_msgs/msg/Quaternion"](
+            x=values[0], y=values[1], z=values[2], w=values[3]
+        ),
+        orientation_covariance=zeros,
+        angular_velocity=vector(x=values[4], y=values[5], z=values[6]),
+        angular_velocity_covariance=zeros,
+        linear_acceleration=vector(x=values[7], y=values[8], z=values[9]),
+        linear_acceleration_covariance=zeros,
+    )
+    encoded = cdr.encode_imu(
+        stamp,
+        frame,
+        tuple(values[:4]),  # type: ignore[arg-type]
+        tuple(values[4:7]),  # type: ignore[arg-type]
+        tuple(values[7:]),  # type: ignore[arg-type]
+    )
+    assert encoded == _padded(expected)
+
+
+@pytest.mark.parametrize("distro", DISTROS)
+@settings(max_examples=10, deadline=None)
+@given(
+    stamp=stamps,
+    frame=frames,
+    resolution=floats32,
+    origin=st.lists(floats64, min_size=7, max_size=7),
+    cells=st.lists(st.sampled_from([-1, 0, 100]), max_size=40),
+)
+def test_occupancy_grid(
+    distro: str,
+    stamp: cdr.Stamp,
+    frame: str,
+    resolution: float,
+    origin: list[float],
+    cells: list[int],
+) -> None:
+    np = __import__("numpy")
+    types = messages.typestore(distro).types
+    time = types["builtin_interfaces/msg/Time"](sec=stamp[0], nanosec=stamp[1])
+    pose = types["geometry_msgs/msg/Pose"](
+        position=types["geometry_msgs/msg/Point"](x=origin[0], y=origin[1], z=origin[2]),
+        orientation=types["geometry_msgs/msg/Quaternion"](
+            x=origin[3], y=origin[4], z=origin[5], w=origin[6]
+        ),
+    )
+    width = max(len(cells), 1)
+    expected = _ros(
+        distro,
+        "nav_msgs/msg/OccupancyGrid",
+        header=_header(distro, stamp, frame),
+        info=types["nav_msgs/msg/MapMetaData"](
+            map_load_time=time, resolution=resolution, width=width, height=1, origin=pose
+        ),
+        data=np.array(cells, dtype=np.int8),
+    )
+    data = np.array(cells, dtype=np.int8).tobytes()
+    encoded = cdr.encode_occupancy_grid(
+        stamp,
+        frame,
+        resolution,
+        (width, 1),
+        tuple(origin),
+        data,  # type: ignore[arg-type]
+    )
+    assert encoded == _padded(expected)

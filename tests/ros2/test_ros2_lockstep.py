@@ -42,7 +42,7 @@ def test_humble_lockstep_2000_steps_equal_in_process_and_bag_reads_back(tmp_path
     assert "2000 steps, every field equal" in result.stdout
     assert "stopped after 2000 steps" in result.stderr
     # The bag holds exactly what went out: one message set per step (the reset state and 2,000
-    # steps), /tf_static once; an independent reader decodes it.
+    # steps), /tf_static and /map once; an independent reader decodes it.
     simulator = mazesim.Simulator(mazesim.load_world("seed-maze"), robot="e-puck", seed=0)
     names = [topic.name for topic in StateTopics(simulator, "humble").topics]
     counts: dict[str, int] = {}
@@ -57,7 +57,7 @@ def test_humble_lockstep_2000_steps_equal_in_process_and_bag_reads_back(tmp_path
             if channel.topic == "/clock":
                 clocks.append(decoded.clock.sec * 10**9 + decoded.clock.nanosec)
                 assert message.log_time == clocks[-1]
-    assert counts == {**{name: 2001 for name in names}, "/tf_static": 1}
+    assert counts == {**{name: 2001 for name in names}, "/tf_static": 1, "/map": 1}
     assert clocks[0] == 1  # never time zero
     assert clocks[1:] == [32_000_000 * step for step in range(1, 2001)]
 
@@ -74,11 +74,13 @@ def test_jazzy_layouts_match_with_the_e_puck2_time_of_flight_sensor() -> None:
 
 def test_a_driver_of_the_wrong_layout_is_caught() -> None:
     # Humble's Range (no variance) against a Jazzy bridge: DDS does not match the two types, so
-    # the driver receives no Range and says which topics stayed silent.
+    # the driver receives no Range and says which topics stayed silent. It waits for the
+    # bridge and the step's first message however loaded the machine, and judges the silent
+    # topics 2 s after that message (the step's messages go out together).
     result = run_in_namespace(
         [_bridge("jazzy", 1)],
-        _driver("jazzy", 1, "--reader-distro", "humble", "--wait", "2"),
-        timeout=60,
+        _driver("jazzy", 1, "--reader-distro", "humble", "--wait", "90", "--silent-after", "2"),
+        timeout=150,
         grace=1.0,
     )
     assert result.returncode != 0
@@ -282,3 +284,28 @@ time.sleep(0.3)
 print(f"answered:{stamps[0]}..{stamps[-1]}" if stamps else "answered:nothing")
 sys.exit(0 if len(stamps) == int(sys.argv[1]) else 1)
 """
+
+
+@pytest.mark.parametrize("period", ["0.1", "0.064"])
+def test_a_node_on_a_timer_of_simulated_time_drives_in_lockstep_with_its_period(
+    period: str,
+) -> None:
+    # A node commanding on a timer of simulated time slower than the control step (a 10 Hz
+    # create_timer with use_sim_time, 32 ms steps) stepped once and then waited for a tick that
+    # never came. With --command-period each command holds until the clock reaches the
+    # timer's next tick, whole steps, the robot at rest before the first: the driver fires as
+    # rcl's timers do and finds every field of every step equal to the in-process run that
+    # holds each command over the same steps.
+    result = run_in_namespace(
+        [_bridge("humble", 90, "--command-period", period)],
+        _driver("humble", 90, "--timer-period", period, "--wait", "60"),
+        timeout=150,
+    )
+    assert result.returncode == 0, result.stderr
+    assert "90 steps, every field equal" in result.stdout
+    # A command at each tick up to the state of step 89 (2.848 s): 28 of 0.1 s, 44 of 0.064 s.
+    assert f"driver: {dict([('0.1', 28), ('0.064', 44)])[period]} commands on a timer" in (
+        result.stdout
+    )
+    assert "stopped after 90 steps" in result.stderr
+    assert "publishing" not in result.stderr  # nothing went out twice

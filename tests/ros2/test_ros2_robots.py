@@ -70,7 +70,9 @@ def test_a_frame_prefix_names_each_robots_frames_and_puts_its_transforms_on_tf()
         "east_1/base_link",
         "east_1/gs0",
     ) in pairs
-    assert all(parent == "east_1/base_link" for parent, _ in pairs)
+    # The world's map frame holds each robot's odometry frame, which is the world's own.
+    assert ("map", "east_1/odom") in pairs
+    assert all(parent == "east_1/base_link" for parent, child in pairs if parent != "map")
 
 
 @needs_ros2

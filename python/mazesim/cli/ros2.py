@@ -53,6 +53,10 @@ def _speed(text: str) -> float:
     return _non_negative(text, "a speed factor (0: as fast as possible)")
 
 
+def _command_period(text: str) -> float:
+    return _non_negative(text, "a timer period in seconds (0: a step per command)")
+
+
 def _period_ms(text: str) -> float:
     return _non_negative(text, "a timer period in ms (0: answer each reading)")
 
@@ -106,6 +110,7 @@ def _run_bridge(args: argparse.Namespace) -> int:
             network=args.network,
             frame_prefix=args.frame_prefix,
             namespace=args.namespace,
+            command_period=args.command_period,
         )
     )
 
@@ -238,6 +243,14 @@ def register(commands: Any) -> None:
         "/epuck0/cmd_vel...; /clock stays), as a node written for one robot of several names "
         "them; a world of several robots puts each in its own (default: none, the topics at the "
         "root)",
+    )
+    bridge.add_argument(
+        "--command-period",
+        type=_command_period,
+        default=0.0,
+        help="lockstep: the driving node commands on a timer of simulated time with this period "
+        "in seconds (create_timer(0.1, ...) with use_sim_time): each command holds, whole "
+        "steps, until the clock reaches the timer's next tick (default: 0, a step per command)",
     )
     _add_common(bridge)
     bridge.set_defaults(run=_run_bridge)

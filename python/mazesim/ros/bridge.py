@@ -12,10 +12,13 @@ A ``cmd_vel`` twist is a command like the others. It runs in one of two modes:
   answers each ``sensors`` (or ``sensor_data``) message with one command, so no reading is ever
   missed or stale whatever the load, and a run is as deterministic as the in-process simulator.
   The state topics are latched: a controller that connects late still receives the state waiting
-  for its command. Until the first command, while a publisher of one of the command topics is
-  connected, the bridge publishes the reset state again every ``RESEND_S`` seconds without one (a
-  controller whose first command went out before the bridge listened, or that answers only from
-  its second message, gets another) and says so. Run exactly one controller in this mode.
+  for its command. While a publisher of one of the command topics is connected and no command
+  has come ``RESEND_S`` seconds after a state went out, the bridge publishes that state again
+  (:class:`~mazesim.ros.lockstep.UnansweredState`, shared with the ROS 2 bridge): before the
+  first command the reset state (a controller whose first command went out before the bridge
+  listened, or that answers only from its second message, gets another), afterwards the last
+  state as it went out (a controller that let one go unanswered gets it again), and says so.
+  Run exactly one controller in this mode.
 - ``realtime``: the simulation steps on its own, ``speed`` times faster than the wall clock, with
   the last commanded wheel speeds.
 
@@ -50,20 +53,23 @@ from mazesim.actions import wheel_speeds
 from mazesim.errors import InvalidArgumentError, MazesimError
 from mazesim.ros import standard, topics
 from mazesim.ros._ros import publisher, start_node
+from mazesim.ros.lockstep import IDLE_CLOCK_AFTER_S, RESEND_S, UnansweredState
 from mazesim.ros.standard import StandardPublishers
 
-__all__ = ["MODES", "Bridge", "BridgeSettings", "refuse_several_robots", "run_bridge"]
+__all__ = [
+    "IDLE_CLOCK_AFTER_S",
+    "MODES",
+    "RESEND_S",
+    "Bridge",
+    "BridgeSettings",
+    "refuse_several_robots",
+    "run_bridge",
+]
 
 #: The bridge's modes.
 MODES = ("lockstep", "realtime")
 #: Seconds without a command after which a lockstep bridge says it is waiting for one.
 IDLE_WARNING_S = 5.0
-#: Lockstep: seconds without a first command, a command publisher connected, before the reset
-#: state goes out again.
-RESEND_S = 5.0
-#: Lockstep, before the first command: seconds after the reset state went out again unanswered
-#: before ``/clock`` runs on its own (see :meth:`Bridge.tick_idle_clock`).
-IDLE_CLOCK_AFTER_S = 1.0
 #: How many control steps a real-time bridge may fall behind before it stops catching up.
 MAX_LAG_STEPS = 5
 
@@ -159,6 +165,10 @@ class Bridge:
         #: The control step after which the robot was first inside the goal disc, if it was.
         self.goal_step: int | None = None
         self._lock = threading.Lock()
+        #: Lockstep: when a state that went unanswered goes out again.
+        self.unanswered = UnansweredState()
+        #: The last state as it went out: each publisher with its message.
+        self.last_state: list[tuple[Any, Any]] = []
         self._sensors_layout = self._layout(topics.sensor_names(simulator))
         self._pose_layout = self._layout(["x", "y", "yaw", "time"])
         # Latched: a subscriber that connects late still receives the state awaiting a command
@@ -175,6 +185,7 @@ class Bridge:
             )
         self.standard = StandardPublishers(ros, simulator, self._publisher)
         self.publish_state()
+        self.unanswered.went_out(time.monotonic())
         # No queue limit: in lockstep every command is one step and none may be dropped.
         self.command_subscribers = [
             rospy.Subscriber(
@@ -183,13 +194,12 @@ class Bridge:
             rospy.Subscriber(topics.ACTION_TOPIC, ros.String, self.on_action, tcp_nodelay=True),
             rospy.Subscriber(standard.CMD_VEL_TOPIC, ros.Twist, self.on_cmd_vel, tcp_nodelay=True),
         ]
-        #: Lockstep: how many times the reset state went out again, awaiting a first command.
-        self.resent_states = 0
 
     def _publisher(self, topic: str, message_class: Any) -> Any:
         # Synchronous in lockstep: every subscriber (a recorder too) gets every step before the
         # next command is taken. Queued in real time: a slow subscriber loses old messages.
-        return publisher(self.ros, topic, message_class, synchronous=self.lockstep, latch=True)
+        made = publisher(self.ros, topic, message_class, synchronous=self.lockstep, latch=True)
+        return _Remembered(made, self.last_state.append)
 
     def _layout(self, labels: list[str]) -> Any:
         layout = self.ros.Float64MultiArray().layout
@@ -205,6 +215,7 @@ class Bridge:
         """Publishes ``/clock``, ``pose``, ``sensors``, ``sensor_data`` and the standard messages
         (``odom``, ``/tf``, one Range per distance sensor) for the current step."""
         simulator = self.simulator
+        self.last_state.clear()
         clock_time = self._clock_time()
         self.clock_publisher.publish(self.ros.Clock(clock=clock_time))
         self.pose_publisher.publish(self._array(self._pose_layout, topics.pose_values(simulator)))
@@ -326,30 +337,38 @@ class Bridge:
                 return
             self.simulator.step(left, right)
             self.publish_state()
+            self.unanswered.went_out(time.monotonic())
             if self._finished():
                 self.stop.set()
 
-    def _resend_reset_state(self) -> None:
-        """Lockstep, before the first command: publishes the reset state again if a publisher of
-        a command topic is connected; logs it the first time."""
-        connected = [sub for sub in self.command_subscribers if sub.get_num_connections() > 0]
-        if not connected:
-            return
+    def _resend_unanswered(self) -> None:
+        """Lockstep: when no command has come ``RESEND_S`` after a state went out while a
+        publisher of a command topic is connected (:class:`~mazesim.ros.lockstep.UnansweredState`,
+        the rule of both bridges), publishes it again: before the first command the reset state
+        (a controller whose first command went out before the bridge listened, or that answers
+        only from its second message, gets another; if that goes unanswered too, ``/clock`` runs
+        on its own, see :meth:`tick_idle_clock`); once stepping, the last state as it went out
+        (same messages, same stamps): a controller that let one state go unanswered gets it
+        again, and the run stays the in-process run step for step. Logs it the first time."""
         with self._lock:
-            if self.commands or self.stop.is_set():
+            if self.stop.is_set() or not self.unanswered.waited_long(time.monotonic()):
                 return
-            if self.resent_states == 0:
-                self.ros.rospy.logwarn(
-                    "lockstep: no command %g s after the reset state though %s has a publisher; "
-                    "publishing the reset state again every %g s until a command comes (a "
-                    "controller whose first command went out before the bridge listened, or "
-                    "that answers only from its second message, gets another; one still busy "
-                    "with the first that then answers every message would run a step behind)",
-                    RESEND_S,
-                    connected[0].resolved_name,
-                    RESEND_S,
-                )
-            self.resent_states += 1
+            connected = [sub for sub in self.command_subscribers if sub.get_num_connections() > 0]
+            if not connected:
+                return
+            stepped = self.commands > 0
+            notice = self.unanswered.resending(
+                stepped,
+                self.simulator.steps,
+                connected[0].resolved_name,
+                "run the bridge in mode realtime",
+            )
+            if notice is not None:
+                self.ros.rospy.logwarn(notice)
+            if stepped:
+                for made, message in list(self.last_state):
+                    made.publish(message)
+                return
             self.publish_state()
             if self.idle_tick_at == math.inf:
                 self.idle_tick_at = time.monotonic() + IDLE_CLOCK_AFTER_S
@@ -364,7 +383,7 @@ class Bridge:
         """Runs until a signal, ROS shutdown or the end of ``duration``."""
         rospy = self.ros.rospy
         if self.lockstep:
-            started = published = time.monotonic()
+            started = time.monotonic()
             wait = 0.1
             while not self.stop.wait(min(wait, 0.1)) and not rospy.is_shutdown():
                 if self.commands == 0 and time.monotonic() - started > IDLE_WARNING_S:
@@ -378,9 +397,7 @@ class Bridge:
                         rospy.resolve_name(standard.CMD_VEL_TOPIC),
                     )
                     started = math.inf
-                if self.commands == 0 and time.monotonic() - published >= RESEND_S:
-                    self._resend_reset_state()
-                    published = time.monotonic()
+                self._resend_unanswered()
                 wait = self.tick_idle_clock()
             return
         period = self.simulator.control_step_ms / 1000.0 / self.settings.speed
@@ -397,6 +414,22 @@ class Bridge:
                 self.stop.wait(delay)
             elif delay < -MAX_LAG_STEPS * period:
                 next_step = time.monotonic()
+
+
+class _Remembered:
+    """A publisher that hands each message it publishes to ``note`` (the bridge keeps the last
+    state as it went out, to send it again); everything else is the publisher's."""
+
+    def __init__(self, made: Any, note: Callable[[tuple[Any, Any]], None]) -> None:
+        self.made = made
+        self._note = note
+
+    def publish(self, message: Any) -> None:
+        self.made.publish(message)
+        self._note((self.made, message))
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self.made, name)
 
 
 def refuse_several_robots(world: World) -> None:

@@ -41,27 +41,23 @@ from mazesim._core import Simulator
 from mazesim.actions import wheel_speeds
 from mazesim.errors import InvalidActionError, InvalidArgumentError
 from mazesim.ros import standard, topics
+from mazesim.ros.lockstep import IDLE_CLOCK_AFTER_S, RESEND_S, TimerHold, UnansweredState
 from mazesim.ros2 import cdr, network
 from mazesim.ros2.bag import BagRecorder
 from mazesim.ros2.clock import SIM_CONTROL_TOPIC, FreeRunning, stamp_nanoseconds
 from mazesim.ros2.node import Node, Reader
 from mazesim.ros2.nodes import leaves_signals_as_found
-from mazesim.ros2.qos import CLOCK, COMMAND, IncompatibleQos
+from mazesim.ros2.occupancy import MAP_TOPIC, occupancy_grid
+from mazesim.ros2.qos import CLOCK, COMMAND, TF_STATIC, IncompatibleQos
 from mazesim.ros2.robots import RobotOf, robot_namespaces
 from mazesim.ros2.state import CLOCK_TOPIC, CLOCK_TYPE, StateTopics
 from mazesim.ros2.unpublished import UnpublishedTopics
 
-__all__ = ["BridgeSettings", "Ros2Bridge", "run_bridge"]
+__all__ = ["IDLE_CLOCK_AFTER_S", "RESEND_S", "BridgeSettings", "Ros2Bridge", "run_bridge"]
 
 NODE_NAME = "mazesim_bridge"
 #: Seconds between a command writer matching and the reset state going out.
 READY_GRACE_S = 0.5
-#: Lockstep: seconds without a first command, a command writer matched, before the reset state
-#: goes out again.
-RESEND_S = 5.0
-#: Lockstep, before the first command: seconds after the reset state went out again unanswered
-#: before ``/clock`` runs on its own (see :meth:`Ros2Bridge._tick_idle_clock`).
-IDLE_CLOCK_AFTER_S = 1.0
 #: Seconds between two looks at the readers other nodes created (see :mod:`.unpublished`).
 READERS_CHECK_S = 1.0
 _ROS_NAMESPACE = re.compile(r"/?[A-Za-z_][A-Za-z0-9_]*(/[A-Za-z_][A-Za-z0-9_]*)*")
@@ -71,6 +67,7 @@ TWIST = "geometry_msgs/msg/Twist"
 TWIST_STAMPED = "geometry_msgs/msg/TwistStamped"
 STRING = "std_msgs/msg/String"
 FLOAT64_ARRAY = "std_msgs/msg/Float64MultiArray"
+OCCUPANCY_GRID = "nav_msgs/msg/OccupancyGrid"
 
 
 @dataclasses.dataclass
@@ -100,6 +97,10 @@ class BridgeSettings:
     #: A world of one robot: the namespace its topics go in (``epuck0``: ``/epuck0/odom``...),
     #: as a node written for one robot of several names them; ``""`` for none.
     namespace: str = ""
+    #: Lockstep: the period in seconds of the timer on simulated time the driving node commands
+    #: on; each command holds until the clock reaches its next tick (0: none, one step each;
+    #: see :class:`mazesim.ros.lockstep.TimerHold`).
+    command_period: float = 0.0
 
     def validate(self) -> None:
         """Raises :class:`InvalidArgumentError` on a setting the bridge cannot run."""
@@ -111,6 +112,11 @@ class BridgeSettings:
             )
         if self.stop_after < 0:
             raise InvalidArgumentError(f"expected stop_after >= 0; found {self.stop_after}")
+        if self.command_period and self.mode != "lockstep":
+            raise InvalidArgumentError(
+                "expected --command-period with --mode lockstep (free-running, a node's timer "
+                f"on simulated time runs as it is); found --mode {self.mode}"
+            )
         if self.namespace and not _ROS_NAMESPACE.fullmatch(self.namespace):
             raise InvalidArgumentError(
                 "expected a ROS namespace for --namespace (names of letters, digits and _, "
@@ -252,6 +258,8 @@ class Ros2Bridge:
                 f"start with its name); found one robot in {simulator.world.name!r}, whose "
                 "frames are odom, base_link...: leave --frame-prefix out"
             )
+        #: Lockstep: how long each command holds (``--command-period``).
+        self.hold = TimerHold(settings.command_period, simulator.control_step_ms / 1000.0)
         self.simulator = simulator
         self.settings = settings
         self.node = node or Node(
@@ -284,11 +292,13 @@ class Ros2Bridge:
             if simulator.num_robots == 1 and not own
             else self.node.writer(CLOCK_TOPIC, CLOCK_TYPE, CLOCK)
         )
+        #: ``/map``: the world's walls, once, latched as ``map_server`` publishes it.
+        self.map_writer = self.node.writer(MAP_TOPIC, OCCUPANCY_GRID, TF_STATIC)
         self.control: Reader | None = None
         if settings.mode == "free":
             self.control = self.node.reader(SIM_CONTROL_TOPIC, STRING, COMMAND)
         self.node.announce()
-        published = [CLOCK_TOPIC]
+        published = [CLOCK_TOPIC, MAP_TOPIC]
         for robot in self.robots:
             published += [t.name for t in robot.state.topics] + [robot.state.static_topic().name]
         self.unpublished = UnpublishedTopics(
@@ -308,15 +318,12 @@ class Ros2Bridge:
         self.goal_step: int | None = None
         self.stop = threading.Event()
         self.rejected_controls = 0
-        #: Lockstep: how many times the reset state went out again, awaiting a first command.
-        self.resent_states = 0
+        #: Lockstep: when a state that went unanswered goes out again.
+        self.unanswered = UnansweredState()
         #: Lockstep: control steps ``/clock`` ran on its own before the first command; every
         #: stamp after them is that many steps later than the simulator's time.
         self.idle_steps = 0
         self._idle_tick_at = math.inf
-        #: Lockstep: how many times a state went out again after a step left unanswered.
-        self.stall_resends = 0
-        self._stepped_at = self._stall_sent = 0.0
         self._waitset = self._make_waitset()
 
     def _make_waitset(self) -> Any:
@@ -359,8 +366,11 @@ class Ros2Bridge:
         return stamp_nanoseconds(self.simulator.time + self.idle_steps * control_step_s)
 
     def publish_static(self) -> None:
-        """Publishes ``/tf_static`` (transient local: late subscribers get it too)."""
+        """Publishes ``/tf_static`` and ``/map`` (transient local: late subscribers get them
+        too)."""
         nanoseconds = self.stamp()
+        world_map = occupancy_grid(self.simulator.world, cdr.stamp_of(nanoseconds))
+        self._send(self.map_writer, nanoseconds, world_map)
         for robot in self.robots:
             data = robot.state.static_transforms(cdr.stamp_of(nanoseconds))
             self._send(robot.static_writer, nanoseconds, data)
@@ -404,7 +414,7 @@ class Ros2Bridge:
             commands = np.array([robot.wheel_speeds for robot in self.robots], dtype=np.float64)
             self.simulator.step_robots(commands)
         self.publish_state(self.simulator.control_step_ms / 1000.0)
-        self._stepped_at = time.monotonic()
+        self.unanswered.went_out(time.monotonic())
         self._note_goal()
 
     def commands(self) -> list[tuple[float, float]]:
@@ -424,6 +434,14 @@ class Ros2Bridge:
             for robot in self.robots:
                 if robot.pending:
                     robot.wheel_speeds = robot.pending.popleft()
+            self.hold.start(self.stamp())
+            self._step_held()
+
+    def _step_held(self) -> None:
+        """Lockstep: one step, and with ``--command-period`` the further steps the command holds
+        until the clock reaches the node's next tick (:class:`~mazesim.ros.lockstep.TimerHold`)."""
+        self.step_robots()
+        while self.hold.holds(self.stamp()) and not self.stop.is_set():
             self.step_robots()
 
     def wait_for_driver(self) -> None:
@@ -445,48 +463,67 @@ class Ros2Bridge:
             self.wait_for_driver()
             if not self.stop.is_set():
                 self.publish_state(0.0)
+                self.unanswered.went_out(time.monotonic())
+                if self.hold.active:  # at rest, no command yet, until the node's first tick
+                    self.hold.start(self.stamp())
+                    while self.hold.holds(self.stamp()) and not self.stop.is_set():
+                        self.step_robots()
             self._greet_newcomers()  # the writers matched now are the first drivers, not late
-            published = time.monotonic()
             while not self.stop.is_set():
                 wait = min(0.1, max(self._idle_tick_at - time.monotonic(), 0.0))
                 self._waitset.wait(int(wait * 1e9))
                 self._step_pending()
                 self._check_readers()
                 self._greet_newcomers()
-                if self.simulator.steps == 0 and time.monotonic() - published >= RESEND_S:
-                    self._resend_reset_state()
-                    published = time.monotonic()
+                self._resend_unanswered()
                 self._tick_idle_clock()
-                self._resend_last_state()
             return
         self._run_free()
 
-    def _resend_reset_state(self) -> None:
-        """Lockstep, before the first command: publishes the reset state again if a command
-        writer is matched (once a node answers, every state is answered, and nothing is sent
-        twice); says so on stderr the first time."""
-        driven = [robot for robot in self.robots if robot.driven()]
-        if not driven or any(robot.pending for robot in self.robots):
+    def _resend_unanswered(self) -> None:
+        """Lockstep: when no command has come ``RESEND_S`` after a state went out while a
+        command writer is matched (:class:`~mazesim.ros.lockstep.UnansweredState`, the rule of
+        both bridges), publishes it again: before the first command the reset state (a node
+        that answers only from its second message, or whose first command went out before it
+        matched, gets another; if that goes unanswered too, ``/clock`` runs on its own
+        ``IDLE_CLOCK_AFTER_S`` later, see :meth:`_tick_idle_clock`); once stepping, the last
+        state of every robot the world waits for, as it went out (same bytes, same stamp): a
+        node that let one state go unanswered (a lifecycle node paused and resumed by its
+        manager, whose publisher dropped the answer meanwhile) gets it again, and the run stays
+        the in-process run step for step. Says so on stderr the first time."""
+        if not self.unanswered.waited_long(time.monotonic()):
             return
-        if self.resent_states == 0:
-            topic = f"{driven[0].state.namespace}/{standard.CMD_VEL_TOPIC}"
-            print(
-                f"mazesim ros2 bridge: lockstep: no command {RESEND_S:g} s after the reset "
-                f"state though a command writer is matched (e.g. on {topic}); publishing the "
-                "reset state again, every "
-                f"{RESEND_S:g} s until a command comes (a node that answers only from its "
-                "second message, or whose first command went out before it matched, gets "
-                "another; one still busy with the first that then answers every message would "
-                "run a step behind). If this one goes unanswered too, /clock runs on its own "
+        stepped = self.simulator.steps > 0
+        pending = any(robot.pending for robot in self.robots)
+        if (pending and not stepped) or (
+            stepped and any(robot.newcomer_since for robot in self.robots)
+        ):
+            return  # a node that came late gets the state from _greet_newcomers, once
+        robots = [robot for robot in self.robots if robot.driven() and not robot.pending]
+        if not robots:
+            return
+        topic = f"{robots[0].state.namespace}/{standard.CMD_VEL_TOPIC}"
+        notice = self.unanswered.resending(
+            stepped, self.simulator.steps, topic, "run it with --command-period or --mode free"
+        )
+        if notice is not None:
+            idle = (
+                ""
+                if stepped
+                else f"; if this one goes unanswered too, /clock runs on its own "
                 f"{IDLE_CLOCK_AFTER_S:g} s later, for a node that waits for simulated time "
-                "before its first command",
-                file=sys.stderr,
-                flush=True,
+                "before its first command"
             )
-        self.resent_states += 1
-        self.publish_state(0.0)
-        if self._idle_tick_at == math.inf:
-            self._idle_tick_at = time.monotonic() + IDLE_CLOCK_AFTER_S
+            self._say(notice + idle)
+        if not stepped:
+            self.publish_state(0.0)
+            if self._idle_tick_at == math.inf:
+                self._idle_tick_at = time.monotonic() + IDLE_CLOCK_AFTER_S
+            return
+        for robot in robots:
+            nanoseconds = self.stamp()
+            for writer, data in robot.last_state:
+                self._send(writer, nanoseconds, data)
 
     def _tick_idle_clock(self) -> None:
         """Lockstep, before the first command: once the reset state sent again has gone
@@ -515,8 +552,8 @@ class Ros2Bridge:
                 "lockstep: the reset state sent again went unanswered; /clock now runs on its "
                 "own in real time, the robot standing still, until the first command (a node "
                 "that waits for simulated time before its first command can start; one that "
-                "commands on a timer of simulated time slower than the control step cannot run "
-                "in lockstep: run it with --mode free)"
+                "commands on a timer of simulated time slower than the control step runs in "
+                "lockstep with --command-period, its timer's period)"
             )
         self.idle_steps += 1
         nanoseconds = self.stamp()
@@ -525,37 +562,6 @@ class Ros2Bridge:
         )
         self._send(clock, nanoseconds, cdr.encode_clock(cdr.stamp_of(nanoseconds)))
         self._idle_tick_at += self.simulator.control_step_ms / 1000.0
-
-    def _resend_last_state(self) -> None:
-        """Lockstep, once stepping: when no step has come for ``RESEND_S`` while a command writer
-        is matched, publishes again, as it went out (same bytes, same stamp), the last state of
-        every robot the world waits for, and again every ``RESEND_S`` until a command comes. A
-        node that let one state go unanswered (a lifecycle node paused and resumed by its
-        manager, whose publisher dropped the answer meanwhile) waits for the next state, and the
-        bridge for its command; the state sent again gets it going, and the run stays the
-        in-process run step for step. Says so on stderr the first time."""
-        now = time.monotonic()
-        if not self.simulator.steps or now - max(self._stepped_at, self._stall_sent) < RESEND_S:
-            return
-        waited_for = [robot for robot in self.robots if robot.driven() and not robot.pending]
-        if not waited_for or any(robot.newcomer_since for robot in self.robots):
-            return  # a node that came late gets the state from _greet_newcomers, once
-        self._stall_sent = now
-        if self.stall_resends == 0:
-            topic = f"{waited_for[0].state.namespace}/{standard.CMD_VEL_TOPIC}"
-            self._say(
-                f"lockstep: no command {RESEND_S:g} s after step {self.simulator.steps} though a "
-                f"command writer is matched (e.g. on {topic}); publishing that step's state "
-                f"again, as it went out, every {RESEND_S:g} s until a command comes (a node that "
-                "let a state go unanswered, as a lifecycle node paused and resumed does, gets "
-                "it again; a node that commands on a timer of simulated time cannot run in "
-                "lockstep, where time moves on commands only: run it with --mode free)"
-            )
-        self.stall_resends += 1
-        for robot in waited_for:
-            nanoseconds = self.stamp()
-            for writer, data in robot.last_state:
-                self._send(writer, nanoseconds, data)
 
     def _greet_newcomers(self) -> None:
         """Lockstep, once stepping: a node that starts writing a robot's commands after the
@@ -583,7 +589,7 @@ class Ros2Bridge:
                 self._send_last_state(robot)
 
     def _send_last_state(self, robot: RobotChannel) -> None:
-        self._stall_sent = time.monotonic()
+        self.unanswered.went_out(time.monotonic())
         nanoseconds = self.stamp()
         for writer, data in robot.last_state:
             self._send(writer, nanoseconds, data)

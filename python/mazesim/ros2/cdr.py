@@ -26,8 +26,10 @@ __all__ = [
     "decode_twist_stamped",
     "encode_clock",
     "encode_float64_multi_array",
+    "encode_imu",
     "encode_joint_state",
     "encode_laser_scan",
+    "encode_occupancy_grid",
     "encode_odometry",
     "encode_range",
     "encode_string",
@@ -219,6 +221,61 @@ def encode_odometry(
             _ZERO36,
         )
     )
+
+
+_QUATERNION = struct.Struct("<4d")
+_VECTOR = struct.Struct("<3d")
+_ZERO9 = struct.Struct("<9d").pack(*([0.0] * 9))
+
+
+def encode_imu(
+    stamp: Stamp,
+    frame: str,
+    orientation: tuple[float, float, float, float],
+    angular_velocity: tuple[float, float, float],
+    linear_acceleration: tuple[float, float, float],
+) -> bytes:
+    """A ``sensor_msgs/msg/Imu`` with zero covariances (unknown)."""
+    writer = CdrWriter()
+    writer.header(stamp, frame)
+    writer.pack(_QUATERNION, 8, *orientation)
+    writer.buffer += _ZERO9
+    writer.buffer += _VECTOR.pack(*angular_velocity)
+    writer.buffer += _ZERO9
+    writer.buffer += _VECTOR.pack(*linear_acceleration)
+    writer.buffer += _ZERO9
+    return writer.bytes()
+
+
+_MAP_INFO = struct.Struct("<iIfII")
+
+
+def encode_occupancy_grid(
+    stamp: Stamp,
+    frame: str,
+    resolution: float,
+    size: tuple[int, int],
+    origin: tuple[float, float, float, float, float, float, float],
+    cells: bytes,
+) -> bytes:
+    """A ``nav_msgs/msg/OccupancyGrid``.
+
+    Args:
+        stamp: The header's stamp and the map's load time.
+        resolution: Metres a cell.
+        size: Width (cells along x) and height (along y).
+        origin: The pose of cell (0, 0)'s corner: position ``x, y, z``, orientation ``x, y, z,
+            w``.
+        cells: Row-major, from the origin along x, one signed byte a cell (0 free, 100
+            occupied, -1 unknown).
+    """
+    writer = CdrWriter()
+    writer.header(stamp, frame)
+    writer.pack(_MAP_INFO, 4, *stamp, resolution, *size)
+    writer.pack(_POINT_QUATERNION, 8, *origin)
+    writer.pack(_U32, 4, len(cells))
+    writer.buffer += cells
+    return writer.bytes()
 
 
 @functools.cache

@@ -24,6 +24,7 @@ from mazesim._core import RobotProfile, Simulator
 from mazesim._toml import load_toml
 from mazesim.ros import standard, topics
 from mazesim.ros2 import cdr
+from mazesim.ros2.occupancy import MAP_FRAME
 from mazesim.ros2.qos import CLOCK, SENSOR, TF, TF_STATIC, TopicQos
 
 __all__ = [
@@ -49,6 +50,10 @@ ODOMETRY = "nav_msgs/msg/Odometry"
 TF_MESSAGE = "tf2_msgs/msg/TFMessage"
 FLOAT64_ARRAY = "std_msgs/msg/Float64MultiArray"
 JOINT_STATE = "sensor_msgs/msg/JointState"
+IMU = "sensor_msgs/msg/Imu"
+IMU_TOPIC = "/imu"
+#: Standard gravity (m/s^2): what an accelerometer at rest reads up.
+GRAVITY = 9.81
 CLOCK_TYPE = "rosgraph_msgs/msg/Clock"
 
 
@@ -126,6 +131,8 @@ class StateTopics:
         ]
         self.before = simulator.pose
         self.encoders_before = simulator.encoders
+        #: The body's velocity over the last step in the world's frame (x, y), for ``/imu``.
+        self.world_velocity = (0.0, 0.0)
         ns = namespace
         self.topics: list[Topic] = [
             *(Topic(f"{ns}/{frame.frame}", RANGE, SENSOR) for frame in self.frames),
@@ -136,6 +143,7 @@ class StateTopics:
         self.topics += [
             Topic(f"{ns}/odom", ODOMETRY, SENSOR),
             Topic(ns + JOINT_STATES_TOPIC, JOINT_STATE, SENSOR),
+            Topic(ns + IMU_TOPIC, IMU, SENSOR),
             Topic(self.tf_namespace + TF_TOPIC, TF_MESSAGE, TF),
             Topic(f"{ns}/{topics.SENSORS_TOPIC}", FLOAT64_ARRAY, SENSOR),
         ]
@@ -181,7 +189,38 @@ class StateTopics:
                     (0.0, 0.0, 0.0, 1.0),
                 )
             )
+        # The odometry is the simulator's pose in the world's frame, that of /map.
+        identity = (0.0, 0.0, 0.0, 1.0)
+        odom = self.frame(standard.ODOM_FRAME)
+        transforms.append((stamp, MAP_FRAME, odom, (0.0, 0.0, 0.0), identity))
         return cdr.encode_tf_message(transforms)
+
+    def _imu(
+        self,
+        stamp: cdr.Stamp,
+        after: tuple[float, float, float],
+        turn: float,
+        step_seconds: float,
+    ) -> bytes:
+        """The ``/imu`` message: the inertial unit's orientation (the yaw), the gyro's turn rate
+        over the last step, and the accelerometer's specific force: the body's acceleration
+        over the last two steps, in its frame, plus gravity up (noise-free)."""
+        x, y, yaw = after
+        if step_seconds > 0.0:
+            velocity = ((x - self.before[0]) / step_seconds, (y - self.before[1]) / step_seconds)
+            ax = (velocity[0] - self.world_velocity[0]) / step_seconds
+            ay = (velocity[1] - self.world_velocity[1]) / step_seconds
+            self.world_velocity = velocity
+        else:
+            ax = ay = 0.0
+        c, s = math.cos(yaw), math.sin(yaw)
+        return cdr.encode_imu(
+            stamp,
+            self.frame(standard.BASE_FRAME),
+            standard.yaw_quaternion(yaw),
+            (0.0, 0.0, turn),
+            (c * ax + s * ay, -s * ax + c * ay, GRAVITY),
+        )
 
     def messages(self, stamp: cdr.Stamp, step_seconds: float) -> list[bytes]:
         """The encoded message of each of :attr:`topics`, in order, for the current state.
@@ -239,6 +278,7 @@ class StateTopics:
             )
         x, y, yaw = after = simulator.pose
         velocity = standard.body_velocity(self.before, after, step_seconds)
+        imu = self._imu(stamp, after, velocity.turn, step_seconds)
         self.before = after
         rotation = standard.yaw_quaternion(yaw)
         odom, base = self.frame(standard.ODOM_FRAME), self.frame(standard.BASE_FRAME)
@@ -258,6 +298,7 @@ class StateTopics:
         ]
         self.encoders_before = encoders
         out.append(cdr.encode_joint_state(stamp, WHEEL_JOINTS, encoders, turns))
+        out.append(imu)
         out.append(cdr.encode_tf_message([(stamp, odom, base, (x, y, 0.0), rotation)]))
         out.append(
             cdr.encode_float64_multi_array(self.sensor_labels, topics.sensors_values(simulator))

@@ -3,8 +3,8 @@
 A node written for Webots' e-puck (``webots_ros2_epuck`` in cyberbotics/webots_ros2, whose world
 simulates ``E-puck { version "2" }`` with its time-of-flight sensor, camera and light sensors) may
 wait for a topic the simulated robot does not have: ``/tof`` from the e-puck, which has no
-time-of-flight sensor, waits forever; so does a Nav2-style node waiting for ``/map``, which a map
-server or a SLAM node publishes beside the simulation. In a world of several robots, each robot's
+time-of-flight sensor, waits forever; so does a node waiting for a map elsewhere than ``/map``,
+where the bridge publishes the world's. In a world of several robots, each robot's
 topics are in its namespace: a node that names them absolutely (Webots' drive calibrator reads
 ``/odom`` and writes ``/cmd_vel``, so ``-r __ns:=/west`` leaves them as they are) reads and writes
 where no robot is. :class:`UnpublishedTopics` watches the readers and writers DDS discovers on
@@ -40,11 +40,10 @@ _WEBOTS_EPUCK_ONLY = (
     (re.compile(r"tof"), "the {robot} has no time-of-flight sensor; the e-puck2 has one "
      "(--robot e-puck2, as Webots' webots_ros2_epuck simulates)"),
     (re.compile(r"ls[0-7]"), "mazesim does not simulate the e-puck's light sensors"),
-    (re.compile(r"imu"), "mazesim does not simulate the e-puck's inertial unit"),
     (re.compile(r"(image_raw|camera_info|camera(/.*)?)"), "the bridge publishes no camera images"),
-    (re.compile(r"map"), "the bridge publishes no map: run a map server (Nav2's map_server, as "
-     "Webots' e-puck launch does with its nav option) or a SLAM node (slam_toolbox, from /scan "
-     "and /odom) beside it"),
+    (re.compile(r"map"), "the bridge publishes the world's map on /map only, one for every "
+     "robot: remap the node's to it, or run a map server (Nav2's map_server) or a SLAM node "
+     "(slam_toolbox, from /scan and /odom) beside it"),
 )  # fmt: skip
 
 

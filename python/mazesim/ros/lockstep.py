@@ -1,0 +1,149 @@
+"""What both lockstep bridges (ROS 1 and ROS 2) do when a state goes unanswered, and how a command
+holds for a node that commands on a timer of simulated time. Plain Python: no ROS needed.
+
+In lockstep a bridge steps once per command and then publishes the new state; the node answers
+each state with one command. A state can go unanswered: a node that answers only from its second
+message, one whose first command went out before the bridge listened, a lifecycle node paused by
+its manager (its publisher drops what it is given while inactive) and resumed. Bridge and node
+then wait for each other. :class:`UnansweredState` says when the bridge sends its state again:
+``RESEND_S`` seconds after a state last went out, while a command writer (publisher) is
+connected and no command waits; before the first command that is the reset state, afterwards
+the last state as it went out (same bytes, same stamp). The run stays the in-process run, step
+for step.
+
+A node that commands on a timer of simulated time (``create_timer(0.1, ...)`` with
+``use_sim_time``, Nav2's controller at its ``controller_frequency``) slower than the control step
+cannot answer each state: after its command the clock moves one step, short of its next tick, and
+it waits for time that moves on commands only. Given the node's period (``--command-period``),
+:class:`TimerHold` makes the bridge hold each command over whole control steps until the clock
+reaches the timer's next tick, as a simulator that runs on would: from the reset state the robot
+stands still (no command yet) until the first tick, and a command answering the state stamped
+``T`` holds until the first state stamped at or after the next multiple of the period after
+``T``. A timer of period ``P`` started before its node's first ``/clock`` (rclpy's and rclcpp's
+timers on simulated time, the clock still at zero) fires at the first ``/clock`` at or after each
+multiple of ``P``: exactly the state at which the hold ends, so the node answers the state the
+bridge waits on. How many steps each command holds is a function of the stamps alone, so the run
+is deterministic and equal, field for field, to the in-process run that holds each command over
+those steps.
+"""
+
+from __future__ import annotations
+
+import math
+
+from mazesim.errors import InvalidArgumentError
+
+__all__ = ["IDLE_CLOCK_AFTER_S", "RESEND_S", "TimerHold", "UnansweredState"]
+
+#: Lockstep: seconds after a state went out, a command writer connected and no command come,
+#: before the bridge sends the state again.
+RESEND_S = 5.0
+#: Lockstep, before the first command: seconds after the reset state went out again unanswered
+#: before ``/clock`` runs on its own.
+IDLE_CLOCK_AFTER_S = 1.0
+
+
+class UnansweredState:
+    """When a lockstep bridge sends a state again that went unanswered.
+
+    The bridge calls :meth:`went_out` whenever a state goes out (the reset state, a step's state,
+    a state sent again) and :meth:`waited_long` on each look; once that says ``RESEND_S`` have
+    passed, and a command writer is connected with no command waiting, the bridge sends the state
+    again and calls :meth:`resending`.
+    """
+
+    def __init__(self, resend_s: float = RESEND_S) -> None:
+        self.resend_s = resend_s
+        #: When (``time.monotonic()``) a state last went out.
+        self.last = 0.0
+        #: How many times a state was sent again before the first command, and after it.
+        self.resent_reset = 0
+        self.resent_last = 0
+
+    def went_out(self, now: float) -> None:
+        """A state went out at ``now``."""
+        self.last = now
+
+    def waited_long(self, now: float) -> bool:
+        """Whether ``RESEND_S`` have passed since a state last went out (or since the last
+        look that said so: the wait restarts)."""
+        if now - self.last < self.resend_s:
+            return False
+        self.last = now
+        return True
+
+    def resending(self, stepped: bool, step: int, topic: str, fix: str) -> str | None:
+        """Counts a state going out again, and says what to say the first time (``None``
+        afterwards).
+
+        Args:
+            stepped: A command has come (the last state goes out again, not the reset state).
+            step: The step whose state goes out again.
+            topic: A command topic with a writer connected, named in the message.
+            fix: What to run a node that commands on a timer of simulated time with.
+        """
+        if stepped:
+            self.resent_last += 1
+            if self.resent_last > 1:
+                return None
+            return (
+                f"lockstep: no command {self.resend_s:g} s after step {step} though {topic} has "
+                f"a writer; publishing that step's state again, as it went out, every "
+                f"{self.resend_s:g} s until a command comes (a node that let a state go "
+                "unanswered, as a lifecycle node paused and resumed does, gets it again; a node "
+                f"that commands on a timer of simulated time slower than the control step: {fix})"
+            )
+        self.resent_reset += 1
+        if self.resent_reset > 1:
+            return None
+        return (
+            f"lockstep: no command {self.resend_s:g} s after the reset state though {topic} has "
+            f"a writer; publishing the reset state again, every {self.resend_s:g} s until a "
+            "command comes (a node that answers only from its second message, or whose first "
+            "command went out before the bridge listened, gets another; one still busy with the "
+            "first that then answers every message would run a step behind)"
+        )
+
+
+class TimerHold:
+    """How long a command holds in lockstep for a node commanding on a timer of simulated time
+    (see the module's description).
+
+    Args:
+        period_s: The node's timer period in seconds (0: none, every command one step).
+        control_step_s: The bridge's control step in seconds.
+
+    Raises:
+        InvalidArgumentError: The period is not finite, negative, or not longer than a control
+            step (a node on such a timer answers every state: leave the period out).
+    """
+
+    def __init__(self, period_s: float, control_step_s: float) -> None:
+        if not math.isfinite(period_s) or period_s < 0.0:
+            raise InvalidArgumentError(
+                f"expected a command period in seconds >= 0 (0: none); found {period_s}"
+            )
+        if 0.0 < period_s <= control_step_s:
+            raise InvalidArgumentError(
+                f"expected a command period longer than the control step ({control_step_s:g} "
+                f"s); found {period_s:g} s: a node on such a timer answers every state, so "
+                "leave --command-period out"
+            )
+        #: The period in nanoseconds, as rclpy's timers hold it (0: none).
+        self.period_ns = int(period_s * 1e9)
+        self._until_ns = 0
+
+    @property
+    def active(self) -> bool:
+        """Whether commands hold over several steps."""
+        return self.period_ns > 0
+
+    def start(self, stamp_ns: int) -> None:
+        """A command answers the state stamped ``stamp_ns`` (or the reset state went out): it
+        holds until the first state stamped at or after the next multiple of the period."""
+        if self.active:
+            self._until_ns = (stamp_ns // self.period_ns + 1) * self.period_ns
+
+    def holds(self, stamp_ns: int) -> bool:
+        """Whether the command holds for another step after the state stamped ``stamp_ns``."""
+        return self.active and stamp_ns < self._until_ns

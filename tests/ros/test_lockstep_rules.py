@@ -1,0 +1,88 @@
+"""The lockstep rules both ROS bridges share (``mazesim.ros.lockstep``), without ROS: when a state
+that went unanswered goes out again, and how long a command holds for a node on a timer."""
+
+from __future__ import annotations
+
+import pytest
+
+from mazesim.errors import InvalidArgumentError
+from mazesim.ros.lockstep import RESEND_S, TimerHold, UnansweredState
+
+STEP_NS = 32_000_000
+
+
+def held_steps(period_s: float, commands: int) -> list[int]:
+    """How many steps the reset state's hold and each of ``commands`` commands take, a command
+    coming at each state where the hold ends."""
+    hold = TimerHold(period_s, STEP_NS / 1e9)
+    stamp, counts = 1, []  # the reset state is stamped 1 ns
+    for _ in range(commands + 1):
+        hold.start(stamp)
+        steps = 0
+        while True:
+            stamp = (stamp // STEP_NS + 1) * STEP_NS
+            steps += 1
+            if not hold.holds(stamp):
+                break
+        counts.append(steps)
+    return counts
+
+
+def timer_ticks(period_s: float, until_ns: int) -> list[int]:
+    """The stamps at which rclpy's timer of ``period_s`` on simulated time, made before the
+    first /clock, fires when /clock goes out every step: the first stamp at or after each
+    multiple of the period."""
+    period_ns = int(period_s * 1e9)
+    fired, tick = [], period_ns
+    for stamp in range(STEP_NS, until_ns, STEP_NS):
+        if stamp >= tick:
+            fired.append(stamp)
+            tick = (stamp // period_ns + 1) * period_ns
+    return fired
+
+
+@pytest.mark.parametrize("period_s", [0.1, 0.064, 0.05, 0.25])
+def test_a_hold_ends_exactly_where_the_node_s_timer_fires(period_s: float) -> None:
+    counts = held_steps(period_s, 40)
+    ends = [sum(counts[: i + 1]) * STEP_NS for i in range(len(counts))]
+    assert ends == timer_ticks(period_s, ends[-1] + 1)
+
+
+def test_a_10_hz_timer_with_32_ms_steps_holds_3_or_4_steps() -> None:
+    # 0.128, 0.224, 0.32, 0.416, 0.512, 0.608, 0.704, 0.8 (a tick on a step), 0.928 ...
+    assert held_steps(0.1, 8) == [4, 3, 3, 3, 3, 3, 3, 3, 4]
+
+
+def test_without_a_period_every_command_is_one_step() -> None:
+    hold = TimerHold(0.0, 0.032)
+    hold.start(1)
+    assert not hold.active and not hold.holds(1)
+
+
+@pytest.mark.parametrize("period_s", [0.032, 0.01, -1.0, float("nan"), float("inf")])
+def test_a_period_not_longer_than_a_step_is_refused(period_s: float) -> None:
+    with pytest.raises(InvalidArgumentError, match="command period"):
+        TimerHold(period_s, 0.032)
+
+
+def test_an_unanswered_state_goes_out_again_every_resend_interval_while_driven() -> None:
+    unanswered = UnansweredState()
+    unanswered.went_out(100.0)
+    assert not unanswered.waited_long(100.0 + RESEND_S - 0.01)
+    assert unanswered.waited_long(100.0 + RESEND_S)
+    # The wait restarts at each look that says so, and at each state that goes out.
+    assert not unanswered.waited_long(100.0 + RESEND_S + 1.0)
+    unanswered.went_out(110.0)
+    assert not unanswered.waited_long(110.0 + RESEND_S - 0.01)
+
+
+def test_the_notice_is_said_once_for_the_reset_state_and_once_for_a_step() -> None:
+    unanswered = UnansweredState()
+    first = unanswered.resending(False, 0, "/cmd_vel", "use free mode")
+    assert first is not None and "reset state again" in first
+    assert unanswered.resending(False, 0, "/cmd_vel", "use free mode") is None
+    later = unanswered.resending(True, 12, "/motor", "use free mode")
+    assert later is not None and "after step 12" in later and "/motor" in later
+    assert "use free mode" in later
+    assert unanswered.resending(True, 13, "/motor", "use free mode") is None
+    assert (unanswered.resent_reset, unanswered.resent_last) == (2, 2)
