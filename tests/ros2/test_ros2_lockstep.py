@@ -163,6 +163,22 @@ def test_a_node_that_leaves_a_state_unanswered_gets_it_again() -> None:
     assert "stopped after 30 steps" in result.stderr
 
 
+@pytest.mark.parametrize("late_at", [1, 12])
+def test_a_node_slower_than_the_resend_wait_reads_past_the_state_sent_again(late_at: int) -> None:
+    # A node busy for longer than the resend wait (a loaded machine, a slow start) answers the
+    # state late; the bridge has sent it again meanwhile, and the copy waits in the node's queues
+    # ahead of the next state. The driver reads past it by its stamp and the run goes on step for
+    # step: no command twice, no state taken for the next one.
+    result = run_in_namespace(
+        [_bridge("humble", 20)],
+        _driver("humble", 20, "--late-answer-at", str(late_at), "--wait", "12"),
+        timeout=90,
+    )
+    assert result.returncode == 0, result.stderr
+    assert "20 steps, every field equal" in result.stdout
+    assert "stopped after 20 steps" in result.stderr
+
+
 def test_a_node_restarted_while_the_bridge_runs_gets_the_last_state_again() -> None:
     # A node that stops and starts again while the lockstep bridge runs (a crash, an edit, one
     # more `ros2 run`) waited for a state that had gone out before it was there, and the bridge
