@@ -29,6 +29,9 @@ from mazesim.ros2.clock import stamp_nanoseconds
 from mazesim.ros2.qos import COMMAND, SENSOR, TF, TF_STATIC, cyclone_qos
 
 WAIT_S = 10.0
+#: How long the driver waits at most for what must come (the bridge's /cmd_vel reader, a message
+#: on a topic whose writer has matched): a ceiling that only bounds a hang, never a pace.
+CEILING_S = 180.0
 
 
 class Mismatch(Exception):
@@ -60,7 +63,13 @@ def main() -> int:
     parser.add_argument("--robot", default="e-puck")
     parser.add_argument("--world", default="seed-maze")
     parser.add_argument("--seed", type=int, default=0)
-    parser.add_argument("--wait", type=float, default=10.0, help="seconds to wait for a message")
+    parser.add_argument(
+        "--wait",
+        type=float,
+        default=10.0,
+        help="seconds a topic that matched no writer may stay silent once the rest of a state "
+        "arrived (a topic that matched one gets its message however late)",
+    )
     parser.add_argument(
         "--reader-distro", default=None, help="decode the state with another distro's layouts"
     )
@@ -197,14 +206,25 @@ def main() -> int:
         return None if count is None else stamp_nanoseconds(simulator.time + count * control_step_s)
 
     def collect(stamp_ns: int | None) -> dict[str, Any]:
-        deadline = time.monotonic() + WAIT_S
+        # A topic whose reader has matched a writer gets its message, however late (up to the
+        # ceiling). Once the state has begun to arrive, a topic that matched no writer is silent
+        # when --wait seconds have gone by with every matched one delivered (a writer of another
+        # layout stays unmatched).
+        ceiling = time.monotonic() + max(CEILING_S, WAIT_S)
+        quiet_since: float | None = None
         while True:
             for name, reader in readers.items():
                 pending[name].extend(reader.take(16))
-            if all(pending[name] for name in readers):
+            missing = sorted(name for name in readers if not pending[name])
+            if not missing:
                 break
-            if time.monotonic() > deadline:
-                missing = sorted(name for name in readers if not pending[name])
+            now = time.monotonic()
+            arriving = len(missing) < len(readers)
+            if not arriving or any(readers[name].get_matched_publications() for name in missing):
+                quiet_since = None
+            elif quiet_since is None:
+                quiet_since = now
+            if now > ceiling or (quiet_since is not None and now - quiet_since > WAIT_S):
                 raise Mismatch(f"no message within {WAIT_S:.0f} s on {', '.join(missing)}")
             time.sleep(0.0002)
         got = {name: pending[name].pop(0) for name in readers}
@@ -284,7 +304,7 @@ def main() -> int:
                 topics.sensor_data_values(simulator),
             )
 
-    deadline = time.monotonic() + WAIT_S
+    deadline = time.monotonic() + CEILING_S
     while not cmd_vel.get_matched_subscriptions():
         if time.monotonic() > deadline:
             print("driver: no bridge on /cmd_vel", file=sys.stderr)
@@ -306,7 +326,7 @@ def main() -> int:
             raise Mismatch(f"/tf_static lacks {sorted(expected_frames - frames)}")
         if args.sleep_sim > 0.0:
             # Sleeps on simulated time: waits for /clock, dropping what else comes.
-            deadline = time.monotonic() + WAIT_S
+            deadline = time.monotonic() + max(CEILING_S, WAIT_S)
             clock_ns = 0
             while clock_ns < args.sleep_sim * 1e9:
                 for name, reader in readers.items():
@@ -316,7 +336,7 @@ def main() -> int:
                                 clock_ns, message.clock.sec * 10**9 + message.clock.nanosec
                             )
                 if time.monotonic() > deadline:
-                    raise Mismatch(f"/clock stayed at {clock_ns} ns for {WAIT_S:.0f} s")
+                    raise Mismatch(f"/clock stayed at {clock_ns} ns for {CEILING_S:.0f} s")
                 time.sleep(0.001)
             for name in pending:
                 pending[name].clear()
