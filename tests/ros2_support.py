@@ -53,13 +53,39 @@ needs_namespace = pytest.mark.skipif(
 )
 
 
+#: What a run in the namespace may take at most: a ceiling that only bounds a hang (each test's
+#: processes end on what they wait for, never on a time), so a loaded machine never reaches it.
+CEILING_S = 600.0
+
+#: Python that defines ``await_background(index, *texts)``: returns once the ``index``-th
+#: background command of :func:`run_in_namespace` has written each of ``texts`` to its stderr,
+#: so that a foreground node lives until the bridge has seen it (and not for a guessed time).
+AWAIT_BACKGROUND = """
+import os as _os, time as _time
+def await_background(index, *texts):
+    path = _os.path.join(_os.environ["TMPDIR_NS"], f"bg{index}.err")
+    ceiling = _time.monotonic() + 300
+    while True:
+        with open(path, encoding="utf-8", errors="replace") as stream:
+            written = stream.read()
+        if all(text in written for text in texts):
+            return
+        assert _time.monotonic() < ceiling, f"background {index} never wrote {texts}: {written}"
+        _time.sleep(0.05)
+"""
+
+
 def run_in_namespace(
-    background: list[list[str]], foreground: list[str], timeout: float = 60.0, grace: float = 30.0
+    background: list[list[str]],
+    foreground: list[str],
+    timeout: float = CEILING_S,
+    grace: float = 30.0,
 ) -> subprocess.CompletedProcess[str]:
     """Runs ``background`` commands and then ``foreground`` in one new network namespace (only
     ``lo``, brought up); after the foreground one ends, waits for the background ones (SIGTERM
     after ``grace`` seconds; the exit status then counts 100 more for each that failed) and
-    returns the foreground's result, the background's stderr appended."""
+    returns the foreground's result, the background's stderr appended. The foreground finds the
+    ``index``-th background command's stderr in ``$TMPDIR_NS/bg<index>.err`` while it runs."""
     script = ["ip link set lo up", "pids="]
     for index, command in enumerate(background):
         quoted = " ".join(_quote(part) for part in command)
@@ -71,7 +97,7 @@ def run_in_namespace(
     script.append("kill $watchdog 2>/dev/null")
     script.append('cat "$TMPDIR_NS"/bg*.err >&2 2>/dev/null; exit $status')
     return subprocess.run(
-        ["unshare", "-n", "bash", "-c", "TMPDIR_NS=$(mktemp -d); " + "\n".join(script)],
+        ["unshare", "-n", "bash", "-c", "export TMPDIR_NS=$(mktemp -d); " + "\n".join(script)],
         capture_output=True,
         text=True,
         timeout=timeout,

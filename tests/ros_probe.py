@@ -41,7 +41,7 @@ from sensor_msgs.msg import LaserScan, Range
 from std_msgs.msg import Float64MultiArray, String
 from tf2_msgs.msg import TFMessage
 
-TIMEOUT_S = 20.0
+TIMEOUT_S = 120.0  # a ceiling for a hang: every wait ends on the messages it counts
 STATE_TOPICS = ("pose", "sensors", "sensor_data")
 
 

@@ -62,7 +62,7 @@ def run_probe(master: LocalMaster, *args: str) -> dict[str, Any]:
         env=master.env,
         capture_output=True,
         text=True,
-        timeout=60,
+        timeout=600,  # a ceiling for a hang: the probe ends on the messages it counts
         check=False,
     )
     assert result.returncode == 0, result.stdout + result.stderr
@@ -101,7 +101,7 @@ def topic_types(master: LocalMaster) -> dict[str, str]:
     return {str(topic): str(kind) for topic, kind in types}
 
 
-def wait_for_subscriber(master: LocalMaster, topic: str, timeout: float = 15.0) -> None:
+def wait_for_subscriber(master: LocalMaster, topic: str, timeout: float = 120.0) -> None:
     """Waits until some node subscribes ``topic`` (an absolute name such as ``/pose``)."""
     deadline = time.monotonic() + timeout
     while True:

@@ -1,5 +1,5 @@
 """Hostile and careless input (issue #15): each case runs in a fresh process under a 4 GiB
-address-space cap and 30 s, and must end in a correct result or a MazesimError: no abort, no
+address-space cap and 120 s, and must end in a correct result or a MazesimError: no abort, no
 PanicException, no other exception, no hang, no memory blow-up."""
 
 from __future__ import annotations

@@ -152,7 +152,7 @@ def test_a_forked_child_refuses_a_batch_its_parent_was_stepping(threads: int) ->
             fresh = _core.BatchSimulator(world, num_envs=2)
             fresh.step(np.zeros((2, 2), np.float32), *buffers(fresh))
             os._exit(code)
-        for _ in range(400):
+        for _ in range(2400):  # a ceiling of 120 s for a hang: the loop ends with the child
             done, status = os.waitpid(pid, os.WNOHANG)
             if done:
                 break

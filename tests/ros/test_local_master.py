@@ -1,8 +1,10 @@
 """The private ROS master's port: chosen where no outgoing connection can take it, and another
-one tried when roscore finds its own taken."""
+one tried when roscore finds its own taken; its waits are ceilings a loaded machine does not
+reach."""
 
 from __future__ import annotations
 
+import inspect
 import socket
 from pathlib import Path
 
@@ -33,3 +35,11 @@ def test_a_master_whose_port_is_taken_starts_on_another(tmp_path: Path) -> None:
             assert master.uri == f"http://127.0.0.1:{master.port}"
             assert master.env["ROS_MASTER_URI"] == master.uri
         assert master.leftovers() == []
+
+
+def test_the_master_s_waits_bound_a_hang_and_not_a_slow_start() -> None:
+    # roscore and rosout are Python processes: on a loaded 2-core machine their start took
+    # longer than the 15 s the master waited, and it gave up on a roscore about to answer.
+    for method in (LocalMaster.start, LocalMaster.wait_for_connections):
+        default = inspect.signature(method).parameters["timeout"].default
+        assert default == local_master.START_TIMEOUT_S >= 120.0, method

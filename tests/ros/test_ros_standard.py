@@ -271,7 +271,7 @@ def _run(code: str, command: list[str], cwd: Path) -> subprocess.CompletedProces
         cwd=cwd,
         capture_output=True,
         text=True,
-        timeout=60,
+        timeout=300,
         check=False,
     )
 
@@ -313,7 +313,7 @@ def test_rviz_opens_with_the_saved_config_only_where_it_can(
         env=env,
         capture_output=True,
         text=True,
-        timeout=60,
+        timeout=300,
         check=False,
     )
     assert result.returncode == 0, result.stderr  # never fails the launch

@@ -44,7 +44,8 @@ def main() -> int:
     parser.add_argument("--world", required=True)
     parser.add_argument("--steps", type=int, default=100)
     parser.add_argument("--distro", default="humble")
-    parser.add_argument("--wait", type=float, default=10.0)
+    # A ceiling that only bounds a hang: each wait ends on what it waits for.
+    parser.add_argument("--wait", type=float, default=180.0)
     parser.add_argument("--frame-prefix", action="store_true")
     args = parser.parse_args()
 

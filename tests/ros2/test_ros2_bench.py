@@ -16,7 +16,7 @@ SCRIPT = Path(__file__).resolve().parents[2] / "benches" / "ros2_lockstep.py"
 
 def _bench(goal: str) -> tuple[int, str]:
     command = [sys.executable, str(SCRIPT), "--steps", "200", "--repeats", "1", "--no-ros1"]
-    result = run_in_namespace([], [*command, "--goal", goal], timeout=120)
+    result = run_in_namespace([], [*command, "--goal", goal])
     return result.returncode, result.stdout
 
 

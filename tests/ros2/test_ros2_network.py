@@ -77,7 +77,7 @@ def test_without_the_extra_the_command_says_what_to_install() -> None:
         "sys.exit(main(['ros2', 'bridge']))\n"
     )
     result = subprocess.run(
-        [sys.executable, "-c", code], capture_output=True, text=True, timeout=60
+        [sys.executable, "-c", code], capture_output=True, text=True, timeout=300
     )
     assert result.returncode == 2
     assert 'pip install "mazesim[ros2]"' in result.stderr
@@ -120,7 +120,7 @@ def test_no_usable_network_interface_is_a_clear_error() -> None:
         ["unshare", "-n", *MAZESIM, "ros2", "bridge", "--stop-after", "1"],
         capture_output=True,
         text=True,
-        timeout=60,
+        timeout=300,
     )
     last = result.stderr.strip().splitlines()[-1]
     assert result.returncode != 0 and last.startswith("mazesim: error: Cyclone DDS could not"), last

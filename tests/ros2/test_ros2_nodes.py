@@ -54,7 +54,7 @@ def _bag_messages(bag: Path) -> dict[str, list[object]]:
 
 def test_hrl_navigator_over_ros2_reaches_the_goal_in_the_in_process_steps(tmp_path: Path) -> None:
     out = tmp_path / "demo"
-    result = run_in_namespace([], [*MAZESIM, "ros2", "demo", "--out", str(out)], timeout=120)
+    result = run_in_namespace([], [*MAZESIM, "ros2", "demo", "--out", str(out)])
     assert result.returncode == 0, result.stderr
     poses, goal = _in_process_hrl(seed=0)
     assert f"goal at step {goal}" in result.stdout
@@ -76,7 +76,7 @@ def test_sim_control_and_a_sim_time_timer_drive_a_free_running_bridge(tmp_path: 
     # A node on a 64 ms timer of simulation time (/clock), as use_sim_time gives.
     node = [*MAZESIM, "ros2", "avoid-collision", "--period-ms", "64"]
     control = [sys.executable, "-c", _CONTROL]
-    result = run_in_namespace([bridge, node], control, timeout=90, grace=1.0)
+    result = run_in_namespace([bridge, node], control, grace=1.0)
     assert result.returncode == 0, result.stderr
     found = _bag_messages(bag)
     clocks = [m.clock.sec * 10**9 + m.clock.nanosec for m in found["/clock"]]  # type: ignore[attr-defined]

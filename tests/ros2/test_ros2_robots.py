@@ -116,7 +116,7 @@ def _drive_two_robots(tmp_path: Path, steps: int, *options: str) -> Any:
     world.write_text(TWO_ROBOTS)
     bridge = [*MAZESIM, "ros2", "bridge", "--world", str(world), "--stop-after", str(steps)]
     driver = [sys.executable, str(SWARM_DRIVER), "--world", str(world), "--steps", str(steps)]
-    result = run_in_namespace([[*bridge, *options]], [*driver, *options], timeout=90)
+    result = run_in_namespace([[*bridge, *options]], [*driver, *options])
     assert result.returncode == 0, result.stderr
     assert f"stopped after {steps} steps" in result.stderr
     return result
@@ -158,7 +158,7 @@ def test_an_avoid_collision_node_per_robot_drives_each_in_its_namespace(tmp_path
     steps = 120
     bridge = [*MAZESIM, "ros2", "bridge", "--world", str(world), "--stop-after", str(steps)]
     nodes = [[*MAZESIM, "ros2", "avoid-collision", "--robot", name] for name in ("west", "east-1")]
-    result = run_in_namespace(nodes, [*bridge, "--bag", str(bag)], timeout=90, grace=1.0)
+    result = run_in_namespace(nodes, [*bridge, "--bag", str(bag)], grace=1.0)
     assert result.returncode == 0, result.stderr
     assert f"stopped after {steps} steps" in result.stderr
     # Each node answered every state of its own robot: the reset state and each step's.

@@ -18,7 +18,14 @@ from mazesim.ros2.unpublished import (
     outside_a_namespace,
     why_unpublished,
 )
-from ros2_support import MAZESIM, TWO_ROBOTS, needs_namespace, needs_ros2, run_in_namespace
+from ros2_support import (
+    AWAIT_BACKGROUND,
+    MAZESIM,
+    TWO_ROBOTS,
+    needs_namespace,
+    needs_ros2,
+    run_in_namespace,
+)
 
 PUBLISHED = ["/ps0", "/scan", "/odom", "/clock"]
 
@@ -141,11 +148,12 @@ def test_the_transforms_and_topics_the_bridge_does_not_publish_are_left_alone(to
 def test_two_bridges_on_one_domain_each_say_so_once() -> None:
     # Two simulations on one domain: a node reading /odom got both robots' odometry, and its
     # commands stepped both, and nothing said why.
-    # Each bridge runs long enough (300 steps, about 19 s) that a start delayed by a loaded
-    # machine still leaves the two of them running together.
-    bridge = [*MAZESIM, "ros2", "bridge", "--mode", "free", "--stop-after", "300"]
+    # The two bridges run until each has said so (however late a loaded machine starts one).
+    bridge = [*MAZESIM, "ros2", "bridge", "--mode", "free"]
+    said = "as this bridge does: every node reading it receives both"
+    both = AWAIT_BACKGROUND + f"await_background(0, {said!r})\nawait_background(1, {said!r})\n"
     result = run_in_namespace(
-        [bridge, [*bridge, "--world", "arena"]], ["sleep", "5"], timeout=120, grace=60.0
+        [bridge, [*bridge, "--world", "arena"]], [sys.executable, "-c", both], grace=1.0
     )
     assert result.returncode == 0, result.stderr
     assert result.stderr.count("as this bridge does: every node reading it receives both") == 2
@@ -153,7 +161,6 @@ def test_two_bridges_on_one_domain_each_say_so_once() -> None:
 
 
 USER_NODE = (
-    "import time\n"
     "from mazesim.ros2.node import Node\n"
     "from mazesim.ros2.qos import SENSOR, TopicQos\n"
     "node = Node('user_node')\n"
@@ -162,7 +169,9 @@ USER_NODE = (
     "node.writer('/cmd_vel', 'geometry_msgs/msg/Twist', TopicQos(False, False, 10))\n"
     "node.reader('/pose', 'geometry_msgs/msg/Twist', SENSOR)\n"
     "node.writer('/motor', 'std_msgs/msg/String', TopicQos(True, False, 10))\n"
-    "time.sleep(4)\n"
+    + AWAIT_BACKGROUND
+    + "await_background(0, 'a node reads /tof', 'a node reads /odom', 'a node writes /cmd_vel',"
+    " 'a node reads /pose', 'a node writes /motor')\n"
 )
 
 
@@ -172,9 +181,9 @@ def test_the_bridge_says_once_why_a_node_gets_nothing_or_sends_in_vain() -> None
     # A node of a random walk waiting for /tof from the e-puck, which reads /odom transient
     # local and writes /cmd_vel best effort: DDS matches neither with the bridge's endpoints.
     result = run_in_namespace(
-        [[*MAZESIM, "ros2", "bridge", "--mode", "free", "--stop-after", "150"]],
+        [[*MAZESIM, "ros2", "bridge", "--mode", "free"]],
         [sys.executable, "-c", USER_NODE],
-        timeout=60,
+        grace=1.0,
     )
     assert result.returncode == 0, result.stderr
     message = "a node reads /tof, which this bridge does not publish: the e-puck has no"
@@ -196,13 +205,13 @@ def test_the_bridge_says_once_why_a_node_gets_nothing_or_sends_in_vain() -> None
 #: reads /odom (depth 1) and writes /cmd_vel (depth 10), absolute names that -r __ns:=/west
 #: leaves as they are.
 CALIBRATOR = (
-    "import time\n"
     "from mazesim.ros2.node import Node\n"
     "from mazesim.ros2.qos import COMMAND, SENSOR\n"
     "node = Node('drive_calibrator')\n"
     "node.reader('/odom', 'nav_msgs/msg/Odometry', SENSOR._replace(depth=1))\n"
     "node.writer('/cmd_vel', 'geometry_msgs/msg/Twist', COMMAND)\n"
-    "time.sleep(4)\n"
+    + AWAIT_BACKGROUND
+    + "await_background(0, 'a node reads /odom', 'a node writes /cmd_vel')\n"
 )
 
 
@@ -223,12 +232,10 @@ def test_the_bridge_says_where_each_robot_has_the_topic_a_node_names_absolutely(
                 str(world),
                 "--mode",
                 "free",
-                "--stop-after",
-                "150",
             ]
         ],
         [sys.executable, "-c", CALIBRATOR],
-        timeout=60,
+        grace=1.0,
     )
     assert result.returncode == 0, result.stderr
     reads = "a node reads /odom, which this bridge does not publish: each robot of this world"

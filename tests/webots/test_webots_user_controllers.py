@@ -7,6 +7,7 @@ from __future__ import annotations
 import csv
 import json
 import math
+import re
 import shutil
 import subprocess
 from pathlib import Path
@@ -92,7 +93,10 @@ def test_reading_before_the_first_step_gives_nan(tmp_path: Path) -> None:
 def test_wall_clock_paced_controller_runs_to_the_time_limit(tmp_path: Path) -> None:
     result, summary = run_copy("wall_clock_pacing.py", tmp_path, "--world", "arena", seconds=1.5)
     assert f"paced {summary['steps']} steps" in result.stdout
-    assert "t=0.5" in result.stdout, "a status line after half a second"
+    # A status line after half a second of wall-clock time; the simulated time it shows is
+    # where a loaded machine let the run get by then (behind the wall clock when it lags).
+    status = re.findall(r"^t=(\d+\.\d\d) s wall=(\d+\.\d\d) s$", result.stdout, re.MULTILINE)
+    assert status and float(status[0][1]) >= 0.5 and 0.0 < float(status[0][0]) <= 1.5, status
     assert summary["reached_end"] and summary["simulated_seconds"] >= 1.5
 
 

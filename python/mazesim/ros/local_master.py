@@ -73,6 +73,11 @@ def processes_with(variable: str, value: str) -> list[tuple[int, str]]:
 #: Where :func:`free_loopback_port` looks first: below Linux's ephemeral range (32768-60999 by
 #: default), so that no outgoing connection is given the port between the pick and its use.
 LISTEN_PORTS = (20000, 32768)
+#: How long :meth:`LocalMaster.start` waits for roscore and rosout, and
+#: :meth:`LocalMaster.wait_for_connections` for nodes to connect, before it gives up: a ceiling
+#: that only bounds a hang (each wait ends as soon as what it waits for is there), generous
+#: enough for Python nodes starting on a loaded machine.
+START_TIMEOUT_S = 120.0
 #: Times :meth:`LocalMaster.start` tries another port when roscore finds its own one taken.
 PORT_ATTEMPTS = 4
 
@@ -164,7 +169,7 @@ class LocalMaster(Closing):
         """The file that receives the standard output and error of the process ``name``."""
         return os.path.join(self.home, f"{name}.log")
 
-    def start(self, timeout: float = 15.0) -> None:
+    def start(self, timeout: float = START_TIMEOUT_S) -> None:
         """Starts ``roscore -p PORT`` and waits until the master answers.
 
         Raises:
@@ -272,7 +277,11 @@ class LocalMaster(Closing):
         return [(str(row[4]), str(row[1]), str(row[2])) for row in info]
 
     def wait_for_connections(
-        self, publisher: str, topics: Sequence[str], subscriber: str, timeout: float = 15.0
+        self,
+        publisher: str,
+        topics: Sequence[str],
+        subscriber: str,
+        timeout: float = START_TIMEOUT_S,
     ) -> None:
         """Waits until node ``publisher`` is connected to node ``subscriber`` on every topic."""
         deadline = time.monotonic() + timeout

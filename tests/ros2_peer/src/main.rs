@@ -42,7 +42,7 @@ const TYPE_CHECK_INTERVAL: Duration = Duration::from_millis(200);
 /// How long a difference of types must last before it is reported: discovery announces a
 /// participant's readers one by one, so the bridge's Twist reader of `/cmd_vel` may be known a
 /// moment before its TwistStamped one.
-const TYPE_SETTLE: Duration = Duration::from_millis(1500);
+const TYPE_SETTLE: Duration = Duration::from_secs(10);
 
 /// Why the peer stopped: each kind has its exit status.
 enum Failure {
