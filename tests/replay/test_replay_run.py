@@ -169,7 +169,10 @@ def test_replay_command_writes_a_page_from_a_run(
 
 @pytest.mark.parametrize("episode", ["99", "-1"])
 def test_replay_refuses_an_episode_the_run_does_not_have_for_a_page_too(
-    navigator_demo: dict[str, Path], tmp_path: Path, capsys: pytest.CaptureFixture[str], episode: str
+    navigator_demo: dict[str, Path],
+    tmp_path: Path,
+    capsys: pytest.CaptureFixture[str],
+    episode: str,
 ) -> None:
     """``--episode 99`` of a run of one episode wrote a page as if it were not given (#35)."""
     page = tmp_path / "page.html"

@@ -329,19 +329,25 @@ class Field(NotSimulated):
 
     def setSFInt32(self, value: int) -> None:
         """Records a new value of an integer field."""
-        self._set_numbers("set_sf_int32", (self.SF_INT32,), field_value(value, 0, "Field.setSFInt32"))
+        self._set_numbers(
+            "set_sf_int32", (self.SF_INT32,), field_value(value, 0, "Field.setSFInt32")
+        )
 
     def setSFFloat(self, value: float) -> None:
         """Records a new value of a number field."""
         self._set_numbers(
-            "set_sf_float", (self.SF_FLOAT, self.SF_INT32), field_value(value, 1, "Field.setSFFloat")
+            "set_sf_float",
+            (self.SF_FLOAT, self.SF_INT32),
+            field_value(value, 1, "Field.setSFFloat"),
         )
 
     def setSFColor(self, values: list[float]) -> None:
         """Records a new value of a colour field (a Material's ``diffuseColor``: the rendering
         does not change)."""
         self._set_numbers(
-            "set_sf_color", (self.SF_COLOR, self.SF_VEC3F), field_value(values, 3, "Field.setSFColor")
+            "set_sf_color",
+            (self.SF_COLOR, self.SF_VEC3F),
+            field_value(values, 3, "Field.setSFColor"),
         )
 
     def setSFBool(self, value: bool) -> None:
@@ -454,9 +460,10 @@ _KINDS = {-2: "a str", -1: "a bool", 0: "an int of 32 bits", 1: "a finite number
 
 
 def field_value(value: Any, count: int, function: str) -> Any:
-    """The value a field setter ``function`` (``"Field.setSFVec3f"``) was given, checked against what the field holds:
-    the one check of every setter of :class:`Field`. ``count`` says what it takes: -2 a text,
-    -1 a bool, 0 an integer of 32 bits, 1 a number, else a list or tuple of at most ``count``
+    """The value a field setter ``function`` (``"Field.setSFVec3f"``) was given, checked
+    against what the field holds: the one check of every setter of :class:`Field`. ``count``
+    says what it takes: -2 a text, -1 a bool, 0 an integer of 32 bits, 1 a number, else a list
+    or tuple of at most ``count``
     finite numbers, of which missing ones are 0 as in Webots' Python API, which copies the list
     into a C array of ``count`` doubles (``setSFRotation([0, 0, -1])`` is the rotation by angle
     0): more values than the field holds, another kind of value, a NaN or a number beyond
@@ -484,9 +491,7 @@ def field_value(value: Any, count: int, function: str) -> Any:
             )
         return numbers
     if not isinstance(value, (list, tuple)):
-        raise WrongTypeError(
-            f"{where}: expected a list of {count} numbers, found {_a_type(value)}"
-        )
+        raise WrongTypeError(f"{where}: expected a list of {count} numbers, found {_a_type(value)}")
     if len(value) > count:
         raise InvalidArgumentError(
             f"{where}: expected a list of {count} numbers, found {len(value)}; "

@@ -33,9 +33,9 @@ from mazesim.webots.field import (
     _file_frame,
     _in,
     _out,
-    field_value,
     _refuse_scene_change,
     _yaw_of_rotation,
+    field_value,
 )
 from mazesim.webots.frames import (
     WORLD_FRAME,
