@@ -13,6 +13,7 @@ and written in the world file's frame (Webots' old NUE frame for worlds before R
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -402,7 +403,7 @@ class Field(NotSimulated):
 
     @value.setter
     def value(self, value: Any) -> None:
-        setters = {
+        setters: dict[int, Callable[[Any], None]] = {
             self.SF_VEC3F: self.setSFVec3f,
             self.SF_ROTATION: self.setSFRotation,
             self.SF_INT32: self.setSFInt32,
