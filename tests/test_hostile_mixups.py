@@ -174,6 +174,28 @@ def test_a_sweep_file_that_is_another_kind_or_names_no_world_says_so(tmp_path: P
     assert unknown.value.suggestion == "arena"
 
 
+def test_a_sweep_files_world_not_found_is_looked_for_beside_the_sweep_file(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A world name that is neither built in nor a file beside the sweep file: the message said
+    it was looked for in the current folder and meant none of the files beside the sweep file
+    (#35)."""
+    from mazesim.distributed.config import load_sweep_config
+
+    (tmp_path / "sub").mkdir()
+    (tmp_path / "elsewhere").mkdir()
+    (tmp_path / "sub" / "mine.toml").write_text(WORLD.read_text())
+    sweep = tmp_path / "sub" / "sweep.toml"
+    monkeypatch.chdir(tmp_path / "elsewhere")
+    for typed in ("mine", "mne.toml"):
+        sweep.write_text(f'[sweep]\n[grid]\nworld = "{typed}"\n')
+        with pytest.raises(UnknownNameError) as unknown:
+            load_sweep_config(sweep)
+        assert f"in {tmp_path / 'sub'};" in str(unknown.value)
+        assert "elsewhere" not in str(unknown.value)
+        assert unknown.value.suggestion == "mine.toml"
+
+
 def test_a_proto_file_given_as_a_world_is_named_a_proto_file(tmp_path: Path) -> None:
     """A PROTO file imported as a world was an empty world, without a word."""
     proto = tmp_path / "Foo.proto"

@@ -125,11 +125,13 @@ def unknown_name_or_file(
     files: str,
     suffixes: tuple[str, ...],
     context: str = "",
+    folder_of_names: str | None = None,
 ) -> UnknownNameError:
     """The error for ``path`` that is neither the name of a built-in ``kind`` (one of
     ``available``) nor a file: it says what the path is or where it was looked for, lists the
     built-in names and ``files`` (what else is taken), and ends with the closest built-in name or
-    file of ``suffixes`` beside it (a typo's likely fix).
+    file of ``suffixes`` beside it (a typo's likely fix). A relative path
+    is looked for in ``folder_of_names`` (a sweep file's folder), else in the current folder.
 
     A name with a folder or a suffix (``maps/maze.toml``, ``maze.toml``) is a path: the message
     says which folder does not exist, or which folder lacks the file; a path with a folder is
@@ -137,17 +139,19 @@ def unknown_name_or_file(
     message (``"sweep.toml: grid.world: "``: where the name was given)."""
     folder, file = os.path.split(path)
     is_path = bool(folder) or bool(os.path.splitext(file)[1])
-    where = "" if os.path.isabs(path) else f" in {os.getcwd()}"
+    base = folder_of_names or os.getcwd()
+    where = "" if os.path.isabs(path) else f" in {base}"
+    looked = os.path.join(folder_of_names, path) if folder_of_names else path
     try:
-        found = f"it is {_kind_of(os.stat(path).st_mode)}, not a {kind} file"
+        found = f"it is {_kind_of(os.stat(looked).st_mode)}, not a {kind} file"
     except OSError as unreadable:
         found = unreadable.strerror.lower() if unreadable.strerror else "no such file"
         if unreadable.errno == errno.ENOENT and is_path:
             found = (
                 f"there is no folder {folder!r}{where}"
-                if folder and not os.path.isdir(folder)
+                if folder and not os.path.isdir(os.path.join(base, folder))
                 else f"there is no file {file!r} in "
-                + (f"the folder {folder!r}{where}" if folder else os.getcwd())
+                + (f"the folder {folder!r}{where}" if folder else base)
             )
         elif not os.path.isabs(path):  # a relative path: say where it was looked for
             found = f"{found}{where}"
@@ -156,7 +160,11 @@ def unknown_name_or_file(
     unknown = UnknownNameError(
         f"{opening}{found}; built-in {kind}s: {', '.join(available)} (or a path to {files})",
         name=path,
-        nearby=world_files_beside(path, suffixes) + ([] if folder else available),
+        nearby=[
+            os.path.relpath(beside, folder_of_names) if folder_of_names else beside
+            for beside in world_files_beside(looked, suffixes)
+        ]
+        + ([] if folder else available),
     )
     unknown.available = available
     return unknown

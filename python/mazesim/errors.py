@@ -96,8 +96,10 @@ class UnknownNameError(MazesimError, LookupError):
 
 def _closest_name(name: str | None, available: list[str] | None, cutoff: float = 0.6) -> str | None:
     """The name of ``available`` closest to ``name`` (difflib's ratio of at least ``cutoff``), or
-    None: the one "did you mean" of the package. File names are compared by their stems
-    (``my-maz.toml`` to ``my-maze``), so that a shared folder or suffix makes no name close."""
+    else the one name that starts with what was typed, a shortened name (``avoid`` for
+    ``avoid-collision``), or None: the one "did you mean" of the package. File names are
+    compared by their stems (``my-maz.toml`` to ``my-maze``), so that a shared folder or suffix
+    makes no name close."""
     if name is None or not available:
         return None
     typed = _spelling(str(name))
@@ -106,7 +108,15 @@ def _closest_name(name: str | None, available: list[str] | None, cutoff: float =
         for each in available
     ]
     score, closest = max(scored)
-    return closest if score >= cutoff else None
+    if score >= cutoff:
+        return closest
+    # A name cut short: the first word or words of exactly one name (case aside).
+    longer = {
+        str(each)
+        for each in available
+        if len(typed) >= 2 and _spelling(str(each)).lower().startswith(typed.lower())
+    }
+    return longer.pop() if len(longer) == 1 else None
 
 
 def _spelling(name: str) -> str:

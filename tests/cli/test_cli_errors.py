@@ -271,12 +271,20 @@ def test_an_option_the_command_does_not_take_shows_its_usage_and_the_one_meant(
         (["webots", "rn", "x.py"], "mazesim webots", "argument COMMAND: invalid choice: 'rn' "),
         (["demo", "--controller", "hrll"], "mazesim demo", "argument --controller: invalid "),
         (["bench", "--workload", "contcat"], "mazesim bench", "argument --workload: invalid "),
+        # A name cut short: the one choice it starts (#35).
+        (["demo", "--controller", "avoid"], "mazesim demo", "argument --controller: invalid "),
     ],
 )
 def test_a_mistyped_command_or_choice_gets_the_one_meant(
     capsys: pytest.CaptureFixture[str], arguments: list[str], usage: str, error: str
 ) -> None:
-    meant = {"trian": "train", "rn": "run", "hrll": "hrl", "contcat": "contact"}
+    meant = {
+        "trian": "train",
+        "rn": "run",
+        "hrll": "hrl",
+        "contcat": "contact",
+        "avoid": "avoid-collision",
+    }
     typed = next(word for word in arguments if word in meant)
     assert main(arguments) == 2
     line = capsys.readouterr().err.strip().splitlines()[-1]

@@ -167,6 +167,20 @@ def test_replay_command_writes_a_page_from_a_run(
     assert "expected -o FILE.html, FILE.mp4 or FILE.gif" in capsys.readouterr().err
 
 
+@pytest.mark.parametrize("episode", ["99", "-1"])
+def test_replay_refuses_an_episode_the_run_does_not_have_for_a_page_too(
+    navigator_demo: dict[str, Path],
+    tmp_path: Path,
+    capsys: pytest.CaptureFixture[str],
+    episode: str,
+) -> None:
+    """``--episode 99`` of a run of one episode wrote a page as if it were not given (#35)."""
+    page = tmp_path / "page.html"
+    assert main(["replay", str(navigator_demo["run"]), "-o", str(page), "--episode", episode]) == 2
+    assert f"--episode {episode}: expected an episode of " in capsys.readouterr().err
+    assert not page.exists()
+
+
 def test_webots_run_records_every_step_of_the_controller(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

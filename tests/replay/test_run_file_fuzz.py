@@ -18,6 +18,7 @@ from robots_world import record_three_robots
 from test_replay_run import long_run
 
 import mazesim
+from mazesim.errors import RunFormatError
 from mazesim.replay import load_run, save_run
 from mazesim.replay.run import run_from_json
 
@@ -121,3 +122,18 @@ def test_the_unmutated_run_is_read(run_json: dict[str, Any], tmp_path: Path) -> 
     run = run_from_json(run_json, "fuzz.json")
     save_run(run, tmp_path / "again.json")
     assert load_run(tmp_path / "again.json").as_json() == run.as_json()
+
+
+@pytest.mark.parametrize("after", [b"garbage", b"\x00" * 512, b"\x1f\x8b"])
+def test_a_compressed_run_with_bytes_after_its_end_is_refused(
+    run_json: dict[str, Any], tmp_path: Path, after: bytes
+) -> None:
+    """Bytes after the end of a compressed run (a damaged or appended-to file) were passed over
+    and the file read as whole (#35)."""
+    path = tmp_path / "run.json.gz"
+    whole = gzip.compress(json.dumps(run_json).encode("utf-8"))
+    path.write_bytes(whole)
+    load_run(path)
+    path.write_bytes(whole + after)
+    with pytest.raises(RunFormatError, match=f"{len(after)} bytes after the end"):
+        load_run(path)

@@ -65,6 +65,13 @@ def run_replay(args: argparse.Namespace, out: TextIO) -> int:
         )
     refuse_overwriting_inputs([("-o", args.out)], [("the run", args.run_file)])
     run = load_run(args.run_file)
+    # Checked whatever the output: an HTML replay shows every episode, but an episode the run
+    # does not have is a mistake to say, not to pass over.
+    if not 0 <= args.episode < len(run.episodes):
+        raise InvalidArgumentError(
+            f"--episode {args.episode}: expected an episode of {args.run_file} from 0 to "
+            f"{len(run.episodes) - 1}"
+        )
     if suffix in (".html", ".htm"):
         from mazesim.replay.html import write_html
 

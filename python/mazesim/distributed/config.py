@@ -300,12 +300,13 @@ def _world_text(source: str, name: str, base_dir: str) -> str | None:
         path = os.path.join(base_dir, name)
         if not os.path.isfile(path):
             raise unknown_name_or_file(
-                path if os.path.dirname(name) or os.path.splitext(name)[1] else name,
+                name,
                 "world",
                 sorted(builtin_world_names()),
                 "a .toml world file, relative to the sweep file's folder",
                 (".toml",),
                 context=f"{source}: grid.world: ",
+                folder_of_names=base_dir,
             )
         text = read_text(
             path,

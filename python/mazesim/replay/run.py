@@ -460,6 +460,11 @@ def _decompressed(data: bytes, largest: int, too_large: RunFormatError, name: st
         pieces.append(piece)
     if not stream.eof:
         raise EOFError("the compressed file ends before its end")
+    if stream.unused_data:  # a run is one gzip stream: what follows it is a damaged file
+        raise zlib.error(
+            f"{len(stream.unused_data)} bytes after the end of the compressed run, where a "
+            "run file ends; the file was damaged or written into by something else"
+        )
     return b"".join(pieces)
 
 

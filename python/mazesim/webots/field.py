@@ -13,10 +13,19 @@ and written in the world file's frame (Webots' old NUE frame for worlds before R
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
+import numpy as np
+
 from mazesim._paths import read_input
-from mazesim.errors import MazesimError, MazesimIOError
+from mazesim.errors import (
+    InvalidArgumentError,
+    MazesimError,
+    MazesimIOError,
+    WrongTypeError,
+    _a_type,
+)
 from mazesim.webots import simulation as _simulations
 from mazesim.webots.devices import _print_error, webots_property
 from mazesim.webots.frames import enu_to_nue, nue_to_enu, rotation_matrix
@@ -244,11 +253,12 @@ class Field(NotSimulated):
     def setSFVec3f(self, values: list[float]) -> None:
         """Moves the robot, or what the node holds, to [x, y, z] (z is ignored: everything stays
         on the floor); another node's translation is recorded."""
+        vector = field_value(values, 3, "Field.setSFVec3f")
         if self._name != "translation":
             self._wrong("set_sf_vec3f")
             return
         node = self._node
-        x, y, z = _in(_padded(values, 3))
+        x, y, z = _in(vector)
         if node._live:
             node._set_field_pose(x, y, node._field_pose()[2])
         else:
@@ -267,11 +277,12 @@ class Field(NotSimulated):
     def setSFRotation(self, values: list[float]) -> None:
         """Turns the robot, or what the node holds, to an axis-angle rotation (its yaw about z is
         kept); another node's rotation is recorded."""
+        rotation = field_value(values, 4, "Field.setSFRotation")
         if self._name != "rotation":
             self._wrong("set_sf_rotation")
             return
         node = self._node
-        ax, ay, az, angle = _padded(values, 4)
+        ax, ay, az, angle = rotation
         ax, ay, az = _in([ax, ay, az])
         if node._live:
             x, y, _ = node._field_pose()
@@ -319,23 +330,34 @@ class Field(NotSimulated):
 
     def setSFInt32(self, value: int) -> None:
         """Records a new value of an integer field."""
-        self._set_numbers("set_sf_int32", (self.SF_INT32,), [int(value)])
+        self._set_numbers(
+            "set_sf_int32", (self.SF_INT32,), field_value(value, 0, "Field.setSFInt32")
+        )
 
     def setSFFloat(self, value: float) -> None:
         """Records a new value of a number field."""
-        self._set_numbers("set_sf_float", (self.SF_FLOAT, self.SF_INT32), [float(value)])
+        self._set_numbers(
+            "set_sf_float",
+            (self.SF_FLOAT, self.SF_INT32),
+            field_value(value, 1, "Field.setSFFloat"),
+        )
 
     def setSFColor(self, values: list[float]) -> None:
         """Records a new value of a colour field (a Material's ``diffuseColor``: the rendering
         does not change)."""
-        self._set_numbers("set_sf_color", (self.SF_COLOR, self.SF_VEC3F), _padded(values, 3))
+        self._set_numbers(
+            "set_sf_color",
+            (self.SF_COLOR, self.SF_VEC3F),
+            field_value(values, 3, "Field.setSFColor"),
+        )
 
     def setSFBool(self, value: bool) -> None:
         """Records a new value of a ``TRUE`` / ``FALSE`` field."""
+        flag = field_value(value, -1, "Field.setSFBool")
         if self._type != self.SF_BOOL:
             self._wrong("set_sf_bool")
             return
-        self._node._flags[self._name] = bool(value)
+        self._node._flags[self._name] = bool(flag)
 
     def c_sf_string(self) -> str | None:
         """The value of a string field (``name``, ``customData``, ``controller``)."""
@@ -347,12 +369,13 @@ class Field(NotSimulated):
     def setSFString(self, value: str) -> None:
         """Sets a string field (a robot's ``customData`` is what its controller's
         ``getCustomData`` reads)."""
+        text = field_value(value, -2, "Field.setSFString")
         if self._type != self.SF_STRING:
             self._wrong("set_sf_string")
             return
-        self._node._strings[self._name] = str(value)
+        self._node._strings[self._name] = text
         if self._name == "customData":
-            self._node._tell_custom_data(str(value))
+            self._node._tell_custom_data(text)
 
     @property
     def value(self) -> Any:
@@ -380,12 +403,15 @@ class Field(NotSimulated):
 
     @value.setter
     def value(self, value: Any) -> None:
-        if self._type == self.SF_VEC3F:
-            self.setSFVec3f(value)
-        elif self._type == self.SF_ROTATION:
-            self.setSFRotation(value)
-        else:
-            self.setSFString(value)
+        setters: dict[int, Callable[[Any], None]] = {
+            self.SF_VEC3F: self.setSFVec3f,
+            self.SF_ROTATION: self.setSFRotation,
+            self.SF_INT32: self.setSFInt32,
+            self.SF_FLOAT: self.setSFFloat,
+            self.SF_BOOL: self.setSFBool,
+            self.SF_COLOR: self.setSFColor,
+        }
+        setters.get(self._type, self.setSFString)(value)
 
     # Webots' Python API (its ctypes ``Field``, since R2023b) gives every single-value getter
     # as ``return self.value``: it reads the field by its own type whatever the getter's name
@@ -427,12 +453,71 @@ class Field(NotSimulated):
         return self.value
 
 
-def _padded(values: list[float], count: int) -> list[float]:
-    """The first ``count`` values as floats, missing ones 0: Webots' Python API copies the list
-    into a C array of ``count`` doubles, whose missing elements are 0
-    (``setSFRotation([0, 0, -1])`` is the rotation by angle 0)."""
-    numbers = [float(v) for v in list(values)[:count]]
+#: The largest magnitude of a number a field is set to: a position, an angle or a colour beyond
+#: it is no place in a world within mazesim's limits (``docs/reliability.md#input-limits``).
+LARGEST_FIELD_NUMBER = 1e9
+#: What each kind of value a field setter takes is, for its message (by ``count``).
+_KINDS = {-2: "a str", -1: "a bool", 0: "an int of 32 bits", 1: "a finite number"}
+
+
+def field_value(value: Any, count: int, function: str) -> Any:
+    """The value a field setter ``function`` (``"Field.setSFVec3f"``) was given, checked
+    against what the field holds: the one check of every setter of :class:`Field`. ``count``
+    says what it takes: -2 a text, -1 a bool, 0 an integer of 32 bits, 1 a number, else a list
+    or tuple of at most ``count``
+    finite numbers, of which missing ones are 0 as in Webots' Python API, which copies the list
+    into a C array of ``count`` doubles (``setSFRotation([0, 0, -1])`` is the rotation by angle
+    0): more values than the field holds, another kind of value, a NaN or a number beyond
+    :data:`LARGEST_FIELD_NUMBER` is refused, where Webots raises, instead of being dropped or
+    put into the world.
+
+    Raises:
+        WrongTypeError: A value of another kind.
+        InvalidArgumentError: Too many numbers, or one not finite or too large.
+    """
+    where = f"{function}()"
+    if count == -2:
+        if not isinstance(value, str):
+            raise WrongTypeError(f"{where}: expected {_KINDS[count]}, found {_a_type(value)}")
+        return value
+    if count == -1:
+        if not isinstance(value, (bool, int)):
+            raise WrongTypeError(f"{where}: expected {_KINDS[count]}, found {_a_type(value)}")
+        return bool(value)
+    if count in (0, 1):
+        numbers = [_field_number(value, where, integer=count == 0)]
+        if count == 0 and not -(2**31) <= numbers[0] < 2**31:
+            raise InvalidArgumentError(
+                f"{where}: expected {_KINDS[0]}, found {value!r}; give a value that fits 32 bits"
+            )
+        return numbers
+    if not isinstance(value, (list, tuple)):
+        raise WrongTypeError(f"{where}: expected a list of {count} numbers, found {_a_type(value)}")
+    if len(value) > count:
+        raise InvalidArgumentError(
+            f"{where}: expected a list of {count} numbers, found {len(value)}; "
+            f"give the field's {count} values"
+        )
+    numbers = [_field_number(v, where, integer=False) for v in value]
     return numbers + [0.0] * (count - len(numbers))
+
+
+def _field_number(value: Any, where: str, integer: bool) -> Any:
+    """One number of a field's value, as an int or a float (see :func:`field_value`)."""
+    kind = "an int" if integer else "a number"
+    if isinstance(value, (str, bytes)) or not isinstance(value, (int, float, np.number)):
+        raise WrongTypeError(f"{where}: expected {kind}, found {_a_type(value)}")
+    if integer:
+        if not float(value).is_integer():
+            raise InvalidArgumentError(f"{where}: expected {kind}, found {value!r}")
+        return int(value)
+    number = float(value)
+    if not math.isfinite(number) or abs(number) > LARGEST_FIELD_NUMBER:
+        raise InvalidArgumentError(
+            f"{where}: expected finite numbers of at most {LARGEST_FIELD_NUMBER:g} in "
+            f"magnitude, found {value!r}"
+        )
+    return number
 
 
 def _yaw_of_rotation(rotation: list[float]) -> float:

@@ -33,9 +33,9 @@ from mazesim.webots.field import (
     _file_frame,
     _in,
     _out,
-    _padded,
     _refuse_scene_change,
     _yaw_of_rotation,
+    field_value,
 )
 from mazesim.webots.frames import (
     WORLD_FRAME,
@@ -467,7 +467,7 @@ class Node(NotSimulated):
         Accepted for a robot, whose velocity comes from its wheels, and for static nodes."""
         if not self._held.bodies:
             return
-        values = _padded(velocity, 6)
+        values = field_value(velocity, 6, "Node.setVelocity")
         vx, vy, _ = _in(values[:3])
         turn_rate = _in(values[3:6])[2]
         objects = world_objects(self._simulation())

@@ -1,0 +1,86 @@
+"""Every setter of a Webots ``Field`` (and ``Node.setVelocity``) checks its value's shape and
+kind by one check (``mazesim.webots.field.field_value``, #35): more numbers than the field holds,
+another kind of value, or a number that is not finite is refused with a ``MazesimError`` naming
+the call, where it was dropped or put into the world (``setSFVec3f`` of 4 values silently lost
+the fourth)."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from mazesim.errors import InvalidArgumentError, WrongTypeError
+from supervised_world import supervisor_of
+
+#: (node, field, setter, value, error, what the message says)
+REFUSED = [
+    (
+        "EPUCK",
+        "translation",
+        "setSFVec3f",
+        [0.1, 0.0, 0.0, 9.0],
+        InvalidArgumentError,
+        "Field.setSFVec3f(): expected a list of 3 numbers, found 4",
+    ),
+    (
+        "GATE",
+        "translation",
+        "setSFVec3f",
+        [math.nan, 0.0, 0.0],
+        InvalidArgumentError,
+        "Field.setSFVec3f(): expected finite numbers",
+    ),
+    ("EPUCK", "translation", "setSFVec3f", [1e300, 0.0, 0.0], InvalidArgumentError, "found 1e+300"),
+    ("EPUCK", "translation", "setSFVec3f", "abc", WrongTypeError, "Field.setSFVec3f"),
+    ("EPUCK", "translation", "setSFVec3f", ["a", "b", "c"], WrongTypeError, "Field.setSFVec3f"),
+    (
+        "EPUCK",
+        "rotation",
+        "setSFRotation",
+        [0, 0, 1, 0.5, 7],
+        InvalidArgumentError,
+        "Field.setSFRotation(): expected a list of 4 numbers, found 5",
+    ),
+    ("EPUCK", "rotation", "setSFRotation", [0, 0, 1, math.inf], InvalidArgumentError, "found inf"),
+    ("EPUCK", "customData", "setSFString", b"abc", WrongTypeError, "Field.setSFString"),
+    ("EPUCK", "customData", "setSFString", 12, WrongTypeError, "Field.setSFString"),
+]
+
+
+@pytest.mark.parametrize(("node", "name", "setter", "value", "error", "says"), REFUSED)
+def test_a_field_value_of_another_shape_or_kind_is_refused(
+    tmp_path: Path, node: str, name: str, setter: str, value: Any, error: type, says: str
+) -> None:
+    supervisor = supervisor_of(tmp_path)
+    supervisor.step(32)
+    field = supervisor.getFromDef(node).getField(name)
+    before = field.value
+    with pytest.raises(error) as refused:
+        getattr(field, setter)(value)
+    assert says in str(refused.value)
+    assert field.value == before, "a refused value changed nothing"
+
+
+def test_the_value_property_checks_as_the_setters_do(tmp_path: Path) -> None:
+    supervisor = supervisor_of(tmp_path)
+    field = supervisor.getFromDef("EPUCK").getField("translation")
+    with pytest.raises(InvalidArgumentError, match="expected a list of 3 numbers, found 4"):
+        field.value = [0.1, 0.0, 0.0, 1.0]
+
+
+def test_fewer_numbers_are_padded_with_zeros_as_webots_pads_them(tmp_path: Path) -> None:
+    supervisor = supervisor_of(tmp_path)
+    field = supervisor.getFromDef("GATE").getField("translation")
+    field.setSFVec3f([0.2])
+    assert field.getSFVec3f() == [0.2, 0.0, 0.0]
+    field.setSFVec3f((0.1, 0.05, 0.05))
+    assert field.getSFVec3f() == [0.1, 0.05, 0.05]
+
+
+def test_a_velocity_of_seven_numbers_is_refused(tmp_path: Path) -> None:
+    supervisor = supervisor_of(tmp_path)
+    with pytest.raises(InvalidArgumentError, match=r"Node.setVelocity\(\): expected a list of 6"):
+        supervisor.getFromDef("BOX").setVelocity([0.0] * 7)
