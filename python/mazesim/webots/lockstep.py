@@ -33,6 +33,7 @@ radio and the supervisor see them all.
 from __future__ import annotations
 
 import contextlib
+import math
 import os
 import signal
 import sys
@@ -208,6 +209,8 @@ class Fleet:
         #: The ``customData`` a supervisor last wrote into each robot's node, numbered in the
         #: order written, which the robot reads after the world's next step.
         self._custom_data: dict[int, tuple[int, str]] = {}
+        #: The world's clock and the robots' poses before its last step (:meth:`velocity`).
+        self._before: tuple[float, dict[int, tuple[float, float, float]]] = (0.0, {})
         if self._path:
             self._file_lines = read_world_text(self._path).count("\n") + 1
 
@@ -234,6 +237,26 @@ class Fleet:
         x, y, yaw = self._simulators[index].pose
         return float(x), float(y), float(yaw)
 
+    def note_poses(self) -> None:
+        """Notes every robot's pose before the world's step (or at rest, after a reset), which
+        :meth:`velocity` measures the step's motion from."""
+        self._before = (self.clock(), {i: self.pose(i) for i in self._here()})
+
+    def velocity(self, index: int) -> tuple[float, float, float]:
+        """A robot's world-frame velocity over the world's last step: vx, vy (m/s) and turn
+        rate (rad/s), as its own controller measures it (0 before its first step and after a
+        supervisor put it somewhere)."""
+        clock, poses = self._before
+        dt = self.clock() - clock
+        if index not in poses or not dt > 0.0:
+            return 0.0, 0.0, 0.0
+        (x0, y0, yaw0), (x, y, yaw) = poses[index], self.pose(index)
+        return (x - x0) / dt, (y - y0) / dt, math.remainder(yaw - yaw0, math.tau) / dt
+
+    def _here(self) -> list[int]:
+        """The robots in the world now (those a supervisor removed left out)."""
+        return [i for i in range(len(self._simulators)) if i not in self.gone]
+
     def poses(self) -> list[tuple[float, float, float] | None]:
         """Every robot's x, y, yaw now, in the world's order, None for one a supervisor
         removed (one answer for a camera that recognises robots)."""
@@ -246,6 +269,7 @@ class Fleet:
         """Puts a robot at a new pose, at rest."""
         self._simulators[index].set_pose_pushed_out(x, y, yaw)
         self.moved.add(index)
+        self._before[1].pop(index, None)
 
     def set_custom_data(self, index: int, text: str) -> None:
         """Notes a supervisor's write of a robot's ``customData`` field, which the robot's
@@ -844,10 +868,12 @@ def _lockstep(
                     if not world.over:
                         if watch is not None:
                             watch(simulators, wheels)
+                        fleet.note_poses()
                         _step_world(simulators, traction.drive(wheels), world.radio, runs)
                         traction.settle()
                         if fleet.reset_asked:
                             fleet.reset_scene()
+                            fleet.note_poses()
                             for run, simulator in zip(runs, simulators):
                                 run.xs[-1], run.ys[-1] = (float(v) for v in simulator.pose[:2])
                         steps += 1

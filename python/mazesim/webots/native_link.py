@@ -77,7 +77,7 @@ __all__ = [
 ]
 
 #: The protocol's version (``LINK_VERSION`` in ``capi/src/link.h``).
-VERSION = 2
+VERSION = 3
 HELLO, STEP, CLEANUP, CALL = 1, 2, 3, 4
 ENABLE, DISABLE, SET_POSITION, SET_VELOCITY, SET_ACCELERATION, LED_SET = 1, 2, 3, 4, 5, 6
 #: The tag of the keyboard in ENABLE, DISABLE and readings.
@@ -276,6 +276,7 @@ class RobotLink:
             *(_text(str(v)) for v in (robot.getName(), robot.getModel(), robot.getCustomData())),
             *(_text(v) for v in (name, project, world)),
             _INT.pack(1 if robot.getSupervisor() else 0),
+            _INT.pack(1 if robot.getSynchronization() else 0),
             _INT.pack(len(self.devices)),
         ]
         for device in self.devices:

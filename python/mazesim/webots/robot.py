@@ -198,8 +198,10 @@ class Robot(NotSimulated):
     supervisor = webots_property("getSupervisor")
 
     def getSynchronization(self) -> bool:
-        """True: the simulation waits for the controller at every step."""
-        return True
+        """The robot's ``synchronization`` field (TRUE unless the world says FALSE), as Webots
+        gives it. mazesim waits for every controller at every step whatever it says: a run
+        without waiting would depend on how fast the controllers run."""
+        return self._simulation.scene.synchronization
 
     synchronization = webots_property("getSynchronization")
 

@@ -146,6 +146,7 @@ class Scene:
         defs: DEF name -> node type, in file order.
         robot_def: The robot node's DEF name, or None.
         supervisor: Whether the file says ``supervisor TRUE``.
+        synchronization: The robot's ``synchronization`` field (Webots' default TRUE).
         robot_name: The robot's ``name`` field (Webots' default for the E-puck, ``"e-puck"``).
         robot_custom_data: The robot's ``customData`` field.
         controller_args: The robot's ``controllerArgs`` (a list of strings since R2021a, one
@@ -207,6 +208,7 @@ class Scene:
     defs: dict[str, str] = field(default_factory=dict)
     robot_def: str | None = None
     supervisor: bool = False
+    synchronization: bool = True
     robot_name: str = "e-puck"
     robot_custom_data: str = ""
     controller_args: list[str] = field(default_factory=list)
@@ -324,6 +326,7 @@ def _scene(
             second = first_value(own, "version", Field.string) == "2"
             scene.traction_version = "2" if second else "1"
     scene.supervisor = bool(first_value(own, "supervisor", Field.flag))
+    scene.synchronization = first_value(own, "synchronization", Field.flag) is not False
     scene.lights = read_lights(every, scene.nue)
     if (arguments := first_value(own, "controllerArgs", _itself)) is not None:
         strings = [t.text[1:-1] for t in arguments.tokens if t.kind == "string"]

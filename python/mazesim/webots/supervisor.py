@@ -248,10 +248,10 @@ class Node(NotSimulated):
         return self._parent._planar()
 
     def _field_pose(self) -> Pose2:
-        """A live node's translation x, y and yaw as its fields give them (in its parent's
-        frame: a robot's is the world's)."""
-        pose = self._pose()
-        return relative(self._parent_planar(), pose) if self._on_body is not None else pose
+        """A live node's translation x, y and yaw as its fields give them: in its parent's
+        frame, as Webots gives every node's (a robot nested in a Transform, Pose or Group, as
+        the body a node follows)."""
+        return relative(self._parent_planar(), self._pose())
 
     def _field_height(self) -> float:
         """A live node's translation z: a movable body's as the file gives it, 0 for a robot."""
@@ -259,9 +259,7 @@ class Node(NotSimulated):
 
     def _set_field_pose(self, x: float, y: float, yaw: float) -> None:
         """Moves a live node to the translation x, y and yaw given in its parent's frame."""
-        if self._on_body is not None:
-            x, y, yaw = composed(self._parent_planar(), (x, y, yaw))
-        self._move(x, y, yaw)
+        self._move(*composed(self._parent_planar(), (x, y, yaw)))
 
     def _planar(self) -> Pose2:
         """The node's pose seen from above, composed through the nodes above it."""
@@ -454,6 +452,8 @@ class Node(NotSimulated):
         if self._on_body is not None:
             moving = world_objects(self._simulation()).body_velocities()
             vx, vy, yaw_rate = moving[self._held.bodies[0]]
+        elif self._fleet_index is not None:
+            vx, vy, yaw_rate = self._simulation().fleet.velocity(self._fleet_index)
         elif not self._robot:
             return [0.0] * 6
         else:

@@ -109,6 +109,7 @@ static void receive_description(void) {
   link_robot.project_path = receive_string();
   link_robot.world_path = receive_string();
   link_robot.supervisor = receive_int();
+  link_robot.synchronization = receive_int();
   link_robot.device_count = receive_int();
   if (link_robot.device_count < 0 || link_robot.device_count > 65534)
     link_failed("mazesim sent a malformed description");
@@ -324,7 +325,8 @@ bool wb_robot_get_supervisor(void) {
 }
 
 bool wb_robot_get_synchronization(void) {
-  return true;
+  link_start();
+  return link_robot.synchronization != 0;
 }
 
 WbRobotMode wb_robot_get_mode(void) {

@@ -12,7 +12,7 @@
 #include <webots/types.h>
 
 /* The protocol's version; both ends check it. */
-#define LINK_VERSION 2
+#define LINK_VERSION 3
 
 /* What the controller sends. */
 enum { LINK_HELLO = 1, LINK_STEP = 2, LINK_CLEANUP = 3, LINK_CALL = 4 };
@@ -67,6 +67,7 @@ typedef struct {
   char *project_path;
   char *world_path;
   int supervisor;
+  int synchronization;
   int device_count;
   Device *devices;
   int keyboard_period;
