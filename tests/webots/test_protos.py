@@ -390,6 +390,36 @@ def test_a_projects_own_e_puck_proto_adds_its_devices_to_the_e_puck(tmp_path: Pa
     assert other["robot_line"] == 9
 
 
+def test_a_projects_own_e_puck_protos_device_comments_do_not_swallow_the_world(
+    tmp_path: Path,
+) -> None:
+    """Webots 8's E-puck.proto documents its radio's fields in ``#`` comments, one with an
+    unclosed quote: the devices it adds are mounted on one line, where a comment would run over
+    the rest of the instance and the world's next nodes."""
+    (tmp_path / "protos").mkdir()
+    (tmp_path / "protos" / "E-puck.proto").write_text(
+        "#VRML_SIM V8.5 utf8\n"
+        "PROTO E-puck [\n  field SFVec3f translation 0 0 0\n]\n{\nDifferentialWheels {\n"
+        "  translation IS translation\n  children [\n"
+        '    Emitter {\n      type "radio"  # or "serial" or "infra-red\n'
+        "      range -1  # -1 or positive\n      channel 3\n"
+        '      name "radio"  # the one the controller asks for\n    }\n'
+        '    GPS { name "gps" }\n  ]\n}\n}\n'
+    )
+    text = (
+        "#VRML_SIM V8.5 utf8\n"
+        'E-puck {\n  translation 0.1 0 0.2\n  controller "brain"\n}\n'
+        "PointLight {\n  location 0 10 0\n}\n"
+    )
+    world = tmp_path / "worlds" / "old.wbt"
+    world.parent.mkdir()
+    world.write_text(text)
+    _, report = import_wbt(world)
+    devices = {d["name"]: d for d in report["extension_devices"]}
+    assert sorted(devices) == ["gps", "radio"]
+    assert devices["radio"]["fields"]["channel"] == 3
+
+
 def test_hidden_engine_state_in_an_instance_is_skipped(tmp_path: Path) -> None:
     protos = tmp_path / "protos"
     protos.mkdir()

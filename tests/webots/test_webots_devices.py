@@ -597,3 +597,39 @@ def test_an_e_puck_distance_sensor_in_a_slot_is_the_ds_its_proto_holds() -> None
         readings.append(sensor.getValue())
     # The PROTO's table: 383.84 at 2 cm, 104.09 at 6 cm (times the wall's reflection factor).
     assert readings[0] > 3.0 * readings[1] > 0.0, readings
+
+
+def test_sharps_infra_red_ranger_protos_are_the_distance_sensors_they_hold() -> None:
+    """Webots' ``SharpGP2D120`` (and its kin of ``projects/devices/sharp``) is a DistanceSensor
+    of the datasheet's table reading volts: mounted in a slot, or among a plain robot's
+    children, ``getDevice`` finds it, which a C++ controller dereferences at once."""
+    from mazesim.webots import import_wbt_text
+
+    text = (
+        "#VRML_SIM R2023b utf8\n"
+        "E-puck {\n  groundSensorsSlot [\n    SharpGP2D120 {\n      translation 0.01 0 0.03\n"
+        '      name "sharp_front"\n    }\n    SharpGP2Y0A02YK0F { }\n  ]\n}\n'
+        'Robot {\n  name "other"\n  children [\n    SharpGP2Y0A41SK0F { translation 0.05 0 0 }\n'
+        "  ]\n}\n"
+    )
+    _, report = import_wbt_text(text)
+    devices = {d["name"]: d for d in report["extension_devices"]}
+    assert set(devices) == {"sharp_front", "Sharp's IR sensor GP2Y0A02YK0F"}
+    sharp = devices["sharp_front"]
+    assert sharp["type"] == "DistanceSensor" and sharp["fields"]["model"] == "GP2D120"
+    assert sharp["fields"]["lookupTable"][0] == [0.03, 3.03, 0.005]
+    assert sharp["translation"] == pytest.approx([0.04, 0.0, 0.0303])
+    assert not any("Sharp" in w for w in report["warnings"])
+    robot = make_robot(report=report)
+    sensor = robot.getDevice("sharp_front")
+    sensor.enable(32)
+    assert sensor.getType() == sensor.GENERIC
+    readings = []
+    for gap in (0.05, 0.1, 0.2):  # from the sensor to the arena's wall at x = 0.495
+        simulations.current().move_robot(0.495 - 0.04 - gap, 0.0, 0.0)
+        robot.step(32)
+        readings.append(sensor.getValue())
+    # The datasheet's volts: 2.33 at 5 cm, 1.25 at 10 cm, 0.66 at 20 cm.
+    assert readings == pytest.approx([2.33, 1.25, 0.66], abs=0.03)
+    far = robot.getDevice("Sharp's IR sensor GP2Y0A02YK0F")
+    assert far.getLookupTable()[:3] == [0.15, 2.75, 0.015]

@@ -84,13 +84,144 @@ const BUILT_IN_NAMES: &[&str] = &[
     "receiver",
     "speaker",
 ];
-/// Webots' `E-puckDistanceSensor` PROTO (R2022a and later), the e-puck's own proximity sensor a
-/// world may mount again in a slot: a `DistanceSensor` named `ds` by default, placed at the
-/// PROTO's `translation` (default 0 0.005 0) and turned 0.16 rad about its z axis, of
-/// `type "infra-red"` and `aperture 0.1`, in a Solid of `model` [`EPUCK_DISTANCE_SENSOR_MODEL`],
-/// which tells the device its table: the e-puck's proximity sensors' own.
-const EPUCK_DISTANCE_SENSOR: &str = "E-puckDistanceSensor";
+/// A device PROTO of Webots' own that holds one device node with fields of its own setting: a
+/// world may mount it in a slot, or among a robot's children, as the device it holds.
+struct DeviceProto {
+    /// The PROTO's name.
+    proto: &'static str,
+    /// The node type it holds.
+    kind: &'static str,
+    /// The default of its `name` field.
+    default_name: &'static str,
+    /// The default of its `translation` field, metres.
+    translation: [f64; 3],
+    /// How far the PROTO turns its device about its own z axis, radians.
+    turn: f64,
+    /// The held node's fields a world may set through the PROTO (the others are the PROTO's).
+    kept: &'static [&'static str],
+    /// The held node's fields as the PROTO sets them: a kept field the world sets wins.
+    fixed: &'static [(&'static str, ProtoValue)],
+}
+
+/// A field value as a device PROTO writes it.
+enum ProtoValue {
+    Number(f64),
+    Text(&'static str),
+    Table(&'static [[f64; 3]]),
+}
+
+impl ProtoValue {
+    fn field(&self) -> DeviceField {
+        match self {
+            Self::Number(number) => DeviceField::Number(*number),
+            Self::Text(text) => DeviceField::Text((*text).to_string()),
+            Self::Table(rows) => DeviceField::Table(rows.to_vec()),
+        }
+    }
+}
+
+/// The `lookupTable` of Webots' `SharpGP2D120` and `SharpGP2Y0A41SK0F` PROTOs (distance in
+/// metres, volts, relative noise), from the sensors' datasheets: 4 to 30 cm.
+const SHARP_4_30_CM: &[[f64; 3]] = &[
+    [0.030, 3.03, 0.005],
+    [0.035, 2.78, 0.005],
+    [0.040, 2.72, 0.005],
+    [0.050, 2.33, 0.005],
+    [0.060, 2.01, 0.005],
+    [0.070, 1.76, 0.005],
+    [0.080, 1.55, 0.005],
+    [0.090, 1.40, 0.005],
+    [0.100, 1.25, 0.005],
+    [0.120, 1.04, 0.005],
+    [0.140, 0.92, 0.005],
+    [0.160, 0.82, 0.005],
+    [0.180, 0.73, 0.005],
+    [0.200, 0.66, 0.005],
+    [0.250, 0.53, 0.005],
+    [0.300, 0.42, 0.005],
+    [0.350, 0.37, 0.005],
+    [0.400, 0.31, 0.005],
+];
+/// The `lookupTable` of Webots' `SharpGP2Y0A02YK0F` PROTO: 20 to 150 cm.
+const SHARP_20_150_CM: &[[f64; 3]] = &[
+    [0.15, 2.75, 0.015],
+    [0.20, 2.51, 0.015],
+    [0.30, 1.99, 0.015],
+    [0.40, 1.52, 0.015],
+    [0.50, 1.25, 0.015],
+    [0.60, 1.04, 0.015],
+    [0.70, 0.87, 0.015],
+    [0.80, 0.79, 0.015],
+    [0.90, 0.74, 0.015],
+    [1.00, 0.69, 0.015],
+    [1.10, 0.60, 0.015],
+    [1.20, 0.55, 0.015],
+    [1.30, 0.50, 0.015],
+    [1.40, 0.47, 0.015],
+    [1.50, 0.45, 0.015],
+];
+/// The `model` of Webots' `E-puckDistanceSensor` PROTO, which tells the device its table: the
+/// e-puck's proximity sensors' own.
 const EPUCK_DISTANCE_SENSOR_MODEL: &str = "e-puck distance sensor";
+/// Webots' device PROTOs mazesim reads as the device they hold:
+/// - `E-puckDistanceSensor` (R2022a and later), the e-puck's own proximity sensor: a
+///   `DistanceSensor` named `ds` by default, at the PROTO's `translation` (default 0 0.005 0),
+///   turned 0.16 rad about its z axis, of `type "infra-red"` and `aperture 0.1`, in a Solid of
+///   `model` [`EPUCK_DISTANCE_SENSOR_MODEL`];
+/// - Sharp's infra-red rangers of `projects/devices/sharp` (`SharpGP2D120`, `SharpGP2Y0A41SK0F`,
+///   `SharpGP2Y0A02YK0F`): a generic `DistanceSensor` of the datasheet's table, reading volts,
+///   named after the sensor (`Sharp's IR sensor GP2D120`).
+const DEVICE_PROTOS: &[DeviceProto] = &[
+    DeviceProto {
+        proto: "E-puckDistanceSensor",
+        kind: "DistanceSensor",
+        default_name: "ds",
+        translation: [0.0, 0.005, 0.0],
+        turn: 0.16,
+        kept: &["numberOfRays"],
+        fixed: &[
+            ("type", ProtoValue::Text("infra-red")),
+            ("aperture", ProtoValue::Number(0.1)),
+            ("model", ProtoValue::Text(EPUCK_DISTANCE_SENSOR_MODEL)),
+        ],
+    },
+    DeviceProto {
+        proto: "SharpGP2D120",
+        kind: "DistanceSensor",
+        default_name: "Sharp's IR sensor GP2D120",
+        translation: [0.0; 3],
+        turn: 0.0,
+        kept: &["model"],
+        fixed: &[
+            ("model", ProtoValue::Text("GP2D120")),
+            ("lookupTable", ProtoValue::Table(SHARP_4_30_CM)),
+        ],
+    },
+    DeviceProto {
+        proto: "SharpGP2Y0A41SK0F",
+        kind: "DistanceSensor",
+        default_name: "Sharp's IR sensor GP2Y0A41SK0F",
+        translation: [0.0; 3],
+        turn: 0.0,
+        kept: &["model"],
+        fixed: &[
+            ("model", ProtoValue::Text("GP2Y0A41SK0F")),
+            ("lookupTable", ProtoValue::Table(SHARP_4_30_CM)),
+        ],
+    },
+    DeviceProto {
+        proto: "SharpGP2Y0A02YK0F",
+        kind: "DistanceSensor",
+        default_name: "Sharp's IR sensor GP2Y0A02YK0F",
+        translation: [0.0; 3],
+        turn: 0.0,
+        kept: &["model"],
+        fixed: &[
+            ("model", ProtoValue::Text("GP2Y0A02YK0F")),
+            ("lookupTable", ProtoValue::Table(SHARP_20_150_CM)),
+        ],
+    },
+];
 /// Device types whose node an e-puck saved expanded keeps with its own fields (a radio's
 /// channel and range, a camera's size and field of view): they replace the e-puck's devices of
 /// the same name.
@@ -199,6 +330,14 @@ impl<'d> Importer<'d> {
                 continue;
             }
             let kind = node.type_name.as_str();
+            if let Some(proto) = DEVICE_PROTOS.iter().find(|p| p.proto == kind) {
+                let name = self.strings(node, "name").first().cloned();
+                let name = name.unwrap_or_else(|| proto.default_name.to_string());
+                if !(e_puck && BUILT_IN_NAMES.contains(&name.as_str())) {
+                    self.device_proto(node, "children", &frame, proto);
+                }
+                continue;
+            }
             let local = if JOINTS.contains(&kind) {
                 Frame::IDENTITY
             } else {
@@ -231,8 +370,8 @@ impl<'d> Importer<'d> {
         if BUILT_IN_EXTENSIONS.contains(&kind) {
             return;
         }
-        if kind == EPUCK_DISTANCE_SENSOR {
-            return self.epuck_distance_sensor(node, slot, frame);
+        if let Some(proto) = DEVICE_PROTOS.iter().find(|p| p.proto == kind) {
+            return self.device_proto(node, slot, frame, proto);
         }
         let local = self.local_frame(node, [0.0; 3]);
         let frame = frame.then(&local);
@@ -259,23 +398,23 @@ impl<'d> Importer<'d> {
         }
     }
 
-    /// An `E-puckDistanceSensor` in a slot, as the `DistanceSensor` its PROTO holds.
-    fn epuck_distance_sensor(&mut self, node: &'d Node, slot: &str, frame: &Frame) {
-        let local = self.local_frame(node, [0.0, 0.005, 0.0]);
-        let turn = axis_angle([0.0, 0.0, 1.0], 0.16).unwrap_or(IDENTITY);
+    /// A device PROTO of Webots' own (in a slot, or among a robot's children, below `frame`),
+    /// as the device it holds.
+    fn device_proto(&mut self, node: &'d Node, slot: &str, frame: &Frame, proto: &DeviceProto) {
+        let local = self.local_frame(node, proto.translation);
+        let turn = axis_angle([0.0, 0.0, 1.0], proto.turn).unwrap_or(IDENTITY);
         let frame = frame.then(&local).then(&Frame::rotation(turn));
-        self.device(node, slot, &frame, "ds");
+        self.device(node, slot, &frame, proto.default_name);
         if let Some(device) = self.devices.last_mut() {
-            device.kind = "DistanceSensor".into();
-            device.fields.retain(|(name, _)| name == "numberOfRays");
-            device.fields.extend([
-                ("type".to_string(), DeviceField::Text("infra-red".into())),
-                ("aperture".to_string(), DeviceField::Number(0.1)),
-                (
-                    "model".to_string(),
-                    DeviceField::Text(EPUCK_DISTANCE_SENSOR_MODEL.into()),
-                ),
-            ]);
+            device.kind = proto.kind.into();
+            device
+                .fields
+                .retain(|(name, _)| proto.kept.contains(&name.as_str()));
+            for (name, value) in proto.fixed {
+                if !device.fields.iter().any(|(set, _)| set == name) {
+                    device.fields.push(((*name).to_string(), value.field()));
+                }
+            }
         }
     }
 

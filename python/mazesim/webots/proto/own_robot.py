@@ -15,6 +15,7 @@ from mazesim.errors import WorldFormatError
 
 from .definition import parse_definition
 from .syntax import Field, Node, first_value, parse_nodes
+from .templates import without_comments
 
 __all__ = ["OWN_ROBOT_TYPES", "added_devices", "outermost", "with_devices"]
 
@@ -40,7 +41,8 @@ _TEMPLATE = re.compile(r"%<.*?>%|%\{.*?\}%", re.S)
 
 def added_devices(proto_text: str, origin: str) -> list[tuple[str, str]]:
     """The devices the PROTO file adds to the stock e-puck: ``(name, node text)`` each, the
-    node's text on one line; empty when it cannot be read."""
+    node's text on one line without its ``#`` comments (on one line a comment would run to the
+    instance's end); empty when it cannot be read."""
     try:
         body = parse_definition(proto_text, origin).body
         nodes = parse_nodes(_TEMPLATE.sub(" ", body), origin)
@@ -52,7 +54,7 @@ def added_devices(proto_text: str, origin: str) -> list[tuple[str, str]]:
         text = stripped[node.start : node.end]
         name = first_value([node], "name", Field.string) or node.type_name.lower()
         if name not in _STOCK_NAMES and " IS " not in f" {text} ":
-            found.append((name, " ".join(text.split())))
+            found.append((name, " ".join(without_comments(text).split())))
     return found
 
 
