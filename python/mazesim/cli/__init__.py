@@ -139,10 +139,14 @@ def _refuse_unknown(
         option.lstrip("-"): option for action in parser._actions for option in action.option_strings
     }
     typed = [word.partition("=")[0] for word in unknown if word.startswith("-")]
+    # An option another command takes is named as such, not read as a slip of one of this
+    # command's (`webots run --robot` is no shortened `--robot-controller`).
+    elsewhere = _commands_taking(typed, parser.prog)
     meant = [
         f"{options[closest]!r} for {word!r}"
         for word in typed
-        if (closest := _closest_name(word.lstrip("-"), list(options), 0.8)) is not None
+        if word not in elsewhere
+        and (closest := _closest_name(word.lstrip("-"), list(options), 0.8)) is not None
     ]
     # An argument the command takes without an option, given with one (`show --world X`).
     positional = {
@@ -156,7 +160,8 @@ def _refuse_unknown(
         for word in typed
         if (name := word.lstrip("-").replace("-", "_")) in positional
     ]
-    elsewhere = [] if meant or given else _commands_taking(typed, parser.prog)
+    if meant or given:
+        elsewhere = {}
     if not (meant or given or elsewhere):
         # The start of one option's name (`demo --sec`): options are taken by their whole name
         # only, so say which one it starts.
@@ -169,16 +174,16 @@ def _refuse_unknown(
         f"unrecognized arguments: {' '.join(unknown)}"
         + (f"; did you mean {', '.join(meant)}?" if meant else "")
         + "".join(f"; {each}" for each in given)
-        + "".join(f"; {each}" for each in elsewhere)
+        + "".join(f"; {each}" for each in elsewhere.values())
     )
 
 
-def _commands_taking(typed: list[str], prog: str) -> list[str]:
+def _commands_taking(typed: list[str], prog: str) -> dict[str, str]:
     """For each option of ``typed`` that the command ``prog`` lacks but others take (``mazesim
     demo --policy``): which commands take it (``--policy is an option of mazesim eval, ...``),
     so that a user who reached for the wrong command is told the right one."""
     if not typed:
-        return []
+        return {}
     taking: dict[str, list[str]] = {word: [] for word in typed}
 
     def walk(parser: argparse.ArgumentParser) -> None:
@@ -191,12 +196,12 @@ def _commands_taking(typed: list[str], prog: str) -> list[str]:
                     taking[word].append(parser.prog)
 
     walk(build_parser())
-    return [
-        f"{word} is an option of {', '.join(sorted(set(progs)))}"
+    return {
+        word: f"{word} is an option of {', '.join(sorted(set(progs)))}"
         + (" (see its --help)" if len(set(progs)) == 1 else "")
         for word, progs in taking.items()
         if progs
-    ]
+    }
 
 
 def _command_word(arguments: Sequence[str]) -> str:
