@@ -134,7 +134,8 @@ def _refuse_unknown(
         if commands is None or chosen not in commands.choices:
             break
         parser = commands.choices[chosen]
-    # Compared without their dashes, and closer than names must be: short words look alike.
+    # Compared without their dashes, and closer than names must be: short words look alike. The
+    # start of one option's name (`demo --sec`) is told that name: options are taken whole.
     options = {
         option.lstrip("-"): option for action in parser._actions for option in action.option_strings
     }
@@ -162,14 +163,6 @@ def _refuse_unknown(
     ]
     if meant or given:
         elsewhere = {}
-    if not (meant or given or elsewhere):
-        # The start of one option's name (`demo --sec`): options are taken by their whole name
-        # only, so say which one it starts.
-        meant = [
-            f"{options[starting[0]]!r} for {word!r}"
-            for word in typed
-            if len(starting := [name for name in options if name.startswith(word.lstrip("-"))]) == 1
-        ]
     parser.error(
         f"unrecognized arguments: {' '.join(unknown)}"
         + (f"; did you mean {', '.join(meant)}?" if meant else "")
