@@ -25,6 +25,10 @@ from proximity_probe import SENSORS, plain_robot, probe_world_run, table_text
 #: The 10-bit proximity table of some course worlds (the e-puck's values scaled to 0..1023).
 TEN_BIT = ((0.0, 1023.0, 0.0), (0.005, 868.0, 0.0), (0.01, 539.0, 0.0), (0.02, 169.0, 0.0))
 TEN_BIT += ((0.03, 59.0, 0.0), (0.07, 17.0, 0.0))
+#: The e-puck2's time-of-flight table (E-puck.proto, version "2", DistanceSensor "tof"):
+#: distance (m), reading (mm), relative noise.
+TOF_TABLE = ((0.0, 19.8, 0.126), (0.05, 58.5, 0.032), (0.1, 111.0, 0.019), (0.2, 218.9, 0.009))
+TOF_TABLE += ((0.5, 531.9, 0.007), (1.0, 1052.0, 0.01), (1.7, 1780.5, 0.013), (2.0, 2000.0, 0.0))
 #: Distances not increasing: the profile format refuses it.
 REFUSED = ((0.02, 500.0, 0.0), (0.01, 1000.0, 0.0), (0.07, 10.0, 0.0))
 
@@ -337,3 +341,25 @@ def test_an_expanded_e_puck_s_sensor_poses_are_composed_through_its_solids() -> 
     turned = own_sensors("e-puck", read_scene(expanded_e_puck(turn_ps1=0.5)))
     assert list(turned.poses) == ["ps1"]
     assert turned.poses["ps1"] == pytest.approx((0.022, -0.025, -0.3))
+
+
+def test_the_e_puck2_tof_answers_with_the_table_it_reads_through() -> None:
+    """The e-puck2's time-of-flight sensor reads through its own table (millimetres, up to
+    2 m), and its lookup-table API answers with that table, not the proximity sensors'."""
+    text = ARENA + 'E-puck { version "2" controller "void" }\n'
+    world, report = import_wbt_text(text, "tof.wbt")
+    assert report["robot_profile"] == "e-puck2"
+    scene = read_scene(text, report.get("robot_model"), report.get("robot_line"))
+    prepare(world, seconds=1.0, noise=False, report=report, scene=scene)
+    robot = controller.Robot()
+    tof, ps0 = robot.getDevice("tof"), robot.getDevice("ps0")
+    assert tof.getLookupTable() == [v for row in TOF_TABLE for v in row]
+    assert (tof.getMinValue(), tof.getMaxValue()) == (19.8, 2000.0)
+    assert (tof.getMinRange(), tof.getMaxRange()) == (0.0, 2.0)
+    assert tof.getType() == tof.GENERIC
+    tof.enable(32)
+    robot.step(32)
+    # The wall ahead is 0.25 m from the centre, the sensor 0.034 m ahead of it: about 230 mm.
+    assert 200.0 < tof.getValue() < 260.0
+    assert ps0.getLookupTable() == [v for row in PROXIMITY_TABLE for v in row]
+    assert ps0.getType() == ps0.INFRA_RED and ps0.getMaxValue() == 4095.0

@@ -17,9 +17,11 @@ from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 
+from mazesim._toml import load_toml
 from mazesim.webots.node_types import node_type
 
 if TYPE_CHECKING:
+    from mazesim._core import RobotProfile
     from mazesim.webots.simulation import RobotSimulation
 
 __all__ = ["LED", "Device", "DistanceSensor", "Motor", "PositionSensor"]
@@ -37,8 +39,6 @@ PROXIMITY_TABLE = (
     (0.06, 104.09, 0.03065),
     (0.07, 67.19, 0.04897),
 )
-#: The ground sensors' lookup table of Webots' E-puckGroundSensors PROTO.
-GROUND_TABLE = ((0.0, 1000.0, 0.002), (0.016, 300.0, 0.004))
 #: Proportional gain of Webots' motor position control (Motor.controlPID default 10 0 0).
 POSITION_GAIN = 10.0
 
@@ -96,6 +96,34 @@ class LookupTable:
     def flat(self) -> list[float]:
         """The table as Webots' ``getLookupTable`` returns it."""
         return [number for row in self.rows for number in row]
+
+
+#: A sensor model of a robot profile: its kind (``infrared``, ``range``, ``ground``) and table.
+SensorModel = tuple[str, tuple[Row, ...]]
+
+
+@functools.lru_cache(maxsize=64)
+def profile_sensor_models(
+    profile: RobotProfile,
+) -> tuple[tuple[SensorModel, ...], tuple[SensorModel, ...]]:
+    """The models of ``profile``'s distance sensors and of its ground sensors, each in the
+    profile's order (the order of the simulator's readings): the kind of the model a sensor
+    reads through and that model's table, the one the simulator reads the sensor with (a copy
+    of a built-in profile with a world's own tables holds them)."""
+    layout = load_toml(profile.to_toml(), f"the {profile.name} profile")
+    models = layout.get("models", {})
+
+    def model_of(sensor: dict[str, Any]) -> SensorModel:
+        model = models[sensor["model"]]
+        rows = tuple(
+            (float(row[0]), float(row[1]), float(row[2]) if len(row) > 2 else 0.0)
+            for row in model["table"]
+        )
+        return str(model["kind"]), rows
+
+    distance = tuple(model_of(sensor) for sensor in layout.get("distance_sensors", []))
+    ground = tuple(model_of(sensor) for sensor in layout.get("ground_sensors", []))
+    return distance, ground
 
 
 class _Tabled:
@@ -377,7 +405,10 @@ class DistanceSensor(_Tabled, _ScalarSensor):
 
     Readings are the raw values of Webots' e-puck model (about 4095 touching, 67 at 7 cm and
     beyond; ground: about 856 on white, 300 on black), or of the world's own ``lookupTable``
-    of the sensor (:attr:`RobotSimulation.sensor_tables`).
+    of the sensor (:attr:`RobotSimulation.sensor_tables`); the e-puck2's ``tof`` reads its
+    distance in millimetres. ``getLookupTable``, ``getMinValue``, ``getMaxValue`` and the
+    ranges come from the table the simulator reads the sensor with
+    (:func:`profile_sensor_models`).
     """
 
     _node_type = node_type("DISTANCE_SENSOR")
@@ -392,9 +423,12 @@ class DistanceSensor(_Tabled, _ScalarSensor):
         super().__init__(name, simulation)
         self._index = index
         self._ground = ground
-        # The world's own lookupTable of this sensor when the simulation reads through it.
-        world_table = simulation.sensor_tables.get(name)
-        self._table = LookupTable(world_table or (GROUND_TABLE if ground else PROXIMITY_TABLE))
+        # The table the simulator reads this sensor with: the world's own lookupTable of it
+        # when the simulation reads through that, else its model's in the robot's profile (a
+        # world of several robots gives each robot's process the built-in profile alone).
+        kind, table = profile_sensor_models(simulation.simulator.robot)[ground][index]
+        self._table = LookupTable(simulation.sensor_tables.get(name) or table)
+        self._kind = kind
 
     def _read(self) -> float:
         readings = (
@@ -413,10 +447,13 @@ class DistanceSensor(_Tabled, _ScalarSensor):
         return max((row[1] for row in self._table.rows), default=0.0)
 
     def getType(self) -> int:
-        """:data:`INFRA_RED`, or the world's ``type`` of the sensor
-        (:attr:`RobotSimulation.sensor_types`)."""
+        """The world's ``type`` of the sensor (:attr:`RobotSimulation.sensor_types`), else
+        :data:`GENERIC` for a sensor its profile reads by distance alone (a ``range`` model: the
+        e-puck2's time-of-flight ``tof``), :data:`INFRA_RED` for the others."""
         given = self._simulation.sensor_types.get(self._name)
-        return self.INFRA_RED if given is None else DISTANCE_SENSOR_TYPES.get(given, self.GENERIC)
+        if given is None:
+            return self.GENERIC if self._kind == "range" else self.INFRA_RED
+        return DISTANCE_SENSOR_TYPES.get(given, self.GENERIC)
 
     def getMaxRange(self) -> float:
         """The table's last distance (m)."""
