@@ -601,3 +601,29 @@ def test_an_option_is_taken_by_its_whole_name_only(
     assert main(["demo", "--sec", "2"]) == 2
     line = capsys.readouterr().err.strip().splitlines()[-1]
     assert line.endswith("unrecognized arguments: --sec 2; did you mean '--seconds' for '--sec'?")
+
+
+@pytest.mark.parametrize(
+    ("typed", "meant", "where"),
+    [
+        ("braitenburg", "braitenberg", "mazesim bench --workload"),
+        ("avoid-colision", "avoid-collision", "mazesim demo --controller"),
+        ("e-puck_avoid_obstacle", "e-puck_avoid_obstacles", "its PROTO's default"),
+    ],
+)
+def test_a_mistyped_built_in_controller_is_told_the_one_meant(
+    capsys: pytest.CaptureFixture[str], typed: str, meant: str, where: str
+) -> None:
+    assert main(["webots", "run", "world.wbt", typed]) == 2
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert line.startswith(f"mazesim webots run: error: unrecognized arguments: {typed}; "), line
+    assert f"did you mean the built-in controller {meant!r}? it runs in " in line, line
+    assert where in line, line
+
+
+def test_a_stray_word_far_from_every_built_in_controller_is_told_none(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    assert main(["webots", "run", "world.wbt", "banana"]) == 2
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert line == "mazesim webots run: error: unrecognized arguments: banana", line

@@ -121,6 +121,35 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
     return parser
 
 
+#: The controllers mazesim has built in, by name, and where each runs: a stray word close to one
+#: (`mazesim webots run WORLD braitenburg`) is told the name and where to give it.
+BUILT_IN_CONTROLLERS = {
+    "braitenberg": "BatchSimulator.run(controller='braitenberg') and mazesim bench --workload",
+    "avoid-collision": "mazesim demo --controller and BatchSimulator.run(controller=...)",
+    "random": "BatchSimulator.run(controller='random') and mazesim bench --workload",
+    "hrl": "mazesim demo --controller",
+    "e-puck_avoid_obstacles": (
+        "mazesim webots run, for a world's E-puck that names no controller (its PROTO's default)"
+    ),
+}
+
+
+def _built_in_meant(words: list[str]) -> list[str]:
+    """For each word of ``words`` that is not an option and is close to the name of a controller
+    mazesim has built in (:data:`BUILT_IN_CONTROLLERS`): that name and where it runs."""
+    meant = []
+    for word in words:
+        if word.startswith("-"):
+            continue
+        closest = _closest_name(word, list(BUILT_IN_CONTROLLERS), 0.8)
+        if closest is not None:
+            meant.append(
+                f"did you mean the built-in controller {closest!r}? it runs in "
+                f"{BUILT_IN_CONTROLLERS[closest]}"
+            )
+    return meant
+
+
 def _refuse_unknown(
     parser: argparse.ArgumentParser, args: argparse.Namespace, unknown: list[str]
 ) -> NoReturn:
@@ -168,6 +197,7 @@ def _refuse_unknown(
         + (f"; did you mean {', '.join(meant)}?" if meant else "")
         + "".join(f"; {each}" for each in given)
         + "".join(f"; {each}" for each in elsewhere.values())
+        + "".join(f"; {each}" for each in _built_in_meant(unknown))
     )
 
 
