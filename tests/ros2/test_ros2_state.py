@@ -48,3 +48,15 @@ def test_imu_noise_is_webots_share_of_each_value_and_replays_from_its_seed() -> 
     again = _imu_run(5)
     assert [m.linear_acceleration.z for m in again] == gravity
     assert [m.linear_acceleration.z for m in _imu_run(6)] != gravity
+
+
+def test_a_state_published_again_carries_the_same_imu_readings() -> None:
+    # The reset state sent again before the first command (a node answering from its second
+    # message) drew new noise, so it was not the state the in-process run has.
+    simulator = mazesim.Simulator(mazesim.load_world("arena"), robot="e-puck", seed=1)
+    state = StateTopics(simulator, "humble", imu_seed=1)
+    index = [topic.name for topic in state.topics].index("/imu")
+    first = state.messages(cdr.stamp_of(1), 0.0)[index]
+    assert state.messages(cdr.stamp_of(1), 0.0)[index] == first
+    simulator.step(1.0, 1.0)
+    assert state.messages(cdr.stamp_of(32_000_000), 0.032)[index] != first

@@ -122,6 +122,8 @@ class StateTopics:
         imu_seed: int | None = None,
     ) -> None:
         self.simulator = simulator
+        #: ``/imu``'s draws and the simulated time of the step they are for.
+        self._imu_draws: tuple[float, list[float]] = (-1.0, [])
         #: ``/imu``'s noise stream (None: noise-free).
         self.imu_noise = (
             None
@@ -242,9 +244,14 @@ class StateTopics:
         rates = (0.0, 0.0, turn)
         force = (c * ax + s * ay, -s * ax + c * ay, GRAVITY)
         if self.imu_noise is not None:
-            draws = self.imu_noise.standard_normal(6).tolist()
-            rates = tuple(v + abs(v) * IMU_NOISE * n for v, n in zip(rates, draws[:3]))
-            force = tuple(v + abs(v) * IMU_NOISE * n for v, n in zip(force, draws[3:]))
+            # One set of draws a step: a state published again (the reset state sent again
+            # before the first command) carries the same readings.
+            if self._imu_draws[0] != self.simulator.time:
+                self._imu_draws = (self.simulator.time, self.imu_noise.standard_normal(6).tolist())
+            draws = self._imu_draws[1]
+            wx, wy, wz = (v + abs(v) * IMU_NOISE * n for v, n in zip(rates, draws[:3]))
+            fx, fy, fz = (v + abs(v) * IMU_NOISE * n for v, n in zip(force, draws[3:]))
+            rates, force = (wx, wy, wz), (fx, fy, fz)
         return cdr.encode_imu(
             stamp, self.frame(standard.BASE_FRAME), standard.yaw_quaternion(yaw), rates, force
         )
