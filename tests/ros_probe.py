@@ -14,6 +14,10 @@ environment) and read its standard output.
                                        the same, leaving the state after the 10th command
                                        unanswered (as a lifecycle controller paused and resumed)
                                        until it comes again
+    ros_probe.py drive-at-rate PERIOD COMMANDS_JSON
+                                       publish each command, then rospy.Rate(1 / PERIOD).sleep()
+                                       on simulated time, the Rate made once the reset state
+                                       and a first /clock have come (a controller on a rate)
     ros_probe.py listen SECONDS        record what the bridge publishes for SECONDS (wall clock)
     ros_probe.py count TOPIC N         receive N messages of TOPIC (e.g. from rosbag play)
     ros_probe.py standard TWISTS_JSON  publish each [linear.x, angular.z] on cmd_vel, keep the
@@ -259,6 +263,32 @@ def standard(twists: list[list[float]]) -> dict[str, Any]:
         }
 
 
+def drive_at_rate(period: float, commands: list[dict[str, Any]]) -> dict[str, Any]:
+    """Publishes each command, then sleeps on a ``rospy.Rate`` of simulated time, as a
+    controller commanding at a rate does; returns once the last command's hold is over (the
+    clock at the rate's next tick, every state of it received)."""
+    if rospy.rostime.is_wallclock():
+        raise SystemExit("expected /use_sim_time: rospy.Rate would not count simulated time")
+    motor = publisher("motor", Float64MultiArray)
+    wait_for_connection(motor)
+    recorder = Recorder(STATE_TOPICS[:2])
+    recorder.wait_for(dict.fromkeys(STATE_TOPICS[:2], 1))
+    deadline = time.monotonic() + TIMEOUT_S
+    while rospy.get_rostime().is_zero():  # the first /clock: rospy's time starts there
+        if time.monotonic() > deadline:
+            raise SystemExit("no /clock came")
+        time.sleep(0.01)
+    rate = rospy.Rate(1.0 / period)
+    for command in commands:
+        motor.publish(Float64MultiArray(data=command["data"]))
+        rate.sleep()
+    # Every state up to the clock's now: the reset state and one a control step.
+    step_ns = int(round(float(rospy.get_param("control_step_ms")) * 1e6))
+    steps = round(rospy.get_rostime().to_nsec() / step_ns)
+    recorder.wait_for(dict.fromkeys(STATE_TOPICS[:2], steps + 1))
+    return recorder.result()
+
+
 def main() -> int:
     mode = sys.argv[1]
     rospy.init_node("ros_probe", anonymous=True, disable_signals=True)
@@ -271,6 +301,9 @@ def main() -> int:
                     0.5 if mode == "drive-after-sleep" else 0.0,
                     10 if mode == "drive-skipping" else 0,
                 )
+        elif mode == "drive-at-rate":
+            with open(sys.argv[3]) as handle:
+                result = drive_at_rate(float(sys.argv[2]), json.load(handle))
         elif mode == "listen":
             recorder = Recorder(STATE_TOPICS)
             time.sleep(float(sys.argv[2]))

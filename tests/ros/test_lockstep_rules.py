@@ -86,3 +86,33 @@ def test_the_notice_is_said_once_for_the_reset_state_and_once_for_a_step() -> No
     assert "use free mode" in later
     assert unanswered.resending(True, 13, "/motor", "use free mode") is None
     assert (unanswered.resent_reset, unanswered.resent_last) == (2, 2)
+
+
+def rate_wakes(period_s: float, origin_ns: int, until_ns: int) -> list[int]:
+    """The stamps at which a ``rospy.Rate`` of ``period_s`` made at ``origin_ns`` wakes when
+    /clock goes out every step: ``Rate.sleep`` sleeps until the clock reaches its last tick
+    plus the period (its ticks are the origin plus the multiples of the period)."""
+    period_ns = round(period_s * 1e9)
+    woke, tick = [], origin_ns + period_ns
+    for stamp in range(STEP_NS, until_ns, STEP_NS):
+        if stamp >= tick:
+            woke.append(stamp)
+            tick += period_ns
+    return woke
+
+
+@pytest.mark.parametrize("period_s", [0.1, 0.064, 0.25])
+def test_a_hold_from_the_rate_s_origin_ends_where_rospy_rate_wakes(period_s: float) -> None:
+    # rospy.Rate counts from the time it is made, the reset state's 1 ns: a hold counted from 0
+    # ended 1 ns short at a tick on a step (0.8 s at 10 Hz), where the rate slept on.
+    hold = TimerHold(period_s, STEP_NS / 1e9, origin_ns=1)
+    stamp, ends = 1, []
+    for _ in range(40):  # a command at each wake, the first at the reset state
+        hold.start(stamp)
+        stamp = (stamp // STEP_NS + 1) * STEP_NS
+        while hold.holds(stamp):
+            stamp += STEP_NS
+        ends.append(stamp)
+    assert ends == rate_wakes(period_s, 1, ends[-1] + 1)
+    if period_s == 0.1:  # the tick at 0.8 s + 1 ns is the state at 0.832 s
+        assert 800_000_000 not in ends and 832_000_000 in ends

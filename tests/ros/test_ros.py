@@ -700,3 +700,41 @@ def test_demo_refuses_a_disk_where_the_recorder_would_not_record(
     roomy = full._replace(free=demo.RECORDER_MIN_FREE_BYTES)
     monkeypatch.setattr(demo.shutil, "disk_usage", lambda path: roomy)
     demo.check_free_space(str(tmp_path))
+
+
+def rate_holds(period_s: float, count: int, step_ns: int = 32_000_000) -> list[int]:
+    """How many control steps each of ``count`` commands holds for a ``rospy.Rate`` made at the
+    reset state (stamped 1 ns): from the state it answers to the first at or after the rate's
+    next tick, 1 ns plus a multiple of the period."""
+    period_ns, now, holds = round(period_s * 1e9), 1, []
+    for _ in range(count):
+        tick = 1 + ((now - 1) // period_ns + 1) * period_ns
+        steps = 0
+        while now < tick:
+            now = (now // step_ns + 1) * step_ns
+            steps += 1
+        holds.append(steps)
+    return holds
+
+
+@needs_ros
+def test_a_controller_at_a_rospy_rate_drives_in_lockstep_with_command_period(
+    master: LocalMaster, tmp_path: Path
+) -> None:
+    # A controller commanding at rospy.Rate(10) on simulated time stepped once and then slept
+    # for a tick that never came: time moved on commands only. With --command-period each
+    # command holds until the clock reaches the rate's next tick (the ROS 2 bridge's rule):
+    # the run is the in-process run holding each command over those steps, bit for bit.
+    master.set_param("/use_sim_time", True)
+    commands = motor_commands(20, seed=4)
+    path = tmp_path / "commands.json"
+    path.write_text(json.dumps(commands))
+    spawn_bridge(master, "--seed", "4", "--command-period", "0.1")
+    seen = run_probe(master, "drive-at-rate", "0.1", str(path))
+    holds = rate_holds(0.1, len(commands))
+    assert holds[:3] == [4, 3, 3] and holds[7] == 4  # the tick at 0.8 s falls on a step
+    held = [command for command, steps in zip(commands, holds) for _ in range(steps)]
+    expected = replay("e-puck", 4, held)
+    assert len(seen["data"]["pose"]) == sum(holds) + 1
+    assert seen["data"]["pose"] == expected["pose"]  # bit for bit
+    assert seen["data"]["sensors"] == expected["sensors"]

@@ -18,6 +18,7 @@ import math
 import sys
 import time
 import uuid
+import zlib
 from typing import Any
 
 import numpy as np
@@ -134,6 +135,10 @@ def main() -> int:
     distro = args.distro
     simulator = mazesim.Simulator(mazesim.load_world(args.world), robot=args.robot, seed=args.seed)
     expected_topics = state.StateTopics(simulator, distro)
+    imu_noise = np.random.default_rng(
+        np.random.SeedSequence(args.seed, spawn_key=(zlib.crc32(b"/imu"),))
+    )
+    imu_draws: dict[int, list[float]] = {}
     readers: dict[str, Any] = {}
     for topic in expected_topics.topics:
         kind = messages.idl_type(args.reader_distro or distro, topic.msgtype)
@@ -336,8 +341,20 @@ def main() -> int:
         imu = got["/imu"]
         q = imu.orientation
         same("imu", "orientation", (q.x, q.y, q.z, q.w), standard.yaw_quaternion(yaw))
-        same("imu", "angular_velocity.z", imu.angular_velocity.z, velocity.turn)
-        same("imu", "linear_acceleration.z", imu.linear_acceleration.z, 9.81)
+        # Webots' noise: 0.3 % of each value, six normal draws a state from /imu's own stream
+        # (a state sent again is the same message: no new draws).
+        stamp = imu.header.stamp.sec * 10**9 + imu.header.stamp.nanosec
+        if stamp not in imu_draws:
+            imu_draws[stamp] = imu_noise.standard_normal(6).tolist()
+        draws = imu_draws[stamp]
+        turn = velocity.turn + abs(velocity.turn) * 0.003 * draws[2]
+        same("imu", "angular_velocity.z", imu.angular_velocity.z, turn)
+        same(
+            "imu",
+            "linear_acceleration.z",
+            imu.linear_acceleration.z,
+            9.81 + 9.81 * 0.003 * draws[5],
+        )
         joints = got["/joint_states"]
         same("joint_states", "name", list(joints.name), list(state.WHEEL_JOINTS))
         encoders = simulator.encoders

@@ -4,12 +4,15 @@ the lockstep tests reads it over DDS from a reader made after the bridge publish
 from __future__ import annotations
 
 import math
+import sys
+from pathlib import Path
 
 import numpy as np
 
 import mazesim
 from mazesim.controllers import AvoidCollision
 from mazesim.ros2.occupancy import MAP_RESOLUTION, occupied_cells
+from ros2_support import MAZESIM, TWO_ROBOTS, needs_namespace, needs_ros2, run_in_namespace
 
 
 def _cell(x: float, y: float, x0: float, y0: float) -> tuple[int, int]:
@@ -62,3 +65,51 @@ def test_every_wall_box_is_occupied_and_the_robot_s_way_is_free() -> None:
         for _, _, sx, sy, _, _ in np.asarray(world.wall_boxes()).reshape(-1, 6)
     )  # the sizes turned or not: the areas are the same
     assert math.isclose(MAP_RESOLUTION, 0.01)
+
+
+#: Reads the map on each topic given (reliable, transient local, depth 1, as Nav2's map
+#: server's subscribers do), each reader made once the one before has its map; prints per
+#: topic its frame, width and height, and whether its bytes equal the first topic's.
+_READ_MAPS = """
+import sys, time
+from rosbags.typesys import Stores, get_typestore
+from mazesim.ros2.node import Node
+from mazesim.ros2.qos import TopicQos
+store = get_typestore(Stores.ROS2_HUMBLE)
+node = Node("namespaced_map_reader")
+first = None
+for topic in sys.argv[1:]:
+    reader = node.reader(topic, "nav_msgs/msg/OccupancyGrid", TopicQos(True, True, 1))
+    deadline = time.monotonic() + 60  # a ceiling for a hang: the loop ends on the map
+    found = []
+    while not found and time.monotonic() < deadline:
+        found = reader.take(1)
+        time.sleep(0.01)
+    if not found:
+        print(f"{topic}:nothing", flush=True)
+        continue
+    grid = store.deserialize_cdr(found[0], "nav_msgs/msg/OccupancyGrid")
+    first = found[0] if first is None else first
+    same = found[0] == first
+    print(f"{topic}:{grid.header.frame_id}:{grid.info.width}x{grid.info.height}:{same}", flush=True)
+"""
+
+
+@needs_ros2
+@needs_namespace
+def test_each_robot_of_a_world_of_several_has_the_map_in_its_namespace(tmp_path: Path) -> None:
+    # Nav2 brought up in a robot's namespace (its multi-robot launch files) reads `map`
+    # relative to the namespace, where its own map server would publish it: the bridge
+    # published the world's map on /map alone, and such a node waited in silence.
+    world = tmp_path / "two.toml"
+    world.write_text(TWO_ROBOTS)
+    cells, _, _ = occupied_cells(mazesim.load_world(str(world)))
+    height, width = cells.shape
+    result = run_in_namespace(
+        [[*MAZESIM, "ros2", "bridge", "--world", str(world)]],
+        [sys.executable, "-c", _READ_MAPS, "/map", "/west/map", "/east_1/map"],
+        grace=2.0,
+    )
+    assert result.stdout.split() == [
+        f"{topic}:map:{width}x{height}:True" for topic in ("/map", "/west/map", "/east_1/map")
+    ], result.stderr

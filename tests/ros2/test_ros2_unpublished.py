@@ -40,7 +40,7 @@ PUBLISHED = ["/ps0", "/scan", "/odom", "/clock"]
         ("/camera_info", "camera"),
         # A Nav2-style node waiting for a map (transient local, as map_server and slam_toolbox
         # publish it) heard nothing, and nothing said why; the bridge's is on /map.
-        ("/robot1/map", "/map only"),
+        ("/robot1/map", "in each robot's namespace"),
         ("/robot1/map", "slam_toolbox"),
     ],
 )

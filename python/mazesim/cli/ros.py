@@ -103,6 +103,7 @@ def _run_bridge(args: argparse.Namespace) -> int:
         "duration": args.duration,
         "noise": False if args.no_noise else None,
         "stop_at_goal": True if args.stop_at_goal else None,
+        "command_period": args.command_period,
     }
     return run_bridge(options, args.remappings, args.name)
 
@@ -210,6 +211,14 @@ def register(commands: Any) -> None:
         "--stop-at-goal",
         action="store_true",
         help="stop after the step that brings the robot into the world's goal disc",
+    )
+    bridge.add_argument(
+        "--command-period",
+        type=non_negative_seconds,
+        metavar="S",
+        help="lockstep: the controller commands at a rospy.Rate of simulated time with this "
+        "period (rospy.Rate(10): 0.1): each command holds, whole steps, until the clock reaches "
+        "the rate's next tick (default: 0, a step per command)",
     )
     _add_node_arguments(bridge, "mazesim_bridge")
     bridge.set_defaults(run=_run_bridge)

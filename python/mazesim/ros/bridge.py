@@ -18,7 +18,12 @@ A ``cmd_vel`` twist is a command like the others. It runs in one of two modes:
   first command the reset state (a controller whose first command went out before the bridge
   listened, or that answers only from its second message, gets another), afterwards the last
   state as it went out (a controller that let one go unanswered gets it again), and says so.
-  Run exactly one controller in this mode.
+  A controller commanding at a ``rospy.Rate`` of simulated time slower than the control step
+  gets ``command_period``, the rate's period: each command holds over whole control steps until
+  the clock reaches the rate's next tick (:class:`~mazesim.ros.lockstep.TimerHold`, the rule of
+  both bridges; the state before the first step is stamped 1 ns, never 0, as ROS 2's bridge
+  stamps it, and a ``rospy.Rate`` made then counts from it). Run exactly one controller in this
+  mode.
 - ``realtime``: the simulation steps on its own, ``speed`` times faster than the wall clock, with
   the last commanded wheel speeds.
 
@@ -26,7 +31,8 @@ Parameters (private, e.g. ``~world``; options of ``mazesim ros bridge`` take pre
 ``world`` (built-in name or world file, default ``seed-maze``), ``robot`` (``e-puck``), ``seed``
 (0), ``mode`` (``lockstep``), ``speed`` (1.0), ``duration`` (simulated seconds after which the
 bridge stops, 0 for never), ``noise`` (true), ``stop_at_goal`` (false: stop after the step that
-brings the robot into the world's goal disc). The bridge sets ``/use_sim_time`` to true unless it
+brings the robot into the world's goal disc), ``command_period`` (0: a step per command). The
+bridge sets ``/use_sim_time`` to true unless it
 is already set, and sets ``control_step_ms`` in its namespace (next to its topics, e.g.
 ``/control_step_ms``) to the length of its control step before it listens for commands: the
 perform-learning node dead-reckons its sub-tasks with it. It logs the step at which the robot first
@@ -53,7 +59,13 @@ from mazesim.actions import wheel_speeds
 from mazesim.errors import InvalidArgumentError, MazesimError
 from mazesim.ros import standard, topics
 from mazesim.ros._ros import publisher, start_node
-from mazesim.ros.lockstep import IDLE_CLOCK_AFTER_S, RESEND_S, UnansweredState
+from mazesim.ros.lockstep import (
+    IDLE_CLOCK_AFTER_S,
+    RESEND_S,
+    TimerHold,
+    UnansweredState,
+    stamp_nanoseconds,
+)
 from mazesim.ros.standard import StandardPublishers
 
 __all__ = [
@@ -86,6 +98,10 @@ class BridgeSettings:
     duration: float = 0.0
     noise: bool = True
     stop_at_goal: bool = False
+    #: Lockstep: the controller commands at a ``rospy.Rate`` of simulated time with this period
+    #: in seconds; each command holds until the clock reaches the rate's next tick (0: none, one
+    #: step each; see :class:`mazesim.ros.lockstep.TimerHold`).
+    command_period: float = 0.0
 
     def validate(self) -> None:
         """Raises InvalidArgumentError naming the first parameter that is out of range."""
@@ -101,6 +117,16 @@ class BridgeSettings:
             raise InvalidArgumentError(
                 f"expected parameter duration to be seconds >= 0 (0: no limit); "
                 f"found {self.duration!r}"
+            )
+        if not (math.isfinite(self.command_period) and self.command_period >= 0.0):
+            raise InvalidArgumentError(
+                "expected parameter command_period to be seconds >= 0 (0: a step per command); "
+                f"found {self.command_period!r}"
+            )
+        if self.command_period and self.mode != "lockstep":
+            raise InvalidArgumentError(
+                "expected parameter command_period with mode lockstep (in realtime mode a "
+                f"rospy.Rate on simulated time runs as it is); found mode {self.mode!r}"
             )
         if not 0 <= self.seed < 2**64:
             raise InvalidArgumentError(f"expected parameter seed in [0, 2^64); found {self.seed!r}")
@@ -167,6 +193,13 @@ class Bridge:
         self._lock = threading.Lock()
         #: Lockstep: when a state that went unanswered goes out again.
         self.unanswered = UnansweredState()
+        #: Lockstep: how long each command holds (``command_period``); a ``rospy.Rate`` made at
+        #: the reset state counts from its stamp.
+        self.hold = TimerHold(
+            settings.command_period,
+            simulator.control_step_ms / 1000.0,
+            origin_ns=stamp_nanoseconds(0.0),
+        )
         #: The last state as it went out: each publisher with its message.
         self.last_state: list[tuple[Any, Any]] = []
         self._sensors_layout = self._layout(topics.sensor_names(simulator))
@@ -231,9 +264,13 @@ class Bridge:
     def _clock_time(self) -> Any:
         """The ROS time of the current step: the simulator's, plus the steps ``/clock`` ran on
         its own before the first command (see :meth:`tick_idle_clock`)."""
-        control_step_s = self.simulator.control_step_ms / 1000.0
-        nanoseconds = round((self.simulator.time + self.idle_steps * control_step_s) * 1e9)
+        nanoseconds = self._stamp()
         return self.ros.rospy.Time(nanoseconds // 10**9, nanoseconds % 10**9)
+
+    def _stamp(self) -> int:
+        """The current step's stamp in nanoseconds (1 ns before the first step)."""
+        control_step_s = self.simulator.control_step_ms / 1000.0
+        return stamp_nanoseconds(self.simulator.time + self.idle_steps * control_step_s)
 
     def tick_idle_clock(self) -> float:
         """Lockstep, before the first command: once the reset state sent again has gone
@@ -265,8 +302,8 @@ class Bridge:
                     "lockstep: the reset state sent again went unanswered; /clock now runs on "
                     "its own in real time, the robot standing still, until the first command (a "
                     "controller that waits for simulated time before its first command can "
-                    "start; one that commands at a rospy.Rate slower than the control step "
-                    "cannot run in lockstep: run the bridge in mode realtime)"
+                    "start; one that commands at a rospy.Rate slower than the control step: "
+                    "run the bridge with --command-period, the rate's period)"
                 )
             self.idle_steps += 1
             self.clock_publisher.publish(self.ros.Clock(clock=self._clock_time()))
@@ -335,11 +372,18 @@ class Bridge:
             self.wheel_speeds = (left, right)
             if not self.lockstep:
                 return
-            self.simulator.step(left, right)
-            self.publish_state()
+            # One step, and with command_period the further steps the command holds until the
+            # clock reaches the controller's next tick (TimerHold, the rule of both bridges).
+            self.hold.start(self._stamp())
+            while True:
+                self.simulator.step(left, right)
+                self.publish_state()
+                if self._finished():
+                    self.stop.set()
+                    break
+                if not self.hold.holds(self._stamp()):
+                    break
             self.unanswered.went_out(time.monotonic())
-            if self._finished():
-                self.stop.set()
 
     def _resend_unanswered(self) -> None:
         """Lockstep: when no command has come ``RESEND_S`` after a state went out while a
@@ -361,7 +405,7 @@ class Bridge:
                 stepped,
                 self.simulator.steps,
                 connected[0].resolved_name,
-                "run the bridge in mode realtime",
+                "run the bridge with --command-period (the rate's period) or in mode realtime",
             )
             if notice is not None:
                 self.ros.rospy.logwarn(notice)

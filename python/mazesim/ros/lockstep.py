@@ -33,7 +33,7 @@ import math
 
 from mazesim.errors import InvalidArgumentError
 
-__all__ = ["IDLE_CLOCK_AFTER_S", "RESEND_S", "TimerHold", "UnansweredState"]
+__all__ = ["IDLE_CLOCK_AFTER_S", "RESEND_S", "TimerHold", "UnansweredState", "stamp_nanoseconds"]
 
 #: Lockstep: seconds after a state went out, a command writer connected and no command come,
 #: before the bridge sends the state again.
@@ -41,6 +41,13 @@ RESEND_S = 5.0
 #: Lockstep, before the first command: seconds after the reset state went out again unanswered
 #: before ``/clock`` runs on its own.
 IDLE_CLOCK_AFTER_S = 1.0
+
+
+def stamp_nanoseconds(seconds: float) -> int:
+    """The stamp of a simulated time in nanoseconds, 1 ns at time zero: ROS reads a time of zero
+    as "no clock yet" (a node with simulated time would not start its timers, ``rospy.sleep``
+    waits for a clock first), so both bridges stamp the state before the first step 1 ns."""
+    return max(round(seconds * 1e9), 1)
 
 
 class UnansweredState:
@@ -112,13 +119,16 @@ class TimerHold:
     Args:
         period_s: The node's timer period in seconds (0: none, every command one step).
         control_step_s: The bridge's control step in seconds.
+        origin_ns: When the node's timer counts from: 0 for rcl's timers (made before the
+            node's first ``/clock``, they tick at the multiples of the period), the reset
+            state's stamp (1 ns) for ``rospy.Rate``, which counts from the time it is made.
 
     Raises:
         InvalidArgumentError: The period is not finite, negative, or not longer than a control
             step (a node on such a timer answers every state: leave the period out).
     """
 
-    def __init__(self, period_s: float, control_step_s: float) -> None:
+    def __init__(self, period_s: float, control_step_s: float, origin_ns: int = 0) -> None:
         if not math.isfinite(period_s) or period_s < 0.0:
             raise InvalidArgumentError(
                 f"expected a command period in seconds >= 0 (0: none); found {period_s}"
@@ -131,6 +141,7 @@ class TimerHold:
             )
         #: The period in nanoseconds, as rclpy's timers hold it (0: none).
         self.period_ns = int(period_s * 1e9)
+        self.origin_ns = origin_ns
         self._until_ns = 0
 
     @property
@@ -140,9 +151,11 @@ class TimerHold:
 
     def start(self, stamp_ns: int) -> None:
         """A command answers the state stamped ``stamp_ns`` (or the reset state went out): it
-        holds until the first state stamped at or after the next multiple of the period."""
+        holds until the first state stamped at or after the timer's next tick (the origin plus
+        the next multiple of the period)."""
         if self.active:
-            self._until_ns = (stamp_ns // self.period_ns + 1) * self.period_ns
+            ticks = (stamp_ns - self.origin_ns) // self.period_ns + 1
+            self._until_ns = self.origin_ns + ticks * self.period_ns
 
     def holds(self, stamp_ns: int) -> bool:
         """Whether the command holds for another step after the state stamped ``stamp_ns``."""

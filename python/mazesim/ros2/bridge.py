@@ -47,7 +47,7 @@ from mazesim.ros2.bag import BagRecorder
 from mazesim.ros2.clock import SIM_CONTROL_TOPIC, FreeRunning, stamp_nanoseconds
 from mazesim.ros2.node import Node, Reader
 from mazesim.ros2.nodes import leaves_signals_as_found
-from mazesim.ros2.occupancy import MAP_TOPIC, occupancy_grid
+from mazesim.ros2.occupancy import map_topics, occupancy_grid
 from mazesim.ros2.qos import CLOCK, COMMAND, TF_STATIC, IncompatibleQos
 from mazesim.ros2.robots import RobotOf, robot_namespaces
 from mazesim.ros2.state import CLOCK_TOPIC, CLOCK_TYPE, StateTopics
@@ -267,10 +267,18 @@ class Ros2Bridge:
             settings.distro,
             network.discovery_from_environment(network=settings.network),
         )
+        imu_seed = settings.seed if settings.noise else None
         if simulator.num_robots == 1:
             prefix = own[1:] + "/" if settings.frame_prefix else ""
             states = [
-                StateTopics(simulator, settings.distro, own, clock=not own, frame_prefix=prefix)
+                StateTopics(
+                    simulator,
+                    settings.distro,
+                    own,
+                    clock=not own,
+                    frame_prefix=prefix,
+                    imu_seed=imu_seed,
+                )
             ]
         else:
             namespaces = robot_namespaces(simulator.robot_names)
@@ -281,6 +289,7 @@ class Ros2Bridge:
                     namespace,
                     clock=False,
                     frame_prefix=namespace[1:] + "/" if settings.frame_prefix else "",
+                    imu_seed=imu_seed,
                 )
                 for i, namespace in enumerate(namespaces)
             ]
@@ -292,13 +301,18 @@ class Ros2Bridge:
             if simulator.num_robots == 1 and not own
             else self.node.writer(CLOCK_TOPIC, CLOCK_TYPE, CLOCK)
         )
-        #: ``/map``: the world's walls, once, latched as ``map_server`` publishes it.
-        self.map_writer = self.node.writer(MAP_TOPIC, OCCUPANCY_GRID, TF_STATIC)
+        #: ``/map``: the world's walls, once, latched as ``map_server`` publishes it; the same
+        #: map in each robot's namespace too (``/west/map``), where Nav2 brought up in a
+        #: namespace (its map server, AMCL and costmaps' static layers) reads ``map``.
+        self.map_writers = [
+            self.node.writer(topic, OCCUPANCY_GRID, TF_STATIC)
+            for topic in map_topics([robot.state.namespace for robot in self.robots])
+        ]
         self.control: Reader | None = None
         if settings.mode == "free":
             self.control = self.node.reader(SIM_CONTROL_TOPIC, STRING, COMMAND)
         self.node.announce()
-        published = [CLOCK_TOPIC, MAP_TOPIC]
+        published = [CLOCK_TOPIC, *(writer.topic for writer in self.map_writers)]
         for robot in self.robots:
             published += [t.name for t in robot.state.topics] + [robot.state.static_topic().name]
         self.unpublished = UnpublishedTopics(
@@ -370,7 +384,8 @@ class Ros2Bridge:
         too)."""
         nanoseconds = self.stamp()
         world_map = occupancy_grid(self.simulator.world, cdr.stamp_of(nanoseconds))
-        self._send(self.map_writer, nanoseconds, world_map)
+        for writer in self.map_writers:
+            self._send(writer, nanoseconds, world_map)
         for robot in self.robots:
             data = robot.state.static_transforms(cdr.stamp_of(nanoseconds))
             self._send(robot.static_writer, nanoseconds, data)

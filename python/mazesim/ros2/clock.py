@@ -16,15 +16,11 @@ import math
 import time
 
 from mazesim.errors import InvalidActionError
+from mazesim.ros.lockstep import stamp_nanoseconds
 
 __all__ = ["FreeRunning", "SIM_CONTROL_TOPIC", "stamp_nanoseconds"]
 
 SIM_CONTROL_TOPIC = "/sim_control"
-
-
-def stamp_nanoseconds(seconds: float) -> int:
-    """The stamp of a simulated time: its nanoseconds, 1 ns at time zero."""
-    return max(round(seconds * 1e9), 1)
 
 
 class FreeRunning:

@@ -8,6 +8,11 @@ occupied (100), the others free (0), over the world's bounds and one cell around
 frame is ``map``, and ``map`` -> ``odom`` is the identity on ``/tf_static``: the odometry is the
 simulator's pose in the world's frame, so it never drifts from the map (a localisation node that
 publishes ``map`` -> ``odom`` itself is not needed, and would disagree with none).
+
+A robot in a namespace (``--namespace``, or each robot of a world of several) gets the same map
+in its namespace too (``/west/map``, frame ``map``): Nav2 brought up in a namespace, as its
+multi-robot launch files run it, has its map server publish there and its AMCL and costmaps read
+``map`` relative to the namespace; a node reading the one global ``/map`` gets it as before.
 """
 
 from __future__ import annotations
@@ -20,13 +25,30 @@ import numpy.typing as npt
 
 from mazesim.ros2 import cdr
 
-__all__ = ["MAP_FRAME", "MAP_RESOLUTION", "MAP_TOPIC", "occupancy_grid", "occupied_cells"]
+__all__ = [
+    "MAP_FRAME",
+    "MAP_RESOLUTION",
+    "MAP_TOPIC",
+    "map_topics",
+    "occupancy_grid",
+    "occupied_cells",
+]
 
 MAP_TOPIC = "/map"
 MAP_FRAME = "map"
 #: Metres a cell: the walls of mazesim's worlds are 1 cm thick, so each is at least a cell.
 MAP_RESOLUTION = 0.01
 OCCUPIED = 100
+
+
+def map_topics(namespaces: list[str]) -> list[str]:
+    """Where the bridge publishes the map: ``/map``, then ``<namespace>/map`` for each robot's
+    namespace (``""``: none) in order, each once."""
+    topics = [MAP_TOPIC]
+    for namespace in namespaces:
+        if namespace and namespace + MAP_TOPIC not in topics:
+            topics.append(namespace + MAP_TOPIC)
+    return topics
 
 
 def occupied_cells(

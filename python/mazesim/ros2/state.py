@@ -17,8 +17,11 @@ Webots' e-puck driver runs) names its frames after its namespace and publishes t
 from __future__ import annotations
 
 import math
+import zlib
 from collections.abc import Sequence
 from typing import NamedTuple
+
+import numpy as np
 
 from mazesim._core import RobotProfile, Simulator
 from mazesim._toml import load_toml
@@ -29,6 +32,7 @@ from mazesim.ros2.qos import CLOCK, SENSOR, TF, TF_STATIC, TopicQos
 
 __all__ = [
     "CLOCK_TOPIC",
+    "IMU_NOISE",
     "StateTopics",
     "Topic",
     "ground_distance",
@@ -54,6 +58,12 @@ IMU = "sensor_msgs/msg/Imu"
 IMU_TOPIC = "/imu"
 #: Standard gravity (m/s^2): what an accelerometer at rest reads up.
 GRAVITY = 9.81
+#: The relative standard deviation of ``/imu``'s angular velocity and linear acceleration: the
+#: noise column of the E-puck PROTO's accelerometer (``lookupTable [-100 -100 0.003 100 100
+#: 0.003]``) and gyro (``[-13.315805 -100000 0.003 13.315805 100000 0.003]``) tables in
+#: cyberbotics/webots; Webots adds a Gaussian of that share of the value. Its orientation is
+#: noise-free, as an InertialUnit without ``noise`` is.
+IMU_NOISE = 0.003
 CLOCK_TYPE = "rosgraph_msgs/msg/Clock"
 
 
@@ -98,6 +108,8 @@ class StateTopics:
         clock: Whether ``/clock`` is among the topics (not for a robot in a namespace).
         frame_prefix: What every frame name starts with (``"west/"``), ``""`` for none; with a
             prefix the transforms go on ``/tf`` and ``/tf_static``, outside the namespace.
+        imu_seed: The seed of ``/imu``'s noise (:data:`IMU_NOISE`, a stream of its own named
+            after the topic), or None for none (the simulator run without noise).
     """
 
     def __init__(
@@ -107,8 +119,21 @@ class StateTopics:
         namespace: str = "",
         clock: bool = True,
         frame_prefix: str = "",
+        imu_seed: int | None = None,
     ) -> None:
         self.simulator = simulator
+        #: ``/imu``'s draws and the simulated time of the step they are for.
+        self._imu_draws: tuple[float, list[float]] = (-1.0, [])
+        #: ``/imu``'s noise stream (None: noise-free).
+        self.imu_noise = (
+            None
+            if imu_seed is None
+            else np.random.default_rng(
+                np.random.SeedSequence(
+                    imu_seed, spawn_key=(zlib.crc32((namespace + IMU_TOPIC).encode("utf-8")),)
+                )
+            )
+        )
         self.namespace = namespace
         self.clock = clock
         self.frame_prefix = frame_prefix
@@ -204,7 +229,9 @@ class StateTopics:
     ) -> bytes:
         """The ``/imu`` message: the inertial unit's orientation (the yaw), the gyro's turn rate
         over the last step, and the accelerometer's specific force: the body's acceleration
-        over the last two steps, in its frame, plus gravity up (noise-free)."""
+        over the last two steps, in its frame, plus gravity up; with noise, each of the six
+        vector components of the gyro and the accelerometer is off by :data:`IMU_NOISE` of
+        itself (a standard normal draw each, in that order), as Webots' tables say."""
         x, y, yaw = after
         if step_seconds > 0.0:
             velocity = ((x - self.before[0]) / step_seconds, (y - self.before[1]) / step_seconds)
@@ -214,12 +241,19 @@ class StateTopics:
         else:
             ax = ay = 0.0
         c, s = math.cos(yaw), math.sin(yaw)
+        rates = (0.0, 0.0, turn)
+        force = (c * ax + s * ay, -s * ax + c * ay, GRAVITY)
+        if self.imu_noise is not None:
+            # One set of draws a step: a state published again (the reset state sent again
+            # before the first command) carries the same readings.
+            if self._imu_draws[0] != self.simulator.time:
+                self._imu_draws = (self.simulator.time, self.imu_noise.standard_normal(6).tolist())
+            draws = self._imu_draws[1]
+            wx, wy, wz = (v + abs(v) * IMU_NOISE * n for v, n in zip(rates, draws[:3]))
+            fx, fy, fz = (v + abs(v) * IMU_NOISE * n for v, n in zip(force, draws[3:]))
+            rates, force = (wx, wy, wz), (fx, fy, fz)
         return cdr.encode_imu(
-            stamp,
-            self.frame(standard.BASE_FRAME),
-            standard.yaw_quaternion(yaw),
-            (0.0, 0.0, turn),
-            (c * ax + s * ay, -s * ax + c * ay, GRAVITY),
+            stamp, self.frame(standard.BASE_FRAME), standard.yaw_quaternion(yaw), rates, force
         )
 
     def messages(self, stamp: cdr.Stamp, step_seconds: float) -> list[bytes]:

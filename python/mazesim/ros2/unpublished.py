@@ -41,9 +41,9 @@ _WEBOTS_EPUCK_ONLY = (
      "(--robot e-puck2, as Webots' webots_ros2_epuck simulates)"),
     (re.compile(r"ls[0-7]"), "mazesim does not simulate the e-puck's light sensors"),
     (re.compile(r"(image_raw|camera_info|camera(/.*)?)"), "the bridge publishes no camera images"),
-    (re.compile(r"map"), "the bridge publishes the world's map on /map only, one for every "
-     "robot: remap the node's to it, or run a map server (Nav2's map_server) or a SLAM node "
-     "(slam_toolbox, from /scan and /odom) beside it"),
+    (re.compile(r"map"), "the bridge publishes the world's map on /map and in each robot's "
+     "namespace (/NAMESPACE/map) only: remap the node's to one of them, or run a map server "
+     "(Nav2's map_server) or a SLAM node (slam_toolbox, from /scan and /odom) beside it"),
 )  # fmt: skip
 
 
