@@ -141,6 +141,30 @@ def test_a_cpp_controller_using_a_standard_name_g_plus_plus_does_not_trace_build
         build(source)
 
 
+def test_a_cpp_controller_using_a_standard_class_known_only_as_declared_builds(
+    tmp_path: Path,
+) -> None:
+    """A std::array field with only <map> and <string> included (libstdc++'s <tuple>, which
+    <map> includes, included <array> before GCC 10; today's declares std::array only, and g++
+    says the field has an incomplete type, naming no header): built with every standard header
+    included first, and the build says so; a real error still stops the build."""
+    source = tmp_path / "plus" / "plus.cpp"
+    source.parent.mkdir()
+    source.write_text(
+        "#include <map>\n#include <string>\n#include <webots/robot.h>\n"
+        "struct arms {\n  std::array<std::string, 2> names;\n};\n"
+        'int main() {\n  wb_robot_init();\n  arms maze{{"open", "closed"}};\n'
+        "  wb_robot_cleanup();\n  return maze.names[1].size() == 6 ? 0 : 1;\n}\n"
+    )
+    built = build(source)
+    assert built.program is not None, built.note
+    assert "every standard header included first" in built.note
+    assert "knows only as declared" in built.note
+    source.write_text(source.read_text().replace("return maze", "return ; maze"))
+    with pytest.raises(ControllerBuildError, match="expected a C\\+\\+ controller that compiles"):
+        build(source)
+
+
 def test_without_a_compiler_the_error_says_what_to_install(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:

@@ -144,6 +144,23 @@ def test_camera_sees_the_line_ahead_the_floor_below_and_the_sky_above() -> None:
     ]
 
 
+def test_the_per_pixel_accessors_refuse_a_pixel_outside_the_image() -> None:
+    """imageGetRed and its kind check their own arguments, for every pixel a controller reads:
+    a pixel left of, right of or below the image is refused, not read from elsewhere in the
+    buffer (x = -1 was the last pixel's red), and a bool or a float is no coordinate."""
+    width, height = 4, 3
+    image = bytes(range(4 * width * height))
+    assert controller.Camera.imageGetRed(image, width, 1, 2) == 4 * (2 * width + 1) + 2
+    assert controller.Camera.imageGetGrey(image, width, 0, 0) == (0 + 1 + 2) // 3
+    for x, y in ((-1, 0), (width, 0), (0, height), (0, -1)):
+        for accessor in (controller.Camera.imageGetRed, controller.Camera.imageGetGray):
+            with pytest.raises(InvalidArgumentError, match="expected a pixel inside the image"):
+                accessor(image, width, x, y)
+    for bad in ((image, True, 0, 0), (image, width, 1.0, 0), ("image", width, 0, 0)):
+        with pytest.raises(TypeError, match=r"Camera\.imageGetBlue: expected"):
+            controller.Camera.imageGetBlue(*bad)
+
+
 def test_a_camera_slower_than_the_step_is_black_until_its_first_image() -> None:
     """Webots returns an enabled camera's image buffer from the step after it is enabled, drawn
     only when the first sampling period ends: a controller that enables its camera at 100 ms and

@@ -22,11 +22,13 @@ import math
 import os
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from numbers import Integral
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import numpy.typing as npt
 
+from mazesim.errors import InvalidArgumentError, WrongTypeError
 from mazesim.webots.devices import _print_error, _Sensor, webots_property
 from mazesim.webots.frames import Axes, axes_or_none, camera_heading
 from mazesim.webots.node_types import node_type
@@ -77,6 +79,14 @@ ROBOT_BOTTOM = 0.0025
 ROBOT_COLOUR = (0.5, 0.5, 0.5)
 PLATE_EDGE = (0.037, 0.0385)
 PLATE_COLOUR = (0.184314, 0.635294, 0.184314)
+
+
+def _checks_own_arguments(func: Any) -> Any:
+    """Marks ``func`` as checking its own arguments: the package's argument check, which wraps
+    every public function when mazesim is imported, leaves it as it is (as the environments'
+    ``step``)."""
+    func.__mazesim_checked__ = True
+    return func
 
 
 @dataclass(frozen=True)
@@ -944,28 +954,71 @@ class Camera(_Sensor):
             return -1
         return 0
 
+    # The per-pixel accessors check their own arguments (a controller calls them thousands of
+    # times a step, for every pixel it looks at: the surface's general check cost tens of
+    # microseconds a call, more than the step's rendering) and refuse a pixel outside the image.
     @staticmethod
+    @_checks_own_arguments
     def imageGetRed(image: bytes, width: int, x: int, y: int) -> int:
         """The red level (0-255) of pixel (x, y) of a BGRA image."""
-        return image[4 * (y * width + x) + 2]
+        return image[_pixel("imageGetRed", image, width, x, y) + 2]
 
     @staticmethod
+    @_checks_own_arguments
     def imageGetGreen(image: bytes, width: int, x: int, y: int) -> int:
         """The green level (0-255) of pixel (x, y) of a BGRA image."""
-        return image[4 * (y * width + x) + 1]
+        return image[_pixel("imageGetGreen", image, width, x, y) + 1]
 
     @staticmethod
+    @_checks_own_arguments
     def imageGetBlue(image: bytes, width: int, x: int, y: int) -> int:
         """The blue level (0-255) of pixel (x, y) of a BGRA image."""
-        return image[4 * (y * width + x)]
+        return image[_pixel("imageGetBlue", image, width, x, y)]
 
     @staticmethod
+    @_checks_own_arguments
     def imageGetGray(image: bytes, width: int, x: int, y: int) -> int:
         """The grey level (0-255, the mean of red, green and blue) of pixel (x, y)."""
-        base = 4 * (y * width + x)
+        base = _pixel("imageGetGray", image, width, x, y)
         return (image[base] + image[base + 1] + image[base + 2]) // 3
 
     @staticmethod
+    @_checks_own_arguments
     def imageGetGrey(image: bytes, width: int, x: int, y: int) -> int:
         """Same as :meth:`imageGetGray`."""
-        return Camera.imageGetGray(image, width, x, y)
+        base = _pixel("imageGetGrey", image, width, x, y)
+        return (image[base] + image[base + 1] + image[base + 2]) // 3
+
+
+#: What the per-pixel accessors take as an image: ``getImage``'s bytes, or a copy of them.
+_IMAGE_TYPES = (bytes, bytearray, memoryview)
+
+
+def _pixel(name: str, image: Any, width: Any, x: Any, y: Any) -> int:
+    """The offset of pixel (x, y)'s first byte (blue) in a BGRA ``image`` ``width`` pixels wide.
+
+    Raises:
+        WrongTypeError: The image is not bytes, or width, x or y not an int.
+        InvalidArgumentError: The pixel is outside the image.
+    """
+    if type(image) is bytes and type(width) is int and type(x) is int and type(y) is int:
+        base = 4 * (y * width + x)
+        if 0 <= x < width and y >= 0 and base + 4 <= len(image):
+            return base  # the common case, checked at the least cost
+    for label, value in (("width", width), ("x", x), ("y", y)):
+        if type(value) is not int and (isinstance(value, bool) or not isinstance(value, Integral)):
+            raise WrongTypeError(
+                f"Camera.{name}: expected {label} as an int, found {type(value).__name__} {value!r}"
+            )
+    if not isinstance(image, _IMAGE_TYPES):
+        raise WrongTypeError(
+            f"Camera.{name}: expected the image getImage returned (bytes), found "
+            f"{type(image).__name__}"
+        )
+    base = 4 * (int(y) * int(width) + int(x))
+    if not (0 <= x < width and y >= 0 and base + 4 <= len(image)):
+        raise InvalidArgumentError(
+            f"Camera.{name}: expected a pixel inside the image ({width} pixels wide, "
+            f"{len(image) // 4} pixels in all), found ({x}, {y}); x runs from 0 to width - 1"
+        )
+    return base

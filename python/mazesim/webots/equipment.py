@@ -5,7 +5,8 @@ Names are Webots': ``left wheel motor`` / ``right wheel motor``, ``left wheel se
 ``right wheel sensor``, the profile's distance sensors (``ps0``..``ps7``, and ``tof`` on the
 e-puck2) and ground sensors (``gs0``..``gs2``), ``ls0``..``ls7``, ``led0``..``led9``,
 ``camera``, ``accelerometer``, ``gyro``, ``emitter``, ``receiver``, ``speaker``; then every
-device of the import report's ``extension_devices``.
+device of the import report's ``extension_devices``. A robot saved expanded that names its
+wheels' motors or position sensors otherwise has them by its world's names.
 """
 
 from __future__ import annotations
@@ -94,6 +95,43 @@ EPUCK_DISTANCE_SENSOR_MODEL = "e-puck distance sensor"
 _DEVICE_FRAME_KINDS = frozenset({"Compass", "Accelerometer", "Gyro"})
 #: The devices whose reading depends on their axes on the robot when a mount tilts them.
 _TILTED_KINDS = _DEVICE_FRAME_KINDS | {"InertialUnit"}
+
+
+#: The E-puck PROTO's names of its wheels' motors and position sensors, left first.
+_WHEEL_MOTORS = ("left wheel motor", "right wheel motor")
+_WHEEL_SENSORS = ("left wheel sensor", "right wheel sensor")
+
+
+def _wheel_names(
+    entries: Sequence[Mapping[str, Any]], kind: str, stock: tuple[str, str]
+) -> tuple[list[str], list[Mapping[str, Any]]]:
+    """The names of the e-puck's two wheel devices of ``kind`` (``RotationalMotor`` or
+    ``PositionSensor``), left first, and the import's entries that give them.
+
+    A robot saved expanded (a plain Robot node, the E-puck PROTO's tree written out) may name
+    its wheels' devices otherwise (``left_motor``): the import lists those among the robot's own
+    devices (``slot`` ``children``), and they are its wheels', as Webots finds them by the
+    names the world gives. A name saying ``left`` or ``right`` is that wheel's; another takes
+    the first wheel not yet named, the left before the right (the PROTO's order). A robot with
+    more than two such devices of its own (an arm's motors besides) keeps the PROTO's names.
+    """
+    own = [
+        entry
+        for entry in entries
+        if entry.get("type") == kind and entry.get("slot") == "children" and entry.get("name")
+    ]
+    if not own or len(own) > 2:
+        return list(stock), []
+    names = list(stock)
+    free = [0, 1]
+    for entry in own:
+        name = str(entry["name"])
+        lower = name.lower()
+        side = 0 if "left" in lower else 1 if "right" in lower else free[0]
+        side = side if side in free else free[0]
+        names[side] = name
+        free.remove(side)
+    return names, own
 
 
 def extension_device(simulation: RobotSimulation, entry: Mapping[str, Any]) -> Device | None:
@@ -207,13 +245,19 @@ class Equipment:
     def __init__(self, simulation: RobotSimulation) -> None:
         self._simulation = simulation
         profile = simulation.simulator.robot
+        entries = [
+            entry
+            for entry in simulation.report.get("extension_devices") or []
+            if isinstance(entry, Mapping)
+        ]
+        sensor_names, renamed_sensors = _wheel_names(entries, "PositionSensor", _WHEEL_SENSORS)
+        motor_names, renamed_motors = _wheel_names(entries, "RotationalMotor", _WHEEL_MOTORS)
+        wheel_entries = {id(entry) for entry in [*renamed_sensors, *renamed_motors]}
         encoders = [
-            PositionSensor(name, simulation, side)
-            for side, name in enumerate(("left wheel sensor", "right wheel sensor"))
+            PositionSensor(name, simulation, side) for side, name in enumerate(sensor_names)
         ]
         self._motors = [
-            Motor(name, simulation, side, encoders[side])
-            for side, name in enumerate(("left wheel motor", "right wheel motor"))
+            Motor(name, simulation, side, encoders[side]) for side, name in enumerate(motor_names)
         ]
         for motor, encoder in zip(self._motors, encoders):
             encoder._motor = motor
@@ -250,8 +294,10 @@ class Equipment:
             Speaker("speaker", simulation),
         ]
         own_nodes: set[int] = set()
-        for entry in simulation.report.get("extension_devices") or []:
-            if isinstance(entry, Mapping) and (device := extension_device(simulation, entry)):
+        for entry in entries:
+            if id(entry) in wheel_entries:
+                continue
+            if device := extension_device(simulation, entry):
                 devices.append(device)
                 if entry.get("slot") == "children":
                     own_nodes.add(id(device))

@@ -88,10 +88,15 @@ _DEFINED_TWICE = re.compile(
 _FORGOTTEN_HEADER = re.compile(
     r"did you forget to [‘'`]#include <([\w./+-]+)>|include [‘'`]<([\w./+-]+)>[’'`] or provide"
 )
-#: g++'s errors for a name it does not know, where no note names a header.
+#: g++'s errors for a name it does not know, where no note names a header; and for a class of
+#: the standard library it knows only by the declaration another standard header makes of it
+#: (``field 'names' has incomplete type 'std::array<...>'``: libstdc++'s <tuple> declares
+#: ``std::array``, which its <tuple> before GCC 10 included whole).
 _UNDECLARED = re.compile(
     r"error: [‘'`]\w+[’'`] (?:does not name a type|was not declared in this scope"
     r"|has not been declared|is not a member of [‘'`]std[’'`])"
+    r"|error: [^\n]*incomplete type [‘'`](?:class |struct )?std::"
+    r"|error: [^\n]*[‘'`](?:class |struct )?std::[^\n]*incomplete type"
 )
 #: Every header of the C++ standard library (libstdc++'s precompilable header), included first.
 _EVERY_HEADER = ("cpp", ("-include", "bits/stdc++.h"))
@@ -527,9 +532,11 @@ def _build_sources(main: Path, settings: MakefileSettings) -> Build:
     whole_library = False
     if done.returncode != 0 and command[0] == compilers[-1] and _UNDECLARED.search(done.stderr):
         # A name of the C++ standard library that g++ does not trace to its header (`function`
-        # after `using namespace std`): another standard library (macOS' libc++) brought it in
-        # through the headers the sources include, so they are built with every standard header
-        # included first; when that fails too, the first errors are the ones said.
+        # after `using namespace std`), or a class it knows only as declared (`std::array`,
+        # which <tuple> declares): another standard library (macOS' libc++, or libstdc++ before
+        # GCC 10, whose <tuple> included <array>) brought it in through the headers the sources
+        # include, so they are built with every standard header included first; when that fails
+        # too, the first errors are the ones said.
         retried, again = compiled(_EVERY_HEADER)
         if retried.returncode == 0:
             done, command, whole_library = retried, again, True
@@ -593,8 +600,8 @@ def _build_sources(main: Path, settings: MakefileSettings) -> Build:
     if whole_library:
         note += (
             " (C++ standard names its sources use without their headers, which g++ does not "
-            "name: built with every standard header included first, as other standard "
-            "libraries' headers include them)"
+            "name or knows only as declared: built with every standard header included first, "
+            "as other standard libraries' headers, and older ones of its own, include them)"
         )
     elif forgotten:
         names = ", ".join(f"<{header}>" for header in forgotten)
