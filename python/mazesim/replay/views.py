@@ -285,13 +285,26 @@ class FleetLiveView:
         self, world: World, robot: RobotProfile, control_step_ms: float, title: str
     ) -> None:
         from mazesim.render.live import LiveView
-        from mazesim.render.topdown import TopDownRenderer
 
         self.live = LiveView(title, control_step_ms / 1000.0)
+        self._robot = robot
+        #: The world whose walls the window draws.
+        self.world: World | None = None
         self.renderer: Any = None
-        if not self.live.headless:
-            self.renderer = TopDownRenderer(world, robot, ray_length=robot.distance_sensor_range)
         self.trails: list[list[tuple[float, float]]] = []
+        self.follow(world)
+
+    def follow(self, world: World) -> None:
+        """Draws the walls of ``world`` from now on, when it is not the world drawn (a
+        supervisor moved, imported or removed walls)."""
+        if world is self.world:
+            return
+        self.world = world
+        if not self.live.headless:
+            from mazesim.render.topdown import TopDownRenderer
+
+            robot = self._robot
+            self.renderer = TopDownRenderer(world, robot, ray_length=robot.distance_sensor_range)
 
     def show(
         self,
