@@ -19,7 +19,12 @@ WorldInfo { basicTimeStep 32 }
 RectangleArena { floorSize 2 2 }
 DEF GATE Solid {
   translation 0.15 0 0.05
-  children [ Shape { appearance PBRAppearance { baseColor 1 0 0 } geometry DEF GATE_BOX Box { size 0.02 0.3 0.1 } } ]
+  children [
+    Shape {
+      appearance PBRAppearance { baseColor 1 0 0 }
+      geometry DEF GATE_BOX Box { size 0.02 0.3 0.1 }
+    }
+  ]
   name "gate"
   boundingObject USE GATE_BOX
 }
@@ -30,7 +35,7 @@ E-puck { translation -0.6 -0.6 0 name "mover" controller "MOVER" supervisor TRUE
 #: A green wall imported 0.15 m ahead of the watcher.
 GREEN_WALL = (
     "Solid { translation 0.15 0 0.05 children [ Shape { appearance PBRAppearance { "
-    "baseColor 0 1 0 } geometry DEF G Box { size 0.02 0.3 0.1 } } ] name \\\"green\\\" "
+    'baseColor 0 1 0 } geometry DEF G Box { size 0.02 0.3 0.1 } } ] name \\"green\\" '
     "boundingObject USE G }"
 )
 
@@ -162,3 +167,29 @@ def test_the_live_window_of_a_world_run_draws_the_walls_where_a_supervisor_moved
     run_world(str(world), seconds=0.5, seed=1, observer=observe)
     # The window draws the gate where the file has it, then where the mover put it.
     assert gates[0] == (0.15, 0.0) and gates[-1] == (0.8, 0.8), gates
+
+
+def test_the_live_window_of_a_controller_run_draws_the_walls_where_its_supervisor_moved_them(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    import argparse
+
+    from mazesim.replay.views import DeferredWatch
+    from mazesim.webots.simulation import observing_steps
+
+    monkeypatch.delenv("DISPLAY", raising=False)
+    monkeypatch.delenv("WAYLAND_DISPLAY", raising=False)
+    text = WORLD.replace(
+        'E-puck { translation -0.6 -0.6 0 name "mover" controller "MOVER" supervisor TRUE }\n', ""
+    ).replace('controller "WATCHER"', 'controller "<extern>"')
+    watch = DeferredWatch(argparse.Namespace(live=True), "watcher", 1)
+    with observing_steps(watch):
+        supervisor = supervisor_in(tmp_path, text)
+        supervisor.step(32)
+        supervisor.getFromDef("GATE").getField("translation").setSFVec3f([0.8, 0.8, 0.05])
+        supervisor.step(32)
+        supervisor.step(32)
+    assert watch.watch is not None
+    boxes = np.asarray(watch.watch.world.wall_boxes()).reshape(-1, 6)
+    (gate,) = [b for b in boxes if np.allclose(sorted(b[2:4]), (0.02, 0.3))]
+    assert (round(float(gate[0]), 3), round(float(gate[1]), 3)) == (0.8, 0.8)

@@ -378,8 +378,10 @@ class Fleet:
     def move_node(self, line: int, from_pose: Any, to_pose: Any) -> None:
         """Moves what the node on ``line`` holds, in every simulator that holds the world's
         walls and bodies (see :meth:`~mazesim.webots.solids.WorldSolids.move_node`)."""
+        walls = self.solids.node_moves()
         self.solids.move_node(line, from_pose, to_pose)
-        self.wall_changes += 1
+        if self.solids.node_moves() != walls:  # a node holding bodies alone moves no wall
+            self.wall_changes += 1
 
     def change_world(self, text: str) -> None:
         """Runs on in the world of ``text`` (the world file as a supervisor changed it: see

@@ -23,7 +23,17 @@ if TYPE_CHECKING:
     from mazesim._core import World
     from mazesim.webots.simulation import RobotSimulation
 
-__all__ = ["WallsNow"]
+__all__ = ["WallsNow", "walls_seen"]
+
+
+def walls_seen(simulation: RobotSimulation) -> Any:
+    """What the walls of ``simulation``'s world are made from now, which changes when a
+    supervisor changes them: in a world run the world's count of changes (told with each
+    step's answer), else the simulation's world (a supervisor's imports and removals replace
+    it) and the moves of its nodes."""
+    if simulation.fleet is not None:
+        return getattr(simulation.simulator, "wall_changes", 0)
+    return (id(simulation.world), sorted(world_objects(simulation).node_moves().items()))
 
 
 class WallsNow:
@@ -49,15 +59,13 @@ class WallsNow:
         self._seen: Any = None
         self._walls: WallBoxes | None = None
 
-    def _moves(self) -> dict[int, Any]:
-        return dict(world_objects(self._simulation).node_moves())
-
     def _import(self) -> None:
         """Takes the running world's import: the simulation's own in a run of one robot (a
         supervisor's change replaces it); in a world run, the world's text as changed, imported
         for this robot as at its start."""
         simulation = self._simulation
-        world, report = simulation.world, simulation.report
+        world: World = simulation.world
+        report: Mapping[str, Any] = simulation.report
         if simulation.fleet is not None:
             text = simulation.fleet.text
             if text is not None and text != self._text:
@@ -77,21 +85,14 @@ class WallsNow:
 
     def walls(self) -> WallBoxes:
         """The walls now."""
-        simulation = self._simulation
-        if simulation.fleet is not None:
-            seen: Any = getattr(simulation.simulator, "wall_changes", 0)
-            if self._walls is not None and seen == self._seen:
-                return self._walls
-            self._import()
-            moves = self._moves()
-        else:
-            moves = self._moves()
-            seen = (id(simulation.world), sorted(moves.items()))
-            if self._walls is not None and seen == self._seen and self._world is simulation.world:
-                return self._walls
-            self._import()
+        seen = walls_seen(self._simulation)
+        # The world the last walls were made of is held, so its id is not another's.
+        if self._walls is not None and seen == self._seen:
+            return self._walls
+        self._import()
         assert self._base is not None
         held = {line: h.walls for line, h in held_by_line(self._report).items() if h.walls}
+        moves = dict(world_objects(self._simulation).node_moves())
         self._walls = moved_walls(self._base, held, moves)
         self._seen = seen
         return self._walls
