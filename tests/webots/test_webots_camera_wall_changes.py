@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from mazesim.webots.lockstep import run_world
-from supervised_world import supervisor_in
+from supervised_world import project_of, supervisor_in
 
 #: A red wall 0.15 m ahead of an e-puck "watcher" facing +x, and a second e-puck far away.
 WORLD = """#VRML_SIM R2023b utf8
@@ -84,14 +84,8 @@ def _shares(path: Path) -> list[tuple[float, float]]:
 
 def _project(tmp_path: Path, watcher: str, mover: str) -> Path:
     """A project of :data:`WORLD` with these two controllers; its world file."""
-    for name, text in (("watcher", watcher), ("mover", mover)):
-        folder = tmp_path / "controllers" / name
-        folder.mkdir(parents=True)
-        (folder / f"{name}.py").write_text(text)
-    world = tmp_path / "worlds" / "gate.wbt"
-    world.parent.mkdir()
-    world.write_text(WORLD.replace("WATCHER", "watcher").replace("MOVER", "mover"))
-    return world
+    text = WORLD.replace("WATCHER", "watcher").replace("MOVER", "mover")
+    return project_of(tmp_path, "gate.wbt", text, {"watcher": watcher, "mover": mover})
 
 
 @pytest.mark.parametrize("change", sorted(CHANGES))
