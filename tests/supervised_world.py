@@ -42,6 +42,19 @@ DEF EPUCK E-puck { translation 0 0 0 supervisor TRUE controller "<extern>" }
 """
 
 
+def project_of(tmp_path: Path, world_file: str, text: str, controllers: dict[str, str]) -> Path:
+    """A Webots project in ``tmp_path``: its ``worlds/world_file`` of ``text`` and a Python
+    controller of each name in ``controllers`` (its source); the world file."""
+    for name, source in controllers.items():
+        folder = tmp_path / "controllers" / name
+        folder.mkdir(parents=True)
+        (folder / f"{name}.py").write_text(source)
+    world = tmp_path / "worlds" / world_file
+    world.parent.mkdir()
+    world.write_text(text)
+    return world
+
+
 def supervisor_of(tmp_path: Path, noise: bool = False, seed: int = 0) -> controller.Supervisor:
     """The e-puck's supervisor in ``WORLD``, as ``mazesim webots run`` prepares it."""
     path = tmp_path / "solids.wbt"

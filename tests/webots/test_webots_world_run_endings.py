@@ -16,6 +16,7 @@ from pathlib import Path
 import pytest
 
 from mazesim.cli import main
+from supervised_world import project_of
 
 #: Two e-pucks, each running the controller its name says.
 WORLD = """#VRML_SIM R2023b utf8
@@ -57,14 +58,8 @@ while robot.step(32) != -1:
 
 def _project(tmp_path: Path, first: str, second: str) -> Path:
     """A project of :data:`WORLD` whose robots run ``first`` and ``second``; its world."""
-    for name, source in (("first", first), ("second", second)):
-        folder = tmp_path / "controllers" / name
-        folder.mkdir(parents=True)
-        (folder / f"{name}.py").write_text(source)
-    world = tmp_path / "worlds" / "two.wbt"
-    world.parent.mkdir()
-    world.write_text(WORLD.replace("FIRST", "first").replace("SECOND", "second"))
-    return world
+    text = WORLD.replace("FIRST", "first").replace("SECOND", "second")
+    return project_of(tmp_path, "two.wbt", text, {"first": first, "second": second})
 
 
 def test_a_failing_controller_s_traceback_is_printed_once(

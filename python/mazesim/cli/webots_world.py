@@ -56,7 +56,7 @@ class WorldWatch:
         wheels: Mapping[int, tuple[float, float]] | None,
     ) -> None:
         """Records (and shows) every robot's frame before a step (after the last: ``wheels``
-        None)."""
+        None); ``world`` is the world as it runs now (the window draws its walls)."""
         import numpy as np
 
         from mazesim.replay.recorder import FleetRecorder
@@ -72,6 +72,7 @@ class WorldWatch:
             if self.live:
                 self.view = FleetLiveView(world, robots[0][1], step_ms, f"mazesim: {world.name}")
         if self.view is not None:
+            self.view.follow(world)
             self.view.show(
                 [
                     None if isinstance(simulator, RemovedRobot) else simulator.pose

@@ -186,6 +186,31 @@ class SimulatorWatch:
                     simulator.world, robot, ray_length=robot.distance_sensor_range
                 )
             self.trail: list[tuple[float, float]] = []
+        #: The world whose walls the window draws, and what they were made of when it last
+        #: took them (:meth:`follow`).
+        self.world = simulator.world if self.live is not None else None
+        self._walls_seen: Any = None
+
+    def follow(self, simulation: Any) -> None:
+        """Draws the walls where they are now in the run of a Webots controller
+        (``simulation``, its :class:`~mazesim.webots.simulation.RobotSimulation`), when a
+        supervisor has moved, imported or removed some since the window last drew them."""
+        from mazesim.webots.walls_now import walls_seen
+
+        seen = walls_seen(simulation)
+        if self._walls_seen is None:
+            self._walls_seen = seen
+        if seen == self._walls_seen or self.live is None:
+            return
+        self._walls_seen = seen
+        world = self.world = self.simulator.world
+        if self.fleet_view is not None:
+            self.fleet_view.follow(world)
+        elif self.renderer is not None:
+            from mazesim.render.topdown import TopDownRenderer
+
+            robot = self.simulator.robot
+            self.renderer = TopDownRenderer(world, robot, ray_length=robot.distance_sensor_range)
 
     def before_step(self, left: float, right: float) -> None:
         """Records the frame before a step and the wheel speeds it runs with; shows it live."""
@@ -263,6 +288,7 @@ class DeferredWatch:
         """Records the state before a step of ``simulation`` (its ``simulator``)."""
         if self.watch is None:
             self.watch = SimulatorWatch(self.args, simulation.simulator, self.controller, self.seed)
+        self.watch.follow(simulation)
         self.watch.before_step(left, right)
 
     def finish(self, outcome: str = "", title: str | None = None) -> list[str]:
@@ -285,13 +311,26 @@ class FleetLiveView:
         self, world: World, robot: RobotProfile, control_step_ms: float, title: str
     ) -> None:
         from mazesim.render.live import LiveView
-        from mazesim.render.topdown import TopDownRenderer
 
         self.live = LiveView(title, control_step_ms / 1000.0)
+        self._robot = robot
+        #: The world whose walls the window draws.
+        self.world: World | None = None
         self.renderer: Any = None
-        if not self.live.headless:
-            self.renderer = TopDownRenderer(world, robot, ray_length=robot.distance_sensor_range)
         self.trails: list[list[tuple[float, float]]] = []
+        self.follow(world)
+
+    def follow(self, world: World) -> None:
+        """Draws the walls of ``world`` from now on, when it is not the world drawn (a
+        supervisor moved, imported or removed walls)."""
+        if world is self.world:
+            return
+        self.world = world
+        if not self.live.headless:
+            from mazesim.render.topdown import TopDownRenderer
+
+            robot = self._robot
+            self.renderer = TopDownRenderer(world, robot, ray_length=robot.distance_sensor_range)
 
     def show(
         self,

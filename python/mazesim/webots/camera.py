@@ -35,6 +35,7 @@ from mazesim.webots.node_types import node_type
 from mazesim.webots.rays import FloorPaint, WallBoxes
 from mazesim.webots.recognition import CameraPose, RecognisedObject, recogniser_of
 from mazesim.webots.robot_frames import Mount, RobotShape
+from mazesim.webots.walls_now import WallsNow
 
 if TYPE_CHECKING:
     from mazesim.webots.simulation import RobotSimulation
@@ -576,6 +577,9 @@ class Camera(_Sensor):
     def __init__(self, name: str, simulation: RobotSimulation, view: CameraView) -> None:
         super().__init__(name, simulation)
         self._view = view
+        #: The walls and floor now (a supervisor's changes followed), and those of the last
+        #: sample, which its image is drawn against.
+        self._walls_now = WallsNow(simulation, sensed=True)
         self._walls: WallBoxes | None = None
         self._floor: FloorPaint | None = None
         self._pixels: npt.NDArray[np.uint8] | None = None
@@ -585,9 +589,7 @@ class Camera(_Sensor):
         #: drawn.
         self._sampled: _Sample | None = None
         self._rendered_at: _Sample | None = None
-        #: The world whose walls and floor the camera holds (a supervisor's change makes
-        #: another).
-        self._world: Any = None
+        self._rendered_walls: WallBoxes | None = None
         self._value = None
         #: Whether the simulator holds this robot alone (it has no ``other_robots``).
         self._alone = False
@@ -596,17 +598,16 @@ class Camera(_Sensor):
         self._recogniser = recogniser_of(
             simulation.report, name, old_frame=simulation.scene.y_up_devices
         )
+        #: The walls recognition casts against, none moved (it moves them itself).
+        self._recognised_walls = WallsNow(simulation)
         self._recognition_period_ms = 0
         self._recognition_steps = 0
         self._recognition_from = 0
         self._recognised: list[CameraRecognitionObject] = []
 
     def _read(self) -> Any:
-        world = self._simulation.world
-        if self._walls is None or self._floor is None or world is not self._world:
-            self._walls = WallBoxes(world, sensed=True)
-            self._floor = FloorPaint(world)
-            self._world = world
+        self._walls = self._walls_now.walls()
+        self._floor = self._walls_now.floor()
         x, y, yaw = (float(v) for v in self._simulation.simulator.pose)
         fleet = self._fleet_now()
         bodies = self._bodies_now() + self._robot_shapes_now(fleet)
@@ -671,13 +672,18 @@ class Camera(_Sensor):
         sample."""
         if self._sampled is None or self._walls is None or self._floor is None:
             return None
-        if self._pixels is None or self._rendered_at != self._sampled:
+        if (
+            self._pixels is None
+            or self._rendered_at != self._sampled
+            or self._rendered_walls is not self._walls
+        ):
             pose, robots, bodies = self._sampled
             balls = [body for body in bodies if isinstance(body, Ball)]
             blocks = [body for body in bodies if isinstance(body, Block)]
             self._bytes = None
             self._pixels = render(self._view, self._walls, self._floor, pose, robots, balls, blocks)
             self._rendered_at = self._sampled
+            self._rendered_walls = self._walls
         return self._pixels
 
     def _other_robots(self, fleet: list[tuple[Any, Sequence[float]]]) -> list[RobotBody]:
@@ -802,8 +808,6 @@ class Camera(_Sensor):
         """What the camera's Recognition node recognises now."""
         recogniser = self._recogniser
         assert recogniser is not None
-        if self._walls is None:
-            self._walls = WallBoxes(self._simulation.world)
         simulation = self._simulation
         x, y, yaw = (float(v) for v in simulation.simulator.pose)
         view = self._view
@@ -826,7 +830,8 @@ class Camera(_Sensor):
         objects = world_objects(simulation)
         bodies = objects.body_poses() if recogniser.follows_bodies else None
         moves = objects.node_moves() if recogniser.follows_moves else None
-        return recogniser.recognise(camera, self._walls, robots, bodies, moves)
+        walls = self._recognised_walls.base()
+        return recogniser.recognise(camera, walls, robots, bodies, moves)
 
     def _without_recognition(self, function: str) -> bool:
         """Whether the camera has no Recognition node (then with Webots' error)."""

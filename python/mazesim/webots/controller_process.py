@@ -17,7 +17,8 @@ messages are pickled tuples). The protocol, from the controller's side:
   ``encoders`` after the step (:data:`STATE_AFTER_STEP`, which the controller's process then
   reads without asking, until it moves its robot itself), the world's ``last_reset``
   (:class:`~mazesim.webots.simulation.WorldReset`) and the ``customData`` a supervisor last
-  wrote into the robot's node (``Fleet.custom_data``), or ``("ok", (True, None))`` without a step
+  wrote into the robot's node (``Fleet.custom_data``) and how many times a supervisor has
+  changed the walls (``Fleet.wall_changes``), or ``("ok", (True, None))`` without a step
   when a supervisor has quit the simulation (``Robot.step`` then returns -1);
 - ``("done", summary)``: the controller has ended (a dict of :class:`ControllerSummary`'s
   fields); no answer. From then on the robot's wheels stay still.
@@ -161,6 +162,9 @@ class RemoteSimulator(Remote):
         #: The ``customData`` a supervisor last wrote into the robot's node and the number of
         #: that write, as the last step's answer told it (None while none did).
         self.custom_data: tuple[int, str] | None = None
+        #: How many times a supervisor has changed the world's walls, as the last step's
+        #: answer told it (:class:`~mazesim.webots.walls_now.WallsNow`).
+        self.wall_changes = 0
 
     def _state(self, name: str) -> Any:
         if name in self._after_step:
@@ -196,6 +200,7 @@ class RemoteSimulator(Remote):
         self._after_step = dict(state or {})
         self.last_reset = self._after_step.pop("last_reset", self.last_reset)
         self.custom_data = self._after_step.pop("custom_data", self.custom_data)
+        self.wall_changes = self._after_step.pop("wall_changes", self.wall_changes)
         return bool(over)
 
 

@@ -206,6 +206,11 @@ class Fleet:
         #: (the imported nodes' come after them).
         self.text: str | None = None
         self._file_lines = 0
+        #: How many times a supervisor has changed the walls (moved, imported or removed a
+        #: node, reset the world), which every robot is told of with each step's answer, and
+        #: the world as drawn after the last change (:meth:`world_now`).
+        self.wall_changes = 0
+        self._drawn: tuple[int, World] | None = None
         #: The ``customData`` a supervisor last wrote into each robot's node, numbered in the
         #: order written, which the robot reads after the world's next step.
         self._custom_data: dict[int, tuple[int, str]] = {}
@@ -296,6 +301,24 @@ class Fleet:
         own = [s for s, robot in here if robot.get("profile") is not None]
         return shared + own or [s for s, _ in here]
 
+    def world_now(self, start: World) -> World:
+        """The world as it runs now, for what draws the whole world (the ``--live`` window):
+        ``start`` until a supervisor changes the walls, then the world of a simulator that holds
+        them (the e-pucks'), moved, imported and removed walls and all."""
+        if self.wall_changes == 0:
+            return start
+        if self._drawn is None or self._drawn[0] != self.wall_changes:
+            e_pucks = any(
+                robot.get("profile") is not None
+                for index, robot in enumerate(self._robots)
+                if index not in self.gone
+            )
+            # Without e-pucks no simulator holds the walls (a robot that is no e-puck's has
+            # none): the window keeps the start's.
+            world = self._worlds()[0].world if e_pucks else start
+            self._drawn = (self.wall_changes, world)
+        return self._drawn[1]
+
     def body_poses(self) -> list[tuple[float, float, float]]:
         """The movable bodies' poses (x, y, yaw) now, in world order."""
         return self.solids.body_poses()
@@ -328,6 +351,7 @@ class Fleet:
             kept = self.text.split("\n")[: self._file_lines]
             self.change_world("\n".join(kept + [""] * (self.text.count("\n") + 1 - len(kept))))
         self.solids.forget_moves()
+        self.wall_changes += 1
         done: set[int] = set()
         here = [s for i, s in enumerate(self._simulators) if i not in self.gone]
         for simulator in here:
@@ -354,7 +378,10 @@ class Fleet:
     def move_node(self, line: int, from_pose: Any, to_pose: Any) -> None:
         """Moves what the node on ``line`` holds, in every simulator that holds the world's
         walls and bodies (see :meth:`~mazesim.webots.solids.WorldSolids.move_node`)."""
+        walls = self.solids.node_moves()
         self.solids.move_node(line, from_pose, to_pose)
+        if self.solids.node_moves() != walls:  # a node holding bodies alone moves no wall
+            self.wall_changes += 1
 
     def change_world(self, text: str) -> None:
         """Runs on in the world of ``text`` (the world file as a supervisor changed it: see
@@ -401,6 +428,7 @@ class Fleet:
             self.solids, simulators, worlds, report, kept_robots=kept, robot_profiles=profiles
         )
         self.text = text
+        self.wall_changes += 1
         if change is not None:
             self._take(change, removed, opened)
 
@@ -597,7 +625,9 @@ def run_world(
     traction = WorldTraction(scenes, robots, simulators)
     movable = [robot.get("profile") is not None for robot in robots]
     started = time.perf_counter()
-    watch = None if observer is None else lambda *state: observer(world, runs, *state)
+    watch = (
+        None if observer is None else lambda *state: observer(fleet.world_now(world), runs, *state)
+    )
     # The controllers' processes inherit the display their windows need.
     with contextlib.ExitStack() as display:
         if drawn:
@@ -883,6 +913,7 @@ def _lockstep(
                             state = state_after_step(simulators[index])
                             state["last_reset"] = fleet.last_reset(index)
                             state["custom_data"] = fleet.custom_data(index)
+                            state["wall_changes"] = fleet.wall_changes
                         connections[index].send(("ok", (state is None, state)))
                     wheels.clear()
     finally:

@@ -216,7 +216,8 @@ class SceneEdits:
         if simulation.owns_world:
             simulator = simulation.simulator
             simulation.solids = carried_over(simulation.solids, [simulator], [world], report)
-            simulation.world = simulator.world
+            # The import itself: what casts against it moves the moved walls again.
+            simulation.world = world
         else:
             simulation.fleet.change_world(text)
         for key in ("obstacles", "bodies"):

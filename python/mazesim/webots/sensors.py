@@ -29,7 +29,7 @@ from mazesim.webots.devices import (
 from mazesim.webots.frames import Axes, axes_or_none, enu_to_nue, nue_to_enu
 from mazesim.webots.lights import irradiance
 from mazesim.webots.node_types import node_type
-from mazesim.webots.rays import WallBoxes
+from mazesim.webots.walls_now import WallsNow
 
 if TYPE_CHECKING:
     from mazesim.webots.simulation import RobotSimulation
@@ -454,17 +454,15 @@ class RayDistanceSensor(DistanceSensor):
         self._mount = mount
         self._table = LookupTable(DISTANCE_TABLE if not table else table)
         self._type = DISTANCE_SENSOR_TYPES.get(sensor_type, self.GENERIC)
-        self._walls: WallBoxes | None = None
+        self._walls = WallsNow(simulation, sensed=self._type == self.INFRA_RED)
         self._rng = noise_stream(simulation, name)
 
     def _read(self) -> float:
         if self._mount.pitch > DOWNWARD_PITCH:
             return self._read_floor()
-        if self._walls is None:
-            self._walls = WallBoxes(self._simulation.world, sensed=self._type == self.INFRA_RED)
         x, y, heading = self._mount.world_pose(self._simulation.simulator.pose)
         direction = np.array([[math.cos(heading), math.sin(heading)]])
-        distance, reflectance = self._walls.cast((x, y), direction)
+        distance, reflectance = self._walls.walls().cast((x, y), direction)
         reach = self.getMaxRange()
         d = float(distance[0])
         if self._type == self.INFRA_RED and math.isfinite(d):

@@ -1,0 +1,113 @@
+"""The walls and floor that a robot's own casts (its camera, a distance sensor the world adds)
+meet now: where a supervisor moved them, with what it imported and without what it removed.
+
+The walls are the robot's own import of the running world (the world file, or its text as a
+supervisor's imports and removals changed it: :mod:`mazesim.webots.scene_edits`), each node a
+supervisor moved moved again by the motion from its pose in the file to its pose now
+(:func:`~mazesim.webots.line_of_sight.moved_walls`). In a run of one robot both are at hand
+(the simulation's world and its :class:`~mazesim.webots.solids.WorldSolids`); in a world run
+the world's process holds them, and each step's answer says how many times the walls have
+changed (``wall_changes``), so a robot asks for the changed world only after a change.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import TYPE_CHECKING, Any
+
+from mazesim.webots.line_of_sight import moved_walls
+from mazesim.webots.rays import FloorPaint, WallBoxes
+from mazesim.webots.solids import held_by_line, world_objects
+
+if TYPE_CHECKING:
+    from mazesim._core import World
+    from mazesim.webots.simulation import RobotSimulation
+
+__all__ = ["WallsNow", "walls_seen"]
+
+
+def walls_seen(simulation: RobotSimulation) -> Any:
+    """What the walls of ``simulation``'s world are made from now, which changes when a
+    supervisor changes them: in a world run the world's count of changes (told with each
+    step's answer), else the simulation's world (a supervisor's imports and removals replace
+    it) and the moves of its nodes."""
+    if simulation.fleet is not None:
+        return getattr(simulation.simulator, "wall_changes", 0)
+    return (id(simulation.world), sorted(world_objects(simulation).node_moves().items()))
+
+
+class WallsNow:
+    """The walls and floor paint of a robot's world as they are now, read again only after a
+    change.
+
+    Args:
+        simulation: The robot's simulation.
+        sensed: Whether the walls include the sensed-only ones (infra-red rays and cameras).
+    """
+
+    def __init__(self, simulation: RobotSimulation, sensed: bool = False) -> None:
+        self._simulation = simulation
+        self._sensed = sensed
+        #: The import the walls are made of (world, report) and the world-run text it read.
+        self._world: World | None = None
+        self._report: Mapping[str, Any] = {}
+        self._text: str | None = None
+        self._base: WallBoxes | None = None
+        self._floor: FloorPaint | None = None
+        #: What the walls were made from last: the world and the moves (a run of one robot),
+        #: or the world's count of changes (a world run).
+        self._seen: Any = None
+        self._walls: WallBoxes | None = None
+
+    def _import(self) -> None:
+        """Takes the running world's import: the simulation's own in a run of one robot (a
+        supervisor's change replaces it); in a world run, the world's text as changed, imported
+        for this robot as at its start."""
+        simulation = self._simulation
+        world: World = simulation.world
+        report: Mapping[str, Any] = simulation.report
+        if simulation.fleet is not None:
+            text = simulation.fleet.text
+            if text is not None and text != self._text:
+                from mazesim.webots.importer import import_wbt_text
+
+                robot_line = simulation.report.get("robot_line")
+                world, report = import_wbt_text(
+                    text, str(simulation.report.get("path") or ""), robot_line=robot_line
+                )
+                self._text = text
+            elif text is not None and self._world is not None:
+                world, report = self._world, self._report
+        if world is not self._world:
+            self._world, self._report = world, report
+            self._base = WallBoxes(world, sensed=self._sensed)
+            self._floor = None
+
+    def walls(self) -> WallBoxes:
+        """The walls now."""
+        seen = walls_seen(self._simulation)
+        # The world the last walls were made of is held, so its id is not another's.
+        if self._walls is not None and seen == self._seen:
+            return self._walls
+        self._import()
+        assert self._base is not None
+        held = {line: h.walls for line, h in held_by_line(self._report).items() if h.walls}
+        moves = dict(world_objects(self._simulation).node_moves())
+        self._walls = moved_walls(self._base, held, moves)
+        self._seen = seen
+        return self._walls
+
+    def base(self) -> WallBoxes:
+        """The walls of the running world's import, none moved (what a camera's recognition
+        moves itself)."""
+        self.walls()
+        assert self._base is not None
+        return self._base
+
+    def floor(self) -> FloorPaint:
+        """The floor paint now."""
+        self.walls()
+        assert self._world is not None
+        if self._floor is None:
+            self._floor = FloorPaint(self._world)
+        return self._floor
