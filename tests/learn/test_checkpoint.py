@@ -10,6 +10,7 @@ from __future__ import annotations
 import dataclasses
 import json
 import os
+import shutil
 from pathlib import Path
 from typing import Any
 
@@ -61,6 +62,22 @@ def uninterrupted(tmp_path_factory: pytest.TempPathFactory) -> TrainedPolicy:
     policy = train(RUN, RunFolder(folder), progress=None, threads=1)
     assert policy is not None
     return load_policy(folder)
+
+
+@pytest.fixture(scope="module")
+def one_round(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """A run folder stopped after its first round (its checkpoint), made once: each test that
+    starts from there gets a copy (:func:`_copy_of`)."""
+    folder = tmp_path_factory.mktemp("one-round") / "run"
+    assert train(RUN, RunFolder(folder), progress=None, threads=1, stop_after_rounds=1) is None
+    assert (folder / CHECKPOINT_FILE).is_file()
+    return folder
+
+
+def _copy_of(one_round: Path, folder: Path) -> Path:
+    """``folder``, a copy of the run folder stopped after its first round."""
+    shutil.copytree(one_round, folder, dirs_exist_ok=True)
+    return folder
 
 
 def _replacements_of_a_run(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> int:
@@ -139,10 +156,9 @@ def _metadata(saved: Checkpoint) -> dict[str, Any]:
 
 
 def test_a_checkpoint_of_mazesim_0_1_still_resumes(
-    tmp_path: Path, uninterrupted: TrainedPolicy
+    tmp_path: Path, uninterrupted: TrainedPolicy, one_round: Path
 ) -> None:
-    folder = tmp_path / "old"
-    assert train(RUN, RunFolder(folder), progress=None, threads=1, stop_after_rounds=1) is None
+    folder = _copy_of(one_round, tmp_path / "old")
     saved = read_checkpoint(folder, RUN.identity())
     (folder / CHECKPOINT_FILE).unlink()
     write_bundle(
@@ -170,8 +186,10 @@ def test_a_checkpoint_of_mazesim_0_1_still_resumes(
         (lambda m: {**m, "settings": {**m["settings"], "seed": 4}}, "other settings"),
     ],
 )
-def test_a_malformed_checkpoint_is_refused(tmp_path: Path, change: Any, reason: str) -> None:
-    assert train(RUN, RunFolder(tmp_path), progress=None, threads=1, stop_after_rounds=1) is None
+def test_a_malformed_checkpoint_is_refused(
+    tmp_path: Path, one_round: Path, change: Any, reason: str
+) -> None:
+    _copy_of(one_round, tmp_path)
     saved = read_checkpoint(tmp_path, RUN.identity())
     data = write_archive(
         {"q": saved.tables.q, "visits": saved.tables.visits},
@@ -182,15 +200,15 @@ def test_a_malformed_checkpoint_is_refused(tmp_path: Path, change: Any, reason: 
         train(RUN, RunFolder(tmp_path, resume=True), progress=None, threads=1)
 
 
-def test_other_settings_cannot_resume(tmp_path: Path) -> None:
-    assert train(RUN, RunFolder(tmp_path), progress=None, threads=1, stop_after_rounds=1) is None
+def test_other_settings_cannot_resume(tmp_path: Path, one_round: Path) -> None:
+    _copy_of(one_round, tmp_path)
     other = dataclasses.replace(RUN, seed=RUN.seed + 1)
     with pytest.raises(PolicyFormatError, match="other settings"):
         train(other, RunFolder(tmp_path, resume=True), progress=None, threads=1)
 
 
-def test_other_settings_name_each_setting_that_differs(tmp_path: Path) -> None:
-    assert train(RUN, RunFolder(tmp_path), progress=None, threads=1, stop_after_rounds=1) is None
+def test_other_settings_name_each_setting_that_differs(tmp_path: Path, one_round: Path) -> None:
+    _copy_of(one_round, tmp_path)
     other = dataclasses.replace(RUN, seed=RUN.seed + 1)
     with pytest.raises(PolicyFormatError) as refused:
         train(other, RunFolder(tmp_path, resume=True), progress=None, threads=1)
