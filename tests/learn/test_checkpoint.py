@@ -57,11 +57,26 @@ class SimulatedCrash(BaseException):
 
 
 @pytest.fixture(scope="module")
-def uninterrupted(tmp_path_factory: pytest.TempPathFactory) -> TrainedPolicy:
+def uninterrupted_run(tmp_path_factory: pytest.TempPathFactory) -> tuple[TrainedPolicy, int]:
+    """The navigator of a run never interrupted, and how many times the run replaced a file."""
     folder = tmp_path_factory.mktemp("uninterrupted")
-    policy = train(RUN, RunFolder(folder), progress=None, threads=1)
+    calls = []
+    real_replace = os.replace
+
+    def counting_replace(source: Any, target: Any) -> None:
+        calls.append(target)
+        real_replace(source, target)
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(os, "replace", counting_replace)
+        policy = train(RUN, RunFolder(folder), progress=None, threads=1)
     assert policy is not None
-    return load_policy(folder)
+    return load_policy(folder), len(calls)
+
+
+@pytest.fixture(scope="module")
+def uninterrupted(uninterrupted_run: tuple[TrainedPolicy, int]) -> TrainedPolicy:
+    return uninterrupted_run[0]
 
 
 @pytest.fixture(scope="module")
@@ -78,21 +93,6 @@ def _copy_of(one_round: Path, folder: Path) -> Path:
     """``folder``, a copy of the run folder stopped after its first round."""
     shutil.copytree(one_round, folder, dirs_exist_ok=True)
     return folder
-
-
-def _replacements_of_a_run(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> int:
-    """How many times a whole run replaces a file."""
-    calls = []
-    real_replace = os.replace
-
-    def counting_replace(source: Any, target: Any) -> None:
-        calls.append(target)
-        real_replace(source, target)
-
-    with monkeypatch.context() as patch:
-        patch.setattr(os, "replace", counting_replace)
-        train(RUN, RunFolder(tmp_path / "counted"), progress=None, threads=1)
-    return len(calls)
 
 
 def _crash_at(folder: Path, crash_call: int, monkeypatch: pytest.MonkeyPatch) -> None:
@@ -116,9 +116,9 @@ def _crash_at(folder: Path, crash_call: int, monkeypatch: pytest.MonkeyPatch) ->
 
 
 def test_a_crash_at_any_file_replacement_resumes_to_the_same_tables(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, uninterrupted: TrainedPolicy
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, uninterrupted_run: tuple[TrainedPolicy, int]
 ) -> None:
-    replacements = _replacements_of_a_run(tmp_path, monkeypatch)
+    uninterrupted, replacements = uninterrupted_run
     # One per checkpoint, then the navigator's two files.
     assert replacements == ROUNDS + 2
     for crash_call in range(1, replacements + 1):
