@@ -14,7 +14,7 @@ from hostile import run_hostile
 
 #: A batch, and a call on it long enough (about a second or more) that the others meet it busy.
 LONG_RUN = """
-import os, signal, threading, time
+import os, signal, sys, threading, time
 world = mazesim.World.builtin('seed-maze')
 batch = _core.BatchSimulator(world, num_envs=64, threads=1)
 out = buffers(batch)
@@ -45,9 +45,17 @@ def forked_child():
         time.sleep(0.05)
     os.kill(pid, signal.SIGKILL)
     return 'HUNG'
+def in_long_run(thread):
+    # Waits until `thread` is in long_run (True), or has ended (False).
+    while thread.is_alive():
+        frame = sys._current_frames().get(thread.ident)
+        if frame is not None and frame.f_code.co_name == 'long_run':
+            return True
+        time.sleep(0.01)
+    return False
 def held_by_another_thread(thread):
     # Waits until `thread` holds the batch (a child forked then finds it held) or has ended.
-    while thread.is_alive():
+    while in_long_run(thread):
         if forked_child() == 0:
             return True
     return False
@@ -102,17 +110,21 @@ def test_ctrl_c_stops_a_long_run_and_its_handler_may_read_the_batch() -> None:
     lines = _run(
         """
         seen = []
+        early = []
         stopped = threading.Event()
         def on_ctrl_c(*_):
             steps = int(batch.steps().sum())
-            if stopped.is_set() or steps == 0:
-                return  # pressed again before the presser saw it, or before the run stepped
+            if stopped.is_set():
+                return  # pressed again before the presser saw the run stopped
+            if steps == 0:
+                early.append(steps)  # before the run stepped: the next press waits twice as long
+                return
             seen.append(steps)
             stopped.set()
             raise KeyboardInterrupt
         signal.signal(signal.SIGINT, on_ctrl_c)
         def press_until_stopped():  # Ctrl-C until the handler stopped a run that had stepped
-            while not stopped.wait(0.05):
+            while not stopped.wait(0.05 * 2 ** len(early)):
                 os.kill(os.getpid(), signal.SIGINT)
         threading.Thread(target=press_until_stopped, daemon=True).start()
         while True:
@@ -135,7 +147,6 @@ def test_ctrl_c_stops_a_long_run_and_its_handler_may_read_the_batch() -> None:
 def test_ctrl_c_ends_the_wait_for_a_batch_busy_on_another_thread() -> None:
     lines = _run(
         """
-        import sys
         batch.steps()  # made here, before any fork: the extension's own once-made state
         # 2.5 million env-steps: a second or more, however quiet the machine.
         runner = threading.Thread(target=long_run, args=(40000,))
@@ -197,7 +208,7 @@ def test_a_forked_child_refuses_a_batch_its_parent_was_stepping(threads: int) ->
         # A child forked before the runner took the batch reads it (1): fork again until one is
         # forked while the runner holds it, or the runner has ended.
         code = 1
-        while code == 1 and runner.is_alive():
+        while code == 1 and in_long_run(runner):
             code = forked_child()
         runner.join()
         print('CHILD', code)
