@@ -14,12 +14,51 @@ from hostile import run_hostile
 
 #: A batch, and a call on it long enough (about a second or more) that the others meet it busy.
 LONG_RUN = """
-import os, signal, threading
+import os, signal, sys, threading, time
 world = mazesim.World.builtin('seed-maze')
 batch = _core.BatchSimulator(world, num_envs=64, threads=1)
 out = buffers(batch)
 def long_run(steps=4000):
     return batch.run(steps, 'braitenberg', *out)
+def forked_child():
+    # How a child forked now reads the batch: 0 refused as forked, 1 read (the batch was free at
+    # the fork), 2 refused for another reason, 'HUNG' (a ceiling of 120 s); the child then steps
+    # a batch of its own.
+    pid = os.fork()
+    if pid == 0:
+        code = 1
+        try:
+            batch.steps()
+        except mazesim.SimulatorBusyError as e:
+            code = 0 if 'forked' in str(e) else 2
+        except BaseException:
+            code = 3
+        try:
+            fresh = _core.BatchSimulator(world, num_envs=2)
+            fresh.step(np.zeros((2, 2), np.float32), *buffers(fresh))
+        finally:
+            os._exit(code)
+    for _ in range(2400):  # the loop ends with the child
+        done, status = os.waitpid(pid, os.WNOHANG)
+        if done:
+            return os.waitstatus_to_exitcode(status)
+        time.sleep(0.05)
+    os.kill(pid, signal.SIGKILL)
+    return 'HUNG'
+def in_long_run(thread):
+    # Waits until `thread` is in long_run (True), or has ended (False).
+    while thread.is_alive():
+        frame = sys._current_frames().get(thread.ident)
+        if frame is not None and frame.f_code.co_name == 'long_run':
+            return True
+        time.sleep(0.01)
+    return False
+def held_by_another_thread(thread):
+    # Waits until `thread` holds the batch (a child forked then finds it held) or has ended.
+    while in_long_run(thread):
+        if forked_child() == 0:
+            return True
+    return False
 """
 
 
@@ -71,16 +110,33 @@ def test_ctrl_c_stops_a_long_run_and_its_handler_may_read_the_batch() -> None:
     lines = _run(
         """
         seen = []
+        early = []
+        stopped = threading.Event()
         def on_ctrl_c(*_):
-            seen.append(int(batch.steps().sum()))
+            steps = int(batch.steps().sum())
+            if stopped.is_set():
+                return  # pressed again before the presser saw the run stopped
+            if steps == 0:
+                early.append(steps)  # before the run stepped: the next press waits twice as long
+                return
+            seen.append(steps)
+            stopped.set()
             raise KeyboardInterrupt
         signal.signal(signal.SIGINT, on_ctrl_c)
-        threading.Timer(0.3, os.kill, (os.getpid(), signal.SIGINT)).start()
-        try:
-            long_run(10**6)
-            print('NOT STOPPED')
-        except KeyboardInterrupt:
-            print('STOPPED', len(seen), int(batch.steps().max()))
+        def press_until_stopped():  # Ctrl-C until the handler stopped a run that had stepped
+            while not stopped.wait(0.05 * 2 ** len(early)):
+                os.kill(os.getpid(), signal.SIGINT)
+        threading.Thread(target=press_until_stopped, daemon=True).start()
+        while True:
+            try:
+                long_run(10**6)
+                print('NOT STOPPED')
+                break
+            except KeyboardInterrupt:
+                if stopped.is_set():
+                    print('STOPPED', len(seen), int(batch.steps().max()))
+                    break
+                # stopped before its first step, which the handler let pass: run again
         """
     )
     stopped = next(line for line in lines if line.startswith(("STOPPED", "NOT"))).split()
@@ -91,21 +147,29 @@ def test_ctrl_c_stops_a_long_run_and_its_handler_may_read_the_batch() -> None:
 def test_ctrl_c_ends_the_wait_for_a_batch_busy_on_another_thread() -> None:
     lines = _run(
         """
-        import time
-        running = threading.Event()
+        batch.steps()  # made here, before any fork: the extension's own once-made state
         # 2.5 million env-steps: a second or more, however quiet the machine.
-        runner = threading.Thread(target=lambda: (running.set(), long_run(40000)))
-        runner.start(); running.wait(); time.sleep(0.1)
-        threading.Timer(0.1, os.kill, (os.getpid(), signal.SIGINT)).start()
+        runner = threading.Thread(target=long_run, args=(40000,))
+        runner.start()
+        print('HELD', held_by_another_thread(runner))
+        main = threading.get_ident()
+        def wait_for_the_batch():
+            return batch.steps()
+        def press_once_waiting():  # Ctrl-C once the main thread is in the wait
+            while sys._current_frames()[main].f_code.co_name != 'wait_for_the_batch':
+                time.sleep(0.01)
+            os.kill(os.getpid(), signal.SIGINT)
+        threading.Thread(target=press_once_waiting, daemon=True).start()
         started = time.monotonic()
         try:
-            batch.steps()
+            wait_for_the_batch()
             print('WAITED', runner.is_alive())
         except KeyboardInterrupt:
             print('INTERRUPTED', runner.is_alive(), round(time.monotonic() - started, 2))
         runner.join()
         """
     )
+    assert "HELD True" in lines, lines
     line = next(line for line in lines if line.startswith(("WAITED", "INTERRUPTED"))).split()
     # Still running when Ctrl-C came: the wait ended, not the other thread's call.
     assert line[:2] == ["INTERRUPTED", "True"], line
@@ -135,33 +199,19 @@ def test_a_property_of_an_argument_may_read_the_same_simulator() -> None:
 def test_a_forked_child_refuses_a_batch_its_parent_was_stepping(threads: int) -> None:
     lines = _run(
         f"""
-        import time
         batch = _core.BatchSimulator(world, num_envs=64, threads={threads})
         out = buffers(batch)
-        running = threading.Event()
+        batch.steps()  # made here, before any fork: the extension's own once-made state
         # 2.5 million env-steps: a second or more, however quiet the machine.
-        runner = threading.Thread(target=lambda: (running.set(), long_run(40000)))
-        runner.start(); running.wait(); time.sleep(0.1)
-        pid = os.fork()
-        if pid == 0:
-            code = 1
-            try:
-                batch.steps()
-            except mazesim.SimulatorBusyError as e:
-                code = 0 if 'forked' in str(e) else 2
-            fresh = _core.BatchSimulator(world, num_envs=2)
-            fresh.step(np.zeros((2, 2), np.float32), *buffers(fresh))
-            os._exit(code)
-        for _ in range(2400):  # a ceiling of 120 s for a hang: the loop ends with the child
-            done, status = os.waitpid(pid, os.WNOHANG)
-            if done:
-                break
-            time.sleep(0.05)
-        else:
-            os.kill(pid, signal.SIGKILL)
-            status = -1
+        runner = threading.Thread(target=long_run, args=(40000,))
+        runner.start()
+        # A child forked before the runner took the batch reads it (1): fork again until one is
+        # forked while the runner holds it, or the runner has ended.
+        code = 1
+        while code == 1 and in_long_run(runner):
+            code = forked_child()
         runner.join()
-        print('CHILD', os.waitstatus_to_exitcode(status) if status != -1 else 'HUNG')
+        print('CHILD', code)
         batch.steps()
         """
     )

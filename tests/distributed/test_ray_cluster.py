@@ -62,21 +62,35 @@ def test_connection_advice_names_what_to_set(monkeypatch: pytest.MonkeyPatch) ->
     assert issubclass(ClusterConnectionError, ConnectionError)
 
 
+def _gone(tag: str, ceiling_s: float) -> bool:
+    """Waits until no process carries the tag (True), or ``ceiling_s`` has passed (False)."""
+    deadline = time.monotonic() + ceiling_s
+    while processes_with(TAG_VARIABLE, tag):
+        if time.monotonic() > deadline:
+            return False
+        time.sleep(0.2)
+    return True
+
+
 def _stop(head: subprocess.Popen[bytes], tag: str) -> None:
     """Stops the head (SIGTERM: ``--block`` then stops its node's processes), then whatever
-    carries the tag, by process id."""
+    carries the tag, by process id, and waits until they are gone (the waits are ceilings for a
+    hang: each ends as soon as the processes have)."""
     if head.poll() is None:
         head.send_signal(signal.SIGTERM)
         try:
-            head.wait(timeout=30)
+            head.wait(timeout=120)
         except subprocess.TimeoutExpired:
             head.kill()
             head.wait()
-    deadline = time.monotonic() + 15.0
-    while processes_with(TAG_VARIABLE, tag) and time.monotonic() < deadline:
-        time.sleep(0.2)
+    if _gone(tag, 120.0):
+        return
     for pid in processes_with(TAG_VARIABLE, tag):
-        os.kill(pid, signal.SIGKILL)
+        try:
+            os.kill(pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass  # it ended meanwhile
+    _gone(tag, 120.0)
 
 
 @pytest.fixture

@@ -10,6 +10,7 @@ from __future__ import annotations
 import dataclasses
 import json
 import os
+import shutil
 from pathlib import Path
 from typing import Any
 
@@ -56,15 +57,9 @@ class SimulatedCrash(BaseException):
 
 
 @pytest.fixture(scope="module")
-def uninterrupted(tmp_path_factory: pytest.TempPathFactory) -> TrainedPolicy:
+def uninterrupted_run(tmp_path_factory: pytest.TempPathFactory) -> tuple[TrainedPolicy, int]:
+    """The navigator of a run never interrupted, and how many times the run replaced a file."""
     folder = tmp_path_factory.mktemp("uninterrupted")
-    policy = train(RUN, RunFolder(folder), progress=None, threads=1)
-    assert policy is not None
-    return load_policy(folder)
-
-
-def _replacements_of_a_run(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> int:
-    """How many times a whole run replaces a file."""
     calls = []
     real_replace = os.replace
 
@@ -72,10 +67,32 @@ def _replacements_of_a_run(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> i
         calls.append(target)
         real_replace(source, target)
 
-    with monkeypatch.context() as patch:
+    with pytest.MonkeyPatch.context() as patch:
         patch.setattr(os, "replace", counting_replace)
-        train(RUN, RunFolder(tmp_path / "counted"), progress=None, threads=1)
-    return len(calls)
+        policy = train(RUN, RunFolder(folder), progress=None, threads=1)
+    assert policy is not None
+    return load_policy(folder), len(calls)
+
+
+@pytest.fixture(scope="module")
+def uninterrupted(uninterrupted_run: tuple[TrainedPolicy, int]) -> TrainedPolicy:
+    return uninterrupted_run[0]
+
+
+@pytest.fixture(scope="module")
+def one_round(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """A run folder stopped after its first round (its checkpoint), made once: each test that
+    starts from there gets a copy (:func:`_copy_of`)."""
+    folder = tmp_path_factory.mktemp("one-round") / "run"
+    assert train(RUN, RunFolder(folder), progress=None, threads=1, stop_after_rounds=1) is None
+    assert (folder / CHECKPOINT_FILE).is_file()
+    return folder
+
+
+def _copy_of(one_round: Path, folder: Path) -> Path:
+    """``folder``, a copy of the run folder stopped after its first round."""
+    shutil.copytree(one_round, folder, dirs_exist_ok=True)
+    return folder
 
 
 def _crash_at(folder: Path, crash_call: int, monkeypatch: pytest.MonkeyPatch) -> None:
@@ -99,9 +116,9 @@ def _crash_at(folder: Path, crash_call: int, monkeypatch: pytest.MonkeyPatch) ->
 
 
 def test_a_crash_at_any_file_replacement_resumes_to_the_same_tables(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, uninterrupted: TrainedPolicy
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, uninterrupted_run: tuple[TrainedPolicy, int]
 ) -> None:
-    replacements = _replacements_of_a_run(tmp_path, monkeypatch)
+    uninterrupted, replacements = uninterrupted_run
     # One per checkpoint, then the navigator's two files.
     assert replacements == ROUNDS + 2
     for crash_call in range(1, replacements + 1):
@@ -139,10 +156,9 @@ def _metadata(saved: Checkpoint) -> dict[str, Any]:
 
 
 def test_a_checkpoint_of_mazesim_0_1_still_resumes(
-    tmp_path: Path, uninterrupted: TrainedPolicy
+    tmp_path: Path, uninterrupted: TrainedPolicy, one_round: Path
 ) -> None:
-    folder = tmp_path / "old"
-    assert train(RUN, RunFolder(folder), progress=None, threads=1, stop_after_rounds=1) is None
+    folder = _copy_of(one_round, tmp_path / "old")
     saved = read_checkpoint(folder, RUN.identity())
     (folder / CHECKPOINT_FILE).unlink()
     write_bundle(
@@ -170,8 +186,10 @@ def test_a_checkpoint_of_mazesim_0_1_still_resumes(
         (lambda m: {**m, "settings": {**m["settings"], "seed": 4}}, "other settings"),
     ],
 )
-def test_a_malformed_checkpoint_is_refused(tmp_path: Path, change: Any, reason: str) -> None:
-    assert train(RUN, RunFolder(tmp_path), progress=None, threads=1, stop_after_rounds=1) is None
+def test_a_malformed_checkpoint_is_refused(
+    tmp_path: Path, one_round: Path, change: Any, reason: str
+) -> None:
+    _copy_of(one_round, tmp_path)
     saved = read_checkpoint(tmp_path, RUN.identity())
     data = write_archive(
         {"q": saved.tables.q, "visits": saved.tables.visits},
@@ -182,15 +200,15 @@ def test_a_malformed_checkpoint_is_refused(tmp_path: Path, change: Any, reason: 
         train(RUN, RunFolder(tmp_path, resume=True), progress=None, threads=1)
 
 
-def test_other_settings_cannot_resume(tmp_path: Path) -> None:
-    assert train(RUN, RunFolder(tmp_path), progress=None, threads=1, stop_after_rounds=1) is None
+def test_other_settings_cannot_resume(tmp_path: Path, one_round: Path) -> None:
+    _copy_of(one_round, tmp_path)
     other = dataclasses.replace(RUN, seed=RUN.seed + 1)
     with pytest.raises(PolicyFormatError, match="other settings"):
         train(other, RunFolder(tmp_path, resume=True), progress=None, threads=1)
 
 
-def test_other_settings_name_each_setting_that_differs(tmp_path: Path) -> None:
-    assert train(RUN, RunFolder(tmp_path), progress=None, threads=1, stop_after_rounds=1) is None
+def test_other_settings_name_each_setting_that_differs(tmp_path: Path, one_round: Path) -> None:
+    _copy_of(one_round, tmp_path)
     other = dataclasses.replace(RUN, seed=RUN.seed + 1)
     with pytest.raises(PolicyFormatError) as refused:
         train(other, RunFolder(tmp_path, resume=True), progress=None, threads=1)

@@ -80,8 +80,10 @@ def test_sim_control_and_a_sim_time_timer_drive_a_free_running_bridge(tmp_path: 
     assert result.returncode == 0, result.stderr
     found = _bag_messages(bag)
     clocks = [m.clock.sec * 10**9 + m.clock.nanosec for m in found["/clock"]]  # type: ignore[attr-defined]
-    # Paused: the reset state; "step 4" and "step 3": exactly 7 steps; "run_until 6.4": up to
-    # 6.4 s (200 steps), then paused again until stopped.
+    # Paused: the reset state; a word that is no control is refused and steps nothing; "step 4"
+    # and "step 3": exactly 7 steps; then "step 1" until the timer node has moved the robot;
+    # "run_until 6.4": up to 6.4 s (200 steps in all), then paused again until stopped.
+    assert "ignored: expected pause, run, step N (N >= 1) or run_until SECONDS" in result.stderr
     assert clocks[:8] == [1, *(32_000_000 * step for step in range(1, 8))]
     assert clocks[-1] == 6_400_000_000 and len(clocks) == 201
     poses = [list(message.data) for message in found["/pose"]]  # type: ignore[attr-defined]
@@ -92,32 +94,58 @@ def test_sim_control_and_a_sim_time_timer_drive_a_free_running_bridge(tmp_path: 
 
 
 _CONTROL = """
-import time
+import os, time
 from mazesim.ros2 import cdr
 from mazesim.ros2.node import Node
-from mazesim.ros2.qos import CLOCK, COMMAND
+from mazesim.ros2.qos import CLOCK, COMMAND, SENSOR
 node = Node("sim_control_test")
 clock = node.reader("/clock", "rosgraph_msgs/msg/Clock", CLOCK)
+pose = node.reader("/pose", "std_msgs/msg/Float64MultiArray", SENSOR)
 control = node.writer("/sim_control", "std_msgs/msg/String", COMMAND)
 node.announce()
-deadline = time.monotonic() + 20
-while not control.subscribers() and time.monotonic() < deadline:
-    time.sleep(0.01)
-time.sleep(0.5)
+def until(condition, what):
+    ceiling = time.monotonic() + 300  # bounds a hang only: each wait ends on its condition
+    while not condition():
+        assert time.monotonic() < ceiling, what
+        time.sleep(0.01)
+until(lambda: control.subscribers() and clock.publishers() and pose.publishers(), "discovery")
+# The bridge reads this writer once it refuses a word that is no control (it stays paused).
+control.publish(cdr.encode_string("hello"))
+seen = time.monotonic()
+def refused():
+    global seen
+    path = os.path.join(os.environ["TMPDIR_NS"], "bg0.err")
+    with open(path, encoding="utf-8", errors="replace") as stream:
+        if "found 'hello'" in stream.read():
+            return True
+    if time.monotonic() - seen > 1.0:  # sent before the bridge matched this writer: again
+        control.publish(cdr.encode_string("hello"))
+        seen = time.monotonic()
+    return False
+until(refused, "the bridge never read /sim_control")
 now = 0
 def wait_for(target):
     global now
-    deadline = time.monotonic() + 20
-    while now < target and time.monotonic() < deadline:
+    def reached():
+        global now
         for data in clock.take():
             now = cdr.decode_clock(data)
-        time.sleep(0.005)
+        return now >= target
+    until(reached, ("clock", now, target))
     assert now == target, (now, target)
 control.publish(cdr.encode_string("step 4"))
 wait_for(4 * 32_000_000)
 control.publish(cdr.encode_string("step 3"))
 wait_for(7 * 32_000_000)
+# One step at a time until the timer node's commands have moved the robot (it has started and
+# the bridge reads it), however long its start took.
+places = set()
+def moved():
+    places.update(tuple(cdr.decode_float64_array(data)[:3]) for data in pose.take())
+    return len(places) > 1
+while not moved():
+    control.publish(cdr.encode_string("step 1"))
+    wait_for(now + 32_000_000)
 control.publish(cdr.encode_string("run_until 6.4"))
 wait_for(6_400_000_000)
-time.sleep(0.3)
 """
