@@ -92,7 +92,13 @@ def test_a_signal_handler_that_reads_the_batch_runs_once_the_batch_is_free() -> 
     lines = _run(
         """
         seen = []
-        signal.signal(signal.SIGALRM, lambda *_: seen.append(int(batch.steps().sum())))
+        def on_alarm(*_):
+            seen.append(int(batch.steps().sum()))
+            # The timer stops at the first handled alarm: on a starved machine a handler slower
+            # than the 10 ms period would otherwise find the next alarm pending each time it
+            # returns, and the main thread would never reach the line after the run.
+            signal.setitimer(signal.ITIMER_REAL, 0, 0)
+        signal.signal(signal.SIGALRM, on_alarm)
         signal.setitimer(signal.ITIMER_REAL, 0.01, 0.01)
         long_run()
         signal.setitimer(signal.ITIMER_REAL, 0, 0)
