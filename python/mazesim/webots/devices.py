@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 
+from mazesim._toml import load_toml
 from mazesim.webots.node_types import node_type
 
 if TYPE_CHECKING:
@@ -372,6 +373,18 @@ class _VectorSensor(_Sensor):
 DISTANCE_SENSOR_TYPES = {"generic": 0, "infra-red": 1, "sonar": 2, "laser": 3}
 
 
+@functools.lru_cache(maxsize=8)
+def _sensor_kinds(profile_toml: str) -> dict[str, str]:
+    """Each distance sensor's model kind ("infrared", "range", ...) in a robot profile's
+    TOML text, by sensor name."""
+    profile = load_toml(profile_toml, "the robot profile")
+    models = profile.get("models", {})
+    return {
+        str(sensor["name"]): str(models.get(sensor.get("model"), {}).get("kind", ""))
+        for sensor in profile.get("distance_sensors", [])
+    }
+
+
 class DistanceSensor(_Tabled, _ScalarSensor):
     """An infra-red sensor: a proximity sensor ``ps0``..``ps7`` or a ground sensor ``gs0``..``gs2``.
 
@@ -413,10 +426,15 @@ class DistanceSensor(_Tabled, _ScalarSensor):
         return max((row[1] for row in self._table.rows), default=0.0)
 
     def getType(self) -> int:
-        """:data:`INFRA_RED`, or the world's ``type`` of the sensor
-        (:attr:`RobotSimulation.sensor_types`)."""
+        """The world's ``type`` of the sensor (:attr:`RobotSimulation.sensor_types`), else
+        the robot profile's: :data:`GENERIC` for a sensor of its ``range`` model (the
+        e-puck2's ``tof``, "generic" in Webots' E-puck PROTO), :data:`INFRA_RED` for the
+        others."""
         given = self._simulation.sensor_types.get(self._name)
-        return self.INFRA_RED if given is None else DISTANCE_SENSOR_TYPES.get(given, self.GENERIC)
+        if given is not None:
+            return DISTANCE_SENSOR_TYPES.get(given, self.GENERIC)
+        kinds = _sensor_kinds(self._simulation.simulator.robot.to_toml())
+        return self.GENERIC if kinds.get(self._name) == "range" else self.INFRA_RED
 
     def getMaxRange(self) -> float:
         """The table's last distance (m)."""
