@@ -18,6 +18,8 @@ from mazesim.marl.batch import MultiRobotBatch  # noqa: E402
 TASKS: dict[str, tuple[Any, dict[str, Any]]] = {
     "maze_goals_v0": (maze_goals_v0, {"num_robots": 3, "maze_size": (3, 3), "max_cycles": 25}),
     "aggregation_v0": (aggregation_v0, {"num_robots": 4, "max_cycles": 25}),
+    # One robot alone, the task's single-agent case (#33): the batch of one-robot worlds.
+    "maze_goals_v0, one robot": (maze_goals_v0, {"num_robots": 1, "max_cycles": 25}),
 }
 STEPS = 60  # over two episodes of every env: the autoreset is covered
 

@@ -52,3 +52,35 @@ def test_render_draws_every_robot(name: str) -> None:
     moved = env.render()
     assert moved is not None and not np.array_equal(frame, moved)
     assert module.parallel_env(**options).render() is None
+
+
+#: Settings a MARL user tries beside the defaults: one robot (JaxNav's single-agent case), eight
+#: robots, a maze of 2 x 2 cells as full as it gets, a swarm of twenty (#33).
+UNUSUAL: dict[str, tuple[Any, dict[str, Any]]] = {
+    "maze_goals_v0, one robot": (maze_goals_v0, {"num_robots": 1, "max_cycles": 30}),
+    "maze_goals_v0, eight robots": (maze_goals_v0, {"num_robots": 8, "max_cycles": 30}),
+    "maze_goals_v0, 2 x 2 cells": (
+        maze_goals_v0,
+        {"num_robots": 4, "maze_size": (2, 2), "max_cycles": 30},
+    ),
+    "aggregation_v0, twenty robots": (
+        aggregation_v0,
+        {"num_robots": 20, "arena_side": 2.0, "max_cycles": 20},
+    ),
+}
+
+
+@pytest.mark.parametrize("name", UNUSUAL)
+def test_pettingzoo_tests_pass_with_unusual_settings(name: str) -> None:
+    module, options = UNUSUAL[name]
+    env = module.parallel_env(**options)
+    assert len(env.possible_agents) == options["num_robots"]
+    parallel_api_test(env, num_cycles=40)
+    parallel_seed_test(lambda: module.parallel_env(**options))
+
+
+def test_aggregation_needs_two_robots_and_says_so() -> None:
+    from mazesim.errors import InvalidArgumentError
+
+    with pytest.raises(InvalidArgumentError, match="expected 2 to 64 robots, found 1"):
+        aggregation_v0.parallel_env(num_robots=1)

@@ -153,7 +153,7 @@ class MultiRobotBatch:
                 draw = self.draws[i]
                 assert draw is not None
                 self.simulator.set_world(int(i), draw.world, draw.seed)
-        self.simulator.observe(self._readings, self.poses, self.colliding, self._crossings)
+        self.simulator.observe(*self._buffers())
         self.actions[indices] = 0.0
         self.live[indices] = True
         self.steps[indices] = 0
@@ -161,6 +161,13 @@ class MultiRobotBatch:
             draw = self.draws[i]
             assert draw is not None
             self.task.start(int(i), draw, self.poses[i])
+
+    def _buffers(self, *arrays: npt.NDArray[Any]) -> list[npt.NDArray[Any]]:
+        """The step's buffers (``arrays`` first, then readings, poses, colliding, crossings) as
+        the batch takes them: with their robot axis, or without it when each environment holds
+        one robot (a batch of one-robot worlds keeps the one-robot shapes); views either way."""
+        every = [*arrays, self._readings, self.poses, self.colliding, self._crossings]
+        return [a[:, 0] for a in every] if self.num_robots == 1 else every
 
     def _states(self) -> RobotStates:
         return RobotStates(self._readings, self.poses, self.colliding, self.actions)
@@ -190,7 +197,7 @@ class MultiRobotBatch:
         applied = np.where(self.live[..., None], np.clip(wanted, -1.0, 1.0), np.float32(0.0))
         self.actions[...] = applied
         commands = (applied * np.float32(self.max_wheel_speed)).astype(np.float32)
-        self.simulator.step(commands, self._readings, self.poses, self.colliding, self._crossings)
+        self.simulator.step(*self._buffers(commands))
         self.steps += 1
         live = self.live.copy()
         states = self._states()

@@ -160,10 +160,14 @@ class MultiRobotTask:
 
     name = ""
     observation_names: tuple[str, ...] = ()
+    #: The fewest robots the task has a meaning with.
+    min_robots = 2
 
     def __init__(self, num_robots: int, max_cycles: int, body_radius: float) -> None:
-        if not 2 <= num_robots <= 64:
-            raise InvalidArgumentError(f"expected 2 to 64 robots, found {num_robots}")
+        if not self.min_robots <= num_robots <= 64:
+            raise InvalidArgumentError(
+                f"expected {self.min_robots} to 64 robots, found {num_robots}"
+            )
         if max_cycles < 1:
             raise InvalidArgumentError(f"expected max_cycles >= 1, found {max_cycles}")
         self.num_robots = num_robots
@@ -224,6 +228,8 @@ class MazeGoalsTask(MultiRobotTask):
     """
 
     name = "maze_goals_v0"
+    #: One robot alone in the maze is the task's single-agent case, as JaxNav allows.
+    min_robots = 1
     observation_names = (
         *(f"ps{i}" for i in range(8)),
         "goal_forward",

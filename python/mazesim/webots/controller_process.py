@@ -165,6 +165,8 @@ class RemoteSimulator(Remote):
         #: How many times a supervisor has changed the world's walls, as the last step's
         #: answer told it (:class:`~mazesim.webots.walls_now.WallsNow`).
         self.wall_changes = 0
+        #: The robot's own ``setCustomData`` since its last step, which goes with the next.
+        self.own_custom_data: str | None = None
 
     def _state(self, name: str) -> Any:
         if name in self._after_step:
@@ -196,7 +198,8 @@ class RemoteSimulator(Remote):
     def step(self, left: float, right: float) -> bool:
         """Asks for the next basic step with these wheel speeds; returns once taken, True when
         the world's run is over instead (a supervisor quit it)."""
-        over, state = self._ask(("step", float(left), float(right)))
+        written, self.own_custom_data = self.own_custom_data, None
+        over, state = self._ask(("step", float(left), float(right), written))
         self._after_step = dict(state or {})
         self.last_reset = self._after_step.pop("last_reset", self.last_reset)
         self.custom_data = self._after_step.pop("custom_data", self.custom_data)

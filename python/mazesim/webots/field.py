@@ -364,7 +364,7 @@ class Field(NotSimulated):
         if self._type != self.SF_STRING:
             self._wrong("get_sf_string")
             return None
-        return self._node._strings.get(self._name, "")
+        return self._node._string(self._name)
 
     def setSFString(self, value: str) -> None:
         """Sets a string field (a robot's ``customData`` is what its controller's

@@ -214,6 +214,7 @@ class Fleet:
         #: The ``customData`` a supervisor last wrote into each robot's node, numbered in the
         #: order written, which the robot reads after the world's next step.
         self._custom_data: dict[int, tuple[int, str]] = {}
+        self._fields: dict[int, str] = {}
         #: The world's clock and the robots' poses before its last step (:meth:`velocity`).
         self._before: tuple[float, dict[int, tuple[float, float, float]]] = (0.0, {})
         if self._path:
@@ -281,6 +282,17 @@ class Fleet:
         controller reads after the world's next step (:meth:`custom_data`)."""
         number = max((n for n, _ in self._custom_data.values()), default=0) + 1
         self._custom_data[index] = (number, str(text))
+        self._fields[index] = str(text)
+
+    def note_own_custom_data(self, index: int, text: str) -> None:
+        """Notes robot ``index``'s own ``setCustomData``, sent with the step the world now
+        takes: its node's field holds it from then on (:meth:`custom_data_field`)."""
+        self._fields[index] = text
+
+    def custom_data_field(self, index: int) -> str | None:
+        """Robot ``index``'s node's ``customData`` field as the last write left it, by the
+        robot itself or by a supervisor, or None when there was none."""
+        return self._fields.get(index)
 
     def custom_data(self, index: int) -> tuple[int, str] | None:
         """The ``customData`` a supervisor last wrote into robot ``index``'s node and the
@@ -899,6 +911,9 @@ def _lockstep(
                         if watch is not None:
                             watch(simulators, wheels)
                         fleet.note_poses()
+                        for index, text in world.own_custom_data.items():
+                            fleet.note_own_custom_data(index, text)
+                        world.own_custom_data.clear()
                         _step_world(simulators, traction.drive(wheels), world.radio, runs)
                         traction.settle()
                         if fleet.reset_asked:
@@ -946,6 +961,8 @@ class _Pipes:
         #: The controllers of removed robots, whose ``Robot.step`` returns -1 until they end.
         self.leaving: set[int] = set()
         self.wheels: dict[int, tuple[float, float]] = {}
+        #: Each robot's own ``setCustomData`` sent with the step it asked for.
+        self.own_custom_data: dict[int, str] = {}
         self.over = False
 
     def pending(self) -> list[Any]:
@@ -1008,6 +1025,8 @@ class _Pipes:
             ready.send(("ok", (True, None)))
         elif message[0] == "step":
             self.wheels[index] = (message[1], message[2]) if self.movable[index] else (0.0, 0.0)
+            if len(message) > 3 and message[3] is not None:
+                self.own_custom_data[index] = str(message[3])
         elif message[0] == "done":
             summary = message[1]
             self._ended(index)

@@ -183,8 +183,11 @@ class Robot(NotSimulated):
         return self._custom_data
 
     def setCustomData(self, data: str) -> None:
-        """Sets the robot's ``customData`` string."""
+        """Sets the robot's ``customData`` string; in a world of several robots a supervisor
+        reads it in the robot's node's field after the world's next step, as in Webots."""
         self._custom_data = str(data)
+        if hasattr(self._simulation.simulator, "own_custom_data"):
+            self._simulation.simulator.own_custom_data = self._custom_data
 
     getData = getCustomData
     setData = setCustomData

@@ -320,6 +320,16 @@ class Node(NotSimulated):
             return
         self._simulation().move_robot(x, y, yaw)
 
+    def _string(self, name: str) -> str:
+        """A string field's value: another robot's ``customData`` as the last write left it,
+        the robot's own ``setCustomData`` as much as a supervisor's (the world's process keeps
+        it), any other as this node holds it."""
+        if name == "customData" and self._fleet_index is not None:
+            written = self._simulation().fleet.custom_data_field(self._fleet_index)
+            if written is not None:
+                return str(written)
+        return self._strings.get(name, "")
+
     def _tell_custom_data(self, text: str) -> None:
         """Gives a robot the ``customData`` a supervisor wrote into its node: the run's own
         robot reads it at once; another robot of the world, whose controller runs in a process
