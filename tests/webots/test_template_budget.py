@@ -6,6 +6,8 @@ PROTO, however it tries to escape the budget (a coroutine, lifting the hook); a 
 from __future__ import annotations
 
 import os
+import signal
+import threading
 from pathlib import Path
 
 import pytest
@@ -69,3 +71,15 @@ def test_a_lua_template_reads_regular_files_and_no_device_or_fifo(tmp_path: Path
     assert read("/dev/zero") == "none|nil"
     assert read(str(fifo)) == "none|nil"
     assert read(str(tmp_path / "missing")) == "none|nil"
+
+
+def test_ctrl_c_stops_an_endless_lua_template() -> None:
+    """The Lua hook calls back into Python now and then, so Python's Ctrl-C handler runs: an
+    endless template is stopped by Ctrl-C long before its budget, as any long work is."""
+    timer = threading.Timer(0.5, os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            templates.evaluate_template("lua", "%{ while true do end }%", {}, {}, "Endless.proto")
+    finally:
+        timer.cancel()

@@ -166,10 +166,13 @@ def _read_text(path: Any) -> str:
 #: coroutine runs under the same clock hook as the main chunk; ``debug`` is then taken away so
 #: a template cannot lift the hook.
 _LUA_SANDBOX = """
-function(read_text, seconds, every)
+function(read_text, seconds, every, pulse)
   local clock, sethook, create, wrap = os.clock, debug.sethook, coroutine.create, coroutine.wrap
   local deadline = clock() + seconds
-  local function over() if clock() > deadline then error("__mazesim_over_budget__", 0) end end
+  local function over()
+    pulse()
+    if clock() > deadline then error("__mazesim_over_budget__", 0) end
+  end
   sethook(over, "", every)
   coroutine.create = function(f) local co = create(f); sethook(co, over, "", every); return co end
   coroutine.wrap = function(f)
@@ -221,6 +224,10 @@ end
 """
 
 
+def _pulse() -> None:
+    """Called by a Lua template's hook: Python's signal handlers (Ctrl-C) run here."""
+
+
 def _lua(body: str, fields: dict[str, Any], context: dict[str, Any], origin: str) -> str:
     import lupa
 
@@ -245,7 +252,8 @@ def _lua(body: str, fields: dict[str, Any], context: dict[str, Any], origin: str
     script.append("return table.concat(__out)")
     try:
         chunk = runtime.execute("return function() " + "\n".join(script) + "\nend")
-        runtime.eval(_LUA_SANDBOX)(_read_text, BUDGET.seconds, _LUA_CLOCK_EVERY)
+        # The hook calls back into Python now and then, so Ctrl-C stops a template too.
+        runtime.eval(_LUA_SANDBOX)(_read_text, BUDGET.seconds, _LUA_CLOCK_EVERY, _pulse)
         return str(chunk())
     except lupa.LuaMemoryError as error:
         raise located_error(_over_budget("Lua", str(error) or "out of memory"), origin) from None
