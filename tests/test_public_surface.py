@@ -22,6 +22,7 @@ from hypothesis import strategies as st
 from mazesim._checks import is_public_module
 from surface.registry import (
     INSTANCES,
+    MUST_REFUSE,
     SKIPPED_MODULES,
     EntryPoint,
     can_make,
@@ -30,7 +31,7 @@ from surface.registry import (
     needs_instance,
     python_entry_points,
 )
-from surface.values import ARGUMENT_WORDS, BUILDERS
+from surface.values import ABSURD, ARGUMENT_WORDS, BUILDERS, VALID
 from surface.walk import walk
 
 #: Calls per entry point, and which part of the surface (``core``: the compiled core, the
@@ -126,6 +127,42 @@ def cli_call(entry: EntryPoint, rng: random.Random) -> dict[str, Any]:
     return {"path": entry.path, "argv": [*entry.path[len("cli:") :].split(), *positionals, *extra]}
 
 
+def refusal_calls(entry: EntryPoint) -> list[dict[str, Any]]:
+    """The calls of the absurd values ``entry`` must refuse (``registry.MUST_REFUSE``): one per
+    value, the other parameters given their declared valid values."""
+    owner = needs_instance(entry)
+    calls = []
+    for declared in MUST_REFUSE.get(entry.path, ()):
+        for name, keys in declared.absurd.items():
+            for key in keys:
+                calls.append(
+                    {
+                        "path": entry.path,
+                        "instance": instance_recipe(owner) if owner else None,
+                        "positional": list(entry.positional),
+                        "args": {**declared.valid, name: key},
+                        "must_refuse": True,
+                    }
+                )
+    return calls
+
+
+def failures_of(plans: list[dict[str, Any]], results: list[dict[str, Any]]) -> list[str]:
+    """The calls that failed: those that escaped; those of a wrong number of arguments that ran;
+    those of a value the entry point must refuse that it accepted (a call that returned, or a
+    command that ended with exit 0)."""
+    failures = []
+    for plan, result in zip(plans, results):  # noqa: B905 - one result per plan
+        ran = result["how"] == "ended" and result["what"] in ("returned", "exit 0")
+        if result["how"] == "escaped":
+            failures.append(f"{plan}: {result['what']}")
+        elif plan.get("arity") and ran:
+            failures.append(f"{plan}: {result['what']}")
+        elif plan.get("must_refuse") and ran:
+            failures.append(f"{plan}: accepted a value it must refuse")
+    return failures
+
+
 def plans_of(entries: list[EntryPoint], seed: int, calls: int) -> list[dict[str, Any]]:
     """``calls`` hostile calls of each entry point. Each call's values come from its own stream,
     named by the seed, the entry point and the call's number: a call is the same whatever else is
@@ -138,6 +175,7 @@ def plans_of(entries: list[EntryPoint], seed: int, calls: int) -> list[dict[str,
             plans.append(cli_call(entry, rng) if is_cli else python_call(entry, rng))
         if not entry.path.startswith("cli:"):
             plans.extend(arity_calls(entry, random.Random(f"{seed}:{entry.path}:arity")))
+        plans.extend(refusal_calls(entry))
     return plans
 
 
@@ -230,13 +268,43 @@ def test_hostile_values_end_in_a_result_or_a_mazesim_error(drawn_seed: int) -> N
     seed = int(SEED) if SEED else drawn_seed
     plans = plans_of([e for e in entry_points() if _in_part(e)], seed, CALLS)
     results = walk(plans)
-    failures = [f"{plan}: {r['what']}" for plan, r in zip(plans, results) if r["how"] == "escaped"]
-    # A call with the wrong number of arguments is refused as a bad argument, never run.
-    failures += [
-        f"{plan}: {r['what']}"
-        for plan, r in zip(plans, results)
-        if plan.get("arity") and r["how"] == "ended" and r["what"] == "returned"
-    ]
+    failures = failures_of(plans, results)
     assert not failures, f"seed {seed}: {len(failures)} of {len(plans)} calls:\n" + "\n".join(
         failures
     )
+
+
+def test_every_declared_refusal_names_an_entry_point_and_its_values() -> None:
+    """Each entry of ``MUST_REFUSE`` is an entry point of the registry, its parameters are the
+    entry point's, and its values are known keys: a declaration cannot go stale unnoticed."""
+    entries = {e.path: e for e in entry_points()}
+    for path, declared in MUST_REFUSE.items():
+        assert path in entries, path
+        for refusal in declared:
+            names = {*refusal.valid, *refusal.absurd}
+            assert names <= set(entries[path].parameters), (path, names)
+            assert set(entries[path].required) <= names, (path, entries[path].required)
+            assert set(refusal.valid.values()) <= set(VALID), path
+            for keys in refusal.absurd.values():
+                assert set(keys) <= set(ABSURD) | set(BUILDERS), path
+
+
+def test_an_absurd_value_accepted_in_silence_is_a_failure() -> None:
+    """The walk counts a must-refuse call that returned (or a command that ended with exit 0) as
+    a failure, and its refusal as none; other calls that return are results."""
+    refused = {"how": "refused", "what": "mazesim.errors.InvalidArgumentError: expected ..."}
+    returned = {"how": "ended", "what": "returned"}
+    must = {"path": "p", "args": {}, "must_refuse": True}
+    assert failures_of([must], [returned]) == [f"{must}: accepted a value it must refuse"]
+    assert failures_of([must], [refused]) == []
+    assert failures_of([{"path": "p", "args": {}}], [returned]) == []
+
+
+def test_the_declared_refusals_are_refused() -> None:
+    """Every value of ``MUST_REFUSE`` is refused by its entry point (whatever part of the
+    surface the walk calls)."""
+    entries = [e for e in entry_points() if e.path in MUST_REFUSE]
+    plans = [plan for entry in entries for plan in refusal_calls(entry)]
+    assert len(plans) >= len(MUST_REFUSE)
+    failures = failures_of(plans, walk(plans))
+    assert not failures, "\n".join(failures)

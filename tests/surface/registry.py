@@ -163,6 +163,51 @@ INSTANCES: dict[str, str] = {
 
 
 @dataclass(frozen=True)
+class MustRefuse:
+    """Values an entry point must refuse: each of ``absurd[name]`` given to the parameter
+    ``name`` (keys of ``values.ABSURD`` or ``values.BUILDERS``), the other parameters given
+    ``valid`` ones (keys of ``values.VALID``). A call that returns is a failure of the walk,
+    however quietly it went: an absurd value accepted is a bug, not a handled input."""
+
+    valid: dict[str, str]
+    absurd: dict[str, tuple[str, ...]]
+
+
+#: The entry points whose absurd values are known, and which must be refused. A class of
+#: silent acceptance, once found, is declared here so that the walk keeps it closed.
+MUST_REFUSE: dict[str, tuple[MustRefuse, ...]] = {
+    # Every number of a robot profile has its range (one table in the core).
+    "mazesim._core:RobotProfile.from_toml": (MustRefuse({}, {"text": ("profile_heading_1e300",)}),),
+    # A grid's walls are thinner than its cells, as a generated maze's are.
+    "mazesim._core:World.from_toml": (
+        MustRefuse(
+            {}, {"text": ("grid_wall_as_thick_as_its_cell", "grid_wall_thicker_than_its_cell")}
+        ),
+    ),
+    "mazesim._core:MazeLayout": (
+        MustRefuse({}, {"wall_thickness": ("max_float", "nan", "minus_one")}),
+    ),
+    # Every template engine runs under one budget.
+    # Every template engine runs under one budget, and Ctrl-C stops a Lua template (the walk's
+    # watchdog presses it); QuickJS heeds its time limit only, which tests/webots/
+    # test_template_budget.py checks under a small budget.
+    "mazesim.webots.proto.templates:evaluate_template": (
+        MustRefuse(
+            {"language": "lua", "fields": "no_fields", "context": "no_fields", "origin": "origin"},
+            {"body": ("endless_lua_template",)},
+        ),
+    ),
+    "mazesim._core:Simulator.set_goal": (
+        MustRefuse(
+            {"x": "quarter", "y": "quarter"}, {"radius": ("nan", "inf", "max_float", "minus_one")}
+        ),
+    ),
+    "mazesim._core:SensingPerturbation": (MustRefuse({}, {"noise_scale": ("max_float", "nan")}),),
+    "mazesim._core:sharp_volts_to_cm": (MustRefuse({}, {"volts": ("nan", "inf")}),),
+}
+
+
+@dataclass(frozen=True)
 class EntryPoint:
     """One public entry point: ``path`` says how the runner reaches it (``module:qualname``, or
     ``cli:command``); ``parameters`` are the names hostile values may be given to, ``required``

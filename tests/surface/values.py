@@ -165,8 +165,46 @@ ARGUMENT_WORDS: dict[str, str] = {
 }
 
 
+def _absurd_profile() -> str:
+    """The e-puck's profile with one sensor heading 1e300 rad: TOML holds it, no robot has it."""
+    import re
+
+    import mazesim
+
+    text = mazesim.RobotProfile.builtin("e-puck").to_toml()
+    return re.sub(r"heading = [^\n]*", "heading = 1e300", text, count=1)
+
+
+_GRID = (
+    'format = "mazesim-world"\nversion = 1\nname = "thick"\n[grid]\ncell_size = 0.25\n'
+    'wall_thickness = {thickness}\nmap = """\n+--+--+\n|S  G |\n+--+--+\n"""\n'
+)
+
+#: Values an entry point must refuse (see ``registry.MUST_REFUSE``): absurd, but of the type its
+#: parameter takes, so only a check of the value itself refuses them. They are never drawn for
+#: the random calls (those draw from :data:`BUILDERS`), so adding one changes no other call.
+ABSURD: dict[str, Any] = {
+    "profile_heading_1e300": _absurd_profile,
+    "grid_wall_as_thick_as_its_cell": lambda: _GRID.format(thickness="0.25"),
+    "grid_wall_thicker_than_its_cell": lambda: _GRID.format(thickness="1e300"),
+    "endless_lua_template": lambda: "%{ while true do end }%",
+}
+
+#: Valid values the other parameters of a must-refuse call are given.
+VALID: dict[str, Any] = {
+    "lua": lambda: "lua",
+    "no_fields": dict,
+    "origin": lambda: "hostile.proto",
+    "quarter": lambda: 0.25,
+    "one": lambda: 1.0,
+}
+
+
 def make(key: str, tmp: Path) -> Any:
     """The value of ``key``, built now (files in ``tmp``)."""
+    for table in (ABSURD, VALID):
+        if key in table:
+            return table[key]()
     builder = BUILDERS[key]
     if builder is None:
         return _files(tmp)[key]

@@ -162,16 +162,8 @@ impl MazeParams {
                 params.width, params.height
             )));
         }
-        if !(params.cell_size.is_finite() && params.wall_thickness.is_finite())
-            || params.cell_size <= 0.0
-            || params.wall_thickness <= 0.0
-            || params.wall_thickness >= params.cell_size
-        {
-            return Err(Error::InvalidArgument(format!(
-                "expected 0 < wall thickness < cell size, found {} and {}",
-                params.wall_thickness, params.cell_size
-            )));
-        }
+        crate::world::grid::check_cell_walls(params.cell_size, params.wall_thickness)
+            .map_err(Error::InvalidArgument)?;
         let reflectance_ok = params.floor_reflectance > 0.0 && params.floor_reflectance <= 1.0;
         if !(0.0..=1.0).contains(&params.loops) || !reflectance_ok {
             return Err(Error::InvalidArgument(format!(

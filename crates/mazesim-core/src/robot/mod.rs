@@ -9,6 +9,7 @@
 //! as TOML.
 
 pub mod perturb;
+pub mod ranges;
 pub mod text;
 
 pub use perturb::Perturbation;
@@ -263,10 +264,12 @@ impl RobotProfile {
         })?;
         crate::world::lengths::check(&file, text, source)?;
         let bad = |field: String, message: String| {
-            let key = field.rsplit('.').next().unwrap_or(&field).to_string();
-            let offset = text.find(&key).unwrap_or(0);
+            let key = field.rsplit('.').next().unwrap_or(&field);
+            let key = key.split('[').next().unwrap_or(key);
+            let offset = text.find(key).unwrap_or(0);
             locate::format_error(source, text, offset, Some(&field), message)
         };
+        ranges::check(&file).map_err(|(field, message)| bad(field, message))?;
         let mut models: BTreeMap<String, Arc<SensorModel>> = BTreeMap::new();
         for (name, m) in &file.models {
             let rows: Vec<[f64; 3]> = m.table.iter().map(|r| [r[0].0, r[1].0, r[2].0]).collect();

@@ -217,6 +217,9 @@ impl RobotProfile {
             .map_err(|message| {
                 Error::InvalidArgument(format!("{message} after the perturbation"))
             })?;
+        super::ranges::check(&out.file()).map_err(|(field, message)| {
+            Error::InvalidArgument(format!("the perturbed profile's {field}: {message}"))
+        })?;
         Ok(out)
     }
 }

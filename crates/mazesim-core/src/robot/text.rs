@@ -44,6 +44,15 @@ impl RobotProfile {
     /// The profile as the TOML text of a profile file; `from_toml` of it gives this profile
     /// back (its sensor models named `model-0`, `model-1`, ...).
     pub fn to_toml(&self) -> Result<String> {
+        toml::to_string(&self.file()).map_err(|e| {
+            Error::InvalidArgument(format!(
+                "expected a profile that TOML can hold, found one it cannot: {e}"
+            ))
+        })
+    }
+
+    /// The profile as its file holds it.
+    pub(super) fn file(&self) -> ProfileFile {
         let mut names = ModelNames { models: Vec::new() };
         let distance_sensors = self
             .distance_sensors
@@ -73,7 +82,7 @@ impl RobotProfile {
             .enumerate()
             .map(|(i, m)| (format!("model-{i}"), model_file(m)))
             .collect();
-        let file = ProfileFile {
+        ProfileFile {
             name: self.name.clone(),
             description: self.description.clone(),
             body_radius: Positive(self.body_radius),
@@ -90,12 +99,7 @@ impl RobotProfile {
             models,
             distance_sensors,
             ground_sensors,
-        };
-        toml::to_string(&file).map_err(|e| {
-            Error::InvalidArgument(format!(
-                "expected a profile that TOML can hold, found one it cannot: {e}"
-            ))
-        })
+        }
     }
 }
 

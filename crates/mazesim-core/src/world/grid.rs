@@ -37,6 +37,21 @@ pub struct GridProblem {
 const CELL_WIDTH: &str = " (each cell is three characters wide: corners '+' and side walls '|' at \
 every third column, from the first)";
 
+/// Refuses cell walls that do not fit their cells: a wall must be thinner than the cell it
+/// bounds, or neighbouring walls overlap and no corridor is left between them. The one check of
+/// a cell maze's sizes, for a generated maze and a drawn one (`[grid]`) alike.
+pub fn check_cell_walls(cell_size: f64, wall_thickness: f64) -> Result<(), String> {
+    let sizes_ok = cell_size.is_finite() && wall_thickness.is_finite() && cell_size > 0.0;
+    if sizes_ok && wall_thickness > 0.0 && wall_thickness < cell_size {
+        return Ok(());
+    }
+    Err(format!(
+        "expected 0 < wall thickness < cell size (a wall thinner than its cell, so a corridor \
+         is left between walls), found wall thickness {wall_thickness} m and cell size \
+         {cell_size} m"
+    ))
+}
+
 fn problem(row: usize, column: usize, message: impl Into<String>) -> GridProblem {
     GridProblem {
         row,

@@ -210,6 +210,9 @@ impl World {
             })?;
             let origin = xy(&g.origin);
             let cs = g.cell_size.get();
+            grid::check_cell_walls(cs, g.wall_thickness.get()).map_err(|message| {
+                check.refused(Place::Table("grid"), "grid.wall_thickness", message)
+            })?;
             check.within(
                 Place::Table("grid"),
                 "grid",

@@ -360,3 +360,21 @@ fn a_misaligned_grid_row_says_how_wide_a_cell_is() {
     assert!(message.contains("three characters wide"), "{message}");
     assert!(message.ends_with("found '+'"), "{message}");
 }
+
+#[test]
+fn a_grid_wall_as_thick_as_its_cell_is_refused_as_the_generator_refuses_it() {
+    let map = "map = \"\"\"\n+--+--+\n|S  G |\n+--+--+\n\"\"\"\n";
+    for thickness in ["0.25", "0.5", "1e300"] {
+        let (_, field, message) = format_error(&format!(
+            "[grid]\ncell_size = 0.25\nwall_thickness = {thickness}\n{map}"
+        ));
+        assert_eq!(field, "grid.wall_thickness", "{thickness}");
+        assert!(message.contains("wall thickness < cell size"), "{message}");
+    }
+    let generated = crate::generator::MazeParams {
+        wall_thickness: 0.25,
+        ..Default::default()
+    };
+    let refused = generated.check().unwrap_err().to_string();
+    assert!(refused.contains("wall thickness < cell size"), "{refused}");
+}

@@ -9,6 +9,7 @@ from __future__ import annotations
 import json
 import os
 import re
+from dataclasses import dataclass
 from typing import Any
 
 from mazesim._paths import read_input
@@ -19,9 +20,22 @@ from .values import to_javascript, to_lua
 
 __all__ = ["evaluate_template"]
 
-#: Seconds a template may run, and bytes of memory it may use (a hostile PROTO stays bounded).
-TIME_LIMIT_S = 10.0
-MEMORY_LIMIT_BYTES = 256 * 1024 * 1024
+
+@dataclass(frozen=True)
+class TemplateBudget:
+    """What one template may spend, whatever its language: seconds of processor time and bytes
+    of memory. Every engine runs under it, so a hostile PROTO (``while true do end``, a string
+    grown without end) stops with a ``WorldFormatError`` naming the PROTO."""
+
+    seconds: float = 10.0
+    memory_bytes: int = 256 * 1024 * 1024
+
+
+#: The budget of every template.
+BUDGET = TemplateBudget()
+
+#: Lua instructions between two looks at the clock.
+_LUA_CLOCK_EVERY = 10_000
 
 _IMPORT = re.compile(
     r"""import\s+(?:\*\s+as\s+(?P<alias>\w+)|\{(?P<names>[^}]*)\})\s+from\s+['"](?P<module>[\w./-]+?)(?:\.js)?['"]\s*;?"""
@@ -118,8 +132,8 @@ def _javascript(body: str, fields: dict[str, Any], context: dict[str, Any], orig
         ]
     )
     engine = quickjs.Context()
-    engine.set_time_limit(TIME_LIMIT_S)
-    engine.set_memory_limit(MEMORY_LIMIT_BYTES)
+    engine.set_time_limit(BUDGET.seconds)
+    engine.set_memory_limit(BUDGET.memory_bytes)
     engine.add_callable("__file_exists", lambda path: os.path.isfile(str(path)))
     engine.add_callable("__read_text", _read_text)
     engine.eval("var __errors = [];")
@@ -127,8 +141,18 @@ def _javascript(body: str, fields: dict[str, Any], context: dict[str, Any], orig
         result = engine.eval(program)
     except quickjs.JSException as error:
         first = str(error).strip().splitlines()[0] if str(error).strip() else repr(error)
+        if "interrupted" in first or "out of memory" in first:
+            raise located_error(_over_budget("JavaScript", first), origin) from None
         raise located_error(f"its JavaScript template fails: {first}", origin) from None
     return str(result)
+
+
+def _over_budget(language: str, what: str) -> str:
+    return (
+        f"its {language} template ran over the budget of every template ({BUDGET.seconds:g} s"
+        f" of processor time, {BUDGET.memory_bytes // (1024 * 1024)} MiB of memory): {what}"
+        " (a template that loops without end, or builds text without end; fix the PROTO)"
+    )
 
 
 def _read_text(path: Any) -> str:
@@ -137,18 +161,79 @@ def _read_text(path: Any) -> str:
     ].decode("utf-8", errors="replace")
 
 
+#: Webots' Lua has io and os; here ``io.open`` reads a regular file through the package's
+#: bounded reader (never a FIFO or a device), writes nothing, and nothing is run. Every
+#: coroutine runs under the same clock hook as the main chunk; ``debug`` is then taken away so
+#: a template cannot lift the hook.
+_LUA_SANDBOX = """
+function(read_text, seconds, every, pulse)
+  local clock, sethook, create, wrap = os.clock, debug.sethook, coroutine.create, coroutine.wrap
+  local deadline = clock() + seconds
+  local function over()
+    pulse()
+    if clock() > deadline then error("__mazesim_over_budget__", 0) end
+  end
+  sethook(over, "", every)
+  coroutine.create = function(f) local co = create(f); sethook(co, over, "", every); return co end
+  coroutine.wrap = function(f)
+    local co = coroutine.create(f)
+    return function(...)
+      local result = table.pack(coroutine.resume(co, ...))
+      if not result[1] then error(result[2], 0) end
+      return table.unpack(result, 2, result.n)
+    end
+  end
+  local function string_file(text)
+    local at, file = 1, {}
+    function file:read(how)
+      how = how or "l"
+      if type(how) == "string" then how = how:gsub("^%*", ""):sub(1, 1) end
+      if at > #text then return nil end
+      if how == "a" then local rest = text:sub(at); at = #text + 1; return rest end
+      if type(how) == "number" then
+        local part = text:sub(at, at + how - 1); at = at + how; return part
+      end
+      if how == "n" then
+        local s, e = text:find("^%s*[-+]?[%w%.]+", at)
+        if not s then return nil end
+        at = e + 1
+        return tonumber(text:sub(s, e))
+      end
+      local e = text:find("\\n", at, true)
+      local line = text:sub(at, (e or #text + 1) - 1)
+      at = (e or #text) + 1
+      if how == "L" and e then return line .. "\\n" end
+      return line
+    end
+    function file:lines(how) return function() return file:read(how) end end
+    function file:close() return true end
+    return file
+  end
+  io = {open = function(name, mode)
+    if mode ~= nil and mode:sub(1, 1) ~= "r" then
+      return nil, name .. ": templates write no files"
+    end
+    local ok, text = pcall(read_text, name)
+    if not ok then return nil, tostring(text) end
+    return string_file(text)
+  end}
+  print = function() end
+  os.execute = nil; os.remove = nil; os.rename = nil; os.exit = nil; os.tmpname = nil
+  debug = nil
+end
+"""
+
+
+def _pulse() -> None:
+    """Called by a Lua template's hook: Python's signal handlers (Ctrl-C) run here."""
+
+
 def _lua(body: str, fields: dict[str, Any], context: dict[str, Any], origin: str) -> str:
     import lupa
 
-    runtime = lupa.LuaRuntime(unpack_returned_tuples=True, register_eval=False)
-    # Webots' Lua has io and os; files may be read here, not written, and nothing run.
-    sandbox = runtime.eval(
-        "function() local open = io.open; "
-        "io = {open = function(name, mode) if mode == nil or mode:sub(1, 1) == 'r' then "
-        "return open(name, mode) end return nil end}; print = function() end; "
-        "os.execute = nil; os.remove = nil; os.rename = nil; os.exit = nil; os.tmpname = nil end"
+    runtime = lupa.LuaRuntime(
+        unpack_returned_tuples=True, register_eval=False, max_memory=BUDGET.memory_bytes
     )
-    sandbox()
     preload = runtime.eval("package.preload")
     for name, source in LUA_MODULES.items():
         preload[name] = runtime.eval(f"function(...) {source} end")
@@ -167,8 +252,14 @@ def _lua(body: str, fields: dict[str, Any], context: dict[str, Any], origin: str
     script.append("return table.concat(__out)")
     try:
         chunk = runtime.execute("return function() " + "\n".join(script) + "\nend")
+        # The hook calls back into Python now and then, so Ctrl-C stops a template too.
+        runtime.eval(_LUA_SANDBOX)(_read_text, BUDGET.seconds, _LUA_CLOCK_EVERY, _pulse)
         return str(chunk())
+    except lupa.LuaMemoryError as error:
+        raise located_error(_over_budget("Lua", str(error) or "out of memory"), origin) from None
     except lupa.LuaError as error:
+        if "__mazesim_over_budget__" in str(error):
+            raise located_error(_over_budget("Lua", "still running"), origin) from None
         raise located_error(f"its Lua template fails: {error}", origin) from None
 
 

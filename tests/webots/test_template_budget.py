@@ -1,0 +1,85 @@
+"""One budget for every PROTO template engine (``webots/proto/templates.py``): a Lua or a
+JavaScript template that loops or grows without end stops with a ``WorldFormatError`` naming the
+PROTO, however it tries to escape the budget (a coroutine, lifting the hook); a Lua template's
+``io.open`` reads regular files only, through the package's bounded reader."""
+
+from __future__ import annotations
+
+import os
+import signal
+import threading
+from pathlib import Path
+
+import pytest
+
+from mazesim.errors import WorldFormatError
+from mazesim.webots.proto import templates
+
+pytest.importorskip("lupa", reason="the PROTO engine's Lua templates need lupa")
+pytest.importorskip("quickjs", reason="the PROTO engine's JavaScript templates need quickjs")
+
+#: A small budget, so that the endless templates end soon: what is checked is that they end,
+#: with the error, not how fast.
+SMALL = templates.TemplateBudget(seconds=0.2, memory_bytes=64 * 1024 * 1024)
+
+ENDLESS = {
+    "lua while": ("lua", "%{ while true do end }%"),
+    "lua repeat": ("lua", "%{ repeat local x = 1 until false }%"),
+    "lua coroutine": ("lua", "%{ coroutine.wrap(function() while true do end end)() }%"),
+    "lua coroutine.create": (
+        "lua",
+        "%{ local co = coroutine.create(function() while true do end end) "
+        "coroutine.resume(co) error(select(2, coroutine.resume(co))) }%",
+    ),
+    "lua lifts the hook": ("lua", "%{ if debug then debug.sethook() end while true do end }%"),
+    "lua recursion": ("lua", "%{ local function f() return f() end f() }%"),
+    "lua grows a table": ("lua", "%{ local t = {} for i = 1, 1e10 do t[i] = i end }%"),
+    "lua grows a string": ("lua", "%{ local s = 'x' while true do s = s .. s end }%"),
+    "javascript while": ("javascript", "%< while (true) {} >%"),
+    "javascript grows a string": ("javascript", "%< let s = 'x'; while (true) { s = s + s; } >%"),
+}
+
+
+@pytest.mark.parametrize("name", sorted(ENDLESS))
+def test_an_endless_template_ends_in_a_world_format_error_naming_the_proto(
+    name: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setattr(templates, "BUDGET", SMALL)
+    language, body = ENDLESS[name]
+    with pytest.raises(WorldFormatError) as refused:
+        templates.evaluate_template(language, body, {}, {}, "Hostile.proto")
+    assert "Hostile.proto" in str(refused.value)
+    assert "template" in str(refused.value)
+
+
+def test_a_lua_template_reads_regular_files_and_no_device_or_fifo(tmp_path: Path) -> None:
+    text = tmp_path / "rows.txt"
+    text.write_text("first\nsecond\n", encoding="utf-8")
+    fifo = tmp_path / "pipe"
+    os.mkfifo(fifo)
+    body = (
+        "%{ local f = io.open(fields.path.value) }%%{= f and f:read('l') or 'none' }%"
+        "|%{ local g = io.open(fields.path.value, 'w') }%%{= tostring(g) }%"
+    )
+
+    def read(path: str) -> str:
+        fields = {"path": {"value": path, "defaultValue": path}}
+        return templates.evaluate_template("lua", body, fields, {}, "Reader.proto")
+
+    assert read(str(text)) == "first|nil"
+    # A device and a FIFO no process writes to are not opened: io.open gives nil at once.
+    assert read("/dev/zero") == "none|nil"
+    assert read(str(fifo)) == "none|nil"
+    assert read(str(tmp_path / "missing")) == "none|nil"
+
+
+def test_ctrl_c_stops_an_endless_lua_template() -> None:
+    """The Lua hook calls back into Python now and then, so Python's Ctrl-C handler runs: an
+    endless template is stopped by Ctrl-C long before its budget, as any long work is."""
+    timer = threading.Timer(0.5, os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            templates.evaluate_template("lua", "%{ while true do end }%", {}, {}, "Endless.proto")
+    finally:
+        timer.cancel()
