@@ -222,3 +222,28 @@ def test_a_forked_child_refuses_a_batch_its_parent_was_stepping(threads: int) ->
         """
     )
     assert "CHILD 0" in lines, lines
+
+
+def test_the_import_makes_numpy_s_once_made_state_before_any_thread_can() -> None:
+    # numpy's C API and the array borrow registry are each made once, on first use; a child
+    # forked while another thread was making one would wait for it for ever. The import makes
+    # them while it holds the interpreter alone: the registry (a capsule in numpy's multiarray
+    # module) is there before any array went through the extension.
+    import subprocess
+    import sys
+
+    code = textwrap.dedent(
+        """
+        import importlib, numpy
+        name = 'numpy._core.multiarray' if int(numpy.__version__.split('.')[0]) >= 2 else 'numpy.core.multiarray'
+        multiarray = importlib.import_module(name)
+        key = '_RUST_NUMPY_BORROW_CHECKING_API'
+        print('BEFORE', hasattr(multiarray, key))
+        import mazesim._core
+        print('AFTER', hasattr(multiarray, key))
+        """
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, timeout=600, check=True
+    ).stdout.split()
+    assert out == ["BEFORE", "False", "AFTER", "True"], out
