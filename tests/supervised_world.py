@@ -43,8 +43,9 @@ DEF EPUCK E-puck { translation 0 0 0 supervisor TRUE controller "<extern>" }
 
 
 def project_of(tmp_path: Path, world_file: str, text: str, controllers: dict[str, str]) -> Path:
-    """A Webots project in ``tmp_path``: its ``worlds/world_file`` of ``text`` and a Python
-    controller of each name in ``controllers`` (its source); the world file."""
+    """A Webots project in ``tmp_path``: a world file named ``world_file`` holding ``text`` in
+    its ``worlds`` folder and a Python controller of each name in ``controllers`` (its source);
+    the world file."""
     for name, source in controllers.items():
         folder = tmp_path / "controllers" / name
         folder.mkdir(parents=True)
