@@ -11,27 +11,14 @@ import pytest
 import mazesim
 from mazesim.cli import main
 
-CONTROLLER = """\
-from controller import Robot
-
-robot = Robot()
-step = int(robot.getBasicTimeStep())
-left = robot.getDevice("left wheel motor")
-right = robot.getDevice("right wheel motor")
-for motor in (left, right):
-    motor.setPosition(float("inf"))
-    motor.setVelocity(1.0)
-while robot.step(step) != -1:
-    pass
-"""
+#: The avoid-collision example controller, as the Webots page runs it.
+CONTROLLER = Path(__file__).resolve().parents[2] / "examples" / "webots" / "avoid_collision.py"
 
 
 def _run(tmp_path: Path, *options: str) -> int:
-    controller = tmp_path / "forward.py"
-    controller.write_text(CONTROLLER)
     out = tmp_path / "out"
     return main(
-        ["webots", "run", str(controller), "--seconds", "0.5", "--out", str(out), "--no-progress"]
+        ["webots", "run", str(CONTROLLER), "--seconds", "0.5", "--out", str(out), "--no-progress"]
         + list(options)
     )
 
