@@ -594,10 +594,14 @@ def test_an_option_is_taken_by_its_whole_name_only(
 ) -> None:
     # `webots run C.py --robot my-robot.toml` was read as the prefix of --robot-controller and
     # refused with a message about that option, which the newcomer never typed.
+    # `webots run` now takes --robot itself: the error is the missing controller's.
     assert main(["webots", "run", "c.py", "--robot", "my-robot.toml"]) == 2
     line = capsys.readouterr().err.strip().splitlines()[-1]
-    assert line.startswith("mazesim webots run: error: unrecognized arguments: --robot "), line
-    assert "--robot-controller" not in line and "--robot is an option of mazesim " in line, line
+    assert "--robot" not in line and "cannot read the controller" in line, line
+    assert main(["show", "seed-maze", "--robot", "my-robot.toml"]) == 2
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert line.startswith("mazesim show: error: unrecognized arguments: --robot "), line
+    assert "--robot is an option of mazesim " in line and "mazesim webots run" in line, line
     assert main(["demo", "--sec", "2"]) == 2
     line = capsys.readouterr().err.strip().splitlines()[-1]
     assert line.endswith("unrecognized arguments: --sec 2; did you mean '--seconds' for '--sec'?")

@@ -6,6 +6,7 @@ from __future__ import annotations
 import copy
 import math
 import pickle
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -268,6 +269,24 @@ def test_bad_worlds_and_robot_indices_are_package_errors() -> None:
         sim.step_robots(np.zeros((3, 2)))
     with pytest.raises(mazesim.InvalidActionError):
         sim.step_robots(np.array([[np.nan, 0.0], [0.0, 0.0]]))
+
+
+def test_a_world_naming_a_profile_file_is_told_how_to_give_the_file(tmp_path: Path) -> None:
+    # A world names built-in profiles only; the message says where a profile file goes instead.
+    mine = tmp_path / "my-epuck.toml"
+    mine.write_text(mazesim.RobotProfile.builtin("e-puck").to_toml())
+    robot = f'[[robots]]\nname = "a"\nx = 0.0\ny = 0.0\nprofile = "{mine}"\n'
+    with pytest.raises(mazesim.WorldFormatError) as refused:
+        mazesim.World.from_toml(f'format = "mazesim-world"\nversion = 1\n{robot}')
+    assert "expected a built-in robot profile" in str(refused.value)
+    assert "--robot FILE" in str(refused.value)
+    assert "robot_profiles=[RobotProfile.load(FILE)" in str(refused.value)
+    # As told: the file as one robot's own profile.
+    world = mazesim.World.from_toml(
+        'format = "mazesim-world"\nversion = 1\n[[robots]]\nname = "a"\nx = 0.0\ny = 0.0\n'
+    )
+    sim = mazesim.Simulator(world, robot_profiles=[mazesim.RobotProfile.load(str(mine))])
+    assert sim.num_robots == 1
 
 
 def test_output_buffers_of_a_batch_of_several_robots_have_the_robot_axis() -> None:

@@ -4,8 +4,11 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import re
 import sys
 from pathlib import Path
+from types import SimpleNamespace
+from typing import Any
 
 import numpy as np
 import pytest
@@ -18,7 +21,7 @@ from mazesim.learn.checkpoint import RunFolder
 from mazesim.learn.evaluate import evaluate_navigator
 from mazesim.learn.lower import LowerSettings, LowerTrainer
 from mazesim.learn.tables import load_policy
-from mazesim.learn.train import train, train_flat_policy
+from mazesim.learn.train import TrainSettings, train, train_flat_policy
 from training_settings import TINY, assert_same_navigator
 
 SHORT = LowerSettings(
@@ -249,7 +252,7 @@ def test_ctrl_c_in_training_says_how_to_continue_from_the_checkpoint(
     # (mazesim.learn's own `train` is the function: the module is sys.modules' entry.)
     monkeypatch.setattr(sys.modules["mazesim.learn.train"], "train", interrupted)
     out = tmp_path / "run"
-    command = ["train", "--out", str(out), "--steps", "1k", "--no-progress"]
+    command = ["train", "--out", str(out), "--steps", "1024k", "--no-progress"]
     assert main(command) == 130
     assert capsys.readouterr().err == (
         f"mazesim: interrupted; the run's checkpoint is kept in {out}: run the same command "
@@ -260,3 +263,55 @@ def test_ctrl_c_in_training_says_how_to_continue_from_the_checkpoint(
     # Interrupted before the first checkpoint: nothing is kept, nothing to continue.
     assert main(["train", "--out", str(tmp_path / "early"), "--steps", "1k"]) == 130
     assert capsys.readouterr().err.endswith("mazesim: interrupted\n")
+
+
+def test_steps_are_read_as_written_and_their_rounding_to_whole_rounds_is_said(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
+    # Issues 37 and 38: '--steps 200k' trained 1,024,000 env-steps and '1.5555k' 1,555, silently.
+    monkeypatch.setattr(sys.modules["mazesim.learn.train"], "train", lambda *a, **k: None)
+    out = str(tmp_path / "run")
+    assert main(["train", "--out", out, "--steps", "1.5555k", "--no-progress"]) == 2
+    assert "found '1.5555k' (understood as 1,555.5): give a whole count" in capsys.readouterr().err
+    assert main(["train", "--out", out, "--steps", "200k", "--no-progress"]) == 0
+    assert capsys.readouterr().err == (
+        "mazesim: --steps 200,000 trains 1,024,000 env-steps: 1 whole round(s) of 2,048 robots "
+        "(--envs) x 500 steps\n"
+    )
+    assert main(["train", "--out", out, "--steps", "2_048k", "--no-progress"]) == 0
+    assert capsys.readouterr().err == ""  # whole rounds: nothing to say
+    # The other counts take the same spellings.
+    assert main(["eval", "--episodes", "0.5k", "--policy", "no-such-folder"]) == 2
+    assert "--episodes" not in capsys.readouterr().err
+
+
+def test_a_resumed_run_s_time_counts_the_part_before_the_resume(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
+    # Issue 38: the resumed run said "trained ... in 9 s (lower level 5000 s ...)".
+    from mazesim.learn.tables import Checkpoint, LowerTables
+
+    def stopped_then_finished(settings: TrainSettings, folder: RunFolder, **kwargs: object) -> Any:
+        if not folder.resume:
+            folder.save(settings.identity(), Checkpoint(LowerTables.zeros(False), 1, [], 5000.0))
+            raise KeyboardInterrupt
+        folder.start(settings.identity())
+        training = {
+            "lower_seconds": 5000.4,
+            "lower_env_steps": 1_024_000,
+            "higher_seconds": 0.2,
+            "higher_success_last_100": 1.0,
+        }
+        return SimpleNamespace(world_name="seed-maze", training=training)
+
+    monkeypatch.setattr(sys.modules["mazesim.learn.train"], "train", stopped_then_finished)
+    command = ["train", "--out", str(tmp_path / "run"), "--steps", "1024k", "--no-progress"]
+    assert main(command) == 130
+    capsys.readouterr()
+    assert main([*command, "--resume"]) == 0
+    first = capsys.readouterr().out.splitlines()[0]
+    assert re.fullmatch(
+        r"trained a navigator for seed-maze in 50\d\d s, 5000 s of it before --resume "
+        r"\(lower level 5000 s, 1024000 env-steps; higher level 0 s\)",
+        first,
+    ), first

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
+import decimal
 import math
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any
@@ -73,25 +74,53 @@ def positive_number(text: str) -> float:
     return _positive_float(text, "number", MAX_NUMBER)
 
 
+#: The suffixes a count may end with (``500k``, ``36M``), and what they multiply by.
+COUNT_SUFFIXES = {"k": 1_000, "K": 1_000, "m": 1_000_000, "M": 1_000_000}
+
+
 def whole_number(text: str, smallest: int, largest: int = MAX_COUNT) -> int:
-    """A whole number in ``[smallest, largest]``.
+    """A whole number in ``[smallest, largest]``, written as a person would: ``1000``,
+    ``1_000``, ``1k``, ``1.5M`` (the one reader of every count the commands take). A value that
+    is not whole once its suffix is applied (``1.5555k``) is refused, naming the value understood,
+    never rounded.
 
     Raises:
         argparse.ArgumentTypeError: ``text`` is not such a number (argparse prints the message).
     """
+    cleaned = text.strip().replace("_", "")
+    scale = COUNT_SUFFIXES.get(cleaned[-1:], 1)
+    digits = cleaned[:-1] if scale > 1 else cleaned
     try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a whole number, found {text!r}") from None
-    if value < smallest:
+        exact = decimal.Decimal(digits)
+    except decimal.DecimalException:
+        exact = decimal.Decimal("NaN")
+    if not exact.is_finite():
         raise argparse.ArgumentTypeError(
-            f"expected a whole number of at least {smallest}, found {text!r}"
+            f"expected a whole number such as 1000, 1_000, 500k or 2M, found {text!r}"
         )
-    if value > largest:
+    # A count has a few digits: '1e999999999' is refused, never written out or made an int.
+    if exact.adjusted() > 24:
         raise argparse.ArgumentTypeError(
-            f"expected a whole number of at most {largest}, found {text!r}"
+            f"expected a whole number of at most {largest:,}, found {text!r}"
         )
-    return value
+    if exact.adjusted() < -24:
+        raise argparse.ArgumentTypeError(f"expected a whole number, found {text!r}")
+    exact *= scale
+    understood = "" if str(exact) == cleaned else f" (understood as {exact.normalize():,f})"
+    # Compared as decimals first: '1e999999999' never becomes a Python int.
+    if exact < smallest:
+        raise argparse.ArgumentTypeError(
+            f"expected a whole number of at least {smallest}, found {text!r}{understood}"
+        )
+    if exact > largest:
+        raise argparse.ArgumentTypeError(
+            f"expected a whole number of at most {largest:,}, found {text!r}{understood}"
+        )
+    if exact != exact.to_integral_value():
+        raise argparse.ArgumentTypeError(
+            f"expected a whole number, found {text!r}{understood}: give a whole count"
+        )
+    return int(exact)
 
 
 def positive_int(text: str) -> int:

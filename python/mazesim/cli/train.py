@@ -8,14 +8,19 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
-import math
 import sys
 import time
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, TextIO
 
 from mazesim._paths import output_files, refuse_overwriting_inputs, writing_alone
-from mazesim.cli._args import add_out_folder, add_setting_options, positive_int, seed_argument
+from mazesim.cli._args import (
+    add_out_folder,
+    add_setting_options,
+    positive_int,
+    seed_argument,
+    whole_number,
+)
 from mazesim.cli._help import examples
 from mazesim.cli.progress import add_progress_option, progress_display
 from mazesim.errors import InvalidArgumentError
@@ -35,23 +40,7 @@ MAX_STEPS = 10**12
 
 def step_count(text: str) -> int:
     """A number of env-steps: a whole number, optionally with a k or M suffix (``36M``)."""
-    cleaned = text.strip().replace("_", "")
-    scale = 1
-    if cleaned[-1:] in ("k", "K"):
-        scale, cleaned = 1_000, cleaned[:-1]
-    elif cleaned[-1:] in ("m", "M"):
-        scale, cleaned = 1_000_000, cleaned[:-1]
-    try:
-        value = float(cleaned) * scale
-    except ValueError:
-        raise argparse.ArgumentTypeError(
-            f"expected a number of env-steps such as 36000000, 36M or 500k, found {text!r}"
-        ) from None
-    if not math.isfinite(value) or not 1 <= value <= MAX_STEPS:
-        raise argparse.ArgumentTypeError(
-            f"expected a number of env-steps in [1, {MAX_STEPS:.0e}], found {text!r}"
-        )
-    return int(value)
+    return whole_number(text, 1, MAX_STEPS)
 
 
 def register(commands: Any) -> None:
@@ -194,10 +183,20 @@ def run_train(args: argparse.Namespace, out: TextIO) -> int:
             f"evaluate it with: mazesim eval --policy {args.out}\n"
         )
         return 0
+    lower = settings.lower()
+    trained_steps = lower.rounds * lower.num_envs * lower.round_steps
+    if trained_steps != settings.steps:
+        # Said before the run: the lower level trains in whole rounds, never fewer than asked.
+        print(
+            f"mazesim: --steps {settings.steps:,} trains {trained_steps:,} env-steps: "
+            f"{lower.rounds} whole round(s) of {lower.num_envs:,} robots (--envs) x "
+            f"{lower.round_steps} steps",
+            file=sys.stderr,
+        )
+    folder = RunFolder(args.out, resume=args.resume)
     try:
         with writing_alone(args.out, "mazesim train", create=not args.resume), curve:
             with progress_display(args, units=_UNITS) as progress:
-                folder = RunFolder(args.out, resume=args.resume)
                 result = train(settings, folder, progress=progress, curve=curve, robot=robot)
     except KeyboardInterrupt:
         if not checkpoint_exists(Path(args.out)):
@@ -209,10 +208,14 @@ def run_train(args: argparse.Namespace, out: TextIO) -> int:
         ) from None
     if result is None:
         return 0
-    seconds = time.perf_counter() - started
+    # A resumed run's time counts the part before the resume, as its lower level's time does.
+    seconds = time.perf_counter() - started + folder.resumed_seconds
+    resumed = (
+        f", {folder.resumed_seconds:.0f} s of it before --resume" if folder.resumed_seconds else ""
+    )
     info = result.training
     out.write(
-        f"trained a navigator for {result.world_name} in {seconds:.0f} s "
+        f"trained a navigator for {result.world_name} in {seconds:.0f} s{resumed} "
         f"(lower level {info['lower_seconds']:.0f} s, {info['lower_env_steps']} env-steps; "
         f"higher level {info['higher_seconds']:.0f} s)\n"
         f"higher-level training: {100 * info['higher_success_last_100']:.0f}% of the last 100 "

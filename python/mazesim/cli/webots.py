@@ -95,6 +95,7 @@ def register(commands: Any) -> None:
             "mazesim webots run my_controller.py",
             "mazesim webots run my_controller.py --world Maze.wbt --seconds 120 --strict",
             "mazesim webots run my_controller.py --keys keys.txt --html run.html",
+            "mazesim webots run my_controller.py --world my-maze.toml --robot my-epuck.toml",
             "mazesim webots run worlds/swarm.wbt --robot-controller leader=my_leader.py",
             notes="exit status: 0 the controller ended (or robot.step returned -1); N the "
             "controller's sys.exit(N) or a supervisor's simulationQuit(N); 1 the controller "
@@ -125,6 +126,13 @@ def register(commands: Any) -> None:
         default=DEFAULT_WORLD,
         metavar="NAME|PATH|FILE.wbt",
         help="a built-in world, a mazesim world file or a Webots world (default: %(default)s)",
+    )
+    run.add_argument(
+        "--robot",
+        metavar="NAME|FILE",
+        help="robot profile the controller drives instead of the world's: a built-in name or a "
+        "profile file, as in mazesim demo (default: the world's robot, else e-puck); a run of "
+        "one controller only (refused with WORLD.wbt, whose robots are its own)",
     )
     run.add_argument(
         "--seconds",
@@ -228,6 +236,15 @@ def _load_world(
     return world, report, scene
 
 
+def _refuse_robot_in_world_run(args: argparse.Namespace) -> None:
+    if args.robot is not None:
+        raise InvalidArgumentError(
+            f"--robot chooses the robot profile of one controller's run; found it ({args.robot!r}) "
+            "with a run of a whole world, whose robots are the world's: leave --robot out, or "
+            "give each robot its profile in the world"
+        )
+
+
 def run_webots(args: argparse.Namespace, out: TextIO) -> int:
     """Runs a controller file and writes its trajectory picture and summary.
 
@@ -251,6 +268,7 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
                 f"the world file {args.controller!r} as the first argument, which is the world of "
                 "this run: leave --world out, or give a controller file first"
             )
+        _refuse_robot_in_world_run(args)
         return run_world_command(args, out)
 
     if args.robot_controller:
@@ -264,6 +282,7 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
 
     whole = whole_world_run(args, file)
     if whole is not None:
+        _refuse_robot_in_world_run(args)
         return run_world_command(whole, out)
     controller = os.path.splitext(os.path.basename(file))[0]
     world, report, scene = _load_world(args.world, args.strict, controller)
@@ -281,7 +300,12 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
             *output_files(out_dir, ("trajectory.png", "summary.json", "trajectory.csv")),
             *viewing_outputs(args),
         ],
-        [("the controller", args.controller), ("--world", args.world), ("--keys", args.keys)],
+        [
+            ("the controller", args.controller),
+            ("--world", args.world),
+            ("--keys", args.keys),
+            ("--robot", args.robot),
+        ],
     )
     # Fail before the run, not after it, if the output folder cannot be made.
     make_output_folder(out_dir)
@@ -306,6 +330,7 @@ def run_webots(args: argparse.Namespace, out: TextIO) -> int:
             keys=keys,
             scene=scene,
             prepared=prepared,
+            robot=args.robot,
         )
         if result.reached_end:
             steps.finish()

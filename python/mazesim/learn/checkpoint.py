@@ -109,6 +109,8 @@ class RunFolder:
     def __init__(self, folder: str | os.PathLike[str], resume: bool = False) -> None:
         self.folder = Path(folder)
         self.resume = resume
+        #: The seconds the run had taken before it was resumed (0 for a fresh run).
+        self.resumed_seconds = 0.0
 
     def start(self, settings: dict[str, Any]) -> Checkpoint | None:
         """Prepares the folder for a run with ``settings`` (its identity) and returns the
@@ -130,6 +132,7 @@ class RunFolder:
             if not checkpoint_exists(folder):
                 raise PolicyFormatError(f"{folder / CHECKPOINT_FILE}: no checkpoint to resume from")
             saved = read_checkpoint(folder, settings)
+            self.resumed_seconds = saved.lower_seconds
         elif (folder / METADATA_FILE).exists():
             # A finished run keeps its checkpoint beside the navigator it saved last.
             raise PolicyFormatError(

@@ -21,7 +21,7 @@ from types import ModuleType, TracebackType
 from typing import Any
 
 from mazesim._callers import users_code
-from mazesim._core import World
+from mazesim._core import RobotProfile, World
 from mazesim._paths import MAX_TEXT_CHARACTERS, read_input
 from mazesim.errors import InvalidArgumentError, MazesimError, MazesimIOError
 from mazesim.webots import controller as controller_module
@@ -123,8 +123,8 @@ OTHER_LANGUAGES = {
 #: run as Python, a world file ended in a NameError on its first table.
 NOT_CONTROLLERS = {
     ".toml": (
-        "a TOML file (a mazesim world, given as --world; a robot profile is the --robot of "
-        "mazesim demo and mazesim eval, while a controller drives the world's e-puck)"
+        "a TOML file (a mazesim world, given as --world; a robot profile, given as --robot: "
+        "mazesim webots run CONTROLLER --robot FILE)"
     ),
     ".json": "a JSON file (a recorded run, replayed with mazesim replay)",
     ".proto": "a Webots PROTO file (a world that uses it is run: give the .wbt world)",
@@ -211,6 +211,7 @@ def run_controller(
     scene: Scene | None = None,
     prepared: PreparedController | None = None,
     stall_seconds: float = termination.STALL_SECONDS,
+    robot: str | RobotProfile | None = None,
     **world_of_several: Any,
 ) -> ControllerRun:
     """Runs a Webots-style controller file on the robot in ``world``.
@@ -238,6 +239,8 @@ def run_controller(
             run's end (its set-up before the first step included) before it is stopped; after
             the end it is stopped :data:`~mazesim.webots.termination.GRACE_SECONDS` later, as
             Webots does, whether it calls ``Robot.step`` or not.
+        robot: The robot profile to simulate instead of the world's: a built-in name, a profile
+            file's path or a :class:`~mazesim.RobotProfile` (``mazesim webots run --robot``).
         **world_of_several: For a robot of a world with several robots, whose process owns
             the world: ``simulator``, ``radio``, ``fleet`` and ``robot_index`` (see
             :class:`~mazesim.webots.simulation.RobotSimulation`).
@@ -268,6 +271,7 @@ def run_controller(
         report=report,
         keys=keys,
         scene=scene,
+        robot=robot,
         **world_of_several,
     )
     if native:

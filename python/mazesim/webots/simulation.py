@@ -158,6 +158,7 @@ class RobotSimulation:
         radio: Any = None,
         fleet: Any = None,
         robot_index: int = 0,
+        robot: str | RobotProfile | None = None,
     ) -> None:
         """Creates the simulator of the run.
 
@@ -178,6 +179,8 @@ class RobotSimulation:
             fleet: The world's robots (:class:`~mazesim.webots.lockstep.Fleet`) when another
                 process owns the world, for a supervisor; None in a run of one robot.
             robot_index: The robot's index among the world's robots.
+            robot: The robot profile to simulate instead of the world's (a built-in name, a
+                profile file's path or a :class:`~mazesim.RobotProfile`); None: the world's.
 
         Raises:
             InvalidArgumentError: ``seconds`` is not a positive number.
@@ -204,7 +207,7 @@ class RobotSimulation:
         self.simulator = (
             Simulator(
                 world,
-                robot=robot_profile(report, scene, own),
+                robot=robot_profile(report, scene, own) if robot is None else robot,
                 seed=seed,
                 noise=noise,
             )

@@ -76,7 +76,11 @@ pub(super) fn compile(
                     place,
                     &field("profile"),
                     format!(
-                        "expected a built-in robot profile ({}), found {p:?}",
+                        "expected a built-in robot profile ({}), found {p:?}; a world names \
+                         built-in profiles only: a profile file is given to the run instead, \
+                         as --robot FILE of the mazesim commands (every robot without a \
+                         profile of its own) or, for one robot, \
+                         Simulator(world, robot_profiles=[RobotProfile.load(FILE), None, ...])",
                         names.join(", ")
                     ),
                 ));
