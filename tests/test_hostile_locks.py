@@ -235,8 +235,9 @@ def test_the_import_makes_numpy_s_once_made_state_before_any_thread_can() -> Non
     code = textwrap.dedent(
         """
         import importlib, numpy
-        name = 'numpy._core.multiarray' if int(numpy.__version__.split('.')[0]) >= 2 else 'numpy.core.multiarray'
-        multiarray = importlib.import_module(name)
+        major = int(numpy.__version__.split('.')[0])
+        package = 'numpy._core' if major >= 2 else 'numpy.core'
+        multiarray = importlib.import_module(package + '.multiarray')
         key = '_RUST_NUMPY_BORROW_CHECKING_API'
         print('BEFORE', hasattr(multiarray, key))
         import mazesim._core
