@@ -72,7 +72,7 @@ def register(commands: Any) -> None:
     webots = commands.add_parser(
         "webots",
         help="run Webots-style e-puck controllers on mazesim",
-        description="Run Webots-style Python controllers of the e-puck on mazesim.",
+        description="Run Webots-style e-puck controllers (Python, C or C++) on mazesim.",
         epilog=examples("mazesim webots run my_controller.py --world Maze.wbt"),
     )
     actions = webots.add_subparsers(dest="webots_command", metavar="COMMAND", required=True)
