@@ -16,15 +16,13 @@ from typing import Any
 
 import pytest
 
+from epuck2_tof import tof_reading
 from mazesim.webots.lockstep import WorldRun, run_world
 
 PROJECT = Path(__file__).resolve().parent.parent / "data" / "webots-swarm-judged"
 
 #: The body radius of an e-puck (m).
 BODY_RADIUS = 0.037
-
-#: The e-puck2's ToF lookup table (E-puck.proto, version "2"): distance (m), reading (mm).
-TOF_TABLE = [(0.0, 19.8), (0.05, 58.5), (0.1, 111.0), (0.2, 218.9), (0.5, 531.9), (1.0, 1052.0)]
 
 
 def run(world: str, logs: Path, seconds: float) -> tuple[WorldRun, dict[str, Any]]:
@@ -34,14 +32,6 @@ def run(world: str, logs: Path, seconds: float) -> tuple[WorldRun, dict[str, Any
         patch.setenv("SWARM_LOG", str(logs))
         done = run_world(str(PROJECT / "worlds" / f"{world}.wbt"), seconds=seconds, seed=5)
     return done, {p.stem: json.loads(p.read_text()) for p in logs.glob("*.json")}
-
-
-def tof_reading(distance: float) -> float:
-    """The ToF table at ``distance`` (m), interpolated."""
-    for (d0, v0), (d1, v1) in zip(TOF_TABLE, TOF_TABLE[1:]):
-        if d0 <= distance <= d1:
-            return v0 + (v1 - v0) * (distance - d0) / (d1 - d0)
-    raise ValueError(distance)
 
 
 def test_a_turret_beacon_reaches_the_receivers_within_its_range_until_it_shrinks(

@@ -15,12 +15,10 @@ from typing import Any
 
 import pytest
 
+from epuck2_tof import tof_reading
 from mazesim.webots.lockstep import WorldRun, run_world
 
 PROJECT = Path(__file__).resolve().parent.parent / "data" / "webots-swarm-patterns"
-
-#: The e-puck2's ToF lookup table (E-puck.proto, version "2"): distance (m), reading (mm).
-TOF_TABLE = [(0.0, 19.8), (0.05, 58.5), (0.1, 111.0), (0.2, 218.9), (0.5, 531.9), (1.0, 1052.0)]
 
 #: The body radius of an e-puck (m), and how far ahead of its centre the ToF sensor sits.
 BODY_RADIUS = 0.037
@@ -41,14 +39,6 @@ def run(
             controllers=controllers,
         )
     return done, {p.stem: json.loads(p.read_text()) for p in logs.glob("*.json")}
-
-
-def tof_reading(distance: float) -> float:
-    """The ToF table at ``distance`` (m), interpolated."""
-    for (d0, v0), (d1, v1) in zip(TOF_TABLE, TOF_TABLE[1:]):
-        if d0 <= distance <= d1:
-            return v0 + (v1 - v0) * (distance - d0) / (d1 - d0)
-    raise ValueError(distance)
 
 
 def test_orders_pass_along_a_chain_on_their_channels_within_range(tmp_path: Path) -> None:
