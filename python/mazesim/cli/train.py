@@ -27,7 +27,7 @@ from mazesim.errors import InvalidArgumentError
 
 if TYPE_CHECKING:
     from mazesim.batch import RobotChoice
-    from mazesim.learn.train import RobotDraw
+    from mazesim.learn.train import RobotDraw, TrainSettings
 
 __all__ = ["run_train", "step_count"]
 
@@ -183,19 +183,10 @@ def run_train(args: argparse.Namespace, out: TextIO) -> int:
             f"evaluate it with: mazesim eval --policy {args.out}\n"
         )
         return 0
-    lower = settings.lower()
-    trained_steps = lower.rounds * lower.num_envs * lower.round_steps
-    if trained_steps != settings.steps:
-        # Said before the run: the lower level trains in whole rounds, never fewer than asked.
-        print(
-            f"mazesim: --steps {settings.steps:,} trains {trained_steps:,} env-steps: "
-            f"{lower.rounds} whole round(s) of {lower.num_envs:,} robots (--envs) x "
-            f"{lower.round_steps} steps",
-            file=sys.stderr,
-        )
     folder = RunFolder(args.out, resume=args.resume)
     try:
         with writing_alone(args.out, "mazesim train", create=not args.resume), curve:
+            _say_whole_rounds(settings)
             with progress_display(args, units=_UNITS) as progress:
                 result = train(settings, folder, progress=progress, curve=curve, robot=robot)
     except KeyboardInterrupt:
@@ -225,3 +216,17 @@ def run_train(args: argparse.Namespace, out: TextIO) -> int:
         f"evaluate it with: mazesim eval --policy {args.out}\n"
     )
     return 0
+
+
+def _say_whole_rounds(settings: TrainSettings) -> None:
+    """Says, once the output folder is taken and before the run, how ``--steps`` rounds: the
+    lower level trains in whole rounds, never fewer steps than asked."""
+    lower = settings.lower()
+    trained_steps = lower.rounds * lower.num_envs * lower.round_steps
+    if trained_steps != settings.steps:
+        print(
+            f"mazesim: --steps {settings.steps:,} trains {trained_steps:,} env-steps: "
+            f"{lower.rounds} whole round(s) of {lower.num_envs:,} robots (--envs) x "
+            f"{lower.round_steps} steps",
+            file=sys.stderr,
+        )
