@@ -92,8 +92,10 @@ PAGE_CONSTANTS: dict[str, dict[str, str]] = {
         "5 s": "the lockstep bridge's wait before it sends the reset state again",
         "1 s": "the lockstep bridge's wait after that before its clock runs on its own",
         "0.5 s": "the simulated sleep of the test of a controller that sleeps before commanding",
+        "0.8 s": "the eighth tick of a 0.1 s rospy.Rate, where --command-period's hold is 4 steps",
     },
     "ros2.md": {
+        "0.3 %": "the noise column of the E-puck PROTO's gyro and accelerometer tables",
         "0.5 s": "the bridge's wait for its readers to match",
         "5 s": "the lockstep bridge's wait before it sends the reset state again",
         "1 s": "the lockstep bridge's wait after that before its clock runs on its own",
