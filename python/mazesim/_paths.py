@@ -10,6 +10,7 @@ import fcntl
 import io
 import os
 import re
+import shlex
 import stat
 from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
@@ -40,6 +41,7 @@ __all__ = [
     "read_text",
     "refuse_overwriting_inputs",
     "same_file",
+    "shell_command",
     "unknown_name_or_file",
     "unknown_robot_profile",
     "world_files_beside",
@@ -155,6 +157,7 @@ def unknown_name_or_file(
             )
         elif not os.path.isabs(path):  # a relative path: say where it was looked for
             found = f"{found}{where}"
+        found += _windows_separators(path, base)
     opening = f"no {kind} file {path!r}: " if is_path else f"no built-in {kind} named {path!r} and "
     opening = context + opening
     unknown = UnknownNameError(
@@ -205,7 +208,23 @@ def _where_missing(path: str) -> str:
     names = world_files_beside(path, (suffix,))  # "" (no suffix): every file
     meant = _closest_name(path, names)
     looked = f"the folder {folder!r}{where}" if folder else os.getcwd()
+    windows = _windows_separators(path, os.getcwd())
+    if windows:
+        return f": there is no {file!r} in {looked}{windows}"
     return f": there is no {file!r} in {looked}" + (f"; did you mean {meant!r}?" if meant else "")
+
+
+def _windows_separators(path: str, base: str) -> str:
+    """What to add to a "no such file" message for a path written with Windows' backslashes
+    (``maps\\maze.toml``), which name no folder here: that folders are separated by '/', and
+    the path so written when that file exists. Empty for any other path."""
+    if "\\" not in path or os.sep == "\\":
+        return ""
+    meant = path.replace("\\", "/")
+    there = os.path.exists(os.path.join(base, meant))
+    return "; folders are separated by '/' here, not by '\\' as on Windows" + (
+        f": did you mean {meant!r}?" if there else ""
+    )
 
 
 def open_input(path: str | os.PathLike[str], what: str) -> BinaryIO:
@@ -281,6 +300,11 @@ def read_text(
 ) -> str:
     """The text of a UTF-8 file a command reads, of at most :data:`MAX_TEXT_CHARACTERS`.
 
+    A byte-order mark at its start (Windows editors write one) is not part of the text, as the
+    world and robot profile readers leave it out too; a file in another encoding (UTF-16, as
+    Windows Notepad's "Unicode" saves, or Latin-1) is refused saying which and to save it as
+    UTF-8.
+
     Args:
         path: The file.
         what: What the file is, for messages (``"the key script"``).
@@ -294,11 +318,12 @@ def read_text(
     """
     file = os.fspath(path)
     try:
-        with io.TextIOWrapper(open_input(file, what), encoding="utf-8") as handle:
+        with io.TextIOWrapper(open_input(file, what), encoding="utf-8-sig") as handle:
             text = handle.read(MAX_TEXT_CHARACTERS + 1)
     except UnicodeDecodeError as error:
         raise not_text(
-            f"{file}: expected {what} in UTF-8 text, found other bytes: {error}"
+            f"{file}: expected {what} in UTF-8 text, found {_other_encoding(error)}: save it as "
+            'UTF-8 (an editor\'s "Save as", encoding UTF-8) and give it again'
         ) from None
     except MazesimIOError:
         raise
@@ -309,6 +334,25 @@ def read_text(
             f"{file}: expected {what} of at most {MAX_TEXT_CHARACTERS} characters, found more"
         )
     return text
+
+
+def _other_encoding(error: UnicodeDecodeError) -> str:
+    """What a text that is not UTF-8 looks like, from where its decoding failed."""
+    start = bytes(error.object[:2])
+    if error.start < 2 and start in (b"\xff\xfe", b"\xfe\xff"):
+        return f"UTF-16 text (it starts with the byte-order mark {start.hex(' ').upper()})"
+    byte = error.object[error.start]
+    return (
+        f"a byte 0x{byte:02X} that is not UTF-8 (text in another encoding, such as Latin-1 or "
+        "Windows-1252?)"
+    )
+
+
+def shell_command(*words: str | os.PathLike[str]) -> str:
+    """A command as a person copies it into a shell: each word quoted as a POSIX shell needs
+    (``mazesim eval --policy 'my navigator'``), so that a path holding spaces, quotes or
+    non-ASCII letters stays one word; plain words are written as they are."""
+    return shlex.join(os.fspath(word) for word in words)
 
 
 def same_file(first: str | os.PathLike[str], second: str | os.PathLike[str]) -> bool:

@@ -136,8 +136,8 @@ def _checkpoints_problem(world: World, show_command: str | None) -> str:
         )
     if show_command is not None:
         return (
-            f"{why}: add the [[checkpoints]] that '{show_command}' prints, one on every way into "
-            "every junction as mazesim.generate_maze places them"
+            f"{why}: add the [[checkpoints]] tables, one on every way into every junction as "
+            f"mazesim.generate_maze places them, that this command prints: {show_command}"
         )
     count = tables.count("[[checkpoints]]")
     floor = (

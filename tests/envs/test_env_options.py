@@ -10,6 +10,7 @@ import pytest
 
 gymnasium = pytest.importorskip("gymnasium")
 
+import mazesim  # noqa: E402
 from mazesim.envs import EPuckMazeEnv, EPuckMazeVectorEnv  # noqa: E402
 from mazesim.errors import InvalidArgumentError  # noqa: E402
 
@@ -99,3 +100,21 @@ def test_a_mistyped_option_says_which_option_was_meant(mode: str | None) -> None
     with pytest.raises(InvalidArgumentError) as caught:
         gymnasium.make(TASK, colour="red")
     assert "did you mean" not in str(caught.value)
+
+
+def test_a_list_of_worlds_is_told_how_to_run_a_maze_distribution_of_ones_own() -> None:
+    worlds = [mazesim.generate_maze(4, 4, seed=seed, loops=0.3) for seed in range(2)]
+    with pytest.raises(InvalidArgumentError) as refused:
+        gymnasium.make(TASK, world=worlds)
+    said = (
+        "go one per env of a vector env: gymnasium.vector.SyncVectorEnv([lambda w=w: "
+        "gymnasium.make(TASK, world=w) for w in worlds]) (or AsyncVectorEnv)"
+    )
+    assert str(refused.value).endswith(said)
+    # What it says runs, each env in its own maze.
+    envs = gymnasium.vector.SyncVectorEnv(
+        [lambda w=w: gymnasium.make(TASK, world=w) for w in worlds]
+    )
+    envs.reset(seed=0)
+    assert [env.unwrapped.world for env in envs.envs] == worlds
+    envs.close()

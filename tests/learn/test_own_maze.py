@@ -101,7 +101,7 @@ def test_a_maze_drawn_by_hand_is_told_the_checkpoints_to_paste(
     args = ["train", "--world", str(drawn), "--out", str(tmp_path / "run"), *QUICK]
     assert main(args) == 2
     refusal = capsys.readouterr().err
-    assert f"add the [[checkpoints]] that 'mazesim show {drawn}' prints" in refusal
+    assert refusal.rstrip().endswith(f"that this command prints: mazesim show {drawn}")
     assert len(refusal.splitlines()) == 1
     # Pasted as told, the navigator can learn the maze, its codes before its junctions.
     drawn.write_text(DRAWN + "\n" + tables + "\n")

@@ -21,7 +21,7 @@ import numpy.typing as npt
 import mazesim
 from mazesim import InvalidArgumentError
 from mazesim._atomic import atomic_file
-from mazesim._paths import make_output_folder
+from mazesim._paths import make_output_folder, shell_command
 from mazesim.cli.demo import HRL_DEFAULT_SECONDS, speed_summary
 from mazesim.cli.progress import progress_display
 from mazesim.episodes import StartJitter, shortest_path_steps
@@ -46,8 +46,9 @@ def run_hrl_demo(args: argparse.Namespace, out: TextIO) -> int:
         raise InvalidArgumentError(
             f"--robot {args.robot}: mazesim demo --controller hrl drives the shipped navigator "
             "on the seed robot it was trained for, and takes no other robot; to watch the "
-            f"navigator drive {args.robot}: mazesim eval --robot {args.robot} --episodes 1 "
-            "--html run.html"
+            f"navigator drive {args.robot}: "
+            + shell_command("mazesim", "eval", "--robot", args.robot, "--episodes", "1")
+            + " --html run.html"
         )
     world = mazesim.load_world(args.world)
     refuse_unlearnable(world, args.world, "drive")

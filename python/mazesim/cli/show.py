@@ -15,7 +15,7 @@ from pathlib import Path
 from typing import Any, TextIO
 
 from mazesim._figures import figure_file
-from mazesim._paths import file_name_of, refuse_overwriting_inputs
+from mazesim._paths import file_name_of, refuse_overwriting_inputs, shell_command
 from mazesim.cli._help import examples
 
 __all__ = ["run_show"]
@@ -78,7 +78,7 @@ def run_show(args: argparse.Namespace, out: TextIO) -> int:
             f"the navigator cannot learn it: {'; '.join(problems)}\n"
             if problems
             else f"{len(world.checkpoints())} checkpoints and a goal in reach: the navigator can "
-            f"learn it (mazesim train --world {args.world})\n"
+            f"learn it ({shell_command('mazesim', 'train', '--world', args.world)})\n"
         )
     if args.open and not webbrowser.open(Path(path).resolve().as_uri()):
         out.write(f"no viewer could be started here; open {path} yourself\n")

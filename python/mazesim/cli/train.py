@@ -13,7 +13,12 @@ import time
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, TextIO
 
-from mazesim._paths import output_files, refuse_overwriting_inputs, writing_alone
+from mazesim._paths import (
+    output_files,
+    refuse_overwriting_inputs,
+    shell_command,
+    writing_alone,
+)
 from mazesim.cli._args import (
     add_out_folder,
     add_setting_options,
@@ -180,7 +185,7 @@ def run_train(args: argparse.Namespace, out: TextIO) -> int:
             f"trained the flat baseline for {policy.world_name} in {seconds:.0f} s "
             f"({settings.steps} env-steps)\nwrote {Path(args.out) / 'tables.npz'}, "
             f"{Path(args.out) / 'policy.json'}, {curve.path}\n"
-            f"evaluate it with: mazesim eval --policy {args.out}\n"
+            f"evaluate it with: {shell_command('mazesim', 'eval', '--policy', args.out)}\n"
         )
         return 0
     folder = RunFolder(args.out, resume=args.resume)
@@ -213,7 +218,7 @@ def run_train(args: argparse.Namespace, out: TextIO) -> int:
         f"episodes reached the goal\n"
         f"wrote {Path(args.out) / 'tables.npz'}, {Path(args.out) / 'policy.json'}, "
         f"{curve.path}\n"
-        f"evaluate it with: mazesim eval --policy {args.out}\n"
+        f"evaluate it with: {shell_command('mazesim', 'eval', '--policy', args.out)}\n"
     )
     return 0
 

@@ -18,6 +18,7 @@ from typing import Any, TextIO
 
 from mazesim._atomic import atomic_file
 from mazesim._core import RobotProfile, World
+from mazesim._paths import shell_command
 from mazesim.errors import InvalidArgumentError
 
 __all__ = [
@@ -205,7 +206,18 @@ def refuse_keys(args: argparse.Namespace) -> None:
         raise InvalidArgumentError(
             "--keys types on one controller's Keyboard; a world run (WORLD.wbt as the first "
             "argument) runs every robot's controller: give the controller to type to instead, "
-            f"'mazesim webots run CONTROLLER --world {args.controller} --keys {args.keys}', "
+            "'"
+            + shell_command(
+                "mazesim",
+                "webots",
+                "run",
+                "CONTROLLER",
+                "--world",
+                args.controller,
+                "--keys",
+                args.keys,
+            )
+            + "', "
             "or leave --keys out"
         )
 

@@ -8,7 +8,7 @@ import os
 import sys
 from typing import Any, TextIO
 
-from mazesim._paths import output_file
+from mazesim._paths import output_file, shell_command
 from mazesim.cli._help import examples
 from mazesim.errors import InvalidArgumentError, MazesimIOError
 
@@ -61,7 +61,9 @@ def _run(args: argparse.Namespace) -> int:
     # goes to stderr so that what is piped on stays a world file.
     status = sys.stdout if os.path.isfile(file) else sys.stderr
     print(
-        f"wrote {file} (the built-in world {name}); edit it, then: mazesim show {file}", file=status
+        f"wrote {file} (the built-in world {name}); edit it, then: "
+        f"{shell_command('mazesim', 'show', file)}",
+        file=status,
     )
     return 0
 

@@ -347,6 +347,9 @@ def _resolve_world(world: WorldOption) -> World:
         raise InvalidArgumentError(
             f'expected world to be a built-in world name, a path, "random", a World or '
             f'{{"toml": ..., "source": ...}}; '
-            f"found {world!r}"
+            f'found {world!r}. An env runs one world, or with "random" a new generated maze of '
+            "maze_size cells at each reset; mazes of your own choosing go one per env of a "
+            "vector env: gymnasium.vector.SyncVectorEnv([lambda w=w: gymnasium.make(TASK, "
+            "world=w) for w in worlds]) (or AsyncVectorEnv)"
         )
     return mazesim.load_world(world)

@@ -16,7 +16,7 @@ import os
 from pathlib import Path
 from typing import Any
 
-from mazesim._paths import make_output_folder
+from mazesim._paths import make_output_folder, shell_command
 from mazesim.errors import InvalidArgumentError, PolicyFormatError
 from mazesim.learn.schema import differing
 from mazesim.learn.tables import (
@@ -138,8 +138,8 @@ class RunFolder:
             raise PolicyFormatError(
                 f"{folder} already holds a trained navigator ({METADATA_FILE}, tables.npz) and "
                 f"its run's checkpoint: choose another --out for a new one, or delete {folder} "
-                f"to train afresh there ('mazesim eval --policy {folder}' measures the one it "
-                "holds)"
+                f"to train afresh there ('{shell_command('mazesim', 'eval', '--policy', folder)}' "
+                "measures the one it holds)"
             )
         elif checkpoint_exists(folder):
             raise PolicyFormatError(

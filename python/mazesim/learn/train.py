@@ -39,6 +39,7 @@ from typing import Any, Protocol, Union
 
 from mazesim import load_world
 from mazesim._core import World, builtin_world_names
+from mazesim._paths import shell_command
 from mazesim.batch import RobotChoice
 from mazesim.episodes import EpisodeResult, learning_problems, shortest_path_steps
 from mazesim.errors import InvalidArgumentError
@@ -330,7 +331,7 @@ def refuse_unlearnable(world: World, name: str, verb: str = "learn") -> None:
         InvalidArgumentError: :func:`mazesim.episodes.learning_problems` finds a problem.
     """
     refuse_blocked_start(world, name)
-    problems = learning_problems(world, show_command=f"mazesim show {name}")
+    problems = learning_problems(world, show_command=shell_command("mazesim", "show", name))
     if problems:
         raise InvalidArgumentError(
             f"the navigator cannot {verb} world {world_source(world, name)}: " + "; ".join(problems)

@@ -1,0 +1,124 @@
+"""Issue 37: a user used to Windows or macOS on Linux. Paths with spaces and non-ASCII letters in
+the commands mazesim prints for copying, text files from Windows editors (a byte-order mark,
+UTF-16, Latin-1), and paths written with Windows' backslashes."""
+
+from __future__ import annotations
+
+import codecs
+import shlex
+from pathlib import Path
+
+import pytest
+
+import mazesim
+from mazesim.cli import main
+from mazesim.distributed.config import load_sweep_config
+from mazesim.webots.keyboard import read_keys
+
+SWEEP = """[sweep]
+name = "bom"
+
+[grid]
+seed = [0, 1]
+"""
+
+
+def _printed_command(output: str, opening: str) -> list[str]:
+    """The words of the command that follows ``opening`` on a line of ``output``, as a shell
+    splits them."""
+    (line,) = [line for line in output.splitlines() if opening in line]
+    return shlex.split(line.split(opening, 1)[1].rstrip(")"))
+
+
+def test_show_prints_a_train_command_that_a_shell_runs_with_a_spaced_path(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    world = "Mes labyrinthes ü/maze 1.toml"
+    (tmp_path / "Mes labyrinthes ü").mkdir()
+    mazesim.generate_maze(4, 4, seed=3).save(world)
+    assert main(["show", world, "-o", "maze.png"]) == 0
+    words = _printed_command(capsys.readouterr().out, "can learn it (")
+    assert words == ["mazesim", "train", "--world", world]
+
+
+def test_worlds_export_prints_a_show_command_that_a_shell_runs(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    assert main(["worlds", "--export", "seed-maze", "--out", "my maze.toml"]) == 0
+    words = _printed_command(capsys.readouterr().out, "edit it, then: ")
+    assert words == ["mazesim", "show", "my maze.toml"]
+
+
+def test_a_maze_without_checkpoints_names_a_show_command_a_shell_runs(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    world = "my maze ü.toml"
+    layout = mazesim.MazeLayout(checkpoints=False)
+    mazesim.generate_maze(4, 4, seed=3, layout=layout).save(world)
+    assert main(["train", "--world", world, "--out", "nav"]) == 2
+    error = capsys.readouterr().err
+    words = _printed_command(error, "that this command prints: ")
+    assert words == ["mazesim", "show", world]
+
+
+def test_a_byte_order_mark_is_not_part_of_a_text_file(tmp_path: Path) -> None:
+    keys = tmp_path / "keys.txt"
+    keys.write_bytes(codecs.BOM_UTF8 + b"0.5 UP 1.0\r\n2.0 LEFT 0.5\r\n")
+    plain = tmp_path / "plain.txt"
+    plain.write_bytes(b"0.5 UP 1.0\n2.0 LEFT 0.5\n")
+    assert [vars(press) for press in read_keys(keys).presses] == [
+        vars(press) for press in read_keys(plain).presses
+    ]
+    sweep = tmp_path / "sweep.toml"
+    sweep.write_bytes(codecs.BOM_UTF8 + SWEEP.replace("\n", "\r\n").encode())
+    assert load_sweep_config(sweep).name == "bom"
+
+
+@pytest.mark.parametrize(
+    ("encoding", "found"),
+    [
+        ("utf-16", "found UTF-16 text (it starts with the byte-order mark FF FE)"),
+        ("latin-1", "found a byte 0xE8 that is not UTF-8"),
+    ],
+)
+def test_a_text_file_in_another_encoding_says_to_save_it_as_utf8(
+    tmp_path: Path, encoding: str, found: str
+) -> None:
+    keys = tmp_path / "keys.txt"
+    keys.write_text("# flèche\n0.5 UP 1.0\n", encoding=encoding)
+    with pytest.raises(mazesim.InvalidArgumentError) as refused:
+        read_keys(keys)
+    assert found in str(refused.value)
+    assert "save it as UTF-8" in str(refused.value)
+
+
+@pytest.mark.parametrize("command", ["show", "demo"])
+def test_a_path_with_windows_backslashes_gets_the_path_meant(
+    tmp_path: Path,
+    capsys: pytest.CaptureFixture[str],
+    monkeypatch: pytest.MonkeyPatch,
+    command: str,
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "maps").mkdir()
+    mazesim.generate_maze(3, 3, seed=1).save("maps/maze.toml")
+    world = ["maps\\maze.toml"] if command == "show" else ["--world", "maps\\maze.toml"]
+    assert main([command, *world]) == 2
+    error = capsys.readouterr().err
+    assert "folders are separated by '/' here, not by '\\' as on Windows" in error
+    assert "did you mean 'maps/maze.toml'?" in error
+
+
+def test_a_missing_controller_written_with_backslashes_gets_the_path_meant(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "controllers").mkdir()
+    (tmp_path / "controllers" / "wander.py").write_text("pass\n", encoding="utf-8")
+    assert main(["webots", "run", "controllers\\wander.py", "--seconds", "1"]) == 2
+    error = capsys.readouterr().err
+    assert "folders are separated by '/' here, not by '\\' as on Windows" in error
+    assert error.rstrip().endswith("/controllers/wander.py'?")
