@@ -87,9 +87,13 @@ class EpisodeRecorder:
         self.rays = SensorRays(self.world, self.robot, self.robot.distance_sensor_range, boxes)
 
     def walls_changed(self, boxes: npt.ArrayLike) -> None:
-        """The walls stand as ``boxes`` from the next frame on (a supervisor changed them)."""
+        """The walls stand as ``boxes`` from the next frame on (a supervisor changed them);
+        nothing changes when they stand as before (a change of the world's robots alone)."""
         array = np.asarray(boxes, dtype=np.float64)
         array = array.reshape(-1, array.shape[-1] if array.ndim == 2 else 5)[:, :5].copy()
+        standing = self.walls[-1][1] if self.walls else self.world.wall_boxes()[:, :5]
+        if array.shape == standing.shape and np.array_equal(array, standing):
+            return
         if self.walls and self.walls[-1][0] == self.frames:
             self.walls.pop()
         self.walls.append((self.frames, array))
