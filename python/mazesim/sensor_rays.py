@@ -27,10 +27,20 @@ class SensorRays:
         world: The world whose wall boxes stop the rays.
         robot: The robot profile (the sensors' poses on the body).
         ray_length: Range of the sensors in metres.
+        walls: The wall boxes (N, 5 or more: centre x, y, size x, y, yaw) instead of the
+            world's (the walls as a supervisor changed them in a recorded run).
     """
 
-    def __init__(self, world: World, robot: RobotProfile, ray_length: float) -> None:
-        boxes = np.asarray(world.wall_boxes(), dtype=np.float64).reshape(-1, 6)
+    def __init__(
+        self,
+        world: World,
+        robot: RobotProfile,
+        ray_length: float,
+        walls: npt.ArrayLike | None = None,
+    ) -> None:
+        given = world.wall_boxes() if walls is None else walls
+        array = np.asarray(given, dtype=np.float64)
+        boxes = array.reshape(-1, array.shape[-1] if array.ndim == 2 else 6)
         self.num_boxes = len(boxes)
         # Per wall box, as (1, B) rows: centre, half sizes, cos and sin of its yaw.
         self._center = (boxes[:, 0][None, :], boxes[:, 1][None, :])

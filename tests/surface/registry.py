@@ -46,6 +46,12 @@ INSTANCES: dict[str, str] = {
     "mazesim._core.Simulator": "mazesim.Simulator(world)",
     "mazesim._core.BatchSimulator": "mazesim.BatchSimulator(world, num_envs=2)",
     "mazesim._core.RobotProfile": "mazesim.RobotProfile.builtin('e-puck')",
+    # A recorded episode of two frames whose walls changed at its second (walls_at).
+    "mazesim.replay.run.RecordedEpisode": (
+        "(lambda np: mazesim.replay.run.RecordedEpisode(0, np.zeros((2, 3)), np.zeros((2, 11)),"
+        " np.zeros((2, 8)), np.zeros(2, bool), np.zeros(2, np.int64),"
+        " walls=[(1, np.zeros((0, 5)))]))(__import__('numpy'))"
+    ),
     "mazesim._core.TaskFeatures": (
         "(lambda np: mazesim._core.TaskFeatures(2, 'plan', False, np.ones(11),"
         " np.zeros(26, 'float32'), np.ones(26, 'float32')))(__import__('numpy'))"

@@ -86,6 +86,7 @@ class WorldWatch:
                 self.view.close()
         if not self.record:
             return
+        self.fleet.follow(world)
         for index in range(len(self.fleet.recorders), len(simulators)):
             simulator = simulators[index]
             readings = np.concatenate((simulator.distance_sensors(), simulator.ground_sensors()))

@@ -68,6 +68,8 @@ class TopDownRenderer:
         ray_length: Range of the distance sensors in metres.
         start: The start pose (x, y, yaw) drawn, instead of the world's.
         goal: The goal disc (x, y, radius) drawn, instead of the world's.
+        walls: The wall boxes drawn (N, 5 or more: centre x, y, size x, y, yaw), instead of
+            the world's (the walls as a supervisor changed them in a recorded run).
     """
 
     def __init__(
@@ -78,6 +80,7 @@ class TopDownRenderer:
         ray_length: float = 0.07,
         start: tuple[float, float, float] | None = None,
         goal: tuple[float, float, float] | None = None,
+        walls: npt.ArrayLike | None = None,
     ) -> None:
         self.width, self.height = size
         xmin, ymin, xmax, ymax = world.bounds
@@ -86,9 +89,10 @@ class TopDownRenderer:
         # Pixel (column, row) of the world point (x, y) is (x0 + x * scale, y0 - y * scale).
         self._x0 = (self.width - span_x * self.scale) / 2 - xmin * self.scale
         self._y0 = (self.height + span_y * self.scale) / 2 + ymin * self.scale
-        self._boxes = np.asarray(world.wall_boxes(), dtype=np.float64).reshape(-1, 6)
+        given = np.asarray(world.wall_boxes() if walls is None else walls, dtype=np.float64)
+        self._boxes = given.reshape(-1, given.shape[-1] if given.ndim == 2 else 6)[:, :5]
         self._body_radius = robot.body_radius
-        self.rays = SensorRays(world, robot, ray_length)
+        self.rays = SensorRays(world, robot, ray_length, self._boxes)
         self._stamp = _disc_offsets(self._body_radius * self.scale)
         self._start = world.start if start is None else start
         self._goal = world.goal if goal is None else goal
@@ -262,7 +266,7 @@ class TopDownRenderer:
             level = int(round(255 * min(max(_number(region["reflectance"]), 0.0), 1.0)))
             self._paint_region(image, region, (level, level, level))
         pixel = 1.0 / self.scale
-        for cx, cy, sx, sy, yaw, _ in self._boxes:
+        for cx, cy, sx, sy, yaw in self._boxes:
             # Half a pixel more on each side, so walls thinner than a pixel still show.
             self._box(image, (cx, cy), (sx + pixel, sy + pixel), yaw, WALL_RGB)
         for checkpoint in world.checkpoints():

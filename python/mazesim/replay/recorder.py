@@ -5,12 +5,15 @@ checkpoint event, and the ray lengths it works out from the pose) and what the c
 from each; :class:`SimulatorRecorder` does this for a :class:`mazesim.Simulator` stepped by a
 command (``mazesim demo``, ``mazesim webots run``) and returns the :class:`RecordedRun`;
 :class:`FleetRecorder` records every robot of a world of several robots, one track each. The
-recorder of the hierarchical navigator is :mod:`mazesim.replay.navigator`.
+recorder of the hierarchical navigator is :mod:`mazesim.replay.navigator`. A run whose walls a
+Webots supervisor changes is told of each change (``follow``): the run holds the walls from
+that frame on, and the rays recorded from then meet them.
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -59,6 +62,7 @@ class EpisodeRecorder:
     """
 
     def __init__(self, world: World, robot: RobotProfile, number: int = 0) -> None:
+        self.world = world
         self.robot = robot
         self.number = number
         self.codes = {int(c["id"]): str(c["code"]) for c in world.checkpoints()}  # type: ignore[call-overload]
@@ -73,7 +77,27 @@ class EpisodeRecorder:
         self.subtasks: list[int] = []
         self.levels: list[npt.NDArray[np.int64]] = []
         self.decisions: list[Decision] = []
+        #: Each change of the walls: the frame from which they stand so, and their boxes.
+        self.walls: list[tuple[int, npt.NDArray[np.float64]]] = []
         self.finished = False
+
+    def meet_walls(self, boxes: npt.ArrayLike) -> None:
+        """The rays of the frames added from now on meet the wall boxes ``boxes`` (N, 5 or
+        more: centre x, y, size x, y, yaw)."""
+        self.rays = SensorRays(self.world, self.robot, self.robot.distance_sensor_range, boxes)
+
+    def walls_changed(self, boxes: npt.ArrayLike) -> None:
+        """The walls stand as ``boxes`` from the next frame on (a supervisor changed them);
+        nothing changes when they stand as before (a change of the world's robots alone)."""
+        array = np.asarray(boxes, dtype=np.float64)
+        array = array.reshape(-1, array.shape[-1] if array.ndim == 2 else 5)[:, :5].copy()
+        standing = self.walls[-1][1] if self.walls else self.world.wall_boxes()[:, :5]
+        if array.shape == standing.shape and np.array_equal(array, standing):
+            return
+        if self.walls and self.walls[-1][0] == self.frames:
+            self.walls.pop()
+        self.walls.append((self.frames, array))
+        self.meet_walls(array)
 
     @property
     def frames(self) -> int:
@@ -167,6 +191,7 @@ class EpisodeRecorder:
             events=np.array(self.events, dtype=np.int64),
             decisions=list(self.decisions),
             outcome=outcome,
+            walls=list(self.walls),
         )
         if self.actions:
             episode.actions = _padded(self.actions, frames, "")
@@ -208,7 +233,17 @@ class SimulatorRecorder:
         self.simulator = simulator
         self.controller = controller
         self.seed = seed
-        self.recorder = EpisodeRecorder(simulator.world, simulator.robot)
+        #: The world at the start (a supervisor's changes are :meth:`follow`'s).
+        self.world = simulator.world
+        self.recorder = EpisodeRecorder(self.world, simulator.robot)
+        self._followed = self.world
+
+    def follow(self, world: World) -> None:
+        """Records the walls of ``world`` from the next frame on, when it is not the world
+        followed (a supervisor moved, imported or removed walls)."""
+        if world is not self._followed:
+            self._followed = world
+            self.recorder.walls_changed(world.wall_boxes())
 
     def capture(self) -> None:
         """Adds a frame of the simulator's current state."""
@@ -225,7 +260,7 @@ class SimulatorRecorder:
         """The recorded run."""
         robot = self.simulator.robot
         return RecordedRun(
-            world=self.simulator.world,
+            world=self.world,
             robot=robot.name,
             controller=self.controller,
             seed=self.seed,
@@ -266,6 +301,18 @@ class FleetRecorder:
         self.recorders = [EpisodeRecorder(world, profile) for _, profile in self.robots]
         #: Each robot's first frame in the world and its last (None: to the end).
         self.presence: list[tuple[int, int | None]] = [(0, None)] * len(self.robots)
+        #: The world whose walls the frames meet now (:meth:`follow`).
+        self._followed = world
+
+    def follow(self, world: World) -> None:
+        """Records the walls of ``world`` from the next frame on, when it is not the world
+        followed (a supervisor moved, imported or removed walls): every robot's rays meet
+        them from then on."""
+        if world is not self._followed:
+            self._followed = world
+            boxes = world.wall_boxes()
+            for recorder in self.recorders:
+                recorder.walls_changed(boxes)
 
     @staticmethod
     def of_simulator(simulator: Simulator, controller: str, seed: int) -> FleetRecorder:
@@ -310,6 +357,8 @@ class FleetRecorder:
         frame before, as a run's robots share one frame per step, and is in the world from
         this frame on."""
         recorder = EpisodeRecorder(self.world, profile)
+        if self._followed is not self.world:
+            recorder.meet_walls(self._followed.wall_boxes())
         for _ in range(self.recorders[0].frames):
             recorder.add_frame(pose, readings, False)
             recorder.set_action(wheel_speeds=(0.0, 0.0))
@@ -336,7 +385,10 @@ class FleetRecorder:
         if len(self.recorders) > 1:
             self._cut_rays_at_robots()
         episode = self.recorders[0].episode(outcome)
-        episode.robots = [recorder.episode(outcome) for recorder in self.recorders[1:]]
+        # The walls' changes are the run's, held by robot 0's episode alone.
+        episode.robots = [
+            replace(recorder.episode(outcome), walls=[]) for recorder in self.recorders[1:]
+        ]
         profile = self.robots[0][1]
         return RecordedRun(
             world=self.world,

@@ -27,7 +27,10 @@ the run's ``robots`` is in the world from its ``from_frame`` to its ``until_fram
 track holds a frame for every frame of the episode, standing still where it is not). A run of
 a robot whose profile is no built-in one (a profile file's) is version 1.3: the run holds that
 profile's TOML text (``robot_profile``, a robot's ``profile_toml``), so it replays with that
-profile even after the file changes or is gone.
+profile even after the file changes or is gone. A run in which the walls change while it runs
+(a Webots supervisor moves, imports or removes them) is version 1.4: an episode's ``walls``
+lists each change, the frame from which the walls are as it gives them (boxes), the run's
+world's walls before the first.
 """
 
 from __future__ import annotations
@@ -61,12 +64,14 @@ __all__ = [
 
 #: The ``format`` field of every run file.
 FORMAT_NAME = "mazesim-run"
-#: The newest version this module writes and reads: ``(major, minor)``. A newer minor version
-#: adds fields (and is refused by an older reader, which would misread it). Runs of a profile
-#: file's robot are 1.3 (the profile's TOML text), runs in which robots join or leave 1.2 (the
-#: robots' ``from_frame`` and ``until_frame``), other runs of several robots 1.1 (the ``robots``
-#: fields), runs of one 1.0.
-FORMAT_VERSION = (1, 3)
+#: The newest version this module writes and reads: ``(major, minor)``. A newer minor version adds
+#: fields (and is refused by an older reader, which would misread it). Runs whose walls change are
+#: 1.4 (an episode's ``walls``), runs of a profile file's robot 1.3 (the profile's TOML text),
+#: runs in which robots join or leave 1.2 (the robots' ``from_frame`` and ``until_frame``), other
+#: runs of several robots 1.1 (the ``robots`` fields), runs of one 1.0.
+FORMAT_VERSION = (1, 4)
+#: The version of a run of a robot whose profile is a profile file's.
+OWN_PROFILE_VERSION = (1, 3)
 #: The version of a run in which robots join or leave the world.
 PRESENCE_VERSION = (1, 2)
 #: The version of a run of several robots all in the world from its first frame to its last.
@@ -95,6 +100,13 @@ MAX_RUN_VALUES = 32 * 1024 * 1024
 MAX_RUN_BYTES = 256 * 1024 * 1024
 #: The Table 4.1 levels of a frame: one per Sharp distance.
 NUM_LEVELS = 6
+#: The numbers of a wall box of an episode's ``walls``: centre x, y and size x, y (0.1 mm), yaw
+#: (milliradians).
+WALL_BOX_NUMBERS = 5
+#: The most wall changes an episode may hold, and the most boxes one change may hold (a
+#: world's limit on its walls, ``mazesim_core::limits``, is far below).
+MAX_WALL_CHANGES = 1_000_000
+MAX_WALL_BOXES = 1_000_000
 
 
 @dataclass
@@ -156,6 +168,11 @@ class RecordedEpisode:
         levels: (F, 6) Table 4.1 levels of the six Sharp distances, or None.
         decisions: The higher level's choices.
         outcome: How the episode ended (``"goal reached"``, ``"out of time"``...).
+        robots: The tracks of the run's other robots (robot 0's episode only).
+        walls: Each change of the walls while the episode ran (a Webots supervisor moved,
+            imported or removed some): the frame from which they stand so and the (N, 5) wall
+            boxes (centre x, y, size x, y in m, yaw in rad), in frame order; before the first,
+            the run's world's walls (robot 0's episode only).
     """
 
     number: int
@@ -171,11 +188,22 @@ class RecordedEpisode:
     decisions: list[Decision] = field(default_factory=list)
     outcome: str = ""
     robots: list[RecordedEpisode] = field(default_factory=list)
+    walls: list[tuple[int, npt.NDArray[np.float64]]] = field(default_factory=list)
 
     @property
     def frames(self) -> int:
         """The number of frames."""
         return len(self.poses)
+
+    def walls_at(self, frame: int) -> npt.NDArray[np.float64] | None:
+        """The wall boxes (N, 5) at ``frame`` when the walls changed by then, else None (the
+        run's world's)."""
+        boxes = None
+        for start, changed in self.walls:
+            if start > frame:
+                break
+            boxes = changed
+        return boxes
 
 
 def _reading_names(profile: RobotProfile) -> list[str]:
@@ -297,8 +325,10 @@ class RecordedRun:
     def as_json(self) -> dict[str, Any]:
         """The run as the JSON object of its file."""
         own = written_profile(self.own_profile)
-        if own is not None or any(written_profile(r.own_profile) for r in self.robots):
+        if any(episode.walls for episode in self.episodes):
             major, minor = FORMAT_VERSION
+        elif own is not None or any(written_profile(r.own_profile) for r in self.robots):
+            major, minor = OWN_PROFILE_VERSION
         elif not self.robots:
             major, minor = ONE_ROBOT_VERSION
         elif all(robot.always_present for robot in self.robots):
@@ -349,7 +379,19 @@ class RecordedRun:
             values["levels"] = ["".join(str(int(v)) for v in row) for row in episode.levels]
         if episode.robots:
             values["robots"] = [self._episode_json(track) for track in episode.robots]
+        if episode.walls:
+            values["walls"] = [
+                [int(frame), _wall_boxes_json(boxes)] for frame, boxes in episode.walls
+            ]
         return values
+
+
+def _wall_boxes_json(boxes: npt.ArrayLike) -> list[list[int]]:
+    """Wall boxes (N, 5 or more) as whole units: centre and size in 0.1 mm, yaw in mrad."""
+    array = np.asarray(boxes, dtype=np.float64).reshape(-1, WALL_BOX_NUMBERS)
+    units = np.array([POSITION_UNIT] * 4 + [YAW_UNIT])
+    whole: list[list[int]] = np.rint(array / units).astype(np.int64).tolist()
+    return whole
 
 
 def _whole(values: npt.ArrayLike, unit: float) -> list[Any]:
@@ -673,10 +715,42 @@ def _episode_from_json(
             other = _episode_from_json(
                 fields, track, f"{where}.robots[{index}]", reading_scale, subtasks
             )
-            if other.frames != frames or other.robots:
+            if other.frames != frames or other.robots or other.walls:
                 raise fields.fail(f"{where}.robots[{index}]", f"a track of {frames} frames", track)
             episode.robots.append(other)
+    if "walls" in values:
+        episode.walls = _walls_from_json(fields, values["walls"], f"{where}.walls", frames)
     return episode
+
+
+def _walls_from_json(
+    fields: RunFields, values: Any, where: str, frames: int
+) -> list[tuple[int, npt.NDArray[np.float64]]]:
+    """An episode's ``walls``: [frame, boxes] pairs, frames rising within the episode's."""
+    if not isinstance(values, list) or len(values) > MAX_WALL_CHANGES:
+        raise fields.fail(
+            where, f"a list of at most {MAX_WALL_CHANGES} [frame, wall boxes] pairs", values
+        )
+    changes: list[tuple[int, npt.NDArray[np.float64]]] = []
+    for index, pair in enumerate(values):
+        field = f"{where}[{index}]"
+        if not isinstance(pair, list) or len(pair) != 2:
+            raise fields.fail(field, "a pair [frame, wall boxes]", pair)
+        low = changes[-1][0] + 1 if changes else 0
+        frame = fields.whole(pair[0], f"{field}[0]", low, frames - 1)
+        boxes = pair[1]
+        expected = (
+            f"a list of at most {MAX_WALL_BOXES} wall boxes, each [x, y, size x, size y, yaw] "
+            "in whole 0.1 mm and milliradians, sizes not negative"
+        )
+        if not isinstance(boxes, list) or len(boxes) > MAX_WALL_BOXES:
+            raise fields.fail(f"{field}[1]", expected, boxes)
+        table = fields.table(boxes, f"{field}[1]", len(boxes), WALL_BOX_NUMBERS, POSITION_BOUND)
+        if np.any(table[:, 2:4] < 0.0):
+            raise fields.fail(f"{field}[1]", expected, boxes)
+        units = np.array([POSITION_UNIT] * 4 + [YAW_UNIT])
+        changes.append((frame, table * units))
+    return changes
 
 
 def _decision_from_json(

@@ -2,10 +2,11 @@
 
 Each frame is the top-down picture of :class:`mazesim.render.topdown.TopDownRenderer` with the
 robot's trail, its sensor rays, and an overlay of the time, the step, the action, the running
-sub-task and the last barcode event or decision. A video plays in real time: one frame per control
-step, or one every few steps when the control step is shorter than a frame should be (GIFs are
-kept to 12.5 frames per second, so a long run stays a reasonable file; MP4 goes up to 60);
-:func:`video_frame_steps` says which steps become frames.
+sub-task and the last barcode event or decision; the walls as they stand at each frame (a Webots
+supervisor may move, import or remove them while a run runs). A video plays in real time: one
+frame per control step, or one every few steps when the control step is shorter than a frame
+should be (GIFs are kept to 12.5 frames per second, so a long run stays a reasonable file; MP4
+goes up to 60); :func:`video_frame_steps` says which steps become frames.
 """
 
 from __future__ import annotations
@@ -95,7 +96,14 @@ def video_frames(
     recorded = run.episodes[episode]
     profile = run.robot_profile
     renderer = TopDownRenderer(run.world, profile, (size, size), profile.distance_sensor_range)
+    drawn = None  # the walls drawn: the world's, or those of a change while the run ran
     for frame in steps if steps is not None else range(recorded.frames):
+        walls = recorded.walls_at(frame)
+        if walls is not drawn:
+            drawn = walls
+            renderer = TopDownRenderer(
+                run.world, profile, (size, size), profile.distance_sensor_range, walls=walls
+            )
         x, y, yaw = recorded.poses[frame]
         yield renderer.frame(
             (float(x), float(y), float(yaw)),

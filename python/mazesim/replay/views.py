@@ -192,7 +192,7 @@ class SimulatorWatch:
         self._walls_seen: Any = None
 
     def follow(self, simulation: Any) -> None:
-        """Draws the walls where they are now in the run of a Webots controller
+        """Draws (and records) the walls where they are now in the run of a Webots controller
         (``simulation``, its :class:`~mazesim.webots.simulation.RobotSimulation`), when a
         supervisor has moved, imported or removed some since the window last drew them."""
         from mazesim.webots.walls_now import walls_seen
@@ -200,10 +200,15 @@ class SimulatorWatch:
         seen = walls_seen(simulation)
         if self._walls_seen is None:
             self._walls_seen = seen
-        if seen == self._walls_seen or self.live is None:
+        if seen == self._walls_seen:
             return
         self._walls_seen = seen
-        world = self.world = self.simulator.world
+        world = self.simulator.world
+        if self.recorder is not None:
+            self.recorder.follow(world)
+        if self.live is None:
+            return
+        self.world = world
         if self.fleet_view is not None:
             self.fleet_view.follow(world)
         elif self.renderer is not None:

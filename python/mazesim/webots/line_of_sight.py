@@ -4,17 +4,19 @@ infra-red Emitter's packets need, and the robot bodies that hide an object from 
 Webots' reference manual (https://cyberbotics.com/doc/reference/emitter) says of the infra-red
 type: "Any solid object (solid, robots, etc ...) with a defined bounding object is a potential
 obstacle to an "infra-red" communication. The structure of the emitting or receiving robot
-itself will not block an "infra-red" transmission." A :class:`LineOfSight` holds those
-obstacles of a world: its walls (where a supervisor moved them), the bodies of its robots
-simulated as e-pucks (discs seen from above, at their live poses) and its movable bodies
-(boxes and discs, at their live poses). :func:`disc_entries` meets rays with robots' bodies,
-for the radio and for a camera's recognition alike.
+itself will not block an "infra-red" transmission." A :class:`LineOfSight` holds those obstacles
+of a world: its walls (where a supervisor moved them; in a world run, also with what it imported
+and without what it removed), the bodies of its robots simulated as e-pucks (discs seen from
+above, at their live poses, a robot a supervisor imported included) and its movable bodies
+(boxes and discs, at their live poses, those a supervisor imported included).
+:func:`disc_entries` meets rays with robots' bodies, for the radio and for a camera's
+recognition alike.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -72,59 +74,77 @@ def moved_walls(
     return walls
 
 
+#: The robots' body radii by index (None: no body of its own), or what gives them now.
+Radii = Sequence[float | None] | Callable[[], Sequence[float | None]]
+
+
 class LineOfSight:
     """The obstacles of a world that stop an infra-red packet.
 
     Args:
-        walls: The world's walls (None: none).
-        radii: The body radius of each robot, by index (None: no body of its own).
+        walls: The world's walls, moved where ``objects`` says a supervisor moved them; or
+            what gives the walls now, moved, imported and removed (a world run's
+            :class:`~mazesim.webots.walls_now.WallsNow`' ``walls``); None: none.
+        radii: The body radius of each robot, by index (None: no body of its own), or what
+            gives them now (robots a supervisor imported included).
         report: The world's import report: its movable ``bodies`` and the walls its nodes
             hold (None: neither).
         objects: What answers ``body_poses()`` and ``node_moves()`` now (the world's
-            :class:`~mazesim.webots.lockstep.Fleet`); None: the bodies stay where the
+            :class:`~mazesim.webots.lockstep.Fleet`), and ``drawn_bodies()`` when the
+            world's bodies change (a supervisor's imports); None: the bodies stay where the
             import put them and the walls where the file has them.
     """
 
     def __init__(
         self,
-        walls: WallBoxes | None,
-        radii: Sequence[float | None] = (),
+        walls: WallBoxes | Callable[[], WallBoxes] | None,
+        radii: Radii = (),
         report: Mapping[str, Any] | None = None,
         objects: Any = None,
     ) -> None:
         self.walls = walls
-        self._radii = [math.nan if r is None else float(r) for r in radii]
+        self._radii = radii
         report = report or {}
         held = held_by_line(report)
         self._held_walls = {line: h.walls for line, h in held.items() if h.walls}
         self._objects = objects
-        #: Each movable body's index, start pose and footprint: (half x, half y) for a box,
-        #: a radius for a disc.
-        self._bodies: list[tuple[int, Pose2, tuple[float, float] | float]] = []
-        for index, body in enumerate(report.get("bodies") or []):
+        self._bodies = list(report.get("bodies") or [])
+
+    def _walls_now(self) -> WallBoxes | None:
+        """The walls now."""
+        if self.walls is None or isinstance(self.walls, WallBoxes):
+            moves = self._objects.node_moves() if self._objects is not None else {}
+            if self.walls is not None and moves:
+                return moved_walls(self.walls, self._held_walls, moves)
+            return self.walls
+        return self.walls()
+
+    def _bodies_now(self) -> list[tuple[Pose2, Mapping[str, Any]]]:
+        """Each movable body's pose now and its import report entry."""
+        drawn = getattr(self._objects, "drawn_bodies", None)
+        if drawn is not None:
+            return list(drawn())
+        now = self._objects.body_poses() if self._objects is not None and self._bodies else []
+        bodies = []
+        for index, body in enumerate(self._bodies):
             cx, cy = (float(v) for v in body.get("center") or (0.0, 0.0))
             start = (cx, cy, float(body.get("yaw") or 0.0))
-            if body.get("kind") == "circle":
-                self._bodies.append((index, start, float(body.get("radius") or 0.0)))
-            else:
-                sx, sy = (float(v) for v in body.get("size") or (0.0, 0.0))
-                self._bodies.append((index, start, (sx / 2.0, sy / 2.0)))
+            bodies.append((now[index] if index < len(now) else start, body))
+        return bodies
 
     def at(self, poses: Mapping[int, tuple[float, float, float]]) -> Sight:
         """The obstacles now, the robots at ``poses`` (x, y, yaw by robot index)."""
-        walls = self.walls
-        moves = self._objects.node_moves() if self._objects is not None else {}
-        if walls is not None and moves:
-            walls = moved_walls(walls, self._held_walls, moves)
-        now = self._objects.body_poses() if self._objects is not None and self._bodies else []
         boxes, discs = [], []
-        for index, start, shape in self._bodies:
-            x, y, yaw = now[index] if index < len(now) else start
-            if isinstance(shape, tuple):
-                boxes.append((x, y, 2.0 * shape[0], 2.0 * shape[1], yaw, 0.0))
+        for (x, y, yaw), body in self._bodies_now():
+            if body.get("kind") == "circle":
+                discs.append((x, y, float(body.get("radius") or 0.0)))
             else:
-                discs.append((x, y, shape))
-        return Sight(poses, self._radii, walls, WallBoxes.of_boxes(boxes) if boxes else None, discs)
+                sx, sy = (float(v) for v in body.get("size") or (0.0, 0.0))
+                boxes.append((x, y, sx, sy, yaw, 0.0))
+        given = self._radii() if callable(self._radii) else self._radii
+        radii = [math.nan if r is None else float(r) for r in given]
+        walls = self._walls_now()
+        return Sight(poses, radii, walls, WallBoxes.of_boxes(boxes) if boxes else None, discs)
 
 
 class Sight:

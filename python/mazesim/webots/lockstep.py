@@ -55,7 +55,6 @@ from mazesim.webots.own_sensors import own_sensors
 from mazesim.webots.process_template import ControllerProcesses
 from mazesim.webots.proto_fields import declared_fields
 from mazesim.webots.radio import Radio
-from mazesim.webots.rays import WallBoxes
 from mazesim.webots.requirements import PreparedController, prepare_controller, unbuilt
 from mazesim.webots.robots_changed import RemovedRobot, RobotChange, robot_change
 from mazesim.webots.runner import CONTROLLER_SUFFIXES, EXIT_INTERRUPTED, OTHER_LANGUAGES
@@ -66,6 +65,7 @@ from mazesim.webots.solids import Pose2, WorldSolids, carried_over
 from mazesim.webots.stock_controllers import stock_controller
 from mazesim.webots.traction import Traction, epuck_traction
 from mazesim.webots.virtual_display import virtual_display, window_environment
+from mazesim.webots.walls_now import WallsNow, WorldWalls
 
 __all__ = [
     "Fleet",
@@ -186,9 +186,12 @@ class Fleet:
         #: world without any are simulated with (:mod:`mazesim.webots.robots_changed`).
         self._seed = seed
         self._noise = noise
-        #: The world file (the import report's ``path``), which a supervisor's changes edit.
-        self._path = str((report or {}).get("path") or "")
+        #: The world file's import report, and the file (its ``path``), which a supervisor's
+        #: changes edit.
+        self.report: Mapping[str, Any] = report or {}
+        self._path = str(self.report.get("path") or "")
         self.moved: set[int] = set()
+        self._radii: list[float | None] = []
         #: The robots a supervisor removed (:mod:`mazesim.webots.robots_changed`).
         self.gone: set[int] = set()
         #: The world's walls and movable bodies (``report``: the world's import report).
@@ -229,6 +232,13 @@ class Fleet:
             for i, r in enumerate(self._robots)
             if i not in self.gone
         ]
+
+    def body_radii(self) -> list[float | None]:
+        """The body radius of each robot simulated as one, by index, those a supervisor
+        imported included (None: a robot whose collision shapes are walls)."""
+        if len(self._radii) != len(self._robots):
+            self._radii = robot_body_radii({"robots": self._robots})
+        return self._radii
 
     def robots_of(self, indices: list[int]) -> list[Mapping[str, Any]]:
         """The import report entries of robots ``indices``."""
@@ -631,9 +641,10 @@ def run_world(
         done = replace(ready[job.controller], virtual_display=False)
         return run, replace(job, prepared=done, world_text=fleet.text)
 
-    # The walls (where a supervisor moved them), the robots' bodies and the movable bodies
-    # stop infra-red packets.
-    fleet.radio.sight = LineOfSight(WallBoxes(world), robot_body_radii(report), report, fleet)
+    # The walls (where a supervisor moved, imported or removed them), the robots' bodies and
+    # the movable bodies stop infra-red packets.
+    walls_now = WallsNow(WorldWalls(fleet, world, fleet.report))
+    fleet.radio.sight = LineOfSight(walls_now.walls, fleet.body_radii, report, fleet)
     traction = WorldTraction(scenes, robots, simulators)
     movable = [robot.get("profile") is not None for robot in robots]
     started = time.perf_counter()

@@ -7,12 +7,15 @@ supervisor moved moved again by the motion from its pose in the file to its pose
 (:func:`~mazesim.webots.line_of_sight.moved_walls`). In a run of one robot both are at hand
 (the simulation's world and its :class:`~mazesim.webots.solids.WorldSolids`); in a world run
 the world's process holds them, and each step's answer says how many times the walls have
-changed (``wall_changes``), so a robot asks for the changed world only after a change.
+changed (``wall_changes``), so a robot asks for the changed world only after a change. The
+world's process reads its own walls the same way (:class:`WorldWalls`: what stops the radio's
+infra-red packets, what a recorded run draws), from the same count.
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from mazesim.webots.line_of_sight import moved_walls
@@ -21,12 +24,13 @@ from mazesim.webots.solids import held_by_line, world_objects
 
 if TYPE_CHECKING:
     from mazesim._core import World
+    from mazesim.webots.lockstep import Fleet
     from mazesim.webots.simulation import RobotSimulation
 
-__all__ = ["WallsNow", "walls_seen"]
+__all__ = ["WallsNow", "WorldWalls", "walls_seen"]
 
 
-def walls_seen(simulation: RobotSimulation) -> Any:
+def walls_seen(simulation: RobotSimulation | WorldWalls) -> Any:
     """What the walls of ``simulation``'s world are made from now, which changes when a
     supervisor changes them: in a world run the world's count of changes (told with each
     step's answer), else the simulation's world (a supervisor's imports and removals replace
@@ -41,11 +45,11 @@ class WallsNow:
     change.
 
     Args:
-        simulation: The robot's simulation.
+        simulation: The robot's simulation (or the world's own, :class:`WorldWalls`).
         sensed: Whether the walls include the sensed-only ones (infra-red rays and cameras).
     """
 
-    def __init__(self, simulation: RobotSimulation, sensed: bool = False) -> None:
+    def __init__(self, simulation: RobotSimulation | WorldWalls, sensed: bool = False) -> None:
         self._simulation = simulation
         self._sensed = sensed
         #: The import the walls are made of (world, report) and the world-run text it read.
@@ -111,3 +115,29 @@ class WallsNow:
         if self._floor is None:
             self._floor = FloorPaint(self._world)
         return self._floor
+
+
+@dataclass
+class WorldWalls:
+    """The running world as its own process holds it, read as a robot's simulation is by
+    :class:`WallsNow`: the world's :class:`~mazesim.webots.lockstep.Fleet` (its text as a
+    supervisor changed it, its moves, its count of changes) and the world file's import.
+
+    Args:
+        fleet: The world's robots, which count its changes.
+        world: The world file's import (no robot chosen).
+        report: Its import report.
+    """
+
+    fleet: Fleet
+    world: World
+    report: Mapping[str, Any]
+
+    def __post_init__(self) -> None:
+        # The world's own import chooses no robot, as the fleet imports the changed text.
+        self.report = {**self.report, "robot_line": None}
+
+    @property
+    def simulator(self) -> Fleet:
+        """What counts the world's changes (``wall_changes``)."""
+        return self.fleet

@@ -40,7 +40,13 @@
       contacts: {}, events: {}, eventFrames: [], decisions: values.decisions || [],
       actions: values.actions || null, wheelSpeeds: values.wheel_speeds || null,
       subtasks: values.subtasks || null, levels: values.levels || null,
-      others: (values.robots || []).map(decode)
+      others: (values.robots || []).map(decode),
+      // Each change of the walls (a supervisor moved, imported or removed some): its frame
+      // and the walls from then on, as the world's are given.
+      wallFrames: (values.walls || []).map(function (pair) { return pair[0]; }),
+      walls: (values.walls || []).map(function (pair) {
+        return pair[1].map(function (b) { return [b[0] * 1e-4, b[1] * 1e-4, b[2] * 1e-4, b[3] * 1e-4, b[4] * 1e-3]; });
+      })
     };
     values.contacts.forEach(function (frame) { episode.contacts[frame] = true; });
     values.events.forEach(function (pair) {
@@ -96,7 +102,18 @@
     }
   }
   var walls = el("g", { id: "walls", fill: "#8c3b1f" }, map);
-  world.walls.forEach(function (w) { box(walls, w[0], w[1], w[2], w[3], w[4], {}); });
+  var wallsDrawn = null;
+  // Draws the walls standing at a frame of an episode (the world's before any change).
+  function drawWalls(episode, frame) {
+    var change = 0;
+    for (var i = 0; i < episode.wallFrames.length && episode.wallFrames[i] <= frame; i++) { change = i + 1; }
+    var boxes = change ? episode.walls[change - 1] : world.walls;
+    if (boxes === wallsDrawn) { return; }
+    wallsDrawn = boxes;
+    while (walls.firstChild) { walls.removeChild(walls.firstChild); }
+    boxes.forEach(function (w) { box(walls, w[0], w[1], w[2], w[3], w[4], {}); });
+  }
+  drawWalls({ wallFrames: [], walls: [] }, 0);
   var marks = el("g", { id: "checkpoints" }, map);
   world.checkpoints.forEach(function (c) {
     box(marks, c.x, c.y, 0.085, c.width, c.yaw, { fill: "none", stroke: "#e6b800", "stroke-width": 2 * unit });
@@ -339,6 +356,7 @@
     var episode = episodes[state.episode];
     frame = Math.max(0, Math.min(Math.round(frame), episode.frames - 1));
     state.frame = frame;
+    drawWalls(episode, frame);
     state.robots = views.map(function (view, k) { return drawRobot(view, k ? episode.others[k - 1] : episode, frame); });
     state.robot = state.robots[0];
     slider.value = frame;
