@@ -14,7 +14,7 @@ import os
 import stat
 import sys
 from collections.abc import Sequence
-from typing import NoReturn
+from typing import Any, NoReturn
 
 import mazesim
 from mazesim._error_tree import io_error
@@ -268,6 +268,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     arguments = list(sys.argv[1:] if argv is None else argv)
     _printable_output()
     command = _command_word(arguments)
+    ros_arguments: Any = None
     if command in ("ros", "ros2"):
         try:
             if command == "ros":
@@ -276,6 +277,10 @@ def main(argv: Sequence[str] | None = None) -> int:
                 from mazesim.cli.ros2 import check_before_parsing
 
             check_before_parsing(arguments)
+            if command == "ros2":
+                from mazesim.cli.ros2 import take_ros_arguments
+
+                arguments, ros_arguments = take_ros_arguments(arguments)
         except MazesimError as error:
             print(f"mazesim: error: {_one_line(str(error))}", file=sys.stderr)
             return EXIT_ERROR
@@ -288,6 +293,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         # --help and --version exit with None (success); usage errors with 2.
         code = exit_request.code
         return code if isinstance(code, int) else (0 if code is None else EXIT_ERROR)
+    if command == "ros2":
+        args.ros_arguments = ros_arguments
     try:
         return int(args.run(args))
     except BrokenPipeError as error:

@@ -19,7 +19,7 @@ from mazesim.episodes import MAX_STEPS
 from mazesim.errors import InvalidArgumentError
 from mazesim.ros2._deps import require_ros2
 
-__all__ = ["check_before_parsing"]
+__all__ = ["check_before_parsing", "take_ros_arguments"]
 
 DISTROS = ("humble", "jazzy")
 
@@ -33,6 +33,46 @@ def check_before_parsing(arguments: Sequence[str]) -> None:
     if len(arguments) < 2 or arguments[0] != "ros2" or {"-h", "--help"} & set(arguments):
         return
     require_ros2()
+
+
+def take_ros_arguments(arguments: Sequence[str]) -> tuple[list[str], Any]:
+    """``arguments`` without their ``--ros-args`` sections (as a launch file or ``ros2 run``
+    passes a node's namespace, name, remappings and parameters), and what those say.
+
+    Raises:
+        InvalidArgumentError: a section that ROS 2 would not take, or a parameter mazesim's
+            nodes do not have.
+    """
+    from mazesim.ros2.ros_args import split_ros_arguments
+
+    return split_ros_arguments(arguments)
+
+
+def _bridge_namespace(args: argparse.Namespace) -> str:
+    """``--namespace``, or the launch file's ``__ns``: one namespace, said once."""
+    given = args.namespace or ""
+    launched = args.ros_arguments.namespace.strip("/")
+    if given and launched and given.strip("/") != launched:
+        raise InvalidArgumentError(
+            f"expected one namespace for the bridge; found --namespace {given} and "
+            f"--ros-args -r __ns:=/{launched}: leave one out"
+        )
+    return given or launched
+
+
+def _refuse_ros_arguments(args: argparse.Namespace, command: str) -> None:
+    """Only the bridge takes a namespace, name or remappings from ``--ros-args``."""
+    ros_arguments = args.ros_arguments
+    if ros_arguments.namespace or ros_arguments.node_name or ros_arguments.remappings:
+        raise InvalidArgumentError(
+            f"expected no remapping in --ros-args of mazesim ros2 {command} (only mazesim ros2 "
+            "bridge takes __ns, __node and topic remappings); found "
+            + " ".join(
+                [f"__ns:={ros_arguments.namespace}"] * bool(ros_arguments.namespace)
+                + [f"__node:={ros_arguments.node_name}"] * bool(ros_arguments.node_name)
+                + [f"{source}:={target}" for _, source, target in ros_arguments.remappings]
+            )
+        )
 
 
 #: The largest speed factor and timer period the commands take.
@@ -109,19 +149,22 @@ def _run_bridge(args: argparse.Namespace) -> int:
             bag=args.bag,
             network=args.network,
             frame_prefix=args.frame_prefix,
-            namespace=args.namespace,
+            namespace=_bridge_namespace(args),
             command_period=args.command_period,
+            ros_arguments=args.ros_arguments,
         )
     )
 
 
 def _run_perform_learning(args: argparse.Namespace) -> int:
+    _refuse_ros_arguments(args, "perform-learning")
     from mazesim.ros2.nodes import run_perform_learning
 
     return run_perform_learning(args.ros_distro, args.policy, args.control_step_ms, args.network)
 
 
 def _run_avoid_collision(args: argparse.Namespace) -> int:
+    _refuse_ros_arguments(args, "avoid-collision")
     from mazesim.ros2.nodes import run_avoid_collision
 
     return run_avoid_collision(
@@ -130,6 +173,7 @@ def _run_avoid_collision(args: argparse.Namespace) -> int:
 
 
 def _run_demo(args: argparse.Namespace) -> int:
+    _refuse_ros_arguments(args, "demo")
     import mazesim
     from mazesim._paths import output_files, refuse_overwriting_inputs
     from mazesim.maze import refuse_blocked_start

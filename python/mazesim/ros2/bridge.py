@@ -50,6 +50,7 @@ from mazesim.ros2.nodes import leaves_signals_as_found
 from mazesim.ros2.occupancy import map_topics, occupancy_grid
 from mazesim.ros2.qos import CLOCK, COMMAND, TF_STATIC, IncompatibleQos
 from mazesim.ros2.robots import RobotOf, robot_namespaces
+from mazesim.ros2.ros_args import RosArguments
 from mazesim.ros2.state import CLOCK_TOPIC, CLOCK_TYPE, StateTopics
 from mazesim.ros2.unpublished import UnpublishedTopics
 
@@ -101,6 +102,9 @@ class BridgeSettings:
     #: on; each command holds until the clock reaches its next tick (0: none, one step each;
     #: see :class:`mazesim.ros.lockstep.TimerHold`).
     command_period: float = 0.0
+    #: The ``--ros-args`` of the command line (a launch file's): the node's name, namespace
+    #: and remappings.
+    ros_arguments: RosArguments = RosArguments()
 
     def validate(self) -> None:
         """Raises :class:`InvalidArgumentError` on a setting the bridge cannot run."""
@@ -263,9 +267,11 @@ class Ros2Bridge:
         self.simulator = simulator
         self.settings = settings
         self.node = node or Node(
-            NODE_NAME,
+            settings.ros_arguments.node_name or NODE_NAME,
             settings.distro,
             network.discovery_from_environment(network=settings.network),
+            namespace=own or "/",
+            ros_arguments=settings.ros_arguments,
         )
         imu_seed = settings.seed if settings.noise else None
         if simulator.num_robots == 1:
@@ -312,9 +318,7 @@ class Ros2Bridge:
         if settings.mode == "free":
             self.control = self.node.reader(SIM_CONTROL_TOPIC, STRING, COMMAND)
         self.node.announce()
-        published = [CLOCK_TOPIC, *(writer.topic for writer in self.map_writers)]
-        for robot in self.robots:
-            published += [t.name for t in robot.state.topics] + [robot.state.static_topic().name]
+        published = [writer.topic for writer in self.node.writers]
         self.unpublished = UnpublishedTopics(
             self.node.participant,
             published,
@@ -323,6 +327,7 @@ class Ros2Bridge:
             read=[reader.topic for reader in self.node.readers],
             namespaces=[robot.state.namespace for robot in self.robots if robot.state.namespace],
             types=_types_by_topic([*self.node.writers, *self.node.readers]),
+            node=f"{self.node.namespace.rstrip('/')}/{self.node.name}",
         )
         self.incompatible = IncompatibleQos(self.node.writers, self.node.readers, self._say)
         self._readers_checked = 0.0

@@ -17,6 +17,7 @@ from mazesim.errors import MazesimIOError
 from mazesim.ros2 import graph, messages, network
 from mazesim.ros2._deps import require_ros2
 from mazesim.ros2.qos import GRAPH, TopicQos, cyclone_qos
+from mazesim.ros2.ros_args import RosArguments
 
 __all__ = ["Node", "Reader", "Writer", "dds_topic_name"]
 
@@ -94,6 +95,8 @@ class Node:
         distro: The ROS 2 distribution whose layouts, hashes and GIDs to use.
         discovery: The domain and the discovery reach (this machine by default).
         namespace: The node's namespace.
+        ros_arguments: The ``--ros-args`` section of its command line: its remappings rename
+            its topics, as ROS 2's do.
     """
 
     def __init__(
@@ -102,6 +105,7 @@ class Node:
         distro: str = "humble",
         discovery: network.Discovery | None = None,
         namespace: str = "/",
+        ros_arguments: RosArguments | None = None,
     ) -> None:
         require_ros2()
         from cyclonedds.core import DDSException, Policy
@@ -112,6 +116,7 @@ class Node:
         self._topic_class = Topic
         self.name = name
         self.namespace = namespace
+        self.ros_arguments = ros_arguments or RosArguments()
         self.distro = messages.check_distro(distro)
         self.discovery = discovery or network.discovery_from_environment()
         config = network.cyclone_config(self.discovery)
@@ -152,16 +157,24 @@ class Node:
             self.participant, self._topic(name, msgtype), qos=cyclone_qos(qos, user_data)
         )
 
+    def resolve(self, topic: str) -> str:
+        """The name the node's topic ``topic`` has after its remappings."""
+        return self.ros_arguments.remap(topic, self.name, self.namespace)
+
     def writer(self, topic: str, msgtype: str, qos: TopicQos) -> Writer:
-        """A writer of the ROS 2 topic ``topic`` (``/ps0``) of ``msgtype`` (``pkg/msg/Name``)."""
+        """A writer of the ROS 2 topic ``topic`` (``/ps0``) of ``msgtype`` (``pkg/msg/Name``),
+        under the name its remappings give it."""
+        topic = self.resolve(topic)
         writer = Writer(topic, msgtype, self._dds_writer(topic, msgtype, qos), qos)
         self.writers.append(writer)
         return writer
 
     def reader(self, topic: str, msgtype: str, qos: TopicQos) -> Reader:
-        """A reader of the ROS 2 topic ``topic`` of ``msgtype``."""
+        """A reader of the ROS 2 topic ``topic`` of ``msgtype``, under the name its remappings
+        give it."""
         from cyclonedds.sub import DataReader
 
+        topic = self.resolve(topic)
         user_data = graph.endpoint_user_data(self.distro, msgtype)
         dds = DataReader(
             self.participant,

@@ -29,6 +29,7 @@ __all__ = [
     "in_robot_namespaces",
     "other_type",
     "outside_a_namespace",
+    "why_no_service",
     "why_unpublished",
 ]
 
@@ -118,6 +119,20 @@ def other_type(
     )
 
 
+def why_no_service(service: str, node: str) -> str | None:
+    """Why a node calling the ROS 2 service ``service`` (``/mazesim_bridge/set_parameters``) gets
+    no answer when it is a service of the bridge's node ``node`` (its full name), which offers
+    none; ``None`` for another node's service."""
+    if not service.startswith(node.rstrip("/") + "/"):
+        return None
+    return (
+        f"a node calls the service {service}, which this bridge does not offer: it has no ROS "
+        "services, and no parameters (ros2 param waits for them, then gives up): its settings "
+        "are its command-line options (--world, --seed, --mode...), and use_sim_time it needs "
+        "no telling, being the clock; restart it to change them"
+    )
+
+
 def why_unpublished(topic: str, published: Iterable[str], robot: str) -> str | None:
     """Why a node reading ``topic`` (a ROS name) gets nothing, when it is one of the topics of
     Webots' e-puck driver that the bridge does not publish; ``None`` otherwise."""
@@ -144,6 +159,7 @@ class UnpublishedTopics:
         read: The ROS names of the topics the bridge reads.
         namespaces: The robots' namespaces in a world of several robots (none for one).
         types: The ROS message types the bridge has on each of its topics, read or written.
+        node: The bridge node's full name (``/mazesim_bridge``), whose services a node may call.
     """
 
     def __init__(
@@ -155,6 +171,7 @@ class UnpublishedTopics:
         read: Iterable[str] = (),
         namespaces: Sequence[str] = (),
         types: Mapping[str, Sequence[str]] | None = None,
+        node: str = "/mazesim_bridge",
     ) -> None:
         from cyclonedds.builtin import (
             BuiltinDataReader,
@@ -168,6 +185,10 @@ class UnpublishedTopics:
         self.namespaces = list(namespaces)
         self.types = dict(types or {})
         self.robot = robot
+        self.node = node
+        #: The ROS names of the services other nodes' clients call (request writers), since the
+        #: last look.
+        self.calls: list[str] = []
         self.report = report
         self.reported: set[tuple[str, str]] = set()
         self.said_also_published = False
@@ -180,8 +201,12 @@ class UnpublishedTopics:
         topics = []
         for endpoint in builtin.take(64):
             name = getattr(endpoint, "topic_name", None)
-            if name and name.startswith("rt/") and endpoint.participant_key != self.own:
+            if not name or endpoint.participant_key == self.own:
+                continue
+            if name.startswith("rt/"):
                 topics.append(("/" + name[3:], getattr(endpoint, "type_name", "") or ""))
+            elif builtin is self._writers and name.startswith("rq/") and name.endswith("Request"):
+                self.calls.append("/" + name[3 : -len("Request")])
         return topics
 
     def check(self) -> None:
@@ -204,6 +229,9 @@ class UnpublishedTopics:
             if twice is not None and not self.said_also_published:
                 self.said_also_published = True
                 self.report(twice)
+        calls, self.calls = self.calls, []
+        for service in calls:
+            self._say_once("calls", service, why_no_service(service, self.node))
 
     def _say(self, does: str, topic: str, bridge_does: str, reason: str | None) -> None:
         if reason is not None:
