@@ -917,7 +917,9 @@ class Supervisor(Robot):
             types = node._field_types()
             posed = {n: types[n] for n in ("translation", "rotation") if n in types}
             if node._line and posed:
-                fields = {name: Field(node, name, kind).value for name, kind in posed.items()}
+                fields: dict[str, list[float]] = {
+                    name: Field(node, name, kind).value for name, kind in posed.items()
+                }
                 text = with_fields(text, node._line, fields)
         target = filename if filename is not None else str(self._simulation.report["path"])
         try:
