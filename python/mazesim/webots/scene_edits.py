@@ -78,6 +78,10 @@ class SceneEdits:
         #: The first line of each node imported into another node's field -> that node's line.
         self._parents: dict[int, int] = {}
 
+    def text(self) -> str:
+        """The running world's description (see the module's documentation)."""
+        return self._text()
+
     def _text(self) -> str:
         return "\n".join([*self._lines, *(line for lines in self._imported for line in lines)])
 

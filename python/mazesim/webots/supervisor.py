@@ -52,6 +52,7 @@ from mazesim.webots.robot import Robot
 from mazesim.webots.scene import CHILDREN_TYPES, EPUCK_TYPES, GROUPING_TYPES, SceneNode
 from mazesim.webots.scene_edits import Change, scene_edits
 from mazesim.webots.solids import Held, Pose2, composed, held_by_line, relative, world_objects
+from mazesim.webots.world_save import with_fields
 
 __all__ = ["Field", "Node", "Supervisor"]
 
@@ -891,6 +892,43 @@ class Supervisor(Robot):
     def worldReload(self) -> None:
         """Resets the simulation (the world is the same)."""
         self.simulationReset()
+
+    def worldSave(self, filename: str | None = None) -> bool:
+        """Writes the world as it stands to ``filename`` (a ``.wbt`` path, relative to the
+        controller's folder; without one, the world's own file, as Webots saves it): the world
+        file's text as the supervisor changed it (imports and removals), with every node's
+        ``translation`` and ``rotation`` fields where the scene tree has them now (a robot's
+        where it is, in its parent's frame). True once written; False, with Webots' error, for
+        a name without ``.wbt``, a file that cannot be written, or a run whose world is no
+        Webots world file."""
+        if filename is not None and not str(filename).endswith(".wbt"):
+            _print_error(
+                'Error: wb_supervisor_world_save(): the target file should end with the ".wbt" '
+                "extension."
+            )
+            return False
+        try:
+            text = scene_edits(self._simulation).text()
+        except MazesimError as refused:
+            _print_error(f"Error: wb_supervisor_world_save(): {refused}.")
+            return False
+        nodes = [self._self, *self._root._children, *self._nested_nodes]
+        for node in dict.fromkeys(nodes):
+            types = node._field_types()
+            posed = {n: types[n] for n in ("translation", "rotation") if n in types}
+            if node._line and posed:
+                fields: dict[str, list[float]] = {
+                    name: Field(node, name, kind).value for name, kind in posed.items()
+                }
+                text = with_fields(text, node._line, fields)
+        target = filename if filename is not None else str(self._simulation.report["path"])
+        try:
+            with open(target, "w", encoding="utf-8") as out:
+                out.write(text)
+        except OSError as failed:
+            _print_error(f"Error: wb_supervisor_world_save(): cannot write {target}: {failed}.")
+            return False
+        return True
 
     def exportImage(self, filename: str, quality: int) -> None:
         """Accepted; there is no 3D view to export."""
