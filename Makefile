@@ -13,7 +13,7 @@ STAMP := $(VENV)/.installed
 PY_PACKAGES := maturin numpy matplotlib pillow tqdm quickjs lupa
 # What `make test`, `lint`, `typecheck` and `fmt` need beside (pyproject's extra "dev", plus Ray):
 # installed by `make dev-deps` (a stamp of its own), so `make demo` does not pay for them.
-DEV_PACKAGES := pytest hypothesis ruff mypy typing_extensions gymnasium ray imageio imageio-ffmpeg \
+DEV_PACKAGES := pytest pytest-xdist hypothesis ruff mypy typing_extensions gymnasium ray imageio imageio-ffmpeg \
 	moviepy selenium tensorboardX
 DEV_STAMP := $(VENV)/.dev-installed
 PY_SOURCES := python tests examples
@@ -76,12 +76,14 @@ dev-deps: $(DEV_STAMP) ## install the developer tools into .venv (pytest, hypoth
 $(DEV_STAMP): $(STAMP)
 	@echo "make dev-deps: installing the developer tools into $(VENV): $(DEV_PACKAGES) (about 600 MB in $(VENV), Ray and its dependencies most of it)"
 	$(BIN)/python -m pip install --progress-bar on $(DEV_PACKAGES) | grep -v '^Requirement already satisfied' || true
-	@$(BIN)/python -c 'import pytest, hypothesis, mypy, gymnasium, ray, selenium, moviepy' && touch $@
+	@$(BIN)/python -c 'import pytest, xdist, hypothesis, mypy, gymnasium, ray, selenium, moviepy' && touch $@
 
+# pytest's --durations: every run's log ends with its 40 slowest tests (set-up, call and tear-down
+# each), so the place the suite's time goes is read from the CI machine itself.
 test: build dev-deps ros-deps ros2-deps ros2-peer browser-deps display-deps docs-deps sb3-deps marl-deps oldest-glibc-deps ## run the Rust tests, then the Python tests (ROS 1 and ROS 2 bridges, browser, SB3 and oldest-glibc tests included)
 	cargo test --workspace --exclude mazesim-py
 	cargo test --release --locked --quiet --manifest-path $(ROS2_PEER_MANIFEST) --target-dir $(ROS2_PEER_TARGET)
-	$(BIN)/python -m pytest
+	$(BIN)/python -m pytest --durations=40
 	$(BIN)/python -m mypy.stubtest mazesim._core
 
 # `make fuzz`: the readers' fuzz tests with more mutated inputs, and hostile calls over every module

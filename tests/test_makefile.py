@@ -49,7 +49,16 @@ def test_venv_refuses_a_python_older_than_39(tmp_path: Path) -> None:
 
 
 #: The developer tools: `make demo` must not install them, the targets that use them must.
-DEV_TOOLS = ("pytest", "hypothesis", "ruff", "mypy", "selenium", "ray", "tensorboardX")
+DEV_TOOLS = (
+    "pytest",
+    "pytest-xdist",
+    "hypothesis",
+    "ruff",
+    "mypy",
+    "selenium",
+    "ray",
+    "tensorboardX",
+)
 
 
 def _dry_run(target: str, tmp_path: Path) -> str:
@@ -82,6 +91,12 @@ def test_make_demo_installs_what_the_demo_needs_and_no_developer_tool(tmp_path: 
 @pytest.mark.parametrize("target", ["test", "lint", "typecheck", "fmt"])
 def test_the_targets_that_use_the_developer_tools_install_them(target: str, tmp_path: Path) -> None:
     assert set(DEV_TOOLS) <= _installed_by(_dry_run(target, tmp_path))
+
+
+@pytest.mark.skipif(shutil.which("make") is None, reason="needs make")
+def test_make_test_ends_its_log_with_the_slowest_tests(tmp_path: Path) -> None:
+    runs = [line for line in _dry_run("test", tmp_path).splitlines() if "-m pytest" in line]
+    assert len(runs) == 1 and "--durations=40" in runs[0].split(), runs
 
 
 @pytest.mark.skipif(shutil.which("make") is None, reason="needs make")
