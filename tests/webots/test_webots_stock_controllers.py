@@ -134,3 +134,15 @@ def test_the_e_pucks_default_controller_is_the_cores_name_everywhere() -> None:
     assert (
         stock_controllers.stock_controller(EPUCK_DEFAULT_CONTROLLER) == stock_controllers.__file__
     )
+
+
+def test_an_unnamed_e_puck_is_called_by_its_protos_default_name() -> None:
+    from mazesim.webots.proto_fields import robot_label
+
+    unnamed = {"model": "E-puck", "name": None, "def_name": "EPUCK_1"}
+    # Webots names a robot by its `name` field, whose default the PROTO declares: its DEF name
+    # is no name a controller or a summary sees.
+    assert robot_label(unnamed) == "e-puck"
+    assert robot_label(dict(unnamed, model="e-puck2")) == "e-puck"
+    assert robot_label(dict(unnamed, name="scout")) == "scout"
+    assert robot_label({"model": "Pioneer3dx", "name": None, "def_name": "P3"}) == "P3"

@@ -53,7 +53,7 @@ from mazesim.webots.controller_process import ControllerJob, answer, state_after
 from mazesim.webots.line_of_sight import LineOfSight, robot_body_radii
 from mazesim.webots.own_sensors import own_sensors
 from mazesim.webots.process_template import ControllerProcesses
-from mazesim.webots.proto_fields import declared_fields
+from mazesim.webots.proto_fields import declared_fields, robot_label
 from mazesim.webots.radio import Radio
 from mazesim.webots.rays import WallBoxes
 from mazesim.webots.requirements import PreparedController, prepare_controller, unbuilt
@@ -677,7 +677,7 @@ def _robot_run(
     """Robot ``index``'s run, and the job of its controller process (None without one)."""
     profile = robot_profile_name({"robot_profile": robot.get("profile")})
     file, note = controller_of(robot, world_path, given)
-    label = robot.get("name") or robot.get("def_name") or robot.get("model")
+    label = robot_label(robot)
     run = RobotRun(index, str(label), str(robot.get("model")), file, note)
     if file is None:
         # A controller in a language mazesim does not run is what the run lacks, said in its
@@ -749,7 +749,7 @@ def _own_profiles(
         if robot.get("profile") is None:
             continue
         own = own_sensors(robot_profile_name({"robot_profile": robot.get("profile")}), scene)
-        label = robot.get("name") or robot.get("def_name") or robot.get("model")
+        label = robot_label(robot)
         for warning in own.warnings:
             print(f"mazesim: warning: robot {label!r}: {warning}", file=sys.stderr)
         if own.profile is not None:
