@@ -101,7 +101,8 @@ class RobotRun:
 
     Attributes:
         index: Its index among the world's robots (file order).
-        name: Its ``name`` field (or DEF name, or model).
+        name: Its ``name`` field, else its PROTO's default (an E-puck's "e-puck"; the DEF
+            name of one of several robots that would share it), else its DEF name or model.
         model: Its model as found (``E-puck``, ``e-puck2``, ``Robot``...).
         controller: The controller file that ran, or None.
         note: Why no controller ran, or "".
@@ -604,6 +605,7 @@ def run_world(
         runs.append(run)
         if job is not None:
             jobs[index] = job
+    _tell_apart(runs, robots)
     drawn, environment, prepared = _say_what_is_missing(runs)
     # Each controller process runs its controller as prepared here (its display, if it needs
     # one, is this process's), rather than preparing it again.
@@ -664,6 +666,18 @@ def run_world(
         interrupted=interrupted,
         import_summary=summary,
     )
+
+
+def _tell_apart(runs: list[RobotRun], robots: Sequence[Mapping[str, Any]]) -> None:
+    """Names apart the robots that share a name only by their PROTO's default (several E-pucks
+    without a ``name`` field, all "e-puck" in Webots): by their DEF name, else their index, so
+    that the summary and the trajectory tell them apart."""
+    counts: dict[str, int] = {}
+    for run in runs:
+        counts[run.name] = counts.get(run.name, 0) + 1
+    for run, robot in zip(runs, robots):
+        if counts[run.name] > 1 and not robot.get("name"):
+            run.name = str(robot.get("def_name") or f"{run.name}({run.index})")
 
 
 def _robot_run(

@@ -111,6 +111,12 @@ mod tests {
         import.warnings.iter().any(|w| w.contains(words))
     }
 
+    /// The world's one mark is painted and its warning says how the floor was shifted.
+    fn painted_on_a_shifted_floor(w: &WbtImport, shifted: &str) {
+        assert_eq!(w.paint.len(), 1, "{:?}", w.warnings);
+        assert!(warned(w, shifted), "{:?}", w.warnings);
+    }
+
     #[test]
     fn a_mark_on_an_arena_below_the_origin_is_painted() {
         // An arena placed 6 cm below the origin (Y-up), the e-puck on it, a black mark 2 mm
@@ -123,12 +129,7 @@ mod tests {
                appearance PBRAppearance { baseColor 0 0 0 } \
                geometry Box { size 0.5 0.002 0.02 } } ] }\n",
         );
-        assert_eq!(w.paint.len(), 1, "{:?}", w.warnings);
-        assert!(
-            warned(&w, "a floor 0.060 m below the world's origin"),
-            "{:?}",
-            w.warnings
-        );
+        painted_on_a_shifted_floor(&w, "a floor 0.060 m below the world's origin");
         assert_eq!(w.obstacles.len(), 4, "the arena's walls stand on its floor");
     }
 
@@ -144,12 +145,7 @@ mod tests {
                appearance PBRAppearance { baseColor 0 0 0 } \
                geometry Box { size 0.3 0.05 0.001 } } ] }\n",
         );
-        assert_eq!(w.paint.len(), 1, "{:?}", w.warnings);
-        assert!(
-            warned(&w, "a floor 0.490 m above the world's origin"),
-            "{:?}",
-            w.warnings
-        );
+        painted_on_a_shifted_floor(&w, "a floor 0.490 m above the world's origin");
         assert!(!warned(&w, "passes over the robot"), "{:?}", w.warnings);
         // The same e-puck on the ground beside the plank stands on the arena's floor at 0.
         let ground = import(
