@@ -122,7 +122,7 @@ mod tests {
         // An arena placed 6 cm below the origin (Y-up), the e-puck on it, a black mark 2 mm
         // thick lying on its floor: measured from 0 the mark is 5.8 cm down and lost.
         let w = import(
-            "#VRML_SIM R2022a utf8\nWorldInfo { coordinateSystem \"NUE\" }\n\
+            "#VRML_SIM R2021b utf8\nWorldInfo { coordinateSystem \"NUE\" }\n\
              RectangleArena { translation 0 -0.06 0 floorSize 2 2 }\n\
              E-puck { translation 0.05 -0.06 -0.7 }\n\
              Solid { translation 0.3 -0.059 0 children [ Shape { \
