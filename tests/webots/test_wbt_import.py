@@ -191,9 +191,11 @@ def test_devices_in_the_turret_slot_are_listed() -> None:
     assert display["type"] == "Display"
     assert (display["name"], display["slot"]) == ("display", "turretSlot")
     assert display["fields"] == {"width": 42.0, "height": 30.0}
-    # webots_ros2's e-puck carries a Pi-puck extension board: not a device, so a warning.
+    # webots_ros2's e-puck carries a Pi-puck extension board: its three RGB LEDs.
     _, ros2 = import_wbt(corpus_file("webots_ros2_epuck_world.wbt"))
-    assert any("Pi-puck: in the robot's turretSlot" in w for w in ros2["warnings"])
+    assert not any("Pi-puck" in w for w in ros2["warnings"])
+    leds = [d["name"] for d in ros2["extension_devices"] if d["type"] == "LED"]
+    assert leds == ["pi-puck led 0", "pi-puck led 1", "pi-puck led 2"]
 
 
 def test_load_world_reads_wbt_paths() -> None:

@@ -335,8 +335,11 @@ def test_get_from_def_knows_the_worlds_def_names(capsys: pytest.CaptureFixture[s
     assert supervisor.getFromDef("EPUCK") is supervisor.getSelf()
     wall = supervisor.getFromDef("WALL_1")
     assert wall is not None and wall.getTypeName() == "Solid" and wall.getDef() == "WALL_1"
+    capsys.readouterr()
     assert supervisor.getFromDef("NOPE") is None
-    assert "node 'NOPE' not found" in capsys.readouterr().err
+    assert capsys.readouterr().err == "", "Webots returns None for a missing DEF silently"
+    assert supervisor.getFromDef("") is None
+    assert "called with a NULL or empty 'def' argument" in capsys.readouterr().err
 
 
 def test_key_codes_and_script_errors() -> None:

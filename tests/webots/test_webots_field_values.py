@@ -13,7 +13,7 @@ from typing import Any
 import pytest
 
 from mazesim.errors import InvalidArgumentError, WrongTypeError
-from supervised_world import supervisor_of
+from supervised_world import supervisor_in, supervisor_of
 
 #: (node, field, setter, value, error, what the message says)
 REFUSED = [
@@ -84,3 +84,27 @@ def test_a_velocity_of_seven_numbers_is_refused(tmp_path: Path) -> None:
     supervisor = supervisor_of(tmp_path)
     with pytest.raises(InvalidArgumentError, match=r"Node.setVelocity\(\): expected a list of 6"):
         supervisor.getFromDef("BOX").setVelocity([0.0] * 7)
+
+
+def test_an_appearance_field_the_file_leaves_out_is_read_and_set_at_its_default(
+    tmp_path: Path,
+) -> None:
+    # A supervisor fades a point it ate: the PBRAppearance writes its colour, not its
+    # transparency, which Webots gives at its default 0 (a float, written or not).
+    supervisor = supervisor_in(
+        tmp_path,
+        "#VRML_SIM R2023b utf8\n"
+        "DEF POINTS Group { children [ Solid { translation 0.2 0 0 children [ Shape {\n"
+        "  appearance PBRAppearance { baseColor 1 0.5 0 metalness 0 }\n"
+        "  geometry Sphere { radius 0.01 } } ] } ] }\n"
+        "DEF EPUCK E-puck { supervisor TRUE }\n",
+    )
+    point = supervisor.getFromDef("POINTS").getField("children").getMFNode(0)
+    shape = point.getField("children").getMFNode(0)
+    appearance = shape.getField("appearance").getSFNode()
+    transparency = appearance.getField("transparency")
+    assert transparency is not None and transparency.getSFFloat() == 0.0
+    assert appearance.getField("metalness").getTypeName() == "SFFloat", "written as 0"
+    transparency.setSFFloat(0.8)
+    supervisor.step(32)
+    assert transparency.getSFFloat() == pytest.approx(0.8)

@@ -134,3 +134,32 @@ def test_the_e_pucks_default_controller_is_the_cores_name_everywhere() -> None:
     assert (
         stock_controllers.stock_controller(EPUCK_DEFAULT_CONTROLLER) == stock_controllers.__file__
     )
+
+
+def test_an_unnamed_e_puck_is_called_by_its_protos_default_name() -> None:
+    from mazesim.webots.proto_fields import robot_label
+
+    unnamed = {"model": "E-puck", "name": None, "def_name": "EPUCK_1"}
+    # Webots names a robot by its `name` field, whose default the PROTO declares: its DEF name
+    # is no name a controller or a summary sees.
+    assert robot_label(unnamed) == "e-puck"
+    assert robot_label(dict(unnamed, model="e-puck2")) == "e-puck"
+    assert robot_label(dict(unnamed, name="scout")) == "scout"
+    assert robot_label({"model": "Pioneer3dx", "name": None, "def_name": "P3"}) == "P3"
+
+
+def test_e_pucks_sharing_the_default_name_are_told_apart_by_def_or_index() -> None:
+    from mazesim.webots.lockstep import RobotRun, _tell_apart
+    from mazesim.webots.proto_fields import robot_label
+
+    robots = [
+        {"model": "E-puck", "name": None, "def_name": "A"},
+        {"model": "E-puck", "name": None, "def_name": None},
+        {"model": "E-puck", "name": "scout", "def_name": "S"},
+    ]
+    runs = [RobotRun(i, robot_label(r), "E-puck", None, "") for i, r in enumerate(robots)]
+    _tell_apart(runs, robots)
+    assert [run.name for run in runs] == ["A", "e-puck(1)", "scout"]
+    alone = [RobotRun(0, robot_label(robots[0]), "E-puck", None, "")]
+    _tell_apart(alone, robots[:1])
+    assert alone[0].name == "e-puck"

@@ -89,8 +89,13 @@ class Field(NotSimulated):
     MF_STRING = 0x18
     MF_NODE = 0x19
     _type_names = {
+        0x01: "SFBool",
+        0x02: "SFInt32",
+        0x03: "SFFloat",
+        0x04: "SFVec2f",
         0x05: "SFVec3f",
         0x06: "SFRotation",
+        0x07: "SFColor",
         0x08: "SFString",
         0x09: "SFNode",
         0x19: "MFNode",

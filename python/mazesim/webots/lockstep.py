@@ -53,7 +53,7 @@ from mazesim.webots.controller_process import ControllerJob, answer, state_after
 from mazesim.webots.line_of_sight import LineOfSight, robot_body_radii
 from mazesim.webots.own_sensors import own_sensors
 from mazesim.webots.process_template import ControllerProcesses
-from mazesim.webots.proto_fields import declared_fields
+from mazesim.webots.proto_fields import declared_fields, robot_label
 from mazesim.webots.radio import Radio
 from mazesim.webots.requirements import PreparedController, prepare_controller, unbuilt
 from mazesim.webots.robots_changed import RemovedRobot, RobotChange, robot_change
@@ -101,7 +101,8 @@ class RobotRun:
 
     Attributes:
         index: Its index among the world's robots (file order).
-        name: Its ``name`` field (or DEF name, or model).
+        name: Its ``name`` field, else its PROTO's default (an E-puck's "e-puck"; the DEF
+            name of one of several robots that would share it), else its DEF name or model.
         model: Its model as found (``E-puck``, ``e-puck2``, ``Robot``...).
         controller: The controller file that ran, or None.
         note: Why no controller ran, or "".
@@ -614,6 +615,7 @@ def run_world(
         runs.append(run)
         if job is not None:
             jobs[index] = job
+    _tell_apart(runs, robots)
     drawn, environment, prepared = _say_what_is_missing(runs)
     # Each controller process runs its controller as prepared here (its display, if it needs
     # one, is this process's), rather than preparing it again.
@@ -677,6 +679,18 @@ def run_world(
     )
 
 
+def _tell_apart(runs: list[RobotRun], robots: Sequence[Mapping[str, Any]]) -> None:
+    """Names apart the robots that share a name only by their PROTO's default (several E-pucks
+    without a ``name`` field, all "e-puck" in Webots): by their DEF name, else their index, so
+    that the summary and the trajectory tell them apart."""
+    counts: dict[str, int] = {}
+    for run in runs:
+        counts[run.name] = counts.get(run.name, 0) + 1
+    for run, robot in zip(runs, robots):
+        if counts[run.name] > 1 and not robot.get("name"):
+            run.name = str(robot.get("def_name") or f"{run.name}({run.index})")
+
+
 def _robot_run(
     world_path: str,
     index: int,
@@ -688,7 +702,7 @@ def _robot_run(
     """Robot ``index``'s run, and the job of its controller process (None without one)."""
     profile = robot_profile_name({"robot_profile": robot.get("profile")})
     file, note = controller_of(robot, world_path, given)
-    label = robot.get("name") or robot.get("def_name") or robot.get("model")
+    label = robot_label(robot)
     run = RobotRun(index, str(label), str(robot.get("model")), file, note)
     if file is None:
         # A controller in a language mazesim does not run is what the run lacks, said in its
@@ -760,7 +774,7 @@ def _own_profiles(
         if robot.get("profile") is None:
             continue
         own = own_sensors(robot_profile_name({"robot_profile": robot.get("profile")}), scene)
-        label = robot.get("name") or robot.get("def_name") or robot.get("model")
+        label = robot_label(robot)
         for warning in own.warnings:
             print(f"mazesim: warning: robot {label!r}: {warning}", file=sys.stderr)
         if own.profile is not None:

@@ -1,5 +1,6 @@
-"""The fields the PROTOs mazesim builds in declare, with their default values: what a Webots
-supervisor reads from an instance's field that the world file leaves out.
+"""The fields the PROTOs mazesim builds in (and the base appearance nodes) declare, with their
+default values: what a Webots supervisor reads from an instance's field that the world file
+leaves out.
 
 Webots gives every field a PROTO declares to its instances; a world file writes only those it
 changes. mazesim builds these PROTOs in rather than expanding their files (which it may not
@@ -15,13 +16,15 @@ them).
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
+from typing import Any
 
 from mazesim._core import EPUCK_DEFAULT_CONTROLLER
 from mazesim.webots.camera import DEFAULT_FOV, DEFAULT_HEIGHT, DEFAULT_WIDTH
 from mazesim.webots.radio_devices import E_PUCK_CHANNEL
 
-__all__ = ["DeclaredFields", "declared_fields"]
+__all__ = ["DeclaredFields", "declared_fields", "robot_label"]
 
 
 @dataclass(frozen=True)
@@ -32,6 +35,8 @@ class DeclaredFields:
     numbers: dict[str, list[float]] = field(default_factory=dict)
     strings: dict[str, str] = field(default_factory=dict)
     flags: dict[str, bool] = field(default_factory=dict)
+    #: Those of ``numbers`` that are ``SFFloat`` fields (a whole value is no ``SFInt32``).
+    floats: frozenset[str] = frozenset()
 
 
 _RECTANGLE_ARENA = DeclaredFields(
@@ -63,9 +68,68 @@ _E_PUCK = DeclaredFields(
     flags={"supervisor": False, "synchronization": True, "kinematic": False},
 )
 
-_DECLARED = {"RectangleArena": _RECTANGLE_ARENA, "E-puck": _E_PUCK}
+# Base nodes' fields (Webots' reference manual, PBRAppearance and Material): a supervisor
+# reads an appearance's transparency the world file leaves out, and sets it.
+_PBR_APPEARANCE = DeclaredFields(
+    numbers={
+        "baseColor": [1.0, 1.0, 1.0],
+        "transparency": [0.0],
+        "roughness": [0.0],
+        "metalness": [1.0],
+        "IBLStrength": [1.0],
+        "normalMapFactor": [1.0],
+        "occlusionMapStrength": [1.0],
+        "emissiveColor": [0.0, 0.0, 0.0],
+        "emissiveIntensity": [1.0],
+    },
+    strings={"name": "PBRAppearance"},
+    floats=frozenset(
+        {
+            "transparency",
+            "roughness",
+            "metalness",
+            "IBLStrength",
+            "normalMapFactor",
+            "occlusionMapStrength",
+            "emissiveIntensity",
+        }
+    ),
+)
+_MATERIAL = DeclaredFields(
+    numbers={
+        "ambientIntensity": [0.2],
+        "diffuseColor": [0.8, 0.8, 0.8],
+        "emissiveColor": [0.0, 0.0, 0.0],
+        "shininess": [0.2],
+        "specularColor": [0.0, 0.0, 0.0],
+        "transparency": [0.0],
+    },
+    floats=frozenset({"ambientIntensity", "shininess", "transparency"}),
+)
+
+_DECLARED = {
+    "RectangleArena": _RECTANGLE_ARENA,
+    "E-puck": _E_PUCK,
+    "PBRAppearance": _PBR_APPEARANCE,
+    "Material": _MATERIAL,
+}
 
 
 def declared_fields(type_name: str) -> DeclaredFields:
     """The declared fields of a PROTO mazesim builds in (none for another type)."""
     return _DECLARED.get(type_name, DeclaredFields())
+
+
+#: The models the import gives an instance of Webots' E-puck PROTO (``version "2"``: e-puck2).
+_E_PUCK_MODELS = ("E-puck", "e-puck2")
+
+
+def robot_label(robot: Mapping[str, Any]) -> str:
+    """What a robot of the import's ``robots`` is called, as Webots calls it: its ``name``
+    field, else the default its PROTO declares (an E-puck's, of either version, is "e-puck"),
+    else its DEF name, else its model."""
+    if robot.get("name"):
+        return str(robot["name"])
+    model = robot.get("model")
+    declared = declared_fields("E-puck" if model in _E_PUCK_MODELS else str(model))
+    return str(declared.strings.get("name") or robot.get("def_name") or model)

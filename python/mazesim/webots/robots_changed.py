@@ -29,6 +29,7 @@ import numpy as np
 from mazesim._core import World
 from mazesim._toml import dump_toml, load_toml
 from mazesim.errors import MazesimError
+from mazesim.webots.proto_fields import robot_label
 from mazesim.webots.shared_world import RobotView, with_robots_of
 
 __all__ = ["RemovedRobot", "RobotChange", "kept_robots", "robot_change"]
@@ -135,7 +136,7 @@ def robot_change(
     removed = sorted(i for line, i in running.items() if line not in lines)
     if shared is None and added:
         if any(robots[i].get("profile") is not None for i in running.values()):
-            label = added[0].get("name") or added[0].get("def_name") or added[0].get("model")
+            label = robot_label(added[0])
             raise MazesimError(
                 f"expected a world whose e-pucks share one simulator to import robot {label!r} "
                 "into, found e-pucks in simulators of their own"

@@ -406,6 +406,8 @@ class Node(NotSimulated):
                 types[name] = Field.SF_INT32
             if len(values) == 3 and name.lower().endswith("color"):
                 types[name] = Field.SF_COLOR
+        for name in declared_fields(self._type_name).floats & types.keys():
+            types[name] = Field.SF_FLOAT
         # Every robot of the world has both, live, whatever its node writes (a project's PROTO
         # of the e-puck, unknown here as a Solid, may leave its rotation out).
         if self._live or self._translation is not None:
@@ -791,24 +793,30 @@ class Supervisor(Robot):
         return self._root
 
     def getFromDef(self, name: str) -> Node | None:
-        """The node of that DEF name (the first in the file), or None (with Webots' message).
+        """The node of that DEF name (the first in the file), or None.
 
-        A world without DEF names (a mazesim world) gives the robot's node for any name, until
-        a supervisor imports a node into it.
+        As Webots' libController does, a name no node has gives None silently; an empty one
+        gives None with Webots' error. A world without DEF names (a mazesim world) gives the
+        robot's node for any name, until a supervisor imports a node into it.
         """
+        if not name:
+            _print_error(
+                "Error: wb_supervisor_node_get_from_def() called with a NULL or empty 'def' "
+                "argument."
+            )
+            return None
         scene = self._simulation.scene
         unnamed = not scene.defs and self._simulation.scene_edits is None
-        if name and (name == scene.robot_def or unnamed):
+        if name == scene.robot_def or unnamed:
             return self._self
         for child in [*self._root._children, *self._nested_nodes]:
-            if name and child.getDef() == name:
+            if child.getDef() == name:
                 return child
         if name in scene.defs and name not in self._removed_defs:
             if name not in self._nodes:
                 node_id = self._def_ids + list(scene.defs).index(name)
                 self._nodes[name] = Node(scene.defs[name], name, node_id)
             return self._nodes[name]
-        _print_error(f"Error: wb_supervisor_node_get_from_def(): node '{name}' not found.")
         return None
 
     def getFromId(self, id: int) -> Node | None:

@@ -41,6 +41,11 @@ const DEVICE_TYPES: &[(&str, &str)] = &[
 /// `E-puckGroundSensors` of the `groundSensorsSlot` (Webots 7's `EPuck_GroundSensorsModule`)
 /// are its `gs0`, `gs1`, `gs2`.
 const BUILT_IN_EXTENSIONS: &[&str] = &["E-puckGroundSensors", "EPuck_GroundSensorsModule"];
+/// Webots' `Pi-puck` extension board (the e-puck2's turret): it adds three RGB LEDs to the
+/// robot, named as the `LED.names` of Cyberbotics' e-puck remote-control library list them
+/// (after `led0`..`led9`).
+const PI_PUCK: &str = "Pi-puck";
+const PI_PUCK_LEDS: [&str; 3] = ["pi-puck led 0", "pi-puck led 1", "pi-puck led 2"];
 /// The devices of mazesim's e-puck: a plain `Robot` e-puck saved expanded lists them among its
 /// children, and they are simulated as the e-puck's own.
 const BUILT_IN_NAMES: &[&str] = &[
@@ -370,6 +375,9 @@ impl<'d> Importer<'d> {
         if BUILT_IN_EXTENSIONS.contains(&kind) {
             return;
         }
+        if kind == PI_PUCK {
+            return self.pi_puck(node, slot, frame);
+        }
         if let Some(proto) = DEVICE_PROTOS.iter().find(|p| p.proto == kind) {
             return self.device_proto(node, slot, frame, proto);
         }
@@ -395,6 +403,21 @@ impl<'d> Importer<'d> {
         }
         for &child in self.nodes(node, "children") {
             self.slot_node(self.node(child), slot, &frame, depth + 1);
+        }
+    }
+
+    /// The Pi-puck extension board: the three RGB LEDs it adds to the robot (see
+    /// [`PI_PUCK_LEDS`]), at the board's place; the board itself has nothing else simulated.
+    fn pi_puck(&mut self, node: &'d Node, slot: &str, frame: &Frame) {
+        let local = self.local_frame(node, [0.0; 3]);
+        let frame = frame.then(&local);
+        for name in PI_PUCK_LEDS {
+            self.device(node, slot, &frame, name);
+            if let Some(device) = self.devices.last_mut() {
+                device.kind = "LED".into();
+                device.name = name.into();
+                device.fields.clear();
+            }
         }
     }
 
@@ -468,5 +491,31 @@ impl<'d> Importer<'d> {
             axes,
             fields,
         });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::wbt::WbtImport;
+
+    #[test]
+    fn a_pi_puck_board_gives_the_robot_its_three_leds() {
+        let w = WbtImport::from_text(
+            "#VRML_SIM R2023b utf8\nE-puck { version \"2\" turretSlot [ Pi-puck { } ] }\n",
+            "test.wbt",
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
+        let leds: Vec<_> = w
+            .extension_devices
+            .iter()
+            .map(|d| (d.kind.as_str(), d.name.as_str(), d.slot.as_str()))
+            .collect();
+        let names = ["pi-puck led 0", "pi-puck led 1", "pi-puck led 2"];
+        assert_eq!(leds, names.map(|name| ("LED", name, "turretSlot")));
+        assert!(
+            !w.warnings.iter().any(|m| m.contains("Pi-puck")),
+            "{:?}",
+            w.warnings
+        );
     }
 }

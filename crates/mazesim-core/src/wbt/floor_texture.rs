@@ -395,12 +395,19 @@ impl<'d> Importer<'d> {
     /// A `Floor` PROTO: no collision in 2D, but its `appearance` may be a texture.
     pub fn floor(&mut self, node: &'d Node, frame: &Frame) {
         self.floor_colour_of(node, "appearance");
-        let Some(&appearance) = self.nodes(node, "appearance").first() else {
-            return;
-        };
         let local = self.local_frame(node, [0.0; 3]);
         let frame = self.z_up(&frame.then(&local));
         let size = self.vector(node, "size", [10.0, 10.0]);
+        if self.y_up {
+            // A Y-up Floor's size is along its own axes: its larger side covers both.
+            let side = size[0].max(size[1]);
+            self.floor_surface(&frame, [side, side]);
+        } else {
+            self.floor_surface(&frame, size);
+        }
+        let Some(&appearance) = self.nodes(node, "appearance").first() else {
+            return;
+        };
         let tile = self.vector(node, "tileSize", [0.5, 0.5]);
         self.lay_texture(node, self.node(appearance), &frame, size, tile, self.y_up);
     }

@@ -7,6 +7,7 @@ use super::devices::ExtensionDevice;
 use super::floor_marks::FloorMesh;
 use super::floor_texture::FloorTexture;
 use super::frames::{axis_angle, tilt, Frame, Vec3, ENU_TO_NUE, IDENTITY, NUE_TO_ENU};
+use super::ground::{floor_under, shifted_warning, Surface};
 use super::shapes::snap;
 use super::tree::{Document, Node, NodeId};
 use super::{Obstacle, RobotChoice, WbtImport, WorldRobot};
@@ -163,50 +164,27 @@ pub struct Importer<'d> {
     /// The first line of the nodes a supervisor imported while the world runs (see
     /// [`RobotChoice::imported_from`]).
     imported_from: Option<usize>,
-    /// The heights of the horizontal `Plane` bounding objects met (floors), world frame.
-    pub floors: Vec<f64>,
+    /// The surfaces met that the robot may stand on (see `ground.rs`), world frame.
+    pub floors: Vec<Surface>,
     /// The folder of the world file, where the files of `Mesh` bounding objects are read.
     pub world_dir: std::path::PathBuf,
-    /// The height of the last robot pose read, and of the run's e-puck's (see [`raised_floor`]).
-    pose_z: f64,
-    robot_z: Option<f64>,
+    /// The origin of the last robot pose read, and of the run's e-puck's (see
+    /// [`floor_under`]).
+    pose_at: Vec3,
+    robot_at: Option<Vec3>,
 }
 
 /// Imports a parsed world.
 pub fn import(doc: &Document, choice: RobotChoice<'_>, world_dir: &std::path::Path) -> WbtImport {
     let first = walk(doc, &choice, 0.0, world_dir);
-    match raised_floor(first.0.robot_z, &first.0.floors) {
+    match floor_under(first.0.robot_at, &first.0.floors) {
         Some(height) => {
-            let mut lowered = walk(doc, &choice, height, world_dir);
-            lowered.0.warnings.push(format!(
-                "the e-puck stands on a floor {height:.3} m above the world's origin: the world is imported lowered by {height:.3} m, its floor at 0"
-            ));
-            finish(lowered)
+            let mut shifted = walk(doc, &choice, height, world_dir);
+            shifted.0.warnings.push(shifted_warning(height));
+            finish(shifted)
         }
         None => finish(first),
     }
-}
-
-/// A robot whose origin is this high (metres) above the world's origin, on a floor, stands on a
-/// raised floor.
-const RAISED: f64 = 0.02;
-/// How near (metres) a floor plane must be to the robot's origin to be the floor it stands on.
-const ON_FLOOR: f64 = 0.01;
-
-/// The height of the floor the run's e-puck stands on when a world raises it (an arena placed on
-/// a table, a whole scene saved at a height): a horizontal floor `Plane` within [`ON_FLOOR`] of
-/// the robot's origin, which is more than [`RAISED`] above the world's origin, and no floor at
-/// the origin's own height. `None` for a world whose floor is at 0.
-fn raised_floor(robot_z: Option<f64>, floors: &[f64]) -> Option<f64> {
-    let z = robot_z.filter(|z| z.abs() > RAISED)?;
-    if floors.iter().any(|f| f.abs() <= ON_FLOOR) {
-        return None;
-    }
-    floors
-        .iter()
-        .copied()
-        .filter(|f| (f - z).abs() <= ON_FLOOR)
-        .min_by(|a, b| (a - z).abs().total_cmp(&(b - z).abs()))
 }
 
 /// Walks the whole world, lowered by `lowered_by` metres.
@@ -250,8 +228,8 @@ fn walk<'d>(
         imported_from: choice.imported_from,
         floors: Vec::new(),
         world_dir: world_dir.to_path_buf(),
-        pose_z: 0.0,
-        robot_z: None,
+        pose_at: [0.0; 3],
+        robot_at: None,
     };
     importer.chosen = match choice.line {
         Some(line) => importer.robot_on_line(line),
@@ -830,7 +808,7 @@ impl<'d> Importer<'d> {
             return;
         }
         self.robot = Some(found);
-        self.robot_z = Some(self.pose_z);
+        self.robot_at = Some(self.pose_at);
         self.extension_slots(node);
         if plain {
             self.robot_children(node, true);
@@ -943,8 +921,8 @@ impl<'d> Importer<'d> {
             ));
             0.0
         };
-        let [x, y, z] = body.origin;
-        self.pose_z = z;
+        let [x, y, _] = body.origin;
+        self.pose_at = body.origin;
         if x.abs() > MAX_EXTENT || y.abs() > MAX_EXTENT {
             self.warn(format!(
                 "{label}: the robot stands at ({x}, {y}), farther than {MAX_EXTENT} m from the origin; not imported"

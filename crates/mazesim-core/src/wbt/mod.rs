@@ -42,6 +42,7 @@ mod devices;
 mod floor_marks;
 mod floor_texture;
 mod frames;
+mod ground;
 mod header;
 mod import;
 mod lexer;

@@ -113,6 +113,7 @@ impl<'d> Importer<'d> {
             height = 0.1;
         }
         self.arena_floor(node, &frame, floor);
+        self.floor_surface(&frame, floor);
         let [fx, fy] = floor;
         let (x, y, z) = (
             fx / 2.0 + thickness / 2.0,

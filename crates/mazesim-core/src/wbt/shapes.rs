@@ -4,6 +4,7 @@
 use std::f64::consts::PI;
 
 use super::frames::{norm, tilt, y_up_size, Frame, Vec3};
+use super::ground::Surface;
 use super::import::{Importer, MAX_EXTENT, TILT_TOLERANCE};
 use super::tree::NodeId;
 use super::Obstacle;
@@ -117,8 +118,12 @@ impl<'d> Importer<'d> {
                         "{owner}: a Plane that is not horizontal (tilted by {:.3} rad): not imported",
                         tilt(normal)
                     ));
+                } else if self.y_up {
+                    // A Y-up Plane's size is along axes the Z-up frame turns: unbounded.
+                    self.unbounded_floor(&self.z_up(frame));
                 } else {
-                    self.floors.push(frame.origin[2]);
+                    let size = self.vector(node, "size", [1.0, 1.0]);
+                    self.floor_surface(frame, size);
                 }
                 // A horizontal plane is a floor (or a ceiling): nothing to collide with in 2D.
             }
@@ -169,9 +174,30 @@ impl<'d> Importer<'d> {
             return;
         }
         let half_z: f64 = axes.iter().map(|a| a[2].abs()).sum();
+        if !self.sensing && !self.falls {
+            self.box_top(frame.origin, &axes);
+        }
         if self.meets_robot(frame.origin[2], half_z, owner) {
             self.footprint(frame.origin, axes, owner, "box");
         }
+    }
+
+    /// Records the top face of a static box (centre `center`, half-axes `axes`) standing level
+    /// (one axis within [`TILT_TOLERANCE`] of vertical) as a surface the robot may stand on.
+    fn box_top(&mut self, center: Vec3, axes: &[Vec3; 3]) {
+        let Some(up) = (0..3).find(|&i| tilt(axes[i]) <= TILT_TOLERANCE) else {
+            return;
+        };
+        let [a, b] = match up {
+            0 => [axes[1], axes[2]],
+            1 => [axes[0], axes[2]],
+            _ => [axes[0], axes[1]],
+        };
+        self.floors.push(Surface {
+            height: center[2] + axes[up][2].abs(),
+            center: [center[0], center[1]],
+            half_axes: Some([[a[0], a[1]], [b[0], b[1]]]),
+        });
     }
 
     /// Whether a static box (centre `center`, half-axes `axes`) is a ramp: its upper face, tilted
