@@ -168,7 +168,7 @@ impl MazeParams {
         if side > crate::limits::MAX_COORDINATE {
             return Err(Error::InvalidArgument(format!(
                 "expected a maze at most {} m a side (the bound of every coordinate), found {} \
-                 cells of {} m: {side} m; use fewer or smaller cells",
+                 cells of {:?} m: {side:?} m; use fewer or smaller cells",
                 crate::limits::MAX_COORDINATE,
                 params.width.max(params.height),
                 params.cell_size
@@ -446,7 +446,7 @@ mod tests {
             ..Default::default()
         };
         let refused = too_wide.check().unwrap_err().to_string();
-        assert!(refused.contains("2000 m"), "{refused}");
+        assert!(refused.contains("2000.0 m"), "{refused}");
         let widest = MazeParams {
             width: 200,
             height: 200,

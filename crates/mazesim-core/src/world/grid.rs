@@ -48,7 +48,7 @@ pub fn check_cell_walls(cell_size: f64, wall_thickness: f64) -> Result<(), Strin
         if cell_size > crate::limits::MAX_COORDINATE {
             return Err(format!(
                 "expected a cell size of at most {} m (the bound of every coordinate), found \
-                 {cell_size} m",
+                 {cell_size:?} m",
                 crate::limits::MAX_COORDINATE
             ));
         }

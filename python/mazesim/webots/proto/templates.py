@@ -180,10 +180,10 @@ def _isolated(run: Callable[[], dict[str, Any]], seconds: float) -> dict[str, An
             limit = max(1, math.ceil(seconds))
             resource.setrlimit(resource.RLIMIT_CPU, (limit, limit + 1))
             try:
-                outcome = run()
+                reported = run()
             except Exception as error:  # noqa: BLE001 - reported to the parent as the engine's
-                outcome = {"error": f"{type(error).__name__}: {error}"}
-            data = json.dumps(outcome).encode("utf-8")
+                reported = {"error": f"{type(error).__name__}: {error}"}
+            data = json.dumps(reported).encode("utf-8")
             view = memoryview(data)
             while view:
                 view = view[os.write(write_end, view) :]
