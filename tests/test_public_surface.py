@@ -30,6 +30,7 @@ from surface.registry import (
     instance_recipe,
     needs_instance,
     python_entry_points,
+    refusals_of,
 )
 from surface.values import ABSURD, ARGUMENT_WORDS, BUILDERS, VALID
 from surface.walk import walk
@@ -128,11 +129,12 @@ def cli_call(entry: EntryPoint, rng: random.Random) -> dict[str, Any]:
 
 
 def refusal_calls(entry: EntryPoint) -> list[dict[str, Any]]:
-    """The calls of the absurd values ``entry`` must refuse (``registry.MUST_REFUSE``): one per
-    value, the other parameters given their declared valid values."""
+    """The calls of the absurd values ``entry`` must refuse (``registry.MUST_REFUSE`` and
+    ``registry.MUST_REFUSE_BY_PARAMETER``): one per value, the other parameters given their
+    declared valid values."""
     owner = needs_instance(entry)
     calls = []
-    for declared in MUST_REFUSE.get(entry.path, ()):
+    for declared in refusals_of(entry):
         for name, keys in declared.absurd.items():
             for key in keys:
                 calls.append(
@@ -177,6 +179,11 @@ def plans_of(entries: list[EntryPoint], seed: int, calls: int) -> list[dict[str,
             plans.extend(arity_calls(entry, random.Random(f"{seed}:{entry.path}:arity")))
         plans.extend(refusal_calls(entry))
     return plans
+
+
+def _makeable_entry(entry: EntryPoint) -> bool:
+    owner = needs_instance(entry)
+    return owner is None or _makeable(owner)
 
 
 def test_every_method_has_a_way_to_make_its_instance() -> None:
@@ -303,8 +310,10 @@ def test_an_absurd_value_accepted_in_silence_is_a_failure() -> None:
 def test_the_declared_refusals_are_refused() -> None:
     """Every value of ``MUST_REFUSE`` is refused by its entry point (whatever part of the
     surface the walk calls)."""
-    entries = [e for e in entry_points() if e.path in MUST_REFUSE]
+    entries = [e for e in entry_points() if refusals_of(e) and _makeable_entry(e)]
     plans = [plan for entry in entries for plan in refusal_calls(entry)]
     assert len(plans) >= len(MUST_REFUSE)
+    by_parameter = [e.path for e in entries if e.path not in MUST_REFUSE]
+    assert "mazesim.webots.camera:Camera.enable" in by_parameter, by_parameter
     failures = failures_of(plans, walk(plans))
     assert not failures, "\n".join(failures)

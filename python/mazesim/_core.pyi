@@ -51,8 +51,8 @@ def robot_profile_names() -> list[str]:
     """Names of the robot profiles embedded in the package."""
 
 def sharp_volts_to_cm(volts: float) -> float:
-    """Converts a Sharp GP2Y0A41SK0F reading in volts to a distance in cm (inverted table); NaN or
-    infinite volts raise InvalidArgumentError."""
+    """Converts a Sharp GP2Y0A41SK0F reading in volts to a distance in cm (inverted table); NaN,
+    infinite or negative volts raise InvalidArgumentError."""
 
 def train_lower_round(
     crews: Sequence[dict[str, Any]],

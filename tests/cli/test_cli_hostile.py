@@ -586,3 +586,23 @@ def test_a_name_that_is_not_unicode_text_is_refused_in_one_line(
             if not (refused or code == 0) or "internal error" in error:
                 problems.append(f"mazesim {' '.join(arguments)}: exit {code}: {error[-500:]}")
     assert not problems, "\n".join(problems)
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["show", "seed\x00maze"],
+        ["eval", "--world", "seed\x00maze", "--episodes", "1"],
+        ["import-wbt", "x\x00.wbt"],
+    ],
+)
+def test_issue_35_a_nul_character_in_any_argument_is_one_clear_line(
+    argv: list[str], capsys: pytest.CaptureFixture[str]
+) -> None:
+    """No shell passes a NUL; from Python it reached a path as "embedded null byte", an
+    internal error. The command line refuses it once, for every command."""
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert "NUL character" in err
+    assert "internal error" not in err
+    assert len(err.strip().splitlines()) == 1

@@ -190,18 +190,43 @@ MUST_REFUSE: dict[str, tuple[MustRefuse, ...]] = {
             {}, {"text": ("grid_wall_as_thick_as_its_cell", "grid_wall_thicker_than_its_cell")}
         ),
     ),
+    # A cell is at most as big as the coordinates every maze lies in, so no layout is accepted
+    # that no maze can be made of.
     "mazesim._core:MazeLayout": (
         MustRefuse({}, {"wall_thickness": ("max_float", "nan", "minus_one")}),
+        MustRefuse({}, {"cell_size": ("max_float", "inf", "nan")}),
     ),
-    # Every template engine runs under one budget.
-    # Every template engine runs under one budget, and Ctrl-C stops a Lua template (the walk's
-    # watchdog presses it); QuickJS heeds its time limit only, which tests/webots/
-    # test_template_budget.py checks under a small budget.
+    # A point a query is asked about is a coordinate of the world: finite and bounded.
+    "mazesim._core:World.floor_reflectance": (
+        MustRefuse({"y": "quarter"}, {"x": ("nan", "inf", "max_float")}),
+        MustRefuse({"x": "quarter"}, {"y": ("minus_inf", "min_float")}),
+    ),
+    # Every template engine runs under one budget, and Ctrl-C (the walk's watchdog presses it)
+    # stops a template of either language: a Lua one through its hook, a JavaScript one (whose
+    # regular expressions heed no time limit) by ending the child process it runs in.
     "mazesim.webots.proto.templates:evaluate_template": (
         MustRefuse(
             {"language": "lua", "fields": "no_fields", "context": "no_fields", "origin": "origin"},
             {"body": ("endless_lua_template",)},
         ),
+        MustRefuse(
+            {
+                "language": "javascript",
+                "fields": "no_fields",
+                "context": "no_fields",
+                "origin": "origin",
+            },
+            {"body": ("endless_javascript_template", "redos_javascript_template")},
+        ),
+    ),
+    # A controller's step is a whole number of ms that fits Webots' C int, as its periods are.
+    "mazesim.webots.robot:Robot.step": (
+        MustRefuse({}, {"duration": ("period_2_40", "nan", "minus_one")}),
+    ),
+    # A packet an emitter can never queue (beyond the bound of Webots' unlimited bufferSize) is
+    # refused before it is built.
+    "mazesim.webots.radio_devices:Emitter.send": (
+        MustRefuse({}, {"message": ("huge_range", "packet_over_bound")}),
     ),
     "mazesim._core:Simulator.set_goal": (
         MustRefuse(
@@ -209,8 +234,28 @@ MUST_REFUSE: dict[str, tuple[MustRefuse, ...]] = {
         ),
     ),
     "mazesim._core:SensingPerturbation": (MustRefuse({}, {"noise_scale": ("max_float", "nan")}),),
-    "mazesim._core:sharp_volts_to_cm": (MustRefuse({}, {"volts": ("nan", "inf")}),),
+    "mazesim._core:sharp_volts_to_cm": (
+        MustRefuse({}, {"volts": ("nan", "inf", "minus_one", "min_float")}),
+    ),
 }
+
+#: Absurd values every entry point refuses for a parameter of this name, whatever its class:
+#: every Webots ``enable(samplingPeriod)`` (a sensor's, the keyboard's, a motor's feedback, a
+#: device added later) takes a period that fits Webots' C ``int``, through one check.
+MUST_REFUSE_BY_PARAMETER: dict[str, tuple[str, ...]] = {
+    "samplingPeriod": ("period_2_40", "nan", "inf"),
+}
+
+
+def refusals_of(entry: EntryPoint) -> tuple[MustRefuse, ...]:
+    """The refusals ``entry`` must make: its own in :data:`MUST_REFUSE`, and one for each of its
+    parameters named in :data:`MUST_REFUSE_BY_PARAMETER` (when it has no other required one)."""
+    by_name = tuple(
+        MustRefuse({}, {name: keys})
+        for name, keys in MUST_REFUSE_BY_PARAMETER.items()
+        if name in entry.parameters and set(entry.required) <= {name}
+    )
+    return MUST_REFUSE.get(entry.path, ()) + by_name
 
 
 @dataclass(frozen=True)

@@ -188,11 +188,18 @@ ABSURD: dict[str, Any] = {
     "grid_wall_as_thick_as_its_cell": lambda: _GRID.format(thickness="0.25"),
     "grid_wall_thicker_than_its_cell": lambda: _GRID.format(thickness="1e300"),
     "endless_lua_template": lambda: "%{ while true do end }%",
+    "endless_javascript_template": lambda: "%< while (true) {} >%",
+    # A regular expression that backtracks for hours (QuickJS's time limit is not looked at
+    # inside its regular expressions).
+    "redos_javascript_template": lambda: "%< /^(a+)+$/.test('a'.repeat(40) + 'b') >%",
+    "period_2_40": lambda: 2**40,
+    "packet_over_bound": lambda: b"x" * (16 * 1024 * 1024 + 1),
 }
 
 #: Valid values the other parameters of a must-refuse call are given.
 VALID: dict[str, Any] = {
     "lua": lambda: "lua",
+    "javascript": lambda: "javascript",
     "no_fields": dict,
     "origin": lambda: "hostile.proto",
     "quarter": lambda: 0.25,

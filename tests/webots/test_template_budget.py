@@ -37,6 +37,12 @@ ENDLESS = {
     "lua grows a string": ("lua", "%{ local s = 'x' while true do s = s .. s end }%"),
     "javascript while": ("javascript", "%< while (true) {} >%"),
     "javascript grows a string": ("javascript", "%< let s = 'x'; while (true) { s = s + s; } >%"),
+    # QuickJS does not look at its time limit inside a regular expression: this one backtracks
+    # for hours unless the budget's processor limit ends the process it runs in.
+    "javascript regular expression": (
+        "javascript",
+        "%< /^(a+)+$/.test('a'.repeat(40) + 'b') >%",
+    ),
 }
 
 
@@ -83,3 +89,29 @@ def test_ctrl_c_stops_an_endless_lua_template() -> None:
             templates.evaluate_template("lua", "%{ while true do end }%", {}, {}, "Endless.proto")
     finally:
         timer.cancel()
+
+
+def test_issue_35_ctrl_c_stops_an_endless_javascript_template() -> None:
+    """QuickJS heeds no Ctrl-C while it runs; its template runs in a child process, which
+    Ctrl-C ends: the template stops long before its budget, as a Lua one does."""
+    timer = threading.Timer(0.5, os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            templates.evaluate_template(
+                "javascript", "%< /^(a+)+$/.test('a'.repeat(40) + 'b') >%", {}, {}, "E.proto"
+            )
+    finally:
+        timer.cancel()
+
+
+def test_a_javascript_template_still_reads_its_fields_and_files(tmp_path: Path) -> None:
+    text = tmp_path / "rows.txt"
+    text.write_text("first\n", encoding="utf-8")
+    fields = {"path": {"value": str(text), "defaultValue": ""}}
+    body = "%<= wbfile.readTextFile(fields.path.value).trim() >%|%<= 6 * 7 >%"
+    assert templates.evaluate_template("javascript", body, fields, {}, "R.proto") == "first|42"
+    with pytest.raises(WorldFormatError, match="boom"):
+        templates.evaluate_template(
+            "javascript", "%< throw new Error('boom') >%", {}, {}, "B.proto"
+        )

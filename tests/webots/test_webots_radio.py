@@ -208,6 +208,29 @@ def test_an_emitters_buffer_size_and_max_range_and_the_e_pucks_defaults() -> Non
     assert e_puck.send(b"") == 0
 
 
+def test_issue_35_an_unlimited_emitter_buffer_is_bounded_and_a_packet_beyond_it_refused() -> None:
+    """Webots' bufferSize -1 is "unlimited"; here it holds MAX_UNLIMITED_BUFFER_BYTES a step,
+    so one send cannot take the machine's memory: a packet larger than that is refused before
+    it is built (a 300 MB one, or a sequence of 10**9 numbers), one that would overflow the
+    step's bound is not sent (0), as from a full buffer."""
+    from mazesim.errors import InvalidArgumentError
+    from mazesim.webots.radio_devices import MAX_UNLIMITED_BUFFER_BYTES
+
+    pair = RadioPair()
+    e_puck = Emitter("emitter", pair.robots[0])
+    assert e_puck.getBufferSize() == -1
+    with pytest.raises(InvalidArgumentError, match="bufferSize"):
+        e_puck.send(b"x" * (MAX_UNLIMITED_BUFFER_BYTES + 1))
+    with pytest.raises(InvalidArgumentError, match="smaller packets"):
+        e_puck.send(range(10**9))
+    with pytest.raises(InvalidArgumentError, match="length"):
+        e_puck.send(b"abc", math.nan)
+    half = b"x" * (MAX_UNLIMITED_BUFFER_BYTES // 2)
+    assert (e_puck.send(half), e_puck.send(half), e_puck.send(b"y")) == (1, 1, 0)
+    pair.step()
+    assert e_puck.send(b"y") == 1, "the bound is a step's, as a buffer empties"
+
+
 def test_the_e_pucks_emitter_reaches_any_distance_as_its_protos_does() -> None:
     # The E-puck PROTO sets only its Emitter's channel, so the range is the node's default, -1:
     # an e-puck's packet reaches a supervisor 1.4 m away (a swarm scattered over a 5 m arena).

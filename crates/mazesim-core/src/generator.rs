@@ -164,6 +164,16 @@ impl MazeParams {
         }
         crate::world::grid::check_cell_walls(params.cell_size, params.wall_thickness)
             .map_err(Error::InvalidArgument)?;
+        let side = params.width.max(params.height) as f64 * params.cell_size;
+        if side > crate::limits::MAX_COORDINATE {
+            return Err(Error::InvalidArgument(format!(
+                "expected a maze at most {} m a side (the bound of every coordinate), found {} \
+                 cells of {:?} m: {side:?} m; use fewer or smaller cells",
+                crate::limits::MAX_COORDINATE,
+                params.width.max(params.height),
+                params.cell_size
+            )));
+        }
         let reflectance_ok = params.floor_reflectance > 0.0 && params.floor_reflectance <= 1.0;
         if !(0.0..=1.0).contains(&params.loops) || !reflectance_ok {
             return Err(Error::InvalidArgument(format!(
@@ -421,6 +431,30 @@ fn way_cells(m: &CellMaze) -> Vec<bool> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn issue_35_a_maze_larger_than_the_coordinates_is_refused_by_its_parameters() {
+        let huge_cell = MazeParams {
+            cell_size: 1e300,
+            ..Default::default()
+        };
+        assert!(huge_cell.check().is_err());
+        let too_wide = MazeParams {
+            width: 200,
+            height: 200,
+            cell_size: 10.0,
+            ..Default::default()
+        };
+        let refused = too_wide.check().unwrap_err().to_string();
+        assert!(refused.contains("2000.0 m"), "{refused}");
+        let widest = MazeParams {
+            width: 200,
+            height: 200,
+            cell_size: 5.0,
+            ..Default::default()
+        };
+        assert!(widest.check().is_ok());
+    }
 
     /// The default maze of `seed` with a share `loops` of extra openings.
     fn with_loops(loops: f64, seed: u64) -> World {

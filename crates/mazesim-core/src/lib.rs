@@ -81,11 +81,13 @@ pub mod prelude {
 }
 
 /// Converts a Sharp GP2Y0A41SK0F reading in volts to centimetres by inverting its table
-/// (clamped to 3-40 cm). A reading that is not a finite number is an `InvalidArgument` error.
+/// (clamped to 3-40 cm). A reading that is not a finite number, or is below 0 V (the sensor's
+/// output never is, nor is a simulated reading), is an `InvalidArgument` error.
 pub fn sharp_volts_to_cm(volts: f64) -> Result<f64> {
-    if !volts.is_finite() {
+    if !(volts.is_finite() && volts >= 0.0) {
         return Err(Error::InvalidArgument(format!(
-            "expected a finite Sharp sensor reading in volts, found {volts}"
+            "expected a Sharp GP2Y0A41SK0F reading of 0 V or more (its output never goes below \
+             0 V), found {volts} V"
         )));
     }
     let seed = RobotProfile::builtin("seed")?;

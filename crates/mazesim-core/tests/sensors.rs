@@ -135,6 +135,9 @@ fn sharp_sensors_read_volts_and_convert_back_to_cm() {
     assert!((cm - 10.0).abs() < 0.1, "{cm}");
     assert!((mazesim_core::sharp_volts_to_cm(2.01).unwrap() - 6.0).abs() < 1e-6);
     assert!(mazesim_core::sharp_volts_to_cm(f64::NAN).is_err());
+    // Below 0 V no Sharp sensor reads (issue 35): refused, not clamped to 40 cm.
+    assert!(mazesim_core::sharp_volts_to_cm(-1.0).is_err());
+    assert!((mazesim_core::sharp_volts_to_cm(0.0).unwrap() - 40.0).abs() < 1e-9);
 }
 
 /// A simulator of the e-puck whose infra-red rays rise `elevation` radians.

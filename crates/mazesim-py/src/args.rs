@@ -5,7 +5,7 @@
 use pyo3::prelude::*;
 use pyo3::types::PyInt;
 
-use crate::errors::{invalid, wrong_type};
+use crate::errors::{invalid, wrong_type, IntoPy};
 
 /// An integer argument as given, checked against its range by [`IntArg::within`].
 #[derive(Debug, Clone)]
@@ -100,6 +100,20 @@ impl Real {
                 "expected {name} to be a real number, found {kind}"
             ))),
         }
+    }
+
+    /// The number as a coordinate of a point of a world (metres): finite and within
+    /// `limits::MAX_COORDINATE`, as every pose and wall is. The one check of a point a query
+    /// is asked about (a floor reading, a goal), so no query answers for NaN or 1e300.
+    pub fn coordinate(&self, name: &str) -> PyResult<f64> {
+        let value = self.value(name)?;
+        mazesim_core::limits::check_bounded(
+            &format!("{name} (metres)"),
+            value,
+            mazesim_core::limits::MAX_COORDINATE,
+        )
+        .py()?;
+        Ok(value)
     }
 }
 

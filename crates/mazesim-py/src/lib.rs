@@ -41,8 +41,8 @@ fn robot_profile_names() -> PyResult<Vec<String>> {
     enter(|| Ok(mazesim_core::robot_profile_names()))
 }
 
-/// Converts a Sharp GP2Y0A41SK0F reading in volts to a distance in cm (inverted table); NaN or
-/// infinite volts raise InvalidArgumentError.
+/// Converts a Sharp GP2Y0A41SK0F reading in volts to a distance in cm (inverted table); NaN,
+/// infinite or negative volts raise InvalidArgumentError.
 #[pyfunction]
 fn sharp_volts_to_cm(volts: Real) -> PyResult<f64> {
     enter(|| mazesim_core::sharp_volts_to_cm(volts.value("volts")?).py())

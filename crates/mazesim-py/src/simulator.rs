@@ -395,7 +395,11 @@ impl PySimulator {
     /// Sets robot `robot_index`'s goal disc, centre (x, y) and radius in metres, instead of the world's.
     #[pyo3(signature = (x, y, radius, robot_index = IntArg::ZERO), text_signature = "($self, x, y, radius, robot_index=0)")]
     fn set_goal(&self, x: Real, y: Real, radius: Real, robot_index: IntArg) -> PyResult<()> {
-        let (x, y, radius) = (x.value("x")?, y.value("y")?, radius.value("radius")?);
+        let (x, y, radius) = (
+            x.coordinate("x")?,
+            y.coordinate("y")?,
+            radius.value("radius")?,
+        );
         self.change_robot(robot_index, |s, i| {
             s.robot_mut(i).and_then(|r| r.set_goal(x, y, radius))
         })

@@ -381,7 +381,7 @@ impl PyWorld {
 
     /// Floor reflectance factor at (x, y).
     fn floor_reflectance(&self, x: Real, y: Real) -> PyResult<f64> {
-        let (x, y) = (x.value("x")?, y.value("y")?);
+        let (x, y) = (x.coordinate("x")?, y.coordinate("y")?);
         enter(|| Ok(self.inner.floor().reflectance_at([x, y])))
     }
 

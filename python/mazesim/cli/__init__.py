@@ -267,6 +267,17 @@ def main(argv: Sequence[str] | None = None) -> int:
     """
     arguments = list(sys.argv[1:] if argv is None else argv)
     _printable_output()
+    # No shell passes a NUL character (it ends a C string); from Python it would reach a path
+    # or a name as "embedded null byte". Refused here, once, for every command.
+    with_nul = [i for i, word in enumerate(arguments) if "\x00" in str(word)]
+    if with_nul:
+        word = str(arguments[with_nul[0]])
+        print(
+            f"mazesim: error: argument {with_nul[0] + 1} ({word[:40]!r}) "
+            "holds a NUL character, which no file name or value has; remove it",
+            file=sys.stderr,
+        )
+        return EXIT_ERROR
     command = _command_word(arguments)
     ros_arguments: Any = None
     if command in ("ros", "ros2"):

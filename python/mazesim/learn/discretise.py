@@ -104,8 +104,16 @@ def volts_to_cm(volts: npt.ArrayLike) -> npt.NDArray[np.float64]:
 
     Returns:
         The distances in cm, float64, of the same shape.
+
+    Raises:
+        InvalidArgumentError: A reading is below 0 V.
     """
     values = np.asarray(volts, dtype=np.float64)
+    if np.any(values < 0.0):
+        raise InvalidArgumentError(
+            "expected Sharp GP2Y0A41SK0F readings of 0 V or more (its output never goes below "
+            f"0 V, as mazesim.sharp_volts_to_cm says), found {float(values.min())} V"
+        )
     # First table row whose volts are at or below the reading (the rows' volts fall).
     upper = np.searchsorted(-_TABLE_VOLTS, -values, side="left")
     upper = np.clip(upper, 1, len(_TABLE_VOLTS) - 1)

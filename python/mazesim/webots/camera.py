@@ -29,7 +29,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mazesim.errors import InvalidArgumentError, WrongTypeError
-from mazesim.webots.devices import _print_error, _Sensor, webots_property
+from mazesim.webots.devices import _print_error, _Sensor, sampling_period, webots_property
 from mazesim.webots.frames import Axes, axes_or_none, camera_heading
 from mazesim.webots.node_types import node_type
 from mazesim.webots.rays import FloorPaint, WallBoxes
@@ -851,11 +851,8 @@ class Camera(_Sensor):
     def recognitionEnable(self, samplingPeriod: int) -> None:
         """Recognises objects every ``samplingPeriod`` ms (rounded up to whole basic steps),
         from the end of the first period on; Webots' error without a Recognition node."""
-        period = int(samplingPeriod)
-        if period < 0:
-            _print_error(
-                "Error: wb_camera_recognition_enable() called with negative sampling period."
-            )
+        period = sampling_period(samplingPeriod, "wb_camera_recognition_enable")
+        if period is None:
             return
         if self._without_recognition("enable"):
             return

@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, Any, ClassVar
 import numpy as np
 
 from mazesim._toml import load_toml
+from mazesim.errors import InvalidArgumentError, _a_type
 from mazesim.webots.node_types import node_type
 
 if TYPE_CHECKING:
@@ -45,6 +46,37 @@ POSITION_GAIN = 10.0
 
 def _print_error(message: str) -> None:
     print(message, file=sys.stderr)
+
+
+#: The longest sampling period Webots takes: its ``enable`` functions take a C ``int`` of ms.
+MAX_SAMPLING_PERIOD_MS = 2**31 - 1
+
+
+def sampling_period(samplingPeriod: Any, function: str) -> int | None:
+    """The sampling period an ``enable`` call (``function``, Webots' C name) asks for, in ms:
+    the one check of every device's period. A whole number of ms that fits Webots' C ``int``
+    (a float is truncated, as before); anything else (NaN, inf, a text, 2**40) is refused with
+    an ``InvalidArgumentError``, since Webots' Python API would pass its low 32 bits on, a
+    period the call never named. A negative period prints Webots' error and is ignored
+    (None), as Webots does."""
+    number = samplingPeriod
+    is_number = isinstance(number, (int, float, np.integer, np.floating))
+    if isinstance(number, (bool, np.bool_)) or not is_number or not math.isfinite(number):
+        found = repr(number) if is_number else _a_type(number)
+        raise InvalidArgumentError(
+            f"{function}(): sampling period refused: expected a whole number of ms in "
+            f"[0, {MAX_SAMPLING_PERIOD_MS}] (Webots' C int; 0 disables), found {found}"
+        )
+    period = int(number)
+    if period > MAX_SAMPLING_PERIOD_MS:
+        raise InvalidArgumentError(
+            f"{function}(): sampling period refused: expected a whole number of ms in "
+            f"[0, {MAX_SAMPLING_PERIOD_MS}] (Webots' C int; 0 disables), found {period}"
+        )
+    if period < 0:
+        _print_error(f"Error: {function}() called with negative sampling period.")
+        return None
+    return period
 
 
 def noise_stream(simulation: RobotSimulation, name: str) -> np.random.Generator | None:
@@ -171,11 +203,7 @@ class Sampled:
 
     def _checked_period(self, samplingPeriod: int) -> int | None:
         """The sampling period as an integer; None, with Webots' message, when negative."""
-        period = int(samplingPeriod)
-        if period < 0:
-            _print_error(f"Error: {self._api}_enable() called with negative sampling period.")
-            return None
-        return period
+        return sampling_period(samplingPeriod, f"{self._api}_enable")
 
     def _warn_disabled(self, function: str) -> None:
         """Prints Webots' message for a read of a disabled device, once."""
@@ -637,6 +665,7 @@ class Motor(Device):
 
     def enableTorqueFeedback(self, samplingPeriod: int) -> None:
         """Accepted; the feedback reads 0."""
+        sampling_period(samplingPeriod, "wb_motor_enable_torque_feedback")
 
     def disableTorqueFeedback(self) -> None:
         """Accepted."""

@@ -60,9 +60,37 @@ Z_UP_AXES: Axes = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
 Y_UP_AXES: Axes = ENU_TO_NUE
 
 
-def _packet_bytes(message: Any, length: int | None) -> bytes:
+#: The most bytes an emitter queues in one step when its node's ``bufferSize`` is -1: Webots'
+#: "unlimited" buffer, bounded here so that one ``send`` cannot take the machine's memory (every
+#: receiver in range keeps its own copy of a packet).
+MAX_UNLIMITED_BUFFER_BYTES = 16 * 1024 * 1024
+
+
+def _packet_bytes(message: Any, length: int | None, most: int) -> bytes:
     """A message as the bytes sent: str as UTF-8, bytes as they are, a list of numbers as
-    doubles (native order); ``length`` keeps only the first bytes."""
+    doubles (native order); ``length`` keeps only the first bytes. A packet longer than
+    ``most`` bytes (the emitter's buffer) is refused before it is built."""
+    if length is not None and (
+        isinstance(length, bool)
+        or not isinstance(length, (int, float))
+        or not math.isfinite(length)
+    ):
+        raise InvalidArgumentError(
+            f"Emitter.send: length refused: expected a number of bytes, found {length!r}"
+        )
+    sized = message if isinstance(message, (str, bytes, bytearray, memoryview)) else None
+    try:
+        claimed = len(message) if sized is not None else 8 * len(message)
+    except TypeError:
+        claimed = 0  # not a sized value: refused below
+    if length is not None:
+        claimed = min(claimed, max(0, int(length)))
+    if claimed > most:
+        raise InvalidArgumentError(
+            f"Emitter.send: packet refused: expected at most {most} bytes (the emitter's "
+            f"bufferSize, or mazesim's bound of {MAX_UNLIMITED_BUFFER_BYTES} bytes a step for "
+            f"a bufferSize of -1), found {claimed} bytes; send it in smaller packets"
+        )
     if isinstance(message, str):
         data = message.encode("utf-8")
     elif isinstance(message, (bytes, bytearray, memoryview)):
@@ -70,7 +98,7 @@ def _packet_bytes(message: Any, length: int | None) -> bytes:
     else:
         try:  # a list of numbers (or any sequence of them: a numpy array, a tuple)
             data = struct.pack(f"{len(message)}d", *(float(v) for v in message))
-        except (TypeError, ValueError):
+        except (TypeError, ValueError, struct.error):
             raise WrongTypeError(
                 "expected an Emitter packet as str, bytes or a list of numbers, found "
                 f"{_a_type(message)}"
@@ -158,14 +186,18 @@ class Emitter(_Tuned, NotSimulated, Device):
             1 when the packet was queued, 0 when the emitter's buffer is full (or the packet is
             empty: a packet has at least 1 byte).
         """
-        data = _packet_bytes(message, length)
+        unlimited = self._buffer_size == UNLIMITED
+        buffer = MAX_UNLIMITED_BUFFER_BYTES if unlimited else self._buffer_size
+        # A packet larger than a finite buffer is not sent (0), as in Webots; one larger than
+        # the bound of an unlimited buffer is refused.
+        data = _packet_bytes(message, length, max(buffer, MAX_UNLIMITED_BUFFER_BYTES))
         if not data:
             _print_error("Error: wb_emitter_send(): a packet must have at least 1 byte.")
             return 0
         simulation = self._simulation
         if self._queued_at != simulation.steps:
             self._queued_at, self._queued_bytes = simulation.steps, 0
-        if self._buffer_size != UNLIMITED and self._queued_bytes + len(data) > self._buffer_size:
+        if self._queued_bytes + len(data) > buffer:
             return 0
         self._queued_bytes += len(data)
         simulation.radio.send(

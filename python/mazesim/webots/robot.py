@@ -12,7 +12,7 @@ from typing import Any, ClassVar
 
 from mazesim.errors import InvalidArgumentError
 from mazesim.webots import simulation as _simulations
-from mazesim.webots.devices import webots_property
+from mazesim.webots.devices import MAX_SAMPLING_PERIOD_MS, sampling_period, webots_property
 from mazesim.webots.equipment import Equipment
 from mazesim.webots.inert import NotSimulated
 from mazesim.webots.keyboard import Joystick, Keyboard, Mouse
@@ -265,6 +265,7 @@ class Robot(NotSimulated):
 
     def batterySensorEnable(self, samplingPeriod: int) -> None:
         """Accepted; the e-puck's battery is not simulated (it reads NaN)."""
+        sampling_period(samplingPeriod, "wb_robot_battery_sensor_enable")
 
     def batterySensorDisable(self) -> None:
         """Accepted."""
@@ -293,15 +294,17 @@ class Robot(NotSimulated):
             simulation (it does not advance then; paused, ``step(0)`` returns 0 at once).
 
         Raises:
-            InvalidArgumentError: ``duration`` is negative or not a number.
+            InvalidArgumentError: ``duration`` is negative, beyond Webots' C int or not a
+                number.
             ControllerStopped: ``step`` was called again after it returned -1.
         """
         simulation = self._simulation
         basic = simulation.basic_time_step_ms
         duration = basic if duration is None else float(duration)
-        if not (math.isfinite(duration) and duration >= 0.0):
+        if not (math.isfinite(duration) and 0.0 <= duration <= MAX_SAMPLING_PERIOD_MS):
             raise InvalidArgumentError(
-                f"Robot.step expects a duration in ms >= 0, found {duration!r}"
+                f"Robot.step expects a duration in ms from 0 to {MAX_SAMPLING_PERIOD_MS} "
+                f"(Webots' C int), found {duration!r}"
             )
         if simulation.ended:
             ended_at = simulation.ended_at if simulation.ended_at is not None else 0.0

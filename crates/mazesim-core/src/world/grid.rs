@@ -40,9 +40,18 @@ every third column, from the first)";
 /// Refuses cell walls that do not fit their cells: a wall must be thinner than the cell it
 /// bounds, or neighbouring walls overlap and no corridor is left between them. The one check of
 /// a cell maze's sizes, for a generated maze and a drawn one (`[grid]`) alike.
+/// A cell is at most `MAX_COORDINATE` a side: the smallest maze (2 x 2 cells) then still fits
+/// the coordinates every wall and pose is bounded by.
 pub fn check_cell_walls(cell_size: f64, wall_thickness: f64) -> Result<(), String> {
     let sizes_ok = cell_size.is_finite() && wall_thickness.is_finite() && cell_size > 0.0;
     if sizes_ok && wall_thickness > 0.0 && wall_thickness < cell_size {
+        if cell_size > crate::limits::MAX_COORDINATE {
+            return Err(format!(
+                "expected a cell size of at most {} m (the bound of every coordinate), found \
+                 {cell_size:?} m",
+                crate::limits::MAX_COORDINATE
+            ));
+        }
         return Ok(());
     }
     Err(format!(

@@ -7,12 +7,17 @@ of the helper modules become constants defined from ``template_modules``."""
 from __future__ import annotations
 
 import json
+import math
 import os
 import re
+import resource
+import signal
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
 from mazesim._paths import read_input
+from mazesim.errors import InvalidArgumentError
 
 from .syntax import located_error
 from .template_modules import JAVASCRIPT_MODULES, LUA_MODULES
@@ -85,8 +90,6 @@ def _pieces(body: str, opening: str, closing: str, origin: str) -> list[tuple[st
 
 
 def _javascript(body: str, fields: dict[str, Any], context: dict[str, Any], origin: str) -> str:
-    import quickjs
-
     imports: list[str] = []
 
     def hoist(match: re.Match[str]) -> str:
@@ -131,20 +134,78 @@ def _javascript(body: str, fields: dict[str, Any], context: dict[str, Any], orig
             "})()",
         ]
     )
+    import quickjs  # noqa: F401 - a missing engine is said here, not in the child
+
+    outcome = _isolated(lambda: _run_javascript(program), BUDGET.seconds)
+    if "text" in outcome:
+        return str(outcome["text"])
+    first = str(outcome.get("error", ""))
+    if outcome.get("over_budget") or "interrupted" in first or "out of memory" in first:
+        raise located_error(_over_budget("JavaScript", first or "still running"), origin)
+    raise located_error(f"its JavaScript template fails: {first}", origin)
+
+
+def _run_javascript(program: str) -> dict[str, Any]:
+    """Runs a template's program in QuickJS under the budget: its text, or the engine's error."""
+    import quickjs
+
     engine = quickjs.Context()
-    engine.set_time_limit(BUDGET.seconds)
+    # The budget's time is the child process's processor limit (see _isolated): QuickJS's own
+    # time limit would refuse every call back into Python (a template's wbfile.readTextFile).
     engine.set_memory_limit(BUDGET.memory_bytes)
     engine.add_callable("__file_exists", lambda path: os.path.isfile(str(path)))
     engine.add_callable("__read_text", _read_text)
     engine.eval("var __errors = [];")
     try:
-        result = engine.eval(program)
+        return {"text": str(engine.eval(program))}
     except quickjs.JSException as error:
         first = str(error).strip().splitlines()[0] if str(error).strip() else repr(error)
-        if "interrupted" in first or "out of memory" in first:
-            raise located_error(_over_budget("JavaScript", first), origin) from None
-        raise located_error(f"its JavaScript template fails: {first}", origin) from None
-    return str(result)
+        return {"error": first}
+
+
+def _isolated(run: Callable[[], dict[str, Any]], seconds: float) -> dict[str, Any]:
+    """What ``run`` returns, run in a child process of its own under ``seconds`` of processor
+    time (``RLIMIT_CPU``, whole seconds): the one way a template engine runs when it cannot be
+    stopped from inside. QuickJS's time limit is not looked at in its regular expressions
+    (``/^(a+)+$/`` on 40 letters runs for hours) and it heeds no Ctrl-C while it runs; a child
+    is stopped either way: Ctrl-C kills it and goes on as a ``KeyboardInterrupt``, the
+    processor limit kills it (``{"over_budget": True}``)."""
+    read_end, write_end = os.pipe()
+    child = os.fork()
+    if child == 0:  # pragma: no cover - the child reports through the pipe
+        status = 1
+        try:
+            os.close(read_end)
+            signal.signal(signal.SIGINT, signal.SIG_DFL)
+            limit = max(1, math.ceil(seconds))
+            resource.setrlimit(resource.RLIMIT_CPU, (limit, limit + 1))
+            try:
+                reported = run()
+            except Exception as error:  # noqa: BLE001 - reported to the parent as the engine's
+                reported = {"error": f"{type(error).__name__}: {error}"}
+            data = json.dumps(reported).encode("utf-8")
+            view = memoryview(data)
+            while view:
+                view = view[os.write(write_end, view) :]
+            status = 0
+        finally:
+            os._exit(status)
+    os.close(write_end)
+    chunks: list[bytes] = []
+    try:
+        while chunk := os.read(read_end, 1 << 20):
+            chunks.append(chunk)
+        _, status = os.waitpid(child, 0)
+    except BaseException:  # Ctrl-C (or any error) while the child runs: it ends now
+        os.kill(child, signal.SIGKILL)
+        os.waitpid(child, 0)
+        raise
+    finally:
+        os.close(read_end)
+    if os.WIFEXITED(status) and os.WEXITSTATUS(status) == 0:
+        outcome: dict[str, Any] = json.loads(b"".join(chunks))
+        return outcome
+    return {"over_budget": True}
 
 
 def _over_budget(language: str, what: str) -> str:
@@ -278,6 +339,11 @@ def evaluate_template(
     Raises:
         WorldFormatError: The template does not run (with the engine's message).
     """
+    if language not in ("javascript", "lua"):
+        raise InvalidArgumentError(
+            f"evaluate_template: expected the language 'javascript' or 'lua' of {origin}, "
+            f"found {language!r}"
+        )
     body = without_comments(body)
     if language == "javascript":
         return _javascript(body, fields, context, origin)
