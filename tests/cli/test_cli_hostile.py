@@ -596,7 +596,7 @@ def test_a_name_that_is_not_unicode_text_is_refused_in_one_line(
         ["import-wbt", "x\x00.wbt"],
     ],
 )
-def test_issue_35_a_nul_character_in_any_argument_is_one_clear_line(
+def test_a_nul_character_in_any_argument_is_one_clear_line(
     argv: list[str], capsys: pytest.CaptureFixture[str]
 ) -> None:
     """No shell passes a NUL; from Python it reached a path as "embedded null byte", an

@@ -91,7 +91,7 @@ def test_ctrl_c_stops_an_endless_lua_template() -> None:
         timer.cancel()
 
 
-def test_issue_35_ctrl_c_stops_an_endless_javascript_template() -> None:
+def test_ctrl_c_stops_an_endless_javascript_template() -> None:
     """QuickJS heeds no Ctrl-C while it runs; its template runs in a child process, which
     Ctrl-C ends: the template stops long before its budget, as a Lua one does."""
     timer = threading.Timer(0.5, os.kill, (os.getpid(), signal.SIGINT))

@@ -208,7 +208,7 @@ def test_an_emitters_buffer_size_and_max_range_and_the_e_pucks_defaults() -> Non
     assert e_puck.send(b"") == 0
 
 
-def test_issue_35_an_unlimited_emitter_buffer_is_bounded_and_a_packet_beyond_it_refused() -> None:
+def test_an_unlimited_emitter_buffer_is_bounded_and_a_packet_beyond_it_refused() -> None:
     """Webots' bufferSize -1 is "unlimited"; here it holds MAX_UNLIMITED_BUFFER_BYTES a step,
     so one send cannot take the machine's memory: a packet larger than that is refused before
     it is built (a 300 MB one, or a sequence of 10**9 numbers), one that would overflow the
