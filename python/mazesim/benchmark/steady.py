@@ -17,12 +17,13 @@ from __future__ import annotations
 import statistics
 import time
 from collections.abc import Callable
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass
 from typing import Any
 
 import numpy as np
 
 import mazesim
+from mazesim._settings import setting
 from mazesim.errors import InvalidArgumentError
 
 from .memory import engine_bytes, resident_bytes
@@ -70,45 +71,24 @@ class BenchSettings:
     """
 
     envs: int = 1024
-    workload: str = field(
-        default="braitenberg",
-        metadata={
-            "help": "the wheel-speed rule: braitenberg (wander clear of walls), contact (about "
-            "half the steps pushing into walls), random (uniform wheel speeds)",
-            "choices": tuple(WORKLOADS),
-        },
+    workload: str = setting(
+        "braitenberg",
+        "the wheel-speed rule: braitenberg (wander clear of walls), contact (about "
+        "half the steps pushing into walls), random (uniform wheel speeds)",
+        choices=tuple(WORKLOADS),
     )
-    mazes: str = field(
-        default="distinct",
-        metadata={
-            "help": "a generated maze per env, or one shared by all",
-            "choices": MAZE_KINDS,
-        },
+    mazes: str = setting(
+        "distinct", "a generated maze per env, or one shared by all", choices=MAZE_KINDS
     )
-    threads: int = field(
-        default=0,
-        metadata={"help": "worker threads", "metavar": "T", "default_text": "0 = all cores"},
-    )
+    threads: int = setting(0, "worker threads", "T", default_text="0 = all cores")
     warmup_steps: int = MIN_WARMUP_STEPS
-    block_steps: int = field(
-        default=300, metadata={"help": "steps per timed block", "metavar": "S"}
-    )
-    blocks: int = field(default=5, metadata={"help": "timed blocks", "metavar": "B"})
-    episode_steps: int = field(
-        default=1000,
-        metadata={
-            "help": "episode step limit; an env is reset when it reaches it",
-            "metavar": "E",
-        },
+    block_steps: int = setting(300, "steps per timed block", "S")
+    blocks: int = setting(5, "timed blocks", "B")
+    episode_steps: int = setting(
+        1000, "episode step limit; an env is reset when it reaches it", "E"
     )
     steps_per_call: int = 1
-    seed: int = field(
-        default=0,
-        metadata={
-            "help": "seeds the mazes, the sensor noise and the random workload",
-            "metavar": "S",
-        },
-    )
+    seed: int = setting(0, "seeds the mazes, the sensor noise and the random workload", "S")
 
     def check(self) -> None:
         """Raises :class:`~mazesim.errors.InvalidArgumentError` naming the first bad field."""

@@ -42,6 +42,7 @@ import numpy.typing as npt
 
 from mazesim._core import RobotProfile, World, generate_maze
 from mazesim._seeding import stream_seeds
+from mazesim._settings import setting
 from mazesim.actions import ACTION_CODES, ACTIONS
 from mazesim.batch import RobotChoice, first_profile
 from mazesim.episodes import (
@@ -132,62 +133,38 @@ class EvalSettings:
     """What ``mazesim eval`` measures: its options are these fields (the defaults are the only
     ones, the help texts are the metadata's)."""
 
-    policy: str | None = field(
-        default=None,
-        metadata={
-            "help": "folder of a saved navigator, or 'randomised': the one shipped trained with "
-            "domain randomisation",
-            "metavar": "DIR",
-            "default_text": "the one shipped for seed-maze",
-        },
+    policy: str | None = setting(
+        None,
+        "folder of a saved navigator, or 'randomised': the one shipped trained with "
+        "domain randomisation",
+        "DIR",
+        default_text="the one shipped for seed-maze",
     )
-    world: str | None = field(
-        default=None,
-        metadata={
-            "help": "a built-in world, a world file, or 'random' for unseen generated mazes",
-            "metavar": "NAME|PATH|random",
-            "default_text": "the navigator's world",
-        },
+    world: str | None = setting(
+        None,
+        "a built-in world, a world file, or 'random' for unseen generated mazes",
+        "NAME|PATH|random",
+        default_text="the navigator's world",
     )
-    episodes: int = field(
-        default=200,
-        metadata={
-            "help": "evaluation episodes (with 'random': spread over --mazes mazes)",
-            "metavar": "N",
-        },
+    episodes: int = setting(
+        200, "evaluation episodes (with 'random': spread over --mazes mazes)", "N"
     )
-    mazes: int = field(
-        default=100, metadata={"help": "unseen mazes of --world random", "metavar": "M"}
+    mazes: int = setting(100, "unseen mazes of --world random", "M")
+    seed: int = setting(
+        0, "seed of the episodes' start jitter and sensor noise, and of the random mazes", "S"
     )
-    seed: int = field(
-        default=0,
-        metadata={
-            "help": "seed of the episodes' start jitter and sensor noise, and of the random mazes",
-            "metavar": "S",
-        },
+    events: str = setting(
+        "both",
+        "checkpoint events from the simulator's ground truth, from the robust barcode "
+        "decoder, or both, reported side by side",
+        choices=(*EVENT_SOURCES, "both"),
     )
-    events: str = field(
-        default="both",
-        metadata={
-            "help": "checkpoint events from the simulator's ground truth, from the robust barcode "
-            "decoder, or both, reported side by side",
-            "choices": (*EVENT_SOURCES, "both"),
-        },
-    )
-    max_steps: int = field(
-        default=MAX_STEPS,
-        metadata={
-            "help": "control steps (64 ms) after which an episode fails",
-            "metavar": "N",
-        },
-    )
-    robot: str = field(
-        default="seed",
-        metadata={
-            "help": "the robot profile the navigator drives: a built-in name or a profile file "
-            "(docs/robots.md); the report's seed robot unless told",
-            "metavar": "NAME|PATH",
-        },
+    max_steps: int = setting(MAX_STEPS, "control steps (64 ms) after which an episode fails", "N")
+    robot: str = setting(
+        "seed",
+        "the robot profile the navigator drives: a built-in name or a profile file "
+        "(docs/robots.md); the report's seed robot unless told",
+        "NAME|PATH",
     )
 
     @property

@@ -33,13 +33,14 @@ from __future__ import annotations
 import os
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import Field, asdict, dataclass, field, fields
+from dataclasses import Field, asdict, dataclass, fields
 from pathlib import Path
 from typing import Any, Protocol, Union
 
 from mazesim import load_world
 from mazesim._core import World, builtin_world_names
 from mazesim._paths import shell_command
+from mazesim._settings import setting
 from mazesim.batch import RobotChoice
 from mazesim.episodes import EpisodeResult, learning_problems, shortest_path_steps
 from mazesim.errors import InvalidArgumentError
@@ -89,25 +90,18 @@ class TrainSettings:
     the fields whose metadata has a ``help`` text (:func:`command_line_fields`).
     """
 
-    world: str = field(
-        default="seed-maze",
-        metadata={
-            "help": "the world the higher level learns: a built-in name or a world file",
-            "metavar": "NAME|PATH",
-        },
+    world: str = setting(
+        "seed-maze",
+        "the world the higher level learns: a built-in name or a world file",
+        "NAME|PATH",
     )
-    envs: int = field(
-        default=LowerSettings.num_envs,
-        metadata={"help": "robots stepped at once while training the lower level", "metavar": "N"},
+    envs: int = setting(
+        LowerSettings.num_envs, "robots stepped at once while training the lower level", "N"
     )
-    steps: int = field(
-        default=LowerSettings.total_steps,
-        metadata={"help": "env-steps of lower-level training, e.g. 36M or 500k", "metavar": "K"},
+    steps: int = setting(
+        LowerSettings.total_steps, "env-steps of lower-level training, e.g. 36M or 500k", "K"
     )
-    seed: int = field(
-        default=LowerSettings.seed,
-        metadata={"help": "seed of everything random in the run", "metavar": "S"},
-    )
+    seed: int = setting(LowerSettings.seed, "seed of everything random in the run", "S")
     maze_pool: int = LowerSettings.maze_pool
     higher_episodes: int = HigherTraining.episodes_per_world
     higher_envs: int = HigherTraining.envs_per_world

@@ -426,6 +426,17 @@ impl Pass<'_> {
     }
 }
 
+/// Checks that every one of `indices` names one of `worlds` worlds.
+fn world_indices(indices: &[i64], worlds: usize) -> Result<()> {
+    let worlds = worlds as i64;
+    match indices.iter().find(|&&w| !(0..worlds).contains(&w)) {
+        Some(w) => Err(Error::InvalidArgument(format!(
+            "expected world indices in [0, {worlds}), found {w}"
+        ))),
+        None => Ok(()),
+    }
+}
+
 fn pose_of(poses: &[f32], i: usize) -> [f32; 3] {
     [poses[3 * i], poses[3 * i + 1], poses[3 * i + 2]]
 }
@@ -468,17 +479,7 @@ impl LowerRound<'_> {
                 "expected sub-tasks in 0..4, found {r}"
             )));
         }
-        let worlds = self.worlds.len() as i64;
-        if let Some(w) = self
-            .starts
-            .world
-            .iter()
-            .find(|&&w| !(0..worlds).contains(&w))
-        {
-            return Err(Error::InvalidArgument(format!(
-                "expected world indices in [0, {worlds}), found {w}"
-            )));
-        }
+        world_indices(self.starts.world, self.worlds.len())?;
         if let Some(a) = self.random_action.iter().find(|&&a| !(0..12).contains(&a)) {
             return Err(Error::InvalidArgument(format!(
                 "expected exploring actions in [0, {NUM_ACTIONS}), found {a}"
@@ -555,16 +556,7 @@ pub fn train_lower_round(round: LowerRound<'_>, crews: &mut [Crew<'_>]) -> Resul
                 )));
             }
         }
-        let worlds = round.worlds.len() as i64;
-        if let Some(w) = crew
-            .world_of_env
-            .iter()
-            .find(|&&w| !(0..worlds).contains(&w))
-        {
-            return Err(Error::InvalidArgument(format!(
-                "expected world indices in [0, {worlds}), found {w}"
-            )));
-        }
+        world_indices(crew.world_of_env, round.worlds.len())?;
     }
     let place: Vec<(usize, usize)> = place
         .into_iter()
