@@ -95,6 +95,36 @@ def test_a_text_file_in_another_encoding_says_to_save_it_as_utf8(
     assert "save it as UTF-8" in str(refused.value)
 
 
+@pytest.mark.parametrize(
+    ("encoding", "found"),
+    [
+        ("utf-16", "found UTF-16 text (it starts with the byte-order mark FF FE)"),
+        ("latin-1", "found a byte 0xE8 that is not UTF-8"),
+    ],
+)
+@pytest.mark.parametrize("kind", ["world", "robot profile"])
+def test_a_world_or_profile_in_another_encoding_says_to_save_it_as_utf8(
+    tmp_path: Path, encoding: str, found: str, kind: str
+) -> None:
+    """The core reads world and robot profile files: it names the encoding it found, as the
+    package's own text readers do, instead of "stream did not contain valid UTF-8"."""
+    source = tmp_path / "source.toml"
+    if kind == "world":
+        mazesim.generate_maze(3, 3, seed=1).save(str(source))
+    else:
+        source.write_text(mazesim.RobotProfile.builtin("e-puck").to_toml(), encoding="utf-8")
+    text = "# flèche\n" + source.read_text(encoding="utf-8")
+    other = tmp_path / "other.toml"
+    other.write_text(text, encoding=encoding)
+    with pytest.raises(mazesim.MazesimError) as refused:
+        if kind == "world":
+            mazesim.load_world(other)
+        else:
+            mazesim.RobotProfile.load(other)
+    assert found in str(refused.value)
+    assert "save it as UTF-8" in str(refused.value)
+
+
 @pytest.mark.parametrize("command", ["show", "demo"])
 def test_a_path_with_windows_backslashes_gets_the_path_meant(
     tmp_path: Path,

@@ -102,11 +102,33 @@ pub fn read_limited(path: &Path, limit: u64, what: &str) -> Result<Vec<u8>> {
 /// error naming the file.
 pub fn read_text_limited(path: &Path, limit: u64, what: &str) -> Result<String> {
     let bytes = read_limited(path, limit, what)?;
-    String::from_utf8(bytes).map_err(|_| {
-        let not_text =
-            std::io::Error::new(ErrorKind::InvalidData, "stream did not contain valid UTF-8");
+    String::from_utf8(bytes).map_err(|error| {
+        let found = other_encoding(error.as_bytes(), error.utf8_error().valid_up_to());
+        let not_text = std::io::Error::new(
+            ErrorKind::InvalidData,
+            format!(
+                "expected UTF-8 text, found {found}: save it as UTF-8 (an editor's \"Save as\", \
+                 encoding UTF-8) and give it again"
+            ),
+        );
         Error::io(path, &format!("cannot read {what}"), &not_text)
     })
+}
+
+/// What a text that is not UTF-8 looks like, from where its decoding failed (`at`): UTF-16 by
+/// its byte-order mark (Windows Notepad's "Unicode"), else the first byte that is not UTF-8.
+fn other_encoding(bytes: &[u8], at: usize) -> String {
+    match bytes {
+        [0xFF, 0xFE, ..] | [0xFE, 0xFF, ..] if at < 2 => format!(
+            "UTF-16 text (it starts with the byte-order mark {:02X} {:02X})",
+            bytes[0], bytes[1]
+        ),
+        _ => format!(
+            "a byte 0x{:02X} that is not UTF-8 (text in another encoding, such as Latin-1 or \
+             Windows-1252?)",
+            bytes.get(at).copied().unwrap_or_default()
+        ),
+    }
 }
 
 /// Refuses a text given in memory (not read from a file) longer than the bound of the file it
@@ -295,6 +317,36 @@ mod tests {
             message.contains("expected the text of at most 10 bytes, found 11 bytes"),
             "{message}"
         );
+    }
+
+    #[test]
+    fn a_text_in_another_encoding_names_it_and_says_to_save_it_as_utf8() {
+        let dir =
+            std::env::temp_dir().join(format!("mazesim-read-encoding-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let cases: [(&str, &[u8], &str); 3] = [
+            (
+                "utf16.toml",
+                b"\xFF\xFEa\x00",
+                "UTF-16 text (it starts with the byte-order mark FF FE)",
+            ),
+            ("utf16be.toml", b"\xFE\xFF\x00a", "byte-order mark FE FF"),
+            (
+                "latin1.toml",
+                b"# fl\xE8che\n",
+                "a byte 0xE8 that is not UTF-8",
+            ),
+        ];
+        for (name, bytes, found) in cases {
+            let path = dir.join(name);
+            std::fs::write(&path, bytes).unwrap();
+            let error = read_text_limited(&path, 100, "the world file")
+                .unwrap_err()
+                .to_string();
+            assert!(error.contains(found), "{error}");
+            assert!(error.contains("save it as UTF-8"), "{error}");
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]
