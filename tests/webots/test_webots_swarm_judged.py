@@ -9,29 +9,19 @@ compass, and a supervisor that sends each robot its pose over an Emitter (#33, #
 
 from __future__ import annotations
 
-import json
+import functools
 import math
 from pathlib import Path
-from typing import Any
 
 import pytest
 
 from epuck2_tof import tof_reading
-from mazesim.webots.lockstep import WorldRun, run_world
+from swarm_project import BODY_RADIUS, run_project
 
 PROJECT = Path(__file__).resolve().parent.parent / "data" / "webots-swarm-judged"
 
-#: The body radius of an e-puck (m).
-BODY_RADIUS = 0.037
 
-
-def run(world: str, logs: Path, seconds: float) -> tuple[WorldRun, dict[str, Any]]:
-    """Runs a world of the project whole; returns the run and each controller's log by name."""
-    logs.mkdir(parents=True, exist_ok=True)
-    with pytest.MonkeyPatch.context() as patch:
-        patch.setenv("SWARM_LOG", str(logs))
-        done = run_world(str(PROJECT / "worlds" / f"{world}.wbt"), seconds=seconds, seed=5)
-    return done, {p.stem: json.loads(p.read_text()) for p in logs.glob("*.json")}
+run = functools.partial(run_project, PROJECT)
 
 
 def test_a_turret_beacon_reaches_the_receivers_within_its_range_until_it_shrinks(

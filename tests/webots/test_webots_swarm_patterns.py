@@ -8,37 +8,22 @@ a Transform, a Group and a Pose, a supervisor tracking every robot each step, an
 
 from __future__ import annotations
 
-import json
+import functools
 import math
 from pathlib import Path
-from typing import Any
 
 import pytest
 
 from epuck2_tof import tof_reading
-from mazesim.webots.lockstep import WorldRun, run_world
+from swarm_project import BODY_RADIUS, run_project
 
 PROJECT = Path(__file__).resolve().parent.parent / "data" / "webots-swarm-patterns"
 
-#: The body radius of an e-puck (m), and how far ahead of its centre the ToF sensor sits.
-BODY_RADIUS = 0.037
+#: How far ahead of an e-puck's centre the ToF sensor sits (m).
 TOF_AHEAD = 0.034
 
 
-def run(
-    world: str, logs: Path, seconds: float, **controllers: str
-) -> tuple[WorldRun, dict[str, Any]]:
-    """Runs a world of the project whole; returns the run and each controller's log by name."""
-    logs.mkdir(parents=True, exist_ok=True)
-    with pytest.MonkeyPatch.context() as patch:
-        patch.setenv("SWARM_LOG", str(logs))
-        done = run_world(
-            str(PROJECT / "worlds" / f"{world}.wbt"),
-            seconds=seconds,
-            seed=5,
-            controllers=controllers,
-        )
-    return done, {p.stem: json.loads(p.read_text()) for p in logs.glob("*.json")}
+run = functools.partial(run_project, PROJECT)
 
 
 def test_orders_pass_along_a_chain_on_their_channels_within_range(tmp_path: Path) -> None:

@@ -9,32 +9,23 @@ the world (#33, #32)."""
 
 from __future__ import annotations
 
+import functools
 import itertools
-import json
 import math
 from pathlib import Path
-from typing import Any
 
 import pytest
 
 from mazesim.webots.importer import import_wbt
-from mazesim.webots.lockstep import WorldRun, run_world
+from swarm_project import BODY_RADIUS, run_project
 
 PROJECT = Path(__file__).resolve().parent.parent / "data" / "webots-swarm-trials"
 
-#: The body radius of an e-puck (m).
-BODY_RADIUS = 0.037
 
 pytestmark = pytest.mark.usefixtures("own_cache")
 
 
-def run(world: str, logs: Path, seconds: float) -> tuple[WorldRun, dict[str, Any]]:
-    """Runs a world of the project whole; returns the run and each controller's log by name."""
-    logs.mkdir(parents=True, exist_ok=True)
-    with pytest.MonkeyPatch.context() as patch:
-        patch.setenv("SWARM_LOG", str(logs))
-        done = run_world(str(PROJECT / "worlds" / f"{world}.wbt"), seconds=seconds, seed=5)
-    return done, {p.stem: json.loads(p.read_text()) for p in logs.glob("*.json")}
+run = functools.partial(run_project, PROJECT)
 
 
 def test_robots_gather_by_signal_strength_and_emitter_direction(tmp_path: Path) -> None:
