@@ -7,6 +7,7 @@ speeds the run recorded), bit for bit, over thread counts and batch sizes.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable
 from typing import Any, Union
 
@@ -325,8 +326,18 @@ _TABLE_VOLTS = [volts for _, volts in SHARP_TABLE]
     st.integers(0, 5),
 )
 def test_the_core_discretises_as_numpy_does(volts: list[float], extra: int) -> None:
+    """Both give the same states, or both refuse a reading below 0 V with the same message."""
     rows = np.array(volts, dtype=np.float32).reshape(-1, 6)
     observations = np.concatenate([rows, np.full((len(rows), extra), 500.0, np.float32)], axis=1)
+    if (rows < 0.0).any():
+        with pytest.raises(mazesim.InvalidArgumentError, match="readings of 0 V or more") as core:
+            mazesim._core.lower_level_states(observations)
+        with pytest.raises(mazesim.InvalidArgumentError, match="readings of 0 V or more") as numpy:
+            observation_states(observations)
+        for refusal in (core.value, numpy.value):
+            found = re.search(r"found (\S+) V", str(refusal))
+            assert found is not None and float(found[1]) == float(rows.min()), refusal
+        return
     np.testing.assert_array_equal(
         mazesim._core.lower_level_states(observations), observation_states(observations)
     )

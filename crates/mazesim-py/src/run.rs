@@ -330,6 +330,18 @@ pub fn lower_level_states<'py>(
             }
         };
         let values = copied::<f32>(observations, "observations", "float32", &[rows, width])?;
+        // The Sharp ranger never reads below 0 V: refused as `learn.volts_to_cm` refuses it.
+        let lowest = values
+            .chunks_exact(width)
+            .flat_map(|row| &row[..sensors])
+            .fold(0.0f32, |low, &v| if v < low { v } else { low });
+        if lowest < 0.0 {
+            return Err(invalid(format!(
+                "expected Sharp GP2Y0A41SK0F readings of 0 V or more (its output never goes \
+                 below 0 V, as mazesim.sharp_volts_to_cm says), found {:?} V",
+                f64::from(lowest)
+            )));
+        }
         let discretiser = Discretiser::new().py()?;
         let states: Vec<i64> = values
             .chunks_exact(width)
