@@ -628,7 +628,9 @@ ENDED_CONTROLLERS = {
         "'ps0'",
     ],
     # A call the package refused: the trace went on into the package's checking frames.
-    "robot.step(-1)": ["Robot.step expects a duration in ms >= 0, found -1.0"],
+    "robot.step(-1)": [
+        "Robot.step expects a duration in ms from 0 to 2147483647 (Webots' C int), found -1.0"
+    ],
 }
 
 
