@@ -18,9 +18,9 @@ BODY_RADIUS = 0.037
 def run_project(
     project: Path, world: str, logs: Path, seconds: float, **controllers: str
 ) -> tuple[WorldRun, dict[str, Any]]:
-    """Runs ``project``'s world ``world`` (its ``worlds/WORLD.wbt``) for ``seconds`` with seed 5,
-    ``controllers`` given by robot name as on the command line; returns the run and each
-    controller's log (``SWARM_LOG``/NAME.json) by name."""
+    """Runs ``project``'s world ``world`` (the ``.wbt`` file of that name in its ``worlds``
+    folder) for ``seconds`` with seed 5, ``controllers`` given by robot name as on the command
+    line; returns the run and each controller's log (``SWARM_LOG``/NAME.json) by name."""
     logs.mkdir(parents=True, exist_ok=True)
     with pytest.MonkeyPatch.context() as patch:
         patch.setenv("SWARM_LOG", str(logs))
