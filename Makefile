@@ -57,6 +57,9 @@ $(STAMP): Makefile
 			"$$($(PYTHON) --version 2>/dev/null || echo not installed). Install python3.11 (or any" \
 			"python3 >= $(PYTHON_MIN)), or run 'make PYTHON=/path/to/python3.x ...'" >&2; exit 1; }
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+	@$(BIN)/python -m pip --version >/dev/null 2>&1 || { echo "make venv: $(VENV) has no pip: it was" \
+		"left half-made (on Debian and Ubuntu a venv gets pip from the package python3-venv, or" \
+		"python3.X-venv); making it again with $(PYTHON)" >&2; $(PYTHON) -m venv --clear $(VENV); }
 	$(BIN)/python -m pip install --quiet --upgrade pip
 	@echo "make venv: installing $(PY_PACKAGES) into $(VENV) (about 55 MB to download the first time, 225 MB in $(VENV))"
 	@start=$$(date +%s); $(BIN)/python -m pip install --progress-bar on $(PY_PACKAGES) | grep -v '^Requirement already satisfied' || true; \

@@ -13,6 +13,10 @@ picture) and the model, then runs the trained policy for one episode on each of
 environments seeded from ``10**6 + seed``, so their mazes, starts and goals were never trained on.
 It prints the success rate. ``MAZESIM_EXAMPLES_FAST=1`` runs a tiny version (a few seconds).
 ``--plot runs/fixed-0 runs/fixed-1 --picture fixed.png`` draws finished runs' curves together.
+``--option goal_reward=20`` changes one of the task's options (any keyword of ``gymnasium.make``
+for the task, such as the reward weights; repeat it for several) in training and in the held-out
+episodes alike, and ``--video run.mp4`` (or ``.gif``) records the trained policy's first held-out
+episode (needs ``mazesim[video]``).
 
 Tiers 1 to 3 (``UnseenMaze-v1``) scale PPO's rewards by a running estimate of the returns' spread
 (SB3's ``VecNormalize`` with ``norm_obs=False``): the observations are already of order 1;
@@ -24,6 +28,7 @@ ever in a maze it cannot see; sampling gets it out, as it did in training.
 from __future__ import annotations
 
 import argparse
+import ast
 import csv
 import os
 import time
@@ -74,9 +79,11 @@ SETTINGS: dict[str, dict[str, Any]] = {
 HELD_OUT_SEED = 10**6
 
 
-def evaluate(model: PPO, task: str, episodes: int, seed: int, deterministic: bool) -> float:
+def evaluate(
+    model: PPO, task: str, episodes: int, seed: int, deterministic: bool, options: dict[str, Any]
+) -> float:
     """Success rate of ``model`` over one episode in each of ``episodes`` held-out envs."""
-    envs = make_vec_env(task, episodes, seed=HELD_OUT_SEED + seed, monitor=False)
+    envs = make_vec_env(task, episodes, seed=HELD_OUT_SEED + seed, monitor=False, **options)
     observations = envs.reset()
     finished = np.zeros(episodes, dtype=bool)
     success = np.zeros(episodes, dtype=bool)
@@ -88,6 +95,43 @@ def evaluate(model: PPO, task: str, episodes: int, seed: int, deterministic: boo
         finished |= dones
     envs.close()
     return float(success.mean())
+
+
+def record_video(
+    model: PPO, task: str, seed: int, deterministic: bool, options: dict[str, Any], path: Path
+) -> int:
+    """Writes the first held-out episode (seeded ``HELD_OUT_SEED + seed``, as in
+    :func:`evaluate`) driven by ``model`` to ``path`` (.mp4 or .gif); returns its frames."""
+    import gymnasium
+    import imageio.v2 as imageio
+
+    env = gymnasium.make(task, render_mode="rgb_array", **options)
+    fps = float(env.metadata["render_fps"])
+    # Frames are written as they are drawn: a 3000-step episode would not fit in memory.
+    writer = imageio.get_writer(path, fps=min(fps, 50.0) if path.suffix == ".gif" else fps)
+    observation, _ = env.reset(seed=HELD_OUT_SEED + seed)
+    writer.append_data(env.render())
+    frames, ended = 1, False
+    while not ended:
+        action, _ = model.predict(observation, deterministic=deterministic)
+        observation, _, terminated, truncated, _ = env.step(action)
+        writer.append_data(env.render())
+        frames, ended = frames + 1, terminated or truncated
+    writer.close()
+    env.close()
+    return frames
+
+
+def parse_option(text: str) -> tuple[str, Any]:
+    """``NAME=VALUE`` of ``--option``: VALUE is a Python literal (``20``, ``0.5``, ``(7, 7)``,
+    ``True``) or else taken as a string (``world=seed-maze``)."""
+    name, equals, value = text.partition("=")
+    if not equals or not name.isidentifier():
+        raise argparse.ArgumentTypeError(f"expected NAME=VALUE (goal_reward=20), found {text!r}")
+    try:
+        return name, ast.literal_eval(value)
+    except (ValueError, SyntaxError):
+        return name, value
 
 
 def plot_curves(runs: list[Path], picture: Path, title: str) -> None:
@@ -131,7 +175,19 @@ def main() -> int:
         help="no training: draw these runs' learning curves into --picture",
     )
     parser.add_argument("--picture", type=Path, default=Path("curves.png"))
+    parser.add_argument(
+        "--option",
+        type=parse_option,
+        action="append",
+        default=[],
+        metavar="NAME=VALUE",
+        help="a task option for training and the held-out episodes, e.g. goal_reward=20",
+    )
+    parser.add_argument(
+        "--video", type=Path, help="record the first held-out episode (.mp4 or .gif)"
+    )
     args = parser.parse_args()
+    options = dict(args.option)
     if args.plot:
         plot_curves(args.plot, args.picture, args.task)
         return 0
@@ -145,7 +201,7 @@ def main() -> int:
     # One torch thread: the batch engine has the other core, and threads fighting over two cores
     # (or a machine shared with other jobs) slow PPO down many times over.
     torch.set_num_threads(1)
-    envs: VecEnv = make_vec_env(args.task, envs_count, seed=args.seed)
+    envs: VecEnv = make_vec_env(args.task, envs_count, seed=args.seed, **options)
     if settings["normalize_reward"]:
         envs = VecNormalize(envs, norm_obs=False, norm_reward=True, gamma=0.99)
     model = PPO(
@@ -169,7 +225,11 @@ def main() -> int:
     model.save(args.out / "model.zip")
     envs.close()
     plot_curves([args.out], args.out / "curve.png", f"{args.task} seed {args.seed}")
-    success = evaluate(model, args.task, args.eval_episodes, args.seed, settings["deterministic"])
+    deterministic = settings["deterministic"]
+    success = evaluate(model, args.task, args.eval_episodes, args.seed, deterministic, options)
+    if args.video is not None:
+        frames = record_video(model, args.task, args.seed, deterministic, options, args.video)
+        print(f"video of the first held-out episode ({frames} frames): {args.video}")
     print(
         f"{args.task} seed {args.seed}: {model.num_timesteps} env-steps in {seconds:.0f} s "
         f"({model.num_timesteps / seconds:,.0f} env-steps/s); success on {args.eval_episodes} "

@@ -151,6 +151,23 @@ def test_ppo_sb3_trains_and_evaluates_on_held_out_mazes(tmp_path: Path) -> None:
     assert (tmp_path / "both.png").read_bytes()[:4] == b"\x89PNG"
 
 
+def test_ppo_sb3_takes_task_options_and_records_a_video_of_a_held_out_episode(
+    tmp_path: Path,
+) -> None:
+    pytest.importorskip("stable_baselines3", reason="needs mazesim[sb3] (make sb3-deps)")
+    pytest.importorskip("imageio", reason="needs mazesim[video]")
+    script = [sys.executable, str(EXAMPLES / "ppo_sb3.py"), "--task", "mazesim/MazeFixed-v1"]
+    argv = [*script, "--option", "goal_reward=20", "--out", "run", "--video", "run.gif"]
+    out = run_example(argv, tmp_path).stdout
+    frames = re.search(r"video of the first held-out episode \((\d+) frames\): run.gif", out)
+    assert frames is not None and int(frames.group(1)) >= 2, out
+    assert (tmp_path / "run.gif").read_bytes()[:6] == b"GIF89a"
+    # The option reaches the task: a typo of one is refused by the env, naming the one meant.
+    typo = run_command([*script, "--option", "goal_rewrd=20", "--out", "typo"], tmp_path, TIMEOUT_S)
+    assert typo.returncode != 0
+    assert "did you mean 'goal_reward' for 'goal_rewrd'" in typo.stderr
+
+
 def test_her_sb3_trains_and_writes_its_held_out_results(tmp_path: Path) -> None:
     pytest.importorskip("stable_baselines3", reason="needs mazesim[sb3] (make sb3-deps)")
     task = "mazesim/UnseenMazeGoal-v0"

@@ -48,6 +48,26 @@ def test_venv_refuses_a_python_older_than_39(tmp_path: Path) -> None:
     assert not (tmp_path / "venv").exists()
 
 
+@pytest.mark.skipif(shutil.which("make") is None, reason="needs make")
+def test_a_venv_left_without_pip_is_made_again(tmp_path: Path) -> None:
+    # What `python3 -m venv` leaves where Debian's python3-venv is missing: a python, no pip.
+    venv = tmp_path / "venv"
+    subprocess.run(
+        [shutil.which("python3") or "python3", "-m", "venv", "--without-pip", str(venv)],
+        check=True,
+        timeout=60,
+    )
+    # The interpreter that would make it again: it says what it was asked and stops there.
+    python = tmp_path / "python3"
+    python.write_text('#!/bin/sh\necho "asked: $*" >&2; exit 1\n')
+    python.chmod(0o755)
+    made = _make("venv", f"VENV={venv}", f"PYTHON={python}")
+    assert made.returncode != 0
+    assert f"make venv: {venv} has no pip" in made.stderr and "python3-venv" in made.stderr
+    assert f"asked: -m venv --clear {venv}" in made.stderr
+    assert "No module named pip" not in made.stderr
+
+
 #: The developer tools: `make demo` must not install them, the targets that use them must.
 DEV_TOOLS = (
     "pytest",

@@ -32,13 +32,21 @@ import math
 from collections import deque
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import Any, Protocol
 
 import numpy as np
 import numpy.typing as npt
 
 from mazesim.errors import InvalidArgumentError
 
-__all__ = ["BaselineResult", "CellAgent", "FrontierExplorer", "WallFollower", "evaluate"]
+__all__ = [
+    "BaselineResult",
+    "CellAgent",
+    "EpisodeAgent",
+    "FrontierExplorer",
+    "WallFollower",
+    "evaluate",
+]
 
 #: A cell as (column, row), row 0 at the bottom (y up), as the pose's x and y.
 Cell = tuple[int, int]
@@ -277,25 +285,39 @@ class BaselineResult:
     mean_success_length: float
 
 
+class EpisodeAgent(Protocol):
+    """What :func:`evaluate` drives each episode with: a hand rule of this module, or a policy of
+    your own (``act`` returns the action for one env's observation)."""
+
+    def act(self, observation: npt.NDArray[np.float32]) -> Any:
+        """The action for ``observation``."""
+
+
 def evaluate(
     task: str,
-    agent: Callable[[Sequence[str], tuple[int, int]], CellAgent] | None,
+    agent: Callable[[Sequence[str], tuple[int, int]], EpisodeAgent] | None,
     episodes: int = 100,
     seed: int = 10**6,
     include_pose: bool = False,
     maze_size: tuple[int, int] | None = None,
+    **options: Any,
 ) -> BaselineResult:
     """Runs one episode in each of ``episodes`` environments of ``task`` seeded ``seed``,
     ``seed + 1``, ... (``examples/ppo_sb3.py``'s held-out episodes for ``seed = 10**6 + its
-    seed``), each driven by its own ``agent(observation_names, maze_size)``,
+    seed``), each driven by its own ``agent(observation_names, maze_size)`` (any object with an
+    ``act(observation)`` method: a policy of your own too),
     or by uniformly random actions (the action space seeded with ``seed``) if ``agent`` is None;
     with ``include_pose`` the observations hold the pose (the episodes are the same); with
     ``maze_size`` the random mazes have that many cells (the task's own, 5 x 5, without).
+    ``options`` are further options of the task (:class:`~mazesim.envs.options.EnvOptions`),
+    such as ``world=`` a world sampler that draws held-out mazes of your own.
     """
     import gymnasium
 
     size = (5, 5) if maze_size is None else (int(maze_size[0]), int(maze_size[1]))
-    envs = gymnasium.make_vec(task, num_envs=episodes, include_pose=include_pose, maze_size=size)
+    envs = gymnasium.make_vec(
+        task, num_envs=episodes, include_pose=include_pose, maze_size=size, **options
+    )
     try:
         observations, _ = envs.reset(seed=seed)
         names = _observation_names(envs)

@@ -134,6 +134,12 @@ class MazeSizeCurriculum:
                 "expected an env of random mazes (world='random'); found the fixed world "
                 f"{world.name!r}"
             )
+        if target.options.world_sampler is not None:
+            raise InvalidArgumentError(
+                "expected an env of random mazes (world='random'); found an env whose worlds "
+                "come from a world sampler (world=a callable), which maze_size does not change: "
+                "let the sampler draw the curriculum's size, generate_maze(*curriculum.size, ...)"
+            )
         target.options = dataclasses.replace(target.options, maze_size=self.size)
 
     def state(self) -> dict[str, Any]:

@@ -11,6 +11,7 @@ import dataclasses
 import inspect
 import numbers
 import os
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any, Union
 
@@ -34,7 +35,9 @@ __all__ = [
     "DEFAULT_MAX_EPISODE_STEPS",
     "MAX_ENV_CELLS",
     "EnvOptions",
+    "SampledWorld",
     "WorldOption",
+    "WorldSampler",
     "draw_seed",
     "option_names",
 ]
@@ -52,9 +55,20 @@ DEFAULT_MAX_EPISODE_STEPS = 3000
 #: 6 s to reset and 150 MB; a 2,500 x 2,500 one, legal for the simulators, ran out of memory.
 MAX_ENV_CELLS = 250_000
 
-#: What the ``world`` option accepts: a built-in name, a path, ``"random"``, a World or a World's
-#: JSON form (:func:`world_as_json`).
-WorldOption = Union[str, "os.PathLike[str]", World, dict[str, str]]
+#: What a world sampler (the ``world`` option given as a callable) returns for each episode: a
+#: World, a built-in world name or a path to a world file.
+SampledWorld = Union[str, "os.PathLike[str]", World]
+#: A world sampler: called at every reset with the env's RNG (a ``numpy.random.Generator``),
+#: it returns the world of the next episode, drawing whatever it draws from that RNG.
+WorldSampler = Callable[[np.random.Generator], SampledWorld]
+#: What the ``world`` option accepts: a built-in name, a path, ``"random"``, a World, a World's
+#: JSON form (:func:`world_as_json`) or a world sampler.
+WorldOption = Union[str, "os.PathLike[str]", World, dict[str, str], WorldSampler]
+
+#: The seed of the RNG a world sampler is called with once when the env is made, for a world of
+#: the kind its episodes run in (the spaces' bounds, the frame rate); the episodes' RNGs are the
+#: env's own.
+SAMPLER_PROBE_SEED = 0
 
 
 #: Keywords of a vector env that reach a single env when given to ``make_vec`` in sync or async
@@ -80,7 +94,8 @@ class EnvOptions:
     """The checked options of an environment (see :class:`~mazesim.envs.EPuckMazeEnv`).
 
     Attributes:
-        world: The fixed world, or None when every episode draws a random maze.
+        world: The fixed world, or None when every episode draws its world (a random maze, or
+            the world of ``world_sampler``).
         maze_size: (width, height) in cells of the random mazes.
         robot: The robot profile.
         action_mode: ``"continuous"`` or ``"discrete"``.
@@ -93,6 +108,7 @@ class EnvOptions:
         control_step_ms: The control step in ms, or None for the world's basic time step.
         reward: The reward weights.
         render_size: (width, height) of the rendered images in pixels.
+        world_sampler: The callable that draws each episode's world from the env's RNG, or None.
     """
 
     world: World | None
@@ -107,6 +123,7 @@ class EnvOptions:
     start_goal: str = "world"
     reward: RewardWeights = field(default_factory=RewardWeights)
     render_size: tuple[int, int] = (400, 400)
+    world_sampler: WorldSampler | None = None
 
     @classmethod
     def create(
@@ -130,9 +147,14 @@ class EnvOptions:
 
         Args:
             world: A built-in world name, a path to a world file, a ``World`` (or its JSON form,
-                :func:`world_as_json`), or ``"random"``
+                :func:`world_as_json`), ``"random"``
                 for a fresh random maze at each reset (``maze_size`` cells, drawn from the env's
-                RNG).
+                RNG), or a callable, a distribution of worlds of your own: called at each reset
+                with the env's RNG (``numpy.random.Generator``), it returns that episode's world
+                (a ``World``, a built-in name or a path) and draws only from that RNG, so the
+                same seed gives the same worlds. It is also called once when the env is made,
+                with an RNG of seed 0, for a world of the kind the episodes run in (the spaces'
+                bounds come from it).
             robot: The robot profile (``mazesim.robot_profile_names()``): ``"e-puck"``,
                 ``"e-puck2"``, ``"e-puck-hardware"``, ``"seed"`` or ``"alphabot2"``, or the path
                 of a profile ``.toml`` file (:meth:`mazesim.RobotProfile.load`).
@@ -206,7 +228,8 @@ class EnvOptions:
                 f"expected render_size to be pixels (16 to 4096) or (width, height), "
                 f"found {render_size!r}"
             )
-        resolved = None if _is_random(world) else _resolve_world(world)
+        sampler = world if callable(world) and not isinstance(world, World) else None
+        resolved = None if _is_random(world) or sampler is not None else _resolve_world(world)
         if resolved is not None:
             _check_cells(resolved)
         if resolved is not None and start_goal == "random":
@@ -224,6 +247,7 @@ class EnvOptions:
             start_goal=start_goal,
             reward=RewardWeights(goal_reward, collision_penalty, progress_reward),
             render_size=(int(sides[0]), int(sides[1])),
+            world_sampler=sampler,
         )
 
     @classmethod
@@ -254,8 +278,37 @@ class EnvOptions:
         return cls.create(**keywords)
 
     def sample_world(self) -> World:
-        """A world of the kind the episodes run in: the fixed world, or a random maze (seed 0)."""
-        return self.world if self.world is not None else self.random_maze(0)
+        """A world of the kind the episodes run in: the fixed world, a random maze (seed 0), or
+        the world sampler's draw from an RNG of seed :data:`SAMPLER_PROBE_SEED`."""
+        if self.world is not None:
+            return self.world
+        if self.world_sampler is not None:
+            return self.sampled_world(np.random.default_rng(SAMPLER_PROBE_SEED))
+        return self.random_maze(0)
+
+    def sampled_world(self, rng: np.random.Generator) -> World:
+        """The world sampler's world for ``rng``, checked as a fixed world is.
+
+        Raises:
+            InvalidArgumentError: The sampler returned something that is not a World, a name or
+                a path, or a world the options cannot run (too many cells; without a cell maze
+                when ``start_goal="random"``).
+        """
+        sampler = self.world_sampler
+        assert sampler is not None
+        drawn = sampler(rng)
+        if not isinstance(drawn, (World, str, os.PathLike)) or _is_random(drawn):
+            raise InvalidArgumentError(
+                f"expected the world sampler {_callable_name(sampler)} to return a World, a "
+                f"built-in world name or a path to a world file; found {drawn!r}. It is called "
+                "with the env's numpy.random.Generator at each reset: return e.g. "
+                "mazesim.generate_maze(5, 5, seed=int(rng.integers(2**32)))"
+            )
+        world = _resolve_world(drawn)
+        _check_cells(world)
+        if self.start_goal == "random":
+            start_and_goal_cells(world)
+        return world
 
     def random_maze(self, seed: int) -> World:
         """The random maze of one episode, generated from ``seed`` (a single-corridor draw is
@@ -264,10 +317,15 @@ class EnvOptions:
         return generate_maze(width, height, seed=seed, junction=False)
 
     def next_world(self, rng: np.random.Generator) -> tuple[World | None, StartAndGoal | None]:
-        """The world of the next episode, a random maze drawn from ``rng`` (None to keep the
-        fixed world: nothing is drawn for it), and its start and goal, drawn next if
-        ``start_goal="random"`` (None for the world's own)."""
-        world = self.world if self.world is not None else self.random_maze(draw_seed(rng))
+        """The world of the next episode, a random maze or the world sampler's world drawn from
+        ``rng`` (None to keep the fixed world: nothing is drawn for it), and its start and goal,
+        drawn next if ``start_goal="random"`` (None for the world's own)."""
+        if self.world is not None:
+            world = self.world
+        elif self.world_sampler is not None:
+            world = self.sampled_world(rng)
+        else:
+            world = self.random_maze(draw_seed(rng))
         drawn = draw_start_and_goal(world, rng) if self.start_goal == "random" else None
         return (None if self.world is not None else world), drawn
 
@@ -338,6 +396,12 @@ def json_world_spec() -> Any:
     return property(get, put, doc="The env's spec, its world in JSON form (world_as_json).")
 
 
+def _callable_name(sampler: Any) -> str:
+    """The name of a world sampler for a message: its qualified name, or its repr."""
+    name = getattr(sampler, "__qualname__", None)
+    return repr(name) if isinstance(name, str) else repr(sampler)
+
+
 def _resolve_world(world: WorldOption) -> World:
     if isinstance(world, World):
         return world
@@ -345,11 +409,11 @@ def _resolve_world(world: WorldOption) -> World:
         return World.from_toml(str(world["toml"]), str(world["source"]))
     if not isinstance(world, (str, os.PathLike)):
         raise InvalidArgumentError(
-            f'expected world to be a built-in world name, a path, "random", a World or '
-            f'{{"toml": ..., "source": ...}}; '
+            f'expected world to be a built-in world name, a path, "random", a World, '
+            f'{{"toml": ..., "source": ...}} or a callable; '
             f'found {world!r}. An env runs one world, or with "random" a new generated maze of '
-            "maze_size cells at each reset; mazes of your own choosing go one per env of a "
-            "vector env: gymnasium.vector.SyncVectorEnv([lambda w=w: gymnasium.make(TASK, "
-            "world=w) for w in worlds]) (or AsyncVectorEnv)"
+            "maze_size cells at each reset; for mazes of your own choosing give a callable "
+            "that draws each episode's world from the env's RNG: world=lambda rng: "
+            "worlds[rng.integers(len(worlds))]"
         )
     return mazesim.load_world(world)
