@@ -138,3 +138,8 @@ def test_evaluate_runs_a_policy_of_ones_own_on_held_out_mazes_of_a_sampler() -> 
     assert again == first and first.success > 0
     straight = evaluate(TASK, Forward, episodes=4, maze_size=(3, 3), world=held_out)
     assert straight.episodes == 4 and straight.mean_length > 0
+
+
+def test_evaluate_refuses_no_episodes_naming_its_own_argument() -> None:
+    with pytest.raises(InvalidArgumentError, match="expected episodes to be a whole number of at"):
+        evaluate(TASK, None, episodes=0)

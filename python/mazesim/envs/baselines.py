@@ -314,6 +314,11 @@ def evaluate(
     """
     import gymnasium
 
+    if not isinstance(episodes, (int, np.integer)) or isinstance(episodes, bool) or episodes < 1:
+        raise InvalidArgumentError(
+            f"expected episodes to be a whole number of at least 1 (one held-out environment "
+            f"each), found {episodes!r}"
+        )
     size = (5, 5) if maze_size is None else (int(maze_size[0]), int(maze_size[1]))
     envs = gymnasium.make_vec(
         task, num_envs=episodes, include_pose=include_pose, maze_size=size, **options
