@@ -125,11 +125,22 @@ def test_a_controller_that_fails_at_once_in_a_world_of_several_lists_every_robot
     ]
 
 
-def test_keys_are_refused_in_a_world_run_naming_what_to_give(
-    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+def test_a_world_run_takes_a_key_script_and_refuses_a_malformed_one(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    code = main(["webots", "run", str(WORLD), "--out", str(tmp_path / "o"), "--keys", "k.txt"])
+    """``--keys`` types on every controller of a world run (these enable no keyboard, so they
+    run as without it); a malformed script is refused before the run, naming its line."""
+    monkeypatch.setenv("SWARM_LOG", str(tmp_path))
+    keys = tmp_path / "k.txt"
+    keys.write_text("0.1 UP\n")
+    out = tmp_path / "o"
+    code = main(
+        ["webots", "run", str(WORLD), "--seconds", "0.5", "--out", str(out), "--keys", str(keys)]
+    )
+    assert code == 0
+    assert len(json.loads((out / "summary.json").read_text())["robots"]) > 1
+    keys.write_text("0.1 UP\nsoon UP\n")
+    code = main(["webots", "run", str(WORLD), "--out", str(tmp_path / "p"), "--keys", str(keys)])
     assert code == 2
-    error = capsys.readouterr().err
-    assert "--keys types on one controller's Keyboard; a world run" in error
-    assert f"'mazesim webots run CONTROLLER --world {WORLD} --keys k.txt'" in error
+    assert f"{keys}:2" in capsys.readouterr().err
+    assert not (tmp_path / "p" / "summary.json").exists()

@@ -150,8 +150,9 @@ def register(commands: Any) -> None:
         metavar="FILE",
         help="key script for the Keyboard: lines of 'time_s key [duration_s]' (key: one "
         "character, a Webots key name such as UP, DOWN, LEFT, RIGHT, with modifiers such "
-        "as SHIFT+A, or '-' to release); without it getKey() returns -1; a run of one "
-        "controller only (refused with WORLD.wbt)",
+        "as SHIFT+A, or '-' to release); without it getKey() returns -1; with WORLD.wbt "
+        "every controller's Keyboard plays it, as Webots types to every robot when none is "
+        "selected",
     )
     run.add_argument(
         "--strict",

@@ -1,10 +1,10 @@
 """``mazesim webots run WORLD.wbt``: every robot of a Webots world with its own controller.
 
 The summary, the picture, the table, ``--html``/``--video``/``--record`` and the ``--live``
-window cover every robot (:class:`WorldWatch`); ``--keys``, which types on one controller's
-Keyboard, is refused with what to do instead. A run of one controller in a mazesim world of
-several robots (``webots run CONTROLLER --world WORLD.toml``) covers them all too
-(:class:`RobotPaths`).
+window cover every robot (:class:`WorldWatch`); ``--keys`` types on every controller's
+Keyboard, as Webots sends the keys typed with no robot selected to every robot. A run of one
+controller in a mazesim world of several robots (``webots run CONTROLLER --world WORLD.toml``)
+covers them all too (:class:`RobotPaths`).
 """
 
 from __future__ import annotations
@@ -18,13 +18,11 @@ from typing import Any, TextIO
 
 from mazesim._atomic import atomic_file
 from mazesim._core import RobotProfile, World
-from mazesim._paths import shell_command
 from mazesim.errors import InvalidArgumentError
 
 __all__ = [
     "RobotPaths",
     "WorldWatch",
-    "refuse_keys",
     "robot_controllers",
     "run_world_command",
     "whole_world_run",
@@ -197,32 +195,6 @@ def _profile_of(simulator: Any) -> RobotProfile:
     return profile
 
 
-def refuse_keys(args: argparse.Namespace) -> None:
-    """Refuses ``--keys`` in a world run: it types on one controller's Keyboard.
-
-    Raises:
-        InvalidArgumentError: It was given.
-    """
-    if getattr(args, "keys", None):
-        raise InvalidArgumentError(
-            "--keys types on one controller's Keyboard; a world run (WORLD.wbt as the first "
-            "argument) runs every robot's controller: give the controller to type to instead, "
-            "'"
-            + shell_command(
-                "mazesim",
-                "webots",
-                "run",
-                "CONTROLLER",
-                "--world",
-                args.controller,
-                "--keys",
-                args.keys,
-            )
-            + "', "
-            "or leave --keys out"
-        )
-
-
 def whole_world_run(args: argparse.Namespace, controller_file: str) -> argparse.Namespace | None:
     """The arguments of a world run standing for ``webots run CONTROLLER --world WORLD.wbt``
     when another robot of the world leaves its ``controller`` field out and so runs its PROTO's
@@ -321,10 +293,11 @@ def run_world_command(args: argparse.Namespace, out: TextIO) -> int:
         write_views,
         written_lines,
     )
+    from mazesim.webots.keyboard import read_keys
     from mazesim.webots.lockstep import refuse_import_warnings, run_world
     from mazesim.webots.runner import controller_file
 
-    refuse_keys(args)
+    keys = read_keys(args.keys) if getattr(args, "keys", None) else None
     refuse_overwriting_inputs(viewing_outputs(args), [("the Webots world", args.controller)])
     given = {
         name: controller_file(file)
@@ -349,6 +322,7 @@ def run_world_command(args: argparse.Namespace, out: TextIO) -> int:
         noise=not args.no_noise,
         controllers=given,
         observer=recorder,
+        keys=keys,
     )
     for robot in run.robots:
         if robot.note:

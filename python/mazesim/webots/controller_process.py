@@ -36,6 +36,7 @@ from multiprocessing.connection import Connection
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
+    from mazesim.webots.keyboard import KeyScript
     from mazesim.webots.requirements import PreparedController
 
 __all__ = [
@@ -67,6 +68,7 @@ class ControllerJob:
         world_text: The running world's description, when a supervisor imported the robot
             (:mod:`mazesim.webots.scene_edits`; ``robot_line`` is a line of it), else None: the
             file's text.
+        keys: The keyboard script its ``Keyboard`` plays, or None: no key is pressed.
     """
 
     world_path: str
@@ -78,6 +80,7 @@ class ControllerJob:
     noise: bool
     prepared: PreparedController | None = None
     world_text: str | None = None
+    keys: KeyScript | None = None
 
 
 @dataclass(frozen=True)
@@ -248,6 +251,7 @@ def controller_main(connection: Connection, job: ControllerJob) -> None:
             fleet=Remote(connection, "fleet"),
             robot_index=job.robot_index,
             prepared=job.prepared,
+            keys=job.keys,
         )
         summary = ControllerSummary(
             run.exit_status, run.error, run.reached_end, run.stopped, run.quit_requested, run.steps

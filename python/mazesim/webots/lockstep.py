@@ -50,6 +50,7 @@ from mazesim._core import RobotProfile, Simulator, World
 from mazesim._toml import dump_toml, load_toml
 from mazesim.errors import ControllerBuildError, MazesimIOError, WorldFormatError
 from mazesim.webots.controller_process import ControllerJob, answer, state_after_step
+from mazesim.webots.keyboard import KeyScript
 from mazesim.webots.line_of_sight import LineOfSight, robot_body_radii
 from mazesim.webots.own_sensors import own_sensors
 from mazesim.webots.process_template import ControllerProcesses
@@ -564,6 +565,7 @@ def run_world(
     noise: bool = True,
     controllers: Mapping[str, str] | None = None,
     observer: StepObserver | None = None,
+    keys: KeyScript | None = None,
 ) -> WorldRun:
     """Runs every robot of a ``.wbt`` world with its own controller, in lockstep.
 
@@ -579,6 +581,9 @@ def run_world(
         controllers: Controller files for some robots, by robot name, DEF name or controller
             field (they win over the world's ``controller`` fields).
         observer: Called before every step and after the last (:data:`StepObserver`).
+        keys: The keyboard script, played on every controller's ``Keyboard`` (a controller
+            that enables its keyboard reads it, one that does not is untouched), as Webots
+            sends the keys typed with no robot selected to every robot; None: no key.
 
     Returns:
         What each robot did.
@@ -611,7 +616,7 @@ def run_world(
             simulators.append(
                 _own_simulator(world_path, robot, own.get(index, profile), robot_seed, noise)
             )
-        run, job = _robot_run(world_path, index, robot, controllers or {}, seconds, noise)
+        run, job = _robot_run(world_path, index, robot, controllers or {}, seconds, noise, keys)
         runs.append(run)
         if job is not None:
             jobs[index] = job
@@ -633,7 +638,9 @@ def run_world(
         simulation clock ends every robot's run together."""
         imported_s = float(simulators[index].time)
         left = max(seconds - imported_s, 1e-9)
-        run, job = _robot_run(world_path, index, robots[index], controllers or {}, left, noise)
+        run, job = _robot_run(
+            world_path, index, robots[index], controllers or {}, left, noise, keys
+        )
         run.imported_s = imported_s
         robot, text = robots[index], fleet.text or ""  # the world as the import changed it
         traction.join(index, robot, read_scene(text, robot.get("model"), robot["line"]))
@@ -698,6 +705,7 @@ def _robot_run(
     given: Mapping[str, str],
     seconds: float,
     noise: bool,
+    keys: KeyScript | None = None,
 ) -> tuple[RobotRun, ControllerJob | None]:
     """Robot ``index``'s run, and the job of its controller process (None without one)."""
     profile = robot_profile_name({"robot_profile": robot.get("profile")})
@@ -710,7 +718,9 @@ def _robot_run(
         if note == _other_language(controller_name(robot), world_path):
             run.missing = (note,)
         return run, None
-    job = ControllerJob(world_path, index, int(robot["line"]), file, profile, seconds, noise)
+    job = ControllerJob(
+        world_path, index, int(robot["line"]), file, profile, seconds, noise, keys=keys
+    )
     return run, job
 
 

@@ -24,7 +24,7 @@ from __future__ import annotations
 import math
 import struct
 from collections import deque
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 from mazesim.errors import InvalidArgumentError, WrongTypeError, _a_type
@@ -112,6 +112,17 @@ class _Tuned:
 
     CHANNEL_BROADCAST = CHANNEL_BROADCAST
     _channel: int
+    #: The node's ``allowedChannels`` (empty: every channel).
+    _allowed: tuple[int, ...] = ()
+
+    def _allow(self, channel: int, allowed: Sequence[int]) -> None:
+        """Takes the node's ``channel`` and ``allowedChannels``: a channel the list leaves out
+        becomes its first, as Webots sets it when it loads the world ("'channel' is not
+        included in 'allowedChannels'")."""
+        self._allowed = tuple(int(c) for c in allowed)
+        self._channel = int(channel)
+        if self._allowed and self._channel not in self._allowed:
+            self._channel = self._allowed[0]
 
     def setChannel(self, channel: int) -> None:
         raise NotImplementedError
@@ -119,9 +130,9 @@ class _Tuned:
     def _tuned_to(self, channel: int, function: str) -> int | None:
         """The channel a ``setChannel`` call asks for, as Webots takes it: a C ``int``, so a
         number beyond the int32 range is refused (Webots' Python API would pass its low 32 bits
-        on, a channel the call never named); a channel below -1 (:attr:`CHANNEL_BROADCAST`)
-        prints Webots' error and is ignored (None), as ``wb_emitter_set_channel`` and
-        ``wb_receiver_set_channel`` do."""
+        on, a channel the call never named); a channel below -1 (:attr:`CHANNEL_BROADCAST`),
+        or one the node's ``allowedChannels`` leaves out, prints Webots' error and is ignored
+        (None), as ``wb_emitter_set_channel`` and ``wb_receiver_set_channel`` do."""
         tuned = int(channel)
         if not -(2**31) <= tuned < 2**31:
             raise InvalidArgumentError(
@@ -132,6 +143,12 @@ class _Tuned:
             _print_error(
                 f"Error: {function}() called with an invalid channel={tuned}. "
                 "Please use a channel inside the range [-1,inf)."
+            )
+            return None
+        if self._allowed and tuned not in self._allowed and tuned != self._channel:
+            _print_error(
+                f"Error: {function}() called with channel={tuned}, which is not between allowed "
+                "channels. Please use an allowed channel."
             )
             return None
         return tuned
@@ -160,9 +177,10 @@ class Emitter(_Tuned, NotSimulated, Device):
         buffer_size: int = UNLIMITED,
         kind: str = RADIO,
         cone: Cone | None = None,
+        allowed_channels: Sequence[int] = (),
     ) -> None:
         super().__init__(name, simulation)
-        self._channel = int(channel)
+        self._allow(channel, allowed_channels)
         self._kind = transmission_type(kind)
         self._cone = cone
         self._max_range = float(max_range)
@@ -246,9 +264,10 @@ class Receiver(_Tuned, NotSimulated, _Sensor):
         axes: Axes | None = None,
         cone: Cone | None = None,
         kind: str = RADIO,
+        allowed_channels: Sequence[int] = (),
     ) -> None:
         super().__init__(name, simulation)
-        self._channel = int(channel)
+        self._allow(channel, allowed_channels)
         self._kind = transmission_type(kind)
         self._buffer_size = int(buffer_size)
         self._axes = axes or _unturned(simulation)
@@ -391,11 +410,25 @@ def _float_field(fields: Mapping[str, Any], name: str, default: float) -> float:
     return float(value) if isinstance(value, (int, float)) and math.isfinite(value) else default
 
 
+def _channels_field(fields: Mapping[str, Any]) -> tuple[int, ...]:
+    """The node's ``allowedChannels`` (MFInt32; empty, Webots' default, allows every
+    channel): its whole numbers from -1 up, in order; a value of another kind is left out."""
+    value = fields.get("allowedChannels", ())
+    values = value if isinstance(value, (list, tuple)) else [value]
+    return tuple(
+        int(v)
+        for v in values
+        if isinstance(v, (int, float)) and not isinstance(v, bool)
+        and math.isfinite(v) and float(v).is_integer() and -1 <= v < 2**31
+    )  # fmt: skip
+
+
 def emitter_from_fields(
     name: str, simulation: RobotSimulation, fields: Mapping[str, Any], axes: Any = None
 ) -> Emitter:
     """An Emitter node of the world file, with its fields (Webots' node defaults: type
-    "radio", channel 0, range -1, maxRange -1, bufferSize -1, aperture -1) and its axes in
+    "radio", channel 0, range -1, maxRange -1, bufferSize -1, aperture -1, allowedChannels
+    empty) and its axes in
     the robot's frame (as :func:`receiver_from_fields`)."""
     return Emitter(
         name,
@@ -406,6 +439,7 @@ def emitter_from_fields(
         buffer_size=_int_field(fields, "bufferSize", UNLIMITED),
         kind=transmission_type(fields.get("type")),
         cone=_cone(simulation, fields, axes),
+        allowed_channels=_channels_field(fields),
     )
 
 
@@ -423,6 +457,7 @@ def receiver_from_fields(
         axes=axes_or_none(axes),
         cone=_cone(simulation, fields, axes),
         kind=transmission_type(fields.get("type")),
+        allowed_channels=_channels_field(fields),
     )
 
 
