@@ -99,8 +99,8 @@ def q_batch_update(
 def lower_level_states(observations: npt.NDArray[np.float32]) -> npt.NDArray[np.int64]:
     """The lower level's state (Table 4.1 levels of the first six distance readings, in volts)
     of each row of an (N, W >= 6) float32 array: what ``BatchSimulator.run``'s tabular
-    controller acts on, equal to ``mazesim.learn.discretise.observation_states`` (which, like it,
-    refuses a reading below 0 V with :class:`~mazesim.InvalidArgumentError`)."""
+    controller acts on (``mazesim.learn.discretise.observation_states`` calls it). A reading below
+    0 V is refused with :class:`~mazesim.InvalidArgumentError`."""
 
 def _panic_for_tests(message: str, on_helper_thread: bool = False) -> None:
     """Panics inside the core (only the tests of the panic guard call it)."""

@@ -133,3 +133,16 @@ def test_examples_keep_their_lines_and_wrap_the_notes() -> None:
     notes, listed = text.split("\nexamples:\n")
     assert max(len(line) for line in notes.splitlines()) <= 80
     assert listed.splitlines() == ["  mazesim x " + "--long-option " * 8]
+
+
+@pytest.mark.parametrize("option", ["--world", "--robot", "--controller", "--out"])
+def test_the_ros_demos_describe_their_shared_options_alike(option: str) -> None:
+    """``mazesim ros demo`` and ``mazesim ros2 demo`` take the world, the robot profile, the
+    controller and the output folder the same way: the same choices, metavar and check, and but
+    for the controller's the same help."""
+    found = []
+    for command in ("ros demo", "ros2 demo"):
+        (action,) = [a for a in LEAVES[command]._actions if option in a.option_strings]
+        help_text = None if option == "--controller" else action.help
+        found.append((action.choices, action.metavar, action.type, help_text))
+    assert found[0] == found[1]

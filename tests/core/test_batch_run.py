@@ -23,7 +23,14 @@ from hostile import run_hostile
 from mazesim.actions import WHEEL_SPEED_FRACTIONS
 from mazesim.benchmark import braitenberg
 from mazesim.controllers import AvoidCollision
-from mazesim.learn.discretise import SHARP_TABLE, observation_states
+from mazesim.learn.discretise import (
+    NUM_SENSORS,
+    SHARP_TABLE,
+    distance_levels,
+    encode_state,
+    observation_states,
+    volts_to_cm,
+)
 from mazesim.learn.qlearning import best_allowed
 
 LIMIT = 40
@@ -326,21 +333,29 @@ _TABLE_VOLTS = [volts for _, volts in SHARP_TABLE]
     st.integers(0, 5),
 )
 def test_the_core_discretises_as_numpy_does(volts: list[float], extra: int) -> None:
-    """Both give the same states, or both refuse a reading below 0 V with the same message."""
+    """The core and a numpy reference (the table inverted, then Table 4.1) give the same states,
+    or both refuse a reading below 0 V with the same message."""
     rows = np.array(volts, dtype=np.float32).reshape(-1, 6)
     observations = np.concatenate([rows, np.full((len(rows), extra), 500.0, np.float32)], axis=1)
     if (rows < 0.0).any():
         with pytest.raises(mazesim.InvalidArgumentError, match="readings of 0 V or more") as core:
             mazesim._core.lower_level_states(observations)
         with pytest.raises(mazesim.InvalidArgumentError, match="readings of 0 V or more") as numpy:
-            observation_states(observations)
+            _numpy_states(observations)
         for refusal in (core.value, numpy.value):
             found = re.search(r"found (\S+) V", str(refusal))
             assert found is not None and float(found[1]) == float(rows.min()), refusal
         return
     np.testing.assert_array_equal(
-        mazesim._core.lower_level_states(observations), observation_states(observations)
+        mazesim._core.lower_level_states(observations), _numpy_states(observations)
     )
+
+
+def _numpy_states(observations: npt.NDArray[np.float32]) -> npt.NDArray[np.int64]:
+    """The states of ``observations`` worked out in numpy: each of the first six readings turned
+    into cm, then into its Table 4.1 level, the levels read as a base-4 number."""
+    levels = distance_levels(volts_to_cm(observations[:, :NUM_SENSORS]))
+    return np.asarray(encode_state(levels), dtype=np.int64)
 
 
 def test_lower_level_states_refuses_rows_too_short() -> None:

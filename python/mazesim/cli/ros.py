@@ -17,13 +17,20 @@ from typing import Any
 
 from mazesim.cli._args import (
     non_negative_seconds,
-    output_path,
     positive_int,
     positive_number,
     positive_seconds,
     seed_argument,
 )
-from mazesim.cli._help import examples
+from mazesim.cli._ros_commands import (
+    Command,
+    Option,
+    demo_options,
+    option,
+    refuse_demo_overwrites,
+    register_commands,
+    wants_check,
+)
 from mazesim.replay.views import add_viewing_options
 from mazesim.ros._ros import check_ros_installed
 
@@ -43,7 +50,7 @@ def check_before_parsing(arguments: Sequence[str]) -> None:
     Raises:
         MissingDependencyError: ROS 1 is missing (see :func:`check_ros_installed`).
     """
-    if len(arguments) < 2 or arguments[0] != "ros" or {"-h", "--help"} & set(arguments):
+    if not wants_check(arguments, "ros"):
         return
     if arguments[1] == "demo":
         check_ros_installed(DEMO_COMMANDS)
@@ -59,35 +66,33 @@ def _remapping(text: str) -> str:
     return text
 
 
-def _add_node_arguments(parser: argparse.ArgumentParser, default_name: str) -> None:
-    parser.add_argument(
-        "--name",
-        default=default_name,
-        help="the node's name, unless a __name:= remapping gives one (default: %(default)s)",
-    )
-    parser.add_argument(
-        "remappings",
-        nargs="*",
-        type=_remapping,
-        metavar="NAME:=VALUE",
-        help="ROS remapping arguments, e.g. sensors:=/robot1/sensors or _seed:=3",
+def _node_arguments(default_name: str) -> tuple[Option, ...]:
+    """A node's ``--name`` and its trailing remappings."""
+    return (
+        option(
+            "--name",
+            default=default_name,
+            help="the node's name, unless a __name:= remapping gives one (default: %(default)s)",
+        ),
+        option(
+            "remappings",
+            nargs="*",
+            type=_remapping,
+            metavar="NAME:=VALUE",
+            help="ROS remapping arguments, e.g. sensors:=/robot1/sensors or _seed:=3",
+        ),
     )
 
 
-def _add_wait_option(parser: argparse.ArgumentParser, topic: str) -> None:
-    """Adds ``--wait-for-subscribers`` of a node that publishes ``topic``."""
-    parser.add_argument(
+def _wait_option(topic: str) -> Option:
+    """``--wait-for-subscribers`` of a node that publishes ``topic``."""
+    return option(
         "--wait-for-subscribers",
         type=positive_int,
         metavar="N",
-        help=f"subscribers of {topic} to wait for before starting: 1 (the bridge), 2 with a "
-        "recorder (default: ~wait_for_subscribers or 1)",
+        help=f"subscribers of {topic} to wait for before starting: 1 (the bridge), 2 "
+        "with a recorder (default: ~wait_for_subscribers or 1)",
     )
-
-
-def _node_options(args: argparse.Namespace, names: tuple[str, ...]) -> dict[str, Any]:
-    """A node's options: the command line's values of ``names``, under the same names."""
-    return {name: getattr(args, name) for name in names}
 
 
 def _run_bridge(args: argparse.Namespace) -> int:
@@ -112,7 +117,9 @@ def _run_avoid_collision(args: argparse.Namespace) -> int:
     check_ros_installed()
     from mazesim.ros.avoid_collision import run_avoid_collision
 
-    options = _node_options(args, ("threshold", "max_speed", "wait_for_subscribers"))
+    options = {
+        name: getattr(args, name) for name in ("threshold", "max_speed", "wait_for_subscribers")
+    }
     return run_avoid_collision(options, args.remappings, args.name)
 
 
@@ -120,20 +127,18 @@ def _run_perform_learning(args: argparse.Namespace) -> int:
     check_ros_installed()
     from mazesim.ros.perform_learning import run_perform_learning
 
-    options = _node_options(args, ("policy", "control_step_ms", "wait_for_subscribers"))
+    options = {
+        name: getattr(args, name) for name in ("policy", "control_step_ms", "wait_for_subscribers")
+    }
     return run_perform_learning(options, args.remappings, args.name)
 
 
 def _run_demo(args: argparse.Namespace) -> int:
     import sys
 
-    from mazesim._paths import output_files, refuse_overwriting_inputs
     from mazesim.replay.views import viewing_outputs
 
-    refuse_overwriting_inputs(
-        [*output_files(args.out, ("maze.bag", "trajectory.png")), *viewing_outputs(args)],
-        [("--world", args.world), ("--robot", args.robot)],
-    )
+    refuse_demo_overwrites(args, ("maze.bag", "trajectory.png"), viewing_outputs(args))
     # Before a master is started: without ROS the nodes would fail one by one, much later.
     check_ros_installed(DEMO_COMMANDS)
 
@@ -142,201 +147,192 @@ def _run_demo(args: argparse.Namespace) -> int:
     return run_demo(args, sys.stdout)
 
 
-def register(commands: Any) -> None:
-    """Adds ``mazesim ros ...`` to the ``mazesim`` command's subparsers."""
-    ros = commands.add_parser(
-        "ros",
-        help="run the ROS 1 bridge and controller nodes (needs ROS 1)",
-        description=(
-            "Run mazesim as ROS 1 nodes, as the report's custom ROS controller: the bridge "
-            "publishes sensors, sensor_data, pose and /clock and steps on motor or action "
-            "commands. ROS_MASTER_URI says which master to use. Needs ROS 1's Python packages "
-            "(on Debian: 'make ros-deps')."
-        ),
-        epilog=examples(
-            "mazesim ros demo",
-            "mazesim ros bridge --robot seed --stop-at-goal",
-            "mazesim ros perform-learning",
-        ),
-    )
-    nodes = ros.add_subparsers(dest="ros_command", metavar="NODE", required=True)
+_DEMO = demo_options(
+    "the controller node: hrl (perform-learning, robot seed) or avoid-collision (robot e-puck) "
+    "(default: %(default)s)",
+    "mazesim-ros-demo",
+)
 
-    bridge = nodes.add_parser(
+#: The ``mazesim ros`` commands.
+COMMANDS = (
+    Command(
         "bridge",
-        help="the simulator node: publishes sensors, sensor_data, pose, /clock, odom, tf, Range",
-        description=(
-            "Run a simulator as a ROS node. Publishes sensors (distance then ground sensors, "
-            "Float64MultiArray), sensor_data (Sharp distances in cm + checkpoint, robots with "
-            "Sharp sensors), pose ([x, y, yaw, time]) and /clock; subscribes motor ([left, right] "
-            "rad/s) and action (a primitive action code, String). Beside them: a "
-            "sensor_msgs/Range per distance sensor (ps0..ps7 on the e-puck), nav_msgs/Odometry "
-            "on odom, /tf (odom -> base_link) and /tf_static (the sensor frames); subscribes "
-            "cmd_vel (geometry_msgs/Twist). In lockstep mode it advances one control step per "
-            "command received. Options left out fall back to the node's private parameters "
-            "(~world, ~robot, ...), then to the defaults shown."
-        ),
-        epilog=examples(
+        "the simulator node: publishes sensors, sensor_data, pose, /clock, odom, tf, Range",
+        "Run a simulator as a ROS node. Publishes sensors (distance then ground sensors, "
+        "Float64MultiArray), sensor_data (Sharp distances in cm + checkpoint, robots with "
+        "Sharp sensors), pose ([x, y, yaw, time]) and /clock; subscribes motor ([left, right] "
+        "rad/s) and action (a primitive action code, String). Beside them: a "
+        "sensor_msgs/Range per distance sensor (ps0..ps7 on the e-puck), nav_msgs/Odometry "
+        "on odom, /tf (odom -> base_link) and /tf_static (the sensor frames); subscribes "
+        "cmd_vel (geometry_msgs/Twist). In lockstep mode it advances one control step per "
+        "command received. Options left out fall back to the node's private parameters "
+        "(~world, ~robot, ...), then to the defaults shown.",
+        (
             "mazesim ros bridge",
             "mazesim ros bridge --world arena --mode realtime --speed 2",
             "mazesim ros bridge --robot seed --stop-at-goal __name:=bridge2 pose:=/robot2/pose",
         ),
-    )
-    bridge.add_argument(
-        "--world", metavar="NAME|PATH", help="built-in world or world file (default: seed-maze)"
-    )
-    bridge.add_argument("--robot", metavar="NAME", help="robot profile (default: e-puck)")
-    bridge.add_argument(
-        "--seed", type=seed_argument, metavar="N", help="seed of the sensor noise (default: 0)"
-    )
-    bridge.add_argument(
-        "--mode",
-        choices=("lockstep", "realtime"),
-        help="lockstep: one control step per command; realtime: step on the clock "
-        "(default: lockstep)",
-    )
-    bridge.add_argument(
-        "--speed",
-        type=positive_number,
-        metavar="FACTOR",
-        help="realtime mode: simulated seconds per wall-clock second (default: 1)",
-    )
-    bridge.add_argument(
-        "--duration",
-        type=non_negative_seconds,
-        metavar="S",
-        help="stop after S simulated seconds; 0 runs until stopped (default: 0)",
-    )
-    bridge.add_argument("--no-noise", action="store_true", help="turn the sensor noise off")
-    bridge.add_argument(
-        "--stop-at-goal",
-        action="store_true",
-        help="stop after the step that brings the robot into the world's goal disc",
-    )
-    bridge.add_argument(
-        "--command-period",
-        type=non_negative_seconds,
-        metavar="S",
-        help="lockstep: the controller commands at a rospy.Rate of simulated time with this "
-        "period (rospy.Rate(10): 0.1): each command holds, whole steps, until the clock reaches "
-        "the rate's next tick (default: 0, a step per command)",
-    )
-    _add_node_arguments(bridge, "mazesim_bridge")
-    bridge.set_defaults(run=_run_bridge)
-
-    avoid = nodes.add_parser(
-        "avoid-collision",
-        help="the report's avoid-collision controller node (Listing 3.2)",
-        description=(
-            "Subscribe sensors, run the avoid-collision rule (Alg. 1) on ps0..ps7 and publish "
-            "[left, right] on motor, one command per reading. Needs a bridge running the e-puck."
+        (
+            option(
+                "--world",
+                metavar="NAME|PATH",
+                help="built-in world or world file (default: seed-maze)",
+            ),
+            option("--robot", metavar="NAME", help="robot profile (default: e-puck)"),
+            option(
+                "--seed",
+                type=seed_argument,
+                metavar="N",
+                help="seed of the sensor noise (default: 0)",
+            ),
+            option(
+                "--mode",
+                choices=("lockstep", "realtime"),
+                help="lockstep: one control step per command; realtime: step on the clock "
+                "(default: lockstep)",
+            ),
+            option(
+                "--speed",
+                type=positive_number,
+                metavar="FACTOR",
+                help="realtime mode: simulated seconds per wall-clock second (default: 1)",
+            ),
+            option(
+                "--duration",
+                type=non_negative_seconds,
+                metavar="S",
+                help="stop after S simulated seconds; 0 runs until stopped (default: 0)",
+            ),
+            option("--no-noise", action="store_true", help="turn the sensor noise off"),
+            option(
+                "--stop-at-goal",
+                action="store_true",
+                help="stop after the step that brings the robot into the world's goal disc",
+            ),
+            option(
+                "--command-period",
+                type=non_negative_seconds,
+                metavar="S",
+                help="lockstep: the controller commands at a rospy.Rate of simulated time "
+                "with this period (rospy.Rate(10): 0.1): each command holds, whole steps, "
+                "until the clock reaches the rate's next tick (default: 0, a step per "
+                "command)",
+            ),
+            *_node_arguments("mazesim_bridge"),
         ),
-        epilog=examples(
+        _run_bridge,
+    ),
+    Command(
+        "avoid-collision",
+        "the report's avoid-collision controller node (Listing 3.2)",
+        "Subscribe sensors, run the avoid-collision rule (Alg. 1) on ps0..ps7 and publish "
+        "[left, right] on motor, one command per reading. Needs a bridge running the e-puck.",
+        (
             "mazesim ros avoid-collision",
             "mazesim ros avoid-collision --threshold 120 --wait-for-subscribers 2",
         ),
-    )
-    avoid.add_argument(
-        "--threshold",
-        type=positive_number,
-        metavar="RAW",
-        help="proximity reading that means an obstacle (default: ~threshold or 80)",
-    )
-    avoid.add_argument(
-        "--max-speed",
-        type=positive_number,
-        metavar="RAD_S",
-        help="maximum wheel speed in rad/s (default: ~max_speed or 6.28)",
-    )
-    _add_wait_option(avoid, "motor")
-    _add_node_arguments(avoid, "avoid_collision")
-    avoid.set_defaults(run=_run_avoid_collision)
-
-    learning = nodes.add_parser(
+        (
+            option(
+                "--threshold",
+                type=positive_number,
+                metavar="RAW",
+                help="proximity reading that means an obstacle (default: ~threshold or 80)",
+            ),
+            option(
+                "--max-speed",
+                type=positive_number,
+                metavar="RAD_S",
+                help="maximum wheel speed in rad/s (default: ~max_speed or 6.28)",
+            ),
+            _wait_option("motor"),
+            *_node_arguments("avoid_collision"),
+        ),
+        _run_avoid_collision,
+    ),
+    Command(
         "perform-learning",
-        help="the hierarchical policy node (Alg. 5)",
-        description=(
-            "Subscribe sensor_data, ask the hierarchical policy of mazesim.learn (Alg. 5) for a "
-            "primitive action and publish its code on action, one action per reading. Needs a "
-            "bridge running a robot with Sharp sensors (--robot seed). The policy dead-reckons "
-            "its sub-tasks from its actions, each lasting one control step of the bridge (read "
-            "from the control_step_ms parameter the bridge sets)."
+        "the hierarchical policy node (Alg. 5)",
+        "Subscribe sensor_data, ask the hierarchical policy of mazesim.learn (Alg. 5) for a "
+        "primitive action and publish its code on action, one action per reading. Needs a "
+        "bridge running a robot with Sharp sensors (--robot seed). The policy dead-reckons "
+        "its sub-tasks from its actions, each lasting one control step of the bridge (read "
+        "from the control_step_ms parameter the bridge sets).",
+        ("mazesim ros perform-learning", "mazesim ros perform-learning --policy mazesim-policy"),
+        (
+            option(
+                "--policy",
+                metavar="DIR",
+                help="folder of trained tables (default: ~policy, else the ones shipped "
+                "for seed-maze)",
+            ),
+            option(
+                "--control-step-ms",
+                type=positive_number,
+                metavar="MS",
+                help="how long each action runs (default: ~control_step_ms, else the "
+                "bridge's control_step_ms parameter)",
+            ),
+            _wait_option("action"),
+            *_node_arguments("perform_learning"),
         ),
-        epilog=examples(
-            "mazesim ros perform-learning",
-            "mazesim ros perform-learning --policy mazesim-policy",
-        ),
-    )
-    learning.add_argument(
-        "--policy",
-        metavar="DIR",
-        help="folder of trained tables (default: ~policy, else the ones shipped for seed-maze)",
-    )
-    learning.add_argument(
-        "--control-step-ms",
-        type=positive_number,
-        metavar="MS",
-        help="how long each action runs (default: ~control_step_ms, else the bridge's "
-        "control_step_ms parameter)",
-    )
-    _add_wait_option(learning, "action")
-    _add_node_arguments(learning, "perform_learning")
-    learning.set_defaults(run=_run_perform_learning)
-
-    demo = nodes.add_parser(
+        _run_perform_learning,
+    ),
+    Command(
         "demo",
-        help="bridge + the hierarchical policy node in lockstep on a private master, in a bag",
-        description=(
-            "Start a ROS master on a free loopback port, the bridge in lockstep, a controller "
-            "node and 'rosbag record'; stop everything when the bridge stops, then read the bag "
-            "back and plot the trajectory. With --controller hrl (the default) the seed robot "
-            "runs the perform-learning node (the hierarchical policy shipped for seed-maze) and "
-            "the bridge stops at the goal, or after --seconds; with avoid-collision the e-puck "
-            "runs the avoid-collision node for --seconds. Writes DIR/maze.bag, "
-            "DIR/trajectory.png and DIR/logs/."
-        ),
-        epilog=examples(
+        "bridge + the hierarchical policy node in lockstep on a private master, in a bag",
+        "Start a ROS master on a free loopback port, the bridge in lockstep, a controller "
+        "node and 'rosbag record'; stop everything when the bridge stops, then read the bag "
+        "back and plot the trajectory. With --controller hrl (the default) the seed robot "
+        "runs the perform-learning node (the hierarchical policy shipped for seed-maze) and "
+        "the bridge stops at the goal, or after --seconds; with avoid-collision the e-puck "
+        "runs the avoid-collision node for --seconds. Writes DIR/maze.bag, "
+        "DIR/trajectory.png and DIR/logs/.",
+        (
             "mazesim ros demo",
             "mazesim ros demo --controller avoid-collision --world arena --seconds 30",
             "mazesim ros demo --controller avoid-collision --robot my-epuck.toml",
             "mazesim ros demo --html ros-demo.html",
         ),
+        (
+            _DEMO["controller"],
+            _DEMO["world"],
+            _DEMO["robot"],
+            option(
+                "--seed", type=seed_argument, default=0, metavar="N", help="noise seed (default: 0)"
+            ),
+            option(
+                "--seconds",
+                type=positive_seconds,
+                default=60.0,
+                metavar="S",
+                help="simulated seconds to run at most; hrl stops at the goal before "
+                "(default: %(default)s)",
+            ),
+            _DEMO["out"],
+        ),
+        _run_demo,
+        (add_viewing_options,),
+    ),
+)
+
+
+def register(commands: Any) -> None:
+    """Adds ``mazesim ros ...`` to the ``mazesim`` command's subparsers."""
+    register_commands(
+        commands,
+        "ros",
+        (
+            "run the ROS 1 bridge and controller nodes (needs ROS 1)",
+            "Run mazesim as ROS 1 nodes, as the report's custom ROS controller: the bridge "
+            "publishes sensors, sensor_data, pose and /clock and steps on motor or action "
+            "commands. ROS_MASTER_URI says which master to use. Needs ROS 1's Python packages "
+            "(on Debian: 'make ros-deps').",
+            (
+                "mazesim ros demo",
+                "mazesim ros bridge --robot seed --stop-at-goal",
+                "mazesim ros perform-learning",
+            ),
+        ),
+        COMMANDS,
+        "NODE",
     )
-    demo.add_argument(
-        "--controller",
-        choices=("hrl", "avoid-collision"),
-        default="hrl",
-        help="the controller node: hrl (perform-learning, robot seed) or avoid-collision "
-        "(robot e-puck) (default: %(default)s)",
-    )
-    demo.add_argument(
-        "--world",
-        default="seed-maze",
-        metavar="NAME|PATH",
-        help="built-in world or world file (default: %(default)s)",
-    )
-    demo.add_argument(
-        "--robot",
-        metavar="NAME|PATH",
-        help="built-in robot profile or profile file, with the sensors the controller reads "
-        "(default: seed for hrl, e-puck for avoid-collision)",
-    )
-    demo.add_argument(
-        "--seed", type=seed_argument, default=0, metavar="N", help="noise seed (default: 0)"
-    )
-    demo.add_argument(
-        "--seconds",
-        type=positive_seconds,
-        default=60.0,
-        metavar="S",
-        help="simulated seconds to run at most; hrl stops at the goal before (default: "
-        "%(default)s)",
-    )
-    demo.add_argument(
-        "--out",
-        type=output_path,
-        default="mazesim-ros-demo",
-        metavar="DIR",
-        help="output folder, created if missing (default: %(default)s)",
-    )
-    add_viewing_options(demo)
-    demo.set_defaults(run=_run_demo)

@@ -12,9 +12,15 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from mazesim._paths import output_path
 from mazesim.cli._args import non_negative_int, positive_number, seed_argument
-from mazesim.cli._help import examples
+from mazesim.cli._ros_commands import (
+    Command,
+    demo_options,
+    option,
+    refuse_demo_overwrites,
+    register_commands,
+    wants_check,
+)
 from mazesim.episodes import MAX_STEPS
 from mazesim.errors import InvalidArgumentError
 from mazesim.ros2._deps import require_ros2
@@ -30,9 +36,8 @@ def check_before_parsing(arguments: Sequence[str]) -> None:
     Raises:
         MissingDependencyError: ``cyclonedds`` or ``rosbags`` is missing.
     """
-    if len(arguments) < 2 or arguments[0] != "ros2" or {"-h", "--help"} & set(arguments):
-        return
-    require_ros2()
+    if wants_check(arguments, "ros2"):
+        require_ros2()
 
 
 def take_ros_arguments(arguments: Sequence[str]) -> tuple[list[str], Any]:
@@ -116,19 +121,21 @@ def _robot_namespace(text: str) -> str:
     return robot_namespaces([text.lstrip("/")])[0]
 
 
-def _add_common(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument(
+#: The options every ``mazesim ros2`` command takes, last.
+_COMMON = (
+    option(
         "--ros-distro",
         choices=DISTROS,
         default="humble",
         help="the ROS 2 distribution whose message layouts to speak (default: %(default)s)",
-    )
-    parser.add_argument(
+    ),
+    option(
         "--network",
         action="store_true",
         help="discover over the network (the subnet); by default this machine only, unless "
         "ROS_AUTOMATIC_DISCOVERY_RANGE or ROS_LOCALHOST_ONLY=0 says otherwise",
-    )
+    ),
+)
 
 
 def _run_bridge(args: argparse.Namespace) -> int:
@@ -175,13 +182,10 @@ def _run_avoid_collision(args: argparse.Namespace) -> int:
 def _run_demo(args: argparse.Namespace) -> int:
     _refuse_ros_arguments(args, "demo")
     import mazesim
-    from mazesim._paths import output_files, refuse_overwriting_inputs
     from mazesim.maze import refuse_blocked_start
     from mazesim.ros2.demo import run_demo
 
-    refuse_overwriting_inputs(
-        output_files(args.out, ("bag",)), [("--world", args.world), ("--robot", args.robot)]
-    )
+    refuse_demo_overwrites(args, ("bag",))
     world = mazesim.load_world(args.world)  # a bad world fails here, before any process starts
     refuse_blocked_start(world, args.world)
     if len(world.robots) > 1:
@@ -204,204 +208,200 @@ def _run_demo(args: argparse.Namespace) -> int:
     return 0
 
 
-def register(commands: Any) -> None:
-    """Adds ``mazesim ros2`` and its subcommands."""
-    parser = commands.add_parser(
-        "ros2",
-        help="run the ROS 2 bridge and controller nodes over DDS (needs mazesim[ros2])",
-        description=(
-            "Run mazesim as ROS 2 nodes over DDS, with no ROS 2 installation (the extra "
-            "mazesim[ros2] brings Cyclone DDS and rosbags): the bridge publishes the e-puck's "
-            "standard topics (/scan, /odom, /tf, one Range per sensor, /clock) and the report's "
-            "/sensors and /sensor_data, and drives on /cmd_vel, /motor or /action; the controller "
-            "nodes and a recorded demo are beside it (docs/ros2.md)."
-        ),
-        epilog=examples(
-            "mazesim ros2 bridge --world seed-maze",
-            "mazesim ros2 bridge --mode free --speed 2 --ros-distro jazzy",
-            "mazesim ros2 demo --out ros2-demo",
-        ),
-    )
-    sub = parser.add_subparsers(dest="ros2_command", required=True, metavar="COMMAND")
-    bridge = sub.add_parser(
+_DEMO = demo_options("the node that drives (default: %(default)s)", "mazesim-ros2-demo")
+
+#: The ``mazesim ros2`` commands.
+COMMANDS = (
+    Command(
         "bridge",
-        help="the simulator behind the e-puck's ROS 2 topics",
-        description=(
-            "Run a simulator as a ROS 2 node: after each control step it publishes the sensors "
-            "(a sensor_msgs/Range per distance and ground sensor, /scan, /sensors, /sensor_data), "
-            "/odom, /joint_states, /tf and /clock; it drives on /cmd_vel, /motor ([left, right] "
-            "rad/s) or /action (a primitive action code). In lockstep mode it advances one "
-            "control step per command; free mode steps on its own, controlled on /sim_control."
-        ),
-        epilog=examples(
+        "the simulator behind the e-puck's ROS 2 topics",
+        "Run a simulator as a ROS 2 node: after each control step it publishes the sensors "
+        "(a sensor_msgs/Range per distance and ground sensor, /scan, /sensors, /sensor_data), "
+        "/odom, /joint_states, /tf and /clock; it drives on /cmd_vel, /motor ([left, right] "
+        "rad/s) or /action (a primitive action code). In lockstep mode it advances one "
+        "control step per command; free mode steps on its own, controlled on /sim_control.",
+        (
             "mazesim ros2 bridge --world seed-maze --bag run1",
             "mazesim ros2 bridge --robot seed --stop-at-goal --ros-distro jazzy",
             "mazesim ros2 bridge --mode free --speed 0 --paused",
         ),
-    )
-    bridge.add_argument(
-        "--world", default="seed-maze", help="world name or file (default: %(default)s)"
-    )
-    bridge.add_argument("--robot", default="e-puck", help="robot profile (default: %(default)s)")
-    bridge.add_argument(
-        "--seed",
-        type=seed_argument,
-        default=0,
-        help="the sensor noise's seed (default: %(default)s)",
-    )
-    bridge.add_argument("--no-noise", action="store_true", help="noise-free sensors")
-    bridge.add_argument(
-        "--mode",
-        choices=("lockstep", "free"),
-        default="lockstep",
-        help="lockstep: one control step per command; free: steps on its own "
-        "(default: %(default)s)",
-    )
-    bridge.add_argument(
-        "--speed",
-        type=_speed,
-        default=1.0,
-        help="free mode: simulated seconds per wall-clock second, 0 for as fast as possible "
-        "(default: %(default)s)",
-    )
-    bridge.add_argument("--paused", action="store_true", help="free mode: start paused")
-    bridge.add_argument(
-        "--stop-after",
-        type=non_negative_int,
-        default=0,
-        help="stop after N steps, 0 for never (default: %(default)s)",
-    )
-    bridge.add_argument("--stop-at-goal", action="store_true", help="stop once at the goal")
-    bridge.add_argument("--bag", default=None, help="record a rosbag2 (MCAP) into this new folder")
-    bridge.add_argument(
-        "--frame-prefix",
-        action="store_true",
-        help="a world of several robots: each robot's frames start with its name (west/odom, "
-        "west/base_link...) and its transforms go on the one /tf and /tf_static, as "
-        "ros2_control's diff drive controller in a namespace names them",
-    )
-    bridge.add_argument(
-        "--namespace",
-        default="",
-        help="a world of one robot: put its topics in this namespace (epuck0: /epuck0/odom, "
-        "/epuck0/cmd_vel...; /clock stays), as a node written for one robot of several names "
-        "them; a world of several robots puts each in its own (default: none, the topics at the "
-        "root)",
-    )
-    bridge.add_argument(
-        "--command-period",
-        type=_command_period,
-        default=0.0,
-        help="lockstep: the driving node commands on a timer of simulated time with this period "
-        "in seconds (create_timer(0.1, ...) with use_sim_time): each command holds, whole "
-        "steps, until the clock reaches the timer's next tick (default: 0, a step per command)",
-    )
-    _add_common(bridge)
-    bridge.set_defaults(run=_run_bridge)
-    learning = sub.add_parser(
-        "perform-learning",
-        help="the shipped hierarchical navigator: /sensor_data -> /action",
-        description=(
-            "Run the hierarchical navigator (the shipped one, or a folder 'mazesim train' wrote) "
-            "as a ROS 2 node: it reads /sensor_data (the Sharp distances and the checkpoint "
-            "crossed) and answers each reading with an action code on /action. Start 'mazesim "
-            "ros2 bridge --robot seed' beside it."
+        (
+            option(
+                "--world", default="seed-maze", help="world name or file (default: %(default)s)"
+            ),
+            option("--robot", default="e-puck", help="robot profile (default: %(default)s)"),
+            option(
+                "--seed",
+                type=seed_argument,
+                default=0,
+                help="the sensor noise's seed (default: %(default)s)",
+            ),
+            option("--no-noise", action="store_true", help="noise-free sensors"),
+            option(
+                "--mode",
+                choices=("lockstep", "free"),
+                default="lockstep",
+                help="lockstep: one control step per command; free: steps on its own "
+                "(default: %(default)s)",
+            ),
+            option(
+                "--speed",
+                type=_speed,
+                default=1.0,
+                help="free mode: simulated seconds per wall-clock second, 0 for as fast "
+                "as possible (default: %(default)s)",
+            ),
+            option("--paused", action="store_true", help="free mode: start paused"),
+            option(
+                "--stop-after",
+                type=non_negative_int,
+                default=0,
+                help="stop after N steps, 0 for never (default: %(default)s)",
+            ),
+            option("--stop-at-goal", action="store_true", help="stop once at the goal"),
+            option("--bag", default=None, help="record a rosbag2 (MCAP) into this new folder"),
+            option(
+                "--frame-prefix",
+                action="store_true",
+                help="a world of several robots: each robot's frames start with its name "
+                "(west/odom, west/base_link...) and its transforms go on the one /tf and "
+                "/tf_static, as ros2_control's diff drive controller in a namespace names "
+                "them",
+            ),
+            option(
+                "--namespace",
+                default="",
+                help="a world of one robot: put its topics in this namespace (epuck0: "
+                "/epuck0/odom, /epuck0/cmd_vel...; /clock stays), as a node written for one "
+                "robot of several names them; a world of several robots puts each in its own "
+                "(default: none, the topics at the root)",
+            ),
+            option(
+                "--command-period",
+                type=_command_period,
+                default=0.0,
+                help="lockstep: the driving node commands on a timer of simulated time "
+                "with this period in seconds (create_timer(0.1, ...) with use_sim_time): each "
+                "command holds, whole steps, until the clock reaches the timer's next tick "
+                "(default: 0, a step per command)",
+            ),
+            *_COMMON,
         ),
-        epilog=examples(
+        _run_bridge,
+    ),
+    Command(
+        "perform-learning",
+        "the shipped hierarchical navigator: /sensor_data -> /action",
+        "Run the hierarchical navigator (the shipped one, or a folder 'mazesim train' wrote) "
+        "as a ROS 2 node: it reads /sensor_data (the Sharp distances and the checkpoint "
+        "crossed) and answers each reading with an action code on /action. Start 'mazesim "
+        "ros2 bridge --robot seed' beside it.",
+        (
             "mazesim ros2 perform-learning",
             "mazesim ros2 perform-learning --ros-distro jazzy --control-step-ms 32",
         ),
-    )
-    learning.add_argument(
-        "--policy", type=_policy, default=None, help="a folder of trained tables (default: shipped)"
-    )
-    learning.add_argument(
-        "--control-step-ms",
-        type=positive_number,
-        default=32.0,
-        help="the bridge's step (default: %(default)s)",
-    )
-    _add_common(learning)
-    learning.set_defaults(run=_run_perform_learning)
-    avoid = sub.add_parser(
-        "avoid-collision",
-        help="the report's Alg. 1: /sensors -> /motor",
-        description=(
-            "Run the report's avoid-collision rule (Alg. 1) as a ROS 2 node: it reads /sensors "
-            "(ps0..ps7 first) and answers with wheel speeds on /motor, to each reading or on a "
-            "timer of simulation time. Start 'mazesim ros2 bridge' beside it."
+        (
+            option(
+                "--policy",
+                type=_policy,
+                default=None,
+                help="a folder of trained tables (default: shipped)",
+            ),
+            option(
+                "--control-step-ms",
+                type=positive_number,
+                default=32.0,
+                help="the bridge's step (default: %(default)s)",
+            ),
+            *_COMMON,
         ),
-        epilog=examples(
+        _run_perform_learning,
+    ),
+    Command(
+        "avoid-collision",
+        "the report's Alg. 1: /sensors -> /motor",
+        "Run the report's avoid-collision rule (Alg. 1) as a ROS 2 node: it reads /sensors "
+        "(ps0..ps7 first) and answers with wheel speeds on /motor, to each reading or on a "
+        "timer of simulation time. Start 'mazesim ros2 bridge' beside it.",
+        (
             "mazesim ros2 avoid-collision",
             "mazesim ros2 avoid-collision --period-ms 64",
             "mazesim ros2 avoid-collision --robot west",
         ),
-    )
-    avoid.add_argument(
-        "--period-ms",
-        type=_period_ms,
-        default=0.0,
-        help="0: answer each reading; else a timer of this period on simulation time (/clock) "
-        "(default: %(default)s)",
-    )
-    avoid.add_argument(
-        "--robot",
-        dest="namespace",
-        type=_robot_namespace,
-        default=None,
-        metavar="NAME",
-        help="in a world of several robots, drive robot NAME: its /NAME/sensors and "
-        "/NAME/motor (default: the topics of a world of one robot)",
-    )
-    _add_common(avoid)
-    avoid.set_defaults(run=_run_avoid_collision)
-    demo = sub.add_parser(
-        "demo",
-        help="bridge + navigator node to the goal, recorded in a bag",
-        description=(
-            "Run the bridge in lockstep and a controller node (the shipped navigator, or the "
-            "avoid-collision rule) as two processes on this machine until the goal or the step "
-            "limit, recording the run in a rosbag2 (MCAP) folder, DIR/bag."
+        (
+            option(
+                "--period-ms",
+                type=_period_ms,
+                default=0.0,
+                help="0: answer each reading; else a timer of this period on simulation "
+                "time (/clock) (default: %(default)s)",
+            ),
+            option(
+                "--robot",
+                dest="namespace",
+                type=_robot_namespace,
+                default=None,
+                metavar="NAME",
+                help="in a world of several robots, drive robot NAME: its /NAME/sensors "
+                "and /NAME/motor (default: the topics of a world of one robot)",
+            ),
+            *_COMMON,
         ),
-        epilog=examples(
+        _run_avoid_collision,
+    ),
+    Command(
+        "demo",
+        "bridge + navigator node to the goal, recorded in a bag",
+        "Run the bridge in lockstep and a controller node (the shipped navigator, or the "
+        "avoid-collision rule) as two processes on this machine until the goal or the step "
+        "limit, recording the run in a rosbag2 (MCAP) folder, DIR/bag.",
+        (
             "mazesim ros2 demo --out ros2-demo",
             "mazesim ros2 demo --controller avoid-collision --steps 500 --ros-distro jazzy",
             "mazesim ros2 demo --controller avoid-collision --robot my-epuck.toml",
         ),
+        (
+            _DEMO["world"],
+            _DEMO["out"],
+            _DEMO["controller"],
+            _DEMO["robot"],
+            option(
+                "--seed",
+                type=seed_argument,
+                default=0,
+                help="the bridge's seed (default: %(default)s)",
+            ),
+            option(
+                "--steps",
+                type=non_negative_int,
+                default=MAX_STEPS,
+                help="step limit (default: %(default)s)",
+            ),
+            *_COMMON,
+        ),
+        _run_demo,
+    ),
+)
+
+
+def register(commands: Any) -> None:
+    """Adds ``mazesim ros2`` and its subcommands."""
+    register_commands(
+        commands,
+        "ros2",
+        (
+            "run the ROS 2 bridge and controller nodes over DDS (needs mazesim[ros2])",
+            "Run mazesim as ROS 2 nodes over DDS, with no ROS 2 installation (the extra "
+            "mazesim[ros2] brings Cyclone DDS and rosbags): the bridge publishes the e-puck's "
+            "standard topics (/scan, /odom, /tf, one Range per sensor, /clock) and the report's "
+            "/sensors and /sensor_data, and drives on /cmd_vel, /motor or /action; the controller "
+            "nodes and a recorded demo are beside it (docs/ros2.md).",
+            (
+                "mazesim ros2 bridge --world seed-maze",
+                "mazesim ros2 bridge --mode free --speed 2 --ros-distro jazzy",
+                "mazesim ros2 demo --out ros2-demo",
+            ),
+        ),
+        COMMANDS,
+        "COMMAND",
     )
-    demo.add_argument(
-        "--world",
-        default="seed-maze",
-        metavar="NAME|PATH",
-        help="built-in world or world file (default: %(default)s)",
-    )
-    demo.add_argument(
-        "--out",
-        type=output_path,
-        default="mazesim-ros2-demo",
-        metavar="DIR",
-        help="output folder, created if missing (default: %(default)s)",
-    )
-    demo.add_argument(
-        "--controller",
-        choices=("hrl", "avoid-collision"),
-        default="hrl",
-        help="the node that drives (default: %(default)s)",
-    )
-    demo.add_argument(
-        "--robot",
-        metavar="NAME|PATH",
-        help="built-in robot profile or profile file, with the sensors the controller reads "
-        "(default: seed for hrl, e-puck for avoid-collision)",
-    )
-    demo.add_argument(
-        "--seed", type=seed_argument, default=0, help="the bridge's seed (default: %(default)s)"
-    )
-    demo.add_argument(
-        "--steps",
-        type=non_negative_int,
-        default=MAX_STEPS,
-        help="step limit (default: %(default)s)",
-    )
-    _add_common(demo)
-    demo.set_defaults(run=_run_demo)

@@ -48,7 +48,6 @@ __all__ = [
     "distance_levels",
     "encode_state",
     "format_levels",
-    "observation_levels",
     "observation_states",
     "volts_to_cm",
 ]
@@ -185,20 +184,12 @@ def decode_state(state: npt.ArrayLike) -> npt.NDArray[np.int64]:
     return (array[..., None] // _PLACE_VALUES) % NUM_LEVELS
 
 
-def observation_levels(observations: npt.ArrayLike) -> npt.NDArray[np.int64]:
-    """The (N, 6) levels of batch observations (the first six columns, volts)."""
-    rows = np.asarray(observations)
-    if rows.ndim != 2 or rows.shape[1] < NUM_SENSORS:
-        raise InvalidArgumentError(
-            f"expected observations of shape (N, >= {NUM_SENSORS}) with the Sharp volts first, "
-            f"found {rows.shape}"
-        )
-    return distance_levels(volts_to_cm(rows[:, :NUM_SENSORS]))
-
-
 def observation_states(observations: npt.ArrayLike) -> npt.NDArray[np.int64]:
-    """The (N,) states of batch observations (the first six columns, volts)."""
-    return observation_levels(observations) @ _PLACE_VALUES
+    """The (N,) states of batch observations (the first six columns, volts): the core's
+    discretiser, :func:`mazesim._core.lower_level_states`, on them as float32."""
+    from mazesim._core import lower_level_states
+
+    return lower_level_states(np.asarray(observations, dtype=np.float32))
 
 
 def format_levels(levels: npt.ArrayLike) -> str:
