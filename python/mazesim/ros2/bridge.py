@@ -51,7 +51,7 @@ from mazesim.ros2.occupancy import map_topics, occupancy_grid
 from mazesim.ros2.qos import CLOCK, COMMAND, TF_STATIC, IncompatibleQos
 from mazesim.ros2.robots import RobotOf, robot_namespaces
 from mazesim.ros2.ros_args import RosArguments
-from mazesim.ros2.state import CLOCK_TOPIC, CLOCK_TYPE, StateTopics
+from mazesim.ros2.state import CLOCK_TOPIC, CLOCK_TYPE, TF_MESSAGE, StateTopics
 from mazesim.ros2.unpublished import UnpublishedTopics
 
 __all__ = ["IDLE_CLOCK_AFTER_S", "RESEND_S", "BridgeSettings", "Ros2Bridge", "run_bridge"]
@@ -400,7 +400,10 @@ class Ros2Bridge:
         nanoseconds = self.stamp()
         stamp = cdr.stamp_of(nanoseconds)
         for robot in self.robots:
-            robot.last_state = list(zip(robot.writers, robot.state.messages(stamp, step_seconds)))
+            state = zip(robot.writers, robot.state.messages(stamp, step_seconds))
+            # /tf first: a node that looks up the pose at a sensor message's stamp (tf2's
+            # lookup_transform in its /scan callback) has that step's transform already.
+            robot.last_state = sorted(state, key=lambda sent: sent[0].msgtype != TF_MESSAGE)
             for writer, data in robot.last_state:
                 self._send(writer, nanoseconds, data)
         if self.clock_writer is not None:

@@ -34,6 +34,7 @@ __all__ = [
     "CLOCK_TOPIC",
     "IMU_NOISE",
     "StateTopics",
+    "TF_MESSAGE",
     "Topic",
     "ground_distance",
 ]
