@@ -86,7 +86,7 @@ def _follow(
         elif line.startswith("ALL DONE"):
             next_start = count
     child.wait()
-    reader.join(timeout=10)  # the pipe ends with the process (and any child it left)
+    reader.join(timeout=300)  # the pipe ends with the process (and any child it left)
     return next_start
 
 
