@@ -42,7 +42,7 @@ def _namespace_works() -> bool:
     if shutil.which("unshare") is None or shutil.which("ip") is None:
         return False
     probe = subprocess.run(
-        ["unshare", "-n", "ip", "link", "set", "lo", "up"], capture_output=True, timeout=10
+        ["unshare", "-n", "ip", "link", "set", "lo", "up"], capture_output=True, timeout=300
     )
     return probe.returncode == 0
 

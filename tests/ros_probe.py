@@ -20,6 +20,10 @@ environment) and read its standard output.
                                        and a first /clock have come (a controller on a rate)
     ros_probe.py listen SECONDS        record what the bridge publishes for SECONDS (wall clock)
     ros_probe.py count TOPIC N         receive N messages of TOPIC (e.g. from rosbag play)
+    ros_probe.py count-with-clock TOPIC N
+                                       the same, and N messages of /clock too (each topic's
+                                       connection comes up on its own: one waited for alone can
+                                       catch few of the other)
     ros_probe.py standard TWISTS_JSON  publish each [linear.x, angular.z] on cmd_vel, keep the
                                        standard messages (odom, /tf, /tf_static, scan, Range topics)
 
@@ -75,15 +79,24 @@ class Recorder:
     def on_clock(self, message: Clock) -> None:
         with self.lock:
             self.clock.append(message.clock.to_sec())
+            self.lock.notify_all()
 
-    def wait_for(self, counts: dict[str, int], timeout: float = TIMEOUT_S) -> None:
+    def wait_for(self, counts: dict[str, int], clock: int = 0, timeout: float = TIMEOUT_S) -> None:
+        """Waits until each topic of ``counts`` has that many messages, and ``/clock`` ``clock``."""
         with self.lock:
             done = self.lock.wait_for(
-                lambda: all(len(self.data[topic]) >= n for topic, n in counts.items()), timeout
+                lambda: (
+                    len(self.clock) >= clock
+                    and all(len(self.data[topic]) >= n for topic, n in counts.items())
+                ),
+                timeout,
             )
         if not done:
             have = {topic: len(self.data[topic]) for topic in counts}
-            raise SystemExit(f"timed out waiting for {counts}; have {have}")
+            raise SystemExit(
+                f"timed out waiting for {counts}, {clock} /clock; have {have}, "
+                f"{len(self.clock)} /clock"
+            )
 
     def result(self) -> dict[str, Any]:
         with self.lock:
@@ -229,7 +242,8 @@ class StandardRecorder:
     def wait_for(self, steps: int) -> None:
         def arrived() -> bool:
             return (
-                len(self.odom) >= steps
+                bool(self.tf_static)  # latched, sent once: it comes on connection, at any time
+                and len(self.odom) >= steps
                 and len(self.tf) >= steps
                 and len(self.scan) >= steps
                 and all(len(rows) >= steps for rows in self.ranges.values())
@@ -252,7 +266,7 @@ def standard(twists: list[list[float]]) -> dict[str, Any]:
         message.linear.x, message.angular.z = linear, angular
         cmd_vel.publish(message)
         recorder.wait_for(step)
-    time.sleep(0.3)  # /tf_static is sent once, on connection; and nothing more may come
+    time.sleep(0.3)  # nothing more may come
     with recorder.lock:
         return {
             "odom": recorder.odom,
@@ -311,10 +325,10 @@ def main() -> int:
         elif mode == "standard":
             with open(sys.argv[2]) as handle:
                 result = standard(json.load(handle))
-        elif mode == "count":
+        elif mode in ("count", "count-with-clock"):
             topic, count = sys.argv[2], int(sys.argv[3])
             recorder = Recorder((topic,))
-            recorder.wait_for({topic: count})
+            recorder.wait_for({topic: count}, count if mode == "count-with-clock" else 0)
             time.sleep(0.3)  # more than expected would show now
             result = recorder.result()
         else:

@@ -418,7 +418,7 @@ def test_a_forked_child_makes_and_steps_batches() -> None:
     expected = _step_a_batch_in_a_child(0)
     with multiprocessing.get_context("fork").Pool(2) as pool:
         result = pool.map_async(_step_a_batch_in_a_child, range(2))
-        assert result.get(timeout=60) == [expected, expected]
+        assert result.get(timeout=300) == [expected, expected]
 
 
 def test_ctrl_c_stops_a_long_batch_step_midway() -> None:
@@ -503,7 +503,7 @@ def test_a_forked_child_steps_a_batch_its_parent_made(threads: int) -> None:
     ]
     expected = _step_the_inherited_batch(0)
     with multiprocessing.get_context("fork").Pool(1) as pool:
-        assert pool.map_async(_step_the_inherited_batch, [0]).get(timeout=60) == [expected]
+        assert pool.map_async(_step_the_inherited_batch, [0]).get(timeout=300) == [expected]
 
 
 #: A str Python made of bytes it could not decode (a file name, a command-line argument): name

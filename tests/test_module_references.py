@@ -7,7 +7,8 @@
 - Each backticked ``mazesim.x.y`` of the core's and the binding's doc comments, of the pages
   (``README.md``, ``docs/*.md``) and of the tests' helpers (``tests/*.py``) is such a thing, and
   each backticked path of the repository (``tests/...py``, ``docs/...md``, ``crates/...rs``,
-  ``python/...``, ``examples/...``) a file or folder of it (the package's docstrings too).
+  ``python/...``, ``examples/...``) a file or folder of it (the package's docstrings too); a
+  path with a placeholder in capitals (``docs/NAME.md``) names a pattern, which must match one.
 - Each backticked path of the core (``navigator::door``, ``mazesim_core::limits::MAX_ROBOTS``)
   in those, in the package's docstrings and in the tests is a module of the core and names it
   defines or re-exports.
@@ -42,6 +43,8 @@ CORE = REPOSITORY / "crates" / "mazesim-core" / "src"
 REPOSITORY_PATH = re.compile(
     r"`+((?:tests|docs|crates|python|examples|benches|worlds|robots)/[\w./-]*\w)`+"
 )
+#: A placeholder of a path: a name in capitals (``WORLD``, ``NAME``) standing for any name.
+PLACEHOLDER = re.compile(r"(?<![\w-])[A-Z][A-Z_]+(?![\w-])")
 #: Built-in names roles may name.
 OUTSIDE = {"DeprecationWarning"}
 
@@ -220,6 +223,16 @@ def core_path_exists(path: str) -> bool | None:
     )
 
 
+def repository_path_exists(name: str, bases: list[Path]) -> bool:
+    """Whether ``name`` (``docs/design.md``) is a file or folder under one of ``bases``; a name
+    with placeholders in capitals (``docs/NAME.md``, ``worlds/WORLD.toml``) is a pattern, which
+    must match one (a file whose name is in capitals, ``README.md``, is itself first)."""
+    if any((base / name).exists() for base in bases):
+        return True
+    pattern = PLACEHOLDER.sub("*", name)
+    return pattern != name and any(any(base.glob(pattern)) for base in bases)
+
+
 def documents() -> list[Path]:
     """The pages, the Rust sources and the tests' helpers whose backticked names and paths are
     checked."""
@@ -301,9 +314,23 @@ def test_pages_and_doc_comments_name_only_things_that_exist() -> None:
             for name in sorted(set(REPOSITORY_PATH.findall(text)))
             if not any(mark in name for mark in ("*", ".."))
             and name not in ELSEWHERE
-            and not any((base / name).exists() for base in bases)
+            and not repository_path_exists(name, bases)
         ]
     assert not found, "pages and doc comments name things that do not exist:\n" + "\n".join(found)
+
+
+def test_a_path_with_a_placeholder_must_match_a_file(tmp_path: Path) -> None:
+    (tmp_path / "worlds").mkdir()
+    (tmp_path / "worlds" / "arena.toml").write_text("")
+    (tmp_path / "README.md").write_text("")
+    assert repository_path_exists("README.md", [tmp_path])
+    assert repository_path_exists("worlds/WORLD.toml", [tmp_path])
+    assert repository_path_exists("worlds/NAME", [tmp_path])
+    # The repository's worlds are no .wbt files: a user project's worlds/WORLD.wbt is not here.
+    assert not repository_path_exists("worlds/WORLD.wbt", [tmp_path])
+    assert not repository_path_exists("docs/NAME.md", [tmp_path])
+    assert not repository_path_exists("worlds/arena-2.toml", [tmp_path])
+    assert not repository_path_exists("READMEE.txt", [tmp_path])
 
 
 def test_the_tests_name_only_core_modules_that_exist() -> None:

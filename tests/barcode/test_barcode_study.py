@@ -250,7 +250,7 @@ def test_cli_help_in_a_subprocess(tmp_path: Path) -> None:
         cwd=tmp_path,
         capture_output=True,
         text=True,
-        timeout=60,
+        timeout=300,
         check=False,
     )
     assert result.returncode == 0
@@ -264,7 +264,7 @@ def test_cli_help_in_a_subprocess(tmp_path: Path) -> None:
             cwd=tmp_path,
             capture_output=True,
             text=True,
-            timeout=60,
+            timeout=300,
             check=False,
         ).stdout
     )

@@ -12,6 +12,7 @@ import math
 import re
 import subprocess
 import sys
+import time
 from pathlib import Path
 from typing import Any
 
@@ -282,14 +283,14 @@ def replay(robot: str, seed: int, commands: list[dict[str, Any]]) -> dict[str, l
 
 
 def drive_in_process(
-    controller: str, seed: int, max_steps: int, stop_at_goal: bool
+    controller: str, seed: int, max_steps: int, stop_at_goal: bool, world_name: str = "seed-maze"
 ) -> tuple[list[list[float]], int | None]:
     """The poses of a run without ROS: the shipped hierarchical policy on the seed robot, fed
     what ``sensor_data`` carries (``hrl``), or avoid-collision on the e-puck. Returns the poses
-    (``pose`` rows, the start included) and the step at which the robot reached the goal."""
-    world = mazesim.load_world("seed-maze")
-    assert world.goal is not None
-    goal_x, goal_y, radius = world.goal
+    (``pose`` rows, the start included) and the step at which the robot reached the goal (None
+    without one)."""
+    world = mazesim.load_world(world_name)
+    goal_x, goal_y, radius = world.goal if world.goal is not None else (math.inf, math.inf, 0.0)
     robot = "seed" if controller == "hrl" else "e-puck"
     simulator = mazesim.Simulator(world, robot=robot, seed=seed)
     policy = load_policy()
@@ -311,6 +312,18 @@ def drive_in_process(
             if stop_at_goal:
                 break
     return poses, reached
+
+
+def assert_poses_of_the_in_process_run(
+    rows: list[list[float]], controller: str, seed: int, world_name: str
+) -> None:
+    """Asserts that ``rows`` (``pose`` messages a probe caught from a lockstep run it joined at
+    some step) are the in-process run's poses at the steps their times say, bit for bit, and
+    that the robot moved between them: true of any steps the probe catches."""
+    steps = [round(row[3] / STEP_S) for row in rows]
+    expected, _ = drive_in_process(controller, seed, max(steps), False, world_name)
+    assert rows == [expected[step] for step in steps]  # bit for bit
+    assert len({tuple(row[:3]) for row in rows}) > 1  # the robot moves
 
 
 def echoed_data(echo: str) -> list[float]:
@@ -337,16 +350,17 @@ def test_bridge_and_avoid_collision_move_the_robot(master: LocalMaster) -> None:
         "avoid-collision", [*MAZESIM, "ros", "avoid-collision", "--wait-for-subscribers", "2"]
     )
     run_probe(master, "count", "motor", "1")  # the node drives (its start can take seconds)
-    seen = run_probe(master, "count", "pose", "60")
+    # The probe joins the run at a step that depends on the load: every check below holds for
+    # any 60 steps (waiting for 60 /clock messages too, since each topic's connection comes up
+    # on its own).
+    seen = run_probe(master, "count-with-clock", "pose", "60")
 
     clock = seen["clock"]
-    assert len(clock) >= 50 and clock[-1] > clock[0] and clock == sorted(clock)
+    assert len(clock) >= 60 and clock[-1] > clock[0] and clock == sorted(clock)
     poses = np.array(seen["data"]["pose"])
     assert poses.shape[1] == 4
     np.testing.assert_allclose(np.diff(poses[:, 3]), STEP_S, atol=1e-9)
-    # The robot moves: its path, not its net displacement (the 60 poses can catch it turning
-    # about in a corner; in-process the path of any 60 steps of this run is at least 11 cm).
-    assert np.hypot(*np.diff(poses[:, :2], axis=0).T).sum() > 0.05
+    assert_poses_of_the_in_process_run(seen["data"]["pose"], "avoid-collision", 3, "seed-maze")
     assert seen["labels"]["pose"] == "x,y,yaw,time"
 
     # rostopic, as a user would run it; the three calls run side by side to save time.
@@ -558,14 +572,17 @@ def test_a_refused_command_steps_with_the_wheel_speeds_before(
 
 @needs_ros
 def test_realtime_mode_follows_the_wall_clock(master: LocalMaster) -> None:
+    # The bridge never runs ahead of its schedule: step k at the earliest (k - 1) periods of
+    # 8 ms after it started, which is after `started`. (How far it falls behind depends on the
+    # load, and it catches up in bursts, so a rate measured over the probe's window is no check.)
+    started = time.monotonic()
     spawn_bridge(master, "--mode", "realtime", "--speed", "4")
     seen = run_probe(master, "count", "pose", "100")  # 3.2 simulated s, about 0.8 s of wall clock
+    elapsed = time.monotonic() - started
     poses = np.array(seen["data"]["pose"])
-    assert np.all(np.diff(poses[:, 3]) > 0)
+    assert np.all(np.diff(poses[:, 3]) > 0)  # no command: it steps on its own
     assert np.all(poses[:, :3] == poses[0, :3])  # no command: the robot stays
-    wall = np.array(seen["wall"]["pose"])
-    factor = (poses[-1, 3] - poses[0, 3]) / (wall[-1] - wall[0])
-    assert 2.5 < factor < 5.0
+    assert poses[-1, 3] <= 4.0 * elapsed + STEP_S  # paced: a free-running bridge is far ahead
 
 
 @needs_ros
@@ -574,9 +591,9 @@ def test_launch_file_runs_and_stops_without_leftovers(master: LocalMaster) -> No
     seen = run_probe(master, "count", "pose", "100")
     poses = np.array(seen["data"]["pose"])
     assert poses[-1, 3] > poses[0, 3]
-    # The controller drives the robot: along its path (not end to end, since it may turn away
-    # from a wall meanwhile; 1.4 cm end to end in 50 poses once) it covers more than 2 cm.
-    assert np.hypot(*np.diff(poses[:, :2], axis=0).T).sum() > 0.02
+    # The controller drives the robot as it does in process, whichever 100 steps the probe
+    # caught (it joins the run at a step that depends on the load).
+    assert_poses_of_the_in_process_run(seen["data"]["pose"], "avoid-collision", 2, "arena")
 
     assert LocalMaster.stop_process(launch) == 0  # SIGINT, as Ctrl-C
     assert processes_with("MAZESIM_TEST_LAUNCH", tag) == []

@@ -159,7 +159,6 @@ def test_a_node_slower_than_the_resend_wait_reads_past_the_state_sent_again(late
     result = run_in_namespace(
         [_bridge("humble", 20)],
         _driver("humble", 20, "--late-answer-at", str(late_at), "--wait", "12"),
-        timeout=90,
     )
     assert result.returncode == 0, result.stderr
     assert "20 steps, every field equal" in result.stdout

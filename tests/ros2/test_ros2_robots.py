@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 import sys
 from pathlib import Path
 from typing import Any
@@ -161,8 +162,11 @@ def test_an_avoid_collision_node_per_robot_drives_each_in_its_namespace(tmp_path
     result = run_in_namespace(nodes, [*bridge, "--bag", str(bag)], grace=1.0)
     assert result.returncode == 0, result.stderr
     assert f"stopped after {steps} steps" in result.stderr
-    # Each node answered every state of its own robot: the reset state and each step's.
-    assert result.stderr.count(f"avoid_collision: stopped after {steps + 1} commands") == 2
+    # Each node answered every state of its own robot that stepped it: the reset state and
+    # each step's before the last; the last state's answer comes after the bridge stopped, if
+    # it reached the node before the node's own stop (a matter of time, so either count).
+    answered = re.findall(r"avoid_collision: stopped after (\d+) commands", result.stderr)
+    assert len(answered) == 2 and {int(n) for n in answered} <= {steps, steps + 1}, answered
     make_reader = pytest.importorskip("mcap.reader").make_reader
     decoder_factory = pytest.importorskip("mcap_ros2.decoder").DecoderFactory
     poses: dict[str, list[list[float]]] = {}

@@ -19,8 +19,9 @@ from typing import Any
 
 HERE = Path(__file__).resolve().parent.parent
 #: Seconds a call may take once it started (its runner presses Ctrl-C after 2 s; making its
-#: instance comes first, outside that watchdog): a call silent for longer hangs.
-CALL_TIMEOUT = 60.0
+#: instance comes first, outside that watchdog): a call silent for longer hangs. A ceiling for a
+#: hang, never a pace: on a loaded machine an endless template stopped by Ctrl-C took over 60 s.
+CALL_TIMEOUT = 300.0
 
 
 def _lines(stream: Any, into: queue.Queue[str | None]) -> None:
@@ -86,7 +87,7 @@ def _follow(
         elif line.startswith("ALL DONE"):
             next_start = count
     child.wait()
-    reader.join(timeout=10)  # the pipe ends with the process (and any child it left)
+    reader.join(timeout=300)  # the pipe ends with the process (and any child it left)
     return next_start
 
 

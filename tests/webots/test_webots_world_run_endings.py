@@ -96,7 +96,7 @@ def test_ctrl_c_stops_every_controller_quietly_and_exits_130(tmp_path: Path) -> 
         # Ctrl-C reaches the terminal's whole process group: the world's process and every
         # controller's.
         os.killpg(process.pid, signal.SIGINT)
-        stdout, stderr = process.communicate(timeout=60)
+        stdout, stderr = process.communicate(timeout=300)
     finally:
         if process.poll() is None:
             os.killpg(process.pid, signal.SIGKILL)
