@@ -13,6 +13,7 @@ import re
 import subprocess
 import sys
 import time
+import types
 from pathlib import Path
 from typing import Any
 
@@ -24,8 +25,10 @@ from mazesim.actions import wheel_speeds
 from mazesim.controllers import AvoidCollision
 from mazesim.errors import InvalidActionError, InvalidArgumentError, MazesimError, MazesimIOError
 from mazesim.learn import load_policy
-from mazesim.ros import demo, topics
+from mazesim.replay.ros_bag import read_topics
+from mazesim.ros import topics
 from mazesim.ros._ros import subscriber_count
+from mazesim.ros.bag import BagWriter
 from mazesim.ros.bridge import BridgeSettings, resolve_settings
 from mazesim.ros.demo import goal_step
 from mazesim.ros.local_master import LocalMaster
@@ -600,8 +603,11 @@ def test_launch_file_runs_and_stops_without_leftovers(master: LocalMaster) -> No
 
 
 @needs_ros
-def test_learning_launch_stops_at_the_goal_without_leftovers(master: LocalMaster) -> None:
-    launch, tag = spawn_launch(master, "learning.launch", "seed:=2")
+def test_learning_launch_stops_at_the_goal_without_leftovers(
+    master: LocalMaster, tmp_path: Path
+) -> None:
+    bag = tmp_path / "learning.bag"
+    launch, tag = spawn_launch(master, "learning.launch", "seed:=2", "record:=true", f"bag:={bag}")
     # The bridge is required: it stops at the goal, and the launch with it.
     assert launch.wait(timeout=300) == 0
     log = Path(master.log_path("roslaunch")).read_text()
@@ -612,6 +618,11 @@ def test_learning_launch_stops_at_the_goal_without_leftovers(master: LocalMaster
     assert f"goal reached at step {found[1]};" in log
     assert "Traceback" not in log
     assert processes_with("MAZESIM_TEST_LAUNCH", tag) == []
+    # record:=true: the bridge's own bag holds every step, the first ones too.
+    steps = int(found[1])
+    recorded = read_topics(str(bag), ("/pose", "/action"))
+    assert [len(recorded["/pose"]), len(recorded["/action"])] == [steps + 1, steps]
+    assert recorded["/pose"][0][3] == 0.0
 
 
 @needs_ros
@@ -647,25 +658,12 @@ def test_recorded_run_plays_back_and_equals_in_process_run(
     info = subprocess.run(["rosbag", "info", str(bag)], capture_output=True, text=True, timeout=300)
     assert info.returncode == 0, info.stderr
     counts = {topic: int(n) for topic, n in re.findall(r"(/\w+)\s+(\d+) msgs", info.stdout)}
-    # Every step's pose is in the bag (the play-back below compares them all); the recorder,
-    # though the nodes yield the CPU to it, may still drop a few of the other state topics on a
-    # machine that other work loads (seen: 96 of 1,062 of one of them).
-    assert counts["/pose"] == steps + 1, (counts, steps)
-    for topic in ("/sensors", "/clock"):
-        assert steps + 1 - (steps + 1) // 10 <= counts[topic] <= steps + 1, (counts, steps)
-    if hrl:
-        # The recorder's subscriber queue holds 100 messages (rosbag has no option for it): a
-        # recorder starved of CPU can drop some of the second array topic (seen: 9 of 1,263 on a
-        # heavily loaded machine, 41 of 1,062 during the whole test suite). The lockstep topics
-        # above are exact; this one must be there, nearly whole.
-        assert steps + 1 - (steps + 1) // 10 <= counts["/sensor_data"] <= steps + 1, (counts, steps)
-        # Every step answers one command; the recorder may lose a few that are in flight when
-        # the run starts or stops (seen: 2 of 1,236 on a loaded machine).
-        assert steps - 5 <= counts["/action"] <= steps + 1, (counts, steps)
-        assert "/motor" not in counts
-    else:
-        assert counts["/motor"] >= steps
-        assert "/action" not in counts
+    # The bridge writes its own bag: every step's state once, every command it took.
+    for topic in ("/pose", "/sensors", *(["/sensor_data"] if hrl else [])):
+        assert counts[topic] == steps + 1, (counts, steps)
+    assert counts["/clock"] >= steps + 1, (counts, steps)  # with ticks before a first command
+    assert counts["/action" if hrl else "/motor"] == steps, (counts, steps)
+    assert ("/motor" if hrl else "/action") not in counts
 
     player = LocalMaster(home=str(tmp_path / "play"))
     player.start()
@@ -709,16 +707,23 @@ def test_recorded_run_plays_back_and_equals_in_process_run(
     assert played == expected
 
 
-def test_demo_refuses_a_disk_where_the_recorder_would_not_record(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
-) -> None:
-    full = demo.shutil.disk_usage(tmp_path)._replace(free=demo.RECORDER_MIN_FREE_BYTES - 1)
-    monkeypatch.setattr(demo.shutil, "disk_usage", lambda path: full)
-    with pytest.raises(MazesimIOError, match=r"at least 1 GiB free.*found 1024 MiB free"):
-        demo.check_free_space(str(tmp_path))
-    roomy = full._replace(free=demo.RECORDER_MIN_FREE_BYTES)
-    monkeypatch.setattr(demo.shutil, "disk_usage", lambda path: roomy)
-    demo.check_free_space(str(tmp_path))
+@needs_ros
+def test_the_bridges_bag_is_named_only_when_finished_and_refuses_a_folder(tmp_path: Path) -> None:
+    import rospy
+    from std_msgs.msg import String
+
+    ros = types.SimpleNamespace(rospy=rospy)
+    with pytest.raises(MazesimIOError, match=r"expected a bag file to write; found the folder"):
+        BagWriter(ros, str(tmp_path))
+    path = tmp_path / "run.bag"
+    writer = BagWriter(ros, str(path))
+    writer.write("/note", String(data="one"))
+    assert not path.exists() and (tmp_path / "run.bag.active").is_file()  # never half-written
+    writer.close()
+    writer.close()
+    writer.write("/note", String(data="after"))  # ignored once closed
+    assert path.is_file() and not (tmp_path / "run.bag.active").exists()
+    assert read_topics(str(path), ("/note",))["/note"] == ["one"]
 
 
 def rate_holds(period_s: float, count: int, step_ns: int = 32_000_000) -> list[int]:

@@ -109,6 +109,7 @@ def _run_bridge(args: argparse.Namespace) -> int:
         "noise": False if args.no_noise else None,
         "stop_at_goal": True if args.stop_at_goal else None,
         "command_period": args.command_period,
+        "bag": args.bag,
     }
     return run_bridge(options, args.remappings, args.name)
 
@@ -217,6 +218,13 @@ COMMANDS = (
                 "with this period (rospy.Rate(10): 0.1): each command holds, whole steps, "
                 "until the clock reaches the rate's next tick (default: 0, a step per "
                 "command)",
+            ),
+            option(
+                "--bag",
+                metavar="PATH",
+                help="write every message the bridge sends and every command it takes into "
+                "this ROS 1 bag, every step by construction (a rosbag record node can miss "
+                "some); written as PATH.active, renamed to PATH when the bridge stops",
             ),
             *_node_arguments("mazesim_bridge"),
         ),

@@ -59,6 +59,7 @@ from mazesim.actions import wheel_speeds
 from mazesim.errors import InvalidArgumentError, MazesimError
 from mazesim.ros import standard, topics
 from mazesim.ros._ros import publisher, start_node
+from mazesim.ros.bag import BagWriter
 from mazesim.ros.lockstep import (
     IDLE_CLOCK_AFTER_S,
     RESEND_S,
@@ -102,6 +103,9 @@ class BridgeSettings:
     #: in seconds; each command holds until the clock reaches the rate's next tick (0: none, one
     #: step each; see :class:`mazesim.ros.lockstep.TimerHold`).
     command_period: float = 0.0
+    #: A bag the bridge writes every message it sends and every command it takes into (see
+    #: :mod:`mazesim.ros.bag`; empty: none).
+    bag: str = ""
 
     def validate(self) -> None:
         """Raises InvalidArgumentError naming the first parameter that is out of range."""
@@ -202,6 +206,8 @@ class Bridge:
         )
         #: The last state as it went out: each publisher with its message.
         self.last_state: list[tuple[Any, Any]] = []
+        self.bag = BagWriter(ros, settings.bag) if settings.bag else None
+        self._sending_again = False
         self._sensors_layout = self._layout(topics.sensor_names(simulator))
         self._pose_layout = self._layout(["x", "y", "yaw", "time"])
         # Latched: a subscriber that connects late still receives the state awaiting a command
@@ -232,7 +238,13 @@ class Bridge:
         # Synchronous in lockstep: every subscriber (a recorder too) gets every step before the
         # next command is taken. Queued in real time: a slow subscriber loses old messages.
         made = publisher(self.ros, topic, message_class, synchronous=self.lockstep, latch=True)
-        return _Remembered(made, self.last_state.append)
+        return _Remembered(made, self._sent)
+
+    def _sent(self, sent: tuple[Any, Any]) -> None:
+        """Notes a message that went out (publisher, message): in the last state and the bag."""
+        self.last_state.append(sent)
+        if self.bag is not None and not self._sending_again:
+            self.bag.write(sent[0].resolved_name, sent[1])
 
     def _layout(self, labels: list[str]) -> Any:
         layout = self.ros.Float64MultiArray().layout
@@ -333,24 +345,29 @@ class Bridge:
 
     def on_motor(self, message: Any) -> None:
         """Handles a ``motor`` message: ``[left, right]`` in rad/s."""
-        self._command_from("motor", lambda: topics.motor_command(message.data))
+        self._command_from("motor", message, lambda: topics.motor_command(message.data))
 
     def on_action(self, message: Any) -> None:
         """Handles an ``action`` message: a primitive action code."""
-        self._command_from("action", lambda: wheel_speeds(message.data, self.max_wheel_speed))
+        self._command_from(
+            "action", message, lambda: wheel_speeds(message.data, self.max_wheel_speed)
+        )
 
     def on_cmd_vel(self, message: Any) -> None:
         """Handles a ``cmd_vel`` twist: ``linear.x`` in m/s, ``angular.z`` in rad/s."""
         self._command_from(
             standard.CMD_VEL_TOPIC,
+            message,
             lambda: standard.twist_wheel_speeds(
                 message.linear.x, message.angular.z, self.simulator.robot
             ),
         )
 
-    def _command_from(self, topic: str, read: Callable[[], tuple[float, float]]) -> None:
-        """Applies the wheel speeds ``read`` gives; a bad ``topic`` message is logged and keeps
-        the wheel speeds of the last command accepted."""
+    def _command_from(
+        self, topic: str, message: Any, read: Callable[[], tuple[float, float]]
+    ) -> None:
+        """Applies the wheel speeds ``read`` gives (from ``message``, taken on ``topic``); a bad
+        message is logged and keeps the wheel speeds of the last command accepted."""
         with self._lock:
             (left, right), refused = self.held.take(read)
         if refused:
@@ -359,13 +376,16 @@ class Bridge:
                 topic,
                 refused,
             )
-        self.command(left, right)
+        self.command(left, right, taken=(self.ros.rospy.resolve_name(topic), message))
 
-    def command(self, left: float, right: float) -> None:
-        """Applies wheel speeds: in lockstep, steps once and publishes; else holds them."""
+    def command(self, left: float, right: float, taken: tuple[str, Any] | None = None) -> None:
+        """Applies wheel speeds: in lockstep, steps once and publishes; else holds them.
+        ``taken``: the topic and message they came from, for the bag."""
         with self._lock:
             if self.stop.is_set():
                 return
+            if taken is not None and self.bag is not None:
+                self.bag.write(*taken)
             if self.first_command_at is None:
                 self.first_command_at = time.monotonic()
             self.commands += 1
@@ -413,14 +433,21 @@ class Bridge:
                 for made, message in list(self.last_state):
                     made.publish(message)
                 return
-            self.publish_state()
+            self._sending_again = True  # the bag holds each state once
+            try:
+                self.publish_state()
+            finally:
+                self._sending_again = False
             if self.idle_tick_at == math.inf:
                 self.idle_tick_at = time.monotonic() + IDLE_CLOCK_AFTER_S
 
     def finish(self) -> tuple[int, float]:
-        """Stops stepping (later commands are ignored) and returns the steps and simulated time."""
+        """Stops stepping (later commands are ignored), finishes the bag if there is one and
+        returns the steps and simulated time."""
         with self._lock:
             self.stop.set()
+            if self.bag is not None:
+                self.bag.close()
             return self.simulator.steps, self.simulator.time
 
     def run(self) -> None:

@@ -1,7 +1,8 @@
 """``mazesim ros demo``: bridge + a controller node in lockstep on a private master, in a bag.
 
 The demo starts a master on a free loopback port (so it never disturbs a running ROS system),
-``rosbag record``, the bridge in lockstep with a ``duration`` and a controller node:
+the bridge in lockstep with a ``duration``, writing its own bag (every step by construction, see
+:mod:`mazesim.ros.bag`), and a controller node:
 
 - ``hrl`` (the default): the ``seed`` robot and the perform-learning node (the report's Alg. 5,
   the hierarchical policy shipped for ``seed-maze``); the bridge stops at the goal, or after
@@ -17,7 +18,6 @@ from __future__ import annotations
 import argparse
 import math
 import os
-import shutil
 import sys
 import time
 from typing import Any, TextIO
@@ -29,7 +29,6 @@ from mazesim._paths import make_output_folder
 from mazesim.errors import (
     InvalidArgumentError,
     MazesimError,
-    MazesimIOError,
     PolicyFormatError,
 )
 from mazesim.ros.bridge import refuse_several_robots
@@ -38,8 +37,6 @@ from mazesim.ros.topics import demo_robot
 
 __all__ = [
     "CONTROLLERS",
-    "RECORDED_TOPICS",
-    "check_free_space",
     "goal_step",
     "read_poses",
     "run_demo",
@@ -47,30 +44,8 @@ __all__ = [
 
 #: The demo's controller nodes.
 CONTROLLERS = ("hrl", "avoid-collision")
-#: The bridge and the controller run at this lower CPU priority than the recorder: in lockstep
-#: they go as fast as the CPU lets them, and a recorder starved of it drops messages once its
-#: subscriber queue (100 messages, fixed in rosbag) is full.
-NODE_NICENESS = 5
-#: The topics the demo records, by controller.
-RECORDED_TOPICS = {
-    "hrl": ("/clock", "/pose", "/sensors", "/sensor_data", "/action"),
-    "avoid-collision": ("/clock", "/pose", "/sensors", "/motor"),
-}
 #: Wall-clock seconds the demo allows per simulated second before it gives up.
 WALL_SECONDS_PER_SIMULATED_SECOND = 2.0
-#: ROS 1's ``rosbag record`` stops recording when its disk has less than 1 GiB free (its
-#: ``min_space`` default, which the Debian build's command line cannot change).
-RECORDER_MIN_FREE_BYTES = 1 << 30
-
-
-def check_free_space(out_dir: str) -> None:
-    """Refuses to start when ``rosbag record`` would stop at once for want of disk space."""
-    free = shutil.disk_usage(out_dir).free
-    if free < RECORDER_MIN_FREE_BYTES:
-        raise MazesimIOError(
-            f"rosbag record needs at least 1 GiB free on the disk of {out_dir}; found "
-            f"{free / 2**20:.0f} MiB free: free some space or pass --out on another disk"
-        )
 
 
 def read_poses(bag_path: str) -> Any:
@@ -116,17 +91,15 @@ def run_demo(args: argparse.Namespace, out: TextIO) -> int:
     robot = demo_robot(controller, getattr(args, "robot", None))
     out_dir = os.path.abspath(args.out)
     make_output_folder(out_dir)
-    check_free_space(out_dir)
     bag_path = os.path.join(out_dir, "maze.bag")
-    if os.path.exists(bag_path):
-        os.remove(bag_path)
+    for stale in (bag_path, bag_path + ".active"):
+        if os.path.exists(stale):
+            os.remove(stale)
     mazesim_command = [sys.executable, "-m", "mazesim", "ros"]
     started = time.monotonic()
     master = LocalMaster(home=os.path.join(out_dir, "logs"))
     master.start()
     try:
-        # The recorder stamps messages with the wall clock: on simulated time it would wait for a
-        # valid (non-zero) /clock and miss the first steps of a lockstep run.
         master.set_param("/use_sim_time", False)
         bridge = master.spawn(
             "bridge",
@@ -144,23 +117,13 @@ def run_demo(args: argparse.Namespace, out: TextIO) -> int:
                 "--duration",
                 repr(args.seconds),
                 *(["--stop-at-goal"] if hrl else []),
+                "--bag",
+                bag_path,
                 "__name:=bridge",
             ],
-            niceness=NODE_NICENESS,
         )
-        recorded = RECORDED_TOPICS[controller]
-        recorder = master.spawn(
-            "rosbag-record",
-            ["rosbag", "record", "--quiet", "-O", bag_path, *recorded, "__name:=recorder"],
-        )
-        # Nothing moves before the recorder listens: the bridge steps on the controller's first
-        # command, and the controller waits for both the bridge and the recorder on its topic.
-        state_topics = [topic for topic in recorded if topic not in ("/motor", "/action")]
-        master.wait_for_connections("/bridge", state_topics, "/recorder")
         node = "perform-learning" if hrl else "avoid-collision"
-        master.spawn(
-            node, [*mazesim_command, node, "--wait-for-subscribers", "2"], niceness=NODE_NICENESS
-        )
+        master.spawn(node, [*mazesim_command, node, "--wait-for-subscribers", "1"])
         deadline = time.monotonic() + 30.0 + WALL_SECONDS_PER_SIMULATED_SECOND * args.seconds
         while bridge.poll() is None and time.monotonic() < deadline:
             time.sleep(0.05)
@@ -174,8 +137,6 @@ def run_demo(args: argparse.Namespace, out: TextIO) -> int:
                 f"the bridge failed (exit code {bridge.returncode}); "
                 f"see {master.log_path('bridge')}"
             )
-        time.sleep(0.3)  # let the recorder read the last messages off its sockets
-        LocalMaster.stop_process(recorder)
     finally:
         left_behind = master.close()
     wall_clock = time.monotonic() - started
@@ -185,7 +146,7 @@ def run_demo(args: argparse.Namespace, out: TextIO) -> int:
     poses = read_poses(bag_path)
     if len(poses) == 0:
         raise MazesimError(f"the bag {bag_path} holds no /pose message")
-    # Steps are counted by simulated time, not by messages: a recorder under load can miss one.
+    # Steps are counted by simulated time.
     gaps = np.diff(poses[:, 3])
     step_s = float(gaps[gaps > 0].min()) if np.any(gaps > 0) else math.nan
     steps = round(poses[-1, 3] / step_s) if len(poses) > 1 else 0
@@ -217,7 +178,7 @@ def run_demo(args: argparse.Namespace, out: TextIO) -> int:
         f"simulated time     {poses[-1, 3]:.2f} s ({steps} control steps of {step_ms:.0f} ms "
         f"over ROS)\n"
         f"goal               {goal}\n"
-        f"wall-clock time    {wall_clock:.2f} s (master, nodes and recorder included)\n"
+        f"wall-clock time    {wall_clock:.2f} s (master and nodes included)\n"
         f"bag                {bag_path} ({len(poses)} pose messages)\n"
         f"trajectory         {picture}\n"
         f"logs               {master.home}\n"
