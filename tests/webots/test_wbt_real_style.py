@@ -158,9 +158,10 @@ def test_the_e_puck2_and_its_turret_devices_are_reported(maze: Path) -> None:
     devices = {d["name"]: d for d in report["extension_devices"]}
     assert set(devices) == {"gps", "north", "extra"}
     assert (devices["gps"]["type"], devices["gps"]["slot"]) == ("GPS", "turretSlot")
-    assert devices["gps"]["translation"] == pytest.approx([0.0, 0.0, 0.01])
+    # Measured from the robot's origin: the turret slot is 9.5 mm back and 48.6 mm up.
+    assert devices["gps"]["translation"] == pytest.approx([-0.0095, 0.0, 0.0586])
     assert devices["north"]["type"] == "Compass"
-    assert devices["north"]["translation"] == pytest.approx([0.01, 0.0, 0.01])
+    assert devices["north"]["translation"] == pytest.approx([0.0005, 0.0, 0.0586])
     extra = devices["extra"]
     assert (extra["type"], extra["slot"]) == ("DistanceSensor", "groundSensorsSlot")
     assert extra["yaw"] == pytest.approx(-1.5708)

@@ -34,7 +34,8 @@ def world_text(occlusion: str = "", max_objects: str = "") -> str:
         HEADER
         + "WorldInfo { basicTimeStep 32 }\n"
         + 'E-puck {\n  controller "<extern>"\n  turretSlot [\n'
-        + '    Camera { translation 0.03 0 0.028 name "rec" width 52 height 39 '
+        # 3 cm ahead of the centre and 2.8 cm up: the turret slot is 9.5 mm back, 48.6 mm up.
+        + '    Camera { translation 0.0395 0 -0.0206 name "rec" width 52 height 39 '
         + f"fieldOfView 0.84 recognition Recognition {{ {occlusion} {max_objects} }} }}\n"
         + "  ]\n}\n"
         + 'Solid { translation 0.3 0.05 0.025 name "red" model "red box" '
@@ -302,8 +303,9 @@ def test_a_world_before_r2022a_gives_positions_in_the_old_camera_frame(tmp_path:
     robot.step(32)
     (ahead,) = camera.getRecognitionObjects()
     assert ahead.getModel() == "ahead"
-    # x right, y up, z backward: straight ahead is a negative z.
-    assert ahead.getPosition() == pytest.approx([0.0, 0.024, -0.3])
+    # x right, y up, z backward: straight ahead is a negative z. The camera sits where the
+    # turret slot is, 9.5 mm behind the centre and 48.6 mm up.
+    assert ahead.getPosition() == pytest.approx([0.0, 0.025 - 0.0486, -0.3095])
     assert ahead.getOrientation()[3] == pytest.approx(0.0)  # turned as the robot is
     assert ahead.getPositionOnImage()[0] in (25, 26)
 

@@ -147,6 +147,20 @@ def test_a_gps_of_an_nue_world_reads_the_world_files_own_coordinates() -> None:
     simulations.release()
 
 
+def test_a_gps_in_the_turret_slot_reads_its_height() -> None:
+    text = "#VRML_SIM R2023b utf8\nE-puck { turretSlot [ GPS { } ] }\n"
+    world, report = import_wbt_text(text, "turret.wbt")
+    prepare(world, seconds=1.0, noise=False, report=report, scene=read_scene(text))
+    controller.Robot.created = None
+    robot = controller.Robot()
+    gps = robot.getDevice("gps")
+    gps.enable(32)
+    robot.step(32)
+    # The E-puck PROTO's turret slot is 48.6 mm up and 9.5 mm behind the robot's centre.
+    assert gps.getValues() == pytest.approx([-0.0095, 0.0, 0.0486], abs=1e-6)
+    simulations.release()
+
+
 def test_a_hash_inside_a_string_is_no_comment() -> None:
     scene = read_scene(
         '#VRML_SIM R2023b utf8\nE-puck {\n  name "e-puck #1"  # the first one\n'

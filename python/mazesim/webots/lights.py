@@ -1,16 +1,26 @@
 """The world's lights, as the e-puck's light sensors see them.
 
 A world file's ``PointLight``, ``SpotLight`` and ``DirectionalLight`` nodes are read from its
-node tree; a light sensor at a point, facing a heading along the floor, receives from each light
-that is on::
+node tree, and so are the lights of two PROTOs that hold one (facts of Webots' R2023b-R2025a
+PROTO files): a ``TexturedBackgroundLight`` is a DirectionalLight of ``ambientIntensity`` 1 whose
+direction and intensity its ``texture`` sets (:data:`BACKGROUND_LIGHTS`; the ``factory``,
+``noon_building_overcast`` and ``entrance_hall`` ones are off), times its ``luminosity``, which
+counts as 0 when negative; a ``ConstructionLamp`` is a Solid scaled 5 times holding a SpotLight
+at (0.0014, 0, 0.001) that shines along its +x axis (``attenuation 0 0 1``, ``cutOffAngle`` 1),
+of the lamp's ``spotLightIntensity`` (2) and ``spotLightRadius`` (100), ``beamWidth`` 0.2. A light
+sensor at a point, facing a heading along the floor, receives from each light that is on, as
+Webots' LightSensor computes it (``WbLightSensor.cpp``)::
 
-    E = intensity * (ambientIntensity + max(0, cos(a))) / attenuation
+    E = (ambientIntensity + intensity * max(0, cos(a)) * spot) / attenuation * (r + g + b) / 3
 
-where ``a`` is the angle between the sensor's direction and the way to the light, and the
-attenuation of a point or spot light at distance ``d`` is ``a0 + a1 d + a2 d^2`` (its
-``attenuation`` field; a directional light has none). Walls do not shade (Webots' LightSensor
-``occlusion`` defaults to FALSE). A world without such lights gets
-:data:`DEFAULT_IRRADIANCE`.
+where ``a`` is the angle between the sensor's direction and the way to the light, (r, g, b) the
+light's ``color``, the attenuation of a point or spot light at distance ``d`` is
+``a0 + a1 d + a2 d^2`` (its ``attenuation`` field; a directional light has none), and ``spot``
+is 1 but for a spot light: 0 for a point farther from its direction than its ``cutOffAngle``,
+falling linearly to 0 from its ``beamWidth`` to its ``cutOffAngle``. A point or spot light gives
+nothing beyond its ``radius``. Walls do not shade (Webots' LightSensor ``occlusion`` defaults to
+FALSE). A world without any light node gets :data:`DEFAULT_IRRADIANCE`; one whose lights are all
+off gets none.
 """
 
 from __future__ import annotations
@@ -19,16 +29,47 @@ import math
 from collections.abc import Iterable
 from dataclasses import dataclass
 
-from mazesim.webots.frames import nue_to_enu
+from mazesim.webots.frames import nue_to_enu, rotation_matrix
 from mazesim.webots.proto.syntax import Field, Node, first_value
 
-__all__ = ["DEFAULT_IRRADIANCE", "Light", "irradiance", "read_lights"]
+__all__ = ["BACKGROUND_LIGHTS", "DEFAULT_IRRADIANCE", "Light", "irradiance", "read_lights"]
 
 #: Irradiance (W/m^2) of a world without light information: the middle of the e-puck light
 #: sensors' table (1-2 W/m^2), a reading of 2047.5.
 DEFAULT_IRRADIANCE = 1.5
 
 _LIGHT_TYPES = ("PointLight", "SpotLight", "DirectionalLight")
+#: The PROTOs that hold a light (see the module's docstring).
+_LIGHT_PROTOS = ("TexturedBackgroundLight", "ConstructionLamp")
+
+#: The DirectionalLight of Webots' ``TexturedBackgroundLight`` PROTO for each ``texture``: its
+#: direction as the PROTO writes it (y up; in an ENU world the PROTO turns (a, b, c) into
+#: (c, a, b)), its intensity before ``luminosity``, the mean of its colour's components, and
+#: whether it is on. Another texture: the PROTO's defaults, (0, -1, 0), 1, white.
+BACKGROUND_LIGHTS: dict[str, tuple[tuple[float, float, float], float, float, bool]] = {
+    "dawn_cloudy_empty": ((0.022, -0.12, -1.0), 0.8, 2.25 / 3, True),
+    "dusk": ((-1.2, -0.3, -0.6), 0.5, 2.75 / 3, True),
+    "empty_office": ((-0.2, -0.5, -0.9), 0.05, 1.0, True),
+    "entrance_hall": ((0.0, -1.0, 0.0), 1.0, 1.0, False),
+    "factory": ((0.0, -1.0, 0.0), 1.0, 1.0, False),
+    "mars": ((0.0, -1.0, 0.0), 1.0, 2.41 / 3, True),
+    "morning_cloudy_empty": ((1.0, -0.8, -0.1), 0.9, 2.25 / 3, True),
+    "mountains": ((-0.6, -1.0, 0.55), 2.7, 1.0, True),
+    "music_hall": ((-0.78, -0.6, -0.17), 0.5, 2.8 / 3, True),
+    "noon_building_overcast": ((0.0, -1.0, 0.0), 1.0, 1.0, False),
+    "noon_cloudy_countryside": ((-0.3, -1.0, -0.1), 3.0, 2.9 / 3, True),
+    "noon_cloudy_empty": ((0.2, -1.0, 0.2), 1.0, 2.8 / 3, True),
+    "noon_cloudy_mountains": ((0.0, -1.0, -0.5), 0.9, 2.8 / 3, True),
+    "noon_park_empty": ((-0.023, -1.0, -0.08), 3.5, 2.916 / 3, True),
+    "noon_stormy_empty": ((0.1, -1.0, 0.2), 0.8, 2.8 / 3, True),
+    "noon_sunny_empty": ((0.9, -0.59, 0.28), 1.0, 1.0, True),
+    "noon_sunny_garden": ((-0.1, -0.3, 0.3), 1.0, 2.8 / 3, True),
+    "stadium": ((-2.1, -0.5, 2.1), 2.9, 2.9 / 3, True),
+    "stadium_dry": ((-2.1, -0.5, 2.1), 2.9, 2.9 / 3, True),
+    "twilight_cloudy_empty": ((1.0, -0.2, -0.7), 1.8, 2.25 / 3, True),
+}
+#: A ``ConstructionLamp``'s SpotLight in the lamp's frame (its Solid's ``scale 5 5 5`` applied).
+_LAMP_LOCATION = (0.007, 0.0, 0.005)
 
 
 @dataclass(frozen=True)
@@ -42,6 +83,10 @@ class Light:
         ambient: Its ``ambientIntensity``.
         attenuation: Its ``attenuation`` coefficients (constant, linear, quadratic).
         radius: Its ``radius`` (m): beyond it a point or spot light gives nothing.
+        beam: A spot light's direction (unit vector), else None.
+        cut_off: A spot light's ``cutOffAngle`` (rad).
+        beam_width: A spot light's ``beamWidth`` (rad).
+        color: The mean of its ``color``'s components.
     """
 
     position: tuple[float, float, float] | None
@@ -50,6 +95,15 @@ class Light:
     ambient: float = 0.0
     attenuation: tuple[float, float, float] = (1.0, 0.0, 0.0)
     radius: float = 100.0
+    beam: tuple[float, float, float] | None = None
+    cut_off: float = math.pi
+    beam_width: float = math.pi
+    color: float = 1.0
+
+
+def _unit(x: float, y: float, z: float) -> tuple[float, float, float]:
+    norm = math.sqrt(x * x + y * y + z * z) or 1.0
+    return x / norm, y / norm, z / norm
 
 
 def _numbers(light: Node, name: str, default: tuple[float, ...]) -> tuple[float, ...]:
@@ -57,30 +111,79 @@ def _numbers(light: Node, name: str, default: tuple[float, ...]) -> tuple[float,
     return first_value([light], name, lambda item: item.numbers(len(default))) or default
 
 
-def read_lights(nodes: Iterable[Node], nue: bool = False) -> list[Light]:
-    """The lights among a world file's nodes that are on.
+def _background_light(light: Node, nue: bool) -> Light | None:
+    """The DirectionalLight of a ``TexturedBackgroundLight``, or None when it is off."""
+    texture = first_value([light], "texture", Field.string) or "mountains"
+    default = ((0.0, -1.0, 0.0), 1.0, 1.0, True)
+    (x, y, z), intensity, color, on = BACKGROUND_LIGHTS.get(texture, default)
+    (luminosity,) = _numbers(light, "luminosity", (1.0,))
+    if not on:
+        return None
+    direction = nue_to_enu(x, y, z) if nue else (z, x, y)
+    intensity *= max(luminosity, 0.0)
+    return Light(None, _unit(*direction), intensity=intensity, ambient=1.0, color=color)
+
+
+def _construction_lamp(lamp: Node, nue: bool) -> Light:
+    """The SpotLight of a ``ConstructionLamp``, placed by the lamp's own pose."""
+    tx, ty, tz = _numbers(lamp, "translation", (0.0, 0.0, 0.07))
+    turn = rotation_matrix(*_numbers(lamp, "rotation", (0.0, 0.0, 1.0, 0.0)))
+    local = [sum(turn[3 * i + k] * _LAMP_LOCATION[k] for k in range(3)) for i in range(3)]
+    location = (tx + local[0], ty + local[1], tz + local[2])
+    beam = (turn[0], turn[3], turn[6])
+    (intensity,) = _numbers(lamp, "spotLightIntensity", (2.0,))
+    (radius,) = _numbers(lamp, "spotLightRadius", (100.0,))
+    return Light(
+        nue_to_enu(*location) if nue else location,
+        None,
+        intensity=intensity,
+        attenuation=(0.0, 0.0, 1.0),
+        radius=radius,
+        beam=_unit(*(nue_to_enu(*beam) if nue else beam)),
+        cut_off=1.0,
+        beam_width=0.2,
+    )
+
+
+def read_lights(nodes: Iterable[Node], nue: bool = False) -> list[Light] | None:
+    """The lights among a world file's nodes that are on; None when it has no light node.
 
     Args:
         nodes: Every node of the world file (:func:`~mazesim.webots.proto.syntax.nodes_in_order`).
         nue: Whether the file is in Webots' old NUE frame (y up); positions are converted.
     """
-    lights = []
+    lights: list[Light] = []
+    declared = False
     for light in nodes:
-        if light.type_name not in _LIGHT_TYPES or first_value([light], "on", Field.flag) is False:
+        if light.type_name not in _LIGHT_TYPES + _LIGHT_PROTOS:
+            continue
+        declared = True
+        if light.type_name == "TexturedBackgroundLight":
+            if (background := _background_light(light, nue)) is not None:
+                lights.append(background)
+            continue
+        if light.type_name == "ConstructionLamp":
+            lights.append(_construction_lamp(light, nue))
+            continue
+        if first_value([light], "on", Field.flag) is False:
             continue
         (intensity,) = _numbers(light, "intensity", (1.0,))
         (ambient,) = _numbers(light, "ambientIntensity", (0.0,))
+        color = sum(_numbers(light, "color", (1.0, 1.0, 1.0))) / 3.0
         if light.type_name == "DirectionalLight":
             x, y, z = _numbers(light, "direction", (0.0, 0.0, -1.0))
-            x, y, z = nue_to_enu(x, y, z) if nue else (x, y, z)
-            norm = math.sqrt(x * x + y * y + z * z) or 1.0
-            lights.append(
-                Light(None, (x / norm, y / norm, z / norm), intensity=intensity, ambient=ambient)
-            )
+            direction = _unit(*(nue_to_enu(x, y, z) if nue else (x, y, z)))
+            lights.append(Light(None, direction, intensity, ambient, color=color))
             continue
         x, y, z = _numbers(light, "location", (0.0, 0.0, 0.0))
         a0, a1, a2 = _numbers(light, "attenuation", (1.0, 0.0, 0.0))
         (radius,) = _numbers(light, "radius", (100.0,))
+        beam, cut_off, beam_width = None, math.pi, math.pi
+        if light.type_name == "SpotLight":
+            bx, by, bz = _numbers(light, "direction", (0.0, 0.0, -1.0))
+            beam = _unit(*(nue_to_enu(bx, by, bz) if nue else (bx, by, bz)))
+            (cut_off,) = _numbers(light, "cutOffAngle", (math.pi / 4,))
+            (beam_width,) = _numbers(light, "beamWidth", (math.pi / 2,))
         lights.append(
             Light(
                 nue_to_enu(x, y, z) if nue else (x, y, z),
@@ -89,21 +192,27 @@ def read_lights(nodes: Iterable[Node], nue: bool = False) -> list[Light]:
                 ambient=ambient,
                 attenuation=(a0, a1, a2),
                 radius=radius,
+                beam=beam,
+                cut_off=cut_off,
+                beam_width=beam_width,
+                color=color,
             )
         )
-    return lights
+    return lights if declared else None
 
 
 def irradiance(
     lights: list[Light] | None, point: tuple[float, float, float], heading: float
 ) -> float:
     """The irradiance (W/m^2) a sensor at ``point`` facing ``heading`` (along the floor)
-    receives; :data:`DEFAULT_IRRADIANCE` when ``lights`` is None or empty."""
-    if not lights:
+    receives; :data:`DEFAULT_IRRADIANCE` when ``lights`` is None (a world without light nodes),
+    0 when it is empty (every light off)."""
+    if lights is None:
         return DEFAULT_IRRADIANCE
     facing = (math.cos(heading), math.sin(heading), 0.0)
     total = 0.0
     for light in lights:
+        spot = 1.0
         if light.position is None:
             assert light.direction is not None
             towards = tuple(-v for v in light.direction)
@@ -116,6 +225,21 @@ def irradiance(
             towards = tuple(v / distance for v in offset) if distance > 0 else facing
             a0, a1, a2 = light.attenuation
             attenuation = max(a0 + a1 * distance + a2 * distance * distance, 1e-9)
+            if light.beam is not None:
+                spot = _spot_factor(light, towards)
         cosine = max(0.0, sum(f * t for f, t in zip(facing, towards)))
-        total += light.intensity * (light.ambient + cosine) / attenuation
+        total += (light.ambient + light.intensity * cosine * spot) / attenuation * light.color
     return total
+
+
+def _spot_factor(light: Light, towards: tuple[float, ...]) -> float:
+    """How much of a spot light's intensity reaches a point the unit vector ``towards`` leads
+    from to the light: 1 within its beam width, 0 beyond its cut-off angle, linear between."""
+    assert light.beam is not None
+    along = -sum(b * t for b, t in zip(light.beam, towards))
+    angle = math.acos(max(-1.0, min(1.0, along)))
+    if angle > light.cut_off:
+        return 0.0
+    if angle <= light.beam_width:
+        return 1.0
+    return (angle - light.cut_off) / (light.beam_width - light.cut_off)

@@ -158,7 +158,8 @@ class Scene:
             (in the frame of the file's E-puck PROTO: see ``y_up_devices``).
         camera_yaw: How far left (rad) the E-puck's ``camera_rotation`` turns the camera.
         north: ``WorldInfo.northDirection`` as x, y (world frame), if set.
-        lights: The world's lights that are on (empty: the light sensors' default ambient).
+        lights: The world's lights that are on; None when it has no light node (the light
+            sensors' default ambient), empty when every one is off (darkness).
         nodes: The nodes at the top of the file, in file order (the root's ``children``), each
             grouping node with its own ``children``.
         nue: Whether the file uses Webots' old NUE frame (y up): before R2022a, or
@@ -224,7 +225,7 @@ class Scene:
     traction_version: str | None = None
     infrared_elevation: float = 0.0
     ground_sensors_module: bool | None = None
-    lights: list[Light] = field(default_factory=list)
+    lights: list[Light] | None = None
     nodes: list[SceneNode] = field(default_factory=list)
     sensor_tables: dict[str, list[Row]] = field(default_factory=dict)
     malformed_tables: dict[str, str] = field(default_factory=dict)

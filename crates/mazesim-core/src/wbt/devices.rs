@@ -4,7 +4,7 @@
 //! forward, y left, z up, metres; the slot's origin taken as the robot's) and its other fields;
 //! anything else in a slot is a warning.
 
-use super::frames::{apply, axis_angle, norm, Frame, IDENTITY, NUE_TO_ENU};
+use super::frames::{apply, axis_angle, norm, Frame, ENU_TO_NUE, IDENTITY, NUE_TO_ENU};
 use super::import::{Importer, JOINTS};
 use super::shapes::snap;
 use super::tree::Node;
@@ -289,9 +289,19 @@ pub struct ExtensionDevice {
 /// Where the E-puck PROTO mounts its `groundSensorsSlot`, in the robot's frame: since R2022a
 /// (Z-up) 3 cm forward and 0.3 mm above the floor, unrotated; before (Y-up, e.g. V8.6's
 /// E-puck.proto) at the same place but turned by -1.57 rad about z, so that a child's x axis
-/// points at the floor (and its y axis to the robot's right). Any other slot, or robot, is
+/// points at the floor (and its y axis to the robot's right). Its `turretSlot`: since R2022a
+/// 9.5 mm behind the robot's centre and 48.6 mm above the floor, on top of the turret
+/// (`TURRET_SLOT`), unrotated; before, taken at the same place. Any other slot, or robot, is
 /// taken at the robot's origin.
 fn slot_frame(robot_type: &str, slot: &str, y_up: bool) -> Frame {
+    if robot_type == "E-puck" && slot == "turretSlot" {
+        let origin = [-0.0095, 0.0, 0.0486];
+        return Frame::translation(if y_up {
+            apply(&ENU_TO_NUE, origin)
+        } else {
+            origin
+        });
+    }
     if robot_type != "E-puck" || slot != "groundSensorsSlot" {
         return Frame::IDENTITY;
     }

@@ -604,6 +604,23 @@ fn a_devices_axes_are_its_frame_in_the_robots() {
 }
 
 #[test]
+fn a_turret_slot_device_sits_on_top_of_the_turret() {
+    // The E-puck PROTO's TURRET_SLOT: 9.5 mm behind the centre, 48.6 mm above the floor, so a
+    // GPS 1 cm up in it is 58.6 mm up; the same place in a Y-up world before R2022a.
+    for (version, up) in [("R2023b", "0 0 0.01"), ("R2021a", "0 0.01 0")] {
+        let text = format!(
+            "#VRML_SIM {version} utf8\nE-puck {{ turretSlot [ GPS {{ translation {up} }} ] }}\n"
+        );
+        let t = import(&text).extension_devices[0].translation;
+        let expected = [-0.0095, 0.0, 0.0586];
+        assert!(
+            (0..3).all(|i| (t[i] - expected[i]).abs() < 1e-9),
+            "{version}: {t:?}"
+        );
+    }
+}
+
+#[test]
 fn cr_line_ends_read_as_lines() {
     let lf = "#VRML_SIM R2023b utf8\n# a comment\nWoodenBox { translation 0.3 0 0.05 size 0.1 0.1 0.1 }\nE-puck { }\n";
     let cr = import(&lf.replace('\n', "\r"));
