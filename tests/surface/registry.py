@@ -239,6 +239,9 @@ MUST_REFUSE: dict[str, tuple[MustRefuse, ...]] = {
     ),
     # The vector discretisers refuse what the scalar one refuses, NaN first of all (a NaN
     # reading compares false with every bound: one check, ``not (0 <= v < inf)``, in both).
+    "mazesim._core:lower_level_states": (
+        MustRefuse({}, {"observations": ("nan_observations", "inf_observations")}),
+    ),
     "mazesim.learn.discretise:volts_to_cm": (
         MustRefuse({}, {"volts": ("nan", "inf", "nan_array", "nan_observations")}),
     ),
