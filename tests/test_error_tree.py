@@ -100,3 +100,19 @@ def test_the_callers_own_exceptions_and_interrupts_are_left_alone() -> None:
     assert in_the_tree("f", interrupt, False) is interrupt
     refused = mazesim.InvalidArgumentError("x")
     assert in_the_tree("f", refused, True) is refused
+
+
+def test_issue_35_a_value_quoted_at_length_is_shown_shortened() -> None:
+    """Every message of the tree, the compiled core's too, is shown at most MOST_MESSAGE
+    characters long, its start and end kept: a name of a million characters is quoted in a
+    line, not whole."""
+    from mazesim.errors import MOST_MESSAGE, MazesimIOError, UnknownNameError
+
+    with pytest.raises(UnknownNameError) as caught:
+        mazesim.World.builtin("w" * 10**6)
+    shown = str(caught.value)
+    assert len(shown) <= MOST_MESSAGE + 40, len(shown)
+    assert shown.startswith("unknown world") and "characters ...]" in shown
+    io_error = str(MazesimIOError("x" * 10**5))
+    assert io_error.endswith("x") and len(io_error) <= MOST_MESSAGE + 40
+    assert str(mazesim.MazesimError("short")) == "short"

@@ -149,15 +149,42 @@ def refusal_calls(entry: EntryPoint) -> list[dict[str, Any]]:
     return calls
 
 
+#: Most characters a call may print, and most its error's message may hold, whatever it was
+#: given: a value is quoted shortened (``mazesim.errors._shortened``), never whole, so a text of
+#: a million characters makes a message of a line, not a flood.
+MOST_PRINTED = 20_000
+MOST_MESSAGE = 5_000
+
+
+def long_text_calls(entry: EntryPoint) -> list[dict[str, Any]]:
+    """One call with every required parameter given a long text (``long_str``): what it prints
+    and the message it may raise must stay short (:data:`MOST_PRINTED`, :data:`MOST_MESSAGE`)."""
+    if not entry.required or entry.path.startswith("cli:"):
+        return []
+    owner = needs_instance(entry)
+    return [
+        {
+            "path": entry.path,
+            "instance": instance_recipe(owner) if owner else None,
+            "positional": list(entry.positional),
+            "args": dict.fromkeys(entry.required, "long_str"),
+        }
+    ]
+
+
 def failures_of(plans: list[dict[str, Any]], results: list[dict[str, Any]]) -> list[str]:
     """The calls that failed: those that escaped; those of a wrong number of arguments that ran;
     those of a value the entry point must refuse that it accepted (a call that returned, or a
-    command that ended with exit 0)."""
+    command that ended with exit 0); those that printed or raised a message longer than
+    :data:`MOST_PRINTED` or :data:`MOST_MESSAGE` characters."""
     failures = []
     for plan, result in zip(plans, results):  # noqa: B905 - one result per plan
         ran = result["how"] == "ended" and result["what"] in ("returned", "exit 0")
+        printed, message = result.get("printed", 0), result.get("message", 0)
         if result["how"] == "escaped":
             failures.append(f"{plan}: {result['what']}")
+        elif printed > MOST_PRINTED or message > MOST_MESSAGE:
+            failures.append(f"{plan}: printed {printed} characters, a message of {message}")
         elif plan.get("arity") and ran:
             failures.append(f"{plan}: {result['what']}")
         elif plan.get("must_refuse") and ran:
@@ -178,6 +205,7 @@ def plans_of(entries: list[EntryPoint], seed: int, calls: int) -> list[dict[str,
         if not entry.path.startswith("cli:"):
             plans.extend(arity_calls(entry, random.Random(f"{seed}:{entry.path}:arity")))
         plans.extend(refusal_calls(entry))
+        plans.extend(long_text_calls(entry))
     return plans
 
 
@@ -305,6 +333,28 @@ def test_an_absurd_value_accepted_in_silence_is_a_failure() -> None:
     assert failures_of([must], [returned]) == [f"{must}: accepted a value it must refuse"]
     assert failures_of([must], [refused]) == []
     assert failures_of([{"path": "p", "args": {}}], [returned]) == []
+
+
+def test_a_flood_of_output_or_a_message_quoting_a_value_whole_is_a_failure() -> None:
+    """The walk counts a call that printed more than MOST_PRINTED characters, or raised a
+    message longer than MOST_MESSAGE, as a failure, however it ended."""
+    plan = {"path": "p", "args": {"name": "long_str"}}
+    flood = {"how": "ended", "what": "returned", "printed": 10**6}
+    quoted = {"how": "refused", "what": "mazesim.errors.UnknownNameError: ...", "message": 10**5}
+    assert len(failures_of([plan, plan], [flood, quoted])) == 2
+    assert failures_of([plan], [{**flood, "printed": 100}]) == []
+
+
+def test_issue_35_every_text_parameter_quotes_a_long_text_shortened() -> None:
+    """Every entry point of a walk is given a text of 100,000 characters for its required
+    parameters (long_text_calls): Webots' getDevice, whose "not found" line quoted it whole,
+    and the compiled core's lookups by name among them."""
+    wanted = ("mazesim.webots.robot:Robot.getDevice", "mazesim._core:World.builtin")
+    entries = [e for e in entry_points() if e.path in wanted]
+    plans = [plan for entry in entries for plan in long_text_calls(entry)]
+    assert len(plans) == len(wanted)
+    failures = failures_of(plans, walk(plans))
+    assert not failures, "\n".join(failures)
 
 
 def test_the_declared_refusals_are_refused() -> None:

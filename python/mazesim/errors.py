@@ -34,8 +34,33 @@ __all__ = [
 ]
 
 
+#: Most characters of a user's value that a message quotes: a longer value (a name of a
+#: million characters) is quoted by its start and its end (:func:`_shortened`).
+MOST_QUOTED = 200
+#: Most characters of a message: a longer one (a value quoted at length, below the package's
+#: own helpers) is shown shortened the same way.
+MOST_MESSAGE = 4000
+
+
+def _shortened(text: str, most: int = MOST_QUOTED) -> str:
+    """``text`` as a message quotes it: whole if it has at most ``most`` characters, else its
+    start and its end around a note of how many characters were left out (the one helper of
+    every message that quotes a user's value)."""
+    if len(text) <= most:
+        return text
+    head, tail = most * 2 // 3, most // 3
+    return f"{text[:head]}[... {len(text) - head - tail} characters ...]{text[len(text) - tail :]}"
+
+
 class MazesimError(Exception):
-    """The root of every exception that mazesim raises on purpose."""
+    """The root of every exception that mazesim raises on purpose.
+
+    Its message is shown at most :data:`MOST_MESSAGE` characters long (:func:`_shortened`), so
+    that no value quoted in it floods a terminal or a log.
+    """
+
+    def __str__(self) -> str:
+        return _shortened(super().__str__(), MOST_MESSAGE)
 
 
 class WorldFormatError(MazesimError, ValueError):
@@ -171,9 +196,10 @@ class MazesimIOError(MazesimError, OSError):
     """
 
     def __str__(self) -> str:
-        """The message as given, whatever attributes are set after construction."""
+        """The message as given (shortened as every message is), whatever attributes are set
+        after construction."""
         if len(self.args) == 1:
-            return str(self.args[0])
+            return _shortened(str(self.args[0]), MOST_MESSAGE)
         return super().__str__()
 
 

@@ -631,3 +631,30 @@ def test_a_stray_word_far_from_every_built_in_controller_is_told_none(
     assert main(["webots", "run", "world.wbt", "banana"]) == 2
     line = capsys.readouterr().err.strip().splitlines()[-1]
     assert line == "mazesim webots run: error: unrecognized arguments: banana", line
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["q" * 200_000],
+        ["worlds", "--export", "z" * 200_000],
+        ["demo", "--robot", "r" * 200_000, "--seconds", "0.1"],
+    ],
+)
+def test_issue_35_a_word_of_200000_characters_is_quoted_shortened(
+    argv: list[str], tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """The usage error names the word by its start and end, in a message of a few lines."""
+    assert main([*argv, *(["--out", str(tmp_path / "out")] if argv[0] == "demo" else [])]) == 2
+    err = capsys.readouterr().err
+    assert "characters ...]" in err and len(err) < 6000, len(err)
+
+
+def test_issue_35_a_wbt_of_one_5_mb_line_is_refused_in_a_short_message(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    world = tmp_path / "one-line.wbt"
+    world.write_text("#VRML_SIM R2023b utf8\n" + "A" * (5 << 20), encoding="utf-8")
+    assert main(["import-wbt", str(world)]) in (1, 2)
+    err = capsys.readouterr().err
+    assert err.startswith("mazesim: error:") and len(err) < 6000, len(err)

@@ -7,6 +7,7 @@ speeds the run recorded), bit for bit, over thread counts and batch sizes.
 
 from __future__ import annotations
 
+import math
 import re
 from collections.abc import Callable
 from typing import Any, Union
@@ -326,6 +327,7 @@ _TABLE_VOLTS = [volts for _, volts in SHARP_TABLE]
             st.floats(0.0, 4.0, width=32),
             st.sampled_from(_TABLE_VOLTS),
             st.floats(-10.0, 10.0, width=32, allow_subnormal=True),
+            st.sampled_from([math.nan, math.inf, -math.inf]),
         ),
         min_size=6,
         max_size=6 * 20,
@@ -334,17 +336,20 @@ _TABLE_VOLTS = [volts for _, volts in SHARP_TABLE]
 )
 def test_the_core_discretises_as_numpy_does(volts: list[float], extra: int) -> None:
     """The core and a numpy reference (the table inverted, then Table 4.1) give the same states,
-    or both refuse a reading below 0 V with the same message."""
+    or both refuse a reading below 0 V, infinite or NaN with the same words, quoting the same
+    reading (NaN first, else the lowest)."""
     rows = np.array(volts, dtype=np.float32).reshape(-1, 6)
     observations = np.concatenate([rows, np.full((len(rows), extra), 500.0, np.float32)], axis=1)
-    if (rows < 0.0).any():
+    refused = rows[~((rows >= 0.0) & (rows < np.inf))]
+    if refused.size:
+        wanted = math.nan if np.isnan(refused).any() else float(refused.min())
         with pytest.raises(mazesim.InvalidArgumentError, match="readings of 0 V or more") as core:
             mazesim._core.lower_level_states(observations)
         with pytest.raises(mazesim.InvalidArgumentError, match="readings of 0 V or more") as numpy:
             _numpy_states(observations)
         for refusal in (core.value, numpy.value):
             found = re.search(r"found (\S+) V", str(refusal))
-            assert found is not None and float(found[1]) == float(rows.min()), refusal
+            assert found is not None and repr(float(found[1])) == repr(wanted), refusal
         return
     np.testing.assert_array_equal(
         mazesim._core.lower_level_states(observations), _numpy_states(observations)

@@ -64,6 +64,41 @@ def test_volts_to_cm_equals_the_core_inversion_bit_for_bit() -> None:
     assert np.array_equal(volts_to_cm(volts), core)
 
 
+@pytest.mark.parametrize("reading", [np.nan, np.inf, -np.inf, -0.5])
+def test_issue_35_the_vector_discretisers_refuse_what_the_scalar_one_refuses(
+    reading: float,
+) -> None:
+    """A reading no Sharp ranger gives (not a number, infinite, below 0 V) is refused by
+    ``sharp_volts_to_cm`` and by every vector discretiser alike, not read as level 3 (NaN)."""
+    with pytest.raises(InvalidArgumentError, match="0 V or more"):
+        mazesim.sharp_volts_to_cm(reading)
+    rows = np.full((3, 6), 1.0)
+    rows[1, 2] = reading
+    for discretise in (volts_to_cm, observation_states):
+        with pytest.raises(InvalidArgumentError, match="readings of 0 V or more, finite") as caught:
+            discretise(rows)
+        assert f"found {reading} V" in str(caught.value)
+
+
+@pytest.mark.parametrize("distance", [np.nan, -1.0])
+def test_issue_35_distance_levels_refuses_a_distance_below_0_cm_or_not_a_number(
+    distance: float,
+) -> None:
+    with pytest.raises(InvalidArgumentError, match="distances of 0 cm or more"):
+        distance_levels([25.0, distance])
+    assert distance_levels([np.inf]).tolist() == [3]  # nothing seen in range: the far level
+
+
+@pytest.mark.parametrize(
+    "values", [np.array([1.0 + 2.0j]), np.array([None]), np.array(["1.0"]), [[1.0], [1.0, 2.0]]]
+)
+def test_issue_35_numbers_that_are_not_real_are_no_readings(values: object) -> None:
+    """numpy would drop an imaginary part, or read None as NaN, without a word."""
+    for discretise in (volts_to_cm, distance_levels):
+        with pytest.raises(InvalidArgumentError, match="expected"):
+            discretise(values)
+
+
 def test_observation_states_of_a_batch() -> None:
     world = mazesim.load_world("seed-maze")
     batch = mazesim.BatchSimulator(world, num_envs=2, robot="seed", seeds=[1, 2])

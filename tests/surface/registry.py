@@ -237,6 +237,23 @@ MUST_REFUSE: dict[str, tuple[MustRefuse, ...]] = {
     "mazesim._core:sharp_volts_to_cm": (
         MustRefuse({}, {"volts": ("nan", "inf", "minus_one", "min_float")}),
     ),
+    # The vector discretisers refuse what the scalar one refuses, NaN first of all (a NaN
+    # reading compares false with every bound: one check, ``not (0 <= v < inf)``, in both).
+    "mazesim._core:lower_level_states": (
+        MustRefuse({}, {"observations": ("nan_observations", "inf_observations")}),
+    ),
+    "mazesim.learn.discretise:volts_to_cm": (
+        MustRefuse({}, {"volts": ("nan", "inf", "nan_array", "nan_observations")}),
+    ),
+    "mazesim.learn.discretise:observation_states": (
+        MustRefuse({}, {"observations": ("nan_observations", "inf_observations")}),
+    ),
+    "mazesim.learn.discretise:distance_levels": (
+        MustRefuse({}, {"distances_cm": ("nan", "nan_array", "minus_one")}),
+    ),
+    "mazesim.learn.discretise:observation_levels": (
+        MustRefuse({}, {"observations": ("nan_observations",)}),
+    ),
 }
 
 #: Absurd values every entry point refuses for a parameter of this name, whatever its class:

@@ -57,11 +57,20 @@ def _allowed(error: BaseException) -> bool:
 
 
 def run_one(plan: dict[str, Any], world: Any, tmp: Path) -> dict[str, Any]:
-    """Makes one call of the plan; says how it ended."""
+    """Makes one call of the plan; says how it ended, how many characters it printed and how
+    long its error's message was."""
+    out, err = io.StringIO(), io.StringIO()
+    outcome = _run_one(plan, world, tmp, out, err)
+    outcome["printed"] = len(out.getvalue()) + len(err.getvalue())
+    return outcome
+
+
+def _run_one(
+    plan: dict[str, Any], world: Any, tmp: Path, out: io.StringIO, err: io.StringIO
+) -> dict[str, Any]:
     from surface.values import make, word
 
     timer = threading.Timer(CALL_LIMIT, os.kill, (os.getpid(), signal.SIGINT))
-    out, err = io.StringIO(), io.StringIO()
     try:
         with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
             if plan["path"].startswith("cli:"):
@@ -92,10 +101,11 @@ def run_one(plan: dict[str, Any], world: Any, tmp: Path) -> dict[str, Any]:
     except BaseException as error:  # noqa: BLE001 - any other exception is the finding
         how = "refused" if _allowed(error) else "escaped"
         try:
-            text = str(error)[:300]
+            whole = str(error)
         except Exception as unreadable:  # noqa: BLE001 - an error whose message fails is a finding
-            how, text = "escaped", f"(its message raised {type(unreadable).__name__})"
-        return {"how": how, "what": f"{type(error).__module__}.{type(error).__name__}: {text}"}
+            how, whole = "escaped", f"(its message raised {type(unreadable).__name__})"
+        what = f"{type(error).__module__}.{type(error).__name__}: {whole[:300]}"
+        return {"how": how, "what": what, "message": len(whole)}
     finally:
         timer.cancel()
 

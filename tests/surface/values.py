@@ -193,6 +193,9 @@ ABSURD: dict[str, Any] = {
     # inside its regular expressions).
     "redos_javascript_template": lambda: "%< /^(a+)+$/.test('a'.repeat(40) + 'b') >%",
     "period_2_40": lambda: 2**40,
+    # Observations of two robots whose Sharp readings are not numbers, or infinite.
+    "nan_observations": lambda: np.full((2, 6), np.nan, np.float32),
+    "inf_observations": lambda: np.full((2, 6), np.inf, np.float32),
     "packet_over_bound": lambda: b"x" * (16 * 1024 * 1024 + 1),
 }
 

@@ -70,6 +70,18 @@ def test_time_step_name_and_devices(robot: Robot, capsys: pytest.CaptureFixture[
     assert 'Device "lidar" was not found on robot "e-puck"' in capsys.readouterr().err
 
 
+def test_issue_35_a_device_name_of_a_million_characters_is_quoted_shortened(
+    robot: Robot, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Webots' "not found" line, and the closing line that lists the names asked for, quote a
+    name by its start and end (mazesim.errors.MOST_QUOTED characters), not whole."""
+    assert robot.getDevice("ps" + "0" * 10**6) is None
+    err = capsys.readouterr().err
+    assert err.startswith('Device "ps000') and "characters ...]" in err and len(err) < 1000
+    line = robot._missing_devices_line()
+    assert "characters ...]" in line and len(line) < 2000
+
+
 def test_sensors_read_only_after_enable_and_one_period(
     robot: Robot, capsys: pytest.CaptureFixture[str]
 ) -> None:

@@ -330,16 +330,22 @@ pub fn lower_level_states<'py>(
             }
         };
         let values = copied::<f32>(observations, "observations", "float32", &[rows, width])?;
-        // The Sharp ranger never reads below 0 V: refused as `learn.volts_to_cm` refuses it.
-        let lowest = values
+        // The Sharp ranger never reads below 0 V, nor an infinite or NaN voltage: refused as
+        // `learn.volts_to_cm` refuses it, quoting the same reading.
+        let refused = values
             .chunks_exact(width)
             .flat_map(|row| &row[..sensors])
-            .fold(0.0f32, |low, &v| if v < low { v } else { low });
-        if lowest < 0.0 {
+            .copied()
+            .filter(|&v| !(v >= 0.0 && v < f32::INFINITY))
+            .fold(None, |quoted: Option<f32>, v| match quoted {
+                Some(q) if q.is_nan() || q <= v => Some(q),
+                _ => Some(v),
+            });
+        if let Some(reading) = refused {
             return Err(invalid(format!(
-                "expected Sharp GP2Y0A41SK0F readings of 0 V or more (its output never goes \
-                 below 0 V, as mazesim.sharp_volts_to_cm says), found {:?} V",
-                f64::from(lowest)
+                "expected Sharp GP2Y0A41SK0F readings of 0 V or more, finite (its output never \
+                 goes below 0 V, as mazesim.sharp_volts_to_cm says), found {} V",
+                shown_volts(reading)
             )));
         }
         let discretiser = Discretiser::new().py()?;
@@ -349,4 +355,17 @@ pub fn lower_level_states<'py>(
             .collect();
         Ok(PyArray1::from_vec(py, states))
     })
+}
+
+/// A refused reading as Python prints the float (`nan`, `inf`, `-0.5`), so that the core's
+/// refusal quotes it as `learn.volts_to_cm`'s does.
+fn shown_volts(reading: f32) -> String {
+    let value = f64::from(reading);
+    if value.is_nan() {
+        "nan".to_owned()
+    } else if value.is_infinite() {
+        if value > 0.0 { "inf" } else { "-inf" }.to_owned()
+    } else {
+        format!("{value:?}")
+    }
 }

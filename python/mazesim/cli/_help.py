@@ -11,7 +11,7 @@ import argparse
 import textwrap
 from typing import Any, NoReturn
 
-from mazesim.errors import _closest_name
+from mazesim.errors import MOST_MESSAGE, _closest_name, _shortened
 
 __all__ = ["CommandParser", "HelpFormatter", "examples"]
 
@@ -57,7 +57,8 @@ class CommandParser(argparse.ArgumentParser):
                 f" (one of: {', '.join(commands.choices)}; "
                 f"'{self.prog} {commands.metavar} --help' gives its options)"
             )
-        super().error(message)
+        # argparse quotes the word typed whole: a word of a million characters is shortened.
+        super().error(_shortened(message, MOST_MESSAGE))
 
     def _check_value(self, action: argparse.Action, value: Any) -> None:
         """argparse's check of a value against the option's choices (or the commands), with the

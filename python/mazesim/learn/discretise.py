@@ -32,6 +32,8 @@ Example:
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import numpy.typing as npt
 
@@ -105,13 +107,15 @@ def volts_to_cm(volts: npt.ArrayLike) -> npt.NDArray[np.float64]:
         The distances in cm, float64, of the same shape.
 
     Raises:
-        InvalidArgumentError: A reading is below 0 V.
+        InvalidArgumentError: A reading is below 0 V, infinite or not a number.
     """
-    values = np.asarray(volts, dtype=np.float64)
-    if np.any(values < 0.0):
+    values = _real_values(volts, "Sharp readings in volts")
+    refused = ~((values >= 0.0) & (values < np.inf))  # NaN compares false: refused too
+    if refused.any():
         raise InvalidArgumentError(
-            "expected Sharp GP2Y0A41SK0F readings of 0 V or more (its output never goes below "
-            f"0 V, as mazesim.sharp_volts_to_cm says), found {float(values.min())} V"
+            "expected Sharp GP2Y0A41SK0F readings of 0 V or more, finite (its output never goes "
+            "below 0 V, as mazesim.sharp_volts_to_cm says), found "
+            f"{_refused_reading(values[refused])} V"
         )
     # First table row whose volts are at or below the reading (the rows' volts fall).
     upper = np.searchsorted(-_TABLE_VOLTS, -values, side="left")
@@ -126,6 +130,30 @@ def volts_to_cm(volts: npt.ArrayLike) -> npt.NDArray[np.float64]:
     return metres * 100.0
 
 
+def _real_values(values: npt.ArrayLike, what: str) -> npt.NDArray[np.float64]:
+    """``values`` as float64, refused unless they are real numbers (bools, integers, floats):
+    complex numbers, text and objects are no readings, and numpy would drop an imaginary part or
+    turn None into NaN without a word."""
+    try:
+        array = np.asarray(values)
+    except (ValueError, TypeError) as error:  # ragged nesting, unconvertible objects
+        raise InvalidArgumentError(f"expected {what} as an array of numbers: {error}") from None
+    if array.dtype.kind not in "biuf":
+        raise InvalidArgumentError(
+            f"expected {what} as real numbers (a bool, integer or float array), found an array "
+            f"of dtype {array.dtype}"
+        )
+    return array.astype(np.float64, copy=False)
+
+
+def _refused_reading(refused: npt.NDArray[np.float64]) -> float:
+    """The reading a refusal quotes, of the refused ones: not a number if one is, else the
+    lowest below 0 V, else infinity (as the core's ``lower_level_states`` quotes it)."""
+    if np.isnan(refused).any():
+        return math.nan
+    return float(refused.min())
+
+
 def distance_levels(distances_cm: npt.ArrayLike) -> npt.NDArray[np.int64]:
     """Table 4.1: the level (0 to 3) of each distance in cm.
 
@@ -134,8 +162,17 @@ def distance_levels(distances_cm: npt.ArrayLike) -> npt.NDArray[np.int64]:
 
     Returns:
         The levels, int64, of the same shape.
+
+    Raises:
+        InvalidArgumentError: A distance is below 0 cm or not a number.
     """
-    values = np.asarray(distances_cm, dtype=np.float64)
+    values = _real_values(distances_cm, "distances in cm")
+    refused = ~(values >= 0.0)  # NaN compares false: refused too
+    if refused.any():
+        raise InvalidArgumentError(
+            "expected distances of 0 cm or more (an infinite one is level 3), found "
+            f"{_refused_reading(values[refused])} cm"
+        )
     return np.searchsorted(np.asarray(LEVEL_EDGES_CM), values, side="right").astype(np.int64)
 
 

@@ -10,7 +10,7 @@ import time
 import warnings
 from typing import Any, ClassVar
 
-from mazesim.errors import InvalidArgumentError
+from mazesim.errors import InvalidArgumentError, _shortened
 from mazesim.webots import simulation as _simulations
 from mazesim.webots.devices import MAX_SAMPLING_PERIOD_MS, sampling_period, webots_property
 from mazesim.webots.equipment import Equipment
@@ -360,12 +360,13 @@ class Robot(NotSimulated):
             )
         if device is None:
             self._missing_devices = (*self._missing_devices, str(name))
-            print(f'Device "{name}" was not found on robot "{self.getName()}"', file=sys.stderr)
+            shown = _shortened(str(name))
+            print(f'Device "{shown}" was not found on robot "{self.getName()}"', file=sys.stderr)
             similar = difflib.get_close_matches(str(name), list(self._equipment.devices), n=3)
             if similar:
                 # Older worlds and other robots name devices otherwise ("left wheel", "ds0").
                 print(
-                    f"mazesim: the robot's devices with a name like {str(name)!r}: "
+                    f"mazesim: the robot's devices with a name like {_shortened(repr(str(name)))}: "
                     + ", ".join(repr(found) for found in similar),
                     file=sys.stderr,
                 )
@@ -377,7 +378,7 @@ class Robot(NotSimulated):
         and the robot's devices; empty when every name asked for was found."""
         if not self._missing_devices:
             return ""
-        asked = ", ".join(repr(name) for name in dict.fromkeys(self._missing_devices))
+        asked = ", ".join(_shortened(repr(name)) for name in dict.fromkeys(self._missing_devices))
         have = ", ".join(repr(name) for name in self._equipment.devices)
         return (
             f"mazesim: getDevice returned None for {asked}: robot {self.getName()!r} has no "

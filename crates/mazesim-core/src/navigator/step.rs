@@ -12,7 +12,7 @@ use super::discretiser::{level_of_cm, state_of_levels, NUM_SENSORS, NUM_STATES};
 use super::door::{self, Phases, SubTaskEnd, SubTaskState, NUM_SUBTASKS};
 use super::heading_hold::{spin_of, BlindRule, CorridorRules};
 use super::qlearning::best_action;
-use super::tabular::NUM_ACTIONS;
+use super::tabular::{finite_q_values, NUM_ACTIONS};
 use crate::error::{Error, Result};
 
 /// Backward (`99`), which Corridors and Corners may not take.
@@ -74,6 +74,7 @@ impl Navigator {
                     values.len()
                 ))
             })?;
+        finite_q_values(&values, phases.rows())?;
         if blind == BlindRule::Forward {
             return Err(Error::InvalidArgument(
                 "expected the blind rule \"table\" or \"hold_heading\" (a navigator trained to \
@@ -187,6 +188,19 @@ mod tests {
             }
         }
         values
+    }
+
+    #[test]
+    fn tables_holding_a_value_that_is_not_finite_are_refused_naming_where() {
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            let mut values = tables(Phases::HeadingAndDistance, |_, _| 0);
+            let rows = Phases::HeadingAndDistance.rows();
+            values[(2 * rows + 7) * NUM_ACTIONS + 3] = bad;
+            let err = Navigator::new(values, 1, BlindRule::Table).err().unwrap();
+            let text = err.to_string();
+            assert!(text.contains("expected finite Q-values"), "{text}");
+            assert!(text.contains("table 2, state 7, action 3"), "{text}");
+        }
     }
 
     #[test]

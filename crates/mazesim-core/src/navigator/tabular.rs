@@ -71,15 +71,7 @@ impl TabularPolicy {
                 values.len()
             )));
         }
-        if let Some(at) = values.iter().position(|v| !v.is_finite()) {
-            return Err(Error::InvalidArgument(format!(
-                "expected finite Q-values, found {} at table {}, state {}, action {}",
-                values[at],
-                at / per_table,
-                at % per_table / NUM_ACTIONS,
-                at % NUM_ACTIONS
-            )));
-        }
+        finite_q_values(&values, NUM_STATES)?;
         if !(0.0..=1.0).contains(&epsilon) {
             return Err(Error::InvalidArgument(format!(
                 "expected epsilon in [0, 1], found {epsilon}"
@@ -286,6 +278,23 @@ fn last_spin(last: [f32; 2]) -> Option<usize> {
         Some(SPIN_LEFT)
     } else {
         None
+    }
+}
+
+/// Refuses a stack of Q-tables (`states x NUM_ACTIONS` values each) holding a value that is not
+/// finite, naming where it is: the one check of every Q-table the core is given, so that no
+/// controller ever compares NaN.
+pub(crate) fn finite_q_values(values: &[f64], states: usize) -> Result<()> {
+    let per_table = states * NUM_ACTIONS;
+    match values.iter().position(|v| !v.is_finite()) {
+        Some(at) => Err(Error::InvalidArgument(format!(
+            "expected finite Q-values, found {} at table {}, state {}, action {}",
+            values[at],
+            at / per_table,
+            at % per_table / NUM_ACTIONS,
+            at % NUM_ACTIONS
+        ))),
+        None => Ok(()),
     }
 }
 
