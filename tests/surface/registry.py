@@ -251,9 +251,6 @@ MUST_REFUSE: dict[str, tuple[MustRefuse, ...]] = {
     "mazesim.learn.discretise:distance_levels": (
         MustRefuse({}, {"distances_cm": ("nan", "nan_array", "minus_one")}),
     ),
-    "mazesim.learn.discretise:observation_levels": (
-        MustRefuse({}, {"observations": ("nan_observations",)}),
-    ),
 }
 
 #: Absurd values every entry point refuses for a parameter of this name, whatever its class:

@@ -223,10 +223,12 @@ def decode_state(state: npt.ArrayLike) -> npt.NDArray[np.int64]:
 
 def observation_states(observations: npt.ArrayLike) -> npt.NDArray[np.int64]:
     """The (N,) states of batch observations (the first six columns, volts): the core's
-    discretiser, :func:`mazesim._core.lower_level_states`, on them as float32."""
+    discretiser, :func:`mazesim._core.lower_level_states`, on them as float32 (real numbers
+    only, as :func:`volts_to_cm` takes them)."""
     from mazesim._core import lower_level_states
 
-    return lower_level_states(np.asarray(observations, dtype=np.float32))
+    values = _real_values(observations, "observations in volts")
+    return lower_level_states(np.asarray(values, dtype=np.float32))
 
 
 def format_levels(levels: npt.ArrayLike) -> str:
