@@ -272,24 +272,34 @@ impl WbtImport {
         self.paint.extend(marks);
     }
 
-    /// Fills each texture's candidate files for a world file in `dir`.
+    /// Fills each texture's candidate files (the floor's and the walls') for a world file in
+    /// `dir`.
     pub(super) fn locate_textures(&mut self, dir: &Path) {
         for texture in &mut self.floor_textures {
-            let mut candidates = Vec::new();
-            for url in &texture.urls {
-                let file = url.rsplit('/').next().unwrap_or(url);
-                let is_web = url.contains("://");
-                if !is_web && !url.is_empty() {
-                    candidates.push(dir.join(url).display().to_string());
-                }
-                if !file.is_empty() {
-                    candidates.push(dir.join("textures").join(file).display().to_string());
-                }
-            }
-            candidates.dedup();
-            texture.candidates = candidates;
+            texture.candidates = texture_candidates(dir, &texture.urls);
+        }
+        for texture in &mut self.wall_textures {
+            texture.candidates = texture_candidates(dir, &texture.urls);
         }
     }
+}
+
+/// The files an image texture of `urls` is looked for in, for a world file in `dir`: each url
+/// beside the world file (not a web one), then its file name in `textures/` beside it.
+fn texture_candidates(dir: &Path, urls: &[String]) -> Vec<String> {
+    let mut candidates = Vec::new();
+    for url in urls {
+        let file = url.rsplit('/').next().unwrap_or(url);
+        let is_web = url.contains("://");
+        if !is_web && !url.is_empty() {
+            candidates.push(dir.join(url).display().to_string());
+        }
+        if !file.is_empty() {
+            candidates.push(dir.join("textures").join(file).display().to_string());
+        }
+    }
+    candidates.dedup();
+    candidates
 }
 
 impl<'d> Importer<'d> {
