@@ -185,15 +185,7 @@ impl<'d> Importer<'d> {
             "Appearance" => "texture",
             _ => return None,
         };
-        let texture = self
-            .nodes(appearance, field)
-            .iter()
-            .map(|&id| self.node(id))
-            .find(|n| n.type_name == "ImageTexture")?;
-        let urls = self.strings(texture, "url").to_vec();
-        if urls.iter().all(|url| url.trim().is_empty()) {
-            return None;
-        }
+        let urls = self.image_texture_urls(appearance, field)?;
         let (red, roughness) = self.appearance_red(appearance);
         let owner = self.label(shape);
         self.wall_textures.push(WallTexture {

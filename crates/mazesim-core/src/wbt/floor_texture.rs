@@ -303,6 +303,26 @@ fn texture_candidates(dir: &Path, urls: &[String]) -> Vec<String> {
 }
 
 impl<'d> Importer<'d> {
+    /// The urls of the `ImageTexture` in the field `field` of an appearance node; `None`
+    /// without one, or when its urls are all empty (what Webots' scene tree leaves when a
+    /// texture is cleared, which loads no image in Webots: no texture, and nothing to warn of).
+    pub(super) fn image_texture_urls(
+        &mut self,
+        appearance: &'d Node,
+        field: &str,
+    ) -> Option<Vec<String>> {
+        let texture = self
+            .nodes(appearance, field)
+            .iter()
+            .map(|&id| self.node(id))
+            .find(|n| n.type_name == "ImageTexture")?;
+        let urls = self.strings(texture, "url").to_vec();
+        if urls.iter().all(|url| url.trim().is_empty()) {
+            return None;
+        }
+        Some(urls)
+    }
+
     /// The `ImageTexture` urls of an appearance (`PBRAppearance.baseColorMap`,
     /// `Appearance.texture`) and its `textureTransform` scale; `None` when it has no texture
     /// with a url.
@@ -318,17 +338,7 @@ impl<'d> Importer<'d> {
                 return None;
             }
         };
-        let texture = self
-            .nodes(appearance, field)
-            .iter()
-            .map(|&id| self.node(id))
-            .find(|n| n.type_name == "ImageTexture")?;
-        let urls = self.strings(texture, "url").to_vec();
-        // An ImageTexture whose urls are all empty (what Webots' scene tree leaves when a
-        // texture is cleared) loads no image in Webots: no texture, and nothing to warn of.
-        if urls.iter().all(|url| url.trim().is_empty()) {
-            return None;
-        }
+        let urls = self.image_texture_urls(appearance, field)?;
         let scale = self
             .nodes(appearance, "textureTransform")
             .first()
